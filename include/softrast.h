@@ -1,0 +1,435 @@
+/*
+ * softrast.h - a CPU graphics pipeline in C11.
+ *
+ * softrast is the raster pipeline of a graphics course made exact: object
+ * coordinates go through the model, camera and projection matrices (M_O, E,
+ * P), are clipped in homogeneous clip space, divided by w, mapped to pixels
+ * by the viewport matrix S, snapped to 8 sub-pixel bits and scan-converted
+ * with integer edge functions under the top-left fill rule.  Attributes are
+ * interpolated perspective-correctly, depth is tested against a z-buffer,
+ * and fragments are shaded flat, Gouraud or Phong.
+ *
+ * What it does not do: it opens no windows, reads no files (see
+ * softrast_io.h for that) and never prints.  It depends on libc, libm and
+ * pthreads only.
+ *
+ * Use:
+ *     sr_context *ctx;
+ *     sr_make_context(&(sr_context_desc){0}, &ctx);
+ *     sr_framebuffer *fb;
+ *     sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 640, .height = 480 }, &fb);
+ *     sr_clear(ctx, fb, &(sr_clear_desc){ .color = {0,0,0,1}, .depth = 1 });
+ *     sr_draw(ctx, fb, &state, &(sr_draw_desc){ .positions = xyz, .vertex_count = n, ... });
+ *     const uint8_t *rgba = sr_framebuffer_pixels(fb);
+ *     ...
+ *     sr_destroy_framebuffer(ctx, fb);
+ *     sr_destroy_context(ctx);
+ *
+ * Conventions:
+ *  - Descriptor structs: a field left at zero takes its documented default,
+ *    so `{0}` is always valid where a desc is optional.
+ *  - Framebuffer coordinates: x right, y down, row 0 at the top (PNG order).
+ *    Pixel (x, y) covers [x, x+1) x [y, y+1); it is sampled at its centre.
+ *  - Matrices are column-major float[16] (OpenGL layout): m[col*4 + row].
+ *  - Clip space follows OpenGL (z_ndc in [-1, 1]) unless
+ *    sr_state.depth_zero_to_one is set.
+ *
+ * Errors: every function that can fail returns an sr_result.  SR_OK is 0.
+ * Invalid arguments give SR_INVALID_ARG and a message naming the field,
+ * available from sr_context_error(ctx) until the next call on that context.
+ * Nothing is drawn by a call that fails validation.
+ *
+ * Memory: every allocation goes through sr_context_desc.allocator (malloc
+ * and free when left zero).  Scratch memory for drawing is kept across draw
+ * calls and freed with the context.
+ *
+ * Threads: a context and the framebuffers drawn with it are used by one
+ * thread at a time.  Internally the back end works on 64x64 screen tiles;
+ * sr_context_desc.threads sets how many threads rasterize them.  The output
+ * is the same bytes for any thread count.
+ */
+#ifndef SOFTRAST_H
+#define SOFTRAST_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SR_VERSION_MAJOR 0
+#define SR_VERSION_MINOR 1
+#define SR_VERSION_PATCH 0
+#define SR_VERSION_STRING "0.1.0"
+
+#define SR_MAX_FRAMEBUFFER_SIZE 8192
+#define SR_MAX_LIGHTS 8
+
+/* ---- results ------------------------------------------------------------ */
+
+/* One list generates the enum and its strings, so they never drift apart. */
+#define SR_RESULT_LIST(X)                                                   \
+    X(OK,            "success")                                             \
+    X(INVALID_ARG,   "invalid argument")                                    \
+    X(OUT_OF_MEMORY, "allocation failed")                                   \
+    X(TOO_LARGE,     "size exceeds a documented limit")                     \
+    X(UNSUPPORTED,   "feature not supported by this build")                 \
+    X(IO_ERROR,      "file could not be read or written")                   \
+    X(BAD_FORMAT,    "malformed input data")
+
+typedef enum sr_result {
+#define SR__X(name, text) SR_##name,
+    SR_RESULT_LIST(SR__X)
+#undef SR__X
+    SR_RESULT_COUNT
+} sr_result;
+
+const char *sr_result_name(sr_result r); /* "SR_OUT_OF_MEMORY" */
+const char *sr_result_text(sr_result r); /* "allocation failed" */
+
+/* ---- math --------------------------------------------------------------- */
+
+typedef struct sr_vec3 { float x, y, z; } sr_vec3;
+typedef struct sr_vec4 { float x, y, z, w; } sr_vec4;
+typedef struct sr_mat4 { float m[16]; } sr_mat4; /* column-major */
+
+sr_vec3 sr_vec3_make(float x, float y, float z);
+sr_vec3 sr_vec3_add(sr_vec3 a, sr_vec3 b);
+sr_vec3 sr_vec3_sub(sr_vec3 a, sr_vec3 b);
+sr_vec3 sr_vec3_scale(sr_vec3 a, float s);
+float   sr_vec3_dot(sr_vec3 a, sr_vec3 b);
+sr_vec3 sr_vec3_cross(sr_vec3 a, sr_vec3 b);
+float   sr_vec3_length(sr_vec3 a);
+sr_vec3 sr_vec3_normalize(sr_vec3 a); /* zero vector stays zero */
+
+sr_mat4 sr_mat4_identity(void);
+sr_mat4 sr_mat4_mul(const sr_mat4 *a, const sr_mat4 *b); /* a * b */
+sr_vec4 sr_mat4_mul_vec4(const sr_mat4 *m, sr_vec4 v);
+sr_mat4 sr_mat4_transpose(const sr_mat4 *m);
+/* General inverse; returns false (and leaves *out as identity) if singular. */
+bool    sr_mat4_invert(const sr_mat4 *m, sr_mat4 *out);
+
+/* Model transforms (M_O). */
+sr_mat4 sr_mat4_translate(float x, float y, float z);
+sr_mat4 sr_mat4_scale(float x, float y, float z);
+sr_mat4 sr_mat4_rotate(float angle_radians, sr_vec3 axis); /* right-handed */
+
+/* The camera frame from eye e, gaze g and view-up t:
+ *   w = -g/|g|,  u = t x w / |t x w|,  v = w x u.
+ * sr_camera_frame returns false if g is zero or t is parallel to g. */
+typedef struct sr_camera_basis { sr_vec3 u, v, w, e; } sr_camera_basis;
+bool    sr_camera_frame(sr_vec3 eye, sr_vec3 gaze, sr_vec3 up, sr_camera_basis *out);
+/* E = M_cam^-1, written directly from the orthonormal basis (rows u, v, w,
+ * translation -u.e, -v.e, -w.e); no general inverse. */
+sr_mat4 sr_camera_matrix(const sr_camera_basis *b);
+/* Convenience: the frame looking from eye at target. */
+sr_mat4 sr_look_at(sr_vec3 eye, sr_vec3 target, sr_vec3 up);
+
+/* Projections (P) in the OpenGL convention, z_ndc in [-1, 1].  With
+ * zero_to_one the depth row maps near to 0 and far to 1 instead.  Near and far
+ * are positive distances in front of the eye. */
+sr_mat4 sr_ortho(float left, float right, float bottom, float top,
+                 float near_z, float far_z, bool zero_to_one);
+sr_mat4 sr_frustum(float left, float right, float bottom, float top,
+                   float near_z, float far_z, bool zero_to_one);
+sr_mat4 sr_perspective(float fovy_radians, float aspect,
+                       float near_z, float far_z, bool zero_to_one);
+
+/* Aspect-ratio preservation: given the field of view wanted across the
+ * *smaller* viewport dimension, the vertical field of view to pass to
+ * sr_perspective so that a sphere stays round and fits in a wide or tall
+ * viewport. */
+float   sr_fit_fovy(float fov_radians, int width, int height);
+
+/* The viewport matrix S.  It maps NDC x, y in [-1, 1] onto the pixel *edges*
+ * of the viewport rectangle (x0, y0, width, height), with y pointing down
+ * (NDC y = +1 is the top row), and z_ndc onto [depth_near, depth_far].
+ * In the seed's pixel-centre convention, x_S = x1 - 1/2 + (x+1)/2 (x2-x1+1);
+ * softrast's pixel-edge coordinate is that value + 1/2. */
+sr_mat4 sr_viewport_matrix(float x0, float y0, float width, float height,
+                           float depth_near, float depth_far, bool zero_to_one);
+
+/* The normal matrix: inverse transpose of the upper 3x3 of the model-view
+ * matrix, returned in the upper 3x3 of a mat4.  false if singular. */
+bool    sr_normal_matrix(const sr_mat4 *model_view, sr_mat4 *out);
+
+/* ---- memory ------------------------------------------------------------- */
+
+typedef struct sr_allocator {
+    void *(*alloc)(size_t size, void *user); /* NULL on failure */
+    void (*free)(void *ptr, void *user);
+    void *user;
+} sr_allocator;
+
+/* ---- context ------------------------------------------------------------ */
+
+typedef struct sr_context sr_context;
+
+typedef struct sr_context_desc {
+    sr_allocator allocator; /* zero: malloc/free */
+    int threads;            /* 0: SR_THREADS env var, else online CPUs; 1: no worker threads */
+} sr_context_desc;
+
+sr_result   sr_make_context(const sr_context_desc *desc, sr_context **out);
+void        sr_destroy_context(sr_context *ctx);
+/* Message for the last failed call on ctx ("" after a success). */
+const char *sr_context_error(const sr_context *ctx);
+int         sr_context_threads(const sr_context *ctx);
+
+/* ---- framebuffers ------------------------------------------------------- */
+
+typedef enum sr_depth_format {
+    SR_DEPTH_DEFAULT = 0, /* -> SR_DEPTH_D24 */
+    SR_DEPTH_NONE,
+    SR_DEPTH_D16,
+    SR_DEPTH_D24,
+    SR_DEPTH_D32,         /* 32-bit unsigned normalized */
+    SR_DEPTH_D32F,        /* 32-bit float */
+} sr_depth_format;
+
+typedef struct sr_framebuffer sr_framebuffer;
+
+typedef struct sr_framebuffer_desc {
+    int width, height;            /* required, 1 .. SR_MAX_FRAMEBUFFER_SIZE */
+    sr_depth_format depth_format;
+} sr_framebuffer_desc;
+
+sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
+                              sr_framebuffer **out);
+void      sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb);
+
+int             sr_framebuffer_width(const sr_framebuffer *fb);
+int             sr_framebuffer_height(const sr_framebuffer *fb);
+sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb);
+/* RGBA8, row-major, row 0 at the top, stride = 4 * width bytes. */
+const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
+
+typedef struct sr_clear_desc {
+    float color[4];   /* RGBA in [0, 1] */
+    float depth;      /* in [0, 1]; note 0 is the default: set 1 for LESS */
+    bool no_color;    /* leave color untouched */
+    bool no_depth;    /* leave depth untouched */
+} sr_clear_desc;
+
+sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc);
+
+/* Copy a rectangle of RGBA8 pixels out (stride in bytes, >= 4*w). */
+sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
+                         int x, int y, int w, int h, uint8_t *out, size_t stride);
+/* Copy depth values out as floats in [0, 1] (dequantized). */
+sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
+                        int x, int y, int w, int h, float *out, size_t stride_floats);
+
+/* ---- pipeline state ----------------------------------------------------- */
+
+typedef enum sr_cull_mode {
+    SR_CULL_DEFAULT = 0, /* -> SR_CULL_NONE */
+    SR_CULL_NONE,
+    SR_CULL_BACK,
+    SR_CULL_FRONT,
+    SR_CULL_FRONT_AND_BACK,
+} sr_cull_mode;
+
+typedef enum sr_front_face {
+    SR_FRONT_DEFAULT = 0, /* -> SR_FRONT_CCW */
+    SR_FRONT_CCW,         /* counter-clockwise on screen is front */
+    SR_FRONT_CW,
+} sr_front_face;
+
+typedef enum sr_depth_func {
+    SR_DEPTH_FUNC_DEFAULT = 0, /* -> SR_LESS */
+    SR_NEVER,
+    SR_LESS,
+    SR_EQUAL,
+    SR_LEQUAL,
+    SR_GREATER,
+    SR_NOTEQUAL,
+    SR_GEQUAL,
+    SR_ALWAYS,
+} sr_depth_func;
+
+typedef enum sr_shading {
+    SR_SHADING_DEFAULT = 0, /* -> SR_SHADING_UNLIT */
+    SR_SHADING_UNLIT,       /* vertex (or material diffuse) color, interpolated */
+    SR_SHADING_FLAT,        /* one lit color per triangle: face normal, provoking vertex */
+    SR_SHADING_GOURAUD,     /* lighting per vertex, colors interpolated */
+    SR_SHADING_PHONG,       /* normals interpolated and renormalized, lighting per pixel */
+    SR_SHADING_NORMALS,     /* eye-space normal as color, n*0.5+0.5 */
+    SR_SHADING_DEPTH,       /* window depth as gray (near dark, far light) */
+} sr_shading;
+
+typedef enum sr_interpolation {
+    SR_INTERP_DEFAULT = 0,  /* -> SR_INTERP_PERSPECTIVE */
+    SR_INTERP_PERSPECTIVE,  /* interpolate a/w and 1/w: correct */
+    SR_INTERP_AFFINE,       /* screen-space linear: wrong under perspective, for teaching */
+} sr_interpolation;
+
+typedef enum sr_provoking_vertex {
+    SR_PROVOKING_DEFAULT = 0, /* -> SR_PROVOKING_FIRST */
+    SR_PROVOKING_FIRST,       /* Vulkan / Direct3D */
+    SR_PROVOKING_LAST,        /* OpenGL's default */
+} sr_provoking_vertex;
+
+/* The triangle rasterizers.  All three give exactly the same pixels. */
+typedef enum sr_rasterizer {
+    SR_RASTER_DEFAULT = 0,   /* -> SR_RASTER_HALFSPACE */
+    SR_RASTER_HALFSPACE,     /* edge functions by tiles and 8x8 blocks (the fast one) */
+    SR_RASTER_SCANLINE,      /* edge walking between the left and right edges */
+    SR_RASTER_BARYCENTRIC,   /* bounding box, barycentric test per pixel */
+} sr_rasterizer;
+
+typedef enum sr_light_type {
+    SR_LIGHT_OFF = 0,
+    SR_LIGHT_DIRECTIONAL,    /* `vector` is the direction the light travels */
+    SR_LIGHT_POINT,          /* `vector` is the light's position */
+} sr_light_type;
+
+/* Lights live in world space: the view matrix is applied to them. */
+typedef struct sr_light {
+    sr_light_type type;
+    sr_vec3 vector;
+    sr_vec3 color;           /* zero -> white (1, 1, 1) */
+    float intensity;         /* zero -> 1 */
+} sr_light;
+
+typedef struct sr_material {
+    sr_vec3 ambient;         /* multiplied by sr_state.ambient; zero -> diffuse */
+    sr_vec3 diffuse;         /* zero -> (0.8, 0.8, 0.8) */
+    sr_vec3 specular;        /* reflectance of highlights, may be zero */
+    float shininess;         /* Blinn-Phong exponent; zero -> 32 */
+    float opacity;           /* written to alpha; zero -> 1 */
+    bool no_vertex_color;    /* ignore the colors array for diffuse */
+} sr_material;
+
+typedef struct sr_polygon_offset {
+    float factor;            /* times the depth slope m = max(|dz/dx|, |dz/dy|) */
+    float units;             /* times r, the format's smallest step */
+    float clamp;             /* 0: none; > 0: min(o, clamp); < 0: max(o, clamp) */
+    bool fill, line, point;  /* which polygon modes are offset */
+} sr_polygon_offset;
+
+typedef struct sr_viewport {
+    int x, y, width, height; /* pixels, y from the top; width 0 -> the framebuffer */
+} sr_viewport;
+
+typedef struct sr_state {
+    sr_viewport viewport;
+    float depth_near, depth_far;   /* depth range; both zero -> [0, 1] */
+    bool depth_zero_to_one;        /* clip space z in [0, w] (D3D/Vulkan), not [-w, w] */
+
+    sr_cull_mode cull;
+    sr_front_face front_face;
+    sr_rasterizer rasterizer;
+
+    bool no_depth_test;            /* depth test is on by default when there is a depth buffer */
+    bool no_depth_write;
+    sr_depth_func depth_func;
+    sr_polygon_offset offset;
+
+    sr_shading shading;
+    sr_interpolation interpolation;
+    sr_provoking_vertex provoking;
+    sr_material material;
+    sr_vec3 ambient;               /* global ambient light */
+    sr_light lights[SR_MAX_LIGHTS];
+    bool two_sided;                /* light back faces with the flipped normal */
+} sr_state;
+
+/* ---- drawing ------------------------------------------------------------ */
+
+typedef enum sr_primitive {
+    SR_PRIM_DEFAULT = 0, /* -> SR_PRIM_TRIANGLES */
+    SR_PRIM_TRIANGLES,
+    SR_PRIM_TRIANGLE_STRIP,
+    SR_PRIM_TRIANGLE_FAN,
+} sr_primitive;
+
+typedef enum sr_index_type {
+    SR_INDEX_NONE = 0,   /* vertices used in order */
+    SR_INDEX_U8,
+    SR_INDEX_U16,
+    SR_INDEX_U32,
+} sr_index_type;
+
+/* An indexed face set.  Strides are in bytes; 0 means tightly packed. */
+typedef struct sr_draw_desc {
+    sr_primitive primitive;
+    size_t vertex_count;        /* entries in each vertex array */
+
+    const float *positions;     /* required: position_size floats per vertex */
+    int position_size;          /* 3 (w = 1) or 4; 0 -> 3 */
+    size_t position_stride;
+    const float *normals;       /* optional, 3 floats; needed by Gouraud and Phong */
+    size_t normal_stride;
+    const float *colors;        /* optional, color_size floats (RGB or RGBA) */
+    int color_size;             /* 3 or 4; 0 -> 4 */
+    size_t color_stride;
+    const float *texcoords;     /* optional, 2 floats */
+    size_t texcoord_stride;
+
+    const void *indices;        /* optional */
+    sr_index_type index_type;
+    size_t index_count;
+
+    const sr_mat4 *model;       /* M_O; NULL -> identity */
+    const sr_mat4 *view;        /* E;   NULL -> identity */
+    const sr_mat4 *projection;  /* P;   NULL -> identity */
+} sr_draw_desc;
+
+/* Statistics of the last draw on a context. */
+typedef struct sr_draw_info {
+    uint64_t triangles_in;      /* assembled primitives */
+    uint64_t triangles_clipped; /* triangles that needed clipping */
+    uint64_t triangles_culled;  /* culled or zero area */
+    uint64_t triangles_drawn;   /* set up and binned */
+    uint64_t fragments;         /* samples that passed the depth test and were written */
+} sr_draw_info;
+
+sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
+                  const sr_draw_desc *draw);
+sr_draw_info sr_last_draw_info(const sr_context *ctx);
+
+/* ---- meshes ------------------------------------------------------------- */
+
+/* A triangle mesh as the model readers produce it.  Arrays belong to the
+ * mesh and are freed by sr_mesh_free (the readers' allocator: malloc). */
+typedef struct sr_mesh {
+    size_t vertex_count;
+    float *positions;      /* 3 per vertex */
+    float *normals;        /* 3 per vertex, or NULL */
+    float *colors;         /* 4 per vertex (RGBA), or NULL */
+    float *texcoords;      /* 2 per vertex, or NULL */
+    size_t triangle_count;
+    uint32_t *indices;     /* 3 per triangle, counter-clockwise front faces */
+    char *texture_path;    /* diffuse texture named by the file (OBJ map_Kd), or NULL */
+} sr_mesh;
+
+void sr_mesh_free(sr_mesh *mesh);
+
+typedef enum sr_normal_mode {
+    SR_NORMALS_SMOOTH = 0, /* angle-weighted vertex normals */
+    SR_NORMALS_FLAT,       /* vertices split, one normal per face */
+} sr_normal_mode;
+
+/* Replace mesh->normals with computed ones. */
+sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode);
+/* Axis-aligned bounding box; false for an empty mesh. */
+bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
+
+/* ---- built-in geometry -------------------------------------------------- */
+
+/* Tessellate bicubic Bezier patches (16 control points each, row-major
+ * [u][v], as float xyz) into a mesh of detail x detail quads per patch,
+ * evaluated by forward differences, with normals from the patch
+ * derivatives. */
+sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count,
+                               int detail, sr_mesh *out);
+/* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x. */
+sr_result sr_make_teapot(int detail, sr_mesh *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SOFTRAST_H */

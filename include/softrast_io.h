@@ -1,0 +1,82 @@
+/*
+ * softrast_io.h - files in and out: model readers (OBJ, PLY, STL, and other
+ * formats through Assimp when the build found it) and PNG images (libpng).
+ *
+ * Errors: every function returns an sr_result and, on failure, fills an
+ * sr_io_error with one line of the form "FILE:LINE: what is wrong" for text
+ * files, "FILE: byte N: what is wrong" for binary ones, or "FILE: what is
+ * wrong" when no position applies.  Nothing here prints or exits.
+ */
+#ifndef SOFTRAST_IO_H
+#define SOFTRAST_IO_H
+
+#include "softrast.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sr_io_error {
+    char message[512];
+} sr_io_error;
+
+/* Documented limits, checked before anything is allocated from a count
+ * read out of a file. */
+#define SR_IO_MAX_FILE_BYTES    ((size_t)1 << 31)   /* 2 GiB */
+#define SR_IO_MAX_VERTICES      ((size_t)1 << 28)
+#define SR_IO_MAX_TRIANGLES     ((size_t)1 << 28)
+
+typedef enum sr_model_format {
+    SR_FORMAT_AUTO = 0,   /* from the file name's extension, then its content */
+    SR_FORMAT_OBJ,
+    SR_FORMAT_PLY,
+    SR_FORMAT_STL,
+    SR_FORMAT_ASSIMP,     /* anything else Assimp reads */
+} sr_model_format;
+
+typedef struct sr_load_desc {
+    sr_model_format format;
+    bool keep_file_normals_only; /* reserved; normals policy is the caller's */
+} sr_load_desc;
+
+/* Load a model file into *out (which is zeroed first).  Faces with more than
+ * three vertices are triangulated.  Normals are those of the file, or NULL. */
+sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
+                       sr_mesh *out, sr_io_error *err);
+
+/* The readers on a buffer already in memory (for tests and fuzzing).  `name`
+ * is used in messages.  `data` need not be NUL-terminated. */
+sr_result sr_parse_obj(const char *name, const char *data, size_t size,
+                       sr_mesh *out, sr_io_error *err);
+sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
+                       sr_mesh *out, sr_io_error *err);
+sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
+                       sr_mesh *out, sr_io_error *err);
+
+/* true when this build can read other formats through Assimp. */
+bool sr_io_have_assimp(void);
+
+/* PNG. */
+typedef struct sr_png_write_desc {
+    int compression_level;  /* zlib level; 0 -> SR_PNG_DEFAULT_LEVEL; -1 -> store */
+    bool no_alpha;          /* write RGB, dropping alpha */
+} sr_png_write_desc;
+
+#define SR_PNG_DEFAULT_LEVEL 1
+
+/* Write RGBA8 pixels (stride in bytes) to `path` atomically: a temporary
+ * file in the same directory, fsync'd, then renamed over the target, so a
+ * failed write never leaves a partial file or clobbers an existing one. */
+sr_result sr_write_png(const char *path, int width, int height,
+                       const uint8_t *rgba, size_t stride,
+                       const sr_png_write_desc *desc, sr_io_error *err);
+
+/* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
+ * *pixels is malloc'd; free it with free(). */
+sr_result sr_read_png(const char *path, int *width, int *height,
+                      uint8_t **pixels, sr_io_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SOFTRAST_IO_H */

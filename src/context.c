@@ -1,0 +1,172 @@
+/* context.c - context creation, the allocator hooks, error messages and
+ * result strings.  Called from the application thread only. */
+#include "context.h"
+#include "parallel/pool.h"
+#include "scratch.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char *result_names[] = {
+#define SR__X(name, text) "SR_" #name,
+    SR_RESULT_LIST(SR__X)
+#undef SR__X
+};
+static const char *result_texts[] = {
+#define SR__X(name, text) text,
+    SR_RESULT_LIST(SR__X)
+#undef SR__X
+};
+
+const char *sr_result_name(sr_result r)
+{
+    return (unsigned)r < SR_RESULT_COUNT ? result_names[r] : "SR_UNKNOWN";
+}
+
+const char *sr_result_text(sr_result r)
+{
+    return (unsigned)r < SR_RESULT_COUNT ? result_texts[r] : "unknown result";
+}
+
+static void *default_alloc(size_t size, void *user)
+{
+    (void)user;
+    return malloc(size);
+}
+
+static void default_free(void *ptr, void *user)
+{
+    (void)user;
+    free(ptr);
+}
+
+void *sr__alloc(sr_context *ctx, size_t size)
+{
+    return ctx->allocator.alloc(size ? size : 1, ctx->allocator.user);
+}
+
+void *sr__calloc(sr_context *ctx, size_t count, size_t size)
+{
+    size_t bytes;
+    if (__builtin_mul_overflow(count, size, &bytes)) {
+        return NULL;
+    }
+    void *p = sr__alloc(ctx, bytes);
+    if (p) {
+        memset(p, 0, bytes);
+    }
+    return p;
+}
+
+void sr__free(sr_context *ctx, void *ptr)
+{
+    if (ptr) {
+        ctx->allocator.free(ptr, ctx->allocator.user);
+    }
+}
+
+sr_result sr__fail(sr_context *ctx, sr_result code, const char *fmt, ...)
+{
+    if (ctx) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(ctx->error, sizeof ctx->error, fmt, ap);
+        va_end(ap);
+    }
+    return code;
+}
+
+void sr__ok(sr_context *ctx)
+{
+    ctx->error[0] = 0;
+}
+
+const char *sr_context_error(const sr_context *ctx)
+{
+    return ctx ? ctx->error : "sr_context is NULL";
+}
+
+int sr_context_threads(const sr_context *ctx)
+{
+    return ctx ? ctx->threads : 0;
+}
+
+sr_draw_info sr_last_draw_info(const sr_context *ctx)
+{
+    sr_draw_info none = {0};
+    return ctx ? ctx->last_draw : none;
+}
+
+/* 0 threads means: the SR_THREADS environment variable, else one per CPU. */
+static int resolve_threads(int requested)
+{
+    if (requested > 0) {
+        return requested;
+    }
+    const char *env = getenv("SR_THREADS");
+    if (env && *env) {
+        char *end;
+        long n = strtol(env, &end, 10);
+        if (*end == 0 && n >= 1 && n <= SR_MAX_THREADS) {
+            return (int)n;
+        }
+    }
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    if (cpus < 1) {
+        cpus = 1;
+    }
+    return cpus > SR_MAX_THREADS ? SR_MAX_THREADS : (int)cpus;
+}
+
+sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
+{
+    if (!out) {
+        return SR_INVALID_ARG;
+    }
+    *out = NULL;
+    sr_context_desc d = desc ? *desc : (sr_context_desc){0};
+    if ((d.allocator.alloc == NULL) != (d.allocator.free == NULL)) {
+        return SR_INVALID_ARG; /* half an allocator: no context to hold a message */
+    }
+    if (d.threads < 0 || d.threads > SR_MAX_THREADS) {
+        return SR_INVALID_ARG;
+    }
+    if (!d.allocator.alloc) {
+        d.allocator.alloc = default_alloc;
+        d.allocator.free = default_free;
+    }
+    sr_context *ctx = d.allocator.alloc(sizeof *ctx, d.allocator.user);
+    if (!ctx) {
+        return SR_OUT_OF_MEMORY;
+    }
+    memset(ctx, 0, sizeof *ctx);
+    ctx->allocator = d.allocator;
+    ctx->threads = resolve_threads(d.threads);
+
+    ctx->scratch = sr__scratch_create(ctx);
+    if (!ctx->scratch) {
+        sr_destroy_context(ctx);
+        return SR_OUT_OF_MEMORY;
+    }
+    if (ctx->threads > 1) {
+        sr_result r = sr__pool_create(ctx, ctx->threads, &ctx->pool);
+        if (r != SR_OK) {
+            sr_destroy_context(ctx);
+            return r;
+        }
+    }
+    *out = ctx;
+    return SR_OK;
+}
+
+void sr_destroy_context(sr_context *ctx)
+{
+    if (!ctx) {
+        return;
+    }
+    sr__pool_destroy(ctx, ctx->pool);
+    sr__scratch_destroy(ctx, ctx->scratch);
+    ctx->allocator.free(ctx, ctx->allocator.user);
+}

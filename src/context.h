@@ -1,0 +1,32 @@
+/* context.h - the sr_context: allocator, error message, per-draw scratch
+ * memory kept across draws (so a frame never faults fresh pages back in),
+ * and the tile thread pool.  Internal to the library. */
+#ifndef SR_CONTEXT_H
+#define SR_CONTEXT_H
+
+#include "softrast.h"
+
+#include <stdarg.h>
+
+struct sr_pool;
+struct sr_scratch;
+
+struct sr_context {
+    sr_allocator allocator;
+    int threads;
+    struct sr_pool *pool;          /* NULL when threads == 1 */
+    struct sr_scratch *scratch;    /* draw-call working memory, grown on demand */
+    sr_draw_info last_draw;
+    char error[256];
+};
+
+void *sr__alloc(sr_context *ctx, size_t size);
+void *sr__calloc(sr_context *ctx, size_t count, size_t size); /* overflow-checked, zeroed */
+void  sr__free(sr_context *ctx, void *ptr);
+
+/* Record a message on ctx and return `code` (for `return sr__fail(...)`). */
+sr_result sr__fail(sr_context *ctx, sr_result code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+void sr__ok(sr_context *ctx);
+
+#endif

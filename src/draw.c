@@ -1,0 +1,468 @@
+/* draw.c - sr_draw, the pipeline's driver: validate, resolve the state,
+ * run the vertex stage, assemble primitives, clip, set up, bin into tiles
+ * and rasterize.  Application thread; the tile back end fans out to the
+ * context's pool. */
+#include "context.h"
+#include "parallel/bin.h"
+#include "scratch.h"
+
+#include <math.h>
+#include <string.h>
+
+#define SR_MAX_DRAW_VERTICES ((size_t)1 << 28)
+
+static bool finite_vec3(sr_vec3 v)
+{
+    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+static bool finite_mat(const sr_mat4 *m)
+{
+    for (int i = 0; m && i < 16; i++) {
+        if (!isfinite(m->m[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_state *st,
+                          const sr_draw_desc *d)
+{
+    if (!fb) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw: fb is NULL");
+    }
+    if (!st) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw: state is NULL");
+    }
+    if (!d) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw: draw is NULL");
+    }
+    if ((unsigned)d->primitive > SR_PRIM_TRIANGLE_FAN) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.primitive %d is not a primitive type",
+                        (int)d->primitive);
+    }
+    if (d->vertex_count > SR_MAX_DRAW_VERTICES) {
+        return sr__fail(ctx, SR_TOO_LARGE, "sr_draw_desc.vertex_count %zu exceeds the limit %zu",
+                        d->vertex_count, SR_MAX_DRAW_VERTICES);
+    }
+    if (d->vertex_count > 0 && !d->positions) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.positions is NULL");
+    }
+    if (d->position_size != 0 && d->position_size != 3 && d->position_size != 4) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.position_size must be 3 or 4 (got %d)",
+                        d->position_size);
+    }
+    if (d->color_size != 0 && d->color_size != 3 && d->color_size != 4) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.color_size must be 3 or 4 (got %d)",
+                        d->color_size);
+    }
+    if ((unsigned)d->index_type > SR_INDEX_U32) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.index_type %d is not an index type",
+                        (int)d->index_type);
+    }
+    if (d->index_type != SR_INDEX_NONE && d->index_count > 0 && !d->indices) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.indices is NULL but index_count is %zu",
+                        d->index_count);
+    }
+    if (d->index_type == SR_INDEX_NONE && d->indices) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.indices given with index_type SR_INDEX_NONE");
+    }
+    if (!finite_mat(d->model) || !finite_mat(d->view) || !finite_mat(d->projection)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc: a matrix has a NaN or infinite entry");
+    }
+    sr_shading sh = st->shading == SR_SHADING_DEFAULT ? SR_SHADING_UNLIT : st->shading;
+    if ((unsigned)st->shading > SR_SHADING_DEPTH) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.shading %d is not a shading model",
+                        (int)st->shading);
+    }
+    if ((sh == SR_SHADING_GOURAUD || sh == SR_SHADING_PHONG || sh == SR_SHADING_NORMALS) &&
+        !d->normals && d->vertex_count > 0) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_draw_desc.normals is NULL but the shading model needs vertex normals");
+    }
+    if ((unsigned)st->cull > SR_CULL_FRONT_AND_BACK) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.cull %d is not a cull mode", (int)st->cull);
+    }
+    if ((unsigned)st->front_face > SR_FRONT_CW) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.front_face %d is not valid", (int)st->front_face);
+    }
+    if ((unsigned)st->depth_func > SR_ALWAYS) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.depth_func %d is not a depth function",
+                        (int)st->depth_func);
+    }
+    if ((unsigned)st->rasterizer > SR_RASTER_BARYCENTRIC) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.rasterizer %d is not a rasterizer",
+                        (int)st->rasterizer);
+    }
+    if ((unsigned)st->interpolation > SR_INTERP_AFFINE) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.interpolation %d is not valid",
+                        (int)st->interpolation);
+    }
+    if ((unsigned)st->provoking > SR_PROVOKING_LAST) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.provoking %d is not valid", (int)st->provoking);
+    }
+    const sr_viewport *vp = &st->viewport;
+    if (vp->width < 0 || vp->height < 0 || (vp->width == 0) != (vp->height == 0)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_state.viewport: width and height must both be > 0, or both 0 for the whole framebuffer");
+    }
+    if (vp->width > SR_MAX_FRAMEBUFFER_SIZE || vp->height > SR_MAX_FRAMEBUFFER_SIZE ||
+        vp->x < SR_GUARD_BAND_MIN || vp->y < SR_GUARD_BAND_MIN ||
+        vp->x + vp->width > SR_GUARD_BAND_MAX || vp->y + vp->height > SR_GUARD_BAND_MAX) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_state.viewport (%d, %d, %d x %d) is outside the supported range",
+                        vp->x, vp->y, vp->width, vp->height);
+    }
+    if (!(st->depth_near >= 0.0f && st->depth_near <= 1.0f && st->depth_far >= 0.0f &&
+          st->depth_far <= 1.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.depth_near/depth_far must be in [0, 1]");
+    }
+    if (!isfinite(st->offset.factor) || !isfinite(st->offset.units) || !isfinite(st->offset.clamp)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.offset: factor, units and clamp must be finite");
+    }
+    const sr_material *m = &st->material;
+    if (!finite_vec3(m->ambient) || !finite_vec3(m->diffuse) || !finite_vec3(m->specular) ||
+        !isfinite(m->shininess) || m->shininess < 0.0f || !(m->opacity >= 0.0f && m->opacity <= 1.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_state.material: colors must be finite, shininess >= 0, opacity in [0, 1]");
+    }
+    if (!finite_vec3(st->ambient)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.ambient must be finite");
+    }
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        const sr_light *l = &st->lights[i];
+        if ((unsigned)l->type > SR_LIGHT_POINT) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_state.lights[%d].type %d is not a light type",
+                            i, (int)l->type);
+        }
+        if (l->type != SR_LIGHT_OFF && (!finite_vec3(l->vector) || !finite_vec3(l->color) ||
+                                        !isfinite(l->intensity))) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_state.lights[%d]: values must be finite", i);
+        }
+        if (l->type == SR_LIGHT_DIRECTIONAL && sr_vec3_length(l->vector) == 0.0f) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_state.lights[%d].vector: a direction must not be zero", i);
+        }
+    }
+    return SR_OK;
+}
+
+static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr_mat4 *view,
+                          const sr_mat4 *proj, sr_draw_state *ds)
+{
+    memset(ds, 0, sizeof *ds);
+    ds->fb = (sr_framebuffer *)fb;
+
+    sr_viewport vp = st->viewport;
+    if (vp.width == 0) {
+        vp = (sr_viewport){ 0, 0, fb->width, fb->height };
+    }
+    double dn = st->depth_near, df = st->depth_far;
+    if (dn == 0.0 && df == 0.0) {
+        df = 1.0;
+    }
+    ds->zero_to_one = st->depth_zero_to_one;
+    /* The viewport matrix S, onto pixel edges (RASTER_RULES 1.2). */
+    ds->vp_px = vp.width * 0.5;
+    ds->vp_py = vp.height * 0.5;
+    ds->vp_ox = vp.x + vp.width * 0.5;
+    ds->vp_oy = vp.y + vp.height * 0.5;
+    if (ds->zero_to_one) {
+        ds->vp_zs = df - dn;
+        ds->vp_zb = dn;
+    } else {
+        ds->vp_zs = (df - dn) * 0.5;
+        ds->vp_zb = (df + dn) * 0.5;
+    }
+    ds->depth_min = fmin(dn, df);
+    ds->depth_max = fmax(dn, df);
+    ds->rect_x0 = vp.x > 0 ? vp.x : 0;
+    ds->rect_y0 = vp.y > 0 ? vp.y : 0;
+    ds->rect_x1 = vp.x + vp.width < fb->width ? vp.x + vp.width : fb->width;
+    ds->rect_y1 = vp.y + vp.height < fb->height ? vp.y + vp.height : fb->height;
+
+    ds->cull = st->cull == SR_CULL_DEFAULT ? SR_CULL_NONE : st->cull;
+    ds->front_ccw = st->front_face != SR_FRONT_CW;
+    ds->rasterizer = st->rasterizer == SR_RASTER_DEFAULT ? SR_RASTER_HALFSPACE : st->rasterizer;
+    ds->depth_test = !st->no_depth_test && fb->depth != NULL;
+    ds->depth_write = !st->no_depth_write && fb->depth != NULL;
+    ds->depth_func = st->depth_func == SR_DEPTH_FUNC_DEFAULT ? SR_LESS : st->depth_func;
+    ds->depth_bits = fb->depth_bits;
+    ds->offset_on = st->offset.fill;
+    ds->offset_factor = st->offset.factor;
+    ds->offset_units = st->offset.units;
+    ds->offset_clamp = st->offset.clamp;
+
+    ds->shading = st->shading == SR_SHADING_DEFAULT ? SR_SHADING_UNLIT : st->shading;
+    ds->perspective = st->interpolation != SR_INTERP_AFFINE;
+    ds->provoking_last = st->provoking == SR_PROVOKING_LAST;
+    ds->two_sided = st->two_sided;
+    /* A perspective projection has a bottom row (0, 0, -1, 0): the viewer
+     * sits at the eye-space origin.  Otherwise the view vector is +z. */
+    ds->local_viewer = proj && (proj->m[3] != 0.0f || proj->m[7] != 0.0f || proj->m[11] != 0.0f);
+
+    switch (ds->shading) {
+    case SR_SHADING_UNLIT:
+    case SR_SHADING_GOURAUD: ds->nvary = 4; ds->ninterp = 4; break;
+    case SR_SHADING_FLAT:    ds->nvary = 7; ds->ninterp = 0; break;
+    case SR_SHADING_PHONG:   ds->nvary = 10; ds->ninterp = 10; break;
+    case SR_SHADING_NORMALS: ds->nvary = 3; ds->ninterp = 3; break;
+    default:                 ds->nvary = 0; ds->ninterp = 0; break;
+    }
+
+    const sr_material *m = &st->material;
+    sr_vec3 kd = (m->diffuse.x == 0 && m->diffuse.y == 0 && m->diffuse.z == 0)
+                     ? (sr_vec3){ 0.8f, 0.8f, 0.8f } : m->diffuse;
+    ds->diffuse[0] = kd.x;
+    ds->diffuse[1] = kd.y;
+    ds->diffuse[2] = kd.z;
+    ds->diffuse[3] = m->opacity == 0.0f ? 1.0f : m->opacity;
+    /* Ambient reflectance defaults to the diffuse color: ambient light
+     * then tints the surface the way it looks lit. */
+    bool ka_zero = m->ambient.x == 0 && m->ambient.y == 0 && m->ambient.z == 0;
+    ds->ambient[0] = st->ambient.x * (ka_zero ? 1.0f : m->ambient.x / kd.x);
+    ds->ambient[1] = st->ambient.y * (ka_zero ? 1.0f : m->ambient.y / kd.y);
+    ds->ambient[2] = st->ambient.z * (ka_zero ? 1.0f : m->ambient.z / kd.z);
+    ds->specular[0] = m->specular.x;
+    ds->specular[1] = m->specular.y;
+    ds->specular[2] = m->specular.z;
+    ds->shininess = m->shininess == 0.0f ? 32.0f : m->shininess;
+    ds->use_vertex_color = !m->no_vertex_color;
+
+    sr_mat4 e = view ? *view : sr_mat4_identity();
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        const sr_light *l = &st->lights[i];
+        if (l->type == SR_LIGHT_OFF) {
+            continue;
+        }
+        sr_light_eye *le = &ds->lights[ds->light_count++];
+        le->point = l->type == SR_LIGHT_POINT;
+        sr_vec4 v;
+        if (le->point) {
+            v = sr_mat4_mul_vec4(&e, (sr_vec4){ l->vector.x, l->vector.y, l->vector.z, 1.0f });
+        } else {
+            /* The vector to the light is the negated travel direction. */
+            v = sr_mat4_mul_vec4(&e, (sr_vec4){ -l->vector.x, -l->vector.y, -l->vector.z, 0.0f });
+            sr_vec3 n = sr_vec3_normalize((sr_vec3){ v.x, v.y, v.z });
+            v = (sr_vec4){ n.x, n.y, n.z, 0.0f };
+        }
+        le->vec[0] = v.x;
+        le->vec[1] = v.y;
+        le->vec[2] = v.z;
+        bool white = l->color.x == 0 && l->color.y == 0 && l->color.z == 0;
+        float intensity = l->intensity == 0.0f ? 1.0f : l->intensity;
+        le->color[0] = (white ? 1.0f : l->color.x) * intensity;
+        le->color[1] = (white ? 1.0f : l->color.y) * intensity;
+        le->color[2] = (white ? 1.0f : l->color.z) * intensity;
+    }
+}
+
+static uint32_t index_at(const sr_draw_desc *d, size_t i)
+{
+    switch (d->index_type) {
+    case SR_INDEX_U8:  return ((const uint8_t *)d->indices)[i];
+    case SR_INDEX_U16: return ((const uint16_t *)d->indices)[i];
+    case SR_INDEX_U32: return ((const uint32_t *)d->indices)[i];
+    default:           return (uint32_t)i;
+    }
+}
+
+static bool finite_pos(const float p[4])
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) && isfinite(p[3]);
+}
+
+typedef struct front_end {
+    sr_context *ctx;
+    const sr_draw_state *ds;
+    sr_binner *binner;
+    sr_draw_info *info;
+} front_end;
+
+static bool is_culled(const sr_draw_state *ds, bool front)
+{
+    switch (ds->cull) {
+    case SR_CULL_BACK:           return !front;
+    case SR_CULL_FRONT:          return front;
+    case SR_CULL_FRONT_AND_BACK: return true;
+    default:                     return false;
+    }
+}
+
+/* On the y-down framebuffer, a triangle that is counter-clockwise on
+ * screen has a negative snapped area2 (RASTER_RULES 2.7). */
+static bool facing_front(const sr_draw_state *ds, int64_t area2)
+{
+    return ds->front_ccw ? area2 < 0 : area2 > 0;
+}
+
+static void emit(front_end *fe, const sr_window_vertex *w0, const sr_window_vertex *w1,
+                 const sr_window_vertex *w2, bool front, const float flat[4])
+{
+    sr_tri *t = sr__bin_next(fe->binner);
+    if (sr__setup_triangle(fe->ds, w0, w1, w2, front, fe->ds->ninterp, flat, t)) {
+        sr__bin_commit(fe->binner);
+        fe->info->triangles_drawn++;
+    }
+}
+
+static void triangle(front_end *fe, const sr_clip_vertex *v0, const sr_clip_vertex *v1,
+                     const sr_clip_vertex *v2, const sr_clip_vertex *provoking)
+{
+    const sr_draw_state *ds = fe->ds;
+    fe->info->triangles_in++;
+    if (!finite_pos(v0->pos) || !finite_pos(v1->pos) || !finite_pos(v2->pos)) {
+        fe->info->triangles_culled++;
+        return; /* NaN or infinite positions discard the primitive */
+    }
+    unsigned c0 = sr__clip_outcode(ds, v0->pos);
+    unsigned c1 = sr__clip_outcode(ds, v1->pos);
+    unsigned c2 = sr__clip_outcode(ds, v2->pos);
+    if (c0 & c1 & c2) {
+        fe->info->triangles_culled++;
+        return; /* all three outside one plane */
+    }
+    float flat[4] = { 0, 0, 0, 1 };
+    if (ds->shading == SR_SHADING_FLAT) {
+        sr__flat_color(ds, v0, v1, v2, provoking, flat);
+    }
+
+    if ((c0 | c1 | c2) == 0) {
+        sr_window_vertex w[3];
+        sr__window_vertex(ds, v0, &w[0]);
+        sr__window_vertex(ds, v1, &w[1]);
+        sr__window_vertex(ds, v2, &w[2]);
+        int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
+        bool front = facing_front(ds, area2);
+        if (area2 == 0 || is_culled(ds, front)) {
+            fe->info->triangles_culled++;
+            return;
+        }
+        emit(fe, &w[0], &w[1], &w[2], front, flat);
+        return;
+    }
+
+    /* Clip, then fan the polygon back into triangles.  Facing comes from
+     * the whole polygon's snapped area so the fan is culled as one. */
+    fe->info->triangles_clipped++;
+    const sr_clip_vertex *in[3] = { v0, v1, v2 };
+    sr_clip_vertex poly[SR_CLIP_MAX_VERTS];
+    int n = sr__clip_polygon(ds, in, c0 | c1 | c2, poly);
+    if (n < 3) {
+        fe->info->triangles_culled++;
+        return;
+    }
+    sr_window_vertex w[SR_CLIP_MAX_VERTS];
+    for (int i = 0; i < n; i++) {
+        sr__window_vertex(ds, &poly[i], &w[i]);
+    }
+    int64_t area2 = 0;
+    for (int i = 1; i + 1 < n; i++) {
+        area2 += sr__area2(&w[0], &w[i], &w[i + 1]);
+    }
+    bool front = facing_front(ds, area2);
+    if (area2 == 0 || is_culled(ds, front)) {
+        fe->info->triangles_culled++;
+        return;
+    }
+    for (int i = 1; i + 1 < n; i++) {
+        emit(fe, &w[0], &w[i], &w[i + 1], front, flat);
+    }
+}
+
+/* Primitive assembly with the provoking vertex of RASTER_RULES 4.2. */
+static void assemble(front_end *fe, const sr_draw_desc *d, size_t count, const sr_clip_vertex *v)
+{
+    bool last = fe->ds->provoking_last;
+    switch (d->primitive) {
+    case SR_PRIM_TRIANGLE_STRIP:
+        for (size_t i = 0; i + 2 < count; i++) {
+            uint32_t a = index_at(d, i), b = index_at(d, i + 1), c = index_at(d, i + 2);
+            const sr_clip_vertex *pv = last ? &v[c] : &v[a];
+            /* Odd triangles swap their first two vertices to keep winding. */
+            if (i & 1) {
+                triangle(fe, &v[b], &v[a], &v[c], pv);
+            } else {
+                triangle(fe, &v[a], &v[b], &v[c], pv);
+            }
+        }
+        break;
+    case SR_PRIM_TRIANGLE_FAN:
+        for (size_t i = 0; i + 2 < count; i++) {
+            uint32_t a = index_at(d, 0), b = index_at(d, i + 1), c = index_at(d, i + 2);
+            triangle(fe, &v[a], &v[b], &v[c], last ? &v[c] : &v[b]);
+        }
+        break;
+    default:
+        for (size_t i = 0; i + 2 < count; i += 3) {
+            uint32_t a = index_at(d, i), b = index_at(d, i + 1), c = index_at(d, i + 2);
+            triangle(fe, &v[a], &v[b], &v[c], last ? &v[c] : &v[a]);
+        }
+        break;
+    }
+}
+
+sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
+                  const sr_draw_desc *d)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    memset(&ctx->last_draw, 0, sizeof ctx->last_draw);
+    sr_result r = validate(ctx, fb, state, d);
+    if (r != SR_OK) {
+        return r;
+    }
+    size_t count = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
+    /* Indices out of range are an error before anything is drawn. */
+    if (d->index_type != SR_INDEX_NONE) {
+        for (size_t i = 0; i < d->index_count; i++) {
+            uint32_t ix = index_at(d, i);
+            if (ix >= d->vertex_count) {
+                return sr__fail(ctx, SR_INVALID_ARG,
+                                "sr_draw_desc.indices[%zu] = %u is out of range (vertex_count %zu)",
+                                i, ix, d->vertex_count);
+            }
+        }
+    }
+
+    sr_draw_state ds;
+    resolve_state(fb, state, d->view, d->projection, &ds);
+
+    size_t tiles_x = ((size_t)fb->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
+    size_t tiles_y = ((size_t)fb->height + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
+    sr_scratch *s = ctx->scratch;
+    if (!sr__scratch_reserve(ctx, s, d->vertex_count, tiles_x * tiles_y)) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_draw: out of memory for %zu vertices",
+                        d->vertex_count);
+    }
+    sr__ok(ctx);
+    if (count < 3 || ds.rect_x0 >= ds.rect_x1 || ds.rect_y0 >= ds.rect_y1) {
+        return SR_OK;
+    }
+
+    /* M = P E M_O, and the normal matrix from E M_O. */
+    sr_mat4 mo = d->model ? *d->model : sr_mat4_identity();
+    sr_mat4 e = d->view ? *d->view : sr_mat4_identity();
+    sr_mat4 p = d->projection ? *d->projection : sr_mat4_identity();
+    sr_mat4 mv = sr_mat4_mul(&e, &mo);
+    sr_mat4 mvp = sr_mat4_mul(&p, &mv);
+    sr_mat4 nm;
+    if (!sr_normal_matrix(&mv, &nm)) {
+        nm = mv; /* singular model-view (a flattening scale): best effort */
+    }
+    sr__vertex_stage(&ds, d, &mvp, &mv, &nm, 0, d->vertex_count, s->verts);
+
+    memset(s->stats, 0, sizeof s->stats);
+    s->tri_count = 0;
+    s->ref_count = 0;
+    sr_binner binner = { ctx, &ds, (int)tiles_x, (int)tiles_y };
+    front_end fe = { ctx, &ds, &binner, &ctx->last_draw };
+    assemble(&fe, d, count, s->verts);
+    sr__bin_flush(&binner);
+
+    for (int i = 0; i < SR_MAX_THREADS; i++) {
+        ctx->last_draw.fragments += s->stats[i].fragments;
+    }
+    return SR_OK;
+}

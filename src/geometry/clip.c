@@ -1,0 +1,125 @@
+/* clip.c - clipping in homogeneous clip space, before the divide (geometry
+ * stage; any thread, no shared state).
+ *
+ * Planes (RASTER_RULES 3): w >= epsilon (so nothing behind or at the eye
+ * reaches the divide), near, far, and the four planes of the fixed-point
+ * guard band [-16384, 16384) px - never the viewport planes: the rasterizer
+ * trims to the viewport exactly, so visible shared edges are untouched.
+ * Sutherland-Hodgman in 4D, one plane at a time, and every intersection is
+ * computed from the inside vertex towards the outside one, so two triangles
+ * sharing an edge get bit-identical new vertices. */
+#include "pipeline.h"
+
+#include <math.h>
+
+enum {
+    PLANE_W = 0,
+    PLANE_NEAR,
+    PLANE_FAR,
+    PLANE_LEFT,
+    PLANE_RIGHT,
+    PLANE_TOP,
+    PLANE_BOTTOM,
+    PLANE_COUNT
+};
+
+/* Smallest w let through: tiny, so it never cuts geometry the near plane
+ * keeps, but it excludes w = 0 exactly, where the divide would give NaN. */
+#define SR_CLIP_W_EPSILON 1e-30
+
+/* Band edges one pixel inside the fixed-point limit, so a vertex rounded
+ * onto a band plane still snaps inside the range. */
+#define BAND_LO ((double)SR_GUARD_BAND_MIN + 1.0)
+#define BAND_HI ((double)SR_GUARD_BAND_MAX - 1.0)
+
+/* Signed distance of p to a plane; inside is >= 0. */
+static double plane_dist(const sr_draw_state *ds, int plane, const float pos[4])
+{
+    double x = pos[0], y = pos[1], z = pos[2], w = pos[3];
+    switch (plane) {
+    case PLANE_W:      return w - SR_CLIP_W_EPSILON;
+    case PLANE_NEAR:   return ds->zero_to_one ? z : z + w;
+    case PLANE_FAR:    return w - z;
+    /* x_w = ox + px x/w >= lo  <=>  px x - (lo - ox) w >= 0 (w > 0). */
+    case PLANE_LEFT:   return ds->vp_px * x - (BAND_LO - ds->vp_ox) * w;
+    case PLANE_RIGHT:  return (BAND_HI - ds->vp_ox) * w - ds->vp_px * x;
+    /* y_w = oy - py y/w, y down. */
+    case PLANE_TOP:    return (ds->vp_oy - BAND_LO) * w - ds->vp_py * y;
+    case PLANE_BOTTOM: return ds->vp_py * y - (ds->vp_oy - BAND_HI) * w;
+    default:           return 0.0;
+    }
+}
+
+unsigned sr__clip_outcode(const sr_draw_state *ds, const float pos[4])
+{
+    unsigned code = 0;
+    for (int p = 0; p < PLANE_COUNT; p++) {
+        if (!(plane_dist(ds, p, pos) >= 0.0)) {
+            code |= 1u << p;
+        }
+    }
+    return code;
+}
+
+/* I = inside + t (outside - inside) for the position and every varying. */
+static void intersect(const sr_clip_vertex *in, const sr_clip_vertex *out_v,
+                      double d_in, double d_out, int nvary, sr_clip_vertex *res)
+{
+    double t = d_in / (d_in - d_out);
+    for (int k = 0; k < 4; k++) {
+        res->pos[k] = (float)(in->pos[k] + t * ((double)out_v->pos[k] - in->pos[k]));
+    }
+    for (int k = 0; k < nvary; k++) {
+        res->vary[k] = (float)(in->vary[k] + t * ((double)out_v->vary[k] - in->vary[k]));
+    }
+}
+
+int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
+                     unsigned planes, sr_clip_vertex *out)
+{
+    /* Two buffers, ping-ponged plane by plane.  Each plane adds at most one
+     * vertex to a convex polygon: 3 + 7 = 10 <= SR_CLIP_MAX_VERTS. */
+    sr_clip_vertex buf[2][SR_CLIP_MAX_VERTS];
+    const sr_clip_vertex *poly[SR_CLIP_MAX_VERTS];
+    int n = 3;
+    for (int i = 0; i < 3; i++) {
+        poly[i] = in[i];
+    }
+    int which = 0;
+    for (int p = 0; p < PLANE_COUNT; p++) {
+        if (!(planes & (1u << p))) {
+            continue;
+        }
+        sr_clip_vertex *dst = buf[which];
+        int m = 0;
+        for (int i = 0; i < n; i++) {
+            const sr_clip_vertex *a = poly[i];
+            const sr_clip_vertex *b = poly[(i + 1) % n];
+            double da = plane_dist(ds, p, a->pos);
+            double db = plane_dist(ds, p, b->pos);
+            bool a_in = da >= 0.0, b_in = db >= 0.0;
+            if (a_in) {
+                dst[m++] = *a;
+            }
+            if (a_in != b_in) {
+                if (a_in) {
+                    intersect(a, b, da, db, ds->nvary, &dst[m++]);
+                } else {
+                    intersect(b, a, db, da, ds->nvary, &dst[m++]);
+                }
+            }
+        }
+        n = m;
+        if (n < 3) {
+            return 0;
+        }
+        for (int i = 0; i < n; i++) {
+            poly[i] = &dst[i];
+        }
+        which ^= 1;
+    }
+    for (int i = 0; i < n; i++) {
+        out[i] = *poly[i];
+    }
+    return n;
+}

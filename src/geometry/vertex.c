@@ -1,0 +1,173 @@
+/* vertex.c - the vertex stage (geometry): object coordinates to clip space
+ * with M = P E M_O, normals to eye space with the inverse transpose of E M_O
+ * (renormalized), per-vertex lighting for Gouraud, and the varyings each
+ * shading model interpolates.  Reads the caller's arrays; writes
+ * sr_clip_vertex records.  Any thread (it touches only its own range). */
+#include "pipeline.h"
+
+#include <math.h>
+
+static const float *element(const float *base, size_t stride, size_t count, size_t i)
+{
+    size_t step = stride ? stride : count * sizeof(float);
+    return (const float *)((const char *)base + i * step);
+}
+
+static void transform_point(const sr_mat4 *m, const float p[4], float out[4])
+{
+    const float *a = m->m;
+    for (int r = 0; r < 4; r++) {
+        out[r] = a[r] * p[0] + a[4 + r] * p[1] + a[8 + r] * p[2] + a[12 + r] * p[3];
+    }
+}
+
+static void normal_to_eye(const sr_mat4 *nm, const float n[3], float out[3])
+{
+    const float *a = nm->m;
+    float x = a[0] * n[0] + a[4] * n[1] + a[8] * n[2];
+    float y = a[1] * n[0] + a[5] * n[1] + a[9] * n[2];
+    float z = a[2] * n[0] + a[6] * n[1] + a[10] * n[2];
+    /* The inverse transpose keeps normals perpendicular but not unit
+     * length: renormalize. */
+    float len = sqrtf(x * x + y * y + z * z);
+    float s = len > 0.0f ? 1.0f / len : 0.0f;
+    out[0] = x * s;
+    out[1] = y * s;
+    out[2] = z * s;
+}
+
+void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
+                      const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
+                      size_t first, size_t count, sr_clip_vertex *out)
+{
+    int psize = d->position_size ? d->position_size : 3;
+    int csize = d->color_size ? d->color_size : 4;
+    bool need_eye = ds->shading == SR_SHADING_FLAT || ds->shading == SR_SHADING_PHONG ||
+                    ds->shading == SR_SHADING_GOURAUD;
+    bool need_normal = ds->shading == SR_SHADING_PHONG || ds->shading == SR_SHADING_GOURAUD ||
+                       ds->shading == SR_SHADING_NORMALS;
+    bool need_color = ds->shading != SR_SHADING_NORMALS && ds->shading != SR_SHADING_DEPTH;
+
+    for (size_t i = first; i < first + count; i++) {
+        sr_clip_vertex *v = &out[i];
+        const float *p = element(d->positions, d->position_stride, (size_t)psize, i);
+        float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
+        transform_point(mvp, obj, v->pos);
+
+        float eye[4] = { 0, 0, 0, 1 }, n[3] = { 0, 0, 1 }, color[4];
+        if (need_eye) {
+            transform_point(mv, obj, eye);
+            if (eye[3] != 1.0f && eye[3] != 0.0f) {
+                eye[0] /= eye[3];
+                eye[1] /= eye[3];
+                eye[2] /= eye[3];
+            }
+        }
+        if (need_normal && d->normals) {
+            normal_to_eye(nm, element(d->normals, d->normal_stride, 3, i), n);
+        }
+        if (need_color) {
+            if (ds->use_vertex_color && d->colors) {
+                const float *c = element(d->colors, d->color_stride, (size_t)csize, i);
+                color[0] = c[0];
+                color[1] = c[1];
+                color[2] = c[2];
+                color[3] = (csize == 4 ? c[3] : 1.0f) * ds->diffuse[3];
+            } else {
+                color[0] = ds->diffuse[0];
+                color[1] = ds->diffuse[1];
+                color[2] = ds->diffuse[2];
+                color[3] = ds->diffuse[3];
+            }
+        }
+
+        switch (ds->shading) {
+        case SR_SHADING_UNLIT:
+            for (int k = 0; k < 4; k++) {
+                v->vary[SR_VARY_COLOR + k] = color[k];
+            }
+            break;
+        case SR_SHADING_GOURAUD: {
+            /* Gouraud: light once per vertex; the rasterizer interpolates the
+             * resulting colors.  Two-sided: light the side that faces the eye. */
+            if (ds->two_sided) {
+                float vdir[3] = { 0, 0, 1 };
+                if (ds->local_viewer) {
+                    vdir[0] = -eye[0];
+                    vdir[1] = -eye[1];
+                    vdir[2] = -eye[2];
+                }
+                if (n[0] * vdir[0] + n[1] * vdir[1] + n[2] * vdir[2] < 0.0f) {
+                    n[0] = -n[0];
+                    n[1] = -n[1];
+                    n[2] = -n[2];
+                }
+            }
+            sr__light(ds, n, eye, color, &v->vary[SR_VARY_COLOR]);
+            break;
+        }
+        case SR_SHADING_FLAT:
+            for (int k = 0; k < 3; k++) {
+                v->vary[SR_VARY_FLAT_EYE + k] = eye[k];
+            }
+            for (int k = 0; k < 4; k++) {
+                v->vary[SR_VARY_FLAT_COLOR + k] = color[k];
+            }
+            break;
+        case SR_SHADING_PHONG:
+            for (int k = 0; k < 3; k++) {
+                v->vary[SR_VARY_PHONG_NORMAL + k] = n[k];
+                v->vary[SR_VARY_PHONG_EYE + k] = eye[k];
+            }
+            for (int k = 0; k < 4; k++) {
+                v->vary[SR_VARY_PHONG_COLOR + k] = color[k];
+            }
+            break;
+        case SR_SHADING_NORMALS:
+            for (int k = 0; k < 3; k++) {
+                v->vary[SR_VARY_NORMAL + k] = n[k];
+            }
+            break;
+        default:
+            break;
+        }
+    }
+}
+
+/* Flat shading: one color per triangle, lit with the face normal (for a
+ * triangle, Newell's method reduces to the cross product of two edges) at
+ * the provoking vertex, whose color it takes. */
+void sr__flat_color(const sr_draw_state *ds, const sr_clip_vertex *v0,
+                    const sr_clip_vertex *v1, const sr_clip_vertex *v2,
+                    const sr_clip_vertex *provoking, float out[4])
+{
+    const float *p0 = &v0->vary[SR_VARY_FLAT_EYE];
+    const float *p1 = &v1->vary[SR_VARY_FLAT_EYE];
+    const float *p2 = &v2->vary[SR_VARY_FLAT_EYE];
+    float e1[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
+    float e2[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
+    float n[3] = { e1[1] * e2[2] - e1[2] * e2[1],
+                   e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0] };
+    float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len > 0.0f) {
+        n[0] /= len;
+        n[1] /= len;
+        n[2] /= len;
+    }
+    const float *eye = &provoking->vary[SR_VARY_FLAT_EYE];
+    if (ds->two_sided) {
+        float vdir[3] = { 0, 0, 1 };
+        if (ds->local_viewer) {
+            vdir[0] = -eye[0];
+            vdir[1] = -eye[1];
+            vdir[2] = -eye[2];
+        }
+        if (n[0] * vdir[0] + n[1] * vdir[1] + n[2] * vdir[2] < 0.0f) {
+            n[0] = -n[0];
+            n[1] = -n[1];
+            n[2] = -n[2];
+        }
+    }
+    sr__light(ds, n, eye, &provoking->vary[SR_VARY_FLAT_COLOR], out);
+}

@@ -1,0 +1,100 @@
+/* io_util.c - file reading and error messages shared by the readers. */
+#include "io/io_util.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static void format_message(sr_io_error *err, const char *prefix, const char *fmt, va_list ap)
+{
+    if (!err) {
+        return;
+    }
+    size_t n = strlen(prefix);
+    if (n >= sizeof err->message) {
+        n = sizeof err->message - 1;
+    }
+    memcpy(err->message, prefix, n);
+    err->message[n] = 0;
+    vsnprintf(err->message + n, sizeof err->message - n, fmt, ap);
+}
+
+sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
+                      long line, const char *fmt, ...)
+{
+    char prefix[320];
+    if (line > 0) {
+        snprintf(prefix, sizeof prefix, "%s:%ld: ", name ? name : "<input>", line);
+    } else {
+        snprintf(prefix, sizeof prefix, "%s: ", name ? name : "<input>");
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    format_message(err, prefix, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
+                         unsigned long long byte_offset, const char *fmt, ...)
+{
+    char prefix[320];
+    snprintf(prefix, sizeof prefix, "%s: byte %llu: ", name ? name : "<input>", byte_offset);
+    va_list ap;
+    va_start(ap, fmt);
+    format_message(err, prefix, fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err)
+{
+    *data = NULL;
+    *size = 0;
+    if (!path) {
+        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
+    }
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open: %s", strerror(errno));
+    }
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0) {
+        int e = errno;
+        fclose(f);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot stat: %s", strerror(e));
+    }
+    if (S_ISDIR(st.st_mode)) {
+        fclose(f);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not a model file");
+    }
+    if (!S_ISREG(st.st_mode)) {
+        fclose(f);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "not a regular file");
+    }
+    if ((unsigned long long)st.st_size > SR_IO_MAX_FILE_BYTES) {
+        fclose(f);
+        return sr__io_fail(err, SR_TOO_LARGE, path, 0,
+                           "file is %lld bytes, larger than the %zu-byte limit",
+                           (long long)st.st_size, (size_t)SR_IO_MAX_FILE_BYTES);
+    }
+    size_t n = (size_t)st.st_size;
+    char *buf = malloc(n + 1);
+    if (!buf) {
+        fclose(f);
+        return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory reading %zu bytes", n);
+    }
+    size_t got = n ? fread(buf, 1, n, f) : 0;
+    int read_error = ferror(f);
+    fclose(f);
+    if (got != n || read_error) {
+        free(buf);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "read error (got %zu of %zu bytes)", got, n);
+    }
+    buf[n] = 0;
+    *data = buf;
+    *size = n;
+    return SR_OK;
+}

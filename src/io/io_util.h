@@ -1,0 +1,32 @@
+/* io_util.h - shared by the model readers and the PNG code (src/io):
+ * whole-file reading with limits, and error messages in the one form the
+ * CLI prints ("FILE:LINE: what is wrong" / "FILE: byte N: what is wrong"). */
+#ifndef SR_IO_UTIL_H
+#define SR_IO_UTIL_H
+
+#include "softrast_io.h"
+
+#include <stdarg.h>
+
+/* Message "name:line: ..." (line > 0), "name: byte N: ..." (sr__io_fail_at),
+ * or "name: ..." (line == 0).  Returns `code` so callers can
+ * `return sr__io_fail(...)`. */
+sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
+                      long line, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
+                         unsigned long long byte_offset, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
+/* Read a whole regular file (directories, devices and files larger than
+ * SR_IO_MAX_FILE_BYTES are refused with a clear message).  The buffer is
+ * malloc'd with one extra NUL byte after `*size` bytes. */
+sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err);
+
+/* Overflow-checked size arithmetic for allocations sized by input. */
+static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)
+{
+    return !__builtin_mul_overflow(a, b, out);
+}
+
+#endif

@@ -1,0 +1,21 @@
+/* pool.h - the tile thread pool (parallel stage).  Created with the
+ * context; sr__pool_run hands out job indices 0..count-1 to the calling
+ * thread and the workers through an atomic counter and returns when all are
+ * done.  Jobs must be independent (tiles write disjoint pixels). */
+#ifndef SR_POOL_H
+#define SR_POOL_H
+
+#include "softrast.h"
+
+#define SR_MAX_THREADS 64
+
+typedef struct sr_pool sr_pool;
+/* fn(arg, job, thread) - thread is 0 for the caller, 1..n-1 for workers. */
+typedef void (*sr_pool_fn)(void *arg, int job, int thread);
+
+sr_result sr__pool_create(sr_context *ctx, int threads, sr_pool **out);
+void sr__pool_destroy(sr_context *ctx, sr_pool *pool);
+/* With pool == NULL, runs every job on the calling thread. */
+void sr__pool_run(sr_pool *pool, sr_pool_fn fn, void *arg, int count);
+
+#endif

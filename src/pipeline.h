@@ -1,0 +1,150 @@
+/* pipeline.h - the data that flows down the pipeline inside one draw call:
+ * the resolved state (sr_draw_state), vertices in clip space with their
+ * varyings (sr_clip_vertex), and triangles after setup (sr_tri), which is
+ * all the rasterizers ever see.  Internal to the library. */
+#ifndef SR_PIPELINE_H
+#define SR_PIPELINE_H
+
+#include "softrast.h"
+#include "raster/fixed.h"
+#include "target/framebuffer.h"
+
+/* Floats carried per vertex besides the position (see vertex.c for the
+ * layout of each shading model).  Phong needs 10. */
+#define SR_MAX_VARYINGS 16
+
+/* Varying layouts by shading model. */
+enum {
+    SR_VARY_COLOR = 0,        /* UNLIT, GOURAUD: r g b a */
+    SR_VARY_FLAT_EYE = 0,     /* FLAT: eye xyz, then diffuse rgba */
+    SR_VARY_FLAT_COLOR = 3,
+    SR_VARY_PHONG_NORMAL = 0, /* PHONG: normal xyz, eye xyz, diffuse rgba */
+    SR_VARY_PHONG_EYE = 3,
+    SR_VARY_PHONG_COLOR = 6,
+    SR_VARY_NORMAL = 0,       /* NORMALS: normal xyz */
+};
+
+typedef struct sr_light_eye {
+    bool point;
+    float vec[3];             /* point: eye-space position; directional: unit vector to the light */
+    float color[3];           /* color x intensity */
+} sr_light_eye;
+
+/* sr_state with every default resolved and every vector in eye space. */
+typedef struct sr_draw_state {
+    sr_framebuffer *fb;
+
+    /* Viewport S: x_w = ox + px x_ndc, y_w = oy - py y_ndc (y down),
+     * z_w = zs z_ndc + zb.  Pixel rect = viewport ∩ framebuffer. */
+    double vp_ox, vp_oy, vp_px, vp_py, vp_zs, vp_zb;
+    double depth_min, depth_max;      /* min/max of the depth range */
+    bool zero_to_one;
+    int rect_x0, rect_y0, rect_x1, rect_y1; /* inclusive-exclusive pixels */
+
+    sr_cull_mode cull;
+    bool front_ccw;
+    sr_rasterizer rasterizer;
+
+    bool depth_test, depth_write;
+    sr_depth_func depth_func;
+    int depth_bits;                   /* 16, 24, 32, 0 = float */
+    bool offset_on;
+    double offset_factor, offset_units, offset_clamp;
+
+    sr_shading shading;
+    bool perspective;                 /* perspective-correct varyings */
+    bool provoking_last;
+    bool two_sided;
+    bool local_viewer;                /* perspective projection: view vector = -eye */
+    int nvary;                        /* varyings written by the vertex stage */
+    int ninterp;                      /* varyings interpolated across a triangle */
+
+    float ambient[3];                 /* material ambient x global ambient */
+    float diffuse[4];                 /* material diffuse, opacity as alpha */
+    float specular[3];
+    float shininess;
+    bool use_vertex_color;
+    int light_count;
+    sr_light_eye lights[SR_MAX_LIGHTS];
+} sr_draw_state;
+
+/* A vertex after the vertex stage, in homogeneous clip space. */
+typedef struct sr_clip_vertex {
+    float pos[4];
+    float vary[SR_MAX_VARYINGS];
+} sr_clip_vertex;
+
+/* A vertex after the divide and viewport, ready for setup. */
+typedef struct sr_window_vertex {
+    int32_t x_q8, y_q8;               /* snapped window position */
+    double z;                         /* window depth, before offset */
+    float inv_w;
+    const float *vary;
+} sr_window_vertex;
+
+/* A triangle after setup: everything the rasterizers and the fragment stage
+ * need, no pointers.  Vertices are in coverage order (area2 > 0); the
+ * varyings were permuted with them. */
+typedef struct sr_tri {
+    int32_t x[3], y[3];               /* q8 */
+    int64_t area2;                    /* > 0 */
+    /* Edge i is opposite vertex i: E_i(p) = a[i] X + b[i] Y + c[i], which is
+     * the unnormalized barycentric weight of vertex i.  bias[i] is 0 for a
+     * top or left edge and -1 otherwise: covered iff E_i + bias_i >= 0. */
+    int64_t a[3], b[3], c[3];
+    int32_t bias[3];
+    int x0, y0, x1, y1;               /* pixel bbox ∩ rect, inclusive-exclusive */
+    bool front;
+    /* Depth: z = z0 + e1 dz1 + e2 dz2 (offset folded into z0). */
+    double z0, dz1, dz2;
+    float inv_w[3];
+    float flat[4];                    /* FLAT: the triangle's lit color */
+    float vary[3][SR_MAX_VARYINGS];
+} sr_tri;
+
+/* Per-thread fragment counters and the tile the thread works on. */
+typedef struct sr_frag_stats {
+    uint64_t fragments;
+} sr_frag_stats;
+
+/* ---- stage entry points ---- */
+
+/* geometry/vertex.c */
+void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
+                      const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
+                      size_t first, size_t count, sr_clip_vertex *out);
+void sr__flat_color(const sr_draw_state *ds, const sr_clip_vertex *v0,
+                    const sr_clip_vertex *v1, const sr_clip_vertex *v2,
+                    const sr_clip_vertex *provoking, float out[4]);
+
+/* geometry/clip.c: outcodes, and Sutherland-Hodgman in 4D.  Returns the
+ * number of polygon vertices written to out (0 if nothing is left). */
+#define SR_CLIP_MAX_VERTS 16
+unsigned sr__clip_outcode(const sr_draw_state *ds, const float pos[4]);
+int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
+                     unsigned planes, sr_clip_vertex *out);
+
+/* raster/setup.c */
+void sr__window_vertex(const sr_draw_state *ds, const sr_clip_vertex *v, sr_window_vertex *out);
+int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1, const sr_window_vertex *v2);
+/* Returns true when the triangle produced samples-to-be (not culled, not
+ * zero area, bbox non-empty).  `front` is the facing to use. */
+bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *v0,
+                        const sr_window_vertex *v1, const sr_window_vertex *v2,
+                        bool front, int ninterp, const float flat[4], sr_tri *t);
+
+/* raster/{triangle,scanline,barycentric}.c: cover the part of t inside the
+ * pixel rectangle [rx0, rx1) x [ry0, ry1) and hand each sample to the
+ * fragment stage. */
+void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
+                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
+                         int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+void sr__raster_barycentric(const sr_draw_state *ds, const sr_tri *t,
+                            int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+
+/* fragment/shade.c: Blinn-Phong. n must be unit length. */
+void sr__light(const sr_draw_state *ds, const float n[3], const float eye[3],
+               const float diffuse[4], float out[4]);
+
+#endif

@@ -1,0 +1,48 @@
+/* fixed.h - the fixed-point formats of the rasterizer and their bit budgets.
+ *
+ * Window positions are snapped to 8 sub-pixel bits ("q8", S = 256 per pixel)
+ * with round-to-nearest-even.  The guard band keeps window coordinates within
+ * [-16384, 16384) px, so |X_q8| < 2^22.  Edge deltas are then < 2^23, an edge
+ * value multiplies two deltas (< 2^46) and is held in int64; three of them sum
+ * to area2 < 2^48, which a double holds exactly, so barycentrics
+ * e_i / area2 are exact to one rounding (RASTER_RULES 2.8). */
+#ifndef SR_FIXED_H
+#define SR_FIXED_H
+
+#include <stdint.h>
+
+#define SR_SUBPIXEL_BITS 8
+#define SR_SUBPIXEL_ONE  (1 << SR_SUBPIXEL_BITS)
+#define SR_SUBPIXEL_HALF (SR_SUBPIXEL_ONE / 2)   /* pixel centre offset: 128 */
+
+#define SR_GUARD_BAND_MIN (-16384)               /* px, window space */
+#define SR_GUARD_BAND_MAX 16384
+
+#define SR_TILE_ORDER 6                          /* 64 x 64 pixel tiles */
+#define SR_TILE_SIZE  (1 << SR_TILE_ORDER)
+#define SR_BLOCK_ORDER 3                         /* 8 x 8 blocks inside a tile */
+#define SR_BLOCK_SIZE (1 << SR_BLOCK_ORDER)
+
+_Static_assert((int64_t)SR_GUARD_BAND_MAX * SR_SUBPIXEL_ONE < ((int64_t)1 << 22) + 1,
+               "guard band must keep q8 coordinates below 2^22");
+
+/* floor(a / b) and ceil(a / b) for b > 0, on int64. */
+static inline int64_t sr__floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+static inline int64_t sr__ceil_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    return (a % b != 0 && a > 0) ? q + 1 : q;
+}
+
+/* Pixel centre in q8: (256 px + 128). */
+static inline int64_t sr__centre_q8(int p)
+{
+    return (int64_t)p * SR_SUBPIXEL_ONE + SR_SUBPIXEL_HALF;
+}
+
+#endif

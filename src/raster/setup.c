@@ -1,0 +1,141 @@
+/* setup.c - triangle setup (raster stage): divide by w, viewport S, snap to
+ * 8 sub-pixel bits, facing and culling from the snapped signed area, the
+ * three integer edge functions with the top-left fill rule folded in as a
+ * bias, the bounding box, the depth plane and polygon offset.  Produces the
+ * sr_tri the rasterizers consume.  Any thread; no shared state. */
+#include "pipeline.h"
+#include "fragment/depth.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Round to nearest even (the default FP rounding mode) and clamp to the
+ * fixed-point range; clipping already keeps vertices inside the guard band,
+ * the clamp only absorbs rounding at the band's edge. */
+static int32_t snap_q8(double v)
+{
+    double s = nearbyint(v * SR_SUBPIXEL_ONE);
+    const double lim = (double)SR_GUARD_BAND_MAX * SR_SUBPIXEL_ONE;
+    if (s > lim) {
+        s = lim;
+    }
+    if (s < -lim) {
+        s = -lim;
+    }
+    return (int32_t)s;
+}
+
+void sr__window_vertex(const sr_draw_state *ds, const sr_clip_vertex *v, sr_window_vertex *out)
+{
+    double inv_w = 1.0 / v->pos[3];
+    double xn = v->pos[0] * inv_w, yn = v->pos[1] * inv_w, zn = v->pos[2] * inv_w;
+    out->x_q8 = snap_q8(ds->vp_ox + ds->vp_px * xn);
+    out->y_q8 = snap_q8(ds->vp_oy - ds->vp_py * yn);
+    out->z = ds->vp_zs * zn + ds->vp_zb;
+    out->inv_w = (float)inv_w;
+    out->vary = v->vary;
+}
+
+int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1, const sr_window_vertex *v2)
+{
+    return (int64_t)(v1->x_q8 - v0->x_q8) * (v2->y_q8 - v0->y_q8) -
+           (int64_t)(v1->y_q8 - v0->y_q8) * (v2->x_q8 - v0->x_q8);
+}
+
+/* y points down.  With area2 > 0 the interior has E > 0.  A top edge is
+ * horizontal and runs toward +x; a left edge runs upward (dy < 0).  Samples
+ * exactly on a top or left edge are inside, on any other edge outside. */
+static bool is_top_left(int64_t dx, int64_t dy)
+{
+    return dy < 0 || (dy == 0 && dx > 0);
+}
+
+bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
+                        const sr_window_vertex *w1, const sr_window_vertex *w2,
+                        bool front, int ninterp, const float flat[4], sr_tri *t)
+{
+    const sr_window_vertex *v[3] = { w0, w1, w2 };
+    int64_t area2 = sr__area2(w0, w1, w2);
+    if (area2 == 0) {
+        return false;
+    }
+    /* Coverage needs area2 > 0: swap v1 and v2 (their attributes go with
+     * them, so barycentric weights still pair with the right values). */
+    if (area2 < 0) {
+        v[1] = w2;
+        v[2] = w1;
+        area2 = -area2;
+    }
+    t->area2 = area2;
+    t->front = front;
+
+    int32_t minx = INT32_MAX, miny = INT32_MAX, maxx = INT32_MIN, maxy = INT32_MIN;
+    for (int i = 0; i < 3; i++) {
+        t->x[i] = v[i]->x_q8;
+        t->y[i] = v[i]->y_q8;
+        minx = t->x[i] < minx ? t->x[i] : minx;
+        maxx = t->x[i] > maxx ? t->x[i] : maxx;
+        miny = t->y[i] < miny ? t->y[i] : miny;
+        maxy = t->y[i] > maxy ? t->y[i] : maxy;
+    }
+    /* Pixels whose centre 256 p + 128 lies in [min, max]. */
+    int x0 = (int)sr__ceil_div((int64_t)minx - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE);
+    int x1 = (int)sr__floor_div((int64_t)maxx - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE) + 1;
+    int y0 = (int)sr__ceil_div((int64_t)miny - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE);
+    int y1 = (int)sr__floor_div((int64_t)maxy - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE) + 1;
+    t->x0 = x0 > ds->rect_x0 ? x0 : ds->rect_x0;
+    t->y0 = y0 > ds->rect_y0 ? y0 : ds->rect_y0;
+    t->x1 = x1 < ds->rect_x1 ? x1 : ds->rect_x1;
+    t->y1 = y1 < ds->rect_y1 ? y1 : ds->rect_y1;
+    if (t->x0 >= t->x1 || t->y0 >= t->y1) {
+        return false;
+    }
+
+    /* Edge i runs from vertex i+1 to vertex i+2 and is opposite vertex i:
+     * E_i(p) = (b.x - a.x)(p.y - a.y) - (b.y - a.y)(p.x - a.x). */
+    for (int i = 0; i < 3; i++) {
+        int a = (i + 1) % 3, b = (i + 2) % 3;
+        int64_t dx = (int64_t)t->x[b] - t->x[a];
+        int64_t dy = (int64_t)t->y[b] - t->y[a];
+        t->a[i] = -dy;
+        t->b[i] = dx;
+        t->c[i] = dy * t->x[a] - dx * t->y[a];
+        t->bias[i] = is_top_left(dx, dy) ? 0 : -1;
+    }
+
+    /* Depth: linear in screen space (RASTER_RULES 4.1). */
+    double z[3] = { v[0]->z, v[1]->z, v[2]->z };
+    double offset = 0.0;
+    if (ds->offset_on) {
+        /* Polygon offset o = factor m + units r, with the slope m from the
+         * snapped plane (RASTER_RULES 5.3). */
+        double dx1 = t->x[1] - t->x[0], dy1 = t->y[1] - t->y[0];
+        double dx2 = t->x[2] - t->x[0], dy2 = t->y[2] - t->y[0];
+        double dz1 = z[1] - z[0], dz2 = z[2] - z[0];
+        double dzdx = (dz1 * dy2 - dz2 * dy1) * SR_SUBPIXEL_ONE / (double)area2;
+        double dzdy = (dx1 * dz2 - dx2 * dz1) * SR_SUBPIXEL_ONE / (double)area2;
+        double m = fmax(fabs(dzdx), fabs(dzdy));
+        double maxz = fmax(fabs(z[0]), fmax(fabs(z[1]), fabs(z[2])));
+        double r = sr__depth_r(ds->depth_bits, maxz);
+        offset = ds->offset_factor * m + ds->offset_units * r;
+        if (ds->offset_clamp > 0.0) {
+            offset = fmin(offset, ds->offset_clamp);
+        } else if (ds->offset_clamp < 0.0) {
+            offset = fmax(offset, ds->offset_clamp);
+        }
+    }
+    t->z0 = z[0] + offset;
+    t->dz1 = (z[1] - z[0]) / (double)area2;
+    t->dz2 = (z[2] - z[0]) / (double)area2;
+
+    for (int i = 0; i < 3; i++) {
+        t->inv_w[i] = v[i]->inv_w;
+        if (ninterp > 0) {
+            memcpy(t->vary[i], v[i]->vary, (size_t)ninterp * sizeof(float));
+        }
+    }
+    if (flat) {
+        memcpy(t->flat, flat, sizeof t->flat);
+    }
+    return true;
+}

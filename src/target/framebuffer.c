@@ -1,0 +1,204 @@
+/* framebuffer.c - creating, clearing and reading render targets (target
+ * stage).  Called from the application thread. */
+#include "target/framebuffer.h"
+#include "context.h"
+#include "fragment/depth.h"
+
+#include <math.h>
+#include <string.h>
+
+sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
+                              sr_framebuffer **out)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_framebuffer: out is NULL");
+    }
+    *out = NULL;
+    if (!desc) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_framebuffer: desc is NULL");
+    }
+    if (desc->width <= 0 || desc->height <= 0) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_framebuffer_desc.%s must be > 0 (got %d)",
+                        desc->width <= 0 ? "width" : "height",
+                        desc->width <= 0 ? desc->width : desc->height);
+    }
+    if (desc->width > SR_MAX_FRAMEBUFFER_SIZE || desc->height > SR_MAX_FRAMEBUFFER_SIZE) {
+        return sr__fail(ctx, SR_TOO_LARGE,
+                        "sr_framebuffer_desc: %dx%d exceeds the maximum %dx%d",
+                        desc->width, desc->height, SR_MAX_FRAMEBUFFER_SIZE, SR_MAX_FRAMEBUFFER_SIZE);
+    }
+    int bits;
+    sr_depth_format fmt = desc->depth_format == SR_DEPTH_DEFAULT ? SR_DEPTH_D24 : desc->depth_format;
+    switch (fmt) {
+    case SR_DEPTH_NONE: bits = -1; break;
+    case SR_DEPTH_D16:  bits = 16; break;
+    case SR_DEPTH_D24:  bits = 24; break;
+    case SR_DEPTH_D32:  bits = 32; break;
+    case SR_DEPTH_D32F: bits = 0;  break;
+    default:
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_framebuffer_desc.depth_format %d is not a format",
+                        (int)desc->depth_format);
+    }
+
+    sr_framebuffer *fb = sr__calloc(ctx, 1, sizeof *fb);
+    if (!fb) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_framebuffer: out of memory");
+    }
+    size_t n = (size_t)desc->width * (size_t)desc->height;
+    fb->width = desc->width;
+    fb->height = desc->height;
+    fb->depth_format = fmt;
+    fb->depth_bits = bits < 0 ? 0 : bits;
+    fb->color = sr__calloc(ctx, n, sizeof(uint32_t));
+    if (fb->color && bits >= 0) {
+        fb->depth = sr__alloc(ctx, n * sizeof(uint32_t));
+        if (fb->depth) {
+            uint32_t far = sr__depth_quantize(1.0, fb->depth_bits);
+            for (size_t i = 0; i < n; i++) {
+                fb->depth[i] = far;
+            }
+        }
+    }
+    if (!fb->color || (bits >= 0 && !fb->depth)) {
+        sr_destroy_framebuffer(ctx, fb);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_framebuffer: out of memory for %dx%d",
+                        desc->width, desc->height);
+    }
+    *out = fb;
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
+{
+    if (!ctx || !fb) {
+        return;
+    }
+    sr__free(ctx, fb->color);
+    sr__free(ctx, fb->depth);
+    sr__free(ctx, fb);
+}
+
+int sr_framebuffer_width(const sr_framebuffer *fb) { return fb ? fb->width : 0; }
+int sr_framebuffer_height(const sr_framebuffer *fb) { return fb ? fb->height : 0; }
+sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb)
+{
+    return fb ? fb->depth_format : SR_DEPTH_NONE;
+}
+const uint8_t *sr_framebuffer_pixels(const sr_framebuffer *fb)
+{
+    return fb ? (const uint8_t *)fb->color : NULL;
+}
+
+static uint8_t unorm8(float v)
+{
+    if (!(v > 0.0f)) {
+        return 0;
+    }
+    if (v >= 1.0f) {
+        return 255;
+    }
+    return (uint8_t)(v * 255.0f + 0.5f);
+}
+
+sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!fb || !desc) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_clear: %s is NULL", fb ? "desc" : "fb");
+    }
+    for (int c = 0; c < 4; c++) {
+        if (!isfinite(desc->color[c])) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_clear_desc.color[%d] is not finite", c);
+        }
+    }
+    if (!(desc->depth >= 0.0f && desc->depth <= 1.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_clear_desc.depth must be in [0, 1] (got %g)",
+                        (double)desc->depth);
+    }
+    size_t n = (size_t)fb->width * (size_t)fb->height;
+    if (!desc->no_color) {
+        uint8_t rgba[4] = { unorm8(desc->color[0]), unorm8(desc->color[1]),
+                            unorm8(desc->color[2]), unorm8(desc->color[3]) };
+        uint32_t packed;
+        memcpy(&packed, rgba, sizeof packed);
+        for (size_t i = 0; i < n; i++) {
+            fb->color[i] = packed;
+        }
+    }
+    if (!desc->no_depth && fb->depth) {
+        uint32_t q = sr__depth_quantize(desc->depth, fb->depth_bits);
+        for (size_t i = 0; i < n; i++) {
+            fb->depth[i] = q;
+        }
+    }
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+static sr_result check_rect(sr_context *ctx, const char *fn, const sr_framebuffer *fb,
+                            int x, int y, int w, int h, const void *out)
+{
+    if (!fb || !out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn, fb ? "out" : "fb");
+    }
+    if (x < 0 || y < 0 || w <= 0 || h <= 0 || x > fb->width - w || y > fb->height - h) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: rectangle (%d, %d, %d x %d) is not inside the %dx%d framebuffer",
+                        fn, x, y, w, h, fb->width, fb->height);
+    }
+    return SR_OK;
+}
+
+sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
+                         int x, int y, int w, int h, uint8_t *out, size_t stride)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    sr_result r = check_rect(ctx, "sr_read_pixels", fb, x, y, w, h, out);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (stride < (size_t)w * 4) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_read_pixels: stride %zu < 4 * width", stride);
+    }
+    for (int row = 0; row < h; row++) {
+        memcpy(out + (size_t)row * stride, fb->color + (size_t)(y + row) * fb->width + x,
+               (size_t)w * 4);
+    }
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
+                        int x, int y, int w, int h, float *out, size_t stride)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    sr_result r = check_rect(ctx, "sr_read_depth", fb, x, y, w, h, out);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (!fb->depth) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_read_depth: the framebuffer has no depth buffer");
+    }
+    if (stride < (size_t)w) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_read_depth: stride %zu < width", stride);
+    }
+    for (int row = 0; row < h; row++) {
+        for (int col = 0; col < w; col++) {
+            uint32_t q = fb->depth[(size_t)(y + row) * fb->width + x + col];
+            out[(size_t)row * stride + col] = (float)sr__depth_dequantize(q, fb->depth_bits);
+        }
+    }
+    sr__ok(ctx);
+    return SR_OK;
+}

@@ -1,0 +1,17 @@
+/* image_compare.h - reference-image checks for image tests.
+ *
+ * sr_test_check_image compares an RGBA8 image with tests/ref/<name>.png.
+ * A pixel differs when any channel differs by more than `channel_tol`; the
+ * check fails when more than `max_bad_pixels` differ.  On failure it writes
+ * <out>/<name>.actual.png and <out>/<name>.diff.png (differing pixels red on
+ * a darkened copy of the reference) and reports their paths.
+ * With SR_UPDATE_REFS=1 in the environment it (re)writes the reference
+ * instead - look at every image it writes before committing it. */
+#ifndef SR_IMAGE_COMPARE_H
+#define SR_IMAGE_COMPARE_H
+#include <stdbool.h>
+#include <stdint.h>
+
+bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
+                         int channel_tol, long max_bad_pixels);
+#endif

@@ -1,0 +1,96 @@
+/* sr_test.c - the runner behind sr_test.h: registry, failure records, main(). */
+#include "sr_test.h"
+
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#define MAX_TESTS 1024
+
+static struct { const char *name; sr_test_fn fn; } tests[MAX_TESTS];
+static int test_count;
+static int current_failures;
+static const char *current_skip;
+
+void sr_test_register(const char *name, sr_test_fn fn)
+{
+    if (test_count < MAX_TESTS) {
+        tests[test_count].name = name;
+        tests[test_count].fn = fn;
+        test_count++;
+    }
+}
+
+void sr_test_fail(const char *file, int line, const char *fmt, ...)
+{
+    va_list ap;
+    /* Print the first few failures of a test; a property test may fail
+     * thousands of times and one screenful says enough. */
+    if (current_failures < 20) {
+        fprintf(stderr, "%s:%d: ", file, line);
+        va_start(ap, fmt);
+        vfprintf(stderr, fmt, ap);
+        va_end(ap);
+        fputc('\n', stderr);
+    }
+    current_failures++;
+}
+
+void sr_test_skip(const char *why) { current_skip = why; }
+bool sr_test_failed_now(void) { return current_failures > 0; }
+
+static bool is_dir(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+const char *sr_test_models_dir(void)
+{
+    const char *env = getenv("SR_MODELS_DIR");
+    if (env && is_dir(env)) {
+        return env;
+    }
+    return is_dir(SR_SHARED_MODELS_DIR) ? SR_SHARED_MODELS_DIR : NULL;
+}
+
+const char *sr_test_out_dir(void)
+{
+    mkdir(SR_TEST_OUT_DIR, 0777);
+    return SR_TEST_OUT_DIR;
+}
+
+const char *sr_test_src_dir(void) { return SR_TEST_SRC_DIR; }
+
+int main(int argc, char **argv)
+{
+    int passed = 0, failed = 0, skipped = 0;
+    for (int i = 0; i < test_count; i++) {
+        if (argc > 1) {
+            bool wanted = false;
+            for (int a = 1; a < argc; a++) {
+                wanted |= strcmp(argv[a], tests[i].name) == 0;
+            }
+            if (!wanted) {
+                continue;
+            }
+        }
+        current_failures = 0;
+        current_skip = NULL;
+        tests[i].fn();
+        if (current_failures) {
+            printf("FAIL %s (%d failed checks)\n", tests[i].name, current_failures);
+            failed++;
+        } else if (current_skip) {
+            printf("SKIP %s: %s\n", tests[i].name, current_skip);
+            skipped++;
+        } else {
+            printf("ok   %s\n", tests[i].name);
+            passed++;
+        }
+        fflush(stdout);
+    }
+    printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
+    return failed ? 1 : 0;
+}

@@ -1,0 +1,108 @@
+/*
+ * sr_test.h - the small test harness every test executable uses.
+ *
+ * A test is a function declared with SR_TEST(name); it registers itself and
+ * tests/sr_test.c's main() runs every registered test, or only those named on
+ * the command line, and closes with "N passed, N failed, N skipped".
+ * CHECK* record a failure with file:line and carry on; REQUIRE* stop the
+ * current test.  SKIP(msg) ends the test as skipped (e.g. no shared models).
+ */
+#ifndef SR_TEST_H
+#define SR_TEST_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stddef.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+typedef void (*sr_test_fn)(void);
+void sr_test_register(const char *name, sr_test_fn fn);
+void sr_test_fail(const char *file, int line, const char *fmt, ...);
+void sr_test_skip(const char *why);
+bool sr_test_failed_now(void);
+/* ../shared/models, or NULL when that folder is absent. */
+const char *sr_test_models_dir(void);
+/* Directory the tests may write into (the build's tests/out). */
+const char *sr_test_out_dir(void);
+/* Source tree's tests/ directory (reference images, data). */
+const char *sr_test_src_dir(void);
+
+#define SR_TEST(name)                                                        \
+    static void name(void);                                                  \
+    __attribute__((constructor)) static void name##__register(void)          \
+    {                                                                        \
+        sr_test_register(#name, name);                                       \
+    }                                                                        \
+    static void name(void)
+
+#define CHECK(cond)                                                          \
+    do {                                                                     \
+        if (!(cond)) sr_test_fail(__FILE__, __LINE__, "CHECK(%s)", #cond);   \
+    } while (0)
+
+#define CHECK_EQ(a, b)                                                       \
+    do {                                                                     \
+        long long sr__a = (long long)(a), sr__b = (long long)(b);            \
+        if (sr__a != sr__b)                                                  \
+            sr_test_fail(__FILE__, __LINE__, "CHECK_EQ(%s, %s): %lld != %lld", \
+                         #a, #b, sr__a, sr__b);                              \
+    } while (0)
+
+#define CHECK_NEAR(a, b, tol)                                                \
+    do {                                                                     \
+        double sr__a = (double)(a), sr__b = (double)(b);                     \
+        if (!(sr__a - sr__b <= (tol) && sr__b - sr__a <= (tol)))             \
+            sr_test_fail(__FILE__, __LINE__,                                 \
+                         "CHECK_NEAR(%s, %s, %g): %.9g vs %.9g",             \
+                         #a, #b, (double)(tol), sr__a, sr__b);               \
+    } while (0)
+
+#define CHECK_STR_CONTAINS(hay, needle)                                      \
+    do {                                                                     \
+        const char *sr__h = (hay), *sr__n = (needle);                        \
+        if (!sr__h || !strstr(sr__h, sr__n))                                 \
+            sr_test_fail(__FILE__, __LINE__, "\"%s\" does not contain \"%s\"", \
+                         sr__h ? sr__h : "(null)", sr__n);                   \
+    } while (0)
+
+#define REQUIRE(cond)                                                        \
+    do {                                                                     \
+        if (!(cond)) {                                                       \
+            sr_test_fail(__FILE__, __LINE__, "REQUIRE(%s)", #cond);          \
+            return;                                                          \
+        }                                                                    \
+    } while (0)
+
+#define SKIP(why)                                                            \
+    do {                                                                     \
+        sr_test_skip(why);                                                   \
+        return;                                                              \
+    } while (0)
+
+/* Deterministic PRNG for property tests (xorshift64*); fixed seeds only. */
+typedef struct sr_rng { uint64_t s; } sr_rng;
+static inline uint64_t sr_rng_next(sr_rng *r)
+{
+    r->s ^= r->s >> 12;
+    r->s ^= r->s << 25;
+    r->s ^= r->s >> 27;
+    return r->s * 2685821657736338717ULL;
+}
+static inline double sr_rng_unit(sr_rng *r) /* [0, 1) */
+{
+    return (double)(sr_rng_next(r) >> 11) * (1.0 / 9007199254740992.0);
+}
+static inline double sr_rng_range(sr_rng *r, double lo, double hi)
+{
+    return lo + (hi - lo) * sr_rng_unit(r);
+}
+static inline int sr_rng_int(sr_rng *r, int lo, int hi) /* [lo, hi] */
+{
+    return lo + (int)(sr_rng_next(r) % (uint64_t)(hi - lo + 1));
+}
+
+#endif
