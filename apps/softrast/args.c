@@ -1,0 +1,191 @@
+/* args.c - option value parsers for the CLI.  Every failure prints one
+ * line that names the option and the offending text. */
+#include "cli.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+void cli_error(const char *fmt, ...)
+{
+    va_list ap;
+    fputs("softrast: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}
+
+bool parse_int(const char *opt, const char *s, int lo, int hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end || v < lo || v > hi) {
+        cli_error("%s: expected a whole number from %d to %d (got '%s')", opt, lo, hi, s);
+        return false;
+    }
+    *out = (int)v;
+    return true;
+}
+
+bool parse_float(const char *opt, const char *s, float lo, float hi, float *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) {
+        cli_error("%s: expected a number from %g to %g (got '%s')", opt, (double)lo, (double)hi, s);
+        return false;
+    }
+    *out = (float)v;
+    return true;
+}
+
+bool parse_size(const char *opt, const char *s, int *w, int *h)
+{
+    int a, b, n = 0;
+    if (sscanf(s, "%d%*[xX]%d%n", &a, &b, &n) != 2 || s[n] != 0 || a < 1 || b < 1 ||
+        a > SR_MAX_FRAMEBUFFER_SIZE || b > SR_MAX_FRAMEBUFFER_SIZE) {
+        cli_error("%s: expected WxH with each from 1 to %d (got '%s')", opt,
+                  SR_MAX_FRAMEBUFFER_SIZE, s);
+        return false;
+    }
+    *w = a;
+    *h = b;
+    return true;
+}
+
+bool parse_vec3(const char *opt, const char *s, sr_vec3 *out)
+{
+    float v[3];
+    const char *p = s;
+    for (int i = 0; i < 3; i++) {
+        char *end;
+        errno = 0;
+        double d = strtod(p, &end);
+        if (errno || end == p || !isfinite(d) || (i < 2 && *end != ',') || (i == 2 && *end)) {
+            cli_error("%s: expected three numbers X,Y,Z (got '%s')", opt, s);
+            return false;
+        }
+        v[i] = (float)d;
+        p = end + 1;
+    }
+    *out = (sr_vec3){ v[0], v[1], v[2] };
+    return true;
+}
+
+static const struct { const char *name; unsigned rgb; } color_names[] = {
+    { "black", 0x000000 }, { "white", 0xffffff }, { "red", 0xff0000 }, { "green", 0x008000 },
+    { "lime", 0x00ff00 }, { "blue", 0x0000ff }, { "yellow", 0xffff00 }, { "cyan", 0x00ffff },
+    { "magenta", 0xff00ff }, { "gray", 0x808080 }, { "grey", 0x808080 }, { "silver", 0xc0c0c0 },
+    { "maroon", 0x800000 }, { "olive", 0x808000 }, { "navy", 0x000080 }, { "teal", 0x008080 },
+    { "purple", 0x800080 }, { "orange", 0xffa500 }, { "brown", 0xa52a2a }, { "pink", 0xffc0cb },
+    { "gold", 0xffd700 }, { "skyblue", 0x87ceeb }, { "steelblue", 0x4682b4 },
+    { "slategray", 0x708090 }, { "darkgray", 0xa9a9a9 }, { "lightgray", 0xd3d3d3 },
+    { "ivory", 0xfffff0 }, { "coral", 0xff7f50 }, { "crimson", 0xdc143c },
+};
+
+/* Names (CSS/SVG keywords), #rgb, #rrggbb, or three numbers r,g,b in [0, 1]. */
+bool parse_color(const char *opt, const char *s, sr_vec3 *out)
+{
+    for (size_t i = 0; i < sizeof color_names / sizeof color_names[0]; i++) {
+        if (strcasecmp(s, color_names[i].name) == 0) {
+            unsigned c = color_names[i].rgb;
+            *out = (sr_vec3){ ((c >> 16) & 255) / 255.0f, ((c >> 8) & 255) / 255.0f,
+                              (c & 255) / 255.0f };
+            return true;
+        }
+    }
+    size_t n = strlen(s);
+    if (s[0] == '#' && (n == 4 || n == 7)) {
+        bool hex = true;
+        for (size_t i = 1; i < n; i++) {
+            hex &= isxdigit((unsigned char)s[i]) != 0;
+        }
+        if (hex) {
+            unsigned v = (unsigned)strtoul(s + 1, NULL, 16);
+            if (n == 4) {
+                unsigned r = (v >> 8) & 15, g = (v >> 4) & 15, b = v & 15;
+                v = (r * 17) << 16 | (g * 17) << 8 | (b * 17);
+            }
+            *out = (sr_vec3){ ((v >> 16) & 255) / 255.0f, ((v >> 8) & 255) / 255.0f,
+                              (v & 255) / 255.0f };
+            return true;
+        }
+    }
+    sr_vec3 v;
+    if (strchr(s, ',') && sscanf(s, "%f,%f,%f", &v.x, &v.y, &v.z) == 3 &&
+        v.x >= 0 && v.y >= 0 && v.z >= 0 && isfinite(v.x) && isfinite(v.y) && isfinite(v.z)) {
+        *out = v;
+        return true;
+    }
+    cli_error("%s: expected a color name, #rgb, #rrggbb or R,G,B (got '%s')", opt, s);
+    return false;
+}
+
+bool parse_choice(const char *opt, const char *s, const char *const *names, int *out)
+{
+    for (int i = 0; names[i]; i++) {
+        if (strcmp(s, names[i]) == 0) {
+            *out = i;
+            return true;
+        }
+    }
+    char list[256] = "";
+    for (int i = 0; names[i]; i++) {
+        strncat(list, i ? "|" : "", sizeof list - strlen(list) - 1);
+        strncat(list, names[i], sizeof list - strlen(list) - 1);
+    }
+    cli_error("%s: expected one of %s (got '%s')", opt, list, s);
+    return false;
+}
+
+bool parse_kv_list(const char *opt, const char *s, kv_fn fn, void *user)
+{
+    char buf[512];
+    if (strlen(s) >= sizeof buf) {
+        cli_error("%s: value too long", opt);
+        return false;
+    }
+    strcpy(buf, s);
+    char *p = buf;
+    while (*p) {
+        char *eq = strchr(p, '=');
+        if (!eq) {
+            cli_error("%s: expected key=value pairs (got '%s')", opt, s);
+            return false;
+        }
+        *eq = 0;
+        char *value = eq + 1;
+        /* The value runs to the comma before the next "key=". */
+        char *next = value + strlen(value);
+        for (char *c = value; *c; c++) {
+            if (*c == ',') {
+                char *k = c + 1;
+                while (isalpha((unsigned char)*k)) {
+                    k++;
+                }
+                if (*k == '=' && k > c + 1) {
+                    *c = 0;
+                    next = c + 1;
+                    break;
+                }
+            }
+        }
+        bool at_end = next == value + strlen(value);
+        if (!fn(user, opt, p, value)) {
+            return false;
+        }
+        if (at_end) {
+            break;
+        }
+        p = next;
+    }
+    return true;
+}

@@ -1,0 +1,35 @@
+/* cli.h - shared pieces of the softrast command-line tool: the
+ * subcommands, and parsers for option values that print one clear line
+ * naming the option when a value is bad. */
+#ifndef SR_CLI_H
+#define SR_CLI_H
+
+#include "softrast.h"
+
+#include <stdbool.h>
+
+/* Exit statuses: 2 for bad usage or bad input files, 1 when the work
+ * itself fails (out of memory, the output cannot be written). */
+enum { EXIT_OK = 0, EXIT_FAILURE_RUN = 1, EXIT_USAGE = 2 };
+
+int cmd_render(int argc, char **argv);
+
+/* Print "softrast: ..." to stderr (one line). */
+void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* Parsers: return false after printing "softrast render: OPTION: why". */
+bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);
+bool parse_float(const char *opt, const char *s, float lo, float hi, float *out);
+bool parse_size(const char *opt, const char *s, int *w, int *h);
+bool parse_vec3(const char *opt, const char *s, sr_vec3 *out);
+bool parse_color(const char *opt, const char *s, sr_vec3 *out);
+/* One of `names` (NULL-terminated); *out = its index. */
+bool parse_choice(const char *opt, const char *s, const char *const *names, int *out);
+
+/* Comma-separated key=value lists, e.g. "eye=1,2,3,target=0,0,0".  Values
+ * may contain commas; a new key starts at a token that contains '='.
+ * Calls fn(key, value) for each; stops and returns false if fn does. */
+typedef bool (*kv_fn)(void *user, const char *opt, const char *key, const char *value);
+bool parse_kv_list(const char *opt, const char *s, kv_fn fn, void *user);
+
+#endif

@@ -1,0 +1,615 @@
+/* render.c - `softrast render [MODEL] [options]`: load a model (or build the
+ * teapot scene), frame it with a camera, light it, draw it with the
+ * pipeline and write a PNG atomically. */
+#include "cli.h"
+#include "scene.h"
+#include "softrast_io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#define PI_F 3.14159265358979f
+
+typedef struct render_opts {
+    const char *model;
+    const char *output;
+    int width, height;
+    sr_shading shading;
+    sr_cull_mode cull;
+    sr_front_face front;
+    bool have_eye, have_target, have_up;
+    sr_vec3 eye, target, up;
+    float fov_deg;
+    bool ortho;
+    float turn_deg;
+    float near_z, far_z;           /* 0: fitted */
+    sr_light lights[SR_MAX_LIGHTS];
+    int light_count;
+    bool have_ambient;
+    sr_vec3 ambient;
+    bool have_mat_color, have_specular, have_shininess;
+    sr_vec3 mat_color, specular;
+    float shininess;
+    sr_vec3 background;
+    sr_depth_format depth_format;
+    sr_depth_func depth_func;
+    sr_interpolation interp;
+    int normals;                   /* -1 auto, 0 file, 1 smooth, 2 flat */
+    int detail;
+    sr_rasterizer rasterizer;
+    int threads;
+    int png_level;
+    bool verbose;
+} render_opts;
+
+static const char *const shading_names[] = { "flat", "gouraud", "phong", "normals", "depth",
+                                             "unlit", NULL };
+static const sr_shading shading_values[] = { SR_SHADING_FLAT, SR_SHADING_GOURAUD, SR_SHADING_PHONG,
+                                             SR_SHADING_NORMALS, SR_SHADING_DEPTH, SR_SHADING_UNLIT };
+static const char *const cull_names[] = { "back", "front", "none", NULL };
+static const sr_cull_mode cull_values[] = { SR_CULL_BACK, SR_CULL_FRONT, SR_CULL_NONE };
+static const char *const front_names[] = { "ccw", "cw", NULL };
+static const char *const depth_format_names[] = { "d16", "d24", "d32", "d32f", NULL };
+static const sr_depth_format depth_format_values[] = { SR_DEPTH_D16, SR_DEPTH_D24, SR_DEPTH_D32,
+                                                       SR_DEPTH_D32F };
+static const char *const depth_func_names[] = { "never", "less", "equal", "lequal", "greater",
+                                                "notequal", "gequal", "always", NULL };
+static const char *const interp_names[] = { "perspective", "affine", NULL };
+static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
+static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
+
+static void render_help(void)
+{
+    printf(
+        "usage: softrast render [MODEL] [options]\n"
+        "\n"
+        "Render MODEL (.obj, .ply, .stl; other formats through Assimp when built\n"
+        "with it) or, without MODEL, the built-in Utah teapot scene, to a PNG.\n"
+        "\n"
+        "output:\n"
+        "  -o, --output FILE        PNG to write, atomically (default softrast.png)\n"
+        "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
+        "  --background COLOR       name, #rgb, #rrggbb or R,G,B in 0..1 (default #1d2230)\n"
+        "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
+        "shading:\n"
+        "  --shading MODE           flat|gouraud|phong|normals|depth|unlit (default phong)\n"
+        "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
+        "                           smooth ones, or one per face (default: file if the\n"
+        "                           model has them, else smooth)\n"
+        "  --material KEY=V,...     color=COLOR, specular=COLOR, shininess=N\n"
+        "                           (default: light gray, specular 0.25, shininess 40)\n"
+        "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14)\n"
+        "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
+        "  --light point=X,Y,Z[,color=C][,intensity=I]\n"
+        "                           add a light in world space (repeatable, up to 8);\n"
+        "                           without any, a key, fill and rim light placed\n"
+        "                           relative to the camera\n"
+        "camera:\n"
+        "  --camera eye=X,Y,Z[,target=X,Y,Z][,up=X,Y,Z]\n"
+        "                           (default: a three-quarter view from above that\n"
+        "                           frames the model's bounding sphere)\n"
+        "  --fov DEG                field of view across the smaller image side\n"
+        "                           (default 35)\n"
+        "  --ortho                  orthographic projection\n"
+        "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
+        "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
+        "pipeline:\n"
+        "  --cull MODE              back|front|none (default back)\n"
+        "  --front-face ORDER       ccw|cw (default ccw)\n"
+        "  --depth-format F         d16|d24|d32|d32f (default d24)\n"
+        "  --depth-func F           never|less|equal|lequal|greater|notequal|gequal|always\n"
+        "                           (default less; greater and gequal clear depth to 0)\n"
+        "  --projection-interp M    perspective|affine (default perspective)\n"
+        "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
+        "                           all three give the same pixels)\n"
+        "  --threads N              rasterizer threads (default: SR_THREADS or CPUs)\n"
+        "  --detail N               teapot tessellation per patch, 1..64 (default 12)\n"
+        "  -v, --verbose            print timings and counts to stderr\n"
+        "  -h, --help               this help\n"
+        "\n"
+        "Exit status: 0 on success, 2 for bad options or a bad model file (one line\n"
+        "FILE:LINE: what is wrong), 1 when rendering or writing fails.\n");
+}
+
+static bool camera_kv(void *user, const char *opt, const char *key, const char *value)
+{
+    render_opts *o = user;
+    if (strcmp(key, "eye") == 0) {
+        o->have_eye = true;
+        return parse_vec3(opt, value, &o->eye);
+    }
+    if (strcmp(key, "target") == 0) {
+        o->have_target = true;
+        return parse_vec3(opt, value, &o->target);
+    }
+    if (strcmp(key, "up") == 0) {
+        o->have_up = true;
+        return parse_vec3(opt, value, &o->up);
+    }
+    cli_error("%s: unknown key '%s' (expected eye, target, up)", opt, key);
+    return false;
+}
+
+static bool light_kv(void *user, const char *opt, const char *key, const char *value)
+{
+    sr_light *l = user;
+    if (strcmp(key, "dir") == 0 || strcmp(key, "point") == 0) {
+        if (l->type != SR_LIGHT_OFF) {
+            cli_error("%s: give either dir= or point=, once", opt);
+            return false;
+        }
+        l->type = key[0] == 'd' ? SR_LIGHT_DIRECTIONAL : SR_LIGHT_POINT;
+        if (!parse_vec3(opt, value, &l->vector)) {
+            return false;
+        }
+        if (l->type == SR_LIGHT_DIRECTIONAL && sr_vec3_length(l->vector) == 0.0f) {
+            cli_error("%s: a light direction must not be zero", opt);
+            return false;
+        }
+        return true;
+    }
+    if (strcmp(key, "color") == 0) {
+        return parse_color(opt, value, &l->color);
+    }
+    if (strcmp(key, "intensity") == 0) {
+        return parse_float(opt, value, 0.0f, 1000.0f, &l->intensity);
+    }
+    cli_error("%s: unknown key '%s' (expected dir, point, color, intensity)", opt, key);
+    return false;
+}
+
+static bool material_kv(void *user, const char *opt, const char *key, const char *value)
+{
+    render_opts *o = user;
+    if (strcmp(key, "color") == 0) {
+        o->have_mat_color = true;
+        return parse_color(opt, value, &o->mat_color);
+    }
+    if (strcmp(key, "specular") == 0) {
+        o->have_specular = true;
+        return parse_color(opt, value, &o->specular);
+    }
+    if (strcmp(key, "shininess") == 0) {
+        o->have_shininess = true;
+        return parse_float(opt, value, 1.0f, 10000.0f, &o->shininess);
+    }
+    cli_error("%s: unknown key '%s' (expected color, specular, shininess)", opt, key);
+    return false;
+}
+
+/* Returns -1 to continue, else the exit status. */
+static int parse_args(int argc, char **argv, render_opts *o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        char optbuf[64];
+        const char *value = NULL;
+        /* --opt=value as well as --opt value. */
+        const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+        if (eq && (size_t)(eq - arg) < sizeof optbuf) {
+            memcpy(optbuf, arg, (size_t)(eq - arg));
+            optbuf[eq - arg] = 0;
+            value = eq + 1;
+            arg = optbuf;
+        }
+#define IS(name) (strcmp(arg, name) == 0)
+#define VALUE()                                                                     \
+    do {                                                                            \
+        if (!value) {                                                               \
+            if (i + 1 >= argc) {                                                    \
+                cli_error("%s: missing value", arg);                                \
+                return EXIT_USAGE;                                                  \
+            }                                                                       \
+            value = argv[++i];                                                      \
+        }                                                                           \
+    } while (0)
+#define CHOICE(names, dst, values)                                                  \
+    do {                                                                            \
+        int k_;                                                                     \
+        VALUE();                                                                    \
+        if (!parse_choice(arg, value, names, &k_)) {                                \
+            return EXIT_USAGE;                                                      \
+        }                                                                           \
+        dst = values;                                                               \
+    } while (0)
+
+        if (IS("-h") || IS("--help")) {
+            render_help();
+            return EXIT_OK;
+        } else if (IS("-o") || IS("--output")) {
+            VALUE();
+            o->output = value;
+        } else if (IS("--size")) {
+            VALUE();
+            if (!parse_size(arg, value, &o->width, &o->height)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--shading")) {
+            CHOICE(shading_names, o->shading, shading_values[k_]);
+        } else if (IS("--cull")) {
+            CHOICE(cull_names, o->cull, cull_values[k_]);
+        } else if (IS("--front-face")) {
+            CHOICE(front_names, o->front, k_ == 0 ? SR_FRONT_CCW : SR_FRONT_CW);
+        } else if (IS("--depth-format")) {
+            CHOICE(depth_format_names, o->depth_format, depth_format_values[k_]);
+        } else if (IS("--depth-func")) {
+            CHOICE(depth_func_names, o->depth_func, (sr_depth_func)(SR_NEVER + k_));
+        } else if (IS("--projection-interp")) {
+            CHOICE(interp_names, o->interp, k_ == 0 ? SR_INTERP_PERSPECTIVE : SR_INTERP_AFFINE);
+        } else if (IS("--normals")) {
+            CHOICE(normals_names, o->normals, k_);
+        } else if (IS("--rasterizer")) {
+            CHOICE(raster_names, o->rasterizer, (sr_rasterizer)(SR_RASTER_HALFSPACE + k_));
+        } else if (IS("--camera")) {
+            VALUE();
+            if (!parse_kv_list(arg, value, camera_kv, o)) {
+                return EXIT_USAGE;
+            }
+            if (!o->have_eye) {
+                cli_error("%s: eye=X,Y,Z is required", arg);
+                return EXIT_USAGE;
+            }
+        } else if (IS("--fov")) {
+            VALUE();
+            if (!parse_float(arg, value, 1.0f, 170.0f, &o->fov_deg)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--ortho")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->ortho = true;
+        } else if (IS("--turn")) {
+            VALUE();
+            if (!parse_float(arg, value, -36000.0f, 36000.0f, &o->turn_deg)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--near") || IS("--far")) {
+            VALUE();
+            float *dst = IS("--near") ? &o->near_z : &o->far_z;
+            if (!parse_float(arg, value, 1e-6f, 1e9f, dst)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--light")) {
+            VALUE();
+            if (o->light_count == SR_MAX_LIGHTS) {
+                cli_error("%s: at most %d lights", arg, SR_MAX_LIGHTS);
+                return EXIT_USAGE;
+            }
+            sr_light *l = &o->lights[o->light_count];
+            if (!parse_kv_list(arg, value, light_kv, l)) {
+                return EXIT_USAGE;
+            }
+            if (l->type == SR_LIGHT_OFF) {
+                cli_error("%s: needs dir=X,Y,Z or point=X,Y,Z", arg);
+                return EXIT_USAGE;
+            }
+            o->light_count++;
+        } else if (IS("--ambient")) {
+            VALUE();
+            o->have_ambient = true;
+            if (!parse_color(arg, value, &o->ambient)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--material")) {
+            VALUE();
+            if (!parse_kv_list(arg, value, material_kv, o)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--background")) {
+            VALUE();
+            if (!parse_color(arg, value, &o->background)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--png-level")) {
+            VALUE();
+            if (!parse_int(arg, value, 0, 9, &o->png_level)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--threads")) {
+            VALUE();
+            if (!parse_int(arg, value, 1, 64, &o->threads)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--detail")) {
+            VALUE();
+            if (!parse_int(arg, value, 1, 64, &o->detail)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("-v") || IS("--verbose")) {
+            o->verbose = true;
+        } else if (arg[0] == '-' && arg[1] != 0) {
+            cli_error("render: unknown option '%s' (try 'softrast render --help')", arg);
+            return EXIT_USAGE;
+        } else if (!o->model) {
+            o->model = arg;
+        } else {
+            cli_error("render: more than one model given ('%s' and '%s')", o->model, arg);
+            return EXIT_USAGE;
+        }
+#undef IS
+#undef VALUE
+#undef CHOICE
+    }
+    return -1;
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static int load_model(const render_opts *o, scene *s)
+{
+    memset(s, 0, sizeof *s);
+    scene_object *ob = &s->objects[0];
+    sr_io_error err;
+    sr_result r = sr_load_mesh(o->model, NULL, &ob->mesh, &err);
+    if (r != SR_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    s->count = 1;
+    ob->model = sr_mat4_identity();
+    ob->frame = true;
+    ob->material = (sr_material){ .diffuse = { 0.72f, 0.72f, 0.74f },
+                                  .specular = { 0.25f, 0.25f, 0.25f }, .shininess = 40.0f };
+    return -1;
+}
+
+/* --normals: the file's, smooth or flat.  Flat shading needs none. */
+static int prepare_normals(const render_opts *o, scene *s)
+{
+    for (int i = 0; i < s->count; i++) {
+        sr_mesh *m = &s->objects[i].mesh;
+        int mode = o->normals;
+        if (mode == 0 && !m->normals && o->model && i == 0) {
+            cli_error("%s: --normals file: the model has no normals (use smooth or flat)", o->model);
+            return EXIT_USAGE;
+        }
+        if (mode == -1) {
+            mode = m->normals ? 0 : 1;
+        }
+        if (mode == 0) {
+            continue;
+        }
+        sr_result r = sr_mesh_compute_normals(m, mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
+        if (r != SR_OK) {
+            cli_error("computing normals: %s", sr_result_text(r));
+            return EXIT_FAILURE_RUN;
+        }
+    }
+    return -1;
+}
+
+typedef struct camera {
+    sr_mat4 view, proj;
+    sr_camera_basis basis;
+} camera;
+
+static void setup_camera(const render_opts *o, const scene *s, camera *cam, float *near_out,
+                         float *far_out)
+{
+    sr_vec3 c;
+    float r;
+    scene_bounds(s, true, &c, &r);
+    float fov = o->fov_deg * PI_F / 180.0f;
+    /* Distance at which the bounding sphere fits the field of view across
+     * the smaller side, with a small margin. */
+    float dist = r / sinf(fov * 0.5f) * 1.04f;
+
+    sr_vec3 target = o->have_target ? o->target : c;
+    sr_vec3 up = o->have_up ? o->up : (sr_vec3){ 0, 1, 0 };
+    sr_vec3 eye;
+    if (o->have_eye) {
+        eye = o->eye;
+    } else {
+        /* A three-quarter view from the front right, above. */
+        sr_vec3 dir = sr_vec3_normalize((sr_vec3){ 0.62f, 0.48f, 1.0f });
+        eye = sr_vec3_add(c, sr_vec3_scale(dir, dist));
+    }
+    if (!sr_camera_frame(eye, sr_vec3_sub(target, eye), up, &cam->basis)) {
+        /* Looking straight along the up vector: pick another up. */
+        sr_camera_frame(eye, sr_vec3_sub(target, eye), (sr_vec3){ 0, 0, -1 }, &cam->basis);
+    }
+    cam->view = sr_camera_matrix(&cam->basis);
+
+    /* Near and far from every object's sphere, so the ground is kept. */
+    sr_vec3 ca;
+    float ra;
+    scene_bounds(s, false, &ca, &ra);
+    float dc = sr_vec3_length(sr_vec3_sub(ca, eye));
+    float far_z = o->far_z > 0 ? o->far_z : (dc + ra) * 1.01f;
+    float near_z = o->near_z > 0 ? o->near_z : fmaxf(dc - ra, far_z * 1e-3f) * 0.99f;
+    if (near_z >= far_z) {
+        far_z = near_z * 2.0f;
+    }
+    float aspect = (float)o->width / (float)o->height;
+    if (o->ortho) {
+        float half = r * 1.04f;
+        float hw = aspect >= 1.0f ? half * aspect : half;
+        float hh = aspect >= 1.0f ? half : half / aspect;
+        cam->proj = sr_ortho(-hw, hw, -hh, hh, near_z, far_z, false);
+    } else {
+        cam->proj = sr_perspective(sr_fit_fovy(fov, o->width, o->height), aspect, near_z, far_z, false);
+    }
+    *near_out = near_z;
+    *far_out = far_z;
+}
+
+/* Key, fill and rim lights placed relative to the camera, so whatever the
+ * view, the side facing the viewer is lit from the upper left and the
+ * silhouette is separated from the background. */
+static int default_lights(const camera *cam, sr_light *lights)
+{
+    const sr_camera_basis *b = &cam->basis;
+    struct { float u, v, w, intensity; } rig[3] = {
+        { -0.55f, 0.70f, 0.45f, 0.95f },   /* key: upper left, towards the viewer */
+        { 0.80f, 0.05f, 0.60f, 0.35f },    /* fill: right */
+        { 0.10f, 0.55f, -0.85f, 0.45f },   /* rim: behind, above */
+    };
+    for (int i = 0; i < 3; i++) {
+        sr_vec3 to_light = sr_vec3_add(sr_vec3_add(sr_vec3_scale(b->u, rig[i].u),
+                                                   sr_vec3_scale(b->v, rig[i].v)),
+                                       sr_vec3_scale(b->w, rig[i].w));
+        lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
+                                .vector = sr_vec3_scale(sr_vec3_normalize(to_light), -1.0f),
+                                .color = { 1.0f, 0.98f, 0.95f },
+                                .intensity = rig[i].intensity };
+    }
+    return 3;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_opts o = {
+        .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
+        .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = 35.0f,
+        .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
+        .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
+        .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
+    };
+    int status = parse_args(argc, argv, &o);
+    if (status >= 0) {
+        return status;
+    }
+    struct stat st;
+    if (stat(o.output, &st) == 0 && S_ISDIR(st.st_mode)) {
+        cli_error("-o: '%s' is a directory", o.output);
+        return EXIT_USAGE;
+    }
+
+    double t0 = now_ms();
+    scene s;
+    if (o.model) {
+        status = load_model(&o, &s);
+        if (status >= 0) {
+            return status;
+        }
+    } else {
+        sr_result r = scene_builtin(&s, o.detail);
+        if (r != SR_OK) {
+            cli_error("building the teapot scene: %s", sr_result_text(r));
+            return EXIT_FAILURE_RUN;
+        }
+    }
+    double t_load = now_ms();
+    status = prepare_normals(&o, &s);
+    if (status >= 0) {
+        scene_free(&s);
+        return status;
+    }
+    for (int i = 0; i < s.count; i++) {
+        scene_object *ob = &s.objects[i];
+        if (o.have_mat_color && ob->frame) {
+            ob->material.diffuse = o.mat_color;
+            ob->material.no_vertex_color = true;
+        }
+        if (o.have_specular && ob->frame) {
+            ob->material.specular = o.specular;
+        }
+        if (o.have_shininess && ob->frame) {
+            ob->material.shininess = o.shininess;
+        }
+    }
+    if (o.turn_deg != 0.0f) {
+        /* Turn the framed objects about the vertical axis through their
+         * bounding sphere's centre. */
+        sr_vec3 c;
+        float r;
+        scene_bounds(&s, true, &c, &r);
+        sr_mat4 to = sr_mat4_translate(c.x, 0, c.z), from = sr_mat4_translate(-c.x, 0, -c.z);
+        sr_mat4 rot = sr_mat4_rotate(o.turn_deg * PI_F / 180.0f, (sr_vec3){ 0, 1, 0 });
+        sr_mat4 m = sr_mat4_mul(&rot, &from);
+        m = sr_mat4_mul(&to, &m);
+        for (int i = 0; i < s.count; i++) {
+            if (s.objects[i].frame) {
+                s.objects[i].model = sr_mat4_mul(&m, &s.objects[i].model);
+            }
+        }
+    }
+
+    camera cam;
+    float near_z, far_z;
+    setup_camera(&o, &s, &cam, &near_z, &far_z);
+
+    sr_state state = {
+        .cull = o.cull, .front_face = o.front, .depth_func = o.depth_func,
+        .shading = o.shading, .interpolation = o.interp, .rasterizer = o.rasterizer,
+        .ambient = o.have_ambient ? o.ambient : (sr_vec3){ 0.12f, 0.12f, 0.14f },
+        .two_sided = o.cull == SR_CULL_NONE,
+    };
+    if (o.light_count > 0) {
+        memcpy(state.lights, o.lights, sizeof o.lights);
+    } else {
+        default_lights(&cam, state.lights);
+    }
+
+    sr_context *ctx = NULL;
+    sr_framebuffer *fb = NULL;
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = o.threads }, &ctx);
+    if (r == SR_OK) {
+        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = o.width, .height = o.height,
+                                                            .depth_format = o.depth_format }, &fb);
+    }
+    bool clear_to_near = o.depth_func == SR_GREATER || o.depth_func == SR_GEQUAL;
+    if (r == SR_OK) {
+        r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o.background.x, o.background.y,
+                                                           o.background.z, 1.0f },
+                                                .depth = clear_to_near ? 0.0f : 1.0f });
+    }
+    double t_setup = now_ms();
+    uint64_t tris = 0, frags = 0;
+    for (int i = 0; i < s.count && r == SR_OK; i++) {
+        scene_object *ob = &s.objects[i];
+        state.material = ob->material;
+        r = sr_draw(ctx, fb, &state, &(sr_draw_desc){
+            .positions = ob->mesh.positions, .normals = ob->mesh.normals,
+            .colors = ob->mesh.colors, .color_size = 4, .texcoords = ob->mesh.texcoords,
+            .vertex_count = ob->mesh.vertex_count, .indices = ob->mesh.indices,
+            .index_type = SR_INDEX_U32, .index_count = ob->mesh.triangle_count * 3,
+            .model = &ob->model, .view = &cam.view, .projection = &cam.proj });
+        sr_draw_info info = sr_last_draw_info(ctx);
+        tris += info.triangles_in;
+        frags += info.fragments;
+    }
+    double t_render = now_ms();
+    if (r != SR_OK) {
+        cli_error("render: %s", ctx ? sr_context_error(ctx) : sr_result_text(r));
+        sr_destroy_framebuffer(ctx, fb);
+        sr_destroy_context(ctx);
+        scene_free(&s);
+        return EXIT_FAILURE_RUN;
+    }
+
+    sr_io_error err;
+    r = sr_write_png(o.output, o.width, o.height, sr_framebuffer_pixels(fb), (size_t)o.width * 4,
+                     &(sr_png_write_desc){ .compression_level = o.png_level < 0 ? 0 :
+                                                                (o.png_level == 0 ? -1 : o.png_level),
+                                           .no_alpha = true },
+                     &err);
+    double t_write = now_ms();
+    if (o.verbose) {
+        fprintf(stderr,
+                "softrast: %dx%d, %llu triangles, %llu fragments, near %.4g far %.4g, %d threads\n"
+                "softrast: load %.1f ms, setup %.1f ms, render %.1f ms, png %.1f ms\n",
+                o.width, o.height, (unsigned long long)tris, (unsigned long long)frags,
+                (double)near_z, (double)far_z, sr_context_threads(ctx), t_load - t0,
+                t_setup - t_load, t_render - t_setup, t_write - t_render);
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+    scene_free(&s);
+    if (r != SR_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return EXIT_FAILURE_RUN;
+    }
+    return EXIT_OK;
+}

@@ -1,0 +1,147 @@
+/* scene.c - the built-in scene: the Utah teapot, tessellated at run time
+ * from its Bezier patches, on a checkered ground plane. */
+#include "scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A square ground of n x n tiles in the plane y = 0, centred on the origin,
+ * with alternating colors.  Each tile has its own four vertices so the
+ * colors stay crisp under interpolation. */
+static sr_result make_ground(sr_mesh *m, float half, int n)
+{
+    memset(m, 0, sizeof *m);
+    size_t verts = (size_t)n * n * 4, tris = (size_t)n * n * 2;
+    m->positions = malloc(verts * 3 * sizeof(float));
+    m->normals = malloc(verts * 3 * sizeof(float));
+    m->colors = malloc(verts * 4 * sizeof(float));
+    m->indices = malloc(tris * 3 * sizeof(uint32_t));
+    if (!m->positions || !m->normals || !m->colors || !m->indices) {
+        sr_mesh_free(m);
+        return SR_OUT_OF_MEMORY;
+    }
+    m->vertex_count = verts;
+    m->triangle_count = tris;
+    float step = 2.0f * half / n;
+    const float light[3] = { 0.80f, 0.80f, 0.78f }, dark[3] = { 0.56f, 0.58f, 0.60f };
+    size_t v = 0, t = 0;
+    for (int j = 0; j < n; j++) {
+        for (int i = 0; i < n; i++) {
+            const float *c = ((i + j) & 1) ? dark : light;
+            float x0 = -half + i * step, z0 = -half + j * step;
+            float corners[4][2] = { { x0, z0 }, { x0, z0 + step }, { x0 + step, z0 + step },
+                                    { x0 + step, z0 } };
+            for (int k = 0; k < 4; k++) {
+                float *p = &m->positions[(v + k) * 3];
+                p[0] = corners[k][0];
+                p[1] = 0.0f;
+                p[2] = corners[k][1];
+                float *nn = &m->normals[(v + k) * 3];
+                nn[0] = 0.0f;
+                nn[1] = 1.0f;
+                nn[2] = 0.0f;
+                float *cc = &m->colors[(v + k) * 4];
+                cc[0] = c[0];
+                cc[1] = c[1];
+                cc[2] = c[2];
+                cc[3] = 1.0f;
+            }
+            /* Counter-clockwise seen from above (+y). */
+            uint32_t *ix = &m->indices[t * 3];
+            ix[0] = (uint32_t)v;
+            ix[1] = (uint32_t)v + 1;
+            ix[2] = (uint32_t)v + 2;
+            ix[3] = (uint32_t)v;
+            ix[4] = (uint32_t)v + 2;
+            ix[5] = (uint32_t)v + 3;
+            v += 4;
+            t += 2;
+        }
+    }
+    return SR_OK;
+}
+
+sr_result scene_builtin(scene *s, int detail)
+{
+    memset(s, 0, sizeof *s);
+    scene_object *pot = &s->objects[0];
+    sr_result r = sr_make_teapot(detail, &pot->mesh);
+    if (r != SR_OK) {
+        return r;
+    }
+    pot->material = (sr_material){
+        .diffuse = { 0.78f, 0.30f, 0.16f },
+        .specular = { 0.55f, 0.50f, 0.45f },
+        .shininess = 60.0f,
+    };
+    pot->model = sr_mat4_identity();
+    pot->frame = true;
+    s->count = 1;
+
+    sr_vec3 lo, hi;
+    sr_mesh_bounds(&pot->mesh, &lo, &hi);
+    float extent = fmaxf(hi.x - lo.x, hi.z - lo.z);
+    scene_object *ground = &s->objects[1];
+    r = make_ground(&ground->mesh, extent * 1.6f, 12);
+    if (r != SR_OK) {
+        scene_free(s);
+        return r;
+    }
+    ground->material = (sr_material){ .diffuse = { 1, 1, 1 }, .specular = { 0.08f, 0.08f, 0.08f },
+                                      .shininess = 16.0f };
+    ground->model = sr_mat4_translate(0.0f, lo.y, 0.0f);
+    ground->frame = false;
+    s->count = 2;
+    return SR_OK;
+}
+
+void scene_free(scene *s)
+{
+    for (int i = 0; i < s->count; i++) {
+        sr_mesh_free(&s->objects[i].mesh);
+    }
+    s->count = 0;
+}
+
+/* Sphere around the transformed bounding-box centre that holds every
+ * transformed vertex. */
+void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radius)
+{
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (int pass = 0; pass < 2; pass++) {
+        double c[3] = { (lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 };
+        double r2 = 0.0;
+        for (int o = 0; o < s->count; o++) {
+            const scene_object *ob = &s->objects[o];
+            if (framed_only && !ob->frame) {
+                continue;
+            }
+            for (size_t i = 0; i < ob->mesh.vertex_count; i++) {
+                const float *p = &ob->mesh.positions[i * 3];
+                sr_vec4 w = sr_mat4_mul_vec4(&ob->model, (sr_vec4){ p[0], p[1], p[2], 1.0f });
+                double q[3] = { w.x, w.y, w.z };
+                for (int k = 0; k < 3; k++) {
+                    if (pass == 0) {
+                        lo[k] = fmin(lo[k], q[k]);
+                        hi[k] = fmax(hi[k], q[k]);
+                    }
+                }
+                if (pass == 1) {
+                    double d2 = (q[0] - c[0]) * (q[0] - c[0]) + (q[1] - c[1]) * (q[1] - c[1]) +
+                                (q[2] - c[2]) * (q[2] - c[2]);
+                    r2 = fmax(r2, d2);
+                }
+            }
+        }
+        if (pass == 1) {
+            if (!isfinite(c[0])) {
+                *centre = (sr_vec3){ 0, 0, 0 };
+                *radius = 1.0f;
+                return;
+            }
+            *centre = (sr_vec3){ (float)c[0], (float)c[1], (float)c[2] };
+            *radius = r2 > 0.0 ? (float)sqrt(r2) : 1.0f;
+        }
+    }
+}

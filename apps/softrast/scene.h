@@ -1,0 +1,31 @@
+/* scene.h - what `softrast render` draws: objects (a mesh, its material
+ * and model matrix M_O), the built-in teapot scene, camera framing and the
+ * default lights. */
+#ifndef SR_SCENE_H
+#define SR_SCENE_H
+
+#include "softrast.h"
+
+#define SCENE_MAX_OBJECTS 4
+
+typedef struct scene_object {
+    sr_mesh mesh;
+    sr_material material;
+    sr_mat4 model;
+    bool frame;          /* the camera frames this object */
+} scene_object;
+
+typedef struct scene {
+    scene_object objects[SCENE_MAX_OBJECTS];
+    int count;
+} scene;
+
+/* The Utah teapot at `detail` standing on a checkered ground plane. */
+sr_result scene_builtin(scene *s, int detail);
+void scene_free(scene *s);
+
+/* Bounding sphere of the objects with `frame` set (or of all objects),
+ * after their model matrices. */
+void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radius);
+
+#endif

@@ -1,0 +1,287 @@
+/*
+ * mesh.c - geometry stage, before the vertex stage: utilities on sr_mesh.
+ * Consumes meshes as the readers and built-in generators produce them;
+ * produces bounding boxes and per-vertex normals (smooth or flat).
+ * No I/O and no shared state: any thread may call these on its own mesh.
+ */
+#include "softrast.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void sr_mesh_free(sr_mesh *mesh)
+{
+    if (!mesh) {
+        return;
+    }
+    free(mesh->positions);
+    free(mesh->normals);
+    free(mesh->colors);
+    free(mesh->texcoords);
+    free(mesh->indices);
+    free(mesh->texture_path);
+    memset(mesh, 0, sizeof *mesh);
+}
+
+bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max)
+{
+    if (!mesh || mesh->vertex_count == 0 || !mesh->positions) {
+        return false;
+    }
+    const float *p = mesh->positions;
+    sr_vec3 lo = { p[0], p[1], p[2] };
+    sr_vec3 hi = lo;
+    for (size_t i = 1; i < mesh->vertex_count; i++) {
+        const float *v = p + 3 * i;
+        lo.x = fminf(lo.x, v[0]);
+        lo.y = fminf(lo.y, v[1]);
+        lo.z = fminf(lo.z, v[2]);
+        hi.x = fmaxf(hi.x, v[0]);
+        hi.y = fmaxf(hi.y, v[1]);
+        hi.z = fmaxf(hi.z, v[2]);
+    }
+    if (min) {
+        *min = lo;
+    }
+    if (max) {
+        *max = hi;
+    }
+    return true;
+}
+
+/* The normal given to a vertex (or a degenerate face) that has no surface
+ * around it to take a direction from: facing the default camera. */
+static const float fallback_normal[3] = { 0.0f, 0.0f, 1.0f };
+
+static void sub3(const float *a, const float *b, double out[3])
+{
+    out[0] = (double)a[0] - b[0];
+    out[1] = (double)a[1] - b[1];
+    out[2] = (double)a[2] - b[2];
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double length3(const double a[3])
+{
+    return sqrt(dot3(a, a));
+}
+
+/* Angle between two edge vectors leaving the same corner.  atan2 of |a x b|
+ * and a.b stays accurate for angles near 0 and pi, where acos of a
+ * normalized dot product loses most of its digits. */
+static double corner_angle(const double a[3], const double b[3])
+{
+    double c[3];
+    cross3(a, b, c);
+    return atan2(length3(c), dot3(a, b));
+}
+
+/* Unit normal of triangle (a, b, c), counter-clockwise front.  Returns
+ * false for a triangle with no area (or non-finite corners). */
+static bool face_normal(const float *a, const float *b, const float *c, double n[3])
+{
+    double e1[3], e2[3];
+    sub3(b, a, e1);
+    sub3(c, a, e2);
+    cross3(e1, e2, n);
+    double len = length3(n);
+    if (!(len > 0.0) || !isfinite(len)) {
+        return false;
+    }
+    n[0] /= len;
+    n[1] /= len;
+    n[2] /= len;
+    return true;
+}
+
+static sr_result validate_mesh(const sr_mesh *mesh)
+{
+    if (!mesh) {
+        return SR_INVALID_ARG;
+    }
+    if (mesh->vertex_count > 0 && !mesh->positions) {
+        return SR_INVALID_ARG;
+    }
+    if (mesh->triangle_count > 0 && !mesh->indices) {
+        return SR_INVALID_ARG;
+    }
+    size_t index_count;
+    if (__builtin_mul_overflow(mesh->triangle_count, (size_t)3, &index_count)) {
+        return SR_INVALID_ARG;
+    }
+    for (size_t i = 0; i < index_count; i++) {
+        if (mesh->indices[i] >= mesh->vertex_count) {
+            return SR_INVALID_ARG;
+        }
+    }
+    return SR_OK;
+}
+
+/* Angle-weighted vertex normals (Thuermer and Wuethrich): each face adds
+ * its unit normal times the angle of its corner at the vertex.  Unlike
+ * area or plain averaging, this does not depend on how a polygon was split
+ * into triangles, so a cube corner gets exactly (1,1,1)/sqrt(3) whichever
+ * diagonal each face was cut along. */
+static sr_result smooth_normals(sr_mesh *mesh)
+{
+    size_t n = mesh->vertex_count;
+    if (n == 0) {
+        free(mesh->normals);
+        mesh->normals = NULL;
+        return SR_OK;
+    }
+    size_t floats;
+    if (__builtin_mul_overflow(n, (size_t)3, &floats)) {
+        return SR_OUT_OF_MEMORY;
+    }
+    /* Accumulate in double: a vertex shared by thousands of thin faces
+     * would otherwise lose the small contributions. */
+    double *sum = calloc(floats, sizeof *sum);
+    float *normals = malloc(floats * sizeof *normals);
+    if (!sum || !normals) {
+        free(sum);
+        free(normals);
+        return SR_OUT_OF_MEMORY;
+    }
+    const float *p = mesh->positions;
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        const uint32_t *tri = mesh->indices + 3 * t;
+        double fn[3];
+        if (!face_normal(p + 3 * (size_t)tri[0], p + 3 * (size_t)tri[1],
+                         p + 3 * (size_t)tri[2], fn)) {
+            continue; /* degenerate: no direction to contribute */
+        }
+        for (int k = 0; k < 3; k++) {
+            const float *v = p + 3 * (size_t)tri[k];
+            const float *next = p + 3 * (size_t)tri[(k + 1) % 3];
+            const float *prev = p + 3 * (size_t)tri[(k + 2) % 3];
+            double e1[3], e2[3];
+            sub3(next, v, e1);
+            sub3(prev, v, e2);
+            double w = corner_angle(e1, e2);
+            double *s = sum + 3 * (size_t)tri[k];
+            s[0] += fn[0] * w;
+            s[1] += fn[1] * w;
+            s[2] += fn[2] * w;
+        }
+    }
+    for (size_t i = 0; i < n; i++) {
+        double *s = sum + 3 * i;
+        double len = length3(s);
+        /* Zero when no valid face touches the vertex, or when opposite
+         * faces cancel (a two-sided sheet): no direction is better than
+         * another, so take the fallback rather than divide by zero. */
+        if (len > 1e-30 && isfinite(len)) {
+            normals[3 * i + 0] = (float)(s[0] / len);
+            normals[3 * i + 1] = (float)(s[1] / len);
+            normals[3 * i + 2] = (float)(s[2] / len);
+        } else {
+            memcpy(normals + 3 * i, fallback_normal, sizeof fallback_normal);
+        }
+    }
+    free(sum);
+    free(mesh->normals);
+    mesh->normals = normals;
+    return SR_OK;
+}
+
+/* Every triangle gets three vertices of its own carrying the face normal,
+ * so the normal does not blend across edges.  Colors and texcoords are
+ * copied per corner; the mesh is only touched once every array exists. */
+static sr_result flat_normals(sr_mesh *mesh)
+{
+    size_t tris = mesh->triangle_count;
+    if (tris == 0) {
+        /* Splitting would drop every vertex; with no faces to be flat
+         * against, keep the vertices and give them the fallback normal. */
+        return smooth_normals(mesh);
+    }
+    size_t verts;
+    if (__builtin_mul_overflow(tris, (size_t)3, &verts) || verts > UINT32_MAX) {
+        return SR_TOO_LARGE; /* the split indices would not fit uint32 */
+    }
+    size_t bytes3;
+    if (__builtin_mul_overflow(verts, 3 * sizeof(float), &bytes3)) {
+        return SR_OUT_OF_MEMORY;
+    }
+    float *positions = malloc(bytes3);
+    float *normals = malloc(bytes3);
+    uint32_t *indices = malloc(verts * sizeof *indices);
+    float *colors = mesh->colors ? malloc(verts * 4 * sizeof(float)) : NULL;
+    float *texcoords = mesh->texcoords ? malloc(verts * 2 * sizeof(float)) : NULL;
+    if (!positions || !normals || !indices || (mesh->colors && !colors) ||
+        (mesh->texcoords && !texcoords)) {
+        free(positions);
+        free(normals);
+        free(indices);
+        free(colors);
+        free(texcoords);
+        return SR_OUT_OF_MEMORY;
+    }
+    const float *p = mesh->positions;
+    for (size_t t = 0; t < tris; t++) {
+        const uint32_t *tri = mesh->indices + 3 * t;
+        double fn[3];
+        float n[3];
+        if (face_normal(p + 3 * (size_t)tri[0], p + 3 * (size_t)tri[1],
+                        p + 3 * (size_t)tri[2], fn)) {
+            n[0] = (float)fn[0];
+            n[1] = (float)fn[1];
+            n[2] = (float)fn[2];
+        } else {
+            memcpy(n, fallback_normal, sizeof n);
+        }
+        for (int k = 0; k < 3; k++) {
+            size_t src = tri[k];
+            size_t dst = 3 * t + (size_t)k;
+            memcpy(positions + 3 * dst, p + 3 * src, 3 * sizeof(float));
+            memcpy(normals + 3 * dst, n, sizeof n);
+            if (colors) {
+                memcpy(colors + 4 * dst, mesh->colors + 4 * src, 4 * sizeof(float));
+            }
+            if (texcoords) {
+                memcpy(texcoords + 2 * dst, mesh->texcoords + 2 * src, 2 * sizeof(float));
+            }
+            indices[dst] = (uint32_t)dst;
+        }
+    }
+    free(mesh->positions);
+    free(mesh->normals);
+    free(mesh->colors);
+    free(mesh->texcoords);
+    free(mesh->indices);
+    mesh->positions = positions;
+    mesh->normals = normals;
+    mesh->colors = colors;
+    mesh->texcoords = texcoords;
+    mesh->indices = indices;
+    mesh->vertex_count = verts;
+    return SR_OK;
+}
+
+sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode)
+{
+    sr_result r = validate_mesh(mesh);
+    if (r != SR_OK) {
+        return r;
+    }
+    switch (mode) {
+    case SR_NORMALS_SMOOTH:
+        return smooth_normals(mesh);
+    case SR_NORMALS_FLAT:
+        return flat_normals(mesh);
+    }
+    return SR_INVALID_ARG;
+}

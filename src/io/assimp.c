@@ -1,0 +1,227 @@
+/*
+ * assimp.c - io stage: every model format beyond OBJ, PLY and STL, read
+ * through Assimp's C API when the build found it (SR_HAVE_ASSIMP).
+ * Consumes a path; produces one sr_mesh with all of the scene's meshes
+ * merged, node transforms applied.  Without Assimp it only explains how to
+ * get it.  Any thread may call it (Assimp imports share no state).
+ */
+#include "io/io_util.h"
+#include "io/readers.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* "off", or NULL when the name has no extension. */
+static const char *extension_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    return dot && dot != base && dot[1] ? dot + 1 : NULL;
+}
+
+#ifndef SR_HAVE_ASSIMP
+
+sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
+{
+    if (out) {
+        memset(out, 0, sizeof *out);
+    }
+    const char *ext = extension_of(path);
+    if (ext) {
+        return sr__io_fail(err, SR_UNSUPPORTED, path, 0,
+                           "format not supported (install libassimp-dev and rebuild "
+                           "to read .%s files)", ext);
+    }
+    return sr__io_fail(err, SR_UNSUPPORTED, path, 0,
+                       "format not supported (not OBJ, PLY or STL; install "
+                       "libassimp-dev and rebuild to read other formats)");
+}
+
+#else /* SR_HAVE_ASSIMP */
+
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+/* Triangulate polygons, share identical vertices, bake the node hierarchy
+ * into vertex positions (we draw one mesh with one model matrix), and
+ * split points and lines away from triangles so they can be skipped. */
+#define IMPORT_FLAGS                                                         \
+    (aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |               \
+     aiProcess_PreTransformVertices | aiProcess_SortByPType |                \
+     aiProcess_ValidateDataStructure)
+
+static bool is_triangle_mesh(const struct aiMesh *m)
+{
+    return m->mNumVertices > 0 && m->mNumFaces > 0 &&
+           (m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE);
+}
+
+/* The diffuse texture of the first material that names one, relative to
+ * the model's directory like the OBJ reader's map_Kd.  Embedded textures
+ * ("*0") have no file and are left out. */
+static char *texture_path(const struct aiScene *scene, const char *model_path)
+{
+    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
+        const struct aiMesh *m = scene->mMeshes[i];
+        if (!is_triangle_mesh(m) || m->mMaterialIndex >= scene->mNumMaterials) {
+            continue;
+        }
+        struct aiString name;
+        if (aiGetMaterialTexture(scene->mMaterials[m->mMaterialIndex], aiTextureType_DIFFUSE,
+                                 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != AI_SUCCESS ||
+            name.length == 0 || name.data[0] == '*') {
+            continue;
+        }
+        const char *slash = strrchr(model_path, '/');
+        size_t dir = name.data[0] == '/' || !slash ? 0 : (size_t)(slash - model_path) + 1;
+        char *s = malloc(dir + name.length + 1);
+        if (s) {
+            memcpy(s, model_path, dir);
+            memcpy(s + dir, name.data, name.length);
+            s[dir + name.length] = 0;
+        }
+        return s;
+    }
+    return NULL;
+}
+
+sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
+{
+    if (out) {
+        memset(out, 0, sizeof *out);
+    }
+    if (!path || !out) {
+        return sr__io_fail(err, SR_INVALID_ARG, path ? path : "<null>", 0,
+                           "no file name or output mesh given");
+    }
+    const char *ext = extension_of(path);
+    if (ext) {
+        char dotted[64];
+        snprintf(dotted, sizeof dotted, ".%s", ext);
+        if (!aiIsExtensionSupported(dotted)) {
+            return sr__io_fail(err, SR_UNSUPPORTED, path, 0,
+                               "format not supported (neither softrast nor Assimp reads "
+                               ".%s files)", ext);
+        }
+    }
+    const struct aiScene *scene = aiImportFile(path, IMPORT_FLAGS);
+    if (!scene) {
+        return sr__io_fail(err, SR_BAD_FORMAT, path, 0, "Assimp: %s", aiGetErrorString());
+    }
+
+    /* First pass: totals, and which attributes every mesh has.  An
+     * attribute some meshes lack is dropped for all, rather than made up
+     * for part of the model. */
+    size_t verts = 0, tris = 0;
+    bool normals = true, colors = true, texcoords = true;
+    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
+        const struct aiMesh *m = scene->mMeshes[i];
+        if (!is_triangle_mesh(m)) {
+            continue;
+        }
+        verts += m->mNumVertices;
+        for (unsigned f = 0; f < m->mNumFaces; f++) {
+            tris += m->mFaces[f].mNumIndices == 3;
+        }
+        normals &= m->mNormals != NULL;
+        colors &= m->mColors[0] != NULL;
+        texcoords &= m->mTextureCoords[0] != NULL;
+    }
+    sr_result res = SR_OK;
+    if (tris == 0) {
+        res = sr__io_fail(err, SR_BAD_FORMAT, path, 0, "contains no faces");
+    } else if (verts > SR_IO_MAX_VERTICES || tris > SR_IO_MAX_TRIANGLES) {
+        res = sr__io_fail(err, SR_TOO_LARGE, path, 0,
+                          "%zu vertices and %zu triangles exceed the limits (%zu, %zu)",
+                          verts, tris, (size_t)SR_IO_MAX_VERTICES,
+                          (size_t)SR_IO_MAX_TRIANGLES);
+    }
+    if (res != SR_OK) {
+        aiReleaseImport(scene);
+        return res;
+    }
+
+    sr_mesh m = { .vertex_count = verts, .triangle_count = tris };
+    m.positions = malloc(verts * 3 * sizeof(float));
+    m.normals = normals ? malloc(verts * 3 * sizeof(float)) : NULL;
+    m.colors = colors ? malloc(verts * 4 * sizeof(float)) : NULL;
+    m.texcoords = texcoords ? malloc(verts * 2 * sizeof(float)) : NULL;
+    m.indices = malloc(tris * 3 * sizeof(uint32_t));
+    if (!m.positions || (normals && !m.normals) || (colors && !m.colors) ||
+        (texcoords && !m.texcoords) || !m.indices) {
+        sr_mesh_free(&m);
+        aiReleaseImport(scene);
+        return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory for %zu vertices",
+                           verts);
+    }
+
+    size_t base = 0, t = 0;
+    for (unsigned i = 0; i < scene->mNumMeshes && res == SR_OK; i++) {
+        const struct aiMesh *am = scene->mMeshes[i];
+        if (!is_triangle_mesh(am)) {
+            continue;
+        }
+        for (unsigned v = 0; v < am->mNumVertices; v++) {
+            size_t o = base + v;
+            const struct aiVector3D *p = &am->mVertices[v];
+            if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z)) {
+                res = sr__io_fail(err, SR_BAD_FORMAT, path, 0,
+                                  "mesh %u, vertex %u: position is not finite", i, v);
+                break;
+            }
+            m.positions[3 * o + 0] = p->x;
+            m.positions[3 * o + 1] = p->y;
+            m.positions[3 * o + 2] = p->z;
+            if (normals) {
+                m.normals[3 * o + 0] = am->mNormals[v].x;
+                m.normals[3 * o + 1] = am->mNormals[v].y;
+                m.normals[3 * o + 2] = am->mNormals[v].z;
+            }
+            if (colors) {
+                m.colors[4 * o + 0] = am->mColors[0][v].r;
+                m.colors[4 * o + 1] = am->mColors[0][v].g;
+                m.colors[4 * o + 2] = am->mColors[0][v].b;
+                m.colors[4 * o + 3] = am->mColors[0][v].a;
+            }
+            if (texcoords) {
+                m.texcoords[2 * o + 0] = am->mTextureCoords[0][v].x;
+                m.texcoords[2 * o + 1] = am->mTextureCoords[0][v].y;
+            }
+        }
+        for (unsigned f = 0; f < am->mNumFaces && res == SR_OK; f++) {
+            const struct aiFace *face = &am->mFaces[f];
+            if (face->mNumIndices != 3) {
+                continue; /* a point or line left in a mixed mesh */
+            }
+            for (int k = 0; k < 3; k++) {
+                unsigned idx = face->mIndices[k];
+                if (idx >= am->mNumVertices) {
+                    res = sr__io_fail(err, SR_BAD_FORMAT, path, 0,
+                                      "mesh %u, face %u: vertex index %u out of range",
+                                      i, f, idx);
+                    break;
+                }
+                m.indices[3 * t + (size_t)k] = (uint32_t)(base + idx);
+            }
+            t++;
+        }
+        base += am->mNumVertices;
+    }
+    if (res == SR_OK) {
+        m.texture_path = texture_path(scene, path);
+    }
+    aiReleaseImport(scene);
+    if (res != SR_OK) {
+        sr_mesh_free(&m);
+        return res;
+    }
+    *out = m;
+    return SR_OK;
+}
+
+#endif /* SR_HAVE_ASSIMP */

@@ -1,0 +1,131 @@
+/*
+ * load.c - io stage: sr_load_mesh, the one entry point for model files.
+ * Consumes a path (and an optional format); picks a reader by the name's
+ * extension, then by the first bytes of the file, then hands anything else
+ * to Assimp.  Produces the reader's sr_mesh.  Any thread may call it.
+ */
+#include "io/io_util.h"
+#include "io/readers.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+bool sr_io_have_assimp(void)
+{
+#ifdef SR_HAVE_ASSIMP
+    return true;
+#else
+    return false;
+#endif
+}
+
+/* The extension after the last '.' of the last path component, or NULL. */
+static const char *extension(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    /* ".hidden" is a name, not an extension. */
+    return dot && dot != base && dot[1] ? dot + 1 : NULL;
+}
+
+static sr_model_format format_from_extension(const char *path)
+{
+    const char *ext = extension(path);
+    if (!ext) {
+        return SR_FORMAT_AUTO;
+    }
+    if (strcasecmp(ext, "obj") == 0) {
+        return SR_FORMAT_OBJ;
+    }
+    if (strcasecmp(ext, "ply") == 0) {
+        return SR_FORMAT_PLY;
+    }
+    if (strcasecmp(ext, "stl") == 0) {
+        return SR_FORMAT_STL;
+    }
+    return SR_FORMAT_AUTO;
+}
+
+/* Recognize PLY and STL by content, for files named otherwise.  Reads only
+ * the first 84 bytes.  SR_FORMAT_AUTO when neither matches; open errors
+ * are left for the reader that runs next to report. */
+static sr_model_format format_from_content(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return SR_FORMAT_AUTO;
+    }
+    unsigned char head[84];
+    size_t n = fread(head, 1, sizeof head, f);
+    struct stat st;
+    bool have_size = fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode);
+    fclose(f);
+
+    if ((n >= 4 && memcmp(head, "ply\n", 4) == 0) ||
+        (n >= 5 && memcmp(head, "ply\r\n", 5) == 0)) {
+        return SR_FORMAT_PLY;
+    }
+    if (n >= 5 && strncasecmp((const char *)head, "solid", 5) == 0) {
+        return SR_FORMAT_STL;
+    }
+    /* A binary STL has no magic, but its size is exactly 84 + 50 per
+     * triangle as counted at byte 80. */
+    if (have_size && n == sizeof head) {
+        unsigned long long count = (unsigned long long)head[80] | (unsigned long long)head[81] << 8 |
+                                   (unsigned long long)head[82] << 16 |
+                                   (unsigned long long)head[83] << 24;
+        if (84 + 50 * count == (unsigned long long)st.st_size) {
+            return SR_FORMAT_STL;
+        }
+    }
+    return SR_FORMAT_AUTO;
+}
+
+sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
+                       sr_mesh *out, sr_io_error *err)
+{
+    if (out) {
+        memset(out, 0, sizeof *out);
+    }
+    if (!path) {
+        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
+    }
+    if (!out) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0, "no output mesh given");
+    }
+    sr_model_format format = desc ? desc->format : SR_FORMAT_AUTO;
+    if (format == SR_FORMAT_AUTO) {
+        format = format_from_extension(path);
+    }
+    if (format == SR_FORMAT_AUTO) {
+        format = format_from_content(path);
+    }
+    switch (format) {
+    case SR_FORMAT_OBJ:
+        return sr__load_obj(path, out, err);
+    case SR_FORMAT_PLY:
+        return sr__load_ply(path, out, err);
+    case SR_FORMAT_STL:
+        return sr__load_stl(path, out, err);
+    case SR_FORMAT_AUTO:
+    case SR_FORMAT_ASSIMP:
+        break;
+    default:
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "sr_load_desc.format %d is not a known format", (int)format);
+    }
+    /* Before blaming the format, make sure the file is there and readable,
+     * so a typo in the name is reported as such. */
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open: %s", strerror(errno));
+    }
+    if (S_ISDIR(st.st_mode)) {
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not a model file");
+    }
+    return sr__load_assimp(path, out, err);
+}

@@ -1,0 +1,21 @@
+/* readers.h - the per-format model readers behind sr_load_mesh (src/io).
+ * Each takes a file path, fills *out (zeroed on failure, nothing leaked)
+ * and reports problems through sr_io_error in the forms of io_util.h.
+ * Shared by load.c and the readers; not part of the public API. */
+#ifndef SR_IO_READERS_H
+#define SR_IO_READERS_H
+
+#include "softrast_io.h"
+
+/* obj.c: also reads the MTL files named by mtllib, relative to the OBJ's
+ * directory (a missing MTL is ignored). */
+sr_result sr__load_obj(const char *path, sr_mesh *out, sr_io_error *err);
+/* ply.c */
+sr_result sr__load_ply(const char *path, sr_mesh *out, sr_io_error *err);
+/* stl.c */
+sr_result sr__load_stl(const char *path, sr_mesh *out, sr_io_error *err);
+/* assimp.c: every other format Assimp reads; SR_UNSUPPORTED with an
+ * install hint when the build has no Assimp. */
+sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err);
+
+#endif /* SR_IO_READERS_H */
