@@ -5,6 +5,7 @@
 #include "context.h"
 #include "parallel/bin.h"
 #include "scratch.h"
+#include "fragment/depth.h"
 
 #include <math.h>
 #include <string.h>
@@ -176,6 +177,12 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     }
     ds->depth_min = fmin(dn, df);
     ds->depth_max = fmax(dn, df);
+    ds->depth_scale = fb->depth_bits ? (double)((fb->depth_bits == 32) ? 0xffffffffu
+                                                : ((1u << fb->depth_bits) - 1u)) : 1.0;
+    ds->zq_min = ds->depth_min * ds->depth_scale;
+    ds->zq_max = ds->depth_max * ds->depth_scale;
+    ds->tiles_x = fb->tiles_x;
+    ds->tiles_y = fb->tiles_y;
     ds->rect_x0 = vp.x > 0 ? vp.x : 0;
     ds->rect_y0 = vp.y > 0 ? vp.y : 0;
     ds->rect_x1 = vp.x + vp.width < fb->width ? vp.x + vp.width : fb->width;
@@ -188,6 +195,13 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->depth_write = !st->no_depth_write && fb->depth != NULL;
     ds->depth_func = st->depth_func == SR_DEPTH_FUNC_DEFAULT ? SR_LESS : st->depth_func;
     ds->depth_bits = fb->depth_bits;
+    if (!fb->depth || (!ds->depth_test && !ds->depth_write)) {
+        ds->depth_mode = SR_DEPTH_MODE_OFF;
+    } else if (ds->depth_test && ds->depth_write && ds->depth_func == SR_LESS) {
+        ds->depth_mode = SR_DEPTH_MODE_LESS;
+    } else {
+        ds->depth_mode = SR_DEPTH_MODE_GENERIC;
+    }
     ds->offset_on = st->offset.fill;
     ds->offset_factor = st->offset.factor;
     ds->offset_units = st->offset.units;
@@ -267,18 +281,6 @@ static uint32_t index_at(const sr_draw_desc *d, size_t i)
     }
 }
 
-static bool finite_pos(const float p[4])
-{
-    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) && isfinite(p[3]);
-}
-
-typedef struct front_end {
-    sr_context *ctx;
-    const sr_draw_state *ds;
-    sr_binner *binner;
-    sr_draw_info *info;
-} front_end;
-
 static bool is_culled(const sr_draw_state *ds, bool front)
 {
     switch (ds->cull) {
@@ -296,64 +298,107 @@ static bool facing_front(const sr_draw_state *ds, int64_t area2)
     return ds->front_ccw ? area2 < 0 : area2 > 0;
 }
 
-static void emit(front_end *fe, const sr_window_vertex *w0, const sr_window_vertex *w1,
-                 const sr_window_vertex *w2, bool front, const float flat[4])
+/* The front end of one chunk: what a worker needs to assemble, clip and
+ * set up its primitives. */
+typedef struct front_end {
+    sr_context *ctx;
+    const sr_draw_state *ds;
+    const sr_draw_desc *d;
+    size_t tri_size;
+    int chunks;
+} front_end;
+
+static void emit(const front_end *fe, sr_chunk *c, const sr_window_vertex *w0,
+                 const sr_window_vertex *w1, const sr_window_vertex *w2, bool front,
+                 const float flat[4])
 {
-    sr_tri *t = sr__bin_next(fe->binner);
+    if (!sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
+        c->out_of_memory = true;
+        return;
+    }
+    sr_tri *t = (sr_tri *)(c->tris + (size_t)c->tri_count * fe->tri_size);
     if (sr__setup_triangle(fe->ds, w0, w1, w2, front, fe->ds->ninterp, flat, t)) {
-        sr__bin_commit(fe->binner);
-        fe->info->triangles_drawn++;
+        c->tri_count++;
+        c->info.triangles_drawn++;
     }
 }
 
-static void triangle(front_end *fe, const sr_clip_vertex *v0, const sr_clip_vertex *v1,
-                     const sr_clip_vertex *v2, const sr_clip_vertex *provoking)
+static void clip_vertex(const sr_draw_state *ds, const sr_vertex_post *p, const float *vary,
+                        sr_clip_vertex *out)
+{
+    memcpy(out->pos, p->pos, sizeof out->pos);
+    memcpy(out->vary, vary, (size_t)ds->nvary * sizeof(float));
+}
+
+static void triangle(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, uint32_t i2,
+                     uint32_t pv)
 {
     const sr_draw_state *ds = fe->ds;
-    fe->info->triangles_in++;
-    if (!finite_pos(v0->pos) || !finite_pos(v1->pos) || !finite_pos(v2->pos)) {
-        fe->info->triangles_culled++;
+    const sr_scratch *s = fe->ctx->scratch;
+    const sr_vertex_post *p0 = &s->post[i0], *p1 = &s->post[i1], *p2 = &s->post[i2];
+    size_t nv = (size_t)ds->nvary;
+    const float *a0 = s->vary + i0 * nv, *a1 = s->vary + i1 * nv, *a2 = s->vary + i2 * nv;
+    c->info.triangles_in++;
+
+    unsigned c0 = p0->outcode, c1 = p1->outcode, c2 = p2->outcode;
+    if ((c0 | c1 | c2) & SR_OUTCODE_NONFINITE) {
+        c->info.triangles_culled++;
         return; /* NaN or infinite positions discard the primitive */
     }
-    unsigned c0 = sr__clip_outcode(ds, v0->pos);
-    unsigned c1 = sr__clip_outcode(ds, v1->pos);
-    unsigned c2 = sr__clip_outcode(ds, v2->pos);
     if (c0 & c1 & c2) {
-        fe->info->triangles_culled++;
+        c->info.triangles_culled++;
         return; /* all three outside one plane */
     }
     float flat[4] = { 0, 0, 0, 1 };
-    if (ds->shading == SR_SHADING_FLAT) {
-        sr__flat_color(ds, v0, v1, v2, provoking, flat);
-    }
+    bool need_flat = ds->shading == SR_SHADING_FLAT;
 
     if ((c0 | c1 | c2) == 0) {
-        sr_window_vertex w[3];
-        sr__window_vertex(ds, v0, &w[0]);
-        sr__window_vertex(ds, v1, &w[1]);
-        sr__window_vertex(ds, v2, &w[2]);
+        sr_window_vertex w[3] = {
+            { p0->x_q8, p0->y_q8, p0->z, p0->inv_w, a0 },
+            { p1->x_q8, p1->y_q8, p1->z, p1->inv_w, a1 },
+            { p2->x_q8, p2->y_q8, p2->z, p2->inv_w, a2 },
+        };
         int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
         bool front = facing_front(ds, area2);
         if (area2 == 0 || is_culled(ds, front)) {
-            fe->info->triangles_culled++;
+            c->info.triangles_culled++;
             return;
         }
-        emit(fe, &w[0], &w[1], &w[2], front, flat);
+        if (need_flat) {
+            sr__flat_color(ds, a0, a1, a2, s->vary + pv * nv, flat);
+        }
+        emit(fe, c, &w[0], &w[1], &w[2], front, flat);
         return;
     }
 
     /* Clip, then fan the polygon back into triangles.  Facing comes from
      * the whole polygon's snapped area so the fan is culled as one. */
-    fe->info->triangles_clipped++;
-    const sr_clip_vertex *in[3] = { v0, v1, v2 };
+    c->info.triangles_clipped++;
+    if (need_flat) {
+        sr__flat_color(ds, a0, a1, a2, s->vary + pv * nv, flat);
+    }
+    sr_clip_vertex v[3];
+    clip_vertex(ds, p0, a0, &v[0]);
+    clip_vertex(ds, p1, a1, &v[1]);
+    clip_vertex(ds, p2, a2, &v[2]);
+    const sr_clip_vertex *in[3] = { &v[0], &v[1], &v[2] };
     sr_clip_vertex poly[SR_CLIP_MAX_VERTS];
-    int n = sr__clip_polygon(ds, in, c0 | c1 | c2, poly);
+    int n = sr__clip_polygon(ds, in, (c0 | c1 | c2), poly);
     if (n < 3) {
-        fe->info->triangles_culled++;
+        c->info.triangles_culled++;
         return;
     }
     sr_window_vertex w[SR_CLIP_MAX_VERTS];
     for (int i = 0; i < n; i++) {
+        /* The one point with w = 0 that passes every plane is the clip-space
+         * origin (the band planes force x = y = 0, near/far z = 0), e.g. the
+         * midpoint of an edge from v to -v.  A polygon through it has
+         * linearly dependent vertices, so no area; the divide would give
+         * 0/0 = NaN.  Discard (RASTER_RULES 3.4). */
+        if (!(poly[i].pos[3] > 0.0f)) {
+            c->info.triangles_culled++;
+            return;
+        }
         sr__window_vertex(ds, &poly[i], &w[i]);
     }
     int64_t area2 = 0;
@@ -362,44 +407,75 @@ static void triangle(front_end *fe, const sr_clip_vertex *v0, const sr_clip_vert
     }
     bool front = facing_front(ds, area2);
     if (area2 == 0 || is_culled(ds, front)) {
-        fe->info->triangles_culled++;
+        c->info.triangles_culled++;
         return;
     }
     for (int i = 1; i + 1 < n; i++) {
-        emit(fe, &w[0], &w[i], &w[i + 1], front, flat);
+        emit(fe, c, &w[0], &w[i], &w[i + 1], front, flat);
     }
 }
 
-/* Primitive assembly with the provoking vertex of RASTER_RULES 4.2. */
-static void assemble(front_end *fe, const sr_draw_desc *d, size_t count, const sr_clip_vertex *v)
+/* Primitive p of the draw, with the provoking vertex of RASTER_RULES 4.2. */
+static void primitive(const front_end *fe, sr_chunk *c, size_t p)
 {
+    const sr_draw_desc *d = fe->d;
     bool last = fe->ds->provoking_last;
     switch (d->primitive) {
-    case SR_PRIM_TRIANGLE_STRIP:
-        for (size_t i = 0; i + 2 < count; i++) {
-            uint32_t a = index_at(d, i), b = index_at(d, i + 1), c = index_at(d, i + 2);
-            const sr_clip_vertex *pv = last ? &v[c] : &v[a];
-            /* Odd triangles swap their first two vertices to keep winding. */
-            if (i & 1) {
-                triangle(fe, &v[b], &v[a], &v[c], pv);
-            } else {
-                triangle(fe, &v[a], &v[b], &v[c], pv);
-            }
-        }
-        break;
-    case SR_PRIM_TRIANGLE_FAN:
-        for (size_t i = 0; i + 2 < count; i++) {
-            uint32_t a = index_at(d, 0), b = index_at(d, i + 1), c = index_at(d, i + 2);
-            triangle(fe, &v[a], &v[b], &v[c], last ? &v[c] : &v[b]);
-        }
-        break;
-    default:
-        for (size_t i = 0; i + 2 < count; i += 3) {
-            uint32_t a = index_at(d, i), b = index_at(d, i + 1), c = index_at(d, i + 2);
-            triangle(fe, &v[a], &v[b], &v[c], last ? &v[c] : &v[a]);
+    case SR_PRIM_TRIANGLE_STRIP: {
+        uint32_t a = index_at(d, p), b = index_at(d, p + 1), e = index_at(d, p + 2);
+        uint32_t pv = last ? e : a;
+        /* Odd triangles swap their first two vertices to keep winding. */
+        if (p & 1) {
+            triangle(fe, c, b, a, e, pv);
+        } else {
+            triangle(fe, c, a, b, e, pv);
         }
         break;
     }
+    case SR_PRIM_TRIANGLE_FAN: {
+        uint32_t a = index_at(d, 0), b = index_at(d, p + 1), e = index_at(d, p + 2);
+        triangle(fe, c, a, b, e, last ? e : b);
+        break;
+    }
+    default: {
+        uint32_t a = index_at(d, 3 * p), b = index_at(d, 3 * p + 1), e = index_at(d, 3 * p + 2);
+        triangle(fe, c, a, b, e, last ? e : a);
+        break;
+    }
+    }
+}
+
+static void run_front_end(void *arg, int job, int thread)
+{
+    (void)thread;
+    const front_end *fe = arg;
+    sr_chunk *c = &fe->ctx->scratch->chunks[job];
+    c->tri_count = 0;
+    for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
+        primitive(fe, c, p);
+    }
+    if (!sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size)) {
+        c->out_of_memory = true;
+    }
+}
+
+typedef struct vertex_job {
+    const sr_draw_state *ds;
+    const sr_draw_desc *d;
+    const sr_mat4 *mvp, *mv, *nm;
+    sr_scratch *s;
+    size_t per_job;
+} vertex_job;
+
+static void run_vertex_stage(void *arg, int job, int thread)
+{
+    (void)thread;
+    const vertex_job *vj = arg;
+    size_t first = (size_t)job * vj->per_job;
+    size_t count = vj->d->vertex_count - first < vj->per_job ? vj->d->vertex_count - first
+                                                             : vj->per_job;
+    sr__vertex_stage(vj->ds, vj->d, vj->mvp, vj->mv, vj->nm, first, count, vj->s->post,
+                     vj->s->vary);
 }
 
 sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
@@ -429,15 +505,20 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     sr_draw_state ds;
     resolve_state(fb, state, d->view, d->projection, &ds);
 
-    size_t tiles_x = ((size_t)fb->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
-    size_t tiles_y = ((size_t)fb->height + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
+    size_t prims = 0;
+    if (count >= 3) {
+        prims = d->primitive == SR_PRIM_TRIANGLE_STRIP || d->primitive == SR_PRIM_TRIANGLE_FAN
+                    ? count - 2 : count / 3;
+    }
+    /* More chunks than threads evens out uneven clipping and culling. */
+    int chunks = ctx->threads == 1 ? 1 : ctx->threads * 2;
     sr_scratch *s = ctx->scratch;
-    if (!sr__scratch_reserve(ctx, s, d->vertex_count, tiles_x * tiles_y)) {
+    if (!sr__scratch_reserve(ctx, s, d->vertex_count, (size_t)ds.tiles_x * ds.tiles_y, chunks)) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_draw: out of memory for %zu vertices",
                         d->vertex_count);
     }
     sr__ok(ctx);
-    if (count < 3 || ds.rect_x0 >= ds.rect_x1 || ds.rect_y0 >= ds.rect_y1) {
+    if (prims == 0 || ds.rect_x0 >= ds.rect_x1 || ds.rect_y0 >= ds.rect_y1) {
         return SR_OK;
     }
 
@@ -451,18 +532,41 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     if (!sr_normal_matrix(&mv, &nm)) {
         nm = mv; /* singular model-view (a flattening scale): best effort */
     }
-    sr__vertex_stage(&ds, d, &mvp, &mv, &nm, 0, d->vertex_count, s->verts);
+    vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, 4096 };
+    sr__pool_run(ctx->pool, run_vertex_stage, &vj,
+                 (int)((d->vertex_count + vj.per_job - 1) / vj.per_job));
 
     memset(s->stats, 0, sizeof s->stats);
-    s->tri_count = 0;
-    s->ref_count = 0;
-    sr_binner binner = { ctx, &ds, (int)tiles_x, (int)tiles_y };
-    front_end fe = { ctx, &ds, &binner, &ctx->last_draw };
-    assemble(&fe, d, count, s->verts);
-    sr__bin_flush(&binner);
-
+    front_end fe = { ctx, &ds, d, sr__tri_size(ds.ninterp), chunks };
+    bool oom = false;
+    for (size_t begin = 0; begin < prims && !oom; begin += SR_BATCH_PRIMS) {
+        size_t end = prims - begin < SR_BATCH_PRIMS ? prims : begin + SR_BATCH_PRIMS;
+        size_t per = (end - begin + (size_t)chunks - 1) / (size_t)chunks;
+        for (int ci = 0; ci < chunks; ci++) {
+            sr_chunk *c = &s->chunks[ci];
+            c->prim_begin = begin + per * (size_t)ci < end ? begin + per * (size_t)ci : end;
+            c->prim_end = c->prim_begin + per < end ? c->prim_begin + per : end;
+        }
+        sr__pool_run(ctx->pool, run_front_end, &fe, chunks);
+        sr__bin_rasterize(ctx, &ds, chunks, fe.tri_size);
+        for (int ci = 0; ci < chunks; ci++) {
+            sr_chunk *c = &s->chunks[ci];
+            sr_draw_info *in = &c->info;
+            ctx->last_draw.triangles_in += in->triangles_in;
+            ctx->last_draw.triangles_clipped += in->triangles_clipped;
+            ctx->last_draw.triangles_culled += in->triangles_culled;
+            ctx->last_draw.triangles_drawn += in->triangles_drawn;
+            memset(in, 0, sizeof *in);
+            oom |= c->out_of_memory;
+            c->out_of_memory = false;
+        }
+    }
     for (int i = 0; i < SR_MAX_THREADS; i++) {
         ctx->last_draw.fragments += s->stats[i].fragments;
+    }
+    if (oom) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY,
+                        "sr_draw: out of memory while setting up triangles (the draw is incomplete)");
     }
     return SR_OK;
 }

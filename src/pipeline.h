@@ -30,6 +30,14 @@ typedef struct sr_light_eye {
     float color[3];           /* color x intensity */
 } sr_light_eye;
 
+/* How the fragment stage treats depth: no buffer or nothing to do; the
+ * common LESS with writes on; anything else. */
+typedef enum sr_depth_mode {
+    SR_DEPTH_MODE_OFF = 0,
+    SR_DEPTH_MODE_LESS,
+    SR_DEPTH_MODE_GENERIC,
+} sr_depth_mode;
+
 /* sr_state with every default resolved and every vector in eye space. */
 typedef struct sr_draw_state {
     sr_framebuffer *fb;
@@ -47,6 +55,7 @@ typedef struct sr_draw_state {
 
     bool depth_test, depth_write;
     sr_depth_func depth_func;
+    sr_depth_mode depth_mode;
     int depth_bits;                   /* 16, 24, 32, 0 = float */
     bool offset_on;
     double offset_factor, offset_units, offset_clamp;
@@ -66,6 +75,10 @@ typedef struct sr_draw_state {
     bool use_vertex_color;
     int light_count;
     sr_light_eye lights[SR_MAX_LIGHTS];
+
+    double depth_scale;               /* 2^n - 1 for UNORM, 1 for float */
+    double zq_min, zq_max;            /* depth range in buffer units */
+    int tiles_x, tiles_y;
 } sr_draw_state;
 
 /* A vertex after the vertex stage, in homogeneous clip space. */
@@ -82,9 +95,24 @@ typedef struct sr_window_vertex {
     const float *vary;
 } sr_window_vertex;
 
+/* What the vertex stage keeps per vertex besides its varyings: the clip
+ * position with its outcode and, for vertices inside every clip plane, the
+ * window position - computed once per vertex (the post-transform cache),
+ * not once per triangle corner. */
+typedef struct sr_vertex_post {
+    float pos[4];
+    unsigned outcode;                 /* SR_OUTCODE_NONFINITE for NaN/Inf */
+    int32_t x_q8, y_q8;
+    float inv_w;
+    double z;
+} sr_vertex_post;
+
+#define SR_OUTCODE_NONFINITE 0x80000000u
+
 /* A triangle after setup: everything the rasterizers and the fragment stage
  * need, no pointers.  Vertices are in coverage order (area2 > 0); the
- * varyings were permuted with them. */
+ * varyings were permuted with them.  Stored in the bins with only
+ * 3 x ninterp varyings (sr__tri_size), so `vary` must stay last. */
 typedef struct sr_tri {
     int32_t x[3], y[3];               /* q8 */
     int64_t area2;                    /* > 0 */
@@ -95,27 +123,43 @@ typedef struct sr_tri {
     int32_t bias[3];
     int x0, y0, x1, y1;               /* pixel bbox ∩ rect, inclusive-exclusive */
     bool front;
-    /* Depth: z = z0 + e1 dz1 + e2 dz2 (offset folded into z0). */
+    int32_t ninterp;                  /* varyings stored in vary[] */
+    /* Depth plane in buffer units (x (2^n - 1) for UNORM, [0, 1] for float):
+     * z = z0 + e1 dz1 + e2 dz2, polygon offset folded into z0. */
     double z0, dz1, dz2;
-    float inv_w[3];
+    /* Perspective weights: q_i = e_i w_i (w_i = 1/w of vertex i, or 1 in
+     * affine mode). */
+    float w[3];
     float flat[4];                    /* FLAT: the triangle's lit color */
-    float vary[3][SR_MAX_VARYINGS];
+    /* Varying k of vertex 0, then its differences to vertices 1 and 2:
+     * vary[k], vary[n + k] = v1 - v0, vary[2n + k] = v2 - v0 (n = ninterp),
+     * so an attribute is v0 + l1 d1 + l2 d2. */
+    float vary[3 * SR_MAX_VARYINGS];
 } sr_tri;
 
-/* Per-thread fragment counters and the tile the thread works on. */
+static inline size_t sr__tri_size(int ninterp)
+{
+    size_t s = sizeof(sr_tri) - sizeof(float) * (3 * SR_MAX_VARYINGS - 3 * (size_t)ninterp);
+    return (s + 15) & ~(size_t)15;
+}
+
+/* Per-thread fragment counters. */
 typedef struct sr_frag_stats {
     uint64_t fragments;
+    uint64_t pad[7];                  /* one cache line per thread */
 } sr_frag_stats;
 
 /* ---- stage entry points ---- */
 
-/* geometry/vertex.c */
+/* geometry/vertex.c: vertices [first, first + count) into post[] and
+ * their varyings into vary[] (ds->nvary floats each). */
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
-                      size_t first, size_t count, sr_clip_vertex *out);
-void sr__flat_color(const sr_draw_state *ds, const sr_clip_vertex *v0,
-                    const sr_clip_vertex *v1, const sr_clip_vertex *v2,
-                    const sr_clip_vertex *provoking, float out[4]);
+                      size_t first, size_t count, sr_vertex_post *post, float *vary);
+/* Flat shading's color from the three vertices' varyings (eye position
+ * and color); `pv` is the provoking vertex's varyings. */
+void sr__flat_color(const sr_draw_state *ds, const float *v0, const float *v1,
+                    const float *v2, const float *pv, float out[4]);
 
 /* geometry/clip.c: outcodes, and Sutherland-Hodgman in 4D.  Returns the
  * number of polygon vertices written to out (0 if nothing is left). */
@@ -125,6 +169,9 @@ int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
                      unsigned planes, sr_clip_vertex *out);
 
 /* raster/setup.c */
+/* Divide by w, apply the viewport S and snap to q8 (round to nearest even). */
+void sr__project(const sr_draw_state *ds, const float pos[4], int32_t *x_q8, int32_t *y_q8,
+                 double *z, float *inv_w);
 void sr__window_vertex(const sr_draw_state *ds, const sr_clip_vertex *v, sr_window_vertex *out);
 int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1, const sr_window_vertex *v2);
 /* Returns true when the triangle produced samples-to-be (not culled, not

@@ -1,5 +1,6 @@
-/* scratch.c - growing and freeing the draw scratch memory (application
- * thread, between draws). */
+/* scratch.c - growing and freeing the draw scratch memory.  Vertex and
+ * tile arrays grow on the application thread before a draw; chunk stores
+ * may grow on the front-end workers. */
 #include "scratch.h"
 #include "context.h"
 
@@ -7,17 +8,7 @@
 
 sr_scratch *sr__scratch_create(sr_context *ctx)
 {
-    sr_scratch *s = sr__calloc(ctx, 1, sizeof *s);
-    if (!s) {
-        return NULL;
-    }
-    s->tris = sr__alloc(ctx, SR_BATCH_TRIS * sizeof(sr_tri));
-    s->refs = sr__alloc(ctx, SR_BATCH_REFS * sizeof(uint32_t));
-    if (!s->tris || !s->refs) {
-        sr__scratch_destroy(ctx, s);
-        return NULL;
-    }
-    return s;
+    return sr__calloc(ctx, 1, sizeof(sr_scratch));
 }
 
 void sr__scratch_destroy(sr_context *ctx, sr_scratch *s)
@@ -25,47 +16,102 @@ void sr__scratch_destroy(sr_context *ctx, sr_scratch *s)
     if (!s) {
         return;
     }
-    sr__free(ctx, s->verts);
-    sr__free(ctx, s->tris);
-    sr__free(ctx, s->refs);
-    sr__free(ctx, s->bin_start);
-    sr__free(ctx, s->bin_fill);
+    sr__free(ctx, s->post);
+    sr__free(ctx, s->vary);
+    for (int i = 0; i < SR_MAX_CHUNKS; i++) {
+        sr__free(ctx, s->chunks[i].tris);
+        sr__free(ctx, s->chunks[i].refs);
+        sr__free(ctx, s->chunks[i].bin_start);
+    }
     sr__free(ctx, s->active_tiles);
     sr__free(ctx, s);
 }
 
-bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t tiles)
+static size_t grow(size_t cap, size_t need)
+{
+    size_t c = cap ? cap : 256;
+    while (c < need) {
+        c = c > SIZE_MAX / 2 ? need : c * 2;
+    }
+    return c;
+}
+
+bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t tiles, int chunks)
 {
     if (count > s->vert_cap) {
-        size_t cap = s->vert_cap ? s->vert_cap : 1024;
-        while (cap < count) {
-            cap = cap > SIZE_MAX / 2 ? count : cap * 2;
-        }
-        sr_clip_vertex *v = sr__calloc(ctx, cap, sizeof *v);
-        if (!v) {
+        size_t cap = grow(s->vert_cap, count);
+        sr_vertex_post *post = sr__calloc(ctx, cap, sizeof *post);
+        float *vary = sr__calloc(ctx, cap, SR_MAX_VARYINGS * sizeof(float));
+        if (!post || !vary) {
+            sr__free(ctx, post);
+            sr__free(ctx, vary);
             return false;
         }
-        sr__free(ctx, s->verts);
-        s->verts = v;
+        sr__free(ctx, s->post);
+        sr__free(ctx, s->vary);
+        s->post = post;
+        s->vary = vary;
         s->vert_cap = cap;
     }
     if (tiles > s->tile_cap) {
-        uint32_t *start = sr__calloc(ctx, tiles + 1, sizeof(uint32_t));
-        uint32_t *fill = sr__calloc(ctx, tiles, sizeof(uint32_t));
         uint32_t *active = sr__calloc(ctx, tiles, sizeof(uint32_t));
-        if (!start || !fill || !active) {
-            sr__free(ctx, start);
-            sr__free(ctx, fill);
-            sr__free(ctx, active);
+        if (!active) {
             return false;
         }
-        sr__free(ctx, s->bin_start);
-        sr__free(ctx, s->bin_fill);
         sr__free(ctx, s->active_tiles);
-        s->bin_start = start;
-        s->bin_fill = fill;
         s->active_tiles = active;
+        for (int i = 0; i < SR_MAX_CHUNKS; i++) {
+            sr__free(ctx, s->chunks[i].bin_start);
+            s->chunks[i].bin_start = NULL;
+        }
         s->tile_cap = tiles;
     }
+    for (int i = 0; i < chunks; i++) {
+        if (!s->chunks[i].bin_start) {
+            s->chunks[i].bin_start = sr__calloc(ctx, s->tile_cap + 1, sizeof(uint32_t));
+            if (!s->chunks[i].bin_start) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size)
+{
+    size_t need;
+    if (__builtin_mul_overflow(records, size, &need)) {
+        return false;
+    }
+    if (need <= c->tri_bytes) {
+        return true;
+    }
+    size_t bytes = grow(c->tri_bytes, need);
+    uint8_t *t = sr__alloc(ctx, bytes);
+    if (!t) {
+        return false;
+    }
+    if (c->tri_count) {
+        memcpy(t, c->tris, (size_t)c->tri_count * size);
+    }
+    sr__free(ctx, c->tris);
+    c->tris = t;
+    c->tri_bytes = bytes;
+    return true;
+}
+
+bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs)
+{
+    if (refs <= c->ref_cap) {
+        return true;
+    }
+    size_t cap = grow(c->ref_cap, refs);
+    uint32_t *r = sr__calloc(ctx, cap, sizeof(uint32_t));
+    if (!r) {
+        return false;
+    }
+    sr__free(ctx, c->refs);
+    c->refs = r;
+    c->ref_cap = cap;
     return true;
 }

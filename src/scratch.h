@@ -1,40 +1,54 @@
 /* scratch.h - a draw call's working memory, owned by the context and kept
- * across draws: transformed vertices, the current batch of set-up triangles
- * and their tile bins.  Grown on demand, never shrunk until the context is
- * destroyed, so steady-state frames allocate nothing. */
+ * across draws: post-transform vertices, and per front-end chunk its
+ * set-up triangles and tile bins.  Grown on demand, never shrunk until the
+ * context is destroyed, so steady-state frames allocate nothing. */
 #ifndef SR_SCRATCH_H
 #define SR_SCRATCH_H
 
 #include "pipeline.h"
 #include "parallel/pool.h"
 
-/* Triangles per batch, and tile references per batch: when either fills,
- * the batch is rasterized and the front end carries on.  This bounds memory
- * for any draw size while keeping submission order. */
-#define SR_BATCH_TRIS 8192
-#define SR_BATCH_REFS (1u << 20)
+/* Primitives per batch: the front end sets up a batch in parallel chunks,
+ * the back end rasterizes it, then the next batch follows.  This bounds
+ * memory for any draw size while keeping submission order. */
+#define SR_BATCH_PRIMS 32768
+#define SR_MAX_CHUNKS (2 * SR_MAX_THREADS)
+
+/* One front-end chunk: a contiguous range of primitives, the triangles it
+ * set up (records of tri_size bytes) and its bins by counting sort -
+ * bin_start[tile] .. bin_start[tile + 1] index refs[], which holds triangle
+ * numbers in submission order. */
+typedef struct sr_chunk {
+    size_t prim_begin, prim_end;
+    uint8_t *tris;
+    size_t tri_bytes;          /* capacity of tris */
+    uint32_t tri_count;
+    uint32_t *refs;
+    size_t ref_cap;
+    uint32_t *bin_start;       /* tile_cap + 1 */
+    sr_draw_info info;
+    bool out_of_memory;
+} sr_chunk;
 
 typedef struct sr_scratch {
-    sr_clip_vertex *verts;
+    sr_vertex_post *post;
+    float *vary;               /* SR_MAX_VARYINGS per vertex at most */
     size_t vert_cap;
 
-    sr_tri *tris;              /* SR_BATCH_TRIS */
-    uint32_t tri_count;
-    uint64_t ref_count;        /* tile references of the batch so far */
-
-    /* Bins by counting sort: bin_start[tile] .. bin_start[tile+1] in refs. */
-    uint32_t *bin_start;       /* tile_cap + 1 */
-    uint32_t *bin_fill;        /* tile_cap */
-    uint32_t *refs;            /* SR_BATCH_REFS */
+    sr_chunk chunks[SR_MAX_CHUNKS];
     size_t tile_cap;
-    uint32_t *active_tiles;    /* tiles with a non-empty bin */
+    uint32_t *active_tiles;
 
     sr_frag_stats stats[SR_MAX_THREADS];
 } sr_scratch;
 
 sr_scratch *sr__scratch_create(sr_context *ctx);
 void sr__scratch_destroy(sr_context *ctx, sr_scratch *s);
-/* Make room for `count` vertices and `tiles` tiles; false when out of memory. */
-bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t tiles);
+/* Room for `count` vertices and `tiles` tiles in `chunks` chunks. */
+bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t tiles, int chunks);
+/* Grow a chunk's triangle store to hold `records` of `size` bytes (called
+ * from front-end workers: the allocator must be thread-safe). */
+bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size);
+bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs);
 
 #endif

@@ -11,56 +11,58 @@
 #include <math.h>
 #include <string.h>
 
-static inline uint8_t sr__unorm8(float v)
+#define SR_INLINE static inline __attribute__((always_inline))
+
+/* Float in [0, 1] to 8 bits, rounded; NaN goes to 0.  Branch-free: the
+ * comparisons compile to min/max. */
+SR_INLINE uint8_t sr__unorm8(float v)
 {
-    if (!(v > 0.0f)) {
-        return 0;
-    }
-    if (v >= 1.0f) {
-        return 255;
-    }
+    v = v > 0.0f ? v : 0.0f;
+    v = v < 1.0f ? v : 1.0f;
     return (uint8_t)(v * 255.0f + 0.5f);
 }
 
 /* Perspective-correct barycentrics from the exact integer edge values
- * (RASTER_RULES 4.4): q_i = e_i / w_i, normalized.  Affine mode drops the
- * 1/w factor, which is exactly screen-space interpolation. */
+ * (RASTER_RULES 4.4): q_i = e_i / w_i, normalized.  In affine mode setup
+ * set every w_i to 1, which is exactly screen-space interpolation.  Float
+ * is ample here: e_i is exact, the weights need ~1e-6. */
 static inline void sr__bary(const sr_draw_state *ds, const sr_tri *t,
                             int64_t e0, int64_t e1, int64_t e2, float l[3])
 {
-    double q0 = (double)e0, q1 = (double)e1, q2 = (double)e2;
-    if (ds->perspective) {
-        q0 *= t->inv_w[0];
-        q1 *= t->inv_w[1];
-        q2 *= t->inv_w[2];
-    }
-    double s = q0 + q1 + q2;
-    double inv = s != 0.0 ? 1.0 / s : 0.0;
-    l[0] = (float)(q0 * inv);
-    l[1] = (float)(q1 * inv);
-    l[2] = (float)(q2 * inv);
+    (void)ds;
+    float q0 = (float)e0 * t->w[0];
+    float q1 = (float)e1 * t->w[1];
+    float q2 = (float)e2 * t->w[2];
+    float s = q0 + q1 + q2;
+    float inv = s != 0.0f ? 1.0f / s : 0.0f;
+    l[0] = q0 * inv;
+    l[1] = q1 * inv;
+    l[2] = q2 * inv;
 }
 
+/* Attribute k at weights l: v0 + l1 (v1 - v0) + l2 (v2 - v0). */
 static inline float sr__interp(const sr_tri *t, const float l[3], int k)
 {
-    return l[0] * t->vary[0][k] + l[1] * t->vary[1][k] + l[2] * t->vary[2][k];
+    int n = t->ninterp;
+    return t->vary[k] + l[1] * t->vary[n + k] + l[2] * t->vary[2 * n + k];
 }
 
+/* Depth in buffer units at a sample, from the exact edge values. */
 static inline double sr__tri_depth(const sr_tri *t, int64_t e1, int64_t e2)
 {
     return t->z0 + (double)e1 * t->dz1 + (double)e2 * t->dz2;
 }
 
-static inline void sr__shade(const sr_draw_state *ds, const sr_tri *t, double z,
-                             int64_t e0, int64_t e1, int64_t e2, float c[4])
+SR_INLINE void sr__shade_as(const sr_draw_state *ds, const sr_tri *t, double z,
+                            int64_t e0, int64_t e1, int64_t e2, float c[4], sr_shading shading)
 {
     float l[3];
-    switch (ds->shading) {
+    switch (shading) {
     case SR_SHADING_FLAT:
         memcpy(c, t->flat, 4 * sizeof(float));
         return;
     case SR_SHADING_DEPTH:
-        c[0] = c[1] = c[2] = (float)z;
+        c[0] = c[1] = c[2] = (float)(z / ds->depth_scale);
         c[3] = 1.0f;
         return;
     case SR_SHADING_PHONG: {
@@ -108,34 +110,66 @@ static inline void sr__shade(const sr_draw_state *ds, const sr_tri *t, double z,
     }
 }
 
-/* One sample at pixel (px, py) with unbiased edge values e0, e1, e2. */
-static inline void sr__fragment(const sr_draw_state *ds, const sr_tri *t, int px, int py,
-                                int64_t e0, int64_t e1, int64_t e2, sr_frag_stats *st)
+static inline void sr__shade(const sr_draw_state *ds, const sr_tri *t, double z,
+                             int64_t e0, int64_t e1, int64_t e2, float c[4])
+{
+    sr__shade_as(ds, t, z, e0, e1, e2, c, ds->shading);
+}
+
+/* One sample at pixel (px, py) with unbiased edge values e0, e1, e2, for a
+ * shading model and depth mode that the caller may pass as constants: the
+ * fast rasterizer instantiates this per combination (the compiler drops
+ * the switches), the reference rasterizers pass the draw's values.  Both
+ * run the same operations in the same order, so the bytes agree. */
+SR_INLINE void sr__fragment_as(const sr_draw_state *ds, const sr_tri *t, int px, int py,
+                               int64_t e0, int64_t e1, int64_t e2, sr_frag_stats *st,
+                               sr_shading shading, sr_depth_mode dmode)
 {
     sr_framebuffer *fb = ds->fb;
     size_t idx = (size_t)py * (size_t)fb->width + (size_t)px;
-    double z = sr__tri_depth(t, e1, e2);
-    /* Clamp to the depth range after offset, then quantize once. */
-    if (z < ds->depth_min) {
-        z = ds->depth_min;
+    double z = 0.0;
+    if (dmode != SR_DEPTH_MODE_OFF || shading == SR_SHADING_DEPTH) {
+        z = sr__tri_depth(t, e1, e2);
+        /* Clamp to the depth range after offset, then quantize once:
+         * round half up for UNORM (z >= 0 here, so truncation is floor),
+         * the float's bits for D32F (RASTER_RULES 1.5). */
+        z = z >= ds->zq_min ? z : ds->zq_min;
+        z = z <= ds->zq_max ? z : ds->zq_max;
     }
-    if (z > ds->depth_max) {
-        z = ds->depth_max;
-    }
-    if (fb->depth) {
-        uint32_t q = sr__depth_quantize(z, ds->depth_bits);
-        if (ds->depth_test && !sr__depth_pass(ds->depth_func, q, fb->depth[idx])) {
-            return;
+    if (dmode != SR_DEPTH_MODE_OFF) {
+        uint32_t q;
+        if (ds->depth_bits) {
+            q = (uint32_t)(z + 0.5);
+        } else {
+            float f = (float)z;
+            memcpy(&q, &f, sizeof q);
         }
-        if (ds->depth_write) {
-            fb->depth[idx] = q;
+        uint32_t *dp = &fb->depth[idx];
+        if (dmode == SR_DEPTH_MODE_LESS) {
+            if (!(q < *dp)) {
+                return;
+            }
+            *dp = q;
+        } else {
+            if (ds->depth_test && !sr__depth_pass(ds->depth_func, q, *dp)) {
+                return;
+            }
+            if (ds->depth_write) {
+                *dp = q;
+            }
         }
     }
     float c[4];
-    sr__shade(ds, t, z, e0, e1, e2, c);
+    sr__shade_as(ds, t, z, e0, e1, e2, c, shading);
     uint8_t rgba[4] = { sr__unorm8(c[0]), sr__unorm8(c[1]), sr__unorm8(c[2]), sr__unorm8(c[3]) };
-    memcpy(&fb->color[idx], rgba, 4);
+    memcpy(&fb->color[idx], rgba, sizeof rgba);
     st->fragments++;
+}
+
+static inline void sr__fragment(const sr_draw_state *ds, const sr_tri *t, int px, int py,
+                                int64_t e0, int64_t e1, int64_t e2, sr_frag_stats *st)
+{
+    sr__fragment_as(ds, t, px, py, e0, e1, e2, st, ds->shading, ds->depth_mode);
 }
 
 #endif

@@ -151,7 +151,8 @@ static const float teapot_points[306][3] = {
     {0.798f, -1.425f, 0.0f}, {1.425f, -0.798f, 0.0f},
 };
 
-/* Each patch: 16 indices into teapot_points, four rows of four, [u][v]. */
+/* Each patch: 16 indices into teapot_points, four rows of four, in the
+ * table's usual order (sr_make_teapot reads each block transposed). */
 static const uint16_t teapot_patches[32][16] = {
     /* rim */
     {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15},

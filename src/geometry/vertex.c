@@ -38,7 +38,7 @@ static void normal_to_eye(const sr_mat4 *nm, const float n[3], float out[3])
 
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
-                      size_t first, size_t count, sr_clip_vertex *out)
+                      size_t first, size_t count, sr_vertex_post *post, float *vary_out)
 {
     int psize = d->position_size ? d->position_size : 3;
     int csize = d->color_size ? d->color_size : 4;
@@ -49,10 +49,21 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
     bool need_color = ds->shading != SR_SHADING_NORMALS && ds->shading != SR_SHADING_DEPTH;
 
     for (size_t i = first; i < first + count; i++) {
-        sr_clip_vertex *v = &out[i];
+        sr_vertex_post *v = &post[i];
+        float *vary = vary_out + i * (size_t)ds->nvary;
         const float *p = element(d->positions, d->position_stride, (size_t)psize, i);
         float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
         transform_point(mvp, obj, v->pos);
+        if (!(isfinite(v->pos[0]) && isfinite(v->pos[1]) && isfinite(v->pos[2]) &&
+              isfinite(v->pos[3]))) {
+            v->outcode = SR_OUTCODE_NONFINITE;
+        } else {
+            v->outcode = sr__clip_outcode(ds, v->pos);
+            if (v->outcode == 0) {
+                /* Inside every plane: divide and snap once, here. */
+                sr__project(ds, v->pos, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
+            }
+        }
 
         float eye[4] = { 0, 0, 0, 1 }, n[3] = { 0, 0, 1 }, color[4];
         if (need_eye) {
@@ -84,7 +95,7 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         switch (ds->shading) {
         case SR_SHADING_UNLIT:
             for (int k = 0; k < 4; k++) {
-                v->vary[SR_VARY_COLOR + k] = color[k];
+                vary[SR_VARY_COLOR + k] = color[k];
             }
             break;
         case SR_SHADING_GOURAUD: {
@@ -103,29 +114,29 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                     n[2] = -n[2];
                 }
             }
-            sr__light(ds, n, eye, color, &v->vary[SR_VARY_COLOR]);
+            sr__light(ds, n, eye, color, &vary[SR_VARY_COLOR]);
             break;
         }
         case SR_SHADING_FLAT:
             for (int k = 0; k < 3; k++) {
-                v->vary[SR_VARY_FLAT_EYE + k] = eye[k];
+                vary[SR_VARY_FLAT_EYE + k] = eye[k];
             }
             for (int k = 0; k < 4; k++) {
-                v->vary[SR_VARY_FLAT_COLOR + k] = color[k];
+                vary[SR_VARY_FLAT_COLOR + k] = color[k];
             }
             break;
         case SR_SHADING_PHONG:
             for (int k = 0; k < 3; k++) {
-                v->vary[SR_VARY_PHONG_NORMAL + k] = n[k];
-                v->vary[SR_VARY_PHONG_EYE + k] = eye[k];
+                vary[SR_VARY_PHONG_NORMAL + k] = n[k];
+                vary[SR_VARY_PHONG_EYE + k] = eye[k];
             }
             for (int k = 0; k < 4; k++) {
-                v->vary[SR_VARY_PHONG_COLOR + k] = color[k];
+                vary[SR_VARY_PHONG_COLOR + k] = color[k];
             }
             break;
         case SR_SHADING_NORMALS:
             for (int k = 0; k < 3; k++) {
-                v->vary[SR_VARY_NORMAL + k] = n[k];
+                vary[SR_VARY_NORMAL + k] = n[k];
             }
             break;
         default:
@@ -137,13 +148,12 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
 /* Flat shading: one color per triangle, lit with the face normal (for a
  * triangle, Newell's method reduces to the cross product of two edges) at
  * the provoking vertex, whose color it takes. */
-void sr__flat_color(const sr_draw_state *ds, const sr_clip_vertex *v0,
-                    const sr_clip_vertex *v1, const sr_clip_vertex *v2,
-                    const sr_clip_vertex *provoking, float out[4])
+void sr__flat_color(const sr_draw_state *ds, const float *v0, const float *v1,
+                    const float *v2, const float *pv, float out[4])
 {
-    const float *p0 = &v0->vary[SR_VARY_FLAT_EYE];
-    const float *p1 = &v1->vary[SR_VARY_FLAT_EYE];
-    const float *p2 = &v2->vary[SR_VARY_FLAT_EYE];
+    const float *p0 = &v0[SR_VARY_FLAT_EYE];
+    const float *p1 = &v1[SR_VARY_FLAT_EYE];
+    const float *p2 = &v2[SR_VARY_FLAT_EYE];
     float e1[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
     float e2[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
     float n[3] = { e1[1] * e2[2] - e1[2] * e2[1],
@@ -155,7 +165,7 @@ void sr__flat_color(const sr_draw_state *ds, const sr_clip_vertex *v0,
         n[1] /= len;
         n[2] /= len;
     }
-    const float *eye = &provoking->vary[SR_VARY_FLAT_EYE];
+    const float *eye = &pv[SR_VARY_FLAT_EYE];
     if (ds->two_sided) {
         float vdir[3] = { 0, 0, 1 };
         if (ds->local_viewer) {
@@ -169,5 +179,5 @@ void sr__flat_color(const sr_draw_state *ds, const sr_clip_vertex *v0,
             n[2] = -n[2];
         }
     }
-    sr__light(ds, n, eye, &provoking->vary[SR_VARY_FLAT_COLOR], out);
+    sr__light(ds, n, eye, &pv[SR_VARY_FLAT_COLOR], out);
 }

@@ -61,9 +61,9 @@ static bool is_triangle_mesh(const struct aiMesh *m)
            (m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE);
 }
 
-/* The diffuse texture of the first material that names one, relative to
- * the model's directory like the OBJ reader's map_Kd.  Embedded textures
- * ("*0") have no file and are left out. */
+/* The diffuse texture of the first material that names one, joined to
+ * the model's directory as the OBJ reader does with map_Kd.  Embedded
+ * textures ("*0") have no file and are left out. */
 static char *texture_path(const struct aiScene *scene, const char *model_path)
 {
     for (unsigned i = 0; i < scene->mNumMeshes; i++) {
@@ -78,11 +78,15 @@ static char *texture_path(const struct aiScene *scene, const char *model_path)
             continue;
         }
         const char *slash = strrchr(model_path, '/');
-        size_t dir = name.data[0] == '/' || !slash ? 0 : (size_t)(slash - model_path) + 1;
+        bool absolute = name.data[0] == '/' || name.data[0] == '\\';
+        size_t dir = absolute || !slash ? 0 : (size_t)(slash - model_path) + 1;
         char *s = malloc(dir + name.length + 1);
         if (s) {
             memcpy(s, model_path, dir);
-            memcpy(s + dir, name.data, name.length);
+            /* Windows exporters write "textures\wood.png". */
+            for (size_t i = 0; i < name.length; i++) {
+                s[dir + i] = name.data[i] == '\\' ? '/' : name.data[i];
+            }
             s[dir + name.length] = 0;
         }
         return s;

@@ -6,7 +6,7 @@
  *
  * What is read, and the choices made where OBJ leaves room:
  *  - `v x y z`, `v x y z w` (w only weights rational curves: read, checked,
- *    ignored) and `v x y z r g b` (the common vertex colour extension);
+ *    ignored) and `v x y z r g b` (the common vertex color extension);
  *    `vt u [v [w]]`; `vn x y z`; `f` (and the old `fo`) with corners v,
  *    v/vt, v//vn or v/vt/vn, indices from 1 or negative (relative).  An
  *    index must refer to data defined earlier in the file, as the format
@@ -18,12 +18,12 @@
  *  - The text must be UTF-8 with no NUL byte.  Comments may hold any byte
  *    but NUL, because old exporters write Latin-1 names there; anywhere else
  *    a byte that is not UTF-8 means a binary or damaged file: an error.
- *  - Output: each distinct (v, vt, vn, material colour) corner becomes one
+ *  - Output: each distinct (v, vt, vn, material color) corner becomes one
  *    vertex, numbered in order of first use; unreferenced vertices are
  *    dropped.  normals only when every corner has a vn (else NULL: the
  *    caller computes them); texcoords when any corner has a vt ((0, 0) for
- *    the others); colours when any corner has a vertex colour or an active
- *    material with Kd.  A vertex colour wins over Kd; corners with neither
+ *    the others); colors when any corner has a vertex color or an active
+ *    material with Kd.  A vertex color wins over Kd; corners with neither
  *    are white.  Alpha is 1.
  */
 #include "io/readers.h"
@@ -42,7 +42,7 @@
 
 /* One polygon corner: 0-based indices into v, vt, vn and the usemtl list,
  * NO_INDEX when absent.  When the mesh is built, `m` is rewritten to the
- * material whose Kd colours the corner (NO_INDEX for none). */
+ * material whose Kd colors the corner (NO_INDEX for none). */
 typedef struct corner {
     uint32_t v, vt, vn, m;
 } corner;
@@ -85,6 +85,7 @@ typedef struct line_reader {
     long next_line;
     char *join;         /* holds lines joined by a backslash */
     size_t join_cap;
+    bool plain;         /* the whole input is plain ASCII: skip the checks per line */
 } line_reader;
 
 typedef struct obj_parser {
@@ -97,7 +98,7 @@ typedef struct obj_parser {
     size_t nv, v_cap;
     uint32_t *vplain;   /* per vertex: its key with no vt, vn or usemtl, or NO_INDEX */
     size_t vplain_cap;
-    float *vc;          /* 4 per vertex, a = 0 when it has no colour; NULL until a colour appears */
+    float *vc;          /* 4 per vertex, a = 0 when it has no color; NULL until a color appears */
     size_t vc_cap;
     float *vt;          /* 2 per texture coordinate */
     size_t nvt, vt_cap;
@@ -111,10 +112,10 @@ typedef struct obj_parser {
     /* Scratch for the polygon on the current line and its triangulation. */
     poly_corner *poly;
     size_t poly_cap;
-    double *pxyz;       /* 3 per corner, relative to the first */
+    double *scratch;    /* one block holding the four arrays below */
+    size_t scratch_cap; /* in polygon corners */
     double *pxy;        /* 2 per corner, projected */
-    uint32_t *prev, *next;
-    size_t tri_scratch_cap;
+    uint32_t *prev, *next;  /* the corners not yet clipped, as a ring */
     long long ear_budget; /* point-in-triangle tests left for ear clipping */
 
     char *arena;        /* names and paths, each followed by a NUL */
@@ -435,16 +436,30 @@ static size_t utf8_len(const unsigned char *s, size_t n)
 }
 
 /* The policy in the file header: no NUL anywhere, UTF-8 outside comments. */
+/* True when [s, s + n) holds no NUL and no byte >= 0x80.  Eight bytes at a
+ * time: (w - 0x01..01) & ~w & 0x80..80 is non-zero exactly when some byte
+ * of w is zero (a borrow can only start at a zero byte), and w & 0x80..80
+ * catches the high bytes. */
+static bool plain_ascii(const char *s, size_t n)
+{
+    const uint64_t ones = 0x0101010101010101ull, highs = 0x8080808080808080ull;
+    uint64_t bad = 0;
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        uint64_t w;
+        memcpy(&w, s + i, 8);
+        bad |= (w | ((w - ones) & ~w)) & highs;
+    }
+    for (; i < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        bad |= (uint64_t)((c - 1) | c) & 0x80;
+    }
+    return bad == 0;
+}
+
 static sr_result check_text(const line_reader *r, const char *s, size_t n)
 {
-    /* Fast path: (c - 1) | c has bit 7 set exactly for c == 0 and c >= 0x80,
-     * so plain ASCII lines cost one OR per byte. */
-    unsigned char acc = 0;
-    for (size_t i = 0; i < n; i++) {
-        unsigned char c = (unsigned char)s[i];
-        acc |= (unsigned char)((c - 1) | c);
-    }
-    if (!(acc & 0x80)) {
+    if (r->plain || plain_ascii(s, n)) {
         return SR_OK;
     }
     const unsigned char *u = (const unsigned char *)s;
@@ -488,6 +503,7 @@ static void reader_init(line_reader *r, const char *name, const char *data, size
     if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0) {
         r->p += 3;
     }
+    r->plain = plain_ascii(r->p, (size_t)(r->end - r->p));
 }
 
 static void physical_line(line_reader *r, const char **a, const char **b)
@@ -566,10 +582,7 @@ static void parser_free(obj_parser *P)
     free(P->map.slots);
     free(P->indices);
     free(P->poly);
-    free(P->pxyz);
-    free(P->pxy);
-    free(P->prev);
-    free(P->next);
+    free(P->scratch);
     free(P->arena);
     free(P->uses);
     free(P->mats);
@@ -809,7 +822,7 @@ static sr_result load_mtl(obj_parser *P, const char *rel, size_t rel_len, bool *
     }
     if (res != SR_OK) {
         free(p);
-        return SR_OK;           /* missing or unreadable MTL: colours are optional */
+        return SR_OK;           /* missing or unreadable MTL: colors are optional */
     }
     *found = true;
     P->mtl_loaded[P->nmtl_loaded++] = path;
@@ -968,8 +981,8 @@ static sr_result handle_v(obj_parser *P, long line, const char *s, const char *e
     p[1] = c[1];
     p[2] = c[2];
     if (n == 6 || P->vc) {
-        /* The colour array appears with the first coloured vertex; the
-         * vertices before it are marked colourless (alpha 0). */
+        /* The color array appears with the first colored vertex; the
+         * vertices before it are marked colorless (alpha 0). */
         size_t first_new = P->vc ? P->nv : 0;
         if (!reserve(&P->vc, &P->vc_cap, P->nv + 1, 4 * sizeof(float))) {
             return oom(P, line);
@@ -1158,6 +1171,8 @@ static void fan_rest(obj_parser *P, uint32_t s)
  * (polygons with holes bridged by a doubled edge have those). */
 static bool is_ear(obj_parser *P, uint32_t a, uint32_t b, uint32_t c)
 {
+    /* Each call is charged too, so laps over reflex corners are bounded. */
+    P->ear_budget--;
     const double *xy = P->pxy;
     double ax = xy[2 * a], ay = xy[2 * a + 1];
     double bx = xy[2 * b], by = xy[2 * b + 1];
@@ -1186,25 +1201,17 @@ static bool is_ear(obj_parser *P, uint32_t a, uint32_t b, uint32_t c)
  * keep its winding.  Room for them is reserved by the caller. */
 static sr_result triangulate(obj_parser *P, long line, size_t n)
 {
-    if (n > P->tri_scratch_cap) {
-        size_t cap = P->tri_scratch_cap;
-        size_t c1 = cap, c2 = cap, c3 = cap;
-        size_t c4 = cap;
-        if (!reserve(&P->pxyz, &c1, n, 3 * sizeof(double)) ||
-            !reserve(&P->pxy, &c2, n, 2 * sizeof(double)) ||
-            !reserve(&P->prev, &c3, n, sizeof(uint32_t)) ||
-            !reserve(&P->next, &c4, n, sizeof(uint32_t))) {
-            /* Arrays that did grow keep their new size; track the smallest. */
-            size_t lo = c1 < c2 ? c1 : c2;
-            lo = lo < c3 ? lo : c3;
-            P->tri_scratch_cap = lo < c4 ? lo : c4;
-            return oom(P, line);
-        }
-        P->tri_scratch_cap = c1;
+    /* Per corner: xyz and xy as doubles, then prev and next; the doubles
+     * come first so every array stays aligned. */
+    if (!reserve(&P->scratch, &P->scratch_cap, n, 5 * sizeof(double) + 2 * sizeof(uint32_t))) {
+        return oom(P, line);
     }
+    double *p = P->scratch;
+    P->pxy = p + 3 * n;
+    P->prev = (uint32_t *)(P->pxy + 2 * n);
+    P->next = P->prev + n;
     /* Positions relative to the first corner: large coordinates with small
      * polygons would otherwise lose the digits that matter. */
-    double *p = P->pxyz;
     const float *o = P->v + 3 * (size_t)P->poly[0].v;
     for (size_t i = 0; i < n; i++) {
         const float *q = P->v + 3 * (size_t)P->poly[i].v;
@@ -1362,7 +1369,7 @@ static size_t pow2_at_least(size_t n)
     return c;
 }
 
-/* Map each usemtl entry to the material that colours it (first definition
+/* Map each usemtl entry to the material that colors it (first definition
  * of a name wins) and pick the texture: the map_Kd of the first material
  * used, else the first map_Kd of any loaded material. */
 static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, str_ref *texture)
@@ -1450,7 +1457,7 @@ static sr_result build_mesh(obj_parser *P, sr_mesh *out)
     bool use_vn = any_vn && all_vn;
 
     /* The keys were gathered with every field.  Dropping partial normals,
-     * or going from usemtl statements to the colours they select, can make
+     * or going from usemtl statements to the colors they select, can make
      * keys equal: merge those so shared corners stay shared. */
     if ((any_vn && !use_vn) || P->nuses > 0) {
         remap = malloc(nkeys * sizeof *remap);

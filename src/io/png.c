@@ -19,7 +19,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define MAX_WRITE_SIZE 65535    /* per side; keeps 4 * width inside png_uint_32 rows */
+#define MAX_WRITE_SIZE 65535    /* per side, as documented; well inside libpng's 1000000 */
 #define MAX_READ_SIZE  16384    /* per side; 16384^2 RGBA8 is 1 GiB, the most we allocate */
 
 /* One fixed filter rather than libpng's default of trying all five on
@@ -265,8 +265,10 @@ sr_result sr_write_png(const char *path, int width, int height,
     sr_result result = SR_OK;
     int fd = mkstemp(tmp);
     if (fd < 0) {
-        result = sr__io_fail(err, SR_IO_ERROR, path, 0,
-                             "cannot create a temporary file next to it: %s", strerror(errno));
+        int e = errno;
+        result = sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot create a file in '%.*s': %s",
+                             dir_len > 1 ? (int)dir_len - 1 : (int)dir_len,
+                             dir_len ? target : ".", strerror(e));
         goto done;
     }
     /* A replaced file keeps its permissions.  Failing to set them (some
@@ -314,8 +316,8 @@ sr_result sr_write_png(const char *path, int width, int height,
     if (rename(tmp, target) != 0) {
         int e = errno;
         unlink(tmp);
-        result = sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot move the finished image into place: %s",
-                             strerror(e));
+        result = sr__io_fail(err, SR_IO_ERROR, path, 0,
+                             "cannot move the finished image into place: %s", strerror(e));
         goto done;
     }
     sync_directory(target);
@@ -435,7 +437,8 @@ sr_result sr_read_png(const char *path, int *width, int *height,
         return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
     }
     if (!width || !height || !pixels) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0, "width, height and pixels must not be NULL");
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "width, height and pixels must not be NULL");
     }
     FILE *f = fopen(path, "rb");
     if (!f) {

@@ -1,24 +1,20 @@
-/* bin.h - binning set-up triangles into 64x64 screen tiles and rasterizing
- * the bins (parallel stage).  The front end appends triangles to the
- * context's batch; sr__bin_flush sorts their tile references into per-tile
- * bins (a counting sort, so each bin keeps submission order) and runs one
- * job per non-empty tile on the pool.  A tile's pixels belong to exactly
- * one job, so the result is the same bytes for any thread count. */
+/* bin.h - binning set-up triangles into 64x64 screen tiles and the back
+ * end's tile jobs (parallel stage).  Each front-end chunk sorts its own
+ * triangles into per-tile bins (a counting sort, so a bin keeps submission
+ * order); a tile job then walks the chunks in order.  A tile's pixels
+ * belong to exactly one job, so the result is the same bytes for any
+ * thread count. */
 #ifndef SR_BIN_H
 #define SR_BIN_H
 
 #include "pipeline.h"
+#include "scratch.h"
 
-typedef struct sr_binner {
-    sr_context *ctx;
-    const sr_draw_state *ds;
-    int tiles_x, tiles_y;
-} sr_binner;
+/* Sort chunk c's triangles into its bins (front-end worker).  false when
+ * the refs array could not grow. */
+bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t tri_size);
 
-/* The next free triangle slot of the batch (flushing first if full). */
-sr_tri *sr__bin_next(sr_binner *b);
-/* Commit the triangle just written to the slot from sr__bin_next. */
-void sr__bin_commit(sr_binner *b);
-void sr__bin_flush(sr_binner *b);
+/* Rasterize every tile that the first `chunks` chunks touched. */
+void sr__bin_rasterize(sr_context *ctx, const sr_draw_state *ds, int chunks, size_t tri_size);
 
 #endif

@@ -25,14 +25,22 @@ static int32_t snap_q8(double v)
     return (int32_t)s;
 }
 
+/* One fixed operation order (RASTER_RULES 1.2), in double, one rounding
+ * at the snap: the same clip position always gives the same q8 value. */
+void sr__project(const sr_draw_state *ds, const float pos[4], int32_t *x_q8, int32_t *y_q8,
+                 double *z, float *inv_w)
+{
+    double iw = 1.0 / pos[3];
+    double xn = pos[0] * iw, yn = pos[1] * iw, zn = pos[2] * iw;
+    *x_q8 = snap_q8(ds->vp_ox + ds->vp_px * xn);
+    *y_q8 = snap_q8(ds->vp_oy - ds->vp_py * yn);
+    *z = ds->vp_zs * zn + ds->vp_zb;
+    *inv_w = (float)iw;
+}
+
 void sr__window_vertex(const sr_draw_state *ds, const sr_clip_vertex *v, sr_window_vertex *out)
 {
-    double inv_w = 1.0 / v->pos[3];
-    double xn = v->pos[0] * inv_w, yn = v->pos[1] * inv_w, zn = v->pos[2] * inv_w;
-    out->x_q8 = snap_q8(ds->vp_ox + ds->vp_px * xn);
-    out->y_q8 = snap_q8(ds->vp_oy - ds->vp_py * yn);
-    out->z = ds->vp_zs * zn + ds->vp_zb;
-    out->inv_w = (float)inv_w;
+    sr__project(ds, v->pos, &out->x_q8, &out->y_q8, &out->z, &out->inv_w);
     out->vary = v->vary;
 }
 
@@ -124,15 +132,22 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
             offset = fmax(offset, ds->offset_clamp);
         }
     }
-    t->z0 = z[0] + offset;
-    t->dz1 = (z[1] - z[0]) / (double)area2;
-    t->dz2 = (z[2] - z[0]) / (double)area2;
+    /* The depth plane, in buffer units so the fragment stage only adds,
+     * clamps and rounds. */
+    double scale = ds->depth_scale;
+    t->z0 = (z[0] + offset) * scale;
+    t->dz1 = (z[1] - z[0]) * scale / (double)area2;
+    t->dz2 = (z[2] - z[0]) * scale / (double)area2;
 
     for (int i = 0; i < 3; i++) {
-        t->inv_w[i] = v[i]->inv_w;
-        if (ninterp > 0) {
-            memcpy(t->vary[i], v[i]->vary, (size_t)ninterp * sizeof(float));
-        }
+        t->w[i] = ds->perspective ? v[i]->inv_w : 1.0f;
+    }
+    t->ninterp = ninterp;
+    for (int k = 0; k < ninterp; k++) {
+        float a0 = v[0]->vary[k];
+        t->vary[k] = a0;
+        t->vary[ninterp + k] = v[1]->vary[k] - a0;
+        t->vary[2 * ninterp + k] = v[2]->vary[k] - a0;
     }
     if (flat) {
         memcpy(t->flat, flat, sizeof t->flat);

@@ -2,11 +2,17 @@
  * walk 8x8 blocks; classify each block from the edge values at its corner
  * samples as outside (skip), inside (every pixel, no tests) or partial
  * (test each pixel).  Only integer adds and sign tests; the fill rule was
- * folded into the bias by setup.  Runs on a tile worker thread. */
+ * folded into the bias by setup.  Runs on a tile worker thread.
+ *
+ * This is the fast path: the loop is instantiated once per shading model
+ * and depth mode (raster_as with constant arguments), so the per-fragment
+ * switches vanish.  scanline.c and barycentric.c call the generic
+ * fragment stage and are the reference these instances are tested
+ * against. */
 #include "fragment/fragment.h"
 
-void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
-                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st)
+SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
+                         int ry1, sr_frag_stats *st, sr_shading shading, sr_depth_mode dmode)
 {
     /* Per-pixel steps of each edge function (q8 coordinates). */
     int64_t sx[3], sy[3];
@@ -21,38 +27,73 @@ void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
     for (int by = by_start; by < ry1; by += SR_BLOCK_SIZE) {
         for (int bx = bx_start; bx < rx1; bx += SR_BLOCK_SIZE) {
             /* Edge values (biased) at the block's first pixel centre. */
-            int64_t e[3], lo[3], hi[3];
+            int64_t e[3];
             bool outside = false, inside = true;
             for (int i = 0; i < 3; i++) {
                 e[i] = t->a[i] * sr__centre_q8(bx) + t->b[i] * sr__centre_q8(by) + t->c[i] +
                        t->bias[i];
                 /* E is linear: its extremes over the block are at corners. */
                 int64_t ex = sx[i] * last, ey = sy[i] * last;
-                lo[i] = e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0);
-                hi[i] = e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0);
-                outside |= hi[i] < 0;
-                inside &= lo[i] >= 0;
+                int64_t lo = e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0);
+                int64_t hi = e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0);
+                outside |= hi < 0;
+                inside &= lo >= 0;
             }
             if (outside) {
                 continue;
             }
             int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;
             int py0 = by > ry0 ? by : ry0, py1 = by + SR_BLOCK_SIZE < ry1 ? by + SR_BLOCK_SIZE : ry1;
+            /* Barycentrics use the unbiased values: fold -bias in once. */
+            int64_t u0 = e[0] - t->bias[0] + sy[0] * (py0 - by) + sx[0] * (px0 - bx);
+            int64_t u1 = e[1] - t->bias[1] + sy[1] * (py0 - by) + sx[1] * (px0 - bx);
+            int64_t u2 = e[2] - t->bias[2] + sy[2] * (py0 - by) + sx[2] * (px0 - bx);
             for (int py = py0; py < py1; py++) {
-                int64_t r0 = e[0] + sy[0] * (py - by) + sx[0] * (px0 - bx);
-                int64_t r1 = e[1] + sy[1] * (py - by) + sx[1] * (px0 - bx);
-                int64_t r2 = e[2] + sy[2] * (py - by) + sx[2] * (px0 - bx);
+                int64_t r0 = u0, r1 = u1, r2 = u2;
                 for (int px = px0; px < px1; px++) {
-                    if (inside || (r0 | r1 | r2) >= 0) {
-                        /* Barycentrics use the unbiased values. */
-                        sr__fragment(ds, t, px, py, r0 - t->bias[0], r1 - t->bias[1],
-                                     r2 - t->bias[2], st);
+                    /* Covered iff every biased value r + bias >= 0. */
+                    if (inside || ((r0 + t->bias[0]) | (r1 + t->bias[1]) | (r2 + t->bias[2])) >= 0) {
+                        sr__fragment_as(ds, t, px, py, r0, r1, r2, st, shading, dmode);
                     }
                     r0 += sx[0];
                     r1 += sx[1];
                     r2 += sx[2];
                 }
+                u0 += sy[0];
+                u1 += sy[1];
+                u2 += sy[2];
             }
         }
     }
+}
+
+#define SR_RASTER_SHADINGS(X, dmode)                                               \
+    X(SR_SHADING_UNLIT, dmode) X(SR_SHADING_FLAT, dmode) X(SR_SHADING_GOURAUD, dmode) \
+    X(SR_SHADING_PHONG, dmode) X(SR_SHADING_NORMALS, dmode) X(SR_SHADING_DEPTH, dmode)
+
+#define SR_RASTER_INSTANCE(shading, dmode)                                          \
+    static void raster_##shading##_##dmode(const sr_draw_state *ds, const sr_tri *t, \
+                                           int rx0, int ry0, int rx1, int ry1,       \
+                                           sr_frag_stats *st)                        \
+    {                                                                                \
+        raster_as(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);                   \
+    }
+SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_OFF)
+SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_LESS)
+SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_GENERIC)
+
+typedef void (*raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,
+                          sr_frag_stats *);
+
+#define SR_RASTER_ENTRY(shading, dmode) [dmode][shading] = raster_##shading##_##dmode,
+static const raster_fn raster_table[3][SR_SHADING_DEPTH + 1] = {
+    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_OFF)
+    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_LESS)
+    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_GENERIC)
+};
+
+void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
+                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st)
+{
+    raster_table[ds->depth_mode][ds->shading](ds, t, rx0, ry0, rx1, ry1, st);
 }

@@ -3,6 +3,7 @@
 #include "target/framebuffer.h"
 #include "context.h"
 #include "fragment/depth.h"
+#include "raster/fixed.h"
 
 #include <math.h>
 #include <string.h>
@@ -53,7 +54,10 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     fb->height = desc->height;
     fb->depth_format = fmt;
     fb->depth_bits = bits < 0 ? 0 : bits;
-    fb->color = sr__calloc(ctx, n, sizeof(uint32_t));
+    fb->tiles_x = (desc->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
+    fb->tiles_y = (desc->height + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
+    fb->tile_pending = sr__calloc(ctx, (size_t)fb->tiles_x * fb->tiles_y, 1);
+    fb->color = fb->tile_pending ? sr__calloc(ctx, n, sizeof(uint32_t)) : NULL;
     if (fb->color && bits >= 0) {
         fb->depth = sr__alloc(ctx, n * sizeof(uint32_t));
         if (fb->depth) {
@@ -80,7 +84,44 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
     }
     sr__free(ctx, fb->color);
     sr__free(ctx, fb->depth);
+    sr__free(ctx, fb->tile_pending);
     sr__free(ctx, fb);
+}
+
+void sr__tile_resolve(sr_framebuffer *fb, int tile)
+{
+    unsigned pending = fb->tile_pending[tile];
+    if (!pending) {
+        return;
+    }
+    int tx = tile % fb->tiles_x, ty = tile / fb->tiles_x;
+    int x0 = tx << SR_TILE_ORDER, y0 = ty << SR_TILE_ORDER;
+    int x1 = x0 + SR_TILE_SIZE < fb->width ? x0 + SR_TILE_SIZE : fb->width;
+    int y1 = y0 + SR_TILE_SIZE < fb->height ? y0 + SR_TILE_SIZE : fb->height;
+    for (int y = y0; y < y1; y++) {
+        size_t row = (size_t)y * fb->width;
+        if (pending & SR_TILE_PENDING_COLOR) {
+            for (int x = x0; x < x1; x++) {
+                fb->color[row + x] = fb->clear_color;
+            }
+        }
+        if ((pending & SR_TILE_PENDING_DEPTH) && fb->depth) {
+            for (int x = x0; x < x1; x++) {
+                fb->depth[row + x] = fb->clear_depth;
+            }
+        }
+    }
+    fb->tile_pending[tile] = 0;
+}
+
+void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
+{
+    int tiles = fb->tiles_x * fb->tiles_y;
+    for (int t = 0; t < tiles; t++) {
+        if (fb->tile_pending[t] & components) {
+            sr__tile_resolve(fb, t);
+        }
+    }
 }
 
 int sr_framebuffer_width(const sr_framebuffer *fb) { return fb ? fb->width : 0; }
@@ -89,9 +130,15 @@ sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb)
 {
     return fb ? fb->depth_format : SR_DEPTH_NONE;
 }
+/* Reading resolves deferred clears: logically the framebuffer is
+ * unchanged, so the read functions keep their const parameter. */
 const uint8_t *sr_framebuffer_pixels(const sr_framebuffer *fb)
 {
-    return fb ? (const uint8_t *)fb->color : NULL;
+    if (!fb) {
+        return NULL;
+    }
+    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
+    return (const uint8_t *)fb->color;
 }
 
 static uint8_t unorm8(float v)
@@ -122,21 +169,20 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
         return sr__fail(ctx, SR_INVALID_ARG, "sr_clear_desc.depth must be in [0, 1] (got %g)",
                         (double)desc->depth);
     }
-    size_t n = (size_t)fb->width * (size_t)fb->height;
+    unsigned pending = 0;
     if (!desc->no_color) {
         uint8_t rgba[4] = { unorm8(desc->color[0]), unorm8(desc->color[1]),
                             unorm8(desc->color[2]), unorm8(desc->color[3]) };
-        uint32_t packed;
-        memcpy(&packed, rgba, sizeof packed);
-        for (size_t i = 0; i < n; i++) {
-            fb->color[i] = packed;
-        }
+        memcpy(&fb->clear_color, rgba, sizeof fb->clear_color);
+        pending |= SR_TILE_PENDING_COLOR;
     }
     if (!desc->no_depth && fb->depth) {
-        uint32_t q = sr__depth_quantize(desc->depth, fb->depth_bits);
-        for (size_t i = 0; i < n; i++) {
-            fb->depth[i] = q;
-        }
+        fb->clear_depth = sr__depth_quantize(desc->depth, fb->depth_bits);
+        pending |= SR_TILE_PENDING_DEPTH;
+    }
+    int tiles = fb->tiles_x * fb->tiles_y;
+    for (int t = 0; t < tiles; t++) {
+        fb->tile_pending[t] |= (uint8_t)pending;
     }
     sr__ok(ctx);
     return SR_OK;
@@ -169,6 +215,7 @@ sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
     if (stride < (size_t)w * 4) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_read_pixels: stride %zu < 4 * width", stride);
     }
+    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
     for (int row = 0; row < h; row++) {
         memcpy(out + (size_t)row * stride, fb->color + (size_t)(y + row) * fb->width + x,
                (size_t)w * 4);
@@ -193,6 +240,7 @@ sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_read_depth: stride %zu < width", stride);
     }
+    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_DEPTH);
     for (int row = 0; row < h; row++) {
         for (int col = 0; col < w; col++) {
             uint32_t q = fb->depth[(size_t)(y + row) * fb->width + x + col];

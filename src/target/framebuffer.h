@@ -8,12 +8,28 @@
 
 #include "softrast.h"
 
+/* A clear does not touch memory: it records the value and marks every
+ * 64x64 tile pending.  The thread that next rasterizes a tile clears it
+ * first, while the tile is about to be in its cache anyway; reading pixels
+ * out resolves the tiles nobody drew. */
+#define SR_TILE_PENDING_COLOR 1u
+#define SR_TILE_PENDING_DEPTH 2u
+
 struct sr_framebuffer {
     int width, height;
     sr_depth_format depth_format;   /* resolved: never SR_DEPTH_DEFAULT */
     int depth_bits;                 /* 16, 24, 32; 0 for D32F */
     uint32_t *color;
     uint32_t *depth;                /* NULL with SR_DEPTH_NONE */
+    int tiles_x, tiles_y;
+    uint8_t *tile_pending;          /* SR_TILE_PENDING_* per tile */
+    uint32_t clear_color;           /* packed RGBA8 of the last clear */
+    uint32_t clear_depth;           /* quantized depth of the last clear */
 };
+
+/* Carry out a tile's pending clear (tile = ty * tiles_x + tx). */
+void sr__tile_resolve(sr_framebuffer *fb, int tile);
+/* Carry out every pending clear of the given components. */
+void sr__fb_resolve(sr_framebuffer *fb, unsigned components);
 
 #endif

@@ -1,0 +1,407 @@
+/*
+ * test_mesh.c - tests for the mesh utilities (src/geometry/mesh.c) and for
+ * sr_load_mesh's choice of reader (src/io/load.c, src/io/assimp.c): by
+ * extension, by content, and through Assimp or its install hint.
+ */
+#include "softrast_io.h"
+#include "sr_test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- a cube mesh built in memory ---------------------------------------- */
+
+/* Each face cut along a different diagonal than its neighbours would
+ * suggest, so corners touch either one or two triangles of a face. */
+static const uint32_t cube_tris[12][3] = {
+    { 0, 4, 6 }, { 0, 6, 2 }, { 1, 3, 7 }, { 1, 7, 5 }, { 0, 1, 5 }, { 0, 5, 4 },
+    { 2, 6, 7 }, { 2, 7, 3 }, { 0, 2, 3 }, { 0, 3, 1 }, { 4, 5, 7 }, { 4, 7, 6 },
+};
+
+static float corner(int i, int axis)
+{
+    return (float)((i >> axis) & 1);
+}
+
+/* A malloc'd cube, as a reader would return it; extra_vertices are left
+ * at the origin, used by no triangle. */
+static sr_mesh make_cube(bool colors, bool texcoords, size_t extra_vertices)
+{
+    size_t n = 8 + extra_vertices;
+    sr_mesh m = { .vertex_count = n, .triangle_count = 12 };
+    m.positions = calloc(n * 3, sizeof(float));
+    m.indices = malloc(sizeof cube_tris);
+    memcpy(m.indices, cube_tris, sizeof cube_tris);
+    for (int v = 0; v < 8; v++) {
+        for (int a = 0; a < 3; a++) {
+            m.positions[3 * v + a] = corner(v, a);
+        }
+    }
+    if (colors) {
+        m.colors = malloc(n * 4 * sizeof(float));
+        for (size_t i = 0; i < n * 4; i++) {
+            m.colors[i] = (float)i;
+        }
+    }
+    if (texcoords) {
+        m.texcoords = malloc(n * 2 * sizeof(float));
+        for (size_t i = 0; i < n * 2; i++) {
+            m.texcoords[i] = (float)i * 0.5f;
+        }
+    }
+    return m;
+}
+
+static bool mesh_is_zero(const sr_mesh *m)
+{
+    static const sr_mesh zero;
+    return memcmp(m, &zero, sizeof zero) == 0;
+}
+
+/* ---- free and bounds ---------------------------------------------------- */
+
+SR_TEST(mesh_free_is_null_safe_and_zeroes)
+{
+    sr_mesh_free(NULL);
+    sr_mesh m = make_cube(true, true, 0);
+    m.texture_path = malloc(8);
+    memcpy(m.texture_path, "a.png", 6);
+    sr_mesh_free(&m);
+    CHECK(mesh_is_zero(&m));
+    sr_mesh_free(&m); /* twice is harmless */
+}
+
+SR_TEST(mesh_bounds_of_random_points)
+{
+    sr_rng rng = { 42 };
+    const size_t n = 1000;
+    sr_mesh m = { .vertex_count = n };
+    m.positions = malloc(n * 3 * sizeof(float));
+    float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (size_t i = 0; i < n * 3; i++) {
+        float f = (float)sr_rng_range(&rng, -50, 20);
+        m.positions[i] = f;
+        lo[i % 3] = fminf(lo[i % 3], f);
+        hi[i % 3] = fmaxf(hi[i % 3], f);
+    }
+    sr_vec3 mn, mx;
+    REQUIRE(sr_mesh_bounds(&m, &mn, &mx));
+    CHECK_EQ(mn.x, lo[0]);
+    CHECK_EQ(mn.y, lo[1]);
+    CHECK_EQ(mn.z, lo[2]);
+    CHECK_EQ(mx.x, hi[0]);
+    CHECK_EQ(mx.y, hi[1]);
+    CHECK_EQ(mx.z, hi[2]);
+    sr_mesh_free(&m);
+
+    sr_mesh empty = { 0 };
+    CHECK(!sr_mesh_bounds(&empty, &mn, &mx));
+    CHECK(!sr_mesh_bounds(NULL, &mn, &mx));
+}
+
+/* ---- normals ------------------------------------------------------------ */
+
+SR_TEST(smooth_normals_of_a_cube_point_along_the_diagonals)
+{
+    /* Angle weighting: each face meets a corner at 90 degrees, whether in
+     * one triangle or split 45 + 45, so every corner gets exactly the
+     * diagonal, (±1, ±1, ±1)/sqrt(3). */
+    sr_mesh m = make_cube(false, false, 0);
+    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    REQUIRE(m.normals != NULL);
+    const double s = 1 / sqrt(3.0);
+    for (int v = 0; v < 8; v++) {
+        for (int a = 0; a < 3; a++) {
+            CHECK_NEAR(m.normals[3 * v + a], (2 * corner(v, a) - 1) * s, 1e-6);
+        }
+    }
+    /* Computing again replaces, not accumulates. */
+    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    CHECK_NEAR(m.normals[21], s, 1e-6);
+    sr_mesh_free(&m);
+}
+
+SR_TEST(smooth_normals_ignore_degenerate_faces_and_default_lonely_vertices)
+{
+    sr_mesh m = make_cube(false, false, 2);
+    /* Vertex 8 sits at the origin like vertex 0 but belongs to no
+     * triangle; vertex 9 only to a degenerate one (7, 7, 9). */
+    uint32_t *idx = realloc(m.indices, 13 * 3 * sizeof *idx);
+    REQUIRE(idx);
+    m.indices = idx;
+    m.indices[36] = 7;
+    m.indices[37] = 7;
+    m.indices[38] = 9;
+    m.triangle_count = 13;
+    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    const double s = 1 / sqrt(3.0);
+    CHECK_NEAR(m.normals[21], s, 1e-6); /* vertex 7 unchanged by the degenerate */
+    CHECK_NEAR(m.normals[22], s, 1e-6);
+    CHECK_NEAR(m.normals[23], s, 1e-6);
+    for (int v = 8; v < 10; v++) {
+        CHECK_EQ(m.normals[3 * v + 0], 0.0f);
+        CHECK_EQ(m.normals[3 * v + 1], 0.0f);
+        CHECK_EQ(m.normals[3 * v + 2], 1.0f);
+    }
+    sr_mesh_free(&m);
+}
+
+SR_TEST(smooth_normals_are_unit_length_on_random_meshes)
+{
+    sr_rng rng = { 7 };
+    const size_t nv = 200, nt = 600;
+    sr_mesh m = { .vertex_count = nv, .triangle_count = nt };
+    m.positions = malloc(nv * 3 * sizeof(float));
+    m.indices = malloc(nt * 3 * sizeof(uint32_t));
+    for (size_t i = 0; i < nv * 3; i++) {
+        m.positions[i] = (float)sr_rng_range(&rng, -1, 1);
+    }
+    for (size_t i = 0; i < nt * 3; i++) {
+        m.indices[i] = (uint32_t)sr_rng_int(&rng, 0, (int)nv - 1);
+    }
+    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    for (size_t v = 0; v < nv; v++) {
+        const float *n = m.normals + 3 * v;
+        CHECK_NEAR(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), 1.0, 1e-5);
+    }
+    sr_mesh_free(&m);
+}
+
+SR_TEST(flat_normals_split_every_triangle)
+{
+    sr_mesh m = make_cube(true, true, 0);
+    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_FLAT) == SR_OK);
+    CHECK_EQ(m.vertex_count, 36);
+    CHECK_EQ(m.triangle_count, 12);
+    REQUIRE(m.normals && m.colors && m.texcoords);
+    for (size_t t = 0; t < 12; t++) {
+        for (int k = 0; k < 3; k++) {
+            size_t v = 3 * t + (size_t)k;
+            uint32_t src = cube_tris[t][k];
+            CHECK_EQ(m.indices[v], v);
+            for (int a = 0; a < 3; a++) {
+                CHECK_EQ(m.positions[3 * v + (size_t)a], corner((int)src, a));
+            }
+            CHECK_EQ(m.colors[4 * v + 1], 4 * src + 1);
+            CHECK_EQ(m.texcoords[2 * v + 1], (2 * src + 1) * 0.5f);
+            /* The face normal is an axis, pointing away from the centre. */
+            const float *n = m.normals + 3 * v;
+            float c[3];
+            for (int a = 0; a < 3; a++) {
+                c[a] = (corner((int)cube_tris[t][0], a) + corner((int)cube_tris[t][1], a) +
+                        corner((int)cube_tris[t][2], a)) / 3 - 0.5f;
+            }
+            CHECK_NEAR(fabsf(n[0]) + fabsf(n[1]) + fabsf(n[2]), 1.0, 1e-6);
+            CHECK(n[0] * c[0] + n[1] * c[1] + n[2] * c[2] > 0);
+        }
+    }
+    sr_mesh_free(&m);
+}
+
+SR_TEST(compute_normals_validates_its_arguments)
+{
+    CHECK_EQ(sr_mesh_compute_normals(NULL, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+
+    sr_mesh m = make_cube(false, false, 0);
+    m.indices[17] = 8; /* one past the last vertex */
+    sr_mesh before = m;
+    CHECK_EQ(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+    CHECK_EQ(sr_mesh_compute_normals(&m, SR_NORMALS_FLAT), SR_INVALID_ARG);
+    CHECK(memcmp(&m, &before, sizeof m) == 0); /* untouched */
+    m.indices[17] = 7;
+    CHECK_EQ(sr_mesh_compute_normals(&m, (sr_normal_mode)99), SR_INVALID_ARG);
+
+    sr_mesh no_positions = { .vertex_count = 3 };
+    CHECK_EQ(sr_mesh_compute_normals(&no_positions, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+    sr_mesh no_indices = { .vertex_count = 8, .positions = m.positions, .triangle_count = 1 };
+    CHECK_EQ(sr_mesh_compute_normals(&no_indices, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+    sr_mesh_free(&m);
+
+    /* Empty meshes are fine: nothing to compute. */
+    sr_mesh empty = { 0 };
+    CHECK_EQ(sr_mesh_compute_normals(&empty, SR_NORMALS_SMOOTH), SR_OK);
+    CHECK_EQ(sr_mesh_compute_normals(&empty, SR_NORMALS_FLAT), SR_OK);
+    CHECK(mesh_is_zero(&empty));
+}
+
+/* ---- sr_load_mesh: choosing the reader ---------------------------------- */
+
+static const char *out_path(const char *name)
+{
+    static char path[4][1024];
+    static int slot;
+    slot = (slot + 1) % 4;
+    snprintf(path[slot], sizeof path[slot], "%s/%s", sr_test_out_dir(), name);
+    return path[slot];
+}
+
+static void write_file(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    if (f) {
+        fwrite(data, 1, n, f);
+        fclose(f);
+    }
+}
+
+static const char ply_text[] =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+    "end_header\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n4 0 1 2 3\n";
+
+static const char stl_text[] =
+    "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 3 0 0\nvertex 0 1 0\n"
+    "endloop\nendfacet\nendsolid t\n";
+
+static const char obj_text[] = "v 0 0 0\nv 4 0 0\nv 0 1 0\nf 1 2 3\n";
+
+/* A binary STL with one triangle whose largest x is 5; the header starts
+ * with neither "solid" nor anything else recognizable. */
+static size_t binary_stl(uint8_t out[134])
+{
+    memset(out, 0, 134);
+    memcpy(out, "BINARY", 6);
+    out[80] = 1;
+    const float v[12] = { 0, 0, 1, 0, 0, 0, 5, 0, 0, 0, 1, 0 };
+    memcpy(out + 84, v, sizeof v); /* the test machine is little-endian */
+    return 134;
+}
+
+/* Load, expect success, and check the largest x (which tells the files
+ * apart, so the right reader must have run). */
+static void expect_loads(const char *path, const sr_load_desc *desc, float max_x,
+                         size_t triangles)
+{
+    sr_mesh m;
+    sr_io_error err = { { 0 } };
+    sr_result r = sr_load_mesh(path, desc, &m, &err);
+    if (r != SR_OK) {
+        printf("  %s: %s\n", path, err.message);
+    }
+    CHECK_EQ(r, SR_OK);
+    sr_vec3 mn, mx;
+    CHECK(sr_mesh_bounds(&m, &mn, &mx));
+    CHECK_EQ(mx.x, max_x);
+    CHECK_EQ(m.triangle_count, triangles);
+    sr_mesh_free(&m);
+}
+
+SR_TEST(load_mesh_dispatches_by_extension)
+{
+    const char *ply = out_path("dispatch.PLY");
+    const char *stl = out_path("dispatch.Stl");
+    const char *obj = out_path("dispatch.obj");
+    write_file(ply, ply_text, sizeof ply_text - 1);
+    write_file(stl, stl_text, sizeof stl_text - 1);
+    write_file(obj, obj_text, sizeof obj_text - 1);
+    expect_loads(ply, NULL, 2, 2);
+    expect_loads(stl, &(sr_load_desc){ 0 }, 3, 1);
+    expect_loads(obj, NULL, 4, 1);
+
+    /* The extension wins over content: PLY text named .stl is read as
+     * STL and fails as STL would. */
+    const char *liar = out_path("liar.stl");
+    write_file(liar, ply_text, sizeof ply_text - 1);
+    sr_mesh m;
+    sr_io_error err;
+    CHECK_EQ(sr_load_mesh(liar, NULL, &m, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "liar.stl: byte 80: binary STL declares");
+    CHECK(mesh_is_zero(&m));
+    /* ... unless the caller names the format. */
+    expect_loads(liar, &(sr_load_desc){ .format = SR_FORMAT_PLY }, 2, 2);
+}
+
+SR_TEST(load_mesh_sniffs_content_when_the_extension_is_unknown)
+{
+    const char *ply = out_path("sniff_ply.dat");
+    const char *ascii = out_path("sniff_ascii.txt");
+    const char *binary = out_path("sniff_binary");
+    write_file(ply, ply_text, sizeof ply_text - 1);
+    write_file(ascii, stl_text, sizeof stl_text - 1);
+    uint8_t bin[134];
+    write_file(binary, bin, binary_stl(bin));
+    expect_loads(ply, NULL, 2, 2);
+    expect_loads(ascii, NULL, 3, 1);
+    expect_loads(binary, NULL, 5, 1);
+}
+
+SR_TEST(load_mesh_reports_missing_files_and_bad_arguments)
+{
+    sr_mesh m;
+    sr_io_error err;
+    CHECK_EQ(sr_load_mesh("/nonexistent/model.ply", NULL, &m, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, "/nonexistent/model.ply: cannot open");
+    CHECK_EQ(sr_load_mesh("/nonexistent/model.gltf", NULL, &m, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, "/nonexistent/model.gltf: cannot open");
+    CHECK(mesh_is_zero(&m));
+    CHECK_EQ(sr_load_mesh(NULL, NULL, &m, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_load_mesh(out_path("x.ply"), NULL, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_load_mesh(sr_test_out_dir(), NULL, &m, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, "is a directory");
+}
+
+/* A tetrahedron in the OFF format, which only Assimp reads here. */
+static const char off_text[] =
+    "OFF\n4 4 0\n0 0 0\n6 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+SR_TEST(load_mesh_other_formats_need_assimp)
+{
+    const char *off = out_path("tetra.off");
+    write_file(off, off_text, sizeof off_text - 1);
+    sr_mesh m;
+    sr_io_error err = { { 0 } };
+    sr_result r = sr_load_mesh(off, NULL, &m, &err);
+    if (sr_io_have_assimp()) {
+        if (r != SR_OK) {
+            printf("  %s\n", err.message);
+        }
+        CHECK_EQ(r, SR_OK);
+        CHECK_EQ(m.triangle_count, 4);
+        sr_vec3 mn, mx;
+        CHECK(sr_mesh_bounds(&m, &mn, &mx));
+        CHECK_NEAR(mx.x, 6, 1e-6);
+        CHECK_NEAR(mx.z, 1, 1e-6);
+        sr_mesh_free(&m);
+
+        /* Assimp reads many formats but not every extension. */
+        const char *odd = out_path("model.notaformat");
+        write_file(odd, "hello\n", 6);
+        CHECK_EQ(sr_load_mesh(odd, NULL, &m, &err), SR_UNSUPPORTED);
+        CHECK_STR_CONTAINS(err.message, "model.notaformat: format not supported");
+        CHECK(mesh_is_zero(&m));
+    } else {
+        CHECK_EQ(r, SR_UNSUPPORTED);
+        char want[1200];
+        snprintf(want, sizeof want,
+                 "%s: format not supported (install libassimp-dev and rebuild to read "
+                 ".off files)", off);
+        CHECK_STR_CONTAINS(err.message, want);
+        CHECK(mesh_is_zero(&m));
+        SKIP("built without Assimp: checked the install hint only");
+    }
+}
+
+SR_TEST(load_mesh_reads_shared_models)
+{
+    const char *dir = sr_test_models_dir();
+    if (!dir) {
+        SKIP("no shared models folder");
+    }
+    char path[1024];
+    snprintf(path, sizeof path, "%s/cow.obj", dir);
+    sr_mesh m;
+    sr_io_error err;
+    sr_result r = sr_load_mesh(path, NULL, &m, &err);
+    if (r != SR_OK) {
+        printf("  %s\n", err.message);
+    }
+    REQUIRE(r == SR_OK);
+    CHECK(m.triangle_count > 0);
+    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    for (size_t v = 0; v < m.vertex_count; v++) {
+        const float *n = m.normals + 3 * v;
+        CHECK_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-4);
+    }
+    sr_mesh_free(&m);
+}

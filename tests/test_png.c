@@ -1,0 +1,578 @@
+/* test_png.c - io stage: sr_write_png and sr_read_png (src/io/png.c).
+ * Round trips must be bit-exact; a failed write must leave no file, no
+ * temporary and no damage to an existing image; every malformed input must
+ * come back as a result code with a "FILE: what" message. */
+#include "sr_test.h"
+#include "softrast_io.h"
+
+#include <png.h>
+
+#include <dirent.h>
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* ---- helpers ------------------------------------------------------------ */
+
+/* A fresh, empty directory of the test's own under the output dir. */
+static const char *test_dir(const char *name)
+{
+    static char path[1024];
+    snprintf(path, sizeof path, "%s/png_%s", sr_test_out_dir(), name);
+    mkdir(path, 0777);
+    DIR *d = opendir(path);
+    if (d) {
+        struct dirent *e;
+        while ((e = readdir(d)) != NULL) {
+            if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) {
+                continue;
+            }
+            char p[2048];
+            snprintf(p, sizeof p, "%s/%s", path, e->d_name);
+            if (unlink(p) != 0) {
+                rmdir(p);
+            }
+        }
+        closedir(d);
+    }
+    return path;
+}
+
+static int count_entries(const char *dir, bool hidden_only)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        return -1;
+    }
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) {
+            continue;
+        }
+        if (!hidden_only || e->d_name[0] == '.') {
+            n++;
+        }
+    }
+    closedir(d);
+    return n;
+}
+
+static uint8_t *read_bytes(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return NULL;
+    }
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    uint8_t *buf = malloc(n > 0 ? (size_t)n : 1);
+    *size = buf ? fread(buf, 1, (size_t)n, f) : 0;
+    fclose(f);
+    return buf;
+}
+
+static bool write_bytes(const char *path, const void *data, size_t size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        return false;
+    }
+    bool ok = fwrite(data, 1, size, f) == size;
+    return fclose(f) == 0 && ok;
+}
+
+static uint8_t *random_image(sr_rng *rng, int h, size_t stride)
+{
+    uint8_t *p = malloc(stride * (size_t)h);
+    for (size_t i = 0; i < stride * (size_t)h; i++) {
+        p[i] = (uint8_t)sr_rng_next(rng);
+    }
+    return p;
+}
+
+static bool exists(const char *path)
+{
+    struct stat st;
+    return lstat(path, &st) == 0;
+}
+
+/* ---- round trips -------------------------------------------------------- */
+
+SR_TEST(png_rgba_round_trip_is_exact)
+{
+    const char *dir = test_dir("rgba");
+    sr_rng rng = { 0x5eed0001u };
+    static const int levels[] = { 0, -1, 1, 6, 9 };
+    for (size_t l = 0; l < sizeof levels / sizeof levels[0]; l++) {
+        int w = sr_rng_int(&rng, 1, 97), h = sr_rng_int(&rng, 1, 61);
+        size_t stride = 4 * (size_t)w + (size_t)sr_rng_int(&rng, 0, 3) * 4 + (l & 1);
+        uint8_t *img = random_image(&rng, h, stride);
+        char path[1200];
+        snprintf(path, sizeof path, "%s/level%d.png", dir, levels[l]);
+        sr_io_error err;
+        sr_result r = sr_write_png(path, w, h, img, stride,
+                                   &(sr_png_write_desc){ .compression_level = levels[l] }, &err);
+        CHECK_EQ(r, SR_OK);
+        int rw = 0, rh = 0;
+        uint8_t *back = NULL;
+        r = sr_read_png(path, &rw, &rh, &back, &err);
+        REQUIRE(r == SR_OK);
+        CHECK_EQ(rw, w);
+        CHECK_EQ(rh, h);
+        int diff = 0;
+        for (int y = 0; y < h; y++) {
+            diff += memcmp(back + 4 * (size_t)w * y, img + stride * y, 4 * (size_t)w) != 0;
+        }
+        CHECK_EQ(diff, 0);
+        free(back);
+        free(img);
+    }
+    CHECK_EQ(count_entries(dir, true), 0);
+}
+
+SR_TEST(png_no_alpha_round_trip_keeps_rgb_and_reads_opaque)
+{
+    const char *dir = test_dir("rgb");
+    sr_rng rng = { 0x5eed0002u };
+    int w = 53, h = 29;
+    size_t stride = 4 * (size_t)w + 8;
+    uint8_t *img = random_image(&rng, h, stride);
+    char path[1200];
+    snprintf(path, sizeof path, "%s/rgb.png", dir);
+    sr_io_error err;
+    CHECK_EQ(sr_write_png(path, w, h, img, stride, &(sr_png_write_desc){ .no_alpha = true }, &err),
+             SR_OK);
+    int rw, rh;
+    uint8_t *back = NULL;
+    REQUIRE(sr_read_png(path, &rw, &rh, &back, &err) == SR_OK);
+    REQUIRE(rw == w && rh == h);
+    int bad = 0;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const uint8_t *a = img + stride * y + 4 * x;
+            const uint8_t *b = back + 4 * ((size_t)w * y + x);
+            bad += a[0] != b[0] || a[1] != b[1] || a[2] != b[2] || b[3] != 255;
+        }
+    }
+    CHECK_EQ(bad, 0);
+    /* And the file really is RGB: color type 2 in IHDR (byte 25). */
+    size_t n = 0;
+    uint8_t *bytes = read_bytes(path, &n);
+    REQUIRE(bytes && n > 26);
+    CHECK_EQ(bytes[25], 2);
+    free(bytes);
+    free(back);
+    free(img);
+}
+
+/* PNGs not written by us: every color type and depth comes back as RGBA8. */
+static bool write_with_libpng(const char *path, int w, int h, int color_type, int depth,
+                              int interlace, const uint8_t *rows_data, size_t rowbytes,
+                              const png_color *palette, int palette_n,
+                              const uint8_t *trns, int trns_n)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        return false;
+    }
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png_create_info_struct(png);
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        fclose(f);
+        return false;
+    }
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, depth, color_type, interlace,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (palette) {
+        png_set_PLTE(png, info, palette, palette_n);
+    }
+    if (trns) {
+        png_set_tRNS(png, info, trns, trns_n, NULL);
+    }
+    png_write_info(png, info);
+    int passes = png_set_interlace_handling(png);
+    for (int p = 0; p < passes; p++) {
+        for (int y = 0; y < h; y++) {
+            png_write_row(png, rows_data + rowbytes * (size_t)y);
+        }
+    }
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    return fclose(f) == 0;
+}
+
+SR_TEST(png_read_expands_gray_palette_16bit_and_interlaced)
+{
+    const char *dir = test_dir("formats");
+    char path[1200];
+    sr_io_error err;
+    int w, h;
+    uint8_t *px;
+
+    /* 8-bit gray */
+    {
+        uint8_t rows[3 * 2] = { 0, 100, 255, 7, 8, 9 };
+        snprintf(path, sizeof path, "%s/gray8.png", dir);
+        REQUIRE(write_with_libpng(path, 3, 2, PNG_COLOR_TYPE_GRAY, 8, PNG_INTERLACE_NONE,
+                                  rows, 3, NULL, 0, NULL, 0));
+        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        CHECK(w == 3 && h == 2);
+        CHECK(px[4] == 100 && px[5] == 100 && px[6] == 100 && px[7] == 255);
+        CHECK(px[4 * 5 + 0] == 9 && px[4 * 5 + 3] == 255);
+        free(px);
+    }
+    /* 1-bit gray: 0 -> 0, 1 -> 255 */
+    {
+        uint8_t rows[1] = { 0xA0 }; /* 1 0 1 */
+        snprintf(path, sizeof path, "%s/gray1.png", dir);
+        REQUIRE(write_with_libpng(path, 3, 1, PNG_COLOR_TYPE_GRAY, 1, PNG_INTERLACE_NONE,
+                                  rows, 1, NULL, 0, NULL, 0));
+        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        CHECK(px[0] == 255 && px[4] == 0 && px[8] == 255 && px[11] == 255);
+        free(px);
+    }
+    /* gray + alpha */
+    {
+        uint8_t rows[4] = { 10, 20, 30, 40 };
+        snprintf(path, sizeof path, "%s/graya.png", dir);
+        REQUIRE(write_with_libpng(path, 2, 1, PNG_COLOR_TYPE_GRAY_ALPHA, 8, PNG_INTERLACE_NONE,
+                                  rows, 4, NULL, 0, NULL, 0));
+        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        CHECK(px[0] == 10 && px[1] == 10 && px[2] == 10 && px[3] == 20);
+        CHECK(px[4] == 30 && px[7] == 40);
+        free(px);
+    }
+    /* palette with transparency */
+    {
+        png_color pal[3] = { { 255, 0, 0 }, { 0, 255, 0 }, { 1, 2, 3 } };
+        uint8_t trns[2] = { 0, 128 };
+        uint8_t rows[3] = { 2, 1, 0 };
+        snprintf(path, sizeof path, "%s/palette.png", dir);
+        REQUIRE(write_with_libpng(path, 3, 1, PNG_COLOR_TYPE_PALETTE, 8, PNG_INTERLACE_NONE,
+                                  rows, 3, pal, 3, trns, 2));
+        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        CHECK(px[0] == 1 && px[1] == 2 && px[2] == 3 && px[3] == 255);
+        CHECK(px[4] == 0 && px[5] == 255 && px[6] == 0 && px[7] == 128);
+        CHECK(px[8] == 255 && px[9] == 0 && px[10] == 0 && px[11] == 0);
+        free(px);
+    }
+    /* 16-bit RGBA keeps the high byte */
+    {
+        uint8_t rows[8] = { 0x12, 0x34, 0x56, 0x78, 0x9A, 0xBC, 0xDE, 0xF0 };
+        snprintf(path, sizeof path, "%s/rgba16.png", dir);
+        REQUIRE(write_with_libpng(path, 1, 1, PNG_COLOR_TYPE_RGB_ALPHA, 16, PNG_INTERLACE_NONE,
+                                  rows, 8, NULL, 0, NULL, 0));
+        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        CHECK(px[0] == 0x12 && px[1] == 0x56 && px[2] == 0x9A && px[3] == 0xDE);
+        free(px);
+    }
+    /* Adam7-interlaced RGB */
+    {
+        sr_rng rng = { 77 };
+        enum { W = 13, H = 11 };
+        uint8_t rows[W * H * 3];
+        for (size_t i = 0; i < sizeof rows; i++) {
+            rows[i] = (uint8_t)sr_rng_next(&rng);
+        }
+        snprintf(path, sizeof path, "%s/adam7.png", dir);
+        REQUIRE(write_with_libpng(path, W, H, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_ADAM7,
+                                  rows, W * 3, NULL, 0, NULL, 0));
+        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(w == W && h == H);
+        int bad = 0;
+        for (int i = 0; i < W * H; i++) {
+            bad += px[4 * i] != rows[3 * i] || px[4 * i + 1] != rows[3 * i + 1] ||
+                   px[4 * i + 2] != rows[3 * i + 2] || px[4 * i + 3] != 255;
+        }
+        CHECK_EQ(bad, 0);
+        free(px);
+    }
+}
+
+/* ---- atomic writing ----------------------------------------------------- */
+
+SR_TEST(png_write_into_missing_directory_fails_and_creates_nothing)
+{
+    const char *dir = test_dir("missing");
+    char missing[1200], path[1300];
+    snprintf(missing, sizeof missing, "%s/no_such_dir", dir);
+    snprintf(path, sizeof path, "%s/out.png", missing);
+    uint8_t px[16] = { 0 };
+    sr_io_error err;
+    CHECK_EQ(sr_write_png(path, 2, 2, px, 8, NULL, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, path);
+    CHECK_STR_CONTAINS(err.message, "No such file or directory");
+    CHECK(!exists(missing));
+    CHECK_EQ(count_entries(dir, false), 0);
+}
+
+SR_TEST(png_write_through_a_file_as_directory_fails_and_creates_nothing)
+{
+    const char *dir = test_dir("notdir");
+    char file[1200], path[1300];
+    snprintf(file, sizeof file, "%s/plain_file", dir);
+    REQUIRE(write_bytes(file, "x", 1));
+    snprintf(path, sizeof path, "%s/out.png", file);
+    uint8_t px[16] = { 0 };
+    sr_io_error err;
+    CHECK_EQ(sr_write_png(path, 2, 2, px, 8, NULL, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, path);
+    CHECK_EQ(count_entries(dir, false), 1); /* just plain_file */
+    size_t n = 0;
+    uint8_t *b = read_bytes(file, &n);
+    CHECK(b && n == 1 && b[0] == 'x');
+    free(b);
+}
+
+SR_TEST(png_target_that_is_a_directory_is_refused)
+{
+    const char *dir = test_dir("dirtarget");
+    char target[1200];
+    snprintf(target, sizeof target, "%s/image.png", dir);
+    REQUIRE(mkdir(target, 0777) == 0);
+    uint8_t px[16] = { 0 };
+    sr_io_error err;
+    CHECK_EQ(sr_write_png(target, 2, 2, px, 8, NULL, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, target);
+    CHECK_STR_CONTAINS(err.message, "directory");
+    struct stat st;
+    CHECK(stat(target, &st) == 0 && S_ISDIR(st.st_mode));
+    CHECK_EQ(count_entries(dir, false), 1);
+    /* A name ending in '/' is a directory too, even when it does not exist. */
+    char slash[1300];
+    snprintf(slash, sizeof slash, "%s/new_dir/", dir);
+    CHECK_EQ(sr_write_png(slash, 2, 2, px, 8, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "directory");
+    CHECK_EQ(count_entries(dir, false), 1);
+    rmdir(target);
+}
+
+/* A write that fails halfway -- the file size limit cuts it off, the way a
+ * full disk would -- leaves the existing image byte-identical and no
+ * temporary file behind. */
+SR_TEST(png_failed_write_leaves_existing_file_untouched)
+{
+    const char *dir = test_dir("atomic");
+    char path[1200];
+    snprintf(path, sizeof path, "%s/keep.png", dir);
+    sr_rng rng = { 0x5eed0003u };
+    uint8_t small[4 * 4 * 4];
+    for (size_t i = 0; i < sizeof small; i++) {
+        small[i] = (uint8_t)sr_rng_next(&rng);
+    }
+    sr_io_error err;
+    REQUIRE(sr_write_png(path, 4, 4, small, 16, NULL, &err) == SR_OK);
+    size_t before_n = 0;
+    uint8_t *before = read_bytes(path, &before_n);
+    REQUIRE(before != NULL);
+
+    /* Noise does not compress: 256x256 RGBA is ~256 KiB, far past 8 KiB. */
+    int w = 256, h = 256;
+    uint8_t *noise = random_image(&rng, h, 4 * (size_t)w);
+    struct rlimit old;
+    REQUIRE(getrlimit(RLIMIT_FSIZE, &old) == 0);
+    void (*old_handler)(int) = signal(SIGXFSZ, SIG_IGN); /* EFBIG instead of death */
+    struct rlimit lim = old;
+    lim.rlim_cur = 8192;
+    REQUIRE(setrlimit(RLIMIT_FSIZE, &lim) == 0);
+    sr_result r = sr_write_png(path, w, h, noise, 4 * (size_t)w, NULL, &err);
+    setrlimit(RLIMIT_FSIZE, &old);
+    signal(SIGXFSZ, old_handler);
+
+    CHECK_EQ(r, SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, path);
+    CHECK_STR_CONTAINS(err.message, "write failed");
+    size_t after_n = 0;
+    uint8_t *after = read_bytes(path, &after_n);
+    REQUIRE(after != NULL);
+    CHECK_EQ(after_n, before_n);
+    CHECK(after_n == before_n && memcmp(before, after, before_n) == 0);
+    CHECK_EQ(count_entries(dir, true), 0);
+    CHECK_EQ(count_entries(dir, false), 1);
+    free(before);
+    free(after);
+    free(noise);
+}
+
+SR_TEST(png_successful_write_replaces_and_keeps_permissions)
+{
+    const char *dir = test_dir("replace");
+    char path[1200];
+    snprintf(path, sizeof path, "%s/img.png", dir);
+    uint8_t a[16] = { 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16 };
+    uint8_t b[16] = { 16, 15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1 };
+    sr_io_error err;
+
+    /* A new file gets what fopen would have given it, not mkstemp's 0600. */
+    mode_t mask = umask(022);
+    umask(mask);
+    REQUIRE(sr_write_png(path, 2, 2, a, 8, NULL, &err) == SR_OK);
+    struct stat st;
+    REQUIRE(stat(path, &st) == 0);
+    CHECK_EQ(st.st_mode & 0777, 0666 & ~mask);
+
+    REQUIRE(chmod(path, 0640) == 0);
+    REQUIRE(sr_write_png(path, 2, 2, b, 8, NULL, &err) == SR_OK);
+    REQUIRE(stat(path, &st) == 0);
+    CHECK_EQ(st.st_mode & 0777, 0640);
+    int w, h;
+    uint8_t *px;
+    REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+    CHECK(memcmp(px, b, 16) == 0);
+    free(px);
+
+    /* Through a symbolic link: the file it names is replaced, the link stays. */
+    char link_path[1300];
+    snprintf(link_path, sizeof link_path, "%s/link.png", dir);
+    REQUIRE(symlink("img.png", link_path) == 0);
+    REQUIRE(sr_write_png(link_path, 2, 2, a, 8, NULL, &err) == SR_OK);
+    REQUIRE(lstat(link_path, &st) == 0);
+    CHECK(S_ISLNK(st.st_mode));
+    REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+    CHECK(memcmp(px, a, 16) == 0);
+    free(px);
+    CHECK_EQ(count_entries(dir, true), 0);
+    CHECK_EQ(count_entries(dir, false), 2);
+}
+
+SR_TEST(png_write_rejects_invalid_arguments)
+{
+    const char *dir = test_dir("args");
+    char path[1200];
+    snprintf(path, sizeof path, "%s/x.png", dir);
+    uint8_t px[64] = { 0 };
+    sr_io_error err;
+    CHECK_EQ(sr_write_png(NULL, 2, 2, px, 8, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_png("", 2, 2, px, 8, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_png(path, 2, 2, NULL, 8, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_png(path, 0, 2, px, 8, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_png(path, 2, -1, px, 8, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_png(path, 65536, 1, px, 4 * 65536, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_png(path, 1, 65536, px, 4, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_png(path, 2, 2, px, 7, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "stride");
+    CHECK_EQ(sr_write_png(path, 2, 2, px, 8, &(sr_png_write_desc){ .compression_level = 10 }, &err),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "compression_level");
+    CHECK_EQ(sr_write_png(path, 2, 2, px, 8, &(sr_png_write_desc){ .compression_level = -2 }, &err),
+             SR_INVALID_ARG);
+    /* A NULL error pointer is allowed. */
+    CHECK_EQ(sr_write_png(path, 0, 0, px, 8, NULL, NULL), SR_INVALID_ARG);
+    CHECK_EQ(count_entries(dir, false), 0);
+}
+
+/* ---- bad input files ---------------------------------------------------- */
+
+SR_TEST(png_read_reports_missing_corrupt_and_truncated_files)
+{
+    const char *dir = test_dir("corrupt");
+    char good[1200], path[1300];
+    snprintf(good, sizeof good, "%s/good.png", dir);
+    sr_rng rng = { 0x5eed0004u };
+    int w = 40, h = 30;
+    uint8_t *img = random_image(&rng, h, 4 * (size_t)w);
+    sr_io_error err;
+    REQUIRE(sr_write_png(good, w, h, img, 4 * (size_t)w, NULL, &err) == SR_OK);
+    size_t n = 0;
+    uint8_t *bytes = read_bytes(good, &n);
+    REQUIRE(bytes && n > 200);
+    int rw = -1, rh = -1;
+    uint8_t *px = (uint8_t *)1;
+
+    /* missing */
+    snprintf(path, sizeof path, "%s/absent.png", dir);
+    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, path);
+    CHECK_STR_CONTAINS(err.message, "No such file");
+    CHECK(px == NULL && rw == 0 && rh == 0);
+
+    /* a directory */
+    CHECK_EQ(sr_read_png(dir, &rw, &rh, &px, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, "directory");
+
+    /* empty, and not a PNG at all */
+    snprintf(path, sizeof path, "%s/empty.png", dir);
+    REQUIRE(write_bytes(path, "", 0));
+    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, path);
+    snprintf(path, sizeof path, "%s/text.png", dir);
+    REQUIRE(write_bytes(path, "this is not an image\n", 21));
+    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "not a PNG");
+
+    /* a flipped bit inside the compressed data: IDAT's CRC no longer matches */
+    snprintf(path, sizeof path, "%s/flipped.png", dir);
+    bytes[n / 2] ^= 0x10;
+    REQUIRE(write_bytes(path, bytes, n));
+    bytes[n / 2] ^= 0x10;
+    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, path);
+    CHECK_STR_CONTAINS(err.message, "corrupt PNG");
+    CHECK(px == NULL);
+
+    /* a bad IHDR (width 0), with its CRC left as it was */
+    snprintf(path, sizeof path, "%s/ihdr.png", dir);
+    uint8_t saved[4];
+    memcpy(saved, bytes + 16, 4);
+    memset(bytes + 16, 0, 4);
+    REQUIRE(write_bytes(path, bytes, n));
+    memcpy(bytes + 16, saved, 4);
+    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, path);
+
+    /* cut off in the middle of the image data, and just before IEND */
+    size_t cuts[2] = { n / 2, n - 12 };
+    for (int c = 0; c < 2; c++) {
+        snprintf(path, sizeof path, "%s/cut%d.png", dir, c);
+        REQUIRE(write_bytes(path, bytes, cuts[c]));
+        CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+        CHECK_STR_CONTAINS(err.message, path);
+        CHECK_STR_CONTAINS(err.message, "truncated");
+        CHECK(px == NULL);
+    }
+
+    /* NULL outputs */
+    CHECK_EQ(sr_read_png(good, NULL, &rh, &px, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_read_png(NULL, &rw, &rh, &px, &err), SR_INVALID_ARG);
+    free(bytes);
+    free(img);
+}
+
+SR_TEST(png_read_refuses_images_over_16384)
+{
+    const char *dir = test_dir("huge");
+    char path[1200];
+    snprintf(path, sizeof path, "%s/wide.png", dir);
+    /* 16385 x 1 gray: a few KiB on disk, one pixel over the limit. */
+    enum { W = 16385 };
+    uint8_t *row = calloc(W, 1);
+    REQUIRE(row != NULL);
+    REQUIRE(write_with_libpng(path, W, 1, PNG_COLOR_TYPE_GRAY, 8, PNG_INTERLACE_NONE,
+                              row, W, NULL, 0, NULL, 0));
+    free(row);
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    CHECK_EQ(sr_read_png(path, &w, &h, &px, &err), SR_TOO_LARGE);
+    CHECK_STR_CONTAINS(err.message, path);
+    CHECK_STR_CONTAINS(err.message, "16385x1");
+    CHECK(px == NULL);
+
+    /* 16384 is still fine. */
+    snprintf(path, sizeof path, "%s/edge.png", dir);
+    row = calloc(W, 1);
+    REQUIRE(write_with_libpng(path, W - 1, 1, PNG_COLOR_TYPE_GRAY, 8, PNG_INTERLACE_NONE,
+                              row, W - 1, NULL, 0, NULL, 0));
+    free(row);
+    CHECK_EQ(sr_read_png(path, &w, &h, &px, &err), SR_OK);
+    CHECK(w == W - 1 && h == 1);
+    free(px);
+}
