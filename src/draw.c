@@ -6,6 +6,7 @@
 #include "parallel/bin.h"
 #include "scratch.h"
 #include "fragment/depth.h"
+#include "raster/triangle_simd.h"
 
 #include <math.h>
 #include <string.h>
@@ -70,7 +71,8 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.indices given with index_type SR_INDEX_NONE");
     }
     if (!finite_mat(d->model) || !finite_mat(d->view) || !finite_mat(d->projection)) {
-        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc: a matrix has a NaN or infinite entry");
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.%s has a NaN or infinite entry",
+                        !finite_mat(d->model) ? "model" : !finite_mat(d->view) ? "view" : "projection");
     }
     sr_shading sh = st->shading == SR_SHADING_DEFAULT ? SR_SHADING_UNLIT : st->shading;
     if ((unsigned)st->shading > SR_SHADING_DEPTH) {
@@ -269,6 +271,7 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
         le->color[1] = (white ? 1.0f : l->color.y) * intensity;
         le->color[2] = (white ? 1.0f : l->color.z) * intensity;
     }
+    ds->raster_fast = sr__raster_simd_select(ds);
 }
 
 static uint32_t index_at(const sr_draw_desc *d, size_t i)

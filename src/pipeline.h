@@ -30,6 +30,9 @@ typedef struct sr_light_eye {
     float color[3];           /* color x intensity */
 } sr_light_eye;
 
+struct sr_tri;
+struct sr_frag_stats;
+
 /* How the fragment stage treats depth: no buffer or nothing to do; the
  * common LESS with writes on; anything else. */
 typedef enum sr_depth_mode {
@@ -76,6 +79,10 @@ typedef struct sr_draw_state {
     int light_count;
     sr_light_eye lights[SR_MAX_LIGHTS];
 
+    /* The half-space kernel chosen for this state (triangle_simd.c), or
+     * NULL for the scalar instances. */
+    void (*raster_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
+                        struct sr_frag_stats *);
     double depth_scale;               /* 2^n - 1 for UNORM, 1 for float */
     double zq_min, zq_max;            /* depth range in buffer units */
     int tiles_x, tiles_y;

@@ -735,7 +735,7 @@ static sr_result parse_mtl(obj_parser *P, const char *path, size_t path_dir_len,
                 continue;
             }
             float c[3];
-            int n;
+            int n = 0;
             res = read_numbers(path, P->err, r.line, s, e, c, 3, &n);
             if (res != SR_OK) {
                 break;
@@ -956,7 +956,7 @@ static sr_result map_status_result(obj_parser *P, long line, map_status st)
 static sr_result handle_v(obj_parser *P, long line, const char *s, const char *e)
 {
     float c[7];
-    int n;
+    int n = 0;
     sr_result res = read_numbers(P->name, P->err, line, s, e, c, 6, &n);
     if (res != SR_OK) {
         return res;
@@ -1007,7 +1007,7 @@ static sr_result handle_v(obj_parser *P, long line, const char *s, const char *e
 static sr_result handle_vt(obj_parser *P, long line, const char *s, const char *e)
 {
     float c[4];
-    int n;
+    int n = 0;
     sr_result res = read_numbers(P->name, P->err, line, s, e, c, 3, &n);
     if (res != SR_OK) {
         return res;
@@ -1033,7 +1033,7 @@ static sr_result handle_vt(obj_parser *P, long line, const char *s, const char *
 static sr_result handle_vn(obj_parser *P, long line, const char *s, const char *e)
 {
     float c[4];
-    int n;
+    int n = 0;
     sr_result res = read_numbers(P->name, P->err, line, s, e, c, 3, &n);
     if (res != SR_OK) {
         return res;

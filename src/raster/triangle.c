@@ -95,5 +95,9 @@ static const raster_fn raster_table[3][SR_SHADING_DEPTH + 1] = {
 void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
                           int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st)
 {
-    raster_table[ds->depth_mode][ds->shading](ds, t, rx0, ry0, rx1, ry1, st);
+    if (ds->raster_fast) {
+        ds->raster_fast(ds, t, rx0, ry0, rx1, ry1, st);
+    } else {
+        raster_table[ds->depth_mode][ds->shading](ds, t, rx0, ry0, rx1, ry1, st);
+    }
 }

@@ -28,9 +28,11 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
                         desc->width <= 0 ? desc->width : desc->height);
     }
     if (desc->width > SR_MAX_FRAMEBUFFER_SIZE || desc->height > SR_MAX_FRAMEBUFFER_SIZE) {
+        bool w = desc->width > SR_MAX_FRAMEBUFFER_SIZE;
         return sr__fail(ctx, SR_TOO_LARGE,
-                        "sr_framebuffer_desc: %dx%d exceeds the maximum %dx%d",
-                        desc->width, desc->height, SR_MAX_FRAMEBUFFER_SIZE, SR_MAX_FRAMEBUFFER_SIZE);
+                        "sr_framebuffer_desc.%s %d exceeds the maximum %d",
+                        w ? "width" : "height", w ? desc->width : desc->height,
+                        SR_MAX_FRAMEBUFFER_SIZE);
     }
     int bits;
     sr_depth_format fmt = desc->depth_format == SR_DEPTH_DEFAULT ? SR_DEPTH_D24 : desc->depth_format;

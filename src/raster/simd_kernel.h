@@ -1,0 +1,237 @@
+/* simd_kernel.h - the half-space rasterizer, four pixels at a time
+ * (raster stage, tile worker threads).  Included twice by
+ * triangle_simd.c: once compiled for AVX2, once for the baseline
+ * instruction set, with SR_SIMD_FN naming the two copies.  Written with
+ * GCC/Clang vector extensions, so one source serves both.
+ *
+ * Exactness: edge values are integers below 2^53, so holding them in
+ * double lanes is exact; every floating-point step repeats the scalar
+ * fragment stage's operations in the same order (no FMA: the build uses
+ * -ffp-contract=off), so the bytes equal those of the reference
+ * rasterizers.  Covers the common states: depth off or LESS with writes
+ * on a D16/D24 buffer, and UNLIT, GOURAUD or FLAT shading; triangle.c
+ * sends everything else down the scalar path. */
+
+SR_SIMD_TARGET SR_INLINE v4l SR_SIMD_FN(sel_l)(v4l m, v4l a, v4l b) { return (m & a) | (~m & b); }
+SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(sel_i)(v4i m, v4i a, v4i b) { return (m & a) | (~m & b); }
+
+SR_SIMD_TARGET SR_INLINE v4f SR_SIMD_FN(sel_f)(v4i m, v4f a, v4f b)
+{
+    return (v4f)SR_SIMD_FN(sel_i)(m, (v4i)a, (v4i)b);
+}
+
+SR_SIMD_TARGET SR_INLINE v4d SR_SIMD_FN(sel_d)(v4l m, v4d a, v4d b)
+{
+    return (v4d)SR_SIMD_FN(sel_l)(m, (v4l)a, (v4l)b);
+}
+
+/* sr__unorm8 on four lanes. */
+SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(unorm8)(v4f v)
+{
+    const v4f zero = { 0, 0, 0, 0 }, one = { 1, 1, 1, 1 };
+    v = SR_SIMD_FN(sel_f)(v > zero, v, zero);
+    v = SR_SIMD_FN(sel_f)(v < one, v, one);
+    return __builtin_convertvector(v * 255.0f + 0.5f, v4i);
+}
+
+/* Four pixels (gx .. gx+3, row py) with unbiased edge values e0..e2;
+ * `valid` masks the lanes inside the span being drawn. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr_tri *t, int gx,
+                                               int py, v4d e0, v4d e1, v4d e2, v4l valid,
+                                               sr_frag_stats *st, sr_shading shading,
+                                               sr_depth_mode dmode)
+{
+    const v4d zero = { 0, 0, 0, 0 };
+    v4l in = valid & (e0 + (double)t->bias[0] >= zero) & (e1 + (double)t->bias[1] >= zero) &
+             (e2 + (double)t->bias[2] >= zero);
+    v4i m = __builtin_convertvector(in, v4i);
+    if (!(m[0] | m[1] | m[2] | m[3])) {
+        return;
+    }
+    sr_framebuffer *fb = ds->fb;
+    size_t idx = (size_t)py * (size_t)fb->width + (size_t)gx;
+
+    if (dmode == SR_DEPTH_MODE_LESS) {
+        v4d z = t->z0 + e1 * t->dz1 + e2 * t->dz2;
+        v4d zmin = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
+        v4d zmax = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
+        z = SR_SIMD_FN(sel_d)(z >= zmin, z, zmin);
+        z = SR_SIMD_FN(sel_d)(z <= zmax, z, zmax);
+        v4i q = __builtin_convertvector(z + 0.5, v4i);   /* < 2^24: fits int32 */
+        v4i old;
+        memcpy(&old, &fb->depth[idx], sizeof old);
+        m &= q < old;
+        if (!(m[0] | m[1] | m[2] | m[3])) {
+            return;
+        }
+        v4i nd = SR_SIMD_FN(sel_i)(m, q, old);
+        memcpy(&fb->depth[idx], &nd, sizeof nd);
+    }
+
+    v4i rgba;
+    if (shading == SR_SHADING_FLAT) {
+        v4i c[4];
+        for (int k = 0; k < 4; k++) {
+            uint8_t b = sr__unorm8(t->flat[k]);
+            c[k] = (v4i){ b, b, b, b };
+        }
+        rgba = c[0] | c[1] << 8 | c[2] << 16 | c[3] << 24;
+    } else {
+        /* sr__bary and sr__interp, lane by lane. */
+        v4f q0 = __builtin_convertvector(e0, v4f) * t->w[0];
+        v4f q1 = __builtin_convertvector(e1, v4f) * t->w[1];
+        v4f q2 = __builtin_convertvector(e2, v4f) * t->w[2];
+        v4f s = q0 + q1 + q2;
+        const v4f fzero = { 0, 0, 0, 0 };
+        v4f inv = SR_SIMD_FN(sel_f)(s != fzero, 1.0f / s, fzero);
+        v4f l1 = q1 * inv, l2 = q2 * inv;
+        int n = t->ninterp;
+        v4i ch[4];
+        for (int k = 0; k < 4; k++) {
+            v4f c = t->vary[SR_VARY_COLOR + k] + l1 * t->vary[n + SR_VARY_COLOR + k] +
+                    l2 * t->vary[2 * n + SR_VARY_COLOR + k];
+            ch[k] = SR_SIMD_FN(unorm8)(c);
+        }
+        rgba = ch[0] | ch[1] << 8 | ch[2] << 16 | ch[3] << 24;
+    }
+    v4i oldc;
+    memcpy(&oldc, &fb->color[idx], sizeof oldc);
+    v4i nc = SR_SIMD_FN(sel_i)(m, rgba, oldc);
+    memcpy(&fb->color[idx], &nc, sizeof nc);
+    st->fragments += (uint64_t)(-(m[0] + m[1] + m[2] + m[3]));
+}
+
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
+                                                    int rx0, int ry0, int rx1, int ry1,
+                                                    sr_frag_stats *st, sr_shading shading,
+                                                    sr_depth_mode dmode)
+{
+    int64_t sx[3], sy[3];
+    for (int i = 0; i < 3; i++) {
+        sx[i] = t->a[i] * SR_SUBPIXEL_ONE;
+        sy[i] = t->b[i] * SR_SUBPIXEL_ONE;
+    }
+    /* Lane offsets: 0..3 pixel steps, exact in double. */
+    v4d lx[3];
+    for (int i = 0; i < 3; i++) {
+        double s = (double)sx[i];
+        lx[i] = (v4d){ 0.0, s, 2.0 * s, 3.0 * s };
+    }
+    const v4l lane = { 0, 1, 2, 3 };
+    int fbw = ds->fb->width;
+
+    /* Small triangles (most of a detailed mesh): walk the bounding box in
+     * rows of four-pixel groups, stepping the exact double edge values,
+     * with no block classification.  Groups start on multiples of four so
+     * they never straddle a tile (another thread's pixels); lanes outside
+     * the box are masked, and the last group must end inside the row. */
+    int gx_start = rx0 & ~3;
+    if (rx1 - rx0 <= 2 * SR_BLOCK_SIZE && ry1 - ry0 <= 2 * SR_BLOCK_SIZE &&
+        ((rx1 + 3) & ~3) <= fbw) {
+        int64_t xc = sr__centre_q8(gx_start), yc = sr__centre_q8(ry0);
+        double r0 = (double)(t->a[0] * xc + t->b[0] * yc + t->c[0]);
+        double r1 = (double)(t->a[1] * xc + t->b[1] * yc + t->c[1]);
+        double r2 = (double)(t->a[2] * xc + t->b[2] * yc + t->c[2]);
+        double gx0 = 4.0 * (double)sx[0], gx1 = 4.0 * (double)sx[1], gx2 = 4.0 * (double)sx[2];
+        for (int py = ry0; py < ry1; py++) {
+            v4d e0 = r0 + lx[0], e1 = r1 + lx[1], e2 = r2 + lx[2];
+            for (int gx = gx_start; gx < rx1; gx += 4) {
+                v4l px = lane + gx;
+                v4l valid = (px >= (int64_t)rx0) & (px < (int64_t)rx1);
+                SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, st, shading, dmode);
+                e0 += gx0;
+                e1 += gx1;
+                e2 += gx2;
+            }
+            r0 += (double)sy[0];
+            r1 += (double)sy[1];
+            r2 += (double)sy[2];
+        }
+        return;
+    }
+
+    int bx_start = rx0 & ~(SR_BLOCK_SIZE - 1);
+    int by_start = ry0 & ~(SR_BLOCK_SIZE - 1);
+    const int last = SR_BLOCK_SIZE - 1;
+
+    for (int by = by_start; by < ry1; by += SR_BLOCK_SIZE) {
+        for (int bx = bx_start; bx < rx1; bx += SR_BLOCK_SIZE) {
+            int64_t e[3];
+            bool outside = false;
+            for (int i = 0; i < 3; i++) {
+                e[i] = t->a[i] * sr__centre_q8(bx) + t->b[i] * sr__centre_q8(by) + t->c[i] +
+                       t->bias[i];
+                int64_t ex = sx[i] * last, ey = sy[i] * last;
+                outside |= e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) < 0;
+            }
+            if (outside) {
+                continue;
+            }
+            int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;
+            int py0 = by > ry0 ? by : ry0, py1 = by + SR_BLOCK_SIZE < ry1 ? by + SR_BLOCK_SIZE : ry1;
+            for (int py = py0; py < py1; py++) {
+                for (int gx = bx; gx < px1; gx += 4) {
+                    if (gx + 4 <= px0) {
+                        continue;
+                    }
+                    int64_t dx = gx - bx, dy = py - by;
+                    int64_t u0 = e[0] - t->bias[0] + sy[0] * dy + sx[0] * dx;
+                    int64_t u1 = e[1] - t->bias[1] + sy[1] * dy + sx[1] * dx;
+                    int64_t u2 = e[2] - t->bias[2] + sy[2] * dy + sx[2] * dx;
+                    if (gx + 4 > fbw) {
+                        /* The lanes would run past the row: finish the
+                         * span one pixel at a time. */
+                        for (int px = gx > px0 ? gx : px0; px < px1; px++) {
+                            int64_t k = px - gx;
+                            int64_t r0 = u0 + sx[0] * k, r1 = u1 + sx[1] * k, r2 = u2 + sx[2] * k;
+                            if (((r0 + t->bias[0]) | (r1 + t->bias[1]) | (r2 + t->bias[2])) >= 0) {
+                                sr__fragment_as(ds, t, px, py, r0, r1, r2, st, shading, dmode);
+                            }
+                        }
+                        continue;
+                    }
+                    v4l pxl = lane + gx;
+                    v4l valid = (pxl >= (int64_t)px0) & (pxl < (int64_t)px1);
+                    SR_SIMD_FN(quad)(ds, t, gx, py, (double)u0 + lx[0], (double)u1 + lx[1],
+                                     (double)u2 + lx[2], valid, st, shading, dmode);
+                }
+            }
+        }
+    }
+}
+
+#define SR_SIMD_INSTANCE(shading, dmode)                                                  \
+    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
+        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
+        sr_frag_stats *st)                                                                 \
+    {                                                                                      \
+        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);              \
+    }
+SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
+SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
+#undef SR_SIMD_INSTANCE
+
+/* The kernel for a state, or NULL when this path does not cover it. */
+static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
+{
+    bool depth_ok = ds->depth_mode == SR_DEPTH_MODE_OFF ||
+                    (ds->depth_mode == SR_DEPTH_MODE_LESS && ds->depth_bits >= 1 &&
+                     ds->depth_bits <= 24);
+    if (!depth_ok) {
+        return NULL;
+    }
+    bool less = ds->depth_mode == SR_DEPTH_MODE_LESS;
+    switch (ds->shading) {
+    case SR_SHADING_UNLIT:
+    case SR_SHADING_GOURAUD: /* both interpolate the color varying */
+        return less ? SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_LESS)
+                    : SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_OFF);
+    case SR_SHADING_FLAT:
+        return less ? SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_LESS)
+                    : SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_OFF);
+    default:
+        return NULL;
+    }
+}

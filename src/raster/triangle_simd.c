@@ -1,0 +1,68 @@
+/* triangle_simd.c - the four-wide half-space kernels (raster stage), the
+ * same source (simd_kernel.h) compiled for AVX2 and for the baseline
+ * instruction set; sr__raster_simd_select picks by what the CPU has. */
+#include "raster/triangle_simd.h"
+
+#include "fragment/fragment.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* The baseline copy passes 32-byte vectors between inlined helpers; GCC
+ * notes the ABI difference, which cannot matter for inlined statics. */
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+typedef double v4d __attribute__((vector_size(32)));
+typedef int64_t v4l __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
+typedef int32_t v4i __attribute__((vector_size(16)));
+
+/* The lane packing below writes r, g, b, a as one little-endian word. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
+    (defined(__x86_64__) || defined(__i386__))
+#define SR_HAVE_SIMD_KERNEL 1
+
+#define SR_SIMD_FN(name) name##_avx2
+#define SR_SIMD_TARGET __attribute__((target("avx2")))
+#include "raster/simd_kernel.h"
+#undef SR_SIMD_FN
+#undef SR_SIMD_TARGET
+
+#define SR_SIMD_FN(name) name##_base
+#define SR_SIMD_TARGET
+#include "raster/simd_kernel.h"
+#undef SR_SIMD_FN
+#undef SR_SIMD_TARGET
+#endif
+
+sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
+{
+#ifdef SR_HAVE_SIMD_KERNEL
+    const char *env = getenv("SR_SIMD");
+    if (env && strcmp(env, "off") == 0) {
+        return NULL;
+    }
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0)) {
+        return select_avx2(ds);
+    }
+    return select_base(ds);
+#else
+    (void)ds;
+    return NULL;
+#endif
+}
+
+const char *sr__raster_simd_name(void)
+{
+#ifdef SR_HAVE_SIMD_KERNEL
+    const char *env = getenv("SR_SIMD");
+    if (env && strcmp(env, "off") == 0) {
+        return "scalar";
+    }
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0) ? "avx2" : "sse2";
+#else
+    return "scalar";
+#endif
+}
