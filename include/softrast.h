@@ -257,7 +257,8 @@ typedef enum sr_shading {
     SR_SHADING_GOURAUD,     /* lighting per vertex, colors interpolated */
     SR_SHADING_PHONG,       /* normals interpolated and renormalized, lighting per pixel */
     SR_SHADING_NORMALS,     /* eye-space normal as color, n*0.5+0.5 */
-    SR_SHADING_DEPTH,       /* window depth as gray (near dark, far light) */
+    SR_SHADING_DEPTH,       /* distance as gray: black at the near plane, white at the far
+                             * plane, linear in eye space (window depth for orthographic) */
 } sr_shading;
 
 typedef enum sr_interpolation {

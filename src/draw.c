@@ -223,7 +223,20 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     case SR_SHADING_FLAT:    ds->nvary = 7; ds->ninterp = 0; break;
     case SR_SHADING_PHONG:   ds->nvary = 10; ds->ninterp = 10; break;
     case SR_SHADING_NORMALS: ds->nvary = 3; ds->ninterp = 3; break;
-    default:                 ds->nvary = 0; ds->ninterp = 0; break;
+    default:                 ds->nvary = 1; ds->ninterp = 1; break;
+    }
+    /* Linear depth for the DEPTH view: under a projection with w = -z_eye,
+     * z_ndc = P23 / d - P22 at eye distance d, so the near and far planes
+     * (z_ndc = -1 or 0, and +1) lie at d = P23 / (z_ndc + P22). */
+    if (ds->shading == SR_SHADING_DEPTH && proj && proj->m[11] == -1.0f && proj->m[3] == 0.0f &&
+        proj->m[7] == 0.0f && proj->m[15] == 0.0f) {
+        double p22 = proj->m[10], p23 = proj->m[14];
+        double dn = p23 / ((ds->zero_to_one ? 0.0 : -1.0) + p22), dfar = p23 / (1.0 + p22);
+        if (isfinite(dn) && isfinite(dfar) && dn > 0.0 && dfar > dn) {
+            ds->depth_vis_linear = true;
+            ds->depth_vis_near = (float)dn;
+            ds->depth_vis_scale = (float)(1.0 / (dfar - dn));
+        }
     }
 
     const sr_material *m = &st->material;

@@ -22,6 +22,7 @@ enum {
     SR_VARY_PHONG_EYE = 3,
     SR_VARY_PHONG_COLOR = 6,
     SR_VARY_NORMAL = 0,       /* NORMALS: normal xyz */
+    SR_VARY_DEPTH_W = 0,      /* DEPTH: clip w (eye distance under perspective) */
 };
 
 typedef struct sr_light_eye {
@@ -69,6 +70,9 @@ typedef struct sr_draw_state {
     bool two_sided;
     bool local_viewer;                /* perspective projection: view vector = -eye */
     int nvary;                        /* varyings written by the vertex stage */
+    /* DEPTH shading under perspective: gray = (w - near) * depth_vis_scale. */
+    bool depth_vis_linear;
+    float depth_vis_near, depth_vis_scale;
     int ninterp;                      /* varyings interpolated across a triangle */
 
     float ambient[3];                 /* material ambient x global ambient */

@@ -62,7 +62,14 @@ SR_INLINE void sr__shade_as(const sr_draw_state *ds, const sr_tri *t, double z,
         memcpy(c, t->flat, 4 * sizeof(float));
         return;
     case SR_SHADING_DEPTH:
-        c[0] = c[1] = c[2] = (float)(z / ds->depth_scale);
+        if (ds->depth_vis_linear) {
+            /* Perspective-correct interpolation of w gives the eye distance. */
+            sr__bary(ds, t, e0, e1, e2, l);
+            float d = sr__interp(t, l, SR_VARY_DEPTH_W);
+            c[0] = c[1] = c[2] = (d - ds->depth_vis_near) * ds->depth_vis_scale;
+        } else {
+            c[0] = c[1] = c[2] = (float)(z / ds->depth_scale);
+        }
         c[3] = 1.0f;
         return;
     case SR_SHADING_PHONG: {

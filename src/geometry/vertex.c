@@ -134,6 +134,9 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                 vary[SR_VARY_PHONG_COLOR + k] = color[k];
             }
             break;
+        case SR_SHADING_DEPTH:
+            vary[SR_VARY_DEPTH_W] = v->pos[3];
+            break;
         case SR_SHADING_NORMALS:
             for (int k = 0; k < 3; k++) {
                 vary[SR_VARY_NORMAL + k] = n[k];

@@ -689,7 +689,7 @@ static sr_result skip_values(ply_reader *r, const ply_elem *e, unsigned long lon
 static sr_result read_list_count(ply_reader *r, const ply_elem *e, unsigned long long index,
                                  const ply_prop *p, unsigned long long *count)
 {
-    double v;
+    double v = 0.0;
     sr_result res = read_value(r, e, index, p->count_type, &v);
     if (res != SR_OK) {
         return res;
@@ -740,7 +740,7 @@ static sr_result push_triangle(ply_reader *r, uint32_t a, uint32_t b, uint32_t c
 static sr_result read_index(ply_reader *r, const ply_elem *e, unsigned long long index,
                             const ply_prop *p, uint32_t *out, bool *restart)
 {
-    double v;
+    double v = 0.0;
     sr_result res = read_value(r, e, index, p->type, &v);
     if (res != SR_OK) {
         return res;
