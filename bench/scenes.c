@@ -1,0 +1,333 @@
+/* scenes.c - builds the benchmark scenes (bench): loads and frames the
+ * models the way `softrast render` does (apps/softrast/render.c:
+ * setup_camera, default_lights; apps/softrast/scene.c: scene_bounds), and
+ * generates the synthetic ones with a fixed seed.  Runs once per scene,
+ * before any frame is timed, on the main thread. */
+#include "scenes.h"
+#include "softrast_io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI_F 3.14159265358979f
+
+const bench_scene_info bench_scene_list[] = {
+    { "bunny",  BENCH_MESH,  "stanford-bunny.obj" },
+    { "spot",   BENCH_MESH,  "spot.obj" },
+    { "teapot", BENCH_MESH,  "teapot.obj" },
+    { "small",  BENCH_SMALL, NULL },
+    { "fill",   BENCH_FILL,  NULL },
+    { "cli",    BENCH_CLI,   "stanford-bunny.obj" },
+    { "lines",  BENCH_LATER, NULL },
+    { "msaa4",  BENCH_LATER, NULL },
+};
+const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);
+
+const bench_scene_info *bench_find_scene(const char *name)
+{
+    for (int i = 0; i < bench_scene_count; i++) {
+        if (strcmp(bench_scene_list[i].name, name) == 0) {
+            return &bench_scene_list[i];
+        }
+    }
+    return NULL;
+}
+
+const char *bench_models_dir(void)
+{
+    const char *dir = getenv("SR_MODELS_DIR");
+    return dir && dir[0] ? dir : SR_BENCH_MODELS_DIR;
+}
+
+/* ---- models, framed like `softrast render` ------------------------------ */
+
+/* The bounding sphere of apps/softrast/scene.c: centred on the bounding
+ * box, radius to the farthest vertex. */
+static void mesh_sphere(const sr_mesh *m, sr_vec3 *centre, float *radius)
+{
+    sr_vec3 lo, hi;
+    if (!sr_mesh_bounds(m, &lo, &hi)) {
+        *centre = (sr_vec3){ 0, 0, 0 };
+        *radius = 1.0f;
+        return;
+    }
+    double c[3] = { ((double)lo.x + hi.x) / 2, ((double)lo.y + hi.y) / 2,
+                    ((double)lo.z + hi.z) / 2 };
+    double r2 = 0.0;
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        const float *p = &m->positions[i * 3];
+        double d[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
+        r2 = fmax(r2, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    *centre = (sr_vec3){ (float)c[0], (float)c[1], (float)c[2] };
+    *radius = r2 > 0.0 ? (float)sqrt(r2) : 1.0f;
+}
+
+/* render.c's default camera: a three-quarter view from the front right,
+ * above, at the distance where the sphere fills a 35 degree field of view
+ * across the smaller image side with a 4% margin; near and far hug the
+ * sphere. */
+static void frame_mesh(bench_scene *s, sr_camera_basis *basis)
+{
+    sr_vec3 c;
+    float r;
+    mesh_sphere(&s->mesh, &c, &r);
+    float fov = 35.0f * PI_F / 180.0f;
+    float dist = r / sinf(fov * 0.5f) * 1.04f;
+    sr_vec3 dir = sr_vec3_normalize((sr_vec3){ 0.62f, 0.48f, 1.0f });
+    sr_vec3 eye = sr_vec3_add(c, sr_vec3_scale(dir, dist));
+    sr_camera_frame(eye, sr_vec3_sub(c, eye), (sr_vec3){ 0, 1, 0 }, basis);
+    s->view = sr_camera_matrix(basis);
+    s->model = sr_mat4_identity();
+
+    float dc = sr_vec3_length(sr_vec3_sub(c, eye));
+    float far_z = (dc + r) * 1.01f;
+    float near_z = fmaxf(dc - r, far_z * 1e-3f) * 0.99f;
+    float aspect = (float)s->width / (float)s->height;
+    s->projection = sr_perspective(sr_fit_fovy(fov, s->width, s->height), aspect, near_z, far_z,
+                                   false);
+}
+
+/* render.c's key, fill and rim lights, placed relative to the camera. */
+static void default_lights(const sr_camera_basis *b, sr_light *lights)
+{
+    struct { float u, v, w, intensity; } rig[3] = {
+        { -0.55f, 0.70f, 0.45f, 0.95f },   /* key: upper left, towards the viewer */
+        { 0.80f, 0.05f, 0.60f, 0.35f },    /* fill: right */
+        { 0.10f, 0.55f, -0.85f, 0.45f },   /* rim: behind, above */
+    };
+    for (int i = 0; i < 3; i++) {
+        sr_vec3 to_light = sr_vec3_add(sr_vec3_add(sr_vec3_scale(b->u, rig[i].u),
+                                                   sr_vec3_scale(b->v, rig[i].v)),
+                                       sr_vec3_scale(b->w, rig[i].w));
+        lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
+                                .vector = sr_vec3_scale(sr_vec3_normalize(to_light), -1.0f),
+                                .color = { 1.0f, 0.98f, 0.95f },
+                                .intensity = rig[i].intensity };
+    }
+}
+
+static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
+{
+    char path[4096];
+    int n = snprintf(path, sizeof path, "%s/%s", bench_models_dir(), s->info->model_file);
+    if (n < 0 || (size_t)n >= sizeof path) {
+        snprintf(msg, msg_size, "%s: model path too long", s->info->name);
+        return SR_INVALID_ARG;
+    }
+    sr_io_error err;
+    sr_result r = sr_load_mesh(path, NULL, &s->mesh, &err);
+    if (r != SR_OK) {
+        snprintf(msg, msg_size, "%s", err.message);
+        return r;
+    }
+    /* Smooth normals once, at load: the per-vertex lighting reads them. */
+    r = sr_mesh_compute_normals(&s->mesh, SR_NORMALS_SMOOTH);
+    if (r != SR_OK) {
+        snprintf(msg, msg_size, "%s: computing normals: %s", path, sr_result_text(r));
+        return r;
+    }
+    s->vertex_count = s->mesh.vertex_count;
+    s->positions = s->mesh.positions;
+    s->position_size = 3;
+    s->normals = s->mesh.normals;
+    /* The material color only (a file's vertex colors would need
+     * GL_COLOR_MATERIAL on the GL side to match). */
+    s->colors = NULL;
+    s->indices = s->mesh.indices;
+    s->index_count = s->mesh.triangle_count * 3;
+    s->triangle_count = s->mesh.triangle_count;
+
+    sr_camera_basis basis;
+    frame_mesh(s, &basis);
+    /* render.c's defaults for a model file: Gouraud asked for here instead
+     * of its Phong; light gray material, back faces culled, depth LESS. */
+    s->state = (sr_state){
+        .cull = SR_CULL_BACK, .front_face = SR_FRONT_CCW, .depth_func = SR_LESS,
+        .shading = SR_SHADING_GOURAUD,
+        .material = { .diffuse = { 0.72f, 0.72f, 0.74f }, .specular = { 0.25f, 0.25f, 0.25f },
+                      .shininess = 40.0f },
+        .ambient = { 0.12f, 0.12f, 0.14f },
+    };
+    default_lights(&basis, s->state.lights);
+    s->clear_color[0] = 0x1d / 255.0f;
+    s->clear_color[1] = 0x22 / 255.0f;
+    s->clear_color[2] = 0x30 / 255.0f;
+    s->clear_color[3] = 1.0f;
+    s->fragments_per_frame = (uint64_t)s->width * (uint64_t)s->height;
+    return SR_OK;
+}
+
+/* ---- synthetic scenes, in NDC with identity matrices -------------------- */
+
+/* splitmix64: a fixed seed gives the same scene on every run and machine. */
+static uint64_t next_u64(uint64_t *state)
+{
+    uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+/* Uniform in [lo, hi). */
+static float uniform(uint64_t *state, float lo, float hi)
+{
+    return lo + (hi - lo) * (float)((double)(next_u64(state) >> 11) * 0x1.0p-53);
+}
+
+static sr_result alloc_synthetic(bench_scene *s, size_t vertices, char *msg, size_t msg_size)
+{
+    s->own_positions = malloc(vertices * 4 * sizeof(float));
+    s->own_colors = malloc(vertices * 4 * sizeof(float));
+    if (!s->own_positions || !s->own_colors) {
+        snprintf(msg, msg_size, "%s: out of memory for %zu vertices", s->info->name, vertices);
+        return SR_OUT_OF_MEMORY;
+    }
+    s->vertex_count = vertices;
+    s->positions = s->own_positions;
+    s->position_size = 4;
+    s->colors = s->own_colors;
+    s->model = s->view = s->projection = sr_mat4_identity();
+    s->state = (sr_state){ .cull = SR_CULL_NONE, .depth_func = SR_LESS,
+                           .shading = SR_SHADING_UNLIT };
+    return SR_OK;
+}
+
+#define SMALL_TRIANGLES 1000000
+#define SMALL_SEED      0x5eed5eedull
+
+/* A million triangles of 2 to 10 px^2 at random places and depths, each a
+ * stretched equilateral triangle (the stretch keeps the area), wholly on
+ * screen so nothing is clipped. */
+static sr_result make_small_scene(bench_scene *s, char *msg, size_t msg_size)
+{
+    size_t tris = SMALL_TRIANGLES;
+    sr_result r = alloc_synthetic(s, tris * 3, msg, msg_size);
+    if (r != SR_OK) {
+        return r;
+    }
+    s->triangle_count = tris;
+    const float margin = 6.0f;  /* > the largest circumradius times stretch, ~4.4 px */
+    if (s->width <= 2 * margin || s->height <= 2 * margin) {
+        snprintf(msg, msg_size, "small: the image must be larger than %gx%g", 2 * margin,
+                 2 * margin);
+        return SR_INVALID_ARG;
+    }
+    uint64_t rng = SMALL_SEED;
+    float sx = 2.0f / (float)s->width, sy = 2.0f / (float)s->height;
+    for (size_t t = 0; t < tris; t++) {
+        float area = uniform(&rng, 2.0f, 10.0f);
+        /* Equilateral: area = 3 sqrt(3) / 4 * r^2. */
+        float radius = sqrtf(area * 4.0f / (3.0f * sqrtf(3.0f)));
+        float stretch = uniform(&rng, 0.6f, 1.6f);
+        float theta = uniform(&rng, 0.0f, 2.0f * PI_F);
+        float phi = uniform(&rng, 0.0f, 2.0f * PI_F);
+        float cx = uniform(&rng, margin, (float)s->width - margin);
+        float cy = uniform(&rng, margin, (float)s->height - margin);
+        float z = uniform(&rng, -0.99f, 0.99f);
+        float cp = cosf(phi), sp = sinf(phi);
+        for (int k = 0; k < 3; k++) {
+            float a = theta + (float)k * (2.0f * PI_F / 3.0f);
+            float ex = radius * stretch * cosf(a), ey = radius / stretch * sinf(a);
+            float px = cx + cp * ex - sp * ey, py = cy + sp * ex + cp * ey;
+            float *p = &s->own_positions[(t * 3 + k) * 4];
+            p[0] = px * sx - 1.0f;
+            p[1] = 1.0f - py * sy;  /* pixel y points down, NDC y up */
+            p[2] = z;
+            p[3] = 1.0f;
+            float *c = &s->own_colors[(t * 3 + k) * 4];
+            c[0] = uniform(&rng, 0.0f, 1.0f);
+            c[1] = uniform(&rng, 0.0f, 1.0f);
+            c[2] = uniform(&rng, 0.0f, 1.0f);
+            c[3] = 1.0f;
+        }
+    }
+    s->clear_color[0] = s->clear_color[1] = s->clear_color[2] = 0.0f;
+    s->clear_color[3] = 1.0f;
+    s->fragments_per_frame = (uint64_t)s->width * (uint64_t)s->height;
+    return SR_OK;
+}
+
+#define FILL_QUADS 100
+
+/* 100 full-screen quads from far to near: every fragment passes LESS and
+ * is shaded and written, so this measures the interpolated-color fill
+ * rate.  Corner colors change per quad so the interpolation is real. */
+static sr_result make_fill_scene(bench_scene *s, char *msg, size_t msg_size)
+{
+    sr_result r = alloc_synthetic(s, FILL_QUADS * 4, msg, msg_size);
+    if (r != SR_OK) {
+        return r;
+    }
+    uint32_t *ix = malloc(FILL_QUADS * 6 * sizeof(uint32_t));
+    if (!ix) {
+        snprintf(msg, msg_size, "fill: out of memory");
+        return SR_OUT_OF_MEMORY;
+    }
+    /* Counter-clockwise in NDC (y up). */
+    static const float corners[4][2] = { { -1, -1 }, { 1, -1 }, { 1, 1 }, { -1, 1 } };
+    for (int q = 0; q < FILL_QUADS; q++) {
+        float z = 0.99f - 1.98f * (float)q / (FILL_QUADS - 1);
+        for (int k = 0; k < 4; k++) {
+            float *p = &s->own_positions[(q * 4 + k) * 4];
+            p[0] = corners[k][0];
+            p[1] = corners[k][1];
+            p[2] = z;
+            p[3] = 1.0f;
+            float *c = &s->own_colors[(q * 4 + k) * 4];
+            float h = (float)((q * 4 + k) % 7) / 6.0f;
+            c[0] = h;
+            c[1] = 1.0f - h;
+            c[2] = (float)(q % 10) / 9.0f;
+            c[3] = 1.0f;
+        }
+        uint32_t b = (uint32_t)q * 4;
+        uint32_t *t = &ix[q * 6];
+        t[0] = b; t[1] = b + 1; t[2] = b + 2;
+        t[3] = b; t[4] = b + 2; t[5] = b + 3;
+    }
+    s->own_indices = ix;
+    s->indices = ix;
+    s->index_count = FILL_QUADS * 6;
+    s->triangle_count = FILL_QUADS * 2;
+    s->clear_color[0] = s->clear_color[1] = s->clear_color[2] = 0.0f;
+    s->clear_color[3] = 1.0f;
+    s->fragments_per_frame = (uint64_t)FILL_QUADS * (uint64_t)s->width * (uint64_t)s->height;
+    return SR_OK;
+}
+
+sr_result bench_scene_make(const bench_scene_info *info, int width, int height,
+                           bench_scene *out, char *msg, size_t msg_size)
+{
+    memset(out, 0, sizeof *out);
+    out->info = info;
+    out->width = width;
+    out->height = height;
+    msg[0] = 0;
+    sr_result r;
+    switch (info->kind) {
+    case BENCH_MESH:  r = make_mesh_scene(out, msg, msg_size); break;
+    case BENCH_SMALL: r = make_small_scene(out, msg, msg_size); break;
+    case BENCH_FILL:  r = make_fill_scene(out, msg, msg_size); break;
+    default:
+        snprintf(msg, msg_size, "%s: not a drawn scene", info->name);
+        r = SR_INVALID_ARG;
+        break;
+    }
+    if (r != SR_OK) {
+        bench_scene_free(out);
+    }
+    return r;
+}
+
+void bench_scene_free(bench_scene *s)
+{
+    sr_mesh_free(&s->mesh);
+    free(s->own_positions);
+    free(s->own_colors);
+    free(s->own_indices);
+    s->own_positions = s->own_colors = NULL;
+    s->own_indices = NULL;
+}

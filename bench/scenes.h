@@ -1,0 +1,68 @@
+/* scenes.h - the benchmark scenes (bench): geometry, matrices, lights and
+ * pipeline state built once before timing, in a form both renderers consume
+ * unchanged (softrast through sr_draw, llvmpipe through legacy GL vertex
+ * arrays).  Single-threaded; a scene is read-only while frames are drawn. */
+#ifndef SR_BENCH_SCENES_H
+#define SR_BENCH_SCENES_H
+
+#include "softrast.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef enum bench_kind {
+    BENCH_MESH,     /* a model file, framed like `softrast render` frames it */
+    BENCH_SMALL,    /* a million tiny triangles in NDC */
+    BENCH_FILL,     /* full-screen quads, back to front */
+    BENCH_CLI,      /* the whole `softrast render` process */
+    BENCH_LATER,    /* accepted name, not implemented yet */
+} bench_kind;
+
+typedef struct bench_scene_info {
+    const char *name;
+    bench_kind kind;
+    const char *model_file;  /* BENCH_MESH and BENCH_CLI: file in the models directory */
+} bench_scene_info;
+
+/* Every scene in the order a run without SCENE arguments uses. */
+extern const bench_scene_info bench_scene_list[];
+extern const int bench_scene_count;
+const bench_scene_info *bench_find_scene(const char *name);
+
+typedef struct bench_scene {
+    const bench_scene_info *info;
+    int width, height;
+
+    /* Geometry, shared by both renderers. */
+    size_t vertex_count;
+    const float *positions;
+    int position_size;          /* 3 or 4 floats */
+    const float *normals;       /* 3 floats, or NULL */
+    const float *colors;        /* 4 floats (RGBA), or NULL */
+    const uint32_t *indices;    /* NULL: vertices in order */
+    size_t index_count;
+    size_t triangle_count;
+
+    sr_mat4 model, view, projection;
+    sr_state state;             /* shading, lights, material, cull, depth */
+    float clear_color[4];
+
+    uint64_t fragments_per_frame;  /* what mpix_s counts: W*H, or 100*W*H for fill */
+
+    /* Storage owned by the scene. */
+    sr_mesh mesh;
+    float *own_positions, *own_colors;
+    uint32_t *own_indices;
+} bench_scene;
+
+/* The directory the model files are read from: $SR_MODELS_DIR, else the
+ * shared models directory next to the source tree. */
+const char *bench_models_dir(void);
+
+/* Build a scene of kind BENCH_MESH, BENCH_SMALL or BENCH_FILL at width x
+ * height.  On failure returns the error and writes one line to msg. */
+sr_result bench_scene_make(const bench_scene_info *info, int width, int height,
+                           bench_scene *out, char *msg, size_t msg_size);
+void bench_scene_free(bench_scene *s);
+
+#endif
