@@ -430,6 +430,27 @@ sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count
 /* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x. */
 sr_result sr_make_teapot(int detail, sr_mesh *out);
 
+/* ---- 2D raster API (src/draw2d) ---------------------------------------- */
+/*
+ * Vector drawing straight into a framebuffer's color, in pixel coordinates
+ * (x right, y down, pixel (x, y) = [x, x+1) x [y, y+1), sampled at its
+ * centre).  These calls ignore depth.  Colors are straight RGBA in [0, 1];
+ * a color with alpha < 1 is blended source-over.  Sections below are added
+ * by the 2D toolkit and the line algorithms.
+ */
+
+typedef struct sr_point2 { double x, y; } sr_point2;
+
+typedef struct sr_rgba { float r, g, b, a; } sr_rgba;
+
+/* Text labels for demos and overlays, in softrast's own 5x7 pixel font
+ * (printable ASCII; other bytes draw as a box).  (x, y) is the top-left
+ * corner; each glyph cell is 6 x 8 pixels times `scale` (>= 1). */
+sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int scale,
+                       const char *text, sr_rgba color);
+/* Width in pixels that sr_draw_text would use. */
+int sr_text_width(const char *text, int scale);
+
 #ifdef __cplusplus
 }
 #endif

@@ -467,6 +467,12 @@ static void run_front_end(void *arg, int job, int thread)
     const front_end *fe = arg;
     sr_chunk *c = &fe->ctx->scratch->chunks[job];
     c->tri_count = 0;
+    /* One triangle per primitive is the common case; size for it once so
+     * the store is not regrown (and copied) mid-chunk. */
+    if (!sr__chunk_reserve_tris(fe->ctx, c, c->prim_end - c->prim_begin + 16, fe->tri_size)) {
+        c->out_of_memory = true;
+        return;
+    }
     for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
         primitive(fe, c, p);
     }

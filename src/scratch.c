@@ -40,8 +40,14 @@ bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t ti
 {
     if (count > s->vert_cap) {
         size_t cap = grow(s->vert_cap, count);
-        sr_vertex_post *post = sr__calloc(ctx, cap, sizeof *post);
-        float *vary = sr__calloc(ctx, cap, SR_MAX_VARYINGS * sizeof(float));
+        /* Written by the vertex stage before any read: no need to zero. */
+        size_t post_bytes, vary_bytes;
+        if (__builtin_mul_overflow(cap, sizeof(sr_vertex_post), &post_bytes) ||
+            __builtin_mul_overflow(cap, SR_MAX_VARYINGS * sizeof(float), &vary_bytes)) {
+            return false;
+        }
+        sr_vertex_post *post = sr__alloc_large(ctx, post_bytes);
+        float *vary = sr__alloc_large(ctx, vary_bytes);
         if (!post || !vary) {
             sr__free(ctx, post);
             sr__free(ctx, vary);
@@ -87,7 +93,7 @@ bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t
         return true;
     }
     size_t bytes = grow(c->tri_bytes, need);
-    uint8_t *t = sr__alloc(ctx, bytes);
+    uint8_t *t = sr__alloc_large(ctx, bytes);
     if (!t) {
         return false;
     }
@@ -106,7 +112,11 @@ bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs)
         return true;
     }
     size_t cap = grow(c->ref_cap, refs);
-    uint32_t *r = sr__calloc(ctx, cap, sizeof(uint32_t));
+    size_t bytes;
+    if (__builtin_mul_overflow(cap, sizeof(uint32_t), &bytes)) {
+        return false;
+    }
+    uint32_t *r = sr__alloc_large(ctx, bytes);
     if (!r) {
         return false;
     }

@@ -15,6 +15,8 @@ static void usage(FILE *f)
             "commands:\n"
             "  render [MODEL] [options]   render a model file (OBJ, PLY, STL, ...) or the\n"
             "                             built-in teapot scene to a PNG\n"
+            "  demo NAME [options]        an image that shows a pipeline phenomenon\n"
+            "                             ('softrast demo --help' lists them)\n"
             "\n"
             "  softrast COMMAND --help    options of a command\n"
             "  softrast --version         version\n");
@@ -37,6 +39,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "render") == 0) {
         return cmd_render(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "demo") == 0) {
+        return cmd_demo(argc - 1, argv + 1);
     }
     cli_error("unknown command '%s' (try 'softrast --help')", cmd);
     return EXIT_USAGE;

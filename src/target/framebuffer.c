@@ -59,15 +59,18 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     fb->tiles_x = (desc->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
     fb->tiles_y = (desc->height + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
     fb->tile_pending = sr__calloc(ctx, (size_t)fb->tiles_x * fb->tiles_y, 1);
-    fb->color = fb->tile_pending ? sr__calloc(ctx, n, sizeof(uint32_t)) : NULL;
+    /* Nothing is written here: every tile starts with a pending clear to
+     * transparent black and the far depth, carried out when the tile is
+     * first drawn or read. */
+    fb->color = fb->tile_pending ? sr__alloc_large(ctx, n * sizeof(uint32_t)) : NULL;
     if (fb->color && bits >= 0) {
-        fb->depth = sr__alloc(ctx, n * sizeof(uint32_t));
-        if (fb->depth) {
-            uint32_t far = sr__depth_quantize(1.0, fb->depth_bits);
-            for (size_t i = 0; i < n; i++) {
-                fb->depth[i] = far;
-            }
-        }
+        fb->depth = sr__alloc_large(ctx, n * sizeof(uint32_t));
+    }
+    if (fb->tile_pending) {
+        fb->clear_color = 0;
+        fb->clear_depth = bits >= 0 ? sr__depth_quantize(1.0, fb->depth_bits) : 0;
+        memset(fb->tile_pending, SR_TILE_PENDING_COLOR | (bits >= 0 ? SR_TILE_PENDING_DEPTH : 0),
+               (size_t)fb->tiles_x * fb->tiles_y);
     }
     if (!fb->color || (bits >= 0 && !fb->depth)) {
         sr_destroy_framebuffer(ctx, fb);

@@ -1,0 +1,105 @@
+/* demo.c - `softrast demo NAME [-o FILE] [--scale N]`: looks the demo up
+ * in the table, runs it and writes its image atomically. */
+#include "cli.h"
+#include "demo.h"
+#include "softrast_io.h"
+
+#include <stdio.h>
+#include <string.h>
+
+/* Demos register here: one line each, the function in demo_NAME.c.
+ * DEMO_LIST is extended as demos land. */
+#define DEMO_LIST(X)
+
+#define DEMO_DECLARE(name, summary) int demo_##name(sr_context *, const demo_args *, sr_framebuffer **);
+DEMO_LIST(DEMO_DECLARE)
+#define DEMO_ENTRY(name, summary) { #name, summary, demo_##name },
+const demo_entry demo_table[] = {
+    DEMO_LIST(DEMO_ENTRY)
+    { NULL, NULL, NULL },
+};
+
+static void demo_help(FILE *f)
+{
+    fprintf(f, "usage: softrast demo NAME [-o FILE] [--scale N]\n\n"
+               "Render an image that shows one phenomenon of the pipeline, labelled.\n\n"
+               "demos:\n");
+    for (const demo_entry *d = demo_table; d->name; d++) {
+        fprintf(f, "  %-20s %s\n", d->name, d->summary);
+    }
+    fprintf(f, "\noptions:\n"
+               "  -o, --output FILE   PNG to write (default demo-NAME.png)\n"
+               "  --scale N           magnification of pixel-level demos, 1..32\n");
+}
+
+int cmd_demo(int argc, char **argv)
+{
+    const char *name = NULL;
+    char default_out[128];
+    demo_args args = { NULL, 0 };
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            demo_help(stdout);
+            return EXIT_OK;
+        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+            if (i + 1 >= argc) {
+                cli_error("%s: missing value", a);
+                return EXIT_USAGE;
+            }
+            args.output = argv[++i];
+        } else if (strcmp(a, "--scale") == 0) {
+            if (i + 1 >= argc) {
+                cli_error("%s: missing value", a);
+                return EXIT_USAGE;
+            }
+            if (!parse_int(a, argv[++i], 1, 32, &args.scale)) {
+                return EXIT_USAGE;
+            }
+        } else if (a[0] == '-') {
+            cli_error("demo: unknown option '%s' (try 'softrast demo --help')", a);
+            return EXIT_USAGE;
+        } else if (!name) {
+            name = a;
+        } else {
+            cli_error("demo: more than one demo named ('%s' and '%s')", name, a);
+            return EXIT_USAGE;
+        }
+    }
+    if (!name) {
+        demo_help(stderr);
+        return EXIT_USAGE;
+    }
+    const demo_entry *d = demo_table;
+    while (d->name && strcmp(d->name, name) != 0) {
+        d++;
+    }
+    if (!d->name) {
+        cli_error("demo: unknown demo '%s' (try 'softrast demo --help')", name);
+        return EXIT_USAGE;
+    }
+    if (!args.output) {
+        snprintf(default_out, sizeof default_out, "demo-%s.png", name);
+        args.output = default_out;
+    }
+
+    sr_context *ctx = NULL;
+    if (sr_make_context(&(sr_context_desc){0}, &ctx) != SR_OK) {
+        cli_error("demo: cannot create a context");
+        return EXIT_FAILURE_RUN;
+    }
+    sr_framebuffer *fb = NULL;
+    int status = d->run(ctx, &args, &fb);
+    if (status == EXIT_OK && fb) {
+        sr_io_error err;
+        int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
+        if (sr_write_png(args.output, w, h, sr_framebuffer_pixels(fb), (size_t)w * 4,
+                         &(sr_png_write_desc){ .no_alpha = true }, &err) != SR_OK) {
+            fprintf(stderr, "%s\n", err.message);
+            status = EXIT_FAILURE_RUN;
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+    return status;
+}
