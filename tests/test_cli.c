@@ -1,0 +1,1068 @@
+/* test_cli.c - the softrast tool as a user meets it: the real executable
+ * (SR_CLI_PATH) run with posix_spawn, no shell, stdout and stderr captured.
+ *
+ * Failures: every file of the malformed-input corpus (tests/data/bad,
+ * listed with its expected status and message in MANIFEST.txt) and every
+ * bad option must exit with the documented status and exactly one line on
+ * stderr that says where the problem is, and must leave the output
+ * directory as it was: no new file, no temporary, an existing image
+ * untouched.  Successes: --version, a --help that lists every option,
+ * images of the requested size for each mode, identical bytes from the
+ * three rasterizers, every shared model in every shading mode, and an
+ * atomic replacement of an existing image. */
+#include "softrast.h"
+#include "softrast_io.h"
+#include "sr_test.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+extern char **environ;
+
+#define FAILF(...) sr_test_fail(__FILE__, __LINE__, __VA_ARGS__)
+
+/* A child that runs longer than this is killed and counted as a failure
+ * (a reader stuck in a loop must not hang the suite). */
+#define CHILD_TIMEOUT_MS 60000
+
+#define MAX_ARGS 48
+
+/* ---- helpers ------------------------------------------------------------ */
+
+static char *read_whole(const char *path, size_t *len)
+{
+    *len = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap + 1);
+    size_t got;
+    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0) {
+        n += got;
+        if (n == cap) {
+            char *nb = realloc(buf, 2 * cap + 1);
+            if (!nb) {
+                free(buf);
+                buf = NULL;
+                break;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+    }
+    fclose(f);
+    if (buf) {
+        buf[n] = 0;
+        *len = n;
+    }
+    return buf;
+}
+
+static bool write_whole(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        return false;
+    }
+    bool ok = fwrite(data, 1, n, f) == n;
+    return fclose(f) == 0 && ok;
+}
+
+static bool is_dir(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/* Empty `path` (one level: files, and empty subdirectories such as
+ * adir.obj), creating it if needed. */
+static void clean_dir(const char *path)
+{
+    mkdir(path, 0777);
+    DIR *d = opendir(path);
+    if (!d) {
+        return;
+    }
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) {
+            continue;
+        }
+        char p[2048];
+        snprintf(p, sizeof p, "%s/%s", path, e->d_name);
+        if (unlink(p) != 0) {
+            rmdir(p);
+        }
+    }
+    closedir(d);
+}
+
+/* A fresh, empty directory of this test file's own under the output dir. */
+static const char *fresh_dir(const char *name, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s/cli_%s", sr_test_out_dir(), name);
+    clean_dir(buf);
+    return buf;
+}
+
+/* Entries of `dir` other than . and ..; the first one's name in `first`. */
+static int count_entries(const char *dir, char *first, size_t first_n)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        return -1;
+    }
+    int n = 0;
+    struct dirent *e;
+    if (first && first_n) {
+        first[0] = 0;
+    }
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) {
+            continue;
+        }
+        if (n == 0 && first) {
+            snprintf(first, first_n, "%s", e->d_name);
+        }
+        n++;
+    }
+    closedir(d);
+    return n;
+}
+
+typedef struct cli_run {
+    int status;         /* exit status; 128 + signal when killed; -1 when not run */
+    char *out, *err;    /* captured stdout and stderr, NUL-terminated */
+    size_t out_len, err_len;
+} cli_run;
+
+static void cli_run_free(cli_run *r)
+{
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+}
+
+/* Run SR_CLI_PATH with `args` (NULL-terminated, without the program name). */
+static bool run_cli(const char *const *args, cli_run *r)
+{
+    memset(r, 0, sizeof *r);
+    r->status = -1;
+#ifdef SR_CLI_PATH
+    char out_path[1024], err_path[1024];
+    snprintf(out_path, sizeof out_path, "%s/cli_stdout.txt", sr_test_out_dir());
+    snprintf(err_path, sizeof err_path, "%s/cli_stderr.txt", sr_test_out_dir());
+
+    char *argv[MAX_ARGS + 2];
+    int argc = 0;
+    argv[argc++] = (char *)SR_CLI_PATH;
+    for (int i = 0; args[i]; i++) {
+        if (argc > MAX_ARGS) {
+            FAILF("too many arguments for run_cli");
+            return false;
+        }
+        argv[argc++] = (char *)args[i];
+    }
+    argv[argc] = NULL;
+
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 1, out_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    int e = posix_spawn(&pid, SR_CLI_PATH, &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (e != 0) {
+        FAILF("cannot run %s: %s", SR_CLI_PATH, strerror(e));
+        return false;
+    }
+    int ws = 0;
+    long waited_us = 0, step_us = 100;
+    for (;;) {
+        pid_t w = waitpid(pid, &ws, WNOHANG);
+        if (w == pid) {
+            break;
+        }
+        if (w < 0 && errno != EINTR) {
+            FAILF("waitpid: %s", strerror(errno));
+            return false;
+        }
+        if (waited_us > (long)CHILD_TIMEOUT_MS * 1000) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &ws, 0);
+            FAILF("%s %s ... did not finish within %d ms", SR_CLI_PATH, args[0] ? args[0] : "",
+                  CHILD_TIMEOUT_MS);
+            break;
+        }
+        struct timespec ts = { 0, step_us * 1000 };
+        nanosleep(&ts, NULL);
+        waited_us += step_us;
+        if (step_us < 5000) {
+            step_us *= 2;
+        }
+    }
+    r->status = WIFEXITED(ws) ? WEXITSTATUS(ws) : WIFSIGNALED(ws) ? 128 + WTERMSIG(ws) : -1;
+    r->out = read_whole(out_path, &r->out_len);
+    r->err = read_whole(err_path, &r->err_len);
+    if (!r->out || !r->err) {
+        FAILF("cannot read the captured output");
+        cli_run_free(r);
+        return false;
+    }
+    return true;
+#else
+    (void)args;
+    return false;
+#endif
+}
+
+/* Exactly one non-empty line, ending in a newline, no NUL. */
+static bool is_one_line(const char *s, size_t n)
+{
+    return n >= 2 && s[n - 1] == '\n' && s[0] != '\n' && !memchr(s, '\n', n - 1) &&
+           strlen(s) == n;
+}
+
+/* The args (NULL-terminated) followed by more (NULL-terminated), into dst
+ * of MAX_ARGS + 1 entries. */
+static void join_args(const char **dst, const char *const *a, const char *const *b)
+{
+    int n = 0;
+    for (int i = 0; a && a[i] && n < MAX_ARGS; i++) {
+        dst[n++] = a[i];
+    }
+    for (int i = 0; b && b[i] && n < MAX_ARGS; i++) {
+        dst[n++] = b[i];
+    }
+    dst[n] = NULL;
+}
+
+/* Check a failed run: its status and one line holding `needle`. */
+static void check_failure_output(const char *label, const cli_run *r, int status,
+                                 const char *needle)
+{
+    if (r->status != status) {
+        FAILF("%s: exit status %d, expected %d (stderr: %s)", label, r->status, status, r->err);
+    }
+    if (!is_one_line(r->err, r->err_len)) {
+        FAILF("%s: stderr is not exactly one line:\n%s", label, r->err);
+    }
+    if (!strstr(r->err, needle)) {
+        FAILF("%s: stderr \"%.*s\" does not contain \"%s\"", label,
+              r->err_len && r->err[r->err_len - 1] == '\n' ? (int)r->err_len - 1 : (int)r->err_len,
+              r->err, needle);
+    }
+    if (r->out_len != 0) {
+        FAILF("%s: unexpected output on stdout: %s", label, r->out);
+    }
+}
+
+static const unsigned char *sentinel(size_t *n)
+{
+    static unsigned char bytes[777];
+    for (size_t i = 0; i < sizeof bytes; i++) {
+        bytes[i] = (unsigned char)(i * 31 + 7);
+    }
+    memcpy(bytes, "not an image, must survive", 26);
+    *n = sizeof bytes;
+    return bytes;
+}
+
+/* `softrast render -o DIR/out.png ARGS` must fail with `status` and one
+ * line holding `needle`, twice: into an empty directory, which must stay
+ * empty (no image, no temporary), and over an existing out.png, which
+ * must keep its bytes. */
+static void expect_render_failure(const char *label, const char *const *args, int status,
+                                  const char *needle)
+{
+    char dir[1024], out[1100];
+    fresh_dir("fail", dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/out.png", dir);
+    /* -o first, so that an option left without its value comes last. */
+    const char *head[] = { "render", "-o", out, NULL };
+    const char *all[MAX_ARGS + 1];
+    join_args(all, head, args);
+
+    for (int pass = 0; pass < 2; pass++) {
+        clean_dir(dir);
+        size_t sn;
+        const unsigned char *sb = sentinel(&sn);
+        if (pass == 1 && !write_whole(out, sb, sn)) {
+            FAILF("%s: cannot write %s", label, out);
+            return;
+        }
+        cli_run r;
+        if (!run_cli(all, &r)) {
+            FAILF("%s: the CLI did not run", label);
+            return;
+        }
+        char what[1200];
+        snprintf(what, sizeof what, "%s (%s)", label, pass ? "over an existing file" : "fresh");
+        check_failure_output(what, &r, status, needle);
+        cli_run_free(&r);
+
+        char first[256];
+        int n = count_entries(dir, first, sizeof first);
+        if (pass == 0 && n != 0) {
+            FAILF("%s: the failed run left '%s' in the output directory", what, first);
+        }
+        if (pass == 1) {
+            size_t len;
+            char *now = read_whole(out, &len);
+            if (!now || len != sn || memcmp(now, sb, sn) != 0) {
+                FAILF("%s: the existing output file was changed (%zu bytes now)", what, len);
+            }
+            free(now);
+            if (n != 1) {
+                FAILF("%s: %d entries in the output directory, expected only out.png", what, n);
+            }
+        }
+    }
+}
+
+static const char *bad_dir(char *buf, size_t n)
+{
+    snprintf(buf, n, "%s/data/bad", sr_test_src_dir());
+    return buf;
+}
+
+#define ARGS(...) ((const char *const[]){ __VA_ARGS__, NULL })
+
+/* ---- the malformed-input corpus ---------------------------------------- */
+
+typedef struct manifest_entry {
+    char name[256];
+    int status;
+    char needle[512];
+} manifest_entry;
+
+/* Reads MANIFEST.txt: NAME<TAB>STATUS<TAB>SUBSTRING per line. */
+static int read_manifest(manifest_entry *out, int max)
+{
+    char dir[1024], path[1100];
+    snprintf(path, sizeof path, "%s/MANIFEST.txt", bad_dir(dir, sizeof dir));
+    size_t len;
+    char *text = read_whole(path, &len);
+    if (!text) {
+        FAILF("cannot read %s", path);
+        return -1;
+    }
+    int n = 0, lineno = 0;
+    for (char *line = text; *line;) {
+        char *nl = strchr(line, '\n');
+        if (nl) {
+            *nl = 0;
+        }
+        lineno++;
+        if (line[0] && line[0] != '#') {
+            char *t1 = strchr(line, '\t');
+            char *t2 = t1 ? strchr(t1 + 1, '\t') : NULL;
+            char *end = NULL;
+            long st = t2 ? strtol(t1 + 1, &end, 10) : -1;
+            if (!t2 || end != t2 || (st != 1 && st != 2) || !t2[1] || n == max ||
+                (size_t)(t1 - line) >= sizeof out[n].name ||
+                strlen(t2 + 1) >= sizeof out[n].needle) {
+                FAILF("%s:%d: expected NAME<TAB>STATUS<TAB>SUBSTRING", path, lineno);
+            } else {
+                memcpy(out[n].name, line, (size_t)(t1 - line));
+                out[n].name[t1 - line] = 0;
+                out[n].status = (int)st;
+                snprintf(out[n].needle, sizeof out[n].needle, "%s", t2 + 1);
+                n++;
+            }
+        }
+        if (!nl) {
+            break;
+        }
+        line = nl + 1;
+    }
+    free(text);
+    return n;
+}
+
+SR_TEST(every_bad_model_fails_with_one_line_and_writes_nothing)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    static manifest_entry cases[256];
+    int n = read_manifest(cases, 256);
+    REQUIRE(n >= 40);
+    char dir[1024];
+    bad_dir(dir, sizeof dir);
+    for (int i = 0; i < n; i++) {
+        char path[1400];
+        snprintf(path, sizeof path, "%s/%.255s", dir, cases[i].name);
+        struct stat st;
+        if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
+            FAILF("%s: listed in MANIFEST.txt but not a file in tests/data/bad", cases[i].name);
+            continue;
+        }
+        /* The message starts with the file name (and its line or byte). */
+        if (strncmp(cases[i].needle, cases[i].name, strlen(cases[i].name)) != 0) {
+            FAILF("%s: MANIFEST.txt substring should start with the file name", cases[i].name);
+        }
+        expect_render_failure(cases[i].name, ARGS(path, "--size", "16x12"), cases[i].status,
+                              cases[i].needle);
+    }
+}
+
+SR_TEST(every_corpus_file_is_in_the_manifest)
+{
+    static manifest_entry cases[256];
+    int n = read_manifest(cases, 256);
+    REQUIRE(n > 0);
+    char dir[1024];
+    DIR *d = opendir(bad_dir(dir, sizeof dir));
+    REQUIRE(d != NULL);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.' || strcmp(e->d_name, "MANIFEST.txt") == 0) {
+            continue;
+        }
+        bool listed = false;
+        for (int i = 0; i < n && !listed; i++) {
+            listed = strcmp(cases[i].name, e->d_name) == 0;
+        }
+        if (!listed) {
+            FAILF("tests/data/bad/%s is not listed in MANIFEST.txt", e->d_name);
+        }
+    }
+    closedir(d);
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < i; j++) {
+            if (strcmp(cases[i].name, cases[j].name) == 0) {
+                FAILF("%s is listed twice in MANIFEST.txt", cases[i].name);
+            }
+        }
+    }
+}
+
+SR_TEST(directory_named_like_a_model_is_rejected)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], path[1100];
+    fresh_dir("models", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/adir.obj", dir);
+    REQUIRE(mkdir(path, 0777) == 0);
+    expect_render_failure("adir.obj", ARGS(path, "--size", "16x12"), 2,
+                          "adir.obj: is a directory, not a model file");
+    /* An extension no built-in reader claims takes another path. */
+    snprintf(path, sizeof path, "%s/adir.off", dir);
+    REQUIRE(mkdir(path, 0777) == 0);
+    expect_render_failure("adir.off", ARGS(path, "--size", "16x12"), 2, "adir.off: is a directory");
+}
+
+SR_TEST(missing_model_file_is_reported)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], path[1100];
+    fresh_dir("models", dir, sizeof dir);
+    const char *names[] = { "no_such_model.obj", "no_such_model.ply", "no_such_model.stl",
+                            "no_such_model.off", "no_such_model" };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        char needle[300];
+        snprintf(needle, sizeof needle, "%s: cannot open", names[i]);
+        expect_render_failure(names[i], ARGS(path, "--size", "16x12"), 2, needle);
+    }
+}
+
+/* Assimp's own messages (when the build has Assimp) are one line too and
+ * say they come from Assimp; without it the message says how to get it. */
+SR_TEST(garbage_in_other_formats_gives_one_line)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024];
+    bad_dir(dir, sizeof dir);
+    const char *names[] = { "garbage.off", "garbage.gltf" };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        char path[1400], needle[300];
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        snprintf(needle, sizeof needle, "%s: %s", names[i],
+                 sr_io_have_assimp() ? "Assimp: " : "format not supported");
+        expect_render_failure(names[i], ARGS(path, "--size", "16x12"), 2, needle);
+    }
+}
+
+/* ---- option errors ------------------------------------------------------ */
+
+typedef struct option_case {
+    const char *label;
+    const char *args[20];
+    const char *needle;
+} option_case;
+
+static const option_case option_errors[] = {
+    { "unknown option", { "--bogus" }, "unknown option '--bogus'" },
+    { "unknown short option", { "-x" }, "unknown option '-x'" },
+    { "size 0x10", { "--size", "0x10" }, "--size: expected WxH" },
+    { "size 9000x10", { "--size", "9000x10" }, "--size: expected WxH with each from 1 to 8192" },
+    { "size 10x9000", { "--size", "10x9000" }, "--size: expected WxH" },
+    { "size abc", { "--size", "abc" }, "--size: expected WxH" },
+    { "size 64x48junk", { "--size", "64x48junk" }, "--size: expected WxH" },
+    { "size=abc", { "--size=abc" }, "--size: expected WxH" },
+    { "size without value", { "--size" }, "--size: missing value" },
+    { "shading bogus", { "--shading", "bogus" }, "--shading: expected one of flat|gouraud|" },
+    { "fov 0", { "--fov", "0" }, "--fov: expected a number" },
+    { "fov 180", { "--fov", "180" }, "--fov: expected a number" },
+    { "fov nan", { "--fov", "nan" }, "--fov: expected a number" },
+    { "camera without eye", { "--camera", "target=0,0,0" }, "--camera: eye=X,Y,Z is required" },
+    { "camera unknown key", { "--camera", "eye=1,2,3,focus=1" }, "--camera: unknown key 'focus'" },
+    { "camera short eye", { "--camera", "eye=1,2" }, "--camera: expected three numbers" },
+    { "camera not key=value", { "--camera", "1,2,3" }, "--camera: expected key=value" },
+    { "light without dir or point", { "--light", "color=red" }, "--light: needs dir=X,Y,Z or point" },
+    { "light zero direction", { "--light", "dir=0,0,0" }, "--light: a light direction must not be zero" },
+    { "light dir and point", { "--light", "dir=0,1,0,point=1,1,1" }, "--light: give either dir=" },
+    { "light bad intensity", { "--light", "dir=0,1,0,intensity=-1" }, "--light: expected a number" },
+    { "nine lights",
+      { "--light", "dir=0,1,0", "--light", "dir=0,1,0", "--light", "dir=0,1,0", "--light",
+        "dir=0,1,0", "--light", "dir=0,1,0", "--light", "dir=0,1,0", "--light", "dir=0,1,0",
+        "--light", "dir=0,1,0", "--light", "dir=0,1,0" },
+      "--light: at most 8 lights" },
+    { "background nocolor", { "--background", "nocolor" }, "--background: expected a color name" },
+    { "background #12", { "--background", "#12" }, "--background: expected a color name" },
+    { "ambient -1,0,0", { "--ambient", "-1,0,0" }, "--ambient: expected a color name" },
+    { "material unknown key", { "--material", "gloss=1" }, "--material: unknown key 'gloss'" },
+    { "material shininess 0", { "--material", "shininess=0" }, "--material: expected a number" },
+    { "material bad color", { "--material", "color=nocolor" }, "--material: expected a color" },
+    { "depth-format d8", { "--depth-format", "d8" }, "--depth-format: expected one of d16|d24|d32|d32f" },
+    { "depth-func bogus", { "--depth-func", "sometimes" }, "--depth-func: expected one of never|" },
+    { "cull bogus", { "--cull", "sideways" }, "--cull: expected one of back|front|none" },
+    { "front-face bogus", { "--front-face", "up" }, "--front-face: expected one of ccw|cw" },
+    { "projection-interp bogus", { "--projection-interp", "linear" }, "--projection-interp: expected one of" },
+    { "rasterizer bogus", { "--rasterizer", "raytrace" }, "--rasterizer: expected one of halfspace|" },
+    { "normals bogus", { "--normals", "bent" }, "--normals: expected one of file|smooth|flat" },
+    { "ortho with a value", { "--ortho=yes" }, "--ortho: takes no value" },
+    { "turn huge", { "--turn", "1e9" }, "--turn: expected a number" },
+    { "near 0", { "--near", "0" }, "--near: expected a number" },
+    { "far abc", { "--far", "abc" }, "--far: expected a number" },
+    { "threads 0", { "--threads", "0" }, "--threads: expected a whole number from 1 to 64" },
+    { "png-level 10", { "--png-level", "10" }, "--png-level: expected a whole number from 0 to 9" },
+    { "detail 0", { "--detail", "0" }, "--detail: expected a whole number from 1 to 64" },
+    { "detail 1.5", { "--detail", "1.5" }, "--detail: expected a whole number" },
+    { "two models", { "first.obj", "second.obj" }, "more than one model given ('first.obj' and 'second.obj')" },
+};
+
+SR_TEST(bad_options_fail_with_one_line_naming_the_option)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    for (size_t i = 0; i < sizeof option_errors / sizeof option_errors[0]; i++) {
+        expect_render_failure(option_errors[i].label, option_errors[i].args, 2,
+                              option_errors[i].needle);
+    }
+}
+
+SR_TEST(unknown_command_fails_with_one_line)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    cli_run r;
+    REQUIRE(run_cli(ARGS("paint"), &r));
+    check_failure_output("unknown command", &r, 2, "unknown command 'paint'");
+    cli_run_free(&r);
+
+    /* No command at all: the usage goes to stderr with status 2. */
+    REQUIRE(run_cli((const char *const[]){ NULL }, &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_STR_CONTAINS(r.err, "usage: softrast");
+    CHECK_EQ(r.out_len, 0);
+    cli_run_free(&r);
+}
+
+SR_TEST(output_that_is_a_directory_is_refused)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], sub[1100];
+    fresh_dir("fail", dir, sizeof dir);
+    snprintf(sub, sizeof sub, "%s/images", dir);
+    REQUIRE(mkdir(sub, 0777) == 0);
+    const char *forms[][3] = { { "-o", sub, NULL }, { "--output", sub, NULL } };
+    for (size_t i = 0; i < 2; i++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS("render", "--size", "16x12", "--detail", "1", forms[i][0],
+                             forms[i][1]), &r));
+        check_failure_output("-o DIR", &r, 2, "-o: ");
+        CHECK_STR_CONTAINS(r.err, "is a directory");
+        cli_run_free(&r);
+        CHECK_EQ(count_entries(sub, NULL, 0), 0);
+        CHECK_EQ(count_entries(dir, NULL, 0), 1);
+    }
+}
+
+SR_TEST(output_into_a_missing_directory_fails_cleanly)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], out[1100];
+    fresh_dir("fail", dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/missing/out.png", dir);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", "--size", "16x12", "--detail", "1", "-o", out), &r));
+    /* Writing is what fails: status 1, and the line names the file. */
+    check_failure_output("-o missing/out.png", &r, 1, "missing/out.png: cannot create a file in");
+    cli_run_free(&r);
+    CHECK_EQ(count_entries(dir, NULL, 0), 0);
+    CHECK(!is_dir(out));
+}
+
+/* ---- successful runs ---------------------------------------------------- */
+
+SR_TEST(version_prints_the_version)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    const char *forms[] = { "--version", "version" };
+    for (size_t i = 0; i < 2; i++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS(forms[i]), &r));
+        CHECK_EQ(r.status, 0);
+        CHECK(strcmp(r.out, "softrast " SR_VERSION_STRING "\n") == 0);
+        CHECK_EQ(r.err_len, 0);
+        cli_run_free(&r);
+    }
+    cli_run r;
+    REQUIRE(run_cli(ARGS("--help"), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_STR_CONTAINS(r.out, "render [MODEL] [options]");
+    CHECK_EQ(r.err_len, 0);
+    cli_run_free(&r);
+}
+
+/* Every option parse_args accepts.  A new option must be added here, to
+ * the help text, and (if it can go wrong) to option_errors. */
+static const char *const value_options[] = {
+    "-o", "--output", "--size", "--background", "--png-level", "--shading", "--normals",
+    "--material", "--ambient", "--light", "--camera", "--fov", "--turn", "--near", "--far",
+    "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
+    "--rasterizer", "--threads", "--detail",
+};
+static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help" };
+
+SR_TEST(render_help_lists_every_option)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    const size_t nv = sizeof value_options / sizeof value_options[0];
+    const size_t nf = sizeof flag_options / sizeof flag_options[0];
+    const char *forms[] = { "--help", "-h" };
+    for (size_t f = 0; f < 2; f++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS("render", forms[f]), &r));
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.err_len, 0);
+        CHECK_STR_CONTAINS(r.out, "usage: softrast render");
+        /* Options in the help: "-x" or "--word" at the start of a word. */
+        const char *s = r.out;
+        bool seen_v[64] = { false }, seen_f[64] = { false };
+        for (size_t i = 0; s[i]; i++) {
+            bool word_start = i == 0 || s[i - 1] == ' ' || s[i - 1] == '\n' || s[i - 1] == '(';
+            if (!word_start || s[i] != '-') {
+                continue;
+            }
+            size_t j = i + 1;
+            if (s[j] == '-') {
+                j++;
+            }
+            if (!(s[j] >= 'a' && s[j] <= 'z')) {
+                continue;
+            }
+            while ((s[j] >= 'a' && s[j] <= 'z') || (s[j] >= '0' && s[j] <= '9') || s[j] == '-') {
+                j++;
+            }
+            size_t n = j - i;
+            bool known = false;
+            for (size_t k = 0; k < nv; k++) {
+                if (strlen(value_options[k]) == n && memcmp(value_options[k], s + i, n) == 0) {
+                    seen_v[k] = known = true;
+                }
+            }
+            for (size_t k = 0; k < nf; k++) {
+                if (strlen(flag_options[k]) == n && memcmp(flag_options[k], s + i, n) == 0) {
+                    seen_f[k] = known = true;
+                }
+            }
+            if (!known) {
+                FAILF("render --help mentions '%.*s', which this test does not know", (int)n, s + i);
+            }
+            i = j - 1;
+        }
+        for (size_t k = 0; k < nv; k++) {
+            if (!seen_v[k]) {
+                FAILF("render --help does not mention %s", value_options[k]);
+            }
+        }
+        for (size_t k = 0; k < nf; k++) {
+            if (!seen_f[k]) {
+                FAILF("render --help does not mention %s", flag_options[k]);
+            }
+        }
+        cli_run_free(&r);
+    }
+}
+
+/* Each option in the list is one parse_args knows: without its value it
+ * reports "OPTION: missing value", never "unknown option". */
+SR_TEST(every_listed_option_is_accepted_by_the_parser)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    for (size_t k = 0; k < sizeof value_options / sizeof value_options[0]; k++) {
+        char needle[64];
+        snprintf(needle, sizeof needle, "%s: missing value", value_options[k]);
+        expect_render_failure(value_options[k], ARGS(value_options[k]), 2, needle);
+    }
+}
+
+/* Background #1d2230, as in the help. */
+static bool is_background(const uint8_t *p)
+{
+    return p[0] == 0x1d && p[1] == 0x22 && p[2] == 0x30 && p[3] == 255;
+}
+
+/* Render into DIR/NAME with args, expect success, silence on both
+ * streams, and a W x H PNG; returns the share of non-background pixels
+ * (-1 on failure). */
+static double render_ok(const char *label, const char *dir, const char *name,
+                        const char *const *args, int w, int h)
+{
+    char out[1400];
+    snprintf(out, sizeof out, "%s/%s", dir, name);
+    const char *head[] = { "render", NULL };
+    const char *tail[] = { "-o", out, NULL };
+    const char *mid[MAX_ARGS + 1], *all[MAX_ARGS + 1];
+    join_args(mid, head, args);
+    join_args(all, mid, tail);
+    cli_run r;
+    if (!run_cli(all, &r)) {
+        FAILF("%s: the CLI did not run", label);
+        return -1;
+    }
+    bool ok = r.status == 0 && r.err_len == 0 && r.out_len == 0;
+    if (!ok) {
+        FAILF("%s: exit status %d, stdout \"%s\", stderr \"%s\"", label, r.status, r.out, r.err);
+    }
+    cli_run_free(&r);
+    if (!ok) {
+        return -1;
+    }
+    int pw = 0, ph = 0;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(out, &pw, &ph, &px, &err) != SR_OK) {
+        FAILF("%s: %s", label, err.message);
+        return -1;
+    }
+    if (pw != w || ph != h) {
+        FAILF("%s: image is %dx%d, expected %dx%d", label, pw, ph, w, h);
+    }
+    size_t lit = 0;
+    for (size_t i = 0; i < (size_t)pw * ph; i++) {
+        lit += !is_background(px + 4 * i);
+    }
+    free(px);
+    return pw == w && ph == h ? (double)lit / ((double)pw * ph) : -1;
+}
+
+SR_TEST(render_writes_a_png_of_the_requested_size)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024];
+    fresh_dir("ok", dir, sizeof dir);
+    double lit = render_ok("--size 64x48", dir, "teapot.png", ARGS("--size", "64x48"), 64, 48);
+    /* The teapot and its ground fill a good part of the frame. */
+    CHECK(lit > 0.2);
+    lit = render_ok("--size=7x3", dir, "tiny.png", ARGS("--size=7x3", "--detail", "2"), 7, 3);
+    CHECK(lit >= 0);
+    CHECK_EQ(count_entries(dir, NULL, 0), 2);   /* no temporaries left */
+}
+
+typedef struct mode_case {
+    const char *label;
+    const char *args[8];
+    bool blank;         /* nothing but background is expected */
+} mode_case;
+
+static const mode_case modes[] = {
+    { "shading flat", { "--shading", "flat" }, false },
+    { "shading gouraud", { "--shading", "gouraud" }, false },
+    { "shading phong", { "--shading", "phong" }, false },
+    { "shading normals", { "--shading", "normals" }, false },
+    { "shading depth", { "--shading", "depth" }, false },
+    { "shading unlit", { "--shading", "unlit" }, false },
+    { "depth-func never", { "--depth-func", "never" }, true },
+    { "depth-func less", { "--depth-func", "less" }, false },
+    { "depth-func equal", { "--depth-func", "equal" }, true },
+    { "depth-func lequal", { "--depth-func", "lequal" }, false },
+    { "depth-func greater", { "--depth-func", "greater" }, false },
+    { "depth-func notequal", { "--depth-func", "notequal" }, false },
+    { "depth-func gequal", { "--depth-func", "gequal" }, false },
+    { "depth-func always", { "--depth-func", "always" }, false },
+    { "depth-format d16", { "--depth-format", "d16" }, false },
+    { "depth-format d24", { "--depth-format", "d24" }, false },
+    { "depth-format d32", { "--depth-format", "d32" }, false },
+    { "depth-format d32f", { "--depth-format", "d32f" }, false },
+    { "ortho", { "--ortho" }, false },
+    { "turn", { "--turn", "45" }, false },
+    { "turn=-400", { "--turn=-400" }, false },
+    { "camera eye", { "--camera", "eye=0,6,9" }, false },
+    { "camera eye target up", { "--camera", "eye=4,3,5,target=0,1,0,up=0,1,0" }, false },
+    { "camera along up", { "--camera", "eye=0,10,0,target=0,0,0" }, false },
+    { "fov", { "--fov", "60" }, false },
+    { "near far", { "--near", "1", "--far", "50" }, false },
+    { "light dir", { "--light", "dir=-1,-1,-1" }, false },
+    { "light point color intensity", { "--light", "point=3,5,4,color=#ffcc88,intensity=2" }, false },
+    { "two lights", { "--light", "dir=0,-1,0", "--light", "dir=1,0,0,color=0.2,0.4,1" }, false },
+    { "ambient", { "--ambient", "skyblue" }, false },
+    { "material", { "--material", "color=steelblue,specular=#fff,shininess=90" }, false },
+    { "background", { "--background", "#abc" }, false },
+    { "projection-interp affine", { "--projection-interp", "affine" }, false },
+    { "projection-interp perspective", { "--projection-interp", "perspective" }, false },
+    { "rasterizer scanline", { "--rasterizer", "scanline" }, false },
+    { "rasterizer barycentric", { "--rasterizer", "barycentric" }, false },
+    { "cull none", { "--cull", "none" }, false },
+    { "cull front", { "--cull", "front" }, false },
+    { "front-face cw", { "--front-face", "cw" }, false },
+    { "normals flat", { "--normals", "flat" }, false },
+    { "normals smooth", { "--normals", "smooth" }, false },
+    { "normals file", { "--normals", "file" }, false },
+    { "png-level 0", { "--png-level", "0" }, false },
+    { "png-level 9", { "--png-level", "9" }, false },
+    { "threads 1", { "--threads", "1" }, false },
+    { "threads 3", { "--threads", "3" }, false },
+};
+
+SR_TEST(every_mode_renders_a_png)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024];
+    fresh_dir("ok", dir, sizeof dir);
+    for (size_t i = 0; i < sizeof modes / sizeof modes[0]; i++) {
+        const char *args[MAX_ARGS + 1];
+        const char *common[] = { "--size", "48x32", "--detail", "3", NULL };
+        join_args(args, common, modes[i].args);
+        double lit = render_ok(modes[i].label, dir, "mode.png", args, 48, 32);
+        if (lit < 0) {
+            continue;
+        }
+        if (modes[i].blank ? lit != 0.0 : lit < 0.05) {
+            FAILF("%s: %.0f%% of the pixels are not background", modes[i].label, lit * 100);
+        }
+    }
+    CHECK_EQ(count_entries(dir, NULL, 0), 1);
+}
+
+static char *render_bytes(const char *label, const char *dir, const char *name,
+                          const char *const *args, size_t *len)
+{
+    *len = 0;
+    if (render_ok(label, dir, name, args, 96, 64) < 0) {
+        return NULL;
+    }
+    char path[1400];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return read_whole(path, len);
+}
+
+/* The three rasterizers give the same pixels (RASTER_RULES), hence the
+ * same PNG bytes; so do one thread and several. */
+SR_TEST(rasterizers_and_thread_counts_give_identical_pngs)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024];
+    fresh_dir("ok", dir, sizeof dir);
+    const char *variants[][10] = {
+        { "--rasterizer", "halfspace", "--threads", "1" },
+        { "--rasterizer", "scanline" },
+        { "--rasterizer", "barycentric" },
+        { "--rasterizer", "halfspace", "--threads", "4" },
+        { "--rasterizer", "scanline", "--threads", "3" },
+    };
+    const char *scenes[][10] = {
+        { "--size", "96x64", "--detail", "6" },
+        { "--size", "96x64", "--detail", "4", "--shading", "gouraud", "--cull", "none" },
+    };
+    for (size_t s = 0; s < 2; s++) {
+        size_t ref_len = 0;
+        char *ref = NULL;
+        for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
+            const char *args[MAX_ARGS + 1];
+            join_args(args, scenes[s], variants[v]);
+            char label[128];
+            snprintf(label, sizeof label, "scene %zu, %s %s %s %s", s, variants[v][0],
+                     variants[v][1], variants[v][2] ? variants[v][2] : "",
+                     variants[v][3] ? variants[v][3] : "");
+            size_t len;
+            char *png = render_bytes(label, dir, "r.png", args, &len);
+            if (!png) {
+                continue;
+            }
+            if (!ref) {
+                ref = png;
+                ref_len = len;
+                continue;
+            }
+            if (len != ref_len || memcmp(png, ref, len) != 0) {
+                FAILF("%s: PNG differs from the first variant's", label);
+            }
+            free(png);
+        }
+        free(ref);
+    }
+}
+
+static bool has_model_extension(const char *name)
+{
+    const char *dot = strrchr(name, '.');
+    return dot && (strcmp(dot, ".obj") == 0 || strcmp(dot, ".ply") == 0 ||
+                   strcmp(dot, ".stl") == 0);
+}
+
+static int compare_names(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+SR_TEST(every_shared_model_renders_in_every_shading_mode)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    const char *models = sr_test_models_dir();
+    if (!models) {
+        SKIP("no shared models directory");
+    }
+    DIR *d = opendir(models);
+    REQUIRE(d != NULL);
+    char *names[128];
+    size_t n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL && n < 128) {
+        if (e->d_name[0] != '.' && has_model_extension(e->d_name)) {
+            names[n++] = strdup(e->d_name);
+        }
+    }
+    closedir(d);
+    if (n == 0) {
+        SKIP("no OBJ, PLY or STL files in the shared models directory");
+    }
+    qsort(names, n, sizeof names[0], compare_names);
+    char dir[1024];
+    fresh_dir("ok", dir, sizeof dir);
+    const char *shadings[] = { "flat", "gouraud", "phong", "normals", "depth", "unlit" };
+    for (size_t i = 0; i < n; i++) {
+        char path[1400];
+        snprintf(path, sizeof path, "%s/%s", models, names[i]);
+        for (size_t s = 0; s < sizeof shadings / sizeof shadings[0]; s++) {
+            char label[400];
+            snprintf(label, sizeof label, "%s --shading %s", names[i], shadings[s]);
+            double lit = render_ok(label, dir, "model.png",
+                                   ARGS(path, "--size", "96x64", "--shading", shadings[s]), 96, 64);
+            /* The camera frames the model: it covers part of the image. */
+            if (lit >= 0 && lit < 0.03) {
+                FAILF("%s: only %.1f%% of the pixels show the model", label, lit * 100);
+            }
+        }
+        free(names[i]);
+    }
+    CHECK_EQ(count_entries(dir, NULL, 0), 1);
+}
+
+/* A render over an existing file replaces all of it (via a temporary and
+ * a rename), keeps its permissions and leaves no temporary behind. */
+SR_TEST(render_replaces_an_existing_file_atomically)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], out[1100];
+    fresh_dir("ok", dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/image.png", dir);
+    /* Larger than the image will be, so a write in place would leave a tail. */
+    size_t junk_n = 200000;
+    unsigned char *junk = malloc(junk_n);
+    REQUIRE(junk != NULL);
+    for (size_t i = 0; i < junk_n; i++) {
+        junk[i] = (unsigned char)(i * 131 + 17);
+    }
+    bool wrote = write_whole(out, junk, junk_n);
+    free(junk);
+    REQUIRE(wrote);
+    REQUIRE(chmod(out, 0640) == 0);
+
+    CHECK(render_ok("over an existing file", dir, "image.png",
+                    ARGS("--size", "40x30", "--detail", "3"), 40, 30) > 0);
+    struct stat st;
+    REQUIRE(stat(out, &st) == 0);
+    CHECK(st.st_size < 100000);
+    CHECK_EQ(st.st_mode & 0777, 0640);
+    char first[256];
+    CHECK_EQ(count_entries(dir, first, sizeof first), 1);
+    CHECK(strcmp(first, "image.png") == 0);
+
+    /* And again over the image just written, with different content. */
+    CHECK(render_ok("over its own output", dir, "image.png",
+                    ARGS("--size", "24x20", "--detail", "2", "--shading", "normals"), 24, 20) > 0);
+    CHECK_EQ(count_entries(dir, NULL, 0), 1);
+}
+
+SR_TEST(verbose_reports_on_stderr_and_still_renders)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], out[1100];
+    fresh_dir("ok", dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/v.png", dir);
+    const char *forms[] = { "-v", "--verbose" };
+    for (size_t i = 0; i < 2; i++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS("render", forms[i], "--size", "32x24", "--detail", "2", "-o", out),
+                        &r));
+        CHECK_EQ(r.status, 0);
+        CHECK_STR_CONTAINS(r.err, "softrast: 32x24, ");
+        CHECK_STR_CONTAINS(r.err, " triangles, ");
+        CHECK_EQ(r.out_len, 0);
+        cli_run_free(&r);
+    }
+    int w = 0, h = 0;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    CHECK_EQ(sr_read_png(out, &w, &h, &px, &err), SR_OK);
+    CHECK_EQ(w, 32);
+    CHECK_EQ(h, 24);
+    free(px);
+}
