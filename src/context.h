@@ -23,6 +23,10 @@ struct sr_context {
 void *sr__alloc(sr_context *ctx, size_t size);
 void *sr__calloc(sr_context *ctx, size_t count, size_t size); /* overflow-checked, zeroed */
 void  sr__free(sr_context *ctx, void *ptr);
+/* A large buffer that will be written soon: ask the kernel for
+ * transparent huge pages over it, so filling it takes a few page faults
+ * instead of thousands (a no-op where unsupported). */
+void *sr__alloc_large(sr_context *ctx, size_t size);
 
 /* Record a message on ctx and return `code` (for `return sr__fail(...)`). */
 sr_result sr__fail(sr_context *ctx, sr_result code, const char *fmt, ...)

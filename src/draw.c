@@ -256,6 +256,8 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->specular[1] = m->specular.y;
     ds->specular[2] = m->specular.z;
     ds->shininess = m->shininess == 0.0f ? 32.0f : m->shininess;
+    ds->shininess_int = (ds->shininess == floorf(ds->shininess) && ds->shininess <= 4096.0f)
+                            ? (int)ds->shininess : -1;
     ds->use_vertex_color = !m->no_vertex_color;
 
     sr_mat4 e = view ? *view : sr_mat4_identity();

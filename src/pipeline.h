@@ -79,6 +79,7 @@ typedef struct sr_draw_state {
     float diffuse[4];                 /* material diffuse, opacity as alpha */
     float specular[3];
     float shininess;
+    int shininess_int;                /* shininess if a whole number <= 4096, else -1 */
     bool use_vertex_color;
     int light_count;
     sr_light_eye lights[SR_MAX_LIGHTS];

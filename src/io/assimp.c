@@ -40,12 +40,68 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
                        "libassimp-dev and rebuild to read other formats)");
 }
 
+bool sr__assimp_available(void)
+{
+    return false;
+}
+
 #else /* SR_HAVE_ASSIMP */
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+
+#include <dlfcn.h>
+#include <pthread.h>
+
+/* Assimp is a large C++ library: linking it makes every run of the tool
+ * pay ~7 ms of dynamic relocation before main(), even for the OBJ, PLY and
+ * STL files softrast reads itself.  So the headers come from the build,
+ * but the library is opened with dlopen the first time a file needs it. */
+static struct {
+    const struct aiScene *(*import_file)(const char *, unsigned int);
+    void (*release_import)(const struct aiScene *);
+    const char *(*get_error_string)(void);
+    enum aiReturn (*get_material_texture)(const struct aiMaterial *, enum aiTextureType,
+                                          unsigned int, struct aiString *, enum aiTextureMapping *,
+                                          unsigned int *, ai_real *, enum aiTextureOp *,
+                                          enum aiTextureMapMode *, unsigned int *);
+    aiBool (*is_extension_supported)(const char *);
+    bool loaded;
+} api;
+static pthread_once_t api_once = PTHREAD_ONCE_INIT;
+
+static void open_assimp(void)
+{
+    static const char *const names[] = { "libassimp.so.5", "libassimp.so" };
+    void *lib = NULL;
+    for (size_t i = 0; i < sizeof names / sizeof names[0] && !lib; i++) {
+        lib = dlopen(names[i], RTLD_NOW | RTLD_LOCAL);
+    }
+    if (!lib) {
+        return;
+    }
+    *(void **)&api.import_file = dlsym(lib, "aiImportFile");
+    *(void **)&api.release_import = dlsym(lib, "aiReleaseImport");
+    *(void **)&api.get_error_string = dlsym(lib, "aiGetErrorString");
+    *(void **)&api.get_material_texture = dlsym(lib, "aiGetMaterialTexture");
+    *(void **)&api.is_extension_supported = dlsym(lib, "aiIsExtensionSupported");
+    api.loaded = api.import_file && api.release_import && api.get_error_string &&
+                 api.get_material_texture && api.is_extension_supported;
+}
+
+bool sr__assimp_available(void)
+{
+    pthread_once(&api_once, open_assimp);
+    return api.loaded;
+}
+
+#define aiImportFile(p, f) api.import_file((p), (f))
+#define aiReleaseImport(s) api.release_import(s)
+#define aiGetErrorString() api.get_error_string()
+#define aiIsExtensionSupported(e) api.is_extension_supported(e)
+#define aiGetMaterialTexture(m, t, i, s, ...) api.get_material_texture((m), (t), (i), (s), __VA_ARGS__)
 
 /* Triangulate polygons, share identical vertices, bake the node hierarchy
  * into vertex positions (we draw one mesh with one model matrix), and
@@ -102,6 +158,11 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
     if (!path || !out) {
         return sr__io_fail(err, SR_INVALID_ARG, path ? path : "<null>", 0,
                            "no file name or output mesh given");
+    }
+    if (!sr__assimp_available()) {
+        return sr__io_fail(err, SR_UNSUPPORTED, path, 0,
+                           "format not supported (the Assimp library, libassimp5, could not be "
+                           "loaded)");
     }
     const char *ext = extension_of(path);
     if (ext) {

@@ -16,7 +16,7 @@
 bool sr_io_have_assimp(void)
 {
 #ifdef SR_HAVE_ASSIMP
-    return true;
+    return sr__assimp_available();
 #else
     return false;
 #endif

@@ -17,5 +17,7 @@ sr_result sr__load_stl(const char *path, sr_mesh *out, sr_io_error *err);
 /* assimp.c: every other format Assimp reads; SR_UNSUPPORTED with an
  * install hint when the build has no Assimp. */
 sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err);
+/* true when the build has Assimp's headers and the library opens. */
+bool sr__assimp_available(void);
 
 #endif /* SR_IO_READERS_H */

@@ -1,0 +1,109 @@
+/* paint.c - draw2d stage: source-over blending of a flat color with
+ * coverage into RGBA8 pixels, optionally in linear light.  Called by every
+ * 2D fill; pure functions of their arguments, safe from any thread that
+ * owns the framebuffer. */
+#include "draw2d/paint.h"
+
+#include <math.h>
+#include <string.h>
+
+uint8_t sr__unorm8(float v)
+{
+    if (!(v > 0.0f)) {
+        return 0;
+    }
+    if (v >= 1.0f) {
+        return 255;
+    }
+    return (uint8_t)(v * 255.0f + 0.5f);
+}
+
+uint32_t sr__pack_rgba8(const uint8_t rgba[4])
+{
+    uint32_t v;
+    memcpy(&v, rgba, sizeof v);
+    return v;
+}
+
+float sr__srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float sr__linear_to_srgb(float c)
+{
+    if (!(c > 0.0f)) {
+        return 0.0f;
+    }
+    if (c >= 1.0f) {
+        return 1.0f;
+    }
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+}
+
+bool sr__paint_init(sr__paint *p, sr_rgba color, bool linear_light)
+{
+    float c[4] = { color.r, color.g, color.b, color.a };
+    for (int i = 0; i < 4; i++) {
+        if (!isfinite(c[i])) {
+            return false;
+        }
+        p->rgba[i] = sr__unorm8(c[i]);
+    }
+    p->packed = sr__pack_rgba8(p->rgba);
+    p->alpha = c[3] < 0.0f ? 0.0f : c[3] > 1.0f ? 1.0f : c[3];
+    for (int i = 0; i < 3; i++) {
+        p->linear[i] = sr__srgb_to_linear(p->rgba[i] / 255.0f);
+    }
+    p->linear_light = linear_light;
+    return true;
+}
+
+void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
+{
+    if (cov == 0) {
+        return;
+    }
+    /* Effective opacity: color alpha times coverage. */
+    if (cov >= 255 && p->alpha >= 1.0f) {
+        *dst = p->packed;
+        return;
+    }
+    float a = p->alpha * (float)cov * (1.0f / 255.0f);
+    if (a >= 1.0f) {
+        *dst = p->packed;
+        return;
+    }
+    if (a <= 0.0f) {
+        return;
+    }
+    uint8_t d[4];
+    memcpy(d, dst, sizeof d);
+    if (p->linear_light) {
+        for (int i = 0; i < 3; i++) {
+            float dl = sr__srgb_to_linear(d[i] / 255.0f);
+            d[i] = sr__unorm8(sr__linear_to_srgb(p->linear[i] * a + dl * (1.0f - a)));
+        }
+    } else {
+        for (int i = 0; i < 3; i++) {
+            d[i] = sr__unorm8((p->rgba[i] * a + d[i] * (1.0f - a)) * (1.0f / 255.0f));
+        }
+    }
+    /* Source-over alpha: a + d.a (1 - a). */
+    d[3] = sr__unorm8(a + d[3] * (1.0f / 255.0f) * (1.0f - a));
+    memcpy(dst, d, sizeof d);
+}
+
+void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x1)
+{
+    uint32_t *row = fb->color + (size_t)y * (size_t)fb->width;
+    if (p->alpha >= 1.0f) {
+        for (int x = x0; x < x1; x++) {
+            row[x] = p->packed;
+        }
+        return;
+    }
+    for (int x = x0; x < x1; x++) {
+        sr__paint_pixel(p, &row[x], 255);
+    }
+}

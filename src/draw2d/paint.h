@@ -1,0 +1,38 @@
+/* paint.h - draw2d stage, internal: how the 2D calls put color into a
+ * framebuffer.  Consumes a straight-alpha sr_rgba and per-pixel coverage
+ * (0..255), produces RGBA8 pixels blended source-over.  Shared by every
+ * file in src/draw2d; the calls run on the caller's thread only. */
+#ifndef SR_DRAW2D_PAINT_H
+#define SR_DRAW2D_PAINT_H
+
+#include "softrast.h"
+#include "target/framebuffer.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+typedef struct sr__paint {
+    uint8_t rgba[4];     /* the color quantized to RGBA8 */
+    uint32_t packed;     /* rgba[] in framebuffer memory order */
+    float alpha;         /* color.a clamped to [0, 1] */
+    float linear[3];     /* r, g, b decoded from sRGB (for linear-light blending) */
+    bool linear_light;   /* blend in linear light: decode, mix, encode */
+} sr__paint;
+
+/* False when a component is not finite (the caller reports which call). */
+bool sr__paint_init(sr__paint *p, sr_rgba color, bool linear_light);
+
+/* Blend `p` over the pixel with coverage cov (0..255). */
+void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov);
+/* Blend pixels x0..x1-1 of row y with full coverage (the span is
+ * already clipped to the framebuffer). */
+void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x1);
+
+/* sRGB transfer functions on [0, 1]. */
+float sr__srgb_to_linear(float c);
+float sr__linear_to_srgb(float c);
+
+uint32_t sr__pack_rgba8(const uint8_t rgba[4]);
+uint8_t  sr__unorm8(float v);
+
+#endif
