@@ -563,8 +563,11 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     memset(s->stats, 0, sizeof s->stats);
     front_end fe = { ctx, &ds, d, sr__tri_size(ds.ninterp), chunks };
     bool oom = false;
-    for (size_t begin = 0; begin < prims && !oom; begin += SR_BATCH_PRIMS) {
-        size_t end = prims - begin < SR_BATCH_PRIMS ? prims : begin + SR_BATCH_PRIMS;
+    /* Equal batches of at most SR_BATCH_PRIMS, so no batch is a sliver. */
+    size_t batches = (prims + SR_BATCH_PRIMS - 1) / SR_BATCH_PRIMS;
+    size_t batch_size = (prims + batches - 1) / batches;
+    for (size_t begin = 0; begin < prims && !oom; begin += batch_size) {
+        size_t end = prims - begin < batch_size ? prims : begin + batch_size;
         size_t per = (end - begin + (size_t)chunks - 1) / (size_t)chunks;
         for (int ci = 0; ci < chunks; ci++) {
             sr_chunk *c = &s->chunks[ci];

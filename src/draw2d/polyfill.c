@@ -1,0 +1,699 @@
+/* polyfill.c - draw2d stage: polygon scan conversion.
+ * Consumes contours of sr_point2, produces spans or coverage rows for a
+ * window.  Three converters: the scan-line fill with an edge table (ET)
+ * and an active edge table (AET) in exact integer arithmetic, the
+ * signed-area accumulator for exact antialiased coverage, and n x n
+ * supersampling built on the ET converter.  Runs on the caller's thread. */
+#include "draw2d/polyfill.h"
+
+#include "context.h"
+#include "draw2d/paint.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define Q8_ONE 256
+#define Q8_HALF 128
+#define MAX_SUPERSAMPLE 16
+
+_Static_assert((int64_t)SR_MAX_COORD2D * MAX_SUPERSAMPLE * Q8_ONE <= ((int64_t)1 << 30),
+               "q8 coordinates (supersampled) must stay within 2^30 for the ET bit budget");
+
+/* floor(a / b) for b > 0. */
+static int64_t floor_div(int64_t a, int64_t b)
+{
+    int64_t q = a / b;
+    if ((a % b != 0) && (a < 0)) {
+        q--;
+    }
+    return q;
+}
+
+/* ---- setup: contours -> q8 edges ------------------------------------- */
+
+sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
+                                 int scale, sr__edge2 **edges, int *count)
+{
+    *edges = NULL;
+    *count = 0;
+    if (!poly) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: polygon is NULL", fn);
+    }
+    if (poly->point_count < 0 || (poly->point_count > 0 && !poly->points)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_polygon2.points is NULL or point_count < 0",
+                        fn);
+    }
+    if (poly->contour_counts && poly->contour_count < 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_polygon2.contour_count < 0", fn);
+    }
+    int contours = poly->contour_counts ? poly->contour_count : 1;
+    long long total = 0;
+    for (int c = 0; c < contours; c++) {
+        int n = poly->contour_counts ? poly->contour_counts[c] : poly->point_count;
+        if (n < 0) {
+            return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_polygon2.contour_counts[%d] < 0", fn, c);
+        }
+        total += n;
+    }
+    if (total != poly->point_count) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: sr_polygon2.contour_counts sum to %lld, point_count is %d", fn,
+                        total, poly->point_count);
+    }
+    for (int i = 0; i < poly->point_count; i++) {
+        double x = poly->points[i].x, y = poly->points[i].y;
+        if (!isfinite(x) || !isfinite(y)) {
+            return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_polygon2.points[%d] is not finite", fn, i);
+        }
+        if (fabs(x) > SR_MAX_COORD2D || fabs(y) > SR_MAX_COORD2D) {
+            return sr__fail(ctx, SR_TOO_LARGE, "%s: sr_polygon2.points[%d] (%g, %g) is beyond "
+                            "+-%g pixels", fn, i, x, y, SR_MAX_COORD2D);
+        }
+    }
+    if (poly->point_count == 0) {
+        return SR_OK;
+    }
+    sr__edge2 *e = sr__calloc(ctx, (size_t)poly->point_count, sizeof *e);
+    if (!e) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: no memory for %d edges", fn,
+                        poly->point_count);
+    }
+    int n_edges = 0, start = 0;
+    for (int c = 0; c < contours; c++) {
+        int n = poly->contour_counts ? poly->contour_counts[c] : poly->point_count;
+        for (int k = 0; k < n; k++) {
+            int ia = start + k, ib = start + (k + 1) % n;
+            /* Snap to 1/256 with round-to-nearest-even (the default mode). */
+            int64_t ax = (int64_t)nearbyint(poly->points[ia].x * Q8_ONE) * scale;
+            int64_t ay = (int64_t)nearbyint(poly->points[ia].y * Q8_ONE) * scale;
+            int64_t bx = (int64_t)nearbyint(poly->points[ib].x * Q8_ONE) * scale;
+            int64_t by = (int64_t)nearbyint(poly->points[ib].y * Q8_ONE) * scale;
+            if (ay == by) {
+                continue; /* horizontal edges cross no scanline */
+            }
+            sr__edge2 *d = &e[n_edges++];
+            if (ay < by) {
+                *d = (sr__edge2){ ax, ay, bx, by, +1, ia, ib };
+            } else {
+                *d = (sr__edge2){ bx, by, ax, ay, -1, ib, ia };
+            }
+        }
+        start += n;
+    }
+    *edges = e;
+    *count = n_edges;
+    return SR_OK;
+}
+
+/* ---- scan-line fill: edge table + active edge table ------------------- */
+
+/* An edge-table entry.  At scanline y (sample height yc = 256 y + 128 in
+ * q8) the edge crosses at x(yc); the first pixel whose centre is at or
+ * right of it is ceil((x(yc) - 128) / 256) = ceil(N / D) with
+ * N = (x0 - 128) den + (yc - y0) dx and D = 256 den (den = y1 - y0).  N
+ * is kept as f D + r, 0 <= r < D, and stepped by 256 dx per scanline: the
+ * integer DDA with remainder, so x never drifts.  That pixel index is the
+ * sort key: two crossings in the same pixel gap bound an empty span in
+ * either order, so sorting by it gives the same pixels as sorting by x. */
+typedef struct et_entry {
+    int64_t f, r;        /* N = f D + r */
+    int64_t q, rem;      /* 256 dx = q D + rem */
+    int64_t D;
+    int last_row;        /* last scanline where the edge is active */
+    int dir;
+    int edge;            /* index into the edge array */
+    int next;            /* next entry in the same ET bucket, -1 ends */
+} et_entry;
+
+static int64_t et_key(const et_entry *e)
+{
+    return e->f + (e->r > 0);
+}
+
+static bool fill_rule_inside(sr_fill_rule rule, int w)
+{
+    return rule == SR_EVENODD ? (w & 1) != 0 : w != 0;
+}
+
+sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count,
+                              sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user)
+{
+    if (count <= 0 || win.x0 >= win.x1 || win.y0 >= win.y1) {
+        return SR_OK;
+    }
+    int rows = win.y1 - win.y0;
+    et_entry *et = sr__alloc(ctx, (size_t)count * sizeof *et);
+    int *bucket = sr__alloc(ctx, (size_t)rows * sizeof *bucket);
+    int *aet = sr__alloc(ctx, (size_t)count * sizeof *aet);
+    if (!et || !bucket || !aet) {
+        sr__free(ctx, et);
+        sr__free(ctx, bucket);
+        sr__free(ctx, aet);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for the edge table");
+    }
+    for (int y = 0; y < rows; y++) {
+        bucket[y] = -1;
+    }
+    /* Build the ET: bucket each edge by its first scanline in the window.
+     * Active on y iff y0 <= 256 y + 128 < y1 (half-open in y). */
+    int n_et = 0;
+    for (int i = 0; i < count; i++) {
+        const sr__edge2 *s = &edges[i];
+        int64_t first = floor_div(s->y0 - Q8_HALF + Q8_ONE - 1, Q8_ONE); /* ceil */
+        int64_t last = floor_div(s->y1 - Q8_HALF + Q8_ONE - 1, Q8_ONE) - 1;
+        if (first < win.y0) {
+            first = win.y0;
+        }
+        if (last >= win.y1) {
+            last = win.y1 - 1;
+        }
+        if (first > last) {
+            continue;
+        }
+        int64_t den = s->y1 - s->y0, dx = s->x1 - s->x0;
+        int64_t yc = first * Q8_ONE + Q8_HALF;
+        et_entry *e = &et[n_et];
+        e->D = den * Q8_ONE;
+        int64_t N = (s->x0 - Q8_HALF) * den + (yc - s->y0) * dx;
+        e->f = floor_div(N, e->D);
+        e->r = N - e->f * e->D;
+        e->q = floor_div(dx * Q8_ONE, e->D);
+        e->rem = dx * Q8_ONE - e->q * e->D;
+        e->last_row = (int)last;
+        e->dir = s->dir;
+        e->edge = i;
+        int b = (int)(first - win.y0);
+        e->next = bucket[b];
+        bucket[b] = n_et++;
+    }
+    int n_aet = 0;
+    for (int y = win.y0; y < win.y1; y++) {
+        /* Drop edges that ended, add the ET bucket of this scanline. */
+        int kept = 0;
+        for (int k = 0; k < n_aet; k++) {
+            if (et[aet[k]].last_row >= y) {
+                aet[kept++] = aet[k];
+            }
+        }
+        n_aet = kept;
+        for (int i = bucket[y - win.y0]; i >= 0; i = et[i].next) {
+            aet[n_aet++] = i;
+        }
+        /* Insertion sort by x: between scanlines the order only changes
+         * where edges cross, so this is nearly linear. */
+        for (int k = 1; k < n_aet; k++) {
+            int v = aet[k];
+            int64_t key = et_key(&et[v]);
+            int j = k - 1;
+            while (j >= 0 && et_key(&et[aet[j]]) > key) {
+                aet[j + 1] = aet[j];
+                j--;
+            }
+            aet[j + 1] = v;
+        }
+        /* Walk the crossings left to right, accumulating the winding. */
+        int w = 0;
+        for (int k = 0; k + 1 < n_aet; k++) {
+            const et_entry *a = &et[aet[k]], *b = &et[aet[k + 1]];
+            w += a->dir;
+            if (!fill_rule_inside(rule, w)) {
+                continue;
+            }
+            int64_t xl = et_key(a), xr = et_key(b);
+            if (xl < win.x0) {
+                xl = win.x0;
+            }
+            if (xr > win.x1) {
+                xr = win.x1;
+            }
+            if (xl < xr) {
+                sr__span sp = { y, (int)xl, (int)xr, NULL, a->edge, b->edge, y + 0.5 };
+                fn(user, &sp);
+            }
+        }
+        /* Step every active edge to the next scanline. */
+        for (int k = 0; k < n_aet; k++) {
+            et_entry *e = &et[aet[k]];
+            e->f += e->q;
+            e->r += e->rem;
+            if (e->r >= e->D) {
+                e->r -= e->D;
+                e->f++;
+            }
+        }
+    }
+    sr__free(ctx, et);
+    sr__free(ctx, bucket);
+    sr__free(ctx, aet);
+    return SR_OK;
+}
+
+/* ---- exact area coverage: signed-area accumulation -------------------- */
+
+/* One piece of an edge inside one pixel column c of the current row, from
+ * x = xa to xb, with signed height d: the pixel gets d times the part of
+ * it right of the piece, the next pixel the rest (the running sum along
+ * the row then integrates the winding number over each pixel). */
+static void deposit_piece(double *acc, int w, int wx0, double xa, double xb, double d)
+{
+    double mid = 0.5 * (xa + xb);
+    double cf = floor(mid);
+    if (cf < wx0) {
+        acc[0] += d;
+        return;
+    }
+    if (cf >= (double)wx0 + w) {
+        return;
+    }
+    int c = (int)cf - wx0;
+    double f = mid - cf;
+    acc[c] += d * (1.0 - f);
+    acc[c + 1] += d * f;
+}
+
+/* Deposit the part of an edge between heights ya < yb (within one row),
+ * x from xa to xb, split at integer x. */
+static void deposit_segment(double *acc, int w, int wx0, double xa, double ya, double xb,
+                            double yb, double dir)
+{
+    double xmin = xa < xb ? xa : xb, xmax = xa < xb ? xb : xa;
+    if (xa == xb || xmax <= wx0 || xmin >= (double)wx0 + w) {
+        /* One piece: within a column, wholly left (into acc[0]) or wholly
+         * right (dropped) of the window. */
+        deposit_piece(acc, w, wx0, xa, xb, dir * (yb - ya));
+        return;
+    }
+    double dydx = (yb - ya) / (xb - xa);
+    double step = xb > xa ? 1.0 : -1.0;
+    double x = xa, y = ya;
+    /* Clamp the walk to the window: everything left of it lands in acc[0]
+     * anyway, everything right of it is dropped. */
+    while (x != xb) {
+        double nx = step > 0 ? floor(x) + 1.0 : ceil(x) - 1.0;
+        if ((step > 0 && nx > xb) || (step < 0 && nx < xb)) {
+            nx = xb;
+        }
+        if (step > 0 && x >= (double)wx0 + w) {
+            nx = xb; /* right of the window: one piece, dropped */
+        }
+        if (step < 0 && x <= wx0) {
+            nx = xb; /* left of the window: one piece, into acc[0] */
+        }
+        if (step > 0 && nx < wx0 && xb > wx0) {
+            nx = wx0; /* jump the part left of the window at once */
+        }
+        if (step < 0 && x > (double)wx0 + w && xb < (double)wx0 + w) {
+            nx = (double)wx0 + w; /* likewise from the right */
+        }
+        double ny = (nx == xb) ? yb : ya + (nx - xa) * dydx;
+        deposit_piece(acc, w, wx0, x, nx, dir * (ny - y));
+        x = nx;
+        y = ny;
+    }
+}
+
+static uint8_t coverage_byte(sr_fill_rule rule, double s)
+{
+    double a = fabs(s);
+    if (rule == SR_EVENODD) {
+        a = fmod(a, 2.0);
+        if (a > 1.0) {
+            a = 2.0 - a;
+        }
+    } else if (a > 1.0) {
+        a = 1.0;
+    }
+    return (uint8_t)(a * 255.0 + 0.5);
+}
+
+typedef struct area_entry {
+    double x0, y0, x1, y1; /* pixels, y0 < y1 */
+    double dir;
+    int last_row;
+    int next;
+} area_entry;
+
+sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
+                        sr__window win, sr__span_fn fn, void *user)
+{
+    if (count <= 0 || win.x0 >= win.x1 || win.y0 >= win.y1) {
+        return SR_OK;
+    }
+    int rows = win.y1 - win.y0, w = win.x1 - win.x0;
+    area_entry *et = sr__alloc(ctx, (size_t)count * sizeof *et);
+    int *bucket = sr__alloc(ctx, (size_t)rows * sizeof *bucket);
+    int *active = sr__alloc(ctx, (size_t)count * sizeof *active);
+    double *acc = sr__calloc(ctx, (size_t)w + 2, sizeof *acc);
+    uint8_t *cov = sr__alloc(ctx, (size_t)w + 1);
+    if (!et || !bucket || !active || !acc || !cov) {
+        sr__free(ctx, et);
+        sr__free(ctx, bucket);
+        sr__free(ctx, active);
+        sr__free(ctx, acc);
+        sr__free(ctx, cov);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for coverage rows");
+    }
+    for (int y = 0; y < rows; y++) {
+        bucket[y] = -1;
+    }
+    int n_et = 0;
+    for (int i = 0; i < count; i++) {
+        const sr__edge2 *s = &edges[i];
+        /* Rows touched: floor(y0) .. ceil(y1) - 1 (pixel units). */
+        int64_t first = floor_div(s->y0, Q8_ONE);
+        int64_t last = floor_div(s->y1 + Q8_ONE - 1, Q8_ONE) - 1;
+        if (first < win.y0) {
+            first = win.y0;
+        }
+        if (last >= win.y1) {
+            last = win.y1 - 1;
+        }
+        if (first > last) {
+            continue;
+        }
+        area_entry *e = &et[n_et];
+        e->x0 = s->x0 / 256.0;
+        e->y0 = s->y0 / 256.0;
+        e->x1 = s->x1 / 256.0;
+        e->y1 = s->y1 / 256.0;
+        e->dir = s->dir;
+        e->last_row = (int)last;
+        int b = (int)(first - win.y0);
+        e->next = bucket[b];
+        bucket[b] = n_et++;
+    }
+    int n_active = 0;
+    for (int y = win.y0; y < win.y1; y++) {
+        int kept = 0;
+        for (int k = 0; k < n_active; k++) {
+            if (et[active[k]].last_row >= y) {
+                active[kept++] = active[k];
+            }
+        }
+        n_active = kept;
+        for (int i = bucket[y - win.y0]; i >= 0; i = et[i].next) {
+            active[n_active++] = i;
+        }
+        if (n_active == 0) {
+            continue;
+        }
+        double lo = INFINITY, hi = -INFINITY;
+        for (int k = 0; k < n_active; k++) {
+            const area_entry *e = &et[active[k]];
+            double ya = e->y0 > y ? e->y0 : y;
+            double yb = e->y1 < y + 1.0 ? e->y1 : y + 1.0;
+            if (!(ya < yb)) {
+                continue;
+            }
+            double inv = (e->x1 - e->x0) / (e->y1 - e->y0);
+            double xa = (ya == e->y0) ? e->x0 : e->x0 + (ya - e->y0) * inv;
+            double xb = (yb == e->y1) ? e->x1 : e->x0 + (yb - e->y0) * inv;
+            deposit_segment(acc, w, win.x0, xa, ya, xb, yb, e->dir);
+            double mn = xa < xb ? xa : xb, mx = xa < xb ? xb : xa;
+            if (mn < lo) {
+                lo = mn;
+            }
+            if (mx > hi) {
+                hi = mx;
+            }
+        }
+        /* Only columns from the leftmost touched one to one past the
+         * rightmost can be non-zero: a closed contour's row sums to 0. */
+        int c0 = lo <= win.x0 ? 0 : (int)floor(lo) - win.x0;
+        int c1 = hi >= win.x1 ? w : (int)floor(hi) - win.x0 + 2;
+        if (c0 > w) {
+            c0 = w;
+        }
+        if (c1 > w) {
+            c1 = w;
+        }
+        double s = 0.0;
+        for (int c = 0; c < c0; c++) {
+            s += acc[c];
+        }
+        int first_nz = -1, last_nz = -1;
+        for (int c = c0; c < c1; c++) {
+            s += acc[c];
+            cov[c] = coverage_byte(rule, s);
+            if (cov[c]) {
+                if (first_nz < 0) {
+                    first_nz = c;
+                }
+                last_nz = c;
+            }
+        }
+        if (first_nz >= 0) {
+            sr__span sp = { y, win.x0 + first_nz, win.x0 + last_nz + 1, cov + first_nz, -1, -1,
+                            y + 0.5 };
+            fn(user, &sp);
+        }
+        memset(acc, 0, ((size_t)w + 2) * sizeof *acc);
+    }
+    sr__free(ctx, et);
+    sr__free(ctx, bucket);
+    sr__free(ctx, active);
+    sr__free(ctx, acc);
+    sr__free(ctx, cov);
+    return SR_OK;
+}
+
+/* ---- n x n supersampling over the edge-table converter ------------------ */
+
+typedef struct ss_state {
+    uint16_t *count;   /* samples hit per pixel of the current pixel row */
+    uint8_t *cov;
+    int n, wx0, w;
+    int row;           /* pixel row being accumulated */
+    int lo, hi;        /* its touched pixel columns */
+    sr__span_fn fn;
+    void *user;
+} ss_state;
+
+static void ss_flush(ss_state *s)
+{
+    if (s->hi < s->lo) {
+        return;
+    }
+    int nn = s->n * s->n;
+    for (int c = s->lo; c <= s->hi; c++) {
+        s->cov[c] = (uint8_t)((s->count[c] * 255 + nn / 2) / nn);
+        s->count[c] = 0;
+    }
+    sr__span sp = { s->row, s->wx0 + s->lo, s->wx0 + s->hi + 1, s->cov + s->lo, -1, -1,
+                    s->row + 0.5 };
+    s->fn(s->user, &sp);
+    s->lo = s->w;
+    s->hi = -1;
+}
+
+static void ss_span(void *user, const sr__span *sp)
+{
+    ss_state *s = user;
+    int row = (int)floor_div(sp->y, s->n);
+    if (row != s->row) {
+        ss_flush(s);
+        s->row = row;
+    }
+    /* Sample columns sp->x0 .. x1-1 belong to pixels floor(sx / n). */
+    int c0 = (int)floor_div(sp->x0, s->n) - s->wx0;
+    int c1 = (int)floor_div(sp->x1 - 1, s->n) - s->wx0;
+    for (int c = c0; c <= c1; c++) {
+        int64_t a = (int64_t)(c + s->wx0) * s->n, b = a + s->n;
+        if (a < sp->x0) {
+            a = sp->x0;
+        }
+        if (b > sp->x1) {
+            b = sp->x1;
+        }
+        s->count[c] = (uint16_t)(s->count[c] + (b - a));
+    }
+    if (c0 < s->lo) {
+        s->lo = c0;
+    }
+    if (c1 > s->hi) {
+        s->hi = c1;
+    }
+}
+
+sr_result sr__scan_supersample(sr_context *ctx, const sr__edge2 *edges, int count,
+                               sr_fill_rule rule, int n, sr__window win,
+                               sr__span_fn fn, void *user)
+{
+    if (count <= 0 || win.x0 >= win.x1 || win.y0 >= win.y1) {
+        return SR_OK;
+    }
+    int w = win.x1 - win.x0;
+    ss_state s = { sr__calloc(ctx, (size_t)w, sizeof(uint16_t)), sr__alloc(ctx, (size_t)w), n,
+                   win.x0, w, win.y0, w, -1, fn, user };
+    if (!s.count || !s.cov) {
+        sr__free(ctx, s.count);
+        sr__free(ctx, s.cov);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for sample counts");
+    }
+    /* The ET converter on the n-times finer grid (edges were built with
+     * their vertices scaled by n): sample row j of pixel row y is scanline
+     * n y + j; spans arrive row by row and are counted per pixel. */
+    sr__window sw = { win.x0 * n, win.y0 * n, win.x1 * n, win.y1 * n };
+    sr_result r = sr__scan_edge_table(ctx, edges, count, rule, sw, ss_span, &s);
+    ss_flush(&s);
+    sr__free(ctx, s.count);
+    sr__free(ctx, s.cov);
+    return r;
+}
+
+/* ---- the public fills -------------------------------------------------- */
+
+sr_result sr__fill_desc_defaults(sr_context *ctx, const char *fn, const sr_fill_desc *in,
+                                 sr_fill_desc *out)
+{
+    *out = in ? *in : (sr_fill_desc){0};
+    if (out->rule == SR_FILL_RULE_DEFAULT) {
+        out->rule = SR_NONZERO;
+    }
+    if (out->rule != SR_NONZERO && out->rule != SR_EVENODD) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_fill_desc.rule %d is not a fill rule", fn,
+                        (int)out->rule);
+    }
+    if (out->antialias == SR_AA_DEFAULT) {
+        out->antialias = SR_AA_NONE;
+    }
+    if (out->antialias != SR_AA_NONE && out->antialias != SR_AA_AREA &&
+        out->antialias != SR_AA_SUPERSAMPLE) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_fill_desc.antialias %d is not a mode", fn,
+                        (int)out->antialias);
+    }
+    if (out->samples == 0) {
+        out->samples = 4;
+    }
+    if (out->samples < 1 || out->samples > MAX_SUPERSAMPLE) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_fill_desc.samples must be in 1..%d (got %d)",
+                        fn, MAX_SUPERSAMPLE, out->samples);
+    }
+    return SR_OK;
+}
+
+sr_result sr__rasterize_polygon(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
+                                const sr_fill_desc *desc, sr__window win,
+                                sr__span_fn fn_span, void *user)
+{
+    int scale = desc->antialias == SR_AA_SUPERSAMPLE ? desc->samples : 1;
+    sr__edge2 *edges;
+    int count;
+    sr_result r = sr__edges_from_polygon(ctx, fn, poly, scale, &edges, &count);
+    if (r != SR_OK) {
+        return r;
+    }
+    switch (desc->antialias) {
+    case SR_AA_AREA:
+        r = sr__scan_area(ctx, edges, count, desc->rule, win, fn_span, user);
+        break;
+    case SR_AA_SUPERSAMPLE:
+        r = sr__scan_supersample(ctx, edges, count, desc->rule, scale, win, fn_span, user);
+        break;
+    default:
+        r = sr__scan_edge_table(ctx, edges, count, desc->rule, win, fn_span, user);
+        break;
+    }
+    sr__free(ctx, edges);
+    return r;
+}
+
+typedef struct paint_target {
+    sr__paint paint;
+    sr_framebuffer *fb;
+} paint_target;
+
+static void paint_span(void *user, const sr__span *sp)
+{
+    paint_target *t = user;
+    if (!sp->cov) {
+        sr__paint_span(&t->paint, t->fb, sp->y, sp->x0, sp->x1);
+        return;
+    }
+    uint32_t *row = t->fb->color + (size_t)sp->y * (size_t)t->fb->width;
+    for (int x = sp->x0; x < sp->x1; x++) {
+        sr__paint_pixel(&t->paint, &row[x], sp->cov[x - sp->x0]);
+    }
+}
+
+sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                          sr_rgba color, const sr_fill_desc *desc)
+{
+    static const char fn[] = "sr_fill_polygon";
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!fb) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: fb is NULL", fn);
+    }
+    sr_fill_desc d;
+    sr_result r = sr__fill_desc_defaults(ctx, fn, desc, &d);
+    if (r != SR_OK) {
+        return r;
+    }
+    paint_target t = { .fb = fb };
+    if (!sr__paint_init(&t.paint, color, d.linear_light)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
+    }
+    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    r = sr__rasterize_polygon(ctx, fn, poly, &d, (sr__window){ 0, 0, fb->width, fb->height },
+                              paint_span, &t);
+    if (r == SR_OK) {
+        sr__ok(ctx);
+    }
+    return r;
+}
+
+typedef struct mask_target {
+    uint8_t *mask;
+    size_t stride;
+    int x0, y0;
+} mask_target;
+
+static void mask_span(void *user, const sr__span *sp)
+{
+    mask_target *m = user;
+    uint8_t *row = m->mask + (size_t)(sp->y - m->y0) * m->stride - m->x0;
+    for (int x = sp->x0; x < sp->x1; x++) {
+        row[x] = sp->cov ? sp->cov[x - sp->x0] : 255;
+    }
+}
+
+sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
+                              const sr_fill_desc *desc, int x0, int y0, int w, int h,
+                              uint8_t *mask, size_t stride)
+{
+    static const char fn[] = "sr_polygon_coverage";
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!mask) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: mask is NULL", fn);
+    }
+    if (w < 1 || h < 1 || w > SR_MAX_FRAMEBUFFER_SIZE || h > SR_MAX_FRAMEBUFFER_SIZE) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: window %d x %d must be 1..%d on each side", fn,
+                        w, h, SR_MAX_FRAMEBUFFER_SIZE);
+    }
+    if (fabs((double)x0) > SR_MAX_COORD2D || fabs((double)y0) > SR_MAX_COORD2D) {
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: window origin beyond +-%g", fn, SR_MAX_COORD2D);
+    }
+    if (stride < (size_t)w) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < width %d", fn, stride, w);
+    }
+    sr_fill_desc d;
+    sr_result r = sr__fill_desc_defaults(ctx, fn, desc, &d);
+    if (r != SR_OK) {
+        return r;
+    }
+    for (int y = 0; y < h; y++) {
+        memset(mask + (size_t)y * stride, 0, (size_t)w);
+    }
+    mask_target m = { mask, stride, x0, y0 };
+    r = sr__rasterize_polygon(ctx, fn, poly, &d, (sr__window){ x0, y0, x0 + w, y0 + h },
+                              mask_span, &m);
+    if (r == SR_OK) {
+        sr__ok(ctx);
+    }
+    return r;
+}
