@@ -91,7 +91,8 @@ static const struct { const char *name; unsigned rgb; } color_names[] = {
     { "ivory", 0xfffff0 }, { "coral", 0xff7f50 }, { "crimson", 0xdc143c },
 };
 
-/* Names (CSS/SVG keywords), #rgb, #rrggbb, or three numbers r,g,b in [0, 1]. */
+/* Names (CSS/SVG keywords), #rgb, #rrggbb, three numbers r,g,b in [0, 1],
+ * or one number: a gray level in [0, 1]. */
 bool parse_color(const char *opt, const char *s, sr_vec3 *out)
 {
     for (size_t i = 0; i < sizeof color_names / sizeof color_names[0]; i++) {
@@ -120,12 +121,19 @@ bool parse_color(const char *opt, const char *s, sr_vec3 *out)
         }
     }
     sr_vec3 v;
+    char *end;
+    double gray = strtod(s, &end);
+    if (end != s && *end == 0 && gray >= 0.0 && gray <= 1.0) {
+        *out = (sr_vec3){ (float)gray, (float)gray, (float)gray };
+        return true;
+    }
     if (strchr(s, ',') && sscanf(s, "%f,%f,%f", &v.x, &v.y, &v.z) == 3 &&
         v.x >= 0 && v.y >= 0 && v.z >= 0 && isfinite(v.x) && isfinite(v.y) && isfinite(v.z)) {
         *out = v;
         return true;
     }
-    cli_error("%s: expected a color name, #rgb, #rrggbb or R,G,B (got '%s')", opt, s);
+    cli_error("%s: expected a color name, #rgb, #rrggbb, R,G,B or a gray level 0..1 (got '%s')",
+              opt, s);
     return false;
 }
 
