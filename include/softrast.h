@@ -13,6 +13,11 @@
  * softrast_io.h for that) and never prints.  It depends on libc, libm and
  * pthreads only.
  *
+ * Lines follow the diamond-exit rule (a segment covers a pixel when it
+ * leaves the diamond |x - x_c| + |y - y_c| < 1/2 around the pixel's centre;
+ * the last pixel is not drawn, so strips join without gaps or doubles);
+ * points are squares covering the pixel centres inside them.
+ *
  * Use:
  *     sr_context *ctx;
  *     sr_make_context(&(sr_context_desc){0}, &ctx);
@@ -311,6 +316,15 @@ typedef struct sr_polygon_offset {
     bool fill, line, point;  /* which polygon modes are offset */
 } sr_polygon_offset;
 
+/* How a triangle is drawn once it has been clipped and culled
+ * (glPolygonMode): filled, as its outline of lines, or as its vertices. */
+typedef enum sr_polygon_mode {
+    SR_POLYGON_DEFAULT = 0, /* -> SR_POLYGON_FILL */
+    SR_POLYGON_FILL,
+    SR_POLYGON_LINE,
+    SR_POLYGON_POINT,
+} sr_polygon_mode;
+
 typedef struct sr_viewport {
     int x, y, width, height; /* pixels, y from the top; width 0 -> the framebuffer */
 } sr_viewport;
@@ -323,6 +337,10 @@ typedef struct sr_state {
     sr_cull_mode cull;
     sr_front_face front_face;
     sr_rasterizer rasterizer;
+    sr_polygon_mode polygon_mode_front;
+    sr_polygon_mode polygon_mode_back;
+    float line_width;              /* whole pixels, 1..64; 0 -> 1 (runs across the minor axis) */
+    float point_size;              /* pixels, > 0 and <= 1024; 0 -> 1 (a square) */
 
     bool no_depth_test;            /* depth test is on by default when there is a depth buffer */
     bool no_depth_write;
@@ -345,6 +363,10 @@ typedef enum sr_primitive {
     SR_PRIM_TRIANGLES,
     SR_PRIM_TRIANGLE_STRIP,
     SR_PRIM_TRIANGLE_FAN,
+    SR_PRIM_LINES,           /* pairs of vertices */
+    SR_PRIM_LINE_STRIP,
+    SR_PRIM_LINE_LOOP,       /* a strip closed back to the first vertex */
+    SR_PRIM_POINTS,
 } sr_primitive;
 
 typedef enum sr_index_type {
@@ -450,6 +472,314 @@ sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int sc
                        const char *text, sr_rgba color);
 /* Width in pixels that sr_draw_text would use. */
 int sr_text_width(const char *text, int scale);
+
+/* ---- 2D polygon fill (src/draw2d/polyfill.c) ---------------------------- */
+/*
+ * Polygons are one or more closed contours (concave, self-intersecting,
+ * holes as further contours).  Vertices are snapped to 1/256 pixel.
+ * Aliased fills use the scan-line algorithm with an edge table and an
+ * active edge table: a pixel is filled when its centre is inside, edges
+ * are half-open in y and spans [x_l, x_r) left-inclusive, so polygons
+ * sharing an edge fill each pixel exactly once.  Antialiased fills take
+ * the exact area of polygon and pixel (signed-area accumulation), or count
+ * n x n samples.
+ */
+
+#define SR_MAX_COORD2D 262144.0 /* |x|, |y| of any 2D vertex, in pixels */
+
+typedef enum sr_fill_rule {
+    SR_FILL_RULE_DEFAULT = 0, /* -> SR_NONZERO (SVG's default) */
+    SR_NONZERO,               /* inside where the winding number is not 0 */
+    SR_EVENODD,               /* inside where it is odd (parity) */
+} sr_fill_rule;
+
+typedef enum sr_antialias {
+    SR_AA_DEFAULT = 0,  /* -> SR_AA_NONE */
+    SR_AA_NONE,         /* point sampling at pixel centres (edge table) */
+    SR_AA_AREA,         /* exact area coverage; where contours overlap inside one
+                         * pixel the winding integral is clamped (nonzero) or
+                         * folded (even-odd), an approximation */
+    SR_AA_SUPERSAMPLE,  /* samples x samples ordered grid per pixel, exact per sample */
+} sr_antialias;
+
+typedef struct sr_polygon2 {
+    const sr_point2 *points;    /* every contour's vertices, back to back */
+    int point_count;
+    const int *contour_counts;  /* vertices per contour; NULL -> one contour */
+    int contour_count;          /* entries in contour_counts */
+} sr_polygon2;
+
+typedef struct sr_fill_desc {
+    sr_fill_rule rule;
+    sr_antialias antialias;
+    int samples;        /* SR_AA_SUPERSAMPLE: 0 -> 4; 1..16 */
+    bool linear_light;  /* blend partial coverage in linear light (sRGB decoded) */
+} sr_fill_desc;
+
+/* Fill a polygon with a color (desc may be NULL: nonzero, aliased). */
+sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                          sr_rgba color, const sr_fill_desc *desc);
+/* Coverage only: 0..255 per pixel of the w x h window whose top-left pixel
+ * is (x0, y0), written to mask (stride bytes per row; the window is
+ * zeroed first).  Aliased coverage is 0 or 255. */
+sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
+                              const sr_fill_desc *desc, int x0, int y0, int w, int h,
+                              uint8_t *mask, size_t stride);
+
+/* ---- region filling (src/draw2d/floodfill.c) ----------------------------- */
+/*
+ * Seed fills on the pixels already in the framebuffer.  Flood fill
+ * recolours the connected region of pixels matching the seed pixel's
+ * color; boundary fill recolours the connected region of pixels that do
+ * not match a boundary color.  Both are span fills with an explicit stack
+ * (no recursion, memory bounded by the image): a whole horizontal run is
+ * filled, then the rows above and below are scanned across it for new
+ * runs.  The fill color replaces the pixels (no blending).
+ */
+
+typedef enum sr_connectivity {
+    SR_CONNECT_DEFAULT = 0, /* -> SR_CONNECT_4 */
+    SR_CONNECT_4,           /* neighbours (+-1, 0), (0, +-1) */
+    SR_CONNECT_8,           /* and the four diagonals */
+} sr_connectivity;
+
+typedef struct sr_region_fill_desc {
+    sr_connectivity connectivity;
+    int tolerance;          /* 0..255: colors match when every RGBA8 channel
+                             * differs by at most this much; 0 = exact */
+} sr_region_fill_desc;
+
+/* (x, y) must be inside the framebuffer; desc may be NULL; filled (may be
+ * NULL) receives the number of pixels recoloured. */
+sr_result sr_flood_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
+                        const sr_region_fill_desc *desc, size_t *filled);
+sr_result sr_boundary_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
+                           sr_rgba boundary, const sr_region_fill_desc *desc, size_t *filled);
+
+/* ---- 2D polygon clipping (src/draw2d/polyclip.c) ------------------------- */
+/*
+ * Sutherland-Hodgman: the polygon is clipped against one edge of the clip
+ * window after another.  For each polygon edge (first point, second point):
+ * both inside -> output the second point; inside to outside -> the
+ * intersection; both outside -> nothing; outside to inside -> the
+ * intersection and the second point.  Points on a clip edge are inside.
+ * Intersections are computed from the inside point, so two polygons that
+ * share an edge get the same clipped vertices.  A concave polygon that the
+ * window cuts into pieces comes out as one polygon whose pieces are joined
+ * along the window border (zero-area bridges), which fills correctly.
+ */
+
+/* Called with the polygon after each clip edge (edge 0 first). */
+typedef void (*sr_clip_stage_fn)(void *user, int clip_edge, const sr_point2 *poly, int count);
+
+typedef struct sr_polygon_clip_desc {
+    sr_clip_stage_fn on_stage;  /* optional */
+    void *user;
+} sr_polygon_clip_desc;
+
+/* Clip against the rectangle xmin <= x <= xmax, ymin <= y <= ymax, edges in
+ * the order left, bottom (y = ymax, the bottom of the screen), right, top.
+ * out receives up to `capacity` points; *out_count is the clipped polygon's
+ * size (0 when nothing is left).  When capacity is too small the call
+ * returns SR_TOO_LARGE with *out_count the size needed (call again with a
+ * larger buffer).  desc may be NULL. */
+sr_result sr_clip_polygon_rect(sr_context *ctx, const sr_point2 *in, int count, double xmin,
+                               double ymin, double xmax, double ymax,
+                               const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
+                               int *out_count);
+/* Clip against a convex window polygon (either orientation, at least 3
+ * vertices, non-zero area); its edges are used in order. */
+sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, int count,
+                                 const sr_point2 *window, int window_count,
+                                 const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
+                                 int *out_count);
+
+/* ---- curves (src/draw2d/curves.c) ---------------------------------------- */
+/*
+ * Ellipses and circles by the midpoint method: the decision variable is the
+ * implicit function F(x, y) = ry^2 (x - cx)^2 + rx^2 (y - cy)^2 - rx^2 ry^2
+ * at pixel centres, in exact integers (centre and radii snapped to 1/256
+ * pixel) and stepped from pixel to pixel by forward differences.  A pixel
+ * is inside when F < 0 at its centre; the outline is the set of inside
+ * pixels with an outside 4-neighbour, so the octants meet without gaps or
+ * doubled pixels for any centre and radius.
+ */
+
+/* rx, ry >= 0; |cx|, |cy|, rx, ry <= SR_MAX_COORD2D.  Aliased. */
+sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double rx,
+                          double ry, sr_rgba color, bool filled);
+sr_result sr_draw_circle(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double r,
+                         sr_rgba color, bool filled);
+
+/* An implicit region F(x, y) < 0.  The function returns F at (x, y) in
+ * pixel coordinates; when grad is not NULL it may store dF/dx, dF/dy there
+ * (left untouched, central differences are used). */
+typedef double (*sr_implicit_fn)(void *user, double x, double y, double grad[2]);
+
+typedef struct sr_implicit_desc {
+    sr_implicit_fn f;           /* required */
+    void *user;
+    double x0, y0, x1, y1;      /* the box to evaluate, pixels; all zero -> the framebuffer */
+    bool antialias;             /* coverage clamp(1/2 - F / |grad F|, 0, 1): the signed
+                                 * distance to the curve, to first order */
+    bool linear_light;
+} sr_implicit_desc;
+
+sr_result sr_fill_implicit(sr_context *ctx, sr_framebuffer *fb, const sr_implicit_desc *desc,
+                           sr_rgba color);
+
+/* Bezier curves flattened by forward differencing: n steps of 1/n in t,
+ * with n chosen so the chords stay within `tolerance` pixels of the curve
+ * (from the bound |B''| h^2 / 8 on the chord error).  out receives the n
+ * points after p0 (the last is exactly the end point).  Capacity too small:
+ * SR_TOO_LARGE and *out_count = n. */
+sr_result sr_flatten_quadratic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
+                               double tolerance, sr_point2 *out, int capacity, int *out_count);
+sr_result sr_flatten_cubic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
+                           sr_point2 p3, double tolerance, sr_point2 *out, int capacity,
+                           int *out_count);
+/* An SVG elliptical arc from `from` to `to` (radii, x-axis rotation in
+ * degrees, large-arc and sweep flags; out-of-range radii are scaled up as
+ * SVG 1.1 F.6.6 says, zero radii give a straight line).  Same output
+ * convention as the Bezier calls. */
+sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
+                         double rotation_deg, bool large_arc, bool sweep, sr_point2 to,
+                         double tolerance, sr_point2 *out, int capacity, int *out_count);
+
+/* ---- Gouraud-shaded 2D polygons (src/draw2d/gouraud.c) ------------------- */
+/*
+ * The same pixels as sr_fill_polygon (aliased edge-table fill), colored by
+ * interpolation.  Triangles: barycentric weights of the pixel centre times
+ * the vertex colors.  Polygons (any, as sr_polygon2): the colors are
+ * interpolated along each edge to where it crosses the scanline, then
+ * along the span between the two crossings (bilinear interpolation, which
+ * depends on the polygon's orientation for more than three vertices).
+ * Colors with alpha < 1 blend source-over.
+ */
+sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_point2 v[3],
+                                   const sr_rgba colors[3]);
+/* colors: one per polygon point; rule: SR_FILL_RULE_DEFAULT -> nonzero. */
+sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                                  const sr_rgba *colors, sr_fill_rule rule);
+
+/* ---- paths and strokes (src/draw2d/path.c) ------------------------------- */
+/*
+ * A path is a list of subpaths built from lines, Beziers and arcs, flattened
+ * to polylines as they are added (within the path's tolerance).  Filling
+ * closes every subpath; stroking builds the outline polygon of the stroke
+ * (a quadrilateral per segment, join pieces, cap pieces, all wound the same
+ * way) and fills it with the nonzero rule.
+ */
+typedef struct sr_path sr_path;
+
+/* tolerance: flattening error in pixels; 0 -> 0.1. */
+sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out);
+void      sr_destroy_path(sr_path *path);
+void      sr_path_clear(sr_path *path);
+sr_result sr_path_move_to(sr_path *path, double x, double y);
+sr_result sr_path_line_to(sr_path *path, double x, double y);
+sr_result sr_path_quad_to(sr_path *path, double x1, double y1, double x, double y);
+sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, double y2,
+                           double x, double y);
+sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_deg,
+                         bool large_arc, bool sweep, double x, double y);
+sr_result sr_path_close(sr_path *path);
+/* The flattened path as a polygon (valid until the path changes). */
+sr_polygon2 sr_path_polygon(const sr_path *path);
+
+typedef enum sr_stroke_join {
+    SR_STROKE_JOIN_DEFAULT = 0, /* -> SR_STROKE_JOIN_MITER (SVG's default) */
+    SR_STROKE_JOIN_MITER,       /* bevel where the miter exceeds the limit */
+    SR_STROKE_JOIN_ROUND,
+    SR_STROKE_JOIN_BEVEL,
+} sr_stroke_join;
+
+typedef enum sr_stroke_cap {
+    SR_STROKE_CAP_DEFAULT = 0,  /* -> SR_STROKE_CAP_BUTT */
+    SR_STROKE_CAP_BUTT,
+    SR_STROKE_CAP_ROUND,
+    SR_STROKE_CAP_SQUARE,
+} sr_stroke_cap;
+
+typedef struct sr_stroke_desc {
+    double width;               /* 0 -> 1 pixel */
+    sr_stroke_join join;
+    sr_stroke_cap cap;
+    double miter_limit;         /* miter length / width; 0 -> 4; >= 1 */
+    sr_antialias antialias;     /* as sr_fill_desc; note SR_AA_AREA slightly
+                                 * over-covers where stroke pieces overlap inside a
+                                 * pixel, SR_AA_SUPERSAMPLE does not */
+    int samples;
+    bool linear_light;
+} sr_stroke_desc;
+
+sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path, sr_rgba color,
+                       const sr_fill_desc *desc);
+sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
+                         sr_rgba color, const sr_stroke_desc *desc);
+/* The stroke outline itself (contours allocated in *out_points /
+ * *out_counts on ctx's allocator; release with sr_free_stroke_outline). */
+sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
+                            sr_polygon2 *out);
+void      sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
+
+/* ---- 2D lines (src/draw2d/line*.c) -------------------------------------- */
+/*
+ * A segment from a to b in pixel coordinates, drawn with one of the line
+ * algorithms of the course (docs/lines.md).  The aliased ones snap the
+ * endpoints to 1/256 px first; the antialiased ones blend coverage in
+ * linear light (sRGB decoded, mixed, encoded).  Every line is clipped to
+ * the framebuffer first, so a line from -1e9 to +1e9 costs only its
+ * visible length, and the clipped line draws exactly the pixels the
+ * unclipped one would have drawn inside the framebuffer.
+ *
+ * Errors: NaN or infinite coordinates give SR_INVALID_ARG (nothing drawn);
+ * coordinates beyond +-1e12 px give SR_TOO_LARGE.  a == b draws nothing
+ * (except SR_LINE_AREA and SR_LINE_WIDE with square or round caps, which
+ * draw the cap).
+ */
+typedef enum sr_line_algorithm {
+    SR_LINE_DEFAULT = 0,      /* -> SR_LINE_BRESENHAM */
+    SR_LINE_DDA_NAIVE,        /* v = v1 + m (u - u1) per major step, rounded */
+    SR_LINE_DDA_INCREMENTAL,  /* v += m per major step (32 fraction bits) */
+    SR_LINE_BRESENHAM,        /* midpoint / diamond exit, exact: integer
+                                 decisions; the end pixel is left out */
+    SR_LINE_WU,               /* Xiaolin Wu antialiased: 2 pixels per step */
+    SR_LINE_AREA,             /* exact area coverage of the width-w rectangle */
+    SR_LINE_WIDE,             /* aliased, runs of round(w) pixels per step */
+} sr_line_algorithm;
+
+typedef enum sr_line_cap {    /* SR_LINE_AREA and SR_LINE_WIDE */
+    SR_LINE_CAP_DEFAULT = 0,  /* -> SR_LINE_CAP_BUTT */
+    SR_LINE_CAP_BUTT,         /* ends exactly at a and b */
+    SR_LINE_CAP_SQUARE,       /* extended by w/2 past each end */
+    SR_LINE_CAP_ROUND,        /* a half disk of diameter w at each end */
+} sr_line_cap;
+
+typedef enum sr_line_clipper {
+    SR_LINE_CLIP_DEFAULT = 0, /* -> SR_LINE_CLIP_LIANG_BARSKY */
+    SR_LINE_CLIP_COHEN_SUTHERLAND,
+    SR_LINE_CLIP_LIANG_BARSKY,
+} sr_line_clipper;
+
+typedef struct sr_line_desc {
+    sr_line_algorithm algorithm;
+    double width;             /* 0 -> 1; SR_LINE_AREA: any width in (0, 4096];
+                                 SR_LINE_WIDE: rounded to 1..1024 pixels */
+    sr_line_cap cap;
+    sr_line_clipper clipper;
+} sr_line_desc;
+
+/* Draw a->b into fb's color.  desc may be NULL (Bresenham, width 1). */
+sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_point2 b,
+                       sr_rgba color, const sr_line_desc *desc);
+
+/* Clip the segment *a-*b to the closed rectangle [rmin.x, rmax.x] x
+ * [rmin.y, rmax.y], moving the endpoints onto its border.  Returns false
+ * (points unchanged) when no part of it is inside, or when a coordinate
+ * is not finite or the rectangle is empty. */
+bool sr_clip_line_cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
+bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
 
 #ifdef __cplusplus
 }

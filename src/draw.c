@@ -40,7 +40,7 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
     if (!d) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw: draw is NULL");
     }
-    if ((unsigned)d->primitive > SR_PRIM_TRIANGLE_FAN) {
+    if ((unsigned)d->primitive > SR_PRIM_POINTS) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.primitive %d is not a primitive type",
                         (int)d->primitive);
     }
@@ -83,6 +83,21 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         !d->normals && d->vertex_count > 0) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_draw_desc.normals is NULL but the shading model needs vertex normals");
+    }
+    if ((unsigned)st->polygon_mode_front > SR_POLYGON_POINT ||
+        (unsigned)st->polygon_mode_back > SR_POLYGON_POINT) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.polygon_mode_%s %d is not a polygon mode",
+                        (unsigned)st->polygon_mode_front > SR_POLYGON_POINT ? "front" : "back",
+                        (int)((unsigned)st->polygon_mode_front > SR_POLYGON_POINT
+                                  ? st->polygon_mode_front : st->polygon_mode_back));
+    }
+    if (!(st->line_width >= 0.0f && st->line_width <= 64.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.line_width must be in [0, 64] (got %g)",
+                        (double)st->line_width);
+    }
+    if (!(st->point_size >= 0.0f && st->point_size <= 1024.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.point_size must be in [0, 1024] (got %g)",
+                        (double)st->point_size);
     }
     if ((unsigned)st->cull > SR_CULL_FRONT_AND_BACK) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.cull %d is not a cull mode", (int)st->cull);
@@ -205,6 +220,15 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
         ds->depth_mode = SR_DEPTH_MODE_GENERIC;
     }
     ds->offset_on = st->offset.fill;
+    ds->offset_line = st->offset.line;
+    ds->offset_point = st->offset.point;
+    ds->mode_front = st->polygon_mode_front == SR_POLYGON_DEFAULT ? SR_POLYGON_FILL
+                                                                  : st->polygon_mode_front;
+    ds->mode_back = st->polygon_mode_back == SR_POLYGON_DEFAULT ? SR_POLYGON_FILL
+                                                                : st->polygon_mode_back;
+    ds->line_width = st->line_width == 0.0f ? 1 : (int)lroundf(st->line_width);
+    ds->line_width = ds->line_width < 1 ? 1 : ds->line_width;
+    ds->point_size = st->point_size == 0.0f ? 1.0 : st->point_size;
     ds->offset_factor = st->offset.factor;
     ds->offset_units = st->offset.units;
     ds->offset_clamp = st->offset.clamp;
@@ -341,6 +365,50 @@ static void emit(const front_end *fe, sr_chunk *c, const sr_window_vertex *w0,
     }
 }
 
+/* The next free record of chunk c, or NULL when out of memory. */
+static void *next_record(const front_end *fe, sr_chunk *c)
+{
+    if (!sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
+        c->out_of_memory = true;
+        return NULL;
+    }
+    return c->tris + (size_t)c->tri_count * fe->tri_size;
+}
+
+static void emit_line(const front_end *fe, sr_chunk *c, const sr_window_vertex *a,
+                      const sr_window_vertex *b, double offset, bool front, const float flat[4])
+{
+    sr_line *l = next_record(fe, c);
+    if (l && sr__setup_line(fe->ds, a, b, offset, front, fe->ds->ninterp, flat, l)) {
+        c->tri_count++;
+    }
+}
+
+static void emit_point(const front_end *fe, sr_chunk *c, const sr_window_vertex *v,
+                       double offset, bool front, const float flat[4])
+{
+    sr_point *p = next_record(fe, c);
+    if (p && sr__setup_point(fe->ds, v, offset, front, fe->ds->ninterp, flat, p)) {
+        c->tri_count++;
+    }
+}
+
+/* glPolygonMode: a clipped, culled polygon w[0..n-1] drawn as its outline
+ * (each edge half-open, so every corner is drawn once) or its corners,
+ * with the polygon offset of its plane when enabled for that mode. */
+static void polygon_outline(const front_end *fe, sr_chunk *c, const sr_window_vertex *w, int n,
+                            sr_polygon_mode mode, bool front, const float flat[4])
+{
+    double offset = sr__polygon_offset(fe->ds, &w[0], &w[1], &w[2], mode);
+    for (int i = 0; i < n; i++) {
+        if (mode == SR_POLYGON_LINE) {
+            emit_line(fe, c, &w[i], &w[(i + 1) % n], offset, front, flat);
+        } else {
+            emit_point(fe, c, &w[i], offset, front, flat);
+        }
+    }
+}
+
 static void clip_vertex(const sr_draw_state *ds, const sr_vertex_post *p, const float *vary,
                         sr_clip_vertex *out)
 {
@@ -385,7 +453,12 @@ static void triangle(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1,
         if (need_flat) {
             sr__flat_color(ds, a0, a1, a2, s->vary + pv * nv, flat);
         }
-        emit(fe, c, &w[0], &w[1], &w[2], front, flat);
+        sr_polygon_mode mode = front ? ds->mode_front : ds->mode_back;
+        if (mode == SR_POLYGON_FILL) {
+            emit(fe, c, &w[0], &w[1], &w[2], front, flat);
+        } else {
+            polygon_outline(fe, c, w, 3, mode, front, flat);
+        }
         return;
     }
 
@@ -428,9 +501,69 @@ static void triangle(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1,
         c->info.triangles_culled++;
         return;
     }
+    sr_polygon_mode mode = front ? ds->mode_front : ds->mode_back;
+    if (mode != SR_POLYGON_FILL) {
+        polygon_outline(fe, c, w, n, mode, front, flat);
+        return;
+    }
     for (int i = 1; i + 1 < n; i++) {
         emit(fe, c, &w[0], &w[i], &w[i + 1], front, flat);
     }
+}
+
+/* A window vertex straight from the post-transform cache. */
+static sr_window_vertex cached_window(const sr_vertex_post *p, const float *vary)
+{
+    return (sr_window_vertex){ p->x_q8, p->y_q8, p->z, p->inv_w, vary };
+}
+
+/* Flat shading of a line or point: the provoking vertex's own color. */
+static const float *provoking_color(const sr_draw_state *ds, const float *pv)
+{
+    return ds->shading == SR_SHADING_FLAT ? &pv[SR_VARY_FLAT_COLOR] : NULL;
+}
+
+static void segment(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, uint32_t pv)
+{
+    const sr_draw_state *ds = fe->ds;
+    const sr_scratch *s = fe->ctx->scratch;
+    const sr_vertex_post *p0 = &s->post[i0], *p1 = &s->post[i1];
+    size_t nv = (size_t)ds->nvary;
+    const float *a0 = s->vary + i0 * nv, *a1 = s->vary + i1 * nv;
+    const float *flat = provoking_color(ds, s->vary + pv * nv);
+    unsigned c0 = p0->outcode, c1 = p1->outcode;
+    if (((c0 | c1) & SR_OUTCODE_NONFINITE) || (c0 & c1)) {
+        return;
+    }
+    if ((c0 | c1) == 0) {
+        sr_window_vertex w0 = cached_window(p0, a0), w1 = cached_window(p1, a1);
+        emit_line(fe, c, &w0, &w1, 0.0, true, flat);
+        return;
+    }
+    sr_clip_vertex v0, v1, o0, o1;
+    clip_vertex(ds, p0, a0, &v0);
+    clip_vertex(ds, p1, a1, &v1);
+    if (!sr__clip_segment(ds, &v0, &v1, c0 | c1, &o0, &o1)) {
+        return;
+    }
+    sr_window_vertex w0, w1;
+    sr__window_vertex(ds, &o0, &w0);
+    sr__window_vertex(ds, &o1, &w1);
+    emit_line(fe, c, &w0, &w1, 0.0, true, flat);
+}
+
+/* A point is drawn when its vertex is inside every plane (RASTER_RULES 7). */
+static void point(const front_end *fe, sr_chunk *c, uint32_t i)
+{
+    const sr_draw_state *ds = fe->ds;
+    const sr_scratch *s = fe->ctx->scratch;
+    const sr_vertex_post *p = &s->post[i];
+    if (p->outcode != 0) {
+        return;
+    }
+    const float *a = s->vary + i * (size_t)ds->nvary;
+    sr_window_vertex w = cached_window(p, a);
+    emit_point(fe, c, &w, 0.0, true, provoking_color(ds, a));
 }
 
 /* Primitive p of the draw, with the provoking vertex of RASTER_RULES 4.2. */
@@ -455,6 +588,22 @@ static void primitive(const front_end *fe, sr_chunk *c, size_t p)
         triangle(fe, c, a, b, e, last ? e : b);
         break;
     }
+    case SR_PRIM_LINES: {
+        uint32_t a = index_at(d, 2 * p), b = index_at(d, 2 * p + 1);
+        segment(fe, c, a, b, last ? b : a);
+        break;
+    }
+    case SR_PRIM_LINE_STRIP:
+    case SR_PRIM_LINE_LOOP: {
+        /* A loop's last segment closes back to the first vertex. */
+        size_t n = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
+        uint32_t a = index_at(d, p), b = index_at(d, (p + 1) % n);
+        segment(fe, c, a, b, last ? b : a);
+        break;
+    }
+    case SR_PRIM_POINTS:
+        point(fe, c, index_at(d, p));
+        break;
     default: {
         uint32_t a = index_at(d, 3 * p), b = index_at(d, 3 * p + 1), e = index_at(d, 3 * p + 2);
         triangle(fe, c, a, b, e, last ? e : a);
@@ -530,9 +679,14 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     resolve_state(fb, state, d->view, d->projection, &ds);
 
     size_t prims = 0;
-    if (count >= 3) {
-        prims = d->primitive == SR_PRIM_TRIANGLE_STRIP || d->primitive == SR_PRIM_TRIANGLE_FAN
-                    ? count - 2 : count / 3;
+    switch (d->primitive) {
+    case SR_PRIM_TRIANGLE_STRIP:
+    case SR_PRIM_TRIANGLE_FAN: prims = count >= 3 ? count - 2 : 0; break;
+    case SR_PRIM_LINES:        prims = count / 2; break;
+    case SR_PRIM_LINE_STRIP:   prims = count >= 2 ? count - 1 : 0; break;
+    case SR_PRIM_LINE_LOOP:    prims = count >= 3 ? count : (count == 2 ? 1 : 0); break;
+    case SR_PRIM_POINTS:       prims = count; break;
+    default:                   prims = count / 3; break;
     }
     /* More chunks than threads evens out uneven clipping and culling. */
     int chunks = ctx->threads == 1 ? 1 : ctx->threads * 2;
@@ -561,7 +715,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
                  (int)((d->vertex_count + vj.per_job - 1) / vj.per_job));
 
     memset(s->stats, 0, sizeof s->stats);
-    front_end fe = { ctx, &ds, d, sr__tri_size(ds.ninterp), chunks };
+    front_end fe = { ctx, &ds, d, sr__record_size(ds.ninterp), chunks };
     bool oom = false;
     /* Equal batches of at most SR_BATCH_PRIMS, so no batch is a sliver. */
     size_t batches = (prims + SR_BATCH_PRIMS - 1) / SR_BATCH_PRIMS;

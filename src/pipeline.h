@@ -61,6 +61,10 @@ typedef struct sr_draw_state {
     sr_depth_func depth_func;
     sr_depth_mode depth_mode;
     int depth_bits;                   /* 16, 24, 32, 0 = float */
+    sr_polygon_mode mode_front, mode_back;
+    int line_width;
+    double point_size;
+    bool offset_line, offset_point;
     bool offset_on;
     double offset_factor, offset_units, offset_clamp;
 
@@ -121,11 +125,26 @@ typedef struct sr_vertex_post {
 
 #define SR_OUTCODE_NONFINITE 0x80000000u
 
+/* What binning needs of any primitive: its kind and pixel bounding box
+ * (inclusive-exclusive, already trimmed to viewport and framebuffer).
+ * Every set-up record starts with it. */
+typedef enum sr_prim_kind {
+    SR_KIND_TRIANGLE = 0,
+    SR_KIND_LINE,
+    SR_KIND_POINT,
+} sr_prim_kind;
+
+typedef struct sr_prim_head {
+    int32_t kind;                     /* sr_prim_kind */
+    int x0, y0, x1, y1;
+} sr_prim_head;
+
 /* A triangle after setup: everything the rasterizers and the fragment stage
  * need, no pointers.  Vertices are in coverage order (area2 > 0); the
  * varyings were permuted with them.  Stored in the bins with only
- * 3 x ninterp varyings (sr__tri_size), so `vary` must stay last. */
+ * 3 x ninterp varyings (sr__record_size), so `vary` must stay last. */
 typedef struct sr_tri {
+    sr_prim_head h;
     int32_t x[3], y[3];               /* q8 */
     int64_t area2;                    /* > 0 */
     /* Edge i is opposite vertex i: E_i(p) = a[i] X + b[i] Y + c[i], which is
@@ -133,7 +152,6 @@ typedef struct sr_tri {
      * top or left edge and -1 otherwise: covered iff E_i + bias_i >= 0. */
     int64_t a[3], b[3], c[3];
     int32_t bias[3];
-    int x0, y0, x1, y1;               /* pixel bbox ∩ rect, inclusive-exclusive */
     bool front;
     int32_t ninterp;                  /* varyings stored in vary[] */
     /* Depth plane in buffer units (x (2^n - 1) for UNORM, [0, 1] for float):
@@ -149,9 +167,43 @@ typedef struct sr_tri {
     float vary[3 * SR_MAX_VARYINGS];
 } sr_tri;
 
-static inline size_t sr__tri_size(int ninterp)
+/* A line segment after setup, drawn by the diamond-exit rule from a to b
+ * (b's pixel excluded).  Depth is linear in screen space along the
+ * segment; varyings are interpolated perspective-correctly by the
+ * projected parameter t (RASTER_RULES 4.1). */
+typedef struct sr_line {
+    sr_prim_head h;
+    int32_t xa, ya, xb, yb;           /* q8 endpoints */
+    int32_t width;                    /* whole pixels across the minor axis */
+    bool front;
+    int32_t ninterp;
+    double za, zb;                    /* buffer units, offset folded in */
+    float wa, wb;                     /* 1/w, or 1 in affine mode */
+    float flat[4];
+    float vary[2 * SR_MAX_VARYINGS];  /* endpoint a's varyings, then b's */
+} sr_line;
+
+/* A point after setup: a square [x0_q8, x1_q8) x [y0_q8, y1_q8) covering
+ * the pixel centres inside it, with one depth and one set of varyings. */
+typedef struct sr_point {
+    sr_prim_head h;
+    double z;
+    bool front;
+    int32_t ninterp;
+    float flat[4];
+    float vary[SR_MAX_VARYINGS];
+} sr_point;
+
+/* Bytes per record in the bins: the largest of the three kinds with only
+ * ninterp varyings stored, rounded to 16. */
+static inline size_t sr__record_size(int ninterp)
 {
-    size_t s = sizeof(sr_tri) - sizeof(float) * (3 * SR_MAX_VARYINGS - 3 * (size_t)ninterp);
+    size_t n = (size_t)ninterp;
+    size_t t = sizeof(sr_tri) - sizeof(float) * (3 * SR_MAX_VARYINGS - 3 * n);
+    size_t l = sizeof(sr_line) - sizeof(float) * (2 * SR_MAX_VARYINGS - 2 * n);
+    size_t p = sizeof(sr_point) - sizeof(float) * (SR_MAX_VARYINGS - n);
+    size_t s = t > l ? t : l;
+    s = s > p ? s : p;
     return (s + 15) & ~(size_t)15;
 }
 
@@ -179,6 +231,9 @@ void sr__flat_color(const sr_draw_state *ds, const float *v0, const float *v1,
 unsigned sr__clip_outcode(const sr_draw_state *ds, const float pos[4]);
 int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
                      unsigned planes, sr_clip_vertex *out);
+/* Clip segment ab to the planes; false when nothing is left. */
+bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr_clip_vertex *b,
+                      unsigned planes, sr_clip_vertex *out_a, sr_clip_vertex *out_b);
 
 /* raster/setup.c */
 /* Divide by w, apply the viewport S and snap to q8 (round to nearest even). */
@@ -191,6 +246,21 @@ int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1, const 
 bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *v0,
                         const sr_window_vertex *v1, const sr_window_vertex *v2,
                         bool front, int ninterp, const float flat[4], sr_tri *t);
+
+/* raster/line.c: set up a segment or a point (false when nothing can be
+ * drawn), and rasterize them within a pixel rectangle. */
+bool sr__setup_line(const sr_draw_state *ds, const sr_window_vertex *a, const sr_window_vertex *b,
+                    double offset, bool front, int ninterp, const float flat[4], sr_line *l);
+bool sr__setup_point(const sr_draw_state *ds, const sr_window_vertex *v, double offset,
+                     bool front, int ninterp, const float flat[4], sr_point *p);
+void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0, int rx1,
+                     int ry1, sr_frag_stats *st);
+void sr__raster_point(const sr_draw_state *ds, const sr_point *p, int rx0, int ry0, int rx1,
+                      int ry1, sr_frag_stats *st);
+/* Polygon offset of the triangle's plane (0 when offset is off for `mode`). */
+double sr__polygon_offset(const sr_draw_state *ds, const sr_window_vertex *v0,
+                          const sr_window_vertex *v1, const sr_window_vertex *v2,
+                          sr_polygon_mode mode);
 
 /* raster/{triangle,scanline,barycentric}.c: cover the part of t inside the
  * pixel rectangle [rx0, rx1) x [ry0, ry1) and hand each sample to the

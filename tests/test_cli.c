@@ -660,9 +660,10 @@ static const char *const value_options[] = {
     "-o", "--output", "--size", "--background", "--png-level", "--shading", "--normals",
     "--material", "--ambient", "--light", "--camera", "--fov", "--turn", "--near", "--far",
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
-    "--rasterizer", "--threads", "--detail",
+    "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
 };
-static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help" };
+static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
+                                             "--wireframe", "--hidden-line", "--edges", "--points" };
 
 SR_TEST(render_help_lists_every_option)
 {

@@ -106,3 +106,21 @@ SR_TEST(shared_models_match_reference)
         check_render(name, (const char *[]){ path, "--size", "160x120", NULL });
     }
 }
+
+SR_TEST(wireframe_and_hidden_line_renders_match_reference)
+{
+    check_render("builtin_edges", (const char *[]){ "--size", "160x120", "--edges", NULL });
+    const char *dir = sr_test_models_dir();
+    if (!dir) {
+        SKIP("../shared/models not found (set SR_MODELS_DIR)");
+    }
+    const char *models[] = { "stanford-bunny", "spot", "teapot", "suzanne", "cow", "fandisk" };
+    for (int i = 0; i < 6; i++) {
+        char path[1024], name[64];
+        snprintf(path, sizeof path, "%s/%s.obj", dir, models[i]);
+        snprintf(name, sizeof name, "wire_%s", models[i]);
+        check_render(name, (const char *[]){ path, "--size", "160x120", "--wireframe", NULL });
+        snprintf(name, sizeof name, "hidden_%s", models[i]);
+        check_render(name, (const char *[]){ path, "--size", "160x120", "--hidden-line", NULL });
+    }
+}

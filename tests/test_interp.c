@@ -121,8 +121,8 @@ static void check_triangle(const eye_pt v[3], const field f[2], bool perspective
         return;
     }
     double a = -(PF + PN) / (PF - PN), b = -2 * PF * PN / (PF - PN);
-    for (int py = t->y0; py < t->y1; py++) {
-        for (int px = t->x0; px < t->x1; px++) {
+    for (int py = t->h.y0; py < t->h.y1; py++) {
+        for (int px = t->h.x0; px < t->h.x1; px++) {
             int64_t X = 256 * (int64_t)px + 128, Y = 256 * (int64_t)py + 128;
             int64_t ev[3];
             bool in = true;

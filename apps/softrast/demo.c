@@ -9,7 +9,8 @@
 
 /* Demos register here: one line each, the function in demo_NAME.c.
  * DEMO_LIST is extended as demos land. */
-#define DEMO_LIST(X)
+#define DEMO_LIST(X) \
+    X(lines, "every line algorithm on a star of lines, magnified")
 
 #define DEMO_DECLARE(name, summary) int demo_##name(sr_context *, const demo_args *, sr_framebuffer **);
 DEMO_LIST(DEMO_DECLARE)

@@ -44,7 +44,14 @@ typedef struct render_opts {
     int threads;
     int png_level;
     bool verbose;
+    int lines;                     /* LINES_NONE, ... */
+    float line_width, point_size;
+    sr_vec3 line_color;
+    bool have_line_color;
 } render_opts;
+
+/* What the line modes draw besides (or instead of) the shaded model. */
+enum { LINES_NONE = 0, LINES_WIREFRAME, LINES_HIDDEN, LINES_EDGES, LINES_POINTS };
 
 static const char *const shading_names[] = { "flat", "gouraud", "phong", "normals", "depth",
                                              "unlit", NULL };
@@ -105,6 +112,15 @@ static void render_help(void)
         "  --depth-func F           never|less|equal|lequal|greater|notequal|gequal|always\n"
         "                           (default less; greater and gequal clear depth to 0)\n"
         "  --projection-interp M    perspective|affine (default perspective)\n"
+        "lines and points:\n"
+        "  --wireframe              every edge, hidden ones too, no shading\n"
+        "  --hidden-line            only the visible edges (a depth pass pushed back by\n"
+        "                           polygon offset, then the edges)\n"
+        "  --edges                  the shaded model with its visible edges over it\n"
+        "  --points                 the visible vertices as points\n"
+        "  --line-width N           1..64 pixels (default 1)\n"
+        "  --point-size N           1..64 pixels (default 3)\n"
+        "  --line-color COLOR       (default #e8ecf4, or #202020 on a light background)\n"
         "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
         "                           all three give the same pixels)\n"
         "  --threads N              rasterizer threads (default: SR_THREADS or CPUs)\n"
@@ -257,6 +273,25 @@ static int parse_args(int argc, char **argv, render_opts *o)
         } else if (IS("--fov")) {
             VALUE();
             if (!parse_float(arg, value, 1.0f, 170.0f, &o->fov_deg)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--wireframe") || IS("--hidden-line") || IS("--edges") || IS("--points")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->lines = IS("--wireframe") ? LINES_WIREFRAME : IS("--hidden-line") ? LINES_HIDDEN
+                     : IS("--edges") ? LINES_EDGES : LINES_POINTS;
+        } else if (IS("--line-width") || IS("--point-size")) {
+            VALUE();
+            if (!parse_float(arg, value, 1.0f, 64.0f,
+                             IS("--line-width") ? &o->line_width : &o->point_size)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--line-color")) {
+            VALUE();
+            o->have_line_color = true;
+            if (!parse_color(arg, value, &o->line_color)) {
                 return EXIT_USAGE;
             }
         } else if (IS("--ortho")) {
@@ -468,6 +503,78 @@ static int default_lights(const camera *cam, sr_light *lights)
     return 3;
 }
 
+static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
+                            const camera *cam, bool keep_material, uint64_t *tris,
+                            uint64_t *frags)
+{
+    sr_result r = SR_OK;
+    for (int i = 0; i < s->count && r == SR_OK; i++) {
+        scene_object *ob = &s->objects[i];
+        if (!keep_material) {
+            state->material = ob->material;
+        }
+        r = sr_draw(ctx, fb, state, &(sr_draw_desc){
+            .positions = ob->mesh.positions, .normals = ob->mesh.normals,
+            .colors = ob->mesh.colors, .color_size = 4, .texcoords = ob->mesh.texcoords,
+            .vertex_count = ob->mesh.vertex_count, .indices = ob->mesh.indices,
+            .index_type = SR_INDEX_U32, .index_count = ob->mesh.triangle_count * 3,
+            .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
+        sr_draw_info info = sr_last_draw_info(ctx);
+        *tris += info.triangles_in;
+        *frags += info.fragments;
+    }
+    return r;
+}
+
+/* The passes of each mode.  Hidden-line, edges and points first fill the
+ * depth buffer with the model pushed back by polygon offset (factor 1,
+ * units 1), so lines on its surface win the LEQUAL test without stitching
+ * or z-fighting; hidden-line and points fill with the background color. */
+static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuffer *fb,
+                             const sr_state *base, scene *s, const camera *cam, uint64_t *tris,
+                             uint64_t *frags)
+{
+    sr_state st = *base;
+    if (o->lines == LINES_NONE) {
+        return draw_scene(ctx, fb, &st, s, cam, false, tris, frags);
+    }
+    bool light_bg = o->background.x + o->background.y + o->background.z > 1.5f;
+    sr_vec3 ink = o->have_line_color ? o->line_color
+                : light_bg ? (sr_vec3){ 0.125f, 0.125f, 0.125f }
+                           : (sr_vec3){ 0.91f, 0.925f, 0.957f };
+    sr_material ink_material = { .diffuse = ink, .no_vertex_color = true };
+    sr_result r = SR_OK;
+    if (o->lines != LINES_WIREFRAME) {
+        sr_state fill = st;
+        fill.offset = (sr_polygon_offset){ .factor = 1.0f, .units = 1.0f, .fill = true };
+        if (o->lines == LINES_EDGES) {
+            r = draw_scene(ctx, fb, &fill, s, cam, false, tris, frags);
+        } else {
+            fill.shading = SR_SHADING_UNLIT;
+            fill.material = (sr_material){ .diffuse = o->background, .no_vertex_color = true };
+            r = draw_scene(ctx, fb, &fill, s, cam, true, tris, frags);
+        }
+    }
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_state lines = st;
+    lines.shading = SR_SHADING_UNLIT;
+    lines.material = ink_material;
+    lines.line_width = o->line_width;
+    lines.point_size = o->point_size;
+    sr_polygon_mode mode = o->lines == LINES_POINTS ? SR_POLYGON_POINT : SR_POLYGON_LINE;
+    lines.polygon_mode_front = lines.polygon_mode_back = mode;
+    if (o->lines == LINES_WIREFRAME) {
+        lines.cull = SR_CULL_NONE;
+        lines.no_depth_test = true;
+        lines.no_depth_write = true;
+    } else {
+        lines.depth_func = SR_LEQUAL;
+    }
+    return draw_scene(ctx, fb, &lines, s, cam, true, tris, frags);
+}
+
 int cmd_render(int argc, char **argv)
 {
     render_opts o = {
@@ -476,6 +583,7 @@ int cmd_render(int argc, char **argv)
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
+        .line_width = 1.0f, .point_size = 3.0f,
     };
     int status = parse_args(argc, argv, &o);
     if (status >= 0) {
@@ -568,18 +676,8 @@ int cmd_render(int argc, char **argv)
     }
     double t_setup = now_ms();
     uint64_t tris = 0, frags = 0;
-    for (int i = 0; i < s.count && r == SR_OK; i++) {
-        scene_object *ob = &s.objects[i];
-        state.material = ob->material;
-        r = sr_draw(ctx, fb, &state, &(sr_draw_desc){
-            .positions = ob->mesh.positions, .normals = ob->mesh.normals,
-            .colors = ob->mesh.colors, .color_size = 4, .texcoords = ob->mesh.texcoords,
-            .vertex_count = ob->mesh.vertex_count, .indices = ob->mesh.indices,
-            .index_type = SR_INDEX_U32, .index_count = ob->mesh.triangle_count * 3,
-            .model = &ob->model, .view = &cam.view, .projection = &cam.proj });
-        sr_draw_info info = sr_last_draw_info(ctx);
-        tris += info.triangles_in;
-        frags += info.fragments;
+    if (r == SR_OK) {
+        r = draw_passes(&o, ctx, fb, &state, &s, &cam, &tris, &frags);
     }
     double t_render = now_ms();
     if (r != SR_OK) {

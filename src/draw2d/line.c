@@ -17,6 +17,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #ifndef __SIZEOF_INT128__
 #error "softrast's line setup needs a 128-bit integer type (GCC or Clang on a 64-bit target)"
@@ -349,9 +350,10 @@ void sr__line_dda(const sr__line_q8 *l, bool incremental, sr__irect clip,
      * m is rounded once; their error then grows by at most 2^-33 px per
      * step, which is the DDA's accumulated rounding. */
     const int64_t first = du > 0 ? k0 : k1;
-    const i128 inc = round_div128((i128)dv << 32, du > 0 ? du : -du);  /* per step of travel */
-    const i128 v_first = ((i128)m.av << 24) +
-                         round_div128(((i128)(first * S + H - m.au) * dv) << 24, du);
+    /* per step of travel */
+    const i128 inc = round_div128((i128)dv * ((i128)1 << 32), du > 0 ? du : -du);
+    const i128 v_first = (i128)m.av * (1 << 24) +
+                         round_div128((i128)(first * S + H - m.au) * dv * (1 << 24), du);
     const i128 inc_k = du > 0 ? inc : -inc;       /* per +1 in k */
     i128 v = v_first + (i128)(ka - first) * inc_k;
     for (int64_t k = ka; k <= kb; k++) {
@@ -368,12 +370,17 @@ typedef struct wide_ctx {
     sr__irect clip;
     sr__plot_fn plot;
     void *user;
-    /* round caps: runs recorded per major index of a cap's box */
-    int64_t box_k0;
-    int nbox;
-    int64_t *run_j;           /* [2 * nbox], first minor of up to 2 runs */
-    uint8_t *run_n;           /* [nbox] */
 } wide_ctx;
+
+#define WIDE_MAX 1024
+
+/* Round caps: the runs of a cap's box, per major index. */
+typedef struct cap_runs {
+    int64_t k0;
+    int n;
+    int64_t j[2 * (WIDE_MAX + 4)];   /* first minor index of up to 2 runs */
+    uint8_t count[WIDE_MAX + 4];
+} cap_runs;
 
 static void emit_run(void *user, int64_t k, int64_t j)
 {
@@ -391,10 +398,10 @@ static void emit_run(void *user, int64_t k, int64_t j)
 
 static void record_run(void *user, int64_t k, int64_t j)
 {
-    wide_ctx *c = user;
-    int64_t i = k - c->box_k0;
-    if (i >= 0 && i < c->nbox && c->run_n[i] < 2) {
-        c->run_j[2 * i + c->run_n[i]++] = j;
+    cap_runs *c = user;
+    int64_t i = k - c->k0;
+    if (i >= 0 && i < c->n && c->count[i] < 2) {
+        c->j[2 * i + c->count[i]++] = j;
     }
 }
 
@@ -404,11 +411,9 @@ static bool in_disk(int64_t x, int64_t y, int64_t px, int64_t py, int64_t r_q8)
     return dx * dx + dy * dy <= r_q8 * r_q8;
 }
 
-#define WIDE_MAX 1024
-
 /* Round cap at p: the pixels with centres in the disk of radius w/2
  * that the runs (offset line `off`) and the first cap did not draw. */
-static void round_cap(wide_ctx *c, const sr__line_q8 *off, bool has_line, int64_t px, int64_t py,
+static void round_cap(const wide_ctx *c, const sr__line_q8 *off, bool has_line, int64_t px, int64_t py,
                       const int64_t *other)
 {
     const int64_t r = (int64_t)c->w * H;       /* w/2 in q8 */
@@ -419,24 +424,22 @@ static void round_cap(wide_ctx *c, const sr__line_q8 *off, bool has_line, int64_
     if (x0 > x1 || y0 > y1) {
         return;
     }
-    int64_t run_j[2 * (WIDE_MAX + 4)];
-    uint8_t run_n[WIDE_MAX + 4] = { 0 };
-    c->box_k0 = c->xmaj ? x0 : y0;
-    c->nbox = (int)((c->xmaj ? x1 - x0 : y1 - y0) + 1);
-    c->run_j = run_j;
-    c->run_n = run_n;
+    cap_runs runs;
+    runs.k0 = c->xmaj ? x0 : y0;
+    runs.n = (int)((c->xmaj ? x1 - x0 : y1 - y0) + 1);
+    memset(runs.count, 0, sizeof runs.count);
     if (has_line) {
-        closed_form(off, c->box_k0, c->box_k0 + c->nbox - 1, record_run, c);
+        closed_form(off, runs.k0, runs.k0 + runs.n - 1, record_run, &runs);
     }
     for (int64_t y = y0; y <= y1; y++) {
         for (int64_t x = x0; x <= x1; x++) {
             if (!in_disk(x, y, px, py, r) || (other && in_disk(x, y, other[0], other[1], r))) {
                 continue;
             }
-            int64_t k = c->xmaj ? x : y, j = c->xmaj ? y : x, i = k - c->box_k0;
+            int64_t k = c->xmaj ? x : y, j = c->xmaj ? y : x, i = k - runs.k0;
             bool in_run = false;
-            for (int n = 0; n < run_n[i]; n++) {
-                in_run |= j >= run_j[2 * i + n] && j < run_j[2 * i + n] + c->w;
+            for (int n = 0; n < runs.count[i]; n++) {
+                in_run |= j >= runs.j[2 * i + n] && j < runs.j[2 * i + n] + c->w;
             }
             if (!in_run) {
                 c->plot(c->user, (int)x, (int)y, 1.0f);
@@ -472,7 +475,7 @@ void sr__line_wide(const sr__line_q8 *l, int w, sr_line_cap cap, sr__irect clip,
                 }
             }
         } else if (cap == SR_LINE_CAP_ROUND) {
-            wide_ctx c = { true, w, clip, plot, user, 0, 0, NULL, NULL };
+            wide_ctx c = { true, w, clip, plot, user };
             round_cap(&c, l, false, l->ax, l->ay, NULL);
         }
         return;
@@ -497,7 +500,7 @@ void sr__line_wide(const sr__line_q8 *l, int w, sr_line_cap cap, sr__irect clip,
         off.ax -= shift;
         off.bx -= shift;
     }
-    wide_ctx c = { m.xmaj, w, clip, plot, user, 0, 0, NULL, NULL };
+    wide_ctx c = { m.xmaj, w, clip, plot, user };
     int64_t lo, hi;
     if (visible_major(&e, m.xmaj, clip, (double)w + 2.0, clipper, &lo, &hi)) {
         closed_form(&off, lo, hi, emit_run, &c);

@@ -147,12 +147,11 @@ bool sr__clip_line(sr_line_clipper clipper, double xmin, double ymin, double xma
                    sr_point2 *a, sr_point2 *b)
 {
     sr_point2 rmin = { xmin, ymin }, rmax = { xmax, ymax };
-    switch (clipper) {
-    case SR_LINE_CLIP_COHEN_SUTHERLAND:
-        return sr_clip_line_cohen_sutherland(rmin, rmax, a, b);
-    case SR__LINE_CLIP_NONE:
+    if (clipper == SR__LINE_CLIP_NONE) {
         return isfinite(a->x) && isfinite(a->y) && isfinite(b->x) && isfinite(b->y);
-    default:
-        return sr_clip_line_liang_barsky(rmin, rmax, a, b);
     }
+    if (clipper == SR_LINE_CLIP_COHEN_SUTHERLAND) {
+        return sr_clip_line_cohen_sutherland(rmin, rmax, a, b);
+    }
+    return sr_clip_line_liang_barsky(rmin, rmax, a, b);
 }

@@ -107,3 +107,15 @@ void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x
         sr__paint_pixel(p, &row[x], 255);
     }
 }
+
+void sr__blend_rgba(uint32_t *dst, const float rgba[4])
+{
+    float a = rgba[3] < 0.0f ? 0.0f : rgba[3] > 1.0f ? 1.0f : rgba[3];
+    uint8_t d[4];
+    memcpy(d, dst, sizeof d);
+    for (int i = 0; i < 3; i++) {
+        d[i] = sr__unorm8(rgba[i] * a + d[i] * (1.0f / 255.0f) * (1.0f - a));
+    }
+    d[3] = sr__unorm8(a + d[3] * (1.0f / 255.0f) * (1.0f - a));
+    memcpy(dst, d, sizeof d);
+}

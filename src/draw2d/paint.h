@@ -28,6 +28,9 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov);
  * already clipped to the framebuffer). */
 void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x1);
 
+/* Blend one straight-alpha RGBA color (floats in [0, 1]) over a pixel. */
+void sr__blend_rgba(uint32_t *dst, const float rgba[4]);
+
 /* sRGB transfer functions on [0, 1]. */
 float sr__srgb_to_linear(float c);
 float sr__linear_to_srgb(float c);

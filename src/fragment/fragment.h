@@ -53,68 +53,64 @@ static inline double sr__tri_depth(const sr_tri *t, int64_t e1, int64_t e2)
     return t->z0 + (double)e1 * t->dz1 + (double)e2 * t->dz2;
 }
 
-SR_INLINE void sr__shade_as(const sr_draw_state *ds, const sr_tri *t, double z,
-                            int64_t e0, int64_t e1, int64_t e2, float c[4], sr_shading shading)
+/* Shade from interpolated varyings v (the layout of the shading model,
+ * pipeline.h), the primitive's flat color and facing, and the depth z in
+ * buffer units.  Triangles, lines and points all end here. */
+SR_INLINE void sr__shade_vary(const sr_draw_state *ds, const float *v, const float flat[4],
+                              bool front, double z, float c[4], sr_shading shading)
 {
-    float l[3];
     switch (shading) {
     case SR_SHADING_FLAT:
-        memcpy(c, t->flat, 4 * sizeof(float));
+        memcpy(c, flat, 4 * sizeof(float));
         return;
     case SR_SHADING_DEPTH:
         if (ds->depth_vis_linear) {
-            /* Perspective-correct interpolation of w gives the eye distance. */
-            sr__bary(ds, t, e0, e1, e2, l);
-            float d = sr__interp(t, l, SR_VARY_DEPTH_W);
-            c[0] = c[1] = c[2] = (d - ds->depth_vis_near) * ds->depth_vis_scale;
+            c[0] = c[1] = c[2] = (v[SR_VARY_DEPTH_W] - ds->depth_vis_near) * ds->depth_vis_scale;
         } else {
             c[0] = c[1] = c[2] = (float)(z / ds->depth_scale);
         }
         c[3] = 1.0f;
         return;
     case SR_SHADING_PHONG: {
-        /* Phong: interpolate the normal, renormalize, light per pixel. */
-        sr__bary(ds, t, e0, e1, e2, l);
-        float n[3], eye[3], diffuse[4];
-        for (int k = 0; k < 3; k++) {
-            n[k] = sr__interp(t, l, SR_VARY_PHONG_NORMAL + k);
-            eye[k] = sr__interp(t, l, SR_VARY_PHONG_EYE + k);
-        }
-        for (int k = 0; k < 4; k++) {
-            diffuse[k] = sr__interp(t, l, SR_VARY_PHONG_COLOR + k);
-        }
-        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        /* Phong: the interpolated normal, renormalized, lit per pixel. */
+        const float *vn = &v[SR_VARY_PHONG_NORMAL];
+        float len = sqrtf(vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]);
         float s = len > 0.0f ? 1.0f / len : 0.0f;
-        if (ds->two_sided && !t->front) {
+        if (ds->two_sided && !front) {
             s = -s;
         }
-        n[0] *= s;
-        n[1] *= s;
-        n[2] *= s;
-        sr__light(ds, n, eye, diffuse, c);
+        float n[3] = { vn[0] * s, vn[1] * s, vn[2] * s };
+        sr__light(ds, n, &v[SR_VARY_PHONG_EYE], &v[SR_VARY_PHONG_COLOR], c);
         return;
     }
     case SR_SHADING_NORMALS: {
-        sr__bary(ds, t, e0, e1, e2, l);
-        float n[3];
-        for (int k = 0; k < 3; k++) {
-            n[k] = sr__interp(t, l, SR_VARY_NORMAL + k);
-        }
-        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        const float *vn = &v[SR_VARY_NORMAL];
+        float len = sqrtf(vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]);
         float s = len > 0.0f ? 0.5f / len : 0.0f;
         for (int k = 0; k < 3; k++) {
-            c[k] = n[k] * s + 0.5f;
+            c[k] = vn[k] * s + 0.5f;
         }
         c[3] = 1.0f;
         return;
     }
-    default: /* UNLIT and GOURAUD: interpolate the color */
-        sr__bary(ds, t, e0, e1, e2, l);
-        for (int k = 0; k < 4; k++) {
-            c[k] = sr__interp(t, l, SR_VARY_COLOR + k);
-        }
+    default: /* UNLIT and GOURAUD: the interpolated color */
+        memcpy(c, &v[SR_VARY_COLOR], 4 * sizeof(float));
         return;
     }
+}
+
+SR_INLINE void sr__shade_as(const sr_draw_state *ds, const sr_tri *t, double z,
+                            int64_t e0, int64_t e1, int64_t e2, float c[4], sr_shading shading)
+{
+    float v[SR_MAX_VARYINGS];
+    if (shading != SR_SHADING_FLAT && !(shading == SR_SHADING_DEPTH && !ds->depth_vis_linear)) {
+        float l[3];
+        sr__bary(ds, t, e0, e1, e2, l);
+        for (int k = 0; k < t->ninterp; k++) {
+            v[k] = sr__interp(t, l, k);
+        }
+    }
+    sr__shade_vary(ds, v, t->flat, t->front, z, c, shading);
 }
 
 static inline void sr__shade(const sr_draw_state *ds, const sr_tri *t, double z,
@@ -168,6 +164,39 @@ SR_INLINE void sr__fragment_as(const sr_draw_state *ds, const sr_tri *t, int px,
     }
     float c[4];
     sr__shade_as(ds, t, z, e0, e1, e2, c, shading);
+    uint8_t rgba[4] = { sr__unorm8(c[0]), sr__unorm8(c[1]), sr__unorm8(c[2]), sr__unorm8(c[3]) };
+    memcpy(&fb->color[idx], rgba, sizeof rgba);
+    st->fragments++;
+}
+
+/* A line or point sample: depth already interpolated (buffer units, before
+ * the clamp), varyings already interpolated.  Same depth rules as
+ * triangles. */
+static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, double z,
+                                     const float *v, const float flat[4], bool front,
+                                     sr_frag_stats *st)
+{
+    sr_framebuffer *fb = ds->fb;
+    size_t idx = (size_t)py * (size_t)fb->width + (size_t)px;
+    z = z >= ds->zq_min ? z : ds->zq_min;
+    z = z <= ds->zq_max ? z : ds->zq_max;
+    if (ds->depth_mode != SR_DEPTH_MODE_OFF) {
+        uint32_t q;
+        if (ds->depth_bits) {
+            q = (uint32_t)(z + 0.5);
+        } else {
+            float f = (float)z;
+            memcpy(&q, &f, sizeof q);
+        }
+        if (ds->depth_test && !sr__depth_pass(ds->depth_func, q, fb->depth[idx])) {
+            return;
+        }
+        if (ds->depth_write) {
+            fb->depth[idx] = q;
+        }
+    }
+    float c[4];
+    sr__shade_vary(ds, v, flat, front, z, c, ds->shading);
     uint8_t rgba[4] = { sr__unorm8(c[0]), sr__unorm8(c[1]), sr__unorm8(c[2]), sr__unorm8(c[3]) };
     memcpy(&fb->color[idx], rgba, sizeof rgba);
     st->fragments++;

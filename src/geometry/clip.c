@@ -74,6 +74,41 @@ static void intersect(const sr_clip_vertex *in, const sr_clip_vertex *out_v,
     }
 }
 
+bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr_clip_vertex *b,
+                      unsigned planes, sr_clip_vertex *out_a, sr_clip_vertex *out_b)
+{
+    /* Parametric clipping of A + t (B - A), t in [t0, t1]. */
+    double t0 = 0.0, t1 = 1.0;
+    for (int p = 0; p < PLANE_COUNT; p++) {
+        if (!(planes & (1u << p))) {
+            continue;
+        }
+        double da = plane_dist(ds, p, a->pos), db = plane_dist(ds, p, b->pos);
+        if (da < 0.0 && db < 0.0) {
+            return false;
+        }
+        if (da < 0.0) {
+            t0 = fmax(t0, da / (da - db));
+        } else if (db < 0.0) {
+            t1 = fmin(t1, da / (da - db));
+        }
+    }
+    if (!(t0 < t1)) {
+        return false;
+    }
+    /* An end that moves is computed from the original A and B, the same
+     * arithmetic as a polygon edge's intersection. */
+    *out_a = *a;
+    *out_b = *b;
+    if (t0 > 0.0) {
+        intersect(a, b, t0, t0 - 1.0, ds->nvary, out_a);
+    }
+    if (t1 < 1.0) {
+        intersect(a, b, t1, t1 - 1.0, ds->nvary, out_b);
+    }
+    return true;
+}
+
 int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
                      unsigned planes, sr_clip_vertex *out)
 {

@@ -8,9 +8,9 @@
 static int tile_lo(int p) { return p >> SR_TILE_ORDER; }
 static int tile_hi(int p_exclusive) { return (p_exclusive - 1) >> SR_TILE_ORDER; }
 
-static const sr_tri *tri_at(const sr_chunk *c, uint32_t i, size_t size)
+static const sr_prim_head *prim_at(const sr_chunk *c, uint32_t i, size_t size)
 {
-    return (const sr_tri *)(c->tris + (size_t)i * size);
+    return (const sr_prim_head *)(c->tris + (size_t)i * size);
 }
 
 bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t tri_size)
@@ -21,7 +21,7 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
     /* Count into start[tile + 1], prefix-sum, then place in order. */
     size_t total = 0;
     for (uint32_t i = 0; i < c->tri_count; i++) {
-        const sr_tri *t = tri_at(c, i, tri_size);
+        const sr_prim_head *t = prim_at(c, i, tri_size);
         for (int ty = tile_lo(t->y0); ty <= tile_hi(t->y1); ty++) {
             for (int tx = tile_lo(t->x0); tx <= tile_hi(t->x1); tx++) {
                 start[(size_t)ty * ds->tiles_x + tx + 1]++;
@@ -38,7 +38,7 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
     }
     /* Fill using start[tile] as a cursor, then shift back. */
     for (uint32_t i = 0; i < c->tri_count; i++) {
-        const sr_tri *t = tri_at(c, i, tri_size);
+        const sr_prim_head *t = prim_at(c, i, tri_size);
         for (int ty = tile_lo(t->y0); ty <= tile_hi(t->y1); ty++) {
             for (int tx = tile_lo(t->x0); tx <= tile_hi(t->x1); tx++) {
                 c->refs[start[(size_t)ty * ds->tiles_x + tx]++] = i;
@@ -74,9 +74,18 @@ static void run_tile(void *arg, int job, int thread)
     for (int ci = 0; ci < tj->chunks; ci++) {
         const sr_chunk *c = &s->chunks[ci];
         for (uint32_t r = c->bin_start[tile]; r < c->bin_start[tile + 1]; r++) {
-            const sr_tri *t = tri_at(c, c->refs[r], tj->tri_size);
-            int rx0 = t->x0 > x0 ? t->x0 : x0, rx1 = t->x1 < x1 ? t->x1 : x1;
-            int ry0 = t->y0 > y0 ? t->y0 : y0, ry1 = t->y1 < y1 ? t->y1 : y1;
+            const sr_prim_head *p = prim_at(c, c->refs[r], tj->tri_size);
+            int rx0 = p->x0 > x0 ? p->x0 : x0, rx1 = p->x1 < x1 ? p->x1 : x1;
+            int ry0 = p->y0 > y0 ? p->y0 : y0, ry1 = p->y1 < y1 ? p->y1 : y1;
+            if (p->kind == SR_KIND_LINE) {
+                sr__raster_line(ds, (const sr_line *)p, rx0, ry0, rx1, ry1, st);
+                continue;
+            }
+            if (p->kind == SR_KIND_POINT) {
+                sr__raster_point(ds, (const sr_point *)p, rx0, ry0, rx1, ry1, st);
+                continue;
+            }
+            const sr_tri *t = (const sr_tri *)p;
             switch (ds->rasterizer) {
             case SR_RASTER_SCANLINE:
                 sr__raster_scanline(ds, t, rx0, ry0, rx1, ry1, st);

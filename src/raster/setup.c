@@ -58,6 +58,40 @@ static bool is_top_left(int64_t dx, int64_t dy)
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
+/* Polygon offset o = factor m + units r, with the slope m of the triangle's
+ * snapped plane (RASTER_RULES 5.3), in depth-range units.  Applied to the
+ * triangle's fill, or to its outline or vertices in the other polygon
+ * modes, each enabled separately. */
+double sr__polygon_offset(const sr_draw_state *ds, const sr_window_vertex *v0,
+                          const sr_window_vertex *v1, const sr_window_vertex *v2,
+                          sr_polygon_mode mode)
+{
+    bool on = mode == SR_POLYGON_LINE ? ds->offset_line
+            : mode == SR_POLYGON_POINT ? ds->offset_point : ds->offset_on;
+    if (!on) {
+        return 0.0;
+    }
+    int64_t area2 = sr__area2(v0, v1, v2);
+    if (area2 == 0) {
+        return 0.0;
+    }
+    double dx1 = v1->x_q8 - v0->x_q8, dy1 = v1->y_q8 - v0->y_q8;
+    double dx2 = v2->x_q8 - v0->x_q8, dy2 = v2->y_q8 - v0->y_q8;
+    double dz1 = v1->z - v0->z, dz2 = v2->z - v0->z;
+    double dzdx = (dz1 * dy2 - dz2 * dy1) * SR_SUBPIXEL_ONE / (double)area2;
+    double dzdy = (dx1 * dz2 - dx2 * dz1) * SR_SUBPIXEL_ONE / (double)area2;
+    double m = fmax(fabs(dzdx), fabs(dzdy));
+    double maxz = fmax(fabs(v0->z), fmax(fabs(v1->z), fabs(v2->z)));
+    double r = sr__depth_r(ds->depth_bits, maxz);
+    double o = ds->offset_factor * m + ds->offset_units * r;
+    if (ds->offset_clamp > 0.0) {
+        o = fmin(o, ds->offset_clamp);
+    } else if (ds->offset_clamp < 0.0) {
+        o = fmax(o, ds->offset_clamp);
+    }
+    return o;
+}
+
 bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
                         const sr_window_vertex *w1, const sr_window_vertex *w2,
                         bool front, int ninterp, const float flat[4], sr_tri *t)
@@ -91,11 +125,12 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
     int x1 = (int)sr__floor_div((int64_t)maxx - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE) + 1;
     int y0 = (int)sr__ceil_div((int64_t)miny - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE);
     int y1 = (int)sr__floor_div((int64_t)maxy - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE) + 1;
-    t->x0 = x0 > ds->rect_x0 ? x0 : ds->rect_x0;
-    t->y0 = y0 > ds->rect_y0 ? y0 : ds->rect_y0;
-    t->x1 = x1 < ds->rect_x1 ? x1 : ds->rect_x1;
-    t->y1 = y1 < ds->rect_y1 ? y1 : ds->rect_y1;
-    if (t->x0 >= t->x1 || t->y0 >= t->y1) {
+    t->h.kind = SR_KIND_TRIANGLE;
+    t->h.x0 = x0 > ds->rect_x0 ? x0 : ds->rect_x0;
+    t->h.y0 = y0 > ds->rect_y0 ? y0 : ds->rect_y0;
+    t->h.x1 = x1 < ds->rect_x1 ? x1 : ds->rect_x1;
+    t->h.y1 = y1 < ds->rect_y1 ? y1 : ds->rect_y1;
+    if (t->h.x0 >= t->h.x1 || t->h.y0 >= t->h.y1) {
         return false;
     }
 
@@ -113,25 +148,7 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
 
     /* Depth: linear in screen space (RASTER_RULES 4.1). */
     double z[3] = { v[0]->z, v[1]->z, v[2]->z };
-    double offset = 0.0;
-    if (ds->offset_on) {
-        /* Polygon offset o = factor m + units r, with the slope m from the
-         * snapped plane (RASTER_RULES 5.3). */
-        double dx1 = t->x[1] - t->x[0], dy1 = t->y[1] - t->y[0];
-        double dx2 = t->x[2] - t->x[0], dy2 = t->y[2] - t->y[0];
-        double dz1 = z[1] - z[0], dz2 = z[2] - z[0];
-        double dzdx = (dz1 * dy2 - dz2 * dy1) * SR_SUBPIXEL_ONE / (double)area2;
-        double dzdy = (dx1 * dz2 - dx2 * dz1) * SR_SUBPIXEL_ONE / (double)area2;
-        double m = fmax(fabs(dzdx), fabs(dzdy));
-        double maxz = fmax(fabs(z[0]), fmax(fabs(z[1]), fabs(z[2])));
-        double r = sr__depth_r(ds->depth_bits, maxz);
-        offset = ds->offset_factor * m + ds->offset_units * r;
-        if (ds->offset_clamp > 0.0) {
-            offset = fmin(offset, ds->offset_clamp);
-        } else if (ds->offset_clamp < 0.0) {
-            offset = fmax(offset, ds->offset_clamp);
-        }
-    }
+    double offset = sr__polygon_offset(ds, v[0], v[1], v[2], SR_POLYGON_FILL);
     /* The depth plane, in buffer units so the fragment stage only adds,
      * clamps and rounds. */
     double scale = ds->depth_scale;

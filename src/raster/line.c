@@ -1,0 +1,240 @@
+/* line.c - lines and points in the 3D pipeline (raster stage): setup of a
+ * clipped segment or point into a binned record, and rasterization within
+ * one tile.  Runs setup on front-end workers and rasterization on tile
+ * workers; no shared state.
+ *
+ * Lines follow the diamond-exit rule in its exact closed form
+ * (RASTER_RULES 6.1-6.2): with endpoints snapped to 1/256 px, an x-major
+ * segment covers, in each column whose centre it spans, the pixel holding
+ * the segment's point at that centre (a boundary point goes to the smaller
+ * minor index, Direct3D's tie rule); the start pixel is added when the
+ * start lies in its diamond, and the end pixel is removed when the end
+ * lies in its diamond (half-open).  So the pixels do not depend on the
+ * direction except for which end is left open, line strips join without
+ * gaps or double pixels, and everything is integer arithmetic.  Wide lines
+ * are OpenGL's: a run of `width` pixels across the minor axis per step. */
+#include "fragment/fragment.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define H SR_SUBPIXEL_HALF
+#define S SR_SUBPIXEL_ONE
+
+static int clampi(int64_t v, int lo, int hi)
+{
+    return v < lo ? lo : v > hi ? hi : (int)v;
+}
+
+bool sr__setup_line(const sr_draw_state *ds, const sr_window_vertex *a, const sr_window_vertex *b,
+                    double offset, bool front, int ninterp, const float flat[4], sr_line *l)
+{
+    if (a->x_q8 == b->x_q8 && a->y_q8 == b->y_q8) {
+        return false;
+    }
+    l->h.kind = SR_KIND_LINE;
+    l->xa = a->x_q8;
+    l->ya = a->y_q8;
+    l->xb = b->x_q8;
+    l->yb = b->y_q8;
+    l->width = ds->line_width;
+    /* Bounding box of every pixel the line (and its wide runs) can touch:
+     * the segment's box widened by half the width plus one pixel. */
+    int pad = l->width / 2 + 1;
+    int64_t minx = a->x_q8 < b->x_q8 ? a->x_q8 : b->x_q8, maxx = a->x_q8 ^ b->x_q8 ^ minx;
+    int64_t miny = a->y_q8 < b->y_q8 ? a->y_q8 : b->y_q8, maxy = a->y_q8 ^ b->y_q8 ^ miny;
+    int x0 = (int)sr__floor_div(minx, S) - pad, x1 = (int)sr__floor_div(maxx, S) + pad + 1;
+    int y0 = (int)sr__floor_div(miny, S) - pad, y1 = (int)sr__floor_div(maxy, S) + pad + 1;
+    l->h.x0 = x0 > ds->rect_x0 ? x0 : ds->rect_x0;
+    l->h.y0 = y0 > ds->rect_y0 ? y0 : ds->rect_y0;
+    l->h.x1 = x1 < ds->rect_x1 ? x1 : ds->rect_x1;
+    l->h.y1 = y1 < ds->rect_y1 ? y1 : ds->rect_y1;
+    if (l->h.x0 >= l->h.x1 || l->h.y0 >= l->h.y1) {
+        return false;
+    }
+    l->front = front;
+    l->ninterp = ninterp;
+    l->za = (a->z + offset) * ds->depth_scale;
+    l->zb = (b->z + offset) * ds->depth_scale;
+    l->wa = ds->perspective ? a->inv_w : 1.0f;
+    l->wb = ds->perspective ? b->inv_w : 1.0f;
+    if (ninterp > 0) {
+        memcpy(l->vary, a->vary, (size_t)ninterp * sizeof(float));
+        memcpy(l->vary + ninterp, b->vary, (size_t)ninterp * sizeof(float));
+    }
+    if (flat) {
+        memcpy(l->flat, flat, sizeof l->flat);
+    }
+    return true;
+}
+
+bool sr__setup_point(const sr_draw_state *ds, const sr_window_vertex *v, double offset,
+                     bool front, int ninterp, const float flat[4], sr_point *p)
+{
+    /* The square's edges snap to q8; a pixel is covered when its centre
+     * lies in [lo, hi) on both axes (the top-left rule for a square). */
+    int64_t half = (int64_t)nearbyint(ds->point_size * (S / 2));
+    int64_t lox = v->x_q8 - half, hix = v->x_q8 + half;
+    int64_t loy = v->y_q8 - half, hiy = v->y_q8 + half;
+    int64_t x0 = sr__ceil_div(lox - H, S), x1 = sr__ceil_div(hix - H, S);
+    int64_t y0 = sr__ceil_div(loy - H, S), y1 = sr__ceil_div(hiy - H, S);
+    p->h.kind = SR_KIND_POINT;
+    p->h.x0 = clampi(x0, ds->rect_x0, ds->rect_x1);
+    p->h.x1 = clampi(x1, ds->rect_x0, ds->rect_x1);
+    p->h.y0 = clampi(y0, ds->rect_y0, ds->rect_y1);
+    p->h.y1 = clampi(y1, ds->rect_y0, ds->rect_y1);
+    if (p->h.x0 >= p->h.x1 || p->h.y0 >= p->h.y1) {
+        return false;
+    }
+    p->z = (v->z + offset) * ds->depth_scale;
+    p->front = front;
+    p->ninterp = ninterp;
+    if (ninterp > 0) {
+        memcpy(p->vary, v->vary, (size_t)ninterp * sizeof(float));
+    }
+    if (flat) {
+        memcpy(p->flat, flat, sizeof p->flat);
+    }
+    return true;
+}
+
+void sr__raster_point(const sr_draw_state *ds, const sr_point *p, int rx0, int ry0, int rx1,
+                      int ry1, sr_frag_stats *st)
+{
+    for (int py = ry0; py < ry1; py++) {
+        for (int px = rx0; px < rx1; px++) {
+            sr__fragment_vary(ds, px, py, p->z, p->vary, p->flat, p->front, st);
+        }
+    }
+}
+
+/* Is p (q8) inside the diamond of pixel (qx, qy), with Direct3D's boundary
+ * ownership: the lower edges and bottom corner belong to it, and for a
+ * y-major line also the right corner (y points down, so "lower" is +y). */
+static bool in_diamond(int64_t x, int64_t y, int qx, int qy, bool xmajor)
+{
+    int64_t dx = x - ((int64_t)qx * S + H), dy = y - ((int64_t)qy * S + H);
+    int64_t d = llabs(dx) + llabs(dy);
+    return d < H || (d == H && (dy > 0 || (!xmajor && dx == H && dy == 0)));
+}
+
+typedef struct line_ctx {
+    const sr_draw_state *ds;
+    const sr_line *l;
+    int rx0, ry0, rx1, ry1;
+    bool xmajor;
+    sr_frag_stats *st;
+    double len2;                      /* |b - a|^2 in q8^2 */
+} line_ctx;
+
+/* One covered pixel: project its centre onto the segment for t, then depth
+ * linear in t and varyings perspective-correct (RASTER_RULES 4.1). */
+static void line_fragment(const line_ctx *lc, int px, int py)
+{
+    const sr_line *l = lc->l;
+    for (int k = 0; k < l->width; k++) {
+        /* Wide lines: a run across the minor axis, centred on the pixel. */
+        int off = k - (l->width - 1) / 2;
+        int qx = lc->xmajor ? px : px + off;
+        int qy = lc->xmajor ? py + off : py;
+        if (qx < lc->rx0 || qx >= lc->rx1 || qy < lc->ry0 || qy >= lc->ry1) {
+            continue;
+        }
+        double cx = (double)px * S + H - l->xa, cy = (double)py * S + H - l->ya;
+        double t = (cx * (l->xb - l->xa) + cy * (l->yb - l->ya)) / lc->len2;
+        t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+        double z = l->za + t * (l->zb - l->za);
+        float v[SR_MAX_VARYINGS];
+        float qa = (float)(1.0 - t) * l->wa, qb = (float)t * l->wb;
+        float inv = qa + qb != 0.0f ? 1.0f / (qa + qb) : 0.0f;
+        for (int i = 0; i < l->ninterp; i++) {
+            v[i] = (qa * l->vary[i] + qb * l->vary[l->ninterp + i]) * inv;
+        }
+        sr__fragment_vary(lc->ds, qx, qy, z, v, l->flat, l->front, lc->st);
+    }
+}
+
+/* The pixel a column (major index k) holds, or false. */
+static bool column_pixel(const sr_line *l, bool xmajor, int k, int *px, int *py)
+{
+    int64_t au = xmajor ? l->xa : l->ya, av = xmajor ? l->ya : l->xa;
+    int64_t bu = xmajor ? l->xb : l->yb, bv = xmajor ? l->yb : l->xb;
+    int64_t c = (int64_t)k * S + H;
+    int64_t num = av * (bu - au) + (c - au) * (bv - av);
+    int64_t den = bu - au;
+    if (den < 0) {
+        num = -num;
+        den = -den;
+    }
+    /* Minor coordinate num/den; a point on a pixel boundary belongs to the
+     * smaller index. */
+    int64_t j = sr__ceil_div(num, den * S) - 1;
+    if (j < INT32_MIN || j > INT32_MAX) {
+        return false;
+    }
+    *px = xmajor ? k : (int)j;
+    *py = xmajor ? (int)j : k;
+    return true;
+}
+
+void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0, int rx1,
+                     int ry1, sr_frag_stats *st)
+{
+    int64_t dx = (int64_t)l->xb - l->xa, dy = (int64_t)l->yb - l->ya;
+    line_ctx lc = { ds, l, rx0, ry0, rx1, ry1, llabs(dx) >= llabs(dy), st,
+                    (double)dx * dx + (double)dy * dy };
+    bool xmajor = lc.xmajor;
+    int pad = l->width / 2 + 1;
+    /* Columns whose centre lies within the segment's major extent, limited
+     * to those that can reach this rectangle. */
+    int64_t au = xmajor ? l->xa : l->ya, bu = xmajor ? l->xb : l->yb;
+    int64_t lo = au < bu ? au : bu, hi = au ^ bu ^ lo;
+    int64_t k0 = sr__ceil_div(lo - H, S), k1 = sr__floor_div(hi - H, S);
+    int64_t r0 = (xmajor ? rx0 : ry0) - pad, r1 = (xmajor ? rx1 : ry1) + pad;
+    k0 = k0 > r0 ? k0 : r0;
+    k1 = k1 < r1 ? k1 : r1;
+
+    /* The start diamond's pixel, and the end's (excluded). */
+    int sx = (int)sr__floor_div(l->xa, S), sy = (int)sr__floor_div(l->ya, S);
+    int ex = (int)sr__floor_div(l->xb, S), ey = (int)sr__floor_div(l->yb, S);
+    bool start_in = false, end_in = false;
+    int start_px = 0, start_py = 0, end_px = 0, end_py = 0;
+    /* Candidates: the pixels whose closed squares can hold the point, the
+     * one it lies in and its left and upper neighbours (a point on a pixel
+     * boundary).  At most one diamond owns a point. */
+    for (int cy = 0; cy < 2; cy++) {
+        for (int cx = 0; cx < 2; cx++) {
+            int qx = sx - cx, qy = sy - cy;
+            if (!start_in && in_diamond(l->xa, l->ya, qx, qy, xmajor)) {
+                start_in = true;
+                start_px = qx;
+                start_py = qy;
+            }
+            int rx = ex - cx, ry = ey - cy;
+            if (!end_in && in_diamond(l->xb, l->yb, rx, ry, xmajor)) {
+                end_in = true;
+                end_px = rx;
+                end_py = ry;
+            }
+        }
+    }
+
+    bool start_done = false;
+    for (int64_t k = k0; k <= k1; k++) {
+        int px, py;
+        if (!column_pixel(l, xmajor, (int)k, &px, &py)) {
+            continue;
+        }
+        if (end_in && px == end_px && py == end_py) {
+            continue; /* half-open: the end's own pixel is not drawn */
+        }
+        if (start_in && px == start_px && py == start_py) {
+            start_done = true;
+        }
+        line_fragment(&lc, px, py);
+    }
+    if (start_in && !start_done && !(end_in && start_px == end_px && start_py == end_py)) {
+        line_fragment(&lc, start_px, start_py);
+    }
+}

@@ -1,0 +1,406 @@
+/* test_lines3d.c - lines, points and polygon modes in the 3D pipeline:
+ * diamond-exit pixels against an independent implementation of the
+ * closed form (RASTER_RULES 6.2), strips without gaps or doubles, polygon
+ * modes against the equivalent line loops, square points with half-open
+ * edges, clipping, and hidden-line depth with polygon offset. */
+#include "raster_util.h"
+
+enum { W = 64, H = 64 };
+
+static sr_result draw_prims(rt_target *t, sr_primitive prim, const double *xy, int n,
+                            const sr_state *extra)
+{
+    float *pos = malloc(sizeof(float) * 3 * (size_t)n);
+    for (int i = 0; i < n; i++) {
+        pos[i * 3 + 0] = rt_ndc_x(t, xy[i * 2 + 0]);
+        pos[i * 3 + 1] = rt_ndc_y(t, xy[i * 2 + 1]);
+        pos[i * 3 + 2] = 0.0f;
+    }
+    sr_state st = extra ? *extra : (sr_state){0};
+    st.shading = SR_SHADING_UNLIT;
+    st.material = (sr_material){ .diffuse = { 1, 1, 1 } };
+    sr_result r = sr_draw(t->ctx, t->fb, &st,
+                          &(sr_draw_desc){ .primitive = prim, .positions = pos,
+                                           .vertex_count = (size_t)n });
+    free(pos);
+    return r;
+}
+
+/* ---- the closed form, written from RASTER_RULES 6.2 ---- */
+
+static int64_t snapq(double v) { return (int64_t)nearbyint(v * 256.0); }
+
+static int64_t cdiv(int64_t a, int64_t b) /* ceil, b > 0 */
+{
+    return a >= 0 ? (a + b - 1) / b : -((-a) / b);
+}
+
+static bool diamond_owns(int64_t x, int64_t y, int qx, int qy, bool xmaj)
+{
+    int64_t dx = x - (qx * 256 + 128), dy = y - (qy * 256 + 128);
+    int64_t d = (dx < 0 ? -dx : dx) + (dy < 0 ? -dy : dy);
+    return d < 128 || (d == 128 && (dy > 0 || (!xmaj && dx == 128 && dy == 0)));
+}
+
+static void ref_line(const double a[2], const double b[2], uint8_t *mask)
+{
+    memset(mask, 0, W * H);
+    int64_t ax = snapq(a[0]), ay = snapq(a[1]), bx = snapq(b[0]), by = snapq(b[1]);
+    if (ax == bx && ay == by) {
+        return;
+    }
+    bool xmaj = llabs(bx - ax) >= llabs(by - ay);
+    int64_t au = xmaj ? ax : ay, av = xmaj ? ay : ax, bu = xmaj ? bx : by, bv = xmaj ? by : bx;
+    int64_t lo = au < bu ? au : bu, hi = au < bu ? bu : au;
+    for (int k = -2; k < (xmaj ? W : H) + 2; k++) {
+        int64_t c = k * 256 + 128;
+        if (c < lo || c > hi) {
+            continue;
+        }
+        int64_t num = av * (bu - au) + (c - au) * (bv - av), den = bu - au;
+        if (den < 0) {
+            num = -num;
+            den = -den;
+        }
+        int64_t j = cdiv(num, den * 256) - 1;
+        int px = xmaj ? k : (int)j, py = xmaj ? (int)j : k;
+        if (px >= 0 && px < W && py >= 0 && py < H) {
+            mask[py * W + px] = 1;
+        }
+    }
+    for (int qy = -1; qy <= H; qy++) {
+        for (int qx = -1; qx <= W; qx++) {
+            bool in_range = qx >= 0 && qx < W && qy >= 0 && qy < H;
+            if (in_range && diamond_owns(ax, ay, qx, qy, xmaj)) {
+                mask[qy * W + qx] = 1;
+            }
+        }
+    }
+    for (int qy = 0; qy < H; qy++) {
+        for (int qx = 0; qx < W; qx++) {
+            if (diamond_owns(bx, by, qx, qy, xmaj)) {
+                mask[qy * W + qx] = 0;
+            }
+        }
+    }
+}
+
+static double q8r(sr_rng *r, double lo, double hi)
+{
+    return floor(sr_rng_range(r, lo, hi) * 256.0) / 256.0;
+}
+
+SR_TEST(line_pixels_match_the_closed_form)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t got[W * H], want[W * H];
+    sr_rng rng = { 0x11ee };
+    long bad = 0;
+    for (int it = 0; it < 4000; it++) {
+        double xy[4];
+        int kind = it % 3;
+        for (int k = 0; k < 4; k++) {
+            xy[k] = kind == 0 ? q8r(&rng, -8, 72)
+                  : kind == 1 ? sr_rng_int(&rng, 0, 63) + 0.5       /* pixel centres */
+                              : sr_rng_int(&rng, 0, 64) + (sr_rng_int(&rng, 0, 1) ? 0.0 : 0.5);
+        }
+        rt_clear(&t);
+        REQUIRE(draw_prims(&t, SR_PRIM_LINES, xy, 2, NULL) == SR_OK);
+        rt_mask(&t, got);
+        ref_line(xy, xy + 2, want);
+        bad += memcmp(got, want, sizeof got) != 0;
+    }
+    CHECK_EQ(bad, 0);
+    rt_free(&t);
+}
+
+/* Reversing a segment changes only which end pixel is left open. */
+SR_TEST(line_direction_changes_only_the_open_end)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t ab[W * H], ba[W * H];
+    sr_rng rng = { 0xd1 };
+    long bad = 0;
+    for (int it = 0; it < 2000; it++) {
+        double xy[4] = { q8r(&rng, 2, 62), q8r(&rng, 2, 62), q8r(&rng, 2, 62), q8r(&rng, 2, 62) };
+        double yx[4] = { xy[2], xy[3], xy[0], xy[1] };
+        rt_clear(&t);
+        draw_prims(&t, SR_PRIM_LINES, xy, 2, NULL);
+        rt_mask(&t, ab);
+        rt_clear(&t);
+        draw_prims(&t, SR_PRIM_LINES, yx, 2, NULL);
+        rt_mask(&t, ba);
+        int diff = 0;
+        for (int i = 0; i < W * H; i++) {
+            diff += ab[i] != ba[i];
+        }
+        bad += diff > 2;
+    }
+    CHECK_EQ(bad, 0);
+    rt_free(&t);
+}
+
+/* A strip drawn segment by segment: no pixel twice, and consecutive pixels
+ * 8-connected (no gaps) along the whole strip. */
+SR_TEST(line_strips_join_without_gaps_or_double_pixels)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t m[W * H];
+    static int count[W * H];
+    sr_rng rng = { 0x5791 };
+    for (int it = 0; it < 200; it++) {
+        enum { N = 12 };
+        double xy[N * 2];
+        for (int k = 0; k < N * 2; k++) {
+            xy[k] = q8r(&rng, 4, 60);
+        }
+        memset(count, 0, sizeof count);
+        for (int s = 0; s + 1 < N; s++) {
+            rt_clear(&t);
+            draw_prims(&t, SR_PRIM_LINES, xy + s * 2, 2, NULL);
+            rt_mask(&t, m);
+            for (int i = 0; i < W * H; i++) {
+                count[i] += m[i];
+            }
+        }
+        /* Drawn as one strip, the image equals the union. */
+        rt_clear(&t);
+        REQUIRE(draw_prims(&t, SR_PRIM_LINE_STRIP, xy, N, NULL) == SR_OK);
+        rt_mask(&t, m);
+        for (int i = 0; i < W * H; i++) {
+            CHECK_EQ(m[i], count[i] > 0);
+        }
+    }
+    /* A straight strip split at arbitrary points: exactly the pixels of the
+     * whole line, each once. */
+    for (int it = 0; it < 500; it++) {
+        double a[2] = { q8r(&rng, 2, 20), q8r(&rng, 2, 62) }, b[2] = { q8r(&rng, 44, 62), 0 };
+        b[1] = q8r(&rng, 2, 62);
+        double xy[6] = { a[0], a[1], 0, 0, b[0], b[1] };
+        /* Split at a point exactly on the segment (an endpoint on the 1/256
+         * grid reached by a rational t with a power-of-two denominator). */
+        xy[2] = a[0] + (b[0] - a[0]) * 0.5;
+        xy[3] = a[1] + (b[1] - a[1]) * 0.5;
+        if (xy[2] * 256 != floor(xy[2] * 256) || xy[3] * 256 != floor(xy[3] * 256)) {
+            continue;
+        }
+        memset(count, 0, sizeof count);
+        for (int s = 0; s < 2; s++) {
+            rt_clear(&t);
+            draw_prims(&t, SR_PRIM_LINES, xy + s * 2, 2, NULL);
+            rt_mask(&t, m);
+            for (int i = 0; i < W * H; i++) {
+                count[i] += m[i];
+            }
+        }
+        /* Every pixel at most once, and the union is 8-connected from one
+         * end to the other: flood it from a's pixel and reach b's run. */
+        int total = 0;
+        for (int i = 0; i < W * H; i++) {
+            CHECK(count[i] <= 1);
+            total += count[i] > 0;
+        }
+        int stack[W * H], top = 0, seen = 0;
+        uint8_t vis[W * H] = { 0 };
+        int start = -1;
+        for (int i = 0; i < W * H && start < 0; i++) {
+            start = count[i] ? i : -1;
+        }
+        if (start >= 0) {
+            stack[top++] = start;
+            vis[start] = 1;
+            while (top) {
+                int p = stack[--top];
+                seen++;
+                for (int dy = -1; dy <= 1; dy++) {
+                    for (int dx = -1; dx <= 1; dx++) {
+                        int x = p % W + dx, y = p / W + dy;
+                        if (x >= 0 && x < W && y >= 0 && y < H && count[y * W + x] &&
+                            !vis[y * W + x]) {
+                            vis[y * W + x] = 1;
+                            stack[top++] = y * W + x;
+                        }
+                    }
+                }
+            }
+        }
+        CHECK_EQ(seen, total); /* no gap where the two segments meet */
+    }
+    rt_free(&t);
+}
+
+SR_TEST(polygon_mode_line_draws_the_triangle_outline)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t loop[W * H], mode[W * H];
+    sr_rng rng = { 0xabc };
+    for (int it = 0; it < 300; it++) {
+        double xy[6];
+        for (int k = 0; k < 6; k++) {
+            xy[k] = q8r(&rng, 2, 62);
+        }
+        rt_clear(&t);
+        draw_prims(&t, SR_PRIM_LINE_LOOP, xy, 3, NULL);
+        rt_mask(&t, loop);
+        rt_clear(&t);
+        sr_state st = { .polygon_mode_front = SR_POLYGON_LINE, .polygon_mode_back = SR_POLYGON_LINE };
+        draw_prims(&t, SR_PRIM_TRIANGLES, xy, 3, &st);
+        rt_mask(&t, mode);
+        /* Zero-area triangles draw nothing in any mode. */
+        int64_t x0 = snapq(xy[0]), y0 = snapq(xy[1]), x1 = snapq(xy[2]), y1 = snapq(xy[3]);
+        int64_t x2 = snapq(xy[4]), y2 = snapq(xy[5]);
+        if ((x1 - x0) * (y2 - y0) - (y1 - y0) * (x2 - x0) == 0) {
+            continue;
+        }
+        CHECK(memcmp(loop, mode, sizeof loop) == 0);
+    }
+    /* Culling applies before the polygon mode. */
+    double ccw[6] = { 10.5, 50.5, 50.5, 50.5, 30.5, 10.5 }; /* counter-clockwise on screen */
+    rt_clear(&t);
+    sr_state st = { .polygon_mode_front = SR_POLYGON_LINE, .polygon_mode_back = SR_POLYGON_LINE,
+                    .cull = SR_CULL_FRONT };
+    draw_prims(&t, SR_PRIM_TRIANGLES, ccw, 3, &st);
+    rt_mask(&t, mode);
+    int n = 0;
+    for (int i = 0; i < W * H; i++) {
+        n += mode[i];
+    }
+    CHECK_EQ(n, 0);
+    rt_free(&t);
+}
+
+static int count_mask(const uint8_t *m)
+{
+    int n = 0;
+    for (int i = 0; i < W * H; i++) {
+        n += m[i];
+    }
+    return n;
+}
+
+SR_TEST(points_are_squares_with_half_open_edges)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t m[W * H];
+    struct { double x, y; float size; int want; } cases[] = {
+        { 10.5, 10.5, 1, 1 },   /* a pixel centre: that pixel */
+        { 10.5, 10.5, 3, 9 },
+        { 10.0, 10.0, 2, 4 },   /* on a corner: the 2x2 around it */
+        { 10.0, 10.0, 1, 1 },   /* [9.5, 10.5): centre 9.5 in, 10.5 out */
+        { 10.25, 10.75, 4, 16 },
+        { 0.0, 0.0, 2, 1 },     /* trimmed by the framebuffer */
+    };
+    for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        rt_clear(&t);
+        double xy[2] = { cases[i].x, cases[i].y };
+        sr_state st = { .point_size = cases[i].size };
+        REQUIRE(draw_prims(&t, SR_PRIM_POINTS, xy, 1, &st) == SR_OK);
+        rt_mask(&t, m);
+        CHECK_EQ(count_mask(m), cases[i].want);
+    }
+    /* Polygon mode POINT: one point per corner. */
+    rt_clear(&t);
+    double tri[6] = { 10.5, 10.5, 40.5, 12.5, 20.5, 40.5 };
+    sr_state st = { .polygon_mode_front = SR_POLYGON_POINT, .polygon_mode_back = SR_POLYGON_POINT };
+    draw_prims(&t, SR_PRIM_TRIANGLES, tri, 3, &st);
+    rt_mask(&t, m);
+    CHECK_EQ(count_mask(m), 3);
+    CHECK(m[10 * W + 10] && m[12 * W + 40] && m[40 * W + 20]);
+    rt_free(&t);
+}
+
+SR_TEST(wide_lines_are_runs_across_the_minor_axis)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t m[W * H];
+    double xy[4] = { 5.5, 20.5, 55.5, 30.5 }; /* x-major */
+    for (int width = 1; width <= 5; width++) {
+        rt_clear(&t);
+        sr_state st = { .line_width = (float)width };
+        draw_prims(&t, SR_PRIM_LINES, xy, 2, &st);
+        rt_mask(&t, m);
+        for (int x = 6; x < 55; x++) {
+            int n = 0;
+            for (int y = 0; y < H; y++) {
+                n += m[y * W + x];
+            }
+            CHECK_EQ(n, width);
+        }
+    }
+    rt_free(&t);
+}
+
+/* Lines far outside the screen are clipped at the guard band and still
+ * cross the framebuffer as one unbroken run. */
+SR_TEST(huge_lines_are_clipped_and_stay_continuous)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t m[W * H];
+    double xy[4] = { -1e6, 20.25, 1e6, 40.75 };
+    rt_clear(&t);
+    float pos[6] = { (float)(xy[0] / 32 - 1), (float)(1 - xy[1] / 32), 0,
+                     (float)(xy[2] / 32 - 1), (float)(1 - xy[3] / 32), 0 };
+    sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } } };
+    REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .primitive = SR_PRIM_LINES,
+                                                      .positions = pos, .vertex_count = 2 }) == SR_OK);
+    rt_mask(&t, m);
+    for (int x = 0; x < W; x++) {
+        int n = 0;
+        for (int y = 0; y < H; y++) {
+            n += m[y * W + x];
+        }
+        CHECK_EQ(n, 1);
+    }
+    rt_free(&t);
+}
+
+/* Hidden-line rendering: a face filled with polygon offset, then its
+ * outline with LEQUAL: every outline pixel of a front face passes. */
+SR_TEST(outline_over_an_offset_face_passes_the_depth_test)
+{
+    sr_context *ctx;
+    sr_framebuffer *fb;
+    sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
+    sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
+                                                    .depth_format = SR_DEPTH_D24 }, &fb);
+    sr_mat4 view = sr_look_at((sr_vec3){ 0.3f, 0.4f, 3 }, (sr_vec3){ 0, 0, 0 }, (sr_vec3){ 0, 1, 0 });
+    sr_mat4 proj = sr_perspective(0.9f, 1.0f, 0.5f, 10.0f, false);
+    /* A tilted quad, counter-clockwise toward the camera. */
+    float pos[12] = { -1, -1, -0.3f, 1, -1, 0.3f, 1, 1, -0.2f, -1, 1, 0.1f };
+    uint32_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    for (int with_offset = 0; with_offset < 2; with_offset++) {
+        sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = 1 });
+        sr_state fill = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 0.2f, 0.2f, 0.2f } } };
+        if (with_offset) {
+            fill.offset = (sr_polygon_offset){ .factor = 1, .units = 1, .fill = true };
+        }
+        sr_draw_desc d = { .positions = pos, .vertex_count = 4, .indices = idx,
+                           .index_type = SR_INDEX_U32, .index_count = 6, .view = &view,
+                           .projection = &proj };
+        REQUIRE(sr_draw(ctx, fb, &fill, &d) == SR_OK);
+        sr_state lines = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
+                           .polygon_mode_front = SR_POLYGON_LINE, .depth_func = SR_LEQUAL };
+        REQUIRE(sr_draw(ctx, fb, &lines, &d) == SR_OK);
+        uint8_t tested[W * H], all[W * H];
+        const uint8_t *px = sr_framebuffer_pixels(fb);
+        for (int i = 0; i < W * H; i++) {
+            tested[i] = px[i * 4] == 255;
+        }
+        /* The same outline with no depth test: every pixel it covers. */
+        lines.no_depth_test = true;
+        REQUIRE(sr_draw(ctx, fb, &lines, &d) == SR_OK);
+        px = sr_framebuffer_pixels(fb);
+        int n_all = 0, missing = 0;
+        for (int i = 0; i < W * H; i++) {
+            all[i] = px[i * 4] == 255;
+            n_all += all[i];
+            missing += all[i] && !tested[i];
+        }
+        REQUIRE(n_all > 100);
+        if (with_offset) {
+            CHECK_EQ(missing, 0);   /* no stitching: the face never hides its outline */
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
