@@ -271,7 +271,7 @@ static sr_result sr_frame(bench_run *run, const bench_scene *s)
         return r;
     }
     return sr_draw(run->ctx, run->fb, &s->state, &(sr_draw_desc){
-        .positions = s->positions, .position_size = s->position_size,
+        .primitive = s->primitive, .positions = s->positions, .position_size = s->position_size,
         .normals = s->normals, .colors = s->colors, .color_size = 4,
         .vertex_count = s->vertex_count,
         .indices = s->indices, .index_type = s->indices ? SR_INDEX_U32 : SR_INDEX_NONE,

@@ -302,7 +302,8 @@ void gl_frame(gl_renderer *g, const bench_scene *s)
     if (s->indices) {
         glDrawElements(GL_TRIANGLES, (GLsizei)s->index_count, GL_UNSIGNED_INT, NULL);
     } else {
-        glDrawArrays(GL_TRIANGLES, 0, (GLsizei)s->vertex_count);
+        glDrawArrays(s->primitive == SR_PRIM_LINES ? GL_LINES : GL_TRIANGLES, 0,
+                     (GLsizei)s->vertex_count);
     }
     /* The frame is done when the pixels are in the buffer. */
     glFinish();

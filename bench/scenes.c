@@ -20,7 +20,7 @@ const bench_scene_info bench_scene_list[] = {
     { "small",  BENCH_SMALL, NULL },
     { "fill",   BENCH_FILL,  NULL },
     { "cli",    BENCH_CLI,   "stanford-bunny.obj" },
-    { "lines",  BENCH_LATER, NULL },
+    { "lines",  BENCH_LINES, NULL },
     { "msaa4",  BENCH_LATER, NULL },
 };
 const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);
@@ -201,6 +201,47 @@ static sr_result alloc_synthetic(bench_scene *s, size_t vertices, char *msg, siz
 /* A million triangles of 2 to 10 px^2 at random places and depths, each a
  * stretched equilateral triangle (the stretch keeps the area), wholly on
  * screen so nothing is clipped. */
+/* 100,000 segments 10-200 px long in random directions, each end its own
+ * random color, no depth test: the line rasterizer alone. */
+#define LINES_COUNT 100000
+#define LINES_SEED 0x11e5
+
+static sr_result make_lines_scene(bench_scene *s, char *msg, size_t msg_size)
+{
+    sr_result r = alloc_synthetic(s, (size_t)LINES_COUNT * 2, msg, msg_size);
+    if (r != SR_OK) {
+        return r;
+    }
+    s->triangle_count = LINES_COUNT;
+    s->primitive = SR_PRIM_LINES;
+    uint64_t rng = LINES_SEED;
+    float sx = 2.0f / (float)s->width, sy = 2.0f / (float)s->height;
+    for (size_t i = 0; i < LINES_COUNT; i++) {
+        float len = uniform(&rng, 10.0f, 200.0f), a = uniform(&rng, 0.0f, 2.0f * PI_F);
+        float cx = uniform(&rng, 0.0f, (float)s->width), cy = uniform(&rng, 0.0f, (float)s->height);
+        for (int k = 0; k < 2; k++) {
+            float sign = k ? 0.5f : -0.5f;
+            float px = cx + sign * len * cosf(a), py = cy + sign * len * sinf(a);
+            float *p = &s->own_positions[(i * 2 + k) * 4];
+            p[0] = px * sx - 1.0f;
+            p[1] = 1.0f - py * sy;
+            p[2] = 0.0f;
+            p[3] = 1.0f;
+            float *c = &s->own_colors[(i * 2 + k) * 4];
+            c[0] = uniform(&rng, 0.2f, 1.0f);
+            c[1] = uniform(&rng, 0.2f, 1.0f);
+            c[2] = uniform(&rng, 0.2f, 1.0f);
+            c[3] = 1.0f;
+        }
+    }
+    s->state.no_depth_test = true;
+    s->state.no_depth_write = true;
+    s->clear_color[0] = s->clear_color[1] = s->clear_color[2] = 0.0f;
+    s->clear_color[3] = 1.0f;
+    s->fragments_per_frame = (uint64_t)s->width * (uint64_t)s->height;
+    return SR_OK;
+}
+
 static sr_result make_small_scene(bench_scene *s, char *msg, size_t msg_size)
 {
     size_t tris = SMALL_TRIANGLES;
@@ -311,6 +352,7 @@ sr_result bench_scene_make(const bench_scene_info *info, int width, int height,
     case BENCH_MESH:  r = make_mesh_scene(out, msg, msg_size); break;
     case BENCH_SMALL: r = make_small_scene(out, msg, msg_size); break;
     case BENCH_FILL:  r = make_fill_scene(out, msg, msg_size); break;
+    case BENCH_LINES: r = make_lines_scene(out, msg, msg_size); break;
     default:
         snprintf(msg, msg_size, "%s: not a drawn scene", info->name);
         r = SR_INVALID_ARG;

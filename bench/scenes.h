@@ -14,6 +14,7 @@ typedef enum bench_kind {
     BENCH_MESH,     /* a model file, framed like `softrast render` frames it */
     BENCH_SMALL,    /* a million tiny triangles in NDC */
     BENCH_FILL,     /* full-screen quads, back to front */
+    BENCH_LINES,    /* random line segments */
     BENCH_CLI,      /* the whole `softrast render` process */
     BENCH_LATER,    /* accepted name, not implemented yet */
 } bench_kind;
@@ -41,7 +42,8 @@ typedef struct bench_scene {
     const float *colors;        /* 4 floats (RGBA), or NULL */
     const uint32_t *indices;    /* NULL: vertices in order */
     size_t index_count;
-    size_t triangle_count;
+    size_t triangle_count;      /* primitives: triangles, or segments for BENCH_LINES */
+    sr_primitive primitive;     /* 0: triangles */
 
     sr_mat4 model, view, projection;
     sr_state state;             /* shading, lights, material, cull, depth */

@@ -604,6 +604,17 @@ SR_TEST(huge_lines_cost_their_visible_length_and_keep_their_pixels)
                 break;
             }
         }
+        /* The same line with endpoints on pixel centres: the integer
+         * midpoint loop enters mid-line with d computed in 128 bits. */
+        sr__line_q8 lc = { 256 * (int64_t)ref_floor_div(l.ax, 256) + 128,
+                           256 * (int64_t)ref_floor_div(l.ay, 256) + 128,
+                           256 * (int64_t)ref_floor_div(l.bx, 256) + 128,
+                           256 * (int64_t)ref_floor_div(l.by, 256) + 128 };
+        ref.n = 0;
+        got.n = 0;
+        sr__line_bresenham(&lc, r, SR__LINE_CLIP_NONE, true, collect, &ref);
+        CHECK(sr__line_bresenham_centres(&lc, r, SR_LINE_CLIP_LIANG_BARSKY, collect, &got));
+        CHECK(same_set(&got, &ref));
         for (int inc = 0; inc < 2; inc++) {
             ref.n = 0;
             got.n = 0;
@@ -852,6 +863,65 @@ SR_TEST(wide_lines_have_w_pixels_in_every_column)
     }
     free(s.p);
     free(thin.p);
+}
+
+/* ---- antialiased lines under clipping ------------------------------------------------- */
+
+static float coverage_at(const pixset *s, int x, int y)
+{
+    for (int i = 0; i < s->n; i++) {
+        if (s->p[i].x == x && s->p[i].y == y) {
+            return s->p[i].c;
+        }
+    }
+    return 0.0f;
+}
+
+/* Wu evaluates each column from the first end, so clipping changes
+ * nothing; the area line's polygon is built from the clipped segment,
+ * which moves its far ends but not its pixels inside (within rounding). */
+SR_TEST(antialiased_lines_are_unchanged_by_clipping)
+{
+    sr_rng rng = { 0xaac1 };
+    pixset ref = { 0 }, got = { 0 };
+    double worst_area = 0;
+    for (int i = 0; i < 3000; i++) {
+        sr_point2 a = { sr_rng_range(&rng, -300, 400), sr_rng_range(&rng, -300, 400) };
+        sr_point2 b = { sr_rng_range(&rng, -300, 400), sr_rng_range(&rng, -300, 400) };
+        sr__irect r = { sr_rng_int(&rng, 0, 80), sr_rng_int(&rng, 0, 80), 0, 0 };
+        r.x1 = r.x0 + sr_rng_int(&rng, 1, 48);
+        r.y1 = r.y0 + sr_rng_int(&rng, 1, 48);
+        double w = sr_rng_range(&rng, 0.5, 5);
+        sr_line_cap cap = (sr_line_cap)sr_rng_int(&rng, 1, 3);
+        for (int c = 0; c < 2; c++) {
+            sr_line_clipper clipper = c ? SR_LINE_CLIP_LIANG_BARSKY : SR_LINE_CLIP_COHEN_SUTHERLAND;
+            ref.n = got.n = 0;
+            sr__line_wu(a, b, r, SR__LINE_CLIP_NONE, collect, &ref);
+            sr__line_wu(a, b, r, clipper, collect, &got);
+            CHECK(same_set(&got, &ref));
+            for (int k = 0; k < got.n; k++) {
+                CHECK(got.p[k].c == coverage_at(&ref, got.p[k].x, got.p[k].y));
+            }
+            ref.n = got.n = 0;
+            sr__line_area(a, b, w, cap, r, SR__LINE_CLIP_NONE, collect, &ref);
+            sr__line_area(a, b, w, cap, r, clipper, collect, &got);
+            for (int k = 0; k < ref.n; k++) {
+                double d = fabs(ref.p[k].c - coverage_at(&got, ref.p[k].x, ref.p[k].y));
+                worst_area = fmax(worst_area, d);
+            }
+            for (int k = 0; k < got.n; k++) {
+                double d = fabs(got.p[k].c - coverage_at(&ref, got.p[k].x, got.p[k].y));
+                worst_area = fmax(worst_area, d);
+            }
+        }
+        if (sr_test_failed_now()) {
+            break;
+        }
+    }
+    printf("area lines, clipped vs unclipped: worst coverage difference %.3g\n", worst_area);
+    CHECK(worst_area < 1e-6);
+    free(ref.p);
+    free(got.p);
 }
 
 /* ---- through the public call ----------------------------------------------------------- */

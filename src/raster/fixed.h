@@ -39,6 +39,34 @@ static inline int64_t sr__ceil_div(int64_t a, int64_t b)
     return (a % b != 0 && a > 0) ? q + 1 : q;
 }
 
+/* floor(n / d) kept incrementally while n grows by a constant dn per step:
+ * the quotient-and-remainder DDA (a Bresenham-style update) that scan-line
+ * edge walking and line rasterization use to step an exact rational
+ * coordinate with integer adds only.  d > 0. */
+typedef struct sr_dda {
+    int64_t q, r, d;    /* n = q d + r, 0 <= r < d */
+    int64_t dq, dr;     /* dn = dq d + dr, 0 <= dr < d */
+} sr_dda;
+
+static inline void sr__dda_init(sr_dda *s, int64_t n, int64_t d, int64_t dn)
+{
+    s->d = d;
+    s->q = sr__floor_div(n, d);
+    s->r = n - s->q * d;
+    s->dq = sr__floor_div(dn, d);
+    s->dr = dn - s->dq * d;
+}
+
+static inline void sr__dda_step(sr_dda *s)
+{
+    s->q += s->dq;
+    s->r += s->dr;
+    if (s->r >= s->d) {
+        s->r -= s->d;
+        s->q++;
+    }
+}
+
 /* Pixel centre in q8: (256 px + 128). */
 static inline int64_t sr__centre_q8(int p)
 {

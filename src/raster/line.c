@@ -125,7 +125,8 @@ typedef struct line_ctx {
     int rx0, ry0, rx1, ry1;
     bool xmajor;
     sr_frag_stats *st;
-    double len2;                      /* |b - a|^2 in q8^2 */
+    double inv_len2;                  /* 1 / |b - a|^2 in q8^2 */
+    bool equal_w;                     /* both ends share 1/w: interpolation is affine */
 } line_ctx;
 
 /* One covered pixel: project its centre onto the segment for t, then depth
@@ -142,40 +143,26 @@ static void line_fragment(const line_ctx *lc, int px, int py)
             continue;
         }
         double cx = (double)px * S + H - l->xa, cy = (double)py * S + H - l->ya;
-        double t = (cx * (l->xb - l->xa) + cy * (l->yb - l->ya)) / lc->len2;
+        double t = (cx * (l->xb - l->xa) + cy * (l->yb - l->ya)) * lc->inv_len2;
         t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
         double z = l->za + t * (l->zb - l->za);
         float v[SR_MAX_VARYINGS];
-        float qa = (float)(1.0 - t) * l->wa, qb = (float)t * l->wb;
-        float inv = qa + qb != 0.0f ? 1.0f / (qa + qb) : 0.0f;
-        for (int i = 0; i < l->ninterp; i++) {
-            v[i] = (qa * l->vary[i] + qb * l->vary[l->ninterp + i]) * inv;
+        int n = l->ninterp;
+        if (lc->equal_w) {
+            /* Equal 1/w at both ends: perspective-correct is the lerp. */
+            float tf = (float)t;
+            for (int i = 0; i < n; i++) {
+                v[i] = l->vary[i] + tf * (l->vary[n + i] - l->vary[i]);
+            }
+        } else {
+            float qa = (float)(1.0 - t) * l->wa, qb = (float)t * l->wb;
+            float inv = qa + qb != 0.0f ? 1.0f / (qa + qb) : 0.0f;
+            for (int i = 0; i < n; i++) {
+                v[i] = (qa * l->vary[i] + qb * l->vary[n + i]) * inv;
+            }
         }
         sr__fragment_vary(lc->ds, qx, qy, z, v, l->flat, l->front, lc->st);
     }
-}
-
-/* The pixel a column (major index k) holds, or false. */
-static bool column_pixel(const sr_line *l, bool xmajor, int k, int *px, int *py)
-{
-    int64_t au = xmajor ? l->xa : l->ya, av = xmajor ? l->ya : l->xa;
-    int64_t bu = xmajor ? l->xb : l->yb, bv = xmajor ? l->yb : l->xb;
-    int64_t c = (int64_t)k * S + H;
-    int64_t num = av * (bu - au) + (c - au) * (bv - av);
-    int64_t den = bu - au;
-    if (den < 0) {
-        num = -num;
-        den = -den;
-    }
-    /* Minor coordinate num/den; a point on a pixel boundary belongs to the
-     * smaller index. */
-    int64_t j = sr__ceil_div(num, den * S) - 1;
-    if (j < INT32_MIN || j > INT32_MAX) {
-        return false;
-    }
-    *px = xmajor ? k : (int)j;
-    *py = xmajor ? (int)j : k;
-    return true;
 }
 
 void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0, int rx1,
@@ -183,7 +170,7 @@ void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0
 {
     int64_t dx = (int64_t)l->xb - l->xa, dy = (int64_t)l->yb - l->ya;
     line_ctx lc = { ds, l, rx0, ry0, rx1, ry1, llabs(dx) >= llabs(dy), st,
-                    (double)dx * dx + (double)dy * dy };
+                    1.0 / ((double)dx * dx + (double)dy * dy), l->wa == l->wb };
     bool xmajor = lc.xmajor;
     int pad = l->width / 2 + 1;
     /* Columns whose centre lies within the segment's major extent, limited
@@ -220,12 +207,24 @@ void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0
         }
     }
 
+    /* The minor coordinate at column centre c is num/den with
+     * num = a_v (b_u - a_u) + (c - a_u)(b_v - a_v), den = b_u - a_u (made
+     * positive); the column's pixel is j = ceil(num / 256 den) - 1 =
+     * floor((num - 1) / 256 den), a point on a pixel boundary going to the
+     * smaller index.  num grows by 256 (b_v - a_v) per column: a DDA. */
+    int64_t av = xmajor ? l->ya : l->xa, bv = xmajor ? l->yb : l->xb;
+    int64_t den = bu - au, sign = den < 0 ? -1 : 1;
+    int64_t num0 = av * (bu - au) + (k0 * S + H - au) * (bv - av);
+    sr_dda dda;
+    sr__dda_init(&dda, sign * num0 - 1, sign * den * S, sign * S * (bv - av));
+
     bool start_done = false;
-    for (int64_t k = k0; k <= k1; k++) {
-        int px, py;
-        if (!column_pixel(l, xmajor, (int)k, &px, &py)) {
+    for (int64_t k = k0; k <= k1; k++, sr__dda_step(&dda)) {
+        int64_t j = dda.q;
+        if (j < INT32_MIN + 1 || j > INT32_MAX - 1) {
             continue;
         }
+        int px = xmajor ? (int)k : (int)j, py = xmajor ? (int)j : (int)k;
         if (end_in && px == end_px && py == end_py) {
             continue; /* half-open: the end's own pixel is not drawn */
         }

@@ -13,31 +13,6 @@
  * special cases.  Runs on a tile worker thread. */
 #include "fragment/fragment.h"
 
-/* floor(n / d) maintained incrementally as n grows by dn each scanline. */
-typedef struct edge_dda {
-    int64_t q, r, d;    /* n = q d + r, 0 <= r < d */
-    int64_t dq, dr;     /* dn = dq d + dr, 0 <= dr < d */
-} edge_dda;
-
-static void dda_init(edge_dda *s, int64_t n, int64_t d, int64_t dn)
-{
-    s->d = d;
-    s->q = sr__floor_div(n, d);
-    s->r = n - s->q * d;
-    s->dq = sr__floor_div(dn, d);
-    s->dr = dn - s->dq * d;
-}
-
-static void dda_step(edge_dda *s)
-{
-    s->q += s->dq;
-    s->r += s->dr;
-    if (s->r >= s->d) {
-        s->r -= s->d;
-        s->q++;
-    }
-}
-
 void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st)
 {
@@ -49,7 +24,7 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
      *       last pixel  = floor((R - 128 |a|) / 256 |a|)
      *   a = 0 (horizontal): the whole row is in iff R >= 0.
      * R grows by 256 b per scanline. */
-    edge_dda dda[3];
+    sr_dda dda[3];
     int kind[3]; /* +1 left, -1 right, 0 horizontal */
     int64_t yc0 = sr__centre_q8(ry0);
     for (int i = 0; i < 3; i++) {
@@ -58,10 +33,10 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
         int64_t dR = t->b[i] * SR_SUBPIXEL_ONE;
         if (a > 0) {
             kind[i] = 1;
-            dda_init(&dda[i], -R - SR_SUBPIXEL_HALF * a - 1, SR_SUBPIXEL_ONE * a, -dR);
+            sr__dda_init(&dda[i], -R - SR_SUBPIXEL_HALF * a - 1, SR_SUBPIXEL_ONE * a, -dR);
         } else if (a < 0) {
             kind[i] = -1;
-            dda_init(&dda[i], R + SR_SUBPIXEL_HALF * a, -SR_SUBPIXEL_ONE * a, dR);
+            sr__dda_init(&dda[i], R + SR_SUBPIXEL_HALF * a, -SR_SUBPIXEL_ONE * a, dR);
         } else {
             kind[i] = 0;
             /* Reuse q as the row value R itself, stepped by dR. */
@@ -99,7 +74,7 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
         }
         for (int i = 0; i < 3; i++) {
             if (kind[i] != 0) {
-                dda_step(&dda[i]);
+                sr__dda_step(&dda[i]);
             } else {
                 dda[i].q += dda[i].dq;
             }

@@ -1,0 +1,578 @@
+/* path.c - draw2d stage: paths and strokes.  Consumes path commands
+ * (lines, Beziers, SVG arcs), flattens them as they arrive, and produces
+ * either a fill (every subpath closed, through the polygon fill) or a
+ * stroke: the outline polygon of quadrilaterals per segment plus join and
+ * cap pieces, all wound the same way and filled nonzero, so overlaps
+ * merge.  A path and the context it was made on belong to one thread. */
+#include "draw2d/polyfill.h"
+
+#include "context.h"
+#include "draw2d/paint.h"
+
+#include <math.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define MAX_PATH_POINTS (1 << 26)
+
+struct sr_path {
+    sr_context *ctx;
+    double tolerance;
+    sr_point2 *pts;
+    int n, cap;
+    int *counts;          /* points per subpath */
+    uint8_t *closed;      /* per subpath */
+    int nc, ccap;
+    bool in_subpath;      /* the last subpath takes further points */
+    bool has_current;
+    sr_point2 current, start;
+};
+
+/* ---- building ------------------------------------------------------------- */
+
+sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_path: out is NULL");
+    }
+    *out = NULL;
+    if (tolerance == 0) {
+        tolerance = 0.1;
+    }
+    if (!(tolerance > 0) || !isfinite(tolerance)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_path: tolerance must be >= 0 (got %g)",
+                        tolerance);
+    }
+    sr_path *p = sr__calloc(ctx, 1, sizeof *p);
+    if (!p) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_path: no memory");
+    }
+    p->ctx = ctx;
+    p->tolerance = tolerance;
+    *out = p;
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+void sr_destroy_path(sr_path *path)
+{
+    if (!path) {
+        return;
+    }
+    sr_context *ctx = path->ctx;
+    sr__free(ctx, path->pts);
+    sr__free(ctx, path->counts);
+    sr__free(ctx, path->closed);
+    sr__free(ctx, path);
+}
+
+void sr_path_clear(sr_path *path)
+{
+    if (path) {
+        path->n = path->nc = 0;
+        path->in_subpath = path->has_current = false;
+    }
+}
+
+static bool grow(sr_context *ctx, void **buf, int *cap, int need, size_t elem)
+{
+    if (need <= *cap) {
+        return true;
+    }
+    int c = *cap ? *cap : 64;
+    while (c < need) {
+        c *= 2;
+    }
+    void *b = sr__alloc(ctx, (size_t)c * elem);
+    if (!b) {
+        return false;
+    }
+    if (*buf) {
+        memcpy(b, *buf, (size_t)*cap * elem);
+    }
+    sr__free(ctx, *buf);
+    *buf = b;
+    *cap = c;
+    return true;
+}
+
+static sr_result begin_subpath(sr_path *p, sr_point2 at)
+{
+    if (!grow(p->ctx, (void **)&p->counts, &p->ccap, p->nc + 1, sizeof *p->counts)) {
+        return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory");
+    }
+    int ccap = p->ccap;
+    /* closed[] grows with counts[]: same capacity. */
+    uint8_t *closed = sr__alloc(p->ctx, (size_t)ccap);
+    if (!closed) {
+        return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory");
+    }
+    if (p->closed) {
+        memcpy(closed, p->closed, (size_t)p->nc);
+    }
+    sr__free(p->ctx, p->closed);
+    p->closed = closed;
+    p->counts[p->nc] = 0;
+    p->closed[p->nc] = 0;
+    p->nc++;
+    p->in_subpath = true;
+    p->start = at;
+    p->current = at;
+    p->has_current = true;
+    if (p->n + 1 > MAX_PATH_POINTS ||
+        !grow(p->ctx, (void **)&p->pts, &p->cap, p->n + 1, sizeof *p->pts)) {
+        return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory for more points");
+    }
+    p->pts[p->n++] = at;
+    p->counts[p->nc - 1]++;
+    return SR_OK;
+}
+
+/* Append points to the current subpath (starting one at the current
+ * point after a close). */
+static sr_result append(sr_path *p, const sr_point2 *pts, int n)
+{
+    if (n == 0) {
+        sr__ok(p->ctx);
+        return SR_OK;
+    }
+    if (!p->in_subpath) {
+        sr_result r = begin_subpath(p, p->has_current ? p->current : pts[0]);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    if ((long long)p->n + n > MAX_PATH_POINTS ||
+        !grow(p->ctx, (void **)&p->pts, &p->cap, p->n + n, sizeof *p->pts)) {
+        return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory for more points");
+    }
+    memcpy(p->pts + p->n, pts, (size_t)n * sizeof *pts);
+    p->n += n;
+    p->counts[p->nc - 1] += n;
+    if (n > 0) {
+        p->current = pts[n - 1];
+    }
+    sr__ok(p->ctx);
+    return SR_OK;
+}
+
+static bool finite2(double a, double b)
+{
+    return isfinite(a) && isfinite(b);
+}
+
+sr_result sr_path_move_to(sr_path *path, double x, double y)
+{
+    if (!path) {
+        return SR_INVALID_ARG;
+    }
+    if (!finite2(x, y)) {
+        return sr__fail(path->ctx, SR_INVALID_ARG, "sr_path_move_to: point is not finite");
+    }
+    sr_result r = begin_subpath(path, (sr_point2){ x, y });
+    if (r == SR_OK) {
+        sr__ok(path->ctx);
+    }
+    return r;
+}
+
+sr_result sr_path_line_to(sr_path *path, double x, double y)
+{
+    if (!path) {
+        return SR_INVALID_ARG;
+    }
+    if (!finite2(x, y)) {
+        return sr__fail(path->ctx, SR_INVALID_ARG, "sr_path_line_to: point is not finite");
+    }
+    sr_point2 pt = { x, y };
+    return append(path, &pt, 1);
+}
+
+/* Flatten into a temporary buffer sized by a first call, then append. */
+typedef sr_result (*flatten_fn)(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
+                                const double *args);
+
+static sr_result flatten_append(sr_path *p, flatten_fn fn, const double *args)
+{
+    sr_point2 from = p->has_current ? p->current : (sr_point2){ args[0], args[1] };
+    sr_point2 small[64];
+    int n = 0;
+    sr_result r = fn(p, from, small, 64, &n, args);
+    if (r == SR_OK) {
+        return append(p, small, n);
+    }
+    if (r != SR_TOO_LARGE) {
+        return r;
+    }
+    sr_point2 *big = sr__alloc(p->ctx, (size_t)n * sizeof *big);
+    if (!big) {
+        return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory for %d points", n);
+    }
+    r = fn(p, from, big, n, &n, args);
+    if (r == SR_OK) {
+        r = append(p, big, n);
+    }
+    sr__free(p->ctx, big);
+    return r;
+}
+
+static sr_result quad_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
+                         const double *a)
+{
+    return sr_flatten_quadratic(p->ctx, from, (sr_point2){ a[0], a[1] }, (sr_point2){ a[2], a[3] },
+                                p->tolerance, out, cap, n);
+}
+
+static sr_result cubic_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
+                          const double *a)
+{
+    return sr_flatten_cubic(p->ctx, from, (sr_point2){ a[0], a[1] }, (sr_point2){ a[2], a[3] },
+                            (sr_point2){ a[4], a[5] }, p->tolerance, out, cap, n);
+}
+
+static sr_result arc_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
+                        const double *a)
+{
+    return sr_flatten_arc(p->ctx, from, a[2], a[3], a[4], a[5] != 0, a[6] != 0,
+                          (sr_point2){ a[0], a[1] }, p->tolerance, out, cap, n);
+}
+
+sr_result sr_path_quad_to(sr_path *path, double x1, double y1, double x, double y)
+{
+    if (!path) {
+        return SR_INVALID_ARG;
+    }
+    double a[4] = { x1, y1, x, y };
+    return flatten_append(path, quad_fn, a);
+}
+
+sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, double y2,
+                           double x, double y)
+{
+    if (!path) {
+        return SR_INVALID_ARG;
+    }
+    double a[6] = { x1, y1, x2, y2, x, y };
+    return flatten_append(path, cubic_fn, a);
+}
+
+sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_deg,
+                         bool large_arc, bool sweep, double x, double y)
+{
+    if (!path) {
+        return SR_INVALID_ARG;
+    }
+    /* args[0..1] is the end point (also the start when there is no
+     * current point, which makes the arc empty). */
+    double a[7] = { x, y, rx, ry, rotation_deg, large_arc, sweep };
+    return flatten_append(path, arc_fn, a);
+}
+
+sr_result sr_path_close(sr_path *path)
+{
+    if (!path) {
+        return SR_INVALID_ARG;
+    }
+    if (path->in_subpath) {
+        path->closed[path->nc - 1] = 1;
+        path->in_subpath = false;
+        path->current = path->start;
+    }
+    sr__ok(path->ctx);
+    return SR_OK;
+}
+
+sr_polygon2 sr_path_polygon(const sr_path *path)
+{
+    if (!path) {
+        return (sr_polygon2){ NULL, 0, NULL, 0 };
+    }
+    return (sr_polygon2){ path->pts, path->n, path->counts, path->nc };
+}
+
+sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path, sr_rgba color,
+                       const sr_fill_desc *desc)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!path) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_fill_path: path is NULL");
+    }
+    sr_polygon2 poly = sr_path_polygon(path);
+    return sr_fill_polygon(ctx, fb, &poly, color, desc);
+}
+
+/* ---- stroking ------------------------------------------------------------- */
+
+typedef struct outline {
+    sr_context *ctx;
+    sr_point2 *pts;
+    int n, cap;
+    int *counts;
+    int nc, ccap;
+    bool failed;
+} outline;
+
+/* Add one piece, wound with positive signed area (zero-area pieces are
+ * dropped), so the nonzero fill of all pieces is their union. */
+static void add_piece(outline *o, const sr_point2 *p, int n)
+{
+    double a2 = 0;
+    for (int i = 0; i < n; i++) {
+        const sr_point2 *a = &p[i], *b = &p[(i + 1) % n];
+        a2 += a->x * b->y - b->x * a->y;
+    }
+    if (!(a2 != 0) || o->failed) {
+        return;
+    }
+    if (!grow(o->ctx, (void **)&o->pts, &o->cap, o->n + n, sizeof *o->pts) ||
+        !grow(o->ctx, (void **)&o->counts, &o->ccap, o->nc + 1, sizeof *o->counts)) {
+        o->failed = true;
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        o->pts[o->n + i] = a2 > 0 ? p[i] : p[n - 1 - i];
+    }
+    o->n += n;
+    o->counts[o->nc++] = n;
+}
+
+static void add_disc(outline *o, sr_point2 c, double r, double tol)
+{
+    double a = tol >= r ? M_PI / 2 : 2 * acos(1 - tol / r);
+    int n = (int)ceil(2 * M_PI / a);
+    if (n < 8) {
+        n = 8;
+    }
+    if (n > 4096) {
+        n = 4096;
+    }
+    sr_point2 pts[4096];
+    for (int i = 0; i < n; i++) {
+        double t = 2 * M_PI * i / n;
+        /* vertices on a circle of radius r / cos(pi / n): the polygon then
+         * contains the disc instead of cutting it */
+        double rr = r / cos(M_PI / n);
+        pts[i] = (sr_point2){ c.x + rr * cos(t), c.y + rr * sin(t) };
+    }
+    add_piece(o, pts, n);
+}
+
+static sr_point2 pt_add(sr_point2 a, double s, sr_point2 d)
+{
+    return (sr_point2){ a.x + s * d.x, a.y + s * d.y };
+}
+
+static void add_cap(outline *o, sr_point2 p, sr_point2 d /* outward */, double hw,
+                    sr_stroke_cap cap, double tol)
+{
+    if (cap == SR_STROKE_CAP_ROUND) {
+        add_disc(o, p, hw, tol);
+    } else if (cap == SR_STROKE_CAP_SQUARE) {
+        sr_point2 n = { -d.y, d.x };
+        sr_point2 q[4] = { pt_add(p, hw, n), pt_add(pt_add(p, hw, n), hw, d),
+                           pt_add(pt_add(p, -hw, n), hw, d), pt_add(p, -hw, n) };
+        add_piece(o, q, 4);
+    }
+}
+
+static void add_join(outline *o, sr_point2 p, sr_point2 d0, sr_point2 d1, double hw,
+                     const sr_stroke_desc *d, double tol)
+{
+    double cross = d0.x * d1.y - d0.y * d1.x, dot = d0.x * d1.x + d0.y * d1.y;
+    if (fabs(cross) < 1e-12 && dot > 0) {
+        return; /* straight on: the segment quads already meet */
+    }
+    if (d->join == SR_STROKE_JOIN_ROUND) {
+        add_disc(o, p, hw, tol);
+        return;
+    }
+    /* The outer side is away from the turn: n = d rotated +90 degrees lies
+     * on the side the path turns to when cross > 0. */
+    double s = cross > 0 ? -1.0 : 1.0;
+    sr_point2 n0 = { -d0.y, d0.x }, n1 = { -d1.y, d1.x };
+    sr_point2 a = pt_add(p, s * hw, n0), b = pt_add(p, s * hw, n1);
+    if (d->join == SR_STROKE_JOIN_MITER) {
+        /* miter length / width = 1 / sin(theta / 2), theta the angle between
+         * the segments = 1 / cos(phi / 2), phi the turning angle */
+        double c = sqrt((1 + dot) / 2);
+        if (c > 0 && 1 / c <= d->miter_limit) {
+            sr_point2 bis = { n0.x + n1.x, n0.y + n1.y };
+            double len = hypot(bis.x, bis.y);
+            if (len > 0) {
+                sr_point2 m = pt_add(p, s * hw / c / len, bis);
+                sr_point2 q[4] = { p, a, m, b };
+                add_piece(o, q, 4);
+                return;
+            }
+        }
+    }
+    sr_point2 t[3] = { p, a, b }; /* bevel */
+    add_piece(o, t, 3);
+}
+
+static sr_point2 unit(sr_point2 a, sr_point2 b)
+{
+    double dx = b.x - a.x, dy = b.y - a.y, l = hypot(dx, dy);
+    return (sr_point2){ dx / l, dy / l };
+}
+
+static void stroke_subpath(outline *o, const sr_point2 *in, int n_in, bool closed,
+                           const sr_stroke_desc *d, double tol)
+{
+    double hw = d->width / 2;
+    /* Drop repeated points (zero-length segments have no direction). */
+    sr_point2 *p = sr__alloc(o->ctx, (size_t)(n_in > 0 ? n_in : 1) * sizeof *p);
+    if (!p) {
+        o->failed = true;
+        return;
+    }
+    int n = 0;
+    for (int i = 0; i < n_in; i++) {
+        if (n == 0 || in[i].x != p[n - 1].x || in[i].y != p[n - 1].y) {
+            p[n++] = in[i];
+        }
+    }
+    if (closed && n > 1 && p[n - 1].x == p[0].x && p[n - 1].y == p[0].y) {
+        n--;
+    }
+    if (n == 1) {
+        /* A zero-length subpath: round and square caps still draw a dot. */
+        if (n_in > 1 || closed) {
+            add_cap(o, p[0], (sr_point2){ 1, 0 }, hw, d->cap, tol);
+            if (d->cap == SR_STROKE_CAP_SQUARE) {
+                add_cap(o, p[0], (sr_point2){ -1, 0 }, hw, d->cap, tol);
+            }
+        }
+        sr__free(o->ctx, p);
+        return;
+    }
+    if (n < 2) {
+        sr__free(o->ctx, p);
+        return;
+    }
+    int segs = closed ? n : n - 1;
+    for (int i = 0; i < segs; i++) {
+        sr_point2 a = p[i], b = p[(i + 1) % n], u = unit(a, b), nn = { -u.y, u.x };
+        sr_point2 q[4] = { pt_add(a, hw, nn), pt_add(b, hw, nn), pt_add(b, -hw, nn),
+                           pt_add(a, -hw, nn) };
+        add_piece(o, q, 4);
+    }
+    for (int i = closed ? 0 : 1; i < (closed ? n : n - 1); i++) {
+        sr_point2 prev = p[(i + n - 1) % n], cur = p[i], next = p[(i + 1) % n];
+        add_join(o, cur, unit(prev, cur), unit(cur, next), hw, d, tol);
+    }
+    if (!closed) {
+        sr_point2 u0 = unit(p[1], p[0]), u1 = unit(p[n - 2], p[n - 1]);
+        add_cap(o, p[0], u0, hw, d->cap, tol);
+        add_cap(o, p[n - 1], u1, hw, d->cap, tol);
+    }
+    sr__free(o->ctx, p);
+}
+
+static sr_result stroke_desc_defaults(sr_context *ctx, const char *fn, const sr_stroke_desc *in,
+                                      sr_stroke_desc *out)
+{
+    *out = in ? *in : (sr_stroke_desc){0};
+    if (out->width == 0) {
+        out->width = 1;
+    }
+    if (!(out->width > 0) || !isfinite(out->width)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_stroke_desc.width must be >= 0 (got %g)", fn,
+                        out->width);
+    }
+    if (out->join == SR_STROKE_JOIN_DEFAULT) {
+        out->join = SR_STROKE_JOIN_MITER;
+    }
+    if (out->join < SR_STROKE_JOIN_MITER || out->join > SR_STROKE_JOIN_BEVEL) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_stroke_desc.join %d is invalid", fn,
+                        (int)out->join);
+    }
+    if (out->cap == SR_STROKE_CAP_DEFAULT) {
+        out->cap = SR_STROKE_CAP_BUTT;
+    }
+    if (out->cap < SR_STROKE_CAP_BUTT || out->cap > SR_STROKE_CAP_SQUARE) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_stroke_desc.cap %d is invalid", fn,
+                        (int)out->cap);
+    }
+    if (out->miter_limit == 0) {
+        out->miter_limit = 4;
+    }
+    if (!(out->miter_limit >= 1) || !isfinite(out->miter_limit)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_stroke_desc.miter_limit must be >= 1 (got %g)",
+                        fn, out->miter_limit);
+    }
+    return SR_OK;
+}
+
+sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
+                            sr_polygon2 *out)
+{
+    static const char fn[] = "sr_stroke_outline";
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!path || !out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn, path ? "out" : "path");
+    }
+    *out = (sr_polygon2){ NULL, 0, NULL, 0 };
+    sr_stroke_desc d;
+    sr_result r = stroke_desc_defaults(ctx, fn, desc, &d);
+    if (r != SR_OK) {
+        return r;
+    }
+    outline o = { .ctx = ctx };
+    int start = 0;
+    for (int c = 0; c < path->nc; c++) {
+        stroke_subpath(&o, path->pts + start, path->counts[c], path->closed[c] != 0, &d,
+                       path->tolerance);
+        start += path->counts[c];
+    }
+    if (o.failed) {
+        sr__free(ctx, o.pts);
+        sr__free(ctx, o.counts);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: no memory for the outline", fn);
+    }
+    *out = (sr_polygon2){ o.pts, o.n, o.counts, o.nc };
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+void sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline)
+{
+    if (!ctx || !outline) {
+        return;
+    }
+    sr__free(ctx, (void *)outline->points);
+    sr__free(ctx, (void *)outline->contour_counts);
+    *outline = (sr_polygon2){ NULL, 0, NULL, 0 };
+}
+
+sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
+                         sr_rgba color, const sr_stroke_desc *desc)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!fb) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_stroke_path: fb is NULL");
+    }
+    sr_polygon2 poly;
+    sr_result r = sr_stroke_outline(ctx, path, desc, &poly);
+    if (r != SR_OK) {
+        return r;
+    }
+    const sr_stroke_desc *d = desc;
+    sr_fill_desc f = { SR_NONZERO, d ? d->antialias : SR_AA_DEFAULT, d ? d->samples : 0,
+                       d ? d->linear_light : false };
+    r = sr_fill_polygon(ctx, fb, &poly, color, &f);
+    sr_free_stroke_outline(ctx, &poly);
+    return r;
+}
