@@ -109,7 +109,7 @@ static void clip_half(const poly *in, poly *out, bool y_axis, double bound, bool
 {
     out->n = 0;
     for (int i = 0; i < in->n; i++) {
-        int k = (i + 1) % in->n;
+        int k = i + 1 == in->n ? 0 : i + 1;
         double ci = y_axis ? in->y[i] : in->x[i], ck = y_axis ? in->y[k] : in->x[k];
         bool ini = keep_greater ? ci >= bound : ci <= bound;
         bool ink = keep_greater ? ck >= bound : ck <= bound;
@@ -136,15 +136,23 @@ static double poly_area(const poly *p, double ox, double oy)
 {
     double s = 0.0;
     for (int i = 0; i < p->n; i++) {
-        int k = (i + 1) % p->n;
+        int k = i + 1 == p->n ? 0 : i + 1;
         s += (p->x[i] - ox) * (p->y[k] - oy) - (p->x[k] - ox) * (p->y[i] - oy);
     }
     return fabs(s) * 0.5;
 }
 
+/* The area of the part of `strip` left of x = bound (tmp: scratch). */
+static double area_left_of(const poly *strip, double bound, double oy, poly *tmp)
+{
+    clip_half(strip, tmp, false, bound, false);
+    return tmp->n < 3 ? 0.0 : poly_area(tmp, bound, oy);
+}
+
 /* Every pixel of the clip rectangle the convex polygon touches, with the
  * exact area of polygon ∩ pixel square: cut the polygon into the row's
- * strip, then the strip into the pixel's column. */
+ * strip; a pixel's area is then A(x + 1) - A(x), where A(x) is the area
+ * of the strip left of x (one cut per pixel instead of two). */
 static void fill_convex_area(const poly *p, sr__irect clip, sr__plot_fn plot, void *user)
 {
     if (p->n < 3) {
@@ -156,7 +164,7 @@ static void fill_convex_area(const poly *p, sr__irect clip, sr__plot_fn plot, vo
         ymax = fmax(ymax, p->y[i]);
     }
     double r0 = fmax(floor(ymin), clip.y0), r1 = fmin(ceil(ymax) - 1.0, clip.y1 - 1.0);
-    poly tmp, strip, piece;
+    poly tmp, strip;
     for (double y = r0; y <= r1; y += 1.0) {
         clip_half(p, &tmp, true, y, true);
         clip_half(&tmp, &strip, true, y + 1.0, false);
@@ -169,14 +177,13 @@ static void fill_convex_area(const poly *p, sr__irect clip, sr__plot_fn plot, vo
             xmax = fmax(xmax, strip.x[i]);
         }
         double c0 = fmax(floor(xmin), clip.x0), c1 = fmin(ceil(xmax) - 1.0, clip.x1 - 1.0);
+        double left = c0 > xmin ? area_left_of(&strip, c0, y, &tmp) : 0.0;
         for (double x = c0; x <= c1; x += 1.0) {
-            clip_half(&strip, &tmp, false, x, true);
-            clip_half(&tmp, &piece, false, x + 1.0, false);
-            if (piece.n < 3) {
-                continue;
-            }
-            double area = poly_area(&piece, x, y);
-            if (area > 0.0) {
+            double next = area_left_of(&strip, x + 1.0, y, &tmp);
+            double area = next - left;
+            left = next;
+            /* Below 1e-9 px^2 is rounding noise of the subtraction. */
+            if (area > 1e-9) {
                 plot(user, (int)x, (int)y, (float)(area > 1.0 ? 1.0 : area));
             }
         }

@@ -38,12 +38,14 @@ SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(unorm8)(v4f v)
  * `valid` masks the lanes inside the span being drawn. */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr_tri *t, int gx,
                                                int py, v4d e0, v4d e1, v4d e2, v4l valid,
-                                               sr_frag_stats *st, sr_shading shading,
-                                               sr_depth_mode dmode)
+                                               bool inside, sr_frag_stats *st,
+                                               sr_shading shading, sr_depth_mode dmode)
 {
     const v4d zero = { 0, 0, 0, 0 };
-    v4l in = valid & (e0 + (double)t->bias[0] >= zero) & (e1 + (double)t->bias[1] >= zero) &
-             (e2 + (double)t->bias[2] >= zero);
+    /* In a block wholly inside the triangle only the span limits apply. */
+    v4l in = inside ? valid
+                    : valid & (e0 + (double)t->bias[0] >= zero) &
+                          (e1 + (double)t->bias[1] >= zero) & (e2 + (double)t->bias[2] >= zero);
     v4i m = __builtin_convertvector(in, v4i);
     if (!(m[0] | m[1] | m[2] | m[3])) {
         return;
@@ -138,7 +140,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             for (int gx = gx_start; gx < rx1; gx += 4) {
                 v4l px = lane + gx;
                 v4l valid = (px >= (int64_t)rx0) & (px < (int64_t)rx1);
-                SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, st, shading, dmode);
+                SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, false, st, shading, dmode);
                 e0 += gx0;
                 e1 += gx1;
                 e2 += gx2;
@@ -157,12 +159,14 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     for (int by = by_start; by < ry1; by += SR_BLOCK_SIZE) {
         for (int bx = bx_start; bx < rx1; bx += SR_BLOCK_SIZE) {
             int64_t e[3];
-            bool outside = false;
+            bool outside = false, inside = true;
             for (int i = 0; i < 3; i++) {
                 e[i] = t->a[i] * sr__centre_q8(bx) + t->b[i] * sr__centre_q8(by) + t->c[i] +
                        t->bias[i];
+                /* E is linear: its extremes over the block are at corners. */
                 int64_t ex = sx[i] * last, ey = sy[i] * last;
                 outside |= e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) < 0;
+                inside &= e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) >= 0;
             }
             if (outside) {
                 continue;
@@ -193,7 +197,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                     v4l pxl = lane + gx;
                     v4l valid = (pxl >= (int64_t)px0) & (pxl < (int64_t)px1);
                     SR_SIMD_FN(quad)(ds, t, gx, py, (double)u0 + lx[0], (double)u1 + lx[1],
-                                     (double)u2 + lx[2], valid, st, shading, dmode);
+                                     (double)u2 + lx[2], valid, inside, st, shading, dmode);
                 }
             }
         }
