@@ -1,9 +1,10 @@
-/* scenes.c - builds the benchmark scenes (bench): loads and frames the
- * models the way `softrast render` does (apps/softrast/render.c:
- * setup_camera, default_lights; apps/softrast/scene.c: scene_bounds), and
- * generates the synthetic ones with a fixed seed.  Runs once per scene,
+/* scenes.c - builds the benchmark scenes (bench): loads the models and
+ * frames and lights them with `softrast render`'s own defaults
+ * (apps/softrast/framing.c), and generates the synthetic ones with a fixed
+ * seed.  Runs once per scene,
  * before any frame is timed, on the main thread. */
 #include "scenes.h"
+#include "framing.h"
 #include "softrast_io.h"
 
 #include <math.h>
@@ -65,48 +66,23 @@ static void mesh_sphere(const sr_mesh *m, sr_vec3 *centre, float *radius)
     *radius = r2 > 0.0 ? (float)sqrt(r2) : 1.0f;
 }
 
-/* render.c's default camera: a three-quarter view from the front right,
- * above, at the distance where the sphere fills a 35 degree field of view
- * across the smaller image side with a 4% margin; near and far hug the
- * sphere. */
+/* Frame and light the mesh exactly as `softrast render` does by default
+ * (apps/softrast/framing.c). */
 static void frame_mesh(bench_scene *s, sr_camera_basis *basis)
 {
     sr_vec3 c;
     float r;
     mesh_sphere(&s->mesh, &c, &r);
-    float fov = 35.0f * PI_F / 180.0f;
-    float dist = r / sinf(fov * 0.5f) * 1.04f;
-    sr_vec3 dir = sr_vec3_normalize((sr_vec3){ 0.62f, 0.48f, 1.0f });
-    sr_vec3 eye = sr_vec3_add(c, sr_vec3_scale(dir, dist));
+    float fov = FRAMING_FOV_DEG * PI_F / 180.0f;
+    sr_vec3 eye = framing_default_eye(c, r, fov);
     sr_camera_frame(eye, sr_vec3_sub(c, eye), (sr_vec3){ 0, 1, 0 }, basis);
     s->view = sr_camera_matrix(basis);
     s->model = sr_mat4_identity();
-
-    float dc = sr_vec3_length(sr_vec3_sub(c, eye));
-    float far_z = (dc + r) * 1.01f;
-    float near_z = fmaxf(dc - r, far_z * 1e-3f) * 0.99f;
+    float near_z, far_z;
+    framing_near_far(eye, c, r, &near_z, &far_z);
     float aspect = (float)s->width / (float)s->height;
     s->projection = sr_perspective(sr_fit_fovy(fov, s->width, s->height), aspect, near_z, far_z,
                                    false);
-}
-
-/* render.c's key, fill and rim lights, placed relative to the camera. */
-static void default_lights(const sr_camera_basis *b, sr_light *lights)
-{
-    struct { float u, v, w, intensity; } rig[3] = {
-        { -0.55f, 0.70f, 0.45f, 0.95f },   /* key: upper left, towards the viewer */
-        { 0.80f, 0.05f, 0.60f, 0.35f },    /* fill: right */
-        { 0.10f, 0.55f, -0.85f, 0.45f },   /* rim: behind, above */
-    };
-    for (int i = 0; i < 3; i++) {
-        sr_vec3 to_light = sr_vec3_add(sr_vec3_add(sr_vec3_scale(b->u, rig[i].u),
-                                                   sr_vec3_scale(b->v, rig[i].v)),
-                                       sr_vec3_scale(b->w, rig[i].w));
-        lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
-                                .vector = sr_vec3_scale(sr_vec3_normalize(to_light), -1.0f),
-                                .color = { 1.0f, 0.98f, 0.95f },
-                                .intensity = rig[i].intensity };
-    }
 }
 
 static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
@@ -151,7 +127,7 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
                       .shininess = 40.0f },
         .ambient = { 0.12f, 0.12f, 0.14f },
     };
-    default_lights(&basis, s->state.lights);
+    framing_default_lights(&basis, s->state.lights);
     s->clear_color[0] = 0x1d / 255.0f;
     s->clear_color[1] = 0x22 / 255.0f;
     s->clear_color[2] = 0x30 / 255.0f;

@@ -10,7 +10,10 @@
 /* Demos register here: one line each, the function in demo_NAME.c.
  * DEMO_LIST is extended as demos land. */
 #define DEMO_LIST(X) \
-    X(lines, "every line algorithm on a star of lines, magnified")
+    X(lines, "every line algorithm on a star of lines, magnified") \
+    X(fill, "even-odd vs nonzero fill of a star and of holes; area and supersampled AA") \
+    X(floodfill, "flood and boundary fill, 4- vs 8-connected, leaking through a diagonal gap") \
+    X(clip, "Sutherland-Hodgman polygon clipping, the polygon after each clip edge")
 
 #define DEMO_DECLARE(name, summary) int demo_##name(sr_context *, const demo_args *, sr_framebuffer **);
 DEMO_LIST(DEMO_DECLARE)

@@ -2,6 +2,7 @@
  * teapot scene), frame it with a camera, light it, draw it with the
  * pipeline and write a PNG atomically. */
 #include "cli.h"
+#include "framing.h"
 #include "scene.h"
 #include "softrast_io.h"
 
@@ -437,9 +438,6 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
     float r;
     scene_bounds(s, true, &c, &r);
     float fov = o->fov_deg * PI_F / 180.0f;
-    /* Distance at which the bounding sphere fits the field of view across
-     * the smaller side, with a small margin. */
-    float dist = r / sinf(fov * 0.5f) * 1.04f;
 
     sr_vec3 target = o->have_target ? o->target : c;
     sr_vec3 up = o->have_up ? o->up : (sr_vec3){ 0, 1, 0 };
@@ -447,9 +445,7 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
     if (o->have_eye) {
         eye = o->eye;
     } else {
-        /* A three-quarter view from the front right, above. */
-        sr_vec3 dir = sr_vec3_normalize((sr_vec3){ 0.62f, 0.48f, 1.0f });
-        eye = sr_vec3_add(c, sr_vec3_scale(dir, dist));
+        eye = framing_default_eye(c, r, fov);
     }
     if (!sr_camera_frame(eye, sr_vec3_sub(target, eye), up, &cam->basis)) {
         /* Looking straight along the up vector: pick another up. */
@@ -461,9 +457,10 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
     sr_vec3 ca;
     float ra;
     scene_bounds(s, false, &ca, &ra);
-    float dc = sr_vec3_length(sr_vec3_sub(ca, eye));
-    float far_z = o->far_z > 0 ? o->far_z : (dc + ra) * 1.01f;
-    float near_z = o->near_z > 0 ? o->near_z : fmaxf(dc - ra, far_z * 1e-3f) * 0.99f;
+    float near_z, far_z;
+    framing_near_far(eye, ca, ra, &near_z, &far_z);
+    far_z = o->far_z > 0 ? o->far_z : far_z;
+    near_z = o->near_z > 0 ? o->near_z : near_z;
     if (near_z >= far_z) {
         far_z = near_z * 2.0f;
     }
@@ -478,29 +475,6 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
     }
     *near_out = near_z;
     *far_out = far_z;
-}
-
-/* Key, fill and rim lights placed relative to the camera, so whatever the
- * view, the side facing the viewer is lit from the upper left and the
- * silhouette is separated from the background. */
-static int default_lights(const camera *cam, sr_light *lights)
-{
-    const sr_camera_basis *b = &cam->basis;
-    struct { float u, v, w, intensity; } rig[3] = {
-        { -0.55f, 0.70f, 0.45f, 0.95f },   /* key: upper left, towards the viewer */
-        { 0.80f, 0.05f, 0.60f, 0.35f },    /* fill: right */
-        { 0.10f, 0.55f, -0.85f, 0.45f },   /* rim: behind, above */
-    };
-    for (int i = 0; i < 3; i++) {
-        sr_vec3 to_light = sr_vec3_add(sr_vec3_add(sr_vec3_scale(b->u, rig[i].u),
-                                                   sr_vec3_scale(b->v, rig[i].v)),
-                                       sr_vec3_scale(b->w, rig[i].w));
-        lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
-                                .vector = sr_vec3_scale(sr_vec3_normalize(to_light), -1.0f),
-                                .color = { 1.0f, 0.98f, 0.95f },
-                                .intensity = rig[i].intensity };
-    }
-    return 3;
 }
 
 static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
@@ -579,7 +553,7 @@ int cmd_render(int argc, char **argv)
 {
     render_opts o = {
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
-        .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = 35.0f,
+        .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
@@ -658,7 +632,7 @@ int cmd_render(int argc, char **argv)
     if (o.light_count > 0) {
         memcpy(state.lights, o.lights, sizeof o.lights);
     } else {
-        default_lights(&cam, state.lights);
+        framing_default_lights(&cam.basis, state.lights);
     }
 
     sr_context *ctx = NULL;

@@ -1,0 +1,140 @@
+/* demo2d.c - the magnified, labelled panel grid the 2D toolkit demos
+ * share (see demo2d.h). */
+#include "demo2d.h"
+
+#include "cli.h"
+#include "target/framebuffer.h"
+
+#include <string.h>
+
+#define GAP 12      /* output pixels between cells */
+#define LABEL_H 28  /* output pixels above each cell for its label */
+
+static int cell_w(const demo2d *d) { return d->panel_w * d->scale; }
+static int cell_h(const demo2d *d) { return d->panel_h * d->scale; }
+
+static void cell_origin(const demo2d *d, int index, int *ox, int *oy)
+{
+    *ox = GAP + (index % d->cols) * (cell_w(d) + GAP);
+    *oy = GAP + (index / d->cols) * (cell_h(d) + LABEL_H + GAP) + LABEL_H;
+}
+
+int demo2d_begin(demo2d *d, sr_context *ctx, const char *name, int cols, int rows,
+                 int panel_w, int panel_h, int scale)
+{
+    *d = (demo2d){ ctx, name, NULL, NULL, panel_w, panel_h, scale, cols, rows };
+    int w = cols * cell_w(d) + (cols + 1) * GAP;
+    int h = rows * (cell_h(d) + LABEL_H) + (rows + 1) * GAP;
+    if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
+                                                         .depth_format = SR_DEPTH_NONE }, &d->out) != SR_OK ||
+        sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = panel_w, .height = panel_h,
+                                                         .depth_format = SR_DEPTH_NONE }, &d->panel) != SR_OK) {
+        return demo2d_fail(d);
+    }
+    sr_clear(ctx, d->out, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.93f, 1 } });
+    return EXIT_OK;
+}
+
+void demo2d_clear_panel(demo2d *d, sr_rgba bg)
+{
+    sr_clear(d->ctx, d->panel, &(sr_clear_desc){ .color = { bg.r, bg.g, bg.b, bg.a } });
+}
+
+void demo2d_blit(demo2d *d, int index, const char *label)
+{
+    int ox, oy;
+    cell_origin(d, index, &ox, &oy);
+    /* The labels: one size for the whole demo (twice the font when cells
+     * are wide enough for 18 characters), cut short if still too long. */
+    char text[96];
+    strncpy(text, label, sizeof text - 1);
+    text[sizeof text - 1] = 0;
+    int ts = cell_w(d) >= sr_text_width("123456789012345678", 2) ? 2 : 1;
+    while (sr_text_width(text, ts) > cell_w(d) && strlen(text) > 1) {
+        text[strlen(text) - 1] = 0;
+    }
+    sr_draw_text(d->ctx, d->out, ox, oy - 8 * ts - 6, ts, text, (sr_rgba){ 0.1f, 0.1f, 0.12f, 1 });
+    const uint32_t *src = (const uint32_t *)sr_framebuffer_pixels(d->panel);
+    sr__fb_resolve(d->out, SR_TILE_PENDING_COLOR);
+    uint8_t grid_rgba[4] = { 60, 64, 72, 255 };
+    uint32_t grid;
+    memcpy(&grid, grid_rgba, sizeof grid);
+    int s = d->scale;
+    for (int y = 0; y < cell_h(d); y++) {
+        uint32_t *row = d->out->color + (size_t)(oy + y) * (size_t)d->out->width + ox;
+        for (int x = 0; x < cell_w(d); x++) {
+            /* each pixel a scale x scale block, a grid line on its top and
+             * left edges when blocks are large enough to spare it */
+            bool edge = s >= 4 && (x % s == 0 || y % s == 0);
+            row[x] = edge ? grid : src[(y / s) * d->panel_w + x / s];
+        }
+    }
+}
+
+sr_point2 demo2d_map(const demo2d *d, int index, sr_point2 p)
+{
+    int ox, oy;
+    cell_origin(d, index, &ox, &oy);
+    return (sr_point2){ ox + p.x * d->scale, oy + p.y * d->scale };
+}
+
+void demo2d_outline(demo2d *d, int index, const sr_point2 *pts, int n, bool closed,
+                    sr_rgba color, double width_px)
+{
+    if (n < 2) {
+        return;
+    }
+    sr_path *path = NULL;
+    if (sr_make_path(d->ctx, 0.05, &path) != SR_OK) {
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        sr_point2 q = demo2d_map(d, index, pts[i]);
+        if (i == 0) {
+            sr_path_move_to(path, q.x, q.y);
+        } else {
+            sr_path_line_to(path, q.x, q.y);
+        }
+    }
+    if (closed) {
+        sr_path_close(path);
+    }
+    sr_stroke_path(d->ctx, d->out, path, color,
+                   &(sr_stroke_desc){ .width = width_px, .join = SR_STROKE_JOIN_ROUND,
+                                      .cap = SR_STROKE_CAP_ROUND,
+                                      .antialias = SR_AA_SUPERSAMPLE, .samples = 4 });
+    sr_destroy_path(path);
+}
+
+void demo2d_dot(demo2d *d, int index, sr_point2 p, double radius_px, sr_rgba color)
+{
+    sr_point2 q = demo2d_map(d, index, p);
+    sr_path *path = NULL;
+    if (sr_make_path(d->ctx, 0.05, &path) != SR_OK) {
+        return;
+    }
+    sr_path_move_to(path, q.x - radius_px, q.y);
+    sr_path_arc_to(path, radius_px, radius_px, 0, false, true, q.x + radius_px, q.y);
+    sr_path_arc_to(path, radius_px, radius_px, 0, false, true, q.x - radius_px, q.y);
+    sr_path_close(path);
+    sr_fill_path(d->ctx, d->out, path, color, &(sr_fill_desc){ .antialias = SR_AA_AREA });
+    sr_destroy_path(path);
+}
+
+int demo2d_finish(demo2d *d, sr_framebuffer **out)
+{
+    sr_destroy_framebuffer(d->ctx, d->panel);
+    d->panel = NULL;
+    *out = d->out;
+    d->out = NULL;
+    return EXIT_OK;
+}
+
+int demo2d_fail(demo2d *d)
+{
+    cli_error("demo %s: %s", d->name, sr_context_error(d->ctx));
+    sr_destroy_framebuffer(d->ctx, d->panel);
+    sr_destroy_framebuffer(d->ctx, d->out);
+    d->panel = d->out = NULL;
+    return EXIT_FAILURE_RUN;
+}
