@@ -717,8 +717,8 @@ sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
                        const sr_fill_desc *desc);
 sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
                          sr_rgba color, const sr_stroke_desc *desc);
-/* The stroke outline itself (contours allocated in *out_points /
- * *out_counts on ctx's allocator; release with sr_free_stroke_outline). */
+/* The stroke outline itself: out->points and out->contour_counts are
+ * allocated on ctx; release them with sr_free_stroke_outline. */
 sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
                             sr_polygon2 *out);
 void      sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
@@ -732,6 +732,11 @@ void      sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
  * the framebuffer first, so a line from -1e9 to +1e9 costs only its
  * visible length, and the clipped line draws exactly the pixels the
  * unclipped one would have drawn inside the framebuffer.
+ *
+ * SR_LINE_BRESENHAM is the diamond-exit rule of GL/VK/D3D, exact: a
+ * boundary tie goes to the smaller minor index (D3D), and the pixels do
+ * not depend on the direction except at the ends: a->b draws the pixel
+ * whose diamond owns a and leaves out the one whose diamond owns b.
  *
  * Errors: NaN or infinite coordinates give SR_INVALID_ARG (nothing drawn);
  * coordinates beyond +-1e12 px give SR_TOO_LARGE.  a == b draws nothing

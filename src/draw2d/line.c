@@ -580,7 +580,7 @@ sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_poin
         return sr__fail(ctx, SR_INVALID_ARG, "sr_line_desc.width must be in (0, %g] (got %g)",
                         d.algorithm == SR_LINE_WIDE ? (double)WIDE_MAX : 4096.0, d.width);
     }
-    fb_plot p = { fb, { { 0 }, 0, 0.0f, { 0 }, false } };
+    fb_plot p = { .fb = fb };
     if (!sr__paint_init(&p.paint, color, true)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_line: color is not finite");
     }
