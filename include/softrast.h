@@ -264,6 +264,8 @@ typedef enum sr_shading {
     SR_SHADING_NORMALS,     /* eye-space normal as color, n*0.5+0.5 */
     SR_SHADING_DEPTH,       /* distance as gray: black at the near plane, white at the far
                              * plane, linear in eye space (window depth for orthographic) */
+    SR_SHADING_ATTRIBUTE,   /* the generic attribute as color: 1 float -> gray, 2 -> red and
+                             * green, 3 -> RGB, 4 -> RGBA; interpolated perspective-correctly */
 } sr_shading;
 
 typedef enum sr_interpolation {
@@ -391,6 +393,9 @@ typedef struct sr_draw_desc {
     size_t color_stride;
     const float *texcoords;     /* optional, 2 floats */
     size_t texcoord_stride;
+    const float *generic;       /* optional, generic_size floats: any per-vertex quantity */
+    int generic_size;           /* 1..4; 0 -> 4 */
+    size_t generic_stride;
 
     const void *indices;        /* optional */
     sr_index_type index_type;

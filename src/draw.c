@@ -75,9 +75,17 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
                         !finite_mat(d->model) ? "model" : !finite_mat(d->view) ? "view" : "projection");
     }
     sr_shading sh = st->shading == SR_SHADING_DEFAULT ? SR_SHADING_UNLIT : st->shading;
-    if ((unsigned)st->shading > SR_SHADING_DEPTH) {
+    if ((unsigned)st->shading > SR_SHADING_ATTRIBUTE) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.shading %d is not a shading model",
                         (int)st->shading);
+    }
+    if (d->generic_size < 0 || d->generic_size > 4) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.generic_size must be 1..4 (got %d)",
+                        d->generic_size);
+    }
+    if (sh == SR_SHADING_ATTRIBUTE && !d->generic && d->vertex_count > 0) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_draw_desc.generic is NULL but SR_SHADING_ATTRIBUTE shows it");
     }
     if ((sh == SR_SHADING_GOURAUD || sh == SR_SHADING_PHONG || sh == SR_SHADING_NORMALS) &&
         !d->normals && d->vertex_count > 0) {
@@ -247,6 +255,7 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     case SR_SHADING_FLAT:    ds->nvary = 7; ds->ninterp = 0; break;
     case SR_SHADING_PHONG:   ds->nvary = 10; ds->ninterp = 10; break;
     case SR_SHADING_NORMALS: ds->nvary = 3; ds->ninterp = 3; break;
+    case SR_SHADING_ATTRIBUTE: ds->nvary = 4; ds->ninterp = 4; break;
     default:                 ds->nvary = 1; ds->ninterp = 1; break;
     }
     /* Linear depth for the DEPTH view: under a projection with w = -z_eye,

@@ -23,6 +23,7 @@ enum {
     SR_VARY_PHONG_COLOR = 6,
     SR_VARY_NORMAL = 0,       /* NORMALS: normal xyz */
     SR_VARY_DEPTH_W = 0,      /* DEPTH: clip w (eye distance under perspective) */
+    SR_VARY_ATTRIBUTE = 0,    /* ATTRIBUTE: the generic attribute, padded to rgba */
 };
 
 typedef struct sr_light_eye {

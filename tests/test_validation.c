@@ -110,7 +110,7 @@ static bool make_bad(int i, sr_state *st, sr_draw_desc *d, sr_mat4 *m, bad_draw 
     case 4:  st->rasterizer = (sr_rasterizer)4;           want->needle = "sr_state.rasterizer"; break;
     case 5:  st->interpolation = (sr_interpolation)3;     want->needle = "sr_state.interpolation"; break;
     case 6:  st->provoking = (sr_provoking_vertex)3;      want->needle = "sr_state.provoking"; break;
-    case 7:  st->shading = (sr_shading)7;                 want->needle = "sr_state.shading"; break;
+    case 7:  st->shading = (sr_shading)(SR_SHADING_ATTRIBUTE + 1); want->needle = "sr_state.shading"; break;
     case 8:  st->shading = (sr_shading)-2;                want->needle = "sr_state.shading"; break;
     case 9:  st->lights[3].type = (sr_light_type)5;       want->needle = "sr_state.lights[3].type"; break;
     case 10: st->lights[0].type = SR_LIGHT_DIRECTIONAL;   want->needle = "sr_state.lights[0].vector"; break;

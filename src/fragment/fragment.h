@@ -93,7 +93,7 @@ SR_INLINE void sr__shade_vary(const sr_draw_state *ds, const float *v, const flo
         c[3] = 1.0f;
         return;
     }
-    default: /* UNLIT and GOURAUD: the interpolated color */
+    default: /* UNLIT, GOURAUD, ATTRIBUTE: the interpolated color */
         memcpy(c, &v[SR_VARY_COLOR], 4 * sizeof(float));
         return;
     }

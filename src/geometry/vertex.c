@@ -6,6 +6,7 @@
 #include "pipeline.h"
 
 #include <math.h>
+#include <string.h>
 
 static const float *element(const float *base, size_t stride, size_t count, size_t i)
 {
@@ -137,6 +138,17 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         case SR_SHADING_DEPTH:
             vary[SR_VARY_DEPTH_W] = v->pos[3];
             break;
+        case SR_SHADING_ATTRIBUTE: {
+            /* Missing components read as 0, alpha as 1; one component
+             * is shown as gray. */
+            int gsize = d->generic_size ? d->generic_size : 4;
+            const float *g = element(d->generic, d->generic_stride, (size_t)gsize, i);
+            float out[4] = { g[0], gsize > 1 ? g[1] : (gsize == 1 ? g[0] : 0.0f),
+                             gsize > 2 ? g[2] : (gsize == 1 ? g[0] : 0.0f),
+                             gsize > 3 ? g[3] : 1.0f };
+            memcpy(&vary[SR_VARY_ATTRIBUTE], out, sizeof out);
+            break;
+        }
         case SR_SHADING_NORMALS:
             for (int k = 0; k < 3; k++) {
                 vary[SR_VARY_NORMAL + k] = n[k];

@@ -229,7 +229,8 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
     bool less = ds->depth_mode == SR_DEPTH_MODE_LESS;
     switch (ds->shading) {
     case SR_SHADING_UNLIT:
-    case SR_SHADING_GOURAUD: /* both interpolate the color varying */
+    case SR_SHADING_GOURAUD: /* these interpolate the color varying */
+    case SR_SHADING_ATTRIBUTE:
         return less ? SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_LESS)
                     : SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_OFF);
     case SR_SHADING_FLAT:

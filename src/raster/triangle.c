@@ -69,7 +69,8 @@ SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int 
 
 #define SR_RASTER_SHADINGS(X, dmode)                                               \
     X(SR_SHADING_UNLIT, dmode) X(SR_SHADING_FLAT, dmode) X(SR_SHADING_GOURAUD, dmode) \
-    X(SR_SHADING_PHONG, dmode) X(SR_SHADING_NORMALS, dmode) X(SR_SHADING_DEPTH, dmode)
+    X(SR_SHADING_PHONG, dmode) X(SR_SHADING_NORMALS, dmode) X(SR_SHADING_DEPTH, dmode) \
+    X(SR_SHADING_ATTRIBUTE, dmode)
 
 #define SR_RASTER_INSTANCE(shading, dmode)                                          \
     static void raster_##shading##_##dmode(const sr_draw_state *ds, const sr_tri *t, \
@@ -86,7 +87,7 @@ typedef void (*raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, 
                           sr_frag_stats *);
 
 #define SR_RASTER_ENTRY(shading, dmode) [dmode][shading] = raster_##shading##_##dmode,
-static const raster_fn raster_table[3][SR_SHADING_DEPTH + 1] = {
+static const raster_fn raster_table[3][SR_SHADING_ATTRIBUTE + 1] = {
     SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_OFF)
     SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_LESS)
     SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_GENERIC)
