@@ -343,6 +343,7 @@ typedef struct sr_state {
     sr_polygon_mode polygon_mode_back;
     float line_width;              /* whole pixels, 1..64; 0 -> 1 (runs across the minor axis) */
     float point_size;              /* pixels, > 0 and <= 1024; 0 -> 1 (a square) */
+    bool round_points;             /* discs of diameter point_size instead of squares */
 
     bool no_depth_test;            /* depth test is on by default when there is a depth buffer */
     bool no_depth_write;

@@ -237,6 +237,7 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->line_width = st->line_width == 0.0f ? 1 : (int)lroundf(st->line_width);
     ds->line_width = ds->line_width < 1 ? 1 : ds->line_width;
     ds->point_size = st->point_size == 0.0f ? 1.0 : st->point_size;
+    ds->round_points = st->round_points;
     ds->offset_factor = st->offset.factor;
     ds->offset_units = st->offset.units;
     ds->offset_clamp = st->offset.clamp;

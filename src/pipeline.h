@@ -65,6 +65,7 @@ typedef struct sr_draw_state {
     sr_polygon_mode mode_front, mode_back;
     int line_width;
     double point_size;
+    bool round_points;
     bool offset_line, offset_point;
     bool offset_on;
     double offset_factor, offset_units, offset_clamp;
@@ -188,6 +189,8 @@ typedef struct sr_line {
  * the pixel centres inside it, with one depth and one set of varyings. */
 typedef struct sr_point {
     sr_prim_head h;
+    int32_t cx, cy;                   /* centre, q8 */
+    int64_t radius2;                  /* round points: squared radius in q8^2, else 0 */
     double z;
     bool front;
     int32_t ninterp;

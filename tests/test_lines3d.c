@@ -309,6 +309,32 @@ SR_TEST(points_are_squares_with_half_open_edges)
     rt_free(&t);
 }
 
+SR_TEST(round_points_cover_the_pixel_centres_inside_the_disc)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t m[W * H];
+    sr_rng rng = { 0x9017 };
+    for (int it = 0; it < 200; it++) {
+        double cx = q8r(&rng, 8, 56), cy = q8r(&rng, 8, 56);
+        float size = (float)sr_rng_range(&rng, 1.0, 14.0);
+        rt_clear(&t);
+        double xy[2] = { cx, cy };
+        sr_state st = { .point_size = size, .round_points = true };
+        REQUIRE(draw_prims(&t, SR_PRIM_POINTS, xy, 1, &st) == SR_OK);
+        rt_mask(&t, m);
+        /* Reference: radius snapped to 1/256 as the pipeline does. */
+        int64_t half = (int64_t)nearbyint(size * 128.0);
+        int64_t qx = snapq(cx), qy = snapq(cy);
+        for (int y = 0; y < H; y++) {
+            for (int x = 0; x < W; x++) {
+                int64_t dx = x * 256 + 128 - qx, dy = y * 256 + 128 - qy;
+                CHECK_EQ(m[y * W + x], dx * dx + dy * dy < half * half);
+            }
+        }
+    }
+    rt_free(&t);
+}
+
 SR_TEST(wide_lines_are_runs_across_the_minor_axis)
 {
     rt_target t = rt_make(W, H, 1);

@@ -69,6 +69,12 @@ static void intersect(const sr_clip_vertex *in, const sr_clip_vertex *out_v,
     for (int k = 0; k < 4; k++) {
         res->pos[k] = (float)(in->pos[k] + t * ((double)out_v->pos[k] - in->pos[k]));
     }
+    /* When the inside vertex dwarfs the outside one (w = FLT_MAX against
+     * w = 0), t rounds to 1 and the result is the outside vertex itself;
+     * keep w positive so the divide never computes 0/0. */
+    if (!(res->pos[3] >= (float)SR_CLIP_W_EPSILON)) {
+        res->pos[3] = (float)SR_CLIP_W_EPSILON;
+    }
     for (int k = 0; k < nvary; k++) {
         res->vary[k] = (float)(in->vary[k] + t * ((double)out_v->vary[k] - in->vary[k]));
     }
@@ -79,6 +85,7 @@ bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr
 {
     /* Parametric clipping of A + t (B - A), t in [t0, t1]. */
     double t0 = 0.0, t1 = 1.0;
+    bool move_a = false, move_b = false;
     for (int p = 0; p < PLANE_COUNT; p++) {
         if (!(planes & (1u << p))) {
             continue;
@@ -87,10 +94,14 @@ bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr
         if (da < 0.0 && db < 0.0) {
             return false;
         }
+        /* An end outside a plane always moves, even when its t rounds to
+         * 0 or 1 (intersect() then keeps w > 0). */
         if (da < 0.0) {
             t0 = fmax(t0, da / (da - db));
+            move_a = true;
         } else if (db < 0.0) {
             t1 = fmin(t1, da / (da - db));
+            move_b = true;
         }
     }
     if (!(t0 < t1)) {
@@ -100,10 +111,10 @@ bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr
      * arithmetic as a polygon edge's intersection. */
     *out_a = *a;
     *out_b = *b;
-    if (t0 > 0.0) {
+    if (move_a) {
         intersect(a, b, t0, t0 - 1.0, ds->nvary, out_a);
     }
-    if (t1 < 1.0) {
+    if (move_b) {
         intersect(a, b, t1, t1 - 1.0, ds->nvary, out_b);
     }
     return true;

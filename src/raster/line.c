@@ -87,6 +87,9 @@ bool sr__setup_point(const sr_draw_state *ds, const sr_window_vertex *v, double 
     if (p->h.x0 >= p->h.x1 || p->h.y0 >= p->h.y1) {
         return false;
     }
+    p->cx = v->x_q8;
+    p->cy = v->y_q8;
+    p->radius2 = ds->round_points ? half * half : 0;
     p->z = (v->z + offset) * ds->depth_scale;
     p->front = front;
     p->ninterp = ninterp;
@@ -104,6 +107,14 @@ void sr__raster_point(const sr_draw_state *ds, const sr_point *p, int rx0, int r
 {
     for (int py = ry0; py < ry1; py++) {
         for (int px = rx0; px < rx1; px++) {
+            if (p->radius2) {
+                /* A disc: the pixel centre strictly inside the circle,
+                 * decided in exact integers. */
+                int64_t dx = sr__centre_q8(px) - p->cx, dy = sr__centre_q8(py) - p->cy;
+                if (dx * dx + dy * dy >= p->radius2) {
+                    continue;
+                }
+            }
             sr__fragment_vary(ds, px, py, p->z, p->vary, p->flat, p->front, st);
         }
     }
