@@ -556,6 +556,11 @@ static void segment(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, 
     if (!sr__clip_segment(ds, &v0, &v1, c0 | c1, &o0, &o1)) {
         return;
     }
+    /* As for polygons: an end that rounding left at w <= 0 (the clip-space
+     * origin, or t rounded to the outside end) cannot be divided. */
+    if (!(o0.pos[3] > 0.0f) || !(o1.pos[3] > 0.0f)) {
+        return;
+    }
     sr_window_vertex w0, w1;
     sr__window_vertex(ds, &o0, &w0);
     sr__window_vertex(ds, &o1, &w1);

@@ -69,12 +69,6 @@ static void intersect(const sr_clip_vertex *in, const sr_clip_vertex *out_v,
     for (int k = 0; k < 4; k++) {
         res->pos[k] = (float)(in->pos[k] + t * ((double)out_v->pos[k] - in->pos[k]));
     }
-    /* When the inside vertex dwarfs the outside one (w = FLT_MAX against
-     * w = 0), t rounds to 1 and the result is the outside vertex itself;
-     * keep w positive so the divide never computes 0/0. */
-    if (!(res->pos[3] >= (float)SR_CLIP_W_EPSILON)) {
-        res->pos[3] = (float)SR_CLIP_W_EPSILON;
-    }
     for (int k = 0; k < nvary; k++) {
         res->vary[k] = (float)(in->vary[k] + t * ((double)out_v->vary[k] - in->vary[k]));
     }
@@ -95,7 +89,7 @@ bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr
             return false;
         }
         /* An end outside a plane always moves, even when its t rounds to
-         * 0 or 1 (intersect() then keeps w > 0). */
+         * 0 or 1; the caller discards an end that still has w <= 0. */
         if (da < 0.0) {
             t0 = fmax(t0, da / (da - db));
             move_a = true;
