@@ -34,6 +34,76 @@ SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(unorm8)(v4f v)
     return __builtin_convertvector(v * 255.0f + 0.5f, v4i);
 }
 
+SR_SIMD_TARGET SR_INLINE v4f SR_SIMD_FN(sqrt)(v4f x)
+{
+    return (v4f)_mm_sqrt_ps((__m128)x);
+}
+
+/* sr__light (shade.c) on four lanes: the same operations in the same
+ * order; a light the scalar code skips (`continue`) leaves the sums as
+ * they were through a select.  Whole-number shininess only. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(light)(const sr_draw_state *ds, const v4f n[3],
+                                                const v4f eye[3], const v4f dif[4], v4f out[4])
+{
+    const v4f zero = { 0, 0, 0, 0 };
+    v4f r = ds->ambient[0] * dif[0], g = ds->ambient[1] * dif[1], b = ds->ambient[2] * dif[2];
+    v4f v[3] = { zero, zero, zero + 1.0f };
+    if (ds->local_viewer) {
+        v4f len = SR_SIMD_FN(sqrt)(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
+        v4i ok = len > zero;
+        for (int k = 0; k < 3; k++) {
+            v[k] = SR_SIMD_FN(sel_f)(ok, -eye[k] / len, v[k]);
+        }
+    }
+    bool spec = ds->specular[0] > 0.0f || ds->specular[1] > 0.0f || ds->specular[2] > 0.0f;
+    for (int i = 0; i < ds->light_count; i++) {
+        const sr_light_eye *lt = &ds->lights[i];
+        v4f l[3];
+        v4i use = (v4i){ -1, -1, -1, -1 };
+        if (lt->point) {
+            for (int k = 0; k < 3; k++) {
+                l[k] = lt->vec[k] - eye[k];
+            }
+            v4f len = SR_SIMD_FN(sqrt)(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+            use = len > zero;
+            for (int k = 0; k < 3; k++) {
+                l[k] = l[k] / len;
+            }
+        } else {
+            for (int k = 0; k < 3; k++) {
+                l[k] = zero + lt->vec[k];
+            }
+        }
+        v4f ndotl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        use &= ndotl > zero;
+        v4f kd = ndotl;
+        r = SR_SIMD_FN(sel_f)(use, r + lt->color[0] * dif[0] * kd, r);
+        g = SR_SIMD_FN(sel_f)(use, g + lt->color[1] * dif[1] * kd, g);
+        b = SR_SIMD_FN(sel_f)(use, b + lt->color[2] * dif[2] * kd, b);
+        if (spec) {
+            v4f h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] };
+            v4f hl = SR_SIMD_FN(sqrt)(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+            v4i hs = use & (hl > zero);
+            v4f ndoth = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) / hl;
+            hs &= ndoth > zero;
+            v4f x = ndoth, p = zero + 1.0f;
+            for (int e = ds->shininess_int; e; e >>= 1) {
+                if (e & 1) {
+                    p *= x;
+                }
+                x *= x;
+            }
+            r = SR_SIMD_FN(sel_f)(hs, r + lt->color[0] * ds->specular[0] * p, r);
+            g = SR_SIMD_FN(sel_f)(hs, g + lt->color[1] * ds->specular[1] * p, g);
+            b = SR_SIMD_FN(sel_f)(hs, b + lt->color[2] * ds->specular[2] * p, b);
+        }
+    }
+    out[0] = r;
+    out[1] = g;
+    out[2] = b;
+    out[3] = dif[3];
+}
+
 /* Four pixels (gx .. gx+3, row py) with unbiased edge values e0..e2;
  * `valid` masks the lanes inside the span being drawn. */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr_tri *t, int gx,
@@ -71,7 +141,35 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
     }
 
     v4i rgba;
-    if (shading == SR_SHADING_FLAT) {
+    if (shading == SR_SHADING_PHONG) {
+        /* sr__bary, then sr__shade_vary's Phong case. */
+        v4f q0 = __builtin_convertvector(e0, v4f) * t->w[0];
+        v4f q1 = __builtin_convertvector(e1, v4f) * t->w[1];
+        v4f q2 = __builtin_convertvector(e2, v4f) * t->w[2];
+        v4f s = q0 + q1 + q2;
+        const v4f fzero = { 0, 0, 0, 0 };
+        v4f inv = SR_SIMD_FN(sel_f)(s != fzero, 1.0f / s, fzero);
+        v4f l1 = q1 * inv, l2 = q2 * inv;
+        int n = t->ninterp;
+        v4f vv[10];
+        for (int k = 0; k < 10; k++) {
+            vv[k] = t->vary[k] + l1 * t->vary[n + k] + l2 * t->vary[2 * n + k];
+        }
+        const v4f *vn = &vv[SR_VARY_PHONG_NORMAL];
+        v4f len = SR_SIMD_FN(sqrt)(vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]);
+        v4f sc = SR_SIMD_FN(sel_f)(len > fzero, 1.0f / len, fzero);
+        if (ds->two_sided && !t->front) {
+            sc = -sc;
+        }
+        v4f nn[3] = { vn[0] * sc, vn[1] * sc, vn[2] * sc };
+        v4f c[4];
+        SR_SIMD_FN(light)(ds, nn, &vv[SR_VARY_PHONG_EYE], &vv[SR_VARY_PHONG_COLOR], c);
+        v4i ch[4];
+        for (int k = 0; k < 4; k++) {
+            ch[k] = SR_SIMD_FN(unorm8)(c[k]);
+        }
+        rgba = ch[0] | ch[1] << 8 | ch[2] << 16 | ch[3] << 24;
+    } else if (shading == SR_SHADING_FLAT) {
         v4i c[4];
         for (int k = 0; k < 4; k++) {
             uint8_t b = sr__unorm8(t->flat[k]);
@@ -215,6 +313,8 @@ SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
 SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
+SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
 #undef SR_SIMD_INSTANCE
 
 /* The kernel for a state, or NULL when this path does not cover it. */
@@ -236,6 +336,13 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
     case SR_SHADING_FLAT:
         return less ? SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_LESS)
                     : SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_OFF);
+    case SR_SHADING_PHONG:
+        /* powf has no lane-exact vector twin: whole-number shininess only. */
+        if (ds->shininess_int < 0) {
+            return NULL;
+        }
+        return less ? SR_SIMD_FN(raster_SR_SHADING_PHONG_SR_DEPTH_MODE_LESS)
+                    : SR_SIMD_FN(raster_SR_SHADING_PHONG_SR_DEPTH_MODE_OFF);
     default:
         return NULL;
     }

@@ -21,6 +21,7 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
     (defined(__x86_64__) || defined(__i386__))
 #define SR_HAVE_SIMD_KERNEL 1
+#include <immintrin.h>
 
 #define SR_SIMD_FN(name) name##_avx2
 #define SR_SIMD_TARGET __attribute__((target("avx2")))
