@@ -159,6 +159,10 @@ typedef struct sr_tri {
     /* Depth plane in buffer units (x (2^n - 1) for UNORM, [0, 1] for float):
      * z = z0 + e1 dz1 + e2 dz2, polygon offset folded into z0. */
     double z0, dz1, dz2;
+    /* The plane's values inside the triangle stay within the depth range
+     * with room for rounding, so the fragment clamp is a no-op and the
+     * vector kernels skip it (the result is the same either way). */
+    bool z_inside;
     /* Perspective weights: q_i = e_i w_i (w_i = 1/w of vertex i, or 1 in
      * affine mode). */
     float w[3];

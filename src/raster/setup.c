@@ -153,6 +153,10 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
      * clamps and rounds. */
     double scale = ds->depth_scale;
     t->z0 = (z[0] + offset) * scale;
+    /* Interpolated depths lie between the vertex depths up to rounding of
+     * a few ulps; a margin of 1e-9 of the scale is far larger. */
+    double zlo = fmin(z[0], fmin(z[1], z[2])) + offset, zhi = fmax(z[0], fmax(z[1], z[2])) + offset;
+    t->z_inside = zlo * scale > ds->zq_min + 1e-9 * scale && zhi * scale < ds->zq_max - 1e-9 * scale;
     t->dz1 = (z[1] - z[0]) * scale / (double)area2;
     t->dz2 = (z[2] - z[0]) * scale / (double)area2;
 

@@ -125,10 +125,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
 
     if (dmode == SR_DEPTH_MODE_LESS) {
         v4d z = t->z0 + e1 * t->dz1 + e2 * t->dz2;
-        v4d zmin = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
-        v4d zmax = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
-        z = SR_SIMD_FN(sel_d)(z >= zmin, z, zmin);
-        z = SR_SIMD_FN(sel_d)(z <= zmax, z, zmax);
+        if (!t->z_inside) {
+            v4d zmin = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
+            v4d zmax = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
+            z = SR_SIMD_FN(sel_d)(z >= zmin, z, zmin);
+            z = SR_SIMD_FN(sel_d)(z <= zmax, z, zmax);
+        }
         v4i q = __builtin_convertvector(z + 0.5, v4i);   /* < 2^24: fits int32 */
         v4i old;
         memcpy(&old, &fb->depth[idx], sizeof old);
@@ -194,10 +196,14 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         }
         rgba = ch[0] | ch[1] << 8 | ch[2] << 16 | ch[3] << 24;
     }
-    v4i oldc;
-    memcpy(&oldc, &fb->color[idx], sizeof oldc);
-    v4i nc = SR_SIMD_FN(sel_i)(m, rgba, oldc);
-    memcpy(&fb->color[idx], &nc, sizeof nc);
+    if ((m[0] & m[1] & m[2] & m[3]) == -1) {
+        memcpy(&fb->color[idx], &rgba, sizeof rgba);    /* all four written */
+    } else {
+        v4i oldc;
+        memcpy(&oldc, &fb->color[idx], sizeof oldc);
+        v4i nc = SR_SIMD_FN(sel_i)(m, rgba, oldc);
+        memcpy(&fb->color[idx], &nc, sizeof nc);
+    }
     st->fragments += (uint64_t)(-(m[0] + m[1] + m[2] + m[3]));
 }
 
