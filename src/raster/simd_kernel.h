@@ -25,13 +25,30 @@ SR_SIMD_TARGET SR_INLINE v4d SR_SIMD_FN(sel_d)(v4l m, v4d a, v4d b)
     return (v4d)SR_SIMD_FN(sel_l)(m, (v4l)a, (v4l)b);
 }
 
-/* sr__unorm8 on four lanes. */
-SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(unorm8)(v4f v)
+/* One bit per lane of a mask (lane 0 = bit 0). */
+SR_SIMD_TARGET SR_INLINE int SR_SIMD_FN(bits)(v4i m)
 {
-    const v4f zero = { 0, 0, 0, 0 }, one = { 1, 1, 1, 1 };
-    v = SR_SIMD_FN(sel_f)(v > zero, v, zero);
-    v = SR_SIMD_FN(sel_f)(v < one, v, one);
-    return __builtin_convertvector(v * 255.0f + 0.5f, v4i);
+    return _mm_movemask_ps((__m128)m);
+}
+
+/* sr__unorm8 on four pixels' r, g, b, a, packed into r,g,b,a bytes per
+ * pixel.  Equal to the scalar form for every input: min(1, v) keeps NaN
+ * (min returns its second operand then), truncation sends NaN and
+ * negatives to values the saturating packs turn into 0, and anything
+ * above 1 became exactly 255. */
+SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(pack_rgba)(const v4f c[4])
+{
+    const __m128 one = _mm_set1_ps(1.0f);
+    __m128i q[4];
+    for (int k = 0; k < 4; k++) {
+        __m128 v = _mm_min_ps(one, (__m128)c[k]);
+        q[k] = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps(255.0f)),
+                                           _mm_set1_ps(0.5f)));
+    }
+    /* Bytes R0..3 B0..3 G0..3 A0..3, then interleave to R G B A per pixel. */
+    __m128i x = _mm_packus_epi16(_mm_packs_epi32(q[0], q[2]), _mm_packs_epi32(q[1], q[3]));
+    __m128i y = _mm_unpacklo_epi8(x, _mm_srli_si128(x, 8));
+    return (v4i)_mm_unpacklo_epi16(y, _mm_srli_si128(y, 8));
 }
 
 SR_SIMD_TARGET SR_INLINE v4f SR_SIMD_FN(sqrt)(v4f x)
@@ -117,7 +134,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
                     : valid & (e0 + (double)t->bias[0] >= zero) &
                           (e1 + (double)t->bias[1] >= zero) & (e2 + (double)t->bias[2] >= zero);
     v4i m = __builtin_convertvector(in, v4i);
-    if (!(m[0] | m[1] | m[2] | m[3])) {
+    if (!SR_SIMD_FN(bits)(m)) {
         return;
     }
     sr_framebuffer *fb = ds->fb;
@@ -135,7 +152,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         v4i old;
         memcpy(&old, &fb->depth[idx], sizeof old);
         m &= q < old;
-        if (!(m[0] | m[1] | m[2] | m[3])) {
+        if (!SR_SIMD_FN(bits)(m)) {
             return;
         }
         v4i nd = SR_SIMD_FN(sel_i)(m, q, old);
@@ -166,11 +183,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         v4f nn[3] = { vn[0] * sc, vn[1] * sc, vn[2] * sc };
         v4f c[4];
         SR_SIMD_FN(light)(ds, nn, &vv[SR_VARY_PHONG_EYE], &vv[SR_VARY_PHONG_COLOR], c);
-        v4i ch[4];
-        for (int k = 0; k < 4; k++) {
-            ch[k] = SR_SIMD_FN(unorm8)(c[k]);
-        }
-        rgba = ch[0] | ch[1] << 8 | ch[2] << 16 | ch[3] << 24;
+        rgba = SR_SIMD_FN(pack_rgba)(c);
     } else if (shading == SR_SHADING_FLAT) {
         v4i c[4];
         for (int k = 0; k < 4; k++) {
@@ -188,15 +201,15 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         v4f inv = SR_SIMD_FN(sel_f)(s != fzero, 1.0f / s, fzero);
         v4f l1 = q1 * inv, l2 = q2 * inv;
         int n = t->ninterp;
-        v4i ch[4];
+        v4f c[4];
         for (int k = 0; k < 4; k++) {
-            v4f c = t->vary[SR_VARY_COLOR + k] + l1 * t->vary[n + SR_VARY_COLOR + k] +
-                    l2 * t->vary[2 * n + SR_VARY_COLOR + k];
-            ch[k] = SR_SIMD_FN(unorm8)(c);
+            c[k] = t->vary[SR_VARY_COLOR + k] + l1 * t->vary[n + SR_VARY_COLOR + k] +
+                   l2 * t->vary[2 * n + SR_VARY_COLOR + k];
         }
-        rgba = ch[0] | ch[1] << 8 | ch[2] << 16 | ch[3] << 24;
+        rgba = SR_SIMD_FN(pack_rgba)(c);
     }
-    if ((m[0] & m[1] & m[2] & m[3]) == -1) {
+    int lanes = SR_SIMD_FN(bits)(m);
+    if (lanes == 15) {
         memcpy(&fb->color[idx], &rgba, sizeof rgba);    /* all four written */
     } else {
         v4i oldc;
@@ -204,7 +217,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         v4i nc = SR_SIMD_FN(sel_i)(m, rgba, oldc);
         memcpy(&fb->color[idx], &nc, sizeof nc);
     }
-    st->fragments += (uint64_t)(-(m[0] + m[1] + m[2] + m[3]));
+    st->fragments += (uint64_t)__builtin_popcount((unsigned)lanes);
 }
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
