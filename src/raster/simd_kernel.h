@@ -124,16 +124,16 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(light)(const sr_draw_state *ds, const v
 /* Four pixels (gx .. gx+3, row py) with unbiased edge values e0..e2;
  * `valid` masks the lanes inside the span being drawn. */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr_tri *t, int gx,
-                                               int py, v4d e0, v4d e1, v4d e2, v4l valid,
-                                               bool inside, sr_frag_stats *st,
+                                               int py, v4d e0, v4d e1, v4d e2, v4i valid,
+                                               bool inside, const v4d nbias[3], sr_frag_stats *st,
                                                sr_shading shading, sr_depth_mode dmode)
 {
-    const v4d zero = { 0, 0, 0, 0 };
-    /* In a block wholly inside the triangle only the span limits apply. */
-    v4l in = inside ? valid
-                    : valid & (e0 + (double)t->bias[0] >= zero) &
-                          (e1 + (double)t->bias[1] >= zero) & (e2 + (double)t->bias[2] >= zero);
-    v4i m = __builtin_convertvector(in, v4i);
+    /* Covered iff e + bias >= 0, i.e. e >= -bias (exact: e is an integer).
+     * In a block wholly inside the triangle only the span limits apply. */
+    v4i m = valid;
+    if (!inside) {
+        m &= __builtin_convertvector((e0 >= nbias[0]) & (e1 >= nbias[1]) & (e2 >= nbias[2]), v4i);
+    }
     if (!SR_SIMD_FN(bits)(m)) {
         return;
     }
@@ -236,8 +236,13 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         double s = (double)sx[i];
         lx[i] = (v4d){ 0.0, s, 2.0 * s, 3.0 * s };
     }
-    const v4l lane = { 0, 1, 2, 3 };
+    const v4i lane = { 0, 1, 2, 3 };
     int fbw = ds->fb->width;
+    v4d nbias[3];
+    for (int i = 0; i < 3; i++) {
+        double nb = -(double)t->bias[i];
+        nbias[i] = (v4d){ nb, nb, nb, nb };
+    }
 
     /* Small triangles (most of a detailed mesh): walk the bounding box in
      * rows of four-pixel groups, stepping the exact double edge values,
@@ -255,9 +260,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         for (int py = ry0; py < ry1; py++) {
             v4d e0 = r0 + lx[0], e1 = r1 + lx[1], e2 = r2 + lx[2];
             for (int gx = gx_start; gx < rx1; gx += 4) {
-                v4l px = lane + gx;
-                v4l valid = (px >= (int64_t)rx0) & (px < (int64_t)rx1);
-                SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, false, st, shading, dmode);
+                v4i px = lane + gx;
+                v4i valid = (px >= rx0) & (px < rx1);
+                SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, false, nbias, st, shading,
+                                 dmode);
                 e0 += gx0;
                 e1 += gx1;
                 e2 += gx2;
@@ -311,10 +317,11 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         }
                         continue;
                     }
-                    v4l pxl = lane + gx;
-                    v4l valid = (pxl >= (int64_t)px0) & (pxl < (int64_t)px1);
+                    v4i pxl = lane + gx;
+                    v4i valid = (pxl >= px0) & (pxl < px1);
                     SR_SIMD_FN(quad)(ds, t, gx, py, (double)u0 + lx[0], (double)u1 + lx[1],
-                                     (double)u2 + lx[2], valid, inside, st, shading, dmode);
+                                     (double)u2 + lx[2], valid, inside, nbias, st, shading,
+                                     dmode);
                 }
             }
         }
