@@ -1,10 +1,14 @@
 /* sr_test.c - the runner behind sr_test.h: registry, failure records, main(). */
 #include "sr_test.h"
 
+#include <spawn.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+
+extern char **environ;
 
 #define MAX_TESTS 1024
 
@@ -62,6 +66,31 @@ const char *sr_test_out_dir(void)
 }
 
 const char *sr_test_src_dir(void) { return SR_TEST_SRC_DIR; }
+
+int sr_test_run_cli(const char *const *args)
+{
+#ifdef SR_CLI_PATH
+    const char *argv[64];
+    int n = 0;
+    argv[n++] = SR_CLI_PATH;
+    for (int i = 0; args[i] && n < 63; i++) {
+        argv[n++] = args[i];
+    }
+    argv[n] = NULL;
+    pid_t pid;
+    if (posix_spawn(&pid, SR_CLI_PATH, NULL, NULL, (char *const *)argv, environ) != 0) {
+        return -1;
+    }
+    int status;
+    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) {
+        return -1;
+    }
+    return WEXITSTATUS(status);
+#else
+    (void)args;
+    return -1;
+#endif
+}
 
 int main(int argc, char **argv)
 {

@@ -30,6 +30,9 @@ const char *sr_test_models_dir(void);
 const char *sr_test_out_dir(void);
 /* Source tree's tests/ directory (reference images, data). */
 const char *sr_test_src_dir(void);
+/* Run the built softrast CLI with args (NULL-terminated, without the
+ * program name), no shell; its exit status, or -1 if it could not run. */
+int sr_test_run_cli(const char *const *args);
 
 #define SR_TEST(name)                                                        \
     static void name(void);                                                  \

@@ -11,35 +11,11 @@
 #include "softrast_io.h"
 #include "sr_test.h"
 
-#include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
-
-extern char **environ;
 
 #define CHANNEL_TOL 3
 
-/* Run the CLI with args (NULL-terminated, after "softrast"); exit status. */
-static int run_cli(const char *const *args)
-{
-    const char *argv[32];
-    int n = 0;
-    argv[n++] = SR_CLI_PATH;
-    for (int i = 0; args[i] && n < 31; i++) {
-        argv[n++] = args[i];
-    }
-    argv[n] = NULL;
-    pid_t pid;
-    if (posix_spawn(&pid, SR_CLI_PATH, NULL, NULL, (char *const *)argv, environ) != 0) {
-        return -1;
-    }
-    int status;
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) {
-        return -1;
-    }
-    return WEXITSTATUS(status);
-}
 
 static void check_render(const char *name, const char *const *extra)
 {
@@ -53,7 +29,7 @@ static void check_render(const char *name, const char *const *extra)
     args[n++] = "-o";
     args[n++] = out;
     args[n] = NULL;
-    int status = run_cli(args);
+    int status = sr_test_run_cli(args);
     CHECK_EQ(status, 0);
     if (status != 0) {
         return;

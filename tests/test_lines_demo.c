@@ -10,40 +10,16 @@
 #include "softrast_io.h"
 #include "sr_test.h"
 
-#include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 
-extern char **environ;
-
-/* Run the CLI with args (NULL-terminated, after "softrast"); exit status. */
-static int run_cli(const char *const *args)
-{
-    const char *argv[32];
-    int n = 0;
-    argv[n++] = SR_CLI_PATH;
-    for (int i = 0; args[i] && n < 31; i++) {
-        argv[n++] = args[i];
-    }
-    argv[n] = NULL;
-    pid_t pid;
-    if (posix_spawn(&pid, SR_CLI_PATH, NULL, NULL, (char *const *)argv, environ) != 0) {
-        return -1;
-    }
-    int status;
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) {
-        return -1;
-    }
-    return WEXITSTATUS(status);
-}
 
 SR_TEST(demo_lines_matches_reference)
 {
     char out[1024];
     snprintf(out, sizeof out, "%s/demo_lines.png", sr_test_out_dir());
     /* --scale 3 keeps the reference small; the docs show the default 6. */
-    int status = run_cli((const char *[]){ "demo", "lines", "--scale", "3", "-o", out, NULL });
+    int status = sr_test_run_cli((const char *[]){ "demo", "lines", "--scale", "3", "-o", out, NULL });
     CHECK_EQ(status, 0);
     if (status != 0) {
         return;
@@ -63,7 +39,7 @@ SR_TEST(demo_lines_default_scale_is_6)
 {
     char out[1024];
     snprintf(out, sizeof out, "%s/demo_lines_default.png", sr_test_out_dir());
-    CHECK_EQ(run_cli((const char *[]){ "demo", "lines", "-o", out, NULL }), 0);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "demo", "lines", "-o", out, NULL }), 0);
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
