@@ -238,11 +238,13 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     }
     const v4i lane = { 0, 1, 2, 3 };
     int fbw = ds->fb->width;
-    v4d nbias[3];
+    v4d nbias[3], g4[3];
     for (int i = 0; i < 3; i++) {
-        double nb = -(double)t->bias[i];
+        double nb = -(double)t->bias[i], g = 4.0 * (double)sx[i];
         nbias[i] = (v4d){ nb, nb, nb, nb };
+        g4[i] = (v4d){ g, g, g, g };
     }
+    const v4i all = { -1, -1, -1, -1 };
 
     /* Small triangles (most of a detailed mesh): walk the bounding box in
      * rows of four-pixel groups, stepping the exact double edge values,
@@ -296,32 +298,50 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             }
             int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;
             int py0 = by > ry0 ? by : ry0, py1 = by + SR_BLOCK_SIZE < ry1 ? by + SR_BLOCK_SIZE : ry1;
+            /* Edge values step exactly in double lanes: by 256 b per row,
+             * by 4 x 256 a per group of four pixels. */
+            double r[3];
+            for (int i = 0; i < 3; i++) {
+                r[i] = (double)(e[i] - t->bias[i] + sy[i] * (py0 - by));
+            }
+            bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
             for (int py = py0; py < py1; py++) {
+                v4d e0 = r[0] + lx[0], e1 = r[1] + lx[1], e2 = r[2] + lx[2];
                 for (int gx = bx; gx < px1; gx += 4) {
                     if (gx + 4 <= px0) {
+                        e0 += g4[0];
+                        e1 += g4[1];
+                        e2 += g4[2];
                         continue;
                     }
-                    int64_t dx = gx - bx, dy = py - by;
-                    int64_t u0 = e[0] - t->bias[0] + sy[0] * dy + sx[0] * dx;
-                    int64_t u1 = e[1] - t->bias[1] + sy[1] * dy + sx[1] * dx;
-                    int64_t u2 = e[2] - t->bias[2] + sy[2] * dy + sx[2] * dx;
                     if (gx + 4 > fbw) {
                         /* The lanes would run past the row: finish the
                          * span one pixel at a time. */
+                        int64_t dy = py - by;
                         for (int px = gx > px0 ? gx : px0; px < px1; px++) {
-                            int64_t k = px - gx;
-                            int64_t r0 = u0 + sx[0] * k, r1 = u1 + sx[1] * k, r2 = u2 + sx[2] * k;
+                            int64_t dx = px - bx;
+                            int64_t r0 = e[0] - t->bias[0] + sy[0] * dy + sx[0] * dx;
+                            int64_t r1 = e[1] - t->bias[1] + sy[1] * dy + sx[1] * dx;
+                            int64_t r2 = e[2] - t->bias[2] + sy[2] * dy + sx[2] * dx;
                             if (((r0 + t->bias[0]) | (r1 + t->bias[1]) | (r2 + t->bias[2])) >= 0) {
                                 sr__fragment_as(ds, t, px, py, r0, r1, r2, st, shading, dmode);
                             }
                         }
-                        continue;
+                        break;
                     }
-                    v4i pxl = lane + gx;
-                    v4i valid = (pxl >= px0) & (pxl < px1);
-                    SR_SIMD_FN(quad)(ds, t, gx, py, (double)u0 + lx[0], (double)u1 + lx[1],
-                                     (double)u2 + lx[2], valid, inside, nbias, st, shading,
-                                     dmode);
+                    v4i valid = all;
+                    if (!full_width) {
+                        v4i pxl = lane + gx;
+                        valid = (pxl >= px0) & (pxl < px1);
+                    }
+                    SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, inside, nbias, st,
+                                     shading, dmode);
+                    e0 += g4[0];
+                    e1 += g4[1];
+                    e2 += g4[2];
+                }
+                for (int i = 0; i < 3; i++) {
+                    r[i] += (double)sy[i];
                 }
             }
         }
