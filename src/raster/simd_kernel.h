@@ -121,11 +121,39 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(light)(const sr_draw_state *ds, const v
     out[3] = dif[3];
 }
 
+/* A triangle's constants as lanes, made once per triangle rather than
+ * broadcast in every group: depth plane, perspective weights, and the
+ * color planes (v0, v1 - v0, v2 - v0 per channel). */
+typedef struct SR_SIMD_FN(tri_lanes) {
+    v4d z0, dz1, dz2;
+    v4f w[3];
+    v4f c0[4], c1[4], c2[4];
+} SR_SIMD_FN(tri_lanes);
+
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(make_lanes)(const sr_tri *t, SR_SIMD_FN(tri_lanes) *k)
+{
+    k->z0 = (v4d){ t->z0, t->z0, t->z0, t->z0 };
+    k->dz1 = (v4d){ t->dz1, t->dz1, t->dz1, t->dz1 };
+    k->dz2 = (v4d){ t->dz2, t->dz2, t->dz2, t->dz2 };
+    for (int i = 0; i < 3; i++) {
+        k->w[i] = (v4f){ t->w[i], t->w[i], t->w[i], t->w[i] };
+    }
+    int n = t->ninterp;
+    for (int c = 0; c < 4 && c < n; c++) {
+        float a = t->vary[SR_VARY_COLOR + c], b = t->vary[n + SR_VARY_COLOR + c];
+        float d = t->vary[2 * n + SR_VARY_COLOR + c];
+        k->c0[c] = (v4f){ a, a, a, a };
+        k->c1[c] = (v4f){ b, b, b, b };
+        k->c2[c] = (v4f){ d, d, d, d };
+    }
+}
+
 /* Four pixels (gx .. gx+3, row py) with unbiased edge values e0..e2;
  * `valid` masks the lanes inside the span being drawn. */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr_tri *t, int gx,
                                                int py, v4d e0, v4d e1, v4d e2, v4i valid,
-                                               bool inside, const v4d nbias[3], sr_frag_stats *st,
+                                               bool inside, const v4d nbias[3],
+                                               const SR_SIMD_FN(tri_lanes) *k, sr_frag_stats *st,
                                                sr_shading shading, sr_depth_mode dmode)
 {
     /* Covered iff e + bias >= 0, i.e. e >= -bias (exact: e is an integer).
@@ -141,7 +169,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
     size_t idx = (size_t)py * (size_t)fb->width + (size_t)gx;
 
     if (dmode == SR_DEPTH_MODE_LESS) {
-        v4d z = t->z0 + e1 * t->dz1 + e2 * t->dz2;
+        v4d z = k->z0 + e1 * k->dz1 + e2 * k->dz2;
         if (!t->z_inside) {
             v4d zmin = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
             v4d zmax = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
@@ -162,17 +190,17 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
     v4i rgba;
     if (shading == SR_SHADING_PHONG) {
         /* sr__bary, then sr__shade_vary's Phong case. */
-        v4f q0 = __builtin_convertvector(e0, v4f) * t->w[0];
-        v4f q1 = __builtin_convertvector(e1, v4f) * t->w[1];
-        v4f q2 = __builtin_convertvector(e2, v4f) * t->w[2];
+        v4f q0 = __builtin_convertvector(e0, v4f) * k->w[0];
+        v4f q1 = __builtin_convertvector(e1, v4f) * k->w[1];
+        v4f q2 = __builtin_convertvector(e2, v4f) * k->w[2];
         v4f s = q0 + q1 + q2;
         const v4f fzero = { 0, 0, 0, 0 };
         v4f inv = SR_SIMD_FN(sel_f)(s != fzero, 1.0f / s, fzero);
         v4f l1 = q1 * inv, l2 = q2 * inv;
         int n = t->ninterp;
         v4f vv[10];
-        for (int k = 0; k < 10; k++) {
-            vv[k] = t->vary[k] + l1 * t->vary[n + k] + l2 * t->vary[2 * n + k];
+        for (int j = 0; j < 10; j++) {
+            vv[j] = t->vary[j] + l1 * t->vary[n + j] + l2 * t->vary[2 * n + j];
         }
         const v4f *vn = &vv[SR_VARY_PHONG_NORMAL];
         v4f len = SR_SIMD_FN(sqrt)(vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]);
@@ -193,18 +221,16 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         rgba = c[0] | c[1] << 8 | c[2] << 16 | c[3] << 24;
     } else {
         /* sr__bary and sr__interp, lane by lane. */
-        v4f q0 = __builtin_convertvector(e0, v4f) * t->w[0];
-        v4f q1 = __builtin_convertvector(e1, v4f) * t->w[1];
-        v4f q2 = __builtin_convertvector(e2, v4f) * t->w[2];
+        v4f q0 = __builtin_convertvector(e0, v4f) * k->w[0];
+        v4f q1 = __builtin_convertvector(e1, v4f) * k->w[1];
+        v4f q2 = __builtin_convertvector(e2, v4f) * k->w[2];
         v4f s = q0 + q1 + q2;
         const v4f fzero = { 0, 0, 0, 0 };
         v4f inv = SR_SIMD_FN(sel_f)(s != fzero, 1.0f / s, fzero);
         v4f l1 = q1 * inv, l2 = q2 * inv;
-        int n = t->ninterp;
         v4f c[4];
-        for (int k = 0; k < 4; k++) {
-            c[k] = t->vary[SR_VARY_COLOR + k] + l1 * t->vary[n + SR_VARY_COLOR + k] +
-                   l2 * t->vary[2 * n + SR_VARY_COLOR + k];
+        for (int ch = 0; ch < 4; ch++) {
+            c[ch] = k->c0[ch] + l1 * k->c1[ch] + l2 * k->c2[ch];
         }
         rgba = SR_SIMD_FN(pack_rgba)(c);
     }
@@ -245,6 +271,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         g4[i] = (v4d){ g, g, g, g };
     }
     const v4i all = { -1, -1, -1, -1 };
+    SR_SIMD_FN(tri_lanes) lanes;
+    SR_SIMD_FN(make_lanes)(t, &lanes);
 
     /* Small triangles (most of a detailed mesh): walk the bounding box in
      * rows of four-pixel groups, stepping the exact double edge values,
@@ -264,8 +292,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             for (int gx = gx_start; gx < rx1; gx += 4) {
                 v4i px = lane + gx;
                 v4i valid = (px >= rx0) & (px < rx1);
-                SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, false, nbias, st, shading,
-                                 dmode);
+                SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, false, nbias, &lanes, st,
+                                 shading, dmode);
                 e0 += gx0;
                 e1 += gx1;
                 e2 += gx2;
@@ -334,8 +362,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         v4i pxl = lane + gx;
                         valid = (pxl >= px0) & (pxl < px1);
                     }
-                    SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, inside, nbias, st,
-                                     shading, dmode);
+                    SR_SIMD_FN(quad)(ds, t, gx, py, e0, e1, e2, valid, inside, nbias, &lanes,
+                                     st, shading, dmode);
                     e0 += g4[0];
                     e1 += g4[1];
                     e2 += g4[2];
