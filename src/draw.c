@@ -133,9 +133,11 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_state.viewport: width and height must both be > 0, or both 0 for the whole framebuffer");
     }
+    /* x > MAX - width rather than x + width > MAX, which overflows for x
+     * near INT_MAX (width is within [0, 8192] by then). */
     if (vp->width > SR_MAX_FRAMEBUFFER_SIZE || vp->height > SR_MAX_FRAMEBUFFER_SIZE ||
         vp->x < SR_GUARD_BAND_MIN || vp->y < SR_GUARD_BAND_MIN ||
-        vp->x + vp->width > SR_GUARD_BAND_MAX || vp->y + vp->height > SR_GUARD_BAND_MAX) {
+        vp->x > SR_GUARD_BAND_MAX - vp->width || vp->y > SR_GUARD_BAND_MAX - vp->height) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_state.viewport (%d, %d, %d x %d) is outside the supported range",
                         vp->x, vp->y, vp->width, vp->height);

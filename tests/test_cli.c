@@ -21,6 +21,7 @@
 #include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -628,6 +629,68 @@ SR_TEST(output_into_a_missing_directory_fails_cleanly)
     cli_run_free(&r);
     CHECK_EQ(count_entries(dir, NULL, 0), 0);
     CHECK(!is_dir(out));
+}
+
+SR_TEST(output_through_a_regular_file_fails_cleanly)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    /* Works as root too, unlike a read-only directory: a path whose
+     * directory part is a regular file cannot be created (ENOTDIR). */
+    char dir[1024], file[1100], out[1200];
+    fresh_dir("fail", dir, sizeof dir);
+    snprintf(file, sizeof file, "%s/file.png", dir);
+    size_t n;
+    const unsigned char *bytes = sentinel(&n);
+    REQUIRE(write_whole(file, bytes, n));
+    snprintf(out, sizeof out, "%s/out.png", file);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", "--size", "16x12", "--detail", "1", "-o", out), &r));
+    check_failure_output("-o FILE/out.png", &r, 1, "file.png/out.png: ");
+    CHECK_STR_CONTAINS(r.err, "Not a directory");
+    cli_run_free(&r);
+    size_t got_n = 0;
+    char *got = read_whole(file, &got_n);
+    CHECK(got && got_n == n && memcmp(got, bytes, n) == 0);
+    free(got);
+    CHECK_EQ(count_entries(dir, NULL, 0), 1);
+}
+
+SR_TEST(a_write_that_fails_midway_leaves_the_old_image_and_no_temporary)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    /* A file size limit (RLIMIT_FSIZE, inherited by the child) makes the
+     * PNG write fail after its first kilobyte with EFBIG, as a full disk
+     * would; SIGXFSZ is ignored so write() returns the error instead of
+     * killing the process.  The existing image must survive untouched. */
+    char dir[1024], out[1100];
+    fresh_dir("fail", dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/out.png", dir);
+    size_t n;
+    const unsigned char *bytes = sentinel(&n);
+    REQUIRE(write_whole(out, bytes, n));
+    struct rlimit old;
+    REQUIRE(getrlimit(RLIMIT_FSIZE, &old) == 0);
+    struct rlimit lim = old;
+    lim.rlim_cur = 1024;
+    void (*old_handler)(int) = signal(SIGXFSZ, SIG_IGN);
+    REQUIRE(setrlimit(RLIMIT_FSIZE, &lim) == 0);
+    cli_run r;
+    bool ran = run_cli(ARGS("render", "--size", "300x200", "-o", out), &r);
+    setrlimit(RLIMIT_FSIZE, &old);
+    signal(SIGXFSZ, old_handler);
+    REQUIRE(ran);
+    check_failure_output("-o out.png under a 1 KiB file size limit", &r, 1, "out.png: ");
+    CHECK_STR_CONTAINS(r.err, "File too large");
+    cli_run_free(&r);
+    size_t got_n = 0;
+    char *got = read_whole(out, &got_n);
+    CHECK(got && got_n == n && memcmp(got, bytes, n) == 0);
+    free(got);
+    CHECK_EQ(count_entries(dir, NULL, 0), 1);
 }
 
 /* ---- successful runs ---------------------------------------------------- */

@@ -370,6 +370,38 @@ SR_TEST(supersampling_counts_exact_per_sample_winding)
     sr_destroy_context(ctx);
 }
 
+/* Clipping to the window must not change any pixel: a window is exactly
+ * the same-sized slice of a larger window, for every converter. */
+SR_TEST(coverage_window_is_a_slice_of_a_larger_window)
+{
+    sr_context *ctx = new_ctx();
+    REQUIRE(ctx);
+    sr_rng rng = { 0x5eed2d05u };
+    enum { BIG = 56, SUB = 17 };
+    static uint8_t big[BIG * BIG], sub[SUB * SUB];
+    sr_point2 pts[64];
+    int counts[4], contours;
+    long bad = 0;
+    for (int iter = 0; iter < 600; iter++) {
+        int n = random_polygon(&rng, pts, counts, &contours);
+        sr_fill_desc d = { .rule = iter % 2 ? SR_EVENODD : SR_NONZERO,
+                           .antialias = (sr_antialias)(SR_AA_NONE + iter % 3), .samples = 3 };
+        sr_polygon2 poly = { pts, n, counts, contours };
+        REQUIRE(sr_polygon_coverage(ctx, &poly, &d, -12, -12, BIG, BIG, big, BIG) == SR_OK);
+        int ox = sr_rng_int(&rng, -12, BIG - 12 - SUB), oy = sr_rng_int(&rng, -12, BIG - 12 - SUB);
+        REQUIRE(sr_polygon_coverage(ctx, &poly, &d, ox, oy, SUB, SUB, sub, SUB) == SR_OK);
+        for (int y = 0; y < SUB; y++) {
+            for (int x = 0; x < SUB; x++) {
+                int want = big[(y + oy + 12) * BIG + (x + ox + 12)];
+                /* area sums may round differently by one level */
+                bad += abs(sub[y * SUB + x] - want) > (d.antialias == SR_AA_AREA ? 1 : 0);
+            }
+        }
+    }
+    CHECK_EQ(bad, 0);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(even_odd_and_nonzero_differ_on_a_pentagram)
 {
     sr_context *ctx = new_ctx();
@@ -414,6 +446,28 @@ SR_TEST(fill_polygon_blends_and_clips_to_the_framebuffer)
         CHECK_NEAR(px[p * 4 + 2], 32, 2);
         CHECK_EQ(px[p * 4 + 3], 255);
     }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(partial_coverage_blends_in_linear_light_on_request)
+{
+    sr_context *ctx = new_ctx();
+    REQUIRE(ctx);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 2, .height = 1 }, &fb) == SR_OK);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+    /* half of pixel 0 (sRGB: 50% of 255), half of pixel 1 in linear light:
+     * linear 0.5 is sRGB 0.7354 -> 188 */
+    sr_point2 a[4] = { { 0, 0 }, { 0.5, 0 }, { 0.5, 1 }, { 0, 1 } };
+    sr_point2 b[4] = { { 1, 0 }, { 1.5, 0 }, { 1.5, 1 }, { 1, 1 } };
+    sr_fill_polygon(ctx, fb, &(sr_polygon2){ a, 4, NULL, 0 }, (sr_rgba){ 1, 1, 1, 1 },
+                    &(sr_fill_desc){ .antialias = SR_AA_AREA });
+    sr_fill_polygon(ctx, fb, &(sr_polygon2){ b, 4, NULL, 0 }, (sr_rgba){ 1, 1, 1, 1 },
+                    &(sr_fill_desc){ .antialias = SR_AA_AREA, .linear_light = true });
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    CHECK_NEAR(px[0], 128, 1);
+    CHECK_NEAR(px[4], 188, 1);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }

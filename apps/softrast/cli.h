@@ -14,6 +14,7 @@ enum { EXIT_OK = 0, EXIT_FAILURE_RUN = 1, EXIT_USAGE = 2 };
 
 int cmd_render(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
+int cmd_svg(int argc, char **argv);   /* svg.c; needs expat */
 
 /* Print "softrast: ..." to stderr (one line). */
 void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

@@ -13,7 +13,8 @@
     X(lines, "every line algorithm on a star of lines, magnified") \
     X(fill, "even-odd vs nonzero fill of a star and of holes; area and supersampled AA") \
     X(floodfill, "flood and boundary fill, 4- vs 8-connected, leaking through a diagonal gap") \
-    X(clip, "Sutherland-Hodgman polygon clipping, the polygon after each clip edge")
+    X(clip, "Sutherland-Hodgman polygon clipping, the polygon after each clip edge") \
+    X(curves, "midpoint circles and ellipses, Bezier flattening, stroke joins and caps")
 
 #define DEMO_DECLARE(name, summary) int demo_##name(sr_context *, const demo_args *, sr_framebuffer **);
 DEMO_LIST(DEMO_DECLARE)

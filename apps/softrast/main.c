@@ -15,6 +15,7 @@ static void usage(FILE *f)
             "commands:\n"
             "  render [MODEL] [options]   render a model file (OBJ, PLY, STL, ...) or the\n"
             "                             built-in teapot scene to a PNG\n"
+            "  svg INPUT.svg [options]    render an SVG drawing to a PNG with the 2D toolkit\n"
             "  demo NAME [options]        an image that shows a pipeline phenomenon\n"
             "                             ('softrast demo --help' lists them)\n"
             "\n"
@@ -42,6 +43,9 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "demo") == 0) {
         return cmd_demo(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "svg") == 0) {
+        return cmd_svg(argc - 1, argv + 1);
     }
     cli_error("unknown command '%s' (try 'softrast --help')", cmd);
     return EXIT_USAGE;

@@ -106,6 +106,26 @@ sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polyg
     return SR_OK;
 }
 
+/* Shrink the window's rows to those the edges can touch (pixel rows
+ * floor(y_min) .. ceil(y_max) - 1), so a small polygon in a large target
+ * does not walk every scanline. */
+static sr__window rows_of_edges(const sr__edge2 *edges, int count, sr__window win)
+{
+    int64_t lo = INT64_MAX, hi = INT64_MIN;
+    for (int i = 0; i < count; i++) {
+        lo = edges[i].y0 < lo ? edges[i].y0 : lo;
+        hi = edges[i].y1 > hi ? edges[i].y1 : hi;
+    }
+    int64_t r0 = floor_div(lo, Q8_ONE), r1 = floor_div(hi + Q8_ONE - 1, Q8_ONE);
+    if (r0 > win.y0) {
+        win.y0 = r0 >= win.y1 ? win.y1 : (int)r0;
+    }
+    if (r1 < win.y1) {
+        win.y1 = r1 <= win.y0 ? win.y0 : (int)r1;
+    }
+    return win;
+}
+
 /* ---- scan-line fill: edge table + active edge table ------------------- */
 
 /* An edge-table entry.  At scanline y (sample height yc = 256 y + 128 in
@@ -139,6 +159,7 @@ static bool fill_rule_inside(sr_fill_rule rule, int w)
 sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count,
                               sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user)
 {
+    win = rows_of_edges(edges, count, win);
     if (count <= 0 || win.x0 >= win.x1 || win.y0 >= win.y1) {
         return SR_OK;
     }
@@ -337,6 +358,7 @@ typedef struct area_entry {
 sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
                         sr__window win, sr__span_fn fn, void *user)
 {
+    win = rows_of_edges(edges, count, win);
     if (count <= 0 || win.x0 >= win.x1 || win.y0 >= win.y1) {
         return SR_OK;
     }
@@ -418,20 +440,22 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
                 hi = mx;
             }
         }
+        if (!(lo <= hi)) {
+            continue; /* nothing deposited in this row */
+        }
         /* Only columns from the leftmost touched one to one past the
          * rightmost can be non-zero: a closed contour's row sums to 0. */
-        int c0 = lo <= win.x0 ? 0 : (int)floor(lo) - win.x0;
-        int c1 = hi >= win.x1 ? w : (int)floor(hi) - win.x0 + 2;
-        if (c0 > w) {
-            c0 = w;
-        }
+        int c0 = lo <= win.x0 ? 0 : lo >= win.x1 ? w : (int)floor(lo) - win.x0;
+        int c1 = hi >= win.x1 ? w : hi < win.x0 ? 0 : (int)floor(hi) - win.x0 + 2;
         if (c1 > w) {
             c1 = w;
         }
-        double s = 0.0;
-        for (int c = 0; c < c0; c++) {
-            s += acc[c];
+        if (c1 < c0) {
+            c1 = c0;
         }
+        /* Left of c0 nothing was deposited (c0 > 0 means no edge reaches
+         * the window's left side), so the running sum starts at 0. */
+        double s = 0.0;
         int first_nz = -1, last_nz = -1;
         for (int c = c0; c < c1; c++) {
             s += acc[c];
@@ -448,7 +472,9 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
                             y + 0.5 };
             fn(user, &sp);
         }
-        memset(acc, 0, ((size_t)w + 2) * sizeof *acc);
+        int clear_end = c1 + 2 < w + 2 ? c1 + 2 : w + 2;
+        memset(acc + c0, 0, (size_t)(clear_end - c0) * sizeof *acc);
+        acc[0] = 0.0;
     }
     sr__free(ctx, et);
     sr__free(ctx, bucket);

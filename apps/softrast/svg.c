@@ -1,0 +1,1261 @@
+/* svg.c - `softrast svg INPUT.svg [-o OUT.png] [--size WxH | --scale S]
+ * [--background COLOR]`: renders a subset of SVG 1.1 with the 2D toolkit.
+ *
+ * The document is read with expat in one pass: the root <svg> fixes the
+ * image size and the viewBox mapping, then every shape is drawn as its
+ * start tag arrives, with the transform and style inherited down a stack.
+ * Shapes become paths in user units (flattened finely enough for the
+ * current scale), then the fill polygon or the stroke outline is mapped
+ * to pixels and filled: antialiased by exact area coverage, or aliased by
+ * the edge-table fill under shape-rendering="crispEdges".
+ *
+ * Supported: svg (width, height, viewBox, preserveAspectRatio), g, path
+ * (every command), rect (rx, ry), circle, ellipse, line, polyline,
+ * polygon; transform (matrix, translate, scale, rotate, skewX, skewY);
+ * fill, stroke, fill-opacity, stroke-opacity, opacity, fill-rule,
+ * stroke-width, stroke-linejoin, stroke-linecap, stroke-miterlimit,
+ * shape-rendering, display="none", as attributes or in style="...".
+ * Group opacity multiplies into the children's opacities (exact unless
+ * children overlap).  Anything else is skipped with one warning per name.
+ * Malformed XML, path data or numbers: "FILE:LINE: what is wrong" on
+ * stderr, exit status 2 and no output file. */
+#include "cli.h"
+#include "svg.h"
+#include "softrast_io.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#ifndef SR_HAVE_EXPAT
+
+int cmd_svg(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    cli_error("svg: this softrast was built without expat (install libexpat1-dev and rebuild)");
+    return EXIT_FAILURE_RUN;
+}
+
+#else
+
+#include <expat.h>
+
+#define MAX_DEPTH 256
+#define MAX_WARNED 64
+
+/* x' = a x + c y + e, y' = b x + d y + f (SVG's matrix(a b c d e f)). */
+typedef struct mat2d { double a, b, c, d, e, f; } mat2d;
+
+static const mat2d IDENTITY = { 1, 0, 0, 1, 0, 0 };
+
+static mat2d mat_mul(mat2d m, mat2d n) /* m * n: n applied first */
+{
+    return (mat2d){ m.a * n.a + m.c * n.b, m.b * n.a + m.d * n.b,
+                    m.a * n.c + m.c * n.d, m.b * n.c + m.d * n.d,
+                    m.a * n.e + m.c * n.f + m.e, m.b * n.e + m.d * n.f + m.f };
+}
+
+static sr_point2 mat_apply(mat2d m, sr_point2 p)
+{
+    return (sr_point2){ m.a * p.x + m.c * p.y + m.e, m.b * p.x + m.d * p.y + m.f };
+}
+
+typedef struct style {
+    bool has_fill, has_stroke;
+    sr_rgba fill, stroke;
+    double fill_opacity, stroke_opacity, opacity;
+    sr_fill_rule fill_rule;
+    double stroke_width;
+    sr_stroke_join join;
+    sr_stroke_cap cap;
+    double miter_limit;
+    bool crisp;
+    bool display_none;       /* display="none" here or on an ancestor */
+    bool invisible;          /* visibility (inherited, children may undo it) */
+} style;
+
+typedef struct frame {
+    mat2d m;
+    style st;
+} frame;
+
+typedef struct svg_doc {
+    const char *file;
+    XML_Parser parser;
+    sr_context *ctx;
+    sr_framebuffer *fb;
+    int size_w, size_h;      /* --size, or 0 */
+    double scale;            /* --scale, or 0 */
+    sr_rgba background;
+    frame stack[MAX_DEPTH];
+    int depth;
+    int skip;                /* > 0: inside a skipped subtree, its depth */
+    bool seen_root;
+    int status;              /* EXIT_OK until something fails */
+    char *warned[MAX_WARNED];
+    int n_warned;
+    unsigned long line;      /* of the element being handled */
+} svg_doc;
+
+/* ---- messages -------------------------------------------------------------- */
+
+static void svg_fail(svg_doc *doc, int status, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static void svg_fail(svg_doc *doc, int status, const char *fmt, ...)
+{
+    if (doc->status != EXIT_OK) {
+        return;
+    }
+    fprintf(stderr, "%s:%lu: ", doc->file, doc->line);
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    doc->status = status;
+    XML_StopParser(doc->parser, XML_FALSE);
+}
+
+/* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", once per name. */
+static void warn_once(svg_doc *doc, const char *kind, const char *name)
+{
+    char key[128];
+    snprintf(key, sizeof key, "%s %s", kind, name);
+    for (int i = 0; i < doc->n_warned; i++) {
+        if (strcmp(doc->warned[i], key) == 0) {
+            return;
+        }
+    }
+    if (doc->n_warned < MAX_WARNED) {
+        doc->warned[doc->n_warned] = strdup(key);
+        if (doc->warned[doc->n_warned]) {
+            doc->n_warned++;
+        }
+    }
+    fprintf(stderr, "%s:%lu: warning: unsupported %s '%s' skipped\n", doc->file, doc->line, kind,
+            name);
+}
+
+/* ---- numbers, lengths, lists ----------------------------------------------------- */
+
+static const char *skip_ws(const char *s)
+{
+    while (isspace((unsigned char)*s)) {
+        s++;
+    }
+    return s;
+}
+
+static const char *skip_ws_comma(const char *s)
+{
+    s = skip_ws(s);
+    if (*s == ',') {
+        s = skip_ws(s + 1);
+    }
+    return s;
+}
+
+/* An SVG number (sign, digits, fraction, exponent), no leading blanks. */
+static bool parse_number(const char **s, double *out)
+{
+    const char *p = *s;
+    if (*p == '+' || *p == '-') {
+        p++;
+    }
+    bool digits = false;
+    while (isdigit((unsigned char)*p)) {
+        p++;
+        digits = true;
+    }
+    if (*p == '.') {
+        p++;
+        while (isdigit((unsigned char)*p)) {
+            p++;
+            digits = true;
+        }
+    }
+    if (!digits) {
+        return false;
+    }
+    if ((*p == 'e' || *p == 'E') &&
+        (isdigit((unsigned char)p[1]) ||
+         ((p[1] == '+' || p[1] == '-') && isdigit((unsigned char)p[2])))) {
+        p += 2;
+        while (isdigit((unsigned char)*p)) {
+            p++;
+        }
+    }
+    char buf[64];
+    size_t n = (size_t)(p - *s);
+    if (n >= sizeof buf) {
+        return false;
+    }
+    memcpy(buf, *s, n);
+    buf[n] = 0;
+    *out = strtod(buf, NULL);
+    *s = p;
+    return isfinite(*out);
+}
+
+/* A length: number with an optional absolute unit; 96 px per inch.
+ * *percent is set (and the number returned as is) for "%". */
+static bool parse_length(const char *s, double *out, bool *percent)
+{
+    s = skip_ws(s);
+    if (!parse_number(&s, out)) {
+        return false;
+    }
+    static const struct { const char *unit; double px; } units[] = {
+        { "px", 1 }, { "pt", 96.0 / 72 }, { "pc", 16 }, { "in", 96 }, { "cm", 96 / 2.54 },
+        { "mm", 96 / 25.4 },
+    };
+    if (percent) {
+        *percent = false;
+    }
+    s = skip_ws(s);
+    if (*s == 0) {
+        return true;
+    }
+    if (*s == '%' && percent) {
+        *percent = true;
+        return *skip_ws(s + 1) == 0;
+    }
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
+        size_t n = strlen(units[i].unit);
+        if (strncmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+            *out *= units[i].px;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* A length attribute of a shape; false after reporting a malformed one. */
+static bool length_attr(svg_doc *doc, const char *name, const char *value, double *out)
+{
+    if (!value) {
+        *out = 0;
+        return true;
+    }
+    bool pct = false;
+    if (!parse_length(value, out, &pct)) {
+        svg_fail(doc, EXIT_USAGE, "%s=\"%s\" is not a length", name, value);
+        return false;
+    }
+    if (pct) {
+        warn_once(doc, "length unit", "%");
+        *out = 0;
+    }
+    return true;
+}
+
+static const char *attr(const char **atts, const char *name)
+{
+    for (int i = 0; atts[i]; i += 2) {
+        if (strcmp(atts[i], name) == 0) {
+            return atts[i + 1];
+        }
+    }
+    return NULL;
+}
+
+/* ---- transforms ------------------------------------------------------------- */
+
+static bool parse_transform(const char *s, mat2d *out)
+{
+    mat2d m = IDENTITY;
+    s = skip_ws(s);
+    while (*s) {
+        static const char *names[] = { "matrix", "translate", "scale", "rotate", "skewX", "skewY" };
+        int which = -1;
+        for (int i = 0; i < 6; i++) {
+            size_t n = strlen(names[i]);
+            if (strncmp(s, names[i], n) == 0) {
+                which = i;
+                s += n;
+                break;
+            }
+        }
+        if (which < 0) {
+            return false;
+        }
+        s = skip_ws(s);
+        if (*s++ != '(') {
+            return false;
+        }
+        double v[6];
+        int n = 0;
+        s = skip_ws(s);
+        while (*s != ')') {
+            if (n == 6 || !parse_number(&s, &v[n])) {
+                return false;
+            }
+            n++;
+            s = skip_ws_comma(s);
+        }
+        s++;
+        mat2d t = IDENTITY;
+        switch (which) {
+        case 0:
+            if (n != 6) {
+                return false;
+            }
+            t = (mat2d){ v[0], v[1], v[2], v[3], v[4], v[5] };
+            break;
+        case 1:
+            if (n != 1 && n != 2) {
+                return false;
+            }
+            t.e = v[0];
+            t.f = n == 2 ? v[1] : 0;
+            break;
+        case 2:
+            if (n != 1 && n != 2) {
+                return false;
+            }
+            t.a = v[0];
+            t.d = n == 2 ? v[1] : v[0];
+            break;
+        case 3: {
+            if (n != 1 && n != 3) {
+                return false;
+            }
+            double r = v[0] * M_PI / 180, c = cos(r), si = sin(r);
+            t = (mat2d){ c, si, -si, c, 0, 0 };
+            if (n == 3) { /* rotate about (cx, cy) */
+                mat2d to = { 1, 0, 0, 1, v[1], v[2] }, back = { 1, 0, 0, 1, -v[1], -v[2] };
+                t = mat_mul(mat_mul(to, t), back);
+            }
+            break;
+        }
+        case 4:
+            if (n != 1) {
+                return false;
+            }
+            t.c = tan(v[0] * M_PI / 180);
+            break;
+        default:
+            if (n != 1) {
+                return false;
+            }
+            t.b = tan(v[0] * M_PI / 180);
+            break;
+        }
+        m = mat_mul(m, t);
+        s = skip_ws_comma(s);
+    }
+    *out = m;
+    return true;
+}
+
+/* ---- style properties --------------------------------------------------------- */
+
+static bool parse_unit_number(const char *v, double *out)
+{
+    v = skip_ws(v);
+    return parse_number(&v, out) && *skip_ws(v) == 0;
+}
+
+static double clamp01(double v)
+{
+    return v < 0 ? 0 : v > 1 ? 1 : v;
+}
+
+/* Properties this reader knows it does not support. */
+static const char *const unsupported_props[] = {
+    "stroke-dasharray", "stroke-dashoffset", "clip-path", "clip-rule", "mask", "filter",
+    "marker", "marker-start", "marker-mid", "marker-end", "font", "font-family", "font-size",
+    "font-weight", "font-style", "text-anchor", "color", "stop-color", "stop-opacity",
+    "fill-paint", "paint-order", "vector-effect", "image-rendering", "color-interpolation",
+    "mix-blend-mode", "isolation", NULL,
+};
+
+/* Apply one property to a style.  Returns false only when the property
+ * name is not a presentation property at all (so shapes may consume it). */
+static bool apply_property(svg_doc *doc, style *st, const char *name, const char *value)
+{
+    while (isspace((unsigned char)*value)) {
+        value++;
+    }
+    char v[256];
+    size_t n = strlen(value);
+    while (n > 0 && isspace((unsigned char)value[n - 1])) {
+        n--;
+    }
+    if (n >= sizeof v) {
+        n = sizeof v - 1;
+    }
+    memcpy(v, value, n);
+    v[n] = 0;
+    if (strcmp(v, "inherit") == 0) {
+        return true; /* the parent's value is already there */
+    }
+    double num;
+    if (strcmp(name, "fill") == 0 || strcmp(name, "stroke") == 0) {
+        bool fill = name[0] == 'f';
+        sr_rgba c;
+        switch (svg_parse_color(v, &c)) {
+        case SVG_PAINT_NONE:
+            *(fill ? &st->has_fill : &st->has_stroke) = false;
+            break;
+        case SVG_PAINT_COLOR:
+            *(fill ? &st->has_fill : &st->has_stroke) = true;
+            *(fill ? &st->fill : &st->stroke) = c;
+            break;
+        case SVG_PAINT_UNSUPPORTED:
+            warn_once(doc, "paint", v);
+            *(fill ? &st->has_fill : &st->has_stroke) = false;
+            break;
+        default:
+            warn_once(doc, "color", v);
+            break;
+        }
+    } else if (strcmp(name, "fill-opacity") == 0 || strcmp(name, "stroke-opacity") == 0 ||
+               strcmp(name, "opacity") == 0) {
+        if (!parse_unit_number(v, &num)) {
+            warn_once(doc, name, v);
+        } else if (name[0] == 'o') {
+            st->opacity *= clamp01(num);
+        } else {
+            *(name[0] == 'f' ? &st->fill_opacity : &st->stroke_opacity) = clamp01(num);
+        }
+    } else if (strcmp(name, "fill-rule") == 0) {
+        if (strcmp(v, "nonzero") == 0 || strcmp(v, "evenodd") == 0) {
+            st->fill_rule = v[0] == 'n' ? SR_NONZERO : SR_EVENODD;
+        } else {
+            warn_once(doc, "fill-rule", v);
+        }
+    } else if (strcmp(name, "stroke-width") == 0) {
+        bool pct;
+        if (!parse_length(v, &num, &pct) || pct || num < 0) {
+            warn_once(doc, "stroke-width", v);
+        } else {
+            st->stroke_width = num;
+        }
+    } else if (strcmp(name, "stroke-linejoin") == 0) {
+        if (strcmp(v, "miter") == 0) {
+            st->join = SR_STROKE_JOIN_MITER;
+        } else if (strcmp(v, "round") == 0) {
+            st->join = SR_STROKE_JOIN_ROUND;
+        } else if (strcmp(v, "bevel") == 0) {
+            st->join = SR_STROKE_JOIN_BEVEL;
+        } else {
+            warn_once(doc, "stroke-linejoin", v);
+        }
+    } else if (strcmp(name, "stroke-linecap") == 0) {
+        if (strcmp(v, "butt") == 0) {
+            st->cap = SR_STROKE_CAP_BUTT;
+        } else if (strcmp(v, "round") == 0) {
+            st->cap = SR_STROKE_CAP_ROUND;
+        } else if (strcmp(v, "square") == 0) {
+            st->cap = SR_STROKE_CAP_SQUARE;
+        } else {
+            warn_once(doc, "stroke-linecap", v);
+        }
+    } else if (strcmp(name, "stroke-miterlimit") == 0) {
+        if (!parse_unit_number(v, &num) || num < 1) {
+            warn_once(doc, "stroke-miterlimit", v);
+        } else {
+            st->miter_limit = num;
+        }
+    } else if (strcmp(name, "shape-rendering") == 0) {
+        st->crisp = strcmp(v, "crispEdges") == 0;
+    } else if (strcmp(name, "display") == 0) {
+        st->display_none = st->display_none || strcmp(v, "none") == 0;
+    } else if (strcmp(name, "visibility") == 0) {
+        st->invisible = strcmp(v, "hidden") == 0 || strcmp(v, "collapse") == 0;
+    } else {
+        for (int i = 0; unsupported_props[i]; i++) {
+            if (strcmp(name, unsupported_props[i]) == 0) {
+                warn_once(doc, "property", name);
+                return true;
+            }
+        }
+        return false;
+    }
+    return true;
+}
+
+/* style="name: value; ...", applied after the presentation attributes. */
+static void apply_style_attr(svg_doc *doc, style *st, const char *s)
+{
+    char buf[2048];
+    snprintf(buf, sizeof buf, "%s", s);
+    char *save = NULL;
+    for (char *decl = strtok_r(buf, ";", &save); decl; decl = strtok_r(NULL, ";", &save)) {
+        char *colon = strchr(decl, ':');
+        if (!colon) {
+            continue;
+        }
+        *colon = 0;
+        char *name = decl;
+        while (isspace((unsigned char)*name)) {
+            name++;
+        }
+        char *end = name + strlen(name);
+        while (end > name && isspace((unsigned char)end[-1])) {
+            *--end = 0;
+        }
+        if (!apply_property(doc, st, name, colon + 1)) {
+            warn_once(doc, "property", name);
+        }
+    }
+}
+
+/* ---- path data ----------------------------------------------------------------- */
+
+typedef struct path_build {
+    sr_path *path;
+    double cx, cy;        /* current point */
+    double sx, sy;        /* subpath start */
+    double ctrl_x, ctrl_y;/* last control point (for S and T) */
+    char last;            /* last command, upper case */
+    bool started;
+} path_build;
+
+static bool build_ok(sr_result r)
+{
+    return r == SR_OK;
+}
+
+/* One path command with its numbers; false on an error from the library. */
+static bool path_command(path_build *b, char cmd, const double *a)
+{
+    bool rel = islower((unsigned char)cmd) != 0;
+    char up = (char)toupper((unsigned char)cmd);
+    double ox = rel ? b->cx : 0, oy = rel ? b->cy : 0;
+    bool ok = true;
+    switch (up) {
+    case 'M':
+        b->cx = b->sx = a[0] + ox;
+        b->cy = b->sy = a[1] + oy;
+        ok = build_ok(sr_path_move_to(b->path, b->cx, b->cy));
+        b->started = true;
+        break;
+    case 'L':
+        b->cx = a[0] + ox;
+        b->cy = a[1] + oy;
+        ok = build_ok(sr_path_line_to(b->path, b->cx, b->cy));
+        break;
+    case 'H':
+        b->cx = a[0] + ox;
+        ok = build_ok(sr_path_line_to(b->path, b->cx, b->cy));
+        break;
+    case 'V':
+        b->cy = a[0] + oy;
+        ok = build_ok(sr_path_line_to(b->path, b->cx, b->cy));
+        break;
+    case 'C':
+    case 'S': {
+        double x1, y1, x2, y2, x, y;
+        if (up == 'C') {
+            x1 = a[0] + ox, y1 = a[1] + oy, x2 = a[2] + ox, y2 = a[3] + oy;
+            x = a[4] + ox, y = a[5] + oy;
+        } else { /* first control point: the reflection of the previous one */
+            bool prev = b->last == 'C' || b->last == 'S';
+            x1 = prev ? 2 * b->cx - b->ctrl_x : b->cx;
+            y1 = prev ? 2 * b->cy - b->ctrl_y : b->cy;
+            x2 = a[0] + ox, y2 = a[1] + oy, x = a[2] + ox, y = a[3] + oy;
+        }
+        ok = build_ok(sr_path_cubic_to(b->path, x1, y1, x2, y2, x, y));
+        b->ctrl_x = x2;
+        b->ctrl_y = y2;
+        b->cx = x;
+        b->cy = y;
+        break;
+    }
+    case 'Q':
+    case 'T': {
+        double x1, y1, x, y;
+        if (up == 'Q') {
+            x1 = a[0] + ox, y1 = a[1] + oy, x = a[2] + ox, y = a[3] + oy;
+        } else {
+            bool prev = b->last == 'Q' || b->last == 'T';
+            x1 = prev ? 2 * b->cx - b->ctrl_x : b->cx;
+            y1 = prev ? 2 * b->cy - b->ctrl_y : b->cy;
+            x = a[0] + ox, y = a[1] + oy;
+        }
+        ok = build_ok(sr_path_quad_to(b->path, x1, y1, x, y));
+        b->ctrl_x = x1;
+        b->ctrl_y = y1;
+        b->cx = x;
+        b->cy = y;
+        break;
+    }
+    case 'A':
+        ok = build_ok(sr_path_arc_to(b->path, a[0], a[1], a[2], a[3] != 0, a[4] != 0, a[5] + ox,
+                                     a[6] + oy));
+        b->cx = a[5] + ox;
+        b->cy = a[6] + oy;
+        break;
+    case 'Z':
+        ok = build_ok(sr_path_close(b->path));
+        b->cx = b->sx;
+        b->cy = b->sy;
+        break;
+    }
+    b->last = up;
+    return ok;
+}
+
+static int args_for(char up)
+{
+    switch (up) {
+    case 'M': case 'L': case 'T': return 2;
+    case 'H': case 'V': return 1;
+    case 'C': return 6;
+    case 'S': case 'Q': return 4;
+    case 'A': return 7;
+    default: return 0;
+    }
+}
+
+/* Parse d="..." into the path; false after reporting an error. */
+static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
+{
+    path_build b = { .path = path };
+    const char *s = skip_ws(d);
+    char cmd = 0;
+    while (*s) {
+        if (isalpha((unsigned char)*s)) {
+            cmd = *s++;
+            if (!args_for((char)toupper((unsigned char)cmd)) && toupper((unsigned char)cmd) != 'Z') {
+                svg_fail(doc, EXIT_USAGE, "path data: unknown command '%c' at offset %ld", cmd,
+                         (long)(s - 1 - d));
+                return false;
+            }
+            if (!b.started && toupper((unsigned char)cmd) != 'M') {
+                svg_fail(doc, EXIT_USAGE, "path data must start with a moveto (offset %ld)",
+                         (long)(s - 1 - d));
+                return false;
+            }
+            if (toupper((unsigned char)cmd) == 'Z') {
+                if (!path_command(&b, cmd, NULL)) {
+                    svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+                    return false;
+                }
+                s = skip_ws_comma(s);
+                continue;
+            }
+        } else if (!cmd || toupper((unsigned char)cmd) == 'Z') {
+            svg_fail(doc, EXIT_USAGE, "path data: expected a command at offset %ld",
+                     (long)(s - d));
+            return false;
+        }
+        /* One set of arguments (commands repeat implicitly). */
+        char up = (char)toupper((unsigned char)cmd);
+        double a[7];
+        int n = args_for(up);
+        for (int i = 0; i < n; i++) {
+            s = skip_ws(s);
+            if (up == 'A' && (i == 3 || i == 4)) { /* flags: a single 0 or 1 */
+                if (*s != '0' && *s != '1') {
+                    svg_fail(doc, EXIT_USAGE, "path data: arc flag must be 0 or 1 at offset %ld",
+                             (long)(s - d));
+                    return false;
+                }
+                a[i] = *s++ - '0';
+            } else if (!parse_number(&s, &a[i])) {
+                svg_fail(doc, EXIT_USAGE, "path data: expected a number at offset %ld",
+                         (long)(s - d));
+                return false;
+            }
+            s = skip_ws_comma(s);
+        }
+        if (!path_command(&b, cmd, a)) {
+            svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+            return false;
+        }
+        /* After a moveto, further pairs are linetos. */
+        if (up == 'M') {
+            cmd = cmd == 'M' ? 'L' : 'l';
+        }
+    }
+    return true;
+}
+
+/* ---- shapes ------------------------------------------------------------------- */
+
+static double matrix_scale(mat2d m)
+{
+    return sqrt(fabs(m.a * m.d - m.b * m.c));
+}
+
+/* Map a polygon to pixels and fill it. */
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
+                        sr_fill_rule rule, bool crisp)
+{
+    if (poly.point_count == 0) {
+        return;
+    }
+    sr_point2 *pts = malloc((size_t)poly.point_count * sizeof *pts);
+    if (!pts) {
+        svg_fail(doc, EXIT_FAILURE_RUN, "out of memory");
+        return;
+    }
+    for (int i = 0; i < poly.point_count; i++) {
+        pts[i] = mat_apply(m, poly.points[i]);
+    }
+    poly.points = pts;
+    sr_result r = sr_fill_polygon(doc->ctx, doc->fb, &poly, color,
+                                  &(sr_fill_desc){ .rule = rule,
+                                                   .antialias = crisp ? SR_AA_NONE : SR_AA_AREA });
+    free(pts);
+    if (r != SR_OK) {
+        svg_fail(doc, r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE, "%s",
+                 sr_context_error(doc->ctx));
+    }
+}
+
+static void draw_path(svg_doc *doc, const frame *f, sr_path *path, bool fillable)
+{
+    const style *st = &f->st;
+    if (st->display_none || st->invisible) {
+        return;
+    }
+    if (fillable && st->has_fill && st->fill_opacity * st->opacity > 0) {
+        sr_rgba c = st->fill;
+        c.a = (float)(st->fill_opacity * st->opacity);
+        fill_mapped(doc, sr_path_polygon(path), f->m, c, st->fill_rule, st->crisp);
+    }
+    if (st->has_stroke && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
+        doc->status == EXIT_OK) {
+        sr_polygon2 outline;
+        sr_result r = sr_stroke_outline(doc->ctx, path,
+                                        &(sr_stroke_desc){ .width = st->stroke_width,
+                                                           .join = st->join, .cap = st->cap,
+                                                           .miter_limit = st->miter_limit },
+                                        &outline);
+        if (r != SR_OK) {
+            svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+            return;
+        }
+        sr_rgba c = st->stroke;
+        c.a = (float)(st->stroke_opacity * st->opacity);
+        fill_mapped(doc, outline, f->m, c, SR_NONZERO, st->crisp);
+        sr_free_stroke_outline(doc->ctx, &outline);
+    }
+}
+
+/* Build the path of a basic shape (false: nothing to draw or an error). */
+static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_path *p,
+                       bool *fillable)
+{
+    *fillable = true;
+    double v[6];
+    if (strcmp(name, "path") == 0) {
+        const char *d = attr(atts, "d");
+        return d && parse_path_data(doc, d, p);
+    }
+    if (strcmp(name, "rect") == 0) {
+        const char *rx_s = attr(atts, "rx"), *ry_s = attr(atts, "ry");
+        if (!length_attr(doc, "x", attr(atts, "x"), &v[0]) ||
+            !length_attr(doc, "y", attr(atts, "y"), &v[1]) ||
+            !length_attr(doc, "width", attr(atts, "width"), &v[2]) ||
+            !length_attr(doc, "height", attr(atts, "height"), &v[3]) ||
+            !length_attr(doc, "rx", rx_s, &v[4]) || !length_attr(doc, "ry", ry_s, &v[5])) {
+            return false;
+        }
+        if (v[2] < 0 || v[3] < 0 || v[4] < 0 || v[5] < 0) {
+            svg_fail(doc, EXIT_USAGE, "rect: negative width, height, rx or ry");
+            return false;
+        }
+        if (v[2] == 0 || v[3] == 0) {
+            return false;
+        }
+        double x = v[0], y = v[1], w = v[2], h = v[3];
+        double rx = rx_s ? v[4] : v[5], ry = ry_s ? v[5] : v[4]; /* one sets both */
+        rx = fmin(rx, w / 2);
+        ry = fmin(ry, h / 2);
+        if (rx > 0 && ry > 0) {
+            sr_path_move_to(p, x + rx, y);
+            sr_path_line_to(p, x + w - rx, y);
+            sr_path_arc_to(p, rx, ry, 0, false, true, x + w, y + ry);
+            sr_path_line_to(p, x + w, y + h - ry);
+            sr_path_arc_to(p, rx, ry, 0, false, true, x + w - rx, y + h);
+            sr_path_line_to(p, x + rx, y + h);
+            sr_path_arc_to(p, rx, ry, 0, false, true, x, y + h - ry);
+            sr_path_line_to(p, x, y + ry);
+            sr_path_arc_to(p, rx, ry, 0, false, true, x + rx, y);
+        } else {
+            sr_path_move_to(p, x, y);
+            sr_path_line_to(p, x + w, y);
+            sr_path_line_to(p, x + w, y + h);
+            sr_path_line_to(p, x, y + h);
+        }
+        sr_path_close(p);
+        return true;
+    }
+    if (strcmp(name, "circle") == 0 || strcmp(name, "ellipse") == 0) {
+        bool circle = name[0] == 'c';
+        if (!length_attr(doc, "cx", attr(atts, "cx"), &v[0]) ||
+            !length_attr(doc, "cy", attr(atts, "cy"), &v[1])) {
+            return false;
+        }
+        if (circle) {
+            if (!length_attr(doc, "r", attr(atts, "r"), &v[2])) {
+                return false;
+            }
+            v[3] = v[2];
+        } else if (!length_attr(doc, "rx", attr(atts, "rx"), &v[2]) ||
+                   !length_attr(doc, "ry", attr(atts, "ry"), &v[3])) {
+            return false;
+        }
+        if (v[2] < 0 || v[3] < 0) {
+            svg_fail(doc, EXIT_USAGE, "%s: negative radius", name);
+            return false;
+        }
+        if (v[2] == 0 || v[3] == 0) {
+            return false;
+        }
+        sr_path_move_to(p, v[0] + v[2], v[1]);
+        sr_path_arc_to(p, v[2], v[3], 0, false, true, v[0] - v[2], v[1]);
+        sr_path_arc_to(p, v[2], v[3], 0, false, true, v[0] + v[2], v[1]);
+        sr_path_close(p);
+        return true;
+    }
+    if (strcmp(name, "line") == 0) {
+        *fillable = false;
+        if (!length_attr(doc, "x1", attr(atts, "x1"), &v[0]) ||
+            !length_attr(doc, "y1", attr(atts, "y1"), &v[1]) ||
+            !length_attr(doc, "x2", attr(atts, "x2"), &v[2]) ||
+            !length_attr(doc, "y2", attr(atts, "y2"), &v[3])) {
+            return false;
+        }
+        sr_path_move_to(p, v[0], v[1]);
+        sr_path_line_to(p, v[2], v[3]);
+        return true;
+    }
+    /* polyline, polygon */
+    const char *pts = attr(atts, "points");
+    if (!pts) {
+        return false;
+    }
+    const char *s = skip_ws(pts);
+    int n = 0;
+    while (*s) {
+        double x, y;
+        if (!parse_number(&s, &x) || !parse_number((s = skip_ws_comma(s), &s), &y)) {
+            svg_fail(doc, EXIT_USAGE, "%s: points: expected a coordinate pair at offset %ld",
+                     name, (long)(s - pts));
+            return false;
+        }
+        s = skip_ws_comma(s);
+        if (n++ == 0) {
+            sr_path_move_to(p, x, y);
+        } else {
+            sr_path_line_to(p, x, y);
+        }
+    }
+    if (strcmp(name, "polygon") == 0) {
+        sr_path_close(p);
+    }
+    return n > 0;
+}
+
+/* ---- the root element --------------------------------------------------------------- */
+
+static bool parse_viewbox(const char *s, double vb[4])
+{
+    s = skip_ws(s);
+    for (int i = 0; i < 4; i++) {
+        if (!parse_number(&s, &vb[i])) {
+            return false;
+        }
+        s = skip_ws_comma(s);
+    }
+    return *s == 0 && vb[2] > 0 && vb[3] > 0;
+}
+
+/* preserveAspectRatio: align x, y in {0, 0.5, 1} (-1: none), slice. */
+static bool parse_aspect(const char *s, double *ax, double *ay, bool *slice)
+{
+    *ax = *ay = 0.5;
+    *slice = false;
+    if (!s) {
+        return true;
+    }
+    s = skip_ws(s);
+    if (strncmp(s, "defer", 5) == 0) {
+        s = skip_ws(s + 5);
+    }
+    if (strncmp(s, "none", 4) == 0) {
+        *ax = *ay = -1;
+        s += 4;
+    } else {
+        static const char *al[3] = { "Min", "Mid", "Max" };
+        int fx = -1, fy = -1;
+        for (int i = 0; i < 3; i++) {
+            for (int j = 0; j < 3; j++) {
+                char want[16];
+                snprintf(want, sizeof want, "x%sY%s", al[i], al[j]);
+                if (strncmp(s, want, 8) == 0) {
+                    fx = i;
+                    fy = j;
+                }
+            }
+        }
+        if (fx < 0) {
+            return false;
+        }
+        *ax = fx / 2.0;
+        *ay = fy / 2.0;
+        s += 8;
+    }
+    s = skip_ws(s);
+    if (strncmp(s, "slice", 5) == 0) {
+        *slice = true;
+        s += 5;
+    } else if (strncmp(s, "meet", 4) == 0) {
+        s += 4;
+    }
+    return *skip_ws(s) == 0;
+}
+
+static bool root_element(svg_doc *doc, const char **atts, frame *f)
+{
+    double vb[4];
+    const char *vbs = attr(atts, "viewBox");
+    bool have_vb = vbs && parse_viewbox(vbs, vb);
+    if (vbs && !have_vb) {
+        svg_fail(doc, EXIT_USAGE, "viewBox=\"%s\" needs four numbers with width, height > 0", vbs);
+        return false;
+    }
+    double w = 0, h = 0;
+    bool wp = false, hp = false;
+    const char *ws = attr(atts, "width"), *hs = attr(atts, "height");
+    if (ws && !parse_length(ws, &w, &wp)) {
+        svg_fail(doc, EXIT_USAGE, "width=\"%s\" is not a length", ws);
+        return false;
+    }
+    if (hs && !parse_length(hs, &h, &hp)) {
+        svg_fail(doc, EXIT_USAGE, "height=\"%s\" is not a length", hs);
+        return false;
+    }
+    /* Intrinsic size: width/height, else the viewBox's, else 300 x 150. */
+    if (!ws || wp || w <= 0) {
+        w = have_vb ? vb[2] : 300;
+    }
+    if (!hs || hp || h <= 0) {
+        h = have_vb ? vb[3] : 150;
+    }
+    if (!have_vb) {
+        vb[0] = vb[1] = 0;
+        vb[2] = w;
+        vb[3] = h;
+    }
+    int out_w, out_h;
+    if (doc->size_w) {
+        out_w = doc->size_w;
+        out_h = doc->size_h;
+    } else {
+        double s = doc->scale > 0 ? doc->scale : 1;
+        double ow = ceil(w * s - 1e-9), oh = ceil(h * s - 1e-9);
+        if (!(ow >= 1 && oh >= 1 && ow <= SR_MAX_FRAMEBUFFER_SIZE && oh <= SR_MAX_FRAMEBUFFER_SIZE)) {
+            svg_fail(doc, EXIT_USAGE, "image size %.0f x %.0f is outside 1..%d (use --size)", ow,
+                     oh, SR_MAX_FRAMEBUFFER_SIZE);
+            return false;
+        }
+        out_w = (int)ow;
+        out_h = (int)oh;
+    }
+    double ax, ay;
+    bool slice;
+    const char *par = attr(atts, "preserveAspectRatio");
+    if (!parse_aspect(par, &ax, &ay, &slice)) {
+        warn_once(doc, "preserveAspectRatio", par);
+        ax = ay = 0.5;
+        slice = false;
+    }
+    /* The viewBox onto the whole image. */
+    double sx = out_w / vb[2], sy = out_h / vb[3];
+    if (ax >= 0) {
+        sx = sy = slice ? fmax(sx, sy) : fmin(sx, sy);
+    }
+    double tx = -vb[0] * sx, ty = -vb[1] * sy;
+    if (ax >= 0) {
+        tx += (out_w - vb[2] * sx) * ax;
+        ty += (out_h - vb[3] * sy) * ay;
+    }
+    f->m = (mat2d){ sx, 0, 0, sy, tx, ty };
+    if (sr_make_framebuffer(doc->ctx, &(sr_framebuffer_desc){ .width = out_w, .height = out_h,
+                                                              .depth_format = SR_DEPTH_NONE },
+                            &doc->fb) != SR_OK) {
+        svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+        return false;
+    }
+    sr_rgba bg = doc->background;
+    sr_clear(doc->ctx, doc->fb, &(sr_clear_desc){ .color = { bg.r, bg.g, bg.b, bg.a } });
+    return true;
+}
+
+/* ---- expat handlers ---------------------------------------------------------------- */
+
+static const char *local_name(const char *name)
+{
+    const char *c = strrchr(name, ':');
+    return c ? c + 1 : name;
+}
+
+static bool is_shape(const char *n)
+{
+    static const char *shapes[] = { "path", "rect", "circle", "ellipse", "line", "polyline",
+                                    "polygon", NULL };
+    for (int i = 0; shapes[i]; i++) {
+        if (strcmp(n, shapes[i]) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char **atts)
+{
+    svg_doc *doc = user;
+    if (doc->status != EXIT_OK) {
+        return;
+    }
+    doc->line = XML_GetCurrentLineNumber(doc->parser);
+    if (doc->skip) {
+        doc->skip++;
+        return;
+    }
+    const char *name = local_name(qname);
+    if (doc->depth + 1 >= MAX_DEPTH) {
+        svg_fail(doc, EXIT_USAGE, "elements nested deeper than %d", MAX_DEPTH);
+        return;
+    }
+    frame f = doc->stack[doc->depth];
+    if (!doc->seen_root) {
+        if (strcmp(name, "svg") != 0) {
+            svg_fail(doc, EXIT_USAGE, "the root element is <%s>, not <svg>", name);
+            return;
+        }
+        doc->seen_root = true;
+        if (!root_element(doc, atts, &f)) {
+            return;
+        }
+    } else if (strcmp(name, "svg") == 0) {
+        warn_once(doc, "element", "svg (nested; drawn as a group)");
+    } else if (strcmp(name, "title") == 0 || strcmp(name, "desc") == 0 ||
+               strcmp(name, "metadata") == 0) {
+        doc->skip = 1; /* no rendering: skipped silently */
+        return;
+    } else if (strcmp(name, "g") != 0 && !is_shape(name)) {
+        warn_once(doc, "element", name);
+        doc->skip = 1;
+        return;
+    }
+    /* Style: presentation attributes, then style="" over them. */
+    f.st.opacity = doc->stack[doc->depth].st.opacity;
+    for (int i = 0; atts[i]; i += 2) {
+        if (strcmp(atts[i], "style") != 0 && strcmp(atts[i], "transform") != 0) {
+            apply_property(doc, &f.st, atts[i], atts[i + 1]);
+        }
+    }
+    const char *style_attr = attr(atts, "style");
+    if (style_attr) {
+        apply_style_attr(doc, &f.st, style_attr);
+    }
+    const char *tr = attr(atts, "transform");
+    if (tr) {
+        mat2d t;
+        if (!parse_transform(tr, &t)) {
+            svg_fail(doc, EXIT_USAGE, "transform=\"%s\" is malformed", tr);
+            return;
+        }
+        f.m = mat_mul(f.m, t);
+    }
+    doc->stack[++doc->depth] = f;
+    if (is_shape(name) && !f.st.display_none && !f.st.invisible) {
+        /* Flatten in user units finely enough for the pixels: the
+         * tolerance shrinks with the transform's scale. */
+        double scale = matrix_scale(f.m);
+        double tol = scale > 0 ? 0.1 / scale : 0.1;
+        if (!(tol > 0) || !isfinite(tol)) {
+            return; /* a singular transform: nothing visible */
+        }
+        sr_path *p = NULL;
+        if (sr_make_path(doc->ctx, tol, &p) != SR_OK) {
+            svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+            return;
+        }
+        bool fillable;
+        if (shape_path(doc, name, atts, p, &fillable) && doc->status == EXIT_OK) {
+            draw_path(doc, &f, p, fillable);
+        }
+        sr_destroy_path(p);
+    }
+}
+
+static void XMLCALL on_end(void *user, const XML_Char *name)
+{
+    (void)name;
+    svg_doc *doc = user;
+    if (doc->skip) {
+        doc->skip--;
+        return;
+    }
+    if (doc->depth > 0) {
+        doc->depth--;
+    }
+}
+
+/* ---- the command ------------------------------------------------------------------ */
+
+static void svg_help(FILE *f)
+{
+    fprintf(f, "usage: softrast svg INPUT.svg [-o OUT.png] [--size WxH | --scale S]\n"
+               "                    [--background COLOR]\n\n"
+               "Render an SVG 1.1 drawing (shapes, paths, transforms, fills and strokes) with\n"
+               "softrast's 2D toolkit.\n\n"
+               "options:\n"
+               "  -o, --output FILE    PNG to write (default: INPUT with .png)\n"
+               "  --size WxH           output size in pixels (the viewBox is fitted in)\n"
+               "  --scale S            output size = the drawing's size times S (default 1)\n"
+               "  --background COLOR   opaque background (default transparent)\n");
+}
+
+int cmd_svg(int argc, char **argv)
+{
+    const char *input = NULL, *output = NULL;
+    svg_doc doc = { .status = EXIT_OK, .background = { 0, 0, 0, 0 } };
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        bool has_value = i + 1 < argc;
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            svg_help(stdout);
+            return EXIT_OK;
+        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--size") == 0 ||
+                   strcmp(a, "--scale") == 0 || strcmp(a, "--background") == 0) {
+            if (!has_value) {
+                cli_error("svg: %s: missing value", a);
+                return EXIT_USAGE;
+            }
+            const char *v = argv[++i];
+            if (a[1] == 'o' || a[2] == 'o') {
+                output = v;
+            } else if (strcmp(a, "--size") == 0) {
+                if (!parse_size(a, v, &doc.size_w, &doc.size_h)) {
+                    return EXIT_USAGE;
+                }
+            } else if (strcmp(a, "--scale") == 0) {
+                float s;
+                if (!parse_float(a, v, 0.001f, 1000.0f, &s)) {
+                    return EXIT_USAGE;
+                }
+                doc.scale = s;
+            } else {
+                sr_vec3 c;
+                if (!parse_color(a, v, &c)) {
+                    return EXIT_USAGE;
+                }
+                doc.background = (sr_rgba){ c.x, c.y, c.z, 1 };
+            }
+        } else if (a[0] == '-' && a[1]) {
+            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", a);
+            return EXIT_USAGE;
+        } else if (!input) {
+            input = a;
+        } else {
+            cli_error("svg: more than one input ('%s' and '%s')", input, a);
+            return EXIT_USAGE;
+        }
+    }
+    if (!input) {
+        svg_help(stderr);
+        return EXIT_USAGE;
+    }
+    if (doc.size_w && doc.scale > 0) {
+        cli_error("svg: --size and --scale exclude each other");
+        return EXIT_USAGE;
+    }
+    char default_out[4096];
+    if (!output) {
+        size_t n = strlen(input);
+        if (n > 4 && strcmp(input + n - 4, ".svg") == 0) {
+            n -= 4;
+        }
+        snprintf(default_out, sizeof default_out, "%.*s.png", (int)n, input);
+        output = default_out;
+    }
+    FILE *fp = fopen(input, "rb");
+    if (!fp) {
+        cli_error("svg: cannot open %s: %s", input, strerror(errno));
+        return EXIT_USAGE;
+    }
+    if (sr_make_context(&(sr_context_desc){0}, &doc.ctx) != SR_OK) {
+        fclose(fp);
+        cli_error("svg: cannot create a context");
+        return EXIT_FAILURE_RUN;
+    }
+    doc.file = input;
+    doc.parser = XML_ParserCreate(NULL);
+    if (!doc.parser) {
+        fclose(fp);
+        sr_destroy_context(doc.ctx);
+        cli_error("svg: out of memory");
+        return EXIT_FAILURE_RUN;
+    }
+    /* Initial style (SVG defaults): fill black, no stroke, width 1. */
+    doc.stack[0] = (frame){ IDENTITY,
+                            { true, false, { 0, 0, 0, 1 }, { 0, 0, 0, 1 }, 1, 1, 1, SR_NONZERO, 1,
+                              SR_STROKE_JOIN_MITER, SR_STROKE_CAP_BUTT, 4, false, false, false } };
+    XML_SetUserData(doc.parser, &doc);
+    XML_SetElementHandler(doc.parser, on_start, on_end);
+    char buf[65536];
+    for (;;) {
+        size_t n = fread(buf, 1, sizeof buf, fp);
+        bool last = n < sizeof buf;
+        if (ferror(fp)) {
+            cli_error("svg: reading %s: %s", input, strerror(errno));
+            doc.status = EXIT_USAGE;
+            break;
+        }
+        if (XML_Parse(doc.parser, buf, (int)n, last) == XML_STATUS_ERROR) {
+            if (doc.status == EXIT_OK) {
+                fprintf(stderr, "%s:%lu: %s\n", input,
+                        (unsigned long)XML_GetCurrentLineNumber(doc.parser),
+                        XML_ErrorString(XML_GetErrorCode(doc.parser)));
+                doc.status = EXIT_USAGE;
+            }
+            break;
+        }
+        if (last || doc.status != EXIT_OK) {
+            break;
+        }
+    }
+    fclose(fp);
+    if (doc.status == EXIT_OK && !doc.fb) {
+        fprintf(stderr, "%s:1: no <svg> element\n", input);
+        doc.status = EXIT_USAGE;
+    }
+    if (doc.status == EXIT_OK) {
+        sr_io_error err;
+        int w = sr_framebuffer_width(doc.fb), h = sr_framebuffer_height(doc.fb);
+        if (sr_write_png(output, w, h, sr_framebuffer_pixels(doc.fb), (size_t)w * 4,
+                         &(sr_png_write_desc){ .no_alpha = doc.background.a >= 1 }, &err) != SR_OK) {
+            fprintf(stderr, "%s\n", err.message);
+            doc.status = EXIT_FAILURE_RUN;
+        }
+    }
+    for (int i = 0; i < doc.n_warned; i++) {
+        free(doc.warned[i]);
+    }
+    XML_ParserFree(doc.parser);
+    sr_destroy_framebuffer(doc.ctx, doc.fb);
+    sr_destroy_context(doc.ctx);
+    return doc.status;
+}
+
+#endif /* SR_HAVE_EXPAT */

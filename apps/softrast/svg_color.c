@@ -1,0 +1,164 @@
+/* svg_color.c - `softrast svg`: SVG 1.1 colors (section 4.4): the 147
+ * recognized color keywords, #rgb, #rrggbb and rgb() with integers or
+ * percentages.  Pure parsing; used by svg.c. */
+#include "svg.h"
+
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+typedef struct named_color { const char *name; unsigned rgb; } named_color;
+
+/* Sorted by name for bsearch. */
+static const named_color svg_named[] = {
+    { "aliceblue", 0xf0f8ff }, { "antiquewhite", 0xfaebd7 }, { "aqua", 0x00ffff },
+    { "aquamarine", 0x7fffd4 }, { "azure", 0xf0ffff }, { "beige", 0xf5f5dc },
+    { "bisque", 0xffe4c4 }, { "black", 0x000000 }, { "blanchedalmond", 0xffebcd },
+    { "blue", 0x0000ff }, { "blueviolet", 0x8a2be2 }, { "brown", 0xa52a2a },
+    { "burlywood", 0xdeb887 }, { "cadetblue", 0x5f9ea0 }, { "chartreuse", 0x7fff00 },
+    { "chocolate", 0xd2691e }, { "coral", 0xff7f50 }, { "cornflowerblue", 0x6495ed },
+    { "cornsilk", 0xfff8dc }, { "crimson", 0xdc143c }, { "cyan", 0x00ffff },
+    { "darkblue", 0x00008b }, { "darkcyan", 0x008b8b }, { "darkgoldenrod", 0xb8860b },
+    { "darkgray", 0xa9a9a9 }, { "darkgreen", 0x006400 }, { "darkgrey", 0xa9a9a9 },
+    { "darkkhaki", 0xbdb76b }, { "darkmagenta", 0x8b008b }, { "darkolivegreen", 0x556b2f },
+    { "darkorange", 0xff8c00 }, { "darkorchid", 0x9932cc }, { "darkred", 0x8b0000 },
+    { "darksalmon", 0xe9967a }, { "darkseagreen", 0x8fbc8f }, { "darkslateblue", 0x483d8b },
+    { "darkslategray", 0x2f4f4f }, { "darkslategrey", 0x2f4f4f }, { "darkturquoise", 0x00ced1 },
+    { "darkviolet", 0x9400d3 }, { "deeppink", 0xff1493 }, { "deepskyblue", 0x00bfff },
+    { "dimgray", 0x696969 }, { "dimgrey", 0x696969 }, { "dodgerblue", 0x1e90ff },
+    { "firebrick", 0xb22222 }, { "floralwhite", 0xfffaf0 }, { "forestgreen", 0x228b22 },
+    { "fuchsia", 0xff00ff }, { "gainsboro", 0xdcdcdc }, { "ghostwhite", 0xf8f8ff },
+    { "gold", 0xffd700 }, { "goldenrod", 0xdaa520 }, { "gray", 0x808080 },
+    { "green", 0x008000 }, { "greenyellow", 0xadff2f }, { "grey", 0x808080 },
+    { "honeydew", 0xf0fff0 }, { "hotpink", 0xff69b4 }, { "indianred", 0xcd5c5c },
+    { "indigo", 0x4b0082 }, { "ivory", 0xfffff0 }, { "khaki", 0xf0e68c },
+    { "lavender", 0xe6e6fa }, { "lavenderblush", 0xfff0f5 }, { "lawngreen", 0x7cfc00 },
+    { "lemonchiffon", 0xfffacd }, { "lightblue", 0xadd8e6 }, { "lightcoral", 0xf08080 },
+    { "lightcyan", 0xe0ffff }, { "lightgoldenrodyellow", 0xfafad2 }, { "lightgray", 0xd3d3d3 },
+    { "lightgreen", 0x90ee90 }, { "lightgrey", 0xd3d3d3 }, { "lightpink", 0xffb6c1 },
+    { "lightsalmon", 0xffa07a }, { "lightseagreen", 0x20b2aa }, { "lightskyblue", 0x87cefa },
+    { "lightslategray", 0x778899 }, { "lightslategrey", 0x778899 }, { "lightsteelblue", 0xb0c4de },
+    { "lightyellow", 0xffffe0 }, { "lime", 0x00ff00 }, { "limegreen", 0x32cd32 },
+    { "linen", 0xfaf0e6 }, { "magenta", 0xff00ff }, { "maroon", 0x800000 },
+    { "mediumaquamarine", 0x66cdaa }, { "mediumblue", 0x0000cd }, { "mediumorchid", 0xba55d3 },
+    { "mediumpurple", 0x9370db }, { "mediumseagreen", 0x3cb371 }, { "mediumslateblue", 0x7b68ee },
+    { "mediumspringgreen", 0x00fa9a }, { "mediumturquoise", 0x48d1cc }, { "mediumvioletred", 0xc71585 },
+    { "midnightblue", 0x191970 }, { "mintcream", 0xf5fffa }, { "mistyrose", 0xffe4e1 },
+    { "moccasin", 0xffe4b5 }, { "navajowhite", 0xffdead }, { "navy", 0x000080 },
+    { "oldlace", 0xfdf5e6 }, { "olive", 0x808000 }, { "olivedrab", 0x6b8e23 },
+    { "orange", 0xffa500 }, { "orangered", 0xff4500 }, { "orchid", 0xda70d6 },
+    { "palegoldenrod", 0xeee8aa }, { "palegreen", 0x98fb98 }, { "paleturquoise", 0xafeeee },
+    { "palevioletred", 0xdb7093 }, { "papayawhip", 0xffefd5 }, { "peachpuff", 0xffdab9 },
+    { "peru", 0xcd853f }, { "pink", 0xffc0cb }, { "plum", 0xdda0dd },
+    { "powderblue", 0xb0e0e6 }, { "purple", 0x800080 }, { "red", 0xff0000 },
+    { "rosybrown", 0xbc8f8f }, { "royalblue", 0x4169e1 }, { "saddlebrown", 0x8b4513 },
+    { "salmon", 0xfa8072 }, { "sandybrown", 0xf4a460 }, { "seagreen", 0x2e8b57 },
+    { "seashell", 0xfff5ee }, { "sienna", 0xa0522d }, { "silver", 0xc0c0c0 },
+    { "skyblue", 0x87ceeb }, { "slateblue", 0x6a5acd }, { "slategray", 0x708090 },
+    { "slategrey", 0x708090 }, { "snow", 0xfffafa }, { "springgreen", 0x00ff7f },
+    { "steelblue", 0x4682b4 }, { "tan", 0xd2b48c }, { "teal", 0x008080 },
+    { "thistle", 0xd8bfd8 }, { "tomato", 0xff6347 }, { "turquoise", 0x40e0d0 },
+    { "violet", 0xee82ee }, { "wheat", 0xf5deb3 }, { "white", 0xffffff },
+    { "whitesmoke", 0xf5f5f5 }, { "yellow", 0xffff00 }, { "yellowgreen", 0x9acd32 },
+};
+
+static int cmp_name(const void *key, const void *elem)
+{
+    return strcasecmp((const char *)key, ((const named_color *)elem)->name);
+}
+
+static sr_rgba rgb24(unsigned v)
+{
+    return (sr_rgba){ ((v >> 16) & 255) / 255.0f, ((v >> 8) & 255) / 255.0f, (v & 255) / 255.0f,
+                      1.0f };
+}
+
+/* One rgb() component: an integer 0..255 or a percentage, clamped. */
+static bool rgb_component(const char **s, float *out)
+{
+    while (isspace((unsigned char)**s)) {
+        (*s)++;
+    }
+    char *end;
+    double v = strtod(*s, &end);
+    if (end == *s) {
+        return false;
+    }
+    *s = end;
+    if (**s == '%') {
+        (*s)++;
+        v = v * 255.0 / 100.0;
+    }
+    v = v < 0 ? 0 : v > 255 ? 255 : v;
+    *out = (float)(v / 255.0);
+    while (isspace((unsigned char)**s)) {
+        (*s)++;
+    }
+    return true;
+}
+
+svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
+{
+    while (isspace((unsigned char)*s)) {
+        s++;
+    }
+    size_t n = strlen(s);
+    while (n > 0 && isspace((unsigned char)s[n - 1])) {
+        n--;
+    }
+    char buf[64];
+    if (n == 0 || n >= sizeof buf) {
+        return SVG_PAINT_INVALID;
+    }
+    memcpy(buf, s, n);
+    buf[n] = 0;
+    if (strcasecmp(buf, "none") == 0) {
+        return SVG_PAINT_NONE;
+    }
+    if (buf[0] == '#') {
+        for (size_t i = 1; i < n; i++) {
+            if (!isxdigit((unsigned char)buf[i])) {
+                return SVG_PAINT_INVALID;
+            }
+        }
+        unsigned v = (unsigned)strtoul(buf + 1, NULL, 16);
+        if (n == 4) {
+            unsigned r = (v >> 8) & 15, g = (v >> 4) & 15, b = v & 15;
+            *out = rgb24((r * 17) << 16 | (g * 17) << 8 | (b * 17));
+            return SVG_PAINT_COLOR;
+        }
+        if (n == 7) {
+            *out = rgb24(v);
+            return SVG_PAINT_COLOR;
+        }
+        return SVG_PAINT_INVALID;
+    }
+    if (strncasecmp(buf, "rgb(", 4) == 0) {
+        const char *p = buf + 4;
+        float c[3];
+        for (int i = 0; i < 3; i++) {
+            if (!rgb_component(&p, &c[i])) {
+                return SVG_PAINT_INVALID;
+            }
+            if (i < 2 && *p++ != ',') {
+                return SVG_PAINT_INVALID;
+            }
+        }
+        if (*p != ')' || p[1] != 0) {
+            return SVG_PAINT_INVALID;
+        }
+        *out = (sr_rgba){ c[0], c[1], c[2], 1.0f };
+        return SVG_PAINT_COLOR;
+    }
+    if (strncasecmp(buf, "url(", 4) == 0 || strcasecmp(buf, "currentColor") == 0) {
+        return SVG_PAINT_UNSUPPORTED;
+    }
+    const named_color *nc = bsearch(buf, svg_named, sizeof svg_named / sizeof svg_named[0],
+                                    sizeof svg_named[0], cmp_name);
+    if (!nc) {
+        return SVG_PAINT_INVALID;
+    }
+    *out = rgb24(nc->rgb);
+    return SVG_PAINT_COLOR;
+}
