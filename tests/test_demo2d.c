@@ -9,40 +9,15 @@
 #include "softrast_io.h"
 #include "sr_test.h"
 
-#include <spawn.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
-
-extern char **environ;
-
-/* Run the CLI with args (NULL-terminated, after "softrast"); exit status. */
-static int run_cli(const char *const *args)
-{
-    const char *argv[32];
-    int n = 0;
-    argv[n++] = SR_CLI_PATH;
-    for (int i = 0; args[i] && n < 31; i++) {
-        argv[n++] = args[i];
-    }
-    argv[n] = NULL;
-    pid_t pid;
-    if (posix_spawn(&pid, SR_CLI_PATH, NULL, NULL, (char *const *)argv, environ) != 0) {
-        return -1;
-    }
-    int status;
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status)) {
-        return -1;
-    }
-    return WEXITSTATUS(status);
-}
 
 static void check_demo(const char *demo)
 {
     char out[1024], name[64];
     snprintf(name, sizeof name, "demo_%s", demo);
     snprintf(out, sizeof out, "%s/%s.png", sr_test_out_dir(), name);
-    int status = run_cli((const char *[]){ "demo", demo, "--scale", "4", "-o", out, NULL });
+    int status = sr_test_run_cli((const char *[]){ "demo", demo, "--scale", "4", "-o", out, NULL });
     CHECK_EQ(status, 0);
     if (status != 0) {
         return;

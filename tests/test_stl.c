@@ -7,41 +7,13 @@
 #include "io/readers.h"
 #include "softrast_io.h"
 #include "sr_test.h"
+#include "wbuf.h"
 
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct wbuf {
-    uint8_t *p;
-    size_t n, cap;
-} wbuf;
-
-static void wb_put(wbuf *b, const void *data, size_t n)
-{
-    if (b->n + n > b->cap) {
-        size_t cap = b->cap ? b->cap : 256;
-        while (cap < b->n + n) {
-            cap *= 2;
-        }
-        b->p = realloc(b->p, cap);
-        b->cap = cap;
-    }
-    memcpy(b->p + b->n, data, n);
-    b->n += n;
-}
-
-__attribute__((format(printf, 2, 3)))
-static void wb_printf(wbuf *b, const char *fmt, ...)
-{
-    char tmp[512];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    wb_put(b, tmp, (size_t)n);
-}
 
 static void wb_u32(wbuf *b, uint32_t v)
 {

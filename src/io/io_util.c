@@ -49,6 +49,23 @@ sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
     return code;
 }
 
+sr_result sr__load_file_with(const char *path, sr_parse_fn parse, sr_mesh *out,
+                             sr_io_error *err)
+{
+    if (out) {
+        memset(out, 0, sizeof *out);
+    }
+    char *data;
+    size_t size;
+    sr_result res = sr__read_file(path, &data, &size, err);
+    if (res != SR_OK) {
+        return res;
+    }
+    res = parse(path, (const uint8_t *)data, size, out, err);
+    free(data);
+    return res;
+}
+
 sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err)
 {
     *data = NULL;

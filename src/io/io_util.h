@@ -23,6 +23,13 @@ sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
  * malloc'd with one extra NUL byte after `*size` bytes. */
 sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err);
 
+/* Read a whole file and hand it to a parser (the readers' sr__load_*):
+ * *out is zeroed first and the buffer freed after. */
+typedef sr_result (*sr_parse_fn)(const char *name, const uint8_t *data, size_t size,
+                                 sr_mesh *out, sr_io_error *err);
+sr_result sr__load_file_with(const char *path, sr_parse_fn parse, sr_mesh *out,
+                             sr_io_error *err);
+
 /* Overflow-checked size arithmetic for allocations sized by input. */
 static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)
 {

@@ -559,16 +559,5 @@ sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
 
 sr_result sr__load_stl(const char *path, sr_mesh *out, sr_io_error *err)
 {
-    if (out) {
-        memset(out, 0, sizeof *out);
-    }
-    char *data;
-    size_t size;
-    sr_result res = sr__read_file(path, &data, &size, err);
-    if (res != SR_OK) {
-        return res;
-    }
-    res = sr_parse_stl(path, (const uint8_t *)data, size, out, err);
-    free(data);
-    return res;
+    return sr__load_file_with(path, sr_parse_stl, out, err);
 }

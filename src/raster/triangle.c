@@ -10,6 +10,7 @@
  * fragment stage and are the reference these instances are tested
  * against. */
 #include "fragment/fragment.h"
+#include "raster/block.h"
 
 SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
                          int ry1, sr_frag_stats *st, sr_shading shading, sr_depth_mode dmode)
@@ -22,24 +23,13 @@ SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int 
     }
     int bx_start = rx0 & ~(SR_BLOCK_SIZE - 1);
     int by_start = ry0 & ~(SR_BLOCK_SIZE - 1);
-    const int last = SR_BLOCK_SIZE - 1;
 
     for (int by = by_start; by < ry1; by += SR_BLOCK_SIZE) {
         for (int bx = bx_start; bx < rx1; bx += SR_BLOCK_SIZE) {
             /* Edge values (biased) at the block's first pixel centre. */
             int64_t e[3];
-            bool outside = false, inside = true;
-            for (int i = 0; i < 3; i++) {
-                e[i] = t->a[i] * sr__centre_q8(bx) + t->b[i] * sr__centre_q8(by) + t->c[i] +
-                       t->bias[i];
-                /* E is linear: its extremes over the block are at corners. */
-                int64_t ex = sx[i] * last, ey = sy[i] * last;
-                int64_t lo = e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0);
-                int64_t hi = e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0);
-                outside |= hi < 0;
-                inside &= lo >= 0;
-            }
-            if (outside) {
+            bool inside;
+            if (!sr__block_classify(t, bx, by, sx, sy, e, &inside)) {
                 continue;
             }
             int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;

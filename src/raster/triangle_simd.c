@@ -4,6 +4,7 @@
 #include "raster/triangle_simd.h"
 
 #include "fragment/fragment.h"
+#include "raster/block.h"
 
 #include <stdlib.h>
 #include <string.h>
