@@ -1,11 +1,21 @@
-/* pool.c - a fixed set of worker threads that sleep on a condition variable
- * between batches of tile jobs (parallel stage).  The calling thread works
- * too, so `threads` counts it. */
+/* pool.c - a fixed set of worker threads for the front-end chunks and the
+ * tile jobs (parallel stage).  The calling thread works too, so `threads`
+ * counts it.
+ *
+ * A draw hands the pool several short batches in a row (vertex stage, then
+ * front end and tiles per batch of primitives), each lasting about a
+ * millisecond.  Waking a sleeping thread through a condition variable can
+ * take a good part of that on a virtual machine, so a worker that finished
+ * a batch first spins briefly, watching the batch counter, and only then
+ * sleeps; the caller likewise spins before sleeping on the batch's end. */
 #include "parallel/pool.h"
 #include "context.h"
 
 #include <pthread.h>
 #include <stdatomic.h>
+
+/* About 50-100 microseconds of polling before falling back to sleep. */
+#define SR_POOL_SPIN 20000
 
 struct sr_pool {
     int threads;
@@ -13,20 +23,27 @@ struct sr_pool {
     int started;
     pthread_mutex_t lock;
     pthread_cond_t wake, done;
-    uint64_t generation;    /* bumped per batch; workers wait for a change */
-    bool quit;
+    atomic_uint_fast64_t generation; /* bumped per batch; workers wait for a change */
+    atomic_bool quit;
     /* The current batch. */
     sr_pool_fn fn;
     void *arg;
     int count;
     atomic_int next;
-    int busy;               /* workers still inside the batch */
+    atomic_int busy;                 /* workers still inside the batch */
 };
 
 typedef struct worker_arg {
     sr_pool *pool;
     int index;
 } worker_arg;
+
+static void cpu_relax(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
 
 static void run_jobs(sr_pool *p, int thread)
 {
@@ -43,24 +60,33 @@ static void *worker_main(void *arg)
 {
     sr_pool *p = ((worker_arg *)arg)->pool;
     int index = ((worker_arg *)arg)->index;
-    uint64_t seen = 0;
-    pthread_mutex_lock(&p->lock);
+    uint_fast64_t seen = 0;
     for (;;) {
-        while (!p->quit && p->generation == seen) {
+        for (int i = 0; i < SR_POOL_SPIN && atomic_load(&p->generation) == seen &&
+                        !atomic_load(&p->quit); i++) {
+            cpu_relax();
+        }
+        pthread_mutex_lock(&p->lock);
+        while (!atomic_load(&p->quit) && atomic_load(&p->generation) == seen) {
             pthread_cond_wait(&p->wake, &p->lock);
         }
-        if (p->quit) {
+        if (atomic_load(&p->quit)) {
+            pthread_mutex_unlock(&p->lock);
             break;
         }
-        seen = p->generation;
+        seen = atomic_load(&p->generation);
         pthread_mutex_unlock(&p->lock);
+
         run_jobs(p, index);
-        pthread_mutex_lock(&p->lock);
-        if (--p->busy == 0) {
+
+        /* The last worker out tells the caller, under the lock so the
+         * wake-up cannot slip between its check and its wait. */
+        if (atomic_fetch_sub(&p->busy, 1) == 1) {
+            pthread_mutex_lock(&p->lock);
             pthread_cond_signal(&p->done);
+            pthread_mutex_unlock(&p->lock);
         }
     }
-    pthread_mutex_unlock(&p->lock);
     return NULL;
 }
 
@@ -79,7 +105,10 @@ sr_result sr__pool_create(sr_context *ctx, int threads, sr_pool **out)
     pthread_mutex_init(&p->lock, NULL);
     pthread_cond_init(&p->wake, NULL);
     pthread_cond_init(&p->done, NULL);
+    atomic_init(&p->generation, 0);
+    atomic_init(&p->quit, false);
     atomic_init(&p->next, 0);
+    atomic_init(&p->busy, 0);
     for (int i = 1; i < threads; i++) {
         args[i] = (worker_arg){ p, i };
         if (pthread_create(&p->workers[i], NULL, worker_main, &args[i]) != 0) {
@@ -98,7 +127,7 @@ void sr__pool_destroy(sr_context *ctx, sr_pool *p)
         return;
     }
     pthread_mutex_lock(&p->lock);
-    p->quit = true;
+    atomic_store(&p->quit, true);
     pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->lock);
     for (int i = 1; i <= p->started; i++) {
@@ -126,15 +155,18 @@ void sr__pool_run(sr_pool *p, sr_pool_fn fn, void *arg, int count)
     p->arg = arg;
     p->count = count;
     atomic_store(&p->next, 0);
-    p->busy = p->started;
-    p->generation++;
+    atomic_store(&p->busy, p->started);
+    atomic_fetch_add(&p->generation, 1);
     pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->lock);
 
     run_jobs(p, 0);
 
+    for (int i = 0; i < SR_POOL_SPIN && atomic_load(&p->busy) > 0; i++) {
+        cpu_relax();
+    }
     pthread_mutex_lock(&p->lock);
-    while (p->busy > 0) {
+    while (atomic_load(&p->busy) > 0) {
         pthread_cond_wait(&p->done, &p->lock);
     }
     pthread_mutex_unlock(&p->lock);
