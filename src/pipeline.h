@@ -248,7 +248,13 @@ bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr
 void sr__project(const sr_draw_state *ds, const float pos[4], int32_t *x_q8, int32_t *y_q8,
                  double *z, float *inv_w);
 void sr__window_vertex(const sr_draw_state *ds, const sr_clip_vertex *v, sr_window_vertex *out);
-int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1, const sr_window_vertex *v2);
+/* Twice the signed area of the snapped triangle, E_01(v2), exact. */
+static inline int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1,
+                                const sr_window_vertex *v2)
+{
+    return (int64_t)(v1->x_q8 - v0->x_q8) * (v2->y_q8 - v0->y_q8) -
+           (int64_t)(v1->y_q8 - v0->y_q8) * (v2->x_q8 - v0->x_q8);
+}
 /* Returns true when the triangle produced samples-to-be (not culled, not
  * zero area, bbox non-empty).  `front` is the facing to use. */
 bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *v0,

@@ -39,6 +39,19 @@ static inline int64_t sr__ceil_div(int64_t a, int64_t b)
     return (a % b != 0 && a > 0) ? q + 1 : q;
 }
 
+/* floor(a / 256) and ceil(a / 256): arithmetic shifts, which GCC and
+ * Clang define for negative values (rounding toward minus infinity), in
+ * place of two 64-bit divisions per bound in triangle setup. */
+static inline int64_t sr__floor_q8(int64_t a)
+{
+    return a >> SR_SUBPIXEL_BITS;
+}
+
+static inline int64_t sr__ceil_q8(int64_t a)
+{
+    return -((-a) >> SR_SUBPIXEL_BITS);
+}
+
 /* floor(n / d) kept incrementally while n grows by a constant dn per step:
  * the quotient-and-remainder DDA (a Bresenham-style update) that scan-line
  * edge walking and line rasterization use to step an exact rational

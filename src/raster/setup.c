@@ -44,11 +44,6 @@ void sr__window_vertex(const sr_draw_state *ds, const sr_clip_vertex *v, sr_wind
     out->vary = v->vary;
 }
 
-int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1, const sr_window_vertex *v2)
-{
-    return (int64_t)(v1->x_q8 - v0->x_q8) * (v2->y_q8 - v0->y_q8) -
-           (int64_t)(v1->y_q8 - v0->y_q8) * (v2->x_q8 - v0->x_q8);
-}
 
 /* y points down.  With area2 > 0 the interior has E > 0.  A top edge is
  * horizontal and runs toward +x; a left edge runs upward (dy < 0).  Samples
@@ -121,10 +116,10 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
         maxy = t->y[i] > maxy ? t->y[i] : maxy;
     }
     /* Pixels whose centre 256 p + 128 lies in [min, max]. */
-    int x0 = (int)sr__ceil_div((int64_t)minx - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE);
-    int x1 = (int)sr__floor_div((int64_t)maxx - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE) + 1;
-    int y0 = (int)sr__ceil_div((int64_t)miny - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE);
-    int y1 = (int)sr__floor_div((int64_t)maxy - SR_SUBPIXEL_HALF, SR_SUBPIXEL_ONE) + 1;
+    int x0 = (int)sr__ceil_q8((int64_t)minx - SR_SUBPIXEL_HALF);
+    int x1 = (int)sr__floor_q8((int64_t)maxx - SR_SUBPIXEL_HALF) + 1;
+    int y0 = (int)sr__ceil_q8((int64_t)miny - SR_SUBPIXEL_HALF);
+    int y1 = (int)sr__floor_q8((int64_t)maxy - SR_SUBPIXEL_HALF) + 1;
     t->h.kind = SR_KIND_TRIANGLE;
     t->h.x0 = x0 > ds->rect_x0 ? x0 : ds->rect_x0;
     t->h.y0 = y0 > ds->rect_y0 ? y0 : ds->rect_y0;
@@ -157,8 +152,9 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
      * a few ulps; a margin of 1e-9 of the scale is far larger. */
     double zlo = fmin(z[0], fmin(z[1], z[2])) + offset, zhi = fmax(z[0], fmax(z[1], z[2])) + offset;
     t->z_inside = zlo * scale > ds->zq_min + 1e-9 * scale && zhi * scale < ds->zq_max - 1e-9 * scale;
-    t->dz1 = (z[1] - z[0]) * scale / (double)area2;
-    t->dz2 = (z[2] - z[0]) * scale / (double)area2;
+    double per_area = scale / (double)area2;
+    t->dz1 = (z[1] - z[0]) * per_area;
+    t->dz2 = (z[2] - z[0]) * per_area;
 
     for (int i = 0; i < 3; i++) {
         t->w[i] = ds->perspective ? v[i]->inv_w : 1.0f;
