@@ -38,20 +38,31 @@
  *  - Matrices are column-major float[16] (OpenGL layout): m[col*4 + row].
  *  - Clip space follows OpenGL (z_ndc in [-1, 1]) unless
  *    sr_state.depth_zero_to_one is set.
+ *  - Triangles that look counter-clockwise on screen are front-facing by
+ *    default (sr_state.front_face).
  *
  * Errors: every function that can fail returns an sr_result.  SR_OK is 0.
  * Invalid arguments give SR_INVALID_ARG and a message naming the field,
  * available from sr_context_error(ctx) until the next call on that context.
  * Nothing is drawn by a call that fails validation.
  *
- * Memory: every allocation goes through sr_context_desc.allocator (malloc
- * and free when left zero).  Scratch memory for drawing is kept across draw
- * calls and freed with the context.
+ * Memory: every allocation goes through sr_context_desc.allocator.  Left
+ * zero, blocks under 1 MiB come from malloc and larger ones are mapped with
+ * their pages populated up front (cheaper than faulting them in one by
+ * one).  A custom allocator is also called from the context's worker
+ * threads, so it must be thread-safe.  Scratch memory for drawing is kept
+ * across draw calls and freed with the context.
  *
  * Threads: a context and the framebuffers drawn with it are used by one
- * thread at a time.  Internally the back end works on 64x64 screen tiles;
- * sr_context_desc.threads sets how many threads rasterize them.  The output
- * is the same bytes for any thread count.
+ * thread at a time.  Internally the front end works on chunks of
+ * primitives and the back end on 64x64 screen tiles; sr_context_desc.threads
+ * sets how many threads share that work.  The output is the same bytes for
+ * any thread count, and for any of the three triangle rasterizers.
+ *
+ * Clears are deferred: sr_clear marks tiles; a tile is cleared when it is
+ * next drawn or read (sr_framebuffer_pixels, sr_read_pixels, sr_read_depth
+ * carry out what is pending), so a pointer from sr_framebuffer_pixels is
+ * valid until the next draw or clear.
  */
 #ifndef SOFTRAST_H
 #define SOFTRAST_H
@@ -208,7 +219,8 @@ void      sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb);
 int             sr_framebuffer_width(const sr_framebuffer *fb);
 int             sr_framebuffer_height(const sr_framebuffer *fb);
 sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb);
-/* RGBA8, row-major, row 0 at the top, stride = 4 * width bytes. */
+/* RGBA8, row-major, row 0 at the top, stride = 4 * width bytes.  Carries
+ * out pending clears first; valid until the next draw or clear. */
 const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
 
 typedef struct sr_clear_desc {
