@@ -356,6 +356,13 @@ typedef struct sr_state {
     float line_width;              /* whole pixels, 1..64; 0 -> 1 (runs across the minor axis) */
     float point_size;              /* pixels, > 0 and <= 1024; 0 -> 1 (a square) */
     bool round_points;             /* discs of diameter point_size instead of squares */
+    /* Antialiased lines and points: each pixel near the primitive gets its
+     * coverage (from its centre's distance to the segment or the point,
+     * a one-pixel ramp) as alpha and is blended source-over; depth is
+     * tested as usual and written only where coverage is full.  Smooth
+     * lines have round ends and any width (line_width, not rounded). */
+    bool smooth_lines;
+    bool smooth_points;
 
     bool no_depth_test;            /* depth test is on by default when there is a depth buffer */
     bool no_depth_write;

@@ -240,6 +240,9 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->line_width = ds->line_width < 1 ? 1 : ds->line_width;
     ds->point_size = st->point_size == 0.0f ? 1.0 : st->point_size;
     ds->round_points = st->round_points;
+    ds->smooth_lines = st->smooth_lines;
+    ds->smooth_points = st->smooth_points;
+    ds->smooth_width = st->line_width == 0.0f ? 1.0 : st->line_width;
     ds->offset_factor = st->offset.factor;
     ds->offset_units = st->offset.units;
     ds->offset_clamp = st->offset.clamp;

@@ -66,6 +66,8 @@ typedef struct sr_draw_state {
     int line_width;
     double point_size;
     bool round_points;
+    bool smooth_lines, smooth_points;
+    double smooth_width;              /* line_width as given, for smooth lines */
     bool offset_line, offset_point;
     bool offset_on;
     double offset_factor, offset_units, offset_clamp;
@@ -181,6 +183,8 @@ typedef struct sr_line {
     sr_prim_head h;
     int32_t xa, ya, xb, yb;           /* q8 endpoints */
     int32_t width;                    /* whole pixels across the minor axis */
+    bool smooth;                      /* antialiased: coverage blended, see smooth_lines */
+    float half_width;                 /* smooth: half the width, pixels */
     bool front;
     int32_t ninterp;
     double za, zb;                    /* buffer units, offset folded in */
@@ -195,6 +199,7 @@ typedef struct sr_point {
     sr_prim_head h;
     int32_t cx, cy;                   /* centre, q8 */
     int64_t radius2;                  /* round points: squared radius in q8^2, else 0 */
+    float smooth_radius;              /* smooth points: radius in pixels, else 0 */
     double z;
     bool front;
     int32_t ninterp;

@@ -726,7 +726,8 @@ static const char *const value_options[] = {
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
-                                             "--wireframe", "--hidden-line", "--edges", "--points" };
+                                             "--wireframe", "--hidden-line", "--edges", "--points",
+                                             "--smooth" };
 
 SR_TEST(render_help_lists_every_option)
 {

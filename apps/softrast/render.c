@@ -49,6 +49,7 @@ typedef struct render_opts {
     float line_width, point_size;
     sr_vec3 line_color;
     bool have_line_color;
+    bool smooth;
 } render_opts;
 
 /* What the line modes draw besides (or instead of) the shaded model. */
@@ -122,6 +123,7 @@ static void render_help(void)
         "  --line-width N           1..64 pixels (default 1)\n"
         "  --point-size N           1..64 pixels (default 3)\n"
         "  --line-color COLOR       (default #e8ecf4, or #202020 on a light background)\n"
+        "  --smooth                 antialiased lines and round antialiased points\n"
         "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
         "                           all three give the same pixels)\n"
         "  --threads N              rasterizer threads (default: SR_THREADS or CPUs)\n"
@@ -283,6 +285,12 @@ static int parse_args(int argc, char **argv, render_opts *o)
             }
             o->lines = IS("--wireframe") ? LINES_WIREFRAME : IS("--hidden-line") ? LINES_HIDDEN
                      : IS("--edges") ? LINES_EDGES : LINES_POINTS;
+        } else if (IS("--smooth")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->smooth = true;
         } else if (IS("--line-width") || IS("--point-size")) {
             VALUE();
             if (!parse_float(arg, value, 1.0f, 64.0f,
@@ -537,6 +545,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     lines.material = ink_material;
     lines.line_width = o->line_width;
     lines.point_size = o->point_size;
+    lines.smooth_lines = lines.smooth_points = o->smooth;
     sr_polygon_mode mode = o->lines == LINES_POINTS ? SR_POLYGON_POINT : SR_POLYGON_LINE;
     lines.polygon_mode_front = lines.polygon_mode_back = mode;
     if (o->lines == LINES_WIREFRAME) {

@@ -171,10 +171,13 @@ SR_INLINE void sr__fragment_as(const sr_draw_state *ds, const sr_tri *t, int px,
 
 /* A line or point sample: depth already interpolated (buffer units, before
  * the clamp), varyings already interpolated.  Same depth rules as
- * triangles. */
+ * triangles.  coverage < 1 (antialiased lines and points) blends the color
+ * source-over with alpha = coverage x the color's alpha, and leaves depth
+ * unwritten so the pixel stays open to what lies behind its uncovered
+ * part. */
 static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, double z,
                                      const float *v, const float flat[4], bool front,
-                                     sr_frag_stats *st)
+                                     float coverage, sr_frag_stats *st)
 {
     sr_framebuffer *fb = ds->fb;
     size_t idx = (size_t)py * (size_t)fb->width + (size_t)px;
@@ -191,13 +194,26 @@ static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, do
         if (ds->depth_test && !sr__depth_pass(ds->depth_func, q, fb->depth[idx])) {
             return;
         }
-        if (ds->depth_write) {
+        if (ds->depth_write && coverage >= 1.0f) {
             fb->depth[idx] = q;
         }
     }
     float c[4];
     sr__shade_vary(ds, v, flat, front, z, c, ds->shading);
-    uint8_t rgba[4] = { sr__unorm8(c[0]), sr__unorm8(c[1]), sr__unorm8(c[2]), sr__unorm8(c[3]) };
+    uint8_t rgba[4];
+    if (coverage < 1.0f) {
+        uint8_t dst[4];
+        memcpy(dst, &fb->color[idx], sizeof dst);
+        float a = coverage * (c[3] > 0.0f ? (c[3] < 1.0f ? c[3] : 1.0f) : 0.0f);
+        for (int k = 0; k < 3; k++) {
+            rgba[k] = sr__unorm8(c[k] * a + dst[k] / 255.0f * (1.0f - a));
+        }
+        rgba[3] = sr__unorm8(a + dst[3] / 255.0f * (1.0f - a));
+    } else {
+        for (int k = 0; k < 4; k++) {
+            rgba[k] = sr__unorm8(c[k]);
+        }
+    }
     memcpy(&fb->color[idx], rgba, sizeof rgba);
     st->fragments++;
 }

@@ -39,9 +39,12 @@ bool sr__setup_line(const sr_draw_state *ds, const sr_window_vertex *a, const sr
     l->xb = b->x_q8;
     l->yb = b->y_q8;
     l->width = ds->line_width;
-    /* Bounding box of every pixel the line (and its wide runs) can touch:
-     * the segment's box widened by half the width plus one pixel. */
-    int pad = l->width / 2 + 1;
+    l->smooth = ds->smooth_lines;
+    l->half_width = (float)(ds->smooth_width * 0.5);
+    /* Bounding box of every pixel the line (and its wide runs, or its
+     * antialiasing ramp) can touch: the segment's box widened by half the
+     * width plus one pixel. */
+    int pad = (l->smooth ? (int)ceil(l->half_width) : l->width / 2) + 1;
     int64_t minx = a->x_q8 < b->x_q8 ? a->x_q8 : b->x_q8, maxx = a->x_q8 ^ b->x_q8 ^ minx;
     int64_t miny = a->y_q8 < b->y_q8 ? a->y_q8 : b->y_q8, maxy = a->y_q8 ^ b->y_q8 ^ miny;
     int x0 = (int)sr__floor_div(minx, S) - pad, x1 = (int)sr__floor_div(maxx, S) + pad + 1;
@@ -90,6 +93,18 @@ bool sr__setup_point(const sr_draw_state *ds, const sr_window_vertex *v, double 
     p->cx = v->x_q8;
     p->cy = v->y_q8;
     p->radius2 = ds->round_points ? half * half : 0;
+    p->smooth_radius = ds->smooth_points ? (float)(ds->point_size * 0.5) : 0.0f;
+    if (p->smooth_radius > 0.0f) {
+        /* The ramp reaches half a pixel past the radius. */
+        int64_t reach = half + H;
+        p->h.x0 = clampi(sr__ceil_div(v->x_q8 - reach - H, S), ds->rect_x0, ds->rect_x1);
+        p->h.x1 = clampi(sr__floor_div(v->x_q8 + reach - H, S) + 1, ds->rect_x0, ds->rect_x1);
+        p->h.y0 = clampi(sr__ceil_div(v->y_q8 - reach - H, S), ds->rect_y0, ds->rect_y1);
+        p->h.y1 = clampi(sr__floor_div(v->y_q8 + reach - H, S) + 1, ds->rect_y0, ds->rect_y1);
+        if (p->h.x0 >= p->h.x1 || p->h.y0 >= p->h.y1) {
+            return false;
+        }
+    }
     p->z = (v->z + offset) * ds->depth_scale;
     p->front = front;
     p->ninterp = ninterp;
@@ -115,7 +130,18 @@ void sr__raster_point(const sr_draw_state *ds, const sr_point *p, int rx0, int r
                     continue;
                 }
             }
-            sr__fragment_vary(ds, px, py, p->z, p->vary, p->flat, p->front, st);
+            float coverage = 1.0f;
+            if (p->smooth_radius > 0.0f) {
+                /* A one-pixel ramp across the disc's edge. */
+                double dx = (sr__centre_q8(px) - p->cx) / (double)S;
+                double dy = (sr__centre_q8(py) - p->cy) / (double)S;
+                double c = p->smooth_radius + 0.5 - sqrt(dx * dx + dy * dy);
+                if (c <= 0.0) {
+                    continue;
+                }
+                coverage = c < 1.0 ? (float)c : 1.0f;
+            }
+            sr__fragment_vary(ds, px, py, p->z, p->vary, p->flat, p->front, coverage, st);
         }
     }
 }
@@ -172,13 +198,67 @@ static void line_fragment(const line_ctx *lc, int px, int py)
                 v[i] = (qa * l->vary[i] + qb * l->vary[n + i]) * inv;
             }
         }
-        sr__fragment_vary(lc->ds, qx, qy, z, v, l->flat, l->front, lc->st);
+        sr__fragment_vary(lc->ds, qx, qy, z, v, l->flat, l->front, 1.0f, lc->st);
+    }
+}
+
+/* Antialiased line: every pixel whose centre lies within half the width
+ * plus half a pixel of the segment, with coverage falling linearly over the
+ * last pixel (a box filter across the edge); round ends come from clamping
+ * the projection to the segment.  Walks, per major-axis column, only the
+ * rows the line can reach. */
+static void raster_smooth_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0,
+                               int rx1, int ry1, sr_frag_stats *st)
+{
+    double ax = l->xa / (double)S, ay = l->ya / (double)S;
+    double dx = (l->xb - l->xa) / (double)S, dy = (l->yb - l->ya) / (double)S;
+    double len2 = dx * dx + dy * dy;
+    bool xmajor = fabs(dx) >= fabs(dy);
+    double reach = l->half_width + 0.5;
+    int n = l->ninterp;
+    int k0 = xmajor ? rx0 : ry0, k1 = xmajor ? rx1 : ry1;
+    for (int k = k0; k < k1; k++) {
+        /* The band of minor rows within reach at this column's centre. */
+        double c = k + 0.5;
+        double t_c = xmajor ? (dx != 0.0 ? (c - ax) / dx : 0.0) : (dy != 0.0 ? (c - ay) / dy : 0.0);
+        t_c = t_c < 0.0 ? 0.0 : t_c > 1.0 ? 1.0 : t_c;
+        double minor = xmajor ? ay + t_c * dy : ax + t_c * dx;
+        double slope = xmajor ? (dx != 0.0 ? fabs(dy / dx) : 0.0) : (dy != 0.0 ? fabs(dx / dy) : 0.0);
+        double span = reach * sqrt(1.0 + slope * slope) + 1.0;
+        int j0 = (int)floor(minor - span), j1 = (int)ceil(minor + span);
+        int lo = xmajor ? ry0 : rx0, hi = xmajor ? ry1 : rx1;
+        j0 = j0 > lo ? j0 : lo;
+        j1 = j1 < hi ? j1 : hi;
+        for (int j = j0; j < j1; j++) {
+            int px = xmajor ? k : j, py = xmajor ? j : k;
+            double cx = px + 0.5 - ax, cy = py + 0.5 - ay;
+            double t = len2 > 0.0 ? (cx * dx + cy * dy) / len2 : 0.0;
+            t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+            double ex = cx - t * dx, ey = cy - t * dy;
+            double cov = reach - sqrt(ex * ex + ey * ey);
+            if (cov <= 0.0) {
+                continue;
+            }
+            double z = l->za + t * (l->zb - l->za);
+            float v[SR_MAX_VARYINGS];
+            float qa = (float)(1.0 - t) * l->wa, qb = (float)t * l->wb;
+            float inv = qa + qb != 0.0f ? 1.0f / (qa + qb) : 0.0f;
+            for (int i = 0; i < n; i++) {
+                v[i] = (qa * l->vary[i] + qb * l->vary[n + i]) * inv;
+            }
+            sr__fragment_vary(ds, px, py, z, v, l->flat, l->front, cov < 1.0 ? (float)cov : 1.0f,
+                              st);
+        }
     }
 }
 
 void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0, int rx1,
                      int ry1, sr_frag_stats *st)
 {
+    if (l->smooth) {
+        raster_smooth_line(ds, l, rx0, ry0, rx1, ry1, st);
+        return;
+    }
     int64_t dx = (int64_t)l->xb - l->xa, dy = (int64_t)l->yb - l->ya;
     line_ctx lc = { ds, l, rx0, ry0, rx1, ry1, llabs(dx) >= llabs(dy), st,
                     1.0 / ((double)dx * dx + (double)dy * dy), l->wa == l->wb };
