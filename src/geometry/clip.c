@@ -50,14 +50,20 @@ static double plane_dist(const sr_draw_state *ds, int plane, const float pos[4])
     }
 }
 
+/* Every vertex gets an outcode, so the planes are written out here rather
+ * than looped through plane_dist's switch (same expressions). */
 unsigned sr__clip_outcode(const sr_draw_state *ds, const float pos[4])
 {
+    double x = pos[0], y = pos[1], z = pos[2], w = pos[3];
+    double near = ds->zero_to_one ? z : z + w;
     unsigned code = 0;
-    for (int p = 0; p < PLANE_COUNT; p++) {
-        if (!(plane_dist(ds, p, pos) >= 0.0)) {
-            code |= 1u << p;
-        }
-    }
+    code |= !(w - SR_CLIP_W_EPSILON >= 0.0) << PLANE_W;
+    code |= !(near >= 0.0) << PLANE_NEAR;
+    code |= !(w - z >= 0.0) << PLANE_FAR;
+    code |= !(ds->vp_px * x - (BAND_LO - ds->vp_ox) * w >= 0.0) << PLANE_LEFT;
+    code |= !((BAND_HI - ds->vp_ox) * w - ds->vp_px * x >= 0.0) << PLANE_RIGHT;
+    code |= !((ds->vp_oy - BAND_LO) * w - ds->vp_py * y >= 0.0) << PLANE_TOP;
+    code |= !(ds->vp_py * y - (ds->vp_oy - BAND_HI) * w >= 0.0) << PLANE_BOTTOM;
     return code;
 }
 
