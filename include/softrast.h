@@ -239,6 +239,40 @@ sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
 sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
                         int x, int y, int w, int h, float *out, size_t stride_floats);
 
+/* ---- textures ----------------------------------------------------------- */
+
+typedef struct sr_texture sr_texture;
+
+typedef enum sr_texture_filter {
+    SR_FILTER_DEFAULT = 0,   /* -> SR_FILTER_TRILINEAR */
+    SR_FILTER_NEAREST,       /* the nearest texel of the full-size image */
+    SR_FILTER_BILINEAR,      /* the four nearest texels of the full-size image */
+    SR_FILTER_TRILINEAR,     /* bilinear in the two mip levels around the level of detail */
+} sr_texture_filter;
+
+typedef enum sr_texture_wrap {
+    SR_WRAP_DEFAULT = 0,     /* -> SR_WRAP_REPEAT */
+    SR_WRAP_REPEAT,
+    SR_WRAP_CLAMP,           /* clamp to the edge texels */
+    SR_WRAP_MIRROR,          /* mirrored repeat */
+} sr_texture_wrap;
+
+typedef struct sr_texture_desc {
+    int width, height;          /* 1 .. 16384 */
+    const uint8_t *pixels;      /* RGBA8, row 0 at the top (PNG order) */
+    size_t stride;              /* bytes per row; 0 -> 4 * width */
+    bool srgb;                  /* texels are sRGB: filter in linear light */
+} sr_texture_desc;
+
+/* Copies the pixels and builds the mip chain (each level the 2x2 box
+ * average of the one above, in linear light for sRGB textures, down to
+ * 1x1).  Texture coordinates follow OpenGL and OBJ: (0, 0) is the
+ * bottom-left corner of the image, (1, 1) the top-right, so the texcoords
+ * of an OBJ file apply as they are. */
+sr_result sr_make_texture(sr_context *ctx, const sr_texture_desc *desc, sr_texture **out);
+void sr_destroy_texture(sr_context *ctx, sr_texture *tex);
+int sr_texture_levels(const sr_texture *tex);
+
 /* ---- pipeline state ----------------------------------------------------- */
 
 typedef enum sr_cull_mode {
@@ -376,6 +410,13 @@ typedef struct sr_state {
     sr_vec3 ambient;               /* global ambient light */
     sr_light lights[SR_MAX_LIGHTS];
     bool two_sided;                /* light back faces with the flipped normal */
+
+    /* A texture modulates the surface color (GL_MODULATE): unlit and
+     * Gouraud colors and the flat color are multiplied by the texel, Phong
+     * multiplies the diffuse color before lighting.  Needs texcoords. */
+    const sr_texture *texture;
+    sr_texture_filter texture_filter;
+    sr_texture_wrap wrap_u, wrap_v;
 } sr_state;
 
 /* ---- drawing ------------------------------------------------------------ */

@@ -107,6 +107,17 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.point_size must be in [0, 1024] (got %g)",
                         (double)st->point_size);
     }
+    if ((unsigned)st->texture_filter > SR_FILTER_TRILINEAR || (unsigned)st->wrap_u > SR_WRAP_MIRROR ||
+        (unsigned)st->wrap_v > SR_WRAP_MIRROR) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_state.texture_filter, wrap_u or wrap_v is not a valid value");
+    }
+    if (st->texture && !d->texcoords && d->vertex_count > 0 &&
+        (sh == SR_SHADING_UNLIT || sh == SR_SHADING_GOURAUD || sh == SR_SHADING_FLAT ||
+         sh == SR_SHADING_PHONG)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_draw_desc.texcoords is NULL but sr_state.texture is set");
+    }
     if ((unsigned)st->cull > SR_CULL_FRONT_AND_BACK) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.cull %d is not a cull mode", (int)st->cull);
     }
@@ -263,6 +274,21 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     case SR_SHADING_NORMALS: ds->nvary = 3; ds->ninterp = 3; break;
     case SR_SHADING_ATTRIBUTE: ds->nvary = 4; ds->ninterp = 4; break;
     default:                 ds->nvary = 1; ds->ninterp = 1; break;
+    }
+    /* A texture adds u, v after the model's own varyings; flat shading then
+     * interpolates its (otherwise constant) layout too, to reach them. */
+    ds->uv_index = -1;
+    bool textured_model = ds->shading == SR_SHADING_UNLIT || ds->shading == SR_SHADING_GOURAUD ||
+                          ds->shading == SR_SHADING_FLAT || ds->shading == SR_SHADING_PHONG;
+    if (st->texture && textured_model) {
+        ds->texture = st->texture;
+        ds->texture_filter = st->texture_filter == SR_FILTER_DEFAULT ? SR_FILTER_TRILINEAR
+                                                                     : st->texture_filter;
+        ds->wrap_u = st->wrap_u == SR_WRAP_DEFAULT ? SR_WRAP_REPEAT : st->wrap_u;
+        ds->wrap_v = st->wrap_v == SR_WRAP_DEFAULT ? SR_WRAP_REPEAT : st->wrap_v;
+        ds->uv_index = ds->nvary;
+        ds->nvary += 2;
+        ds->ninterp = ds->nvary;
     }
     /* Linear depth for the DEPTH view: under a projection with w = -z_eye,
      * z_ndc = P23 / d - P22 at eye distance d, so the near and far planes

@@ -78,6 +78,12 @@ typedef struct sr_draw_state {
     bool two_sided;
     bool local_viewer;                /* perspective projection: view vector = -eye */
     int nvary;                        /* varyings written by the vertex stage */
+    /* Texturing: the texture, its sampling, and where u, v sit among the
+     * varyings (-1 without a texture). */
+    const sr_texture *texture;
+    sr_texture_filter texture_filter;
+    sr_texture_wrap wrap_u, wrap_v;
+    int uv_index;
     /* DEPTH shading under perspective: gray = (w - near) * depth_vis_scale. */
     bool depth_vis_linear;
     float depth_vis_near, depth_vis_scale;

@@ -724,10 +724,11 @@ static const char *const value_options[] = {
     "--material", "--ambient", "--light", "--camera", "--fov", "--turn", "--near", "--far",
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
+    "--texture", "--texture-filter", "--wrap",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",
-                                             "--smooth" };
+                                             "--smooth", "--texture-srgb" };
 
 SR_TEST(render_help_lists_every_option)
 {

@@ -83,6 +83,22 @@ SR_TEST(shared_models_match_reference)
     }
 }
 
+/* Spot with its texture, found beside the model as spot_texture.png. */
+SR_TEST(textured_model_matches_reference)
+{
+    const char *dir = sr_test_models_dir();
+    if (!dir) {
+        SKIP("../shared/models not found (set SR_MODELS_DIR)");
+    }
+    char path[1024];
+    snprintf(path, sizeof path, "%s/spot.obj", dir);
+    check_render("model_spot_textured", (const char *[]){ path, "--size", "160x120", "--turn",
+                                                          "200", NULL });
+    check_render("model_spot_textured_nearest",
+                 (const char *[]){ path, "--size", "160x120", "--turn", "200", "--texture-filter",
+                                   "nearest", "--shading", "flat", NULL });
+}
+
 SR_TEST(wireframe_and_hidden_line_renders_match_reference)
 {
     check_render("builtin_edges", (const char *[]){ "--size", "160x120", "--edges", NULL });

@@ -18,6 +18,10 @@
 typedef struct render_opts {
     const char *model;
     const char *output;
+    const char *texture;           /* --texture FILE */
+    sr_texture_filter texture_filter;
+    sr_texture_wrap wrap;
+    bool texture_srgb;
     int width, height;
     sr_shading shading;
     sr_cull_mode cull;
@@ -70,6 +74,8 @@ static const char *const depth_func_names[] = { "never", "less", "equal", "lequa
 static const char *const interp_names[] = { "perspective", "affine", NULL };
 static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
 static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
+static const char *const filter_names[] = { "nearest", "bilinear", "trilinear", NULL };
+static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 
 static void render_help(void)
 {
@@ -98,6 +104,13 @@ static void render_help(void)
         "                           add a light in world space (repeatable, up to 8);\n"
         "                           without any, a key, fill and rim light placed\n"
         "                           relative to the camera\n"
+        "textures:\n"
+        "  --texture FILE           PNG that colors the model through its texture\n"
+        "                           coordinates (default: the OBJ material's map_Kd, or\n"
+        "                           MODEL_texture.png beside a model named MODEL.obj)\n"
+        "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
+        "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
+        "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
         "camera:\n"
         "  --camera eye=X,Y,Z[,target=X,Y,Z][,up=X,Y,Z]\n"
         "                           (default: a three-quarter view from above that\n"
@@ -285,6 +298,19 @@ static int parse_args(int argc, char **argv, render_opts *o)
             }
             o->lines = IS("--wireframe") ? LINES_WIREFRAME : IS("--hidden-line") ? LINES_HIDDEN
                      : IS("--edges") ? LINES_EDGES : LINES_POINTS;
+        } else if (IS("--texture")) {
+            VALUE();
+            o->texture = value;
+        } else if (IS("--texture-filter")) {
+            CHOICE(filter_names, o->texture_filter, (sr_texture_filter)(SR_FILTER_NEAREST + k_));
+        } else if (IS("--wrap")) {
+            CHOICE(wrap_names, o->wrap, (sr_texture_wrap)(SR_WRAP_REPEAT + k_));
+        } else if (IS("--texture-srgb")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->texture_srgb = true;
         } else if (IS("--smooth")) {
             if (value) {
                 cli_error("%s: takes no value", arg);
@@ -485,6 +511,74 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
     *far_out = far_z;
 }
 
+static bool is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* The model's texture: --texture, else the file's own (OBJ map_Kd), else
+ * MODEL_texture.png beside MODEL.ext.  Returns an exit status, or -1. */
+static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
+{
+    if (!o->model || s->count == 0) {
+        if (o->texture) {
+            cli_error("--texture: the built-in scene has no texture coordinates");
+            return EXIT_USAGE;
+        }
+        return -1;
+    }
+    scene_object *ob = &s->objects[0];
+    char guess[4096];
+    const char *path = o->texture;
+    if (!path && ob->mesh.texture_path && is_file(ob->mesh.texture_path)) {
+        path = ob->mesh.texture_path;
+    }
+    if (!path) {
+        const char *dot = strrchr(o->model, '.'), *slash = strrchr(o->model, '/');
+        size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - o->model) : strlen(o->model);
+        if (stem + sizeof "_texture.png" <= sizeof guess) {
+            memcpy(guess, o->model, stem);
+            strcpy(guess + stem, "_texture.png");
+            path = is_file(guess) ? guess : NULL;
+        }
+    }
+    if (!path) {
+        return -1;
+    }
+    if (!ob->mesh.texcoords) {
+        if (o->texture) {
+            cli_error("--texture: %s has no texture coordinates", o->model);
+            return EXIT_USAGE;
+        }
+        return -1; /* a texture found by name but nothing to map it with */
+    }
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(path, &w, &h, &px, &err) != SR_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return EXIT_USAGE;
+    }
+    sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = px,
+                                                            .srgb = o->texture_srgb },
+                                  &ob->texture);
+    free(px);
+    if (r != SR_OK) {
+        cli_error("%s: %s", path, sr_context_error(ctx));
+        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    return -1;
+}
+
+static void free_textures(sr_context *ctx, scene *s)
+{
+    for (int i = 0; i < s->count; i++) {
+        sr_destroy_texture(ctx, s->objects[i].texture);
+        s->objects[i].texture = NULL;
+    }
+}
+
 static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
                             const camera *cam, bool keep_material, uint64_t *tris,
                             uint64_t *frags)
@@ -495,6 +589,8 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
         if (!keep_material) {
             state->material = ob->material;
         }
+        /* The texture colors the surface, not the line modes' plain passes. */
+        state->texture = keep_material ? NULL : ob->texture;
         r = sr_draw(ctx, fb, state, &(sr_draw_desc){
             .positions = ob->mesh.positions, .normals = ob->mesh.normals,
             .colors = ob->mesh.colors, .color_size = 4, .texcoords = ob->mesh.texcoords,
@@ -651,6 +747,17 @@ int cmd_render(int argc, char **argv)
         r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = o.width, .height = o.height,
                                                             .depth_format = o.depth_format }, &fb);
     }
+    if (r == SR_OK) {
+        status = load_texture(&o, ctx, &s);
+        if (status >= 0) {
+            sr_destroy_framebuffer(ctx, fb);
+            sr_destroy_context(ctx);
+            scene_free(&s);
+            return status;
+        }
+    }
+    state.texture_filter = o.texture_filter;
+    state.wrap_u = state.wrap_v = o.wrap;
     bool clear_to_near = o.depth_func == SR_GREATER || o.depth_func == SR_GEQUAL;
     if (r == SR_OK) {
         r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o.background.x, o.background.y,
@@ -665,6 +772,7 @@ int cmd_render(int argc, char **argv)
     double t_render = now_ms();
     if (r != SR_OK) {
         cli_error("render: %s", ctx ? sr_context_error(ctx) : sr_result_text(r));
+        free_textures(ctx, &s);
         sr_destroy_framebuffer(ctx, fb);
         sr_destroy_context(ctx);
         scene_free(&s);
@@ -686,6 +794,7 @@ int cmd_render(int argc, char **argv)
                 (double)near_z, (double)far_z, sr_context_threads(ctx), t_load - t0,
                 t_setup - t_load, t_render - t_setup, t_write - t_render);
     }
+    free_textures(ctx, &s);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
     scene_free(&s);

@@ -13,6 +13,7 @@ typedef struct scene_object {
     sr_material material;
     sr_mat4 model;
     bool frame;          /* the camera frames this object */
+    sr_texture *texture; /* owned by the context that made it, or NULL */
 } scene_object;
 
 typedef struct scene {

@@ -7,6 +7,7 @@
 
 #include "pipeline.h"
 #include "fragment/depth.h"
+#include "fragment/texture.h"
 
 #include <math.h>
 #include <string.h>
@@ -56,12 +57,27 @@ static inline double sr__tri_depth(const sr_tri *t, int64_t e1, int64_t e2)
 /* Shade from interpolated varyings v (the layout of the shading model,
  * pipeline.h), the primitive's flat color and facing, and the depth z in
  * buffer units.  Triangles, lines and points all end here. */
-SR_INLINE void sr__shade_vary(const sr_draw_state *ds, const float *v, const float flat[4],
-                              bool front, double z, float c[4], sr_shading shading)
+SR_INLINE void sr__modulate(float c[4], const float tex[4])
 {
+    for (int k = 0; k < 4; k++) {
+        c[k] *= tex[k];
+    }
+}
+
+SR_INLINE void sr__shade_vary(const sr_draw_state *ds, const float *v, const float flat[4],
+                              bool front, double z, float lod, float c[4], sr_shading shading)
+{
+    float tex[4] = { 1, 1, 1, 1 };
+    if (ds->texture) {
+        sr__texture_sample(ds->texture, ds->texture_filter, ds->wrap_u, ds->wrap_v,
+                           v[ds->uv_index], v[ds->uv_index + 1], lod, tex);
+    }
     switch (shading) {
     case SR_SHADING_FLAT:
         memcpy(c, flat, 4 * sizeof(float));
+        if (ds->texture) {
+            sr__modulate(c, tex);
+        }
         return;
     case SR_SHADING_DEPTH:
         if (ds->depth_vis_linear) {
@@ -80,7 +96,12 @@ SR_INLINE void sr__shade_vary(const sr_draw_state *ds, const float *v, const flo
             s = -s;
         }
         float n[3] = { vn[0] * s, vn[1] * s, vn[2] * s };
-        sr__light(ds, n, &v[SR_VARY_PHONG_EYE], &v[SR_VARY_PHONG_COLOR], c);
+        float diffuse[4];
+        memcpy(diffuse, &v[SR_VARY_PHONG_COLOR], sizeof diffuse);
+        if (ds->texture) {
+            sr__modulate(diffuse, tex);
+        }
+        sr__light(ds, n, &v[SR_VARY_PHONG_EYE], diffuse, c);
         return;
     }
     case SR_SHADING_NORMALS: {
@@ -95,6 +116,9 @@ SR_INLINE void sr__shade_vary(const sr_draw_state *ds, const float *v, const flo
     }
     default: /* UNLIT, GOURAUD, ATTRIBUTE: the interpolated color */
         memcpy(c, &v[SR_VARY_COLOR], 4 * sizeof(float));
+        if (ds->texture) {
+            sr__modulate(c, tex);
+        }
         return;
     }
 }
@@ -103,14 +127,29 @@ SR_INLINE void sr__shade_as(const sr_draw_state *ds, const sr_tri *t, double z,
                             int64_t e0, int64_t e1, int64_t e2, float c[4], sr_shading shading)
 {
     float v[SR_MAX_VARYINGS];
-    if (shading != SR_SHADING_FLAT && !(shading == SR_SHADING_DEPTH && !ds->depth_vis_linear)) {
+    float lod = 0.0f;
+    if (t->ninterp > 0 && !(shading == SR_SHADING_DEPTH && !ds->depth_vis_linear)) {
         float l[3];
         sr__bary(ds, t, e0, e1, e2, l);
         for (int k = 0; k < t->ninterp; k++) {
             v[k] = sr__interp(t, l, k);
         }
+        if (ds->texture && ds->texture_filter == SR_FILTER_TRILINEAR) {
+            /* Level of detail from the texture coordinates one pixel to the
+             * right and one below, by the same exact interpolation. */
+            int ui = ds->uv_index;
+            float lx[3], ly[3];
+            sr__bary(ds, t, e0 + t->a[0] * SR_SUBPIXEL_ONE, e1 + t->a[1] * SR_SUBPIXEL_ONE,
+                     e2 + t->a[2] * SR_SUBPIXEL_ONE, lx);
+            sr__bary(ds, t, e0 + t->b[0] * SR_SUBPIXEL_ONE, e1 + t->b[1] * SR_SUBPIXEL_ONE,
+                     e2 + t->b[2] * SR_SUBPIXEL_ONE, ly);
+            float u = v[ui], vv = v[ui + 1];
+            lod = sr__texture_lod(ds->texture, sr__interp(t, lx, ui) - u,
+                                  sr__interp(t, lx, ui + 1) - vv, sr__interp(t, ly, ui) - u,
+                                  sr__interp(t, ly, ui + 1) - vv);
+        }
     }
-    sr__shade_vary(ds, v, t->flat, t->front, z, c, shading);
+    sr__shade_vary(ds, v, t->flat, t->front, z, lod, c, shading);
 }
 
 static inline void sr__shade(const sr_draw_state *ds, const sr_tri *t, double z,
@@ -199,7 +238,7 @@ static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, do
         }
     }
     float c[4];
-    sr__shade_vary(ds, v, flat, front, z, c, ds->shading);
+    sr__shade_vary(ds, v, flat, front, z, 0.0f, c, ds->shading);
     uint8_t rgba[4];
     if (coverage < 1.0f) {
         uint8_t dst[4];

@@ -93,6 +93,11 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
             }
         }
 
+        if (ds->uv_index >= 0) {
+            const float *tc = element(d->texcoords, d->texcoord_stride, 2, i);
+            vary[ds->uv_index] = tc[0];
+            vary[ds->uv_index + 1] = tc[1];
+        }
         switch (ds->shading) {
         case SR_SHADING_UNLIT:
             for (int k = 0; k < 4; k++) {

@@ -1,0 +1,27 @@
+/* texture.h - texture storage and sampling (fragment stage; read-only
+ * after creation, so any tile worker may sample concurrently). */
+#ifndef SR_TEXTURE_H
+#define SR_TEXTURE_H
+
+#include "softrast.h"
+
+#define SR_TEXTURE_MAX_SIZE 16384
+#define SR_TEXTURE_MAX_LEVELS 15   /* 16384 -> 1 */
+
+struct sr_texture {
+    int levels;
+    int width[SR_TEXTURE_MAX_LEVELS], height[SR_TEXTURE_MAX_LEVELS];
+    uint8_t *texels[SR_TEXTURE_MAX_LEVELS];   /* RGBA8 rows, row 0 at the top */
+    bool srgb;
+};
+
+/* Filtered texel at (u, v) for a level of detail lod = log2 of the texels
+ * per pixel at level 0; rgba in [0, 1]. */
+void sr__texture_sample(const sr_texture *t, sr_texture_filter filter, sr_texture_wrap wu,
+                        sr_texture_wrap wv, float u, float v, float lod, float out[4]);
+
+/* Level of detail from the texture-coordinate derivatives along x and y
+ * (texture units per pixel): log2 of the larger footprint side in texels. */
+float sr__texture_lod(const sr_texture *t, float dudx, float dvdx, float dudy, float dvdy);
+
+#endif
