@@ -273,6 +273,25 @@ sr_result sr_make_texture(sr_context *ctx, const sr_texture_desc *desc, sr_textu
 void sr_destroy_texture(sr_context *ctx, sr_texture *tex);
 int sr_texture_levels(const sr_texture *tex);
 
+/* ---- supersampling ------------------------------------------------------ */
+
+/* Reconstruction filters for downsampling a supersampled image (the seeds'
+ * unweighted and weighted area sampling).  Radii in destination pixels. */
+typedef enum sr_resample_filter {
+    SR_RESAMPLE_DEFAULT = 0, /* -> SR_RESAMPLE_BOX */
+    SR_RESAMPLE_BOX,         /* unweighted area sampling: the mean of each k x k block */
+    SR_RESAMPLE_TENT,        /* triangle, radius 1 */
+    SR_RESAMPLE_GAUSSIAN,    /* sigma 1/2, cut at radius 3/2 */
+    SR_RESAMPLE_MITCHELL,    /* Mitchell-Netravali B = C = 1/3, radius 2 (negative lobes) */
+} sr_resample_filter;
+
+/* SSAA's resolve: dst (w x h) from src (k w x k h, k = 1..16), each
+ * destination pixel a normalized weighted sum of the source samples whose
+ * centres lie within the filter's support around its centre (edges
+ * clamped), in the bytes' own space, rounded and clamped. */
+sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst,
+                        sr_resample_filter filter);
+
 /* ---- pipeline state ----------------------------------------------------- */
 
 typedef enum sr_cull_mode {

@@ -61,6 +61,12 @@ SR_TEST(builtin_scene_in_every_shading_mode_matches_reference)
     }
 }
 
+SR_TEST(builtin_scene_supersampled_matches_reference)
+{
+    check_render("builtin_ssaa3_gaussian", (const char *[]){ "--size", "160x120", "--aa", "ssaa3",
+                                                             "--filter", "gaussian", NULL });
+}
+
 SR_TEST(builtin_scene_orthographic_and_affine_match_reference)
 {
     check_render("builtin_ortho", (const char *[]){ "--size", "160x120", "--ortho", NULL });

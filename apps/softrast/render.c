@@ -54,6 +54,8 @@ typedef struct render_opts {
     sr_vec3 line_color;
     bool have_line_color;
     bool smooth;
+    int ssaa;                      /* 1: off; k: render k x k samples per pixel */
+    sr_resample_filter filter;
 } render_opts;
 
 /* What the line modes draw besides (or instead of) the shaded model. */
@@ -75,6 +77,9 @@ static const char *const interp_names[] = { "perspective", "affine", NULL };
 static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
 static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
 static const char *const filter_names[] = { "nearest", "bilinear", "trilinear", NULL };
+static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", NULL };
+static const int aa_values[] = { 1, 2, 3, 4 };
+static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 
 static void render_help(void)
@@ -137,6 +142,10 @@ static void render_help(void)
         "  --point-size N           1..64 pixels (default 3)\n"
         "  --line-color COLOR       (default #e8ecf4, or #202020 on a light background)\n"
         "  --smooth                 antialiased lines and round antialiased points\n"
+        "  --aa MODE                none|ssaa2|ssaa3|ssaa4: render k x k samples per pixel\n"
+        "                           and filter them down (default none)\n"
+        "  --filter F               box|tent|gaussian|mitchell, the SSAA reconstruction\n"
+        "                           filter (default box)\n"
         "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
         "                           all three give the same pixels)\n"
         "  --threads N              rasterizer threads (default: SR_THREADS or CPUs)\n"
@@ -298,6 +307,10 @@ static int parse_args(int argc, char **argv, render_opts *o)
             }
             o->lines = IS("--wireframe") ? LINES_WIREFRAME : IS("--hidden-line") ? LINES_HIDDEN
                      : IS("--edges") ? LINES_EDGES : LINES_POINTS;
+        } else if (IS("--aa")) {
+            CHOICE(aa_names, o->ssaa, aa_values[k_]);
+        } else if (IS("--filter")) {
+            CHOICE(resample_names, o->filter, (sr_resample_filter)(SR_RESAMPLE_BOX + k_));
         } else if (IS("--texture")) {
             VALUE();
             o->texture = value;
@@ -639,8 +652,9 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     sr_state lines = st;
     lines.shading = SR_SHADING_UNLIT;
     lines.material = ink_material;
-    lines.line_width = o->line_width;
-    lines.point_size = o->point_size;
+    /* Supersampled, lines and points keep their width in output pixels. */
+    lines.line_width = o->line_width * (float)o->ssaa;
+    lines.point_size = o->point_size * (float)o->ssaa;
     lines.smooth_lines = lines.smooth_points = o->smooth;
     sr_polygon_mode mode = o->lines == LINES_POINTS ? SR_POLYGON_POINT : SR_POLYGON_LINE;
     lines.polygon_mode_front = lines.polygon_mode_back = mode;
@@ -662,7 +676,7 @@ int cmd_render(int argc, char **argv)
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
-        .line_width = 1.0f, .point_size = 3.0f,
+        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1,
     };
     int status = parse_args(argc, argv, &o);
     if (status >= 0) {
@@ -742,9 +756,19 @@ int cmd_render(int argc, char **argv)
 
     sr_context *ctx = NULL;
     sr_framebuffer *fb = NULL;
+    if ((long)o.width * o.ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
+        (long)o.height * o.ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
+        cli_error("--aa: ssaa%d at %dx%d needs %ldx%ld samples, more than %d a side", o.ssaa,
+                  o.width, o.height, (long)o.width * o.ssaa, (long)o.height * o.ssaa,
+                  SR_MAX_FRAMEBUFFER_SIZE);
+        scene_free(&s);
+        return EXIT_USAGE;
+    }
     sr_result r = sr_make_context(&(sr_context_desc){ .threads = o.threads }, &ctx);
     if (r == SR_OK) {
-        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = o.width, .height = o.height,
+        /* SSAA renders k x k samples per output pixel, then filters down. */
+        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = o.width * o.ssaa,
+                                                            .height = o.height * o.ssaa,
                                                             .depth_format = o.depth_format }, &fb);
     }
     if (r == SR_OK) {
@@ -777,6 +801,25 @@ int cmd_render(int argc, char **argv)
         sr_destroy_context(ctx);
         scene_free(&s);
         return EXIT_FAILURE_RUN;
+    }
+
+    if (o.ssaa > 1) {
+        sr_framebuffer *out = NULL;
+        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = o.width, .height = o.height,
+                                                            .depth_format = SR_DEPTH_NONE }, &out);
+        if (r == SR_OK) {
+            r = sr_downsample(ctx, fb, out, o.filter);
+        }
+        sr_destroy_framebuffer(ctx, fb);
+        fb = out;
+        if (r != SR_OK) {
+            cli_error("render: %s", sr_context_error(ctx));
+            free_textures(ctx, &s);
+            sr_destroy_framebuffer(ctx, fb);
+            sr_destroy_context(ctx);
+            scene_free(&s);
+            return EXIT_FAILURE_RUN;
+        }
     }
 
     sr_io_error err;
