@@ -392,12 +392,62 @@ typedef enum sr_polygon_mode {
     SR_POLYGON_POINT,
 } sr_polygon_mode;
 
+/* Blending: result = src * src_factor  (op)  dst * dst_factor, per channel,
+ * with OpenGL's factors and equations (MIN and MAX ignore the factors). */
+typedef enum sr_blend_factor {
+    SR_BLEND_FACTOR_DEFAULT = 0,  /* ONE for the source, ZERO for the destination */
+    SR_BLEND_ZERO,
+    SR_BLEND_ONE,
+    SR_BLEND_SRC_COLOR,
+    SR_BLEND_ONE_MINUS_SRC_COLOR,
+    SR_BLEND_SRC_ALPHA,
+    SR_BLEND_ONE_MINUS_SRC_ALPHA,
+    SR_BLEND_DST_ALPHA,
+    SR_BLEND_ONE_MINUS_DST_ALPHA,
+    SR_BLEND_DST_COLOR,
+    SR_BLEND_ONE_MINUS_DST_COLOR,
+    SR_BLEND_CONSTANT_COLOR,
+    SR_BLEND_ONE_MINUS_CONSTANT_COLOR,
+    SR_BLEND_CONSTANT_ALPHA,
+    SR_BLEND_ONE_MINUS_CONSTANT_ALPHA,
+    SR_BLEND_SRC_ALPHA_SATURATE,
+} sr_blend_factor;
+
+typedef enum sr_blend_op {
+    SR_BLEND_OP_DEFAULT = 0,      /* -> ADD */
+    SR_BLEND_ADD,
+    SR_BLEND_SUBTRACT,            /* src - dst */
+    SR_BLEND_REVERSE_SUBTRACT,    /* dst - src */
+    SR_BLEND_MIN,
+    SR_BLEND_MAX,
+} sr_blend_op;
+
+typedef struct sr_blend {
+    bool enabled;
+    sr_blend_factor src_rgb, dst_rgb, src_alpha, dst_alpha;
+    sr_blend_op op_rgb, op_alpha;
+    float constant[4];            /* for the CONSTANT factors */
+} sr_blend;
+
+/* Channels the fragment stage leaves untouched (all written by default). */
+typedef struct sr_color_mask {
+    bool no_red, no_green, no_blue, no_alpha;
+} sr_color_mask;
+
+typedef struct sr_scissor {
+    bool enabled;
+    int x, y, width, height;      /* pixels, y from the top */
+} sr_scissor;
+
 typedef struct sr_viewport {
     int x, y, width, height; /* pixels, y from the top; width 0 -> the framebuffer */
 } sr_viewport;
 
 typedef struct sr_state {
     sr_viewport viewport;
+    sr_scissor scissor;            /* also trims the viewport: nothing outside is touched */
+    sr_blend blend;
+    sr_color_mask color_mask;
     float depth_near, depth_far;   /* depth range; both zero -> [0, 1] */
     bool depth_zero_to_one;        /* clip space z in [0, w] (D3D/Vulkan), not [-w, w] */
 

@@ -118,6 +118,22 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_draw_desc.texcoords is NULL but sr_state.texture is set");
     }
+    const sr_blend *bl = &st->blend;
+    if ((unsigned)bl->src_rgb > SR_BLEND_SRC_ALPHA_SATURATE ||
+        (unsigned)bl->dst_rgb > SR_BLEND_SRC_ALPHA_SATURATE ||
+        (unsigned)bl->src_alpha > SR_BLEND_SRC_ALPHA_SATURATE ||
+        (unsigned)bl->dst_alpha > SR_BLEND_SRC_ALPHA_SATURATE ||
+        (unsigned)bl->op_rgb > SR_BLEND_MAX || (unsigned)bl->op_alpha > SR_BLEND_MAX) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.blend: a factor or op is not valid");
+    }
+    for (int i = 0; i < 4; i++) {
+        if (!isfinite(bl->constant[i])) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_state.blend.constant[%d] is not finite", i);
+        }
+    }
+    if (st->scissor.enabled && (st->scissor.width < 0 || st->scissor.height < 0)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.scissor: width and height must be >= 0");
+    }
     if ((unsigned)st->cull > SR_CULL_FRONT_AND_BACK) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.cull %d is not a cull mode", (int)st->cull);
     }
@@ -225,6 +241,31 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->rect_y0 = vp.y > 0 ? vp.y : 0;
     ds->rect_x1 = vp.x + vp.width < fb->width ? vp.x + vp.width : fb->width;
     ds->rect_y1 = vp.y + vp.height < fb->height ? vp.y + vp.height : fb->height;
+    if (st->scissor.enabled) {
+        /* The scissor trims the rectangle every primitive is bounded by. */
+        const sr_scissor *sc = &st->scissor;
+        long sx1 = (long)sc->x + sc->width, sy1 = (long)sc->y + sc->height;
+        ds->rect_x0 = sc->x > ds->rect_x0 ? sc->x : ds->rect_x0;
+        ds->rect_y0 = sc->y > ds->rect_y0 ? sc->y : ds->rect_y0;
+        ds->rect_x1 = sx1 < ds->rect_x1 ? (int)sx1 : ds->rect_x1;
+        ds->rect_y1 = sy1 < ds->rect_y1 ? (int)sy1 : ds->rect_y1;
+    }
+    ds->blend = st->blend;
+    if (ds->blend.enabled) {
+        sr_blend *b = &ds->blend;
+        b->src_rgb = b->src_rgb == SR_BLEND_FACTOR_DEFAULT ? SR_BLEND_ONE : b->src_rgb;
+        b->src_alpha = b->src_alpha == SR_BLEND_FACTOR_DEFAULT ? SR_BLEND_ONE : b->src_alpha;
+        b->dst_rgb = b->dst_rgb == SR_BLEND_FACTOR_DEFAULT ? SR_BLEND_ZERO : b->dst_rgb;
+        b->dst_alpha = b->dst_alpha == SR_BLEND_FACTOR_DEFAULT ? SR_BLEND_ZERO : b->dst_alpha;
+        b->op_rgb = b->op_rgb == SR_BLEND_OP_DEFAULT ? SR_BLEND_ADD : b->op_rgb;
+        b->op_alpha = b->op_alpha == SR_BLEND_OP_DEFAULT ? SR_BLEND_ADD : b->op_alpha;
+    }
+    const sr_color_mask *cm = &st->color_mask;
+    ds->write_mask[0] = cm->no_red ? 0 : 0xff;
+    ds->write_mask[1] = cm->no_green ? 0 : 0xff;
+    ds->write_mask[2] = cm->no_blue ? 0 : 0xff;
+    ds->write_mask[3] = cm->no_alpha ? 0 : 0xff;
+    ds->blending = ds->blend.enabled || cm->no_red || cm->no_green || cm->no_blue || cm->no_alpha;
 
     ds->cull = st->cull == SR_CULL_DEFAULT ? SR_CULL_NONE : st->cull;
     ds->front_ccw = st->front_face != SR_FRONT_CW;

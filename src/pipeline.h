@@ -102,6 +102,9 @@ typedef struct sr_draw_state {
      * NULL for the scalar instances. */
     void (*raster_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
                         struct sr_frag_stats *);
+    bool blending;                    /* blend or color mask active: the generic color write */
+    sr_blend blend;                   /* factors and ops resolved */
+    uint8_t write_mask[4];            /* 0xff: channel written; 0: kept */
     double depth_scale;               /* 2^n - 1 for UNORM, 1 for float */
     double zq_min, zq_max;            /* depth range in buffer units */
     int tiles_x, tiles_y;

@@ -57,6 +57,78 @@ static inline double sr__tri_depth(const sr_tri *t, int64_t e1, int64_t e2)
 /* Shade from interpolated varyings v (the layout of the shading model,
  * pipeline.h), the primitive's flat color and facing, and the depth z in
  * buffer units.  Triangles, lines and points all end here. */
+/* One blend factor for channel k (0..2 color, 3 alpha). */
+SR_INLINE float sr__blend_factor(sr_blend_factor f, const float s[4], const float d[4],
+                                 const float k[4], int ch)
+{
+    switch (f) {
+    case SR_BLEND_ZERO:                     return 0.0f;
+    case SR_BLEND_SRC_COLOR:                return s[ch];
+    case SR_BLEND_ONE_MINUS_SRC_COLOR:      return 1.0f - s[ch];
+    case SR_BLEND_SRC_ALPHA:                return s[3];
+    case SR_BLEND_ONE_MINUS_SRC_ALPHA:      return 1.0f - s[3];
+    case SR_BLEND_DST_ALPHA:                return d[3];
+    case SR_BLEND_ONE_MINUS_DST_ALPHA:      return 1.0f - d[3];
+    case SR_BLEND_DST_COLOR:                return d[ch];
+    case SR_BLEND_ONE_MINUS_DST_COLOR:      return 1.0f - d[ch];
+    case SR_BLEND_CONSTANT_COLOR:           return k[ch];
+    case SR_BLEND_ONE_MINUS_CONSTANT_COLOR: return 1.0f - k[ch];
+    case SR_BLEND_CONSTANT_ALPHA:           return k[3];
+    case SR_BLEND_ONE_MINUS_CONSTANT_ALPHA: return 1.0f - k[3];
+    case SR_BLEND_SRC_ALPHA_SATURATE: {
+        float m = 1.0f - d[3];
+        return ch == 3 ? 1.0f : (s[3] < m ? s[3] : m);
+    }
+    default:                                return 1.0f;  /* ONE */
+    }
+}
+
+SR_INLINE float sr__blend_op(sr_blend_op op, float s, float fs, float d, float fd)
+{
+    switch (op) {
+    case SR_BLEND_SUBTRACT:         return s * fs - d * fd;
+    case SR_BLEND_REVERSE_SUBTRACT: return d * fd - s * fs;
+    case SR_BLEND_MIN:              return s < d ? s : d;
+    case SR_BLEND_MAX:              return s > d ? s : d;
+    default:                        return s * fs + d * fd;
+    }
+}
+
+/* The color write: straight, or through blending and the write mask.
+ * Color is clamped to [0, 1] before blending, as for UNORM targets. */
+SR_INLINE void sr__write_color(const sr_draw_state *ds, size_t idx, const float c[4])
+{
+    sr_framebuffer *fb = ds->fb;
+    uint8_t out[4];
+    if (!ds->blending) {
+        for (int k = 0; k < 4; k++) {
+            out[k] = sr__unorm8(c[k]);
+        }
+        memcpy(&fb->color[idx], out, sizeof out);
+        return;
+    }
+    uint8_t dst8[4];
+    memcpy(dst8, &fb->color[idx], sizeof dst8);
+    float s[4], d[4];
+    for (int k = 0; k < 4; k++) {
+        s[k] = c[k] > 0.0f ? (c[k] < 1.0f ? c[k] : 1.0f) : 0.0f;
+        d[k] = dst8[k] / 255.0f;
+    }
+    const sr_blend *b = &ds->blend;
+    for (int k = 0; k < 4; k++) {
+        float v = s[k];
+        if (b->enabled) {
+            sr_blend_factor fs = k < 3 ? b->src_rgb : b->src_alpha;
+            sr_blend_factor fd = k < 3 ? b->dst_rgb : b->dst_alpha;
+            v = sr__blend_op(k < 3 ? b->op_rgb : b->op_alpha, s[k],
+                             sr__blend_factor(fs, s, d, b->constant, k), d[k],
+                             sr__blend_factor(fd, s, d, b->constant, k));
+        }
+        out[k] = (uint8_t)((sr__unorm8(v) & ds->write_mask[k]) | (dst8[k] & ~ds->write_mask[k]));
+    }
+    memcpy(&fb->color[idx], out, sizeof out);
+}
+
 SR_INLINE void sr__modulate(float c[4], const float tex[4])
 {
     for (int k = 0; k < 4; k++) {
@@ -203,8 +275,7 @@ SR_INLINE void sr__fragment_as(const sr_draw_state *ds, const sr_tri *t, int px,
     }
     float c[4];
     sr__shade_as(ds, t, z, e0, e1, e2, c, shading);
-    uint8_t rgba[4] = { sr__unorm8(c[0]), sr__unorm8(c[1]), sr__unorm8(c[2]), sr__unorm8(c[3]) };
-    memcpy(&fb->color[idx], rgba, sizeof rgba);
+    sr__write_color(ds, idx, c);
     st->fragments++;
 }
 
@@ -239,6 +310,13 @@ static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, do
     }
     float c[4];
     sr__shade_vary(ds, v, flat, front, z, 0.0f, c, ds->shading);
+    if (ds->blend.enabled || ds->blending) {
+        /* With a blend state, coverage scales alpha and the state decides. */
+        c[3] *= coverage;
+        sr__write_color(ds, idx, c);
+        st->fragments++;
+        return;
+    }
     uint8_t rgba[4];
     if (coverage < 1.0f) {
         uint8_t dst[4];

@@ -385,8 +385,8 @@ SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
 /* The kernel for a state, or NULL when this path does not cover it. */
 static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
 {
-    if (ds->texture) {
-        return NULL; /* textures take the scalar path */
+    if (ds->texture || ds->blending) {
+        return NULL; /* textures, blending and masks take the scalar path */
     }
     bool depth_ok = ds->depth_mode == SR_DEPTH_MODE_OFF ||
                     (ds->depth_mode == SR_DEPTH_MODE_LESS && ds->depth_bits >= 1 &&
