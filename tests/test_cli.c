@@ -724,7 +724,7 @@ static const char *const value_options[] = {
     "--material", "--ambient", "--light", "--camera", "--fov", "--turn", "--near", "--far",
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
-    "--texture", "--texture-filter", "--wrap", "--aa", "--filter",
+    "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",

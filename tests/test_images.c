@@ -67,6 +67,13 @@ SR_TEST(builtin_scene_supersampled_matches_reference)
                                                              "--filter", "gaussian", NULL });
 }
 
+/* A translucent teapot drawn after the ground, back to front. */
+SR_TEST(builtin_scene_translucent_matches_reference)
+{
+    check_render("builtin_opacity", (const char *[]){ "--size", "160x120", "--opacity", "0.5",
+                                                      NULL });
+}
+
 SR_TEST(builtin_scene_orthographic_and_affine_match_reference)
 {
     check_render("builtin_ortho", (const char *[]){ "--size", "160x120", "--ortho", NULL });

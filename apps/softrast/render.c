@@ -55,6 +55,7 @@ typedef struct render_opts {
     bool have_line_color;
     bool smooth;
     int ssaa;                      /* 1: off; k: render k x k samples per pixel */
+    float opacity;                 /* of the model; 1: opaque */
     sr_resample_filter filter;
 } render_opts;
 
@@ -104,6 +105,8 @@ static void render_help(void)
         "  --material KEY=V,...     color=COLOR, specular=COLOR, shininess=N\n"
         "                           (default: light gray, specular 0.25, shininess 40)\n"
         "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14)\n"
+        "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
+        "                           surfaces are drawn after opaque ones, back to front\n"
         "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
         "  --light point=X,Y,Z[,color=C][,intensity=I]\n"
         "                           add a light in world space (repeatable, up to 8);\n"
@@ -307,6 +310,11 @@ static int parse_args(int argc, char **argv, render_opts *o)
             }
             o->lines = IS("--wireframe") ? LINES_WIREFRAME : IS("--hidden-line") ? LINES_HIDDEN
                      : IS("--edges") ? LINES_EDGES : LINES_POINTS;
+        } else if (IS("--opacity")) {
+            VALUE();
+            if (!parse_float(arg, value, 0.0f, 1.0f, &o->opacity)) {
+                return EXIT_USAGE;
+            }
         } else if (IS("--aa")) {
             CHOICE(aa_names, o->ssaa, aa_values[k_]);
         } else if (IS("--filter")) {
@@ -592,27 +600,101 @@ static void free_textures(sr_context *ctx, scene *s)
     }
 }
 
+static bool translucent(const scene_object *ob)
+{
+    return ob->material.opacity > 0.0f && ob->material.opacity < 1.0f;
+}
+
+typedef struct depth_key {
+    float depth;
+    uint32_t tri;
+} depth_key;
+
+static int farther_first(const void *a, const void *b)
+{
+    const depth_key *x = a, *y = b;
+    if (x->depth != y->depth) {
+        return x->depth > y->depth ? -1 : 1;
+    }
+    return x->tri < y->tri ? -1 : x->tri > y->tri;
+}
+
+/* A translucent object's indices sorted back to front by each triangle's
+ * centroid distance along the view direction (the seeds: "you still have
+ * to sort for transparency"); malloc'd, or NULL when out of memory. */
+static uint32_t *sorted_indices(const scene_object *ob, const camera *cam)
+{
+    size_t n = ob->mesh.triangle_count;
+    depth_key *keys = malloc(n * sizeof *keys);
+    uint32_t *out = malloc(n * 3 * sizeof *out);
+    if (!keys || !out) {
+        free(keys);
+        free(out);
+        return NULL;
+    }
+    sr_mat4 mv = sr_mat4_mul(&cam->view, &ob->model);
+    for (size_t t = 0; t < n; t++) {
+        float z = 0.0f;
+        for (int k = 0; k < 3; k++) {
+            const float *p = &ob->mesh.positions[ob->mesh.indices[t * 3 + k] * 3];
+            z += mv.m[2] * p[0] + mv.m[6] * p[1] + mv.m[10] * p[2] + mv.m[14];
+        }
+        keys[t] = (depth_key){ -z, (uint32_t)t };   /* eye looks down -z: distance is -z */
+    }
+    qsort(keys, n, sizeof *keys, farther_first);
+    for (size_t t = 0; t < n; t++) {
+        memcpy(&out[t * 3], &ob->mesh.indices[keys[t].tri * 3], 3 * sizeof *out);
+    }
+    free(keys);
+    return out;
+}
+
+/* Opaque objects first, then translucent ones back to front with
+ * source-over blending and no depth writes (they still test against the
+ * opaque depth). */
 static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
                             const camera *cam, bool keep_material, uint64_t *tris,
                             uint64_t *frags)
 {
     sr_result r = SR_OK;
-    for (int i = 0; i < s->count && r == SR_OK; i++) {
-        scene_object *ob = &s->objects[i];
-        if (!keep_material) {
-            state->material = ob->material;
+    for (int pass = 0; pass < 2 && r == SR_OK; pass++) {
+        for (int i = 0; i < s->count && r == SR_OK; i++) {
+            scene_object *ob = &s->objects[i];
+            bool see_through = !keep_material && translucent(ob);
+            if (see_through != (pass == 1)) {
+                continue;
+            }
+            sr_state st = *state;
+            if (!keep_material) {
+                st.material = ob->material;
+            }
+            /* The texture colors the surface, not the line modes' plain passes. */
+            st.texture = keep_material ? NULL : ob->texture;
+            const uint32_t *indices = ob->mesh.indices;
+            uint32_t *sorted = NULL;
+            if (see_through) {
+                sorted = sorted_indices(ob, cam);
+                if (!sorted) {
+                    return SR_OUT_OF_MEMORY;
+                }
+                indices = sorted;
+                st.no_depth_write = true;
+                st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
+                                       .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
+                                       .src_alpha = SR_BLEND_ONE,
+                                       .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA };
+            }
+            r = sr_draw(ctx, fb, &st, &(sr_draw_desc){
+                .positions = ob->mesh.positions, .normals = ob->mesh.normals,
+                .colors = ob->mesh.colors, .color_size = 4, .texcoords = ob->mesh.texcoords,
+                .vertex_count = ob->mesh.vertex_count, .indices = indices,
+                .index_type = SR_INDEX_U32, .index_count = ob->mesh.triangle_count * 3,
+                .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
+            free(sorted);
+            sr_draw_info info = sr_last_draw_info(ctx);
+            *tris += info.triangles_in;
+            *frags += info.fragments;
         }
-        /* The texture colors the surface, not the line modes' plain passes. */
-        state->texture = keep_material ? NULL : ob->texture;
-        r = sr_draw(ctx, fb, state, &(sr_draw_desc){
-            .positions = ob->mesh.positions, .normals = ob->mesh.normals,
-            .colors = ob->mesh.colors, .color_size = 4, .texcoords = ob->mesh.texcoords,
-            .vertex_count = ob->mesh.vertex_count, .indices = ob->mesh.indices,
-            .index_type = SR_INDEX_U32, .index_count = ob->mesh.triangle_count * 3,
-            .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
-        sr_draw_info info = sr_last_draw_info(ctx);
-        *tris += info.triangles_in;
-        *frags += info.fragments;
     }
     return r;
 }
@@ -676,7 +758,7 @@ int cmd_render(int argc, char **argv)
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
-        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1,
+        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .opacity = 1.0f,
     };
     int status = parse_args(argc, argv, &o);
     if (status >= 0) {
@@ -719,6 +801,11 @@ int cmd_render(int argc, char **argv)
         }
         if (o.have_shininess && ob->frame) {
             ob->material.shininess = o.shininess;
+        }
+        if (ob->frame && o.opacity < 1.0f) {
+            /* Zero means the default (opaque) in sr_material: keep a
+             * fully transparent request just above it. */
+            ob->material.opacity = o.opacity > 0.0f ? o.opacity : 1e-6f;
         }
     }
     if (o.turn_deg != 0.0f) {
