@@ -14,6 +14,23 @@ static const float *element(const float *base, size_t stride, size_t count, size
     return (const float *)((const char *)base + i * step);
 }
 
+/* Two-sided lighting: turn the normal n toward the viewer at eye-space
+ * position eye (toward +z under an orthographic projection). */
+static void face_viewer(const sr_draw_state *ds, const float eye[3], float n[3])
+{
+    float vdir[3] = { 0, 0, 1 };
+    if (ds->local_viewer) {
+        vdir[0] = -eye[0];
+        vdir[1] = -eye[1];
+        vdir[2] = -eye[2];
+    }
+    if (n[0] * vdir[0] + n[1] * vdir[1] + n[2] * vdir[2] < 0.0f) {
+        n[0] = -n[0];
+        n[1] = -n[1];
+        n[2] = -n[2];
+    }
+}
+
 static void transform_point(const sr_mat4 *m, const float p[4], float out[4])
 {
     const float *a = m->m;
@@ -108,17 +125,7 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
             /* Gouraud: light once per vertex; the rasterizer interpolates the
              * resulting colors.  Two-sided: light the side that faces the eye. */
             if (ds->two_sided) {
-                float vdir[3] = { 0, 0, 1 };
-                if (ds->local_viewer) {
-                    vdir[0] = -eye[0];
-                    vdir[1] = -eye[1];
-                    vdir[2] = -eye[2];
-                }
-                if (n[0] * vdir[0] + n[1] * vdir[1] + n[2] * vdir[2] < 0.0f) {
-                    n[0] = -n[0];
-                    n[1] = -n[1];
-                    n[2] = -n[2];
-                }
+                face_viewer(ds, eye, n);
             }
             sr__light(ds, n, eye, color, &vary[SR_VARY_COLOR]);
             break;
@@ -187,17 +194,7 @@ void sr__flat_color(const sr_draw_state *ds, const float *v0, const float *v1,
     }
     const float *eye = &pv[SR_VARY_FLAT_EYE];
     if (ds->two_sided) {
-        float vdir[3] = { 0, 0, 1 };
-        if (ds->local_viewer) {
-            vdir[0] = -eye[0];
-            vdir[1] = -eye[1];
-            vdir[2] = -eye[2];
-        }
-        if (n[0] * vdir[0] + n[1] * vdir[1] + n[2] * vdir[2] < 0.0f) {
-            n[0] = -n[0];
-            n[1] = -n[1];
-            n[2] = -n[2];
-        }
+        face_viewer(ds, eye, n);
     }
     sr__light(ds, n, eye, &pv[SR_VARY_FLAT_COLOR], out);
 }
