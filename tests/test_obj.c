@@ -1185,3 +1185,30 @@ SR_TEST(obj_model_fandisk)
 {
     check_model("fandisk.obj", 0, false, false);
 }
+
+/* Found by fuzz_obj (a timeout): faces with positions only enter their
+ * vertices without the hash table, so the first face with a texture or
+ * normal index rehashed n >> 1024 keys into 1024 slots and probed forever. */
+SR_TEST(obj_many_plain_corners_then_a_textured_face)
+{
+    enum { N = 3000 };
+    size_t cap = (size_t)N * 64 + 256, len = 0;
+    char *text = malloc(cap);
+    REQUIRE(text);
+    for (int i = 0; i < N; i++) {
+        len += (size_t)snprintf(text + len, cap - len, "v %d %d 0\n", i % 97, i / 97);
+    }
+    len += (size_t)snprintf(text + len, cap - len, "vt 0 0\n");
+    for (int i = 0; i + 2 < N; i += 3) {
+        len += (size_t)snprintf(text + len, cap - len, "f %d %d %d\n", i + 1, i + 2, i + 3);
+    }
+    len += (size_t)snprintf(text + len, cap - len, "f 1/1 2/1 3/1\n");
+    sr_mesh m;
+    sr_io_error err;
+    CHECK_EQ(parse_mem("plain_then_textured.obj", text, len, &m, &err), SR_OK);
+    CHECK_EQ(m.triangle_count, N / 3 + 1);
+    CHECK_EQ(m.vertex_count, N + 3);
+    CHECK(indices_valid(&m));
+    sr_mesh_free(&m);
+    free(text);
+}

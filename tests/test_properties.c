@@ -8,7 +8,9 @@
  *    pixel, the triangles covering it; the pipeline's coverage and its
  *    fragment count must match, every pixel is covered at most once, and
  *    every pixel whose centre is inside the snapped mesh boundary (and not
- *    on it) exactly once.  About 1.3 million triangles in a Release build.
+ *    on it) exactly once.  About 1.5 million triangles in a Release build.
+ *  - Viewport-filling quads with random w per vertex at every angle from 0
+ *    to 90 degrees, also clipped against the guard band: each pixel once.
  *  - Watertightness through the projection: 3D grids under perspective
  *    (the divide, near-plane clipping): covered pixels = fragments (no
  *    pixel twice), and every pixel well inside the projected square covered.
@@ -21,8 +23,8 @@
  *  - Translation invariance: moving the viewport by whole pixels moves the
  *    image exactly (color and depth).
  *
- * Under AddressSanitizer (the CI's second pass, a Debug build) the
- * watertightness tests run a quarter of the meshes (PROP_SCALE). */
+ * Under AddressSanitizer (the CI's second pass, a Debug build) the mesh
+ * tests run a quarter of their meshes (PROP_SCALE). */
 #include "raster_util.h"
 #include "raster/fixed.h"
 #include "target/framebuffer.h"

@@ -901,8 +901,15 @@ static map_status map_append(vertex_map *m, const corner *k, uint32_t *out)
 static map_status map_find_or_add(vertex_map *m, const corner *k, uint32_t *out)
 {
     if (2 * (m->n + 1) > m->slot_cap) {
-        /* Rehash into twice the slots (n <= 2^28 keeps this in range). */
+        /* Rehash into at least twice the slots (n <= 2^28 keeps this in
+         * range).  Keys added by map_append are not in the table yet, so
+         * n can be far beyond the old capacity: grow until the table is at
+         * most half full, or the probe loops below would never find an
+         * empty slot. */
         size_t ncap = m->slot_cap ? 2 * m->slot_cap : 1024;
+        while (2 * (m->n + 1) > ncap) {
+            ncap *= 2;
+        }
         uint32_t *ns = calloc(ncap, sizeof *ns);
         if (!ns) {
             return MAP_OOM;
