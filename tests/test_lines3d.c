@@ -460,6 +460,64 @@ SR_TEST(huge_lines_are_clipped_and_stay_continuous)
     rt_free(&t);
 }
 
+/* The depth of a face's outline equals the face's own depth at the same
+ * pixels, up to the half pixel a line pixel's centre may sit off the edge
+ * (bounded by the face's depth slope); with polygon offset on the fill the
+ * face moves back by exactly the offset and the outline lies in front. */
+SR_TEST(outline_depth_matches_the_face_depth)
+{
+    sr_context *ctx;
+    sr_framebuffer *face, *line;
+    sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
+    sr_framebuffer_desc fd = { .width = W, .height = H, .depth_format = SR_DEPTH_D32F };
+    sr_make_framebuffer(ctx, &fd, &face);
+    sr_make_framebuffer(ctx, &fd, &line);
+    sr_mat4 view = sr_look_at((sr_vec3){ 0.3f, 0.4f, 3 }, (sr_vec3){ 0, 0, 0 }, (sr_vec3){ 0, 1, 0 });
+    sr_mat4 proj = sr_perspective(0.9f, 1.0f, 0.5f, 10.0f, false);
+    float pos[9] = { -1, -1, -0.3f, 1, -0.8f, 0.3f, 0.1f, 1, -0.2f };
+    sr_draw_desc d = { .positions = pos, .vertex_count = 3, .view = &view, .projection = &proj };
+    float zf[W * H], zl[W * H], zo[W * H];
+    for (int pass = 0; pass < 2; pass++) {
+        sr_clear(ctx, face, &(sr_clear_desc){ .depth = 1 });
+        sr_clear(ctx, line, &(sr_clear_desc){ .depth = 1 });
+        sr_state fill = { .shading = SR_SHADING_UNLIT, .depth_func = SR_ALWAYS };
+        if (pass == 1) {
+            fill.offset = (sr_polygon_offset){ .factor = 1, .units = 1, .fill = true };
+        }
+        REQUIRE(sr_draw(ctx, face, &fill, &d) == SR_OK);
+        sr_state outline = { .shading = SR_SHADING_UNLIT, .depth_func = SR_ALWAYS,
+                             .polygon_mode_front = SR_POLYGON_LINE,
+                             .polygon_mode_back = SR_POLYGON_LINE };
+        REQUIRE(sr_draw(ctx, line, &outline, &d) == SR_OK);
+        REQUIRE(sr_read_depth(ctx, face, 0, 0, W, H, pass ? zo : zf, W) == SR_OK);
+        REQUIRE(sr_read_depth(ctx, line, 0, 0, W, H, zl, W) == SR_OK);
+    }
+    /* The face's largest depth change per pixel, from neighbouring pixels. */
+    double slope = 0.0;
+    for (int y = 0; y + 1 < H; y++) {
+        for (int x = 0; x + 1 < W; x++) {
+            int i = y * W + x;
+            if (zf[i] < 1 && zf[i + 1] < 1 && zf[i + W] < 1) {
+                slope = fmax(slope, fmax(fabs(zf[i + 1] - zf[i]), fabs(zf[i + W] - zf[i])));
+            }
+        }
+    }
+    REQUIRE(slope > 0);
+    int compared = 0;
+    for (int i = 0; i < W * H; i++) {
+        if (zl[i] < 1 && zf[i] < 1) {
+            CHECK(fabs(zl[i] - zf[i]) <= 0.5 * slope + 1e-6);   /* same surface */
+            CHECK(zo[i] > zf[i]);                                /* offset pushes the face back */
+            CHECK(zl[i] < zo[i]);                                /* and the outline wins */
+            compared++;
+        }
+    }
+    CHECK(compared > 30);   /* about half the outline lies over the face */
+    sr_destroy_framebuffer(ctx, face);
+    sr_destroy_framebuffer(ctx, line);
+    sr_destroy_context(ctx);
+}
+
 /* Hidden-line rendering: a face filled with polygon offset, then its
  * outline with LEQUAL: every outline pixel of a front face passes. */
 SR_TEST(outline_over_an_offset_face_passes_the_depth_test)
