@@ -6,6 +6,7 @@
  * figure is the median over --frames frames after WARMUP_FRAMES. */
 #include "gl_compare.h"
 #include "scenes.h"
+#include "polyfill.h"
 #include "softrast_io.h"
 
 #include <errno.h>
@@ -519,6 +520,13 @@ int main(int argc, char **argv)
             break;
         case BENCH_CLI:
             run_cli_scene(&run, info);
+            break;
+        case BENCH_POLYFILL:
+        case BENCH_POLYFILL_AA:
+            if (!bench_polyfill(run.ctx, run.threads, o.frames, o.compare,
+                                info->kind == BENCH_POLYFILL_AA, info->name)) {
+                run.failures++;
+            }
             break;
         default:
             run_drawn_scene(&run, info);

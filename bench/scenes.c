@@ -22,6 +22,8 @@ const bench_scene_info bench_scene_list[] = {
     { "fill",   BENCH_FILL,  NULL },
     { "cli",    BENCH_CLI,   "stanford-bunny.obj" },
     { "lines",  BENCH_LINES, NULL },
+    { "polyfill", BENCH_POLYFILL, NULL },
+    { "polyfill_aa", BENCH_POLYFILL_AA, NULL },
     { "msaa4",  BENCH_LATER, NULL },
 };
 const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);

@@ -15,6 +15,8 @@ typedef enum bench_kind {
     BENCH_SMALL,    /* a million tiny triangles in NDC */
     BENCH_FILL,     /* full-screen quads, back to front */
     BENCH_LINES,    /* random line segments */
+    BENCH_POLYFILL, /* a 10,000-edge polygon in 2D, aliased (bench/polyfill.c) */
+    BENCH_POLYFILL_AA, /* the same with exact area antialiasing */
     BENCH_CLI,      /* the whole `softrast render` process */
     BENCH_LATER,    /* accepted name, not implemented yet */
 } bench_kind;

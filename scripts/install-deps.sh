@@ -2,7 +2,8 @@
 # Installs what softrast needs on a fresh Debian 12 machine: the compiler and
 # CMake, libpng (PNG in and out), Assimp (model formats beyond OBJ/PLY/STL),
 # expat (the SVG reader), Mesa's OSMesa (llvmpipe, for the benchmark's
-# side-by-side comparison), and clang with its sanitizer and fuzzer
+# side-by-side comparison), cairo (the 2D fill benchmark's comparison), and
+# clang with its sanitizer and fuzzer
 # runtimes.  Runs apt-get directly as root, through sudo otherwise.
 set -eu
 SUDO=""
@@ -11,6 +12,6 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake pkg-config ca-certificates \
-    libpng-dev zlib1g-dev libassimp-dev libosmesa6-dev libexpat1-dev \
+    libpng-dev zlib1g-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev \
     clang libclang-rt-14-dev >/dev/null
 echo "softrast: dependencies installed"
