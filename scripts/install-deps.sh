@@ -3,8 +3,8 @@
 # CMake, libpng (PNG in and out), Assimp (model formats beyond OBJ/PLY/STL),
 # expat (the SVG reader), Mesa's OSMesa (llvmpipe, for the benchmark's
 # side-by-side comparison), cairo (the 2D fill benchmark's comparison), and
-# clang with its sanitizer and fuzzer
-# runtimes.  Runs apt-get directly as root, through sudo otherwise.
+# clang with its sanitizer and fuzzer runtimes.  Runs apt-get directly as
+# root, through sudo otherwise.
 set -eu
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
