@@ -94,13 +94,14 @@ SR_INLINE float sr__blend_op(sr_blend_op op, float s, float fs, float d, float f
     }
 }
 
-/* The color write: straight, or through blending and the write mask.
- * Color is clamped to [0, 1] before blending, as for UNORM targets. */
-SR_INLINE void sr__write_color(const sr_draw_state *ds, size_t idx, const float c[4])
+/* The color write: straight, or through the blend state b and the write
+ * mask.  Color is clamped to [0, 1] before blending, as for UNORM targets. */
+SR_INLINE void sr__write_color_as(const sr_draw_state *ds, size_t idx, const float c[4],
+                                  const sr_blend *b)
 {
     sr_framebuffer *fb = ds->fb;
     uint8_t out[4];
-    if (!ds->blending) {
+    if (!b->enabled && !ds->blending) {
         for (int k = 0; k < 4; k++) {
             out[k] = sr__unorm8(c[k]);
         }
@@ -114,7 +115,6 @@ SR_INLINE void sr__write_color(const sr_draw_state *ds, size_t idx, const float 
         s[k] = c[k] > 0.0f ? (c[k] < 1.0f ? c[k] : 1.0f) : 0.0f;
         d[k] = dst8[k] / 255.0f;
     }
-    const sr_blend *b = &ds->blend;
     for (int k = 0; k < 4; k++) {
         float v = s[k];
         if (b->enabled) {
@@ -128,6 +128,19 @@ SR_INLINE void sr__write_color(const sr_draw_state *ds, size_t idx, const float 
     }
     memcpy(&fb->color[idx], out, sizeof out);
 }
+
+SR_INLINE void sr__write_color(const sr_draw_state *ds, size_t idx, const float c[4])
+{
+    sr__write_color_as(ds, idx, c, &ds->blend);
+}
+
+/* Antialiased lines and points without a blend state of their own blend
+ * their coverage source-over. */
+static const sr_blend sr__source_over = {
+    .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA, .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
+    .src_alpha = SR_BLEND_ONE, .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA,
+    .op_rgb = SR_BLEND_ADD, .op_alpha = SR_BLEND_ADD,
+};
 
 SR_INLINE void sr__modulate(float c[4], const float tex[4])
 {
@@ -310,28 +323,14 @@ static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, do
     }
     float c[4];
     sr__shade_vary(ds, v, flat, front, z, 0.0f, c, ds->shading);
-    if (ds->blend.enabled || ds->blending) {
-        /* With a blend state, coverage scales alpha and the state decides. */
-        c[3] *= coverage;
-        sr__write_color(ds, idx, c);
-        st->fragments++;
-        return;
-    }
-    uint8_t rgba[4];
     if (coverage < 1.0f) {
-        uint8_t dst[4];
-        memcpy(dst, &fb->color[idx], sizeof dst);
-        float a = coverage * (c[3] > 0.0f ? (c[3] < 1.0f ? c[3] : 1.0f) : 0.0f);
-        for (int k = 0; k < 3; k++) {
-            rgba[k] = sr__unorm8(c[k] * a + dst[k] / 255.0f * (1.0f - a));
-        }
-        rgba[3] = sr__unorm8(a + dst[3] / 255.0f * (1.0f - a));
+        /* Coverage scales alpha; the draw's blend state decides, or else
+         * source-over. */
+        c[3] = (c[3] > 0.0f ? (c[3] < 1.0f ? c[3] : 1.0f) : 0.0f) * coverage;
+        sr__write_color_as(ds, idx, c, ds->blend.enabled ? &ds->blend : &sr__source_over);
     } else {
-        for (int k = 0; k < 4; k++) {
-            rgba[k] = sr__unorm8(c[k]);
-        }
+        sr__write_color(ds, idx, c);
     }
-    memcpy(&fb->color[idx], rgba, sizeof rgba);
     st->fragments++;
 }
 
