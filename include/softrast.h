@@ -210,6 +210,13 @@ typedef struct sr_framebuffer sr_framebuffer;
 typedef struct sr_framebuffer_desc {
     int width, height;            /* required, 1 .. SR_MAX_FRAMEBUFFER_SIZE */
     sr_depth_format depth_format;
+    /* Multisampling (MSAA): 0 or 1 -> one sample at the pixel centre;
+     * 2, 4, 8 or 16 -> that many samples per pixel at the standard
+     * positions (sr_sample_position), each with its own color, depth and
+     * stencil.  Coverage and depth are decided per sample, shading once per
+     * pixel per triangle; reading pixels resolves (box average). */
+    int samples;
+    bool stencil;                 /* an 8-bit stencil buffer (per sample) */
 } sr_framebuffer_desc;
 
 sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
@@ -219,25 +226,45 @@ void      sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb);
 int             sr_framebuffer_width(const sr_framebuffer *fb);
 int             sr_framebuffer_height(const sr_framebuffer *fb);
 sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb);
+int             sr_framebuffer_samples(const sr_framebuffer *fb);   /* 1, 2, 4, 8 or 16 */
+bool            sr_framebuffer_has_stencil(const sr_framebuffer *fb);
 /* RGBA8, row-major, row 0 at the top, stride = 4 * width bytes.  Carries
- * out pending clears first; valid until the next draw or clear. */
+ * out pending clears first (and, multisampled, resolves into a buffer the
+ * framebuffer keeps); valid until the next draw or clear. */
 const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
+
+/* The standard sample positions (Direct3D and Vulkan; RASTER_RULES 8.1):
+ * sample `index` of a `samples`-sample pixel at (*x, *y) in [0, 1) from
+ * the pixel's upper-left corner, y down.  Every position is a multiple of
+ * 1/16 px, so coverage at it stays exact in 8 sub-pixel bits. */
+sr_result sr_sample_position(int samples, int index, float *x, float *y);
+
+/* Resolve a multisampled framebuffer into a single-sampled one of the same
+ * size: each channel the rounded box average of the pixel's samples,
+ * (sum + n/2) / n.  A single-sampled source is copied. */
+sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst);
 
 typedef struct sr_clear_desc {
     float color[4];   /* RGBA in [0, 1] */
     float depth;      /* in [0, 1]; note 0 is the default: set 1 for LESS */
+    uint8_t stencil;  /* the stencil value (framebuffers with a stencil buffer) */
     bool no_color;    /* leave color untouched */
     bool no_depth;    /* leave depth untouched */
+    bool no_stencil;  /* leave stencil untouched */
 } sr_clear_desc;
 
 sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc);
 
-/* Copy a rectangle of RGBA8 pixels out (stride in bytes, >= 4*w). */
+/* Copy a rectangle of RGBA8 pixels out (stride in bytes, >= 4*w);
+ * multisampled framebuffers are resolved first. */
 sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
                          int x, int y, int w, int h, uint8_t *out, size_t stride);
-/* Copy depth values out as floats in [0, 1] (dequantized). */
+/* Copy depth values out as floats in [0, 1] (dequantized); multisampled:
+ * each pixel's sample 0.  sr_read_stencil: the stored values (sample 0). */
 sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
                         int x, int y, int w, int h, float *out, size_t stride_floats);
+sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
+                          int x, int y, int w, int h, uint8_t *out, size_t stride);
 
 /* ---- textures ----------------------------------------------------------- */
 
@@ -434,6 +461,39 @@ typedef struct sr_color_mask {
     bool no_red, no_green, no_blue, no_alpha;
 } sr_color_mask;
 
+/* Stencil operations (glStencilOp) on the 8-bit stored value. */
+typedef enum sr_stencil_op {
+    SR_STENCIL_KEEP = 0,
+    SR_STENCIL_ZERO,
+    SR_STENCIL_REPLACE,      /* the reference value */
+    SR_STENCIL_INCR,         /* +1, saturating at 255 */
+    SR_STENCIL_DECR,         /* -1, saturating at 0 */
+    SR_STENCIL_INVERT,       /* bitwise not */
+    SR_STENCIL_INCR_WRAP,    /* +1, 255 wraps to 0 */
+    SR_STENCIL_DECR_WRAP,    /* -1, 0 wraps to 255 */
+} sr_stencil_op;
+
+/* One face's stencil state (glStencilFuncSeparate, glStencilOpSeparate,
+ * glStencilMaskSeparate).  The test passes iff
+ * (ref & read_mask) FUNC (stored & read_mask); the op chosen by the
+ * outcome is written through write_mask. */
+typedef struct sr_stencil_face {
+    sr_depth_func func;      /* DEFAULT -> SR_ALWAYS (the GL default) */
+    uint8_t ref;
+    bool masked;             /* false: read_mask = write_mask = 0xff */
+    uint8_t read_mask, write_mask;
+    sr_stencil_op fail;      /* the stencil test fails */
+    sr_stencil_op depth_fail;/* stencil passes, depth fails */
+    sr_stencil_op pass;      /* both pass (or no depth test) */
+} sr_stencil_face;
+
+typedef struct sr_stencil {
+    bool enabled;            /* needs a framebuffer with a stencil buffer */
+    sr_stencil_face front;
+    sr_stencil_face back;    /* used only when `separate` */
+    bool separate;           /* false: back faces use `front` too */
+} sr_stencil;
+
 typedef struct sr_scissor {
     bool enabled;
     int x, y, width, height;      /* pixels, y from the top */
@@ -486,6 +546,14 @@ typedef struct sr_state {
     const sr_texture *texture;
     sr_texture_filter texture_filter;
     sr_texture_wrap wrap_u, wrap_v;
+
+    /* Stencil test and update, per sample, before the depth test.  Lines
+     * and points count as front-facing. */
+    sr_stencil stencil;
+    /* Multisampled targets: the shaded alpha also decides how many of the
+     * pixel's samples are covered (round(alpha x n) of them, in a fixed
+     * order), before the stencil and depth tests. */
+    bool alpha_to_coverage;
 } sr_state;
 
 /* ---- drawing ------------------------------------------------------------ */
@@ -660,6 +728,13 @@ sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
 sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
                               const sr_fill_desc *desc, int x0, int y0, int w, int h,
                               uint8_t *mask, size_t stride);
+/* Blend `color` into fb through a coverage mask (0..255 per pixel, w x h,
+ * stride bytes per row) whose top-left pixel lands on (x, y), clipped to
+ * the framebuffer, source-over as the fills blend.  Coverage computed
+ * once by sr_polygon_coverage can so be drawn many times (cached glyphs
+ * of a text overlay). */
+sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
+                           const uint8_t *mask, size_t stride, sr_rgba color);
 
 /* ---- region filling (src/draw2d/floodfill.c) ----------------------------- */
 /*

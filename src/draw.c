@@ -131,6 +131,16 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
             return sr__fail(ctx, SR_INVALID_ARG, "sr_state.blend.constant[%d] is not finite", i);
         }
     }
+    const sr_stencil_face *sf[2] = { &st->stencil.front, &st->stencil.back };
+    for (int i = 0; i < 2; i++) {
+        if ((unsigned)sf[i]->func > SR_ALWAYS || (unsigned)sf[i]->fail > SR_STENCIL_DECR_WRAP ||
+            (unsigned)sf[i]->depth_fail > SR_STENCIL_DECR_WRAP ||
+            (unsigned)sf[i]->pass > SR_STENCIL_DECR_WRAP) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_state.stencil.%s: a function or operation is not valid",
+                            i ? "back" : "front");
+        }
+    }
     if (st->scissor.enabled && (st->scissor.width < 0 || st->scissor.height < 0)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.scissor: width and height must be >= 0");
     }
@@ -392,7 +402,21 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
         le->color[1] = (white ? 1.0f : l->color.y) * intensity;
         le->color[2] = (white ? 1.0f : l->color.z) * intensity;
     }
-    ds->raster_fast = sr__raster_simd_select(ds);
+    /* Multisampling and stencil take the per-sample path (raster/sample.c). */
+    ds->samples = fb->samples;
+    ds->sample_off = sr__sample_offsets(fb->samples);
+    ds->stencil_test = st->stencil.enabled && fb->stencil != NULL;
+    for (int i = 0; i < 2; i++) {
+        sr_stencil_face f = (i == 1 && st->stencil.separate) ? st->stencil.back : st->stencil.front;
+        f.func = f.func == SR_DEPTH_FUNC_DEFAULT ? SR_ALWAYS : f.func;
+        if (!f.masked) {
+            f.read_mask = f.write_mask = 0xff;
+        }
+        ds->stencil[i] = f;
+    }
+    ds->alpha_to_coverage = st->alpha_to_coverage && fb->samples > 1;
+    ds->per_sample = fb->samples > 1 || ds->stencil_test;
+    ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
 }
 
 static uint32_t index_at(const sr_draw_desc *d, size_t i)
@@ -457,9 +481,44 @@ static void *next_record(const front_end *fe, sr_chunk *c)
     return c->tris + (size_t)c->tri_count * fe->tri_size;
 }
 
+/* A multisampled line is the rectangle of its width centred on the
+ * segment (Vulkan's strict lines, Direct3D's MSAA lines), drawn as two
+ * triangles sampled like any other: each corner carries its end's depth,
+ * 1/w and varyings. */
+static void emit_line_quad(const front_end *fe, sr_chunk *c, const sr_window_vertex *a,
+                           const sr_window_vertex *b, double offset, bool front,
+                           const float flat[4])
+{
+    const sr_draw_state *ds = fe->ds;
+    double dx = (double)b->x_q8 - a->x_q8, dy = (double)b->y_q8 - a->y_q8;
+    double len = sqrt(dx * dx + dy * dy);
+    if (len == 0.0) {
+        return;
+    }
+    double half = (ds->smooth_lines ? ds->smooth_width : ds->line_width) * 0.5;
+    double nx = -dy / len * half * SR_SUBPIXEL_ONE, ny = dx / len * half * SR_SUBPIXEL_ONE;
+    int32_t ox = (int32_t)nearbyint(nx), oy = (int32_t)nearbyint(ny);
+    sr_window_vertex q[4] = { *a, *a, *b, *b };
+    q[0].x_q8 += ox, q[0].y_q8 += oy;
+    q[1].x_q8 -= ox, q[1].y_q8 -= oy;
+    q[2].x_q8 -= ox, q[2].y_q8 -= oy;
+    q[3].x_q8 += ox, q[3].y_q8 += oy;
+    for (int i = 0; i < 2; i++) {
+        sr_tri *t = next_record(fe, c);
+        if (t && sr__setup_triangle_offset(ds, &q[0], &q[1 + i], &q[2 + i], offset, front,
+                                           ds->ninterp, flat, t)) {
+            c->tri_count++;
+        }
+    }
+}
+
 static void emit_line(const front_end *fe, sr_chunk *c, const sr_window_vertex *a,
                       const sr_window_vertex *b, double offset, bool front, const float flat[4])
 {
+    if (fe->ds->samples > 1) {
+        emit_line_quad(fe, c, a, b, offset, front, flat);
+        return;
+    }
     sr_line *l = next_record(fe, c);
     if (l && sr__setup_line(fe->ds, a, b, offset, front, fe->ds->ninterp, flat, l)) {
         c->tri_count++;

@@ -105,6 +105,14 @@ typedef struct sr_draw_state {
     bool blending;                    /* blend or color mask active: the generic color write */
     sr_blend blend;                   /* factors and ops resolved */
     uint8_t write_mask[4];            /* 0xff: channel written; 0: kept */
+    /* Multisampling and stencil: with either, triangles take the
+     * per-sample path (raster/sample.c), lines and points too. */
+    int samples;                      /* the framebuffer's, 1..16 */
+    const int8_t (*sample_off)[2];    /* q8 offsets from the pixel centre */
+    bool per_sample;
+    bool stencil_test;
+    sr_stencil_face stencil[2];       /* front, back: defaults resolved */
+    bool alpha_to_coverage;
     double depth_scale;               /* 2^n - 1 for UNORM, 1 for float */
     double zq_min, zq_max;            /* depth range in buffer units */
     int tiles_x, tiles_y;
@@ -207,6 +215,7 @@ typedef struct sr_line {
 typedef struct sr_point {
     sr_prim_head h;
     int32_t cx, cy;                   /* centre, q8 */
+    int32_t half;                     /* half the size, q8 */
     int64_t radius2;                  /* round points: squared radius in q8^2, else 0 */
     float smooth_radius;              /* smooth points: radius in pixels, else 0 */
     double z;
@@ -274,6 +283,12 @@ static inline int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vert
 bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *v0,
                         const sr_window_vertex *v1, const sr_window_vertex *v2,
                         bool front, int ninterp, const float flat[4], sr_tri *t);
+/* The same with a given depth offset in depth-range units (NaN: the
+ * fill's polygon offset, as sr__setup_triangle). */
+bool sr__setup_triangle_offset(const sr_draw_state *ds, const sr_window_vertex *v0,
+                               const sr_window_vertex *v1, const sr_window_vertex *v2,
+                               double offset, bool front, int ninterp, const float flat[4],
+                               sr_tri *t);
 
 /* raster/line.c: set up a segment or a point (false when nothing can be
  * drawn), and rasterize them within a pixel rectangle. */
@@ -299,6 +314,10 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
 void sr__raster_barycentric(const sr_draw_state *ds, const sr_tri *t,
                             int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+/* raster/sample.c: the per-sample path (ds->per_sample: multisampling or
+ * the stencil test), whatever the rasterizer choice. */
+void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t,
+                       int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
 
 /* fragment/shade.c: Blinn-Phong. n must be unit length. */
 void sr__light(const sr_draw_state *ds, const float n[3], const float eye[3],

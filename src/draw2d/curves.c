@@ -193,7 +193,10 @@ sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double
     if (!sr__paint_init(&paint, color, false)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
     }
-    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
+    if (r2d != SR_OK) {
+        return r2d;
+    }
     int64_t rxq = (int64_t)nearbyint(rx * Q8_ONE), ryq = (int64_t)nearbyint(ry * Q8_ONE);
     ellipse_q8 e = { (int64_t)nearbyint(cx * Q8_ONE), (int64_t)nearbyint(cy * Q8_ONE),
                      (i128)ryq * ryq, (i128)rxq * rxq, (i128)rxq * rxq * ryq * ryq };
@@ -268,7 +271,10 @@ sr_result sr_fill_implicit(sr_context *ctx, sr_framebuffer *fb, const sr_implici
     if (!sr__paint_init(&paint, color, desc->linear_light)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
     }
-    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
+    if (r2d != SR_OK) {
+        return r2d;
+    }
     /* Pixels whose centres lie in the box, clipped to the framebuffer. */
     double fx0 = fmax(ceil(bx0 - 0.5), 0), fy0 = fmax(ceil(by0 - 0.5), 0);
     double fx1 = fmin(ceil(bx1 - 0.5), fb->width), fy1 = fmin(ceil(by1 - 0.5), fb->height);

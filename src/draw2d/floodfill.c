@@ -154,7 +154,10 @@ static sr_result region_fill(sr_context *ctx, const char *fn, sr_framebuffer *fb
     if (boundary && !sr__paint_init(&boundary_paint, *boundary, false)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: boundary color is not finite", fn);
     }
-    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
+    if (r2d != SR_OK) {
+        return r2d;
+    }
     size_t pixels = (size_t)fb->width * (size_t)fb->height;
     region g = { .fb = fb, .tol = d.tolerance, .ctx = ctx };
     g.visited = sr__calloc(ctx, (pixels + 7) / 8, 1);

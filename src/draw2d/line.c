@@ -584,7 +584,10 @@ sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_poin
     if (!sr__paint_init(&p.paint, color, true)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_line: color is not finite");
     }
-    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    sr_result r2d = sr__fb_begin_2d(ctx, "sr_draw_line", fb);
+    if (r2d != SR_OK) {
+        return r2d;
+    }
     sr__irect clip = { 0, 0, fb->width, fb->height };
     sr__line_q8 q = { sr__line_snap_q8(a.x), sr__line_snap_q8(a.y),
                       sr__line_snap_q8(b.x), sr__line_snap_q8(b.y) };

@@ -662,7 +662,10 @@ sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
     if (!sr__paint_init(&t.paint, color, d.linear_light)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
     }
-    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
+    if (r2d != SR_OK) {
+        return r2d;
+    }
     r = sr__rasterize_polygon(ctx, fn, poly, &d, (sr__window){ 0, 0, fb->width, fb->height },
                               paint_span, &t);
     if (r == SR_OK) {

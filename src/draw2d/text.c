@@ -192,7 +192,10 @@ sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int sc
     if (!sr__paint_init(&paint, color, false)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_text: color is not finite");
     }
-    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    sr_result r2d = sr__fb_begin_2d(ctx, "sr_draw_text", fb);
+    if (r2d != SR_OK) {
+        return r2d;
+    }
     long long pen_x = x, pen_y = y;
     for (const char *p = text; *p; p++) {
         if (*p == '\n') {

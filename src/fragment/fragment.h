@@ -292,48 +292,6 @@ SR_INLINE void sr__fragment_as(const sr_draw_state *ds, const sr_tri *t, int px,
     st->fragments++;
 }
 
-/* A line or point sample: depth already interpolated (buffer units, before
- * the clamp), varyings already interpolated.  Same depth rules as
- * triangles.  coverage < 1 (antialiased lines and points) blends the color
- * source-over with alpha = coverage x the color's alpha, and leaves depth
- * unwritten so the pixel stays open to what lies behind its uncovered
- * part. */
-static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, double z,
-                                     const float *v, const float flat[4], bool front,
-                                     float coverage, sr_frag_stats *st)
-{
-    sr_framebuffer *fb = ds->fb;
-    size_t idx = (size_t)py * (size_t)fb->width + (size_t)px;
-    z = z >= ds->zq_min ? z : ds->zq_min;
-    z = z <= ds->zq_max ? z : ds->zq_max;
-    if (ds->depth_mode != SR_DEPTH_MODE_OFF) {
-        uint32_t q;
-        if (ds->depth_bits) {
-            q = (uint32_t)(z + 0.5);
-        } else {
-            float f = (float)z;
-            memcpy(&q, &f, sizeof q);
-        }
-        if (ds->depth_test && !sr__depth_pass(ds->depth_func, q, fb->depth[idx])) {
-            return;
-        }
-        if (ds->depth_write && coverage >= 1.0f) {
-            fb->depth[idx] = q;
-        }
-    }
-    float c[4];
-    sr__shade_vary(ds, v, flat, front, z, 0.0f, c, ds->shading);
-    if (coverage < 1.0f) {
-        /* Coverage scales alpha; the draw's blend state decides, or else
-         * source-over. */
-        c[3] = (c[3] > 0.0f ? (c[3] < 1.0f ? c[3] : 1.0f) : 0.0f) * coverage;
-        sr__write_color_as(ds, idx, c, ds->blend.enabled ? &ds->blend : &sr__source_over);
-    } else {
-        sr__write_color(ds, idx, c);
-    }
-    st->fragments++;
-}
-
 static inline void sr__fragment(const sr_draw_state *ds, const sr_tri *t, int px, int py,
                                 int64_t e0, int64_t e1, int64_t e2, sr_frag_stats *st)
 {

@@ -86,6 +86,10 @@ static void run_tile(void *arg, int job, int thread)
                 continue;
             }
             const sr_tri *t = (const sr_tri *)p;
+            if (ds->per_sample) {
+                sr__raster_sample(ds, t, rx0, ry0, rx1, ry1, st);
+                continue;
+            }
             switch (ds->rasterizer) {
             case SR_RASTER_SCANLINE:
                 sr__raster_scanline(ds, t, rx0, ry0, rx1, ry1, st);

@@ -13,7 +13,7 @@
  * direction except for which end is left open, line strips join without
  * gaps or double pixels, and everything is integer arithmetic.  Wide lines
  * are OpenGL's: a run of `width` pixels across the minor axis per step. */
-#include "fragment/fragment.h"
+#include "fragment/sample.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -92,8 +92,24 @@ bool sr__setup_point(const sr_draw_state *ds, const sr_window_vertex *v, double 
     }
     p->cx = v->x_q8;
     p->cy = v->y_q8;
+    p->half = (int32_t)half;
     p->radius2 = ds->round_points ? half * half : 0;
     p->smooth_radius = ds->smooth_points ? (float)(ds->point_size * 0.5) : 0.0f;
+    if (ds->samples > 1) {
+        /* Multisampled: the samples inside the square or disc decide
+         * (smooth points become discs, as GL ignores smoothing under
+         * multisampling); the box holds every pixel whose square meets
+         * [lo, hi). */
+        p->radius2 = ds->round_points || ds->smooth_points ? half * half : 0;
+        p->smooth_radius = 0.0f;
+        p->h.x0 = clampi(sr__floor_div(lox, S), ds->rect_x0, ds->rect_x1);
+        p->h.x1 = clampi(sr__floor_div(hix - 1, S) + 1, ds->rect_x0, ds->rect_x1);
+        p->h.y0 = clampi(sr__floor_div(loy, S), ds->rect_y0, ds->rect_y1);
+        p->h.y1 = clampi(sr__floor_div(hiy - 1, S) + 1, ds->rect_y0, ds->rect_y1);
+        if (p->h.x0 >= p->h.x1 || p->h.y0 >= p->h.y1) {
+            return false;
+        }
+    }
     if (p->smooth_radius > 0.0f) {
         /* The ramp reaches half a pixel past the radius. */
         int64_t reach = half + H;
@@ -117,9 +133,46 @@ bool sr__setup_point(const sr_draw_state *ds, const sr_window_vertex *v, double 
     return true;
 }
 
+/* A multisampled point: each sample inside the half-open square
+ * [c - half, c + half) or strictly inside the disc, in exact integers;
+ * one depth and one shading for the pixel. */
+static void raster_point_samples(const sr_draw_state *ds, const sr_point *p, int rx0, int ry0,
+                                 int rx1, int ry1, sr_frag_stats *st)
+{
+    size_t n = (size_t)ds->samples;
+    double z = p->z;
+    uint32_t q = sr__quantize_depth(ds, &z);
+    for (int py = ry0; py < ry1; py++) {
+        for (int px = rx0; px < rx1; px++) {
+            size_t base = ((size_t)py * (size_t)ds->fb->width + (size_t)px) * n;
+            unsigned pass = 0;
+            for (size_t s = 0; s < n; s++) {
+                int64_t dx = sr__centre_q8(px) + ds->sample_off[s][0] - p->cx;
+                int64_t dy = sr__centre_q8(py) + ds->sample_off[s][1] - p->cy;
+                bool in = p->radius2 ? dx * dx + dy * dy < p->radius2
+                                     : dx >= -p->half && dx < p->half && dy >= -p->half &&
+                                           dy < p->half;
+                if (in && sr__sample_test(ds, base + s, q, p->front, true)) {
+                    pass |= 1u << s;
+                }
+            }
+            if (pass) {
+                float c[4];
+                sr__shade_vary(ds, p->vary, p->flat, p->front, z, 0.0f, c, ds->shading);
+                sr__write_samples(ds, base, pass, c, &ds->blend);
+                st->fragments += (uint64_t)__builtin_popcount(pass);
+            }
+        }
+    }
+}
+
 void sr__raster_point(const sr_draw_state *ds, const sr_point *p, int rx0, int ry0, int rx1,
                       int ry1, sr_frag_stats *st)
 {
+    if (ds->samples > 1) {
+        raster_point_samples(ds, p, rx0, ry0, rx1, ry1, st);
+        return;
+    }
     for (int py = ry0; py < ry1; py++) {
         for (int px = rx0; px < rx1; px++) {
             if (p->radius2) {

@@ -92,6 +92,14 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
                         const sr_window_vertex *w1, const sr_window_vertex *w2,
                         bool front, int ninterp, const float flat[4], sr_tri *t)
 {
+    return sr__setup_triangle_offset(ds, w0, w1, w2, NAN, front, ninterp, flat, t);
+}
+
+bool sr__setup_triangle_offset(const sr_draw_state *ds, const sr_window_vertex *w0,
+                               const sr_window_vertex *w1, const sr_window_vertex *w2,
+                               double offset, bool front, int ninterp, const float flat[4],
+                               sr_tri *t)
+{
     const sr_window_vertex *v[3] = { w0, w1, w2 };
     int64_t area2 = sr__area2(w0, w1, w2);
     if (area2 == 0) {
@@ -116,11 +124,20 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
         miny = t->y[i] < miny ? t->y[i] : miny;
         maxy = t->y[i] > maxy ? t->y[i] : maxy;
     }
-    /* Pixels whose centre 256 p + 128 lies in [min, max]. */
-    int x0 = (int)sr__ceil_q8((int64_t)minx - SR_SUBPIXEL_HALF);
-    int x1 = (int)sr__floor_q8((int64_t)maxx - SR_SUBPIXEL_HALF) + 1;
-    int y0 = (int)sr__ceil_q8((int64_t)miny - SR_SUBPIXEL_HALF);
-    int y1 = (int)sr__floor_q8((int64_t)maxy - SR_SUBPIXEL_HALF) + 1;
+    /* Pixels whose centre 256 p + 128 lies in [min, max]; multisampled,
+     * pixels whose square [256 p, 256 p + 256) meets it. */
+    int x0, x1, y0, y1;
+    if (ds->samples > 1) {
+        x0 = (int)sr__floor_q8(minx);
+        x1 = (int)sr__floor_q8(maxx) + 1;
+        y0 = (int)sr__floor_q8(miny);
+        y1 = (int)sr__floor_q8(maxy) + 1;
+    } else {
+        x0 = (int)sr__ceil_q8((int64_t)minx - SR_SUBPIXEL_HALF);
+        x1 = (int)sr__floor_q8((int64_t)maxx - SR_SUBPIXEL_HALF) + 1;
+        y0 = (int)sr__ceil_q8((int64_t)miny - SR_SUBPIXEL_HALF);
+        y1 = (int)sr__floor_q8((int64_t)maxy - SR_SUBPIXEL_HALF) + 1;
+    }
     t->h.kind = SR_KIND_TRIANGLE;
     t->h.x0 = x0 > ds->rect_x0 ? x0 : ds->rect_x0;
     t->h.y0 = y0 > ds->rect_y0 ? y0 : ds->rect_y0;
@@ -144,7 +161,11 @@ bool sr__setup_triangle(const sr_draw_state *ds, const sr_window_vertex *w0,
 
     /* Depth: linear in screen space (RASTER_RULES 4.1). */
     double z[3] = { v[0]->z, v[1]->z, v[2]->z };
-    double offset = sr__polygon_offset(ds, v[0], v[1], v[2], SR_POLYGON_FILL);
+    /* NaN: the fill's own offset; otherwise the caller's (the quads that
+     * stand for multisampled lines carry their line's). */
+    if (isnan(offset)) {
+        offset = sr__polygon_offset(ds, v[0], v[1], v[2], SR_POLYGON_FILL);
+    }
     /* The depth plane, in buffer units so the fragment stage only adds,
      * clamps and rounds. */
     double scale = ds->depth_scale;

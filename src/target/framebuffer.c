@@ -34,6 +34,12 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
                         w ? "width" : "height", w ? desc->width : desc->height,
                         SR_MAX_FRAMEBUFFER_SIZE);
     }
+    int samples = desc->samples == 0 ? 1 : desc->samples;
+    if (!sr__sample_offsets(samples)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_framebuffer_desc.samples must be 0, 1, 2, 4, 8 or 16 (got %d)",
+                        desc->samples);
+    }
     int bits;
     sr_depth_format fmt = desc->depth_format == SR_DEPTH_DEFAULT ? SR_DEPTH_D24 : desc->depth_format;
     switch (fmt) {
@@ -51,9 +57,11 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     if (!fb) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_framebuffer: out of memory");
     }
-    size_t n = (size_t)desc->width * (size_t)desc->height;
+    size_t pixels = (size_t)desc->width * (size_t)desc->height;
+    size_t n = pixels * (size_t)samples;
     fb->width = desc->width;
     fb->height = desc->height;
+    fb->samples = samples;
     fb->depth_format = fmt;
     fb->depth_bits = bits < 0 ? 0 : bits;
     fb->tiles_x = (desc->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
@@ -66,13 +74,22 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     if (fb->color && bits >= 0) {
         fb->depth = sr__alloc_large(ctx, n * sizeof(uint32_t));
     }
+    if (fb->color && desc->stencil) {
+        fb->stencil = sr__alloc_large(ctx, n);
+    }
+    if (fb->color && samples > 1) {
+        fb->resolved = sr__alloc_large(ctx, pixels * sizeof(uint32_t));
+    }
     if (fb->tile_pending) {
         fb->clear_color = 0;
         fb->clear_depth = bits >= 0 ? sr__depth_quantize(1.0, fb->depth_bits) : 0;
-        memset(fb->tile_pending, SR_TILE_PENDING_COLOR | (bits >= 0 ? SR_TILE_PENDING_DEPTH : 0),
+        fb->clear_stencil = 0;
+        memset(fb->tile_pending, SR_TILE_PENDING_COLOR | (bits >= 0 ? SR_TILE_PENDING_DEPTH : 0) |
+                                 (desc->stencil ? SR_TILE_PENDING_STENCIL : 0),
                (size_t)fb->tiles_x * fb->tiles_y);
     }
-    if (!fb->color || (bits >= 0 && !fb->depth)) {
+    if (!fb->color || (bits >= 0 && !fb->depth) || (desc->stencil && !fb->stencil) ||
+        (samples > 1 && !fb->resolved)) {
         sr_destroy_framebuffer(ctx, fb);
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_framebuffer: out of memory for %dx%d",
                         desc->width, desc->height);
@@ -89,6 +106,8 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
     }
     sr__free(ctx, fb->color);
     sr__free(ctx, fb->depth);
+    sr__free(ctx, fb->stencil);
+    sr__free(ctx, fb->resolved);
     sr__free(ctx, fb->tile_pending);
     sr__free(ctx, fb);
 }
@@ -103,17 +122,23 @@ void sr__tile_resolve(sr_framebuffer *fb, int tile)
     int x0 = tx << SR_TILE_ORDER, y0 = ty << SR_TILE_ORDER;
     int x1 = x0 + SR_TILE_SIZE < fb->width ? x0 + SR_TILE_SIZE : fb->width;
     int y1 = y0 + SR_TILE_SIZE < fb->height ? y0 + SR_TILE_SIZE : fb->height;
+    /* A row of the tile is one run of samples in memory (framebuffer.h). */
+    size_t ns = (size_t)fb->samples;
+    size_t run = (size_t)(x1 - x0) * ns;
     for (int y = y0; y < y1; y++) {
-        size_t row = (size_t)y * fb->width;
+        size_t first = ((size_t)y * fb->width + (size_t)x0) * ns;
         if (pending & SR_TILE_PENDING_COLOR) {
-            for (int x = x0; x < x1; x++) {
-                fb->color[row + x] = fb->clear_color;
+            for (size_t i = 0; i < run; i++) {
+                fb->color[first + i] = fb->clear_color;
             }
         }
         if ((pending & SR_TILE_PENDING_DEPTH) && fb->depth) {
-            for (int x = x0; x < x1; x++) {
-                fb->depth[row + x] = fb->clear_depth;
+            for (size_t i = 0; i < run; i++) {
+                fb->depth[first + i] = fb->clear_depth;
             }
+        }
+        if ((pending & SR_TILE_PENDING_STENCIL) && fb->stencil) {
+            memset(fb->stencil + first, fb->clear_stencil, run);
         }
     }
     fb->tile_pending[tile] = 0;
@@ -129,21 +154,140 @@ void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
     }
 }
 
+sr_result sr__fb_begin_2d(sr_context *ctx, const char *fn, sr_framebuffer *fb)
+{
+    if (fb->samples > 1) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: the framebuffer is multisampled; 2D drawing needs a single-sampled "
+                        "one (sr_resolve into it first)", fn);
+    }
+    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    return SR_OK;
+}
+
 int sr_framebuffer_width(const sr_framebuffer *fb) { return fb ? fb->width : 0; }
 int sr_framebuffer_height(const sr_framebuffer *fb) { return fb ? fb->height : 0; }
 sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb)
 {
     return fb ? fb->depth_format : SR_DEPTH_NONE;
 }
-/* Reading resolves deferred clears: logically the framebuffer is
- * unchanged, so the read functions keep their const parameter. */
+int sr_framebuffer_samples(const sr_framebuffer *fb) { return fb ? fb->samples : 0; }
+bool sr_framebuffer_has_stencil(const sr_framebuffer *fb) { return fb && fb->stencil; }
+
+/* D3D's standard patterns in 1/16 px from the centre, times 16 (q8). */
+#define P(x, y) { (int8_t)(16 * (x)), (int8_t)(16 * (y)) }
+static const int8_t offsets_1[1][2] = { P(0, 0) };
+static const int8_t offsets_2[2][2] = { P(4, 4), P(-4, -4) };
+static const int8_t offsets_4[4][2] = { P(-2, -6), P(6, -2), P(-6, 2), P(2, 6) };
+static const int8_t offsets_8[8][2] = {
+    P(1, -3), P(-1, 3), P(5, 1), P(-3, -5), P(-5, 5), P(-7, -1), P(3, 7), P(7, -7),
+};
+static const int8_t offsets_16[16][2] = {
+    P(1, 1), P(-1, -3), P(-3, 2), P(4, -1), P(-5, -2), P(2, 5), P(5, 3), P(3, -5),
+    P(-2, 6), P(0, -7), P(-4, -6), P(-6, 4), P(-8, 0), P(7, -4), P(6, 7), P(-7, -8),
+};
+#undef P
+
+const int8_t (*sr__sample_offsets(int samples))[2]
+{
+    switch (samples) {
+    case 1:  return offsets_1;
+    case 2:  return offsets_2;
+    case 4:  return offsets_4;
+    case 8:  return offsets_8;
+    case 16: return offsets_16;
+    default: return NULL;
+    }
+}
+
+sr_result sr_sample_position(int samples, int index, float *x, float *y)
+{
+    const int8_t (*off)[2] = sr__sample_offsets(samples);
+    if (!off || index < 0 || index >= samples || !x || !y) {
+        return SR_INVALID_ARG;
+    }
+    *x = (float)(128 + off[index][0]) / 256.0f;
+    *y = (float)(128 + off[index][1]) / 256.0f;
+    return SR_OK;
+}
+
+/* The box resolve of rows [y0, y1): each channel (sum + n/2) / n, the
+ * rounded average (RASTER_RULES 8.2). */
+static void resolve_rows(const sr_framebuffer *src, uint32_t *dst, int y0, int y1)
+{
+    int n = src->samples;
+    size_t w = (size_t)src->width;
+    for (int y = y0; y < y1; y++) {
+        for (size_t x = 0; x < w; x++) {
+            const uint8_t *s = (const uint8_t *)&src->color[((size_t)y * w + x) * n];
+            unsigned sum[4] = { 0, 0, 0, 0 };
+            for (int i = 0; i < n; i++) {
+                for (int c = 0; c < 4; c++) {
+                    sum[c] += s[4 * i + c];
+                }
+            }
+            uint8_t out[4];
+            for (int c = 0; c < 4; c++) {
+                out[c] = (uint8_t)((sum[c] + (unsigned)n / 2) / (unsigned)n);
+            }
+            memcpy(&dst[(size_t)y * w + x], out, sizeof out);
+        }
+    }
+}
+
+/* Reading resolves deferred clears (and multisampled pixels): logically the
+ * framebuffer is unchanged, so the read functions keep their const
+ * parameter. */
+static const uint32_t *color_image(const sr_framebuffer *fb)
+{
+    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
+    if (fb->samples == 1) {
+        return fb->color;
+    }
+    resolve_rows(fb, fb->resolved, 0, fb->height);
+    return fb->resolved;
+}
+
 const uint8_t *sr_framebuffer_pixels(const sr_framebuffer *fb)
 {
     if (!fb) {
         return NULL;
     }
-    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
-    return (const uint8_t *)fb->color;
+    return (const uint8_t *)color_image(fb);
+}
+
+sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!src || !dst) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_resolve: %s is NULL", src ? "dst" : "src");
+    }
+    if (dst->samples != 1 || src->width != dst->width || src->height != dst->height) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_resolve: the destination must be single-sampled and %dx%d "
+                        "(got %d samples, %dx%d)", src->width, src->height, dst->samples,
+                        dst->width, dst->height);
+    }
+    if (src == dst) {
+        sr__fb_resolve(dst, SR_TILE_PENDING_COLOR);
+        sr__ok(ctx);
+        return SR_OK;
+    }
+    sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
+    /* Every destination pixel is written: its pending color clear is moot. */
+    int tiles = dst->tiles_x * dst->tiles_y;
+    for (int t = 0; t < tiles; t++) {
+        dst->tile_pending[t] &= (uint8_t)~SR_TILE_PENDING_COLOR;
+    }
+    if (src->samples == 1) {
+        memcpy(dst->color, src->color, (size_t)src->width * src->height * sizeof(uint32_t));
+    } else {
+        resolve_rows(src, dst->color, 0, src->height);
+    }
+    sr__ok(ctx);
+    return SR_OK;
 }
 
 static uint8_t unorm8(float v)
@@ -185,6 +329,10 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
         fb->clear_depth = sr__depth_quantize(desc->depth, fb->depth_bits);
         pending |= SR_TILE_PENDING_DEPTH;
     }
+    if (!desc->no_stencil && fb->stencil) {
+        fb->clear_stencil = desc->stencil;
+        pending |= SR_TILE_PENDING_STENCIL;
+    }
     int tiles = fb->tiles_x * fb->tiles_y;
     for (int t = 0; t < tiles; t++) {
         fb->tile_pending[t] |= (uint8_t)pending;
@@ -220,9 +368,9 @@ sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
     if (stride < (size_t)w * 4) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_read_pixels: stride %zu < 4 * width", stride);
     }
-    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
+    const uint32_t *image = color_image(fb);
     for (int row = 0; row < h; row++) {
-        memcpy(out + (size_t)row * stride, fb->color + (size_t)(y + row) * fb->width + x,
+        memcpy(out + (size_t)row * stride, image + (size_t)(y + row) * fb->width + x,
                (size_t)w * 4);
     }
     sr__ok(ctx);
@@ -248,8 +396,38 @@ sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
     sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_DEPTH);
     for (int row = 0; row < h; row++) {
         for (int col = 0; col < w; col++) {
-            uint32_t q = fb->depth[(size_t)(y + row) * fb->width + x + col];
+            /* Multisampled: sample 0's depth. */
+            size_t px = (size_t)(y + row) * fb->width + x + col;
+            uint32_t q = fb->depth[px * (size_t)fb->samples];
             out[(size_t)row * stride + col] = (float)sr__depth_dequantize(q, fb->depth_bits);
+        }
+    }
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
+                          int x, int y, int w, int h, uint8_t *out, size_t stride)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    sr_result r = check_rect(ctx, "sr_read_stencil", fb, x, y, w, h, out);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (!fb->stencil) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_read_stencil: the framebuffer has no stencil buffer");
+    }
+    if (stride < (size_t)w) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_read_stencil: stride %zu < width", stride);
+    }
+    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_STENCIL);
+    for (int row = 0; row < h; row++) {
+        for (int col = 0; col < w; col++) {
+            size_t px = (size_t)(y + row) * fb->width + x + col;
+            out[(size_t)row * stride + col] = fb->stencil[px * (size_t)fb->samples];
         }
     }
     sr__ok(ctx);

@@ -14,22 +14,42 @@
  * out resolves the tiles nobody drew. */
 #define SR_TILE_PENDING_COLOR 1u
 #define SR_TILE_PENDING_DEPTH 2u
+#define SR_TILE_PENDING_STENCIL 4u
 
+/* Multisampled storage keeps a pixel's samples side by side: sample s of
+ * pixel (x, y) is element (y * width + x) * samples + s of color, depth
+ * and stencil.  With one sample this is the plain image, so every
+ * single-sample path indexes exactly as before; with n, one pixel's
+ * samples share a cache line and the per-pixel shading result is written
+ * to them together. */
 struct sr_framebuffer {
     int width, height;
+    int samples;                    /* 1, 2, 4, 8, 16 */
     sr_depth_format depth_format;   /* resolved: never SR_DEPTH_DEFAULT */
     int depth_bits;                 /* 16, 24, 32; 0 for D32F */
     uint32_t *color;
     uint32_t *depth;                /* NULL with SR_DEPTH_NONE */
+    uint8_t *stencil;               /* NULL without a stencil buffer */
+    uint32_t *resolved;             /* samples > 1: the box-filtered image read out */
     int tiles_x, tiles_y;
     uint8_t *tile_pending;          /* SR_TILE_PENDING_* per tile */
     uint32_t clear_color;           /* packed RGBA8 of the last clear */
     uint32_t clear_depth;           /* quantized depth of the last clear */
+    uint8_t clear_stencil;
 };
+
+/* The standard positions as q8 offsets from the pixel centre, x then y
+ * (RASTER_RULES 8.1: 16 x the D3D offset in 1/16 px, -128..112).  NULL
+ * for a count that is not 1, 2, 4, 8 or 16. */
+const int8_t (*sr__sample_offsets(int samples))[2];
 
 /* Carry out a tile's pending clear (tile = ty * tiles_x + tx). */
 void sr__tile_resolve(sr_framebuffer *fb, int tile);
 /* Carry out every pending clear of the given components. */
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components);
+/* Before a 2D drawing function touches fb: the 2D toolkit draws into
+ * single-sampled images only (SR_INVALID_ARG naming `fn` otherwise);
+ * carries out the pending color clears. */
+sr_result sr__fb_begin_2d(sr_context *ctx, const char *fn, sr_framebuffer *fb);
 
 #endif

@@ -94,6 +94,10 @@ sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
     if (!src || !dst) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_downsample: %s is NULL", src ? "dst" : "src");
     }
+    if (src->samples > 1 || dst->samples > 1) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_downsample: multisampled framebuffers are resolved with sr_resolve");
+    }
     if ((unsigned)filter > SR_RESAMPLE_MITCHELL) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_downsample: filter %d is not a filter", (int)filter);
     }

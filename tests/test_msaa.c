@@ -1,0 +1,462 @@
+/* test_msaa.c - multisampling: the standard sample positions, per-sample
+ * coverage against an independent int64 reference of the top-left rule at
+ * each sample, watertight meshes per sample, the box resolve, lines and
+ * points per sample, alpha to coverage, and that the per-sample path with
+ * one sample gives the fast path's bytes. */
+#include "raster_util.h"
+#include "target/framebuffer.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* RASTER_RULES 8.1, Vulkan's standardSampleLocations in sixteenths of a
+ * pixel from the upper-left corner, written out from the spec table. */
+static const int vk2[2][2] = { { 12, 12 }, { 4, 4 } };
+static const int vk4[4][2] = { { 6, 2 }, { 14, 6 }, { 2, 10 }, { 10, 14 } };
+static const int vk8[8][2] = { { 9, 5 }, { 7, 11 }, { 13, 9 }, { 5, 3 },
+                               { 3, 13 }, { 1, 7 }, { 11, 15 }, { 15, 1 } };
+static const int vk16[16][2] = { { 9, 9 }, { 7, 5 }, { 5, 10 }, { 12, 7 }, { 3, 6 }, { 10, 13 },
+                                 { 13, 11 }, { 11, 3 }, { 6, 14 }, { 8, 1 }, { 4, 2 }, { 2, 12 },
+                                 { 0, 8 }, { 15, 4 }, { 14, 15 }, { 1, 0 } };
+
+static const int (*vk_table(int n))[2]
+{
+    return n == 2 ? vk2 : n == 4 ? vk4 : n == 8 ? vk8 : vk16;
+}
+
+SR_TEST(sample_positions_are_the_standard_ones)
+{
+    static const int counts[] = { 2, 4, 8, 16 };
+    for (int c = 0; c < 4; c++) {
+        int n = counts[c];
+        for (int s = 0; s < n; s++) {
+            float x = -1, y = -1;
+            CHECK_EQ(sr_sample_position(n, s, &x, &y), SR_OK);
+            CHECK_NEAR(x, vk_table(n)[s][0] / 16.0, 0);
+            CHECK_NEAR(y, vk_table(n)[s][1] / 16.0, 0);
+        }
+        CHECK_EQ(sr_sample_position(n, n, &(float){ 0 }, &(float){ 0 }), SR_INVALID_ARG);
+    }
+    float x, y;
+    CHECK_EQ(sr_sample_position(1, 0, &x, &y), SR_OK);
+    CHECK(x == 0.5f && y == 0.5f);
+    CHECK_EQ(sr_sample_position(3, 0, &x, &y), SR_INVALID_ARG);
+}
+
+SR_TEST(framebuffer_rejects_bad_sample_counts)
+{
+    sr_context *ctx;
+    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
+    sr_framebuffer *fb = (sr_framebuffer *)1;
+    CHECK_EQ(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 8, .height = 8,
+                                                             .samples = 3 }, &fb), SR_INVALID_ARG);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "samples");
+    CHECK_EQ(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 8, .height = 8,
+                                                             .samples = 32 }, &fb), SR_INVALID_ARG);
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 8, .height = 8,
+                                                            .samples = 4 }, &fb) == SR_OK);
+    CHECK_EQ(sr_framebuffer_samples(fb), 4);
+    /* 2D drawing and SSAA's downsample want single-sampled images. */
+    CHECK_EQ(sr_draw_text(ctx, fb, 0, 0, 1, "x", (sr_rgba){ 1, 1, 1, 1 }), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "multisampled");
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* Per-sample coverage of one triangle by the top-left rule, at the
+ * table's positions: out[pixel * n + s]. */
+static void ref_cover_samples(const double *xy, int w, int h, int n, uint8_t *out)
+{
+    int64_t x[3], y[3];
+    for (int i = 0; i < 3; i++) {
+        x[i] = ref_snap(xy[i * 2]);
+        y[i] = ref_snap(xy[i * 2 + 1]);
+    }
+    memset(out, 0, (size_t)w * h * n);
+    int64_t area2 = ref_edge(x[0], y[0], x[1], y[1], x[2], y[2]);
+    if (area2 == 0) {
+        return;
+    }
+    if (area2 < 0) {
+        int64_t tx = x[1], ty = y[1];
+        x[1] = x[2], y[1] = y[2];
+        x[2] = tx, y[2] = ty;
+    }
+    const int (*pos)[2] = vk_table(n);
+    for (int py = 0; py < h; py++) {
+        for (int px = 0; px < w; px++) {
+            for (int s = 0; s < n; s++) {
+                int64_t sx = px * 256 + pos[s][0] * 16, sy = py * 256 + pos[s][1] * 16;
+                bool in = true;
+                for (int i = 0; i < 3; i++) {
+                    int a = i, b = (i + 1) % 3;
+                    int64_t dx = x[b] - x[a], dy = y[b] - y[a];
+                    bool tl = dy < 0 || (dy == 0 && dx > 0);
+                    in &= ref_edge(x[a], y[a], x[b], y[b], sx, sy) + (tl ? 1 : 0) > 0;
+                }
+                out[((size_t)py * w + px) * n + s] = in;
+            }
+        }
+    }
+}
+
+static sr_framebuffer *make_ms(sr_context *ctx, int w, int h, int n, sr_depth_format depth)
+{
+    sr_framebuffer *fb = NULL;
+    sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h, .samples = n,
+                                                    .depth_format = depth, .stencil = true }, &fb);
+    return fb;
+}
+
+static sr_result draw_window_tris(sr_context *ctx, sr_framebuffer *fb, const double *xy, int ntri,
+                                  const sr_state *st)
+{
+    int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
+    float *pos = malloc(sizeof(float) * 9 * (size_t)ntri);
+    for (int i = 0; i < ntri * 3; i++) {
+        pos[i * 3 + 0] = (float)(xy[i * 2] / (w * 0.5) - 1.0);
+        pos[i * 3 + 1] = (float)(1.0 - xy[i * 2 + 1] / (h * 0.5));
+        pos[i * 3 + 2] = 0.0f;
+    }
+    sr_result r = sr_draw(ctx, fb, st, &(sr_draw_desc){ .positions = pos,
+                                                        .vertex_count = (size_t)ntri * 3 });
+    free(pos);
+    return r;
+}
+
+/* Random triangles on the 1/256 grid, snapped exactly; every sample of
+ * every pixel is compared with the reference, for 2, 4, 8 and 16
+ * samples and each rasterizer choice. */
+SR_TEST(per_sample_coverage_matches_the_reference)
+{
+    enum { W = 32, H = 32 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    static const int counts[] = { 2, 4, 8, 16 };
+    sr_rng rng = { 0x5eed05a1u };
+    uint8_t *ref = malloc(W * H * 16);
+    int mismatches = 0, covered = 0;
+    for (int c = 0; c < 4; c++) {
+        int n = counts[c];
+        sr_framebuffer *fb = make_ms(ctx, W, H, n, SR_DEPTH_NONE);
+        REQUIRE(fb);
+        for (int iter = 0; iter < 300; iter++) {
+            double xy[6];
+            for (int k = 0; k < 6; k++) {
+                /* Small and large, often with vertices on sample rows. */
+                double v = sr_rng_range(&rng, -4, W + 4);
+                xy[k] = (iter & 1) ? floor(v * 16) / 16 : floor(v * 256) / 256;
+            }
+            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+            sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
+                            .rasterizer = (sr_rasterizer)(1 + iter % 3) };
+            REQUIRE(draw_window_tris(ctx, fb, xy, 1, &st) == SR_OK);
+            sr_framebuffer_pixels(fb);  /* carries out the pending clear everywhere */
+            ref_cover_samples(xy, W, H, n, ref);
+            for (int i = 0; i < W * H * n; i++) {
+                bool got = (fb->color[i] & 0xff) != 0;
+                mismatches += got != (ref[i] != 0);
+                covered += ref[i];
+            }
+        }
+        sr_destroy_framebuffer(ctx, fb);
+    }
+    CHECK_EQ(mismatches, 0);
+    CHECK(covered > 100000);
+    free(ref);
+    sr_destroy_context(ctx);
+}
+
+/* A fan and a grid of triangles sharing edges, added up per sample with
+ * ONE + ONE blending: every sample inside is counted exactly once. */
+SR_TEST(shared_edges_cover_each_sample_once)
+{
+    enum { W = 64, H = 64, N = 4 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = make_ms(ctx, W, H, N, SR_DEPTH_NONE);
+    REQUIRE(fb);
+    sr_rng rng = { 77 };
+    for (int iter = 0; iter < 20; iter++) {
+        /* A fan around a random centre covering a random convex polygon. */
+        enum { K = 24 };
+        double cx = sr_rng_range(&rng, 20, 44), cy = sr_rng_range(&rng, 20, 44);
+        double xy[K * 6];
+        double r0 = sr_rng_range(&rng, 8, 18), phase = sr_rng_range(&rng, 0, 1);
+        for (int k = 0; k < K; k++) {
+            double a0 = (k + phase) * 2 * M_PI / K, a1 = (k + 1 + phase) * 2 * M_PI / K;
+            double p[6] = { cx, cy, cx + r0 * cos(a0), cy + r0 * sin(a0), cx + r0 * cos(a1),
+                            cy + r0 * sin(a1) };
+            for (int j = 0; j < 6; j++) {
+                xy[k * 6 + j] = floor(p[j] * 256) / 256;
+            }
+        }
+        sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+        sr_state st = { .shading = SR_SHADING_UNLIT,
+                        .material = { .diffuse = { 1 / 255.0f, 1 / 255.0f, 1 / 255.0f } },
+                        .blend = { .enabled = true, .src_rgb = SR_BLEND_ONE,
+                                   .dst_rgb = SR_BLEND_ONE } };
+        REQUIRE(draw_window_tris(ctx, fb, xy, K, &st) == SR_OK);
+        sr_framebuffer_pixels(fb);
+        int twice = 0, once = 0;
+        for (int i = 0; i < W * H * N; i++) {
+            int v = (int)(fb->color[i] & 0xff);
+            twice += v > 1;
+            once += v == 1;
+        }
+        CHECK_EQ(twice, 0);
+        /* The polygon's area in samples, roughly: nothing went missing. */
+        double area = 0.5 * K * r0 * r0 * sin(2 * M_PI / K) * N;
+        CHECK_NEAR(once, area, area * 0.05 + 40);
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(resolve_is_the_rounded_box_average)
+{
+    sr_context *ctx;
+    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
+    static const int counts[] = { 2, 4, 8, 16 };
+    for (int c = 0; c < 4; c++) {
+        int n = counts[c];
+        sr_framebuffer *fb = make_ms(ctx, 3, 2, n, SR_DEPTH_NONE), *out = NULL;
+        REQUIRE(fb);
+        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 3, .height = 2 },
+                                    &out) == SR_OK);
+        sr_framebuffer_pixels(fb);
+        sr_rng rng = { 3 + (uint64_t)n };
+        for (int i = 0; i < 6 * n; i++) {
+            fb->color[i] = (uint32_t)sr_rng_next(&rng);
+        }
+        REQUIRE(sr_resolve(ctx, fb, out) == SR_OK);
+        const uint8_t *a = sr_framebuffer_pixels(out), *b = sr_framebuffer_pixels(fb);
+        for (int p = 0; p < 6; p++) {
+            for (int ch = 0; ch < 4; ch++) {
+                unsigned sum = 0;
+                for (int s = 0; s < n; s++) {
+                    sum += (fb->color[p * n + s] >> (8 * ch)) & 0xff;
+                }
+                unsigned want = (sum + (unsigned)n / 2) / (unsigned)n;
+                CHECK_EQ(a[p * 4 + ch], want);
+                CHECK_EQ(b[p * 4 + ch], want);
+            }
+        }
+        /* Wrong size or a multisampled destination are refused. */
+        CHECK_EQ(sr_resolve(ctx, out, fb), SR_INVALID_ARG);
+        sr_destroy_framebuffer(ctx, out);
+        sr_destroy_framebuffer(ctx, fb);
+    }
+    sr_destroy_context(ctx);
+}
+
+/* Depth per sample: two triangles crossing inside a pixel split its
+ * samples by their own depths, not the centre's. */
+SR_TEST(depth_is_tested_per_sample)
+{
+    enum { W = 16, H = 16, N = 16 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = make_ms(ctx, W, H, N, SR_DEPTH_D32F);
+    REQUIRE(fb);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = 1 });
+    /* Two full-screen quads whose depth planes cross at x = 8 exactly:
+     * red rises left to right, green falls. */
+    float pos[2][18];
+    for (int q = 0; q < 2; q++) {
+        float zl = q ? 0.5f : -0.5f, zr = -zl;
+        float v[6][3] = { { -1, -1, zl }, { 1, -1, zr }, { 1, 1, zr },
+                          { -1, -1, zl }, { 1, 1, zr }, { -1, 1, zl } };
+        memcpy(pos[q], v, sizeof v);
+        sr_state st = { .shading = SR_SHADING_UNLIT,
+                        .material = { .diffuse = { q ? 0.0f : 1.0f, q ? 1.0f : 0.0f, 0 } } };
+        REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos[q], .vertex_count = 6 })
+                == SR_OK);
+    }
+    sr_framebuffer_pixels(fb);
+    /* In pixel column 7 (x in [7, 8)) every sample is left of the
+     * crossing: red is nearer.  In column 8, green. */
+    for (int y = 0; y < H; y++) {
+        for (int s = 0; s < N; s++) {
+            uint32_t l = fb->color[((size_t)y * W + 7) * N + s], r = fb->color[((size_t)y * W + 8) * N + s];
+            CHECK_EQ(l & 0xffff, 0x00ff);
+            /* A sample exactly on x = 8 ties, and LESS keeps the red. */
+            CHECK_EQ(r & 0xffff, vk16[s][0] == 0 ? 0x00ff : 0xff00);
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* The per-sample path with one sample (here: the stencil test, always
+ * passing) gives the same bytes as the fast path, shading and depth
+ * included. */
+SR_TEST(per_sample_path_with_one_sample_equals_the_fast_path)
+{
+    enum { W = 96, H = 80, T = 400 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    sr_framebuffer *a = make_ms(ctx, W, H, 1, SR_DEPTH_D24), *b = make_ms(ctx, W, H, 1, SR_DEPTH_D24);
+    REQUIRE(a && b);
+    sr_rng rng = { 99 };
+    float *pos = malloc(sizeof(float) * 9 * T), *col = malloc(sizeof(float) * 12 * T);
+    for (int i = 0; i < 3 * T; i++) {
+        pos[i * 3 + 0] = (float)sr_rng_range(&rng, -1.2, 1.2);
+        pos[i * 3 + 1] = (float)sr_rng_range(&rng, -1.2, 1.2);
+        pos[i * 3 + 2] = (float)sr_rng_range(&rng, -1, 1);
+        for (int k = 0; k < 4; k++) {
+            col[i * 4 + k] = (float)sr_rng_unit(&rng);
+        }
+    }
+    sr_draw_desc d = { .positions = pos, .vertex_count = 3 * T, .colors = col };
+    sr_clear_desc cl = { .color = { 0.1f, 0.2f, 0.3f, 1 }, .depth = 1 };
+    sr_clear(ctx, a, &cl);
+    sr_clear(ctx, b, &cl);
+    sr_state st = { .shading = SR_SHADING_UNLIT };
+    REQUIRE(sr_draw(ctx, a, &st, &d) == SR_OK);
+    st.stencil.enabled = true;
+    REQUIRE(sr_draw(ctx, b, &st, &d) == SR_OK);
+    CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), (size_t)W * H * 4) == 0);
+    float *da = malloc(sizeof(float) * W * H), *db = malloc(sizeof(float) * W * H);
+    sr_read_depth(ctx, a, 0, 0, W, H, da, W);
+    sr_read_depth(ctx, b, 0, 0, W, H, db, W);
+    CHECK(memcmp(da, db, sizeof(float) * W * H) == 0);
+    free(da);
+    free(db);
+    free(pos);
+    free(col);
+    sr_destroy_framebuffer(ctx, a);
+    sr_destroy_framebuffer(ctx, b);
+    sr_destroy_context(ctx);
+}
+
+/* Lines become rectangles of their width, points squares (or discs),
+ * covered per sample by the same rule. */
+SR_TEST(lines_and_points_are_covered_per_sample)
+{
+    enum { W = 32, H = 32, N = 4 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = make_ms(ctx, W, H, N, SR_DEPTH_NONE);
+    REQUIRE(fb);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    /* A horizontal line along y = 10.5 from x = 2 to x = 20, width 1: the
+     * rectangle [2, 20] x [10, 11] covers every sample of row 10 in pixels
+     * 2..19 and nothing else. */
+    float line[6] = { 2.0f / 16 - 1, 1 - 10.5f / 16, 0, 20.0f / 16 - 1, 1 - 10.5f / 16, 0 };
+    sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } } };
+    REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .primitive = SR_PRIM_LINES,
+                                                   .positions = line, .vertex_count = 2 }) == SR_OK);
+    /* A point of size 2 at (26, 26): the square [25, 27)^2. */
+    float pt[3] = { 26.0f / 16 - 1, 1 - 26.0f / 16, 0 };
+    st.point_size = 2;
+    REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .primitive = SR_PRIM_POINTS,
+                                                   .positions = pt, .vertex_count = 1 }) == SR_OK);
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            bool in_line = y == 10 && x >= 2 && x < 20;
+            bool in_point = x >= 25 && x < 27 && y >= 25 && y < 27;
+            CHECK_EQ(px[(y * W + x) * 4], (in_line || in_point) ? 255 : 0);
+        }
+    }
+    /* A diagonal line: its resolved pixels take partial values (antialiased). */
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    float diag[6] = { -0.9f, -0.7f, 0, 0.8f, 0.9f, 0 };
+    st.point_size = 0;
+    REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .primitive = SR_PRIM_LINES,
+                                                   .positions = diag, .vertex_count = 2 }) == SR_OK);
+    px = sr_framebuffer_pixels(fb);
+    int partial = 0, full = 0;
+    long total = 0;
+    for (int i = 0; i < W * H; i++) {
+        partial += px[i * 4] > 0 && px[i * 4] < 255;
+        full += px[i * 4] == 255;
+        total += px[i * 4];
+    }
+    CHECK(partial > 20);
+    /* The total intensity is the rectangle's area (length x width 1) in
+     * pixels, up to sampling error. */
+    double len = hypot((0.8 + 0.9) * 16, (0.9 + 0.7) * 16);
+    CHECK_NEAR(total / 255.0, len, len * 0.08);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(alpha_to_coverage_keeps_that_share_of_the_samples)
+{
+    enum { W = 8, H = 8 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
+    static const int counts[] = { 2, 4, 8, 16 };
+    for (int c = 0; c < 4; c++) {
+        int n = counts[c];
+        sr_framebuffer *fb = make_ms(ctx, W, H, n, SR_DEPTH_NONE);
+        REQUIRE(fb);
+        for (int k = 0; k <= n; k++) {
+            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+            float quad[18] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, -1, 0, 1, 1, 0, -1, 1, 0 };
+            sr_state st = { .shading = SR_SHADING_UNLIT, .alpha_to_coverage = true,
+                            .material = { .diffuse = { 1, 1, 1 }, .opacity = 0 } };
+            st.material.opacity = (float)k / (float)n;
+            if (k == 0) {
+                st.material.opacity = 0.01f;  /* 0 would mean the default, 1 */
+            }
+            REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = quad, .vertex_count = 6 })
+                    == SR_OK);
+            sr_framebuffer_pixels(fb);
+            for (int p = 0; p < W * H; p++) {
+                int on = 0;
+                for (int s = 0; s < n; s++) {
+                    on += (fb->color[p * n + s] & 0xff) != 0;
+                }
+                CHECK_EQ(on, k);
+            }
+        }
+        sr_destroy_framebuffer(ctx, fb);
+    }
+    sr_destroy_context(ctx);
+}
+
+/* The same multisampled, blended scene on 1, 2, 3 and 8 threads. */
+SR_TEST(multisampled_blending_is_deterministic_across_threads)
+{
+    enum { W = 200, H = 150, T = 3000 };
+    sr_rng rng = { 1234 };
+    float *pos = malloc(sizeof(float) * 9 * T), *col = malloc(sizeof(float) * 12 * T);
+    for (int i = 0; i < 3 * T; i++) {
+        pos[i * 3 + 0] = (float)sr_rng_range(&rng, -1.1, 1.1);
+        pos[i * 3 + 1] = (float)sr_rng_range(&rng, -1.1, 1.1);
+        pos[i * 3 + 2] = (float)sr_rng_range(&rng, -1, 1);
+        for (int k = 0; k < 4; k++) {
+            col[i * 4 + k] = (float)sr_rng_unit(&rng);
+        }
+    }
+    uint8_t *first = NULL;
+    static const int threads[] = { 1, 2, 3, 8 };
+    for (int ti = 0; ti < 4; ti++) {
+        sr_context *ctx;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[ti] }, &ctx) == SR_OK);
+        sr_framebuffer *fb = make_ms(ctx, W, H, 8, SR_DEPTH_D24);
+        REQUIRE(fb);
+        sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = 1 });
+        sr_state st = { .shading = SR_SHADING_UNLIT, .depth_func = SR_LEQUAL,
+                        .blend = { .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
+                                   .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA } };
+        REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3 * T,
+                                                       .colors = col }) == SR_OK);
+        size_t bytes = (size_t)W * H * 8 * 4;
+        if (!first) {
+            first = malloc(bytes);
+            memcpy(first, fb->color, bytes);
+        } else {
+            CHECK(memcmp(first, fb->color, bytes) == 0);
+        }
+        sr_destroy_framebuffer(ctx, fb);
+        sr_destroy_context(ctx);
+    }
+    free(first);
+    free(pos);
+    free(col);
+}
