@@ -58,6 +58,9 @@ struct gl_renderer {
      * GPU driver would keep them resident; softrast reads the caller's
      * arrays in place, so neither side pays a per-frame copy. */
     GLuint vbo_positions, vbo_normals, vbo_colors, ibo;
+    /* Multisampled scenes: OSMesa's own buffer has one sample, so they draw
+     * into a multisampled framebuffer object and blit (resolve) it there. */
+    GLuint ms_fbo, ms_color, ms_depth;
 };
 
 bool gl_available(void) { return true; }
@@ -225,6 +228,30 @@ bool gl_prepare(gl_renderer *g, const bench_scene *s, char *msg, size_t msg_size
                  g->width, g->height);
         return false;
     }
+    if (s->info->samples > 1) {
+        glGenFramebuffers(1, &g->ms_fbo);
+        glGenRenderbuffers(1, &g->ms_color);
+        glGenRenderbuffers(1, &g->ms_depth);
+        glBindRenderbuffer(GL_RENDERBUFFER, g->ms_color);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, s->info->samples, GL_RGBA8, s->width,
+                                         s->height);
+        glBindRenderbuffer(GL_RENDERBUFFER, g->ms_depth);
+        glRenderbufferStorageMultisample(GL_RENDERBUFFER, s->info->samples, GL_DEPTH_COMPONENT24,
+                                         s->width, s->height);
+        glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                  g->ms_color);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                  g->ms_depth);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            snprintf(msg, msg_size, "the %d-sample framebuffer object is incomplete",
+                     s->info->samples);
+            gl_unprepare(g);
+            return false;
+        }
+        glEnable(GL_MULTISAMPLE);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
     glViewport(0, 0, s->width, s->height);
     glDisable(GL_DITHER);
     glClearColor(s->clear_color[0], s->clear_color[1], s->clear_color[2], s->clear_color[3]);
@@ -297,13 +324,23 @@ bool gl_prepare(gl_renderer *g, const bench_scene *s, char *msg, size_t msg_size
 
 void gl_frame(gl_renderer *g, const bench_scene *s)
 {
-    (void)g;
+    if (g->ms_fbo) {
+        glBindFramebuffer(GL_FRAMEBUFFER, g->ms_fbo);
+    }
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     if (s->indices) {
         glDrawElements(GL_TRIANGLES, (GLsizei)s->index_count, GL_UNSIGNED_INT, NULL);
     } else {
         glDrawArrays(s->primitive == SR_PRIM_LINES ? GL_LINES : GL_TRIANGLES, 0,
                      (GLsizei)s->vertex_count);
+    }
+    if (g->ms_fbo) {
+        /* The resolve, part of the frame as sr_resolve is on our side. */
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, g->ms_fbo);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        glBlitFramebuffer(0, 0, s->width, s->height, 0, 0, s->width, s->height,
+                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     /* The frame is done when the pixels are in the buffer. */
     glFinish();
@@ -318,6 +355,14 @@ void gl_unprepare(gl_renderer *g)
         }
     }
     g->vbo_positions = g->vbo_normals = g->vbo_colors = g->ibo = 0;
+    if (g->ms_fbo) {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glDeleteFramebuffers(1, &g->ms_fbo);
+        glDeleteRenderbuffers(1, &g->ms_color);
+        glDeleteRenderbuffers(1, &g->ms_depth);
+        g->ms_fbo = g->ms_color = g->ms_depth = 0;
+        glDisable(GL_MULTISAMPLE);
+    }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
 }

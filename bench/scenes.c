@@ -15,16 +15,16 @@
 #define PI_F 3.14159265358979f
 
 const bench_scene_info bench_scene_list[] = {
-    { "bunny",  BENCH_MESH,  "stanford-bunny.obj" },
-    { "spot",   BENCH_MESH,  "spot.obj" },
-    { "teapot", BENCH_MESH,  "teapot.obj" },
-    { "small",  BENCH_SMALL, NULL },
-    { "fill",   BENCH_FILL,  NULL },
-    { "cli",    BENCH_CLI,   "stanford-bunny.obj" },
-    { "lines",  BENCH_LINES, NULL },
-    { "polyfill", BENCH_POLYFILL, NULL },
-    { "polyfill_aa", BENCH_POLYFILL_AA, NULL },
-    { "msaa4",  BENCH_LATER, NULL },
+    { "bunny",  BENCH_MESH,  "stanford-bunny.obj", 0 },
+    { "spot",   BENCH_MESH,  "spot.obj", 0 },
+    { "teapot", BENCH_MESH,  "teapot.obj", 0 },
+    { "small",  BENCH_SMALL, NULL, 0 },
+    { "fill",   BENCH_FILL,  NULL, 0 },
+    { "cli",    BENCH_CLI,   "stanford-bunny.obj", 0 },
+    { "lines",  BENCH_LINES, NULL, 0 },
+    { "polyfill", BENCH_POLYFILL, NULL, 0 },
+    { "polyfill_aa", BENCH_POLYFILL_AA, NULL, 0 },
+    { "msaa4",  BENCH_MESH,  "stanford-bunny.obj", 4 },
 };
 const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);
 

@@ -18,13 +18,13 @@ typedef enum bench_kind {
     BENCH_POLYFILL, /* a 10,000-edge polygon in 2D, aliased (bench/polyfill.c) */
     BENCH_POLYFILL_AA, /* the same with exact area antialiasing */
     BENCH_CLI,      /* the whole `softrast render` process */
-    BENCH_LATER,    /* accepted name, not implemented yet */
 } bench_kind;
 
 typedef struct bench_scene_info {
     const char *name;
     bench_kind kind;
     const char *model_file;  /* BENCH_MESH and BENCH_CLI: file in the models directory */
+    int samples;             /* MSAA samples per pixel; 0: one */
 } bench_scene_info;
 
 /* Every scene in the order a run without SCENE arguments uses. */

@@ -417,6 +417,7 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->alpha_to_coverage = st->alpha_to_coverage && fb->samples > 1;
     ds->per_sample = fb->samples > 1 || ds->stencil_test;
     ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
+    ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
 }
 
 static uint32_t index_at(const sr_draw_desc *d, size_t i)

@@ -113,6 +113,9 @@ typedef struct sr_draw_state {
     bool stencil_test;
     sr_stencil_face stencil[2];       /* front, back: defaults resolved */
     bool alpha_to_coverage;
+    /* The per-sample path's vector kernel for this state, or NULL. */
+    void (*sample_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
+                        struct sr_frag_stats *);
     double depth_scale;               /* 2^n - 1 for UNORM, 1 for float */
     double zq_min, zq_max;            /* depth range in buffer units */
     int tiles_x, tiles_y;
@@ -318,6 +321,10 @@ void sr__raster_barycentric(const sr_draw_state *ds, const sr_tri *t,
  * the stencil test), whatever the rasterizer choice. */
 void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t,
                        int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+/* The vector kernel of the per-sample path for this state, or NULL. */
+typedef void (*sr_raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,
+                             sr_frag_stats *);
+sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds);
 
 /* fragment/shade.c: Blinn-Phong. n must be unit length. */
 void sr__light(const sr_draw_state *ds, const float n[3], const float eye[3],

@@ -152,7 +152,7 @@ SR_TEST(per_sample_coverage_matches_the_reference)
             sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
                             .rasterizer = (sr_rasterizer)(1 + iter % 3) };
             REQUIRE(draw_window_tris(ctx, fb, xy, 1, &st) == SR_OK);
-            sr_framebuffer_pixels(fb);  /* carries out the pending clear everywhere */
+            sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);  /* the pending clear, into the samples */
             ref_cover_samples(xy, W, H, n, ref);
             for (int i = 0; i < W * H * n; i++) {
                 bool got = (fb->color[i] & 0xff) != 0;
@@ -198,7 +198,7 @@ SR_TEST(shared_edges_cover_each_sample_once)
                         .blend = { .enabled = true, .src_rgb = SR_BLEND_ONE,
                                    .dst_rgb = SR_BLEND_ONE } };
         REQUIRE(draw_window_tris(ctx, fb, xy, K, &st) == SR_OK);
-        sr_framebuffer_pixels(fb);
+        sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);  /* the pending clear, into the samples */
         int twice = 0, once = 0;
         for (int i = 0; i < W * H * N; i++) {
             int v = (int)(fb->color[i] & 0xff);
@@ -225,7 +225,7 @@ SR_TEST(resolve_is_the_rounded_box_average)
         REQUIRE(fb);
         REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 3, .height = 2 },
                                     &out) == SR_OK);
-        sr_framebuffer_pixels(fb);
+        sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);  /* the pending clear, into the samples */
         sr_rng rng = { 3 + (uint64_t)n };
         for (int i = 0; i < 6 * n; i++) {
             fb->color[i] = (uint32_t)sr_rng_next(&rng);
@@ -274,7 +274,7 @@ SR_TEST(depth_is_tested_per_sample)
         REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos[q], .vertex_count = 6 })
                 == SR_OK);
     }
-    sr_framebuffer_pixels(fb);
+    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);  /* the pending clear, into the samples */
     /* In pixel column 7 (x in [7, 8)) every sample is left of the
      * crossing: red is nearer.  In column 8, green. */
     for (int y = 0; y < H; y++) {
@@ -405,7 +405,7 @@ SR_TEST(alpha_to_coverage_keeps_that_share_of_the_samples)
             }
             REQUIRE(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = quad, .vertex_count = 6 })
                     == SR_OK);
-            sr_framebuffer_pixels(fb);
+            sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);  /* the pending clear, into the samples */
             for (int p = 0; p < W * H; p++) {
                 int on = 0;
                 for (int s = 0; s < n; s++) {
@@ -457,6 +457,57 @@ SR_TEST(multisampled_blending_is_deterministic_across_threads)
         sr_destroy_context(ctx);
     }
     free(first);
+    free(pos);
+    free(col);
+}
+
+/* The four-sample vector kernel (AVX2, and the baseline build with
+ * SR_SIMD=base) against the generic per-sample path, which the stencil
+ * test (always passing) selects: every sample's color and depth equal. */
+SR_TEST(four_sample_kernel_equals_the_generic_path)
+{
+    enum { W = 160, H = 120, T = 1500 };
+    sr_rng rng = { 4242 };
+    float *pos = malloc(sizeof(float) * 9 * T), *col = malloc(sizeof(float) * 12 * T);
+    for (int i = 0; i < 3 * T; i++) {
+        pos[i * 3 + 0] = (float)sr_rng_range(&rng, -1.2, 1.2);
+        pos[i * 3 + 1] = (float)sr_rng_range(&rng, -1.2, 1.2);
+        pos[i * 3 + 2] = (float)sr_rng_range(&rng, -1.1, 1.1);  /* some beyond near/far */
+        for (int k = 0; k < 4; k++) {
+            col[i * 4 + k] = (float)sr_rng_unit(&rng);
+        }
+    }
+    sr_draw_desc d = { .positions = pos, .vertex_count = 3 * T, .colors = col };
+    static const char *const simd[] = { "", "base" };
+    static const sr_depth_format formats[] = { SR_DEPTH_D16, SR_DEPTH_D24 };
+    for (int v = 0; v < 2; v++) {
+        setenv("SR_SIMD", simd[v], 1);
+        for (int f = 0; f < 2; f++) {
+            sr_context *ctx;
+            REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+            sr_framebuffer *a = make_ms(ctx, W, H, 4, formats[f]);
+            sr_framebuffer *b = make_ms(ctx, W, H, 4, formats[f]);
+            REQUIRE(a && b);
+            sr_clear_desc cl = { .color = { 0.2f, 0.1f, 0, 1 }, .depth = 1 };
+            sr_clear(ctx, a, &cl);
+            sr_clear(ctx, b, &cl);
+            sr_state st = { .shading = SR_SHADING_UNLIT };
+            REQUIRE(sr_draw(ctx, a, &st, &d) == SR_OK);
+            uint64_t frags = sr_last_draw_info(ctx).fragments;
+            st.stencil.enabled = true;
+            REQUIRE(sr_draw(ctx, b, &st, &d) == SR_OK);
+            CHECK_EQ(sr_last_draw_info(ctx).fragments, frags);
+            sr__fb_resolve(a, SR_TILE_PENDING_COLOR | SR_TILE_PENDING_DEPTH);
+            sr__fb_resolve(b, SR_TILE_PENDING_COLOR | SR_TILE_PENDING_DEPTH);
+            size_t n = (size_t)W * H * 4;
+            CHECK(memcmp(a->color, b->color, n * 4) == 0);
+            CHECK(memcmp(a->depth, b->depth, n * 4) == 0);
+            sr_destroy_framebuffer(ctx, a);
+            sr_destroy_framebuffer(ctx, b);
+            sr_destroy_context(ctx);
+        }
+    }
+    unsetenv("SR_SIMD");
     free(pos);
     free(col);
 }

@@ -18,6 +18,7 @@
 #include "fragment/sample.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 /* Shade at the pixel centre from its unbiased edge values u[]. */
 static void shade_centre(const sr_draw_state *ds, const sr_tri *t, const int64_t u[3], float c[4])
@@ -67,20 +68,19 @@ static void fragment_samples(const sr_draw_state *ds, const sr_tri *t, int px, i
     st->fragments += (uint64_t)__builtin_popcount(pass);
 }
 
-void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
-                       int ry1, sr_frag_stats *st)
+/* Walk the 8x8 blocks of [rx0, rx1) x [ry0, ry1) that can hold covered
+ * samples and hand each pixel's unbiased centre edge values to `pixel`,
+ * with `inside` when the whole block is covered at every sample.  A block
+ * is classified over the whole squares of its pixels: every sample lies
+ * within 128 q8 of its pixel centre on each axis.  Inlined with a
+ * constant `pixel`, so each caller gets its own loop. */
+SR_INLINE void sr__sample_walk(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,
+                               int rx1, int ry1, void *arg,
+                               void (*pixel)(void *, int, int, const int64_t *, bool))
 {
-    int n = ds->samples;
-    unsigned all = n >= 32 ? ~0u : (1u << n) - 1u;
-    int64_t so[16][3];
-    /* A block is classified over the whole squares of its pixels: every
-     * sample lies within 128 q8 of its pixel centre on each axis. */
     int64_t slack[3], sx[3], sy[3];
     for (int i = 0; i < 3; i++) {
-        for (int s = 0; s < n; s++) {
-            so[s][i] = t->a[i] * ds->sample_off[s][0] + t->b[i] * ds->sample_off[s][1];
-        }
-        slack[i] = n > 1 ? (llabs(t->a[i]) + llabs(t->b[i])) * SR_SUBPIXEL_HALF : 0;
+        slack[i] = ds->samples > 1 ? (llabs(t->a[i]) + llabs(t->b[i])) * SR_SUBPIXEL_HALF : 0;
         sx[i] = t->a[i] * SR_SUBPIXEL_ONE;
         sy[i] = t->b[i] * SR_SUBPIXEL_ONE;
     }
@@ -105,29 +105,108 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
             if (outside) {
                 continue;
             }
+            int64_t row[3] = { e[0] - t->bias[0], e[1] - t->bias[1], e[2] - t->bias[2] };
             for (int py = py0; py < py1; py++) {
+                int64_t u[3] = { row[0], row[1], row[2] };
                 for (int px = px0; px < px1; px++) {
-                    int64_t dx = px - px0, dy = py - py0;
-                    /* Unbiased values at this pixel's centre. */
-                    int64_t u[3];
-                    for (int i = 0; i < 3; i++) {
-                        u[i] = e[i] - t->bias[i] + sx[i] * dx + sy[i] * dy;
-                    }
-                    unsigned mask = all;
-                    if (!inside) {
-                        mask = 0;
-                        for (int s = 0; s < n; s++) {
-                            if (((u[0] + so[s][0] + t->bias[0]) | (u[1] + so[s][1] + t->bias[1]) |
-                                 (u[2] + so[s][2] + t->bias[2])) >= 0) {
-                                mask |= 1u << s;
-                            }
-                        }
-                    }
-                    if (mask) {
-                        fragment_samples(ds, t, px, py, u, (const int64_t(*)[3])so, mask, st);
-                    }
+                    pixel(arg, px, py, u, inside);
+                    u[0] += sx[0];
+                    u[1] += sx[1];
+                    u[2] += sx[2];
                 }
+                row[0] += sy[0];
+                row[1] += sy[1];
+                row[2] += sy[2];
             }
         }
     }
+}
+
+typedef struct generic_pixel {
+    const sr_draw_state *ds;
+    const sr_tri *t;
+    sr_frag_stats *st;
+    unsigned all;
+    int64_t so[16][3];
+} generic_pixel;
+
+SR_INLINE void generic_pixel_fn(void *arg, int px, int py, const int64_t *u, bool inside)
+{
+    const generic_pixel *g = arg;
+    const sr_tri *t = g->t;
+    unsigned mask = g->all;
+    if (!inside) {
+        mask = 0;
+        for (int s = 0; s < g->ds->samples; s++) {
+            if (((u[0] + g->so[s][0] + t->bias[0]) | (u[1] + g->so[s][1] + t->bias[1]) |
+                 (u[2] + g->so[s][2] + t->bias[2])) >= 0) {
+                mask |= 1u << s;
+            }
+        }
+    }
+    if (mask) {
+        fragment_samples(g->ds, t, px, py, u, (const int64_t(*)[3])g->so, mask, g->st);
+    }
+}
+
+void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
+                       int ry1, sr_frag_stats *st)
+{
+    if (ds->sample_fast) {
+        ds->sample_fast(ds, t, rx0, ry0, rx1, ry1, st);
+        return;
+    }
+    generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } } };
+    for (int s = 0; s < ds->samples; s++) {
+        for (int i = 0; i < 3; i++) {
+            g.so[s][i] = t->a[i] * ds->sample_off[s][0] + t->b[i] * ds->sample_off[s][1];
+        }
+    }
+    sr__sample_walk(ds, t, rx0, ry0, rx1, ry1, &g, generic_pixel_fn);
+}
+
+/* ---- the four-sample vector path ---------------------------------------- */
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
+    (defined(__x86_64__) || defined(__i386__))
+#define SR_HAVE_SAMPLE_KERNEL 1
+/* The baseline copy passes 32-byte vectors between inlined helpers; GCC
+ * notes the ABI difference, which cannot matter for inlined statics. */
+#pragma GCC diagnostic ignored "-Wpsabi"
+typedef double v4d __attribute__((vector_size(32)));
+typedef int64_t v4l __attribute__((vector_size(32)));
+typedef int32_t v4i __attribute__((vector_size(16)));
+
+#define SR_SIMD_FN(name) name##_avx2
+#define SR_SIMD_TARGET __attribute__((target("avx2")))
+#include "raster/sample_kernel.h"
+#undef SR_SIMD_FN
+#undef SR_SIMD_TARGET
+
+#define SR_SIMD_FN(name) name##_base
+#define SR_SIMD_TARGET
+#include "raster/sample_kernel.h"
+#undef SR_SIMD_FN
+#undef SR_SIMD_TARGET
+#endif
+
+sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
+{
+#ifdef SR_HAVE_SAMPLE_KERNEL
+    const char *env = getenv("SR_SIMD");
+    bool common = ds->samples == 4 && !ds->stencil_test && !ds->alpha_to_coverage &&
+                  !ds->blending && !ds->blend.enabled && ds->depth_mode == SR_DEPTH_MODE_LESS &&
+                  ds->depth_bits >= 1 && ds->depth_bits <= 24;
+    if (!common || (env && strcmp(env, "off") == 0)) {
+        return NULL;
+    }
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0)) {
+        return raster_ms4_avx2;
+    }
+    return raster_ms4_base;
+#else
+    (void)ds;
+    return NULL;
+#endif
 }

@@ -6,9 +6,6 @@
 
 #include "pipeline.h"
 
-typedef void (*sr_raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,
-                             sr_frag_stats *);
-
 /* The vector kernel for this draw's state, or NULL if none applies. */
 sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds);
 const char *sr__raster_simd_name(void);

@@ -2,6 +2,7 @@
  * stage).  Called from the application thread. */
 #include "target/framebuffer.h"
 #include "context.h"
+#include "parallel/pool.h"
 #include "fragment/depth.h"
 #include "raster/fixed.h"
 
@@ -211,28 +212,69 @@ sr_result sr_sample_position(int samples, int index, float *x, float *y)
     return SR_OK;
 }
 
-/* The box resolve of rows [y0, y1): each channel (sum + n/2) / n, the
- * rounded average (RASTER_RULES 8.2). */
-static void resolve_rows(const sr_framebuffer *src, uint32_t *dst, int y0, int y1)
+/* The box resolve of one tile into dst (single-sampled, same size): each
+ * channel (sum + n/2) / n, the rounded average (RASTER_RULES 8.2).  A tile
+ * whose clear is still pending resolves to the clear color without
+ * touching its samples, and a pixel whose samples agree (every pixel
+ * inside a triangle) is copied: most of a frame costs one compare per
+ * sample. */
+static void resolve_tile(const sr_framebuffer *src, uint32_t *dst, int tile)
 {
     int n = src->samples;
     size_t w = (size_t)src->width;
+    int tx = tile % src->tiles_x, ty = tile / src->tiles_x;
+    int x0 = tx << SR_TILE_ORDER, y0 = ty << SR_TILE_ORDER;
+    int x1 = x0 + SR_TILE_SIZE < src->width ? x0 + SR_TILE_SIZE : src->width;
+    int y1 = y0 + SR_TILE_SIZE < src->height ? y0 + SR_TILE_SIZE : src->height;
+    bool pending = src->tile_pending[tile] & SR_TILE_PENDING_COLOR;
     for (int y = y0; y < y1; y++) {
-        for (size_t x = 0; x < w; x++) {
-            const uint8_t *s = (const uint8_t *)&src->color[((size_t)y * w + x) * n];
+        for (int x = x0; x < x1; x++) {
+            size_t p = (size_t)y * w + (size_t)x;
+            if (pending) {
+                dst[p] = src->clear_color;
+                continue;
+            }
+            const uint32_t *s = &src->color[p * (size_t)n];
+            uint32_t diff = 0;
+            for (int i = 1; i < n; i++) {
+                diff |= s[i] ^ s[0];
+            }
+            if (!diff) {
+                dst[p] = s[0];
+                continue;
+            }
             unsigned sum[4] = { 0, 0, 0, 0 };
             for (int i = 0; i < n; i++) {
                 for (int c = 0; c < 4; c++) {
-                    sum[c] += s[4 * i + c];
+                    sum[c] += (s[i] >> (8 * c)) & 0xffu;
                 }
             }
-            uint8_t out[4];
+            uint32_t out = 0;
             for (int c = 0; c < 4; c++) {
-                out[c] = (uint8_t)((sum[c] + (unsigned)n / 2) / (unsigned)n);
+                out |= ((sum[c] + (unsigned)n / 2) / (unsigned)n) << (8 * c);
             }
-            memcpy(&dst[(size_t)y * w + x], out, sizeof out);
+            dst[p] = out;
         }
     }
+}
+
+typedef struct resolve_job {
+    const sr_framebuffer *src;
+    uint32_t *dst;
+} resolve_job;
+
+static void run_resolve(void *arg, int job, int thread)
+{
+    (void)thread;
+    const resolve_job *j = arg;
+    resolve_tile(j->src, j->dst, job);
+}
+
+/* Resolve every tile, on the context's threads when there is one. */
+static void resolve_all(sr_context *ctx, const sr_framebuffer *src, uint32_t *dst)
+{
+    resolve_job j = { src, dst };
+    sr__pool_run(ctx ? ctx->pool : NULL, run_resolve, &j, src->tiles_x * src->tiles_y);
 }
 
 /* Reading resolves deferred clears (and multisampled pixels): logically the
@@ -240,11 +282,11 @@ static void resolve_rows(const sr_framebuffer *src, uint32_t *dst, int y0, int y
  * parameter. */
 static const uint32_t *color_image(const sr_framebuffer *fb)
 {
-    sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
     if (fb->samples == 1) {
+        sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
         return fb->color;
     }
-    resolve_rows(fb, fb->resolved, 0, fb->height);
+    resolve_all(NULL, fb, fb->resolved);
     return fb->resolved;
 }
 
@@ -275,16 +317,16 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
         sr__ok(ctx);
         return SR_OK;
     }
-    sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
     /* Every destination pixel is written: its pending color clear is moot. */
     int tiles = dst->tiles_x * dst->tiles_y;
     for (int t = 0; t < tiles; t++) {
         dst->tile_pending[t] &= (uint8_t)~SR_TILE_PENDING_COLOR;
     }
     if (src->samples == 1) {
+        sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
         memcpy(dst->color, src->color, (size_t)src->width * src->height * sizeof(uint32_t));
     } else {
-        resolve_rows(src, dst->color, 0, src->height);
+        resolve_all(ctx, src, dst->color);
     }
     sr__ok(ctx);
     return SR_OK;
