@@ -4,10 +4,14 @@
  * clipping against one more edge (left, bottom, right, top), filled by the
  * edge-table fill, with its vertices.  The edge just used is drawn red and
  * the polygon before that stage faintly.  The last panel clips the same
- * star against a convex hexagon. */
+ * star against a convex hexagon.
+ *
+ * Under them, the same algorithm in 3D: triangles clipped against the
+ * planes of the view volume in homogeneous clip space (demo_clip3d.c). */
 #include "cli.h"
 #include "demo.h"
 #include "demo2d.h"
+#include "demo3d.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -67,7 +71,7 @@ static void overlay_polygon(demo2d *d, int cell, const sr_point2 *p, int n)
     }
 }
 
-int demo_clip(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
+static int clip2d_section(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
 {
     demo2d d;
     int scale = args->scale > 0 ? args->scale : 6;
@@ -128,4 +132,39 @@ int demo_clip(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
     demo2d_outline(&d, 5, hex, 6, true, WINDOW, 1.5);
     overlay_polygon(&d, 5, hres, hm);
     return demo2d_finish(&d, out);
+}
+
+/* The 2D panels on top, a title, then the 3D section, left-aligned on
+ * the page color; the 3D section is not magnified by --scale. */
+int demo_clip(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
+{
+    sr_framebuffer *top = NULL, *bottom = NULL, *page = NULL;
+    int status = clip2d_section(ctx, args, &top);
+    if (status == EXIT_OK) {
+        status = demo_clip3d_section(ctx, &bottom);
+    }
+    if (status != EXIT_OK) {
+        sr_destroy_framebuffer(ctx, top);
+        return status;
+    }
+    const int title_h = 28;
+    int tw = sr_framebuffer_width(top), th = sr_framebuffer_height(top);
+    int bw = sr_framebuffer_width(bottom), bh = sr_framebuffer_height(bottom);
+    if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = tw > bw ? tw : bw,
+                                                         .height = th + title_h + bh,
+                                                         .depth_format = SR_DEPTH_NONE },
+                            &page) != SR_OK) {
+        cli_error("demo clip: %s", sr_context_error(ctx));
+        status = EXIT_FAILURE_RUN;
+    } else {
+        sr_clear(ctx, page, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.93f, 1 } });
+        demo3d_paste(page, top, 0, 0);
+        demo3d_paste(page, bottom, 0, th + title_h);
+        sr_draw_text(ctx, page, 12, th + title_h - 16, 2, "3D: clipping in clip space",
+                     (sr_rgba){ 0.1f, 0.1f, 0.12f, 1 });
+        *out = page;
+    }
+    sr_destroy_framebuffer(ctx, top);
+    sr_destroy_framebuffer(ctx, bottom);
+    return status;
 }
