@@ -503,6 +503,64 @@ typedef struct sr_viewport {
     int x, y, width, height; /* pixels, y from the top; width 0 -> the framebuffer */
 } sr_viewport;
 
+/* ---- programmable stages ------------------------------------------------ */
+
+/* Vertex and fragment shaders as C functions (docs/shaders.md).  A program
+ * replaces the built-in shading models: the vertex shader writes the clip
+ * position and up to 16 varyings per vertex, the pipeline clips, sets up
+ * and interpolates them, and the fragment shader colors a 2x2 quad of
+ * fragments at a time. */
+#define SR_SHADER_MAX_VARYINGS 16
+
+typedef enum sr_varying_mode {
+    SR_VARYING_SMOOTH = 0,     /* perspective-correct (the default) */
+    SR_VARYING_NOPERSPECTIVE,  /* linear in screen space (triangles) */
+    SR_VARYING_FLAT,           /* the provoking vertex's value, constant */
+} sr_varying_mode;
+
+/* What a vertex shader reads: the draw's arrays at one vertex.  Absent
+ * arrays read as zero (color and generic alpha as 1). */
+typedef struct sr_vertex_input {
+    uint32_t index;            /* the vertex's index into the arrays */
+    float position[4];         /* w = 1 when position_size is 3 */
+    float normal[3];
+    float color[4];
+    float texcoord[2];
+    float generic[4];
+} sr_vertex_input;
+
+/* Writes the vertex's clip-space position and program.varying_count
+ * varyings. */
+typedef void (*sr_vertex_shader)(const void *uniforms, const sr_vertex_input *in,
+                                 float clip[4], float *varyings);
+
+/* A 2x2 quad of fragments: lane 0 (x, y), 1 (x+1, y), 2 (x, y+1),
+ * 3 (x+1, y+1).  Every lane's varyings are interpolated - lanes not in
+ * `mask` are helpers, extrapolated from the same plane - so differences
+ * between lanes are the screen-space derivatives. */
+typedef struct sr_fragment_quad {
+    unsigned mask;             /* lanes that are fragments (bit i = lane i) */
+    int x, y;                  /* lane 0's pixel */
+    bool front;                /* the primitive faces the viewer */
+    float z[4];                /* window depth in the depth range; write it back
+                                * when the program's writes_depth is set */
+    float varyings[SR_SHADER_MAX_VARYINGS][4];   /* varying k of lane i: [k][i] */
+    float color[4][4];         /* out: red, green, blue, alpha of lane i: [c][i] */
+    unsigned discard;          /* out: lanes to drop (bit i = lane i) */
+} sr_fragment_quad;
+
+typedef void (*sr_fragment_shader)(const void *uniforms, sr_fragment_quad *q);
+
+typedef struct sr_program {
+    sr_vertex_shader vertex;       /* required */
+    sr_fragment_shader fragment;   /* required */
+    const void *uniforms;          /* passed to both, read-only, shared by every thread */
+    int varying_count;             /* 0 .. SR_SHADER_MAX_VARYINGS */
+    sr_varying_mode modes[SR_SHADER_MAX_VARYINGS];
+    bool writes_depth;             /* the fragment shader sets z[]: depth is tested after it */
+    bool may_discard;              /* the fragment shader may set discard: likewise */
+} sr_program;
+
 typedef struct sr_state {
     sr_viewport viewport;
     sr_scissor scissor;            /* also trims the viewport: nothing outside is touched */
@@ -554,6 +612,11 @@ typedef struct sr_state {
      * pixel's samples are covered (round(alpha x n) of them, in a fixed
      * order), before the stencil and depth tests. */
     bool alpha_to_coverage;
+
+    /* A program replaces `shading`, the material, lights and texture; the
+     * draw's model, view and projection are not applied (the vertex
+     * shader transforms, with matrices in its uniforms). */
+    const sr_program *program;
 } sr_state;
 
 /* ---- drawing ------------------------------------------------------------ */

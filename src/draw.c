@@ -83,6 +83,26 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.generic_size must be 1..4 (got %d)",
                         d->generic_size);
     }
+    const sr_program *pr = st->program;
+    if (pr) {
+        if (!pr->vertex || !pr->fragment) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_program.%s is NULL",
+                            pr->vertex ? "fragment" : "vertex");
+        }
+        if (pr->varying_count < 0 || pr->varying_count > SR_SHADER_MAX_VARYINGS) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_program.varying_count must be 0..%d (got %d)",
+                            SR_SHADER_MAX_VARYINGS, pr->varying_count);
+        }
+        for (int k = 0; k < pr->varying_count; k++) {
+            if ((unsigned)pr->modes[k] > SR_VARYING_FLAT) {
+                return sr__fail(ctx, SR_INVALID_ARG, "sr_program.modes[%d] %d is not a mode", k,
+                                (int)pr->modes[k]);
+            }
+        }
+        /* The program reads what it wants: the shading model's needs below
+         * do not apply. */
+        sh = SR_SHADING_UNLIT;
+    }
     if (sh == SR_SHADING_ATTRIBUTE && !d->generic && d->vertex_count > 0) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_draw_desc.generic is NULL but SR_SHADING_ATTRIBUTE shows it");
@@ -112,7 +132,7 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_state.texture_filter, wrap_u or wrap_v is not a valid value");
     }
-    if (st->texture && !d->texcoords && d->vertex_count > 0 &&
+    if (st->texture && !pr && !d->texcoords && d->vertex_count > 0 &&
         (sh == SR_SHADING_UNLIT || sh == SR_SHADING_GOURAUD || sh == SR_SHADING_FLAT ||
          sh == SR_SHADING_PHONG)) {
         return sr__fail(ctx, SR_INVALID_ARG,
@@ -416,6 +436,22 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     }
     ds->alpha_to_coverage = st->alpha_to_coverage && fb->samples > 1;
     ds->per_sample = fb->samples > 1 || ds->stencil_test;
+    if (st->program) {
+        /* The program owns the varyings; the built-in models' state is
+         * unused.  Fragment shaders run on the per-sample path's quads. */
+        const sr_program *pr = st->program;
+        ds->program = pr;
+        ds->shading = SR_SHADING_UNLIT;
+        ds->nvary = ds->ninterp = pr->varying_count;
+        ds->texture = NULL;
+        ds->uv_index = -1;
+        ds->depth_vis_linear = false;
+        for (int k = 0; k < pr->varying_count; k++) {
+            ds->flat_mask |= pr->modes[k] == SR_VARYING_FLAT ? 1u << k : 0u;
+            ds->noperspective_mask |= pr->modes[k] == SR_VARYING_NOPERSPECTIVE ? 1u << k : 0u;
+        }
+        ds->per_sample = true;
+    }
     ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
     ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
 }
@@ -558,6 +594,24 @@ static void clip_vertex(const sr_draw_state *ds, const sr_vertex_post *p, const 
     memcpy(out->vary, vary, (size_t)ds->nvary * sizeof(float));
 }
 
+/* A program's flat varyings take the provoking vertex's values: give each
+ * vertex a copy with them in place (clipping then interpolates between
+ * equal values, which leaves them exact), or the vertex's own varyings
+ * when there are none. */
+static const float *flat_varyings(const sr_draw_state *ds, const float *a, const float *pv,
+                                  float *buf)
+{
+    if (!ds->flat_mask || a == pv) {
+        return a;
+    }
+    memcpy(buf, a, (size_t)ds->nvary * sizeof(float));
+    for (unsigned m = ds->flat_mask; m; m &= m - 1) {
+        int k = __builtin_ctz(m);
+        buf[k] = pv[k];
+    }
+    return buf;
+}
+
 static void triangle(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, uint32_t i2,
                      uint32_t pv)
 {
@@ -566,6 +620,11 @@ static void triangle(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1,
     const sr_vertex_post *p0 = &s->post[i0], *p1 = &s->post[i1], *p2 = &s->post[i2];
     size_t nv = (size_t)ds->nvary;
     const float *a0 = s->vary + i0 * nv, *a1 = s->vary + i1 * nv, *a2 = s->vary + i2 * nv;
+    float fb0[SR_MAX_VARYINGS], fb1[SR_MAX_VARYINGS], fb2[SR_MAX_VARYINGS];
+    const float *pva = s->vary + pv * nv;
+    a0 = flat_varyings(ds, a0, pva, fb0);
+    a1 = flat_varyings(ds, a1, pva, fb1);
+    a2 = flat_varyings(ds, a2, pva, fb2);
     c->info.triangles_in++;
 
     unsigned c0 = p0->outcode, c1 = p1->outcode, c2 = p2->outcode;
@@ -673,6 +732,9 @@ static void segment(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, 
     size_t nv = (size_t)ds->nvary;
     const float *a0 = s->vary + i0 * nv, *a1 = s->vary + i1 * nv;
     const float *flat = provoking_color(ds, s->vary + pv * nv);
+    float fb0[SR_MAX_VARYINGS], fb1[SR_MAX_VARYINGS];
+    a0 = flat_varyings(ds, a0, s->vary + pv * nv, fb0);
+    a1 = flat_varyings(ds, a1, s->vary + pv * nv, fb1);
     unsigned c0 = p0->outcode, c1 = p1->outcode;
     if (((c0 | c1) & SR_OUTCODE_NONFINITE) || (c0 & c1)) {
         return;

@@ -113,6 +113,9 @@ typedef struct sr_draw_state {
     bool stencil_test;
     sr_stencil_face stencil[2];       /* front, back: defaults resolved */
     bool alpha_to_coverage;
+    /* A program (docs/shaders.md) and its varyings' interpolation. */
+    const sr_program *program;
+    unsigned flat_mask, noperspective_mask;
     /* The per-sample path's vector kernel for this state, or NULL. */
     void (*sample_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
                         struct sr_frag_stats *);
@@ -317,6 +320,13 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
 void sr__raster_barycentric(const sr_draw_state *ds, const sr_tri *t,
                             int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+/* raster/shader.c: triangles through a program's fragment shader, by 2x2
+ * quads; and one line or point fragment through it (false: discarded).
+ * *z is in buffer units, replaced when the program writes depth. */
+void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t,
+                       int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, int px, int py,
+                           double *z, float c[4]);
 /* raster/sample.c: the per-sample path (ds->per_sample: multisampling or
  * the stencil test), whatever the rasterizer choice. */
 void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t,

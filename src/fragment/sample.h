@@ -122,12 +122,21 @@ static inline void sr__fragment_vary(const sr_draw_state *ds, int px, int py, do
                                      float coverage, sr_frag_stats *st)
 {
     size_t idx = (size_t)py * (size_t)ds->fb->width + (size_t)px;
+    float c[4];
+    /* A program that writes depth or discards runs before the tests. */
+    bool late = ds->program && (ds->program->writes_depth || ds->program->may_discard);
+    if (late && !sr__program_shade_one(ds, v, front, px, py, &z, c)) {
+        return;
+    }
     uint32_t q = sr__quantize_depth(ds, &z);
     if (!sr__sample_test(ds, idx, q, front, coverage >= 1.0f)) {
         return;
     }
-    float c[4];
-    sr__shade_vary(ds, v, flat, front, z, 0.0f, c, ds->shading);
+    if (ds->program && !late) {
+        (void)sr__program_shade_one(ds, v, front, px, py, &z, c);
+    } else if (!ds->program) {
+        sr__shade_vary(ds, v, flat, front, z, 0.0f, c, ds->shading);
+    }
     if (coverage < 1.0f) {
         /* Coverage scales alpha; the draw's blend state decides, or else
          * source-over. */

@@ -54,10 +54,60 @@ static void normal_to_eye(const sr_mat4 *nm, const float n[3], float out[3])
     out[2] = z * s;
 }
 
+/* The programmable vertex stage: the vertex shader gets the arrays at
+ * the vertex and writes the clip position and the varyings. */
+static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t first,
+                          size_t count, sr_vertex_post *post, float *vary_out)
+{
+    const sr_program *pr = ds->program;
+    int psize = d->position_size ? d->position_size : 3;
+    int csize = d->color_size ? d->color_size : 4;
+    int gsize = d->generic_size ? d->generic_size : 4;
+    for (size_t i = first; i < first + count; i++) {
+        sr_vertex_input in = { .index = (uint32_t)i, .position = { 0, 0, 0, 1 },
+                               .color = { 0, 0, 0, 1 }, .generic = { 0, 0, 0, 1 } };
+        memcpy(in.position, element(d->positions, d->position_stride, (size_t)psize, i),
+               (size_t)psize * sizeof(float));
+        if (d->normals) {
+            memcpy(in.normal, element(d->normals, d->normal_stride, 3, i), sizeof in.normal);
+        }
+        if (d->colors) {
+            memcpy(in.color, element(d->colors, d->color_stride, (size_t)csize, i),
+                   (size_t)csize * sizeof(float));
+        }
+        if (d->texcoords) {
+            memcpy(in.texcoord, element(d->texcoords, d->texcoord_stride, 2, i),
+                   sizeof in.texcoord);
+        }
+        if (d->generic) {
+            memcpy(in.generic, element(d->generic, d->generic_stride, (size_t)gsize, i),
+                   (size_t)gsize * sizeof(float));
+        }
+        sr_vertex_post *v = &post[i];
+        float *vary = vary_out + i * (size_t)ds->nvary;
+        float clip[4] = { 0, 0, 0, 1 };
+        pr->vertex(pr->uniforms, &in, clip, vary);
+        memcpy(v->pos, clip, sizeof clip);
+        if (!(isfinite(v->pos[0]) && isfinite(v->pos[1]) && isfinite(v->pos[2]) &&
+              isfinite(v->pos[3]))) {
+            v->outcode = SR_OUTCODE_NONFINITE;
+        } else {
+            v->outcode = sr__clip_outcode(ds, v->pos);
+            if (v->outcode == 0) {
+                sr__project(ds, v->pos, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
+            }
+        }
+    }
+}
+
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary_out)
 {
+    if (ds->program) {
+        program_stage(ds, d, first, count, post, vary_out);
+        return;
+    }
     int psize = d->position_size ? d->position_size : 3;
     int csize = d->color_size ? d->color_size : 4;
     bool need_eye = ds->shading == SR_SHADING_FLAT || ds->shading == SR_SHADING_PHONG ||

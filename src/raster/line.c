@@ -140,11 +140,16 @@ static void raster_point_samples(const sr_draw_state *ds, const sr_point *p, int
                                  int rx1, int ry1, sr_frag_stats *st)
 {
     size_t n = (size_t)ds->samples;
-    double z = p->z;
-    uint32_t q = sr__quantize_depth(ds, &z);
+    bool late = ds->program && (ds->program->writes_depth || ds->program->may_discard);
     for (int py = ry0; py < ry1; py++) {
         for (int px = rx0; px < rx1; px++) {
             size_t base = ((size_t)py * (size_t)ds->fb->width + (size_t)px) * n;
+            double z = p->z;
+            float c[4];
+            if (late && !sr__program_shade_one(ds, p->vary, p->front, px, py, &z, c)) {
+                continue;
+            }
+            uint32_t q = sr__quantize_depth(ds, &z);
             unsigned pass = 0;
             for (size_t s = 0; s < n; s++) {
                 int64_t dx = sr__centre_q8(px) + ds->sample_off[s][0] - p->cx;
@@ -157,8 +162,11 @@ static void raster_point_samples(const sr_draw_state *ds, const sr_point *p, int
                 }
             }
             if (pass) {
-                float c[4];
-                sr__shade_vary(ds, p->vary, p->flat, p->front, z, 0.0f, c, ds->shading);
+                if (ds->program && !late) {
+                    (void)sr__program_shade_one(ds, p->vary, p->front, px, py, &z, c);
+                } else if (!ds->program) {
+                    sr__shade_vary(ds, p->vary, p->flat, p->front, z, 0.0f, c, ds->shading);
+                }
                 sr__write_samples(ds, base, pass, c, &ds->blend);
                 st->fragments += (uint64_t)__builtin_popcount(pass);
             }

@@ -16,6 +16,7 @@
  * the samples that passed.  With one sample this is exactly the
  * single-sample rule, which is how the stencil test reuses it. */
 #include "fragment/sample.h"
+#include "raster/sample_walk.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -68,60 +69,6 @@ static void fragment_samples(const sr_draw_state *ds, const sr_tri *t, int px, i
     st->fragments += (uint64_t)__builtin_popcount(pass);
 }
 
-/* Walk the 8x8 blocks of [rx0, rx1) x [ry0, ry1) that can hold covered
- * samples and hand each pixel's unbiased centre edge values to `pixel`,
- * with `inside` when the whole block is covered at every sample.  A block
- * is classified over the whole squares of its pixels: every sample lies
- * within 128 q8 of its pixel centre on each axis.  Inlined with a
- * constant `pixel`, so each caller gets its own loop. */
-SR_INLINE void sr__sample_walk(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,
-                               int rx1, int ry1, void *arg,
-                               void (*pixel)(void *, int, int, const int64_t *, bool))
-{
-    int64_t slack[3], sx[3], sy[3];
-    for (int i = 0; i < 3; i++) {
-        slack[i] = ds->samples > 1 ? (llabs(t->a[i]) + llabs(t->b[i])) * SR_SUBPIXEL_HALF : 0;
-        sx[i] = t->a[i] * SR_SUBPIXEL_ONE;
-        sy[i] = t->b[i] * SR_SUBPIXEL_ONE;
-    }
-    const int last = SR_BLOCK_SIZE - 1;
-    for (int by = ry0 & ~last; by < ry1; by += SR_BLOCK_SIZE) {
-        for (int bx = rx0 & ~last; bx < rx1; bx += SR_BLOCK_SIZE) {
-            int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;
-            int py0 = by > ry0 ? by : ry0, py1 = by + SR_BLOCK_SIZE < ry1 ? by + SR_BLOCK_SIZE : ry1;
-            /* Biased edge values at the first pixel centre; the extremes
-             * over the block are at its corners, widened by the slack. */
-            int64_t e[3];
-            bool outside = false, inside = true;
-            for (int i = 0; i < 3; i++) {
-                e[i] = t->a[i] * sr__centre_q8(px0) + t->b[i] * sr__centre_q8(py0) + t->c[i] +
-                       t->bias[i];
-                int64_t ex = sx[i] * (px1 - 1 - px0), ey = sy[i] * (py1 - 1 - py0);
-                int64_t hi = e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) + slack[i];
-                int64_t lo = e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) - slack[i];
-                outside |= hi < 0;
-                inside &= lo >= 0;
-            }
-            if (outside) {
-                continue;
-            }
-            int64_t row[3] = { e[0] - t->bias[0], e[1] - t->bias[1], e[2] - t->bias[2] };
-            for (int py = py0; py < py1; py++) {
-                int64_t u[3] = { row[0], row[1], row[2] };
-                for (int px = px0; px < px1; px++) {
-                    pixel(arg, px, py, u, inside);
-                    u[0] += sx[0];
-                    u[1] += sx[1];
-                    u[2] += sx[2];
-                }
-                row[0] += sy[0];
-                row[1] += sy[1];
-                row[2] += sy[2];
-            }
-        }
-    }
-}
-
 typedef struct generic_pixel {
     const sr_draw_state *ds;
     const sr_tri *t;
@@ -154,6 +101,10 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
 {
     if (ds->sample_fast) {
         ds->sample_fast(ds, t, rx0, ry0, rx1, ry1, st);
+        return;
+    }
+    if (ds->program) {
+        sr__raster_shader(ds, t, rx0, ry0, rx1, ry1, st);
         return;
     }
     generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } } };
@@ -194,7 +145,7 @@ sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
 {
 #ifdef SR_HAVE_SAMPLE_KERNEL
     const char *env = getenv("SR_SIMD");
-    bool common = ds->samples == 4 && !ds->stencil_test && !ds->alpha_to_coverage &&
+    bool common = ds->samples == 4 && !ds->program && !ds->stencil_test && !ds->alpha_to_coverage &&
                   !ds->blending && !ds->blend.enabled && ds->depth_mode == SR_DEPTH_MODE_LESS &&
                   ds->depth_bits >= 1 && ds->depth_bits <= 24;
     if (!common || (env && strcmp(env, "off") == 0)) {

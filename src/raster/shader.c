@@ -1,0 +1,187 @@
+/* shader.c - triangles, lines and points through a program's fragment
+ * shader (raster and fragment stages, tile workers).
+ *
+ * Triangles go by 2x2 quads: the quad's four lanes are interpolated from
+ * the exact edge values at their pixel centres (helper lanes outside the
+ * triangle too, so lane differences are derivatives), the shader runs once
+ * per quad, and each lane's color goes to its pixel's surviving samples.
+ * Depth and stencil are tested before the shader (early, so hidden
+ * fragments cost no shading) unless the program writes depth or may
+ * discard, or alpha to coverage needs the shaded alpha: then after it,
+ * as the GL order of operations says. */
+#include "fragment/sample.h"
+#include "raster/sample_walk.h"
+
+#include <string.h>
+
+typedef struct quad_job {
+    const sr_draw_state *ds;
+    const sr_tri *t;
+    sr_frag_stats *st;
+    bool early;                   /* tests before shading */
+    int64_t so[16][3];            /* sample offsets of the edge values */
+    float inv_area;               /* for screen-space (noperspective) weights */
+} quad_job;
+
+/* Varyings and depth of lane i from its unbiased centre values u. */
+static void interpolate_lane(const quad_job *j, const int64_t u[3], int i, sr_fragment_quad *q)
+{
+    const sr_draw_state *ds = j->ds;
+    const sr_tri *t = j->t;
+    float l[3], ls[3];
+    sr__bary(ds, t, u[0], u[1], u[2], l);
+    if (ds->noperspective_mask) {
+        ls[0] = (float)u[0] * j->inv_area;
+        ls[1] = (float)u[1] * j->inv_area;
+        ls[2] = (float)u[2] * j->inv_area;
+    }
+    for (int k = 0; k < t->ninterp; k++) {
+        q->varyings[k][i] = sr__interp(t, (ds->noperspective_mask >> k) & 1 ? ls : l, k);
+    }
+    double z = sr__tri_depth(t, u[1], u[2]);
+    (void)sr__quantize_depth(ds, &z);
+    q->z[i] = (float)(z / ds->depth_scale);
+}
+
+/* The tests of the samples `mask` of the pixel at element `base`, with
+ * each sample's depth from the plane or, written by the shader, one depth
+ * for all. */
+static unsigned test_samples(const quad_job *j, size_t base, const int64_t u[3], unsigned mask,
+                             const double *shader_z)
+{
+    const sr_draw_state *ds = j->ds;
+    unsigned pass = 0;
+    uint32_t q_shader = 0;
+    if (shader_z) {
+        double z = *shader_z;
+        q_shader = sr__quantize_depth(ds, &z);
+    }
+    for (unsigned m = mask; m; m &= m - 1) {
+        int s = __builtin_ctz(m);
+        uint32_t q = q_shader;
+        if (!shader_z && ds->depth_mode != SR_DEPTH_MODE_OFF) {
+            double z = sr__tri_depth(j->t, u[1] + j->so[s][1], u[2] + j->so[s][2]);
+            q = sr__quantize_depth(ds, &z);
+        }
+        if (sr__sample_test(ds, base + (size_t)s, q, j->t->front, true)) {
+            pass |= 1u << s;
+        }
+    }
+    return pass;
+}
+
+static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, const int rect[4])
+{
+    const quad_job *j = arg;
+    const sr_draw_state *ds = j->ds;
+    const sr_tri *t = j->t;
+    int n = ds->samples;
+    unsigned all = (1u << n) - 1u;
+    int64_t u[4][3];
+    unsigned cover[4] = { 0, 0, 0, 0 }, live = 0;
+    for (int i = 0; i < 4; i++) {
+        int px = qx + (i & 1), py = qy + (i >> 1);
+        for (int e = 0; e < 3; e++) {
+            u[i][e] = u00[e] + (t->a[e] * (i & 1) + t->b[e] * (i >> 1)) * SR_SUBPIXEL_ONE;
+        }
+        if (px < rect[0] || px >= rect[2] || py < rect[1] || py >= rect[3]) {
+            continue;
+        }
+        unsigned m = all;
+        if (!inside) {
+            m = 0;
+            for (int s = 0; s < n; s++) {
+                if (((u[i][0] + j->so[s][0] + t->bias[0]) | (u[i][1] + j->so[s][1] + t->bias[1]) |
+                     (u[i][2] + j->so[s][2] + t->bias[2])) >= 0) {
+                    m |= 1u << s;
+                }
+            }
+        }
+        cover[i] = m;
+    }
+    size_t width = (size_t)ds->fb->width;
+    size_t base[4];
+    for (int i = 0; i < 4; i++) {
+        base[i] = ((size_t)(qy + (i >> 1)) * width + (size_t)(qx + (i & 1))) * (size_t)n;
+        if (cover[i] && j->early) {
+            cover[i] = test_samples(j, base[i], u[i], cover[i], NULL);
+        }
+        live |= cover[i] ? 1u << i : 0u;
+    }
+    if (!live) {
+        return;
+    }
+    sr_fragment_quad q;
+    q.mask = live;
+    q.x = qx;
+    q.y = qy;
+    q.front = t->front;
+    q.discard = 0;
+    for (int i = 0; i < 4; i++) {
+        interpolate_lane(j, u[i], i, &q);
+        q.color[0][i] = q.color[1][i] = q.color[2][i] = 0.0f;
+        q.color[3][i] = 1.0f;
+    }
+    ds->program->fragment(ds->program->uniforms, &q);
+    live &= ~q.discard;
+    for (int i = 0; i < 4; i++) {
+        if (!(live >> i & 1)) {
+            continue;
+        }
+        float c[4] = { q.color[0][i], q.color[1][i], q.color[2][i], q.color[3][i] };
+        unsigned pass = cover[i];
+        if (!j->early) {
+            if (ds->alpha_to_coverage) {
+                pass &= sr__alpha_coverage(c[3], n);
+            }
+            double zs = (double)q.z[i] * ds->depth_scale;
+            pass = pass ? test_samples(j, base[i], u[i], pass,
+                                       ds->program->writes_depth ? &zs : NULL) : 0;
+        }
+        if (pass) {
+            sr__write_samples(ds, base[i], pass, c, &ds->blend);
+            j->st->fragments += (uint64_t)__builtin_popcount(pass);
+        }
+    }
+}
+
+void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
+                       int ry1, sr_frag_stats *st)
+{
+    quad_job j = { .ds = ds, .t = t, .st = st };
+    j.early = !ds->program->writes_depth && !ds->program->may_discard && !ds->alpha_to_coverage;
+    j.inv_area = 1.0f / (float)t->area2;
+    for (int s = 0; s < ds->samples; s++) {
+        for (int i = 0; i < 3; i++) {
+            j.so[s][i] = t->a[i] * ds->sample_off[s][0] + t->b[i] * ds->sample_off[s][1];
+        }
+    }
+    sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);
+}
+
+bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, int px, int py,
+                           double *z, float c[4])
+{
+    sr_fragment_quad q;
+    memset(&q, 0, sizeof q);
+    q.mask = 1;
+    q.x = px;
+    q.y = py;
+    q.front = front;
+    for (int k = 0; k < ds->ninterp; k++) {
+        q.varyings[k][0] = q.varyings[k][1] = q.varyings[k][2] = q.varyings[k][3] = v[k];
+    }
+    q.z[0] = q.z[1] = q.z[2] = q.z[3] = (float)(*z / ds->depth_scale);
+    q.color[3][0] = 1.0f;
+    ds->program->fragment(ds->program->uniforms, &q);
+    if (q.discard & 1) {
+        return false;
+    }
+    for (int k = 0; k < 4; k++) {
+        c[k] = q.color[k][0];
+    }
+    if (ds->program->writes_depth) {
+        *z = (double)q.z[0] * ds->depth_scale;
+    }
+    return true;
+}
