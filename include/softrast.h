@@ -527,6 +527,7 @@ typedef struct sr_vertex_input {
     float color[4];
     float texcoord[2];
     float generic[4];
+    bool has_normal, has_color, has_texcoord, has_generic;   /* which arrays the draw has */
 } sr_vertex_input;
 
 /* Writes the vertex's clip-space position and program.varying_count
@@ -618,6 +619,21 @@ typedef struct sr_state {
      * shader transforms, with matrices in its uniforms). */
     const sr_program *program;
 } sr_state;
+
+/* The built-in shading models as programs: `state`'s model (unlit, flat,
+ * Gouraud, Phong, normals or depth), material, lights and texture, with
+ * the model, view and projection matrices in the uniforms.  Drawn with
+ * .program = sr_builtin_program(b), it gives the built-in pixels (exactly,
+ * except flat shading and trilinear filtering, which take their face
+ * normal and level of detail from the quad: within rounding).  sr_draw
+ * keeps its specialized fast paths for the built-ins themselves; these
+ * are the same models to start a program from (docs/shaders.md). */
+typedef struct sr_builtin sr_builtin;
+sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state,
+                                  const sr_mat4 *model, const sr_mat4 *view,
+                                  const sr_mat4 *projection, sr_builtin **out);
+const sr_program *sr_builtin_program(const sr_builtin *b);
+void sr_destroy_builtin_program(sr_context *ctx, sr_builtin *b);
 
 /* ---- drawing ------------------------------------------------------------ */
 

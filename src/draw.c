@@ -232,6 +232,108 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
     return SR_OK;
 }
 
+/* The shading half of the resolved state: the model, its varyings, the
+ * texture, the material and the lights in eye space.  Shared with the
+ * built-in programs (fragment/builtin.c), which need nothing else. */
+void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 *proj,
+                         sr_draw_state *ds)
+{
+    ds->zero_to_one = st->depth_zero_to_one;
+    ds->shading = st->shading == SR_SHADING_DEFAULT ? SR_SHADING_UNLIT : st->shading;
+    ds->perspective = st->interpolation != SR_INTERP_AFFINE;
+    ds->provoking_last = st->provoking == SR_PROVOKING_LAST;
+    ds->two_sided = st->two_sided;
+    /* A perspective projection has a bottom row (0, 0, -1, 0): the viewer
+     * sits at the eye-space origin.  Otherwise the view vector is +z. */
+    ds->local_viewer = proj && (proj->m[3] != 0.0f || proj->m[7] != 0.0f || proj->m[11] != 0.0f);
+
+    switch (ds->shading) {
+    case SR_SHADING_UNLIT:
+    case SR_SHADING_GOURAUD: ds->nvary = 4; ds->ninterp = 4; break;
+    case SR_SHADING_FLAT:    ds->nvary = 7; ds->ninterp = 0; break;
+    case SR_SHADING_PHONG:   ds->nvary = 10; ds->ninterp = 10; break;
+    case SR_SHADING_NORMALS: ds->nvary = 3; ds->ninterp = 3; break;
+    case SR_SHADING_ATTRIBUTE: ds->nvary = 4; ds->ninterp = 4; break;
+    default:                 ds->nvary = 1; ds->ninterp = 1; break;
+    }
+    /* A texture adds u, v after the model's own varyings; flat shading then
+     * interpolates its (otherwise constant) layout too, to reach them. */
+    ds->uv_index = -1;
+    bool textured_model = ds->shading == SR_SHADING_UNLIT || ds->shading == SR_SHADING_GOURAUD ||
+                          ds->shading == SR_SHADING_FLAT || ds->shading == SR_SHADING_PHONG;
+    if (st->texture && textured_model) {
+        ds->texture = st->texture;
+        ds->texture_filter = st->texture_filter == SR_FILTER_DEFAULT ? SR_FILTER_TRILINEAR
+                                                                     : st->texture_filter;
+        ds->wrap_u = st->wrap_u == SR_WRAP_DEFAULT ? SR_WRAP_REPEAT : st->wrap_u;
+        ds->wrap_v = st->wrap_v == SR_WRAP_DEFAULT ? SR_WRAP_REPEAT : st->wrap_v;
+        ds->uv_index = ds->nvary;
+        ds->nvary += 2;
+        ds->ninterp = ds->nvary;
+    }
+    /* Linear depth for the DEPTH view: under a projection with w = -z_eye,
+     * z_ndc = P23 / d - P22 at eye distance d, so the near and far planes
+     * (z_ndc = -1 or 0, and +1) lie at d = P23 / (z_ndc + P22). */
+    if (ds->shading == SR_SHADING_DEPTH && proj && proj->m[11] == -1.0f && proj->m[3] == 0.0f &&
+        proj->m[7] == 0.0f && proj->m[15] == 0.0f) {
+        double p22 = proj->m[10], p23 = proj->m[14];
+        double dn = p23 / ((ds->zero_to_one ? 0.0 : -1.0) + p22), dfar = p23 / (1.0 + p22);
+        if (isfinite(dn) && isfinite(dfar) && dn > 0.0 && dfar > dn) {
+            ds->depth_vis_linear = true;
+            ds->depth_vis_near = (float)dn;
+            ds->depth_vis_scale = (float)(1.0 / (dfar - dn));
+        }
+    }
+
+    const sr_material *m = &st->material;
+    sr_vec3 kd = (m->diffuse.x == 0 && m->diffuse.y == 0 && m->diffuse.z == 0)
+                     ? (sr_vec3){ 0.8f, 0.8f, 0.8f } : m->diffuse;
+    ds->diffuse[0] = kd.x;
+    ds->diffuse[1] = kd.y;
+    ds->diffuse[2] = kd.z;
+    ds->diffuse[3] = m->opacity == 0.0f ? 1.0f : m->opacity;
+    /* Ambient reflectance defaults to the diffuse color: ambient light
+     * then tints the surface the way it looks lit. */
+    bool ka_zero = m->ambient.x == 0 && m->ambient.y == 0 && m->ambient.z == 0;
+    ds->ambient[0] = st->ambient.x * (ka_zero ? 1.0f : m->ambient.x / kd.x);
+    ds->ambient[1] = st->ambient.y * (ka_zero ? 1.0f : m->ambient.y / kd.y);
+    ds->ambient[2] = st->ambient.z * (ka_zero ? 1.0f : m->ambient.z / kd.z);
+    ds->specular[0] = m->specular.x;
+    ds->specular[1] = m->specular.y;
+    ds->specular[2] = m->specular.z;
+    ds->shininess = m->shininess == 0.0f ? 32.0f : m->shininess;
+    ds->shininess_int = (ds->shininess == floorf(ds->shininess) && ds->shininess <= 4096.0f)
+                            ? (int)ds->shininess : -1;
+    ds->use_vertex_color = !m->no_vertex_color;
+
+    sr_mat4 e = view ? *view : sr_mat4_identity();
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        const sr_light *l = &st->lights[i];
+        if (l->type == SR_LIGHT_OFF) {
+            continue;
+        }
+        sr_light_eye *le = &ds->lights[ds->light_count++];
+        le->point = l->type == SR_LIGHT_POINT;
+        sr_vec4 v;
+        if (le->point) {
+            v = sr_mat4_mul_vec4(&e, (sr_vec4){ l->vector.x, l->vector.y, l->vector.z, 1.0f });
+        } else {
+            /* The vector to the light is the negated travel direction. */
+            v = sr_mat4_mul_vec4(&e, (sr_vec4){ -l->vector.x, -l->vector.y, -l->vector.z, 0.0f });
+            sr_vec3 n = sr_vec3_normalize((sr_vec3){ v.x, v.y, v.z });
+            v = (sr_vec4){ n.x, n.y, n.z, 0.0f };
+        }
+        le->vec[0] = v.x;
+        le->vec[1] = v.y;
+        le->vec[2] = v.z;
+        bool white = l->color.x == 0 && l->color.y == 0 && l->color.z == 0;
+        float intensity = l->intensity == 0.0f ? 1.0f : l->intensity;
+        le->color[0] = (white ? 1.0f : l->color.x) * intensity;
+        le->color[1] = (white ? 1.0f : l->color.y) * intensity;
+        le->color[2] = (white ? 1.0f : l->color.z) * intensity;
+    }
+}
+
 static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr_mat4 *view,
                           const sr_mat4 *proj, sr_draw_state *ds)
 {
@@ -329,99 +431,8 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->offset_units = st->offset.units;
     ds->offset_clamp = st->offset.clamp;
 
-    ds->shading = st->shading == SR_SHADING_DEFAULT ? SR_SHADING_UNLIT : st->shading;
-    ds->perspective = st->interpolation != SR_INTERP_AFFINE;
-    ds->provoking_last = st->provoking == SR_PROVOKING_LAST;
-    ds->two_sided = st->two_sided;
-    /* A perspective projection has a bottom row (0, 0, -1, 0): the viewer
-     * sits at the eye-space origin.  Otherwise the view vector is +z. */
-    ds->local_viewer = proj && (proj->m[3] != 0.0f || proj->m[7] != 0.0f || proj->m[11] != 0.0f);
+    sr__resolve_shading(st, view, proj, ds);
 
-    switch (ds->shading) {
-    case SR_SHADING_UNLIT:
-    case SR_SHADING_GOURAUD: ds->nvary = 4; ds->ninterp = 4; break;
-    case SR_SHADING_FLAT:    ds->nvary = 7; ds->ninterp = 0; break;
-    case SR_SHADING_PHONG:   ds->nvary = 10; ds->ninterp = 10; break;
-    case SR_SHADING_NORMALS: ds->nvary = 3; ds->ninterp = 3; break;
-    case SR_SHADING_ATTRIBUTE: ds->nvary = 4; ds->ninterp = 4; break;
-    default:                 ds->nvary = 1; ds->ninterp = 1; break;
-    }
-    /* A texture adds u, v after the model's own varyings; flat shading then
-     * interpolates its (otherwise constant) layout too, to reach them. */
-    ds->uv_index = -1;
-    bool textured_model = ds->shading == SR_SHADING_UNLIT || ds->shading == SR_SHADING_GOURAUD ||
-                          ds->shading == SR_SHADING_FLAT || ds->shading == SR_SHADING_PHONG;
-    if (st->texture && textured_model) {
-        ds->texture = st->texture;
-        ds->texture_filter = st->texture_filter == SR_FILTER_DEFAULT ? SR_FILTER_TRILINEAR
-                                                                     : st->texture_filter;
-        ds->wrap_u = st->wrap_u == SR_WRAP_DEFAULT ? SR_WRAP_REPEAT : st->wrap_u;
-        ds->wrap_v = st->wrap_v == SR_WRAP_DEFAULT ? SR_WRAP_REPEAT : st->wrap_v;
-        ds->uv_index = ds->nvary;
-        ds->nvary += 2;
-        ds->ninterp = ds->nvary;
-    }
-    /* Linear depth for the DEPTH view: under a projection with w = -z_eye,
-     * z_ndc = P23 / d - P22 at eye distance d, so the near and far planes
-     * (z_ndc = -1 or 0, and +1) lie at d = P23 / (z_ndc + P22). */
-    if (ds->shading == SR_SHADING_DEPTH && proj && proj->m[11] == -1.0f && proj->m[3] == 0.0f &&
-        proj->m[7] == 0.0f && proj->m[15] == 0.0f) {
-        double p22 = proj->m[10], p23 = proj->m[14];
-        double dn = p23 / ((ds->zero_to_one ? 0.0 : -1.0) + p22), dfar = p23 / (1.0 + p22);
-        if (isfinite(dn) && isfinite(dfar) && dn > 0.0 && dfar > dn) {
-            ds->depth_vis_linear = true;
-            ds->depth_vis_near = (float)dn;
-            ds->depth_vis_scale = (float)(1.0 / (dfar - dn));
-        }
-    }
-
-    const sr_material *m = &st->material;
-    sr_vec3 kd = (m->diffuse.x == 0 && m->diffuse.y == 0 && m->diffuse.z == 0)
-                     ? (sr_vec3){ 0.8f, 0.8f, 0.8f } : m->diffuse;
-    ds->diffuse[0] = kd.x;
-    ds->diffuse[1] = kd.y;
-    ds->diffuse[2] = kd.z;
-    ds->diffuse[3] = m->opacity == 0.0f ? 1.0f : m->opacity;
-    /* Ambient reflectance defaults to the diffuse color: ambient light
-     * then tints the surface the way it looks lit. */
-    bool ka_zero = m->ambient.x == 0 && m->ambient.y == 0 && m->ambient.z == 0;
-    ds->ambient[0] = st->ambient.x * (ka_zero ? 1.0f : m->ambient.x / kd.x);
-    ds->ambient[1] = st->ambient.y * (ka_zero ? 1.0f : m->ambient.y / kd.y);
-    ds->ambient[2] = st->ambient.z * (ka_zero ? 1.0f : m->ambient.z / kd.z);
-    ds->specular[0] = m->specular.x;
-    ds->specular[1] = m->specular.y;
-    ds->specular[2] = m->specular.z;
-    ds->shininess = m->shininess == 0.0f ? 32.0f : m->shininess;
-    ds->shininess_int = (ds->shininess == floorf(ds->shininess) && ds->shininess <= 4096.0f)
-                            ? (int)ds->shininess : -1;
-    ds->use_vertex_color = !m->no_vertex_color;
-
-    sr_mat4 e = view ? *view : sr_mat4_identity();
-    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
-        const sr_light *l = &st->lights[i];
-        if (l->type == SR_LIGHT_OFF) {
-            continue;
-        }
-        sr_light_eye *le = &ds->lights[ds->light_count++];
-        le->point = l->type == SR_LIGHT_POINT;
-        sr_vec4 v;
-        if (le->point) {
-            v = sr_mat4_mul_vec4(&e, (sr_vec4){ l->vector.x, l->vector.y, l->vector.z, 1.0f });
-        } else {
-            /* The vector to the light is the negated travel direction. */
-            v = sr_mat4_mul_vec4(&e, (sr_vec4){ -l->vector.x, -l->vector.y, -l->vector.z, 0.0f });
-            sr_vec3 n = sr_vec3_normalize((sr_vec3){ v.x, v.y, v.z });
-            v = (sr_vec4){ n.x, n.y, n.z, 0.0f };
-        }
-        le->vec[0] = v.x;
-        le->vec[1] = v.y;
-        le->vec[2] = v.z;
-        bool white = l->color.x == 0 && l->color.y == 0 && l->color.z == 0;
-        float intensity = l->intensity == 0.0f ? 1.0f : l->intensity;
-        le->color[0] = (white ? 1.0f : l->color.x) * intensity;
-        le->color[1] = (white ? 1.0f : l->color.y) * intensity;
-        le->color[2] = (white ? 1.0f : l->color.z) * intensity;
-    }
     /* Multisampling and stencil take the per-sample path (raster/sample.c). */
     ds->samples = fb->samples;
     ds->sample_off = sr__sample_offsets(fb->samples);

@@ -252,11 +252,22 @@ typedef struct sr_frag_stats {
 
 /* ---- stage entry points ---- */
 
+/* draw.c: the shading half of sr_state resolved into ds (model, varyings,
+ * texture, material, lights in eye space). */
+void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 *proj,
+                         sr_draw_state *ds);
+
 /* geometry/vertex.c: vertices [first, first + count) into post[] and
  * their varyings into vary[] (ds->nvary floats each). */
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary);
+/* geometry/vertex.c: one vertex of a built-in model (clip position and
+ * varyings), shared by the vertex stage and the built-in programs. */
+void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *normal,
+                      const float *color, const float *texcoord, const float *generic,
+                      const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm, float clip[4],
+                      float *vary);
 /* Flat shading's color from the three vertices' varyings (eye position
  * and color); `pv` is the provoking vertex's varyings. */
 void sr__flat_color(const sr_draw_state *ds, const float *v0, const float *v1,

@@ -68,6 +68,10 @@ static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t
                                .color = { 0, 0, 0, 1 }, .generic = { 0, 0, 0, 1 } };
         memcpy(in.position, element(d->positions, d->position_stride, (size_t)psize, i),
                (size_t)psize * sizeof(float));
+        in.has_normal = d->normals != NULL;
+        in.has_color = d->colors != NULL;
+        in.has_texcoord = d->texcoords != NULL;
+        in.has_generic = d->generic != NULL;
         if (d->normals) {
             memcpy(in.normal, element(d->normals, d->normal_stride, 3, i), sizeof in.normal);
         }
@@ -100,6 +104,100 @@ static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t
     }
 }
 
+/* One vertex of a built-in model: the clip position and the model's
+ * varyings (pipeline.h's layouts).  color: RGBA, or NULL for the
+ * material's; normal, texcoord, generic: NULL when absent (generic is
+ * already widened to four components). */
+void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *normal,
+                      const float *color_in, const float *texcoord, const float *generic,
+                      const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm, float clip[4],
+                      float *vary)
+{
+    bool need_eye = ds->shading == SR_SHADING_FLAT || ds->shading == SR_SHADING_PHONG ||
+                    ds->shading == SR_SHADING_GOURAUD;
+    bool need_normal = ds->shading == SR_SHADING_PHONG || ds->shading == SR_SHADING_GOURAUD ||
+                       ds->shading == SR_SHADING_NORMALS;
+    bool need_color = ds->shading != SR_SHADING_NORMALS && ds->shading != SR_SHADING_DEPTH;
+    transform_point(mvp, obj, clip);
+
+    float eye[4] = { 0, 0, 0, 1 }, n[3] = { 0, 0, 1 }, color[4];
+    if (need_eye) {
+        transform_point(mv, obj, eye);
+        if (eye[3] != 1.0f && eye[3] != 0.0f) {
+            eye[0] /= eye[3];
+            eye[1] /= eye[3];
+            eye[2] /= eye[3];
+        }
+    }
+    if (need_normal && normal) {
+        normal_to_eye(nm, normal, n);
+    }
+    if (need_color) {
+        if (ds->use_vertex_color && color_in) {
+            color[0] = color_in[0];
+            color[1] = color_in[1];
+            color[2] = color_in[2];
+            color[3] = color_in[3] * ds->diffuse[3];
+        } else {
+            color[0] = ds->diffuse[0];
+            color[1] = ds->diffuse[1];
+            color[2] = ds->diffuse[2];
+            color[3] = ds->diffuse[3];
+        }
+    }
+
+    if (ds->uv_index >= 0 && texcoord) {
+        vary[ds->uv_index] = texcoord[0];
+        vary[ds->uv_index + 1] = texcoord[1];
+    }
+    switch (ds->shading) {
+    case SR_SHADING_UNLIT:
+        for (int k = 0; k < 4; k++) {
+            vary[SR_VARY_COLOR + k] = color[k];
+        }
+        break;
+    case SR_SHADING_GOURAUD: {
+        /* Gouraud: light once per vertex; the rasterizer interpolates the
+         * resulting colors.  Two-sided: light the side that faces the eye. */
+        if (ds->two_sided) {
+            face_viewer(ds, eye, n);
+        }
+        sr__light(ds, n, eye, color, &vary[SR_VARY_COLOR]);
+        break;
+    }
+    case SR_SHADING_FLAT:
+        for (int k = 0; k < 3; k++) {
+            vary[SR_VARY_FLAT_EYE + k] = eye[k];
+        }
+        for (int k = 0; k < 4; k++) {
+            vary[SR_VARY_FLAT_COLOR + k] = color[k];
+        }
+        break;
+    case SR_SHADING_PHONG:
+        for (int k = 0; k < 3; k++) {
+            vary[SR_VARY_PHONG_NORMAL + k] = n[k];
+            vary[SR_VARY_PHONG_EYE + k] = eye[k];
+        }
+        for (int k = 0; k < 4; k++) {
+            vary[SR_VARY_PHONG_COLOR + k] = color[k];
+        }
+        break;
+    case SR_SHADING_DEPTH:
+        vary[SR_VARY_DEPTH_W] = clip[3];
+        break;
+    case SR_SHADING_ATTRIBUTE:
+        memcpy(&vary[SR_VARY_ATTRIBUTE], generic, 4 * sizeof(float));
+        break;
+    case SR_SHADING_NORMALS:
+        for (int k = 0; k < 3; k++) {
+            vary[SR_VARY_NORMAL + k] = n[k];
+        }
+        break;
+    default:
+        break;
+    }
+}
+
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary_out)
@@ -110,18 +208,35 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
     }
     int psize = d->position_size ? d->position_size : 3;
     int csize = d->color_size ? d->color_size : 4;
-    bool need_eye = ds->shading == SR_SHADING_FLAT || ds->shading == SR_SHADING_PHONG ||
-                    ds->shading == SR_SHADING_GOURAUD;
-    bool need_normal = ds->shading == SR_SHADING_PHONG || ds->shading == SR_SHADING_GOURAUD ||
-                       ds->shading == SR_SHADING_NORMALS;
-    bool need_color = ds->shading != SR_SHADING_NORMALS && ds->shading != SR_SHADING_DEPTH;
-
+    int gsize = d->generic_size ? d->generic_size : 4;
     for (size_t i = first; i < first + count; i++) {
         sr_vertex_post *v = &post[i];
         float *vary = vary_out + i * (size_t)ds->nvary;
         const float *p = element(d->positions, d->position_stride, (size_t)psize, i);
         float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
-        transform_point(mvp, obj, v->pos);
+        float color[4], generic[4];
+        const float *cp = NULL, *gp = NULL;
+        if (d->colors) {
+            const float *c = element(d->colors, d->color_stride, (size_t)csize, i);
+            color[0] = c[0];
+            color[1] = c[1];
+            color[2] = c[2];
+            color[3] = csize == 4 ? c[3] : 1.0f;
+            cp = color;
+        }
+        if (ds->shading == SR_SHADING_ATTRIBUTE) {
+            /* Missing components read as 0, alpha as 1; one component
+             * is shown as gray. */
+            const float *g = element(d->generic, d->generic_stride, (size_t)gsize, i);
+            float out[4] = { g[0], gsize > 1 ? g[1] : (gsize == 1 ? g[0] : 0.0f),
+                             gsize > 2 ? g[2] : (gsize == 1 ? g[0] : 0.0f),
+                             gsize > 3 ? g[3] : 1.0f };
+            memcpy(generic, out, sizeof out);
+            gp = generic;
+        }
+        sr__vertex_shade(ds, obj, d->normals ? element(d->normals, d->normal_stride, 3, i) : NULL,
+                         cp, d->texcoords ? element(d->texcoords, d->texcoord_stride, 2, i) : NULL,
+                         gp, mvp, mv, nm, v->pos, vary);
         if (!(isfinite(v->pos[0]) && isfinite(v->pos[1]) && isfinite(v->pos[2]) &&
               isfinite(v->pos[3]))) {
             v->outcode = SR_OUTCODE_NONFINITE;
@@ -131,93 +246,6 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                 /* Inside every plane: divide and snap once, here. */
                 sr__project(ds, v->pos, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
             }
-        }
-
-        float eye[4] = { 0, 0, 0, 1 }, n[3] = { 0, 0, 1 }, color[4];
-        if (need_eye) {
-            transform_point(mv, obj, eye);
-            if (eye[3] != 1.0f && eye[3] != 0.0f) {
-                eye[0] /= eye[3];
-                eye[1] /= eye[3];
-                eye[2] /= eye[3];
-            }
-        }
-        if (need_normal && d->normals) {
-            normal_to_eye(nm, element(d->normals, d->normal_stride, 3, i), n);
-        }
-        if (need_color) {
-            if (ds->use_vertex_color && d->colors) {
-                const float *c = element(d->colors, d->color_stride, (size_t)csize, i);
-                color[0] = c[0];
-                color[1] = c[1];
-                color[2] = c[2];
-                color[3] = (csize == 4 ? c[3] : 1.0f) * ds->diffuse[3];
-            } else {
-                color[0] = ds->diffuse[0];
-                color[1] = ds->diffuse[1];
-                color[2] = ds->diffuse[2];
-                color[3] = ds->diffuse[3];
-            }
-        }
-
-        if (ds->uv_index >= 0) {
-            const float *tc = element(d->texcoords, d->texcoord_stride, 2, i);
-            vary[ds->uv_index] = tc[0];
-            vary[ds->uv_index + 1] = tc[1];
-        }
-        switch (ds->shading) {
-        case SR_SHADING_UNLIT:
-            for (int k = 0; k < 4; k++) {
-                vary[SR_VARY_COLOR + k] = color[k];
-            }
-            break;
-        case SR_SHADING_GOURAUD: {
-            /* Gouraud: light once per vertex; the rasterizer interpolates the
-             * resulting colors.  Two-sided: light the side that faces the eye. */
-            if (ds->two_sided) {
-                face_viewer(ds, eye, n);
-            }
-            sr__light(ds, n, eye, color, &vary[SR_VARY_COLOR]);
-            break;
-        }
-        case SR_SHADING_FLAT:
-            for (int k = 0; k < 3; k++) {
-                vary[SR_VARY_FLAT_EYE + k] = eye[k];
-            }
-            for (int k = 0; k < 4; k++) {
-                vary[SR_VARY_FLAT_COLOR + k] = color[k];
-            }
-            break;
-        case SR_SHADING_PHONG:
-            for (int k = 0; k < 3; k++) {
-                vary[SR_VARY_PHONG_NORMAL + k] = n[k];
-                vary[SR_VARY_PHONG_EYE + k] = eye[k];
-            }
-            for (int k = 0; k < 4; k++) {
-                vary[SR_VARY_PHONG_COLOR + k] = color[k];
-            }
-            break;
-        case SR_SHADING_DEPTH:
-            vary[SR_VARY_DEPTH_W] = v->pos[3];
-            break;
-        case SR_SHADING_ATTRIBUTE: {
-            /* Missing components read as 0, alpha as 1; one component
-             * is shown as gray. */
-            int gsize = d->generic_size ? d->generic_size : 4;
-            const float *g = element(d->generic, d->generic_stride, (size_t)gsize, i);
-            float out[4] = { g[0], gsize > 1 ? g[1] : (gsize == 1 ? g[0] : 0.0f),
-                             gsize > 2 ? g[2] : (gsize == 1 ? g[0] : 0.0f),
-                             gsize > 3 ? g[3] : 1.0f };
-            memcpy(&vary[SR_VARY_ATTRIBUTE], out, sizeof out);
-            break;
-        }
-        case SR_SHADING_NORMALS:
-            for (int k = 0; k < 3; k++) {
-                vary[SR_VARY_NORMAL + k] = n[k];
-            }
-            break;
-        default:
-            break;
         }
     }
 }
