@@ -498,8 +498,11 @@ SR_TEST(context_creation_survives_every_allocation_failure)
 SR_TEST(framebuffer_creation_survives_every_allocation_failure)
 {
     const sr_depth_format fmts[] = { SR_DEPTH_D24, SR_DEPTH_NONE, SR_DEPTH_D32F };
+    /* ms: multisampled with a stencil buffer, which adds the stencil and
+     * the resolve buffer to the allocations. */
     for (int sticky = 0; sticky <= 1; sticky++) {
-        for (int fi = 0; fi < 3; fi++) {
+        for (int fi = 0; fi < 6; fi++) {
+            bool ms = fi >= 3;
             counting_alloc a;
             ca_init(&a, sticky);
             sr_context *ctx;
@@ -511,7 +514,9 @@ SR_TEST(framebuffer_creation_survives_every_allocation_failure)
                 sr_framebuffer *fb = (sr_framebuffer *)&a;
                 ca_arm(&a, k);
                 sr_result r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 100, .height = 70,
-                                                                              .depth_format = fmts[fi] }, &fb);
+                                                                              .depth_format = fmts[fi % 3],
+                                                                              .samples = ms ? 4 : 0,
+                                                                              .stencil = ms }, &fb);
                 ca_disarm(&a);
                 if (r == SR_OK) {
                     /* Usable: clear and read back. */
@@ -526,7 +531,7 @@ SR_TEST(framebuffer_creation_survives_every_allocation_failure)
                 CHECK_STR_CONTAINS(sr_context_error(ctx), "out of memory");
                 CHECK_EQ(atomic_load(&a.live), base);
             }
-            CHECK(failures >= (fmts[fi] == SR_DEPTH_NONE ? 2 : 3));
+            CHECK(failures >= (fmts[fi % 3] == SR_DEPTH_NONE ? 2 : 3) + (ms ? 2 : 0));
             CHECK_EQ(atomic_load(&a.live), base);
             sr_destroy_context(ctx);
             CHECK_EQ(atomic_load(&a.live), 0);
