@@ -61,6 +61,8 @@ static void usage(FILE *f)
         "scenes:\n"
         "  bunny, spot, teapot  the model (from $SR_MODELS_DIR, else %s),\n"
         "                       framed like `softrast render`, Gouraud, depth LESS\n"
+        "  spot_tex             spot with spot_texture.png modulating the Gouraud color,\n"
+        "                       trilinear (llvmpipe: GL_LINEAR_MIPMAP_LINEAR, GL_MODULATE)\n"
         "  small                1,000,000 random triangles of 2-10 px^2, vertex colors\n"
         "  fill                 100 full-screen quads back to front, vertex colors\n"
         "  cli                  the whole `softrast render bunny` process\n"
@@ -281,7 +283,7 @@ static sr_result sr_frame(bench_run *run, const bench_scene *s)
     r = sr_draw(run->ctx, fb, &s->state, &(sr_draw_desc){
         .primitive = s->primitive, .positions = s->positions, .position_size = s->position_size,
         .normals = s->normals, .colors = s->colors, .color_size = 4,
-        .vertex_count = s->vertex_count,
+        .texcoords = s->texcoords, .vertex_count = s->vertex_count,
         .indices = s->indices, .index_type = s->indices ? SR_INDEX_U32 : SR_INDEX_NONE,
         .index_count = s->index_count,
         .model = &s->model, .view = &s->view, .projection = &s->projection });
@@ -308,6 +310,24 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
         return;
     }
 
+    /* A textured scene's texture lives on the context: made here, untimed,
+     * as GL uploads its own in gl_prepare. */
+    sr_texture *tex = NULL;
+    if (s.texture_pixels) {
+        r = sr_make_texture(run->ctx, &(sr_texture_desc){ .width = s.texture_w,
+                                                          .height = s.texture_h,
+                                                          .pixels = s.texture_pixels },
+                            &tex);
+        if (r != SR_OK) {
+            fprintf(stderr, "softrast-bench: %s: %s\n", info->name, sr_context_error(run->ctx));
+            printf("scene=%s renderer=softrast skipped=error\n", info->name);
+            run->failures++;
+            bench_scene_free(&s);
+            return;
+        }
+        s.state.texture = tex;
+    }
+
     if (info->samples > 1) {
         sr_destroy_framebuffer(run->ctx, run->ms_fb);
         run->ms_fb = NULL;
@@ -320,6 +340,7 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
             fprintf(stderr, "softrast-bench: %s: %s\n", info->name, sr_context_error(run->ctx));
             printf("scene=%s renderer=softrast skipped=error\n", info->name);
             run->failures++;
+            sr_destroy_texture(run->ctx, tex);
             bench_scene_free(&s);
             return;
         }
@@ -344,6 +365,7 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
             if (compare) {
                 gl_unprepare(run->gl);
             }
+            sr_destroy_texture(run->ctx, tex);
             bench_scene_free(&s);
             return;
         }
@@ -386,6 +408,7 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
     if (compare) {
         gl_unprepare(run->gl);
     }
+    sr_destroy_texture(run->ctx, tex);
     bench_scene_free(&s);
 }
 

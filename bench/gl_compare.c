@@ -1,7 +1,8 @@
 /* gl_compare.c - the llvmpipe side of `softrast-bench --compare` (bench):
  * consumes a bench_scene, sets up legacy fixed-function OpenGL state
  * equivalent to its sr_state (per-vertex Blinn-Phong lighting for Gouraud,
- * vertex colors for unlit) and draws it into an OSMesa RGBA8 buffer.
+ * vertex colors for unlit, a mipmapped texture under GL_MODULATE for
+ * textured scenes) and draws it into an OSMesa RGBA8 buffer.
  * Main thread only. */
 #include "gl_compare.h"
 
@@ -57,7 +58,8 @@ struct gl_renderer {
     /* Vertex buffer objects: the arrays are uploaded once, untimed, as a
      * GPU driver would keep them resident; softrast reads the caller's
      * arrays in place, so neither side pays a per-frame copy. */
-    GLuint vbo_positions, vbo_normals, vbo_colors, ibo;
+    GLuint vbo_positions, vbo_normals, vbo_colors, vbo_texcoords, ibo;
+    GLuint texture;
     /* Multisampled scenes: OSMesa's own buffer has one sample, so they draw
      * into a multisampled framebuffer object and blit (resolve) it there. */
     GLuint ms_fbo, ms_color, ms_depth;
@@ -219,6 +221,39 @@ static void setup_lighting(const bench_scene *s)
     glEnable(GL_NORMALIZE);
 }
 
+/* The scene's texture as GL_TEXTURE_2D, trilinear, modulating the lit
+ * color.  GL's first row is t = 0, the bottom of the image, and softrast's
+ * v = 0 is the bottom row too (sr_make_texture), but the PNG stores its
+ * top row first: the rows go up in reverse.  glGenerateMipmap builds the
+ * chain by 2x2 box averages, as sr_make_texture does. */
+static bool setup_texture(gl_renderer *g, const bench_scene *s, char *msg, size_t msg_size)
+{
+    size_t row = (size_t)s->texture_w * 4;
+    uint8_t *flipped = malloc(row * (size_t)s->texture_h);
+    if (!flipped) {
+        snprintf(msg, msg_size, "out of memory for the texture");
+        return false;
+    }
+    for (int y = 0; y < s->texture_h; y++) {
+        memcpy(flipped + (size_t)y * row, s->texture_pixels + (size_t)(s->texture_h - 1 - y) * row,
+               row);
+    }
+    glGenTextures(1, &g->texture);
+    glBindTexture(GL_TEXTURE_2D, g->texture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, s->texture_w, s->texture_h, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, flipped);
+    free(flipped);
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+    glEnable(GL_TEXTURE_2D);
+    return true;
+}
+
 bool gl_prepare(gl_renderer *g, const bench_scene *s, char *msg, size_t msg_size)
 {
     const sr_state *st = &s->state;
@@ -315,6 +350,18 @@ bool gl_prepare(gl_renderer *g, const bench_scene *s, char *msg, size_t msg_size
             glColor4f(d.x, d.y, d.z, 1.0f);
         }
     }
+    if (s->texture_pixels && s->texcoords) {
+        g->vbo_texcoords = upload(GL_ARRAY_BUFFER, s->texcoords, n * 2 * sizeof(float));
+        glTexCoordPointer(2, GL_FLOAT, 0, NULL);
+        glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+        if (!setup_texture(g, s, msg, msg_size)) {
+            glBindBuffer(GL_ARRAY_BUFFER, 0);
+            return false;
+        }
+    } else {
+        glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+        glDisable(GL_TEXTURE_2D);
+    }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     if (s->indices) {
         g->ibo = upload(GL_ELEMENT_ARRAY_BUFFER, s->indices, s->index_count * sizeof(uint32_t));
@@ -348,13 +395,19 @@ void gl_frame(gl_renderer *g, const bench_scene *s)
 
 void gl_unprepare(gl_renderer *g)
 {
-    GLuint b[4] = { g->vbo_positions, g->vbo_normals, g->vbo_colors, g->ibo };
-    for (int i = 0; i < 4; i++) {
+    GLuint b[5] = { g->vbo_positions, g->vbo_normals, g->vbo_colors, g->vbo_texcoords, g->ibo };
+    for (int i = 0; i < 5; i++) {
         if (b[i]) {
             glDeleteBuffers(1, &b[i]);
         }
     }
-    g->vbo_positions = g->vbo_normals = g->vbo_colors = g->ibo = 0;
+    g->vbo_positions = g->vbo_normals = g->vbo_colors = g->vbo_texcoords = g->ibo = 0;
+    if (g->texture) {
+        glDeleteTextures(1, &g->texture);
+        g->texture = 0;
+        glDisable(GL_TEXTURE_2D);
+        glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+    }
     if (g->ms_fbo) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glDeleteFramebuffers(1, &g->ms_fbo);

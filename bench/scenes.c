@@ -15,16 +15,17 @@
 #define PI_F 3.14159265358979f
 
 const bench_scene_info bench_scene_list[] = {
-    { "bunny",  BENCH_MESH,  "stanford-bunny.obj", 0 },
-    { "spot",   BENCH_MESH,  "spot.obj", 0 },
-    { "teapot", BENCH_MESH,  "teapot.obj", 0 },
-    { "small",  BENCH_SMALL, NULL, 0 },
-    { "fill",   BENCH_FILL,  NULL, 0 },
-    { "cli",    BENCH_CLI,   "stanford-bunny.obj", 0 },
-    { "lines",  BENCH_LINES, NULL, 0 },
-    { "polyfill", BENCH_POLYFILL, NULL, 0 },
-    { "polyfill_aa", BENCH_POLYFILL_AA, NULL, 0 },
-    { "msaa4",  BENCH_MESH,  "stanford-bunny.obj", 4 },
+    { "bunny",  BENCH_MESH,  "stanford-bunny.obj", 0, NULL },
+    { "spot",   BENCH_MESH,  "spot.obj", 0, NULL },
+    { "teapot", BENCH_MESH,  "teapot.obj", 0, NULL },
+    { "small",  BENCH_SMALL, NULL, 0, NULL },
+    { "fill",   BENCH_FILL,  NULL, 0, NULL },
+    { "cli",    BENCH_CLI,   "stanford-bunny.obj", 0, NULL },
+    { "lines",  BENCH_LINES, NULL, 0, NULL },
+    { "polyfill", BENCH_POLYFILL, NULL, 0, NULL },
+    { "polyfill_aa", BENCH_POLYFILL_AA, NULL, 0, NULL },
+    { "msaa4",  BENCH_MESH,  "stanford-bunny.obj", 4, NULL },
+    { "spot_tex", BENCH_MESH, "spot.obj", 0, "spot_texture.png" },
 };
 const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);
 
@@ -107,6 +108,24 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         snprintf(msg, msg_size, "%s: computing normals: %s", path, sr_result_text(r));
         return r;
     }
+    if (s->info->texture_file) {
+        if (!s->mesh.texcoords) {
+            snprintf(msg, msg_size, "%s: no texture coordinates for %s", path,
+                     s->info->texture_file);
+            return SR_BAD_FORMAT;
+        }
+        n = snprintf(path, sizeof path, "%s/%s", bench_models_dir(), s->info->texture_file);
+        if (n < 0 || (size_t)n >= sizeof path) {
+            snprintf(msg, msg_size, "%s: texture path too long", s->info->name);
+            return SR_INVALID_ARG;
+        }
+        r = sr_read_png(path, &s->texture_w, &s->texture_h, &s->texture_pixels, &err);
+        if (r != SR_OK) {
+            snprintf(msg, msg_size, "%s", err.message);
+            return r;
+        }
+        s->texcoords = s->mesh.texcoords;
+    }
     s->vertex_count = s->mesh.vertex_count;
     s->positions = s->mesh.positions;
     s->position_size = 3;
@@ -130,6 +149,11 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         .ambient = { 0.12f, 0.12f, 0.14f },
     };
     framing_default_lights(&basis, s->state.lights);
+    if (s->texture_pixels) {
+        /* The texel multiplies the lit (Gouraud) color: GL_MODULATE. */
+        s->state.texture_filter = SR_FILTER_TRILINEAR;
+        s->state.wrap_u = s->state.wrap_v = SR_WRAP_REPEAT;
+    }
     s->clear_color[0] = 0x1d / 255.0f;
     s->clear_color[1] = 0x22 / 255.0f;
     s->clear_color[2] = 0x30 / 255.0f;
@@ -348,6 +372,8 @@ void bench_scene_free(bench_scene *s)
     free(s->own_positions);
     free(s->own_colors);
     free(s->own_indices);
+    free(s->texture_pixels);
+    s->texture_pixels = NULL;
     s->own_positions = s->own_colors = NULL;
     s->own_indices = NULL;
 }

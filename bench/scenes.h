@@ -25,6 +25,8 @@ typedef struct bench_scene_info {
     bench_kind kind;
     const char *model_file;  /* BENCH_MESH and BENCH_CLI: file in the models directory */
     int samples;             /* MSAA samples per pixel; 0: one */
+    const char *texture_file;/* BENCH_MESH: a PNG in the models directory that
+                              * modulates the lit color (trilinear), or NULL */
 } bench_scene_info;
 
 /* Every scene in the order a run without SCENE arguments uses. */
@@ -42,6 +44,7 @@ typedef struct bench_scene {
     int position_size;          /* 3 or 4 floats */
     const float *normals;       /* 3 floats, or NULL */
     const float *colors;        /* 4 floats (RGBA), or NULL */
+    const float *texcoords;     /* 2 floats, or NULL (textured scenes only) */
     const uint32_t *indices;    /* NULL: vertices in order */
     size_t index_count;
     size_t triangle_count;      /* primitives: triangles, or segments for BENCH_LINES */
@@ -52,6 +55,13 @@ typedef struct bench_scene {
     float clear_color[4];
 
     uint64_t fragments_per_frame;  /* what mpix_s counts: W*H, or 100*W*H for fill */
+
+    /* Textured scenes: the image as read (RGBA8, row 0 at the top, as PNG
+     * stores it), NULL otherwise.  Each renderer makes its own texture
+     * from it (state.texture stays NULL here: a texture lives on a
+     * context, which the scene does not know). */
+    uint8_t *texture_pixels;
+    int texture_w, texture_h;
 
     /* Storage owned by the scene. */
     sr_mesh mesh;

@@ -21,10 +21,8 @@
     X(perspective, "perspective", "checkerboard and gradient interpolated in screen space (affine) vs perspective-correctly") \
     X(zfight, "zfight", "z-fighting: D16/D24/D32F depth at several far/near ratios, reversed-Z, polygon offset") \
     X(normals, "normals", "a non-uniformly scaled sphere lit with normals transformed by M vs by M^-T") \
-    X(viewport, "viewport", "one scene in wide and tall viewports, stretched vs aspect ratio preserved")
-/* Still to come, with its feature:
- *   aa - the same edges aliased, supersampled (SSAA) and multisampled
- *        (MSAA), registered with demo_aa.c once MSAA lands. */
+    X(viewport, "viewport", "one scene in wide and tall viewports, stretched vs aspect ratio preserved") \
+    X(aa, "aa", "a star and a turned square aliased, MSAA 4/8/16, exact area, SSAA with four filters")
 
 #define DEMO_DECLARE(id, name, summary) int demo_##id(sr_context *, const demo_args *, sr_framebuffer **);
 DEMO_LIST(DEMO_DECLARE)

@@ -1,6 +1,6 @@
 /* demo3d.h - shared by the 3D pipeline demos (gouraud-highlight,
- * perspective, zfight, normals, viewport and the 3D half of clip): each
- * panel is a framebuffer with a depth buffer, drawn by sr_draw and copied
+ * perspective, zfight, normals, viewport, aa and the 3D half of clip): each
+ * panel is a framebuffer, usually with a depth buffer, drawn by sr_draw and copied
  * into one labelled cell of a grid (demo3d_layout.h), optionally
  * magnified; plus the little geometry the scenes share. */
 #ifndef SR_DEMO3D_H

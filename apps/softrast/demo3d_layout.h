@@ -20,6 +20,10 @@ typedef struct demo3d_layout {
 #define DEMO3D_LAYOUT_ZFIGHT      ((demo3d_layout){ 3, 5, 220, 124 })
 #define DEMO3D_LAYOUT_NORMALS     ((demo3d_layout){ 2, 2, 300, 210 })
 #define DEMO3D_LAYOUT_VIEWPORT    ((demo3d_layout){ 3, 2, 236, 224 })
+/* `softrast demo aa`: small panels shown magnified (DEMO3D_AA_SCALE by
+ * default) so the pixels show. */
+#define DEMO3D_LAYOUT_AA          ((demo3d_layout){ 4, 3, 64, 36 })
+#define DEMO3D_AA_SCALE 5
 /* The 3D section under the 2D panels of `softrast demo clip` (not scaled). */
 #define DEMO3D_LAYOUT_CLIP        ((demo3d_layout){ 2, 2, 300, 210 })
 
