@@ -81,6 +81,11 @@ sr_result sr_make_texture(sr_context *ctx, const sr_texture_desc *desc, sr_textu
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_texture: out of memory");
     }
     t->srgb = desc->srgb;
+    for (int i = 0; i < 256; i++) {
+        float v = i / 255.0f;
+        t->color_value[i] = t->srgb ? srgb_to_linear(v) : v;
+        t->alpha_value[i] = v;
+    }
     int w = desc->width, h = desc->height;
     for (int k = 0; k < SR_TEXTURE_MAX_LEVELS; k++) {
         t->width[k] = w;
@@ -129,6 +134,11 @@ int sr_texture_levels(const sr_texture *t)
 /* Texel index along one axis of n texels under a wrap mode. */
 static int wrap(int i, int n, sr_texture_wrap mode)
 {
+    /* Inside the image every mode is the identity: no division for the
+     * common case. */
+    if (i >= 0 && i < n) {
+        return i;
+    }
     switch (mode) {
     case SR_WRAP_CLAMP:
         return i < 0 ? 0 : i >= n ? n - 1 : i;
@@ -148,10 +158,10 @@ static int wrap(int i, int n, sr_texture_wrap mode)
 static void fetch(const sr_texture *t, int k, int x, int y, float out[4])
 {
     const uint8_t *p = t->texels[k] + ((size_t)y * t->width[k] + x) * 4;
-    for (int c = 0; c < 4; c++) {
-        float v = p[c] / 255.0f;
-        out[c] = (t->srgb && c < 3) ? srgb_to_linear(v) : v;
-    }
+    out[0] = t->color_value[p[0]];
+    out[1] = t->color_value[p[1]];
+    out[2] = t->color_value[p[2]];
+    out[3] = t->alpha_value[p[3]];
 }
 
 /* Texel space: u in [0, 1] spans the width with texel centres at
@@ -163,8 +173,13 @@ static void sample_level(const sr_texture *t, int k, bool linear, sr_texture_wra
     int w = t->width[k], h = t->height[k];
     /* Far outside [0, 1] the fraction has no precision left anyway; the
      * clamp keeps the conversions to int defined. */
-    float x = fminf(fmaxf(u * (float)w, -1e7f), 1e7f);
-    float y = fminf(fmaxf((1.0f - v) * (float)h, -1e7f), 1e7f);
+    float x = u * (float)w, y = (1.0f - v) * (float)h;
+    /* fmaxf/fminf as comparisons (u, v are finite here, so no NaN): the
+     * same values without two library calls per coordinate. */
+    x = x > -1e7f ? x : -1e7f;
+    x = x < 1e7f ? x : 1e7f;
+    y = y > -1e7f ? y : -1e7f;
+    y = y < 1e7f ? y : 1e7f;
     if (!linear) {
         int xi = wrap((int)floorf(x), w, wu), yi = wrap((int)floorf(y), h, wv);
         fetch(t, k, xi, yi, out);

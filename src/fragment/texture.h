@@ -13,6 +13,10 @@ struct sr_texture {
     int width[SR_TEXTURE_MAX_LEVELS], height[SR_TEXTURE_MAX_LEVELS];
     uint8_t *texels[SR_TEXTURE_MAX_LEVELS];   /* RGBA8 rows, row 0 at the top */
     bool srgb;
+    /* A byte's value in [0, 1] for the color channels (decoded from sRGB
+     * when srgb) and for alpha: exactly what the division (and powf)
+     * would give, looked up instead of computed for every texel fetched. */
+    float color_value[256], alpha_value[256];
 };
 
 /* Filtered texel at (u, v) for a level of detail lod = log2 of the texels
