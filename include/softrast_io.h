@@ -60,13 +60,21 @@ bool sr_io_have_assimp(void);
 typedef struct sr_png_write_desc {
     int compression_level;  /* zlib level; 0 -> SR_PNG_DEFAULT_LEVEL; -1 -> store */
     bool no_alpha;          /* write RGB, dropping alpha */
+    sr_allocator allocator; /* zero: malloc/free.  Every block the write
+                             * allocates - its own, libpng's and zlib's - comes
+                             * from here (except realpath's when `path` is a
+                             * symbolic link); NULL from alloc makes the call
+                             * return SR_OUT_OF_MEMORY with nothing left behind */
 } sr_png_write_desc;
 
 #define SR_PNG_DEFAULT_LEVEL 1
 
 /* Write RGBA8 pixels (stride in bytes) to `path` atomically: a temporary
  * file in the same directory, fsync'd, then renamed over the target, so a
- * failed write never leaves a partial file or clobbers an existing one. */
+ * failed write never leaves a partial file or clobbers an existing one.
+ * Writes retry after EINTR (a signal handler without SA_RESTART) and carry
+ * on after a short write; the first real error (ENOSPC, EFBIG, EIO) fails
+ * the call with SR_IO_ERROR and removes the temporary file. */
 sr_result sr_write_png(const char *path, int width, int height,
                        const uint8_t *rgba, size_t stride,
                        const sr_png_write_desc *desc, sr_io_error *err);
@@ -75,6 +83,17 @@ sr_result sr_write_png(const char *path, int width, int height,
  * *pixels is malloc'd; free it with free(). */
 sr_result sr_read_png(const char *path, int *width, int *height,
                       uint8_t **pixels, sr_io_error *err);
+
+typedef struct sr_png_read_desc {
+    sr_allocator allocator; /* zero: malloc/free.  libpng's and zlib's blocks, the
+                             * row table and the pixels come from here (release
+                             * *pixels with allocator.free); only stdio's FILE does
+                             * not.  NULL from alloc: SR_OUT_OF_MEMORY, nothing kept */
+} sr_png_read_desc;
+
+/* sr_read_png with options (desc may be NULL: exactly sr_read_png). */
+sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
+                           int *height, uint8_t **pixels, sr_io_error *err);
 
 #ifdef __cplusplus
 }

@@ -2,7 +2,7 @@
 # scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]
 #
 # Builds one fuzz target of tests/fuzz (fuzz_obj, fuzz_ply, fuzz_stl, fuzz_fill2d,
-# fuzz_draw) with clang, libFuzzer, ASan and UBSan in build-fuzz/ (or
+# fuzz_draw, fuzz_svg) with clang, libFuzzer, ASan and UBSan in build-fuzz/ (or
 # $SR_FUZZ_BUILD), and runs it for SECONDS on its seed corpus
 # tests/fuzz/corpus/TARGET/.  New inputs go to build-fuzz/corpus/TARGET/,
 # crashes to build-fuzz/artifacts/.  Exits non-zero on any crash, leak,
@@ -28,6 +28,11 @@ cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER="${CC:-clang}" -DCMAKE_BUILD_TYP
     -DSR_FUZZ=ON -DSR_BUILD_TESTS=OFF -DSR_BUILD_BENCH=OFF -DSR_WITH_ASSIMP=OFF >/dev/null
 cmake --build "$build" --target "$target" -j2 >/dev/null
 mkdir -p "$build/corpus/$target" "$build/artifacts"
+# A dictionary of the format's keywords, when the target has one.
+dict=$root/tests/fuzz/$target.dict
+if [ -f "$dict" ]; then
+    set -- -dict="$dict" "$@"
+fi
 echo "== fuzz $target for ${seconds}s =="
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \

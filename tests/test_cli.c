@@ -524,6 +524,8 @@ static const option_case option_errors[] = {
     { "size without value", { "--size" }, "--size: missing value" },
     { "shading bogus", { "--shading", "bogus" }, "--shading: expected one of flat|gouraud|" },
     { "fov 0", { "--fov", "0" }, "--fov: expected a number" },
+    { "polygon offset one number", { "--polygon-offset", "1" },
+      "--polygon-offset: expected FACTOR,UNITS" },
     { "fov 180", { "--fov", "180" }, "--fov: expected a number" },
     { "fov nan", { "--fov", "nan" }, "--fov: expected a number" },
     { "camera without eye", { "--camera", "target=0,0,0" }, "--camera: eye=X,Y,Z is required" },
@@ -725,6 +727,7 @@ static const char *const value_options[] = {
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
+    "--polygon-offset",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",

@@ -3,6 +3,7 @@
  * pipeline and write a PNG atomically. */
 #include "cli.h"
 #include "framing.h"
+#include "render.h"
 #include "scene.h"
 #include "softrast_io.h"
 
@@ -51,10 +52,12 @@ typedef struct render_opts {
     bool verbose;
     int lines;                     /* LINES_NONE, ... */
     float line_width, point_size;
+    float offset_factor, offset_units;  /* the depth pass of the line modes */
     sr_vec3 line_color;
     bool have_line_color;
     bool smooth;
     int ssaa;                      /* 1: off; k: render k x k samples per pixel */
+    int msaa;                      /* 1: off; n: n samples per pixel, shaded once */
     float opacity;                 /* of the model; 1: opaque */
     sr_resample_filter filter;
 } render_opts;
@@ -78,8 +81,10 @@ static const char *const interp_names[] = { "perspective", "affine", NULL };
 static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
 static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
 static const char *const filter_names[] = { "nearest", "bilinear", "trilinear", NULL };
-static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", NULL };
-static const int aa_values[] = { 1, 2, 3, 4 };
+static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", "msaa2", "msaa4",
+                                         "msaa8", "msaa16", NULL };
+static const int aa_ssaa[] = { 1, 2, 3, 4, 1, 1, 1, 1 };
+static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
 static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 
@@ -145,8 +150,14 @@ static void render_help(void)
         "  --point-size N           1..64 pixels (default 3)\n"
         "  --line-color COLOR       (default #e8ecf4, or #202020 on a light background)\n"
         "  --smooth                 antialiased lines and round antialiased points\n"
+        "  --polygon-offset F,U     how far the depth pass of --hidden-line, --edges and\n"
+        "                           --points is pushed back: factor F times the depth\n"
+        "                           slope plus U depth steps (default 1,1; 0,0 shows the\n"
+        "                           stitching it prevents)\n"
         "  --aa MODE                none|ssaa2|ssaa3|ssaa4: render k x k samples per pixel\n"
-        "                           and filter them down (default none)\n"
+        "                           and filter them down; msaa2|msaa4|msaa8|msaa16: that\n"
+        "                           many coverage and depth samples per pixel, shaded\n"
+        "                           once, box-resolved (default none)\n"
         "  --filter F               box|tent|gaussian|mitchell, the SSAA reconstruction\n"
         "                           filter (default box)\n"
         "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
@@ -316,7 +327,10 @@ static int parse_args(int argc, char **argv, render_opts *o)
                 return EXIT_USAGE;
             }
         } else if (IS("--aa")) {
-            CHOICE(aa_names, o->ssaa, aa_values[k_]);
+            int aa;
+            CHOICE(aa_names, aa, k_);
+            o->ssaa = aa_ssaa[aa];
+            o->msaa = aa_msaa[aa];
         } else if (IS("--filter")) {
             CHOICE(resample_names, o->filter, (sr_resample_filter)(SR_RESAMPLE_BOX + k_));
         } else if (IS("--texture")) {
@@ -342,6 +356,15 @@ static int parse_args(int argc, char **argv, render_opts *o)
             VALUE();
             if (!parse_float(arg, value, 1.0f, 64.0f,
                              IS("--line-width") ? &o->line_width : &o->point_size)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--polygon-offset")) {
+            VALUE();
+            int n = 0;
+            if (sscanf(value, "%f,%f%n", &o->offset_factor, &o->offset_units, &n) != 2 ||
+                value[n] != 0 || !isfinite(o->offset_factor) || !isfinite(o->offset_units) ||
+                fabsf(o->offset_factor) > 1e6f || fabsf(o->offset_units) > 1e6f) {
+                cli_error("%s: expected FACTOR,UNITS, two numbers (got '%s')", arg, value);
                 return EXIT_USAGE;
             }
         } else if (IS("--line-color")) {
@@ -416,12 +439,12 @@ static int parse_args(int argc, char **argv, render_opts *o)
         } else if (IS("-v") || IS("--verbose")) {
             o->verbose = true;
         } else if (arg[0] == '-' && arg[1] != 0) {
-            cli_error("render: unknown option '%s' (try 'softrast render --help')", arg);
+            cli_error("%s: unknown option '%s' (try 'softrast %s --help')", argv[0], arg, argv[0]);
             return EXIT_USAGE;
         } else if (!o->model) {
             o->model = arg;
         } else {
-            cli_error("render: more than one model given ('%s' and '%s')", o->model, arg);
+            cli_error("%s: more than one model given ('%s' and '%s')", argv[0], o->model, arg);
             return EXIT_USAGE;
         }
 #undef IS
@@ -486,6 +509,19 @@ typedef struct camera {
     sr_camera_basis basis;
 } camera;
 
+/* The eye, target and up the options ask for: --camera, else the default
+ * framing of the objects' bounding sphere. */
+static void resolve_camera(const render_opts *o, const scene *s, sr_vec3 *eye, sr_vec3 *target,
+                           sr_vec3 *up)
+{
+    sr_vec3 c;
+    float r;
+    scene_bounds(s, true, &c, &r);
+    *target = o->have_target ? o->target : c;
+    *up = o->have_up ? o->up : (sr_vec3){ 0, 1, 0 };
+    *eye = o->have_eye ? o->eye : framing_default_eye(c, r, o->fov_deg * PI_F / 180.0f);
+}
+
 static void setup_camera(const render_opts *o, const scene *s, camera *cam, float *near_out,
                          float *far_out)
 {
@@ -494,14 +530,8 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
     scene_bounds(s, true, &c, &r);
     float fov = o->fov_deg * PI_F / 180.0f;
 
-    sr_vec3 target = o->have_target ? o->target : c;
-    sr_vec3 up = o->have_up ? o->up : (sr_vec3){ 0, 1, 0 };
-    sr_vec3 eye;
-    if (o->have_eye) {
-        eye = o->eye;
-    } else {
-        eye = framing_default_eye(c, r, fov);
-    }
+    sr_vec3 eye, target, up;
+    resolve_camera(o, s, &eye, &target, &up);
     if (!sr_camera_frame(eye, sr_vec3_sub(target, eye), up, &cam->basis)) {
         /* Looking straight along the up vector: pick another up. */
         sr_camera_frame(eye, sr_vec3_sub(target, eye), (sr_vec3){ 0, 0, -1 }, &cam->basis);
@@ -701,7 +731,7 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
 
 /* The passes of each mode.  Hidden-line, edges and points first fill the
  * depth buffer with the model pushed back by polygon offset (factor 1,
- * units 1), so lines on its surface win the LEQUAL test without stitching
+ * units 1 unless --polygon-offset says otherwise), so lines on its surface win the LEQUAL test without stitching
  * or z-fighting; hidden-line and points fill with the background color. */
 static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuffer *fb,
                              const sr_state *base, scene *s, const camera *cam, uint64_t *tris,
@@ -719,7 +749,8 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     sr_result r = SR_OK;
     if (o->lines != LINES_WIREFRAME) {
         sr_state fill = st;
-        fill.offset = (sr_polygon_offset){ .factor = 1.0f, .units = 1.0f, .fill = true };
+        fill.offset = (sr_polygon_offset){ .factor = o->offset_factor,
+                                           .units = o->offset_units, .fill = true };
         if (o->lines == LINES_EDGES) {
             r = draw_scene(ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
@@ -750,184 +781,343 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     return draw_scene(ctx, fb, &lines, s, cam, true, tris, frags);
 }
 
-int cmd_render(int argc, char **argv)
+/* ---- render jobs: what `softrast render` and `softrast view` share ------- */
+
+struct render_job {
+    render_opts o;
+    scene s;
+    bool have_scene;
+    sr_context *ctx;
+    sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
+                             * format) when the caller's framebuffer cannot be drawn into */
+    char error[512];
+};
+
+static render_opts default_opts(void)
 {
-    render_opts o = {
+    return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
-        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .opacity = 1.0f,
+        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 1, .opacity = 1.0f,
+        .offset_factor = 1.0f, .offset_units = 1.0f,
     };
-    int status = parse_args(argc, argv, &o);
+}
+
+int render_job_parse(int argc, char **argv, render_job **out)
+{
+    *out = NULL;
+    render_job *job = calloc(1, sizeof *job);
+    if (!job) {
+        cli_error("out of memory");
+        return EXIT_FAILURE_RUN;
+    }
+    job->o = default_opts();
+    int status = parse_args(argc, argv, &job->o);
     if (status >= 0) {
+        free(job);
         return status;
     }
-    struct stat st;
-    if (stat(o.output, &st) == 0 && S_ISDIR(st.st_mode)) {
-        cli_error("-o: '%s' is a directory", o.output);
-        return EXIT_USAGE;
-    }
+    *out = job;
+    return -1;
+}
 
-    double t0 = now_ms();
-    scene s;
-    if (o.model) {
-        status = load_model(&o, &s);
+/* The context and the textures that live on it. */
+static int make_context(render_job *job)
+{
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->ctx);
+    if (r != SR_OK) {
+        cli_error("render: %s", sr_result_text(r));
+        return EXIT_FAILURE_RUN;
+    }
+    return load_texture(&job->o, job->ctx, &job->s);
+}
+
+static void drop_context(render_job *job)
+{
+    if (job->ctx) {
+        free_textures(job->ctx, &job->s);
+        sr_destroy_framebuffer(job->ctx, job->work);
+        sr_destroy_context(job->ctx);
+    }
+    job->work = NULL;
+    job->ctx = NULL;
+}
+
+int render_job_load(render_job *job)
+{
+    render_opts *o = &job->o;
+    scene *s = &job->s;
+    int status;
+    if (o->model) {
+        status = load_model(o, s);
         if (status >= 0) {
             return status;
         }
     } else {
-        sr_result r = scene_builtin(&s, o.detail);
+        sr_result r = scene_builtin(s, o->detail);
         if (r != SR_OK) {
             cli_error("building the teapot scene: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
         }
     }
-    double t_load = now_ms();
-    status = prepare_normals(&o, &s);
+    job->have_scene = true;
+    status = prepare_normals(o, s);
     if (status >= 0) {
-        scene_free(&s);
         return status;
     }
-    for (int i = 0; i < s.count; i++) {
-        scene_object *ob = &s.objects[i];
-        if (o.have_mat_color && ob->frame) {
-            ob->material.diffuse = o.mat_color;
+    for (int i = 0; i < s->count; i++) {
+        scene_object *ob = &s->objects[i];
+        if (o->have_mat_color && ob->frame) {
+            ob->material.diffuse = o->mat_color;
             ob->material.no_vertex_color = true;
         }
-        if (o.have_specular && ob->frame) {
-            ob->material.specular = o.specular;
+        if (o->have_specular && ob->frame) {
+            ob->material.specular = o->specular;
         }
-        if (o.have_shininess && ob->frame) {
-            ob->material.shininess = o.shininess;
+        if (o->have_shininess && ob->frame) {
+            ob->material.shininess = o->shininess;
         }
-        if (ob->frame && o.opacity < 1.0f) {
+        if (ob->frame && o->opacity < 1.0f) {
             /* Zero means the default (opaque) in sr_material: keep a
              * fully transparent request just above it. */
-            ob->material.opacity = o.opacity > 0.0f ? o.opacity : 1e-6f;
+            ob->material.opacity = o->opacity > 0.0f ? o->opacity : 1e-6f;
         }
     }
-    if (o.turn_deg != 0.0f) {
+    if (o->turn_deg != 0.0f) {
         /* Turn the framed objects about the vertical axis through their
          * bounding sphere's centre. */
         sr_vec3 c;
         float r;
-        scene_bounds(&s, true, &c, &r);
+        scene_bounds(s, true, &c, &r);
         sr_mat4 to = sr_mat4_translate(c.x, 0, c.z), from = sr_mat4_translate(-c.x, 0, -c.z);
-        sr_mat4 rot = sr_mat4_rotate(o.turn_deg * PI_F / 180.0f, (sr_vec3){ 0, 1, 0 });
+        sr_mat4 rot = sr_mat4_rotate(o->turn_deg * PI_F / 180.0f, (sr_vec3){ 0, 1, 0 });
         sr_mat4 m = sr_mat4_mul(&rot, &from);
         m = sr_mat4_mul(&to, &m);
-        for (int i = 0; i < s.count; i++) {
-            if (s.objects[i].frame) {
-                s.objects[i].model = sr_mat4_mul(&m, &s.objects[i].model);
+        for (int i = 0; i < s->count; i++) {
+            if (s->objects[i].frame) {
+                s->objects[i].model = sr_mat4_mul(&m, &s->objects[i].model);
             }
         }
     }
+    if ((long)o->width * o->ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
+        (long)o->height * o->ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
+        cli_error("--aa: ssaa%d at %dx%d needs %ldx%ld samples, more than %d a side", o->ssaa,
+                  o->width, o->height, (long)o->width * o->ssaa, (long)o->height * o->ssaa,
+                  SR_MAX_FRAMEBUFFER_SIZE);
+        return EXIT_USAGE;
+    }
+    return make_context(job);
+}
+
+int render_job_configure(render_job *job, int argc, char **argv)
+{
+    render_opts o = default_opts();
+    int status = parse_args(argc, argv, &o);
+    if (status >= 0) {
+        return status;
+    }
+    bool new_context = job->ctx && o.threads != job->o.threads;
+    job->o = o;
+    if (new_context) {
+        drop_context(job);
+        return make_context(job);
+    }
+    return -1;
+}
+
+void render_job_camera(const render_job *job, sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up)
+{
+    resolve_camera(&job->o, &job->s, eye, target, up);
+}
+
+void render_job_bounds(const render_job *job, sr_vec3 *centre, float *radius)
+{
+    scene_bounds(&job->s, true, centre, radius);
+}
+
+float render_job_fov(const render_job *job)
+{
+    return job->o.fov_deg * PI_F / 180.0f;
+}
+
+void render_job_set_camera(render_job *job, sr_vec3 eye, sr_vec3 target, sr_vec3 up)
+{
+    job->o.have_eye = job->o.have_target = job->o.have_up = true;
+    job->o.eye = eye;
+    job->o.target = target;
+    job->o.up = up;
+}
+
+sr_context *render_job_context(const render_job *job)
+{
+    return job->ctx;
+}
+
+sr_depth_format render_job_depth_format(const render_job *job)
+{
+    return job->o.ssaa > 1 || job->o.msaa > 1 ? SR_DEPTH_NONE : job->o.depth_format;
+}
+
+const char *render_job_error(const render_job *job)
+{
+    return job->error;
+}
+
+const char *render_job_model(const render_job *job)
+{
+    return job->o.model;
+}
+
+sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info)
+{
+    render_opts *o = &job->o;
+    sr_context *ctx = job->ctx;
+    job->error[0] = 0;
+    *info = (render_frame_info){ 0 };
+    o->width = sr_framebuffer_width(out);
+    o->height = sr_framebuffer_height(out);
+    long sw = (long)o->width * o->ssaa, sh = (long)o->height * o->ssaa;
+    if (sw > SR_MAX_FRAMEBUFFER_SIZE || sh > SR_MAX_FRAMEBUFFER_SIZE) {
+        snprintf(job->error, sizeof job->error,
+                 "ssaa%d at %dx%d needs %ldx%ld samples, more than %d a side", o->ssaa,
+                 o->width, o->height, sw, sh, SR_MAX_FRAMEBUFFER_SIZE);
+        return SR_TOO_LARGE;
+    }
 
     camera cam;
-    float near_z, far_z;
-    setup_camera(&o, &s, &cam, &near_z, &far_z);
-
+    setup_camera(o, &job->s, &cam, &info->near_z, &info->far_z);
     sr_state state = {
-        .cull = o.cull, .front_face = o.front, .depth_func = o.depth_func,
-        .shading = o.shading, .interpolation = o.interp, .rasterizer = o.rasterizer,
-        .ambient = o.have_ambient ? o.ambient : (sr_vec3){ 0.12f, 0.12f, 0.14f },
-        .two_sided = o.cull == SR_CULL_NONE,
+        .cull = o->cull, .front_face = o->front, .depth_func = o->depth_func,
+        .shading = o->shading, .interpolation = o->interp, .rasterizer = o->rasterizer,
+        .ambient = o->have_ambient ? o->ambient : (sr_vec3){ 0.12f, 0.12f, 0.14f },
+        .two_sided = o->cull == SR_CULL_NONE,
+        .texture_filter = o->texture_filter, .wrap_u = o->wrap, .wrap_v = o->wrap,
     };
-    if (o.light_count > 0) {
-        memcpy(state.lights, o.lights, sizeof o.lights);
+    if (o->light_count > 0) {
+        memcpy(state.lights, o->lights, sizeof o->lights);
     } else {
         framing_default_lights(&cam.basis, state.lights);
     }
 
-    sr_context *ctx = NULL;
-    sr_framebuffer *fb = NULL;
-    if ((long)o.width * o.ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
-        (long)o.height * o.ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
-        cli_error("--aa: ssaa%d at %dx%d needs %ldx%ld samples, more than %d a side", o.ssaa,
-                  o.width, o.height, (long)o.width * o.ssaa, (long)o.height * o.ssaa,
-                  SR_MAX_FRAMEBUFFER_SIZE);
-        scene_free(&s);
-        return EXIT_USAGE;
-    }
-    sr_result r = sr_make_context(&(sr_context_desc){ .threads = o.threads }, &ctx);
-    if (r == SR_OK) {
-        /* SSAA renders k x k samples per output pixel, then filters down. */
-        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = o.width * o.ssaa,
-                                                            .height = o.height * o.ssaa,
-                                                            .depth_format = o.depth_format }, &fb);
-    }
-    if (r == SR_OK) {
-        status = load_texture(&o, ctx, &s);
-        if (status >= 0) {
-            sr_destroy_framebuffer(ctx, fb);
-            sr_destroy_context(ctx);
-            scene_free(&s);
-            return status;
+    /* SSAA renders k x k samples per output pixel into the work image,
+     * then filters them down into `out`; MSAA renders into a multisampled
+     * work image of the output's size and resolves it. */
+    sr_framebuffer *fb = out;
+    sr_result r = SR_OK;
+    sr_depth_format want = o->depth_format == SR_DEPTH_DEFAULT ? SR_DEPTH_D24 : o->depth_format;
+    if (o->ssaa > 1 || o->msaa > 1 || sr_framebuffer_depth_format(out) != want) {
+        if (job->work && (sr_framebuffer_width(job->work) != sw ||
+                          sr_framebuffer_height(job->work) != sh ||
+                          sr_framebuffer_samples(job->work) != o->msaa ||
+                          sr_framebuffer_depth_format(job->work) != want)) {
+            sr_destroy_framebuffer(ctx, job->work);
+            job->work = NULL;
         }
+        if (!job->work) {
+            r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = (int)sw,
+                                                                .height = (int)sh,
+                                                                .depth_format = want,
+                                                                .samples = o->msaa },
+                                    &job->work);
+        }
+        fb = job->work;
     }
-    state.texture_filter = o.texture_filter;
-    state.wrap_u = state.wrap_v = o.wrap;
-    bool clear_to_near = o.depth_func == SR_GREATER || o.depth_func == SR_GEQUAL;
+    bool clear_to_near = o->depth_func == SR_GREATER || o->depth_func == SR_GEQUAL;
     if (r == SR_OK) {
-        r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o.background.x, o.background.y,
-                                                           o.background.z, 1.0f },
+        r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o->background.x, o->background.y,
+                                                           o->background.z, 1.0f },
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
-    double t_setup = now_ms();
-    uint64_t tris = 0, frags = 0;
     if (r == SR_OK) {
-        r = draw_passes(&o, ctx, fb, &state, &s, &cam, &tris, &frags);
+        r = draw_passes(o, ctx, fb, &state, &job->s, &cam, &info->triangles, &info->fragments);
+    }
+    if (r == SR_OK && fb != out) {
+        r = o->msaa > 1 ? sr_resolve(ctx, fb, out) : sr_downsample(ctx, fb, out, o->filter);
+    }
+    if (r != SR_OK) {
+        snprintf(job->error, sizeof job->error, "%s", sr_context_error(ctx)[0]
+                                                          ? sr_context_error(ctx)
+                                                          : sr_result_text(r));
+    }
+    return r;
+}
+
+void render_job_free(render_job *job)
+{
+    if (!job) {
+        return;
+    }
+    drop_context(job);
+    if (job->have_scene) {
+        scene_free(&job->s);
+    }
+    free(job);
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_job *job;
+    int status = render_job_parse(argc, argv, &job);
+    if (status >= 0) {
+        return status;
+    }
+    const render_opts *o = &job->o;
+    struct stat st;
+    if (stat(o->output, &st) == 0 && S_ISDIR(st.st_mode)) {
+        cli_error("-o: '%s' is a directory", o->output);
+        render_job_free(job);
+        return EXIT_USAGE;
+    }
+
+    double t0 = now_ms();
+    status = render_job_load(job);
+    if (status >= 0) {
+        render_job_free(job);
+        return status;
+    }
+    double t_load = now_ms();
+    sr_framebuffer *fb = NULL;
+    sr_result r = sr_make_framebuffer(job->ctx, &(sr_framebuffer_desc){
+                                          .width = o->width, .height = o->height,
+                                          .depth_format = render_job_depth_format(job) },
+                                      &fb);
+    double t_setup = now_ms();
+    render_frame_info info = { 0 };
+    if (r == SR_OK) {
+        r = render_job_draw(job, fb, &info);
+    } else {
+        snprintf(job->error, sizeof job->error, "%s", sr_context_error(job->ctx));
     }
     double t_render = now_ms();
     if (r != SR_OK) {
-        cli_error("render: %s", ctx ? sr_context_error(ctx) : sr_result_text(r));
-        free_textures(ctx, &s);
-        sr_destroy_framebuffer(ctx, fb);
-        sr_destroy_context(ctx);
-        scene_free(&s);
+        cli_error("render: %s", render_job_error(job));
+        sr_destroy_framebuffer(job->ctx, fb);
+        render_job_free(job);
         return EXIT_FAILURE_RUN;
     }
 
-    if (o.ssaa > 1) {
-        sr_framebuffer *out = NULL;
-        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = o.width, .height = o.height,
-                                                            .depth_format = SR_DEPTH_NONE }, &out);
-        if (r == SR_OK) {
-            r = sr_downsample(ctx, fb, out, o.filter);
-        }
-        sr_destroy_framebuffer(ctx, fb);
-        fb = out;
-        if (r != SR_OK) {
-            cli_error("render: %s", sr_context_error(ctx));
-            free_textures(ctx, &s);
-            sr_destroy_framebuffer(ctx, fb);
-            sr_destroy_context(ctx);
-            scene_free(&s);
-            return EXIT_FAILURE_RUN;
-        }
-    }
-
     sr_io_error err;
-    r = sr_write_png(o.output, o.width, o.height, sr_framebuffer_pixels(fb), (size_t)o.width * 4,
-                     &(sr_png_write_desc){ .compression_level = o.png_level < 0 ? 0 :
-                                                                (o.png_level == 0 ? -1 : o.png_level),
+    r = sr_write_png(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
+                     (size_t)o->width * 4,
+                     &(sr_png_write_desc){ .compression_level = o->png_level < 0 ? 0 :
+                                                                (o->png_level == 0 ? -1 : o->png_level),
                                            .no_alpha = true },
                      &err);
     double t_write = now_ms();
-    if (o.verbose) {
+    if (o->verbose) {
         fprintf(stderr,
                 "softrast: %dx%d, %llu triangles, %llu fragments, near %.4g far %.4g, %d threads\n"
                 "softrast: load %.1f ms, setup %.1f ms, render %.1f ms, png %.1f ms\n",
-                o.width, o.height, (unsigned long long)tris, (unsigned long long)frags,
-                (double)near_z, (double)far_z, sr_context_threads(ctx), t_load - t0,
-                t_setup - t_load, t_render - t_setup, t_write - t_render);
+                o->width, o->height, (unsigned long long)info.triangles,
+                (unsigned long long)info.fragments, (double)info.near_z, (double)info.far_z,
+                sr_context_threads(job->ctx), t_load - t0, t_setup - t_load, t_render - t_setup,
+                t_write - t_render);
     }
-    free_textures(ctx, &s);
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
-    scene_free(&s);
+    sr_destroy_framebuffer(job->ctx, fb);
+    render_job_free(job);
     if (r != SR_OK) {
         fprintf(stderr, "%s\n", err.message);
         return EXIT_FAILURE_RUN;

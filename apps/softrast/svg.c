@@ -1,5 +1,5 @@
-/* svg.c - `softrast svg INPUT.svg [-o OUT.png] [--size WxH | --scale S]
- * [--background COLOR]`: renders a subset of SVG 1.1 with the 2D toolkit.
+/* svg.c - the SVG reader of `softrast svg` (svg_cmd.c): renders a subset of
+ * SVG 1.1, held in memory, with the 2D toolkit (svg_render, svg.h).
  *
  * The document is read with expat in one pass: the root <svg> fixes the
  * image size and the viewBox mapping, then every shape is drawn as its
@@ -17,14 +17,13 @@
  * shape-rendering, display="none", as attributes or in style="...".
  * Group opacity multiplies into the children's opacities (exact unless
  * children overlap).  Anything else is skipped with one warning per name.
- * Malformed XML, path data or numbers: "FILE:LINE: what is wrong" on
- * stderr, exit status 2 and no output file. */
-#include "cli.h"
+ * Malformed XML, path data or numbers, and drawings beyond the limits of
+ * svg.h (bounded work): one line "NAME:LINE: what is wrong" and no image.
+ * One document per call; nothing global, so calls may run in parallel on
+ * different contexts. */
 #include "svg.h"
-#include "softrast_io.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -35,17 +34,7 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-#ifndef SR_HAVE_EXPAT
-
-int cmd_svg(int argc, char **argv)
-{
-    (void)argc;
-    (void)argv;
-    cli_error("svg: this softrast was built without expat (install libexpat1-dev and rebuild)");
-    return EXIT_FAILURE_RUN;
-}
-
-#else
+#ifdef SR_HAVE_EXPAT
 
 #include <expat.h>
 
@@ -89,21 +78,25 @@ typedef struct frame {
 } frame;
 
 typedef struct svg_doc {
-    const char *file;
+    const char *file;        /* name in messages */
+    const svg_options *opt;
     XML_Parser parser;
     sr_context *ctx;
     sr_framebuffer *fb;
-    int size_w, size_h;      /* --size, or 0 */
-    double scale;            /* --scale, or 0 */
-    sr_rgba background;
     frame stack[MAX_DEPTH];
     int depth;
     int skip;                /* > 0: inside a skipped subtree, its depth */
     bool seen_root;
     int status;              /* EXIT_OK until something fails */
+    char *msg;               /* the failure's line goes here */
+    size_t msg_size;
     char *warned[MAX_WARNED];
     int n_warned;
+    bool warnings_capped;    /* "further warnings not shown" was said */
     unsigned long line;      /* of the element being handled */
+    /* Bounded work (svg.h): what the document has used so far. */
+    double points_used, points_budget;
+    double work_used, work_budget;
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
@@ -111,24 +104,47 @@ typedef struct svg_doc {
 static void svg_fail(svg_doc *doc, int status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* Record the first failure as "FILE:LINE: ..." and stop the parser. */
 static void svg_fail(svg_doc *doc, int status, const char *fmt, ...)
 {
     if (doc->status != EXIT_OK) {
         return;
     }
-    fprintf(stderr, "%s:%lu: ", doc->file, doc->line);
-    va_list ap;
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputc('\n', stderr);
+    int n = snprintf(doc->msg, doc->msg_size, "%s:%lu: ", doc->file, doc->line);
+    if (n >= 0 && (size_t)n < doc->msg_size) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(doc->msg + n, doc->msg_size - (size_t)n, fmt, ap);
+        va_end(ap);
+    }
+    /* One line, whatever the document put into the quoted text. */
+    for (char *c = doc->msg; c && *c; c++) {
+        if (*c == '\n' || *c == '\r') {
+            *c = ' ';
+        }
+    }
     doc->status = status;
     XML_StopParser(doc->parser, XML_FALSE);
 }
 
-/* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", once per name. */
+/* A library call failed: out of memory is the run's failure (exit 1),
+ * anything else (a non-finite or out-of-range coordinate) the document's. */
+static void lib_fail(svg_doc *doc, sr_result r)
+{
+    svg_fail(doc, r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE, "%s",
+             sr_context_error(doc->ctx));
+}
+
+/* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", once per name.
+ * After MAX_WARNED different names, one last line says the rest are not
+ * shown: a document of a million unknown elements gets 65 lines, not a
+ * million. */
 static void warn_once(svg_doc *doc, const char *kind, const char *name)
 {
+    FILE *f = doc->opt->warnings;
+    if (!f || doc->warnings_capped) {
+        return;
+    }
     char key[128];
     snprintf(key, sizeof key, "%s %s", kind, name);
     for (int i = 0; i < doc->n_warned; i++) {
@@ -136,13 +152,17 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
             return;
         }
     }
-    if (doc->n_warned < MAX_WARNED) {
-        doc->warned[doc->n_warned] = strdup(key);
-        if (doc->warned[doc->n_warned]) {
-            doc->n_warned++;
-        }
+    if (doc->n_warned == MAX_WARNED) {
+        fprintf(f, "%s:%lu: warning: more unsupported names; further warnings not shown\n",
+                doc->file, doc->line);
+        doc->warnings_capped = true;
+        return;
     }
-    fprintf(stderr, "%s:%lu: warning: unsupported %s '%s' skipped\n", doc->file, doc->line, kind,
+    doc->warned[doc->n_warned] = strdup(key);
+    if (doc->warned[doc->n_warned]) {
+        doc->n_warned++;
+    }
+    fprintf(f, "%s:%lu: warning: unsupported %s '%s' skipped\n", doc->file, doc->line, kind,
             name);
 }
 
@@ -523,37 +543,32 @@ typedef struct path_build {
     bool started;
 } path_build;
 
-static bool build_ok(sr_result r)
-{
-    return r == SR_OK;
-}
-
-/* One path command with its numbers; false on an error from the library. */
-static bool path_command(path_build *b, char cmd, const double *a)
+/* One path command with its numbers; the library's result. */
+static sr_result path_command(path_build *b, char cmd, const double *a)
 {
     bool rel = islower((unsigned char)cmd) != 0;
     char up = (char)toupper((unsigned char)cmd);
     double ox = rel ? b->cx : 0, oy = rel ? b->cy : 0;
-    bool ok = true;
+    sr_result r = SR_OK;
     switch (up) {
     case 'M':
         b->cx = b->sx = a[0] + ox;
         b->cy = b->sy = a[1] + oy;
-        ok = build_ok(sr_path_move_to(b->path, b->cx, b->cy));
+        r = sr_path_move_to(b->path, b->cx, b->cy);
         b->started = true;
         break;
     case 'L':
         b->cx = a[0] + ox;
         b->cy = a[1] + oy;
-        ok = build_ok(sr_path_line_to(b->path, b->cx, b->cy));
+        r = sr_path_line_to(b->path, b->cx, b->cy);
         break;
     case 'H':
         b->cx = a[0] + ox;
-        ok = build_ok(sr_path_line_to(b->path, b->cx, b->cy));
+        r = sr_path_line_to(b->path, b->cx, b->cy);
         break;
     case 'V':
         b->cy = a[0] + oy;
-        ok = build_ok(sr_path_line_to(b->path, b->cx, b->cy));
+        r = sr_path_line_to(b->path, b->cx, b->cy);
         break;
     case 'C':
     case 'S': {
@@ -567,7 +582,7 @@ static bool path_command(path_build *b, char cmd, const double *a)
             y1 = prev ? 2 * b->cy - b->ctrl_y : b->cy;
             x2 = a[0] + ox, y2 = a[1] + oy, x = a[2] + ox, y = a[3] + oy;
         }
-        ok = build_ok(sr_path_cubic_to(b->path, x1, y1, x2, y2, x, y));
+        r = sr_path_cubic_to(b->path, x1, y1, x2, y2, x, y);
         b->ctrl_x = x2;
         b->ctrl_y = y2;
         b->cx = x;
@@ -585,7 +600,7 @@ static bool path_command(path_build *b, char cmd, const double *a)
             y1 = prev ? 2 * b->cy - b->ctrl_y : b->cy;
             x = a[0] + ox, y = a[1] + oy;
         }
-        ok = build_ok(sr_path_quad_to(b->path, x1, y1, x, y));
+        r = sr_path_quad_to(b->path, x1, y1, x, y);
         b->ctrl_x = x1;
         b->ctrl_y = y1;
         b->cx = x;
@@ -593,19 +608,19 @@ static bool path_command(path_build *b, char cmd, const double *a)
         break;
     }
     case 'A':
-        ok = build_ok(sr_path_arc_to(b->path, a[0], a[1], a[2], a[3] != 0, a[4] != 0, a[5] + ox,
-                                     a[6] + oy));
+        r = sr_path_arc_to(b->path, a[0], a[1], a[2], a[3] != 0, a[4] != 0, a[5] + ox,
+                           a[6] + oy);
         b->cx = a[5] + ox;
         b->cy = a[6] + oy;
         break;
     case 'Z':
-        ok = build_ok(sr_path_close(b->path));
+        r = sr_path_close(b->path);
         b->cx = b->sx;
         b->cy = b->sy;
         break;
     }
     b->last = up;
-    return ok;
+    return r;
 }
 
 static int args_for(char up)
@@ -618,6 +633,39 @@ static int args_for(char up)
     case 'A': return 7;
     default: return 0;
     }
+}
+
+/* The document's point budget (svg.h): false after reporting that `more`
+ * points on top of those used would pass it. */
+static bool points_within_budget(svg_doc *doc, double more)
+{
+    if (doc->points_used + more > doc->points_budget) {
+        svg_fail(doc, EXIT_USAGE,
+                 "the drawing needs more than %.0f points in all (%d + %d per byte of the "
+                 "document)",
+                 doc->points_budget, SVG_POINTS_BASE, SVG_POINTS_PER_BYTE);
+        return false;
+    }
+    return true;
+}
+
+/* The per-shape limits of svg.h, checked after every command (each adds
+ * at most 65537 points); false after reporting which was passed. */
+static bool path_within_limits(svg_doc *doc, const sr_path *path, const char *what, long offset)
+{
+    sr_polygon2 poly = sr_path_polygon(path);
+    if (poly.point_count > SVG_MAX_PATH_POINTS) {
+        svg_fail(doc, EXIT_USAGE,
+                 "%s: more than %d points when flattened at this scale (offset %ld)", what,
+                 SVG_MAX_PATH_POINTS, offset);
+        return false;
+    }
+    if (poly.contour_count > SVG_MAX_SUBPATHS) {
+        svg_fail(doc, EXIT_USAGE, "%s: more than %d subpaths (offset %ld)", what,
+                 SVG_MAX_SUBPATHS, offset);
+        return false;
+    }
+    return points_within_budget(doc, poly.point_count);
 }
 
 /* Parse d="..." into the path; false after reporting an error. */
@@ -640,8 +688,9 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
                 return false;
             }
             if (toupper((unsigned char)cmd) == 'Z') {
-                if (!path_command(&b, cmd, NULL)) {
-                    svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+                sr_result r = path_command(&b, cmd, NULL);
+                if (r != SR_OK) {
+                    lib_fail(doc, r);
                     return false;
                 }
                 s = skip_ws_comma(s);
@@ -672,8 +721,12 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
             }
             s = skip_ws_comma(s);
         }
-        if (!path_command(&b, cmd, a)) {
-            svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+        sr_result r = path_command(&b, cmd, a);
+        if (r != SR_OK) {
+            lib_fail(doc, r);
+            return false;
+        }
+        if (!path_within_limits(doc, path, "path data", (long)(s - d))) {
             return false;
         }
         /* After a moveto, further pairs are linetos. */
@@ -691,13 +744,47 @@ static double matrix_scale(mat2d m)
     return sqrt(fabs(m.a * m.d - m.b * m.c));
 }
 
-/* Map a polygon to pixels and fill it. */
+/* y clamped to the image rows [0, h], NaN to 0 (the fill rejects it). */
+static double clamp_rows(double y, int h)
+{
+    return y > 0 ? (y < h ? y : h) : 0;
+}
+
+/* What filling the mapped polygon costs (svg.h): its bounding box clipped
+ * to the image, plus the rows each edge crosses - the aliased and the
+ * area fill both visit every active edge on every row it spans. */
+static double fill_work(const sr_point2 *pts, const sr_polygon2 *poly, int w, int h)
+{
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, rows = 0;
+    int start = 0;
+    int contours = poly->contour_counts ? poly->contour_count : 1;
+    for (int c = 0; c < contours; c++) {
+        int n = poly->contour_counts ? poly->contour_counts[c] : poly->point_count;
+        for (int i = 0; i < n; i++) {
+            sr_point2 p = pts[start + i], q = pts[start + (i + 1) % n];
+            x0 = fmin(x0, p.x);
+            x1 = fmax(x1, p.x);
+            y0 = fmin(y0, p.y);
+            y1 = fmax(y1, p.y);
+            rows += fabs(clamp_rows(q.y, h) - clamp_rows(p.y, h)) + 1;
+        }
+        start += n;
+    }
+    double bw = fmin(x1, w) - fmax(x0, 0), bh = fmin(y1, h) - fmax(y0, 0);
+    return rows + (bw > 0 && bh > 0 ? bw * bh : 0);
+}
+
+/* Map a polygon to pixels and fill it, within the document's budget. */
 static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
                         sr_fill_rule rule, bool crisp)
 {
     if (poly.point_count == 0) {
         return;
     }
+    if (!points_within_budget(doc, poly.point_count)) {
+        return;
+    }
+    doc->points_used += poly.point_count;
     sr_point2 *pts = malloc((size_t)poly.point_count * sizeof *pts);
     if (!pts) {
         svg_fail(doc, EXIT_FAILURE_RUN, "out of memory");
@@ -706,18 +793,51 @@ static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
     for (int i = 0; i < poly.point_count; i++) {
         pts[i] = mat_apply(m, poly.points[i]);
     }
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    doc->work_used += fill_work(pts, &poly, w, h);
+    if (doc->work_used > doc->work_budget) {
+        free(pts);
+        svg_fail(doc, EXIT_USAGE,
+                 "the drawing costs more than %.0f pixel operations, the limit for a %dx%d "
+                 "image (%d per pixel + %d)",
+                 doc->work_budget, w, h, SVG_WORK_PER_PIXEL, SVG_WORK_BASE);
+        return;
+    }
     poly.points = pts;
     sr_result r = sr_fill_polygon(doc->ctx, doc->fb, &poly, color,
                                   &(sr_fill_desc){ .rule = rule,
                                                    .antialias = crisp ? SR_AA_NONE : SR_AA_AREA });
     free(pts);
     if (r != SR_OK) {
-        svg_fail(doc, r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE, "%s",
-                 sr_context_error(doc->ctx));
+        lib_fail(doc, r);
     }
 }
 
-static void draw_path(svg_doc *doc, const frame *f, sr_path *path, bool fillable)
+/* Points of a round join or cap: as add_disc in src/draw2d/path.c (the
+ * chord of a circle of radius hw within tol, 8..4096 points). */
+static double disc_points(double hw, double tol)
+{
+    double a = tol >= hw ? M_PI / 2 : 2 * acos(1 - tol / hw);
+    if (!(a > 0)) {
+        a = 2 * sqrt(2 * (tol / hw));
+    }
+    double n = a > 0 ? ceil(2 * M_PI / a) : 4096;
+    return n < 8 ? 8 : n > 4096 ? 4096 : n;
+}
+
+/* An upper bound on the stroke outline's points, computed before it is
+ * built: a quadrilateral per segment, a join piece per vertex, two caps per
+ * subpath.  A wide round-joined stroke would otherwise turn each of a
+ * million path points into thousands of outline points. */
+static double stroke_points(const sr_polygon2 *poly, const style *st, double tol)
+{
+    double hw = st->stroke_width / 2, disc = disc_points(hw, tol);
+    double join = st->join == SR_STROKE_JOIN_ROUND ? disc : 4;
+    double cap = st->cap == SR_STROKE_CAP_ROUND ? disc : 4;
+    return (double)poly->point_count * (4 + join) + 2.0 * poly->contour_count * cap;
+}
+
+static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable)
 {
     const style *st = &f->st;
     if (st->display_none || st->invisible) {
@@ -730,6 +850,16 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, bool fillable
     }
     if (st->has_stroke && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
         doc->status == EXIT_OK) {
+        sr_polygon2 poly = sr_path_polygon(path);
+        double est = stroke_points(&poly, st, tol);
+        if (doc->points_used + est > doc->points_budget) {
+            svg_fail(doc, EXIT_USAGE,
+                     "stroke: the outline of stroke-width %g over %d points would need about "
+                     "%.0f points, beyond the drawing's %.0f (%d + %d per byte of the document)",
+                     st->stroke_width, poly.point_count, est, doc->points_budget,
+                     SVG_POINTS_BASE, SVG_POINTS_PER_BYTE);
+            return;
+        }
         sr_polygon2 outline;
         sr_result r = sr_stroke_outline(doc->ctx, path,
                                         &(sr_stroke_desc){ .width = st->stroke_width,
@@ -737,7 +867,7 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, bool fillable
                                                            .miter_limit = st->miter_limit },
                                         &outline);
         if (r != SR_OK) {
-            svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+            lib_fail(doc, r);
             return;
         }
         sr_rgba c = st->stroke;
@@ -745,6 +875,16 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, bool fillable
         fill_mapped(doc, outline, f->m, c, SR_NONZERO, st->crisp);
         sr_free_stroke_outline(doc->ctx, &outline);
     }
+}
+
+/* A path call inside a basic shape: false (and reported) on failure. */
+static bool path_ok(svg_doc *doc, sr_result r)
+{
+    if (r != SR_OK) {
+        lib_fail(doc, r);
+        return false;
+    }
+    return true;
 }
 
 /* Build the path of a basic shape (false: nothing to draw or an error). */
@@ -777,24 +917,25 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
         double rx = rx_s ? v[4] : v[5], ry = ry_s ? v[5] : v[4]; /* one sets both */
         rx = fmin(rx, w / 2);
         ry = fmin(ry, h / 2);
+        /* Each call is checked: x + w may overflow to infinity. */
+        bool ok;
         if (rx > 0 && ry > 0) {
-            sr_path_move_to(p, x + rx, y);
-            sr_path_line_to(p, x + w - rx, y);
-            sr_path_arc_to(p, rx, ry, 0, false, true, x + w, y + ry);
-            sr_path_line_to(p, x + w, y + h - ry);
-            sr_path_arc_to(p, rx, ry, 0, false, true, x + w - rx, y + h);
-            sr_path_line_to(p, x + rx, y + h);
-            sr_path_arc_to(p, rx, ry, 0, false, true, x, y + h - ry);
-            sr_path_line_to(p, x, y + ry);
-            sr_path_arc_to(p, rx, ry, 0, false, true, x + rx, y);
+            ok = path_ok(doc, sr_path_move_to(p, x + rx, y)) &&
+                 path_ok(doc, sr_path_line_to(p, x + w - rx, y)) &&
+                 path_ok(doc, sr_path_arc_to(p, rx, ry, 0, false, true, x + w, y + ry)) &&
+                 path_ok(doc, sr_path_line_to(p, x + w, y + h - ry)) &&
+                 path_ok(doc, sr_path_arc_to(p, rx, ry, 0, false, true, x + w - rx, y + h)) &&
+                 path_ok(doc, sr_path_line_to(p, x + rx, y + h)) &&
+                 path_ok(doc, sr_path_arc_to(p, rx, ry, 0, false, true, x, y + h - ry)) &&
+                 path_ok(doc, sr_path_line_to(p, x, y + ry)) &&
+                 path_ok(doc, sr_path_arc_to(p, rx, ry, 0, false, true, x + rx, y));
         } else {
-            sr_path_move_to(p, x, y);
-            sr_path_line_to(p, x + w, y);
-            sr_path_line_to(p, x + w, y + h);
-            sr_path_line_to(p, x, y + h);
+            ok = path_ok(doc, sr_path_move_to(p, x, y)) &&
+                 path_ok(doc, sr_path_line_to(p, x + w, y)) &&
+                 path_ok(doc, sr_path_line_to(p, x + w, y + h)) &&
+                 path_ok(doc, sr_path_line_to(p, x, y + h));
         }
-        sr_path_close(p);
-        return true;
+        return ok && path_ok(doc, sr_path_close(p));
     }
     if (strcmp(name, "circle") == 0 || strcmp(name, "ellipse") == 0) {
         bool circle = name[0] == 'c';
@@ -818,11 +959,10 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
         if (v[2] == 0 || v[3] == 0) {
             return false;
         }
-        sr_path_move_to(p, v[0] + v[2], v[1]);
-        sr_path_arc_to(p, v[2], v[3], 0, false, true, v[0] - v[2], v[1]);
-        sr_path_arc_to(p, v[2], v[3], 0, false, true, v[0] + v[2], v[1]);
-        sr_path_close(p);
-        return true;
+        return path_ok(doc, sr_path_move_to(p, v[0] + v[2], v[1])) &&
+               path_ok(doc, sr_path_arc_to(p, v[2], v[3], 0, false, true, v[0] - v[2], v[1])) &&
+               path_ok(doc, sr_path_arc_to(p, v[2], v[3], 0, false, true, v[0] + v[2], v[1])) &&
+               path_ok(doc, sr_path_close(p));
     }
     if (strcmp(name, "line") == 0) {
         *fillable = false;
@@ -832,9 +972,8 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
             !length_attr(doc, "y2", attr(atts, "y2"), &v[3])) {
             return false;
         }
-        sr_path_move_to(p, v[0], v[1]);
-        sr_path_line_to(p, v[2], v[3]);
-        return true;
+        return path_ok(doc, sr_path_move_to(p, v[0], v[1])) &&
+               path_ok(doc, sr_path_line_to(p, v[2], v[3]));
     }
     /* polyline, polygon */
     const char *pts = attr(atts, "points");
@@ -851,14 +990,13 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
             return false;
         }
         s = skip_ws_comma(s);
-        if (n++ == 0) {
-            sr_path_move_to(p, x, y);
-        } else {
-            sr_path_line_to(p, x, y);
+        if (!path_ok(doc, n++ == 0 ? sr_path_move_to(p, x, y) : sr_path_line_to(p, x, y)) ||
+            !path_within_limits(doc, p, name, (long)(s - pts))) {
+            return false;
         }
     }
-    if (strcmp(name, "polygon") == 0) {
-        sr_path_close(p);
+    if (strcmp(name, "polygon") == 0 && !path_ok(doc, sr_path_close(p))) {
+        return false;
     }
     return n > 0;
 }
@@ -954,16 +1092,24 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         vb[2] = w;
         vb[3] = h;
     }
+    const svg_options *opt = doc->opt;
+    int max_side = opt->max_side > 0 && opt->max_side < SR_MAX_FRAMEBUFFER_SIZE
+                       ? opt->max_side : SR_MAX_FRAMEBUFFER_SIZE;
     int out_w, out_h;
-    if (doc->size_w) {
-        out_w = doc->size_w;
-        out_h = doc->size_h;
+    if (opt->size_w) {
+        out_w = opt->size_w;
+        out_h = opt->size_h;
+        if (out_w < 1 || out_h < 1 || out_w > max_side || out_h > max_side) {
+            svg_fail(doc, EXIT_USAGE, "image size %d x %d is outside 1..%d", out_w, out_h,
+                     max_side);
+            return false;
+        }
     } else {
-        double s = doc->scale > 0 ? doc->scale : 1;
+        double s = opt->scale > 0 ? opt->scale : 1;
         double ow = ceil(w * s - 1e-9), oh = ceil(h * s - 1e-9);
-        if (!(ow >= 1 && oh >= 1 && ow <= SR_MAX_FRAMEBUFFER_SIZE && oh <= SR_MAX_FRAMEBUFFER_SIZE)) {
+        if (!(ow >= 1 && oh >= 1 && ow <= max_side && oh <= max_side)) {
             svg_fail(doc, EXIT_USAGE, "image size %.0f x %.0f is outside 1..%d (use --size)", ow,
-                     oh, SR_MAX_FRAMEBUFFER_SIZE);
+                     oh, max_side);
             return false;
         }
         out_w = (int)ow;
@@ -988,13 +1134,15 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         ty += (out_h - vb[3] * sy) * ay;
     }
     f->m = (mat2d){ sx, 0, 0, sy, tx, ty };
-    if (sr_make_framebuffer(doc->ctx, &(sr_framebuffer_desc){ .width = out_w, .height = out_h,
-                                                              .depth_format = SR_DEPTH_NONE },
-                            &doc->fb) != SR_OK) {
-        svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+    sr_result r = sr_make_framebuffer(doc->ctx, &(sr_framebuffer_desc){
+                                          .width = out_w, .height = out_h,
+                                          .depth_format = SR_DEPTH_NONE }, &doc->fb);
+    if (r != SR_OK) {
+        lib_fail(doc, r);
         return false;
     }
-    sr_rgba bg = doc->background;
+    doc->work_budget = (double)SVG_WORK_PER_PIXEL * out_w * out_h + SVG_WORK_BASE;
+    sr_rgba bg = opt->background;
     sr_clear(doc->ctx, doc->fb, &(sr_clear_desc){ .color = { bg.r, bg.g, bg.b, bg.a } });
     return true;
 }
@@ -1086,13 +1234,17 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
             return; /* a singular transform: nothing visible */
         }
         sr_path *p = NULL;
-        if (sr_make_path(doc->ctx, tol, &p) != SR_OK) {
-            svg_fail(doc, EXIT_FAILURE_RUN, "%s", sr_context_error(doc->ctx));
+        sr_result r = sr_make_path(doc->ctx, tol, &p);
+        if (r != SR_OK) {
+            lib_fail(doc, r);
             return;
         }
         bool fillable;
-        if (shape_path(doc, name, atts, p, &fillable) && doc->status == EXIT_OK) {
-            draw_path(doc, &f, p, fillable);
+        /* Flattening is work too, drawn or not (fill="none"). */
+        if (shape_path(doc, name, atts, p, &fillable) && doc->status == EXIT_OK &&
+            points_within_budget(doc, sr_path_polygon(p).point_count)) {
+            doc->points_used += sr_path_polygon(p).point_count;
+            draw_path(doc, &f, p, tol, fillable);
         }
         sr_destroy_path(p);
     }
@@ -1111,151 +1263,88 @@ static void XMLCALL on_end(void *user, const XML_Char *name)
     }
 }
 
-/* ---- the command ------------------------------------------------------------------ */
+/* ---- the entry point -------------------------------------------------------------- */
 
-static void svg_help(FILE *f)
+int svg_render(sr_context *ctx, const char *data, size_t size, const svg_options *opt,
+               sr_framebuffer **out, char *msg, size_t msg_size)
 {
-    fprintf(f, "usage: softrast svg INPUT.svg [-o OUT.png] [--size WxH | --scale S]\n"
-               "                    [--background COLOR]\n\n"
-               "Render an SVG 1.1 drawing (shapes, paths, transforms, fills and strokes) with\n"
-               "softrast's 2D toolkit.\n\n"
-               "options:\n"
-               "  -o, --output FILE    PNG to write (default: INPUT with .png)\n"
-               "  --size WxH           output size in pixels (the viewBox is fitted in)\n"
-               "  --scale S            output size = the drawing's size times S (default 1)\n"
-               "  --background COLOR   opaque background (default transparent)\n");
-}
-
-int cmd_svg(int argc, char **argv)
-{
-    const char *input = NULL, *output = NULL;
-    svg_doc doc = { .status = EXIT_OK, .background = { 0, 0, 0, 0 } };
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        bool has_value = i + 1 < argc;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            svg_help(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--size") == 0 ||
-                   strcmp(a, "--scale") == 0 || strcmp(a, "--background") == 0) {
-            if (!has_value) {
-                cli_error("svg: %s: missing value", a);
-                return EXIT_USAGE;
-            }
-            const char *v = argv[++i];
-            if (a[1] == 'o' || a[2] == 'o') {
-                output = v;
-            } else if (strcmp(a, "--size") == 0) {
-                if (!parse_size(a, v, &doc.size_w, &doc.size_h)) {
-                    return EXIT_USAGE;
-                }
-            } else if (strcmp(a, "--scale") == 0) {
-                float s;
-                if (!parse_float(a, v, 0.001f, 1000.0f, &s)) {
-                    return EXIT_USAGE;
-                }
-                doc.scale = s;
-            } else {
-                sr_vec3 c;
-                if (!parse_color(a, v, &c)) {
-                    return EXIT_USAGE;
-                }
-                doc.background = (sr_rgba){ c.x, c.y, c.z, 1 };
-            }
-        } else if (a[0] == '-' && a[1]) {
-            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", a);
-            return EXIT_USAGE;
-        } else if (!input) {
-            input = a;
-        } else {
-            cli_error("svg: more than one input ('%s' and '%s')", input, a);
-            return EXIT_USAGE;
-        }
+    char scratch[16];
+    if (!msg || msg_size == 0) {
+        msg = scratch;
+        msg_size = sizeof scratch;
     }
-    if (!input) {
-        svg_help(stderr);
-        return EXIT_USAGE;
+    msg[0] = 0;
+    if (out) {
+        *out = NULL;
     }
-    if (doc.size_w && doc.scale > 0) {
-        cli_error("svg: --size and --scale exclude each other");
-        return EXIT_USAGE;
-    }
-    char default_out[4096];
-    if (!output) {
-        size_t n = strlen(input);
-        if (n > 4 && strcmp(input + n - 4, ".svg") == 0) {
-            n -= 4;
-        }
-        snprintf(default_out, sizeof default_out, "%.*s.png", (int)n, input);
-        output = default_out;
-    }
-    FILE *fp = fopen(input, "rb");
-    if (!fp) {
-        cli_error("svg: cannot open %s: %s", input, strerror(errno));
-        return EXIT_USAGE;
-    }
-    if (sr_make_context(&(sr_context_desc){0}, &doc.ctx) != SR_OK) {
-        fclose(fp);
-        cli_error("svg: cannot create a context");
+    const char *name = opt && opt->name ? opt->name : "<svg>";
+    if (!ctx || !opt || !out || (!data && size > 0)) {
+        snprintf(msg, msg_size, "%s: svg_render: ctx, opt and out are required", name);
         return EXIT_FAILURE_RUN;
     }
-    doc.file = input;
-    doc.parser = XML_ParserCreate(NULL);
-    if (!doc.parser) {
-        fclose(fp);
-        sr_destroy_context(doc.ctx);
-        cli_error("svg: out of memory");
+    if (size > SVG_MAX_INPUT_BYTES) {
+        snprintf(msg, msg_size, "%s: the document is %zu bytes, more than the %zu MiB limit", name,
+                 size, SVG_MAX_INPUT_BYTES >> 20);
+        return EXIT_USAGE;
+    }
+    svg_doc *doc = calloc(1, sizeof *doc); /* the frame stack is 40 KB: not on the stack */
+    if (!doc) {
+        snprintf(msg, msg_size, "%s: out of memory", name);
+        return EXIT_FAILURE_RUN;
+    }
+    doc->file = name;
+    doc->opt = opt;
+    doc->ctx = ctx;
+    doc->status = EXIT_OK;
+    doc->msg = msg;
+    doc->msg_size = msg_size;
+    doc->points_budget = SVG_POINTS_BASE + (double)SVG_POINTS_PER_BYTE * (double)size;
+    doc->parser = XML_ParserCreate(NULL);
+    if (!doc->parser) {
+        free(doc);
+        snprintf(msg, msg_size, "%s: out of memory", name);
         return EXIT_FAILURE_RUN;
     }
     /* Initial style (SVG defaults): fill black, no stroke, width 1. */
-    doc.stack[0] = (frame){ IDENTITY,
-                            { true, false, { 0, 0, 0, 1 }, { 0, 0, 0, 1 }, 1, 1, 1, SR_NONZERO, 1,
-                              SR_STROKE_JOIN_MITER, SR_STROKE_CAP_BUTT, 4, false, false, false } };
-    XML_SetUserData(doc.parser, &doc);
-    XML_SetElementHandler(doc.parser, on_start, on_end);
-    char buf[65536];
-    for (;;) {
-        size_t n = fread(buf, 1, sizeof buf, fp);
-        bool last = n < sizeof buf;
-        if (ferror(fp)) {
-            cli_error("svg: reading %s: %s", input, strerror(errno));
-            doc.status = EXIT_USAGE;
-            break;
-        }
-        if (XML_Parse(doc.parser, buf, (int)n, last) == XML_STATUS_ERROR) {
-            if (doc.status == EXIT_OK) {
-                fprintf(stderr, "%s:%lu: %s\n", input,
-                        (unsigned long)XML_GetCurrentLineNumber(doc.parser),
-                        XML_ErrorString(XML_GetErrorCode(doc.parser)));
-                doc.status = EXIT_USAGE;
+    doc->stack[0] = (frame){ IDENTITY,
+                             { true, false, { 0, 0, 0, 1 }, { 0, 0, 0, 1 }, 1, 1, 1, SR_NONZERO, 1,
+                               SR_STROKE_JOIN_MITER, SR_STROKE_CAP_BUTT, 4, false, false,
+                               false } };
+    XML_SetUserData(doc->parser, doc);
+    XML_SetElementHandler(doc->parser, on_start, on_end);
+    /* XML_Parse takes an int length: feed the buffer in pieces. */
+    const size_t piece = (size_t)1 << 20;
+    size_t at = 0;
+    do {
+        size_t n = size - at < piece ? size - at : piece;
+        bool last = at + n == size;
+        if (XML_Parse(doc->parser, data ? data + at : "", (int)n, last) == XML_STATUS_ERROR) {
+            if (doc->status == EXIT_OK) {
+                snprintf(msg, msg_size, "%s:%lu: %s", name,
+                         (unsigned long)XML_GetCurrentLineNumber(doc->parser),
+                         XML_ErrorString(XML_GetErrorCode(doc->parser)));
+                doc->status = EXIT_USAGE;
             }
             break;
         }
-        if (last || doc.status != EXIT_OK) {
-            break;
-        }
+        at += n;
+    } while (at < size && doc->status == EXIT_OK);
+    if (doc->status == EXIT_OK && !doc->fb) {
+        snprintf(msg, msg_size, "%s:1: no <svg> element", name);
+        doc->status = EXIT_USAGE;
     }
-    fclose(fp);
-    if (doc.status == EXIT_OK && !doc.fb) {
-        fprintf(stderr, "%s:1: no <svg> element\n", input);
-        doc.status = EXIT_USAGE;
+    int status = doc->status;
+    if (status == EXIT_OK) {
+        *out = doc->fb;
+    } else {
+        sr_destroy_framebuffer(ctx, doc->fb);
     }
-    if (doc.status == EXIT_OK) {
-        sr_io_error err;
-        int w = sr_framebuffer_width(doc.fb), h = sr_framebuffer_height(doc.fb);
-        if (sr_write_png(output, w, h, sr_framebuffer_pixels(doc.fb), (size_t)w * 4,
-                         &(sr_png_write_desc){ .no_alpha = doc.background.a >= 1 }, &err) != SR_OK) {
-            fprintf(stderr, "%s\n", err.message);
-            doc.status = EXIT_FAILURE_RUN;
-        }
+    for (int i = 0; i < doc->n_warned; i++) {
+        free(doc->warned[i]);
     }
-    for (int i = 0; i < doc.n_warned; i++) {
-        free(doc.warned[i]);
-    }
-    XML_ParserFree(doc.parser);
-    sr_destroy_framebuffer(doc.ctx, doc.fb);
-    sr_destroy_context(doc.ctx);
-    return doc.status;
+    XML_ParserFree(doc->parser);
+    free(doc);
+    return status;
 }
 
 #endif /* SR_HAVE_EXPAT */

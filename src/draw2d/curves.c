@@ -477,9 +477,30 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
         }
         return flatten_done(ctx, fn, 1, capacity);
     }
-    /* SVG 1.1 F.6.5: endpoint to centre parameterization. */
+    /* SVG 1.1 F.6.5: endpoint to centre parameterization.  The equations
+     * are scale-invariant, so they run on the half chord and radii divided
+     * by k, the power of two nearest above the half chord's length: radii
+     * of 1e300 or 1e-300 would otherwise square to infinity or zero and
+     * make the centre NaN.  A power of two scales exactly, so ordinary
+     * arcs give the same bits as without it. */
+    double rx_px = rx, ry_px = ry;
     double phi = rotation_deg * M_PI / 180.0, cphi = cos(phi), sphi = sin(phi);
-    double mx = (from.x - to.x) / 2, my = (from.y - to.y) / 2;
+    double mx = from.x / 2 - to.x / 2, my = from.y / 2 - to.y / 2;
+    double half_chord = hypot(mx, my);
+    int k_exp = 0;
+    (void)frexp(half_chord, &k_exp);
+    double k = ldexp(1, k_exp);
+    if (!(half_chord > 0) || !isfinite(half_chord) || !isfinite(k)) {
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: end points too far apart", fn);
+    }
+    mx /= k;
+    my /= k;
+    /* Normalized radii within 1e-60..1e60: their products of four stay
+     * finite and normal.  An arc 1e60 times wider than its chord is a
+     * straight line at any tolerance, and one 1e60 times narrower is
+     * scaled up to the chord below anyway (F.6.6). */
+    rx = fmin(fmax(rx / k, 1e-60), 1e60);
+    ry = fmin(fmax(ry / k, 1e-60), 1e60);
     double x1p = cphi * mx + sphi * my, y1p = -sphi * mx + cphi * my;
     double lambda = (x1p * x1p) / (rx * rx) + (y1p * y1p) / (ry * ry);
     if (lambda > 1) { /* F.6.6: radii too small, scale them up */
@@ -494,10 +515,19 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
         coef = -coef;
     }
     double cxp = coef * rx * y1p / ry, cyp = -coef * ry * x1p / rx;
-    double ccx = cphi * cxp - sphi * cyp + (from.x + to.x) / 2;
-    double ccy = sphi * cxp + cphi * cyp + (from.y + to.y) / 2;
     double ux = (x1p - cxp) / rx, uy = (y1p - cyp) / ry;
     double vx = (-x1p - cxp) / rx, vy = (-y1p - cyp) / ry;
+    /* Back to the caller's scale. */
+    cxp *= k;
+    cyp *= k;
+    rx *= k;
+    ry *= k;
+    double ccx = cphi * cxp - sphi * cyp + (from.x / 2 + to.x / 2);
+    double ccy = sphi * cxp + cphi * cyp + (from.y / 2 + to.y / 2);
+    if (!isfinite(ccx) || !isfinite(ccy) || !isfinite(rx) || !isfinite(ry)) {
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: radii (%g, %g) put the centre beyond range", fn,
+                        rx_px, ry_px);
+    }
     double theta1 = vec_angle(1, 0, ux, uy);
     double dtheta = vec_angle(ux, uy, vx, vy);
     if (!sweep && dtheta > 0) {
@@ -508,8 +538,14 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
     /* Segments: a chord of angle a on radius R strays R (1 - cos(a/2)). */
     double rmax = rx > ry ? rx : ry;
     double a = tolerance >= rmax ? M_PI / 2 : 2 * acos(1 - tolerance / rmax);
-    double steps = ceil(fabs(dtheta) / a);
-    if (steps < 1) {
+    if (!(a > 0)) {
+        /* R above 1e16 tolerances: 1 - x rounds to 1 and acos gives 0
+         * (0/0 steps for dtheta = 0).  acos(1 - x) = sqrt(2 x) to first
+         * order; still 0 when x underflows, hence the fallback below. */
+        a = 2 * sqrt(2 * (tolerance / rmax));
+    }
+    double steps = a > 0 ? ceil(fabs(dtheta) / a) : MAX_FLATTEN_STEPS;
+    if (!(steps >= 1)) { /* also NaN */
         steps = 1;
     }
     if (steps > MAX_FLATTEN_STEPS) {

@@ -347,13 +347,14 @@ static void add_piece(outline *o, const sr_point2 *p, int n)
 static void add_disc(outline *o, sr_point2 c, double r, double tol)
 {
     double a = tol >= r ? M_PI / 2 : 2 * acos(1 - tol / r);
-    int n = (int)ceil(2 * M_PI / a);
-    if (n < 8) {
-        n = 8;
+    if (!(a > 0)) {
+        /* r above 1e16 tolerances: 1 - x rounds to 1 and acos gives 0 (an
+         * infinite step count, undefined as an int).  acos(1 - x) =
+         * sqrt(2 x) to first order. */
+        a = 2 * sqrt(2 * (tol / r));
     }
-    if (n > 4096) {
-        n = 4096;
-    }
+    double steps = a > 0 ? ceil(2 * M_PI / a) : 4096;
+    int n = steps > 4096 ? 4096 : steps < 8 ? 8 : (int)steps;
     sr_point2 pts[4096];
     for (int i = 0; i < n; i++) {
         double t = 2 * M_PI * i / n;

@@ -86,13 +86,114 @@ typedef struct png_write_args {
     bool no_alpha;
 } png_write_args;
 
+/* The caller's allocator, for libpng (and, through libpng, zlib).  `failed`
+ * tells an out-of-memory longjmp from a write error: libpng reports both
+ * through the same error hook. */
+typedef struct png_mem {
+    sr_allocator a;
+    bool failed;
+} png_mem;
+
+static void *mem_alloc(png_mem *m, size_t size)
+{
+    void *p = m->a.alloc ? m->a.alloc(size, m->a.user) : malloc(size);
+    if (!p) {
+        m->failed = true;
+    }
+    return p;
+}
+
+static void mem_free(png_mem *m, void *p)
+{
+    if (p) {
+        if (m->a.alloc) {
+            m->a.free(p, m->a.user);
+        } else {
+            free(p);
+        }
+    }
+}
+
+static png_voidp png_mem_alloc(png_structp png, png_alloc_size_t size)
+{
+    return mem_alloc(png_get_mem_ptr(png), size);
+}
+
+static void png_mem_free(png_structp png, png_voidp p)
+{
+    mem_free(png_get_mem_ptr(png), p);
+}
+
+/* Where the encoded bytes go: a buffer in front of the file descriptor,
+ * written with write(2) directly rather than through stdio, whose fwrite
+ * gives up on EINTR. */
+typedef struct png_sink {
+    int fd;
+    uint8_t *buf;
+    size_t n, cap;
+} png_sink;
+
+#define SINK_SIZE ((size_t)1 << 16)
+
+/* All n bytes or false with errno set: retries after EINTR, continues
+ * after a short write (a full disk or RLIMIT_FSIZE takes part of a write
+ * first, then fails the next one with the reason). */
+static bool write_all(int fd, const uint8_t *p, size_t n)
+{
+    while (n > 0) {
+        ssize_t w = write(fd, p, n);
+        if (w < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            return false;
+        }
+        if (w == 0) {
+            errno = EIO; /* no progress and no reason: do not spin */
+            return false;
+        }
+        p += w;
+        n -= (size_t)w;
+    }
+    return true;
+}
+
+static bool sink_flush(png_sink *s)
+{
+    bool ok = write_all(s->fd, s->buf, s->n);
+    s->n = 0;
+    return ok;
+}
+
+static void sink_write(png_structp png, png_bytep data, size_t len)
+{
+    png_sink *s = png_get_io_ptr(png);
+    if (s->n + len > s->cap && !sink_flush(s)) {
+        png_error(png, "Write Error");
+    }
+    if (len >= s->cap) {
+        if (!write_all(s->fd, data, len)) {
+            png_error(png, "Write Error");
+        }
+        return;
+    }
+    memcpy(s->buf + s->n, data, len);
+    s->n += len;
+}
+
+static void sink_flush_hook(png_structp png)
+{
+    (void)png; /* sr_write_png flushes once, at the end */
+}
+
 /* Everything from png_create_write_struct to png_destroy_write_struct, in a
  * function of its own: nothing it declares changes after setjmp, so the
  * longjmp path may use all of it. */
-static bool encode_png(FILE *f, const png_write_args *a, png_status *st)
+static bool encode_png(png_sink *sink, png_mem *mem, const png_write_args *a, png_status *st)
 {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, st,
-                                              on_png_error, on_png_warning);
+    png_structp png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, st, on_png_error,
+                                                on_png_warning, mem, png_mem_alloc,
+                                                png_mem_free);
     if (!png) {
         st->code = SR_OUT_OF_MEMORY;
         snprintf(st->message, sizeof st->message, "out of memory creating the PNG writer");
@@ -107,12 +208,16 @@ static bool encode_png(FILE *f, const png_write_args *a, png_status *st)
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
+        if (mem->failed) { /* libpng says "Out of memory", or names zlib's failure */
+            st->code = SR_OUT_OF_MEMORY;
+            snprintf(st->message, sizeof st->message, "out of memory");
+        }
         return false;
     }
-    /* Errors from here on are the file's (a short fwrite: disk full, file
-     * size limit), not the data's. */
+    /* Errors from here on are the file's (a failed write: disk full, file
+     * size limit) or the allocator's (mem->failed), not the data's. */
     st->code = SR_IO_ERROR;
-    png_init_io(png, f);
+    png_set_write_fn(png, sink, sink_write, sink_flush_hook);
     png_set_IHDR(png, info, (png_uint_32)a->width, (png_uint_32)a->height, 8,
                  a->no_alpha ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -144,18 +249,25 @@ static bool encode_png(FILE *f, const png_write_args *a, png_status *st)
  * other threads creating files, so read it from /proc where there is one. */
 static mode_t new_file_mode(void)
 {
+    /* open/read rather than fopen: no hidden allocation outside the
+     * caller's allocator. */
     mode_t mask = 022;
-    FILE *f = fopen("/proc/self/status", "r");
-    if (f) {
-        char line[256];
-        while (fgets(line, sizeof line, f)) {
-            unsigned int m;
-            if (sscanf(line, "Umask: %o", &m) == 1) {
-                mask = (mode_t)(m & 0777);
-                break;
-            }
+    int fd = open("/proc/self/status", O_RDONLY);
+    if (fd >= 0) {
+        char buf[4096];
+        size_t n = 0;
+        ssize_t got;
+        while (n < sizeof buf - 1 &&
+               ((got = read(fd, buf + n, sizeof buf - 1 - n)) > 0 || (got < 0 && errno == EINTR))) {
+            n += got > 0 ? (size_t)got : 0;
         }
-        fclose(f);
+        close(fd);
+        buf[n] = 0;
+        const char *line = strstr(buf, "\nUmask:");
+        unsigned int m;
+        if (line && sscanf(line + 1, "Umask: %o", &m) == 1) {
+            mask = (mode_t)(m & 0777);
+        }
     }
     return 0666 & ~mask;
 }
@@ -264,9 +376,17 @@ sr_result sr_write_png(const char *path, int width, int height,
         return sr__io_fail(err, SR_INVALID_ARG, path, 0,
                            "names a directory (ends in '/'); give a file name for the image");
     }
+    png_mem mem = { .a = desc ? desc->allocator : (sr_allocator){0} };
+    if ((mem.a.alloc == NULL) != (mem.a.free == NULL)) {
+        free(resolved);
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "sr_png_write_desc.allocator needs both alloc and free");
+    }
     size_t tmp_size = strlen(target) + sizeof "/..XXXXXX";
-    char *tmp = malloc(tmp_size);
-    if (!tmp) {
+    char *tmp = mem_alloc(&mem, tmp_size);
+    png_sink sink = { .fd = -1, .buf = tmp ? mem_alloc(&mem, SINK_SIZE) : NULL, .cap = SINK_SIZE };
+    if (!tmp || !sink.buf) {
+        mem_free(&mem, tmp);
         free(resolved);
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory");
     }
@@ -284,20 +404,18 @@ sr_result sr_write_png(const char *path, int width, int height,
     /* A replaced file keeps its permissions.  Failing to set them (some
      * file systems have none) is no reason to lose the image. */
     (void)fchmod(fd, exists ? (st.st_mode & 07777) : new_file_mode());
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        int e = errno;
-        close(fd);
-        unlink(tmp);
-        result = sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open the temporary file: %s",
-                             strerror(e));
-        goto done;
-    }
+    sink.fd = fd;
 
     png_status status = { .code = SR_OK };
     errno = 0;  /* so that a stale errno is never reported as the cause */
-    if (!encode_png(f, &args, &status)) {
-        fclose(f);
+    bool encoded = encode_png(&sink, &mem, &args, &status);
+    if (encoded && !sink_flush(&sink)) {
+        encoded = false;
+        status = (png_status){ .code = SR_IO_ERROR, .saved_errno = errno };
+        snprintf(status.message, sizeof status.message, "Write Error");
+    }
+    if (!encoded) {
+        close(fd);
         unlink(tmp);
         if (status.code == SR_IO_ERROR && status.saved_errno != 0) {
             result = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s (libpng: %s)",
@@ -310,14 +428,16 @@ sr_result sr_write_png(const char *path, int width, int height,
     }
     /* The data must be on disk before the rename publishes it, or a crash
      * could leave a complete-looking name over an empty file. */
-    if (fflush(f) != 0 || fsync(fileno(f)) != 0) {
+    if (fsync(fd) != 0) {
         int e = errno;
-        fclose(f);
+        close(fd);
         unlink(tmp);
         result = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s", strerror(e));
         goto done;
     }
-    if (fclose(f) != 0) {
+    /* close() is not retried after EINTR: on Linux the descriptor is
+     * released whatever it returns, and the data is already fsync'd. */
+    if (close(fd) != 0 && errno != EINTR) {
         int e = errno;
         unlink(tmp);
         result = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed on close: %s", strerror(e));
@@ -333,7 +453,8 @@ sr_result sr_write_png(const char *path, int width, int height,
     sync_directory(target);
 
 done:
-    free(tmp);
+    mem_free(&mem, sink.buf);
+    mem_free(&mem, tmp);
     free(resolved);
     return result;
 }
@@ -348,10 +469,10 @@ typedef struct png_image_out {
 
 /* The decoder proper; as with encode_png, no local changes after setjmp.
  * Whatever it allocates is hung on *out, so the longjmp path can free it. */
-static void decode_png(FILE *f, png_image_out *out, png_status *st)
+static void decode_png(FILE *f, png_mem *mem, png_image_out *out, png_status *st)
 {
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, st,
-                                             on_png_error, on_png_warning);
+    png_structp png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, st, on_png_error,
+                                               on_png_warning, mem, png_mem_alloc, png_mem_free);
     if (!png) {
         st->code = SR_OUT_OF_MEMORY;
         snprintf(st->message, sizeof st->message, "out of memory creating the PNG reader");
@@ -366,10 +487,14 @@ static void decode_png(FILE *f, png_image_out *out, png_status *st)
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_read_struct(&png, &info, NULL);
-        free(out->pixels);
-        free(out->rows);
+        mem_free(mem, out->pixels);
+        mem_free(mem, out->rows);
         out->pixels = NULL;
         out->rows = NULL;
+        if (mem->failed) { /* libpng's "Out of memory", or zlib's failure */
+            st->code = SR_OUT_OF_MEMORY;
+            snprintf(st->message, sizeof st->message, "out of memory");
+        }
         return;
     }
     png_init_io(png, f);
@@ -403,15 +528,15 @@ static void decode_png(FILE *f, png_image_out *out, png_status *st)
                  (unsigned long)png_get_rowbytes(png, info), 4ul * w);
         return;
     }
-    out->pixels = malloc(4 * (size_t)w * h);
-    out->rows = malloc(sizeof(png_bytep) * h);
+    out->pixels = mem_alloc(mem, 4 * (size_t)w * h);
+    out->rows = mem_alloc(mem, sizeof(png_bytep) * h);
     if (!out->pixels || !out->rows) {
         st->code = SR_OUT_OF_MEMORY;
         snprintf(st->message, sizeof st->message, "out of memory for a %lux%lu image",
                  (unsigned long)w, (unsigned long)h);
         png_destroy_read_struct(&png, &info, NULL);
-        free(out->pixels);
-        free(out->rows);
+        mem_free(mem, out->pixels);
+        mem_free(mem, out->rows);
         out->pixels = NULL;
         out->rows = NULL;
         return;
@@ -422,7 +547,7 @@ static void decode_png(FILE *f, png_image_out *out, png_status *st)
     png_read_image(png, out->rows);
     png_read_end(png, NULL);
     png_destroy_read_struct(&png, &info, NULL);
-    free(out->rows);
+    mem_free(mem, out->rows);
     out->rows = NULL;
     out->width = (int)w;
     out->height = (int)h;
@@ -430,6 +555,12 @@ static void decode_png(FILE *f, png_image_out *out, png_status *st)
 
 sr_result sr_read_png(const char *path, int *width, int *height,
                       uint8_t **pixels, sr_io_error *err)
+{
+    return sr_read_png_desc(path, NULL, width, height, pixels, err);
+}
+
+sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
+                           int *height, uint8_t **pixels, sr_io_error *err)
 {
     if (err) {
         err->message[0] = 0;
@@ -474,10 +605,16 @@ sr_result sr_read_png(const char *path, int *width, int *height,
         return sr__io_fail(err, SR_BAD_FORMAT, path, 0, "not a PNG file (no PNG signature)");
     }
 
+    png_mem mem = { .a = desc ? desc->allocator : (sr_allocator){0} };
+    if ((mem.a.alloc == NULL) != (mem.a.free == NULL)) {
+        fclose(f);
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "sr_png_read_desc.allocator needs both alloc and free");
+    }
     png_image_out image = { 0 };
     png_status status = { .code = SR_OK };
     errno = 0;
-    decode_png(f, &image, &status);
+    decode_png(f, &mem, &image, &status);
     bool read_error = ferror(f);
     bool at_end = feof(f);
     fclose(f);

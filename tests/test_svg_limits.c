@@ -1,0 +1,221 @@
+/* test_svg_limits.c - `softrast svg` bounds its work (apps/softrast/svg.h,
+ * docs/robustness.md): a small document that asks for millions of points,
+ * a wide round-joined stroke, or fills that cover the image hundreds of
+ * times over is refused with one line "FILE:LINE: ..." and exit status 2,
+ * quickly and without an output file; arcs whose radii square to infinity
+ * or to zero render.  Needs the CLI built with expat. */
+#include "sr_test.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+static char *grow_cat(char *s, size_t *len, const char *add)
+{
+    size_t n = strlen(add);
+    s = realloc(s, *len + n + 1);
+    memcpy(s + *len, add, n + 1);
+    *len += n;
+    return s;
+}
+
+/* head + `piece` count times + tail, written to the output dir. */
+static const char *write_svg(const char *name, const char *head, const char *piece, int count,
+                             const char *tail)
+{
+    static char path[1024];
+    snprintf(path, sizeof path, "%s/%s", sr_test_out_dir(), name);
+    size_t len = 0;
+    char *s = grow_cat(NULL, &len, head);
+    for (int i = 0; i < count; i++) {
+        s = grow_cat(s, &len, piece);
+    }
+    s = grow_cat(s, &len, tail);
+    FILE *f = fopen(path, "wb");
+    if (f) {
+        fwrite(s, 1, len, f);
+        fclose(f);
+    }
+    free(s);
+    return f ? path : NULL;
+}
+
+/* Runs `softrast svg IN -o OUT`; exit status (-1: did not run or died),
+ * stderr in err, wall time in *seconds. */
+static int run_svg(const char *in, const char *out, char *err, size_t cap, double *seconds)
+{
+#ifndef SR_CLI_PATH
+    (void)in, (void)out, (void)err, (void)cap, (void)seconds;
+    return -1;
+#else
+    int p[2];
+    if (pipe(p) != 0) {
+        return -1;
+    }
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    pid_t pid = fork();
+    if (pid == 0) {
+        dup2(p[1], STDERR_FILENO);
+        close(p[0]);
+        execl(SR_CLI_PATH, SR_CLI_PATH, "svg", in, "-o", out, (char *)NULL);
+        _exit(127);
+    }
+    close(p[1]);
+    size_t n = 0;
+    ssize_t got;
+    while ((got = read(p[0], err + n, cap - 1 - n)) > 0 || (got < 0 && errno == EINTR)) {
+        n += got > 0 ? (size_t)got : 0;
+        if (n == cap - 1) {
+            break;
+        }
+    }
+    err[n] = 0;
+    close(p[0]);
+    int st;
+    if (pid < 0 || waitpid(pid, &st, 0) < 0) {
+        return -1;
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    *seconds = (double)(t1.tv_sec - t0.tv_sec) + (t1.tv_nsec - t0.tv_nsec) * 1e-9;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+#endif
+}
+
+static bool have_svg(void)
+{
+    const char *in = write_svg("limits_probe.svg", "<svg width='2' height='2'/>", "", 0, "");
+    char out[1100], err[4096];
+    snprintf(out, sizeof out, "%s/limits_probe.png", sr_test_out_dir());
+    double s;
+    return in && run_svg(in, out, err, sizeof err, &s) == 0;
+}
+
+/* Refused with status 2, `want` in the one line, in well under the time a
+ * spinning renderer would take (generous for the sanitizer build), and no
+ * output file. */
+static void expect_refused(const char *name, const char *head, const char *piece, int count,
+                           const char *tail, const char *want)
+{
+    const char *in = write_svg(name, head, piece, count, tail);
+    REQUIRE(in);
+    char out[1100], err[4096];
+    snprintf(out, sizeof out, "%s/%s.png", sr_test_out_dir(), name);
+    unlink(out);
+    double seconds = 0;
+    CHECK_EQ(run_svg(in, out, err, sizeof err, &seconds), 2);
+    CHECK_STR_CONTAINS(err, name);
+    CHECK_STR_CONTAINS(err, want);
+    CHECK(strchr(err, '\n') == err + strlen(err) - 1); /* one line */
+    CHECK(seconds < 8);
+    struct stat st;
+    CHECK(stat(out, &st) != 0);
+    printf("  %-28s refused in %.2f s: %s", name, seconds, err);
+}
+
+SR_TEST(svg_path_with_millions_of_flattened_points_is_refused)
+{
+    if (!have_svg()) {
+        SKIP("softrast svg is not available (no expat)");
+    }
+    /* 3000 arcs of radius 1e5 px: 65536 points each as flattened. */
+    expect_refused("limit_points.svg", "<svg width='100' height='100'><path d='M0 0",
+                   " A1e5 1e5 0 1 1 1 0 A1e5 1e5 0 1 1 0 0", 1500, "'/></svg>",
+                   "points when flattened");
+}
+
+SR_TEST(svg_path_with_too_many_subpaths_is_refused)
+{
+    if (!have_svg()) {
+        SKIP("softrast svg is not available (no expat)");
+    }
+    expect_refused("limit_subpaths.svg", "<svg width='100' height='100'><path d='", "M0 0 1 1",
+                   20000, "'/></svg>", "subpaths");
+}
+
+SR_TEST(svg_fills_covering_the_image_hundreds_of_times_are_refused)
+{
+    if (!have_svg()) {
+        SKIP("softrast svg is not available (no expat)");
+    }
+    expect_refused("limit_coverage.svg", "<svg width='2000' height='2000'>",
+                   "<rect width='2000' height='2000' fill='red'/>", 400, "</svg>",
+                   "pixel operations");
+    /* Edges that each cross every row: the cost is in the rows, not the box. */
+    expect_refused("limit_rows.svg", "<svg width='1000' height='1000'><polygon points='",
+                   "0,0 1,1000 ", 40000, "'/></svg>", "pixel operations");
+}
+
+SR_TEST(svg_wide_round_stroke_over_a_long_path_is_refused_before_outlining)
+{
+    if (!have_svg()) {
+        SKIP("softrast svg is not available (no expat)");
+    }
+    expect_refused("limit_stroke.svg",
+                   "<svg width='100' height='100'><polyline fill='none' stroke='red' "
+                   "stroke-width='5000' stroke-linejoin='round' points='",
+                   "0,0 1,1 ", 5000, "'/></svg>", "stroke: the outline");
+}
+
+SR_TEST(svg_many_shapes_beyond_the_document_point_budget_are_refused)
+{
+    if (!have_svg()) {
+        SKIP("softrast svg is not available (no expat)");
+    }
+    /* Each circle of radius 1e5 flattens to about 2200 points, all off the
+     * image (cheap to fill): only the point count stops them. */
+    expect_refused("limit_total.svg", "<svg width='100' height='100'>",
+                   "<circle cx='1.5e5' r='1e5'/>", 4000, "</svg>", "points in all");
+}
+
+SR_TEST(svg_arcs_with_radii_that_square_out_of_range_render)
+{
+    if (!have_svg()) {
+        SKIP("softrast svg is not available (no expat)");
+    }
+    const char *in = write_svg(
+        "arc_radii.svg",
+        "<svg width='20' height='20'><path stroke='blue' fill='red' d='M10 10 A1e300 1e300 720 0 1 "
+        "20 20 M1 1 A1e-300 1e-300 0 0 0 5 5 z'/>"
+        "<path d='M1 1 L2 2' stroke='blue' stroke-width='1e-17' stroke-linecap='round'/></svg>",
+        "", 0, "");
+    REQUIRE(in);
+    char out[1100], err[4096];
+    snprintf(out, sizeof out, "%s/arc_radii.png", sr_test_out_dir());
+    double seconds;
+    CHECK_EQ(run_svg(in, out, err, sizeof err, &seconds), 0);
+    CHECK_EQ(err[0], 0);
+}
+
+SR_TEST(svg_warnings_stop_after_64_names)
+{
+    if (!have_svg()) {
+        SKIP("softrast svg is not available (no expat)");
+    }
+    char *elems = NULL;
+    size_t len = 0;
+    for (int i = 0; i < 300; i++) {
+        char e[64];
+        snprintf(e, sizeof e, "<unknown%d/>\n", i);
+        elems = grow_cat(elems, &len, e);
+    }
+    const char *in = write_svg("many_warnings.svg", "<svg width='4' height='4'>\n", elems, 1,
+                               "</svg>\n");
+    free(elems);
+    REQUIRE(in);
+    char out[1100], err[16384];
+    snprintf(out, sizeof out, "%s/many_warnings.png", sr_test_out_dir());
+    double seconds;
+    CHECK_EQ(run_svg(in, out, err, sizeof err, &seconds), 0);
+    int lines = 0;
+    for (const char *c = err; *c; c++) {
+        lines += *c == '\n';
+    }
+    CHECK_EQ(lines, 65);
+    CHECK_STR_CONTAINS(err, "many_warnings.svg:66: warning: more unsupported names; further "
+                            "warnings not shown");
+}
