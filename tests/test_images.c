@@ -67,6 +67,15 @@ SR_TEST(builtin_scene_supersampled_matches_reference)
                                                              "--filter", "gaussian", NULL });
 }
 
+/* 4x and 16x multisampling, and the hidden-line outlines multisampled
+ * (lines as rectangles covered per sample). */
+SR_TEST(builtin_scene_multisampled_matches_reference)
+{
+    check_render("builtin_msaa4", (const char *[]){ "--size", "160x120", "--aa", "msaa4", NULL });
+    check_render("builtin_msaa16_hidden_line",
+                 (const char *[]){ "--size", "160x120", "--aa", "msaa16", "--hidden-line", NULL });
+}
+
 /* A translucent teapot drawn after the ground, back to front. */
 SR_TEST(builtin_scene_translucent_matches_reference)
 {

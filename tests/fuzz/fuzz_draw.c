@@ -4,12 +4,17 @@
  * lights) and one draw (primitive, indices, positions with w) whose
  * coordinates come from a table of hostile floats (+-FLT_MAX, +-Inf, NaN,
  * denormals, -0, w = 0, w < 0, guard-band and near-plane crossings) or
- * straight from the bytes.  Missing bytes read as zero.
+ * straight from the bytes.  Then (bytes appended later, so older corpus
+ * inputs keep their meaning): multisampling, a stencil buffer and stencil
+ * state (invalid values included), alpha to coverage, and a program whose
+ * fragment shader discards by a pattern and writes hostile depths.
+ * Missing bytes read as zero.
  *
  * Checked on every input:
  *   - the result is SR_OK or an error with a message, and a failed call
  *     changed nothing;
- *   - no pixel (color or depth) outside viewport ∩ framebuffer changed;
+ *   - no pixel (color, depth or stencil) outside viewport ∩ framebuffer
+ *     changed;
  *   - 1 and 2 threads give the same result, color bytes and depth values;
  *   - ASan/UBSan: no out-of-bounds access or undefined behaviour;
  *   - libFuzzer's -timeout: the work per input stays bounded.
@@ -77,9 +82,43 @@ static const sr_depth_format depth_formats[] = {
     SR_DEPTH_NONE, SR_DEPTH_D16, SR_DEPTH_D24, SR_DEPTH_D32, SR_DEPTH_D32F,
 };
 
+/* The program's uniforms: which quad lanes to discard, and a depth to
+ * write (any float, NaN and infinities included). */
+typedef struct fuzz_uniforms {
+    unsigned discard;
+    float z;
+    bool write_z;
+} fuzz_uniforms;
+
+static void fuzz_vs(const void *u, const sr_vertex_input *in, float clip[4], float *vary)
+{
+    (void)u;
+    memcpy(clip, in->position, 4 * sizeof(float));
+    memcpy(vary, in->color, 4 * sizeof(float));
+    vary[4] = (float)in->index;
+}
+
+static void fuzz_fs(const void *uniforms, sr_fragment_quad *q)
+{
+    const fuzz_uniforms *u = uniforms;
+    for (int i = 0; i < 4; i++) {
+        for (int c = 0; c < 4; c++) {
+            q->color[c][i] = q->varyings[c][i];
+        }
+        if (u->write_z) {
+            q->z[i] = u->z;
+        }
+    }
+    q->discard = u->discard & 15u;
+}
+
 typedef struct decoded {
     int fb_w, fb_h;
     sr_depth_format depth_format;
+    int samples;
+    bool stencil;
+    sr_program prog;
+    fuzz_uniforms uniforms;
     sr_state st;
     sr_draw_desc d;
     sr_mat4 proj, view;
@@ -212,12 +251,50 @@ static void decode(reader *r, decoded *o)
                      : d->index_type == SR_INDEX_U16 ? (const void *)o->idx16
                                                      : (const void *)o->idx32;
     }
+
+    /* Multisampling, stencil, alpha to coverage, a program. */
+    static const int sample_counts[] = { 0, 2, 4, 8, 16 };
+    uint8_t mk = u8(r);
+    o->samples = sample_counts[mk % 5];
+    o->stencil = (mk >> 3) & 1;
+    st->alpha_to_coverage = (mk >> 4) & 1;
+    st->material.opacity = (mk >> 5) & 1 ? (u8(r) % 101) / 100.0f : 0.0f;
+    if ((mk >> 6) & 1) {
+        st->stencil.enabled = true;
+        st->stencil.separate = (mk >> 7) & 1;
+        sr_stencil_face *faces[2] = { &st->stencil.front, &st->stencil.back };
+        for (int i = 0; i < 2; i++) {
+            sr_stencil_face *sf = faces[i];
+            sf->func = (sr_depth_func)(u8(r) % 10);       /* 9 is invalid */
+            sf->ref = u8(r);
+            sf->masked = u8(r) & 1;
+            sf->read_mask = u8(r);
+            sf->write_mask = u8(r);
+            sf->fail = (sr_stencil_op)(u8(r) % 9);         /* 8 is invalid */
+            sf->depth_fail = (sr_stencil_op)(u8(r) % 9);
+            sf->pass = (sr_stencil_op)(u8(r) % 9);
+        }
+    }
+    uint8_t gk = u8(r);
+    if (gk & 1) {
+        o->prog = (sr_program){ .vertex = fuzz_vs, .fragment = fuzz_fs, .uniforms = &o->uniforms,
+                                .varying_count = (gk >> 1) & 1 ? 5 : 17,  /* 17 is invalid */
+                                .may_discard = (gk >> 2) & 1, .writes_depth = (gk >> 3) & 1 };
+        o->prog.modes[4] = (sr_varying_mode)((gk >> 4) % 4);           /* 3 is invalid */
+        o->uniforms.discard = o->prog.may_discard ? u8(r) : 0;
+        o->uniforms.write_z = o->prog.writes_depth;
+        o->uniforms.z = hostile_float(r);
+        st->program = &o->prog;
+        /* The vertex shader reads four position floats. */
+        d->position_size = 4;
+    }
 }
 
 typedef struct run {
     sr_result r;
     uint8_t color[MAX_FB * MAX_FB * 4];
     float depth[MAX_FB * MAX_FB];
+    uint8_t stencil[MAX_FB * MAX_FB];
     sr_draw_info info;
 } run;
 
@@ -228,10 +305,12 @@ static void run_once(int which, const decoded *o, run *out, run *before)
     sr_context *ctx = contexts[which];
     sr_framebuffer *fb = NULL;
     sr_result r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
-        .width = o->fb_w, .height = o->fb_h, .depth_format = o->depth_format }, &fb);
+        .width = o->fb_w, .height = o->fb_h, .depth_format = o->depth_format,
+        .samples = o->samples, .stencil = o->stencil }, &fb);
     FUZZ_CHECK(r == SR_OK);
     /* A recognisable background that no draw produces by accident. */
-    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.2f, 0.4f, 0.6f, 0.8f }, .depth = 0.625f });
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.2f, 0.4f, 0.6f, 0.8f }, .depth = 0.625f,
+                                        .stencil = 0x5a });
     size_t npx = (size_t)o->fb_w * o->fb_h;
     bool has_depth = o->depth_format != SR_DEPTH_NONE;
     if (before) {
@@ -239,6 +318,10 @@ static void run_once(int which, const decoded *o, run *out, run *before)
         memset(before->depth, 0, sizeof before->depth);
         if (has_depth) {
             sr_read_depth(ctx, fb, 0, 0, o->fb_w, o->fb_h, before->depth, (size_t)o->fb_w);
+        }
+        memset(before->stencil, 0, sizeof before->stencil);
+        if (o->stencil) {
+            sr_read_stencil(ctx, fb, 0, 0, o->fb_w, o->fb_h, before->stencil, (size_t)o->fb_w);
         }
     }
     out->r = sr_draw(ctx, fb, &o->st, &o->d);
@@ -252,6 +335,11 @@ static void run_once(int which, const decoded *o, run *out, run *before)
     if (has_depth) {
         FUZZ_CHECK(sr_read_depth(ctx, fb, 0, 0, o->fb_w, o->fb_h, out->depth,
                                  (size_t)o->fb_w) == SR_OK);
+    }
+    memset(out->stencil, 0, sizeof out->stencil);
+    if (o->stencil) {
+        FUZZ_CHECK(sr_read_stencil(ctx, fb, 0, 0, o->fb_w, o->fb_h, out->stencil,
+                                   (size_t)o->fb_w) == SR_OK);
     }
     sr_destroy_framebuffer(ctx, fb);
 }
@@ -277,6 +365,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(a.r == b.r);
     FUZZ_CHECK(memcmp(a.color, b.color, npx * 4) == 0);
     FUZZ_CHECK(memcmp(a.depth, b.depth, npx * sizeof(float)) == 0);
+    FUZZ_CHECK(memcmp(a.stencil, b.stencil, npx) == 0);
     FUZZ_CHECK(a.info.fragments == b.info.fragments);
     FUZZ_CHECK(a.info.triangles_in == b.info.triangles_in);
 
@@ -296,6 +385,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             size_t i = (size_t)y * o.fb_w + x;
             FUZZ_CHECK(memcmp(a.color + i * 4, before.color + i * 4, 4) == 0);
             FUZZ_CHECK(memcmp(&a.depth[i], &before.depth[i], sizeof(float)) == 0);
+            FUZZ_CHECK(a.stencil[i] == before.stencil[i]);
         }
     }
     /* Written depth stays inside the depth range (quantized). */
