@@ -255,7 +255,7 @@ static void decode(reader *r, decoded *o)
     /* Multisampling, stencil, alpha to coverage, a program. */
     static const int sample_counts[] = { 0, 2, 4, 8, 16 };
     uint8_t mk = u8(r);
-    o->samples = sample_counts[mk % 5];
+    o->samples = sample_counts[(mk & 7) % 5];   /* bits 0-2; the flags above */
     o->stencil = (mk >> 3) & 1;
     st->alpha_to_coverage = (mk >> 4) & 1;
     st->material.opacity = (mk >> 5) & 1 ? (u8(r) % 101) / 100.0f : 0.0f;

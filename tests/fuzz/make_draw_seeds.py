@@ -20,7 +20,7 @@ def f(v):
 def draw(w=32, h=32, depth=2, vp=None, near=0, far=1, flags=0, cull=1, front=0, rast=0,
          pm=(0, 0), line_width=1, point_size=4, depth_func=0, offset=None, shading=1,
          interp=0, provoking=0, lights=1, prim=1, proj=0, psize=3, colors=True, verts=(),
-         indices=None, index_type=0):
+         indices=None, index_type=0, extra=b''):
     b = bytes([w - 1, h - 1, depth])
     if vp:
         b += bytes([1, (vp[0] // 2) & 255, (vp[1] // 2) & 255, vp[2] - 1, vp[3] - 1])
@@ -42,7 +42,31 @@ def draw(w=32, h=32, depth=2, vp=None, near=0, far=1, flags=0, cull=1, front=0, 
     b += bytes([index_type])
     if index_type:
         b += bytes([len(indices)]) + bytes(indices)
-    return b
+    return b + extra
+
+def ms(samples=0, stencil=False, a2c=False, opacity=None, faces=None, separate=False,
+       program=None):
+    """The bytes after the draw: multisampling (bits 0-2: an index into 0, 2, 4, 8, 16),
+    a stencil buffer, alpha to coverage, opacity, stencil state (two faces
+    of func, ref, masked, read mask, write mask, fail, depth-fail, pass),
+    then a program: (discard pattern or None, writes depth, varying mode,
+    depth value)."""
+    mk = [0, 2, 4, 8, 16].index(samples)
+    mk |= (8 if stencil else 0) | (16 if a2c else 0) | (32 if opacity is not None else 0)
+    mk |= (64 if faces else 0) | (128 if separate else 0)
+    b = bytes([mk])
+    if opacity is not None:
+        b += bytes([opacity])
+    for face in faces or ():
+        b += bytes(face)
+    if program is None:
+        return b + bytes([0])
+    discard, writes_z, mode, z = program
+    gk = 1 | 2 | (4 if discard is not None else 0) | (8 if writes_z else 0) | (mode << 4)
+    b += bytes([gk])
+    if discard is not None:
+        b += bytes([discard])
+    return b + f(z)
 
 tri = [(-0.75, -0.75, 0.0, 1.0), (0.75, -0.5, 0.5, 1.0), (0.0, 0.75, -0.5, 1.0)]
 quad = [(-1.0, -1.0, 0.0, 1.0), (1.0, -1.0, 0.0, 1.0), (1.0, 1.0, 0.0, 1.0), (-1.0, 1.0, 0.0, 1.0)]
@@ -67,6 +91,20 @@ seeds = {
     'indexed_u16_out_of_range': draw(verts=tri, index_type=2, indices=[0, 1, 2, 2, 1, 250]),
     'indexed_u8_polygon_point': draw(verts=quad, index_type=1, indices=[0, 1, 2, 0, 2, 3],
                                      pm=(3, 3), point_size=12),
+    # Multisampling, stencil, alpha to coverage and programs (decoded after
+    # the draw).
+    'msaa4_triangle': draw(verts=tri, psize=4, extra=ms(samples=4)),
+    'msaa4_stencil_a2c_separate': draw(verts=tri, psize=4, extra=ms(
+        samples=4, stencil=True, a2c=True, opacity=50, separate=True,
+        faces=[[4, 3, 1, 0xf0, 0x0f, 6, 7, 3], [5, 9, 0, 0, 0, 1, 2, 4]])),
+    'msaa8_program_discard_nan_depth': draw(verts=tri, psize=4, extra=ms(
+        samples=8, program=(5, True, 2, 'nan'))),
+    'msaa16_stencil_lines_program': draw(verts=quad, psize=4, prim=4, extra=ms(
+        samples=16, stencil=True, faces=[[2, 1, 0, 0, 0, 7, 5, 3], [8, 0, 0, 0, 0, 0, 0, 0]],
+        program=(None, False, 1, 0.5))),
+    'stencil_program_single_sample': draw(verts=tri, psize=4, extra=ms(
+        stencil=True, faces=[[6, 200, 1, 0x3c, 0xff, 2, 3, 5], [1, 0, 0, 0, 0, 0, 0, 0]],
+        program=(9, False, 0, 0.25))),
 }
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'corpus', 'fuzz_draw')
 os.makedirs(out, exist_ok=True)
