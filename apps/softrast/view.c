@@ -8,8 +8,11 @@
 #include "cli.h"
 #include "render.h"
 
+#include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define VIEW_DEFAULT_FONT "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 
@@ -53,12 +56,40 @@ static void view_help(void)
 
 #ifndef SR_HAVE_VIEWER
 
+/* The lean `softrast` binary: the window is softrast-view's (CMakeLists.txt
+ * says why), run from the directory this executable is in, with the same
+ * arguments. */
 int cmd_view(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
             view_help();
             return EXIT_OK;
+        }
+    }
+    char self[4096];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 32);
+    if (n > 0) {
+        self[n] = 0;
+        char *slash = strrchr(self, '/');
+        if (slash) {
+            strcpy(slash + 1, "softrast-view");
+            if (access(self, X_OK) == 0) {
+                /* argv[0] is "view" here: softrast-view gets "view" as its
+                 * command, then the options. */
+                char **args = calloc((size_t)argc + 2, sizeof *args);
+                if (args) {
+                    args[0] = self;
+                    for (int i = 0; i < argc; i++) {
+                        args[i + 1] = argv[i];
+                    }
+                    fflush(stdout);
+                    execv(self, args);
+                    cli_error("view: cannot run %s: %s", self, strerror(errno));
+                    free(args);
+                    return EXIT_FAILURE_RUN;
+                }
+            }
         }
     }
     cli_error("view: this softrast was built without SDL2 and FreeType (install libsdl2-dev "
