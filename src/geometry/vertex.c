@@ -54,6 +54,22 @@ static void normal_to_eye(const sr_mat4 *nm, const float n[3], float out[3])
     out[2] = z * s;
 }
 
+/* The clip outcode of a transformed vertex, and for a vertex inside every
+ * plane its window position: divided and snapped once, here (the
+ * post-transform cache). */
+static void classify(const sr_draw_state *ds, sr_vertex_post *v)
+{
+    if (!(isfinite(v->pos[0]) && isfinite(v->pos[1]) && isfinite(v->pos[2]) &&
+          isfinite(v->pos[3]))) {
+        v->outcode = SR_OUTCODE_NONFINITE;
+        return;
+    }
+    v->outcode = sr__clip_outcode(ds, v->pos);
+    if (v->outcode == 0) {
+        sr__project(ds, v->pos, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
+    }
+}
+
 /* The programmable vertex stage: the vertex shader gets the arrays at
  * the vertex and writes the clip position and the varyings. */
 static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t first,
@@ -92,15 +108,7 @@ static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t
         float clip[4] = { 0, 0, 0, 1 };
         pr->vertex(pr->uniforms, &in, clip, vary);
         memcpy(v->pos, clip, sizeof clip);
-        if (!(isfinite(v->pos[0]) && isfinite(v->pos[1]) && isfinite(v->pos[2]) &&
-              isfinite(v->pos[3]))) {
-            v->outcode = SR_OUTCODE_NONFINITE;
-        } else {
-            v->outcode = sr__clip_outcode(ds, v->pos);
-            if (v->outcode == 0) {
-                sr__project(ds, v->pos, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
-            }
-        }
+        classify(ds, v);
     }
 }
 
@@ -237,16 +245,7 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         sr__vertex_shade(ds, obj, d->normals ? element(d->normals, d->normal_stride, 3, i) : NULL,
                          cp, d->texcoords ? element(d->texcoords, d->texcoord_stride, 2, i) : NULL,
                          gp, mvp, mv, nm, v->pos, vary);
-        if (!(isfinite(v->pos[0]) && isfinite(v->pos[1]) && isfinite(v->pos[2]) &&
-              isfinite(v->pos[3]))) {
-            v->outcode = SR_OUTCODE_NONFINITE;
-        } else {
-            v->outcode = sr__clip_outcode(ds, v->pos);
-            if (v->outcode == 0) {
-                /* Inside every plane: divide and snap once, here. */
-                sr__project(ds, v->pos, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
-            }
-        }
+        classify(ds, v);
     }
 }
 

@@ -144,18 +144,17 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
 {
 #ifdef SR_HAVE_SAMPLE_KERNEL
-    const char *env = getenv("SR_SIMD");
     bool common = ds->samples == 4 && !ds->program && !ds->stencil_test && !ds->alpha_to_coverage &&
                   !ds->blending && !ds->blend.enabled && ds->depth_mode == SR_DEPTH_MODE_LESS &&
                   ds->depth_bits >= 1 && ds->depth_bits <= 24;
-    if (!common || (env && strcmp(env, "off") == 0)) {
+    if (!common) {
         return NULL;
     }
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0)) {
-        return raster_ms4_avx2;
+    switch (sr__simd_level()) {
+    case SR_SIMD_AVX2: return raster_ms4_avx2;
+    case SR_SIMD_BASE: return raster_ms4_base;
+    default:           return NULL;
     }
-    return raster_ms4_base;
 #else
     (void)ds;
     return NULL;

@@ -37,18 +37,29 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #undef SR_SIMD_TARGET
 #endif
 
-sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
+sr_simd_level sr__simd_level(void)
 {
 #ifdef SR_HAVE_SIMD_KERNEL
     const char *env = getenv("SR_SIMD");
     if (env && strcmp(env, "off") == 0) {
-        return NULL;
+        return SR_SIMD_OFF;
     }
     __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0)) {
-        return select_avx2(ds);
+    return __builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0) ? SR_SIMD_AVX2
+                                                                                : SR_SIMD_BASE;
+#else
+    return SR_SIMD_OFF;
+#endif
+}
+
+sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
+{
+#ifdef SR_HAVE_SIMD_KERNEL
+    switch (sr__simd_level()) {
+    case SR_SIMD_AVX2: return select_avx2(ds);
+    case SR_SIMD_BASE: return select_base(ds);
+    default:           return NULL;
     }
-    return select_base(ds);
 #else
     (void)ds;
     return NULL;
@@ -57,14 +68,9 @@ sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
 
 const char *sr__raster_simd_name(void)
 {
-#ifdef SR_HAVE_SIMD_KERNEL
-    const char *env = getenv("SR_SIMD");
-    if (env && strcmp(env, "off") == 0) {
-        return "scalar";
+    switch (sr__simd_level()) {
+    case SR_SIMD_AVX2: return "avx2";
+    case SR_SIMD_BASE: return "sse2";
+    default:           return "scalar";
     }
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0) ? "avx2" : "sse2";
-#else
-    return "scalar";
-#endif
 }
