@@ -10,6 +10,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A context and a framebuffer for one test. */
+static bool make_target(int w, int h, sr_depth_format depth, sr_context **ctx, sr_framebuffer **fb)
+{
+    *fb = NULL;
+    if (sr_make_context(NULL, ctx) != SR_OK) {
+        return false;
+    }
+    return sr_make_framebuffer(*ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
+                                                            .depth_format = depth }, fb) == SR_OK;
+}
+
+static void free_target(sr_context *ctx, sr_framebuffer *fb)
+{
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
 /* ---- a program equal to SR_SHADING_UNLIT -------------------------------- */
 
 typedef struct unlit_uniforms {
@@ -207,8 +224,7 @@ SR_TEST(each_varying_qualifier_interpolates_as_it_says)
         /* The scene is chosen so that the two differ visibly. */
         CHECK(worst_smooth_vs_lin > 0.2);
     }
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
+    free_target(ctx, fb);
 }
 
 /* ---- discard, depth output, derivatives ----------------------------------- */
@@ -269,10 +285,8 @@ SR_TEST(discard_drops_fragments_before_any_write)
 {
     enum { W = 64, H = 64 };
     sr_context *ctx;
-    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
     sr_framebuffer *fb;
-    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &fb)
-            == SR_OK);
+    REQUIRE(make_target(W, H, SR_DEPTH_DEFAULT, &ctx, &fb));
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 1, 1 }, .depth = 1 });
     sr_program prog = { .vertex = plane_vs, .fragment = discard_fs, .varying_count = 2,
                         .may_discard = true };
@@ -291,8 +305,7 @@ SR_TEST(discard_drops_fragments_before_any_write)
         }
     }
     CHECK_EQ(sr_last_draw_info(ctx).fragments, W * H / 2);
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
+    free_target(ctx, fb);
 }
 
 SR_TEST(fragment_depth_output_is_tested_and_written)
@@ -328,18 +341,15 @@ SR_TEST(fragment_depth_output_is_tested_and_written)
             == SR_OK);
     CHECK_EQ(sr_last_draw_info(ctx).fragments, 0);
     CHECK_EQ(sr_framebuffer_pixels(fb)[1], 255);
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
+    free_target(ctx, fb);
 }
 
 SR_TEST(quads_give_screen_space_derivatives)
 {
     enum { W = 64, H = 64 };
     sr_context *ctx;
-    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
     sr_framebuffer *fb;
-    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &fb)
-            == SR_OK);
+    REQUIRE(make_target(W, H, SR_DEPTH_DEFAULT, &ctx, &fb));
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 }, .depth = 1 });
     /* A thin triangle: many of its quads have helper lanes. */
     float tri[9] = { -1, -1, 0, 1, -0.8f, 0, -1, 1, 0 };
@@ -356,18 +366,15 @@ SR_TEST(quads_give_screen_space_derivatives)
         }
     }
     CHECK(drawn > 500);
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
+    free_target(ctx, fb);
 }
 
 SR_TEST(lines_and_points_run_the_program)
 {
     enum { W = 64, H = 64 };
     sr_context *ctx;
-    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
     sr_framebuffer *fb;
-    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &fb)
-            == SR_OK);
+    REQUIRE(make_target(W, H, SR_DEPTH_DEFAULT, &ctx, &fb));
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 }, .depth = 1 });
     sr_program prog = { .vertex = plane_vs, .fragment = discard_fs, .varying_count = 2,
                         .may_discard = true };
@@ -386,17 +393,14 @@ SR_TEST(lines_and_points_run_the_program)
     }
     CHECK_EQ(px[(20 * W + 20) * 4], 255);
     CHECK_EQ(px[(20 * W + 22) * 4], 0);
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
+    free_target(ctx, fb);
 }
 
 SR_TEST(programs_are_validated)
 {
     sr_context *ctx;
-    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
     sr_framebuffer *fb;
-    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 8, .height = 8 }, &fb)
-            == SR_OK);
+    REQUIRE(make_target(8, 8, SR_DEPTH_DEFAULT, &ctx, &fb));
     sr_draw_desc d = { .positions = full_quad, .vertex_count = 6 };
     sr_program p = { .vertex = plane_vs };
     CHECK_EQ(sr_draw(ctx, fb, &(sr_state){ .program = &p }, &d), SR_INVALID_ARG);
@@ -410,8 +414,7 @@ SR_TEST(programs_are_validated)
     p.modes[1] = SR_VARYING_SMOOTH;
     CHECK_EQ(sr_draw(ctx, fb, &(sr_state){ .program = &p, .shading = SR_SHADING_PHONG }, &d),
              SR_OK);
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
+    free_target(ctx, fb);
 }
 
 SR_TEST(programs_give_the_same_bytes_on_any_thread_count)
