@@ -3,35 +3,10 @@
  * failed allocation was optional) and leaves no block behind. */
 #include "softrast.h"
 #include "sr_test.h"
+#include "failing_alloc.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-typedef struct failing {
-    long count;      /* allocations so far */
-    long fail_at;    /* this one fails; -1: none */
-    long live;       /* blocks not yet freed */
-} failing;
-
-static void *fail_alloc(size_t size, void *user)
-{
-    failing *f = user;
-    if (f->count++ == f->fail_at) {
-        return NULL;
-    }
-    void *p = malloc(size);
-    f->live += p != NULL;
-    return p;
-}
-
-static void fail_free(void *ptr, void *user)
-{
-    failing *f = user;
-    if (ptr) {
-        f->live--;
-        free(ptr);
-    }
-}
 
 typedef sr_result (*op_fn)(sr_context *ctx, sr_framebuffer *fb);
 
@@ -102,7 +77,7 @@ static sr_result op_gouraud(sr_context *ctx, sr_framebuffer *fb)
 static void check_op(const char *name, op_fn op)
 {
     for (long fail_at = 0;; fail_at++) {
-        failing f = { 0, -1, 0 };
+        failing f = { .fail_at = -1 };
         sr_context *ctx = NULL;
         sr_framebuffer *fb = NULL;
         sr_allocator a = { fail_alloc, fail_free, &f };

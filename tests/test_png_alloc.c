@@ -7,6 +7,7 @@
  * it was; the first run that fails nothing must write the right image.
  * The reader (sr_read_png_desc) is held to the same at the end. */
 #include "sr_test.h"
+#include "failing_alloc.h"
 #include "softrast_io.h"
 
 #include <dirent.h>
@@ -14,34 +15,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-typedef struct failing {
-    long count;      /* allocations so far */
-    long fail_at;    /* this one fails; -1: none */
-    long live;       /* blocks not yet freed */
-    long failed;     /* allocations refused */
-} failing;
-
-static void *fail_alloc(size_t size, void *user)
-{
-    failing *f = user;
-    if (f->count++ == f->fail_at) {
-        f->failed++;
-        return NULL;
-    }
-    void *p = malloc(size);
-    f->live += p != NULL;
-    return p;
-}
-
-static void fail_free(void *ptr, void *user)
-{
-    failing *f = user;
-    if (ptr) {
-        f->live--;
-        free(ptr);
-    }
-}
 
 /* A fresh, empty directory of the test's own under the output dir. */
 static const char *test_dir(const char *name)
