@@ -902,6 +902,8 @@ int render_job_load(render_job *job)
             }
         }
     }
+    /* The objects and their matrices are final: frame from cached bounds. */
+    scene_cache_bounds(s);
     if ((long)o->width * o->ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
         (long)o->height * o->ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
         cli_error("--aa: ssaa%d at %dx%d needs %ldx%ld samples, more than %d a side", o->ssaa,

@@ -108,6 +108,11 @@ void scene_free(scene *s)
  * transformed vertex. */
 void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radius)
 {
+    if (s->bounds_cached) {
+        *centre = s->cached_centre[framed_only ? 0 : 1];
+        *radius = s->cached_radius[framed_only ? 0 : 1];
+        return;
+    }
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (int pass = 0; pass < 2; pass++) {
         double c[3] = { (lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 };
@@ -144,4 +149,12 @@ void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radi
             *radius = r2 > 0.0 ? (float)sqrt(r2) : 1.0f;
         }
     }
+}
+
+void scene_cache_bounds(scene *s)
+{
+    s->bounds_cached = false;
+    scene_bounds(s, true, &s->cached_centre[0], &s->cached_radius[0]);
+    scene_bounds(s, false, &s->cached_centre[1], &s->cached_radius[1]);
+    s->bounds_cached = true;
 }

@@ -19,6 +19,11 @@ typedef struct scene_object {
 typedef struct scene {
     scene_object objects[SCENE_MAX_OBJECTS];
     int count;
+    /* scene_cache_bounds: the two spheres of scene_bounds, kept once the
+     * objects and their matrices are final ([0] framed only, [1] all). */
+    bool bounds_cached;
+    sr_vec3 cached_centre[2];
+    float cached_radius[2];
 } scene;
 
 /* The Utah teapot at `detail` standing on a checkered ground plane. */
@@ -28,5 +33,9 @@ void scene_free(scene *s);
 /* Bounding sphere of the objects with `frame` set (or of all objects),
  * after their model matrices. */
 void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radius);
+/* Compute both spheres once and answer scene_bounds from them: the viewer
+ * frames the camera every frame, and a pass over every vertex was a fifth
+ * of a bunny frame.  Call again after changing objects or matrices. */
+void scene_cache_bounds(scene *s);
 
 #endif
