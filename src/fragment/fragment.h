@@ -54,6 +54,23 @@ static inline double sr__tri_depth(const sr_tri *t, int64_t e1, int64_t e2)
     return t->z0 + (double)e1 * t->dz1 + (double)e2 * t->dz2;
 }
 
+/* Clamp to the depth range after offset (*z keeps the clamped value), then
+ * quantize once (RASTER_RULES 1.5): round half up for UNORM (z >= 0 here,
+ * so truncation is floor), the float's bits for D32F. */
+SR_INLINE uint32_t sr__quantize_depth(const sr_draw_state *ds, double *z)
+{
+    double v = *z >= ds->zq_min ? *z : ds->zq_min;
+    v = v <= ds->zq_max ? v : ds->zq_max;
+    *z = v;
+    if (ds->depth_bits) {
+        return (uint32_t)(v + 0.5);
+    }
+    float f = (float)v;
+    uint32_t q;
+    memcpy(&q, &f, sizeof q);
+    return q;
+}
+
 /* Shade from interpolated varyings v (the layout of the shading model,
  * pipeline.h), the primitive's flat color and facing, and the depth z in
  * buffer units.  Triangles, lines and points all end here. */
@@ -255,22 +272,12 @@ SR_INLINE void sr__fragment_as(const sr_draw_state *ds, const sr_tri *t, int px,
     sr_framebuffer *fb = ds->fb;
     size_t idx = (size_t)py * (size_t)fb->width + (size_t)px;
     double z = 0.0;
+    uint32_t q = 0;
     if (dmode != SR_DEPTH_MODE_OFF || shading == SR_SHADING_DEPTH) {
         z = sr__tri_depth(t, e1, e2);
-        /* Clamp to the depth range after offset, then quantize once:
-         * round half up for UNORM (z >= 0 here, so truncation is floor),
-         * the float's bits for D32F (RASTER_RULES 1.5). */
-        z = z >= ds->zq_min ? z : ds->zq_min;
-        z = z <= ds->zq_max ? z : ds->zq_max;
+        q = sr__quantize_depth(ds, &z);
     }
     if (dmode != SR_DEPTH_MODE_OFF) {
-        uint32_t q;
-        if (ds->depth_bits) {
-            q = (uint32_t)(z + 0.5);
-        } else {
-            float f = (float)z;
-            memcpy(&q, &f, sizeof q);
-        }
         uint32_t *dp = &fb->depth[idx];
         if (dmode == SR_DEPTH_MODE_LESS) {
             if (!(q < *dp)) {

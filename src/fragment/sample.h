@@ -15,22 +15,6 @@
 
 #include "fragment/fragment.h"
 
-/* Clamp to the depth range after offset, then quantize once (RASTER_RULES
- * 1.5): round half up for UNORM, the float's bits for D32F. */
-SR_INLINE uint32_t sr__quantize_depth(const sr_draw_state *ds, double *z)
-{
-    double v = *z >= ds->zq_min ? *z : ds->zq_min;
-    v = v <= ds->zq_max ? v : ds->zq_max;
-    *z = v;
-    if (ds->depth_bits) {
-        return (uint32_t)(v + 0.5);
-    }
-    float f = (float)v;
-    uint32_t q;
-    memcpy(&q, &f, sizeof q);
-    return q;
-}
-
 /* glStencilFunc: (ref & mask) FUNC (stored & mask). */
 SR_INLINE bool sr__stencil_pass(const sr_stencil_face *f, uint8_t stored)
 {
@@ -78,6 +62,35 @@ SR_INLINE bool sr__sample_test(const sr_draw_state *ds, size_t i, uint32_t q, bo
         fb->depth[i] = q;
     }
     return true;
+}
+
+/* The tests of a triangle's samples `mask` in the pixel whose first
+ * sample is element `base`: each at its own depth from the plane (u: the
+ * centre's unbiased edge values, so[s]: sample s's offsets from them), or
+ * all at the depth a fragment shader wrote (shader_z, buffer units).
+ * Returns the samples that survive. */
+SR_INLINE unsigned sr__test_tri_samples(const sr_draw_state *ds, const sr_tri *t, size_t base,
+                                        const int64_t u[3], const int64_t (*so)[3],
+                                        unsigned mask, const double *shader_z)
+{
+    uint32_t q_shader = 0;
+    if (shader_z) {
+        double z = *shader_z;
+        q_shader = sr__quantize_depth(ds, &z);
+    }
+    unsigned pass = 0;
+    for (unsigned m = mask; m; m &= m - 1) {
+        int s = __builtin_ctz(m);
+        uint32_t q = q_shader;
+        if (!shader_z && ds->depth_mode != SR_DEPTH_MODE_OFF) {
+            double z = sr__tri_depth(t, u[1] + so[s][1], u[2] + so[s][2]);
+            q = sr__quantize_depth(ds, &z);
+        }
+        if (sr__sample_test(ds, base + (size_t)s, q, t->front, true)) {
+            pass |= 1u << s;
+        }
+    }
+    return pass;
 }
 
 /* Alpha to coverage: the first round(alpha x n) samples, a fixed pattern

@@ -47,18 +47,7 @@ static void fragment_samples(const sr_draw_state *ds, const sr_tri *t, int px, i
         shaded = true;
         mask &= sr__alpha_coverage(c[3], ds->samples);
     }
-    unsigned pass = 0;
-    for (unsigned m = mask; m; m &= m - 1) {
-        int s = __builtin_ctz(m);
-        uint32_t q = 0;
-        if (ds->depth_mode != SR_DEPTH_MODE_OFF) {
-            double z = sr__tri_depth(t, u[1] + so[s][1], u[2] + so[s][2]);
-            q = sr__quantize_depth(ds, &z);
-        }
-        if (sr__sample_test(ds, base + (size_t)s, q, t->front, true)) {
-            pass |= 1u << s;
-        }
-    }
+    unsigned pass = sr__test_tri_samples(ds, t, base, u, so, mask, NULL);
     if (!pass) {
         return;
     }

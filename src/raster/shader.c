@@ -43,33 +43,6 @@ static void interpolate_lane(const quad_job *j, const int64_t u[3], int i, sr_fr
     q->z[i] = (float)(z / ds->depth_scale);
 }
 
-/* The tests of the samples `mask` of the pixel at element `base`, with
- * each sample's depth from the plane or, written by the shader, one depth
- * for all. */
-static unsigned test_samples(const quad_job *j, size_t base, const int64_t u[3], unsigned mask,
-                             const double *shader_z)
-{
-    const sr_draw_state *ds = j->ds;
-    unsigned pass = 0;
-    uint32_t q_shader = 0;
-    if (shader_z) {
-        double z = *shader_z;
-        q_shader = sr__quantize_depth(ds, &z);
-    }
-    for (unsigned m = mask; m; m &= m - 1) {
-        int s = __builtin_ctz(m);
-        uint32_t q = q_shader;
-        if (!shader_z && ds->depth_mode != SR_DEPTH_MODE_OFF) {
-            double z = sr__tri_depth(j->t, u[1] + j->so[s][1], u[2] + j->so[s][2]);
-            q = sr__quantize_depth(ds, &z);
-        }
-        if (sr__sample_test(ds, base + (size_t)s, q, j->t->front, true)) {
-            pass |= 1u << s;
-        }
-    }
-    return pass;
-}
-
 static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, const int rect[4])
 {
     const quad_job *j = arg;
@@ -104,7 +77,8 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     for (int i = 0; i < 4; i++) {
         base[i] = ((size_t)(qy + (i >> 1)) * width + (size_t)(qx + (i & 1))) * (size_t)n;
         if (cover[i] && j->early) {
-            cover[i] = test_samples(j, base[i], u[i], cover[i], NULL);
+            cover[i] = sr__test_tri_samples(ds, t, base[i], u[i], (const int64_t(*)[3])j->so,
+                                            cover[i], NULL);
         }
         live |= cover[i] ? 1u << i : 0u;
     }
@@ -135,8 +109,9 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
                 pass &= sr__alpha_coverage(c[3], n);
             }
             double zs = (double)q.z[i] * ds->depth_scale;
-            pass = pass ? test_samples(j, base[i], u[i], pass,
-                                       ds->program->writes_depth ? &zs : NULL) : 0;
+            pass = pass ? sr__test_tri_samples(ds, t, base[i], u[i], (const int64_t(*)[3])j->so,
+                                               pass, ds->program->writes_depth ? &zs : NULL)
+                        : 0;
         }
         if (pass) {
             sr__write_samples(ds, base[i], pass, c, &ds->blend);
