@@ -934,6 +934,88 @@ SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasteri
     }
 }
 
+/* The vector kernels (the AVX2 build with its eight-lane block rows and
+ * four-lane groups, the SSE2 build's four-lane groups) against the scalar
+ * loop they restate, chosen by SR_SIMD: large and small triangles under
+ * perspective, colors outside [0, 1] (the saturating packs), random depths
+ * against D16 and D24 with depth LESS and off, in every shading model the
+ * kernels cover.  The image is 203 x 141: rows and blocks end at the
+ * framebuffer's edge in the middle of a group. */
+SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
+{
+    enum { W = 203, H = 141, N = 48 };
+    static const char *const simd[] = { NULL, "base", "off" };
+    static const sr_shading shadings[] = { SR_SHADING_UNLIT, SR_SHADING_GOURAUD,
+                                           SR_SHADING_FLAT, SR_SHADING_PHONG };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    float pos[N * 9], nrm[N * 9], col[N * 12];
+    uint8_t *c0 = malloc(W * H * 4);
+    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H);
+    sr_rng rng = { 0x51ad };
+    sr_mat4 view = sr_mat4_translate(0, 0, -3);
+    sr_mat4 proj = sr_perspective(0.9f, (float)W / H, 1.0f, 10.0f, false);
+    int compared = 0;
+    for (int k = 0; k < 32 && !sr_test_failed_now(); k++) {
+        /* Every third triangle spans up to the whole view: full block rows. */
+        for (int i = 0; i < N; i++) {
+            double r = i % 3 == 0 ? 1.2 : 0.15;
+            double cx = sr_rng_range(&rng, -1, 1), cy = sr_rng_range(&rng, -1, 1);
+            for (int v = 0; v < 3; v++) {
+                float *p = &pos[(i * 3 + v) * 3];
+                p[0] = (float)(cx + sr_rng_range(&rng, -r, r));
+                p[1] = (float)(cy + sr_rng_range(&rng, -r, r));
+                p[2] = (float)sr_rng_range(&rng, -1.5, 1.5);
+                sr_vec3 n = sr_vec3_normalize(sr_vec3_make((float)sr_rng_range(&rng, -1, 1),
+                                                           (float)sr_rng_range(&rng, -1, 1), 1));
+                memcpy(&nrm[(i * 3 + v) * 3], &n, sizeof(float) * 3);
+                for (int c = 0; c < 4; c++) {
+                    col[(i * 3 + v) * 4 + c] = (float)sr_rng_range(&rng, -0.5, 1.5);
+                }
+            }
+        }
+        sr_state st = { .shading = shadings[k % 4], .cull = SR_CULL_NONE,
+                        .no_depth_test = k % 8 >= 4, .ambient = { 0.2f, 0.2f, 0.2f },
+                        .material = { .diffuse = { 1, 1, 1 }, .specular = { 0.5f, 0.5f, 0.5f },
+                                      .shininess = 8 } };
+        st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
+        sr_depth_format df = k % 16 < 8 ? SR_DEPTH_D24 : SR_DEPTH_D16;
+        for (int v = 0; v < 3; v++) {
+            if (simd[v]) {
+                setenv("SR_SIMD", simd[v], 1);
+            } else {
+                unsetenv("SR_SIMD");
+            }
+            sr_framebuffer *fb;
+            REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
+                .width = W, .height = H, .depth_format = df }, &fb) == SR_OK);
+            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 1 }, .depth = 1 });
+            CHECK_EQ(sr_draw(ctx, fb, &st, &(sr_draw_desc){
+                .positions = pos, .vertex_count = N * 3, .normals = nrm, .colors = col,
+                .color_size = 4, .view = &view, .projection = &proj }), SR_OK);
+            const uint32_t *d = raw_depth(fb);
+            if (v == 0) {
+                memcpy(c0, sr_framebuffer_pixels(fb), W * H * 4);
+                memcpy(d0, d, sizeof(uint32_t) * W * H);
+            } else {
+                if (memcmp(c0, sr_framebuffer_pixels(fb), W * H * 4) != 0 ||
+                    memcmp(d0, d, sizeof(uint32_t) * W * H) != 0) {
+                    sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, depth test %d): "
+                                 "SR_SIMD=%s differs from the default kernel", k,
+                                 (int)st.shading, !st.no_depth_test, simd[v]);
+                }
+                compared++;
+            }
+            sr_destroy_framebuffer(ctx, fb);
+        }
+    }
+    unsetenv("SR_SIMD");
+    CHECK_EQ(compared, 64);
+    free(c0);
+    free(d0);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(moving_the_viewport_by_whole_pixels_moves_the_image_exactly)
 {
     enum { W = 200, H = 160, VW = 96, VH = 80 };

@@ -246,6 +246,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
     st->fragments += (uint64_t)__builtin_popcount((unsigned)lanes);
 }
 
+#ifdef SR_SIMD_WIDE
+#include "raster/simd_wide.h"
+#endif
+
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
                                                     int rx0, int ry0, int rx1, int ry1,
                                                     sr_frag_stats *st, sr_shading shading,
@@ -324,6 +328,22 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 r[i] = (double)(e[i] - t->bias[i] + sy[i] * (py0 - by));
             }
             bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
+#ifdef SR_SIMD_WIDE
+            if (full_width && shading != SR_SHADING_PHONG) {
+                /* Whole rows of the block: eight lanes at once. */
+                for (int py = py0; py < py1; py++) {
+                    v4d e0[2] = { r[0] + lx[0], r[0] + lx[0] + g4[0] };
+                    v4d e1[2] = { r[1] + lx[1], r[1] + lx[1] + g4[1] };
+                    v4d e2[2] = { r[2] + lx[2], r[2] + lx[2] + g4[2] };
+                    SR_SIMD_FN(row8)(ds, t, bx, py, e0, e1, e2, inside, nbias, &lanes, st,
+                                     shading, dmode);
+                    for (int i = 0; i < 3; i++) {
+                        r[i] += (double)sy[i];
+                    }
+                }
+                continue;
+            }
+#endif
             for (int py = py0; py < py1; py++) {
                 v4d e0 = r[0] + lx[0], e1 = r[1] + lx[1], e2 = r[2] + lx[2];
                 for (int gx = bx; gx < px1; gx += 4) {

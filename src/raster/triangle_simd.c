@@ -26,9 +26,11 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 
 #define SR_SIMD_FN(name) name##_avx2
 #define SR_SIMD_TARGET __attribute__((target("avx2")))
+#define SR_SIMD_WIDE 1 /* the eight-lane rows of simd_wide.h */
 #include "raster/simd_kernel.h"
 #undef SR_SIMD_FN
 #undef SR_SIMD_TARGET
+#undef SR_SIMD_WIDE
 
 #define SR_SIMD_FN(name) name##_base
 #define SR_SIMD_TARGET
