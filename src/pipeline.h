@@ -342,10 +342,12 @@ bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, 
  * the stencil test), whatever the rasterizer choice. */
 void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t,
                        int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
-/* raster/triangle_simd.c: which vector builds run - AVX2 when the CPU has
- * it, the baseline build, or none; SR_SIMD=off|base in the environment
- * overrides. */
-typedef enum sr_simd_level { SR_SIMD_OFF = 0, SR_SIMD_BASE, SR_SIMD_AVX2 } sr_simd_level;
+/* raster/triangle_simd.c: which vector builds run - AVX-512 or AVX2 when
+ * the CPU has it, the baseline build, or none; SR_SIMD=off|base|avx2 in the
+ * environment caps it. */
+typedef enum sr_simd_level {
+    SR_SIMD_OFF = 0, SR_SIMD_BASE, SR_SIMD_AVX2, SR_SIMD_AVX512
+} sr_simd_level;
 sr_simd_level sr__simd_level(void);
 /* The vector kernel of the per-sample path for this state, or NULL. */
 typedef void (*sr_raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,

@@ -140,6 +140,7 @@ sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
         return NULL;
     }
     switch (sr__simd_level()) {
+    case SR_SIMD_AVX512: /* the 4-sample kernel has no wider form */
     case SR_SIMD_AVX2: return raster_ms4_avx2;
     case SR_SIMD_BASE: return raster_ms4_base;
     default:           return NULL;

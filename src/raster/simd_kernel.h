@@ -275,6 +275,15 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         g4[i] = (v4d){ g, g, g, g };
     }
     const v4i all = { -1, -1, -1, -1 };
+#ifdef SR_SIMD_WIDE16
+    /* Lane offsets 0..7 pixel steps and the coverage bounds, 8 lanes. */
+    __m512d lx8[3], nb8[3];
+    for (int i = 0; i < 3; i++) {
+        double s = (double)sx[i];
+        lx8[i] = _mm512_setr_pd(0.0, s, 2.0 * s, 3.0 * s, 4.0 * s, 5.0 * s, 6.0 * s, 7.0 * s);
+        nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
+    }
+#endif
     SR_SIMD_FN(tri_lanes) lanes;
     SR_SIMD_FN(make_lanes)(t, &lanes);
 
@@ -330,8 +339,25 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
 #ifdef SR_SIMD_WIDE
             if (full_width && shading != SR_SHADING_PHONG) {
-                /* Whole rows of the block: eight lanes at once. */
-                for (int py = py0; py < py1; py++) {
+                /* Whole rows of the block: eight lanes at once, or two
+                 * rows in sixteen. */
+                int py = py0;
+#ifdef SR_SIMD_WIDE16
+                for (; py + 1 < py1; py += 2) {
+                    __m512d e0[2], e1[2], e2[2];
+                    for (int h = 0; h < 2; h++) {
+                        e0[h] = _mm512_add_pd(_mm512_set1_pd(r[0] + h * (double)sy[0]), lx8[0]);
+                        e1[h] = _mm512_add_pd(_mm512_set1_pd(r[1] + h * (double)sy[1]), lx8[1]);
+                        e2[h] = _mm512_add_pd(_mm512_set1_pd(r[2] + h * (double)sy[2]), lx8[2]);
+                    }
+                    SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, inside, nb8, &lanes, st,
+                                       shading, dmode);
+                    for (int i = 0; i < 3; i++) {
+                        r[i] += 2.0 * (double)sy[i];
+                    }
+                }
+#endif
+                for (; py < py1; py++) {
                     v4d e0[2] = { r[0] + lx[0], r[0] + lx[0] + g4[0] };
                     v4d e1[2] = { r[1] + lx[1], r[1] + lx[1] + g4[1] };
                     v4d e2[2] = { r[2] + lx[2], r[2] + lx[2] + g4[2] };

@@ -121,3 +121,127 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(row8)(const sr_draw_state *ds, const sr
     }
     st->fragments += (uint64_t)__builtin_popcount((unsigned)bits);
 }
+
+#ifdef SR_SIMD_WIDE16
+/* Two rows of a block at once, sixteen lanes (the AVX-512 instance):
+ * lanes 0-7 are row py and lanes 8-15 row py + 1.  Doubles take one
+ * 8-lane register per row, floats one 16-lane register for both; a mask
+ * register carries coverage and the depth test to masked stores, so no
+ * lane outside the triangle or behind the depth buffer is written. */
+SR_SIMD_TARGET SR_INLINE __m512 SR_SIMD_FN(w16_f)(v4f v)
+{
+    return _mm512_broadcast_f32x4((__m128)v);
+}
+
+SR_SIMD_TARGET SR_INLINE __m512d SR_SIMD_FN(w16_d)(v4d v)
+{
+    return _mm512_broadcast_f64x4((__m256d)v);
+}
+
+/* Both rows' exact edge values to float, one rounding each. */
+SR_SIMD_TARGET SR_INLINE __m512 SR_SIMD_FN(w16_cvt)(__m512d row0, __m512d row1)
+{
+    return _mm512_insertf32x8(_mm512_castps256_ps512(_mm512_cvtpd_ps(row0)),
+                              _mm512_cvtpd_ps(row1), 1);
+}
+
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_pack)(const __m512 c[4])
+{
+    const __m512 one = _mm512_set1_ps(1.0f), k255 = _mm512_set1_ps(255.0f);
+    const __m512 half = _mm512_set1_ps(0.5f);
+    __m512i q[4];
+    for (int ch = 0; ch < 4; ch++) {
+        /* As wide_pack: min keeps NaN, truncation sends it below zero. */
+        __m512 v = _mm512_min_ps(one, c[ch]);
+        q[ch] = _mm512_max_epi32(_mm512_cvttps_epi32(_mm512_add_ps(_mm512_mul_ps(v, k255), half)),
+                                 _mm512_setzero_si512());
+    }
+    return _mm512_or_si512(_mm512_or_si512(q[0], _mm512_slli_epi32(q[1], 8)),
+                           _mm512_or_si512(_mm512_slli_epi32(q[2], 16),
+                                           _mm512_slli_epi32(q[3], 24)));
+}
+
+/* Pixels gx .. gx+7 of rows py and py + 1; e*[r] holds row py + r. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const sr_tri *t, int gx,
+                                                 int py, const __m512d e0[2], const __m512d e1[2],
+                                                 const __m512d e2[2], bool inside,
+                                                 const __m512d nb[3],
+                                                 const SR_SIMD_FN(tri_lanes) *k, sr_frag_stats *st,
+                                                 sr_shading shading, sr_depth_mode dmode)
+{
+    __mmask16 m = 0xffff;
+    if (!inside) {
+        /* Covered iff e >= -bias, as in quad(). */
+        __mmask8 r[2];
+        for (int h = 0; h < 2; h++) {
+            r[h] = _mm512_cmp_pd_mask(e0[h], nb[0], _CMP_GE_OQ) &
+                   _mm512_cmp_pd_mask(e1[h], nb[1], _CMP_GE_OQ) &
+                   _mm512_cmp_pd_mask(e2[h], nb[2], _CMP_GE_OQ);
+        }
+        m = (__mmask16)(r[0] | r[1] << 8);
+        if (!m) {
+            return;
+        }
+    }
+    sr_framebuffer *fb = ds->fb;
+    size_t idx[2];
+    idx[0] = (size_t)py * (size_t)fb->width + (size_t)gx;
+    idx[1] = idx[0] + (size_t)fb->width;
+
+    if (dmode == SR_DEPTH_MODE_LESS) {
+        __m256i q[2];
+        for (int h = 0; h < 2; h++) {
+            __m512d z = _mm512_add_pd(
+                _mm512_add_pd(SR_SIMD_FN(w16_d)(k->z0),
+                              _mm512_mul_pd(e1[h], SR_SIMD_FN(w16_d)(k->dz1))),
+                _mm512_mul_pd(e2[h], SR_SIMD_FN(w16_d)(k->dz2)));
+            if (!t->z_inside) {
+                __m512d zmin = _mm512_set1_pd(ds->zq_min), zmax = _mm512_set1_pd(ds->zq_max);
+                z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmin, _CMP_GE_OQ), zmin, z);
+                z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmax, _CMP_LE_OQ), zmax, z);
+            }
+            q[h] = _mm512_cvttpd_epi32(_mm512_add_pd(z, _mm512_set1_pd(0.5)));
+        }
+        __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
+        __m512i old = _mm512_inserti64x4(
+            _mm512_castsi256_si512(_mm256_loadu_si256((const __m256i *)&fb->depth[idx[0]])),
+            _mm256_loadu_si256((const __m256i *)&fb->depth[idx[1]]), 1);
+        m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
+        if (!m) {
+            return;
+        }
+        _mm256_mask_storeu_epi32(&fb->depth[idx[0]], (__mmask8)m, q[0]);
+        _mm256_mask_storeu_epi32(&fb->depth[idx[1]], (__mmask8)(m >> 8), q[1]);
+    }
+
+    __m512i rgba;
+    if (shading == SR_SHADING_FLAT) {
+        uint32_t c = 0;
+        for (int ch = 0; ch < 4; ch++) {
+            c |= (uint32_t)sr__unorm8(t->flat[ch]) << (8 * ch);
+        }
+        rgba = _mm512_set1_epi32((int)c);
+    } else {
+        /* sr__bary and sr__interp on sixteen lanes. */
+        __m512 q0 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e0[0], e0[1]), SR_SIMD_FN(w16_f)(k->w[0]));
+        __m512 q1 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e1[0], e1[1]), SR_SIMD_FN(w16_f)(k->w[1]));
+        __m512 q2 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), SR_SIMD_FN(w16_f)(k->w[2]));
+        __m512 s = _mm512_add_ps(_mm512_add_ps(q0, q1), q2);
+        /* s != 0 ? 1/s : 0, with NaN taking the division as in C. */
+        __mmask16 nz = _mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_NEQ_UQ);
+        __m512 inv = _mm512_maskz_div_ps(nz, _mm512_set1_ps(1.0f), s);
+        __m512 l1 = _mm512_mul_ps(q1, inv), l2 = _mm512_mul_ps(q2, inv);
+        __m512 c[4];
+        for (int ch = 0; ch < 4; ch++) {
+            c[ch] = _mm512_add_ps(_mm512_add_ps(SR_SIMD_FN(w16_f)(k->c0[ch]),
+                                                _mm512_mul_ps(l1, SR_SIMD_FN(w16_f)(k->c1[ch]))),
+                                  _mm512_mul_ps(l2, SR_SIMD_FN(w16_f)(k->c2[ch])));
+        }
+        rgba = SR_SIMD_FN(w16_pack)(c);
+    }
+    _mm256_mask_storeu_epi32(&fb->color[idx[0]], (__mmask8)m, _mm512_castsi512_si256(rgba));
+    _mm256_mask_storeu_epi32(&fb->color[idx[1]], (__mmask8)(m >> 8),
+                             _mm512_extracti64x4_epi64(rgba, 1));
+    st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
+}
+#endif

@@ -1,6 +1,8 @@
-/* triangle_simd.c - the four-wide half-space kernels (raster stage), the
- * same source (simd_kernel.h) compiled for AVX2 and for the baseline
- * instruction set; sr__raster_simd_select picks by what the CPU has. */
+/* triangle_simd.c - the vector half-space kernels (raster stage), the
+ * same source (simd_kernel.h) compiled for AVX-512 (sixteen-lane block
+ * rows), AVX2 (eight-lane rows) and the baseline instruction set (four-lane
+ * groups, as all three use for small triangles); sr__raster_simd_select
+ * picks by what the CPU has. */
 #include "raster/triangle_simd.h"
 
 #include "fragment/fragment.h"
@@ -24,6 +26,16 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #define SR_HAVE_SIMD_KERNEL 1
 #include <immintrin.h>
 
+#define SR_SIMD_FN(name) name##_avx512
+#define SR_SIMD_TARGET __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
+#define SR_SIMD_WIDE 1
+#define SR_SIMD_WIDE16 1 /* two block rows in sixteen lanes */
+#include "raster/simd_kernel.h"
+#undef SR_SIMD_FN
+#undef SR_SIMD_TARGET
+#undef SR_SIMD_WIDE
+#undef SR_SIMD_WIDE16
+
 #define SR_SIMD_FN(name) name##_avx2
 #define SR_SIMD_TARGET __attribute__((target("avx2")))
 #define SR_SIMD_WIDE 1 /* the eight-lane rows of simd_wide.h */
@@ -46,9 +58,17 @@ sr_simd_level sr__simd_level(void)
     if (env && strcmp(env, "off") == 0) {
         return SR_SIMD_OFF;
     }
+    if (env && strcmp(env, "base") == 0) {
+        return SR_SIMD_BASE;
+    }
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && !(env && strcmp(env, "base") == 0) ? SR_SIMD_AVX2
-                                                                                : SR_SIMD_BASE;
+    if (!__builtin_cpu_supports("avx2")) {
+        return SR_SIMD_BASE;
+    }
+    bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+                  __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
+                  __builtin_cpu_supports("popcnt");
+    return avx512 && !(env && strcmp(env, "avx2") == 0) ? SR_SIMD_AVX512 : SR_SIMD_AVX2;
 #else
     return SR_SIMD_OFF;
 #endif
@@ -58,6 +78,7 @@ sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
 {
 #ifdef SR_HAVE_SIMD_KERNEL
     switch (sr__simd_level()) {
+    case SR_SIMD_AVX512: return select_avx512(ds);
     case SR_SIMD_AVX2: return select_avx2(ds);
     case SR_SIMD_BASE: return select_base(ds);
     default:           return NULL;
@@ -71,6 +92,7 @@ sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
 const char *sr__raster_simd_name(void)
 {
     switch (sr__simd_level()) {
+    case SR_SIMD_AVX512: return "avx512";
     case SR_SIMD_AVX2: return "avx2";
     case SR_SIMD_BASE: return "sse2";
     default:           return "scalar";
