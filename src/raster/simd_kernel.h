@@ -287,6 +287,40 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     SR_SIMD_FN(tri_lanes) lanes;
     SR_SIMD_FN(make_lanes)(t, &lanes);
 
+#ifdef SR_SIMD_WIDE16
+    if (shading != SR_SHADING_PHONG && rx1 - rx0 <= 2 * SR_BLOCK_SIZE &&
+        ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
+        /* Small triangles: the bounding box by pairs of rows, in spans of
+         * eight from its left edge; masked lanes leave the rest alone. */
+        int64_t xc = sr__centre_q8(rx0), yc = sr__centre_q8(ry0);
+        double r[3];
+        for (int i = 0; i < 3; i++) {
+            r[i] = (double)(t->a[i] * xc + t->b[i] * yc + t->c[i]);
+        }
+        for (int py = ry0; py < ry1; py += 2) {
+            __mmask16 rows = py + 1 < ry1 ? 0xffff : 0x00ff;
+            double rs[3] = { r[0], r[1], r[2] };
+            for (int gx = rx0; gx < rx1; gx += 8) {
+                unsigned span = rx1 - gx >= 8 ? 0xffu : (1u << (rx1 - gx)) - 1;
+                __m512d e0[2], e1[2], e2[2];
+                for (int h = 0; h < 2; h++) {
+                    e0[h] = _mm512_add_pd(_mm512_set1_pd(rs[0] + h * (double)sy[0]), lx8[0]);
+                    e1[h] = _mm512_add_pd(_mm512_set1_pd(rs[1] + h * (double)sy[1]), lx8[1]);
+                    e2[h] = _mm512_add_pd(_mm512_set1_pd(rs[2] + h * (double)sy[2]), lx8[2]);
+                }
+                SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, rows & (span | span << 8), false,
+                                   nb8, &lanes, st, shading, dmode);
+                for (int i = 0; i < 3; i++) {
+                    rs[i] += 8.0 * (double)sx[i];
+                }
+            }
+            for (int i = 0; i < 3; i++) {
+                r[i] += 2.0 * (double)sy[i];
+            }
+        }
+        return;
+    }
+#endif
     /* Small triangles (most of a detailed mesh): walk the bounding box in
      * rows of four-pixel groups, stepping the exact double edge values,
      * with no block classification.  Groups start on multiples of four so
@@ -350,8 +384,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         e1[h] = _mm512_add_pd(_mm512_set1_pd(r[1] + h * (double)sy[1]), lx8[1]);
                         e2[h] = _mm512_add_pd(_mm512_set1_pd(r[2] + h * (double)sy[2]), lx8[2]);
                     }
-                    SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, inside, nb8, &lanes, st,
-                                       shading, dmode);
+                    SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, 0xffff, inside, nb8, &lanes,
+                                       st, shading, dmode);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                     }

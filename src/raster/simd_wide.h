@@ -161,15 +161,19 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_pack)(const __m512 c[4])
                                            _mm512_slli_epi32(q[3], 24)));
 }
 
-/* Pixels gx .. gx+7 of rows py and py + 1; e*[r] holds row py + r. */
+/* Pixels gx .. gx+7 of rows py and py + 1; e*[r] holds row py + r.
+ * `valid` masks the lanes inside the span being drawn: no other lane's
+ * memory is read or written, so a span may start anywhere and run past
+ * its tile or the framebuffer (a lane-masked load or store touches only
+ * its enabled lanes).  Without a row py + 1, its lanes are off. */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const sr_tri *t, int gx,
                                                  int py, const __m512d e0[2], const __m512d e1[2],
-                                                 const __m512d e2[2], bool inside,
-                                                 const __m512d nb[3],
+                                                 const __m512d e2[2], __mmask16 valid,
+                                                 bool inside, const __m512d nb[3],
                                                  const SR_SIMD_FN(tri_lanes) *k, sr_frag_stats *st,
                                                  sr_shading shading, sr_depth_mode dmode)
 {
-    __mmask16 m = 0xffff;
+    __mmask16 m = valid;
     if (!inside) {
         /* Covered iff e >= -bias, as in quad(). */
         __mmask8 r[2];
@@ -178,7 +182,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
                    _mm512_cmp_pd_mask(e1[h], nb[1], _CMP_GE_OQ) &
                    _mm512_cmp_pd_mask(e2[h], nb[2], _CMP_GE_OQ);
         }
-        m = (__mmask16)(r[0] | r[1] << 8);
+        m &= (__mmask16)(r[0] | r[1] << 8);
         if (!m) {
             return;
         }
@@ -186,7 +190,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
     sr_framebuffer *fb = ds->fb;
     size_t idx[2];
     idx[0] = (size_t)py * (size_t)fb->width + (size_t)gx;
-    idx[1] = idx[0] + (size_t)fb->width;
+    idx[1] = m >> 8 ? idx[0] + (size_t)fb->width : idx[0];
 
     if (dmode == SR_DEPTH_MODE_LESS) {
         __m256i q[2];
@@ -204,8 +208,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         }
         __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
         __m512i old = _mm512_inserti64x4(
-            _mm512_castsi256_si512(_mm256_loadu_si256((const __m256i *)&fb->depth[idx[0]])),
-            _mm256_loadu_si256((const __m256i *)&fb->depth[idx[1]]), 1);
+            _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &fb->depth[idx[0]])),
+            _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &fb->depth[idx[1]]), 1);
         m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
         if (!m) {
             return;
