@@ -461,9 +461,11 @@ SR_TEST(multisampled_blending_is_deterministic_across_threads)
     free(col);
 }
 
-/* The four-sample vector kernel (AVX2, and the baseline build with
- * SR_SIMD=base) against the generic per-sample path, which the stencil
- * test (always passing) selects: every sample's color and depth equal. */
+/* The four-sample vector kernels (four pixels at a time with AVX-512, one
+ * pixel with SR_SIMD=avx2 and with the baseline build, SR_SIMD=base)
+ * against the generic per-sample path, which the stencil test (always
+ * passing) selects: every sample's color and depth equal, with colors
+ * outside [0, 1] and flat shading too. */
 SR_TEST(four_sample_kernel_equals_the_generic_path)
 {
     enum { W = 160, H = 120, T = 1500 };
@@ -474,14 +476,14 @@ SR_TEST(four_sample_kernel_equals_the_generic_path)
         pos[i * 3 + 1] = (float)sr_rng_range(&rng, -1.2, 1.2);
         pos[i * 3 + 2] = (float)sr_rng_range(&rng, -1.1, 1.1);  /* some beyond near/far */
         for (int k = 0; k < 4; k++) {
-            col[i * 4 + k] = (float)sr_rng_unit(&rng);
+            col[i * 4 + k] = (float)sr_rng_range(&rng, -0.3, 1.3);
         }
     }
     sr_draw_desc d = { .positions = pos, .vertex_count = 3 * T, .colors = col };
-    static const char *const simd[] = { "", "base" };
+    static const char *const simd[] = { "", "avx2", "base" };
     static const sr_depth_format formats[] = { SR_DEPTH_D16, SR_DEPTH_D24 };
-    for (int v = 0; v < 2; v++) {
-        setenv("SR_SIMD", simd[v], 1);
+    for (int v = 0; v < 6; v++) {
+        setenv("SR_SIMD", simd[v % 3], 1);
         for (int f = 0; f < 2; f++) {
             sr_context *ctx;
             REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
@@ -491,7 +493,7 @@ SR_TEST(four_sample_kernel_equals_the_generic_path)
             sr_clear_desc cl = { .color = { 0.2f, 0.1f, 0, 1 }, .depth = 1 };
             sr_clear(ctx, a, &cl);
             sr_clear(ctx, b, &cl);
-            sr_state st = { .shading = SR_SHADING_UNLIT };
+            sr_state st = { .shading = v < 3 ? SR_SHADING_UNLIT : SR_SHADING_FLAT };
             REQUIRE(sr_draw(ctx, a, &st, &d) == SR_OK);
             uint64_t frags = sr_last_draw_info(ctx).fragments;
             st.stencil.enabled = true;

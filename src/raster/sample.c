@@ -116,6 +116,7 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
 typedef double v4d __attribute__((vector_size(32)));
 typedef int64_t v4l __attribute__((vector_size(32)));
 typedef int32_t v4i __attribute__((vector_size(16)));
+#include <immintrin.h>
 
 #define SR_SIMD_FN(name) name##_avx2
 #define SR_SIMD_TARGET __attribute__((target("avx2")))
@@ -128,6 +129,8 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #include "raster/sample_kernel.h"
 #undef SR_SIMD_FN
 #undef SR_SIMD_TARGET
+
+#include "raster/sample_wide.h"
 #endif
 
 sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
@@ -139,8 +142,14 @@ sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
     if (!common) {
         return NULL;
     }
+    /* Four pixels at a time where the shading is the interpolated color
+     * or flat (as in the half-space kernels' select). */
+    bool color = !ds->texture && (ds->shading == SR_SHADING_UNLIT ||
+                                  ds->shading == SR_SHADING_GOURAUD ||
+                                  ds->shading == SR_SHADING_ATTRIBUTE ||
+                                  ds->shading == SR_SHADING_FLAT);
     switch (sr__simd_level()) {
-    case SR_SIMD_AVX512: /* the 4-sample kernel has no wider form */
+    case SR_SIMD_AVX512: return color ? raster_ms16 : raster_ms4_avx2;
     case SR_SIMD_AVX2: return raster_ms4_avx2;
     case SR_SIMD_BASE: return raster_ms4_base;
     default:           return NULL;
