@@ -216,23 +216,30 @@ SR_TEST(shared_edges_cover_each_sample_once)
 
 SR_TEST(resolve_is_the_rounded_box_average)
 {
+    enum { W = 37, H = 3 };
     sr_context *ctx;
     REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
     static const int counts[] = { 2, 4, 8, 16 };
     for (int c = 0; c < 4; c++) {
         int n = counts[c];
-        sr_framebuffer *fb = make_ms(ctx, 3, 2, n, SR_DEPTH_NONE), *out = NULL;
+        sr_framebuffer *fb = make_ms(ctx, W, H, n, SR_DEPTH_NONE), *out = NULL;
         REQUIRE(fb);
-        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 3, .height = 2 },
+        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H },
                                     &out) == SR_OK);
         sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);  /* the pending clear, into the samples */
         sr_rng rng = { 3 + (uint64_t)n };
-        for (int i = 0; i < 6 * n; i++) {
+        for (int i = 0; i < W * H * n; i++) {
             fb->color[i] = (uint32_t)sr_rng_next(&rng);
+        }
+        /* Pixels whose samples agree, and all-255 extremes. */
+        for (int p = 0; p < W * H; p += 3) {
+            for (int s = 1; s < n; s++) {
+                fb->color[p * n + s] = p % 2 ? 0xffffffffu : fb->color[p * n];
+            }
         }
         REQUIRE(sr_resolve(ctx, fb, out) == SR_OK);
         const uint8_t *a = sr_framebuffer_pixels(out), *b = sr_framebuffer_pixels(fb);
-        for (int p = 0; p < 6; p++) {
+        for (int p = 0; p < W * H; p++) {
             for (int ch = 0; ch < 4; ch++) {
                 unsigned sum = 0;
                 for (int s = 0; s < n; s++) {
