@@ -278,9 +278,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 #ifdef SR_SIMD_WIDE16
     /* Lane offsets 0..7 pixel steps and the coverage bounds, 8 lanes. */
     __m512d lx8[3], nb8[3];
+    const __m512d steps = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
     for (int i = 0; i < 3; i++) {
-        double s = (double)sx[i];
-        lx8[i] = _mm512_setr_pd(0.0, s, 2.0 * s, 3.0 * s, 4.0 * s, 5.0 * s, 6.0 * s, 7.0 * s);
+        lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps); /* exact: small integers */
         nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
     }
 #endif
