@@ -27,4 +27,21 @@ static inline bool sr__block_classify(const sr_tri *t, int bx, int by, const int
     return true;
 }
 
+/* Whether every pixel centre of [x0, x1) x [y0, y1) is covered: a big
+ * triangle over most of its tiles, whose blocks then need no
+ * classification. */
+static inline bool sr__rect_inside(const sr_tri *t, int x0, int y0, int x1, int y1,
+                                   const int64_t sx[3], const int64_t sy[3])
+{
+    for (int i = 0; i < 3; i++) {
+        int64_t e = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i] +
+                    t->bias[i];
+        int64_t ex = sx[i] * (x1 - 1 - x0), ey = sy[i] * (y1 - 1 - y0);
+        if (e + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) < 0) {
+            return false;
+        }
+    }
+    return true;
+}
+
 #endif

@@ -354,12 +354,18 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 
     int bx_start = rx0 & ~(SR_BLOCK_SIZE - 1);
     int by_start = ry0 & ~(SR_BLOCK_SIZE - 1);
+    bool all_inside = sr__rect_inside(t, rx0, ry0, rx1, ry1, sx, sy);
 
     for (int by = by_start; by < ry1; by += SR_BLOCK_SIZE) {
         for (int bx = bx_start; bx < rx1; bx += SR_BLOCK_SIZE) {
             int64_t e[3];
-            bool inside;
-            if (!sr__block_classify(t, bx, by, sx, sy, e, &inside)) {
+            bool inside = true;
+            if (all_inside) {
+                for (int i = 0; i < 3; i++) {
+                    e[i] = t->a[i] * sr__centre_q8(bx) + t->b[i] * sr__centre_q8(by) + t->c[i] +
+                           t->bias[i];
+                }
+            } else if (!sr__block_classify(t, bx, by, sx, sy, e, &inside)) {
                 continue;
             }
             int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;
