@@ -958,9 +958,10 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
     sr_mat4 proj = sr_perspective(0.9f, (float)W / H, 1.0f, 10.0f, false);
     int compared = 0;
     for (int k = 0; k < 32 && !sr_test_failed_now(); k++) {
-        /* Every third triangle spans up to the whole view: full block rows. */
+        /* Every third triangle spans up to the whole view (full block
+         * rows), every third is a few pixels across (the tiny stamps). */
         for (int i = 0; i < N; i++) {
-            double r = i % 3 == 0 ? 1.2 : 0.15;
+            double r = i % 3 == 0 ? 1.2 : i % 3 == 1 ? 0.15 : 0.03;
             double cx = sr_rng_range(&rng, -1, 1), cy = sr_rng_range(&rng, -1, 1);
             for (int v = 0; v < 3; v++) {
                 float *p = &pos[(i * 3 + v) * 3];

@@ -288,6 +288,37 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     SR_SIMD_FN(make_lanes)(t, &lanes);
 
 #ifdef SR_SIMD_WIDE16
+    if (shading != SR_SHADING_PHONG && rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
+        /* Tiny triangles: the bounding box in 4 x 4 stamps, lane (x, y)
+         * at offset x a + y b from the stamp's corner. */
+        __m512d off[2][3];
+        for (int i = 0; i < 3; i++) {
+            double d[16];
+            for (int j = 0; j < 16; j++) {
+                d[j] = (double)(sx[i] * (j % 4) + sy[i] * (j / 4));
+            }
+            off[0][i] = _mm512_loadu_pd(d);
+            off[1][i] = _mm512_loadu_pd(d + 8);
+        }
+        unsigned cols = (1u << (rx1 - rx0)) - 1;
+        int64_t xc = sr__centre_q8(rx0);
+        for (int py = ry0; py < ry1; py += 4) {
+            int64_t yc = sr__centre_q8(py);
+            unsigned valid = 0;
+            for (int r = 0; r < 4 && py + r < ry1; r++) {
+                valid |= cols << (4 * r);
+            }
+            __m512d e[3][2];
+            for (int i = 0; i < 3; i++) {
+                __m512d c = _mm512_set1_pd((double)(t->a[i] * xc + t->b[i] * yc + t->c[i]));
+                e[i][0] = _mm512_add_pd(c, off[0][i]);
+                e[i][1] = _mm512_add_pd(c, off[1][i]);
+            }
+            SR_SIMD_FN(rows16)(ds, t, rx0, py, e[0], e[1], e[2], (__mmask16)valid, false, nb8,
+                               &lanes, st, shading, dmode, SR_STAMP_4X4);
+        }
+        return;
+    }
     if (shading != SR_SHADING_PHONG && rx1 - rx0 <= 2 * SR_BLOCK_SIZE &&
         ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
         /* Small triangles: the bounding box by pairs of rows, in spans of
@@ -309,7 +340,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                     e2[h] = _mm512_add_pd(_mm512_set1_pd(rs[2] + h * (double)sy[2]), lx8[2]);
                 }
                 SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, rows & (span | span << 8), false,
-                                   nb8, &lanes, st, shading, dmode);
+                                   nb8, &lanes, st, shading, dmode, SR_STAMP_8X2);
                 for (int i = 0; i < 3; i++) {
                     rs[i] += 8.0 * (double)sx[i];
                 }
@@ -391,7 +422,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         e2[h] = _mm512_add_pd(_mm512_set1_pd(r[2] + h * (double)sy[2]), lx8[2]);
                     }
                     SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, 0xffff, inside, nb8, &lanes,
-                                       st, shading, dmode);
+                                       st, shading, dmode, SR_STAMP_8X2);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                     }

@@ -123,11 +123,11 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(row8)(const sr_draw_state *ds, const sr
 }
 
 #ifdef SR_SIMD_WIDE16
-/* Two rows of a block at once, sixteen lanes (the AVX-512 instance):
- * lanes 0-7 are row py and lanes 8-15 row py + 1.  Doubles take one
- * 8-lane register per row, floats one 16-lane register for both; a mask
- * register carries coverage and the depth test to masked stores, so no
- * lane outside the triangle or behind the depth buffer is written. */
+/* Sixteen pixels at once (the AVX-512 instance): two rows of a block, or
+ * a 4 x 4 stamp of a tiny triangle.  Doubles take two 8-lane registers,
+ * floats one 16-lane register; a mask register carries coverage and the
+ * depth test to masked stores, so no lane outside the triangle or behind
+ * the depth buffer is written. */
 SR_SIMD_TARGET SR_INLINE __m512 SR_SIMD_FN(w16_f)(v4f v)
 {
     return _mm512_broadcast_f32x4((__m128)v);
@@ -161,7 +161,53 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_pack)(const __m512 c[4])
                                            _mm512_slli_epi32(q[3], 24)));
 }
 
-/* Pixels gx .. gx+7 of rows py and py + 1; e*[r] holds row py + r.
+/* A stamp of sixteen pixels: 8 x 2 (lanes 0-7 row py, 8-15 row py + 1)
+ * or 4 x 4 for tiny triangles (lanes 4r .. 4r + 3 row py + r). */
+typedef enum sr_stamp { SR_STAMP_8X2, SR_STAMP_4X4 } sr_stamp;
+
+/* The stamp's words of a buffer (width `pitch`) at `base` = pixel
+ * (gx, py); rows without an enabled lane are not addressed. */
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, size_t base,
+                                                        size_t pitch, __mmask16 m, sr_stamp shape)
+{
+    if (shape == SR_STAMP_8X2) {
+        size_t b1 = m >> 8 ? base + pitch : base;
+        return _mm512_inserti64x4(
+            _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &buf[base])),
+            _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[b1]), 1);
+    }
+    __m512i v = _mm512_setzero_si512();
+    for (int r = 0; r < 4; r++) {
+        __mmask8 mr = (__mmask8)((m >> (4 * r)) & 0xf);
+        if (mr) {
+            v = _mm512_inserti32x4(v, _mm_maskz_loadu_epi32(mr, &buf[base + r * pitch]), r);
+        }
+    }
+    return v;
+}
+
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base, size_t pitch,
+                                                      __mmask16 m, __m512i v, sr_stamp shape)
+{
+    if (shape == SR_STAMP_8X2) {
+        _mm256_mask_storeu_epi32(&buf[base], (__mmask8)m, _mm512_castsi512_si256(v));
+        if (m >> 8) {
+            _mm256_mask_storeu_epi32(&buf[base + pitch], (__mmask8)(m >> 8),
+                                     _mm512_extracti64x4_epi64(v, 1));
+        }
+        return;
+    }
+    __m128i row[4] = { _mm512_castsi512_si128(v), _mm512_extracti32x4_epi32(v, 1),
+                       _mm512_extracti32x4_epi32(v, 2), _mm512_extracti32x4_epi32(v, 3) };
+    for (int r = 0; r < 4; r++) {
+        __mmask8 mr = (__mmask8)((m >> (4 * r)) & 0xf);
+        if (mr) {
+            _mm_mask_storeu_epi32(&buf[base + r * pitch], mr, row[r]);
+        }
+    }
+}
+
+/* The sixteen pixels of a stamp at (gx, py); e*[h] holds lanes 8h .. 8h + 7.
  * `valid` masks the lanes inside the span being drawn: no other lane's
  * memory is read or written, so a span may start anywhere and run past
  * its tile or the framebuffer (a lane-masked load or store touches only
@@ -171,7 +217,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
                                                  const __m512d e2[2], __mmask16 valid,
                                                  bool inside, const __m512d nb[3],
                                                  const SR_SIMD_FN(tri_lanes) *k, sr_frag_stats *st,
-                                                 sr_shading shading, sr_depth_mode dmode)
+                                                 sr_shading shading, sr_depth_mode dmode,
+                                                 sr_stamp shape)
 {
     __mmask16 m = valid;
     if (!inside) {
@@ -188,9 +235,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         }
     }
     sr_framebuffer *fb = ds->fb;
-    size_t idx[2];
-    idx[0] = (size_t)py * (size_t)fb->width + (size_t)gx;
-    idx[1] = m >> 8 ? idx[0] + (size_t)fb->width : idx[0];
+    size_t pitch = (size_t)fb->width, idx = (size_t)py * pitch + (size_t)gx;
 
     if (dmode == SR_DEPTH_MODE_LESS) {
         __m256i q[2];
@@ -207,15 +252,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
             q[h] = _mm512_cvttpd_epi32(_mm512_add_pd(z, _mm512_set1_pd(0.5)));
         }
         __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
-        __m512i old = _mm512_inserti64x4(
-            _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &fb->depth[idx[0]])),
-            _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &fb->depth[idx[1]]), 1);
+        __m512i old = SR_SIMD_FN(stamp_load)(fb->depth, idx, pitch, m, shape);
         m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
         if (!m) {
             return;
         }
-        _mm256_mask_storeu_epi32(&fb->depth[idx[0]], (__mmask8)m, q[0]);
-        _mm256_mask_storeu_epi32(&fb->depth[idx[1]], (__mmask8)(m >> 8), q[1]);
+        SR_SIMD_FN(stamp_store)(fb->depth, idx, pitch, m, qz, shape);
     }
 
     __m512i rgba;
@@ -243,9 +285,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         }
         rgba = SR_SIMD_FN(w16_pack)(c);
     }
-    _mm256_mask_storeu_epi32(&fb->color[idx[0]], (__mmask8)m, _mm512_castsi512_si256(rgba));
-    _mm256_mask_storeu_epi32(&fb->color[idx[1]], (__mmask8)(m >> 8),
-                             _mm512_extracti64x4_epi64(rgba, 1));
+    SR_SIMD_FN(stamp_store)(fb->color, idx, pitch, m, rgba, shape);
     st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
 }
 #endif
