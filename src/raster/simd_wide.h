@@ -176,14 +176,17 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, siz
             _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &buf[base])),
             _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[b1]), 1);
     }
-    __m512i v = _mm512_setzero_si512();
+    /* Row r's lanes; a row without lanes loads nothing (and its address
+     * is not formed).  The insert positions must be literal constants. */
+    __m128i row[4];
     for (int r = 0; r < 4; r++) {
         __mmask8 mr = (__mmask8)((m >> (4 * r)) & 0xf);
-        if (mr) {
-            v = _mm512_inserti32x4(v, _mm_maskz_loadu_epi32(mr, &buf[base + r * pitch]), r);
-        }
+        row[r] = mr ? _mm_maskz_loadu_epi32(mr, &buf[base + r * pitch]) : _mm_setzero_si128();
     }
-    return v;
+    __m512i v = _mm512_castsi128_si512(row[0]);
+    v = _mm512_inserti32x4(v, row[1], 1);
+    v = _mm512_inserti32x4(v, row[2], 2);
+    return _mm512_inserti32x4(v, row[3], 3);
 }
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base, size_t pitch,
