@@ -7,6 +7,7 @@
 #include "scratch.h"
 #include "fragment/depth.h"
 #include "raster/triangle_simd.h"
+#include "raster/setup_tri.h"
 
 #include <math.h>
 #include <string.h>
@@ -495,38 +496,63 @@ static bool facing_front(const sr_draw_state *ds, int64_t area2)
 }
 
 /* The front end of one chunk: what a worker needs to assemble, clip and
- * set up its primitives. */
+ * set up its primitives.  With `fused`, each chunk also runs the vertex
+ * stage for its own primitives, a block at a time (see run_front_end). */
 typedef struct front_end {
     sr_context *ctx;
     const sr_draw_state *ds;
     const sr_draw_desc *d;
     size_t tri_size;
     int chunks;
+    bool fused;
+    size_t verts_per_prim;            /* fused: primitive p uses vertices k p .. k p + k - 1 */
+    const sr_mat4 *mvp, *mv, *nm;
 } front_end;
 
-static void emit(const front_end *fe, sr_chunk *c, const sr_window_vertex *w0,
-                 const sr_window_vertex *w1, const sr_window_vertex *w2, bool front,
-                 const float flat[4])
-{
-    if (!sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
-        c->out_of_memory = true;
-        return;
-    }
-    sr_tri *t = (sr_tri *)(c->tris + (size_t)c->tri_count * fe->tri_size);
-    if (sr__setup_triangle(fe->ds, w0, w1, w2, front, fe->ds->ninterp, flat, t)) {
-        c->tri_count++;
-        c->info.triangles_drawn++;
-    }
-}
+/* Where primitive assembly finds the vertex stage's output: post[i - base]
+ * and vary + (i - base) nvary for vertex i - the whole draw's arrays
+ * (base 0), or a block of them on the stack. */
+typedef struct vertex_src {
+    const sr_vertex_post *post;
+    const float *vary;
+    size_t base;
+} vertex_src;
 
-/* The next free record of chunk c, or NULL when out of memory. */
-static void *next_record(const front_end *fe, sr_chunk *c)
+/* The next free record of chunk c, or NULL when out of memory.  The store
+ * was sized for the chunk up front, so it nearly always has room. */
+static inline void *next_record(const front_end *fe, sr_chunk *c)
 {
-    if (!sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
+    size_t at = (size_t)c->tri_count * fe->tri_size;
+    if (at + fe->tri_size > c->tri_bytes &&
+        !sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
         c->out_of_memory = true;
         return NULL;
     }
-    return c->tris + (size_t)c->tri_count * fe->tri_size;
+    return c->tris + at;
+}
+
+/* A filled triangle; area2 = sr__area2(w0, w1, w2). */
+static inline __attribute__((always_inline)) void emit(const front_end *fe, sr_chunk *c, const sr_window_vertex *w0,
+                 const sr_window_vertex *w1, const sr_window_vertex *w2, int64_t area2,
+                 bool front, const float flat[4])
+{
+    if (area2 == 0) {
+        return; /* setup would find nothing to draw */
+    }
+    sr_tri *t = next_record(fe, c);
+    if (!t) {
+        return;
+    }
+    /* Set up in place; four varyings (unlit, Gouraud, attribute) is the
+     * common case, unrolled. */
+    const sr_draw_state *ds = fe->ds;
+    bool drawn = ds->ninterp == 4
+                     ? sr__setup_tri(ds, w0, w1, w2, area2, NAN, front, 4, flat, t)
+                     : sr__setup_tri(ds, w0, w1, w2, area2, NAN, front, ds->ninterp, flat, t);
+    if (drawn) {
+        c->tri_count++;
+        c->info.triangles_drawn++;
+    }
 }
 
 /* A multisampled line is the rectangle of its width centred on the
@@ -623,62 +649,24 @@ static const float *flat_varyings(const sr_draw_state *ds, const float *a, const
     return buf;
 }
 
-static void triangle(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, uint32_t i2,
-                     uint32_t pv)
+/* A triangle with a vertex outside some clip plane (but not all three
+ * outside one): clip, then fan the polygon back into triangles.  Facing
+ * comes from the whole polygon's snapped area so the fan is culled as
+ * one.  Out of line, so the common case above keeps a small frame. */
+static __attribute__((noinline)) void clipped_triangle(const front_end *fe, sr_chunk *c,
+                                                       const sr_vertex_post *p0,
+                                                       const sr_vertex_post *p1,
+                                                       const sr_vertex_post *p2, const float *a0,
+                                                       const float *a1, const float *a2,
+                                                       const float *pva)
 {
     const sr_draw_state *ds = fe->ds;
-    const sr_scratch *s = fe->ctx->scratch;
-    const sr_vertex_post *p0 = &s->post[i0], *p1 = &s->post[i1], *p2 = &s->post[i2];
-    size_t nv = (size_t)ds->nvary;
-    const float *a0 = s->vary + i0 * nv, *a1 = s->vary + i1 * nv, *a2 = s->vary + i2 * nv;
-    float fb0[SR_MAX_VARYINGS], fb1[SR_MAX_VARYINGS], fb2[SR_MAX_VARYINGS];
-    const float *pva = s->vary + pv * nv;
-    a0 = flat_varyings(ds, a0, pva, fb0);
-    a1 = flat_varyings(ds, a1, pva, fb1);
-    a2 = flat_varyings(ds, a2, pva, fb2);
-    c->info.triangles_in++;
-
     unsigned c0 = p0->outcode, c1 = p1->outcode, c2 = p2->outcode;
-    if ((c0 | c1 | c2) & SR_OUTCODE_NONFINITE) {
-        c->info.triangles_culled++;
-        return; /* NaN or infinite positions discard the primitive */
-    }
-    if (c0 & c1 & c2) {
-        c->info.triangles_culled++;
-        return; /* all three outside one plane */
-    }
     float flat[4] = { 0, 0, 0, 1 };
     bool need_flat = ds->shading == SR_SHADING_FLAT;
-
-    if ((c0 | c1 | c2) == 0) {
-        sr_window_vertex w[3] = {
-            { p0->x_q8, p0->y_q8, p0->z, p0->inv_w, a0 },
-            { p1->x_q8, p1->y_q8, p1->z, p1->inv_w, a1 },
-            { p2->x_q8, p2->y_q8, p2->z, p2->inv_w, a2 },
-        };
-        int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
-        bool front = facing_front(ds, area2);
-        if (area2 == 0 || is_culled(ds, front)) {
-            c->info.triangles_culled++;
-            return;
-        }
-        if (need_flat) {
-            sr__flat_color(ds, a0, a1, a2, s->vary + pv * nv, flat);
-        }
-        sr_polygon_mode mode = front ? ds->mode_front : ds->mode_back;
-        if (mode == SR_POLYGON_FILL) {
-            emit(fe, c, &w[0], &w[1], &w[2], front, flat);
-        } else {
-            polygon_outline(fe, c, w, 3, mode, front, flat);
-        }
-        return;
-    }
-
-    /* Clip, then fan the polygon back into triangles.  Facing comes from
-     * the whole polygon's snapped area so the fan is culled as one. */
     c->info.triangles_clipped++;
     if (need_flat) {
-        sr__flat_color(ds, a0, a1, a2, s->vary + pv * nv, flat);
+        sr__flat_color(ds, a0, a1, a2, pva, flat);
     }
     sr_clip_vertex v[3];
     clip_vertex(ds, p0, a0, &v[0]);
@@ -719,7 +707,63 @@ static void triangle(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1,
         return;
     }
     for (int i = 1; i + 1 < n; i++) {
-        emit(fe, c, &w[0], &w[i], &w[i + 1], front, flat);
+        emit(fe, c, &w[0], &w[i], &w[i + 1], sr__area2(&w[0], &w[i], &w[i + 1]), front, flat);
+    }
+}
+
+static void triangle(const front_end *fe, sr_chunk *c, const vertex_src *vs, uint32_t i0,
+                     uint32_t i1, uint32_t i2, uint32_t pv)
+{
+    const sr_draw_state *ds = fe->ds;
+    size_t b = vs->base;
+    const sr_vertex_post *p0 = &vs->post[i0 - b], *p1 = &vs->post[i1 - b], *p2 = &vs->post[i2 - b];
+    size_t nv = (size_t)ds->nvary;
+    const float *a0 = vs->vary + (i0 - b) * nv, *a1 = vs->vary + (i1 - b) * nv;
+    const float *a2 = vs->vary + (i2 - b) * nv;
+    float fb0[SR_MAX_VARYINGS], fb1[SR_MAX_VARYINGS], fb2[SR_MAX_VARYINGS];
+    const float *pva = vs->vary + (pv - b) * nv;
+    if (ds->flat_mask) {
+        a0 = flat_varyings(ds, a0, pva, fb0);
+        a1 = flat_varyings(ds, a1, pva, fb1);
+        a2 = flat_varyings(ds, a2, pva, fb2);
+    }
+    c->info.triangles_in++;
+
+    unsigned c0 = p0->outcode, c1 = p1->outcode, c2 = p2->outcode;
+    if ((c0 | c1 | c2) & SR_OUTCODE_NONFINITE) {
+        c->info.triangles_culled++;
+        return; /* NaN or infinite positions discard the primitive */
+    }
+    if (c0 & c1 & c2) {
+        c->info.triangles_culled++;
+        return; /* all three outside one plane */
+    }
+    if ((c0 | c1 | c2) != 0) {
+        clipped_triangle(fe, c, p0, p1, p2, a0, a1, a2, pva);
+        return;
+    }
+
+    /* Inside every plane: the window positions are the vertex stage's. */
+    sr_window_vertex w[3] = {
+        { p0->x_q8, p0->y_q8, p0->z, p0->inv_w, a0 },
+        { p1->x_q8, p1->y_q8, p1->z, p1->inv_w, a1 },
+        { p2->x_q8, p2->y_q8, p2->z, p2->inv_w, a2 },
+    };
+    int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
+    bool front = facing_front(ds, area2);
+    if (area2 == 0 || is_culled(ds, front)) {
+        c->info.triangles_culled++;
+        return;
+    }
+    float flat[4] = { 0, 0, 0, 1 };
+    if (ds->shading == SR_SHADING_FLAT) {
+        sr__flat_color(ds, a0, a1, a2, pva, flat);
+    }
+    sr_polygon_mode mode = front ? ds->mode_front : ds->mode_back;
+    if (mode == SR_POLYGON_FILL) {
+        emit(fe, c, &w[0], &w[1], &w[2], area2, front, flat);
+    } else {
+        polygon_outline(fe, c, w, 3, mode, front, flat);
     }
 }
 
@@ -735,17 +779,19 @@ static const float *provoking_color(const sr_draw_state *ds, const float *pv)
     return ds->shading == SR_SHADING_FLAT ? &pv[SR_VARY_FLAT_COLOR] : NULL;
 }
 
-static void segment(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, uint32_t pv)
+static void segment(const front_end *fe, sr_chunk *c, const vertex_src *vs, uint32_t i0,
+                    uint32_t i1, uint32_t pv)
 {
     const sr_draw_state *ds = fe->ds;
-    const sr_scratch *s = fe->ctx->scratch;
-    const sr_vertex_post *p0 = &s->post[i0], *p1 = &s->post[i1];
+    size_t b = vs->base;
+    const sr_vertex_post *p0 = &vs->post[i0 - b], *p1 = &vs->post[i1 - b];
     size_t nv = (size_t)ds->nvary;
-    const float *a0 = s->vary + i0 * nv, *a1 = s->vary + i1 * nv;
-    const float *flat = provoking_color(ds, s->vary + pv * nv);
+    const float *a0 = vs->vary + (i0 - b) * nv, *a1 = vs->vary + (i1 - b) * nv;
+    const float *pva = vs->vary + (pv - b) * nv;
+    const float *flat = provoking_color(ds, pva);
     float fb0[SR_MAX_VARYINGS], fb1[SR_MAX_VARYINGS];
-    a0 = flat_varyings(ds, a0, s->vary + pv * nv, fb0);
-    a1 = flat_varyings(ds, a1, s->vary + pv * nv, fb1);
+    a0 = flat_varyings(ds, a0, pva, fb0);
+    a1 = flat_varyings(ds, a1, pva, fb1);
     unsigned c0 = p0->outcode, c1 = p1->outcode;
     if (((c0 | c1) & SR_OUTCODE_NONFINITE) || (c0 & c1)) {
         return;
@@ -773,21 +819,20 @@ static void segment(const front_end *fe, sr_chunk *c, uint32_t i0, uint32_t i1, 
 }
 
 /* A point is drawn when its vertex is inside every plane (RASTER_RULES 7). */
-static void point(const front_end *fe, sr_chunk *c, uint32_t i)
+static void point(const front_end *fe, sr_chunk *c, const vertex_src *vs, uint32_t i)
 {
     const sr_draw_state *ds = fe->ds;
-    const sr_scratch *s = fe->ctx->scratch;
-    const sr_vertex_post *p = &s->post[i];
+    const sr_vertex_post *p = &vs->post[i - vs->base];
     if (p->outcode != 0) {
         return;
     }
-    const float *a = s->vary + i * (size_t)ds->nvary;
+    const float *a = vs->vary + (i - vs->base) * (size_t)ds->nvary;
     sr_window_vertex w = cached_window(p, a);
     emit_point(fe, c, &w, 0.0, true, provoking_color(ds, a));
 }
 
 /* Primitive p of the draw, with the provoking vertex of RASTER_RULES 4.2. */
-static void primitive(const front_end *fe, sr_chunk *c, size_t p)
+static void primitive(const front_end *fe, sr_chunk *c, const vertex_src *vs, size_t p)
 {
     const sr_draw_desc *d = fe->d;
     bool last = fe->ds->provoking_last;
@@ -797,20 +842,20 @@ static void primitive(const front_end *fe, sr_chunk *c, size_t p)
         uint32_t pv = last ? e : a;
         /* Odd triangles swap their first two vertices to keep winding. */
         if (p & 1) {
-            triangle(fe, c, b, a, e, pv);
+            triangle(fe, c, vs, b, a, e, pv);
         } else {
-            triangle(fe, c, a, b, e, pv);
+            triangle(fe, c, vs, a, b, e, pv);
         }
         break;
     }
     case SR_PRIM_TRIANGLE_FAN: {
         uint32_t a = index_at(d, 0), b = index_at(d, p + 1), e = index_at(d, p + 2);
-        triangle(fe, c, a, b, e, last ? e : b);
+        triangle(fe, c, vs, a, b, e, last ? e : b);
         break;
     }
     case SR_PRIM_LINES: {
         uint32_t a = index_at(d, 2 * p), b = index_at(d, 2 * p + 1);
-        segment(fe, c, a, b, last ? b : a);
+        segment(fe, c, vs, a, b, last ? b : a);
         break;
     }
     case SR_PRIM_LINE_STRIP:
@@ -818,19 +863,23 @@ static void primitive(const front_end *fe, sr_chunk *c, size_t p)
         /* A loop's last segment closes back to the first vertex. */
         size_t n = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
         uint32_t a = index_at(d, p), b = index_at(d, (p + 1) % n);
-        segment(fe, c, a, b, last ? b : a);
+        segment(fe, c, vs, a, b, last ? b : a);
         break;
     }
     case SR_PRIM_POINTS:
-        point(fe, c, index_at(d, p));
+        point(fe, c, vs, index_at(d, p));
         break;
     default: {
         uint32_t a = index_at(d, 3 * p), b = index_at(d, 3 * p + 1), e = index_at(d, 3 * p + 2);
-        triangle(fe, c, a, b, e, last ? e : a);
+        triangle(fe, c, vs, a, b, e, last ? e : a);
         break;
     }
     }
 }
+
+/* Vertices per block of the fused vertex stage: a multiple of 2 and 3,
+ * small enough for the block's positions and varyings to stay in L1. */
+#define FUSED_BLOCK_VERTS 192
 
 static void run_front_end(void *arg, int job, int thread)
 {
@@ -844,8 +893,39 @@ static void run_front_end(void *arg, int job, int thread)
         c->out_of_memory = true;
         return;
     }
-    for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
-        primitive(fe, c, p);
+    if (fe->fused) {
+        /* The vertex stage for this chunk's own vertices, a block at a
+         * time into buffers that stay in the L1 cache while the block's
+         * primitives are assembled: a draw without indices uses each
+         * vertex once, so the whole-draw arrays would only be written
+         * out to memory and read back. */
+        sr_vertex_post post[FUSED_BLOCK_VERTS];
+        float vary[FUSED_BLOCK_VERTS * SR_MAX_VARYINGS];
+        size_t k = fe->verts_per_prim, per_block = FUSED_BLOCK_VERTS / k;
+        for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p += per_block) {
+            size_t end = c->prim_end - p < per_block ? c->prim_end : p + per_block;
+            sr__vertex_stage(fe->ds, fe->d, fe->mvp, fe->mv, fe->nm, k * p, k * (end - p), post,
+                             vary);
+            vertex_src vs = { post, vary, k * p };
+            if (k == 3) {
+                /* primitive()'s triangle list without indices. */
+                bool last = fe->ds->provoking_last;
+                for (size_t q = p; q < end && !c->out_of_memory; q++) {
+                    uint32_t a = (uint32_t)(3 * q);
+                    triangle(fe, c, &vs, a, a + 1, a + 2, last ? a + 2 : a);
+                }
+                continue;
+            }
+            for (size_t q = p; q < end && !c->out_of_memory; q++) {
+                primitive(fe, c, &vs, q);
+            }
+        }
+    } else {
+        const sr_scratch *s = fe->ctx->scratch;
+        vertex_src vs = { s->post, s->vary, 0 };
+        for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
+            primitive(fe, c, &vs, p);
+        }
     }
     if (!sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size)) {
         c->out_of_memory = true;
@@ -867,8 +947,8 @@ static void run_vertex_stage(void *arg, int job, int thread)
     size_t first = (size_t)job * vj->per_job;
     size_t count = vj->d->vertex_count - first < vj->per_job ? vj->d->vertex_count - first
                                                              : vj->per_job;
-    sr__vertex_stage(vj->ds, vj->d, vj->mvp, vj->mv, vj->nm, first, count, vj->s->post,
-                     vj->s->vary);
+    sr__vertex_stage(vj->ds, vj->d, vj->mvp, vj->mv, vj->nm, first, count, vj->s->post + first,
+                     vj->s->vary + first * (size_t)vj->ds->nvary);
 }
 
 sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
@@ -908,10 +988,25 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     case SR_PRIM_POINTS:       prims = count; break;
     default:                   prims = count / 3; break;
     }
+    /* Without indices, lists of triangles, lines or points use each vertex
+     * once: the front end's chunks run the vertex stage for their own
+     * primitives (run_front_end) and the whole-draw arrays are not used. */
+    size_t verts_per_prim = 0;
+    if (d->index_type == SR_INDEX_NONE) {
+        switch (d->primitive) {
+        case SR_PRIM_DEFAULT:
+        case SR_PRIM_TRIANGLES: verts_per_prim = 3; break;
+        case SR_PRIM_LINES:     verts_per_prim = 2; break;
+        case SR_PRIM_POINTS:    verts_per_prim = 1; break;
+        default:                break;
+        }
+    }
+    bool fused = verts_per_prim != 0;
     /* More chunks than threads evens out uneven clipping and culling. */
     int chunks = ctx->threads == 1 ? 1 : ctx->threads * 2;
     sr_scratch *s = ctx->scratch;
-    if (!sr__scratch_reserve(ctx, s, d->vertex_count, (size_t)ds.tiles_x * ds.tiles_y, chunks)) {
+    if (!sr__scratch_reserve(ctx, s, fused ? 0 : d->vertex_count,
+                             (size_t)ds.tiles_x * ds.tiles_y, chunks)) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_draw: out of memory for %zu vertices",
                         d->vertex_count);
     }
@@ -930,12 +1025,15 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     if (!sr_normal_matrix(&mv, &nm)) {
         nm = mv; /* singular model-view (a flattening scale): best effort */
     }
-    vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, 4096 };
-    sr__pool_run(ctx->pool, run_vertex_stage, &vj,
-                 (int)((d->vertex_count + vj.per_job - 1) / vj.per_job));
+    if (!fused) {
+        vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, 4096 };
+        sr__pool_run(ctx->pool, run_vertex_stage, &vj,
+                     (int)((d->vertex_count + vj.per_job - 1) / vj.per_job));
+    }
 
     memset(s->stats, 0, sizeof s->stats);
-    front_end fe = { ctx, &ds, d, sr__record_size(ds.ninterp), chunks };
+    front_end fe = { ctx, &ds, d, sr__record_size(ds.ninterp), chunks, fused, verts_per_prim,
+                     &mvp, &mv, &nm };
     bool oom = false;
     /* Equal batches of at most SR_BATCH_PRIMS, so no batch is a sliver. */
     size_t batches = (prims + SR_BATCH_PRIMS - 1) / SR_BATCH_PRIMS;

@@ -169,34 +169,43 @@ typedef struct sr_prim_head {
 /* A triangle after setup: everything the rasterizers and the fragment stage
  * need, no pointers.  Vertices are in coverage order (area2 > 0); the
  * varyings were permuted with them.  Stored in the bins with only
- * 3 x ninterp varyings (sr__record_size), so `vary` must stay last. */
+ * 3 x ninterp varyings (sr__record_size), so `vary` must stay last.  Every
+ * triangle drawn is written here once and read back by the tile jobs, so
+ * the fields are ordered to leave no padding: with four varyings the
+ * record is 224 bytes. */
 typedef struct sr_tri {
     sr_prim_head h;
-    int32_t x[3], y[3];               /* q8 */
-    int64_t area2;                    /* > 0 */
     /* Edge i is opposite vertex i: E_i(p) = a[i] X + b[i] Y + c[i], which is
      * the unnormalized barycentric weight of vertex i.  bias[i] is 0 for a
      * top or left edge and -1 otherwise: covered iff E_i + bias_i >= 0. */
-    int64_t a[3], b[3], c[3];
     int32_t bias[3];
-    bool front;
-    int32_t ninterp;                  /* varyings stored in vary[] */
+    int64_t area2;                    /* > 0 */
+    int64_t a[3], b[3], c[3];
     /* Depth plane in buffer units (x (2^n - 1) for UNORM, [0, 1] for float):
      * z = z0 + e1 dz1 + e2 dz2, polygon offset folded into z0. */
     double z0, dz1, dz2;
+    /* Perspective weights: q_i = e_i w_i (w_i = 1/w of vertex i, or 1 in
+     * affine mode). */
+    float w[3];
+    int32_t ninterp;                  /* varyings stored in vary[] */
+    bool front;
     /* The plane's values inside the triangle stay within the depth range
      * with room for rounding, so the fragment clamp is a no-op and the
      * vector kernels skip it (the result is the same either way). */
     bool z_inside;
-    /* Perspective weights: q_i = e_i w_i (w_i = 1/w of vertex i, or 1 in
-     * affine mode). */
-    float w[3];
     float flat[4];                    /* FLAT: the triangle's lit color */
     /* Varying k of vertex 0, then its differences to vertices 1 and 2:
      * vary[k], vary[n + k] = v1 - v0, vary[2n + k] = v2 - v0 (n = ninterp),
      * so an attribute is v0 + l1 d1 + l2 d2. */
     float vary[3 * SR_MAX_VARYINGS];
 } sr_tri;
+
+/* Tile columns whose tile rows a line's record lists for binning (a line
+ * up to 320 px long along its major axis); tile indices fit a byte. */
+#define SR_LINE_BIN_COLUMNS 6
+_Static_assert(SR_MAX_FRAMEBUFFER_SIZE / SR_TILE_SIZE <= 256, "tile indices must fit uint8_t");
+_Static_assert(SR_GUARD_BAND_MAX + 2 <= INT16_MAX && SR_GUARD_BAND_MIN - 2 > INT16_MIN,
+               "a line's pixel indices must fit int16_t");
 
 /* A line segment after setup, drawn by the diamond-exit rule from a to b
  * (b's pixel excluded).  Depth is linear in screen space along the
@@ -212,6 +221,24 @@ typedef struct sr_line {
     int32_t ninterp;
     double za, zb;                    /* buffer units, offset folded in */
     float wa, wb;                     /* 1/w, or 1 in affine mode */
+    /* The aliased walk, set up once so that each tile only clips it
+     * (line.c; unused for smooth lines).  u is the major axis, v the
+     * minor; column k in [k0, k1] holds the pixel v = floor((n0 + (k - k0)
+     * dn) / d), d > 0, except the end's pixel (end_u, end_v; end_u is
+     * INT16_MIN when the end's pixel is not on the path).  start_extra:
+     * the start's pixel (start_u, start_v) is off the path and drawn after
+     * it.  Pixel indices fit int16_t inside the guard band; the fields are
+     * kept small so that a line's record never outgrows a triangle's. */
+    bool xmajor, start_extra;
+    int16_t k0, k1, start_u, start_v, end_u, end_v;
+    /* The tiles it reaches, found once in setup for binning's two passes
+     * (bin.c): tile rows [bin_rows[2i], bin_rows[2i + 1]] of tile column
+     * bin_tu0 + i along the major axis (empty when first > last), for
+     * bin_count <= SR_LINE_BIN_COLUMNS columns; more: bin.c asks
+     * sr__line_tile_rows column by column. */
+    uint8_t bin_count, bin_tu0;
+    uint8_t bin_rows[2 * SR_LINE_BIN_COLUMNS];
+    int64_t n0, d, dn;
     float flat[4];
     float vary[2 * SR_MAX_VARYINGS];  /* endpoint a's varyings, then b's */
 } sr_line;
@@ -257,8 +284,9 @@ typedef struct sr_frag_stats {
 void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 *proj,
                          sr_draw_state *ds);
 
-/* geometry/vertex.c: vertices [first, first + count) into post[] and
- * their varyings into vary[] (ds->nvary floats each). */
+/* geometry/vertex.c: vertices [first, first + count) into post[0 .. count)
+ * and their varyings into vary[] (ds->nvary floats each): post and vary
+ * point at vertex `first`'s entries. */
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary);
@@ -277,16 +305,102 @@ void sr__flat_color(const sr_draw_state *ds, const float *v0, const float *v1,
  * number of polygon vertices written to out (0 if nothing is left). */
 #define SR_CLIP_MAX_VERTS 16
 unsigned sr__clip_outcode(const sr_draw_state *ds, const float pos[4]);
+
+/* The clip planes (RASTER_RULES 3, see clip.c), as bits of an outcode. */
+enum {
+    SR_PLANE_W = 0,
+    SR_PLANE_NEAR,
+    SR_PLANE_FAR,
+    SR_PLANE_LEFT,
+    SR_PLANE_RIGHT,
+    SR_PLANE_TOP,
+    SR_PLANE_BOTTOM,
+    SR_PLANE_COUNT
+};
+
+/* Smallest w let through: tiny, so it never cuts geometry the near plane
+ * keeps, but it excludes w = 0 exactly, where the divide would give NaN. */
+#define SR_CLIP_W_EPSILON 1e-30
+
+/* Band edges one pixel inside the fixed-point limit, so a vertex rounded
+ * onto a band plane still snaps inside the range. */
+#define SR_CLIP_BAND_LO ((double)SR_GUARD_BAND_MIN + 1.0)
+#define SR_CLIP_BAND_HI ((double)SR_GUARD_BAND_MAX - 1.0)
+
+/* The state's plane coefficients, formed once per block of vertices rather
+ * than once per vertex: x_w = ox + px x/w >= lo <=> px x - (lo - ox) w >= 0
+ * (w > 0), and likewise for the other band planes (y down). */
+typedef struct sr_clip_planes {
+    bool zero_to_one;
+    double px, py;
+    double left_w, right_w, top_w, bottom_w;
+} sr_clip_planes;
+
+static inline void sr__clip_planes(const sr_draw_state *ds, sr_clip_planes *k)
+{
+    k->zero_to_one = ds->zero_to_one;
+    k->px = ds->vp_px;
+    k->py = ds->vp_py;
+    k->left_w = SR_CLIP_BAND_LO - ds->vp_ox;
+    k->right_w = SR_CLIP_BAND_HI - ds->vp_ox;
+    k->top_w = ds->vp_oy - SR_CLIP_BAND_LO;
+    k->bottom_w = ds->vp_oy - SR_CLIP_BAND_HI;
+}
+
+/* Bit p set when pos is outside plane p (inside is distance >= 0; NaN is
+ * outside). */
+static inline unsigned sr__clip_outcode_with(const sr_clip_planes *k, const float pos[4])
+{
+    double x = pos[0], y = pos[1], z = pos[2], w = pos[3];
+    double near = k->zero_to_one ? z : z + w;
+    unsigned code = 0;
+    code |= (unsigned)!(w - SR_CLIP_W_EPSILON >= 0.0) << SR_PLANE_W;
+    code |= (unsigned)!(near >= 0.0) << SR_PLANE_NEAR;
+    code |= (unsigned)!(w - z >= 0.0) << SR_PLANE_FAR;
+    code |= (unsigned)!(k->px * x - k->left_w * w >= 0.0) << SR_PLANE_LEFT;
+    code |= (unsigned)!(k->right_w * w - k->px * x >= 0.0) << SR_PLANE_RIGHT;
+    code |= (unsigned)!(k->top_w * w - k->py * y >= 0.0) << SR_PLANE_TOP;
+    code |= (unsigned)!(k->py * y - k->bottom_w * w >= 0.0) << SR_PLANE_BOTTOM;
+    return code;
+}
 int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
                      unsigned planes, sr_clip_vertex *out);
 /* Clip segment ab to the planes; false when nothing is left. */
 bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr_clip_vertex *b,
                       unsigned planes, sr_clip_vertex *out_a, sr_clip_vertex *out_b);
 
-/* raster/setup.c */
-/* Divide by w, apply the viewport S and snap to q8 (round to nearest even). */
-void sr__project(const sr_draw_state *ds, const float pos[4], int32_t *x_q8, int32_t *y_q8,
-                 double *z, float *inv_w);
+/* raster/setup.c (the divide and snap are inline: the vertex stage runs
+ * them once per vertex). */
+/* Clamp to the fixed-point range (clipping already keeps vertices inside
+ * the guard band; the clamp only absorbs rounding at the band's edge), then
+ * round to nearest even.  Adding and subtracting 1.5 x 2^52 rounds any
+ * |s| < 2^51 to an integer in the default rounding mode, exactly as
+ * nearbyint would, without the library call baseline x86-64 makes for it
+ * (two per vertex). */
+static inline int32_t sr__snap_q8(double v)
+{
+    const double lim = (double)SR_GUARD_BAND_MAX * SR_SUBPIXEL_ONE;
+    const double magic = 6755399441055744.0; /* 1.5 x 2^52 */
+    double s = v * SR_SUBPIXEL_ONE;
+    s = s > lim ? lim : s;
+    s = s < -lim ? -lim : s;
+    s = (s + magic) - magic;
+    return (int32_t)s;
+}
+
+/* Divide by w, apply the viewport S and snap to q8 (round to nearest even).
+ * One fixed operation order (RASTER_RULES 1.2), in double, one rounding
+ * at the snap: the same clip position always gives the same q8 value. */
+static inline void sr__project(const sr_draw_state *ds, const float pos[4], int32_t *x_q8,
+                               int32_t *y_q8, double *z, float *inv_w)
+{
+    double iw = 1.0 / pos[3];
+    double xn = pos[0] * iw, yn = pos[1] * iw, zn = pos[2] * iw;
+    *x_q8 = sr__snap_q8(ds->vp_ox + ds->vp_px * xn);
+    *y_q8 = sr__snap_q8(ds->vp_oy - ds->vp_py * yn);
+    *z = ds->vp_zs * zn + ds->vp_zb;
+    *inv_w = (float)iw;
+}
 void sr__window_vertex(const sr_draw_state *ds, const sr_clip_vertex *v, sr_window_vertex *out);
 /* Twice the signed area of the snapped triangle, E_01(v2), exact. */
 static inline int64_t sr__area2(const sr_window_vertex *v0, const sr_window_vertex *v1,
@@ -317,6 +431,15 @@ void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0
                      int ry1, sr_frag_stats *st);
 void sr__raster_point(const sr_draw_state *ds, const sr_point *p, int rx0, int ry0, int rx1,
                       int ry1, sr_frag_stats *st);
+/* raster/line.c: the minor-axis pixels [*v0, *v1] that an aliased line's
+ * pixels (wide runs included) take in its columns [u0, u1]; false when
+ * none.  Tile binning reaches only these. */
+bool sr__line_span(const sr_line *l, int u0, int u1, int *v0, int *v1);
+/* The line's tile columns [*tu0, *tu1] along its major axis (none when
+ * *tu0 > *tu1), and the tile rows [*tv0, *tv1] that its pixels reach in
+ * tile column tu (false when none), all within its bounding box. */
+void sr__line_tile_columns(const sr_line *l, int *tu0, int *tu1);
+bool sr__line_tile_rows(const sr_line *l, int tu, int *tv0, int *tv1);
 /* Polygon offset of the triangle's plane (0 when offset is off for `mode`). */
 double sr__polygon_offset(const sr_draw_state *ds, const sr_window_vertex *v0,
                           const sr_window_vertex *v1, const sr_window_vertex *v2,

@@ -4,6 +4,7 @@
  * modes against the equivalent line loops, square points with half-open
  * edges, clipping, and hidden-line depth with polygon offset. */
 #include "raster_util.h"
+#include "line_ref.h"
 
 enum { W = 64, H = 64 };
 
@@ -30,18 +31,6 @@ static sr_result draw_prims(rt_target *t, sr_primitive prim, const double *xy, i
 
 static int64_t snapq(double v) { return (int64_t)nearbyint(v * 256.0); }
 
-static int64_t cdiv(int64_t a, int64_t b) /* ceil, b > 0 */
-{
-    return a >= 0 ? (a + b - 1) / b : -((-a) / b);
-}
-
-static bool diamond_owns(int64_t x, int64_t y, int qx, int qy, bool xmaj)
-{
-    int64_t dx = x - (qx * 256 + 128), dy = y - (qy * 256 + 128);
-    int64_t d = (dx < 0 ? -dx : dx) + (dy < 0 ? -dy : dy);
-    return d < 128 || (d == 128 && (dy > 0 || (!xmaj && dx == 128 && dy == 0)));
-}
-
 static void ref_line(const double a[2], const double b[2], uint8_t *mask)
 {
     memset(mask, 0, W * H);
@@ -57,12 +46,7 @@ static void ref_line(const double a[2], const double b[2], uint8_t *mask)
         if (c < lo || c > hi) {
             continue;
         }
-        int64_t num = av * (bu - au) + (c - au) * (bv - av), den = bu - au;
-        if (den < 0) {
-            num = -num;
-            den = -den;
-        }
-        int64_t j = cdiv(num, den * 256) - 1;
+        int64_t j = lr_column_pixel(au, av, bu, bv, c);
         int px = xmaj ? k : (int)j, py = xmaj ? (int)j : k;
         if (px >= 0 && px < W && py >= 0 && py < H) {
             mask[py * W + px] = 1;
@@ -71,14 +55,14 @@ static void ref_line(const double a[2], const double b[2], uint8_t *mask)
     for (int qy = -1; qy <= H; qy++) {
         for (int qx = -1; qx <= W; qx++) {
             bool in_range = qx >= 0 && qx < W && qy >= 0 && qy < H;
-            if (in_range && diamond_owns(ax, ay, qx, qy, xmaj)) {
+            if (in_range && lr_diamond_owns(ax, ay, qx, qy, xmaj)) {
                 mask[qy * W + qx] = 1;
             }
         }
     }
     for (int qy = 0; qy < H; qy++) {
         for (int qx = 0; qx < W; qx++) {
-            if (diamond_owns(bx, by, qx, qy, xmaj)) {
+            if (lr_diamond_owns(bx, by, qx, qy, xmaj)) {
                 mask[qy * W + qx] = 0;
             }
         }

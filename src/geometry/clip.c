@@ -12,59 +12,35 @@
 
 #include <math.h>
 
-enum {
-    PLANE_W = 0,
-    PLANE_NEAR,
-    PLANE_FAR,
-    PLANE_LEFT,
-    PLANE_RIGHT,
-    PLANE_TOP,
-    PLANE_BOTTOM,
-    PLANE_COUNT
-};
-
-/* Smallest w let through: tiny, so it never cuts geometry the near plane
- * keeps, but it excludes w = 0 exactly, where the divide would give NaN. */
-#define SR_CLIP_W_EPSILON 1e-30
-
-/* Band edges one pixel inside the fixed-point limit, so a vertex rounded
- * onto a band plane still snaps inside the range. */
-#define BAND_LO ((double)SR_GUARD_BAND_MIN + 1.0)
-#define BAND_HI ((double)SR_GUARD_BAND_MAX - 1.0)
+/* The planes, their order in the outcode and the band's edges are in
+ * pipeline.h (SR_PLANE_*, SR_CLIP_BAND_*), shared with the vertex stage's
+ * outcodes. */
+#define BAND_LO SR_CLIP_BAND_LO
+#define BAND_HI SR_CLIP_BAND_HI
 
 /* Signed distance of p to a plane; inside is >= 0. */
 static double plane_dist(const sr_draw_state *ds, int plane, const float pos[4])
 {
     double x = pos[0], y = pos[1], z = pos[2], w = pos[3];
     switch (plane) {
-    case PLANE_W:      return w - SR_CLIP_W_EPSILON;
-    case PLANE_NEAR:   return ds->zero_to_one ? z : z + w;
-    case PLANE_FAR:    return w - z;
+    case SR_PLANE_W:      return w - SR_CLIP_W_EPSILON;
+    case SR_PLANE_NEAR:   return ds->zero_to_one ? z : z + w;
+    case SR_PLANE_FAR:    return w - z;
     /* x_w = ox + px x/w >= lo  <=>  px x - (lo - ox) w >= 0 (w > 0). */
-    case PLANE_LEFT:   return ds->vp_px * x - (BAND_LO - ds->vp_ox) * w;
-    case PLANE_RIGHT:  return (BAND_HI - ds->vp_ox) * w - ds->vp_px * x;
+    case SR_PLANE_LEFT:   return ds->vp_px * x - (BAND_LO - ds->vp_ox) * w;
+    case SR_PLANE_RIGHT:  return (BAND_HI - ds->vp_ox) * w - ds->vp_px * x;
     /* y_w = oy - py y/w, y down. */
-    case PLANE_TOP:    return (ds->vp_oy - BAND_LO) * w - ds->vp_py * y;
-    case PLANE_BOTTOM: return ds->vp_py * y - (ds->vp_oy - BAND_HI) * w;
+    case SR_PLANE_TOP:    return (ds->vp_oy - BAND_LO) * w - ds->vp_py * y;
+    case SR_PLANE_BOTTOM: return ds->vp_py * y - (ds->vp_oy - BAND_HI) * w;
     default:           return 0.0;
     }
 }
 
-/* Every vertex gets an outcode, so the planes are written out here rather
- * than looped through plane_dist's switch (same expressions). */
 unsigned sr__clip_outcode(const sr_draw_state *ds, const float pos[4])
 {
-    double x = pos[0], y = pos[1], z = pos[2], w = pos[3];
-    double near = ds->zero_to_one ? z : z + w;
-    unsigned code = 0;
-    code |= !(w - SR_CLIP_W_EPSILON >= 0.0) << PLANE_W;
-    code |= !(near >= 0.0) << PLANE_NEAR;
-    code |= !(w - z >= 0.0) << PLANE_FAR;
-    code |= !(ds->vp_px * x - (BAND_LO - ds->vp_ox) * w >= 0.0) << PLANE_LEFT;
-    code |= !((BAND_HI - ds->vp_ox) * w - ds->vp_px * x >= 0.0) << PLANE_RIGHT;
-    code |= !((ds->vp_oy - BAND_LO) * w - ds->vp_py * y >= 0.0) << PLANE_TOP;
-    code |= !(ds->vp_py * y - (ds->vp_oy - BAND_HI) * w >= 0.0) << PLANE_BOTTOM;
-    return code;
+    sr_clip_planes k;
+    sr__clip_planes(ds, &k);
+    return sr__clip_outcode_with(&k, pos);
 }
 
 /* I = inside + t (outside - inside) for the position and every varying. */
@@ -86,7 +62,7 @@ bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr
     /* Parametric clipping of A + t (B - A), t in [t0, t1]. */
     double t0 = 0.0, t1 = 1.0;
     bool move_a = false, move_b = false;
-    for (int p = 0; p < PLANE_COUNT; p++) {
+    for (int p = 0; p < SR_PLANE_COUNT; p++) {
         if (!(planes & (1u << p))) {
             continue;
         }
@@ -132,7 +108,7 @@ int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
         poly[i] = in[i];
     }
     int which = 0;
-    for (int p = 0; p < PLANE_COUNT; p++) {
+    for (int p = 0; p < SR_PLANE_COUNT; p++) {
         if (!(planes & (1u << p))) {
             continue;
         }

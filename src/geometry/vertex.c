@@ -7,6 +7,10 @@
 
 #include <math.h>
 #include <string.h>
+#include <stddef.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 static const float *element(const float *base, size_t stride, size_t count, size_t i)
 {
@@ -31,12 +35,20 @@ static void face_viewer(const sr_draw_state *ds, const float eye[3], float n[3])
     }
 }
 
+typedef float v4f __attribute__((vector_size(16)));
+
+/* out = m p, column by column: lane r computes m[r] p0 + m[4 + r] p1 +
+ * m[8 + r] p2 + m[12 + r] p3 in that order, the scalar expression's, so
+ * the four lanes give the scalar bytes (no FMA: -ffp-contract=off). */
 static void transform_point(const sr_mat4 *m, const float p[4], float out[4])
 {
-    const float *a = m->m;
-    for (int r = 0; r < 4; r++) {
-        out[r] = a[r] * p[0] + a[4 + r] * p[1] + a[8 + r] * p[2] + a[12 + r] * p[3];
-    }
+    v4f c0, c1, c2, c3;
+    memcpy(&c0, &m->m[0], sizeof c0);
+    memcpy(&c1, &m->m[4], sizeof c1);
+    memcpy(&c2, &m->m[8], sizeof c2);
+    memcpy(&c3, &m->m[12], sizeof c3);
+    v4f r = c0 * p[0] + c1 * p[1] + c2 * p[2] + c3 * p[3];
+    memcpy(out, &r, sizeof r);
 }
 
 static void normal_to_eye(const sr_mat4 *nm, const float n[3], float out[3])
@@ -56,17 +68,141 @@ static void normal_to_eye(const sr_mat4 *nm, const float n[3], float out[3])
 
 /* The clip outcode of a transformed vertex, and for a vertex inside every
  * plane its window position: divided and snapped once, here (the
- * post-transform cache). */
-static void classify(const sr_draw_state *ds, sr_vertex_post *v)
+ * post-transform cache).  `k` holds the state's plane coefficients. */
+static void classify(const sr_draw_state *ds, const sr_clip_planes *k, sr_vertex_post *v)
 {
     if (!(isfinite(v->pos[0]) && isfinite(v->pos[1]) && isfinite(v->pos[2]) &&
           isfinite(v->pos[3]))) {
         v->outcode = SR_OUTCODE_NONFINITE;
         return;
     }
-    v->outcode = sr__clip_outcode(ds, v->pos);
+    v->outcode = sr__clip_outcode_with(k, v->pos);
     if (v->outcode == 0) {
         sr__project(ds, v->pos, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
+    }
+}
+
+#if defined(__SSE2__)
+/* Bits of the outcode, as two 64-bit lanes, where a plane's outside mask
+ * is set. */
+static inline __m128i plane_bit(__m128d outside, int plane)
+{
+    return _mm_and_si128(_mm_castpd_si128(outside), _mm_set1_epi64x(1ll << plane));
+}
+
+/* classify's constants, each in both lanes, made once per block. */
+typedef struct classify_lanes {
+    __m128d px, py, left_w, right_w, top_w, bottom_w, eps;
+    __m128d ox, oy, vpx, vpy, zs, zb, one, subpixel, lim, neg_lim, magic;
+    bool zero_to_one;
+} classify_lanes;
+
+static void make_lanes(const sr_draw_state *ds, const sr_clip_planes *k, classify_lanes *c)
+{
+    const double lim = (double)SR_GUARD_BAND_MAX * SR_SUBPIXEL_ONE;
+    *c = (classify_lanes){
+        _mm_set1_pd(k->px), _mm_set1_pd(k->py), _mm_set1_pd(k->left_w),
+        _mm_set1_pd(k->right_w), _mm_set1_pd(k->top_w), _mm_set1_pd(k->bottom_w),
+        _mm_set1_pd(SR_CLIP_W_EPSILON),
+        _mm_set1_pd(ds->vp_ox), _mm_set1_pd(ds->vp_oy), _mm_set1_pd(ds->vp_px),
+        _mm_set1_pd(ds->vp_py), _mm_set1_pd(ds->vp_zs), _mm_set1_pd(ds->vp_zb),
+        _mm_set1_pd(1.0), _mm_set1_pd(SR_SUBPIXEL_ONE), _mm_set1_pd(lim), _mm_set1_pd(-lim),
+        _mm_set1_pd(6755399441055744.0), /* 1.5 x 2^52, as sr__snap_q8 */
+        k->zero_to_one,
+    };
+}
+
+/* classify for two vertices whose x, y, z, w are the lanes of xd .. wd:
+ * sr__clip_outcode_with's and sr__project's operations, lane by lane in
+ * the same order (oy - py yn included), so the same bits and values.
+ * The window position is computed for both and is only meaningful where
+ * the outcode is 0, as in classify. */
+static inline void classify2(const classify_lanes *k, __m128d xd, __m128d yd, __m128d zd,
+                             __m128d wd, sr_vertex_post *v)
+{
+    const __m128d zero = _mm_setzero_pd();
+    __m128d near = k->zero_to_one ? zd : _mm_add_pd(zd, wd);
+    __m128d pxx = _mm_mul_pd(k->px, xd);
+    __m128d pyy = _mm_mul_pd(k->py, yd);
+    __m128d dw = _mm_sub_pd(wd, k->eps);
+    __m128d dl = _mm_sub_pd(pxx, _mm_mul_pd(k->left_w, wd));
+    __m128d dr = _mm_sub_pd(_mm_mul_pd(k->right_w, wd), pxx);
+    __m128d dt = _mm_sub_pd(_mm_mul_pd(k->top_w, wd), pyy);
+    __m128d db = _mm_sub_pd(pyy, _mm_mul_pd(k->bottom_w, wd));
+    __m128i code = plane_bit(_mm_cmpnge_pd(dw, zero), SR_PLANE_W);
+    code = _mm_or_si128(code, plane_bit(_mm_cmpnge_pd(near, zero), SR_PLANE_NEAR));
+    code = _mm_or_si128(code, plane_bit(_mm_cmpnge_pd(_mm_sub_pd(wd, zd), zero), SR_PLANE_FAR));
+    code = _mm_or_si128(code, plane_bit(_mm_cmpnge_pd(dl, zero), SR_PLANE_LEFT));
+    code = _mm_or_si128(code, plane_bit(_mm_cmpnge_pd(dr, zero), SR_PLANE_RIGHT));
+    code = _mm_or_si128(code, plane_bit(_mm_cmpnge_pd(dt, zero), SR_PLANE_TOP));
+    code = _mm_or_si128(code, plane_bit(_mm_cmpnge_pd(db, zero), SR_PLANE_BOTTOM));
+    v[0].outcode = (unsigned)_mm_cvtsi128_si32(code);
+    v[1].outcode = (unsigned)_mm_cvtsi128_si32(_mm_unpackhi_epi64(code, code));
+    if (v[0].outcode != 0 && v[1].outcode != 0) {
+        return;
+    }
+
+    /* sr__project and sr__snap_q8; min and max clamp as its selects do
+     * for every value they can meet here (inside the planes, finite). */
+    __m128d iw = _mm_div_pd(k->one, wd);
+    __m128d xn = _mm_mul_pd(xd, iw), yn = _mm_mul_pd(yd, iw), zn = _mm_mul_pd(zd, iw);
+    __m128d sx = _mm_add_pd(k->ox, _mm_mul_pd(k->vpx, xn));
+    __m128d sy = _mm_sub_pd(k->oy, _mm_mul_pd(k->vpy, yn));
+    sx = _mm_mul_pd(sx, k->subpixel);
+    sy = _mm_mul_pd(sy, k->subpixel);
+    sx = _mm_max_pd(_mm_min_pd(sx, k->lim), k->neg_lim);
+    sy = _mm_max_pd(_mm_min_pd(sy, k->lim), k->neg_lim);
+    sx = _mm_sub_pd(_mm_add_pd(sx, k->magic), k->magic);
+    sy = _mm_sub_pd(_mm_add_pd(sy, k->magic), k->magic);
+    __m128i q = _mm_unpacklo_epi32(_mm_cvttpd_epi32(sx), _mm_cvttpd_epi32(sy));
+    __m128d z = _mm_add_pd(_mm_mul_pd(k->zs, zn), k->zb);
+    __m128 fw = _mm_cvtpd_ps(iw);
+    _Static_assert(offsetof(sr_vertex_post, y_q8) == offsetof(sr_vertex_post, x_q8) + 4,
+                   "x_q8, y_q8 are stored as one pair");
+    _mm_storel_epi64((__m128i *)(void *)&v[0].x_q8, q);
+    _mm_storel_epi64((__m128i *)(void *)&v[1].x_q8, _mm_unpackhi_epi64(q, q));
+    _mm_storel_pd(&v[0].z, z);
+    _mm_storeh_pd(&v[1].z, z);
+    _mm_store_ss(&v[0].inv_w, fw);
+    _mm_store_ss(&v[1].inv_w, _mm_shuffle_ps(fw, fw, 1));
+}
+#endif
+
+/* classify for post[0 .. count), four at a time where SSE2 is there. */
+static void classify_block(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
+{
+    sr_clip_planes k;
+    sr__clip_planes(ds, &k);
+    size_t i = 0;
+#if defined(__SSE2__)
+    const __m128i inf = _mm_set1_epi32(0x7f800000);
+    classify_lanes lanes;
+    make_lanes(ds, &k, &lanes);
+    for (; i + 4 <= count; i += 4) {
+        sr_vertex_post *v = &post[i];
+        __m128 x = _mm_loadu_ps(v[0].pos), y = _mm_loadu_ps(v[1].pos);
+        __m128 z = _mm_loadu_ps(v[2].pos), w = _mm_loadu_ps(v[3].pos);
+        /* Any infinite or NaN coordinate (exponent all ones): one at a time. */
+        __m128i e = _mm_or_si128(
+            _mm_or_si128(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(x), inf), inf),
+                         _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(y), inf), inf)),
+            _mm_or_si128(_mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(z), inf), inf),
+                         _mm_cmpeq_epi32(_mm_and_si128(_mm_castps_si128(w), inf), inf)));
+        if (_mm_movemask_epi8(e)) {
+            for (int j = 0; j < 4; j++) {
+                classify(ds, &k, &v[j]);
+            }
+            continue;
+        }
+        _MM_TRANSPOSE4_PS(x, y, z, w);
+        classify2(&lanes, _mm_cvtps_pd(x), _mm_cvtps_pd(y), _mm_cvtps_pd(z), _mm_cvtps_pd(w),
+                  &v[0]);
+        classify2(&lanes, _mm_cvtps_pd(_mm_movehl_ps(x, x)), _mm_cvtps_pd(_mm_movehl_ps(y, y)),
+                  _mm_cvtps_pd(_mm_movehl_ps(z, z)), _mm_cvtps_pd(_mm_movehl_ps(w, w)), &v[2]);
+    }
+#endif
+    for (; i < count; i++) {
+        classify(ds, &k, &post[i]);
     }
 }
 
@@ -103,13 +239,13 @@ static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t
             memcpy(in.generic, element(d->generic, d->generic_stride, (size_t)gsize, i),
                    (size_t)gsize * sizeof(float));
         }
-        sr_vertex_post *v = &post[i];
-        float *vary = vary_out + i * (size_t)ds->nvary;
+        sr_vertex_post *v = &post[i - first];
+        float *vary = vary_out + (i - first) * (size_t)ds->nvary;
         float clip[4] = { 0, 0, 0, 1 };
         pr->vertex(pr->uniforms, &in, clip, vary);
         memcpy(v->pos, clip, sizeof clip);
-        classify(ds, v);
     }
+    classify_block(ds, post, count);
 }
 
 /* One vertex of a built-in model: the clip position and the model's
@@ -206,6 +342,48 @@ void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *
     }
 }
 
+/* UNLIT: the clip position and the color, nothing else - the common case
+ * of large synthetic draws, so without sr__vertex_shade's per-vertex
+ * decisions.  The same operations as sr__vertex_shade's UNLIT case. */
+static void unlit_stage(const sr_draw_state *ds, const sr_draw_desc *d, const sr_mat4 *mvp,
+                        size_t first, size_t count, sr_vertex_post *post, float *vary_out)
+{
+    int psize = d->position_size ? d->position_size : 3;
+    int csize = d->color_size ? d->color_size : 4;
+    size_t pstep = d->position_stride ? d->position_stride : (size_t)psize * sizeof(float);
+    size_t cstep = d->color_stride ? d->color_stride : (size_t)csize * sizeof(float);
+    size_t tstep = d->texcoord_stride ? d->texcoord_stride : 2 * sizeof(float);
+    size_t nv = (size_t)ds->nvary;
+    const char *pos = (const char *)d->positions + first * pstep;
+    const char *col = d->colors ? (const char *)d->colors + first * cstep : NULL;
+    const char *tex = ds->uv_index >= 0 && d->texcoords
+                          ? (const char *)d->texcoords + first * tstep : NULL;
+    bool vertex_color = ds->use_vertex_color && col;
+    float alpha = ds->diffuse[3];
+    for (size_t i = 0; i < count; i++) {
+        sr_vertex_post *v = &post[i];
+        float *vary = vary_out + i * nv;
+        const float *p = (const float *)(pos + i * pstep);
+        float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
+        transform_point(mvp, obj, v->pos);
+        if (vertex_color) {
+            const float *c = (const float *)(col + i * cstep);
+            vary[SR_VARY_COLOR + 0] = c[0];
+            vary[SR_VARY_COLOR + 1] = c[1];
+            vary[SR_VARY_COLOR + 2] = c[2];
+            vary[SR_VARY_COLOR + 3] = (csize == 4 ? c[3] : 1.0f) * alpha;
+        } else {
+            memcpy(&vary[SR_VARY_COLOR], ds->diffuse, 4 * sizeof(float));
+        }
+        if (tex) {
+            const float *t = (const float *)(tex + i * tstep);
+            vary[ds->uv_index] = t[0];
+            vary[ds->uv_index + 1] = t[1];
+        }
+    }
+    classify_block(ds, post, count);
+}
+
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary_out)
@@ -214,12 +392,16 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         program_stage(ds, d, first, count, post, vary_out);
         return;
     }
+    if (ds->shading == SR_SHADING_UNLIT) {
+        unlit_stage(ds, d, mvp, first, count, post, vary_out);
+        return;
+    }
     int psize = d->position_size ? d->position_size : 3;
     int csize = d->color_size ? d->color_size : 4;
     int gsize = d->generic_size ? d->generic_size : 4;
     for (size_t i = first; i < first + count; i++) {
-        sr_vertex_post *v = &post[i];
-        float *vary = vary_out + i * (size_t)ds->nvary;
+        sr_vertex_post *v = &post[i - first];
+        float *vary = vary_out + (i - first) * (size_t)ds->nvary;
         const float *p = element(d->positions, d->position_stride, (size_t)psize, i);
         float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
         float color[4], generic[4];
@@ -245,8 +427,8 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         sr__vertex_shade(ds, obj, d->normals ? element(d->normals, d->normal_stride, 3, i) : NULL,
                          cp, d->texcoords ? element(d->texcoords, d->texcoord_stride, 2, i) : NULL,
                          gp, mvp, mv, nm, v->pos, vary);
-        classify(ds, v);
     }
+    classify_block(ds, post, count);
 }
 
 /* Flat shading: one color per triangle, lit with the face normal (for a

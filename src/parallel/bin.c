@@ -13,21 +13,76 @@ static const sr_prim_head *prim_at(const sr_chunk *c, uint32_t i, size_t size)
     return (const sr_prim_head *)(c->tris + (size_t)i * size);
 }
 
+/* An aliased line goes only into the tiles its pixels reach, not every
+ * tile of its bounding box (a long diagonal touches about half of them):
+ * tile column by tile column along its major axis, the tile rows its
+ * pixels take there - listed by setup for lines of up to
+ * SR_LINE_BIN_COLUMNS tile columns, else asked of line.c.  Counts into
+ * start[tile + 1] when refs is NULL, else places ref i at start[tile]. */
+static size_t bin_line(const sr_draw_state *ds, const sr_line *l, uint32_t *start,
+                       uint32_t *refs, uint32_t i)
+{
+    bool listed = l->bin_count <= SR_LINE_BIN_COLUMNS;
+    int tu0 = l->bin_tu0, tu1 = tu0 + l->bin_count - 1;
+    if (!listed) {
+        sr__line_tile_columns(l, &tu0, &tu1);
+    }
+    size_t n = 0;
+    for (int tu = tu0; tu <= tu1; tu++) {
+        int tv0, tv1;
+        if (listed) {
+            tv0 = l->bin_rows[2 * (tu - tu0)];
+            tv1 = l->bin_rows[2 * (tu - tu0) + 1];
+        } else if (!sr__line_tile_rows(l, tu, &tv0, &tv1)) {
+            continue;
+        }
+        for (int tv = tv0; tv <= tv1; tv++) {
+            size_t tile = l->xmajor ? (size_t)tv * ds->tiles_x + tu : (size_t)tu * ds->tiles_x + tv;
+            if (refs) {
+                refs[start[tile]++] = i;
+            } else {
+                start[tile + 1]++;
+            }
+            n++;
+        }
+    }
+    return n;
+}
+
+static bool is_aliased_line(const sr_prim_head *p)
+{
+    return p->kind == SR_KIND_LINE && !((const sr_line *)p)->smooth;
+}
+
 bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t tri_size)
 {
     size_t tiles = (size_t)ds->tiles_x * ds->tiles_y;
     uint32_t *start = c->bin_start;
     memset(start, 0, (tiles + 1) * sizeof(uint32_t));
-    /* Count into start[tile + 1], prefix-sum, then place in order. */
+    /* Count into start[tile + 1], prefix-sum, then place in order.  Most
+     * primitives lie in one tile: one step, no loops. */
+    size_t tiles_x = (size_t)ds->tiles_x;
     size_t total = 0;
     for (uint32_t i = 0; i < c->tri_count; i++) {
         const sr_prim_head *t = prim_at(c, i, tri_size);
-        for (int ty = tile_lo(t->y0); ty <= tile_hi(t->y1); ty++) {
-            for (int tx = tile_lo(t->x0); tx <= tile_hi(t->x1); tx++) {
-                start[(size_t)ty * ds->tiles_x + tx + 1]++;
-                total++;
+        if (is_aliased_line(t)) {
+            total += bin_line(ds, (const sr_line *)t, start, NULL, i);
+            continue;
+        }
+        int tx0 = tile_lo(t->x0), tx1 = tile_hi(t->x1);
+        int ty0 = tile_lo(t->y0), ty1 = tile_hi(t->y1);
+        uint32_t *row = start + 1 + (size_t)ty0 * tiles_x;
+        if (tx0 == tx1 && ty0 == ty1) {
+            row[tx0]++;
+            total++;
+            continue;
+        }
+        for (int ty = ty0; ty <= ty1; ty++, row += tiles_x) {
+            for (int tx = tx0; tx <= tx1; tx++) {
+                row[tx]++;
             }
         }
+        total += (size_t)(tx1 - tx0 + 1) * (size_t)(ty1 - ty0 + 1);
     }
     if (total > UINT32_MAX || !sr__chunk_reserve_refs(ctx, c, total)) {
         memset(start, 0, (tiles + 1) * sizeof(uint32_t));
@@ -37,11 +92,23 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
         start[k + 1] += start[k];
     }
     /* Fill using start[tile] as a cursor, then shift back. */
+    uint32_t *refs = c->refs;
     for (uint32_t i = 0; i < c->tri_count; i++) {
         const sr_prim_head *t = prim_at(c, i, tri_size);
-        for (int ty = tile_lo(t->y0); ty <= tile_hi(t->y1); ty++) {
-            for (int tx = tile_lo(t->x0); tx <= tile_hi(t->x1); tx++) {
-                c->refs[start[(size_t)ty * ds->tiles_x + tx]++] = i;
+        if (is_aliased_line(t)) {
+            bin_line(ds, (const sr_line *)t, start, refs, i);
+            continue;
+        }
+        int tx0 = tile_lo(t->x0), tx1 = tile_hi(t->x1);
+        int ty0 = tile_lo(t->y0), ty1 = tile_hi(t->y1);
+        uint32_t *row = start + (size_t)ty0 * tiles_x;
+        if (tx0 == tx1 && ty0 == ty1) {
+            refs[row[tx0]++] = i;
+            continue;
+        }
+        for (int ty = ty0; ty <= ty1; ty++, row += tiles_x) {
+            for (int tx = tx0; tx <= tx1; tx++) {
+                refs[row[tx]++] = i;
             }
         }
     }
