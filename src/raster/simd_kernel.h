@@ -408,27 +408,31 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 r[i] = (double)(e[i] - t->bias[i] + sy[i] * (py0 - by));
             }
             bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
-#ifdef SR_SIMD_WIDE
-            if (full_width && shading != SR_SHADING_PHONG) {
-                /* Whole rows of the block: eight lanes at once, or two
-                 * rows in sixteen. */
-                int py = py0;
-#ifdef SR_SIMD_WIDE16
-                for (; py + 1 < py1; py += 2) {
+#if defined(SR_SIMD_WIDE16)
+            if (shading != SR_SHADING_PHONG) {
+                /* The block's rows in pairs, sixteen lanes, with the span
+                 * [px0, px1) and the rows that exist as the lane mask. */
+                unsigned span = (0xffu >> (SR_BLOCK_SIZE - (px1 - bx))) & (0xffu << (px0 - bx));
+                for (int py = py0; py < py1; py += 2) {
+                    unsigned valid = py + 1 < py1 ? span | span << 8 : span;
                     __m512d e0[2], e1[2], e2[2];
                     for (int h = 0; h < 2; h++) {
                         e0[h] = _mm512_add_pd(_mm512_set1_pd(r[0] + h * (double)sy[0]), lx8[0]);
                         e1[h] = _mm512_add_pd(_mm512_set1_pd(r[1] + h * (double)sy[1]), lx8[1]);
                         e2[h] = _mm512_add_pd(_mm512_set1_pd(r[2] + h * (double)sy[2]), lx8[2]);
                     }
-                    SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, 0xffff, inside, nb8, &lanes,
-                                       st, shading, dmode, SR_STAMP_8X2);
+                    SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, (__mmask16)valid, inside, nb8,
+                                       &lanes, st, shading, dmode, SR_STAMP_8X2);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                     }
                 }
-#endif
-                for (; py < py1; py++) {
+                continue;
+            }
+#elif defined(SR_SIMD_WIDE)
+            if (full_width && shading != SR_SHADING_PHONG) {
+                /* Whole rows of the block: eight lanes at once. */
+                for (int py = py0; py < py1; py++) {
                     v4d e0[2] = { r[0] + lx[0], r[0] + lx[0] + g4[0] };
                     v4d e1[2] = { r[1] + lx[1], r[1] + lx[1] + g4[1] };
                     v4d e2[2] = { r[2] + lx[2], r[2] + lx[2] + g4[2] };
