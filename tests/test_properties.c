@@ -974,10 +974,18 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
                 for (int c = 0; c < 4; c++) {
                     col[(i * 3 + v) * 4 + c] = (float)sr_rng_range(&rng, -0.5, 1.5);
                 }
+                if (k / 8 % 2) {
+                    /* Channels equal at all three vertices (unlit: the
+                     * color as given): the kernels pack those once per
+                     * triangle. */
+                    col[(i * 3 + v) * 4 + 3] = 1.0f;
+                    col[(i * 3 + v) * 4 + 1] = (float)(i % 5) * 0.3f - 0.2f;
+                }
             }
         }
         sr_state st = { .shading = shadings[k % 4], .cull = SR_CULL_NONE,
-                        .no_depth_test = k % 8 >= 4, .ambient = { 0.2f, 0.2f, 0.2f },
+                        .no_depth_test = k % 8 >= 4, .no_depth_write = k % 8 >= 4,
+                        .ambient = { 0.2f, 0.2f, 0.2f },
                         .material = { .diffuse = { 1, 1, 1 }, .specular = { 0.5f, 0.5f, 0.5f },
                                       .shininess = 8 } };
         st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };

@@ -286,6 +286,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 #endif
     SR_SIMD_FN(tri_lanes) lanes;
     SR_SIMD_FN(make_lanes)(t, &lanes);
+#ifdef SR_SIMD_WIDE16
+    SR_SIMD_FN(w16_lanes) wl;
+    SR_SIMD_FN(w16_make)(t, shading, &lanes, &wl);
+#endif
 
 #ifdef SR_SIMD_WIDE16
     if (shading != SR_SHADING_PHONG && rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
@@ -315,7 +319,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 e[i][1] = _mm512_add_pd(c, off[1][i]);
             }
             SR_SIMD_FN(rows16)(ds, t, rx0, py, e[0], e[1], e[2], (__mmask16)valid, false, nb8,
-                               &lanes, st, shading, dmode, SR_STAMP_4X4);
+                               &wl, st, dmode, SR_STAMP_4X4);
         }
         return;
     }
@@ -340,7 +344,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                     e2[h] = _mm512_add_pd(_mm512_set1_pd(rs[2] + h * (double)sy[2]), lx8[2]);
                 }
                 SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, rows & (span | span << 8), false,
-                                   nb8, &lanes, st, shading, dmode, SR_STAMP_8X2);
+                                   nb8, &wl, st, dmode, SR_STAMP_8X2);
                 for (int i = 0; i < 3; i++) {
                     rs[i] += 8.0 * (double)sx[i];
                 }
@@ -422,7 +426,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         e2[h] = _mm512_add_pd(_mm512_set1_pd(r[2] + h * (double)sy[2]), lx8[2]);
                     }
                     SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, (__mmask16)valid, inside, nb8,
-                                       &lanes, st, shading, dmode, SR_STAMP_8X2);
+                                       &wl, st, dmode, SR_STAMP_8X2);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                     }

@@ -128,16 +128,6 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(row8)(const sr_draw_state *ds, const sr
  * floats one 16-lane register; a mask register carries coverage and the
  * depth test to masked stores, so no lane outside the triangle or behind
  * the depth buffer is written. */
-SR_SIMD_TARGET SR_INLINE __m512 SR_SIMD_FN(w16_f)(v4f v)
-{
-    return _mm512_broadcast_f32x4((__m128)v);
-}
-
-SR_SIMD_TARGET SR_INLINE __m512d SR_SIMD_FN(w16_d)(v4d v)
-{
-    return _mm512_broadcast_f64x4((__m256d)v);
-}
-
 /* Both rows' exact edge values to float, one rounding each. */
 SR_SIMD_TARGET SR_INLINE __m512 SR_SIMD_FN(w16_cvt)(__m512d row0, __m512d row1)
 {
@@ -145,20 +135,54 @@ SR_SIMD_TARGET SR_INLINE __m512 SR_SIMD_FN(w16_cvt)(__m512d row0, __m512d row1)
                               _mm512_cvtpd_ps(row1), 1);
 }
 
-SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_pack)(const __m512 c[4])
+/* sr__unorm8 on one channel of sixteen lanes, as wide_pack: min keeps
+ * NaN, truncation sends it below zero, the max takes it to 0. */
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_unorm8)(__m512 c)
 {
-    const __m512 one = _mm512_set1_ps(1.0f), k255 = _mm512_set1_ps(255.0f);
-    const __m512 half = _mm512_set1_ps(0.5f);
-    __m512i q[4];
-    for (int ch = 0; ch < 4; ch++) {
-        /* As wide_pack: min keeps NaN, truncation sends it below zero. */
-        __m512 v = _mm512_min_ps(one, c[ch]);
-        q[ch] = _mm512_max_epi32(_mm512_cvttps_epi32(_mm512_add_ps(_mm512_mul_ps(v, k255), half)),
-                                 _mm512_setzero_si512());
+    __m512 v = _mm512_min_ps(_mm512_set1_ps(1.0f), c);
+    return _mm512_max_epi32(_mm512_cvttps_epi32(_mm512_add_ps(
+                                _mm512_mul_ps(v, _mm512_set1_ps(255.0f)), _mm512_set1_ps(0.5f))),
+                            _mm512_setzero_si512());
+}
+
+/* A triangle's constants in sixteen lanes, made once per triangle.  A
+ * color channel equal at the three vertices (alpha, nearly always) is
+ * c0 + l1 0 + l2 0 = c0 wherever l1 and l2 are finite, so its byte is
+ * packed here once (`fixed`) and only the `varying` channels are
+ * interpolated per pixel. */
+typedef struct SR_SIMD_FN(w16_lanes) {
+    __m512 w[3], c0[4], c1[4], c2[4];
+    __m512d z0, dz1, dz2;
+    __m512i fixed;
+    unsigned varying;      /* bit ch: channel ch differs between vertices */
+} SR_SIMD_FN(w16_lanes);
+
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_make)(const sr_tri *t, sr_shading shading,
+                                                   const SR_SIMD_FN(tri_lanes) *k,
+                                                   SR_SIMD_FN(w16_lanes) *o)
+{
+    o->z0 = _mm512_broadcast_f64x4((__m256d)k->z0);
+    o->dz1 = _mm512_broadcast_f64x4((__m256d)k->dz1);
+    o->dz2 = _mm512_broadcast_f64x4((__m256d)k->dz2);
+    for (int i = 0; i < 3; i++) {
+        o->w[i] = _mm512_broadcast_f32x4((__m128)k->w[i]);
     }
-    return _mm512_or_si512(_mm512_or_si512(q[0], _mm512_slli_epi32(q[1], 8)),
-                           _mm512_or_si512(_mm512_slli_epi32(q[2], 16),
-                                           _mm512_slli_epi32(q[3], 24)));
+    uint32_t fixed = 0;
+    o->varying = 0;
+    for (int ch = 0; ch < 4; ch++) {
+        float c0 = k->c0[ch][0], c1 = k->c1[ch][0], c2 = k->c2[ch][0];
+        if (shading == SR_SHADING_FLAT) {
+            fixed |= (uint32_t)sr__unorm8(t->flat[ch]) << (8 * ch);
+        } else if (c1 == 0.0f && c2 == 0.0f) {
+            fixed |= (uint32_t)sr__unorm8(c0) << (8 * ch);
+        } else {
+            o->varying |= 1u << ch;
+            o->c0[ch] = _mm512_set1_ps(c0);
+            o->c1[ch] = _mm512_set1_ps(c1);
+            o->c2[ch] = _mm512_set1_ps(c2);
+        }
+    }
+    o->fixed = _mm512_set1_epi32((int)fixed);
 }
 
 /* A stamp of sixteen pixels: 8 x 2 (lanes 0-7 row py, 8-15 row py + 1)
@@ -219,9 +243,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
                                                  int py, const __m512d e0[2], const __m512d e1[2],
                                                  const __m512d e2[2], __mmask16 valid,
                                                  bool inside, const __m512d nb[3],
-                                                 const SR_SIMD_FN(tri_lanes) *k, sr_frag_stats *st,
-                                                 sr_shading shading, sr_depth_mode dmode,
-                                                 sr_stamp shape)
+                                                 const SR_SIMD_FN(w16_lanes) *k, sr_frag_stats *st,
+                                                 sr_depth_mode dmode, sr_stamp shape)
 {
     __mmask16 m = valid;
     if (!inside) {
@@ -244,9 +267,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         __m256i q[2];
         for (int h = 0; h < 2; h++) {
             __m512d z = _mm512_add_pd(
-                _mm512_add_pd(SR_SIMD_FN(w16_d)(k->z0),
-                              _mm512_mul_pd(e1[h], SR_SIMD_FN(w16_d)(k->dz1))),
-                _mm512_mul_pd(e2[h], SR_SIMD_FN(w16_d)(k->dz2)));
+                _mm512_add_pd(k->z0, _mm512_mul_pd(e1[h], k->dz1)), _mm512_mul_pd(e2[h], k->dz2));
             if (!t->z_inside) {
                 __m512d zmin = _mm512_set1_pd(ds->zq_min), zmax = _mm512_set1_pd(ds->zq_max);
                 z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmin, _CMP_GE_OQ), zmin, z);
@@ -263,30 +284,30 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         SR_SIMD_FN(stamp_store)(fb->depth, idx, pitch, m, qz, shape);
     }
 
-    __m512i rgba;
-    if (shading == SR_SHADING_FLAT) {
-        uint32_t c = 0;
-        for (int ch = 0; ch < 4; ch++) {
-            c |= (uint32_t)sr__unorm8(t->flat[ch]) << (8 * ch);
-        }
-        rgba = _mm512_set1_epi32((int)c);
-    } else {
+    __m512i rgba = k->fixed;
+    if (k->varying) {
         /* sr__bary and sr__interp on sixteen lanes. */
-        __m512 q0 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e0[0], e0[1]), SR_SIMD_FN(w16_f)(k->w[0]));
-        __m512 q1 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e1[0], e1[1]), SR_SIMD_FN(w16_f)(k->w[1]));
-        __m512 q2 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), SR_SIMD_FN(w16_f)(k->w[2]));
+        __m512 q0 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e0[0], e0[1]), k->w[0]);
+        __m512 q1 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e1[0], e1[1]), k->w[1]);
+        __m512 q2 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), k->w[2]);
         __m512 s = _mm512_add_ps(_mm512_add_ps(q0, q1), q2);
         /* s != 0 ? 1/s : 0, with NaN taking the division as in C. */
         __mmask16 nz = _mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_NEQ_UQ);
         __m512 inv = _mm512_maskz_div_ps(nz, _mm512_set1_ps(1.0f), s);
         __m512 l1 = _mm512_mul_ps(q1, inv), l2 = _mm512_mul_ps(q2, inv);
-        __m512 c[4];
+        __m512i var = _mm512_setzero_si512();
         for (int ch = 0; ch < 4; ch++) {
-            c[ch] = _mm512_add_ps(_mm512_add_ps(SR_SIMD_FN(w16_f)(k->c0[ch]),
-                                                _mm512_mul_ps(l1, SR_SIMD_FN(w16_f)(k->c1[ch]))),
-                                  _mm512_mul_ps(l2, SR_SIMD_FN(w16_f)(k->c2[ch])));
+            if (k->varying >> ch & 1) {
+                __m512 c = _mm512_add_ps(_mm512_add_ps(k->c0[ch], _mm512_mul_ps(l1, k->c1[ch])),
+                                         _mm512_mul_ps(l2, k->c2[ch]));
+                var = _mm512_or_si512(var, _mm512_sll_epi32(SR_SIMD_FN(w16_unorm8)(c),
+                                                             _mm_cvtsi32_si128(8 * ch)));
+            }
         }
-        rgba = SR_SIMD_FN(w16_pack)(c);
+        /* Where l1 or l2 is infinite or NaN a constant channel is NaN
+         * too, which packs to 0: those lanes get no fixed byte. */
+        __mmask16 bad = _mm512_fpclass_ps_mask(l1, 0x99) | _mm512_fpclass_ps_mask(l2, 0x99);
+        rgba = _mm512_mask_or_epi32(var, (__mmask16)~bad, var, k->fixed);
     }
     SR_SIMD_FN(stamp_store)(fb->color, idx, pitch, m, rgba, shape);
     st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
