@@ -133,17 +133,22 @@ static void raster_ms16(const sr_draw_state *ds, const sr_tri *t, int rx0, int r
                         int ry1, sr_frag_stats *st)
 {
     ms16 k = { .ds = ds, .t = t, .st = st };
+    /* Lane p * 4 + s: pixel p's step plus sample s's offset, built in
+     * registers (small integers: every product and sum is exact). */
+    __m512d sox = _mm512_setzero_pd(), soy = _mm512_setzero_pd();
+    for (int s = 0; s < 4; s++) {
+        sox[s] = sox[s + 4] = ds->sample_off[s][0];
+        soy[s] = soy[s + 4] = ds->sample_off[s][1];
+    }
+    const __m512d pix01 = _mm512_setr_pd(0, 0, 0, 0, 1, 1, 1, 1);
     for (int i = 0; i < 3; i++) {
-        double lane[16];
-        for (int p = 0; p < 4; p++) {
-            int64_t step = t->a[i] * SR_SUBPIXEL_ONE * p;
-            for (int s = 0; s < 4; s++) {
-                lane[p * 4 + s] = (double)(step + t->a[i] * ds->sample_off[s][0] +
-                                           t->b[i] * ds->sample_off[s][1]);
-            }
-        }
-        k.off[0][i] = _mm512_loadu_pd(lane);
-        k.off[1][i] = _mm512_loadu_pd(lane + 8);
+        __m512d av = _mm512_set1_pd((double)t->a[i]), bv = _mm512_set1_pd((double)t->b[i]);
+        __m512d step = _mm512_mul_pd(av, _mm512_set1_pd((double)SR_SUBPIXEL_ONE));
+        __m512d first = _mm512_add_pd(_mm512_mul_pd(step, pix01),
+                                      _mm512_add_pd(_mm512_mul_pd(av, sox),
+                                                    _mm512_mul_pd(bv, soy)));
+        k.off[0][i] = first;
+        k.off[1][i] = _mm512_add_pd(first, _mm512_add_pd(step, step));
         k.nbias[i] = _mm512_set1_pd((double)-t->bias[i]);
         double a = (double)(t->a[i] * SR_SUBPIXEL_ONE);
         k.pix[i] = _mm256_setr_pd(0.0, a, 2.0 * a, 3.0 * a);

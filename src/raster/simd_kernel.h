@@ -295,14 +295,15 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     if (shading != SR_SHADING_PHONG && rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
         /* Tiny triangles: the bounding box in 4 x 4 stamps, lane (x, y)
          * at offset x a + y b from the stamp's corner. */
+        const __m512d col = _mm512_setr_pd(0, 1, 2, 3, 0, 1, 2, 3);
+        const __m512d row = _mm512_setr_pd(0, 0, 0, 0, 1, 1, 1, 1);
         __m512d off[2][3];
         for (int i = 0; i < 3; i++) {
-            double d[16];
-            for (int j = 0; j < 16; j++) {
-                d[j] = (double)(sx[i] * (j % 4) + sy[i] * (j / 4));
-            }
-            off[0][i] = _mm512_loadu_pd(d);
-            off[1][i] = _mm512_loadu_pd(d + 8);
+            /* Small integers: every product and sum is exact. */
+            __m512d a = _mm512_set1_pd((double)sx[i]), b = _mm512_set1_pd((double)sy[i]);
+            __m512d top = _mm512_add_pd(_mm512_mul_pd(a, col), _mm512_mul_pd(b, row));
+            off[0][i] = top;
+            off[1][i] = _mm512_add_pd(top, _mm512_add_pd(b, b));
         }
         unsigned cols = (1u << (rx1 - rx0)) - 1;
         int64_t xc = sr__centre_q8(rx0);
