@@ -132,7 +132,11 @@ __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
 static void raster_ms16(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
                         int ry1, sr_frag_stats *st)
 {
-    ms16 k = { .ds = ds, .t = t, .st = st };
+    ms16 k;                /* every field set below: zeroing it all cost a rep stos */
+    k.ds = ds;
+    k.t = t;
+    k.st = st;
+    k.flat = 0;
     /* Lane p * 4 + s: pixel p's step plus sample s's offset, built in
      * registers (small integers: every product and sum is exact). */
     __m512d sox = _mm512_setzero_pd(), soy = _mm512_setzero_pd();
@@ -165,10 +169,11 @@ static void raster_ms16(const sr_draw_state *ds, const sr_tri *t, int rx0, int r
         }
     } else {
         int n = t->ninterp;
-        for (int ch = 0; ch < 4 && ch < n; ch++) {
-            k.c0[ch] = _mm_set1_ps(t->vary[SR_VARY_COLOR + ch]);
-            k.c1[ch] = _mm_set1_ps(t->vary[n + SR_VARY_COLOR + ch]);
-            k.c2[ch] = _mm_set1_ps(t->vary[2 * n + SR_VARY_COLOR + ch]);
+        for (int ch = 0; ch < 4; ch++) {
+            bool has = ch < n;
+            k.c0[ch] = _mm_set1_ps(has ? t->vary[SR_VARY_COLOR + ch] : 0.0f);
+            k.c1[ch] = _mm_set1_ps(has ? t->vary[n + SR_VARY_COLOR + ch] : 0.0f);
+            k.c2[ch] = _mm_set1_ps(has ? t->vary[2 * n + SR_VARY_COLOR + ch] : 0.0f);
         }
     }
     sr__block_walk(ds, t, rx0, ry0, rx1, ry1, &k, ms16_block);
