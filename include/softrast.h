@@ -186,7 +186,16 @@ typedef struct sr_context sr_context;
 typedef struct sr_context_desc {
     sr_allocator allocator; /* zero: malloc/free */
     int threads;            /* 0: SR_THREADS env var, else online CPUs; 1: no worker threads */
+    /* Primitives set up before the tiles are drawn: larger batches pass
+     * over each tile fewer times (faster for big meshes) and keep more
+     * set-up records (about 250 bytes each).  0: SR_BATCH_DEFAULT;
+     * otherwise SR_BATCH_MIN .. SR_BATCH_MAX. */
+    int batch_primitives;
 } sr_context_desc;
+
+#define SR_BATCH_DEFAULT 98304
+#define SR_BATCH_MIN     1024
+#define SR_BATCH_MAX     (1 << 22)
 
 sr_result   sr_make_context(const sr_context_desc *desc, sr_context **out);
 void        sr_destroy_context(sr_context *ctx);

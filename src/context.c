@@ -226,6 +226,10 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
     if (d.threads < 0 || d.threads > SR_MAX_THREADS) {
         return SR_INVALID_ARG;
     }
+    if (d.batch_primitives != 0 &&
+        (d.batch_primitives < SR_BATCH_MIN || d.batch_primitives > SR_BATCH_MAX)) {
+        return SR_INVALID_ARG;
+    }
     if (!d.allocator.alloc) {
         d.allocator.alloc = default_alloc;
         d.allocator.free = default_free;
@@ -237,6 +241,7 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
     memset(ctx, 0, sizeof *ctx);
     ctx->allocator = d.allocator;
     ctx->threads = resolve_threads(d.threads);
+    ctx->batch_prims = d.batch_primitives ? (size_t)d.batch_primitives : SR_BATCH_DEFAULT;
 
     ctx->scratch = sr__scratch_create(ctx);
     if (!ctx->scratch) {

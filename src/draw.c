@@ -1035,8 +1035,9 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     front_end fe = { ctx, &ds, d, sr__record_size(ds.ninterp), chunks, fused, verts_per_prim,
                      &mvp, &mv, &nm };
     bool oom = false;
-    /* Equal batches of at most SR_BATCH_PRIMS, so no batch is a sliver. */
-    size_t batches = (prims + SR_BATCH_PRIMS - 1) / SR_BATCH_PRIMS;
+    /* Equal batches of at most the context's batch size, so no batch is a
+     * sliver. */
+    size_t batches = (prims + ctx->batch_prims - 1) / ctx->batch_prims;
     size_t batch_size = (prims + batches - 1) / batches;
     for (size_t begin = 0; begin < prims && !oom; begin += batch_size) {
         size_t end = prims - begin < batch_size ? prims : begin + batch_size;

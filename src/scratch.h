@@ -8,10 +8,14 @@
 #include "pipeline.h"
 #include "parallel/pool.h"
 
-/* Primitives per batch: the front end sets up a batch in parallel chunks,
- * the back end rasterizes it, then the next batch follows.  This bounds
- * memory for any draw size while keeping submission order. */
-#define SR_BATCH_PRIMS 32768
+/* Primitives per batch (sr_context_desc.batch_primitives): the front end
+ * sets up a batch in parallel chunks, the back end rasterizes it, then the
+ * next batch follows.  This bounds memory for any draw size while keeping
+ * submission order.  The default, 98,304, takes a mesh of up to that many
+ * triangles (the bunny, 69,451) through the tiles in one pass: 32,768 took
+ * three, and each pass reloads every tile's color and depth (bunny 10%,
+ * a million small triangles 16%, 4x MSAA 7% slower, for about 35 MB less
+ * scratch at the bunny's size). */
 #define SR_MAX_CHUNKS (2 * SR_MAX_THREADS)
 
 /* One front-end chunk: a contiguous range of primitives, the triangles it

@@ -1026,6 +1026,60 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
     sr_destroy_context(ctx);
 }
 
+/* The batch size changes how often each tile is visited, never the
+ * bytes: 5,000 overlapping triangles with blending (order matters) in
+ * batches of 1,024 and of the default size, on 1 and 3 threads. */
+SR_TEST(batch_size_changes_no_byte)
+{
+    enum { W = 160, H = 120, N = 5000 };
+    float *pos = malloc(sizeof(float) * 9 * N), *col = malloc(sizeof(float) * 12 * N);
+    sr_rng rng = { 0xba7c };
+    for (int i = 0; i < 3 * N; i++) {
+        pos[i * 3 + 0] = (float)sr_rng_range(&rng, -1.1, 1.1);
+        pos[i * 3 + 1] = (float)sr_rng_range(&rng, -1.1, 1.1);
+        pos[i * 3 + 2] = (float)sr_rng_range(&rng, -0.9, 0.9);
+        for (int c = 0; c < 4; c++) {
+            col[i * 4 + c] = (float)sr_rng_unit(&rng);
+        }
+    }
+    /* Nearby vertices: small triangles, so tiles see triangles of many batches. */
+    for (int i = 0; i < N; i++) {
+        for (int v = 1; v < 3; v++) {
+            for (int a = 0; a < 2; a++) {
+                pos[(i * 3 + v) * 3 + a] = pos[i * 9 + a] + (pos[(i * 3 + v) * 3 + a] * 0.1f);
+            }
+        }
+    }
+    static const int batch[] = { SR_BATCH_MIN, 0, SR_BATCH_MIN, 0 };
+    static const int threads[] = { 1, 1, 3, 3 };
+    uint8_t *first = malloc(W * H * 4);
+    for (int v = 0; v < 4; v++) {
+        sr_context *ctx;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[v],
+                                                    .batch_primitives = batch[v] }, &ctx) == SR_OK);
+        sr_framebuffer *fb;
+        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &fb) ==
+                SR_OK);
+        sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = 1 });
+        sr_state st = { .shading = SR_SHADING_UNLIT,
+                        .blend = { .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
+                                   .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
+                                   .src_alpha = SR_BLEND_ONE, .dst_alpha = SR_BLEND_ZERO } };
+        CHECK_EQ(sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3 * N,
+                                                         .colors = col }), SR_OK);
+        if (v == 0) {
+            memcpy(first, sr_framebuffer_pixels(fb), W * H * 4);
+        } else {
+            CHECK(memcmp(first, sr_framebuffer_pixels(fb), W * H * 4) == 0);
+        }
+        sr_destroy_framebuffer(ctx, fb);
+        sr_destroy_context(ctx);
+    }
+    free(first);
+    free(pos);
+    free(col);
+}
+
 SR_TEST(moving_the_viewport_by_whole_pixels_moves_the_image_exactly)
 {
     enum { W = 200, H = 160, VW = 96, VH = 80 };

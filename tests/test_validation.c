@@ -367,6 +367,15 @@ SR_TEST(invalid_context_descs_are_rejected)
     CHECK_EQ(sr_make_context(&(sr_context_desc){ .allocator = { .alloc = only_alloc } }, &ctx), SR_INVALID_ARG);
     CHECK(ctx == NULL);
     CHECK_EQ(sr_make_context(&(sr_context_desc){ .threads = 1 }, NULL), SR_INVALID_ARG);
+    static const int bad_batches[] = { -1, 1, SR_BATCH_MIN - 1, SR_BATCH_MAX + 1 };
+    for (int i = 0; i < 4; i++) {
+        ctx = (sr_context *)&ctx;
+        CHECK_EQ(sr_make_context(&(sr_context_desc){ .batch_primitives = bad_batches[i] }, &ctx),
+                 SR_INVALID_ARG);
+        CHECK(ctx == NULL);
+    }
+    CHECK_EQ(sr_make_context(&(sr_context_desc){ .batch_primitives = SR_BATCH_MIN }, &ctx), SR_OK);
+    sr_destroy_context(ctx);
     /* NULL desc means all defaults. */
     CHECK_EQ(sr_make_context(NULL, &ctx), SR_OK);
     CHECK(sr_context_threads(ctx) >= 1);
