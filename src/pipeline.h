@@ -472,6 +472,12 @@ typedef enum sr_simd_level {
     SR_SIMD_OFF = 0, SR_SIMD_BASE, SR_SIMD_AVX2, SR_SIMD_AVX512
 } sr_simd_level;
 sr_simd_level sr__simd_level(void);
+/* The models whose fragment color is the interpolated color varying, as
+ * the vertex stage left it: what the vector kernels shade like UNLIT. */
+static inline bool sr__color_varying_shading(sr_shading s)
+{
+    return s == SR_SHADING_UNLIT || s == SR_SHADING_GOURAUD || s == SR_SHADING_ATTRIBUTE;
+}
 /* The vector kernel of the per-sample path for this state, or NULL. */
 typedef void (*sr_raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,
                              sr_frag_stats *);

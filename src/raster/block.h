@@ -1,5 +1,6 @@
-/* block.h - classifying an 8x8 block against a set-up triangle (raster
- * stage), shared by the scalar and the vector half-space loops.  An edge
+/* block.h - classifying a rectangle of pixels (an 8x8 block, a tile's
+ * part) against a set-up triangle (raster stage), shared by the scalar,
+ * vector and per-sample half-space loops.  An edge
  * function is linear, so its extremes over the block's sample points are
  * at the corners: the block is outside when some edge is negative at every
  * corner, inside when every edge is non-negative at every corner. */
@@ -8,23 +9,36 @@
 
 #include "pipeline.h"
 
-/* e[i] = biased edge value at the block's first pixel centre (bx, by);
- * sx, sy = per-pixel steps.  Returns false when the block is outside. */
-static inline bool sr__block_classify(const sr_tri *t, int bx, int by, const int64_t sx[3],
-                                      const int64_t sy[3], int64_t e[3], bool *inside)
+/* The pixels [x0, x1) x [y0, y1): e[i] = biased edge value at pixel
+ * (x0, y0)'s centre; sx, sy = per-pixel steps; slack[i] widens the test to
+ * samples up to that far from the centres (multisampling; zero for pixel
+ * centres).  Returns false when no sample of the rectangle is covered;
+ * *inside tells whether every one is. */
+static inline bool sr__rect_classify(const sr_tri *t, int x0, int y0, int x1, int y1,
+                                     const int64_t sx[3], const int64_t sy[3],
+                                     const int64_t slack[3], int64_t e[3], bool *inside)
 {
-    const int last = SR_BLOCK_SIZE - 1;
     bool in = true;
     for (int i = 0; i < 3; i++) {
-        e[i] = t->a[i] * sr__centre_q8(bx) + t->b[i] * sr__centre_q8(by) + t->c[i] + t->bias[i];
-        int64_t ex = sx[i] * last, ey = sy[i] * last;
-        if (e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) < 0) {
+        e[i] = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i] + t->bias[i];
+        int64_t ex = sx[i] * (x1 - 1 - x0), ey = sy[i] * (y1 - 1 - y0);
+        if (e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) + slack[i] < 0) {
             return false;
         }
-        in &= e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) >= 0;
+        in &= e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) - slack[i] >= 0;
     }
     *inside = in;
     return true;
+}
+
+static const int64_t sr__no_slack[3] = { 0, 0, 0 };
+
+/* An 8x8 block at (bx, by), pixel centres. */
+static inline bool sr__block_classify(const sr_tri *t, int bx, int by, const int64_t sx[3],
+                                      const int64_t sy[3], int64_t e[3], bool *inside)
+{
+    return sr__rect_classify(t, bx, by, bx + SR_BLOCK_SIZE, by + SR_BLOCK_SIZE, sx, sy,
+                             sr__no_slack, e, inside);
 }
 
 /* Whether every pixel centre of [x0, x1) x [y0, y1) is covered: a big
@@ -33,15 +47,9 @@ static inline bool sr__block_classify(const sr_tri *t, int bx, int by, const int
 static inline bool sr__rect_inside(const sr_tri *t, int x0, int y0, int x1, int y1,
                                    const int64_t sx[3], const int64_t sy[3])
 {
-    for (int i = 0; i < 3; i++) {
-        int64_t e = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i] +
-                    t->bias[i];
-        int64_t ex = sx[i] * (x1 - 1 - x0), ey = sy[i] * (y1 - 1 - y0);
-        if (e + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) < 0) {
-            return false;
-        }
-    }
-    return true;
+    int64_t e[3];
+    bool inside;
+    return sr__rect_classify(t, x0, y0, x1, y1, sx, sy, sr__no_slack, e, &inside) && inside;
 }
 
 #endif

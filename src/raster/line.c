@@ -247,16 +247,8 @@ static bool line_is_fast(const sr_draw_state *ds, const sr_line *l)
         ds->blend.enabled || ds->samples != 1 || ds->depth_mode == SR_DEPTH_MODE_GENERIC) {
         return false;
     }
-    switch (ds->shading) {
-    case SR_SHADING_FLAT:
-        return true;
-    case SR_SHADING_UNLIT:
-    case SR_SHADING_GOURAUD:
-    case SR_SHADING_ATTRIBUTE:
-        return l->ninterp >= 4;
-    default:
-        return false;
-    }
+    return ds->shading == SR_SHADING_FLAT ||
+           (sr__color_varying_shading(ds->shading) && l->ninterp >= 4);
 }
 
 /* One pixel at buffer element idx whose centre c gives the projection's

@@ -144,9 +144,7 @@ sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
     }
     /* Four pixels at a time where the shading is the interpolated color
      * or flat (as in the half-space kernels' select). */
-    bool color = !ds->texture && (ds->shading == SR_SHADING_UNLIT ||
-                                  ds->shading == SR_SHADING_GOURAUD ||
-                                  ds->shading == SR_SHADING_ATTRIBUTE ||
+    bool color = !ds->texture && (sr__color_varying_shading(ds->shading) ||
                                   ds->shading == SR_SHADING_FLAT);
     switch (sr__simd_level()) {
     case SR_SIMD_AVX512: return color ? raster_ms16 : raster_ms4_avx2;

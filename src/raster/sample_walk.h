@@ -8,6 +8,7 @@
 #define SR_SAMPLE_WALK_H
 
 #include "fragment/fragment.h"
+#include "raster/block.h"
 
 #include <stdlib.h>
 
@@ -30,18 +31,12 @@ SR_INLINE void sr__block_steps(const sr_draw_state *ds, const sr_tri *t, sr_bloc
 SR_INLINE bool sr__block_open(const sr_tri *t, const sr_block_steps *k, int px0, int py0,
                               int px1, int py1, int64_t u[3], bool *inside)
 {
-    bool in = true;
-    for (int i = 0; i < 3; i++) {
-        int64_t e = t->a[i] * sr__centre_q8(px0) + t->b[i] * sr__centre_q8(py0) + t->c[i] +
-                    t->bias[i];
-        int64_t ex = k->sx[i] * (px1 - 1 - px0), ey = k->sy[i] * (py1 - 1 - py0);
-        if (e + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) + k->slack[i] < 0) {
-            return false;
-        }
-        in &= e + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) - k->slack[i] >= 0;
-        u[i] = e - t->bias[i];
+    if (!sr__rect_classify(t, px0, py0, px1, py1, k->sx, k->sy, k->slack, u, inside)) {
+        return false;
     }
-    *inside = in;
+    for (int i = 0; i < 3; i++) {
+        u[i] -= t->bias[i];
+    }
     return true;
 }
 

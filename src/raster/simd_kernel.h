@@ -250,6 +250,21 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
 #include "raster/simd_wide.h"
 #endif
 
+#ifdef SR_SIMD_WIDE16
+/* An 8 x 2 stamp's exact edge values: r[i] at the top row's first pixel,
+ * the next row sy[i] further, lanes lx8[i] apart. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edges)(const double r[3], const int64_t sy[3],
+                                                    const __m512d lx8[3], __m512d e0[2],
+                                                    __m512d e1[2], __m512d e2[2])
+{
+    __m512d *e[3] = { e0, e1, e2 };
+    for (int i = 0; i < 3; i++) {
+        e[i][0] = _mm512_add_pd(_mm512_set1_pd(r[i]), lx8[i]);
+        e[i][1] = _mm512_add_pd(_mm512_set1_pd(r[i] + (double)sy[i]), lx8[i]);
+    }
+}
+#endif
+
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
                                                     int rx0, int ry0, int rx1, int ry1,
                                                     sr_frag_stats *st, sr_shading shading,
@@ -339,11 +354,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             for (int gx = rx0; gx < rx1; gx += 8) {
                 unsigned span = rx1 - gx >= 8 ? 0xffu : (1u << (rx1 - gx)) - 1;
                 __m512d e0[2], e1[2], e2[2];
-                for (int h = 0; h < 2; h++) {
-                    e0[h] = _mm512_add_pd(_mm512_set1_pd(rs[0] + h * (double)sy[0]), lx8[0]);
-                    e1[h] = _mm512_add_pd(_mm512_set1_pd(rs[1] + h * (double)sy[1]), lx8[1]);
-                    e2[h] = _mm512_add_pd(_mm512_set1_pd(rs[2] + h * (double)sy[2]), lx8[2]);
-                }
+                SR_SIMD_FN(w16_edges)(rs, sy, lx8, e0, e1, e2);
                 SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, rows & (span | span << 8), false,
                                    nb8, &wl, st, dmode, SR_STAMP_8X2);
                 for (int i = 0; i < 3; i++) {
@@ -421,11 +432,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 for (int py = py0; py < py1; py += 2) {
                     unsigned valid = py + 1 < py1 ? span | span << 8 : span;
                     __m512d e0[2], e1[2], e2[2];
-                    for (int h = 0; h < 2; h++) {
-                        e0[h] = _mm512_add_pd(_mm512_set1_pd(r[0] + h * (double)sy[0]), lx8[0]);
-                        e1[h] = _mm512_add_pd(_mm512_set1_pd(r[1] + h * (double)sy[1]), lx8[1]);
-                        e2[h] = _mm512_add_pd(_mm512_set1_pd(r[2] + h * (double)sy[2]), lx8[2]);
-                    }
+                    SR_SIMD_FN(w16_edges)(r, sy, lx8, e0, e1, e2);
                     SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, (__mmask16)valid, inside, nb8,
                                        &wl, st, dmode, SR_STAMP_8X2);
                     for (int i = 0; i < 3; i++) {
@@ -521,12 +528,11 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
         return NULL;
     }
     bool less = ds->depth_mode == SR_DEPTH_MODE_LESS;
-    switch (ds->shading) {
-    case SR_SHADING_UNLIT:
-    case SR_SHADING_GOURAUD: /* these interpolate the color varying */
-    case SR_SHADING_ATTRIBUTE:
+    if (sr__color_varying_shading(ds->shading)) {
         return less ? SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_LESS)
                     : SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_OFF);
+    }
+    switch (ds->shading) {
     case SR_SHADING_FLAT:
         return less ? SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_LESS)
                     : SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_OFF);

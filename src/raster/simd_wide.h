@@ -304,10 +304,13 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
                                                              _mm_cvtsi32_si128(8 * ch)));
             }
         }
-        /* Where l1 or l2 is infinite or NaN a constant channel is NaN
-         * too, which packs to 0: those lanes get no fixed byte. */
-        __mmask16 bad = _mm512_fpclass_ps_mask(l1, 0x99) | _mm512_fpclass_ps_mask(l2, 0x99);
-        rgba = _mm512_mask_or_epi32(var, (__mmask16)~bad, var, k->fixed);
+        rgba = var;
+        if (k->varying != 0xf) {
+            /* Where l1 or l2 is infinite or NaN a constant channel is NaN
+             * too, which packs to 0: those lanes get no fixed byte. */
+            __mmask16 bad = _mm512_fpclass_ps_mask(l1, 0x99) | _mm512_fpclass_ps_mask(l2, 0x99);
+            rgba = _mm512_mask_or_epi32(var, (__mmask16)~bad, var, k->fixed);
+        }
     }
     SR_SIMD_FN(stamp_store)(fb->color, idx, pitch, m, rgba, shape);
     st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
