@@ -1026,7 +1026,15 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
         nm = mv; /* singular model-view (a flattening scale): best effort */
     }
     if (!fused) {
-        vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, 4096 };
+        /* Blocks of at most 4096 vertices, a multiple of the thread count
+         * of them: the pool gives each thread a contiguous share of the
+         * blocks, as it does the front end's chunks, and a mesh's
+         * triangles mostly use vertices near their own place in the
+         * order, so a chunk mostly reads vertices its own core shaded. */
+        size_t threads = (size_t)ctx->threads;
+        size_t jobs = (d->vertex_count + 4095) / 4096;
+        jobs = (jobs + threads - 1) / threads * threads;
+        vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, (d->vertex_count + jobs - 1) / jobs };
         sr__pool_run(ctx->pool, run_vertex_stage, &vj,
                      (int)((d->vertex_count + vj.per_job - 1) / vj.per_job));
     }

@@ -1,7 +1,9 @@
 /* pool.h - the tile thread pool (parallel stage).  Created with the
  * context; sr__pool_run hands out job indices 0..count-1 to the calling
- * thread and the workers through an atomic counter and returns when all are
- * done.  Jobs must be independent (tiles write disjoint pixels). */
+ * thread and the workers and returns when all are done.  Thread t first
+ * runs the t-th contiguous share of the jobs in order, then helps with the
+ * others' (pool.c).  Jobs must be independent (tiles write disjoint
+ * pixels). */
 #ifndef SR_POOL_H
 #define SR_POOL_H
 
