@@ -505,6 +505,7 @@ typedef struct front_end {
     size_t tri_size;
     int chunks;
     bool fused;
+    bool stream;                      /* records go out by streaming stores (scratch.h) */
     size_t verts_per_prim;            /* fused: primitive p uses vertices k p .. k p + k - 1 */
     const sr_mat4 *mvp, *mv, *nm;
 } front_end;
@@ -523,13 +524,26 @@ typedef struct vertex_src {
 static inline void *next_record(const front_end *fe, sr_chunk *c)
 {
     size_t at = (size_t)c->tri_count * fe->tri_size;
-    if (at + fe->tri_size > c->tri_bytes &&
+    if ((at + fe->tri_size > c->tri_bytes || c->tri_count >= c->box_cap) &&
         !sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
         c->out_of_memory = true;
         return NULL;
     }
     return c->tris + at;
 }
+
+/* Record number tri_count of chunk c is complete: note its tiles. */
+static inline void keep_record(sr_chunk *c, const sr_prim_head *h)
+{
+    c->tile_box[c->tri_count++] = sr__tile_box(h);
+}
+
+/* Room for any kind of record set up off to the side (sr__record_size). */
+typedef union record_buf {
+    sr_tri tri;
+    sr_line line;
+    sr_point point;
+} record_buf;
 
 /* A filled triangle; area2 = sr__area2(w0, w1, w2). */
 static inline __attribute__((always_inline)) void emit(const front_end *fe, sr_chunk *c, const sr_window_vertex *w0,
@@ -539,18 +553,24 @@ static inline __attribute__((always_inline)) void emit(const front_end *fe, sr_c
     if (area2 == 0) {
         return; /* setup would find nothing to draw */
     }
-    sr_tri *t = next_record(fe, c);
-    if (!t) {
+    sr_tri *rec = next_record(fe, c);
+    if (!rec) {
         return;
     }
-    /* Set up in place; four varyings (unlit, Gouraud, attribute) is the
-     * common case, unrolled. */
+    /* Set up in place, or on the stack and then streamed to its place;
+     * four varyings (unlit, Gouraud, attribute) is the common case,
+     * unrolled. */
+    record_buf buf;
+    sr_tri *t = fe->stream ? &buf.tri : rec;
     const sr_draw_state *ds = fe->ds;
     bool drawn = ds->ninterp == 4
                      ? sr__setup_tri(ds, w0, w1, w2, area2, NAN, front, 4, flat, t)
                      : sr__setup_tri(ds, w0, w1, w2, area2, NAN, front, ds->ninterp, flat, t);
     if (drawn) {
-        c->tri_count++;
+        if (fe->stream) {
+            sr__stream_record(rec, t, fe->tri_size);
+        }
+        keep_record(c, &t->h);
         c->info.triangles_drawn++;
     }
 }
@@ -581,7 +601,7 @@ static void emit_line_quad(const front_end *fe, sr_chunk *c, const sr_window_ver
         sr_tri *t = next_record(fe, c);
         if (t && sr__setup_triangle_offset(ds, &q[0], &q[1 + i], &q[2 + i], offset, front,
                                            ds->ninterp, flat, t)) {
-            c->tri_count++;
+            keep_record(c, &t->h);
         }
     }
 }
@@ -595,7 +615,7 @@ static void emit_line(const front_end *fe, sr_chunk *c, const sr_window_vertex *
     }
     sr_line *l = next_record(fe, c);
     if (l && sr__setup_line(fe->ds, a, b, offset, front, fe->ds->ninterp, flat, l)) {
-        c->tri_count++;
+        keep_record(c, &l->h);
     }
 }
 
@@ -604,7 +624,7 @@ static void emit_point(const front_end *fe, sr_chunk *c, const sr_window_vertex 
 {
     sr_point *p = next_record(fe, c);
     if (p && sr__setup_point(fe->ds, v, offset, front, fe->ds->ninterp, flat, p)) {
-        c->tri_count++;
+        keep_record(c, &p->h);
     }
 }
 
@@ -927,6 +947,9 @@ static void run_front_end(void *arg, int job, int thread)
             primitive(fe, c, &vs, p);
         }
     }
+    if (fe->stream) {
+        sr__stream_fence();
+    }
     if (!sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size)) {
         c->out_of_memory = true;
     }
@@ -1002,8 +1025,11 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
         }
     }
     bool fused = verts_per_prim != 0;
-    /* More chunks than threads evens out uneven clipping and culling. */
-    int chunks = ctx->threads == 1 ? 1 : ctx->threads * 2;
+    /* More chunks than threads evens out uneven clipping and culling: the
+     * bunny's first quarter of triangles takes four times as long to set up
+     * as its last (culled backs), and with two chunks a thread the pool's
+     * stealing could not even that out. */
+    int chunks = ctx->threads == 1 ? 1 : ctx->threads * SR_CHUNKS_PER_THREAD;
     sr_scratch *s = ctx->scratch;
     if (!sr__scratch_reserve(ctx, s, fused ? 0 : d->vertex_count,
                              (size_t)ds.tiles_x * ds.tiles_y, chunks)) {
@@ -1040,8 +1066,8 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     }
 
     memset(s->stats, 0, sizeof s->stats);
-    front_end fe = { ctx, &ds, d, sr__record_size(ds.ninterp), chunks, fused, verts_per_prim,
-                     &mvp, &mv, &nm };
+    front_end fe = { ctx, &ds, d, sr__record_size(ds.ninterp), chunks, fused, ctx->threads > 1,
+                     verts_per_prim, &mvp, &mv, &nm };
     bool oom = false;
     /* Equal batches of at most the context's batch size, so no batch is a
      * sliver. */

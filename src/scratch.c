@@ -20,6 +20,7 @@ void sr__scratch_destroy(sr_context *ctx, sr_scratch *s)
     sr__free(ctx, s->vary);
     for (int i = 0; i < SR_MAX_CHUNKS; i++) {
         sr__free(ctx, s->chunks[i].tris);
+        sr__free(ctx, s->chunks[i].tile_box);
         sr__free(ctx, s->chunks[i].refs);
         sr__free(ctx, s->chunks[i].bin_start);
     }
@@ -88,6 +89,22 @@ bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t
     size_t need;
     if (__builtin_mul_overflow(records, size, &need)) {
         return false;
+    }
+    if (records > c->box_cap) {
+        size_t cap = grow(c->box_cap, records), bytes;
+        if (__builtin_mul_overflow(cap, sizeof(uint32_t), &bytes)) {
+            return false;
+        }
+        uint32_t *b = sr__alloc_large(ctx, bytes);
+        if (!b) {
+            return false;
+        }
+        if (c->tri_count) {
+            memcpy(b, c->tile_box, (size_t)c->tri_count * sizeof(uint32_t));
+        }
+        sr__free(ctx, c->tile_box);
+        c->tile_box = b;
+        c->box_cap = cap;
     }
     if (need <= c->tri_bytes) {
         return true;

@@ -8,6 +8,12 @@
 #include "pipeline.h"
 #include "parallel/pool.h"
 
+#include <stdint.h>
+#include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 /* Primitives per batch (sr_context_desc.batch_primitives): the front end
  * sets up a batch in parallel chunks, the back end rasterizes it, then the
  * next batch follows.  This bounds memory for any draw size while keeping
@@ -16,7 +22,8 @@
  * three, and each pass reloads every tile's color and depth (bunny 10%,
  * a million small triangles 16%, 4x MSAA 7% slower, for about 35 MB less
  * scratch at the bunny's size). */
-#define SR_MAX_CHUNKS (2 * SR_MAX_THREADS)
+#define SR_CHUNKS_PER_THREAD 4
+#define SR_MAX_CHUNKS (SR_CHUNKS_PER_THREAD * SR_MAX_THREADS)
 
 /* One front-end chunk: a contiguous range of primitives, the triangles it
  * set up (records of tri_size bytes) and its bins by counting sort -
@@ -31,6 +38,10 @@ typedef struct sr_chunk {
     uint8_t *tris;
     size_t tri_bytes;          /* capacity of tris */
     uint32_t tri_count;
+    /* Per record, the tiles it covers (sr__tile_box), written beside the
+     * record so that binning need not read the records back. */
+    uint32_t *tile_box;
+    size_t box_cap;
     uint32_t *refs;
     size_t ref_cap;
     uint32_t *bin_start;       /* tile_cap + 1 */
@@ -58,5 +69,36 @@ bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t ti
  * from front-end workers: the allocator must be thread-safe). */
 bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size);
 bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs);
+
+/* Copy a record set up on the stack to its place in the chunk with
+ * non-temporal stores, when more than one thread draws.  The tile jobs of
+ * the last batch read the chunk's records on every core; a plain store to
+ * such a line must first take it back from the other core's cache, which
+ * on the development VM doubled the front end's time on two threads (a
+ * prefetch for writing did not help).  A streaming store claims the line
+ * without reading it.  `size` is a multiple of 16; a destination that is
+ * not 16-byte aligned (a caller's allocator) takes memcpy. */
+static inline void sr__stream_record(void *dst, const void *src, size_t size)
+{
+#if defined(__SSE2__)
+    if (((uintptr_t)dst & 15) == 0) {
+        for (size_t o = 0; o < size; o += 16) {
+            _mm_stream_si128((__m128i *)((char *)dst + o),
+                             _mm_loadu_si128((const __m128i *)((const char *)src + o)));
+        }
+        return;
+    }
+#endif
+    memcpy(dst, src, size);
+}
+
+/* Streaming stores are weakly ordered: fence them before another thread
+ * reads the records. */
+static inline void sr__stream_fence(void)
+{
+#if defined(__SSE2__)
+    _mm_sfence();
+#endif
+}
 
 #endif

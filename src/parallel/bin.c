@@ -5,8 +5,6 @@
 
 #include <string.h>
 
-static int tile_lo(int p) { return p >> SR_TILE_ORDER; }
-static int tile_hi(int p_exclusive) { return (p_exclusive - 1) >> SR_TILE_ORDER; }
 
 static const sr_prim_head *prim_at(const sr_chunk *c, uint32_t i, size_t size)
 {
@@ -49,11 +47,6 @@ static size_t bin_line(const sr_draw_state *ds, const sr_line *l, uint32_t *star
     return n;
 }
 
-static bool is_aliased_line(const sr_prim_head *p)
-{
-    return p->kind == SR_KIND_LINE && !((const sr_line *)p)->smooth;
-}
-
 bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t tri_size)
 {
     size_t tiles = (size_t)ds->tiles_x * ds->tiles_y;
@@ -63,14 +56,14 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
      * primitives lie in one tile: one step, no loops. */
     size_t tiles_x = (size_t)ds->tiles_x;
     size_t total = 0;
+    const uint32_t *box = c->tile_box;
     for (uint32_t i = 0; i < c->tri_count; i++) {
-        const sr_prim_head *t = prim_at(c, i, tri_size);
-        if (is_aliased_line(t)) {
-            total += bin_line(ds, (const sr_line *)t, start, NULL, i);
+        if (box[i] == SR_TILE_BOX_WALK) {
+            total += bin_line(ds, (const sr_line *)prim_at(c, i, tri_size), start, NULL, i);
             continue;
         }
-        int tx0 = tile_lo(t->x0), tx1 = tile_hi(t->x1);
-        int ty0 = tile_lo(t->y0), ty1 = tile_hi(t->y1);
+        int tx0 = box[i] & 0xff, tx1 = box[i] >> 8 & 0xff;
+        int ty0 = box[i] >> 16 & 0xff, ty1 = box[i] >> 24;
         uint32_t *row = start + 1 + (size_t)ty0 * tiles_x;
         if (tx0 == tx1 && ty0 == ty1) {
             row[tx0]++;
@@ -94,13 +87,12 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
     /* Fill using start[tile] as a cursor, then shift back. */
     uint32_t *refs = c->refs;
     for (uint32_t i = 0; i < c->tri_count; i++) {
-        const sr_prim_head *t = prim_at(c, i, tri_size);
-        if (is_aliased_line(t)) {
-            bin_line(ds, (const sr_line *)t, start, refs, i);
+        if (box[i] == SR_TILE_BOX_WALK) {
+            bin_line(ds, (const sr_line *)prim_at(c, i, tri_size), start, refs, i);
             continue;
         }
-        int tx0 = tile_lo(t->x0), tx1 = tile_hi(t->x1);
-        int ty0 = tile_lo(t->y0), ty1 = tile_hi(t->y1);
+        int tx0 = box[i] & 0xff, tx1 = box[i] >> 8 & 0xff;
+        int ty0 = box[i] >> 16 & 0xff, ty1 = box[i] >> 24;
         uint32_t *row = start + (size_t)ty0 * tiles_x;
         if (tx0 == tx1 && ty0 == ty1) {
             refs[row[tx0]++] = i;
