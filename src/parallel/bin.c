@@ -136,14 +136,17 @@ static void run_tile(void *arg, int job, int thread)
         const sr_chunk *c = &s->chunks[ci];
         uint32_t end = c->bin_start[tile + 1];
         for (uint32_t r = c->bin_start[tile]; r < end; r++) {
-            /* A tile's records lie scattered through the chunk: fetch the
-             * one a few refs ahead (its first two cache lines) while this
-             * one is drawn. */
+            /* A tile's records lie scattered through the chunk, and on
+             * more than one thread they were streamed out to memory
+             * (scratch.h): fetch the whole record a few refs ahead while
+             * this one is drawn. */
             if (r + SR_PREFETCH_AHEAD < end) {
                 const char *ahead = (const char *)prim_at(c, c->refs[r + SR_PREFETCH_AHEAD],
                                                           tj->tri_size);
-                __builtin_prefetch(ahead);
-                __builtin_prefetch(ahead + 64);
+                for (size_t o = 0; o < tj->tri_size; o += 64) {
+                    __builtin_prefetch(ahead + o);
+                }
+                __builtin_prefetch(ahead + tj->tri_size - 1);
             }
             const sr_prim_head *p = prim_at(c, c->refs[r], tj->tri_size);
             int rx0 = p->x0 > x0 ? p->x0 : x0, rx1 = p->x1 < x1 ? p->x1 : x1;
