@@ -258,6 +258,50 @@ SR_TEST(resolve_is_the_rounded_box_average)
     sr_destroy_context(ctx);
 }
 
+/* Tiles nobody drew since the source's clear resolve to its clear color,
+ * whatever the destination held or had pending, and the destination stays
+ * a framebuffer like any other: read out, drawn on, resolved into again. */
+SR_TEST(resolve_of_undrawn_tiles_is_the_sources_clear_color)
+{
+    enum { W = 150, H = 70 }; /* 3 x 2 tiles, the last ones partial */
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    sr_framebuffer *ms = make_ms(ctx, W, H, 4, SR_DEPTH_NONE), *out = NULL;
+    REQUIRE(ms);
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &out) ==
+            SR_OK);
+    /* The destination: cleared to one color and drawn on all over, then
+     * cleared to another and left pending. */
+    const double full[] = { -10, -10, 400, -10, -10, 400 };
+    sr_state st = { .shading = SR_SHADING_UNLIT };
+    REQUIRE(sr_clear(ctx, out, &(sr_clear_desc){ .color = { 0, 0, 1, 1 } }) == SR_OK);
+    REQUIRE(draw_window_tris(ctx, out, full, 1, &st) == SR_OK);
+    REQUIRE(sr_clear(ctx, out, &(sr_clear_desc){ .color = { 0, 1, 0, 1 } }) == SR_OK);
+    /* The source: cleared red, one small triangle in the first tile only. */
+    const double small[] = { 2, 2, 30, 4, 6, 40 };
+    REQUIRE(sr_clear(ctx, ms, &(sr_clear_desc){ .color = { 1, 0, 0, 1 } }) == SR_OK);
+    REQUIRE(draw_window_tris(ctx, ms, small, 1, &st) == SR_OK);
+    for (int round = 0; round < 2; round++) {
+        REQUIRE(sr_resolve(ctx, ms, out) == SR_OK);
+        const uint8_t *a = sr_framebuffer_pixels(out), *b = sr_framebuffer_pixels(ms);
+        int wrong = 0, red = 0;
+        for (int p = 0; p < W * H; p++) {
+            wrong += memcmp(&a[p * 4], &b[p * 4], 4) != 0;
+            red += a[p * 4] == 255 && a[p * 4 + 1] == 0 && a[p * 4 + 2] == 0 && a[p * 4 + 3] == 255;
+        }
+        CHECK_EQ(wrong, 0);
+        CHECK(red > W * H - 64 * 64); /* every tile but the first is all clear color */
+        /* Drawing on the destination over the cleared tiles starts from
+         * the resolved clear color. */
+        REQUIRE(draw_window_tris(ctx, out, small, 1, &st) == SR_OK);
+        a = sr_framebuffer_pixels(out);
+        CHECK(a[(H - 1) * W * 4 + (W - 1) * 4] == 255 && a[(H - 1) * W * 4 + (W - 1) * 4 + 1] == 0);
+    }
+    sr_destroy_framebuffer(ctx, out);
+    sr_destroy_framebuffer(ctx, ms);
+    sr_destroy_context(ctx);
+}
+
 /* Depth per sample: two triangles crossing inside a pixel split its
  * samples by their own depths, not the centre's. */
 SR_TEST(depth_is_tested_per_sample)

@@ -338,6 +338,7 @@ static void resolve_tile(const sr_framebuffer *src, uint32_t *dst, int tile, boo
 typedef struct resolve_job {
     const sr_framebuffer *src;
     uint32_t *dst;
+    sr_framebuffer *dst_fb;    /* NULL: dst is a plain image */
     bool wide;                 /* the AVX-512 rows */
 } resolve_job;
 
@@ -345,13 +346,26 @@ static void run_resolve(void *arg, int job, int thread)
 {
     (void)thread;
     const resolve_job *j = arg;
+    /* A tile nobody drew since the clear resolves to the clear color: a
+     * framebuffer destination takes it as its own deferred clear rather
+     * than 16 KiB of stores. */
+    if (j->dst_fb && (j->src->tile_pending[job] & SR_TILE_PENDING_COLOR)) {
+        j->dst_fb->tile_pending[job] |= SR_TILE_PENDING_COLOR;
+        return;
+    }
     resolve_tile(j->src, j->dst, job, j->wide);
 }
 
-/* Resolve every tile, on the context's threads when there is one. */
-static void resolve_all(sr_context *ctx, const sr_framebuffer *src, uint32_t *dst)
+/* Resolve every tile into dst_fb's color, or into the image dst when
+ * dst_fb is NULL, on the context's threads when there is one. */
+static void resolve_all(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst_fb,
+                        uint32_t *dst)
 {
-    resolve_job j = { src, dst, sr__simd_level() == SR_SIMD_AVX512 };
+    resolve_job j = { src, dst_fb ? dst_fb->color : dst, dst_fb,
+                      sr__simd_level() == SR_SIMD_AVX512 };
+    if (dst_fb) {
+        dst_fb->clear_color = src->clear_color;
+    }
     sr__pool_run(ctx ? ctx->pool : NULL, run_resolve, &j, src->tiles_x * src->tiles_y);
 }
 
@@ -364,7 +378,7 @@ static const uint32_t *color_image(const sr_framebuffer *fb)
         sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
         return fb->color;
     }
-    resolve_all(NULL, fb, fb->resolved);
+    resolve_all(NULL, fb, NULL, fb->resolved);
     return fb->resolved;
 }
 
@@ -395,7 +409,8 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
         sr__ok(ctx);
         return SR_OK;
     }
-    /* Every destination pixel is written: its pending color clear is moot. */
+    /* Every destination pixel is written (or, for the source's cleared
+     * tiles, cleared again): its pending color clears are moot. */
     int tiles = dst->tiles_x * dst->tiles_y;
     for (int t = 0; t < tiles; t++) {
         dst->tile_pending[t] &= (uint8_t)~SR_TILE_PENDING_COLOR;
@@ -404,7 +419,7 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
         sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
         memcpy(dst->color, src->color, (size_t)src->width * src->height * sizeof(uint32_t));
     } else {
-        resolve_all(ctx, src, dst->color);
+        resolve_all(ctx, src, dst, NULL);
     }
     sr__ok(ctx);
     return SR_OK;
