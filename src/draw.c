@@ -478,6 +478,29 @@ static uint32_t index_at(const sr_draw_desc *d, size_t i)
     }
 }
 
+/* The largest index of an indexed draw: one branch-free pass per index type
+ * that the compiler vectorizes (the bunny's 208,353 indices one at a time
+ * through index_at took 3% of a two-thread frame, on one thread). */
+#define MAX_INDEX(type)                                                    \
+    do {                                                                   \
+        const type *ix = d->indices;                                       \
+        type m = 0;                                                        \
+        for (size_t i = 0; i < d->index_count; i++) {                      \
+            m = ix[i] > m ? ix[i] : m;                                     \
+        }                                                                  \
+        return m;                                                          \
+    } while (0)
+
+static uint32_t max_index(const sr_draw_desc *d)
+{
+    switch (d->index_type) {
+    case SR_INDEX_U8:  MAX_INDEX(uint8_t);
+    case SR_INDEX_U16: MAX_INDEX(uint16_t);
+    default:           MAX_INDEX(uint32_t);
+    }
+}
+#undef MAX_INDEX
+
 static bool is_culled(const sr_draw_state *ds, bool front)
 {
     switch (ds->cull) {
@@ -986,8 +1009,9 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
         return r;
     }
     size_t count = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
-    /* Indices out of range are an error before anything is drawn. */
-    if (d->index_type != SR_INDEX_NONE) {
+    /* Indices out of range are an error before anything is drawn; the
+     * first one is named. */
+    if (d->index_type != SR_INDEX_NONE && d->index_count > 0 && max_index(d) >= d->vertex_count) {
         for (size_t i = 0; i < d->index_count; i++) {
             uint32_t ix = index_at(d, i);
             if (ix >= d->vertex_count) {
