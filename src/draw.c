@@ -568,7 +568,7 @@ typedef struct vertex_src {
 static inline void *next_record(const front_end *fe, sr_chunk *c)
 {
     size_t at = (size_t)c->tri_count * fe->tri_size;
-    if ((at + fe->tri_size > c->tri_bytes || c->tri_count >= c->box_cap) &&
+    if (at + fe->tri_size > c->tri_bytes &&
         !sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
         c->out_of_memory = true;
         return NULL;
@@ -1031,17 +1031,15 @@ static void run_vertex_stage(void *arg, int job, int thread)
 static void split_batch(sr_scratch *s, size_t begin, size_t end, int threads, int chunks)
 {
     _Static_assert(SR_CHUNKS_PER_THREAD == 4, "the weights below are for four chunks");
-    static const unsigned cum[SR_CHUNKS_PER_THREAD + 1] = { 0, 4, 7, 9, 10 };
+    static const unsigned quarters[] = { 0, 4, 7, 9, 10 }, whole[] = { 0, 10 };
+    int per_thread = chunks / threads; /* 1 (one thread) or SR_CHUNKS_PER_THREAD */
+    const unsigned *cum = per_thread == 1 ? whole : quarters;
     size_t n = end - begin;
-    int per_thread = chunks / threads;
     for (int ci = 0; ci < chunks; ci++) {
         size_t t = (size_t)(ci / per_thread), k = (size_t)(ci % per_thread);
         size_t lo = begin + n * t / (size_t)threads, hi = begin + n * (t + 1) / (size_t)threads;
-        size_t w = hi - lo;
-        bool guided4 = per_thread == SR_CHUNKS_PER_THREAD;
-        s->chunks[ci].prim_begin = lo + (guided4 ? w * cum[k] / 10 : w * k / (size_t)per_thread);
-        s->chunks[ci].prim_end = guided4 ? lo + w * cum[k + 1] / 10
-                                         : lo + w * (k + 1) / (size_t)per_thread;
+        s->chunks[ci].prim_begin = lo + (hi - lo) * cum[k] / 10;
+        s->chunks[ci].prim_end = lo + (hi - lo) * cum[k + 1] / 10;
     }
 }
 

@@ -84,43 +84,50 @@ bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t ti
     return true;
 }
 
+/* The tile boxes keep room for every record the store can hold, so a
+ * store with room needs no second check. */
+static bool reserve_boxes(sr_context *ctx, sr_chunk *c, size_t records)
+{
+    if (records <= c->box_cap) {
+        return true;
+    }
+    size_t cap = grow(c->box_cap, records), bytes;
+    if (__builtin_mul_overflow(cap, sizeof(uint32_t), &bytes)) {
+        return false;
+    }
+    uint32_t *b = sr__alloc_large(ctx, bytes);
+    if (!b) {
+        return false;
+    }
+    if (c->tri_count) {
+        memcpy(b, c->tile_box, (size_t)c->tri_count * sizeof(uint32_t));
+    }
+    sr__free(ctx, c->tile_box);
+    c->tile_box = b;
+    c->box_cap = cap;
+    return true;
+}
+
 bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size)
 {
     size_t need;
     if (__builtin_mul_overflow(records, size, &need)) {
         return false;
     }
-    if (records > c->box_cap) {
-        size_t cap = grow(c->box_cap, records), bytes;
-        if (__builtin_mul_overflow(cap, sizeof(uint32_t), &bytes)) {
-            return false;
-        }
-        uint32_t *b = sr__alloc_large(ctx, bytes);
-        if (!b) {
+    if (need > c->tri_bytes) {
+        size_t bytes = grow(c->tri_bytes, need);
+        uint8_t *t = sr__alloc_large(ctx, bytes);
+        if (!t) {
             return false;
         }
         if (c->tri_count) {
-            memcpy(b, c->tile_box, (size_t)c->tri_count * sizeof(uint32_t));
+            memcpy(t, c->tris, (size_t)c->tri_count * size);
         }
-        sr__free(ctx, c->tile_box);
-        c->tile_box = b;
-        c->box_cap = cap;
+        sr__free(ctx, c->tris);
+        c->tris = t;
+        c->tri_bytes = bytes;
     }
-    if (need <= c->tri_bytes) {
-        return true;
-    }
-    size_t bytes = grow(c->tri_bytes, need);
-    uint8_t *t = sr__alloc_large(ctx, bytes);
-    if (!t) {
-        return false;
-    }
-    if (c->tri_count) {
-        memcpy(t, c->tris, (size_t)c->tri_count * size);
-    }
-    sr__free(ctx, c->tris);
-    c->tris = t;
-    c->tri_bytes = bytes;
-    return true;
+    return reserve_boxes(ctx, c, c->tri_bytes / size);
 }
 
 bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs)

@@ -65,7 +65,8 @@ sr_scratch *sr__scratch_create(sr_context *ctx);
 void sr__scratch_destroy(sr_context *ctx, sr_scratch *s);
 /* Room for `count` vertices and `tiles` tiles in `chunks` chunks. */
 bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t tiles, int chunks);
-/* Grow a chunk's triangle store to hold `records` of `size` bytes (called
+/* Grow a chunk's triangle store to hold `records` of `size` bytes, and its
+ * tile boxes to one per record the store can hold (called
  * from front-end workers: the allocator must be thread-safe). */
 bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size);
 bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs);

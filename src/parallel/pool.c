@@ -28,7 +28,6 @@ struct sr_pool {
     /* The current batch. */
     sr_pool_fn fn;
     void *arg;
-    int count;
     atomic_int busy;                 /* workers still inside the batch */
     /* Per thread, the jobs it owns this batch: front (next to run, low 32
      * bits) and end (high 32 bits), 64 bytes apart so that no two share a
@@ -191,7 +190,6 @@ void sr__pool_run(sr_pool *p, sr_pool_fn fn, void *arg, int count)
     pthread_mutex_lock(&p->lock);
     p->fn = fn;
     p->arg = arg;
-    p->count = count;
     for (int t = 0; t < p->threads; t++) {
         uint32_t lo = (uint32_t)((int64_t)count * t / p->threads);
         uint32_t hi = (uint32_t)((int64_t)count * (t + 1) / p->threads);
