@@ -954,7 +954,10 @@ static void run_front_end(void *arg, int job, int thread)
     /* One triangle per primitive is the common case; size for it once so
      * the store is not regrown (and copied) mid-chunk. */
     if (!sr__chunk_reserve_tris(fe->ctx, c, c->prim_end - c->prim_begin + 16, fe->tri_size)) {
+        /* No records: the bins must say so rather than keep the last
+         * batch's, whose records may no longer be there. */
         c->out_of_memory = true;
+        sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size);
         return;
     }
     if (fe->fused) {
