@@ -57,6 +57,8 @@ static void usage(FILE *f)
         "         min_ms=... mtri_s=... mpix_s=...\n"
         "mtri_s is triangles per frame / median seconds / 1e6; mpix_s is framebuffer\n"
         "pixels per frame (fill: 100 x W x H fragments) / median seconds / 1e6.\n"
+        "A frame is clear, draw (and resolve) until its pixels can be read, on both\n"
+        "renderers (softrast: sr_framebuffer_pixels; llvmpipe: glFinish).\n"
         "\n"
         "scenes:\n"
         "  bunny, spot, teapot  the model (from $SR_MODELS_DIR, else %s),\n"
@@ -289,6 +291,11 @@ static sr_result sr_frame(bench_run *run, const bench_scene *s)
         .model = &s->model, .view = &s->view, .projection = &s->projection });
     if (r == SR_OK && fb != run->fb) {
         r = sr_resolve(run->ctx, fb, run->fb);
+    }
+    /* The frame is done when its pixels can be read, as GL's is after
+     * glFinish: reading carries out the clears of the tiles nobody drew. */
+    if (r == SR_OK) {
+        sr_framebuffer_pixels(run->fb);
     }
     return r;
 }

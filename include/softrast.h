@@ -239,7 +239,10 @@ int             sr_framebuffer_samples(const sr_framebuffer *fb);   /* 1, 2, 4, 
 bool            sr_framebuffer_has_stencil(const sr_framebuffer *fb);
 /* RGBA8, row-major, row 0 at the top, stride = 4 * width bytes.  Carries
  * out pending clears first (and, multisampled, resolves into a buffer the
- * framebuffer keeps); valid until the next draw or clear. */
+ * framebuffer keeps); valid until the next draw or clear.  Read-only: the
+ * framebuffer remembers which tiles already hold the clear color (a clear
+ * to the same color then leaves them alone), and a write through this
+ * pointer would go unseen. */
 const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
 
 /* The standard sample positions (Direct3D and Vulkan; RASTER_RULES 8.1):

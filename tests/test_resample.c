@@ -13,7 +13,9 @@ static sr_framebuffer *fb_from(sr_context *ctx, int w, int h, uint8_t (*fn)(int 
     sr_framebuffer *fb = NULL;
     sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
                                                     .depth_format = SR_DEPTH_NONE }, &fb);
-    /* Write through the pixel pointer (clears are resolved by reading it). */
+    /* Write through the pixel pointer (clears are resolved by reading it).
+     * The API calls it read-only because a later clear to the same color
+     * would not see these writes; these sources are never cleared again. */
     uint8_t *px = (uint8_t *)sr_framebuffer_pixels(fb);
     for (int y = 0; y < h; y++) {
         for (int x = 0; x < w; x++) {

@@ -117,12 +117,9 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
     sr__free(ctx, fb);
 }
 
-void sr__tile_resolve(sr_framebuffer *fb, int tile)
+/* Write the clear values of the `pending` components into a tile. */
+static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending)
 {
-    unsigned pending = fb->tile_pending[tile];
-    if (!pending) {
-        return;
-    }
     int tx = tile % fb->tiles_x, ty = tile / fb->tiles_x;
     int x0 = tx << SR_TILE_ORDER, y0 = ty << SR_TILE_ORDER;
     int x1 = x0 + SR_TILE_SIZE < fb->width ? x0 + SR_TILE_SIZE : fb->width;
@@ -146,6 +143,15 @@ void sr__tile_resolve(sr_framebuffer *fb, int tile)
             memset(fb->stencil + first, fb->clear_stencil, run);
         }
     }
+}
+
+void sr__tile_resolve(sr_framebuffer *fb, int tile)
+{
+    unsigned pending = fb->tile_pending[tile];
+    if (!pending) {
+        return;
+    }
+    clear_tile(fb, tile, pending);
     fb->tile_pending[tile] = 0;
 }
 
@@ -153,9 +159,21 @@ void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
 {
     int tiles = fb->tiles_x * fb->tiles_y;
     for (int t = 0; t < tiles; t++) {
-        if (fb->tile_pending[t] & components) {
-            sr__tile_resolve(fb, t);
+        unsigned pending = fb->tile_pending[t];
+        if (pending & components) {
+            clear_tile(fb, t, pending & SR_TILE_PENDING_ALL);
+            fb->tile_pending[t] = pending & SR_TILE_PENDING_COLOR ? SR_TILE_CLEAN_COLOR
+                                                                  : pending & SR_TILE_CLEAN_COLOR;
         }
+    }
+}
+
+void sr__fb_begin_write(sr_framebuffer *fb)
+{
+    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    int tiles = fb->tiles_x * fb->tiles_y;
+    for (int t = 0; t < tiles; t++) {
+        fb->tile_pending[t] &= (uint8_t)~SR_TILE_CLEAN_COLOR;
     }
 }
 
@@ -166,7 +184,7 @@ sr_result sr__fb_begin_2d(sr_context *ctx, const char *fn, sr_framebuffer *fb)
                         "%s: the framebuffer is multisampled; 2D drawing needs a single-sampled "
                         "one (sr_resolve into it first)", fn);
     }
-    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    sr__fb_begin_write(fb);
     return SR_OK;
 }
 
@@ -350,8 +368,14 @@ static void run_resolve(void *arg, int job, int thread)
      * framebuffer destination takes it as its own deferred clear rather
      * than 16 KiB of stores. */
     if (j->dst_fb && (j->src->tile_pending[job] & SR_TILE_PENDING_COLOR)) {
-        j->dst_fb->tile_pending[job] |= SR_TILE_PENDING_COLOR;
+        /* A destination tile already clean in that color stays as it is. */
+        if (!(j->dst_fb->tile_pending[job] & SR_TILE_CLEAN_COLOR)) {
+            j->dst_fb->tile_pending[job] |= SR_TILE_PENDING_COLOR;
+        }
         return;
+    }
+    if (j->dst_fb) {
+        j->dst_fb->tile_pending[job] &= (uint8_t)~(SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR);
     }
     resolve_tile(j->src, j->dst, job, j->wide);
 }
@@ -363,7 +387,12 @@ static void resolve_all(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
 {
     resolve_job j = { src, dst_fb ? dst_fb->color : dst, dst_fb,
                       sr__simd_level() == SR_SIMD_AVX512 };
-    if (dst_fb) {
+    if (dst_fb && dst_fb->clear_color != src->clear_color) {
+        /* Clean tiles hold the old clear color: no longer clean. */
+        int tiles = dst_fb->tiles_x * dst_fb->tiles_y;
+        for (int t = 0; t < tiles; t++) {
+            dst_fb->tile_pending[t] &= (uint8_t)~SR_TILE_CLEAN_COLOR;
+        }
         dst_fb->clear_color = src->clear_color;
     }
     sr__pool_run(ctx ? ctx->pool : NULL, run_resolve, &j, src->tiles_x * src->tiles_y);
@@ -410,12 +439,13 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
         return SR_OK;
     }
     /* Every destination pixel is written (or, for the source's cleared
-     * tiles, cleared again): its pending color clears are moot. */
-    int tiles = dst->tiles_x * dst->tiles_y;
-    for (int t = 0; t < tiles; t++) {
-        dst->tile_pending[t] &= (uint8_t)~SR_TILE_PENDING_COLOR;
-    }
+     * tiles, cleared again): its pending color clears are moot.  A
+     * multisampled source's jobs settle each destination tile's flags. */
     if (src->samples == 1) {
+        int tiles = dst->tiles_x * dst->tiles_y;
+        for (int t = 0; t < tiles; t++) {
+            dst->tile_pending[t] &= (uint8_t)~(SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR);
+        }
         sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
         memcpy(dst->color, src->color, (size_t)src->width * src->height * sizeof(uint32_t));
     } else {
@@ -454,10 +484,14 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
                         (double)desc->depth);
     }
     unsigned pending = 0;
+    bool same_color = false;
     if (!desc->no_color) {
         uint8_t rgba[4] = { unorm8(desc->color[0]), unorm8(desc->color[1]),
                             unorm8(desc->color[2]), unorm8(desc->color[3]) };
-        memcpy(&fb->clear_color, rgba, sizeof fb->clear_color);
+        uint32_t color;
+        memcpy(&color, rgba, sizeof color);
+        same_color = color == fb->clear_color;
+        fb->clear_color = color;
         pending |= SR_TILE_PENDING_COLOR;
     }
     if (!desc->no_depth && fb->depth) {
@@ -470,7 +504,15 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
     }
     int tiles = fb->tiles_x * fb->tiles_y;
     for (int t = 0; t < tiles; t++) {
-        fb->tile_pending[t] |= (uint8_t)pending;
+        unsigned p = fb->tile_pending[t];
+        if ((p & SR_TILE_CLEAN_COLOR) && same_color) {
+            /* Already this color: only the other components are pending. */
+            fb->tile_pending[t] = (uint8_t)(p | (pending & ~SR_TILE_PENDING_COLOR));
+        } else if (pending & SR_TILE_PENDING_COLOR) {
+            fb->tile_pending[t] = (uint8_t)((p | pending) & ~SR_TILE_CLEAN_COLOR);
+        } else {
+            fb->tile_pending[t] = (uint8_t)(p | pending);
+        }
     }
     sr__ok(ctx);
     return SR_OK;

@@ -15,6 +15,13 @@
 #define SR_TILE_PENDING_COLOR 1u
 #define SR_TILE_PENDING_DEPTH 2u
 #define SR_TILE_PENDING_STENCIL 4u
+#define SR_TILE_PENDING_ALL 7u
+/* Not a pending clear but what the last one left: the tile's color memory
+ * holds clear_color in every sample, written by a read-out and not drawn
+ * on since.  A clear to the same color leaves such a tile alone, so the
+ * background of a frame redrawn with the same clear is written once, not
+ * once a frame.  Anything that writes color drops the flag. */
+#define SR_TILE_CLEAN_COLOR 8u
 
 /* Multisampled storage keeps a pixel's samples side by side: sample s of
  * pixel (x, y) is element (y * width + x) * samples + s of color, depth
@@ -43,10 +50,15 @@ struct sr_framebuffer {
  * for a count that is not 1, 2, 4, 8 or 16. */
 const int8_t (*sr__sample_offsets(int samples))[2];
 
-/* Carry out a tile's pending clear (tile = ty * tiles_x + tx). */
+/* Before drawing on a tile (tile = ty * tiles_x + tx): carry out its
+ * pending clears; the tile is no longer clean. */
 void sr__tile_resolve(sr_framebuffer *fb, int tile);
-/* Carry out every pending clear of the given components. */
+/* Before reading: carry out every pending clear of the given components.
+ * The tiles whose color this writes become clean. */
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components);
+/* Before writing color anywhere outside the tile jobs: carry out the
+ * pending color clears and drop every tile's clean flag. */
+void sr__fb_begin_write(sr_framebuffer *fb);
 /* Before a 2D drawing function touches fb: the 2D toolkit draws into
  * single-sampled images only (SR_INVALID_ARG naming `fn` otherwise);
  * carries out the pending color clears. */

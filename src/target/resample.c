@@ -111,7 +111,7 @@ sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
         filter = SR_RESAMPLE_BOX;
     }
     sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
-    sr__fb_resolve(dst, SR_TILE_PENDING_COLOR);
+    sr__fb_begin_write(dst);
 
     axis_taps ax = { 0 }, ay = { 0 };
     int W = dst->width, H = dst->height, SW = src->width, SH = src->height;

@@ -1,0 +1,222 @@
+/* test_clear.c - deferred clears.  A clear marks tiles; reading the
+ * pixels writes the clear color into the tiles nobody drew and remembers
+ * them as clean, so a later clear to the same color leaves them alone.
+ * Whatever mix of clears, draws, 2D drawing, resolves and downsamples
+ * comes in between, every read must give the pixels of a model image
+ * built without clean tiles. */
+#include "sr_test.h"
+#include "softrast.h"
+#include "target/framebuffer.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+enum { W = 150, H = 140 }; /* 3 x 3 tiles, the last column and row partial */
+
+static int pending_color_tiles(const sr_framebuffer *fb)
+{
+    int n = 0;
+    for (int t = 0; t < fb->tiles_x * fb->tiles_y; t++) {
+        n += (fb->tile_pending[t] & SR_TILE_PENDING_COLOR) != 0;
+    }
+    return n;
+}
+
+/* One triangle given in window pixels, unlit in `rgb`, no depth test (it
+ * covers what was there, as the 2D operations do). */
+static sr_result draw_tri(sr_context *ctx, sr_framebuffer *fb, const float xy[6], const float rgb[3])
+{
+    int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
+    float pos[9];
+    for (int i = 0; i < 3; i++) {
+        pos[i * 3 + 0] = xy[i * 2] / (w * 0.5f) - 1.0f;
+        pos[i * 3 + 1] = 1.0f - xy[i * 2 + 1] / (h * 0.5f);
+        pos[i * 3 + 2] = 0.0f;
+    }
+    sr_state st = { .shading = SR_SHADING_UNLIT, .no_depth_test = true,
+                    .material = { .diffuse = { rgb[0], rgb[1], rgb[2] } } };
+    return sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3 });
+}
+
+/* The elision itself: after a read, clearing to the same color leaves
+ * the undrawn tiles clean (nothing pending), a drawn tile pending, and a
+ * different color makes every tile pending again. */
+SR_TEST(clearing_to_the_same_color_leaves_clean_tiles_alone)
+{
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &fb) ==
+            SR_OK);
+    const sr_clear_desc blue = { .color = { 0, 0, 1, 1 }, .depth = 1 };
+    const sr_clear_desc red = { .color = { 1, 0, 0, 1 }, .depth = 1 };
+    REQUIRE(sr_clear(ctx, fb, &blue) == SR_OK);
+    CHECK_EQ(pending_color_tiles(fb), 9);
+    sr_framebuffer_pixels(fb);
+    CHECK_EQ(pending_color_tiles(fb), 0);
+    REQUIRE(sr_clear(ctx, fb, &blue) == SR_OK);
+    CHECK_EQ(pending_color_tiles(fb), 0);
+    /* A triangle inside the first tile: only that tile needs clearing. */
+    const float xy[6] = { 2, 2, 40, 5, 8, 50 }, green[3] = { 0, 1, 0 };
+    REQUIRE(draw_tri(ctx, fb, xy, green) == SR_OK);
+    REQUIRE(sr_clear(ctx, fb, &blue) == SR_OK);
+    CHECK_EQ(pending_color_tiles(fb), 1);
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    int not_blue = 0;
+    for (int p = 0; p < W * H; p++) {
+        not_blue += px[p * 4] != 0 || px[p * 4 + 1] != 0 || px[p * 4 + 2] != 255;
+    }
+    CHECK_EQ(not_blue, 0);
+    REQUIRE(sr_clear(ctx, fb, &red) == SR_OK);
+    CHECK_EQ(pending_color_tiles(fb), 9);
+    px = sr_framebuffer_pixels(fb);
+    CHECK(px[0] == 255 && px[2] == 0 && px[(W * H - 1) * 4] == 255);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* The operations the random sequences are made of. */
+typedef struct clear_world {
+    sr_context *ctx;
+    sr_framebuffer *ms;      /* a 4-sample source for sr_resolve */
+    sr_framebuffer *big;     /* a 2x source for sr_downsample */
+    sr_framebuffer *one;     /* a single-sample source for sr_resolve (a copy) */
+} clear_world;
+
+static const sr_clear_desc world_colors[2] = {
+    { .color = { 0.2f, 0.4f, 0.6f, 1 }, .depth = 1 },
+    { .color = { 1, 1, 0, 1 }, .depth = 1 },
+};
+
+/* Operation `op` (a clear to either color, a triangle, a 2D line, a
+ * resolve of either source or a downsample into fb) with its random
+ * arguments. */
+static void apply(clear_world *w, sr_framebuffer *fb, int op, const float *arg)
+{
+    switch (op) {
+    case 0:
+    case 1:
+        CHECK(sr_clear(w->ctx, fb, &world_colors[op]) == SR_OK);
+        break;
+    case 2:
+        CHECK(draw_tri(w->ctx, fb, arg, arg + 6) == SR_OK);
+        break;
+    case 3:
+        CHECK(sr_draw_line(w->ctx, fb, (sr_point2){ arg[0], arg[1] }, (sr_point2){ arg[2], arg[3] },
+                           (sr_rgba){ 255, 0, 255, 255 }, NULL) == SR_OK);
+        break;
+    case 4:
+        CHECK(sr_resolve(w->ctx, w->ms, fb) == SR_OK);
+        break;
+    case 5:
+        CHECK(sr_downsample(w->ctx, w->big, fb, SR_RESAMPLE_BOX) == SR_OK);
+        break;
+    case 6:
+        CHECK(sr_resolve(w->ctx, w->one, fb) == SR_OK);
+        break;
+    default:
+        break;
+    }
+}
+
+/* What `op` does to the model image, found without any clean tile: the
+ * operation on two fresh framebuffers cleared to two different colors
+ * and read once; a pixel equal in both was written, with that value. */
+static void apply_to_model(clear_world *w, uint32_t *model, int op, const float *arg)
+{
+    if (op <= 1) {
+        uint8_t c[4];
+        for (int k = 0; k < 4; k++) {
+            c[k] = (uint8_t)(world_colors[op].color[k] * 255.0f + 0.5f);
+        }
+        uint32_t v;
+        memcpy(&v, c, 4);
+        for (int p = 0; p < W * H; p++) {
+            model[p] = v;
+        }
+        return;
+    }
+    const uint32_t *img[2];
+    sr_framebuffer *fresh[2] = { NULL, NULL };
+    for (int i = 0; i < 2; i++) {
+        REQUIRE(sr_make_framebuffer(w->ctx, &(sr_framebuffer_desc){ .width = W, .height = H },
+                                    &fresh[i]) == SR_OK);
+        CHECK(sr_clear(w->ctx, fresh[i], &(sr_clear_desc){ .color = { 0, 0, (float)i, 0 } }) ==
+              SR_OK);
+        apply(w, fresh[i], op, arg);
+        img[i] = (const uint32_t *)sr_framebuffer_pixels(fresh[i]);
+    }
+    for (int p = 0; p < W * H; p++) {
+        if (img[0][p] == img[1][p]) {
+            model[p] = img[0][p];
+        }
+    }
+    sr_destroy_framebuffer(w->ctx, fresh[0]);
+    sr_destroy_framebuffer(w->ctx, fresh[1]);
+}
+
+/* Fixed seed: sequences of random operations on a framebuffer read after
+ * every one (so its tiles keep turning clean), each read compared with a
+ * model image that never relies on a clean tile. */
+SR_TEST(pixels_follow_every_operation_after_reads)
+{
+    clear_world w = { 0 };
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &w.ctx) == SR_OK);
+    REQUIRE(sr_make_framebuffer(w.ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
+                                                               .samples = 4 }, &w.ms) == SR_OK);
+    REQUIRE(sr_make_framebuffer(w.ctx, &(sr_framebuffer_desc){ .width = 2 * W, .height = 2 * H },
+                                &w.big) == SR_OK);
+    REQUIRE(sr_make_framebuffer(w.ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &w.one)
+            == SR_OK);
+    uint32_t *model = malloc(sizeof(uint32_t) * W * H);
+    REQUIRE(model);
+    srand(7);
+    for (int seq = 0; seq < 40 && !sr_test_failed_now(); seq++) {
+        sr_framebuffer *fb = NULL;
+        REQUIRE(sr_make_framebuffer(w.ctx, &(sr_framebuffer_desc){ .width = W, .height = H },
+                                    &fb) == SR_OK);
+        memset(model, 0, sizeof(uint32_t) * W * H); /* a new framebuffer is transparent black */
+        /* The sources: cleared to one of the two colors, sometimes with a
+         * triangle in one corner (so most of their tiles are clear). */
+        const float corner[9] = { 3, 3, 60, 10, 10, 55, 1, 0, 0 };
+        sr_clear(w.ctx, w.ms, &world_colors[0]);
+        sr_clear(w.ctx, w.big, &world_colors[1]);
+        sr_clear(w.ctx, w.one, &world_colors[seq / 2 % 2]);
+        if (seq % 2) {
+            CHECK(draw_tri(w.ctx, w.ms, corner, corner + 6) == SR_OK);
+            CHECK(draw_tri(w.ctx, w.big, corner, corner + 6) == SR_OK);
+            CHECK(draw_tri(w.ctx, w.one, corner, corner + 6) == SR_OK);
+        }
+        for (int step = 0; step < 16 && !sr_test_failed_now(); step++) {
+            /* Clears twice as often as each other operation, so that a
+             * clear to the color a tile already holds often follows
+             * something drawn on it. */
+            static const int ops[9] = { 0, 1, 0, 1, 2, 3, 4, 5, 6 };
+            int op = ops[rand() % 9];
+            float arg[9];
+            for (int i = 0; i < 6; i++) {
+                arg[i] = (float)(rand() % (i % 2 ? H + 40 : W + 40)) - 20.0f;
+            }
+            for (int i = 6; i < 9; i++) {
+                arg[i] = (float)(rand() % 256) / 255.0f;
+            }
+            apply(&w, fb, op, arg);
+            apply_to_model(&w, model, op, arg);
+            const uint32_t *px = (const uint32_t *)sr_framebuffer_pixels(fb);
+            int differ = 0;
+            for (int p = 0; p < W * H; p++) {
+                differ += px[p] != model[p];
+            }
+            if (differ) {
+                sr_test_fail(__FILE__, __LINE__, "sequence %d step %d (operation %d): %d pixels "
+                             "differ from the model", seq, step, op, differ);
+            }
+        }
+        sr_destroy_framebuffer(w.ctx, fb);
+    }
+    free(model);
+    sr_destroy_framebuffer(w.ctx, w.ms);
+    sr_destroy_framebuffer(w.ctx, w.big);
+    sr_destroy_framebuffer(w.ctx, w.one);
+    sr_destroy_context(w.ctx);
+}
