@@ -8,6 +8,7 @@
 
 #include <stdatomic.h>
 #include <stdlib.h>
+#include <time.h>
 
 enum { MAX_JOBS = 5000 };
 
@@ -79,6 +80,44 @@ SR_TEST(every_job_runs_once_at_any_thread_count)
                     return;
                 }
             }
+        }
+        sr_destroy_context(ctx);
+    }
+}
+
+/* Batches handed to workers asleep (the pause between them outlasts the
+ * workers' spinning): the caller may take every job before a worker wakes
+ * and close the batch without it; the late worker must then sit that
+ * batch out and still join the next.  Every job runs exactly once. */
+SR_TEST(batches_for_sleeping_workers_run_every_job_once)
+{
+    static batch b;
+    for (int threads = 2; threads <= 3; threads++) {
+        sr_context *ctx = NULL;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads }, &ctx) == SR_OK);
+        for (int rep = 0; rep < 40; rep++) {
+            int n = 1 + rep % 5;
+            for (int j = 0; j < n; j++) {
+                atomic_store(&b.runs[j], 0);
+            }
+            for (int t = 0; t < SR_MAX_THREADS; t++) {
+                b.last_own[t] = -1;
+            }
+            atomic_store(&b.bad_thread, 0);
+            atomic_store(&b.out_of_order, 0);
+            b.threads = threads;
+            b.count = n;
+            if (rep % 2) {
+                nanosleep(&(struct timespec){ 0, 2000000 }, NULL); /* 2 ms: workers asleep */
+            }
+            sr__pool_run(ctx->pool, job, &b, n);
+            int wrong = 0;
+            for (int j = 0; j < n; j++) {
+                wrong += atomic_load(&b.runs[j]) != 1;
+            }
+            CHECK_EQ(wrong, 0);
+            CHECK_EQ(atomic_load(&b.bad_thread), 0);
+            CHECK_EQ(atomic_load(&b.out_of_order), 0);
         }
         sr_destroy_context(ctx);
     }

@@ -7,7 +7,13 @@
  * millisecond.  Waking a sleeping thread through a condition variable can
  * take a good part of that on a virtual machine, so a worker that finished
  * a batch first spins briefly, watching the batch counter, and only then
- * sleeps; the caller likewise spins before sleeping on the batch's end. */
+ * sleeps; the caller likewise spins before sleeping on the batch's end.
+ *
+ * A worker joins a batch only while it is open, and the caller waits only
+ * for the workers that joined: when the caller has taken every job itself
+ * (a worker still waking from sleep, a batch of a few jobs), it closes the
+ * batch and goes on at once rather than waiting out the wake-up, and the
+ * late worker finds the batch closed. */
 #include "parallel/pool.h"
 #include "context.h"
 
@@ -17,18 +23,23 @@
 /* About 50-100 microseconds of polling before falling back to sleep. */
 #define SR_POOL_SPIN 20000
 
+/* The batch word: the batch's generation in the high 32 bits, OPEN while
+ * workers may join, and the count of workers inside it in the low bits. */
+#define BATCH_OPEN ((uint_fast64_t)1 << 31)
+#define BATCH_ACTIVE ((uint_fast64_t)BATCH_OPEN - 1)
+#define BATCH_GEN(v) ((uint32_t)((v) >> 32))
+
 struct sr_pool {
     int threads;
     pthread_t *workers;
     int started;
     pthread_mutex_t lock;
     pthread_cond_t wake, done;
-    atomic_uint_fast64_t generation; /* bumped per batch; workers wait for a change */
+    atomic_uint_fast64_t batch;
     atomic_bool quit;
-    /* The current batch. */
+    /* The current batch, written before it opens. */
     sr_pool_fn fn;
     void *arg;
-    atomic_int busy;                 /* workers still inside the batch */
     /* Per thread, the jobs it owns this batch: front (next to run, low 32
      * bits) and end (high 32 bits), 64 bytes apart so that no two share a
      * cache line. */
@@ -91,32 +102,60 @@ static void run_jobs(sr_pool *p, int thread)
     }
 }
 
+/* Join the open batch after generation `seen`: true with the worker
+ * counted in it, false when there is none to join (yet, or any more). */
+static bool join(sr_pool *p, uint32_t *seen)
+{
+    uint_fast64_t v = atomic_load_explicit(&p->batch, memory_order_acquire);
+    while (BATCH_GEN(v) != *seen) {
+        if (!(v & BATCH_OPEN)) {
+            *seen = BATCH_GEN(v); /* closed before this worker came: skip it */
+            return false;
+        }
+        if (atomic_compare_exchange_weak_explicit(&p->batch, &v, v + 1, memory_order_acquire,
+                                                  memory_order_acquire)) {
+            *seen = BATCH_GEN(v);
+            return true;
+        }
+    }
+    return false;
+}
+
+static bool batch_waiting(sr_pool *p, uint32_t seen)
+{
+    uint_fast64_t v = atomic_load_explicit(&p->batch, memory_order_relaxed);
+    return BATCH_GEN(v) != seen && (v & BATCH_OPEN);
+}
+
 static void *worker_main(void *arg)
 {
     sr_pool *p = ((worker_arg *)arg)->pool;
     int index = ((worker_arg *)arg)->index;
-    uint_fast64_t seen = 0;
+    uint32_t seen = 0;
     for (;;) {
-        for (int i = 0; i < SR_POOL_SPIN && atomic_load(&p->generation) == seen &&
-                        !atomic_load(&p->quit); i++) {
+        for (int i = 0; i < SR_POOL_SPIN && !batch_waiting(p, seen) && !atomic_load(&p->quit);
+             i++) {
             cpu_relax();
         }
-        pthread_mutex_lock(&p->lock);
-        while (!atomic_load(&p->quit) && atomic_load(&p->generation) == seen) {
-            pthread_cond_wait(&p->wake, &p->lock);
+        if (!batch_waiting(p, seen)) {
+            pthread_mutex_lock(&p->lock);
+            while (!atomic_load(&p->quit) && !batch_waiting(p, seen)) {
+                pthread_cond_wait(&p->wake, &p->lock);
+            }
+            pthread_mutex_unlock(&p->lock);
         }
         if (atomic_load(&p->quit)) {
-            pthread_mutex_unlock(&p->lock);
             break;
         }
-        seen = atomic_load(&p->generation);
-        pthread_mutex_unlock(&p->lock);
-
+        if (!join(p, &seen)) {
+            continue;
+        }
         run_jobs(p, index);
 
         /* The last worker out tells the caller, under the lock so the
          * wake-up cannot slip between its check and its wait. */
-        if (atomic_fetch_sub(&p->busy, 1) == 1) {
+        uint_fast64_t left = atomic_fetch_sub_explicit(&p->batch, 1, memory_order_release) - 1;
+        if ((left & BATCH_ACTIVE) == 0) {
             pthread_mutex_lock(&p->lock);
             pthread_cond_signal(&p->done);
             pthread_mutex_unlock(&p->lock);
@@ -140,12 +179,11 @@ sr_result sr__pool_create(sr_context *ctx, int threads, sr_pool **out)
     pthread_mutex_init(&p->lock, NULL);
     pthread_cond_init(&p->wake, NULL);
     pthread_cond_init(&p->done, NULL);
-    atomic_init(&p->generation, 0);
+    atomic_init(&p->batch, 0);
     atomic_init(&p->quit, false);
     for (int i = 0; i < SR_MAX_THREADS; i++) {
         atomic_init(&p->own[i].range, 0);
     }
-    atomic_init(&p->busy, 0);
     for (int i = 1; i < threads; i++) {
         args[i] = (worker_arg){ p, i };
         if (pthread_create(&p->workers[i], NULL, worker_main, &args[i]) != 0) {
@@ -187,7 +225,8 @@ void sr__pool_run(sr_pool *p, sr_pool_fn fn, void *arg, int count)
         }
         return;
     }
-    pthread_mutex_lock(&p->lock);
+    /* No worker is inside a batch here (the last one closed empty), so
+     * the batch's fields are the caller's to write until it opens. */
     p->fn = fn;
     p->arg = arg;
     for (int t = 0; t < p->threads; t++) {
@@ -195,18 +234,31 @@ void sr__pool_run(sr_pool *p, sr_pool_fn fn, void *arg, int count)
         uint32_t hi = (uint32_t)((int64_t)count * (t + 1) / p->threads);
         atomic_store_explicit(&p->own[t].range, RANGE(lo, hi), memory_order_relaxed);
     }
-    atomic_store(&p->busy, p->started);
-    atomic_fetch_add(&p->generation, 1);
+    uint32_t gen = BATCH_GEN(atomic_load_explicit(&p->batch, memory_order_relaxed)) + 1;
+    pthread_mutex_lock(&p->lock);
+    atomic_store_explicit(&p->batch, (uint_fast64_t)gen << 32 | BATCH_OPEN, memory_order_release);
     pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->lock);
 
     run_jobs(p, 0);
 
-    for (int i = 0; i < SR_POOL_SPIN && atomic_load(&p->busy) > 0; i++) {
+    /* Every job is taken: close the batch once no worker is inside it. */
+    uint_fast64_t open = (uint_fast64_t)gen << 32 | BATCH_OPEN;
+    for (int i = 0; i < SR_POOL_SPIN; i++) {
+        uint_fast64_t v = open;
+        if (atomic_compare_exchange_weak_explicit(&p->batch, &v, (uint_fast64_t)gen << 32,
+                                                  memory_order_acquire, memory_order_relaxed)) {
+            return;
+        }
         cpu_relax();
     }
     pthread_mutex_lock(&p->lock);
-    while (atomic_load(&p->busy) > 0) {
+    for (;;) {
+        uint_fast64_t v = open;
+        if (atomic_compare_exchange_strong_explicit(&p->batch, &v, (uint_fast64_t)gen << 32,
+                                                    memory_order_acquire, memory_order_relaxed)) {
+            break;
+        }
         pthread_cond_wait(&p->done, &p->lock);
     }
     pthread_mutex_unlock(&p->lock);
