@@ -465,6 +465,7 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
         ds->per_sample = true;
     }
     ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
+    ds->light_lanes = sr__simd_level() != SR_SIMD_OFF;
     ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
 }
 
@@ -1122,6 +1123,8 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
          * order, so a chunk mostly reads vertices its own core shaded. */
         size_t threads = (size_t)ctx->threads;
         size_t jobs = (d->vertex_count + 4095) / 4096;
+        size_t fine = d->vertex_count / 256 < threads * 8 ? d->vertex_count / 256 : threads * 8;
+        jobs = jobs > fine ? jobs : fine;
         jobs = (jobs + threads - 1) / threads * threads;
         vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, (d->vertex_count + jobs - 1) / jobs, 0, { 0 } };
         vj.jobs = (d->vertex_count + vj.per_job - 1) / vj.per_job;

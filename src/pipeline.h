@@ -102,6 +102,9 @@ typedef struct sr_draw_state {
      * NULL for the scalar instances. */
     void (*raster_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
                         struct sr_frag_stats *);
+    /* Gouraud vertices lit four at a time (fragment/light_lanes.h, the
+     * same bytes); off with SR_SIMD=off, which keeps sr__light's loop. */
+    bool light_lanes;
     bool blending;                    /* blend or color mask active: the generic color write */
     sr_blend blend;                   /* factors and ops resolved */
     uint8_t write_mask[4];            /* 0xff: channel written; 0: kept */

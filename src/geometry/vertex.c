@@ -4,6 +4,7 @@
  * shading model interpolates.  Reads the caller's arrays; writes
  * sr_clip_vertex records.  Any thread (it touches only its own range). */
 #include "pipeline.h"
+#include "fragment/light_lanes.h"
 
 #include <math.h>
 #include <string.h>
@@ -384,6 +385,78 @@ static void unlit_stage(const sr_draw_state *ds, const sr_draw_desc *d, const sr
     classify_block(ds, post, count);
 }
 
+/* GOURAUD with whole-number shininess (the common lit mesh): what
+ * sr__vertex_shade does, with the lighting - most of a lit vertex's cost -
+ * done for four vertices at once by sr__light_lanes, which gives
+ * sr__light's bytes.  A last group of fewer than four repeats its last
+ * vertex in the spare lanes. */
+static void gouraud_stage(const sr_draw_state *ds, const sr_draw_desc *d, const sr_mat4 *mvp,
+                          const sr_mat4 *mv, const sr_mat4 *nm, size_t first, size_t count,
+                          sr_vertex_post *post, float *vary_out)
+{
+    int psize = d->position_size ? d->position_size : 3;
+    int csize = d->color_size ? d->color_size : 4;
+    size_t nv = (size_t)ds->nvary;
+    bool vertex_color = ds->use_vertex_color && d->colors;
+    for (size_t g = 0; g < count; g += 4) {
+        /* The four vertices' inputs to lighting, vertex by vertex; made
+         * into lanes below from scalars (storing lanes one by one and
+         * loading the vector would stall on store forwarding). */
+        float n4[4][3], eye4[4][3], dif4[4][4];
+        for (int k = 0; k < 4; k++) {
+            size_t i = g + (size_t)k < count ? g + (size_t)k : count - 1;
+            const float *p = element(d->positions, d->position_stride, (size_t)psize, first + i);
+            float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
+            transform_point(mvp, obj, post[i].pos);
+            float e[4], nk[3] = { 0, 0, 1 };
+            transform_point(mv, obj, e);
+            if (e[3] != 1.0f && e[3] != 0.0f) {
+                e[0] /= e[3];
+                e[1] /= e[3];
+                e[2] /= e[3];
+            }
+            if (d->normals) {
+                normal_to_eye(nm, element(d->normals, d->normal_stride, 3, first + i), nk);
+            }
+            if (ds->two_sided) {
+                face_viewer(ds, e, nk);
+            }
+            float c[4] = { ds->diffuse[0], ds->diffuse[1], ds->diffuse[2], ds->diffuse[3] };
+            if (vertex_color) {
+                const float *vc = element(d->colors, d->color_stride, (size_t)csize, first + i);
+                c[0] = vc[0];
+                c[1] = vc[1];
+                c[2] = vc[2];
+                c[3] = (csize == 4 ? vc[3] : 1.0f) * ds->diffuse[3];
+            }
+            memcpy(n4[k], nk, sizeof nk);
+            memcpy(eye4[k], e, sizeof n4[k]);
+            memcpy(dif4[k], c, sizeof c);
+            if (ds->uv_index >= 0 && d->texcoords) {
+                const float *t = element(d->texcoords, d->texcoord_stride, 2, first + i);
+                vary_out[i * nv + (size_t)ds->uv_index] = t[0];
+                vary_out[i * nv + (size_t)ds->uv_index + 1] = t[1];
+            }
+        }
+        sr_v4f n[3], eye[3], dif[4], lit[4];
+        for (int j = 0; j < 3; j++) {
+            n[j] = (sr_v4f){ n4[0][j], n4[1][j], n4[2][j], n4[3][j] };
+            eye[j] = (sr_v4f){ eye4[0][j], eye4[1][j], eye4[2][j], eye4[3][j] };
+        }
+        for (int j = 0; j < 4; j++) {
+            dif[j] = (sr_v4f){ dif4[0][j], dif4[1][j], dif4[2][j], dif4[3][j] };
+        }
+        sr__light_lanes(ds, n, eye, dif, lit);
+        for (int k = 0; k < 4 && g + (size_t)k < count; k++) {
+            float *vary = vary_out + (g + (size_t)k) * nv;
+            for (int j = 0; j < 4; j++) {
+                vary[SR_VARY_COLOR + j] = lit[j][k];
+            }
+        }
+    }
+    classify_block(ds, post, count);
+}
+
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary_out)
@@ -394,6 +467,10 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
     }
     if (ds->shading == SR_SHADING_UNLIT) {
         unlit_stage(ds, d, mvp, first, count, post, vary_out);
+        return;
+    }
+    if (ds->shading == SR_SHADING_GOURAUD && ds->shininess_int >= 0 && ds->light_lanes) {
+        gouraud_stage(ds, d, mvp, mv, nm, first, count, post, vary_out);
         return;
     }
     int psize = d->position_size ? d->position_size : 3;

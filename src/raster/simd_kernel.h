@@ -56,71 +56,6 @@ SR_SIMD_TARGET SR_INLINE v4f SR_SIMD_FN(sqrt)(v4f x)
     return (v4f)_mm_sqrt_ps((__m128)x);
 }
 
-/* sr__light (shade.c) on four lanes: the same operations in the same
- * order; a light the scalar code skips (`continue`) leaves the sums as
- * they were through a select.  Whole-number shininess only. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(light)(const sr_draw_state *ds, const v4f n[3],
-                                                const v4f eye[3], const v4f dif[4], v4f out[4])
-{
-    const v4f zero = { 0, 0, 0, 0 };
-    v4f r = ds->ambient[0] * dif[0], g = ds->ambient[1] * dif[1], b = ds->ambient[2] * dif[2];
-    v4f v[3] = { zero, zero, zero + 1.0f };
-    if (ds->local_viewer) {
-        v4f len = SR_SIMD_FN(sqrt)(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
-        v4i ok = len > zero;
-        for (int k = 0; k < 3; k++) {
-            v[k] = SR_SIMD_FN(sel_f)(ok, -eye[k] / len, v[k]);
-        }
-    }
-    bool spec = ds->specular[0] > 0.0f || ds->specular[1] > 0.0f || ds->specular[2] > 0.0f;
-    for (int i = 0; i < ds->light_count; i++) {
-        const sr_light_eye *lt = &ds->lights[i];
-        v4f l[3];
-        v4i use = (v4i){ -1, -1, -1, -1 };
-        if (lt->point) {
-            for (int k = 0; k < 3; k++) {
-                l[k] = lt->vec[k] - eye[k];
-            }
-            v4f len = SR_SIMD_FN(sqrt)(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
-            use = len > zero;
-            for (int k = 0; k < 3; k++) {
-                l[k] = l[k] / len;
-            }
-        } else {
-            for (int k = 0; k < 3; k++) {
-                l[k] = zero + lt->vec[k];
-            }
-        }
-        v4f ndotl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        use &= ndotl > zero;
-        v4f kd = ndotl;
-        r = SR_SIMD_FN(sel_f)(use, r + lt->color[0] * dif[0] * kd, r);
-        g = SR_SIMD_FN(sel_f)(use, g + lt->color[1] * dif[1] * kd, g);
-        b = SR_SIMD_FN(sel_f)(use, b + lt->color[2] * dif[2] * kd, b);
-        if (spec) {
-            v4f h[3] = { l[0] + v[0], l[1] + v[1], l[2] + v[2] };
-            v4f hl = SR_SIMD_FN(sqrt)(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-            v4i hs = use & (hl > zero);
-            v4f ndoth = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) / hl;
-            hs &= ndoth > zero;
-            v4f x = ndoth, p = zero + 1.0f;
-            for (int e = ds->shininess_int; e; e >>= 1) {
-                if (e & 1) {
-                    p *= x;
-                }
-                x *= x;
-            }
-            r = SR_SIMD_FN(sel_f)(hs, r + lt->color[0] * ds->specular[0] * p, r);
-            g = SR_SIMD_FN(sel_f)(hs, g + lt->color[1] * ds->specular[1] * p, g);
-            b = SR_SIMD_FN(sel_f)(hs, b + lt->color[2] * ds->specular[2] * p, b);
-        }
-    }
-    out[0] = r;
-    out[1] = g;
-    out[2] = b;
-    out[3] = dif[3];
-}
-
 /* A triangle's constants as lanes, made once per triangle rather than
  * broadcast in every group: depth plane, perspective weights, and the
  * color planes (v0, v1 - v0, v2 - v0 per channel). */
@@ -210,7 +145,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         }
         v4f nn[3] = { vn[0] * sc, vn[1] * sc, vn[2] * sc };
         v4f c[4];
-        SR_SIMD_FN(light)(ds, nn, &vv[SR_VARY_PHONG_EYE], &vv[SR_VARY_PHONG_COLOR], c);
+        sr__light_lanes(ds, nn, &vv[SR_VARY_PHONG_EYE], &vv[SR_VARY_PHONG_COLOR], c);
         rgba = SR_SIMD_FN(pack_rgba)(c);
     } else if (shading == SR_SHADING_FLAT) {
         v4i c[4];

@@ -6,6 +6,7 @@
 #include "raster/triangle_simd.h"
 
 #include "fragment/fragment.h"
+#include "fragment/light_lanes.h"
 #include "raster/block.h"
 
 #include <stdlib.h>
