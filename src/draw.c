@@ -946,6 +946,9 @@ static void primitive(const front_end *fe, sr_chunk *c, const vertex_src *vs, si
  * small enough for the block's positions and varyings to stay in L1. */
 #define FUSED_BLOCK_VERTS 192
 
+/* How many triangles ahead an indexed list's vertices are prefetched. */
+#define SR_PREFETCH_TRIS 8
+
 static void run_front_end(void *arg, int job, int thread)
 {
     (void)thread;
@@ -991,7 +994,23 @@ static void run_front_end(void *arg, int job, int thread)
     } else {
         const sr_scratch *s = fe->ctx->scratch;
         vertex_src vs = { s->post, s->vary, 0 };
+        const sr_draw_desc *d = fe->d;
+        bool list = d->primitive == SR_PRIM_DEFAULT || d->primitive == SR_PRIM_TRIANGLES;
+        size_t nv = (size_t)fe->ds->nvary;
         for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
+            if (list && p + SR_PREFETCH_TRIS < c->prim_end) {
+                /* An indexed mesh's vertices are gathered: ask for those
+                 * of a triangle a few ahead, so its post-transform
+                 * vertices (48 bytes, often across two lines) and
+                 * varyings arrive while this one is set up. */
+                for (size_t k = 0; k < 3; k++) {
+                    uint32_t i = index_at(d, 3 * (p + SR_PREFETCH_TRIS) + k);
+                    const char *v = (const char *)&s->post[i];
+                    __builtin_prefetch(v);
+                    __builtin_prefetch(v + sizeof(sr_vertex_post) - 1);
+                    __builtin_prefetch(&s->vary[i * nv]);
+                }
+            }
             primitive(fe, c, &vs, p);
         }
     }
