@@ -1026,6 +1026,102 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
     sr_destroy_context(ctx);
 }
 
+/* The textured vector kernel (the AVX-512 build's stamps for unlit and
+ * Gouraud color modulated by a texture) against the scalar loop: random
+ * triangles large and tiny under perspective, texture coordinates beyond
+ * [0, 1] in every wrap mode, the three filters, an sRGB texture and a
+ * linear one of odd size (a mip chain with odd levels), depth LESS and
+ * off.  Elsewhere the default is the scalar loop itself, and the test
+ * still holds. */
+SR_TEST(textured_vector_kernel_gives_the_scalar_loops_bytes)
+{
+    enum { W = 203, H = 141, N = 36, TW = 37, TH = 20 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    sr_rng rng = { 0x7e47 };
+    uint8_t texels[TW * TH * 4];
+    for (int i = 0; i < TW * TH * 4; i++) {
+        texels[i] = (uint8_t)sr_rng_int(&rng, 0, 255);
+    }
+    sr_texture *tex[2] = { NULL, NULL };
+    for (int k = 0; k < 2; k++) {
+        REQUIRE(sr_make_texture(ctx, &(sr_texture_desc){ .width = TW, .height = TH,
+                                                         .pixels = texels, .srgb = k == 1 },
+                                &tex[k]) == SR_OK);
+    }
+    float pos[N * 9], nrm[N * 9], uv[N * 6];
+    uint8_t *c0 = malloc(W * H * 4);
+    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H);
+    sr_mat4 view = sr_mat4_translate(0, 0, -3);
+    sr_mat4 proj = sr_perspective(0.9f, (float)W / H, 1.0f, 10.0f, false);
+    static const sr_texture_filter filters[] = { SR_FILTER_NEAREST, SR_FILTER_BILINEAR,
+                                                 SR_FILTER_TRILINEAR };
+    static const sr_texture_wrap wraps[] = { SR_WRAP_REPEAT, SR_WRAP_CLAMP, SR_WRAP_MIRROR };
+    int compared = 0;
+    for (int k = 0; k < 24 && !sr_test_failed_now(); k++) {
+        for (int i = 0; i < N; i++) {
+            double r = i % 3 == 0 ? 1.2 : i % 3 == 1 ? 0.15 : 0.03;
+            double cx = sr_rng_range(&rng, -1, 1), cy = sr_rng_range(&rng, -1, 1);
+            for (int v = 0; v < 3; v++) {
+                float *p = &pos[(i * 3 + v) * 3];
+                p[0] = (float)(cx + sr_rng_range(&rng, -r, r));
+                p[1] = (float)(cy + sr_rng_range(&rng, -r, r));
+                p[2] = (float)sr_rng_range(&rng, -1.5, 1.5);
+                sr_vec3 n = sr_vec3_normalize(sr_vec3_make((float)sr_rng_range(&rng, -1, 1),
+                                                           (float)sr_rng_range(&rng, -1, 1), 1));
+                memcpy(&nrm[(i * 3 + v) * 3], &n, sizeof(float) * 3);
+                uv[(i * 3 + v) * 2] = (float)sr_rng_range(&rng, -1.5, 2.5);
+                uv[(i * 3 + v) * 2 + 1] = (float)sr_rng_range(&rng, -1.5, 2.5);
+            }
+        }
+        sr_state st = { .shading = k % 2 ? SR_SHADING_GOURAUD : SR_SHADING_UNLIT,
+                        .cull = SR_CULL_NONE, .no_depth_test = k % 4 >= 2,
+                        .no_depth_write = k % 4 >= 2, .texture = tex[k / 12],
+                        .texture_filter = filters[k % 3], .wrap_u = wraps[k / 3 % 3],
+                        .wrap_v = wraps[(k / 3 + 1) % 3],
+                        .ambient = { 0.2f, 0.2f, 0.2f },
+                        .material = { .diffuse = { 0.9f, 0.8f, 1.2f }, .specular = { 0.5f, 0.5f, 0.5f },
+                                      .shininess = 8 } };
+        st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
+        for (int v = 0; v < 2; v++) {
+            if (v) {
+                setenv("SR_SIMD", "off", 1);
+            } else {
+                unsetenv("SR_SIMD");
+            }
+            sr_framebuffer *fb;
+            REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
+                .width = W, .height = H, .depth_format = SR_DEPTH_D24 }, &fb) == SR_OK);
+            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 1 }, .depth = 1 });
+            CHECK_EQ(sr_draw(ctx, fb, &st, &(sr_draw_desc){
+                .positions = pos, .vertex_count = N * 3, .normals = nrm, .texcoords = uv,
+                .view = &view, .projection = &proj }), SR_OK);
+            const uint32_t *d = raw_depth(fb);
+            if (v == 0) {
+                memcpy(c0, sr_framebuffer_pixels(fb), W * H * 4);
+                memcpy(d0, d, sizeof(uint32_t) * W * H);
+            } else {
+                if (memcmp(c0, sr_framebuffer_pixels(fb), W * H * 4) != 0 ||
+                    memcmp(d0, d, sizeof(uint32_t) * W * H) != 0) {
+                    sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, filter %d, wrap %d/%d, "
+                                 "srgb %d): the default kernel differs from SR_SIMD=off", k,
+                                 (int)st.shading, (int)st.texture_filter, (int)st.wrap_u,
+                                 (int)st.wrap_v, k / 12);
+                }
+                compared++;
+            }
+            sr_destroy_framebuffer(ctx, fb);
+        }
+    }
+    unsetenv("SR_SIMD");
+    CHECK_EQ(compared, 24);
+    free(c0);
+    free(d0);
+    sr_destroy_texture(ctx, tex[0]);
+    sr_destroy_texture(ctx, tex[1]);
+    sr_destroy_context(ctx);
+}
+
 /* The batch size changes how often each tile is visited, never the
  * bytes: 5,000 overlapping triangles with blending (order matters) in
  * batches of 1,024 and of the default size, on 1 and 3 threads. */

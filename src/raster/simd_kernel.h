@@ -184,6 +184,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
 #ifdef SR_SIMD_WIDE
 #include "raster/simd_wide.h"
 #endif
+#ifdef SR_SIMD_WIDE16
+#include "raster/simd_tex.h"
+#endif
 
 #ifdef SR_SIMD_WIDE16
 /* An 8 x 2 stamp's exact edge values: r[i] at the top row's first pixel,
@@ -200,11 +203,30 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edges)(const double r[3], const int
 }
 #endif
 
+#ifdef SR_SIMD_WIDE16
+/* A stamp, plain or textured (a constant at each instance). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp16)(const sr_draw_state *ds, const sr_tri *t, int gx,
+                                                  int py, const __m512d e0[2], const __m512d e1[2],
+                                                  const __m512d e2[2], __mmask16 valid,
+                                                  bool inside, const __m512d nb[3],
+                                                  const SR_SIMD_FN(w16_lanes) *k,
+                                                  sr_frag_stats *st, sr_depth_mode dmode,
+                                                  sr_stamp shape, bool tex)
+{
+    if (tex) {
+        SR_SIMD_FN(rows16_tex)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, dmode, shape);
+    } else {
+        SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, dmode, shape);
+    }
+}
+#endif
+
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
                                                     int rx0, int ry0, int rx1, int ry1,
                                                     sr_frag_stats *st, sr_shading shading,
-                                                    sr_depth_mode dmode)
+                                                    sr_depth_mode dmode, bool tex)
 {
+    (void)tex; /* textured instances exist in the AVX-512 build only */
     int64_t sx[3], sy[3];
     for (int i = 0; i < 3; i++) {
         sx[i] = t->a[i] * SR_SUBPIXEL_ONE;
@@ -269,8 +291,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 e[i][0] = _mm512_add_pd(c, off[0][i]);
                 e[i][1] = _mm512_add_pd(c, off[1][i]);
             }
-            SR_SIMD_FN(rows16)(ds, t, rx0, py, e[0], e[1], e[2], (__mmask16)valid, false, nb8,
-                               &wl, st, dmode, SR_STAMP_4X4);
+            SR_SIMD_FN(stamp16)(ds, t, rx0, py, e[0], e[1], e[2], (__mmask16)valid, false, nb8,
+                                &wl, st, dmode, SR_STAMP_4X4, tex);
         }
         return;
     }
@@ -290,8 +312,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 unsigned span = rx1 - gx >= 8 ? 0xffu : (1u << (rx1 - gx)) - 1;
                 __m512d e0[2], e1[2], e2[2];
                 SR_SIMD_FN(w16_edges)(rs, sy, lx8, e0, e1, e2);
-                SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, rows & (span | span << 8), false,
-                                   nb8, &wl, st, dmode, SR_STAMP_8X2);
+                SR_SIMD_FN(stamp16)(ds, t, gx, py, e0, e1, e2, rows & (span | span << 8), false,
+                                    nb8, &wl, st, dmode, SR_STAMP_8X2, tex);
                 for (int i = 0; i < 3; i++) {
                     rs[i] += 8.0 * (double)sx[i];
                 }
@@ -368,8 +390,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                     unsigned valid = py + 1 < py1 ? span | span << 8 : span;
                     __m512d e0[2], e1[2], e2[2];
                     SR_SIMD_FN(w16_edges)(r, sy, lx8, e0, e1, e2);
-                    SR_SIMD_FN(rows16)(ds, t, bx, py, e0, e1, e2, (__mmask16)valid, inside, nb8,
-                                       &wl, st, dmode, SR_STAMP_8X2);
+                    SR_SIMD_FN(stamp16)(ds, t, bx, py, e0, e1, e2, (__mmask16)valid, inside, nb8,
+                                        &wl, st, dmode, SR_STAMP_8X2, tex);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                     }
@@ -440,7 +462,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
         sr_frag_stats *st)                                                                 \
     {                                                                                      \
-        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);              \
+        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false);       \
     }
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
@@ -450,11 +472,28 @@ SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
 #undef SR_SIMD_INSTANCE
 
+#ifdef SR_SIMD_WIDE16
+/* UNLIT or GOURAUD color modulated by a texture (simd_tex.h). */
+SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_less)(const sr_draw_state *ds, const sr_tri *t,
+                                                       int rx0, int ry0, int rx1, int ry1,
+                                                       sr_frag_stats *st)
+{
+    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS, true);
+}
+
+SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_off)(const sr_draw_state *ds, const sr_tri *t,
+                                                      int rx0, int ry0, int rx1, int ry1,
+                                                      sr_frag_stats *st)
+{
+    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF, true);
+}
+#endif
+
 /* The kernel for a state, or NULL when this path does not cover it. */
 static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
 {
-    if (ds->texture || ds->blending) {
-        return NULL; /* textures, blending and masks take the scalar path */
+    if (ds->blending) {
+        return NULL; /* blending and masks take the scalar path */
     }
     bool depth_ok = ds->depth_mode == SR_DEPTH_MODE_OFF ||
                     (ds->depth_mode == SR_DEPTH_MODE_LESS && ds->depth_bits >= 1 &&
@@ -463,6 +502,16 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
         return NULL;
     }
     bool less = ds->depth_mode == SR_DEPTH_MODE_LESS;
+    if (ds->texture) {
+        /* Textured color in the AVX-512 instance; the other textured
+         * models and instances take the scalar path. */
+#ifdef SR_SIMD_WIDE16
+        if (sr__color_varying_shading(ds->shading)) {
+            return less ? SR_SIMD_FN(raster_tex_less) : SR_SIMD_FN(raster_tex_off);
+        }
+#endif
+        return NULL;
+    }
     if (sr__color_varying_shading(ds->shading)) {
         return less ? SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_LESS)
                     : SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_OFF);

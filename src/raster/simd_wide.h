@@ -185,6 +185,22 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_make)(const sr_tri *t, sr_shading s
     o->fixed = _mm512_set1_epi32((int)fixed);
 }
 
+/* sr__bary on sixteen lanes: the weights l1, l2 of vertices 1 and 2. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_bary)(const SR_SIMD_FN(w16_lanes) *k,
+                                                   const __m512d e0[2], const __m512d e1[2],
+                                                   const __m512d e2[2], __m512 *l1, __m512 *l2)
+{
+    __m512 q0 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e0[0], e0[1]), k->w[0]);
+    __m512 q1 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e1[0], e1[1]), k->w[1]);
+    __m512 q2 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), k->w[2]);
+    __m512 s = _mm512_add_ps(_mm512_add_ps(q0, q1), q2);
+    /* s != 0 ? 1/s : 0, with NaN taking the division as in C. */
+    __mmask16 nz = _mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_NEQ_UQ);
+    __m512 inv = _mm512_maskz_div_ps(nz, _mm512_set1_ps(1.0f), s);
+    *l1 = _mm512_mul_ps(q1, inv);
+    *l2 = _mm512_mul_ps(q2, inv);
+}
+
 /* A stamp of sixteen pixels: 8 x 2 (lanes 0-7 row py, 8-15 row py + 1)
  * or 4 x 4 for tiny triangles (lanes 4r .. 4r + 3 row py + r). */
 typedef enum sr_stamp { SR_STAMP_8X2, SR_STAMP_4X4 } sr_stamp;
@@ -234,17 +250,19 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base
     }
 }
 
-/* The sixteen pixels of a stamp at (gx, py); e*[h] holds lanes 8h .. 8h + 7.
- * `valid` masks the lanes inside the span being drawn: no other lane's
- * memory is read or written, so a span may start anywhere and run past
- * its tile or the framebuffer (a lane-masked load or store touches only
- * its enabled lanes).  Without a row py + 1, its lanes are off. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const sr_tri *t, int gx,
-                                                 int py, const __m512d e0[2], const __m512d e1[2],
-                                                 const __m512d e2[2], __mmask16 valid,
-                                                 bool inside, const __m512d nb[3],
-                                                 const SR_SIMD_FN(w16_lanes) *k, sr_frag_stats *st,
-                                                 sr_depth_mode dmode, sr_stamp shape)
+/* Coverage and the depth test of a stamp (depth written where it
+ * passes): the lanes still to be shaded, 0 for none.  `valid` masks the
+ * lanes inside the span being drawn: no other lane's memory is read or
+ * written, so a span may start anywhere and run past its tile or the
+ * framebuffer (a lane-masked load or store touches only its enabled
+ * lanes).  Without a row py + 1, its lanes are off. */
+SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_test)(const sr_draw_state *ds, const sr_tri *t,
+                                                        size_t idx, const __m512d e0[2],
+                                                        const __m512d e1[2], const __m512d e2[2],
+                                                        __mmask16 valid, bool inside,
+                                                        const __m512d nb[3],
+                                                        const SR_SIMD_FN(w16_lanes) *k,
+                                                        sr_depth_mode dmode, sr_stamp shape)
 {
     __mmask16 m = valid;
     if (!inside) {
@@ -257,13 +275,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         }
         m &= (__mmask16)(r[0] | r[1] << 8);
         if (!m) {
-            return;
+            return 0;
         }
     }
-    sr_framebuffer *fb = ds->fb;
-    size_t pitch = (size_t)fb->width, idx = (size_t)py * pitch + (size_t)gx;
-
     if (dmode == SR_DEPTH_MODE_LESS) {
+        sr_framebuffer *fb = ds->fb;
+        size_t pitch = (size_t)fb->width;
         __m256i q[2];
         for (int h = 0; h < 2; h++) {
             __m512d z = _mm512_add_pd(
@@ -278,23 +295,33 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
         __m512i old = SR_SIMD_FN(stamp_load)(fb->depth, idx, pitch, m, shape);
         m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
-        if (!m) {
-            return;
+        if (m) {
+            SR_SIMD_FN(stamp_store)(fb->depth, idx, pitch, m, qz, shape);
         }
-        SR_SIMD_FN(stamp_store)(fb->depth, idx, pitch, m, qz, shape);
+    }
+    return m;
+}
+
+/* The sixteen pixels of a stamp at (gx, py); e*[h] holds lanes 8h .. 8h + 7
+ * (w16_test says which lanes). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const sr_tri *t, int gx,
+                                                 int py, const __m512d e0[2], const __m512d e1[2],
+                                                 const __m512d e2[2], __mmask16 valid,
+                                                 bool inside, const __m512d nb[3],
+                                                 const SR_SIMD_FN(w16_lanes) *k, sr_frag_stats *st,
+                                                 sr_depth_mode dmode, sr_stamp shape)
+{
+    sr_framebuffer *fb = ds->fb;
+    size_t pitch = (size_t)fb->width, idx = (size_t)py * pitch + (size_t)gx;
+    __mmask16 m = SR_SIMD_FN(w16_test)(ds, t, idx, e0, e1, e2, valid, inside, nb, k, dmode, shape);
+    if (!m) {
+        return;
     }
 
     __m512i rgba = k->fixed;
     if (k->varying) {
-        /* sr__bary and sr__interp on sixteen lanes. */
-        __m512 q0 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e0[0], e0[1]), k->w[0]);
-        __m512 q1 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e1[0], e1[1]), k->w[1]);
-        __m512 q2 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), k->w[2]);
-        __m512 s = _mm512_add_ps(_mm512_add_ps(q0, q1), q2);
-        /* s != 0 ? 1/s : 0, with NaN taking the division as in C. */
-        __mmask16 nz = _mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_NEQ_UQ);
-        __m512 inv = _mm512_maskz_div_ps(nz, _mm512_set1_ps(1.0f), s);
-        __m512 l1 = _mm512_mul_ps(q1, inv), l2 = _mm512_mul_ps(q2, inv);
+        __m512 l1, l2;
+        SR_SIMD_FN(w16_bary)(k, e0, e1, e2, &l1, &l2);
         __m512i var = _mm512_setzero_si512();
         for (int ch = 0; ch < 4; ch++) {
             if (k->varying >> ch & 1) {
