@@ -934,6 +934,42 @@ SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasteri
     }
 }
 
+/* A vertex of the kernel tests' random triangles (centre cx, cy, radius
+ * r, in front of the camera at a random depth) and its normal. */
+static void kernel_test_vertex(sr_rng *rng, double cx, double cy, double r, float p[3],
+                               float nrm[3])
+{
+    p[0] = (float)(cx + sr_rng_range(rng, -r, r));
+    p[1] = (float)(cy + sr_rng_range(rng, -r, r));
+    p[2] = (float)sr_rng_range(rng, -1.5, 1.5);
+    sr_vec3 n = sr_vec3_normalize(sr_vec3_make((float)sr_rng_range(rng, -1, 1),
+                                               (float)sr_rng_range(rng, -1, 1), 1));
+    memcpy(nrm, &n, sizeof(float) * 3);
+}
+
+/* Draw into a fresh framebuffer cleared to one color and the far depth,
+ * with SR_SIMD set to `simd` (NULL: unset, the widest kernel); its color
+ * and raw depth words are copied out. */
+static void kernel_test_draw(sr_context *ctx, int w, int h, sr_depth_format df, const char *simd,
+                             const sr_state *st, const sr_draw_desc *desc, uint8_t *color,
+                             uint32_t *depth)
+{
+    if (simd) {
+        setenv("SR_SIMD", simd, 1);
+    } else {
+        unsetenv("SR_SIMD");
+    }
+    sr_framebuffer *fb;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
+                                                            .depth_format = df }, &fb) == SR_OK);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 1 }, .depth = 1 });
+    CHECK_EQ(sr_draw(ctx, fb, st, desc), SR_OK);
+    memcpy(depth, raw_depth(fb), sizeof(uint32_t) * (size_t)w * (size_t)h);
+    memcpy(color, sr_framebuffer_pixels(fb), (size_t)w * (size_t)h * 4);
+    sr_destroy_framebuffer(ctx, fb);
+    unsetenv("SR_SIMD");
+}
+
 /* The vector kernels (the AVX-512 build's sixteen-lane pairs of block
  * rows, the AVX2 build's eight-lane rows, the four-lane groups of both and
  * of the SSE2 build) against the scalar loop they restate, chosen by
@@ -951,8 +987,8 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
     sr_context *ctx;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
     float pos[N * 9], nrm[N * 9], col[N * 12];
-    uint8_t *c0 = malloc(W * H * 4);
-    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H);
+    uint8_t *c0 = malloc(W * H * 4), *c1 = malloc(W * H * 4);
+    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H), *d1 = malloc(sizeof(uint32_t) * W * H);
     sr_rng rng = { 0x51ad };
     sr_mat4 view = sr_mat4_translate(0, 0, -3);
     sr_mat4 proj = sr_perspective(0.9f, (float)W / H, 1.0f, 10.0f, false);
@@ -964,13 +1000,7 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
             double r = i % 3 == 0 ? 1.2 : i % 3 == 1 ? 0.15 : 0.03;
             double cx = sr_rng_range(&rng, -1, 1), cy = sr_rng_range(&rng, -1, 1);
             for (int v = 0; v < 3; v++) {
-                float *p = &pos[(i * 3 + v) * 3];
-                p[0] = (float)(cx + sr_rng_range(&rng, -r, r));
-                p[1] = (float)(cy + sr_rng_range(&rng, -r, r));
-                p[2] = (float)sr_rng_range(&rng, -1.5, 1.5);
-                sr_vec3 n = sr_vec3_normalize(sr_vec3_make((float)sr_rng_range(&rng, -1, 1),
-                                                           (float)sr_rng_range(&rng, -1, 1), 1));
-                memcpy(&nrm[(i * 3 + v) * 3], &n, sizeof(float) * 3);
+                kernel_test_vertex(&rng, cx, cy, r, &pos[(i * 3 + v) * 3], &nrm[(i * 3 + v) * 3]);
                 for (int c = 0; c < 4; c++) {
                     col[(i * 3 + v) * 4 + c] = (float)sr_rng_range(&rng, -0.5, 1.5);
                 }
@@ -990,39 +1020,25 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
                                       .shininess = 8 } };
         st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
         sr_depth_format df = k % 16 < 8 ? SR_DEPTH_D24 : SR_DEPTH_D16;
-        for (int v = 0; v < 4; v++) {
-            if (simd[v]) {
-                setenv("SR_SIMD", simd[v], 1);
-            } else {
-                unsetenv("SR_SIMD");
+        const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .normals = nrm,
+                                    .colors = col, .color_size = 4, .view = &view,
+                                    .projection = &proj };
+        kernel_test_draw(ctx, W, H, df, simd[0], &st, &desc, c0, d0);
+        for (int v = 1; v < 4; v++) {
+            kernel_test_draw(ctx, W, H, df, simd[v], &st, &desc, c1, d1);
+            if (memcmp(c0, c1, W * H * 4) != 0 || memcmp(d0, d1, sizeof(uint32_t) * W * H) != 0) {
+                sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, depth test %d): "
+                             "SR_SIMD=%s differs from the default kernel", k,
+                             (int)st.shading, !st.no_depth_test, simd[v]);
             }
-            sr_framebuffer *fb;
-            REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
-                .width = W, .height = H, .depth_format = df }, &fb) == SR_OK);
-            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 1 }, .depth = 1 });
-            CHECK_EQ(sr_draw(ctx, fb, &st, &(sr_draw_desc){
-                .positions = pos, .vertex_count = N * 3, .normals = nrm, .colors = col,
-                .color_size = 4, .view = &view, .projection = &proj }), SR_OK);
-            const uint32_t *d = raw_depth(fb);
-            if (v == 0) {
-                memcpy(c0, sr_framebuffer_pixels(fb), W * H * 4);
-                memcpy(d0, d, sizeof(uint32_t) * W * H);
-            } else {
-                if (memcmp(c0, sr_framebuffer_pixels(fb), W * H * 4) != 0 ||
-                    memcmp(d0, d, sizeof(uint32_t) * W * H) != 0) {
-                    sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, depth test %d): "
-                                 "SR_SIMD=%s differs from the default kernel", k,
-                                 (int)st.shading, !st.no_depth_test, simd[v]);
-                }
-                compared++;
-            }
-            sr_destroy_framebuffer(ctx, fb);
+            compared++;
         }
     }
-    unsetenv("SR_SIMD");
     CHECK_EQ(compared, 96);
     free(c0);
     free(d0);
+    free(c1);
+    free(d1);
     sr_destroy_context(ctx);
 }
 
@@ -1050,8 +1066,8 @@ SR_TEST(textured_vector_kernel_gives_the_scalar_loops_bytes)
                                 &tex[k]) == SR_OK);
     }
     float pos[N * 9], nrm[N * 9], uv[N * 6];
-    uint8_t *c0 = malloc(W * H * 4);
-    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H);
+    uint8_t *c0 = malloc(W * H * 4), *c1 = malloc(W * H * 4);
+    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H), *d1 = malloc(sizeof(uint32_t) * W * H);
     sr_mat4 view = sr_mat4_translate(0, 0, -3);
     sr_mat4 proj = sr_perspective(0.9f, (float)W / H, 1.0f, 10.0f, false);
     static const sr_texture_filter filters[] = { SR_FILTER_NEAREST, SR_FILTER_BILINEAR,
@@ -1063,13 +1079,7 @@ SR_TEST(textured_vector_kernel_gives_the_scalar_loops_bytes)
             double r = i % 3 == 0 ? 1.2 : i % 3 == 1 ? 0.15 : 0.03;
             double cx = sr_rng_range(&rng, -1, 1), cy = sr_rng_range(&rng, -1, 1);
             for (int v = 0; v < 3; v++) {
-                float *p = &pos[(i * 3 + v) * 3];
-                p[0] = (float)(cx + sr_rng_range(&rng, -r, r));
-                p[1] = (float)(cy + sr_rng_range(&rng, -r, r));
-                p[2] = (float)sr_rng_range(&rng, -1.5, 1.5);
-                sr_vec3 n = sr_vec3_normalize(sr_vec3_make((float)sr_rng_range(&rng, -1, 1),
-                                                           (float)sr_rng_range(&rng, -1, 1), 1));
-                memcpy(&nrm[(i * 3 + v) * 3], &n, sizeof(float) * 3);
+                kernel_test_vertex(&rng, cx, cy, r, &pos[(i * 3 + v) * 3], &nrm[(i * 3 + v) * 3]);
                 uv[(i * 3 + v) * 2] = (float)sr_rng_range(&rng, -1.5, 2.5);
                 uv[(i * 3 + v) * 2 + 1] = (float)sr_rng_range(&rng, -1.5, 2.5);
             }
@@ -1083,40 +1093,23 @@ SR_TEST(textured_vector_kernel_gives_the_scalar_loops_bytes)
                         .material = { .diffuse = { 0.9f, 0.8f, 1.2f }, .specular = { 0.5f, 0.5f, 0.5f },
                                       .shininess = 8 } };
         st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
-        for (int v = 0; v < 2; v++) {
-            if (v) {
-                setenv("SR_SIMD", "off", 1);
-            } else {
-                unsetenv("SR_SIMD");
-            }
-            sr_framebuffer *fb;
-            REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
-                .width = W, .height = H, .depth_format = SR_DEPTH_D24 }, &fb) == SR_OK);
-            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 1 }, .depth = 1 });
-            CHECK_EQ(sr_draw(ctx, fb, &st, &(sr_draw_desc){
-                .positions = pos, .vertex_count = N * 3, .normals = nrm, .texcoords = uv,
-                .view = &view, .projection = &proj }), SR_OK);
-            const uint32_t *d = raw_depth(fb);
-            if (v == 0) {
-                memcpy(c0, sr_framebuffer_pixels(fb), W * H * 4);
-                memcpy(d0, d, sizeof(uint32_t) * W * H);
-            } else {
-                if (memcmp(c0, sr_framebuffer_pixels(fb), W * H * 4) != 0 ||
-                    memcmp(d0, d, sizeof(uint32_t) * W * H) != 0) {
-                    sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, filter %d, wrap %d/%d, "
-                                 "srgb %d): the default kernel differs from SR_SIMD=off", k,
-                                 (int)st.shading, (int)st.texture_filter, (int)st.wrap_u,
-                                 (int)st.wrap_v, k / 12);
-                }
-                compared++;
-            }
-            sr_destroy_framebuffer(ctx, fb);
+        const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .normals = nrm,
+                                    .texcoords = uv, .view = &view, .projection = &proj };
+        kernel_test_draw(ctx, W, H, SR_DEPTH_D24, NULL, &st, &desc, c0, d0);
+        kernel_test_draw(ctx, W, H, SR_DEPTH_D24, "off", &st, &desc, c1, d1);
+        if (memcmp(c0, c1, W * H * 4) != 0 || memcmp(d0, d1, sizeof(uint32_t) * W * H) != 0) {
+            sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, filter %d, wrap %d/%d, "
+                         "srgb %d): the default kernel differs from SR_SIMD=off", k,
+                         (int)st.shading, (int)st.texture_filter, (int)st.wrap_u,
+                         (int)st.wrap_v, k / 12);
         }
+        compared++;
     }
-    unsetenv("SR_SIMD");
     CHECK_EQ(compared, 24);
     free(c0);
     free(d0);
+    free(c1);
+    free(d1);
     sr_destroy_texture(ctx, tex[0]);
     sr_destroy_texture(ctx, tex[1]);
     sr_destroy_context(ctx);
