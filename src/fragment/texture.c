@@ -131,30 +131,6 @@ int sr_texture_levels(const sr_texture *t)
     return t ? t->levels : 0;
 }
 
-/* Texel index along one axis of n texels under a wrap mode. */
-static int wrap(int i, int n, sr_texture_wrap mode)
-{
-    /* Inside the image every mode is the identity: no division for the
-     * common case. */
-    if (i >= 0 && i < n) {
-        return i;
-    }
-    switch (mode) {
-    case SR_WRAP_CLAMP:
-        return i < 0 ? 0 : i >= n ? n - 1 : i;
-    case SR_WRAP_MIRROR: {
-        int period = 2 * n;
-        int m = i % period;
-        m = m < 0 ? m + period : m;
-        return m < n ? m : period - 1 - m;
-    }
-    default: {
-        int m = i % n;
-        return m < 0 ? m + n : m;
-    }
-    }
-}
-
 static void fetch(const sr_texture *t, int k, int x, int y, float out[4])
 {
     const uint8_t *p = t->texels[k] + ((size_t)y * t->width[k] + x) * 4;
@@ -181,7 +157,7 @@ static void sample_level(const sr_texture *t, int k, bool linear, sr_texture_wra
     y = y > -1e7f ? y : -1e7f;
     y = y < 1e7f ? y : 1e7f;
     if (!linear) {
-        int xi = wrap((int)floorf(x), w, wu), yi = wrap((int)floorf(y), h, wv);
+        int xi = sr__texture_wrap((int)floorf(x), w, wu), yi = sr__texture_wrap((int)floorf(y), h, wv);
         fetch(t, k, xi, yi, out);
         return;
     }
@@ -189,8 +165,8 @@ static void sample_level(const sr_texture *t, int k, bool linear, sr_texture_wra
     y -= 0.5f;
     float fx = floorf(x), fy = floorf(y);
     float ax = x - fx, ay = y - fy;
-    int x0 = wrap((int)fx, w, wu), x1 = wrap((int)fx + 1, w, wu);
-    int y0 = wrap((int)fy, h, wv), y1 = wrap((int)fy + 1, h, wv);
+    int x0 = sr__texture_wrap((int)fx, w, wu), x1 = sr__texture_wrap((int)fx + 1, w, wu);
+    int y0 = sr__texture_wrap((int)fy, h, wv), y1 = sr__texture_wrap((int)fy + 1, h, wv);
     float p00[4], p10[4], p01[4], p11[4];
     fetch(t, k, x0, y0, p00);
     fetch(t, k, x1, y0, p10);

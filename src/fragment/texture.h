@@ -19,6 +19,31 @@ struct sr_texture {
     float color_value[256], alpha_value[256];
 };
 
+/* Texel index along one axis of n texels under a wrap mode (the scalar
+ * sampler's, and the vector kernel's for coordinates outside the image). */
+static inline int sr__texture_wrap(int i, int n, sr_texture_wrap mode)
+{
+    /* Inside the image every mode is the identity: no division for the
+     * common case. */
+    if (i >= 0 && i < n) {
+        return i;
+    }
+    switch (mode) {
+    case SR_WRAP_CLAMP:
+        return i < 0 ? 0 : i >= n ? n - 1 : i;
+    case SR_WRAP_MIRROR: {
+        int period = 2 * n;
+        int m = i % period;
+        m = m < 0 ? m + period : m;
+        return m < n ? m : period - 1 - m;
+    }
+    default: {
+        int m = i % n;
+        return m < 0 ? m + n : m;
+    }
+    }
+}
+
 /* Filtered texel at (u, v) for a level of detail lod = log2 of the texels
  * per pixel at level 0; rgba in [0, 1]. */
 void sr__texture_sample(const sr_texture *t, sr_texture_filter filter, sr_texture_wrap wu,
