@@ -1139,7 +1139,10 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
          * of them: the pool gives each thread a contiguous share of the
          * blocks, as it does the front end's chunks, and a mesh's
          * triangles mostly use vertices near their own place in the
-         * order, so a chunk mostly reads vertices its own core shaded. */
+         * order, so a chunk mostly reads vertices its own core shaded.
+         * Up to 8 blocks a thread as long as each has 256 vertices, so
+         * that a caller whose workers are still waking takes over the
+         * blocks of theirs they have not started. */
         size_t threads = (size_t)ctx->threads;
         size_t jobs = (d->vertex_count + 4095) / 4096;
         size_t fine = d->vertex_count / 256 < threads * 8 ? d->vertex_count / 256 : threads * 8;

@@ -249,6 +249,58 @@ static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t
     classify_block(ds, post, count);
 }
 
+/* Vertex i's object position, w = 1 when it has three components. */
+static void vertex_position(const sr_draw_desc *d, size_t i, float obj[4])
+{
+    int psize = d->position_size ? d->position_size : 3;
+    const float *p = element(d->positions, d->position_stride, (size_t)psize, i);
+    obj[0] = p[0];
+    obj[1] = p[1];
+    obj[2] = p[2];
+    obj[3] = psize == 4 ? p[3] : 1.0f;
+}
+
+/* Vertex i's RGBA color, alpha 1 when it has three components; NULL
+ * when the draw has no colors. */
+static const float *vertex_color(const sr_draw_desc *d, size_t i, float rgba[4])
+{
+    if (!d->colors) {
+        return NULL;
+    }
+    int csize = d->color_size ? d->color_size : 4;
+    const float *c = element(d->colors, d->color_stride, (size_t)csize, i);
+    rgba[0] = c[0];
+    rgba[1] = c[1];
+    rgba[2] = c[2];
+    rgba[3] = csize == 4 ? c[3] : 1.0f;
+    return rgba;
+}
+
+/* The eye-space position E M_O obj, divided by its w. */
+static void eye_position(const sr_mat4 *mv, const float obj[4], float eye[4])
+{
+    transform_point(mv, obj, eye);
+    if (eye[3] != 1.0f && eye[3] != 0.0f) {
+        eye[0] /= eye[3];
+        eye[1] /= eye[3];
+        eye[2] /= eye[3];
+    }
+}
+
+/* The surface color lighting starts from: the vertex color (NULL: none)
+ * with the material's alpha, or the material's diffuse color. */
+static void surface_color(const sr_draw_state *ds, const float *color_in, float color[4])
+{
+    if (ds->use_vertex_color && color_in) {
+        color[0] = color_in[0];
+        color[1] = color_in[1];
+        color[2] = color_in[2];
+        color[3] = color_in[3] * ds->diffuse[3];
+    } else {
+        memcpy(color, ds->diffuse, 4 * sizeof(float));
+    }
+}
+
 /* One vertex of a built-in model: the clip position and the model's
  * varyings (pipeline.h's layouts).  color: RGBA, or NULL for the
  * material's; normal, texcoord, generic: NULL when absent (generic is
@@ -267,28 +319,13 @@ void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *
 
     float eye[4] = { 0, 0, 0, 1 }, n[3] = { 0, 0, 1 }, color[4];
     if (need_eye) {
-        transform_point(mv, obj, eye);
-        if (eye[3] != 1.0f && eye[3] != 0.0f) {
-            eye[0] /= eye[3];
-            eye[1] /= eye[3];
-            eye[2] /= eye[3];
-        }
+        eye_position(mv, obj, eye);
     }
     if (need_normal && normal) {
         normal_to_eye(nm, normal, n);
     }
     if (need_color) {
-        if (ds->use_vertex_color && color_in) {
-            color[0] = color_in[0];
-            color[1] = color_in[1];
-            color[2] = color_in[2];
-            color[3] = color_in[3] * ds->diffuse[3];
-        } else {
-            color[0] = ds->diffuse[0];
-            color[1] = ds->diffuse[1];
-            color[2] = ds->diffuse[2];
-            color[3] = ds->diffuse[3];
-        }
+        surface_color(ds, color_in, color);
     }
 
     if (ds->uv_index >= 0 && texcoord) {
@@ -394,10 +431,7 @@ static void gouraud_stage(const sr_draw_state *ds, const sr_draw_desc *d, const 
                           const sr_mat4 *mv, const sr_mat4 *nm, size_t first, size_t count,
                           sr_vertex_post *post, float *vary_out)
 {
-    int psize = d->position_size ? d->position_size : 3;
-    int csize = d->color_size ? d->color_size : 4;
     size_t nv = (size_t)ds->nvary;
-    bool vertex_color = ds->use_vertex_color && d->colors;
     for (size_t g = 0; g < count; g += 4) {
         /* The four vertices' inputs to lighting, vertex by vertex; made
          * into lanes below from scalars (storing lanes one by one and
@@ -405,33 +439,19 @@ static void gouraud_stage(const sr_draw_state *ds, const sr_draw_desc *d, const 
         float n4[4][3], eye4[4][3], dif4[4][4];
         for (int k = 0; k < 4; k++) {
             size_t i = g + (size_t)k < count ? g + (size_t)k : count - 1;
-            const float *p = element(d->positions, d->position_stride, (size_t)psize, first + i);
-            float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
+            float obj[4], e[4], nk[3] = { 0, 0, 1 }, rgba[4];
+            vertex_position(d, first + i, obj);
             transform_point(mvp, obj, post[i].pos);
-            float e[4], nk[3] = { 0, 0, 1 };
-            transform_point(mv, obj, e);
-            if (e[3] != 1.0f && e[3] != 0.0f) {
-                e[0] /= e[3];
-                e[1] /= e[3];
-                e[2] /= e[3];
-            }
+            eye_position(mv, obj, e);
             if (d->normals) {
                 normal_to_eye(nm, element(d->normals, d->normal_stride, 3, first + i), nk);
             }
             if (ds->two_sided) {
                 face_viewer(ds, e, nk);
             }
-            float c[4] = { ds->diffuse[0], ds->diffuse[1], ds->diffuse[2], ds->diffuse[3] };
-            if (vertex_color) {
-                const float *vc = element(d->colors, d->color_stride, (size_t)csize, first + i);
-                c[0] = vc[0];
-                c[1] = vc[1];
-                c[2] = vc[2];
-                c[3] = (csize == 4 ? vc[3] : 1.0f) * ds->diffuse[3];
-            }
-            memcpy(n4[k], nk, sizeof nk);
-            memcpy(eye4[k], e, sizeof n4[k]);
-            memcpy(dif4[k], c, sizeof c);
+            surface_color(ds, vertex_color(d, first + i, rgba), dif4[k]);
+            memcpy(n4[k], nk, sizeof n4[k]);
+            memcpy(eye4[k], e, sizeof eye4[k]);
             if (ds->uv_index >= 0 && d->texcoords) {
                 const float *t = element(d->texcoords, d->texcoord_stride, 2, first + i);
                 vary_out[i * nv + (size_t)ds->uv_index] = t[0];
@@ -473,24 +493,13 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         gouraud_stage(ds, d, mvp, mv, nm, first, count, post, vary_out);
         return;
     }
-    int psize = d->position_size ? d->position_size : 3;
-    int csize = d->color_size ? d->color_size : 4;
     int gsize = d->generic_size ? d->generic_size : 4;
     for (size_t i = first; i < first + count; i++) {
         sr_vertex_post *v = &post[i - first];
         float *vary = vary_out + (i - first) * (size_t)ds->nvary;
-        const float *p = element(d->positions, d->position_stride, (size_t)psize, i);
-        float obj[4] = { p[0], p[1], p[2], psize == 4 ? p[3] : 1.0f };
-        float color[4], generic[4];
-        const float *cp = NULL, *gp = NULL;
-        if (d->colors) {
-            const float *c = element(d->colors, d->color_stride, (size_t)csize, i);
-            color[0] = c[0];
-            color[1] = c[1];
-            color[2] = c[2];
-            color[3] = csize == 4 ? c[3] : 1.0f;
-            cp = color;
-        }
+        float obj[4], color[4], generic[4];
+        vertex_position(d, i, obj);
+        const float *cp = vertex_color(d, i, color), *gp = NULL;
         if (ds->shading == SR_SHADING_ATTRIBUTE) {
             /* Missing components read as 0, alpha as 1; one component
              * is shown as gray. */

@@ -179,10 +179,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_tex)(const sr_draw_state *ds, co
     for (int ch = 0; ch < 4; ch++) {
         c[ch] = SR_SIMD_FN(w16_interp)(t, SR_VARY_COLOR + ch, l1, l2);
     }
-    float u[16], v[16], lod[16] = { 0 };
+    float lod[16] = { 0 };
     __m512 uu = SR_SIMD_FN(w16_interp)(t, ui, l1, l2), vv = SR_SIMD_FN(w16_interp)(t, ui + 1, l1, l2);
-    _mm512_storeu_ps(u, uu);
-    _mm512_storeu_ps(v, vv);
     const sr_texture *tex = ds->texture;
     unsigned lanes = m;
     if (ds->texture_filter == SR_FILTER_TRILINEAR) {
@@ -210,7 +208,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_tex)(const sr_draw_state *ds, co
      * by lane (lanes not covered keep 1; their colors are not stored). */
     __m512 texel[4];
     if (!SR_SIMD_FN(w16_sample)(ds, uu, vv, lod, m, texel)) {
-        float tl[4][16];
+        float u[16], v[16], tl[4][16];
+        _mm512_storeu_ps(u, uu);
+        _mm512_storeu_ps(v, vv);
         for (int ch = 0; ch < 4; ch++) {
             _mm512_storeu_ps(tl[ch], _mm512_set1_ps(1.0f));
         }

@@ -168,13 +168,19 @@ void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
     }
 }
 
+/* Clear the flags `bits` of every tile. */
+static void drop_tile_flags(sr_framebuffer *fb, unsigned bits)
+{
+    int tiles = fb->tiles_x * fb->tiles_y;
+    for (int t = 0; t < tiles; t++) {
+        fb->tile_pending[t] &= (uint8_t)~bits;
+    }
+}
+
 void sr__fb_begin_write(sr_framebuffer *fb)
 {
     sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
-    int tiles = fb->tiles_x * fb->tiles_y;
-    for (int t = 0; t < tiles; t++) {
-        fb->tile_pending[t] &= (uint8_t)~SR_TILE_CLEAN_COLOR;
-    }
+    drop_tile_flags(fb, SR_TILE_CLEAN_COLOR);
 }
 
 sr_result sr__fb_begin_2d(sr_context *ctx, const char *fn, sr_framebuffer *fb)
@@ -388,11 +394,7 @@ static void resolve_all(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
     resolve_job j = { src, dst_fb ? dst_fb->color : dst, dst_fb,
                       sr__simd_level() == SR_SIMD_AVX512 };
     if (dst_fb && dst_fb->clear_color != src->clear_color) {
-        /* Clean tiles hold the old clear color: no longer clean. */
-        int tiles = dst_fb->tiles_x * dst_fb->tiles_y;
-        for (int t = 0; t < tiles; t++) {
-            dst_fb->tile_pending[t] &= (uint8_t)~SR_TILE_CLEAN_COLOR;
-        }
+        drop_tile_flags(dst_fb, SR_TILE_CLEAN_COLOR); /* they hold the old clear color */
         dst_fb->clear_color = src->clear_color;
     }
     sr__pool_run(ctx ? ctx->pool : NULL, run_resolve, &j, src->tiles_x * src->tiles_y);
@@ -442,10 +444,7 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
      * tiles, cleared again): its pending color clears are moot.  A
      * multisampled source's jobs settle each destination tile's flags. */
     if (src->samples == 1) {
-        int tiles = dst->tiles_x * dst->tiles_y;
-        for (int t = 0; t < tiles; t++) {
-            dst->tile_pending[t] &= (uint8_t)~(SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR);
-        }
+        drop_tile_flags(dst, SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR);
         sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
         memcpy(dst->color, src->color, (size_t)src->width * src->height * sizeof(uint32_t));
     } else {
@@ -504,15 +503,14 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
     }
     int tiles = fb->tiles_x * fb->tiles_y;
     for (int t = 0; t < tiles; t++) {
-        unsigned p = fb->tile_pending[t];
+        unsigned p = fb->tile_pending[t], add = pending;
         if ((p & SR_TILE_CLEAN_COLOR) && same_color) {
-            /* Already this color: only the other components are pending. */
-            fb->tile_pending[t] = (uint8_t)(p | (pending & ~SR_TILE_PENDING_COLOR));
-        } else if (pending & SR_TILE_PENDING_COLOR) {
-            fb->tile_pending[t] = (uint8_t)((p | pending) & ~SR_TILE_CLEAN_COLOR);
-        } else {
-            fb->tile_pending[t] = (uint8_t)(p | pending);
+            add &= ~SR_TILE_PENDING_COLOR; /* already this color */
         }
+        if (add & SR_TILE_PENDING_COLOR) {
+            p &= ~SR_TILE_CLEAN_COLOR;
+        }
+        fb->tile_pending[t] = (uint8_t)(p | add);
     }
     sr__ok(ctx);
     return SR_OK;
