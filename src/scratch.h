@@ -45,6 +45,7 @@ typedef struct sr_chunk {
     uint32_t *refs;
     size_t ref_cap;
     uint32_t *bin_start;       /* tile_cap + 1 */
+    bool scattered;            /* few neighbours share a tile (sr__bin_chunk) */
     sr_draw_info info;
     bool out_of_memory;
 } sr_chunk;
