@@ -28,9 +28,17 @@ void sr__scratch_destroy(sr_context *ctx, sr_scratch *s)
     sr__free(ctx, s);
 }
 
+/* The first size is what is asked for: a one-shot render (softrast
+ * render) populates every byte of its stores, so doubling from a small
+ * start (a bunny chunk's 2.6 MB of records became 4 MB) cost page
+ * zeroing for nothing.  Later growth doubles, so a draw that keeps
+ * growing reallocates a logarithmic number of times. */
 static size_t grow(size_t cap, size_t need)
 {
-    size_t c = cap ? cap : 256;
+    if (cap == 0) {
+        return need > 256 ? need : 256;
+    }
+    size_t c = cap;
     while (c < need) {
         c = c > SIZE_MAX / 2 ? need : c * 2;
     }
