@@ -175,15 +175,18 @@ typedef struct sr_prim_head {
  * 3 x ninterp varyings (sr__record_size), so `vary` must stay last.  Every
  * triangle drawn is written here once and read back by the tile jobs, so
  * the fields are ordered to leave no padding: with four varyings the
- * record is 224 bytes. */
+ * record is 192 bytes, three cache lines. */
 typedef struct sr_tri {
     sr_prim_head h;
     /* Edge i is opposite vertex i: E_i(p) = a[i] X + b[i] Y + c[i], which is
      * the unnormalized barycentric weight of vertex i.  bias[i] is 0 for a
-     * top or left edge and -1 otherwise: covered iff E_i + bias_i >= 0. */
+     * top or left edge and -1 otherwise: covered iff E_i + bias_i >= 0.
+     * a and b are differences of q8 coordinates, below 2^23 (fixed.h), so
+     * they are kept in 32 bits: widen them before multiplying.  The three
+     * E_i sum to area2 everywhere, so area2 = c[0] + c[1] + c[2] > 0. */
     int32_t bias[3];
-    int64_t area2;                    /* > 0 */
-    int64_t a[3], b[3], c[3];
+    int32_t a[3], b[3];
+    int64_t c[3];
     /* Depth plane in buffer units (x (2^n - 1) for UNORM, [0, 1] for float):
      * z = z0 + e1 dz1 + e2 dz2, polygon offset folded into z0. */
     double z0, dz1, dz2;

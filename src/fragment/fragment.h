@@ -241,10 +241,12 @@ SR_INLINE void sr__shade_as(const sr_draw_state *ds, const sr_tri *t, double z,
              * right and one below, by the same exact interpolation. */
             int ui = ds->uv_index;
             float lx[3], ly[3];
-            sr__bary(ds, t, e0 + t->a[0] * SR_SUBPIXEL_ONE, e1 + t->a[1] * SR_SUBPIXEL_ONE,
-                     e2 + t->a[2] * SR_SUBPIXEL_ONE, lx);
-            sr__bary(ds, t, e0 + t->b[0] * SR_SUBPIXEL_ONE, e1 + t->b[1] * SR_SUBPIXEL_ONE,
-                     e2 + t->b[2] * SR_SUBPIXEL_ONE, ly);
+            sr__bary(ds, t, e0 + (int64_t)t->a[0] * SR_SUBPIXEL_ONE,
+                     e1 + (int64_t)t->a[1] * SR_SUBPIXEL_ONE,
+                     e2 + (int64_t)t->a[2] * SR_SUBPIXEL_ONE, lx);
+            sr__bary(ds, t, e0 + (int64_t)t->b[0] * SR_SUBPIXEL_ONE,
+                     e1 + (int64_t)t->b[1] * SR_SUBPIXEL_ONE,
+                     e2 + (int64_t)t->b[2] * SR_SUBPIXEL_ONE, ly);
             float u = v[ui], vv = v[ui + 1];
             lod = sr__texture_lod(ds->texture, sr__interp(t, lx, ui) - u,
                                   sr__interp(t, lx, ui + 1) - vv, sr__interp(t, ly, ui) - u,

@@ -99,7 +99,7 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } } };
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
-            g.so[s][i] = t->a[i] * ds->sample_off[s][0] + t->b[i] * ds->sample_off[s][1];
+            g.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];
         }
     }
     sr__sample_walk(ds, t, rx0, ry0, rx1, ry1, &g, generic_pixel_fn);

@@ -81,7 +81,8 @@ SR_SIMD_TARGET static void SR_SIMD_FN(raster_ms4)(const sr_draw_state *ds, const
     SR_SIMD_FN(ms4) k = { .ds = ds, .t = t, .st = st };
     for (int i = 0; i < 3; i++) {
         for (int s = 0; s < 4; s++) {
-            k.so[i][s] = (double)(t->a[i] * ds->sample_off[s][0] + t->b[i] * ds->sample_off[s][1]);
+            k.so[i][s] = (double)((int64_t)t->a[i] * ds->sample_off[s][0] +
+                                  (int64_t)t->b[i] * ds->sample_off[s][1]);
             k.nbias[i][s] = (double)-t->bias[i];
         }
     }

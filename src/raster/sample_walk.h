@@ -21,8 +21,8 @@ SR_INLINE void sr__block_steps(const sr_draw_state *ds, const sr_tri *t, sr_bloc
 {
     for (int i = 0; i < 3; i++) {
         k->slack[i] = ds->samples > 1 ? (llabs(t->a[i]) + llabs(t->b[i])) * SR_SUBPIXEL_HALF : 0;
-        k->sx[i] = t->a[i] * SR_SUBPIXEL_ONE;
-        k->sy[i] = t->b[i] * SR_SUBPIXEL_ONE;
+        k->sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
+        k->sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
     }
 }
 

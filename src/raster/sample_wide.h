@@ -154,7 +154,7 @@ static void raster_ms16(const sr_draw_state *ds, const sr_tri *t, int rx0, int r
         k.off[0][i] = first;
         k.off[1][i] = _mm512_add_pd(first, _mm512_add_pd(step, step));
         k.nbias[i] = _mm512_set1_pd((double)-t->bias[i]);
-        double a = (double)(t->a[i] * SR_SUBPIXEL_ONE);
+        double a = (double)((int64_t)t->a[i] * SR_SUBPIXEL_ONE);
         k.pix[i] = _mm256_setr_pd(0.0, a, 2.0 * a, 3.0 * a);
         k.w[i] = _mm_set1_ps(t->w[i]);
     }

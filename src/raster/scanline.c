@@ -30,7 +30,7 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
     for (int i = 0; i < 3; i++) {
         int64_t a = t->a[i];
         int64_t R = t->b[i] * yc0 + t->c[i] + t->bias[i];
-        int64_t dR = t->b[i] * SR_SUBPIXEL_ONE;
+        int64_t dR = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
         if (a > 0) {
             kind[i] = 1;
             sr__dda_init(&dda[i], -R - SR_SUBPIXEL_HALF * a - 1, SR_SUBPIXEL_ONE * a, -dR);
@@ -67,9 +67,9 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
             int64_t e2 = t->a[2] * xc + t->b[2] * yc + t->c[2];
             for (int px = left; px <= right; px++) {
                 sr__fragment(ds, t, px, py, e0, e1, e2, st);
-                e0 += t->a[0] * SR_SUBPIXEL_ONE;
-                e1 += t->a[1] * SR_SUBPIXEL_ONE;
-                e2 += t->a[2] * SR_SUBPIXEL_ONE;
+                e0 += (int64_t)t->a[0] * SR_SUBPIXEL_ONE;
+                e1 += (int64_t)t->a[1] * SR_SUBPIXEL_ONE;
+                e2 += (int64_t)t->a[2] * SR_SUBPIXEL_ONE;
             }
         }
         for (int i = 0; i < 3; i++) {

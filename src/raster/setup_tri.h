@@ -80,7 +80,6 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
     t->h.y0 = y0;
     t->h.x1 = x1;
     t->h.y1 = y1;
-    t->area2 = area2;
     t->front = front;
 
     /* Edge i runs from vertex i+1 to vertex i+2 and is opposite vertex i:
@@ -89,8 +88,8 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
         int a = (i + 1) % 3, b = (i + 2) % 3;
         int64_t dx = (int64_t)x[b] - x[a];
         int64_t dy = (int64_t)y[b] - y[a];
-        t->a[i] = -dy;
-        t->b[i] = dx;
+        t->a[i] = (int32_t)-dy;   /* |dy|, |dx| < 2^23 (fixed.h) */
+        t->b[i] = (int32_t)dx;
         t->c[i] = dy * x[a] - dx * y[a];
         t->bias[i] = sr__is_top_left(dx, dy) ? 0 : -1;
     }

@@ -55,7 +55,7 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     for (int i = 0; i < 4; i++) {
         int px = qx + (i & 1), py = qy + (i >> 1);
         for (int e = 0; e < 3; e++) {
-            u[i][e] = u00[e] + (t->a[e] * (i & 1) + t->b[e] * (i >> 1)) * SR_SUBPIXEL_ONE;
+            u[i][e] = u00[e] + ((int64_t)t->a[e] * (i & 1) + (int64_t)t->b[e] * (i >> 1)) * SR_SUBPIXEL_ONE;
         }
         if (px < rect[0] || px >= rect[2] || py < rect[1] || py >= rect[3]) {
             continue;
@@ -125,10 +125,10 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
 {
     quad_job j = { .ds = ds, .t = t, .st = st };
     j.early = !ds->program->writes_depth && !ds->program->may_discard && !ds->alpha_to_coverage;
-    j.inv_area = 1.0f / (float)t->area2;
+    j.inv_area = 1.0f / (float)(t->c[0] + t->c[1] + t->c[2]);   /* area2 */
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
-            j.so[s][i] = t->a[i] * ds->sample_off[s][0] + t->b[i] * ds->sample_off[s][1];
+            j.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];
         }
     }
     sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);

@@ -229,8 +229,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     (void)tex; /* textured instances exist in the AVX-512 build only */
     int64_t sx[3], sy[3];
     for (int i = 0; i < 3; i++) {
-        sx[i] = t->a[i] * SR_SUBPIXEL_ONE;
-        sy[i] = t->b[i] * SR_SUBPIXEL_ONE;
+        sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
+        sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
     }
     /* Lane offsets: 0..3 pixel steps, exact in double. */
     v4d lx[3];

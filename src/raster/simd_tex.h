@@ -188,11 +188,11 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_tex)(const sr_draw_state *ds, co
          * the right (edge values + a * 256) and one below (+ b * 256). */
         float d[4][16];
         for (int dir = 0; dir < 2; dir++) {
-            const int64_t *ab = dir ? t->b : t->a;
+            const int32_t *ab = dir ? t->b : t->a;
             __m512d s0[2], s1[2], s2[2];
-            SR_SIMD_FN(w16_step)(e0, (double)(ab[0] * SR_SUBPIXEL_ONE), s0);
-            SR_SIMD_FN(w16_step)(e1, (double)(ab[1] * SR_SUBPIXEL_ONE), s1);
-            SR_SIMD_FN(w16_step)(e2, (double)(ab[2] * SR_SUBPIXEL_ONE), s2);
+            SR_SIMD_FN(w16_step)(e0, (double)((int64_t)ab[0] * SR_SUBPIXEL_ONE), s0);
+            SR_SIMD_FN(w16_step)(e1, (double)((int64_t)ab[1] * SR_SUBPIXEL_ONE), s1);
+            SR_SIMD_FN(w16_step)(e2, (double)((int64_t)ab[2] * SR_SUBPIXEL_ONE), s2);
             __m512 m1, m2;
             SR_SIMD_FN(w16_bary)(k, s0, s1, s2, &m1, &m2);
             _mm512_storeu_ps(d[2 * dir], _mm512_sub_ps(SR_SIMD_FN(w16_interp)(t, ui, m1, m2), uu));
