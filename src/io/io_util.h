@@ -19,9 +19,10 @@ sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
     __attribute__((format(printf, 5, 6)));
 
 /* Read a whole regular file (directories, devices and files larger than
- * SR_IO_MAX_FILE_BYTES are refused with a clear message).  The buffer is
- * malloc'd with one extra NUL byte after `*size` bytes. */
+ * SR_IO_MAX_FILE_BYTES are refused with a clear message).  The buffer has
+ * one extra NUL byte after `*size` bytes; release it with sr__free_file. */
 sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err);
+void sr__free_file(char *data, size_t size);
 
 /* Read a whole file and hand it to a parser (the readers' sr__load_*):
  * *out is zeroed first and the buffer freed after. */

@@ -829,7 +829,7 @@ static sr_result load_mtl(obj_parser *P, const char *rel, size_t rel_len, bool *
     const char *slash = strrchr(p, '/');
     size_t dir_len = slash ? (size_t)(slash - p) + 1 : 0;
     res = parse_mtl(P, p, dir_len, data, size);
-    free(data);
+    sr__free_file(data, size);
     free(p);
     return res;
 }
@@ -1672,6 +1672,6 @@ sr_result sr__load_obj(const char *path, sr_mesh *out, sr_io_error *err)
     const char *slash = strrchr(path, '/');
     size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
     res = parse(path, data, size, path, dir_len, out, err);
-    free(data);
+    sr__free_file(data, size);
     return res;
 }
