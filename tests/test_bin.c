@@ -1,0 +1,117 @@
+/* test_bin.c - binning a chunk's primitives into tiles (parallel/bin.c):
+ * each tile's refs list exactly the primitives whose tile box covers it,
+ * in submission order, and a chunk is marked scattered - its tile jobs
+ * prefetch pixels - when most primitives start over a tile away from the
+ * one before, and only then. */
+#include "sr_test.h"
+#include "context.h"
+#include "parallel/bin.h"
+#include "softrast.h"
+
+#include <stdlib.h>
+
+enum { TILES_X = 30, TILES_Y = 17, PRIMS = 2000 };
+
+static uint32_t box(int tx0, int tx1, int ty0, int ty1)
+{
+    return (uint32_t)tx0 | (uint32_t)tx1 << 8 | (uint32_t)ty0 << 16 | (uint32_t)ty1 << 24;
+}
+
+static uint32_t next_random(uint64_t *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (uint32_t)(*s >> 33);
+}
+
+/* Bin `boxes` as one chunk; check every tile's refs against the boxes and
+ * return the chunk's scattered flag. */
+static bool bin_and_check(const uint32_t *boxes, uint32_t n)
+{
+    sr_context *ctx = NULL;
+    if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) != SR_OK) {
+        CHECK(!"sr_make_context");
+        return false;
+    }
+    sr_draw_state ds = { 0 };
+    ds.tiles_x = TILES_X;
+    ds.tiles_y = TILES_Y;
+    sr_chunk c = { 0 };
+    c.tile_box = (uint32_t *)boxes;
+    c.tri_count = n;
+    c.bin_start = calloc(TILES_X * TILES_Y + 1, sizeof(uint32_t));
+    bool ok = c.bin_start && sr__bin_chunk(ctx, &ds, &c, sizeof(sr_tri));
+    CHECK(ok);
+    for (int tile = 0; ok && tile < TILES_X * TILES_Y; tile++) {
+        int tx = tile % TILES_X, ty = tile / TILES_X;
+        uint32_t r = c.bin_start[tile];
+        for (uint32_t i = 0; i < n; i++) {
+            uint32_t b = boxes[i];
+            bool covers = tx >= (int)(b & 0xff) && tx <= (int)(b >> 8 & 0xff) &&
+                          ty >= (int)(b >> 16 & 0xff) && ty <= (int)(b >> 24);
+            if (covers) {
+                /* The next ref of this tile, in submission order. */
+                CHECK(r < c.bin_start[tile + 1] && c.refs[r] == i);
+                r++;
+            }
+        }
+        CHECK_EQ(r, c.bin_start[tile + 1]);
+    }
+    bool scattered = c.scattered;
+    sr__free(ctx, c.refs);
+    free(c.bin_start);
+    sr_destroy_context(ctx);
+    return scattered;
+}
+
+SR_TEST(a_mesh_walk_is_not_scattered)
+{
+    /* Neighbouring primitives: each starts in the tile of the one before
+     * or the next one over, now and then spanning two tiles. */
+    static uint32_t boxes[PRIMS];
+    uint64_t s = 7;
+    int tx = 10, ty = 8;
+    for (int i = 0; i < PRIMS; i++) {
+        tx += (int)(next_random(&s) % 3) - 1;
+        ty += (int)(next_random(&s) % 3) - 1;
+        tx = tx < 0 ? 0 : tx > TILES_X - 2 ? TILES_X - 2 : tx;
+        ty = ty < 0 ? 0 : ty > TILES_Y - 2 ? TILES_Y - 2 : ty;
+        int wide = next_random(&s) % 4 == 0;
+        boxes[i] = box(tx, tx + wide, ty, ty);
+    }
+    CHECK(!bin_and_check(boxes, PRIMS));
+}
+
+SR_TEST(random_small_primitives_are_scattered)
+{
+    static uint32_t boxes[PRIMS];
+    uint64_t s = 11;
+    for (int i = 0; i < PRIMS; i++) {
+        int tx = (int)(next_random(&s) % TILES_X), ty = (int)(next_random(&s) % TILES_Y);
+        boxes[i] = box(tx, tx, ty, ty);
+    }
+    CHECK(bin_and_check(boxes, PRIMS));
+}
+
+/* Two tiles far apart: primitive i goes to the other one than i - 1
+ * (a far jump) unless i is a multiple of 4 other than `extra`. */
+static void alternate(uint32_t *boxes, int n, int extra)
+{
+    int other = 0;
+    for (int i = 0; i < n; i++) {
+        if (i > 0 && (i % 4 != 0 || i == extra)) {
+            other ^= 1;
+        }
+        boxes[i] = other ? box(25, 25, 14, 14) : box(2, 2, 2, 2);
+    }
+}
+
+SR_TEST(scattered_means_more_than_three_quarters_far)
+{
+    /* 1,500 far jumps among 2,000 primitives: exactly three quarters. */
+    static uint32_t boxes[PRIMS];
+    alternate(boxes, PRIMS, -1);
+    CHECK(!bin_and_check(boxes, PRIMS));
+    /* One more. */
+    alternate(boxes, PRIMS, 4);
+    CHECK(bin_and_check(boxes, PRIMS));
+}
