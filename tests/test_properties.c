@@ -1042,6 +1042,51 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
     sr_destroy_context(ctx);
 }
 
+/* A small framebuffer's box of a huge triangle: a corner inside the
+ * image and the other two vertices up to 10,000 pixels away.  The box
+ * is small, so the vector kernels walk it as they walk small triangles,
+ * but its edge values near the corner exceed 32 bits: a kernel that
+ * judged by the box rather than by the triangle would lose them. */
+SR_TEST(vector_kernels_keep_huge_triangles_exact_in_small_boxes)
+{
+    enum { W = 13, H = 11, N = 24 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    float pos[N * 9], col[N * 12];
+    uint8_t c0[W * H * 4], c1[W * H * 4];
+    uint32_t d0[W * H], d1[W * H];
+    sr_rng rng = { 0xb16 };
+    for (int k = 0; k < 16 && !sr_test_failed_now(); k++) {
+        for (int i = 0; i < N; i++) {
+            /* NDC: one pixel is 2 / 13 wide, so 1,500 is about 10,000 px. */
+            double fx = sr_rng_range(&rng, -1500, 1500), fy = sr_rng_range(&rng, -1500, 1500);
+            double corner[3][2] = { { sr_rng_range(&rng, -1, 1), sr_rng_range(&rng, -1, 1) },
+                                    { fx, fy },
+                                    { fx + sr_rng_range(&rng, -300, 300), -fy } };
+            for (int v = 0; v < 3; v++) {
+                float *p = &pos[(i * 3 + v) * 3];
+                p[0] = (float)corner[v][0];
+                p[1] = (float)corner[v][1];
+                p[2] = (float)sr_rng_range(&rng, -0.9, 0.9);
+                for (int c = 0; c < 4; c++) {
+                    col[(i * 3 + v) * 4 + c] = (float)sr_rng_range(&rng, 0, 1);
+                }
+            }
+        }
+        sr_state st = { .shading = k % 2 ? SR_SHADING_UNLIT : SR_SHADING_FLAT,
+                        .cull = SR_CULL_NONE, .no_depth_test = k % 4 >= 2 };
+        const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .colors = col,
+                                    .color_size = 4 };
+        kernel_test_draw(ctx, W, H, SR_DEPTH_D24, NULL, &st, &desc, c0, d0);
+        kernel_test_draw(ctx, W, H, SR_DEPTH_D24, "off", &st, &desc, c1, d1);
+        if (memcmp(c0, c1, sizeof c0) != 0 || memcmp(d0, d1, sizeof d0) != 0) {
+            sr_test_fail(__FILE__, __LINE__, "batch %d: the default kernel differs from SR_SIMD=off",
+                         k);
+        }
+    }
+    sr_destroy_context(ctx);
+}
+
 /* The textured vector kernel (the AVX-512 build's stamps for unlit and
  * Gouraud color modulated by a texture) against the scalar loop: random
  * triangles large and tiny under perspective, texture coordinates beyond
