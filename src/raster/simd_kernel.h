@@ -51,11 +51,6 @@ SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(pack_rgba)(const v4f c[4])
     return (v4i)_mm_unpacklo_epi16(y, _mm_srli_si128(y, 8));
 }
 
-SR_SIMD_TARGET SR_INLINE v4f SR_SIMD_FN(sqrt)(v4f x)
-{
-    return (v4f)_mm_sqrt_ps((__m128)x);
-}
-
 /* A triangle's constants as lanes, made once per triangle rather than
  * broadcast in every group: depth plane, perspective weights, and the
  * color planes (v0, v1 - v0, v2 - v0 per channel). */
@@ -138,7 +133,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
             vv[j] = t->vary[j] + l1 * t->vary[n + j] + l2 * t->vary[2 * n + j];
         }
         const v4f *vn = &vv[SR_VARY_PHONG_NORMAL];
-        v4f len = SR_SIMD_FN(sqrt)(vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]);
+        v4f len = sr__v4_sqrt(vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]);
         v4f sc = SR_SIMD_FN(sel_f)(len > fzero, 1.0f / len, fzero);
         if (ds->two_sided && !t->front) {
             sc = -sc;
