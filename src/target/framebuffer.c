@@ -117,6 +117,50 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
     sr__free(ctx, fb);
 }
 
+/* n words of value v from p.  A tile's row is 256 bytes; the baseline
+ * build's 16-byte stores made clearing tiles a tenth of a mesh's frame
+ * on one thread, so where the CPU has AVX-512 the rows go in 64-byte
+ * stores (the same words). */
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+__attribute__((target("avx512f"))) static void fill_words_avx512(uint32_t *p, uint32_t v,
+                                                                 size_t n)
+{
+    __m512i w = _mm512_set1_epi32((int)v);
+    size_t i = 0;
+    for (; i + 16 <= n; i += 16) {
+        _mm512_storeu_si512(p + i, w);
+    }
+    if (i < n) {
+        _mm512_mask_storeu_epi32(p + i, (__mmask16)((1u << (n - i)) - 1), w);
+    }
+}
+#endif
+
+static void fill_words(uint32_t *p, uint32_t v, size_t n, bool wide)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (wide) {
+        fill_words_avx512(p, v, n);
+        return;
+    }
+#else
+    (void)wide;
+#endif
+    for (size_t i = 0; i < n; i++) {
+        p[i] = v;
+    }
+}
+
+static bool have_avx512(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    return __builtin_cpu_supports("avx512f");
+#else
+    return false;
+#endif
+}
+
 /* Write the clear values of the `pending` components into a tile. */
 static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending)
 {
@@ -127,17 +171,15 @@ static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending)
     /* A row of the tile is one run of samples in memory (framebuffer.h). */
     size_t ns = (size_t)fb->samples;
     size_t run = (size_t)(x1 - x0) * ns;
+    bool wide = have_avx512();
+    uint32_t color = fb->clear_color, depth = fb->clear_depth;
     for (int y = y0; y < y1; y++) {
         size_t first = ((size_t)y * fb->width + (size_t)x0) * ns;
         if (pending & SR_TILE_PENDING_COLOR) {
-            for (size_t i = 0; i < run; i++) {
-                fb->color[first + i] = fb->clear_color;
-            }
+            fill_words(fb->color + first, color, run, wide);
         }
         if ((pending & SR_TILE_PENDING_DEPTH) && fb->depth) {
-            for (size_t i = 0; i < run; i++) {
-                fb->depth[first + i] = fb->clear_depth;
-            }
+            fill_words(fb->depth + first, depth, run, wide);
         }
         if ((pending & SR_TILE_PENDING_STENCIL) && fb->stencil) {
             memset(fb->stencil + first, fb->clear_stencil, run);
