@@ -12,6 +12,9 @@
 #ifdef __SSE2__
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
                               sr_framebuffer **out)
@@ -122,7 +125,6 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
  * on one thread, so where the CPU has AVX-512 the rows go in 64-byte
  * stores (the same words). */
 #if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
 __attribute__((target("avx512f"))) static void fill_words_avx512(uint32_t *p, uint32_t v,
                                                                  size_t n)
 {
