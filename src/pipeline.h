@@ -105,6 +105,8 @@ typedef struct sr_draw_state {
     /* Gouraud vertices lit four at a time (fragment/light_lanes.h, the
      * same bytes); off with SR_SIMD=off, which keeps sr__light's loop. */
     bool light_lanes;
+    /* Tile clears in 64-byte stores: the AVX-512 level of sr__simd_level. */
+    bool wide_stores;
     bool blending;                    /* blend or color mask active: the generic color write */
     sr_blend blend;                   /* factors and ops resolved */
     uint8_t write_mask[4];            /* 0xff: channel written; 0: kept */

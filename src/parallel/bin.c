@@ -178,7 +178,7 @@ static void run_tile(void *arg, int job, int thread)
     int x1 = x0 + SR_TILE_SIZE, y1 = y0 + SR_TILE_SIZE;
     sr_frag_stats *st = &s->stats[thread];
 
-    sr__tile_resolve(ds->fb, (int)tile);
+    sr__tile_resolve(ds->fb, (int)tile, ds->wide_stores);
     for (int ci = 0; ci < tj->chunks; ci++) {
         const sr_chunk *c = &s->chunks[ci];
         uint32_t end = c->bin_start[tile + 1];

@@ -122,8 +122,9 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
 
 /* n words of value v from p.  A tile's row is 256 bytes; the baseline
  * build's 16-byte stores made clearing tiles a tenth of a mesh's frame
- * on one thread, so where the CPU has AVX-512 the rows go in 64-byte
- * stores (the same words). */
+ * on one thread, so at the AVX-512 level (sr__simd_level: the CPU has it
+ * and SR_SIMD does not cap it) the rows go in 64-byte stores, the same
+ * words. */
 #if defined(__x86_64__) && defined(__GNUC__)
 __attribute__((target("avx512f"))) static void fill_words_avx512(uint32_t *p, uint32_t v,
                                                                  size_t n)
@@ -154,17 +155,9 @@ static void fill_words(uint32_t *p, uint32_t v, size_t n, bool wide)
     }
 }
 
-static bool have_avx512(void)
-{
-#if defined(__x86_64__) && defined(__GNUC__)
-    return __builtin_cpu_supports("avx512f");
-#else
-    return false;
-#endif
-}
-
-/* Write the clear values of the `pending` components into a tile. */
-static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending)
+/* Write the clear values of the `pending` components into a tile, in
+ * 64-byte stores if `wide` (the AVX-512 level of sr__simd_level). */
+static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool wide)
 {
     int tx = tile % fb->tiles_x, ty = tile / fb->tiles_x;
     int x0 = tx << SR_TILE_ORDER, y0 = ty << SR_TILE_ORDER;
@@ -173,7 +166,6 @@ static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending)
     /* A row of the tile is one run of samples in memory (framebuffer.h). */
     size_t ns = (size_t)fb->samples;
     size_t run = (size_t)(x1 - x0) * ns;
-    bool wide = have_avx512();
     uint32_t color = fb->clear_color, depth = fb->clear_depth;
     for (int y = y0; y < y1; y++) {
         size_t first = ((size_t)y * fb->width + (size_t)x0) * ns;
@@ -189,23 +181,24 @@ static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending)
     }
 }
 
-void sr__tile_resolve(sr_framebuffer *fb, int tile)
+void sr__tile_resolve(sr_framebuffer *fb, int tile, bool wide)
 {
     unsigned pending = fb->tile_pending[tile];
     if (!pending) {
         return;
     }
-    clear_tile(fb, tile, pending);
+    clear_tile(fb, tile, pending, wide);
     fb->tile_pending[tile] = 0;
 }
 
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
 {
+    bool wide = sr__simd_level() == SR_SIMD_AVX512;
     int tiles = fb->tiles_x * fb->tiles_y;
     for (int t = 0; t < tiles; t++) {
         unsigned pending = fb->tile_pending[t];
         if (pending & components) {
-            clear_tile(fb, t, pending & SR_TILE_PENDING_ALL);
+            clear_tile(fb, t, pending & SR_TILE_PENDING_ALL, wide);
             fb->tile_pending[t] = pending & SR_TILE_PENDING_COLOR ? SR_TILE_CLEAN_COLOR
                                                                   : pending & SR_TILE_CLEAN_COLOR;
         }

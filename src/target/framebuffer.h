@@ -51,8 +51,9 @@ struct sr_framebuffer {
 const int8_t (*sr__sample_offsets(int samples))[2];
 
 /* Before drawing on a tile (tile = ty * tiles_x + tx): carry out its
- * pending clears; the tile is no longer clean. */
-void sr__tile_resolve(sr_framebuffer *fb, int tile);
+ * pending clears, in 64-byte stores if `wide` (the draw's
+ * sr_draw_state.wide_stores); the tile is no longer clean. */
+void sr__tile_resolve(sr_framebuffer *fb, int tile, bool wide);
 /* Before reading: carry out every pending clear of the given components.
  * The tiles whose color this writes become clean. */
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components);
