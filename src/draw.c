@@ -467,6 +467,7 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
     sr_simd_level simd = sr__simd_level();
     ds->light_lanes = simd != SR_SIMD_OFF;
+    ds->vertex_lanes16 = simd == SR_SIMD_AVX512;
     ds->wide_stores = simd == SR_SIMD_AVX512;
     ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
 }

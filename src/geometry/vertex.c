@@ -490,7 +490,12 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         return;
     }
     if (ds->shading == SR_SHADING_GOURAUD && ds->shininess_int >= 0 && ds->light_lanes) {
-        gouraud_stage(ds, d, mvp, mv, nm, first, count, post, vary_out);
+        if (ds->vertex_lanes16 &&
+            sr__gouraud_stage16(ds, d, mvp, mv, nm, first, count, post, vary_out)) {
+            classify_block(ds, post, count);
+        } else {
+            gouraud_stage(ds, d, mvp, mv, nm, first, count, post, vary_out);
+        }
         return;
     }
     int gsize = d->generic_size ? d->generic_size : 4;
