@@ -105,8 +105,8 @@ typedef struct sr_draw_state {
     /* Gouraud vertices lit four at a time (fragment/light_lanes.h, the
      * same bytes); off with SR_SIMD=off, which keeps sr__light's loop. */
     bool light_lanes;
-    /* ... and sixteen at a time, every step of a vertex in the lanes
-     * (geometry/vertex_wide.c): the AVX-512 level of sr__simd_level. */
+    /* Gouraud vertices sixteen at a time, every step of a vertex in the
+     * lanes (geometry/vertex_wide.c): the AVX-512 level. */
     bool vertex_lanes16;
     /* Tile clears in 64-byte stores: the AVX-512 level of sr__simd_level. */
     bool wide_stores;
@@ -302,14 +302,14 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary);
 
-/* geometry/vertex_wide.c: vertex.c's Gouraud stage (whole-number
- * shininess, light lanes) for sixteen vertices at a time, post[].pos and
- * the varyings only (the caller classifies).  AVX-512: call only where
- * ds->vertex_lanes16 says the CPU has it.  false, having written
- * nothing, when an array's stride is too long for its 32-bit offsets. */
-bool sr__gouraud_stage16(const sr_draw_state *ds, const sr_draw_desc *d, const sr_mat4 *mvp,
-                         const sr_mat4 *mv, const sr_mat4 *nm, size_t first, size_t count,
-                         sr_vertex_post *post, float *vary_out);
+/* geometry/vertex_wide.c: sr__vertex_stage for GOURAUD with whole-number
+ * shininess, sixteen vertices at a time; the same bytes.
+ * AVX-512: call only where ds->vertex_lanes16 says the CPU has it.  false,
+ * having written nothing, for any other state (a vertex program) or an
+ * array whose stride is too long for the gathers' 32-bit offsets. */
+bool sr__vertex_stage16(const sr_draw_state *ds, const sr_draw_desc *d, const sr_mat4 *mvp,
+                        const sr_mat4 *mv, const sr_mat4 *nm, size_t first, size_t count,
+                        sr_vertex_post *post, float *vary);
 /* geometry/vertex.c: one vertex of a built-in model (clip position and
  * varyings), shared by the vertex stage and the built-in programs. */
 void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *normal,

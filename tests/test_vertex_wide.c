@@ -1,9 +1,11 @@
-/* test_vertex_wide.c - sr__gouraud_stage16, the Gouraud vertex stage
- * sixteen vertices at a time, against sr__vertex_shade, the scalar vertex
- * it restates: the same bits of every clip position, lit color and
- * texture coordinate, for random states (directional and point lights, a
- * local viewer or not, two-sided or not, specular or not, vertex colors
- * or the material's) and random draws (three- and four-component
+/* test_vertex_wide.c - sr__vertex_stage16, the Gouraud vertex stage
+ * sixteen vertices at a time, against sr__vertex_shade, the scalar
+ * vertex it restates, and the scalar classification (outcode, divide by
+ * w, viewport, snap): the same bits of every clip position, outcode,
+ * window position, color and texture coordinate, for random states
+ * (directional and point lights, a local viewer or not, two-sided
+ * or not, specular or not; vertex colors or the material's; depth range
+ * [-1, 1] or [0, 1]) and random draws (three- and four-component
  * positions, interleaved strides, normals and colors present or not,
  * vertex counts that leave a part group), with the scalar code's edge
  * cases among the vertices: zero-length normals, NaN coordinates, an eye
@@ -25,6 +27,23 @@ static float frand(sr_rng *rng, double lo, double hi)
     return (float)sr_rng_range(rng, lo, hi);
 }
 
+/* vertex.c's classify, restated: the outcode, and for a vertex inside
+ * every plane its snapped window position. */
+static void classify_ref(const sr_draw_state *ds, const float clip[4], sr_vertex_post *v)
+{
+    memset(v, 0, sizeof *v);
+    if (!(isfinite(clip[0]) && isfinite(clip[1]) && isfinite(clip[2]) && isfinite(clip[3]))) {
+        v->outcode = SR_OUTCODE_NONFINITE;
+        return;
+    }
+    sr_clip_planes k;
+    sr__clip_planes(ds, &k);
+    v->outcode = sr__clip_outcode_with(&k, clip);
+    if (v->outcode == 0) {
+        sr__project(ds, clip, &v->x_q8, &v->y_q8, &v->z, &v->inv_w);
+    }
+}
+
 static void random_matrix(sr_rng *rng, sr_mat4 *m, bool projective)
 {
     for (int k = 0; k < 16; k++) {
@@ -41,6 +60,13 @@ static void random_state(sr_rng *rng, int s, sr_draw_state *ds)
     static const int shininess[] = { 0, 1, 2, 7, 8, 32, 129 };
     memset(ds, 0, sizeof *ds);
     ds->shading = SR_SHADING_GOURAUD;
+    ds->zero_to_one = s / 5 % 2;
+    ds->vp_px = sr_rng_range(rng, 20, 1000);
+    ds->vp_py = sr_rng_range(rng, 20, 1000);
+    ds->vp_ox = ds->vp_px + sr_rng_range(rng, -5, 5);
+    ds->vp_oy = ds->vp_py + sr_rng_range(rng, -5, 5);
+    ds->vp_zs = sr_rng_range(rng, 0.1, 0.5);
+    ds->vp_zb = sr_rng_range(rng, 0.1, 0.5);
     for (int k = 0; k < 3; k++) {
         ds->ambient[k] = frand(rng, 0, 0.4);
         ds->specular[k] = s % 3 == 0 ? 0.0f : frand(rng, 0, 1);
@@ -86,7 +112,7 @@ SR_TEST(sixteen_lanes_give_the_scalar_vertex_bits)
     float pos[MAXV * MAXSTRIDE], nrm[MAXV * MAXSTRIDE], col[MAXV * MAXSTRIDE], uv[MAXV * 2];
     sr_vertex_post post[MAXV];
     float vary[MAXV * 8];
-    long compared = 0, nan_values = 0, groups_part = 0;
+    long compared = 0, nan_values = 0, groups_part = 0, inside = 0, nonfinite = 0;
     for (int s = 0; s < 600 && !sr_test_failed_now(); s++) {
         sr_draw_state ds;
         random_state(&rng, s, &ds);
@@ -140,7 +166,7 @@ SR_TEST(sixteen_lanes_give_the_scalar_vertex_bits)
         groups_part += count % 16 != 0;
         memset(post, 0, sizeof post);
         memset(vary, 0, sizeof vary);
-        REQUIRE(sr__gouraud_stage16(&ds, &d, &mvp, &mv, &nm, first, count, post, vary));
+        REQUIRE(sr__vertex_stage16(&ds, &d, &mvp, &mv, &nm, first, count, post, vary));
         for (size_t i = 0; i < count; i++) {
             size_t v = first + i;
             float obj[4] = { pos[v * pstep], pos[v * pstep + 1], pos[v * pstep + 2],
@@ -151,6 +177,22 @@ SR_TEST(sixteen_lanes_give_the_scalar_vertex_bits)
             sr__vertex_shade(&ds, obj, d.normals ? &nrm[v * nstep] : NULL,
                              d.colors ? rgba : NULL, &uv[v * 2], NULL, &mvp, &mv, &nm, clip,
                              want);
+            sr_vertex_post want_post;
+            classify_ref(&ds, clip, &want_post);
+            if (post[i].outcode != want_post.outcode) {
+                sr_test_fail(__FILE__, __LINE__, "state %d vertex %zu: outcode %#x, scalar %#x", s,
+                             i, post[i].outcode, want_post.outcode);
+            } else if (want_post.outcode == 0 &&
+                       (post[i].x_q8 != want_post.x_q8 || post[i].y_q8 != want_post.y_q8 ||
+                        memcmp(&post[i].z, &want_post.z, sizeof(double)) != 0 ||
+                        !same(post[i].inv_w, want_post.inv_w))) {
+                sr_test_fail(__FILE__, __LINE__, "state %d vertex %zu: window (%d, %d, %a, %a), "
+                             "scalar (%d, %d, %a, %a)", s, i, post[i].x_q8, post[i].y_q8,
+                             post[i].z, (double)post[i].inv_w, want_post.x_q8, want_post.y_q8,
+                             want_post.z, (double)want_post.inv_w);
+            }
+            inside += want_post.outcode == 0;
+            nonfinite += want_post.outcode == SR_OUTCODE_NONFINITE;
             for (int k = 0; k < 4; k++) {
                 if (!same(post[i].pos[k], clip[k])) {
                     sr_test_fail(__FILE__, __LINE__, "state %d vertex %zu clip %d: %a, scalar %a",
@@ -172,10 +214,13 @@ SR_TEST(sixteen_lanes_give_the_scalar_vertex_bits)
     CHECK(compared > 100000);
     CHECK(nan_values > 0);  /* the NaN cases were reached */
     CHECK(groups_part > 0); /* and part groups */
+    CHECK(inside > 1000);   /* window positions compared */
+    CHECK(nonfinite > 0);
 }
 
-/* Strides too long for the gathers' 32-bit offsets: the stage declines
- * and writes nothing (vertex.c then takes the four-lane stage). */
+/* Strides too long for the gathers' 32-bit offsets, and states it does
+ * not cover: the stage declines and writes nothing (vertex.c then takes
+ * its own stages). */
 SR_TEST(sixteen_lanes_decline_strides_beyond_their_offsets)
 {
     if (sr__simd_level() != SR_SIMD_AVX512) {
@@ -191,10 +236,22 @@ SR_TEST(sixteen_lanes_decline_strides_beyond_their_offsets)
     float vary[8] = { 0 };
     memset(post, 0x5a, sizeof post);
     sr_draw_desc d = { .positions = pos, .position_stride = (size_t)1 << 28 };
-    CHECK(!sr__gouraud_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
+    CHECK(!sr__vertex_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
+    d.position_stride = 0;
+    d.texcoords = pos;
+    d.texcoord_stride = (size_t)1 << 28;
+    CHECK(!sr__vertex_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
+    d.texcoord_stride = 0;
+    ds.shading = SR_SHADING_PHONG;
+    CHECK(!sr__vertex_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
+    ds.shading = SR_SHADING_UNLIT;
+    CHECK(!sr__vertex_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
+    ds.shading = SR_SHADING_GOURAUD;
+    ds.shininess_int = -1; /* powf shininess: the scalar stage */
+    CHECK(!sr__vertex_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
     unsigned char untouched[sizeof post];
     memset(untouched, 0x5a, sizeof untouched);
     CHECK(memcmp(post, untouched, sizeof post) == 0);
-    d.position_stride = 0;
-    CHECK(sr__gouraud_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
+    ds.shininess_int = 8;
+    CHECK(sr__vertex_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
 }

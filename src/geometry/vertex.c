@@ -485,17 +485,15 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
         program_stage(ds, d, first, count, post, vary_out);
         return;
     }
+    if (ds->vertex_lanes16 && sr__vertex_stage16(ds, d, mvp, mv, nm, first, count, post, vary_out)) {
+        return;
+    }
     if (ds->shading == SR_SHADING_UNLIT) {
         unlit_stage(ds, d, mvp, first, count, post, vary_out);
         return;
     }
     if (ds->shading == SR_SHADING_GOURAUD && ds->shininess_int >= 0 && ds->light_lanes) {
-        if (ds->vertex_lanes16 &&
-            sr__gouraud_stage16(ds, d, mvp, mv, nm, first, count, post, vary_out)) {
-            classify_block(ds, post, count);
-        } else {
-            gouraud_stage(ds, d, mvp, mv, nm, first, count, post, vary_out);
-        }
+        gouraud_stage(ds, d, mvp, mv, nm, first, count, post, vary_out);
         return;
     }
     int gsize = d->generic_size ? d->generic_size : 4;
