@@ -52,4 +52,25 @@ static inline bool sr__rect_inside(const sr_tri *t, int x0, int y0, int x1, int 
     return sr__rect_classify(t, x0, y0, x1, y1, sx, sy, sr__no_slack, e, &inside) && inside;
 }
 
+/* Whether every edge value at the pixel centres of [x0, x1) x [y0, y1)
+ * fits in 32 bits (with room for the coverage bias): an edge function is
+ * linear, so its extremes over the rectangle are at the corners.  This
+ * goes by the values, not by the rectangle's size: a small box can be the
+ * corner of a huge triangle, whose values there exceed 32 bits. */
+static inline bool sr__rect_fits32(const sr_tri *t, int x0, int y0, int x1, int y1)
+{
+    const int64_t lim = INT32_MAX - 1;
+    int64_t xs[2] = { sr__centre_q8(x0), sr__centre_q8(x1 - 1) };
+    int64_t ys[2] = { sr__centre_q8(y0), sr__centre_q8(y1 - 1) };
+    for (int i = 0; i < 3; i++) {
+        for (int c = 0; c < 4; c++) {
+            int64_t v = t->a[i] * xs[c & 1] + t->b[i] * ys[c >> 1] + t->c[i];
+            if (v > lim || v < -lim) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
 #endif

@@ -199,19 +199,35 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edges)(const double r[3], const int
 #endif
 
 #ifdef SR_SIMD_WIDE16
-/* A stamp, plain or textured (a constant at each instance). */
+/* A stamp, plain or textured (a constant at each instance), with its edge
+ * values in 32-bit lanes (n, nb32) when `narrow`, else in double halves
+ * (e0 .. e2, nb). */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp16)(const sr_draw_state *ds, const sr_tri *t, int gx,
                                                   int py, const __m512d e0[2], const __m512d e1[2],
-                                                  const __m512d e2[2], __mmask16 valid,
-                                                  bool inside, const __m512d nb[3],
+                                                  const __m512d e2[2], const __m512i n[3],
+                                                  __mmask16 valid, bool inside,
+                                                  const __m512d nb[3], const __m512i nb32[3],
                                                   const SR_SIMD_FN(w16_lanes) *k,
                                                   sr_frag_stats *st, sr_depth_mode dmode,
-                                                  sr_stamp shape, bool tex)
+                                                  sr_stamp shape, bool tex, bool narrow)
 {
-    if (tex) {
+    if (narrow) {
+        SR_SIMD_FN(rows16_n)(ds, t, gx, py, n, valid, inside, nb32, k, st, dmode, shape);
+    } else if (tex) {
         SR_SIMD_FN(rows16_tex)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, dmode, shape);
     } else {
         SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, dmode, shape);
+    }
+}
+
+/* A stamp's 32-bit edge values: the value r[i] at its corner pixel plus
+ * each lane's offset, modulo 2^32 (so a corner outside the box may wrap;
+ * the lanes inside it come out exact, sr__rect_fits32). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(n16_edges)(const uint32_t r[3], const __m512i off[3],
+                                                   __m512i n[3])
+{
+    for (int i = 0; i < 3; i++) {
+        n[i] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)r[i]), off[i]);
     }
 }
 #endif
@@ -219,9 +235,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp16)(const sr_draw_state *ds, const
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
                                                     int rx0, int ry0, int rx1, int ry1,
                                                     sr_frag_stats *st, sr_shading shading,
-                                                    sr_depth_mode dmode, bool tex)
+                                                    sr_depth_mode dmode, bool tex, bool narrow)
 {
-    (void)tex; /* textured instances exist in the AVX-512 build only */
+    /* Textured instances and 32-bit edge lanes exist in the AVX-512
+     * build only. */
+    (void)tex;
+    (void)narrow;
     int64_t sx[3], sy[3];
     for (int i = 0; i < 3; i++) {
         sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
@@ -249,6 +268,21 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     for (int i = 0; i < 3; i++) {
         lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps); /* exact: small integers */
         nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
+    }
+    /* The same in 32-bit lanes: each lane's offset from the stamp's corner
+     * in an 8 x 2 stamp (x a + y b, x = 0..7, y = 0..1) and a 4 x 4 one,
+     * modulo 2^32 (n16_edges). */
+    __m512i off82[3], off44[3], nb32[3];
+    const __m512i lane16 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const __m512i x8 = _mm512_and_si512(lane16, _mm512_set1_epi32(7));
+    const __m512i x4 = _mm512_and_si512(lane16, _mm512_set1_epi32(3));
+    const __m512i y8 = _mm512_srli_epi32(lane16, 3), y4 = _mm512_srli_epi32(lane16, 2);
+    for (int i = 0; i < 3; i++) {
+        __m512i a = _mm512_set1_epi32((int32_t)(uint32_t)sx[i]);
+        __m512i b = _mm512_set1_epi32((int32_t)(uint32_t)sy[i]);
+        off82[i] = _mm512_add_epi32(_mm512_mullo_epi32(x8, a), _mm512_mullo_epi32(y8, b));
+        off44[i] = _mm512_add_epi32(_mm512_mullo_epi32(x4, a), _mm512_mullo_epi32(y4, b));
+        nb32[i] = _mm512_set1_epi32(-t->bias[i]);
     }
 #endif
     SR_SIMD_FN(tri_lanes) lanes;
@@ -281,13 +315,23 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 valid |= cols << (4 * r);
             }
             __m512d e[3][2];
+            __m512i n[3];
+            uint32_t corner[3];
             for (int i = 0; i < 3; i++) {
-                __m512d c = _mm512_set1_pd((double)(t->a[i] * xc + t->b[i] * yc + t->c[i]));
-                e[i][0] = _mm512_add_pd(c, off[0][i]);
-                e[i][1] = _mm512_add_pd(c, off[1][i]);
+                int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
+                if (narrow) {
+                    corner[i] = (uint32_t)v;
+                } else {
+                    __m512d c = _mm512_set1_pd((double)v);
+                    e[i][0] = _mm512_add_pd(c, off[0][i]);
+                    e[i][1] = _mm512_add_pd(c, off[1][i]);
+                }
             }
-            SR_SIMD_FN(stamp16)(ds, t, rx0, py, e[0], e[1], e[2], (__mmask16)valid, false, nb8,
-                                &wl, st, dmode, SR_STAMP_4X4, tex);
+            if (narrow) {
+                SR_SIMD_FN(n16_edges)(corner, off44, n);
+            }
+            SR_SIMD_FN(stamp16)(ds, t, rx0, py, e[0], e[1], e[2], n, (__mmask16)valid, false, nb8,
+                                nb32, &wl, st, dmode, SR_STAMP_4X4, tex, narrow);
         }
         return;
     }
@@ -297,24 +341,35 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
          * eight from its left edge; masked lanes leave the rest alone. */
         int64_t xc = sr__centre_q8(rx0), yc = sr__centre_q8(ry0);
         double r[3];
+        uint32_t r32[3]; /* narrow: the same, modulo 2^32 */
         for (int i = 0; i < 3; i++) {
-            r[i] = (double)(t->a[i] * xc + t->b[i] * yc + t->c[i]);
+            int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
+            r[i] = (double)v;
+            r32[i] = (uint32_t)v;
         }
         for (int py = ry0; py < ry1; py += 2) {
             __mmask16 rows = py + 1 < ry1 ? 0xffff : 0x00ff;
             double rs[3] = { r[0], r[1], r[2] };
+            uint32_t rs32[3] = { r32[0], r32[1], r32[2] };
             for (int gx = rx0; gx < rx1; gx += 8) {
                 unsigned span = rx1 - gx >= 8 ? 0xffu : (1u << (rx1 - gx)) - 1;
                 __m512d e0[2], e1[2], e2[2];
-                SR_SIMD_FN(w16_edges)(rs, sy, lx8, e0, e1, e2);
-                SR_SIMD_FN(stamp16)(ds, t, gx, py, e0, e1, e2, rows & (span | span << 8), false,
-                                    nb8, &wl, st, dmode, SR_STAMP_8X2, tex);
+                __m512i n[3];
+                if (narrow) {
+                    SR_SIMD_FN(n16_edges)(rs32, off82, n);
+                } else {
+                    SR_SIMD_FN(w16_edges)(rs, sy, lx8, e0, e1, e2);
+                }
+                SR_SIMD_FN(stamp16)(ds, t, gx, py, e0, e1, e2, n, rows & (span | span << 8),
+                                    false, nb8, nb32, &wl, st, dmode, SR_STAMP_8X2, tex, narrow);
                 for (int i = 0; i < 3; i++) {
                     rs[i] += 8.0 * (double)sx[i];
+                    rs32[i] += 8u * (uint32_t)sx[i];
                 }
             }
             for (int i = 0; i < 3; i++) {
                 r[i] += 2.0 * (double)sy[i];
+                r32[i] += 2u * (uint32_t)sy[i];
             }
         }
         return;
@@ -381,14 +436,24 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 /* The block's rows in pairs, sixteen lanes, with the span
                  * [px0, px1) and the rows that exist as the lane mask. */
                 unsigned span = (0xffu >> (SR_BLOCK_SIZE - (px1 - bx))) & (0xffu << (px0 - bx));
+                uint32_t r32[3]; /* narrow: r modulo 2^32 */
+                for (int i = 0; i < 3; i++) {
+                    r32[i] = (uint32_t)(e[i] - t->bias[i] + sy[i] * (py0 - by));
+                }
                 for (int py = py0; py < py1; py += 2) {
                     unsigned valid = py + 1 < py1 ? span | span << 8 : span;
                     __m512d e0[2], e1[2], e2[2];
-                    SR_SIMD_FN(w16_edges)(r, sy, lx8, e0, e1, e2);
-                    SR_SIMD_FN(stamp16)(ds, t, bx, py, e0, e1, e2, (__mmask16)valid, inside, nb8,
-                                        &wl, st, dmode, SR_STAMP_8X2, tex);
+                    __m512i n[3];
+                    if (narrow) {
+                        SR_SIMD_FN(n16_edges)(r32, off82, n);
+                    } else {
+                        SR_SIMD_FN(w16_edges)(r, sy, lx8, e0, e1, e2);
+                    }
+                    SR_SIMD_FN(stamp16)(ds, t, bx, py, e0, e1, e2, n, (__mmask16)valid, inside,
+                                        nb8, nb32, &wl, st, dmode, SR_STAMP_8X2, tex, narrow);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
+                        r32[i] += 2u * (uint32_t)sy[i];
                     }
                 }
                 continue;
@@ -452,12 +517,24 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     }
 }
 
+/* The AVX-512 instance takes 32-bit edge lanes wherever a triangle's
+ * values in the box fit them. */
+#ifdef SR_SIMD_WIDE16
+#define SR_SIMD_NARROW 1
+#else
+#define SR_SIMD_NARROW 0
+#endif
 #define SR_SIMD_INSTANCE(shading, dmode)                                                  \
     SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
         const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
         sr_frag_stats *st)                                                                 \
     {                                                                                      \
-        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false);       \
+        if (SR_SIMD_NARROW && shading != SR_SHADING_PHONG &&                               \
+            sr__rect_fits32(t, rx0, ry0, rx1, ry1)) {                                      \
+            SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, true); \
+        } else {                                                                           \
+            SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false); \
+        }                                                                                  \
     }
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
@@ -466,6 +543,7 @@ SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
 SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
 #undef SR_SIMD_INSTANCE
+#undef SR_SIMD_NARROW
 
 #ifdef SR_SIMD_WIDE16
 /* UNLIT or GOURAUD color modulated by a texture (simd_tex.h). */
@@ -473,14 +551,16 @@ SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_less)(const sr_draw_state *ds, 
                                                        int rx0, int ry0, int rx1, int ry1,
                                                        sr_frag_stats *st)
 {
-    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS, true);
+    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS, true,
+                          false);
 }
 
 SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_off)(const sr_draw_state *ds, const sr_tri *t,
                                                       int rx0, int ry0, int rx1, int ry1,
                                                       sr_frag_stats *st)
 {
-    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF, true);
+    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF, true,
+                          false);
 }
 #endif
 

@@ -185,20 +185,30 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_make)(const sr_tri *t, sr_shading s
     o->fixed = _mm512_set1_epi32((int)fixed);
 }
 
-/* sr__bary on sixteen lanes: the weights l1, l2 of vertices 1 and 2. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_bary)(const SR_SIMD_FN(w16_lanes) *k,
-                                                   const __m512d e0[2], const __m512d e1[2],
-                                                   const __m512d e2[2], __m512 *l1, __m512 *l2)
+/* sr__bary on sixteen lanes: the weights l1, l2 of vertices 1 and 2,
+ * from the edge values as floats (f_i = (float)e_i, one rounding). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_bary_f)(const SR_SIMD_FN(w16_lanes) *k, __m512 f0,
+                                                     __m512 f1, __m512 f2, __m512 *l1,
+                                                     __m512 *l2)
 {
-    __m512 q0 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e0[0], e0[1]), k->w[0]);
-    __m512 q1 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e1[0], e1[1]), k->w[1]);
-    __m512 q2 = _mm512_mul_ps(SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), k->w[2]);
+    __m512 q0 = _mm512_mul_ps(f0, k->w[0]);
+    __m512 q1 = _mm512_mul_ps(f1, k->w[1]);
+    __m512 q2 = _mm512_mul_ps(f2, k->w[2]);
     __m512 s = _mm512_add_ps(_mm512_add_ps(q0, q1), q2);
     /* s != 0 ? 1/s : 0, with NaN taking the division as in C. */
     __mmask16 nz = _mm512_cmp_ps_mask(s, _mm512_setzero_ps(), _CMP_NEQ_UQ);
     __m512 inv = _mm512_maskz_div_ps(nz, _mm512_set1_ps(1.0f), s);
     *l1 = _mm512_mul_ps(q1, inv);
     *l2 = _mm512_mul_ps(q2, inv);
+}
+
+/* The same from edge values in double halves. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_bary)(const SR_SIMD_FN(w16_lanes) *k,
+                                                   const __m512d e0[2], const __m512d e1[2],
+                                                   const __m512d e2[2], __m512 *l1, __m512 *l2)
+{
+    SR_SIMD_FN(w16_bary_f)(k, SR_SIMD_FN(w16_cvt)(e0[0], e0[1]), SR_SIMD_FN(w16_cvt)(e1[0], e1[1]),
+                           SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), l1, l2);
 }
 
 /* A stamp of sixteen pixels: 8 x 2 (lanes 0-7 row py, 8-15 row py + 1)
@@ -250,12 +260,48 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base
     }
 }
 
-/* Coverage and the depth test of a stamp (depth written where it
- * passes): the lanes still to be shaded, 0 for none.  `valid` masks the
- * lanes inside the span being drawn: no other lane's memory is read or
- * written, so a span may start anywhere and run past its tile or the
- * framebuffer (a lane-masked load or store touches only its enabled
- * lanes).  Without a row py + 1, its lanes are off. */
+/* The depth test of a stamp's lanes m (depth written where it passes),
+ * the depth plane at edge values e1, e2 (double halves: lanes 0-7, 8-15):
+ * the lanes still to be shaded, 0 for none.  Rows without an enabled
+ * lane are not addressed (stamp_load). */
+SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_depth)(const sr_draw_state *ds, const sr_tri *t,
+                                                         size_t idx, __mmask16 m,
+                                                         const __m512d e1[2], const __m512d e2[2],
+                                                         const SR_SIMD_FN(w16_lanes) *k,
+                                                         sr_depth_mode dmode, sr_stamp shape)
+{
+    if (dmode != SR_DEPTH_MODE_LESS) {
+        return m;
+    }
+    sr_framebuffer *fb = ds->fb;
+    size_t pitch = (size_t)fb->width;
+    __m256i q[2];
+    for (int h = 0; h < 2; h++) {
+        __m512d z = _mm512_add_pd(
+            _mm512_add_pd(k->z0, _mm512_mul_pd(e1[h], k->dz1)), _mm512_mul_pd(e2[h], k->dz2));
+        if (!t->z_inside) {
+            __m512d zmin = _mm512_set1_pd(ds->zq_min), zmax = _mm512_set1_pd(ds->zq_max);
+            z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmin, _CMP_GE_OQ), zmin, z);
+            z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmax, _CMP_LE_OQ), zmax, z);
+        }
+        q[h] = _mm512_cvttpd_epi32(_mm512_add_pd(z, _mm512_set1_pd(0.5)));
+    }
+    __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
+    __m512i old = SR_SIMD_FN(stamp_load)(fb->depth, idx, pitch, m, shape);
+    m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
+    if (m) {
+        SR_SIMD_FN(stamp_store)(fb->depth, idx, pitch, m, qz, shape);
+    }
+    return m;
+}
+
+/* Coverage and the depth test of a stamp whose edge values are in double
+ * halves (e*[h]: lanes 8h .. 8h + 7): the lanes still to be shaded, 0
+ * for none.  `valid` masks the lanes inside the span being drawn: no
+ * other lane's memory is read or written, so a span may start anywhere
+ * and run past its tile or the framebuffer (a lane-masked load or store
+ * touches only its enabled lanes).  Without a row py + 1, its lanes are
+ * off. */
 SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_test)(const sr_draw_state *ds, const sr_tri *t,
                                                         size_t idx, const __m512d e0[2],
                                                         const __m512d e1[2], const __m512d e2[2],
@@ -278,50 +324,19 @@ SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_test)(const sr_draw_state *ds,
             return 0;
         }
     }
-    if (dmode == SR_DEPTH_MODE_LESS) {
-        sr_framebuffer *fb = ds->fb;
-        size_t pitch = (size_t)fb->width;
-        __m256i q[2];
-        for (int h = 0; h < 2; h++) {
-            __m512d z = _mm512_add_pd(
-                _mm512_add_pd(k->z0, _mm512_mul_pd(e1[h], k->dz1)), _mm512_mul_pd(e2[h], k->dz2));
-            if (!t->z_inside) {
-                __m512d zmin = _mm512_set1_pd(ds->zq_min), zmax = _mm512_set1_pd(ds->zq_max);
-                z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmin, _CMP_GE_OQ), zmin, z);
-                z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmax, _CMP_LE_OQ), zmax, z);
-            }
-            q[h] = _mm512_cvttpd_epi32(_mm512_add_pd(z, _mm512_set1_pd(0.5)));
-        }
-        __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
-        __m512i old = SR_SIMD_FN(stamp_load)(fb->depth, idx, pitch, m, shape);
-        m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
-        if (m) {
-            SR_SIMD_FN(stamp_store)(fb->depth, idx, pitch, m, qz, shape);
-        }
-    }
-    return m;
+    return SR_SIMD_FN(w16_depth)(ds, t, idx, m, e1, e2, k, dmode, shape);
 }
 
-/* The sixteen pixels of a stamp at (gx, py); e*[h] holds lanes 8h .. 8h + 7
- * (w16_test says which lanes). */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const sr_tri *t, int gx,
-                                                 int py, const __m512d e0[2], const __m512d e1[2],
-                                                 const __m512d e2[2], __mmask16 valid,
-                                                 bool inside, const __m512d nb[3],
-                                                 const SR_SIMD_FN(w16_lanes) *k, sr_frag_stats *st,
-                                                 sr_depth_mode dmode, sr_stamp shape)
+/* Shade and store the lanes m of a stamp at idx, with the weights l1, l2
+ * of vertices 1 and 2 (w16_bary). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_shade)(const sr_draw_state *ds, size_t idx,
+                                                    __mmask16 m, __m512 l1, __m512 l2,
+                                                    const SR_SIMD_FN(w16_lanes) *k,
+                                                    sr_frag_stats *st, sr_stamp shape)
 {
     sr_framebuffer *fb = ds->fb;
-    size_t pitch = (size_t)fb->width, idx = (size_t)py * pitch + (size_t)gx;
-    __mmask16 m = SR_SIMD_FN(w16_test)(ds, t, idx, e0, e1, e2, valid, inside, nb, k, dmode, shape);
-    if (!m) {
-        return;
-    }
-
     __m512i rgba = k->fixed;
     if (k->varying) {
-        __m512 l1, l2;
-        SR_SIMD_FN(w16_bary)(k, e0, e1, e2, &l1, &l2);
         __m512i var = _mm512_setzero_si512();
         for (int ch = 0; ch < 4; ch++) {
             if (k->varying >> ch & 1) {
@@ -339,7 +354,69 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
             rgba = _mm512_mask_or_epi32(var, (__mmask16)~bad, var, k->fixed);
         }
     }
-    SR_SIMD_FN(stamp_store)(fb->color, idx, pitch, m, rgba, shape);
+    SR_SIMD_FN(stamp_store)(fb->color, idx, (size_t)fb->width, m, rgba, shape);
     st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
+}
+
+/* The sixteen pixels of a stamp at (gx, py); e*[h] holds lanes 8h .. 8h + 7
+ * (w16_test says which lanes). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const sr_tri *t, int gx,
+                                                 int py, const __m512d e0[2], const __m512d e1[2],
+                                                 const __m512d e2[2], __mmask16 valid,
+                                                 bool inside, const __m512d nb[3],
+                                                 const SR_SIMD_FN(w16_lanes) *k, sr_frag_stats *st,
+                                                 sr_depth_mode dmode, sr_stamp shape)
+{
+    size_t idx = (size_t)py * (size_t)ds->fb->width + (size_t)gx;
+    __mmask16 m = SR_SIMD_FN(w16_test)(ds, t, idx, e0, e1, e2, valid, inside, nb, k, dmode, shape);
+    if (!m) {
+        return;
+    }
+    __m512 l1 = _mm512_setzero_ps(), l2 = _mm512_setzero_ps();
+    if (k->varying) {
+        SR_SIMD_FN(w16_bary)(k, e0, e1, e2, &l1, &l2);
+    }
+    SR_SIMD_FN(w16_shade)(ds, idx, m, l1, l2, k, st, shape);
+}
+
+/* The same with the edge values in sixteen 32-bit lanes, for a triangle
+ * whose values inside the box being drawn all fit (sr__rect_fits32):
+ * one compare an edge instead of two, and one conversion to float
+ * instead of two and a merge.  Lanes outside `valid` may have wrapped;
+ * they are never used.  The depth plane still takes doubles (exact). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_n)(const sr_draw_state *ds, const sr_tri *t, int gx,
+                                                   int py, const __m512i e[3], __mmask16 valid,
+                                                   bool inside, const __m512i nb[3],
+                                                   const SR_SIMD_FN(w16_lanes) *k,
+                                                   sr_frag_stats *st, sr_depth_mode dmode,
+                                                   sr_stamp shape)
+{
+    size_t idx = (size_t)py * (size_t)ds->fb->width + (size_t)gx;
+    __mmask16 m = valid;
+    if (!inside) {
+        /* Covered iff e >= -bias, as in quad(). */
+        m = _mm512_mask_cmpge_epi32_mask(m, e[0], nb[0]);
+        m = _mm512_mask_cmpge_epi32_mask(m, e[1], nb[1]);
+        m = _mm512_mask_cmpge_epi32_mask(m, e[2], nb[2]);
+        if (!m) {
+            return;
+        }
+    }
+    if (dmode == SR_DEPTH_MODE_LESS) {
+        __m512d e1[2] = { _mm512_cvtepi32_pd(_mm512_castsi512_si256(e[1])),
+                          _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(e[1], 1)) };
+        __m512d e2[2] = { _mm512_cvtepi32_pd(_mm512_castsi512_si256(e[2])),
+                          _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(e[2], 1)) };
+        m = SR_SIMD_FN(w16_depth)(ds, t, idx, m, e1, e2, k, dmode, shape);
+        if (!m) {
+            return;
+        }
+    }
+    __m512 l1 = _mm512_setzero_ps(), l2 = _mm512_setzero_ps();
+    if (k->varying) {
+        SR_SIMD_FN(w16_bary_f)(k, _mm512_cvtepi32_ps(e[0]), _mm512_cvtepi32_ps(e[1]),
+                               _mm512_cvtepi32_ps(e[2]), &l1, &l2);
+    }
+    SR_SIMD_FN(w16_shade)(ds, idx, m, l1, l2, k, st, shape);
 }
 #endif
