@@ -48,15 +48,18 @@ SR_TEST(fits32_goes_by_the_corner_values_up_to_the_limit)
             }
         }
     }
-    /* A slope: only the far corner of the rectangle crosses the limit,
-     * below and above. */
-    for (int sign = -1; sign <= 1; sign += 2) {
-        t.c[0] = t.c[1] = t.c[2] = 0;
-        t.a[0] = sign * 1000;
-        int64_t at_far = t.a[0] * sr__centre_q8(99);
-        t.c[0] = sign * (lim + 1) - at_far; /* value lim + 1 at x = 99 */
-        CHECK(!sr__rect_fits32(&t, 90, 0, 100, 5));
-        CHECK(sr__rect_fits32(&t, 90, 0, 99, 5));
+    /* A slope along x, then along y: only the rectangle's last column
+     * (row) crosses the limit, below and above. */
+    for (int axis = 0; axis < 2; axis++) {
+        for (int sign = -1; sign <= 1; sign += 2) {
+            memset(&t, 0, sizeof t);
+            int32_t *slope = axis ? &t.b[1] : &t.a[1];
+            *slope = sign * 1000;
+            t.c[1] = sign * (lim + 1) - *slope * sr__centre_q8(99); /* lim + 1 at 99 */
+            int x1 = axis ? 5 : 100, y1 = axis ? 100 : 5;
+            CHECK(!sr__rect_fits32(&t, axis ? 0 : 90, axis ? 90 : 0, x1, y1));
+            CHECK(sr__rect_fits32(&t, axis ? 0 : 90, axis ? 90 : 0, x1 - !axis, y1 - axis));
+        }
     }
 }
 

@@ -60,14 +60,13 @@ static inline bool sr__rect_inside(const sr_tri *t, int x0, int y0, int x1, int 
 static inline bool sr__rect_fits32(const sr_tri *t, int x0, int y0, int x1, int y1)
 {
     const int64_t lim = INT32_MAX - 1;
-    int64_t xs[2] = { sr__centre_q8(x0), sr__centre_q8(x1 - 1) };
-    int64_t ys[2] = { sr__centre_q8(y0), sr__centre_q8(y1 - 1) };
     for (int i = 0; i < 3; i++) {
-        for (int c = 0; c < 4; c++) {
-            int64_t v = t->a[i] * xs[c & 1] + t->b[i] * ys[c >> 1] + t->c[i];
-            if (v > lim || v < -lim) {
-                return false;
-            }
+        int64_t e = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i];
+        int64_t ex = (int64_t)t->a[i] * SR_SUBPIXEL_ONE * (x1 - 1 - x0);
+        int64_t ey = (int64_t)t->b[i] * SR_SUBPIXEL_ONE * (y1 - 1 - y0);
+        if (e + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) > lim ||
+            e + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) < -lim) {
+            return false;
         }
     }
     return true;

@@ -289,7 +289,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     SR_SIMD_FN(make_lanes)(t, &lanes);
 #ifdef SR_SIMD_WIDE16
     SR_SIMD_FN(w16_lanes) wl;
-    SR_SIMD_FN(w16_make)(t, shading, &lanes, &wl);
+    SR_SIMD_FN(w16_make)(t, shading, &wl);
 #endif
 
 #ifdef SR_SIMD_WIDE16

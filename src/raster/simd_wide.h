@@ -158,22 +158,27 @@ typedef struct SR_SIMD_FN(w16_lanes) {
 } SR_SIMD_FN(w16_lanes);
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_make)(const sr_tri *t, sr_shading shading,
-                                                   const SR_SIMD_FN(tri_lanes) *k,
                                                    SR_SIMD_FN(w16_lanes) *o)
 {
-    o->z0 = _mm512_broadcast_f64x4((__m256d)k->z0);
-    o->dz1 = _mm512_broadcast_f64x4((__m256d)k->dz1);
-    o->dz2 = _mm512_broadcast_f64x4((__m256d)k->dz2);
+    /* From the record itself rather than the four-lane tri_lanes, which
+     * the sixteen-lane paths would otherwise make for nothing. */
+    o->z0 = _mm512_set1_pd(t->z0);
+    o->dz1 = _mm512_set1_pd(t->dz1);
+    o->dz2 = _mm512_set1_pd(t->dz2);
     for (int i = 0; i < 3; i++) {
-        o->w[i] = _mm512_broadcast_f32x4((__m128)k->w[i]);
+        o->w[i] = _mm512_set1_ps(t->w[i]);
     }
     uint32_t fixed = 0;
     o->varying = 0;
     for (int ch = 0; ch < 4; ch++) {
-        float c0 = k->c0[ch][0], c1 = k->c1[ch][0], c2 = k->c2[ch][0];
         if (shading == SR_SHADING_FLAT) {
             fixed |= (uint32_t)sr__unorm8(t->flat[ch]) << (8 * ch);
-        } else if (c1 == 0.0f && c2 == 0.0f) {
+            continue;
+        }
+        int n = t->ninterp;
+        float c0 = t->vary[SR_VARY_COLOR + ch], c1 = t->vary[n + SR_VARY_COLOR + ch];
+        float c2 = t->vary[2 * n + SR_VARY_COLOR + ch];
+        if (c1 == 0.0f && c2 == 0.0f) {
             fixed |= (uint32_t)sr__unorm8(c0) << (8 * ch);
         } else {
             o->varying |= 1u << ch;
