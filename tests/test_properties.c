@@ -1042,6 +1042,65 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
     sr_destroy_context(ctx);
 }
 
+/* Triangles that cover the whole view: the vector kernels walk a box a
+ * triangle covers whole by rows of sixteen with no coverage test, with
+ * 32-bit edge lanes when the triangle is a few times the view and double
+ * lanes when it is far larger.  Against the scalar loop: a 45 x 37 view
+ * (one tile; rows end mid-span), triangles from 2 to 300 times its size
+ * around random points near its centre, random depths and colors, each shading
+ * model the kernels cover, depth LESS and off. */
+SR_TEST(vector_kernels_give_the_scalar_bytes_for_boxes_covered_whole)
+{
+    enum { W = 45, H = 37, N = 4 };
+    static const sr_shading shadings[] = { SR_SHADING_UNLIT, SR_SHADING_GOURAUD,
+                                           SR_SHADING_FLAT };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    float pos[N * 9], nrm[N * 9], col[N * 12];
+    uint8_t c0[W * H * 4], c1[W * H * 4];
+    uint32_t d0[W * H], d1[W * H];
+    sr_rng rng = { 0x16c0 };
+    for (int k = 0; k < 48 && !sr_test_failed_now(); k++) {
+        for (int i = 0; i < N; i++) {
+            /* An equilateral triangle of circumradius r (NDC) around a
+             * point within 0.3 of the centre contains the view once r/2
+             * (its inradius) exceeds 1.3 sqrt(2).  Up to r = 5 its edge
+             * values in the view fit 32 bits. */
+            double r = i % 2 ? sr_rng_range(&rng, 3.8, 5) : sr_rng_range(&rng, 100, 600);
+            double cx = sr_rng_range(&rng, -0.3, 0.3), cy = sr_rng_range(&rng, -0.3, 0.3);
+            double a0 = sr_rng_range(&rng, 0, 2 * M_PI);
+            for (int v = 0; v < 3; v++) {
+                float *p = &pos[(i * 3 + v) * 3];
+                p[0] = (float)(cx + r * cos(a0 + v * 2 * M_PI / 3));
+                p[1] = (float)(cy + r * sin(a0 + v * 2 * M_PI / 3));
+                p[2] = (float)sr_rng_range(&rng, -0.9, 0.9);
+                float *n = &nrm[(i * 3 + v) * 3];
+                n[0] = (float)sr_rng_range(&rng, -0.5, 0.5);
+                n[1] = (float)sr_rng_range(&rng, -0.5, 0.5);
+                n[2] = 1.0f;
+                for (int c = 0; c < 4; c++) {
+                    col[(i * 3 + v) * 4 + c] = (float)sr_rng_range(&rng, -0.2, 1.2);
+                }
+            }
+        }
+        sr_state st = { .shading = shadings[k % 3], .cull = SR_CULL_NONE,
+                        .no_depth_test = k % 6 >= 3, .ambient = { 0.2f, 0.2f, 0.2f },
+                        .material = { .diffuse = { 1, 1, 1 }, .specular = { 0.5f, 0.5f, 0.5f },
+                                      .shininess = 8 } };
+        st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
+        const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .normals = nrm,
+                                    .colors = col, .color_size = 4 };
+        kernel_test_draw(ctx, W, H, SR_DEPTH_D24, NULL, &st, &desc, c0, d0);
+        kernel_test_draw(ctx, W, H, SR_DEPTH_D24, "off", &st, &desc, c1, d1);
+        if (memcmp(c0, c1, sizeof c0) != 0 || memcmp(d0, d1, sizeof d0) != 0) {
+            sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, depth test %d): the default "
+                         "kernel differs from SR_SIMD=off", k, (int)st.shading,
+                         !st.no_depth_test);
+        }
+    }
+    sr_destroy_context(ctx);
+}
+
 /* A small framebuffer's box of a huge triangle: a corner inside the
  * image and the other two vertices up to 10,000 pixels away.  The box
  * is small, so the vector kernels walk it as they walk small triangles,

@@ -517,25 +517,125 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     }
 }
 
-/* The AVX-512 instance takes 32-bit edge lanes wherever a triangle's
- * values in the box fit them. */
 #ifdef SR_SIMD_WIDE16
-#define SR_SIMD_NARROW 1
-#else
-#define SR_SIMD_NARROW 0
+/* A box the triangle covers whole (a large triangle over most of its
+ * tiles): no blocks and no coverage test, each row in spans of sixteen,
+ * one load and one store each for depth and color.  Apart from
+ * raster_as, whose code it would otherwise grow: inline there it cost
+ * spot and teapot 2%. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *ds,
+                                                           const sr_tri *t, int rx0, int ry0,
+                                                           int rx1, int ry1, sr_frag_stats *st,
+                                                           sr_shading shading,
+                                                           sr_depth_mode dmode, bool narrow)
+{
+    SR_SIMD_FN(w16_lanes) wl;
+    SR_SIMD_FN(w16_make)(t, shading, &wl);
+    const __m512d steps = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
+    const __m512i lane16 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    __m512d lx8[3], nb8[3];
+    __m512i off16[3], nb32[3];
+    double r[3];
+    uint32_t r32[3]; /* narrow: the same, modulo 2^32 */
+    int64_t sx[3], sy[3];
+    int64_t xc = sr__centre_q8(rx0), yc = sr__centre_q8(ry0);
+    for (int i = 0; i < 3; i++) {
+        sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
+        sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
+        lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps); /* exact: small integers */
+        nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
+        off16[i] = _mm512_mullo_epi32(lane16, _mm512_set1_epi32((int32_t)(uint32_t)sx[i]));
+        nb32[i] = _mm512_set1_epi32(-t->bias[i]);
+        int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
+        r[i] = (double)v;
+        r32[i] = (uint32_t)v;
+    }
+    for (int py = ry0; py < ry1; py++) {
+        double rs[3] = { r[0], r[1], r[2] };
+        uint32_t rs32[3] = { r32[0], r32[1], r32[2] };
+        for (int gx = rx0; gx < rx1; gx += 16) {
+            unsigned valid = rx1 - gx >= 16 ? 0xffffu : (1u << (rx1 - gx)) - 1;
+            __m512d e[3][2];
+            __m512i n[3];
+            if (narrow) {
+                SR_SIMD_FN(n16_edges)(rs32, off16, n);
+            } else {
+                for (int i = 0; i < 3; i++) {
+                    e[i][0] = _mm512_add_pd(_mm512_set1_pd(rs[i]), lx8[i]);
+                    e[i][1] = _mm512_add_pd(_mm512_set1_pd(rs[i] + 8.0 * (double)sx[i]), lx8[i]);
+                }
+            }
+            SR_SIMD_FN(stamp16)(ds, t, gx, py, e[0], e[1], e[2], n, (__mmask16)valid, true, nb8,
+                                nb32, &wl, st, dmode, SR_STAMP_16X1, false, narrow);
+            for (int i = 0; i < 3; i++) {
+                rs[i] += 16.0 * (double)sx[i];
+                rs32[i] += 16u * (uint32_t)sx[i];
+            }
+        }
+        for (int i = 0; i < 3; i++) {
+            r[i] += (double)sy[i];
+            r32[i] += (uint32_t)sy[i];
+        }
+    }
+}
+
+/* Which walk a triangle's part in a tile takes: a box of at least half a
+ * tile each way that it covers whole by whole rows, the rest by
+ * raster_as; both with 32-bit edge lanes where the box's values fit.
+ * (Testing smaller boxes for it cost spot and teapot 2%: few of their
+ * triangles cover a box whole.) */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *ds,
+                                                          const sr_tri *t, int rx0, int ry0,
+                                                          int rx1, int ry1, sr_frag_stats *st,
+                                                          sr_shading shading, sr_depth_mode dmode)
+{
+    if (shading == SR_SHADING_PHONG) {
+        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
+        return;
+    }
+    bool narrow = sr__rect_fits32(t, rx0, ry0, rx1, ry1);
+    if (rx1 - rx0 >= SR_TILE_SIZE / 2 && ry1 - ry0 >= SR_TILE_SIZE / 2) {
+        int64_t sx[3], sy[3];
+        for (int i = 0; i < 3; i++) {
+            sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
+            sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
+        }
+        if (sr__rect_inside(t, rx0, ry0, rx1, ry1, sx, sy)) {
+            if (narrow) {
+                SR_SIMD_FN(raster_inside_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, true);
+            } else {
+                SR_SIMD_FN(raster_inside_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false);
+            }
+            return;
+        }
+    }
+    if (narrow) {
+        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, true);
+    } else {
+        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
+    }
+}
 #endif
+
+/* The AVX-512 instance picks its walk and edge lanes (raster_dispatch);
+ * the others walk in double lanes. */
+#ifdef SR_SIMD_WIDE16
 #define SR_SIMD_INSTANCE(shading, dmode)                                                  \
     SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
         const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
         sr_frag_stats *st)                                                                 \
     {                                                                                      \
-        if (SR_SIMD_NARROW && shading != SR_SHADING_PHONG &&                               \
-            sr__rect_fits32(t, rx0, ry0, rx1, ry1)) {                                      \
-            SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, true); \
-        } else {                                                                           \
-            SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false); \
-        }                                                                                  \
+        SR_SIMD_FN(raster_dispatch)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);        \
     }
+#else
+#define SR_SIMD_INSTANCE(shading, dmode)                                                  \
+    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
+        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
+        sr_frag_stats *st)                                                                 \
+    {                                                                                      \
+        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false); \
+    }
+#endif
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
 SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_OFF)
@@ -543,7 +643,6 @@ SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
 SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
 SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
 #undef SR_SIMD_INSTANCE
-#undef SR_SIMD_NARROW
 
 #ifdef SR_SIMD_WIDE16
 /* UNLIT or GOURAUD color modulated by a texture (simd_tex.h). */

@@ -216,15 +216,19 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_bary)(const SR_SIMD_FN(w16_lanes) *
                            SR_SIMD_FN(w16_cvt)(e2[0], e2[1]), l1, l2);
 }
 
-/* A stamp of sixteen pixels: 8 x 2 (lanes 0-7 row py, 8-15 row py + 1)
- * or 4 x 4 for tiny triangles (lanes 4r .. 4r + 3 row py + r). */
-typedef enum sr_stamp { SR_STAMP_8X2, SR_STAMP_4X4 } sr_stamp;
+/* A stamp of sixteen pixels: 8 x 2 (lanes 0-7 row py, 8-15 row py + 1),
+ * 4 x 4 for tiny triangles (lanes 4r .. 4r + 3 row py + r), or 16 x 1
+ * for a box the triangle covers whole (lanes 0-15 row py). */
+typedef enum sr_stamp { SR_STAMP_8X2, SR_STAMP_4X4, SR_STAMP_16X1 } sr_stamp;
 
 /* The stamp's words of a buffer (width `pitch`) at `base` = pixel
  * (gx, py); rows without an enabled lane are not addressed. */
 SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, size_t base,
                                                         size_t pitch, __mmask16 m, sr_stamp shape)
 {
+    if (shape == SR_STAMP_16X1) {
+        return _mm512_maskz_loadu_epi32(m, &buf[base]);
+    }
     if (shape == SR_STAMP_8X2) {
         size_t b1 = m >> 8 ? base + pitch : base;
         return _mm512_inserti64x4(
@@ -247,6 +251,10 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, siz
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base, size_t pitch,
                                                       __mmask16 m, __m512i v, sr_stamp shape)
 {
+    if (shape == SR_STAMP_16X1) {
+        _mm512_mask_storeu_epi32(&buf[base], m, v);
+        return;
+    }
     if (shape == SR_STAMP_8X2) {
         _mm256_mask_storeu_epi32(&buf[base], (__mmask8)m, _mm512_castsi512_si256(v));
         if (m >> 8) {
