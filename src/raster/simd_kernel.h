@@ -1,16 +1,20 @@
-/* simd_kernel.h - the half-space rasterizer, four pixels at a time
- * (raster stage, tile worker threads).  Included twice by
- * triangle_simd.c: once compiled for AVX2, once for the baseline
- * instruction set, with SR_SIMD_FN naming the two copies.  Written with
- * GCC/Clang vector extensions, so one source serves both.
+/* simd_kernel.h - the half-space rasterizer, several pixels at a time
+ * (raster stage, tile worker threads).  Included three times by
+ * triangle_simd.c - compiled for AVX-512 (sixteen-lane stamps,
+ * simd_wide.h), for AVX2 (eight-lane block rows) and for the baseline
+ * instruction set (four-lane groups) - with SR_SIMD_FN naming the
+ * copies.  Written with GCC/Clang vector extensions and intrinsics, so
+ * one source serves all three.
  *
  * Exactness: edge values are integers below 2^53, so holding them in
- * double lanes is exact; every floating-point step repeats the scalar
- * fragment stage's operations in the same order (no FMA: the build uses
- * -ffp-contract=off), so the bytes equal those of the reference
- * rasterizers.  Covers the common states: depth off or LESS with writes
- * on a D16/D24 buffer, and UNLIT, GOURAUD or FLAT shading; triangle.c
- * sends everything else down the scalar path. */
+ * double lanes is exact; the AVX-512 copy holds them in 32-bit lanes
+ * where every value in the box fits (sr__rect_fits32).  Every
+ * floating-point step repeats the scalar fragment stage's operations in
+ * the same order (no FMA: the build uses -ffp-contract=off), so the bytes
+ * equal those of the reference rasterizers.  Covers the common states:
+ * depth off or LESS with writes on a D16/D24 buffer, and UNLIT, GOURAUD,
+ * FLAT or PHONG (whole-number shininess) shading, textured color in the
+ * AVX-512 copy; triangle.c sends everything else down the scalar path. */
 
 SR_SIMD_TARGET SR_INLINE v4l SR_SIMD_FN(sel_l)(v4l m, v4l a, v4l b) { return (m & a) | (~m & b); }
 SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(sel_i)(v4i m, v4i a, v4i b) { return (m & a) | (~m & b); }
