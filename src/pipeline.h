@@ -295,6 +295,13 @@ typedef struct sr_frag_stats {
 void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 *proj,
                          sr_draw_state *ds);
 
+/* Bytes from one vertex's element of an attribute array to the next: the
+ * draw's stride, or tightly packed `components` floats when it is 0. */
+static inline size_t sr__attr_step(size_t stride, size_t components)
+{
+    return stride ? stride : components * sizeof(float);
+}
+
 /* geometry/vertex.c: vertices [first, first + count) into post[0 .. count)
  * and their varyings into vary[] (ds->nvary floats each): post and vary
  * point at vertex `first`'s entries. */

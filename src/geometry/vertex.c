@@ -15,8 +15,7 @@
 
 static const float *element(const float *base, size_t stride, size_t count, size_t i)
 {
-    size_t step = stride ? stride : count * sizeof(float);
-    return (const float *)((const char *)base + i * step);
+    return (const float *)((const char *)base + i * sr__attr_step(stride, count));
 }
 
 /* Two-sided lighting: turn the normal n toward the viewer at eye-space
@@ -388,9 +387,9 @@ static void unlit_stage(const sr_draw_state *ds, const sr_draw_desc *d, const sr
 {
     int psize = d->position_size ? d->position_size : 3;
     int csize = d->color_size ? d->color_size : 4;
-    size_t pstep = d->position_stride ? d->position_stride : (size_t)psize * sizeof(float);
-    size_t cstep = d->color_stride ? d->color_stride : (size_t)csize * sizeof(float);
-    size_t tstep = d->texcoord_stride ? d->texcoord_stride : 2 * sizeof(float);
+    size_t pstep = sr__attr_step(d->position_stride, (size_t)psize);
+    size_t cstep = sr__attr_step(d->color_stride, (size_t)csize);
+    size_t tstep = sr__attr_step(d->texcoord_stride, 2);
     size_t nv = (size_t)ds->nvary;
     const char *pos = (const char *)d->positions + first * pstep;
     const char *col = d->colors ? (const char *)d->colors + first * cstep : NULL;

@@ -61,7 +61,7 @@ typedef struct lanes_src {
 
 static lanes_src source(const void *array, size_t stride, size_t count, size_t first)
 {
-    size_t step = stride ? stride : count * sizeof(float);
+    size_t step = sr__attr_step(stride, count);
     return (lanes_src){ (const char *)array + first * step, step };
 }
 
@@ -324,8 +324,7 @@ SR_WIDE static void gouraud16(const sr_draw_state *ds, const sr_draw_desc *d, co
  * 2^31 bytes of the group's first. */
 static bool offsets_fit(const void *array, size_t stride, size_t count)
 {
-    size_t step = stride ? stride : count * sizeof(float);
-    return !array || step <= (size_t)INT32_MAX / 16;
+    return !array || sr__attr_step(stride, count) <= (size_t)INT32_MAX / 16;
 }
 
 static bool arrays_fit(const sr_draw_desc *d)

@@ -9,6 +9,29 @@
 
 #include "pipeline.h"
 
+/* Each edge function's step from one pixel to the next along a row (sx)
+ * and down a column (sy), in q8 units. */
+static inline void sr__pixel_steps(const sr_tri *t, int64_t sx[3], int64_t sy[3])
+{
+    for (int i = 0; i < 3; i++) {
+        sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
+        sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
+    }
+}
+
+/* The largest and smallest value over a rectangle's corners of an edge
+ * function that is e at its first corner and changes by ex across its
+ * width and ey down its height. */
+static inline int64_t sr__edge_max(int64_t e, int64_t ex, int64_t ey)
+{
+    return e + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0);
+}
+
+static inline int64_t sr__edge_min(int64_t e, int64_t ex, int64_t ey)
+{
+    return e + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0);
+}
+
 /* The pixels [x0, x1) x [y0, y1): e[i] = biased edge value at pixel
  * (x0, y0)'s centre; sx, sy = per-pixel steps; slack[i] widens the test to
  * samples up to that far from the centres (multisampling; zero for pixel
@@ -22,10 +45,10 @@ static inline bool sr__rect_classify(const sr_tri *t, int x0, int y0, int x1, in
     for (int i = 0; i < 3; i++) {
         e[i] = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i] + t->bias[i];
         int64_t ex = sx[i] * (x1 - 1 - x0), ey = sy[i] * (y1 - 1 - y0);
-        if (e[i] + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) + slack[i] < 0) {
+        if (sr__edge_max(e[i], ex, ey) + slack[i] < 0) {
             return false;
         }
-        in &= e[i] + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) - slack[i] >= 0;
+        in &= sr__edge_min(e[i], ex, ey) - slack[i] >= 0;
     }
     *inside = in;
     return true;
@@ -60,12 +83,12 @@ static inline bool sr__rect_inside(const sr_tri *t, int x0, int y0, int x1, int 
 static inline bool sr__rect_fits32(const sr_tri *t, int x0, int y0, int x1, int y1)
 {
     const int64_t lim = INT32_MAX - 1;
+    int64_t sx[3], sy[3];
+    sr__pixel_steps(t, sx, sy);
     for (int i = 0; i < 3; i++) {
         int64_t e = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i];
-        int64_t ex = (int64_t)t->a[i] * SR_SUBPIXEL_ONE * (x1 - 1 - x0);
-        int64_t ey = (int64_t)t->b[i] * SR_SUBPIXEL_ONE * (y1 - 1 - y0);
-        if (e + (ex > 0 ? ex : 0) + (ey > 0 ? ey : 0) > lim ||
-            e + (ex < 0 ? ex : 0) + (ey < 0 ? ey : 0) < -lim) {
+        int64_t ex = sx[i] * (x1 - 1 - x0), ey = sy[i] * (y1 - 1 - y0);
+        if (sr__edge_max(e, ex, ey) > lim || sr__edge_min(e, ex, ey) < -lim) {
             return false;
         }
     }

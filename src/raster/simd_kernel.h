@@ -234,6 +234,51 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(n16_edges)(const uint32_t r[3], const _
         n[i] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)r[i]), off[i]);
     }
 }
+
+/* Each lane's offset from the stamp's corner pixel in 32-bit lanes, for
+ * a stamp `cols` pixels wide (16, 8 or 4; lane l is pixel (l % cols,
+ * l / cols)): x a + y b per edge, modulo 2^32. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(n16_offsets)(const int64_t sx[3], const int64_t sy[3],
+                                                     int cols, __m512i off[3])
+{
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    int shift = cols == 16 ? 4 : cols == 8 ? 3 : 2;
+    __m512i x = _mm512_and_si512(lane, _mm512_set1_epi32(cols - 1));
+    __m512i y = _mm512_srli_epi32(lane, (unsigned)shift);
+    for (int i = 0; i < 3; i++) {
+        __m512i a = _mm512_set1_epi32((int32_t)(uint32_t)sx[i]);
+        __m512i b = _mm512_set1_epi32((int32_t)(uint32_t)sy[i]);
+        off[i] = _mm512_add_epi32(_mm512_mullo_epi32(x, a), _mm512_mullo_epi32(y, b));
+    }
+}
+
+/* The sixteen-lane walks' per-triangle lanes: lane offsets 0..7 pixel
+ * steps in double (exact: small integers), and the coverage bounds -bias
+ * in double and in 32-bit lanes. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edge_lanes)(const sr_tri *t, const int64_t sx[3],
+                                                        __m512d lx8[3], __m512d nb8[3],
+                                                        __m512i nb32[3])
+{
+    const __m512d steps = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
+    for (int i = 0; i < 3; i++) {
+        lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps);
+        nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
+        nb32[i] = _mm512_set1_epi32(-t->bias[i]);
+    }
+}
+
+/* The three (unbiased) edge values at pixel (x, y)'s centre, in double
+ * (exact) and modulo 2^32. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(edges_at)(const sr_tri *t, int x, int y, double r[3],
+                                                  uint32_t r32[3])
+{
+    int64_t xc = sr__centre_q8(x), yc = sr__centre_q8(y);
+    for (int i = 0; i < 3; i++) {
+        int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
+        r[i] = (double)v;
+        r32[i] = (uint32_t)v;
+    }
+}
 #endif
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
@@ -246,10 +291,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     (void)tex;
     (void)narrow;
     int64_t sx[3], sy[3];
-    for (int i = 0; i < 3; i++) {
-        sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
-        sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
-    }
+    sr__pixel_steps(t, sx, sy);
     /* Lane offsets: 0..3 pixel steps, exact in double. */
     v4d lx[3];
     for (int i = 0; i < 3; i++) {
@@ -266,28 +308,14 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     }
     const v4i all = { -1, -1, -1, -1 };
 #ifdef SR_SIMD_WIDE16
-    /* Lane offsets 0..7 pixel steps and the coverage bounds, 8 lanes. */
     __m512d lx8[3], nb8[3];
-    const __m512d steps = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
-    for (int i = 0; i < 3; i++) {
-        lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps); /* exact: small integers */
-        nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
-    }
-    /* The same in 32-bit lanes: each lane's offset from the stamp's corner
-     * in an 8 x 2 stamp (x a + y b, x = 0..7, y = 0..1) and a 4 x 4 one,
-     * modulo 2^32 (n16_edges). */
-    __m512i off82[3], off44[3], nb32[3];
-    const __m512i lane16 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    const __m512i x8 = _mm512_and_si512(lane16, _mm512_set1_epi32(7));
-    const __m512i x4 = _mm512_and_si512(lane16, _mm512_set1_epi32(3));
-    const __m512i y8 = _mm512_srli_epi32(lane16, 3), y4 = _mm512_srli_epi32(lane16, 2);
-    for (int i = 0; i < 3; i++) {
-        __m512i a = _mm512_set1_epi32((int32_t)(uint32_t)sx[i]);
-        __m512i b = _mm512_set1_epi32((int32_t)(uint32_t)sy[i]);
-        off82[i] = _mm512_add_epi32(_mm512_mullo_epi32(x8, a), _mm512_mullo_epi32(y8, b));
-        off44[i] = _mm512_add_epi32(_mm512_mullo_epi32(x4, a), _mm512_mullo_epi32(y4, b));
-        nb32[i] = _mm512_set1_epi32(-t->bias[i]);
-    }
+    __m512i nb32[3], off82[3], off44[3];
+    SR_SIMD_FN(w16_edge_lanes)(t, sx, lx8, nb8, nb32);
+    /* The 32-bit lanes' offsets in an 8 x 2 stamp and a 4 x 4 one, made
+     * once a call: made in each walk instead, spot and the bunny were
+     * slower. */
+    SR_SIMD_FN(n16_offsets)(sx, sy, 8, off82);
+    SR_SIMD_FN(n16_offsets)(sx, sy, 4, off44);
 #endif
     SR_SIMD_FN(tri_lanes) lanes;
     SR_SIMD_FN(make_lanes)(t, &lanes);
@@ -311,22 +339,19 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             off[1][i] = _mm512_add_pd(top, _mm512_add_pd(b, b));
         }
         unsigned cols = (1u << (rx1 - rx0)) - 1;
-        int64_t xc = sr__centre_q8(rx0);
         for (int py = ry0; py < ry1; py += 4) {
-            int64_t yc = sr__centre_q8(py);
             unsigned valid = 0;
             for (int r = 0; r < 4 && py + r < ry1; r++) {
                 valid |= cols << (4 * r);
             }
             __m512d e[3][2];
             __m512i n[3];
+            double corner_d[3];
             uint32_t corner[3];
-            for (int i = 0; i < 3; i++) {
-                int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
-                if (narrow) {
-                    corner[i] = (uint32_t)v;
-                } else {
-                    __m512d c = _mm512_set1_pd((double)v);
+            SR_SIMD_FN(edges_at)(t, rx0, py, corner_d, corner);
+            if (!narrow) {
+                for (int i = 0; i < 3; i++) {
+                    __m512d c = _mm512_set1_pd(corner_d[i]);
                     e[i][0] = _mm512_add_pd(c, off[0][i]);
                     e[i][1] = _mm512_add_pd(c, off[1][i]);
                 }
@@ -343,14 +368,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
         /* Small triangles: the bounding box by pairs of rows, in spans of
          * eight from its left edge; masked lanes leave the rest alone. */
-        int64_t xc = sr__centre_q8(rx0), yc = sr__centre_q8(ry0);
         double r[3];
-        uint32_t r32[3]; /* narrow: the same, modulo 2^32 */
-        for (int i = 0; i < 3; i++) {
-            int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
-            r[i] = (double)v;
-            r32[i] = (uint32_t)v;
-        }
+        uint32_t r32[3];
+        SR_SIMD_FN(edges_at)(t, rx0, ry0, r, r32);
         for (int py = ry0; py < ry1; py += 2) {
             __mmask16 rows = py + 1 < ry1 ? 0xffff : 0x00ff;
             double rs[3] = { r[0], r[1], r[2] };
@@ -535,25 +555,15 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *
 {
     SR_SIMD_FN(w16_lanes) wl;
     SR_SIMD_FN(w16_make)(t, shading, &wl);
-    const __m512d steps = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
-    const __m512i lane16 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    __m512d lx8[3], nb8[3];
-    __m512i off16[3], nb32[3];
-    double r[3];
-    uint32_t r32[3]; /* narrow: the same, modulo 2^32 */
     int64_t sx[3], sy[3];
-    int64_t xc = sr__centre_q8(rx0), yc = sr__centre_q8(ry0);
-    for (int i = 0; i < 3; i++) {
-        sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
-        sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
-        lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps); /* exact: small integers */
-        nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
-        off16[i] = _mm512_mullo_epi32(lane16, _mm512_set1_epi32((int32_t)(uint32_t)sx[i]));
-        nb32[i] = _mm512_set1_epi32(-t->bias[i]);
-        int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
-        r[i] = (double)v;
-        r32[i] = (uint32_t)v;
-    }
+    sr__pixel_steps(t, sx, sy);
+    __m512d lx8[3], nb8[3];
+    __m512i nb32[3], off16[3];
+    SR_SIMD_FN(w16_edge_lanes)(t, sx, lx8, nb8, nb32);
+    SR_SIMD_FN(n16_offsets)(sx, sy, 16, off16);
+    double r[3];
+    uint32_t r32[3];
+    SR_SIMD_FN(edges_at)(t, rx0, ry0, r, r32);
     for (int py = ry0; py < ry1; py++) {
         double rs[3] = { r[0], r[1], r[2] };
         uint32_t rs32[3] = { r32[0], r32[1], r32[2] };
@@ -600,10 +610,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
     bool narrow = sr__rect_fits32(t, rx0, ry0, rx1, ry1);
     if (rx1 - rx0 >= SR_TILE_SIZE / 2 && ry1 - ry0 >= SR_TILE_SIZE / 2) {
         int64_t sx[3], sy[3];
-        for (int i = 0; i < 3; i++) {
-            sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
-            sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
-        }
+        sr__pixel_steps(t, sx, sy);
         if (sr__rect_inside(t, rx0, ry0, rx1, ry1, sx, sy)) {
             if (narrow) {
                 SR_SIMD_FN(raster_inside_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, true);

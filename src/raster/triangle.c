@@ -17,10 +17,7 @@ SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int 
 {
     /* Per-pixel steps of each edge function (q8 coordinates). */
     int64_t sx[3], sy[3];
-    for (int i = 0; i < 3; i++) {
-        sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
-        sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
-    }
+    sr__pixel_steps(t, sx, sy);
     int bx_start = rx0 & ~(SR_BLOCK_SIZE - 1);
     int by_start = ry0 & ~(SR_BLOCK_SIZE - 1);
 
