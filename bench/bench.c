@@ -300,6 +300,96 @@ static sr_result sr_frame(bench_run *run, const bench_scene *s)
     return r;
 }
 
+/* What softrast keeps of a scene on its context, made before timing as
+ * GL makes its vertex buffer objects and texture in gl_prepare: the
+ * arrays copied into vertex buffers (sr_make_buffer) and the texture. */
+typedef struct sr_uploads {
+    sr_buffer *buf[5];
+    sr_texture *tex;
+} sr_uploads;
+
+/* Copies an array of `bytes` into a buffer and points *array at it. */
+static sr_result upload_array(sr_context *ctx, const void **array, size_t bytes, sr_buffer **b)
+{
+    if (!*array || bytes == 0) {
+        return SR_OK;
+    }
+    sr_result r = sr_make_buffer(ctx, *array, bytes, b);
+    if (r == SR_OK) {
+        *array = sr_buffer_data(*b);
+    }
+    return r;
+}
+
+/* The scene's arrays are pointed at the buffers, which GL's uploads read
+ * as well (the same values). */
+static sr_result upload_scene(sr_context *ctx, bench_scene *s, sr_uploads *up)
+{
+    *up = (sr_uploads){ { NULL }, NULL };
+    size_t n = s->vertex_count;
+    const void *arrays[5] = { s->positions, s->normals, s->colors, s->texcoords, s->indices };
+    size_t bytes[5] = { n * (size_t)s->position_size * sizeof(float), n * 3 * sizeof(float),
+                        n * 4 * sizeof(float), n * 2 * sizeof(float),
+                        s->index_count * sizeof(uint32_t) };
+    for (int i = 0; i < 5; i++) {
+        sr_result r = upload_array(ctx, &arrays[i], bytes[i], &up->buf[i]);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    s->positions = arrays[0];
+    s->normals = arrays[1];
+    s->colors = arrays[2];
+    s->texcoords = arrays[3];
+    s->indices = arrays[4];
+    if (s->texture_pixels) {
+        sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = s->texture_w,
+                                                               .height = s->texture_h,
+                                                               .pixels = s->texture_pixels },
+                                      &up->tex);
+        if (r != SR_OK) {
+            return r;
+        }
+        s->state.texture = up->tex;
+    }
+    return SR_OK;
+}
+
+static void free_uploads(sr_context *ctx, sr_uploads *up)
+{
+    for (int i = 0; i < 5; i++) {
+        sr_destroy_buffer(ctx, up->buf[i]);
+    }
+    sr_destroy_texture(ctx, up->tex);
+}
+
+/* softrast's side of a scene, untimed: the uploads, and for a
+ * multisampled scene its framebuffer. */
+static sr_result sr_prepare(bench_run *run, bench_scene *s, sr_uploads *up)
+{
+    sr_result r = upload_scene(run->ctx, s, up);
+    if (r != SR_OK || s->info->samples <= 1) {
+        return r;
+    }
+    sr_destroy_framebuffer(run->ctx, run->ms_fb);
+    run->ms_fb = NULL;
+    return sr_make_framebuffer(run->ctx, &(sr_framebuffer_desc){ .width = run->o->width,
+                                                                .height = run->o->height,
+                                                                .depth_format = SR_DEPTH_D24,
+                                                                .samples = s->info->samples },
+                               &run->ms_fb);
+}
+
+/* softrast failed on scene s: say so, count it, free the scene. */
+static void sr_failed(bench_run *run, bench_scene *s, sr_uploads *up)
+{
+    fprintf(stderr, "softrast-bench: %s: %s\n", s->info->name, sr_context_error(run->ctx));
+    printf("scene=%s renderer=softrast skipped=error\n", s->info->name);
+    run->failures++;
+    free_uploads(run->ctx, up);
+    bench_scene_free(s);
+}
+
 static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
 {
     const bench_opts *o = run->o;
@@ -317,40 +407,10 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
         return;
     }
 
-    /* A textured scene's texture lives on the context: made here, untimed,
-     * as GL uploads its own in gl_prepare. */
-    sr_texture *tex = NULL;
-    if (s.texture_pixels) {
-        r = sr_make_texture(run->ctx, &(sr_texture_desc){ .width = s.texture_w,
-                                                          .height = s.texture_h,
-                                                          .pixels = s.texture_pixels },
-                            &tex);
-        if (r != SR_OK) {
-            fprintf(stderr, "softrast-bench: %s: %s\n", info->name, sr_context_error(run->ctx));
-            printf("scene=%s renderer=softrast skipped=error\n", info->name);
-            run->failures++;
-            bench_scene_free(&s);
-            return;
-        }
-        s.state.texture = tex;
-    }
-
-    if (info->samples > 1) {
-        sr_destroy_framebuffer(run->ctx, run->ms_fb);
-        run->ms_fb = NULL;
-        r = sr_make_framebuffer(run->ctx, &(sr_framebuffer_desc){ .width = o->width,
-                                                                 .height = o->height,
-                                                                 .depth_format = SR_DEPTH_D24,
-                                                                 .samples = info->samples },
-                                &run->ms_fb);
-        if (r != SR_OK) {
-            fprintf(stderr, "softrast-bench: %s: %s\n", info->name, sr_context_error(run->ctx));
-            printf("scene=%s renderer=softrast skipped=error\n", info->name);
-            run->failures++;
-            sr_destroy_texture(run->ctx, tex);
-            bench_scene_free(&s);
-            return;
-        }
+    sr_uploads up;
+    if (sr_prepare(run, &s, &up) != SR_OK) {
+        sr_failed(run, &s, &up);
+        return;
     }
 
     bool compare = o->compare && need_gl(run);
@@ -366,14 +426,10 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
         r = sr_frame(run, &s);
         double t1 = now_ms();
         if (r != SR_OK) {
-            fprintf(stderr, "softrast-bench: %s: %s\n", info->name, sr_context_error(run->ctx));
-            printf("scene=%s renderer=softrast skipped=error\n", info->name);
-            run->failures++;
             if (compare) {
                 gl_unprepare(run->gl);
             }
-            sr_destroy_texture(run->ctx, tex);
-            bench_scene_free(&s);
+            sr_failed(run, &s, &up);
             return;
         }
         if (compare) {
@@ -415,7 +471,7 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
     if (compare) {
         gl_unprepare(run->gl);
     }
-    sr_destroy_texture(run->ctx, tex);
+    free_uploads(run->ctx, &up);
     bench_scene_free(&s);
 }
 

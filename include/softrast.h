@@ -667,6 +667,26 @@ typedef enum sr_index_type {
     SR_INDEX_U32,
 } sr_index_type;
 
+/* ---- vertex buffers ----------------------------------------------------- */
+
+/* A copy of an application's arrays in memory the context allocates, as a
+ * GL buffer object made with GL_STATIC_DRAW: pointers into sr_buffer_data
+ * may be given as any array or the indices of an sr_draw_desc.  With the
+ * default allocator a buffer of 4 MiB and more lies in 2 MiB pages, so a
+ * large draw's front end does not wait on a page-table walk every 4 KiB
+ * (a million triangles from malloc'd arrays: docs/performance.md).  The
+ * data is aligned as the context's allocator aligns it (64 bytes with the
+ * default) and may be written through sr_buffer_data between draws. */
+typedef struct sr_buffer sr_buffer;
+
+/* Copies `bytes` bytes (1 .. SR_BUFFER_MAX) from data, or zeroes them when
+ * data is NULL. */
+#define SR_BUFFER_MAX ((size_t)1 << 40)
+sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
+void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
+void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
+size_t sr_buffer_size(const sr_buffer *buf); /* 0 for a NULL buffer */
+
 /* An indexed face set.  Strides are in bytes; 0 means tightly packed. */
 typedef struct sr_draw_desc {
     sr_primitive primitive;
