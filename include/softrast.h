@@ -684,6 +684,10 @@ typedef struct sr_buffer sr_buffer;
 #define SR_BUFFER_MAX ((size_t)1 << 40)
 sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
 void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
+/* Copies `bytes` bytes from data to offset `offset` of the buffer, as
+ * glBufferSubData: the range must lie inside it. */
+sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const void *data,
+                           size_t bytes);
 void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
 size_t sr_buffer_size(const sr_buffer *buf); /* 0 for a NULL buffer */
 

@@ -47,6 +47,37 @@ SR_TEST(a_buffer_is_an_exact_copy_that_its_source_no_longer_touches)
     sr_destroy_context(ctx);
 }
 
+SR_TEST(an_update_writes_its_range_and_nothing_else)
+{
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    uint8_t src[64], patch[10];
+    for (int i = 0; i < 64; i++) {
+        src[i] = (uint8_t)i;
+    }
+    memset(patch, 0xee, sizeof patch);
+    sr_buffer *b = NULL;
+    REQUIRE(sr_make_buffer(ctx, src, sizeof src, &b) == SR_OK);
+    CHECK_EQ(sr_buffer_update(ctx, b, 50, patch, 10), SR_OK);
+    const uint8_t *d = sr_buffer_data(b);
+    for (int i = 0; i < 64; i++) {
+        CHECK_EQ(d[i], i >= 50 && i < 60 ? 0xee : i);
+    }
+    /* The range must lie inside the buffer; nothing is written otherwise. */
+    CHECK_EQ(sr_buffer_update(ctx, b, 55, patch, 10), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "run past the buffer's 64");
+    CHECK_EQ(sr_buffer_update(ctx, b, 65, patch, 0), SR_INVALID_ARG);
+    CHECK_EQ(sr_buffer_update(ctx, b, (size_t)-1, patch, 2), SR_INVALID_ARG);
+    CHECK_EQ(d[60], 60);
+    CHECK_EQ(sr_buffer_update(ctx, b, 0, NULL, 4), SR_INVALID_ARG);
+    CHECK_EQ(sr_buffer_update(ctx, NULL, 0, patch, 4), SR_INVALID_ARG);
+    CHECK_EQ(sr_buffer_update(NULL, b, 0, patch, 4), SR_INVALID_ARG);
+    CHECK_EQ(sr_buffer_update(ctx, b, 64, NULL, 0), SR_OK);   /* an empty range at the end */
+    CHECK_EQ(d[0], 0);
+    sr_destroy_buffer(ctx, b);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(buffer_arguments_are_validated)
 {
     uint8_t src[16] = { 0 };
@@ -176,11 +207,14 @@ SR_TEST(drawing_from_buffers_writes_the_bytes_the_arrays_write)
     }
     CHECK(lit > W * H / 2);
 
-    /* A write through sr_buffer_data reaches the next draw. */
+    /* Writes through sr_buffer_data and sr_buffer_update reach the next
+     * draw. */
     for (size_t i = 0; i < (size_t)3 * TRIS; i++) {
         col[i * 4 + 0] = 1.0f - col[i * 4 + 0];
     }
-    memcpy(sr_buffer_data(bc), col, vbytes);
+    memcpy(sr_buffer_data(bc), col, vbytes / 2);
+    CHECK_EQ(sr_buffer_update(ctx, bc, vbytes / 2, (const char *)col + vbytes / 2, vbytes / 2),
+             SR_OK);
     draw(ctx, fb, pos, col, NULL, a);
     draw(ctx, fb, sr_buffer_data(bp), sr_buffer_data(bc), NULL, b);
     CHECK(memcmp(a, b, sizeof(uint32_t) * W * H) == 0);

@@ -7,6 +7,7 @@
  * thread, and three times that just after another renderer had run. */
 #include "context.h"
 
+#include <stdint.h>
 #include <string.h>
 
 struct sr_buffer {
@@ -42,6 +43,27 @@ sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buf
     b->data = block;
     b->size = bytes;
     *out = b;
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const void *data,
+                           size_t bytes)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!buf || (!data && bytes > 0)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_buffer_update: %s is NULL", buf ? "data" : "buf");
+    }
+    if (offset > buf->size || bytes > buf->size - offset) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_buffer_update: bytes %zu at offset %zu run past the buffer's %zu",
+                        bytes, offset, buf->size);
+    }
+    if (bytes > 0) {
+        memcpy((uint8_t *)buf->data + offset, data, bytes);
+    }
     sr__ok(ctx);
     return SR_OK;
 }
