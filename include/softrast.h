@@ -679,9 +679,11 @@ typedef enum sr_index_type {
  * default) and may be written through sr_buffer_data between draws. */
 typedef struct sr_buffer sr_buffer;
 
-/* Copies `bytes` bytes (1 .. SR_BUFFER_MAX) from data, or zeroes them when
- * data is NULL. */
-#define SR_BUFFER_MAX ((size_t)1 << 40)
+/* Copies `bytes` bytes from data, or zeroes them when data is NULL: 0
+ * bytes is SR_INVALID_ARG, more than SR_BUFFER_MAX (16 GiB, the most a
+ * draw of 2^28 vertices can read of one array) SR_TOO_LARGE before any
+ * allocation. */
+#define SR_BUFFER_MAX ((size_t)1 << 34)
 sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
 void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as

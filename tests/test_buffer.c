@@ -89,10 +89,23 @@ SR_TEST(buffer_arguments_are_validated)
     CHECK_STR_CONTAINS(sr_context_error(ctx), "out is NULL");
     CHECK_EQ(sr_make_buffer(ctx, src, 0, &b), SR_INVALID_ARG);
     CHECK(b == NULL);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "bytes must be 1..");
-    b = (sr_buffer *)src;
-    CHECK_EQ(sr_make_buffer(ctx, NULL, SR_BUFFER_MAX + 1, &b), SR_INVALID_ARG);
-    CHECK(b == NULL);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "bytes is 0");
+    sr_destroy_context(ctx);
+
+    /* Over the limit (SIZE_MAX included): refused before any allocation. */
+    failing f = { 0, -1, 0, 0 };
+    REQUIRE(sr_make_context(&(sr_context_desc){ .allocator = { fail_alloc, fail_free, &f },
+                                                .threads = 1 },
+                            &ctx) == SR_OK);
+    long before = f.count;
+    size_t huge[] = { SR_BUFFER_MAX + 1, SIZE_MAX };
+    for (int i = 0; i < 2; i++) {
+        b = (sr_buffer *)src;
+        CHECK_EQ(sr_make_buffer(ctx, NULL, huge[i], &b), SR_TOO_LARGE);
+        CHECK(b == NULL);
+        CHECK_STR_CONTAINS(sr_context_error(ctx), "exceeds the limit");
+    }
+    CHECK_EQ(f.count, before);
     /* A success clears the last error. */
     REQUIRE(sr_make_buffer(ctx, src, sizeof src, &b) == SR_OK);
     CHECK_EQ(sr_context_error(ctx)[0], 0);

@@ -24,9 +24,12 @@ sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buf
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_buffer: out is NULL");
     }
     *out = NULL;
-    if (bytes == 0 || bytes > SR_BUFFER_MAX) {
-        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_buffer: bytes must be 1..%zu (got %zu)",
-                        SR_BUFFER_MAX, bytes);
+    if (bytes == 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_buffer: bytes is 0");
+    }
+    if (bytes > SR_BUFFER_MAX) {
+        return sr__fail(ctx, SR_TOO_LARGE, "sr_make_buffer: bytes %zu exceeds the limit %zu",
+                        bytes, SR_BUFFER_MAX);
     }
     sr_buffer *b = sr__calloc(ctx, 1, sizeof *b);
     void *block = b ? sr__alloc(ctx, bytes) : NULL;
