@@ -204,6 +204,10 @@ typedef struct sr_tri {
      * with room for rounding, so the fragment clamp is a no-op and the
      * vector kernels skip it (the result is the same either way). */
     bool z_inside;
+    /* Every edge value at the pixel centres of the triangle's own bounding
+     * box fits in 32 bits with room for the bias (so sr__rect_fits32 holds
+     * for any box the kernels draw of it), found once at setup. */
+    bool fits32;
     float flat[4];                    /* FLAT: the triangle's lit color */
     /* Varying k of vertex 0, then its differences to vertices 1 and 2:
      * vary[k], vary[n + k] = v1 - v0, vary[2n + k] = v2 - v0 (n = ninterp),

@@ -8,6 +8,7 @@
 #include "pipeline.h"
 #include "raster/block.h"
 
+#include <math.h>
 #include <string.h>
 
 /* Edge i's value at pixel (x, y)'s centre, unbiased. */
@@ -141,4 +142,85 @@ SR_TEST(rect_classify_agrees_with_every_pixel_of_random_blocks)
         partial += any && !inside;
     }
     CHECK(rejected > 100 && accepted > 100 && partial > 100);
+}
+
+/* Setup's fits32 (the whole box of the triangle, from its vertex spans)
+ * may only say yes where sr__rect_fits32 says yes over that box, and it
+ * must say yes for the small triangles the kernels meet most.  Triangles
+ * from a pixel to past the guard band, anywhere in it; multisampled
+ * boxes (a pixel wider) too. */
+SR_TEST(setup_fits32_implies_the_box_fits)
+{
+    sr_draw_state ds;
+    memset(&ds, 0, sizeof ds);
+    ds.depth_scale = 1.0;
+    ds.zq_max = 1.0;
+    ds.rect_x0 = SR_GUARD_BAND_MIN;
+    ds.rect_y0 = SR_GUARD_BAND_MIN;
+    ds.rect_x1 = SR_GUARD_BAND_MAX;
+    ds.rect_y1 = SR_GUARD_BAND_MAX;
+    sr_rng rng = { 0xf1757eedull };
+    sr_tri t;
+    int yes = 0, small_no = 0;
+    for (int n = 0; n < 40000; n++) {
+        ds.samples = n % 4 == 0 ? 4 : 1;
+        double size = ldexp(1.0, sr_rng_int(&rng, 0, 16));   /* 1 .. 65536 px */
+        double cx = sr_rng_range(&rng, SR_GUARD_BAND_MIN / 2, SR_GUARD_BAND_MAX / 2);
+        double cy = sr_rng_range(&rng, SR_GUARD_BAND_MIN / 2, SR_GUARD_BAND_MAX / 2);
+        sr_window_vertex w[3];
+        memset(w, 0, sizeof w);
+        for (int k = 0; k < 3; k++) {
+            double x = cx + sr_rng_range(&rng, -size, size), y = cy + sr_rng_range(&rng, -size, size);
+            x = x < SR_GUARD_BAND_MIN ? SR_GUARD_BAND_MIN : x > SR_GUARD_BAND_MAX ? SR_GUARD_BAND_MAX : x;
+            y = y < SR_GUARD_BAND_MIN ? SR_GUARD_BAND_MIN : y > SR_GUARD_BAND_MAX ? SR_GUARD_BAND_MAX : y;
+            w[k].x_q8 = (int32_t)(x * SR_SUBPIXEL_ONE);
+            w[k].y_q8 = (int32_t)(y * SR_SUBPIXEL_ONE);
+        }
+        memset(&t, 0, sizeof t);
+        if (sr__area2(&w[0], &w[1], &w[2]) == 0 ||
+            !sr__setup_triangle(&ds, &w[0], &w[1], &w[2], true, 0, NULL, &t)) {
+            continue;
+        }
+        if (t.fits32) {
+            yes++;
+            if (!sr__rect_fits32(&t, t.h.x0, t.h.y0, t.h.x1, t.h.y1)) {
+                sr_test_fail(__FILE__, __LINE__, "fits32 set, but the box [%d, %d) x [%d, %d) "
+                             "does not fit", t.h.x0, t.h.x1, t.h.y0, t.h.y1);
+                return;
+            }
+        } else if (size <= 64) {
+            small_no++;
+        }
+    }
+    CHECK(yes > 10000);     /* the flag is not trivially false */
+    CHECK_EQ(small_no, 0);  /* nor false for triangles of up to 128 px a side */
+
+    /* At the limit: right triangles filling half their box, whose long
+     * edge reaches the box's area at the far corner, with spans around
+     * sqrt(2^31) (181 px), both ways round and multisampled. */
+    int near_yes = 0;
+    for (int n = 0; n < 4000; n++) {
+        ds.samples = n % 2 ? 4 : 1;
+        int32_t wq = 46000 + sr_rng_int(&rng, -600, 600), hq = 46000 + sr_rng_int(&rng, -600, 600);
+        int32_t ox = sr_rng_int(&rng, 0, 1 << 20), oy = sr_rng_int(&rng, 0, 1 << 20);
+        sr_window_vertex w[3];
+        memset(w, 0, sizeof w);
+        w[0].x_q8 = ox, w[0].y_q8 = oy;
+        w[1].x_q8 = ox + wq, w[1].y_q8 = oy;
+        w[2].x_q8 = ox, w[2].y_q8 = oy + hq;
+        if (n % 4 >= 2) {   /* the right angle at the other corner */
+            w[0].x_q8 = ox + wq, w[0].y_q8 = oy + hq;
+        }
+        memset(&t, 0, sizeof t);
+        if (!sr__setup_triangle(&ds, &w[0], &w[1], &w[2], true, 0, NULL, &t) || !t.fits32) {
+            continue;
+        }
+        near_yes++;
+        if (!sr__rect_fits32(&t, t.h.x0, t.h.y0, t.h.x1, t.h.y1)) {
+            sr_test_fail(__FILE__, __LINE__, "fits32 set for a %d x %d q8 right triangle whose "
+                         "box does not fit", wq, hq);
+            return;
+        }
+    }
+    CHECK(near_yes > 500);  /* the limit is reached from both sides */
 }

@@ -607,7 +607,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
         SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
         return;
     }
-    bool narrow = sr__rect_fits32(t, rx0, ry0, rx1, ry1);
+    bool narrow = t->fits32 || sr__rect_fits32(t, rx0, ry0, rx1, ry1);
     if (rx1 - rx0 >= SR_TILE_SIZE / 2 && ry1 - ry0 >= SR_TILE_SIZE / 2) {
         int64_t sx[3], sy[3];
         sr__pixel_steps(t, sx, sy);
