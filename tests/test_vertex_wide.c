@@ -255,3 +255,61 @@ SR_TEST(sixteen_lanes_decline_strides_beyond_their_offsets)
     ds.shininess_int = 8;
     CHECK(sr__vertex_stage16(&ds, &d, &m, &m, &m, 0, 1, post, vary));
 }
+
+/* sr__classify16, the classification alone in lanes (what the UNLIT and
+ * other stages use after their own transforms), against the scalar
+ * classification: random clip positions inside, outside and across the
+ * planes, w near 0 and negative, NaN and infinite coordinates, both
+ * depth conventions, counts that leave a part group. */
+SR_TEST(sixteen_lane_classification_gives_the_scalar_outcodes_and_positions)
+{
+    sr_rng rng = { 0xc1a55e5ull };
+    int inside = 0, outside = 0, nonfinite = 0, part = 0;
+    for (int s = 0; s < 300; s++) {
+        sr_draw_state ds;
+        random_state(&rng, s, &ds);
+        size_t count = (size_t)sr_rng_int(&rng, 1, 70);
+        part += count % 16 != 0;
+        sr_vertex_post post[70], want[70];
+        memset(post, 0, sizeof post);
+        for (size_t i = 0; i < count; i++) {
+            float *c = post[i].pos;
+            float w = sr_rng_int(&rng, 0, 9) == 0 ? frand(&rng, -1e-6, 1e-6) : frand(&rng, -0.5, 3);
+            for (int k = 0; k < 3; k++) {
+                c[k] = frand(&rng, -1.3, 1.3) * (w < 0 ? -w : w);
+            }
+            c[3] = w;
+            int odd = sr_rng_int(&rng, 0, 40);
+            if (odd == 0) {
+                c[sr_rng_int(&rng, 0, 3)] = NAN;
+            } else if (odd == 1) {
+                c[sr_rng_int(&rng, 0, 3)] = sr_rng_int(&rng, 0, 1) ? INFINITY : -INFINITY;
+            } else if (odd == 2) {
+                c[0] = frand(&rng, -1e9, 1e9);   /* far past the guard band */
+            }
+            classify_ref(&ds, c, &want[i]);
+        }
+        sr__classify16(&ds, post, count);
+        for (size_t i = 0; i < count; i++) {
+            inside += want[i].outcode == 0;
+            outside += want[i].outcode != 0 && want[i].outcode != SR_OUTCODE_NONFINITE;
+            nonfinite += want[i].outcode == SR_OUTCODE_NONFINITE;
+            if (post[i].outcode != want[i].outcode) {
+                sr_test_fail(__FILE__, __LINE__, "state %d vertex %zu: outcode %#x, scalar %#x", s,
+                             i, post[i].outcode, want[i].outcode);
+            } else if (want[i].outcode == 0 &&
+                       (post[i].x_q8 != want[i].x_q8 || post[i].y_q8 != want[i].y_q8 ||
+                        memcmp(&post[i].z, &want[i].z, sizeof(double)) != 0 ||
+                        !same(post[i].inv_w, want[i].inv_w))) {
+                sr_test_fail(__FILE__, __LINE__, "state %d vertex %zu: window (%d, %d, %a, %a), "
+                             "scalar (%d, %d, %a, %a)", s, i, post[i].x_q8, post[i].y_q8,
+                             post[i].z, (double)post[i].inv_w, want[i].x_q8, want[i].y_q8,
+                             want[i].z, (double)want[i].inv_w);
+            }
+        }
+    }
+    CHECK(inside > 2000);
+    CHECK(outside > 500);
+    CHECK(nonfinite > 50);
+    CHECK(part > 200);
+}
