@@ -15,7 +15,7 @@
  * exactly on a top or left edge are inside, on any other edge outside. */
 static inline bool sr__is_top_left(int64_t dx, int64_t dy)
 {
-    return dy < 0 || (dy == 0 && dx > 0);
+    return (dy < 0) | ((dy == 0) & (dx > 0));   /* no branches: the signs are random */
 }
 
 /* The smaller and larger of two depths as minsd and maxsd give them (the
@@ -102,10 +102,14 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
      * triangles thus skip the per-tile check of their box
      * (sr__rect_fits32), which was a tenth of the kernel's time for the
      * bench's `small`. */
+    /* Spans held below 2^24 so the product cannot overflow (a held one
+     * already fails the test), with selects rather than branches. */
     int64_t span_x = (int64_t)maxx - minx + SR_SUBPIXEL_ONE;
     int64_t span_y = (int64_t)maxy - miny + SR_SUBPIXEL_ONE;
-    t->fits32 = span_x < ((int64_t)1 << 24) && span_y < ((int64_t)1 << 24) &&
-                span_x * span_y <= INT32_MAX - 1;
+    const int64_t held = (int64_t)1 << 24;
+    span_x = span_x < held ? span_x : held;
+    span_y = span_y < held ? span_y : held;
+    t->fits32 = span_x * span_y <= INT32_MAX - 1;
 
     /* Depth: linear in screen space (RASTER_RULES 4.1). */
     double z[3] = { v[0]->z, v[1]->z, v[2]->z };
@@ -123,7 +127,8 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
      * a few ulps; a margin of 1e-9 of the scale is far larger. */
     double zlo = sr__min_d(z[0], sr__min_d(z[1], z[2])) + offset;
     double zhi = sr__max_d(z[0], sr__max_d(z[1], z[2])) + offset;
-    t->z_inside = zlo * scale > ds->zq_min + 1e-9 * scale && zhi * scale < ds->zq_max - 1e-9 * scale;
+    t->z_inside = (zlo * scale > ds->zq_min + 1e-9 * scale) &
+                  (zhi * scale < ds->zq_max - 1e-9 * scale);
     double per_area = scale / (double)area2;
     t->dz1 = (z[1] - z[0]) * per_area;
     t->dz2 = (z[2] - z[0]) * per_area;
