@@ -323,8 +323,10 @@ bool sr__vertex_stage16(const sr_draw_state *ds, const sr_draw_desc *d, const sr
                         sr_vertex_post *post, float *vary);
 /* The classification of post[0 .. count) (outcode, window position),
  * sixteen at a time: vertex.c's classify in lanes, the same values.
- * AVX-512: call only where ds->vertex_lanes16 says the CPU has it. */
-void sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count);
+ * AVX-512: call only where ds->vertex_lanes16 says the CPU has it.  false,
+ * having written nothing, in a build without the AVX-512 code, as
+ * sr__vertex_stage16. */
+bool sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count);
 /* geometry/vertex.c: one vertex of a built-in model (clip position and
  * varyings), shared by the vertex stage and the built-in programs. */
 void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *normal,

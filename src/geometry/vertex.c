@@ -171,8 +171,7 @@ static inline void classify2(const classify_lanes *k, __m128d xd, __m128d yd, __
 /* classify for post[0 .. count), four at a time where SSE2 is there. */
 static void classify_block(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
 {
-    if (ds->vertex_lanes16) {
-        sr__classify16(ds, post, count);
+    if (ds->vertex_lanes16 && sr__classify16(ds, post, count)) {
         return;
     }
     sr_clip_planes k;

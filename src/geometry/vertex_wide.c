@@ -385,7 +385,7 @@ SR_WIDE_INLINE void clip_lanes(const sr_vertex_post *post, int n, v16f clip[4])
     clip[3] = (v16f)_mm512_shuffle_ps(t1, t3, 0xee);
 }
 
-SR_WIDE void sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
+SR_WIDE bool sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
 {
     classify8 k;
     make_classify8(ds, &k);
@@ -395,13 +395,15 @@ SR_WIDE void sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_
         clip_lanes(&post[g], n, clip);
         finish16(&k, clip, n, &post[g]);
     }
+    return true;
 }
 
 #else
 
-void sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
+bool sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
 {
     (void)ds, (void)post, (void)count;
+    return false;
 }
 
 bool sr__vertex_stage16(const sr_draw_state *ds, const sr_draw_desc *d, const sr_mat4 *mvp,

@@ -101,9 +101,9 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
      * multisampled: |E_i| <= (span_x + 256)(span_y + 256) there.  Small
      * triangles thus skip the per-tile check of their box
      * (sr__rect_fits32), which was a tenth of the kernel's time for the
-     * bench's `small`. */
-    /* Spans held below 2^24 so the product cannot overflow (a held one
-     * already fails the test), with selects rather than branches. */
+     * bench's `small`.  The spans are held below 2^24 so the product
+     * cannot overflow (a held one already fails the test), with selects
+     * rather than branches. */
     int64_t span_x = (int64_t)maxx - minx + SR_SUBPIXEL_ONE;
     int64_t span_y = (int64_t)maxy - miny + SR_SUBPIXEL_ONE;
     const int64_t held = (int64_t)1 << 24;
