@@ -1165,7 +1165,12 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     }
 
     memset(s->stats, 0, sizeof s->stats);
-    front_end fe = { ctx, &ds, d, sr__record_size(ds.ninterp), chunks, fused, ctx->threads > 1,
+    sr_primitive prim = d->primitive == SR_PRIM_DEFAULT ? SR_PRIM_TRIANGLES : d->primitive;
+    bool triangles_only = prim <= SR_PRIM_TRIANGLE_FAN && ds.mode_front == SR_POLYGON_FILL &&
+                          ds.mode_back == SR_POLYGON_FILL;
+    size_t record_size =
+        sr__record_size(ds.ninterp, ds.shading == SR_SHADING_FLAT, triangles_only);
+    front_end fe = { ctx, &ds, d, record_size, chunks, fused, ctx->threads > 1,
                      verts_per_prim, &mvp, &mv, &nm };
     bool oom = false;
     /* Equal batches of at most the context's batch size, so no batch is a

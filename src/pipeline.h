@@ -170,50 +170,112 @@ typedef enum sr_prim_kind {
 } sr_prim_kind;
 
 typedef struct sr_prim_head {
-    int32_t kind;                     /* sr_prim_kind */
-    int x0, y0, x1, y1;
+    int16_t x0, y0, x1, y1;           /* inside the framebuffer: int16_t holds them */
+    uint8_t kind;                     /* sr_prim_kind */
 } sr_prim_head;
+_Static_assert(SR_MAX_FRAMEBUFFER_SIZE <= INT16_MAX, "box corners must fit int16_t");
 
 /* A triangle after setup: everything the rasterizers and the fragment stage
  * need, no pointers.  Vertices are in coverage order (area2 > 0); the
  * varyings were permuted with them.  Stored in the bins with only
  * 3 x ninterp varyings (sr__record_size), so `vary` must stay last.  Every
  * triangle drawn is written here once and read back by the tile jobs, so
- * the fields are ordered to leave no padding: with four varyings the
- * record is 192 bytes, three cache lines. */
+ * the record holds nothing that a few integer operations rebuild: with
+ * four varyings it is 128 bytes, two cache lines (sr__tri_c, sr__tri_bias,
+ * sr__tri_flat). */
 typedef struct sr_tri {
     sr_prim_head h;
-    /* Edge i is opposite vertex i: E_i(p) = a[i] X + b[i] Y + c[i], which is
-     * the unnormalized barycentric weight of vertex i.  bias[i] is 0 for a
-     * top or left edge and -1 otherwise: covered iff E_i + bias_i >= 0.
-     * a and b are differences of q8 coordinates, below 2^23 (fixed.h), so
-     * they are kept in 32 bits: widen them before multiplying.  The three
-     * E_i sum to area2 everywhere, so area2 = c[0] + c[1] + c[2] > 0. */
-    int32_t bias[3];
-    int32_t a[3], b[3];
-    int64_t c[3];
-    /* Depth plane in buffer units (x (2^n - 1) for UNORM, [0, 1] for float):
-     * z = z0 + e1 dz1 + e2 dz2, polygon offset folded into z0. */
-    double z0, dz1, dz2;
-    /* Perspective weights: q_i = e_i w_i (w_i = 1/w of vertex i, or 1 in
-     * affine mode). */
-    float w[3];
-    int32_t ninterp;                  /* varyings stored in vary[] */
-    bool front;
+    uint8_t ninterp;                  /* varyings stored in vary[] */
+    bool front : 1;
     /* The plane's values inside the triangle stay within the depth range
      * with room for rounding, so the fragment clamp is a no-op and the
      * vector kernels skip it (the result is the same either way). */
-    bool z_inside;
+    bool z_inside : 1;
     /* Every edge value at the pixel centres of the triangle's own bounding
      * box fits in 32 bits with room for the bias (so sr__rect_fits32 holds
      * for any box the kernels draw of it), found once at setup. */
-    bool fits32;
-    float flat[4];                    /* FLAT: the triangle's lit color */
+    bool fits32 : 1;
+    /* Edge i is opposite vertex i: E_i(p) = a[i] X + b[i] Y + c_i, which is
+     * the unnormalized barycentric weight of vertex i.  a and b are
+     * differences of q8 coordinates, below 2^23 (fixed.h), so they are kept
+     * in 32 bits: widen them before multiplying.  c_i and the top-left bias
+     * follow from them and vertex 0 (sr__tri_c, sr__tri_bias).  The three
+     * E_i sum to area2 everywhere, so area2 = c_0 + c_1 + c_2 > 0. */
+    int32_t a[3], b[3];
+    int32_t x0_q8, y0_q8;             /* vertex 0, snapped */
+    /* Perspective weights: q_i = e_i w_i (w_i = 1/w of vertex i, or 1 in
+     * affine mode). */
+    float w[3];
+    /* Depth plane in buffer units (x (2^n - 1) for UNORM, [0, 1] for float):
+     * z = z0 + e1 dz1 + e2 dz2, polygon offset folded into z0. */
+    double z0, dz1, dz2;
     /* Varying k of vertex 0, then its differences to vertices 1 and 2:
      * vary[k], vary[n + k] = v1 - v0, vary[2n + k] = v2 - v0 (n = ninterp),
-     * so an attribute is v0 + l1 d1 + l2 d2. */
-    float vary[3 * SR_MAX_VARYINGS];
+     * so an attribute is v0 + l1 d1 + l2 d2.  FLAT shading's lit color
+     * follows them (sr__tri_flat). */
+    float vary[3 * SR_MAX_VARYINGS + 4];
 } sr_tri;
+_Static_assert(offsetof(sr_tri, vary) == 80, "four varyings make a 128-byte record");
+
+/* c_i of edge i: the line through vertices i + 1 and i + 2, both of which
+ * give E_i = 0.  Edges 1 and 2 pass through vertex 0; edge 0 through
+ * vertex 1 = vertex 0 + (b_2, -a_2) (edge 2 runs from vertex 0 to 1).
+ * Exact in int64, as setup computed it. */
+static inline int64_t sr__tri_c(const sr_tri *t, int i)
+{
+    int64_t x = t->x0_q8, y = t->y0_q8;
+    if (i == 0) {
+        x += t->b[2];
+        y -= t->a[2];
+    }
+    return -((int64_t)t->a[i] * x + (int64_t)t->b[i] * y);
+}
+
+/* y points down.  With area2 > 0 the interior has E > 0.  A top edge is
+ * horizontal and runs toward +x; a left edge runs upward (dy < 0).  Samples
+ * exactly on a top or left edge are inside, on any other edge outside. */
+static inline bool sr__is_top_left(int64_t dx, int64_t dy)
+{
+    return (dy < 0) | ((dy == 0) & (dx > 0));   /* no branches: the signs are random */
+}
+
+/* Edge i's bias: 0 for a top or left edge, -1 otherwise (covered iff
+ * E_i + bias_i >= 0).  Edge i runs (dx, dy) = (b_i, -a_i). */
+static inline int32_t sr__tri_bias(const sr_tri *t, int i)
+{
+    return (int32_t)sr__is_top_left(t->b[i], -(int64_t)t->a[i]) - 1;
+}
+
+/* A triangle's edge functions as the rasterizers use them, unpacked from
+ * its record once a call: E_i(X, Y) = a[i] X + b[i] Y + c[i] at q8 point
+ * (X, Y), covered iff E_i + bias[i] >= 0.  Kept on the rasterizer's
+ * stack, where the compiler holds them across the framebuffer's stores
+ * (which, as far as it knows, might write to the record). */
+typedef struct sr_edges {
+    int64_t a[3], b[3], c[3], bias[3];
+} sr_edges;
+
+static inline void sr__tri_edges(const sr_tri *t, sr_edges *e)
+{
+    for (int i = 0; i < 3; i++) {
+        e->a[i] = t->a[i];
+        e->b[i] = t->b[i];
+        e->c[i] = sr__tri_c(t, i);
+        e->bias[i] = sr__tri_bias(t, i);
+    }
+}
+
+/* Edge i, unbiased, at q8 point (X, Y). */
+static inline int64_t sr__edge_at(const sr_edges *e, int i, int64_t X, int64_t Y)
+{
+    return e->a[i] * X + e->b[i] * Y + e->c[i];
+}
+
+/* FLAT shading's lit color, after the varyings. */
+static inline const float *sr__tri_flat(const sr_tri *t)
+{
+    return &t->vary[3 * t->ninterp];
+}
 
 /* Tile columns whose tile rows a line's record lists for binning (a line
  * up to 320 px long along its major axis); tile indices fit a byte. */
@@ -243,7 +305,8 @@ typedef struct sr_line {
      * INT16_MIN when the end's pixel is not on the path).  start_extra:
      * the start's pixel (start_u, start_v) is off the path and drawn after
      * it.  Pixel indices fit int16_t inside the guard band; the fields are
-     * kept small so that a line's record never outgrows a triangle's. */
+     * kept small, as every record of a draw that makes lines is a line's
+     * size (sr__record_size). */
     bool xmajor, start_extra;
     int16_t k0, k1, start_u, start_v, end_u, end_v;
     /* The tiles it reaches, found once in setup for binning's two passes
@@ -273,16 +336,22 @@ typedef struct sr_point {
     float vary[SR_MAX_VARYINGS];
 } sr_point;
 
-/* Bytes per record in the bins: the largest of the three kinds with only
- * ninterp varyings stored, rounded to 16. */
-static inline size_t sr__record_size(int ninterp)
+/* Bytes per record in the bins: the largest of the kinds a draw makes
+ * with only ninterp varyings stored (and FLAT shading's color after a
+ * triangle's), rounded to 16.  A draw of filled triangles makes only
+ * triangles: with four varyings, two cache lines where a line's record
+ * would take three. */
+static inline size_t sr__record_size(int ninterp, bool flat, bool triangles_only)
 {
     size_t n = (size_t)ninterp;
-    size_t t = sizeof(sr_tri) - sizeof(float) * (3 * SR_MAX_VARYINGS - 3 * n);
-    size_t l = sizeof(sr_line) - sizeof(float) * (2 * SR_MAX_VARYINGS - 2 * n);
-    size_t p = sizeof(sr_point) - sizeof(float) * (SR_MAX_VARYINGS - n);
-    size_t s = t > l ? t : l;
-    s = s > p ? s : p;
+    size_t t = offsetof(sr_tri, vary) + sizeof(float) * (3 * n + (flat ? 4 : 0));
+    size_t s = t;
+    if (!triangles_only) {
+        size_t l = sizeof(sr_line) - sizeof(float) * (2 * SR_MAX_VARYINGS - 2 * n);
+        size_t p = sizeof(sr_point) - sizeof(float) * (SR_MAX_VARYINGS - n);
+        s = s > l ? s : l;
+        s = s > p ? s : p;
+    }
     return (s + 15) & ~(size_t)15;
 }
 

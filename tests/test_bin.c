@@ -115,3 +115,22 @@ SR_TEST(scattered_means_more_than_three_quarters_far)
     alternate(boxes, PRIMS, 4);
     CHECK(bin_and_check(boxes, PRIMS));
 }
+
+/* The records a chunk stores: a filled triangle with four varyings in two
+ * cache lines, FLAT's color after its varyings, and room for a line or a
+ * point wherever a draw may make them. */
+SR_TEST(record_sizes_follow_the_kinds_a_draw_makes)
+{
+    CHECK_EQ(sr__record_size(4, false, true), 128);
+    CHECK_EQ(sr__record_size(4, true, true), 144);
+    CHECK_EQ(sr__record_size(0, true, true), 96);
+    for (int n = 0; n <= SR_MAX_VARYINGS; n++) {
+        size_t tri = offsetof(sr_tri, vary) + sizeof(float) * (size_t)(3 * n);
+        size_t line = offsetof(sr_line, vary) + sizeof(float) * (size_t)(2 * n);
+        size_t point = offsetof(sr_point, vary) + sizeof(float) * (size_t)n;
+        size_t only = sr__record_size(n, false, true), any = sr__record_size(n, false, false);
+        CHECK(only >= tri && only < tri + 16 && only % 16 == 0);
+        CHECK(any >= tri && any >= line && any >= point && any % 16 == 0);
+        CHECK(sr__record_size(n, true, true) >= tri + 4 * sizeof(float));
+    }
+}

@@ -9,23 +9,77 @@
 #include "raster/block.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Edge i's value at pixel (x, y)'s centre, unbiased. */
 static int64_t edge_at(const sr_tri *t, int i, int x, int y)
 {
-    return t->a[i] * sr__centre_q8(x) + t->b[i] * sr__centre_q8(y) + t->c[i];
+    return t->a[i] * sr__centre_q8(x) + t->b[i] * sr__centre_q8(y) + sr__tri_c(t, i);
 }
 
-static void random_edges(sr_rng *rng, sr_tri *t, int64_t cmax)
+/* sr__rect_fits32 of a record's edge functions. */
+static bool rect_fits32(const sr_tri *t, int x0, int y0, int x1, int y1)
+{
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
+    return sr__rect_fits32(&ed, x0, y0, x1, y1);
+}
+
+/* The edges setup makes of vertices (x[k], y[k]) in q8, in that order
+ * (either orientation; the rectangle tests do not care). */
+static void edges_from(sr_tri *t, const int64_t x[3], const int64_t y[3])
 {
     memset(t, 0, sizeof *t);
-    int32_t amax = sr_rng_int(rng, 0, 3) == 0 ? (1 << 22) : 4096;
     for (int i = 0; i < 3; i++) {
-        t->a[i] = sr_rng_int(rng, -amax, amax);
-        t->b[i] = sr_rng_int(rng, -amax, amax);
-        t->c[i] = (int64_t)sr_rng_range(rng, -(double)cmax, (double)cmax);
-        t->bias[i] = sr_rng_int(rng, -1, 0);
+        int a = (i + 1) % 3, b = (i + 2) % 3;
+        t->a[i] = (int32_t)-(y[b] - y[a]);
+        t->b[i] = (int32_t)(x[b] - x[a]);
+    }
+    t->x0_q8 = (int32_t)x[0];
+    t->y0_q8 = (int32_t)y[0];
+}
+
+/* A triangle with vertices within `reach` q8 units of (cx, cy), its edges
+ * at most `amax` long each way. */
+static void random_tri(sr_rng *rng, sr_tri *t, int64_t cx, int64_t cy, int64_t reach,
+                       int32_t amax)
+{
+    int64_t x[3], y[3];
+    x[0] = cx + (int64_t)sr_rng_range(rng, -(double)reach, (double)reach);
+    y[0] = cy + (int64_t)sr_rng_range(rng, -(double)reach, (double)reach);
+    for (int k = 1; k < 3; k++) {
+        x[k] = x[0] + sr_rng_int(rng, -amax / 2, amax / 2);
+        y[k] = y[0] + sr_rng_int(rng, -amax / 2, amax / 2);
+    }
+    edges_from(t, x, y);
+}
+
+SR_TEST(edge_constants_rebuilt_from_vertex_0_match_setup)
+{
+    /* sr__tri_c and sr__tri_bias against the vertex form setup used to
+     * store: c_i = dy x_a - dx y_a, bias 0 on a top or left edge. */
+    sr_rng rng = { 0xc0 };
+    for (int k = 0; k < 20000 && !sr_test_failed_now(); k++) {
+        int64_t x[3], y[3];
+        int32_t span = k % 3 == 0 ? 8 : (1 << 22) - 1;   /* axis-aligned edges often */
+        for (int v = 0; v < 3; v++) {
+            x[v] = sr_rng_int(&rng, -(1 << 22), 1 << 22);
+            y[v] = sr_rng_int(&rng, -(1 << 22), 1 << 22);
+            if (v > 0) {
+                x[v] = x[0] + sr_rng_int(&rng, -span / 2, span / 2);
+                y[v] = y[0] + sr_rng_int(&rng, -span / 2, span / 2);
+            }
+        }
+        sr_tri t;
+        edges_from(&t, x, y);
+        for (int i = 0; i < 3; i++) {
+            int a = (i + 1) % 3, b = (i + 2) % 3;
+            int64_t dx = x[b] - x[a], dy = y[b] - y[a];
+            CHECK_EQ(sr__tri_c(&t, i), dy * x[a] - dx * y[a]);
+            bool top_left = dy < 0 || (dy == 0 && dx > 0);
+            CHECK_EQ(sr__tri_bias(&t, i), top_left ? 0 : -1);
+        }
     }
 }
 
@@ -33,33 +87,21 @@ SR_TEST(fits32_goes_by_the_corner_values_up_to_the_limit)
 {
     const int64_t lim = INT32_MAX - 1;
     sr_tri t;
-    memset(&t, 0, sizeof t);
-    /* Constant edges (a = b = 0): the value everywhere is c. */
-    const struct { int64_t c; bool fits; } cases[] = {
-        { 0, true }, { lim, true }, { -lim, true }, { lim + 1, false }, { -lim - 1, false },
-        { (int64_t)1 << 40, false }, { -((int64_t)1 << 40), false },
-    };
-    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        for (int i = 0; i < 3; i++) {
-            t.c[0] = t.c[1] = t.c[2] = 0;
-            t.c[i] = cases[k].c;
-            if (sr__rect_fits32(&t, 10, 20, 14, 23) != cases[k].fits) {
-                sr_test_fail(__FILE__, __LINE__, "edge %d = %lld everywhere: fits32 says %d", i,
-                             (long long)cases[k].c, !cases[k].fits);
-            }
-        }
-    }
-    /* A slope along x, then along y: only the rectangle's last column
-     * (row) crosses the limit, below and above. */
+    /* A slope of one q8 unit along x, then along y, through a vertex so
+     * far off that only the rectangle's last column (row), 99, crosses
+     * the limit: edge 1 (vertices 2 and 0) is sign (X - x0) or
+     * sign (Y - y0), edge 0 its negation, edge 2 degenerate (0). */
     for (int axis = 0; axis < 2; axis++) {
         for (int sign = -1; sign <= 1; sign += 2) {
-            memset(&t, 0, sizeof t);
-            int32_t *slope = axis ? &t.b[1] : &t.a[1];
-            *slope = sign * 1000;
-            t.c[1] = sign * (lim + 1) - *slope * sr__centre_q8(99); /* lim + 1 at 99 */
+            int64_t far = sr__centre_q8(99) - (lim + 1);
+            int64_t x[3] = { axis ? 0 : far, axis ? 0 : far, axis ? sign : far };
+            int64_t y[3] = { axis ? far : 0, axis ? far : 0, axis ? far : -sign };
+            edges_from(&t, x, y);
+            CHECK_EQ(llabs(edge_at(&t, 1, axis ? 0 : 99, axis ? 99 : 0)), lim + 1);
+            CHECK_EQ(llabs(edge_at(&t, 0, axis ? 0 : 99, axis ? 99 : 0)), lim + 1);
             int x1 = axis ? 5 : 100, y1 = axis ? 100 : 5;
-            CHECK(!sr__rect_fits32(&t, axis ? 0 : 90, axis ? 90 : 0, x1, y1));
-            CHECK(sr__rect_fits32(&t, axis ? 0 : 90, axis ? 90 : 0, x1 - !axis, y1 - axis));
+            CHECK(!rect_fits32(&t, axis ? 0 : 90, axis ? 90 : 0, x1, y1));
+            CHECK(rect_fits32(&t, axis ? 0 : 90, axis ? 90 : 0, x1 - !axis, y1 - axis));
         }
     }
 }
@@ -71,7 +113,9 @@ SR_TEST(fits32_agrees_with_every_pixel_of_random_rectangles)
     int yes = 0, no = 0;
     for (int k = 0; k < 4000 && !sr_test_failed_now(); k++) {
         sr_tri t;
-        random_edges(&rng, &t, (int64_t)1 << 31);
+        int32_t amax = sr_rng_int(&rng, 0, 3) == 0 ? (1 << 22) : 4096;
+        int64_t reach = (int64_t)1 << sr_rng_int(&rng, 10, 24);
+        random_tri(&rng, &t, 200 * 256, 200 * 256, reach, amax);
         int x0 = sr_rng_int(&rng, -50, 400), y0 = sr_rng_int(&rng, -50, 400);
         int x1 = x0 + sr_rng_int(&rng, 1, 20), y1 = y0 + sr_rng_int(&rng, 1, 20);
         bool all = true;
@@ -83,7 +127,7 @@ SR_TEST(fits32_agrees_with_every_pixel_of_random_rectangles)
                 }
             }
         }
-        if (sr__rect_fits32(&t, x0, y0, x1, y1) != all) {
+        if (rect_fits32(&t, x0, y0, x1, y1) != all) {
             sr_test_fail(__FILE__, __LINE__, "case %d: fits32 %d, every pixel %d", k, !all, all);
         }
         yes += all;
@@ -100,28 +144,35 @@ SR_TEST(rect_classify_agrees_with_every_pixel_of_random_blocks)
     int rejected = 0, accepted = 0, partial = 0;
     for (int k = 0; k < 20000 && !sr_test_failed_now(); k++) {
         sr_tri t;
-        /* Edges through the block's neighbourhood: offsets of a few
-         * blocks, so all three outcomes occur. */
-        random_edges(&rng, &t, 0);
+        /* Vertices in the block's neighbourhood, a few blocks either way,
+         * in coverage order, so all three outcomes occur. */
         int bx = sr_rng_int(&rng, 0, 200) * SR_BLOCK_SIZE, by = sr_rng_int(&rng, 0, 200) * SR_BLOCK_SIZE;
-        for (int i = 0; i < 3; i++) {
-            int px = bx + sr_rng_int(&rng, -12, 20), py = by + sr_rng_int(&rng, -12, 20);
-            t.c[i] = -(t.a[i] * sr__centre_q8(px) + t.b[i] * sr__centre_q8(py)) +
-                     sr_rng_int(&rng, -300, 300);
+        int64_t x[3], y[3];
+        for (int v = 0; v < 3; v++) {
+            x[v] = sr__centre_q8(bx) + sr_rng_int(&rng, -24 * 256, 32 * 256);
+            y[v] = sr__centre_q8(by) + sr_rng_int(&rng, -24 * 256, 32 * 256);
         }
+        if ((x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) < 0) {
+            int64_t tx = x[1], ty = y[1];
+            x[1] = x[2], y[1] = y[2];
+            x[2] = tx, y[2] = ty;
+        }
+        edges_from(&t, x, y);
         int64_t sx[3], sy[3], e[3];
         for (int i = 0; i < 3; i++) {
             sx[i] = (int64_t)t.a[i] * SR_SUBPIXEL_ONE;
             sy[i] = (int64_t)t.b[i] * SR_SUBPIXEL_ONE;
         }
         bool inside = false;
-        bool any = sr__block_classify(&t, bx, by, sx, sy, e, &inside);
+        sr_edges ed;
+        sr__tri_edges(&t, &ed);
+        bool any = sr__block_classify(&ed, bx, by, sx, sy, e, &inside);
         int covered = 0;
         for (int y = by; y < by + SR_BLOCK_SIZE; y++) {
             for (int x = bx; x < bx + SR_BLOCK_SIZE; x++) {
                 bool in = true;
                 for (int i = 0; i < 3; i++) {
-                    in &= edge_at(&t, i, x, y) + t.bias[i] >= 0;
+                    in &= edge_at(&t, i, x, y) + sr__tri_bias(&t, i) >= 0;
                 }
                 covered += in;
             }
@@ -134,14 +185,17 @@ SR_TEST(rect_classify_agrees_with_every_pixel_of_random_blocks)
         }
         if (any) {
             for (int i = 0; i < 3; i++) {
-                CHECK_EQ(e[i], edge_at(&t, i, bx, by) + t.bias[i]);
+                CHECK_EQ(e[i], edge_at(&t, i, bx, by) + sr__tri_bias(&t, i));
             }
         }
         rejected += !any;
         accepted += any && inside;
         partial += any && !inside;
     }
-    CHECK(rejected > 100 && accepted > 100 && partial > 100);
+    if (!(rejected > 100 && accepted > 100 && partial > 100)) {
+        sr_test_fail(__FILE__, __LINE__, "rejected %d, accepted %d, partial %d", rejected,
+                     accepted, partial);
+    }
 }
 
 /* Setup's fits32 (the whole box of the triangle, from its vertex spans)
@@ -183,7 +237,7 @@ SR_TEST(setup_fits32_implies_the_box_fits)
         }
         if (t.fits32) {
             yes++;
-            if (!sr__rect_fits32(&t, t.h.x0, t.h.y0, t.h.x1, t.h.y1)) {
+            if (!rect_fits32(&t, t.h.x0, t.h.y0, t.h.x1, t.h.y1)) {
                 sr_test_fail(__FILE__, __LINE__, "fits32 set, but the box [%d, %d) x [%d, %d) "
                              "does not fit", t.h.x0, t.h.x1, t.h.y0, t.h.y1);
                 return;
@@ -216,7 +270,7 @@ SR_TEST(setup_fits32_implies_the_box_fits)
             continue;
         }
         near_yes++;
-        if (!sr__rect_fits32(&t, t.h.x0, t.h.y0, t.h.x1, t.h.y1)) {
+        if (!rect_fits32(&t, t.h.x0, t.h.y0, t.h.x1, t.h.y1)) {
             sr_test_fail(__FILE__, __LINE__, "fits32 set for a %d x %d q8 right triangle whose "
                          "box does not fit", wq, hq);
             return;

@@ -127,8 +127,8 @@ static void check_triangle(const eye_pt v[3], const field f[2], bool perspective
             int64_t ev[3];
             bool in = true;
             for (int i = 0; i < 3; i++) {
-                ev[i] = t->a[i] * X + t->b[i] * Y + t->c[i];
-                in &= ev[i] + t->bias[i] >= 0;
+                ev[i] = t->a[i] * X + t->b[i] * Y + sr__tri_c(t, i);
+                in &= ev[i] + sr__tri_bias(t, i) >= 0;
             }
             if (!in) {
                 continue;

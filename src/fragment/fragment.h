@@ -253,7 +253,7 @@ SR_INLINE void sr__shade_as(const sr_draw_state *ds, const sr_tri *t, double z,
                                   sr__interp(t, ly, ui + 1) - vv);
         }
     }
-    sr__shade_vary(ds, v, t->flat, t->front, z, lod, c, shading);
+    sr__shade_vary(ds, v, sr__tri_flat(t), t->front, z, lod, c, shading);
 }
 
 static inline void sr__shade(const sr_draw_state *ds, const sr_tri *t, double z,

@@ -8,6 +8,8 @@
 void sr__raster_barycentric(const sr_draw_state *ds, const sr_tri *t,
                             int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st)
 {
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
     for (int py = ry0; py < ry1; py++) {
         int64_t yc = sr__centre_q8(py);
         for (int px = rx0; px < rx1; px++) {
@@ -15,10 +17,10 @@ void sr__raster_barycentric(const sr_draw_state *ds, const sr_tri *t,
             int64_t e[3];
             bool in = true;
             for (int i = 0; i < 3; i++) {
-                e[i] = t->a[i] * xc + t->b[i] * yc + t->c[i];
+                e[i] = sr__edge_at(&ed, i, xc, yc);
                 /* lambda_i >= 0, with samples exactly on an edge (e_i = 0)
                  * kept only for top and left edges. */
-                in &= e[i] > 0 || (e[i] == 0 && t->bias[i] == 0);
+                in &= e[i] > 0 || (e[i] == 0 && ed.bias[i] == 0);
             }
             if (in) {
                 sr__fragment(ds, t, px, py, e[0], e[1], e[2], st);

@@ -13,6 +13,9 @@
  * and down a column (sy), in q8 units. */
 static inline void sr__pixel_steps(const sr_tri *t, int64_t sx[3], int64_t sy[3])
 {
+    /* From the record, not a copy in sr_edges: the vectorized loads of a
+     * copy just stored one field at a time would wait on store
+     * forwarding (a tenth of the kernel's time on `small`). */
     for (int i = 0; i < 3; i++) {
         sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
         sy[i] = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
@@ -37,13 +40,13 @@ static inline int64_t sr__edge_min(int64_t e, int64_t ex, int64_t ey)
  * samples up to that far from the centres (multisampling; zero for pixel
  * centres).  Returns false when no sample of the rectangle is covered;
  * *inside tells whether every one is. */
-static inline bool sr__rect_classify(const sr_tri *t, int x0, int y0, int x1, int y1,
+static inline bool sr__rect_classify(const sr_edges *ed, int x0, int y0, int x1, int y1,
                                      const int64_t sx[3], const int64_t sy[3],
                                      const int64_t slack[3], int64_t e[3], bool *inside)
 {
     bool in = true;
     for (int i = 0; i < 3; i++) {
-        e[i] = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i] + t->bias[i];
+        e[i] = sr__edge_at(ed, i, sr__centre_q8(x0), sr__centre_q8(y0)) + ed->bias[i];
         int64_t ex = sx[i] * (x1 - 1 - x0), ey = sy[i] * (y1 - 1 - y0);
         if (sr__edge_max(e[i], ex, ey) + slack[i] < 0) {
             return false;
@@ -57,22 +60,22 @@ static inline bool sr__rect_classify(const sr_tri *t, int x0, int y0, int x1, in
 static const int64_t sr__no_slack[3] = { 0, 0, 0 };
 
 /* An 8x8 block at (bx, by), pixel centres. */
-static inline bool sr__block_classify(const sr_tri *t, int bx, int by, const int64_t sx[3],
+static inline bool sr__block_classify(const sr_edges *ed, int bx, int by, const int64_t sx[3],
                                       const int64_t sy[3], int64_t e[3], bool *inside)
 {
-    return sr__rect_classify(t, bx, by, bx + SR_BLOCK_SIZE, by + SR_BLOCK_SIZE, sx, sy,
+    return sr__rect_classify(ed, bx, by, bx + SR_BLOCK_SIZE, by + SR_BLOCK_SIZE, sx, sy,
                              sr__no_slack, e, inside);
 }
 
 /* Whether every pixel centre of [x0, x1) x [y0, y1) is covered: a big
  * triangle over most of its tiles, whose blocks then need no
  * classification. */
-static inline bool sr__rect_inside(const sr_tri *t, int x0, int y0, int x1, int y1,
+static inline bool sr__rect_inside(const sr_edges *ed, int x0, int y0, int x1, int y1,
                                    const int64_t sx[3], const int64_t sy[3])
 {
     int64_t e[3];
     bool inside;
-    return sr__rect_classify(t, x0, y0, x1, y1, sx, sy, sr__no_slack, e, &inside) && inside;
+    return sr__rect_classify(ed, x0, y0, x1, y1, sx, sy, sr__no_slack, e, &inside) && inside;
 }
 
 /* Whether every edge value at the pixel centres of [x0, x1) x [y0, y1)
@@ -80,14 +83,13 @@ static inline bool sr__rect_inside(const sr_tri *t, int x0, int y0, int x1, int 
  * linear, so its extremes over the rectangle are at the corners.  This
  * goes by the values, not by the rectangle's size: a small box can be the
  * corner of a huge triangle, whose values there exceed 32 bits. */
-static inline bool sr__rect_fits32(const sr_tri *t, int x0, int y0, int x1, int y1)
+static inline bool sr__rect_fits32(const sr_edges *ed, int x0, int y0, int x1, int y1)
 {
     const int64_t lim = INT32_MAX - 1;
-    int64_t sx[3], sy[3];
-    sr__pixel_steps(t, sx, sy);
     for (int i = 0; i < 3; i++) {
-        int64_t e = t->a[i] * sr__centre_q8(x0) + t->b[i] * sr__centre_q8(y0) + t->c[i];
-        int64_t ex = sx[i] * (x1 - 1 - x0), ey = sy[i] * (y1 - 1 - y0);
+        int64_t e = sr__edge_at(ed, i, sr__centre_q8(x0), sr__centre_q8(y0));
+        int64_t ex = ed->a[i] * SR_SUBPIXEL_ONE * (x1 - 1 - x0);
+        int64_t ey = ed->b[i] * SR_SUBPIXEL_ONE * (y1 - 1 - y0);
         if (sr__edge_max(e, ex, ey) > lim || sr__edge_min(e, ex, ey) < -lim) {
             return false;
         }

@@ -64,6 +64,7 @@ typedef struct generic_pixel {
     sr_frag_stats *st;
     unsigned all;
     int64_t so[16][3];
+    int64_t bias[3];
 } generic_pixel;
 
 SR_INLINE void generic_pixel_fn(void *arg, int px, int py, const int64_t *u, bool inside)
@@ -74,8 +75,8 @@ SR_INLINE void generic_pixel_fn(void *arg, int px, int py, const int64_t *u, boo
     if (!inside) {
         mask = 0;
         for (int s = 0; s < g->ds->samples; s++) {
-            if (((u[0] + g->so[s][0] + t->bias[0]) | (u[1] + g->so[s][1] + t->bias[1]) |
-                 (u[2] + g->so[s][2] + t->bias[2])) >= 0) {
+            if (((u[0] + g->so[s][0] + g->bias[0]) | (u[1] + g->so[s][1] + g->bias[1]) |
+                 (u[2] + g->so[s][2] + g->bias[2])) >= 0) {
                 mask |= 1u << s;
             }
         }
@@ -96,7 +97,8 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
         sr__raster_shader(ds, t, rx0, ry0, rx1, ry1, st);
         return;
     }
-    generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } } };
+    generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } },
+                        { sr__tri_bias(t, 0), sr__tri_bias(t, 1), sr__tri_bias(t, 2) } };
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
             g.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];

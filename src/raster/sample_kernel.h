@@ -83,7 +83,7 @@ SR_SIMD_TARGET static void SR_SIMD_FN(raster_ms4)(const sr_draw_state *ds, const
         for (int s = 0; s < 4; s++) {
             k.so[i][s] = (double)((int64_t)t->a[i] * ds->sample_off[s][0] +
                                   (int64_t)t->b[i] * ds->sample_off[s][1]);
-            k.nbias[i][s] = (double)-t->bias[i];
+            k.nbias[i][s] = (double)-sr__tri_bias(t, i);
         }
     }
     k.z0 = (v4d){ t->z0, t->z0, t->z0, t->z0 };

@@ -13,12 +13,14 @@
 #include <stdlib.h>
 
 typedef struct sr_block_steps {
+    sr_edges ed;                      /* the triangle's edge functions */
     int64_t slack[3];                 /* |a| + |b| times half a pixel, multisampled */
     int64_t sx[3], sy[3];             /* per-pixel steps */
 } sr_block_steps;
 
 SR_INLINE void sr__block_steps(const sr_draw_state *ds, const sr_tri *t, sr_block_steps *k)
 {
+    sr__tri_edges(t, &k->ed);
     for (int i = 0; i < 3; i++) {
         k->slack[i] = ds->samples > 1 ? (llabs(t->a[i]) + llabs(t->b[i])) * SR_SUBPIXEL_HALF : 0;
         k->sx[i] = (int64_t)t->a[i] * SR_SUBPIXEL_ONE;
@@ -28,14 +30,14 @@ SR_INLINE void sr__block_steps(const sr_draw_state *ds, const sr_tri *t, sr_bloc
 
 /* The unbiased edge values at pixel (px0, py0)'s centre in u[]; false when
  * the pixels [px0, px1) x [py0, py1) hold no covered sample. */
-SR_INLINE bool sr__block_open(const sr_tri *t, const sr_block_steps *k, int px0, int py0,
-                              int px1, int py1, int64_t u[3], bool *inside)
+SR_INLINE bool sr__block_open(const sr_block_steps *k, int px0, int py0, int px1, int py1,
+                              int64_t u[3], bool *inside)
 {
-    if (!sr__rect_classify(t, px0, py0, px1, py1, k->sx, k->sy, k->slack, u, inside)) {
+    if (!sr__rect_classify(&k->ed, px0, py0, px1, py1, k->sx, k->sy, k->slack, u, inside)) {
         return false;
     }
     for (int i = 0; i < 3; i++) {
-        u[i] -= t->bias[i];
+        u[i] -= k->ed.bias[i];
     }
     return true;
 }
@@ -59,7 +61,7 @@ SR_INLINE void sr__block_walk(const sr_draw_state *ds, const sr_tri *t, int rx0,
                                   by + SR_BLOCK_SIZE < ry1 ? by + SR_BLOCK_SIZE : ry1 };
             int64_t u[3];
             bool inside;
-            if (sr__block_open(t, &k, rect[0], rect[1], rect[2], rect[3], u, &inside)) {
+            if (sr__block_open(&k, rect[0], rect[1], rect[2], rect[3], u, &inside)) {
                 block(arg, &k, rect, u, inside);
             }
         }

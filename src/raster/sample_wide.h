@@ -153,7 +153,7 @@ static void raster_ms16(const sr_draw_state *ds, const sr_tri *t, int rx0, int r
                                                     _mm512_mul_pd(bv, soy)));
         k.off[0][i] = first;
         k.off[1][i] = _mm512_add_pd(first, _mm512_add_pd(step, step));
-        k.nbias[i] = _mm512_set1_pd((double)-t->bias[i]);
+        k.nbias[i] = _mm512_set1_pd((double)-sr__tri_bias(t, i));
         double a = (double)((int64_t)t->a[i] * SR_SUBPIXEL_ONE);
         k.pix[i] = _mm256_setr_pd(0.0, a, 2.0 * a, 3.0 * a);
         k.w[i] = _mm_set1_ps(t->w[i]);
@@ -165,7 +165,7 @@ static void raster_ms16(const sr_draw_state *ds, const sr_tri *t, int rx0, int r
     k.zmax = _mm512_set1_pd(ds->zq_max);
     if (ds->shading == SR_SHADING_FLAT) {
         for (int ch = 0; ch < 4; ch++) {
-            k.flat |= (uint32_t)sr__unorm8(t->flat[ch]) << (8 * ch);
+            k.flat |= (uint32_t)sr__unorm8(sr__tri_flat(t)[ch]) << (8 * ch);
         }
     } else {
         int n = t->ninterp;

@@ -26,10 +26,12 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
      * R grows by 256 b per scanline. */
     sr_dda dda[3];
     int kind[3]; /* +1 left, -1 right, 0 horizontal */
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
     int64_t yc0 = sr__centre_q8(ry0);
     for (int i = 0; i < 3; i++) {
         int64_t a = t->a[i];
-        int64_t R = t->b[i] * yc0 + t->c[i] + t->bias[i];
+        int64_t R = ed.b[i] * yc0 + ed.c[i] + ed.bias[i];
         int64_t dR = (int64_t)t->b[i] * SR_SUBPIXEL_ONE;
         if (a > 0) {
             kind[i] = 1;
@@ -62,9 +64,9 @@ void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
         if (!empty && left <= right) {
             int64_t yc = sr__centre_q8(py);
             int64_t xc = sr__centre_q8(left);
-            int64_t e0 = t->a[0] * xc + t->b[0] * yc + t->c[0];
-            int64_t e1 = t->a[1] * xc + t->b[1] * yc + t->c[1];
-            int64_t e2 = t->a[2] * xc + t->b[2] * yc + t->c[2];
+            int64_t e0 = sr__edge_at(&ed, 0, xc, yc);
+            int64_t e1 = sr__edge_at(&ed, 1, xc, yc);
+            int64_t e2 = sr__edge_at(&ed, 2, xc, yc);
             for (int px = left; px <= right; px++) {
                 sr__fragment(ds, t, px, py, e0, e1, e2, st);
                 e0 += (int64_t)t->a[0] * SR_SUBPIXEL_ONE;

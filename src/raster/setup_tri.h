@@ -10,14 +10,6 @@
 #include <math.h>
 #include <string.h>
 
-/* y points down.  With area2 > 0 the interior has E > 0.  A top edge is
- * horizontal and runs toward +x; a left edge runs upward (dy < 0).  Samples
- * exactly on a top or left edge are inside, on any other edge outside. */
-static inline bool sr__is_top_left(int64_t dx, int64_t dy)
-{
-    return (dy < 0) | ((dy == 0) & (dx > 0));   /* no branches: the signs are random */
-}
-
 /* The smaller and larger of two depths as minsd and maxsd give them (the
  * second operand when they compare equal), which is also what fmin and
  * fmax return for the finite depths of set-up vertices - without the
@@ -90,9 +82,11 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
         int64_t dy = (int64_t)y[b] - y[a];
         t->a[i] = (int32_t)-dy;   /* |dy|, |dx| < 2^23 (fixed.h) */
         t->b[i] = (int32_t)dx;
-        t->c[i] = dy * x[a] - dx * y[a];
-        t->bias[i] = sr__is_top_left(dx, dy) ? 0 : -1;
     }
+    /* c_i = dy x_a - dx y_a and the top-left bias (sr__is_top_left) are
+     * rebuilt from these where needed (sr__tri_c, sr__tri_bias). */
+    t->x0_q8 = x[0];
+    t->y0_q8 = y[0];
 
     /* E_i(p) is twice the signed area of the triangle p makes with edge
      * i, so wherever p lies within a box that holds the edge, |E_i(p)| is
@@ -157,8 +151,8 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
         t->vary[ninterp + k] = v[1]->vary[k] - a0;
         t->vary[2 * ninterp + k] = v[2]->vary[k] - a0;
     }
-    if (flat) {
-        memcpy(t->flat, flat, sizeof t->flat);
+    if (flat && ds->shading == SR_SHADING_FLAT) {
+        memcpy(&t->vary[3 * ninterp], flat, 4 * sizeof(float)); /* sr__tri_flat */
     }
     return true;
 }

@@ -20,6 +20,7 @@ typedef struct quad_job {
     sr_frag_stats *st;
     bool early;                   /* tests before shading */
     int64_t so[16][3];            /* sample offsets of the edge values */
+    int64_t bias[3];              /* the edges' top-left bias */
     float inv_area;               /* for screen-space (noperspective) weights */
 } quad_job;
 
@@ -64,8 +65,8 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
         if (!inside) {
             m = 0;
             for (int s = 0; s < n; s++) {
-                if (((u[i][0] + j->so[s][0] + t->bias[0]) | (u[i][1] + j->so[s][1] + t->bias[1]) |
-                     (u[i][2] + j->so[s][2] + t->bias[2])) >= 0) {
+                if (((u[i][0] + j->so[s][0] + j->bias[0]) | (u[i][1] + j->so[s][1] + j->bias[1]) |
+                     (u[i][2] + j->so[s][2] + j->bias[2])) >= 0) {
                     m |= 1u << s;
                 }
             }
@@ -125,7 +126,10 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
 {
     quad_job j = { .ds = ds, .t = t, .st = st };
     j.early = !ds->program->writes_depth && !ds->program->may_discard && !ds->alpha_to_coverage;
-    j.inv_area = 1.0f / (float)(t->c[0] + t->c[1] + t->c[2]);   /* area2 */
+    j.inv_area = 1.0f / (float)(sr__tri_c(t, 0) + sr__tri_c(t, 1) + sr__tri_c(t, 2));   /* area2 */
+    for (int i = 0; i < 3; i++) {
+        j.bias[i] = sr__tri_bias(t, i);
+    }
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
             j.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];

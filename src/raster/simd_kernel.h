@@ -149,7 +149,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
     } else if (shading == SR_SHADING_FLAT) {
         v4i c[4];
         for (int k = 0; k < 4; k++) {
-            uint8_t b = sr__unorm8(t->flat[k]);
+            uint8_t b = sr__unorm8(sr__tri_flat(t)[k]);
             c[k] = (v4i){ b, b, b, b };
         }
         rgba = c[0] | c[1] << 8 | c[2] << 16 | c[3] << 24;
@@ -255,26 +255,26 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(n16_offsets)(const int64_t sx[3], const
 /* The sixteen-lane walks' per-triangle lanes: lane offsets 0..7 pixel
  * steps in double (exact: small integers), and the coverage bounds -bias
  * in double and in 32-bit lanes. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edge_lanes)(const sr_tri *t, const int64_t sx[3],
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edge_lanes)(const sr_edges *ed, const int64_t sx[3],
                                                         __m512d lx8[3], __m512d nb8[3],
                                                         __m512i nb32[3])
 {
     const __m512d steps = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
     for (int i = 0; i < 3; i++) {
         lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps);
-        nb8[i] = _mm512_set1_pd(-(double)t->bias[i]);
-        nb32[i] = _mm512_set1_epi32(-t->bias[i]);
+        nb8[i] = _mm512_set1_pd(-(double)ed->bias[i]);
+        nb32[i] = _mm512_set1_epi32((int32_t)-ed->bias[i]);
     }
 }
 
 /* The three (unbiased) edge values at pixel (x, y)'s centre, in double
  * (exact) and modulo 2^32. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(edges_at)(const sr_tri *t, int x, int y, double r[3],
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(edges_at)(const sr_edges *ed, int x, int y, double r[3],
                                                   uint32_t r32[3])
 {
     int64_t xc = sr__centre_q8(x), yc = sr__centre_q8(y);
     for (int i = 0; i < 3; i++) {
-        int64_t v = t->a[i] * xc + t->b[i] * yc + t->c[i];
+        int64_t v = sr__edge_at(ed, i, xc, yc);
         r[i] = (double)v;
         r32[i] = (uint32_t)v;
     }
@@ -282,6 +282,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(edges_at)(const sr_tri *t, int x, int y
 #endif
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
+                                                    const sr_edges *ed,
                                                     int rx0, int ry0, int rx1, int ry1,
                                                     sr_frag_stats *st, sr_shading shading,
                                                     sr_depth_mode dmode, bool tex, bool narrow)
@@ -302,7 +303,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     int fbw = ds->fb->width;
     v4d nbias[3], g4[3];
     for (int i = 0; i < 3; i++) {
-        double nb = -(double)t->bias[i], g = 4.0 * (double)sx[i];
+        double nb = -(double)ed->bias[i], g = 4.0 * (double)sx[i];
         nbias[i] = (v4d){ nb, nb, nb, nb };
         g4[i] = (v4d){ g, g, g, g };
     }
@@ -310,7 +311,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 #ifdef SR_SIMD_WIDE16
     __m512d lx8[3], nb8[3];
     __m512i nb32[3], off82[3], off44[3];
-    SR_SIMD_FN(w16_edge_lanes)(t, sx, lx8, nb8, nb32);
+    SR_SIMD_FN(w16_edge_lanes)(ed, sx, lx8, nb8, nb32);
     /* The 32-bit lanes' offsets in an 8 x 2 stamp and a 4 x 4 one, made
      * once a call: made in each walk instead, spot and the bunny were
      * slower. */
@@ -348,7 +349,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             __m512i n[3];
             double corner_d[3];
             uint32_t corner[3];
-            SR_SIMD_FN(edges_at)(t, rx0, py, corner_d, corner);
+            SR_SIMD_FN(edges_at)(ed, rx0, py, corner_d, corner);
             if (!narrow) {
                 for (int i = 0; i < 3; i++) {
                     __m512d c = _mm512_set1_pd(corner_d[i]);
@@ -370,7 +371,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
          * eight from its left edge; masked lanes leave the rest alone. */
         double r[3];
         uint32_t r32[3];
-        SR_SIMD_FN(edges_at)(t, rx0, ry0, r, r32);
+        SR_SIMD_FN(edges_at)(ed, rx0, ry0, r, r32);
         for (int py = ry0; py < ry1; py += 2) {
             __mmask16 rows = py + 1 < ry1 ? 0xffff : 0x00ff;
             double rs[3] = { r[0], r[1], r[2] };
@@ -408,9 +409,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     if (rx1 - rx0 <= 2 * SR_BLOCK_SIZE && ry1 - ry0 <= 2 * SR_BLOCK_SIZE &&
         ((rx1 + 3) & ~3) <= fbw) {
         int64_t xc = sr__centre_q8(gx_start), yc = sr__centre_q8(ry0);
-        double r0 = (double)(t->a[0] * xc + t->b[0] * yc + t->c[0]);
-        double r1 = (double)(t->a[1] * xc + t->b[1] * yc + t->c[1]);
-        double r2 = (double)(t->a[2] * xc + t->b[2] * yc + t->c[2]);
+        double r0 = (double)sr__edge_at(ed, 0, xc, yc);
+        double r1 = (double)sr__edge_at(ed, 1, xc, yc);
+        double r2 = (double)sr__edge_at(ed, 2, xc, yc);
         double gx0 = 4.0 * (double)sx[0], gx1 = 4.0 * (double)sx[1], gx2 = 4.0 * (double)sx[2];
         for (int py = ry0; py < ry1; py++) {
             v4d e0 = r0 + lx[0], e1 = r1 + lx[1], e2 = r2 + lx[2];
@@ -432,7 +433,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 
     int bx_start = rx0 & ~(SR_BLOCK_SIZE - 1);
     int by_start = ry0 & ~(SR_BLOCK_SIZE - 1);
-    bool all_inside = sr__rect_inside(t, rx0, ry0, rx1, ry1, sx, sy);
+    bool all_inside = sr__rect_inside(ed, rx0, ry0, rx1, ry1, sx, sy);
 
     for (int by = by_start; by < ry1; by += SR_BLOCK_SIZE) {
         for (int bx = bx_start; bx < rx1; bx += SR_BLOCK_SIZE) {
@@ -440,10 +441,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             bool inside = true;
             if (all_inside) {
                 for (int i = 0; i < 3; i++) {
-                    e[i] = t->a[i] * sr__centre_q8(bx) + t->b[i] * sr__centre_q8(by) + t->c[i] +
-                           t->bias[i];
+                    e[i] = sr__edge_at(ed, i, sr__centre_q8(bx), sr__centre_q8(by)) +
+                           ed->bias[i];
                 }
-            } else if (!sr__block_classify(t, bx, by, sx, sy, e, &inside)) {
+            } else if (!sr__block_classify(ed, bx, by, sx, sy, e, &inside)) {
                 continue;
             }
             int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;
@@ -452,7 +453,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
              * by 4 x 256 a per group of four pixels. */
             double r[3];
             for (int i = 0; i < 3; i++) {
-                r[i] = (double)(e[i] - t->bias[i] + sy[i] * (py0 - by));
+                r[i] = (double)(e[i] - ed->bias[i] + sy[i] * (py0 - by));
             }
             bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
 #if defined(SR_SIMD_WIDE16)
@@ -462,7 +463,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 unsigned span = (0xffu >> (SR_BLOCK_SIZE - (px1 - bx))) & (0xffu << (px0 - bx));
                 uint32_t r32[3]; /* narrow: r modulo 2^32 */
                 for (int i = 0; i < 3; i++) {
-                    r32[i] = (uint32_t)(e[i] - t->bias[i] + sy[i] * (py0 - by));
+                    r32[i] = (uint32_t)(e[i] - ed->bias[i] + sy[i] * (py0 - by));
                 }
                 for (int py = py0; py < py1; py += 2) {
                     unsigned valid = py + 1 < py1 ? span | span << 8 : span;
@@ -513,10 +514,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         int64_t dy = py - by;
                         for (int px = gx > px0 ? gx : px0; px < px1; px++) {
                             int64_t dx = px - bx;
-                            int64_t r0 = e[0] - t->bias[0] + sy[0] * dy + sx[0] * dx;
-                            int64_t r1 = e[1] - t->bias[1] + sy[1] * dy + sx[1] * dx;
-                            int64_t r2 = e[2] - t->bias[2] + sy[2] * dy + sx[2] * dx;
-                            if (((r0 + t->bias[0]) | (r1 + t->bias[1]) | (r2 + t->bias[2])) >= 0) {
+                            int64_t r0 = e[0] - ed->bias[0] + sy[0] * dy + sx[0] * dx;
+                            int64_t r1 = e[1] - ed->bias[1] + sy[1] * dy + sx[1] * dx;
+                            int64_t r2 = e[2] - ed->bias[2] + sy[2] * dy + sx[2] * dx;
+                            if (((r0 + ed->bias[0]) | (r1 + ed->bias[1]) | (r2 + ed->bias[2])) >= 0) {
                                 sr__fragment_as(ds, t, px, py, r0, r1, r2, st, shading, dmode);
                             }
                         }
@@ -548,7 +549,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
  * raster_as, whose code it would otherwise grow: inline there it cost
  * spot and teapot 2%. */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *ds,
-                                                           const sr_tri *t, int rx0, int ry0,
+                                                           const sr_tri *t, const sr_edges *ed,
+                                                           int rx0, int ry0,
                                                            int rx1, int ry1, sr_frag_stats *st,
                                                            sr_shading shading,
                                                            sr_depth_mode dmode, bool narrow)
@@ -559,11 +561,11 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *
     sr__pixel_steps(t, sx, sy);
     __m512d lx8[3], nb8[3];
     __m512i nb32[3], off16[3];
-    SR_SIMD_FN(w16_edge_lanes)(t, sx, lx8, nb8, nb32);
+    SR_SIMD_FN(w16_edge_lanes)(ed, sx, lx8, nb8, nb32);
     SR_SIMD_FN(n16_offsets)(sx, sy, 16, off16);
     double r[3];
     uint32_t r32[3];
-    SR_SIMD_FN(edges_at)(t, rx0, ry0, r, r32);
+    SR_SIMD_FN(edges_at)(ed, rx0, ry0, r, r32);
     for (int py = ry0; py < ry1; py++) {
         double rs[3] = { r[0], r[1], r[2] };
         uint32_t rs32[3] = { r32[0], r32[1], r32[2] };
@@ -603,27 +605,29 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
                                                           int rx1, int ry1, sr_frag_stats *st,
                                                           sr_shading shading, sr_depth_mode dmode)
 {
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
     if (shading == SR_SHADING_PHONG) {
-        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
         return;
     }
-    bool narrow = t->fits32 || sr__rect_fits32(t, rx0, ry0, rx1, ry1);
+    bool narrow = t->fits32 || sr__rect_fits32(&ed, rx0, ry0, rx1, ry1);
     if (rx1 - rx0 >= SR_TILE_SIZE / 2 && ry1 - ry0 >= SR_TILE_SIZE / 2) {
         int64_t sx[3], sy[3];
         sr__pixel_steps(t, sx, sy);
-        if (sr__rect_inside(t, rx0, ry0, rx1, ry1, sx, sy)) {
+        if (sr__rect_inside(&ed, rx0, ry0, rx1, ry1, sx, sy)) {
             if (narrow) {
-                SR_SIMD_FN(raster_inside_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, true);
+                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, true);
             } else {
-                SR_SIMD_FN(raster_inside_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false);
+                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false);
             }
             return;
         }
     }
     if (narrow) {
-        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, true);
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, true);
     } else {
-        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
     }
 }
 #endif
@@ -644,7 +648,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
         const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
         sr_frag_stats *st)                                                                 \
     {                                                                                      \
-        SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode, false, false); \
+        sr_edges ed;                                                                       \
+        sr__tri_edges(t, &ed);                                                             \
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false,   \
+                              false);                                                      \
     }
 #endif
 SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
@@ -661,16 +668,20 @@ SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_less)(const sr_draw_state *ds, 
                                                        int rx0, int ry0, int rx1, int ry1,
                                                        sr_frag_stats *st)
 {
-    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS, true,
-                          false);
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
+    SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS,
+                          true, false);
 }
 
 SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_off)(const sr_draw_state *ds, const sr_tri *t,
                                                       int rx0, int ry0, int rx1, int ry1,
                                                       sr_frag_stats *st)
 {
-    SR_SIMD_FN(raster_as)(ds, t, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF, true,
-                          false);
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
+    SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF,
+                          true, false);
 }
 #endif
 

@@ -91,7 +91,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(row8)(const sr_draw_state *ds, const sr
     if (shading == SR_SHADING_FLAT) {
         uint32_t c = 0;
         for (int ch = 0; ch < 4; ch++) {
-            c |= (uint32_t)sr__unorm8(t->flat[ch]) << (8 * ch);
+            c |= (uint32_t)sr__unorm8(sr__tri_flat(t)[ch]) << (8 * ch);
         }
         rgba = _mm256_set1_epi32((int)c);
     } else {
@@ -172,7 +172,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_make)(const sr_tri *t, sr_shading s
     o->varying = 0;
     for (int ch = 0; ch < 4; ch++) {
         if (shading == SR_SHADING_FLAT) {
-            fixed |= (uint32_t)sr__unorm8(t->flat[ch]) << (8 * ch);
+            fixed |= (uint32_t)sr__unorm8(sr__tri_flat(t)[ch]) << (8 * ch);
             continue;
         }
         int n = t->ninterp;

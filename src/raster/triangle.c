@@ -15,7 +15,9 @@
 SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
                          int ry1, sr_frag_stats *st, sr_shading shading, sr_depth_mode dmode)
 {
-    /* Per-pixel steps of each edge function (q8 coordinates). */
+    /* The edge functions, and their per-pixel steps (q8 coordinates). */
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
     int64_t sx[3], sy[3];
     sr__pixel_steps(t, sx, sy);
     int bx_start = rx0 & ~(SR_BLOCK_SIZE - 1);
@@ -26,20 +28,20 @@ SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int 
             /* Edge values (biased) at the block's first pixel centre. */
             int64_t e[3];
             bool inside;
-            if (!sr__block_classify(t, bx, by, sx, sy, e, &inside)) {
+            if (!sr__block_classify(&ed, bx, by, sx, sy, e, &inside)) {
                 continue;
             }
             int px0 = bx > rx0 ? bx : rx0, px1 = bx + SR_BLOCK_SIZE < rx1 ? bx + SR_BLOCK_SIZE : rx1;
             int py0 = by > ry0 ? by : ry0, py1 = by + SR_BLOCK_SIZE < ry1 ? by + SR_BLOCK_SIZE : ry1;
             /* Barycentrics use the unbiased values: fold -bias in once. */
-            int64_t u0 = e[0] - t->bias[0] + sy[0] * (py0 - by) + sx[0] * (px0 - bx);
-            int64_t u1 = e[1] - t->bias[1] + sy[1] * (py0 - by) + sx[1] * (px0 - bx);
-            int64_t u2 = e[2] - t->bias[2] + sy[2] * (py0 - by) + sx[2] * (px0 - bx);
+            int64_t u0 = e[0] - ed.bias[0] + sy[0] * (py0 - by) + sx[0] * (px0 - bx);
+            int64_t u1 = e[1] - ed.bias[1] + sy[1] * (py0 - by) + sx[1] * (px0 - bx);
+            int64_t u2 = e[2] - ed.bias[2] + sy[2] * (py0 - by) + sx[2] * (px0 - bx);
             for (int py = py0; py < py1; py++) {
                 int64_t r0 = u0, r1 = u1, r2 = u2;
                 for (int px = px0; px < px1; px++) {
                     /* Covered iff every biased value r + bias >= 0. */
-                    if (inside || ((r0 + t->bias[0]) | (r1 + t->bias[1]) | (r2 + t->bias[2])) >= 0) {
+                    if (inside || ((r0 + ed.bias[0]) | (r1 + ed.bias[1]) | (r2 + ed.bias[2])) >= 0) {
                         sr__fragment_as(ds, t, px, py, r0, r1, r2, st, shading, dmode);
                     }
                     r0 += sx[0];
