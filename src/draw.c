@@ -1165,8 +1165,11 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     }
 
     memset(s->stats, 0, sizeof s->stats);
-    sr_primitive prim = d->primitive == SR_PRIM_DEFAULT ? SR_PRIM_TRIANGLES : d->primitive;
-    bool triangles_only = prim <= SR_PRIM_TRIANGLE_FAN && ds.mode_front == SR_POLYGON_FILL &&
+    /* Filled triangles only: records of a triangle's size (sr__record_size). */
+    bool triangle_prims = d->primitive == SR_PRIM_DEFAULT || d->primitive == SR_PRIM_TRIANGLES ||
+                          d->primitive == SR_PRIM_TRIANGLE_STRIP ||
+                          d->primitive == SR_PRIM_TRIANGLE_FAN;
+    bool triangles_only = triangle_prims && ds.mode_front == SR_POLYGON_FILL &&
                           ds.mode_back == SR_POLYGON_FILL;
     size_t record_size =
         sr__record_size(ds.ninterp, ds.shading == SR_SHADING_FLAT, triangles_only);

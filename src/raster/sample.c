@@ -98,7 +98,10 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
         return;
     }
     generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } },
-                        { sr__tri_bias(t, 0), sr__tri_bias(t, 1), sr__tri_bias(t, 2) } };
+                        { 0 } };
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
+    memcpy(g.bias, ed.bias, sizeof g.bias);
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
             g.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];

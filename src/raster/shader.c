@@ -126,10 +126,10 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
 {
     quad_job j = { .ds = ds, .t = t, .st = st };
     j.early = !ds->program->writes_depth && !ds->program->may_discard && !ds->alpha_to_coverage;
-    j.inv_area = 1.0f / (float)(sr__tri_c(t, 0) + sr__tri_c(t, 1) + sr__tri_c(t, 2));   /* area2 */
-    for (int i = 0; i < 3; i++) {
-        j.bias[i] = sr__tri_bias(t, i);
-    }
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
+    j.inv_area = 1.0f / (float)(ed.c[0] + ed.c[1] + ed.c[2]);   /* area2 */
+    memcpy(j.bias, ed.bias, sizeof j.bias);
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
             j.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];
