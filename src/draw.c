@@ -964,7 +964,7 @@ static void run_front_end(void *arg, int job, int thread)
         /* No records: the bins must say so rather than keep the last
          * batch's, whose records may no longer be there. */
         c->out_of_memory = true;
-        sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size);
+        sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size, fe->stream);
         return;
     }
     if (fe->fused) {
@@ -1020,7 +1020,7 @@ static void run_front_end(void *arg, int job, int thread)
     if (fe->stream) {
         sr__stream_fence();
     }
-    if (!sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size)) {
+    if (!sr__bin_chunk(fe->ctx, fe->ds, c, fe->tri_size, fe->stream)) {
         c->out_of_memory = true;
     }
 }

@@ -22,6 +22,7 @@ void sr__scratch_destroy(sr_context *ctx, sr_scratch *s)
         sr__free(ctx, s->chunks[i].tris);
         sr__free(ctx, s->chunks[i].tile_box);
         sr__free(ctx, s->chunks[i].refs);
+        sr__free(ctx, s->chunks[i].ordered);
         sr__free(ctx, s->chunks[i].bin_start);
     }
     sr__free(ctx, s->active_tiles);
@@ -155,5 +156,21 @@ bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs)
     sr__free(ctx, c->refs);
     c->refs = r;
     c->ref_cap = cap;
+    return true;
+}
+
+bool sr__chunk_reserve_ordered(sr_context *ctx, sr_chunk *c, size_t bytes)
+{
+    if (bytes <= c->ordered_bytes) {
+        return true;
+    }
+    size_t cap = grow(c->ordered_bytes, bytes);
+    uint8_t *o = sr__alloc_large(ctx, cap);
+    if (!o) {
+        return false;
+    }
+    sr__free(ctx, c->ordered);
+    c->ordered = o;
+    c->ordered_bytes = cap;
     return true;
 }

@@ -28,7 +28,8 @@
 /* One front-end chunk: a contiguous range of primitives, the triangles it
  * set up (records of tri_size bytes) and its bins by counting sort -
  * bin_start[tile] .. bin_start[tile + 1] index refs[], which holds triangle
- * numbers in submission order. */
+ * numbers in submission order, or, when the chunk is in tile order, the
+ * copies of its records in ordered[] (sr__bin_chunk). */
 /* Each chunk is written by one front-end worker per batch, bumping its
  * counters per triangle: aligned to a cache line of its own so two
  * workers never share one (false sharing doubled the front end's time on
@@ -46,6 +47,9 @@ typedef struct sr_chunk {
     size_t ref_cap;
     uint32_t *bin_start;       /* tile_cap + 1 */
     bool scattered;            /* few neighbours share a tile (sr__bin_chunk) */
+    bool in_tile_order;        /* the tile jobs read ordered[], not refs[] */
+    uint8_t *ordered;
+    size_t ordered_bytes;      /* capacity of ordered */
     sr_draw_info info;
     bool out_of_memory;
 } sr_chunk;
@@ -71,6 +75,8 @@ bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t ti
  * from front-end workers: the allocator must be thread-safe). */
 bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size);
 bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs);
+/* Room for `bytes` of records copied in tile order. */
+bool sr__chunk_reserve_ordered(sr_context *ctx, sr_chunk *c, size_t bytes);
 
 /* Copy a record set up on the stack to its place in the chunk with
  * non-temporal stores, when more than one thread draws.  The tile jobs of

@@ -2,13 +2,16 @@
  * each tile's refs list exactly the primitives whose tile box covers it,
  * in submission order, and a chunk is marked scattered - its tile jobs
  * prefetch pixels - when most primitives start over a tile away from the
- * one before, and only then. */
+ * one before, and only then; a scattered chunk of records streamed out to
+ * memory is copied in tile order when its primitives lie mostly in one
+ * tile. */
 #include "sr_test.h"
 #include "context.h"
 #include "parallel/bin.h"
 #include "softrast.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 enum { TILES_X = 30, TILES_Y = 17, PRIMS = 2000 };
 
@@ -23,14 +26,23 @@ static uint32_t next_random(uint64_t *s)
     return (uint32_t)(*s >> 33);
 }
 
-/* Bin `boxes` as one chunk; check every tile's refs against the boxes and
- * return the chunk's scattered flag. */
-static bool bin_and_check(const uint32_t *boxes, uint32_t n)
+typedef struct bin_flags {
+    bool scattered, in_tile_order;
+} bin_flags;
+
+enum { RECORD = 128 };
+
+/* Bin `boxes` as one chunk whose records (RECORD bytes, each filled with
+ * its own number) went out by streaming stores or not.  Check every
+ * tile's bin against the boxes - its refs, or in a chunk in tile order
+ * its copies of the records - and return the chunk's flags. */
+static bin_flags bin_and_check(const uint32_t *boxes, uint32_t n, bool streamed)
 {
+    bin_flags f = { false, false };
     sr_context *ctx = NULL;
     if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) != SR_OK) {
         CHECK(!"sr_make_context");
-        return false;
+        return f;
     }
     sr_draw_state ds = { 0 };
     ds.tiles_x = TILES_X;
@@ -39,7 +51,14 @@ static bool bin_and_check(const uint32_t *boxes, uint32_t n)
     c.tile_box = (uint32_t *)boxes;
     c.tri_count = n;
     c.bin_start = calloc(TILES_X * TILES_Y + 1, sizeof(uint32_t));
-    bool ok = c.bin_start && sr__bin_chunk(ctx, &ds, &c, sizeof(sr_tri));
+    c.tris = aligned_alloc(64, (size_t)n * RECORD);
+    bool ok = c.bin_start && c.tris;
+    for (uint32_t i = 0; ok && i < n; i++) {
+        for (int w = 0; w < RECORD / 4; w++) {
+            memcpy(c.tris + (size_t)i * RECORD + 4 * w, &i, 4);
+        }
+    }
+    ok = ok && sr__bin_chunk(ctx, &ds, &c, RECORD, streamed);
     CHECK(ok);
     for (int tile = 0; ok && tile < TILES_X * TILES_Y; tile++) {
         int tx = tile % TILES_X, ty = tile / TILES_X;
@@ -49,18 +68,36 @@ static bool bin_and_check(const uint32_t *boxes, uint32_t n)
             bool covers = tx >= (int)(b & 0xff) && tx <= (int)(b >> 8 & 0xff) &&
                           ty >= (int)(b >> 16 & 0xff) && ty <= (int)(b >> 24);
             if (covers) {
-                /* The next ref of this tile, in submission order. */
-                CHECK(r < c.bin_start[tile + 1] && c.refs[r] == i);
+                /* The next of this tile, in submission order. */
+                CHECK(r < c.bin_start[tile + 1]);
+                if (c.in_tile_order) {
+                    CHECK(memcmp(c.ordered + (size_t)r * RECORD, c.tris + (size_t)i * RECORD,
+                                 RECORD) == 0);
+                } else {
+                    CHECK(c.refs[r] == i);
+                }
                 r++;
             }
         }
         CHECK_EQ(r, c.bin_start[tile + 1]);
     }
-    bool scattered = c.scattered;
+    f.scattered = c.scattered;
+    f.in_tile_order = c.in_tile_order;
     sr__free(ctx, c.refs);
+    sr__free(ctx, c.ordered);
+    free(c.tris);
     free(c.bin_start);
     sr_destroy_context(ctx);
-    return scattered;
+    return f;
+}
+
+/* Random boxes of one tile, every `wide`-th (0: none) two tiles wide. */
+static void random_boxes(uint32_t *boxes, int n, uint64_t seed, int wide)
+{
+    for (int i = 0; i < n; i++) {
+        int tx = (int)(next_random(&seed) % (TILES_X - 1)), ty = (int)(next_random(&seed) % TILES_Y);
+        boxes[i] = box(tx, tx + (wide && i % wide == 0), ty, ty);
+    }
 }
 
 SR_TEST(a_mesh_walk_is_not_scattered)
@@ -78,18 +115,34 @@ SR_TEST(a_mesh_walk_is_not_scattered)
         int wide = next_random(&s) % 4 == 0;
         boxes[i] = box(tx, tx + wide, ty, ty);
     }
-    CHECK(!bin_and_check(boxes, PRIMS));
+    CHECK(!bin_and_check(boxes, PRIMS, false).scattered);
+    /* Streamed out or not, a mesh's chunk keeps its refs. */
+    CHECK(!bin_and_check(boxes, PRIMS, true).in_tile_order);
 }
 
 SR_TEST(random_small_primitives_are_scattered)
 {
     static uint32_t boxes[PRIMS];
-    uint64_t s = 11;
-    for (int i = 0; i < PRIMS; i++) {
-        int tx = (int)(next_random(&s) % TILES_X), ty = (int)(next_random(&s) % TILES_Y);
-        boxes[i] = box(tx, tx, ty, ty);
-    }
-    CHECK(bin_and_check(boxes, PRIMS));
+    random_boxes(boxes, PRIMS, 11, 0);
+    bin_flags f = bin_and_check(boxes, PRIMS, false);
+    CHECK(f.scattered);
+    CHECK(!f.in_tile_order); /* on one thread the records are in cache */
+}
+
+/* A scattered chunk whose records went out to memory is copied in tile
+ * order when its primitives lie mostly in one tile - at most a quarter
+ * more copies than primitives - and keeps its refs otherwise. */
+SR_TEST(scattered_streamed_chunks_are_copied_in_tile_order)
+{
+    static uint32_t boxes[PRIMS];
+    random_boxes(boxes, PRIMS, 13, 0);
+    CHECK(bin_and_check(boxes, PRIMS, true).in_tile_order);
+    random_boxes(boxes, PRIMS, 17, 4); /* a quarter two tiles wide: 1.25 copies each */
+    CHECK(bin_and_check(boxes, PRIMS, true).in_tile_order);
+    random_boxes(boxes, PRIMS, 19, 3); /* a third */
+    bin_flags f = bin_and_check(boxes, PRIMS, true);
+    CHECK(f.scattered);
+    CHECK(!f.in_tile_order);
 }
 
 /* Two tiles far apart: primitive i goes to the other one than i - 1
@@ -110,10 +163,10 @@ SR_TEST(scattered_means_more_than_three_quarters_far)
     /* 1,500 far jumps among 2,000 primitives: exactly three quarters. */
     static uint32_t boxes[PRIMS];
     alternate(boxes, PRIMS, -1);
-    CHECK(!bin_and_check(boxes, PRIMS));
+    CHECK(!bin_and_check(boxes, PRIMS, false).scattered);
     /* One more. */
     alternate(boxes, PRIMS, 4);
-    CHECK(bin_and_check(boxes, PRIMS));
+    CHECK(bin_and_check(boxes, PRIMS, false).scattered);
 }
 
 /* The records a chunk stores: a filled triangle with four varyings in two

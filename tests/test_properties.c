@@ -25,7 +25,9 @@
  *
  * Under AddressSanitizer (the CI's second pass, a Debug build) the mesh
  * tests run a quarter of their meshes (PROP_SCALE). */
+#include "context.h"
 #include "raster_util.h"
+#include "scratch.h"
 #include "raster/fixed.h"
 #include "target/framebuffer.h"
 
@@ -1268,6 +1270,102 @@ SR_TEST(batch_size_changes_no_byte)
         sr_destroy_framebuffer(ctx, fb);
         sr_destroy_context(ctx);
     }
+    free(first);
+    free(pos);
+    free(col);
+}
+
+/* Tiny primitives scattered over many tiles: on more than one thread
+ * their chunks are copied in tile order (parallel/bin.c), which must give
+ * the bytes of one thread, where they never are.  Triangles with blending
+ * (order matters), depth-tested points and, beside them, short lines,
+ * each as one draw in batches of 1,024 and of the default size, on 1, 2
+ * and 3 threads. */
+SR_TEST(primitives_copied_in_tile_order_give_one_threads_bytes)
+{
+    enum { W = 640, H = 360, N = 6000 };
+    float *pos = malloc(sizeof(float) * 9 * N), *col = malloc(sizeof(float) * 12 * N);
+    REQUIRE(pos && col);
+    sr_rng rng = { 0x711e };
+    for (int i = 0; i < N; i++) {
+        /* A corner anywhere, the other vertices within about 4 pixels. */
+        double cx = sr_rng_range(&rng, -1.05, 1.05), cy = sr_rng_range(&rng, -1.05, 1.05);
+        for (int v = 0; v < 3; v++) {
+            float *p = &pos[(i * 3 + v) * 3];
+            p[0] = (float)(cx + (v ? sr_rng_range(&rng, -8.0 / W, 8.0 / W) : 0));
+            p[1] = (float)(cy + (v ? sr_rng_range(&rng, -8.0 / H, 8.0 / H) : 0));
+            p[2] = (float)sr_rng_range(&rng, -0.9, 0.9);
+            for (int c = 0; c < 4; c++) {
+                col[(i * 3 + v) * 4 + c] = (float)sr_rng_unit(&rng);
+            }
+        }
+    }
+    /* Points at the corners, lines from each corner to a vertex near it:
+     * consecutive primitives lie apart, as consecutive triangles do. */
+    uint32_t *idx = malloc(sizeof(uint32_t) * 2 * N);
+    REQUIRE(idx);
+    for (int i = 0; i < N; i++) {
+        idx[2 * i] = (uint32_t)(3 * i);
+        idx[2 * i + 1] = (uint32_t)(3 * i + 1);
+    }
+    uint32_t *corners = malloc(sizeof(uint32_t) * N);
+    REQUIRE(corners);
+    for (int i = 0; i < N; i++) {
+        corners[i] = (uint32_t)(3 * i);
+    }
+    static const sr_primitive prims[] = { SR_PRIM_TRIANGLES, SR_PRIM_POINTS, SR_PRIM_LINES };
+    static const int batch[] = { SR_BATCH_MIN, 0, 0, 0, SR_BATCH_MIN };
+    static const int threads[] = { 1, 1, 2, 3, 2 };
+    uint8_t *first = malloc(W * H * 4);
+    REQUIRE(first);
+    for (int k = 0; k < 3; k++) {
+        bool copied = false;
+        for (int v = 0; v < 5; v++) {
+            sr_context *ctx;
+            REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[v],
+                                                        .batch_primitives = batch[v] },
+                                    &ctx) == SR_OK);
+            sr_framebuffer *fb;
+            REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H },
+                                        &fb) == SR_OK);
+            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = 1 });
+            sr_state st = { .shading = SR_SHADING_UNLIT, .point_size = 2, .line_width = 1 };
+            if (prims[k] == SR_PRIM_TRIANGLES) {
+                st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
+                                             .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
+                                             .src_alpha = SR_BLEND_ONE,
+                                             .dst_alpha = SR_BLEND_ZERO };
+            } else {
+                st.depth_func = SR_LESS;
+            }
+            sr_draw_desc d = { .primitive = prims[k], .positions = pos, .vertex_count = 3 * N,
+                               .colors = col };
+            if (prims[k] != SR_PRIM_TRIANGLES) {
+                d.indices = prims[k] == SR_PRIM_LINES ? idx : corners;
+                d.index_type = SR_INDEX_U32;
+                d.index_count = prims[k] == SR_PRIM_LINES ? 2 * N : N;
+            }
+            CHECK_EQ(sr_draw(ctx, fb, &st, &d), SR_OK);
+            for (int ci = 0; ci < SR_MAX_CHUNKS; ci++) {
+                copied |= ctx->scratch->chunks[ci].in_tile_order;
+            }
+            if (v == 0) {
+                memcpy(first, sr_framebuffer_pixels(fb), W * H * 4);
+            } else if (memcmp(first, sr_framebuffer_pixels(fb), W * H * 4) != 0) {
+                sr_test_fail(__FILE__, __LINE__, "primitive %d: %d threads, batch %d differ from "
+                             "1 thread", (int)prims[k], threads[v], batch[v]);
+            }
+            sr_destroy_framebuffer(ctx, fb);
+            sr_destroy_context(ctx);
+        }
+        /* The test is of the copies: some chunk must have made them - of
+         * triangles and points.  An aliased line's tiles are walked from
+         * its record, not given by a box, so binning never counts a chunk
+         * of lines as scattered: they keep their refs. */
+        CHECK_EQ(copied, prims[k] != SR_PRIM_LINES);
+    }
+    free(idx);
+    free(corners);
     free(first);
     free(pos);
     free(col);
