@@ -235,12 +235,16 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, siz
             _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &buf[base])),
             _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[b1]), 1);
     }
-    /* Row r's lanes; a row without lanes loads nothing (and its address
-     * is not formed).  The insert positions must be literal constants. */
+    /* Row r's lanes.  A row without lanes loads nothing, from row 0's
+     * address (a row below the framebuffer's is never formed); chosen by
+     * arithmetic, not a branch: a tiny triangle's rows vary at random,
+     * and a branch per row mispredicted.  The insert positions must be
+     * literal constants. */
     __m128i row[4];
     for (int r = 0; r < 4; r++) {
         __mmask8 mr = (__mmask8)((m >> (4 * r)) & 0xf);
-        row[r] = mr ? _mm_maskz_loadu_epi32(mr, &buf[base + r * pitch]) : _mm_setzero_si128();
+        size_t at = base + ((size_t)r * pitch & -(size_t)(mr != 0));
+        row[r] = _mm_maskz_loadu_epi32(mr, &buf[at]);
     }
     __m512i v = _mm512_castsi128_si512(row[0]);
     v = _mm512_inserti32x4(v, row[1], 1);
@@ -267,9 +271,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base
                        _mm512_extracti32x4_epi32(v, 2), _mm512_extracti32x4_epi32(v, 3) };
     for (int r = 0; r < 4; r++) {
         __mmask8 mr = (__mmask8)((m >> (4 * r)) & 0xf);
-        if (mr) {
-            _mm_mask_storeu_epi32(&buf[base + r * pitch], mr, row[r]);
-        }
+        size_t at = base + ((size_t)r * pitch & -(size_t)(mr != 0)); /* as in stamp_load */
+        _mm_mask_storeu_epi32(&buf[at], mr, row[r]);
     }
 }
 
