@@ -222,7 +222,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_bary)(const SR_SIMD_FN(w16_lanes) *
 typedef enum sr_stamp { SR_STAMP_8X2, SR_STAMP_4X4, SR_STAMP_16X1 } sr_stamp;
 
 /* The stamp's words of a buffer (width `pitch`) at `base` = pixel
- * (gx, py); rows without an enabled lane are not addressed. */
+ * (gx, py), which is always inside the buffer; a row without an enabled
+ * lane is never addressed (it uses row 0's address and loads or stores
+ * nothing there). */
 SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, size_t base,
                                                         size_t pitch, __mmask16 m, sr_stamp shape)
 {
@@ -279,7 +281,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base
 /* The depth test of a stamp's lanes m (depth written where it passes),
  * the depth plane at edge values e1, e2 (double halves: lanes 0-7, 8-15):
  * the lanes still to be shaded, 0 for none.  Rows without an enabled
- * lane are not addressed (stamp_load). */
+ * lane are never addressed (stamp_load). */
 SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_depth)(const sr_draw_state *ds, const sr_tri *t,
                                                          size_t idx, __mmask16 m,
                                                          const __m512d e1[2], const __m512d e2[2],
