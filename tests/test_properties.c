@@ -1277,11 +1277,12 @@ SR_TEST(batch_size_changes_no_byte)
 
 /* Tiny primitives scattered over many tiles: on more than one thread
  * their chunks are copied in tile order (parallel/bin.c), which must give
- * the bytes of one thread, where they never are.  Triangles with blending
+ * the bytes of numbered bins - those of one draw per primitive, whose
+ * one-primitive chunks are never scattered.  Triangles with blending
  * (order matters), depth-tested points and, beside them, short lines,
  * each as one draw in batches of 1,024 and of the default size, on 1, 2
  * and 3 threads. */
-SR_TEST(primitives_copied_in_tile_order_give_one_threads_bytes)
+SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
 {
     enum { W = 640, H = 360, N = 6000 };
     float *pos = malloc(sizeof(float) * 9 * N), *col = malloc(sizeof(float) * 12 * N);
@@ -1314,13 +1315,14 @@ SR_TEST(primitives_copied_in_tile_order_give_one_threads_bytes)
         corners[i] = (uint32_t)(3 * i);
     }
     static const sr_primitive prims[] = { SR_PRIM_TRIANGLES, SR_PRIM_POINTS, SR_PRIM_LINES };
-    static const int batch[] = { SR_BATCH_MIN, 0, 0, 0, SR_BATCH_MIN };
-    static const int threads[] = { 1, 1, 2, 3, 2 };
+    /* Variant 0, the reference, draws one primitive at a time. */
+    static const int batch[] = { 0, SR_BATCH_MIN, 0, 0, 0, SR_BATCH_MIN };
+    static const int threads[] = { 1, 1, 1, 2, 3, 2 };
     uint8_t *first = malloc(W * H * 4);
     REQUIRE(first);
     for (int k = 0; k < 3; k++) {
         bool copied = false;
-        for (int v = 0; v < 5; v++) {
+        for (int v = 0; v < 6; v++) {
             sr_context *ctx;
             REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[v],
                                                         .batch_primitives = batch[v] },
@@ -1345,16 +1347,31 @@ SR_TEST(primitives_copied_in_tile_order_give_one_threads_bytes)
                 d.index_type = SR_INDEX_U32;
                 d.index_count = prims[k] == SR_PRIM_LINES ? 2 * N : N;
             }
-            CHECK_EQ(sr_draw(ctx, fb, &st, &d), SR_OK);
-            for (int ci = 0; ci < SR_MAX_CHUNKS; ci++) {
-                copied |= ctx->scratch->chunks[ci].in_tile_order;
+            bool copies = false;
+            for (int i = 0; i < (v == 0 ? N : 1); i++) {
+                sr_draw_desc one = d;
+                if (v == 0 && prims[k] == SR_PRIM_TRIANGLES) {
+                    one.positions = pos + 9 * i;
+                    one.colors = col + 12 * i;
+                    one.vertex_count = 3;
+                } else if (v == 0) {
+                    size_t first_index = prims[k] == SR_PRIM_LINES ? 2 * (size_t)i : (size_t)i;
+                    one.indices = (const uint32_t *)d.indices + first_index;
+                    one.index_count = prims[k] == SR_PRIM_LINES ? 2 : 1;
+                }
+                CHECK_EQ(sr_draw(ctx, fb, &st, &one), SR_OK);
+                for (int ci = 0; ci < SR_MAX_CHUNKS; ci++) {
+                    copies |= ctx->scratch->chunks[ci].in_tile_order;
+                }
             }
             if (v == 0) {
+                CHECK(!copies);
                 memcpy(first, sr_framebuffer_pixels(fb), W * H * 4);
             } else if (memcmp(first, sr_framebuffer_pixels(fb), W * H * 4) != 0) {
                 sr_test_fail(__FILE__, __LINE__, "primitive %d: %d threads, batch %d differ from "
-                             "1 thread", (int)prims[k], threads[v], batch[v]);
+                             "one draw per primitive", (int)prims[k], threads[v], batch[v]);
             }
+            copied |= copies;
             sr_destroy_framebuffer(ctx, fb);
             sr_destroy_context(ctx);
         }
