@@ -108,15 +108,17 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
      * before; in the meshes (the bunny's order jumps about too) 2-51%. */
     c->scattered = far > c->tri_count / 4 * 3;
     /* A tile job reads its records in submission order, each from a
-     * different place in the chunk: on one thread they are mostly still
-     * in cache, but records streamed out to memory (more than one
-     * thread) arrive one miss at a time - on two threads the bench's
-     * `small` spent a quarter of its time in the tile jobs waiting for
-     * them.  So a scattered chunk of primitives that mostly lie in one
-     * tile is copied in tile order: the copy reads the records in the
-     * order they were written, and each tile job reads its own records
-     * one after the other (small 78 -> 67 ms on two threads).  A primitive
-     * is copied once per tile it covers, hence "mostly in one tile". */
+     * different place in the chunk.  Streamed out to memory (more than
+     * one thread), a scattered chunk's records arrive one miss at a time:
+     * on two threads the bench's `small` spent a quarter of its time in
+     * the tile jobs waiting for them.  So such a chunk, when its
+     * primitives mostly lie in one tile, is copied in tile order: the
+     * copy reads the records in the order they were written, and each
+     * tile job reads its own one after the other (small 90 -> 80 ms on
+     * two threads).  A primitive is copied once per tile it covers, hence
+     * "mostly in one tile".  On one thread, where the records were
+     * written with plain stores, the copy measured level: it would only
+     * double the records' memory. */
     c->in_tile_order = streamed && c->scattered && total <= c->tri_count + c->tri_count / 4 &&
                        total <= SIZE_MAX / tri_size &&
                        sr__chunk_reserve_ordered(ctx, c, total * tri_size);
