@@ -93,84 +93,69 @@ bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t ti
     return true;
 }
 
-/* The tile boxes keep room for every record the store can hold, so a
- * store with room needs no second check. */
-static bool reserve_boxes(sr_context *ctx, sr_chunk *c, size_t records)
+/* Make room for `need` elements of `size` bytes in the store `old` of
+ * capacity *cap elements: *out is `old` when it has room, else a larger
+ * block (grow) holding old's first keep_bytes, and old is freed.  false,
+ * with `old` and *cap untouched, when the block cannot be had. */
+static bool grow_store(sr_context *ctx, void *old, size_t *cap, size_t need, size_t size,
+                       size_t keep_bytes, void **out)
 {
-    if (records <= c->box_cap) {
+    *out = old;
+    if (need <= *cap) {
         return true;
     }
-    size_t cap = grow(c->box_cap, records), bytes;
-    if (__builtin_mul_overflow(cap, sizeof(uint32_t), &bytes)) {
+    size_t n = grow(*cap, need), bytes;
+    if (__builtin_mul_overflow(n, size, &bytes)) {
         return false;
     }
-    uint32_t *b = sr__alloc_large(ctx, bytes);
-    if (!b) {
+    void *p = sr__alloc_large(ctx, bytes);
+    if (!p) {
         return false;
     }
-    if (c->tri_count) {
-        memcpy(b, c->tile_box, (size_t)c->tri_count * sizeof(uint32_t));
+    if (keep_bytes) {
+        memcpy(p, old, keep_bytes);
     }
-    sr__free(ctx, c->tile_box);
-    c->tile_box = b;
-    c->box_cap = cap;
+    sr__free(ctx, old);
+    *cap = n;
+    *out = p;
     return true;
 }
 
 bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size)
 {
     size_t need;
-    if (__builtin_mul_overflow(records, size, &need)) {
+    void *p;
+    if (__builtin_mul_overflow(records, size, &need) ||
+        !grow_store(ctx, c->tris, &c->tri_bytes, need, 1, (size_t)c->tri_count * size, &p)) {
         return false;
     }
-    if (need > c->tri_bytes) {
-        size_t bytes = grow(c->tri_bytes, need);
-        uint8_t *t = sr__alloc_large(ctx, bytes);
-        if (!t) {
-            return false;
-        }
-        if (c->tri_count) {
-            memcpy(t, c->tris, (size_t)c->tri_count * size);
-        }
-        sr__free(ctx, c->tris);
-        c->tris = t;
-        c->tri_bytes = bytes;
+    c->tris = p;
+    /* The tile boxes keep room for every record the store can hold, so a
+     * store with room needs no second check. */
+    if (!grow_store(ctx, c->tile_box, &c->box_cap, c->tri_bytes / size, sizeof *c->tile_box,
+                    (size_t)c->tri_count * sizeof *c->tile_box, &p)) {
+        return false;
     }
-    return reserve_boxes(ctx, c, c->tri_bytes / size);
+    c->tile_box = p;
+    return true;
 }
 
 bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs)
 {
-    if (refs <= c->ref_cap) {
-        return true;
-    }
-    size_t cap = grow(c->ref_cap, refs);
-    size_t bytes;
-    if (__builtin_mul_overflow(cap, sizeof(uint32_t), &bytes)) {
+    void *p;
+    if (!grow_store(ctx, c->refs, &c->ref_cap, refs, sizeof *c->refs, 0, &p)) {
         return false;
     }
-    uint32_t *r = sr__alloc_large(ctx, bytes);
-    if (!r) {
-        return false;
-    }
-    sr__free(ctx, c->refs);
-    c->refs = r;
-    c->ref_cap = cap;
+    c->refs = p;
     return true;
 }
 
 bool sr__chunk_reserve_ordered(sr_context *ctx, sr_chunk *c, size_t bytes)
 {
-    if (bytes <= c->ordered_bytes) {
-        return true;
-    }
-    size_t cap = grow(c->ordered_bytes, bytes);
-    uint8_t *o = sr__alloc_large(ctx, cap);
-    if (!o) {
+    void *p;
+    if (!grow_store(ctx, c->ordered, &c->ordered_bytes, bytes, 1, 0, &p)) {
         return false;
     }
-    sr__free(ctx, c->ordered);
-    c->ordered = o;
-    c->ordered_bytes = cap;
+    c->ordered = p;
     return true;
 }
