@@ -19,7 +19,6 @@
 #include "raster/sample_walk.h"
 
 #include <stdlib.h>
-#include <string.h>
 
 /* Shade at the pixel centre from its unbiased edge values u[]. */
 static void shade_centre(const sr_draw_state *ds, const sr_tri *t, const int64_t u[3], float c[4])
@@ -99,9 +98,9 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     }
     generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } },
                         { 0 } };
-    sr_edges ed;
-    sr__tri_edges(t, &ed);
-    memcpy(g.bias, ed.bias, sizeof g.bias);
+    for (int i = 0; i < 3; i++) {
+        g.bias[i] = sr__tri_bias(t, i);
+    }
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
             g.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];
