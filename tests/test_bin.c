@@ -145,6 +145,31 @@ SR_TEST(scattered_streamed_chunks_are_copied_in_tile_order)
     CHECK(!f.in_tile_order);
 }
 
+/* sr__stream_record writes exactly the record's bytes, whatever the
+ * destination's alignment (16-byte streaming stores where it allows them,
+ * memcpy elsewhere) and the record's size. */
+SR_TEST(stream_record_copies_exactly_the_record)
+{
+    enum { MAX = 256, PAD = 64 };
+    static _Alignas(64) uint8_t src[MAX], dst[PAD + MAX + PAD];
+    for (int i = 0; i < MAX; i++) {
+        src[i] = (uint8_t)(i * 7 + 1);
+    }
+    for (size_t size = 16; size <= MAX; size += 16) {
+        for (size_t at = PAD - 16; at <= PAD + 16; at += 4) {
+            memset(dst, 0xee, sizeof dst);
+            sr__stream_record(dst + at, src, size);
+            sr__stream_fence();
+            CHECK(memcmp(dst + at, src, size) == 0);
+            for (size_t k = 0; k < sizeof dst; k++) {
+                if (k < at || k >= at + size) {
+                    CHECK_EQ(dst[k], 0xee);
+                }
+            }
+        }
+    }
+}
+
 /* Two tiles far apart: primitive i goes to the other one than i - 1
  * (a far jump) unless i is a multiple of 4 other than `extra`. */
 static void alternate(uint32_t *boxes, int n, int extra)
