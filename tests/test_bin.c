@@ -4,7 +4,8 @@
  * prefetch pixels - when most primitives start over a tile away from the
  * one before, and only then; a scattered chunk of records streamed out to
  * memory is copied in tile order when its primitives lie mostly in one
- * tile. */
+ * tile; and the streaming copy of a record (scratch.h) writes exactly its
+ * bytes. */
 #include "sr_test.h"
 #include "context.h"
 #include "parallel/bin.h"
