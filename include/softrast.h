@@ -55,7 +55,7 @@
  *
  * Threads: a context and the framebuffers drawn with it are used by one
  * thread at a time.  Internally the front end works on chunks of
- * primitives and the back end on 64x64 screen tiles; sr_context_desc.threads
+ * primitives and the back end on 128x128 screen tiles; sr_context_desc.threads
  * sets how many threads share that work.  The output is the same bytes for
  * any thread count, and for any of the three triangle rasterizers.
  *

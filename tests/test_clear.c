@@ -7,11 +7,13 @@
 #include "sr_test.h"
 #include "softrast.h"
 #include "target/framebuffer.h"
+#include "raster/fixed.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-enum { W = 150, H = 140 }; /* 3 x 3 tiles, the last column and row partial */
+/* 3 x 3 tiles, the last column and row partial. */
+enum { W = 2 * SR_TILE_SIZE + 22, H = 2 * SR_TILE_SIZE + 12 };
 
 static int pending_color_tiles(const sr_framebuffer *fb)
 {

@@ -5,6 +5,7 @@
  * Either way nothing leaks and the context's next draw is exact. */
 #include "sr_test.h"
 #include "softrast.h"
+#include "raster/fixed.h"
 
 #include <stdatomic.h>
 #include <stdio.h>
@@ -43,7 +44,9 @@ static void mt_free(void *ptr, void *user)
     }
 }
 
-enum { W = 640, H = 360, N = 6000 };
+/* 10 x 6 tiles: two random primitives in a row mostly start over a tile
+ * apart, which makes a chunk scattered (parallel/bin.c). */
+enum { W = 10 * SR_TILE_SIZE, H = 6 * SR_TILE_SIZE, N = 6000 };
 
 /* Tiny triangles all over the image, in random order and depth: their
  * chunks are scattered and mostly in one tile, so two threads copy them

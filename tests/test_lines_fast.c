@@ -8,7 +8,7 @@
 #include "raster_util.h"
 #include "line_ref.h"
 
-enum { FW = 512, FH = 256 }; /* 8 x 4 tiles of 64 x 64 */
+enum { FW = 512, FH = 256 }; /* 4 x 2 tiles of 128 x 128 (SR_TILE_SIZE) */
 
 static const sr_blend blend_replace = {
     .enabled = true, .src_rgb = SR_BLEND_ONE, .dst_rgb = SR_BLEND_ZERO,

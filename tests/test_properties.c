@@ -1284,7 +1284,9 @@ SR_TEST(batch_size_changes_no_byte)
  * and 3 threads. */
 SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
 {
-    enum { W = 640, H = 360, N = 6000 };
+    /* 10 x 6 tiles: two random primitives in a row mostly start over a
+     * tile apart, which makes a chunk scattered (parallel/bin.c). */
+    enum { W = 10 * SR_TILE_SIZE, H = 6 * SR_TILE_SIZE, N = 6000 };
     float *pos = malloc(sizeof(float) * 9 * N), *col = malloc(sizeof(float) * 12 * N);
     REQUIRE(pos && col);
     sr_rng rng = { 0x711e };

@@ -178,7 +178,7 @@ static inline const sr_prim_head *binned(const sr_chunk *c, uint32_t r, size_t s
 #define SR_PIXEL_PREFETCH_AHEAD 2
 #define SR_PIXEL_PREFETCH_MAX   8
 
-/* A tile's color and depth (32 KiB) do not fit in L1 beside the records
+/* A tile's color and depth (128 KiB) do not fit in L1 beside the records
  * streaming through, and small triangles scattered over the tile (the
  * bench's `small`) stall on every one's depth load: on 1 thread a quarter
  * of the kernel's time.  So in a scattered chunk (sr__bin_chunk) the lines

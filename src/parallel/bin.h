@@ -1,4 +1,4 @@
-/* bin.h - binning set-up triangles into 64x64 screen tiles and the back
+/* bin.h - binning set-up triangles into 128x128 screen tiles and the back
  * end's tile jobs (parallel stage).  Each front-end chunk sorts its own
  * triangles into per-tile bins (a counting sort, so a bin keeps submission
  * order); a tile job then walks the chunks in order.  A tile's pixels
