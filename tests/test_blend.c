@@ -3,6 +3,7 @@
  * points), and order-dependent blending that stays the same bytes for any
  * thread count. */
 #include "raster_util.h"
+#include "raster/fixed.h"
 
 static const float SRC[4] = { 0.8f, 0.4f, 0.2f, 0.6f };
 static const float DST[4] = { 0.2f, 0.5f, 0.9f, 0.3f };
@@ -148,15 +149,15 @@ SR_TEST(blending_is_the_same_bytes_for_any_thread_count)
     static float col[N * 12];
     sr_rng rng = { 0xb1e };
     for (int i = 0; i < N * 3; i++) {
-        xy[i * 2] = sr_rng_range(&rng, -10, 138);
-        xy[i * 2 + 1] = sr_rng_range(&rng, -10, 138);
+        xy[i * 2] = sr_rng_range(&rng, -10, 2 * SR_TILE_SIZE + 10);
+        xy[i * 2 + 1] = sr_rng_range(&rng, -10, 2 * SR_TILE_SIZE + 10);
         for (int c = 0; c < 4; c++) {
             col[i * 4 + c] = (float)sr_rng_unit(&rng);
         }
     }
     uint8_t *first = NULL;
     for (int threads = 1; threads <= 4; threads += 3) {
-        rt_target t = rt_make(128, 128, threads);
+        rt_target t = rt_make(2 * SR_TILE_SIZE, 2 * SR_TILE_SIZE, threads); /* 2 x 2 tiles */
         rt_clear(&t);
         float *pos = malloc(sizeof(float) * 9 * N);
         for (int i = 0; i < N * 3; i++) {

@@ -6,9 +6,10 @@
  * closed form of the diamond-exit rule (RASTER_RULES 6.2), across tile
  * borders and at 1, 2 and 3 threads. */
 #include "raster_util.h"
+#include "raster/fixed.h"
 #include "line_ref.h"
 
-enum { FW = 512, FH = 256 }; /* 4 x 2 tiles of 128 x 128 (SR_TILE_SIZE) */
+enum { FW = 8 * SR_TILE_SIZE, FH = 4 * SR_TILE_SIZE }; /* 8 x 4 tiles */
 
 static const sr_blend blend_replace = {
     .enabled = true, .src_rgb = SR_BLEND_ONE, .dst_rgb = SR_BLEND_ZERO,
@@ -256,8 +257,8 @@ static void random_segment(sr_rng *rng, double xy[4])
     }
     if (kind == 1) {
         /* Move the short segment onto a tile corner. */
-        double cx = 64 * sr_rng_int(rng, 1, FW / 64 - 1) - xy[0] + q8r(rng, -2, 2);
-        double cy = 64 * sr_rng_int(rng, 1, FH / 64 - 1) - xy[1] + q8r(rng, -2, 2);
+        double cx = SR_TILE_SIZE * sr_rng_int(rng, 1, FW / SR_TILE_SIZE - 1) - xy[0] + q8r(rng, -2, 2);
+        double cy = SR_TILE_SIZE * sr_rng_int(rng, 1, FH / SR_TILE_SIZE - 1) - xy[1] + q8r(rng, -2, 2);
         for (int k = 0; k < 2; k++) {
             xy[k * 2] += cx;
             xy[k * 2 + 1] += cy;

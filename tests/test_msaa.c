@@ -5,6 +5,7 @@
  * one sample gives the fast path's bytes. */
 #include "raster_util.h"
 #include "target/framebuffer.h"
+#include "raster/fixed.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -263,7 +264,7 @@ SR_TEST(resolve_is_the_rounded_box_average)
  * a framebuffer like any other: read out, drawn on, resolved into again. */
 SR_TEST(resolve_of_undrawn_tiles_is_the_sources_clear_color)
 {
-    enum { W = 150, H = 70 }; /* 3 x 2 tiles, the last ones partial */
+    enum { W = 2 * SR_TILE_SIZE + 22, H = SR_TILE_SIZE + 6 }; /* 3 x 2 tiles, the last ones partial */
     sr_context *ctx;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
     sr_framebuffer *ms = make_ms(ctx, W, H, 4, SR_DEPTH_NONE), *out = NULL;
@@ -473,7 +474,7 @@ SR_TEST(alpha_to_coverage_keeps_that_share_of_the_samples)
 /* The same multisampled, blended scene on 1, 2, 3 and 8 threads. */
 SR_TEST(multisampled_blending_is_deterministic_across_threads)
 {
-    enum { W = 200, H = 150, T = 3000 };
+    enum { W = 3 * SR_TILE_SIZE + 8, H = 2 * SR_TILE_SIZE + 22, T = 3000 }; /* 4 x 3 tiles */
     sr_rng rng = { 1234 };
     float *pos = malloc(sizeof(float) * 9 * T), *col = malloc(sizeof(float) * 12 * T);
     for (int i = 0; i < 3 * T; i++) {

@@ -44,7 +44,8 @@
 #define PROP_SCALE 1
 #endif
 
-enum { FB = 256 };     /* power of two: window <-> NDC is exact in float */
+/* 2 x 2 tiles; a power of two, so window <-> NDC is exact in float. */
+enum { FB = 2 * SR_TILE_SIZE };
 
 /* ---- meshes in window space (q8 integers) ------------------------------- */
 
@@ -888,7 +889,7 @@ static const uint32_t *raw_depth(sr_framebuffer *fb)
 
 SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasterizer)
 {
-    enum { W = 150, H = 110 }; /* not a multiple of the tile size */
+    enum { W = 2 * SR_TILE_SIZE + 22, H = SR_TILE_SIZE + 46 }; /* 3 x 2 tiles, the last ones partial */
     static const int threads[] = { 1, 2, 3, 8 };
     static const sr_depth_format formats[] = { SR_DEPTH_D16, SR_DEPTH_D24, SR_DEPTH_D32,
                                                SR_DEPTH_D32F };
@@ -1226,7 +1227,7 @@ SR_TEST(textured_vector_kernel_gives_the_scalar_loops_bytes)
  * batches of 1,024 and of the default size, on 1 and 3 threads. */
 SR_TEST(batch_size_changes_no_byte)
 {
-    enum { W = 160, H = 120, N = 5000 };
+    enum { W = 2 * SR_TILE_SIZE + 32, H = SR_TILE_SIZE + 56, N = 5000 }; /* 3 x 2 tiles */
     float *pos = malloc(sizeof(float) * 9 * N), *col = malloc(sizeof(float) * 12 * N);
     sr_rng rng = { 0xba7c };
     for (int i = 0; i < 3 * N; i++) {

@@ -3,6 +3,7 @@
  * edge walking, barycentric bounding box) against an independent
  * reference and against each other.  Fixed seeds throughout. */
 #include "raster_util.h"
+#include "raster/fixed.h"
 
 static const sr_rasterizer all_rasterizers[] = {
     SR_RASTER_HALFSPACE, SR_RASTER_SCANLINE, SR_RASTER_BARYCENTRIC
@@ -228,7 +229,7 @@ SR_TEST(rasterizers_match_the_reference_on_random_triangles)
  * colors too (same samples, same barycentrics), and so do 1 and 3 threads. */
 SR_TEST(rasterizers_and_thread_counts_give_identical_bytes)
 {
-    enum { N = 400, W = 256, H = 128 };
+    enum { N = 400, W = 4 * SR_TILE_SIZE, H = 2 * SR_TILE_SIZE }; /* 4 x 2 tiles */
     double *xy = malloc(sizeof(double) * 6 * N);
     float *col = malloc(sizeof(float) * 12 * N);
     sr_rng rng = { 0xc0102 };
