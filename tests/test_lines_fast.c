@@ -257,8 +257,9 @@ static void random_segment(sr_rng *rng, double xy[4])
     }
     if (kind == 1) {
         /* Move the short segment onto a tile corner. */
-        double cx = SR_TILE_SIZE * sr_rng_int(rng, 1, FW / SR_TILE_SIZE - 1) - xy[0] + q8r(rng, -2, 2);
-        double cy = SR_TILE_SIZE * sr_rng_int(rng, 1, FH / SR_TILE_SIZE - 1) - xy[1] + q8r(rng, -2, 2);
+        enum { T = SR_TILE_SIZE };
+        double cx = T * sr_rng_int(rng, 1, FW / T - 1) - xy[0] + q8r(rng, -2, 2);
+        double cy = T * sr_rng_int(rng, 1, FH / T - 1) - xy[1] + q8r(rng, -2, 2);
         for (int k = 0; k < 2; k++) {
             xy[k * 2] += cx;
             xy[k * 2 + 1] += cy;

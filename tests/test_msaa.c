@@ -264,7 +264,8 @@ SR_TEST(resolve_is_the_rounded_box_average)
  * a framebuffer like any other: read out, drawn on, resolved into again. */
 SR_TEST(resolve_of_undrawn_tiles_is_the_sources_clear_color)
 {
-    enum { W = 2 * SR_TILE_SIZE + 22, H = SR_TILE_SIZE + 6 }; /* 3 x 2 tiles, the last ones partial */
+    /* 3 x 2 tiles, the last ones partial. */
+    enum { W = 2 * SR_TILE_SIZE + 22, H = SR_TILE_SIZE + 6 };
     sr_context *ctx;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
     sr_framebuffer *ms = make_ms(ctx, W, H, 4, SR_DEPTH_NONE), *out = NULL;

@@ -889,7 +889,8 @@ static const uint32_t *raw_depth(sr_framebuffer *fb)
 
 SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasterizer)
 {
-    enum { W = 2 * SR_TILE_SIZE + 22, H = SR_TILE_SIZE + 46 }; /* 3 x 2 tiles, the last ones partial */
+    /* 3 x 2 tiles, the last ones partial. */
+    enum { W = 2 * SR_TILE_SIZE + 22, H = SR_TILE_SIZE + 46 };
     static const int threads[] = { 1, 2, 3, 8 };
     static const sr_depth_format formats[] = { SR_DEPTH_D16, SR_DEPTH_D24, SR_DEPTH_D32,
                                                SR_DEPTH_D32F };

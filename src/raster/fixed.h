@@ -21,7 +21,9 @@
 /* 128 x 128 pixel tiles: a tile's color and depth (128 KiB) stay in the
  * L2 cache while it is drawn, and against 64 x 64 ones fewer primitives
  * are drawn in two tiles or more and each tile's runs of records are
- * longer.  Measured faster in every bench scene (docs/performance.md). */
+ * longer.  Measured faster in every bench scene but msaa4, whose 4-sample
+ * tiles are 512 KiB: level alone, slower beside llvmpipe
+ * (docs/performance.md). */
 #define SR_TILE_ORDER 7
 #define SR_TILE_SIZE  (1 << SR_TILE_ORDER)
 #define SR_BLOCK_ORDER 3                         /* 8 x 8 blocks inside a tile */

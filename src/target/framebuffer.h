@@ -9,9 +9,9 @@
 #include "softrast.h"
 
 /* A clear does not touch memory: it records the value and marks every
- * tile (SR_TILE_SIZE square) pending.  The thread that next rasterizes a tile clears it
- * first, while the tile is about to be in its cache anyway; reading pixels
- * out resolves the tiles nobody drew. */
+ * tile (SR_TILE_SIZE square) pending.  The thread that next rasterizes a
+ * tile clears it first, while the tile is about to be in its cache
+ * anyway; reading pixels out resolves the tiles nobody drew. */
 #define SR_TILE_PENDING_COLOR 1u
 #define SR_TILE_PENDING_DEPTH 2u
 #define SR_TILE_PENDING_STENCIL 4u
