@@ -48,6 +48,8 @@ typedef struct sr_chunk {
     uint32_t *bin_start;       /* tile_cap + 1 */
     bool scattered;            /* few neighbours share a tile (sr__bin_chunk) */
     bool in_tile_order;        /* the tile jobs read ordered[], not refs[] */
+    /* This batch's records went out by streaming stores (run_front_end). */
+    bool stream;
     uint8_t *ordered;
     size_t ordered_bytes;      /* capacity of ordered */
     sr_draw_info info;

@@ -19,7 +19,9 @@
  *    (cull FRONT) cover the same pixels the same number of times.
  *  - Determinism: random scenes of triangles, lines and points in several
  *    shading and polygon modes with polygon offset give the same color and
- *    depth bytes with 1, 2, 3 and 8 threads and with every rasterizer.
+ *    depth bytes with 1, 2, 3 and 8 threads and with every rasterizer;
+ *    chunks copied in tile order, and those set up with plain stores
+ *    after such a copy, give the bytes of one thread.
  *  - Translation invariance: moving the viewport by whole pixels moves the
  *    image exactly (color and depth).
  *
@@ -1277,6 +1279,36 @@ SR_TEST(batch_size_changes_no_byte)
     free(col);
 }
 
+/* Tiny triangles, n of them from `first` on, with random colors and depth:
+ * a corner in a random place and the other vertices within about 4
+ * pixels of it, or (`walk`) the corners one beside the other along the
+ * rows of a w x h framebuffer, the way a mesh's triangles follow each
+ * other. */
+static void tiny_triangles(sr_rng *rng, int first, int n, bool walk, int w, int h, float *pos,
+                           float *col)
+{
+    for (int i = first; i < first + n; i++) {
+        double cx, cy;
+        if (walk) {
+            int per_row = w / 5;
+            cx = -1.0 + (2.0 * (i % per_row) + 1.0) * 5.0 / w;
+            cy = 1.0 - (2.0 * ((i / per_row) % (h / 5)) + 1.0) * 5.0 / h;
+        } else {
+            cx = sr_rng_range(rng, -1.05, 1.05);
+            cy = sr_rng_range(rng, -1.05, 1.05);
+        }
+        for (int v = 0; v < 3; v++) {
+            float *p = &pos[(i * 3 + v) * 3];
+            p[0] = (float)(cx + (v ? sr_rng_range(rng, -8.0 / w, 8.0 / w) : 0));
+            p[1] = (float)(cy + (v ? sr_rng_range(rng, -8.0 / h, 8.0 / h) : 0));
+            p[2] = (float)sr_rng_range(rng, -0.9, 0.9);
+            for (int c = 0; c < 4; c++) {
+                col[(i * 3 + v) * 4 + c] = (float)sr_rng_unit(rng);
+            }
+        }
+    }
+}
+
 /* Tiny primitives scattered over many tiles: on more than one thread
  * their chunks are copied in tile order (parallel/bin.c), which must give
  * the bytes of numbered bins - those of one draw per primitive, whose
@@ -1292,19 +1324,7 @@ SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
     float *pos = malloc(sizeof(float) * 9 * N), *col = malloc(sizeof(float) * 12 * N);
     REQUIRE(pos && col);
     sr_rng rng = { 0x711e };
-    for (int i = 0; i < N; i++) {
-        /* A corner anywhere, the other vertices within about 4 pixels. */
-        double cx = sr_rng_range(&rng, -1.05, 1.05), cy = sr_rng_range(&rng, -1.05, 1.05);
-        for (int v = 0; v < 3; v++) {
-            float *p = &pos[(i * 3 + v) * 3];
-            p[0] = (float)(cx + (v ? sr_rng_range(&rng, -8.0 / W, 8.0 / W) : 0));
-            p[1] = (float)(cy + (v ? sr_rng_range(&rng, -8.0 / H, 8.0 / H) : 0));
-            p[2] = (float)sr_rng_range(&rng, -0.9, 0.9);
-            for (int c = 0; c < 4; c++) {
-                col[(i * 3 + v) * 4 + c] = (float)sr_rng_unit(&rng);
-            }
-        }
-    }
+    tiny_triangles(&rng, 0, N, false, W, H, pos, col);
     /* Points at the corners, lines from each corner to a vertex near it:
      * consecutive primitives lie apart, as consecutive triangles do. */
     uint32_t *idx = malloc(sizeof(uint32_t) * 2 * N);
@@ -1388,6 +1408,70 @@ SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
     free(idx);
     free(corners);
     free(first);
+    free(pos);
+    free(col);
+}
+
+/* A chunk copied in tile order sets its next batch up with plain stores
+ * (draw.c, run_front_end), guessing that it will be copied again.  When
+ * the guess is wrong - scattered triangles, then a mesh-like draw that is
+ * binned by numbers - the tile jobs read the records from the writer's
+ * cache.  Either way the bytes must be one thread's: scattered, walked,
+ * scattered again, on 2 and 3 threads against 1, depth-tested. */
+SR_TEST(plain_stores_after_a_copied_batch_give_one_threads_bytes)
+{
+    enum { W = 10 * SR_TILE_SIZE, H = 6 * SR_TILE_SIZE, N = 6000 };
+    float *pos = malloc(sizeof(float) * 9 * 3 * N), *col = malloc(sizeof(float) * 12 * 3 * N);
+    uint8_t *c0 = malloc(W * H * 4);
+    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H);
+    REQUIRE(pos && col && c0 && d0);
+    sr_rng rng = { 0x9a1e };
+    tiny_triangles(&rng, 0, N, false, W, H, pos, col);
+    tiny_triangles(&rng, N, N, true, W, H, pos, col);
+    tiny_triangles(&rng, 2 * N, N, false, W, H, pos, col);
+    static const int threads[] = { 1, 2, 3 };
+    for (int v = 0; v < 3; v++) {
+        sr_context *ctx;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[v] }, &ctx) == SR_OK);
+        sr_framebuffer *fb;
+        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H },
+                                    &fb) == SR_OK);
+        sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = 1 });
+        sr_state st = { .shading = SR_SHADING_UNLIT, .depth_func = SR_LESS };
+        /* Per draw, whether a chunk was copied in tile order, and whether
+         * one set its records up with plain stores and was not copied. */
+        bool copied[3] = { false }, guessed_wrong[3] = { false };
+        for (int k = 0; k < 3; k++) {
+            sr_draw_desc d = { .primitive = SR_PRIM_TRIANGLES, .positions = pos + 9 * k * N,
+                               .colors = col + 12 * k * N, .vertex_count = 3 * N };
+            CHECK_EQ(sr_draw(ctx, fb, &st, &d), SR_OK);
+            for (int ci = 0; ci < SR_MAX_CHUNKS; ci++) {
+                const sr_chunk *c = &ctx->scratch->chunks[ci];
+                copied[k] |= c->in_tile_order;
+                guessed_wrong[k] |= c->tri_count > 0 && !c->stream && !c->in_tile_order;
+            }
+        }
+        const uint32_t *d = raw_depth(fb);
+        if (v == 0) {
+            CHECK(!copied[0] && !copied[2]);
+            memcpy(c0, sr_framebuffer_pixels(fb), W * H * 4);
+            memcpy(d0, d, sizeof(uint32_t) * W * H);
+        } else {
+            /* The paths this test is for were taken: the scattered draws
+             * were copied, and the walk after the first was set up with
+             * plain stores but binned by numbers. */
+            CHECK(copied[0] && !copied[1] && copied[2]);
+            CHECK(guessed_wrong[1]);
+            if (memcmp(c0, sr_framebuffer_pixels(fb), W * H * 4) != 0 ||
+                memcmp(d0, d, sizeof(uint32_t) * W * H) != 0) {
+                sr_test_fail(__FILE__, __LINE__, "%d threads differ from 1 thread", threads[v]);
+            }
+        }
+        sr_destroy_framebuffer(ctx, fb);
+        sr_destroy_context(ctx);
+    }
+    free(c0);
+    free(d0);
     free(pos);
     free(col);
 }

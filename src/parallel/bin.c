@@ -67,7 +67,7 @@ static size_t bin_line(const sr_draw_state *ds, const sr_line *l, uint32_t *star
 }
 
 bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t tri_size,
-                   bool streamed)
+                   bool shared)
 {
     size_t tiles = (size_t)ds->tiles_x * ds->tiles_y;
     uint32_t *start = c->bin_start;
@@ -108,18 +108,18 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
      * before; in the meshes (the bunny's order jumps about too) 2-51%. */
     c->scattered = far > c->tri_count / 4 * 3;
     /* A tile job reads its records in submission order, each from a
-     * different place in the chunk.  Streamed out to memory (more than
-     * one thread), a scattered chunk's records arrive one miss at a time:
-     * on two threads the bench's `small` spent a quarter of its time in
-     * the tile jobs waiting for them.  So such a chunk, when its
-     * primitives mostly lie in one tile, is copied in tile order: the
-     * copy reads the records in the order they were written, and each
-     * tile job reads its own one after the other (small 90 -> 80 ms on
-     * two threads).  A primitive is copied once per tile it covers, hence
-     * "mostly in one tile".  On one thread, where the records were
-     * written with plain stores, the copy measured level: it would only
-     * double the records' memory. */
-    c->in_tile_order = streamed && c->scattered && total <= c->tri_count + c->tri_count / 4 &&
+     * different place in the chunk.  Streamed out to memory, or in
+     * another core's cache (more than one thread), a scattered chunk's
+     * records arrive one miss at a time: on two threads the bench's
+     * `small` spent a quarter of its time in the tile jobs waiting for
+     * them.  So such a chunk, when its primitives mostly lie in one tile,
+     * is copied in tile order: the copy reads the records in the order
+     * they were written, and each tile job reads its own one after the
+     * other (small 90 -> 80 ms on two threads).  A primitive is copied
+     * once per tile it covers, hence "mostly in one tile".  On one
+     * thread, where the records are in this core's cache, the copy
+     * measured level: it would only double the records' memory. */
+    c->in_tile_order = shared && c->scattered && total <= c->tri_count + c->tri_count / 4 &&
                        total <= SIZE_MAX / tri_size &&
                        sr__chunk_reserve_ordered(ctx, c, total * tri_size);
     if (total > UINT32_MAX || (!c->in_tile_order && !sr__chunk_reserve_refs(ctx, c, total))) {
@@ -234,7 +234,8 @@ draw_bin(const tile_job *tj, const sr_chunk *c, uint32_t tile, tile_rect b, sr_f
     uint32_t end = c->bin_start[tile + 1];
     for (uint32_t r = c->bin_start[tile]; r < end; r++) {
         /* A tile's records lie scattered through the chunk, and on more
-         * than one thread they were streamed out to memory (scratch.h):
+         * than one thread they were streamed out to memory (scratch.h) or
+         * sit in another core's cache:
          * fetch the whole record a few refs ahead while this one is
          * drawn.  In tile order they lie one after the other, and the
          * hardware's prefetcher helps too. */

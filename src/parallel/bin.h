@@ -26,12 +26,12 @@ static inline uint32_t sr__tile_box(const sr_prim_head *p)
     return tx0 | tx1 << 8 | ty0 << 16 | ty1 << 24;
 }
 
-/* Sort chunk c's triangles into its bins (front-end worker); `streamed`:
- * its records went out to memory by streaming stores (scratch.h), which
- * lets a scattered chunk be copied in tile order.  false when the refs
- * array could not grow. */
+/* Sort chunk c's triangles into its bins (front-end worker); `shared`:
+ * more than one thread draws, so the tile jobs read its records on every
+ * core, which lets a scattered chunk be copied in tile order.  false when
+ * the refs array could not grow. */
 bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t tri_size,
-                   bool streamed);
+                   bool shared);
 
 /* Rasterize every tile that the first `chunks` chunks touched. */
 void sr__bin_rasterize(sr_context *ctx, const sr_draw_state *ds, int chunks, size_t tri_size);
