@@ -81,13 +81,15 @@ bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs);
 bool sr__chunk_reserve_ordered(sr_context *ctx, sr_chunk *c, size_t bytes);
 
 /* Copy a record set up on the stack to its place in the chunk with
- * non-temporal stores, when more than one thread draws.  The tile jobs of
- * the last batch read the chunk's records on every core; a plain store to
- * such a line must first take it back from the other core's cache, which
- * on the development VM doubled the front end's time on two threads (a
- * prefetch for writing did not help).  A streaming store claims the line
- * without reading it.  `size` is a multiple of 16; a destination that is
- * not 16-byte aligned (a caller's allocator) takes memcpy. */
+ * non-temporal stores, when more than one thread draws (but for a chunk
+ * copied in tile order the batch before: draw.c, run_front_end).  The
+ * tile jobs of the last batch read the chunk's records on every core; a
+ * plain store to such a line must first take it back from the other
+ * core's cache, which on the development VM doubled the front end's time
+ * on two threads (a prefetch for writing did not help).  A streaming
+ * store claims the line without reading it.  `size` is a multiple of 16;
+ * a destination that is not 16-byte aligned (a caller's allocator) takes
+ * memcpy. */
 static inline void sr__stream_record(void *dst, const void *src, size_t size)
 {
 #if defined(__SSE2__)

@@ -117,8 +117,9 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
      * they were written, and each tile job reads its own one after the
      * other (small 90 -> 80 ms on two threads).  A primitive is copied
      * once per tile it covers, hence "mostly in one tile".  On one
-     * thread, where the records are in this core's cache, the copy
-     * measured level: it would only double the records' memory. */
+     * thread, where the core that reads the records wrote them with plain
+     * stores, the copy measured level: it would only double the records'
+     * memory. */
     c->in_tile_order = shared && c->scattered && total <= c->tri_count + c->tri_count / 4 &&
                        total <= SIZE_MAX / tri_size &&
                        sr__chunk_reserve_ordered(ctx, c, total * tri_size);
