@@ -27,10 +27,6 @@
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 
-/* The inlined helpers pass 64-byte vectors; GCC notes the ABI difference,
- * which cannot matter for inlined statics. */
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 #define SR_WIDE __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl")))
 #define SR_WIDE_INLINE static inline __attribute__((always_inline)) SR_WIDE
 

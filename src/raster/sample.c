@@ -114,9 +114,6 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
     (defined(__x86_64__) || defined(__i386__))
 #define SR_HAVE_SAMPLE_KERNEL 1
-/* The baseline copy passes 32-byte vectors between inlined helpers; GCC
- * notes the ABI difference, which cannot matter for inlined statics. */
-#pragma GCC diagnostic ignored "-Wpsabi"
 typedef double v4d __attribute__((vector_size(32)));
 typedef int64_t v4l __attribute__((vector_size(32)));
 typedef int32_t v4i __attribute__((vector_size(16)));

@@ -12,10 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The baseline copy passes 32-byte vectors between inlined helpers; GCC
- * notes the ABI difference, which cannot matter for inlined statics. */
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 typedef double v4d __attribute__((vector_size(32)));
 typedef int64_t v4l __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
