@@ -391,6 +391,48 @@ SR_TEST(view_screenshot_after_scripted_input_equals_render)
 #endif
 }
 
+/* A script's own screenshot then quit, with trailing comments as
+ * docs/viewer.md writes them: the quit waits for the screenshot's frame. */
+SR_TEST(script_screenshot_then_quit_writes_the_file)
+{
+    if (!in_path("xvfb-run")) {
+        SKIP("xvfb-run is not installed (Debian: xvfb xauth)");
+    }
+    if (viewer_built() != 1) {
+        SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
+    }
+#ifdef SR_CLI_PATH
+    const char *out = sr_test_out_dir();
+    char events[1100], shot[1100], text[2400];
+    snprintf(events, sizeof events, "%s/view-shot-quit.txt", out);
+    snprintf(shot, sizeof shot, "%s/view-shot#1.png", out);
+    remove(shot);
+    snprintf(text, sizeof text,
+             "# the built-in scene\n"
+             "wheel 2              # notches\n"
+             "screenshot %s   # the next frame, as PNG\n"
+             "quit\n", shot);
+    REQUIRE(write_text(events, text));
+    run_result r;
+    REQUIRE(run_view_xvfb((const char *[]){ "--size", "160x120", "--events", events, NULL }, &r));
+    CHECK_EQ(r.signal, 0);
+    CHECK_EQ(r.status, 0);
+    if (r.status != 0) {
+        FAILF("view: %s", r.err);
+    }
+    char wrote[1200];
+    snprintf(wrote, sizeof wrote, "wrote %s;", shot);
+    CHECK_STR_CONTAINS(r.out, wrote);
+    result_free(&r);
+    int w, h;
+    uint8_t *px = read_image(shot, &w, &h);
+    REQUIRE(px);
+    CHECK_EQ(w, 160);
+    CHECK_EQ(h, 120);
+    free(px);
+#endif
+}
+
 SR_TEST(view_resizes_logs_frames_and_reports_the_median)
 {
     char model[1024];

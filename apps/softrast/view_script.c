@@ -8,9 +8,10 @@
  *   resize W H                                   resize the window
  *   frames N                                     let N frames be drawn first
  *   screenshot FILE                              write the next frame as PNG
- *   quit
+ *   quit                                         (after a screenshot's frame)
  *
- * Blank lines and lines starting with # are ignored. */
+ * Blank lines are ignored, and so is a # at the start of a line or after
+ * a space or tab, with the rest of its line (a comment). */
 #ifdef SR_HAVE_VIEWER
 #include "cli.h"
 #include "view_sdl.h"
@@ -158,7 +159,13 @@ int view_script_load(const char *path, view_script **out)
         lineno++;
         line[strcspn(line, "\r\n")] = 0;
         char *p = line + strspn(line, " \t");
-        if (*p == 0 || *p == '#') {
+        for (char *q = p; *q; q++) {
+            if (*q == '#' && (q == p || q[-1] == ' ' || q[-1] == '\t')) {
+                *q = 0;   /* a comment: a file name may hold a # elsewhere */
+                break;
+            }
+        }
+        if (*p == 0) {
             continue;
         }
         if (s->count == cap) {
@@ -240,6 +247,7 @@ static void push_key(SDL_Window *win, SDL_Keycode key, Uint16 mod)
 
 int view_script_advance(view_script *s, SDL_Window *win, Uint32 screenshot_event)
 {
+    bool shot = false;     /* a screenshot asked for in this round */
     while (s->next < s->count) {
         command *c = &s->cmds[s->next++];
         switch (c->kind) {
@@ -263,6 +271,7 @@ int view_script_advance(view_script *s, SDL_Window *win, Uint32 screenshot_event
         case CMD_FRAMES:
             return c->a[0];
         case CMD_SCREENSHOT: {
+            shot = true;
             SDL_Event e = { .type = screenshot_event };
             e.user.data1 = strdup(c->path);
             if (e.user.data1) {
@@ -271,6 +280,12 @@ int view_script_advance(view_script *s, SDL_Window *win, Uint32 screenshot_event
             break;
         }
         case CMD_QUIT: {
+            if (shot) {
+                /* The screenshot is taken by the next frame, which a quit
+                 * handled now would never draw: quit after it. */
+                s->next--;
+                return 1;
+            }
             SDL_Event e = { .type = SDL_QUIT };
             SDL_PushEvent(&e);
             break;
