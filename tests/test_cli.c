@@ -563,6 +563,24 @@ static const option_case option_errors[] = {
     { "detail 0", { "--detail", "0" }, "--detail: expected a whole number from 1 to 64" },
     { "detail 1.5", { "--detail", "1.5" }, "--detail: expected a whole number" },
     { "two models", { "first.obj", "second.obj" }, "more than one model given ('first.obj' and 'second.obj')" },
+    /* sscanf's %d wrapped 4294967297 to 1 and took signs and spaces. */
+    { "size overflowing int", { "--size", "4294967297x10" }, "--size: expected WxH" },
+    { "size with signs", { "--size", "+10x+10" }, "--size: expected WxH" },
+    { "size with a space", { "--size", "10x 10" }, "--size: expected WxH" },
+    { "color with junk after", { "--background", "1,1,1junk" }, "--background: expected a color" },
+    { "color of four numbers", { "--background", "1,1,1,1" }, "--background: expected a color" },
+    { "color beyond float", { "--background", "1e39,0,0" }, "--background: expected a color" },
+    { "verbose with a value", { "--verbose=yes" }, "--verbose: takes no value" },
+    { "help with a value", { "--help=foo" }, "--help: takes no value" },
+    { "empty texture", { "--texture", "" }, "--texture: empty value" },
+    { "empty model name", { "" }, "the model's file name is empty" },
+    { "near beyond far", { "--near", "10", "--far", "1" }, "--near 10 must be less than --far 1" },
+    /* Both sr_camera_frame attempts failed here and the basis was read
+     * uninitialised. */
+    { "camera eye on target", { "--camera", "eye=1,2,3,target=1,2,3" },
+      "--camera: eye and target are the same point" },
+    { "camera beyond float", { "--camera", "eye=1e30,0,0" },
+      "--camera: the eye, the target or the model lies beyond the range" },
 };
 
 SR_TEST(bad_options_fail_with_one_line_naming_the_option)
@@ -574,6 +592,109 @@ SR_TEST(bad_options_fail_with_one_line_naming_the_option)
         expect_render_failure(option_errors[i].label, option_errors[i].args, 2,
                               option_errors[i].needle);
     }
+}
+
+/* Up along the gaze, then the fallback (0,0,-1) along it too: a third up
+ * is tried, and the triangle is drawn (the basis was uninitialised). */
+SR_TEST(camera_looking_along_both_ups_still_frames)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], model[1100], out[1100];
+    fresh_dir("camera", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/tri.obj", dir);
+    snprintf(out, sizeof out, "%s/tri.png", dir);
+    const char *tri = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+    REQUIRE(write_whole(model, tri, strlen(tri)));
+    const char *args[] = { "render", model, "--camera", "eye=0,0,5,target=0,0,0,up=0,0,1",
+                           "--size", "64x48", "--background", "black", "--shading", "unlit",
+                           "--material", "color=white", "-o", out, NULL };
+    CHECK_EQ(sr_test_run_cli(args), 0);
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    long lit = 0;
+    for (long i = 0; i < (long)w * h; i++) {
+        lit += px[4 * i] > 128;
+    }
+    CHECK(lit > 100);
+    free(px);
+#endif
+}
+
+/* Coordinates the readers accept but whose squares leave float's range:
+ * one line naming the file, not an internal message or a blank image. */
+SR_TEST(models_beyond_the_framing_range_are_refused_by_name)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    const char *cases[][2] = {
+        { "huge.obj", "v 0 0 0\nv 1e19 0 0\nv 0 1e19 0\nf 1 2 3\n" },
+        { "tiny.obj", "v 0 0 0\nv 1e-25 0 0\nv 0 1e-25 0\nf 1 2 3\n" },
+    };
+    char dir[1024];
+    fresh_dir("range", dir, sizeof dir);
+    for (int i = 0; i < 2; i++) {
+        char model[1100], needle[1200];
+        snprintf(model, sizeof model, "%s/%s", dir, cases[i][0]);
+        REQUIRE(write_whole(model, cases[i][1], strlen(cases[i][1])));
+        snprintf(needle, sizeof needle, "%s: the model lies beyond the range", model);
+        const char *args[] = { model, NULL };
+        expect_render_failure(cases[i][0], args, 2, needle);
+    }
+#endif
+}
+
+/* The atomic write would replace an input with the image: refused, and
+ * the input keeps its bytes. */
+SR_TEST(output_that_is_an_input_is_refused)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], model[1100], tex[1100], alias[1200];
+    fresh_dir("same", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/quad.obj", dir);
+    snprintf(tex, sizeof tex, "%s/quad_texture.png", dir);
+    /* The same file by another path: DIR/../NAME/quad_texture.png. */
+    snprintf(alias, sizeof alias, "%s/../%s/quad_texture.png", dir, strrchr(dir, '/') + 1);
+    const char *quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+    REQUIRE(write_whole(model, quad, strlen(quad)));
+    const uint8_t texel[16] = { 255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 9, 9, 9, 255 };
+    sr_io_error err;
+    REQUIRE(sr_write_png(tex, 2, 2, texel, 8, NULL, &err) == SR_OK);
+    size_t mlen, tlen;
+    char *mbefore = read_whole(model, &mlen), *tbefore = read_whole(tex, &tlen);
+    REQUIRE(mbefore && tbefore);
+
+    struct {
+        const char *label, *args[8], *needle;
+    } cases[] = {
+        { "model as output", { "render", model, "-o", model }, "is the model being read" },
+        { "found texture as output", { "render", model, "-o", tex }, "is the texture being read" },
+        { "named texture through another path",
+          { "render", model, "--texture", tex, "-o", alias }, "is the texture being read" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        cli_run r;
+        REQUIRE(run_cli(cases[i].args, &r));
+        check_failure_output(cases[i].label, &r, 2, cases[i].needle);
+        cli_run_free(&r);
+    }
+    size_t mlen2, tlen2;
+    char *mafter = read_whole(model, &mlen2), *tafter = read_whole(tex, &tlen2);
+    REQUIRE(mafter && tafter);
+    CHECK(mlen2 == mlen && memcmp(mafter, mbefore, mlen) == 0);
+    CHECK(tlen2 == tlen && memcmp(tafter, tbefore, tlen) == 0);
+    free(mbefore);
+    free(tbefore);
+    free(mafter);
+    free(tafter);
+#endif
 }
 
 SR_TEST(unknown_command_fails_with_one_line)

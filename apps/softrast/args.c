@@ -4,6 +4,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -47,11 +48,35 @@ bool parse_float(const char *opt, const char *s, float lo, float hi, float *out)
     return true;
 }
 
+/* A side of WxH: digits only (no sign or space), from 1 to the largest
+ * framebuffer; *s moves past them.  strtol, unlike sscanf's %d, says when
+ * a number overflows. */
+static bool size_side(const char **s, int *out)
+{
+    if (!isdigit((unsigned char)**s)) {
+        return false;
+    }
+    char *end;
+    errno = 0;
+    long v = strtol(*s, &end, 10);
+    *s = end;
+    if (errno || v < 1 || v > SR_MAX_FRAMEBUFFER_SIZE) {
+        return false;
+    }
+    *out = (int)v;
+    return true;
+}
+
 bool parse_size(const char *opt, const char *s, int *w, int *h)
 {
-    int a, b, n = 0;
-    if (sscanf(s, "%d%*[xX]%d%n", &a, &b, &n) != 2 || s[n] != 0 || a < 1 || b < 1 ||
-        a > SR_MAX_FRAMEBUFFER_SIZE || b > SR_MAX_FRAMEBUFFER_SIZE) {
+    int a, b;
+    const char *p = s;
+    bool ok = size_side(&p, &a) && (*p == 'x' || *p == 'X');
+    if (ok) {
+        p++;
+        ok = size_side(&p, &b) && *p == 0;
+    }
+    if (!ok) {
         cli_error("%s: expected WxH with each from 1 to %d (got '%s')", opt,
                   SR_MAX_FRAMEBUFFER_SIZE, s);
         return false;
@@ -127,8 +152,19 @@ bool parse_color(const char *opt, const char *s, sr_vec3 *out)
         *out = (sr_vec3){ (float)gray, (float)gray, (float)gray };
         return true;
     }
-    if (strchr(s, ',') && sscanf(s, "%f,%f,%f", &v.x, &v.y, &v.z) == 3 &&
-        v.x >= 0 && v.y >= 0 && v.z >= 0 && isfinite(v.x) && isfinite(v.y) && isfinite(v.z)) {
+    /* R,G,B: three numbers and nothing after them. */
+    float *c[3] = { &v.x, &v.y, &v.z };
+    const char *p = s;
+    bool ok = true;
+    for (int i = 0; i < 3 && ok; i++) {
+        errno = 0;
+        double d = strtod(p, &end);
+        ok = !errno && end != p && isfinite(d) && d >= 0.0 && d <= FLT_MAX &&
+             *end == (i < 2 ? ',' : 0);
+        *c[i] = (float)d;
+        p = end + 1;
+    }
+    if (ok) {
         *out = v;
         return true;
     }

@@ -19,6 +19,7 @@
 typedef struct render_opts {
     const char *model;
     const char *output;
+    bool writes_output;            /* `render`, not `view`: no input may be the output */
     const char *texture;           /* --texture FILE */
     sr_texture_filter texture_filter;
     sr_texture_wrap wrap;
@@ -262,6 +263,10 @@ static int parse_args(int argc, char **argv, render_opts *o)
             }                                                                       \
             value = argv[++i];                                                      \
         }                                                                           \
+        if (!*value) {                                                              \
+            cli_error("%s: empty value", arg);                                      \
+            return EXIT_USAGE;                                                      \
+        }                                                                           \
     } while (0)
 #define CHOICE(names, dst, values)                                                  \
     do {                                                                            \
@@ -273,6 +278,10 @@ static int parse_args(int argc, char **argv, render_opts *o)
         dst = values;                                                               \
     } while (0)
 
+        if ((IS("-h") || IS("--help") || IS("-v") || IS("--verbose")) && value) {
+            cli_error("%s: takes no value", arg);
+            return EXIT_USAGE;
+        }
         if (IS("-h") || IS("--help")) {
             render_help();
             return EXIT_OK;
@@ -441,6 +450,9 @@ static int parse_args(int argc, char **argv, render_opts *o)
         } else if (arg[0] == '-' && arg[1] != 0) {
             cli_error("%s: unknown option '%s' (try 'softrast %s --help')", argv[0], arg, argv[0]);
             return EXIT_USAGE;
+        } else if (!*arg) {
+            cli_error("%s: the model's file name is empty", argv[0]);
+            return EXIT_USAGE;
         } else if (!o->model) {
             o->model = arg;
         } else {
@@ -450,6 +462,10 @@ static int parse_args(int argc, char **argv, render_opts *o)
 #undef IS
 #undef VALUE
 #undef CHOICE
+    }
+    if (o->near_z > 0 && o->far_z > 0 && o->near_z >= o->far_z) {
+        cli_error("--near %g must be less than --far %g", (double)o->near_z, (double)o->far_z);
+        return EXIT_USAGE;
     }
     return -1;
 }
@@ -522,8 +538,23 @@ static void resolve_camera(const render_opts *o, const scene *s, sr_vec3 *eye, s
     *eye = o->have_eye ? o->eye : framing_default_eye(c, r, o->fov_deg * PI_F / 180.0f);
 }
 
-static void setup_camera(const render_opts *o, const scene *s, camera *cam, float *near_out,
-                         float *far_out)
+static bool finite_mat(const sr_mat4 *m)
+{
+    for (int i = 0; i < 16; i++) {
+        if (!isfinite(m->m[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The camera the options and the scene ask for.  NULL, or why there is
+ * none (a message naming --camera when the options are at fault): eye and
+ * target in one point, or sizes or distances whose squares overflow
+ * float (from about 1e19) or underflow it (below about 1e-19) - the
+ * readers accept such coordinates, the framing cannot use them. */
+static const char *setup_camera(const render_opts *o, const scene *s, camera *cam,
+                                float *near_out, float *far_out)
 {
     sr_vec3 c;
     float r;
@@ -532,9 +563,22 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
 
     sr_vec3 eye, target, up;
     resolve_camera(o, s, &eye, &target, &up);
-    if (!sr_camera_frame(eye, sr_vec3_sub(target, eye), up, &cam->basis)) {
-        /* Looking straight along the up vector: pick another up. */
-        sr_camera_frame(eye, sr_vec3_sub(target, eye), (sr_vec3){ 0, 0, -1 }, &cam->basis);
+    sr_vec3 gaze = sr_vec3_sub(target, eye);
+    /* Looking straight along the up vector: pick another up; one of the
+     * last two is never parallel to a gaze. */
+    const sr_vec3 ups[3] = { up, { 0, 0, -1 }, { 1, 0, 0 } };
+    bool framed = false;
+    for (int i = 0; i < 3 && !framed; i++) {
+        framed = sr_camera_frame(eye, gaze, ups[i], &cam->basis);
+    }
+    bool user = o->have_eye || o->have_target;
+    const char *range = user ? "--camera: the eye, the target or the model lies beyond the range "
+                               "the framing can use (sizes and distances of about 1e-18 to 1e18)"
+                             : "the model lies beyond the range the framing can use (sizes and "
+                               "distances of about 1e-18 to 1e18)";
+    if (!framed) {
+        bool same = gaze.x == 0.0f && gaze.y == 0.0f && gaze.z == 0.0f;
+        return same && user ? "--camera: eye and target are the same point" : range;
     }
     cam->view = sr_camera_matrix(&cam->basis);
 
@@ -560,12 +604,26 @@ static void setup_camera(const render_opts *o, const scene *s, camera *cam, floa
     }
     *near_out = near_z;
     *far_out = far_z;
+    if (!(near_z > 0.0f) || !isfinite(far_z) || !(far_z > near_z) || !finite_mat(&cam->view) ||
+        !finite_mat(&cam->proj)) {
+        return range;
+    }
+    return NULL;
 }
 
 static bool is_file(const char *path)
 {
     struct stat st;
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* Whether two paths name one existing file (links and ./ included): the
+ * atomic write of the output would replace an input that is the same. */
+static bool same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
 }
 
 /* The model's texture: --texture, else the file's own (OBJ map_Kd), else
@@ -596,6 +654,11 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
     }
     if (!path) {
         return -1;
+    }
+    if (o->writes_output && same_file(path, o->output)) {
+        cli_error("-o: '%s' is the texture being read (%s); choose another output file",
+                  o->output, path);
+        return EXIT_USAGE;
     }
     if (!ob->mesh.texcoords) {
         if (o->texture) {
@@ -904,6 +967,19 @@ int render_job_load(render_job *job)
     }
     /* The objects and their matrices are final: frame from cached bounds. */
     scene_cache_bounds(s);
+    /* A camera that cannot be made is the input's fault: say so now, as a
+     * usage error, rather than when drawing. */
+    camera cam;
+    float near_z, far_z;
+    const char *why = setup_camera(o, s, &cam, &near_z, &far_z);
+    if (why) {
+        if (o->model && why[0] != '-') {   /* not an option's fault: name the file */
+            cli_error("%s: %s", o->model, why);
+        } else {
+            cli_error("%s", why);
+        }
+        return EXIT_USAGE;
+    }
     if ((long)o->width * o->ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
         (long)o->height * o->ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
         cli_error("--aa: ssaa%d at %dx%d needs %ldx%ld samples, more than %d a side", o->ssaa,
@@ -990,7 +1066,11 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     }
 
     camera cam;
-    setup_camera(o, &job->s, &cam, &info->near_z, &info->far_z);
+    const char *why = setup_camera(o, &job->s, &cam, &info->near_z, &info->far_z);
+    if (why) {
+        snprintf(job->error, sizeof job->error, "%s", why);
+        return SR_INVALID_ARG;
+    }
     sr_state state = {
         .cull = o->cull, .front_face = o->front, .depth_func = o->depth_func,
         .shading = o->shading, .interpolation = o->interp, .rasterizer = o->rasterizer,
@@ -1066,10 +1146,16 @@ int cmd_render(int argc, char **argv)
     if (status >= 0) {
         return status;
     }
+    job->o.writes_output = true;
     const render_opts *o = &job->o;
     struct stat st;
     if (stat(o->output, &st) == 0 && S_ISDIR(st.st_mode)) {
         cli_error("-o: '%s' is a directory", o->output);
+        render_job_free(job);
+        return EXIT_USAGE;
+    }
+    if (o->model && same_file(o->model, o->output)) {
+        cli_error("-o: '%s' is the model being read; choose another output file", o->output);
         render_job_free(job);
         return EXIT_USAGE;
     }
