@@ -292,6 +292,41 @@ SR_TEST(bad_event_script_names_file_and_line)
 #endif
 }
 
+/* A directory read as nothing (an empty script, the viewer then waiting
+ * for input); a long line came back from fgets as two, the second parsed
+ * as a command under the wrong line number. */
+SR_TEST(event_script_that_is_a_directory_or_has_a_long_line_is_refused)
+{
+    if (viewer_built() != 1) {
+        SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
+    }
+#ifdef SR_CLI_PATH
+    const char *out = sr_test_out_dir();
+    const char *argv[] = { SR_CLI_PATH, "view", "--events", out, NULL };
+    run_result r;
+    REQUIRE(run(argv, env_without_display(), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_EQ(count_lines(r.err), 1);
+    CHECK_STR_CONTAINS(r.err, "not a regular file");
+    result_free(&r);
+
+    char path[1100], want[1200];
+    snprintf(path, sizeof path, "%s/view-long-line.txt", out);
+    static char text[6000];
+    memset(text, 'x', 5000);
+    text[0] = '#';
+    memcpy(text + 5000, "\nquit\n", 7);
+    REQUIRE(write_text(path, text));
+    argv[3] = path;
+    REQUIRE(run(argv, env_without_display(), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_EQ(count_lines(r.err), 1);
+    snprintf(want, sizeof want, "%s:1: line longer than", path);
+    CHECK_STR_CONTAINS(r.err, want);
+    result_free(&r);
+#endif
+}
+
 /* Split the printed render command into argv (the viewer quotes words with
  * spaces; the paths here have none). */
 static int split_command(char *line, const char **argv, int max)

@@ -20,6 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 enum { CMD_DRAG, CMD_WHEEL, CMD_KEY, CMD_RESIZE, CMD_FRAMES, CMD_SCREENSHOT, CMD_QUIT };
 
@@ -152,11 +153,27 @@ int view_script_load(const char *path, view_script **out)
         cli_error("--events: %s: %s", path, strerror(errno));
         return EXIT_USAGE;
     }
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        /* A directory opens and then reads as nothing: an empty script. */
+        cli_error("--events: %s: not a regular file", path);
+        fclose(f);
+        return EXIT_USAGE;
+    }
     view_script *s = calloc(1, sizeof *s);
     int cap = 0, lineno = 0;
     char line[4200];
     while (s && fgets(line, sizeof line, f)) {
         lineno++;
+        size_t len = strlen(line);
+        if (len == sizeof line - 1 && line[len - 1] != '\n' && !feof(f)) {
+            /* fgets would hand the rest over as the next line. */
+            fprintf(stderr, "%s:%d: line longer than %zu characters\n", path, lineno,
+                    sizeof line - 2);
+            fclose(f);
+            view_script_free(s);
+            return EXIT_USAGE;
+        }
         line[strcspn(line, "\r\n")] = 0;
         char *p = line + strspn(line, " \t");
         for (char *q = p; *q; q++) {
