@@ -485,6 +485,56 @@ SR_TEST(missing_model_file_is_reported)
     }
 }
 
+/* Opening a FIFO for reading waits for a writer, here forever: each input
+ * the CLI reads must refuse one at once (run_cli kills a child that hangs),
+ * except an MTL, which is skipped as a missing one is. */
+SR_TEST(a_fifo_as_input_is_refused_without_waiting)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], fifo[1100], fifo_obj[1100], model[1100], textured[1100], out[1100];
+    fresh_dir("fifo", dir, sizeof dir);
+    snprintf(fifo, sizeof fifo, "%s/f", dir);
+    snprintf(fifo_obj, sizeof fifo_obj, "%s/f.obj", dir);
+    REQUIRE(mkfifo(fifo, 0644) == 0);
+    REQUIRE(mkfifo(fifo_obj, 0644) == 0);
+
+    expect_render_failure("FIFO f.obj", ARGS(fifo_obj, "--size", "16x12"), 2,
+                          "f.obj: not a regular file");
+    expect_render_failure("FIFO f", ARGS(fifo, "--size", "16x12"), 2, "/f: not a regular file");
+
+    static const char textured_obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                       "f 1/1 2/2 3/3\n";
+    snprintf(textured, sizeof textured, "%s/textured.obj", dir);
+    REQUIRE(write_whole(textured, textured_obj, sizeof textured_obj - 1));
+    expect_render_failure("--texture FIFO", ARGS(textured, "--texture", fifo, "--size", "16x12"),
+                          2, "/f: not a regular file");
+
+    static const char mtllib_obj[] = "mtllib f\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    snprintf(model, sizeof model, "%s/m.obj", dir);
+    snprintf(out, sizeof out, "%s/m.png", dir);
+    REQUIRE(write_whole(model, mtllib_obj, sizeof mtllib_obj - 1));
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", model, "-o", out, "--size", "16x12"), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err_len, 0);
+    CHECK(!is_dir(out) && access(out, F_OK) == 0);
+    cli_run_free(&r);
+
+    /* softrast svg is there only when the build found expat. */
+    REQUIRE(run_cli(ARGS("svg", "--help"), &r));
+    bool have_svg = r.status == 0;
+    cli_run_free(&r);
+    if (have_svg) {
+        snprintf(out, sizeof out, "%s/svg.png", dir);
+        REQUIRE(run_cli(ARGS("svg", fifo, "-o", out), &r));
+        check_failure_output("svg FIFO", &r, 2, "/f: not a regular file");
+        CHECK(access(out, F_OK) != 0);
+        cli_run_free(&r);
+    }
+}
+
 /* Assimp's own messages (when the build has Assimp) are one line too and
  * say they come from Assimp; without it the message says how to get it. */
 SR_TEST(garbage_in_other_formats_gives_one_line)

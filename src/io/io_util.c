@@ -3,11 +3,13 @@
 #include "io/io_util.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 static void format_message(sr_io_error *err, const char *prefix, const char *fmt, va_list ap)
 {
@@ -100,6 +102,57 @@ void sr__free_file(char *data, size_t size)
     free(data);
 }
 
+sr_result sr__open_regular(const char *path, const char *kind, FILE **f,
+                           unsigned long long *size, sr_io_error *err)
+{
+    *f = NULL;
+    *size = 0;
+    if (!path || !kind) {
+        return sr__io_fail(err, SR_INVALID_ARG, path ? path : "<null>", 0,
+                           "no file name or kind given");
+    }
+    /* O_NONBLOCK: opening a FIFO for reading otherwise waits until some
+     * process opens it for writing, which may be never.  The file type is
+     * only known once it is open, so open without waiting, then refuse. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open: %s", strerror(errno));
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        int e = errno;
+        close(fd);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot stat: %s", strerror(e));
+    }
+    if (S_ISDIR(st.st_mode)) {
+        close(fd);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not a %s", kind);
+    }
+    /* FIFOs, sockets and devices (/dev/zero never ends) are not files to
+     * read whole. */
+    if (!S_ISREG(st.st_mode)) {
+        close(fd);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "not a regular file");
+    }
+    /* Reads from a regular file do not block anyway; clear the flag so the
+     * descriptor is the plain one fopen would have given. */
+    int flags = fcntl(fd, F_GETFL);
+    if (flags < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
+        int e = errno;
+        close(fd);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open: %s", strerror(e));
+    }
+    *f = fdopen(fd, "rb");
+    if (!*f) {
+        int e = errno;
+        close(fd);
+        return sr__io_fail(err, e == ENOMEM ? SR_OUT_OF_MEMORY : SR_IO_ERROR, path, 0,
+                           "cannot open: %s", strerror(e));
+    }
+    *size = (unsigned long long)st.st_size;
+    return SR_OK;
+}
+
 sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err)
 {
     *data = NULL;
@@ -107,31 +160,19 @@ sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error
     if (!path) {
         return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open: %s", strerror(errno));
+    FILE *f;
+    unsigned long long file_size;
+    sr_result res = sr__open_regular(path, "model file", &f, &file_size, err);
+    if (res != SR_OK) {
+        return res;
     }
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0) {
-        int e = errno;
-        fclose(f);
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot stat: %s", strerror(e));
-    }
-    if (S_ISDIR(st.st_mode)) {
-        fclose(f);
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not a model file");
-    }
-    if (!S_ISREG(st.st_mode)) {
-        fclose(f);
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "not a regular file");
-    }
-    if ((unsigned long long)st.st_size > SR_IO_MAX_FILE_BYTES) {
+    if (file_size > SR_IO_MAX_FILE_BYTES) {
         fclose(f);
         return sr__io_fail(err, SR_TOO_LARGE, path, 0,
-                           "file is %lld bytes, larger than the %zu-byte limit",
-                           (long long)st.st_size, (size_t)SR_IO_MAX_FILE_BYTES);
+                           "file is %llu bytes, larger than the %zu-byte limit",
+                           file_size, (size_t)SR_IO_MAX_FILE_BYTES);
     }
-    size_t n = (size_t)st.st_size;
+    size_t n = (size_t)file_size;
     char *buf = alloc_file(n + 1);
     if (!buf) {
         fclose(f);

@@ -7,6 +7,7 @@
 #include "softrast_io.h"
 
 #include <stdarg.h>
+#include <stdio.h>
 
 /* Message "name:line: ..." (line > 0), "name: byte N: ..." (sr__io_fail_at),
  * or "name: ..." (line == 0).  Returns `code` so callers can
@@ -17,6 +18,12 @@ sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
 sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
                          unsigned long long byte_offset, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
+
+/* Open a regular file for reading: *f and its size, or a message naming
+ * the file ("cannot open: ...", "is a directory, not a KIND", "not a regular
+ * file").  Never waits for another process: a FIFO is refused, not read. */
+sr_result sr__open_regular(const char *path, const char *kind, FILE **f,
+                           unsigned long long *size, sr_io_error *err);
 
 /* Read a whole regular file (directories, devices and files larger than
  * SR_IO_MAX_FILE_BYTES are refused with a clear message).  The buffer has

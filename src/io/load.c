@@ -7,11 +7,9 @@
 #include "io/io_util.h"
 #include "io/readers.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
 
 bool sr_io_have_assimp(void)
 {
@@ -52,17 +50,17 @@ static sr_model_format format_from_extension(const char *path)
 
 /* Recognize PLY and STL by content, for files named otherwise.  Reads only
  * the first 84 bytes.  SR_FORMAT_AUTO when neither matches; open errors
- * are left for the reader that runs next to report. */
+ * (a FIFO or a directory too) are left for the code that runs next to
+ * report. */
 static sr_model_format format_from_content(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
+    FILE *f;
+    unsigned long long size;
+    if (sr__open_regular(path, "model file", &f, &size, NULL) != SR_OK) {
         return SR_FORMAT_AUTO;
     }
     unsigned char head[84];
     size_t n = fread(head, 1, sizeof head, f);
-    struct stat st;
-    bool have_size = fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode);
     fclose(f);
 
     if ((n >= 4 && memcmp(head, "ply\n", 4) == 0) ||
@@ -74,11 +72,11 @@ static sr_model_format format_from_content(const char *path)
     }
     /* A binary STL has no magic, but its size is exactly 84 + 50 per
      * triangle as counted at byte 80. */
-    if (have_size && n == sizeof head) {
+    if (n == sizeof head) {
         unsigned long long count = (unsigned long long)head[80] | (unsigned long long)head[81] << 8 |
                                    (unsigned long long)head[82] << 16 |
                                    (unsigned long long)head[83] << 24;
-        if (84 + 50 * count == (unsigned long long)st.st_size) {
+        if (84 + 50 * count == size) {
             return SR_FORMAT_STL;
         }
     }
@@ -119,13 +117,14 @@ sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
                            "sr_load_desc.format %d is not a known format", (int)format);
     }
     /* Before blaming the format, make sure the file is there and readable,
-     * so a typo in the name is reported as such. */
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open: %s", strerror(errno));
+     * so a typo in the name is reported as such - and a FIFO is refused
+     * here, before Assimp could wait on it for a writer. */
+    FILE *f;
+    unsigned long long size;
+    sr_result res = sr__open_regular(path, "model file", &f, &size, err);
+    if (res != SR_OK) {
+        return res;
     }
-    if (S_ISDIR(st.st_mode)) {
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not a model file");
-    }
+    fclose(f);
     return sr__load_assimp(path, out, err);
 }

@@ -581,14 +581,11 @@ sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *
         return sr__io_fail(err, SR_INVALID_ARG, path, 0,
                            "width, height and pixels must not be NULL");
     }
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot open: %s", strerror(errno));
-    }
-    struct stat st;
-    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(f);
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not a PNG file");
+    FILE *f;
+    unsigned long long size;
+    sr_result res = sr__open_regular(path, "PNG file", &f, &size, err);
+    if (res != SR_OK) {
+        return res;
     }
     uint8_t sig[8];
     size_t got = fread(sig, 1, sizeof sig, f);

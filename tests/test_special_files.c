@@ -1,0 +1,170 @@
+/*
+ * test_special_files.c - io stage: every reader entry point (sr_load_mesh by
+ * extension, by content and on the way to Assimp, an OBJ's mtllib, and
+ * sr_read_png) given a FIFO, a device or a directory instead of a file.
+ * Each must answer at once with "FILE: not a regular file" (or "is a
+ * directory"), never wait: opening a FIFO for reading blocks until a writer
+ * comes, so a reader that opens before it checks would hang here.  An alarm
+ * ends a hung test with a message rather than leaving it to CTest's timeout.
+ */
+#include "softrast_io.h"
+#include "sr_test.h"
+
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* Seconds any one test may take; the readers answer in microseconds. */
+#define HANG_SECONDS 10
+
+static void on_alarm(int sig)
+{
+    (void)sig;
+    static const char msg[] = "test_special_files: a reader waited on a FIFO (no answer "
+                              "within 10 s)\n";
+    ssize_t ignored = write(2, msg, sizeof msg - 1);
+    (void)ignored;
+    _exit(1);
+}
+
+static void start_watchdog(void)
+{
+    signal(SIGALRM, on_alarm);
+    alarm(HANG_SECONDS);
+}
+
+static void stop_watchdog(void)
+{
+    alarm(0);
+}
+
+/* A fresh FIFO named `name` in the output directory (nobody writes to it). */
+static const char *make_fifo(const char *name)
+{
+    static char path[1024];
+    snprintf(path, sizeof path, "%s/%s", sr_test_out_dir(), name);
+    unlink(path);
+    if (mkfifo(path, 0644) != 0) {
+        return NULL;
+    }
+    return path;
+}
+
+static bool write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        return false;
+    }
+    bool ok = fputs(text, f) >= 0;
+    return fclose(f) == 0 && ok;
+}
+
+static bool mesh_is_zero(const sr_mesh *m)
+{
+    static const sr_mesh zero;
+    return memcmp(m, &zero, sizeof zero) == 0;
+}
+
+/* sr_load_mesh(path, format) must fail with SR_IO_ERROR and "NAME: not a
+ * regular file", leaving the mesh zeroed. */
+static void expect_not_regular(const char *path, sr_model_format format)
+{
+    sr_mesh m;
+    sr_io_error err = { { 0 } };
+    sr_result r = sr_load_mesh(path, &(sr_load_desc){ .format = format }, &m, &err);
+    if (r != SR_IO_ERROR) {
+        sr_test_fail(__FILE__, __LINE__, "%s (format %d): result %d, message \"%s\"", path,
+                     (int)format, (int)r, err.message);
+    }
+    char want[1100];
+    snprintf(want, sizeof want, "%s: not a regular file", path);
+    CHECK_STR_CONTAINS(err.message, want);
+    CHECK(mesh_is_zero(&m));
+    if (r == SR_OK) {
+        sr_mesh_free(&m);
+    }
+}
+
+SR_TEST(a_fifo_named_like_each_model_format_is_refused_without_waiting)
+{
+    static const char *const names[] = { "fifo.obj", "fifo.ply", "fifo.stl", "fifo.off",
+                                         "fifo" };
+    start_watchdog();
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        const char *path = make_fifo(names[i]);
+        REQUIRE(path);
+        /* By extension, by content (the last two), and with the format named. */
+        expect_not_regular(path, SR_FORMAT_AUTO);
+        expect_not_regular(path, SR_FORMAT_OBJ);
+        expect_not_regular(path, SR_FORMAT_PLY);
+        expect_not_regular(path, SR_FORMAT_STL);
+        expect_not_regular(path, SR_FORMAT_ASSIMP);
+        unlink(path);
+    }
+    stop_watchdog();
+}
+
+SR_TEST(a_device_is_refused_as_a_model)
+{
+    start_watchdog();
+    /* /dev/zero never ends and /dev/null is empty: neither is a model file. */
+    expect_not_regular("/dev/zero", SR_FORMAT_AUTO);
+    expect_not_regular("/dev/zero", SR_FORMAT_OBJ);
+    expect_not_regular("/dev/null", SR_FORMAT_STL);
+    stop_watchdog();
+}
+
+SR_TEST(an_mtllib_that_is_a_fifo_is_skipped_like_a_missing_one)
+{
+    start_watchdog();
+    const char *fifo = make_fifo("fifo_colors.mtl");
+    REQUIRE(fifo);
+    char obj[1024];
+    snprintf(obj, sizeof obj, "%s/fifo_mtllib.obj", sr_test_out_dir());
+    REQUIRE(write_text(obj, "mtllib fifo_colors.mtl\nusemtl red\n"
+                            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    sr_mesh m;
+    sr_io_error err = { { 0 } };
+    sr_result r = sr_load_mesh(obj, NULL, &m, &err);
+    if (r != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "%s", err.message);
+    }
+    REQUIRE(r == SR_OK);
+    CHECK_EQ(m.triangle_count, 1);
+    CHECK(m.colors == NULL);    /* no material read, as for a missing MTL */
+    sr_mesh_free(&m);
+    unlink(fifo);
+    stop_watchdog();
+}
+
+SR_TEST(a_fifo_or_a_device_is_refused_as_a_png)
+{
+    start_watchdog();
+    const char *fifo = make_fifo("fifo.png");
+    REQUIRE(fifo);
+    const char *paths[] = { fifo, "/dev/zero" };
+    for (size_t i = 0; i < sizeof paths / sizeof paths[0]; i++) {
+        int w = -1, h = -1;
+        uint8_t *px = (uint8_t *)&w;
+        sr_io_error err = { { 0 } };
+        CHECK_EQ(sr_read_png(paths[i], &w, &h, &px, &err), SR_IO_ERROR);
+        char want[1100];
+        snprintf(want, sizeof want, "%s: not a regular file", paths[i]);
+        CHECK_STR_CONTAINS(err.message, want);
+        CHECK(px == NULL);
+        CHECK_EQ(w, 0);
+        CHECK_EQ(h, 0);
+    }
+    unlink(fifo);
+
+    /* A directory keeps its own message. */
+    int w, h;
+    uint8_t *px;
+    sr_io_error err = { { 0 } };
+    CHECK_EQ(sr_read_png(sr_test_out_dir(), &w, &h, &px, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, "is a directory, not a PNG file");
+    stop_watchdog();
+}
