@@ -5,7 +5,9 @@
  * Errors: every function returns an sr_result and, on failure, fills an
  * sr_io_error with one line of the form "FILE:LINE: what is wrong" for text
  * files, "FILE: byte N: what is wrong" for binary ones, or "FILE: what is
- * wrong" when no position applies.  Nothing here prints or exits.
+ * wrong" when no position applies.  A FILE too long for the message is cut
+ * from the left ("...tail/name.obj:4: ..."); the position and the reason are
+ * always whole.  Nothing here prints or exits.
  */
 #ifndef SOFTRAST_IO_H
 #define SOFTRAST_IO_H

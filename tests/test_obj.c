@@ -627,6 +627,58 @@ SR_TEST(obj_index_errors_name_the_line)
     CHECK(fails_with("v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n", "t.obj:3:", "vertex index 3"));
 }
 
+/* `dir` (under the output dir) made `levels` folders of 50 characters
+ * deeper; the new path in buf. */
+static bool make_deep_dir(const char *name, int levels, char *buf, size_t size)
+{
+    int n = snprintf(buf, size, "%s/%s", sr_test_out_dir(), name);
+    mkdir(buf, 0777);
+    for (int i = 0; i < levels; i++) {
+        n += snprintf(buf + n, size - (size_t)n, "/%02d%048d", i, 0);
+        if ((size_t)n >= size || (mkdir(buf, 0777) != 0 && errno != EEXIST)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The line number and the reason outlive any path length: a long name gives
+ * way from the left, keeping its tail (the file's own name). */
+SR_TEST(obj_errors_in_long_paths_keep_the_line_and_the_reason)
+{
+    static const char text[] = TRI "f 0 1 2\n";
+    static const char reason[] = ":4: index 0 in face vertex '0': OBJ indices start at 1";
+    sr_mesh m;
+    sr_io_error err;
+    /* 7 folders: over 400 characters, which fit in the message whole;
+     * 12: about 650, which do not. */
+    for (int levels = 7; levels <= 12; levels += 5) {
+        char dir[1024], path[1100];
+        REQUIRE(make_deep_dir("long_paths", levels, dir, sizeof dir));
+        snprintf(path, sizeof path, "%s/long_path_model.obj", dir);
+        REQUIRE(strlen(path) > 400);
+        write_file(path, text);
+        CHECK_EQ(sr_load_mesh(path, NULL, &m, &err), SR_BAD_FORMAT);
+        CHECK(mesh_is_zero(&m));
+        size_t len = strlen(err.message), rlen = strlen(reason);
+        /* The message ends with the whole reason, right after the name's tail. */
+        CHECK(len > rlen && strcmp(err.message + len - rlen, reason) == 0);
+        CHECK_STR_CONTAINS(err.message, "/long_path_model.obj:4: index 0");
+        if (strlen(path) + rlen < sizeof err.message) {
+            CHECK(strncmp(err.message, path, strlen(path)) == 0);
+            CHECK_EQ(len, strlen(path) + rlen);
+        } else {
+            CHECK(strncmp(err.message, "...", 3) == 0);
+            CHECK_EQ(len, sizeof err.message - 1);   /* the tail fills what is left */
+            CHECK(strncmp(err.message + 3, path + strlen(path) - (len - 3 - rlen),
+                          len - 3 - rlen) == 0);
+        }
+        if (sr_test_failed_now()) {
+            fprintf(stderr, "  %zu-character path: \"%s\"\n", strlen(path), err.message);
+        }
+    }
+}
+
 SR_TEST(obj_nonfinite_and_overflowing_numbers_are_refused)
 {
     CHECK(fails_with("v 0 0 0\nv nan 0 0\n", "t.obj:2:", "'nan' is not a finite number"));

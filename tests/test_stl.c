@@ -186,6 +186,35 @@ SR_TEST(stl_binary_with_solid_header_is_binary)
     free(b.p);
 }
 
+/* "NAME: byte N: reason" keeps its offset and reason whatever the name's
+ * length; the name gives way from the left, keeping its tail. */
+SR_TEST(stl_byte_offsets_survive_long_names)
+{
+    static const char reason[] = ": byte 80: binary STL declares 12 triangles, which take 684 "
+                                 "bytes, but the file has 683 bytes (truncated)";
+    wbuf b = binary_cube("binary");
+    for (size_t dirs = 7; dirs <= 12; dirs += 5) {
+        char name[1024];
+        size_t n = 0;
+        for (size_t i = 0; i < dirs; i++) {
+            n += (size_t)snprintf(name + n, sizeof name - n, "/%02zu%048d", i, 0);
+        }
+        snprintf(name + n, sizeof name - n, "/cube.stl");
+        sr_mesh m;
+        sr_io_error err;
+        CHECK_EQ(sr_parse_stl(name, b.p, b.n - 1, &m, &err), SR_BAD_FORMAT);
+        CHECK(mesh_is_zero(&m));
+        size_t len = strlen(err.message), rlen = strlen(reason);
+        CHECK(len > rlen && strcmp(err.message + len - rlen, reason) == 0);
+        CHECK_STR_CONTAINS(err.message, "/cube.stl: byte 80: ");
+        CHECK(strncmp(err.message, strlen(name) + rlen < sizeof err.message ? name : "...", 3) == 0);
+        if (sr_test_failed_now()) {
+            fprintf(stderr, "  %zu-character name: \"%s\"\n", strlen(name), err.message);
+        }
+    }
+    free(b.p);
+}
+
 SR_TEST(stl_minus_zero_welds_with_zero)
 {
     wbuf b = { 0 };

@@ -11,32 +11,68 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static void format_message(sr_io_error *err, const char *prefix, const char *fmt, va_list ap)
+/* A shortened name keeps at least this many bytes of its tail (the file's
+ * own name, usually), even when a very long reason has to lose its end. */
+#define MIN_NAME_TAIL 40
+#define ELISION "..."
+
+/* Copy `s` to dst + at, as much as fits before `cap`; the new end. */
+static size_t append(char *dst, size_t at, size_t cap, const char *s)
+{
+    size_t n = strlen(s);
+    if (n > cap - at) {
+        n = cap - at;
+    }
+    memcpy(dst + at, s, n);
+    return at + n;
+}
+
+/* The message "NAME" + `where` (":LINE: ", ": byte N: " or ": ") + the
+ * reason.  The position and the reason are what the reader needs, so when
+ * the whole does not fit, the name gives way from the left: "..." and its
+ * tail, cut at a UTF-8 character boundary. */
+static void format_message(sr_io_error *err, const char *name, const char *where,
+                           const char *fmt, va_list ap)
 {
     if (!err) {
         return;
     }
-    size_t n = strlen(prefix);
-    if (n >= sizeof err->message) {
-        n = sizeof err->message - 1;
+    char reason[sizeof err->message];
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    size_t cap = sizeof err->message - 1;
+    size_t fixed = strlen(where) + strlen(reason);
+    size_t room = fixed < cap ? cap - fixed : 0;
+    if (room < sizeof ELISION - 1 + MIN_NAME_TAIL) {
+        room = sizeof ELISION - 1 + MIN_NAME_TAIL;
     }
-    memcpy(err->message, prefix, n);
+    size_t len = strlen(name);
+    const char *elision = "";
+    if (len > room) {
+        elision = ELISION;
+        name += len - (room - (sizeof ELISION - 1));
+        while (((unsigned char)*name & 0xC0) == 0x80) {
+            name++;             /* not inside a multi-byte character */
+        }
+    }
+    size_t n = append(err->message, 0, cap, elision);
+    n = append(err->message, n, cap, name);
+    n = append(err->message, n, cap, where);
+    n = append(err->message, n, cap, reason);
     err->message[n] = 0;
-    vsnprintf(err->message + n, sizeof err->message - n, fmt, ap);
 }
 
 sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
                       long line, const char *fmt, ...)
 {
-    char prefix[320];
+    char where[32];
     if (line > 0) {
-        snprintf(prefix, sizeof prefix, "%s:%ld: ", name ? name : "<input>", line);
+        snprintf(where, sizeof where, ":%ld: ", line);
     } else {
-        snprintf(prefix, sizeof prefix, "%s: ", name ? name : "<input>");
+        snprintf(where, sizeof where, ": ");
     }
     va_list ap;
     va_start(ap, fmt);
-    format_message(err, prefix, fmt, ap);
+    format_message(err, name ? name : "<input>", where, fmt, ap);
     va_end(ap);
     return code;
 }
@@ -44,11 +80,11 @@ sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
 sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
                          unsigned long long byte_offset, const char *fmt, ...)
 {
-    char prefix[320];
-    snprintf(prefix, sizeof prefix, "%s: byte %llu: ", name ? name : "<input>", byte_offset);
+    char where[40];
+    snprintf(where, sizeof where, ": byte %llu: ", byte_offset);
     va_list ap;
     va_start(ap, fmt);
-    format_message(err, prefix, fmt, ap);
+    format_message(err, name ? name : "<input>", where, fmt, ap);
     va_end(ap);
     return code;
 }

@@ -10,8 +10,9 @@
 #include <stdio.h>
 
 /* Message "name:line: ..." (line > 0), "name: byte N: ..." (sr__io_fail_at),
- * or "name: ..." (line == 0).  Returns `code` so callers can
- * `return sr__io_fail(...)`. */
+ * or "name: ..." (line == 0).  A name too long for sr_io_error.message
+ * loses its head ("...tail:line: ..."), never the position or the reason.
+ * Returns `code` so callers can `return sr__io_fail(...)`. */
 sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
                       long line, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
