@@ -789,6 +789,51 @@ SR_TEST(ply_ascii_value_errors_name_the_line)
     expect_error(no_data, strlen(no_data), SR_BAD_FORMAT, "bad.ply:3: element 'vertex' declares 3");
 }
 
+/* Data after the last element means the header's counts are wrong: one face
+ * declared and three written used to give one face, the others dropped
+ * without a word.  ASCII may end in whitespace only; binary in nothing,
+ * as binary STL. */
+SR_TEST(ply_data_after_the_last_element_is_refused)
+{
+    const char *faces = TRI_HEADER "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n\n3 1 2 0\n";
+    expect_error(faces, strlen(faces), SR_BAD_FORMAT,
+                 "bad.ply:14: data after the last element (the header declares "
+                 "'element face 1' on line 7)");
+    const char *junk = TRI_HEADER "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n  junk\n";
+    expect_error(junk, strlen(junk), SR_BAD_FORMAT, "bad.ply:15: data after the last element");
+    const char *same_line = TRI_HEADER "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n";
+    expect_error(same_line, strlen(same_line), SR_BAD_FORMAT,
+                 "bad.ply:13: data after the last element");
+
+    const char *spaces = TRI_HEADER "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n \t\r\n\n";
+    sr_mesh m;
+    sr_io_error err = { { 0 } };
+    CHECK_EQ(sr_parse_ply("ok.ply", (const uint8_t *)spaces, strlen(spaces), &m, &err), SR_OK);
+    CHECK_EQ(m.triangle_count, 1);
+    sr_mesh_free(&m);
+
+    for (int f = W_LE; f <= W_BE; f++) {
+        size_t hb;
+        wbuf b = write_cube(&(cube_opts){ .fmt = (wfmt)f }, &hb);
+        size_t end = b.n;
+        REQUIRE(parse(&b, b.n, &m, &err) == SR_OK);
+        check_cube(&m);
+        sr_mesh_free(&m);
+
+        /* A seventh face where the header declares six (line 8). */
+        put_list(&b, (wfmt)f, "uchar", "int", cube_quads[0], 4);
+        char want[200];
+        snprintf(want, sizeof want, "bad.ply: byte %zu: 17 bytes after the last element "
+                 "(the header declares 'element face 6' on line 8)", end);
+        expect_error((const char *)b.p, b.n, SR_BAD_FORMAT, want);
+        /* Even a single newline. */
+        b.p[end] = '\n';
+        snprintf(want, sizeof want, "bad.ply: byte %zu: 1 byte after the last element", end);
+        expect_error((const char *)b.p, end + 1, SR_BAD_FORMAT, want);
+        free(b.p);
+    }
+}
+
 SR_TEST(ply_null_arguments)
 {
     sr_io_error err;

@@ -8,7 +8,8 @@
  * and their properties (a scalar type, or a list of a count type and an
  * item type), then the data of each element in header order.  We read
  * `vertex` (x y z, normals, colors, texcoords), `face` and `tristrips`, and
- * step over everything else.
+ * step over everything else.  The data must end with the last element
+ * (ASCII: but for whitespace): anything after it is an error, not dropped.
  */
 #include "io/io_util.h"
 #include "io/readers.h"
@@ -954,6 +955,41 @@ static sr_result read_elements(ply_reader *r)
     return SR_OK;
 }
 
+/* After the last element the file must end (ASCII: but for whitespace).
+ * Anything more means the header's counts are wrong - most often too few
+ * faces declared - and reading on would drop data without a word; binary
+ * STL's trailing data is refused the same way. */
+static sr_result check_trailing(ply_reader *r)
+{
+    token w;
+    if (r->format == F_ASCII) {
+        if (!next_word(r, &w)) {
+            return SR_OK;
+        }
+        /* next_word left value_line on the stray word's line. */
+    } else {
+        if (r->pos == r->size) {
+            return SR_OK;
+        }
+        r->value_pos = r->pos;
+    }
+    /* Name the header line of the last element: its count is the one to
+     * check. */
+    char declared[NAME_MAX_LEN + 64] = "no elements";
+    if (r->elem_count > 0) {
+        const ply_elem *e = &r->elems[r->elem_count - 1];
+        snprintf(declared, sizeof declared, "'element %s %llu' on line %ld",
+                 e->name, e->count, e->line);
+    }
+    if (r->format == F_ASCII) {
+        return data_fail(r, SR_BAD_FORMAT, "data after the last element (the header declares %s)",
+                         declared);
+    }
+    size_t extra = r->size - r->pos;
+    return data_fail(r, SR_BAD_FORMAT, "%zu byte%s after the last element (the header declares %s)",
+                     extra, extra == 1 ? "" : "s", declared);
+}
+
 static sr_result allocate_vertices(ply_reader *r)
 {
     size_t n = (size_t)r->vertex_count;
@@ -1015,6 +1051,9 @@ sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
         r.value_line = r.line;
         r.line++;
         res = read_elements(&r);
+    }
+    if (res == SR_OK) {
+        res = check_trailing(&r);
     }
     if (res == SR_OK && r.mesh.triangle_count == 0) {
         res = sr__io_fail(err, SR_BAD_FORMAT, name, 0, "contains no faces");
