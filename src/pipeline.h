@@ -281,7 +281,9 @@ static inline const float *sr__tri_flat(const sr_tri *t)
  * up to 320 px long along its major axis); tile indices fit a byte. */
 #define SR_LINE_BIN_COLUMNS 6
 _Static_assert(SR_MAX_FRAMEBUFFER_SIZE / SR_TILE_SIZE <= 256, "tile indices must fit uint8_t");
-_Static_assert(SR_GUARD_BAND_MAX + 2 <= INT16_MAX && SR_GUARD_BAND_MIN - 2 > INT16_MIN,
+/* A wide line's path lies up to (64 - 1)/2 px (the widest line_width)
+ * below or left of the segment. */
+_Static_assert(SR_GUARD_BAND_MAX + 2 <= INT16_MAX && SR_GUARD_BAND_MIN - 2 - 32 > INT16_MIN,
                "a line's pixel indices must fit int16_t");
 
 /* A line segment after setup, drawn by the diamond-exit rule from a to b

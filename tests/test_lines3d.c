@@ -420,6 +420,115 @@ SR_TEST(wide_lines_are_runs_across_the_minor_axis)
     rt_free(&t);
 }
 
+/* GL's wide lines (RASTER_RULES 6.3, GL 14.5.2.2), written from the rule:
+ * round the width to w, translate the segment by -(w - 1)/2 along the
+ * minor axis (exact in q8: (w - 1) half pixels), rasterize that segment
+ * one pixel wide by the closed form, and widen each of its pixels into a
+ * run of w toward +minor.  The runs are clipped only to the framebuffer,
+ * so path pixels up to w above or left of it still count. */
+static void ref_wide_line(const double a[2], const double b[2], int w, uint8_t *mask)
+{
+    memset(mask, 0, W * H);
+    int64_t ax = snapq(a[0]), ay = snapq(a[1]), bx = snapq(b[0]), by = snapq(b[1]);
+    if (ax == bx && ay == by) {
+        return;
+    }
+    bool xmaj = llabs(bx - ax) >= llabs(by - ay);
+    int64_t shift = (int64_t)(w - 1) * 128;
+    if (xmaj) {
+        ay -= shift;
+        by -= shift;
+    } else {
+        ax -= shift;
+        bx -= shift;
+    }
+    enum { P = 8 }; /* margin around the framebuffer, > the widest run */
+    static uint8_t path[(W + 2 * P) * (H + 2 * P)];
+    memset(path, 0, sizeof path);
+    int64_t au = xmaj ? ax : ay, av = xmaj ? ay : ax, bu = xmaj ? bx : by, bv = xmaj ? by : bx;
+    int64_t lo = au < bu ? au : bu, hi = au < bu ? bu : au;
+    for (int k = -P; k < (xmaj ? W : H) + P; k++) {
+        int64_t c = k * 256 + 128;
+        if (c < lo || c > hi) {
+            continue;
+        }
+        int64_t j = lr_column_pixel(au, av, bu, bv, c);
+        int64_t px = xmaj ? k : j, py = xmaj ? j : k;
+        if (px >= -P && px < W + P && py >= -P && py < H + P) {
+            path[(py + P) * (W + 2 * P) + px + P] = 1;
+        }
+    }
+    for (int qy = -P; qy < H + P; qy++) {
+        for (int qx = -P; qx < W + P; qx++) {
+            if (lr_diamond_owns(ax, ay, qx, qy, xmaj)) {
+                path[(qy + P) * (W + 2 * P) + qx + P] = 1;
+            }
+        }
+    }
+    for (int qy = -P; qy < H + P; qy++) {
+        for (int qx = -P; qx < W + P; qx++) {
+            if (lr_diamond_owns(bx, by, qx, qy, xmaj)) {
+                path[(qy + P) * (W + 2 * P) + qx + P] = 0;
+            }
+        }
+    }
+    for (int qy = -P; qy < H + P; qy++) {
+        for (int qx = -P; qx < W + P; qx++) {
+            if (!path[(qy + P) * (W + 2 * P) + qx + P]) {
+                continue;
+            }
+            for (int i = 0; i < w; i++) {
+                int x = xmaj ? qx : qx + i, y = xmaj ? qy + i : qy;
+                if (x >= 0 && x < W && y >= 0 && y < H) {
+                    mask[y * W + x] = 1;
+                }
+            }
+        }
+    }
+}
+
+/* The exact pixels of wide lines, even widths included: against the
+ * reference above, and against the 2D SR_LINE_WIDE, which follows the same
+ * rule on the same conventions (y down, centres at +1/2, endpoints snapped
+ * to 1/256 with round-to-nearest-even, the D3D diamond ties).  The
+ * endpoints are on the 1/256 grid and the viewport maps them exactly.
+ * Half the lines are x-major, half y-major; some reach off the
+ * framebuffer. */
+SR_TEST(wide_lines_match_the_gl_rule_at_every_width)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t got[W * H], want[W * H], flat[W * H];
+    sr_rng rng = { 0x3d1e };
+    long bad[6] = { 0 }, bad2d[6] = { 0 }, lines[6] = { 0 };
+    for (int it = 0; it < 1500; it++) {
+        int w = 1 + it % 5;
+        double u0 = q8r(&rng, -6, 70), u1 = q8r(&rng, -6, 70);
+        double v0 = q8r(&rng, -4, 68), v1 = v0 + (u1 - u0) * sr_rng_range(&rng, -1.0, 1.0);
+        v1 = floor(v1 * 256.0) / 256.0;
+        bool xmaj = (it / 5) % 2 == 0;
+        double xy[4] = { xmaj ? u0 : v0, xmaj ? v0 : u0, xmaj ? u1 : v1, xmaj ? v1 : u1 };
+        rt_clear(&t);
+        sr_state st = { .line_width = (float)w };
+        REQUIRE(draw_prims(&t, SR_PRIM_LINES, xy, 2, &st) == SR_OK);
+        rt_mask(&t, got);
+        ref_wide_line(xy, xy + 2, w, want);
+        rt_clear(&t);
+        REQUIRE(sr_draw_line(t.ctx, t.fb, (sr_point2){ xy[0], xy[1] }, (sr_point2){ xy[2], xy[3] },
+                             (sr_rgba){ 1, 1, 1, 1 },
+                             &(sr_line_desc){ .algorithm = SR_LINE_WIDE, .width = w }) == SR_OK);
+        rt_mask(&t, flat);
+        lines[w]++;
+        bad[w] += memcmp(got, want, sizeof got) != 0;
+        bad2d[w] += memcmp(flat, want, sizeof flat) != 0;
+    }
+    for (int w = 1; w <= 5; w++) {
+        CHECK_EQ(lines[w], 300);
+        CHECK_EQ(bad[w], 0);
+        CHECK_EQ(bad2d[w], 0);
+    }
+    rt_free(&t);
+}
+
 /* Lines far outside the screen are clipped at the guard band and still
  * cross the framebuffer as one unbroken run. */
 SR_TEST(huge_lines_are_clipped_and_stay_continuous)

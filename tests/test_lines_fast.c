@@ -182,9 +182,10 @@ static bool owner(int64_t x, int64_t y, bool xmaj, int64_t *qx, int64_t *qy)
 }
 
 /* One more hit on every pixel of the segment (q8 endpoints), wide lines
- * as runs of `width` across the minor axis around each pixel: the columns'
- * pixels plus the start's diamond pixel minus the end's, each with its
- * run, clipped to the rectangle [x0, x1) x [y0, y1). */
+ * as GL's (RASTER_RULES 6.3): the segment moved by -(width - 1)/2 along
+ * the minor axis, and a run of `width` toward +minor from each pixel of
+ * it: the columns' pixels plus the start's diamond pixel minus the end's,
+ * each with its run, clipped to the rectangle [x0, x1) x [y0, y1). */
 static void ref_hits(int64_t ax, int64_t ay, int64_t bx, int64_t by, int width, const int clip[4],
                      uint8_t *hits)
 {
@@ -192,6 +193,14 @@ static void ref_hits(int64_t ax, int64_t ay, int64_t bx, int64_t by, int width, 
         return;
     }
     bool xmaj = llabs(bx - ax) >= llabs(by - ay);
+    int64_t shift = (int64_t)(width - 1) * 128;
+    if (xmaj) {
+        ay -= shift;
+        by -= shift;
+    } else {
+        ax -= shift;
+        bx -= shift;
+    }
     int64_t au = xmaj ? ax : ay, av = xmaj ? ay : ax, bu = xmaj ? bx : by, bv = xmaj ? by : bx;
     int64_t lo = au < bu ? au : bu, hi = au < bu ? bu : au;
     enum { MAXP = 4096 };
@@ -217,13 +226,12 @@ static void ref_hits(int64_t ax, int64_t ay, int64_t bx, int64_t by, int width, 
             pv[np++] = xmaj ? sy : sx;
         }
     }
-    int below = (width - 1) / 2;
     for (int i = 0; i < np; i++) {
         int64_t x = xmaj ? pu[i] : pv[i], y = xmaj ? pv[i] : pu[i];
         if (end && x == ex && y == ey) {
             continue; /* half-open */
         }
-        for (int o = -below; o < width - below; o++) {
+        for (int o = 0; o < width; o++) {
             int64_t qx = xmaj ? x : x + o, qy = xmaj ? y + o : y;
             if (qx >= clip[0] && qx < clip[1] && qy >= clip[2] && qy < clip[3]) {
                 hits[qy * FW + qx]++;
@@ -305,7 +313,7 @@ SR_TEST(line_binning_reaches_every_pixel)
     long bad_single = 0, bad_batch = 0;
     for (int threads = 1; threads <= 3; threads++) {
         rt_target t = rt_make(FW, FH, threads);
-        for (int width = 1; width <= 3; width++) {
+        for (int width = 1; width <= 4; width++) {
             for (int ci = 0; ci < 2; ci++) {
                 const int *clip = clips[ci];
                 sr_rng rng = { 0xb1 + (uint64_t)(threads * 16 + width * 4 + ci) };

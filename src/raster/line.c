@@ -11,7 +11,8 @@
  * lies in its diamond (half-open).  So the pixels do not depend on the
  * direction except for which end is left open, line strips join without
  * gaps or double pixels, and everything is integer arithmetic.  Wide lines
- * are OpenGL's: a run of `width` pixels across the minor axis per step.
+ * are OpenGL's: the segment moved by -(width - 1)/2 along the minor axis,
+ * and a run of `width` pixels toward +minor from each of its pixels.
  *
  * Work is done where it is cheapest.  Setup finds, once per segment, the
  * columns, the DDA of their pixels, the two diamonds' pixels and the tiles
@@ -53,20 +54,30 @@ typedef struct line_ctx {
     bool equal_w;                     /* both ends share 1/w: interpolation is affine */
 } line_ctx;
 
-/* One covered pixel: project its centre onto the segment for t, then depth
- * linear in t and varyings perspective-correct (RASTER_RULES 4.1). */
+/* One path pixel's fragments: project its centre onto the segment for t,
+ * then depth linear in t and varyings perspective-correct (RASTER_RULES
+ * 4.1).  A wide line's path is the segment moved by -(width - 1)/2 along
+ * the minor axis and each of its pixels starts a run of `width` toward
+ * +minor (setup_walk in line_setup.c); the run's centre, (width - 1)/2
+ * past the path pixel's, is projected onto the unmoved segment, which is
+ * the path pixel's centre projected onto the moved one.  With width 1 it
+ * is the pixel's own centre. */
 static void line_fragment(const line_ctx *lc, int px, int py)
 {
     const sr_line *l = lc->l;
+    int64_t run_q8 = (int64_t)(l->width - 1) * H; /* the run's centre past the path pixel's */
+    double cx = (double)px * S + H - l->xa, cy = (double)py * S + H - l->ya;
+    if (lc->xmajor) {
+        cy += (double)run_q8;
+    } else {
+        cx += (double)run_q8;
+    }
     for (int k = 0; k < l->width; k++) {
-        /* Wide lines: a run across the minor axis, centred on the pixel. */
-        int off = k - (l->width - 1) / 2;
-        int qx = lc->xmajor ? px : px + off;
-        int qy = lc->xmajor ? py + off : py;
+        int qx = lc->xmajor ? px : px + k;
+        int qy = lc->xmajor ? py + k : py;
         if (qx < lc->rx0 || qx >= lc->rx1 || qy < lc->ry0 || qy >= lc->ry1) {
             continue;
         }
-        double cx = (double)px * S + H - l->xa, cy = (double)py * S + H - l->ya;
         double t = (cx * (l->xb - l->xa) + cy * (l->yb - l->ya)) * lc->inv_len2;
         t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
         double z = l->za + t * (l->zb - l->za);
@@ -529,10 +540,9 @@ void sr__raster_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0
     /* The rectangle as major [r[0], r[1]) and minor [r[2], r[3]). */
     int r[4] = { xmajor ? rx0 : ry0, xmajor ? rx1 : ry1, xmajor ? ry0 : rx0, xmajor ? ry1 : rx1 };
     /* Columns inside the rectangle whose path pixel, or some pixel of its
-     * run across the minor axis, falls inside it. */
-    int below = (l->width - 1) / 2, above = l->width - 1 - below;
+     * run of width - 1 more toward +minor, falls inside it. */
     int64_t ka, kb;
-    if (!column_range(l, r[0], r[1] - 1, r[2] - above, r[3] - 1 + below, &ka, &kb)) {
+    if (!column_range(l, r[0], r[1] - 1, r[2] - (l->width - 1), r[3] - 1, &ka, &kb)) {
         ka = 0;
         kb = -1;
     }

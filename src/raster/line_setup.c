@@ -54,15 +54,24 @@ static int64_t minor_at(const sr_line *l, int64_t k)
 
 /* The aliased walk's constants, once per line rather than once per tile
  * it touches: the columns, the DDA of their pixels, and the pixels whose
- * diamonds own the two ends. */
+ * diamonds own the two ends.  A wide line's are those of its path: the
+ * segment moved by -(width - 1)/2 px along the minor axis, (width - 1)
+ * half pixels, exact in q8 (GL's wide lines, RASTER_RULES 6.3); each path
+ * pixel then starts a run of `width` pixels toward +minor.  For an odd
+ * width that is the one-pixel line's pixel with (width - 1)/2 on each
+ * side; for an even width the run's extra pixel is on the side where the
+ * line passes the column centre, not always below it. */
 static void setup_walk(sr_line *l)
 {
     int64_t dx = (int64_t)l->xb - l->xa, dy = (int64_t)l->yb - l->ya;
     bool xmajor = llabs(dx) >= llabs(dy);
     l->xmajor = xmajor;
+    int64_t shift = (int64_t)(l->width - 1) * H;
+    int64_t xa = l->xa - (xmajor ? 0 : shift), xb = l->xb - (xmajor ? 0 : shift);
+    int64_t ya = l->ya - (xmajor ? shift : 0), yb = l->yb - (xmajor ? shift : 0);
     /* Columns whose centre lies within the segment's major extent. */
-    int64_t au = xmajor ? l->xa : l->ya, bu = xmajor ? l->xb : l->yb;
-    int64_t av = xmajor ? l->ya : l->xa, bv = xmajor ? l->yb : l->xb;
+    int64_t au = xmajor ? xa : ya, bu = xmajor ? xb : yb;
+    int64_t av = xmajor ? ya : xa, bv = xmajor ? yb : xb;
     int64_t lo = au < bu ? au : bu, hi = au ^ bu ^ lo;
     int64_t k0 = sr__ceil_div(lo - H, S), k1 = sr__floor_div(hi - H, S);
     /* The minor coordinate at column centre c is num/den with
@@ -81,8 +90,8 @@ static void setup_walk(sr_line *l)
      * is not (half-open).  Either may lie on the column path or beside
      * it; only an off-path start pixel needs a pixel of its own. */
     int sx, sy, ex, ey;
-    bool start_in = diamond_owner(l->xa, l->ya, xmajor, &sx, &sy);
-    bool end_in = diamond_owner(l->xb, l->yb, xmajor, &ex, &ey);
+    bool start_in = diamond_owner(xa, ya, xmajor, &sx, &sy);
+    bool end_in = diamond_owner(xb, yb, xmajor, &ex, &ey);
     int su = xmajor ? sx : sy, sv = xmajor ? sy : sx;
     int eu = xmajor ? ex : ey, ev = xmajor ? ey : ex;
     bool start_on_path = start_in && su >= k0 && su <= k1 && minor_at(l, su) == sv;
@@ -114,11 +123,10 @@ bool sr__line_span(const sr_line *l, int u0, int u1, int *v0, int *v1)
     if (lo > hi) {
         return false;
     }
-    /* A wide line's run reaches (width - 1) / 2 pixels below its path
-     * pixel and the rest above it. */
-    int below = (l->width - 1) / 2;
-    *v0 = (int)lo - below;
-    *v1 = (int)hi + (l->width - 1 - below);
+    /* A wide line's run starts at its path pixel and reaches width - 1
+     * pixels toward +minor (see setup_walk). */
+    *v0 = (int)lo;
+    *v1 = (int)hi + (l->width - 1);
     return true;
 }
 
