@@ -365,6 +365,39 @@ SR_TEST(smooth_lines_and_points_cover_their_area)
     rt_free(&t);
 }
 
+/* A smooth point's ramp reaches half a pixel past its radius: one of
+ * size 0.5 at (10, 10) holds no pixel centre in its square, yet the four
+ * centres around it lie 0.707 px away, within 0.25 + 0.5, and take a
+ * little coverage; so do pixels with a ramp inside a scissor that holds
+ * none of the square's centres. */
+SR_TEST(small_smooth_points_keep_their_ramp)
+{
+    rt_target t = rt_make(W, H, 1);
+    uint8_t m[W * H];
+    for (int scissored = 0; scissored < 2; scissored++) {
+        rt_clear(&t);
+        double xy[2] = { 10.0, 10.0 };
+        sr_state st = { .point_size = 0.5f, .smooth_points = true };
+        if (scissored) {
+            /* Square [8.75, 11.25): centres 9.5 and 10.5, right of the
+             * scissor; the ramp, to 1.75 px, reaches centres (8.5, 9.5)
+             * and (8.5, 10.5), 1.58 px away. */
+            st.point_size = 2.5f;
+            st.scissor = (sr_scissor){ true, 0, 0, 9, 64 };
+        }
+        REQUIRE(draw_prims(&t, SR_PRIM_POINTS, xy, 1, &st) == SR_OK);
+        rt_mask(&t, m);
+        for (int y = 0; y < H; y++) {
+            for (int x = 0; x < W; x++) {
+                bool want = scissored ? x == 8 && y >= 9 && y <= 10
+                                      : (x == 9 || x == 10) && (y == 9 || y == 10);
+                CHECK_EQ(m[y * W + x], want);
+            }
+        }
+    }
+    rt_free(&t);
+}
+
 /* Partly covered pixels of a smooth line leave depth alone; fully
  * covered ones write it. */
 SR_TEST(smooth_lines_write_depth_only_where_fully_covered)

@@ -436,6 +436,246 @@ SR_TEST(lines_and_points_are_covered_per_sample)
     sr_destroy_context(ctx);
 }
 
+/* Draws window-space points (x, y pairs) through a viewport of 256 x 256
+ * at the origin, which maps q8 coordinates exactly whatever the
+ * framebuffer's size: x_ndc = x / 128 - 1.  With `triangle` the three
+ * points are a triangle's corners in polygon mode POINT instead. */
+static sr_result draw_points(sr_context *ctx, sr_framebuffer *fb, const double *xy, int n,
+                             bool triangle, const sr_state *extra)
+{
+    float *pos = malloc(sizeof(float) * 3 * (size_t)n);
+    for (int i = 0; i < n; i++) {
+        pos[i * 3 + 0] = (float)(xy[i * 2] / 128.0 - 1.0);
+        pos[i * 3 + 1] = (float)(1.0 - xy[i * 2 + 1] / 128.0);
+        pos[i * 3 + 2] = 0.0f;
+    }
+    sr_state st = *extra;
+    st.viewport = (sr_viewport){ 0, 0, 256, 256 };
+    st.shading = SR_SHADING_UNLIT;
+    st.material = (sr_material){ .diffuse = { 1, 1, 1 } };
+    if (triangle) {
+        st.polygon_mode_front = st.polygon_mode_back = SR_POLYGON_POINT;
+    }
+    sr_result r = sr_draw(ctx, fb, &st,
+                          &(sr_draw_desc){ .primitive = triangle ? SR_PRIM_TRIANGLES
+                                                                 : SR_PRIM_POINTS,
+                                           .positions = pos, .vertex_count = (size_t)n });
+    /* The pending clear, into the samples that were not drawn. */
+    sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
+    free(pos);
+    return r;
+}
+
+/* Sample s of pixel i drawn (red channel set), after draw_points. */
+static bool sample_on(const sr_framebuffer *fb, int i, int s)
+{
+    return (fb->color[(size_t)i * (size_t)fb->samples + (size_t)s] & 0xff) != 0;
+}
+
+/* ceil(a / 256) */
+static int64_t ceil256(int64_t a)
+{
+    return a >= 0 ? (a + 255) / 256 : -((-a) / 256);
+}
+
+/* RASTER_RULES 7 and 8.2: a multisampled point covers the samples inside
+ * its square, whether or not the square holds a pixel centre, and
+ * whether or not the pixel centres it holds lie inside the framebuffer
+ * and the scissor. */
+SR_TEST(msaa_points_cover_samples_without_a_pixel_centre)
+{
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* Size 0.75 at (1, 1): the square [0.625, 1.375)^2 holds no centre,
+     * but sample 3 of pixel (0, 0), at (0.625, 0.875), and sample 2 of
+     * pixel (1, 0), at (1.125, 0.625). */
+    sr_framebuffer *fb = make_ms(ctx, 4, 4, 4, SR_DEPTH_NONE);
+    REQUIRE(fb);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    REQUIRE(draw_points(ctx, fb, (const double[]){ 1.0, 1.0 }, 1, false,
+                        &(sr_state){ .point_size = 0.75f }) == SR_OK);
+    for (int i = 0; i < 16; i++) {
+        for (int s = 0; s < 4; s++) {
+            CHECK_EQ(sample_on(fb, i, s), (i == 0 && s == 3) || (i == 1 && s == 2));
+        }
+    }
+    CHECK_EQ(sr_last_draw_info(ctx).fragments, 2);
+    sr_destroy_framebuffer(ctx, fb);
+    /* Size 1 at (4.25, 1): the square [3.75, 4.75) x [0.5, 1.5) holds the
+     * centres of pixels 4 (past a 4-wide framebuffer, or past a scissor at
+     * x < 4) and sample 1 of pixel (3, 1), at (3.875, 1.375). */
+    for (int scissored = 0; scissored < 2; scissored++) {
+        int w = scissored ? 64 : 4;
+        fb = make_ms(ctx, w, 4, 4, SR_DEPTH_NONE);
+        REQUIRE(fb);
+        sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+        sr_state st = { .point_size = 1 };
+        if (scissored) {
+            st.scissor = (sr_scissor){ true, 0, 0, 4, 4 };
+        }
+        REQUIRE(draw_points(ctx, fb, (const double[]){ 4.25, 1.0 }, 1, false, &st) == SR_OK);
+        for (int i = 0; i < w * 4; i++) {
+            for (int s = 0; s < 4; s++) {
+                CHECK_EQ(sample_on(fb, i, s), i == 1 * w + 3 && s == 1);
+            }
+        }
+        CHECK_EQ(sr_last_draw_info(ctx).fragments, 1);
+        sr_destroy_framebuffer(ctx, fb);
+    }
+    sr_destroy_context(ctx);
+}
+
+/* Every sample of points against the rule, written from RASTER_RULES 7 and
+ * 8.2: a square [c - h, c + h) on both axes, or with round or smooth
+ * points the open disc of radius h (GL drops smoothing under
+ * multisampling), h = size / 2 on the 1/256 grid.  Points, and triangles
+ * in polygon mode POINT, mostly small and near the tile borders at 128 or
+ * the framebuffer's edges, so that many hold no pixel centre, or none
+ * inside, and many straddle two tiles; 1 and 3 threads. */
+SR_TEST(msaa_points_match_the_per_sample_rule)
+{
+    enum { W = 136, H = 136, N = 3 };
+    static const int counts[] = { 2, 4, 8, 16 };
+    sr_context *ctx[2];
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx[0]) == SR_OK);
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 3 }, &ctx[1]) == SR_OK);
+    sr_rng rng = { 0x90175 };
+    static uint8_t want[W * H * 16];
+    long bad = 0, covered = 0, pointless = 0;
+    for (int it = 0; it < 480; it++) {
+        int n = counts[it % 4];
+        sr_context *c = ctx[(it / 4) % 2];
+        sr_framebuffer *fb = make_ms(c, W, H, n, SR_DEPTH_NONE);
+        REQUIRE(fb);
+        sr_clear(c, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+        /* Sizes on the 1/128 grid, so that h is a whole number of q8. */
+        double size = (it % 5 == 0 ? sr_rng_int(&rng, 1, 128 * 12) : sr_rng_int(&rng, 1, 128 * 2))
+                      / 128.0;
+        bool round = it % 3 == 1, smooth = it % 3 == 2, triangle = (it / 8) % 2 == 1;
+        double xy[2 * N];
+        for (int k = 0; k < N; k++) {
+            static const double near[] = { 0, 128, 136 };
+            for (int a = 0; a < 2; a++) {
+                double v = sr_rng_int(&rng, 0, 1) ? near[sr_rng_int(&rng, 0, 2)] + sr_rng_range(&rng, -2, 2)
+                                                  : sr_rng_range(&rng, -2, 138);
+                xy[k * 2 + a] = floor(v * 256) / 256;
+            }
+        }
+        if (triangle) {
+            int64_t ex = ref_snap(xy[2]) - ref_snap(xy[0]), ey = ref_snap(xy[3]) - ref_snap(xy[1]);
+            int64_t fx = ref_snap(xy[4]) - ref_snap(xy[0]), fy = ref_snap(xy[5]) - ref_snap(xy[1]);
+            if (ex * fy - ey * fx == 0) {
+                sr_destroy_framebuffer(c, fb);
+                continue; /* no area: polygon mode draws nothing */
+            }
+        }
+        sr_state st = { .point_size = (float)size, .round_points = round, .smooth_points = smooth };
+        REQUIRE(draw_points(c, fb, xy, N, triangle, &st) == SR_OK);
+        int64_t h = (int64_t)(size * 128);
+        const int (*pos)[2] = vk_table(n);
+        for (int k = 0; k < N; k++) {
+            /* The pixels whose centre lies in [c - h, c + h), inside the
+             * framebuffer. */
+            int64_t cx = ref_snap(xy[k * 2]), cy = ref_snap(xy[k * 2 + 1]);
+            int64_t x0 = ceil256(cx - h - 128), x1 = ceil256(cx + h - 128);
+            int64_t y0 = ceil256(cy - h - 128), y1 = ceil256(cy + h - 128);
+            x0 = x0 > 0 ? x0 : 0, y0 = y0 > 0 ? y0 : 0;
+            x1 = x1 < W ? x1 : W, y1 = y1 < H ? y1 : H;
+            pointless += x0 >= x1 || y0 >= y1;
+        }
+        /* Each point's samples, over the pixels its square meets. */
+        memset(want, 0, (size_t)W * H * n);
+        for (int k = 0; k < N; k++) {
+            int64_t cx = ref_snap(xy[k * 2]), cy = ref_snap(xy[k * 2 + 1]);
+            for (int64_t py = (cy - h) / 256 - 1; py <= (cy + h) / 256 + 1; py++) {
+                for (int64_t px = (cx - h) / 256 - 1; px <= (cx + h) / 256 + 1; px++) {
+                    if (px < 0 || px >= W || py < 0 || py >= H) {
+                        continue;
+                    }
+                    for (int s = 0; s < n; s++) {
+                        int64_t dx = px * 256 + pos[s][0] * 16 - cx;
+                        int64_t dy = py * 256 + pos[s][1] * 16 - cy;
+                        want[(py * W + px) * n + s] |= round || smooth
+                                                           ? dx * dx + dy * dy < h * h
+                                                           : dx >= -h && dx < h && dy >= -h && dy < h;
+                    }
+                }
+            }
+        }
+        for (int i = 0; i < W * H * n; i++) {
+            bad += sample_on(fb, i / n, i % n) != want[i];
+            covered += want[i];
+        }
+        sr_destroy_framebuffer(c, fb);
+    }
+    CHECK_EQ(bad, 0);
+    CHECK(covered > 10000);
+    CHECK(pointless > 100);  /* squares holding no pixel centre inside the framebuffer */
+    sr_destroy_context(ctx[0]);
+    sr_destroy_context(ctx[1]);
+}
+
+/* A scissor only trims: with it the samples inside its rectangle are
+ * those drawn without it, and outside it nothing is drawn.  Points of any
+ * size, square, round or smooth, and polygon mode POINT, 1 to 16 samples
+ * (single-sampled smooth points' ramp reaches past their square), centres
+ * anywhere in and around the framebuffer. */
+SR_TEST(scissor_does_not_change_points_inside_it)
+{
+    enum { W = 150, H = 140, N = 30 };
+    static const int counts[] = { 1, 2, 4, 8, 16 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    sr_rng rng = { 0x5c155 };
+    long bad = 0, drawn = 0;
+    for (int it = 0; it < 150; it++) {
+        int n = counts[it % 5];
+        double xy[2 * N];
+        for (int k = 0; k < 2 * N; k++) {
+            xy[k] = floor(sr_rng_range(&rng, -4, (k % 2 ? H : W) + 4) * 256) / 256;
+        }
+        bool triangle = it % 4 == 3;
+        sr_state st = { .point_size = (float)(sr_rng_int(&rng, 0, 3) ? sr_rng_range(&rng, 0.1, 2)
+                                                                     : sr_rng_range(&rng, 2, 12)),
+                        .round_points = it % 3 == 1, .smooth_points = it % 3 == 2 };
+        sr_scissor sc = { true, sr_rng_int(&rng, -3, W - 1), sr_rng_int(&rng, -3, H - 1),
+                          sr_rng_int(&rng, 1, 20), sr_rng_int(&rng, 1, 20) };
+        uint32_t *plain = NULL;
+        for (int pass = 0; pass < 2; pass++) {
+            sr_framebuffer *fb = make_ms(ctx, W, H, n, SR_DEPTH_NONE);
+            REQUIRE(fb);
+            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+            sr_state s = st;
+            if (pass == 1) {
+                s.scissor = sc;
+            }
+            REQUIRE(draw_points(ctx, fb, xy, N, triangle, &s) == SR_OK);
+            size_t count = (size_t)W * H * n;
+            if (pass == 0) {
+                plain = malloc(count * sizeof(uint32_t));
+                memcpy(plain, fb->color, count * sizeof(uint32_t));
+            } else {
+                for (int y = 0; y < H; y++) {
+                    for (int x = 0; x < W; x++) {
+                        bool in = x >= sc.x && x < sc.x + sc.width && y >= sc.y &&
+                                  y < sc.y + sc.height;
+                        for (int k = 0; k < n; k++) {
+                            size_t i = ((size_t)y * W + x) * n + k;
+                            bad += fb->color[i] != (in ? plain[i] : 0u);
+                            drawn += in && plain[i] != 0;
+                        }
+                    }
+                }
+            }
+            sr_destroy_framebuffer(ctx, fb);
+        }
+        free(plain);
+    }
+    CHECK_EQ(bad, 0);
+    CHECK(drawn > 1000);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(alpha_to_coverage_keeps_that_share_of_the_samples)
 {
     enum { W = 8, H = 8 };

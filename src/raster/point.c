@@ -19,51 +19,57 @@ static int clampi(int64_t v, int lo, int hi)
 bool sr__setup_point(const sr_draw_state *ds, const sr_window_vertex *v, double offset,
                      bool front, int ninterp, const float flat[4], sr_point *p)
 {
-    /* The square's edges snap to q8; a pixel is covered when its centre
-     * lies in [lo, hi) on both axes (the top-left rule for a square). */
+    /* The square's edges snap to q8: [lo, hi) on both axes. */
     int64_t half = (int64_t)nearbyint(ds->point_size * (S / 2));
     int64_t lox = v->x_q8 - half, hix = v->x_q8 + half;
     int64_t loy = v->y_q8 - half, hiy = v->y_q8 + half;
-    int64_t x0 = sr__ceil_div(lox - H, S), x1 = sr__ceil_div(hix - H, S);
-    int64_t y0 = sr__ceil_div(loy - H, S), y1 = sr__ceil_div(hiy - H, S);
     p->h.kind = SR_KIND_POINT;
+    p->cx = v->x_q8;
+    p->cy = v->y_q8;
+    p->half = (int32_t)half;
+    p->radius2 = ds->round_points ? half * half : 0;
+    p->smooth_radius = ds->smooth_points ? (float)(ds->point_size * 0.5) : 0.0f;
+    /* The box of pixels that can be covered, in the way this point is
+     * sampled, and only then trimmed to the draw rectangle (viewport,
+     * scissor, framebuffer): it bounds the raster loop and decides the
+     * tiles the point is binned into, so it must hold every pixel with a
+     * covered sample, not only those whose centre is covered. */
+    int64_t x0, x1, y0, y1;
+    if (ds->samples > 1) {
+        /* Multisampled: each sample inside the square or disc decides
+         * (smooth points become discs, as GL ignores smoothing under
+         * multisampling).  Samples lie inside their pixel's square, so
+         * the box holds every pixel whose square meets [lo, hi) - also
+         * when the square holds no pixel centre at all, or only centres
+         * outside the rectangle. */
+        p->radius2 = ds->round_points || ds->smooth_points ? half * half : 0;
+        p->smooth_radius = 0.0f;
+        x0 = sr__floor_div(lox, S);
+        x1 = sr__floor_div(hix - 1, S) + 1;
+        y0 = sr__floor_div(loy, S);
+        y1 = sr__floor_div(hiy - 1, S) + 1;
+    } else if (p->smooth_radius > 0.0f) {
+        /* The ramp reaches half a pixel past the radius: the pixels whose
+         * centre lies within, even when the square holds none. */
+        int64_t reach = half + H;
+        x0 = sr__ceil_div(v->x_q8 - reach - H, S);
+        x1 = sr__floor_div(v->x_q8 + reach - H, S) + 1;
+        y0 = sr__ceil_div(v->y_q8 - reach - H, S);
+        y1 = sr__floor_div(v->y_q8 + reach - H, S) + 1;
+    } else {
+        /* A pixel is covered when its centre lies in [lo, hi) on both
+         * axes (the top-left rule for a square); a disc lies inside. */
+        x0 = sr__ceil_div(lox - H, S);
+        x1 = sr__ceil_div(hix - H, S);
+        y0 = sr__ceil_div(loy - H, S);
+        y1 = sr__ceil_div(hiy - H, S);
+    }
     p->h.x0 = clampi(x0, ds->rect_x0, ds->rect_x1);
     p->h.x1 = clampi(x1, ds->rect_x0, ds->rect_x1);
     p->h.y0 = clampi(y0, ds->rect_y0, ds->rect_y1);
     p->h.y1 = clampi(y1, ds->rect_y0, ds->rect_y1);
     if (p->h.x0 >= p->h.x1 || p->h.y0 >= p->h.y1) {
         return false;
-    }
-    p->cx = v->x_q8;
-    p->cy = v->y_q8;
-    p->half = (int32_t)half;
-    p->radius2 = ds->round_points ? half * half : 0;
-    p->smooth_radius = ds->smooth_points ? (float)(ds->point_size * 0.5) : 0.0f;
-    if (ds->samples > 1) {
-        /* Multisampled: the samples inside the square or disc decide
-         * (smooth points become discs, as GL ignores smoothing under
-         * multisampling); the box holds every pixel whose square meets
-         * [lo, hi). */
-        p->radius2 = ds->round_points || ds->smooth_points ? half * half : 0;
-        p->smooth_radius = 0.0f;
-        p->h.x0 = clampi(sr__floor_div(lox, S), ds->rect_x0, ds->rect_x1);
-        p->h.x1 = clampi(sr__floor_div(hix - 1, S) + 1, ds->rect_x0, ds->rect_x1);
-        p->h.y0 = clampi(sr__floor_div(loy, S), ds->rect_y0, ds->rect_y1);
-        p->h.y1 = clampi(sr__floor_div(hiy - 1, S) + 1, ds->rect_y0, ds->rect_y1);
-        if (p->h.x0 >= p->h.x1 || p->h.y0 >= p->h.y1) {
-            return false;
-        }
-    }
-    if (p->smooth_radius > 0.0f) {
-        /* The ramp reaches half a pixel past the radius. */
-        int64_t reach = half + H;
-        p->h.x0 = clampi(sr__ceil_div(v->x_q8 - reach - H, S), ds->rect_x0, ds->rect_x1);
-        p->h.x1 = clampi(sr__floor_div(v->x_q8 + reach - H, S) + 1, ds->rect_x0, ds->rect_x1);
-        p->h.y0 = clampi(sr__ceil_div(v->y_q8 - reach - H, S), ds->rect_y0, ds->rect_y1);
-        p->h.y1 = clampi(sr__floor_div(v->y_q8 + reach - H, S) + 1, ds->rect_y0, ds->rect_y1);
-        if (p->h.x0 >= p->h.x1 || p->h.y0 >= p->h.y1) {
-            return false;
-        }
     }
     p->z = (v->z + offset) * ds->depth_scale;
     p->front = front;
