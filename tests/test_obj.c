@@ -203,6 +203,26 @@ static char *join_path(const char *dir, const char *rel)
     return s;
 }
 
+/* A bad token quoted in the message keeps no control byte: an escape
+ * sequence in a file would otherwise reach the terminal. */
+SR_TEST(obj_error_messages_hold_no_control_bytes)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/obj_escape.obj", sr_test_out_dir());
+    write_file(path, "v 0 0 0\nv 1 0 0\nv 0 1 \x1b[2J\x1b[31mRED\x7f\nf 1 2 3\n");
+    sr_mesh m;
+    sr_io_error err;
+    CHECK_EQ(sr_load_mesh(path, NULL, &m, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "obj_escape.obj:3:");
+    for (const char *c = err.message; *c; c++) {
+        unsigned char b = (unsigned char)*c;
+        CHECK(b >= 0x20 && b != 0x7f);
+    }
+    if (sr_test_failed_now()) {
+        fprintf(stderr, "  message: \"%s\"\n", err.message);
+    }
+}
+
 /* ---- face forms and indices ------------------------------------------------ */
 
 SR_TEST(obj_face_with_positions_only)

@@ -59,6 +59,15 @@ static void format_message(sr_io_error *err, const char *name, const char *where
     n = append(err->message, n, cap, where);
     n = append(err->message, n, cap, reason);
     err->message[n] = 0;
+    /* Names and quoted tokens come from the input: a control byte (an
+     * escape sequence, a newline) would reach the user's terminal or
+     * break the message's one line. */
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)err->message[i];
+        if (c < 0x20 || c == 0x7f) {
+            err->message[i] = '?';
+        }
+    }
 }
 
 sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
