@@ -759,7 +759,7 @@ SR_TEST(ply_nan_and_inf_coordinates_are_refused)
     const char *inf = TRI_HEADER "0 0 0\n1 0 0\n0 1 -inf\n3 0 1 2\n";
     expect_error(inf, strlen(inf), SR_BAD_FORMAT, "bad.ply:12: vertex 2: z is not finite");
     const char *overflow = TRI_HEADER "0 0 0\n1 0 0\n1e39 1 0\n3 0 1 2\n";
-    expect_error(overflow, strlen(overflow), SR_BAD_FORMAT, "vertex 2: x is not finite");
+    expect_error(overflow, strlen(overflow), SR_BAD_FORMAT, "bad.ply:12: vertex 2: '1e39' is beyond float32's range");
 
     wbuf b = { 0 };
     wb_printf(&b, "ply\nformat binary_big_endian 1.0\nelement vertex 3\n"
@@ -774,6 +774,21 @@ SR_TEST(ply_nan_and_inf_coordinates_are_refused)
     snprintf(want, sizeof want, "bad.ply: byte %zu: vertex 1: z is not finite", data + 20);
     expect_error((const char *)b.p, b.n, SR_BAD_FORMAT, want);
     free(b.p);
+
+    /* A double beyond float's range is finite, only not a float. */
+    wbuf d = { 0 };
+    wb_printf(&d, "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                  "property double x\nproperty double y\nproperty double z\n"
+                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n");
+    data = d.n;
+    for (int i = 0; i < 9; i++) {
+        put(&d, W_LE, "double", i == 6 ? 3.5e38 : (i == 3 || i == 7));
+    }
+    put_list(&d, W_LE, "uchar", "int", (const int[]){ 0, 1, 2 }, 3);
+    snprintf(want, sizeof want, "bad.ply: byte %zu: vertex 2: x is beyond float's range",
+             data + 48);
+    expect_error((const char *)d.p, d.n, SR_BAD_FORMAT, want);
+    free(d.p);
 }
 
 SR_TEST(ply_ascii_value_errors_name_the_line)

@@ -366,6 +366,8 @@ SR_TEST(stl_ascii_syntax_errors_name_the_line)
     expect_text_error("solid x\n\n\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                       "vertex 0 1 0\nendloop\nendfacet\nfacet\n outer loop\n  vertex 1 1 inf\n",
                       "t.stl:13: vertex coordinate 'inf' is not finite");
+    expect_text_error("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e39 0 0\n",
+                      "t.stl:5: vertex coordinate '1e39' is beyond float's range");
     expect_text_error("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
                       "vertex 0 1 0\nendloop\nendfacet\nface\n",
                       "t.stl:9: expected 'facet' or 'endsolid', found 'face'");

@@ -657,6 +657,12 @@ static sr_result read_value(ply_reader *r, const ply_elem *e, unsigned long long
                              e->name, index, buf, type_label[t]);
         }
         *out = t == T_FLOAT32 ? (double)(float)v : v;
+        if (!isfinite(*out) && !strpbrk(buf, "iInN")) {
+            /* Digits that overflowed (1e39 for a float, 1e999), not the
+             * words inf or nan: say so rather than "not finite". */
+            return data_fail(r, SR_BAD_FORMAT, "%s %llu: '%s' is beyond %s's range", e->name,
+                             index, buf, type_label[t]);
+        }
     }
     return SR_OK;
 }
@@ -859,7 +865,9 @@ static sr_result read_vertex(ply_reader *r, const ply_elem *e, unsigned long lon
                 /* A NaN or infinite attribute would poison bounds, normals
                  * and the rasterizer's fixed-point snap. */
                 if (!isfinite(f)) {
-                    return data_fail(r, SR_BAD_FORMAT, "vertex %llu: %s is not finite",
+                    return data_fail(r, SR_BAD_FORMAT,
+                                     isfinite(d) ? "vertex %llu: %s is beyond float's range"
+                                                 : "vertex %llu: %s is not finite",
                                      index, attribute_name[p->role]);
                 }
                 v[p->role] = f;

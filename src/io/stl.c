@@ -426,8 +426,12 @@ static sr_result read_facet(stl_lexer *lx, stl_builder *b)
                 return res;
             }
             if (!isfinite(p[k])) {
+                /* 1e39 is a finite number, only not a float. */
+                bool finite = isfinite(strtod(lx->word, NULL));
                 return sr__io_fail(lx->err, SR_BAD_FORMAT, lx->name, lx->line,
-                                   "vertex coordinate '%s' is not finite", lx->word);
+                                   finite ? "vertex coordinate '%s' is beyond float's range"
+                                          : "vertex coordinate '%s' is not finite",
+                                   lx->word);
             }
         }
         uint32_t index;
