@@ -5,15 +5,13 @@
  * failure is one line "FILE:LINE: what is wrong", exit status 2 for a bad
  * document, 1 when the run itself fails, and no output file. */
 #include "svg.h"
+#include "io/io_util.h"
 #include "softrast_io.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #ifndef SR_HAVE_EXPAT
 
@@ -40,48 +38,17 @@ static void svg_help(FILE *f)
                "  --background COLOR   opaque background (default transparent)\n");
 }
 
-/* `input` opened for reading if it is a regular file; NULL after printing
- * one line.  O_NONBLOCK because opening a FIFO waits for a writer, maybe
- * forever: open without waiting, look at the type, then refuse. */
-static FILE *open_input(const char *input)
-{
-    int fd = open(input, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) {
-        cli_error("svg: cannot open %s: %s", input, strerror(errno));
-        return NULL;
-    }
-    struct stat st;
-    const char *why = NULL;
-    if (fstat(fd, &st) != 0) {
-        why = strerror(errno);
-    } else if (S_ISDIR(st.st_mode)) {
-        why = "is a directory, not an SVG file";
-    } else if (!S_ISREG(st.st_mode)) {
-        why = "not a regular file";
-    } else {
-        /* Reads from a regular file never block; give stdio a plain descriptor. */
-        int flags = fcntl(fd, F_GETFL);
-        if (flags < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
-            why = strerror(errno);
-        }
-    }
-    FILE *fp = why ? NULL : fdopen(fd, "rb");
-    if (!fp) {
-        if (!why) {
-            why = strerror(errno);
-        }
-        close(fd);
-        cli_error("svg: cannot open %s: %s", input, why);
-    }
-    return fp;
-}
-
 /* The whole file into a malloc'd buffer; EXIT_OK, or the status after
  * printing one line. */
 static int read_input(const char *input, char **data, size_t *size)
 {
-    FILE *fp = open_input(input);
-    if (!fp) {
+    /* The readers' open: a FIFO, device or directory is refused without
+     * waiting for a writer. */
+    FILE *fp;
+    unsigned long long file_size;
+    sr_io_error err;
+    if (sr__open_regular(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
+        cli_error("svg: %s", err.message);
         return EXIT_USAGE;
     }
     size_t cap = 65536, n = 0;

@@ -171,7 +171,7 @@ sr_result sr__open_regular(const char *path, const char *kind, FILE **f,
     }
     if (S_ISDIR(st.st_mode)) {
         close(fd);
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not a %s", kind);
+        return sr__io_fail(err, SR_IO_ERROR, path, 0, "is a directory, not %s", kind);
     }
     /* FIFOs, sockets and devices (/dev/zero never ends) are not files to
      * read whole. */
@@ -207,7 +207,7 @@ sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error
     }
     FILE *f;
     unsigned long long file_size;
-    sr_result res = sr__open_regular(path, "model file", &f, &file_size, err);
+    sr_result res = sr__open_regular(path, "a model file", &f, &file_size, err);
     if (res != SR_OK) {
         return res;
     }

@@ -21,8 +21,9 @@ sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
     __attribute__((format(printf, 5, 6)));
 
 /* Open a regular file for reading: *f and its size, or a message naming
- * the file ("cannot open: ...", "is a directory, not a KIND", "not a regular
- * file").  Never waits for another process: a FIFO is refused, not read. */
+ * the file ("cannot open: ...", "is a directory, not KIND", with KIND
+ * such as "a PNG file", or "not a regular file").  Never waits for
+ * another process: a FIFO is refused, not read. */
 sr_result sr__open_regular(const char *path, const char *kind, FILE **f,
                            unsigned long long *size, sr_io_error *err);
 

@@ -56,7 +56,7 @@ static sr_model_format format_from_content(const char *path)
 {
     FILE *f;
     unsigned long long size;
-    if (sr__open_regular(path, "model file", &f, &size, NULL) != SR_OK) {
+    if (sr__open_regular(path, "a model file", &f, &size, NULL) != SR_OK) {
         return SR_FORMAT_AUTO;
     }
     unsigned char head[84];
@@ -121,7 +121,7 @@ sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
      * here, before Assimp could wait on it for a writer. */
     FILE *f;
     unsigned long long size;
-    sr_result res = sr__open_regular(path, "model file", &f, &size, err);
+    sr_result res = sr__open_regular(path, "a model file", &f, &size, err);
     if (res != SR_OK) {
         return res;
     }

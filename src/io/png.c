@@ -583,7 +583,7 @@ sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *
     }
     FILE *f;
     unsigned long long size;
-    sr_result res = sr__open_regular(path, "PNG file", &f, &size, err);
+    sr_result res = sr__open_regular(path, "a PNG file", &f, &size, err);
     if (res != SR_OK) {
         return res;
     }
