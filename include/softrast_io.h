@@ -1,6 +1,7 @@
 /*
  * softrast_io.h - files in and out: model readers (OBJ, PLY, STL, and other
- * formats through Assimp when the build found it) and PNG images (libpng).
+ * formats through Assimp when the build found it), PNG images (libpng) and
+ * JPEG images in (libjpeg-turbo, when the build found it).
  *
  * Errors: every function returns an sr_result and, on failure, fills an
  * sr_io_error with one line of the form "FILE:LINE: what is wrong" for text
@@ -96,6 +97,25 @@ typedef struct sr_png_read_desc {
 /* sr_read_png with options (desc may be NULL: exactly sr_read_png). */
 sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
                            int *height, uint8_t **pixels, sr_io_error *err);
+
+/* JPEG: baseline or progressive, gray, YCbCr/RGB or CMYK (Adobe's inverted
+ * inks too), any chroma subsampling, read as RGBA8 with alpha 255; at
+ * most 16384 pixels a side, like PNG.  Data libjpeg would only patch
+ * over with a warning (a truncated file's missing rows come out gray) is
+ * an error with libjpeg's words: nothing partial is returned.  *pixels is
+ * malloc'd; free it with free().  A build without libjpeg returns
+ * SR_UNSUPPORTED (sr_io_have_jpeg says which). */
+sr_result sr_read_jpeg(const char *path, int *width, int *height,
+                       uint8_t **pixels, sr_io_error *err);
+/* The same on a file already in memory; `name` is used in messages. */
+sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size,
+                         int *width, int *height, uint8_t **pixels, sr_io_error *err);
+bool sr_io_have_jpeg(void);
+
+/* A PNG or a JPEG, told apart by the file's first bytes (not its name),
+ * read as RGBA8 by sr_read_png or sr_read_jpeg. */
+sr_result sr_read_image(const char *path, int *width, int *height,
+                        uint8_t **pixels, sr_io_error *err);
 
 #ifdef __cplusplus
 }

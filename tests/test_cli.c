@@ -1306,3 +1306,146 @@ SR_TEST(verbose_reports_on_stderr_and_still_renders)
     CHECK_EQ(h, 24);
     free(px);
 }
+
+/* ---- textures in JPEG, and a model's own texture that cannot be read ---- */
+
+#if defined(SR_CLI_PATH) && defined(SR_HAVE_JPEG_TEST)
+#include "jpeg_encode.h"
+
+/* A 16 x 16 JPEG of four colored squares, the first `keep` bytes of it
+ * when keep > 0. */
+static bool write_test_jpeg(const char *path, size_t keep)
+{
+    uint8_t px[16 * 16 * 3];
+    for (int y = 0; y < 16; y++) {
+        for (int x = 0; x < 16; x++) {
+            int q = x / 8 + 2 * (y / 8);
+            uint8_t *p = px + 3 * (16 * y + x);
+            p[0] = (uint8_t)(q & 1 ? 230 : 20);
+            p[1] = (uint8_t)(q & 2 ? 200 : 40);
+            p[2] = (uint8_t)(q == 3 ? 250 : 60);
+        }
+    }
+    size_t len;
+    uint8_t *jpg = jpeg_encode(px, 16, 16, (jpeg_encoding){ JCS_RGB, 90, false, false }, &len);
+    bool ok = jpg && write_whole(path, jpg, keep && keep < len ? keep : len);
+    free(jpg);
+    return ok;
+}
+
+/* A textured quad DIR/NAME.obj; with `map`, a material whose map_Kd is it. */
+static bool write_textured_quad(const char *dir, const char *name, const char *map)
+{
+    char path[1200], mtl[1200];
+    snprintf(path, sizeof path, "%s/%s.obj", dir, name);
+    char text[600];
+    snprintf(text, sizeof text,
+             "%s%s%s"
+             "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+             "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n",
+             map ? "mtllib " : "", map ? name : "", map ? ".mtl\nusemtl m\n" : "");
+    if (!write_whole(path, text, strlen(text))) {
+        return false;
+    }
+    if (!map) {
+        return true;
+    }
+    snprintf(mtl, sizeof mtl, "%s/%s.mtl", dir, name);
+    snprintf(text, sizeof text, "newmtl m\nmap_Kd %s\n", map);
+    return write_whole(mtl, text, strlen(text));
+}
+#endif
+
+/* A JPEG texture - named by map_Kd or found as MODEL_texture.jpg - gives
+ * the same image as its decoded pixels given as a PNG. */
+SR_TEST(jpeg_textures_render_as_their_pixels_do)
+{
+#if !defined(SR_CLI_PATH) || !defined(SR_HAVE_JPEG_TEST)
+    SKIP("needs the softrast tool and libjpeg");
+#else
+    char dir[1024], jpg[1100], png[1100], guessed[1100], model[1100], plain[1100];
+    fresh_dir("jpeg", dir, sizeof dir);
+    snprintf(jpg, sizeof jpg, "%s/tex.jpg", dir);
+    snprintf(png, sizeof png, "%s/decoded.png", dir);
+    snprintf(guessed, sizeof guessed, "%s/plain_texture.jpg", dir);
+    snprintf(model, sizeof model, "%s/quad.obj", dir);
+    snprintf(plain, sizeof plain, "%s/plain.obj", dir);
+    REQUIRE(write_test_jpeg(jpg, 0));
+    REQUIRE(write_test_jpeg(guessed, 0));
+    REQUIRE(write_textured_quad(dir, "quad", "tex.jpg"));
+    REQUIRE(write_textured_quad(dir, "plain", NULL));
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    REQUIRE(sr_read_jpeg(jpg, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_write_png(png, w, h, px, 4 * (size_t)w, NULL, &err) == SR_OK);
+    free(px);
+
+    size_t la, lb, lc, ld;
+    char *a = render_bytes("map_Kd tex.jpg", dir, "a.png", ARGS(model, "--size", "96x64"), &la);
+    char *b = render_bytes("--texture decoded.png", dir, "b.png",
+                           ARGS(model, "--texture", png, "--size", "96x64"), &lb);
+    char *c = render_bytes("plain_texture.jpg", dir, "c.png", ARGS(plain, "--size", "96x64"), &lc);
+    /* Without any texture (the guess moved away): a different picture. */
+    char moved[1100];
+    snprintf(moved, sizeof moved, "%s/elsewhere.jpg", dir);
+    REQUIRE(rename(guessed, moved) == 0);
+    char *d = render_bytes("untextured", dir, "d.png", ARGS(plain, "--size", "96x64"), &ld);
+    REQUIRE(a && b && c && d);
+    CHECK(la == lb && memcmp(a, b, la) == 0);
+    CHECK(lc == lb && memcmp(c, b, lc) == 0);
+    CHECK(!(ld == lb && memcmp(d, b, ld) == 0));
+    free(a);
+    free(b);
+    free(c);
+    free(d);
+#endif
+}
+
+/* A texture the model brings that cannot be read costs a warning, not
+ * the picture; one the user names with --texture is an error. */
+SR_TEST(a_models_unreadable_texture_is_a_warning)
+{
+#if !defined(SR_CLI_PATH) || !defined(SR_HAVE_JPEG_TEST)
+    SKIP("needs the softrast tool and libjpeg");
+#else
+    char dir[1024], broken[1100], model[1100], missing[1100], plain[1100], out[1100];
+    fresh_dir("texwarn", dir, sizeof dir);
+    snprintf(broken, sizeof broken, "%s/broken.jpg", dir);
+    snprintf(model, sizeof model, "%s/quad.obj", dir);
+    snprintf(missing, sizeof missing, "%s/lost.obj", dir);
+    snprintf(plain, sizeof plain, "%s/plain.obj", dir);
+    REQUIRE(write_test_jpeg(broken, 300)); /* cut short */
+    REQUIRE(write_textured_quad(dir, "quad", "broken.jpg"));
+    REQUIRE(write_textured_quad(dir, "lost", "nowhere.png"));
+    REQUIRE(write_textured_quad(dir, "plain", NULL));
+    size_t lp;
+    char *untextured = render_bytes("untextured", dir, "p.png", ARGS(plain, "--size", "96x64"), &lp);
+    REQUIRE(untextured);
+
+    struct {
+        const char *model, *needle;
+    } cases[] = {
+        { model, "broken.jpg: corrupt JPEG" },
+        { missing, "nowhere.png: No such file or directory, named by the model's material" },
+    };
+    snprintf(out, sizeof out, "%s/w.png", dir);
+    for (size_t i = 0; i < 2; i++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS("render", cases[i].model, "--size", "96x64", "-o", out), &r));
+        CHECK_EQ(r.status, 0);
+        CHECK(is_one_line(r.err, r.err_len));
+        CHECK_STR_CONTAINS(r.err, "softrast: warning: ");
+        CHECK_STR_CONTAINS(r.err, cases[i].needle);
+        CHECK_STR_CONTAINS(r.err, "(drawing the model without its texture)");
+        cli_run_free(&r);
+        size_t lw;
+        char *img = read_whole(out, &lw);
+        CHECK(img && lw == lp && memcmp(img, untextured, lp) == 0);
+        free(img);
+    }
+    free(untextured);
+    expect_render_failure("--texture broken.jpg", ARGS(plain, "--texture", broken), 2,
+                          "broken.jpg: corrupt JPEG");
+#endif
+}

@@ -140,31 +140,41 @@ SR_TEST(an_mtllib_that_is_a_fifo_is_skipped_like_a_missing_one)
     stop_watchdog();
 }
 
-SR_TEST(a_fifo_or_a_device_is_refused_as_a_png)
+SR_TEST(a_fifo_or_a_device_is_refused_as_an_image)
 {
     start_watchdog();
     const char *fifo = make_fifo("fifo.png");
     REQUIRE(fifo);
+    typedef sr_result (*read_fn)(const char *, int *, int *, uint8_t **, sr_io_error *);
+    const struct {
+        read_fn read;
+        const char *kind;
+    } readers[] = { { sr_read_png, "a PNG file" },
+                    { sr_read_jpeg, "a JPEG file" },
+                    { sr_read_image, "an image file" } };
     const char *paths[] = { fifo, "/dev/zero" };
-    for (size_t i = 0; i < sizeof paths / sizeof paths[0]; i++) {
-        int w = -1, h = -1;
-        uint8_t *px = (uint8_t *)&w;
+    for (size_t k = 0; k < sizeof readers / sizeof readers[0]; k++) {
+        for (size_t i = 0; i < sizeof paths / sizeof paths[0]; i++) {
+            int w = -1, h = -1;
+            uint8_t *px = (uint8_t *)&w;
+            sr_io_error err = { { 0 } };
+            CHECK_EQ(readers[k].read(paths[i], &w, &h, &px, &err), SR_IO_ERROR);
+            char want[1100];
+            snprintf(want, sizeof want, "%s: not a regular file", paths[i]);
+            CHECK_STR_CONTAINS(err.message, want);
+            CHECK(px == NULL);
+            CHECK_EQ(w, 0);
+            CHECK_EQ(h, 0);
+        }
+        /* A directory keeps its own message. */
+        int w, h;
+        uint8_t *px;
         sr_io_error err = { { 0 } };
-        CHECK_EQ(sr_read_png(paths[i], &w, &h, &px, &err), SR_IO_ERROR);
-        char want[1100];
-        snprintf(want, sizeof want, "%s: not a regular file", paths[i]);
+        char want[64];
+        snprintf(want, sizeof want, "is a directory, not %s", readers[k].kind);
+        CHECK_EQ(readers[k].read(sr_test_out_dir(), &w, &h, &px, &err), SR_IO_ERROR);
         CHECK_STR_CONTAINS(err.message, want);
-        CHECK(px == NULL);
-        CHECK_EQ(w, 0);
-        CHECK_EQ(h, 0);
     }
     unlink(fifo);
-
-    /* A directory keeps its own message. */
-    int w, h;
-    uint8_t *px;
-    sr_io_error err = { { 0 } };
-    CHECK_EQ(sr_read_png(sr_test_out_dir(), &w, &h, &px, &err), SR_IO_ERROR);
-    CHECK_STR_CONTAINS(err.message, "is a directory, not a PNG file");
     stop_watchdog();
 }

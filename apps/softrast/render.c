@@ -7,6 +7,7 @@
 #include "scene.h"
 #include "softrast_io.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -119,9 +120,10 @@ static void render_help(void)
         "                           without any, a key, fill and rim light placed\n"
         "                           relative to the camera\n"
         "textures:\n"
-        "  --texture FILE           PNG that colors the model through its texture\n"
+        "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
         "                           coordinates (default: the OBJ material's map_Kd, or\n"
-        "                           MODEL_texture.png beside a model named MODEL.obj)\n"
+        "                           MODEL_texture.png or .jpg beside a model MODEL.obj;\n"
+        "                           one of those that cannot be read is a warning)\n"
         "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
         "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
         "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
@@ -627,7 +629,10 @@ static bool same_file(const char *a, const char *b)
 }
 
 /* The model's texture: --texture, else the file's own (OBJ map_Kd), else
- * MODEL_texture.png beside MODEL.ext.  Returns an exit status, or -1. */
+ * MODEL_texture.png or .jpg beside MODEL.ext.  One the user named must be
+ * read; one the model brings that is missing or unreadable is reported in
+ * a warning and the model drawn without it - a preview of the geometry
+ * beats no preview.  Returns an exit status, or -1. */
 static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
 {
     if (!o->model || s->count == 0) {
@@ -640,19 +645,29 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
     scene_object *ob = &s->objects[0];
     char guess[4096];
     const char *path = o->texture;
-    if (!path && ob->mesh.texture_path && is_file(ob->mesh.texture_path)) {
-        path = ob->mesh.texture_path;
+    const char *named = ob->mesh.texture_path;
+    if (!path && named && is_file(named)) {
+        path = named;
     }
     if (!path) {
         const char *dot = strrchr(o->model, '.'), *slash = strrchr(o->model, '/');
         size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - o->model) : strlen(o->model);
-        if (stem + sizeof "_texture.png" <= sizeof guess) {
-            memcpy(guess, o->model, stem);
-            strcpy(guess + stem, "_texture.png");
-            path = is_file(guess) ? guess : NULL;
+        static const char *const suffixes[] = { "_texture.png", "_texture.jpg" };
+        for (size_t i = 0; i < 2 && !path; i++) {
+            if (stem + strlen(suffixes[i]) < sizeof guess) {
+                memcpy(guess, o->model, stem);
+                strcpy(guess + stem, suffixes[i]);
+                path = is_file(guess) ? guess : NULL;
+            }
         }
     }
     if (!path) {
+        if (named && ob->mesh.texcoords) {
+            struct stat st;
+            cli_error("warning: %s: %s, named by the model's material (drawing the model "
+                      "without its texture)", named,
+                      stat(named, &st) != 0 ? strerror(errno) : "not a regular file");
+        }
         return -1;
     }
     if (o->writes_output && same_file(path, o->output)) {
@@ -670,9 +685,14 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(path, &w, &h, &px, &err) != SR_OK) {
+    sr_result rr = sr_read_image(path, &w, &h, &px, &err);
+    if (rr != SR_OK) {
+        if (!o->texture && rr != SR_OUT_OF_MEMORY) {
+            cli_error("warning: %s (drawing the model without its texture)", err.message);
+            return -1;
+        }
         fprintf(stderr, "%s\n", err.message);
-        return EXIT_USAGE;
+        return rr == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = px,
                                                             .srgb = o->texture_srgb },

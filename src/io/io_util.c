@@ -200,6 +200,12 @@ sr_result sr__open_regular(const char *path, const char *kind, FILE **f,
 
 sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err)
 {
+    return sr__read_file_as(path, "a model file", data, size, err);
+}
+
+sr_result sr__read_file_as(const char *path, const char *kind, char **data, size_t *size,
+                           sr_io_error *err)
+{
     *data = NULL;
     *size = 0;
     if (!path) {
@@ -207,7 +213,7 @@ sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error
     }
     FILE *f;
     unsigned long long file_size;
-    sr_result res = sr__open_regular(path, "a model file", &f, &file_size, err);
+    sr_result res = sr__open_regular(path, kind, &f, &file_size, err);
     if (res != SR_OK) {
         return res;
     }
@@ -234,4 +240,20 @@ sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error
     *data = buf;
     *size = n;
     return SR_OK;
+}
+
+void sr__image_outputs_clear(int *width, int *height, uint8_t **pixels, sr_io_error *err)
+{
+    if (err) {
+        err->message[0] = 0;
+    }
+    if (width) {
+        *width = 0;
+    }
+    if (height) {
+        *height = 0;
+    }
+    if (pixels) {
+        *pixels = NULL;
+    }
 }

@@ -1,4 +1,4 @@
-/* io_util.h - shared by the model readers and the PNG code (src/io):
+/* io_util.h - shared by the model readers and the image code (src/io):
  * whole-file reading with limits, and error messages in the one form the
  * CLI prints ("FILE:LINE: what is wrong" / "FILE: byte N: what is wrong"). */
 #ifndef SR_IO_UTIL_H
@@ -31,6 +31,9 @@ sr_result sr__open_regular(const char *path, const char *kind, FILE **f,
  * SR_IO_MAX_FILE_BYTES are refused with a clear message).  The buffer has
  * one extra NUL byte after `*size` bytes; release it with sr__free_file. */
 sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err);
+/* The same for a file of another KIND ("a JPEG file"), named so in messages. */
+sr_result sr__read_file_as(const char *path, const char *kind, char **data, size_t *size,
+                           sr_io_error *err);
 void sr__free_file(char *data, size_t size);
 
 /* Read a whole file and hand it to a parser (the readers' sr__load_*):
@@ -39,6 +42,10 @@ typedef sr_result (*sr_parse_fn)(const char *name, const uint8_t *data, size_t s
                                  sr_mesh *out, sr_io_error *err);
 sr_result sr__load_file_with(const char *path, sr_parse_fn parse, sr_mesh *out,
                              sr_io_error *err);
+
+/* The image readers' outputs before anything is read: an empty message,
+ * a 0 x 0 size and no pixels (each pointer may be NULL). */
+void sr__image_outputs_clear(int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 /* Overflow-checked size arithmetic for allocations sized by input. */
 static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)

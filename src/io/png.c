@@ -562,18 +562,7 @@ sr_result sr_read_png(const char *path, int *width, int *height,
 sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
                            int *height, uint8_t **pixels, sr_io_error *err)
 {
-    if (err) {
-        err->message[0] = 0;
-    }
-    if (width) {
-        *width = 0;
-    }
-    if (height) {
-        *height = 0;
-    }
-    if (pixels) {
-        *pixels = NULL;
-    }
+    sr__image_outputs_clear(width, height, pixels, err);
     if (!path || !path[0]) {
         return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
     }

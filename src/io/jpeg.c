@@ -1,0 +1,224 @@
+/* jpeg.c - JPEG images in (io stage), through libjpeg-turbo: baseline and
+ * progressive, grayscale, YCbCr/RGB and CMYK, any chroma subsampling, to
+ * malloc'd RGBA8 (alpha 255).  Reentrant: libjpeg's state lives on the
+ * caller's stack, and libjpeg never prints or exits (our error hooks).
+ *
+ * Strictness: libjpeg recovers from damaged data with a warning and goes
+ * on - a truncated file comes out with its missing rows gray.  A texture
+ * with a gray band is a wrong picture, not a picture, so any warning
+ * fails the read with libjpeg's own words; nothing partial is returned. */
+#include "io/io_util.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_READ_SIZE 16384   /* per side, as for PNG: 16384^2 RGBA8 is 1 GiB */
+/* libjpeg's working memory (a progressive image keeps every coefficient:
+ * 2 bytes a sample) beyond which it fails rather than allocates. */
+#define MAX_DECODER_MEMORY ((long)1 << 30)
+
+#ifdef SR_HAVE_JPEG
+
+#include <jerror.h>
+#include <jpeglib.h>
+#include <setjmp.h>
+
+/* The error manager: libjpeg's fields first, then where to jump and what
+ * was said.  It lives in the caller of the function that calls setjmp, so
+ * a longjmp leaves none of it indeterminate. */
+typedef struct jpeg_status {
+    struct jpeg_error_mgr pub;
+    jmp_buf jump;
+    sr_result code;                /* SR_OK until something fails */
+    char message[JMSG_LENGTH_MAX];
+    char warning[JMSG_LENGTH_MAX]; /* the first warning, "" for none */
+} jpeg_status;
+
+static void on_jpeg_error(j_common_ptr cinfo)
+{
+    jpeg_status *st = (jpeg_status *)cinfo->err;
+    (*cinfo->err->format_message)(cinfo, st->message);
+    st->code = cinfo->err->msg_code == JERR_OUT_OF_MEMORY ? SR_OUT_OF_MEMORY : SR_BAD_FORMAT;
+    longjmp(st->jump, 1);
+}
+
+/* Level -1 is a warning (damaged data that libjpeg worked around); the
+ * others are trace messages.  Nothing is printed. */
+static void on_jpeg_message(j_common_ptr cinfo, int level)
+{
+    jpeg_status *st = (jpeg_status *)cinfo->err;
+    if (level < 0 && st->warning[0] == 0) {
+        (*cinfo->err->format_message)(cinfo, st->warning);
+    }
+}
+
+/* Adobe's CMYK JPEGs store the inks inverted (255 = no ink), which is
+ * what libjpeg hands back; the RGB of such a pixel is C K / 255 and so
+ * on.  Others store them plainly. */
+static void cmyk_row_to_rgba(const uint8_t *in, uint8_t *out, size_t w, bool inverted)
+{
+    for (size_t x = 0; x < w; x++) {
+        unsigned k = inverted ? in[4 * x + 3] : 255u - in[4 * x + 3];
+        for (int c = 0; c < 3; c++) {
+            unsigned v = inverted ? in[4 * x + c] : 255u - in[4 * x + c];
+            out[4 * x + c] = (uint8_t)((v * k + 127) / 255);
+        }
+        out[4 * x + 3] = 255;
+    }
+}
+
+typedef struct jpeg_image {
+    uint8_t *pixels;
+    uint8_t *cmyk_row;
+    int width, height;
+} jpeg_image;
+
+/* Decode into *out, or leave out->pixels NULL and say why in *st. */
+static void decode_jpeg(const uint8_t *data, size_t size, jpeg_image *out, jpeg_status *st)
+{
+    struct jpeg_decompress_struct cinfo;
+    cinfo.err = jpeg_std_error(&st->pub);
+    st->pub.error_exit = on_jpeg_error;
+    st->pub.emit_message = on_jpeg_message;
+    if (setjmp(st->jump)) {
+        jpeg_destroy_decompress(&cinfo);
+        free(out->pixels);
+        free(out->cmyk_row);
+        out->pixels = NULL;
+        out->cmyk_row = NULL;
+        return;
+    }
+    jpeg_create_decompress(&cinfo);
+    cinfo.mem->max_memory_to_use = MAX_DECODER_MEMORY;
+    jpeg_mem_src(&cinfo, data, (unsigned long)size);
+    jpeg_read_header(&cinfo, TRUE);
+
+    JDIMENSION w = cinfo.image_width, h = cinfo.image_height;
+    if (w > MAX_READ_SIZE || h > MAX_READ_SIZE) {
+        st->code = SR_TOO_LARGE;
+        snprintf(st->message, sizeof st->message, "image is %lux%lu, larger than the %dx%d limit",
+                 (unsigned long)w, (unsigned long)h, MAX_READ_SIZE, MAX_READ_SIZE);
+        jpeg_destroy_decompress(&cinfo);
+        return;
+    }
+    bool cmyk = cinfo.jpeg_color_space == JCS_CMYK || cinfo.jpeg_color_space == JCS_YCCK;
+    /* libjpeg-turbo writes RGBA itself from gray, RGB and YCbCr. */
+    cinfo.out_color_space = cmyk ? JCS_CMYK : JCS_EXT_RGBA;
+    bool inverted = cinfo.saw_Adobe_marker;
+    jpeg_start_decompress(&cinfo);
+    if (cinfo.output_components != 4) {
+        st->code = SR_BAD_FORMAT;
+        snprintf(st->message, sizeof st->message, "unsupported color space (%d components)",
+                 cinfo.output_components);
+        jpeg_destroy_decompress(&cinfo);
+        return;
+    }
+    size_t stride = 4 * (size_t)w;
+    out->pixels = malloc(stride * h);
+    out->cmyk_row = cmyk ? malloc(stride) : NULL;
+    if (!out->pixels || (cmyk && !out->cmyk_row)) {
+        st->code = SR_OUT_OF_MEMORY;
+        snprintf(st->message, sizeof st->message, "out of memory for a %lux%lu image",
+                 (unsigned long)w, (unsigned long)h);
+        longjmp(st->jump, 1);
+    }
+    /* Stop at the first warning: the rest would be made up. */
+    while (cinfo.output_scanline < h && st->warning[0] == 0) {
+        uint8_t *row = out->pixels + stride * cinfo.output_scanline;
+        JSAMPROW target = cmyk ? out->cmyk_row : row;
+        if (jpeg_read_scanlines(&cinfo, &target, 1) != 1) {
+            break; /* only a suspending source stops early; the memory one cannot */
+        }
+        if (cmyk) {
+            cmyk_row_to_rgba(out->cmyk_row, row, w, inverted);
+        }
+    }
+    if (st->warning[0] == 0) {
+        jpeg_finish_decompress(&cinfo); /* reads to the end marker: may warn too */
+    }
+    jpeg_destroy_decompress(&cinfo);
+    free(out->cmyk_row);
+    out->cmyk_row = NULL;
+    if (st->warning[0]) {
+        free(out->pixels);
+        out->pixels = NULL;
+        st->code = SR_BAD_FORMAT;
+        return;
+    }
+    out->width = (int)w;
+    out->height = (int)h;
+}
+
+bool sr_io_have_jpeg(void)
+{
+    return true;
+}
+
+sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size, int *width,
+                         int *height, uint8_t **pixels, sr_io_error *err)
+{
+    sr__image_outputs_clear(width, height, pixels, err);
+    if (!name) {
+        name = "<memory>";
+    }
+    if (!width || !height || !pixels || (!data && size > 0)) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "width, height, pixels and data must not be NULL");
+    }
+    if (size < 3 || data[0] != 0xFF || data[1] != 0xD8 || data[2] != 0xFF) {
+        return sr__io_fail(err, SR_BAD_FORMAT, name, 0,
+                           size == 0 ? "empty file, not a JPEG"
+                                     : "not a JPEG file (no JPEG start-of-image marker)");
+    }
+    jpeg_image image = { 0 };
+    jpeg_status status = { .code = SR_OK };
+    decode_jpeg(data, size, &image, &status);
+    if (status.code != SR_OK) {
+        if (status.code == SR_BAD_FORMAT) {
+            return sr__io_fail(err, SR_BAD_FORMAT, name, 0, "corrupt JPEG: %s",
+                               status.warning[0] ? status.warning : status.message);
+        }
+        return sr__io_fail(err, status.code, name, 0, "%s", status.message);
+    }
+    *width = image.width;
+    *height = image.height;
+    *pixels = image.pixels;
+    return SR_OK;
+}
+
+#else /* !SR_HAVE_JPEG */
+
+bool sr_io_have_jpeg(void)
+{
+    return false;
+}
+
+sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size, int *width,
+                         int *height, uint8_t **pixels, sr_io_error *err)
+{
+    (void)data;
+    (void)size;
+    sr__image_outputs_clear(width, height, pixels, err);
+    return sr__io_fail(err, SR_UNSUPPORTED, name ? name : "<memory>", 0,
+                       "this build reads no JPEG (install libjpeg-dev and rebuild)");
+}
+
+#endif
+
+sr_result sr_read_jpeg(const char *path, int *width, int *height, uint8_t **pixels,
+                       sr_io_error *err)
+{
+    sr__image_outputs_clear(width, height, pixels, err);
+    if (!path || !path[0]) {
+        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
+    }
+    char *data;
+    size_t size;
+    sr_result r = sr__read_file_as(path, "a JPEG file", &data, &size, err);
+    if (r != SR_OK) {
+        return r;
+    }
+    r = sr_decode_jpeg(path, (const uint8_t *)data, size, width, height, pixels, err);
+    sr__free_file(data, size);
+    return r;
+}
