@@ -97,6 +97,9 @@ typedef struct sr_png_read_desc {
 /* sr_read_png with options (desc may be NULL: exactly sr_read_png). */
 sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
                            int *height, uint8_t **pixels, sr_io_error *err);
+/* sr_read_png on a file already in memory; `name` is used in messages. */
+sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
+                        int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 /* JPEG: baseline or progressive, gray, YCbCr/RGB or CMYK (Adobe's inverted
  * inks too), any chroma subsampling, read as RGBA8 with alpha 255; at
@@ -116,6 +119,9 @@ bool sr_io_have_jpeg(void);
  * read as RGBA8 by sr_read_png or sr_read_jpeg. */
 sr_result sr_read_image(const char *path, int *width, int *height,
                         uint8_t **pixels, sr_io_error *err);
+/* The same on bytes in memory (sr_mesh.texture_data, say). */
+sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
+                          int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 #ifdef __cplusplus
 }

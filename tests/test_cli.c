@@ -1449,3 +1449,123 @@ SR_TEST(a_models_unreadable_texture_is_a_warning)
                           "broken.jpg: corrupt JPEG");
 #endif
 }
+
+#ifdef SR_CLI_PATH
+/* Standard base64 of n bytes into dst (room for 4 ceil(n / 3) + 1). */
+static void base64(const uint8_t *src, size_t n, char *dst)
+{
+    static const char abc[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    size_t o = 0;
+    for (size_t i = 0; i < n; i += 3) {
+        uint32_t v = (uint32_t)src[i] << 16 | (i + 1 < n ? (uint32_t)src[i + 1] << 8 : 0) |
+                     (i + 2 < n ? src[i + 2] : 0);
+        dst[o++] = abc[v >> 18 & 63];
+        dst[o++] = abc[v >> 12 & 63];
+        dst[o++] = i + 1 < n ? abc[v >> 6 & 63] : '=';
+        dst[o++] = i + 2 < n ? abc[v & 63] : '=';
+    }
+    dst[o] = 0;
+}
+
+/* A glTF 2.0 quad (positions, texture coordinates, indices) whose
+ * material's base color texture is `image` (n bytes), embedded as a data
+ * URI, as exporters write a self-contained .gltf. */
+static bool write_gltf_quad(const char *path, const uint8_t *image, size_t n)
+{
+    const float pos[12] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 };
+    const float uv[8] = { 0, 1, 1, 1, 1, 0, 0, 0 };
+    const uint16_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    uint8_t buf[92];
+    memcpy(buf, pos, 48);
+    memcpy(buf + 48, uv, 32);
+    memcpy(buf + 80, idx, 12);
+    char *b64buf = malloc(4 * (sizeof buf / 3 + 1) + 1), *b64img = malloc(4 * (n / 3 + 1) + 1);
+    char *json = malloc(4 * (n / 3 + 1) + 4096);
+    bool ok = b64buf && b64img && json;
+    if (ok) {
+        base64(buf, sizeof buf, b64buf);
+        base64(image, n, b64img);
+        sprintf(json,
+                "{\"asset\":{\"version\":\"2.0\"},"
+                "\"buffers\":[{\"byteLength\":92,"
+                "\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+                "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},"
+                "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":32},"
+                "{\"buffer\":0,\"byteOffset\":80,\"byteLength\":12}],"
+                "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,"
+                "\"type\":\"VEC3\",\"min\":[-1,-1,0],\"max\":[1,1,0]},"
+                "{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
+                "{\"bufferView\":2,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}],"
+                "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+                "\"textures\":[{\"source\":0}],"
+                "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+                "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},"
+                "\"indices\":2,\"material\":0}]}],"
+                "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
+                b64buf, b64img);
+        ok = write_whole(path, json, strlen(json));
+    }
+    free(b64buf);
+    free(b64img);
+    free(json);
+    return ok;
+}
+#endif
+
+/* An image a glTF file embeds colors the model as the same pixels given
+ * with --texture do; a damaged one is a warning, and the model is drawn
+ * as it is without a texture. */
+SR_TEST(a_gltf_files_embedded_texture_is_used)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_assimp()) {
+        SKIP("this build reads no glTF (Assimp was not found)");
+    }
+    char dir[1024], tex[1100], model[1100], broken[1100], out[1100];
+    fresh_dir("gltf", dir, sizeof dir);
+    snprintf(tex, sizeof tex, "%s/tex.png", dir);
+    snprintf(model, sizeof model, "%s/quad.gltf", dir);
+    snprintf(broken, sizeof broken, "%s/broken.gltf", dir);
+    uint8_t px[8 * 8 * 4];
+    for (int i = 0; i < 64; i++) {
+        int q = (i % 8) / 4 + 2 * (i / 32);
+        uint8_t *p = px + 4 * i;
+        p[0] = (uint8_t)(q & 1 ? 230 : 20);
+        p[1] = (uint8_t)(q & 2 ? 200 : 40);
+        p[2] = (uint8_t)(q == 3 ? 250 : 60);
+        p[3] = 255;
+    }
+    sr_io_error err;
+    REQUIRE(sr_write_png(tex, 8, 8, px, 32, NULL, &err) == SR_OK);
+    size_t n;
+    char *png = read_whole(tex, &n);
+    REQUIRE(png);
+    REQUIRE(write_gltf_quad(model, (const uint8_t *)png, n));
+    REQUIRE(write_gltf_quad(broken, (const uint8_t *)png, n / 2)); /* cut short */
+    free(png);
+
+    size_t la, lb, lc;
+    char *a = render_bytes("embedded", dir, "a.png", ARGS(model, "--size", "96x64"), &la);
+    char *b = render_bytes("--texture", dir, "b.png", ARGS(model, "--texture", tex, "--size",
+                                                          "96x64"), &lb);
+    REQUIRE(a && b);
+    CHECK(la == lb && memcmp(a, b, la) == 0);
+
+    snprintf(out, sizeof out, "%s/c.png", dir);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", broken, "--size", "96x64", "-o", out), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK(is_one_line(r.err, r.err_len));
+    CHECK_STR_CONTAINS(r.err, "softrast: warning: ");
+    CHECK_STR_CONTAINS(r.err, "broken.gltf (its embedded texture): truncated PNG");
+    cli_run_free(&r);
+    char *c = read_whole(out, &lc);
+    REQUIRE(c);
+    CHECK(!(lc == lb && memcmp(c, b, lc) == 0)); /* drawn, but not with the texture */
+    free(a);
+    free(b);
+    free(c);
+#endif
+}

@@ -1,5 +1,5 @@
-/* test_jpeg.c - io stage: sr_read_jpeg, sr_decode_jpeg and sr_read_image
- * (src/io/jpeg.c, src/io/image.c).  The JPEGs are written here with
+/* test_jpeg.c - io stage: sr_read_jpeg, sr_decode_jpeg, sr_read_image,
+ * sr_decode_image and sr_decode_png (src/io/jpeg.c, image.c, png.c).  The JPEGs are written here with
  * libjpeg's own encoder from pixels the test chose, so the decoded pixels
  * are checked against those, within the error the encoding's quality
  * allows; damaged files must come back as an error with a message and
@@ -289,6 +289,34 @@ SR_TEST(read_image_goes_by_content_not_name)
     REQUIRE(sr_read_image(as_jpg, &w, &h, &px, &err) == SR_OK);
     CHECK(w == 2 && h == 1 && memcmp(px, rgba, 8) == 0);
     free(px);
+
+    /* From memory: the same pixels as from the files. */
+    uint8_t png[4096];
+    FILE *f = fopen(as_jpg, "rb");
+    REQUIRE(f);
+    size_t pn = fread(png, 1, sizeof png, f);
+    fclose(f);
+    REQUIRE(pn > 10 && pn < sizeof png);
+    REQUIRE(sr_decode_image("mem.png", png, pn, &w, &h, &px, &err) == SR_OK);
+    CHECK(w == 2 && h == 1 && memcmp(px, rgba, 8) == 0);
+    free(px);
+    REQUIRE(sr_decode_png("mem.png", png, pn, &w, &h, &px, &err) == SR_OK);
+    CHECK(w == 2 && h == 1 && memcmp(px, rgba, 8) == 0);
+    free(px);
+    REQUIRE(sr_decode_image("mem.jpg", jpg, size, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_decode_jpeg("x", jpg, size, &jw, &jh, &jpx, &err) == SR_OK);
+    CHECK(w == jw && h == jh && memcmp(px, jpx, 4 * (size_t)w * h) == 0);
+    free(px);
+    free(jpx);
+    /* A PNG cut short in memory is an error like one cut short on disk. */
+    CHECK_EQ(sr_decode_png("cut.png", png, pn - 10, &w, &h, &px, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "cut.png: truncated PNG");
+    CHECK(px == NULL && w == 0 && h == 0);
+    CHECK_EQ(sr_decode_png("none.png", png, 0, &w, &h, &px, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "none.png: empty file, not a PNG");
+    CHECK_EQ(sr_decode_image("t.txt", (const uint8_t *)"hello", 5, &w, &h, &px, &err),
+             SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "t.txt: neither a PNG nor a JPEG");
 
     CHECK_EQ(sr_read_image(text, &w, &h, &px, &err), SR_BAD_FORMAT);
     CHECK_STR_CONTAINS(err.message, "neither a PNG nor a JPEG");

@@ -121,9 +121,10 @@ static void render_help(void)
         "                           relative to the camera\n"
         "textures:\n"
         "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
-        "                           coordinates (default: the OBJ material's map_Kd, or\n"
-        "                           MODEL_texture.png or .jpg beside a model MODEL.obj;\n"
-        "                           one of those that cannot be read is a warning)\n"
+        "                           coordinates (default: the OBJ material's map_Kd, the\n"
+        "                           image a glTF/FBX file embeds, or MODEL_texture.png or\n"
+        "                           .jpg beside a model MODEL.obj; one of those that\n"
+        "                           cannot be read is a warning)\n"
         "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
         "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
         "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
@@ -628,11 +629,12 @@ static bool same_file(const char *a, const char *b)
            sa.st_ino == sb.st_ino;
 }
 
-/* The model's texture: --texture, else the file's own (OBJ map_Kd), else
- * MODEL_texture.png or .jpg beside MODEL.ext.  One the user named must be
- * read; one the model brings that is missing or unreadable is reported in
- * a warning and the model drawn without it - a preview of the geometry
- * beats no preview.  Returns an exit status, or -1. */
+/* The model's texture: --texture, else the file's own (OBJ map_Kd, or an
+ * image a glTF or FBX file embeds), else MODEL_texture.png or .jpg beside
+ * MODEL.ext.  One the user named must be read; one the model brings that
+ * is missing or unreadable is reported in a warning and the model drawn
+ * without it - a preview of the geometry beats no preview.  Returns an
+ * exit status, or -1. */
 static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
 {
     if (!o->model || s->count == 0) {
@@ -646,10 +648,11 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
     char guess[4096];
     const char *path = o->texture;
     const char *named = ob->mesh.texture_path;
-    if (!path && named && is_file(named)) {
+    bool embedded = !path && ob->mesh.texture_data;
+    if (!path && !embedded && named && is_file(named)) {
         path = named;
     }
-    if (!path) {
+    if (!path && !embedded) {
         const char *dot = strrchr(o->model, '.'), *slash = strrchr(o->model, '/');
         size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - o->model) : strlen(o->model);
         static const char *const suffixes[] = { "_texture.png", "_texture.jpg" };
@@ -661,7 +664,7 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
             }
         }
     }
-    if (!path) {
+    if (!path && !embedded) {
         if (named && ob->mesh.texcoords) {
             struct stat st;
             cli_error("warning: %s: %s, named by the model's material (drawing the model "
@@ -670,7 +673,7 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
         }
         return -1;
     }
-    if (o->writes_output && same_file(path, o->output)) {
+    if (path && o->writes_output && same_file(path, o->output)) {
         cli_error("-o: '%s' is the texture being read (%s); choose another output file",
                   o->output, path);
         return EXIT_USAGE;
@@ -685,7 +688,15 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    sr_result rr = sr_read_image(path, &w, &h, &px, &err);
+    sr_result rr;
+    if (embedded) {
+        char name[4200];
+        snprintf(name, sizeof name, "%s (its embedded texture)", o->model);
+        rr = sr_decode_image(name, ob->mesh.texture_data, ob->mesh.texture_size, &w, &h, &px,
+                             &err);
+    } else {
+        rr = sr_read_image(path, &w, &h, &px, &err);
+    }
     if (rr != SR_OK) {
         if (!o->texture && rr != SR_OUT_OF_MEMORY) {
             cli_error("warning: %s (drawing the model without its texture)", err.message);
@@ -699,7 +710,7 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
                                   &ob->texture);
     free(px);
     if (r != SR_OK) {
-        cli_error("%s: %s", path, sr_context_error(ctx));
+        cli_error("%s: %s", embedded ? o->model : path, sr_context_error(ctx));
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     return -1;

@@ -21,6 +21,7 @@ void sr_mesh_free(sr_mesh *mesh)
     free(mesh->texcoords);
     free(mesh->indices);
     free(mesh->texture_path);
+    free(mesh->texture_data);
     memset(mesh, 0, sizeof *mesh);
 }
 

@@ -117,37 +117,74 @@ static bool is_triangle_mesh(const struct aiMesh *m)
            (m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE);
 }
 
-/* The diffuse texture of the first material that names one, joined to
- * the model's directory as the OBJ reader does with map_Kd.  Embedded
- * textures ("*0") have no file and are left out. */
-static char *texture_path(const struct aiScene *scene, const char *model_path)
+/* The embedded texture a material names: "*N" (Assimp's name for the
+ * file's N-th image), or an image whose own file name it is (glTF binary
+ * in later Assimp versions).  Only encoded images (mHeight == 0: PNG or
+ * JPEG bytes) qualify; a raw texel array is left out. */
+static const struct aiTexture *embedded_texture(const struct aiScene *scene, const char *name)
+{
+    const struct aiTexture *tex = NULL;
+    if (name[0] == '*') {
+        char *end;
+        unsigned long k = strtoul(name + 1, &end, 10);
+        if (end != name + 1 && *end == 0 && k < scene->mNumTextures) {
+            tex = scene->mTextures[k];
+        }
+    } else {
+        for (unsigned i = 0; i < scene->mNumTextures && !tex; i++) {
+            if (strcmp(scene->mTextures[i]->mFilename.data, name) == 0) {
+                tex = scene->mTextures[i];
+            }
+        }
+    }
+    return tex && tex->mHeight == 0 && tex->mWidth > 0 ? tex : NULL;
+}
+
+/* The diffuse texture of the first material that names one: its encoded
+ * bytes when the file embeds it, else its file name joined to the model's
+ * directory as the OBJ reader does with map_Kd.  False when out of memory. */
+static bool diffuse_texture(const struct aiScene *scene, const char *model_path, sr_mesh *m)
 {
     for (unsigned i = 0; i < scene->mNumMeshes; i++) {
-        const struct aiMesh *m = scene->mMeshes[i];
-        if (!is_triangle_mesh(m) || m->mMaterialIndex >= scene->mNumMaterials) {
+        const struct aiMesh *am = scene->mMeshes[i];
+        if (!is_triangle_mesh(am) || am->mMaterialIndex >= scene->mNumMaterials) {
             continue;
         }
         struct aiString name;
-        if (aiGetMaterialTexture(scene->mMaterials[m->mMaterialIndex], aiTextureType_DIFFUSE,
+        if (aiGetMaterialTexture(scene->mMaterials[am->mMaterialIndex], aiTextureType_DIFFUSE,
                                  0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != AI_SUCCESS ||
-            name.length == 0 || name.data[0] == '*') {
+            name.length == 0) {
             continue;
+        }
+        const struct aiTexture *tex = embedded_texture(scene, name.data);
+        if (tex) {
+            m->texture_data = malloc(tex->mWidth);
+            if (!m->texture_data) {
+                return false;
+            }
+            memcpy(m->texture_data, tex->pcData, tex->mWidth);
+            m->texture_size = tex->mWidth;
+            return true;
+        }
+        if (name.data[0] == '*') {
+            continue; /* embedded, but not as an encoded image */
         }
         const char *slash = strrchr(model_path, '/');
         bool absolute = name.data[0] == '/' || name.data[0] == '\\';
         size_t dir = absolute || !slash ? 0 : (size_t)(slash - model_path) + 1;
-        char *s = malloc(dir + name.length + 1);
-        if (s) {
-            memcpy(s, model_path, dir);
-            /* Windows exporters write "textures\wood.png". */
-            for (size_t i = 0; i < name.length; i++) {
-                s[dir + i] = name.data[i] == '\\' ? '/' : name.data[i];
-            }
-            s[dir + name.length] = 0;
+        m->texture_path = malloc(dir + name.length + 1);
+        if (!m->texture_path) {
+            return false;
         }
-        return s;
+        memcpy(m->texture_path, model_path, dir);
+        /* Windows exporters write "textures\wood.png". */
+        for (size_t k = 0; k < name.length; k++) {
+            m->texture_path[dir + k] = name.data[k] == '\\' ? '/' : name.data[k];
+        }
+        m->texture_path[dir + name.length] = 0;
+        return true;
     }
-    return NULL;
+    return true;
 }
 
 sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
@@ -277,8 +314,8 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
         }
         base += am->mNumVertices;
     }
-    if (res == SR_OK) {
-        m.texture_path = texture_path(scene, path);
+    if (res == SR_OK && !diffuse_texture(scene, path, &m)) {
+        res = sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory for its texture");
     }
     aiReleaseImport(scene);
     if (res != SR_OK) {

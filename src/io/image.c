@@ -1,13 +1,32 @@
-/* image.c - an image file of either kind softrast reads (io stage): PNG
- * or JPEG, told apart by the file's first bytes rather than its name, so
- * a texture saved as "wood.png" in JPEG form (common in downloaded
- * models) still reads. */
+/* image.c - an image of either kind softrast reads (io stage): PNG or
+ * JPEG, told apart by the first bytes rather than the name, so a texture
+ * saved as "wood.png" in JPEG form (common in downloaded models) still
+ * reads; from a file, or from memory (a texture a model file embeds). */
 #include "io/io_util.h"
 
 #include <errno.h>
 #include <string.h>
 
-static const uint8_t png_signature[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n' };
+typedef enum image_kind { IMAGE_UNKNOWN, IMAGE_PNG, IMAGE_JPEG } image_kind;
+
+static image_kind kind_of(const uint8_t *head, size_t n)
+{
+    static const uint8_t png_signature[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n' };
+    if (n >= sizeof png_signature && memcmp(head, png_signature, sizeof png_signature) == 0) {
+        return IMAGE_PNG;
+    }
+    if (n >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) {
+        return IMAGE_JPEG;
+    }
+    return IMAGE_UNKNOWN;
+}
+
+static sr_result unknown_kind(const char *name, size_t n, sr_io_error *err)
+{
+    return sr__io_fail(err, SR_BAD_FORMAT, name, 0,
+                       n == 0 ? "empty file, not an image"
+                              : "neither a PNG nor a JPEG image (by its first bytes)");
+}
 
 sr_result sr_read_image(const char *path, int *width, int *height, uint8_t **pixels,
                         sr_io_error *err)
@@ -30,13 +49,26 @@ sr_result sr_read_image(const char *path, int *width, int *height, uint8_t **pix
     if (read_error) {
         return sr__io_fail(err, SR_IO_ERROR, path, 0, "read error: %s", strerror(e));
     }
-    if (got == sizeof head && memcmp(head, png_signature, sizeof head) == 0) {
-        return sr_read_png(path, width, height, pixels, err);
+    switch (kind_of(head, got)) {
+    case IMAGE_PNG:  return sr_read_png(path, width, height, pixels, err);
+    case IMAGE_JPEG: return sr_read_jpeg(path, width, height, pixels, err);
+    default:         return unknown_kind(path, got, err);
     }
-    if (got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) {
-        return sr_read_jpeg(path, width, height, pixels, err);
+}
+
+sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size, int *width,
+                          int *height, uint8_t **pixels, sr_io_error *err)
+{
+    sr__image_outputs_clear(width, height, pixels, err);
+    if (!name) {
+        name = "<memory>";
     }
-    return sr__io_fail(err, SR_BAD_FORMAT, path, 0,
-                       got == 0 ? "empty file, not an image"
-                                : "neither a PNG nor a JPEG image (by its first bytes)");
+    if (!data && size > 0) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0, "data must not be NULL");
+    }
+    switch (kind_of(data, size)) {
+    case IMAGE_PNG:  return sr_decode_png(name, data, size, width, height, pixels, err);
+    case IMAGE_JPEG: return sr_decode_jpeg(name, data, size, width, height, pixels, err);
+    default:         return unknown_kind(name, size, err);
+    }
 }

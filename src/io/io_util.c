@@ -257,3 +257,17 @@ void sr__image_outputs_clear(int *width, int *height, uint8_t **pixels, sr_io_er
         *pixels = NULL;
     }
 }
+
+sr_result sr__decode_args(const char **name, const uint8_t *data, size_t size, int *width,
+                          int *height, uint8_t **pixels, sr_io_error *err)
+{
+    sr__image_outputs_clear(width, height, pixels, err);
+    if (!*name) {
+        *name = "<memory>";
+    }
+    if (!width || !height || !pixels || (!data && size > 0)) {
+        return sr__io_fail(err, SR_INVALID_ARG, *name, 0,
+                           "width, height, pixels and data must not be NULL");
+    }
+    return SR_OK;
+}

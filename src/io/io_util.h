@@ -46,6 +46,11 @@ sr_result sr__load_file_with(const char *path, sr_parse_fn parse, sr_mesh *out,
 /* The image readers' outputs before anything is read: an empty message,
  * a 0 x 0 size and no pixels (each pointer may be NULL). */
 void sr__image_outputs_clear(int *width, int *height, uint8_t **pixels, sr_io_error *err);
+/* The same for a decoder of bytes in memory, then its arguments checked:
+ * *name becomes "<memory>" when NULL; SR_INVALID_ARG with a message when
+ * an output pointer is NULL, or data is NULL with size > 0. */
+sr_result sr__decode_args(const char **name, const uint8_t *data, size_t size, int *width,
+                          int *height, uint8_t **pixels, sr_io_error *err);
 
 /* Overflow-checked size arithmetic for allocations sized by input. */
 static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)

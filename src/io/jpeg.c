@@ -157,13 +157,9 @@ bool sr_io_have_jpeg(void)
 sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size, int *width,
                          int *height, uint8_t **pixels, sr_io_error *err)
 {
-    sr__image_outputs_clear(width, height, pixels, err);
-    if (!name) {
-        name = "<memory>";
-    }
-    if (!width || !height || !pixels || (!data && size > 0)) {
-        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
-                           "width, height, pixels and data must not be NULL");
+    sr_result args = sr__decode_args(&name, data, size, width, height, pixels, err);
+    if (args != SR_OK) {
+        return args;
     }
     if (size < 3 || data[0] != 0xFF || data[1] != 0xD8 || data[2] != 0xFF) {
         return sr__io_fail(err, SR_BAD_FORMAT, name, 0,

@@ -559,6 +559,59 @@ sr_result sr_read_png(const char *path, int *width, int *height,
     return sr_read_png_desc(path, NULL, width, height, pixels, err);
 }
 
+/* The rest of a read once the input is open as `f` (a file, or memory
+ * through fmemopen): signature, decode, messages naming `name`.  Closes f. */
+static sr_result read_png_stream(FILE *f, const char *name, const sr_png_read_desc *desc,
+                                 int *width, int *height, uint8_t **pixels, sr_io_error *err)
+{
+    uint8_t sig[8];
+    size_t got = fread(sig, 1, sizeof sig, f);
+    if (got < sizeof sig || png_sig_cmp(sig, 0, sizeof sig) != 0) {
+        bool read_error = ferror(f);
+        int e = errno;
+        fclose(f);
+        if (read_error) {
+            return sr__io_fail(err, SR_IO_ERROR, name, 0, "read error: %s", strerror(e));
+        }
+        if (got == 0) {
+            return sr__io_fail(err, SR_BAD_FORMAT, name, 0, "empty file, not a PNG");
+        }
+        return sr__io_fail(err, SR_BAD_FORMAT, name, 0, "not a PNG file (no PNG signature)");
+    }
+
+    png_mem mem = { .a = desc ? desc->allocator : (sr_allocator){0} };
+    if ((mem.a.alloc == NULL) != (mem.a.free == NULL)) {
+        fclose(f);
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "sr_png_read_desc.allocator needs both alloc and free");
+    }
+    png_image_out image = { 0 };
+    png_status status = { .code = SR_OK };
+    errno = 0;
+    decode_png(f, &mem, &image, &status);
+    bool read_error = ferror(f);
+    bool at_end = feof(f);
+    fclose(f);
+    if (status.code != SR_OK) {
+        if (read_error) {
+            return sr__io_fail(err, SR_IO_ERROR, name, 0, "read error: %s",
+                               strerror(status.saved_errno));
+        }
+        if (at_end && status.code == SR_BAD_FORMAT) {
+            return sr__io_fail(err, SR_BAD_FORMAT, name, 0,
+                               "truncated PNG: the file ends early (libpng: %s)", status.message);
+        }
+        if (status.code == SR_BAD_FORMAT) {
+            return sr__io_fail(err, SR_BAD_FORMAT, name, 0, "corrupt PNG: %s", status.message);
+        }
+        return sr__io_fail(err, status.code, name, 0, "%s", status.message);
+    }
+    *width = image.width;
+    *height = image.height;
+    *pixels = image.pixels;
+    return SR_OK;
+}
+
 sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
                            int *height, uint8_t **pixels, sr_io_error *err)
 {
@@ -576,50 +629,24 @@ sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *
     if (res != SR_OK) {
         return res;
     }
-    uint8_t sig[8];
-    size_t got = fread(sig, 1, sizeof sig, f);
-    if (got < sizeof sig || png_sig_cmp(sig, 0, sizeof sig) != 0) {
-        bool read_error = ferror(f);
-        int e = errno;
-        fclose(f);
-        if (read_error) {
-            return sr__io_fail(err, SR_IO_ERROR, path, 0, "read error: %s", strerror(e));
-        }
-        if (got == 0) {
-            return sr__io_fail(err, SR_BAD_FORMAT, path, 0, "empty file, not a PNG");
-        }
-        return sr__io_fail(err, SR_BAD_FORMAT, path, 0, "not a PNG file (no PNG signature)");
-    }
+    return read_png_stream(f, path, desc, width, height, pixels, err);
+}
 
-    png_mem mem = { .a = desc ? desc->allocator : (sr_allocator){0} };
-    if ((mem.a.alloc == NULL) != (mem.a.free == NULL)) {
-        fclose(f);
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
-                           "sr_png_read_desc.allocator needs both alloc and free");
+sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size, int *width,
+                        int *height, uint8_t **pixels, sr_io_error *err)
+{
+    sr_result args = sr__decode_args(&name, data, size, width, height, pixels, err);
+    if (args != SR_OK) {
+        return args;
     }
-    png_image_out image = { 0 };
-    png_status status = { .code = SR_OK };
-    errno = 0;
-    decode_png(f, &mem, &image, &status);
-    bool read_error = ferror(f);
-    bool at_end = feof(f);
-    fclose(f);
-    if (status.code != SR_OK) {
-        if (read_error) {
-            return sr__io_fail(err, SR_IO_ERROR, path, 0, "read error: %s",
-                               strerror(status.saved_errno));
-        }
-        if (at_end && status.code == SR_BAD_FORMAT) {
-            return sr__io_fail(err, SR_BAD_FORMAT, path, 0,
-                               "truncated PNG: the file ends early (libpng: %s)", status.message);
-        }
-        if (status.code == SR_BAD_FORMAT) {
-            return sr__io_fail(err, SR_BAD_FORMAT, path, 0, "corrupt PNG: %s", status.message);
-        }
-        return sr__io_fail(err, status.code, path, 0, "%s", status.message);
+    if (size == 0) {
+        return sr__io_fail(err, SR_BAD_FORMAT, name, 0, "empty file, not a PNG");
     }
-    *width = image.width;
-    *height = image.height;
-    *pixels = image.pixels;
-    return SR_OK;
+    /* libpng reads through stdio; fmemopen makes the bytes a stream. */
+    FILE *f = fmemopen((void *)data, size, "rb");
+    if (!f) {
+        return sr__io_fail(err, errno == ENOMEM ? SR_OUT_OF_MEMORY : SR_IO_ERROR, name, 0,
+                           "cannot read from memory: %s", strerror(errno));
+    }
+    return read_png_stream(f, name, NULL, width, height, pixels, err);
 }
