@@ -1569,3 +1569,64 @@ SR_TEST(a_gltf_files_embedded_texture_is_used)
     free(c);
 #endif
 }
+
+/* Two squares side by side in glTF, each with its own material's base
+ * color factor and no texture: the colors come through as OBJ's Kd does
+ * (unlit shading shows them unchanged). */
+SR_TEST(gltf_material_colors_color_the_model)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_assimp()) {
+        SKIP("this build reads no glTF (Assimp was not found)");
+    }
+    char dir[1024], model[1100], out[1100];
+    fresh_dir("gltf_colors", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/two.gltf", dir);
+    snprintf(out, sizeof out, "%s/two.png", dir);
+    const float pos[24] = { -1, -1, 0, 0, -1, 0, 0, 1, 0, -1, 1, 0,
+                            0,  -1, 0, 1, -1, 0, 1, 1, 0, 0,  1, 0 };
+    const uint16_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    uint8_t buf[108];
+    memcpy(buf, pos, 96);
+    memcpy(buf + 96, idx, 12);
+    char b64[160], json[3000];
+    base64(buf, sizeof buf, b64);
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},"
+             "\"buffers\":[{\"byteLength\":108,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},"
+             "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":48},"
+             "{\"buffer\":0,\"byteOffset\":96,\"byteLength\":12}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+             "\"min\":[-1,-1,0],\"max\":[0,1,0]},"
+             "{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+             "\"min\":[0,-1,0],\"max\":[1,1,0]},"
+             "{\"bufferView\":2,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}],"
+             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.9,0.1,0.05,1]}},"
+             "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.05,0.2,0.9,1]}}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":2,"
+             "\"material\":0},{\"attributes\":{\"POSITION\":1},\"indices\":2,\"material\":1}]}],"
+             "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
+             b64);
+    REQUIRE(write_whole(model, json, strlen(json)));
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", model, "--shading", "unlit", "--camera", "eye=0,0,4",
+                         "--size", "64x48", "-o", out),
+                    &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err_len, 0);
+    cli_run_free(&r);
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    /* A pixel a quarter in from each side, on the middle row. */
+    const uint8_t *left = px + 4 * ((size_t)(h / 2) * w + w / 4);
+    const uint8_t *right = px + 4 * ((size_t)(h / 2) * w + 3 * w / 4);
+    CHECK(abs(left[0] - 230) <= 1 && abs(left[1] - 26) <= 1 && abs(left[2] - 13) <= 1);
+    CHECK(abs(right[0] - 13) <= 1 && abs(right[1] - 51) <= 1 && abs(right[2] - 230) <= 1);
+    free(px);
+#endif
+}

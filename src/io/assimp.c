@@ -68,6 +68,10 @@ static struct {
                                           unsigned int *, ai_real *, enum aiTextureOp *,
                                           enum aiTextureMapMode *, unsigned int *);
     aiBool (*is_extension_supported)(const char *);
+    enum aiReturn (*get_material_color)(const struct aiMaterial *, const char *, unsigned int,
+                                        unsigned int, struct aiColor4D *);
+    enum aiReturn (*get_material_string)(const struct aiMaterial *, const char *, unsigned int,
+                                         unsigned int, struct aiString *);
     bool loaded;
 } api;
 static pthread_once_t api_once = PTHREAD_ONCE_INIT;
@@ -87,8 +91,11 @@ static void open_assimp(void)
     *(void **)&api.get_error_string = dlsym(lib, "aiGetErrorString");
     *(void **)&api.get_material_texture = dlsym(lib, "aiGetMaterialTexture");
     *(void **)&api.is_extension_supported = dlsym(lib, "aiIsExtensionSupported");
+    *(void **)&api.get_material_color = dlsym(lib, "aiGetMaterialColor");
+    *(void **)&api.get_material_string = dlsym(lib, "aiGetMaterialString");
     api.loaded = api.import_file && api.release_import && api.get_error_string &&
-                 api.get_material_texture && api.is_extension_supported;
+                 api.get_material_texture && api.is_extension_supported &&
+                 api.get_material_color && api.get_material_string;
 }
 
 bool sr__assimp_available(void)
@@ -102,6 +109,9 @@ bool sr__assimp_available(void)
 #define aiGetErrorString() api.get_error_string()
 #define aiIsExtensionSupported(e) api.is_extension_supported(e)
 #define aiGetMaterialTexture(m, t, i, s, ...) api.get_material_texture((m), (t), (i), (s), __VA_ARGS__)
+/* Variadic: AI_MATKEY_* stand for three arguments only once expanded. */
+#define aiGetMaterialColor(m, ...) api.get_material_color((m), __VA_ARGS__)
+#define aiGetMaterialString(m, ...) api.get_material_string((m), __VA_ARGS__)
 
 /* Triangulate polygons, share identical vertices, bake the node hierarchy
  * into vertex positions (we draw one mesh with one model matrix), and
@@ -115,6 +125,32 @@ static bool is_triangle_mesh(const struct aiMesh *m)
 {
     return m->mNumVertices > 0 && m->mNumFaces > 0 &&
            (m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE);
+}
+
+/* The diffuse color mesh m's material gives (glTF's base color factor,
+ * FBX's DiffuseColor...), as OBJ's Kd: false when it has none, or is the
+ * material Assimp makes up for a file that has none, whose gray would
+ * stand in for softrast's own default. */
+static bool material_color(const struct aiScene *scene, const struct aiMesh *m, float rgb[3])
+{
+    if (m->mMaterialIndex >= scene->mNumMaterials) {
+        return false;
+    }
+    const struct aiMaterial *mat = scene->mMaterials[m->mMaterialIndex];
+    struct aiString name;
+    if (aiGetMaterialString(mat, AI_MATKEY_NAME, &name) == AI_SUCCESS &&
+        strcmp(name.data, AI_DEFAULT_MATERIAL_NAME) == 0) {
+        return false;
+    }
+    struct aiColor4D c;
+    if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) != AI_SUCCESS ||
+        !isfinite(c.r) || !isfinite(c.g) || !isfinite(c.b)) {
+        return false;
+    }
+    rgb[0] = c.r;
+    rgb[1] = c.g;
+    rgb[2] = c.b;
+    return true;
 }
 
 /* The embedded texture a material names: "*N" (Assimp's name for the
@@ -218,9 +254,11 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
 
     /* First pass: totals, and which attributes every mesh has.  An
      * attribute some meshes lack is dropped for all, rather than made up
-     * for part of the model. */
+     * for part of the model - but for color, which, as in the OBJ reader,
+     * is the vertex's own, else its material's diffuse color, else white,
+     * wherever any mesh has either. */
     size_t verts = 0, tris = 0;
-    bool normals = true, colors = true, texcoords = true;
+    bool normals = true, colors = false, texcoords = true;
     for (unsigned i = 0; i < scene->mNumMeshes; i++) {
         const struct aiMesh *m = scene->mMeshes[i];
         if (!is_triangle_mesh(m)) {
@@ -231,7 +269,8 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
             tris += m->mFaces[f].mNumIndices == 3;
         }
         normals &= m->mNormals != NULL;
-        colors &= m->mColors[0] != NULL;
+        float rgb[3];
+        colors |= m->mColors[0] != NULL || material_color(scene, m, rgb);
         texcoords &= m->mTextureCoords[0] != NULL;
     }
     sr_result res = SR_OK;
@@ -268,6 +307,8 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
         if (!is_triangle_mesh(am)) {
             continue;
         }
+        float mat_rgb[3] = { 1.0f, 1.0f, 1.0f };
+        material_color(scene, am, mat_rgb);
         for (unsigned v = 0; v < am->mNumVertices; v++) {
             size_t o = base + v;
             const struct aiVector3D *p = &am->mVertices[v];
@@ -284,11 +325,14 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
                 m.normals[3 * o + 1] = am->mNormals[v].y;
                 m.normals[3 * o + 2] = am->mNormals[v].z;
             }
-            if (colors) {
+            if (colors && am->mColors[0]) {
                 m.colors[4 * o + 0] = am->mColors[0][v].r;
                 m.colors[4 * o + 1] = am->mColors[0][v].g;
                 m.colors[4 * o + 2] = am->mColors[0][v].b;
                 m.colors[4 * o + 3] = am->mColors[0][v].a;
+            } else if (colors) {
+                memcpy(&m.colors[4 * o], mat_rgb, sizeof mat_rgb);
+                m.colors[4 * o + 3] = 1.0f;
             }
             if (texcoords) {
                 m.texcoords[2 * o + 0] = am->mTextureCoords[0][v].x;
