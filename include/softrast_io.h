@@ -1,7 +1,7 @@
 /*
  * softrast_io.h - files in and out: model readers (OBJ, PLY, STL, and other
  * formats through Assimp when the build found it), PNG images (libpng) and
- * JPEG images in (libjpeg-turbo, when the build found it).
+ * JPEG images (libjpeg-turbo, when the build found it).
  *
  * Errors: every function returns an sr_result and, on failure, fills an
  * sr_io_error with one line of the form "FILE:LINE: what is wrong" for text
@@ -114,6 +114,19 @@ sr_result sr_read_jpeg(const char *path, int *width, int *height,
 sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size,
                          int *width, int *height, uint8_t **pixels, sr_io_error *err);
 bool sr_io_have_jpeg(void);
+
+/* Write RGBA8 pixels (stride in bytes) as a baseline JPEG with 4:2:0
+ * chroma, alpha dropped, atomically as sr_write_png does (a failed write
+ * leaves nothing and replaces nothing).  At most 65500 pixels a side. */
+typedef struct sr_jpeg_write_desc {
+    int quality;            /* 1..100; 0 -> SR_JPEG_DEFAULT_QUALITY */
+} sr_jpeg_write_desc;
+
+#define SR_JPEG_DEFAULT_QUALITY 90
+
+sr_result sr_write_jpeg(const char *path, int width, int height,
+                        const uint8_t *rgba, size_t stride,
+                        const sr_jpeg_write_desc *desc, sr_io_error *err);
 
 /* A PNG or a JPEG, told apart by the file's first bytes (not its name),
  * read as RGBA8 by sr_read_png or sr_read_jpeg. */

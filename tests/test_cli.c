@@ -610,6 +610,10 @@ static const option_case option_errors[] = {
     { "far abc", { "--far", "abc" }, "--far: expected a number" },
     { "threads 0", { "--threads", "0" }, "--threads: expected a whole number from 1 to 64" },
     { "png-level 10", { "--png-level", "10" }, "--png-level: expected a whole number from 0 to 9" },
+    { "jpeg-quality 0", { "--jpeg-quality", "0" }, "--jpeg-quality: expected a whole number from 1 to 100" },
+    { "jpeg-quality for a PNG", { "--jpeg-quality", "80" }, "--jpeg-quality: the output '" },
+    { "png-level for a JPEG", { "-o", "never-written.jpg", "--png-level", "3" },
+      "--png-level: the output 'never-written.jpg' is a JPEG" },
     { "detail 0", { "--detail", "0" }, "--detail: expected a whole number from 1 to 64" },
     { "detail 1.5", { "--detail", "1.5" }, "--detail: expected a whole number" },
     { "two models", { "first.obj", "second.obj" }, "more than one model given ('first.obj' and 'second.obj')" },
@@ -836,34 +840,42 @@ SR_TEST(a_write_that_fails_midway_leaves_the_old_image_and_no_temporary)
     SKIP("the softrast tool is not part of this build");
 #endif
     /* A file size limit (RLIMIT_FSIZE, inherited by the child) makes the
-     * PNG write fail after its first kilobyte with EFBIG, as a full disk
+     * image write fail after its first kilobyte with EFBIG, as a full disk
      * would; SIGXFSZ is ignored so write() returns the error instead of
-     * killing the process.  The existing image must survive untouched. */
-    char dir[1024], out[1100];
-    fresh_dir("fail", dir, sizeof dir);
-    snprintf(out, sizeof out, "%s/out.png", dir);
-    size_t n;
-    const unsigned char *bytes = sentinel(&n);
-    REQUIRE(write_whole(out, bytes, n));
-    struct rlimit old;
-    REQUIRE(getrlimit(RLIMIT_FSIZE, &old) == 0);
-    struct rlimit lim = old;
-    lim.rlim_cur = 1024;
-    void (*old_handler)(int) = signal(SIGXFSZ, SIG_IGN);
-    REQUIRE(setrlimit(RLIMIT_FSIZE, &lim) == 0);
-    cli_run r;
-    bool ran = run_cli(ARGS("render", "--size", "300x200", "-o", out), &r);
-    setrlimit(RLIMIT_FSIZE, &old);
-    signal(SIGXFSZ, old_handler);
-    REQUIRE(ran);
-    check_failure_output("-o out.png under a 1 KiB file size limit", &r, 1, "out.png: ");
-    CHECK_STR_CONTAINS(r.err, "File too large");
-    cli_run_free(&r);
-    size_t got_n = 0;
-    char *got = read_whole(out, &got_n);
-    CHECK(got && got_n == n && memcmp(got, bytes, n) == 0);
-    free(got);
-    CHECK_EQ(count_entries(dir, NULL, 0), 1);
+     * killing the process.  The existing image must survive untouched,
+     * PNG or JPEG. */
+    const char *names[] = { "out.png", "out.jpg" };
+    for (size_t k = 0; k < 2; k++) {
+        if (k == 1 && !sr_io_have_jpeg()) {
+            break;
+        }
+        char dir[1024], out[1100], label[200];
+        fresh_dir("fail", dir, sizeof dir);
+        snprintf(out, sizeof out, "%s/%s", dir, names[k]);
+        snprintf(label, sizeof label, "-o %s under a 1 KiB file size limit", names[k]);
+        size_t n;
+        const unsigned char *bytes = sentinel(&n);
+        REQUIRE(write_whole(out, bytes, n));
+        struct rlimit old;
+        REQUIRE(getrlimit(RLIMIT_FSIZE, &old) == 0);
+        struct rlimit lim = old;
+        lim.rlim_cur = 1024;
+        void (*old_handler)(int) = signal(SIGXFSZ, SIG_IGN);
+        REQUIRE(setrlimit(RLIMIT_FSIZE, &lim) == 0);
+        cli_run r;
+        bool ran = run_cli(ARGS("render", "--size", "300x200", "-o", out), &r);
+        setrlimit(RLIMIT_FSIZE, &old);
+        signal(SIGXFSZ, old_handler);
+        REQUIRE(ran);
+        check_failure_output(label, &r, 1, names[k]);
+        CHECK_STR_CONTAINS(r.err, "File too large");
+        cli_run_free(&r);
+        size_t got_n = 0;
+        char *got = read_whole(out, &got_n);
+        CHECK(got && got_n == n && memcmp(got, bytes, n) == 0);
+        free(got);
+        CHECK_EQ(count_entries(dir, NULL, 0), 1);
+    }
 }
 
 /* ---- successful runs ---------------------------------------------------- */
@@ -893,7 +905,8 @@ SR_TEST(version_prints_the_version)
 /* Every option parse_args accepts.  A new option must be added here, to
  * the help text, and (if it can go wrong) to option_errors. */
 static const char *const value_options[] = {
-    "-o", "--output", "--size", "--background", "--png-level", "--shading", "--normals",
+    "-o", "--output", "--size", "--background", "--png-level", "--jpeg-quality", "--shading",
+    "--normals",
     "--material", "--ambient", "--light", "--camera", "--fov", "--turn", "--near", "--far",
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
@@ -1628,5 +1641,70 @@ SR_TEST(gltf_material_colors_color_the_model)
     CHECK(abs(left[0] - 230) <= 1 && abs(left[1] - 26) <= 1 && abs(left[2] - 13) <= 1);
     CHECK(abs(right[0] - 13) <= 1 && abs(right[1] - 51) <= 1 && abs(right[2] - 230) <= 1);
     free(px);
+#endif
+}
+
+/* -o NAME.jpg writes a JPEG of the picture the PNG holds: the same size,
+ * every channel close (JPEG is lossy: the bound is the mean error), and
+ * --jpeg-quality trades size for error. */
+SR_TEST(a_jpg_output_name_writes_a_jpeg)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_jpeg()) {
+        SKIP("this build writes no JPEG (libjpeg-dev was not found)");
+    }
+    char dir[1024], png[1100], jpg[1100], low[1100];
+    fresh_dir("jpeg_out", dir, sizeof dir);
+    snprintf(png, sizeof png, "%s/t.png", dir);
+    snprintf(jpg, sizeof jpg, "%s/t.JPG", dir);
+    snprintf(low, sizeof low, "%s/low.jpeg", dir);
+    const char *const runs[][9] = {
+        { "render", "--size", "160x120", "--detail", "6", "-o", png, NULL },
+        { "render", "--size", "160x120", "--detail", "6", "-o", jpg, NULL },
+        { "render", "--size", "160x120", "--detail", "6", "--jpeg-quality", "20", "-o", low },
+    };
+    for (size_t i = 0; i < 3; i++) {
+        const char *args[10];
+        memcpy(args, runs[i], sizeof runs[i]);
+        args[9] = NULL;
+        cli_run r;
+        REQUIRE(run_cli(args, &r));
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.err_len, 0);
+        cli_run_free(&r);
+    }
+    size_t jn, ln;
+    char *jbytes = read_whole(jpg, &jn), *lbytes = read_whole(low, &ln);
+    REQUIRE(jbytes && lbytes && jn > 3);
+    CHECK((uint8_t)jbytes[0] == 0xFF && (uint8_t)jbytes[1] == 0xD8 && (uint8_t)jbytes[2] == 0xFF);
+    CHECK(ln < jn); /* quality 20 is smaller than 90 */
+    free(jbytes);
+    free(lbytes);
+    int pw, ph, jw, jh, lw, lh;
+    uint8_t *p = NULL, *j = NULL, *l = NULL;
+    sr_io_error err;
+    REQUIRE(sr_read_png(png, &pw, &ph, &p, &err) == SR_OK);
+    REQUIRE(sr_read_jpeg(jpg, &jw, &jh, &j, &err) == SR_OK);
+    REQUIRE(sr_read_jpeg(low, &lw, &lh, &l, &err) == SR_OK);
+    REQUIRE(pw == jw && ph == jh && pw == lw && ph == lh);
+    double ej = 0, el = 0;
+    for (size_t i = 0; i < 4 * (size_t)pw * ph; i++) {
+        if (i % 4 != 3) {
+            ej += abs((int)p[i] - (int)j[i]);
+            el += abs((int)p[i] - (int)l[i]);
+        }
+    }
+    ej /= 3.0 * pw * ph;
+    el /= 3.0 * pw * ph;
+    if (ej >= 4.0) { /* 2.66 levels measured at quality 90 (4:2:0 chroma) */
+        FAILF("mean error %.2f", ej);
+    }
+    CHECK(el > ej);
+    free(p);
+    free(j);
+    free(l);
+    CHECK_EQ(count_entries(dir, NULL, 0), 3); /* no temporaries */
 #endif
 }

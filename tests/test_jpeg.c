@@ -1,5 +1,6 @@
-/* test_jpeg.c - io stage: sr_read_jpeg, sr_decode_jpeg, sr_read_image,
- * sr_decode_image and sr_decode_png (src/io/jpeg.c, image.c, png.c).  The JPEGs are written here with
+/* test_jpeg.c - io stage: sr_read_jpeg, sr_decode_jpeg, sr_write_jpeg,
+ * sr_read_image, sr_decode_image and sr_decode_png (src/io/jpeg.c,
+ * image.c, png.c).  The JPEGs are written here with
  * libjpeg's own encoder from pixels the test chose, so the decoded pixels
  * are checked against those, within the error the encoding's quality
  * allows; damaged files must come back as an error with a message and
@@ -330,6 +331,83 @@ SR_TEST(read_image_goes_by_content_not_name)
     CHECK_EQ(sr_read_image(sr_test_out_dir(), &w, &h, &px, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, "is a directory, not an image file");
     free(jpg);
+}
+
+/* sr_write_jpeg: what it writes reads back close to the pixels given
+ * (alpha dropped), it replaces an existing file whole, and bad arguments
+ * or an unwritable place leave nothing behind. */
+SR_TEST(written_jpegs_read_back_and_failures_leave_nothing)
+{
+    const int w = 64, h = 40;
+    uint8_t *rgba = malloc(4 * (size_t)w * h);
+    REQUIRE(rgba);
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            uint8_t *p = rgba + 4 * ((size_t)y * w + x);
+            for (int c = 0; c < 3; c++) {
+                p[c] = channel_at(x, y, c, w, h);
+            }
+            p[3] = (uint8_t)(x * 4); /* dropped */
+        }
+    }
+    char path[1024], missing[1100];
+    out_path("written.jpg", path, sizeof path);
+    snprintf(missing, sizeof missing, "%s/no/such/dir/x.jpg", sr_test_out_dir());
+    REQUIRE(write_bytes(path, "old", 3));
+    sr_io_error err;
+    REQUIRE(sr_write_jpeg(path, w, h, rgba, 4 * (size_t)w,
+                          &(sr_jpeg_write_desc){ .quality = 100 }, &err) == SR_OK);
+    int rw, rh;
+    uint8_t *back = NULL;
+    REQUIRE(sr_read_jpeg(path, &rw, &rh, &back, &err) == SR_OK);
+    CHECK(rw == w && rh == h);
+    /* Quality 100, but libjpeg's default 4:2:0 chroma: a few levels. */
+    int worst = max_error(back, w, h, RGB_420_PROGRESSIVE, 0);
+    if (worst > 8) {
+        FAILF("a channel is %d levels off", worst);
+    }
+    free(back);
+
+    struct {
+        const char *label, *path;
+        const uint8_t *px;
+        int w, h;
+        size_t stride;
+        int quality;
+        sr_result code;
+        const char *needle;
+    } bad[] = {
+        { "no path", NULL, rgba, w, h, 4 * (size_t)w, 0, SR_INVALID_ARG, "no file name" },
+        { "no pixels", path, NULL, w, h, 4 * (size_t)w, 0, SR_INVALID_ARG, "rgba is NULL" },
+        { "zero width", path, rgba, 0, h, 4 * (size_t)w, 0, SR_INVALID_ARG, "outside 1..65500" },
+        { "short stride", path, rgba, w, h, 4 * (size_t)w - 1, 0, SR_INVALID_ARG, "row stride" },
+        { "quality 101", path, rgba, w, h, 4 * (size_t)w, 101, SR_INVALID_ARG, "quality 101" },
+        { "no directory", missing, rgba, w, h, 4 * (size_t)w, 0, SR_IO_ERROR,
+          "cannot create a file in" },
+        { "a directory", sr_test_out_dir(), rgba, w, h, 4 * (size_t)w, 0, SR_IO_ERROR,
+          "is a directory" },
+    };
+    size_t before_len;
+    FILE *f = fopen(path, "rb");
+    REQUIRE(f);
+    uint8_t before[65536];
+    before_len = fread(before, 1, sizeof before, f);
+    fclose(f);
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sr_result r = sr_write_jpeg(bad[i].path, bad[i].w, bad[i].h, bad[i].px, bad[i].stride,
+                                    &(sr_jpeg_write_desc){ .quality = bad[i].quality }, &err);
+        if (r != bad[i].code || !strstr(err.message, bad[i].needle)) {
+            FAILF("%s: %s \"%s\"", bad[i].label, sr_result_name(r), err.message);
+        }
+    }
+    /* The file the failed calls named is as the good one left it. */
+    f = fopen(path, "rb");
+    REQUIRE(f);
+    uint8_t after[65536];
+    size_t after_len = fread(after, 1, sizeof after, f);
+    fclose(f);
+    CHECK(after_len == before_len && memcmp(after, before, before_len) == 0);
+    free(rgba);
 }
 
 #else

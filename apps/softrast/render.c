@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 
@@ -51,6 +52,7 @@ typedef struct render_opts {
     sr_rasterizer rasterizer;
     int threads;
     int png_level;
+    int jpeg_quality;              /* 0: not given */
     bool verbose;
     int lines;                     /* LINES_NONE, ... */
     float line_width, point_size;
@@ -96,14 +98,17 @@ static void render_help(void)
         "usage: softrast render [MODEL] [options]\n"
         "\n"
         "Render MODEL (.obj, .ply, .stl; other formats through Assimp when built\n"
-        "with it) or, without MODEL, the built-in Utah teapot scene, to a PNG.\n"
+        "with it) or, without MODEL, the built-in Utah teapot scene, to a PNG or\n"
+        "a JPEG.\n"
         "\n"
         "output:\n"
-        "  -o, --output FILE        PNG to write, atomically (default softrast.png)\n"
+        "  -o, --output FILE        image to write, atomically: a JPEG when FILE ends in\n"
+        "                           .jpg or .jpeg, else a PNG (default softrast.png)\n"
         "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
         "  --background COLOR       name, #rgb, #rrggbb, R,G,B in 0..1, or a gray level\n"
         "                           in 0..1 (default #1d2230)\n"
         "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
+        "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
         "  --shading MODE           flat|gouraud|phong|normals|depth|unlit (default phong)\n"
         "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
@@ -436,6 +441,11 @@ static int parse_args(int argc, char **argv, render_opts *o)
         } else if (IS("--png-level")) {
             VALUE();
             if (!parse_int(arg, value, 0, 9, &o->png_level)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--jpeg-quality")) {
+            VALUE();
+            if (!parse_int(arg, value, 1, 100, &o->jpeg_quality)) {
                 return EXIT_USAGE;
             }
         } else if (IS("--threads")) {
@@ -1170,6 +1180,16 @@ void render_job_free(render_job *job)
     free(job);
 }
 
+/* Whether -o names a JPEG: FILE.jpg or FILE.jpeg, in any case. */
+static bool is_jpeg_name(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    if (!dot || (slash && dot < slash)) {
+        return false;
+    }
+    return strcasecmp(dot, ".jpg") == 0 || strcasecmp(dot, ".jpeg") == 0;
+}
+
 int cmd_render(int argc, char **argv)
 {
     render_job *job;
@@ -1187,6 +1207,14 @@ int cmd_render(int argc, char **argv)
     }
     if (o->model && same_file(o->model, o->output)) {
         cli_error("-o: '%s' is the model being read; choose another output file", o->output);
+        render_job_free(job);
+        return EXIT_USAGE;
+    }
+    bool jpeg = is_jpeg_name(o->output);
+    if (jpeg ? o->png_level >= 0 : o->jpeg_quality > 0) {
+        cli_error(jpeg ? "--png-level: the output '%s' is a JPEG (see --jpeg-quality)"
+                       : "--jpeg-quality: the output '%s' is a PNG (name it .jpg for a JPEG)",
+                  o->output);
         render_job_free(job);
         return EXIT_USAGE;
     }
@@ -1219,21 +1247,27 @@ int cmd_render(int argc, char **argv)
     }
 
     sr_io_error err;
-    r = sr_write_png(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
-                     (size_t)o->width * 4,
-                     &(sr_png_write_desc){ .compression_level = o->png_level < 0 ? 0 :
-                                                                (o->png_level == 0 ? -1 : o->png_level),
-                                           .no_alpha = true },
-                     &err);
+    if (jpeg) {
+        r = sr_write_jpeg(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
+                          (size_t)o->width * 4,
+                          &(sr_jpeg_write_desc){ .quality = o->jpeg_quality }, &err);
+    } else {
+        r = sr_write_png(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
+                         (size_t)o->width * 4,
+                         &(sr_png_write_desc){ .compression_level = o->png_level < 0 ? 0 :
+                                                                    (o->png_level == 0 ? -1 : o->png_level),
+                                               .no_alpha = true },
+                         &err);
+    }
     double t_write = now_ms();
     if (o->verbose) {
         fprintf(stderr,
                 "softrast: %dx%d, %llu triangles, %llu fragments, near %.4g far %.4g, %d threads\n"
-                "softrast: load %.1f ms, setup %.1f ms, render %.1f ms, png %.1f ms\n",
+                "softrast: load %.1f ms, setup %.1f ms, render %.1f ms, %s %.1f ms\n",
                 o->width, o->height, (unsigned long long)info.triangles,
                 (unsigned long long)info.fragments, (double)info.near_z, (double)info.far_z,
                 sr_context_threads(job->ctx), t_load - t0, t_setup - t_load, t_render - t_setup,
-                t_write - t_render);
+                jpeg ? "jpeg" : "png", t_write - t_render);
     }
     sr_destroy_framebuffer(job->ctx, fb);
     render_job_free(job);

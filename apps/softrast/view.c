@@ -209,7 +209,8 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
         } else if (strcmp(name, "--no-vsync") == 0) {
             o->no_vsync = true;
         } else if (strcmp(name, "-o") == 0 || strcmp(name, "--output") == 0 ||
-                   strcmp(name, "--png-level") == 0 || strcmp(name, "-v") == 0 ||
+                   strcmp(name, "--png-level") == 0 || strcmp(name, "--jpeg-quality") == 0 ||
+                   strcmp(name, "-v") == 0 ||
                    strcmp(name, "--verbose") == 0) {
             cli_error("view: %s is a 'softrast render' option (use --screenshot FILE, --log)",
                       name);

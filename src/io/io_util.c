@@ -271,3 +271,28 @@ sr_result sr__decode_args(const char **name, const uint8_t *data, size_t size, i
     }
     return SR_OK;
 }
+
+sr_result sr__check_image_write(const char *path, int width, int height, int max_side,
+                                const uint8_t *rgba, size_t stride, sr_io_error *err)
+{
+    if (err) {
+        err->message[0] = 0;
+    }
+    if (!path || !path[0]) {
+        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
+    }
+    if (!rgba) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0, "no pixels given (rgba is NULL)");
+    }
+    if (width < 1 || width > max_side || height < 1 || height > max_side) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "image size %dx%d is outside 1..%d on a side", width, height,
+                           max_side);
+    }
+    if (stride < 4 * (size_t)width) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "row stride %zu is less than 4 * width = %zu bytes", stride,
+                           4 * (size_t)width);
+    }
+    return SR_OK;
+}

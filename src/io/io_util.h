@@ -52,6 +52,34 @@ void sr__image_outputs_clear(int *width, int *height, uint8_t **pixels, sr_io_er
 sr_result sr__decode_args(const char **name, const uint8_t *data, size_t size, int *width,
                           int *height, uint8_t **pixels, sr_io_error *err);
 
+/* The image writers' common arguments: a path, RGBA8 pixels, a size of
+ * 1..max_side a side and a stride of at least 4 width bytes.  Clears the
+ * message; SR_INVALID_ARG with a message naming the path otherwise. */
+sr_result sr__check_image_write(const char *path, int width, int height, int max_side,
+                                const uint8_t *rgba, size_t stride, sr_io_error *err);
+
+/* An output file written atomically (atomic_file.c): create it, write to
+ * fd (sr__write_all), then commit - fsync, rename over the target (the
+ * file a symbolic link names), sync the directory - or discard it.  On
+ * any failure nothing is left behind and an existing target keeps its
+ * bytes; a replaced file keeps its permissions, a new one gets 0666 less
+ * the umask.  The temporary's name comes from `a` (zero: malloc). */
+typedef struct sr_atomic_file {
+    const char *path;      /* as given, for messages */
+    const char *target;    /* the file replaced: path, or where its link points */
+    char *resolved;        /* realpath's string, or NULL */
+    char *tmp;             /* "<dir>/.<base>.XXXXXX" */
+    int fd;
+    sr_allocator a;
+} sr_atomic_file;
+
+sr_result sr__atomic_create(sr_atomic_file *f, const char *path, sr_allocator a,
+                            sr_io_error *err);
+sr_result sr__atomic_commit(sr_atomic_file *f, sr_io_error *err);
+void sr__atomic_discard(sr_atomic_file *f);
+/* All n bytes or false with errno set (EINTR retried, short writes continued). */
+bool sr__write_all(int fd, const uint8_t *p, size_t n);
+
 /* Overflow-checked size arithmetic for allocations sized by input. */
 static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)
 {

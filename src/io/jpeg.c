@@ -1,6 +1,7 @@
-/* jpeg.c - JPEG images in (io stage), through libjpeg-turbo: baseline and
- * progressive, grayscale, YCbCr/RGB and CMYK, any chroma subsampling, to
- * malloc'd RGBA8 (alpha 255).  Reentrant: libjpeg's state lives on the
+/* jpeg.c - JPEG images in and out (io stage), through libjpeg-turbo.  In:
+ * baseline and progressive, grayscale, YCbCr/RGB and CMYK, any chroma
+ * subsampling, to malloc'd RGBA8 (alpha 255).  Out: RGBA8 rows (alpha
+ * dropped) to a file written atomically (atomic_file.c), as PNG is.  Reentrant: libjpeg's state lives on the
  * caller's stack, and libjpeg never prints or exits (our error hooks).
  *
  * Strictness: libjpeg recovers from damaged data with a warning and goes
@@ -9,10 +10,12 @@
  * fails the read with libjpeg's own words; nothing partial is returned. */
 #include "io/io_util.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define MAX_READ_SIZE 16384   /* per side, as for PNG: 16384^2 RGBA8 is 1 GiB */
+#define MAX_WRITE_SIZE 65500  /* per side: JPEG's own limit (libjpeg's JPEG_MAX_DIMENSION) */
 /* libjpeg's working memory (a progressive image keeps every coefficient:
  * 2 bytes a sample) beyond which it fails rather than allocates. */
 #define MAX_DECODER_MEMORY ((long)1 << 30)
@@ -149,6 +152,62 @@ static void decode_jpeg(const uint8_t *data, size_t size, jpeg_image *out, jpeg_
     out->height = (int)h;
 }
 
+/* Encode to a buffer libjpeg mallocs (*out, *size), or say why in *st.
+ * Alpha is dropped: JPEG has none. */
+static void encode_jpeg(const uint8_t *rgba, int w, int h, size_t stride, int quality,
+                        unsigned char **out, unsigned long *size, jpeg_status *st)
+{
+    struct jpeg_compress_struct cinfo;
+    cinfo.err = jpeg_std_error(&st->pub);
+    st->pub.error_exit = on_jpeg_error;
+    st->pub.emit_message = on_jpeg_message;
+    if (setjmp(st->jump)) {
+        jpeg_destroy_compress(&cinfo);
+        free(*out);
+        *out = NULL;
+        return;
+    }
+    jpeg_create_compress(&cinfo);
+    jpeg_mem_dest(&cinfo, out, size);
+    cinfo.image_width = (JDIMENSION)w;
+    cinfo.image_height = (JDIMENSION)h;
+    cinfo.input_components = 4;
+    cinfo.in_color_space = JCS_EXT_RGBA;
+    jpeg_set_defaults(&cinfo);
+    jpeg_set_quality(&cinfo, quality, TRUE);
+    jpeg_start_compress(&cinfo, TRUE);
+    while (cinfo.next_scanline < cinfo.image_height) {
+        JSAMPROW row = (JSAMPROW)(rgba + stride * cinfo.next_scanline);
+        jpeg_write_scanlines(&cinfo, &row, 1);
+    }
+    jpeg_finish_compress(&cinfo);
+    jpeg_destroy_compress(&cinfo);
+}
+
+static sr_result write_jpeg(const char *path, int w, int h, const uint8_t *rgba, size_t stride,
+                            int quality, sr_io_error *err)
+{
+    unsigned char *data = NULL;
+    unsigned long size = 0;
+    jpeg_status status = { .code = SR_OK };
+    encode_jpeg(rgba, w, h, stride, quality, &data, &size, &status);
+    if (status.code != SR_OK) {
+        return sr__io_fail(err, status.code, path, 0, "cannot encode JPEG: %s", status.message);
+    }
+    sr_atomic_file file;
+    sr_result r = sr__atomic_create(&file, path, (sr_allocator){ 0 }, err);
+    if (r == SR_OK) {
+        if (sr__write_all(file.fd, data, size)) {
+            r = sr__atomic_commit(&file, err);
+        } else {
+            r = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s", strerror(errno));
+            sr__atomic_discard(&file);
+        }
+    }
+    free(data);
+    return r;
+}
+
 bool sr_io_have_jpeg(void)
 {
     return true;
@@ -199,7 +258,35 @@ sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size, int
                        "this build reads no JPEG (install libjpeg-dev and rebuild)");
 }
 
+static sr_result write_jpeg(const char *path, int w, int h, const uint8_t *rgba, size_t stride,
+                            int quality, sr_io_error *err)
+{
+    (void)w;
+    (void)h;
+    (void)rgba;
+    (void)stride;
+    (void)quality;
+    return sr__io_fail(err, SR_UNSUPPORTED, path, 0,
+                       "this build writes no JPEG (install libjpeg-dev and rebuild)");
+}
+
 #endif
+
+sr_result sr_write_jpeg(const char *path, int width, int height, const uint8_t *rgba,
+                        size_t stride, const sr_jpeg_write_desc *desc, sr_io_error *err)
+{
+    sr_result checked = sr__check_image_write(path, width, height, MAX_WRITE_SIZE, rgba, stride,
+                                              err);
+    if (checked != SR_OK) {
+        return checked;
+    }
+    int quality = desc && desc->quality ? desc->quality : SR_JPEG_DEFAULT_QUALITY;
+    if (quality < 1 || quality > 100) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "sr_jpeg_write_desc.quality %d is not in 1..100", quality);
+    }
+    return write_jpeg(path, width, height, rgba, stride, quality, err);
+}
 
 sr_result sr_read_jpeg(const char *path, int *width, int *height, uint8_t **pixels,
                        sr_io_error *err)

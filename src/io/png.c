@@ -4,7 +4,7 @@
  * PNG and produces malloc'd RGBA8.  Reentrant: all state lives on the
  * caller's stack, and libpng never prints (our error and warning hooks).
  */
-/* realpath() is XSI, not in the build's plain _POSIX_C_SOURCE. */
+/* fmemopen() with the rest of POSIX 2008. */
 #define _XOPEN_SOURCE 700
 
 #include "io/io_util.h"
@@ -13,12 +13,9 @@
 #include <zlib.h>
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #define MAX_WRITE_SIZE 65535    /* per side, as documented; well inside libpng's 1000000 */
 #define MAX_READ_SIZE  16384    /* per side; 16384^2 RGBA8 is 1 GiB, the most we allocate */
@@ -135,32 +132,9 @@ typedef struct png_sink {
 
 #define SINK_SIZE ((size_t)1 << 16)
 
-/* All n bytes or false with errno set: retries after EINTR, continues
- * after a short write (a full disk or RLIMIT_FSIZE takes part of a write
- * first, then fails the next one with the reason). */
-static bool write_all(int fd, const uint8_t *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0) {
-            if (errno == EINTR) {
-                continue;
-            }
-            return false;
-        }
-        if (w == 0) {
-            errno = EIO; /* no progress and no reason: do not spin */
-            return false;
-        }
-        p += w;
-        n -= (size_t)w;
-    }
-    return true;
-}
-
 static bool sink_flush(png_sink *s)
 {
-    bool ok = write_all(s->fd, s->buf, s->n);
+    bool ok = sr__write_all(s->fd, s->buf, s->n);
     s->n = 0;
     return ok;
 }
@@ -172,7 +146,7 @@ static void sink_write(png_structp png, png_bytep data, size_t len)
         png_error(png, "Write Error");
     }
     if (len >= s->cap) {
-        if (!write_all(s->fd, data, len)) {
+        if (!sr__write_all(s->fd, data, len)) {
             png_error(png, "Write Error");
         }
         return;
@@ -243,80 +217,14 @@ static bool encode_png(png_sink *sink, png_mem *mem, const png_write_args *a, pn
     return true;
 }
 
-/* The permission bits a plain fopen would give a new file: 0666 less the
- * umask.  mkstemp creates 0600, which would leave rendered images unreadable
- * to anyone else.  umask() can only be read by setting it, which races with
- * other threads creating files, so read it from /proc where there is one. */
-static mode_t new_file_mode(void)
-{
-    /* open/read rather than fopen: no hidden allocation outside the
-     * caller's allocator. */
-    mode_t mask = 022;
-    int fd = open("/proc/self/status", O_RDONLY);
-    if (fd >= 0) {
-        char buf[4096];
-        size_t n = 0;
-        ssize_t got;
-        while (n < sizeof buf - 1 &&
-               ((got = read(fd, buf + n, sizeof buf - 1 - n)) > 0 || (got < 0 && errno == EINTR))) {
-            n += got > 0 ? (size_t)got : 0;
-        }
-        close(fd);
-        buf[n] = 0;
-        const char *line = strstr(buf, "\nUmask:");
-        unsigned int m;
-        if (line && sscanf(line + 1, "Umask: %o", &m) == 1) {
-            mask = (mode_t)(m & 0777);
-        }
-    }
-    return 0666 & ~mask;
-}
-
-/* After the rename, make the new directory entry itself durable.  Best
- * effort: the image is already complete and in place. */
-static void sync_directory(const char *file_path)
-{
-    const char *slash = strrchr(file_path, '/');
-    char dir[4096];
-    if (!slash) {
-        snprintf(dir, sizeof dir, ".");
-    } else if (slash == file_path) {
-        snprintf(dir, sizeof dir, "/");
-    } else if ((size_t)(slash - file_path) < sizeof dir) {
-        memcpy(dir, file_path, (size_t)(slash - file_path));
-        dir[slash - file_path] = 0;
-    } else {
-        return;
-    }
-    int fd = open(dir, O_RDONLY);
-    if (fd >= 0) {
-        (void)fsync(fd);
-        close(fd);
-    }
-}
-
 sr_result sr_write_png(const char *path, int width, int height,
                        const uint8_t *rgba, size_t stride,
                        const sr_png_write_desc *desc, sr_io_error *err)
 {
-    if (err) {
-        err->message[0] = 0;
-    }
-    if (!path || !path[0]) {
-        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
-    }
-    if (!rgba) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0, "no pixels given (rgba is NULL)");
-    }
-    if (width < 1 || width > MAX_WRITE_SIZE || height < 1 || height > MAX_WRITE_SIZE) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
-                           "image size %dx%d is outside 1..%d on a side",
-                           width, height, MAX_WRITE_SIZE);
-    }
-    if (stride < 4 * (size_t)width) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
-                           "row stride %zu is less than 4 * width = %zu bytes",
-                           stride, 4 * (size_t)width);
+    sr_result checked = sr__check_image_write(path, width, height, MAX_WRITE_SIZE, rgba, stride,
+                                              err);
+    if (checked != SR_OK) {
+        return checked;
     }
     int level = desc ? desc->compression_level : 0;
     if (level == 0) {
@@ -332,80 +240,21 @@ sr_result sr_write_png(const char *path, int width, int height,
         .level = level, .no_alpha = desc && desc->no_alpha,
     };
 
-    /* The file the image will replace.  A symbolic link is followed, so the
-     * file it names is replaced rather than the link itself. */
-    char *resolved = NULL;
-    const char *target = path;
-    bool exists = false;
-    struct stat st;
-    if (lstat(path, &st) == 0) {
-        if (S_ISLNK(st.st_mode)) {
-            resolved = realpath(path, NULL);
-            if (!resolved || stat(resolved, &st) != 0) {
-                int e = errno;
-                free(resolved);
-                return sr__io_fail(err, SR_IO_ERROR, path, 0,
-                                   "symbolic link to a file that cannot be reached: %s",
-                                   strerror(e));
-            }
-            target = resolved;
-        }
-        if (S_ISDIR(st.st_mode)) {
-            free(resolved);
-            return sr__io_fail(err, SR_IO_ERROR, path, 0,
-                               "is a directory; give a file name for the image");
-        }
-        if (!S_ISREG(st.st_mode)) {
-            free(resolved);
-            return sr__io_fail(err, SR_IO_ERROR, path, 0,
-                               "is not a regular file; refusing to replace it");
-        }
-        exists = true;
-    } else if (errno != ENOENT) {
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot examine: %s", strerror(errno));
-    }
-
-    /* "<dir>/.<base>.XXXXXX": the same directory, hence the same file
-     * system, which is what makes the final rename atomic.  The leading dot
-     * keeps a half-written file out of plain directory listings. */
-    const char *slash = strrchr(target, '/');
-    size_t dir_len = slash ? (size_t)(slash - target) + 1 : 0;
-    const char *base = target + dir_len;
-    if (!base[0]) {
-        free(resolved);
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
-                           "names a directory (ends in '/'); give a file name for the image");
-    }
     png_mem mem = { .a = desc ? desc->allocator : (sr_allocator){0} };
     if ((mem.a.alloc == NULL) != (mem.a.free == NULL)) {
-        free(resolved);
         return sr__io_fail(err, SR_INVALID_ARG, path, 0,
                            "sr_png_write_desc.allocator needs both alloc and free");
     }
-    size_t tmp_size = strlen(target) + sizeof "/..XXXXXX";
-    char *tmp = mem_alloc(&mem, tmp_size);
-    png_sink sink = { .fd = -1, .buf = tmp ? mem_alloc(&mem, SINK_SIZE) : NULL, .cap = SINK_SIZE };
-    if (!tmp || !sink.buf) {
-        mem_free(&mem, tmp);
-        free(resolved);
+    sr_atomic_file file;
+    sr_result result = sr__atomic_create(&file, path, mem.a, err);
+    if (result != SR_OK) {
+        return result;
+    }
+    png_sink sink = { .fd = file.fd, .buf = mem_alloc(&mem, SINK_SIZE), .cap = SINK_SIZE };
+    if (!sink.buf) {
+        sr__atomic_discard(&file);
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory");
     }
-    snprintf(tmp, tmp_size, "%.*s.%s.XXXXXX", (int)dir_len, target, base);
-
-    sr_result result = SR_OK;
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        int e = errno;
-        result = sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot create a file in '%.*s': %s",
-                             dir_len > 1 ? (int)dir_len - 1 : (int)dir_len,
-                             dir_len ? target : ".", strerror(e));
-        goto done;
-    }
-    /* A replaced file keeps its permissions.  Failing to set them (some
-     * file systems have none) is no reason to lose the image. */
-    (void)fchmod(fd, exists ? (st.st_mode & 07777) : new_file_mode());
-    sink.fd = fd;
-
     png_status status = { .code = SR_OK };
     errno = 0;  /* so that a stale errno is never reported as the cause */
     bool encoded = encode_png(&sink, &mem, &args, &status);
@@ -414,49 +263,16 @@ sr_result sr_write_png(const char *path, int width, int height,
         status = (png_status){ .code = SR_IO_ERROR, .saved_errno = errno };
         snprintf(status.message, sizeof status.message, "Write Error");
     }
-    if (!encoded) {
-        close(fd);
-        unlink(tmp);
-        if (status.code == SR_IO_ERROR && status.saved_errno != 0) {
-            result = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s (libpng: %s)",
-                                 strerror(status.saved_errno), status.message);
-        } else {
-            result = sr__io_fail(err, status.code, path, 0, "cannot encode PNG: %s",
-                                 status.message);
-        }
-        goto done;
-    }
-    /* The data must be on disk before the rename publishes it, or a crash
-     * could leave a complete-looking name over an empty file. */
-    if (fsync(fd) != 0) {
-        int e = errno;
-        close(fd);
-        unlink(tmp);
-        result = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s", strerror(e));
-        goto done;
-    }
-    /* close() is not retried after EINTR: on Linux the descriptor is
-     * released whatever it returns, and the data is already fsync'd. */
-    if (close(fd) != 0 && errno != EINTR) {
-        int e = errno;
-        unlink(tmp);
-        result = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed on close: %s", strerror(e));
-        goto done;
-    }
-    if (rename(tmp, target) != 0) {
-        int e = errno;
-        unlink(tmp);
-        result = sr__io_fail(err, SR_IO_ERROR, path, 0,
-                             "cannot move the finished image into place: %s", strerror(e));
-        goto done;
-    }
-    sync_directory(target);
-
-done:
     mem_free(&mem, sink.buf);
-    mem_free(&mem, tmp);
-    free(resolved);
-    return result;
+    if (!encoded) {
+        sr__atomic_discard(&file);
+        if (status.code == SR_IO_ERROR && status.saved_errno != 0) {
+            return sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s (libpng: %s)",
+                               strerror(status.saved_errno), status.message);
+        }
+        return sr__io_fail(err, status.code, path, 0, "cannot encode PNG: %s", status.message);
+    }
+    return sr__atomic_commit(&file, err);
 }
 
 /* ---- reading ------------------------------------------------------------ */
