@@ -103,7 +103,8 @@ sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
 
 /* JPEG: baseline or progressive, gray, YCbCr/RGB or CMYK (Adobe's inverted
  * inks too), any chroma subsampling, read as RGBA8 with alpha 255; at
- * most 16384 pixels a side, like PNG.  Data libjpeg would only patch
+ * most 16384 pixels a side, like PNG, and SR_TOO_LARGE for a progressive
+ * image whose decoding would take more than 512 MiB.  Data libjpeg would only patch
  * over with a warning (a truncated file's missing rows come out gray) is
  * an error with libjpeg's words: nothing partial is returned.  *pixels is
  * malloc'd; free it with free().  A build without libjpeg returns

@@ -208,6 +208,28 @@ SR_TEST(damaged_jpegs_are_errors_not_pictures)
     expect_failure("20000 x 20000", big, size, SR_TOO_LARGE, "larger than the 16384x16384 limit");
     free(big);
 
+    /* 16000 x 16000 is within the limit, but a progressive image keeps
+     * every coefficient while it decodes: 768 MB here, refused before
+     * libjpeg takes it. */
+    size_t psize;
+    uint8_t *prog = encode(RGB_420_PROGRESSIVE, 32, 32, 90, 0, &psize);
+    REQUIRE(prog);
+    sof = 0;
+    for (size_t i = 2; i + 9 < psize; i++) {
+        if (prog[i] == 0xFF && prog[i + 1] == 0xC2) {
+            sof = i;
+            break;
+        }
+    }
+    REQUIRE(sof != 0);
+    prog[sof + 5] = 16000 >> 8;
+    prog[sof + 6] = 16000 & 0xFF;
+    prog[sof + 7] = 16000 >> 8;
+    prog[sof + 8] = 16000 & 0xFF;
+    expect_failure("progressive 16000 x 16000", prog, psize, SR_TOO_LARGE,
+                   "more than 512 MiB of working memory");
+    free(prog);
+
     int w, h;
     uint8_t *px;
     sr_io_error err;

@@ -16,9 +16,12 @@
 
 #define MAX_READ_SIZE 16384   /* per side, as for PNG: 16384^2 RGBA8 is 1 GiB */
 #define MAX_WRITE_SIZE 65500  /* per side: JPEG's own limit (libjpeg's JPEG_MAX_DIMENSION) */
-/* libjpeg's working memory (a progressive image keeps every coefficient:
- * 2 bytes a sample) beyond which it fails rather than allocates. */
-#define MAX_DECODER_MEMORY ((long)1 << 30)
+/* libjpeg's working memory beyond which it fails rather than allocates.
+ * A progressive image keeps every coefficient while it decodes, 2 bytes a
+ * sample: 3 bytes a pixel with 4:2:0 chroma, 6 with 4:4:4, so 512 MiB
+ * takes 8192 x 8192 at 4:4:4 and refuses 16000 x 16000 at 4:2:0.  With
+ * the pixels (up to 1 GiB) a read stays under 2 GiB. */
+#define MAX_DECODER_MEMORY ((long)1 << 29)
 
 #ifdef SR_HAVE_JPEG
 
@@ -40,8 +43,17 @@ typedef struct jpeg_status {
 static void on_jpeg_error(j_common_ptr cinfo)
 {
     jpeg_status *st = (jpeg_status *)cinfo->err;
-    (*cinfo->err->format_message)(cinfo, st->message);
-    st->code = cinfo->err->msg_code == JERR_OUT_OF_MEMORY ? SR_OUT_OF_MEMORY : SR_BAD_FORMAT;
+    int code = cinfo->err->msg_code;
+    if (code == JERR_NO_BACKING_STORE) {
+        /* libjpeg's way of saying MAX_DECODER_MEMORY ran out */
+        snprintf(st->message, sizeof st->message,
+                 "decoding it would take more than %ld MiB of working memory",
+                 MAX_DECODER_MEMORY >> 20);
+        st->code = SR_TOO_LARGE;
+    } else {
+        (*cinfo->err->format_message)(cinfo, st->message);
+        st->code = code == JERR_OUT_OF_MEMORY ? SR_OUT_OF_MEMORY : SR_BAD_FORMAT;
+    }
     longjmp(st->jump, 1);
 }
 
