@@ -676,6 +676,15 @@ SR_TEST(ply_header_errors_name_the_line)
         "ply\nformat ascii 1.0\nelement face 1\nproperty int vertex_indices\n";
     expect_error(scalar_indices, strlen(scalar_indices), SR_BAD_FORMAT,
                  "bad.ply:4: 'vertex_indices' must be a list property");
+
+    /* A NUL in a header word used to cut the quoted word short: "element
+     * count '3' is not a non-negative integer" for "3\0". */
+    static const char nul_count[] = "ply\nformat ascii 1.0\nelement vertex 3\0\nend_header\n";
+    expect_error(nul_count, sizeof nul_count - 1, SR_BAD_FORMAT,
+                 "bad.ply:3: a NUL byte in the header");
+    static const char nul_comment[] = "ply\nformat ascii 1.0\ncomment a\0b\nend_header\n";
+    expect_error(nul_comment, sizeof nul_comment - 1, SR_BAD_FORMAT,
+                 "bad.ply:3: a NUL byte in the header");
 }
 
 SR_TEST(ply_index_out_of_range)

@@ -373,6 +373,12 @@ static sr_result parse_header(ply_reader *r)
         if (n > 0 && s[n - 1] == '\r') {
             n--;
         }
+        /* The header is text: a NUL would end a quoted word early, and the
+         * message quote a word that looks right ("count '3' is not..."). */
+        if (memchr(s, 0, n)) {
+            return sr__io_fail(r->err, SR_BAD_FORMAT, r->name, r->line,
+                               "a NUL byte in the header (a PLY header is text)");
+        }
         token w[6];
         size_t words = split_words(s, n, w, 6);
         if (r->line == 1) {
