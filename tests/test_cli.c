@@ -1481,53 +1481,87 @@ static void base64(const uint8_t *src, size_t n, char *dst)
 }
 
 /* A glTF 2.0 quad (positions, texture coordinates, indices) whose
- * material's base color texture is `image` (n bytes), embedded as a data
- * URI, as exporters write a self-contained .gltf. */
-static bool write_gltf_quad(const char *path, const uint8_t *image, size_t n)
+ * material's base color texture is `image` (n bytes): as a self-contained
+ * .gltf, with the geometry and the image in data URIs, or as a binary
+ * .glb, with both in its BIN chunk and the image in a buffer view - the
+ * two ways exporters embed a texture. */
+static bool write_gltf_quad(const char *path, const uint8_t *image, size_t n, bool binary)
 {
     const float pos[12] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 };
     const float uv[8] = { 0, 1, 1, 1, 1, 0, 0, 0 };
     const uint16_t idx[6] = { 0, 1, 2, 0, 2, 3 };
-    uint8_t buf[92];
-    memcpy(buf, pos, 48);
-    memcpy(buf + 48, uv, 32);
-    memcpy(buf + 80, idx, 12);
-    char *b64buf = malloc(4 * (sizeof buf / 3 + 1) + 1), *b64img = malloc(4 * (n / 3 + 1) + 1);
+    size_t bin_len = (92 + n + 3) & ~(size_t)3;
+    uint8_t *bin = calloc(1, bin_len);
+    char *b64buf = malloc(4 * (92 / 3 + 1) + 1), *b64img = malloc(4 * (n / 3 + 1) + 1);
     char *json = malloc(4 * (n / 3 + 1) + 4096);
-    bool ok = b64buf && b64img && json;
+    uint8_t *glb = malloc(20 + 4 * (n / 3 + 1) + 4096 + 8 + bin_len);
+    bool ok = bin && b64buf && b64img && json && glb;
     if (ok) {
-        base64(buf, sizeof buf, b64buf);
+        memcpy(bin, pos, 48);
+        memcpy(bin + 48, uv, 32);
+        memcpy(bin + 80, idx, 12);
+        memcpy(bin + 92, image, n);
+        base64(bin, 92, b64buf);
         base64(image, n, b64img);
+        char buffer[200], image_ref[200];
+        if (binary) {
+            snprintf(buffer, sizeof buffer, "{\"byteLength\":%zu}", bin_len);
+            snprintf(image_ref, sizeof image_ref, "{\"bufferView\":3,\"mimeType\":\"image/png\"}");
+        }
         sprintf(json,
                 "{\"asset\":{\"version\":\"2.0\"},"
-                "\"buffers\":[{\"byteLength\":92,"
-                "\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+                "\"buffers\":[%s%s%s],"
                 "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},"
                 "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":32},"
-                "{\"buffer\":0,\"byteOffset\":80,\"byteLength\":12}],"
+                "{\"buffer\":0,\"byteOffset\":80,\"byteLength\":12},"
+                "{\"buffer\":0,\"byteOffset\":92,\"byteLength\":%zu}],"
                 "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,"
                 "\"type\":\"VEC3\",\"min\":[-1,-1,0],\"max\":[1,1,0]},"
                 "{\"bufferView\":1,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
                 "{\"bufferView\":2,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}],"
-                "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+                "\"images\":[%s%s%s],"
                 "\"textures\":[{\"source\":0}],"
                 "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
                 "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},"
                 "\"indices\":2,\"material\":0}]}],"
                 "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
-                b64buf, b64img);
-        ok = write_whole(path, json, strlen(json));
+                binary ? buffer : "{\"byteLength\":92,\"uri\":\"data:application/octet-stream;base64,",
+                binary ? "" : b64buf, binary ? "" : "\"}", n,
+                binary ? image_ref : "{\"uri\":\"data:image/png;base64,", binary ? "" : b64img,
+                binary ? "" : "\"}");
+        if (!binary) {
+            ok = write_whole(path, json, strlen(json));
+        } else {
+            /* Header, then the JSON chunk padded with spaces and the BIN
+             * chunk padded with zeros, each to 4 bytes. */
+            uint32_t json_len = (uint32_t)((strlen(json) + 3) & ~(size_t)3);
+            memset(json + strlen(json), ' ', json_len - strlen(json));
+            uint32_t words[5] = { 0x46546C67u, 2, (uint32_t)(12 + 8 + json_len + 8 + bin_len),
+                                  json_len, 0x4E4F534Au };
+            size_t at = 0;
+            memcpy(glb, words, 20);
+            at = 20;
+            memcpy(glb + at, json, json_len);
+            at += json_len;
+            uint32_t bin_head[2] = { (uint32_t)bin_len, 0x004E4942u };
+            memcpy(glb + at, bin_head, 8);
+            at += 8;
+            memcpy(glb + at, bin, bin_len);
+            ok = write_whole(path, glb, at + bin_len);
+        }
     }
+    free(bin);
     free(b64buf);
     free(b64img);
     free(json);
+    free(glb);
     return ok;
 }
 #endif
 
-/* An image a glTF file embeds colors the model as the same pixels given
- * with --texture do; a damaged one is a warning, and the model is drawn
- * as it is without a texture. */
+/* An image a .gltf or .glb file embeds colors the model as the same
+ * pixels given with --texture do; a damaged one is a warning, and the
+ * model is drawn as it is without a texture. */
 SR_TEST(a_gltf_files_embedded_texture_is_used)
 {
 #ifndef SR_CLI_PATH
@@ -1536,11 +1570,9 @@ SR_TEST(a_gltf_files_embedded_texture_is_used)
     if (!sr_io_have_assimp()) {
         SKIP("this build reads no glTF (Assimp was not found)");
     }
-    char dir[1024], tex[1100], model[1100], broken[1100], out[1100];
+    char dir[1024], tex[1100], out[1100];
     fresh_dir("gltf", dir, sizeof dir);
     snprintf(tex, sizeof tex, "%s/tex.png", dir);
-    snprintf(model, sizeof model, "%s/quad.gltf", dir);
-    snprintf(broken, sizeof broken, "%s/broken.gltf", dir);
     uint8_t px[8 * 8 * 4];
     for (int i = 0; i < 64; i++) {
         int q = (i % 8) / 4 + 2 * (i / 32);
@@ -1555,31 +1587,39 @@ SR_TEST(a_gltf_files_embedded_texture_is_used)
     size_t n;
     char *png = read_whole(tex, &n);
     REQUIRE(png);
-    REQUIRE(write_gltf_quad(model, (const uint8_t *)png, n));
-    REQUIRE(write_gltf_quad(broken, (const uint8_t *)png, n / 2)); /* cut short */
+    const char *forms[] = { "gltf", "glb" };
+    for (int binary = 0; binary < 2; binary++) {
+        char model[1100], broken[1100], needle[200];
+        snprintf(model, sizeof model, "%s/quad.%s", dir, forms[binary]);
+        snprintf(broken, sizeof broken, "%s/broken.%s", dir, forms[binary]);
+        snprintf(needle, sizeof needle, "broken.%s (its embedded texture): truncated PNG",
+                 forms[binary]);
+        REQUIRE(write_gltf_quad(model, (const uint8_t *)png, n, binary));
+        REQUIRE(write_gltf_quad(broken, (const uint8_t *)png, n / 2, binary)); /* cut short */
+
+        size_t la, lb, lc;
+        char *a = render_bytes(model, dir, "a.png", ARGS(model, "--size", "96x64"), &la);
+        char *b = render_bytes(model, dir, "b.png",
+                               ARGS(model, "--texture", tex, "--size", "96x64"), &lb);
+        REQUIRE(a && b);
+        CHECK(la == lb && memcmp(a, b, la) == 0);
+
+        snprintf(out, sizeof out, "%s/c.png", dir);
+        cli_run r;
+        REQUIRE(run_cli(ARGS("render", broken, "--size", "96x64", "-o", out), &r));
+        CHECK_EQ(r.status, 0);
+        CHECK(is_one_line(r.err, r.err_len));
+        CHECK_STR_CONTAINS(r.err, "softrast: warning: ");
+        CHECK_STR_CONTAINS(r.err, needle);
+        cli_run_free(&r);
+        char *c = read_whole(out, &lc);
+        REQUIRE(c);
+        CHECK(!(lc == lb && memcmp(c, b, lc) == 0)); /* drawn, but not with the texture */
+        free(a);
+        free(b);
+        free(c);
+    }
     free(png);
-
-    size_t la, lb, lc;
-    char *a = render_bytes("embedded", dir, "a.png", ARGS(model, "--size", "96x64"), &la);
-    char *b = render_bytes("--texture", dir, "b.png", ARGS(model, "--texture", tex, "--size",
-                                                          "96x64"), &lb);
-    REQUIRE(a && b);
-    CHECK(la == lb && memcmp(a, b, la) == 0);
-
-    snprintf(out, sizeof out, "%s/c.png", dir);
-    cli_run r;
-    REQUIRE(run_cli(ARGS("render", broken, "--size", "96x64", "-o", out), &r));
-    CHECK_EQ(r.status, 0);
-    CHECK(is_one_line(r.err, r.err_len));
-    CHECK_STR_CONTAINS(r.err, "softrast: warning: ");
-    CHECK_STR_CONTAINS(r.err, "broken.gltf (its embedded texture): truncated PNG");
-    cli_run_free(&r);
-    char *c = read_whole(out, &lc);
-    REQUIRE(c);
-    CHECK(!(lc == lb && memcmp(c, b, lc) == 0)); /* drawn, but not with the texture */
-    free(a);
-    free(b);
-    free(c);
 #endif
 }
 
