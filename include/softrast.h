@@ -748,7 +748,7 @@ typedef struct sr_mesh {
     uint32_t *indices;     /* 3 per triangle, counter-clockwise front faces */
     char *texture_path;    /* diffuse texture named by the file (OBJ map_Kd), or NULL */
     /* The diffuse texture's encoded bytes (PNG or JPEG, for sr_decode_image)
-     * when the file embeds it instead of naming one (glTF, FBX), or NULL. */
+     * when the file embeds it instead of naming one (glTF, GLB), or NULL. */
     uint8_t *texture_data;
     size_t texture_size;
 } sr_mesh;

@@ -127,7 +127,7 @@ static void render_help(void)
         "textures:\n"
         "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
         "                           coordinates (default: the OBJ material's map_Kd, the\n"
-        "                           image a glTF/FBX file embeds, or MODEL_texture.png or\n"
+        "                           image a glTF/GLB file embeds, or MODEL_texture.png or\n"
         "                           .jpg beside a model MODEL.obj; one of those that\n"
         "                           cannot be read is a warning)\n"
         "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
@@ -640,7 +640,7 @@ static bool same_file(const char *a, const char *b)
 }
 
 /* The model's texture: --texture, else the file's own (OBJ map_Kd, or an
- * image a glTF or FBX file embeds), else MODEL_texture.png or .jpg beside
+ * image a glTF or GLB file embeds), else MODEL_texture.png or .jpg beside
  * MODEL.ext.  One the user named must be read; one the model brings that
  * is missing or unreadable is reported in a warning and the model drawn
  * without it - a preview of the geometry beats no preview.  Returns an
