@@ -1748,3 +1748,58 @@ SR_TEST(a_jpg_output_name_writes_a_jpeg)
     CHECK_EQ(count_entries(dir, NULL, 0), 3); /* no temporaries */
 #endif
 }
+
+/* Every command that writes an image goes by the name: demo and svg write
+ * a JPEG for NAME.jpg; svg refuses one whose background would be
+ * transparent, which JPEG cannot hold. */
+SR_TEST(demo_and_svg_write_a_jpeg_for_a_jpg_name)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_jpeg()) {
+        SKIP("this build writes no JPEG (libjpeg-dev was not found)");
+    }
+    char dir[1024], demo[1100], svg_in[1100], svg_out[1100];
+    fresh_dir("jpeg_cmds", dir, sizeof dir);
+    snprintf(demo, sizeof demo, "%s/viewport.jpeg", dir);
+    snprintf(svg_in, sizeof svg_in, "%s/box.svg", dir);
+    snprintf(svg_out, sizeof svg_out, "%s/box.jpg", dir);
+    const char *svg = "<svg xmlns='http://www.w3.org/2000/svg' width='80' height='60'>"
+                      "<rect x='32' y='16' width='32' height='32' fill='#c03020'/></svg>";
+    REQUIRE(write_whole(svg_in, svg, strlen(svg)));
+
+    cli_run r;
+    REQUIRE(run_cli(ARGS("demo", "viewport", "-o", demo), &r));
+    CHECK_EQ(r.status, 0);
+    cli_run_free(&r);
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    CHECK_EQ(sr_read_jpeg(demo, &w, &h, &px, &err), SR_OK);
+    free(px);
+
+    REQUIRE(run_cli(ARGS("svg", "--help"), &r));
+    bool have_svg = r.status == 0;
+    cli_run_free(&r);
+    if (have_svg) {
+        REQUIRE(run_cli(ARGS("svg", svg_in, "-o", svg_out), &r));
+        check_failure_output("svg to a JPEG without a background", &r, 2,
+                             "a JPEG has no transparency; give a --background");
+        cli_run_free(&r);
+        CHECK_EQ(count_entries(dir, NULL, 0), 2);
+        REQUIRE(run_cli(ARGS("svg", svg_in, "--background", "white", "-o", svg_out), &r));
+        CHECK_EQ(r.status, 0);
+        cli_run_free(&r);
+        px = NULL;
+        REQUIRE(sr_read_jpeg(svg_out, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(w == 80 && h == 60);
+        /* The rectangle's middle is its red; the corner, 16 pixels from
+         * it (a whole block of 4:2:0 chroma), the white. */
+        const uint8_t *mid = px + 4 * (32 * 80 + 48), *corner = px;
+        CHECK(abs(mid[0] - 0xc0) <= 8 && abs(mid[1] - 0x30) <= 8 && abs(mid[2] - 0x20) <= 8);
+        CHECK(corner[0] >= 247 && corner[1] >= 247 && corner[2] >= 247);
+        free(px);
+    }
+#endif
+}

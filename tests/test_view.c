@@ -181,7 +181,7 @@ static uint8_t *read_image(const char *path, int *w, int *h)
 {
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(path, w, h, &px, &err) != SR_OK) {
+    if (sr_read_image(path, w, h, &px, &err) != SR_OK) {
         FAILF("%s", err.message);
         return NULL;
     }
@@ -428,6 +428,43 @@ SR_TEST(view_screenshot_after_scripted_input_equals_render)
 
 /* A script's own screenshot then quit, with trailing comments as
  * docs/viewer.md writes them: the quit waits for the screenshot's frame. */
+/* A screenshot named .jpg is a JPEG, as `softrast render -o NAME.jpg`
+ * writes one (apps/softrast/image_out.c serves both). */
+SR_TEST(a_jpg_screenshot_is_a_jpeg)
+{
+    if (!in_path("xvfb-run")) {
+        SKIP("xvfb-run is not installed (Debian: xvfb xauth)");
+    }
+    if (viewer_built() != 1) {
+        SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
+    }
+    if (!sr_io_have_jpeg()) {
+        SKIP("this build writes no JPEG (libjpeg-dev was not found)");
+    }
+#ifdef SR_CLI_PATH
+    char shot[1100];
+    snprintf(shot, sizeof shot, "%s/view-shot.jpg", sr_test_out_dir());
+    remove(shot);
+    run_result r;
+    REQUIRE(run_view_xvfb((const char *[]){ "--size", "96x64", "--frames", "1", "--screenshot",
+                                            shot, NULL }, &r));
+    CHECK_EQ(r.status, 0);
+    result_free(&r);
+    FILE *f = fopen(shot, "rb");
+    REQUIRE(f);
+    uint8_t head[3] = { 0 };
+    CHECK_EQ(fread(head, 1, 3, f), 3);
+    fclose(f);
+    CHECK(head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF);
+    int w, h;
+    uint8_t *px = read_image(shot, &w, &h);
+    REQUIRE(px);
+    CHECK_EQ(w, 96);
+    CHECK_EQ(h, 64);
+    free(px);
+#endif
+}
+
 SR_TEST(script_screenshot_then_quit_writes_the_file)
 {
     if (!in_path("xvfb-run")) {

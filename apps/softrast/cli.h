@@ -5,6 +5,7 @@
 #define SR_CLI_H
 
 #include "softrast.h"
+#include "softrast_io.h"
 
 #include <stdbool.h>
 
@@ -16,6 +17,18 @@ int cmd_render(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_svg(int argc, char **argv);   /* svg.c; needs expat */
 int cmd_view(int argc, char **argv);  /* view.c; needs SDL2 and FreeType */
+
+/* Image files (image_out.c): a JPEG when the name ends in .jpg or .jpeg
+ * (any case), else a PNG. */
+typedef struct cli_image_options {
+    int png_level;         /* -1: the library's default; 0: stored; 1..9 */
+    int jpeg_quality;      /* 0: the library's default; 1..100 */
+    bool keep_alpha;       /* PNG only: write RGBA rather than RGB */
+} cli_image_options;
+
+bool cli_is_jpeg_name(const char *path);
+sr_result cli_write_image(const char *path, int width, int height, const uint8_t *rgba,
+                          const cli_image_options *opt, sr_io_error *err);
 
 /* Print "softrast: ..." to stderr (one line). */
 void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

@@ -41,7 +41,8 @@ static void demo_help(FILE *f)
         fprintf(f, "  %-20s %s\n", d->name, d->summary);
     }
     fprintf(f, "\noptions:\n"
-               "  -o, --output FILE   PNG to write (default demo-NAME.png)\n"
+               "  -o, --output FILE   PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
+               "                      (default demo-NAME.png)\n"
                "  --scale N           magnification of pixel-level demos, 1..32\n");
 }
 
@@ -106,8 +107,8 @@ int cmd_demo(int argc, char **argv)
     if (status == EXIT_OK && fb) {
         sr_io_error err;
         int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
-        if (sr_write_png(args.output, w, h, sr_framebuffer_pixels(fb), (size_t)w * 4,
-                         &(sr_png_write_desc){ .no_alpha = true }, &err) != SR_OK) {
+        if (cli_write_image(args.output, w, h, sr_framebuffer_pixels(fb),
+                            &(cli_image_options){ .png_level = -1 }, &err) != SR_OK) {
             fprintf(stderr, "%s\n", err.message);
             status = EXIT_FAILURE_RUN;
         }

@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 
@@ -1180,16 +1179,6 @@ void render_job_free(render_job *job)
     free(job);
 }
 
-/* Whether -o names a JPEG: FILE.jpg or FILE.jpeg, in any case. */
-static bool is_jpeg_name(const char *path)
-{
-    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    if (!dot || (slash && dot < slash)) {
-        return false;
-    }
-    return strcasecmp(dot, ".jpg") == 0 || strcasecmp(dot, ".jpeg") == 0;
-}
-
 int cmd_render(int argc, char **argv)
 {
     render_job *job;
@@ -1210,7 +1199,7 @@ int cmd_render(int argc, char **argv)
         render_job_free(job);
         return EXIT_USAGE;
     }
-    bool jpeg = is_jpeg_name(o->output);
+    bool jpeg = cli_is_jpeg_name(o->output);
     if (jpeg ? o->png_level >= 0 : o->jpeg_quality > 0) {
         cli_error(jpeg ? "--png-level: the output '%s' is a JPEG (see --jpeg-quality)"
                        : "--jpeg-quality: the output '%s' is a PNG (name it .jpg for a JPEG)",
@@ -1247,18 +1236,10 @@ int cmd_render(int argc, char **argv)
     }
 
     sr_io_error err;
-    if (jpeg) {
-        r = sr_write_jpeg(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
-                          (size_t)o->width * 4,
-                          &(sr_jpeg_write_desc){ .quality = o->jpeg_quality }, &err);
-    } else {
-        r = sr_write_png(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
-                         (size_t)o->width * 4,
-                         &(sr_png_write_desc){ .compression_level = o->png_level < 0 ? 0 :
-                                                                    (o->png_level == 0 ? -1 : o->png_level),
-                                               .no_alpha = true },
-                         &err);
-    }
+    r = cli_write_image(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
+                        &(cli_image_options){ .png_level = o->png_level,
+                                              .jpeg_quality = o->jpeg_quality },
+                        &err);
     double t_write = now_ms();
     if (o->verbose) {
         fprintf(stderr,

@@ -4,6 +4,7 @@
  * and writes the PNG atomically.  Warnings go to stderr as they arise; a
  * failure is one line "FILE:LINE: what is wrong", exit status 2 for a bad
  * document, 1 when the run itself fails, and no output file. */
+#include "cli.h"
 #include "svg.h"
 #include "io/io_util.h"
 #include "softrast_io.h"
@@ -32,7 +33,8 @@ static void svg_help(FILE *f)
                "Render an SVG 1.1 drawing (shapes, paths, transforms, fills and strokes) with\n"
                "softrast's 2D toolkit.\n\n"
                "options:\n"
-               "  -o, --output FILE    PNG to write (default: INPUT with .png)\n"
+               "  -o, --output FILE    PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
+               "                       (needs --background) (default: INPUT with .png)\n"
                "  --size WxH           output size in pixels (the viewBox is fitted in)\n"
                "  --scale S            output size = the drawing's size times S (default 1)\n"
                "  --background COLOR   opaque background (default transparent)\n");
@@ -152,6 +154,10 @@ int cmd_svg(int argc, char **argv)
         snprintf(default_out, sizeof default_out, "%.*s.png", (int)n, input);
         output = default_out;
     }
+    if (cli_is_jpeg_name(output) && opt.background.a < 1) {
+        cli_error("svg: -o: a JPEG has no transparency; give a --background for '%s'", output);
+        return EXIT_USAGE;
+    }
     char *data = NULL;
     size_t size = 0;
     int status = read_input(input, &data, &size);
@@ -174,8 +180,10 @@ int cmd_svg(int argc, char **argv)
     } else {
         sr_io_error err;
         int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
-        if (sr_write_png(output, w, h, sr_framebuffer_pixels(fb), (size_t)w * 4,
-                         &(sr_png_write_desc){ .no_alpha = opt.background.a >= 1 }, &err) != SR_OK) {
+        if (cli_write_image(output, w, h, sr_framebuffer_pixels(fb),
+                            &(cli_image_options){ .png_level = -1,
+                                                  .keep_alpha = opt.background.a < 1 },
+                            &err) != SR_OK) {
             fprintf(stderr, "%s\n", err.message);
             status = EXIT_FAILURE_RUN;
         }

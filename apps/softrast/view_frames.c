@@ -8,6 +8,7 @@
  * shown half drawn.  The main thread touches the job and the framebuffers
  * only while the render thread is idle. */
 #ifdef SR_HAVE_VIEWER
+#include "cli.h"
 #include "softrast_io.h"
 #include "view_sdl.h"
 
@@ -39,8 +40,8 @@ static void draw_frame(view_frames *vf)
     if (vf->shot[0]) {
         int w = sr_framebuffer_width(vf->back), h = sr_framebuffer_height(vf->back);
         sr_io_error err;
-        if (sr_write_png(vf->shot, w, h, sr_framebuffer_pixels(vf->back), (size_t)w * 4,
-                         &(sr_png_write_desc){ .no_alpha = true }, &err) == SR_OK) {
+        if (cli_write_image(vf->shot, w, h, sr_framebuffer_pixels(vf->back),
+                            &(cli_image_options){ .png_level = -1 }, &err) == SR_OK) {
             vf->shot_ok = true;
         } else {
             snprintf(vf->shot_error, sizeof vf->shot_error, "%s", err.message);
@@ -62,8 +63,8 @@ static void draw_frame(view_frames *vf)
     if (vf->result == SR_OK && vf->window_shot[0]) {
         int w = sr_framebuffer_width(vf->back), h = sr_framebuffer_height(vf->back);
         sr_io_error err;
-        if (sr_write_png(vf->window_shot, w, h, sr_framebuffer_pixels(vf->back), (size_t)w * 4,
-                         &(sr_png_write_desc){ .no_alpha = true }, &err) != SR_OK) {
+        if (cli_write_image(vf->window_shot, w, h, sr_framebuffer_pixels(vf->back),
+                            &(cli_image_options){ .png_level = -1 }, &err) != SR_OK) {
             vf->shot_ok = false;
             snprintf(vf->shot_error, sizeof vf->shot_error, "%s", err.message);
         }
