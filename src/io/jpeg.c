@@ -1,8 +1,9 @@
 /* jpeg.c - JPEG images in and out (io stage), through libjpeg-turbo.  In:
  * baseline and progressive, grayscale, YCbCr/RGB and CMYK, any chroma
  * subsampling, to malloc'd RGBA8 (alpha 255).  Out: RGBA8 rows (alpha
- * dropped) to a file written atomically (atomic_file.c), as PNG is.  Reentrant: libjpeg's state lives on the
- * caller's stack, and libjpeg never prints or exits (our error hooks).
+ * dropped) to a file written atomically (atomic_file.c), as PNG is.
+ * Reentrant: libjpeg's state lives on the caller's stack, and libjpeg
+ * never prints or exits (our error hooks).
  *
  * Strictness: libjpeg recovers from damaged data with a warning and goes
  * on - a truncated file comes out with its missing rows gray.  A texture
