@@ -4,7 +4,6 @@
  * reads; from a file, or from memory (a texture a model file embeds). */
 #include "io/io_util.h"
 
-#include <errno.h>
 #include <string.h>
 
 typedef enum image_kind { IMAGE_UNKNOWN, IMAGE_PNG, IMAGE_JPEG } image_kind;
@@ -28,6 +27,8 @@ static sr_result unknown_kind(const char *name, size_t n, sr_io_error *err)
                               : "neither a PNG nor a JPEG image (by its first bytes)");
 }
 
+/* The file read once and decoded from memory, as sr_read_jpeg does: no
+ * second open to learn the kind, and one path for both kinds. */
 sr_result sr_read_image(const char *path, int *width, int *height, uint8_t **pixels,
                         sr_io_error *err)
 {
@@ -35,25 +36,15 @@ sr_result sr_read_image(const char *path, int *width, int *height, uint8_t **pix
     if (!path || !path[0]) {
         return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
     }
-    FILE *f;
-    unsigned long long size;
-    sr_result r = sr__open_regular(path, "an image file", &f, &size, err);
+    char *data;
+    size_t size;
+    sr_result r = sr__read_file_as(path, "an image file", &data, &size, err);
     if (r != SR_OK) {
         return r;
     }
-    uint8_t head[8];
-    size_t got = fread(head, 1, sizeof head, f);
-    bool read_error = ferror(f);
-    int e = errno;
-    fclose(f);
-    if (read_error) {
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "read error: %s", strerror(e));
-    }
-    switch (kind_of(head, got)) {
-    case IMAGE_PNG:  return sr_read_png(path, width, height, pixels, err);
-    case IMAGE_JPEG: return sr_read_jpeg(path, width, height, pixels, err);
-    default:         return unknown_kind(path, got, err);
-    }
+    r = sr_decode_image(path, (const uint8_t *)data, size, width, height, pixels, err);
+    sr__free_file(data, size);
+    return r;
 }
 
 sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size, int *width,
