@@ -64,10 +64,15 @@ typedef struct sr_png_write_desc {
     int compression_level;  /* zlib level; 0 -> SR_PNG_DEFAULT_LEVEL; -1 -> store */
     bool no_alpha;          /* write RGB, dropping alpha */
     sr_allocator allocator; /* zero: malloc/free.  Every block the write
-                             * allocates - its own, libpng's and zlib's - comes
-                             * from here (except realpath's when `path` is a
-                             * symbolic link); NULL from alloc makes the call
-                             * return SR_OUT_OF_MEMORY with nothing left behind */
+                             * allocates - its own and zlib's - comes from here,
+                             * on the calling thread (except realpath's when
+                             * `path` is a symbolic link); NULL from alloc makes
+                             * the call return SR_OUT_OF_MEMORY with nothing
+                             * left behind */
+    sr_context *context;    /* optional: compress on this context's threads
+                             * (bands of rows at once); the file's bytes are the
+                             * same with or without it.  The context must not be
+                             * in use on another thread meanwhile */
 } sr_png_write_desc;
 
 #define SR_PNG_DEFAULT_LEVEL 1

@@ -1,11 +1,14 @@
-/* test_png.c - io stage: sr_write_png and sr_read_png (src/io/png.c).
- * Round trips must be bit-exact; a failed write must leave no file, no
+/* test_png.c - io stage: sr_write_png (src/io/png_write.c) and sr_read_png
+ * (src/io/png.c).  Round trips must be bit-exact; the file must be a valid
+ * PNG by its own checksums and the same bytes for any number of threads;
+ * a failed write must leave no file, no
  * temporary and no damage to an existing image; every malformed input must
  * come back as a result code with a "FILE: what" message. */
 #include "sr_test.h"
 #include "softrast_io.h"
 
 #include <png.h>
+#include <zlib.h>
 
 #include <dirent.h>
 #include <errno.h>
@@ -168,6 +171,188 @@ SR_TEST(png_no_alpha_round_trip_keeps_rgb_and_reads_opaque)
     CHECK_EQ(bytes[25], 2);
     free(bytes);
     free(back);
+    free(img);
+}
+
+/* ---- the writer's container and bands ------------------------------------ */
+
+static uint32_t get32(const uint8_t *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+/* Checks a file sr_write_png wrote without libpng: the signature, every
+ * chunk's CRC, IHDR, one zlib stream over the IDATs (zlib's inflate checks
+ * its Adler-32), then undoes the filters and compares with the image.
+ * Returns the number of IDAT chunks, or -1 at the first thing wrong. */
+static int check_png_by_hand(const uint8_t *f, size_t n, int w, int h, const uint8_t *img,
+                             size_t stride, int channels)
+{
+    static const uint8_t sig[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
+    if (n < 8 || memcmp(f, sig, 8) != 0) {
+        return -1;
+    }
+    size_t row = 1 + (size_t)channels * (size_t)w, raw_size = row * (size_t)h;
+    uint8_t *z = malloc(n), *raw = malloc(raw_size);
+    size_t zn = 0, at = 8;
+    int idats = 0;
+    bool ok = z && raw, ended = false;
+    while (ok && !ended && at + 12 <= n) {
+        uint32_t len = get32(f + at);
+        const uint8_t *type = f + at + 4, *data = f + at + 8;
+        ok = at + 12 + (size_t)len <= n &&
+             crc32(0L, type, 4 + len) == get32(data + len);
+        if (ok && memcmp(type, "IHDR", 4) == 0) {
+            ok = len == 13 && get32(data) == (uint32_t)w && get32(data + 4) == (uint32_t)h &&
+                 data[8] == 8 && data[9] == (channels == 4 ? 6 : 2) && !data[10] && !data[11] &&
+                 !data[12];
+        } else if (ok && memcmp(type, "IDAT", 4) == 0) {
+            memcpy(z + zn, data, len);
+            zn += len;
+            idats++;
+        }
+        ended = ok && memcmp(type, "IEND", 4) == 0;
+        at += 12 + (size_t)len;
+    }
+    uLongf got = (uLongf)raw_size;
+    ok = ok && ended && at == n && uncompress(raw, &got, z, (uLong)zn) == Z_OK &&
+         got == raw_size;
+    for (int y = 0; ok && y < h; y++) {
+        const uint8_t *r = raw + row * (size_t)y, *up = y ? r - row : NULL;
+        ok = r[0] == 0 || (r[0] == 2 && up);          /* NONE, or UP below row 0 */
+        for (int x = 0; ok && x < w; x++) {
+            for (int c = 0; c < channels; c++) {
+                size_t i = 1 + (size_t)channels * (size_t)x + (size_t)c;
+                uint8_t v = (uint8_t)(r[i] + (r[0] == 2 ? img[stride * (size_t)(y - 1) + 4 * (size_t)x + (size_t)c] : 0));
+                ok = v == img[stride * (size_t)y + 4 * (size_t)x + (size_t)c];
+            }
+        }
+    }
+    free(z);
+    free(raw);
+    return ok ? idats : -1;
+}
+
+/* Smooth gradients with noise in a disc over a flat background, like a
+ * render: runs, small differences and random bytes. */
+static uint8_t *render_like_image(int w, int h, size_t stride, uint32_t seed)
+{
+    sr_rng rng = { seed };
+    uint8_t *p = malloc(stride * (size_t)h);
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            uint8_t *q = p + stride * (size_t)y + 4 * (size_t)x;
+            long dx = x - w / 2, dy = y - h / 2;
+            bool in = dx * dx + dy * dy < (long)w * w / 9;
+            q[0] = in ? (uint8_t)(x + (sr_rng_next(&rng) & 3)) : 29;
+            q[1] = in ? (uint8_t)(y * 3) : 34;
+            q[2] = in ? (uint8_t)sr_rng_next(&rng) : 48;
+            q[3] = in ? 255 : (uint8_t)(x & 1 ? 255 : 0);
+        }
+    }
+    return p;
+}
+
+SR_TEST(png_writes_bands_that_make_one_valid_stream_the_same_for_any_thread_count)
+{
+    const char *dir = test_dir("bands");
+    /* 700 x 500 RGBA: 2801-byte rows, 93 to a 256 KiB band, so 6 bands
+     * (the last short); RGB (5 bands) and stored too; 30 x 20 is a single
+     * band. */
+    static const struct { int w, h, level; bool no_alpha; } cases[] = {
+        { 700, 500, 0, false }, { 700, 500, 0, true }, { 700, 500, -1, false },
+        { 700, 500, 6, true }, { 30, 20, 0, false },
+    };
+    sr_context *ctx[3];
+    for (int t = 0; t < 3; t++) {
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = t + 1 }, &ctx[t]) == SR_OK);
+    }
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        int w = cases[k].w, h = cases[k].h;
+        size_t stride = 4 * (size_t)w + 12;
+        uint8_t *img = render_like_image(w, h, stride, 0x5eed0100u + (uint32_t)k);
+        /* One IDAT a band of 256 KiB of filtered rows. */
+        int band_rows = (int)((256 * 1024) / (1 + (cases[k].no_alpha ? 3 : 4) * (size_t)w));
+        int bands = (h + band_rows - 1) / band_rows;
+        uint8_t *first = NULL;
+        size_t first_n = 0;
+        for (int t = -1; t < 3; t++) {   /* no context, then 1, 2 and 3 threads */
+            char path[1200];
+            snprintf(path, sizeof path, "%s/case%zu_t%d.png", dir, k, t + 1);
+            sr_io_error err;
+            CHECK_EQ(sr_write_png(path, w, h, img, stride,
+                                  &(sr_png_write_desc){ .compression_level = cases[k].level,
+                                                        .no_alpha = cases[k].no_alpha,
+                                                        .context = t < 0 ? NULL : ctx[t] },
+                                  &err),
+                     SR_OK);
+            size_t n = 0;
+            uint8_t *bytes = read_bytes(path, &n);
+            REQUIRE(bytes);
+            int idats = check_png_by_hand(bytes, n, w, h, img, stride, cases[k].no_alpha ? 3 : 4);
+            CHECK_EQ(idats, bands);
+            if (!first) {
+                first = bytes;
+                first_n = n;
+            } else {
+                CHECK(n == first_n && memcmp(bytes, first, n) == 0);
+                free(bytes);
+            }
+            int rw, rh;
+            uint8_t *back = NULL;
+            REQUIRE(sr_read_png(path, &rw, &rh, &back, &err) == SR_OK);
+            int bad = 0;
+            for (int y = 0; y < h; y++) {
+                for (int x = 0; x < w; x++) {
+                    const uint8_t *a = img + stride * (size_t)y + 4 * (size_t)x;
+                    const uint8_t *b = back + 4 * ((size_t)w * (size_t)y + (size_t)x);
+                    bad += memcmp(a, b, 3) != 0 || b[3] != (cases[k].no_alpha ? 255 : a[3]);
+                }
+            }
+            CHECK_EQ(bad, 0);
+            free(back);
+        }
+        free(first);
+        free(img);
+    }
+    for (int t = 0; t < 3; t++) {
+        sr_destroy_context(ctx[t]);
+    }
+    CHECK_EQ(count_entries(dir, true), 0);
+}
+
+/* Level 1 matches runs only (Z_RLE); levels 2-9 search further back and
+ * find a pattern that repeats along the row, which UP does not remove. */
+SR_TEST(png_higher_levels_find_repeats_that_level_1_does_not)
+{
+    const char *dir = test_dir("levels");
+    int w = 256, h = 64;
+    sr_rng rng = { 0x5eed0200u };
+    uint8_t tile[16 * 4];
+    uint8_t *img = malloc(4 * (size_t)w * (size_t)h);
+    for (int y = 0; y < h; y++) {
+        for (size_t i = 0; i < sizeof tile; i++) {
+            tile[i] = (uint8_t)sr_rng_next(&rng);   /* a new 16-pixel pattern every row */
+        }
+        for (int x = 0; x < w; x++) {
+            memcpy(img + 4 * ((size_t)w * (size_t)y + (size_t)x), tile + 4 * (x % 16), 4);
+        }
+    }
+    size_t size[10] = { 0 };
+    for (int level = 1; level <= 9; level += 8) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/level%d.png", dir, level);
+        sr_io_error err;
+        REQUIRE(sr_write_png(path, w, h, img, 4 * (size_t)w,
+                             &(sr_png_write_desc){ .compression_level = level }, &err) == SR_OK);
+        uint8_t *bytes = read_bytes(path, &size[level]);
+        CHECK(check_png_by_hand(bytes, size[level], w, h, img, 4 * (size_t)w, 4) == 1);
+        free(bytes);
+    }
+    /* 64 KiB of pixels: runs alone cannot shrink random patterns much,
+     * while matches 64 bytes back leave one pattern a row. */
+    CHECK(size[1] > 40000);
+    CHECK(size[9] < 10000);
     free(img);
 }
 

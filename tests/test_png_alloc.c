@@ -1,6 +1,6 @@
-/* test_png_alloc.c - io stage: sr_write_png (src/io/png.c) survives each of
- * its allocations failing in turn - the temporary file's name, the output
- * buffer, and every block libpng and zlib ask for through
+/* test_png_alloc.c - io stage: sr_write_png (src/io/png_write.c) survives
+ * each of its allocations failing in turn - the temporary file's name, its
+ * buffers, and every block zlib asks for through
  * sr_png_write_desc.allocator.  Each failing run must return
  * SR_OUT_OF_MEMORY with a message, free every block it took, remove its
  * temporary file and leave the image it was to replace byte for byte as
@@ -73,7 +73,8 @@ static uint8_t *test_image(int w, int h)
     return px;
 }
 
-static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int level)
+static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int level,
+                                           sr_context *ctx, int w, int h)
 {
     const char *dir = test_dir(existing ? "existing" : "new");
     char target[1100];
@@ -85,7 +86,6 @@ static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int lev
         fwrite(old, 1, sizeof old - 1, f);
         fclose(f);
     }
-    const int w = 97, h = 61;
     uint8_t *px = test_image(w, h);
     long failures = 0;
     for (long fail_at = 0;; fail_at++) {
@@ -94,15 +94,17 @@ static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int lev
         sr_result r = sr_write_png(target, w, h, px, (size_t)w * 4,
                                    &(sr_png_write_desc){
                                        .compression_level = level, .no_alpha = no_alpha,
-                                       .allocator = { fail_alloc, fail_free, &f } },
+                                       .allocator = { fail_alloc, fail_free, &f },
+                                       .context = ctx },
                                    &err);
         CHECK_EQ(f.live, 0);
         if (f.failed == 0) {
             /* Nothing failed: the run must have succeeded. */
             CHECK_EQ(r, SR_OK);
-            CHECK(fail_at > 5); /* the temp name, the buffer, libpng's structs, zlib's */
-            printf("  %s image, level %d: each of %ld allocations failed in turn\n",
-                   existing ? "existing" : "new", level, fail_at);
+            CHECK(fail_at > 5); /* the temp name, the buffers, zlib's */
+            printf("  %s %dx%d image, level %d, %d threads: each of %ld allocations failed in "
+                   "turn\n", existing ? "existing" : "new", w, h, level,
+                   ctx ? sr_context_threads(ctx) : 1, fail_at);
             break;
         }
         failures++;
@@ -144,17 +146,28 @@ static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int lev
 
 SR_TEST(png_write_survives_every_allocation_failing_over_an_existing_image)
 {
-    every_allocation_fails_cleanly(true, false, 0);
+    every_allocation_fails_cleanly(true, false, 0, NULL, 97, 61);
 }
 
 SR_TEST(png_write_survives_every_allocation_failing_for_a_new_rgb_image_at_level_9)
 {
-    every_allocation_fails_cleanly(false, true, 9);
+    every_allocation_fails_cleanly(false, true, 9, NULL, 97, 61);
 }
 
 SR_TEST(png_write_survives_every_allocation_failing_when_storing)
 {
-    every_allocation_fails_cleanly(false, false, -1);
+    every_allocation_fails_cleanly(false, false, -1, NULL, 97, 61);
+}
+
+/* 400 x 300 RGBA is two bands of rows, compressed at once by two deflate
+ * streams on a context's two threads: the allocations all happen before
+ * the threads start, on the caller's. */
+SR_TEST(png_write_survives_every_allocation_failing_with_two_bands_on_two_threads)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    every_allocation_fails_cleanly(true, false, 0, ctx, 400, 300);
+    sr_destroy_context(ctx);
 }
 
 SR_TEST(png_write_rejects_half_an_allocator)

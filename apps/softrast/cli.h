@@ -24,6 +24,7 @@ typedef struct cli_image_options {
     int png_level;         /* -1: the library's default; 0: stored; 1..9 */
     int jpeg_quality;      /* 0: the library's default; 1..100 */
     bool keep_alpha;       /* PNG only: write RGBA rather than RGB */
+    sr_context *context;   /* PNG only: compress on its threads (may be NULL) */
 } cli_image_options;
 
 bool cli_is_jpeg_name(const char *path);

@@ -1238,7 +1238,8 @@ int cmd_render(int argc, char **argv)
     sr_io_error err;
     r = cli_write_image(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
                         &(cli_image_options){ .png_level = o->png_level,
-                                              .jpeg_quality = o->jpeg_quality },
+                                              .jpeg_quality = o->jpeg_quality,
+                                              .context = job->ctx },
                         &err);
     double t_write = now_ms();
     if (o->verbose) {

@@ -91,25 +91,9 @@ static void sync_directory(const char *file_path)
     }
 }
 
-static void *atomic_alloc(const sr_allocator *a, size_t size)
-{
-    return a->alloc ? a->alloc(size, a->user) : malloc(size);
-}
-
-static void atomic_free(const sr_allocator *a, void *p)
-{
-    if (p) {
-        if (a->alloc) {
-            a->free(p, a->user);
-        } else {
-            free(p);
-        }
-    }
-}
-
 static void atomic_release(sr_atomic_file *f)
 {
-    atomic_free(&f->a, f->tmp);
+    sr__io_free(&f->a, f->tmp);
     free(f->resolved);
     f->tmp = NULL;
     f->resolved = NULL;
@@ -167,7 +151,7 @@ sr_result sr__atomic_create(sr_atomic_file *f, const char *path, sr_allocator a,
                            "names a directory (ends in '/'); give a file name for the image");
     }
     size_t tmp_size = strlen(target) + sizeof "/..XXXXXX";
-    f->tmp = atomic_alloc(&f->a, tmp_size);
+    f->tmp = sr__io_alloc(&f->a, tmp_size);
     if (!f->tmp) {
         atomic_release(f);
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory");

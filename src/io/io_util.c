@@ -296,3 +296,19 @@ sr_result sr__check_image_write(const char *path, int width, int height, int max
     }
     return SR_OK;
 }
+
+void *sr__io_alloc(const sr_allocator *a, size_t size)
+{
+    return a->alloc ? a->alloc(size, a->user) : malloc(size);
+}
+
+void sr__io_free(const sr_allocator *a, void *p)
+{
+    if (p) {
+        if (a->alloc) {
+            a->free(p, a->user);
+        } else {
+            free(p);
+        }
+    }
+}

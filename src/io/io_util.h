@@ -80,6 +80,11 @@ void sr__atomic_discard(sr_atomic_file *f);
 /* All n bytes or false with errno set (EINTR retried, short writes continued). */
 bool sr__write_all(int fd, const uint8_t *p, size_t n);
 
+/* A block from the caller's allocator (zero: malloc/free), as every io
+ * function that takes an sr_allocator uses it.  sr__io_free ignores NULL. */
+void *sr__io_alloc(const sr_allocator *a, size_t size);
+void sr__io_free(const sr_allocator *a, void *p);
+
 /* Overflow-checked size arithmetic for allocations sized by input. */
 static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)
 {

@@ -1,8 +1,7 @@
-/* png.c - io, the end of the pipeline: framebuffer pixels to PNG files and
- * back, through libpng.  sr_write_png consumes RGBA8 rows (any stride) and
- * produces a file that appears whole or not at all; sr_read_png consumes any
- * PNG and produces malloc'd RGBA8.  Reentrant: all state lives on the
- * caller's stack, and libpng never prints (our error and warning hooks).
+/* png.c - io: PNG files and bytes to RGBA8 pixels, through libpng (the
+ * writer is png_write.c).  sr_read_png consumes any PNG and produces
+ * malloc'd RGBA8.  Reentrant: all state lives on the caller's stack, and
+ * libpng never prints (our error and warning hooks).
  */
 /* fmemopen() with the rest of POSIX 2008. */
 #define _XOPEN_SOURCE 700
@@ -10,38 +9,13 @@
 #include "io/io_util.h"
 
 #include <png.h>
-#include <zlib.h>
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_WRITE_SIZE 65535    /* per side, as documented; well inside libpng's 1000000 */
 #define MAX_READ_SIZE  16384    /* per side; 16384^2 RGBA8 is 1 GiB, the most we allocate */
-
-/* One fixed filter rather than libpng's default of trying all five on
- * every row and keeping the best, which costs 2.5x the time at level 1 for
- * a file 5% smaller.  Measured with libpng 1.6.39 / zlib level 1 on a
- * 1920x1080 shaded teapot over a flat background (what softrast writes),
- * encoding to memory, best of 7:
- *     NONE   502 KB  20.2 ms     UP     391 KB  22.3 ms
- *     SUB    430 KB  23.8 ms     PAETH  375 KB  31.6 ms     all  370 KB  57 ms
- * UP wins over SUB in both size and time: a background row is identical
- * to the row above, so UP turns it into one run of zeros that deflate
- * swallows in a few long matches, while SUB leaves a nonzero first pixel
- * and a spike at every object edge on every row.  Smooth shading varies
- * as little down a column as along a row, so inside the object they tie
- * (a 640x480 normals image: 151 KB both, 5.5 ms both).
- *
- * The deflate strategy is Z_RLE: after the UP filter the data is mostly
- * runs, and run-length matching finds them without hashing.  On the
- * 1920x1080 bunny as `softrast render` writes it (level 1, UP, best of 5):
- *     default strategy 371 KB 20.6 ms     Z_RLE 343 KB 19.7 ms
- * and stored (level 0) takes 10.9 ms for 6.2 MB: most of the remaining
- * time is libpng's row handling and checksums, not compression. */
-#define WRITE_FILTER PNG_FILTER_UP
-#define WRITE_STRATEGY Z_RLE
 
 /* ---- libpng error hooks ------------------------------------------------- */
 
@@ -73,18 +47,8 @@ static void on_png_warning(png_structp png, png_const_charp msg)
     (void)msg;
 }
 
-/* ---- writing ------------------------------------------------------------ */
-
-typedef struct png_write_args {
-    int width, height;
-    const uint8_t *rgba;
-    size_t stride;
-    int level;              /* zlib level 0..9 */
-    bool no_alpha;
-} png_write_args;
-
 /* The caller's allocator, for libpng (and, through libpng, zlib).  `failed`
- * tells an out-of-memory longjmp from a write error: libpng reports both
+ * tells an out-of-memory longjmp from a read error: libpng reports both
  * through the same error hook. */
 typedef struct png_mem {
     sr_allocator a;
@@ -93,7 +57,7 @@ typedef struct png_mem {
 
 static void *mem_alloc(png_mem *m, size_t size)
 {
-    void *p = m->a.alloc ? m->a.alloc(size, m->a.user) : malloc(size);
+    void *p = sr__io_alloc(&m->a, size);
     if (!p) {
         m->failed = true;
     }
@@ -102,13 +66,7 @@ static void *mem_alloc(png_mem *m, size_t size)
 
 static void mem_free(png_mem *m, void *p)
 {
-    if (p) {
-        if (m->a.alloc) {
-            m->a.free(p, m->a.user);
-        } else {
-            free(p);
-        }
-    }
+    sr__io_free(&m->a, p);
 }
 
 static png_voidp png_mem_alloc(png_structp png, png_alloc_size_t size)
@@ -119,160 +77,6 @@ static png_voidp png_mem_alloc(png_structp png, png_alloc_size_t size)
 static void png_mem_free(png_structp png, png_voidp p)
 {
     mem_free(png_get_mem_ptr(png), p);
-}
-
-/* Where the encoded bytes go: a buffer in front of the file descriptor,
- * written with write(2) directly rather than through stdio, whose fwrite
- * gives up on EINTR. */
-typedef struct png_sink {
-    int fd;
-    uint8_t *buf;
-    size_t n, cap;
-} png_sink;
-
-#define SINK_SIZE ((size_t)1 << 16)
-
-static bool sink_flush(png_sink *s)
-{
-    bool ok = sr__write_all(s->fd, s->buf, s->n);
-    s->n = 0;
-    return ok;
-}
-
-static void sink_write(png_structp png, png_bytep data, size_t len)
-{
-    png_sink *s = png_get_io_ptr(png);
-    if (s->n + len > s->cap && !sink_flush(s)) {
-        png_error(png, "Write Error");
-    }
-    if (len >= s->cap) {
-        if (!sr__write_all(s->fd, data, len)) {
-            png_error(png, "Write Error");
-        }
-        return;
-    }
-    memcpy(s->buf + s->n, data, len);
-    s->n += len;
-}
-
-static void sink_flush_hook(png_structp png)
-{
-    (void)png; /* sr_write_png flushes once, at the end */
-}
-
-/* Everything from png_create_write_struct to png_destroy_write_struct, in a
- * function of its own: nothing it declares changes after setjmp, so the
- * longjmp path may use all of it. */
-static bool encode_png(png_sink *sink, png_mem *mem, const png_write_args *a, png_status *st)
-{
-    png_structp png = png_create_write_struct_2(PNG_LIBPNG_VER_STRING, st, on_png_error,
-                                                on_png_warning, mem, png_mem_alloc,
-                                                png_mem_free);
-    if (!png) {
-        st->code = SR_OUT_OF_MEMORY;
-        snprintf(st->message, sizeof st->message, "out of memory creating the PNG writer");
-        return false;
-    }
-    png_infop info = png_create_info_struct(png);
-    if (!info) {
-        png_destroy_write_struct(&png, NULL);
-        st->code = SR_OUT_OF_MEMORY;
-        snprintf(st->message, sizeof st->message, "out of memory creating the PNG writer");
-        return false;
-    }
-    if (setjmp(png_jmpbuf(png))) {
-        png_destroy_write_struct(&png, &info);
-        if (mem->failed) { /* libpng says "Out of memory", or names zlib's failure */
-            st->code = SR_OUT_OF_MEMORY;
-            snprintf(st->message, sizeof st->message, "out of memory");
-        }
-        return false;
-    }
-    /* Errors from here on are the file's (a failed write: disk full, file
-     * size limit) or the allocator's (mem->failed), not the data's. */
-    st->code = SR_IO_ERROR;
-    png_set_write_fn(png, sink, sink_write, sink_flush_hook);
-    png_set_IHDR(png, info, (png_uint_32)a->width, (png_uint_32)a->height, 8,
-                 a->no_alpha ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_compression_level(png, a->level);
-    png_set_compression_strategy(png, WRITE_STRATEGY);
-    /* Stored data gains nothing from filtering; otherwise one fixed filter
-     * (see WRITE_FILTER) instead of libpng's per-row trial of all five. */
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, a->level == 0 ? PNG_FILTER_NONE : WRITE_FILTER);
-    png_write_info(png, info);
-    if (a->no_alpha) {
-        /* On writing, a filler tells libpng the rows carry a fourth byte
-         * that the RGB file does not: it drops it as it goes. */
-        png_set_filler(png, 0, PNG_FILLER_AFTER);
-    }
-    /* Rows go straight from the caller's pixels, one at a time: no copy of
-     * the image and no row-pointer array, and any stride works. */
-    for (int y = 0; y < a->height; y++) {
-        png_write_row(png, a->rgba + (size_t)y * a->stride);
-    }
-    png_write_end(png, NULL);
-    png_destroy_write_struct(&png, &info);
-    st->code = SR_OK;
-    return true;
-}
-
-sr_result sr_write_png(const char *path, int width, int height,
-                       const uint8_t *rgba, size_t stride,
-                       const sr_png_write_desc *desc, sr_io_error *err)
-{
-    sr_result checked = sr__check_image_write(path, width, height, MAX_WRITE_SIZE, rgba, stride,
-                                              err);
-    if (checked != SR_OK) {
-        return checked;
-    }
-    int level = desc ? desc->compression_level : 0;
-    if (level == 0) {
-        level = SR_PNG_DEFAULT_LEVEL;
-    } else if (level == -1) {
-        level = 0;
-    } else if (level < 1 || level > 9) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
-                           "sr_png_write_desc.compression_level %d is not in -1..9", level);
-    }
-    png_write_args args = {
-        .width = width, .height = height, .rgba = rgba, .stride = stride,
-        .level = level, .no_alpha = desc && desc->no_alpha,
-    };
-
-    png_mem mem = { .a = desc ? desc->allocator : (sr_allocator){0} };
-    if ((mem.a.alloc == NULL) != (mem.a.free == NULL)) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
-                           "sr_png_write_desc.allocator needs both alloc and free");
-    }
-    sr_atomic_file file;
-    sr_result result = sr__atomic_create(&file, path, mem.a, err);
-    if (result != SR_OK) {
-        return result;
-    }
-    png_sink sink = { .fd = file.fd, .buf = mem_alloc(&mem, SINK_SIZE), .cap = SINK_SIZE };
-    if (!sink.buf) {
-        sr__atomic_discard(&file);
-        return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory");
-    }
-    png_status status = { .code = SR_OK };
-    errno = 0;  /* so that a stale errno is never reported as the cause */
-    bool encoded = encode_png(&sink, &mem, &args, &status);
-    if (encoded && !sink_flush(&sink)) {
-        encoded = false;
-        status = (png_status){ .code = SR_IO_ERROR, .saved_errno = errno };
-        snprintf(status.message, sizeof status.message, "Write Error");
-    }
-    mem_free(&mem, sink.buf);
-    if (!encoded) {
-        sr__atomic_discard(&file);
-        if (status.code == SR_IO_ERROR && status.saved_errno != 0) {
-            return sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s (libpng: %s)",
-                               strerror(status.saved_errno), status.message);
-        }
-        return sr__io_fail(err, status.code, path, 0, "cannot encode PNG: %s", status.message);
-    }
-    return sr__atomic_commit(&file, err);
 }
 
 /* ---- reading ------------------------------------------------------------ */
