@@ -1025,6 +1025,14 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
                         .material = { .diffuse = { 1, 1, 1 }, .specular = { 0.5f, 0.5f, 0.5f },
                                       .shininess = 8 } };
         st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
+        if (k / 4 % 2) {
+            /* Phong's other branches: back faces lit on both sides, a
+             * point light (a length per pixel) and an odd shininess. */
+            st.two_sided = true;
+            st.lights[1] = (sr_light){ .type = SR_LIGHT_POINT, .vector = { 0.5f, 1.0f, -1.0f },
+                                       .color = { 0.7f, 0.4f, 0.2f } };
+            st.material.shininess = 13;
+        }
         sr_depth_format df = k % 16 < 8 ? SR_DEPTH_D24 : SR_DEPTH_D16;
         const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .normals = nrm,
                                     .colors = col, .color_size = 4, .view = &view,
@@ -1059,7 +1067,7 @@ SR_TEST(vector_kernels_give_the_scalar_bytes_for_boxes_covered_whole)
 {
     enum { W = 45, H = 37, N = 4 };
     static const sr_shading shadings[] = { SR_SHADING_UNLIT, SR_SHADING_GOURAUD,
-                                           SR_SHADING_FLAT };
+                                           SR_SHADING_FLAT, SR_SHADING_PHONG };
     sr_context *ctx;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
     float pos[N * 9], nrm[N * 9], col[N * 12];
@@ -1089,8 +1097,8 @@ SR_TEST(vector_kernels_give_the_scalar_bytes_for_boxes_covered_whole)
                 }
             }
         }
-        sr_state st = { .shading = shadings[k % 3], .cull = SR_CULL_NONE,
-                        .no_depth_test = k % 6 >= 3, .ambient = { 0.2f, 0.2f, 0.2f },
+        sr_state st = { .shading = shadings[k % 4], .cull = SR_CULL_NONE,
+                        .no_depth_test = k % 8 >= 4, .ambient = { 0.2f, 0.2f, 0.2f },
                         .material = { .diffuse = { 1, 1, 1 }, .specular = { 0.5f, 0.5f, 0.5f },
                                       .shininess = 8 } };
         st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };

@@ -212,15 +212,17 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp16)(const sr_draw_state *ds, const
                                                   __mmask16 valid, bool inside,
                                                   const __m512d nb[3], const __m512i nb32[3],
                                                   const SR_SIMD_FN(w16_lanes) *k,
-                                                  sr_frag_stats *st, sr_depth_mode dmode,
-                                                  sr_stamp shape, bool tex, bool narrow)
+                                                  sr_frag_stats *st, sr_shading shading,
+                                                  sr_depth_mode dmode, sr_stamp shape, bool tex,
+                                                  bool narrow)
 {
     if (narrow) {
-        SR_SIMD_FN(rows16_n)(ds, t, gx, py, n, valid, inside, nb32, k, st, dmode, shape);
+        SR_SIMD_FN(rows16_n)(ds, t, gx, py, n, valid, inside, nb32, k, st, shading, dmode, shape);
     } else if (tex) {
         SR_SIMD_FN(rows16_tex)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, dmode, shape);
     } else {
-        SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, dmode, shape);
+        SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, shading, dmode,
+                           shape);
     }
 }
 
@@ -326,7 +328,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 #endif
 
 #ifdef SR_SIMD_WIDE16
-    if (shading != SR_SHADING_PHONG && rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
+    if (rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
         /* Tiny triangles: the bounding box in 4 x 4 stamps, lane (x, y)
          * at offset x a + y b from the stamp's corner. */
         const __m512d col = _mm512_setr_pd(0, 1, 2, 3, 0, 1, 2, 3);
@@ -361,12 +363,11 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 SR_SIMD_FN(n16_edges)(corner, off44, n);
             }
             SR_SIMD_FN(stamp16)(ds, t, rx0, py, e[0], e[1], e[2], n, (__mmask16)valid, false, nb8,
-                                nb32, &wl, st, dmode, SR_STAMP_4X4, tex, narrow);
+                                nb32, &wl, st, shading, dmode, SR_STAMP_4X4, tex, narrow);
         }
         return;
     }
-    if (shading != SR_SHADING_PHONG && rx1 - rx0 <= 2 * SR_BLOCK_SIZE &&
-        ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
+    if (rx1 - rx0 <= 2 * SR_BLOCK_SIZE && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
         /* Small triangles: the bounding box by pairs of rows, in spans of
          * eight from its left edge; masked lanes leave the rest alone. */
         double r[3];
@@ -386,7 +387,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                     SR_SIMD_FN(w16_edges)(rs, sy, lx8, e0, e1, e2);
                 }
                 SR_SIMD_FN(stamp16)(ds, t, gx, py, e0, e1, e2, n, rows & (span | span << 8),
-                                    false, nb8, nb32, &wl, st, dmode, SR_STAMP_8X2, tex, narrow);
+                                    false, nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, tex,
+                                    narrow);
                 for (int i = 0; i < 3; i++) {
                     rs[i] += 8.0 * (double)sx[i];
                     rs32[i] += 8u * (uint32_t)sx[i];
@@ -457,7 +459,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
             }
             bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
 #if defined(SR_SIMD_WIDE16)
-            if (shading != SR_SHADING_PHONG) {
+            {
                 /* The block's rows in pairs, sixteen lanes, with the span
                  * [px0, px1) and the rows that exist as the lane mask. */
                 unsigned span = (0xffu >> (SR_BLOCK_SIZE - (px1 - bx))) & (0xffu << (px0 - bx));
@@ -475,7 +477,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         SR_SIMD_FN(w16_edges)(r, sy, lx8, e0, e1, e2);
                     }
                     SR_SIMD_FN(stamp16)(ds, t, bx, py, e0, e1, e2, n, (__mmask16)valid, inside,
-                                        nb8, nb32, &wl, st, dmode, SR_STAMP_8X2, tex, narrow);
+                                        nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, tex,
+                                        narrow);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                         r32[i] += 2u * (uint32_t)sy[i];
@@ -582,7 +585,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *
                 }
             }
             SR_SIMD_FN(stamp16)(ds, t, gx, py, e[0], e[1], e[2], n, (__mmask16)valid, true, nb8,
-                                nb32, &wl, st, dmode, SR_STAMP_16X1, false, narrow);
+                                nb32, &wl, st, shading, dmode, SR_STAMP_16X1, false, narrow);
             for (int i = 0; i < 3; i++) {
                 rs[i] += 16.0 * (double)sx[i];
                 rs32[i] += 16u * (uint32_t)sx[i];
@@ -607,10 +610,6 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
 {
     sr_edges ed;
     sr__tri_edges(t, &ed);
-    if (shading == SR_SHADING_PHONG) {
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
-        return;
-    }
     bool narrow = t->fits32 || sr__rect_fits32(&ed, rx0, ry0, rx1, ry1);
     if (rx1 - rx0 >= SR_TILE_SIZE / 2 && ry1 - ry0 >= SR_TILE_SIZE / 2) {
         int64_t sx[3], sy[3];

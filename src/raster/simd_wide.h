@@ -4,6 +4,8 @@
  * of a block that spans the full eight pixels, which is nearly every row
  * of a large triangle.  Small triangles keep the four-wide groups, whose
  * narrower lanes waste less on a triangle's ragged edges.
+ * The AVX-512 part below serves every shading model the kernels cover,
+ * PHONG included (w16_phong).
  *
  * Exactness, as in quad(): edge values are integers held in double lanes;
  * each lane repeats the scalar fragment stage's operations in the same
@@ -170,7 +172,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_make)(const sr_tri *t, sr_shading s
     }
     uint32_t fixed = 0;
     o->varying = 0;
-    for (int ch = 0; ch < 4; ch++) {
+    for (int ch = 0; ch < 4 && shading != SR_SHADING_PHONG; ch++) {
         if (shading == SR_SHADING_FLAT) {
             fixed |= (uint32_t)sr__unorm8(sr__tri_flat(t)[ch]) << (8 * ch);
             continue;
@@ -345,16 +347,51 @@ SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_test)(const sr_draw_state *ds,
     return SR_SIMD_FN(w16_depth)(ds, t, idx, m, e1, e2, k, dmode, shape);
 }
 
+/* PHONG on sixteen lanes, as quad() does it on four: sr__bary's weights
+ * l1, l2 give the ten varyings (v0 + l1 d1 + l2 d2), the normal is
+ * renormalized (and turned for a back face lit on both sides), and
+ * sr__light lights it (light16, the lane body of light_lanes.h);
+ * sr__unorm8 packs the result. */
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_phong)(const sr_draw_state *ds, const sr_tri *t,
+                                                       __m512 l1, __m512 l2)
+{
+    int n = t->ninterp;
+    v16f a = (v16f)l1, b = (v16f)l2;
+    v16f vv[10];
+    for (int j = 0; j < 10; j++) {
+        vv[j] = t->vary[j] + a * t->vary[n + j] + b * t->vary[2 * n + j];
+    }
+    const v16f zero = { 0 };
+    const v16f *vn = &vv[SR_VARY_PHONG_NORMAL];
+    v16f len = v16_sqrt(vn[0] * vn[0] + vn[1] * vn[1] + vn[2] * vn[2]);
+    v16f sc = v16_sel(len > zero, 1.0f / len, zero);
+    if (ds->two_sided && !t->front) {
+        sc = -sc;
+    }
+    v16f nn[3] = { vn[0] * sc, vn[1] * sc, vn[2] * sc };
+    v16f c[4];
+    light16(ds, nn, &vv[SR_VARY_PHONG_EYE], &vv[SR_VARY_PHONG_COLOR], c);
+    __m512i rgba = _mm512_setzero_si512();
+    for (int ch = 0; ch < 4; ch++) {
+        rgba = _mm512_or_si512(rgba, _mm512_sll_epi32(SR_SIMD_FN(w16_unorm8)((__m512)c[ch]),
+                                                      _mm_cvtsi32_si128(8 * ch)));
+    }
+    return rgba;
+}
+
 /* Shade and store the lanes m of a stamp at idx, with the weights l1, l2
  * of vertices 1 and 2 (w16_bary). */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_shade)(const sr_draw_state *ds, size_t idx,
-                                                    __mmask16 m, __m512 l1, __m512 l2,
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_shade)(const sr_draw_state *ds, const sr_tri *t,
+                                                    size_t idx, __mmask16 m, __m512 l1, __m512 l2,
                                                     const SR_SIMD_FN(w16_lanes) *k,
-                                                    sr_frag_stats *st, sr_stamp shape)
+                                                    sr_frag_stats *st, sr_shading shading,
+                                                    sr_stamp shape)
 {
     sr_framebuffer *fb = ds->fb;
     __m512i rgba = k->fixed;
-    if (k->varying) {
+    if (shading == SR_SHADING_PHONG) {
+        rgba = SR_SIMD_FN(w16_phong)(ds, t, l1, l2);
+    } else if (k->varying) {
         __m512i var = _mm512_setzero_si512();
         for (int ch = 0; ch < 4; ch++) {
             if (k->varying >> ch & 1) {
@@ -383,7 +420,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
                                                  const __m512d e2[2], __mmask16 valid,
                                                  bool inside, const __m512d nb[3],
                                                  const SR_SIMD_FN(w16_lanes) *k, sr_frag_stats *st,
-                                                 sr_depth_mode dmode, sr_stamp shape)
+                                                 sr_shading shading, sr_depth_mode dmode,
+                                                 sr_stamp shape)
 {
     size_t idx = (size_t)py * (size_t)ds->fb->width + (size_t)gx;
     __mmask16 m = SR_SIMD_FN(w16_test)(ds, t, idx, e0, e1, e2, valid, inside, nb, k, dmode, shape);
@@ -391,10 +429,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16)(const sr_draw_state *ds, const 
         return;
     }
     __m512 l1 = _mm512_setzero_ps(), l2 = _mm512_setzero_ps();
-    if (k->varying) {
+    if (k->varying || shading == SR_SHADING_PHONG) {
         SR_SIMD_FN(w16_bary)(k, e0, e1, e2, &l1, &l2);
     }
-    SR_SIMD_FN(w16_shade)(ds, idx, m, l1, l2, k, st, shape);
+    SR_SIMD_FN(w16_shade)(ds, t, idx, m, l1, l2, k, st, shading, shape);
 }
 
 /* The same with the edge values in sixteen 32-bit lanes, for a triangle
@@ -406,8 +444,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_n)(const sr_draw_state *ds, cons
                                                    int py, const __m512i e[3], __mmask16 valid,
                                                    bool inside, const __m512i nb[3],
                                                    const SR_SIMD_FN(w16_lanes) *k,
-                                                   sr_frag_stats *st, sr_depth_mode dmode,
-                                                   sr_stamp shape)
+                                                   sr_frag_stats *st, sr_shading shading,
+                                                   sr_depth_mode dmode, sr_stamp shape)
 {
     size_t idx = (size_t)py * (size_t)ds->fb->width + (size_t)gx;
     __mmask16 m = valid;
@@ -431,10 +469,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_n)(const sr_draw_state *ds, cons
         }
     }
     __m512 l1 = _mm512_setzero_ps(), l2 = _mm512_setzero_ps();
-    if (k->varying) {
+    if (k->varying || shading == SR_SHADING_PHONG) {
         SR_SIMD_FN(w16_bary_f)(k, _mm512_cvtepi32_ps(e[0]), _mm512_cvtepi32_ps(e[1]),
                                _mm512_cvtepi32_ps(e[2]), &l1, &l2);
     }
-    SR_SIMD_FN(w16_shade)(ds, idx, m, l1, l2, k, st, shape);
+    SR_SIMD_FN(w16_shade)(ds, t, idx, m, l1, l2, k, st, shading, shape);
 }
 #endif
