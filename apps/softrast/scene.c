@@ -104,8 +104,20 @@ void scene_free(scene *s)
     s->count = 0;
 }
 
+/* Vertex p after M_O as sr_mat4_mul_vec4 computes it (w = 1), in line:
+ * a library call per vertex was two thirds of the bounds' time. */
+static inline void to_world(const sr_mat4 *m, const float *p, double q[3])
+{
+    const float *a = m->m;
+    for (int k = 0; k < 3; k++) {
+        q[k] = a[k] * p[0] + a[4 + k] * p[1] + a[8 + k] * p[2] + a[12 + k] * 1.0f;
+    }
+}
+
 /* Sphere around the transformed bounding-box centre that holds every
- * transformed vertex. */
+ * transformed vertex.  The running bounds are never NaN, so `q < lo ? q :
+ * lo` is fmin(lo, q) to the bit (a NaN q is skipped, and of two zeros the
+ * bound keeps its own, as glibc's fmin does) without a call per value. */
 void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radius)
 {
     if (s->bounds_cached) {
@@ -114,47 +126,51 @@ void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radi
         return;
     }
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-    for (int pass = 0; pass < 2; pass++) {
-        double c[3] = { (lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 };
-        double r2 = 0.0;
-        for (int o = 0; o < s->count; o++) {
-            const scene_object *ob = &s->objects[o];
-            if (framed_only && !ob->frame) {
-                continue;
+    for (int o = 0; o < s->count; o++) {
+        const scene_object *ob = &s->objects[o];
+        for (size_t i = 0; i < ob->mesh.vertex_count && (ob->frame || !framed_only); i++) {
+            double q[3];
+            to_world(&ob->model, &ob->mesh.positions[i * 3], q);
+            for (int k = 0; k < 3; k++) {
+                lo[k] = q[k] < lo[k] ? q[k] : lo[k];
+                hi[k] = q[k] > hi[k] ? q[k] : hi[k];
             }
-            for (size_t i = 0; i < ob->mesh.vertex_count; i++) {
-                const float *p = &ob->mesh.positions[i * 3];
-                sr_vec4 w = sr_mat4_mul_vec4(&ob->model, (sr_vec4){ p[0], p[1], p[2], 1.0f });
-                double q[3] = { w.x, w.y, w.z };
-                for (int k = 0; k < 3; k++) {
-                    if (pass == 0) {
-                        lo[k] = fmin(lo[k], q[k]);
-                        hi[k] = fmax(hi[k], q[k]);
-                    }
-                }
-                if (pass == 1) {
-                    double d2 = (q[0] - c[0]) * (q[0] - c[0]) + (q[1] - c[1]) * (q[1] - c[1]) +
-                                (q[2] - c[2]) * (q[2] - c[2]);
-                    r2 = fmax(r2, d2);
-                }
-            }
-        }
-        if (pass == 1) {
-            if (!isfinite(c[0])) {
-                *centre = (sr_vec3){ 0, 0, 0 };
-                *radius = 1.0f;
-                return;
-            }
-            *centre = (sr_vec3){ (float)c[0], (float)c[1], (float)c[2] };
-            *radius = r2 > 0.0 ? (float)sqrt(r2) : 1.0f;
         }
     }
+    double c[3] = { (lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 };
+    if (!isfinite(c[0])) {
+        *centre = (sr_vec3){ 0, 0, 0 };
+        *radius = 1.0f;
+        return;
+    }
+    double r2 = 0.0;
+    for (int o = 0; o < s->count; o++) {
+        const scene_object *ob = &s->objects[o];
+        for (size_t i = 0; i < ob->mesh.vertex_count && (ob->frame || !framed_only); i++) {
+            double q[3];
+            to_world(&ob->model, &ob->mesh.positions[i * 3], q);
+            double d2 = (q[0] - c[0]) * (q[0] - c[0]) + (q[1] - c[1]) * (q[1] - c[1]) +
+                        (q[2] - c[2]) * (q[2] - c[2]);
+            r2 = d2 > r2 ? d2 : r2;
+        }
+    }
+    *centre = (sr_vec3){ (float)c[0], (float)c[1], (float)c[2] };
+    *radius = r2 > 0.0 ? (float)sqrt(r2) : 1.0f;
 }
 
 void scene_cache_bounds(scene *s)
 {
     s->bounds_cached = false;
     scene_bounds(s, true, &s->cached_centre[0], &s->cached_radius[0]);
-    scene_bounds(s, false, &s->cached_centre[1], &s->cached_radius[1]);
+    bool all_framed = true;
+    for (int o = 0; o < s->count; o++) {
+        all_framed &= s->objects[o].frame || s->objects[o].mesh.vertex_count == 0;
+    }
+    if (all_framed) {   /* a model alone: both spheres are the same */
+        s->cached_centre[1] = s->cached_centre[0];
+        s->cached_radius[1] = s->cached_radius[0];
+    } else {
+        scene_bounds(s, false, &s->cached_centre[1], &s->cached_radius[1]);
+    }
     s->bounds_cached = true;
 }
