@@ -762,6 +762,9 @@ typedef enum sr_normal_mode {
 
 /* Replace mesh->normals with computed ones. */
 sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode);
+/* The same normals, to the bit, with smooth ones computed on ctx's threads
+ * (ctx NULL: on the calling thread alone). */
+sr_result sr_mesh_compute_normals_ctx(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
 /* Axis-aligned bounding box; false for an empty mesh. */
 bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
 

@@ -168,6 +168,94 @@ SR_TEST(smooth_normals_are_unit_length_on_random_meshes)
     sr_mesh_free(&m);
 }
 
+/* The smooth normals of mesh m through sr_mesh_compute_normals_ctx on
+ * contexts of 1, 2, 3 and 8 threads, against the single-threaded call:
+ * the same bits (memcmp), and the mesh otherwise untouched. */
+static void check_threaded_normals_match(const sr_mesh *src)
+{
+    sr_mesh ref = *src;
+    ref.normals = NULL;
+    REQUIRE(sr_mesh_compute_normals(&ref, SR_NORMALS_SMOOTH) == SR_OK);
+    static const int threads[] = { 1, 2, 3, 8 };
+    for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
+        sr_context *ctx = NULL;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[k] }, &ctx) == SR_OK);
+        sr_mesh m = *src;
+        m.normals = NULL;
+        CHECK_EQ(sr_mesh_compute_normals_ctx(ctx, &m, SR_NORMALS_SMOOTH), SR_OK);
+        REQUIRE(m.normals);
+        if (memcmp(m.normals, ref.normals, src->vertex_count * 3 * sizeof(float)) != 0) {
+            sr_test_fail(__FILE__, __LINE__, "%d threads: normals differ from one thread's",
+                         threads[k]);
+        }
+        CHECK(m.positions == src->positions && m.indices == src->indices &&
+              m.vertex_count == src->vertex_count);
+        free(m.normals);
+        sr_destroy_context(ctx);
+    }
+    free(ref.normals);
+}
+
+/* Faces whose corners lie in different threads' ranges of vertices (the
+ * indices are random), degenerate faces, unused vertices, and a vertex
+ * shared by hundreds of faces: each vertex must sum the same terms in the
+ * same order whatever thread owns it. */
+SR_TEST(smooth_normals_on_threads_are_the_same_bits)
+{
+    sr_rng rng = { 0x7407 };
+    for (int round = 0; round < 4; round++) {
+        size_t nv = (size_t)sr_rng_int(&rng, 1, 3000), nt = (size_t)sr_rng_int(&rng, 0, 9000);
+        sr_mesh m = { .vertex_count = nv, .triangle_count = nt };
+        m.positions = malloc(nv * 3 * sizeof(float));
+        m.indices = malloc((nt ? nt : 1) * 3 * sizeof(uint32_t));
+        for (size_t i = 0; i < nv * 3; i++) {
+            m.positions[i] = (float)sr_rng_range(&rng, -1, 1);
+        }
+        for (size_t i = 0; i < nt * 3; i++) {
+            /* A fifth of the corners on the last vertex (in the last
+             * thread's range: the order of its many terms shows); some
+             * faces repeat a vertex. */
+            m.indices[i] = sr_rng_int(&rng, 0, 4) == 0 ? (uint32_t)nv - 1
+                                                        : (uint32_t)sr_rng_int(&rng, 0, (int)nv - 1);
+        }
+        check_threaded_normals_match(&m);
+        sr_mesh_free(&m);
+    }
+    /* A hub whose faces come in pairs facing opposite ways (a, b then,
+     * later, b, a): their terms cancel up to rounding, so the hub's normal
+     * is the direction of the rounding errors, which depends on the order
+     * of every term. */
+    {
+        size_t nv = 1201, pairs = 600;
+        sr_mesh m = { .vertex_count = nv, .triangle_count = 2 * pairs };
+        m.positions = malloc(nv * 3 * sizeof(float));
+        m.indices = malloc(2 * pairs * 3 * sizeof(uint32_t));
+        for (size_t i = 0; i < nv * 3; i++) {
+            m.positions[i] = (float)sr_rng_range(&rng, -1, 1);
+        }
+        for (size_t p = 0; p < pairs; p++) {
+            uint32_t a = (uint32_t)(2 * p), b = (uint32_t)(2 * p + 1), hub = (uint32_t)nv - 1;
+            uint32_t *f = m.indices + 3 * p, *r = m.indices + 3 * (2 * pairs - 1 - p);
+            f[0] = hub, f[1] = a, f[2] = b;
+            r[0] = hub, r[1] = b, r[2] = a;
+        }
+        check_threaded_normals_match(&m);
+        sr_mesh_free(&m);
+    }
+    const char *dir = sr_test_models_dir();
+    if (dir) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/stanford-bunny.obj", dir);
+        sr_mesh m;
+        sr_io_error err;
+        REQUIRE(sr_load_mesh(path, NULL, &m, &err) == SR_OK);
+        check_threaded_normals_match(&m);
+        sr_mesh_free(&m);
+    } else {
+        printf("  no shared models folder: the bunny part is skipped\n");
+    }
+}
+
 SR_TEST(flat_normals_split_every_triangle)
 {
     sr_mesh m = make_cube(true, true, 0);

@@ -509,7 +509,7 @@ static int load_model(const render_opts *o, scene *s)
 }
 
 /* --normals: the file's, smooth or flat.  Flat shading needs none. */
-static int prepare_normals(const render_opts *o, scene *s)
+static int prepare_normals(const render_opts *o, sr_context *ctx, scene *s)
 {
     for (int i = 0; i < s->count; i++) {
         sr_mesh *m = &s->objects[i].mesh;
@@ -524,7 +524,8 @@ static int prepare_normals(const render_opts *o, scene *s)
         if (mode == 0) {
             continue;
         }
-        sr_result r = sr_mesh_compute_normals(m, mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
+        sr_result r = sr_mesh_compute_normals_ctx(ctx, m,
+                                                  mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
         if (r != SR_OK) {
             cli_error("computing normals: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
@@ -963,15 +964,14 @@ static void drop_context(render_job *job)
     job->ctx = NULL;
 }
 
-/* The scene of render_job_load, up to its context: the model, normals,
- * materials and turn, and a check that a camera can be made. */
-static int load_scene(render_job *job)
+/* The first part of render_job_load, which needs no context: the model
+ * file read, or the built-in scene made. */
+static int load_objects(render_job *job)
 {
     render_opts *o = &job->o;
     scene *s = &job->s;
-    int status;
     if (o->model) {
-        status = load_model(o, s);
+        int status = load_model(o, s);
         if (status >= 0) {
             return status;
         }
@@ -983,7 +983,16 @@ static int load_scene(render_job *job)
         }
     }
     job->have_scene = true;
-    status = prepare_normals(o, s);
+    return -1;
+}
+
+/* The rest of the scene, with the context's threads for the normals:
+ * materials, turn, bounds, and a check that a camera can be made. */
+static int finish_scene(render_job *job)
+{
+    render_opts *o = &job->o;
+    scene *s = &job->s;
+    int status = prepare_normals(o, job->ctx, s);
     if (status >= 0) {
         return status;
     }
@@ -1048,7 +1057,13 @@ static int load_scene(render_job *job)
 
 int render_job_load(render_job *job)
 {
-    int status = load_scene(job);
+    int status = start_context(job);
+    if (status < 0) {
+        status = load_objects(job);
+    }
+    if (status < 0) {
+        status = finish_scene(job);
+    }
     return status >= 0 ? status : make_context(job);
 }
 
@@ -1252,10 +1267,11 @@ int cmd_render(int argc, char **argv)
 
     double t0 = now_ms();
     /* The framebuffer is made on a thread of its own while the model
-     * loads on this one: its fresh pages (16 MB at 1920 x 1080) took the
-     * kernel 2-25 ms to zero, time the load's one core leaves the other
-     * free for.  The loader uses the context only once the framebuffer
-     * is made (make_context, for the textures). */
+     * file is read on this one: its fresh pages (16 MB at 1920 x 1080)
+     * took the kernel 2-25 ms to zero, time the reader's one core leaves
+     * the other free for.  The context is used again only once the
+     * framebuffer is made (finish_scene's normals, make_context's
+     * textures). */
     status = start_context(job);
     if (status >= 0) {
         render_job_free(job);
@@ -1268,11 +1284,14 @@ int cmd_render(int argc, char **argv)
     if (!threaded) {
         make_fb(&maker);  /* no thread to spare: one after the other */
     }
-    status = load_scene(job);
-    double t_load = now_ms();
+    status = load_objects(job);
     if (threaded) {
         pthread_join(maker.thread, NULL);
     }
+    if (status < 0) {
+        status = finish_scene(job);
+    }
+    double t_load = now_ms();
     if (status < 0) {
         status = make_context(job);
     }

@@ -2,9 +2,13 @@
  * mesh.c - geometry stage, before the vertex stage: utilities on sr_mesh.
  * Consumes meshes as the readers and built-in generators produce them;
  * produces bounding boxes and per-vertex normals (smooth or flat).
- * No I/O and no shared state: any thread may call these on its own mesh.
+ * No I/O and no shared state: any thread may call these on its own mesh
+ * (sr_mesh_compute_normals_ctx uses its context's threads too).
  */
 #include "softrast.h"
+
+#include "context.h"
+#include "parallel/pool.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -130,12 +134,85 @@ static sr_result validate_mesh(const sr_mesh *mesh)
     return SR_OK;
 }
 
+/* Vertices [v0, v1) of smooth_normals: the faces with a corner among
+ * them add to those corners in face order, so a vertex sums the same
+ * terms in the same order whichever range - or thread - it falls in, and
+ * the normals are the same bits for any split. */
+static void smooth_range(const sr_mesh *mesh, double *sum, float *normals, size_t v0, size_t v1)
+{
+    const float *p = mesh->positions;
+    size_t span = v1 - v0;
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        const uint32_t *tri = mesh->indices + 3 * t;
+        bool mine[3];
+        for (int k = 0; k < 3; k++) {
+            mine[k] = tri[k] - v0 < span;   /* unsigned: below v0 wraps high */
+        }
+        if (!(mine[0] | mine[1] | mine[2])) {
+            continue;
+        }
+        double fn[3];
+        if (!face_normal(p + 3 * (size_t)tri[0], p + 3 * (size_t)tri[1],
+                         p + 3 * (size_t)tri[2], fn)) {
+            continue; /* degenerate: no direction to contribute */
+        }
+        for (int k = 0; k < 3; k++) {
+            if (!mine[k]) {
+                continue;
+            }
+            const float *v = p + 3 * (size_t)tri[k];
+            const float *next = p + 3 * (size_t)tri[(k + 1) % 3];
+            const float *prev = p + 3 * (size_t)tri[(k + 2) % 3];
+            double e1[3], e2[3];
+            sub3(next, v, e1);
+            sub3(prev, v, e2);
+            double w = corner_angle(e1, e2);
+            double *s = sum + 3 * (size_t)tri[k];
+            s[0] += fn[0] * w;
+            s[1] += fn[1] * w;
+            s[2] += fn[2] * w;
+        }
+    }
+    for (size_t i = v0; i < v1; i++) {
+        double *s = sum + 3 * i;
+        double len = length3(s);
+        /* Zero when no valid face touches the vertex, or when opposite
+         * faces cancel (a two-sided sheet): no direction is better than
+         * another, so take the fallback rather than divide by zero. */
+        if (len > 1e-30 && isfinite(len)) {
+            normals[3 * i + 0] = (float)(s[0] / len);
+            normals[3 * i + 1] = (float)(s[1] / len);
+            normals[3 * i + 2] = (float)(s[2] / len);
+        } else {
+            memcpy(normals + 3 * i, fallback_normal, sizeof fallback_normal);
+        }
+    }
+}
+
+typedef struct smooth_job {
+    const sr_mesh *mesh;
+    double *sum;
+    float *normals;
+    size_t ranges;
+} smooth_job;
+
+static void run_smooth_range(void *arg, int job, int thread)
+{
+    (void)thread;
+    const smooth_job *j = arg;
+    size_t n = j->mesh->vertex_count;
+    smooth_range(j->mesh, j->sum, j->normals, n * (size_t)job / j->ranges,
+                 n * ((size_t)job + 1) / j->ranges);
+}
+
 /* Angle-weighted vertex normals (Thuermer and Wuethrich): each face adds
  * its unit normal times the angle of its corner at the vertex.  Unlike
  * area or plain averaging, this does not depend on how a polygon was split
  * into triangles, so a cube corner gets exactly (1,1,1)/sqrt(3) whichever
- * diagonal each face was cut along. */
-static sr_result smooth_normals(sr_mesh *mesh)
+ * diagonal each face was cut along.  With a pool, the vertices are cut
+ * into two ranges a thread (smooth_range): each range's faces are found
+ * by a pass over the indices, cheap beside the angles' atan2. */
+static sr_result smooth_normals(sr_mesh *mesh, struct sr_pool *pool, int threads)
 {
     size_t n = mesh->vertex_count;
     if (n == 0) {
@@ -156,42 +233,12 @@ static sr_result smooth_normals(sr_mesh *mesh)
         free(normals);
         return SR_OUT_OF_MEMORY;
     }
-    const float *p = mesh->positions;
-    for (size_t t = 0; t < mesh->triangle_count; t++) {
-        const uint32_t *tri = mesh->indices + 3 * t;
-        double fn[3];
-        if (!face_normal(p + 3 * (size_t)tri[0], p + 3 * (size_t)tri[1],
-                         p + 3 * (size_t)tri[2], fn)) {
-            continue; /* degenerate: no direction to contribute */
-        }
-        for (int k = 0; k < 3; k++) {
-            const float *v = p + 3 * (size_t)tri[k];
-            const float *next = p + 3 * (size_t)tri[(k + 1) % 3];
-            const float *prev = p + 3 * (size_t)tri[(k + 2) % 3];
-            double e1[3], e2[3];
-            sub3(next, v, e1);
-            sub3(prev, v, e2);
-            double w = corner_angle(e1, e2);
-            double *s = sum + 3 * (size_t)tri[k];
-            s[0] += fn[0] * w;
-            s[1] += fn[1] * w;
-            s[2] += fn[2] * w;
-        }
+    size_t ranges = pool ? 2 * (size_t)threads : 1;
+    if (ranges > n) {
+        ranges = n;
     }
-    for (size_t i = 0; i < n; i++) {
-        double *s = sum + 3 * i;
-        double len = length3(s);
-        /* Zero when no valid face touches the vertex, or when opposite
-         * faces cancel (a two-sided sheet): no direction is better than
-         * another, so take the fallback rather than divide by zero. */
-        if (len > 1e-30 && isfinite(len)) {
-            normals[3 * i + 0] = (float)(s[0] / len);
-            normals[3 * i + 1] = (float)(s[1] / len);
-            normals[3 * i + 2] = (float)(s[2] / len);
-        } else {
-            memcpy(normals + 3 * i, fallback_normal, sizeof fallback_normal);
-        }
-    }
+    smooth_job job = { .mesh = mesh, .sum = sum, .normals = normals, .ranges = ranges };
+    sr__pool_run(pool, run_smooth_range, &job, (int)ranges);
     free(sum);
     free(mesh->normals);
     mesh->normals = normals;
@@ -207,7 +254,7 @@ static sr_result flat_normals(sr_mesh *mesh)
     if (tris == 0) {
         /* Splitting would drop every vertex; with no faces to be flat
          * against, keep the vertices and give them the fallback normal. */
-        return smooth_normals(mesh);
+        return smooth_normals(mesh, NULL, 1);
     }
     size_t verts;
     if (__builtin_mul_overflow(tris, (size_t)3, &verts) || verts > UINT32_MAX) {
@@ -272,7 +319,7 @@ static sr_result flat_normals(sr_mesh *mesh)
     return SR_OK;
 }
 
-sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode)
+sr_result sr_mesh_compute_normals_ctx(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode)
 {
     sr_result r = validate_mesh(mesh);
     if (r != SR_OK) {
@@ -280,9 +327,14 @@ sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode)
     }
     switch (mode) {
     case SR_NORMALS_SMOOTH:
-        return smooth_normals(mesh);
+        return smooth_normals(mesh, ctx ? ctx->pool : NULL, ctx ? ctx->threads : 1);
     case SR_NORMALS_FLAT:
         return flat_normals(mesh);
     }
     return SR_INVALID_ARG;
+}
+
+sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode)
+{
+    return sr_mesh_compute_normals_ctx(NULL, mesh, mode);
 }
