@@ -25,32 +25,10 @@
 #include "pipeline.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
+#include "fragment/light_lanes16.h"   /* v16f, v16i, v16_sel, v16_sqrt, light16 */
 
-#define SR_WIDE __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl")))
+#define SR_WIDE SR_LANES16_TARGET
 #define SR_WIDE_INLINE static inline __attribute__((always_inline)) SR_WIDE
-
-typedef float v16f __attribute__((vector_size(64)));
-typedef int32_t v16i __attribute__((vector_size(64)));
-
-SR_WIDE_INLINE v16f v16_sel(v16i m, v16f a, v16f b)
-{
-    return (v16f)((m & (v16i)a) | (~m & (v16i)b));
-}
-
-/* Correctly rounded, as sqrtf. */
-SR_WIDE_INLINE v16f v16_sqrt(v16f x)
-{
-    return (v16f)_mm512_sqrt_ps((__m512)x);
-}
-
-#define SR_LL_F v16f
-#define SR_LL_I v16i
-#define SR_LL_SEL v16_sel
-#define SR_LL_SQRT v16_sqrt
-#define SR_LL_NAME light16
-#define SR_LL_TARGET SR_WIDE
-#include "fragment/light_lanes_body.h"
 
 /* An attribute array: `step` bytes from one vertex's element to the
  * next (element() in vertex.c), and its first element in the draw. */

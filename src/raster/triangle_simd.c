@@ -25,28 +25,7 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 
 /* sr__light on sixteen lanes for the AVX-512 instance's PHONG stamps
  * (w16_phong in simd_wide.h). */
-#define SR_WIDE16_TARGET __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl")))
-typedef float v16f __attribute__((vector_size(64)));
-typedef int32_t v16i __attribute__((vector_size(64)));
-
-static inline __attribute__((always_inline)) SR_WIDE16_TARGET v16f v16_sel(v16i m, v16f a, v16f b)
-{
-    return (v16f)((m & (v16i)a) | (~m & (v16i)b));
-}
-
-/* Correctly rounded, as sqrtf. */
-static inline __attribute__((always_inline)) SR_WIDE16_TARGET v16f v16_sqrt(v16f x)
-{
-    return (v16f)_mm512_sqrt_ps((__m512)x);
-}
-
-#define SR_LL_F v16f
-#define SR_LL_I v16i
-#define SR_LL_SEL v16_sel
-#define SR_LL_SQRT v16_sqrt
-#define SR_LL_NAME light16
-#define SR_LL_TARGET SR_WIDE16_TARGET
-#include "fragment/light_lanes_body.h"
+#include "fragment/light_lanes16.h"
 
 #define SR_SIMD_FN(name) name##_avx512
 #define SR_SIMD_TARGET __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
