@@ -233,6 +233,8 @@ static sr_result smooth_normals(sr_mesh *mesh, struct sr_pool *pool, int threads
         free(normals);
         return SR_OUT_OF_MEMORY;
     }
+    sr__populate(sum, floats * sizeof *sum);          /* both are written whole */
+    sr__populate(normals, floats * sizeof *normals);
     size_t ranges = pool ? 2 * (size_t)threads : 1;
     if (ranges > n) {
         ranges = n;
