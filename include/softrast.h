@@ -736,6 +736,14 @@ sr_draw_info sr_last_draw_info(const sr_context *ctx);
 
 /* ---- meshes ------------------------------------------------------------- */
 
+/* A run of a mesh's triangles that takes a diffuse texture of its own
+ * (OBJ: the faces after a `usemtl` whose material's map_Kd differs from
+ * the run before). */
+typedef struct sr_mesh_part {
+    size_t first_triangle, triangle_count;
+    char *texture_path;    /* this run's texture file, or NULL for none */
+} sr_mesh_part;
+
 /* A triangle mesh as the model readers produce it.  Arrays belong to the
  * mesh and are freed by sr_mesh_free (the readers' allocator: malloc). */
 typedef struct sr_mesh {
@@ -751,6 +759,12 @@ typedef struct sr_mesh {
      * when the file embeds it instead of naming one (glTF, GLB), or NULL. */
     uint8_t *texture_data;
     size_t texture_size;
+    /* When the triangles take different textures (or some take none):
+     * runs in triangle order that cover every triangle, each with its own
+     * texture; texture_path is then the first one named.  NULL and 0 when
+     * one texture, or none, serves the whole mesh. */
+    sr_mesh_part *parts;
+    size_t part_count;
 } sr_mesh;
 
 void sr_mesh_free(sr_mesh *mesh);

@@ -1684,6 +1684,98 @@ SR_TEST(gltf_material_colors_color_the_model)
 #endif
 }
 
+/* An OBJ whose materials name different textures: each part of the
+ * model takes its own (left square red, middle square no texture - its
+ * material's Kd, right square blue; the fourth material's file is missing:
+ * one warning, and that square drawn without a texture). */
+SR_TEST(obj_parts_take_their_own_textures)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], model[1100], mtl[1100], red[1100], blue[1100], out[1100];
+    fresh_dir("obj_parts", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/parts.obj", dir);
+    snprintf(mtl, sizeof mtl, "%s/parts.mtl", dir);
+    snprintf(red, sizeof red, "%s/red.png", dir);
+    snprintf(blue, sizeof blue, "%s/blue.png", dir);
+    snprintf(out, sizeof out, "%s/parts.png", dir);
+    const char *obj = "mtllib parts.mtl\n"
+                      "v -2 -0.5 0\nv -1 -0.5 0\nv -1 0.5 0\nv -2 0.5 0\n"
+                      "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0.5 0.5 0\nv -0.5 0.5 0\n"
+                      "v 1 -0.5 0\nv 2 -0.5 0\nv 2 0.5 0\nv 1 0.5 0\n"
+                      "v 1 1 0\nv 2 1 0\nv 2 2 0\nv 1 2 0\n"
+                      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                      "usemtl red\nf 1/1 2/2 3/3 4/4\n"
+                      "usemtl plain\nf 5/1 6/2 7/3 8/4\n"
+                      "usemtl blue\nf 9/1 10/2 11/3 12/4\n"
+                      "usemtl gone\nf 13/1 14/2 15/3 16/4\n";
+    const char *mats = "newmtl red\nKd 1 1 1\nmap_Kd red.png\n"
+                       "newmtl plain\nKd 0 1 0\n"
+                       "newmtl blue\nKd 1 1 1\nmap_Kd blue.png\n"
+                       "newmtl gone\nKd 1 1 1\nmap_Kd missing.png\n";
+    REQUIRE(write_whole(model, obj, strlen(obj)));
+    REQUIRE(write_whole(mtl, mats, strlen(mats)));
+    const uint8_t r4[16] = { 200, 20, 10, 255, 200, 20, 10, 255, 200, 20, 10, 255, 200, 20, 10, 255 };
+    const uint8_t b4[16] = { 10, 30, 210, 255, 10, 30, 210, 255, 10, 30, 210, 255, 10, 30, 210, 255 };
+    sr_io_error err;
+    REQUIRE(sr_write_png(red, 2, 2, r4, 8, NULL, &err) == SR_OK);
+    REQUIRE(sr_write_png(blue, 2, 2, b4, 8, NULL, &err) == SR_OK);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", model, "--shading", "unlit", "--camera", "eye=0,0.5,6",
+                         "--texture-filter", "nearest", "--size", "96x64", "-o", out),
+                    &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_STR_CONTAINS(r.err, "warning: ");
+    CHECK_STR_CONTAINS(r.err, "missing.png");
+    cli_run_free(&r);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    /* The camera looks at the model's centre, y = 0.75: the row 7/10 down
+     * the image crosses the three squares at y = 0 (left to right: red,
+     * the middle one's green Kd, blue), and the fourth lies in the upper
+     * right quarter. */
+    int found[3] = { 0, 0, 0 }, fourth_white = 0;
+    int row = h * 7 / 10;
+    for (int x = 0; x < w; x++) {
+        const uint8_t *p = px + 4 * ((size_t)row * w + x);
+        found[0] += p[0] == 200 && p[1] == 20 && p[2] == 10;
+        found[1] += p[0] == 0 && p[1] == 255 && p[2] == 0;
+        found[2] += p[0] == 10 && p[1] == 30 && p[2] == 210;
+    }
+    for (int y = 0; y < h / 2; y++) {
+        for (int x = w / 2; x < w; x++) {
+            const uint8_t *p = px + 4 * ((size_t)y * w + x);
+            fourth_white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+        }
+    }
+    CHECK(found[0] > 4);    /* red texels on the left square */
+    CHECK(found[1] > 4);    /* the middle square's own Kd: no texture */
+    CHECK(found[2] > 4);    /* blue texels on the right square */
+    CHECK(fourth_white > 4); /* its texture missing: Kd white */
+    free(px);
+
+    /* --texture still colors the whole model with one image. */
+    REQUIRE(run_cli(ARGS("render", model, "--shading", "unlit", "--camera", "eye=0,0.5,6",
+                         "--texture", blue, "--size", "96x64", "-o", out),
+                    &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err_len, 0);
+    cli_run_free(&r);
+    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    int blues = 0, reds = 0;
+    for (int x = 0; x < w; x++) {
+        const uint8_t *p = px + 4 * ((size_t)row * w + x);
+        blues += p[0] == 10 && p[1] == 30 && p[2] == 210;
+        reds += p[0] == 200 && p[1] == 20 && p[2] == 10;
+    }
+    CHECK(blues > 12);
+    CHECK_EQ(reds, 0);
+    free(px);
+#endif
+}
+
 /* -o NAME.jpg writes a JPEG of the picture the PNG holds: the same size,
  * every channel close (JPEG is lossy: the bound is the mean error), and
  * --jpeg-quality trades size for error. */

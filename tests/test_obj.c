@@ -510,8 +510,25 @@ SR_TEST(obj_mtl_kd_colors_and_map_kd)
         REQUIRE(m.texture_path != NULL);
         CHECK_STR_CONTAINS(m.texture_path, want);
         CHECK_EQ(strlen(m.texture_path), strlen(want));
+        /* The faces take different textures, so they come in parts: the
+         * first face none, then red, blue, and the last two none (a
+         * material without map_Kd, and one the MTL does not define). */
+        static const size_t first[4] = { 0, 1, 2, 3 }, count[4] = { 1, 1, 1, 2 };
+        REQUIRE(m.parts != NULL);
+        CHECK_EQ(m.part_count, 4);
+        for (size_t i = 0; i < 4 && i < m.part_count; i++) {
+            CHECK_EQ(m.parts[i].first_triangle, first[i]);
+            CHECK_EQ(m.parts[i].triangle_count, count[i]);
+        }
+        CHECK(m.parts[0].texture_path == NULL && m.parts[3].texture_path == NULL);
+        REQUIRE(m.parts[1].texture_path && m.parts[2].texture_path);
+        CHECK(strcmp(m.parts[1].texture_path, m.texture_path) == 0);
+        char *blue = join_path(mats, "blue.png");
+        CHECK(strcmp(m.parts[2].texture_path, blue) == 0);
+        free(blue);
         free(want);
         sr_mesh_free(&m);
+        CHECK(m.parts == NULL && m.part_count == 0);
     } else {
         fprintf(stderr, "  %s\n", err.message);
     }
@@ -529,6 +546,43 @@ SR_TEST(obj_mtl_kd_colors_and_map_kd)
     free(mtl);
     free(mats);
     free(dir);
+}
+
+/* Parts follow the textures, not the materials: two materials naming the
+ * same file make one part, and a model whose faces all take one texture
+ * has no parts at all. */
+SR_TEST(obj_parts_follow_textures_not_materials)
+{
+    char *obj = join_path(sr_test_out_dir(), "obj_parts.obj");
+    char *mtl = join_path(sr_test_out_dir(), "obj_parts.mtl");
+    write_file(mtl, "newmtl a\nKd 1 0 0\nmap_Kd wood.png\n"
+                    "newmtl b\nKd 0 1 0\nmap_Kd wood.png\n"
+                    "newmtl c\nmap_Kd stone.png\n");
+    write_file(obj, "mtllib obj_parts.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                    "usemtl a\nf 1 2 3\nusemtl b\nf 2 4 3\nf 1 2 4\n"
+                    "usemtl c\nf 1 3 4\nusemtl a\nf 1 2 3\n");
+    sr_mesh m;
+    sr_io_error err;
+    REQUIRE(sr__load_obj(obj, &m, &err) == SR_OK);
+    REQUIRE(m.parts != NULL);
+    CHECK_EQ(m.part_count, 3);          /* wood (a, b), stone (c), wood (a) */
+    CHECK(m.part_count == 3 && m.parts[0].triangle_count == 3 && m.parts[1].first_triangle == 3 &&
+          m.parts[1].triangle_count == 1 && m.parts[2].first_triangle == 4 &&
+          m.parts[2].triangle_count == 1);
+    CHECK(m.part_count == 3 && strstr(m.parts[1].texture_path, "stone.png") &&
+          strstr(m.parts[2].texture_path, "wood.png"));
+    sr_mesh_free(&m);
+
+    write_file(obj, "mtllib obj_parts.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                    "usemtl a\nf 1 2 3\nusemtl b\nf 2 4 3\n");
+    REQUIRE(sr__load_obj(obj, &m, &err) == SR_OK);
+    CHECK(m.parts == NULL);
+    CHECK_EQ(m.part_count, 0);
+    REQUIRE(m.texture_path != NULL);
+    CHECK(strstr(m.texture_path, "wood.png") != NULL);
+    sr_mesh_free(&m);
+    free(obj);
+    free(mtl);
 }
 
 SR_TEST(obj_vertex_color_wins_over_kd)

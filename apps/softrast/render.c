@@ -126,10 +126,10 @@ static void render_help(void)
         "                           relative to the camera\n"
         "textures:\n"
         "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
-        "                           coordinates (default: the OBJ material's map_Kd, the\n"
-        "                           image a glTF/GLB file embeds, or MODEL_texture.png or\n"
-        "                           .jpg beside a model MODEL.obj; one of those that\n"
-        "                           cannot be read is a warning)\n"
+        "                           coordinates (default: the OBJ materials' map_Kd, each\n"
+        "                           on its own faces, the image a glTF/GLB file embeds, or\n"
+        "                           MODEL_texture.png or .jpg beside a model MODEL.obj;\n"
+        "                           one of those that cannot be read is a warning)\n"
         "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
         "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
         "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
@@ -640,6 +640,62 @@ static bool same_file(const char *a, const char *b)
            sa.st_ino == sb.st_ino;
 }
 
+/* The textures of a model whose parts name different ones (sr_mesh.parts):
+ * each file read once; one that is missing or unreadable is a warning, and
+ * its parts are drawn without it.  Returns an exit status, or -1. */
+static int load_part_textures(const render_opts *o, sr_context *ctx, scene_object *ob)
+{
+    size_t n = ob->mesh.part_count;
+    ob->part_textures = calloc(n, sizeof *ob->part_textures);
+    ob->owned = calloc(n, sizeof *ob->owned);
+    if (!ob->part_textures || !ob->owned) {
+        cli_error("render: out of memory");
+        return EXIT_FAILURE_RUN;
+    }
+    for (size_t p = 0; p < n; p++) {
+        const char *path = ob->mesh.parts[p].texture_path;
+        size_t same = 0;
+        while (same < p && (!path || !ob->mesh.parts[same].texture_path ||
+                            strcmp(ob->mesh.parts[same].texture_path, path) != 0)) {
+            same++;
+        }
+        if (!path || same < p) {   /* none, or a file already read (or warned about) */
+            ob->part_textures[p] = path ? ob->part_textures[same] : NULL;
+            continue;
+        }
+        if (o->writes_output && same_file(path, o->output)) {
+            cli_error("-o: '%s' is the texture being read (%s); choose another output file",
+                      o->output, path);
+            return EXIT_USAGE;
+        }
+        int w, h;
+        uint8_t *px = NULL;
+        sr_io_error err;
+        sr_result rr = sr_read_image(path, &w, &h, &px, &err);
+        if (rr != SR_OK) {
+            if (rr == SR_OUT_OF_MEMORY) {
+                fprintf(stderr, "%s\n", err.message);
+                return EXIT_FAILURE_RUN;
+            }
+            cli_error("warning: %s (drawing its part of the model without it)", err.message);
+            continue;
+        }
+        sr_texture *tex = NULL;
+        sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h,
+                                                                .pixels = px,
+                                                                .srgb = o->texture_srgb },
+                                      &tex);
+        free(px);
+        if (r != SR_OK) {
+            cli_error("%s: %s", path, sr_context_error(ctx));
+            return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+        }
+        ob->owned[ob->owned_count++] = tex;
+        ob->part_textures[p] = tex;
+    }
+    return -1;
+}
+
 /* The model's texture: --texture, else the file's own (OBJ map_Kd, or an
  * image a glTF or GLB file embeds), else MODEL_texture.png or .jpg beside
  * MODEL.ext.  One the user named must be read; one the model brings that
@@ -656,6 +712,9 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
         return -1;
     }
     scene_object *ob = &s->objects[0];
+    if (!o->texture && ob->mesh.part_count > 0 && ob->mesh.texcoords) {
+        return load_part_textures(o, ctx, ob);
+    }
     char guess[4096];
     const char *path = o->texture;
     const char *named = ob->mesh.texture_path;
@@ -730,8 +789,17 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
 static void free_textures(sr_context *ctx, scene *s)
 {
     for (int i = 0; i < s->count; i++) {
-        sr_destroy_texture(ctx, s->objects[i].texture);
-        s->objects[i].texture = NULL;
+        scene_object *ob = &s->objects[i];
+        sr_destroy_texture(ctx, ob->texture);
+        ob->texture = NULL;
+        for (size_t k = 0; k < ob->owned_count; k++) {
+            sr_destroy_texture(ctx, ob->owned[k]);
+        }
+        free(ob->owned);
+        free(ob->part_textures);
+        ob->owned = NULL;
+        ob->part_textures = NULL;
+        ob->owned_count = 0;
     }
 }
 
@@ -754,12 +822,13 @@ static int farther_first(const void *a, const void *b)
     return x->tri < y->tri ? -1 : x->tri > y->tri;
 }
 
-/* A translucent object's indices sorted back to front by each triangle's
+/* A translucent object's indices (triangles [first, first + n)) sorted back to front by each triangle's
  * centroid distance along the view direction (the seeds: "you still have
  * to sort for transparency"); malloc'd, or NULL when out of memory. */
-static uint32_t *sorted_indices(const scene_object *ob, const camera *cam)
+static uint32_t *sorted_indices(const scene_object *ob, const camera *cam, size_t first,
+                                size_t n)
 {
-    size_t n = ob->mesh.triangle_count;
+    const uint32_t *indices = ob->mesh.indices + 3 * first;
     depth_key *keys = malloc(n * sizeof *keys);
     uint32_t *out = malloc(n * 3 * sizeof *out);
     if (!keys || !out) {
@@ -771,14 +840,14 @@ static uint32_t *sorted_indices(const scene_object *ob, const camera *cam)
     for (size_t t = 0; t < n; t++) {
         float z = 0.0f;
         for (int k = 0; k < 3; k++) {
-            const float *p = &ob->mesh.positions[ob->mesh.indices[t * 3 + k] * 3];
+            const float *p = &ob->mesh.positions[indices[t * 3 + k] * 3];
             z += mv.m[2] * p[0] + mv.m[6] * p[1] + mv.m[10] * p[2] + mv.m[14];
         }
         keys[t] = (depth_key){ -z, (uint32_t)t };   /* eye looks down -z: distance is -z */
     }
     qsort(keys, n, sizeof *keys, farther_first);
     for (size_t t = 0; t < n; t++) {
-        memcpy(&out[t * 3], &ob->mesh.indices[keys[t].tri * 3], 3 * sizeof *out);
+        memcpy(&out[t * 3], &indices[keys[t].tri * 3], 3 * sizeof *out);
     }
     free(keys);
     return out;
@@ -799,36 +868,45 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
             if (see_through != (pass == 1)) {
                 continue;
             }
-            sr_state st = *state;
-            if (!keep_material) {
-                st.material = ob->material;
-            }
-            /* The texture colors the surface, not the line modes' plain passes. */
-            st.texture = keep_material ? NULL : ob->texture;
-            const uint32_t *indices = ob->mesh.indices;
-            uint32_t *sorted = NULL;
-            if (see_through) {
-                sorted = sorted_indices(ob, cam);
-                if (!sorted) {
-                    return SR_OUT_OF_MEMORY;
+            /* The texture colors the surface, not the line modes' plain
+             * passes; a mesh whose parts take different textures is drawn
+             * part by part (a translucent one sorted within each part). */
+            bool by_part = !keep_material && ob->part_textures;
+            size_t parts = by_part ? ob->mesh.part_count : 1;
+            for (size_t p = 0; p < parts && r == SR_OK; p++) {
+                size_t first = by_part ? ob->mesh.parts[p].first_triangle : 0;
+                size_t count = by_part ? ob->mesh.parts[p].triangle_count
+                                       : ob->mesh.triangle_count;
+                sr_state st = *state;
+                if (!keep_material) {
+                    st.material = ob->material;
                 }
-                indices = sorted;
-                st.no_depth_write = true;
-                st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
-                                       .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
-                                       .src_alpha = SR_BLEND_ONE,
-                                       .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA };
+                st.texture = keep_material ? NULL : by_part ? ob->part_textures[p] : ob->texture;
+                const uint32_t *indices = ob->mesh.indices + 3 * first;
+                uint32_t *sorted = NULL;
+                if (see_through) {
+                    sorted = sorted_indices(ob, cam, first, count);
+                    if (!sorted) {
+                        return SR_OUT_OF_MEMORY;
+                    }
+                    indices = sorted;
+                    st.no_depth_write = true;
+                    st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
+                                           .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
+                                           .src_alpha = SR_BLEND_ONE,
+                                           .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA };
+                }
+                r = sr_draw(ctx, fb, &st, &(sr_draw_desc){
+                    .positions = ob->mesh.positions, .normals = ob->mesh.normals,
+                    .colors = ob->mesh.colors, .color_size = 4,
+                    .texcoords = ob->mesh.texcoords, .vertex_count = ob->mesh.vertex_count,
+                    .indices = indices, .index_type = SR_INDEX_U32, .index_count = count * 3,
+                    .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
+                free(sorted);
+                sr_draw_info info = sr_last_draw_info(ctx);
+                *tris += info.triangles_in;
+                *frags += info.fragments;
             }
-            r = sr_draw(ctx, fb, &st, &(sr_draw_desc){
-                .positions = ob->mesh.positions, .normals = ob->mesh.normals,
-                .colors = ob->mesh.colors, .color_size = 4, .texcoords = ob->mesh.texcoords,
-                .vertex_count = ob->mesh.vertex_count, .indices = indices,
-                .index_type = SR_INDEX_U32, .index_count = ob->mesh.triangle_count * 3,
-                .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
-            free(sorted);
-            sr_draw_info info = sr_last_draw_info(ctx);
-            *tris += info.triangles_in;
-            *frags += info.fragments;
         }
     }
     return r;

@@ -14,6 +14,11 @@ typedef struct scene_object {
     sr_mat4 model;
     bool frame;          /* the camera frames this object */
     sr_texture *texture; /* owned by the context that made it, or NULL */
+    /* With mesh.parts: each part's texture (NULL: none, or unreadable),
+     * pointing into `owned`, one texture a distinct file; else NULL. */
+    sr_texture **part_textures;
+    sr_texture **owned;
+    size_t owned_count;
 } scene_object;
 
 typedef struct scene {

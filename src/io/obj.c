@@ -1393,11 +1393,13 @@ static size_t pow2_at_least(size_t n)
 /* Map each usemtl entry to the material that colors it (first definition
  * of a name wins) and pick the texture: the map_Kd of the first material
  * used, else the first map_Kd of any loaded material. */
-static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, str_ref *texture)
+static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, uint32_t *use_tex,
+                                   str_ref *texture)
 {
     texture->len = 0;
     for (size_t u = 0; u < P->nuses; u++) {
         use_kd[u] = NO_INDEX;
+        use_tex[u] = NO_INDEX;
     }
     if (P->nmats == 0) {
         return SR_OK;
@@ -1431,8 +1433,11 @@ static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, str_ref *tex
                 if (mt->has_kd) {
                     use_kd[u] = table[h] - 1;
                 }
-                if (texture->len == 0 && mt->map_kd.len > 0) {
-                    *texture = mt->map_kd;
+                if (mt->map_kd.len > 0) {
+                    use_tex[u] = table[h] - 1;
+                    if (texture->len == 0) {
+                        *texture = mt->map_kd;
+                    }
                 }
                 break;
             }
@@ -1445,6 +1450,70 @@ static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, str_ref *tex
     return SR_OK;
 }
 
+/* Whether materials a and b (indices, or NO_INDEX for none) give the same
+ * texture: the same resolved map_Kd path, or both none. */
+static bool same_texture(const obj_parser *P, uint32_t a, uint32_t b)
+{
+    if (a == NO_INDEX || b == NO_INDEX) {
+        return a == b;
+    }
+    str_ref x = P->mats[a].map_kd, y = P->mats[b].map_kd;
+    return x.len == y.len && memcmp(arena_str(P, x), arena_str(P, y), x.len) == 0;
+}
+
+/* The texturing material of triangle t: its usemtl's (every corner of a
+ * face carries the face's), read before build_mesh turns the corners'
+ * usemtl indices into colors. */
+static uint32_t triangle_texture(const obj_parser *P, const uint32_t *use_tex, size_t t)
+{
+    uint32_t use = P->map.keys[P->indices[3 * t]].m;
+    return use == NO_INDEX ? NO_INDEX : use_tex[use];
+}
+
+/* sr_mesh.parts: the runs of triangles whose usemtl selects the same
+ * texture, when there is more than one run (else none: one texture, or
+ * none, serves the whole mesh). */
+static sr_result make_parts(obj_parser *P, const uint32_t *use_tex, sr_mesh *mesh)
+{
+    size_t tris = P->nindices / 3, runs = 0;
+    for (size_t t = 0; t < tris; t++) {
+        runs += t == 0 || !same_texture(P, triangle_texture(P, use_tex, t),
+                                        triangle_texture(P, use_tex, t - 1));
+    }
+    if (runs <= 1) {
+        return SR_OK;
+    }
+    sr_mesh_part *parts = calloc(runs, sizeof *parts);
+    if (!parts) {
+        return oom(P, 0);
+    }
+    size_t n = 0;
+    for (size_t t = 0; t < tris; t++) {
+        uint32_t tex = triangle_texture(P, use_tex, t);
+        if (t > 0 && same_texture(P, tex, triangle_texture(P, use_tex, t - 1))) {
+            parts[n - 1].triangle_count++;
+            continue;
+        }
+        parts[n] = (sr_mesh_part){ .first_triangle = t, .triangle_count = 1 };
+        if (tex != NO_INDEX) {
+            str_ref path = P->mats[tex].map_kd;
+            parts[n].texture_path = malloc(path.len + 1);
+            if (!parts[n].texture_path) {
+                for (size_t i = 0; i < n; i++) {
+                    free(parts[i].texture_path);
+                }
+                free(parts);
+                return oom(P, 0);
+            }
+            memcpy(parts[n].texture_path, arena_str(P, path), path.len + 1);
+        }
+        n++;
+    }
+    mesh->parts = parts;
+    mesh->part_count = runs;
+    return SR_OK;
+}
+
 static sr_result build_mesh(obj_parser *P, sr_mesh *out)
 {
     sr_mesh mesh = { 0 };
@@ -1452,11 +1521,15 @@ static sr_result build_mesh(obj_parser *P, sr_mesh *out)
     uint32_t *remap = NULL;
     str_ref texture;
     sr_result res;
-    uint32_t *use_kd = malloc((P->nuses ? P->nuses : 1) * sizeof *use_kd);
+    uint32_t *use_kd = malloc((P->nuses ? P->nuses : 1) * 2 * sizeof *use_kd);
     if (!use_kd) {
         return oom(P, 0);
     }
-    res = resolve_materials(P, use_kd, &texture);
+    uint32_t *use_tex = use_kd + (P->nuses ? P->nuses : 1);
+    res = resolve_materials(P, use_kd, use_tex, &texture);
+    if (res == SR_OK) {
+        res = make_parts(P, use_tex, &mesh);
+    }
     if (res != SR_OK) {
         goto done;
     }
@@ -1561,8 +1634,13 @@ static sr_result build_mesh(obj_parser *P, sr_mesh *out)
     }
     P->indices = NULL;
     *out = mesh;
+    mesh.parts = NULL;
 
 done:
+    for (size_t i = 0; mesh.parts && i < mesh.part_count; i++) {
+        free(mesh.parts[i].texture_path);
+    }
+    free(mesh.parts);
     free(use_kd);
     free(remap);
     free(merged.keys);
