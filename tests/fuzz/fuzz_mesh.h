@@ -1,7 +1,8 @@
 /* fuzz_mesh.h - what every reader's fuzz target checks of a parsed mesh:
  * a reader either fails with a message, or returns a mesh whose indices
- * are all in range and whose arrays hold vertex_count entries (ASan checks
- * the sizes when they are read here).  Internal to tests/fuzz. */
+ * are all in range, whose arrays hold vertex_count entries (ASan checks
+ * the sizes when they are read here) and whose parts, if any, cover its
+ * triangles in order.  Internal to tests/fuzz. */
 #ifndef SR_FUZZ_MESH_H
 #define SR_FUZZ_MESH_H
 
@@ -45,6 +46,14 @@ static inline void fuzz_check_mesh(sr_result r, sr_mesh *m, const sr_io_error *e
     (void)sink;
     for (size_t i = 0; i < m->triangle_count * 3; i++) {
         FUZZ_CHECK(m->indices[i] < m->vertex_count);
+    }
+    /* Parts, when there are any, cover the triangles in order, one after
+     * another (each at least one triangle). */
+    FUZZ_CHECK((m->parts == NULL) == (m->part_count == 0));
+    for (size_t p = 0, next = 0; p < m->part_count; p++) {
+        FUZZ_CHECK(m->parts[p].first_triangle == next && m->parts[p].triangle_count > 0);
+        next += m->parts[p].triangle_count;
+        FUZZ_CHECK(p + 1 < m->part_count || next == m->triangle_count);
     }
     if (m->vertex_count > 0 && m->triangle_count > 0) {
         sr_vec3 lo, hi;
