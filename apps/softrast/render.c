@@ -648,25 +648,32 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
     size_t n = ob->mesh.part_count;
     ob->part_textures = calloc(n, sizeof *ob->part_textures);
     ob->owned = calloc(n, sizeof *ob->owned);
-    if (!ob->part_textures || !ob->owned) {
+    /* The files met so far, each with its texture (NULL when unreadable):
+     * parts far outnumber files in a model that switches back and forth. */
+    const char **seen = calloc(n, sizeof *seen);
+    if (!ob->part_textures || !ob->owned || !seen) {
+        free(seen);
         cli_error("render: out of memory");
         return EXIT_FAILURE_RUN;
     }
-    for (size_t p = 0; p < n; p++) {
+    int status = -1;
+    for (size_t p = 0; p < n && status < 0; p++) {
         const char *path = ob->mesh.parts[p].texture_path;
-        size_t same = 0;
-        while (same < p && (!path || !ob->mesh.parts[same].texture_path ||
-                            strcmp(ob->mesh.parts[same].texture_path, path) != 0)) {
-            same++;
+        size_t k = 0;
+        while (path && k < ob->owned_count && strcmp(seen[k], path) != 0) {
+            k++;
         }
-        if (!path || same < p) {   /* none, or a file already read (or warned about) */
-            ob->part_textures[p] = path ? ob->part_textures[same] : NULL;
+        if (!path || k < ob->owned_count) {
+            ob->part_textures[p] = path ? ob->owned[k] : NULL;
             continue;
         }
+        seen[k] = path;
+        ob->owned_count++;
         if (o->writes_output && same_file(path, o->output)) {
             cli_error("-o: '%s' is the texture being read (%s); choose another output file",
                       o->output, path);
-            return EXIT_USAGE;
+            status = EXIT_USAGE;
+            break;
         }
         int w, h;
         uint8_t *px = NULL;
@@ -675,25 +682,25 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
         if (rr != SR_OK) {
             if (rr == SR_OUT_OF_MEMORY) {
                 fprintf(stderr, "%s\n", err.message);
-                return EXIT_FAILURE_RUN;
+                status = EXIT_FAILURE_RUN;
+            } else {
+                cli_error("warning: %s (drawing its part of the model without it)", err.message);
             }
-            cli_error("warning: %s (drawing its part of the model without it)", err.message);
             continue;
         }
-        sr_texture *tex = NULL;
         sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h,
                                                                 .pixels = px,
                                                                 .srgb = o->texture_srgb },
-                                      &tex);
+                                      &ob->owned[k]);
         free(px);
         if (r != SR_OK) {
             cli_error("%s: %s", path, sr_context_error(ctx));
-            return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+            status = r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
         }
-        ob->owned[ob->owned_count++] = tex;
-        ob->part_textures[p] = tex;
+        ob->part_textures[p] = ob->owned[k];
     }
-    return -1;
+    free(seen);
+    return status;
 }
 
 /* The model's texture: --texture, else the file's own (OBJ map_Kd, or an
@@ -822,9 +829,10 @@ static int farther_first(const void *a, const void *b)
     return x->tri < y->tri ? -1 : x->tri > y->tri;
 }
 
-/* A translucent object's indices (triangles [first, first + n)) sorted back to front by each triangle's
- * centroid distance along the view direction (the seeds: "you still have
- * to sort for transparency"); malloc'd, or NULL when out of memory. */
+/* A translucent object's triangles [first, first + n) as indices sorted
+ * back to front by each triangle's centroid distance along the view
+ * direction (the seeds: "you still have to sort for transparency");
+ * malloc'd, or NULL when out of memory. */
 static uint32_t *sorted_indices(const scene_object *ob, const camera *cam, size_t first,
                                 size_t n)
 {

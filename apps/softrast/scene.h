@@ -15,7 +15,8 @@ typedef struct scene_object {
     bool frame;          /* the camera frames this object */
     sr_texture *texture; /* owned by the context that made it, or NULL */
     /* With mesh.parts: each part's texture (NULL: none, or unreadable),
-     * pointing into `owned`, one texture a distinct file; else NULL. */
+     * pointing into `owned`, one entry a distinct file (NULL when it could
+     * not be read); else NULL. */
     sr_texture **part_textures;
     sr_texture **owned;
     size_t owned_count;
