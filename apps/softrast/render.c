@@ -1371,13 +1371,15 @@ int cmd_render(int argc, char **argv)
         make_fb(&maker);  /* no thread to spare: one after the other */
     }
     status = load_objects(job);
+    /* "setup" is the wait for the framebuffer beyond the reading. */
+    double t_wait = now_ms();
     if (threaded) {
         pthread_join(maker.thread, NULL);
     }
+    double setup_ms = now_ms() - t_wait;
     if (status < 0) {
         status = finish_scene(job);
     }
-    double t_load = now_ms();
     if (status < 0) {
         status = make_context(job);
     }
@@ -1416,7 +1418,7 @@ int cmd_render(int argc, char **argv)
                 "softrast: load %.1f ms, setup %.1f ms, render %.1f ms, %s %.1f ms\n",
                 o->width, o->height, (unsigned long long)info.triangles,
                 (unsigned long long)info.fragments, (double)info.near_z, (double)info.far_z,
-                sr_context_threads(job->ctx), t_load - t0, t_setup - t_load, t_render - t_setup,
+                sr_context_threads(job->ctx), t_setup - t0 - setup_ms, setup_ms, t_render - t_setup,
                 jpeg ? "jpeg" : "png", t_write - t_render);
     }
     sr_destroy_framebuffer(job->ctx, fb);
