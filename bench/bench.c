@@ -11,6 +11,9 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -31,6 +34,7 @@ typedef struct bench_opts {
     int width, height;
     int frames;
     bool compare;
+    bool gl_default_malloc;  /* leave glibc's thresholds as they are (see keep_gl_memory) */
     const char *save_dir;
 } bench_opts;
 
@@ -83,6 +87,9 @@ static void usage(FILE *f)
         "                       ratio=llvmpipe_ms/softrast_ms (> 1: softrast is faster)\n"
         "                       and differ_pct, the percentage of pixels where a channel\n"
         "                       differs by more than 16/255 in the last frames\n"
+        "  --gl-default-malloc  with --compare, leave glibc's malloc thresholds alone:\n"
+        "                       llvmpipe then hands its per-frame memory back to the\n"
+        "                       kernel and faults it in again every frame (see docs)\n"
         "  --save-images DIR    write DIR/SCENE-RENDERER.png (the last frame)\n"
         "  -h, --help           this help\n",
         SR_BENCH_MODELS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
@@ -135,6 +142,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
             return 0;
         } else if (strcmp(a, "--compare") == 0) {
             o->compare = true;
+        } else if (strcmp(a, "--gl-default-malloc") == 0) {
+            o->gl_default_malloc = true;
         } else if (strcmp(a, "--threads") == 0 || strcmp(a, "--size") == 0 ||
                    strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0) {
             if (!has_value) {
@@ -581,6 +590,22 @@ static void run_cli_scene(bench_run *run, const bench_scene_info *info)
 #endif
 }
 
+/* llvmpipe at its best.  It frees its per-frame memory (bins, scene
+ * data) at the end of every frame, glibc gives large blocks back to the
+ * kernel, and the next frame faults them in again: on the development
+ * machine the bunny took llvmpipe 36-40 ms that way, and 13-15 ms once a
+ * scene before it (small) had raised glibc's dynamic mmap threshold, so its
+ * time depended on the order of the scenes.  Fixed thresholds keep that
+ * memory in the process for every scene (softrast is unaffected: its
+ * large blocks are mapped by its own allocator). */
+static void keep_gl_memory(void)
+{
+#ifdef __GLIBC__
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);    /* glibc's largest */
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
+
 int main(int argc, char **argv)
 {
     bench_opts o = { .width = 1920, .height = 1080, .frames = DEFAULT_FRAMES };
@@ -600,6 +625,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "softrast-bench: --compare: this build has no OSMesa (install "
                         "libosmesa6-dev and re-run cmake); comparison skipped\n");
         o.compare = false;
+    }
+    if (o.compare && !o.gl_default_malloc) {
+        keep_gl_memory();
     }
 
     bench_run run = { .o = &o };
