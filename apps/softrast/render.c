@@ -640,6 +640,22 @@ static bool same_file(const char *a, const char *b)
            sa.st_ino == sb.st_ino;
 }
 
+/* Decoded pixels px (freed here) into *out on ctx, for both texture
+ * loaders; a failure names `name`.  Returns an exit status, or -1. */
+static int upload_texture(const render_opts *o, sr_context *ctx, const char *name, int w, int h,
+                          uint8_t *px, sr_texture **out)
+{
+    sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = px,
+                                                            .srgb = o->texture_srgb },
+                                  out);
+    free(px);
+    if (r != SR_OK) {
+        cli_error("%s: %s", name, sr_context_error(ctx));
+        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    return -1;
+}
+
 /* The textures of a model whose parts name different ones (sr_mesh.parts):
  * each file read once; one that is missing or unreadable is a warning, and
  * its parts are drawn without it.  Returns an exit status, or -1. */
@@ -688,15 +704,7 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
             }
             continue;
         }
-        sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h,
-                                                                .pixels = px,
-                                                                .srgb = o->texture_srgb },
-                                      &ob->owned[k]);
-        free(px);
-        if (r != SR_OK) {
-            cli_error("%s: %s", path, sr_context_error(ctx));
-            status = r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
-        }
+        status = upload_texture(o, ctx, path, w, h, px, &ob->owned[k]);
         ob->part_textures[p] = ob->owned[k];
     }
     free(seen);
@@ -782,15 +790,7 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
         fprintf(stderr, "%s\n", err.message);
         return rr == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
-    sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = px,
-                                                            .srgb = o->texture_srgb },
-                                  &ob->texture);
-    free(px);
-    if (r != SR_OK) {
-        cli_error("%s: %s", embedded ? o->model : path, sr_context_error(ctx));
-        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
-    }
-    return -1;
+    return upload_texture(o, ctx, embedded ? o->model : path, w, h, px, &ob->texture);
 }
 
 static void free_textures(sr_context *ctx, scene *s)

@@ -1454,8 +1454,8 @@ static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, uint32_t *us
  * texture: the same resolved map_Kd path, or both none. */
 static bool same_texture(const obj_parser *P, uint32_t a, uint32_t b)
 {
-    if (a == NO_INDEX || b == NO_INDEX) {
-        return a == b;
+    if (a == b || a == NO_INDEX || b == NO_INDEX) {
+        return a == b;   /* the common case, a run's next face, ends here */
     }
     str_ref x = P->mats[a].map_kd, y = P->mats[b].map_kd;
     return x.len == y.len && memcmp(arena_str(P, x), arena_str(P, y), x.len) == 0;
