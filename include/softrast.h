@@ -738,10 +738,16 @@ sr_draw_info sr_last_draw_info(const sr_context *ctx);
 
 /* A run of a mesh's triangles that takes a diffuse texture of its own
  * (OBJ: the faces after a `usemtl` whose material's map_Kd differs from
- * the run before). */
+ * the run before; glTF, FBX and the other Assimp formats: the meshes whose
+ * material names a different image from the meshes before). */
 typedef struct sr_mesh_part {
     size_t first_triangle, triangle_count;
-    char *texture_path;    /* this run's texture file, or NULL for none */
+    char *texture_path;    /* this run's texture file, or NULL */
+    /* Or its encoded bytes (PNG or JPEG, for sr_decode_image) when the
+     * file embeds the image, or NULL.  Each part owns its own copy; both
+     * NULL: the run takes no texture. */
+    uint8_t *texture_data;
+    size_t texture_size;
 } sr_mesh_part;
 
 /* A triangle mesh as the model readers produce it.  Arrays belong to the
@@ -761,8 +767,8 @@ typedef struct sr_mesh {
     size_t texture_size;
     /* When the triangles take different textures (or some take none):
      * runs in triangle order that cover every triangle, each with its own
-     * texture; texture_path is then the first one named.  NULL and 0 when
-     * one texture, or none, serves the whole mesh. */
+     * texture; texture_path or texture_data is then the first one named.
+     * NULL and 0 when one texture, or none, serves the whole mesh. */
     sr_mesh_part *parts;
     size_t part_count;
 } sr_mesh;

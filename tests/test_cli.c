@@ -10,6 +10,7 @@
  * images of the requested size for each mode, identical bytes from the
  * three rasterizers, every shared model in every shading mode, and an
  * atomic replacement of an existing image. */
+#include "gltf_write.h"
 #include "softrast.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -1464,22 +1465,6 @@ SR_TEST(a_models_unreadable_texture_is_a_warning)
 }
 
 #ifdef SR_CLI_PATH
-/* Standard base64 of n bytes into dst (room for 4 ceil(n / 3) + 1). */
-static void base64(const uint8_t *src, size_t n, char *dst)
-{
-    static const char abc[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    size_t o = 0;
-    for (size_t i = 0; i < n; i += 3) {
-        uint32_t v = (uint32_t)src[i] << 16 | (i + 1 < n ? (uint32_t)src[i + 1] << 8 : 0) |
-                     (i + 2 < n ? src[i + 2] : 0);
-        dst[o++] = abc[v >> 18 & 63];
-        dst[o++] = abc[v >> 12 & 63];
-        dst[o++] = i + 1 < n ? abc[v >> 6 & 63] : '=';
-        dst[o++] = i + 2 < n ? abc[v & 63] : '=';
-    }
-    dst[o] = 0;
-}
-
 /* A glTF 2.0 quad (positions, texture coordinates, indices) whose
  * material's base color texture is `image` (n bytes): as a self-contained
  * .gltf, with the geometry and the image in data URIs, or as a binary
@@ -1501,8 +1486,8 @@ static bool write_gltf_quad(const char *path, const uint8_t *image, size_t n, bo
         memcpy(bin + 48, uv, 32);
         memcpy(bin + 80, idx, 12);
         memcpy(bin + 92, image, n);
-        base64(bin, 92, b64buf);
-        base64(image, n, b64img);
+        gltf_base64(bin, 92, b64buf);
+        gltf_base64(image, n, b64img);
         char buffer[200], image_ref[200];
         if (binary) {
             snprintf(buffer, sizeof buffer, "{\"byteLength\":%zu}", bin_len);
@@ -1645,7 +1630,7 @@ SR_TEST(gltf_material_colors_color_the_model)
     memcpy(buf, pos, 96);
     memcpy(buf + 96, idx, 12);
     char b64[160], json[3000];
-    base64(buf, sizeof buf, b64);
+    gltf_base64(buf, sizeof buf, b64);
     snprintf(json, sizeof json,
              "{\"asset\":{\"version\":\"2.0\"},"
              "\"buffers\":[{\"byteLength\":108,\"uri\":\"data:application/octet-stream;base64,%s\"}],"
@@ -1683,6 +1668,42 @@ SR_TEST(gltf_material_colors_color_the_model)
     free(px);
 #endif
 }
+
+#ifdef SR_CLI_PATH
+/* The picture both parts tests render (96 x 64, unlit, eye=0,0.5,6): a
+ * row of squares at y = -0.5..0.5 - left red texels (200, 20, 10), middle
+ * green (0, 255, 0) with no texture, right blue texels (10, 30, 210) - and
+ * a white square above the right one, whose texture is missing.  The
+ * camera looks at the model's centre, y = 0.75: the row 7/10 down the
+ * image crosses the row of squares, and the white one lies in the upper
+ * right quarter. */
+static void check_parts_picture(const char *path)
+{
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+    int found[3] = { 0, 0, 0 }, white = 0;
+    int row = h * 7 / 10;
+    for (int x = 0; x < w; x++) {
+        const uint8_t *p = px + 4 * ((size_t)row * w + x);
+        found[0] += p[0] == 200 && p[1] == 20 && p[2] == 10;
+        found[1] += p[0] == 0 && p[1] == 255 && p[2] == 0;
+        found[2] += p[0] == 10 && p[1] == 30 && p[2] == 210;
+    }
+    for (int y = 0; y < h / 2; y++) {
+        for (int x = w / 2; x < w; x++) {
+            const uint8_t *p = px + 4 * ((size_t)y * w + x);
+            white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+        }
+    }
+    CHECK(found[0] > 4); /* red texels on the left square */
+    CHECK(found[1] > 4); /* the middle square's own color: no texture */
+    CHECK(found[2] > 8); /* blue texels across the right square */
+    CHECK(white > 4);    /* its texture missing: drawn white */
+    free(px);
+}
+#endif
 
 /* An OBJ whose materials name different textures: each part of the
  * model takes its own (left square red, middle square no texture - its
@@ -1729,32 +1750,7 @@ SR_TEST(obj_parts_take_their_own_textures)
     CHECK_STR_CONTAINS(r.err, "warning: ");
     CHECK_STR_CONTAINS(r.err, "missing.png");
     cli_run_free(&r);
-    int w, h;
-    uint8_t *px = NULL;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
-    /* The camera looks at the model's centre, y = 0.75: the row 7/10 down
-     * the image crosses the three squares at y = 0 (left to right: red,
-     * the middle one's green Kd, blue), and the fourth lies in the upper
-     * right quarter. */
-    int found[3] = { 0, 0, 0 }, fourth_white = 0;
-    int row = h * 7 / 10;
-    for (int x = 0; x < w; x++) {
-        const uint8_t *p = px + 4 * ((size_t)row * w + x);
-        found[0] += p[0] == 200 && p[1] == 20 && p[2] == 10;
-        found[1] += p[0] == 0 && p[1] == 255 && p[2] == 0;
-        found[2] += p[0] == 10 && p[1] == 30 && p[2] == 210;
-    }
-    for (int y = 0; y < h / 2; y++) {
-        for (int x = w / 2; x < w; x++) {
-            const uint8_t *p = px + 4 * ((size_t)y * w + x);
-            fourth_white += p[0] == 255 && p[1] == 255 && p[2] == 255;
-        }
-    }
-    CHECK(found[0] > 4);    /* red texels on the left square */
-    CHECK(found[1] > 4);    /* the middle square's own Kd: no texture */
-    CHECK(found[2] > 4);    /* blue texels on the right square */
-    CHECK(fourth_white > 4); /* its texture missing: Kd white */
-    free(px);
+    check_parts_picture(out);
 
     /* --texture still colors the whole model with one image. */
     REQUIRE(run_cli(ARGS("render", model, "--shading", "unlit", "--camera", "eye=0,0.5,6",
@@ -1763,8 +1759,10 @@ SR_TEST(obj_parts_take_their_own_textures)
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.err_len, 0);
     cli_run_free(&r);
+    int w, h;
+    uint8_t *px = NULL;
     REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
-    int blues = 0, reds = 0;
+    int blues = 0, reds = 0, row = h * 7 / 10;
     for (int x = 0; x < w; x++) {
         const uint8_t *p = px + 4 * ((size_t)row * w + x);
         blues += p[0] == 10 && p[1] == 30 && p[2] == 210;
@@ -1773,6 +1771,51 @@ SR_TEST(obj_parts_take_their_own_textures)
     CHECK(blues > 12);
     CHECK_EQ(reds, 0);
     free(px);
+#endif
+}
+
+/* A glTF whose materials take different textures (gltf_parts_model):
+ * each part of the model takes its own - left square the embedded red
+ * image, middle square its green base color, right square blue.png
+ * through two materials; the fifth material's file is missing: one
+ * warning, and that square drawn without a texture. */
+SR_TEST(gltf_parts_take_their_own_textures)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_assimp()) {
+        SKIP("this build reads no glTF (Assimp was not found)");
+    }
+    char dir[1024], model[1100], red[1100], blue[1100], out[1100];
+    fresh_dir("gltf_parts", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/parts.gltf", dir);
+    snprintf(red, sizeof red, "%s/red.png", dir);
+    snprintf(blue, sizeof blue, "%s/blue.png", dir);
+    snprintf(out, sizeof out, "%s/parts.png", dir);
+    const uint8_t r4[16] = { 200, 20, 10, 255, 200, 20, 10, 255, 200, 20, 10, 255, 200, 20, 10, 255 };
+    const uint8_t b4[16] = { 10, 30, 210, 255, 10, 30, 210, 255, 10, 30, 210, 255, 10, 30, 210, 255 };
+    sr_io_error err;
+    REQUIRE(sr_write_png(red, 2, 2, r4, 8, NULL, &err) == SR_OK);
+    REQUIRE(sr_write_png(blue, 2, 2, b4, 8, NULL, &err) == SR_OK);
+    size_t n;
+    char *png = read_whole(red, &n);
+    REQUIRE(png);
+    char *json = gltf_parts_model((const uint8_t *)png, n);
+    REQUIRE(json);
+    REQUIRE(write_whole(model, json, strlen(json)));
+    free(json);
+    free(png);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", model, "--shading", "unlit", "--camera", "eye=0,0.5,6",
+                         "--texture-filter", "nearest", "--size", "96x64", "-o", out),
+                    &r));
+    CHECK_EQ(r.status, 0);
+    CHECK(is_one_line(r.err, r.err_len));
+    CHECK_STR_CONTAINS(r.err, "warning: ");
+    CHECK_STR_CONTAINS(r.err, "missing.png");
+    cli_run_free(&r);
+    check_parts_picture(out);
 #endif
 }
 

@@ -3,6 +3,7 @@
  * sr_load_mesh's choice of reader (src/io/load.c, src/io/assimp.c): by
  * extension, by content, and through Assimp or its install hint.
  */
+#include "gltf_write.h"
 #include "softrast_io.h"
 #include "sr_test.h"
 
@@ -429,6 +430,79 @@ SR_TEST(load_mesh_reports_missing_files_and_bad_arguments)
     CHECK_STR_CONTAINS(err.message, "is a directory");
 }
 
+/* sr_load_mesh of path by its name, the reader's message printed when
+ * it fails. */
+static bool loads(const char *path, sr_mesh *m)
+{
+    sr_io_error err;
+    sr_result r = sr_load_mesh(path, NULL, m, &err);
+    if (r != SR_OK) {
+        printf("  %s\n", err.message);
+    }
+    return r == SR_OK;
+}
+
+/* The Assimp reader's parts (gltf_parts_model): runs of meshes that take
+ * one image, the embedded one as its bytes, named files joined to the
+ * model's directory; two materials naming one file make one part; the
+ * whole mesh's texture is the first one named.  A model whose meshes all
+ * take one image has no parts. */
+SR_TEST(assimp_parts_follow_textures)
+{
+    if (!sr_io_have_assimp()) {
+        SKIP("this build reads no glTF (Assimp was not found)");
+    }
+    const uint8_t png[12] = { 0x89, 'P', 'N', 'G', 1, 2, 3, 4, 5, 6, 7, 8 }; /* never decoded */
+    char *json = gltf_parts_model(png, sizeof png);
+    REQUIRE(json);
+    const char *path = out_path("parts.gltf");
+    write_file(path, json, strlen(json));
+    free(json);
+    sr_mesh m;
+    REQUIRE(loads(path, &m));
+    CHECK_EQ(m.triangle_count, 10);
+    REQUIRE(m.part_count == 4);
+    static const size_t first[4] = { 0, 2, 4, 8 }, count[4] = { 2, 2, 4, 2 };
+    for (int p = 0; p < 4; p++) {
+        CHECK_EQ(m.parts[p].first_triangle, first[p]);
+        CHECK_EQ(m.parts[p].triangle_count, count[p]);
+    }
+    CHECK(m.parts[0].texture_path == NULL);
+    CHECK(m.parts[0].texture_size == sizeof png && m.parts[0].texture_data &&
+          memcmp(m.parts[0].texture_data, png, sizeof png) == 0);
+    CHECK(m.parts[1].texture_path == NULL && m.parts[1].texture_data == NULL);
+    char want[1200];
+    snprintf(want, sizeof want, "%s/blue.png", sr_test_out_dir());
+    CHECK(m.parts[2].texture_path && strcmp(m.parts[2].texture_path, want) == 0);
+    CHECK(m.parts[2].texture_data == NULL);
+    snprintf(want, sizeof want, "%s/missing.png", sr_test_out_dir());
+    CHECK(m.parts[3].texture_path && strcmp(m.parts[3].texture_path, want) == 0);
+    /* The whole mesh's: the first named, a copy of its own. */
+    CHECK(m.texture_path == NULL && m.texture_data && m.texture_data != m.parts[0].texture_data);
+    CHECK(m.texture_size == sizeof png && memcmp(m.texture_data, png, sizeof png) == 0);
+    sr_mesh_free(&m);
+
+    /* One image for every mesh: no parts, the texture on the mesh. */
+    static const gltf_quad two[2] = { { 0, 0, 1, 1, 0 }, { 1, 0, 2, 1, 1 } };
+    json = gltf_quads(two, 2,
+                      ",\"images\":[{\"uri\":\"wood.png\"}],"
+                      "\"textures\":[{\"source\":0}],\"materials\":["
+                      "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}},"
+                      "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},"
+                      "\"metallicFactor\":0.5}}]");
+    REQUIRE(json);
+    path = out_path("one_texture.gltf");
+    write_file(path, json, strlen(json));
+    free(json);
+    REQUIRE(loads(path, &m));
+    CHECK_EQ(m.triangle_count, 4);
+    CHECK_EQ(m.part_count, 0);
+    CHECK(m.parts == NULL);
+    snprintf(want, sizeof want, "%s/wood.png", sr_test_out_dir());
+    CHECK(m.texture_path && strcmp(m.texture_path, want) == 0);
+    sr_mesh_free(&m);
+}
+
 /* A tetrahedron in the OFF format, which only Assimp reads here. */
 static const char off_text[] =
     "OFF\n4 4 0\n0 0 0\n6 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
@@ -479,12 +553,7 @@ SR_TEST(load_mesh_reads_shared_models)
     char path[1024];
     snprintf(path, sizeof path, "%s/cow.obj", dir);
     sr_mesh m;
-    sr_io_error err;
-    sr_result r = sr_load_mesh(path, NULL, &m, &err);
-    if (r != SR_OK) {
-        printf("  %s\n", err.message);
-    }
-    REQUIRE(r == SR_OK);
+    REQUIRE(loads(path, &m));
     CHECK(m.triangle_count > 0);
     REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
     for (size_t v = 0; v < m.vertex_count; v++) {

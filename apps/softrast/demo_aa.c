@@ -198,7 +198,7 @@ static void sample_positions(demo3d *d, int index, int samples)
         dot(d->ctx, d->out, px, py, r + 1, BG);
         dot(d->ctx, d->out, px, py, r, INK);
         if (samples <= 8 && step >= 6) {
-            char num[4];
+            char num[12];
             snprintf(num, sizeof num, "%d", i);
             sr_draw_text(d->ctx, d->out, (int)px + 6, (int)py - 10, 1, num, NUMBER);
         }

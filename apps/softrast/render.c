@@ -126,9 +126,10 @@ static void render_help(void)
         "                           relative to the camera\n"
         "textures:\n"
         "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
-        "                           coordinates (default: the OBJ materials' map_Kd, each\n"
-        "                           on its own faces, the image a glTF/GLB file embeds, or\n"
-        "                           MODEL_texture.png or .jpg beside a model MODEL.obj;\n"
+        "                           coordinates (default: the model's own - OBJ map_Kd,\n"
+        "                           glTF/FBX textures named or embedded - each material's\n"
+        "                           on its own faces, or MODEL_texture.png or .jpg beside\n"
+        "                           a model MODEL.obj;\n"
         "                           one of those that cannot be read is a warning)\n"
         "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
         "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
@@ -656,17 +657,30 @@ static int upload_texture(const render_opts *o, sr_context *ctx, const char *nam
     return -1;
 }
 
-/* The textures of a model whose parts name different ones (sr_mesh.parts):
- * each file read once; one that is missing or unreadable is a warning, and
- * its parts are drawn without it.  Returns an exit status, or -1. */
+/* Whether parts a and b take one image: the same file, or the same
+ * embedded bytes (each part holds its own copy). */
+static bool same_part_texture(const sr_mesh_part *a, const sr_mesh_part *b)
+{
+    if (a->texture_path || b->texture_path) {
+        return a->texture_path && b->texture_path && strcmp(a->texture_path, b->texture_path) == 0;
+    }
+    return a->texture_size == b->texture_size &&
+           memcmp(a->texture_data, b->texture_data, a->texture_size) == 0;
+}
+
+/* The textures of a model whose parts take different ones (sr_mesh.parts):
+ * each image read or decoded once; one that is missing or unreadable is a
+ * warning, and its parts are drawn without it.  Returns an exit status, or
+ * -1. */
 static int load_part_textures(const render_opts *o, sr_context *ctx, scene_object *ob)
 {
     size_t n = ob->mesh.part_count;
     ob->part_textures = calloc(n, sizeof *ob->part_textures);
     ob->owned = calloc(n, sizeof *ob->owned);
-    /* The files met so far, each with its texture (NULL when unreadable):
-     * parts far outnumber files in a model that switches back and forth. */
-    const char **seen = calloc(n, sizeof *seen);
+    /* The images met so far, by the first part that takes each, with its
+     * texture (NULL when unreadable): parts far outnumber images in a
+     * model that switches back and forth. */
+    const sr_mesh_part **seen = calloc(n, sizeof *seen);
     if (!ob->part_textures || !ob->owned || !seen) {
         free(seen);
         cli_error("render: out of memory");
@@ -674,18 +688,20 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
     }
     int status = -1;
     for (size_t p = 0; p < n && status < 0; p++) {
-        const char *path = ob->mesh.parts[p].texture_path;
+        const sr_mesh_part *part = &ob->mesh.parts[p];
+        const char *path = part->texture_path;
+        bool textured = path || part->texture_data;
         size_t k = 0;
-        while (path && k < ob->owned_count && strcmp(seen[k], path) != 0) {
+        while (textured && k < ob->owned_count && !same_part_texture(seen[k], part)) {
             k++;
         }
-        if (!path || k < ob->owned_count) {
-            ob->part_textures[p] = path ? ob->owned[k] : NULL;
+        if (!textured || k < ob->owned_count) {
+            ob->part_textures[p] = textured ? ob->owned[k] : NULL;
             continue;
         }
-        seen[k] = path;
+        seen[k] = part;
         ob->owned_count++;
-        if (o->writes_output && same_file(path, o->output)) {
+        if (path && o->writes_output && same_file(path, o->output)) {
             cli_error("-o: '%s' is the texture being read (%s); choose another output file",
                       o->output, path);
             status = EXIT_USAGE;
@@ -694,7 +710,14 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
         int w, h;
         uint8_t *px = NULL;
         sr_io_error err;
-        sr_result rr = sr_read_image(path, &w, &h, &px, &err);
+        char name[4200];
+        sr_result rr;
+        if (path) {
+            rr = sr_read_image(path, &w, &h, &px, &err);
+        } else {
+            snprintf(name, sizeof name, "%s (its embedded texture of part %zu)", o->model, p + 1);
+            rr = sr_decode_image(name, part->texture_data, part->texture_size, &w, &h, &px, &err);
+        }
         if (rr != SR_OK) {
             if (rr == SR_OUT_OF_MEMORY) {
                 fprintf(stderr, "%s\n", err.message);
@@ -704,7 +727,7 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
             }
             continue;
         }
-        status = upload_texture(o, ctx, path, w, h, px, &ob->owned[k]);
+        status = upload_texture(o, ctx, path ? path : name, w, h, px, &ob->owned[k]);
         ob->part_textures[p] = ob->owned[k];
     }
     free(seen);

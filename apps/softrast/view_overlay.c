@@ -64,6 +64,15 @@ static void add(text_block *b, bool dim, const char *fmt, ...)
     b->dim[b->count++] = dim;
 }
 
+/* src into dst (n bytes), cut short where it does not fit. */
+static void copy_cut(char *dst, size_t n, const char *src)
+{
+    size_t k = strlen(src);
+    k = k < n ? k : n - 1;
+    memcpy(dst, src, k);
+    dst[k] = 0;
+}
+
 /* Split "a, b, c, ..." into lines no wider than max_w pixels. */
 static void add_wrapped(text_block *b, view_font *f, sr_context *ctx, const char *text, int max_w)
 {
@@ -74,13 +83,13 @@ static void add_wrapped(text_block *b, view_font *f, sr_context *ctx, const char
         size_t n = comma ? (size_t)(comma - p) + 1 : strlen(p);
         char piece[160];
         snprintf(piece, sizeof piece, "%.*s", (int)n, p);
-        char trial[330];
+        char trial[sizeof line + sizeof piece];
         snprintf(trial, sizeof trial, "%s%s%s", line, line[0] ? " " : "", piece);
         if (line[0] && view_font_width(f, ctx, trial) > max_w) {
             add(b, false, "%s", line);
-            snprintf(line, sizeof line, "%s", piece);
+            copy_cut(line, sizeof line, piece);
         } else {
-            snprintf(line, sizeof line, "%s", trial);
+            copy_cut(line, sizeof line, trial);
         }
         p += n;
         while (*p == ' ') {

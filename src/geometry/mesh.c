@@ -28,6 +28,7 @@ void sr_mesh_free(sr_mesh *mesh)
     free(mesh->texture_data);
     for (size_t i = 0; mesh->parts && i < mesh->part_count; i++) {
         free(mesh->parts[i].texture_path);
+        free(mesh->parts[i].texture_data);
     }
     free(mesh->parts);
     memset(mesh, 0, sizeof *mesh);

@@ -176,49 +176,149 @@ static const struct aiTexture *embedded_texture(const struct aiScene *scene, con
     return tex && tex->mHeight == 0 && tex->mWidth > 0 ? tex : NULL;
 }
 
-/* The diffuse texture of the first material that names one: its encoded
- * bytes when the file embeds it, else its file name joined to the model's
- * directory as the OBJ reader does with map_Kd.  False when out of memory. */
-static bool diffuse_texture(const struct aiScene *scene, const char *model_path, sr_mesh *m)
+/* The diffuse texture mesh am's material names: an encoded image the file
+ * embeds, or a file name, or neither (embedded and name.length both 0). */
+typedef struct texture_ref {
+    const struct aiTexture *embedded;
+    struct aiString name;
+} texture_ref;
+
+static void texture_of(const struct aiScene *scene, const struct aiMesh *am, texture_ref *r)
 {
-    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
-        const struct aiMesh *am = scene->mMeshes[i];
-        if (!is_triangle_mesh(am) || am->mMaterialIndex >= scene->mNumMaterials) {
-            continue;
-        }
-        struct aiString name;
-        if (aiGetMaterialTexture(scene->mMaterials[am->mMaterialIndex], aiTextureType_DIFFUSE,
-                                 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != AI_SUCCESS ||
-            name.length == 0) {
-            continue;
-        }
-        const struct aiTexture *tex = embedded_texture(scene, name.data);
-        if (tex) {
-            m->texture_data = malloc(tex->mWidth);
-            if (!m->texture_data) {
-                return false;
-            }
-            memcpy(m->texture_data, tex->pcData, tex->mWidth);
-            m->texture_size = tex->mWidth;
-            return true;
-        }
-        if (name.data[0] == '*') {
-            continue; /* embedded, but not as an encoded image */
-        }
-        const char *slash = strrchr(model_path, '/');
-        bool absolute = name.data[0] == '/' || name.data[0] == '\\';
-        size_t dir = absolute || !slash ? 0 : (size_t)(slash - model_path) + 1;
-        m->texture_path = malloc(dir + name.length + 1);
-        if (!m->texture_path) {
+    r->embedded = NULL;
+    r->name.length = 0;
+    r->name.data[0] = 0;
+    struct aiString name;
+    if (am->mMaterialIndex >= scene->mNumMaterials ||
+        aiGetMaterialTexture(scene->mMaterials[am->mMaterialIndex], aiTextureType_DIFFUSE, 0,
+                             &name, NULL, NULL, NULL, NULL, NULL, NULL) != AI_SUCCESS ||
+        name.length == 0) {
+        return;
+    }
+    r->embedded = embedded_texture(scene, name.data);
+    if (!r->embedded && name.data[0] != '*') { /* "*N" not an encoded image: none */
+        r->name = name;
+    }
+}
+
+static bool has_texture(const texture_ref *r)
+{
+    return r->embedded || r->name.length > 0;
+}
+
+/* Whether two meshes take one image: the same embedded one, or the same
+ * file name (two materials may name one file). */
+static bool same_texture(const texture_ref *a, const texture_ref *b)
+{
+    if (a->embedded || b->embedded) {
+        return a->embedded == b->embedded;
+    }
+    return a->name.length == b->name.length && memcmp(a->name.data, b->name.data, a->name.length) == 0;
+}
+
+/* r's texture into *path (its file name joined to the model's directory,
+ * as the OBJ reader does with map_Kd) or *data and *size (a copy of the
+ * embedded bytes).  False when out of memory. */
+static bool copy_texture(const texture_ref *r, const char *model_path, char **path,
+                         uint8_t **data, size_t *size)
+{
+    if (r->embedded) {
+        *data = malloc(r->embedded->mWidth);
+        if (!*data) {
             return false;
         }
-        memcpy(m->texture_path, model_path, dir);
-        /* Windows exporters write "textures\wood.png". */
-        for (size_t k = 0; k < name.length; k++) {
-            m->texture_path[dir + k] = name.data[k] == '\\' ? '/' : name.data[k];
-        }
-        m->texture_path[dir + name.length] = 0;
+        memcpy(*data, r->embedded->pcData, r->embedded->mWidth);
+        *size = r->embedded->mWidth;
         return true;
+    }
+    if (r->name.length == 0) {
+        return true;
+    }
+    const char *name = r->name.data;
+    const char *slash = strrchr(model_path, '/');
+    bool absolute = name[0] == '/' || name[0] == '\\';
+    size_t dir = absolute || !slash ? 0 : (size_t)(slash - model_path) + 1;
+    *path = malloc(dir + r->name.length + 1);
+    if (!*path) {
+        return false;
+    }
+    memcpy(*path, model_path, dir);
+    /* Windows exporters write "textures\wood.png". */
+    for (size_t k = 0; k < r->name.length; k++) {
+        (*path)[dir + k] = name[k] == '\\' ? '/' : name[k];
+    }
+    (*path)[dir + r->name.length] = 0;
+    return true;
+}
+
+/* Triangles mesh am adds to the model (its faces of three corners). */
+static size_t triangles_of(const struct aiMesh *am)
+{
+    size_t n = 0;
+    for (unsigned f = 0; f < am->mNumFaces; f++) {
+        n += am->mFaces[f].mNumIndices == 3;
+    }
+    return n;
+}
+
+/* The model's textures: the first one named for the whole mesh (sr_mesh
+ * .texture_path or .texture_data), and, when its meshes take different
+ * ones or some take none, its parts - runs of meshes that take the same
+ * image, as the OBJ reader makes them of usemtl runs.  False when out of
+ * memory. */
+static bool diffuse_textures(const struct aiScene *scene, const char *model_path, sr_mesh *m)
+{
+    /* Count the runs, and find the first texture named. */
+    texture_ref r, prev, first;
+    size_t runs = 0;
+    bool any = false;
+    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
+        const struct aiMesh *am = scene->mMeshes[i];
+        if (!is_triangle_mesh(am) || triangles_of(am) == 0) {
+            continue;
+        }
+        texture_of(scene, am, &r);
+        runs += runs == 0 || !same_texture(&r, &prev);
+        if (has_texture(&r) && !any) {
+            first = r;
+            any = true;
+        }
+        prev = r;
+    }
+    if (!any) {
+        return true;
+    }
+    if (!copy_texture(&first, model_path, &m->texture_path, &m->texture_data,
+                      &m->texture_size)) {
+        return false;
+    }
+    if (runs < 2) {
+        return true; /* one texture serves the whole mesh */
+    }
+    m->parts = calloc(runs, sizeof *m->parts);
+    if (!m->parts) {
+        return false;
+    }
+    m->part_count = runs;
+    size_t n = 0, t = 0;
+    for (unsigned i = 0; i < scene->mNumMeshes; i++) {
+        const struct aiMesh *am = scene->mMeshes[i];
+        size_t tris = is_triangle_mesh(am) ? triangles_of(am) : 0;
+        if (tris == 0) {
+            continue;
+        }
+        texture_of(scene, am, &r);
+        if (n == 0 || !same_texture(&r, &prev)) {
+            sr_mesh_part *p = &m->parts[n++];
+            p->first_triangle = t;
+            if (!copy_texture(&r, model_path, &p->texture_path, &p->texture_data,
+                              &p->texture_size)) {
+                return false; /* sr_mesh_free frees what the parts hold */
+            }
+        }
+        m->parts[n - 1].triangle_count += tris;
+        t += tris;
+        prev = r;
     }
     return true;
 }
@@ -265,9 +365,7 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
             continue;
         }
         verts += m->mNumVertices;
-        for (unsigned f = 0; f < m->mNumFaces; f++) {
-            tris += m->mFaces[f].mNumIndices == 3;
-        }
+        tris += triangles_of(m);
         normals &= m->mNormals != NULL;
         float rgb[3];
         colors |= m->mColors[0] != NULL || material_color(scene, m, rgb);
@@ -358,7 +456,7 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
         }
         base += am->mNumVertices;
     }
-    if (res == SR_OK && !diffuse_texture(scene, path, &m)) {
+    if (res == SR_OK && !diffuse_textures(scene, path, &m)) {
         res = sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory for its texture");
     }
     aiReleaseImport(scene);
