@@ -293,9 +293,10 @@ SR_TEST(bad_event_script_names_file_and_line)
 }
 
 /* A directory read as nothing (an empty script, the viewer then waiting
- * for input); a long line came back from fgets as two, the second parsed
+ * for input); opening a FIFO waited for a writer (run() kills a child
+ * that hangs); a long line came back from fgets as two, the second parsed
  * as a command under the wrong line number. */
-SR_TEST(event_script_that_is_a_directory_or_has_a_long_line_is_refused)
+SR_TEST(event_script_that_is_a_directory_a_fifo_or_has_a_long_line_is_refused)
 {
     if (viewer_built() != 1) {
         SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
@@ -307,10 +308,22 @@ SR_TEST(event_script_that_is_a_directory_or_has_a_long_line_is_refused)
     REQUIRE(run(argv, env_without_display(), &r));
     CHECK_EQ(r.status, 2);
     CHECK_EQ(count_lines(r.err), 1);
-    CHECK_STR_CONTAINS(r.err, "not a regular file");
+    CHECK_STR_CONTAINS(r.err, "is a directory, not an event script");
     result_free(&r);
 
     char path[1100], want[1200];
+    snprintf(path, sizeof path, "%s/view-events.fifo", out);
+    unlink(path);
+    REQUIRE(mkfifo(path, 0644) == 0);
+    argv[3] = path;
+    REQUIRE(run(argv, env_without_display(), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_EQ(count_lines(r.err), 1);
+    snprintf(want, sizeof want, "--events: %s: not a regular file", path);
+    CHECK_STR_CONTAINS(r.err, want);
+    result_free(&r);
+    unlink(path);
+
     snprintf(path, sizeof path, "%s/view-long-line.txt", out);
     static char text[6000];
     memset(text, 'x', 5000);

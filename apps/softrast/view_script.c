@@ -14,13 +14,13 @@
  * a space or tab, with the rest of its line (a comment). */
 #ifdef SR_HAVE_VIEWER
 #include "cli.h"
+#include "io/io_util.h"
 #include "view_sdl.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 enum { CMD_DRAG, CMD_WHEEL, CMD_KEY, CMD_RESIZE, CMD_FRAMES, CMD_SCREENSHOT, CMD_QUIT };
 
@@ -148,16 +148,14 @@ static bool parse_line(char *line, command *c, const char **why)
 int view_script_load(const char *path, view_script **out)
 {
     *out = NULL;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        cli_error("--events: %s: %s", path, strerror(errno));
-        return EXIT_USAGE;
-    }
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        /* A directory opens and then reads as nothing: an empty script. */
-        cli_error("--events: %s: not a regular file", path);
-        fclose(f);
+    /* Only a regular file: a directory opens and then reads as nothing
+     * (an empty script), and opening a FIFO waits for a writer, maybe
+     * forever (sr__open_regular opens without waiting, then refuses). */
+    FILE *f;
+    unsigned long long size;
+    sr_io_error err;
+    if (sr__open_regular(path, "an event script", &f, &size, &err) != SR_OK) {
+        cli_error("--events: %s", err.message);
         return EXIT_USAGE;
     }
     view_script *s = calloc(1, sizeof *s);
