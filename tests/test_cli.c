@@ -1805,7 +1805,6 @@ SR_TEST(gltf_parts_take_their_own_textures)
     REQUIRE(json);
     REQUIRE(write_whole(model, json, strlen(json)));
     free(json);
-    free(png);
     cli_run r;
     REQUIRE(run_cli(ARGS("render", model, "--shading", "unlit", "--camera", "eye=0,0.5,6",
                          "--texture-filter", "nearest", "--size", "96x64", "-o", out),
@@ -1816,6 +1815,30 @@ SR_TEST(gltf_parts_take_their_own_textures)
     CHECK_STR_CONTAINS(r.err, "missing.png");
     cli_run_free(&r);
     check_parts_picture(out);
+
+    /* A damaged embedded image is a warning too, naming the part; its
+     * square is drawn white, the others as before. */
+    char broken[1100], want[1300];
+    snprintf(broken, sizeof broken, "%s/broken.gltf", dir);
+    json = gltf_parts_model((const uint8_t *)png, n / 2);
+    REQUIRE(json);
+    REQUIRE(write_whole(broken, json, strlen(json)));
+    free(json);
+    REQUIRE(run_cli(ARGS("render", broken, "--shading", "unlit", "--camera", "eye=0,0.5,6",
+                         "--texture-filter", "nearest", "--size", "96x64", "-o", out),
+                    &r));
+    CHECK_EQ(r.status, 0);
+    snprintf(want, sizeof want, "warning: %s (its embedded texture of part 1): ", broken);
+    CHECK_STR_CONTAINS(r.err, want);
+    CHECK_STR_CONTAINS(r.err, "missing.png");
+    cli_run_free(&r);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    const uint8_t *left = px + 4 * ((size_t)(h * 7 / 10) * w + w / 5);
+    CHECK(left[0] == 255 && left[1] == 255 && left[2] == 255);
+    free(px);
+    free(png);
 #endif
 }
 
