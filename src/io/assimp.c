@@ -213,7 +213,8 @@ static bool same_texture(const texture_ref *a, const texture_ref *b)
     if (a->embedded || b->embedded) {
         return a->embedded == b->embedded;
     }
-    return a->name.length == b->name.length && memcmp(a->name.data, b->name.data, a->name.length) == 0;
+    return a->name.length == b->name.length &&
+           memcmp(a->name.data, b->name.data, a->name.length) == 0;
 }
 
 /* r's texture into *path (its file name joined to the model's directory,
