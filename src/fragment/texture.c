@@ -183,7 +183,11 @@ float sr__texture_lod(const sr_texture *t, float dudx, float dvdx, float dudy, f
 {
     float w = (float)t->width[0], h = (float)t->height[0];
     float ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;
-    float rho2 = fmaxf(ax * ax + bx * bx, ay * ay + by * by);
+    return sr__texture_lod_rho2(fmaxf(ax * ax + bx * bx, ay * ay + by * by));
+}
+
+float sr__texture_lod_rho2(float rho2)
+{
     /* log2(rho) = log2(rho^2) / 2; rho <= 1 (magnification) is level 0. */
     return rho2 > 1.0f ? 0.5f * log2f(rho2) : 0.0f;
 }

@@ -52,5 +52,8 @@ void sr__texture_sample(const sr_texture *t, sr_texture_filter filter, sr_textur
 /* Level of detail from the texture-coordinate derivatives along x and y
  * (texture units per pixel): log2 of the larger footprint side in texels. */
 float sr__texture_lod(const sr_texture *t, float dudx, float dvdx, float dudy, float dvdy);
+/* Its last step, from rho^2 = the larger squared footprint in texels
+ * (the vector kernel computes rho^2 in lanes, then calls this). */
+float sr__texture_lod_rho2(float rho2);
 
 #endif

@@ -7,8 +7,8 @@
  * order: coverage and depth as rows16; sr__bary at the pixel and, for
  * trilinear filtering, one pixel to the right and one below (edge values
  * stepped exactly by a and b); sr__interp of the color and of u, v; the
- * level of detail by sr__texture_lod itself, lane by lane (its fmaxf and
- * log2f have no lane-exact vector twins).  The sampler is texture.c's
+ * level of detail as sr__texture_lod, its footprint in lanes and its
+ * log2f lane by lane (it has no lane-exact vector twin).  The sampler is texture.c's
  * restated on lanes - clamp, floor, wrap, gathered texels turned to
  * floats by the same division the texture's tables hold, the bilinear and
  * trilinear blends in the same order - when the lanes can go together (a
@@ -199,9 +199,26 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_tex)(const sr_draw_state *ds, co
             _mm512_storeu_ps(d[2 * dir + 1],
                              _mm512_sub_ps(SR_SIMD_FN(w16_interp)(t, ui + 1, m1, m2), vv));
         }
-        for (unsigned b = lanes; b; b &= b - 1) {
+        /* sr__texture_lod up to rho^2 in lanes: the same products and
+         * sums; max returns its second operand where either is NaN, and
+         * fmaxf the one that is not NaN. */
+        __m512 w = _mm512_set1_ps((float)tex->width[0]), h = _mm512_set1_ps((float)tex->height[0]);
+        __m512 ax = _mm512_mul_ps(_mm512_loadu_ps(d[0]), w);
+        __m512 bx = _mm512_mul_ps(_mm512_loadu_ps(d[1]), h);
+        __m512 ay = _mm512_mul_ps(_mm512_loadu_ps(d[2]), w);
+        __m512 by = _mm512_mul_ps(_mm512_loadu_ps(d[3]), h);
+        __m512 rx = _mm512_add_ps(_mm512_mul_ps(ax, ax), _mm512_mul_ps(bx, bx));
+        __m512 ry = _mm512_add_ps(_mm512_mul_ps(ay, ay), _mm512_mul_ps(by, by));
+        __m512 rho2 = _mm512_max_ps(rx, ry);
+        rho2 = _mm512_mask_mov_ps(rho2, _mm512_cmp_ps_mask(ry, ry, _CMP_UNORD_Q), rx);
+        /* The logarithm lane by lane (log2f has no lane-exact vector
+         * twin), only where the texture is minified. */
+        float r2[16];
+        _mm512_storeu_ps(r2, rho2);
+        unsigned minified = lanes & _mm512_cmp_ps_mask(rho2, _mm512_set1_ps(1.0f), _CMP_GT_OQ);
+        for (unsigned b = minified; b; b &= b - 1) {
             int i = __builtin_ctz(b);
-            lod[i] = sr__texture_lod(tex, d[0][i], d[1][i], d[2][i], d[3][i]);
+            lod[i] = sr__texture_lod_rho2(r2[i]);
         }
     }
     /* The texels: all lanes at once when they can go together, else lane
