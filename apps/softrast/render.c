@@ -657,6 +657,43 @@ static int upload_texture(const render_opts *o, sr_context *ctx, const char *nam
     return -1;
 }
 
+/* Whether the texture file `path` is -o's output, which the atomic write
+ * would replace (an error, reported here). */
+static bool texture_is_output(const render_opts *o, const char *path)
+{
+    if (path && o->writes_output && same_file(path, o->output)) {
+        cli_error("-o: '%s' is the texture being read (%s); choose another output file",
+                  o->output, path);
+        return true;
+    }
+    return false;
+}
+
+/* A texture into *out, for both texture loaders: the image file `path`,
+ * or else the encoded bytes data[0 .. size) a model embeds, `name` in
+ * messages.  One that cannot be read is a warning when `optional` (the
+ * model brought it: "drawing `what`" says what goes on without it, *out
+ * stays NULL), else an error.  Returns an exit status, or -1. */
+static int read_texture(const render_opts *o, sr_context *ctx, const char *path,
+                        const uint8_t *data, size_t size, const char *name, bool optional,
+                        const char *what, sr_texture **out)
+{
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    sr_result rr = path ? sr_read_image(path, &w, &h, &px, &err)
+                        : sr_decode_image(name, data, size, &w, &h, &px, &err);
+    if (rr != SR_OK) {
+        if (optional && rr != SR_OUT_OF_MEMORY) {
+            cli_error("warning: %s (drawing %s)", err.message, what);
+            return -1;
+        }
+        fprintf(stderr, "%s\n", err.message);
+        return rr == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    return upload_texture(o, ctx, path ? path : name, w, h, px, out);
+}
+
 /* Whether parts a and b take one image: the same file, or the same
  * embedded bytes (each part holds its own copy). */
 static bool same_part_texture(const sr_mesh_part *a, const sr_mesh_part *b)
@@ -701,33 +738,14 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
         }
         seen[k] = part;
         ob->owned_count++;
-        if (path && o->writes_output && same_file(path, o->output)) {
-            cli_error("-o: '%s' is the texture being read (%s); choose another output file",
-                      o->output, path);
+        if (texture_is_output(o, path)) {
             status = EXIT_USAGE;
             break;
         }
-        int w, h;
-        uint8_t *px = NULL;
-        sr_io_error err;
         char name[4200];
-        sr_result rr;
-        if (path) {
-            rr = sr_read_image(path, &w, &h, &px, &err);
-        } else {
-            snprintf(name, sizeof name, "%s (its embedded texture of part %zu)", o->model, p + 1);
-            rr = sr_decode_image(name, part->texture_data, part->texture_size, &w, &h, &px, &err);
-        }
-        if (rr != SR_OK) {
-            if (rr == SR_OUT_OF_MEMORY) {
-                fprintf(stderr, "%s\n", err.message);
-                status = EXIT_FAILURE_RUN;
-            } else {
-                cli_error("warning: %s (drawing its part of the model without it)", err.message);
-            }
-            continue;
-        }
-        status = upload_texture(o, ctx, path ? path : name, w, h, px, &ob->owned[k]);
+        snprintf(name, sizeof name, "%s (its embedded texture of part %zu)", o->model, p + 1);
+        status = read_texture(o, ctx, path, part->texture_data, part->texture_size, name, true,
+                              "its part of the model without it", &ob->owned[k]);
         ob->part_textures[p] = ob->owned[k];
     }
     free(seen);
@@ -781,9 +799,7 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
         }
         return -1;
     }
-    if (path && o->writes_output && same_file(path, o->output)) {
-        cli_error("-o: '%s' is the texture being read (%s); choose another output file",
-                  o->output, path);
+    if (texture_is_output(o, path)) {
         return EXIT_USAGE;
     }
     if (!ob->mesh.texcoords) {
@@ -793,27 +809,11 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
         }
         return -1; /* a texture found by name but nothing to map it with */
     }
-    int w, h;
-    uint8_t *px = NULL;
-    sr_io_error err;
-    sr_result rr;
-    if (embedded) {
-        char name[4200];
-        snprintf(name, sizeof name, "%s (its embedded texture)", o->model);
-        rr = sr_decode_image(name, ob->mesh.texture_data, ob->mesh.texture_size, &w, &h, &px,
-                             &err);
-    } else {
-        rr = sr_read_image(path, &w, &h, &px, &err);
-    }
-    if (rr != SR_OK) {
-        if (!o->texture && rr != SR_OUT_OF_MEMORY) {
-            cli_error("warning: %s (drawing the model without its texture)", err.message);
-            return -1;
-        }
-        fprintf(stderr, "%s\n", err.message);
-        return rr == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
-    }
-    return upload_texture(o, ctx, embedded ? o->model : path, w, h, px, &ob->texture);
+    char name[4200];
+    snprintf(name, sizeof name, "%s (its embedded texture)", o->model);
+    return read_texture(o, ctx, embedded ? NULL : path, ob->mesh.texture_data,
+                        ob->mesh.texture_size, name, !o->texture, "the model without its texture",
+                        &ob->texture);
 }
 
 static void free_textures(sr_context *ctx, scene *s)

@@ -1487,6 +1487,9 @@ static sr_result make_parts(obj_parser *P, const uint32_t *use_tex, sr_mesh *mes
     if (!parts) {
         return oom(P, 0);
     }
+    /* The mesh holds them from here: build_mesh frees what a failure leaves. */
+    mesh->parts = parts;
+    mesh->part_count = runs;
     size_t n = 0;
     for (size_t t = 0; t < tris; t++) {
         uint32_t tex = triangle_texture(P, use_tex, t);
@@ -1499,18 +1502,12 @@ static sr_result make_parts(obj_parser *P, const uint32_t *use_tex, sr_mesh *mes
             str_ref path = P->mats[tex].map_kd;
             parts[n].texture_path = malloc(path.len + 1);
             if (!parts[n].texture_path) {
-                for (size_t i = 0; i < n; i++) {
-                    free(parts[i].texture_path);
-                }
-                free(parts);
                 return oom(P, 0);
             }
             memcpy(parts[n].texture_path, arena_str(P, path), path.len + 1);
         }
         n++;
     }
-    mesh->parts = parts;
-    mesh->part_count = runs;
     return SR_OK;
 }
 
