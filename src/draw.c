@@ -469,6 +469,7 @@ static void resolve_state(const sr_framebuffer *fb, const sr_state *st, const sr
     ds->light_lanes = simd != SR_SIMD_OFF;
     ds->vertex_lanes16 = simd == SR_SIMD_AVX512;
     ds->wide_stores = simd == SR_SIMD_AVX512;
+    ds->index_avx2 = simd >= SR_SIMD_AVX2;
     ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
 }
 
@@ -482,31 +483,15 @@ static uint32_t index_at(const sr_draw_desc *d, size_t i)
     }
 }
 
-/* The largest of indices [begin, end) of an indexed draw: one branch-free
- * pass per index type that the compiler vectorizes.  Run by the vertex
- * stage's jobs, each over its share: the indices come from memory, and
- * one pass over the bunny's 208,353 on the application thread alone took
- * 3% of a two-thread frame. */
-#define MAX_INDEX(type)                                                    \
-    do {                                                                   \
-        const type *ix = d->indices;                                       \
-        type m = 0;                                                        \
-        for (size_t i = begin; i < end; i++) {                             \
-            m = ix[i] > m ? ix[i] : m;                                     \
-        }                                                                  \
-        return m;                                                          \
-    } while (0)
-
-static uint32_t max_index(const sr_draw_desc *d, size_t begin, size_t end)
+/* The largest of indices [begin, end) of an indexed draw
+ * (geometry/index_max.c).  Run by the vertex stage's jobs, each over its
+ * share: the indices come from memory, and one pass over the bunny's
+ * 208,353 on the application thread alone took 3% of a two-thread frame. */
+static uint32_t max_index(const sr_draw_state *ds, const sr_draw_desc *d, size_t begin,
+                          size_t end)
 {
-    switch (d->index_type) {
-    case SR_INDEX_U8:  MAX_INDEX(uint8_t);
-    case SR_INDEX_U16: MAX_INDEX(uint16_t);
-    case SR_INDEX_U32: MAX_INDEX(uint32_t);
-    default:           return 0;
-    }
+    return sr__index_max(d->index_type, d->indices, begin, end, ds->index_avx2);
 }
-#undef MAX_INDEX
 
 /* Indices out of range are an error before anything is drawn: given the
  * largest index, name the first one out of range. */
@@ -1053,7 +1038,7 @@ static void run_vertex_stage(void *arg, int job, int thread)
     sr__vertex_stage(vj->ds, d, vj->mvp, vj->mv, vj->nm, first, count, vj->s->post + first,
                      vj->s->vary + first * (size_t)vj->ds->nvary);
     /* The vertex stage reads no index, so the check can wait for it. */
-    uint32_t m = max_index(d, d->index_count * (size_t)job / vj->jobs,
+    uint32_t m = max_index(vj->ds, d, d->index_count * (size_t)job / vj->jobs,
                            d->index_count * ((size_t)job + 1) / vj->jobs);
     vj->max_index[thread] = m > vj->max_index[thread] ? m : vj->max_index[thread];
 }
@@ -1134,7 +1119,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     if (prims == 0 || ds.rect_x0 >= ds.rect_x1 || ds.rect_y0 >= ds.rect_y1 ||
         d->vertex_count == 0) {
         /* Nothing to draw, but the indices are still checked. */
-        return check_indices(ctx, d, max_index(d, 0, d->index_count));
+        return check_indices(ctx, d, max_index(&ds, d, 0, d->index_count));
     }
 
     /* M = P E M_O, and the normal matrix from E M_O. */

@@ -110,6 +110,9 @@ typedef struct sr_draw_state {
     bool vertex_lanes16;
     /* Tile clears in 64-byte stores: the AVX-512 level of sr__simd_level. */
     bool wide_stores;
+    /* The index range check in AVX2 (geometry/index_max.c): the AVX2
+     * level or above. */
+    bool index_avx2;
     bool blending;                    /* blend or color mask active: the generic color write */
     sr_blend blend;                   /* factors and ops resolved */
     uint8_t write_mask[4];            /* 0xff: channel written; 0: kept */
@@ -383,6 +386,12 @@ static inline size_t sr__attr_step(size_t stride, size_t components)
 void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
                       size_t first, size_t count, sr_vertex_post *post, float *vary);
+
+/* geometry/index_max.c: the largest of indices [begin, end) of `type`
+ * (0 for an empty range or SR_INDEX_NONE); `avx2` only where
+ * ds->index_avx2 says the CPU has it. */
+uint32_t sr__index_max(sr_index_type type, const void *indices, size_t begin, size_t end,
+                       bool avx2);
 
 /* geometry/vertex_wide.c: sr__vertex_stage for GOURAUD with whole-number
  * shininess, sixteen vertices at a time; the same bytes.
