@@ -47,7 +47,7 @@ sr_result demo3d_panel(demo3d *d, sr_depth_format depth, sr_framebuffer **out)
 void demo3d_paste(sr_framebuffer *dst, const sr_framebuffer *src, int x, int y)
 {
     const uint32_t *s = (const uint32_t *)sr_framebuffer_pixels(src);
-    sr__fb_resolve(dst, SR_TILE_PENDING_COLOR);
+    sr__fb_begin_write(dst);
     for (int row = 0; row < src->height; row++) {
         int ty = y + row;
         if (ty < 0 || ty >= dst->height) {

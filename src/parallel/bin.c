@@ -228,7 +228,7 @@ typedef struct tile_rect {
  * records gets its own loop. */
 static inline __attribute__((always_inline)) void
 draw_bin(const tile_job *tj, const sr_chunk *c, uint32_t tile, tile_rect b, sr_frag_stats *st,
-         bool ordered)
+         tile_rect *drawn, bool ordered)
 {
     const sr_draw_state *ds = tj->ds;
     size_t size = tj->tri_size;
@@ -254,6 +254,12 @@ draw_bin(const tile_job *tj, const sr_chunk *c, uint32_t tile, tile_rect b, sr_f
         }
         int rx0 = p->x0 > b.x0 ? p->x0 : b.x0, rx1 = p->x1 < b.x1 ? p->x1 : b.x1;
         int ry0 = p->y0 > b.y0 ? p->y0 : b.y0, ry1 = p->y1 < b.y1 ? p->y1 : b.y1;
+        /* What the rasterizers may write: the next clear writes no more
+         * of the tile than this (sr__tile_drawn). */
+        drawn->x0 = rx0 < drawn->x0 ? rx0 : drawn->x0;
+        drawn->y0 = ry0 < drawn->y0 ? ry0 : drawn->y0;
+        drawn->x1 = rx1 > drawn->x1 ? rx1 : drawn->x1;
+        drawn->y1 = ry1 > drawn->y1 ? ry1 : drawn->y1;
         if (p->kind == SR_KIND_LINE) {
             sr__raster_line(ds, (const sr_line *)p, rx0, ry0, rx1, ry1, st);
             continue;
@@ -293,14 +299,16 @@ static void run_tile(void *arg, int job, int thread)
     sr_frag_stats *st = &s->stats[thread];
 
     sr__tile_resolve(ds->fb, (int)tile, ds->wide_stores);
+    tile_rect drawn = { b.x1, b.y1, b.x0, b.y0 };   /* empty */
     for (int ci = 0; ci < tj->chunks; ci++) {
         const sr_chunk *c = &s->chunks[ci];
         if (c->in_tile_order) {
-            draw_bin(tj, c, tile, b, st, true);
+            draw_bin(tj, c, tile, b, st, &drawn, true);
         } else {
-            draw_bin(tj, c, tile, b, st, false);
+            draw_bin(tj, c, tile, b, st, &drawn, false);
         }
     }
+    sr__tile_drawn(ds->fb, (int)tile, drawn.x0, drawn.y0, drawn.x1, drawn.y1);
 }
 
 void sr__bin_rasterize(sr_context *ctx, const sr_draw_state *ds, int chunks, size_t tri_size)

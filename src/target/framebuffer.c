@@ -75,10 +75,13 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     fb->tiles_x = (desc->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
     fb->tiles_y = (desc->height + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
     fb->tile_pending = sr__calloc(ctx, (size_t)fb->tiles_x * fb->tiles_y, 1);
+    fb->tile_memo = fb->tile_pending ? sr__calloc(ctx, (size_t)fb->tiles_x * fb->tiles_y,
+                                                  sizeof *fb->tile_memo)
+                                     : NULL;
     /* Nothing is written here: every tile starts with a pending clear to
      * transparent black and the far depth, carried out when the tile is
      * first drawn or read. */
-    fb->color = fb->tile_pending ? sr__alloc_large(ctx, n * sizeof(uint32_t)) : NULL;
+    fb->color = fb->tile_memo ? sr__alloc_large(ctx, n * sizeof(uint32_t)) : NULL;
     if (fb->color && bits >= 0) {
         fb->depth = sr__alloc_large(ctx, n * sizeof(uint32_t));
     }
@@ -117,6 +120,7 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
     sr__free(ctx, fb->stencil);
     sr__free(ctx, fb->resolved);
     sr__free(ctx, fb->tile_pending);
+    sr__free(ctx, fb->tile_memo);
     sr__free(ctx, fb);
 }
 
@@ -155,40 +159,112 @@ static void fill_words(uint32_t *p, uint32_t v, size_t n, bool wide)
     }
 }
 
+/* Fill [x0, x1) x [y0, y1) of one component (`words` 4-byte values, or
+ * bytes of the stencil) with v, a row of samples at a time. */
+static void fill_rect(const sr_framebuffer *fb, uint32_t *words, uint8_t *bytes, uint32_t v,
+                      int x0, int y0, int x1, int y1, bool wide)
+{
+    /* A row of the rectangle is one run of samples in memory
+     * (framebuffer.h). */
+    size_t ns = (size_t)fb->samples;
+    size_t run = x1 > x0 ? (size_t)(x1 - x0) * ns : 0;
+    for (int y = y0; y < y1 && run; y++) {
+        size_t first = ((size_t)y * fb->width + (size_t)x0) * ns;
+        if (words) {
+            fill_words(words + first, v, run, wide);
+        } else {
+            memset(bytes + first, (int)v, run);
+        }
+    }
+}
+
 /* Write the clear values of the `pending` components into a tile, in
- * 64-byte stores if `wide` (the AVX-512 level of sr__simd_level). */
-static void clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool wide)
+ * 64-byte stores if `wide` (the AVX-512 level of sr__simd_level).  Where
+ * a component's base is the value being cleared to, only the tile's drawn
+ * rectangle is written (SR_TILE_BASE_COLOR); otherwise the whole tile,
+ * which makes that value its base.  Returns the tile's flags with the
+ * base bits brought up to date; the drawn rectangle is emptied once every
+ * component the framebuffer has is clear. */
+static unsigned clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool wide)
 {
     int tx = tile % fb->tiles_x, ty = tile / fb->tiles_x;
     int x0 = tx << SR_TILE_ORDER, y0 = ty << SR_TILE_ORDER;
     int x1 = x0 + SR_TILE_SIZE < fb->width ? x0 + SR_TILE_SIZE : fb->width;
     int y1 = y0 + SR_TILE_SIZE < fb->height ? y0 + SR_TILE_SIZE : fb->height;
-    /* A row of the tile is one run of samples in memory (framebuffer.h). */
-    size_t ns = (size_t)fb->samples;
-    size_t run = (size_t)(x1 - x0) * ns;
-    uint32_t color = fb->clear_color, depth = fb->clear_depth;
-    for (int y = y0; y < y1; y++) {
-        size_t first = ((size_t)y * fb->width + (size_t)x0) * ns;
-        if (pending & SR_TILE_PENDING_COLOR) {
-            fill_words(fb->color + first, color, run, wide);
+    sr_tile_memo *m = &fb->tile_memo[tile];
+    int dx0 = x0 + m->x0, dy0 = y0 + m->y0;
+    int dx1 = x0 + m->x1 < x1 ? x0 + m->x1 : x1, dy1 = y0 + m->y1 < y1 ? y0 + m->y1 : y1;
+    unsigned flags = fb->tile_pending[tile];
+    struct {
+        unsigned pending, base;
+        uint32_t *words;
+        uint8_t *bytes;
+        uint32_t value, *memo;
+    } part[3] = {
+        { SR_TILE_PENDING_COLOR, SR_TILE_BASE_COLOR, fb->color, NULL, fb->clear_color, &m->color },
+        { SR_TILE_PENDING_DEPTH, SR_TILE_BASE_DEPTH, fb->depth, NULL, fb->clear_depth, &m->depth },
+        { SR_TILE_PENDING_STENCIL, SR_TILE_BASE_STENCIL, NULL, fb->stencil, fb->clear_stencil,
+          NULL },
+    };
+    unsigned present = 0, cleared = 0;
+    for (int k = 0; k < 3; k++) {
+        if (!part[k].words && !part[k].bytes) {
+            continue;   /* the framebuffer has no such buffer */
         }
-        if ((pending & SR_TILE_PENDING_DEPTH) && fb->depth) {
-            fill_words(fb->depth + first, depth, run, wide);
+        present |= part[k].pending;
+        if (!(pending & part[k].pending)) {
+            continue;
         }
-        if ((pending & SR_TILE_PENDING_STENCIL) && fb->stencil) {
-            memset(fb->stencil + first, fb->clear_stencil, run);
+        cleared |= part[k].pending;
+        uint32_t base = part[k].memo ? *part[k].memo : m->stencil;
+        if ((flags & part[k].base) && base == part[k].value) {
+            fill_rect(fb, part[k].words, part[k].bytes, part[k].value, dx0, dy0, dx1, dy1, wide);
+            continue;
         }
+        fill_rect(fb, part[k].words, part[k].bytes, part[k].value, x0, y0, x1, y1, wide);
+        if (part[k].memo) {
+            *part[k].memo = part[k].value;
+        } else {
+            m->stencil = (uint8_t)part[k].value;
+        }
+        flags |= part[k].base;
     }
+    if (cleared == present) {
+        m->x0 = m->y0 = m->x1 = m->y1 = 0;
+    }
+    return flags & (SR_TILE_BASE_COLOR | SR_TILE_BASE_DEPTH | SR_TILE_BASE_STENCIL);
 }
 
 void sr__tile_resolve(sr_framebuffer *fb, int tile, bool wide)
 {
-    unsigned pending = fb->tile_pending[tile];
-    if (!pending) {
+    unsigned flags = fb->tile_pending[tile];
+    if (!(flags & (SR_TILE_PENDING_ALL | SR_TILE_CLEAN_COLOR))) {
         return;
     }
-    clear_tile(fb, tile, pending, wide);
-    fb->tile_pending[tile] = 0;
+    fb->tile_pending[tile] = (uint8_t)clear_tile(fb, tile, flags & SR_TILE_PENDING_ALL, wide);
+}
+
+void sr__tile_drawn(sr_framebuffer *fb, int tile, int x0, int y0, int x1, int y1)
+{
+    if (x0 >= x1 || y0 >= y1) {
+        return;
+    }
+    int ox = (tile % fb->tiles_x) << SR_TILE_ORDER, oy = (tile / fb->tiles_x) << SR_TILE_ORDER;
+    sr_tile_memo *m = &fb->tile_memo[tile];
+    x0 -= ox;
+    x1 -= ox;
+    y0 -= oy;
+    y1 -= oy;
+    if (m->x0 < m->x1) {
+        x0 = m->x0 < x0 ? m->x0 : x0;
+        y0 = m->y0 < y0 ? m->y0 : y0;
+        x1 = m->x1 > x1 ? m->x1 : x1;
+        y1 = m->y1 > y1 ? m->y1 : y1;
+    }
+    m->x0 = (uint8_t)x0;
+    m->y0 = (uint8_t)y0;
+    m->x1 = (uint8_t)x1;
+    m->y1 = (uint8_t)y1;
 }
 
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
@@ -198,9 +274,10 @@ void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
     for (int t = 0; t < tiles; t++) {
         unsigned pending = fb->tile_pending[t];
         if (pending & components) {
-            clear_tile(fb, t, pending & SR_TILE_PENDING_ALL, wide);
-            fb->tile_pending[t] = pending & SR_TILE_PENDING_COLOR ? SR_TILE_CLEAN_COLOR
-                                                                  : pending & SR_TILE_CLEAN_COLOR;
+            unsigned base = clear_tile(fb, t, pending & SR_TILE_PENDING_ALL, wide);
+            fb->tile_pending[t] = (uint8_t)(base | (pending & SR_TILE_PENDING_COLOR
+                                                        ? SR_TILE_CLEAN_COLOR
+                                                        : pending & SR_TILE_CLEAN_COLOR));
         }
     }
 }
@@ -217,7 +294,7 @@ static void drop_tile_flags(sr_framebuffer *fb, unsigned bits)
 void sr__fb_begin_write(sr_framebuffer *fb)
 {
     sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
-    drop_tile_flags(fb, SR_TILE_CLEAN_COLOR);
+    drop_tile_flags(fb, SR_TILE_CLEAN_COLOR | SR_TILE_BASE_COLOR);
 }
 
 sr_result sr__fb_begin_2d(sr_context *ctx, const char *fn, sr_framebuffer *fb)
@@ -418,7 +495,8 @@ static void run_resolve(void *arg, int job, int thread)
         return;
     }
     if (j->dst_fb) {
-        j->dst_fb->tile_pending[job] &= (uint8_t)~(SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR);
+        j->dst_fb->tile_pending[job] &=
+            (uint8_t)~(SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR | SR_TILE_BASE_COLOR);
     }
     resolve_tile(j->src, j->dst, job, j->wide);
 }
@@ -481,7 +559,7 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
      * tiles, cleared again): its pending color clears are moot.  A
      * multisampled source's jobs settle each destination tile's flags. */
     if (src->samples == 1) {
-        drop_tile_flags(dst, SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR);
+        drop_tile_flags(dst, SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR | SR_TILE_BASE_COLOR);
         sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
         memcpy(dst->color, src->color, (size_t)src->width * src->height * sizeof(uint32_t));
     } else {

@@ -22,6 +22,25 @@
  * background of a frame redrawn with the same clear is written once, not
  * once a frame.  Anything that writes color drops the flag. */
 #define SR_TILE_CLEAN_COLOR 8u
+/* The tile's base for a component: outside the tile's drawn rectangle
+ * (sr_tile_memo) the component still holds what the tile's last whole
+ * clear of it wrote, the memo's value.  A clear to that same value then
+ * writes only the drawn rectangle: a mesh redrawn each frame over one
+ * background clears the boxes of what it drew, not whole tiles (for
+ * spot, a third fewer bytes).  Anything that writes a component outside
+ * the tile jobs, which keep the rectangle, drops its flag. */
+#define SR_TILE_BASE_COLOR 16u
+#define SR_TILE_BASE_DEPTH 32u
+#define SR_TILE_BASE_STENCIL 64u
+
+/* Per tile: its base values and the rectangle drawn on since (in pixels
+ * from the tile's corner, empty when x0 >= x1), the union of the boxes
+ * the tile jobs gave the rasterizers there. */
+typedef struct sr_tile_memo {
+    uint32_t color, depth;
+    uint8_t stencil;
+    uint8_t x0, y0, x1, y1;         /* up to SR_TILE_SIZE = 128 */
+} sr_tile_memo;
 
 /* Multisampled storage keeps a pixel's samples side by side: sample s of
  * pixel (x, y) is element (y * width + x) * samples + s of color, depth
@@ -40,6 +59,7 @@ struct sr_framebuffer {
     uint32_t *resolved;             /* samples > 1: the box-filtered image read out */
     int tiles_x, tiles_y;
     uint8_t *tile_pending;          /* SR_TILE_PENDING_* per tile */
+    sr_tile_memo *tile_memo;        /* per tile */
     uint32_t clear_color;           /* packed RGBA8 of the last clear */
     uint32_t clear_depth;           /* quantized depth of the last clear */
     uint8_t clear_stencil;
@@ -54,6 +74,9 @@ const int8_t (*sr__sample_offsets(int samples))[2];
  * pending clears, in 64-byte stores if `wide` (the draw's
  * sr_draw_state.wide_stores); the tile is no longer clean. */
 void sr__tile_resolve(sr_framebuffer *fb, int tile, bool wide);
+/* After drawing on a tile: the rasterizers were given the pixels
+ * [x0, x1) x [y0, y1) of it (framebuffer coordinates, inside the tile). */
+void sr__tile_drawn(sr_framebuffer *fb, int tile, int x0, int y0, int x1, int y1);
 /* Before reading: carry out every pending clear of the given components.
  * The tiles whose color this writes become clean. */
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components);
