@@ -231,8 +231,7 @@ SR_TEST(pixels_follow_every_operation_after_reads)
 static void forget_bases(sr_framebuffer *fb)
 {
     for (int t = 0; t < fb->tiles_x * fb->tiles_y; t++) {
-        fb->tile_pending[t] &=
-            (uint8_t)~(SR_TILE_BASE_COLOR | SR_TILE_BASE_DEPTH | SR_TILE_BASE_STENCIL);
+        fb->tile_pending[t] &= (uint8_t)~SR_TILE_BASE_ALL;
     }
 }
 

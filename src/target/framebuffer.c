@@ -204,7 +204,7 @@ static unsigned clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool 
         { SR_TILE_PENDING_COLOR, SR_TILE_BASE_COLOR, fb->color, NULL, fb->clear_color, &m->color },
         { SR_TILE_PENDING_DEPTH, SR_TILE_BASE_DEPTH, fb->depth, NULL, fb->clear_depth, &m->depth },
         { SR_TILE_PENDING_STENCIL, SR_TILE_BASE_STENCIL, NULL, fb->stencil, fb->clear_stencil,
-          NULL },
+          &m->stencil },
     };
     unsigned present = 0, cleared = 0;
     for (int k = 0; k < 3; k++) {
@@ -216,23 +216,18 @@ static unsigned clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool 
             continue;
         }
         cleared |= part[k].pending;
-        uint32_t base = part[k].memo ? *part[k].memo : m->stencil;
-        if ((flags & part[k].base) && base == part[k].value) {
+        if ((flags & part[k].base) && *part[k].memo == part[k].value) {
             fill_rect(fb, part[k].words, part[k].bytes, part[k].value, dx0, dy0, dx1, dy1, wide);
             continue;
         }
         fill_rect(fb, part[k].words, part[k].bytes, part[k].value, x0, y0, x1, y1, wide);
-        if (part[k].memo) {
-            *part[k].memo = part[k].value;
-        } else {
-            m->stencil = (uint8_t)part[k].value;
-        }
+        *part[k].memo = part[k].value;
         flags |= part[k].base;
     }
     if (cleared == present) {
         m->x0 = m->y0 = m->x1 = m->y1 = 0;
     }
-    return flags & (SR_TILE_BASE_COLOR | SR_TILE_BASE_DEPTH | SR_TILE_BASE_STENCIL);
+    return flags & SR_TILE_BASE_ALL;
 }
 
 void sr__tile_resolve(sr_framebuffer *fb, int tile, bool wide)
@@ -243,6 +238,8 @@ void sr__tile_resolve(sr_framebuffer *fb, int tile, bool wide)
     }
     fb->tile_pending[tile] = (uint8_t)clear_tile(fb, tile, flags & SR_TILE_PENDING_ALL, wide);
 }
+
+_Static_assert(SR_TILE_SIZE <= UINT8_MAX, "a tile's drawn rectangle is kept in uint8_t");
 
 void sr__tile_drawn(sr_framebuffer *fb, int tile, int x0, int y0, int x1, int y1)
 {

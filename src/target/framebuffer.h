@@ -32,13 +32,13 @@
 #define SR_TILE_BASE_COLOR 16u
 #define SR_TILE_BASE_DEPTH 32u
 #define SR_TILE_BASE_STENCIL 64u
+#define SR_TILE_BASE_ALL 112u
 
 /* Per tile: its base values and the rectangle drawn on since (in pixels
  * from the tile's corner, empty when x0 >= x1), the union of the boxes
  * the tile jobs gave the rasterizers there. */
 typedef struct sr_tile_memo {
-    uint32_t color, depth;
-    uint8_t stencil;
+    uint32_t color, depth, stencil;
     uint8_t x0, y0, x1, y1;         /* up to SR_TILE_SIZE = 128 */
 } sr_tile_memo;
 
