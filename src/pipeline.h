@@ -368,8 +368,16 @@ typedef struct sr_frag_stats {
 
 /* ---- stage entry points ---- */
 
-/* draw.c: the shading half of sr_state resolved into ds (model, varyings,
- * texture, material, lights in eye space). */
+/* draw_validate.c: sr_draw's arguments checked, SR_OK or the failure
+ * (with its message on ctx). */
+sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_state *st,
+                            const sr_draw_desc *d);
+
+/* draw_state.c: the whole draw state resolved into ds, and its shading
+ * half alone (model, varyings, texture, material, lights in eye space),
+ * which the built-in programs (fragment/builtin.c) use. */
+void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const sr_mat4 *view,
+                            const sr_mat4 *proj, sr_draw_state *ds);
 void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 *proj,
                          sr_draw_state *ds);
 

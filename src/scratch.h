@@ -48,7 +48,7 @@ typedef struct sr_chunk {
     uint32_t *bin_start;       /* tile_cap + 1 */
     bool scattered;            /* few neighbours share a tile (sr__bin_chunk) */
     bool in_tile_order;        /* the tile jobs read ordered[], not refs[] */
-    /* This batch's records went out by streaming stores (run_front_end). */
+    /* This batch's records went out by streaming stores (sr__run_front_end). */
     bool stream;
     uint8_t *ordered;
     size_t ordered_bytes;      /* capacity of ordered */
@@ -82,10 +82,10 @@ bool sr__chunk_reserve_ordered(sr_context *ctx, sr_chunk *c, size_t bytes);
 
 /* Copy a record set up on the stack to its place in the chunk with
  * non-temporal stores, when more than one thread draws (but for a chunk
- * copied in tile order the batch before: draw.c, run_front_end).  The
- * tile jobs of the last batch read the chunk's records on every core; a
- * plain store to such a line must first take it back from the other
- * core's cache, which on the development VM doubled the front end's time
+ * copied in tile order the batch before: sr__run_front_end).  The tile
+ * jobs of the last batch read the chunk's records on every core; a plain
+ * store to such a line must first take it back from the other core's
+ * cache, which on the development VM doubled the front end's time
  * on two threads (a prefetch for writing did not help).  A streaming
  * store claims the line without reading it.  `size` is a multiple of 16;
  * a destination that is not 16-byte aligned (a caller's allocator) takes

@@ -1421,7 +1421,7 @@ SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
 }
 
 /* A chunk copied in tile order sets its next batch up with plain stores
- * (draw.c, run_front_end), guessing that it will be copied again.  When
+ * (geometry/assembly.c, sr__run_front_end), guessing that it will be copied again.  When
  * the guess is wrong - scattered triangles, then a mesh-like draw that is
  * binned by numbers - the tile jobs read the records from the writer's
  * cache.  Either way the bytes must be one thread's: scattered, walked,

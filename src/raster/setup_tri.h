@@ -1,6 +1,6 @@
 /* setup_tri.h - the body of triangle setup (raster stage), inline so the
- * front end's common case (draw.c: a triangle inside every clip plane)
- * sets up without a call, and setup.c's entry points share it.  Produces
+ * front end's common case (geometry/assembly.c: a triangle inside every
+ * clip plane) sets up without a call, and setup.c's entry points share it.  Produces
  * the sr_tri the rasterizers consume.  Any thread; no shared state. */
 #ifndef SR_SETUP_TRI_H
 #define SR_SETUP_TRI_H
