@@ -291,7 +291,7 @@ static void drop_tile_flags(sr_framebuffer *fb, unsigned bits)
 void sr__fb_begin_write(sr_framebuffer *fb)
 {
     sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
-    drop_tile_flags(fb, SR_TILE_CLEAN_COLOR | SR_TILE_BASE_COLOR);
+    drop_tile_flags(fb, SR_TILE_COLOR_FROM_CLEARS);
 }
 
 sr_result sr__fb_begin_2d(sr_context *ctx, const char *fn, sr_framebuffer *fb)
@@ -493,7 +493,7 @@ static void run_resolve(void *arg, int job, int thread)
     }
     if (j->dst_fb) {
         j->dst_fb->tile_pending[job] &=
-            (uint8_t)~(SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR | SR_TILE_BASE_COLOR);
+            (uint8_t)~(SR_TILE_PENDING_COLOR | SR_TILE_COLOR_FROM_CLEARS);
     }
     resolve_tile(j->src, j->dst, job, j->wide);
 }
@@ -556,7 +556,7 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
      * tiles, cleared again): its pending color clears are moot.  A
      * multisampled source's jobs settle each destination tile's flags. */
     if (src->samples == 1) {
-        drop_tile_flags(dst, SR_TILE_PENDING_COLOR | SR_TILE_CLEAN_COLOR | SR_TILE_BASE_COLOR);
+        drop_tile_flags(dst, SR_TILE_PENDING_COLOR | SR_TILE_COLOR_FROM_CLEARS);
         sr__fb_resolve((sr_framebuffer *)src, SR_TILE_PENDING_COLOR);
         memcpy(dst->color, src->color, (size_t)src->width * src->height * sizeof(uint32_t));
     } else {

@@ -33,6 +33,9 @@
 #define SR_TILE_BASE_DEPTH 32u
 #define SR_TILE_BASE_STENCIL 64u
 #define SR_TILE_BASE_ALL 112u
+/* What a tile knows of its color from clears alone (clean, base): a write
+ * of color anywhere but the tile jobs drops both. */
+#define SR_TILE_COLOR_FROM_CLEARS (SR_TILE_CLEAN_COLOR | SR_TILE_BASE_COLOR)
 
 /* Per tile: its base values and the rectangle drawn on since (in pixels
  * from the tile's corner, empty when x0 >= x1), the union of the boxes
