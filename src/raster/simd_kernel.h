@@ -185,6 +185,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
 #endif
 #ifdef SR_SIMD_WIDE16
 #include "raster/simd_tex.h"
+#include "raster/simd_tiny.h"
 #endif
 
 #ifdef SR_SIMD_WIDE16
@@ -634,12 +635,31 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
 /* The AVX-512 instance picks its walk and edge lanes (raster_dispatch);
  * the others walk in double lanes. */
 #ifdef SR_SIMD_WIDE16
+/* Tiny triangles (simd_tiny.h) and the rest in functions of their own,
+ * so the tiny path keeps its constants in registers: inside the other
+ * walks' function it paid their stack frame and spills. */
 #define SR_SIMD_INSTANCE(shading, dmode)                                                  \
+    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                       \
+        tiny_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
+                                  int ry0, int rx1, int ry1, sr_frag_stats *st)            \
+    {                                                                                      \
+        SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);            \
+    }                                                                                      \
+    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                       \
+        walk_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
+                                  int ry0, int rx1, int ry1, sr_frag_stats *st)            \
+    {                                                                                      \
+        SR_SIMD_FN(raster_dispatch)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);        \
+    }                                                                                      \
     SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
         const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
         sr_frag_stats *st)                                                                 \
     {                                                                                      \
-        SR_SIMD_FN(raster_dispatch)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);        \
+        if (t->fits32 && rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {               \
+            SR_SIMD_FN(tiny_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \
+        } else {                                                                           \
+            SR_SIMD_FN(walk_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \
+        }                                                                                  \
     }
 #else
 #define SR_SIMD_INSTANCE(shading, dmode)                                                  \

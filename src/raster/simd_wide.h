@@ -280,6 +280,34 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base
     }
 }
 
+/* Sixteen 32-bit edge values as double halves (lanes 0-7, 8-15), exact. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_halves)(__m512i e, __m512d h[2])
+{
+    h[0] = _mm512_cvtepi32_pd(_mm512_castsi512_si256(e));
+    h[1] = _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(e, 1));
+}
+
+/* A stamp's depths in buffer units, from the depth plane at edge values
+ * e1, e2 (double halves: lanes 0-7, 8-15): clamped to the depth range
+ * unless the triangle lies inside it (z_inside), rounded. */
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_zq)(const sr_draw_state *ds, const sr_tri *t,
+                                                    const __m512d e1[2], const __m512d e2[2],
+                                                    const SR_SIMD_FN(w16_lanes) *k)
+{
+    __m256i q[2];
+    for (int h = 0; h < 2; h++) {
+        __m512d z = _mm512_add_pd(
+            _mm512_add_pd(k->z0, _mm512_mul_pd(e1[h], k->dz1)), _mm512_mul_pd(e2[h], k->dz2));
+        if (!t->z_inside) {
+            __m512d zmin = _mm512_set1_pd(ds->zq_min), zmax = _mm512_set1_pd(ds->zq_max);
+            z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmin, _CMP_GE_OQ), zmin, z);
+            z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmax, _CMP_LE_OQ), zmax, z);
+        }
+        q[h] = _mm512_cvttpd_epi32(_mm512_add_pd(z, _mm512_set1_pd(0.5)));
+    }
+    return _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
+}
+
 /* The depth test of a stamp's lanes m (depth written where it passes),
  * the depth plane at edge values e1, e2 (double halves: lanes 0-7, 8-15):
  * the lanes still to be shaded, 0 for none.  Rows without an enabled
@@ -295,18 +323,7 @@ SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_depth)(const sr_draw_state *ds
     }
     sr_framebuffer *fb = ds->fb;
     size_t pitch = (size_t)fb->width;
-    __m256i q[2];
-    for (int h = 0; h < 2; h++) {
-        __m512d z = _mm512_add_pd(
-            _mm512_add_pd(k->z0, _mm512_mul_pd(e1[h], k->dz1)), _mm512_mul_pd(e2[h], k->dz2));
-        if (!t->z_inside) {
-            __m512d zmin = _mm512_set1_pd(ds->zq_min), zmax = _mm512_set1_pd(ds->zq_max);
-            z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmin, _CMP_GE_OQ), zmin, z);
-            z = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(z, zmax, _CMP_LE_OQ), zmax, z);
-        }
-        q[h] = _mm512_cvttpd_epi32(_mm512_add_pd(z, _mm512_set1_pd(0.5)));
-    }
-    __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
+    __m512i qz = SR_SIMD_FN(w16_zq)(ds, t, e1, e2, k);
     __m512i old = SR_SIMD_FN(stamp_load)(fb->depth, idx, pitch, m, shape);
     m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
     if (m) {
@@ -379,15 +396,13 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_phong)(const sr_draw_state *ds, 
     return rgba;
 }
 
-/* Shade and store the lanes m of a stamp at idx, with the weights l1, l2
- * of vertices 1 and 2 (w16_bary). */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_shade)(const sr_draw_state *ds, const sr_tri *t,
-                                                    size_t idx, __mmask16 m, __m512 l1, __m512 l2,
-                                                    const SR_SIMD_FN(w16_lanes) *k,
-                                                    sr_frag_stats *st, sr_shading shading,
-                                                    sr_stamp shape)
+/* A stamp's colors, packed r,g,b,a per lane, with the weights l1, l2 of
+ * vertices 1 and 2 (w16_bary). */
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(w16_color)(const sr_draw_state *ds, const sr_tri *t,
+                                                       __m512 l1, __m512 l2,
+                                                       const SR_SIMD_FN(w16_lanes) *k,
+                                                       sr_shading shading)
 {
-    sr_framebuffer *fb = ds->fb;
     __m512i rgba = k->fixed;
     if (shading == SR_SHADING_PHONG) {
         rgba = SR_SIMD_FN(w16_phong)(ds, t, l1, l2);
@@ -409,6 +424,18 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_shade)(const sr_draw_state *ds, con
             rgba = _mm512_mask_or_epi32(var, (__mmask16)~bad, var, k->fixed);
         }
     }
+    return rgba;
+}
+
+/* Shade and store the lanes m of a stamp at idx (w16_color). */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_shade)(const sr_draw_state *ds, const sr_tri *t,
+                                                    size_t idx, __mmask16 m, __m512 l1, __m512 l2,
+                                                    const SR_SIMD_FN(w16_lanes) *k,
+                                                    sr_frag_stats *st, sr_shading shading,
+                                                    sr_stamp shape)
+{
+    sr_framebuffer *fb = ds->fb;
+    __m512i rgba = SR_SIMD_FN(w16_color)(ds, t, l1, l2, k, shading);
     SR_SIMD_FN(stamp_store)(fb->color, idx, (size_t)fb->width, m, rgba, shape);
     st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
 }
@@ -459,10 +486,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_n)(const sr_draw_state *ds, cons
         }
     }
     if (dmode == SR_DEPTH_MODE_LESS) {
-        __m512d e1[2] = { _mm512_cvtepi32_pd(_mm512_castsi512_si256(e[1])),
-                          _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(e[1], 1)) };
-        __m512d e2[2] = { _mm512_cvtepi32_pd(_mm512_castsi512_si256(e[2])),
-                          _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(e[2], 1)) };
+        __m512d e1[2], e2[2];
+        SR_SIMD_FN(w16_halves)(e[1], e1);
+        SR_SIMD_FN(w16_halves)(e[2], e2);
         m = SR_SIMD_FN(w16_depth)(ds, t, idx, m, e1, e2, k, dmode, shape);
         if (!m) {
             return;
