@@ -643,7 +643,13 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
         tiny_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
                                   int ry0, int rx1, int ry1, sr_frag_stats *st)            \
     {                                                                                      \
-        SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);            \
+        if (rx1 - rx0 <= 4) {                                                              \
+            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,         \
+                                    SR_STAMP_4X4);                                         \
+        } else {                                                                           \
+            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,         \
+                                    SR_STAMP_8X2);                                         \
+        }                                                                                  \
     }                                                                                      \
     SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                       \
         walk_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
@@ -655,7 +661,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
         const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
         sr_frag_stats *st)                                                                 \
     {                                                                                      \
-        if (t->fits32 && rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {               \
+        if (t->fits32 && rx1 - rx0 <= 8 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {               \
             SR_SIMD_FN(tiny_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \
         } else {                                                                           \
             SR_SIMD_FN(walk_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \

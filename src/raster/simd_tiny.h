@@ -32,12 +32,18 @@ SR_SIMD_TARGET SR_INLINE uint32_t SR_SIMD_FN(tiny_edge)(const sr_tri *t, int i, 
     return (uint32_t)t->a[i] * (X - xi) + (uint32_t)t->b[i] * (Y - yi);
 }
 
-/* A 4 x 4 stamp's rows of a buffer: row r starts at at[r].  A row the
- * box lacks, whose lanes are off, gets the address of its last row, so
- * no address below the framebuffer is formed. */
+/* A stamp's rows of a buffer: row r starts at at[r] (4 x 4: four rows
+ * of four lanes; 8 x 2: two of eight).  A row the box lacks, whose lanes
+ * are off, gets the address of its last row, so no address below the
+ * framebuffer is formed. */
 SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(tiny_load)(const uint32_t *buf, const size_t at[4],
-                                                      __mmask16 m)
+                                                      __mmask16 m, sr_stamp shape)
 {
+    if (shape == SR_STAMP_8X2) {
+        return _mm512_inserti64x4(
+            _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &buf[at[0]])),
+            _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[at[1]]), 1);
+    }
     __m512i v = _mm512_castsi128_si512(_mm_maskz_loadu_epi32((__mmask8)m, &buf[at[0]]));
     v = _mm512_inserti32x4(v, _mm_maskz_loadu_epi32((__mmask8)(m >> 4), &buf[at[1]]), 1);
     v = _mm512_inserti32x4(v, _mm_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[at[2]]), 2);
@@ -45,24 +51,30 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(tiny_load)(const uint32_t *buf, cons
 }
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(tiny_store)(uint32_t *buf, const size_t at[4],
-                                                    __mmask16 m, __m512i v)
+                                                    __mmask16 m, __m512i v, sr_stamp shape)
 {
+    if (shape == SR_STAMP_8X2) {
+        _mm256_mask_storeu_epi32(&buf[at[0]], (__mmask8)m, _mm512_castsi512_si256(v));
+        _mm256_mask_storeu_epi32(&buf[at[1]], (__mmask8)(m >> 8), _mm512_extracti64x4_epi64(v, 1));
+        return;
+    }
     _mm_mask_storeu_epi32(&buf[at[0]], (__mmask8)m, _mm512_castsi512_si128(v));
     _mm_mask_storeu_epi32(&buf[at[1]], (__mmask8)(m >> 4), _mm512_extracti32x4_epi32(v, 1));
     _mm_mask_storeu_epi32(&buf[at[2]], (__mmask8)(m >> 8), _mm512_extracti32x4_epi32(v, 2));
     _mm_mask_storeu_epi32(&buf[at[3]], (__mmask8)(m >> 12), _mm512_extracti32x4_epi32(v, 3));
 }
 
-/* The box [rx0, rx1) x [ry0, ry1), at most 4 pixels wide, of a record
- * with fits32, in 4 x 4 stamps from its top-left pixel: lane 4 r + c is
- * pixel (rx0 + c, py + r).  Its own constants rather than w16_lanes: every
- * color channel is interpolated (alpha too: v0 + l1 0 + l2 0 is what the
- * scalar stage computes), which costs a stamp less than w16_make's test
- * of each channel costs a triangle. */
+/* The box [rx0, rx1) x [ry0, ry1) of a record with fits32, in stamps from
+ * its top-left pixel: 4 x 4 for a box at most 4 pixels wide (lane 4 r + c
+ * is pixel (rx0 + c, py + r)), else 8 x 2 for one at most 8 wide (lane
+ * 8 r + c).  Its own constants rather than w16_lanes: every color channel
+ * is interpolated (alpha too: v0 + l1 0 + l2 0 is what the scalar stage
+ * computes), which costs a stamp less than w16_make's test of each
+ * channel costs a triangle. */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, const sr_tri *t,
                                                      int rx0, int ry0, int rx1, int ry1,
                                                      sr_frag_stats *st, sr_shading shading,
-                                                     sr_depth_mode dmode)
+                                                     sr_depth_mode dmode, sr_stamp shape)
 {
     SR_SIMD_FN(w16_lanes) k;
     k.z0 = _mm512_set1_pd(t->z0);
@@ -80,8 +92,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
         }
         flat = _mm512_set1_epi32((int)c);
     }
-    const __m512i col = _mm512_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3);
-    const __m512i row = _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
+    bool wide = shape == SR_STAMP_8X2;
+    const int rows = wide ? 2 : 4;
+    const __m512i col = wide ? _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7)
+                             : _mm512_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3);
+    const __m512i row = wide ? _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1)
+                             : _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
     uint32_t X = (uint32_t)sr__centre_q8(rx0), Y = (uint32_t)sr__centre_q8(ry0);
     uint32_t corner[3];
     __m512i off[3], nb[3];
@@ -96,13 +112,14 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
     }
     sr_framebuffer *fb = ds->fb;
     size_t pitch = (size_t)fb->width;
+    /* The box's columns in each row of a stamp. */
     unsigned cols = (1u << (rx1 - rx0)) - 1;
-    for (int py = ry0; py < ry1; py += 4) {
-        int last = ry1 - py < 4 ? ry1 - py - 1 : 3;
-        /* The box's columns in each of its rows here. */
-        unsigned valid = cols * 0x1111u & (0xffffu >> (4 * (3 - last)));
+    unsigned cols_rows = wide ? cols * 0x101u : cols * 0x1111u;
+    for (int py = ry0; py < ry1; py += rows) {
+        int last = ry1 - py < rows ? ry1 - py - 1 : rows - 1;
+        unsigned valid = cols_rows & (0xffffu >> (16 / rows * (rows - 1 - last)));
         size_t idx = (size_t)py * pitch + (size_t)rx0, at[4];
-        for (int r = 0; r < 4; r++) {
+        for (int r = 0; r < rows; r++) {
             /* With min, not a branch: the boxes' heights vary at random. */
             at[r] = idx + (size_t)(r < last ? r : last) * pitch;
         }
@@ -111,7 +128,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
         for (int i = 0; i < 3; i++) {
             e[i] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)corner[i]), off[i]);
             m = _mm512_mask_cmpge_epi32_mask(m, e[i], nb[i]);
-            corner[i] += 4u * (uint32_t)t->b[i] * SR_SUBPIXEL_ONE;
+            corner[i] += (uint32_t)rows * (uint32_t)t->b[i] * SR_SUBPIXEL_ONE;
         }
         if (!m) {
             continue;
@@ -121,12 +138,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
             SR_SIMD_FN(w16_halves)(e[1], e1);
             SR_SIMD_FN(w16_halves)(e[2], e2);
             __m512i qz = SR_SIMD_FN(w16_zq)(ds, t, e1, e2, &k);
-            __m512i old = SR_SIMD_FN(tiny_load)(fb->depth, at, m);
+            __m512i old = SR_SIMD_FN(tiny_load)(fb->depth, at, m, shape);
             m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
             if (!m) {
                 continue;
             }
-            SR_SIMD_FN(tiny_store)(fb->depth, at, m, qz);
+            SR_SIMD_FN(tiny_store)(fb->depth, at, m, qz, shape);
         }
         __m512i rgba = flat;
         if (shading != SR_SHADING_FLAT) {
@@ -148,7 +165,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
                 rgba = SR_SIMD_FN(w16_phong)(ds, t, l1, l2);
             }
         }
-        SR_SIMD_FN(tiny_store)(fb->color, at, m, rgba);
+        SR_SIMD_FN(tiny_store)(fb->color, at, m, rgba, shape);
         st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
     }
 }
