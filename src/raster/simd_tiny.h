@@ -18,19 +18,39 @@
  * box holds the exact edge value (lanes outside it may wrap and are never
  * enabled).  From there the stamp repeats rows16_n's operations. */
 
-/* Edge i's value at q8 point (X, Y) modulo 2^32: a_i (X - X_i) + b_i (Y - Y_i)
- * with (X_i, Y_i) a vertex on edge i - vertex 0 for edges 1 and 2, vertex 1
- * = vertex 0 + (b_2, -a_2) for edge 0 (as sr__tri_c). */
-SR_SIMD_TARGET SR_INLINE uint32_t SR_SIMD_FN(tiny_edge)(const sr_tri *t, int i, uint32_t X,
-                                                       uint32_t Y)
+/* The three edges' a, b, top-left bounds and values at q8 point (X, Y)
+ * in lanes 0-2 (lane 3 is not used).  Edge i's value modulo 2^32 is
+ * a_i (X - X_i) + b_i (Y - Y_i) with (X_i, Y_i) a vertex on edge i -
+ * vertex 0 for edges 1 and 2, vertex 1 = vertex 0 + (b_2, -a_2) for edge 0
+ * (as sr__tri_c) - and a pixel is covered iff e_i >= nb_i = -bias_i: 0 on
+ * a top or left edge, else 1 (sr__tri_bias: a top or left edge has
+ * a > 0, or a = 0 and b > 0). */
+typedef struct SR_SIMD_FN(tiny_edges) {
+    __m128i a, b, nb, at;
+} SR_SIMD_FN(tiny_edges);
+
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(tiny_setup)(const sr_tri *t, uint32_t X, uint32_t Y,
+                                                    SR_SIMD_FN(tiny_edges) *o)
 {
-    uint32_t xi = (uint32_t)t->x0_q8, yi = (uint32_t)t->y0_q8;
-    if (i == 0) {
-        xi += (uint32_t)t->b[2];
-        yi -= (uint32_t)t->a[2];
-    }
-    return (uint32_t)t->a[i] * (X - xi) + (uint32_t)t->b[i] * (Y - yi);
+    _Static_assert(offsetof(sr_tri, b) == offsetof(sr_tri, a) + 12 &&
+                       offsetof(sr_tri, x0_q8) == offsetof(sr_tri, b) + 12,
+                   "a, b and vertex 0 lie one after the other: 16-byte loads stay inside");
+    __m128i a = _mm_loadu_si128((const __m128i *)t->a);   /* a0 a1 a2 b0 */
+    __m128i b = _mm_loadu_si128((const __m128i *)t->b);   /* b0 b1 b2 x0 */
+    __m128i zero = _mm_setzero_si128();
+    __m128i top_left = _mm_or_si128(_mm_cmpgt_epi32(a, zero),
+                                    _mm_and_si128(_mm_cmpeq_epi32(a, zero), _mm_cmpgt_epi32(b, zero)));
+    o->nb = _mm_add_epi32(_mm_set1_epi32(1), top_left);   /* the mask is -1 where top-left */
+    uint32_t dx = X - (uint32_t)t->x0_q8, dy = Y - (uint32_t)t->y0_q8;
+    __m128i px = _mm_setr_epi32((int32_t)(dx - (uint32_t)t->b[2]), (int32_t)dx, (int32_t)dx, 0);
+    __m128i py = _mm_setr_epi32((int32_t)(dy + (uint32_t)t->a[2]), (int32_t)dy, (int32_t)dy, 0);
+    o->at = _mm_add_epi32(_mm_mullo_epi32(a, px), _mm_mullo_epi32(b, py));
+    o->a = a;
+    o->b = b;
 }
+
+/* Lane i of v in all sixteen lanes. */
+#define SR_TINY_LANE(v, i) _mm512_broadcastd_epi32(_mm_shuffle_epi32((v), (i) * 0x55))
 
 /* A stamp's rows of a buffer: row r starts at at[r] (4 x 4: four rows
  * of four lanes; 8 x 2: two of eight).  A row the box lacks, whose lanes
@@ -98,18 +118,22 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
                              : _mm512_setr_epi32(0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3);
     const __m512i row = wide ? _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1)
                              : _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3);
-    uint32_t X = (uint32_t)sr__centre_q8(rx0), Y = (uint32_t)sr__centre_q8(ry0);
-    uint32_t corner[3];
+    SR_SIMD_FN(tiny_edges) te;
+    SR_SIMD_FN(tiny_setup)(t, (uint32_t)sr__centre_q8(rx0), (uint32_t)sr__centre_q8(ry0), &te);
+    /* A pixel step is 256 q8 units: lane (c, r) lies 256 (c a + r b) from
+     * the corner, and the next stamp rows 256 rows b below. */
+    __m128i sa = _mm_slli_epi32(te.a, 8), sb = _mm_slli_epi32(te.b, 8);
+    __m128i corner = te.at, down = _mm_mullo_epi32(sb, _mm_set1_epi32(rows));
     __m512i off[3], nb[3];
-    for (int i = 0; i < 3; i++) {
-        corner[i] = SR_SIMD_FN(tiny_edge)(t, i, X, Y);
-        /* Lane (c, r) lies c pixel steps a and r steps b from the corner. */
-        __m512i a = _mm512_set1_epi32((int32_t)((uint32_t)t->a[i] * SR_SUBPIXEL_ONE));
-        __m512i b = _mm512_set1_epi32((int32_t)((uint32_t)t->b[i] * SR_SUBPIXEL_ONE));
-        off[i] = _mm512_add_epi32(_mm512_mullo_epi32(col, a), _mm512_mullo_epi32(row, b));
-        /* Covered iff e >= -bias (1 off a top or left edge, else 0). */
-        nb[i] = _mm512_set1_epi32(-sr__tri_bias(t, i));
-    }
+    off[0] = _mm512_add_epi32(_mm512_mullo_epi32(col, SR_TINY_LANE(sa, 0)),
+                              _mm512_mullo_epi32(row, SR_TINY_LANE(sb, 0)));
+    off[1] = _mm512_add_epi32(_mm512_mullo_epi32(col, SR_TINY_LANE(sa, 1)),
+                              _mm512_mullo_epi32(row, SR_TINY_LANE(sb, 1)));
+    off[2] = _mm512_add_epi32(_mm512_mullo_epi32(col, SR_TINY_LANE(sa, 2)),
+                              _mm512_mullo_epi32(row, SR_TINY_LANE(sb, 2)));
+    nb[0] = SR_TINY_LANE(te.nb, 0);
+    nb[1] = SR_TINY_LANE(te.nb, 1);
+    nb[2] = SR_TINY_LANE(te.nb, 2);
     sr_framebuffer *fb = ds->fb;
     size_t pitch = (size_t)fb->width;
     /* The box's columns in each row of a stamp. */
@@ -123,12 +147,13 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
             /* With min, not a branch: the boxes' heights vary at random. */
             at[r] = idx + (size_t)(r < last ? r : last) * pitch;
         }
-        __m512i e[3];
+        __m512i e[3] = { _mm512_add_epi32(SR_TINY_LANE(corner, 0), off[0]),
+                         _mm512_add_epi32(SR_TINY_LANE(corner, 1), off[1]),
+                         _mm512_add_epi32(SR_TINY_LANE(corner, 2), off[2]) };
+        corner = _mm_add_epi32(corner, down);
         __mmask16 m = (__mmask16)valid;
         for (int i = 0; i < 3; i++) {
-            e[i] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)corner[i]), off[i]);
             m = _mm512_mask_cmpge_epi32_mask(m, e[i], nb[i]);
-            corner[i] += (uint32_t)rows * (uint32_t)t->b[i] * SR_SUBPIXEL_ONE;
         }
         if (!m) {
             continue;
