@@ -245,6 +245,10 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
     ds->light_lanes = simd != SR_SIMD_OFF;
     ds->vertex_lanes16 = simd == SR_SIMD_AVX512;
     ds->wide_stores = simd == SR_SIMD_AVX512;
+    ds->triangles16 = simd == SR_SIMD_AVX512 && !ds->per_sample && ds->ninterp == 4 &&
+                      ds->flat_mask == 0 && ds->shading != SR_SHADING_FLAT &&
+                      ds->mode_front == SR_POLYGON_FILL && ds->mode_back == SR_POLYGON_FILL &&
+                      ds->samples == 1 && !ds->offset_on;
     ds->index_avx2 = simd >= SR_SIMD_AVX2;
     ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
 }

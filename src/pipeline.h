@@ -110,6 +110,11 @@ typedef struct sr_draw_state {
     bool vertex_lanes16;
     /* Tile clears in 64-byte stores: the AVX-512 level of sr__simd_level. */
     bool wide_stores;
+    /* Triangle lists without indices assembled and set up sixteen at a
+     * time (geometry/assembly_wide.h): the AVX-512 level, in the states
+     * it covers (filled, four varyings, no flat ones, one sample, no
+     * polygon offset). */
+    bool triangles16;
     /* The index range check in AVX2 (geometry/index_max.c): the AVX2
      * level or above. */
     bool index_avx2;

@@ -953,6 +953,39 @@ static void kernel_test_vertex(sr_rng *rng, double cx, double cy, double r, floa
     memcpy(nrm, &n, sizeof(float) * 3);
 }
 
+/* The kernel tests' two images and depth words (one drawn each way) and
+ * their camera, 3 units back with a perspective projection. */
+typedef struct kernel_test_io {
+    sr_context *ctx;                  /* two threads */
+    uint8_t *c[2];
+    uint32_t *d[2];
+    sr_mat4 view, proj;
+} kernel_test_io;
+
+static kernel_test_io kernel_test_io_make(int w, int h)
+{
+    size_t n = (size_t)w * (size_t)h;
+    kernel_test_io io = { NULL, { malloc(n * 4), malloc(n * 4) },
+                          { malloc(sizeof(uint32_t) * n), malloc(sizeof(uint32_t) * n) },
+                          sr_mat4_translate(0, 0, -3),
+                          sr_perspective(0.9f, (float)w / (float)h, 1.0f, 10.0f, false) };
+    if (sr_make_context(&(sr_context_desc){ .threads = 2 }, &io.ctx) != SR_OK || !io.c[0] ||
+        !io.c[1] || !io.d[0] || !io.d[1]) {
+        fprintf(stderr, "out of memory for a %d x %d kernel test\n", w, h);
+        exit(1);
+    }
+    return io;
+}
+
+static void kernel_test_io_free(kernel_test_io *io)
+{
+    sr_destroy_context(io->ctx);
+    for (int i = 0; i < 2; i++) {
+        free(io->c[i]);
+        free(io->d[i]);
+    }
+}
+
 /* Draw into a fresh framebuffer cleared to one color and the far depth,
  * with SR_SIMD set to `simd` (NULL: unset, the widest kernel); its color
  * and raw depth words are copied out. */
@@ -990,14 +1023,9 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
     static const char *const simd[] = { NULL, "avx2", "base", "off" };
     static const sr_shading shadings[] = { SR_SHADING_UNLIT, SR_SHADING_GOURAUD,
                                            SR_SHADING_FLAT, SR_SHADING_PHONG };
-    sr_context *ctx;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
     float pos[N * 9], nrm[N * 9], col[N * 12];
-    uint8_t *c0 = malloc(W * H * 4), *c1 = malloc(W * H * 4);
-    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H), *d1 = malloc(sizeof(uint32_t) * W * H);
+    kernel_test_io io = kernel_test_io_make(W, H);
     sr_rng rng = { 0x51ad };
-    sr_mat4 view = sr_mat4_translate(0, 0, -3);
-    sr_mat4 proj = sr_perspective(0.9f, (float)W / H, 1.0f, 10.0f, false);
     int compared = 0;
     for (int k = 0; k < 32 && !sr_test_failed_now(); k++) {
         /* Every third triangle spans up to the whole view (full block
@@ -1035,12 +1063,13 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
         }
         sr_depth_format df = k % 16 < 8 ? SR_DEPTH_D24 : SR_DEPTH_D16;
         const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .normals = nrm,
-                                    .colors = col, .color_size = 4, .view = &view,
-                                    .projection = &proj };
-        kernel_test_draw(ctx, W, H, df, simd[0], &st, &desc, c0, d0);
+                                    .colors = col, .color_size = 4, .view = &io.view,
+                                    .projection = &io.proj };
+        kernel_test_draw(io.ctx, W, H, df, simd[0], &st, &desc, io.c[0], io.d[0]);
         for (int v = 1; v < 4; v++) {
-            kernel_test_draw(ctx, W, H, df, simd[v], &st, &desc, c1, d1);
-            if (memcmp(c0, c1, W * H * 4) != 0 || memcmp(d0, d1, sizeof(uint32_t) * W * H) != 0) {
+            kernel_test_draw(io.ctx, W, H, df, simd[v], &st, &desc, io.c[1], io.d[1]);
+            if (memcmp(io.c[0], io.c[1], W * H * 4) != 0 ||
+                memcmp(io.d[0], io.d[1], sizeof(uint32_t) * W * H) != 0) {
                 sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, depth test %d): "
                              "SR_SIMD=%s differs from the default kernel", k,
                              (int)st.shading, !st.no_depth_test, simd[v]);
@@ -1049,11 +1078,86 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
         }
     }
     CHECK_EQ(compared, 96);
-    free(c0);
-    free(d0);
-    free(c1);
-    free(d1);
-    sr_destroy_context(ctx);
+    kernel_test_io_free(&io);
+}
+
+/* The front end's sixteen-lane assembly and setup of triangle lists
+ * without indices (geometry/assembly_wide.h, at the AVX-512 level) against
+ * the scalar triangle() and sr__setup_tri, through SR_SIMD=off: every cull
+ * mode and winding, perspective and not, D16 and D24, tiny, small and large
+ * triangles, some crossing the near plane or the sides (clipped at their
+ * place among the others), some of zero area, some between pixel centres,
+ * some with a vertex at infinity.  Pixels, depths and the draw's counters
+ * must agree. */
+SR_TEST(front_end_lanes_give_the_scalar_bytes_and_counts)
+{
+    enum { W = 173, H = 131, N = 200 };
+    static const sr_cull_mode culls[] = { SR_CULL_NONE, SR_CULL_BACK, SR_CULL_FRONT,
+                                          SR_CULL_FRONT_AND_BACK };
+    float pos[N * 9], nrm[N * 9], col[N * 12];
+    kernel_test_io io = kernel_test_io_make(W, H);
+    sr_rng rng = { 0xfe16 };
+    int compared = 0;
+    for (int k = 0; k < 16 && !sr_test_failed_now(); k++) {
+        for (int i = 0; i < N; i++) {
+            int kind = i % 7;
+            double r = kind < 3 ? 0.02 : kind < 5 ? 0.12 : 1.5;
+            double cx = sr_rng_range(&rng, -1.3, 1.3), cy = sr_rng_range(&rng, -1.3, 1.3);
+            for (int v = 0; v < 3; v++) {
+                float *p = &pos[(i * 3 + v) * 3];
+                p[0] = (float)(cx + sr_rng_range(&rng, -r, r));
+                p[1] = (float)(cy + sr_rng_range(&rng, -r, r));
+                /* Some vertices behind the near plane (z > 2 in front of
+                 * the camera at -3): those triangles are clipped. */
+                p[2] = (float)sr_rng_range(&rng, -2.0, kind == 6 ? 2.6 : 1.5);
+                float *n = &nrm[(i * 3 + v) * 3];
+                n[0] = (float)sr_rng_range(&rng, -0.5, 0.5);
+                n[1] = (float)sr_rng_range(&rng, -0.5, 0.5);
+                n[2] = 1.0f;
+                for (int c = 0; c < 4; c++) {
+                    col[(i * 3 + v) * 4 + c] = (float)sr_rng_range(&rng, -0.2, 1.2);
+                }
+            }
+            if (i % 23 == 0) {
+                /* Zero area: the third vertex on the line through the others. */
+                for (int a = 0; a < 3; a++) {
+                    pos[(i * 3 + 2) * 3 + a] = 2 * pos[(i * 3 + 1) * 3 + a] - pos[i * 9 + a];
+                }
+            }
+            if (i % 37 == 5) {
+                pos[i * 9] = INFINITY; /* not finite: discarded */
+            }
+        }
+        sr_state st = { .shading = k % 3 == 2 ? SR_SHADING_UNLIT : SR_SHADING_GOURAUD,
+                        .cull = culls[k % 4], .front_face = k / 4 % 2 ? SR_FRONT_CW : SR_FRONT_CCW,
+                        .no_depth_test = k % 8 == 7, .no_depth_write = k % 8 == 7 };
+        sr_depth_format df = k % 16 < 8 ? SR_DEPTH_D24 : SR_DEPTH_D16;
+        /* Odd batches without a projection: w = 1, so no perspective. */
+        st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
+        const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .normals = nrm,
+                                    .colors = col, .color_size = 4, .view = k % 2 ? NULL : &io.view,
+                                    .projection = k % 2 ? NULL : &io.proj };
+        kernel_test_draw(io.ctx, W, H, df, NULL, &st, &desc, io.c[0], io.d[0]);
+        sr_draw_info lanes = sr_last_draw_info(io.ctx);
+        kernel_test_draw(io.ctx, W, H, df, "off", &st, &desc, io.c[1], io.d[1]);
+        sr_draw_info scalar = sr_last_draw_info(io.ctx);
+        if (memcmp(io.c[0], io.c[1], W * H * 4) != 0 ||
+            memcmp(io.d[0], io.d[1], sizeof(uint32_t) * W * H) != 0) {
+            sr_test_fail(__FILE__, __LINE__, "batch %d (cull %d, winding %d): the default front "
+                         "end differs from SR_SIMD=off", k, (int)st.cull, (int)st.front_face);
+        }
+        CHECK_EQ(lanes.triangles_in, scalar.triangles_in);
+        CHECK_EQ(lanes.triangles_clipped, scalar.triangles_clipped);
+        CHECK_EQ(lanes.triangles_culled, scalar.triangles_culled);
+        CHECK_EQ(lanes.triangles_drawn, scalar.triangles_drawn);
+        CHECK_EQ(lanes.fragments, scalar.fragments);
+        CHECK(st.cull == SR_CULL_FRONT_AND_BACK ? scalar.triangles_drawn == 0
+                                                : scalar.triangles_drawn > 0);
+        CHECK(scalar.triangles_clipped > 0 && scalar.triangles_culled > 0);
+        compared++;
+    }
+    CHECK_EQ(compared, 16);
+    kernel_test_io_free(&io);
 }
 
 /* Triangles that cover the whole view: the vector kernels walk a box a

@@ -409,6 +409,13 @@ static void primitive(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *
     }
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#include <stddef.h>
+#include "geometry/assembly_wide.h"
+#define SR_HAVE_TRIANGLES16 1
+#endif
+
 /* Vertices per block of the fused vertex stage: a multiple of 2 and 3,
  * small enough for the block's positions and varyings to stay in L1. */
 #define FUSED_BLOCK_VERTS 192
@@ -458,7 +465,13 @@ void sr__run_front_end(void *arg, int job, int thread)
             if (k == 3) {
                 /* primitive()'s triangle list without indices. */
                 bool last = fe->ds->provoking_last;
-                for (size_t q = p; q < end && !c->out_of_memory; q++) {
+                size_t q = p;
+#ifdef SR_HAVE_TRIANGLES16
+                for (; fe->ds->triangles16 && q + 16 <= end && !c->out_of_memory; q += 16) {
+                    triangles16(fe, c, &vs, (uint32_t)(3 * q));
+                }
+#endif
+                for (; q < end && !c->out_of_memory; q++) {
                     uint32_t a = (uint32_t)(3 * q);
                     triangle(fe, c, &vs, a, a + 1, a + 2, last ? a + 2 : a);
                 }

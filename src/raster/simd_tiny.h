@@ -38,8 +38,8 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(tiny_setup)(const sr_tri *t, uint32_t X
     __m128i a = _mm_loadu_si128((const __m128i *)t->a);   /* a0 a1 a2 b0 */
     __m128i b = _mm_loadu_si128((const __m128i *)t->b);   /* b0 b1 b2 x0 */
     __m128i zero = _mm_setzero_si128();
-    __m128i top_left = _mm_or_si128(_mm_cmpgt_epi32(a, zero),
-                                    _mm_and_si128(_mm_cmpeq_epi32(a, zero), _mm_cmpgt_epi32(b, zero)));
+    __m128i flat_b = _mm_and_si128(_mm_cmpeq_epi32(a, zero), _mm_cmpgt_epi32(b, zero));
+    __m128i top_left = _mm_or_si128(_mm_cmpgt_epi32(a, zero), flat_b);
     o->nb = _mm_add_epi32(_mm_set1_epi32(1), top_left);   /* the mask is -1 where top-left */
     uint32_t dx = X - (uint32_t)t->x0_q8, dy = Y - (uint32_t)t->y0_q8;
     __m128i px = _mm_setr_epi32((int32_t)(dx - (uint32_t)t->b[2]), (int32_t)dx, (int32_t)dx, 0);
@@ -180,9 +180,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
                 int n = t->ninterp;
                 for (int ch = 0; ch < 4; ch++) {
                     const float *v = &t->vary[SR_VARY_COLOR + ch];
-                    __m512 c = _mm512_add_ps(
-                        _mm512_add_ps(_mm512_set1_ps(v[0]), _mm512_mul_ps(l1, _mm512_set1_ps(v[n]))),
-                        _mm512_mul_ps(l2, _mm512_set1_ps(v[2 * n])));
+                    __m512 c1 = _mm512_mul_ps(l1, _mm512_set1_ps(v[n]));
+                    __m512 c = _mm512_add_ps(_mm512_add_ps(_mm512_set1_ps(v[0]), c1),
+                                             _mm512_mul_ps(l2, _mm512_set1_ps(v[2 * n])));
                     rgba = _mm512_or_si512(rgba, _mm512_slli_epi32(SR_SIMD_FN(w16_unorm8)(c),
                                                                     (unsigned)(8 * ch)));
                 }
