@@ -138,10 +138,10 @@ SR_WIDE_TARGET static void triangles16(const sr_front_end *fe, sr_chunk *c,
     __m512i maxy = _mm512_max_epi32(Y[0], _mm512_max_epi32(Y[1], Y[2]));
     const __m512i half = _mm512_set1_epi32(SR_SUBPIXEL_HALF), one = _mm512_set1_epi32(1);
     /* sr__ceil_q8(min - 128) = -((128 - min) >> 8), sr__floor_q8(max - 128) + 1. */
-    const __m512i none = _mm512_setzero_si512();
+    const __m512i izero = _mm512_setzero_si512();
     const unsigned q8 = SR_SUBPIXEL_BITS;
-    __m512i bx0 = _mm512_sub_epi32(none, _mm512_srai_epi32(_mm512_sub_epi32(half, minx), q8));
-    __m512i by0 = _mm512_sub_epi32(none, _mm512_srai_epi32(_mm512_sub_epi32(half, miny), q8));
+    __m512i bx0 = _mm512_sub_epi32(izero, _mm512_srai_epi32(_mm512_sub_epi32(half, minx), q8));
+    __m512i by0 = _mm512_sub_epi32(izero, _mm512_srai_epi32(_mm512_sub_epi32(half, miny), q8));
     __m512i bx1 = _mm512_add_epi32(_mm512_srai_epi32(_mm512_sub_epi32(maxx, half), q8), one);
     __m512i by1 = _mm512_add_epi32(_mm512_srai_epi32(_mm512_sub_epi32(maxy, half), q8), one);
     bx0 = _mm512_max_epi32(bx0, _mm512_set1_epi32(ds->rect_x0));
