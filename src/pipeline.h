@@ -602,6 +602,9 @@ typedef enum sr_simd_level {
     SR_SIMD_OFF = 0, SR_SIMD_BASE, SR_SIMD_AVX2, SR_SIMD_AVX512
 } sr_simd_level;
 sr_simd_level sr__simd_level(void);
+/* What the AVX-512 level needs of the CPU (sr__simd_level checks each of
+ * them): the target of every function built for that level. */
+#define SR_TARGET_AVX512 __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
 /* The models whose fragment color is the interpolated color varying, as
  * the vertex stage left it: what the vector kernels shade like UNLIT. */
 static inline bool sr__color_varying_shading(sr_shading s)

@@ -11,19 +11,16 @@
 
 #include <immintrin.h>
 
-#define SR_LANES16_TARGET __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl")))
-
 typedef float v16f __attribute__((vector_size(64)));
 typedef int32_t v16i __attribute__((vector_size(64)));
 
-static inline __attribute__((always_inline)) SR_LANES16_TARGET v16f v16_sel(v16i m, v16f a,
-                                                                              v16f b)
+static inline __attribute__((always_inline)) SR_TARGET_AVX512 v16f v16_sel(v16i m, v16f a, v16f b)
 {
     return (v16f)((m & (v16i)a) | (~m & (v16i)b));
 }
 
 /* Correctly rounded, as sqrtf. */
-static inline __attribute__((always_inline)) SR_LANES16_TARGET v16f v16_sqrt(v16f x)
+static inline __attribute__((always_inline)) SR_TARGET_AVX512 v16f v16_sqrt(v16f x)
 {
     return (v16f)_mm512_sqrt_ps((__m512)x);
 }
@@ -33,7 +30,7 @@ static inline __attribute__((always_inline)) SR_LANES16_TARGET v16f v16_sqrt(v16
 #define SR_LL_SEL v16_sel
 #define SR_LL_SQRT v16_sqrt
 #define SR_LL_NAME light16
-#define SR_LL_TARGET SR_LANES16_TARGET
+#define SR_LL_TARGET SR_TARGET_AVX512
 #include "fragment/light_lanes_body.h"
 
 #endif

@@ -22,33 +22,34 @@
  * their second operand unless the first is smaller (larger), as sr__min_d
  * and sr__max_d do. */
 
-#define SR_WIDE_TARGET __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl")))
-
-/* One 32-bit field (at byte `at` of sr_vertex_post) of vertex v of each of
- * sixteen triangles whose vertices follow one another from `post`. */
-SR_WIDE_TARGET static inline __m512i wide_field(const sr_vertex_post *post, int v, size_t at)
+/* The byte offsets from `post` of the field at byte `at` of vertex v of
+ * each of sixteen triangles whose vertices follow one another. */
+SR_TARGET_AVX512 static inline __m512i wide_offsets(int v, size_t at)
 {
     const __m512i tri = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    __m512i idx = _mm512_mullo_epi32(_mm512_add_epi32(_mm512_mullo_epi32(tri, _mm512_set1_epi32(3)),
-                                                      _mm512_set1_epi32(v)),
-                                     _mm512_set1_epi32((int)sizeof(sr_vertex_post)));
-    return _mm512_i32gather_epi32(_mm512_add_epi32(idx, _mm512_set1_epi32((int)at)), post, 1);
+    __m512i vertex = _mm512_add_epi32(_mm512_mullo_epi32(tri, _mm512_set1_epi32(3)),
+                                      _mm512_set1_epi32(v));
+    __m512i size = _mm512_set1_epi32((int)sizeof(sr_vertex_post));
+    return _mm512_add_epi32(_mm512_mullo_epi32(vertex, size), _mm512_set1_epi32((int)at));
+}
+
+/* One 32-bit field (at byte `at` of sr_vertex_post) of vertex v of the
+ * sixteen triangles. */
+SR_TARGET_AVX512 static inline __m512i wide_field(const sr_vertex_post *post, int v, size_t at)
+{
+    return _mm512_i32gather_epi32(wide_offsets(v, at), post, 1);
 }
 
 /* The depths of vertex v of the sixteen triangles, in two halves. */
-SR_WIDE_TARGET static inline void wide_depth(const sr_vertex_post *post, int v, __m512d z[2])
+SR_TARGET_AVX512 static inline void wide_depth(const sr_vertex_post *post, int v, __m512d z[2])
 {
-    const __m512i tri = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    __m512i idx = _mm512_mullo_epi32(_mm512_add_epi32(_mm512_mullo_epi32(tri, _mm512_set1_epi32(3)),
-                                                      _mm512_set1_epi32(v)),
-                                     _mm512_set1_epi32((int)sizeof(sr_vertex_post)));
-    idx = _mm512_add_epi32(idx, _mm512_set1_epi32((int)offsetof(sr_vertex_post, z)));
-    z[0] = _mm512_i32gather_pd(_mm512_castsi512_si256(idx), post, 1);
-    z[1] = _mm512_i32gather_pd(_mm512_extracti64x4_epi64(idx, 1), post, 1);
+    __m512i at = wide_offsets(v, offsetof(sr_vertex_post, z));
+    z[0] = _mm512_i32gather_pd(_mm512_castsi512_si256(at), post, 1);
+    z[1] = _mm512_i32gather_pd(_mm512_extracti64x4_epi64(at, 1), post, 1);
 }
 
 /* Sixteen int32 lanes as two halves of doubles (exact). */
-SR_WIDE_TARGET static inline void wide_to_d(__m512i v, __m512d d[2])
+SR_TARGET_AVX512 static inline void wide_to_d(__m512i v, __m512d d[2])
 {
     d[0] = _mm512_cvtepi32_pd(_mm512_castsi512_si256(v));
     d[1] = _mm512_cvtepi32_pd(_mm512_extracti64x4_epi64(v, 1));
@@ -65,8 +66,8 @@ typedef struct wide_tris {
 
 /* Triangles first / 3 .. first / 3 + 15 of a list without indices: their
  * vertices are first .. first + 47, in vs. */
-SR_WIDE_TARGET static void triangles16(const sr_front_end *fe, sr_chunk *c,
-                                       const sr_vertex_src *vs, uint32_t first)
+SR_TARGET_AVX512 static void triangles16(const sr_front_end *fe, sr_chunk *c,
+                                         const sr_vertex_src *vs, uint32_t first)
 {
     const sr_draw_state *ds = fe->ds;
     const sr_vertex_post *post = vs->post + (first - vs->base);

@@ -29,8 +29,7 @@
 #if defined(__x86_64__) && defined(__GNUC__)
 #include "fragment/light_lanes16.h"   /* v16f, v16i, v16_sel, v16_sqrt, light16 */
 
-#define SR_WIDE SR_LANES16_TARGET
-#define SR_WIDE_INLINE static inline __attribute__((always_inline)) SR_WIDE
+#define SR_WIDE_INLINE static inline __attribute__((always_inline)) SR_TARGET_AVX512
 
 /* An attribute array: `step` bytes from one vertex's element to the
  * next (element() in vertex.c), and its first element in the draw. */
@@ -138,7 +137,7 @@ typedef struct classify8 {
     bool zero_to_one;
 } classify8;
 
-SR_WIDE static void make_classify8(const sr_draw_state *ds, classify8 *c)
+SR_TARGET_AVX512 static void make_classify8(const sr_draw_state *ds, classify8 *c)
 {
     sr_clip_planes k;
     sr__clip_planes(ds, &k);
@@ -272,9 +271,10 @@ SR_WIDE_INLINE __m512i clamped_lanes(int n)
 
 /* gouraud_stage for the n (<= 16) vertices from `at`: the clip position,
  * and the color lit at the eye-space position and normal. */
-SR_WIDE static void gouraud16(const sr_draw_state *ds, const sr_draw_desc *d, const sr_mat4 *mvp,
-                              const sr_mat4 *mv, const sr_mat4 *nm, const classify8 *k,
-                              size_t at, int n, sr_vertex_post *post, float *vary)
+SR_TARGET_AVX512 static void gouraud16(const sr_draw_state *ds, const sr_draw_desc *d,
+                                       const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
+                                       const classify8 *k, size_t at, int n,
+                                       sr_vertex_post *post, float *vary)
 {
     const v16f zero = { 0 }, one = zero + 1.0f;
     __m512i clamped = clamped_lanes(n);
@@ -346,9 +346,10 @@ static bool arrays_fit(const sr_draw_desc *d)
            offsets_fit(d->texcoords, d->texcoord_stride, 2);
 }
 
-SR_WIDE bool sr__vertex_stage16(const sr_draw_state *ds, const sr_draw_desc *d,
-                                const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
-                                size_t first, size_t count, sr_vertex_post *post, float *vary)
+SR_TARGET_AVX512 bool sr__vertex_stage16(const sr_draw_state *ds, const sr_draw_desc *d,
+                                         const sr_mat4 *mvp, const sr_mat4 *mv, const sr_mat4 *nm,
+                                         size_t first, size_t count, sr_vertex_post *post,
+                                         float *vary)
 {
     if (ds->program || ds->shading != SR_SHADING_GOURAUD || ds->shininess_int < 0 ||
         !arrays_fit(d)) {
@@ -390,7 +391,7 @@ SR_WIDE_INLINE void clip_lanes(const sr_vertex_post *post, int n, v16f clip[4])
     clip[3] = (v16f)_mm512_shuffle_ps(t1, t3, 0xee);
 }
 
-SR_WIDE bool sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
+SR_TARGET_AVX512 bool sr__classify16(const sr_draw_state *ds, sr_vertex_post *post, size_t count)
 {
     classify8 k;
     make_classify8(ds, &k);

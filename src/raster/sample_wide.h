@@ -25,7 +25,7 @@ typedef struct ms16 {
     uint32_t flat;         /* FLAT: the packed color */
 } ms16;
 
-__attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
+SR_TARGET_AVX512
 static inline __m128i ms16_shade(const ms16 *k, const __m256d e[3])
 {
     if (k->ds->shading == SR_SHADING_FLAT) {
@@ -55,7 +55,7 @@ static inline __m128i ms16_shade(const ms16 *k, const __m256d e[3])
 
 /* Pixels px .. px + n - 1 of row py (n <= 4), with pixel px's unbiased
  * centre edge values u[]. */
-__attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
+SR_TARGET_AVX512
 static inline void ms16_pixels(const ms16 *k, int px, int py, const int64_t u[3], int n,
                                bool inside)
 {
@@ -111,7 +111,7 @@ static inline void ms16_pixels(const ms16 *k, int px, int py, const int64_t u[3]
 }
 
 /* A block's part rect (sample_walk.h): each row in groups of four pixels. */
-__attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
+SR_TARGET_AVX512
 static inline void ms16_block(void *arg, const sr_block_steps *bs, const int rect[4],
                               const int64_t *u0, bool inside)
 {
@@ -128,7 +128,7 @@ static inline void ms16_block(void *arg, const sr_block_steps *bs, const int rec
     }
 }
 
-__attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
+SR_TARGET_AVX512
 static void raster_ms16(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
                         int ry1, sr_frag_stats *st)
 {

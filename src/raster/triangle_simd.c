@@ -28,7 +28,7 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #include "fragment/light_lanes16.h"
 
 #define SR_SIMD_FN(name) name##_avx512
-#define SR_SIMD_TARGET __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
+#define SR_SIMD_TARGET SR_TARGET_AVX512
 #define SR_SIMD_WIDE 1
 #define SR_SIMD_WIDE16 1 /* two block rows in sixteen lanes */
 #include "raster/simd_kernel.h"

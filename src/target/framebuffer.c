@@ -130,8 +130,7 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
  * and SR_SIMD does not cap it) the rows go in 64-byte stores, the same
  * words. */
 #if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("avx512f"))) static void fill_words_avx512(uint32_t *p, uint32_t v,
-                                                                 size_t n)
+SR_TARGET_AVX512 static void fill_words_avx512(uint32_t *p, uint32_t v, size_t n)
 {
     __m512i w = _mm512_set1_epi32((int)v);
     size_t i = 0;
@@ -378,14 +377,13 @@ static uint32_t resolve4(const uint32_t *s)
 #if defined(__x86_64__) && defined(__SSE2__)
 #define SR_HAVE_WIDE_RESOLVE 1
 #include <immintrin.h>
-#define SR_AVX512 __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl")))
 
 /* Four pixels' sixteen samples in one AVX-512 register, n pixels of a row
  * in groups of four (the rest left to the caller): copied where all four
  * pixels' samples agree, else resolve4's sums for all four at once - the
  * bytes widened to 16 bits, each pixel's samples added in pairs across
  * the register's 64- and 128-bit halves, rounded and packed back. */
-SR_AVX512 static int resolve_row4_avx512(const uint32_t *s, uint32_t *d, int n)
+SR_TARGET_AVX512 static int resolve_row4_avx512(const uint32_t *s, uint32_t *d, int n)
 {
     const __m512i first = _mm512_setr_epi32(0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12);
     const __m512i gather = _mm512_setr_epi32(0, 4, 8, 12, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
