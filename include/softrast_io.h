@@ -40,6 +40,13 @@ typedef enum sr_model_format {
 typedef struct sr_load_desc {
     sr_model_format format;
     bool keep_file_normals_only; /* reserved; normals policy is the caller's */
+    /* Optional: called with the path of every other file the reader opens
+     * for the model (an OBJ's MTL files), e.g. so that a program never
+     * writes its output over one of its inputs.  The model's own path and
+     * the texture paths in the mesh are not reported (the caller has
+     * them), nor the files Assimp opens itself. */
+    void (*file_read)(void *user, const char *path);
+    void *user;                  /* passed to file_read */
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than

@@ -292,6 +292,46 @@ SR_TEST(bad_event_script_names_file_and_line)
 #endif
 }
 
+/* A screenshot over one of the viewer's inputs (its event script, its
+ * model, by any name) is refused before any window opens, and the input
+ * keeps its bytes. */
+SR_TEST(screenshot_over_an_input_is_refused)
+{
+    if (viewer_built() != 1) {
+        SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
+    }
+#ifdef SR_CLI_PATH
+    char events[1100], model[1100], link_path[1100];
+    snprintf(events, sizeof events, "%s/view-own-events.txt", sr_test_out_dir());
+    snprintf(model, sizeof model, "%s/view-own-model.obj", sr_test_out_dir());
+    snprintf(link_path, sizeof link_path, "%s/view-own-model-link.png", sr_test_out_dir());
+    const char *script = "wheel 2\nquit\n", *tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    REQUIRE(write_text(events, script));
+    REQUIRE(write_text(model, tri));
+    remove(link_path);
+    REQUIRE(symlink(model, link_path) == 0);
+    const char *cases[][8] = {
+        { SR_CLI_PATH, "view", "--events", events, "--screenshot", events, NULL },
+        { SR_CLI_PATH, "view", model, "--screenshot-overlay", link_path, "--screenshot",
+          "new.png" },
+    };
+    const char *needles[] = { "is the event script being read", "is the model being read" };
+    for (int i = 0; i < 2; i++) {
+        run_result r;
+        REQUIRE(run(cases[i], env_without_display(), &r));
+        CHECK_EQ(r.status, 2);
+        CHECK_EQ(count_lines(r.err), 1);
+        CHECK_STR_CONTAINS(r.err, needles[i]);
+        result_free(&r);
+    }
+    char *s = slurp(events), *m = slurp(model);
+    CHECK(strcmp(s, script) == 0);
+    CHECK(strcmp(m, tri) == 0);
+    free(s);
+    free(m);
+#endif
+}
+
 /* A directory read as nothing (an empty script, the viewer then waiting
  * for input); opening a FIFO waited for a writer (run() kills a child
  * that hangs); a long line came back from fgets as two, the second parsed

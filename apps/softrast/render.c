@@ -21,7 +21,6 @@
 typedef struct render_opts {
     const char *model;
     const char *output;
-    bool writes_output;            /* `render`, not `view`: no input may be the output */
     const char *texture;           /* --texture FILE */
     sr_texture_filter texture_filter;
     sr_texture_wrap wrap;
@@ -491,12 +490,20 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-static int load_model(const render_opts *o, scene *s)
+/* sr_load_desc.file_read: the model's other files (an OBJ's MTL) are inputs. */
+static void note_mtl(void *inputs, const char *path)
+{
+    cli_inputs_add(inputs, path, "MTL file");
+}
+
+static int load_model(const render_opts *o, cli_inputs *inputs, scene *s)
 {
     memset(s, 0, sizeof *s);
     scene_object *ob = &s->objects[0];
     sr_io_error err;
-    sr_result r = sr_load_mesh(o->model, NULL, &ob->mesh, &err);
+    cli_inputs_add(inputs, o->model, "model");
+    sr_result r = sr_load_mesh(o->model, &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
+                               &ob->mesh, &err);
     if (r != SR_OK) {
         fprintf(stderr, "%s\n", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
@@ -632,15 +639,6 @@ static bool is_file(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-/* Whether two paths name one existing file (links and ./ included): the
- * atomic write of the output would replace an input that is the same. */
-static bool same_file(const char *a, const char *b)
-{
-    struct stat sa, sb;
-    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
-           sa.st_ino == sb.st_ino;
-}
-
 /* Decoded pixels px (freed here) into *out on ctx, for both texture
  * loaders; a failure names `name`.  Returns an exit status, or -1. */
 static int upload_texture(const render_opts *o, sr_context *ctx, const char *name, int w, int h,
@@ -655,18 +653,6 @@ static int upload_texture(const render_opts *o, sr_context *ctx, const char *nam
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     return -1;
-}
-
-/* Whether the texture file `path` is -o's output, which the atomic write
- * would replace (an error, reported here). */
-static bool texture_is_output(const render_opts *o, const char *path)
-{
-    if (path && o->writes_output && same_file(path, o->output)) {
-        cli_error("-o: '%s' is the texture being read (%s); choose another output file",
-                  o->output, path);
-        return true;
-    }
-    return false;
 }
 
 /* A texture into *out, for both texture loaders: the image file `path`,
@@ -709,7 +695,8 @@ static bool same_part_texture(const sr_mesh_part *a, const sr_mesh_part *b)
  * each image read or decoded once; one that is missing or unreadable is a
  * warning, and its parts are drawn without it.  Returns an exit status, or
  * -1. */
-static int load_part_textures(const render_opts *o, sr_context *ctx, scene_object *ob)
+static int load_part_textures(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
+                              scene_object *ob)
 {
     size_t n = ob->mesh.part_count;
     ob->part_textures = calloc(n, sizeof *ob->part_textures);
@@ -738,10 +725,7 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
         }
         seen[k] = part;
         ob->owned_count++;
-        if (texture_is_output(o, path)) {
-            status = EXIT_USAGE;
-            break;
-        }
+        cli_inputs_add(inputs, path, "texture");
         char name[4200];
         snprintf(name, sizeof name, "%s (its embedded texture of part %zu)", o->model, p + 1);
         status = read_texture(o, ctx, path, part->texture_data, part->texture_size, name, true,
@@ -758,7 +742,7 @@ static int load_part_textures(const render_opts *o, sr_context *ctx, scene_objec
  * is missing or unreadable is reported in a warning and the model drawn
  * without it - a preview of the geometry beats no preview.  Returns an
  * exit status, or -1. */
-static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
+static int load_texture(const render_opts *o, sr_context *ctx, cli_inputs *inputs, scene *s)
 {
     if (!o->model || s->count == 0) {
         if (o->texture) {
@@ -769,7 +753,7 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
     }
     scene_object *ob = &s->objects[0];
     if (!o->texture && ob->mesh.part_count > 0 && ob->mesh.texcoords) {
-        return load_part_textures(o, ctx, ob);
+        return load_part_textures(o, ctx, inputs, ob);
     }
     char guess[4096];
     const char *path = o->texture;
@@ -799,9 +783,7 @@ static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
         }
         return -1;
     }
-    if (texture_is_output(o, path)) {
-        return EXIT_USAGE;
-    }
+    cli_inputs_add(inputs, path, "texture");
     if (!ob->mesh.texcoords) {
         if (o->texture) {
             cli_error("--texture: %s has no texture coordinates", o->model);
@@ -1004,6 +986,7 @@ struct render_job {
     sr_context *ctx;
     sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
                              * format) when the caller's framebuffer cannot be drawn into */
+    cli_inputs inputs;      /* the files read: model, MTL, textures */
     char error[512];
 };
 
@@ -1059,7 +1042,7 @@ static int make_context(render_job *job)
     if (status >= 0) {
         return status;
     }
-    return load_texture(&job->o, job->ctx, &job->s);
+    return load_texture(&job->o, job->ctx, &job->inputs, &job->s);
 }
 
 static void drop_context(render_job *job)
@@ -1080,7 +1063,7 @@ static int load_objects(render_job *job)
     render_opts *o = &job->o;
     scene *s = &job->s;
     if (o->model) {
-        int status = load_model(o, s);
+        int status = load_model(o, &job->inputs, s);
         if (status >= 0) {
             return status;
         }
@@ -1235,6 +1218,11 @@ const char *render_job_model(const render_job *job)
     return job->o.model;
 }
 
+cli_inputs *render_job_inputs(render_job *job)
+{
+    return &job->inputs;
+}
+
 sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info)
 {
     render_opts *o = &job->o;
@@ -1322,6 +1310,7 @@ void render_job_free(render_job *job)
     if (job->have_scene) {
         scene_free(&job->s);
     }
+    cli_inputs_free(&job->inputs);
     free(job);
 }
 
@@ -1352,7 +1341,6 @@ int cmd_render(int argc, char **argv)
     if (status >= 0) {
         return status;
     }
-    job->o.writes_output = true;
     const render_opts *o = &job->o;
     struct stat st;
     if (stat(o->output, &st) == 0 && S_ISDIR(st.st_mode)) {
@@ -1360,8 +1348,9 @@ int cmd_render(int argc, char **argv)
         render_job_free(job);
         return EXIT_USAGE;
     }
-    if (o->model && same_file(o->model, o->output)) {
-        cli_error("-o: '%s' is the model being read; choose another output file", o->output);
+    /* The model now, before the time to read it; the rest it brings once read. */
+    cli_inputs_add(&job->inputs, o->model, "model");
+    if (!cli_check_output(&job->inputs, "-o", o->output)) {
         render_job_free(job);
         return EXIT_USAGE;
     }
@@ -1406,6 +1395,9 @@ int cmd_render(int argc, char **argv)
     if (status < 0) {
         status = make_context(job);
     }
+    if (status < 0 && !cli_check_output(&job->inputs, "-o", o->output)) {
+        status = EXIT_USAGE;
+    }
     if (status >= 0) {
         sr_destroy_framebuffer(job->ctx, maker.fb);
         render_job_free(job);
@@ -1432,7 +1424,8 @@ int cmd_render(int argc, char **argv)
     r = cli_write_image(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
                         &(cli_image_options){ .png_level = o->png_level,
                                               .jpeg_quality = o->jpeg_quality,
-                                              .context = job->ctx },
+                                              .context = job->ctx,
+                                              .inputs = &job->inputs },
                         &err);
     double t_write = now_ms();
     if (o->verbose) {
