@@ -15,6 +15,8 @@
 
 #include "softrast.h"
 
+#include <stdio.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -65,6 +67,16 @@ sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
 
 /* true when this build can read other formats through Assimp. */
 bool sr_io_have_assimp(void);
+
+/* Open a file for reading as the readers here do, for a program's own
+ * inputs (a script, a drawing): only a regular file.  A directory, FIFO,
+ * device or socket is refused at once - opening a FIFO would otherwise
+ * wait for a writer, maybe forever - with one line naming the file
+ * ("FILE: cannot open: ...", "FILE: is a directory, not KIND", "FILE: not
+ * a regular file"), KIND saying what the file should be ("an event
+ * script").  *size is the file's size in bytes; close *f with fclose. */
+sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
+                       sr_io_error *err);
 
 /* PNG. */
 typedef struct sr_png_write_desc {
