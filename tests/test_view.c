@@ -558,6 +558,35 @@ SR_TEST(script_screenshot_then_quit_writes_the_file)
 #endif
 }
 
+/* A screenshot the script asks for over the script itself fails like a
+ * write that cannot be made (status 1, one line), and the script keeps
+ * its bytes. */
+SR_TEST(script_screenshot_over_the_script_is_refused)
+{
+    if (!in_path("xvfb-run")) {
+        SKIP("xvfb-run is not installed (Debian: xvfb xauth)");
+    }
+    if (viewer_built() != 1) {
+        SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
+    }
+#ifdef SR_CLI_PATH
+    char events[1100], text[2400];
+    snprintf(events, sizeof events, "%s/view-shot-self.txt", sr_test_out_dir());
+    snprintf(text, sizeof text, "screenshot %s\nquit\n", events);
+    REQUIRE(write_text(events, text));
+    run_result r;
+    REQUIRE(run_view_xvfb((const char *[]){ "--size", "96x64", "--events", events, NULL }, &r));
+    CHECK_EQ(r.signal, 0);
+    CHECK_EQ(r.status, 1);
+    CHECK_EQ(count_lines(r.err), 1);
+    CHECK_STR_CONTAINS(r.err, "is the event script being read");
+    result_free(&r);
+    char *after = slurp(events);
+    CHECK(strcmp(after, text) == 0);
+    free(after);
+#endif
+}
+
 SR_TEST(view_resizes_logs_frames_and_reports_the_median)
 {
     char model[1024];
