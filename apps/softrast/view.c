@@ -217,7 +217,7 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
                       name);
             return EXIT_USAGE;
         } else if (o->argc < MAX_ARGS - 64) {
-            o->argv[o->argc++] = argv[i];   /* a render option: render.c parses it */
+            o->argv[o->argc++] = argv[i];   /* a render option: render_options.c parses it */
         } else {
             cli_error("view: too many arguments");
             return EXIT_USAGE;
