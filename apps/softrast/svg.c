@@ -22,6 +22,7 @@
  * One document per call; nothing global, so calls may run in parallel on
  * different contexts. */
 #include "svg.h"
+#include "io/number.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -188,43 +189,13 @@ static const char *skip_ws_comma(const char *s)
 /* An SVG number (sign, digits, fraction, exponent), no leading blanks. */
 static bool parse_number(const char **s, double *out)
 {
-    const char *p = *s;
-    if (*p == '+' || *p == '-') {
-        p++;
-    }
-    bool digits = false;
-    while (isdigit((unsigned char)*p)) {
-        p++;
-        digits = true;
-    }
-    if (*p == '.') {
-        p++;
-        while (isdigit((unsigned char)*p)) {
-            p++;
-            digits = true;
-        }
-    }
-    if (!digits) {
+    const char *e = *s + strnlen(*s, 64);
+    size_t n = sr__scan_decimal(*s, e);
+    if (n == 0 || n == 64 || sr__parse_double(*s, *s + n, out) != SR_NUM_OK) {
         return false;
     }
-    if ((*p == 'e' || *p == 'E') &&
-        (isdigit((unsigned char)p[1]) ||
-         ((p[1] == '+' || p[1] == '-') && isdigit((unsigned char)p[2])))) {
-        p += 2;
-        while (isdigit((unsigned char)*p)) {
-            p++;
-        }
-    }
-    char buf[64];
-    size_t n = (size_t)(p - *s);
-    if (n >= sizeof buf) {
-        return false;
-    }
-    memcpy(buf, *s, n);
-    buf[n] = 0;
-    *out = strtod(buf, NULL);
-    *s = p;
-    return isfinite(*out);
+    *s += n;
+    return true;
 }
 
 /* A length: number with an optional absolute unit; 96 px per inch.
