@@ -87,6 +87,18 @@ sr_result sr_write_png(const char *path, int width, int height,
                        const uint8_t *rgba, size_t stride,
                        const sr_png_write_desc *desc, sr_io_error *err);
 
+/* Where an encoder's bytes go (stb_image_write's "_to_func"): called in
+ * order with consecutive pieces of the file (a socket, a growing buffer);
+ * return false to stop, and the encoder returns SR_IO_ERROR ("<memory>:
+ * the write function failed") with every block it took released. */
+typedef bool (*sr_write_fn)(void *user, const void *data, size_t size);
+
+/* sr_write_png's bytes, the same ones, to `write` instead of a file
+ * (messages name "<memory>"). */
+sr_result sr_encode_png(sr_write_fn write, void *user, int width, int height,
+                        const uint8_t *rgba, size_t stride, const sr_png_write_desc *desc,
+                        sr_io_error *err);
+
 /* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
  * *pixels is malloc'd; free it with free(). */
 sr_result sr_read_png(const char *path, int *width, int *height,
@@ -133,6 +145,10 @@ typedef struct sr_jpeg_write_desc {
 sr_result sr_write_jpeg(const char *path, int width, int height,
                         const uint8_t *rgba, size_t stride,
                         const sr_jpeg_write_desc *desc, sr_io_error *err);
+/* sr_write_jpeg's bytes to `write` instead of a file (see sr_write_fn). */
+sr_result sr_encode_jpeg(sr_write_fn write, void *user, int width, int height,
+                         const uint8_t *rgba, size_t stride, const sr_jpeg_write_desc *desc,
+                         sr_io_error *err);
 
 /* A PNG or a JPEG, told apart by the file's first bytes (not its name),
  * read as RGBA8 by sr_read_png or sr_read_jpeg. */
