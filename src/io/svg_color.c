@@ -1,7 +1,7 @@
-/* svg_color.c - `softrast svg`: SVG 1.1 colors (section 4.4): the 147
- * recognized color keywords, #rgb, #rrggbb and rgb() with integers or
+/* svg_color.c - the SVG reader (src/io): SVG 1.1 colors (section 4.4): the
+ * 147 recognized color keywords, #rgb, #rrggbb and rgb() with integers or
  * percentages.  Pure parsing; used by svg.c. */
-#include "svg.h"
+#include "io/svg.h"
 #include "io/number.h"
 
 #include <ctype.h>
