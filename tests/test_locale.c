@@ -101,3 +101,55 @@ SR_TEST(stl_reads_the_same_numbers_under_a_german_locale)
 {
     same_mesh_in_both_locales("t.stl", stl_text, sr_parse_stl);
 }
+
+/* An SVG whose every number has a '.': coordinates, a transform, an
+ * opacity, a stroke width, rgb() percentages and a length unit. */
+static const char svg_text[] =
+    "<svg width='32.5' height='24.5' viewBox='0 0 16.25 12.25'>"
+    "<g transform='translate(0.5 0.25) rotate(12.5) scale(1.5)'>"
+    "<path d='M0.5 0.5 L9.75 1.25 L4.5 7.125 z' fill='rgb(12.5%, 50.5%, 99.5%)'"
+    " fill-opacity='0.75' stroke='black' stroke-width='0.35'/>"
+    "<circle cx='6.5' cy='4.5' r='2.25mm' fill='red' opacity='.5'/></g></svg>";
+
+/* The image, or NULL (and a failure) if the render fails. */
+static uint8_t *render_svg(sr_context *ctx, int *w, int *h)
+{
+    sr_framebuffer *fb = NULL;
+    sr_io_error err;
+    sr_result r = sr_render_svg(ctx, svg_text, strlen(svg_text),
+                                &(sr_svg_desc){ .name = "t.svg" }, &fb, NULL, &err);
+    CHECK_EQ(r, SR_OK);
+    if (r != SR_OK) {
+        fprintf(stderr, "  %s\n", err.message);
+        return NULL;
+    }
+    *w = sr_framebuffer_width(fb);
+    *h = sr_framebuffer_height(fb);
+    size_t n = (size_t)*w * (size_t)*h * 4;
+    uint8_t *px = malloc(n);
+    memcpy(px, sr_framebuffer_pixels(fb), n);
+    sr_destroy_framebuffer(ctx, fb);
+    return px;
+}
+
+SR_TEST(svg_draws_the_same_image_under_a_german_locale)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("this build reads no SVG (no expat)");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    setlocale(LC_ALL, "C");
+    int w = 0, h = 0, dw = 0, dh = 0;
+    uint8_t *c = render_svg(ctx, &w, &h);
+    if (c && use_german()) {
+        uint8_t *de = render_svg(ctx, &dw, &dh);
+        setlocale(LC_ALL, "C");
+        CHECK(w == 33 && h == 25); /* 32.5 x 24.5 rounded up, not 32 x 24 */
+        CHECK(de && dw == w && dh == h && memcmp(c, de, (size_t)w * (size_t)h * 4) == 0);
+        free(de);
+    }
+    setlocale(LC_ALL, "C");
+    free(c);
+    sr_destroy_context(ctx);
+}
