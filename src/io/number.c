@@ -452,15 +452,86 @@ static bool read_word(const char *s, const char *e, double *out)
     return true;
 }
 
-/* Both types: the magnitude rounded to fmt, as a double (exact for a float
- * too, as every float is a double). */
-static sr_num_status parse(const char *s, const char *e, const format *fmt, double *out)
+/* One pass over [s, e) for the common case: the sign, the first 19
+ * significant digits in *m, their count in *nd (more than 19: *m holds
+ * only the first) and the exponent of m's last digit.  False when [s, e)
+ * is not the digits form. */
+static bool quick_decimal(const char *s, const char *e, bool *neg, uint64_t *m, int *nd,
+                          long *exp10)
+{
+    *neg = s < e && *s == '-';
+    if (s < e && (*s == '+' || *s == '-')) {
+        s++;
+    }
+    uint64_t v = 0;
+    int n = 0;
+    long x = 0;
+    bool digits = false;
+    while (s < e && *s == '0') {
+        s++;
+        digits = true;
+    }
+    for (; s < e && is_digit(*s); s++, n++) {
+        if (n < 19) {
+            v = v * 10 + (uint64_t)(*s - '0');
+        } else {
+            x++;                /* dropped, but its place still counts */
+        }
+        digits = true;
+    }
+    if (s < e && *s == '.') {
+        s++;
+        if (n == 0) {
+            for (; s < e && *s == '0'; s++) {
+                x--;
+                digits = true;
+            }
+        }
+        for (; s < e && is_digit(*s); s++, n++) {
+            if (n < 19) {
+                v = v * 10 + (uint64_t)(*s - '0');
+                x--;
+            }
+            digits = true;
+        }
+    }
+    if (!digits) {
+        return false;
+    }
+    if (s < e && (*s == 'e' || *s == 'E')) {
+        s++;
+        bool eneg = s < e && *s == '-';
+        if (s < e && (*s == '+' || *s == '-')) {
+            s++;
+        }
+        if (s == e || !is_digit(*s)) {
+            return false;
+        }
+        long k = 0;
+        for (; s < e && is_digit(*s); s++) {
+            if (k < 100000000) {
+                k = k * 10 + (*s - '0');
+            }
+        }
+        x += eneg ? -k : k;
+    }
+    *m = v;
+    *nd = n;
+    *exp10 = x;
+    return s == e;
+}
+
+/* The rare numbers: more than 19 digits, exponents beyond the exact powers
+ * of ten, float midpoints; apart so that the common path's frame stays
+ * small. */
+__attribute__((noinline)) static sr_num_status parse_exact(const char *s, const char *e,
+                                                            const format *fmt, double sign,
+                                                            double *out)
 {
     decimal d;
     if (!read_decimal(s, e, &d)) {
-        return read_word(s, e, out) ? SR_NUM_NOT_FINITE : SR_NUM_MALFORMED;
+        return SR_NUM_MALFORMED; /* never: the same grammar as quick_decimal's */
     }
-    double sign = d.neg ? -1 : 1;
     /* D < 10^n: at most 10^(n + exp10), and anything below half the
      * smallest subnormal (2^-1075 > 10^-324, 2^-150 > 10^-46) is zero. */
     long mag = d.n + d.exp10;
@@ -473,11 +544,36 @@ static sr_num_status parse(const char *s, const char *e, const format *fmt, doub
         return SR_NUM_OVERFLOW;
     }
     int used;
-    uint64_t m = leading_digits(&d, &used);
-    long exp10 = d.exp10 + (d.n - used);
+    uint64_t lead = leading_digits(&d, &used);
+    uint64_t rm;
+    int rk;
+    if (!round_exact(&d, fmt, estimate(lead, d.exp10 + (d.n - used)), &rm, &rk)) {
+        *out = sign * INFINITY;
+        return SR_NUM_OVERFLOW;
+    }
+    *out = sign * ldexp((double)rm, rk);
+    return SR_NUM_OK;
+}
+
+/* Both types: the value rounded to fmt, as a double (exact for a float
+ * too, as every float is a double). */
+static sr_num_status parse(const char *s, const char *e, const format *fmt, double *out)
+{
+    bool neg;
+    uint64_t m;
+    int nd;
+    long exp10;
+    if (!quick_decimal(s, e, &neg, &m, &nd, &exp10)) {
+        return read_word(s, e, out) ? SR_NUM_NOT_FINITE : SR_NUM_MALFORMED;
+    }
+    double sign = neg ? -1 : 1;
+    if (m == 0 && nd <= 19) {
+        *out = sign * 0.0;
+        return SR_NUM_OK;
+    }
 #if FLT_EVAL_METHOD == 0
     /* Clinger's fast path: both factors exact, so one rounding. */
-    if (used == d.n && m < ((uint64_t)1 << 53) && exp10 >= -22 && exp10 <= 22) {
+    if (nd <= 19 && m < ((uint64_t)1 << 53) && exp10 >= -22 && exp10 <= 22) {
         double v = exp10 >= 0 ? (double)m * pow10_exact[exp10] : (double)m / pow10_exact[-exp10];
         if (fmt == &DOUBLE) {
             *out = sign * v;
@@ -501,14 +597,7 @@ static sr_num_status parse(const char *s, const char *e, const format *fmt, doub
         }
     }
 #endif
-    uint64_t rm;
-    int rk;
-    if (!round_exact(&d, fmt, estimate(m, exp10), &rm, &rk)) {
-        *out = sign * INFINITY;
-        return SR_NUM_OVERFLOW;
-    }
-    *out = sign * ldexp((double)rm, rk);
-    return SR_NUM_OK;
+    return parse_exact(s, e, fmt, sign, out);
 }
 
 sr_num_status sr__parse_double(const char *s, const char *e, double *out)
