@@ -104,13 +104,16 @@ static bool have_svg(void)
  * image, and the work counted until then within the budgets, which are
  * the documented ones for this document of `len` bytes and a w x h image
  * - the bound on the time taken, whatever the machine. */
-static void expect_refused_in_library(const char *name, const char *svg, size_t len, int w,
-                                      int h, const char *want)
+static sr_svg_info expect_refused_in_library(const char *name, const char *svg, size_t len,
+                                             int w, int h, const char *want)
 {
+    sr_svg_info info = { 0 };
     sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "no context");
+        return info;
+    }
     sr_framebuffer *fb = NULL;
-    sr_svg_info info;
     sr_io_error err;
     CHECK_EQ(sr_render_svg(ctx, svg, len, &(sr_svg_desc){ .name = name }, &fb, &info, &err),
              SR_TOO_LARGE);
@@ -124,19 +127,23 @@ static void expect_refused_in_library(const char *name, const char *svg, size_t 
     printf("  %-20s %zu bytes: refused after %.0f of %.0f points, %.0f of %.0f fill work\n",
            name, len, info.points_used, info.points_budget, info.work_used, info.work_budget);
     sr_destroy_context(ctx);
+    return info;
 }
 
 /* Refused by the library (above) and by the command: status 2, `want` in
- * its one line, and no output file. */
-static void expect_refused(const char *name, const char *head, const char *piece, int count,
-                           const char *tail, int w, int h, const char *want)
+ * its one line, and no output file.  Returns what the library counted. */
+static sr_svg_info expect_refused(const char *name, const char *head, const char *piece,
+                                  int count, const char *tail, int w, int h, const char *want)
 {
     size_t len;
     char *svg = build_svg(head, piece, count, tail, &len);
-    expect_refused_in_library(name, svg, len, w, h, want);
+    sr_svg_info info = expect_refused_in_library(name, svg, len, w, h, want);
     free(svg);
     const char *in = write_svg(name, head, piece, count, tail);
-    REQUIRE(in);
+    if (!in) {
+        sr_test_fail(__FILE__, __LINE__, "cannot write %s", name);
+        return info;
+    }
     char out[1100], err[4096];
     snprintf(out, sizeof out, "%s/%s.png", sr_test_out_dir(), name);
     unlink(out);
@@ -146,6 +153,7 @@ static void expect_refused(const char *name, const char *head, const char *piece
     CHECK(strchr(err, '\n') == err + strlen(err) - 1); /* one line */
     struct stat st;
     CHECK(stat(out, &st) != 0);
+    return info;
 }
 
 SR_TEST(svg_path_with_millions_of_flattened_points_is_refused)
@@ -173,9 +181,13 @@ SR_TEST(svg_fills_covering_the_image_hundreds_of_times_are_refused)
     if (!have_svg()) {
         SKIP("SVG is not available (built without expat)");
     }
-    expect_refused("limit_coverage.svg", "<svg width='2000' height='2000'>",
-                   "<rect width='2000' height='2000' fill='red'/>", 400, "</svg>", 2000, 2000,
-                   "pixel operations");
+    sr_svg_info info =
+        expect_refused("limit_coverage.svg", "<svg width='2000' height='2000'>",
+                       "<rect width='2000' height='2000' fill='red'/>", 400, "</svg>", 2000,
+                       2000, "pixel operations");
+    /* Stopped at the budget: one more rectangle (its box and rows) would
+     * have passed it. */
+    CHECK(info.work_used + 2000.0 * 2000 + 4 * 2001 > info.work_budget);
     /* Edges that each cross every row: the cost is in the rows, not the box. */
     expect_refused("limit_rows.svg", "<svg width='1000' height='1000'><polygon points='",
                    "0,0 1,1000 ", 40000, "'/></svg>", 1000, 1000, "pixel operations");
@@ -199,8 +211,12 @@ SR_TEST(svg_many_shapes_beyond_the_document_point_budget_are_refused)
     }
     /* Each circle of radius 1e5 flattens to about 2200 points, all off the
      * image (cheap to fill): only the point count stops them. */
-    expect_refused("limit_total.svg", "<svg width='100' height='100'>",
-                   "<circle cx='1.5e5' r='1e5'/>", 4000, "</svg>", 100, 100, "points in all");
+    sr_svg_info info = expect_refused("limit_total.svg", "<svg width='100' height='100'>",
+                                      "<circle cx='1.5e5' r='1e5'/>", 4000, "</svg>", 100, 100,
+                                      "points in all");
+    /* Stopped at the budget: one more circle, flattened then filled (about
+     * 2 x 2200 points), would have passed it. */
+    CHECK(info.points_used + 2 * 2300 > info.points_budget);
 }
 
 SR_TEST(svg_arcs_with_radii_that_square_out_of_range_render)
