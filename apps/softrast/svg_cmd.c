@@ -6,7 +6,6 @@
  * "FILE:LINE: what is wrong", exit status 2 for a bad document, 1 when the
  * run itself fails, and no output file. */
 #include "cli.h"
-#include "io/io_util.h"
 #include "softrast_io.h"
 
 #include <errno.h>
@@ -37,7 +36,7 @@ static int read_input(const char *input, char **data, size_t *size)
     FILE *fp;
     unsigned long long file_size;
     sr_io_error err;
-    if (sr__open_regular(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
+    if (sr_open_file(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
         cli_error("svg: %s", err.message);
         return EXIT_USAGE;
     }
