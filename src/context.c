@@ -5,6 +5,7 @@
 #include "context.h"
 #include "parallel/pool.h"
 #include "scratch.h"
+#include "raster/triangle_simd.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -206,10 +207,36 @@ int sr_context_threads(const sr_context *ctx)
     return ctx ? ctx->threads : 0;
 }
 
+sr_simd_level sr_context_simd(const sr_context *ctx)
+{
+    return ctx ? ctx->simd : SR_SIMD_OFF;
+}
+
 sr_draw_info sr_last_draw_info(const sr_context *ctx)
 {
     sr_draw_info none = {0};
     return ctx ? ctx->last_draw : none;
+}
+
+/* SR_SIMD_DEFAULT means: the SR_SIMD environment variable, else the
+ * widest level; either way capped by what the CPU runs. */
+static sr_simd_level resolve_simd(sr_simd_level requested)
+{
+    if (requested == SR_SIMD_DEFAULT) {
+        static const struct { const char *name; sr_simd_level level; } names[] = {
+            { "off", SR_SIMD_OFF }, { "base", SR_SIMD_BASE }, { "avx2", SR_SIMD_AVX2 },
+            { "avx512", SR_SIMD_AVX512 },
+        };
+        const char *env = getenv("SR_SIMD");
+        requested = SR_SIMD_AVX512;
+        for (size_t i = 0; env && i < sizeof names / sizeof names[0]; i++) {
+            if (strcmp(env, names[i].name) == 0) {
+                requested = names[i].level;
+            }
+        }
+    }
+    sr_simd_level cpu = sr__simd_cpu_level();
+    return requested < cpu ? requested : cpu;
 }
 
 /* 0 threads means: the SR_THREADS environment variable, else one per CPU. */
@@ -246,6 +273,9 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
     if (d.threads < 0 || d.threads > SR_MAX_THREADS) {
         return SR_INVALID_ARG;
     }
+    if (d.simd < SR_SIMD_DEFAULT || d.simd > SR_SIMD_AVX512) {
+        return SR_INVALID_ARG;
+    }
     if (d.batch_primitives != 0 &&
         (d.batch_primitives < SR_BATCH_MIN || d.batch_primitives > SR_BATCH_MAX)) {
         return SR_INVALID_ARG;
@@ -261,6 +291,7 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
     memset(ctx, 0, sizeof *ctx);
     ctx->allocator = d.allocator;
     ctx->threads = resolve_threads(d.threads);
+    ctx->simd = resolve_simd(d.simd);
     ctx->batch_prims = d.batch_primitives ? (size_t)d.batch_primitives : SR_BATCH_DEFAULT;
 
     ctx->scratch = sr__scratch_create(ctx);

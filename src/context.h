@@ -14,6 +14,7 @@ struct sr_scratch;
 struct sr_context {
     sr_allocator allocator;
     int threads;
+    sr_simd_level simd;        /* resolved once here: every draw's kernels follow it */
     size_t batch_prims;        /* sr_context_desc.batch_primitives, resolved */
     struct sr_pool *pool;          /* NULL when threads == 1 */
     struct sr_scratch *scratch;    /* draw-call working memory, grown on demand */

@@ -96,7 +96,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     size_t count = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
 
     sr_draw_state ds;
-    sr__resolve_draw_state(fb, state, d->view, d->projection, &ds);
+    sr__resolve_draw_state(fb, state, d->view, d->projection, ctx->simd, &ds);
 
     size_t prims = 0;
     switch (d->primitive) {

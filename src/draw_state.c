@@ -112,7 +112,7 @@ void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 
 }
 
 void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const sr_mat4 *view,
-                            const sr_mat4 *proj, sr_draw_state *ds)
+                            const sr_mat4 *proj, sr_simd_level simd, sr_draw_state *ds)
 {
     memset(ds, 0, sizeof *ds);
     ds->fb = (sr_framebuffer *)fb;
@@ -240,8 +240,8 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
         }
         ds->per_sample = true;
     }
+    ds->simd = simd;
     ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
-    sr_simd_level simd = sr__simd_level();
     ds->light_lanes = simd != SR_SIMD_OFF;
     ds->vertex_lanes16 = simd == SR_SIMD_AVX512;
     ds->wide_stores = simd == SR_SIMD_AVX512;

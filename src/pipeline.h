@@ -98,6 +98,8 @@ typedef struct sr_draw_state {
     int light_count;
     sr_light_eye lights[SR_MAX_LIGHTS];
 
+    /* The context's vector level (never SR_SIMD_DEFAULT). */
+    sr_simd_level simd;
     /* The half-space kernel chosen for this state (triangle_simd.c), or
      * NULL for the scalar instances. */
     void (*raster_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
@@ -108,7 +110,7 @@ typedef struct sr_draw_state {
     /* Gouraud vertices sixteen at a time, every step of a vertex in the
      * lanes (geometry/vertex_wide.c): the AVX-512 level. */
     bool vertex_lanes16;
-    /* Tile clears in 64-byte stores: the AVX-512 level of sr__simd_level. */
+    /* Tile clears in 64-byte stores: the AVX-512 level. */
     bool wide_stores;
     /* Triangle lists without indices assembled and set up sixteen at a
      * time (geometry/assembly_wide.h): the AVX-512 level, in the states
@@ -382,7 +384,7 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
  * half alone (model, varyings, texture, material, lights in eye space),
  * which the built-in programs (fragment/builtin.c) use. */
 void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const sr_mat4 *view,
-                            const sr_mat4 *proj, sr_draw_state *ds);
+                            const sr_mat4 *proj, sr_simd_level simd, sr_draw_state *ds);
 void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 *proj,
                          sr_draw_state *ds);
 
@@ -595,14 +597,7 @@ bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, 
  * the stencil test), whatever the rasterizer choice. */
 void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t,
                        int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
-/* raster/triangle_simd.c: which vector builds run - AVX-512 or AVX2 when
- * the CPU has it, the baseline build, or none; SR_SIMD=off|base|avx2 in the
- * environment caps it. */
-typedef enum sr_simd_level {
-    SR_SIMD_OFF = 0, SR_SIMD_BASE, SR_SIMD_AVX2, SR_SIMD_AVX512
-} sr_simd_level;
-sr_simd_level sr__simd_level(void);
-/* What the AVX-512 level needs of the CPU (sr__simd_level checks each of
+/* What the AVX-512 level needs of the CPU (sr__simd_cpu_level checks each of
  * them): the target of every function built for that level. */
 #define SR_TARGET_AVX512 __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
 /* The models whose fragment color is the interpolated color varying, as

@@ -383,20 +383,6 @@ SR_INLINE uint64_t walk_fast_as(const fast_line *f, int64_t ka, int64_t kb, cons
 #define SR_LINE_AVX2 1
 #include <immintrin.h>
 
-/* Whether the AVX2 walk runs: the CPU has AVX2 and SR_SIMD does not cap
- * the vector kernels below it.  Read once, at the first line drawn
- * (per call it would cost a getenv per line and tile). */
-static bool line_avx2(void)
-{
-    static int cached = -1;
-    int v = __atomic_load_n(&cached, __ATOMIC_RELAXED);
-    if (v < 0) {
-        v = sr__simd_level() >= SR_SIMD_AVX2;
-        __atomic_store_n(&cached, v, __ATOMIC_RELAXED);
-    }
-    return v;
-}
-
 /* sr__unorm8 on four pixels' r, g, b, a lanes, packed per pixel: the
  * triangle kernels' packing (see pack_unorm8 for why it is the same). */
 SR_INLINE __m128i pack4_unorm8(const __m128 c[4])
@@ -506,7 +492,7 @@ static void walk_fast(const sr_draw_state *ds, const sr_line *l, int64_t ka, int
         break;
     case LINE_COLOR_LERP:
 #ifdef SR_LINE_AVX2
-        if (!less && line_avx2()) {
+        if (!less && ds->simd >= SR_SIMD_AVX2) {
             frags = walk_lerp_x4(&f, ka, kb, r);
             break;
         }

@@ -147,7 +147,7 @@ sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
      * or flat (as in the half-space kernels' select). */
     bool color = !ds->texture && (sr__color_varying_shading(ds->shading) ||
                                   ds->shading == SR_SHADING_FLAT);
-    switch (sr__simd_level()) {
+    switch (ds->simd) {
     case SR_SIMD_AVX512: return color ? raster_ms16 : raster_ms4_avx2;
     case SR_SIMD_AVX2: return raster_ms4_avx2;
     case SR_SIMD_BASE: return raster_ms4_base;

@@ -52,16 +52,9 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #undef SR_SIMD_TARGET
 #endif
 
-sr_simd_level sr__simd_level(void)
+sr_simd_level sr__simd_cpu_level(void)
 {
 #ifdef SR_HAVE_SIMD_KERNEL
-    const char *env = getenv("SR_SIMD");
-    if (env && strcmp(env, "off") == 0) {
-        return SR_SIMD_OFF;
-    }
-    if (env && strcmp(env, "base") == 0) {
-        return SR_SIMD_BASE;
-    }
     __builtin_cpu_init();
     if (!__builtin_cpu_supports("avx2")) {
         return SR_SIMD_BASE;
@@ -69,7 +62,7 @@ sr_simd_level sr__simd_level(void)
     bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
                   __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
                   __builtin_cpu_supports("popcnt");
-    return avx512 && !(env && strcmp(env, "avx2") == 0) ? SR_SIMD_AVX512 : SR_SIMD_AVX2;
+    return avx512 ? SR_SIMD_AVX512 : SR_SIMD_AVX2;
 #else
     return SR_SIMD_OFF;
 #endif
@@ -78,7 +71,7 @@ sr_simd_level sr__simd_level(void)
 sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
 {
 #ifdef SR_HAVE_SIMD_KERNEL
-    switch (sr__simd_level()) {
+    switch (ds->simd) {
     case SR_SIMD_AVX512: return select_avx512(ds);
     case SR_SIMD_AVX2: return select_avx2(ds);
     case SR_SIMD_BASE: return select_base(ds);
@@ -88,14 +81,4 @@ sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
     (void)ds;
     return NULL;
 #endif
-}
-
-const char *sr__raster_simd_name(void)
-{
-    switch (sr__simd_level()) {
-    case SR_SIMD_AVX512: return "avx512";
-    case SR_SIMD_AVX2: return "avx2";
-    case SR_SIMD_BASE: return "sse2";
-    default:           return "scalar";
-    }
 }
