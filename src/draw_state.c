@@ -111,6 +111,27 @@ void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 
     }
 }
 
+/* The one function that rasterizes the draw's triangles, as llvmpipe's
+ * setup picks lp_rast_tri_tab[...] once per command: the per-sample path
+ * (its vector kernel, the program's quads or the generic loop), else the
+ * chosen rasterizer, the half-space one as its vector kernel or its
+ * scalar instance for the state. */
+static sr_raster_fn triangle_raster(const sr_draw_state *ds)
+{
+    if (ds->per_sample) {
+        sr_raster_fn fast = sr__raster_sample_select(ds);
+        return fast ? fast : ds->program ? sr__raster_shader : sr__raster_sample;
+    }
+    switch (ds->rasterizer) {
+    case SR_RASTER_SCANLINE:    return sr__raster_scanline;
+    case SR_RASTER_BARYCENTRIC: return sr__raster_barycentric;
+    default: {
+        sr_raster_fn fast = sr__raster_simd_select(ds);
+        return fast ? fast : sr__raster_halfspace_select(ds);
+    }
+    }
+}
+
 void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const sr_mat4 *view,
                             const sr_mat4 *proj, sr_simd_level simd, sr_draw_state *ds)
 {
@@ -241,7 +262,6 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
         ds->per_sample = true;
     }
     ds->simd = simd;
-    ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
     ds->light_lanes = simd != SR_SIMD_OFF;
     ds->vertex_lanes16 = simd == SR_SIMD_AVX512;
     ds->wide_stores = simd == SR_SIMD_AVX512;
@@ -250,5 +270,5 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
                       ds->mode_front == SR_POLYGON_FILL && ds->mode_back == SR_POLYGON_FILL &&
                       ds->samples == 1 && !ds->offset_on;
     ds->index_avx2 = simd >= SR_SIMD_AVX2;
-    ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
+    ds->raster_tri = triangle_raster(ds);
 }

@@ -32,8 +32,15 @@ typedef struct sr_light_eye {
     float color[3];           /* color x intensity */
 } sr_light_eye;
 
+struct sr_draw_state;
 struct sr_tri;
 struct sr_frag_stats;
+
+/* A triangle rasterizer: cover the part of a set-up triangle inside the
+ * pixel rectangle [rx0, rx1) x [ry0, ry1) and hand each sample to the
+ * fragment stage. */
+typedef void (*sr_raster_fn)(const struct sr_draw_state *ds, const struct sr_tri *t, int rx0,
+                             int ry0, int rx1, int ry1, struct sr_frag_stats *st);
 
 /* How the fragment stage treats depth: no buffer or nothing to do; the
  * common LESS with writes on; anything else. */
@@ -100,10 +107,10 @@ typedef struct sr_draw_state {
 
     /* The context's vector level (never SR_SIMD_DEFAULT). */
     sr_simd_level simd;
-    /* The half-space kernel chosen for this state (triangle_simd.c), or
-     * NULL for the scalar instances. */
-    void (*raster_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
-                        struct sr_frag_stats *);
+    /* The one function that rasterizes this draw's triangles, chosen
+     * once from the rasterizer, the per-sample path, the program and the
+     * vector level (draw_state.c): the tile jobs call only it. */
+    sr_raster_fn raster_tri;
     /* Gouraud vertices lit four at a time (fragment/light_lanes.h, the
      * same bytes); off with SR_SIMD=off, which keeps sr__light's loop. */
     bool light_lanes;
@@ -134,9 +141,6 @@ typedef struct sr_draw_state {
     /* A program (docs/shaders.md) and its varyings' interpolation. */
     const sr_program *program;
     unsigned flat_mask, noperspective_mask;
-    /* The per-sample path's vector kernel for this state, or NULL. */
-    void (*sample_fast)(const struct sr_draw_state *, const struct sr_tri *, int, int, int, int,
-                        struct sr_frag_stats *);
     double depth_scale;               /* 2^n - 1 for UNORM, 1 for float */
     double zq_min, zq_max;            /* depth range in buffer units */
     int tiles_x, tiles_y;
@@ -577,11 +581,10 @@ double sr__polygon_offset(const sr_draw_state *ds, const sr_window_vertex *v0,
                           const sr_window_vertex *v1, const sr_window_vertex *v2,
                           sr_polygon_mode mode);
 
-/* raster/{triangle,scanline,barycentric}.c: cover the part of t inside the
- * pixel rectangle [rx0, rx1) x [ry0, ry1) and hand each sample to the
- * fragment stage. */
-void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
-                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
+/* raster/{triangle,scanline,barycentric}.c: the rasterizers (sr_raster_fn).
+ * triangle.c's half-space loop is instanced per shading model and depth
+ * mode: sr__raster_halfspace_select gives the state's instance. */
+sr_raster_fn sr__raster_halfspace_select(const sr_draw_state *ds);
 void sr__raster_scanline(const sr_draw_state *ds, const sr_tri *t,
                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
 void sr__raster_barycentric(const sr_draw_state *ds, const sr_tri *t,
@@ -594,7 +597,8 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t,
 bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, int px, int py,
                            double *z, float c[4]);
 /* raster/sample.c: the per-sample path (ds->per_sample: multisampling or
- * the stencil test), whatever the rasterizer choice. */
+ * the stencil test), whatever the rasterizer choice; the generic loop for
+ * states without a program or a vector kernel. */
 void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t,
                        int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
 /* What the AVX-512 level needs of the CPU (sr__simd_cpu_level checks each of
@@ -607,8 +611,6 @@ static inline bool sr__color_varying_shading(sr_shading s)
     return s == SR_SHADING_UNLIT || s == SR_SHADING_GOURAUD || s == SR_SHADING_ATTRIBUTE;
 }
 /* The vector kernel of the per-sample path for this state, or NULL. */
-typedef void (*sr_raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,
-                             sr_frag_stats *);
 sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds);
 
 /* fragment/shade.c: Blinn-Phong. n must be unit length. */

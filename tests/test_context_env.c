@@ -89,9 +89,9 @@ SR_TEST(simd_env_var_is_read_once_per_context)
     sr_state st = { .shading = SR_SHADING_GOURAUD };
     sr_draw_state ds;
     sr__resolve_draw_state(fb, &st, NULL, NULL, off->simd, &ds);
-    CHECK(ds.raster_fast == NULL);
+    CHECK(ds.raster_tri == sr__raster_halfspace_select(&ds));  /* the scalar instance */
     sr__resolve_draw_state(fb, &st, NULL, NULL, wide->simd, &ds);
-    CHECK_EQ(ds.raster_fast != NULL, widest != SR_SIMD_OFF);
+    CHECK_EQ(ds.raster_tri != sr__raster_halfspace_select(&ds), widest != SR_SIMD_OFF);
     sr_destroy_framebuffer(wide, fb);
     sr_destroy_context(off);
     sr_destroy_context(wide);

@@ -268,22 +268,7 @@ draw_bin(const tile_job *tj, const sr_chunk *c, uint32_t tile, tile_rect b, sr_f
             sr__raster_point(ds, (const sr_point *)p, rx0, ry0, rx1, ry1, st);
             continue;
         }
-        const sr_tri *t = (const sr_tri *)p;
-        if (ds->per_sample) {
-            sr__raster_sample(ds, t, rx0, ry0, rx1, ry1, st);
-            continue;
-        }
-        switch (ds->rasterizer) {
-        case SR_RASTER_SCANLINE:
-            sr__raster_scanline(ds, t, rx0, ry0, rx1, ry1, st);
-            break;
-        case SR_RASTER_BARYCENTRIC:
-            sr__raster_barycentric(ds, t, rx0, ry0, rx1, ry1, st);
-            break;
-        default:
-            sr__raster_halfspace(ds, t, rx0, ry0, rx1, ry1, st);
-            break;
-        }
+        ds->raster_tri(ds, (const sr_tri *)p, rx0, ry0, rx1, ry1, st);
     }
 }
 

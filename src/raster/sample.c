@@ -88,14 +88,6 @@ SR_INLINE void generic_pixel_fn(void *arg, int px, int py, const int64_t *u, boo
 void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
                        int ry1, sr_frag_stats *st)
 {
-    if (ds->sample_fast) {
-        ds->sample_fast(ds, t, rx0, ry0, rx1, ry1, st);
-        return;
-    }
-    if (ds->program) {
-        sr__raster_shader(ds, t, rx0, ry0, rx1, ry1, st);
-        return;
-    }
     generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } },
                         { 0 } };
     for (int i = 0; i < 3; i++) {

@@ -72,22 +72,14 @@ SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_OFF)
 SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_LESS)
 SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_GENERIC)
 
-typedef void (*raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,
-                          sr_frag_stats *);
-
 #define SR_RASTER_ENTRY(shading, dmode) [dmode][shading] = raster_##shading##_##dmode,
-static const raster_fn raster_table[3][SR_SHADING_ATTRIBUTE + 1] = {
+static const sr_raster_fn raster_table[3][SR_SHADING_ATTRIBUTE + 1] = {
     SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_OFF)
     SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_LESS)
     SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_GENERIC)
 };
 
-void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
-                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st)
+sr_raster_fn sr__raster_halfspace_select(const sr_draw_state *ds)
 {
-    if (ds->raster_fast) {
-        ds->raster_fast(ds, t, rx0, ry0, rx1, ry1, st);
-    } else {
-        raster_table[ds->depth_mode][ds->shading](ds, t, rx0, ry0, rx1, ry1, st);
-    }
+    return raster_table[ds->depth_mode][ds->shading];
 }
