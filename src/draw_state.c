@@ -119,8 +119,8 @@ void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 
 static sr_raster_fn triangle_raster(const sr_draw_state *ds)
 {
     if (ds->per_sample) {
-        sr_raster_fn fast = sr__raster_sample_select(ds);
-        return fast ? fast : ds->program ? sr__raster_shader : sr__raster_sample;
+        sr_raster_fn fast = sr__raster_msaa_select(ds);
+        return fast ? fast : ds->program ? sr__raster_shader : sr__raster_msaa;
     }
     switch (ds->rasterizer) {
     case SR_RASTER_SCANLINE:    return sr__raster_scanline;
@@ -231,7 +231,7 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
 
     sr__resolve_shading(st, view, proj, ds);
 
-    /* Multisampling and stencil take the per-sample path (raster/sample.c). */
+    /* Multisampling and stencil take the per-sample path (raster/msaa.c). */
     ds->samples = fb->samples;
     ds->sample_off = sr__sample_offsets(fb->samples);
     ds->stencil_test = st->stencil.enabled && fb->stencil != NULL;

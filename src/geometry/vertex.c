@@ -304,7 +304,7 @@ static void surface_color(const sr_draw_state *ds, const float *color_in, float 
 }
 
 /* One vertex of a built-in model: the clip position and the model's
- * varyings (pipeline.h's layouts).  color: RGBA, or NULL for the
+ * varyings (raster/records.h's layouts).  color: RGBA, or NULL for the
  * material's; normal, texcoord, generic: NULL when absent (generic is
  * already widened to four components). */
 void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *normal,

@@ -23,7 +23,7 @@
  * fast path (one pixel wide, plain color write, depth off or LESS) with
  * the same operations, four columns at a time with AVX2 for the
  * commonest, and test_lines_fast.c holds both to the reference. */
-#include "fragment/sample.h"
+#include "fragment/msaa_ops.h"
 
 #include <math.h>
 #include <stddef.h>
