@@ -242,7 +242,8 @@ bool sr__line_span(const sr_line *l, int u0, int u1, int *v0, int *v1);
  * tile column tu (false when none), all within its bounding box. */
 void sr__line_tile_columns(const sr_line *l, int *tu0, int *tu1);
 bool sr__line_tile_rows(const sr_line *l, int tu, int *tv0, int *tv1);
-/* Polygon offset of the triangle's plane (0 when offset is off for `mode`). */
+/* raster/polygon_offset.c: polygon offset of the triangle's plane (0 when
+ * offset is off for `mode`). */
 double sr__polygon_offset(const sr_draw_state *ds, const sr_window_vertex *v0,
                           const sr_window_vertex *v1, const sr_window_vertex *v2,
                           sr_polygon_mode mode);

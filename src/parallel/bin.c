@@ -122,8 +122,8 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
      * memory. */
     c->in_tile_order = shared && c->scattered && total <= c->tri_count + c->tri_count / 4 &&
                        total <= SIZE_MAX / tri_size &&
-                       sr__chunk_reserve_ordered(ctx, c, total * tri_size);
-    if (total > UINT32_MAX || (!c->in_tile_order && !sr__chunk_reserve_refs(ctx, c, total))) {
+                       sr__chunk_reserve_ordered(&ctx->allocator, c, total * tri_size);
+    if (total > UINT32_MAX || (!c->in_tile_order && !sr__chunk_reserve_refs(&ctx->allocator, c, total))) {
         memset(start, 0, (tiles + 1) * sizeof(uint32_t));
         c->in_tile_order = false;
         return false;
