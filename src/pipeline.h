@@ -13,6 +13,7 @@
 #include "draw_state.h"
 #include "raster/fixed.h"
 #include "raster/records.h"
+#include "simd_types.h"
 #include "target/framebuffer.h"
 
 /* A vertex after the vertex stage, in homogeneous clip space. */
@@ -268,9 +269,6 @@ bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, 
  * states without a program or a vector kernel. */
 void sr__raster_msaa(const sr_draw_state *ds, const sr_tri *t,
                      int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st);
-/* What the AVX-512 level needs of the CPU (sr__simd_cpu_level checks each of
- * them): the target of every function built for that level. */
-#define SR_TARGET_AVX512 __attribute__((target("avx2,avx512f,avx512dq,avx512bw,avx512vl,popcnt")))
 /* The vector kernel of the per-sample path for this state, or NULL. */
 sr_raster_fn sr__raster_msaa_select(const sr_draw_state *ds);
 

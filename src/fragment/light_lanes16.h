@@ -11,9 +11,6 @@
 
 #include <immintrin.h>
 
-typedef float v16f __attribute__((vector_size(64)));
-typedef int32_t v16i __attribute__((vector_size(64)));
-
 static inline __attribute__((always_inline)) SR_TARGET_AVX512 v16f v16_sel(v16i m, v16f a, v16f b)
 {
     return (v16f)((m & (v16i)a) | (~m & (v16i)b));

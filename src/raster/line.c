@@ -208,13 +208,11 @@ static void walk_generic(const line_ctx *lc, int64_t ka, int64_t kb)
  * -ffp-contract=off), so the bytes are the same; test_lines_fast.c holds
  * it to the reference. */
 
-typedef float line_v4f __attribute__((vector_size(16)));
-
 /* sr__unorm8 on r, g, b, a, packed as the framebuffer's bytes.  With SSE2
  * as in the triangle kernels: min(1, v) keeps NaN (min returns its second
  * operand then), truncation sends NaN and negatives to values the
  * saturating packs turn into 0, and anything above 1 became 255. */
-static inline uint32_t pack_unorm8(line_v4f c)
+static inline uint32_t pack_unorm8(v4f c)
 {
 #if defined(__SSE2__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
     __m128 v = _mm_min_ps(_mm_set1_ps(1.0f), (__m128)c);
@@ -247,7 +245,7 @@ typedef struct fast_line {
     int64_t au, av, du, dv;         /* q8 start and direction on the major, minor axes */
     double dz;                      /* zb - za */
     double inv_len2;                /* 1 / |b - a|^2 in q8^2 */
-    line_v4f va, vb, dvary;         /* the ends' rgba, and b - a */
+    v4f va, vb, dvary;         /* the ends' rgba, and b - a */
     uint32_t flat;                  /* LINE_COLOR_FLAT: the packed color */
 } fast_line;
 

@@ -106,9 +106,6 @@ void sr__raster_msaa(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
     (defined(__x86_64__) || defined(__i386__))
 #define SR_HAVE_SAMPLE_KERNEL 1
-typedef double v4d __attribute__((vector_size(32)));
-typedef int64_t v4l __attribute__((vector_size(32)));
-typedef int32_t v4i __attribute__((vector_size(16)));
 #include <immintrin.h>
 
 #define SR_SIMD_FN(name) name##_avx2

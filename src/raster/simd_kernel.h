@@ -204,9 +204,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edges)(const double r[3], const int
 #endif
 
 #ifdef SR_SIMD_WIDE16
-/* A stamp, plain or textured (a constant at each instance), with its edge
- * values in 32-bit lanes (n, nb32) when `narrow`, else in double halves
- * (e0 .. e2, nb). */
+/* A stamp, plain or textured (SR_WALK_TEXTURED, a constant at each
+ * instance), with its edge values in 32-bit lanes (n, nb32) under
+ * SR_WALK_NARROW, else in double halves (e0 .. e2, nb). */
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp16)(const sr_draw_state *ds, const sr_tri *t, int gx,
                                                   int py, const __m512d e0[2], const __m512d e1[2],
                                                   const __m512d e2[2], const __m512i n[3],
@@ -214,9 +214,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp16)(const sr_draw_state *ds, const
                                                   const __m512d nb[3], const __m512i nb32[3],
                                                   const SR_SIMD_FN(w16_lanes) *k,
                                                   sr_frag_stats *st, sr_shading shading,
-                                                  sr_depth_mode dmode, sr_stamp shape, bool tex,
-                                                  bool narrow)
+                                                  sr_depth_mode dmode, sr_stamp shape,
+                                                  sr_walk_flags walk)
 {
+    bool tex = walk & SR_WALK_TEXTURED, narrow = walk & SR_WALK_NARROW;
     if (narrow) {
         SR_SIMD_FN(rows16_n)(ds, t, gx, py, n, valid, inside, nb32, k, st, shading, dmode, shape);
     } else if (tex) {
@@ -288,10 +289,11 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                                                     const sr_edges *ed,
                                                     int rx0, int ry0, int rx1, int ry1,
                                                     sr_frag_stats *st, sr_shading shading,
-                                                    sr_depth_mode dmode, bool tex, bool narrow)
+                                                    sr_depth_mode dmode, sr_walk_flags walk)
 {
     /* Textured instances and 32-bit edge lanes exist in the AVX-512
      * build only. */
+    bool tex = walk & SR_WALK_TEXTURED, narrow = walk & SR_WALK_NARROW;
     (void)tex;
     (void)narrow;
     int64_t sx[3], sy[3];
@@ -364,7 +366,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 SR_SIMD_FN(n16_edges)(corner, off44, n);
             }
             SR_SIMD_FN(stamp16)(ds, t, rx0, py, e[0], e[1], e[2], n, (__mmask16)valid, false, nb8,
-                                nb32, &wl, st, shading, dmode, SR_STAMP_4X4, tex, narrow);
+                                nb32, &wl, st, shading, dmode, SR_STAMP_4X4, walk);
         }
         return;
     }
@@ -388,8 +390,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                     SR_SIMD_FN(w16_edges)(rs, sy, lx8, e0, e1, e2);
                 }
                 SR_SIMD_FN(stamp16)(ds, t, gx, py, e0, e1, e2, n, rows & (span | span << 8),
-                                    false, nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, tex,
-                                    narrow);
+                                    false, nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, walk);
                 for (int i = 0; i < 3; i++) {
                     rs[i] += 8.0 * (double)sx[i];
                     rs32[i] += 8u * (uint32_t)sx[i];
@@ -478,8 +479,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         SR_SIMD_FN(w16_edges)(r, sy, lx8, e0, e1, e2);
                     }
                     SR_SIMD_FN(stamp16)(ds, t, bx, py, e0, e1, e2, n, (__mmask16)valid, inside,
-                                        nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, tex,
-                                        narrow);
+                                        nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, walk);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                         r32[i] += 2u * (uint32_t)sy[i];
@@ -557,8 +557,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *
                                                            int rx0, int ry0,
                                                            int rx1, int ry1, sr_frag_stats *st,
                                                            sr_shading shading,
-                                                           sr_depth_mode dmode, bool narrow)
+                                                           sr_depth_mode dmode,
+                                                           sr_walk_flags walk)
 {
+    bool narrow = walk & SR_WALK_NARROW;
     SR_SIMD_FN(w16_lanes) wl;
     SR_SIMD_FN(w16_make)(t, shading, &wl);
     int64_t sx[3], sy[3];
@@ -586,7 +588,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *
                 }
             }
             SR_SIMD_FN(stamp16)(ds, t, gx, py, e[0], e[1], e[2], n, (__mmask16)valid, true, nb8,
-                                nb32, &wl, st, shading, dmode, SR_STAMP_16X1, false, narrow);
+                                nb32, &wl, st, shading, dmode, SR_STAMP_16X1, walk);
             for (int i = 0; i < 3; i++) {
                 rs[i] += 16.0 * (double)sx[i];
                 rs32[i] += 16u * (uint32_t)sx[i];
@@ -617,17 +619,19 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
         sr__pixel_steps(t, sx, sy);
         if (sr__rect_inside(&ed, rx0, ry0, rx1, ry1, sx, sy)) {
             if (narrow) {
-                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, true);
+                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,
+                                             SR_WALK_NARROW);
             } else {
-                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false);
+                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,
+                                             SR_WALK_PLAIN);
             }
             return;
         }
     }
     if (narrow) {
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, true);
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, SR_WALK_NARROW);
     } else {
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, SR_WALK_PLAIN);
     }
 }
 #endif
@@ -638,53 +642,56 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *d
 /* Tiny triangles (simd_tiny.h) and the rest in functions of their own,
  * so the tiny path keeps its constants in registers: inside the other
  * walks' function it paid their stack frame and spills. */
-#define SR_SIMD_INSTANCE(shading, dmode)                                                  \
-    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                       \
-        tiny_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
-                                  int ry0, int rx1, int ry1, sr_frag_stats *st)            \
-    {                                                                                      \
-        if (rx1 - rx0 <= 4) {                                                              \
-            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,         \
-                                    SR_STAMP_4X4);                                         \
-        } else {                                                                           \
-            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,         \
-                                    SR_STAMP_8X2);                                         \
-        }                                                                                  \
-    }                                                                                      \
-    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                       \
-        walk_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
-                                  int ry0, int rx1, int ry1, sr_frag_stats *st)            \
-    {                                                                                      \
-        SR_SIMD_FN(raster_dispatch)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);        \
-    }                                                                                      \
-    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
-        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
-        sr_frag_stats *st)                                                                 \
-    {                                                                                      \
-        if (t->fits32 && rx1 - rx0 <= 8 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {               \
-            SR_SIMD_FN(tiny_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \
-        } else {                                                                           \
-            SR_SIMD_FN(walk_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \
-        }                                                                                  \
+#define SR_SIMD_INSTANCE(name, shading, dmode)                                         \
+    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                   \
+        tiny_##name)(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,       \
+                     int rx1, int ry1, sr_frag_stats *st)                              \
+    {                                                                                  \
+        if (rx1 - rx0 <= 4) {                                                          \
+            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,     \
+                                    SR_STAMP_4X4);                                     \
+        } else {                                                                       \
+            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,     \
+                                    SR_STAMP_8X2);                                     \
+        }                                                                              \
+    }                                                                                  \
+    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                   \
+        walk_##name)(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,       \
+                     int rx1, int ry1, sr_frag_stats *st)                              \
+    {                                                                                  \
+        SR_SIMD_FN(raster_dispatch)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);    \
+    }                                                                                  \
+    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##name)(                              \
+        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,  \
+        sr_frag_stats *st)                                                             \
+    {                                                                                  \
+        if (t->fits32 && rx1 - rx0 <= 8 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {           \
+            SR_SIMD_FN(tiny_##name)(ds, t, rx0, ry0, rx1, ry1, st);                    \
+        } else {                                                                       \
+            SR_SIMD_FN(walk_##name)(ds, t, rx0, ry0, rx1, ry1, st);                    \
+        }                                                                              \
     }
 #else
-#define SR_SIMD_INSTANCE(shading, dmode)                                                  \
-    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
-        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
-        sr_frag_stats *st)                                                                 \
-    {                                                                                      \
-        sr_edges ed;                                                                       \
-        sr__tri_edges(t, &ed);                                                             \
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false,   \
-                              false);                                                      \
+#define SR_SIMD_INSTANCE(name, shading, dmode)                                         \
+    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##name)(                              \
+        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,  \
+        sr_frag_stats *st)                                                             \
+    {                                                                                  \
+        sr_edges ed;                                                                   \
+        sr__tri_edges(t, &ed);                                                         \
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,      \
+                              SR_WALK_PLAIN);                                          \
     }
 #endif
-SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
-SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
-SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_OFF)
-SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
-SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
-SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
+/* SR_SIMD_INSTANCE(name, ...) defines raster_name (and, at the AVX-512
+ * level, its tiny_name and walk_name halves); SR_SIMD_FN suffixes each
+ * with the level, so raster_unlit_less_avx512 is raster_unlit_less below. */
+SR_SIMD_INSTANCE(unlit_off, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(unlit_less, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
+SR_SIMD_INSTANCE(flat_off, SR_SHADING_FLAT, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(flat_less, SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
+SR_SIMD_INSTANCE(phong_off, SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(phong_less, SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
 #undef SR_SIMD_INSTANCE
 
 #ifdef SR_SIMD_WIDE16
@@ -696,7 +703,7 @@ SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_less)(const sr_draw_state *ds, 
     sr_edges ed;
     sr__tri_edges(t, &ed);
     SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS,
-                          true, false);
+                          SR_WALK_TEXTURED);
 }
 
 SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_off)(const sr_draw_state *ds, const sr_tri *t,
@@ -706,7 +713,7 @@ SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_off)(const sr_draw_state *ds, c
     sr_edges ed;
     sr__tri_edges(t, &ed);
     SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF,
-                          true, false);
+                          SR_WALK_TEXTURED);
 }
 #endif
 
@@ -734,20 +741,20 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
         return NULL;
     }
     if (sr__color_varying_shading(ds->shading)) {
-        return less ? SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_LESS)
-                    : SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_OFF);
+        return less ? SR_SIMD_FN(raster_unlit_less)
+                    : SR_SIMD_FN(raster_unlit_off);
     }
     switch (ds->shading) {
     case SR_SHADING_FLAT:
-        return less ? SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_LESS)
-                    : SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_OFF);
+        return less ? SR_SIMD_FN(raster_flat_less)
+                    : SR_SIMD_FN(raster_flat_off);
     case SR_SHADING_PHONG:
         /* powf has no lane-exact vector twin: whole-number shininess only. */
         if (ds->shininess_int < 0) {
             return NULL;
         }
-        return less ? SR_SIMD_FN(raster_SR_SHADING_PHONG_SR_DEPTH_MODE_LESS)
-                    : SR_SIMD_FN(raster_SR_SHADING_PHONG_SR_DEPTH_MODE_OFF);
+        return less ? SR_SIMD_FN(raster_phong_less)
+                    : SR_SIMD_FN(raster_phong_off);
     default:
         return NULL;
     }

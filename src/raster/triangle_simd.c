@@ -12,10 +12,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef double v4d __attribute__((vector_size(32)));
-typedef int64_t v4l __attribute__((vector_size(32)));
-typedef float v4f __attribute__((vector_size(16)));
-typedef int32_t v4i __attribute__((vector_size(16)));
+/* How a vector walk reads its triangle, a constant in each instance of
+ * simd_kernel.h's walks: textured color (simd_tex.h, AVX-512 only), and
+ * edge values in 32-bit lanes, where every value in the box fits
+ * (sr__rect_fits32), rather than in double lanes. */
+typedef enum sr_walk_flags {
+    SR_WALK_PLAIN = 0,
+    SR_WALK_TEXTURED = 1 << 0,
+    SR_WALK_NARROW = 1 << 1,
+} sr_walk_flags;
 
 /* The lane packing below writes r, g, b, a as one little-endian word. */
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
