@@ -29,7 +29,7 @@ typedef enum sr_walk_flags {
 #include <immintrin.h>
 
 /* sr__light on sixteen lanes for the AVX-512 instance's PHONG stamps
- * (w16_phong in simd_wide.h). */
+ * (w16_phong in simd_wide16.h). */
 #include "fragment/light_lanes16.h"
 
 #define SR_SIMD_FN(name) name##_avx512
