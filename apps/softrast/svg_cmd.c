@@ -1,11 +1,11 @@
 /* svg_cmd.c - `softrast svg INPUT.svg [-o OUT.png] [--size WxH | --scale S]
- * [--background COLOR]`: the command around the SVG reader (svg.c).  Reads
- * the file whole (at most SVG_MAX_INPUT_BYTES), renders it with svg_render
- * and writes the PNG atomically.  Warnings go to stderr as they arise; a
- * failure is one line "FILE:LINE: what is wrong", exit status 2 for a bad
- * document, 1 when the run itself fails, and no output file. */
+ * [--background COLOR]`: the command around the library's SVG reader
+ * (sr_render_svg, src/io/svg.c).  Reads the file whole (at most
+ * SR_SVG_MAX_INPUT_BYTES), renders it and writes the PNG atomically.
+ * Warnings go to stderr as they arise; a failure is one line
+ * "FILE:LINE: what is wrong", exit status 2 for a bad document, 1 when the
+ * run itself fails, and no output file. */
 #include "cli.h"
-#include "svg.h"
 #include "io/io_util.h"
 #include "softrast_io.h"
 
@@ -13,18 +13,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#ifndef SR_HAVE_EXPAT
-
-int cmd_svg(int argc, char **argv)
-{
-    (void)argc;
-    (void)argv;
-    cli_error("svg: this softrast was built without expat (install libexpat1-dev and rebuild)");
-    return EXIT_FAILURE_RUN;
-}
-
-#else
 
 static void svg_help(FILE *f)
 {
@@ -72,10 +60,11 @@ static int read_input(const char *input, char **data, size_t *size)
         if (n < cap) {
             break; /* end of file */
         }
-        if (cap > SVG_MAX_INPUT_BYTES) {
+        if (cap > SR_SVG_MAX_INPUT_BYTES) {
             free(buf);
             fclose(fp);
-            cli_error("svg: %s is larger than the %zu MiB limit", input, SVG_MAX_INPUT_BYTES >> 20);
+            cli_error("svg: %s is larger than the %zu MiB limit", input,
+                      SR_SVG_MAX_INPUT_BYTES >> 20);
             return EXIT_USAGE;
         }
         char *grown = realloc(buf, cap * 2);
@@ -91,10 +80,22 @@ static int read_input(const char *input, char **data, size_t *size)
     return EXIT_OK;
 }
 
+/* The library's warnings, one line each on stderr as they arise. */
+static void warn_stderr(void *user, const char *message)
+{
+    (void)user;
+    fprintf(stderr, "%s\n", message);
+}
+
 int cmd_svg(int argc, char **argv)
 {
+    if (!sr_io_have_svg()) {
+        cli_error("svg: this softrast was built without expat (install libexpat1-dev and "
+                  "rebuild)");
+        return EXIT_FAILURE_RUN;
+    }
     const char *input = NULL, *output = NULL;
-    svg_options opt = { .background = { 0, 0, 0, 0 }, .warnings = stderr };
+    sr_svg_desc opt = { .background = { 0, 0, 0, 0 }, .warn = warn_stderr };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         bool has_value = i + 1 < argc;
@@ -111,7 +112,7 @@ int cmd_svg(int argc, char **argv)
             if (a[1] == 'o' || a[2] == 'o') {
                 output = v;
             } else if (strcmp(a, "--size") == 0) {
-                if (!parse_size(a, v, &opt.size_w, &opt.size_h)) {
+                if (!parse_size(a, v, &opt.width, &opt.height)) {
                     return EXIT_USAGE;
                 }
             } else if (strcmp(a, "--scale") == 0) {
@@ -141,7 +142,7 @@ int cmd_svg(int argc, char **argv)
         svg_help(stderr);
         return EXIT_USAGE;
     }
-    if (opt.size_w && opt.scale > 0) {
+    if (opt.width && opt.scale > 0) {
         cli_error("svg: --size and --scale exclude each other");
         return EXIT_USAGE;
     }
@@ -172,13 +173,14 @@ int cmd_svg(int argc, char **argv)
     }
     opt.name = input;
     sr_framebuffer *fb = NULL;
-    char msg[1024];
-    status = svg_render(ctx, data, size, &opt, &fb, msg, sizeof msg);
+    sr_io_error err;
+    sr_result r = sr_render_svg(ctx, data, size, &opt, &fb, NULL, &err);
     free(data);
-    if (status != EXIT_OK) {
-        fprintf(stderr, "%s\n", msg);
+    if (r != SR_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        /* Out of memory is the run's failure; anything else the document's. */
+        status = r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     } else {
-        sr_io_error err;
         int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
         if (cli_write_image(output, w, h, sr_framebuffer_pixels(fb),
                             &(cli_image_options){ .png_level = -1,
@@ -192,5 +194,3 @@ int cmd_svg(int argc, char **argv)
     sr_destroy_context(ctx);
     return status;
 }
-
-#endif /* SR_HAVE_EXPAT */
