@@ -689,7 +689,7 @@ sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int
      * first (the rest of each tile still gets the cleared values), they no
      * longer hold only the clear color, and the rectangle joins what was
      * drawn on them, so a later clear to their base color rewrites it. */
-    bool wide = sr__simd_level() == SR_SIMD_AVX512;
+    bool wide = fb->wide_stores;
     int tx0 = x >> SR_TILE_ORDER, tx1 = (x + w - 1) >> SR_TILE_ORDER;
     int ty0 = y >> SR_TILE_ORDER, ty1 = (y + h - 1) >> SR_TILE_ORDER;
     for (int ty = ty0; ty <= ty1; ty++) {
