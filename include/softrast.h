@@ -60,9 +60,9 @@
  * any thread count, and for any of the three triangle rasterizers.
  *
  * Clears are deferred: sr_clear marks tiles; a tile is cleared when it is
- * next drawn or read (sr_framebuffer_pixels, sr_read_pixels, sr_read_depth
- * carry out what is pending), so a pointer from sr_framebuffer_pixels is
- * valid until the next draw or clear.
+ * next drawn, read or written (sr_framebuffer_pixels, sr_read_pixels,
+ * sr_read_depth, sr_write_pixels carry out what is pending), so a pointer
+ * from sr_framebuffer_pixels is valid until the next draw, clear or write.
  */
 #ifndef SOFTRAST_H
 #define SOFTRAST_H
@@ -183,9 +183,26 @@ typedef struct sr_allocator {
 
 typedef struct sr_context sr_context;
 
+/* Which vector kernels a context runs.  Every level draws the same bytes;
+ * they differ only in speed.  A level above what the CPU runs is capped to
+ * the widest it does. */
+typedef enum sr_simd_level {
+    SR_SIMD_DEFAULT = 0, /* the SR_SIMD env var, else the widest the CPU runs */
+    SR_SIMD_OFF,         /* scalar loops only (SR_SIMD=off) */
+    SR_SIMD_BASE,        /* the baseline instruction set, SSE2 on x86-64 (SR_SIMD=base) */
+    SR_SIMD_AVX2,        /* SR_SIMD=avx2 */
+    SR_SIMD_AVX512,      /* SR_SIMD=avx512 */
+} sr_simd_level;
+
+/* Environment variables, read once by sr_make_context (never per draw) and
+ * only for a field left at 0:
+ *   SR_THREADS=N                     sr_context_desc.threads (1 .. 64; others ignored)
+ *   SR_SIMD=off|base|avx2|avx512     sr_context_desc.simd; any other value
+ *                                    means the widest level the CPU runs */
 typedef struct sr_context_desc {
     sr_allocator allocator; /* zero: malloc/free */
     int threads;            /* 0: SR_THREADS env var, else online CPUs; 1: no worker threads */
+    sr_simd_level simd;     /* 0: SR_SIMD env var, else the widest the CPU runs */
     /* Primitives set up before the tiles are drawn: larger batches pass
      * over each tile fewer times (faster for big meshes) and keep more
      * set-up records (about 250 bytes each).  0: SR_BATCH_DEFAULT;
@@ -202,6 +219,9 @@ void        sr_destroy_context(sr_context *ctx);
 /* Message for the last failed call on ctx ("" after a success). */
 const char *sr_context_error(const sr_context *ctx);
 int         sr_context_threads(const sr_context *ctx);
+/* The vector kernels ctx runs: its desc's or SR_SIMD's level, capped by the
+ * CPU (never SR_SIMD_DEFAULT; SR_SIMD_OFF for NULL). */
+sr_simd_level sr_context_simd(const sr_context *ctx);
 
 /* ---- framebuffers ------------------------------------------------------- */
 
@@ -242,7 +262,7 @@ bool            sr_framebuffer_has_stencil(const sr_framebuffer *fb);
  * framebuffer keeps); valid until the next draw or clear.  Read-only: the
  * framebuffer remembers which tiles already hold the clear color (a clear
  * to the same color then leaves them alone), and a write through this
- * pointer would go unseen. */
+ * pointer would go unseen: write pixels with sr_write_pixels. */
 const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
 
 /* The standard sample positions (Direct3D and Vulkan; RASTER_RULES 8.1):
@@ -271,6 +291,14 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
  * multisampled framebuffers are resolved first. */
 sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
                          int x, int y, int w, int h, uint8_t *out, size_t stride);
+/* Copy a rectangle of RGBA8 pixels in (stride in bytes, >= 4*w): the
+ * counterpart of sr_read_pixels, for images composed on the CPU (a page
+ * of panels, a magnified cell).  Pending clears of the rest of the
+ * framebuffer still happen; a multisampled framebuffer takes each pixel's
+ * value in all its samples, so sr_read_pixels gives the same bytes back.
+ * Depth and stencil are left as they are. */
+sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
+                          const uint8_t *rgba, size_t stride);
 /* Copy depth values out as floats in [0, 1] (dequantized); multisampled:
  * each pixel's sample 0.  sr_read_stencil: the stored values (sample 0). */
 sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,

@@ -17,6 +17,8 @@
 
 #include "softrast.h"
 
+#include <stdio.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -42,6 +44,13 @@ typedef enum sr_model_format {
 typedef struct sr_load_desc {
     sr_model_format format;
     bool keep_file_normals_only; /* reserved; normals policy is the caller's */
+    /* Optional: called with the path of every other file the reader opens
+     * for the model (an OBJ's MTL files), e.g. so that a program never
+     * writes its output over one of its inputs.  The model's own path and
+     * the texture paths in the mesh are not reported (the caller has
+     * them), nor the files Assimp opens itself. */
+    void (*file_read)(void *user, const char *path);
+    void *user;                  /* passed to file_read */
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
@@ -60,6 +69,16 @@ sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
 
 /* true when this build can read other formats through Assimp. */
 bool sr_io_have_assimp(void);
+
+/* Open a file for reading as the readers here do, for a program's own
+ * inputs (a script, a drawing): only a regular file.  A directory, FIFO,
+ * device or socket is refused at once - opening a FIFO would otherwise
+ * wait for a writer, maybe forever - with one line naming the file
+ * ("FILE: cannot open: ...", "FILE: is a directory, not KIND", "FILE: not
+ * a regular file"), KIND saying what the file should be ("an event
+ * script").  *size is the file's size in bytes; close *f with fclose. */
+sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
+                       sr_io_error *err);
 
 /* PNG. */
 typedef struct sr_png_write_desc {

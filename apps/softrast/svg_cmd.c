@@ -6,7 +6,6 @@
  * "FILE:LINE: what is wrong", exit status 2 for a bad document, 1 when the
  * run itself fails, and no output file. */
 #include "cli.h"
-#include "io/io_util.h"
 #include "softrast_io.h"
 
 #include <errno.h>
@@ -37,7 +36,7 @@ static int read_input(const char *input, char **data, size_t *size)
     FILE *fp;
     unsigned long long file_size;
     sr_io_error err;
-    if (sr__open_regular(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
+    if (sr_open_file(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
         cli_error("svg: %s", err.message);
         return EXIT_USAGE;
     }
@@ -159,15 +158,23 @@ int cmd_svg(int argc, char **argv)
         cli_error("svg: -o: a JPEG has no transparency; give a --background for '%s'", output);
         return EXIT_USAGE;
     }
+    cli_inputs inputs = { 0 };
+    cli_inputs_add(&inputs, input, "SVG file");
+    if (!cli_check_output(&inputs, "svg: -o", output)) {
+        cli_inputs_free(&inputs);
+        return EXIT_USAGE;
+    }
     char *data = NULL;
     size_t size = 0;
     int status = read_input(input, &data, &size);
     if (status != EXIT_OK) {
+        cli_inputs_free(&inputs);
         return status;
     }
     sr_context *ctx = NULL;
     if (sr_make_context(&(sr_context_desc){0}, &ctx) != SR_OK) {
         free(data);
+        cli_inputs_free(&inputs);
         cli_error("svg: cannot create a context");
         return EXIT_FAILURE_RUN;
     }
@@ -184,7 +191,8 @@ int cmd_svg(int argc, char **argv)
         int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
         if (cli_write_image(output, w, h, sr_framebuffer_pixels(fb),
                             &(cli_image_options){ .png_level = -1,
-                                                  .keep_alpha = opt.background.a < 1 },
+                                                  .keep_alpha = opt.background.a < 1,
+                                                  .inputs = &inputs },
                             &err) != SR_OK) {
             fprintf(stderr, "%s\n", err.message);
             status = EXIT_FAILURE_RUN;
@@ -192,5 +200,6 @@ int cmd_svg(int argc, char **argv)
     }
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
+    cli_inputs_free(&inputs);
     return status;
 }

@@ -130,6 +130,7 @@ typedef struct obj_parser {
     size_t nmats, mats_cap;
     str_ref mtl_loaded[MAX_MTL_FILES];
     size_t nmtl_loaded;
+    const sr_load_desc *desc;   /* its file_read hears of each MTL file read; may be NULL */
 
 } obj_parser;
 
@@ -698,6 +699,9 @@ static sr_result load_mtl(obj_parser *P, const char *rel, size_t rel_len, bool *
     }
     *found = true;
     P->mtl_loaded[P->nmtl_loaded++] = path;
+    if (P->desc && P->desc->file_read) {
+        P->desc->file_read(P->desc->user, p);
+    }
     const char *slash = strrchr(p, '/');
     size_t dir_len = slash ? (size_t)(slash - p) + 1 : 0;
     res = parse_mtl(P, p, dir_len, data, size);
@@ -1518,7 +1522,8 @@ static bool is_blank(const char *s, size_t n)
 }
 
 static sr_result parse(const char *name, const char *data, size_t size,
-                       const char *dir, size_t dir_len, sr_mesh *out, sr_io_error *err)
+                       const char *dir, size_t dir_len, const sr_load_desc *desc,
+                       sr_mesh *out, sr_io_error *err)
 {
     obj_parser P;
     memset(&P, 0, sizeof P);
@@ -1526,6 +1531,7 @@ static sr_result parse(const char *name, const char *data, size_t size,
     P.err = err;
     P.dir = dir;
     P.dir_len = dir_len;
+    P.desc = desc;
     P.cur_use = NO_INDEX;
     /* Ear clipping costs up to n^3 point tests on hostile polygons.  A
      * budget in proportion to the input keeps the worst case linear in the
@@ -1601,10 +1607,11 @@ sr_result sr_parse_obj(const char *name, const char *data, size_t size,
                            size, (size_t)SR_IO_MAX_FILE_BYTES);
     }
     /* Memory has no folder to find MTL files in: mtllib is ignored. */
-    return parse(name, data ? data : "", size, NULL, 0, out, err);
+    return parse(name, data ? data : "", size, NULL, 0, NULL, out, err);
 }
 
-sr_result sr__load_obj(const char *path, sr_mesh *out, sr_io_error *err)
+sr_result sr__load_obj(const char *path, const sr_load_desc *desc, sr_mesh *out,
+                       sr_io_error *err)
 {
     if (!out) {
         return sr__io_fail(err, SR_INVALID_ARG, path ? path : "<null>", 0, "no output mesh given");
@@ -1618,7 +1625,7 @@ sr_result sr__load_obj(const char *path, sr_mesh *out, sr_io_error *err)
     }
     const char *slash = strrchr(path, '/');
     size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
-    res = parse(path, data, size, path, dir_len, out, err);
+    res = parse(path, data, size, path, dir_len, desc, out, err);
     sr__free_file(data, size);
     return res;
 }
