@@ -239,7 +239,7 @@ static void save_image(const bench_run *run, const char *scene, const char *rend
     }
     sr_io_error err;
     if (sr_write_png(path, o->width, o->height, rgba, (size_t)o->width * 4,
-                     &(sr_png_write_desc){ .no_alpha = true }, &err) != SR_OK) {
+                     &(sr_png_write_desc){ .channels = SR_PNG_RGB }, &err) != SR_OK) {
         fprintf(stderr, "softrast-bench: %s\n", err.message);
     }
 }

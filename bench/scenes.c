@@ -236,8 +236,8 @@ static sr_result make_lines_scene(bench_scene *s, char *msg, size_t msg_size)
             c[3] = 1.0f;
         }
     }
-    s->state.no_depth_test = true;
-    s->state.no_depth_write = true;
+    s->state.depth_test = SR_OFF;
+    s->state.depth_write = SR_OFF;
     s->clear_color[0] = s->clear_color[1] = s->clear_color[2] = 0.0f;
     s->clear_color[3] = 1.0f;
     s->fragments_per_frame = (uint64_t)s->width * (uint64_t)s->height;

@@ -85,7 +85,7 @@ int main(int argc, char **argv)
     sr_program toon = { .vertex = toon_vertex, .fragment = toon_fragment, .uniforms = &u,
                         .varying_count = 6 };
 
-    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.9f, 1 }, .depth = 1 });
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.9f, 1 } });
     r = sr_draw(ctx, fb, &(sr_state){ .program = &toon, .cull = SR_CULL_NONE },
                 &(sr_draw_desc){ .positions = teapot.positions, .normals = teapot.normals,
                                  .vertex_count = teapot.vertex_count, .indices = teapot.indices,

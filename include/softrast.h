@@ -256,13 +256,24 @@ sr_result sr_sample_position(int samples, int index, float *x, float *y);
  * (sum + n/2) / n.  A single-sampled source is copied. */
 sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst);
 
+/* What sr_clear does to each buffer (sokol's pass actions).  The default
+ * clears color to .color, depth to the far value 1.0 and stencil to 0, so
+ * a zeroed sr_clear_desc readies a framebuffer for the default LESS test. */
+typedef enum sr_clear_action {
+    SR_ACTION_DEFAULT = 0, /* color: clear to .color; depth: clear to 1.0; stencil: to 0 */
+    SR_ACTION_CLEAR,       /* clear to the given value (.color, .depth, .stencil) */
+    SR_ACTION_KEEP,        /* leave the buffer untouched */
+} sr_clear_action;
+
 typedef struct sr_clear_desc {
-    float color[4];   /* RGBA in [0, 1] */
-    float depth;      /* in [0, 1]; note 0 is the default: set 1 for LESS */
-    uint8_t stencil;  /* the stencil value (framebuffers with a stencil buffer) */
-    bool no_color;    /* leave color untouched */
-    bool no_depth;    /* leave depth untouched */
-    bool no_stencil;  /* leave stencil untouched */
+    sr_clear_action color_action;
+    float color[4];               /* RGBA in [0, 1] */
+    sr_clear_action depth_action;
+    float depth;                  /* in [0, 1], used by SR_ACTION_CLEAR; with the default
+                                   * action it must be 0 or 1 (a value it would ignore is
+                                   * refused, so a forgotten action cannot go unseen) */
+    sr_clear_action stencil_action;
+    uint8_t stencil;              /* used by SR_ACTION_CLEAR; 0 with the default action */
 } sr_clear_desc;
 
 sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc);
@@ -332,6 +343,13 @@ sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
                         sr_resample_filter filter);
 
 /* ---- pipeline state ----------------------------------------------------- */
+
+/* A feature that is on unless turned off. */
+typedef enum sr_switch {
+    SR_SWITCH_DEFAULT = 0, /* -> SR_ON */
+    SR_ON,
+    SR_OFF,
+} sr_switch;
 
 typedef enum sr_cull_mode {
     SR_CULL_DEFAULT = 0, /* -> SR_CULL_NONE */
@@ -412,7 +430,8 @@ typedef struct sr_material {
     sr_vec3 specular;        /* reflectance of highlights, may be zero */
     float shininess;         /* Blinn-Phong exponent; zero -> 32 */
     float opacity;           /* written to alpha; zero -> 1 */
-    bool no_vertex_color;    /* ignore the colors array for diffuse */
+    sr_switch vertex_color;  /* the draw's colors array, where it has one, is the diffuse;
+                              * SR_OFF: the material's diffuse whatever the draw carries */
 } sr_material;
 
 typedef struct sr_polygon_offset {
@@ -468,9 +487,17 @@ typedef struct sr_blend {
     float constant[4];            /* for the CONSTANT factors */
 } sr_blend;
 
-/* Channels the fragment stage leaves untouched (all written by default). */
-typedef struct sr_color_mask {
-    bool no_red, no_green, no_blue, no_alpha;
+/* The color channels the fragment stage writes (sokol's color mask): a
+ * set of SR_COLOR_MASK_R/G/B/A bits; zero writes all four. */
+typedef enum sr_color_mask {
+    SR_COLOR_MASK_DEFAULT = 0,    /* -> SR_COLOR_MASK_RGBA */
+    SR_COLOR_MASK_R = 0x1,
+    SR_COLOR_MASK_G = 0x2,
+    SR_COLOR_MASK_B = 0x4,
+    SR_COLOR_MASK_A = 0x8,
+    SR_COLOR_MASK_RGB = 0x7,
+    SR_COLOR_MASK_RGBA = 0xf,
+    SR_COLOR_MASK_NONE = 0x10,    /* no channel written */
 } sr_color_mask;
 
 /* Stencil operations (glStencilOp) on the 8-bit stored value. */
@@ -598,8 +625,9 @@ typedef struct sr_state {
     bool smooth_lines;
     bool smooth_points;
 
-    bool no_depth_test;            /* depth test is on by default when there is a depth buffer */
-    bool no_depth_write;
+    /* Both on by default when the framebuffer has a depth buffer. */
+    sr_switch depth_test;
+    sr_switch depth_write;
     sr_depth_func depth_func;
     sr_polygon_offset offset;
 

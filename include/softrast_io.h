@@ -39,7 +39,6 @@ typedef enum sr_model_format {
 
 typedef struct sr_load_desc {
     sr_model_format format;
-    bool keep_file_normals_only; /* reserved; normals policy is the caller's */
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
@@ -60,9 +59,15 @@ sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
 bool sr_io_have_assimp(void);
 
 /* PNG. */
+typedef enum sr_png_channels {
+    SR_PNG_CHANNELS_DEFAULT = 0, /* -> SR_PNG_RGBA */
+    SR_PNG_RGBA,
+    SR_PNG_RGB,                  /* alpha dropped */
+} sr_png_channels;
+
 typedef struct sr_png_write_desc {
     int compression_level;  /* zlib level; 0 -> SR_PNG_DEFAULT_LEVEL; -1 -> store */
-    bool no_alpha;          /* write RGB, dropping alpha */
+    sr_png_channels channels;
     sr_allocator allocator; /* zero: malloc/free.  Every block the write
                              * allocates - its own and zlib's - comes from here,
                              * on the calling thread (except realpath's when

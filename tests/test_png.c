@@ -149,7 +149,7 @@ SR_TEST(png_no_alpha_round_trip_keeps_rgb_and_reads_opaque)
     char path[1200];
     snprintf(path, sizeof path, "%s/rgb.png", dir);
     sr_io_error err;
-    CHECK_EQ(sr_write_png(path, w, h, img, stride, &(sr_png_write_desc){ .no_alpha = true }, &err),
+    CHECK_EQ(sr_write_png(path, w, h, img, stride, &(sr_png_write_desc){ .channels = SR_PNG_RGB }, &err),
              SR_OK);
     int rw, rh;
     uint8_t *back = NULL;
@@ -282,7 +282,7 @@ SR_TEST(png_writes_bands_that_make_one_valid_stream_the_same_for_any_thread_coun
             sr_io_error err;
             CHECK_EQ(sr_write_png(path, w, h, img, stride,
                                   &(sr_png_write_desc){ .compression_level = cases[k].level,
-                                                        .no_alpha = cases[k].no_alpha,
+                                                        .channels = cases[k].no_alpha ? SR_PNG_RGB : SR_PNG_RGBA,
                                                         .context = t < 0 ? NULL : ctx[t] },
                                   &err),
                      SR_OK);

@@ -93,7 +93,7 @@ static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int lev
         sr_io_error err;
         sr_result r = sr_write_png(target, w, h, px, (size_t)w * 4,
                                    &(sr_png_write_desc){
-                                       .compression_level = level, .no_alpha = no_alpha,
+                                       .compression_level = level, .channels = no_alpha ? SR_PNG_RGB : SR_PNG_RGBA,
                                        .allocator = { fail_alloc, fail_free, &f },
                                        .context = ctx },
                                    &err);
@@ -199,7 +199,7 @@ static void every_read_allocation_fails_cleanly(bool no_alpha, int level)
     uint8_t *px = test_image(w, h);
     sr_io_error err;
     REQUIRE(sr_write_png(path, w, h, px, (size_t)w * 4,
-                         &(sr_png_write_desc){ .no_alpha = no_alpha, .compression_level = level },
+                         &(sr_png_write_desc){ .channels = no_alpha ? SR_PNG_RGB : SR_PNG_RGBA, .compression_level = level },
                          &err) == SR_OK);
     long oom = 0;
     for (long fail_at = 0;; fail_at++) {

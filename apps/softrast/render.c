@@ -921,7 +921,7 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                         return SR_OUT_OF_MEMORY;
                     }
                     indices = sorted;
-                    st.no_depth_write = true;
+                    st.depth_write = SR_OFF;
                     st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
                                            .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
                                            .src_alpha = SR_BLEND_ONE,
@@ -959,7 +959,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     sr_vec3 ink = o->have_line_color ? o->line_color
                 : light_bg ? (sr_vec3){ 0.125f, 0.125f, 0.125f }
                            : (sr_vec3){ 0.91f, 0.925f, 0.957f };
-    sr_material ink_material = { .diffuse = ink, .no_vertex_color = true };
+    sr_material ink_material = { .diffuse = ink, .vertex_color = SR_OFF };
     sr_result r = SR_OK;
     if (o->lines != LINES_WIREFRAME) {
         sr_state fill = st;
@@ -969,7 +969,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
             r = draw_scene(ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
-            fill.material = (sr_material){ .diffuse = o->background, .no_vertex_color = true };
+            fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
             r = draw_scene(ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
@@ -987,8 +987,8 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     lines.polygon_mode_front = lines.polygon_mode_back = mode;
     if (o->lines == LINES_WIREFRAME) {
         lines.cull = SR_CULL_NONE;
-        lines.no_depth_test = true;
-        lines.no_depth_write = true;
+        lines.depth_test = SR_OFF;
+        lines.depth_write = SR_OFF;
     } else {
         lines.depth_func = SR_LEQUAL;
     }
@@ -1109,7 +1109,7 @@ static int finish_scene(render_job *job)
         scene_object *ob = &s->objects[i];
         if (o->have_mat_color && ob->frame) {
             ob->material.diffuse = o->mat_color;
-            ob->material.no_vertex_color = true;
+            ob->material.vertex_color = SR_OFF;
         }
         if (o->have_specular && ob->frame) {
             ob->material.specular = o->specular;
@@ -1297,6 +1297,7 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     if (r == SR_OK) {
         r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o->background.x, o->background.y,
                                                            o->background.z, 1.0f },
+                                                .depth_action = SR_ACTION_CLEAR,
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
     if (r == SR_OK) {

@@ -62,7 +62,7 @@ typedef struct png_job {
     const uint8_t *rgba;
     size_t stride;
     int width, height;
-    int channels;              /* 4, or 3 with no_alpha */
+    int channels;              /* 4, or 3 with SR_PNG_RGB */
     int level;                 /* zlib level, 0 = stored */
     size_t row_bytes;          /* a filtered row, its filter byte included */
     int band_rows, bands;
@@ -364,11 +364,16 @@ sr_result sr_write_png(const char *path, int width, int height,
         return sr__io_fail(err, SR_INVALID_ARG, path, 0,
                            "sr_png_write_desc.allocator needs both alloc and free");
     }
+    if (desc && (unsigned)desc->channels > SR_PNG_RGB) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "sr_png_write_desc.channels %d is not an sr_png_channels",
+                           (int)desc->channels);
+    }
     sr_context *ctx = desc ? desc->context : NULL;
 
     png_job j = {
         .rgba = rgba, .stride = stride, .width = width, .height = height,
-        .channels = desc && desc->no_alpha ? 3 : 4, .level = level,
+        .channels = desc && desc->channels == SR_PNG_RGB ? 3 : 4, .level = level,
     };
     j.row_bytes = 1 + (size_t)j.channels * (size_t)width;
     j.band_rows = j.row_bytes >= BAND_BYTES ? 1 : (int)(BAND_BYTES / j.row_bytes);
