@@ -69,7 +69,7 @@ int main(int argc, char **argv)
                                                             .samples = 4 }, &fb);
     }
     if (r == SR_OK) {
-        r = sr_make_teapot(8, &teapot);
+        r = sr_make_teapot(ctx, 8, &teapot);
     }
     if (r != SR_OK) {
         fprintf(stderr, "toon: %s\n", ctx ? sr_context_error(ctx) : sr_result_text(r));
@@ -100,7 +100,7 @@ int main(int argc, char **argv)
     } else {
         fprintf(stderr, "toon: %s\n", sr_context_error(ctx));
     }
-    sr_mesh_free(&teapot);
+    sr_destroy_mesh(ctx, &teapot);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
     return r == SR_OK ? 0 : 1;

@@ -778,8 +778,10 @@ typedef struct sr_mesh_part {
     size_t texture_size;
 } sr_mesh_part;
 
-/* A triangle mesh as the model readers produce it.  Arrays belong to the
- * mesh and are freed by sr_mesh_free (the readers' allocator: malloc). */
+/* A triangle mesh as the model readers and the built-in generators produce
+ * it.  Its arrays and strings belong to the mesh and come from the
+ * allocator of the context it was made on; release them with
+ * sr_destroy_mesh on that context. */
 typedef struct sr_mesh {
     size_t vertex_count;
     float *positions;      /* 3 per vertex */
@@ -801,31 +803,38 @@ typedef struct sr_mesh {
     size_t part_count;
 } sr_mesh;
 
-void sr_mesh_free(sr_mesh *mesh);
+/* A mesh on ctx holding copies of src's arrays, strings and parts (src
+ * stays the caller's): how a program hands its own geometry to the mesh
+ * functions. */
+sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out);
+/* Frees the mesh's arrays and zeroes *mesh (the struct itself is the
+ * caller's).  Every mesh function takes the context the mesh was made on. */
+void sr_destroy_mesh(sr_context *ctx, sr_mesh *mesh);
 
 typedef enum sr_normal_mode {
     SR_NORMALS_SMOOTH = 0, /* angle-weighted vertex normals */
     SR_NORMALS_FLAT,       /* vertices split, one normal per face */
 } sr_normal_mode;
 
-/* Replace mesh->normals with computed ones. */
-sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode);
-/* The same normals, to the bit, with smooth ones computed on ctx's threads
- * (ctx NULL: on the calling thread alone). */
-sr_result sr_mesh_compute_normals_ctx(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
+/* Replace mesh->normals with computed ones (flat: the vertices split, so
+ * colors, texcoords and indices are replaced too), on ctx's allocator;
+ * smooth ones are computed on ctx's threads, the same bits for any
+ * thread count. */
+sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
 /* Axis-aligned bounding box; false for an empty mesh. */
 bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
 
 /* ---- built-in geometry -------------------------------------------------- */
 
 /* Tessellate bicubic Bezier patches (16 control points each, row-major
- * [u][v], as float xyz) into a mesh of detail x detail quads per patch,
- * evaluated by forward differences, with normals from the patch
- * derivatives. */
-sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count,
-                               int detail, sr_mesh *out);
-/* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x. */
-sr_result sr_make_teapot(int detail, sr_mesh *out);
+ * [u][v], as float xyz) into a mesh of detail x detail quads per patch
+ * (detail 1..256), evaluated by forward differences, with normals from the
+ * patch derivatives.  Release with sr_destroy_mesh. */
+sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
+                              size_t patch_count, int detail, sr_mesh *out);
+/* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x.
+ * Release with sr_destroy_mesh. */
+sr_result sr_make_teapot(sr_context *ctx, int detail, sr_mesh *out);
 
 /* ---- 2D raster API (src/draw2d) ---------------------------------------- */
 /*
@@ -1056,7 +1065,7 @@ typedef struct sr_path sr_path;
 
 /* tolerance: flattening error in pixels; 0 -> 0.1. */
 sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out);
-void      sr_destroy_path(sr_path *path);
+void      sr_destroy_path(sr_context *ctx, sr_path *path); /* ctx: the one that made it */
 void      sr_path_clear(sr_path *path);
 sr_result sr_path_move_to(sr_path *path, double x, double y);
 sr_result sr_path_line_to(sr_path *path, double x, double y);
@@ -1100,10 +1109,10 @@ sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
 sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
                          sr_rgba color, const sr_stroke_desc *desc);
 /* The stroke outline itself: out->points and out->contour_counts are
- * allocated on ctx; release them with sr_free_stroke_outline. */
-sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
-                            sr_polygon2 *out);
-void      sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
+ * allocated on ctx; release them with sr_destroy_stroke_outline. */
+sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
+                                 const sr_stroke_desc *desc, sr_polygon2 *out);
+void      sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
 
 /* ---- 2D lines (src/draw2d/line*.c) -------------------------------------- */
 /*

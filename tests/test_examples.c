@@ -34,7 +34,7 @@ SR_TEST(toon_example_draws_bands_and_ink)
     int w, h;
     uint8_t *px;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     /* Count the pixels of each band color (base x band), exactly. */
     static const float bands[] = { 1.0f, 0.65f, 0.35f, 0.05f };
     int count[4] = { 0, 0, 0, 0 }, background = 0, other = 0;
@@ -72,7 +72,7 @@ SR_TEST(checker_example_is_crisp_near_and_filtered_far)
     int w, h;
     uint8_t *px;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     /* The bottom rows (near): mostly the two pure colors.  Just below the
      * horizon (far): mostly in between, no pure light squares. */
     int pure_near = 0, light_far = 0, mid_far = 0, n_near = 0, n_far = 0;

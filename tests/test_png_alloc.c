@@ -5,7 +5,7 @@
  * SR_OUT_OF_MEMORY with a message, free every block it took, remove its
  * temporary file and leave the image it was to replace byte for byte as
  * it was; the first run that fails nothing must write the right image.
- * The reader (sr_read_png_desc) is held to the same at the end. */
+ * The reader (sr_read_png) is held to the same at the end. */
 #include "sr_test.h"
 #include "failing_alloc.h"
 #include "softrast_io.h"
@@ -128,7 +128,7 @@ static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int lev
     int rw = 0, rh = 0;
     uint8_t *back = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(target, &rw, &rh, &back, &err) == SR_OK);
+    REQUIRE(sr_read_png(target, NULL, &rw, &rh, &back, &err) == SR_OK);
     CHECK_EQ(rw, w);
     CHECK_EQ(rh, h);
     int bad = 0;
@@ -186,7 +186,7 @@ SR_TEST(png_write_rejects_half_an_allocator)
     CHECK_EQ(count_entries(dir), 0);
 }
 
-/* The reader through sr_read_png_desc: each allocation failing in turn
+/* The reader through sr_read_png with an allocator: each allocation failing in turn
  * gives SR_OUT_OF_MEMORY (or, where libpng treats a failed allocation as
  * optional, the right image), no pixels and no block left; pixels come
  * from the allocator and go back to it. */
@@ -206,7 +206,7 @@ static void every_read_allocation_fails_cleanly(bool no_alpha, int level)
         failing f = { .fail_at = fail_at };
         int rw = -1, rh = -1;
         uint8_t *back = (uint8_t *)"not touched";
-        sr_result r = sr_read_png_desc(path, &(sr_png_read_desc){
+        sr_result r = sr_read_png(path, &(sr_png_read_desc){
                                            .allocator = { fail_alloc, fail_free, &f } },
                                        &rw, &rh, &back, &err);
         if (r == SR_OK) {

@@ -491,12 +491,12 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-static int load_model(const render_opts *o, scene *s)
+static int load_model(const render_opts *o, sr_context *ctx, scene *s)
 {
     memset(s, 0, sizeof *s);
     scene_object *ob = &s->objects[0];
     sr_io_error err;
-    sr_result r = sr_load_mesh(o->model, NULL, &ob->mesh, &err);
+    sr_result r = sr_load_mesh(ctx, o->model, NULL, &ob->mesh, &err);
     if (r != SR_OK) {
         fprintf(stderr, "%s\n", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
@@ -525,8 +525,8 @@ static int prepare_normals(const render_opts *o, sr_context *ctx, scene *s)
         if (mode == 0) {
             continue;
         }
-        sr_result r = sr_mesh_compute_normals_ctx(ctx, m,
-                                                  mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
+        sr_result r = sr_mesh_compute_normals(ctx, m,
+                                              mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
         if (r != SR_OK) {
             cli_error("computing normals: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
@@ -1002,6 +1002,10 @@ struct render_job {
     scene s;
     bool have_scene;
     sr_context *ctx;
+    /* The scene's meshes live on a context of their own, made with the
+     * first options' threads: it outlives the drawing context, which a
+     * change of --threads replaces. */
+    sr_context *mesh_ctx;
     sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
                              * format) when the caller's framebuffer cannot be drawn into */
     char error[512];
@@ -1038,13 +1042,16 @@ int render_job_parse(int argc, char **argv, render_job **out)
     return -1;
 }
 
-/* The context, unless made already (cmd_render makes it first). */
+/* The contexts, unless made already (cmd_render makes them first). */
 static int start_context(render_job *job)
 {
     if (job->ctx) {
         return -1;
     }
     sr_result r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->ctx);
+    if (r == SR_OK && !job->mesh_ctx) {
+        r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->mesh_ctx);
+    }
     if (r != SR_OK) {
         cli_error("render: %s", sr_result_text(r));
         return EXIT_FAILURE_RUN;
@@ -1080,12 +1087,12 @@ static int load_objects(render_job *job)
     render_opts *o = &job->o;
     scene *s = &job->s;
     if (o->model) {
-        int status = load_model(o, s);
+        int status = load_model(o, job->mesh_ctx, s);
         if (status >= 0) {
             return status;
         }
     } else {
-        sr_result r = scene_builtin(s, o->detail);
+        sr_result r = scene_builtin(job->mesh_ctx, s, o->detail);
         if (r != SR_OK) {
             cli_error("building the teapot scene: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
@@ -1101,7 +1108,7 @@ static int finish_scene(render_job *job)
 {
     render_opts *o = &job->o;
     scene *s = &job->s;
-    int status = prepare_normals(o, job->ctx, s);
+    int status = prepare_normals(o, job->mesh_ctx, s);
     if (status >= 0) {
         return status;
     }
@@ -1321,8 +1328,9 @@ void render_job_free(render_job *job)
     }
     drop_context(job);
     if (job->have_scene) {
-        scene_free(&job->s);
+        scene_free(job->mesh_ctx, &job->s);
     }
+    sr_destroy_context(job->mesh_ctx);
     free(job);
 }
 
@@ -1379,9 +1387,9 @@ int cmd_render(int argc, char **argv)
     /* The framebuffer is made on a thread of its own while the model
      * file is read on this one: its fresh pages (16 MB at 1920 x 1080)
      * took the kernel 2-25 ms to zero, time the reader's one core leaves
-     * the other free for.  The context is used again only once the
-     * framebuffer is made (finish_scene's normals, make_context's
-     * textures). */
+     * the other free for.  The reader allocates on the mesh context; the
+     * drawing context is used again only once the framebuffer is made
+     * (make_context's textures). */
     status = start_context(job);
     if (status >= 0) {
         render_job_free(job);
