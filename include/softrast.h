@@ -190,7 +190,12 @@
  *
  * Conventions:
  *  - Descriptor structs: a field left at zero takes its documented default,
- *    so `{0}` is always valid where a desc is optional.
+ *    so `{0}` is always valid where a desc is optional, and means what a
+ *    first program wants: a zeroed sr_clear_desc clears depth to the far
+ *    value, a zeroed sr_state tests and writes depth and every channel.
+ *    Features that are on unless turned off are sr_switch fields (SR_OFF).
+ *  - Lifecycle: what the caller owns is made by sr_make_X and released by
+ *    sr_destroy_X(ctx, x) on the context that made it.
  *  - Framebuffer coordinates: x right, y down, row 0 at the top (PNG order).
  *    Pixel (x, y) covers [x, x+1) x [y, y+1); it is sampled at its centre.
  *  - Matrices are column-major float[16] (OpenGL layout): m[col*4 + row].
