@@ -34,6 +34,8 @@ struct sr_context;
 struct sr_context *sr_test_ctx(void);
 /* Source tree's tests/ directory (reference images, data). */
 const char *sr_test_src_dir(void);
+/* A whole file, malloc'd (free it), or NULL when it cannot be opened. */
+uint8_t *sr_test_read_file(const char *path, size_t *size);
 /* Run the built softrast CLI with args (NULL-terminated, without the
  * program name), no shell; its exit status, or -1 if it could not run. */
 int sr_test_run_cli(const char *const *args);

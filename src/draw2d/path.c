@@ -512,8 +512,8 @@ static sr_result stroke_desc_defaults(sr_context *ctx, const char *fn, const sr_
     return SR_OK;
 }
 
-sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
-                            sr_polygon2 *out)
+sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
+                                 const sr_stroke_desc *desc, sr_polygon2 *out)
 {
     static const char fn[] = "sr_make_stroke_outline";
     if (!ctx) {

@@ -178,7 +178,7 @@ static sr_result load_malloc_mesh(const char *path, const sr_load_desc *desc, sr
     }
     switch (format) {
     case SR_FORMAT_OBJ:
-        return sr__load_obj(path, out, err);
+        return sr__load_obj(path, desc, out, err);
     case SR_FORMAT_PLY:
         return sr__load_ply(path, out, err);
     case SR_FORMAT_STL:
