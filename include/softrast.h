@@ -103,6 +103,7 @@
  *     sr_destroy_context         frees it and everything made on it
  *     sr_context_error           the message of the last failed call
  *     sr_context_threads         how many threads draw
+ *     sr_context_simd            which vector kernels it runs
  *   framebuffers
  *     sr_make_framebuffer        color, depth, stencil; optionally multisampled
  *     sr_destroy_framebuffer     frees it
