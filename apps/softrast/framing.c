@@ -19,6 +19,29 @@ void framing_near_far(sr_vec3 eye, sr_vec3 centre, float radius, float *near_z, 
     *near_z = fmaxf(dc - radius, *far_z * 1e-3f) * 0.99f;
 }
 
+sr_mat4 framing_upright(int axis)
+{
+    /* The images of the model's x, y and z axes (the matrix's first three
+     * columns), exact: each a signed unit vector.  The view faces +z, so
+     * +z up turns the model's -y (its front in Z-up tools) towards the
+     * viewer, and the flips of x and y keep the front facing it. */
+    static const float columns[6][3][3] = {
+        { { 0, 1, 0 }, { -1, 0, 0 }, { 0, 0, 1 } },   /* +x up */
+        { { 0, -1, 0 }, { 1, 0, 0 }, { 0, 0, 1 } },   /* -x up */
+        { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } },    /* +y up */
+        { { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, 1 } },  /* -y up */
+        { { 1, 0, 0 }, { 0, 0, -1 }, { 0, 1, 0 } },   /* +z up */
+        { { 1, 0, 0 }, { 0, 0, 1 }, { 0, -1, 0 } },   /* -z up */
+    };
+    sr_mat4 m = sr_mat4_identity();
+    for (int c = 0; c < 3; c++) {
+        for (int r = 0; r < 3; r++) {
+            m.m[c * 4 + r] = columns[axis][c][r];
+        }
+    }
+    return m;
+}
+
 int framing_default_lights(const sr_camera_basis *b, sr_light *lights)
 {
     struct { float u, v, w, intensity; } rig[3] = {

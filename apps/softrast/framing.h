@@ -18,6 +18,10 @@ sr_vec3 framing_default_eye(sr_vec3 centre, float radius, float fov_radians);
 /* Near and far planes holding the sphere (centre, radius) seen from eye. */
 void framing_near_far(sr_vec3 eye, sr_vec3 centre, float radius, float *near_z, float *far_z);
 
+/* The rotation that turns a model whose up axis is `axis` (+x, -x, +y, -y,
+ * +z, -z: 0..5) upright, its up axis along +y. */
+sr_mat4 framing_upright(int axis);
+
 /* Key, fill and rim lights placed relative to the camera basis, so whatever
  * the view, the side facing the viewer is lit from the upper left and the
  * silhouette stands out from the background.  Writes 3 lights. */

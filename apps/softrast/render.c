@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 
@@ -422,6 +423,18 @@ static int load_objects(render_job *job)
     return -1;
 }
 
+/* --up, or the up axis the model's format implies: +z for STL, the
+ * format of CAD and 3D printing; +y for the rest (glTF specifies it, OBJ
+ * and PLY from modelling tools mostly follow it) and the teapot. */
+static int render_model_up(const render_opts *o)
+{
+    if (o->model_up != UP_AUTO) {
+        return o->model_up;
+    }
+    const char *dot = o->model ? strrchr(o->model, '.') : NULL;
+    return dot && strcasecmp(dot, ".stl") == 0 ? UP_POS_Z : UP_POS_Y;
+}
+
 /* The rest of the scene, with the context's threads for the normals:
  * materials, turn, bounds, and a check that a camera can be made. */
 static int finish_scene(render_job *job)
@@ -448,6 +461,13 @@ static int finish_scene(render_job *job)
             /* Zero means the default (opaque) in sr_material: keep a
              * fully transparent request just above it. */
             ob->material.opacity = o->opacity > 0.0f ? o->opacity : 1e-6f;
+        }
+    }
+    int up = render_model_up(o);
+    for (int i = 0; i < s->count && up != UP_POS_Y; i++) {
+        if (s->objects[i].frame) {
+            sr_mat4 m = framing_upright(up);
+            s->objects[i].model = sr_mat4_mul(&m, &s->objects[i].model);
         }
     }
     if (o->turn_deg != 0.0f) {

@@ -30,6 +30,7 @@ static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", "msaa
 static const int aa_ssaa[] = { 1, 2, 3, 4, 1, 1, 1, 1 };
 static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
 static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
+static const char *const up_names[] = { "+x", "-x", "+y", "-y", "+z", "-z", NULL };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 
 static void render_help(void)
@@ -81,6 +82,10 @@ static void render_help(void)
         "  --fov DEG                field of view across the smaller image side\n"
         "                           (default 35)\n"
         "  --ortho                  orthographic projection\n"
+        "  --up AXIS                +x|-x|+y|-y|+z|-z: the model's up axis, turned to\n"
+        "                           point up the image (default +z for .stl, as CAD\n"
+        "                           and 3D printing use; +y for every other format,\n"
+        "                           as glTF specifies, and the built-in teapot)\n"
         "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
         "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
         "pipeline:\n"
@@ -336,6 +341,8 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
                 return EXIT_USAGE;
             }
             o->ortho = true;
+        } else if (IS("--up")) {
+            CHOICE(up_names, o->model_up, k_);
         } else if (IS("--turn")) {
             VALUE();
             if (!parse_float(arg, value, -36000.0f, 36000.0f, &o->turn_deg)) {
@@ -432,6 +439,6 @@ render_opts render_opts_defaults(void)
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
         .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 1, .opacity = 1.0f,
-        .offset_factor = 1.0f, .offset_units = 1.0f,
+        .offset_factor = 1.0f, .offset_units = 1.0f, .model_up = UP_AUTO,
     };
 }
