@@ -1256,6 +1256,54 @@ SR_TEST(up_turns_the_models_up_axis_upright)
     }
 }
 
+/* The default camera fits the model's projection, not a sphere around it:
+ * for wide, square and tall images, turned or not, perspective or
+ * orthographic, the silhouette reaches the 5% margin on both sides in one
+ * dimension (within 2 pixels: a partly covered pixel counts) and stays
+ * within the margins in the other. */
+SR_TEST(default_camera_fills_the_frame_to_its_margin)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], model[1100];
+    fresh_dir("fit", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/box.stl", dir);
+    REQUIRE(write_box_stl(model, 1.0f, 2.0f, 0.6f));
+    const int sizes[3][2] = { { 400, 100 }, { 160, 160 }, { 100, 400 } };
+    const char *const turns[] = { "0", "35", "200" };
+    for (int i = 0; i < 3; i++) {
+        for (int t = 0; t < 3; t++) {
+            for (int ortho = 0; ortho < 2; ortho++) {
+                int w = sizes[i][0], h = sizes[i][1];
+                char size[32], label[96];
+                snprintf(size, sizeof size, "%dx%d", w, h);
+                snprintf(label, sizeof label, "%s --turn %s%s", size, turns[t],
+                         ortho ? " --ortho" : "");
+                silhouette box;
+                bool ok = render_silhouette(label, dir,
+                                            ortho ? ARGS(model, "--size", size, "--turn", turns[t],
+                                                         "--ortho")
+                                                  : ARGS(model, "--size", size, "--turn", turns[t]),
+                                            w, h, &box);
+                if (!ok) {
+                    continue;
+                }
+                /* The margin's first and last pixels inside it. */
+                int mx = (int)(0.05 * w), my = (int)(0.05 * h);
+                int left = box.x0 - mx, right = (w - 1 - mx) - box.x1;
+                int top = box.y0 - my, bottom = (h - 1 - my) - box.y1;
+                bool fills_x = abs(left) <= 2 && abs(right) <= 2;
+                bool fills_y = abs(top) <= 2 && abs(bottom) <= 2;
+                if (!(fills_x || fills_y) || left < -2 || right < -2 || top < -2 || bottom < -2) {
+                    FAILF("%s: silhouette x %d..%d y %d..%d, the margin leaves x %d..%d y %d..%d",
+                          label, box.x0, box.x1, box.y0, box.y1, mx, w - 1 - mx, my, h - 1 - my);
+                }
+            }
+        }
+    }
+}
+
 SR_TEST(render_writes_a_png_of_the_requested_size)
 {
 #ifndef SR_CLI_PATH
