@@ -113,7 +113,7 @@ static void render_help(void)
         "  --aa MODE                none|ssaa2|ssaa3|ssaa4: render k x k samples per pixel\n"
         "                           and filter them down; msaa2|msaa4|msaa8|msaa16: that\n"
         "                           many coverage and depth samples per pixel, shaded\n"
-        "                           once, box-resolved (default none)\n"
+        "                           once, box-resolved (default msaa4)\n"
         "  --filter F               box|tent|gaussian|mitchell, the SSAA reconstruction\n"
         "                           filter (default box)\n"
         "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
@@ -439,7 +439,7 @@ render_opts render_opts_defaults(void)
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
-        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 1, .opacity = 1.0f,
+        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 4, .opacity = 1.0f,
         .offset_factor = 1.0f, .offset_units = 1.0f, .model_up = UP_AUTO,
     };
 }
