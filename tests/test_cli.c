@@ -1457,6 +1457,29 @@ SR_TEST(rasterizers_and_thread_counts_give_identical_pngs)
     }
 }
 
+/* Antialiasing is on by default: 4x MSAA, byte for byte, and not the
+ * aliased image of --aa none. */
+SR_TEST(msaa4_is_the_default_antialiasing)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024];
+    fresh_dir("aa", dir, sizeof dir);
+    size_t ld, lm, ln;
+    char *d = render_bytes("default", dir, "d.png", ARGS("--size", "96x64", "--detail", "4"), &ld);
+    char *m = render_bytes("msaa4", dir, "m.png",
+                           ARGS("--size", "96x64", "--detail", "4", "--aa", "msaa4"), &lm);
+    char *n = render_bytes("none", dir, "n.png",
+                           ARGS("--size", "96x64", "--detail", "4", "--aa", "none"), &ln);
+    REQUIRE(d && m && n);
+    CHECK(ld == lm && memcmp(d, m, ld) == 0);
+    CHECK(!(ld == ln && memcmp(d, n, ld) == 0));
+    free(d);
+    free(m);
+    free(n);
+}
+
 static bool has_model_extension(const char *name)
 {
     const char *dot = strrchr(name, '.');
