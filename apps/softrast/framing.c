@@ -20,19 +20,30 @@ static double component(sr_vec3 a, int k)
     return k == 0 ? a.x : k == 1 ? a.y : a.z;
 }
 
-/* Vertex i of a set in the camera basis (u, v, w): across, up, and towards
- * the eye. */
-static void to_camera(const framing_points *set, size_t i, const sr_camera_basis *b, double q[3])
+/* The rows of basis x model: a set's vertices straight into the camera
+ * basis (u, v, w: across, up, and towards the eye). */
+typedef struct to_camera {
+    double row[3][4];
+} to_camera;
+
+static to_camera camera_rows(const framing_points *set, const sr_camera_basis *b)
 {
-    const float *a = set->model->m, *p = &set->xyz[i * 3];
-    double world[3];
-    for (int k = 0; k < 3; k++) {
-        world[k] = (double)a[k] * p[0] + (double)a[4 + k] * p[1] + (double)a[8 + k] * p[2] +
-                   a[12 + k];
-    }
+    const float *a = set->model->m;
     const sr_vec3 axes[3] = { b->u, b->v, b->w };
+    to_camera t;
     for (int k = 0; k < 3; k++) {
-        q[k] = world[0] * axes[k].x + world[1] * axes[k].y + world[2] * axes[k].z;
+        for (int c = 0; c < 4; c++) {
+            t.row[k][c] = (double)axes[k].x * a[c * 4] + (double)axes[k].y * a[c * 4 + 1] +
+                          (double)axes[k].z * a[c * 4 + 2];
+        }
+    }
+    return t;
+}
+
+static void apply(const to_camera *t, const float *p, double q[3])
+{
+    for (int k = 0; k < 3; k++) {
+        q[k] = t->row[k][0] * p[0] + t->row[k][1] * p[1] + t->row[k][2] * p[2] + t->row[k][3];
     }
 }
 
@@ -48,9 +59,10 @@ static double centre_offset(const framing_points *sets, int set_count, const sr_
     for (int step = 0; step < 16; step++) {
         double hi = -INFINITY, lo = INFINITY, hi_q[3] = { 0 }, lo_q[3] = { 0 };
         for (int s = 0; s < set_count; s++) {
+            to_camera rows = camera_rows(&sets[s], b);
             for (size_t i = 0; i < sets[s].count; i++) {
                 double q[3];
-                to_camera(&sets[s], i, b, q);
+                apply(&rows, &sets[s].xyz[i * 3], q);
                 double t = (q[k] - e) / (ez - q[2]);
                 if (t > hi) {
                     hi = t;
@@ -94,9 +106,10 @@ bool framing_fit(const framing_points *sets, int set_count, sr_vec3 centre, floa
     double plus[2] = { -INFINITY, -INFINITY }, minus[2] = { -INFINITY, -INFINITY };
     double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (int s = 0; s < set_count; s++) {
+        to_camera rows = camera_rows(&sets[s], &b);
         for (size_t i = 0; i < sets[s].count; i++) {
             double q[3];
-            to_camera(&sets[s], i, &b, q);
+            apply(&rows, &sets[s].xyz[i * 3], q);
             for (int k = 0; k < 2; k++) {
                 plus[k] = fmax(plus[k], q[k] + t[k] * q[2]);
                 minus[k] = fmax(minus[k], t[k] * q[2] - q[k]);

@@ -105,6 +105,24 @@ static bool fit_default(const render_opts *o, const scene *s, framing_view *v)
     return framing_fit(sets, n, c, o->fov_deg * PI_F / 180.0f, o->width, o->height, o->ortho, v);
 }
 
+/* fit_default, answered from the scene's cache when it was made for the
+ * same image size, field of view and projection: a render checks the
+ * camera before drawing, then makes it again to draw. */
+static bool cached_fit(const render_opts *o, scene *s, framing_view *v)
+{
+    if (!(s->fit_cached && s->fit_width == o->width && s->fit_height == o->height &&
+          s->fit_fov_deg == o->fov_deg && s->fit_ortho == o->ortho)) {
+        s->fit_ok = fit_default(o, s, &s->fit);
+        s->fit_width = o->width;
+        s->fit_height = o->height;
+        s->fit_fov_deg = o->fov_deg;
+        s->fit_ortho = o->ortho;
+        s->fit_cached = true;
+    }
+    *v = s->fit;
+    return s->fit_ok;
+}
+
 /* The eye, target and up the options ask for: --camera, else `fit` (the
  * default camera, or NULL when there is none), else the framing of the
  * objects' bounding sphere. */
@@ -142,7 +160,7 @@ static bool finite_mat(const sr_mat4 *m)
  * target in one point, or sizes or distances whose squares overflow
  * float (from about 1e19) or underflow it (below about 1e-19) - the
  * readers accept such coordinates, the framing cannot use them. */
-static const char *setup_camera(const render_opts *o, const scene *s, camera *cam,
+static const char *setup_camera(const render_opts *o, scene *s, camera *cam,
                                 float *near_out, float *far_out)
 {
     sr_vec3 c;
@@ -151,7 +169,7 @@ static const char *setup_camera(const render_opts *o, const scene *s, camera *ca
     float fov = o->fov_deg * PI_F / 180.0f;
 
     framing_view fit;
-    bool fitted = !o->have_eye && fit_default(o, s, &fit);
+    bool fitted = !o->have_eye && cached_fit(o, s, &fit);
     sr_vec3 eye, target, up;
     resolve_camera(o, s, fitted ? &fit : NULL, &eye, &target, &up);
     sr_vec3 gaze = sr_vec3_sub(target, eye);
