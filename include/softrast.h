@@ -721,7 +721,8 @@ sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const
 void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
 size_t sr_buffer_size(const sr_buffer *buf); /* 0 for a NULL buffer */
 
-/* An indexed face set.  Strides are in bytes; 0 means tightly packed. */
+/* An indexed face set.  Strides are in bytes; 0 means tightly packed.
+ * Arrays and strides must be multiples of 4 bytes (indices: of their size). */
 typedef struct sr_draw_desc {
     sr_primitive primitive;
     size_t vertex_count;        /* entries in each vertex array */

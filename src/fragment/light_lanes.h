@@ -26,7 +26,7 @@ static inline __attribute__((always_inline)) v4f sr__v4_sqrt(v4f x)
 #if defined(__SSE__)
     return (v4f)_mm_sqrt_ps((__m128)x);
 #else
-    v4f r;
+    v4f r = x; /* each lane is written below; GCC 12 warns of r unset otherwise */
     for (int k = 0; k < 4; k++) {
         r[k] = sqrtf(x[k]);
     }
