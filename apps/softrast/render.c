@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 
@@ -87,17 +88,62 @@ typedef struct camera {
     sr_camera_basis basis;
 } camera;
 
-/* The eye, target and up the options ask for: --camera, else the default
- * framing of the objects' bounding sphere. */
-static void resolve_camera(const render_opts *o, const scene *s, sr_vec3 *eye, sr_vec3 *target,
-                           sr_vec3 *up)
+/* The default camera: framing_fit of the framed objects in the image
+ * the options ask for; false when it cannot fit them. */
+static bool fit_default(const render_opts *o, const scene *s, framing_view *v)
+{
+    framing_points sets[SCENE_MAX_OBJECTS];
+    int n = 0;
+    for (int i = 0; i < s->count; i++) {
+        const scene_object *ob = &s->objects[i];
+        if (ob->frame) {
+            sets[n++] = (framing_points){ ob->mesh.positions, ob->mesh.vertex_count, &ob->model };
+        }
+    }
+    sr_vec3 c;
+    float r;
+    scene_bounds(s, true, &c, &r);
+    return framing_fit(sets, n, c, o->fov_deg * PI_F / 180.0f, o->width, o->height, o->ortho, v);
+}
+
+/* fit_default, answered from the scene's cache when it was made for the
+ * same image size, field of view and projection: a render checks the
+ * camera before drawing, then makes it again to draw. */
+static bool cached_fit(const render_opts *o, scene *s, framing_view *v)
+{
+    if (!(s->fit_cached && s->fit_width == o->width && s->fit_height == o->height &&
+          s->fit_fov_deg == o->fov_deg && s->fit_ortho == o->ortho)) {
+        s->fit_ok = fit_default(o, s, &s->fit);
+        s->fit_width = o->width;
+        s->fit_height = o->height;
+        s->fit_fov_deg = o->fov_deg;
+        s->fit_ortho = o->ortho;
+        s->fit_cached = true;
+    }
+    *v = s->fit;
+    return s->fit_ok;
+}
+
+/* The eye, target and up the options ask for: --camera, else `fit` (the
+ * default camera, or NULL when there is none), else the framing of the
+ * objects' bounding sphere. */
+static void resolve_camera(const render_opts *o, const scene *s, const framing_view *fit,
+                           sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up)
 {
     sr_vec3 c;
     float r;
     scene_bounds(s, true, &c, &r);
-    *target = o->have_target ? o->target : c;
     *up = o->have_up ? o->up : (sr_vec3){ 0, 1, 0 };
-    *eye = o->have_eye ? o->eye : framing_default_eye(c, r, o->fov_deg * PI_F / 180.0f);
+    if (o->have_eye) {
+        *eye = o->eye;
+        *target = o->have_target ? o->target : c;
+    } else if (fit) {
+        *eye = fit->eye;
+        *target = fit->target;
+    } else {
+        *eye = framing_default_eye(c, r, o->fov_deg * PI_F / 180.0f);
+        *target = c;
+    }
 }
 
 static bool finite_mat(const sr_mat4 *m)
@@ -115,7 +161,7 @@ static bool finite_mat(const sr_mat4 *m)
  * target in one point, or sizes or distances whose squares overflow
  * float (from about 1e19) or underflow it (below about 1e-19) - the
  * readers accept such coordinates, the framing cannot use them. */
-static const char *setup_camera(const render_opts *o, const scene *s, camera *cam,
+static const char *setup_camera(const render_opts *o, scene *s, camera *cam,
                                 float *near_out, float *far_out)
 {
     sr_vec3 c;
@@ -123,8 +169,10 @@ static const char *setup_camera(const render_opts *o, const scene *s, camera *ca
     scene_bounds(s, true, &c, &r);
     float fov = o->fov_deg * PI_F / 180.0f;
 
+    framing_view fit;
+    bool fitted = !o->have_eye && cached_fit(o, s, &fit);
     sr_vec3 eye, target, up;
-    resolve_camera(o, s, &eye, &target, &up);
+    resolve_camera(o, s, fitted ? &fit : NULL, &eye, &target, &up);
     sr_vec3 gaze = sr_vec3_sub(target, eye);
     /* Looking straight along the up vector: pick another up; one of the
      * last two is never parallel to a gaze. */
@@ -158,8 +206,8 @@ static const char *setup_camera(const render_opts *o, const scene *s, camera *ca
     float aspect = (float)o->width / (float)o->height;
     if (o->ortho) {
         float half = r * 1.04f;
-        float hw = aspect >= 1.0f ? half * aspect : half;
-        float hh = aspect >= 1.0f ? half : half / aspect;
+        float hw = fitted ? fit.half_w : aspect >= 1.0f ? half * aspect : half;
+        float hh = fitted ? fit.half_h : aspect >= 1.0f ? half : half / aspect;
         cam->proj = sr_ortho(-hw, hw, -hh, hh, near_z, far_z, false);
     } else {
         cam->proj = sr_perspective(sr_fit_fovy(fov, o->width, o->height), aspect, near_z, far_z, false);
@@ -430,6 +478,18 @@ static int load_objects(render_job *job)
     return -1;
 }
 
+/* --up, or the up axis the model's format implies: +z for STL, the
+ * format of CAD and 3D printing; +y for the rest (glTF specifies it, OBJ
+ * and PLY from modelling tools mostly follow it) and the teapot. */
+static int render_model_up(const render_opts *o)
+{
+    if (o->model_up != UP_AUTO) {
+        return o->model_up;
+    }
+    const char *dot = o->model ? strrchr(o->model, '.') : NULL;
+    return dot && strcasecmp(dot, ".stl") == 0 ? UP_POS_Z : UP_POS_Y;
+}
+
 /* The rest of the scene, with the context's threads for the normals:
  * materials, turn, bounds, and a check that a camera can be made. */
 static int finish_scene(render_job *job)
@@ -456,6 +516,13 @@ static int finish_scene(render_job *job)
             /* Zero means the default (opaque) in sr_material: keep a
              * fully transparent request just above it. */
             ob->material.opacity = o->opacity > 0.0f ? o->opacity : 1e-6f;
+        }
+    }
+    int up = render_model_up(o);
+    for (int i = 0; i < s->count && up != UP_POS_Y; i++) {
+        if (s->objects[i].frame) {
+            sr_mat4 m = framing_upright(up);
+            s->objects[i].model = sr_mat4_mul(&m, &s->objects[i].model);
         }
     }
     if (o->turn_deg != 0.0f) {
@@ -529,7 +596,9 @@ int render_job_configure(render_job *job, int argc, char **argv)
 
 void render_job_camera(const render_job *job, sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up)
 {
-    resolve_camera(&job->o, &job->s, eye, target, up);
+    framing_view fit;
+    bool fitted = !job->o.have_eye && fit_default(&job->o, &job->s, &fit);
+    resolve_camera(&job->o, &job->s, fitted ? &fit : NULL, eye, target, up);
 }
 
 void render_job_bounds(const render_job *job, sr_vec3 *centre, float *radius)

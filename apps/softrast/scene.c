@@ -172,6 +172,7 @@ void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radi
 void scene_cache_bounds(scene *s)
 {
     s->bounds_cached = false;
+    s->fit_cached = false;
     scene_bounds(s, true, &s->cached_centre[0], &s->cached_radius[0]);
     bool all_framed = true;
     for (int o = 0; o < s->count; o++) {
