@@ -25,7 +25,7 @@ int main(int argc, char **argv)
     int rw, rh;
     uint8_t *ref;
     sr_io_error err;
-    if (k < 1 || sr_read_png(argv[1], &rw, &rh, &ref, &err) != SR_OK) {
+    if (k < 1 || sr_read_png(argv[1], NULL, &rw, &rh, &ref, &err) != SR_OK) {
         fprintf(stderr, "%s\n", k < 1 ? "K must be a positive integer" : err.message);
         return 2;
     }
@@ -65,7 +65,7 @@ int main(int argc, char **argv)
     for (int i = 3; i < argc; i++) {
         int iw, ih;
         uint8_t *img;
-        if (sr_read_png(argv[i], &iw, &ih, &img, &err) != SR_OK) {
+        if (sr_read_png(argv[i], NULL, &iw, &ih, &img, &err) != SR_OK) {
             fprintf(stderr, "%s\n", err.message);
             return 2;
         }

@@ -1154,7 +1154,7 @@ static bool read_silhouette(const char *label, const char *path, silhouette *box
     int w = 0, h = 0;
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(path, &w, &h, &px, &err) != SR_OK) {
+    if (sr_read_png(path, NULL, &w, &h, &px, &err) != SR_OK) {
         FAILF("%s: %s", label, err.message);
         return false;
     }
