@@ -1,0 +1,30 @@
+/* alloc.h - memory through an sr_allocator (the context's, passed by
+ * whoever owns the memory: the context, the pool, the scratch arenas), so
+ * that the layers below the context need not know it.  Any thread.
+ * Internal to the library. */
+#ifndef SR_ALLOC_H
+#define SR_ALLOC_H
+
+#include "softrast.h"
+
+/* The allocator a context uses when its desc leaves it zero. */
+sr_allocator sr__default_allocator(void);
+
+void *sr__mem_alloc(const sr_allocator *a, size_t size);
+/* Overflow-checked and zeroed. */
+void *sr__mem_calloc(const sr_allocator *a, size_t count, size_t size);
+void  sr__mem_free(const sr_allocator *a, void *ptr);
+/* A large buffer that will be written soon: ask the kernel for
+ * transparent huge pages over it, so filling it takes a few page faults
+ * instead of thousands (a no-op where unsupported). */
+void *sr__mem_alloc_large(const sr_allocator *a, size_t size);
+
+/* Fault in at once the pages lying wholly inside [p, p + bytes) of a
+ * block about to be written (MADV_POPULATE_WRITE), for malloc'd blocks of
+ * SR_POPULATE_MIN bytes and more: on the development VM a page faulted in
+ * on first touch costs several times one of a batch (alloc.c).  A no-op
+ * for smaller blocks and where the kernel cannot. */
+#define SR_POPULATE_MIN ((size_t)64 << 10)
+void sr__populate(void *p, size_t bytes);
+
+#endif
