@@ -241,7 +241,7 @@ static void save_image(const bench_run *run, const char *scene, const char *rend
     }
     sr_io_error err;
     if (sr_write_png(path, o->width, o->height, rgba, (size_t)o->width * 4,
-                     &(sr_png_write_desc){ .no_alpha = true }, &err) != SR_OK) {
+                     &(sr_png_write_desc){ .channels = SR_PNG_RGB }, &err) != SR_OK) {
         fprintf(stderr, "softrast-bench: %s\n", err.message);
     }
 }
@@ -538,13 +538,20 @@ static void run_cli_scene(bench_run *run, const bench_scene_info *info)
     /* The triangle count, for mtri_s (untimed). */
     sr_mesh mesh;
     sr_io_error err;
-    if (sr_load_mesh(model, NULL, &mesh, &err) != SR_OK) {
+    sr_context *mesh_ctx;
+    if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &mesh_ctx) != SR_OK) {
+        fprintf(stderr, "softrast-bench: cli: skipped: no context\n");
+        return;
+    }
+    if (sr_load_mesh(mesh_ctx, model, NULL, &mesh, &err) != SR_OK) {
         fprintf(stderr, "softrast-bench: cli: skipped: %s\n", err.message);
         printf("scene=%s skipped=missing-model\n", info->name);
+        sr_destroy_context(mesh_ctx);
         return;
     }
     uint64_t triangles = mesh.triangle_count;
-    sr_mesh_free(&mesh);
+    sr_destroy_mesh(mesh_ctx, &mesh);
+    sr_destroy_context(mesh_ctx);
 
     const char *tmp = getenv("TMPDIR");
     char dir[PATH_MAX], out[PATH_MAX + 16], size[32], threads[16];

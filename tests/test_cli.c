@@ -675,7 +675,7 @@ SR_TEST(camera_looking_along_both_ups_still_frames)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     long lit = 0;
     for (long i = 0; i < (long)w * h; i++) {
         lit += px[4 * i] > 128;
@@ -843,7 +843,7 @@ SR_TEST(svg_output_that_is_its_input_is_refused)
     int w = 0, h = 0;
     uint8_t *px = NULL;
     sr_io_error err;
-    CHECK_EQ(sr_read_png(png, &w, &h, &px, &err), SR_OK);
+    CHECK_EQ(sr_read_png(png, NULL, &w, &h, &px, &err), SR_OK);
     CHECK(w == 8 && h == 8);
     free(px);
 #endif
@@ -1127,7 +1127,7 @@ static double render_ok(const char *label, const char *dir, const char *name,
     int pw = 0, ph = 0;
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(out, &pw, &ph, &px, &err) != SR_OK) {
+    if (sr_read_png(out, NULL, &pw, &ph, &px, &err) != SR_OK) {
         FAILF("%s: %s", label, err.message);
         return -1;
     }
@@ -1412,7 +1412,7 @@ SR_TEST(verbose_reports_on_stderr_and_still_renders)
     int w = 0, h = 0;
     uint8_t *px = NULL;
     sr_io_error err;
-    CHECK_EQ(sr_read_png(out, &w, &h, &px, &err), SR_OK);
+    CHECK_EQ(sr_read_png(out, NULL, &w, &h, &px, &err), SR_OK);
     CHECK_EQ(w, 32);
     CHECK_EQ(h, 24);
     free(px);
@@ -1756,7 +1756,7 @@ SR_TEST(gltf_material_colors_color_the_model)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     /* A pixel a quarter in from each side, on the middle row. */
     const uint8_t *left = px + 4 * ((size_t)(h / 2) * w + w / 4);
     const uint8_t *right = px + 4 * ((size_t)(h / 2) * w + 3 * w / 4);
@@ -1779,7 +1779,7 @@ static void check_parts_picture(const char *path)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
     int found[3] = { 0, 0, 0 }, white = 0;
     int row = h * 7 / 10;
     for (int x = 0; x < w; x++) {
@@ -1858,7 +1858,7 @@ SR_TEST(obj_parts_take_their_own_textures)
     cli_run_free(&r);
     int w, h;
     uint8_t *px = NULL;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     int blues = 0, reds = 0, row = h * 7 / 10;
     for (int x = 0; x < w; x++) {
         const uint8_t *p = px + 4 * ((size_t)row * w + x);
@@ -1931,7 +1931,7 @@ SR_TEST(gltf_parts_take_their_own_textures)
     cli_run_free(&r);
     int w, h;
     uint8_t *px = NULL;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     const uint8_t *left = px + 4 * ((size_t)(h * 7 / 10) * w + w / 5);
     CHECK(left[0] == 255 && left[1] == 255 && left[2] == 255);
     free(px);
@@ -1980,7 +1980,7 @@ SR_TEST(a_jpg_output_name_writes_a_jpeg)
     int pw, ph, jw, jh, lw, lh;
     uint8_t *p = NULL, *j = NULL, *l = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(png, &pw, &ph, &p, &err) == SR_OK);
+    REQUIRE(sr_read_png(png, NULL, &pw, &ph, &p, &err) == SR_OK);
     REQUIRE(sr_read_jpeg(jpg, &jw, &jh, &j, &err) == SR_OK);
     REQUIRE(sr_read_jpeg(low, &lw, &lh, &l, &err) == SR_OK);
     REQUIRE(pw == jw && ph == jh && pw == lw && ph == lh);

@@ -677,7 +677,7 @@ SR_TEST(outline_over_an_offset_face_passes_the_depth_test)
             tested[i] = px[i * 4] == 255;
         }
         /* The same outline with no depth test: every pixel it covers. */
-        lines.no_depth_test = true;
+        lines.depth_test = SR_OFF;
         REQUIRE(sr_draw(ctx, fb, &lines, &d) == SR_OK);
         px = sr_framebuffer_pixels(fb);
         int n_all = 0, missing = 0;

@@ -161,7 +161,7 @@ static void dot(sr_context *ctx, sr_framebuffer *fb, double x, double y, double 
     sr_path_arc_to(path, r, r, 0, false, true, x - r, y);
     sr_path_close(path);
     sr_fill_path(ctx, fb, path, color, &(sr_fill_desc){ .antialias = SR_AA_AREA });
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
 }
 
 /* One pixel magnified to most of the cell: the 1/16 px lattice every

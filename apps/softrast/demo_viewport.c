@@ -147,7 +147,7 @@ static sr_result draw_panel(sr_context *ctx, sr_framebuffer *fb, const scene *s,
     sr_path_close(path);
     r = sr_stroke_path(ctx, fb, path, (sr_rgba){ 0.95f, 0.85f, 0.4f, 1 },
                        &(sr_stroke_desc){ .width = 1 });
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     if (r != SR_OK) {
         return r;
     }

@@ -35,13 +35,14 @@ static void note_mtl(void *inputs, const char *path)
     cli_inputs_add(inputs, path, "MTL file");
 }
 
-static int load_model(const render_opts *o, cli_inputs *inputs, scene *s)
+static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs, scene *s)
 {
     memset(s, 0, sizeof *s);
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    sr_result r = sr_load_mesh(o->model, &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
+    sr_result r = sr_load_mesh(ctx, o->model,
+                               &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
                                &ob->mesh, &err);
     if (r != SR_OK) {
         fprintf(stderr, "%s\n", err.message);
@@ -71,8 +72,8 @@ static int prepare_normals(const render_opts *o, sr_context *ctx, scene *s)
         if (mode == 0) {
             continue;
         }
-        sr_result r = sr_mesh_compute_normals_ctx(ctx, m,
-                                                  mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
+        sr_result r = sr_mesh_compute_normals(ctx, m,
+                                              mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
         if (r != SR_OK) {
             cli_error("computing normals: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
@@ -260,7 +261,7 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                         return SR_OUT_OF_MEMORY;
                     }
                     indices = sorted;
-                    st.no_depth_write = true;
+                    st.depth_write = SR_OFF;
                     st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
                                            .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
                                            .src_alpha = SR_BLEND_ONE,
@@ -298,7 +299,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     sr_vec3 ink = o->have_line_color ? o->line_color
                 : light_bg ? (sr_vec3){ 0.125f, 0.125f, 0.125f }
                            : (sr_vec3){ 0.91f, 0.925f, 0.957f };
-    sr_material ink_material = { .diffuse = ink, .no_vertex_color = true };
+    sr_material ink_material = { .diffuse = ink, .vertex_color = SR_OFF };
     sr_result r = SR_OK;
     if (o->lines != LINES_WIREFRAME) {
         sr_state fill = st;
@@ -308,7 +309,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
             r = draw_scene(ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
-            fill.material = (sr_material){ .diffuse = o->background, .no_vertex_color = true };
+            fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
             r = draw_scene(ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
@@ -326,8 +327,8 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     lines.polygon_mode_front = lines.polygon_mode_back = mode;
     if (o->lines == LINES_WIREFRAME) {
         lines.cull = SR_CULL_NONE;
-        lines.no_depth_test = true;
-        lines.no_depth_write = true;
+        lines.depth_test = SR_OFF;
+        lines.depth_write = SR_OFF;
     } else {
         lines.depth_func = SR_LEQUAL;
     }
@@ -341,6 +342,10 @@ struct render_job {
     scene s;
     bool have_scene;
     sr_context *ctx;
+    /* The scene's meshes live on a context of their own, made with the
+     * first options' threads: it outlives the drawing context, which a
+     * change of --threads replaces. */
+    sr_context *mesh_ctx;
     sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
                              * format) when the caller's framebuffer cannot be drawn into */
     cli_inputs inputs;      /* the files read: model, MTL, textures */
@@ -365,13 +370,16 @@ int render_job_parse(int argc, char **argv, render_job **out)
     return -1;
 }
 
-/* The context, unless made already (cmd_render makes it first). */
+/* The contexts, unless made already (cmd_render makes them first). */
 static int start_context(render_job *job)
 {
     if (job->ctx) {
         return -1;
     }
     sr_result r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->ctx);
+    if (r == SR_OK && !job->mesh_ctx) {
+        r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->mesh_ctx);
+    }
     if (r != SR_OK) {
         cli_error("render: %s", sr_result_text(r));
         return EXIT_FAILURE_RUN;
@@ -407,12 +415,12 @@ static int load_objects(render_job *job)
     render_opts *o = &job->o;
     scene *s = &job->s;
     if (o->model) {
-        int status = load_model(o, &job->inputs, s);
+        int status = load_model(o, job->mesh_ctx, &job->inputs, s);
         if (status >= 0) {
             return status;
         }
     } else {
-        sr_result r = scene_builtin(s, o->detail);
+        sr_result r = scene_builtin(job->mesh_ctx, s, o->detail);
         if (r != SR_OK) {
             cli_error("building the teapot scene: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
@@ -428,7 +436,7 @@ static int finish_scene(render_job *job)
 {
     render_opts *o = &job->o;
     scene *s = &job->s;
-    int status = prepare_normals(o, job->ctx, s);
+    int status = prepare_normals(o, job->mesh_ctx, s);
     if (status >= 0) {
         return status;
     }
@@ -436,7 +444,7 @@ static int finish_scene(render_job *job)
         scene_object *ob = &s->objects[i];
         if (o->have_mat_color && ob->frame) {
             ob->material.diffuse = o->mat_color;
-            ob->material.no_vertex_color = true;
+            ob->material.vertex_color = SR_OFF;
         }
         if (o->have_specular && ob->frame) {
             ob->material.specular = o->specular;
@@ -629,6 +637,7 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     if (r == SR_OK) {
         r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o->background.x, o->background.y,
                                                            o->background.z, 1.0f },
+                                                .depth_action = SR_ACTION_CLEAR,
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
     if (r == SR_OK) {
@@ -652,8 +661,9 @@ void render_job_free(render_job *job)
     }
     drop_context(job);
     if (job->have_scene) {
-        scene_free(&job->s);
+        scene_free(job->mesh_ctx, &job->s);
     }
+    sr_destroy_context(job->mesh_ctx);
     cli_inputs_free(&job->inputs);
     free(job);
 }
@@ -711,9 +721,9 @@ int cmd_render(int argc, char **argv)
     /* The framebuffer is made on a thread of its own while the model
      * file is read on this one: its fresh pages (16 MB at 1920 x 1080)
      * took the kernel 2-25 ms to zero, time the reader's one core leaves
-     * the other free for.  The context is used again only once the
-     * framebuffer is made (finish_scene's normals, make_context's
-     * textures). */
+     * the other free for.  The reader allocates on the mesh context; the
+     * drawing context is used again only once the framebuffer is made
+     * (make_context's textures). */
     status = start_context(job);
     if (status >= 0) {
         render_job_free(job);

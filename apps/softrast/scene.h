@@ -32,9 +32,11 @@ typedef struct scene {
     float cached_radius[2];
 } scene;
 
-/* The Utah teapot at `detail` standing on a checkered ground plane. */
-sr_result scene_builtin(scene *s, int detail);
-void scene_free(scene *s);
+/* The Utah teapot at `detail` standing on a checkered ground plane, its
+ * meshes made on ctx. */
+sr_result scene_builtin(sr_context *ctx, scene *s, int detail);
+/* Destroys the meshes, on the context they were made on. */
+void scene_free(sr_context *ctx, scene *s);
 
 /* Bounding sphere of the objects with `frame` set (or of all objects),
  * after their model matrices. */
