@@ -147,7 +147,7 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
         df = 1.0;
     }
     ds->zero_to_one = st->depth_zero_to_one;
-    /* The viewport matrix S, onto pixel edges (RASTER_RULES 1.2). */
+    /* The viewport matrix S, onto pixel edges (docs/raster-rules.md §1.3). */
     ds->vp_px = vp.width * 0.5;
     ds->vp_py = vp.height * 0.5;
     ds->vp_ox = vp.x + vp.width * 0.5;

@@ -1408,7 +1408,7 @@ static char *render_bytes(const char *label, const char *dir, const char *name,
     return read_whole(path, len);
 }
 
-/* The three rasterizers give the same pixels (RASTER_RULES), hence the
+/* The three rasterizers give the same pixels (docs/raster-rules.md §3.5), hence the
  * same PNG bytes; so do one thread and several. */
 SR_TEST(rasterizers_and_thread_counts_give_identical_pngs)
 {

@@ -3,7 +3,7 @@
  * depth off or LESS, the interpolated or flat color) against the generic
  * sr__fragment_vary path, which a blend state equal to replace forces;
  * and the per-line tile binning and per-tile column ranges against the
- * closed form of the diamond-exit rule (RASTER_RULES 6.2), across tile
+ * closed form of the diamond-exit rule (docs/raster-rules.md §7.1), across tile
  * borders and at 1, 2 and 3 threads. */
 #include "raster_util.h"
 #include "raster/fixed.h"
@@ -182,7 +182,7 @@ static bool owner(int64_t x, int64_t y, bool xmaj, int64_t *qx, int64_t *qy)
 }
 
 /* One more hit on every pixel of the segment (q8 endpoints), wide lines
- * as GL's (RASTER_RULES 6.3): the segment moved by -(width - 1)/2 along
+ * as GL's (docs/raster-rules.md §7.2): the segment moved by -(width - 1)/2 along
  * the minor axis, and a run of `width` toward +minor from each pixel of
  * it: the columns' pixels plus the start's diamond pixel minus the end's,
  * each with its run, clipped to the rectangle [x0, x1) x [y0, y1). */

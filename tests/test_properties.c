@@ -1,5 +1,5 @@
 /* test_properties.c - rasterization properties at scale, fixed seeds
- * (RASTER_RULES 11.5, items 2-4):
+ * (docs/raster-rules.md §11):
  *
  *  - Watertightness, exact: random planar meshes (regular grids, jittered
  *    grids with random diagonals, fans) under random projective maps with
@@ -164,7 +164,7 @@ static int64_t area2_q8(const mesh2 *m, int t)
 
 /* ---- the independent reference ------------------------------------------ */
 
-/* Per-pixel count of covering triangles (top-left rule, RASTER_RULES 2.3),
+/* Per-pixel count of covering triangles (top-left rule, docs/raster-rules.md §3.2),
  * each triangle only over its bounding box. */
 static void ref_count(const mesh2 *m, int *count)
 {

@@ -1,5 +1,5 @@
-/* demo_aa.c - `softrast demo aa`: aliasing and three cures for it (the
- * seeds: a pixel is an area, not a point; sampling it once at its centre
+/* demo_aa.c - `softrast demo aa`: aliasing and three cures for it
+ * (a pixel is an area, not a point; sampling it once at its centre
  * turns an edge into a staircase and thin features into broken dashes).
  *
  * Every shape panel draws the same two shapes into a small image,

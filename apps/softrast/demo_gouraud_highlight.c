@@ -1,6 +1,6 @@
 /* demo_gouraud_highlight.c - `softrast demo gouraud-highlight`: the two
- * flaws of Gouraud shading the seeds list under "Gouraud flaw - convex
- * interpolation", each beside Phong shading of the same mesh.
+ * flaws of Gouraud shading that follow from its convex
+ * interpolation, each beside Phong shading of the same mesh.
  *
  * Gouraud lights the vertices only and interpolates their colors, so
  * every pixel is a convex combination of the vertex colors: a sharp

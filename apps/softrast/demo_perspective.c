@@ -1,5 +1,5 @@
 /* demo_perspective.c - `softrast demo perspective`: why attributes must
- * not be interpolated in screen space (the seeds' "screen space color
+ * not be interpolated in screen space ("screen space color
  * interpolation": the perspective transformation does not preserve
  * distances, so interpolating before and after it gives different
  * results).

@@ -1,5 +1,5 @@
 /* demo_zfight.c - `softrast demo zfight`: z-buffer quantization and
- * "z-fighting" (the seeds: two close surfaces may quantize to the same
+ * "z-fighting" (two close surfaces may quantize to the same
  * depth, and which one shows is then decided by drawing order and
  * rounding, pixel by pixel).
  *

@@ -242,7 +242,7 @@ static int farther_first(const void *a, const void *b)
 
 /* A translucent object's triangles [first, first + n) as indices sorted
  * back to front by each triangle's centroid distance along the view
- * direction (the seeds: "you still have to sort for transparency");
+ * direction (blending is order-dependent, so transparency needs sorting);
  * malloc'd, or NULL when out of memory. */
 static uint32_t *sorted_indices(const scene_object *ob, const camera *cam, size_t first,
                                 size_t n)

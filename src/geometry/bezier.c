@@ -4,7 +4,7 @@
  * texcoord = (u, v)) and 2 detail^2 triangles per patch, allocated on the
  * caller's context.  Any thread may call it with a context of its own.
  *
- * Method: the seeds' incremental algorithm for polynomials ("forward
+ * Method: the incremental evaluation of polynomials ("forward
  * differencing").  A cubic F(t) = a t^3 + b t^2 + c t + d sampled at steps of
  * h has constant third difference D3 = 6 a h^3, so once F, its first
  * difference DF and its second difference D2F are known at t = 0, every next
@@ -116,7 +116,7 @@ static void fwd_diff_start(fwd_diff *s, const double a[3], const double b[3],
     }
 }
 
-/* The seeds' N-order difference update, for N = 3. */
+/* The N-order forward difference update, for N = 3. */
 static void fwd_diff_step(fwd_diff *s)
 {
     for (int k = 0; k < 3; k++) {

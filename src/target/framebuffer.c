@@ -352,7 +352,7 @@ sr_result sr_sample_position(int samples, int index, float *x, float *y)
 }
 
 /* The box resolve of one tile into dst (single-sampled, same size): each
- * channel (sum + n/2) / n, the rounded average (RASTER_RULES 8.2).  A tile
+ * channel (sum + n/2) / n, the rounded average (docs/raster-rules.md §9.3).  A tile
  * whose clear is still pending resolves to the clear color without
  * touching its samples, and a pixel whose samples agree (every pixel
  * inside a triangle) is copied: most of a frame costs one compare per
