@@ -126,6 +126,10 @@
  *     sr_texture_levels          its number of mip levels
  *   supersampling
  *     sr_downsample              a supersampled image filtered down
+ *   tone mapping
+ *     sr_tonemap                 linear float pixels to RGBA8 sRGB: exposure, curve, encode
+ *     sr_tonemap_rgb             one colour through a tone curve
+ *     sr_srgb_encode8            a display-linear value to its 8-bit sRGB code
  *   programmable stages
  *     sr_make_builtin_program    a built-in shading model as a program
  *     sr_builtin_program         the sr_program to draw it with
