@@ -44,20 +44,20 @@ typedef struct sr_load_desc {
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
  * three vertices are triangulated.  Normals are those of the file, or NULL. */
-sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
+SR_API sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
                        sr_mesh *out, sr_io_error *err);
 
 /* The readers on a buffer already in memory (for tests and fuzzing).  `name`
  * is used in messages.  `data` need not be NUL-terminated. */
-sr_result sr_parse_obj(const char *name, const char *data, size_t size,
+SR_API sr_result sr_parse_obj(const char *name, const char *data, size_t size,
                        sr_mesh *out, sr_io_error *err);
-sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
+SR_API sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
                        sr_mesh *out, sr_io_error *err);
-sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
+SR_API sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
                        sr_mesh *out, sr_io_error *err);
 
 /* true when this build can read other formats through Assimp. */
-bool sr_io_have_assimp(void);
+SR_API bool sr_io_have_assimp(void);
 
 /* PNG. */
 typedef struct sr_png_write_desc {
@@ -83,13 +83,13 @@ typedef struct sr_png_write_desc {
  * Writes retry after EINTR (a signal handler without SA_RESTART) and carry
  * on after a short write; the first real error (ENOSPC, EFBIG, EIO) fails
  * the call with SR_IO_ERROR and removes the temporary file. */
-sr_result sr_write_png(const char *path, int width, int height,
+SR_API sr_result sr_write_png(const char *path, int width, int height,
                        const uint8_t *rgba, size_t stride,
                        const sr_png_write_desc *desc, sr_io_error *err);
 
 /* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
  * *pixels is malloc'd; free it with free(). */
-sr_result sr_read_png(const char *path, int *width, int *height,
+SR_API sr_result sr_read_png(const char *path, int *width, int *height,
                       uint8_t **pixels, sr_io_error *err);
 
 typedef struct sr_png_read_desc {
@@ -100,10 +100,10 @@ typedef struct sr_png_read_desc {
 } sr_png_read_desc;
 
 /* sr_read_png with options (desc may be NULL: exactly sr_read_png). */
-sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
+SR_API sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
                            int *height, uint8_t **pixels, sr_io_error *err);
 /* sr_read_png on a file already in memory; `name` is used in messages. */
-sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
+SR_API sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
                         int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 /* JPEG: baseline or progressive, gray, YCbCr/RGB or CMYK (Adobe's inverted
@@ -114,12 +114,12 @@ sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
  * an error with libjpeg's words: nothing partial is returned.  *pixels is
  * malloc'd; free it with free().  A build without libjpeg returns
  * SR_UNSUPPORTED (sr_io_have_jpeg says which). */
-sr_result sr_read_jpeg(const char *path, int *width, int *height,
+SR_API sr_result sr_read_jpeg(const char *path, int *width, int *height,
                        uint8_t **pixels, sr_io_error *err);
 /* The same on a file already in memory; `name` is used in messages. */
-sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size,
+SR_API sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size,
                          int *width, int *height, uint8_t **pixels, sr_io_error *err);
-bool sr_io_have_jpeg(void);
+SR_API bool sr_io_have_jpeg(void);
 
 /* Write RGBA8 pixels (stride in bytes) as a baseline JPEG with 4:2:0
  * chroma, alpha dropped, atomically as sr_write_png does (a failed write
@@ -130,16 +130,16 @@ typedef struct sr_jpeg_write_desc {
 
 #define SR_JPEG_DEFAULT_QUALITY 90
 
-sr_result sr_write_jpeg(const char *path, int width, int height,
+SR_API sr_result sr_write_jpeg(const char *path, int width, int height,
                         const uint8_t *rgba, size_t stride,
                         const sr_jpeg_write_desc *desc, sr_io_error *err);
 
 /* A PNG or a JPEG, told apart by the file's first bytes (not its name),
  * read as RGBA8 by sr_read_png or sr_read_jpeg. */
-sr_result sr_read_image(const char *path, int *width, int *height,
+SR_API sr_result sr_read_image(const char *path, int *width, int *height,
                         uint8_t **pixels, sr_io_error *err);
 /* The same on bytes in memory (sr_mesh.texture_data, say). */
-sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
+SR_API sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
                           int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 #ifdef __cplusplus

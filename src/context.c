@@ -120,24 +120,6 @@ static void default_free(void *ptr, void *user)
     free(h.base);
 }
 
-void sr__populate(void *p, size_t bytes)
-{
-#if defined(MAP_ANONYMOUS)
-    if (!p || bytes < SR_POPULATE_MIN) {
-        return;
-    }
-    uintptr_t page = (uintptr_t)sysconf(_SC_PAGESIZE);
-    uintptr_t start = ((uintptr_t)p + page - 1) & ~(page - 1);
-    uintptr_t end = ((uintptr_t)p + bytes) & ~(page - 1);
-    if (end > start) {
-        (void)madvise((void *)start, end - start, MADV_POPULATE_WRITE);  /* EINVAL before 5.14 */
-    }
-#else
-    (void)p;
-    (void)bytes;
-#endif
-}
-
 void *sr__alloc(sr_context *ctx, size_t size)
 {
     return ctx->allocator.alloc(size ? size : 1, ctx->allocator.user);
@@ -204,6 +186,23 @@ const char *sr_context_error(const sr_context *ctx)
 int sr_context_threads(const sr_context *ctx)
 {
     return ctx ? ctx->threads : 0;
+}
+
+sr_result sr_run_jobs(sr_context *ctx, sr_job_fn fn, void *arg, int count)
+{
+    if (!fn) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_run_jobs: fn is NULL");
+    }
+    if (count < 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_run_jobs: count %d is negative", count);
+    }
+    if (!ctx) {
+        sr__pool_run(NULL, fn, arg, count);
+        return SR_OK;
+    }
+    sr__pool_run(ctx->pool, fn, arg, count);
+    sr__ok(ctx);
+    return SR_OK;
 }
 
 sr_draw_info sr_last_draw_info(const sr_context *ctx)

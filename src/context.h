@@ -29,14 +29,6 @@ void  sr__free(sr_context *ctx, void *ptr);
  * instead of thousands (a no-op where unsupported). */
 void *sr__alloc_large(sr_context *ctx, size_t size);
 
-/* Fault in at once the pages lying wholly inside [p, p + bytes) of a
- * block about to be written (MADV_POPULATE_WRITE), for malloc'd blocks of
- * SR_POPULATE_MIN bytes and more: on the development VM a page faulted in
- * on first touch costs several times one of a batch (context.c).  A no-op
- * for smaller blocks and where the kernel cannot. */
-#define SR_POPULATE_MIN ((size_t)64 << 10)
-void sr__populate(void *p, size_t bytes);
-
 /* Record a message on ctx and return `code` (for `return sr__fail(...)`). */
 sr_result sr__fail(sr_context *ctx, sr_result code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));

@@ -5,9 +5,11 @@
  * No I/O and no shared state: any thread may call these on its own mesh
  * (sr_mesh_compute_normals_ctx uses its context's threads too).
  */
+#define _DEFAULT_SOURCE 1   /* populate.h */
 #include "softrast.h"
 
 #include "context.h"
+#include "populate.h"
 #include "parallel/pool.h"
 
 #include <math.h>

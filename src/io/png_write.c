@@ -38,8 +38,6 @@
  * than the pixel above.  Level 0 stores the rows unfiltered. */
 #include "io/io_util.h"
 
-#include "context.h"
-#include "parallel/pool.h"
 
 #include <zlib.h>
 
@@ -376,7 +374,7 @@ sr_result sr_write_png(const char *path, int width, int height,
         j.band_rows = height;
     }
     j.bands = (height + j.band_rows - 1) / j.band_rows;
-    int threads = ctx ? ctx->threads : 1;
+    int threads = ctx ? sr_context_threads(ctx) : 1;
     int slots = threads < j.bands ? threads : j.bands;
 
     sr_atomic_file file;
@@ -389,7 +387,7 @@ sr_result sr_write_png(const char *path, int width, int height,
         sr__atomic_discard(&file);
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "cannot encode PNG: out of memory");
     }
-    sr__pool_run(ctx && slots > 1 ? ctx->pool : NULL, run_slot, &j, slots);
+    sr_run_jobs(slots > 1 ? ctx : NULL, run_slot, &j, slots);
     if (atomic_load(&j.failed)) {
         free_blocks(&m);
         sr__atomic_discard(&file);
