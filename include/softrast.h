@@ -158,11 +158,11 @@ SR_API sr_mat4 sr_look_at(sr_vec3 eye, sr_vec3 target, sr_vec3 up);
  * zero_to_one the depth row maps near to 0 and far to 1 instead.  Near and far
  * are positive distances in front of the eye. */
 SR_API sr_mat4 sr_ortho(float left, float right, float bottom, float top,
-                 float near_z, float far_z, bool zero_to_one);
+                        float near_z, float far_z, bool zero_to_one);
 SR_API sr_mat4 sr_frustum(float left, float right, float bottom, float top,
-                   float near_z, float far_z, bool zero_to_one);
+                          float near_z, float far_z, bool zero_to_one);
 SR_API sr_mat4 sr_perspective(float fovy_radians, float aspect,
-                       float near_z, float far_z, bool zero_to_one);
+                              float near_z, float far_z, bool zero_to_one);
 
 /* Aspect-ratio preservation: given the field of view wanted across the
  * *smaller* viewport dimension, the vertical field of view to pass to
@@ -176,7 +176,7 @@ SR_API float   sr_fit_fovy(float fov_radians, int width, int height);
  * In the seed's pixel-centre convention, x_S = x1 - 1/2 + (x+1)/2 (x2-x1+1);
  * softrast's pixel-edge coordinate is that value + 1/2. */
 SR_API sr_mat4 sr_viewport_matrix(float x0, float y0, float width, float height,
-                           float depth_near, float depth_far, bool zero_to_one);
+                                  float depth_near, float depth_far, bool zero_to_one);
 
 /* The normal matrix: inverse transpose of the upper 3x3 of the model-view
  * matrix, returned in the upper 3x3 of a mat4.  false if singular. */
@@ -247,7 +247,7 @@ typedef struct sr_framebuffer_desc {
 } sr_framebuffer_desc;
 
 SR_API sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
-                              sr_framebuffer **out);
+                                     sr_framebuffer **out);
 SR_API void      sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb);
 
 SR_API int             sr_framebuffer_width(const sr_framebuffer *fb);
@@ -288,13 +288,13 @@ SR_API sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_de
 /* Copy a rectangle of RGBA8 pixels out (stride in bytes, >= 4*w);
  * multisampled framebuffers are resolved first. */
 SR_API sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
-                         int x, int y, int w, int h, uint8_t *out, size_t stride);
+                                int x, int y, int w, int h, uint8_t *out, size_t stride);
 /* Copy depth values out as floats in [0, 1] (dequantized); multisampled:
  * each pixel's sample 0.  sr_read_stencil: the stored values (sample 0). */
 SR_API sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
-                        int x, int y, int w, int h, float *out, size_t stride_floats);
+                               int x, int y, int w, int h, float *out, size_t stride_floats);
 SR_API sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
-                          int x, int y, int w, int h, uint8_t *out, size_t stride);
+                                 int x, int y, int w, int h, uint8_t *out, size_t stride);
 
 /* ---- textures ----------------------------------------------------------- */
 
@@ -347,7 +347,7 @@ typedef enum sr_resample_filter {
  * centres lie within the filter's support around its centre (edges
  * clamped), in the bytes' own space, rounded and clamped. */
 SR_API sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst,
-                        sr_resample_filter filter);
+                               sr_resample_filter filter);
 
 /* ---- pipeline state ----------------------------------------------------- */
 
@@ -660,8 +660,8 @@ typedef struct sr_state {
  * are the same models to start a program from (docs/shaders.md). */
 typedef struct sr_builtin sr_builtin;
 SR_API sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state,
-                                  const sr_mat4 *model, const sr_mat4 *view,
-                                  const sr_mat4 *projection, sr_builtin **out);
+                                         const sr_mat4 *model, const sr_mat4 *view,
+                                         const sr_mat4 *projection, sr_builtin **out);
 SR_API const sr_program *sr_builtin_program(const sr_builtin *b);
 SR_API void sr_destroy_builtin_program(sr_context *ctx, sr_builtin *b);
 
@@ -707,7 +707,7 @@ SR_API void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as
  * glBufferSubData: the range must lie inside it. */
 SR_API sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const void *data,
-                           size_t bytes);
+                                  size_t bytes);
 SR_API void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
 SR_API size_t sr_buffer_size(const sr_buffer *buf); /* 0 for a NULL buffer */
 
@@ -749,7 +749,7 @@ typedef struct sr_draw_info {
 } sr_draw_info;
 
 SR_API sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
-                  const sr_draw_desc *draw);
+                         const sr_draw_desc *draw);
 SR_API sr_draw_info sr_last_draw_info(const sr_context *ctx);
 
 /* ---- meshes ------------------------------------------------------------- */
@@ -813,7 +813,7 @@ SR_API bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
  * evaluated by forward differences, with normals from the patch
  * derivatives. */
 SR_API sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count,
-                               int detail, sr_mesh *out);
+                                      int detail, sr_mesh *out);
 /* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x. */
 SR_API sr_result sr_make_teapot(int detail, sr_mesh *out);
 
@@ -834,7 +834,7 @@ typedef struct sr_rgba { float r, g, b, a; } sr_rgba;
  * (printable ASCII; other bytes draw as a box).  (x, y) is the top-left
  * corner; each glyph cell is 6 x 8 pixels times `scale` (>= 1). */
 SR_API sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int scale,
-                       const char *text, sr_rgba color);
+                              const char *text, sr_rgba color);
 /* Width in pixels that sr_draw_text would use. */
 SR_API int sr_text_width(const char *text, int scale);
 
@@ -883,20 +883,20 @@ typedef struct sr_fill_desc {
 
 /* Fill a polygon with a color (desc may be NULL: nonzero, aliased). */
 SR_API sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                          sr_rgba color, const sr_fill_desc *desc);
+                                 sr_rgba color, const sr_fill_desc *desc);
 /* Coverage only: 0..255 per pixel of the w x h window whose top-left pixel
  * is (x0, y0), written to mask (stride bytes per row; the window is
  * zeroed first).  Aliased coverage is 0 or 255. */
 SR_API sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
-                              const sr_fill_desc *desc, int x0, int y0, int w, int h,
-                              uint8_t *mask, size_t stride);
+                                     const sr_fill_desc *desc, int x0, int y0, int w, int h,
+                                     uint8_t *mask, size_t stride);
 /* Blend `color` into fb through a coverage mask (0..255 per pixel, w x h,
  * stride bytes per row) whose top-left pixel lands on (x, y), clipped to
  * the framebuffer, source-over as the fills blend.  Coverage computed
  * once by sr_polygon_coverage can so be drawn many times (cached glyphs
  * of a text overlay). */
 SR_API sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
-                           const uint8_t *mask, size_t stride, sr_rgba color);
+                                  const uint8_t *mask, size_t stride, sr_rgba color);
 
 /* ---- region filling (src/draw2d/floodfill.c) ----------------------------- */
 /*
@@ -924,9 +924,9 @@ typedef struct sr_region_fill_desc {
 /* (x, y) must be inside the framebuffer; desc may be NULL; filled (may be
  * NULL) receives the number of pixels recoloured. */
 SR_API sr_result sr_flood_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
-                        const sr_region_fill_desc *desc, size_t *filled);
+                               const sr_region_fill_desc *desc, size_t *filled);
 SR_API sr_result sr_boundary_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
-                           sr_rgba boundary, const sr_region_fill_desc *desc, size_t *filled);
+                                  sr_rgba boundary, const sr_region_fill_desc *desc, size_t *filled);
 
 /* ---- 2D polygon clipping (src/draw2d/polyclip.c) ------------------------- */
 /*
@@ -956,15 +956,15 @@ typedef struct sr_polygon_clip_desc {
  * returns SR_TOO_LARGE with *out_count the size needed (call again with a
  * larger buffer).  desc may be NULL. */
 SR_API sr_result sr_clip_polygon_rect(sr_context *ctx, const sr_point2 *in, int count, double xmin,
-                               double ymin, double xmax, double ymax,
-                               const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
-                               int *out_count);
+                                      double ymin, double xmax, double ymax,
+                                      const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
+                                      int *out_count);
 /* Clip against a convex window polygon (either orientation, at least 3
  * vertices, non-zero area); its edges are used in order. */
 SR_API sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, int count,
-                                 const sr_point2 *window, int window_count,
-                                 const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
-                                 int *out_count);
+                                        const sr_point2 *window, int window_count,
+                                        const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
+                                        int *out_count);
 
 /* ---- curves (src/draw2d/curves.c) ---------------------------------------- */
 /*
@@ -979,9 +979,9 @@ SR_API sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, in
 
 /* rx, ry >= 0; |cx|, |cy|, rx, ry <= SR_MAX_COORD2D.  Aliased. */
 SR_API sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double rx,
-                          double ry, sr_rgba color, bool filled);
+                                 double ry, sr_rgba color, bool filled);
 SR_API sr_result sr_draw_circle(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double r,
-                         sr_rgba color, bool filled);
+                                sr_rgba color, bool filled);
 
 /* An implicit region F(x, y) < 0.  The function returns F at (x, y) in
  * pixel coordinates; when grad is not NULL it may store dF/dx, dF/dy there
@@ -998,7 +998,7 @@ typedef struct sr_implicit_desc {
 } sr_implicit_desc;
 
 SR_API sr_result sr_fill_implicit(sr_context *ctx, sr_framebuffer *fb, const sr_implicit_desc *desc,
-                           sr_rgba color);
+                                  sr_rgba color);
 
 /* Bezier curves flattened by forward differencing: n steps of 1/n in t,
  * with n chosen so the chords stay within `tolerance` pixels of the curve
@@ -1006,17 +1006,17 @@ SR_API sr_result sr_fill_implicit(sr_context *ctx, sr_framebuffer *fb, const sr_
  * points after p0 (the last is exactly the end point).  Capacity too small:
  * SR_TOO_LARGE and *out_count = n. */
 SR_API sr_result sr_flatten_quadratic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
-                               double tolerance, sr_point2 *out, int capacity, int *out_count);
+                                      double tolerance, sr_point2 *out, int capacity, int *out_count);
 SR_API sr_result sr_flatten_cubic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
-                           sr_point2 p3, double tolerance, sr_point2 *out, int capacity,
-                           int *out_count);
+                                  sr_point2 p3, double tolerance, sr_point2 *out, int capacity,
+                                  int *out_count);
 /* An SVG elliptical arc from `from` to `to` (radii, x-axis rotation in
  * degrees, large-arc and sweep flags; out-of-range radii are scaled up as
  * SVG 1.1 F.6.6 says, zero radii give a straight line).  Same output
  * convention as the Bezier calls. */
 SR_API sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
-                         double rotation_deg, bool large_arc, bool sweep, sr_point2 to,
-                         double tolerance, sr_point2 *out, int capacity, int *out_count);
+                                double rotation_deg, bool large_arc, bool sweep, sr_point2 to,
+                                double tolerance, sr_point2 *out, int capacity, int *out_count);
 
 /* ---- Gouraud-shaded 2D polygons (src/draw2d/gouraud.c) ------------------- */
 /*
@@ -1029,10 +1029,10 @@ SR_API sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, doub
  * Colors with alpha < 1 blend source-over.
  */
 SR_API sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_point2 v[3],
-                                   const sr_rgba colors[3]);
+                                          const sr_rgba colors[3]);
 /* colors: one per polygon point; rule: SR_FILL_RULE_DEFAULT -> nonzero. */
 SR_API sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                                  const sr_rgba *colors, sr_fill_rule rule);
+                                         const sr_rgba *colors, sr_fill_rule rule);
 
 /* ---- paths and strokes (src/draw2d/path.c) ------------------------------- */
 /*
@@ -1052,9 +1052,9 @@ SR_API sr_result sr_path_move_to(sr_path *path, double x, double y);
 SR_API sr_result sr_path_line_to(sr_path *path, double x, double y);
 SR_API sr_result sr_path_quad_to(sr_path *path, double x1, double y1, double x, double y);
 SR_API sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, double y2,
-                           double x, double y);
+                                  double x, double y);
 SR_API sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_deg,
-                         bool large_arc, bool sweep, double x, double y);
+                                bool large_arc, bool sweep, double x, double y);
 SR_API sr_result sr_path_close(sr_path *path);
 /* The flattened path as a polygon (valid until the path changes). */
 SR_API sr_polygon2 sr_path_polygon(const sr_path *path);
@@ -1086,13 +1086,13 @@ typedef struct sr_stroke_desc {
 } sr_stroke_desc;
 
 SR_API sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path, sr_rgba color,
-                       const sr_fill_desc *desc);
+                              const sr_fill_desc *desc);
 SR_API sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
-                         sr_rgba color, const sr_stroke_desc *desc);
+                                sr_rgba color, const sr_stroke_desc *desc);
 /* The stroke outline itself: out->points and out->contour_counts are
  * allocated on ctx; release them with sr_free_stroke_outline. */
 SR_API sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
-                            sr_polygon2 *out);
+                                   sr_polygon2 *out);
 SR_API void      sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
 
 /* ---- 2D lines (src/draw2d/line*.c) -------------------------------------- */
@@ -1149,7 +1149,7 @@ typedef struct sr_line_desc {
 
 /* Draw a->b into fb's color.  desc may be NULL (Bresenham, width 1). */
 SR_API sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_point2 b,
-                       sr_rgba color, const sr_line_desc *desc);
+                              sr_rgba color, const sr_line_desc *desc);
 
 /* Clip the segment *a-*b to the closed rectangle [rmin.x, rmax.x] x
  * [rmin.y, rmax.y], moving the endpoints onto its border.  Returns false

@@ -45,16 +45,16 @@ typedef struct sr_load_desc {
 /* Load a model file into *out (which is zeroed first).  Faces with more than
  * three vertices are triangulated.  Normals are those of the file, or NULL. */
 SR_API sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
-                       sr_mesh *out, sr_io_error *err);
+                              sr_mesh *out, sr_io_error *err);
 
 /* The readers on a buffer already in memory (for tests and fuzzing).  `name`
  * is used in messages.  `data` need not be NUL-terminated. */
 SR_API sr_result sr_parse_obj(const char *name, const char *data, size_t size,
-                       sr_mesh *out, sr_io_error *err);
+                              sr_mesh *out, sr_io_error *err);
 SR_API sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
-                       sr_mesh *out, sr_io_error *err);
+                              sr_mesh *out, sr_io_error *err);
 SR_API sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
-                       sr_mesh *out, sr_io_error *err);
+                              sr_mesh *out, sr_io_error *err);
 
 /* true when this build can read other formats through Assimp. */
 SR_API bool sr_io_have_assimp(void);
@@ -84,13 +84,13 @@ typedef struct sr_png_write_desc {
  * on after a short write; the first real error (ENOSPC, EFBIG, EIO) fails
  * the call with SR_IO_ERROR and removes the temporary file. */
 SR_API sr_result sr_write_png(const char *path, int width, int height,
-                       const uint8_t *rgba, size_t stride,
-                       const sr_png_write_desc *desc, sr_io_error *err);
+                              const uint8_t *rgba, size_t stride,
+                              const sr_png_write_desc *desc, sr_io_error *err);
 
 /* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
  * *pixels is malloc'd; free it with free(). */
 SR_API sr_result sr_read_png(const char *path, int *width, int *height,
-                      uint8_t **pixels, sr_io_error *err);
+                             uint8_t **pixels, sr_io_error *err);
 
 typedef struct sr_png_read_desc {
     sr_allocator allocator; /* zero: malloc/free.  libpng's and zlib's blocks, the
@@ -101,10 +101,10 @@ typedef struct sr_png_read_desc {
 
 /* sr_read_png with options (desc may be NULL: exactly sr_read_png). */
 SR_API sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
-                           int *height, uint8_t **pixels, sr_io_error *err);
+                                  int *height, uint8_t **pixels, sr_io_error *err);
 /* sr_read_png on a file already in memory; `name` is used in messages. */
 SR_API sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
-                        int *width, int *height, uint8_t **pixels, sr_io_error *err);
+                               int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 /* JPEG: baseline or progressive, gray, YCbCr/RGB or CMYK (Adobe's inverted
  * inks too), any chroma subsampling, read as RGBA8 with alpha 255; at
@@ -115,10 +115,10 @@ SR_API sr_result sr_decode_png(const char *name, const uint8_t *data, size_t siz
  * malloc'd; free it with free().  A build without libjpeg returns
  * SR_UNSUPPORTED (sr_io_have_jpeg says which). */
 SR_API sr_result sr_read_jpeg(const char *path, int *width, int *height,
-                       uint8_t **pixels, sr_io_error *err);
+                              uint8_t **pixels, sr_io_error *err);
 /* The same on a file already in memory; `name` is used in messages. */
 SR_API sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size,
-                         int *width, int *height, uint8_t **pixels, sr_io_error *err);
+                                int *width, int *height, uint8_t **pixels, sr_io_error *err);
 SR_API bool sr_io_have_jpeg(void);
 
 /* Write RGBA8 pixels (stride in bytes) as a baseline JPEG with 4:2:0
@@ -131,16 +131,16 @@ typedef struct sr_jpeg_write_desc {
 #define SR_JPEG_DEFAULT_QUALITY 90
 
 SR_API sr_result sr_write_jpeg(const char *path, int width, int height,
-                        const uint8_t *rgba, size_t stride,
-                        const sr_jpeg_write_desc *desc, sr_io_error *err);
+                               const uint8_t *rgba, size_t stride,
+                               const sr_jpeg_write_desc *desc, sr_io_error *err);
 
 /* A PNG or a JPEG, told apart by the file's first bytes (not its name),
  * read as RGBA8 by sr_read_png or sr_read_jpeg. */
 SR_API sr_result sr_read_image(const char *path, int *width, int *height,
-                        uint8_t **pixels, sr_io_error *err);
+                               uint8_t **pixels, sr_io_error *err);
 /* The same on bytes in memory (sr_mesh.texture_data, say). */
 SR_API sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
-                          int *width, int *height, uint8_t **pixels, sr_io_error *err);
+                                 int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 #ifdef __cplusplus
 }
