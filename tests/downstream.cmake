@@ -2,7 +2,8 @@
 # tests/downstream against that prefix, found once with find_package and
 # once with pkg-config.  The build tree's own paths are nowhere in the
 # downstream configuration: only the prefix is.
-#   cmake -DBUILD=<softrast build dir> -DSRC=<tests/downstream> -DWORK=<scratch dir> -P downstream.cmake
+#   cmake -DBUILD=<softrast build dir> -DSRC=<tests/downstream> -DWORK=<scratch dir>
+#         [-DFLAGS=<compile and link flags>] -P downstream.cmake
 cmake_minimum_required(VERSION 3.20)
 foreach(var BUILD SRC WORK)
   if(NOT DEFINED ${var})
@@ -27,7 +28,7 @@ foreach(how cmake pkg-config)
   # pkg-config searches the prefix first; CMake searches only the prefix.
   set(ENV{PKG_CONFIG_PATH} "${prefix}/lib/pkgconfig:${prefix}/lib64/pkgconfig:${prefix}/share/pkgconfig")
   run(${CMAKE_COMMAND} -S ${SRC} -B ${bin} -DSR_FIND=${how}
-      -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF
+      -DCMAKE_PREFIX_PATH=${prefix} "-DCMAKE_C_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS}" -DCMAKE_FIND_USE_SYSTEM_PACKAGE_REGISTRY=OFF
       -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
   run(${CMAKE_COMMAND} --build ${bin})
   run(${bin}/downstream ${WORK}/${how}.png)
