@@ -60,9 +60,9 @@
  * any thread count, and for any of the three triangle rasterizers.
  *
  * Clears are deferred: sr_clear marks tiles; a tile is cleared when it is
- * next drawn or read (sr_framebuffer_pixels, sr_read_pixels, sr_read_depth
- * carry out what is pending), so a pointer from sr_framebuffer_pixels is
- * valid until the next draw or clear.
+ * next drawn, read or written (sr_framebuffer_pixels, sr_read_pixels,
+ * sr_read_depth, sr_write_pixels carry out what is pending), so a pointer
+ * from sr_framebuffer_pixels is valid until the next draw, clear or write.
  */
 #ifndef SOFTRAST_H
 #define SOFTRAST_H
@@ -260,7 +260,7 @@ SR_API bool            sr_framebuffer_has_stencil(const sr_framebuffer *fb);
  * framebuffer keeps); valid until the next draw or clear.  Read-only: the
  * framebuffer remembers which tiles already hold the clear color (a clear
  * to the same color then leaves them alone), and a write through this
- * pointer would go unseen. */
+ * pointer would go unseen: write pixels with sr_write_pixels. */
 SR_API const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
 
 /* The standard sample positions (Direct3D and Vulkan; RASTER_RULES 8.1):
@@ -289,6 +289,14 @@ SR_API sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_de
  * multisampled framebuffers are resolved first. */
 SR_API sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
                                 int x, int y, int w, int h, uint8_t *out, size_t stride);
+/* Copy a rectangle of RGBA8 pixels in (stride in bytes, >= 4*w): the
+ * counterpart of sr_read_pixels, for images composed on the CPU (a page
+ * of panels, a magnified cell).  Pending clears of the rest of the
+ * framebuffer still happen; a multisampled framebuffer takes each pixel's
+ * value in all its samples, so sr_read_pixels gives the same bytes back.
+ * Depth and stencil are left as they are. */
+SR_API sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
+                                 const uint8_t *rgba, size_t stride);
 /* Copy depth values out as floats in [0, 1] (dequantized); multisampled:
  * each pixel's sample 0.  sr_read_stencil: the stored values (sample 0). */
 SR_API sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,

@@ -1,7 +1,9 @@
 /*
  * softrast_io.h - files in and out: model readers (OBJ, PLY, STL, and other
- * formats through Assimp when the build found it), PNG images (libpng) and
- * JPEG images (libjpeg-turbo, when the build found it).
+ * formats through Assimp when the build found it), PNG images (libpng),
+ * JPEG images (libjpeg-turbo, when the build found it) and SVG drawings
+ * (expat, when the build found it).  Numbers in text files are read the
+ * same whatever the C locale is.
  *
  * Errors: every function returns an sr_result and, on failure, fills an
  * sr_io_error with one line of the form "FILE:LINE: what is wrong" for text
@@ -14,6 +16,8 @@
 #define SOFTRAST_IO_H
 
 #include "softrast.h"
+
+#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -40,6 +44,13 @@ typedef enum sr_model_format {
 typedef struct sr_load_desc {
     sr_model_format format;
     bool keep_file_normals_only; /* reserved; normals policy is the caller's */
+    /* Optional: called with the path of every other file the reader opens
+     * for the model (an OBJ's MTL files), e.g. so that a program never
+     * writes its output over one of its inputs.  The model's own path and
+     * the texture paths in the mesh are not reported (the caller has
+     * them), nor the files Assimp opens itself. */
+    void (*file_read)(void *user, const char *path);
+    void *user;                  /* passed to file_read */
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
@@ -58,6 +69,16 @@ SR_API sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size
 
 /* true when this build can read other formats through Assimp. */
 SR_API bool sr_io_have_assimp(void);
+
+/* Open a file for reading as the readers here do, for a program's own
+ * inputs (a script, a drawing): only a regular file.  A directory, FIFO,
+ * device or socket is refused at once - opening a FIFO would otherwise
+ * wait for a writer, maybe forever - with one line naming the file
+ * ("FILE: cannot open: ...", "FILE: is a directory, not KIND", "FILE: not
+ * a regular file"), KIND saying what the file should be ("an event
+ * script").  *size is the file's size in bytes; close *f with fclose. */
+SR_API sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
+                              sr_io_error *err);
 
 /* PNG. */
 typedef struct sr_png_write_desc {
@@ -86,6 +107,18 @@ typedef struct sr_png_write_desc {
 SR_API sr_result sr_write_png(const char *path, int width, int height,
                               const uint8_t *rgba, size_t stride,
                               const sr_png_write_desc *desc, sr_io_error *err);
+
+/* Where an encoder's bytes go (stb_image_write's "_to_func"): called in
+ * order with consecutive pieces of the file (a socket, a growing buffer);
+ * return false to stop, and the encoder returns SR_IO_ERROR ("<memory>:
+ * the write function failed") with every block it took released. */
+typedef bool (*sr_write_fn)(void *user, const void *data, size_t size);
+
+/* sr_write_png's bytes, the same ones, to `write` instead of a file
+ * (messages name "<memory>"). */
+SR_API sr_result sr_encode_png(sr_write_fn write, void *user, int width, int height,
+                               const uint8_t *rgba, size_t stride, const sr_png_write_desc *desc,
+                               sr_io_error *err);
 
 /* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
  * *pixels is malloc'd; free it with free(). */
@@ -133,6 +166,10 @@ typedef struct sr_jpeg_write_desc {
 SR_API sr_result sr_write_jpeg(const char *path, int width, int height,
                                const uint8_t *rgba, size_t stride,
                                const sr_jpeg_write_desc *desc, sr_io_error *err);
+/* sr_write_jpeg's bytes to `write` instead of a file (see sr_write_fn). */
+SR_API sr_result sr_encode_jpeg(sr_write_fn write, void *user, int width, int height,
+                                const uint8_t *rgba, size_t stride, const sr_jpeg_write_desc *desc,
+                                sr_io_error *err);
 
 /* A PNG or a JPEG, told apart by the file's first bytes (not its name),
  * read as RGBA8 by sr_read_png or sr_read_jpeg. */
@@ -141,6 +178,66 @@ SR_API sr_result sr_read_image(const char *path, int *width, int *height,
 /* The same on bytes in memory (sr_mesh.texture_data, say). */
 SR_API sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
                                  int *width, int *height, uint8_t **pixels, sr_io_error *err);
+
+/* SVG 1.1 drawings, rendered with the 2D toolkit: svg, g, path, rect,
+ * circle, ellipse, line, polyline, polygon; transforms; fill and stroke
+ * with their opacities, rules, joins and caps; shape-rendering; display
+ * and visibility.  Anything else is skipped with one warning per name.
+ * The work is bounded by the size of the document and of the image (the
+ * limits below, docs/robustness.md): a few hundred bytes cannot make the
+ * renderer spin for seconds or allocate gigabytes. */
+#define SR_SVG_MAX_INPUT_BYTES ((size_t)256 << 20) /* the document itself */
+#define SR_SVG_MAX_PATH_POINTS (1 << 20)   /* flattened points of one shape */
+#define SR_SVG_MAX_SUBPATHS    (1 << 14)   /* subpaths (moveto) of one shape */
+/* Points handled in all - flattened paths, stroke outlines (estimated
+ * before they are built), polygons filled - may reach SR_SVG_POINTS_BASE
+ * plus SR_SVG_POINTS_PER_BYTE per byte of the document. */
+#define SR_SVG_POINTS_BASE     (1 << 19)
+#define SR_SVG_POINTS_PER_BYTE 16
+/* Fill work: the pixels of every filled polygon's bounding box (clipped to
+ * the image) plus the image rows each of its edges crosses, summed over the
+ * document, may reach SR_SVG_WORK_PER_PIXEL times the image's pixel count
+ * plus SR_SVG_WORK_BASE. */
+#define SR_SVG_WORK_PER_PIXEL  16
+#define SR_SVG_WORK_BASE       (1 << 24)
+
+/* One warning, "NAME:LINE: warning: ..." (no newline), as it arises. */
+typedef void (*sr_svg_warn_fn)(void *user, const char *message);
+
+typedef struct sr_svg_desc {
+    const char *name;        /* the document's name in messages; NULL -> "<svg>" */
+    int width, height;       /* the image size (the viewBox is fitted in), or 0:
+                              * the drawing's own size times scale */
+    double scale;            /* 0 -> 1 */
+    sr_rgba background;      /* the image is cleared to it first (zero: transparent) */
+    int max_side;            /* largest image side; 0 -> SR_MAX_FRAMEBUFFER_SIZE */
+    sr_svg_warn_fn warn;     /* NULL: warnings are only counted */
+    void *warn_user;
+} sr_svg_desc;
+
+/* What a render did, also when it failed: the work it counted against its
+ * budgets (the "_used" never pass the budgets: an operation that would is
+ * refused before it runs, and the render fails with SR_TOO_LARGE). */
+typedef struct sr_svg_info {
+    double points_used, points_budget;   /* points flattened, stroked and filled */
+    double work_used, work_budget;       /* fill work, as defined above */
+    int warnings;                        /* warnings given (at most 65) */
+} sr_svg_info;
+
+/* Render the SVG document in data[0..size) (need not be NUL-terminated)
+ * into a new framebuffer on ctx (*out; sr_destroy_framebuffer it).  On
+ * failure *out is NULL and err holds one line "NAME:LINE: what is wrong":
+ * SR_BAD_FORMAT for a malformed document or a size outside 1..max_side,
+ * SR_TOO_LARGE past a limit above, SR_OUT_OF_MEMORY, SR_INVALID_ARG for
+ * bad arguments, SR_UNSUPPORTED in a build without expat.  info may be
+ * NULL.  Nothing global: calls may run in parallel on different contexts. */
+SR_API sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *desc,
+                               sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
+/* The same for a file (desc->name defaults to the path). */
+SR_API sr_result sr_render_svg_file(sr_context *ctx, const char *path, const sr_svg_desc *desc,
+                                    sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
+/* true when this build reads SVG (it found expat). */
+SR_API bool sr_io_have_svg(void);
 
 #ifdef __cplusplus
 }

@@ -5,8 +5,10 @@
 # (llvmpipe, for the benchmark's side-by-side comparison), cairo (the 2D fill benchmark's comparison), and
 # clang with its sanitizer and fuzzer runtimes, and for `softrast view` SDL2
 # (the window), FreeType and DejaVu (the overlay font's outlines) with Xvfb
-# and xauth (its tests run on a virtual display).  Runs apt-get directly as
-# root, through sudo otherwise.
+# and xauth (its tests run on a virtual display), and the de_DE.UTF-8 locale
+# (the readers' numbers must not depend on a host program's locale; the
+# test sets one whose decimal separator is a comma).  Runs apt-get directly
+# as root, through sudo otherwise.
 set -eu
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
@@ -16,5 +18,14 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake pkg-config ca-certificates \
     libpng-dev zlib1g-dev libjpeg-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev \
     clang libclang-rt-14-dev \
-    libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth >/dev/null
+    libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth locales >/dev/null
+# Generate de_DE.UTF-8 once: uncomment (or add) its line, then locale-gen.
+if ! locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
+    if grep -q '^# *de_DE.UTF-8 UTF-8' /etc/locale.gen; then
+        $SUDO sed -i 's/^# *de_DE.UTF-8 UTF-8/de_DE.UTF-8 UTF-8/' /etc/locale.gen
+    elif ! grep -q '^de_DE.UTF-8 UTF-8' /etc/locale.gen; then
+        echo 'de_DE.UTF-8 UTF-8' | $SUDO tee -a /etc/locale.gen >/dev/null
+    fi
+    $SUDO locale-gen >/dev/null
+fi
 echo "softrast: dependencies installed"

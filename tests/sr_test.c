@@ -67,6 +67,21 @@ const char *sr_test_out_dir(void)
 
 const char *sr_test_src_dir(void) { return SR_TEST_SRC_DIR; }
 
+uint8_t *sr_test_read_file(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return NULL;
+    }
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    uint8_t *buf = malloc(n > 0 ? (size_t)n : 1);
+    *size = buf ? fread(buf, 1, (size_t)n, f) : 0;
+    fclose(f);
+    return buf;
+}
+
 int sr_test_run_cli(const char *const *args)
 {
 #ifdef SR_CLI_PATH

@@ -31,6 +31,8 @@ const char *sr_test_models_dir(void);
 const char *sr_test_out_dir(void);
 /* Source tree's tests/ directory (reference images, data). */
 const char *sr_test_src_dir(void);
+/* A whole file, malloc'd (free it), or NULL when it cannot be opened. */
+uint8_t *sr_test_read_file(const char *path, size_t *size);
 /* Run the built softrast CLI with args (NULL-terminated, without the
  * program name), no shell; its exit status, or -1 if it could not run. */
 int sr_test_run_cli(const char *const *args);

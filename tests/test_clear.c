@@ -90,9 +90,37 @@ static const sr_clear_desc world_colors[2] = {
     { .color = { 1, 1, 0, 1 }, .depth = 1 },
 };
 
+/* A rectangle of pixels written with sr_write_pixels: corners from
+ * arg[0..3] kept inside the framebuffer, a pattern from the position and
+ * arg[6], rows `stride` bytes apart with a gap after each. */
+static void write_rect(clear_world *w, sr_framebuffer *fb, const float *arg)
+{
+    int x0 = (int)arg[0], y0 = (int)arg[1], x1 = (int)arg[2], y1 = (int)arg[3];
+    x0 = x0 < 0 ? 0 : x0 >= W ? W - 1 : x0;
+    x1 = x1 < 0 ? 0 : x1 >= W ? W - 1 : x1;
+    y0 = y0 < 0 ? 0 : y0 >= H ? H - 1 : y0;
+    y1 = y1 < 0 ? 0 : y1 >= H ? H - 1 : y1;
+    int x = x0 < x1 ? x0 : x1, y = y0 < y1 ? y0 : y1;
+    int rw = abs(x1 - x0) + 1, rh = abs(y1 - y0) + 1;
+    size_t stride = (size_t)rw * 4 + 12;
+    uint8_t *px = malloc(stride * (size_t)rh);
+    REQUIRE(px);
+    for (int j = 0; j < rh; j++) {
+        for (int i = 0; i < rw; i++) {
+            uint8_t *p = px + (size_t)j * stride + (size_t)i * 4;
+            p[0] = (uint8_t)(i * 7 + j);
+            p[1] = (uint8_t)(j * 13);
+            p[2] = (uint8_t)(arg[6] * 255.0f);
+            p[3] = 255;
+        }
+    }
+    CHECK(sr_write_pixels(w->ctx, fb, x, y, rw, rh, px, stride) == SR_OK);
+    free(px);
+}
+
 /* Operation `op` (a clear to either color, a triangle, a 2D line, a
- * resolve of either source or a downsample into fb) with its random
- * arguments. */
+ * resolve of either source, a downsample into fb, or pixels written) with
+ * its random arguments. */
 static void apply(clear_world *w, sr_framebuffer *fb, int op, const float *arg)
 {
     switch (op) {
@@ -115,6 +143,9 @@ static void apply(clear_world *w, sr_framebuffer *fb, int op, const float *arg)
         break;
     case 6:
         CHECK(sr_resolve(w->ctx, w->one, fb) == SR_OK);
+        break;
+    case 7:
+        write_rect(w, fb, arg);
         break;
     default:
         break;
@@ -157,10 +188,11 @@ static void apply_to_model(clear_world *w, uint32_t *model, int op, const float 
     sr_destroy_framebuffer(w->ctx, fresh[1]);
 }
 
-/* Fixed seed: sequences of random operations on a framebuffer read after
- * every one (so its tiles keep turning clean), each read compared with a
- * model image that never relies on a clean tile. */
-SR_TEST(pixels_follow_every_operation_after_reads)
+/* Fixed seed: sequences of random operations (each drawn from `ops`) on a
+ * framebuffer read after every one (so its tiles keep turning clean),
+ * each read compared with a model image that never relies on a clean
+ * tile. */
+static void run_sequences(const int *ops, int nops, unsigned seed)
 {
     clear_world w = { 0 };
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &w.ctx) == SR_OK);
@@ -172,7 +204,7 @@ SR_TEST(pixels_follow_every_operation_after_reads)
             == SR_OK);
     uint32_t *model = malloc(sizeof(uint32_t) * W * H);
     REQUIRE(model);
-    srand(7);
+    srand(seed);
     for (int seq = 0; seq < 40 && !sr_test_failed_now(); seq++) {
         sr_framebuffer *fb = NULL;
         REQUIRE(sr_make_framebuffer(w.ctx, &(sr_framebuffer_desc){ .width = W, .height = H },
@@ -190,11 +222,7 @@ SR_TEST(pixels_follow_every_operation_after_reads)
             CHECK(draw_tri(w.ctx, w.one, corner, corner + 6) == SR_OK);
         }
         for (int step = 0; step < 16 && !sr_test_failed_now(); step++) {
-            /* Clears twice as often as each other operation, so that a
-             * clear to the color a tile already holds often follows
-             * something drawn on it. */
-            static const int ops[9] = { 0, 1, 0, 1, 2, 3, 4, 5, 6 };
-            int op = ops[rand() % 9];
+            int op = ops[rand() % nops];
             float arg[9];
             for (int i = 0; i < 6; i++) {
                 arg[i] = (float)(rand() % (i % 2 ? H + 40 : W + 40)) - 20.0f;
@@ -221,6 +249,72 @@ SR_TEST(pixels_follow_every_operation_after_reads)
     sr_destroy_framebuffer(w.ctx, w.big);
     sr_destroy_framebuffer(w.ctx, w.one);
     sr_destroy_context(w.ctx);
+}
+
+/* Clears twice as often as each other operation, so that a clear to the
+ * color a tile already holds often follows something drawn on it. */
+SR_TEST(pixels_follow_every_operation_after_reads)
+{
+    static const int ops[9] = { 0, 1, 0, 1, 2, 3, 4, 5, 6 };
+    run_sequences(ops, 9, 7);
+}
+
+/* sr_write_pixels among them: the tiles it writes must not be taken for
+ * clean or for holding their base color outside what was drawn, and a
+ * clear pending there must still reach the rest of the tile. */
+SR_TEST(written_pixels_follow_every_operation_after_reads)
+{
+    static const int ops[11] = { 0, 1, 0, 1, 2, 3, 4, 5, 6, 7, 7 };
+    run_sequences(ops, 11, 17);
+}
+
+/* sr_write_pixels gives back exactly what it was given, inside its
+ * rectangle only (the rest keeps a clear still pending when it was
+ * called), from rows with a gap between them, and on 1 and 4 samples;
+ * a clear after it, to the color the tiles held, clears it. */
+SR_TEST(written_pixels_read_back_exactly)
+{
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    enum { RX = SR_TILE_SIZE - 5, RY = 3, RW = 17, RH = SR_TILE_SIZE + 2, GAP = 20 };
+    static uint8_t in[RH][RW * 4 + GAP], out[W * H * 4];
+    for (int y = 0; y < RH; y++) {
+        for (int x = 0; x < RW * 4; x++) {
+            in[y][x] = (uint8_t)(x * 31 + y * 7 + 1);
+        }
+    }
+    const sr_clear_desc teal = { .color = { 0, 0.5f, 0.5f, 1 }, .depth = 1 };
+    for (int samples = 1; samples <= 4; samples += 3) {
+        sr_framebuffer *fb = NULL;
+        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
+                                                                 .samples = samples }, &fb) ==
+                SR_OK);
+        REQUIRE(sr_clear(ctx, fb, &teal) == SR_OK);
+        const uint8_t want_bg[4] = { 0, 128, 128, 255 };
+        for (int pass = 0; pass < 2; pass++) {
+            /* Pass 1 writes over tiles a read has left clean. */
+            REQUIRE(sr_write_pixels(ctx, fb, RX, RY, RW, RH, &in[0][0], sizeof in[0]) == SR_OK);
+            REQUIRE(sr_read_pixels(ctx, fb, 0, 0, W, H, out, (size_t)W * 4) == SR_OK);
+            int wrong = 0;
+            for (int y = 0; y < H; y++) {
+                for (int x = 0; x < W; x++) {
+                    bool inside = x >= RX && x < RX + RW && y >= RY && y < RY + RH;
+                    const uint8_t *want = inside ? &in[y - RY][(x - RX) * 4] : want_bg;
+                    wrong += memcmp(&out[((size_t)y * W + x) * 4], want, 4) != 0;
+                }
+            }
+            CHECK_EQ(wrong, 0);
+        }
+        REQUIRE(sr_clear(ctx, fb, &teal) == SR_OK);
+        REQUIRE(sr_read_pixels(ctx, fb, 0, 0, W, H, out, (size_t)W * 4) == SR_OK);
+        int not_teal = 0;
+        for (int p = 0; p < W * H; p++) {
+            not_teal += memcmp(&out[(size_t)p * 4], want_bg, 4) != 0;
+        }
+        CHECK_EQ(not_teal, 0);
+        sr_destroy_framebuffer(ctx, fb);
+    }
+    sr_destroy_context(ctx);
 }
 
 /* ---- clears of the drawn rectangle only --------------------------------- */

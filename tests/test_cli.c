@@ -342,6 +342,15 @@ static const char *bad_dir(char *buf, size_t n)
 
 #define ARGS(...) ((const char *const[]){ __VA_ARGS__, NULL })
 
+/* Whether this softrast has the svg command (it needs expat). */
+static bool svg_command_built(void)
+{
+    cli_run r;
+    bool built = run_cli(ARGS("svg", "--help"), &r) && r.status == 0;
+    cli_run_free(&r);
+    return built;
+}
+
 /* ---- the malformed-input corpus ---------------------------------------- */
 
 typedef struct manifest_entry {
@@ -524,10 +533,7 @@ SR_TEST(a_fifo_as_input_is_refused_without_waiting)
     cli_run_free(&r);
 
     /* softrast svg is there only when the build found expat. */
-    REQUIRE(run_cli(ARGS("svg", "--help"), &r));
-    bool have_svg = r.status == 0;
-    cli_run_free(&r);
-    if (have_svg) {
+    if (svg_command_built()) {
         snprintf(out, sizeof out, "%s/svg.png", dir);
         REQUIRE(run_cli(ARGS("svg", fifo, "-o", out), &r));
         check_failure_output("svg FIFO", &r, 2, "/f: not a regular file");
@@ -703,52 +709,143 @@ SR_TEST(models_beyond_the_framing_range_are_refused_by_name)
 #endif
 }
 
-/* The atomic write would replace an input with the image: refused, and
- * the input keeps its bytes. */
+/* The files a refusal must leave as they were, with their bytes. */
+typedef struct kept_file {
+    const char *path;
+    char *bytes;
+    size_t len;
+} kept_file;
+
+static void keep_files(kept_file *k, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        k[i].bytes = read_whole(k[i].path, &k[i].len);
+        REQUIRE(k[i].bytes != NULL);
+    }
+}
+
+/* Each case must exit 2 with one line holding its needle, and every kept
+ * file keep its bytes. */
+typedef struct refusal_case {
+    const char *label, *args[10], *needle;
+} refusal_case;
+
+static void expect_refusals(const refusal_case *cases, size_t n, kept_file *kept, size_t nkept)
+{
+    for (size_t i = 0; i < n; i++) {
+        cli_run r;
+        REQUIRE(run_cli(cases[i].args, &r));
+        check_failure_output(cases[i].label, &r, 2, cases[i].needle);
+        cli_run_free(&r);
+        for (size_t k = 0; k < nkept; k++) {
+            size_t len;
+            char *now = read_whole(kept[k].path, &len);
+            if (!now || len != kept[k].len || memcmp(now, kept[k].bytes, len) != 0) {
+                FAILF("%s: %s changed", cases[i].label, kept[k].path);
+            }
+            free(now);
+        }
+    }
+    for (size_t k = 0; k < nkept; k++) {
+        free(kept[k].bytes);
+    }
+}
+
+/* The atomic write would replace an input with the image: refused, by
+ * any name for the same file (another path, a symbolic or a hard link),
+ * and the inputs keep their bytes. */
 SR_TEST(output_that_is_an_input_is_refused)
 {
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #else
-    char dir[1024], model[1100], tex[1100], alias[1200];
+    char dir[1024], model[1100], mtl[1100], tex[1100], alias[1200], sym[1100], hard[1100];
     fresh_dir("same", dir, sizeof dir);
     snprintf(model, sizeof model, "%s/quad.obj", dir);
+    snprintf(mtl, sizeof mtl, "%s/quad.mtl", dir);
     snprintf(tex, sizeof tex, "%s/quad_texture.png", dir);
+    snprintf(sym, sizeof sym, "%s/symlink.png", dir);
+    snprintf(hard, sizeof hard, "%s/hardlink.png", dir);
     /* The same file by another path: DIR/../NAME/quad_texture.png. */
     snprintf(alias, sizeof alias, "%s/../%s/quad_texture.png", dir, strrchr(dir, '/') + 1);
-    const char *quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
-                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
+    const char *quad = "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3 4/4\n";
+    const char *mat = "newmtl m\nKd 1 1 1\n";
     REQUIRE(write_whole(model, quad, strlen(quad)));
+    REQUIRE(write_whole(mtl, mat, strlen(mat)));
     const uint8_t texel[16] = { 255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 9, 9, 9, 255 };
     sr_io_error err;
     REQUIRE(sr_write_png(tex, 2, 2, texel, 8, NULL, &err) == SR_OK);
-    size_t mlen, tlen;
-    char *mbefore = read_whole(model, &mlen), *tbefore = read_whole(tex, &tlen);
-    REQUIRE(mbefore && tbefore);
+    REQUIRE(symlink("quad.obj", sym) == 0);
+    REQUIRE(link(model, hard) == 0);
+    kept_file kept[] = { { .path = model }, { .path = mtl }, { .path = tex } };
+    keep_files(kept, 3);
 
-    struct {
-        const char *label, *args[8], *needle;
-    } cases[] = {
+    const refusal_case cases[] = {
         { "model as output", { "render", model, "-o", model }, "is the model being read" },
+        { "model through a symbolic link", { "render", model, "-o", sym },
+          "is the model being read" },
+        { "model through a hard link", { "render", model, "-o", hard },
+          "is the model being read" },
+        { "MTL as output", { "render", model, "-o", mtl }, "is the MTL file being read" },
         { "found texture as output", { "render", model, "-o", tex }, "is the texture being read" },
         { "named texture through another path",
           { "render", model, "--texture", tex, "-o", alias }, "is the texture being read" },
     };
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        cli_run r;
-        REQUIRE(run_cli(cases[i].args, &r));
-        check_failure_output(cases[i].label, &r, 2, cases[i].needle);
-        cli_run_free(&r);
+    expect_refusals(cases, sizeof cases / sizeof cases[0], kept, 3);
+#endif
+}
+
+/* `softrast svg` refuses to write its PNG over the SVG it reads, by any
+ * name, and leaves the drawing as it was. */
+SR_TEST(svg_output_that_is_its_input_is_refused)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!svg_command_built()) {
+        SKIP("this softrast was built without expat");
     }
-    size_t mlen2, tlen2;
-    char *mafter = read_whole(model, &mlen2), *tafter = read_whole(tex, &tlen2);
-    REQUIRE(mafter && tafter);
-    CHECK(mlen2 == mlen && memcmp(mafter, mbefore, mlen) == 0);
-    CHECK(tlen2 == tlen && memcmp(tafter, tbefore, tlen) == 0);
-    free(mbefore);
-    free(tbefore);
-    free(mafter);
-    free(tafter);
+    cli_run r;
+    char dir[1024], svg[1100], sym[1100], hard[1100], plain[1100];
+    fresh_dir("same_svg", dir, sizeof dir);
+    snprintf(svg, sizeof svg, "%s/drawing.svg", dir);
+    snprintf(sym, sizeof sym, "%s/symlink.png", dir);
+    snprintf(hard, sizeof hard, "%s/hardlink.svg", dir);
+    /* A name with no .svg: the default output is NAME.png, not NAME. */
+    snprintf(plain, sizeof plain, "%s/drawing", dir);
+    const char *text = "<svg xmlns='http://www.w3.org/2000/svg' width='8' height='8'>"
+                       "<rect width='4' height='4' fill='red'/></svg>";
+    REQUIRE(write_whole(svg, text, strlen(text)));
+    REQUIRE(symlink("drawing.svg", sym) == 0);
+    REQUIRE(link(svg, hard) == 0);
+    kept_file kept[] = { { .path = svg } };
+    keep_files(kept, 1);
+    const refusal_case cases[] = {
+        { "svg onto itself", { "svg", svg, "-o", svg }, "is the SVG file being read" },
+        { "svg through a symbolic link", { "svg", svg, "--output", sym },
+          "is the SVG file being read" },
+        { "svg through a hard link", { "svg", hard, "-o", svg }, "is the SVG file being read" },
+    };
+    expect_refusals(cases, sizeof cases / sizeof cases[0], kept, 1);
+
+    /* A new output is of course fine. */
+    REQUIRE(write_whole(plain, text, strlen(text)));
+    REQUIRE(run_cli(ARGS("svg", plain), &r));
+    CHECK_EQ(r.status, 0);
+    cli_run_free(&r);
+    size_t len;
+    char *after = read_whole(plain, &len);
+    CHECK(after && len == strlen(text) && memcmp(after, text, len) == 0);
+    free(after);
+    char png[1200];
+    snprintf(png, sizeof png, "%s.png", plain);
+    int w = 0, h = 0;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    CHECK_EQ(sr_read_png(png, &w, &h, &px, &err), SR_OK);
+    CHECK(w == 8 && h == 8);
+    free(px);
 #endif
 }
 
@@ -1937,10 +2034,7 @@ SR_TEST(demo_and_svg_write_a_jpeg_for_a_jpg_name)
     CHECK_EQ(sr_read_jpeg(demo, &w, &h, &px, &err), SR_OK);
     free(px);
 
-    REQUIRE(run_cli(ARGS("svg", "--help"), &r));
-    bool have_svg = r.status == 0;
-    cli_run_free(&r);
-    if (have_svg) {
+    if (svg_command_built()) {
         REQUIRE(run_cli(ARGS("svg", svg_in, "-o", svg_out), &r));
         check_failure_output("svg to a JPEG without a background", &r, 2,
                              "a JPEG has no transparency; give a --background");

@@ -65,21 +65,6 @@ static int count_entries(const char *dir, bool hidden_only)
     return n;
 }
 
-static uint8_t *read_bytes(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        return NULL;
-    }
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    uint8_t *buf = malloc(n > 0 ? (size_t)n : 1);
-    *size = buf ? fread(buf, 1, (size_t)n, f) : 0;
-    fclose(f);
-    return buf;
-}
-
 static bool write_bytes(const char *path, const void *data, size_t size)
 {
     FILE *f = fopen(path, "wb");
@@ -166,7 +151,7 @@ SR_TEST(png_no_alpha_round_trip_keeps_rgb_and_reads_opaque)
     CHECK_EQ(bad, 0);
     /* And the file really is RGB: color type 2 in IHDR (byte 25). */
     size_t n = 0;
-    uint8_t *bytes = read_bytes(path, &n);
+    uint8_t *bytes = sr_test_read_file(path, &n);
     REQUIRE(bytes && n > 26);
     CHECK_EQ(bytes[25], 2);
     free(bytes);
@@ -287,7 +272,7 @@ SR_TEST(png_writes_bands_that_make_one_valid_stream_the_same_for_any_thread_coun
                                   &err),
                      SR_OK);
             size_t n = 0;
-            uint8_t *bytes = read_bytes(path, &n);
+            uint8_t *bytes = sr_test_read_file(path, &n);
             REQUIRE(bytes);
             int idats = check_png_by_hand(bytes, n, w, h, img, stride, cases[k].no_alpha ? 3 : 4);
             CHECK_EQ(idats, bands);
@@ -345,7 +330,7 @@ SR_TEST(png_higher_levels_find_repeats_that_level_1_does_not)
         sr_io_error err;
         REQUIRE(sr_write_png(path, w, h, img, 4 * (size_t)w,
                              &(sr_png_write_desc){ .compression_level = level }, &err) == SR_OK);
-        uint8_t *bytes = read_bytes(path, &size[level]);
+        uint8_t *bytes = sr_test_read_file(path, &size[level]);
         CHECK(check_png_by_hand(bytes, size[level], w, h, img, 4 * (size_t)w, 4) == 1);
         free(bytes);
     }
@@ -512,7 +497,7 @@ SR_TEST(png_write_through_a_file_as_directory_fails_and_creates_nothing)
     CHECK_STR_CONTAINS(err.message, path);
     CHECK_EQ(count_entries(dir, false), 1); /* just plain_file */
     size_t n = 0;
-    uint8_t *b = read_bytes(file, &n);
+    uint8_t *b = sr_test_read_file(file, &n);
     CHECK(b && n == 1 && b[0] == 'x');
     free(b);
 }
@@ -556,7 +541,7 @@ SR_TEST(png_failed_write_leaves_existing_file_untouched)
     sr_io_error err;
     REQUIRE(sr_write_png(path, 4, 4, small, 16, NULL, &err) == SR_OK);
     size_t before_n = 0;
-    uint8_t *before = read_bytes(path, &before_n);
+    uint8_t *before = sr_test_read_file(path, &before_n);
     REQUIRE(before != NULL);
 
     /* Noise does not compress: 256x256 RGBA is ~256 KiB, far past 8 KiB. */
@@ -576,7 +561,7 @@ SR_TEST(png_failed_write_leaves_existing_file_untouched)
     CHECK_STR_CONTAINS(err.message, path);
     CHECK_STR_CONTAINS(err.message, "write failed");
     size_t after_n = 0;
-    uint8_t *after = read_bytes(path, &after_n);
+    uint8_t *after = sr_test_read_file(path, &after_n);
     REQUIRE(after != NULL);
     CHECK_EQ(after_n, before_n);
     CHECK(after_n == before_n && memcmp(before, after, before_n) == 0);
@@ -667,7 +652,7 @@ SR_TEST(png_read_reports_missing_corrupt_and_truncated_files)
     sr_io_error err;
     REQUIRE(sr_write_png(good, w, h, img, 4 * (size_t)w, NULL, &err) == SR_OK);
     size_t n = 0;
-    uint8_t *bytes = read_bytes(good, &n);
+    uint8_t *bytes = sr_test_read_file(good, &n);
     REQUIRE(bytes && n > 200);
     int rw = -1, rh = -1;
     uint8_t *px = (uint8_t *)1;

@@ -1,7 +1,8 @@
 /*
  * test_special_files.c - io stage: every reader entry point (sr_load_mesh by
- * extension, by content and on the way to Assimp, an OBJ's mtllib, and
- * sr_read_png) given a FIFO, a device or a directory instead of a file.
+ * extension, by content and on the way to Assimp, an OBJ's mtllib,
+ * sr_read_png and sr_open_file) given a FIFO, a device or a directory
+ * instead of a file.
  * Each must answer at once with "FILE: not a regular file" (or "is a
  * directory"), never wait: opening a FIFO for reading blocks until a writer
  * comes, so a reader that opens before it checks would hang here.  An alarm
@@ -177,4 +178,47 @@ SR_TEST(a_fifo_or_a_device_is_refused_as_an_image)
     }
     unlink(fifo);
     stop_watchdog();
+}
+
+/* sr_open_file, the readers' open for a program's own inputs: a FIFO, a
+ * device and a directory refused at once, a regular file opened with its
+ * size, and missing outputs refused. */
+SR_TEST(open_file_takes_only_a_regular_file)
+{
+    start_watchdog();
+    const char *fifo = make_fifo("fifo.txt");
+    REQUIRE(fifo);
+    const char *paths[] = { fifo, "/dev/zero", sr_test_out_dir() };
+    const char *needles[] = { "not a regular file", "not a regular file",
+                              "is a directory, not an event script" };
+    for (size_t i = 0; i < 3; i++) {
+        FILE *f = stdin;
+        unsigned long long size = 7;
+        sr_io_error err = { { 0 } };
+        CHECK_EQ(sr_open_file(paths[i], "an event script", &f, &size, &err), SR_IO_ERROR);
+        CHECK_STR_CONTAINS(err.message, paths[i]);
+        CHECK_STR_CONTAINS(err.message, needles[i]);
+        CHECK(f == NULL);
+        CHECK_EQ(size, 0);
+    }
+    unlink(fifo);
+    stop_watchdog();
+
+    char path[1100];
+    snprintf(path, sizeof path, "%s/open_file.txt", sr_test_out_dir());
+    REQUIRE(write_text(path, "wheel 2\n"));
+    FILE *f = NULL;
+    unsigned long long size = 0;
+    sr_io_error err;
+    REQUIRE(sr_open_file(path, "an event script", &f, &size, &err) == SR_OK);
+    CHECK_EQ(size, 8);
+    char line[16] = { 0 };
+    CHECK(f && fgets(line, sizeof line, f) && strcmp(line, "wheel 2\n") == 0);
+    fclose(f);
+    CHECK_EQ(sr_open_file(path, "an event script", NULL, &size, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "f is NULL");
+    CHECK_EQ(sr_open_file(path, "an event script", &f, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "size is NULL");
+    CHECK(f == NULL);
+    CHECK_EQ(sr_open_file(NULL, "an event script", &f, &size, &err), SR_INVALID_ARG);
 }

@@ -322,7 +322,19 @@ SR_TEST(invalid_clear_and_read_arguments_are_named)
         CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_read_pixels: rectangle");
         CHECK_EQ(sr_read_depth(f.ctx, f.fb, r[0], r[1], r[2], r[3], d, FW * FH), SR_INVALID_ARG);
         CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_read_depth: rectangle");
+        CHECK_EQ(sr_write_pixels(f.ctx, f.fb, r[0], r[1], r[2], r[3], px, sizeof px),
+                 SR_INVALID_ARG);
+        CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_write_pixels: rectangle");
     }
+    /* A refused write writes nothing. */
+    CHECK_EQ(sr_write_pixels(f.ctx, f.fb, 0, 0, 2, 2, px, 7), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_write_pixels: stride 7");
+    CHECK_EQ(sr_write_pixels(f.ctx, f.fb, 0, 0, 2, 2, NULL, 8), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_write_pixels: rgba is NULL");
+    CHECK_EQ(sr_write_pixels(f.ctx, NULL, 0, 0, 2, 2, px, 8), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_write_pixels: fb is NULL");
+    CHECK_EQ(sr_write_pixels(NULL, f.fb, 0, 0, 2, 2, px, 8), SR_INVALID_ARG);
+    CHECK(unchanged(&f));
     CHECK_EQ(sr_read_pixels(f.ctx, f.fb, 0, 0, 2, 2, px, 7), SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(f.ctx), "stride");
     CHECK_EQ(sr_read_depth(f.ctx, f.fb, 0, 0, 2, 2, d, 1), SR_INVALID_ARG);

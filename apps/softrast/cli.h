@@ -18,6 +18,26 @@ int cmd_demo(int argc, char **argv);
 int cmd_svg(int argc, char **argv);   /* svg.c; needs expat */
 int cmd_view(int argc, char **argv);  /* view.c; needs SDL2 and FreeType */
 
+/* The files a command reads (inputs.c), so that no output replaces one:
+ * compared by device and inode, so other names and links count too. */
+typedef struct cli_input cli_input;
+typedef struct cli_inputs {
+    cli_input *items;
+    size_t count, cap;
+    bool incomplete;    /* out of memory once: every output is refused */
+} cli_inputs;
+
+/* Record `path` as an input of `kind` ("model", "texture", ...: a string
+ * that outlives `in`); a path that does not exist is skipped.  false (and
+ * in->incomplete) when out of memory. */
+bool cli_inputs_add(cli_inputs *in, const char *path, const char *kind);
+/* Whether `output` is one of the inputs (in may be NULL); if so `why`
+ * says "'OUT' is the KIND being read (PATH); choose another output file". */
+bool cli_output_is_input(const cli_inputs *in, const char *output, char *why, size_t why_size);
+/* The same as a check: false after printing "softrast: OPT: why". */
+bool cli_check_output(const cli_inputs *in, const char *opt, const char *output);
+void cli_inputs_free(cli_inputs *in);
+
 /* Image files (image_out.c): a JPEG when the name ends in .jpg or .jpeg
  * (any case), else a PNG. */
 typedef struct cli_image_options {
@@ -25,6 +45,7 @@ typedef struct cli_image_options {
     int jpeg_quality;      /* 0: the library's default; 1..100 */
     bool keep_alpha;       /* PNG only: write RGBA rather than RGB */
     sr_context *context;   /* PNG only: compress on its threads (may be NULL) */
+    const cli_inputs *inputs; /* never written over: SR_INVALID_ARG (may be NULL) */
 } cli_image_options;
 
 bool cli_is_jpeg_name(const char *path);

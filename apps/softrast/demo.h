@@ -6,6 +6,8 @@
 
 #include "softrast.h"
 
+#include <stdint.h>
+
 typedef struct demo_args {
     const char *output;     /* PNG path (default "demo-NAME.png") */
     int scale;              /* magnification for pixel-level demos (0: the demo's default) */
@@ -46,5 +48,16 @@ DEMO_LIST(DEMO_DECLARE)
 
 /* The registered demos (demo.c), terminated by a NULL name. */
 extern const demo_entry demo_table[];
+
+/* Pages made of panels (demo_paste.c).  Copy src into dst with its
+ * top-left corner at (x, y), clipped to dst. */
+sr_result demo_paste(sr_context *ctx, sr_framebuffer *dst, const sr_framebuffer *src, int x,
+                     int y);
+/* Magnify src into dst at (x, y), each pixel a scale x scale block, with
+ * a one-pixel line of the RGBA8 color `grid` on each block's top and left
+ * edges when grid is not NULL and scale is at least 4.  The block image
+ * must lie inside dst. */
+sr_result demo_magnify(sr_context *ctx, sr_framebuffer *dst, int x, int y,
+                       const sr_framebuffer *src, int scale, const uint8_t *grid);
 
 #endif

@@ -3,7 +3,7 @@
 #include "demo2d.h"
 
 #include "cli.h"
-#include "target/framebuffer.h"
+#include "demo.h"
 
 #include <string.h>
 
@@ -22,7 +22,7 @@ static void cell_origin(const demo2d *d, int index, int *ox, int *oy)
 int demo2d_begin(demo2d *d, sr_context *ctx, const char *name, int cols, int rows,
                  int panel_w, int panel_h, int scale)
 {
-    *d = (demo2d){ ctx, name, NULL, NULL, panel_w, panel_h, scale, cols, rows };
+    *d = (demo2d){ ctx, name, NULL, NULL, panel_w, panel_h, scale, cols, rows, SR_OK };
     int w = cols * cell_w(d) + (cols + 1) * GAP;
     int h = rows * (cell_h(d) + LABEL_H) + (rows + 1) * GAP;
     if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
@@ -54,20 +54,11 @@ void demo2d_blit(demo2d *d, int index, const char *label)
         text[strlen(text) - 1] = 0;
     }
     sr_draw_text(d->ctx, d->out, ox, oy - 8 * ts - 6, ts, text, (sr_rgba){ 0.1f, 0.1f, 0.12f, 1 });
-    const uint32_t *src = (const uint32_t *)sr_framebuffer_pixels(d->panel);
-    sr__fb_resolve(d->out, SR_TILE_PENDING_COLOR);
-    uint8_t grid_rgba[4] = { 60, 64, 72, 255 };
-    uint32_t grid;
-    memcpy(&grid, grid_rgba, sizeof grid);
-    int s = d->scale;
-    for (int y = 0; y < cell_h(d); y++) {
-        uint32_t *row = d->out->color + (size_t)(oy + y) * (size_t)d->out->width + ox;
-        for (int x = 0; x < cell_w(d); x++) {
-            /* each pixel a scale x scale block, a grid line on its top and
-             * left edges when blocks are large enough to spare it */
-            bool edge = s >= 4 && (x % s == 0 || y % s == 0);
-            row[x] = edge ? grid : src[(y / s) * d->panel_w + x / s];
-        }
+    /* each pixel a scale x scale block, a grid line on its top and left
+     * edges when blocks are large enough to spare it */
+    static const uint8_t grid[4] = { 60, 64, 72, 255 };
+    if (d->error == SR_OK) {
+        d->error = demo_magnify(d->ctx, d->out, ox, oy, d->panel, d->scale, grid);
     }
 }
 
@@ -123,6 +114,9 @@ void demo2d_dot(demo2d *d, int index, sr_point2 p, double radius_px, sr_rgba col
 
 int demo2d_finish(demo2d *d, sr_framebuffer **out)
 {
+    if (d->error != SR_OK) {
+        return demo2d_fail(d);
+    }
     sr_destroy_framebuffer(d->ctx, d->panel);
     d->panel = NULL;
     *out = d->out;
@@ -132,7 +126,10 @@ int demo2d_finish(demo2d *d, sr_framebuffer **out)
 
 int demo2d_fail(demo2d *d)
 {
-    cli_error("demo %s: %s", d->name, sr_context_error(d->ctx));
+    /* A blit that ran out of memory before reaching the context left it
+     * no message. */
+    const char *why = sr_context_error(d->ctx);
+    cli_error("demo %s: %s", d->name, why[0] ? why : sr_result_text(d->error));
     sr_destroy_framebuffer(d->ctx, d->panel);
     sr_destroy_framebuffer(d->ctx, d->out);
     d->panel = d->out = NULL;

@@ -15,6 +15,7 @@ typedef struct demo2d {
     sr_framebuffer *out;       /* the whole image */
     sr_framebuffer *panel;     /* panel_w x panel_h, drawn by the demo */
     int panel_w, panel_h, scale, cols, rows;
+    sr_result error;           /* of the first blit that failed: finish reports it */
 } demo2d;
 
 /* Make the output and the panel; 0 or an exit status after one line. */
@@ -29,7 +30,8 @@ sr_point2 demo2d_map(const demo2d *d, int index, sr_point2 p);
 void demo2d_outline(demo2d *d, int index, const sr_point2 *pts, int n, bool closed,
                     sr_rgba color, double width_px);
 void demo2d_dot(demo2d *d, int index, sr_point2 p, double radius_px, sr_rgba color);
-/* Hand the image over (*out) and free the panel; returns EXIT_OK. */
+/* Hand the image over (*out) and free the panel; returns EXIT_OK, or
+ * demo2d_fail's status when a blit failed. */
 int  demo2d_finish(demo2d *d, sr_framebuffer **out);
 /* Report sr_context_error, free everything; returns EXIT_FAILURE_RUN. */
 int  demo2d_fail(demo2d *d);

@@ -3,7 +3,7 @@
 #include "demo3d.h"
 
 #include "cli.h"
-#include "target/framebuffer.h"
+#include "demo.h"
 
 #include <math.h>
 #include <string.h>
@@ -18,7 +18,7 @@ static const sr_rgba LABEL = { 0.1f, 0.1f, 0.12f, 1 };
 int demo3d_begin(demo3d *d, sr_context *ctx, const char *name, demo3d_layout layout,
                  int scale, const char *const *labels, int count)
 {
-    *d = (demo3d){ ctx, name, NULL, layout, scale > 0 ? scale : 1, 2 };
+    *d = (demo3d){ ctx, name, NULL, layout, scale > 0 ? scale : 1, 2, SR_OK };
     /* One label size for the whole image: twice the font when every label
      * fits its cell at that size. */
     for (int i = 0; i < count; i++) {
@@ -44,28 +44,10 @@ sr_result demo3d_panel(demo3d *d, sr_depth_format depth, sr_framebuffer **out)
                                out);
 }
 
-void demo3d_paste(sr_framebuffer *dst, const sr_framebuffer *src, int x, int y)
-{
-    const uint32_t *s = (const uint32_t *)sr_framebuffer_pixels(src);
-    sr__fb_begin_write(dst);
-    for (int row = 0; row < src->height; row++) {
-        int ty = y + row;
-        if (ty < 0 || ty >= dst->height) {
-            continue;
-        }
-        for (int col = 0; col < src->width; col++) {
-            int tx = x + col;
-            if (tx >= 0 && tx < dst->width) {
-                dst->color[(size_t)ty * (size_t)dst->width + (size_t)tx] =
-                    s[(size_t)row * (size_t)src->width + (size_t)col];
-            }
-        }
-    }
-}
-
 void demo3d_blit(demo3d *d, int index, const sr_framebuffer *panel, const char *label)
 {
-    if (!panel || panel->width != d->layout.cell_w || panel->height != d->layout.cell_h) {
+    if (!panel || sr_framebuffer_width(panel) != d->layout.cell_w ||
+        sr_framebuffer_height(panel) != d->layout.cell_h) {
         return;
     }
     int ox, oy;
@@ -78,19 +60,16 @@ void demo3d_blit(demo3d *d, int index, const sr_framebuffer *panel, const char *
         text[strlen(text) - 1] = 0;
     }
     sr_draw_text(d->ctx, d->out, ox, oy - 8 * d->label_scale - 6, d->label_scale, text, LABEL);
-    const uint32_t *src = (const uint32_t *)sr_framebuffer_pixels(panel);
-    sr__fb_resolve(d->out, SR_TILE_PENDING_COLOR);
-    int s = d->scale;
-    for (int y = 0; y < d->layout.cell_h * s; y++) {
-        uint32_t *row = d->out->color + (size_t)(oy + y) * (size_t)d->out->width + ox;
-        for (int x = 0; x < cw; x++) {
-            row[x] = src[(y / s) * panel->width + x / s];
-        }
+    if (d->error == SR_OK) {
+        d->error = demo_magnify(d->ctx, d->out, ox, oy, panel, d->scale, NULL);
     }
 }
 
 int demo3d_finish(demo3d *d, sr_framebuffer **out)
 {
+    if (d->error != SR_OK) {
+        return demo3d_fail(d);
+    }
     *out = d->out;
     d->out = NULL;
     return EXIT_OK;
@@ -98,7 +77,10 @@ int demo3d_finish(demo3d *d, sr_framebuffer **out)
 
 int demo3d_fail(demo3d *d)
 {
-    cli_error("demo %s: %s", d->name, sr_context_error(d->ctx));
+    /* A blit that ran out of memory before reaching the context left it
+     * no message. */
+    const char *why = sr_context_error(d->ctx);
+    cli_error("demo %s: %s", d->name, why[0] ? why : sr_result_text(d->error));
     sr_destroy_framebuffer(d->ctx, d->out);
     d->out = NULL;
     return EXIT_FAILURE_RUN;

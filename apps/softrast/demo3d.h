@@ -19,6 +19,7 @@ typedef struct demo3d {
     demo3d_layout layout;
     int scale;               /* each panel pixel becomes scale x scale */
     int label_scale;         /* text size of the cell labels */
+    sr_result error;         /* of the first blit that failed: finish reports it */
 } demo3d;
 
 /* Make the output image for `layout`; 0 or an exit status after one line.
@@ -30,14 +31,11 @@ int  demo3d_begin(demo3d *d, sr_context *ctx, const char *name, demo3d_layout la
 sr_result demo3d_panel(demo3d *d, sr_depth_format depth, sr_framebuffer **out);
 /* Copy `panel` (cell-sized) into cell `index` under `label`. */
 void demo3d_blit(demo3d *d, int index, const sr_framebuffer *panel, const char *label);
-/* Hand the image over (*out); returns EXIT_OK. */
+/* Hand the image over (*out); returns EXIT_OK, or demo3d_fail's status
+ * when a blit failed. */
 int  demo3d_finish(demo3d *d, sr_framebuffer **out);
 /* Report sr_context_error, free the image; returns EXIT_FAILURE_RUN. */
 int  demo3d_fail(demo3d *d);
-
-/* Copy src's pixels into dst with its top-left corner at (x, y), clipped
- * to dst (both single-sampled). */
-void demo3d_paste(sr_framebuffer *dst, const sr_framebuffer *src, int x, int y);
 
 /* A UV sphere of radius 1 about the origin, y up: (stacks + 1) x
  * (slices + 1) vertices (positions = normals), counter-clockwise

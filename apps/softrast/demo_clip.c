@@ -158,11 +158,19 @@ int demo_clip(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
         status = EXIT_FAILURE_RUN;
     } else {
         sr_clear(ctx, page, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.93f, 1 } });
-        demo3d_paste(page, top, 0, 0);
-        demo3d_paste(page, bottom, 0, th + title_h);
-        sr_draw_text(ctx, page, 12, th + title_h - 16, 2, "3D: clipping in clip space",
-                     (sr_rgba){ 0.1f, 0.1f, 0.12f, 1 });
-        *out = page;
+        sr_result r = demo_paste(ctx, page, top, 0, 0);
+        if (r == SR_OK) {
+            r = demo_paste(ctx, page, bottom, 0, th + title_h);
+        }
+        if (r == SR_OK) {
+            sr_draw_text(ctx, page, 12, th + title_h - 16, 2, "3D: clipping in clip space",
+                         (sr_rgba){ 0.1f, 0.1f, 0.12f, 1 });
+            *out = page;
+        } else {
+            cli_error("demo clip: %s", sr_context_error(ctx));
+            sr_destroy_framebuffer(ctx, page);
+            status = EXIT_FAILURE_RUN;
+        }
     }
     sr_destroy_framebuffer(ctx, top);
     sr_destroy_framebuffer(ctx, bottom);

@@ -5,7 +5,6 @@
  * with each cap. */
 #include "cli.h"
 #include "demo.h"
-#include "target/framebuffer.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -74,10 +73,7 @@ int demo_lines(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
         return EXIT_FAILURE_RUN;
     }
     sr_clear(ctx, big, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.93f, 1 } });
-    sr__fb_resolve(big, SR_TILE_PENDING_COLOR);
-    uint8_t grid_rgba[4] = { 44, 48, 56, 255 };
-    uint32_t grid;
-    memcpy(&grid, grid_rgba, sizeof grid);
+    static const uint8_t grid[4] = { 44, 48, 56, 255 };
     /* Labels at twice the font size when they all fit their panels,
      * else at 1, cut short if even that is too wide (tiny --scale). */
     int ts = 2;
@@ -97,21 +93,18 @@ int demo_lines(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
                      (sr_rgba){ 0.1f, 0.1f, 0.12f, 1 });
         oy += LABEL_H;
         sr_clear(ctx, small, &(sr_clear_desc){ .color = { 0.08f, 0.09f, 0.11f, 1 } });
-        if (draw_star(ctx, small, p) != SR_OK) {
-            cli_error("demo lines: %s", sr_context_error(ctx));
+        /* Magnify: each pixel a scale x scale block, with a one-pixel grid
+         * line on its top and left edges when the blocks are big enough. */
+        sr_result r = draw_star(ctx, small, p);
+        if (r == SR_OK) {
+            r = demo_magnify(ctx, big, ox, oy, small, scale, grid);
+        }
+        if (r != SR_OK) {
+            cli_error("demo lines: %s", sr_context_error(ctx)[0] ? sr_context_error(ctx)
+                                                                 : sr_result_text(r));
             sr_destroy_framebuffer(ctx, small);
             sr_destroy_framebuffer(ctx, big);
             return EXIT_FAILURE_RUN;
-        }
-        const uint32_t *src = (const uint32_t *)sr_framebuffer_pixels(small);
-        /* Magnify: each pixel a scale x scale block, with a one-pixel grid
-         * line on its top and left edges when the blocks are big enough. */
-        for (int y = 0; y < cell; y++) {
-            uint32_t *row = big->color + (size_t)(oy + y) * (size_t)width + ox;
-            for (int x = 0; x < cell; x++) {
-                bool edge = scale >= 4 && (x % scale == 0 || y % scale == 0);
-                row[x] = edge ? grid : src[(y / scale) * PANEL + x / scale];
-            }
         }
     }
     sr_destroy_framebuffer(ctx, small);

@@ -1,7 +1,7 @@
 /* image_out.c - the tool's image files: a JPEG when the name ends in .jpg
  * or .jpeg (any case), else a PNG, for every command that writes one
  * (render, demo, svg, the viewer's screenshots).  Both are written
- * atomically by the io library. */
+ * atomically by the io library, never over one of the command's inputs. */
 #include "cli.h"
 #include "softrast_io.h"
 
@@ -21,6 +21,9 @@ sr_result cli_write_image(const char *path, int width, int height, const uint8_t
                           const cli_image_options *opt, sr_io_error *err)
 {
     size_t stride = 4 * (size_t)width;
+    if (cli_output_is_input(opt->inputs, path, err->message, sizeof err->message)) {
+        return SR_INVALID_ARG;
+    }
     if (cli_is_jpeg_name(path)) {
         return sr_write_jpeg(path, width, height, rgba, stride,
                              &(sr_jpeg_write_desc){ .quality = opt->jpeg_quality }, err);

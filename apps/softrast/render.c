@@ -1,9 +1,13 @@
-/* render.c - `softrast render [MODEL] [options]`: load a model (or build the
- * teapot scene), frame it with a camera, light it, draw it with the
- * pipeline and write a PNG atomically. */
+/* render.c - the render job and `softrast render [MODEL] [options]`: load
+ * a model (or build the teapot scene), frame it with a camera, light it,
+ * draw it with the pipeline and write a PNG atomically.  The options are
+ * parsed in render_options.c, the textures found and loaded in
+ * render_textures.c. */
 #include "cli.h"
 #include "framing.h"
 #include "render.h"
+#include "render_options.h"
+#include "render_textures.h"
 #include "scene.h"
 #include "softrast_io.h"
 
@@ -18,472 +22,6 @@
 
 #define PI_F 3.14159265358979f
 
-typedef struct render_opts {
-    const char *model;
-    const char *output;
-    bool writes_output;            /* `render`, not `view`: no input may be the output */
-    const char *texture;           /* --texture FILE */
-    sr_texture_filter texture_filter;
-    sr_texture_wrap wrap;
-    bool texture_srgb;
-    int width, height;
-    sr_shading shading;
-    sr_cull_mode cull;
-    sr_front_face front;
-    bool have_eye, have_target, have_up;
-    sr_vec3 eye, target, up;
-    float fov_deg;
-    bool ortho;
-    float turn_deg;
-    float near_z, far_z;           /* 0: fitted */
-    sr_light lights[SR_MAX_LIGHTS];
-    int light_count;
-    bool have_ambient;
-    sr_vec3 ambient;
-    bool have_mat_color, have_specular, have_shininess;
-    sr_vec3 mat_color, specular;
-    float shininess;
-    sr_vec3 background;
-    sr_depth_format depth_format;
-    sr_depth_func depth_func;
-    sr_interpolation interp;
-    int normals;                   /* -1 auto, 0 file, 1 smooth, 2 flat */
-    int detail;
-    sr_rasterizer rasterizer;
-    int threads;
-    int png_level;
-    int jpeg_quality;              /* 0: not given */
-    bool verbose;
-    int lines;                     /* LINES_NONE, ... */
-    float line_width, point_size;
-    float offset_factor, offset_units;  /* the depth pass of the line modes */
-    sr_vec3 line_color;
-    bool have_line_color;
-    bool smooth;
-    int ssaa;                      /* 1: off; k: render k x k samples per pixel */
-    int msaa;                      /* 1: off; n: n samples per pixel, shaded once */
-    float opacity;                 /* of the model; 1: opaque */
-    sr_resample_filter filter;
-} render_opts;
-
-/* What the line modes draw besides (or instead of) the shaded model. */
-enum { LINES_NONE = 0, LINES_WIREFRAME, LINES_HIDDEN, LINES_EDGES, LINES_POINTS };
-
-static const char *const shading_names[] = { "flat", "gouraud", "phong", "normals", "depth",
-                                             "unlit", NULL };
-static const sr_shading shading_values[] = { SR_SHADING_FLAT, SR_SHADING_GOURAUD, SR_SHADING_PHONG,
-                                             SR_SHADING_NORMALS, SR_SHADING_DEPTH, SR_SHADING_UNLIT };
-static const char *const cull_names[] = { "back", "front", "none", NULL };
-static const sr_cull_mode cull_values[] = { SR_CULL_BACK, SR_CULL_FRONT, SR_CULL_NONE };
-static const char *const front_names[] = { "ccw", "cw", NULL };
-static const char *const depth_format_names[] = { "d16", "d24", "d32", "d32f", NULL };
-static const sr_depth_format depth_format_values[] = { SR_DEPTH_D16, SR_DEPTH_D24, SR_DEPTH_D32,
-                                                       SR_DEPTH_D32F };
-static const char *const depth_func_names[] = { "never", "less", "equal", "lequal", "greater",
-                                                "notequal", "gequal", "always", NULL };
-static const char *const interp_names[] = { "perspective", "affine", NULL };
-static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
-static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
-static const char *const filter_names[] = { "nearest", "bilinear", "trilinear", NULL };
-static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", "msaa2", "msaa4",
-                                         "msaa8", "msaa16", NULL };
-static const int aa_ssaa[] = { 1, 2, 3, 4, 1, 1, 1, 1 };
-static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
-static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
-static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
-
-static void render_help(void)
-{
-    printf(
-        "usage: softrast render [MODEL] [options]\n"
-        "\n"
-        "Render MODEL (.obj, .ply, .stl; other formats through Assimp when built\n"
-        "with it) or, without MODEL, the built-in Utah teapot scene, to a PNG or\n"
-        "a JPEG.\n"
-        "\n"
-        "output:\n"
-        "  -o, --output FILE        image to write, atomically: a JPEG when FILE ends in\n"
-        "                           .jpg or .jpeg, else a PNG (default softrast.png)\n"
-        "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
-        "  --background COLOR       name, #rgb, #rrggbb, R,G,B in 0..1, or a gray level\n"
-        "                           in 0..1 (default #1d2230)\n"
-        "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
-        "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
-        "shading:\n"
-        "  --shading MODE           flat|gouraud|phong|normals|depth|unlit (default phong)\n"
-        "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
-        "                           smooth ones, or one per face (default: file if the\n"
-        "                           model has them, else smooth)\n"
-        "  --material KEY=V,...     color=COLOR, specular=COLOR, shininess=N\n"
-        "                           (default: light gray, specular 0.25, shininess 40)\n"
-        "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14)\n"
-        "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
-        "                           surfaces are drawn after opaque ones, back to front\n"
-        "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
-        "  --light point=X,Y,Z[,color=C][,intensity=I]\n"
-        "                           add a light in world space (repeatable, up to 8);\n"
-        "                           without any, a key, fill and rim light placed\n"
-        "                           relative to the camera\n"
-        "textures:\n"
-        "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
-        "                           coordinates (default: the model's own - OBJ map_Kd,\n"
-        "                           glTF/FBX textures named or embedded - each material's\n"
-        "                           on its own faces, or MODEL_texture.png or .jpg beside\n"
-        "                           a model MODEL.obj;\n"
-        "                           one of those that cannot be read is a warning)\n"
-        "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
-        "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
-        "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
-        "camera:\n"
-        "  --camera eye=X,Y,Z[,target=X,Y,Z][,up=X,Y,Z]\n"
-        "                           (default: a three-quarter view from above that\n"
-        "                           frames the model's bounding sphere)\n"
-        "  --fov DEG                field of view across the smaller image side\n"
-        "                           (default 35)\n"
-        "  --ortho                  orthographic projection\n"
-        "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
-        "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
-        "pipeline:\n"
-        "  --cull MODE              back|front|none (default back)\n"
-        "  --front-face ORDER       ccw|cw (default ccw)\n"
-        "  --depth-format F         d16|d24|d32|d32f (default d24)\n"
-        "  --depth-func F           never|less|equal|lequal|greater|notequal|gequal|always\n"
-        "                           (default less; greater and gequal clear depth to 0)\n"
-        "  --projection-interp M    perspective|affine (default perspective)\n"
-        "lines and points:\n"
-        "  --wireframe              every edge, hidden ones too, no shading\n"
-        "  --hidden-line            only the visible edges (a depth pass pushed back by\n"
-        "                           polygon offset, then the edges)\n"
-        "  --edges                  the shaded model with its visible edges over it\n"
-        "  --points                 the visible vertices as points\n"
-        "  --line-width N           1..64 pixels (default 1)\n"
-        "  --point-size N           1..64 pixels (default 3)\n"
-        "  --line-color COLOR       (default #e8ecf4, or #202020 on a light background)\n"
-        "  --smooth                 antialiased lines and round antialiased points\n"
-        "  --polygon-offset F,U     how far the depth pass of --hidden-line, --edges and\n"
-        "                           --points is pushed back: factor F times the depth\n"
-        "                           slope plus U depth steps (default 1,1; 0,0 shows the\n"
-        "                           stitching it prevents)\n"
-        "  --aa MODE                none|ssaa2|ssaa3|ssaa4: render k x k samples per pixel\n"
-        "                           and filter them down; msaa2|msaa4|msaa8|msaa16: that\n"
-        "                           many coverage and depth samples per pixel, shaded\n"
-        "                           once, box-resolved (default none)\n"
-        "  --filter F               box|tent|gaussian|mitchell, the SSAA reconstruction\n"
-        "                           filter (default box)\n"
-        "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
-        "                           all three give the same pixels)\n"
-        "  --threads N              rasterizer threads (default: SR_THREADS or CPUs)\n"
-        "  --detail N               teapot tessellation per patch, 1..64 (default 12)\n"
-        "  -v, --verbose            print timings and counts to stderr\n"
-        "  -h, --help               this help\n"
-        "\n"
-        "Exit status: 0 on success, 2 for bad options or a bad model file (one line\n"
-        "FILE:LINE: what is wrong), 1 when rendering or writing fails.\n");
-}
-
-static bool camera_kv(void *user, const char *opt, const char *key, const char *value)
-{
-    render_opts *o = user;
-    if (strcmp(key, "eye") == 0) {
-        o->have_eye = true;
-        return parse_vec3(opt, value, &o->eye);
-    }
-    if (strcmp(key, "target") == 0) {
-        o->have_target = true;
-        return parse_vec3(opt, value, &o->target);
-    }
-    if (strcmp(key, "up") == 0) {
-        o->have_up = true;
-        return parse_vec3(opt, value, &o->up);
-    }
-    cli_error("%s: unknown key '%s' (expected eye, target, up)", opt, key);
-    return false;
-}
-
-static bool light_kv(void *user, const char *opt, const char *key, const char *value)
-{
-    sr_light *l = user;
-    if (strcmp(key, "dir") == 0 || strcmp(key, "point") == 0) {
-        if (l->type != SR_LIGHT_OFF) {
-            cli_error("%s: give either dir= or point=, once", opt);
-            return false;
-        }
-        l->type = key[0] == 'd' ? SR_LIGHT_DIRECTIONAL : SR_LIGHT_POINT;
-        if (!parse_vec3(opt, value, &l->vector)) {
-            return false;
-        }
-        if (l->type == SR_LIGHT_DIRECTIONAL && sr_vec3_length(l->vector) == 0.0f) {
-            cli_error("%s: a light direction must not be zero", opt);
-            return false;
-        }
-        return true;
-    }
-    if (strcmp(key, "color") == 0) {
-        return parse_color(opt, value, &l->color);
-    }
-    if (strcmp(key, "intensity") == 0) {
-        return parse_float(opt, value, 0.0f, 1000.0f, &l->intensity);
-    }
-    cli_error("%s: unknown key '%s' (expected dir, point, color, intensity)", opt, key);
-    return false;
-}
-
-static bool material_kv(void *user, const char *opt, const char *key, const char *value)
-{
-    render_opts *o = user;
-    if (strcmp(key, "color") == 0) {
-        o->have_mat_color = true;
-        return parse_color(opt, value, &o->mat_color);
-    }
-    if (strcmp(key, "specular") == 0) {
-        o->have_specular = true;
-        return parse_color(opt, value, &o->specular);
-    }
-    if (strcmp(key, "shininess") == 0) {
-        o->have_shininess = true;
-        return parse_float(opt, value, 1.0f, 10000.0f, &o->shininess);
-    }
-    cli_error("%s: unknown key '%s' (expected color, specular, shininess)", opt, key);
-    return false;
-}
-
-/* Returns -1 to continue, else the exit status. */
-static int parse_args(int argc, char **argv, render_opts *o)
-{
-    for (int i = 1; i < argc; i++) {
-        const char *arg = argv[i];
-        char optbuf[64];
-        const char *value = NULL;
-        /* --opt=value as well as --opt value. */
-        const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
-        if (eq && (size_t)(eq - arg) < sizeof optbuf) {
-            memcpy(optbuf, arg, (size_t)(eq - arg));
-            optbuf[eq - arg] = 0;
-            value = eq + 1;
-            arg = optbuf;
-        }
-#define IS(name) (strcmp(arg, name) == 0)
-#define VALUE()                                                                     \
-    do {                                                                            \
-        if (!value) {                                                               \
-            if (i + 1 >= argc) {                                                    \
-                cli_error("%s: missing value", arg);                                \
-                return EXIT_USAGE;                                                  \
-            }                                                                       \
-            value = argv[++i];                                                      \
-        }                                                                           \
-        if (!*value) {                                                              \
-            cli_error("%s: empty value", arg);                                      \
-            return EXIT_USAGE;                                                      \
-        }                                                                           \
-    } while (0)
-#define CHOICE(names, dst, values)                                                  \
-    do {                                                                            \
-        int k_;                                                                     \
-        VALUE();                                                                    \
-        if (!parse_choice(arg, value, names, &k_)) {                                \
-            return EXIT_USAGE;                                                      \
-        }                                                                           \
-        dst = values;                                                               \
-    } while (0)
-
-        if ((IS("-h") || IS("--help") || IS("-v") || IS("--verbose")) && value) {
-            cli_error("%s: takes no value", arg);
-            return EXIT_USAGE;
-        }
-        if (IS("-h") || IS("--help")) {
-            render_help();
-            return EXIT_OK;
-        } else if (IS("-o") || IS("--output")) {
-            VALUE();
-            o->output = value;
-        } else if (IS("--size")) {
-            VALUE();
-            if (!parse_size(arg, value, &o->width, &o->height)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--shading")) {
-            CHOICE(shading_names, o->shading, shading_values[k_]);
-        } else if (IS("--cull")) {
-            CHOICE(cull_names, o->cull, cull_values[k_]);
-        } else if (IS("--front-face")) {
-            CHOICE(front_names, o->front, k_ == 0 ? SR_FRONT_CCW : SR_FRONT_CW);
-        } else if (IS("--depth-format")) {
-            CHOICE(depth_format_names, o->depth_format, depth_format_values[k_]);
-        } else if (IS("--depth-func")) {
-            CHOICE(depth_func_names, o->depth_func, (sr_depth_func)(SR_NEVER + k_));
-        } else if (IS("--projection-interp")) {
-            CHOICE(interp_names, o->interp, k_ == 0 ? SR_INTERP_PERSPECTIVE : SR_INTERP_AFFINE);
-        } else if (IS("--normals")) {
-            CHOICE(normals_names, o->normals, k_);
-        } else if (IS("--rasterizer")) {
-            CHOICE(raster_names, o->rasterizer, (sr_rasterizer)(SR_RASTER_HALFSPACE + k_));
-        } else if (IS("--camera")) {
-            VALUE();
-            if (!parse_kv_list(arg, value, camera_kv, o)) {
-                return EXIT_USAGE;
-            }
-            if (!o->have_eye) {
-                cli_error("%s: eye=X,Y,Z is required", arg);
-                return EXIT_USAGE;
-            }
-        } else if (IS("--fov")) {
-            VALUE();
-            if (!parse_float(arg, value, 1.0f, 170.0f, &o->fov_deg)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--wireframe") || IS("--hidden-line") || IS("--edges") || IS("--points")) {
-            if (value) {
-                cli_error("%s: takes no value", arg);
-                return EXIT_USAGE;
-            }
-            o->lines = IS("--wireframe") ? LINES_WIREFRAME : IS("--hidden-line") ? LINES_HIDDEN
-                     : IS("--edges") ? LINES_EDGES : LINES_POINTS;
-        } else if (IS("--opacity")) {
-            VALUE();
-            if (!parse_float(arg, value, 0.0f, 1.0f, &o->opacity)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--aa")) {
-            int aa;
-            CHOICE(aa_names, aa, k_);
-            o->ssaa = aa_ssaa[aa];
-            o->msaa = aa_msaa[aa];
-        } else if (IS("--filter")) {
-            CHOICE(resample_names, o->filter, (sr_resample_filter)(SR_RESAMPLE_BOX + k_));
-        } else if (IS("--texture")) {
-            VALUE();
-            o->texture = value;
-        } else if (IS("--texture-filter")) {
-            CHOICE(filter_names, o->texture_filter, (sr_texture_filter)(SR_FILTER_NEAREST + k_));
-        } else if (IS("--wrap")) {
-            CHOICE(wrap_names, o->wrap, (sr_texture_wrap)(SR_WRAP_REPEAT + k_));
-        } else if (IS("--texture-srgb")) {
-            if (value) {
-                cli_error("%s: takes no value", arg);
-                return EXIT_USAGE;
-            }
-            o->texture_srgb = true;
-        } else if (IS("--smooth")) {
-            if (value) {
-                cli_error("%s: takes no value", arg);
-                return EXIT_USAGE;
-            }
-            o->smooth = true;
-        } else if (IS("--line-width") || IS("--point-size")) {
-            VALUE();
-            if (!parse_float(arg, value, 1.0f, 64.0f,
-                             IS("--line-width") ? &o->line_width : &o->point_size)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--polygon-offset")) {
-            VALUE();
-            int n = 0;
-            if (sscanf(value, "%f,%f%n", &o->offset_factor, &o->offset_units, &n) != 2 ||
-                value[n] != 0 || !isfinite(o->offset_factor) || !isfinite(o->offset_units) ||
-                fabsf(o->offset_factor) > 1e6f || fabsf(o->offset_units) > 1e6f) {
-                cli_error("%s: expected FACTOR,UNITS, two numbers (got '%s')", arg, value);
-                return EXIT_USAGE;
-            }
-        } else if (IS("--line-color")) {
-            VALUE();
-            o->have_line_color = true;
-            if (!parse_color(arg, value, &o->line_color)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--ortho")) {
-            if (value) {
-                cli_error("%s: takes no value", arg);
-                return EXIT_USAGE;
-            }
-            o->ortho = true;
-        } else if (IS("--turn")) {
-            VALUE();
-            if (!parse_float(arg, value, -36000.0f, 36000.0f, &o->turn_deg)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--near") || IS("--far")) {
-            VALUE();
-            float *dst = IS("--near") ? &o->near_z : &o->far_z;
-            if (!parse_float(arg, value, 1e-6f, 1e9f, dst)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--light")) {
-            VALUE();
-            if (o->light_count == SR_MAX_LIGHTS) {
-                cli_error("%s: at most %d lights", arg, SR_MAX_LIGHTS);
-                return EXIT_USAGE;
-            }
-            sr_light *l = &o->lights[o->light_count];
-            if (!parse_kv_list(arg, value, light_kv, l)) {
-                return EXIT_USAGE;
-            }
-            if (l->type == SR_LIGHT_OFF) {
-                cli_error("%s: needs dir=X,Y,Z or point=X,Y,Z", arg);
-                return EXIT_USAGE;
-            }
-            o->light_count++;
-        } else if (IS("--ambient")) {
-            VALUE();
-            o->have_ambient = true;
-            if (!parse_color(arg, value, &o->ambient)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--material")) {
-            VALUE();
-            if (!parse_kv_list(arg, value, material_kv, o)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--background")) {
-            VALUE();
-            if (!parse_color(arg, value, &o->background)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--png-level")) {
-            VALUE();
-            if (!parse_int(arg, value, 0, 9, &o->png_level)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--jpeg-quality")) {
-            VALUE();
-            if (!parse_int(arg, value, 1, 100, &o->jpeg_quality)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--threads")) {
-            VALUE();
-            if (!parse_int(arg, value, 1, 64, &o->threads)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("--detail")) {
-            VALUE();
-            if (!parse_int(arg, value, 1, 64, &o->detail)) {
-                return EXIT_USAGE;
-            }
-        } else if (IS("-v") || IS("--verbose")) {
-            o->verbose = true;
-        } else if (arg[0] == '-' && arg[1] != 0) {
-            cli_error("%s: unknown option '%s' (try 'softrast %s --help')", argv[0], arg, argv[0]);
-            return EXIT_USAGE;
-        } else if (!*arg) {
-            cli_error("%s: the model's file name is empty", argv[0]);
-            return EXIT_USAGE;
-        } else if (!o->model) {
-            o->model = arg;
-        } else {
-            cli_error("%s: more than one model given ('%s' and '%s')", argv[0], o->model, arg);
-            return EXIT_USAGE;
-        }
-#undef IS
-#undef VALUE
-#undef CHOICE
-    }
-    if (o->near_z > 0 && o->far_z > 0 && o->near_z >= o->far_z) {
-        cli_error("--near %g must be less than --far %g", (double)o->near_z, (double)o->far_z);
-        return EXIT_USAGE;
-    }
-    return -1;
-}
-
 static double now_ms(void)
 {
     struct timespec ts;
@@ -491,12 +29,20 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-static int load_model(const render_opts *o, scene *s)
+/* sr_load_desc.file_read: the model's other files (an OBJ's MTL) are inputs. */
+static void note_mtl(void *inputs, const char *path)
+{
+    cli_inputs_add(inputs, path, "MTL file");
+}
+
+static int load_model(const render_opts *o, cli_inputs *inputs, scene *s)
 {
     memset(s, 0, sizeof *s);
     scene_object *ob = &s->objects[0];
     sr_io_error err;
-    sr_result r = sr_load_mesh(o->model, NULL, &ob->mesh, &err);
+    cli_inputs_add(inputs, o->model, "model");
+    sr_result r = sr_load_mesh(o->model, &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
+                               &ob->mesh, &err);
     if (r != SR_OK) {
         fprintf(stderr, "%s\n", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
@@ -624,213 +170,6 @@ static const char *setup_camera(const render_opts *o, const scene *s, camera *ca
         return range;
     }
     return NULL;
-}
-
-static bool is_file(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
-}
-
-/* Whether two paths name one existing file (links and ./ included): the
- * atomic write of the output would replace an input that is the same. */
-static bool same_file(const char *a, const char *b)
-{
-    struct stat sa, sb;
-    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
-           sa.st_ino == sb.st_ino;
-}
-
-/* Decoded pixels px (freed here) into *out on ctx, for both texture
- * loaders; a failure names `name`.  Returns an exit status, or -1. */
-static int upload_texture(const render_opts *o, sr_context *ctx, const char *name, int w, int h,
-                          uint8_t *px, sr_texture **out)
-{
-    sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = px,
-                                                            .srgb = o->texture_srgb },
-                                  out);
-    free(px);
-    if (r != SR_OK) {
-        cli_error("%s: %s", name, sr_context_error(ctx));
-        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
-    }
-    return -1;
-}
-
-/* Whether the texture file `path` is -o's output, which the atomic write
- * would replace (an error, reported here). */
-static bool texture_is_output(const render_opts *o, const char *path)
-{
-    if (path && o->writes_output && same_file(path, o->output)) {
-        cli_error("-o: '%s' is the texture being read (%s); choose another output file",
-                  o->output, path);
-        return true;
-    }
-    return false;
-}
-
-/* A texture into *out, for both texture loaders: the image file `path`,
- * or else the encoded bytes data[0 .. size) a model embeds, `name` in
- * messages.  One that cannot be read is a warning when `optional` (the
- * model brought it: "drawing `what`" says what goes on without it, *out
- * stays NULL), else an error.  Returns an exit status, or -1. */
-static int read_texture(const render_opts *o, sr_context *ctx, const char *path,
-                        const uint8_t *data, size_t size, const char *name, bool optional,
-                        const char *what, sr_texture **out)
-{
-    int w, h;
-    uint8_t *px = NULL;
-    sr_io_error err;
-    sr_result rr = path ? sr_read_image(path, &w, &h, &px, &err)
-                        : sr_decode_image(name, data, size, &w, &h, &px, &err);
-    if (rr != SR_OK) {
-        if (optional && rr != SR_OUT_OF_MEMORY) {
-            cli_error("warning: %s (drawing %s)", err.message, what);
-            return -1;
-        }
-        fprintf(stderr, "%s\n", err.message);
-        return rr == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
-    }
-    return upload_texture(o, ctx, path ? path : name, w, h, px, out);
-}
-
-/* Whether parts a and b take one image: the same file, or the same
- * embedded bytes (each part holds its own copy). */
-static bool same_part_texture(const sr_mesh_part *a, const sr_mesh_part *b)
-{
-    if (a->texture_path || b->texture_path) {
-        return a->texture_path && b->texture_path && strcmp(a->texture_path, b->texture_path) == 0;
-    }
-    return a->texture_size == b->texture_size &&
-           memcmp(a->texture_data, b->texture_data, a->texture_size) == 0;
-}
-
-/* The textures of a model whose parts take different ones (sr_mesh.parts):
- * each image read or decoded once; one that is missing or unreadable is a
- * warning, and its parts are drawn without it.  Returns an exit status, or
- * -1. */
-static int load_part_textures(const render_opts *o, sr_context *ctx, scene_object *ob)
-{
-    size_t n = ob->mesh.part_count;
-    ob->part_textures = calloc(n, sizeof *ob->part_textures);
-    ob->owned = calloc(n, sizeof *ob->owned);
-    /* The images met so far, by the first part that takes each, with its
-     * texture (NULL when unreadable): parts far outnumber images in a
-     * model that switches back and forth. */
-    const sr_mesh_part **seen = calloc(n, sizeof *seen);
-    if (!ob->part_textures || !ob->owned || !seen) {
-        free(seen);
-        cli_error("render: out of memory");
-        return EXIT_FAILURE_RUN;
-    }
-    int status = -1;
-    for (size_t p = 0; p < n && status < 0; p++) {
-        const sr_mesh_part *part = &ob->mesh.parts[p];
-        const char *path = part->texture_path;
-        bool textured = path || part->texture_data;
-        size_t k = 0;
-        while (textured && k < ob->owned_count && !same_part_texture(seen[k], part)) {
-            k++;
-        }
-        if (!textured || k < ob->owned_count) {
-            ob->part_textures[p] = textured ? ob->owned[k] : NULL;
-            continue;
-        }
-        seen[k] = part;
-        ob->owned_count++;
-        if (texture_is_output(o, path)) {
-            status = EXIT_USAGE;
-            break;
-        }
-        char name[4200];
-        snprintf(name, sizeof name, "%s (its embedded texture of part %zu)", o->model, p + 1);
-        status = read_texture(o, ctx, path, part->texture_data, part->texture_size, name, true,
-                              "its part of the model without it", &ob->owned[k]);
-        ob->part_textures[p] = ob->owned[k];
-    }
-    free(seen);
-    return status;
-}
-
-/* The model's texture: --texture, else the file's own (OBJ map_Kd, or an
- * image a glTF or GLB file embeds), else MODEL_texture.png or .jpg beside
- * MODEL.ext.  One the user named must be read; one the model brings that
- * is missing or unreadable is reported in a warning and the model drawn
- * without it - a preview of the geometry beats no preview.  Returns an
- * exit status, or -1. */
-static int load_texture(const render_opts *o, sr_context *ctx, scene *s)
-{
-    if (!o->model || s->count == 0) {
-        if (o->texture) {
-            cli_error("--texture: the built-in scene has no texture coordinates");
-            return EXIT_USAGE;
-        }
-        return -1;
-    }
-    scene_object *ob = &s->objects[0];
-    if (!o->texture && ob->mesh.part_count > 0 && ob->mesh.texcoords) {
-        return load_part_textures(o, ctx, ob);
-    }
-    char guess[4096];
-    const char *path = o->texture;
-    const char *named = ob->mesh.texture_path;
-    bool embedded = !path && ob->mesh.texture_data;
-    if (!path && !embedded && named && is_file(named)) {
-        path = named;
-    }
-    if (!path && !embedded) {
-        const char *dot = strrchr(o->model, '.'), *slash = strrchr(o->model, '/');
-        size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - o->model) : strlen(o->model);
-        static const char *const suffixes[] = { "_texture.png", "_texture.jpg" };
-        for (size_t i = 0; i < 2 && !path; i++) {
-            if (stem + strlen(suffixes[i]) < sizeof guess) {
-                memcpy(guess, o->model, stem);
-                strcpy(guess + stem, suffixes[i]);
-                path = is_file(guess) ? guess : NULL;
-            }
-        }
-    }
-    if (!path && !embedded) {
-        if (named && ob->mesh.texcoords) {
-            struct stat st;
-            cli_error("warning: %s: %s, named by the model's material (drawing the model "
-                      "without its texture)", named,
-                      stat(named, &st) != 0 ? strerror(errno) : "not a regular file");
-        }
-        return -1;
-    }
-    if (texture_is_output(o, path)) {
-        return EXIT_USAGE;
-    }
-    if (!ob->mesh.texcoords) {
-        if (o->texture) {
-            cli_error("--texture: %s has no texture coordinates", o->model);
-            return EXIT_USAGE;
-        }
-        return -1; /* a texture found by name but nothing to map it with */
-    }
-    char name[4200];
-    snprintf(name, sizeof name, "%s (its embedded texture)", o->model);
-    return read_texture(o, ctx, embedded ? NULL : path, ob->mesh.texture_data,
-                        ob->mesh.texture_size, name, !o->texture, "the model without its texture",
-                        &ob->texture);
-}
-
-static void free_textures(sr_context *ctx, scene *s)
-{
-    for (int i = 0; i < s->count; i++) {
-        scene_object *ob = &s->objects[i];
-        sr_destroy_texture(ctx, ob->texture);
-        ob->texture = NULL;
-        for (size_t k = 0; k < ob->owned_count; k++) {
-            sr_destroy_texture(ctx, ob->owned[k]);
-        }
-        free(ob->owned);
-        free(ob->part_textures);
-        ob->owned = NULL;
-        ob->part_textures = NULL;
-        ob->owned_count = 0;
-    }
 }
 
 static bool translucent(const scene_object *ob)
@@ -1004,21 +343,9 @@ struct render_job {
     sr_context *ctx;
     sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
                              * format) when the caller's framebuffer cannot be drawn into */
+    cli_inputs inputs;      /* the files read: model, MTL, textures */
     char error[512];
 };
-
-static render_opts default_opts(void)
-{
-    return (render_opts){
-        .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
-        .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
-        .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
-        .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
-        .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
-        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 1, .opacity = 1.0f,
-        .offset_factor = 1.0f, .offset_units = 1.0f,
-    };
-}
 
 int render_job_parse(int argc, char **argv, render_job **out)
 {
@@ -1028,8 +355,8 @@ int render_job_parse(int argc, char **argv, render_job **out)
         cli_error("out of memory");
         return EXIT_FAILURE_RUN;
     }
-    job->o = default_opts();
-    int status = parse_args(argc, argv, &job->o);
+    job->o = render_opts_defaults();
+    int status = render_opts_parse(argc, argv, &job->o);
     if (status >= 0) {
         free(job);
         return status;
@@ -1059,13 +386,13 @@ static int make_context(render_job *job)
     if (status >= 0) {
         return status;
     }
-    return load_texture(&job->o, job->ctx, &job->s);
+    return render_textures_load(&job->o, job->ctx, &job->inputs, &job->s);
 }
 
 static void drop_context(render_job *job)
 {
     if (job->ctx) {
-        free_textures(job->ctx, &job->s);
+        render_textures_free(job->ctx, &job->s);
         sr_destroy_framebuffer(job->ctx, job->work);
         sr_destroy_context(job->ctx);
     }
@@ -1080,7 +407,7 @@ static int load_objects(render_job *job)
     render_opts *o = &job->o;
     scene *s = &job->s;
     if (o->model) {
-        int status = load_model(o, s);
+        int status = load_model(o, &job->inputs, s);
         if (status >= 0) {
             return status;
         }
@@ -1178,8 +505,8 @@ int render_job_load(render_job *job)
 
 int render_job_configure(render_job *job, int argc, char **argv)
 {
-    render_opts o = default_opts();
-    int status = parse_args(argc, argv, &o);
+    render_opts o = render_opts_defaults();
+    int status = render_opts_parse(argc, argv, &o);
     if (status >= 0) {
         return status;
     }
@@ -1233,6 +560,11 @@ const char *render_job_error(const render_job *job)
 const char *render_job_model(const render_job *job)
 {
     return job->o.model;
+}
+
+cli_inputs *render_job_inputs(render_job *job)
+{
+    return &job->inputs;
 }
 
 sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info)
@@ -1322,6 +654,7 @@ void render_job_free(render_job *job)
     if (job->have_scene) {
         scene_free(&job->s);
     }
+    cli_inputs_free(&job->inputs);
     free(job);
 }
 
@@ -1352,7 +685,6 @@ int cmd_render(int argc, char **argv)
     if (status >= 0) {
         return status;
     }
-    job->o.writes_output = true;
     const render_opts *o = &job->o;
     struct stat st;
     if (stat(o->output, &st) == 0 && S_ISDIR(st.st_mode)) {
@@ -1360,8 +692,9 @@ int cmd_render(int argc, char **argv)
         render_job_free(job);
         return EXIT_USAGE;
     }
-    if (o->model && same_file(o->model, o->output)) {
-        cli_error("-o: '%s' is the model being read; choose another output file", o->output);
+    /* The model now, before the time to read it; the rest it brings once read. */
+    cli_inputs_add(&job->inputs, o->model, "model");
+    if (!cli_check_output(&job->inputs, "-o", o->output)) {
         render_job_free(job);
         return EXIT_USAGE;
     }
@@ -1406,6 +739,9 @@ int cmd_render(int argc, char **argv)
     if (status < 0) {
         status = make_context(job);
     }
+    if (status < 0 && !cli_check_output(&job->inputs, "-o", o->output)) {
+        status = EXIT_USAGE;
+    }
     if (status >= 0) {
         sr_destroy_framebuffer(job->ctx, maker.fb);
         render_job_free(job);
@@ -1432,7 +768,8 @@ int cmd_render(int argc, char **argv)
     r = cli_write_image(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
                         &(cli_image_options){ .png_level = o->png_level,
                                               .jpeg_quality = o->jpeg_quality,
-                                              .context = job->ctx },
+                                              .context = job->ctx,
+                                              .inputs = &job->inputs },
                         &err);
     double t_write = now_ms();
     if (o->verbose) {

@@ -7,6 +7,7 @@
 #ifndef SR_RENDER_H
 #define SR_RENDER_H
 
+#include "cli.h"
 #include "softrast.h"
 
 #include <stdint.h>
@@ -56,5 +57,8 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
 const char *render_job_error(const render_job *job);
 /* The model file, or NULL for the built-in scene. */
 const char *render_job_model(const render_job *job);
+/* The files read so far (model, MTL, textures), which no image the job's
+ * command writes may replace; a command adds its own (an event script). */
+cli_inputs *render_job_inputs(render_job *job);
 
 #endif

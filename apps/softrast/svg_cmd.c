@@ -1,30 +1,17 @@
 /* svg_cmd.c - `softrast svg INPUT.svg [-o OUT.png] [--size WxH | --scale S]
- * [--background COLOR]`: the command around the SVG reader (svg.c).  Reads
- * the file whole (at most SVG_MAX_INPUT_BYTES), renders it with svg_render
- * and writes the PNG atomically.  Warnings go to stderr as they arise; a
- * failure is one line "FILE:LINE: what is wrong", exit status 2 for a bad
- * document, 1 when the run itself fails, and no output file. */
+ * [--background COLOR]`: the command around the library's SVG reader
+ * (sr_render_svg, src/io/svg.c).  Reads the file whole (at most
+ * SR_SVG_MAX_INPUT_BYTES), renders it and writes the PNG atomically.
+ * Warnings go to stderr as they arise; a failure is one line
+ * "FILE:LINE: what is wrong", exit status 2 for a bad document, 1 when the
+ * run itself fails, and no output file. */
 #include "cli.h"
-#include "svg.h"
-#include "io/io_util.h"
 #include "softrast_io.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#ifndef SR_HAVE_EXPAT
-
-int cmd_svg(int argc, char **argv)
-{
-    (void)argc;
-    (void)argv;
-    cli_error("svg: this softrast was built without expat (install libexpat1-dev and rebuild)");
-    return EXIT_FAILURE_RUN;
-}
-
-#else
 
 static void svg_help(FILE *f)
 {
@@ -49,7 +36,7 @@ static int read_input(const char *input, char **data, size_t *size)
     FILE *fp;
     unsigned long long file_size;
     sr_io_error err;
-    if (sr__open_regular(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
+    if (sr_open_file(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
         cli_error("svg: %s", err.message);
         return EXIT_USAGE;
     }
@@ -72,10 +59,11 @@ static int read_input(const char *input, char **data, size_t *size)
         if (n < cap) {
             break; /* end of file */
         }
-        if (cap > SVG_MAX_INPUT_BYTES) {
+        if (cap > SR_SVG_MAX_INPUT_BYTES) {
             free(buf);
             fclose(fp);
-            cli_error("svg: %s is larger than the %zu MiB limit", input, SVG_MAX_INPUT_BYTES >> 20);
+            cli_error("svg: %s is larger than the %zu MiB limit", input,
+                      SR_SVG_MAX_INPUT_BYTES >> 20);
             return EXIT_USAGE;
         }
         char *grown = realloc(buf, cap * 2);
@@ -91,10 +79,22 @@ static int read_input(const char *input, char **data, size_t *size)
     return EXIT_OK;
 }
 
+/* The library's warnings, one line each on stderr as they arise. */
+static void warn_stderr(void *user, const char *message)
+{
+    (void)user;
+    fprintf(stderr, "%s\n", message);
+}
+
 int cmd_svg(int argc, char **argv)
 {
+    if (!sr_io_have_svg()) {
+        cli_error("svg: this softrast was built without expat (install libexpat1-dev and "
+                  "rebuild)");
+        return EXIT_FAILURE_RUN;
+    }
     const char *input = NULL, *output = NULL;
-    svg_options opt = { .background = { 0, 0, 0, 0 }, .warnings = stderr };
+    sr_svg_desc opt = { .background = { 0, 0, 0, 0 }, .warn = warn_stderr };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         bool has_value = i + 1 < argc;
@@ -111,7 +111,7 @@ int cmd_svg(int argc, char **argv)
             if (a[1] == 'o' || a[2] == 'o') {
                 output = v;
             } else if (strcmp(a, "--size") == 0) {
-                if (!parse_size(a, v, &opt.size_w, &opt.size_h)) {
+                if (!parse_size(a, v, &opt.width, &opt.height)) {
                     return EXIT_USAGE;
                 }
             } else if (strcmp(a, "--scale") == 0) {
@@ -141,7 +141,7 @@ int cmd_svg(int argc, char **argv)
         svg_help(stderr);
         return EXIT_USAGE;
     }
-    if (opt.size_w && opt.scale > 0) {
+    if (opt.width && opt.scale > 0) {
         cli_error("svg: --size and --scale exclude each other");
         return EXIT_USAGE;
     }
@@ -158,31 +158,41 @@ int cmd_svg(int argc, char **argv)
         cli_error("svg: -o: a JPEG has no transparency; give a --background for '%s'", output);
         return EXIT_USAGE;
     }
+    cli_inputs inputs = { 0 };
+    cli_inputs_add(&inputs, input, "SVG file");
+    if (!cli_check_output(&inputs, "svg: -o", output)) {
+        cli_inputs_free(&inputs);
+        return EXIT_USAGE;
+    }
     char *data = NULL;
     size_t size = 0;
     int status = read_input(input, &data, &size);
     if (status != EXIT_OK) {
+        cli_inputs_free(&inputs);
         return status;
     }
     sr_context *ctx = NULL;
     if (sr_make_context(&(sr_context_desc){0}, &ctx) != SR_OK) {
         free(data);
+        cli_inputs_free(&inputs);
         cli_error("svg: cannot create a context");
         return EXIT_FAILURE_RUN;
     }
     opt.name = input;
     sr_framebuffer *fb = NULL;
-    char msg[1024];
-    status = svg_render(ctx, data, size, &opt, &fb, msg, sizeof msg);
+    sr_io_error err;
+    sr_result r = sr_render_svg(ctx, data, size, &opt, &fb, NULL, &err);
     free(data);
-    if (status != EXIT_OK) {
-        fprintf(stderr, "%s\n", msg);
+    if (r != SR_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        /* Out of memory is the run's failure; anything else the document's. */
+        status = r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     } else {
-        sr_io_error err;
         int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
         if (cli_write_image(output, w, h, sr_framebuffer_pixels(fb),
                             &(cli_image_options){ .png_level = -1,
-                                                  .keep_alpha = opt.background.a < 1 },
+                                                  .keep_alpha = opt.background.a < 1,
+                                                  .inputs = &inputs },
                             &err) != SR_OK) {
             fprintf(stderr, "%s\n", err.message);
             status = EXIT_FAILURE_RUN;
@@ -190,7 +200,6 @@ int cmd_svg(int argc, char **argv)
     }
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
+    cli_inputs_free(&inputs);
     return status;
 }
-
-#endif /* SR_HAVE_EXPAT */

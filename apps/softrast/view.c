@@ -217,7 +217,7 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
                       name);
             return EXIT_USAGE;
         } else if (o->argc < MAX_ARGS - 64) {
-            o->argv[o->argc++] = argv[i];   /* a render option: render.c parses it */
+            o->argv[o->argc++] = argv[i];   /* a render option: render_options.c parses it */
         } else {
             cli_error("view: too many arguments");
             return EXIT_USAGE;
@@ -696,15 +696,26 @@ int cmd_view(int argc, char **argv)
     if (status < 0 && v->o.events) {
         status = view_script_load(v->o.events, &v->script);
     }
+    const char *font = v->o.font ? v->o.font : VIEW_DEFAULT_FONT;
     char why[600];
-    if (status < 0 && !view_font_open(v->o.font ? v->o.font : VIEW_DEFAULT_FONT, 14, &v->font,
-                                      why, sizeof why)) {
+    if (status < 0 && !view_font_open(font, 14, &v->font, why, sizeof why)) {
         if (v->o.font) {
             cli_error("view: --font: %s", why);
             status = EXIT_USAGE;
         } else {
             /* The window is still worth having: say once why it has no text. */
             cli_error("view: no overlay text: %s (install fonts-dejavu-core)", why);
+        }
+    }
+    if (status < 0) {
+        /* Screenshots never replace an input, whether named here or by
+         * the script (view_frames.c checks those as it writes them). */
+        cli_inputs *inputs = render_job_inputs(v->job);
+        cli_inputs_add(inputs, v->o.events, "event script");
+        cli_inputs_add(inputs, font, "font");
+        if (!cli_check_output(inputs, "view: --screenshot", v->o.screenshot) ||
+            !cli_check_output(inputs, "view: --screenshot-overlay", v->o.window_shot)) {
+            status = EXIT_USAGE;
         }
     }
     if (status >= 0) {

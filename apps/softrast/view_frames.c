@@ -41,7 +41,9 @@ static void draw_frame(view_frames *vf)
         int w = sr_framebuffer_width(vf->back), h = sr_framebuffer_height(vf->back);
         sr_io_error err;
         if (cli_write_image(vf->shot, w, h, sr_framebuffer_pixels(vf->back),
-                            &(cli_image_options){ .png_level = -1 }, &err) == SR_OK) {
+                            &(cli_image_options){ .png_level = -1,
+                                                  .inputs = render_job_inputs(vf->job) },
+                            &err) == SR_OK) {
             vf->shot_ok = true;
         } else {
             snprintf(vf->shot_error, sizeof vf->shot_error, "%s", err.message);
@@ -64,7 +66,9 @@ static void draw_frame(view_frames *vf)
         int w = sr_framebuffer_width(vf->back), h = sr_framebuffer_height(vf->back);
         sr_io_error err;
         if (cli_write_image(vf->window_shot, w, h, sr_framebuffer_pixels(vf->back),
-                            &(cli_image_options){ .png_level = -1 }, &err) != SR_OK) {
+                            &(cli_image_options){ .png_level = -1,
+                                                  .inputs = render_job_inputs(vf->job) },
+                            &err) != SR_OK) {
             vf->shot_ok = false;
             snprintf(vf->shot_error, sizeof vf->shot_error, "%s", err.message);
         }

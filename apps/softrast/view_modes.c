@@ -1,8 +1,8 @@
 /* view_modes.c - the pipeline modes `softrast view` switches with keys.
  * Every value is the `softrast render` argument that selects it, so the
- * viewer draws through the render options (render.c) and the command it
- * prints repeats the view exactly.  A new mode, or a new value of one
- * (an MSAA level, say), is one line of this table. */
+ * viewer draws through the render options (render_options.c) and the
+ * command it prints repeats the view exactly.  A new mode, or a new value
+ * of one (an MSAA level, say), is one line of this table. */
 #include "view.h"
 
 #include <stdio.h>

@@ -14,7 +14,6 @@
  * a space or tab, with the rest of its line (a comment). */
 #ifdef SR_HAVE_VIEWER
 #include "cli.h"
-#include "io/io_util.h"
 #include "view_sdl.h"
 
 #include <errno.h>
@@ -150,11 +149,11 @@ int view_script_load(const char *path, view_script **out)
     *out = NULL;
     /* Only a regular file: a directory opens and then reads as nothing
      * (an empty script), and opening a FIFO waits for a writer, maybe
-     * forever (sr__open_regular opens without waiting, then refuses). */
+     * forever (sr_open_file opens without waiting, then refuses). */
     FILE *f;
     unsigned long long size;
     sr_io_error err;
-    if (sr__open_regular(path, "an event script", &f, &size, &err) != SR_OK) {
+    if (sr_open_file(path, "an event script", &f, &size, &err) != SR_OK) {
         cli_error("--events: %s", err.message);
         return EXIT_USAGE;
     }

@@ -39,6 +39,11 @@ bool sr__write_all(int fd, const uint8_t *p, size_t n)
     return true;
 }
 
+bool sr__write_fd(void *user, const void *data, size_t size)
+{
+    return sr__write_all(*(const int *)user, data, size);
+}
+
 /* The permission bits a plain fopen would give a new file: 0666 less the
  * umask.  mkstemp creates 0600, which would leave rendered images unreadable
  * to anyone else.  umask() can only be read by setting it, which races with

@@ -198,6 +198,22 @@ sr_result sr__open_regular(const char *path, const char *kind, FILE **f,
     return SR_OK;
 }
 
+sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
+                       sr_io_error *err)
+{
+    if (!f || !size) {
+        if (f) {
+            *f = NULL;
+        }
+        if (size) {
+            *size = 0;
+        }
+        return sr__io_fail(err, SR_INVALID_ARG, path ? path : "<null>", 0,
+                           "sr_open_file: %s is NULL", f ? "size" : "f");
+    }
+    return sr__open_regular(path, kind, f, size, err);
+}
+
 sr_result sr__read_file(const char *path, char **data, size_t *size, sr_io_error *err)
 {
     return sr__read_file_as(path, "a model file", data, size, err);

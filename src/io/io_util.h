@@ -79,6 +79,9 @@ sr_result sr__atomic_commit(sr_atomic_file *f, sr_io_error *err);
 void sr__atomic_discard(sr_atomic_file *f);
 /* All n bytes or false with errno set (EINTR retried, short writes continued). */
 bool sr__write_all(int fd, const uint8_t *p, size_t n);
+/* sr__write_all as an sr_write_fn, `user` pointing to the int descriptor:
+ * the encoders' callback for a file. */
+bool sr__write_fd(void *user, const void *data, size_t size);
 
 /* A block from the caller's allocator (zero: malloc/free), as every io
  * function that takes an sr_allocator uses it.  sr__io_free ignores NULL. */

@@ -197,28 +197,24 @@ static void encode_jpeg(const uint8_t *rgba, int w, int h, size_t stride, int qu
     jpeg_destroy_compress(&cinfo);
 }
 
-static sr_result write_jpeg(const char *path, int w, int h, const uint8_t *rgba, size_t stride,
-                            int quality, sr_io_error *err)
+/* Encode, then hand the whole file to `write` at once.  When `write`
+ * fails: SR_IO_ERROR with *write_failed set and no message (the caller
+ * knows what the write was). */
+static sr_result jpeg_run(const char *name, int w, int h, const uint8_t *rgba, size_t stride,
+                          int quality, sr_write_fn write, void *user, bool *write_failed,
+                          sr_io_error *err)
 {
+    *write_failed = false;
     unsigned char *data = NULL;
     unsigned long size = 0;
     jpeg_status status = { .code = SR_OK };
     encode_jpeg(rgba, w, h, stride, quality, &data, &size, &status);
     if (status.code != SR_OK) {
-        return sr__io_fail(err, status.code, path, 0, "cannot encode JPEG: %s", status.message);
+        return sr__io_fail(err, status.code, name, 0, "cannot encode JPEG: %s", status.message);
     }
-    sr_atomic_file file;
-    sr_result r = sr__atomic_create(&file, path, (sr_allocator){ 0 }, err);
-    if (r == SR_OK) {
-        if (sr__write_all(file.fd, data, size)) {
-            r = sr__atomic_commit(&file, err);
-        } else {
-            r = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s", strerror(errno));
-            sr__atomic_discard(&file);
-        }
-    }
+    *write_failed = !write(user, data, size);
     free(data);
-    return r;
+    return *write_failed ? SR_IO_ERROR : SR_OK;
 }
 
 bool sr_io_have_jpeg(void)
@@ -271,34 +267,82 @@ sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size, int
                        "this build reads no JPEG (install libjpeg-dev and rebuild)");
 }
 
-static sr_result write_jpeg(const char *path, int w, int h, const uint8_t *rgba, size_t stride,
-                            int quality, sr_io_error *err)
+static sr_result jpeg_run(const char *name, int w, int h, const uint8_t *rgba, size_t stride,
+                          int quality, sr_write_fn write, void *user, bool *write_failed,
+                          sr_io_error *err)
 {
     (void)w;
     (void)h;
     (void)rgba;
     (void)stride;
     (void)quality;
-    return sr__io_fail(err, SR_UNSUPPORTED, path, 0,
+    (void)write;
+    (void)user;
+    *write_failed = false;
+    return sr__io_fail(err, SR_UNSUPPORTED, name, 0,
                        "this build writes no JPEG (install libjpeg-dev and rebuild)");
 }
 
 #endif
 
-sr_result sr_write_jpeg(const char *path, int width, int height, const uint8_t *rgba,
-                        size_t stride, const sr_jpeg_write_desc *desc, sr_io_error *err)
+/* The quality from desc, checked (a name for messages). */
+static sr_result jpeg_settings(const char *name, int width, int height, const uint8_t *rgba,
+                               size_t stride, const sr_jpeg_write_desc *desc, int *quality,
+                               sr_io_error *err)
 {
-    sr_result checked = sr__check_image_write(path, width, height, MAX_WRITE_SIZE, rgba, stride,
+    sr_result checked = sr__check_image_write(name, width, height, MAX_WRITE_SIZE, rgba, stride,
                                               err);
     if (checked != SR_OK) {
         return checked;
     }
-    int quality = desc && desc->quality ? desc->quality : SR_JPEG_DEFAULT_QUALITY;
-    if (quality < 1 || quality > 100) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
-                           "sr_jpeg_write_desc.quality %d is not in 1..100", quality);
+    *quality = desc && desc->quality ? desc->quality : SR_JPEG_DEFAULT_QUALITY;
+    if (*quality < 1 || *quality > 100) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "sr_jpeg_write_desc.quality %d is not in 1..100", *quality);
     }
-    return write_jpeg(path, width, height, rgba, stride, quality, err);
+    return SR_OK;
+}
+
+sr_result sr_encode_jpeg(sr_write_fn write, void *user, int width, int height,
+                         const uint8_t *rgba, size_t stride, const sr_jpeg_write_desc *desc,
+                         sr_io_error *err)
+{
+    const char *name = "<memory>";
+    int quality;
+    sr_result r = jpeg_settings(name, width, height, rgba, stride, desc, &quality, err);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (!write) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0, "no write function given");
+    }
+    bool write_failed;
+    r = jpeg_run(name, width, height, rgba, stride, quality, write, user, &write_failed, err);
+    return write_failed ? sr__io_fail(err, r, name, 0, "the write function failed") : r;
+}
+
+sr_result sr_write_jpeg(const char *path, int width, int height, const uint8_t *rgba,
+                        size_t stride, const sr_jpeg_write_desc *desc, sr_io_error *err)
+{
+    int quality;
+    sr_result r = jpeg_settings(path, width, height, rgba, stride, desc, &quality, err);
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_atomic_file file;
+    r = sr__atomic_create(&file, path, (sr_allocator){ 0 }, err);
+    if (r != SR_OK) {
+        return r;
+    }
+    bool write_failed;
+    r = jpeg_run(path, width, height, rgba, stride, quality, sr__write_fd, &file.fd,
+                 &write_failed, err);
+    if (r != SR_OK) {
+        int e = errno;
+        sr__atomic_discard(&file);
+        return write_failed ? sr__io_fail(err, r, path, 0, "write failed: %s", strerror(e)) : r;
+    }
+    return sr__atomic_commit(&file, err);
 }
 
 sr_result sr_read_jpeg(const char *path, int *width, int *height, uint8_t **pixels,

@@ -104,7 +104,7 @@ sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
     }
     switch (format) {
     case SR_FORMAT_OBJ:
-        return sr__load_obj(path, out, err);
+        return sr__load_obj(path, desc, out, err);
     case SR_FORMAT_PLY:
         return sr__load_ply(path, out, err);
     case SR_FORMAT_STL:

@@ -29,6 +29,7 @@
 #define _DEFAULT_SOURCE 1   /* populate.h */
 #include "io/readers.h"
 #include "io/io_util.h"
+#include "io/number.h"
 
 #include "populate.h"
 
@@ -130,6 +131,7 @@ typedef struct obj_parser {
     size_t nmats, mats_cap;
     str_ref mtl_loaded[MAX_MTL_FILES];
     size_t nmtl_loaded;
+    const sr_load_desc *desc;   /* its file_read hears of each MTL file read; may be NULL */
 
 } obj_parser;
 
@@ -238,149 +240,6 @@ static int quote_len(const char *s, const char *e)
 }
 
 /* ---- numbers ------------------------------------------------------------ */
-
-typedef enum num_status {
-    NUM_OK,
-    NUM_MALFORMED,
-    NUM_NOT_FINITE,     /* "nan", "inf", "infinity" */
-    NUM_OVERFLOW,       /* beyond the float range, e.g. 1e39 or 1e999 */
-} num_status;
-
-/* Powers of ten that doubles hold exactly (5^22 < 2^53). */
-static const double pow10_exact[23] = {
-    1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-};
-
-static bool is_nonfinite_word(const char *s, const char *e)
-{
-    if (s < e && (*s == '+' || *s == '-')) {
-        s++;
-    }
-    if (e - s < 3) {
-        return false;
-    }
-    char w[3];
-    for (int i = 0; i < 3; i++) {
-        w[i] = (char)(s[i] | 0x20);     /* ASCII lower case */
-    }
-    return memcmp(w, "nan", 3) == 0 || memcmp(w, "inf", 3) == 0;
-}
-
-/* Parse the whole token [s, e) as a decimal float:
- * [+-] (digits [. digits] | . digits) [(e|E) [+-] digits].
- * Locale-independent, unlike strtod.  The first 19 significant digits go
- * into a uint64 mantissa m; the value is m * 10^k computed in double.  For
- * up to 15 digits and |k| <= 22 both m and 10^k are exact, so the double is
- * correctly rounded (Clinger's fast path) and the float made from it is
- * too, except when that double lands exactly on a float tie (odds about
- * 2^-29).  Otherwise the few extra double roundings are far below half a
- * float ulp, so the result is within 1 ulp. */
-static num_status parse_float(const char *s, const char *e, float *out)
-{
-    const char *start = s;
-    bool neg = false;
-    if (s < e && (*s == '+' || *s == '-')) {
-        neg = *s == '-';
-        s++;
-    }
-    uint64_t m = 0;
-    int kept = 0;           /* significant digits in m */
-    long exp10 = 0;
-    bool digits = false;
-    while (s < e && *s == '0') {
-        s++;
-        digits = true;
-    }
-    while (s < e && is_digit(*s)) {
-        if (kept < 19) {
-            m = m * 10 + (uint64_t)(*s - '0');
-            kept++;
-        } else {
-            exp10++;        /* digit dropped, but its place still counts */
-        }
-        s++;
-        digits = true;
-    }
-    if (s < e && *s == '.') {
-        s++;
-        if (kept == 0) {
-            while (s < e && *s == '0') {
-                exp10--;
-                s++;
-                digits = true;
-            }
-        }
-        while (s < e && is_digit(*s)) {
-            if (kept < 19) {
-                m = m * 10 + (uint64_t)(*s - '0');
-                kept++;
-                exp10--;
-            }
-            s++;
-            digits = true;
-        }
-    }
-    if (!digits) {
-        return is_nonfinite_word(start, e) ? NUM_NOT_FINITE : NUM_MALFORMED;
-    }
-    if (s < e && (*s == 'e' || *s == 'E')) {
-        s++;
-        bool eneg = false;
-        if (s < e && (*s == '+' || *s == '-')) {
-            eneg = *s == '-';
-            s++;
-        }
-        if (s == e || !is_digit(*s)) {
-            return NUM_MALFORMED;
-        }
-        long x = 0;
-        while (s < e && is_digit(*s)) {
-            if (x < 100000) {   /* saturate: anything this big over- or underflows */
-                x = x * 10 + (*s - '0');
-            }
-            s++;
-        }
-        exp10 += eneg ? -x : x;
-    }
-    if (s != e) {
-        return NUM_MALFORMED;
-    }
-
-    double d;
-    if (m == 0) {
-        d = 0.0;
-    } else if (exp10 > 310) {
-        return NUM_OVERFLOW;    /* m >= 1, so the value is >= 1e311 */
-    } else if (exp10 < -360) {
-        d = 0.0;                /* m < 1e19, so the value is < 1e-341: float 0 */
-    } else {
-        d = (double)m;
-        long x = exp10;
-        if (x >= 0) {
-            while (x > 22) {
-                d *= 1e22;
-                x -= 22;
-            }
-            d *= pow10_exact[x];
-        } else {
-            x = -x;
-            while (x > 22) {
-                d /= 1e22;
-                x -= 22;
-            }
-            d /= pow10_exact[x];   /* dividing by an exact 10^k rounds once */
-        }
-    }
-    /* FLT_MAX + half an ulp = 2^128 - 2^103: from there on, the float would
-     * round to infinity (a double-to-float conversion out of range is
-     * undefined in C, so test before converting). */
-    if (d >= 0x1.ffffffp127) {
-        return NUM_OVERFLOW;
-    }
-    *out = (float)(neg ? -d : d);
-    return NUM_OK;
-}
 
 /* A decimal integer with an optional sign; magnitudes beyond 2^40 saturate
  * (they are out of range anyway). */
@@ -650,13 +509,13 @@ static const char *arena_str(const obj_parser *P, str_ref r)
 }
 
 static sr_result number_error(const char *name, sr_io_error *err, long line,
-                              num_status st, const char *s, const char *e)
+                              sr_num_status st, const char *s, const char *e)
 {
     switch (st) {
-    case NUM_NOT_FINITE:
+    case SR_NUM_NOT_FINITE:
         return sr__io_fail(err, SR_BAD_FORMAT, name, line,
                            "'%.*s' is not a finite number", quote_len(s, e), s);
-    case NUM_OVERFLOW:
+    case SR_NUM_OVERFLOW:
         return sr__io_fail(err, SR_BAD_FORMAT, name, line,
                            "number '%.*s' is too large for a float", quote_len(s, e), s);
     default:
@@ -677,8 +536,8 @@ static sr_result read_numbers(const char *name, sr_io_error *err, long line,
             *count = max + 1;
             return SR_OK;
         }
-        num_status st = parse_float(ts, te, &vals[k]);
-        if (st != NUM_OK) {
+        sr_num_status st = sr__parse_float(ts, te, &vals[k]);
+        if (st != SR_NUM_OK) {
             return number_error(name, err, line, st, ts, te);
         }
         k++;
@@ -783,7 +642,7 @@ static sr_result parse_mtl(obj_parser *P, const char *path, size_t path_dir_len,
                         break;
                     }
                     /* -o/-s/-t take "u [v [w]]": stop at the first non-number. */
-                    if (args == 3 && parse_float(a2, b2, &ignored) != NUM_OK) {
+                    if (args == 3 && sr__parse_float(a2, b2, &ignored) != SR_NUM_OK) {
                         break;
                     }
                     q = q2;
@@ -841,6 +700,9 @@ static sr_result load_mtl(obj_parser *P, const char *rel, size_t rel_len, bool *
     }
     *found = true;
     P->mtl_loaded[P->nmtl_loaded++] = path;
+    if (P->desc && P->desc->file_read) {
+        P->desc->file_read(P->desc->user, p);
+    }
     const char *slash = strrchr(p, '/');
     size_t dir_len = slash ? (size_t)(slash - p) + 1 : 0;
     res = parse_mtl(P, p, dir_len, data, size);
@@ -1661,7 +1523,8 @@ static bool is_blank(const char *s, size_t n)
 }
 
 static sr_result parse(const char *name, const char *data, size_t size,
-                       const char *dir, size_t dir_len, sr_mesh *out, sr_io_error *err)
+                       const char *dir, size_t dir_len, const sr_load_desc *desc,
+                       sr_mesh *out, sr_io_error *err)
 {
     obj_parser P;
     memset(&P, 0, sizeof P);
@@ -1669,6 +1532,7 @@ static sr_result parse(const char *name, const char *data, size_t size,
     P.err = err;
     P.dir = dir;
     P.dir_len = dir_len;
+    P.desc = desc;
     P.cur_use = NO_INDEX;
     /* Ear clipping costs up to n^3 point tests on hostile polygons.  A
      * budget in proportion to the input keeps the worst case linear in the
@@ -1744,10 +1608,11 @@ sr_result sr_parse_obj(const char *name, const char *data, size_t size,
                            size, (size_t)SR_IO_MAX_FILE_BYTES);
     }
     /* Memory has no folder to find MTL files in: mtllib is ignored. */
-    return parse(name, data ? data : "", size, NULL, 0, out, err);
+    return parse(name, data ? data : "", size, NULL, 0, NULL, out, err);
 }
 
-sr_result sr__load_obj(const char *path, sr_mesh *out, sr_io_error *err)
+sr_result sr__load_obj(const char *path, const sr_load_desc *desc, sr_mesh *out,
+                       sr_io_error *err)
 {
     if (!out) {
         return sr__io_fail(err, SR_INVALID_ARG, path ? path : "<null>", 0, "no output mesh given");
@@ -1761,7 +1626,7 @@ sr_result sr__load_obj(const char *path, sr_mesh *out, sr_io_error *err)
     }
     const char *slash = strrchr(path, '/');
     size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
-    res = parse(path, data, size, path, dir_len, out, err);
+    res = parse(path, data, size, path, dir_len, desc, out, err);
     sr__free_file(data, size);
     return res;
 }

@@ -12,6 +12,7 @@
  * (ASCII: but for whitespace): anything after it is an error, not dropped.
  */
 #include "io/io_util.h"
+#include "io/number.h"
 #include "io/readers.h"
 
 #include <errno.h>
@@ -655,15 +656,20 @@ static sr_result read_value(ply_reader *r, const ply_elem *e, unsigned long long
         }
         *out = (double)v;
     } else {
-        /* Out-of-range values come back as +-HUGE_VAL with ERANGE; they
-         * are kept as infinities and rejected where finiteness matters. */
-        double v = strtod(buf, &end);
-        if (end != buf + w.n || w.n == 0) {
+        /* inf and nan are kept, and rejected where finiteness matters. */
+        sr_num_status st;
+        if (t == T_FLOAT32) {
+            float f = 0;
+            st = sr__parse_float(w.s, w.s + w.n, &f);
+            *out = f;
+        } else {
+            st = sr__parse_double(w.s, w.s + w.n, out);
+        }
+        if (st == SR_NUM_MALFORMED) {
             return data_fail(r, SR_BAD_FORMAT, "%s %llu: '%s' is not a valid %s",
                              e->name, index, buf, type_label[t]);
         }
-        *out = t == T_FLOAT32 ? (double)(float)v : v;
-        if (!isfinite(*out) && !strpbrk(buf, "iInN")) {
+        if (st == SR_NUM_OVERFLOW) {
             /* Digits that overflowed (1e39 for a float, 1e999), not the
              * words inf or nan: say so rather than "not finite". */
             return data_fail(r, SR_BAD_FORMAT, "%s %llu: '%s' is beyond %s's range", e->name,

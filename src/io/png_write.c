@@ -173,10 +173,12 @@ static void put32(uint8_t *p, uint32_t v)
     p[3] = (uint8_t)v;
 }
 
-/* Where the file's bytes go: a buffer in front of the descriptor, written
- * with write(2) directly (sr__write_all retries EINTR and short writes). */
+/* Where the file's bytes go: a buffer in front of the caller's write
+ * function (for a file, write(2) through sr__write_all, which retries
+ * EINTR and short writes). */
 typedef struct png_sink {
-    int fd;
+    sr_write_fn write;
+    void *user;
     uint8_t *buf;
     size_t n, cap;
     bool failed;
@@ -190,10 +192,10 @@ static void sink_put(png_sink *s, const uint8_t *p, size_t len)
         return;
     }
     if (s->n + len > s->cap) {
-        s->failed = !sr__write_all(s->fd, s->buf, s->n);
+        s->failed = !s->write(s->user, s->buf, s->n);
         s->n = 0;
         if (!s->failed && len >= s->cap) {
-            s->failed = !sr__write_all(s->fd, p, len);
+            s->failed = !s->write(s->user, p, len);
             return;
         }
     }
@@ -268,7 +270,7 @@ static void put_file(png_sink *s, const png_job *j)
     put_chunk(s, "IEND", (const uint8_t *const[3]){ NULL, NULL, NULL },
               (const size_t[3]){ 0, 0, 0 });
     if (!s->failed && s->n > 0) {
-        s->failed = !sr__write_all(s->fd, s->buf, s->n);
+        s->failed = !s->write(s->user, s->buf, s->n);
     }
 }
 
@@ -339,11 +341,13 @@ static bool prepare(png_job *j, png_blocks *m, int slots)
     return m->out && m->rows && m->out_len && m->adler && m->sink;
 }
 
-sr_result sr_write_png(const char *path, int width, int height,
-                       const uint8_t *rgba, size_t stride,
-                       const sr_png_write_desc *desc, sr_io_error *err)
+/* The encoding's settings from desc, checked: the job to run, its
+ * allocator, the context and how many slots run it. */
+static sr_result png_settings(const char *name, int width, int height, const uint8_t *rgba,
+                              size_t stride, const sr_png_write_desc *desc, png_job *j,
+                              png_blocks *m, int *slots, sr_io_error *err)
 {
-    sr_result checked = sr__check_image_write(path, width, height, MAX_WRITE_SIZE, rgba, stride,
+    sr_result checked = sr__check_image_write(name, width, height, MAX_WRITE_SIZE, rgba, stride,
                                               err);
     if (checked != SR_OK) {
         return checked;
@@ -354,55 +358,108 @@ sr_result sr_write_png(const char *path, int width, int height,
     } else if (level == -1) {
         level = 0;
     } else if (level < 1 || level > 9) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
                            "sr_png_write_desc.compression_level %d is not in -1..9", level);
     }
-    png_blocks m = { .a = desc ? desc->allocator : (sr_allocator){0} };
-    if ((m.a.alloc == NULL) != (m.a.free == NULL)) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+    *m = (png_blocks){ .a = desc ? desc->allocator : (sr_allocator){0} };
+    if ((m->a.alloc == NULL) != (m->a.free == NULL)) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
                            "sr_png_write_desc.allocator needs both alloc and free");
     }
     sr_context *ctx = desc ? desc->context : NULL;
 
-    png_job j = {
+    *j = (png_job){
         .rgba = rgba, .stride = stride, .width = width, .height = height,
         .channels = desc && desc->no_alpha ? 3 : 4, .level = level,
     };
-    j.row_bytes = 1 + (size_t)j.channels * (size_t)width;
-    j.band_rows = j.row_bytes >= BAND_BYTES ? 1 : (int)(BAND_BYTES / j.row_bytes);
-    if (j.band_rows > height) {
-        j.band_rows = height;
+    j->row_bytes = 1 + (size_t)j->channels * (size_t)width;
+    j->band_rows = j->row_bytes >= BAND_BYTES ? 1 : (int)(BAND_BYTES / j->row_bytes);
+    if (j->band_rows > height) {
+        j->band_rows = height;
     }
-    j.bands = (height + j.band_rows - 1) / j.band_rows;
+    j->bands = (height + j->band_rows - 1) / j->band_rows;
     int threads = ctx ? sr_context_threads(ctx) : 1;
-    int slots = threads < j.bands ? threads : j.bands;
+    *slots = threads < j->bands ? threads : j->bands;
+    return SR_OK;
+}
 
-    sr_atomic_file file;
-    sr_result result = sr__atomic_create(&file, path, m.a, err);
-    if (result != SR_OK) {
-        return result;
+/* Deflate the job and hand the file's bytes to `write`; every block is
+ * freed before it returns.  When `write` fails: SR_IO_ERROR with
+ * *write_failed set and no message (the caller knows what the write was). */
+static sr_result png_run(const char *name, png_job *j, png_blocks *m, sr_context *ctx,
+                         int slots, sr_write_fn write, void *user, bool *write_failed,
+                         sr_io_error *err)
+{
+    *write_failed = false;
+    if (!prepare(j, m, slots)) {
+        free_blocks(m);
+        return sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0, "cannot encode PNG: out of memory");
     }
-    if (!prepare(&j, &m, slots)) {
-        free_blocks(&m);
-        sr__atomic_discard(&file);
-        return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "cannot encode PNG: out of memory");
+    sr_run_jobs(slots > 1 ? ctx : NULL, run_slot, j, slots);
+    if (atomic_load(&j->failed)) {
+        free_blocks(m);
+        return sr__io_fail(err, SR_IO_ERROR, name, 0, "cannot encode PNG: zlib failed");
     }
-    sr_run_jobs(slots > 1 ? ctx : NULL, run_slot, &j, slots);
-    if (atomic_load(&j.failed)) {
-        free_blocks(&m);
-        sr__atomic_discard(&file);
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "cannot encode PNG: zlib failed");
-    }
+    png_sink sink = { .write = write, .user = user, .buf = m->sink, .cap = SINK_SIZE };
+    put_file(&sink, j);
+    free_blocks(m);
+    *write_failed = sink.failed;
+    return sink.failed ? SR_IO_ERROR : SR_OK;
+}
 
-    png_sink sink = { .fd = file.fd, .buf = m.sink, .cap = SINK_SIZE };
+/* Both entry points: to `write`, or (file non-NULL) to a new file at
+ * `name` written atomically. */
+static sr_result png_encode(const char *name, sr_atomic_file *file, sr_write_fn write,
+                            void *user, int width, int height, const uint8_t *rgba,
+                            size_t stride, const sr_png_write_desc *desc, sr_io_error *err)
+{
+    png_job j;
+    png_blocks m;
+    int slots = 1;
+    sr_result r = png_settings(name, width, height, rgba, stride, desc, &j, &m, &slots, err);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (file) {
+        r = sr__atomic_create(file, name, m.a, err);
+        if (r != SR_OK) {
+            return r;
+        }
+        write = sr__write_fd;
+        user = &file->fd;
+    } else if (!write) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0, "no write function given");
+    }
     errno = 0;  /* so that a stale errno is never reported as the cause */
-    put_file(&sink, &j);
+    bool write_failed;
+    r = png_run(name, &j, &m, desc ? desc->context : NULL, slots, write, user, &write_failed,
+                err);
     int saved_errno = errno;
-    free_blocks(&m);
-    if (sink.failed) {
-        sr__atomic_discard(&file);
-        return sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s",
-                           strerror(saved_errno ? saved_errno : EIO));
+    if (r == SR_OK) {
+        return file ? sr__atomic_commit(file, err) : SR_OK;
     }
-    return sr__atomic_commit(&file, err);
+    if (file) {
+        sr__atomic_discard(file);
+    }
+    if (!write_failed) {
+        return r;
+    }
+    return file ? sr__io_fail(err, r, name, 0, "write failed: %s",
+                              strerror(saved_errno ? saved_errno : EIO))
+                : sr__io_fail(err, r, name, 0, "the write function failed");
+}
+
+sr_result sr_encode_png(sr_write_fn write, void *user, int width, int height,
+                        const uint8_t *rgba, size_t stride, const sr_png_write_desc *desc,
+                        sr_io_error *err)
+{
+    return png_encode("<memory>", NULL, write, user, width, height, rgba, stride, desc, err);
+}
+
+sr_result sr_write_png(const char *path, int width, int height,
+                       const uint8_t *rgba, size_t stride,
+                       const sr_png_write_desc *desc, sr_io_error *err)
+{
+    sr_atomic_file file;
+    return png_encode(path, &file, NULL, NULL, width, height, rgba, stride, desc, err);
 }

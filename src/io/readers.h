@@ -8,8 +8,10 @@
 #include "softrast_io.h"
 
 /* obj.c: also reads the MTL files named by mtllib, relative to the OBJ's
- * directory (a missing MTL is ignored). */
-sr_result sr__load_obj(const char *path, sr_mesh *out, sr_io_error *err);
+ * directory (a missing MTL is ignored), each reported to desc->file_read
+ * (desc may be NULL). */
+sr_result sr__load_obj(const char *path, const sr_load_desc *desc, sr_mesh *out,
+                       sr_io_error *err);
 /* ply.c */
 sr_result sr__load_ply(const char *path, sr_mesh *out, sr_io_error *err);
 /* stl.c */

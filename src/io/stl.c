@@ -10,6 +10,7 @@
  * facet normals, which writers often leave zero or get wrong.
  */
 #include "io/io_util.h"
+#include "io/number.h"
 #include "io/readers.h"
 
 #include <math.h>
@@ -364,13 +365,12 @@ static sr_result read_float(stl_lexer *lx, float *out)
         return sr__io_fail(lx->err, SR_BAD_FORMAT, lx->name, lx->line,
                            "unexpected end of file, expected a number");
     }
-    char *end;
-    double v = strtod(lx->word, &end);
-    if (lx->word_len >= sizeof lx->word || *end != 0) {
+    /* inf, nan and 1e39 come back as values; the caller decides. */
+    if (lx->word_len >= sizeof lx->word ||
+        sr__parse_float(lx->word, lx->word + lx->word_len, out) == SR_NUM_MALFORMED) {
         return sr__io_fail(lx->err, SR_BAD_FORMAT, lx->name, lx->line,
                            "expected a number, found '%s'", lx->word);
     }
-    *out = (float)v;
     return SR_OK;
 }
 
@@ -427,7 +427,9 @@ static sr_result read_facet(stl_lexer *lx, stl_builder *b)
             }
             if (!isfinite(p[k])) {
                 /* 1e39 is a finite number, only not a float. */
-                bool finite = isfinite(strtod(lx->word, NULL));
+                double v = 0;
+                bool finite = sr__parse_double(lx->word, lx->word + lx->word_len, &v) !=
+                              SR_NUM_NOT_FINITE;
                 return sr__io_fail(lx->err, SR_BAD_FORMAT, lx->name, lx->line,
                                    finite ? "vertex coordinate '%s' is beyond float's range"
                                           : "vertex coordinate '%s' is not finite",

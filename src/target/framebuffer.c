@@ -626,11 +626,13 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
     return SR_OK;
 }
 
+/* `pixels` is the caller's buffer, named `pixels_name` in messages. */
 static sr_result check_rect(sr_context *ctx, const char *fn, const sr_framebuffer *fb,
-                            int x, int y, int w, int h, const void *out)
+                            int x, int y, int w, int h, const void *pixels,
+                            const char *pixels_name)
 {
-    if (!fb || !out) {
-        return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn, fb ? "out" : "fb");
+    if (!fb || !pixels) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn, fb ? pixels_name : "fb");
     }
     if (x < 0 || y < 0 || w <= 0 || h <= 0 || x > fb->width - w || y > fb->height - h) {
         return sr__fail(ctx, SR_INVALID_ARG,
@@ -640,23 +642,86 @@ static sr_result check_rect(sr_context *ctx, const char *fn, const sr_framebuffe
     return SR_OK;
 }
 
+/* The arguments of sr_read_pixels and sr_write_pixels: a rectangle inside
+ * fb and RGBA8 rows of at least 4 * w bytes. */
+static sr_result check_rgba_rect(sr_context *ctx, const char *fn, const sr_framebuffer *fb,
+                                 int x, int y, int w, int h, const void *pixels,
+                                 const char *pixels_name, size_t stride)
+{
+    sr_result r = check_rect(ctx, fn, fb, x, y, w, h, pixels, pixels_name);
+    if (r == SR_OK && stride < (size_t)w * 4) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < 4 * width", fn, stride);
+    }
+    return r;
+}
+
 sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
                          int x, int y, int w, int h, uint8_t *out, size_t stride)
 {
     if (!ctx) {
         return SR_INVALID_ARG;
     }
-    sr_result r = check_rect(ctx, "sr_read_pixels", fb, x, y, w, h, out);
+    sr_result r = check_rgba_rect(ctx, "sr_read_pixels", fb, x, y, w, h, out, "out", stride);
     if (r != SR_OK) {
         return r;
-    }
-    if (stride < (size_t)w * 4) {
-        return sr__fail(ctx, SR_INVALID_ARG, "sr_read_pixels: stride %zu < 4 * width", stride);
     }
     const uint32_t *image = color_image(fb);
     for (int row = 0; row < h; row++) {
         memcpy(out + (size_t)row * stride, image + (size_t)(y + row) * fb->width + x,
                (size_t)w * 4);
+    }
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
+                          const uint8_t *rgba, size_t stride)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    sr_result r = check_rgba_rect(ctx, "sr_write_pixels", fb, x, y, w, h, rgba, "rgba", stride);
+    if (r != SR_OK) {
+        return r;
+    }
+    /* The tiles under the rectangle: their pending clears are carried out
+     * first (the rest of each tile still gets the cleared values), they no
+     * longer hold only the clear color, and the rectangle joins what was
+     * drawn on them, so a later clear to their base color rewrites it. */
+    bool wide = sr__simd_level() == SR_SIMD_AVX512;
+    int tx0 = x >> SR_TILE_ORDER, tx1 = (x + w - 1) >> SR_TILE_ORDER;
+    int ty0 = y >> SR_TILE_ORDER, ty1 = (y + h - 1) >> SR_TILE_ORDER;
+    for (int ty = ty0; ty <= ty1; ty++) {
+        for (int tx = tx0; tx <= tx1; tx++) {
+            int t = ty * fb->tiles_x + tx;
+            unsigned flags = fb->tile_pending[t];
+            if (flags & SR_TILE_PENDING_ALL) {
+                flags = clear_tile(fb, t, flags & SR_TILE_PENDING_ALL, wide);
+            }
+            fb->tile_pending[t] = (uint8_t)(flags & ~SR_TILE_CLEAN_COLOR);
+            int cx0 = tx << SR_TILE_ORDER, cy0 = ty << SR_TILE_ORDER;
+            int cx1 = cx0 + SR_TILE_SIZE, cy1 = cy0 + SR_TILE_SIZE;
+            sr__tile_drawn(fb, t, x > cx0 ? x : cx0, y > cy0 ? y : cy0,
+                           x + w < cx1 ? x + w : cx1, y + h < cy1 ? y + h : cy1);
+        }
+    }
+    /* Multisampled: every sample of a pixel takes its value, so the
+     * resolved image reads back exactly what was written. */
+    size_t ns = (size_t)fb->samples;
+    for (int row = 0; row < h; row++) {
+        const uint8_t *src = rgba + (size_t)row * stride;
+        uint32_t *dst = fb->color + ((size_t)(y + row) * (size_t)fb->width + (size_t)x) * ns;
+        if (ns == 1) {
+            memcpy(dst, src, (size_t)w * 4);
+            continue;
+        }
+        for (int col = 0; col < w; col++) {
+            uint32_t v;
+            memcpy(&v, src + (size_t)col * 4, 4);
+            for (size_t k = 0; k < ns; k++) {
+                dst[(size_t)col * ns + k] = v;
+            }
+        }
     }
     sr__ok(ctx);
     return SR_OK;
@@ -668,7 +733,7 @@ sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
     if (!ctx) {
         return SR_INVALID_ARG;
     }
-    sr_result r = check_rect(ctx, "sr_read_depth", fb, x, y, w, h, out);
+    sr_result r = check_rect(ctx, "sr_read_depth", fb, x, y, w, h, out, "out");
     if (r != SR_OK) {
         return r;
     }
@@ -697,7 +762,7 @@ sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
     if (!ctx) {
         return SR_INVALID_ARG;
     }
-    sr_result r = check_rect(ctx, "sr_read_stencil", fb, x, y, w, h, out);
+    sr_result r = check_rect(ctx, "sr_read_stencil", fb, x, y, w, h, out, "out");
     if (r != SR_OK) {
         return r;
     }

@@ -1,11 +1,10 @@
-/* fuzz_svg.c - libFuzzer target: the SVG reader of `softrast svg`
- * (apps/softrast/svg.c) on arbitrary bytes, through svg_render, the same
- * entry point the command uses.  Checks, besides ASan/UBSan/LSan: either
- * an image no larger than asked for, or an exit status of 1 or 2 with one
- * non-empty line naming the document; and the work bounds of svg.h hold
- * (libFuzzer's -timeout turns a slow input into a finding).
- * scripts/fuzz.sh fuzz_svg SECONDS. */
-#include "svg.h"
+/* fuzz_svg.c - libFuzzer target: the SVG reader (src/io/svg.c) on
+ * arbitrary bytes, through sr_render_svg, the entry point `softrast svg`
+ * uses.  Checks, besides ASan/UBSan/LSan: either an image no larger than
+ * asked for, or a failure with one non-empty line naming the document; and
+ * the work stays within the budgets of softrast_io.h (libFuzzer's -timeout
+ * turns a slow input into a finding).  scripts/fuzz.sh fuzz_svg SECONDS. */
+#include "softrast_io.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -32,25 +31,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     /* Vary the options with the input's length: the document itself stays
      * a plain SVG file, so every corpus file opens in a browser. */
-    svg_options opt = { .name = "fuzz.svg", .max_side = FUZZ_MAX_SIDE,
+    sr_svg_desc opt = { .name = "fuzz.svg", .max_side = FUZZ_MAX_SIDE,
                         .background = { 1, 1, 1, (size % 3) == 0 } };
     if (size % 5 == 1) {
-        opt.size_w = 1 + (int)(size % 97);
-        opt.size_h = 1 + (int)(size % 89);
+        opt.width = 1 + (int)(size % 97);
+        opt.height = 1 + (int)(size % 89);
     } else if (size % 5 == 2) {
         opt.scale = 0.01 + (double)(size % 7);
     }
     sr_framebuffer *fb = NULL;
-    char msg[512];
-    memset(msg, 'x', sizeof msg);
-    int status = svg_render(ctx, (const char *)data, size, &opt, &fb, msg, sizeof msg);
-    if (status == EXIT_OK) {
+    sr_io_error err;
+    memset(err.message, 'x', sizeof err.message);
+    sr_svg_info info;
+    sr_result r = sr_render_svg(ctx, (const char *)data, size, &opt, &fb, &info, &err);
+    const char *msg = err.message;
+    if (info.points_used > info.points_budget || info.work_used > info.work_budget) {
+        fuzz_fail("work beyond the budgets", msg);
+    }
+    if (r == SR_OK) {
         if (!fb) {
-            fuzz_fail("EXIT_OK without an image", "");
+            fuzz_fail("SR_OK without an image", "");
         }
         int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
         if (w < 1 || h < 1 || w > FUZZ_MAX_SIDE || h > FUZZ_MAX_SIDE ||
-            (opt.size_w && (w != opt.size_w || h != opt.size_h))) {
+            (opt.width && (w != opt.width || h != opt.height))) {
             fuzz_fail("image size outside what was asked", "");
         }
         sr_destroy_framebuffer(ctx, fb);
@@ -58,10 +62,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (fb) {
             fuzz_fail("an image after a failure", msg);
         }
-        if (status != EXIT_USAGE && status != EXIT_FAILURE_RUN) {
-            fuzz_fail("unknown status", msg);
+        if (r != SR_BAD_FORMAT && r != SR_TOO_LARGE && r != SR_OUT_OF_MEMORY) {
+            fuzz_fail("unexpected result", msg);
         }
-        if (memchr(msg, 0, sizeof msg) == NULL || strncmp(msg, "fuzz.svg:", 9) != 0 ||
+        if (memchr(msg, 0, sizeof err.message) == NULL || strncmp(msg, "fuzz.svg:", 9) != 0 ||
             strchr(msg, '\n') != NULL || strlen(msg) <= 10) {
             fuzz_fail("the message is not one line \"fuzz.svg:LINE: ...\"", msg);
         }

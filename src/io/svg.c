@@ -1,5 +1,7 @@
-/* svg.c - the SVG reader of `softrast svg` (svg_cmd.c): renders a subset of
- * SVG 1.1, held in memory, with the 2D toolkit (svg_render, svg.h).
+/* svg.c - the SVG reader (src/io, softrast_io): renders a subset of SVG
+ * 1.1, held in memory or in a file, with the 2D toolkit (sr_render_svg,
+ * softrast_io.h); `softrast svg` (apps/softrast/svg_cmd.c) is the command
+ * around it.
  *
  * The document is read with expat in one pass: the root <svg> fixes the
  * image size and the viewBox mapping, then every shape is drawn as its
@@ -18,10 +20,13 @@
  * Group opacity multiplies into the children's opacities (exact unless
  * children overlap).  Anything else is skipped with one warning per name.
  * Malformed XML, path data or numbers, and drawings beyond the limits of
- * svg.h (bounded work): one line "NAME:LINE: what is wrong" and no image.
+ * softrast_io.h (bounded work): one line "NAME:LINE: what is wrong" in the
+ * sr_io_error and no image.  Warnings go to the caller's callback.
  * One document per call; nothing global, so calls may run in parallel on
  * different contexts. */
-#include "svg.h"
+#include "io/svg.h"
+#include "io/io_util.h"
+#include "io/number.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -79,7 +84,7 @@ typedef struct frame {
 
 typedef struct svg_doc {
     const char *file;        /* name in messages */
-    const svg_options *opt;
+    const sr_svg_desc *opt;
     XML_Parser parser;
     sr_context *ctx;
     sr_framebuffer *fb;
@@ -87,27 +92,28 @@ typedef struct svg_doc {
     int depth;
     int skip;                /* > 0: inside a skipped subtree, its depth */
     bool seen_root;
-    int status;              /* EXIT_OK until something fails */
+    sr_result status;        /* SR_OK until something fails */
     char *msg;               /* the failure's line goes here */
     size_t msg_size;
     char *warned[MAX_WARNED];
     int n_warned;
     bool warnings_capped;    /* "further warnings not shown" was said */
+    int warnings;            /* given so far */
     unsigned long line;      /* of the element being handled */
-    /* Bounded work (svg.h): what the document has used so far. */
+    /* Bounded work (softrast_io.h): what the document has used so far. */
     double points_used, points_budget;
     double work_used, work_budget;
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
 
-static void svg_fail(svg_doc *doc, int status, const char *fmt, ...)
+static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
 /* Record the first failure as "FILE:LINE: ..." and stop the parser. */
-static void svg_fail(svg_doc *doc, int status, const char *fmt, ...)
+static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
 {
-    if (doc->status != EXIT_OK) {
+    if (doc->status != SR_OK) {
         return;
     }
     int n = snprintf(doc->msg, doc->msg_size, "%s:%lu: ", doc->file, doc->line);
@@ -127,11 +133,11 @@ static void svg_fail(svg_doc *doc, int status, const char *fmt, ...)
     XML_StopParser(doc->parser, XML_FALSE);
 }
 
-/* A library call failed: out of memory is the run's failure (exit 1),
- * anything else (a non-finite or out-of-range coordinate) the document's. */
+/* A library call failed: out of memory is the run's failure, anything
+ * else (a non-finite or out-of-range coordinate) the document's. */
 static void lib_fail(svg_doc *doc, sr_result r)
 {
-    svg_fail(doc, r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE, "%s",
+    svg_fail(doc, r == SR_OUT_OF_MEMORY ? SR_OUT_OF_MEMORY : SR_BAD_FORMAT, "%s",
              sr_context_error(doc->ctx));
 }
 
@@ -141,8 +147,7 @@ static void lib_fail(svg_doc *doc, sr_result r)
  * million. */
 static void warn_once(svg_doc *doc, const char *kind, const char *name)
 {
-    FILE *f = doc->opt->warnings;
-    if (!f || doc->warnings_capped) {
+    if (doc->warnings_capped) {
         return;
     }
     char key[128];
@@ -152,18 +157,24 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
             return;
         }
     }
+    char line[8192]; /* a file name of PATH_MAX and a quoted value whole */
     if (doc->n_warned == MAX_WARNED) {
-        fprintf(f, "%s:%lu: warning: more unsupported names; further warnings not shown\n",
-                doc->file, doc->line);
+        snprintf(line, sizeof line,
+                 "%s:%lu: warning: more unsupported names; further warnings not shown",
+                 doc->file, doc->line);
         doc->warnings_capped = true;
-        return;
+    } else {
+        doc->warned[doc->n_warned] = strdup(key);
+        if (doc->warned[doc->n_warned]) {
+            doc->n_warned++;
+        }
+        snprintf(line, sizeof line, "%s:%lu: warning: unsupported %s '%s' skipped", doc->file,
+                 doc->line, kind, name);
     }
-    doc->warned[doc->n_warned] = strdup(key);
-    if (doc->warned[doc->n_warned]) {
-        doc->n_warned++;
+    doc->warnings++;
+    if (doc->opt->warn) {
+        doc->opt->warn(doc->opt->warn_user, line);
     }
-    fprintf(f, "%s:%lu: warning: unsupported %s '%s' skipped\n", doc->file, doc->line, kind,
-            name);
 }
 
 /* ---- numbers, lengths, lists ----------------------------------------------------- */
@@ -188,43 +199,13 @@ static const char *skip_ws_comma(const char *s)
 /* An SVG number (sign, digits, fraction, exponent), no leading blanks. */
 static bool parse_number(const char **s, double *out)
 {
-    const char *p = *s;
-    if (*p == '+' || *p == '-') {
-        p++;
-    }
-    bool digits = false;
-    while (isdigit((unsigned char)*p)) {
-        p++;
-        digits = true;
-    }
-    if (*p == '.') {
-        p++;
-        while (isdigit((unsigned char)*p)) {
-            p++;
-            digits = true;
-        }
-    }
-    if (!digits) {
+    const char *e = *s + strnlen(*s, 64);
+    size_t n = sr__scan_decimal(*s, e);
+    if (n == 0 || n == 64 || sr__parse_double(*s, *s + n, out) != SR_NUM_OK) {
         return false;
     }
-    if ((*p == 'e' || *p == 'E') &&
-        (isdigit((unsigned char)p[1]) ||
-         ((p[1] == '+' || p[1] == '-') && isdigit((unsigned char)p[2])))) {
-        p += 2;
-        while (isdigit((unsigned char)*p)) {
-            p++;
-        }
-    }
-    char buf[64];
-    size_t n = (size_t)(p - *s);
-    if (n >= sizeof buf) {
-        return false;
-    }
-    memcpy(buf, *s, n);
-    buf[n] = 0;
-    *out = strtod(buf, NULL);
-    *s = p;
-    return isfinite(*out);
+    *s += n;
+    return true;
 }
 
 /* A length: number with an optional absolute unit; 96 px per inch.
@@ -269,7 +250,7 @@ static bool length_attr(svg_doc *doc, const char *name, const char *value, doubl
     }
     bool pct = false;
     if (!parse_length(value, out, &pct)) {
-        svg_fail(doc, EXIT_USAGE, "%s=\"%s\" is not a length", name, value);
+        svg_fail(doc, SR_BAD_FORMAT, "%s=\"%s\" is not a length", name, value);
         return false;
     }
     if (pct) {
@@ -640,10 +621,10 @@ static int args_for(char up)
 static bool points_within_budget(svg_doc *doc, double more)
 {
     if (doc->points_used + more > doc->points_budget) {
-        svg_fail(doc, EXIT_USAGE,
+        svg_fail(doc, SR_TOO_LARGE,
                  "the drawing needs more than %.0f points in all (%d + %d per byte of the "
                  "document)",
-                 doc->points_budget, SVG_POINTS_BASE, SVG_POINTS_PER_BYTE);
+                 doc->points_budget, SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
         return false;
     }
     return true;
@@ -654,15 +635,15 @@ static bool points_within_budget(svg_doc *doc, double more)
 static bool path_within_limits(svg_doc *doc, const sr_path *path, const char *what, long offset)
 {
     sr_polygon2 poly = sr_path_polygon(path);
-    if (poly.point_count > SVG_MAX_PATH_POINTS) {
-        svg_fail(doc, EXIT_USAGE,
+    if (poly.point_count > SR_SVG_MAX_PATH_POINTS) {
+        svg_fail(doc, SR_TOO_LARGE,
                  "%s: more than %d points when flattened at this scale (offset %ld)", what,
-                 SVG_MAX_PATH_POINTS, offset);
+                 SR_SVG_MAX_PATH_POINTS, offset);
         return false;
     }
-    if (poly.contour_count > SVG_MAX_SUBPATHS) {
-        svg_fail(doc, EXIT_USAGE, "%s: more than %d subpaths (offset %ld)", what,
-                 SVG_MAX_SUBPATHS, offset);
+    if (poly.contour_count > SR_SVG_MAX_SUBPATHS) {
+        svg_fail(doc, SR_TOO_LARGE, "%s: more than %d subpaths (offset %ld)", what,
+                 SR_SVG_MAX_SUBPATHS, offset);
         return false;
     }
     return points_within_budget(doc, poly.point_count);
@@ -678,12 +659,12 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
         if (isalpha((unsigned char)*s)) {
             cmd = *s++;
             if (!args_for((char)toupper((unsigned char)cmd)) && toupper((unsigned char)cmd) != 'Z') {
-                svg_fail(doc, EXIT_USAGE, "path data: unknown command '%c' at offset %ld", cmd,
+                svg_fail(doc, SR_BAD_FORMAT, "path data: unknown command '%c' at offset %ld", cmd,
                          (long)(s - 1 - d));
                 return false;
             }
             if (!b.started && toupper((unsigned char)cmd) != 'M') {
-                svg_fail(doc, EXIT_USAGE, "path data must start with a moveto (offset %ld)",
+                svg_fail(doc, SR_BAD_FORMAT, "path data must start with a moveto (offset %ld)",
                          (long)(s - 1 - d));
                 return false;
             }
@@ -697,7 +678,7 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
                 continue;
             }
         } else if (!cmd || toupper((unsigned char)cmd) == 'Z') {
-            svg_fail(doc, EXIT_USAGE, "path data: expected a command at offset %ld",
+            svg_fail(doc, SR_BAD_FORMAT, "path data: expected a command at offset %ld",
                      (long)(s - d));
             return false;
         }
@@ -709,13 +690,13 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
             s = skip_ws(s);
             if (up == 'A' && (i == 3 || i == 4)) { /* flags: a single 0 or 1 */
                 if (*s != '0' && *s != '1') {
-                    svg_fail(doc, EXIT_USAGE, "path data: arc flag must be 0 or 1 at offset %ld",
+                    svg_fail(doc, SR_BAD_FORMAT, "path data: arc flag must be 0 or 1 at offset %ld",
                              (long)(s - d));
                     return false;
                 }
                 a[i] = *s++ - '0';
             } else if (!parse_number(&s, &a[i])) {
-                svg_fail(doc, EXIT_USAGE, "path data: expected a number at offset %ld",
+                svg_fail(doc, SR_BAD_FORMAT, "path data: expected a number at offset %ld",
                          (long)(s - d));
                 return false;
             }
@@ -787,22 +768,23 @@ static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
     doc->points_used += poly.point_count;
     sr_point2 *pts = malloc((size_t)poly.point_count * sizeof *pts);
     if (!pts) {
-        svg_fail(doc, EXIT_FAILURE_RUN, "out of memory");
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return;
     }
     for (int i = 0; i < poly.point_count; i++) {
         pts[i] = mat_apply(m, poly.points[i]);
     }
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
-    doc->work_used += fill_work(pts, &poly, w, h);
-    if (doc->work_used > doc->work_budget) {
+    double work = fill_work(pts, &poly, w, h);
+    if (doc->work_used + work > doc->work_budget) {
         free(pts);
-        svg_fail(doc, EXIT_USAGE,
+        svg_fail(doc, SR_TOO_LARGE,
                  "the drawing costs more than %.0f pixel operations, the limit for a %dx%d "
                  "image (%d per pixel + %d)",
-                 doc->work_budget, w, h, SVG_WORK_PER_PIXEL, SVG_WORK_BASE);
+                 doc->work_budget, w, h, SR_SVG_WORK_PER_PIXEL, SR_SVG_WORK_BASE);
         return;
     }
+    doc->work_used += work;
     poly.points = pts;
     sr_result r = sr_fill_polygon(doc->ctx, doc->fb, &poly, color,
                                   &(sr_fill_desc){ .rule = rule,
@@ -849,15 +831,15 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, b
         fill_mapped(doc, sr_path_polygon(path), f->m, c, st->fill_rule, st->crisp);
     }
     if (st->has_stroke && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
-        doc->status == EXIT_OK) {
+        doc->status == SR_OK) {
         sr_polygon2 poly = sr_path_polygon(path);
         double est = stroke_points(&poly, st, tol);
         if (doc->points_used + est > doc->points_budget) {
-            svg_fail(doc, EXIT_USAGE,
+            svg_fail(doc, SR_TOO_LARGE,
                      "stroke: the outline of stroke-width %g over %d points would need about "
                      "%.0f points, beyond the drawing's %.0f (%d + %d per byte of the document)",
                      st->stroke_width, poly.point_count, est, doc->points_budget,
-                     SVG_POINTS_BASE, SVG_POINTS_PER_BYTE);
+                     SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
             return;
         }
         sr_polygon2 outline;
@@ -907,7 +889,7 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
             return false;
         }
         if (v[2] < 0 || v[3] < 0 || v[4] < 0 || v[5] < 0) {
-            svg_fail(doc, EXIT_USAGE, "rect: negative width, height, rx or ry");
+            svg_fail(doc, SR_BAD_FORMAT, "rect: negative width, height, rx or ry");
             return false;
         }
         if (v[2] == 0 || v[3] == 0) {
@@ -953,7 +935,7 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
             return false;
         }
         if (v[2] < 0 || v[3] < 0) {
-            svg_fail(doc, EXIT_USAGE, "%s: negative radius", name);
+            svg_fail(doc, SR_BAD_FORMAT, "%s: negative radius", name);
             return false;
         }
         if (v[2] == 0 || v[3] == 0) {
@@ -985,7 +967,7 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
     while (*s) {
         double x, y;
         if (!parse_number(&s, &x) || !parse_number((s = skip_ws_comma(s), &s), &y)) {
-            svg_fail(doc, EXIT_USAGE, "%s: points: expected a coordinate pair at offset %ld",
+            svg_fail(doc, SR_BAD_FORMAT, "%s: points: expected a coordinate pair at offset %ld",
                      name, (long)(s - pts));
             return false;
         }
@@ -1066,18 +1048,18 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
     const char *vbs = attr(atts, "viewBox");
     bool have_vb = vbs && parse_viewbox(vbs, vb);
     if (vbs && !have_vb) {
-        svg_fail(doc, EXIT_USAGE, "viewBox=\"%s\" needs four numbers with width, height > 0", vbs);
+        svg_fail(doc, SR_BAD_FORMAT, "viewBox=\"%s\" needs four numbers with width, height > 0", vbs);
         return false;
     }
     double w = 0, h = 0;
     bool wp = false, hp = false;
     const char *ws = attr(atts, "width"), *hs = attr(atts, "height");
     if (ws && !parse_length(ws, &w, &wp)) {
-        svg_fail(doc, EXIT_USAGE, "width=\"%s\" is not a length", ws);
+        svg_fail(doc, SR_BAD_FORMAT, "width=\"%s\" is not a length", ws);
         return false;
     }
     if (hs && !parse_length(hs, &h, &hp)) {
-        svg_fail(doc, EXIT_USAGE, "height=\"%s\" is not a length", hs);
+        svg_fail(doc, SR_BAD_FORMAT, "height=\"%s\" is not a length", hs);
         return false;
     }
     /* Intrinsic size: width/height, else the viewBox's, else 300 x 150. */
@@ -1092,15 +1074,15 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         vb[2] = w;
         vb[3] = h;
     }
-    const svg_options *opt = doc->opt;
+    const sr_svg_desc *opt = doc->opt;
     int max_side = opt->max_side > 0 && opt->max_side < SR_MAX_FRAMEBUFFER_SIZE
                        ? opt->max_side : SR_MAX_FRAMEBUFFER_SIZE;
     int out_w, out_h;
-    if (opt->size_w) {
-        out_w = opt->size_w;
-        out_h = opt->size_h;
+    if (opt->width) {
+        out_w = opt->width;
+        out_h = opt->height;
         if (out_w < 1 || out_h < 1 || out_w > max_side || out_h > max_side) {
-            svg_fail(doc, EXIT_USAGE, "image size %d x %d is outside 1..%d", out_w, out_h,
+            svg_fail(doc, SR_BAD_FORMAT, "image size %d x %d is outside 1..%d", out_w, out_h,
                      max_side);
             return false;
         }
@@ -1108,7 +1090,7 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         double s = opt->scale > 0 ? opt->scale : 1;
         double ow = ceil(w * s - 1e-9), oh = ceil(h * s - 1e-9);
         if (!(ow >= 1 && oh >= 1 && ow <= max_side && oh <= max_side)) {
-            svg_fail(doc, EXIT_USAGE, "image size %.0f x %.0f is outside 1..%d (use --size)", ow,
+            svg_fail(doc, SR_BAD_FORMAT, "image size %.0f x %.0f is outside 1..%d (use --size)", ow,
                      oh, max_side);
             return false;
         }
@@ -1141,7 +1123,7 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         lib_fail(doc, r);
         return false;
     }
-    doc->work_budget = (double)SVG_WORK_PER_PIXEL * out_w * out_h + SVG_WORK_BASE;
+    doc->work_budget = (double)SR_SVG_WORK_PER_PIXEL * out_w * out_h + SR_SVG_WORK_BASE;
     sr_rgba bg = opt->background;
     sr_clear(doc->ctx, doc->fb, &(sr_clear_desc){ .color = { bg.r, bg.g, bg.b, bg.a } });
     return true;
@@ -1170,7 +1152,7 @@ static bool is_shape(const char *n)
 static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char **atts)
 {
     svg_doc *doc = user;
-    if (doc->status != EXIT_OK) {
+    if (doc->status != SR_OK) {
         return;
     }
     doc->line = XML_GetCurrentLineNumber(doc->parser);
@@ -1180,13 +1162,13 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
     }
     const char *name = local_name(qname);
     if (doc->depth + 1 >= MAX_DEPTH) {
-        svg_fail(doc, EXIT_USAGE, "elements nested deeper than %d", MAX_DEPTH);
+        svg_fail(doc, SR_BAD_FORMAT, "elements nested deeper than %d", MAX_DEPTH);
         return;
     }
     frame f = doc->stack[doc->depth];
     if (!doc->seen_root) {
         if (strcmp(name, "svg") != 0) {
-            svg_fail(doc, EXIT_USAGE, "the root element is <%s>, not <svg>", name);
+            svg_fail(doc, SR_BAD_FORMAT, "the root element is <%s>, not <svg>", name);
             return;
         }
         doc->seen_root = true;
@@ -1219,7 +1201,7 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
     if (tr) {
         mat2d t;
         if (!parse_transform(tr, &t)) {
-            svg_fail(doc, EXIT_USAGE, "transform=\"%s\" is malformed", tr);
+            svg_fail(doc, SR_BAD_FORMAT, "transform=\"%s\" is malformed", tr);
             return;
         }
         f.m = mat_mul(f.m, t);
@@ -1241,7 +1223,7 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
         }
         bool fillable;
         /* Flattening is work too, drawn or not (fill="none"). */
-        if (shape_path(doc, name, atts, p, &fillable) && doc->status == EXIT_OK &&
+        if (shape_path(doc, name, atts, p, &fillable) && doc->status == SR_OK &&
             points_within_budget(doc, sr_path_polygon(p).point_count)) {
             doc->points_used += sr_path_polygon(p).point_count;
             draw_path(doc, &f, p, tol, fillable);
@@ -1265,45 +1247,32 @@ static void XMLCALL on_end(void *user, const XML_Char *name)
 
 /* ---- the entry point -------------------------------------------------------------- */
 
-int svg_render(sr_context *ctx, const char *data, size_t size, const svg_options *opt,
-               sr_framebuffer **out, char *msg, size_t msg_size)
+static sr_result render(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *opt,
+                        sr_framebuffer **out, sr_svg_info *info, char *msg, size_t msg_size)
 {
-    char scratch[16];
-    if (!msg || msg_size == 0) {
-        msg = scratch;
-        msg_size = sizeof scratch;
-    }
-    msg[0] = 0;
-    if (out) {
-        *out = NULL;
-    }
-    const char *name = opt && opt->name ? opt->name : "<svg>";
-    if (!ctx || !opt || !out || (!data && size > 0)) {
-        snprintf(msg, msg_size, "%s: svg_render: ctx, opt and out are required", name);
-        return EXIT_FAILURE_RUN;
-    }
-    if (size > SVG_MAX_INPUT_BYTES) {
+    const char *name = opt->name ? opt->name : "<svg>";
+    if (size > SR_SVG_MAX_INPUT_BYTES) {
         snprintf(msg, msg_size, "%s: the document is %zu bytes, more than the %zu MiB limit", name,
-                 size, SVG_MAX_INPUT_BYTES >> 20);
-        return EXIT_USAGE;
+                 size, SR_SVG_MAX_INPUT_BYTES >> 20);
+        return SR_TOO_LARGE;
     }
     svg_doc *doc = calloc(1, sizeof *doc); /* the frame stack is 40 KB: not on the stack */
     if (!doc) {
         snprintf(msg, msg_size, "%s: out of memory", name);
-        return EXIT_FAILURE_RUN;
+        return SR_OUT_OF_MEMORY;
     }
     doc->file = name;
     doc->opt = opt;
     doc->ctx = ctx;
-    doc->status = EXIT_OK;
+    doc->status = SR_OK;
     doc->msg = msg;
     doc->msg_size = msg_size;
-    doc->points_budget = SVG_POINTS_BASE + (double)SVG_POINTS_PER_BYTE * (double)size;
+    doc->points_budget = SR_SVG_POINTS_BASE + (double)SR_SVG_POINTS_PER_BYTE * (double)size;
     doc->parser = XML_ParserCreate(NULL);
     if (!doc->parser) {
         free(doc);
         snprintf(msg, msg_size, "%s: out of memory", name);
-        return EXIT_FAILURE_RUN;
+        return SR_OUT_OF_MEMORY;
     }
     /* Initial style (SVG defaults): fill black, no stroke, width 1. */
     doc->stack[0] = (frame){ IDENTITY,
@@ -1319,26 +1288,29 @@ int svg_render(sr_context *ctx, const char *data, size_t size, const svg_options
         size_t n = size - at < piece ? size - at : piece;
         bool last = at + n == size;
         if (XML_Parse(doc->parser, data ? data + at : "", (int)n, last) == XML_STATUS_ERROR) {
-            if (doc->status == EXIT_OK) {
+            if (doc->status == SR_OK) {
                 snprintf(msg, msg_size, "%s:%lu: %s", name,
                          (unsigned long)XML_GetCurrentLineNumber(doc->parser),
                          XML_ErrorString(XML_GetErrorCode(doc->parser)));
-                doc->status = EXIT_USAGE;
+                doc->status = SR_BAD_FORMAT;
             }
             break;
         }
         at += n;
-    } while (at < size && doc->status == EXIT_OK);
-    if (doc->status == EXIT_OK && !doc->fb) {
+    } while (at < size && doc->status == SR_OK);
+    if (doc->status == SR_OK && !doc->fb) {
         snprintf(msg, msg_size, "%s:1: no <svg> element", name);
-        doc->status = EXIT_USAGE;
+        doc->status = SR_BAD_FORMAT;
     }
-    int status = doc->status;
-    if (status == EXIT_OK) {
+    sr_result status = doc->status;
+    if (status == SR_OK) {
         *out = doc->fb;
     } else {
         sr_destroy_framebuffer(ctx, doc->fb);
     }
+    *info = (sr_svg_info){ .points_used = doc->points_used, .points_budget = doc->points_budget,
+                           .work_used = doc->work_used, .work_budget = doc->work_budget,
+                           .warnings = doc->warnings };
     for (int i = 0; i < doc->n_warned; i++) {
         free(doc->warned[i]);
     }
@@ -1347,4 +1319,87 @@ int svg_render(sr_context *ctx, const char *data, size_t size, const svg_options
     return status;
 }
 
+bool sr_io_have_svg(void)
+{
+    return true;
+}
+
+#else /* !SR_HAVE_EXPAT */
+
+static sr_result render(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *opt,
+                        sr_framebuffer **out, sr_svg_info *info, char *msg, size_t msg_size)
+{
+    (void)ctx, (void)data, (void)size, (void)out, (void)info;
+    snprintf(msg, msg_size, "%s: this build reads no SVG (install libexpat1-dev and rebuild)",
+             opt->name ? opt->name : "<svg>");
+    return SR_UNSUPPORTED;
+}
+
+bool sr_io_have_svg(void)
+{
+    return false;
+}
+
 #endif /* SR_HAVE_EXPAT */
+
+sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *desc,
+                        sr_framebuffer **out, sr_svg_info *info, sr_io_error *err)
+{
+    sr_io_error scratch;
+    if (!err) {
+        err = &scratch;
+    }
+    err->message[0] = 0;
+    sr_svg_info ignored;
+    if (!info) {
+        info = &ignored;
+    }
+    *info = (sr_svg_info){ 0 };
+    if (out) {
+        *out = NULL;
+    }
+    sr_svg_desc none = { 0 };
+    if (!desc) {
+        desc = &none;
+    }
+    const char *name = desc->name ? desc->name : "<svg>";
+    if (!ctx || !out || (!data && size > 0)) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "sr_render_svg: ctx and out are required, and data when size > 0");
+    }
+    if (desc->width < 0 || desc->height < 0 || (desc->width > 0) != (desc->height > 0) ||
+        !(desc->scale >= 0) || desc->max_side < 0) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "sr_svg_desc: width and height are both 0 or both > 0, scale and "
+                           "max_side >= 0");
+    }
+    return render(ctx, data, size, desc, out, info, err->message, sizeof err->message);
+}
+
+sr_result sr_render_svg_file(sr_context *ctx, const char *path, const sr_svg_desc *desc,
+                             sr_framebuffer **out, sr_svg_info *info, sr_io_error *err)
+{
+    if (out) {
+        *out = NULL;
+    }
+    if (info) {
+        *info = (sr_svg_info){ 0 };
+    }
+    if (!path) {
+        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
+    }
+    char *data = NULL;
+    size_t size = 0;
+    sr_result r = sr__read_file_as(path, "an SVG file", &data, &size, err);
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_svg_desc named = desc ? *desc : (sr_svg_desc){ 0 };
+    if (!named.name) {
+        named.name = path;
+    }
+    r = sr_render_svg(ctx, data, size, &named, out, info, err);
+    sr__free_file(data, size);
+    return r;
+}
+

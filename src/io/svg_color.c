@@ -1,7 +1,8 @@
-/* svg_color.c - `softrast svg`: SVG 1.1 colors (section 4.4): the 147
- * recognized color keywords, #rgb, #rrggbb and rgb() with integers or
+/* svg_color.c - the SVG reader (src/io): SVG 1.1 colors (section 4.4): the
+ * 147 recognized color keywords, #rgb, #rrggbb and rgb() with integers or
  * percentages.  Pure parsing; used by svg.c. */
-#include "svg.h"
+#include "io/svg.h"
+#include "io/number.h"
 
 #include <ctype.h>
 #include <stdlib.h>
@@ -80,12 +81,14 @@ static bool rgb_component(const char **s, float *out)
     while (isspace((unsigned char)**s)) {
         (*s)++;
     }
-    char *end;
-    double v = strtod(*s, &end);
-    if (end == *s) {
+    const char *e = *s + strlen(*s);
+    size_t n = sr__scan_decimal(*s, e);
+    double v;
+    /* 1e999 overflows to infinity, clamped below like any large value. */
+    if (n == 0 || sr__parse_double(*s, *s + n, &v) == SR_NUM_MALFORMED) {
         return false;
     }
-    *s = end;
+    *s += n;
     if (**s == '%') {
         (*s)++;
         v = v * 255.0 / 100.0;

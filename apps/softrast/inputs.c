@@ -1,0 +1,100 @@
+/* inputs.c - the files a command reads (model, MTL, textures, SVG, event
+ * script, font), so that no command writes an image over one of them: the
+ * atomic write would replace the input with the image.  Files are compared
+ * by device and inode, so another name, a symbolic link or a hard link to
+ * an input is refused as well; an output that does not exist yet is not
+ * an input. */
+#include "cli.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+struct cli_input {
+    dev_t dev;
+    ino_t ino;
+    const char *kind;   /* "model", "texture", ... (a string literal) */
+    char *path;
+};
+
+bool cli_inputs_add(cli_inputs *in, const char *path, const char *kind)
+{
+    struct stat st;
+    if (!path || stat(path, &st) != 0) {
+        return true;    /* nothing there to overwrite; reading it reports why */
+    }
+    for (size_t i = 0; i < in->count; i++) {
+        if (in->items[i].dev == st.st_dev && in->items[i].ino == st.st_ino) {
+            return true;
+        }
+    }
+    if (in->count == in->cap) {
+        size_t cap = in->cap ? 2 * in->cap : 8;
+        cli_input *grown = realloc(in->items, cap * sizeof *grown);
+        if (!grown) {
+            in->incomplete = true;
+            return false;
+        }
+        in->items = grown;
+        in->cap = cap;
+    }
+    char *copy = strdup(path);
+    if (!copy) {
+        in->incomplete = true;
+        return false;
+    }
+    in->items[in->count++] = (cli_input){ st.st_dev, st.st_ino, kind, copy };
+    return true;
+}
+
+/* The input that `output` names, or NULL. */
+static const cli_input *find_input(const cli_inputs *in, const char *output)
+{
+    struct stat st;
+    if (!in || stat(output, &st) != 0) {
+        return NULL;
+    }
+    for (size_t i = 0; i < in->count; i++) {
+        if (in->items[i].dev == st.st_dev && in->items[i].ino == st.st_ino) {
+            return &in->items[i];
+        }
+    }
+    return NULL;
+}
+
+bool cli_output_is_input(const cli_inputs *in, const char *output, char *why, size_t why_size)
+{
+    if (!output) {
+        return false;
+    }
+    if (in && in->incomplete) {
+        snprintf(why, why_size, "out of memory listing the inputs, so '%s' may be one", output);
+        return true;
+    }
+    const cli_input *hit = find_input(in, output);
+    if (hit) {
+        snprintf(why, why_size, "'%s' is the %s being read (%s); choose another output file",
+                 output, hit->kind, hit->path);
+    }
+    return hit != NULL;
+}
+
+bool cli_check_output(const cli_inputs *in, const char *opt, const char *output)
+{
+    char why[8400];
+    if (cli_output_is_input(in, output, why, sizeof why)) {
+        cli_error("%s: %s", opt, why);
+        return false;
+    }
+    return true;
+}
+
+void cli_inputs_free(cli_inputs *in)
+{
+    for (size_t i = 0; i < in->count; i++) {
+        free(in->items[i].path);
+    }
+    free(in->items);
+    *in = (cli_inputs){ 0 };
+}

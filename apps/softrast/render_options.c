@@ -1,0 +1,437 @@
+/* render_options.c - the options of `softrast render` (and of the frames
+ * `softrast view` draws): --help, and the parser that turns argv into a
+ * render_opts, printing one line naming the option when a value is bad. */
+#include "cli.h"
+#include "framing.h"
+#include "render_options.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const char *const shading_names[] = { "flat", "gouraud", "phong", "normals", "depth",
+                                             "unlit", NULL };
+static const sr_shading shading_values[] = { SR_SHADING_FLAT, SR_SHADING_GOURAUD, SR_SHADING_PHONG,
+                                             SR_SHADING_NORMALS, SR_SHADING_DEPTH, SR_SHADING_UNLIT };
+static const char *const cull_names[] = { "back", "front", "none", NULL };
+static const sr_cull_mode cull_values[] = { SR_CULL_BACK, SR_CULL_FRONT, SR_CULL_NONE };
+static const char *const front_names[] = { "ccw", "cw", NULL };
+static const char *const depth_format_names[] = { "d16", "d24", "d32", "d32f", NULL };
+static const sr_depth_format depth_format_values[] = { SR_DEPTH_D16, SR_DEPTH_D24, SR_DEPTH_D32,
+                                                       SR_DEPTH_D32F };
+static const char *const depth_func_names[] = { "never", "less", "equal", "lequal", "greater",
+                                                "notequal", "gequal", "always", NULL };
+static const char *const interp_names[] = { "perspective", "affine", NULL };
+static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
+static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
+static const char *const filter_names[] = { "nearest", "bilinear", "trilinear", NULL };
+static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", "msaa2", "msaa4",
+                                         "msaa8", "msaa16", NULL };
+static const int aa_ssaa[] = { 1, 2, 3, 4, 1, 1, 1, 1 };
+static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
+static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
+static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
+
+static void render_help(void)
+{
+    printf(
+        "usage: softrast render [MODEL] [options]\n"
+        "\n"
+        "Render MODEL (.obj, .ply, .stl; other formats through Assimp when built\n"
+        "with it) or, without MODEL, the built-in Utah teapot scene, to a PNG or\n"
+        "a JPEG.\n"
+        "\n"
+        "output:\n"
+        "  -o, --output FILE        image to write, atomically: a JPEG when FILE ends in\n"
+        "                           .jpg or .jpeg, else a PNG (default softrast.png)\n"
+        "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
+        "  --background COLOR       name, #rgb, #rrggbb, R,G,B in 0..1, or a gray level\n"
+        "                           in 0..1 (default #1d2230)\n"
+        "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
+        "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
+        "shading:\n"
+        "  --shading MODE           flat|gouraud|phong|normals|depth|unlit (default phong)\n"
+        "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
+        "                           smooth ones, or one per face (default: file if the\n"
+        "                           model has them, else smooth)\n"
+        "  --material KEY=V,...     color=COLOR, specular=COLOR, shininess=N\n"
+        "                           (default: light gray, specular 0.25, shininess 40)\n"
+        "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14)\n"
+        "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
+        "                           surfaces are drawn after opaque ones, back to front\n"
+        "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
+        "  --light point=X,Y,Z[,color=C][,intensity=I]\n"
+        "                           add a light in world space (repeatable, up to 8);\n"
+        "                           without any, a key, fill and rim light placed\n"
+        "                           relative to the camera\n"
+        "textures:\n"
+        "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
+        "                           coordinates (default: the model's own - OBJ map_Kd,\n"
+        "                           glTF/FBX textures named or embedded - each material's\n"
+        "                           on its own faces, or MODEL_texture.png or .jpg beside\n"
+        "                           a model MODEL.obj;\n"
+        "                           one of those that cannot be read is a warning)\n"
+        "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
+        "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
+        "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
+        "camera:\n"
+        "  --camera eye=X,Y,Z[,target=X,Y,Z][,up=X,Y,Z]\n"
+        "                           (default: a three-quarter view from above that\n"
+        "                           frames the model's bounding sphere)\n"
+        "  --fov DEG                field of view across the smaller image side\n"
+        "                           (default 35)\n"
+        "  --ortho                  orthographic projection\n"
+        "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
+        "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
+        "pipeline:\n"
+        "  --cull MODE              back|front|none (default back)\n"
+        "  --front-face ORDER       ccw|cw (default ccw)\n"
+        "  --depth-format F         d16|d24|d32|d32f (default d24)\n"
+        "  --depth-func F           never|less|equal|lequal|greater|notequal|gequal|always\n"
+        "                           (default less; greater and gequal clear depth to 0)\n"
+        "  --projection-interp M    perspective|affine (default perspective)\n"
+        "lines and points:\n"
+        "  --wireframe              every edge, hidden ones too, no shading\n"
+        "  --hidden-line            only the visible edges (a depth pass pushed back by\n"
+        "                           polygon offset, then the edges)\n"
+        "  --edges                  the shaded model with its visible edges over it\n"
+        "  --points                 the visible vertices as points\n"
+        "  --line-width N           1..64 pixels (default 1)\n"
+        "  --point-size N           1..64 pixels (default 3)\n"
+        "  --line-color COLOR       (default #e8ecf4, or #202020 on a light background)\n"
+        "  --smooth                 antialiased lines and round antialiased points\n"
+        "  --polygon-offset F,U     how far the depth pass of --hidden-line, --edges and\n"
+        "                           --points is pushed back: factor F times the depth\n"
+        "                           slope plus U depth steps (default 1,1; 0,0 shows the\n"
+        "                           stitching it prevents)\n"
+        "  --aa MODE                none|ssaa2|ssaa3|ssaa4: render k x k samples per pixel\n"
+        "                           and filter them down; msaa2|msaa4|msaa8|msaa16: that\n"
+        "                           many coverage and depth samples per pixel, shaded\n"
+        "                           once, box-resolved (default none)\n"
+        "  --filter F               box|tent|gaussian|mitchell, the SSAA reconstruction\n"
+        "                           filter (default box)\n"
+        "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
+        "                           all three give the same pixels)\n"
+        "  --threads N              rasterizer threads (default: SR_THREADS or CPUs)\n"
+        "  --detail N               teapot tessellation per patch, 1..64 (default 12)\n"
+        "  -v, --verbose            print timings and counts to stderr\n"
+        "  -h, --help               this help\n"
+        "\n"
+        "Exit status: 0 on success, 2 for bad options or a bad model file (one line\n"
+        "FILE:LINE: what is wrong), 1 when rendering or writing fails.\n");
+}
+
+static bool camera_kv(void *user, const char *opt, const char *key, const char *value)
+{
+    render_opts *o = user;
+    if (strcmp(key, "eye") == 0) {
+        o->have_eye = true;
+        return parse_vec3(opt, value, &o->eye);
+    }
+    if (strcmp(key, "target") == 0) {
+        o->have_target = true;
+        return parse_vec3(opt, value, &o->target);
+    }
+    if (strcmp(key, "up") == 0) {
+        o->have_up = true;
+        return parse_vec3(opt, value, &o->up);
+    }
+    cli_error("%s: unknown key '%s' (expected eye, target, up)", opt, key);
+    return false;
+}
+
+static bool light_kv(void *user, const char *opt, const char *key, const char *value)
+{
+    sr_light *l = user;
+    if (strcmp(key, "dir") == 0 || strcmp(key, "point") == 0) {
+        if (l->type != SR_LIGHT_OFF) {
+            cli_error("%s: give either dir= or point=, once", opt);
+            return false;
+        }
+        l->type = key[0] == 'd' ? SR_LIGHT_DIRECTIONAL : SR_LIGHT_POINT;
+        if (!parse_vec3(opt, value, &l->vector)) {
+            return false;
+        }
+        if (l->type == SR_LIGHT_DIRECTIONAL && sr_vec3_length(l->vector) == 0.0f) {
+            cli_error("%s: a light direction must not be zero", opt);
+            return false;
+        }
+        return true;
+    }
+    if (strcmp(key, "color") == 0) {
+        return parse_color(opt, value, &l->color);
+    }
+    if (strcmp(key, "intensity") == 0) {
+        return parse_float(opt, value, 0.0f, 1000.0f, &l->intensity);
+    }
+    cli_error("%s: unknown key '%s' (expected dir, point, color, intensity)", opt, key);
+    return false;
+}
+
+static bool material_kv(void *user, const char *opt, const char *key, const char *value)
+{
+    render_opts *o = user;
+    if (strcmp(key, "color") == 0) {
+        o->have_mat_color = true;
+        return parse_color(opt, value, &o->mat_color);
+    }
+    if (strcmp(key, "specular") == 0) {
+        o->have_specular = true;
+        return parse_color(opt, value, &o->specular);
+    }
+    if (strcmp(key, "shininess") == 0) {
+        o->have_shininess = true;
+        return parse_float(opt, value, 1.0f, 10000.0f, &o->shininess);
+    }
+    cli_error("%s: unknown key '%s' (expected color, specular, shininess)", opt, key);
+    return false;
+}
+
+int render_opts_parse(int argc, char **argv, render_opts *o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        char optbuf[64];
+        const char *value = NULL;
+        /* --opt=value as well as --opt value. */
+        const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+        if (eq && (size_t)(eq - arg) < sizeof optbuf) {
+            memcpy(optbuf, arg, (size_t)(eq - arg));
+            optbuf[eq - arg] = 0;
+            value = eq + 1;
+            arg = optbuf;
+        }
+#define IS(name) (strcmp(arg, name) == 0)
+#define VALUE()                                                                     \
+    do {                                                                            \
+        if (!value) {                                                               \
+            if (i + 1 >= argc) {                                                    \
+                cli_error("%s: missing value", arg);                                \
+                return EXIT_USAGE;                                                  \
+            }                                                                       \
+            value = argv[++i];                                                      \
+        }                                                                           \
+        if (!*value) {                                                              \
+            cli_error("%s: empty value", arg);                                      \
+            return EXIT_USAGE;                                                      \
+        }                                                                           \
+    } while (0)
+#define CHOICE(names, dst, values)                                                  \
+    do {                                                                            \
+        int k_;                                                                     \
+        VALUE();                                                                    \
+        if (!parse_choice(arg, value, names, &k_)) {                                \
+            return EXIT_USAGE;                                                      \
+        }                                                                           \
+        dst = values;                                                               \
+    } while (0)
+
+        if ((IS("-h") || IS("--help") || IS("-v") || IS("--verbose")) && value) {
+            cli_error("%s: takes no value", arg);
+            return EXIT_USAGE;
+        }
+        if (IS("-h") || IS("--help")) {
+            render_help();
+            return EXIT_OK;
+        } else if (IS("-o") || IS("--output")) {
+            VALUE();
+            o->output = value;
+        } else if (IS("--size")) {
+            VALUE();
+            if (!parse_size(arg, value, &o->width, &o->height)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--shading")) {
+            CHOICE(shading_names, o->shading, shading_values[k_]);
+        } else if (IS("--cull")) {
+            CHOICE(cull_names, o->cull, cull_values[k_]);
+        } else if (IS("--front-face")) {
+            CHOICE(front_names, o->front, k_ == 0 ? SR_FRONT_CCW : SR_FRONT_CW);
+        } else if (IS("--depth-format")) {
+            CHOICE(depth_format_names, o->depth_format, depth_format_values[k_]);
+        } else if (IS("--depth-func")) {
+            CHOICE(depth_func_names, o->depth_func, (sr_depth_func)(SR_NEVER + k_));
+        } else if (IS("--projection-interp")) {
+            CHOICE(interp_names, o->interp, k_ == 0 ? SR_INTERP_PERSPECTIVE : SR_INTERP_AFFINE);
+        } else if (IS("--normals")) {
+            CHOICE(normals_names, o->normals, k_);
+        } else if (IS("--rasterizer")) {
+            CHOICE(raster_names, o->rasterizer, (sr_rasterizer)(SR_RASTER_HALFSPACE + k_));
+        } else if (IS("--camera")) {
+            VALUE();
+            if (!parse_kv_list(arg, value, camera_kv, o)) {
+                return EXIT_USAGE;
+            }
+            if (!o->have_eye) {
+                cli_error("%s: eye=X,Y,Z is required", arg);
+                return EXIT_USAGE;
+            }
+        } else if (IS("--fov")) {
+            VALUE();
+            if (!parse_float(arg, value, 1.0f, 170.0f, &o->fov_deg)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--wireframe") || IS("--hidden-line") || IS("--edges") || IS("--points")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->lines = IS("--wireframe") ? LINES_WIREFRAME : IS("--hidden-line") ? LINES_HIDDEN
+                     : IS("--edges") ? LINES_EDGES : LINES_POINTS;
+        } else if (IS("--opacity")) {
+            VALUE();
+            if (!parse_float(arg, value, 0.0f, 1.0f, &o->opacity)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--aa")) {
+            int aa;
+            CHOICE(aa_names, aa, k_);
+            o->ssaa = aa_ssaa[aa];
+            o->msaa = aa_msaa[aa];
+        } else if (IS("--filter")) {
+            CHOICE(resample_names, o->filter, (sr_resample_filter)(SR_RESAMPLE_BOX + k_));
+        } else if (IS("--texture")) {
+            VALUE();
+            o->texture = value;
+        } else if (IS("--texture-filter")) {
+            CHOICE(filter_names, o->texture_filter, (sr_texture_filter)(SR_FILTER_NEAREST + k_));
+        } else if (IS("--wrap")) {
+            CHOICE(wrap_names, o->wrap, (sr_texture_wrap)(SR_WRAP_REPEAT + k_));
+        } else if (IS("--texture-srgb")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->texture_srgb = true;
+        } else if (IS("--smooth")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->smooth = true;
+        } else if (IS("--line-width") || IS("--point-size")) {
+            VALUE();
+            if (!parse_float(arg, value, 1.0f, 64.0f,
+                             IS("--line-width") ? &o->line_width : &o->point_size)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--polygon-offset")) {
+            VALUE();
+            int n = 0;
+            if (sscanf(value, "%f,%f%n", &o->offset_factor, &o->offset_units, &n) != 2 ||
+                value[n] != 0 || !isfinite(o->offset_factor) || !isfinite(o->offset_units) ||
+                fabsf(o->offset_factor) > 1e6f || fabsf(o->offset_units) > 1e6f) {
+                cli_error("%s: expected FACTOR,UNITS, two numbers (got '%s')", arg, value);
+                return EXIT_USAGE;
+            }
+        } else if (IS("--line-color")) {
+            VALUE();
+            o->have_line_color = true;
+            if (!parse_color(arg, value, &o->line_color)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--ortho")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->ortho = true;
+        } else if (IS("--turn")) {
+            VALUE();
+            if (!parse_float(arg, value, -36000.0f, 36000.0f, &o->turn_deg)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--near") || IS("--far")) {
+            VALUE();
+            float *dst = IS("--near") ? &o->near_z : &o->far_z;
+            if (!parse_float(arg, value, 1e-6f, 1e9f, dst)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--light")) {
+            VALUE();
+            if (o->light_count == SR_MAX_LIGHTS) {
+                cli_error("%s: at most %d lights", arg, SR_MAX_LIGHTS);
+                return EXIT_USAGE;
+            }
+            sr_light *l = &o->lights[o->light_count];
+            if (!parse_kv_list(arg, value, light_kv, l)) {
+                return EXIT_USAGE;
+            }
+            if (l->type == SR_LIGHT_OFF) {
+                cli_error("%s: needs dir=X,Y,Z or point=X,Y,Z", arg);
+                return EXIT_USAGE;
+            }
+            o->light_count++;
+        } else if (IS("--ambient")) {
+            VALUE();
+            o->have_ambient = true;
+            if (!parse_color(arg, value, &o->ambient)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--material")) {
+            VALUE();
+            if (!parse_kv_list(arg, value, material_kv, o)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--background")) {
+            VALUE();
+            if (!parse_color(arg, value, &o->background)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--png-level")) {
+            VALUE();
+            if (!parse_int(arg, value, 0, 9, &o->png_level)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--jpeg-quality")) {
+            VALUE();
+            if (!parse_int(arg, value, 1, 100, &o->jpeg_quality)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--threads")) {
+            VALUE();
+            if (!parse_int(arg, value, 1, 64, &o->threads)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--detail")) {
+            VALUE();
+            if (!parse_int(arg, value, 1, 64, &o->detail)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("-v") || IS("--verbose")) {
+            o->verbose = true;
+        } else if (arg[0] == '-' && arg[1] != 0) {
+            cli_error("%s: unknown option '%s' (try 'softrast %s --help')", argv[0], arg, argv[0]);
+            return EXIT_USAGE;
+        } else if (!*arg) {
+            cli_error("%s: the model's file name is empty", argv[0]);
+            return EXIT_USAGE;
+        } else if (!o->model) {
+            o->model = arg;
+        } else {
+            cli_error("%s: more than one model given ('%s' and '%s')", argv[0], o->model, arg);
+            return EXIT_USAGE;
+        }
+#undef IS
+#undef VALUE
+#undef CHOICE
+    }
+    if (o->near_z > 0 && o->far_z > 0 && o->near_z >= o->far_z) {
+        cli_error("--near %g must be less than --far %g", (double)o->near_z, (double)o->far_z);
+        return EXIT_USAGE;
+    }
+    return -1;
+}
+
+render_opts render_opts_defaults(void)
+{
+    return (render_opts){
+        .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
+        .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
+        .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
+        .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
+        .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
+        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 1, .opacity = 1.0f,
+        .offset_factor = 1.0f, .offset_units = 1.0f,
+    };
+}

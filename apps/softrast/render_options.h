@@ -1,0 +1,67 @@
+/* render_options.h - the options of a render job (render_options.c parses
+ * them; render.c and render_textures.c act on them). */
+#ifndef SR_RENDER_OPTIONS_H
+#define SR_RENDER_OPTIONS_H
+
+#include "softrast.h"
+
+#include <stdbool.h>
+
+typedef struct render_opts {
+    const char *model;
+    const char *output;
+    const char *texture;           /* --texture FILE */
+    sr_texture_filter texture_filter;
+    sr_texture_wrap wrap;
+    bool texture_srgb;
+    int width, height;
+    sr_shading shading;
+    sr_cull_mode cull;
+    sr_front_face front;
+    bool have_eye, have_target, have_up;
+    sr_vec3 eye, target, up;
+    float fov_deg;
+    bool ortho;
+    float turn_deg;
+    float near_z, far_z;           /* 0: fitted */
+    sr_light lights[SR_MAX_LIGHTS];
+    int light_count;
+    bool have_ambient;
+    sr_vec3 ambient;
+    bool have_mat_color, have_specular, have_shininess;
+    sr_vec3 mat_color, specular;
+    float shininess;
+    sr_vec3 background;
+    sr_depth_format depth_format;
+    sr_depth_func depth_func;
+    sr_interpolation interp;
+    int normals;                   /* -1 auto, 0 file, 1 smooth, 2 flat */
+    int detail;
+    sr_rasterizer rasterizer;
+    int threads;
+    int png_level;
+    int jpeg_quality;              /* 0: not given */
+    bool verbose;
+    int lines;                     /* LINES_NONE, ... */
+    float line_width, point_size;
+    float offset_factor, offset_units;  /* the depth pass of the line modes */
+    sr_vec3 line_color;
+    bool have_line_color;
+    bool smooth;
+    int ssaa;                      /* 1: off; k: render k x k samples per pixel */
+    int msaa;                      /* 1: off; n: n samples per pixel, shaded once */
+    float opacity;                 /* of the model; 1: opaque */
+    sr_resample_filter filter;
+} render_opts;
+
+/* What the line modes draw besides (or instead of) the shaded model. */
+enum { LINES_NONE = 0, LINES_WIREFRAME, LINES_HIDDEN, LINES_EDGES, LINES_POINTS };
+
+/* The defaults: what `softrast render` draws with no options. */
+render_opts render_opts_defaults(void);
+/* Parse argv (argv[0] names the command in messages) into *o, which holds
+ * the defaults.  Returns -1 to continue, else the exit status (EXIT_OK
+ * after --help). */
+int render_opts_parse(int argc, char **argv, render_opts *o);
+
+#endif

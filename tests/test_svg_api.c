@@ -1,0 +1,141 @@
+/* test_svg_api.c - the SVG reader as a library call (softrast_io.h):
+ * sr_render_svg_file draws the same pixels as `softrast svg` writes,
+ * reports "FILE:LINE: ..." through sr_io_error with an sr_result,
+ * hands warnings to the callback one line each, and checks its
+ * arguments. */
+#include "softrast_io.h"
+#include "sr_test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static sr_context *make_ctx(void)
+{
+    sr_context *ctx = NULL;
+    if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) != SR_OK) {
+        return NULL;
+    }
+    return ctx;
+}
+
+SR_TEST(render_file_draws_what_the_command_writes)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    char in[1024], out[1024];
+    snprintf(in, sizeof in, "%s/data/svg/transforms.svg", sr_test_src_dir());
+    snprintf(out, sizeof out, "%s/svg_api_transforms.png", sr_test_out_dir());
+    REQUIRE(sr_test_run_cli((const char *[]){ "svg", in, "-o", out, "--scale", "2", NULL }) ==
+            0);
+    int w, h;
+    uint8_t *png = NULL;
+    sr_io_error err;
+    REQUIRE(sr_read_png(out, &w, &h, &png, &err) == SR_OK);
+
+    sr_context *ctx = make_ctx();
+    REQUIRE(ctx);
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    CHECK_EQ(sr_render_svg_file(ctx, in, &(sr_svg_desc){ .scale = 2 }, &fb, &info, &err), SR_OK);
+    REQUIRE(fb);
+    CHECK_EQ(sr_framebuffer_width(fb), w);
+    CHECK_EQ(sr_framebuffer_height(fb), h);
+    CHECK(memcmp(sr_framebuffer_pixels(fb), png, (size_t)w * (size_t)h * 4) == 0);
+    /* Work was counted, within the budgets. */
+    CHECK(info.points_used > 0 && info.points_used <= info.points_budget);
+    CHECK(info.work_used > 0 && info.work_used <= info.work_budget);
+    CHECK_EQ(info.warnings, 0);
+    sr_destroy_framebuffer(ctx, fb);
+    free(png);
+    sr_destroy_context(ctx);
+}
+
+typedef struct warnings {
+    int count;
+    char text[2048];
+} warnings;
+
+static void collect(void *user, const char *message)
+{
+    warnings *w = user;
+    w->count++;
+    size_t n = strlen(w->text);
+    snprintf(w->text + n, sizeof w->text - n, "%s|", message);
+}
+
+SR_TEST(warnings_reach_the_callback_once_per_name)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const char doc[] = "<svg width='8' height='8'>\n<text>a</text>\n<text>b</text>\n"
+                              "<rect width='4' height='4' filter='x'/>\n</svg>\n";
+    sr_context *ctx = make_ctx();
+    REQUIRE(ctx);
+    warnings w = { 0 };
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(ctx, doc, sizeof doc - 1,
+                           &(sr_svg_desc){ .name = "w.svg", .warn = collect, .warn_user = &w },
+                           &fb, &info, &err),
+             SR_OK);
+    CHECK_EQ(w.count, 2);
+    CHECK_EQ(info.warnings, 2);
+    CHECK_STR_CONTAINS(w.text, "w.svg:2: warning: unsupported element 'text' skipped|");
+    CHECK_STR_CONTAINS(w.text, "w.svg:4: warning: unsupported property 'filter' skipped|");
+    CHECK(strchr(w.text, '\n') == NULL);
+    sr_destroy_framebuffer(ctx, fb);
+    /* Without a callback they are only counted. */
+    CHECK_EQ(sr_render_svg(ctx, doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
+    CHECK_EQ(info.warnings, 2);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(failures_are_results_with_file_and_line)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = make_ctx();
+    REQUIRE(ctx);
+    sr_framebuffer *fb = (sr_framebuffer *)&fb; /* must come back NULL */
+    sr_io_error err;
+    static const char bad[] = "<svg width='8' height='8'>\n<path d='M 0 0 L 1'/>\n</svg>";
+    CHECK_EQ(sr_render_svg(ctx, bad, sizeof bad - 1, &(sr_svg_desc){ .name = "bad.svg" }, &fb,
+                           NULL, &err),
+             SR_BAD_FORMAT);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(err.message, "bad.svg:2: path data: expected a number");
+    static const char xml[] = "<svg width='8' height='8'>\n<g>\n</svg>";
+    CHECK_EQ(sr_render_svg(ctx, xml, sizeof xml - 1, NULL, &fb, NULL, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "<svg>:3: ");
+    char missing[1024];
+    snprintf(missing, sizeof missing, "%s/no_such.svg", sr_test_out_dir());
+    CHECK(sr_render_svg_file(ctx, missing, NULL, &fb, NULL, &err) != SR_OK);
+    CHECK_STR_CONTAINS(err.message, "no_such.svg: cannot open");
+    CHECK(fb == NULL);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(bad_arguments_are_refused)
+{
+    sr_context *ctx = make_ctx();
+    REQUIRE(ctx);
+    sr_framebuffer *fb = NULL;
+    sr_io_error err;
+    const char doc[] = "<svg/>";
+    CHECK_EQ(sr_render_svg(NULL, doc, 6, NULL, &fb, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_render_svg(ctx, doc, 6, NULL, NULL, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_render_svg(ctx, NULL, 6, NULL, &fb, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_render_svg(ctx, doc, 6, &(sr_svg_desc){ .width = 4 }, &fb, NULL, &err),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "sr_svg_desc");
+    CHECK_EQ(sr_render_svg(ctx, doc, 6, &(sr_svg_desc){ .scale = -1 }, &fb, NULL, &err),
+             SR_INVALID_ARG);
+    CHECK_EQ(sr_render_svg_file(ctx, NULL, NULL, &fb, NULL, &err), SR_INVALID_ARG);
+    CHECK(fb == NULL);
+    sr_destroy_context(ctx);
+}
