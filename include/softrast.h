@@ -194,9 +194,26 @@ typedef struct sr_allocator {
 
 typedef struct sr_context sr_context;
 
+/* Which vector kernels a context runs.  Every level draws the same bytes;
+ * they differ only in speed.  A level above what the CPU runs is capped to
+ * the widest it does. */
+typedef enum sr_simd_level {
+    SR_SIMD_DEFAULT = 0, /* the SR_SIMD env var, else the widest the CPU runs */
+    SR_SIMD_OFF,         /* scalar loops only (SR_SIMD=off) */
+    SR_SIMD_BASE,        /* the baseline instruction set, SSE2 on x86-64 (SR_SIMD=base) */
+    SR_SIMD_AVX2,        /* SR_SIMD=avx2 */
+    SR_SIMD_AVX512,      /* SR_SIMD=avx512 */
+} sr_simd_level;
+
+/* Environment variables, read once by sr_make_context (never per draw) and
+ * only for a field left at 0:
+ *   SR_THREADS=N                     sr_context_desc.threads (1 .. 64; others ignored)
+ *   SR_SIMD=off|base|avx2|avx512     sr_context_desc.simd; any other value
+ *                                    means the widest level the CPU runs */
 typedef struct sr_context_desc {
     sr_allocator allocator; /* zero: malloc/free */
     int threads;            /* 0: SR_THREADS env var, else online CPUs; 1: no worker threads */
+    sr_simd_level simd;     /* 0: SR_SIMD env var, else the widest the CPU runs */
     /* Primitives set up before the tiles are drawn: larger batches pass
      * over each tile fewer times (faster for big meshes) and keep more
      * set-up records (about 250 bytes each).  0: SR_BATCH_DEFAULT;
@@ -220,6 +237,9 @@ SR_API int         sr_context_threads(const sr_context *ctx);
  * compresses a PNG's bands this way. */
 typedef void (*sr_job_fn)(void *arg, int job, int thread);
 SR_API sr_result   sr_run_jobs(sr_context *ctx, sr_job_fn fn, void *arg, int count);
+/* The vector kernels ctx runs: its desc's or SR_SIMD's level, capped by the
+ * CPU (never SR_SIMD_DEFAULT; SR_SIMD_OFF for NULL). */
+SR_API sr_simd_level sr_context_simd(const sr_context *ctx);
 
 /* ---- framebuffers ------------------------------------------------------- */
 
@@ -719,7 +739,8 @@ SR_API sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset
 SR_API void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
 SR_API size_t sr_buffer_size(const sr_buffer *buf); /* 0 for a NULL buffer */
 
-/* An indexed face set.  Strides are in bytes; 0 means tightly packed. */
+/* An indexed face set.  Strides are in bytes; 0 means tightly packed.
+ * Arrays and strides must be multiples of 4 bytes (indices: of their size). */
 typedef struct sr_draw_desc {
     sr_primitive primitive;
     size_t vertex_count;        /* entries in each vertex array */

@@ -5,6 +5,7 @@
 #define SR_CONTEXT_H
 
 #include "softrast.h"
+#include "alloc.h"
 
 #include <stdarg.h>
 
@@ -14,6 +15,7 @@ struct sr_scratch;
 struct sr_context {
     sr_allocator allocator;
     int threads;
+    sr_simd_level simd;        /* resolved once by sr_make_context; every draw follows it */
     size_t batch_prims;        /* sr_context_desc.batch_primitives, resolved */
     struct sr_pool *pool;          /* NULL when threads == 1 */
     struct sr_scratch *scratch;    /* draw-call working memory, grown on demand */
@@ -21,13 +23,23 @@ struct sr_context {
     char error[256];
 };
 
-void *sr__alloc(sr_context *ctx, size_t size);
-void *sr__calloc(sr_context *ctx, size_t count, size_t size); /* overflow-checked, zeroed */
-void  sr__free(sr_context *ctx, void *ptr);
-/* A large buffer that will be written soon: ask the kernel for
- * transparent huge pages over it, so filling it takes a few page faults
- * instead of thousands (a no-op where unsupported). */
-void *sr__alloc_large(sr_context *ctx, size_t size);
+/* The context's allocator (alloc.h). */
+static inline void *sr__alloc(sr_context *ctx, size_t size)
+{
+    return sr__mem_alloc(&ctx->allocator, size);
+}
+static inline void *sr__calloc(sr_context *ctx, size_t count, size_t size)
+{
+    return sr__mem_calloc(&ctx->allocator, count, size);
+}
+static inline void sr__free(sr_context *ctx, void *ptr)
+{
+    sr__mem_free(&ctx->allocator, ptr);
+}
+static inline void *sr__alloc_large(sr_context *ctx, size_t size)
+{
+    return sr__mem_alloc_large(&ctx->allocator, size);
+}
 
 /* Record a message on ctx and return `code` (for `return sr__fail(...)`). */
 sr_result sr__fail(sr_context *ctx, sr_result code, const char *fmt, ...)

@@ -96,7 +96,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     size_t count = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
 
     sr_draw_state ds;
-    sr__resolve_draw_state(fb, state, d->view, d->projection, &ds);
+    sr__resolve_draw_state(fb, state, d->view, d->projection, ctx->simd, &ds);
 
     size_t prims = 0;
     switch (d->primitive) {
@@ -128,7 +128,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
      * stealing could not even that out. */
     int chunks = ctx->threads == 1 ? 1 : ctx->threads * SR_CHUNKS_PER_THREAD;
     sr_scratch *s = ctx->scratch;
-    if (!sr__scratch_reserve(ctx, s, fused ? 0 : d->vertex_count,
+    if (!sr__scratch_reserve(&ctx->allocator, s, fused ? 0 : d->vertex_count,
                              (size_t)ds.tiles_x * ds.tiles_y, chunks)) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_draw: out of memory for %zu vertices",
                         d->vertex_count);

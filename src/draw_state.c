@@ -111,8 +111,29 @@ void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 
     }
 }
 
+/* The one function that rasterizes the draw's triangles, as llvmpipe's
+ * setup picks lp_rast_tri_tab[...] once per command: the per-sample path
+ * (its vector kernel, the program's quads or the generic loop), else the
+ * chosen rasterizer, the half-space one as its vector kernel or its
+ * scalar instance for the state. */
+static sr_raster_fn triangle_raster(const sr_draw_state *ds)
+{
+    if (ds->per_sample) {
+        sr_raster_fn fast = sr__raster_msaa_select(ds);
+        return fast ? fast : ds->program ? sr__raster_shader : sr__raster_msaa;
+    }
+    switch (ds->rasterizer) {
+    case SR_RASTER_SCANLINE:    return sr__raster_scanline;
+    case SR_RASTER_BARYCENTRIC: return sr__raster_barycentric;
+    default: {
+        sr_raster_fn fast = sr__raster_simd_select(ds);
+        return fast ? fast : sr__raster_halfspace_select(ds);
+    }
+    }
+}
+
 void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const sr_mat4 *view,
-                            const sr_mat4 *proj, sr_draw_state *ds)
+                            const sr_mat4 *proj, sr_simd_level simd, sr_draw_state *ds)
 {
     memset(ds, 0, sizeof *ds);
     ds->fb = (sr_framebuffer *)fb;
@@ -210,7 +231,7 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
 
     sr__resolve_shading(st, view, proj, ds);
 
-    /* Multisampling and stencil take the per-sample path (raster/sample.c). */
+    /* Multisampling and stencil take the per-sample path (raster/msaa.c). */
     ds->samples = fb->samples;
     ds->sample_off = sr__sample_offsets(fb->samples);
     ds->stencil_test = st->stencil.enabled && fb->stencil != NULL;
@@ -240,8 +261,7 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
         }
         ds->per_sample = true;
     }
-    ds->raster_fast = ds->per_sample ? NULL : sr__raster_simd_select(ds);
-    sr_simd_level simd = sr__simd_level();
+    ds->simd = simd;
     ds->light_lanes = simd != SR_SIMD_OFF;
     ds->vertex_lanes16 = simd == SR_SIMD_AVX512;
     ds->wide_stores = simd == SR_SIMD_AVX512;
@@ -250,5 +270,5 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
                       ds->mode_front == SR_POLYGON_FILL && ds->mode_back == SR_POLYGON_FILL &&
                       ds->samples == 1 && !ds->offset_on;
     ds->index_avx2 = simd >= SR_SIMD_AVX2;
-    ds->sample_fast = ds->per_sample ? sr__raster_sample_select(ds) : NULL;
+    ds->raster_tri = triangle_raster(ds);
 }

@@ -23,6 +23,45 @@ static bool finite_mat(const sr_mat4 *m)
     return true;
 }
 
+/* The vertex stage reads each attribute as floats in place and assembly
+ * reads indices as their type, so, as GL asks of attribute offsets and
+ * strides, an array's address and stride must be multiples of its
+ * element's size: a misaligned read is undefined in C and faults on some
+ * processors. */
+static sr_result check_alignment(sr_context *ctx, const sr_draw_desc *d)
+{
+    const struct {
+        const float *base;
+        size_t stride;
+        const char *base_name, *stride_name;
+    } arrays[] = {
+        { d->positions, d->position_stride, "positions", "position_stride" },
+        { d->normals, d->normal_stride, "normals", "normal_stride" },
+        { d->colors, d->color_stride, "colors", "color_stride" },
+        { d->texcoords, d->texcoord_stride, "texcoords", "texcoord_stride" },
+        { d->generic, d->generic_stride, "generic", "generic_stride" },
+    };
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) {
+        if (!arrays[i].base) {
+            continue;
+        }
+        if ((uintptr_t)arrays[i].base % sizeof(float) != 0) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.%s is not 4-byte aligned",
+                            arrays[i].base_name);
+        }
+        if (arrays[i].stride % sizeof(float) != 0) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.%s %zu is not a multiple of 4",
+                            arrays[i].stride_name, arrays[i].stride);
+        }
+    }
+    size_t index_size = d->index_type == SR_INDEX_U32 ? 4 : d->index_type == SR_INDEX_U16 ? 2 : 1;
+    if (d->indices && (uintptr_t)d->indices % index_size != 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.indices is not %zu-byte aligned",
+                        index_size);
+    }
+    return SR_OK;
+}
+
 sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_state *st,
                            const sr_draw_desc *d)
 {
@@ -64,6 +103,10 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
     }
     if (d->index_type == SR_INDEX_NONE && d->indices) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.indices given with index_type SR_INDEX_NONE");
+    }
+    sr_result aligned = check_alignment(ctx, d);
+    if (aligned != SR_OK) {
+        return aligned;
     }
     if (!finite_mat(d->model) || !finite_mat(d->view) || !finite_mat(d->projection)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_desc.%s has a NaN or infinite entry",

@@ -17,10 +17,14 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#ifndef MADV_POPULATE_WRITE
+#define MADV_POPULATE_WRITE 23       /* Linux 5.14; older kernels say EINVAL */
+#endif
+
 /* Fault in at once the pages lying wholly inside [p, p + bytes) of a
  * block about to be written (MADV_POPULATE_WRITE), for malloc'd blocks of
  * SR_POPULATE_MIN bytes and more: on the development VM a page faulted in
- * on first touch costs several times one of a batch (context.c).  A no-op
+ * on first touch costs several times one of a batch (alloc.c).  A no-op
  * for smaller blocks and where the kernel cannot. */
 #define SR_POPULATE_MIN ((size_t)64 << 10)
 

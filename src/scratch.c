@@ -2,31 +2,31 @@
  * tile arrays grow on the application thread before a draw; chunk stores
  * may grow on the front-end workers. */
 #include "scratch.h"
-#include "context.h"
+#include "alloc.h"
 
 #include <string.h>
 
-sr_scratch *sr__scratch_create(sr_context *ctx)
+sr_scratch *sr__scratch_create(const sr_allocator *a)
 {
-    return sr__calloc(ctx, 1, sizeof(sr_scratch));
+    return sr__mem_calloc(a, 1, sizeof(sr_scratch));
 }
 
-void sr__scratch_destroy(sr_context *ctx, sr_scratch *s)
+void sr__scratch_destroy(const sr_allocator *a, sr_scratch *s)
 {
     if (!s) {
         return;
     }
-    sr__free(ctx, s->post);
-    sr__free(ctx, s->vary);
+    sr__mem_free(a, s->post);
+    sr__mem_free(a, s->vary);
     for (int i = 0; i < SR_MAX_CHUNKS; i++) {
-        sr__free(ctx, s->chunks[i].tris);
-        sr__free(ctx, s->chunks[i].tile_box);
-        sr__free(ctx, s->chunks[i].refs);
-        sr__free(ctx, s->chunks[i].ordered);
-        sr__free(ctx, s->chunks[i].bin_start);
+        sr__mem_free(a, s->chunks[i].tris);
+        sr__mem_free(a, s->chunks[i].tile_box);
+        sr__mem_free(a, s->chunks[i].refs);
+        sr__mem_free(a, s->chunks[i].ordered);
+        sr__mem_free(a, s->chunks[i].bin_start);
     }
-    sr__free(ctx, s->active_tiles);
-    sr__free(ctx, s);
+    sr__mem_free(a, s->active_tiles);
+    sr__mem_free(a, s);
 }
 
 /* The first size is what is asked for: a one-shot render (softrast
@@ -46,7 +46,8 @@ static size_t grow(size_t cap, size_t need)
     return c;
 }
 
-bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t tiles, int chunks)
+bool sr__scratch_reserve(const sr_allocator *a, sr_scratch *s, size_t count, size_t tiles,
+                         int chunks)
 {
     if (count > s->vert_cap) {
         size_t cap = grow(s->vert_cap, count);
@@ -56,35 +57,35 @@ bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t ti
             __builtin_mul_overflow(cap, SR_MAX_VARYINGS * sizeof(float), &vary_bytes)) {
             return false;
         }
-        sr_vertex_post *post = sr__alloc_large(ctx, post_bytes);
-        float *vary = sr__alloc_large(ctx, vary_bytes);
+        sr_vertex_post *post = sr__mem_alloc_large(a, post_bytes);
+        float *vary = sr__mem_alloc_large(a, vary_bytes);
         if (!post || !vary) {
-            sr__free(ctx, post);
-            sr__free(ctx, vary);
+            sr__mem_free(a, post);
+            sr__mem_free(a, vary);
             return false;
         }
-        sr__free(ctx, s->post);
-        sr__free(ctx, s->vary);
+        sr__mem_free(a, s->post);
+        sr__mem_free(a, s->vary);
         s->post = post;
         s->vary = vary;
         s->vert_cap = cap;
     }
     if (tiles > s->tile_cap) {
-        uint32_t *active = sr__calloc(ctx, tiles, sizeof(uint32_t));
+        uint32_t *active = sr__mem_calloc(a, tiles, sizeof(uint32_t));
         if (!active) {
             return false;
         }
-        sr__free(ctx, s->active_tiles);
+        sr__mem_free(a, s->active_tiles);
         s->active_tiles = active;
         for (int i = 0; i < SR_MAX_CHUNKS; i++) {
-            sr__free(ctx, s->chunks[i].bin_start);
+            sr__mem_free(a, s->chunks[i].bin_start);
             s->chunks[i].bin_start = NULL;
         }
         s->tile_cap = tiles;
     }
     for (int i = 0; i < chunks; i++) {
         if (!s->chunks[i].bin_start) {
-            s->chunks[i].bin_start = sr__calloc(ctx, s->tile_cap + 1, sizeof(uint32_t));
+            s->chunks[i].bin_start = sr__mem_calloc(a, s->tile_cap + 1, sizeof(uint32_t));
             if (!s->chunks[i].bin_start) {
                 return false;
             }
@@ -97,7 +98,7 @@ bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t ti
  * capacity *cap elements: *out is `old` when it has room, else a larger
  * block (grow) holding old's first keep_bytes, and old is freed.  false,
  * with `old` and *cap untouched, when the block cannot be had. */
-static bool grow_store(sr_context *ctx, void *old, size_t *cap, size_t need, size_t size,
+static bool grow_store(const sr_allocator *a, void *old, size_t *cap, size_t need, size_t size,
                        size_t keep_bytes, void **out)
 {
     *out = old;
@@ -108,31 +109,31 @@ static bool grow_store(sr_context *ctx, void *old, size_t *cap, size_t need, siz
     if (__builtin_mul_overflow(n, size, &bytes)) {
         return false;
     }
-    void *p = sr__alloc_large(ctx, bytes);
+    void *p = sr__mem_alloc_large(a, bytes);
     if (!p) {
         return false;
     }
     if (keep_bytes) {
         memcpy(p, old, keep_bytes);
     }
-    sr__free(ctx, old);
+    sr__mem_free(a, old);
     *cap = n;
     *out = p;
     return true;
 }
 
-bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size)
+bool sr__chunk_reserve_tris(const sr_allocator *a, sr_chunk *c, size_t records, size_t size)
 {
     size_t need;
     void *p;
     if (__builtin_mul_overflow(records, size, &need) ||
-        !grow_store(ctx, c->tris, &c->tri_bytes, need, 1, (size_t)c->tri_count * size, &p)) {
+        !grow_store(a, c->tris, &c->tri_bytes, need, 1, (size_t)c->tri_count * size, &p)) {
         return false;
     }
     c->tris = p;
     /* The tile boxes keep room for every record the store can hold, so a
      * store with room needs no second check. */
-    if (!grow_store(ctx, c->tile_box, &c->box_cap, c->tri_bytes / size, sizeof *c->tile_box,
+    if (!grow_store(a, c->tile_box, &c->box_cap, c->tri_bytes / size, sizeof *c->tile_box,
                     (size_t)c->tri_count * sizeof *c->tile_box, &p)) {
         return false;
     }
@@ -140,20 +141,20 @@ bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t
     return true;
 }
 
-bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs)
+bool sr__chunk_reserve_refs(const sr_allocator *a, sr_chunk *c, size_t refs)
 {
     void *p;
-    if (!grow_store(ctx, c->refs, &c->ref_cap, refs, sizeof *c->refs, 0, &p)) {
+    if (!grow_store(a, c->refs, &c->ref_cap, refs, sizeof *c->refs, 0, &p)) {
         return false;
     }
     c->refs = p;
     return true;
 }
 
-bool sr__chunk_reserve_ordered(sr_context *ctx, sr_chunk *c, size_t bytes)
+bool sr__chunk_reserve_ordered(const sr_allocator *a, sr_chunk *c, size_t bytes)
 {
     void *p;
-    if (!grow_store(ctx, c->ordered, &c->ordered_bytes, bytes, 1, 0, &p)) {
+    if (!grow_store(a, c->ordered, &c->ordered_bytes, bytes, 1, 0, &p)) {
         return false;
     }
     c->ordered = p;

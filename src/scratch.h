@@ -68,17 +68,18 @@ typedef struct sr_scratch {
     sr_frag_stats stats[SR_MAX_THREADS];
 } sr_scratch;
 
-sr_scratch *sr__scratch_create(sr_context *ctx);
-void sr__scratch_destroy(sr_context *ctx, sr_scratch *s);
+sr_scratch *sr__scratch_create(const sr_allocator *a);
+void sr__scratch_destroy(const sr_allocator *a, sr_scratch *s);
 /* Room for `count` vertices and `tiles` tiles in `chunks` chunks. */
-bool sr__scratch_reserve(sr_context *ctx, sr_scratch *s, size_t count, size_t tiles, int chunks);
+bool sr__scratch_reserve(const sr_allocator *a, sr_scratch *s, size_t count, size_t tiles,
+                         int chunks);
 /* Grow a chunk's triangle store to hold `records` of `size` bytes, and its
  * tile boxes to one per record the store can hold (called
  * from front-end workers: the allocator must be thread-safe). */
-bool sr__chunk_reserve_tris(sr_context *ctx, sr_chunk *c, size_t records, size_t size);
-bool sr__chunk_reserve_refs(sr_context *ctx, sr_chunk *c, size_t refs);
+bool sr__chunk_reserve_tris(const sr_allocator *a, sr_chunk *c, size_t records, size_t size);
+bool sr__chunk_reserve_refs(const sr_allocator *a, sr_chunk *c, size_t refs);
 /* Room for `bytes` of records copied in tile order. */
-bool sr__chunk_reserve_ordered(sr_context *ctx, sr_chunk *c, size_t bytes);
+bool sr__chunk_reserve_ordered(const sr_allocator *a, sr_chunk *c, size_t bytes);
 
 /* Copy a record set up on the stack to its place in the chunk with
  * non-temporal stores, when more than one thread draws (but for a chunk

@@ -103,6 +103,8 @@ static double signed_volume(const sr_mesh *m)
     return v;
 }
 
+/* Comparisons rather than fmin/fmax (which skip a NaN the same way): GCC 12
+ * for aarch64 crashes vectorizing an fmin/fmax reduction. */
 static void bounds(const sr_mesh *m, double lo[3], double hi[3])
 {
     for (int k = 0; k < 3; k++) {
@@ -111,8 +113,9 @@ static void bounds(const sr_mesh *m, double lo[3], double hi[3])
     }
     for (size_t i = 0; i < m->vertex_count; i++) {
         for (int k = 0; k < 3; k++) {
-            lo[k] = fmin(lo[k], m->positions[3 * i + k]);
-            hi[k] = fmax(hi[k], m->positions[3 * i + k]);
+            double x = m->positions[3 * i + k];
+            lo[k] = x < lo[k] ? x : lo[k];
+            hi[k] = x > hi[k] ? x : hi[k];
         }
     }
 }

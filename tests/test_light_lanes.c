@@ -93,7 +93,7 @@ SR_TEST(four_lanes_give_sr_light_bits)
         }
         for (int group = 0; group < 8; group++) {
             float n[4][3], eye[4][3], c[4][4];
-            sr_v4f vn[3], veye[3], vc[4], out[4];
+            v4f vn[3], veye[3], vc[4], out[4];
             for (int lane = 0; lane < 4; lane++) {
                 make_vertex(rand() % 10, &ds, n[lane], eye[lane], c[lane]);
                 for (int k = 0; k < 3; k++) {

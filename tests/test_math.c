@@ -16,11 +16,16 @@ static sr_vec4 xf(const sr_mat4 *m, float x, float y, float z, float w)
     return sr_mat4_mul_vec4(m, (sr_vec4){ x, y, z, w });
 }
 
+/* NaN when any difference is NaN (fmax would drop it); a comparison, also
+ * because GCC 12 for aarch64 crashes vectorizing an fmax reduction. */
 static double max_abs_diff(const sr_mat4 *a, const sr_mat4 *b)
 {
     double d = 0.0;
     for (int i = 0; i < 16; i++) {
-        d = fmax(d, fabs((double)a->m[i] - b->m[i]));
+        double x = fabs((double)a->m[i] - b->m[i]);
+        if (!(x <= d)) {
+            d = x;
+        }
     }
     return d;
 }

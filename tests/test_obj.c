@@ -1301,12 +1301,14 @@ static void check_model(const char *file, size_t expect_triangles, bool texcoord
     CHECK(indices_valid(&m));
     CHECK((m.texcoords != NULL) == texcoords);
     CHECK((m.normals != NULL) == normals);
+    /* Comparisons rather than fmin/fmax (which skip a NaN the same way):
+     * GCC 12 for aarch64 crashes vectorizing an fmin/fmax reduction. */
     double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
     for (size_t i = 0; i < m.vertex_count; i++) {
         for (int k = 0; k < 3; k++) {
             double x = m.positions[3 * i + k];
-            lo[k] = fmin(lo[k], x);
-            hi[k] = fmax(hi[k], x);
+            lo[k] = x < lo[k] ? x : lo[k];
+            hi[k] = x > hi[k] ? x : hi[k];
         }
     }
     for (int k = 0; k < 3; k++) {

@@ -31,6 +31,7 @@
 #include "raster_util.h"
 #include "scratch.h"
 #include "raster/fixed.h"
+#include "raster/triangle_simd.h"
 #include "target/framebuffer.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -987,17 +988,19 @@ static void kernel_test_io_free(kernel_test_io *io)
 }
 
 /* Draw into a fresh framebuffer cleared to one color and the far depth,
- * with SR_SIMD set to `simd` (NULL: unset, the widest kernel); its color
- * and raw depth words are copied out. */
+ * with ctx's vector level set as SR_SIMD=`simd` would set it (NULL: the
+ * widest kernel); its color and raw depth words are copied out. */
 static void kernel_test_draw(sr_context *ctx, int w, int h, sr_depth_format df, const char *simd,
                              const sr_state *st, const sr_draw_desc *desc, uint8_t *color,
                              uint32_t *depth)
 {
-    if (simd) {
-        setenv("SR_SIMD", simd, 1);
-    } else {
-        unsetenv("SR_SIMD");
-    }
+    sr_simd_level level = !simd                     ? SR_SIMD_AVX512
+                          : strcmp(simd, "off") == 0  ? SR_SIMD_OFF
+                          : strcmp(simd, "base") == 0 ? SR_SIMD_BASE
+                          : strcmp(simd, "avx2") == 0 ? SR_SIMD_AVX2
+                                                      : SR_SIMD_AVX512;
+    sr_simd_level cpu = sr__simd_cpu_level(), kept = ctx->simd;
+    ctx->simd = level < cpu ? level : cpu;
     sr_framebuffer *fb;
     REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
                                                             .depth_format = df }, &fb) == SR_OK);
@@ -1006,7 +1009,7 @@ static void kernel_test_draw(sr_context *ctx, int w, int h, sr_depth_format df, 
     memcpy(depth, raw_depth(fb), sizeof(uint32_t) * (size_t)w * (size_t)h);
     memcpy(color, sr_framebuffer_pixels(fb), (size_t)w * (size_t)h * 4);
     sr_destroy_framebuffer(ctx, fb);
-    unsetenv("SR_SIMD");
+    ctx->simd = kept;
 }
 
 /* The vector kernels (the AVX-512 build's sixteen-lane pairs of block

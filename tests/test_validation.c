@@ -100,6 +100,10 @@ static bool make_bad(int i, sr_state *st, sr_draw_desc *d, sr_mat4 *m, bad_draw 
     static const uint32_t idx32[3] = { 0, 1, 0xffffffffu };
     static const uint32_t idx32b[3] = { 3, 1, 2 };
     static const float pos3[9] = { 0 };
+    /* Room for the triangle one to three bytes past a float boundary. */
+    static float shifted[16];
+    static uint32_t idx_bytes[4];
+    const char *odd = (const char *)shifted + 1, *idx_odd = (const char *)idx_bytes + 2;
     *m = sr_mat4_identity();
     *want = (bad_draw){ NULL, SR_INVALID_ARG };
     switch (i) {
@@ -156,6 +160,21 @@ static bool make_bad(int i, sr_state *st, sr_draw_desc *d, sr_mat4 *m, bad_draw 
              want->needle = "indices[0] = 3"; break;
     case 44: d->vertex_count = ((size_t)1 << 28) + 1;
              *want = (bad_draw){ "sr_draw_desc.vertex_count", SR_TOO_LARGE }; break;
+    /* Attributes are read as floats in place: an array and its stride
+     * must be multiples of 4 bytes, indices of their size. */
+    case 45: d->position_stride = 13;                      want->needle = "position_stride 13"; break;
+    case 46: d->normals = tri_nrm; d->normal_stride = 6;   want->needle = "sr_draw_desc.normal_stride"; break;
+    case 47: d->colors = pos3; d->color_stride = 14;       want->needle = "sr_draw_desc.color_stride"; break;
+    case 48: d->texcoords = pos3; d->texcoord_stride = 9;  want->needle = "sr_draw_desc.texcoord_stride"; break;
+    case 49: d->generic = pos3; d->generic_stride = 1;     want->needle = "sr_draw_desc.generic_stride"; break;
+    case 50: memcpy(shifted, tri_pos, sizeof tri_pos);
+             d->positions = (const float *)(const void *)odd;
+             want->needle = "sr_draw_desc.positions is not 4-byte aligned"; break;
+    case 51: d->colors = (const float *)(const void *)(odd + 2); want->needle = "sr_draw_desc.colors"; break;
+    case 52: d->indices = idx_odd; d->index_type = SR_INDEX_U32; d->index_count = 3;
+             want->needle = "sr_draw_desc.indices is not 4-byte aligned"; break;
+    case 53: d->indices = idx_odd + 1; d->index_type = SR_INDEX_U16; d->index_count = 3;
+             want->needle = "sr_draw_desc.indices is not 2-byte aligned"; break;
     default: return false;
     }
     return true;
@@ -191,7 +210,7 @@ SR_TEST(every_invalid_draw_argument_is_named_and_draws_nothing)
         CHECK_EQ(sr_last_draw_info(f.ctx).fragments, 0);
         CHECK_EQ(sr_last_draw_info(f.ctx).triangles_in, 0);
     }
-    CHECK_EQ(cases, 45);
+    CHECK_EQ(cases, 54);
     fixture_free(&f);
 }
 
@@ -240,6 +259,15 @@ SR_TEST(boundary_values_are_accepted)
     d.indices = idx;
     d.index_type = SR_INDEX_U8;
     d.index_count = 3;
+    CHECK_EQ(sr_draw(f.ctx, f.fb, &st, &d), SR_OK);
+    /* Any multiple of 4 is a stride, also one that is not a whole vertex
+     * (the arrays overlap) or, for bytes, an odd address. */
+    d.position_size = 3;
+    d.position_stride = 16;
+    d.normal_stride = 4;
+    CHECK_EQ(sr_draw(f.ctx, f.fb, &st, &d), SR_OK);
+    const uint8_t idx_odd[4] = { 0, 2, 1, 0 };
+    d.indices = idx_odd + 1;
     CHECK_EQ(sr_draw(f.ctx, f.fb, &st, &d), SR_OK);
     fixture_free(&f);
 }

@@ -12,6 +12,7 @@
  * transform whose w is 0 or not 1. */
 #include "sr_test.h"
 #include "pipeline.h"
+#include "raster/triangle_simd.h"
 
 #include <math.h>
 #include <string.h>
@@ -104,8 +105,8 @@ static void random_state(sr_rng *rng, int s, sr_draw_state *ds)
 
 SR_TEST(sixteen_lanes_give_the_scalar_vertex_bits)
 {
-    if (sr__simd_level() != SR_SIMD_AVX512) {
-        SKIP("this CPU has no AVX-512 (or SR_SIMD caps it): the sixteen-lane stage is not used");
+    if (sr__simd_cpu_level() != SR_SIMD_AVX512) {
+        SKIP("this CPU has no AVX-512: the sixteen-lane stage is not used");
     }
     enum { MAXV = 64, MAXSTRIDE = 9 };
     sr_rng rng = { 0x16f0 };
@@ -223,8 +224,8 @@ SR_TEST(sixteen_lanes_give_the_scalar_vertex_bits)
  * its own stages). */
 SR_TEST(sixteen_lanes_decline_strides_beyond_their_offsets)
 {
-    if (sr__simd_level() != SR_SIMD_AVX512) {
-        SKIP("this CPU has no AVX-512 (or SR_SIMD caps it): the sixteen-lane stage is not used");
+    if (sr__simd_cpu_level() != SR_SIMD_AVX512) {
+        SKIP("this CPU has no AVX-512: the sixteen-lane stage is not used");
     }
     sr_draw_state ds;
     sr_rng rng = { 7 };
@@ -263,8 +264,8 @@ SR_TEST(sixteen_lanes_decline_strides_beyond_their_offsets)
  * depth conventions, counts that leave a part group. */
 SR_TEST(sixteen_lane_classification_gives_the_scalar_outcodes_and_positions)
 {
-    if (sr__simd_level() != SR_SIMD_AVX512) {
-        SKIP("this CPU has no AVX-512 (or SR_SIMD caps it): the sixteen-lane classification is "
+    if (sr__simd_cpu_level() != SR_SIMD_AVX512) {
+        SKIP("this CPU has no AVX-512: the sixteen-lane classification is "
              "not used");
     }
     sr_rng rng = { 0xc1a55e5ull };

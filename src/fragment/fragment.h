@@ -72,7 +72,7 @@ SR_INLINE uint32_t sr__quantize_depth(const sr_draw_state *ds, double *z)
 }
 
 /* Shade from interpolated varyings v (the layout of the shading model,
- * pipeline.h), the primitive's flat color and facing, and the depth z in
+ * raster/records.h), the primitive's flat color and facing, and the depth z in
  * buffer units.  Triangles, lines and points all end here. */
 /* One blend factor for channel k (0..2 color, 3 alpha). */
 SR_INLINE float sr__blend_factor(sr_blend_factor f, const float s[4], const float d[4],

@@ -14,21 +14,19 @@
 #include <xmmintrin.h>
 #endif
 
-typedef float sr_v4f __attribute__((vector_size(16)));
-typedef int32_t sr_v4i __attribute__((vector_size(16)));
 
-static inline __attribute__((always_inline)) sr_v4f sr__v4_sel(sr_v4i m, sr_v4f a, sr_v4f b)
+static inline __attribute__((always_inline)) v4f sr__v4_sel(v4i m, v4f a, v4f b)
 {
-    return (sr_v4f)((m & (sr_v4i)a) | (~m & (sr_v4i)b));
+    return (v4f)((m & (v4i)a) | (~m & (v4i)b));
 }
 
 /* Correctly rounded, as sqrtf. */
-static inline __attribute__((always_inline)) sr_v4f sr__v4_sqrt(sr_v4f x)
+static inline __attribute__((always_inline)) v4f sr__v4_sqrt(v4f x)
 {
 #if defined(__SSE__)
-    return (sr_v4f)_mm_sqrt_ps((__m128)x);
+    return (v4f)_mm_sqrt_ps((__m128)x);
 #else
-    sr_v4f r;
+    v4f r = x; /* each lane is written below; GCC 12 warns of r unset otherwise */
     for (int k = 0; k < 4; k++) {
         r[k] = sqrtf(x[k]);
     }
@@ -36,8 +34,8 @@ static inline __attribute__((always_inline)) sr_v4f sr__v4_sqrt(sr_v4f x)
 #endif
 }
 
-#define SR_LL_F sr_v4f
-#define SR_LL_I sr_v4i
+#define SR_LL_F v4f
+#define SR_LL_I v4i
 #define SR_LL_SEL sr__v4_sel
 #define SR_LL_SQRT sr__v4_sqrt
 #define SR_LL_NAME sr__light_lanes

@@ -1,7 +1,7 @@
 /* light_lanes16.h - sr__light on sixteen lanes: light16, the body of
  * light_lanes_body.h on AVX-512 vectors, for the sixteen-lane Gouraud
  * vertex stage (geometry/vertex_wide.c) and the sixteen-lane PHONG stamps
- * (raster/simd_wide.h).  x86-64 with GCC or Clang: the includers compile
+ * (raster/simd_wide16.h).  x86-64 with GCC or Clang: the includers compile
  * it for AVX-512 by target attribute and call it only on CPUs that have
  * it. */
 #ifndef SR_LIGHT_LANES16_H
@@ -10,9 +10,6 @@
 #include "pipeline.h"
 
 #include <immintrin.h>
-
-typedef float v16f __attribute__((vector_size(64)));
-typedef int32_t v16i __attribute__((vector_size(64)));
 
 static inline __attribute__((always_inline)) SR_TARGET_AVX512 v16f v16_sel(v16i m, v16f a, v16f b)
 {

@@ -36,7 +36,7 @@ static inline void *next_record(const sr_front_end *fe, sr_chunk *c)
 {
     size_t at = (size_t)c->tri_count * fe->tri_size;
     if (at + fe->tri_size > c->tri_bytes &&
-        !sr__chunk_reserve_tris(fe->ctx, c, (size_t)c->tri_count + 1, fe->tri_size)) {
+        !sr__chunk_reserve_tris(&fe->ctx->allocator, c, (size_t)c->tri_count + 1, fe->tri_size)) {
         c->out_of_memory = true;
         return NULL;
     }
@@ -441,7 +441,7 @@ void sr__run_front_end(void *arg, int job, int thread)
     c->stream = fe->shared && !c->in_tile_order;
     /* One triangle per primitive is the common case; size for it once so
      * the store is not regrown (and copied) mid-chunk. */
-    if (!sr__chunk_reserve_tris(fe->ctx, c, c->prim_end - c->prim_begin + 16, fe->tri_size)) {
+    if (!sr__chunk_reserve_tris(&fe->ctx->allocator, c, c->prim_end - c->prim_begin + 16, fe->tri_size)) {
         /* No records: the bins must say so rather than keep the last
          * batch's, whose records may no longer be there. */
         c->out_of_memory = true;

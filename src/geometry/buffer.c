@@ -1,7 +1,7 @@
 /* buffer.c - vertex buffers: an application's arrays copied into memory
  * the context allocates (vertex stage input).  The copy is the point: the
  * default allocator maps blocks of 4 MiB and more as 2 MiB pages
- * (context.c), and a draw that streams through a large array from 4 KiB
+ * (alloc.c), and a draw that streams through a large array from 4 KiB
  * pages waits on a page-table walk every 4 KiB - a million triangles'
  * 96 MB of positions and colors cost the front end 15 ms a frame on one
  * thread, and three times that just after another renderer had run. */

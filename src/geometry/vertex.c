@@ -35,8 +35,6 @@ static void face_viewer(const sr_draw_state *ds, const float eye[3], float n[3])
     }
 }
 
-typedef float v4f __attribute__((vector_size(16)));
-
 /* out = m p, column by column: lane r computes m[r] p0 + m[4 + r] p1 +
  * m[8 + r] p2 + m[12 + r] p3 in that order, the scalar expression's, so
  * the four lanes give the scalar bytes (no FMA: -ffp-contract=off). */
@@ -304,7 +302,7 @@ static void surface_color(const sr_draw_state *ds, const float *color_in, float 
 }
 
 /* One vertex of a built-in model: the clip position and the model's
- * varyings (pipeline.h's layouts).  color: RGBA, or NULL for the
+ * varyings (raster/records.h's layouts).  color: RGBA, or NULL for the
  * material's; normal, texcoord, generic: NULL when absent (generic is
  * already widened to four components). */
 void sr__vertex_shade(const sr_draw_state *ds, const float obj[4], const float *normal,
@@ -460,13 +458,13 @@ static void gouraud_stage(const sr_draw_state *ds, const sr_draw_desc *d, const 
                 vary_out[i * nv + (size_t)ds->uv_index + 1] = t[1];
             }
         }
-        sr_v4f n[3], eye[3], dif[4], lit[4];
+        v4f n[3], eye[3], dif[4], lit[4];
         for (int j = 0; j < 3; j++) {
-            n[j] = (sr_v4f){ n4[0][j], n4[1][j], n4[2][j], n4[3][j] };
-            eye[j] = (sr_v4f){ eye4[0][j], eye4[1][j], eye4[2][j], eye4[3][j] };
+            n[j] = (v4f){ n4[0][j], n4[1][j], n4[2][j], n4[3][j] };
+            eye[j] = (v4f){ eye4[0][j], eye4[1][j], eye4[2][j], eye4[3][j] };
         }
         for (int j = 0; j < 4; j++) {
-            dif[j] = (sr_v4f){ dif4[0][j], dif4[1][j], dif4[2][j], dif4[3][j] };
+            dif[j] = (v4f){ dif4[0][j], dif4[1][j], dif4[2][j], dif4[3][j] };
         }
         sr__light_lanes(ds, n, eye, dif, lit);
         for (int k = 0; k < 4 && g + (size_t)k < count; k++) {

@@ -122,8 +122,8 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
      * memory. */
     c->in_tile_order = shared && c->scattered && total <= c->tri_count + c->tri_count / 4 &&
                        total <= SIZE_MAX / tri_size &&
-                       sr__chunk_reserve_ordered(ctx, c, total * tri_size);
-    if (total > UINT32_MAX || (!c->in_tile_order && !sr__chunk_reserve_refs(ctx, c, total))) {
+                       sr__chunk_reserve_ordered(&ctx->allocator, c, total * tri_size);
+    if (total > UINT32_MAX || (!c->in_tile_order && !sr__chunk_reserve_refs(&ctx->allocator, c, total))) {
         memset(start, 0, (tiles + 1) * sizeof(uint32_t));
         c->in_tile_order = false;
         return false;
@@ -268,22 +268,7 @@ draw_bin(const tile_job *tj, const sr_chunk *c, uint32_t tile, tile_rect b, sr_f
             sr__raster_point(ds, (const sr_point *)p, rx0, ry0, rx1, ry1, st);
             continue;
         }
-        const sr_tri *t = (const sr_tri *)p;
-        if (ds->per_sample) {
-            sr__raster_sample(ds, t, rx0, ry0, rx1, ry1, st);
-            continue;
-        }
-        switch (ds->rasterizer) {
-        case SR_RASTER_SCANLINE:
-            sr__raster_scanline(ds, t, rx0, ry0, rx1, ry1, st);
-            break;
-        case SR_RASTER_BARYCENTRIC:
-            sr__raster_barycentric(ds, t, rx0, ry0, rx1, ry1, st);
-            break;
-        default:
-            sr__raster_halfspace(ds, t, rx0, ry0, rx1, ry1, st);
-            break;
-        }
+        ds->raster_tri(ds, (const sr_tri *)p, rx0, ry0, rx1, ry1, st);
     }
 }
 

@@ -15,7 +15,7 @@
  * batch and goes on at once rather than waiting out the wake-up, and the
  * late worker finds the batch closed. */
 #include "parallel/pool.h"
-#include "context.h"
+#include "alloc.h"
 
 #include <pthread.h>
 #include <stdatomic.h>
@@ -165,14 +165,16 @@ static void *worker_main(void *arg)
     return NULL;
 }
 
-/* The worker args live right after the pool in one allocation. */
-sr_result sr__pool_create(sr_context *ctx, int threads, sr_pool **out)
+/* The worker args live right after the pool in one allocation.  Failures
+ * carry no message: sr_make_context, the only caller, then has no
+ * context to keep one on. */
+sr_result sr__pool_create(const sr_allocator *a, int threads, sr_pool **out)
 {
     *out = NULL;
     size_t bytes = sizeof(sr_pool) + (size_t)threads * (sizeof(pthread_t) + sizeof(worker_arg));
-    sr_pool *p = sr__calloc(ctx, 1, bytes);
+    sr_pool *p = sr__mem_calloc(a, 1, bytes);
     if (!p) {
-        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_context: out of memory for the thread pool");
+        return SR_OUT_OF_MEMORY;
     }
     p->threads = threads;
     p->workers = (pthread_t *)(p + 1);
@@ -188,8 +190,8 @@ sr_result sr__pool_create(sr_context *ctx, int threads, sr_pool **out)
     for (int i = 1; i < threads; i++) {
         args[i] = (worker_arg){ p, i };
         if (pthread_create(&p->workers[i], NULL, worker_main, &args[i]) != 0) {
-            sr__pool_destroy(ctx, p);
-            return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_context: cannot start thread %d", i);
+            sr__pool_destroy(a, p);
+            return SR_OUT_OF_MEMORY;
         }
         p->started = i;
     }
@@ -197,7 +199,7 @@ sr_result sr__pool_create(sr_context *ctx, int threads, sr_pool **out)
     return SR_OK;
 }
 
-void sr__pool_destroy(sr_context *ctx, sr_pool *p)
+void sr__pool_destroy(const sr_allocator *a, sr_pool *p)
 {
     if (!p) {
         return;
@@ -212,7 +214,7 @@ void sr__pool_destroy(sr_context *ctx, sr_pool *p)
     pthread_mutex_destroy(&p->lock);
     pthread_cond_destroy(&p->wake);
     pthread_cond_destroy(&p->done);
-    sr__free(ctx, p);
+    sr__mem_free(a, p);
 }
 
 void sr__pool_run(sr_pool *p, sr_pool_fn fn, void *arg, int count)

@@ -15,8 +15,9 @@ typedef struct sr_pool sr_pool;
 /* fn(arg, job, thread) - thread is 0 for the caller, 1..n-1 for workers. */
 typedef void (*sr_pool_fn)(void *arg, int job, int thread);
 
-sr_result sr__pool_create(sr_context *ctx, int threads, sr_pool **out);
-void sr__pool_destroy(sr_context *ctx, sr_pool *pool);
+/* The pool's memory comes from `a`, which must outlive it. */
+sr_result sr__pool_create(const sr_allocator *a, int threads, sr_pool **out);
+void sr__pool_destroy(const sr_allocator *a, sr_pool *pool);
 /* With pool == NULL, runs every job on the calling thread. */
 void sr__pool_run(sr_pool *pool, sr_pool_fn fn, void *arg, int count);
 

@@ -23,7 +23,7 @@
  * fast path (one pixel wide, plain color write, depth off or LESS) with
  * the same operations, four columns at a time with AVX2 for the
  * commonest, and test_lines_fast.c holds both to the reference. */
-#include "fragment/sample.h"
+#include "fragment/msaa_ops.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -208,13 +208,11 @@ static void walk_generic(const line_ctx *lc, int64_t ka, int64_t kb)
  * -ffp-contract=off), so the bytes are the same; test_lines_fast.c holds
  * it to the reference. */
 
-typedef float line_v4f __attribute__((vector_size(16)));
-
 /* sr__unorm8 on r, g, b, a, packed as the framebuffer's bytes.  With SSE2
  * as in the triangle kernels: min(1, v) keeps NaN (min returns its second
  * operand then), truncation sends NaN and negatives to values the
  * saturating packs turn into 0, and anything above 1 became 255. */
-static inline uint32_t pack_unorm8(line_v4f c)
+static inline uint32_t pack_unorm8(v4f c)
 {
 #if defined(__SSE2__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
     __m128 v = _mm_min_ps(_mm_set1_ps(1.0f), (__m128)c);
@@ -247,7 +245,7 @@ typedef struct fast_line {
     int64_t au, av, du, dv;         /* q8 start and direction on the major, minor axes */
     double dz;                      /* zb - za */
     double inv_len2;                /* 1 / |b - a|^2 in q8^2 */
-    line_v4f va, vb, dvary;         /* the ends' rgba, and b - a */
+    v4f va, vb, dvary;         /* the ends' rgba, and b - a */
     uint32_t flat;                  /* LINE_COLOR_FLAT: the packed color */
 } fast_line;
 
@@ -383,20 +381,6 @@ SR_INLINE uint64_t walk_fast_as(const fast_line *f, int64_t ka, int64_t kb, cons
 #define SR_LINE_AVX2 1
 #include <immintrin.h>
 
-/* Whether the AVX2 walk runs: the CPU has AVX2 and SR_SIMD does not cap
- * the vector kernels below it.  Read once, at the first line drawn
- * (per call it would cost a getenv per line and tile). */
-static bool line_avx2(void)
-{
-    static int cached = -1;
-    int v = __atomic_load_n(&cached, __ATOMIC_RELAXED);
-    if (v < 0) {
-        v = sr__simd_level() >= SR_SIMD_AVX2;
-        __atomic_store_n(&cached, v, __ATOMIC_RELAXED);
-    }
-    return v;
-}
-
 /* sr__unorm8 on four pixels' r, g, b, a lanes, packed per pixel: the
  * triangle kernels' packing (see pack_unorm8 for why it is the same). */
 SR_INLINE __m128i pack4_unorm8(const __m128 c[4])
@@ -506,7 +490,7 @@ static void walk_fast(const sr_draw_state *ds, const sr_line *l, int64_t ka, int
         break;
     case LINE_COLOR_LERP:
 #ifdef SR_LINE_AVX2
-        if (!less && line_avx2()) {
+        if (!less && ds->simd >= SR_SIMD_AVX2) {
             frags = walk_lerp_x4(&f, ka, kb, r);
             break;
         }

@@ -4,7 +4,7 @@
  * spans, the DDA of their pixels, the start's and end's diamond pixels -
  * and the tiles its pixels reach, so binning puts the segment only in
  * those, not in its whole bounding box. */
-#include "fragment/sample.h"
+#include "fragment/msaa_ops.h"
 
 #include <math.h>
 #include <stdlib.h>

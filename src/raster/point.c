@@ -3,7 +3,7 @@
  * one tile (tile workers).  A pixel is covered when its centre lies in
  * the half-open square, or strictly inside the disc, decided in exact
  * integers; multisampled, each sample decides. */
-#include "fragment/sample.h"
+#include "fragment/msaa_ops.h"
 
 #include <math.h>
 #include <string.h>

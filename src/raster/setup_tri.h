@@ -17,8 +17,6 @@
 static inline double sr__min_d(double a, double b) { return a < b ? a : b; }
 static inline double sr__max_d(double a, double b) { return a > b ? a : b; }
 
-typedef float sr_setup_v4f __attribute__((vector_size(16)));
-
 /* sr__setup_triangle_offset once the snapped area2 = sr__area2(w0, w1, w2)
  * is known and non-zero.  Always inlined: the front end's common case
  * calls it directly, and a constant ninterp unrolls the varyings. */
@@ -135,7 +133,7 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
      * subtractions, lane by lane. */
     int k = 0;
     for (; k + 4 <= ninterp; k += 4) {
-        sr_setup_v4f a0, a1, a2;
+        v4f a0, a1, a2;
         memcpy(&a0, &v[0]->vary[k], sizeof a0);
         memcpy(&a1, &v[1]->vary[k], sizeof a1);
         memcpy(&a2, &v[2]->vary[k], sizeof a2);

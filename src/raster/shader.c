@@ -9,8 +9,8 @@
  * fragments cost no shading) unless the program writes depth or may
  * discard, or alpha to coverage needs the shaded alpha: then after it,
  * as the GL order of operations says. */
-#include "fragment/sample.h"
-#include "raster/sample_walk.h"
+#include "fragment/msaa_ops.h"
+#include "raster/msaa_walk.h"
 
 #include <string.h>
 

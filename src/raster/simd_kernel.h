@@ -1,9 +1,9 @@
 /* simd_kernel.h - the half-space rasterizer, several pixels at a time
- * (raster stage, tile worker threads).  Included three times by
- * triangle_simd.c - compiled for AVX-512 (sixteen-lane stamps,
- * simd_wide.h), for AVX2 (eight-lane block rows) and for the baseline
- * instruction set (four-lane groups) - with SR_SIMD_FN naming the
- * copies.  Written with GCC/Clang vector extensions and intrinsics, so
+ * (raster stage, tile worker threads).  A template included three times
+ * by triangle_simd.c - compiled for AVX-512 (sixteen-lane stamps and
+ * walks: simd_wide16.h, simd_wide16_walk.h), for AVX2 (eight-lane block
+ * rows, simd_wide.h) and for the baseline instruction set (four-lane
+ * groups) - with SR_SIMD_FN naming the copies (f_avx512, f_avx2, f_base).  Written with GCC/Clang vector extensions and intrinsics, so
  * one source serves all three.
  *
  * Exactness: edge values are integers below 2^53, so holding them in
@@ -184,114 +184,18 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
 #include "raster/simd_wide.h"
 #endif
 #ifdef SR_SIMD_WIDE16
-#include "raster/simd_tex.h"
-#include "raster/simd_tiny.h"
-#endif
-
-#ifdef SR_SIMD_WIDE16
-/* An 8 x 2 stamp's exact edge values: r[i] at the top row's first pixel,
- * the next row sy[i] further, lanes lx8[i] apart. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edges)(const double r[3], const int64_t sy[3],
-                                                    const __m512d lx8[3], __m512d e0[2],
-                                                    __m512d e1[2], __m512d e2[2])
-{
-    __m512d *e[3] = { e0, e1, e2 };
-    for (int i = 0; i < 3; i++) {
-        e[i][0] = _mm512_add_pd(_mm512_set1_pd(r[i]), lx8[i]);
-        e[i][1] = _mm512_add_pd(_mm512_set1_pd(r[i] + (double)sy[i]), lx8[i]);
-    }
-}
-#endif
-
-#ifdef SR_SIMD_WIDE16
-/* A stamp, plain or textured (a constant at each instance), with its edge
- * values in 32-bit lanes (n, nb32) when `narrow`, else in double halves
- * (e0 .. e2, nb). */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp16)(const sr_draw_state *ds, const sr_tri *t, int gx,
-                                                  int py, const __m512d e0[2], const __m512d e1[2],
-                                                  const __m512d e2[2], const __m512i n[3],
-                                                  __mmask16 valid, bool inside,
-                                                  const __m512d nb[3], const __m512i nb32[3],
-                                                  const SR_SIMD_FN(w16_lanes) *k,
-                                                  sr_frag_stats *st, sr_shading shading,
-                                                  sr_depth_mode dmode, sr_stamp shape, bool tex,
-                                                  bool narrow)
-{
-    if (narrow) {
-        SR_SIMD_FN(rows16_n)(ds, t, gx, py, n, valid, inside, nb32, k, st, shading, dmode, shape);
-    } else if (tex) {
-        SR_SIMD_FN(rows16_tex)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, dmode, shape);
-    } else {
-        SR_SIMD_FN(rows16)(ds, t, gx, py, e0, e1, e2, valid, inside, nb, k, st, shading, dmode,
-                           shape);
-    }
-}
-
-/* A stamp's 32-bit edge values: the value r[i] at its corner pixel plus
- * each lane's offset, modulo 2^32 (so a corner outside the box may wrap;
- * the lanes inside it come out exact, sr__rect_fits32). */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(n16_edges)(const uint32_t r[3], const __m512i off[3],
-                                                   __m512i n[3])
-{
-    for (int i = 0; i < 3; i++) {
-        n[i] = _mm512_add_epi32(_mm512_set1_epi32((int32_t)r[i]), off[i]);
-    }
-}
-
-/* Each lane's offset from the stamp's corner pixel in 32-bit lanes, for
- * a stamp `cols` pixels wide (16, 8 or 4; lane l is pixel (l % cols,
- * l / cols)): x a + y b per edge, modulo 2^32. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(n16_offsets)(const int64_t sx[3], const int64_t sy[3],
-                                                     int cols, __m512i off[3])
-{
-    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    int shift = cols == 16 ? 4 : cols == 8 ? 3 : 2;
-    __m512i x = _mm512_and_si512(lane, _mm512_set1_epi32(cols - 1));
-    __m512i y = _mm512_srli_epi32(lane, (unsigned)shift);
-    for (int i = 0; i < 3; i++) {
-        __m512i a = _mm512_set1_epi32((int32_t)(uint32_t)sx[i]);
-        __m512i b = _mm512_set1_epi32((int32_t)(uint32_t)sy[i]);
-        off[i] = _mm512_add_epi32(_mm512_mullo_epi32(x, a), _mm512_mullo_epi32(y, b));
-    }
-}
-
-/* The sixteen-lane walks' per-triangle lanes: lane offsets 0..7 pixel
- * steps in double (exact: small integers), and the coverage bounds -bias
- * in double and in 32-bit lanes. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_edge_lanes)(const sr_edges *ed, const int64_t sx[3],
-                                                        __m512d lx8[3], __m512d nb8[3],
-                                                        __m512i nb32[3])
-{
-    const __m512d steps = _mm512_setr_pd(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0);
-    for (int i = 0; i < 3; i++) {
-        lx8[i] = _mm512_mul_pd(_mm512_set1_pd((double)sx[i]), steps);
-        nb8[i] = _mm512_set1_pd(-(double)ed->bias[i]);
-        nb32[i] = _mm512_set1_epi32((int32_t)-ed->bias[i]);
-    }
-}
-
-/* The three (unbiased) edge values at pixel (x, y)'s centre, in double
- * (exact) and modulo 2^32. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(edges_at)(const sr_edges *ed, int x, int y, double r[3],
-                                                  uint32_t r32[3])
-{
-    int64_t xc = sr__centre_q8(x), yc = sr__centre_q8(y);
-    for (int i = 0; i < 3; i++) {
-        int64_t v = sr__edge_at(ed, i, xc, yc);
-        r[i] = (double)v;
-        r32[i] = (uint32_t)v;
-    }
-}
+#include "raster/simd_wide16.h"
 #endif
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
                                                     const sr_edges *ed,
                                                     int rx0, int ry0, int rx1, int ry1,
                                                     sr_frag_stats *st, sr_shading shading,
-                                                    sr_depth_mode dmode, bool tex, bool narrow)
+                                                    sr_depth_mode dmode, sr_walk_flags walk)
 {
     /* Textured instances and 32-bit edge lanes exist in the AVX-512
      * build only. */
+    bool tex = walk & SR_WALK_TEXTURED, narrow = walk & SR_WALK_NARROW;
     (void)tex;
     (void)narrow;
     int64_t sx[3], sy[3];
@@ -364,7 +268,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 SR_SIMD_FN(n16_edges)(corner, off44, n);
             }
             SR_SIMD_FN(stamp16)(ds, t, rx0, py, e[0], e[1], e[2], n, (__mmask16)valid, false, nb8,
-                                nb32, &wl, st, shading, dmode, SR_STAMP_4X4, tex, narrow);
+                                nb32, &wl, st, shading, dmode, SR_STAMP_4X4, walk);
         }
         return;
     }
@@ -388,8 +292,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                     SR_SIMD_FN(w16_edges)(rs, sy, lx8, e0, e1, e2);
                 }
                 SR_SIMD_FN(stamp16)(ds, t, gx, py, e0, e1, e2, n, rows & (span | span << 8),
-                                    false, nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, tex,
-                                    narrow);
+                                    false, nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, walk);
                 for (int i = 0; i < 3; i++) {
                     rs[i] += 8.0 * (double)sx[i];
                     rs32[i] += 8u * (uint32_t)sx[i];
@@ -478,8 +381,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                         SR_SIMD_FN(w16_edges)(r, sy, lx8, e0, e1, e2);
                     }
                     SR_SIMD_FN(stamp16)(ds, t, bx, py, e0, e1, e2, n, (__mmask16)valid, inside,
-                                        nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, tex,
-                                        narrow);
+                                        nb8, nb32, &wl, st, shading, dmode, SR_STAMP_8X2, walk);
                     for (int i = 0; i < 3; i++) {
                         r[i] += 2.0 * (double)sy[i];
                         r32[i] += 2u * (uint32_t)sy[i];
@@ -546,169 +448,34 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     }
 }
 
+/* The AVX-512 instance picks its walk and edge lanes (raster_dispatch in
+ * simd_wide16_walk.h, which also defines its SR_SIMD_INSTANCE); the
+ * others walk in double lanes. */
 #ifdef SR_SIMD_WIDE16
-/* A box the triangle covers whole (a large triangle over most of its
- * tiles): no blocks and no coverage test, each row in spans of sixteen,
- * one load and one store each for depth and color.  Apart from
- * raster_as, whose code it would otherwise grow: inline there it cost
- * spot and teapot 2%. */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_inside_as)(const sr_draw_state *ds,
-                                                           const sr_tri *t, const sr_edges *ed,
-                                                           int rx0, int ry0,
-                                                           int rx1, int ry1, sr_frag_stats *st,
-                                                           sr_shading shading,
-                                                           sr_depth_mode dmode, bool narrow)
-{
-    SR_SIMD_FN(w16_lanes) wl;
-    SR_SIMD_FN(w16_make)(t, shading, &wl);
-    int64_t sx[3], sy[3];
-    sr__pixel_steps(t, sx, sy);
-    __m512d lx8[3], nb8[3];
-    __m512i nb32[3], off16[3];
-    SR_SIMD_FN(w16_edge_lanes)(ed, sx, lx8, nb8, nb32);
-    SR_SIMD_FN(n16_offsets)(sx, sy, 16, off16);
-    double r[3];
-    uint32_t r32[3];
-    SR_SIMD_FN(edges_at)(ed, rx0, ry0, r, r32);
-    for (int py = ry0; py < ry1; py++) {
-        double rs[3] = { r[0], r[1], r[2] };
-        uint32_t rs32[3] = { r32[0], r32[1], r32[2] };
-        for (int gx = rx0; gx < rx1; gx += 16) {
-            unsigned valid = rx1 - gx >= 16 ? 0xffffu : (1u << (rx1 - gx)) - 1;
-            __m512d e[3][2];
-            __m512i n[3];
-            if (narrow) {
-                SR_SIMD_FN(n16_edges)(rs32, off16, n);
-            } else {
-                for (int i = 0; i < 3; i++) {
-                    e[i][0] = _mm512_add_pd(_mm512_set1_pd(rs[i]), lx8[i]);
-                    e[i][1] = _mm512_add_pd(_mm512_set1_pd(rs[i] + 8.0 * (double)sx[i]), lx8[i]);
-                }
-            }
-            SR_SIMD_FN(stamp16)(ds, t, gx, py, e[0], e[1], e[2], n, (__mmask16)valid, true, nb8,
-                                nb32, &wl, st, shading, dmode, SR_STAMP_16X1, false, narrow);
-            for (int i = 0; i < 3; i++) {
-                rs[i] += 16.0 * (double)sx[i];
-                rs32[i] += 16u * (uint32_t)sx[i];
-            }
-        }
-        for (int i = 0; i < 3; i++) {
-            r[i] += (double)sy[i];
-            r32[i] += (uint32_t)sy[i];
-        }
-    }
-}
-
-/* Which walk a triangle's part in a tile takes: a box of at least half a
- * tile each way that it covers whole by whole rows, the rest by
- * raster_as; both with 32-bit edge lanes where the box's values fit.
- * (Testing smaller boxes for it cost spot and teapot 2%: few of their
- * triangles cover a box whole.) */
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_dispatch)(const sr_draw_state *ds,
-                                                          const sr_tri *t, int rx0, int ry0,
-                                                          int rx1, int ry1, sr_frag_stats *st,
-                                                          sr_shading shading, sr_depth_mode dmode)
-{
-    sr_edges ed;
-    sr__tri_edges(t, &ed);
-    bool narrow = t->fits32 || sr__rect_fits32(&ed, rx0, ry0, rx1, ry1);
-    if (rx1 - rx0 >= SR_TILE_SIZE / 2 && ry1 - ry0 >= SR_TILE_SIZE / 2) {
-        int64_t sx[3], sy[3];
-        sr__pixel_steps(t, sx, sy);
-        if (sr__rect_inside(&ed, rx0, ry0, rx1, ry1, sx, sy)) {
-            if (narrow) {
-                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, true);
-            } else {
-                SR_SIMD_FN(raster_inside_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false);
-            }
-            return;
-        }
-    }
-    if (narrow) {
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, true);
-    } else {
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false, false);
-    }
-}
-#endif
-
-/* The AVX-512 instance picks its walk and edge lanes (raster_dispatch);
- * the others walk in double lanes. */
-#ifdef SR_SIMD_WIDE16
-/* Tiny triangles (simd_tiny.h) and the rest in functions of their own,
- * so the tiny path keeps its constants in registers: inside the other
- * walks' function it paid their stack frame and spills. */
-#define SR_SIMD_INSTANCE(shading, dmode)                                                  \
-    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                       \
-        tiny_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
-                                  int ry0, int rx1, int ry1, sr_frag_stats *st)            \
-    {                                                                                      \
-        if (rx1 - rx0 <= 4) {                                                              \
-            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,         \
-                                    SR_STAMP_4X4);                                         \
-        } else {                                                                           \
-            SR_SIMD_FN(raster_tiny)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode,         \
-                                    SR_STAMP_8X2);                                         \
-        }                                                                                  \
-    }                                                                                      \
-    SR_SIMD_TARGET static __attribute__((noinline)) void SR_SIMD_FN(                       \
-        walk_##shading##_##dmode)(const sr_draw_state *ds, const sr_tri *t, int rx0,       \
-                                  int ry0, int rx1, int ry1, sr_frag_stats *st)            \
-    {                                                                                      \
-        SR_SIMD_FN(raster_dispatch)(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);        \
-    }                                                                                      \
-    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
-        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
-        sr_frag_stats *st)                                                                 \
-    {                                                                                      \
-        if (t->fits32 && rx1 - rx0 <= 8 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {               \
-            SR_SIMD_FN(tiny_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \
-        } else {                                                                           \
-            SR_SIMD_FN(walk_##shading##_##dmode)(ds, t, rx0, ry0, rx1, ry1, st);           \
-        }                                                                                  \
-    }
+#include "raster/simd_wide16_walk.h"
 #else
-#define SR_SIMD_INSTANCE(shading, dmode)                                                  \
-    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##shading##_##dmode)(                     \
-        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,      \
-        sr_frag_stats *st)                                                                 \
-    {                                                                                      \
-        sr_edges ed;                                                                       \
-        sr__tri_edges(t, &ed);                                                             \
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode, false,   \
-                              false);                                                      \
+#define SR_SIMD_INSTANCE(name, shading, dmode)                                         \
+    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##name)(                              \
+        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,  \
+        sr_frag_stats *st)                                                             \
+    {                                                                                  \
+        sr_edges ed;                                                                   \
+        sr__tri_edges(t, &ed);                                                         \
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,      \
+                              SR_WALK_PLAIN);                                          \
     }
 #endif
-SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
-SR_SIMD_INSTANCE(SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
-SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_OFF)
-SR_SIMD_INSTANCE(SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
-SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
-SR_SIMD_INSTANCE(SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
+/* SR_SIMD_INSTANCE(name, ...) defines raster_name (and, at the AVX-512
+ * level, its tiny_name and walk_name halves); SR_SIMD_FN suffixes each
+ * with the level, so raster_unlit_less_avx512 is raster_unlit_less below. */
+SR_SIMD_INSTANCE(unlit_off, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(unlit_less, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS)
+SR_SIMD_INSTANCE(flat_off, SR_SHADING_FLAT, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(flat_less, SR_SHADING_FLAT, SR_DEPTH_MODE_LESS)
+SR_SIMD_INSTANCE(phong_off, SR_SHADING_PHONG, SR_DEPTH_MODE_OFF)
+SR_SIMD_INSTANCE(phong_less, SR_SHADING_PHONG, SR_DEPTH_MODE_LESS)
 #undef SR_SIMD_INSTANCE
 
-#ifdef SR_SIMD_WIDE16
-/* UNLIT or GOURAUD color modulated by a texture (simd_tex.h). */
-SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_less)(const sr_draw_state *ds, const sr_tri *t,
-                                                       int rx0, int ry0, int rx1, int ry1,
-                                                       sr_frag_stats *st)
-{
-    sr_edges ed;
-    sr__tri_edges(t, &ed);
-    SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_LESS,
-                          true, false);
-}
-
-SR_SIMD_TARGET static void SR_SIMD_FN(raster_tex_off)(const sr_draw_state *ds, const sr_tri *t,
-                                                      int rx0, int ry0, int rx1, int ry1,
-                                                      sr_frag_stats *st)
-{
-    sr_edges ed;
-    sr__tri_edges(t, &ed);
-    SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, SR_SHADING_UNLIT, SR_DEPTH_MODE_OFF,
-                          true, false);
-}
-#endif
 
 /* The kernel for a state, or NULL when this path does not cover it. */
 static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
@@ -734,20 +501,20 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
         return NULL;
     }
     if (sr__color_varying_shading(ds->shading)) {
-        return less ? SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_LESS)
-                    : SR_SIMD_FN(raster_SR_SHADING_UNLIT_SR_DEPTH_MODE_OFF);
+        return less ? SR_SIMD_FN(raster_unlit_less)
+                    : SR_SIMD_FN(raster_unlit_off);
     }
     switch (ds->shading) {
     case SR_SHADING_FLAT:
-        return less ? SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_LESS)
-                    : SR_SIMD_FN(raster_SR_SHADING_FLAT_SR_DEPTH_MODE_OFF);
+        return less ? SR_SIMD_FN(raster_flat_less)
+                    : SR_SIMD_FN(raster_flat_off);
     case SR_SHADING_PHONG:
         /* powf has no lane-exact vector twin: whole-number shininess only. */
         if (ds->shininess_int < 0) {
             return NULL;
         }
-        return less ? SR_SIMD_FN(raster_SR_SHADING_PHONG_SR_DEPTH_MODE_LESS)
-                    : SR_SIMD_FN(raster_SR_SHADING_PHONG_SR_DEPTH_MODE_OFF);
+        return less ? SR_SIMD_FN(raster_phong_less)
+                    : SR_SIMD_FN(raster_phong_off);
     default:
         return NULL;
     }

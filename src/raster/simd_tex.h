@@ -1,7 +1,7 @@
 /* simd_tex.h - textured stamps of sixteen pixels (raster stage, tile
  * worker threads): the AVX-512 instance's rows16 for UNLIT and GOURAUD
- * color modulated by a texture.  Included by simd_kernel.h after
- * simd_wide.h, in its AVX-512 instance only.
+ * color modulated by a texture.  Included by simd_wide16.h, in
+ * simd_kernel.h's AVX-512 instance only.
  *
  * The lanes do what the scalar fragment stage does per pixel, in the same
  * order: coverage and depth as rows16; sr__bary at the pixel and, for

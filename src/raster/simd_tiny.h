@@ -1,7 +1,7 @@
 /* simd_tiny.h - tiny triangles in 4 x 4 stamps, set up in 32-bit lanes
  * straight from the record (raster stage, tile worker threads).  Included
- * by simd_kernel.h in its AVX-512 instance only, after simd_wide.h, whose
- * stamp arithmetic it shares.
+ * by simd_wide16.h (simd_kernel.h's AVX-512 instance only), whose stamp
+ * arithmetic it shares.
  *
  * A triangle of a few pixels (the bench's `small`, a distant mesh) draws
  * one or two stamps, so what it costs is the set-up around them: the

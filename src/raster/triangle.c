@@ -56,38 +56,32 @@ SR_INLINE void raster_as(const sr_draw_state *ds, const sr_tri *t, int rx0, int 
     }
 }
 
-#define SR_RASTER_SHADINGS(X, dmode)                                               \
-    X(SR_SHADING_UNLIT, dmode) X(SR_SHADING_FLAT, dmode) X(SR_SHADING_GOURAUD, dmode) \
-    X(SR_SHADING_PHONG, dmode) X(SR_SHADING_NORMALS, dmode) X(SR_SHADING_DEPTH, dmode) \
-    X(SR_SHADING_ATTRIBUTE, dmode)
+/* One instance per shading model and depth mode, named
+ * raster_<shading>_<depth> (raster_unlit_less, raster_phong_generic). */
+#define SR_RASTER_SHADINGS(X, dname, dmode)                                                  \
+    X(unlit, SR_SHADING_UNLIT, dname, dmode) X(flat, SR_SHADING_FLAT, dname, dmode)          \
+    X(gouraud, SR_SHADING_GOURAUD, dname, dmode) X(phong, SR_SHADING_PHONG, dname, dmode)    \
+    X(normals, SR_SHADING_NORMALS, dname, dmode) X(depth, SR_SHADING_DEPTH, dname, dmode)    \
+    X(attribute, SR_SHADING_ATTRIBUTE, dname, dmode)
 
-#define SR_RASTER_INSTANCE(shading, dmode)                                          \
-    static void raster_##shading##_##dmode(const sr_draw_state *ds, const sr_tri *t, \
-                                           int rx0, int ry0, int rx1, int ry1,       \
-                                           sr_frag_stats *st)                        \
-    {                                                                                \
-        raster_as(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);                   \
+#define SR_RASTER_INSTANCE(name, shading, dname, dmode)                                      \
+    static void raster_##name##_##dname(const sr_draw_state *ds, const sr_tri *t, int rx0,   \
+                                        int ry0, int rx1, int ry1, sr_frag_stats *st)        \
+    {                                                                                        \
+        raster_as(ds, t, rx0, ry0, rx1, ry1, st, shading, dmode);                            \
     }
-SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_OFF)
-SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_LESS)
-SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, SR_DEPTH_MODE_GENERIC)
+SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, off, SR_DEPTH_MODE_OFF)
+SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, less, SR_DEPTH_MODE_LESS)
+SR_RASTER_SHADINGS(SR_RASTER_INSTANCE, generic, SR_DEPTH_MODE_GENERIC)
 
-typedef void (*raster_fn)(const sr_draw_state *, const sr_tri *, int, int, int, int,
-                          sr_frag_stats *);
-
-#define SR_RASTER_ENTRY(shading, dmode) [dmode][shading] = raster_##shading##_##dmode,
-static const raster_fn raster_table[3][SR_SHADING_ATTRIBUTE + 1] = {
-    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_OFF)
-    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_LESS)
-    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, SR_DEPTH_MODE_GENERIC)
+#define SR_RASTER_ENTRY(name, shading, dname, dmode) [dmode][shading] = raster_##name##_##dname,
+static const sr_raster_fn raster_table[3][SR_SHADING_ATTRIBUTE + 1] = {
+    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, off, SR_DEPTH_MODE_OFF)
+    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, less, SR_DEPTH_MODE_LESS)
+    SR_RASTER_SHADINGS(SR_RASTER_ENTRY, generic, SR_DEPTH_MODE_GENERIC)
 };
 
-void sr__raster_halfspace(const sr_draw_state *ds, const sr_tri *t,
-                          int rx0, int ry0, int rx1, int ry1, sr_frag_stats *st)
+sr_raster_fn sr__raster_halfspace_select(const sr_draw_state *ds)
 {
-    if (ds->raster_fast) {
-        ds->raster_fast(ds, t, rx0, ry0, rx1, ry1, st);
-    } else {
-        raster_table[ds->depth_mode][ds->shading](ds, t, rx0, ry0, rx1, ry1, st);
-    }
+    return raster_table[ds->depth_mode][ds->shading];
 }

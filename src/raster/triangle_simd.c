@@ -12,10 +12,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef double v4d __attribute__((vector_size(32)));
-typedef int64_t v4l __attribute__((vector_size(32)));
-typedef float v4f __attribute__((vector_size(16)));
-typedef int32_t v4i __attribute__((vector_size(16)));
+/* How a vector walk reads its triangle, a constant in each instance of
+ * simd_kernel.h's walks: textured color (simd_tex.h, AVX-512 only), and
+ * edge values in 32-bit lanes, where every value in the box fits
+ * (sr__rect_fits32), rather than in double lanes. */
+typedef enum sr_walk_flags {
+    SR_WALK_PLAIN = 0,
+    SR_WALK_TEXTURED = 1 << 0,
+    SR_WALK_NARROW = 1 << 1,
+} sr_walk_flags;
 
 /* The lane packing below writes r, g, b, a as one little-endian word. */
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
@@ -24,7 +29,7 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #include <immintrin.h>
 
 /* sr__light on sixteen lanes for the AVX-512 instance's PHONG stamps
- * (w16_phong in simd_wide.h). */
+ * (w16_phong in simd_wide16.h). */
 #include "fragment/light_lanes16.h"
 
 #define SR_SIMD_FN(name) name##_avx512
@@ -52,16 +57,9 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 #undef SR_SIMD_TARGET
 #endif
 
-sr_simd_level sr__simd_level(void)
+sr_simd_level sr__simd_cpu_level(void)
 {
 #ifdef SR_HAVE_SIMD_KERNEL
-    const char *env = getenv("SR_SIMD");
-    if (env && strcmp(env, "off") == 0) {
-        return SR_SIMD_OFF;
-    }
-    if (env && strcmp(env, "base") == 0) {
-        return SR_SIMD_BASE;
-    }
     __builtin_cpu_init();
     if (!__builtin_cpu_supports("avx2")) {
         return SR_SIMD_BASE;
@@ -69,7 +67,7 @@ sr_simd_level sr__simd_level(void)
     bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
                   __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
                   __builtin_cpu_supports("popcnt");
-    return avx512 && !(env && strcmp(env, "avx2") == 0) ? SR_SIMD_AVX512 : SR_SIMD_AVX2;
+    return avx512 ? SR_SIMD_AVX512 : SR_SIMD_AVX2;
 #else
     return SR_SIMD_OFF;
 #endif
@@ -78,7 +76,7 @@ sr_simd_level sr__simd_level(void)
 sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
 {
 #ifdef SR_HAVE_SIMD_KERNEL
-    switch (sr__simd_level()) {
+    switch (ds->simd) {
     case SR_SIMD_AVX512: return select_avx512(ds);
     case SR_SIMD_AVX2: return select_avx2(ds);
     case SR_SIMD_BASE: return select_base(ds);
@@ -88,14 +86,4 @@ sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
     (void)ds;
     return NULL;
 #endif
-}
-
-const char *sr__raster_simd_name(void)
-{
-    switch (sr__simd_level()) {
-    case SR_SIMD_AVX512: return "avx512";
-    case SR_SIMD_AVX2: return "avx2";
-    case SR_SIMD_BASE: return "sse2";
-    default:           return "scalar";
-    }
 }

@@ -70,6 +70,7 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     fb->width = desc->width;
     fb->height = desc->height;
     fb->samples = samples;
+    fb->wide_stores = ctx->simd == SR_SIMD_AVX512;
     fb->depth_format = fmt;
     fb->depth_bits = bits < 0 ? 0 : bits;
     fb->tiles_x = (desc->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
@@ -126,8 +127,8 @@ void sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb)
 
 /* n words of value v from p.  A tile's row is 256 bytes; the baseline
  * build's 16-byte stores made clearing tiles a tenth of a mesh's frame
- * on one thread, so at the AVX-512 level (sr__simd_level: the CPU has it
- * and SR_SIMD does not cap it) the rows go in 64-byte stores, the same
+ * on one thread, so at the AVX-512 level (the context's, which the CPU
+ * runs: fb->wide_stores) the rows go in 64-byte stores, the same
  * words. */
 #if defined(__x86_64__) && defined(__GNUC__)
 SR_TARGET_AVX512 static void fill_words_avx512(uint32_t *p, uint32_t v, size_t n)
@@ -178,7 +179,7 @@ static void fill_rect(const sr_framebuffer *fb, uint32_t *words, uint8_t *bytes,
 }
 
 /* Write the clear values of the `pending` components into a tile, in
- * 64-byte stores if `wide` (the AVX-512 level of sr__simd_level).  Where
+ * 64-byte stores if `wide` (the AVX-512 level: fb->wide_stores).  Where
  * a component's base is the value being cleared to, only the tile's drawn
  * rectangle is written (SR_TILE_BASE_COLOR); otherwise the whole tile,
  * which makes that value its base.  Returns the tile's flags with the
@@ -265,7 +266,7 @@ void sr__tile_drawn(sr_framebuffer *fb, int tile, int x0, int y0, int x1, int y1
 
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components)
 {
-    bool wide = sr__simd_level() == SR_SIMD_AVX512;
+    bool wide = fb->wide_stores;
     int tiles = fb->tiles_x * fb->tiles_y;
     for (int t = 0; t < tiles; t++) {
         unsigned pending = fb->tile_pending[t];
@@ -502,7 +503,7 @@ static void resolve_all(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
                         uint32_t *dst)
 {
     resolve_job j = { src, dst_fb ? dst_fb->color : dst, dst_fb,
-                      sr__simd_level() == SR_SIMD_AVX512 };
+                      src->wide_stores };
     if (dst_fb && dst_fb->clear_color != src->clear_color) {
         drop_tile_flags(dst_fb, SR_TILE_CLEAN_COLOR); /* they hold the old clear color */
         dst_fb->clear_color = src->clear_color;
@@ -688,7 +689,7 @@ sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int
      * first (the rest of each tile still gets the cleared values), they no
      * longer hold only the clear color, and the rectangle joins what was
      * drawn on them, so a later clear to their base color rewrites it. */
-    bool wide = sr__simd_level() == SR_SIMD_AVX512;
+    bool wide = fb->wide_stores;
     int tx0 = x >> SR_TILE_ORDER, tx1 = (x + w - 1) >> SR_TILE_ORDER;
     int ty0 = y >> SR_TILE_ORDER, ty1 = (y + h - 1) >> SR_TILE_ORDER;
     for (int ty = ty0; ty <= ty1; ty++) {

@@ -54,6 +54,7 @@ typedef struct sr_tile_memo {
 struct sr_framebuffer {
     int width, height;
     int samples;                    /* 1, 2, 4, 8, 16 */
+    bool wide_stores;               /* its context's level is AVX-512: clears in 64-byte stores */
     sr_depth_format depth_format;   /* resolved: never SR_DEPTH_DEFAULT */
     int depth_bits;                 /* 16, 24, 32; 0 for D32F */
     uint32_t *color;

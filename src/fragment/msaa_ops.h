@@ -1,4 +1,4 @@
-/* sample.h - the per-sample fragment operations (fragment stage): the
+/* msaa_ops.h - the per-sample fragment operations (fragment stage): the
  * stencil test and its update, the depth test, and the write of one
  * shaded color to the samples of a pixel that passed.  Multisampled
  * targets and the stencil test go through here; the single-sample fast
@@ -10,8 +10,8 @@
  * chosen by their outcome, the depth write; shading runs once per pixel
  * (at its centre) when any sample survived, and its color is written to
  * exactly the surviving samples. */
-#ifndef SR_SAMPLE_H
-#define SR_SAMPLE_H
+#ifndef SR_MSAA_OPS_H
+#define SR_MSAA_OPS_H
 
 #include "fragment/fragment.h"
 

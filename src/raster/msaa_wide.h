@@ -1,12 +1,12 @@
-/* sample_wide.h - the four-sample MSAA fast path, four pixels at a time
+/* msaa_wide.h - the four-sample MSAA fast path, four pixels at a time
  * (raster stage, tile workers; AVX-512 only): the sixteen samples of four
  * neighbouring pixels of a block row in the sixteen lanes of a vector,
  * and the four pixels' shading (at their centres) in four float lanes.
- * Included once by sample.c, for the state sample_kernel.h covers when
+ * Included once by msaa.c, for the state msaa_kernel.h covers when
  * the shading is the interpolated vertex color or flat and no texture is
- * bound; sample_kernel.h's one-pixel form serves the others.
+ * bound; msaa_kernel.h's one-pixel form serves the others.
  *
- * Exactness: as sample_kernel.h for coverage and depth - a sample's edge
+ * Exactness: as msaa_kernel.h for coverage and depth - a sample's edge
  * value is the pixel's exact integer value plus its offset, held in a
  * double lane - and as simd_kernel.h's quad() for the shading: sr__bary
  * and sr__interp's float operations in order, lane by lane.  The pixels'
@@ -110,7 +110,7 @@ static inline void ms16_pixels(const ms16 *k, int px, int py, const int64_t u[3]
     k->st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
 }
 
-/* A block's part rect (sample_walk.h): each row in groups of four pixels. */
+/* A block's part rect (msaa_walk.h): each row in groups of four pixels. */
 SR_TARGET_AVX512
 static inline void ms16_block(void *arg, const sr_block_steps *bs, const int rect[4],
                               const int64_t *u0, bool inside)

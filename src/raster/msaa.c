@@ -1,4 +1,4 @@
-/* sample.c - the per-sample triangle path (raster stage): multisampled
+/* msaa.c - the per-sample triangle path (raster stage): multisampled
  * coverage, and the stencil test, for every triangle rasterizer choice.
  * Runs on tile workers.
  *
@@ -15,8 +15,8 @@
  * is outside, as GPUs without centroid sampling do) and its color goes to
  * the samples that passed.  With one sample this is exactly the
  * single-sample rule, which is how the stencil test reuses it. */
-#include "fragment/sample.h"
-#include "raster/sample_walk.h"
+#include "fragment/msaa_ops.h"
+#include "raster/msaa_walk.h"
 
 #include <stdlib.h>
 
@@ -85,17 +85,9 @@ SR_INLINE void generic_pixel_fn(void *arg, int px, int py, const int64_t *u, boo
     }
 }
 
-void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
-                       int ry1, sr_frag_stats *st)
+void sr__raster_msaa(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
+                     int ry1, sr_frag_stats *st)
 {
-    if (ds->sample_fast) {
-        ds->sample_fast(ds, t, rx0, ry0, rx1, ry1, st);
-        return;
-    }
-    if (ds->program) {
-        sr__raster_shader(ds, t, rx0, ry0, rx1, ry1, st);
-        return;
-    }
     generic_pixel g = { ds, t, st, ds->samples >= 32 ? ~0u : (1u << ds->samples) - 1u, { { 0 } },
                         { 0 } };
     for (int i = 0; i < 3; i++) {
@@ -106,7 +98,7 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
             g.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];
         }
     }
-    sr__sample_walk(ds, t, rx0, ry0, rx1, ry1, &g, generic_pixel_fn);
+    sr__msaa_walk(ds, t, rx0, ry0, rx1, ry1, &g, generic_pixel_fn);
 }
 
 /* ---- the four-sample vector path ---------------------------------------- */
@@ -114,27 +106,24 @@ void sr__raster_sample(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
     (defined(__x86_64__) || defined(__i386__))
 #define SR_HAVE_SAMPLE_KERNEL 1
-typedef double v4d __attribute__((vector_size(32)));
-typedef int64_t v4l __attribute__((vector_size(32)));
-typedef int32_t v4i __attribute__((vector_size(16)));
 #include <immintrin.h>
 
 #define SR_SIMD_FN(name) name##_avx2
 #define SR_SIMD_TARGET __attribute__((target("avx2")))
-#include "raster/sample_kernel.h"
+#include "raster/msaa_kernel.h"
 #undef SR_SIMD_FN
 #undef SR_SIMD_TARGET
 
 #define SR_SIMD_FN(name) name##_base
 #define SR_SIMD_TARGET
-#include "raster/sample_kernel.h"
+#include "raster/msaa_kernel.h"
 #undef SR_SIMD_FN
 #undef SR_SIMD_TARGET
 
-#include "raster/sample_wide.h"
+#include "raster/msaa_wide.h"
 #endif
 
-sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
+sr_raster_fn sr__raster_msaa_select(const sr_draw_state *ds)
 {
 #ifdef SR_HAVE_SAMPLE_KERNEL
     bool common = ds->samples == 4 && !ds->program && !ds->stencil_test && !ds->alpha_to_coverage &&
@@ -147,7 +136,7 @@ sr_raster_fn sr__raster_sample_select(const sr_draw_state *ds)
      * or flat (as in the half-space kernels' select). */
     bool color = !ds->texture && (sr__color_varying_shading(ds->shading) ||
                                   ds->shading == SR_SHADING_FLAT);
-    switch (sr__simd_level()) {
+    switch (ds->simd) {
     case SR_SIMD_AVX512: return color ? raster_ms16 : raster_ms4_avx2;
     case SR_SIMD_AVX2: return raster_ms4_avx2;
     case SR_SIMD_BASE: return raster_ms4_base;

@@ -1,4 +1,4 @@
-/* sample_walk.h - walking a triangle's 8x8 blocks for the per-sample
+/* msaa_walk.h - walking a triangle's 8x8 blocks for the per-sample
  * and programmable paths (raster stage, tile workers).  A block is
  * classified over the whole squares of its pixels - every sample lies
  * within 128 q8 of its pixel centre on each axis - as outside (skipped),
@@ -113,8 +113,8 @@ SR_INLINE void sr__walk_quads(void *arg, const sr_block_steps *k, const int rect
 
 /* Every pixel of the open blocks: `pixel` gets its unbiased centre edge
  * values and whether its block is inside. */
-SR_INLINE void sr__sample_walk(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,
-                               int rx1, int ry1, void *arg, sr_pixel_fn pixel)
+SR_INLINE void sr__msaa_walk(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,
+                             int rx1, int ry1, void *arg, sr_pixel_fn pixel)
 {
     sr_walk w = { arg, pixel, NULL };
     sr__block_walk(ds, t, rx0, ry0, rx1, ry1, &w, sr__walk_pixels);

@@ -1,8 +1,8 @@
-/* sample_kernel.h - the four-sample MSAA fast path (raster stage, tile
+/* msaa_kernel.h - the four-sample MSAA fast path (raster stage, tile
  * workers): one pixel's four samples in the four lanes of a vector, for
  * the common state - depth LESS with writes on a D16/D24 buffer, no
  * stencil, no blending or masks, no alpha to coverage.  Included twice by
- * sample.c, for AVX2 and for the baseline instruction set, with
+ * msaa.c, for AVX2 and for the baseline instruction set, with
  * SR_SIMD_FN naming the copies.
  *
  * Exactness: edge values are integers below 2^53, exact in double lanes,
@@ -91,5 +91,5 @@ SR_SIMD_TARGET static void SR_SIMD_FN(raster_ms4)(const sr_draw_state *ds, const
     k.dz2 = (v4d){ t->dz2, t->dz2, t->dz2, t->dz2 };
     k.zmin = (v4d){ ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
     k.zmax = (v4d){ ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
-    sr__sample_walk(ds, t, rx0, ry0, rx1, ry1, &k, SR_SIMD_FN(ms4_pixel));
+    sr__msaa_walk(ds, t, rx0, ry0, rx1, ry1, &k, SR_SIMD_FN(ms4_pixel));
 }
