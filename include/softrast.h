@@ -103,6 +103,7 @@
  *     sr_destroy_context         frees it and everything made on it
  *     sr_context_error           the message of the last failed call
  *     sr_context_threads         how many threads draw
+ *     sr_run_jobs                runs independent jobs on its threads
  *     sr_context_simd            which vector kernels it runs
  *   framebuffers
  *     sr_make_framebuffer        color, depth, stencil; optionally multisampled
@@ -246,6 +247,17 @@
 extern "C" {
 #endif
 
+/* SR_API marks the functions libsoftrast and libsoftrast-io export: the
+ * libraries are built with every other symbol hidden, so only what this
+ * header and softrast_io.h declare is visible to a program. */
+#ifndef SR_API
+#  if defined(__GNUC__)
+#    define SR_API __attribute__((visibility("default")))
+#  else
+#    define SR_API
+#  endif
+#endif
+
 #define SR_VERSION_MAJOR 0
 #define SR_VERSION_MINOR 1
 #define SR_VERSION_PATCH 0
@@ -273,8 +285,8 @@ typedef enum sr_result {
     SR_RESULT_COUNT
 } sr_result;
 
-const char *sr_result_name(sr_result r); /* "SR_OUT_OF_MEMORY" */
-const char *sr_result_text(sr_result r); /* "allocation failed" */
+SR_API const char *sr_result_name(sr_result r); /* "SR_OUT_OF_MEMORY" */
+SR_API const char *sr_result_text(sr_result r); /* "allocation failed" */
 
 /* ---- math --------------------------------------------------------------- */
 
@@ -282,53 +294,53 @@ typedef struct sr_vec3 { float x, y, z; } sr_vec3;
 typedef struct sr_vec4 { float x, y, z, w; } sr_vec4;
 typedef struct sr_mat4 { float m[16]; } sr_mat4; /* column-major */
 
-sr_vec3 sr_vec3_make(float x, float y, float z);
-sr_vec3 sr_vec3_add(sr_vec3 a, sr_vec3 b);
-sr_vec3 sr_vec3_sub(sr_vec3 a, sr_vec3 b);
-sr_vec3 sr_vec3_scale(sr_vec3 a, float s);
-float   sr_vec3_dot(sr_vec3 a, sr_vec3 b);
-sr_vec3 sr_vec3_cross(sr_vec3 a, sr_vec3 b);
-float   sr_vec3_length(sr_vec3 a);
-sr_vec3 sr_vec3_normalize(sr_vec3 a); /* zero vector stays zero */
+SR_API sr_vec3 sr_vec3_make(float x, float y, float z);
+SR_API sr_vec3 sr_vec3_add(sr_vec3 a, sr_vec3 b);
+SR_API sr_vec3 sr_vec3_sub(sr_vec3 a, sr_vec3 b);
+SR_API sr_vec3 sr_vec3_scale(sr_vec3 a, float s);
+SR_API float   sr_vec3_dot(sr_vec3 a, sr_vec3 b);
+SR_API sr_vec3 sr_vec3_cross(sr_vec3 a, sr_vec3 b);
+SR_API float   sr_vec3_length(sr_vec3 a);
+SR_API sr_vec3 sr_vec3_normalize(sr_vec3 a); /* zero vector stays zero */
 
-sr_mat4 sr_mat4_identity(void);
-sr_mat4 sr_mat4_mul(const sr_mat4 *a, const sr_mat4 *b); /* a * b */
-sr_vec4 sr_mat4_mul_vec4(const sr_mat4 *m, sr_vec4 v);
-sr_mat4 sr_mat4_transpose(const sr_mat4 *m);
+SR_API sr_mat4 sr_mat4_identity(void);
+SR_API sr_mat4 sr_mat4_mul(const sr_mat4 *a, const sr_mat4 *b); /* a * b */
+SR_API sr_vec4 sr_mat4_mul_vec4(const sr_mat4 *m, sr_vec4 v);
+SR_API sr_mat4 sr_mat4_transpose(const sr_mat4 *m);
 /* General inverse; returns false (and leaves *out as identity) if singular. */
-bool    sr_mat4_invert(const sr_mat4 *m, sr_mat4 *out);
+SR_API bool    sr_mat4_invert(const sr_mat4 *m, sr_mat4 *out);
 
 /* Model transforms (M_O). */
-sr_mat4 sr_mat4_translate(float x, float y, float z);
-sr_mat4 sr_mat4_scale(float x, float y, float z);
-sr_mat4 sr_mat4_rotate(float angle_radians, sr_vec3 axis); /* right-handed */
+SR_API sr_mat4 sr_mat4_translate(float x, float y, float z);
+SR_API sr_mat4 sr_mat4_scale(float x, float y, float z);
+SR_API sr_mat4 sr_mat4_rotate(float angle_radians, sr_vec3 axis); /* right-handed */
 
 /* The camera frame from eye e, gaze g and view-up t:
  *   w = -g/|g|,  u = t x w / |t x w|,  v = w x u.
  * sr_camera_frame returns false if g is zero or t is parallel to g. */
 typedef struct sr_camera_basis { sr_vec3 u, v, w, e; } sr_camera_basis;
-bool    sr_camera_frame(sr_vec3 eye, sr_vec3 gaze, sr_vec3 up, sr_camera_basis *out);
+SR_API bool    sr_camera_frame(sr_vec3 eye, sr_vec3 gaze, sr_vec3 up, sr_camera_basis *out);
 /* E = M_cam^-1, written directly from the orthonormal basis (rows u, v, w,
  * translation -u.e, -v.e, -w.e); no general inverse. */
-sr_mat4 sr_camera_matrix(const sr_camera_basis *b);
+SR_API sr_mat4 sr_camera_matrix(const sr_camera_basis *b);
 /* Convenience: the frame looking from eye at target. */
-sr_mat4 sr_look_at(sr_vec3 eye, sr_vec3 target, sr_vec3 up);
+SR_API sr_mat4 sr_look_at(sr_vec3 eye, sr_vec3 target, sr_vec3 up);
 
 /* Projections (P) in the OpenGL convention, z_ndc in [-1, 1].  With
  * zero_to_one the depth row maps near to 0 and far to 1 instead.  Near and far
  * are positive distances in front of the eye. */
-sr_mat4 sr_ortho(float left, float right, float bottom, float top,
-                 float near_z, float far_z, bool zero_to_one);
-sr_mat4 sr_frustum(float left, float right, float bottom, float top,
-                   float near_z, float far_z, bool zero_to_one);
-sr_mat4 sr_perspective(float fovy_radians, float aspect,
-                       float near_z, float far_z, bool zero_to_one);
+SR_API sr_mat4 sr_ortho(float left, float right, float bottom, float top,
+                        float near_z, float far_z, bool zero_to_one);
+SR_API sr_mat4 sr_frustum(float left, float right, float bottom, float top,
+                          float near_z, float far_z, bool zero_to_one);
+SR_API sr_mat4 sr_perspective(float fovy_radians, float aspect,
+                              float near_z, float far_z, bool zero_to_one);
 
 /* Aspect-ratio preservation: given the field of view wanted across the
  * *smaller* viewport dimension, the vertical field of view to pass to
  * sr_perspective so that a sphere stays round and fits in a wide or tall
  * viewport. */
-float   sr_fit_fovy(float fov_radians, int width, int height);
+SR_API float   sr_fit_fovy(float fov_radians, int width, int height);
 
 /* The viewport matrix S.  It maps NDC x, y in [-1, 1] onto the pixel *edges*
  * of the viewport rectangle (x0, y0, width, height), with y pointing down
@@ -336,12 +348,12 @@ float   sr_fit_fovy(float fov_radians, int width, int height);
  * Where pixel x1..x2 are counted from their centres (pixel x covering
  * [x - 1/2, x + 1/2)), x_S = x1 - 1/2 + (x+1)/2 (x2-x1+1); softrast's
  * pixel-edge coordinate is that value + 1/2 (docs/raster-rules.md). */
-sr_mat4 sr_viewport_matrix(float x0, float y0, float width, float height,
-                           float depth_near, float depth_far, bool zero_to_one);
+SR_API sr_mat4 sr_viewport_matrix(float x0, float y0, float width, float height,
+                                  float depth_near, float depth_far, bool zero_to_one);
 
 /* The normal matrix: inverse transpose of the upper 3x3 of the model-view
  * matrix, returned in the upper 3x3 of a mat4.  false if singular. */
-bool    sr_normal_matrix(const sr_mat4 *model_view, sr_mat4 *out);
+SR_API bool    sr_normal_matrix(const sr_mat4 *model_view, sr_mat4 *out);
 
 /* ---- memory ------------------------------------------------------------- */
 
@@ -386,14 +398,21 @@ typedef struct sr_context_desc {
 #define SR_BATCH_MIN     1024
 #define SR_BATCH_MAX     (1 << 22)
 
-sr_result   sr_make_context(const sr_context_desc *desc, sr_context **out);
-void        sr_destroy_context(sr_context *ctx);
+SR_API sr_result   sr_make_context(const sr_context_desc *desc, sr_context **out);
+SR_API void        sr_destroy_context(sr_context *ctx);
 /* Message for the last failed call on ctx ("" after a success). */
-const char *sr_context_error(const sr_context *ctx);
-int         sr_context_threads(const sr_context *ctx);
+SR_API const char *sr_context_error(const sr_context *ctx);
+SR_API int         sr_context_threads(const sr_context *ctx);
+/* Runs fn(arg, job, thread) for job = 0 .. count-1 on ctx's threads and
+ * returns when all are done: thread is 0 for the caller, 1 .. threads-1 for
+ * the context's workers.  The jobs must be independent of each other.
+ * With ctx NULL every job runs on the calling thread.  softrast_io
+ * compresses a PNG's bands this way. */
+typedef void (*sr_job_fn)(void *arg, int job, int thread);
+SR_API sr_result   sr_run_jobs(sr_context *ctx, sr_job_fn fn, void *arg, int count);
 /* The vector kernels ctx runs: its desc's or SR_SIMD's level, capped by the
  * CPU (never SR_SIMD_DEFAULT; SR_SIMD_OFF for NULL). */
-sr_simd_level sr_context_simd(const sr_context *ctx);
+SR_API sr_simd_level sr_context_simd(const sr_context *ctx);
 
 /* ---- framebuffers ------------------------------------------------------- */
 
@@ -420,33 +439,33 @@ typedef struct sr_framebuffer_desc {
     bool stencil;                 /* an 8-bit stencil buffer (per sample) */
 } sr_framebuffer_desc;
 
-sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
-                              sr_framebuffer **out);
-void      sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb);
+SR_API sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
+                                     sr_framebuffer **out);
+SR_API void      sr_destroy_framebuffer(sr_context *ctx, sr_framebuffer *fb);
 
-int             sr_framebuffer_width(const sr_framebuffer *fb);
-int             sr_framebuffer_height(const sr_framebuffer *fb);
-sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb);
-int             sr_framebuffer_samples(const sr_framebuffer *fb);   /* 1, 2, 4, 8 or 16 */
-bool            sr_framebuffer_has_stencil(const sr_framebuffer *fb);
+SR_API int             sr_framebuffer_width(const sr_framebuffer *fb);
+SR_API int             sr_framebuffer_height(const sr_framebuffer *fb);
+SR_API sr_depth_format sr_framebuffer_depth_format(const sr_framebuffer *fb);
+SR_API int             sr_framebuffer_samples(const sr_framebuffer *fb);   /* 1, 2, 4, 8 or 16 */
+SR_API bool            sr_framebuffer_has_stencil(const sr_framebuffer *fb);
 /* RGBA8, row-major, row 0 at the top, stride = 4 * width bytes.  Carries
  * out pending clears first (and, multisampled, resolves into a buffer the
  * framebuffer keeps); valid until the next draw or clear.  Read-only: the
  * framebuffer remembers which tiles already hold the clear color (a clear
  * to the same color then leaves them alone), and a write through this
  * pointer would go unseen: write pixels with sr_write_pixels. */
-const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
+SR_API const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
 
 /* The standard sample positions (Direct3D and Vulkan; docs/raster-rules.md):
  * sample `index` of a `samples`-sample pixel at (*x, *y) in [0, 1) from
  * the pixel's upper-left corner, y down.  Every position is a multiple of
  * 1/16 px, so coverage at it stays exact in 8 sub-pixel bits. */
-sr_result sr_sample_position(int samples, int index, float *x, float *y);
+SR_API sr_result sr_sample_position(int samples, int index, float *x, float *y);
 
 /* Resolve a multisampled framebuffer into a single-sampled one of the same
  * size: each channel the rounded box average of the pixel's samples,
  * (sum + n/2) / n.  A single-sampled source is copied. */
-sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst);
+SR_API sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst);
 
 /* What sr_clear does to each buffer (sokol's pass actions).  The default
  * clears color to .color, depth to the far value 1.0 and stencil to 0, so
@@ -468,26 +487,26 @@ typedef struct sr_clear_desc {
     uint8_t stencil;              /* used by SR_ACTION_CLEAR; 0 with the default action */
 } sr_clear_desc;
 
-sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc);
+SR_API sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc);
 
 /* Copy a rectangle of RGBA8 pixels out (stride in bytes, >= 4*w);
  * multisampled framebuffers are resolved first. */
-sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
-                         int x, int y, int w, int h, uint8_t *out, size_t stride);
+SR_API sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
+                                int x, int y, int w, int h, uint8_t *out, size_t stride);
 /* Copy a rectangle of RGBA8 pixels in (stride in bytes, >= 4*w): the
  * counterpart of sr_read_pixels, for images composed on the CPU (a page
  * of panels, a magnified cell).  Pending clears of the rest of the
  * framebuffer still happen; a multisampled framebuffer takes each pixel's
  * value in all its samples, so sr_read_pixels gives the same bytes back.
  * Depth and stencil are left as they are. */
-sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
-                          const uint8_t *rgba, size_t stride);
+SR_API sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
+                                 const uint8_t *rgba, size_t stride);
 /* Copy depth values out as floats in [0, 1] (dequantized); multisampled:
  * each pixel's sample 0.  sr_read_stencil: the stored values (sample 0). */
-sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
-                        int x, int y, int w, int h, float *out, size_t stride_floats);
-sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
-                          int x, int y, int w, int h, uint8_t *out, size_t stride);
+SR_API sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
+                               int x, int y, int w, int h, float *out, size_t stride_floats);
+SR_API sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
+                                 int x, int y, int w, int h, uint8_t *out, size_t stride);
 
 /* ---- textures ----------------------------------------------------------- */
 
@@ -519,9 +538,9 @@ typedef struct sr_texture_desc {
  * 1x1).  Texture coordinates follow OpenGL and OBJ: (0, 0) is the
  * bottom-left corner of the image, (1, 1) the top-right, so the texcoords
  * of an OBJ file apply as they are. */
-sr_result sr_make_texture(sr_context *ctx, const sr_texture_desc *desc, sr_texture **out);
-void sr_destroy_texture(sr_context *ctx, sr_texture *tex);
-int sr_texture_levels(const sr_texture *tex);
+SR_API sr_result sr_make_texture(sr_context *ctx, const sr_texture_desc *desc, sr_texture **out);
+SR_API void sr_destroy_texture(sr_context *ctx, sr_texture *tex);
+SR_API int sr_texture_levels(const sr_texture *tex);
 
 /* ---- supersampling ------------------------------------------------------ */
 
@@ -539,8 +558,8 @@ typedef enum sr_resample_filter {
  * destination pixel a normalized weighted sum of the source samples whose
  * centres lie within the filter's support around its centre (edges
  * clamped), in the bytes' own space, rounded and clamped. */
-sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst,
-                        sr_resample_filter filter);
+SR_API sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst,
+                               sr_resample_filter filter);
 
 /* ---- tone mapping ------------------------------------------------------- */
 
@@ -567,14 +586,14 @@ typedef struct sr_tonemap_desc {
  * encoded.  `pixels` and `out` must not overlap.  desc may be NULL (the
  * defaults).  Rows run on the context's threads; the bytes are the same
  * for any thread count. */
-sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height, size_t stride,
-                     uint8_t *out, size_t out_stride, const sr_tonemap_desc *desc);
+SR_API sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height, size_t stride,
+                            uint8_t *out, size_t out_stride, const sr_tonemap_desc *desc);
 /* One colour through a tone curve (no exposure, no encode): out in [0, 1]. */
-sr_result sr_tonemap_rgb(sr_tonemap_op op, const float in[3], float out[3]);
+SR_API sr_result sr_tonemap_rgb(sr_tonemap_op op, const float in[3], float out[3]);
 /* A display-linear value to its 8-bit sRGB code: the OETF (12.92 x up to
  * 0.0031308, 1.055 x^(1/2.4) - 0.055 above), times 255, rounded to
  * nearest; NaN and values <= 0 give 0, values >= 1 give 255. */
-uint8_t sr_srgb_encode8(float linear);
+SR_API uint8_t sr_srgb_encode8(float linear);
 
 /* ---- pipeline state ----------------------------------------------------- */
 
@@ -903,11 +922,11 @@ typedef struct sr_state {
  * keeps its specialized fast paths for the built-ins themselves; these
  * are the same models to start a program from (docs/shaders.md). */
 typedef struct sr_builtin sr_builtin;
-sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state,
-                                  const sr_mat4 *model, const sr_mat4 *view,
-                                  const sr_mat4 *projection, sr_builtin **out);
-const sr_program *sr_builtin_program(const sr_builtin *b);
-void sr_destroy_builtin_program(sr_context *ctx, sr_builtin *b);
+SR_API sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state,
+                                         const sr_mat4 *model, const sr_mat4 *view,
+                                         const sr_mat4 *projection, sr_builtin **out);
+SR_API const sr_program *sr_builtin_program(const sr_builtin *b);
+SR_API void sr_destroy_builtin_program(sr_context *ctx, sr_builtin *b);
 
 /* ---- drawing ------------------------------------------------------------ */
 
@@ -946,14 +965,14 @@ typedef struct sr_buffer sr_buffer;
  * draw of 2^28 vertices can read of one array) SR_TOO_LARGE before any
  * allocation. */
 #define SR_BUFFER_MAX ((size_t)1 << 34)
-sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
-void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
+SR_API sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
+SR_API void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as
  * glBufferSubData: the range must lie inside it. */
-sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const void *data,
-                           size_t bytes);
-void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
-size_t sr_buffer_size(const sr_buffer *buf); /* 0 for a NULL buffer */
+SR_API sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const void *data,
+                                  size_t bytes);
+SR_API void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
+SR_API size_t sr_buffer_size(const sr_buffer *buf); /* 0 for a NULL buffer */
 
 /* An indexed face set.  Strides are in bytes; 0 means tightly packed.
  * Arrays and strides must be multiples of 4 bytes (indices: of their size). */
@@ -993,9 +1012,9 @@ typedef struct sr_draw_info {
     uint64_t fragments;         /* samples that passed the depth test and were written */
 } sr_draw_info;
 
-sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
-                  const sr_draw_desc *draw);
-sr_draw_info sr_last_draw_info(const sr_context *ctx);
+SR_API sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
+                         const sr_draw_desc *draw);
+SR_API sr_draw_info sr_last_draw_info(const sr_context *ctx);
 
 /* ---- meshes ------------------------------------------------------------- */
 
@@ -1041,10 +1060,10 @@ typedef struct sr_mesh {
 /* A mesh on ctx holding copies of src's arrays, strings and parts (src
  * stays the caller's): how a program hands its own geometry to the mesh
  * functions. */
-sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out);
+SR_API sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out);
 /* Frees the mesh's arrays and zeroes *mesh (the struct itself is the
  * caller's).  Every mesh function takes the context the mesh was made on. */
-void sr_destroy_mesh(sr_context *ctx, sr_mesh *mesh);
+SR_API void sr_destroy_mesh(sr_context *ctx, sr_mesh *mesh);
 
 typedef enum sr_normal_mode {
     SR_NORMALS_SMOOTH = 0, /* angle-weighted vertex normals */
@@ -1055,9 +1074,9 @@ typedef enum sr_normal_mode {
  * colors, texcoords and indices are replaced too), on ctx's allocator;
  * smooth ones are computed on ctx's threads, the same bits for any
  * thread count. */
-sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
+SR_API sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
 /* Axis-aligned bounding box; false for an empty mesh. */
-bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
+SR_API bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
 
 /* ---- built-in geometry -------------------------------------------------- */
 
@@ -1065,11 +1084,11 @@ bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
  * [u][v], as float xyz) into a mesh of detail x detail quads per patch
  * (detail 1..256), evaluated by forward differences, with normals from the
  * patch derivatives.  Release with sr_destroy_mesh. */
-sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
-                              size_t patch_count, int detail, sr_mesh *out);
+SR_API sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
+                                     size_t patch_count, int detail, sr_mesh *out);
 /* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x.
  * Release with sr_destroy_mesh. */
-sr_result sr_make_teapot(sr_context *ctx, int detail, sr_mesh *out);
+SR_API sr_result sr_make_teapot(sr_context *ctx, int detail, sr_mesh *out);
 
 /* ---- 2D raster API ------------------------------------------------------ */
 /*
@@ -1087,10 +1106,10 @@ typedef struct sr_rgba { float r, g, b, a; } sr_rgba;
 /* Text labels for demos and overlays, in softrast's own 5x7 pixel font
  * (printable ASCII; other bytes draw as a box).  (x, y) is the top-left
  * corner; each glyph cell is 6 x 8 pixels times `scale` (>= 1). */
-sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int scale,
-                       const char *text, sr_rgba color);
+SR_API sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int scale,
+                              const char *text, sr_rgba color);
 /* Width in pixels that sr_draw_text would use. */
-int sr_text_width(const char *text, int scale);
+SR_API int sr_text_width(const char *text, int scale);
 
 /* ---- 2D polygon fill ---------------------------------------------------- */
 /*
@@ -1136,21 +1155,21 @@ typedef struct sr_fill_desc {
 } sr_fill_desc;
 
 /* Fill a polygon with a color (desc may be NULL: nonzero, aliased). */
-sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                          sr_rgba color, const sr_fill_desc *desc);
+SR_API sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                                 sr_rgba color, const sr_fill_desc *desc);
 /* Coverage only: 0..255 per pixel of the w x h window whose top-left pixel
  * is (x0, y0), written to mask (stride bytes per row; the window is
  * zeroed first).  Aliased coverage is 0 or 255. */
-sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
-                              const sr_fill_desc *desc, int x0, int y0, int w, int h,
-                              uint8_t *mask, size_t stride);
+SR_API sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
+                                     const sr_fill_desc *desc, int x0, int y0, int w, int h,
+                                     uint8_t *mask, size_t stride);
 /* Blend `color` into fb through a coverage mask (0..255 per pixel, w x h,
  * stride bytes per row) whose top-left pixel lands on (x, y), clipped to
  * the framebuffer, source-over as the fills blend.  Coverage computed
  * once by sr_polygon_coverage can so be drawn many times (cached glyphs
  * of a text overlay). */
-sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
-                           const uint8_t *mask, size_t stride, sr_rgba color);
+SR_API sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
+                                  const uint8_t *mask, size_t stride, sr_rgba color);
 
 /* ---- region filling ----------------------------------------------------- */
 /*
@@ -1177,10 +1196,10 @@ typedef struct sr_region_fill_desc {
 
 /* (x, y) must be inside the framebuffer; desc may be NULL; filled (may be
  * NULL) receives the number of pixels recoloured. */
-sr_result sr_flood_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
-                        const sr_region_fill_desc *desc, size_t *filled);
-sr_result sr_boundary_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
-                           sr_rgba boundary, const sr_region_fill_desc *desc, size_t *filled);
+SR_API sr_result sr_flood_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
+                               const sr_region_fill_desc *desc, size_t *filled);
+SR_API sr_result sr_boundary_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
+                                  sr_rgba boundary, const sr_region_fill_desc *desc, size_t *filled);
 
 /* ---- 2D polygon clipping ------------------------------------------------ */
 /*
@@ -1209,16 +1228,16 @@ typedef struct sr_polygon_clip_desc {
  * size (0 when nothing is left).  When capacity is too small the call
  * returns SR_TOO_LARGE with *out_count the size needed (call again with a
  * larger buffer).  desc may be NULL. */
-sr_result sr_clip_polygon_rect(sr_context *ctx, const sr_point2 *in, int count, double xmin,
-                               double ymin, double xmax, double ymax,
-                               const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
-                               int *out_count);
+SR_API sr_result sr_clip_polygon_rect(sr_context *ctx, const sr_point2 *in, int count, double xmin,
+                                      double ymin, double xmax, double ymax,
+                                      const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
+                                      int *out_count);
 /* Clip against a convex window polygon (either orientation, at least 3
  * vertices, non-zero area); its edges are used in order. */
-sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, int count,
-                                 const sr_point2 *window, int window_count,
-                                 const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
-                                 int *out_count);
+SR_API sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, int count,
+                                        const sr_point2 *window, int window_count,
+                                        const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
+                                        int *out_count);
 
 /* ---- curves ------------------------------------------------------------- */
 /*
@@ -1232,10 +1251,10 @@ sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, int count
  */
 
 /* rx, ry >= 0; |cx|, |cy|, rx, ry <= SR_MAX_COORD2D.  Aliased. */
-sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double rx,
-                          double ry, sr_rgba color, bool filled);
-sr_result sr_draw_circle(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double r,
-                         sr_rgba color, bool filled);
+SR_API sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double rx,
+                                 double ry, sr_rgba color, bool filled);
+SR_API sr_result sr_draw_circle(sr_context *ctx, sr_framebuffer *fb, double cx, double cy, double r,
+                                sr_rgba color, bool filled);
 
 /* An implicit region F(x, y) < 0.  The function returns F at (x, y) in
  * pixel coordinates; when grad is not NULL it may store dF/dx, dF/dy there
@@ -1251,26 +1270,26 @@ typedef struct sr_implicit_desc {
     bool linear_light;
 } sr_implicit_desc;
 
-sr_result sr_fill_implicit(sr_context *ctx, sr_framebuffer *fb, const sr_implicit_desc *desc,
-                           sr_rgba color);
+SR_API sr_result sr_fill_implicit(sr_context *ctx, sr_framebuffer *fb, const sr_implicit_desc *desc,
+                                  sr_rgba color);
 
 /* Bezier curves flattened by forward differencing: n steps of 1/n in t,
  * with n chosen so the chords stay within `tolerance` pixels of the curve
  * (from the bound |B''| h^2 / 8 on the chord error).  out receives the n
  * points after p0 (the last is exactly the end point).  Capacity too small:
  * SR_TOO_LARGE and *out_count = n. */
-sr_result sr_flatten_quadratic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
-                               double tolerance, sr_point2 *out, int capacity, int *out_count);
-sr_result sr_flatten_cubic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
-                           sr_point2 p3, double tolerance, sr_point2 *out, int capacity,
-                           int *out_count);
+SR_API sr_result sr_flatten_quadratic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
+                                      double tolerance, sr_point2 *out, int capacity, int *out_count);
+SR_API sr_result sr_flatten_cubic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point2 p2,
+                                  sr_point2 p3, double tolerance, sr_point2 *out, int capacity,
+                                  int *out_count);
 /* An SVG elliptical arc from `from` to `to` (radii, x-axis rotation in
  * degrees, large-arc and sweep flags; out-of-range radii are scaled up as
  * SVG 1.1 F.6.6 says, zero radii give a straight line).  Same output
  * convention as the Bezier calls. */
-sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
-                         double rotation_deg, bool large_arc, bool sweep, sr_point2 to,
-                         double tolerance, sr_point2 *out, int capacity, int *out_count);
+SR_API sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
+                                double rotation_deg, bool large_arc, bool sweep, sr_point2 to,
+                                double tolerance, sr_point2 *out, int capacity, int *out_count);
 
 /* ---- Gouraud-shaded 2D polygons ----------------------------------------- */
 /*
@@ -1282,11 +1301,11 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
  * depends on the polygon's orientation for more than three vertices).
  * Colors with alpha < 1 blend source-over.
  */
-sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_point2 v[3],
-                                   const sr_rgba colors[3]);
+SR_API sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_point2 v[3],
+                                          const sr_rgba colors[3]);
 /* colors: one per polygon point; rule: SR_FILL_RULE_DEFAULT -> nonzero. */
-sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                                  const sr_rgba *colors, sr_fill_rule rule);
+SR_API sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                                         const sr_rgba *colors, sr_fill_rule rule);
 
 /* ---- paths and strokes -------------------------------------------------- */
 /*
@@ -1299,19 +1318,19 @@ sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_
 typedef struct sr_path sr_path;
 
 /* tolerance: flattening error in pixels; 0 -> 0.1. */
-sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out);
-void      sr_destroy_path(sr_context *ctx, sr_path *path); /* ctx: the one that made it */
-void      sr_path_clear(sr_path *path);
-sr_result sr_path_move_to(sr_path *path, double x, double y);
-sr_result sr_path_line_to(sr_path *path, double x, double y);
-sr_result sr_path_quad_to(sr_path *path, double x1, double y1, double x, double y);
-sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, double y2,
-                           double x, double y);
-sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_deg,
-                         bool large_arc, bool sweep, double x, double y);
-sr_result sr_path_close(sr_path *path);
+SR_API sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out);
+SR_API void      sr_destroy_path(sr_context *ctx, sr_path *path); /* ctx: the one that made it */
+SR_API void      sr_path_clear(sr_path *path);
+SR_API sr_result sr_path_move_to(sr_path *path, double x, double y);
+SR_API sr_result sr_path_line_to(sr_path *path, double x, double y);
+SR_API sr_result sr_path_quad_to(sr_path *path, double x1, double y1, double x, double y);
+SR_API sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, double y2,
+                                  double x, double y);
+SR_API sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_deg,
+                                bool large_arc, bool sweep, double x, double y);
+SR_API sr_result sr_path_close(sr_path *path);
 /* The flattened path as a polygon (valid until the path changes). */
-sr_polygon2 sr_path_polygon(const sr_path *path);
+SR_API sr_polygon2 sr_path_polygon(const sr_path *path);
 
 typedef enum sr_stroke_join {
     SR_STROKE_JOIN_DEFAULT = 0, /* -> SR_STROKE_JOIN_MITER (SVG's default) */
@@ -1339,15 +1358,15 @@ typedef struct sr_stroke_desc {
     bool linear_light;
 } sr_stroke_desc;
 
-sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path, sr_rgba color,
-                       const sr_fill_desc *desc);
-sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
-                         sr_rgba color, const sr_stroke_desc *desc);
+SR_API sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path, sr_rgba color,
+                              const sr_fill_desc *desc);
+SR_API sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
+                                sr_rgba color, const sr_stroke_desc *desc);
 /* The stroke outline itself: out->points and out->contour_counts are
  * allocated on ctx; release them with sr_destroy_stroke_outline. */
-sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
-                                 const sr_stroke_desc *desc, sr_polygon2 *out);
-void      sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
+SR_API sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
+                                        const sr_stroke_desc *desc, sr_polygon2 *out);
+SR_API void      sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
 
 /* ---- 2D lines ----------------------------------------------------------- */
 /*
@@ -1402,15 +1421,15 @@ typedef struct sr_line_desc {
 } sr_line_desc;
 
 /* Draw a->b into fb's color.  desc may be NULL (Bresenham, width 1). */
-sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_point2 b,
-                       sr_rgba color, const sr_line_desc *desc);
+SR_API sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_point2 b,
+                              sr_rgba color, const sr_line_desc *desc);
 
 /* Clip the segment *a-*b to the closed rectangle [rmin.x, rmax.x] x
  * [rmin.y, rmax.y], moving the endpoints onto its border.  Returns false
  * (points unchanged) when no part of it is inside, or when a coordinate
  * is not finite or the rectangle is empty. */
-bool sr_clip_line_cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
-bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
+SR_API bool sr_clip_line_cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
+SR_API bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
 
 #ifdef __cplusplus
 }

@@ -58,21 +58,21 @@ typedef struct sr_load_desc {
  * The readers' working memory (the file's bytes, growing arrays, Assimp's
  * own) comes from malloc and is freed before the call returns; the mesh
  * is copied onto ctx's allocator at the end. */
-sr_result sr_load_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
-                       sr_mesh *out, sr_io_error *err);
+SR_API sr_result sr_load_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                              sr_mesh *out, sr_io_error *err);
 
 /* The readers on a buffer already in memory (for tests and fuzzing), with
  * the same memory as sr_load_mesh.  `name` is used in messages.  `data`
  * need not be NUL-terminated. */
-sr_result sr_parse_obj(sr_context *ctx, const char *name, const char *data, size_t size,
-                       sr_mesh *out, sr_io_error *err);
-sr_result sr_parse_ply(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
-                       sr_mesh *out, sr_io_error *err);
-sr_result sr_parse_stl(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
-                       sr_mesh *out, sr_io_error *err);
+SR_API sr_result sr_parse_obj(sr_context *ctx, const char *name, const char *data, size_t size,
+                              sr_mesh *out, sr_io_error *err);
+SR_API sr_result sr_parse_ply(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
+                              sr_mesh *out, sr_io_error *err);
+SR_API sr_result sr_parse_stl(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
+                              sr_mesh *out, sr_io_error *err);
 
 /* true when this build can read other formats through Assimp. */
-bool sr_io_have_assimp(void);
+SR_API bool sr_io_have_assimp(void);
 
 /* Open a file for reading as the readers here do, for a program's own
  * inputs (a script, a drawing): only a regular file.  A directory, FIFO,
@@ -81,8 +81,8 @@ bool sr_io_have_assimp(void);
  * ("FILE: cannot open: ...", "FILE: is a directory, not KIND", "FILE: not
  * a regular file"), KIND saying what the file should be ("an event
  * script").  *size is the file's size in bytes; close *f with fclose. */
-sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
-                       sr_io_error *err);
+SR_API sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
+                              sr_io_error *err);
 
 /* PNG. */
 typedef enum sr_png_channels {
@@ -114,9 +114,9 @@ typedef struct sr_png_write_desc {
  * Writes retry after EINTR (a signal handler without SA_RESTART) and carry
  * on after a short write; the first real error (ENOSPC, EFBIG, EIO) fails
  * the call with SR_IO_ERROR and removes the temporary file. */
-sr_result sr_write_png(const char *path, int width, int height,
-                       const uint8_t *rgba, size_t stride,
-                       const sr_png_write_desc *desc, sr_io_error *err);
+SR_API sr_result sr_write_png(const char *path, int width, int height,
+                              const uint8_t *rgba, size_t stride,
+                              const sr_png_write_desc *desc, sr_io_error *err);
 
 /* Where an encoder's bytes go (stb_image_write's "_to_func"): called in
  * order with consecutive pieces of the file (a socket, a growing buffer);
@@ -126,9 +126,9 @@ typedef bool (*sr_write_fn)(void *user, const void *data, size_t size);
 
 /* sr_write_png's bytes, the same ones, to `write` instead of a file
  * (messages name "<memory>"). */
-sr_result sr_encode_png(sr_write_fn write, void *user, int width, int height,
-                        const uint8_t *rgba, size_t stride, const sr_png_write_desc *desc,
-                        sr_io_error *err);
+SR_API sr_result sr_encode_png(sr_write_fn write, void *user, int width, int height,
+                               const uint8_t *rgba, size_t stride, const sr_png_write_desc *desc,
+                               sr_io_error *err);
 
 typedef struct sr_png_read_desc {
     sr_allocator allocator; /* zero: malloc/free.  libpng's and zlib's blocks, the
@@ -139,11 +139,11 @@ typedef struct sr_png_read_desc {
 
 /* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
  * desc may be NULL: *pixels is then malloc'd; free it with free(). */
-sr_result sr_read_png(const char *path, const sr_png_read_desc *desc, int *width,
-                      int *height, uint8_t **pixels, sr_io_error *err);
+SR_API sr_result sr_read_png(const char *path, const sr_png_read_desc *desc, int *width,
+                             int *height, uint8_t **pixels, sr_io_error *err);
 /* sr_read_png on a file already in memory; `name` is used in messages. */
-sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
-                        int *width, int *height, uint8_t **pixels, sr_io_error *err);
+SR_API sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
+                               int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 /* JPEG: baseline or progressive, gray, YCbCr/RGB or CMYK (Adobe's inverted
  * inks too), any chroma subsampling, read as RGBA8 with alpha 255; at
@@ -153,12 +153,12 @@ sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
  * an error with libjpeg's words: nothing partial is returned.  *pixels is
  * malloc'd; free it with free().  A build without libjpeg returns
  * SR_UNSUPPORTED (sr_io_have_jpeg says which). */
-sr_result sr_read_jpeg(const char *path, int *width, int *height,
-                       uint8_t **pixels, sr_io_error *err);
+SR_API sr_result sr_read_jpeg(const char *path, int *width, int *height,
+                              uint8_t **pixels, sr_io_error *err);
 /* The same on a file already in memory; `name` is used in messages. */
-sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size,
-                         int *width, int *height, uint8_t **pixels, sr_io_error *err);
-bool sr_io_have_jpeg(void);
+SR_API sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size,
+                                int *width, int *height, uint8_t **pixels, sr_io_error *err);
+SR_API bool sr_io_have_jpeg(void);
 
 /* Write RGBA8 pixels (stride in bytes) as a baseline JPEG with 4:2:0
  * chroma, alpha dropped, atomically as sr_write_png does (a failed write
@@ -169,21 +169,21 @@ typedef struct sr_jpeg_write_desc {
 
 #define SR_JPEG_DEFAULT_QUALITY 90
 
-sr_result sr_write_jpeg(const char *path, int width, int height,
-                        const uint8_t *rgba, size_t stride,
-                        const sr_jpeg_write_desc *desc, sr_io_error *err);
+SR_API sr_result sr_write_jpeg(const char *path, int width, int height,
+                               const uint8_t *rgba, size_t stride,
+                               const sr_jpeg_write_desc *desc, sr_io_error *err);
 /* sr_write_jpeg's bytes to `write` instead of a file (see sr_write_fn). */
-sr_result sr_encode_jpeg(sr_write_fn write, void *user, int width, int height,
-                         const uint8_t *rgba, size_t stride, const sr_jpeg_write_desc *desc,
-                         sr_io_error *err);
+SR_API sr_result sr_encode_jpeg(sr_write_fn write, void *user, int width, int height,
+                                const uint8_t *rgba, size_t stride, const sr_jpeg_write_desc *desc,
+                                sr_io_error *err);
 
 /* A PNG or a JPEG, told apart by the file's first bytes (not its name),
  * read as RGBA8 by sr_read_png or sr_read_jpeg. */
-sr_result sr_read_image(const char *path, int *width, int *height,
-                        uint8_t **pixels, sr_io_error *err);
+SR_API sr_result sr_read_image(const char *path, int *width, int *height,
+                               uint8_t **pixels, sr_io_error *err);
 /* The same on bytes in memory (sr_mesh.texture_data, say). */
-sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
-                          int *width, int *height, uint8_t **pixels, sr_io_error *err);
+SR_API sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
+                                 int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
 /* Radiance RGBE pictures (.hdr, .pic), such as equirectangular
  * environment maps, read as linear float RGB: 3 floats a pixel, rows top
@@ -202,11 +202,11 @@ sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
  * scanline are ignored. */
 #define SR_HDR_MAX_SIDE   32768
 #define SR_HDR_MAX_PIXELS ((size_t)1 << 27)   /* 1.5 GiB of floats */
-sr_result sr_read_hdr(const char *path, int *width, int *height, float **pixels,
-                      sr_io_error *err);
+SR_API sr_result sr_read_hdr(const char *path, int *width, int *height, float **pixels,
+                             sr_io_error *err);
 /* The same on a file already in memory; `name` is used in messages. */
-sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t size, int *width,
-                        int *height, float **pixels, sr_io_error *err);
+SR_API sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t size, int *width,
+                               int *height, float **pixels, sr_io_error *err);
 
 /* SVG 1.1 drawings, rendered with the 2D toolkit: svg, g, path, rect,
  * circle, ellipse, line, polyline, polygon; transforms; fill and stroke
@@ -260,13 +260,13 @@ typedef struct sr_svg_info {
  * SR_TOO_LARGE past a limit above, SR_OUT_OF_MEMORY, SR_INVALID_ARG for
  * bad arguments, SR_UNSUPPORTED in a build without expat.  info may be
  * NULL.  Nothing global: calls may run in parallel on different contexts. */
-sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *desc,
-                        sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
+SR_API sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *desc,
+                               sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
 /* The same for a file (desc->name defaults to the path). */
-sr_result sr_render_svg_file(sr_context *ctx, const char *path, const sr_svg_desc *desc,
-                             sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
+SR_API sr_result sr_render_svg_file(sr_context *ctx, const char *path, const sr_svg_desc *desc,
+                                    sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
 /* true when this build reads SVG (it found expat). */
-bool sr_io_have_svg(void);
+SR_API bool sr_io_have_svg(void);
 
 #ifdef __cplusplus
 }

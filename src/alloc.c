@@ -103,24 +103,6 @@ sr_allocator sr__default_allocator(void)
     return (sr_allocator){ .alloc = default_alloc, .free = default_free };
 }
 
-void sr__populate(void *p, size_t bytes)
-{
-#if defined(MAP_ANONYMOUS)
-    if (!p || bytes < SR_POPULATE_MIN) {
-        return;
-    }
-    uintptr_t page = (uintptr_t)sysconf(_SC_PAGESIZE);
-    uintptr_t start = ((uintptr_t)p + page - 1) & ~(page - 1);
-    uintptr_t end = ((uintptr_t)p + bytes) & ~(page - 1);
-    if (end > start) {
-        (void)madvise((void *)start, end - start, MADV_POPULATE_WRITE);  /* EINVAL before 5.14 */
-    }
-#else
-    (void)p;
-    (void)bytes;
-#endif
-}
-
 void *sr__mem_alloc(const sr_allocator *a, size_t size)
 {
     return a->alloc(size ? size : 1, a->user);

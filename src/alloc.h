@@ -19,12 +19,4 @@ void  sr__mem_free(const sr_allocator *a, void *ptr);
  * instead of thousands (a no-op where unsupported). */
 void *sr__mem_alloc_large(const sr_allocator *a, size_t size);
 
-/* Fault in at once the pages lying wholly inside [p, p + bytes) of a
- * block about to be written (MADV_POPULATE_WRITE), for malloc'd blocks of
- * SR_POPULATE_MIN bytes and more: on the development VM a page faulted in
- * on first touch costs several times one of a batch (alloc.c).  A no-op
- * for smaller blocks and where the kernel cannot. */
-#define SR_POPULATE_MIN ((size_t)64 << 10)
-void sr__populate(void *p, size_t bytes);
-
 #endif

@@ -66,6 +66,23 @@ sr_simd_level sr_context_simd(const sr_context *ctx)
     return ctx ? ctx->simd : SR_SIMD_OFF;
 }
 
+sr_result sr_run_jobs(sr_context *ctx, sr_job_fn fn, void *arg, int count)
+{
+    if (!fn) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_run_jobs: fn is NULL");
+    }
+    if (count < 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_run_jobs: count %d is negative", count);
+    }
+    if (!ctx) {
+        sr__pool_run(NULL, fn, arg, count);
+        return SR_OK;
+    }
+    sr__pool_run(ctx->pool, fn, arg, count);
+    sr__ok(ctx);
+    return SR_OK;
+}
+
 sr_draw_info sr_last_draw_info(const sr_context *ctx)
 {
     sr_draw_info none = {0};

@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stddef.h>
+#include <string.h> /* strstr in CHECK_STR_CONTAINS */
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846

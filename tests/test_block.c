@@ -168,11 +168,11 @@ SR_TEST(rect_classify_agrees_with_every_pixel_of_random_blocks)
         sr__tri_edges(&t, &ed);
         bool any = sr__block_classify(&ed, bx, by, sx, sy, e, &inside);
         int covered = 0;
-        for (int y = by; y < by + SR_BLOCK_SIZE; y++) {
-            for (int x = bx; x < bx + SR_BLOCK_SIZE; x++) {
+        for (int py = by; py < by + SR_BLOCK_SIZE; py++) {
+            for (int px = bx; px < bx + SR_BLOCK_SIZE; px++) {
                 bool in = true;
                 for (int i = 0; i < 3; i++) {
-                    in &= edge_at(&t, i, x, y) + sr__tri_bias(&t, i) >= 0;
+                    in &= edge_at(&t, i, px, py) + sr__tri_bias(&t, i) >= 0;
                 }
                 covered += in;
             }

@@ -41,6 +41,9 @@ static void check_one(const char *s)
     }
 }
 
+/* The end of a string literal, for the (begin, end) parsers. */
+#define LIT_END(lit) (&(lit)[sizeof(lit) - 1])
+
 SR_TEST(edge_cases_match_strtod_and_strtof)
 {
     static const char *cases[] = {
@@ -198,20 +201,20 @@ SR_TEST(statuses_tell_words_from_overflow)
 {
     double d;
     float f;
-    CHECK_EQ(sr__parse_float("1e39", "1e39" + 4, &f), SR_NUM_OVERFLOW);
+    CHECK_EQ(sr__parse_float("1e39", LIT_END("1e39"), &f), SR_NUM_OVERFLOW);
     CHECK(isinf(f) && f > 0);
-    CHECK_EQ(sr__parse_double("1e39", "1e39" + 4, &d), SR_NUM_OK);
-    CHECK_EQ(sr__parse_double("-1e999", "-1e999" + 6, &d), SR_NUM_OVERFLOW);
+    CHECK_EQ(sr__parse_double("1e39", LIT_END("1e39"), &d), SR_NUM_OK);
+    CHECK_EQ(sr__parse_double("-1e999", LIT_END("-1e999"), &d), SR_NUM_OVERFLOW);
     CHECK(isinf(d) && d < 0);
-    CHECK_EQ(sr__parse_double("-inf", "-inf" + 4, &d), SR_NUM_NOT_FINITE);
+    CHECK_EQ(sr__parse_double("-inf", LIT_END("-inf"), &d), SR_NUM_NOT_FINITE);
     CHECK(isinf(d) && d < 0);
-    CHECK_EQ(sr__parse_float("NaN", "NaN" + 3, &f), SR_NUM_NOT_FINITE);
+    CHECK_EQ(sr__parse_float("NaN", LIT_END("NaN"), &f), SR_NUM_NOT_FINITE);
     CHECK(isnan(f));
     /* The largest float and the midpoint above it. */
-    CHECK_EQ(sr__parse_float("3.4028235677973366e38", "3.4028235677973366e38" + 21, &f),
+    CHECK_EQ(sr__parse_float("3.4028235677973366e38", LIT_END("3.4028235677973366e38"), &f),
              SR_NUM_OK);
     CHECK(f == FLT_MAX);
-    CHECK_EQ(sr__parse_float("3.4028235677973366164e38", "3.4028235677973366164e38" + 24, &f),
+    CHECK_EQ(sr__parse_float("3.4028235677973366164e38", LIT_END("3.4028235677973366164e38"), &f),
              SR_NUM_OVERFLOW);
     const char *tie = "340282356779733661637539395458142568448"; /* to even: infinity */
     CHECK_EQ(sr__parse_float(tie, tie + strlen(tie), &f), SR_NUM_OVERFLOW);

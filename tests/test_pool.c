@@ -43,6 +43,21 @@ static void job(void *arg, int j, int thread)
     }
 }
 
+/* Ready b for a batch of n jobs on `threads` threads: runs[0..n) zeroed. */
+static void start_batch(batch *b, int threads, int n)
+{
+    for (int j = 0; j < n; j++) {
+        atomic_store(&b->runs[j], 0);
+    }
+    for (int t = 0; t < SR_MAX_THREADS; t++) {
+        b->last_own[t] = -1;
+    }
+    atomic_store(&b->bad_thread, 0);
+    atomic_store(&b->out_of_order, 0);
+    b->threads = threads;
+    b->count = n;
+}
+
 SR_TEST(every_job_runs_once_at_any_thread_count)
 {
     static const int threads[] = { 1, 2, 3, 5, 8 };
@@ -57,16 +72,10 @@ SR_TEST(every_job_runs_once_at_any_thread_count)
         for (int rep = 0; rep < 50; rep++) {
             for (size_t ci = 0; ci < sizeof counts / sizeof *counts; ci++) {
                 int n = counts[ci];
-                for (int j = 0; j < MAX_JOBS; j++) {
+                start_batch(&b, threads[ti], n);
+                for (int j = n; j < MAX_JOBS; j++) {
                     atomic_store(&b.runs[j], 0);
                 }
-                for (int t = 0; t < SR_MAX_THREADS; t++) {
-                    b.last_own[t] = -1;
-                }
-                atomic_store(&b.bad_thread, 0);
-                atomic_store(&b.out_of_order, 0);
-                b.threads = threads[ti];
-                b.count = n;
                 sr__pool_run(ctx->pool, job, &b, n);
                 int wrong = 0;
                 for (int j = 0; j < MAX_JOBS; j++) {
@@ -97,16 +106,7 @@ SR_TEST(batches_for_sleeping_workers_run_every_job_once)
         REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads }, &ctx) == SR_OK);
         for (int rep = 0; rep < 40; rep++) {
             int n = 1 + rep % 5;
-            for (int j = 0; j < n; j++) {
-                atomic_store(&b.runs[j], 0);
-            }
-            for (int t = 0; t < SR_MAX_THREADS; t++) {
-                b.last_own[t] = -1;
-            }
-            atomic_store(&b.bad_thread, 0);
-            atomic_store(&b.out_of_order, 0);
-            b.threads = threads;
-            b.count = n;
+            start_batch(&b, threads, n);
             if (rep % 2) {
                 nanosleep(&(struct timespec){ 0, 2000000 }, NULL); /* 2 ms: workers asleep */
             }
@@ -121,4 +121,31 @@ SR_TEST(batches_for_sleeping_workers_run_every_job_once)
         }
         sr_destroy_context(ctx);
     }
+}
+
+/* sr_run_jobs, the pool as the public API offers it: every job once on the
+ * context's threads, or on the caller alone without a context; a NULL
+ * function or a negative count is refused and named. */
+SR_TEST(run_jobs_runs_every_job_once_and_checks_its_arguments)
+{
+    static batch b;
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 3 }, &ctx) == SR_OK);
+    for (int with_ctx = 0; with_ctx <= 1; with_ctx++) {
+        int n = 500;
+        start_batch(&b, with_ctx ? 3 : 1, n);
+        CHECK_EQ(sr_run_jobs(with_ctx ? ctx : NULL, job, &b, n), SR_OK);
+        int wrong = 0;
+        for (int j = 0; j < n; j++) {
+            wrong += atomic_load(&b.runs[j]) != 1;
+        }
+        CHECK_EQ(wrong, 0);
+        CHECK_EQ(atomic_load(&b.bad_thread), 0);
+    }
+    CHECK_EQ(sr_run_jobs(ctx, NULL, &b, 4), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "fn");
+    CHECK_EQ(sr_run_jobs(ctx, job, &b, -1), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "count");
+    CHECK_EQ(sr_run_jobs(NULL, NULL, &b, 4), SR_INVALID_ARG);
+    sr_destroy_context(ctx);
 }

@@ -7,25 +7,6 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Demos register here: one line each, X(id, "name", summary), the
- * function demo_<id> in demo_<id>.c.  The id is the name as a C
- * identifier (dashes become underscores: gouraud-highlight ->
- * demo_gouraud_highlight in demo_gouraud_highlight.c). */
-#define DEMO_LIST(X) \
-    X(lines, "lines", "every line algorithm on a star of lines, magnified") \
-    X(fill, "fill", "even-odd vs nonzero fill of a star and of holes; area and supersampled AA") \
-    X(floodfill, "floodfill", "flood and boundary fill, 4- vs 8-connected, leaking through a diagonal gap") \
-    X(clip, "clip", "Sutherland-Hodgman clipping: a 2D polygon edge by edge; 3D triangles in clip space") \
-    X(curves, "curves", "midpoint circles and ellipses, Bezier flattening, stroke joins and caps") \
-    X(gouraud_highlight, "gouraud-highlight", "a specular highlight missed (interior) and smeared (at a vertex) by Gouraud, vs Phong") \
-    X(perspective, "perspective", "checkerboard and gradient interpolated in screen space (affine) vs perspective-correctly") \
-    X(zfight, "zfight", "z-fighting: D16/D24/D32F depth at several far/near ratios, reversed-Z, polygon offset") \
-    X(normals, "normals", "a non-uniformly scaled sphere lit with normals transformed by M vs by M^-T") \
-    X(viewport, "viewport", "one scene in wide and tall viewports, stretched vs aspect ratio preserved") \
-    X(aa, "aa", "a star and a turned square aliased, MSAA 4/8/16, exact area, SSAA with four filters")
-
-#define DEMO_DECLARE(id, name, summary) int demo_##id(sr_context *, const demo_args *, sr_framebuffer **);
-DEMO_LIST(DEMO_DECLARE)
 #define DEMO_ENTRY(id, name, summary) { name, summary, demo_##id },
 const demo_entry demo_table[] = {
     DEMO_LIST(DEMO_ENTRY)

@@ -545,14 +545,14 @@ sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
     return SR_OK;
 }
 
-void sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline)
+void sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *polygon)
 {
-    if (!ctx || !outline) {
+    if (!ctx || !polygon) {
         return;
     }
-    sr__free(ctx, (void *)outline->points);
-    sr__free(ctx, (void *)outline->contour_counts);
-    *outline = (sr_polygon2){ NULL, 0, NULL, 0 };
+    sr__free(ctx, (void *)polygon->points);
+    sr__free(ctx, (void *)polygon->contour_counts);
+    *polygon = (sr_polygon2){ NULL, 0, NULL, 0 };
 }
 
 sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,

@@ -6,9 +6,11 @@
  * and context (smooth normals use the context's threads too).  Every
  * array is allocated on the mesh's context.
  */
+#define _DEFAULT_SOURCE 1   /* populate.h */
 #include "softrast.h"
 
 #include "context.h"
+#include "populate.h"
 #include "parallel/pool.h"
 
 #include <math.h>

@@ -26,11 +26,12 @@
  *    material with Kd.  A vertex color wins over Kd; corners with neither
  *    are white.  Alpha is 1.
  */
+#define _DEFAULT_SOURCE 1   /* populate.h */
 #include "io/readers.h"
 #include "io/io_util.h"
 #include "io/number.h"
 
-#include "context.h"   /* sr__populate */
+#include "populate.h"
 
 #include <math.h>
 #include <stdint.h>

@@ -38,8 +38,6 @@
  * than the pixel above.  Level 0 stores the rows unfiltered. */
 #include "io/io_util.h"
 
-#include "context.h"
-#include "parallel/pool.h"
 
 #include <zlib.h>
 
@@ -385,7 +383,7 @@ static sr_result png_settings(const char *name, int width, int height, const uin
         j->band_rows = height;
     }
     j->bands = (height + j->band_rows - 1) / j->band_rows;
-    int threads = ctx ? ctx->threads : 1;
+    int threads = ctx ? sr_context_threads(ctx) : 1;
     *slots = threads < j->bands ? threads : j->bands;
     return SR_OK;
 }
@@ -402,7 +400,7 @@ static sr_result png_run(const char *name, png_job *j, png_blocks *m, sr_context
         free_blocks(m);
         return sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0, "cannot encode PNG: out of memory");
     }
-    sr__pool_run(ctx && slots > 1 ? ctx->pool : NULL, run_slot, j, slots);
+    sr_run_jobs(slots > 1 ? ctx : NULL, run_slot, j, slots);
     if (atomic_load(&j->failed)) {
         free_blocks(m);
         return sr__io_fail(err, SR_IO_ERROR, name, 0, "cannot encode PNG: zlib failed");

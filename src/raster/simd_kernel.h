@@ -148,9 +148,9 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
         rgba = SR_SIMD_FN(pack_rgba)(c);
     } else if (shading == SR_SHADING_FLAT) {
         v4i c[4];
-        for (int k = 0; k < 4; k++) {
-            uint8_t b = sr__unorm8(sr__tri_flat(t)[k]);
-            c[k] = (v4i){ b, b, b, b };
+        for (int ch = 0; ch < 4; ch++) {
+            uint8_t b = sr__unorm8(sr__tri_flat(t)[ch]);
+            c[ch] = (v4i){ b, b, b, b };
         }
         rgba = c[0] | c[1] << 8 | c[2] << 16 | c[3] << 24;
     } else {

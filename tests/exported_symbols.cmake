@@ -1,0 +1,55 @@
+# Checks that a shared library exports exactly the functions its public
+# header declares with SR_API: each exported name starts with sr_ (never
+# the sr__ of the internals), and none declared is missing.
+#   cmake -DNM=nm -DLIB=libsoftrast.so -DHEADER=include/softrast.h -P exported_symbols.cmake
+cmake_minimum_required(VERSION 3.20)
+foreach(var NM LIB HEADER)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "exported_symbols.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+
+file(READ ${HEADER} text)
+string(REGEX MATCHALL "SR_API[^;(]*[ *]sr_[a-z0-9_]+\\(" decls "${text}")
+set(declared "")
+foreach(d ${decls})
+  string(REGEX MATCH "sr_[a-z0-9_]+\\($" name "${d}")
+  string(REGEX REPLACE "\\($" "" name "${name}")
+  list(APPEND declared ${name})
+endforeach()
+list(LENGTH declared n_declared)
+if(n_declared LESS 10)
+  message(FATAL_ERROR "found only ${n_declared} SR_API declarations in ${HEADER}")
+endif()
+
+execute_process(COMMAND ${NM} -D --defined-only ${LIB}
+  OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${NM} -D --defined-only ${LIB} failed")
+endif()
+string(REGEX REPLACE "\n$" "" out "${out}")
+string(REPLACE "\n" ";" lines "${out}")
+set(exported "")
+set(bad "")
+foreach(line ${lines})
+  # "address type name", possibly with a @version suffix
+  string(REGEX REPLACE "^.* " "" name "${line}")
+  string(REGEX REPLACE "@.*$" "" name "${name}")
+  list(APPEND exported ${name})
+  if(NOT name MATCHES "^sr_[a-z0-9]" OR NOT name IN_LIST declared)
+    list(APPEND bad ${name})
+  endif()
+endforeach()
+set(missing "")
+foreach(name ${declared})
+  if(NOT name IN_LIST exported)
+    list(APPEND missing ${name})
+  endif()
+endforeach()
+
+list(LENGTH exported n_exported)
+if(bad OR missing)
+  message(FATAL_ERROR "${LIB}:\n  exported but not a public SR_API function of ${HEADER}: ${bad}\n"
+    "  declared SR_API but not exported: ${missing}")
+endif()
+message(STATUS "${LIB}: ${n_exported} symbols, all SR_API functions of ${HEADER}")
