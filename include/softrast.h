@@ -817,6 +817,25 @@ sr_result sr_mesh_compute_normals_ctx(sr_context *ctx, sr_mesh *mesh, sr_normal_
 /* Axis-aligned bounding box; false for an empty mesh. */
 bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
 
+/* Newell's method: the normal of the polygon points[0..count-1] (closed,
+ * planar or not), unnormalized.  It computes, over the edges i -> j = i + 1
+ * (mod count),
+ *     out.x = sum (y_i - y_j)(z_i + z_j)
+ *     out.y = sum (z_i - z_j)(x_i + x_j)
+ *     out.z = sum (x_i - x_j)(y_i + y_j)
+ * each twice the signed area of the polygon projected on one axis plane.
+ * For a planar polygon, out is normal to its plane, points to the side from
+ * which the corners run counter-clockwise (reversing them negates it), and
+ * |out| is twice its area; sr_vec3_normalize(out) is the unit normal.  For a
+ * non-planar polygon it is the best-fit plane's normal.  Sums run in double,
+ * relative to points[0].  A degenerate polygon (collinear or repeated
+ * corners, or projected areas that cancel, as in a figure eight) has zero
+ * area: out is the zero vector and the result SR_OK, so test |out| before
+ * normalizing.  SR_INVALID_ARG for NULL, count < 3 or a non-finite
+ * coordinate (out zeroed when not NULL); SR_TOO_LARGE if a component
+ * overflows float. */
+sr_result sr_newell_normal(const sr_vec3 *points, int count, sr_vec3 *out);
+
 /* ---- built-in geometry -------------------------------------------------- */
 
 /* Tessellate bicubic Bezier patches (16 control points each, row-major
