@@ -607,7 +607,11 @@ typedef struct sr_state {
     sr_scissor scissor;            /* also trims the viewport: nothing outside is touched */
     sr_blend blend;
     sr_color_mask color_mask;
-    float depth_near, depth_far;   /* depth range; both zero -> [0, 1] */
+    /* Depth range: z_ndc maps onto [depth_near, depth_far].  Both zero ->
+     * [0, 1].  As glDepthRange, each is clamped to [0, 1] (infinities too;
+     * NaN is refused), and depth_near > depth_far is allowed: it inverts
+     * depth, nearer fragments getting larger values. */
+    float depth_near, depth_far;
     bool depth_zero_to_one;        /* clip space z in [0, w] (D3D/Vulkan), not [-w, w] */
 
     sr_cull_mode cull;
