@@ -1068,6 +1068,32 @@ sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr
 sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
                                   const sr_rgba *colors, sr_fill_rule rule);
 
+/* How sr_fill_gouraud finds each pixel's color.  Both cover the pixels of
+ * sr_fill_polygon (the same edge-table converter). */
+typedef enum sr_gouraud_method {
+    SR_GOURAUD_DEFAULT = 0,     /* -> SR_GOURAUD_DIRECT */
+    SR_GOURAUD_DIRECT,          /* each pixel from scratch, in double: a one-contour
+                                 * triangle as sr_fill_triangle_gouraud, anything else as
+                                 * sr_fill_polygon_gouraud */
+    SR_GOURAUD_INCREMENTAL,     /* the notes' FillPoly / FillSpan: along each edge x steps
+                                 * by 1/m and the color by dI/dy per scanline (for a
+                                 * triangle: edges AB then BC beside AC, split at the
+                                 * middle vertex B), along each span the color steps by
+                                 * (I_R - I_L) / (x_R - x_L) per pixel, summed in float.
+                                 * Each walk starts at its first sample (y + 1/2, x + 1/2).
+                                 * Colors within one 8-bit step of DIRECT's: the sums
+                                 * accumulate rounding (docs/draw2d.md) */
+} sr_gouraud_method;
+
+typedef struct sr_gouraud_desc {
+    sr_fill_rule rule;          /* SR_FILL_RULE_DEFAULT -> nonzero */
+    sr_gouraud_method method;
+} sr_gouraud_desc;
+
+/* colors: one per polygon point; desc NULL: all defaults. */
+sr_result sr_fill_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                          const sr_rgba *colors, const sr_gouraud_desc *desc);
+
 /* ---- paths and strokes (src/draw2d/path.c) ------------------------------- */
 /*
  * A path is a list of subpaths built from lines, Beziers and arcs, flattened

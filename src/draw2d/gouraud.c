@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-static bool colors_ok(const sr_rgba *c, int n)
+bool sr__colors_finite(const sr_rgba *c, int n)
 {
     for (int i = 0; i < n; i++) {
         if (!isfinite(c[i].r) || !isfinite(c[i].g) || !isfinite(c[i].b) || !isfinite(c[i].a)) {
@@ -65,7 +65,7 @@ sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn,
                         !fb ? "fb" : !v ? "v" : "colors");
     }
-    if (!colors_ok(colors, 3)) {
+    if (!sr__colors_finite(colors, 3)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: a color is not finite", fn);
     }
     sr__edge2 *edges;
@@ -160,7 +160,7 @@ sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_
     if (r != SR_OK) {
         return r;
     }
-    if (!colors_ok(colors, poly->point_count)) {
+    if (!sr__colors_finite(colors, poly->point_count)) {
         sr__free(ctx, edges);
         return sr__fail(ctx, SR_INVALID_ARG, "%s: a color is not finite", fn);
     }
