@@ -139,7 +139,8 @@ sr_result sr_fill_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
                         (int)d.method);
     }
     if (d.method != SR_GOURAUD_INCREMENTAL) {
-        if (poly && poly->point_count == 3 && (!poly->contour_counts || poly->contour_count == 1)) {
+        if (poly && poly->point_count == 3 &&
+            (!poly->contour_counts || (poly->contour_count == 1 && poly->contour_counts[0] == 3))) {
             /* One triangle: either rule covers the same pixels. */
             sr_fill_desc fd;
             sr_result r = sr__fill_desc_defaults(ctx, fn, &(sr_fill_desc){ .rule = d.rule }, &fd);
