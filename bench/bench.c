@@ -56,8 +56,10 @@ static void usage(FILE *f)
         "usage: softrast-bench [SCENE...] [--threads N] [--size WxH] [--frames N]\n"
         "                      [--compare] [--save-images DIR]\n"
         "\n"
-        "Times each SCENE (all of them when none is given) and prints one line per\n"
-        "result:  scene=S renderer=R size=WxH threads=N frames=F median_ms=...\n"
+        "Times each SCENE (all of them when none is given).  The first line says\n"
+        "when and where:  date=YYYY-MM-DDTHH:MM:SSZ cpu=MODEL (the rest of the line);\n"
+        "then one line per result:\n"
+        "         scene=S renderer=R size=WxH threads=N frames=F median_ms=...\n"
         "         min_ms=... mtri_s=... mpix_s=...\n"
         "mtri_s is triangles per frame / median seconds / 1e6; mpix_s is framebuffer\n"
         "pixels per frame (fill: 100 x W x H fragments) / median seconds / 1e6.\n"
@@ -239,7 +241,7 @@ static void save_image(const bench_run *run, const char *scene, const char *rend
     }
     sr_io_error err;
     if (sr_write_png(path, o->width, o->height, rgba, (size_t)o->width * 4,
-                     &(sr_png_write_desc){ .no_alpha = true }, &err) != SR_OK) {
+                     &(sr_png_write_desc){ .channels = SR_PNG_RGB }, &err) != SR_OK) {
         fprintf(stderr, "softrast-bench: %s\n", err.message);
     }
 }
@@ -536,13 +538,20 @@ static void run_cli_scene(bench_run *run, const bench_scene_info *info)
     /* The triangle count, for mtri_s (untimed). */
     sr_mesh mesh;
     sr_io_error err;
-    if (sr_load_mesh(model, NULL, &mesh, &err) != SR_OK) {
+    sr_context *mesh_ctx;
+    if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &mesh_ctx) != SR_OK) {
+        fprintf(stderr, "softrast-bench: cli: skipped: no context\n");
+        return;
+    }
+    if (sr_load_mesh(mesh_ctx, model, NULL, &mesh, &err) != SR_OK) {
         fprintf(stderr, "softrast-bench: cli: skipped: %s\n", err.message);
         printf("scene=%s skipped=missing-model\n", info->name);
+        sr_destroy_context(mesh_ctx);
         return;
     }
     uint64_t triangles = mesh.triangle_count;
-    sr_mesh_free(&mesh);
+    sr_destroy_mesh(mesh_ctx, &mesh);
+    sr_destroy_context(mesh_ctx);
 
     const char *tmp = getenv("TMPDIR");
     char dir[PATH_MAX], out[PATH_MAX + 16], size[32], threads[16];
@@ -588,6 +597,32 @@ static void run_cli_scene(bench_run *run, const bench_scene_info *info)
     unlink(out);
     rmdir(dir);
 #endif
+}
+
+/* The date (UTC) and the CPU model of the run: the ratios hold for this
+ * machine on this day, so they travel with them. */
+static void print_run_header(void)
+{
+    char date[32] = "unknown", cpu[256] = "unknown", line[512];
+    time_t t = time(NULL);
+    struct tm tm;
+    if (gmtime_r(&t, &tm)) {
+        strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    }
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    while (f && fgets(line, sizeof line, f)) {
+        const char *colon = strchr(line, ':');
+        if (colon && strncmp(line, "model name", 10) == 0) {
+            snprintf(cpu, sizeof cpu, "%s", colon + 1 + (colon[1] == ' '));
+            cpu[strcspn(cpu, "\n")] = '\0';
+            break;
+        }
+    }
+    if (f) {
+        fclose(f);
+    }
+    printf("date=%s cpu=%s\n", date, cpu);
+    fflush(stdout);
 }
 
 /* llvmpipe at its best.  It frees its per-frame memory (bins, scene
@@ -652,6 +687,7 @@ int main(int argc, char **argv)
         return 1;
     }
     run.threads = sr_context_threads(run.ctx);
+    print_run_header();
 
     for (int i = 0; i < o.scene_count; i++) {
         const bench_scene_info *info = bench_find_scene(o.scenes[i]);

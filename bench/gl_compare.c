@@ -293,8 +293,8 @@ bool gl_prepare(gl_renderer *g, const bench_scene *s, char *msg, size_t msg_size
     glClearDepth(1.0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(depth_func(st->depth_func));
-    glDepthMask(st->no_depth_write ? GL_FALSE : GL_TRUE);
-    if (st->no_depth_test) {
+    glDepthMask(st->depth_write == SR_OFF ? GL_FALSE : GL_TRUE);
+    if (st->depth_test == SR_OFF) {
         glDisable(GL_DEPTH_TEST);
     }
     if (st->cull == SR_CULL_BACK || st->cull == SR_CULL_FRONT ||

@@ -77,10 +77,16 @@ static void frame_mesh(bench_scene *s, sr_camera_basis *basis)
     float r;
     mesh_sphere(&s->mesh, &c, &r);
     float fov = FRAMING_FOV_DEG * PI_F / 180.0f;
-    sr_vec3 eye = framing_default_eye(c, r, fov);
-    sr_camera_frame(eye, sr_vec3_sub(c, eye), (sr_vec3){ 0, 1, 0 }, basis);
-    s->view = sr_camera_matrix(basis);
     s->model = sr_mat4_identity();
+    framing_points points = { s->mesh.positions, s->mesh.vertex_count, &s->model };
+    framing_view fit;
+    sr_vec3 eye = framing_default_eye(c, r, fov), target = c;
+    if (framing_fit(&points, 1, c, fov, s->width, s->height, false, &fit)) {
+        eye = fit.eye;
+        target = fit.target;
+    }
+    sr_camera_frame(eye, sr_vec3_sub(target, eye), (sr_vec3){ 0, 1, 0 }, basis);
+    s->view = sr_camera_matrix(basis);
     float near_z, far_z;
     framing_near_far(eye, c, r, &near_z, &far_z);
     float aspect = (float)s->width / (float)s->height;
@@ -97,13 +103,18 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         return SR_INVALID_ARG;
     }
     sr_io_error err;
-    sr_result r = sr_load_mesh(path, NULL, &s->mesh, &err);
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = 1 }, &s->mesh_ctx);
+    if (r != SR_OK) {
+        snprintf(msg, msg_size, "%s: %s", s->info->name, sr_result_text(r));
+        return r;
+    }
+    r = sr_load_mesh(s->mesh_ctx, path, NULL, &s->mesh, &err);
     if (r != SR_OK) {
         snprintf(msg, msg_size, "%s", err.message);
         return r;
     }
     /* Smooth normals once, at load: the per-vertex lighting reads them. */
-    r = sr_mesh_compute_normals(&s->mesh, SR_NORMALS_SMOOTH);
+    r = sr_mesh_compute_normals(s->mesh_ctx, &s->mesh, SR_NORMALS_SMOOTH);
     if (r != SR_OK) {
         snprintf(msg, msg_size, "%s: computing normals: %s", path, sr_result_text(r));
         return r;
@@ -119,7 +130,7 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
             snprintf(msg, msg_size, "%s: texture path too long", s->info->name);
             return SR_INVALID_ARG;
         }
-        r = sr_read_png(path, &s->texture_w, &s->texture_h, &s->texture_pixels, &err);
+        r = sr_read_png(path, NULL, &s->texture_w, &s->texture_h, &s->texture_pixels, &err);
         if (r != SR_OK) {
             snprintf(msg, msg_size, "%s", err.message);
             return r;
@@ -236,8 +247,8 @@ static sr_result make_lines_scene(bench_scene *s, char *msg, size_t msg_size)
             c[3] = 1.0f;
         }
     }
-    s->state.no_depth_test = true;
-    s->state.no_depth_write = true;
+    s->state.depth_test = SR_OFF;
+    s->state.depth_write = SR_OFF;
     s->clear_color[0] = s->clear_color[1] = s->clear_color[2] = 0.0f;
     s->clear_color[3] = 1.0f;
     s->fragments_per_frame = (uint64_t)s->width * (uint64_t)s->height;
@@ -368,7 +379,8 @@ sr_result bench_scene_make(const bench_scene_info *info, int width, int height,
 
 void bench_scene_free(bench_scene *s)
 {
-    sr_mesh_free(&s->mesh);
+    sr_destroy_mesh(s->mesh_ctx, &s->mesh);
+    sr_destroy_context(s->mesh_ctx);
     free(s->own_positions);
     free(s->own_colors);
     free(s->own_indices);

@@ -64,6 +64,7 @@ typedef struct bench_scene {
     int texture_w, texture_h;
 
     /* Storage owned by the scene. */
+    sr_context *mesh_ctx;  /* owns mesh (one thread: the normals are made once) */
     sr_mesh mesh;
     float *own_positions, *own_colors;
     uint32_t *own_indices;

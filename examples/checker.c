@@ -89,7 +89,7 @@ int main(int argc, char **argv)
     sr_program checker = { .vertex = checker_vertex, .fragment = checker_fragment,
                            .uniforms = &u, .varying_count = 2 };
 
-    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.55f, 0.7f, 0.85f, 1 }, .depth = 1 });
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.55f, 0.7f, 0.85f, 1 } });
     r = sr_draw(ctx, fb, &(sr_state){ .program = &checker },
                 &(sr_draw_desc){ .positions = floor_xyz, .vertex_count = 6 });
     sr_io_error err;

@@ -69,7 +69,7 @@ int main(int argc, char **argv)
                                                             .samples = 4 }, &fb);
     }
     if (r == SR_OK) {
-        r = sr_make_teapot(8, &teapot);
+        r = sr_make_teapot(ctx, 8, &teapot);
     }
     if (r != SR_OK) {
         fprintf(stderr, "toon: %s\n", ctx ? sr_context_error(ctx) : sr_result_text(r));
@@ -85,7 +85,7 @@ int main(int argc, char **argv)
     sr_program toon = { .vertex = toon_vertex, .fragment = toon_fragment, .uniforms = &u,
                         .varying_count = 6 };
 
-    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.9f, 1 }, .depth = 1 });
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.93f, 0.93f, 0.9f, 1 } });
     r = sr_draw(ctx, fb, &(sr_state){ .program = &toon, .cull = SR_CULL_NONE },
                 &(sr_draw_desc){ .positions = teapot.positions, .normals = teapot.normals,
                                  .vertex_count = teapot.vertex_count, .indices = teapot.indices,
@@ -100,7 +100,7 @@ int main(int argc, char **argv)
     } else {
         fprintf(stderr, "toon: %s\n", sr_context_error(ctx));
     }
-    sr_mesh_free(&teapot);
+    sr_destroy_mesh(ctx, &teapot);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
     return r == SR_OK ? 0 : 1;

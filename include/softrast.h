@@ -18,21 +18,188 @@
  * the last pixel is not drawn, so strips join without gaps or doubles);
  * points are squares covering the pixel centres inside them.
  *
- * Use:
- *     sr_context *ctx;
- *     sr_make_context(&(sr_context_desc){0}, &ctx);
- *     sr_framebuffer *fb;
- *     sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 640, .height = 480 }, &fb);
- *     sr_clear(ctx, fb, &(sr_clear_desc){ .color = {0,0,0,1}, .depth = 1 });
- *     sr_draw(ctx, fb, &state, &(sr_draw_desc){ .positions = xyz, .vertex_count = n, ... });
- *     const uint8_t *rgba = sr_framebuffer_pixels(fb);
- *     ...
- *     sr_destroy_framebuffer(ctx, fb);
- *     sr_destroy_context(ctx);
+ * Use: a complete program (examples/hello.c, which the tests build, run
+ * and compare with this text).
+ *
+ *     #include <softrast.h>
+ *
+ *     #include <stdio.h>
+ *
+ *     int main(int argc, char **argv)
+ *     {
+ *         const char *path = argc > 1 ? argv[1] : "hello.ppm";
+ *         enum { W = 64, H = 48 };
+ *         sr_context *ctx;
+ *         if (sr_make_context(&(sr_context_desc){0}, &ctx) != SR_OK) {
+ *             return 1;
+ *         }
+ *         sr_framebuffer *fb = NULL;
+ *         sr_framebuffer_desc fb_desc = { .width = W, .height = H };  // depth D24 by default
+ *         sr_result r = sr_make_framebuffer(ctx, &fb_desc, &fb);
+ *         if (r == SR_OK) {
+ *             // Color to dark gray; depth to the far value, ready for the LESS test.
+ *             sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.1f, 0.1f, 1 } });
+ *             const float xyz[] = { -0.8f, -0.8f, 0, 0.8f, -0.8f, 0, 0, 0.8f, 0 };
+ *             const float rgb[] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+ *             // A zeroed state draws unlit, depth-tested, every channel written.
+ *             r = sr_draw(ctx, fb, &(sr_state){0},
+ *                         &(sr_draw_desc){ .positions = xyz, .vertex_count = 3,
+ *                                          .colors = rgb, .color_size = 3 });
+ *         }
+ *         if (r == SR_OK) {
+ *             const uint8_t *rgba = sr_framebuffer_pixels(fb);  // row 0 at the top
+ *             FILE *f = fopen(path, "wb");
+ *             if (f) {
+ *                 fprintf(f, "P6\n%d %d\n255\n", W, H);
+ *                 for (int i = 0; i < W * H; i++) {
+ *                     fwrite(rgba + 4 * i, 1, 3, f);
+ *                 }
+ *             }
+ *             if (!f || fclose(f) != 0) {
+ *                 perror(path);
+ *                 r = SR_IO_ERROR;
+ *             }
+ *         } else {
+ *             fprintf(stderr, "hello: %s\n", sr_context_error(ctx));
+ *         }
+ *         sr_destroy_framebuffer(ctx, fb);
+ *         sr_destroy_context(ctx);
+ *         return r == SR_OK ? 0 : 1;
+ *     }
+ *
+ * API map: every function, one a line, in the order of the sections below.
+ *
+ *   results
+ *     sr_result_name             the enum name of a result ("SR_OUT_OF_MEMORY")
+ *     sr_result_text             what a result means ("allocation failed")
+ *   math
+ *     sr_vec3_make               a vector from x, y, z
+ *     sr_vec3_add                a + b
+ *     sr_vec3_sub                a - b
+ *     sr_vec3_scale              a * s
+ *     sr_vec3_dot                a . b
+ *     sr_vec3_cross              a x b
+ *     sr_vec3_length             |a|
+ *     sr_vec3_normalize          a / |a| (zero stays zero)
+ *     sr_mat4_identity           I
+ *     sr_mat4_mul                a * b
+ *     sr_mat4_mul_vec4           m * v
+ *     sr_mat4_transpose          m^T
+ *     sr_mat4_invert             m^-1, false if singular
+ *     sr_mat4_translate          model transform: translation
+ *     sr_mat4_scale              model transform: scaling
+ *     sr_mat4_rotate             model transform: rotation about an axis
+ *     sr_camera_frame            the camera basis u, v, w from eye, gaze and up
+ *     sr_camera_matrix           the camera matrix E from that basis
+ *     sr_look_at                 E looking from an eye at a target
+ *     sr_ortho                   orthographic projection P
+ *     sr_frustum                 perspective projection P from a frustum
+ *     sr_perspective             perspective projection P from a field of view
+ *     sr_fit_fovy                the vertical field of view that fits a viewport
+ *     sr_viewport_matrix         the viewport matrix S
+ *     sr_normal_matrix           inverse transpose of a model-view matrix
+ *   context
+ *     sr_make_context            a context: allocator, threads, error message
+ *     sr_destroy_context         frees it and everything made on it
+ *     sr_context_error           the message of the last failed call
+ *     sr_context_threads         how many threads draw
+ *     sr_context_simd            which vector kernels it runs
+ *   framebuffers
+ *     sr_make_framebuffer        color, depth, stencil; optionally multisampled
+ *     sr_destroy_framebuffer     frees it
+ *     sr_framebuffer_width       its width
+ *     sr_framebuffer_height      its height
+ *     sr_framebuffer_depth_format  its depth format
+ *     sr_framebuffer_samples     its samples per pixel
+ *     sr_framebuffer_has_stencil whether it has a stencil buffer
+ *     sr_framebuffer_pixels      its RGBA8 pixels, read-only
+ *     sr_sample_position         where sample i of an n-sample pixel lies
+ *     sr_resolve                 multisampled -> single-sampled, box average
+ *     sr_clear                   clear, or keep, color, depth and stencil
+ *     sr_read_pixels             copy out a rectangle of RGBA8
+ *     sr_write_pixels            copy a rectangle of RGBA8 in
+ *     sr_read_depth              copy out depth as floats
+ *     sr_read_stencil            copy out stencil values
+ *   textures
+ *     sr_make_texture            a mipmapped texture from RGBA8 pixels
+ *     sr_destroy_texture         frees it
+ *     sr_texture_levels          its number of mip levels
+ *   supersampling
+ *     sr_downsample              a supersampled image filtered down
+ *   programmable stages
+ *     sr_make_builtin_program    a built-in shading model as a program
+ *     sr_builtin_program         the sr_program to draw it with
+ *     sr_destroy_builtin_program frees it
+ *   drawing
+ *     sr_draw                    primitives through the whole pipeline
+ *     sr_last_draw_info          counts of the last draw
+ *   vertex buffers
+ *     sr_make_buffer             a copy of vertex or index data on the context
+ *     sr_destroy_buffer          frees it
+ *     sr_buffer_update           overwrite a range of it
+ *     sr_buffer_data             its memory
+ *     sr_buffer_size             its size in bytes
+ *   meshes
+ *     sr_make_mesh               a copy of caller arrays as a mesh on the context
+ *     sr_destroy_mesh            frees a mesh's arrays
+ *     sr_mesh_compute_normals    smooth or flat normals
+ *     sr_mesh_bounds             the axis-aligned bounding box
+ *     sr_newell_normal           a polygon's normal by Newell's method
+ *   built-in geometry
+ *     sr_make_bezier_mesh        bicubic Bezier patches tessellated
+ *     sr_make_teapot             the Utah teapot
+ *   2D raster API
+ *     sr_draw_text               a label in the built-in 5x7 font
+ *     sr_text_width              its width in pixels
+ *   2D polygon fill
+ *     sr_fill_polygon            a polygon, aliased or antialiased
+ *     sr_polygon_coverage        its coverage as a mask
+ *     sr_draw_coverage           a color blended through a mask
+ *   region filling
+ *     sr_flood_fill              recolor the region matching a pixel
+ *     sr_boundary_fill           recolor up to a boundary color
+ *   2D polygon clipping
+ *     sr_clip_polygon_rect       Sutherland-Hodgman against a rectangle
+ *     sr_clip_polygon_convex     Sutherland-Hodgman against a convex window
+ *   curves
+ *     sr_draw_ellipse            midpoint ellipse, outline or filled
+ *     sr_draw_circle             midpoint circle, outline or filled
+ *     sr_fill_implicit           the region F(x, y) < 0
+ *     sr_flatten_quadratic       a quadratic Bezier as points
+ *     sr_flatten_cubic           a cubic Bezier as points
+ *     sr_flatten_arc             an SVG arc as points
+ *   Gouraud-shaded 2D polygons
+ *     sr_fill_triangle_gouraud   a triangle with a color at each vertex
+ *     sr_fill_polygon_gouraud    a polygon with a color at each vertex
+ *     sr_fill_gouraud            either, direct or incremental (FillPoly)
+ *   paths and strokes
+ *     sr_make_path               an empty path
+ *     sr_destroy_path            frees it
+ *     sr_path_clear              empties it
+ *     sr_path_move_to            starts a subpath
+ *     sr_path_line_to            a line
+ *     sr_path_quad_to            a quadratic Bezier
+ *     sr_path_cubic_to           a cubic Bezier
+ *     sr_path_arc_to             an SVG arc
+ *     sr_path_close              closes the subpath
+ *     sr_path_polygon            the flattened path as a polygon
+ *     sr_fill_path               fills it
+ *     sr_stroke_path             strokes it
+ *     sr_make_stroke_outline     the stroke's outline polygon
+ *     sr_destroy_stroke_outline  frees that outline
+ *   2D lines
+ *     sr_draw_line               a segment by one of the line algorithms
+ *     sr_clip_line_cohen_sutherland  Cohen-Sutherland clipping to a rectangle
+ *     sr_clip_line_liang_barsky  Liang-Barsky clipping to a rectangle
  *
  * Conventions:
  *  - Descriptor structs: a field left at zero takes its documented default,
- *    so `{0}` is always valid where a desc is optional.
+ *    so `{0}` is always valid where a desc is optional, and means what a
+ *    first program wants: a zeroed sr_clear_desc clears depth to the far
+ *    value, a zeroed sr_state tests and writes depth and every channel.
+ *    Features that are on unless turned off are sr_switch fields (SR_OFF).
+ *  - Lifecycle: what the caller owns is made by sr_make_X and released by
+ *    sr_destroy_X(ctx, x) on the context that made it.
  *  - Framebuffer coordinates: x right, y down, row 0 at the top (PNG order).
  *    Pixel (x, y) covers [x, x+1) x [y, y+1); it is sampled at its centre.
  *  - Matrices are column-major float[16] (OpenGL layout): m[col*4 + row].
@@ -46,7 +213,9 @@
  * available from sr_context_error(ctx) until the next call on that context.
  * Nothing is drawn by a call that fails validation.
  *
- * Memory: every allocation goes through sr_context_desc.allocator.  Left
+ * Memory: every allocation this library makes goes through
+ * sr_context_desc.allocator, meshes included (softrast_io.h says which of
+ * its calls work in malloc'd memory).  Left
  * zero, blocks under 1 MiB come from malloc and larger ones are mapped with
  * their pages populated up front (cheaper than faulting them in one by
  * one).  A custom allocator is also called from the context's worker
@@ -162,8 +331,9 @@ float   sr_fit_fovy(float fov_radians, int width, int height);
 /* The viewport matrix S.  It maps NDC x, y in [-1, 1] onto the pixel *edges*
  * of the viewport rectangle (x0, y0, width, height), with y pointing down
  * (NDC y = +1 is the top row), and z_ndc onto [depth_near, depth_far].
- * In the seed's pixel-centre convention, x_S = x1 - 1/2 + (x+1)/2 (x2-x1+1);
- * softrast's pixel-edge coordinate is that value + 1/2. */
+ * Where pixel x1..x2 are counted from their centres (pixel x covering
+ * [x - 1/2, x + 1/2)), x_S = x1 - 1/2 + (x+1)/2 (x2-x1+1); softrast's
+ * pixel-edge coordinate is that value + 1/2 (docs/raster-rules.md). */
 sr_mat4 sr_viewport_matrix(float x0, float y0, float width, float height,
                            float depth_near, float depth_far, bool zero_to_one);
 
@@ -265,7 +435,7 @@ bool            sr_framebuffer_has_stencil(const sr_framebuffer *fb);
  * pointer would go unseen: write pixels with sr_write_pixels. */
 const uint8_t  *sr_framebuffer_pixels(const sr_framebuffer *fb);
 
-/* The standard sample positions (Direct3D and Vulkan; RASTER_RULES 8.1):
+/* The standard sample positions (Direct3D and Vulkan; docs/raster-rules.md):
  * sample `index` of a `samples`-sample pixel at (*x, *y) in [0, 1) from
  * the pixel's upper-left corner, y down.  Every position is a multiple of
  * 1/16 px, so coverage at it stays exact in 8 sub-pixel bits. */
@@ -276,13 +446,24 @@ sr_result sr_sample_position(int samples, int index, float *x, float *y);
  * (sum + n/2) / n.  A single-sampled source is copied. */
 sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst);
 
+/* What sr_clear does to each buffer (sokol's pass actions).  The default
+ * clears color to .color, depth to the far value 1.0 and stencil to 0, so
+ * a zeroed sr_clear_desc readies a framebuffer for the default LESS test. */
+typedef enum sr_clear_action {
+    SR_ACTION_DEFAULT = 0, /* color: clear to .color; depth: clear to 1.0; stencil: to 0 */
+    SR_ACTION_CLEAR,       /* clear to the given value (.color, .depth, .stencil) */
+    SR_ACTION_KEEP,        /* leave the buffer untouched */
+} sr_clear_action;
+
 typedef struct sr_clear_desc {
-    float color[4];   /* RGBA in [0, 1] */
-    float depth;      /* in [0, 1]; note 0 is the default: set 1 for LESS */
-    uint8_t stencil;  /* the stencil value (framebuffers with a stencil buffer) */
-    bool no_color;    /* leave color untouched */
-    bool no_depth;    /* leave depth untouched */
-    bool no_stencil;  /* leave stencil untouched */
+    sr_clear_action color_action;
+    float color[4];               /* RGBA in [0, 1] */
+    sr_clear_action depth_action;
+    float depth;                  /* in [0, 1], used by SR_ACTION_CLEAR; with the default
+                                   * action it must be 0 or 1 (a value it would ignore is
+                                   * refused, so a forgotten action cannot go unseen) */
+    sr_clear_action stencil_action;
+    uint8_t stencil;              /* used by SR_ACTION_CLEAR; 0 with the default action */
 } sr_clear_desc;
 
 sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc);
@@ -342,8 +523,8 @@ int sr_texture_levels(const sr_texture *tex);
 
 /* ---- supersampling ------------------------------------------------------ */
 
-/* Reconstruction filters for downsampling a supersampled image (the seeds'
- * unweighted and weighted area sampling).  Radii in destination pixels. */
+/* Reconstruction filters for downsampling a supersampled image
+ * (unweighted and weighted area sampling).  Radii in destination pixels. */
 typedef enum sr_resample_filter {
     SR_RESAMPLE_DEFAULT = 0, /* -> SR_RESAMPLE_BOX */
     SR_RESAMPLE_BOX,         /* unweighted area sampling: the mean of each k x k block */
@@ -360,6 +541,13 @@ sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
                         sr_resample_filter filter);
 
 /* ---- pipeline state ----------------------------------------------------- */
+
+/* A feature that is on unless turned off. */
+typedef enum sr_switch {
+    SR_SWITCH_DEFAULT = 0, /* -> SR_ON */
+    SR_ON,
+    SR_OFF,
+} sr_switch;
 
 typedef enum sr_cull_mode {
     SR_CULL_DEFAULT = 0, /* -> SR_CULL_NONE */
@@ -440,7 +628,8 @@ typedef struct sr_material {
     sr_vec3 specular;        /* reflectance of highlights, may be zero */
     float shininess;         /* Blinn-Phong exponent; zero -> 32 */
     float opacity;           /* written to alpha; zero -> 1 */
-    bool no_vertex_color;    /* ignore the colors array for diffuse */
+    sr_switch vertex_color;  /* the draw's colors array, where it has one, is the diffuse;
+                              * SR_OFF: the material's diffuse whatever the draw carries */
 } sr_material;
 
 typedef struct sr_polygon_offset {
@@ -496,9 +685,17 @@ typedef struct sr_blend {
     float constant[4];            /* for the CONSTANT factors */
 } sr_blend;
 
-/* Channels the fragment stage leaves untouched (all written by default). */
-typedef struct sr_color_mask {
-    bool no_red, no_green, no_blue, no_alpha;
+/* The color channels the fragment stage writes (sokol's color mask): a
+ * set of SR_COLOR_MASK_R/G/B/A bits; zero writes all four. */
+typedef enum sr_color_mask {
+    SR_COLOR_MASK_DEFAULT = 0,    /* -> SR_COLOR_MASK_RGBA */
+    SR_COLOR_MASK_R = 0x1,
+    SR_COLOR_MASK_G = 0x2,
+    SR_COLOR_MASK_B = 0x4,
+    SR_COLOR_MASK_A = 0x8,
+    SR_COLOR_MASK_RGB = 0x7,
+    SR_COLOR_MASK_RGBA = 0xf,
+    SR_COLOR_MASK_NONE = 0x10,    /* no channel written */
 } sr_color_mask;
 
 /* Stencil operations (glStencilOp) on the 8-bit stored value. */
@@ -630,8 +827,9 @@ typedef struct sr_state {
     bool smooth_lines;
     bool smooth_points;
 
-    bool no_depth_test;            /* depth test is on by default when there is a depth buffer */
-    bool no_depth_write;
+    /* Both on by default when the framebuffer has a depth buffer. */
+    sr_switch depth_test;
+    sr_switch depth_write;
     sr_depth_func depth_func;
     sr_polygon_offset offset;
 
@@ -783,8 +981,10 @@ typedef struct sr_mesh_part {
     size_t texture_size;
 } sr_mesh_part;
 
-/* A triangle mesh as the model readers produce it.  Arrays belong to the
- * mesh and are freed by sr_mesh_free (the readers' allocator: malloc). */
+/* A triangle mesh as the model readers and the built-in generators produce
+ * it.  Its arrays and strings belong to the mesh and come from the
+ * allocator of the context it was made on; release them with
+ * sr_destroy_mesh on that context. */
 typedef struct sr_mesh {
     size_t vertex_count;
     float *positions;      /* 3 per vertex */
@@ -806,18 +1006,24 @@ typedef struct sr_mesh {
     size_t part_count;
 } sr_mesh;
 
-void sr_mesh_free(sr_mesh *mesh);
+/* A mesh on ctx holding copies of src's arrays, strings and parts (src
+ * stays the caller's): how a program hands its own geometry to the mesh
+ * functions. */
+sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out);
+/* Frees the mesh's arrays and zeroes *mesh (the struct itself is the
+ * caller's).  Every mesh function takes the context the mesh was made on. */
+void sr_destroy_mesh(sr_context *ctx, sr_mesh *mesh);
 
 typedef enum sr_normal_mode {
     SR_NORMALS_SMOOTH = 0, /* angle-weighted vertex normals */
     SR_NORMALS_FLAT,       /* vertices split, one normal per face */
 } sr_normal_mode;
 
-/* Replace mesh->normals with computed ones. */
-sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode);
-/* The same normals, to the bit, with smooth ones computed on ctx's threads
- * (ctx NULL: on the calling thread alone). */
-sr_result sr_mesh_compute_normals_ctx(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
+/* Replace mesh->normals with computed ones (flat: the vertices split, so
+ * colors, texcoords and indices are replaced too), on ctx's allocator;
+ * smooth ones are computed on ctx's threads, the same bits for any
+ * thread count. */
+sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
 /* Axis-aligned bounding box; false for an empty mesh. */
 bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
 
@@ -843,15 +1049,16 @@ sr_result sr_newell_normal(const sr_vec3 *points, int count, sr_vec3 *out);
 /* ---- built-in geometry -------------------------------------------------- */
 
 /* Tessellate bicubic Bezier patches (16 control points each, row-major
- * [u][v], as float xyz) into a mesh of detail x detail quads per patch,
- * evaluated by forward differences, with normals from the patch
- * derivatives. */
-sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count,
-                               int detail, sr_mesh *out);
-/* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x. */
-sr_result sr_make_teapot(int detail, sr_mesh *out);
+ * [u][v], as float xyz) into a mesh of detail x detail quads per patch
+ * (detail 1..256), evaluated by forward differences, with normals from the
+ * patch derivatives.  Release with sr_destroy_mesh. */
+sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
+                              size_t patch_count, int detail, sr_mesh *out);
+/* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x.
+ * Release with sr_destroy_mesh. */
+sr_result sr_make_teapot(sr_context *ctx, int detail, sr_mesh *out);
 
-/* ---- 2D raster API (src/draw2d) ---------------------------------------- */
+/* ---- 2D raster API ------------------------------------------------------ */
 /*
  * Vector drawing straight into a framebuffer's color, in pixel coordinates
  * (x right, y down, pixel (x, y) = [x, x+1) x [y, y+1), sampled at its
@@ -872,7 +1079,7 @@ sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int sc
 /* Width in pixels that sr_draw_text would use. */
 int sr_text_width(const char *text, int scale);
 
-/* ---- 2D polygon fill (src/draw2d/polyfill.c) ---------------------------- */
+/* ---- 2D polygon fill ---------------------------------------------------- */
 /*
  * Polygons are one or more closed contours (concave, self-intersecting,
  * holes as further contours).  Vertices are snapped to 1/256 pixel.
@@ -932,10 +1139,10 @@ sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
 sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
                            const uint8_t *mask, size_t stride, sr_rgba color);
 
-/* ---- region filling (src/draw2d/floodfill.c) ----------------------------- */
+/* ---- region filling ----------------------------------------------------- */
 /*
- * Seed fills on the pixels already in the framebuffer.  Flood fill
- * recolours the connected region of pixels matching the seed pixel's
+ * Region fills on the pixels already in the framebuffer.  Flood fill
+ * recolours the connected region of pixels matching the start pixel's
  * color; boundary fill recolours the connected region of pixels that do
  * not match a boundary color.  Both are span fills with an explicit stack
  * (no recursion, memory bounded by the image): a whole horizontal run is
@@ -962,7 +1169,7 @@ sr_result sr_flood_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rg
 sr_result sr_boundary_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
                            sr_rgba boundary, const sr_region_fill_desc *desc, size_t *filled);
 
-/* ---- 2D polygon clipping (src/draw2d/polyclip.c) ------------------------- */
+/* ---- 2D polygon clipping ------------------------------------------------ */
 /*
  * Sutherland-Hodgman: the polygon is clipped against one edge of the clip
  * window after another.  For each polygon edge (first point, second point):
@@ -1000,7 +1207,7 @@ sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, int count
                                  const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
                                  int *out_count);
 
-/* ---- curves (src/draw2d/curves.c) ---------------------------------------- */
+/* ---- curves ------------------------------------------------------------- */
 /*
  * Ellipses and circles by the midpoint method: the decision variable is the
  * implicit function F(x, y) = ry^2 (x - cx)^2 + rx^2 (y - cy)^2 - rx^2 ry^2
@@ -1052,7 +1259,7 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
                          double rotation_deg, bool large_arc, bool sweep, sr_point2 to,
                          double tolerance, sr_point2 *out, int capacity, int *out_count);
 
-/* ---- Gouraud-shaded 2D polygons (src/draw2d/gouraud.c) ------------------- */
+/* ---- Gouraud-shaded 2D polygons ----------------------------------------- */
 /*
  * The same pixels as sr_fill_polygon (aliased edge-table fill), colored by
  * interpolation.  Triangles: barycentric weights of the pixel centre times
@@ -1094,7 +1301,7 @@ typedef struct sr_gouraud_desc {
 sr_result sr_fill_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
                           const sr_rgba *colors, const sr_gouraud_desc *desc);
 
-/* ---- paths and strokes (src/draw2d/path.c) ------------------------------- */
+/* ---- paths and strokes -------------------------------------------------- */
 /*
  * A path is a list of subpaths built from lines, Beziers and arcs, flattened
  * to polylines as they are added (within the path's tolerance).  Filling
@@ -1106,7 +1313,7 @@ typedef struct sr_path sr_path;
 
 /* tolerance: flattening error in pixels; 0 -> 0.1. */
 sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out);
-void      sr_destroy_path(sr_path *path);
+void      sr_destroy_path(sr_context *ctx, sr_path *path); /* ctx: the one that made it */
 void      sr_path_clear(sr_path *path);
 sr_result sr_path_move_to(sr_path *path, double x, double y);
 sr_result sr_path_line_to(sr_path *path, double x, double y);
@@ -1150,12 +1357,12 @@ sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
 sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
                          sr_rgba color, const sr_stroke_desc *desc);
 /* The stroke outline itself: out->points and out->contour_counts are
- * allocated on ctx; release them with sr_free_stroke_outline. */
-sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
-                            sr_polygon2 *out);
-void      sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
+ * allocated on ctx; release them with sr_destroy_stroke_outline. */
+sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
+                                 const sr_stroke_desc *desc, sr_polygon2 *out);
+void      sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
 
-/* ---- 2D lines (src/draw2d/line*.c) -------------------------------------- */
+/* ---- 2D lines ----------------------------------------------------------- */
 /*
  * A segment from a to b in pixel coordinates, drawn with one of the line
  * algorithms of the course (docs/lines.md).  The aliased ones snap the

@@ -43,7 +43,6 @@ typedef enum sr_model_format {
 
 typedef struct sr_load_desc {
     sr_model_format format;
-    bool keep_file_normals_only; /* reserved; normals policy is the caller's */
     /* Optional: called with the path of every other file the reader opens
      * for the model (an OBJ's MTL files), e.g. so that a program never
      * writes its output over one of its inputs.  The model's own path and
@@ -54,17 +53,22 @@ typedef struct sr_load_desc {
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
- * three vertices are triangulated.  Normals are those of the file, or NULL. */
-sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
+ * three vertices are triangulated.  Normals are those of the file, or NULL.
+ * The mesh is allocated on ctx: release it with sr_destroy_mesh(ctx, out).
+ * The readers' working memory (the file's bytes, growing arrays, Assimp's
+ * own) comes from malloc and is freed before the call returns; the mesh
+ * is copied onto ctx's allocator at the end. */
+sr_result sr_load_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
                        sr_mesh *out, sr_io_error *err);
 
-/* The readers on a buffer already in memory (for tests and fuzzing).  `name`
- * is used in messages.  `data` need not be NUL-terminated. */
-sr_result sr_parse_obj(const char *name, const char *data, size_t size,
+/* The readers on a buffer already in memory (for tests and fuzzing), with
+ * the same memory as sr_load_mesh.  `name` is used in messages.  `data`
+ * need not be NUL-terminated. */
+sr_result sr_parse_obj(sr_context *ctx, const char *name, const char *data, size_t size,
                        sr_mesh *out, sr_io_error *err);
-sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
+sr_result sr_parse_ply(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
                        sr_mesh *out, sr_io_error *err);
-sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
+sr_result sr_parse_stl(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
                        sr_mesh *out, sr_io_error *err);
 
 /* true when this build can read other formats through Assimp. */
@@ -81,9 +85,15 @@ sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned lo
                        sr_io_error *err);
 
 /* PNG. */
+typedef enum sr_png_channels {
+    SR_PNG_CHANNELS_DEFAULT = 0, /* -> SR_PNG_RGBA */
+    SR_PNG_RGBA,
+    SR_PNG_RGB,                  /* alpha dropped */
+} sr_png_channels;
+
 typedef struct sr_png_write_desc {
     int compression_level;  /* zlib level; 0 -> SR_PNG_DEFAULT_LEVEL; -1 -> store */
-    bool no_alpha;          /* write RGB, dropping alpha */
+    sr_png_channels channels;
     sr_allocator allocator; /* zero: malloc/free.  Every block the write
                              * allocates - its own and zlib's - comes from here,
                              * on the calling thread (except realpath's when
@@ -120,11 +130,6 @@ sr_result sr_encode_png(sr_write_fn write, void *user, int width, int height,
                         const uint8_t *rgba, size_t stride, const sr_png_write_desc *desc,
                         sr_io_error *err);
 
-/* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
- * *pixels is malloc'd; free it with free(). */
-sr_result sr_read_png(const char *path, int *width, int *height,
-                      uint8_t **pixels, sr_io_error *err);
-
 typedef struct sr_png_read_desc {
     sr_allocator allocator; /* zero: malloc/free.  libpng's and zlib's blocks, the
                              * row table and the pixels come from here (release
@@ -132,9 +137,10 @@ typedef struct sr_png_read_desc {
                              * not.  NULL from alloc: SR_OUT_OF_MEMORY, nothing kept */
 } sr_png_read_desc;
 
-/* sr_read_png with options (desc may be NULL: exactly sr_read_png). */
-sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
-                           int *height, uint8_t **pixels, sr_io_error *err);
+/* Read a PNG as RGBA8 (any bit depth, palette, gray and alpha expanded).
+ * desc may be NULL: *pixels is then malloc'd; free it with free(). */
+sr_result sr_read_png(const char *path, const sr_png_read_desc *desc, int *width,
+                      int *height, uint8_t **pixels, sr_io_error *err);
 /* sr_read_png on a file already in memory; `name` is used in messages. */
 sr_result sr_decode_png(const char *name, const uint8_t *data, size_t size,
                         int *width, int *height, uint8_t **pixels, sr_io_error *err);

@@ -81,7 +81,7 @@ void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 
     ds->shininess = m->shininess == 0.0f ? 32.0f : m->shininess;
     ds->shininess_int = (ds->shininess == floorf(ds->shininess) && ds->shininess <= 4096.0f)
                             ? (int)ds->shininess : -1;
-    ds->use_vertex_color = !m->no_vertex_color;
+    ds->use_vertex_color = m->vertex_color != SR_OFF;
 
     sr_mat4 e = view ? *view : sr_mat4_identity();
     for (int i = 0; i < SR_MAX_LIGHTS; i++) {
@@ -151,7 +151,7 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
     dn = fmin(fmax(dn, 0.0), 1.0);
     df = fmin(fmax(df, 0.0), 1.0);
     ds->zero_to_one = st->depth_zero_to_one;
-    /* The viewport matrix S, onto pixel edges (RASTER_RULES 1.2). */
+    /* The viewport matrix S, onto pixel edges (docs/raster-rules.md §1.3). */
     ds->vp_px = vp.width * 0.5;
     ds->vp_py = vp.height * 0.5;
     ds->vp_ox = vp.x + vp.width * 0.5;
@@ -194,18 +194,18 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
         b->op_rgb = b->op_rgb == SR_BLEND_OP_DEFAULT ? SR_BLEND_ADD : b->op_rgb;
         b->op_alpha = b->op_alpha == SR_BLEND_OP_DEFAULT ? SR_BLEND_ADD : b->op_alpha;
     }
-    const sr_color_mask *cm = &st->color_mask;
-    ds->write_mask[0] = cm->no_red ? 0 : 0xff;
-    ds->write_mask[1] = cm->no_green ? 0 : 0xff;
-    ds->write_mask[2] = cm->no_blue ? 0 : 0xff;
-    ds->write_mask[3] = cm->no_alpha ? 0 : 0xff;
-    ds->blending = ds->blend.enabled || cm->no_red || cm->no_green || cm->no_blue || cm->no_alpha;
+    unsigned cm = st->color_mask == SR_COLOR_MASK_DEFAULT ? SR_COLOR_MASK_RGBA
+                  : st->color_mask & SR_COLOR_MASK_RGBA;
+    for (int c = 0; c < 4; c++) {
+        ds->write_mask[c] = cm & (1u << c) ? 0xff : 0;
+    }
+    ds->blending = ds->blend.enabled || cm != SR_COLOR_MASK_RGBA;
 
     ds->cull = st->cull == SR_CULL_DEFAULT ? SR_CULL_NONE : st->cull;
     ds->front_ccw = st->front_face != SR_FRONT_CW;
     ds->rasterizer = st->rasterizer == SR_RASTER_DEFAULT ? SR_RASTER_HALFSPACE : st->rasterizer;
-    ds->depth_test = !st->no_depth_test && fb->depth != NULL;
-    ds->depth_write = !st->no_depth_write && fb->depth != NULL;
+    ds->depth_test = st->depth_test != SR_OFF && fb->depth != NULL;
+    ds->depth_write = st->depth_write != SR_OFF && fb->depth != NULL;
     ds->depth_func = st->depth_func == SR_DEPTH_FUNC_DEFAULT ? SR_LESS : st->depth_func;
     ds->depth_bits = fb->depth_bits;
     if (!fb->depth || (!ds->depth_test && !ds->depth_write)) {

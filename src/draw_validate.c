@@ -208,6 +208,19 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
     if ((unsigned)st->front_face > SR_FRONT_CW) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.front_face %d is not valid", (int)st->front_face);
     }
+    if ((unsigned)st->depth_test > SR_OFF || (unsigned)st->depth_write > SR_OFF ||
+        (unsigned)st->material.vertex_color > SR_OFF) {
+        const char *field = (unsigned)st->depth_test > SR_OFF    ? "depth_test"
+                            : (unsigned)st->depth_write > SR_OFF ? "depth_write"
+                                                                 : "material.vertex_color";
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.%s is not an sr_switch", field);
+    }
+    if ((unsigned)st->color_mask > SR_COLOR_MASK_NONE ||
+        (st->color_mask & SR_COLOR_MASK_NONE && st->color_mask != SR_COLOR_MASK_NONE)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_state.color_mask 0x%x is not a set of SR_COLOR_MASK_R/G/B/A bits "
+                        "or SR_COLOR_MASK_NONE", (unsigned)st->color_mask);
+    }
     if ((unsigned)st->depth_func > SR_ALWAYS) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.depth_func %d is not a depth function",
                         (int)st->depth_func);

@@ -109,7 +109,7 @@ void sr__flat_color(const sr_draw_state *ds, const float *v0, const float *v1,
 #define SR_CLIP_MAX_VERTS 16
 unsigned sr__clip_outcode(const sr_draw_state *ds, const float pos[4]);
 
-/* The clip planes (RASTER_RULES 3, see clip.c), as bits of an outcode. */
+/* The clip planes (docs/raster-rules.md §4, see clip.c), as bits of an outcode. */
 enum {
     SR_PLANE_W = 0,
     SR_PLANE_NEAR,
@@ -192,7 +192,7 @@ static inline int32_t sr__snap_q8(double v)
 }
 
 /* Divide by w, apply the viewport S and snap to q8 (round to nearest even).
- * One fixed operation order (RASTER_RULES 1.2), in double, one rounding
+ * One fixed operation order (docs/raster-rules.md §1.4), in double, one rounding
  * at the snap: the same clip position always gives the same q8 value. */
 static inline void sr__project(const sr_draw_state *ds, const float pos[4], int32_t *x_q8,
                                int32_t *y_q8, double *z, float *inv_w)

@@ -31,7 +31,7 @@ bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
     int rw = 0, rh = 0;
     uint8_t *ref = NULL;
     sr_io_error err;
-    if (sr_read_png(ref_path, &rw, &rh, &ref, &err) != SR_OK) {
+    if (sr_read_png(ref_path, NULL, &rw, &rh, &ref, &err) != SR_OK) {
         sr_test_fail(__FILE__, __LINE__, "reference %s: %s", name, err.message);
         snprintf(out_path, sizeof out_path, "%s/%s.actual.png", sr_test_out_dir(), name);
         write_or_note(out_path, rgba, w, h);

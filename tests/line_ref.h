@@ -1,5 +1,5 @@
-/* line_ref.h - the pieces of the diamond-exit closed form (RASTER_RULES
- * 6.1-6.2) that the 3D line tests' independent references share, written
+/* line_ref.h - the pieces of the diamond-exit closed form
+ * (docs/raster-rules.md §7.1) that the 3D line tests' independent references share, written
  * from the rules rather than from line.c: exact ceil division, a column's
  * pixel, and which pixel's diamond owns a q8 point (Direct3D's boundary ownership: the
  * lower edges and bottom corner, and for a y-major line the right

@@ -1,7 +1,7 @@
 /* raster_util.h - helpers for the rasterization tests: draw triangles given
  * in window coordinates (pixels, y down) through the public API with
  * identity matrices, read back a coverage mask, and an independent int64
- * reference of the top-left rule written from RASTER_RULES 2.3. */
+ * reference of the top-left rule written from docs/raster-rules.md §3.2. */
 #ifndef SR_RASTER_UTIL_H
 #define SR_RASTER_UTIL_H
 
@@ -71,7 +71,7 @@ static inline void rt_mask(const rt_target *t, uint8_t *mask)
     }
 }
 
-/* ---- independent reference (RASTER_RULES 2.3) ---- */
+/* ---- independent reference (docs/raster-rules.md §3.2) ---- */
 
 static inline int64_t ref_snap(double v) { return (int64_t)nearbyint(v * 256.0); }
 

@@ -1,5 +1,6 @@
 /* sr_test.c - the runner behind sr_test.h: registry, failure records, main(). */
 #include "sr_test.h"
+#include "softrast.h"
 
 #include <spawn.h>
 #include <stdarg.h>
@@ -63,6 +64,25 @@ const char *sr_test_out_dir(void)
 {
     mkdir(SR_TEST_OUT_DIR, 0777);
     return SR_TEST_OUT_DIR;
+}
+
+static sr_context *test_ctx;
+
+static void destroy_test_context(void)
+{
+    sr_destroy_context(test_ctx);
+}
+
+sr_context *sr_test_ctx(void)
+{
+    if (!test_ctx) {
+        if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &test_ctx) != SR_OK) {
+            fprintf(stderr, "sr_test_ctx: no context\n");
+            exit(1);
+        }
+        atexit(destroy_test_context);
+    }
+    return test_ctx;
 }
 
 const char *sr_test_src_dir(void) { return SR_TEST_SRC_DIR; }

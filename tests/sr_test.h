@@ -28,6 +28,10 @@ bool sr_test_failed_now(void);
 const char *sr_test_models_dir(void);
 /* Directory the tests may write into (the build's tests/out). */
 const char *sr_test_out_dir(void);
+/* A one-thread context for tests that need one only to own meshes (made
+ * on first use, destroyed at exit). */
+struct sr_context;
+struct sr_context *sr_test_ctx(void);
 /* Source tree's tests/ directory (reference images, data). */
 const char *sr_test_src_dir(void);
 /* A whole file, malloc'd (free it), or NULL when it cannot be opened. */

@@ -133,7 +133,7 @@ SR_TEST(forward_differences_match_direct_bernstein_evaluation)
             random_patch(&rng, cp[p], -1.0f, 1.0f);
         }
         sr_mesh m;
-        REQUIRE(sr_tessellate_bezier((const float (*)[16][3])cp, 3, detail, &m) == SR_OK);
+        REQUIRE(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])cp, 3, detail, &m) == SR_OK);
         size_t side = (size_t)detail + 1;
         CHECK_EQ(m.vertex_count, 3 * side * side);
         CHECK_EQ(m.triangle_count, 3 * 2 * (size_t)detail * (size_t)detail);
@@ -160,7 +160,7 @@ SR_TEST(forward_differences_match_direct_bernstein_evaluation)
         /* The corners of the grid are the corner control points exactly. */
         CHECK(memcmp(&m.positions[0], cp[0][0], sizeof(float[3])) == 0);
         CHECK(memcmp(&m.positions[3 * (side * side - 1)], cp[0][15], sizeof(float[3])) == 0);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
 }
 
@@ -174,7 +174,7 @@ SR_TEST(normals_are_unit_and_match_direct_derivatives)
         float cp[16][3];
         random_patch(&rng, cp, -1.0f, 1.0f);
         sr_mesh m;
-        REQUIRE(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, detail, &m) == SR_OK);
+        REQUIRE(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, detail, &m) == SR_OK);
         for (size_t i = 0; i < side; i++) {
             for (size_t j = 0; j < side; j++) {
                 size_t v = i * side + j;
@@ -198,7 +198,7 @@ SR_TEST(normals_are_unit_and_match_direct_derivatives)
                 checked++;
             }
         }
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
     CHECK(checked > 20 * skipped);
 }
@@ -211,7 +211,7 @@ SR_TEST(triangles_wind_counter_clockwise_about_the_normal)
         wavy_patch(&rng, cp[p]);
     }
     sr_mesh m;
-    REQUIRE(sr_tessellate_bezier((const float (*)[16][3])cp, 4, 9, &m) == SR_OK);
+    REQUIRE(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])cp, 4, 9, &m) == SR_OK);
     size_t degenerate;
     CHECK_EQ(count_winding_mismatches(&m, &degenerate), 0);
     CHECK_EQ(degenerate, 0);
@@ -219,7 +219,7 @@ SR_TEST(triangles_wind_counter_clockwise_about_the_normal)
     for (size_t v = 0; v < m.vertex_count; v++) {
         CHECK(m.normals[3 * v + 2] > 0.0f);
     }
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 /* A dome whose top edge (u = 0) collapses to one point: there du x dv = 0,
@@ -240,7 +240,7 @@ SR_TEST(collapsed_edge_gets_the_limit_normal)
     }
     sr_mesh m;
     int detail = 8;
-    REQUIRE(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, detail, &m) == SR_OK);
+    REQUIRE(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, detail, &m) == SR_OK);
     for (int j = 0; j <= detail; j++) {
         const float *p = &m.positions[3 * j];
         const float *n = &m.normals[3 * j];
@@ -256,7 +256,7 @@ SR_TEST(collapsed_edge_gets_the_limit_normal)
     size_t degenerate;
     CHECK_EQ(count_winding_mismatches(&m, &degenerate), 0);
     CHECK_EQ(degenerate, (size_t)detail); /* one per quad along the pole */
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(tessellate_rejects_invalid_arguments)
@@ -264,22 +264,22 @@ SR_TEST(tessellate_rejects_invalid_arguments)
     float cp[16][3] = { { 0 } };
     sr_mesh m;
     memset(&m, 0xab, sizeof m);
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, 0, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 0, &m), SR_INVALID_ARG);
     CHECK(m.positions == NULL && m.vertex_count == 0 && m.indices == NULL);
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, 257, &m), SR_INVALID_ARG);
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, -3, &m), SR_INVALID_ARG);
-    CHECK_EQ(sr_tessellate_bezier(NULL, 1, 4, &m), SR_INVALID_ARG);
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 0, 4, &m), SR_INVALID_ARG);
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, 4, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 257, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, -3, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), NULL, 1, 4, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 0, 4, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 4, NULL), SR_INVALID_ARG);
     cp[5][1] = NAN;
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, 4, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 4, &m), SR_INVALID_ARG);
     cp[5][1] = INFINITY;
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, 4, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 4, &m), SR_INVALID_ARG);
     CHECK(m.positions == NULL);
     /* The largest detail is accepted. */
     cp[5][1] = 0.0f;
-    CHECK_EQ(sr_tessellate_bezier((const float (*)[16][3])&cp, 1, 256, &m), SR_OK);
-    sr_mesh_free(&m);
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 256, &m), SR_OK);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 /* ---- the teapot --------------------------------------------------------- */
@@ -290,7 +290,7 @@ SR_TEST(teapot_has_the_documented_size_and_extent)
     for (size_t d = 0; d < sizeof details / sizeof details[0]; d++) {
         int n = details[d];
         sr_mesh m;
-        REQUIRE(sr_make_teapot(n, &m) == SR_OK);
+        REQUIRE(sr_make_teapot(sr_test_ctx(), n, &m) == SR_OK);
         CHECK_EQ(m.triangle_count, (size_t)32 * 2 * n * n);
         CHECK_EQ(m.vertex_count, (size_t)32 * (n + 1) * (n + 1));
         for (size_t i = 0; i < 3 * m.triangle_count; i++) {
@@ -312,18 +312,18 @@ SR_TEST(teapot_has_the_documented_size_and_extent)
          * (control points at -3). */
         CHECK(hi[0] > 3.2 && hi[0] < 3.53);
         CHECK(lo[0] < -2.6 && lo[0] >= -3.0);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
     sr_mesh m;
-    CHECK_EQ(sr_make_teapot(0, &m), SR_INVALID_ARG);
-    CHECK_EQ(sr_make_teapot(257, &m), SR_INVALID_ARG);
-    CHECK_EQ(sr_make_teapot(4, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_teapot(sr_test_ctx(), 0, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_teapot(sr_test_ctx(), 257, &m), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_teapot(sr_test_ctx(), 4, NULL), SR_INVALID_ARG);
 }
 
 SR_TEST(teapot_triangles_and_normals_agree_and_enclose_positive_volume)
 {
     sr_mesh m;
-    REQUIRE(sr_make_teapot(12, &m) == SR_OK);
+    REQUIRE(sr_make_teapot(sr_test_ctx(), 12, &m) == SR_OK);
     size_t degenerate;
     CHECK_EQ(count_winding_mismatches(&m, &degenerate), 0);
     /* Only the lid's pole and the bottom's centre collapse: 8 patches, one
@@ -341,13 +341,13 @@ SR_TEST(teapot_triangles_and_normals_agree_and_enclose_positive_volume)
      * must be positive and near the pot's ~26 cubic units. */
     double vol = signed_volume(&m);
     CHECK(vol > 20.0 && vol < 30.0);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(teapot_poles_have_vertical_normals)
 {
     sr_mesh m;
-    REQUIRE(sr_make_teapot(10, &m) == SR_OK);
+    REQUIRE(sr_make_teapot(sr_test_ctx(), 10, &m) == SR_OK);
     int top = 0, bottom = 0;
     for (size_t v = 0; v < m.vertex_count; v++) {
         const float *p = &m.positions[3 * v];
@@ -365,7 +365,7 @@ SR_TEST(teapot_poles_have_vertical_normals)
     }
     CHECK_EQ(top, 4 * 11);
     CHECK_EQ(bottom, 4 * 11);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 /* Neighbouring patches must produce bit-identical vertices along their
@@ -382,7 +382,7 @@ SR_TEST(teapot_patch_seams_are_bit_identical)
 {
     int n = 7;
     sr_mesh m;
-    REQUIRE(sr_make_teapot(n, &m) == SR_OK);
+    REQUIRE(sr_make_teapot(sr_test_ctx(), n, &m) == SR_OK);
     size_t side = (size_t)n + 1, per = side * side;
     /* Sorted copies of each patch's boundary vertices, positive zero
      * throughout so that memcmp compares values. */
@@ -435,7 +435,7 @@ SR_TEST(teapot_patch_seams_are_bit_identical)
     }
     CHECK_EQ(unmatched, 0);
     free(all);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 /* The strongest outwardness check: look at the pot from outside.  For a
@@ -554,7 +554,7 @@ SR_TEST(teapot_seen_from_outside_shows_only_front_faces)
 {
     sr_mesh m;
     const int detail = 16;
-    REQUIRE(sr_make_teapot(detail, &m) == SR_OK);
+    REQUIRE(sr_make_teapot(sr_test_ctx(), detail, &m) == SR_OK);
     const size_t per_patch = 2 * (size_t)detail * detail;
     /* From the sides and from below: no opening is in view. */
     static const double closed_views[][3] = {
@@ -575,5 +575,5 @@ SR_TEST(teapot_seen_from_outside_shows_only_front_faces)
         CHECK(r.back > 0); /* the openings are there, and the test can see */
         CHECK_EQ(r.back_on_lid_or_handle, 0);
     }
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }

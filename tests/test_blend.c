@@ -93,8 +93,9 @@ SR_TEST(color_mask_keeps_masked_channels)
 {
     rt_target t = rt_make(8, 8, 1);
     for (int m = 0; m < 16; m++) {
-        sr_state st = { .color_mask = { .no_red = m & 1, .no_green = m & 2, .no_blue = m & 4,
-                                        .no_alpha = m & 8 } };
+        /* m: the channels left untouched, bit c = channel c */
+        sr_state st = { .color_mask = m == 15 ? SR_COLOR_MASK_NONE
+                                              : (sr_color_mask)(SR_COLOR_MASK_RGBA & ~m) };
         draw_over(&t, &st);
         const uint8_t *px = sr_framebuffer_pixels(t.fb);
         for (int c = 0; c < 4; c++) {

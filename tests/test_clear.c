@@ -35,7 +35,7 @@ static sr_result draw_tri(sr_context *ctx, sr_framebuffer *fb, const float xy[6]
         pos[i * 3 + 1] = 1.0f - xy[i * 2 + 1] / (h * 0.5f);
         pos[i * 3 + 2] = 0.0f;
     }
-    sr_state st = { .shading = SR_SHADING_UNLIT, .no_depth_test = true,
+    sr_state st = { .shading = SR_SHADING_UNLIT, .depth_test = SR_OFF,
                     .material = { .diffuse = { rgb[0], rgb[1], rgb[2] } } };
     return sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3 });
 }
@@ -366,9 +366,11 @@ SR_TEST(clears_of_the_drawn_rectangle_give_whole_clears_bytes)
     const sr_clear_desc clears[5] = {
         { .color = { 0.2f, 0.4f, 0.6f, 1 }, .depth = 1, .stencil = 0 },
         { .color = { 0.2f, 0.4f, 0.6f, 1 }, .depth = 1, .stencil = 0 },
-        { .color = { 1, 1, 0, 1 }, .depth = 0.75f, .stencil = 9 },
-        { .color = { 0.2f, 0.4f, 0.6f, 1 }, .no_depth = true, .no_stencil = true },
-        { .depth = 1, .no_color = true, .stencil = 0 },
+        { .color = { 1, 1, 0, 1 }, .depth_action = SR_ACTION_CLEAR, .depth = 0.75f,
+          .stencil_action = SR_ACTION_CLEAR, .stencil = 9 },
+        { .color = { 0.2f, 0.4f, 0.6f, 1 }, .depth_action = SR_ACTION_KEEP,
+          .stencil_action = SR_ACTION_KEEP },
+        { .depth = 1, .color_action = SR_ACTION_KEEP, .stencil = 0 },
     };
     srand(11);
     for (int samples = 1; samples <= 4; samples += 3) {

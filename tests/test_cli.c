@@ -613,6 +613,8 @@ static const option_case option_errors[] = {
     { "normals bogus", { "--normals", "bent" }, "--normals: expected one of file|smooth|flat" },
     { "ortho with a value", { "--ortho=yes" }, "--ortho: takes no value" },
     { "turn huge", { "--turn", "1e9" }, "--turn: expected a number" },
+    { "up sideways", { "--up", "sideways" }, "--up: expected one of +x|-x|+y|-y|+z|-z" },
+    { "up without a sign", { "--up", "z" }, "--up: expected one of +x|-x|+y|-y|+z|-z" },
     { "near 0", { "--near", "0" }, "--near: expected a number" },
     { "far abc", { "--far", "abc" }, "--far: expected a number" },
     { "threads 0", { "--threads", "0" }, "--threads: expected a whole number from 1 to 64" },
@@ -675,7 +677,7 @@ SR_TEST(camera_looking_along_both_ups_still_frames)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     long lit = 0;
     for (long i = 0; i < (long)w * h; i++) {
         lit += px[4 * i] > 128;
@@ -843,7 +845,7 @@ SR_TEST(svg_output_that_is_its_input_is_refused)
     int w = 0, h = 0;
     uint8_t *px = NULL;
     sr_io_error err;
-    CHECK_EQ(sr_read_png(png, &w, &h, &px, &err), SR_OK);
+    CHECK_EQ(sr_read_png(png, NULL, &w, &h, &px, &err), SR_OK);
     CHECK(w == 8 && h == 8);
     free(px);
 #endif
@@ -1009,7 +1011,7 @@ static const char *const value_options[] = {
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
-    "--polygon-offset",
+    "--polygon-offset", "--up",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",
@@ -1127,7 +1129,7 @@ static double render_ok(const char *label, const char *dir, const char *name,
     int pw = 0, ph = 0;
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(out, &pw, &ph, &px, &err) != SR_OK) {
+    if (sr_read_png(out, NULL, &pw, &ph, &px, &err) != SR_OK) {
         FAILF("%s: %s", label, err.message);
         return -1;
     }
@@ -1140,6 +1142,166 @@ static double render_ok(const char *label, const char *dir, const char *name,
     }
     free(px);
     return pw == w && ph == h ? (double)lit / ((double)pw * ph) : -1;
+}
+
+typedef struct silhouette {
+    int x0, y0, x1, y1;     /* the non-background pixels' box, inclusive; x1 < x0 when none */
+} silhouette;
+
+/* The box of the non-background pixels of the W x H image PATH. */
+static bool read_silhouette(const char *label, const char *path, silhouette *box)
+{
+    int w = 0, h = 0;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(path, NULL, &w, &h, &px, &err) != SR_OK) {
+        FAILF("%s: %s", label, err.message);
+        return false;
+    }
+    *box = (silhouette){ w, h, -1, -1 };
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            if (!is_background(px + 4 * ((size_t)y * w + x))) {
+                box->x0 = x < box->x0 ? x : box->x0;
+                box->y0 = y < box->y0 ? y : box->y0;
+                box->x1 = x > box->x1 ? x : box->x1;
+                box->y1 = y > box->y1 ? y : box->y1;
+            }
+        }
+    }
+    free(px);
+    return box->x1 >= box->x0;
+}
+
+/* render_ok, then the silhouette of what it drew. */
+static bool render_silhouette(const char *label, const char *dir, const char *const *args, int w,
+                              int h, silhouette *box)
+{
+    if (render_ok(label, dir, "silhouette.png", args, w, h) <= 0.0) {
+        FAILF("%s: nothing drawn", label);
+        return false;
+    }
+    char path[1200];
+    snprintf(path, sizeof path, "%s/silhouette.png", dir);
+    return read_silhouette(label, path, box);
+}
+
+/* A closed box from the origin to (sx, sy, sz) as an ASCII STL, faces
+ * counter-clockwise seen from outside. */
+static bool write_box_stl(const char *path, float sx, float sy, float sz)
+{
+    static const int quads[6][4] = { { 0, 1, 3, 2 }, { 4, 6, 7, 5 }, { 0, 4, 5, 1 },
+                                      { 2, 3, 7, 6 }, { 0, 2, 6, 4 }, { 1, 5, 7, 3 } };
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        return false;
+    }
+    fprintf(f, "solid box\n");
+    for (int q = 0; q < 6; q++) {
+        const int tri[2][3] = { { quads[q][0], quads[q][1], quads[q][2] },
+                                { quads[q][0], quads[q][2], quads[q][3] } };
+        for (int t = 0; t < 2; t++) {
+            fprintf(f, "facet normal 0 0 0\nouter loop\n");
+            for (int k = 0; k < 3; k++) {
+                int v = tri[t][k];   /* bit 2: x, bit 1: y, bit 0: z */
+                fprintf(f, "vertex %g %g %g\n", (double)(v & 4 ? sx : 0), (double)(v & 2 ? sy : 0),
+                        (double)(v & 1 ? sz : 0));
+            }
+            fprintf(f, "endloop\nendfacet\n");
+        }
+    }
+    fprintf(f, "endsolid box\n");
+    return fclose(f) == 0;
+}
+
+/* An STL stands on its +z axis unless --up says otherwise: a box four
+ * times taller along z than wide stands upright (its silhouette taller
+ * than wide) with +z and -z, and lies down with the four other axes. */
+SR_TEST(up_turns_the_models_up_axis_upright)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], model[1100];
+    fresh_dir("up", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/tall.stl", dir);
+    REQUIRE(write_box_stl(model, 1.0f, 1.0f, 4.0f));
+    silhouette box;
+    if (render_silhouette("STL default", dir, ARGS(model, "--size", "120x120"), 120, 120, &box)) {
+        CHECK(box.y1 - box.y0 > 2 * (box.x1 - box.x0));
+    }
+    const char *const axes[] = { "+x", "-x", "+y", "-y", "+z", "-z" };
+    for (int i = 0; i < 6; i++) {
+        char label[64];
+        snprintf(label, sizeof label, "--up %s", axes[i]);
+        if (!render_silhouette(label, dir, ARGS(model, "--size", "120x120", "--up", axes[i]), 120,
+                               120, &box)) {
+            continue;
+        }
+        int bw = box.x1 - box.x0, bh = box.y1 - box.y0;
+        bool upright = axes[i][1] == 'z';
+        if (upright ? !(bh > 2 * bw) : !(bw > bh)) {
+            FAILF("%s: silhouette %dx%d, expected it %s", label, bw + 1, bh + 1,
+                  upright ? "standing" : "lying");
+        }
+    }
+    /* The same box as OBJ stands on +y: lying down by default. */
+    char obj[1100];
+    snprintf(obj, sizeof obj, "%s/tall.obj", dir);
+    const char *text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 4\nv 1 0 4\nv 1 1 4\nv 0 1 4\n"
+                       "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    REQUIRE(write_whole(obj, text, strlen(text)));
+    if (render_silhouette("OBJ default", dir, ARGS(obj, "--size", "120x120"), 120, 120, &box)) {
+        CHECK(box.x1 - box.x0 > box.y1 - box.y0);
+    }
+}
+
+/* The default camera fits the model's projection, not a sphere around it:
+ * for wide, square and tall images, turned or not, perspective or
+ * orthographic, the silhouette reaches the 5% margin on both sides in one
+ * dimension (within 2 pixels: a partly covered pixel counts) and stays
+ * within the margins in the other. */
+SR_TEST(default_camera_fills_the_frame_to_its_margin)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], model[1100];
+    fresh_dir("fit", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/box.stl", dir);
+    REQUIRE(write_box_stl(model, 1.0f, 2.0f, 0.6f));
+    const int sizes[3][2] = { { 400, 100 }, { 160, 160 }, { 100, 400 } };
+    const char *const turns[] = { "0", "35", "200" };
+    for (int i = 0; i < 3; i++) {
+        for (int t = 0; t < 3; t++) {
+            for (int ortho = 0; ortho < 2; ortho++) {
+                int w = sizes[i][0], h = sizes[i][1];
+                char size[32], label[96];
+                snprintf(size, sizeof size, "%dx%d", w, h);
+                snprintf(label, sizeof label, "%s --turn %s%s", size, turns[t],
+                         ortho ? " --ortho" : "");
+                silhouette box;
+                bool ok = render_silhouette(label, dir,
+                                            ortho ? ARGS(model, "--size", size, "--turn", turns[t],
+                                                         "--ortho")
+                                                  : ARGS(model, "--size", size, "--turn", turns[t]),
+                                            w, h, &box);
+                if (!ok) {
+                    continue;
+                }
+                /* The margin's first and last pixels inside it. */
+                int mx = (int)(0.05 * w), my = (int)(0.05 * h);
+                int left = box.x0 - mx, right = (w - 1 - mx) - box.x1;
+                int top = box.y0 - my, bottom = (h - 1 - my) - box.y1;
+                bool fills_x = abs(left) <= 2 && abs(right) <= 2;
+                bool fills_y = abs(top) <= 2 && abs(bottom) <= 2;
+                if (!(fills_x || fills_y) || left < -2 || right < -2 || top < -2 || bottom < -2) {
+                    FAILF("%s: silhouette x %d..%d y %d..%d, the margin leaves x %d..%d y %d..%d",
+                          label, box.x0, box.x1, box.y0, box.y1, mx, w - 1 - mx, my, h - 1 - my);
+                }
+            }
+        }
+    }
 }
 
 SR_TEST(render_writes_a_png_of_the_requested_size)
@@ -1246,7 +1408,7 @@ static char *render_bytes(const char *label, const char *dir, const char *name,
     return read_whole(path, len);
 }
 
-/* The three rasterizers give the same pixels (RASTER_RULES), hence the
+/* The three rasterizers give the same pixels (docs/raster-rules.md §3.5), hence the
  * same PNG bytes; so do one thread and several. */
 SR_TEST(rasterizers_and_thread_counts_give_identical_pngs)
 {
@@ -1293,6 +1455,29 @@ SR_TEST(rasterizers_and_thread_counts_give_identical_pngs)
         }
         free(ref);
     }
+}
+
+/* Antialiasing is on by default: 4x MSAA, byte for byte, and not the
+ * aliased image of --aa none. */
+SR_TEST(msaa4_is_the_default_antialiasing)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024];
+    fresh_dir("aa", dir, sizeof dir);
+    size_t ld, lm, ln;
+    char *d = render_bytes("default", dir, "d.png", ARGS("--size", "96x64", "--detail", "4"), &ld);
+    char *m = render_bytes("msaa4", dir, "m.png",
+                           ARGS("--size", "96x64", "--detail", "4", "--aa", "msaa4"), &lm);
+    char *n = render_bytes("none", dir, "n.png",
+                           ARGS("--size", "96x64", "--detail", "4", "--aa", "none"), &ln);
+    REQUIRE(d && m && n);
+    CHECK(ld == lm && memcmp(d, m, ld) == 0);
+    CHECK(!(ld == ln && memcmp(d, n, ld) == 0));
+    free(d);
+    free(m);
+    free(n);
 }
 
 static bool has_model_extension(const char *name)
@@ -1412,7 +1597,7 @@ SR_TEST(verbose_reports_on_stderr_and_still_renders)
     int w = 0, h = 0;
     uint8_t *px = NULL;
     sr_io_error err;
-    CHECK_EQ(sr_read_png(out, &w, &h, &px, &err), SR_OK);
+    CHECK_EQ(sr_read_png(out, NULL, &w, &h, &px, &err), SR_OK);
     CHECK_EQ(w, 32);
     CHECK_EQ(h, 24);
     free(px);
@@ -1756,7 +1941,7 @@ SR_TEST(gltf_material_colors_color_the_model)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     /* A pixel a quarter in from each side, on the middle row. */
     const uint8_t *left = px + 4 * ((size_t)(h / 2) * w + w / 4);
     const uint8_t *right = px + 4 * ((size_t)(h / 2) * w + 3 * w / 4);
@@ -1779,7 +1964,7 @@ static void check_parts_picture(const char *path)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
     int found[3] = { 0, 0, 0 }, white = 0;
     int row = h * 7 / 10;
     for (int x = 0; x < w; x++) {
@@ -1858,7 +2043,7 @@ SR_TEST(obj_parts_take_their_own_textures)
     cli_run_free(&r);
     int w, h;
     uint8_t *px = NULL;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     int blues = 0, reds = 0, row = h * 7 / 10;
     for (int x = 0; x < w; x++) {
         const uint8_t *p = px + 4 * ((size_t)row * w + x);
@@ -1931,7 +2116,7 @@ SR_TEST(gltf_parts_take_their_own_textures)
     cli_run_free(&r);
     int w, h;
     uint8_t *px = NULL;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     const uint8_t *left = px + 4 * ((size_t)(h * 7 / 10) * w + w / 5);
     CHECK(left[0] == 255 && left[1] == 255 && left[2] == 255);
     free(px);
@@ -1980,7 +2165,7 @@ SR_TEST(a_jpg_output_name_writes_a_jpeg)
     int pw, ph, jw, jh, lw, lh;
     uint8_t *p = NULL, *j = NULL, *l = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(png, &pw, &ph, &p, &err) == SR_OK);
+    REQUIRE(sr_read_png(png, NULL, &pw, &ph, &p, &err) == SR_OK);
     REQUIRE(sr_read_jpeg(jpg, &jw, &jh, &j, &err) == SR_OK);
     REQUIRE(sr_read_jpeg(low, &lw, &lh, &l, &err) == SR_OK);
     REQUIRE(pw == jw && ph == jh && pw == lw && ph == lh);

@@ -25,7 +25,7 @@ static void check_demo(const char *demo)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(out, &w, &h, &px, &err) != SR_OK) {
+    if (sr_read_png(out, NULL, &w, &h, &px, &err) != SR_OK) {
         sr_test_fail(__FILE__, __LINE__, "reading %s: %s", out, err.message);
         return;
     }

@@ -44,7 +44,7 @@ static image render_demo(const char *demo)
         return im;
     }
     sr_io_error err;
-    if (sr_read_png(out, &im.w, &im.h, &im.px, &err) != SR_OK) {
+    if (sr_read_png(out, NULL, &im.w, &im.h, &im.px, &err) != SR_OK) {
         sr_test_fail(__FILE__, __LINE__, "reading %s: %s", out, err.message);
         im.px = NULL;
         return im;

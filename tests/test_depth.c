@@ -1,5 +1,5 @@
 /* test_depth.c - the depth buffer: the eight compare functions and
- * no_depth_write, quantization for D16/D24/D32/D32F against integer math,
+ * depth_write = SR_OFF, quantization for D16/D24/D32/D32F against integer math,
  * sr_read_depth, the depth range and depth_zero_to_one, and polygon offset
  * (z-fighting without it, a deterministic winner with it, units as exactly
  * one step, the slope term and the clamp).  Fixed seeds. */
@@ -38,7 +38,8 @@ static void target_free(target *t)
 
 static void target_clear(target *t, float depth)
 {
-    sr_clear(t->ctx, t->fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = depth });
+    sr_clear(t->ctx, t->fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 },
+                                             .depth_action = SR_ACTION_CLEAR, .depth = depth });
 }
 
 /* A full-screen quad with z_ndc = z0 + zx x_ndc + zy y_ndc, in one color. */
@@ -107,7 +108,7 @@ SR_TEST(each_depth_function_passes_and_writes_as_specified)
             for (int k = 0; k < 3; k++) {
                 for (int nowrite = 0; nowrite <= 1; nowrite++) {
                     target_clear(&t, 0.5f);
-                    sr_state st = { .depth_func = (sr_depth_func)f, .no_depth_write = nowrite };
+                    sr_state st = { .depth_func = (sr_depth_func)f, .depth_write = nowrite ? SR_OFF : SR_ON };
                     REQUIRE(draw_quad(&t, &st, 2 * zw[k] - 1, 0, 0, WHITE) == SR_OK);
                     uint32_t in = sr__depth_quantize(zw[k], t.bits);
                     bool pass = ref_pass((sr_depth_func)f, in, stored);
@@ -157,11 +158,11 @@ SR_TEST(depth_test_is_per_pixel_on_a_slanted_quad)
     }
 }
 
-SR_TEST(no_depth_test_draws_everything_even_with_never)
+SR_TEST(depth_test_off_draws_everything_even_with_never)
 {
     target t = target_make(8, 8, 1);
     target_clear(&t, 0.0f);
-    sr_state st = { .no_depth_test = true, .depth_func = SR_NEVER };
+    sr_state st = { .depth_test = SR_OFF, .depth_func = SR_NEVER };
     REQUIRE(draw_quad(&t, &st, 0.5, 0, 0, WHITE) == SR_OK);
     CHECK_EQ(count_color(&t, WHITE), 64);
     target_free(&t);
@@ -496,7 +497,7 @@ SR_TEST(offset_units_are_one_step_of_the_format)
         const float units[3] = { 0, 1, 2 };
         for (int k = 0; k < 3; k++) {
             const float col[3] = { 0, 1, 0 };
-            sr_state eq = { .depth_func = SR_EQUAL, .no_depth_write = true,
+            sr_state eq = { .depth_func = SR_EQUAL, .depth_write = SR_OFF,
                             .offset = { .units = units[k], .fill = true } };
             REQUIRE(draw_quad(&t, &eq, 0.0, 0, 0, col) == SR_OK);
             CHECK_EQ(count_color(&t, GREEN), k == 1 ? 64 : 0);

@@ -60,7 +60,7 @@ static sr_result op_path(sr_context *ctx, sr_framebuffer *fb)
                            &(sr_stroke_desc){ .width = 3, .join = SR_STROKE_JOIN_ROUND,
                                               .cap = SR_STROKE_CAP_ROUND });
     }
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     return r;
 }
 

@@ -2,7 +2,7 @@
  * independent point-in-region tests: on random convex and concave
  * polygons, every sample point away from the edges is inside the clipped
  * polygon exactly when it is inside both the polygon and the window;
- * plus the stage callback, the seeds' worked example and the argument
+ * plus the stage callback, a worked example and the argument
  * checks.  Fixed seeds. */
 #include "softrast.h"
 #include "sr_test.h"
@@ -148,7 +148,7 @@ SR_TEST(clipped_polygon_is_exactly_polygon_and_window)
     sr_destroy_context(ctx);
 }
 
-SR_TEST(seed_example_gains_and_loses_vertices_per_edge)
+SR_TEST(worked_example_gains_and_loses_vertices_per_edge)
 {
     sr_context *ctx = new_ctx();
     REQUIRE(ctx);

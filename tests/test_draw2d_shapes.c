@@ -186,7 +186,7 @@ SR_TEST(strokes_cover_their_width_and_caps)
         }
     }
     CHECK_EQ(bad, 0);
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
@@ -227,7 +227,7 @@ SR_TEST(joins_fill_the_outer_corner_as_specified)
                    &(sr_stroke_desc){ .width = 6, .miter_limit = 1.2 });
     CHECK(!px_at(fb, 42, 7)[0]);
     CHECK(px_at(fb, 40, 9)[0]);
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
@@ -250,7 +250,7 @@ SR_TEST(closed_stroke_is_a_ring_and_overlaps_merge)
                     &(sr_fill_desc){ .rule = SR_EVENODD });
     /* half-transparent: any doubly covered pixel would be brighter */
     CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), (size_t)W * H * 4) == 0);
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     sr_destroy_framebuffer(ctx, a);
     sr_destroy_framebuffer(ctx, b);
     sr_destroy_context(ctx);
@@ -305,7 +305,7 @@ SR_TEST(path_circles_from_cubics_and_arcs_have_the_circle_area)
     sr_polygon2 poly = sr_path_polygon(path);
     CHECK_EQ(poly.contour_count, 1);
     CHECK(poly.point_count > 10);
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
@@ -340,7 +340,7 @@ SR_TEST(bad_stroke_arguments_are_rejected)
     CHECK(!px_at(fb, 30, 30)[0]);
     sr_stroke_path(ctx, fb, path, w, &(sr_stroke_desc){ .width = 6, .cap = SR_STROKE_CAP_ROUND });
     CHECK(px_at(fb, 30, 30)[0] && px_at(fb, 32, 30)[0] && !px_at(fb, 34, 30)[0]);
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }

@@ -68,7 +68,7 @@ SR_TEST(encoded_png_bytes_equal_the_written_file)
     sr_context *ctx = NULL;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 3 }, &ctx) == SR_OK);
     const sr_png_write_desc descs[] = {
-        { 0 }, { .compression_level = -1 }, { .compression_level = 6, .no_alpha = true },
+        { 0 }, { .compression_level = -1 }, { .compression_level = 6, .channels = SR_PNG_RGB },
         { .context = ctx },
     };
     for (size_t i = 0; i < sizeof descs / sizeof descs[0]; i++) {

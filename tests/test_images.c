@@ -37,7 +37,7 @@ static void check_render(const char *name, const char *const *extra)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(out, &w, &h, &px, &err) != SR_OK) {
+    if (sr_read_png(out, NULL, &w, &h, &px, &err) != SR_OK) {
         sr_test_fail(__FILE__, __LINE__, "reading %s: %s", out, err.message);
         return;
     }
@@ -46,6 +46,8 @@ static void check_render(const char *name, const char *const *extra)
     free(px);
 }
 
+/* The default output, antialiased; the other checks turn antialiasing
+ * off unless it is what they check. */
 SR_TEST(builtin_scene_matches_reference)
 {
     check_render("builtin_phong", (const char *[]){ "--size", "240x160", NULL });
@@ -57,7 +59,8 @@ SR_TEST(builtin_scene_in_every_shading_mode_matches_reference)
     for (int i = 0; i < 5; i++) {
         char name[64];
         snprintf(name, sizeof name, "builtin_%s", modes[i]);
-        check_render(name, (const char *[]){ "--size", "160x120", "--shading", modes[i], NULL });
+        check_render(name, (const char *[]){ "--size", "160x120", "--shading", modes[i], "--aa",
+                                             "none", NULL });
     }
 }
 
@@ -80,14 +83,16 @@ SR_TEST(builtin_scene_multisampled_matches_reference)
 SR_TEST(builtin_scene_translucent_matches_reference)
 {
     check_render("builtin_opacity", (const char *[]){ "--size", "160x120", "--opacity", "0.5",
-                                                      NULL });
+                                                      "--aa", "none", NULL });
 }
 
 SR_TEST(builtin_scene_orthographic_and_affine_match_reference)
 {
-    check_render("builtin_ortho", (const char *[]){ "--size", "160x120", "--ortho", NULL });
+    check_render("builtin_ortho",
+                 (const char *[]){ "--size", "160x120", "--ortho", "--aa", "none", NULL });
     check_render("builtin_affine", (const char *[]){ "--size", "160x120", "--projection-interp",
-                                                     "affine", "--shading", "unlit", NULL });
+                                                     "affine", "--shading", "unlit", "--aa",
+                                                     "none", NULL });
 }
 
 SR_TEST(shared_models_match_reference)
@@ -101,7 +106,7 @@ SR_TEST(shared_models_match_reference)
         char path[1024], name[64];
         snprintf(path, sizeof path, "%s/%s.obj", dir, models[i]);
         snprintf(name, sizeof name, "model_%s", models[i]);
-        check_render(name, (const char *[]){ path, "--size", "160x120", NULL });
+        check_render(name, (const char *[]){ path, "--size", "160x120", "--aa", "none", NULL });
     }
 }
 
@@ -115,15 +120,16 @@ SR_TEST(textured_model_matches_reference)
     char path[1024];
     snprintf(path, sizeof path, "%s/spot.obj", dir);
     check_render("model_spot_textured", (const char *[]){ path, "--size", "160x120", "--turn",
-                                                          "200", NULL });
+                                                          "200", "--aa", "none", NULL });
     check_render("model_spot_textured_nearest",
                  (const char *[]){ path, "--size", "160x120", "--turn", "200", "--texture-filter",
-                                   "nearest", "--shading", "flat", NULL });
+                                   "nearest", "--shading", "flat", "--aa", "none", NULL });
 }
 
 SR_TEST(wireframe_and_hidden_line_renders_match_reference)
 {
-    check_render("builtin_edges", (const char *[]){ "--size", "160x120", "--edges", NULL });
+    check_render("builtin_edges",
+                 (const char *[]){ "--size", "160x120", "--edges", "--aa", "none", NULL });
     const char *dir = sr_test_models_dir();
     if (!dir) {
         SKIP("../shared/models not found (set SR_MODELS_DIR)");
@@ -133,8 +139,10 @@ SR_TEST(wireframe_and_hidden_line_renders_match_reference)
         char path[1024], name[64];
         snprintf(path, sizeof path, "%s/%s.obj", dir, models[i]);
         snprintf(name, sizeof name, "wire_%s", models[i]);
-        check_render(name, (const char *[]){ path, "--size", "160x120", "--wireframe", NULL });
+        check_render(name,
+                     (const char *[]){ path, "--size", "160x120", "--wireframe", "--aa", "none", NULL });
         snprintf(name, sizeof name, "hidden_%s", models[i]);
-        check_render(name, (const char *[]){ path, "--size", "160x120", "--hidden-line", NULL });
+        check_render(name, (const char *[]){ path, "--size", "160x120", "--hidden-line", "--aa",
+                                             "none", NULL });
     }
 }

@@ -2,7 +2,7 @@
  * against a ray-cast reference through the internal setup and fragment
  * helpers (the public API only carries 8-bit colors), affine mode differing
  * from it, screen-linear depth, the provoking vertex of flat shading for
- * lists, strips and fans (RASTER_RULES 4.2), and Gouraud vs Phong on a
+ * lists, strips and fans (docs/raster-rules.md §5.4), and Gouraud vs Phong on a
  * highlight inside a big quad.  Fixed seeds. */
 #include "sr_test.h"
 #include "softrast.h"

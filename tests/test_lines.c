@@ -1,6 +1,6 @@
 /* test_lines.c - draw2d stage, 2D lines (src/draw2d/line*.c): the
  * midpoint/Bresenham line against an independent implementation of the
- * diamond-exit closed form (RASTER_RULES 6.2), order independence, the
+ * diamond-exit closed form (docs/raster-rules.md §7.1), order independence, the
  * octants, the DDA variants against it (differences counted), clipping
  * invariance with both clippers, Wu's intensity, exact area coverage
  * against supersampling, wide lines, and argument validation.
@@ -105,7 +105,7 @@ static void keep_inside(pixset *s, sr__irect r)
 
 static const sr__irect BIG = { -4096, -4096, 4096, 4096 };
 
-/* ---- the independent reference: RASTER_RULES 6.2 written out literally ------------ */
+/* ---- the independent reference: docs/raster-rules.md §7.1 written out literally ------------ */
 
 static i128 ref_ceil_div(i128 a, i128 b)   /* b > 0 */
 {
@@ -693,7 +693,7 @@ static double total_coverage(const pixset *s)
 /* Each column's two weights sum to 1, so a Wu line's total intensity is
  * its extent along the major axis (= its length for axis-aligned lines;
  * 1/cos of the angle dimmer per unit length on diagonals, the known
- * weakness the seeds list under "brightness independent of slope"). */
+ * weakness of Wu's lines: brightness depends on the slope). */
 SR_TEST(wu_total_intensity_equals_major_length_within_one_percent)
 {
     sr_rng rng = { 0x3u };

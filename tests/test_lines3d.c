@@ -1,6 +1,6 @@
 /* test_lines3d.c - lines, points and polygon modes in the 3D pipeline:
  * diamond-exit pixels against an independent implementation of the
- * closed form (RASTER_RULES 6.2), strips without gaps or doubles, polygon
+ * closed form (docs/raster-rules.md §7.1), strips without gaps or doubles, polygon
  * modes against the equivalent line loops, square points with half-open
  * edges, clipping, and hidden-line depth with polygon offset. */
 #include "raster_util.h"
@@ -27,7 +27,7 @@ static sr_result draw_prims(rt_target *t, sr_primitive prim, const double *xy, i
     return r;
 }
 
-/* ---- the closed form, written from RASTER_RULES 6.2 ---- */
+/* ---- the closed form, written from docs/raster-rules.md §7.1 ---- */
 
 static int64_t snapq(double v) { return (int64_t)nearbyint(v * 256.0); }
 
@@ -453,7 +453,7 @@ SR_TEST(wide_lines_are_runs_across_the_minor_axis)
     rt_free(&t);
 }
 
-/* GL's wide lines (RASTER_RULES 6.3, GL 14.5.2.2), written from the rule:
+/* GL's wide lines (docs/raster-rules.md §7.2, GL 14.5.2.2), written from the rule:
  * round the width to w, translate the segment by -(w - 1)/2 along the
  * minor axis (exact in q8: (w - 1) half pixels), rasterize that segment
  * one pixel wide by the closed form, and widen each of its pixels into a
@@ -677,7 +677,7 @@ SR_TEST(outline_over_an_offset_face_passes_the_depth_test)
             tested[i] = px[i * 4] == 255;
         }
         /* The same outline with no depth test: every pixel it covers. */
-        lines.no_depth_test = true;
+        lines.depth_test = SR_OFF;
         REQUIRE(sr_draw(ctx, fb, &lines, &d) == SR_OK);
         px = sr_framebuffer_pixels(fb);
         int n_all = 0, missing = 0;

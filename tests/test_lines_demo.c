@@ -27,7 +27,7 @@ SR_TEST(demo_lines_matches_reference)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(out, &w, &h, &px, &err) != SR_OK) {
+    if (sr_read_png(out, NULL, &w, &h, &px, &err) != SR_OK) {
         sr_test_fail(__FILE__, __LINE__, "reading %s: %s", out, err.message);
         return;
     }
@@ -43,7 +43,7 @@ SR_TEST(demo_lines_default_scale_is_6)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
     CHECK_EQ(w, 4 * 48 * 6 + 5 * 12);   /* default scale 6 */
     free(px);
 }

@@ -3,7 +3,7 @@
  * depth off or LESS, the interpolated or flat color) against the generic
  * sr__fragment_vary path, which a blend state equal to replace forces;
  * and the per-line tile binning and per-tile column ranges against the
- * closed form of the diamond-exit rule (RASTER_RULES 6.2), across tile
+ * closed form of the diamond-exit rule (docs/raster-rules.md §7.1), across tile
  * borders and at 1, 2 and 3 threads. */
 #include "raster_util.h"
 #include "raster/fixed.h"
@@ -97,8 +97,8 @@ static void render_case(const fast_case *c, const line_set *s, bool generic, uin
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 0.4f }, .depth = 1 });
     sr_state st = {
         .shading = c->shading,
-        .no_depth_test = c->depth_off,
-        .no_depth_write = c->depth_off,
+        .depth_test = c->depth_off ? SR_OFF : SR_ON,
+        .depth_write = c->depth_off ? SR_OFF : SR_ON,
         .ambient = { 0.3f, 0.3f, 0.3f },
         .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.3f, -0.5f, -1 } } },
         .material = { .diffuse = { 0.9f, 0.7f, 0.5f } },
@@ -182,7 +182,7 @@ static bool owner(int64_t x, int64_t y, bool xmaj, int64_t *qx, int64_t *qy)
 }
 
 /* One more hit on every pixel of the segment (q8 endpoints), wide lines
- * as GL's (RASTER_RULES 6.3): the segment moved by -(width - 1)/2 along
+ * as GL's (docs/raster-rules.md §7.2): the segment moved by -(width - 1)/2 along
  * the minor axis, and a run of `width` toward +minor from each pixel of
  * it: the columns' pixels plus the start's diamond pixel minus the end's,
  * each with its run, clipped to the rectangle [x0, x1) x [y0, y1). */
@@ -288,7 +288,7 @@ static void draw_segments(rt_target *t, const double *xy, int nseg, int width, b
      * path when one pixel wide. */
     float v = count ? 1.0f / 255.0f : 1.0f;
     sr_state st = { .shading = SR_SHADING_UNLIT, .line_width = (float)width,
-                    .material = { .diffuse = { v, v, v }, .no_vertex_color = true } };
+                    .material = { .diffuse = { v, v, v }, .vertex_color = SR_OFF } };
     if (count) {
         st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_ONE, .dst_rgb = SR_BLEND_ONE,
                                .src_alpha = SR_BLEND_ONE, .dst_alpha = SR_BLEND_ONE };

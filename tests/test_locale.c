@@ -33,12 +33,13 @@ static const char stl_text[] = "solid t\nfacet normal 0.0 0.0 1.0\nouter loop\n"
                                "vertex " X0 " 0 0\nvertex " X1 " " Y1 " 0\n"
                                "vertex " X2 " " Y0 " " Y2 "\nendloop\nendfacet\nendsolid t\n";
 
-typedef sr_result (*parse_fn)(const char *, const uint8_t *, size_t, sr_mesh *, sr_io_error *);
+typedef sr_result (*parse_fn)(sr_context *, const char *, const uint8_t *, size_t, sr_mesh *,
+                              sr_io_error *);
 
-static sr_result parse_obj_bytes(const char *name, const uint8_t *data, size_t size,
-                                 sr_mesh *out, sr_io_error *err)
+static sr_result parse_obj_bytes(sr_context *ctx, const char *name, const uint8_t *data,
+                                 size_t size, sr_mesh *out, sr_io_error *err)
 {
-    return sr_parse_obj(name, (const char *)data, size, out, err);
+    return sr_parse_obj(ctx, name, (const char *)data, size, out, err);
 }
 
 /* Switch the whole process to GERMAN; false (and a skip) when the system
@@ -61,17 +62,17 @@ static void same_mesh_in_both_locales(const char *name, const char *text, parse_
     setlocale(LC_ALL, "C");
     sr_mesh c, de;
     sr_io_error err;
-    sr_result r = parse(name, (const uint8_t *)text, strlen(text), &c, &err);
+    sr_result r = parse(sr_test_ctx(), name, (const uint8_t *)text, strlen(text), &c, &err);
     CHECK_EQ(r, SR_OK);
     if (r != SR_OK) {
         fprintf(stderr, "  C locale: %s\n", err.message);
         return;
     }
     if (!use_german()) {
-        sr_mesh_free(&c);
+        sr_destroy_mesh(sr_test_ctx(), &c);
         return;
     }
-    r = parse(name, (const uint8_t *)text, strlen(text), &de, &err);
+    r = parse(sr_test_ctx(), name, (const uint8_t *)text, strlen(text), &de, &err);
     setlocale(LC_ALL, "C");
     CHECK_EQ(r, SR_OK);
     if (r == SR_OK) {
@@ -80,11 +81,11 @@ static void same_mesh_in_both_locales(const char *name, const char *text, parse_
               memcmp(de.positions, c.positions, 9 * sizeof c.positions[0]) == 0);
         /* And the numbers are the ones written, not "0" cut at the '.'. */
         CHECK(c.positions[0] == 0.5f && c.positions[4] == 0.75f && c.positions[7] == 25);
-        sr_mesh_free(&de);
+        sr_destroy_mesh(sr_test_ctx(), &de);
     } else {
         fprintf(stderr, "  %s: %s\n", GERMAN, err.message);
     }
-    sr_mesh_free(&c);
+    sr_destroy_mesh(sr_test_ctx(), &c);
 }
 
 SR_TEST(obj_reads_the_same_numbers_under_a_german_locale)

@@ -1,4 +1,4 @@
-/* test_math.c - the math stage: the viewport matrix S against the seed's
+/* test_math.c - the math stage: the viewport matrix S against the pixel-centre
  * formula, the camera frame (u, v, w) and E = M_cam^-1, the normal matrix
  * (inverse transpose) under non-uniform scale, the projections' near/far
  * mapping, sr_fit_fovy, sr_mat4_invert and rotations.  Fixed seeds. */
@@ -49,15 +49,15 @@ static const vp_case viewports[] = {
     { 1000, 300, 7, 3 },
 };
 
-/* The seed's viewport (pixel-centre convention), for pixels x1..x2:
+/* The viewport in the pixel-centre convention (centres at integers), for pixels x1..x2:
  * x_S = x1 - 1/2 + (x + 1)/2 (x2 - x1 + 1).  softrast's pixel-edge
  * coordinate is that + 1/2. */
-static double seed_x(double x_ndc, double x1, double x2)
+static double centre_x(double x_ndc, double x1, double x2)
 {
     return x1 - 0.5 + (x_ndc + 1.0) * 0.5 * (x2 - x1 + 1.0);
 }
 
-SR_TEST(viewport_matrix_matches_the_seed_formula_at_ndc_edges_and_centre)
+SR_TEST(viewport_matrix_matches_the_pixel_centre_formula_at_ndc_edges_and_centre)
 {
     for (size_t i = 0; i < sizeof viewports / sizeof viewports[0]; i++) {
         vp_case v = viewports[i];
@@ -67,9 +67,9 @@ SR_TEST(viewport_matrix_matches_the_seed_formula_at_ndc_edges_and_centre)
         const double ndc[3] = { -1.0, 1.0, 0.0 };
         for (int k = 0; k < 3; k++) {
             sr_vec4 p = xf(&s, (float)ndc[k], (float)ndc[k], 0.0f, 1.0f);
-            CHECK_NEAR(p.x, seed_x(ndc[k], x1, x2) + 0.5, 1e-4);
+            CHECK_NEAR(p.x, centre_x(ndc[k], x1, x2) + 0.5, 1e-4);
             /* y is flipped: NDC y maps like x of -y (NDC +1 is row y0). */
-            CHECK_NEAR(p.y, seed_x(-ndc[k], y1, y2) + 0.5, 1e-4);
+            CHECK_NEAR(p.y, centre_x(-ndc[k], y1, y2) + 0.5, 1e-4);
             CHECK_NEAR(p.w, 1.0, 0.0);
         }
         /* The NDC square maps onto the pixel edges of the rectangle. */
@@ -81,7 +81,7 @@ SR_TEST(viewport_matrix_matches_the_seed_formula_at_ndc_edges_and_centre)
     }
 }
 
-/* The NDC position of pixel i's centre in the seed's convention maps to
+/* The NDC position of pixel i's centre in the pixel-centre convention maps to
  * exactly i there, and to i + 1/2 (the centre) in softrast's. */
 SR_TEST(viewport_matrix_puts_corner_and_centre_pixels_at_their_centres)
 {
@@ -92,10 +92,10 @@ SR_TEST(viewport_matrix_puts_corner_and_centre_pixels_at_their_centres)
         int cols[3] = { (int)v.x0, (int)(v.x0 + v.w - 1), (int)(v.x0 + floorf(v.w / 2)) };
         int rows[3] = { (int)v.y0, (int)(v.y0 + v.h - 1), (int)(v.y0 + floorf(v.h / 2)) };
         for (int k = 0; k < 3; k++) {
-            /* Invert the seed formula: x_ndc of the centre of column c. */
+            /* Invert that formula: x_ndc of the centre of column c. */
             double xn = (2.0 * (cols[k] - v.x0) + 1.0) / v.w - 1.0;
             double yn = 1.0 - (2.0 * (rows[k] - v.y0) + 1.0) / v.h; /* row y0 is the top */
-            CHECK_NEAR(seed_x(xn, x1, x2), cols[k], 1e-9);
+            CHECK_NEAR(centre_x(xn, x1, x2), cols[k], 1e-9);
             sr_vec4 p = xf(&s, (float)xn, (float)yn, 0.0f, 1.0f);
             CHECK_NEAR(p.x, cols[k] + 0.5, 1e-3);
             CHECK_NEAR(p.y, rows[k] + 0.5, 1e-3);
@@ -269,7 +269,7 @@ static sr_vec3 xf3(const sr_mat4 *m, sr_vec3 v)
     return (sr_vec3){ r.x, r.y, r.z };
 }
 
-/* The seed's example: the plane x = y has normal (1, -1, 0)/sqrt 2 and
+/* An example: the plane x = y has normal (1, -1, 0)/sqrt 2 and
  * tangents (1, 1, 0) and (0, 0, 1).  Under scale(1, 2, 1) the tangent
  * becomes (1, 2, 0); M n = (1, -2, 0)/sqrt 2 is no longer perpendicular to
  * it, but the inverse transpose gives (1, -1/2, 0)/sqrt 2, which is. */

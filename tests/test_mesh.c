@@ -6,6 +6,7 @@
 #include "gltf_write.h"
 #include "softrast_io.h"
 #include "sr_test.h"
+#include "context.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -25,14 +26,20 @@ static float corner(int i, int axis)
     return (float)((i >> axis) & 1);
 }
 
-/* A malloc'd cube, as a reader would return it; extra_vertices are left
- * at the origin, used by no triangle. */
+/* Mesh memory on the test context, as sr_destroy_mesh frees it. */
+static void *mesh_alloc(size_t bytes)
+{
+    return sr__calloc(sr_test_ctx(), 1, bytes);
+}
+
+/* A cube, as a reader would return it; extra_vertices are left at the
+ * origin, used by no triangle. */
 static sr_mesh make_cube(bool colors, bool texcoords, size_t extra_vertices)
 {
     size_t n = 8 + extra_vertices;
     sr_mesh m = { .vertex_count = n, .triangle_count = 12 };
-    m.positions = calloc(n * 3, sizeof(float));
-    m.indices = malloc(sizeof cube_tris);
+    m.positions = mesh_alloc(n * 3 * sizeof(float));
+    m.indices = mesh_alloc(sizeof cube_tris);
     memcpy(m.indices, cube_tris, sizeof cube_tris);
     for (int v = 0; v < 8; v++) {
         for (int a = 0; a < 3; a++) {
@@ -40,13 +47,13 @@ static sr_mesh make_cube(bool colors, bool texcoords, size_t extra_vertices)
         }
     }
     if (colors) {
-        m.colors = malloc(n * 4 * sizeof(float));
+        m.colors = mesh_alloc(n * 4 * sizeof(float));
         for (size_t i = 0; i < n * 4; i++) {
             m.colors[i] = (float)i;
         }
     }
     if (texcoords) {
-        m.texcoords = malloc(n * 2 * sizeof(float));
+        m.texcoords = mesh_alloc(n * 2 * sizeof(float));
         for (size_t i = 0; i < n * 2; i++) {
             m.texcoords[i] = (float)i * 0.5f;
         }
@@ -64,13 +71,13 @@ static bool mesh_is_zero(const sr_mesh *m)
 
 SR_TEST(mesh_free_is_null_safe_and_zeroes)
 {
-    sr_mesh_free(NULL);
+    sr_destroy_mesh(sr_test_ctx(), NULL);
     sr_mesh m = make_cube(true, true, 0);
-    m.texture_path = malloc(8);
+    m.texture_path = mesh_alloc(8);
     memcpy(m.texture_path, "a.png", 6);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     CHECK(mesh_is_zero(&m));
-    sr_mesh_free(&m); /* twice is harmless */
+    sr_destroy_mesh(sr_test_ctx(), &m); /* twice is harmless */
 }
 
 SR_TEST(mesh_bounds_of_random_points)
@@ -78,7 +85,7 @@ SR_TEST(mesh_bounds_of_random_points)
     sr_rng rng = { 42 };
     const size_t n = 1000;
     sr_mesh m = { .vertex_count = n };
-    m.positions = malloc(n * 3 * sizeof(float));
+    m.positions = mesh_alloc(n * 3 * sizeof(float));
     float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (size_t i = 0; i < n * 3; i++) {
         float f = (float)sr_rng_range(&rng, -50, 20);
@@ -94,7 +101,7 @@ SR_TEST(mesh_bounds_of_random_points)
     CHECK_EQ(mx.x, hi[0]);
     CHECK_EQ(mx.y, hi[1]);
     CHECK_EQ(mx.z, hi[2]);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 
     sr_mesh empty = { 0 };
     CHECK(!sr_mesh_bounds(&empty, &mn, &mx));
@@ -109,7 +116,7 @@ SR_TEST(smooth_normals_of_a_cube_point_along_the_diagonals)
      * one triangle or split 45 + 45, so every corner gets exactly the
      * diagonal, (±1, ±1, ±1)/sqrt(3). */
     sr_mesh m = make_cube(false, false, 0);
-    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_SMOOTH) == SR_OK);
     REQUIRE(m.normals != NULL);
     const double s = 1 / sqrt(3.0);
     for (int v = 0; v < 8; v++) {
@@ -118,9 +125,9 @@ SR_TEST(smooth_normals_of_a_cube_point_along_the_diagonals)
         }
     }
     /* Computing again replaces, not accumulates. */
-    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_SMOOTH) == SR_OK);
     CHECK_NEAR(m.normals[21], s, 1e-6);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(smooth_normals_ignore_degenerate_faces_and_default_lonely_vertices)
@@ -128,14 +135,16 @@ SR_TEST(smooth_normals_ignore_degenerate_faces_and_default_lonely_vertices)
     sr_mesh m = make_cube(false, false, 2);
     /* Vertex 8 sits at the origin like vertex 0 but belongs to no
      * triangle; vertex 9 only to a degenerate one (7, 7, 9). */
-    uint32_t *idx = realloc(m.indices, 13 * 3 * sizeof *idx);
+    uint32_t *idx = mesh_alloc(13 * 3 * sizeof *idx);
     REQUIRE(idx);
+    memcpy(idx, m.indices, 12 * 3 * sizeof *idx);
+    sr__free(sr_test_ctx(), m.indices);
     m.indices = idx;
     m.indices[36] = 7;
     m.indices[37] = 7;
     m.indices[38] = 9;
     m.triangle_count = 13;
-    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_SMOOTH) == SR_OK);
     const double s = 1 / sqrt(3.0);
     CHECK_NEAR(m.normals[21], s, 1e-6); /* vertex 7 unchanged by the degenerate */
     CHECK_NEAR(m.normals[22], s, 1e-6);
@@ -145,7 +154,7 @@ SR_TEST(smooth_normals_ignore_degenerate_faces_and_default_lonely_vertices)
         CHECK_EQ(m.normals[3 * v + 1], 0.0f);
         CHECK_EQ(m.normals[3 * v + 2], 1.0f);
     }
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(smooth_normals_are_unit_length_on_random_meshes)
@@ -153,37 +162,37 @@ SR_TEST(smooth_normals_are_unit_length_on_random_meshes)
     sr_rng rng = { 7 };
     const size_t nv = 200, nt = 600;
     sr_mesh m = { .vertex_count = nv, .triangle_count = nt };
-    m.positions = malloc(nv * 3 * sizeof(float));
-    m.indices = malloc(nt * 3 * sizeof(uint32_t));
+    m.positions = mesh_alloc(nv * 3 * sizeof(float));
+    m.indices = mesh_alloc(nt * 3 * sizeof(uint32_t));
     for (size_t i = 0; i < nv * 3; i++) {
         m.positions[i] = (float)sr_rng_range(&rng, -1, 1);
     }
     for (size_t i = 0; i < nt * 3; i++) {
         m.indices[i] = (uint32_t)sr_rng_int(&rng, 0, (int)nv - 1);
     }
-    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_SMOOTH) == SR_OK);
     for (size_t v = 0; v < nv; v++) {
         const float *n = m.normals + 3 * v;
         CHECK_NEAR(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), 1.0, 1e-5);
     }
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
-/* The smooth normals of mesh m through sr_mesh_compute_normals_ctx on
+/* The smooth normals of mesh m through sr_mesh_compute_normals on
  * contexts of 1, 2, 3 and 8 threads, against the single-threaded call:
  * the same bits (memcmp), and the mesh otherwise untouched. */
 static void check_threaded_normals_match(const sr_mesh *src)
 {
     sr_mesh ref = *src;
     ref.normals = NULL;
-    REQUIRE(sr_mesh_compute_normals(&ref, SR_NORMALS_SMOOTH) == SR_OK);
+    REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &ref, SR_NORMALS_SMOOTH) == SR_OK);
     static const int threads[] = { 1, 2, 3, 8 };
     for (size_t k = 0; k < sizeof threads / sizeof threads[0]; k++) {
         sr_context *ctx = NULL;
         REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[k] }, &ctx) == SR_OK);
         sr_mesh m = *src;
         m.normals = NULL;
-        CHECK_EQ(sr_mesh_compute_normals_ctx(ctx, &m, SR_NORMALS_SMOOTH), SR_OK);
+        CHECK_EQ(sr_mesh_compute_normals(ctx, &m, SR_NORMALS_SMOOTH), SR_OK);
         REQUIRE(m.normals);
         if (memcmp(m.normals, ref.normals, src->vertex_count * 3 * sizeof(float)) != 0) {
             sr_test_fail(__FILE__, __LINE__, "%d threads: normals differ from one thread's",
@@ -191,10 +200,10 @@ static void check_threaded_normals_match(const sr_mesh *src)
         }
         CHECK(m.positions == src->positions && m.indices == src->indices &&
               m.vertex_count == src->vertex_count);
-        free(m.normals);
+        sr__free(ctx, m.normals);
         sr_destroy_context(ctx);
     }
-    free(ref.normals);
+    sr__free(sr_test_ctx(), ref.normals);
 }
 
 /* Faces whose corners lie in different threads' ranges of vertices (the
@@ -207,8 +216,8 @@ SR_TEST(smooth_normals_on_threads_are_the_same_bits)
     for (int round = 0; round < 4; round++) {
         size_t nv = (size_t)sr_rng_int(&rng, 1, 3000), nt = (size_t)sr_rng_int(&rng, 0, 9000);
         sr_mesh m = { .vertex_count = nv, .triangle_count = nt };
-        m.positions = malloc(nv * 3 * sizeof(float));
-        m.indices = malloc((nt ? nt : 1) * 3 * sizeof(uint32_t));
+        m.positions = mesh_alloc(nv * 3 * sizeof(float));
+        m.indices = mesh_alloc((nt ? nt : 1) * 3 * sizeof(uint32_t));
         for (size_t i = 0; i < nv * 3; i++) {
             m.positions[i] = (float)sr_rng_range(&rng, -1, 1);
         }
@@ -220,7 +229,7 @@ SR_TEST(smooth_normals_on_threads_are_the_same_bits)
                                                         : (uint32_t)sr_rng_int(&rng, 0, (int)nv - 1);
         }
         check_threaded_normals_match(&m);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
     /* A hub whose faces come in pairs facing opposite ways (a, b then,
      * later, b, a): their terms cancel up to rounding, so the hub's normal
@@ -229,8 +238,8 @@ SR_TEST(smooth_normals_on_threads_are_the_same_bits)
     {
         size_t nv = 1201, pairs = 600;
         sr_mesh m = { .vertex_count = nv, .triangle_count = 2 * pairs };
-        m.positions = malloc(nv * 3 * sizeof(float));
-        m.indices = malloc(2 * pairs * 3 * sizeof(uint32_t));
+        m.positions = mesh_alloc(nv * 3 * sizeof(float));
+        m.indices = mesh_alloc(2 * pairs * 3 * sizeof(uint32_t));
         for (size_t i = 0; i < nv * 3; i++) {
             m.positions[i] = (float)sr_rng_range(&rng, -1, 1);
         }
@@ -241,7 +250,7 @@ SR_TEST(smooth_normals_on_threads_are_the_same_bits)
             r[0] = hub, r[1] = b, r[2] = a;
         }
         check_threaded_normals_match(&m);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
     const char *dir = sr_test_models_dir();
     if (dir) {
@@ -249,9 +258,9 @@ SR_TEST(smooth_normals_on_threads_are_the_same_bits)
         snprintf(path, sizeof path, "%s/stanford-bunny.obj", dir);
         sr_mesh m;
         sr_io_error err;
-        REQUIRE(sr_load_mesh(path, NULL, &m, &err) == SR_OK);
+        REQUIRE(sr_load_mesh(sr_test_ctx(), path, NULL, &m, &err) == SR_OK);
         check_threaded_normals_match(&m);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     } else {
         printf("  no shared models folder: the bunny part is skipped\n");
     }
@@ -260,7 +269,7 @@ SR_TEST(smooth_normals_on_threads_are_the_same_bits)
 SR_TEST(flat_normals_split_every_triangle)
 {
     sr_mesh m = make_cube(true, true, 0);
-    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_FLAT) == SR_OK);
+    REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_FLAT) == SR_OK);
     CHECK_EQ(m.vertex_count, 36);
     CHECK_EQ(m.triangle_count, 12);
     REQUIRE(m.normals && m.colors && m.texcoords);
@@ -285,32 +294,32 @@ SR_TEST(flat_normals_split_every_triangle)
             CHECK(n[0] * c[0] + n[1] * c[1] + n[2] * c[2] > 0);
         }
     }
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(compute_normals_validates_its_arguments)
 {
-    CHECK_EQ(sr_mesh_compute_normals(NULL, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), NULL, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
 
     sr_mesh m = make_cube(false, false, 0);
     m.indices[17] = 8; /* one past the last vertex */
     sr_mesh before = m;
-    CHECK_EQ(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
-    CHECK_EQ(sr_mesh_compute_normals(&m, SR_NORMALS_FLAT), SR_INVALID_ARG);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_FLAT), SR_INVALID_ARG);
     CHECK(memcmp(&m, &before, sizeof m) == 0); /* untouched */
     m.indices[17] = 7;
-    CHECK_EQ(sr_mesh_compute_normals(&m, (sr_normal_mode)99), SR_INVALID_ARG);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), &m, (sr_normal_mode)99), SR_INVALID_ARG);
 
     sr_mesh no_positions = { .vertex_count = 3 };
-    CHECK_EQ(sr_mesh_compute_normals(&no_positions, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), &no_positions, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
     sr_mesh no_indices = { .vertex_count = 8, .positions = m.positions, .triangle_count = 1 };
-    CHECK_EQ(sr_mesh_compute_normals(&no_indices, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
-    sr_mesh_free(&m);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), &no_indices, SR_NORMALS_SMOOTH), SR_INVALID_ARG);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 
     /* Empty meshes are fine: nothing to compute. */
     sr_mesh empty = { 0 };
-    CHECK_EQ(sr_mesh_compute_normals(&empty, SR_NORMALS_SMOOTH), SR_OK);
-    CHECK_EQ(sr_mesh_compute_normals(&empty, SR_NORMALS_FLAT), SR_OK);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), &empty, SR_NORMALS_SMOOTH), SR_OK);
+    CHECK_EQ(sr_mesh_compute_normals(sr_test_ctx(), &empty, SR_NORMALS_FLAT), SR_OK);
     CHECK(mesh_is_zero(&empty));
 }
 
@@ -364,7 +373,7 @@ static void expect_loads(const char *path, const sr_load_desc *desc, float max_x
 {
     sr_mesh m;
     sr_io_error err = { { 0 } };
-    sr_result r = sr_load_mesh(path, desc, &m, &err);
+    sr_result r = sr_load_mesh(sr_test_ctx(), path, desc, &m, &err);
     if (r != SR_OK) {
         printf("  %s: %s\n", path, err.message);
     }
@@ -373,7 +382,7 @@ static void expect_loads(const char *path, const sr_load_desc *desc, float max_x
     CHECK(sr_mesh_bounds(&m, &mn, &mx));
     CHECK_EQ(mx.x, max_x);
     CHECK_EQ(m.triangle_count, triangles);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(load_mesh_dispatches_by_extension)
@@ -394,7 +403,7 @@ SR_TEST(load_mesh_dispatches_by_extension)
     write_file(liar, ply_text, sizeof ply_text - 1);
     sr_mesh m;
     sr_io_error err;
-    CHECK_EQ(sr_load_mesh(liar, NULL, &m, &err), SR_BAD_FORMAT);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), liar, NULL, &m, &err), SR_BAD_FORMAT);
     CHECK_STR_CONTAINS(err.message, "liar.stl: byte 80: binary STL declares");
     CHECK(mesh_is_zero(&m));
     /* ... unless the caller names the format. */
@@ -419,14 +428,14 @@ SR_TEST(load_mesh_reports_missing_files_and_bad_arguments)
 {
     sr_mesh m;
     sr_io_error err;
-    CHECK_EQ(sr_load_mesh("/nonexistent/model.ply", NULL, &m, &err), SR_IO_ERROR);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), "/nonexistent/model.ply", NULL, &m, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, "/nonexistent/model.ply: cannot open");
-    CHECK_EQ(sr_load_mesh("/nonexistent/model.gltf", NULL, &m, &err), SR_IO_ERROR);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), "/nonexistent/model.gltf", NULL, &m, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, "/nonexistent/model.gltf: cannot open");
     CHECK(mesh_is_zero(&m));
-    CHECK_EQ(sr_load_mesh(NULL, NULL, &m, &err), SR_INVALID_ARG);
-    CHECK_EQ(sr_load_mesh(out_path("x.ply"), NULL, NULL, &err), SR_INVALID_ARG);
-    CHECK_EQ(sr_load_mesh(sr_test_out_dir(), NULL, &m, &err), SR_IO_ERROR);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), NULL, NULL, &m, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), out_path("x.ply"), NULL, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), sr_test_out_dir(), NULL, &m, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, "is a directory");
 }
 
@@ -435,7 +444,7 @@ SR_TEST(load_mesh_reports_missing_files_and_bad_arguments)
 static bool loads(const char *path, sr_mesh *m)
 {
     sr_io_error err;
-    sr_result r = sr_load_mesh(path, NULL, m, &err);
+    sr_result r = sr_load_mesh(sr_test_ctx(), path, NULL, m, &err);
     if (r != SR_OK) {
         printf("  %s\n", err.message);
     }
@@ -480,7 +489,7 @@ SR_TEST(assimp_parts_follow_textures)
     /* The whole mesh's: the first named, a copy of its own. */
     CHECK(m.texture_path == NULL && m.texture_data && m.texture_data != m.parts[0].texture_data);
     CHECK(m.texture_size == sizeof png && memcmp(m.texture_data, png, sizeof png) == 0);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 
     /* One image for every mesh: no parts, the texture on the mesh. */
     static const gltf_quad two[2] = { { 0, 0, 1, 1, 0 }, { 1, 0, 2, 1, 1 } };
@@ -500,7 +509,7 @@ SR_TEST(assimp_parts_follow_textures)
     CHECK(m.parts == NULL);
     snprintf(want, sizeof want, "%s/wood.png", sr_test_out_dir());
     CHECK(m.texture_path && strcmp(m.texture_path, want) == 0);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 /* A tetrahedron in the OFF format, which only Assimp reads here. */
@@ -513,7 +522,7 @@ SR_TEST(load_mesh_other_formats_need_assimp)
     write_file(off, off_text, sizeof off_text - 1);
     sr_mesh m;
     sr_io_error err = { { 0 } };
-    sr_result r = sr_load_mesh(off, NULL, &m, &err);
+    sr_result r = sr_load_mesh(sr_test_ctx(), off, NULL, &m, &err);
     if (sr_io_have_assimp()) {
         if (r != SR_OK) {
             printf("  %s\n", err.message);
@@ -524,12 +533,12 @@ SR_TEST(load_mesh_other_formats_need_assimp)
         CHECK(sr_mesh_bounds(&m, &mn, &mx));
         CHECK_NEAR(mx.x, 6, 1e-6);
         CHECK_NEAR(mx.z, 1, 1e-6);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
 
         /* Assimp reads many formats but not every extension. */
         const char *odd = out_path("model.notaformat");
         write_file(odd, "hello\n", 6);
-        CHECK_EQ(sr_load_mesh(odd, NULL, &m, &err), SR_UNSUPPORTED);
+        CHECK_EQ(sr_load_mesh(sr_test_ctx(), odd, NULL, &m, &err), SR_UNSUPPORTED);
         CHECK_STR_CONTAINS(err.message, "model.notaformat: format not supported");
         CHECK(mesh_is_zero(&m));
     } else {
@@ -555,10 +564,10 @@ SR_TEST(load_mesh_reads_shared_models)
     sr_mesh m;
     REQUIRE(loads(path, &m));
     CHECK(m.triangle_count > 0);
-    REQUIRE(sr_mesh_compute_normals(&m, SR_NORMALS_SMOOTH) == SR_OK);
+    REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_SMOOTH) == SR_OK);
     for (size_t v = 0; v < m.vertex_count; v++) {
         const float *n = m.normals + 3 * v;
         CHECK_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0, 1e-4);
     }
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }

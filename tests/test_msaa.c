@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* RASTER_RULES 8.1, Vulkan's standardSampleLocations in sixteenths of a
+/* docs/raster-rules.md §9.1, Vulkan's standardSampleLocations in sixteenths of a
  * pixel from the upper-left corner, written out from the spec table. */
 static const int vk2[2][2] = { { 12, 12 }, { 4, 4 } };
 static const int vk4[4][2] = { { 6, 2 }, { 14, 6 }, { 2, 10 }, { 10, 14 } };
@@ -478,7 +478,7 @@ static int64_t ceil256(int64_t a)
     return a >= 0 ? (a + 255) / 256 : -((-a) / 256);
 }
 
-/* RASTER_RULES 7 and 8.2: a multisampled point covers the samples inside
+/* docs/raster-rules.md §8 and §9.2: a multisampled point covers the samples inside
  * its square, whether or not the square holds a pixel centre, and
  * whether or not the pixel centres it holds lie inside the framebuffer
  * and the scissor. */
@@ -525,7 +525,7 @@ SR_TEST(msaa_points_cover_samples_without_a_pixel_centre)
     sr_destroy_context(ctx);
 }
 
-/* Every sample of points against the rule, written from RASTER_RULES 7 and
+/* Every sample of points against the rule, written from docs/raster-rules.md §8 and
  * 8.2: a square [c - h, c + h) on both axes, or with round or smooth
  * points the open disc of radius h (GL drops smoothing under
  * multisampling), h = size / 2 on the 1/256 grid.  Points, and triangles

@@ -14,6 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The reader under test, whatever the file is named. */
+static const sr_load_desc ply_desc = { .format = SR_FORMAT_PLY };
+
 /* ---- a tiny PLY writer -------------------------------------------------- */
 
 typedef enum wfmt { W_ASCII, W_LE, W_BE } wfmt;
@@ -258,7 +261,7 @@ static void check_cube(const sr_mesh *m)
 static sr_result parse(const wbuf *b, size_t size, sr_mesh *m, sr_io_error *err)
 {
     memset(err, 0, sizeof *err);
-    return sr_parse_ply("t.ply", b->p, size, m, err);
+    return sr_parse_ply(sr_test_ctx(), "t.ply", b->p, size, m, err);
 }
 
 /* ---- well-formed files -------------------------------------------------- */
@@ -284,7 +287,7 @@ SR_TEST(ply_reads_every_scalar_type_in_every_format)
             CHECK_EQ(r, SR_OK);
             check_cube(&m);
             CHECK(m.normals == NULL && m.colors == NULL && m.texcoords == NULL);
-            sr_mesh_free(&m);
+            sr_destroy_mesh(sr_test_ctx(), &m);
             free(b.p);
         }
     }
@@ -312,7 +315,7 @@ SR_TEST(ply_reads_normals_colors_and_texcoords)
             CHECK_EQ(m.texcoords[2 * v + 0], v * 0.125f);
             CHECK_EQ(m.texcoords[2 * v + 1], 1 - v * 0.125f);
         }
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
         free(b.p);
     }
 }
@@ -328,7 +331,7 @@ SR_TEST(ply_float_colors_are_kept_and_alpha_defaults_to_one)
         "0 0 0 0.25 0.5 0.75 0 1\n1 0 0 1 1 1 1 1\n0 1 0 0 0 0 0 0\n3 0 1 2\n";
     sr_mesh m;
     sr_io_error err;
-    REQUIRE(sr_parse_ply("c.ply", (const uint8_t *)text, strlen(text), &m, &err) == SR_OK);
+    REQUIRE(sr_parse_ply(sr_test_ctx(), "c.ply", (const uint8_t *)text, strlen(text), &m, &err) == SR_OK);
     REQUIRE(m.colors && m.texcoords);
     CHECK_EQ(m.colors[0], 0.25f);
     CHECK_EQ(m.colors[1], 0.5f);
@@ -336,7 +339,7 @@ SR_TEST(ply_float_colors_are_kept_and_alpha_defaults_to_one)
     CHECK_EQ(m.colors[3], 1.0f);
     CHECK_EQ(m.texcoords[1], 1.0f); /* s/t taken as u/v */
     CHECK_EQ(m.triangle_count, 1);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(ply_handles_any_property_and_element_order_and_skips_unknowns)
@@ -356,7 +359,7 @@ SR_TEST(ply_handles_any_property_and_element_order_and_skips_unknowns)
             }
             CHECK_EQ(r, SR_OK);
             check_cube(&m);
-            sr_mesh_free(&m);
+            sr_destroy_mesh(sr_test_ctx(), &m);
             free(b.p);
         }
     }
@@ -371,9 +374,9 @@ SR_TEST(ply_crlf_header_and_extra_whitespace)
         "  0 0 0\r\n1 0 0\r\n\r\n0 1 0\r\n3   0 1 2\r\n";
     sr_mesh m;
     sr_io_error err;
-    CHECK_EQ(sr_parse_ply("c.ply", (const uint8_t *)text, strlen(text), &m, &err), SR_OK);
+    CHECK_EQ(sr_parse_ply(sr_test_ctx(), "c.ply", (const uint8_t *)text, strlen(text), &m, &err), SR_OK);
     CHECK_EQ(m.triangle_count, 1);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(ply_polygons_are_fan_triangulated)
@@ -408,7 +411,7 @@ SR_TEST(ply_polygons_are_fan_triangulated)
         CHECK(facing > 0); /* counter-clockwise seen from +z */
     }
     CHECK_NEAR(area, 3 * sqrt(3) / 2 + 1, 1e-6);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     free(b.p);
 }
 
@@ -456,13 +459,13 @@ SR_TEST(ply_tristrips_with_restarts_and_degenerate_stitches)
         wbuf b = write_strips((wfmt)f, "int", restarted, 11);
         CHECK_EQ(parse(&b, b.n, &m, &err), SR_OK);
         check_strip_mesh(&m);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
         free(b.p);
 
         b = write_strips((wfmt)f, "int", stitched, 12);
         CHECK_EQ(parse(&b, b.n, &m, &err), SR_OK);
         check_strip_mesh(&m);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
         free(b.p);
     }
     /* In an unsigned index type the restart is -1 written as all ones. */
@@ -472,7 +475,7 @@ SR_TEST(ply_tristrips_with_restarts_and_degenerate_stitches)
     wbuf b = write_strips(W_LE, "uint", restarted_u32, 11);
     CHECK_EQ(parse(&b, b.n, &m, &err), SR_OK);
     check_strip_mesh(&m);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     free(b.p);
 }
 
@@ -489,10 +492,10 @@ SR_TEST(ply_load_from_file)
     free(b.p);
     sr_mesh m;
     sr_io_error err;
-    CHECK_EQ(sr__load_ply(path, &m, &err), SR_OK);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), path, &ply_desc, &m, &err), SR_OK);
     check_cube(&m);
-    sr_mesh_free(&m);
-    CHECK_EQ(sr__load_ply("/nonexistent/x.ply", &m, &err), SR_IO_ERROR);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), "/nonexistent/x.ply", &ply_desc, &m, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, "/nonexistent/x.ply: cannot open");
     CHECK(mesh_is_zero(&m));
 }
@@ -506,12 +509,12 @@ static void expect_error(const char *text, size_t size, sr_result code, const ch
     sr_mesh m;
     memset(&m, 0xAB, sizeof m); /* must come back zeroed */
     sr_io_error err = { { 0 } };
-    sr_result r = sr_parse_ply("bad.ply", (const uint8_t *)text, size, &m, &err);
+    sr_result r = sr_parse_ply(sr_test_ctx(), "bad.ply", (const uint8_t *)text, size, &m, &err);
     CHECK_EQ(r, code);
     CHECK_STR_CONTAINS(err.message, needle);
     CHECK(mesh_is_zero(&m));
     if (r == SR_OK) {
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
 }
 
@@ -548,7 +551,7 @@ SR_TEST(ply_truncated_binary_reports_the_byte)
         sr_io_error err;
         REQUIRE(parse(&b, b.n, &m, &err) == SR_OK);
         check_cube(&m);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
 
         /* Vertex 3 starts at 3 * (12 + 1 + 80) bytes; cut 2 bytes into its x. */
         char want[128];
@@ -587,11 +590,11 @@ SR_TEST(ply_every_truncation_fails_cleanly)
             memcpy(copy, b.p, n);
             sr_mesh m;
             sr_io_error err;
-            sr_result r = sr_parse_ply("cut.ply", copy, n, &m, &err);
+            sr_result r = sr_parse_ply(sr_test_ctx(), "cut.ply", copy, n, &m, &err);
             if (r == SR_OK) {
                 printf("  %s: truncated to %zu of %zu bytes and still read\n",
                        format_name[f], n, b.n);
-                sr_mesh_free(&m);
+                sr_destroy_mesh(sr_test_ctx(), &m);
             }
             CHECK(r != SR_OK);
             CHECK(mesh_is_zero(&m));
@@ -616,12 +619,12 @@ SR_TEST(ply_random_corruption_never_crashes)
             }
             sr_mesh m;
             sr_io_error err;
-            sr_result r = sr_parse_ply("x.ply", copy, b.n, &m, &err);
+            sr_result r = sr_parse_ply(sr_test_ctx(), "x.ply", copy, b.n, &m, &err);
             if (r == SR_OK) {
                 for (size_t i = 0; i < 3 * m.triangle_count; i++) {
                     CHECK(m.indices[i] < m.vertex_count);
                 }
-                sr_mesh_free(&m);
+                sr_destroy_mesh(sr_test_ctx(), &m);
             } else {
                 CHECK(mesh_is_zero(&m));
                 CHECK(err.message[0] != 0);
@@ -832,9 +835,9 @@ SR_TEST(ply_data_after_the_last_element_is_refused)
     const char *spaces = TRI_HEADER "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n \t\r\n\n";
     sr_mesh m;
     sr_io_error err = { { 0 } };
-    CHECK_EQ(sr_parse_ply("ok.ply", (const uint8_t *)spaces, strlen(spaces), &m, &err), SR_OK);
+    CHECK_EQ(sr_parse_ply(sr_test_ctx(), "ok.ply", (const uint8_t *)spaces, strlen(spaces), &m, &err), SR_OK);
     CHECK_EQ(m.triangle_count, 1);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 
     for (int f = W_LE; f <= W_BE; f++) {
         size_t hb;
@@ -842,7 +845,7 @@ SR_TEST(ply_data_after_the_last_element_is_refused)
         size_t end = b.n;
         REQUIRE(parse(&b, b.n, &m, &err) == SR_OK);
         check_cube(&m);
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
 
         /* A seventh face where the header declares six (line 8). */
         put_list(&b, (wfmt)f, "uchar", "int", cube_quads[0], 4);
@@ -861,9 +864,9 @@ SR_TEST(ply_data_after_the_last_element_is_refused)
 SR_TEST(ply_null_arguments)
 {
     sr_io_error err;
-    CHECK_EQ(sr_parse_ply("x", (const uint8_t *)"ply\n", 4, NULL, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_parse_ply(sr_test_ctx(), "x", (const uint8_t *)"ply\n", 4, NULL, &err), SR_INVALID_ARG);
     sr_mesh m;
-    CHECK_EQ(sr_parse_ply("x", NULL, 10, &m, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_parse_ply(sr_test_ctx(), "x", NULL, 10, &m, &err), SR_INVALID_ARG);
     CHECK(mesh_is_zero(&m));
-    CHECK_EQ(sr_parse_ply(NULL, NULL, 0, &m, NULL), SR_BAD_FORMAT); /* no err: no crash */
+    CHECK_EQ(sr_parse_ply(sr_test_ctx(), NULL, NULL, 0, &m, NULL), SR_BAD_FORMAT); /* no err: no crash */
 }

@@ -109,7 +109,7 @@ SR_TEST(png_rgba_round_trip_is_exact)
         CHECK_EQ(r, SR_OK);
         int rw = 0, rh = 0;
         uint8_t *back = NULL;
-        r = sr_read_png(path, &rw, &rh, &back, &err);
+        r = sr_read_png(path, NULL, &rw, &rh, &back, &err);
         REQUIRE(r == SR_OK);
         CHECK_EQ(rw, w);
         CHECK_EQ(rh, h);
@@ -134,11 +134,11 @@ SR_TEST(png_no_alpha_round_trip_keeps_rgb_and_reads_opaque)
     char path[1200];
     snprintf(path, sizeof path, "%s/rgb.png", dir);
     sr_io_error err;
-    CHECK_EQ(sr_write_png(path, w, h, img, stride, &(sr_png_write_desc){ .no_alpha = true }, &err),
+    CHECK_EQ(sr_write_png(path, w, h, img, stride, &(sr_png_write_desc){ .channels = SR_PNG_RGB }, &err),
              SR_OK);
     int rw, rh;
     uint8_t *back = NULL;
-    REQUIRE(sr_read_png(path, &rw, &rh, &back, &err) == SR_OK);
+    REQUIRE(sr_read_png(path, NULL, &rw, &rh, &back, &err) == SR_OK);
     REQUIRE(rw == w && rh == h);
     int bad = 0;
     for (int y = 0; y < h; y++) {
@@ -267,7 +267,7 @@ SR_TEST(png_writes_bands_that_make_one_valid_stream_the_same_for_any_thread_coun
             sr_io_error err;
             CHECK_EQ(sr_write_png(path, w, h, img, stride,
                                   &(sr_png_write_desc){ .compression_level = cases[k].level,
-                                                        .no_alpha = cases[k].no_alpha,
+                                                        .channels = cases[k].no_alpha ? SR_PNG_RGB : SR_PNG_RGBA,
                                                         .context = t < 0 ? NULL : ctx[t] },
                                   &err),
                      SR_OK);
@@ -285,7 +285,7 @@ SR_TEST(png_writes_bands_that_make_one_valid_stream_the_same_for_any_thread_coun
             }
             int rw, rh;
             uint8_t *back = NULL;
-            REQUIRE(sr_read_png(path, &rw, &rh, &back, &err) == SR_OK);
+            REQUIRE(sr_read_png(path, NULL, &rw, &rh, &back, &err) == SR_OK);
             int bad = 0;
             for (int y = 0; y < h; y++) {
                 for (int x = 0; x < w; x++) {
@@ -393,7 +393,7 @@ SR_TEST(png_read_expands_gray_palette_16bit_and_interlaced)
         snprintf(path, sizeof path, "%s/gray8.png", dir);
         REQUIRE(write_with_libpng(path, 3, 2, PNG_COLOR_TYPE_GRAY, 8, PNG_INTERLACE_NONE,
                                   rows, 3, NULL, 0, NULL, 0));
-        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
         CHECK(w == 3 && h == 2);
         CHECK(px[4] == 100 && px[5] == 100 && px[6] == 100 && px[7] == 255);
         CHECK(px[4 * 5 + 0] == 9 && px[4 * 5 + 3] == 255);
@@ -405,7 +405,7 @@ SR_TEST(png_read_expands_gray_palette_16bit_and_interlaced)
         snprintf(path, sizeof path, "%s/gray1.png", dir);
         REQUIRE(write_with_libpng(path, 3, 1, PNG_COLOR_TYPE_GRAY, 1, PNG_INTERLACE_NONE,
                                   rows, 1, NULL, 0, NULL, 0));
-        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
         CHECK(px[0] == 255 && px[4] == 0 && px[8] == 255 && px[11] == 255);
         free(px);
     }
@@ -415,7 +415,7 @@ SR_TEST(png_read_expands_gray_palette_16bit_and_interlaced)
         snprintf(path, sizeof path, "%s/graya.png", dir);
         REQUIRE(write_with_libpng(path, 2, 1, PNG_COLOR_TYPE_GRAY_ALPHA, 8, PNG_INTERLACE_NONE,
                                   rows, 4, NULL, 0, NULL, 0));
-        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
         CHECK(px[0] == 10 && px[1] == 10 && px[2] == 10 && px[3] == 20);
         CHECK(px[4] == 30 && px[7] == 40);
         free(px);
@@ -428,7 +428,7 @@ SR_TEST(png_read_expands_gray_palette_16bit_and_interlaced)
         snprintf(path, sizeof path, "%s/palette.png", dir);
         REQUIRE(write_with_libpng(path, 3, 1, PNG_COLOR_TYPE_PALETTE, 8, PNG_INTERLACE_NONE,
                                   rows, 3, pal, 3, trns, 2));
-        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
         CHECK(px[0] == 1 && px[1] == 2 && px[2] == 3 && px[3] == 255);
         CHECK(px[4] == 0 && px[5] == 255 && px[6] == 0 && px[7] == 128);
         CHECK(px[8] == 255 && px[9] == 0 && px[10] == 0 && px[11] == 0);
@@ -440,7 +440,7 @@ SR_TEST(png_read_expands_gray_palette_16bit_and_interlaced)
         snprintf(path, sizeof path, "%s/rgba16.png", dir);
         REQUIRE(write_with_libpng(path, 1, 1, PNG_COLOR_TYPE_RGB_ALPHA, 16, PNG_INTERLACE_NONE,
                                   rows, 8, NULL, 0, NULL, 0));
-        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
         CHECK(px[0] == 0x12 && px[1] == 0x56 && px[2] == 0x9A && px[3] == 0xDE);
         free(px);
     }
@@ -455,7 +455,7 @@ SR_TEST(png_read_expands_gray_palette_16bit_and_interlaced)
         snprintf(path, sizeof path, "%s/adam7.png", dir);
         REQUIRE(write_with_libpng(path, W, H, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_ADAM7,
                                   rows, W * 3, NULL, 0, NULL, 0));
-        REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+        REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
         REQUIRE(w == W && h == H);
         int bad = 0;
         for (int i = 0; i < W * H; i++) {
@@ -595,7 +595,7 @@ SR_TEST(png_successful_write_replaces_and_keeps_permissions)
     CHECK_EQ(st.st_mode & 0777, 0640);
     int w, h;
     uint8_t *px;
-    REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
     CHECK(memcmp(px, b, 16) == 0);
     free(px);
 
@@ -606,7 +606,7 @@ SR_TEST(png_successful_write_replaces_and_keeps_permissions)
     REQUIRE(sr_write_png(link_path, 2, 2, a, 8, NULL, &err) == SR_OK);
     REQUIRE(lstat(link_path, &st) == 0);
     CHECK(S_ISLNK(st.st_mode));
-    REQUIRE(sr_read_png(path, &w, &h, &px, &err) == SR_OK);
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, &err) == SR_OK);
     CHECK(memcmp(px, a, 16) == 0);
     free(px);
     CHECK_EQ(count_entries(dir, true), 0);
@@ -659,23 +659,23 @@ SR_TEST(png_read_reports_missing_corrupt_and_truncated_files)
 
     /* missing */
     snprintf(path, sizeof path, "%s/absent.png", dir);
-    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_IO_ERROR);
+    CHECK_EQ(sr_read_png(path, NULL, &rw, &rh, &px, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, path);
     CHECK_STR_CONTAINS(err.message, "No such file");
     CHECK(px == NULL && rw == 0 && rh == 0);
 
     /* a directory */
-    CHECK_EQ(sr_read_png(dir, &rw, &rh, &px, &err), SR_IO_ERROR);
+    CHECK_EQ(sr_read_png(dir, NULL, &rw, &rh, &px, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, "directory");
 
     /* empty, and not a PNG at all */
     snprintf(path, sizeof path, "%s/empty.png", dir);
     REQUIRE(write_bytes(path, "", 0));
-    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_EQ(sr_read_png(path, NULL, &rw, &rh, &px, &err), SR_BAD_FORMAT);
     CHECK_STR_CONTAINS(err.message, path);
     snprintf(path, sizeof path, "%s/text.png", dir);
     REQUIRE(write_bytes(path, "this is not an image\n", 21));
-    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_EQ(sr_read_png(path, NULL, &rw, &rh, &px, &err), SR_BAD_FORMAT);
     CHECK_STR_CONTAINS(err.message, "not a PNG");
 
     /* a flipped bit inside the compressed data: IDAT's CRC no longer matches */
@@ -683,7 +683,7 @@ SR_TEST(png_read_reports_missing_corrupt_and_truncated_files)
     bytes[n / 2] ^= 0x10;
     REQUIRE(write_bytes(path, bytes, n));
     bytes[n / 2] ^= 0x10;
-    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_EQ(sr_read_png(path, NULL, &rw, &rh, &px, &err), SR_BAD_FORMAT);
     CHECK_STR_CONTAINS(err.message, path);
     CHECK_STR_CONTAINS(err.message, "corrupt PNG");
     CHECK(px == NULL);
@@ -695,7 +695,7 @@ SR_TEST(png_read_reports_missing_corrupt_and_truncated_files)
     memset(bytes + 16, 0, 4);
     REQUIRE(write_bytes(path, bytes, n));
     memcpy(bytes + 16, saved, 4);
-    CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+    CHECK_EQ(sr_read_png(path, NULL, &rw, &rh, &px, &err), SR_BAD_FORMAT);
     CHECK_STR_CONTAINS(err.message, path);
 
     /* cut off in the middle of the image data, and just before IEND */
@@ -703,15 +703,15 @@ SR_TEST(png_read_reports_missing_corrupt_and_truncated_files)
     for (int c = 0; c < 2; c++) {
         snprintf(path, sizeof path, "%s/cut%d.png", dir, c);
         REQUIRE(write_bytes(path, bytes, cuts[c]));
-        CHECK_EQ(sr_read_png(path, &rw, &rh, &px, &err), SR_BAD_FORMAT);
+        CHECK_EQ(sr_read_png(path, NULL, &rw, &rh, &px, &err), SR_BAD_FORMAT);
         CHECK_STR_CONTAINS(err.message, path);
         CHECK_STR_CONTAINS(err.message, "truncated");
         CHECK(px == NULL);
     }
 
     /* NULL outputs */
-    CHECK_EQ(sr_read_png(good, NULL, &rh, &px, &err), SR_INVALID_ARG);
-    CHECK_EQ(sr_read_png(NULL, &rw, &rh, &px, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_read_png(good, NULL, NULL, &rh, &px, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_read_png(NULL, NULL, &rw, &rh, &px, &err), SR_INVALID_ARG);
     free(bytes);
     free(img);
 }
@@ -731,7 +731,7 @@ SR_TEST(png_read_refuses_images_over_16384)
     int w, h;
     uint8_t *px = NULL;
     sr_io_error err;
-    CHECK_EQ(sr_read_png(path, &w, &h, &px, &err), SR_TOO_LARGE);
+    CHECK_EQ(sr_read_png(path, NULL, &w, &h, &px, &err), SR_TOO_LARGE);
     CHECK_STR_CONTAINS(err.message, path);
     CHECK_STR_CONTAINS(err.message, "16385x1");
     CHECK(px == NULL);
@@ -742,7 +742,7 @@ SR_TEST(png_read_refuses_images_over_16384)
     REQUIRE(write_with_libpng(path, W - 1, 1, PNG_COLOR_TYPE_GRAY, 8, PNG_INTERLACE_NONE,
                               row, W - 1, NULL, 0, NULL, 0));
     free(row);
-    CHECK_EQ(sr_read_png(path, &w, &h, &px, &err), SR_OK);
+    CHECK_EQ(sr_read_png(path, NULL, &w, &h, &px, &err), SR_OK);
     CHECK(w == W - 1 && h == 1);
     free(px);
 }

@@ -5,7 +5,7 @@
  * SR_OUT_OF_MEMORY with a message, free every block it took, remove its
  * temporary file and leave the image it was to replace byte for byte as
  * it was; the first run that fails nothing must write the right image.
- * The reader (sr_read_png_desc) is held to the same at the end. */
+ * The reader (sr_read_png) is held to the same at the end. */
 #include "sr_test.h"
 #include "failing_alloc.h"
 #include "softrast_io.h"
@@ -93,7 +93,7 @@ static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int lev
         sr_io_error err;
         sr_result r = sr_write_png(target, w, h, px, (size_t)w * 4,
                                    &(sr_png_write_desc){
-                                       .compression_level = level, .no_alpha = no_alpha,
+                                       .compression_level = level, .channels = no_alpha ? SR_PNG_RGB : SR_PNG_RGBA,
                                        .allocator = { fail_alloc, fail_free, &f },
                                        .context = ctx },
                                    &err);
@@ -128,7 +128,7 @@ static void every_allocation_fails_cleanly(bool existing, bool no_alpha, int lev
     int rw = 0, rh = 0;
     uint8_t *back = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(target, &rw, &rh, &back, &err) == SR_OK);
+    REQUIRE(sr_read_png(target, NULL, &rw, &rh, &back, &err) == SR_OK);
     CHECK_EQ(rw, w);
     CHECK_EQ(rh, h);
     int bad = 0;
@@ -186,7 +186,7 @@ SR_TEST(png_write_rejects_half_an_allocator)
     CHECK_EQ(count_entries(dir), 0);
 }
 
-/* The reader through sr_read_png_desc: each allocation failing in turn
+/* The reader through sr_read_png with an allocator: each allocation failing in turn
  * gives SR_OUT_OF_MEMORY (or, where libpng treats a failed allocation as
  * optional, the right image), no pixels and no block left; pixels come
  * from the allocator and go back to it. */
@@ -199,14 +199,14 @@ static void every_read_allocation_fails_cleanly(bool no_alpha, int level)
     uint8_t *px = test_image(w, h);
     sr_io_error err;
     REQUIRE(sr_write_png(path, w, h, px, (size_t)w * 4,
-                         &(sr_png_write_desc){ .no_alpha = no_alpha, .compression_level = level },
+                         &(sr_png_write_desc){ .channels = no_alpha ? SR_PNG_RGB : SR_PNG_RGBA, .compression_level = level },
                          &err) == SR_OK);
     long oom = 0;
     for (long fail_at = 0;; fail_at++) {
         failing f = { .fail_at = fail_at };
         int rw = -1, rh = -1;
         uint8_t *back = (uint8_t *)"not touched";
-        sr_result r = sr_read_png_desc(path, &(sr_png_read_desc){
+        sr_result r = sr_read_png(path, &(sr_png_read_desc){
                                            .allocator = { fail_alloc, fail_free, &f } },
                                        &rw, &rh, &back, &err);
         if (r == SR_OK) {

@@ -1,5 +1,5 @@
 /* test_properties.c - rasterization properties at scale, fixed seeds
- * (RASTER_RULES 11.5, items 2-4):
+ * (docs/raster-rules.md §11):
  *
  *  - Watertightness, exact: random planar meshes (regular grids, jittered
  *    grids with random diagonals, fans) under random projective maps with
@@ -164,7 +164,7 @@ static int64_t area2_q8(const mesh2 *m, int t)
 
 /* ---- the independent reference ------------------------------------------ */
 
-/* Per-pixel count of covering triangles (top-left rule, RASTER_RULES 2.3),
+/* Per-pixel count of covering triangles (top-left rule, docs/raster-rules.md §3.2),
  * each triangle only over its bounding box. */
 static void ref_count(const mesh2 *m, int *count)
 {
@@ -877,6 +877,7 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, const scene *s,
     st.rasterizer = rast;
     bool greater = st.depth_func == SR_GREATER || st.depth_func == SR_GEQUAL;
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 1 },
+                                        .depth_action = SR_ACTION_CLEAR,
                                         .depth = greater ? 0.0f : 1.0f });
     return sr_draw(ctx, fb, &st, &(sr_draw_desc){
         .primitive = s->prim, .positions = s->pos, .vertex_count = (size_t)s->nv,
@@ -1051,7 +1052,8 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
             }
         }
         sr_state st = { .shading = shadings[k % 4], .cull = SR_CULL_NONE,
-                        .no_depth_test = k % 8 >= 4, .no_depth_write = k % 8 >= 4,
+                        .depth_test = k % 8 >= 4 ? SR_OFF : SR_ON,
+                        .depth_write = k % 8 >= 4 ? SR_OFF : SR_ON,
                         .ambient = { 0.2f, 0.2f, 0.2f },
                         .material = { .diffuse = { 1, 1, 1 }, .specular = { 0.5f, 0.5f, 0.5f },
                                       .shininess = 8 } };
@@ -1075,7 +1077,7 @@ SR_TEST(vector_kernels_give_the_scalar_loops_bytes)
                 memcmp(io.d[0], io.d[1], sizeof(uint32_t) * W * H) != 0) {
                 sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, depth test %d): "
                              "SR_SIMD=%s differs from the default kernel", k,
-                             (int)st.shading, !st.no_depth_test, simd[v]);
+                             (int)st.shading, st.depth_test != SR_OFF, simd[v]);
             }
             compared++;
         }
@@ -1133,7 +1135,8 @@ SR_TEST(front_end_lanes_give_the_scalar_bytes_and_counts)
         }
         sr_state st = { .shading = k % 3 == 2 ? SR_SHADING_UNLIT : SR_SHADING_GOURAUD,
                         .cull = culls[k % 4], .front_face = k / 4 % 2 ? SR_FRONT_CW : SR_FRONT_CCW,
-                        .no_depth_test = k % 8 == 7, .no_depth_write = k % 8 == 7 };
+                        .depth_test = k % 8 == 7 ? SR_OFF : SR_ON,
+                        .depth_write = k % 8 == 7 ? SR_OFF : SR_ON };
         sr_depth_format df = k % 16 < 8 ? SR_DEPTH_D24 : SR_DEPTH_D16;
         /* Odd batches without a projection: w = 1, so no perspective. */
         st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
@@ -1205,7 +1208,7 @@ SR_TEST(vector_kernels_give_the_scalar_bytes_for_boxes_covered_whole)
             }
         }
         sr_state st = { .shading = shadings[k % 4], .cull = SR_CULL_NONE,
-                        .no_depth_test = k % 8 >= 4, .ambient = { 0.2f, 0.2f, 0.2f },
+                        .depth_test = k % 8 >= 4 ? SR_OFF : SR_ON, .ambient = { 0.2f, 0.2f, 0.2f },
                         .material = { .diffuse = { 1, 1, 1 }, .specular = { 0.5f, 0.5f, 0.5f },
                                       .shininess = 8 } };
         st.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0.2f, -0.5f, -1 } };
@@ -1216,7 +1219,7 @@ SR_TEST(vector_kernels_give_the_scalar_bytes_for_boxes_covered_whole)
         if (memcmp(c0, c1, sizeof c0) != 0 || memcmp(d0, d1, sizeof d0) != 0) {
             sr_test_fail(__FILE__, __LINE__, "batch %d (shading %d, depth test %d): the default "
                          "kernel differs from SR_SIMD=off", k, (int)st.shading,
-                         !st.no_depth_test);
+                         st.depth_test != SR_OFF);
         }
     }
     sr_destroy_context(ctx);
@@ -1254,7 +1257,7 @@ SR_TEST(vector_kernels_keep_huge_triangles_exact_in_small_boxes)
             }
         }
         sr_state st = { .shading = k % 2 ? SR_SHADING_UNLIT : SR_SHADING_FLAT,
-                        .cull = SR_CULL_NONE, .no_depth_test = k % 4 >= 2 };
+                        .cull = SR_CULL_NONE, .depth_test = k % 4 >= 2 ? SR_OFF : SR_ON };
         const sr_draw_desc desc = { .positions = pos, .vertex_count = N * 3, .colors = col,
                                     .color_size = 4 };
         kernel_test_draw(ctx, W, H, SR_DEPTH_D24, NULL, &st, &desc, c0, d0);
@@ -1310,8 +1313,8 @@ SR_TEST(textured_vector_kernel_gives_the_scalar_loops_bytes)
             }
         }
         sr_state st = { .shading = k % 2 ? SR_SHADING_GOURAUD : SR_SHADING_UNLIT,
-                        .cull = SR_CULL_NONE, .no_depth_test = k % 4 >= 2,
-                        .no_depth_write = k % 4 >= 2, .texture = tex[k / 12],
+                        .cull = SR_CULL_NONE, .depth_test = k % 4 >= 2 ? SR_OFF : SR_ON,
+                        .depth_write = k % 4 >= 2 ? SR_OFF : SR_ON, .texture = tex[k / 12],
                         .texture_filter = filters[k % 3], .wrap_u = wraps[k / 3 % 3],
                         .wrap_v = wraps[(k / 3 + 1) % 3],
                         .ambient = { 0.2f, 0.2f, 0.2f },

@@ -75,7 +75,8 @@ static void expect_not_regular(const char *path, sr_model_format format)
 {
     sr_mesh m;
     sr_io_error err = { { 0 } };
-    sr_result r = sr_load_mesh(path, &(sr_load_desc){ .format = format }, &m, &err);
+    sr_result r =
+        sr_load_mesh(sr_test_ctx(), path, &(sr_load_desc){ .format = format }, &m, &err);
     if (r != SR_IO_ERROR) {
         sr_test_fail(__FILE__, __LINE__, "%s (format %d): result %d, message \"%s\"", path,
                      (int)format, (int)r, err.message);
@@ -85,7 +86,7 @@ static void expect_not_regular(const char *path, sr_model_format format)
     CHECK_STR_CONTAINS(err.message, want);
     CHECK(mesh_is_zero(&m));
     if (r == SR_OK) {
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
 }
 
@@ -129,16 +130,21 @@ SR_TEST(an_mtllib_that_is_a_fifo_is_skipped_like_a_missing_one)
                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
     sr_mesh m;
     sr_io_error err = { { 0 } };
-    sr_result r = sr_load_mesh(obj, NULL, &m, &err);
+    sr_result r = sr_load_mesh(sr_test_ctx(), obj, NULL, &m, &err);
     if (r != SR_OK) {
         sr_test_fail(__FILE__, __LINE__, "%s", err.message);
     }
     REQUIRE(r == SR_OK);
     CHECK_EQ(m.triangle_count, 1);
     CHECK(m.colors == NULL);    /* no material read, as for a missing MTL */
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     unlink(fifo);
     stop_watchdog();
+}
+
+static sr_result read_png_plain(const char *path, int *w, int *h, uint8_t **px, sr_io_error *err)
+{
+    return sr_read_png(path, NULL, w, h, px, err);
 }
 
 SR_TEST(a_fifo_or_a_device_is_refused_as_an_image)
@@ -150,7 +156,7 @@ SR_TEST(a_fifo_or_a_device_is_refused_as_an_image)
     const struct {
         read_fn read;
         const char *kind;
-    } readers[] = { { sr_read_png, "a PNG file" },
+    } readers[] = { { read_png_plain, "a PNG file" },
                     { sr_read_jpeg, "a JPEG file" },
                     { sr_read_image, "an image file" } };
     const char *paths[] = { fifo, "/dev/zero" };

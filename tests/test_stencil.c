@@ -90,6 +90,7 @@ SR_TEST(every_function_and_operation_follows_the_rules)
                 for (size_t ri = 0; ri < 3; ri++) {
                     unsigned stored = stored_values[si], ref = refs[ri];
                     sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 },
+                                                           .stencil_action = SR_ACTION_CLEAR,
                                                            .stencil = (uint8_t)stored });
                     /* The op under test on pass; the inverse of it on fail,
                      * so both branches are seen. */
@@ -126,7 +127,7 @@ SR_TEST(depth_fail_and_pass_choose_their_ops)
     REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
                                                             .stencil = true }, &fb) == SR_OK);
     t.fb = fb;
-    sr_clear(ctx, fb, &(sr_clear_desc){ .depth = 1, .stencil = 10 });
+    sr_clear(ctx, fb, &(sr_clear_desc){ .stencil_action = SR_ACTION_CLEAR, .stencil = 10 });
     sr_state occluder = { .shading = SR_SHADING_UNLIT };
     float half[18] = { -1, -1, 0, 0, -1, 0, 0, 1, 0, -1, -1, 0, 0, 1, 0, -1, 1, 0 };
     REQUIRE(sr_draw(ctx, fb, &occluder, &(sr_draw_desc){ .positions = half, .vertex_count = 6 })
@@ -141,7 +142,7 @@ SR_TEST(depth_fail_and_pass_choose_their_ops)
     CHECK_EQ(stencil_at(&t, 2, 8), 9);
     CHECK_EQ(stencil_at(&t, 12, 8), 11);
     /* With the depth test off every fragment takes the pass op. */
-    st.no_depth_test = true;
+    st.depth_test = SR_OFF;
     REQUIRE(quad(&t, &st, 0.5f, true) == SR_OK);
     CHECK_EQ(stencil_at(&t, 2, 8), 10);
     CHECK_EQ(stencil_at(&t, 12, 8), 12);
@@ -152,7 +153,7 @@ SR_TEST(masks_limit_what_is_compared_and_written)
 {
     target t = make(0);
     REQUIRE(t.fb);
-    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .stencil = 0xa5 });
+    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .stencil_action = SR_ACTION_CLEAR, .stencil = 0xa5 });
     /* Compare only the low nibble: ref 0x35 & 0x0f == 0xa5 & 0x0f. */
     sr_state st = { .shading = SR_SHADING_UNLIT,
                     .stencil = { .enabled = true,
@@ -196,7 +197,7 @@ SR_TEST(a_stencil_mask_limits_drawing_to_a_shape)
         sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .stencil = 0 });
         float tri[9] = { -1, -1, 0, 1, -1, 0, -1, 1, 0 };  /* lower-left half */
         sr_state mark = { .shading = SR_SHADING_UNLIT,
-                          .color_mask = { true, true, true, true },
+                          .color_mask = SR_COLOR_MASK_NONE,
                           .stencil = { .enabled = true,
                                        .front = { .ref = 1, .pass = SR_STENCIL_REPLACE } } };
         REQUIRE(sr_draw(t.ctx, t.fb, &mark, &(sr_draw_desc){ .positions = tri, .vertex_count = 3 })
@@ -229,7 +230,8 @@ SR_TEST(lines_and_points_are_stencil_tested)
 {
     target t = make(0);
     REQUIRE(t.fb);
-    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .stencil = 3 });
+    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 },
+                                            .stencil_action = SR_ACTION_CLEAR, .stencil = 3 });
     float line[6] = { -1, 0.0625f, 0, 1, 0.0625f, 0 };
     sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
                     .stencil = { .enabled = true,
@@ -241,7 +243,7 @@ SR_TEST(lines_and_points_are_stencil_tested)
     CHECK_EQ(stencil_at(&t, 4, 7), 4);
     CHECK_EQ(stencil_at(&t, 4, 6), 3);
     /* Drawn again, EQUAL 3 now fails on the line. */
-    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .no_stencil = true });
+    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .stencil_action = SR_ACTION_KEEP });
     REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .primitive = SR_PRIM_LINES,
                                                        .positions = line, .vertex_count = 2 })
             == SR_OK);

@@ -14,6 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The reader under test, whatever the file is named. */
+static const sr_load_desc stl_desc = { .format = SR_FORMAT_STL };
+
 
 static void wb_u32(wbuf *b, uint32_t v)
 {
@@ -123,7 +126,7 @@ static void check_cube(const sr_mesh *m)
 static sr_result parse(const uint8_t *data, size_t n, sr_mesh *m, sr_io_error *err)
 {
     memset(err, 0, sizeof *err);
-    return sr_parse_stl("t.stl", data, n, m, err);
+    return sr_parse_stl(sr_test_ctx(), "t.stl", data, n, m, err);
 }
 
 static void expect_error(const uint8_t *data, size_t n, sr_result code, const char *needle)
@@ -136,7 +139,7 @@ static void expect_error(const uint8_t *data, size_t n, sr_result code, const ch
     CHECK_STR_CONTAINS(err.message, needle);
     CHECK(mesh_is_zero(&m));
     if (r == SR_OK) {
-        sr_mesh_free(&m);
+        sr_destroy_mesh(sr_test_ctx(), &m);
     }
 }
 
@@ -154,7 +157,7 @@ SR_TEST(stl_ascii_cube_is_welded)
     sr_io_error err;
     CHECK_EQ(parse(b.p, b.n, &m, &err), SR_OK);
     check_cube(&m);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     free(b.p);
 }
 
@@ -166,7 +169,7 @@ SR_TEST(stl_binary_cube_is_welded)
     sr_io_error err;
     CHECK_EQ(parse(b.p, b.n, &m, &err), SR_OK);
     check_cube(&m);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     free(b.p);
 }
 
@@ -179,7 +182,7 @@ SR_TEST(stl_binary_with_solid_header_is_binary)
     sr_io_error err;
     CHECK_EQ(parse(b.p, b.n, &m, &err), SR_OK);
     check_cube(&m);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     /* Truncated, it no longer meets the size rule, but the zero bytes
      * still mark it binary: the message is about sizes, not syntax. */
     expect_error(b.p, b.n - 7, SR_BAD_FORMAT, "t.stl: byte 80: binary STL declares 12 triangles");
@@ -202,7 +205,7 @@ SR_TEST(stl_byte_offsets_survive_long_names)
         snprintf(name + n, sizeof name - n, "/cube.stl");
         sr_mesh m;
         sr_io_error err;
-        CHECK_EQ(sr_parse_stl(name, b.p, b.n - 1, &m, &err), SR_BAD_FORMAT);
+        CHECK_EQ(sr_parse_stl(sr_test_ctx(), name, b.p, b.n - 1, &m, &err), SR_BAD_FORMAT);
         CHECK(mesh_is_zero(&m));
         size_t len = strlen(err.message), rlen = strlen(reason);
         CHECK(len > rlen && strcmp(err.message + len - rlen, reason) == 0);
@@ -227,7 +230,7 @@ SR_TEST(stl_minus_zero_welds_with_zero)
     REQUIRE(parse(b.p, b.n, &m, &err) == SR_OK);
     CHECK_EQ(m.vertex_count, 4);
     CHECK_EQ(m.triangle_count, 2);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     free(b.p);
 }
 
@@ -244,7 +247,7 @@ SR_TEST(stl_ascii_tolerates_case_crlf_and_several_solids)
     /* The second solid's facet is a quad, fanned into two triangles. */
     CHECK_EQ(m.triangle_count, 3);
     CHECK_EQ(m.vertex_count, 7);
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
 }
 
 SR_TEST(stl_large_binary_soup_welds_exactly)
@@ -289,7 +292,7 @@ SR_TEST(stl_large_binary_soup_welds_exactly)
         const uint32_t *tri = m.indices + 3 * t;
         CHECK(tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]);
     }
-    sr_mesh_free(&m);
+    sr_destroy_mesh(sr_test_ctx(), &m);
     free(b.p);
 }
 
@@ -305,10 +308,10 @@ SR_TEST(stl_load_from_file)
     free(b.p);
     sr_mesh m;
     sr_io_error err;
-    CHECK_EQ(sr__load_stl(path, &m, &err), SR_OK);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), path, &stl_desc, &m, &err), SR_OK);
     check_cube(&m);
-    sr_mesh_free(&m);
-    CHECK_EQ(sr__load_stl(sr_test_out_dir(), &m, &err), SR_IO_ERROR);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), sr_test_out_dir(), &stl_desc, &m, &err), SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, "is a directory");
     CHECK(mesh_is_zero(&m));
 }
@@ -388,11 +391,11 @@ SR_TEST(stl_every_truncation_fails_cleanly)
             memcpy(copy, b.p, n);
             sr_mesh m;
             sr_io_error err;
-            sr_result r = sr_parse_stl("cut.stl", copy, n, &m, &err);
+            sr_result r = sr_parse_stl(sr_test_ctx(), "cut.stl", copy, n, &m, &err);
             CHECK(r != SR_OK);
             CHECK(mesh_is_zero(&m));
             if (r == SR_OK) {
-                sr_mesh_free(&m);
+                sr_destroy_mesh(sr_test_ctx(), &m);
             }
             free(copy);
         }
@@ -414,11 +417,11 @@ SR_TEST(stl_random_corruption_never_crashes)
             }
             sr_mesh m;
             sr_io_error err;
-            if (sr_parse_stl("x.stl", copy, b.n, &m, &err) == SR_OK) {
+            if (sr_parse_stl(sr_test_ctx(), "x.stl", copy, b.n, &m, &err) == SR_OK) {
                 for (size_t i = 0; i < 3 * m.triangle_count; i++) {
                     CHECK(m.indices[i] < m.vertex_count);
                 }
-                sr_mesh_free(&m);
+                sr_destroy_mesh(sr_test_ctx(), &m);
             } else {
                 CHECK(mesh_is_zero(&m));
             }

@@ -82,7 +82,7 @@ static uint8_t *read_png(const char *path, int *w, int *h)
 {
     uint8_t *px = NULL;
     sr_io_error err;
-    if (sr_read_png(path, w, h, &px, &err) != SR_OK) {
+    if (sr_read_png(path, NULL, w, h, &px, &err) != SR_OK) {
         sr_test_fail(__FILE__, __LINE__, "reading %s: %s", path, err.message);
         return NULL;
     }

@@ -31,7 +31,7 @@ SR_TEST(render_file_draws_what_the_command_writes)
     int w, h;
     uint8_t *png = NULL;
     sr_io_error err;
-    REQUIRE(sr_read_png(out, &w, &h, &png, &err) == SR_OK);
+    REQUIRE(sr_read_png(out, NULL, &w, &h, &png, &err) == SR_OK);
 
     sr_context *ctx = make_ctx();
     REQUIRE(ctx);

@@ -26,7 +26,8 @@ typedef struct fixture {
 
 static void fixture_clear(fixture *f)
 {
-    sr_clear(f->ctx, f->fb, &(sr_clear_desc){ .color = { 0.2f, 0.4f, 0.6f, 1 }, .depth = 0.75f });
+    sr_clear(f->ctx, f->fb, &(sr_clear_desc){ .color = { 0.2f, 0.4f, 0.6f, 1 },
+                                             .depth_action = SR_ACTION_CLEAR, .depth = 0.75f });
     memcpy(f->color, sr_framebuffer_pixels(f->fb), sizeof f->color);
     sr_read_depth(f->ctx, f->fb, 0, 0, FW, FH, f->depth, FW);
 }

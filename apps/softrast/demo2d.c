@@ -94,7 +94,7 @@ void demo2d_outline(demo2d *d, int index, const sr_point2 *pts, int n, bool clos
                    &(sr_stroke_desc){ .width = width_px, .join = SR_STROKE_JOIN_ROUND,
                                       .cap = SR_STROKE_CAP_ROUND,
                                       .antialias = SR_AA_SUPERSAMPLE, .samples = 4 });
-    sr_destroy_path(path);
+    sr_destroy_path(d->ctx, path);
 }
 
 void demo2d_dot(demo2d *d, int index, sr_point2 p, double radius_px, sr_rgba color)
@@ -109,7 +109,7 @@ void demo2d_dot(demo2d *d, int index, sr_point2 p, double radius_px, sr_rgba col
     sr_path_arc_to(path, radius_px, radius_px, 0, false, true, q.x - radius_px, q.y);
     sr_path_close(path);
     sr_fill_path(d->ctx, d->out, path, color, &(sr_fill_desc){ .antialias = SR_AA_AREA });
-    sr_destroy_path(path);
+    sr_destroy_path(d->ctx, path);
 }
 
 int demo2d_finish(demo2d *d, sr_framebuffer **out)

@@ -1,5 +1,5 @@
-/* demo_aa.c - `softrast demo aa`: aliasing and three cures for it (the
- * seeds: a pixel is an area, not a point; sampling it once at its centre
+/* demo_aa.c - `softrast demo aa`: aliasing and three cures for it
+ * (a pixel is an area, not a point; sampling it once at its centre
  * turns an edge into a staircase and thin features into broken dashes).
  *
  * Every shape panel draws the same two shapes into a small image,
@@ -161,7 +161,7 @@ static void dot(sr_context *ctx, sr_framebuffer *fb, double x, double y, double 
     sr_path_arc_to(path, r, r, 0, false, true, x - r, y);
     sr_path_close(path);
     sr_fill_path(ctx, fb, path, color, &(sr_fill_desc){ .antialias = SR_AA_AREA });
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
 }
 
 /* One pixel magnified to most of the cell: the 1/16 px lattice every

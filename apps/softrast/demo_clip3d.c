@@ -259,7 +259,7 @@ int demo_clip3d_section(sr_context *ctx, sr_framebuffer **out)
             r = sr_draw(ctx, fb, &(sr_state){ .shading = SR_SHADING_UNLIT,
                                               .polygon_mode_front = SR_POLYGON_LINE,
                                               .polygon_mode_back = SR_POLYGON_LINE,
-                                              .no_depth_test = true },
+                                              .depth_test = SR_OFF },
                         &draw);
         } else {
             r = draw_frustum_top(ctx, fb, &pv);

@@ -93,7 +93,7 @@ int demo_curves(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
         return demo2d_fail(&d);
     }
     r = sr_stroke_path(ctx, d.panel, curve, INK, &(sr_stroke_desc){ .width = 1.2 });
-    sr_destroy_path(curve);
+    sr_destroy_path(ctx, curve);
     if (r != SR_OK) {
         return demo2d_fail(&d);
     }
@@ -125,7 +125,7 @@ int demo_curves(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
         r = sr_stroke_path(ctx, d.panel, p, j % 2 ? INK2 : INK,
                            &(sr_stroke_desc){ .width = 5, .join = joins[j],
                                               .antialias = SR_AA_AREA });
-        sr_destroy_path(p);
+        sr_destroy_path(ctx, p);
         if (r != SR_OK) {
             return demo2d_fail(&d);
         }
@@ -152,7 +152,7 @@ int demo_curves(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
         r = sr_stroke_path(ctx, d.panel, p, j % 2 ? INK2 : INK,
                            &(sr_stroke_desc){ .width = 7, .cap = caps[j],
                                               .antialias = SR_AA_AREA });
-        sr_destroy_path(p);
+        sr_destroy_path(ctx, p);
         if (r != SR_OK) {
             return demo2d_fail(&d);
         }

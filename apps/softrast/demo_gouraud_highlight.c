@@ -1,6 +1,6 @@
 /* demo_gouraud_highlight.c - `softrast demo gouraud-highlight`: the two
- * flaws of Gouraud shading the seeds list under "Gouraud flaw - convex
- * interpolation", each beside Phong shading of the same mesh.
+ * flaws of Gouraud shading that follow from its convex
+ * interpolation, each beside Phong shading of the same mesh.
  *
  * Gouraud lights the vertices only and interpolates their colors, so
  * every pixel is a convex combination of the vertex colors: a sharp
@@ -106,7 +106,7 @@ static sr_result draw_panel(sr_context *ctx, sr_framebuffer *fb, const mesh *m,
         .blend = { .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
                    .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA, .src_alpha = SR_BLEND_ONE,
                    .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA },
-        .no_depth_test = true,
+        .depth_test = SR_OFF,
         .polygon_mode_front = SR_POLYGON_LINE,
         .polygon_mode_back = SR_POLYGON_LINE,
     };

@@ -1,6 +1,6 @@
 /* demo_normals.c - `softrast demo normals`: why normals are transformed
- * by the inverse transpose M^-T of the modelling matrix (the seeds:
- * a normal N and a tangent P must stay perpendicular, (QN)^T (MP) = 0,
+ * by the inverse transpose M^-T of the modelling matrix
+ * (a normal N and a tangent P must stay perpendicular, (QN)^T (MP) = 0,
  * which gives Q = (M^-1)^T).
  *
  * A unit sphere scaled non-uniformly (an ellipsoid: 1.9 x 0.75 x 1) and

@@ -1,5 +1,5 @@
 /* demo_perspective.c - `softrast demo perspective`: why attributes must
- * not be interpolated in screen space (the seeds' "screen space color
+ * not be interpolated in screen space ("screen space color
  * interpolation": the perspective transformation does not preserve
  * distances, so interpolating before and after it gives different
  * results).
@@ -87,7 +87,7 @@ static sr_result draw_panel(sr_context *ctx, sr_framebuffer *fb, const sr_textur
     float zm = 0.5f * (Z_NEAR + Z_FAR);
     const float mid[6] = { -HX, 0, zm, HX, 0, zm };
     sr_state line = { .shading = SR_SHADING_UNLIT, .material.diffuse = { 1, 1, 1 },
-                      .no_depth_test = true, .line_width = 2 };
+                      .depth_test = SR_OFF, .line_width = 2 };
     r = sr_draw(ctx, fb, &line, &(sr_draw_desc){ .primitive = SR_PRIM_LINES,
                                                  .positions = mid, .vertex_count = 2,
                                                  .view = &view, .projection = &proj });

@@ -1,5 +1,5 @@
-/* demo_viewport.c - `softrast demo viewport`: the aspect ratio (the
- * seeds: the viewport matrix S maps NDC -1..1 onto the viewport's width
+/* demo_viewport.c - `softrast demo viewport`: the aspect ratio
+ * (the viewport matrix S maps NDC -1..1 onto the viewport's width
  * and height; the picture keeps its aspect ratio only if the (1,1) and
  * (2,2) entries of S are equal, or if the projection compensates).
  *
@@ -7,7 +7,7 @@
  * and a tall one (bottom row), the viewport rectangle outlined on grey:
  *   stretched     - a projection made for a square (aspect 1): S scales x
  *                   and y differently and the sphere becomes an ellipse;
- *   square NDC    - the seeds' first strategy: map NDC into a square
+ *   square NDC    - the first strategy: map NDC into a square
  *                   viewport of the smaller dimension, centred; round,
  *                   but the rest of the viewport stays unused;
  *   fov from w, h - the second: derive the x and y fields of view from
@@ -147,7 +147,7 @@ static sr_result draw_panel(sr_context *ctx, sr_framebuffer *fb, const scene *s,
     sr_path_close(path);
     r = sr_stroke_path(ctx, fb, path, (sr_rgba){ 0.95f, 0.85f, 0.4f, 1 },
                        &(sr_stroke_desc){ .width = 1 });
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     if (r != SR_OK) {
         return r;
     }

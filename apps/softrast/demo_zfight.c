@@ -1,5 +1,5 @@
 /* demo_zfight.c - `softrast demo zfight`: z-buffer quantization and
- * "z-fighting" (the seeds: two close surfaces may quantize to the same
+ * "z-fighting" (two close surfaces may quantize to the same
  * depth, and which one shows is then decided by drawing order and
  * rounding, pixel by pixel).
  *
@@ -71,6 +71,7 @@ static sr_result draw_panel(sr_context *ctx, sr_framebuffer *fb, const sr_textur
 {
     bool reversed = kind == ROW_REVERSED;
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.07f, 0.08f, 0.1f, 1 },
+                                        .depth_action = SR_ACTION_CLEAR,
                                         .depth = reversed ? 0.0f : 1.0f });
     float aspect = (float)sr_framebuffer_width(fb) / (float)sr_framebuffer_height(fb);
     sr_mat4 view = sr_look_at((sr_vec3){ 0, 1, 0 }, (sr_vec3){ 0, 0.55f, -10 },

@@ -2,12 +2,166 @@
 #include "framing.h"
 
 #include <math.h>
+#include <string.h>
+
+sr_vec3 framing_default_direction(void)
+{
+    return sr_vec3_normalize((sr_vec3){ 0.62f, 0.48f, 1.0f });
+}
 
 sr_vec3 framing_default_eye(sr_vec3 centre, float radius, float fov_radians)
 {
     float dist = radius / sinf(fov_radians * 0.5f) * 1.04f;
-    sr_vec3 dir = sr_vec3_normalize((sr_vec3){ 0.62f, 0.48f, 1.0f });
-    return sr_vec3_add(centre, sr_vec3_scale(dir, dist));
+    return sr_vec3_add(centre, sr_vec3_scale(framing_default_direction(), dist));
+}
+
+static double component(sr_vec3 a, int k)
+{
+    return k == 0 ? a.x : k == 1 ? a.y : a.z;
+}
+
+/* The rows of basis x model: a set's vertices straight into the camera
+ * basis (u, v, w: across, up, and towards the eye). */
+typedef struct to_camera {
+    double row[3][4];
+} to_camera;
+
+static to_camera camera_rows(const framing_points *set, const sr_camera_basis *b)
+{
+    const float *a = set->model->m;
+    const sr_vec3 axes[3] = { b->u, b->v, b->w };
+    to_camera t;
+    for (int k = 0; k < 3; k++) {
+        for (int c = 0; c < 4; c++) {
+            t.row[k][c] = (double)axes[k].x * a[c * 4] + (double)axes[k].y * a[c * 4 + 1] +
+                          (double)axes[k].z * a[c * 4 + 2];
+        }
+    }
+    return t;
+}
+
+static void apply(const to_camera *t, const float *p, double q[3])
+{
+    for (int k = 0; k < 3; k++) {
+        q[k] = t->row[k][0] * p[0] + t->row[k][1] * p[1] + t->row[k][2] * p[2] + t->row[k][3];
+    }
+}
+
+/* With the eye at depth ez in the camera basis, the offset along axis k
+ * (0: u, 1: v) that centres the points' perspective projections on that
+ * axis.  Each step places the eye exactly between the two points that
+ * project farthest out, then looks again for those points; it stops when
+ * they no longer change. */
+static double centre_offset(const framing_points *sets, int set_count, const sr_camera_basis *b,
+                            int k, double ez, double start)
+{
+    double e = start;
+    for (int step = 0; step < 16; step++) {
+        double hi = -INFINITY, lo = INFINITY, hi_q[3] = { 0 }, lo_q[3] = { 0 };
+        for (int s = 0; s < set_count; s++) {
+            to_camera rows = camera_rows(&sets[s], b);
+            for (size_t i = 0; i < sets[s].count; i++) {
+                double q[3];
+                apply(&rows, &sets[s].xyz[i * 3], q);
+                double t = (q[k] - e) / (ez - q[2]);
+                if (t > hi) {
+                    hi = t;
+                    memcpy(hi_q, q, sizeof q);
+                }
+                if (t < lo) {
+                    lo = t;
+                    memcpy(lo_q, q, sizeof q);
+                }
+            }
+        }
+        /* (hi_q[k] - e) / d_hi = -(lo_q[k] - e) / d_lo, solved for e. */
+        double d_hi = ez - hi_q[2], d_lo = ez - lo_q[2];
+        double next = (hi_q[k] * d_lo + lo_q[k] * d_hi) / (d_hi + d_lo);
+        if (next == e || !isfinite(next)) {
+            break;
+        }
+        e = next;
+    }
+    return e;
+}
+
+bool framing_fit(const framing_points *sets, int set_count, sr_vec3 centre, float fov_radians,
+                 int width, int height, bool ortho, framing_view *out)
+{
+    /* The tangents of the half fields of view sr_perspective makes. */
+    float tan_y = tanf(sr_fit_fovy(fov_radians, width, height) * 0.5f);
+    float tan_x = tan_y * ((float)width / (float)height);
+    sr_vec3 dir = framing_default_direction();
+    sr_camera_basis b;
+    if (!sr_camera_frame((sr_vec3){ 0, 0, 0 }, sr_vec3_scale(dir, -1.0f), (sr_vec3){ 0, 1, 0 },
+                         &b)) {
+        return false;
+    }
+    /* The eye at (ex, ey, ez) in the basis sees a point q inside the
+     * narrowed field when |q_x - ex| <= tx (ez - q_z): for every q,
+     * ex + tx ez >= q_x + tx q_z and tx ez - ex >= tx q_z - q_x.  The
+     * least ez meets the largest of each with equality. */
+    double fill = 1.0 - 2.0 * FRAMING_MARGIN;
+    double t[2] = { (double)tan_x * fill, (double)tan_y * fill };
+    double plus[2] = { -INFINITY, -INFINITY }, minus[2] = { -INFINITY, -INFINITY };
+    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (int s = 0; s < set_count; s++) {
+        to_camera rows = camera_rows(&sets[s], &b);
+        for (size_t i = 0; i < sets[s].count; i++) {
+            double q[3];
+            apply(&rows, &sets[s].xyz[i * 3], q);
+            for (int k = 0; k < 2; k++) {
+                plus[k] = fmax(plus[k], q[k] + t[k] * q[2]);
+                minus[k] = fmax(minus[k], t[k] * q[2] - q[k]);
+            }
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], q[k]);
+                hi[k] = fmax(hi[k], q[k]);
+            }
+        }
+    }
+    double ez_k[2] = { (plus[0] + minus[0]) / (2.0 * t[0]), (plus[1] + minus[1]) / (2.0 * t[1]) };
+    int limit = ez_k[0] >= ez_k[1] ? 0 : 1;
+    double ez = ez_k[limit], e[2];
+    if (ortho) {
+        /* Half extents that hold the points in the limiting dimension,
+         * the aspect's in the other. */
+        double need[2] = { (hi[0] - lo[0]) / (2.0 * fill), (hi[1] - lo[1]) / (2.0 * fill) };
+        double aspect = (double)tan_x / tan_y;
+        double hh = fmax(need[1], need[0] / aspect);
+        out->half_w = (float)(hh * aspect);
+        out->half_h = (float)hh;
+        e[0] = (lo[0] + hi[0]) / 2.0;
+        e[1] = (lo[1] + hi[1]) / 2.0;
+        /* The eye stays at the perspective fit's distance: the depth range
+         * is that of the same view. */
+        if (!(hh > 0.0) || !isfinite(hh)) {
+            return false;
+        }
+    } else {
+        e[limit] = (plus[limit] - minus[limit]) / 2.0;
+        int other = 1 - limit;
+        e[other] = centre_offset(sets, set_count, &b, other, ez,
+                                 (plus[other] - minus[other]) / 2.0);
+    }
+    if (!isfinite(ez) || !isfinite(e[0]) || !isfinite(e[1]) || !(ez > lo[2]) ||
+        !(hi[0] > lo[0] || hi[1] > lo[1])) {
+        return false;
+    }
+    /* The eye back in world space, and the target: the point of the gaze
+     * (-w) nearest the centre. */
+    double pos[3] = { e[0], e[1], ez }, eye[3], w[3] = { b.w.x, b.w.y, b.w.z };
+    double c[3] = { centre.x, centre.y, centre.z }, along = 0.0;
+    for (int k = 0; k < 3; k++) {
+        eye[k] = pos[0] * component(b.u, k) + pos[1] * component(b.v, k) + pos[2] * w[k];
+    }
+    for (int k = 0; k < 3; k++) {
+        along -= (c[k] - eye[k]) * w[k];
+    }
+    out->eye = (sr_vec3){ (float)eye[0], (float)eye[1], (float)eye[2] };
+    out->target = (sr_vec3){ (float)(eye[0] - along * w[0]), (float)(eye[1] - along * w[1]),
+                             (float)(eye[2] - along * w[2]) };
+    return along > 0.0;
 }
 
 void framing_near_far(sr_vec3 eye, sr_vec3 centre, float radius, float *near_z, float *far_z)
@@ -17,6 +171,29 @@ void framing_near_far(sr_vec3 eye, sr_vec3 centre, float radius, float *near_z, 
     /* Never closer than 1/1000 of far: depth precision stays usable when
      * the eye is inside the sphere. */
     *near_z = fmaxf(dc - radius, *far_z * 1e-3f) * 0.99f;
+}
+
+sr_mat4 framing_upright(int axis)
+{
+    /* The images of the model's x, y and z axes (the matrix's first three
+     * columns), exact: each a signed unit vector.  The view faces +z, so
+     * +z up turns the model's -y (its front in Z-up tools) towards the
+     * viewer, and the flips of x and y keep the front facing it. */
+    static const float columns[6][3][3] = {
+        { { 0, 1, 0 }, { -1, 0, 0 }, { 0, 0, 1 } },   /* +x up */
+        { { 0, -1, 0 }, { 1, 0, 0 }, { 0, 0, 1 } },   /* -x up */
+        { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } },    /* +y up */
+        { { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, 1 } },  /* -y up */
+        { { 1, 0, 0 }, { 0, 0, -1 }, { 0, 1, 0 } },   /* +z up */
+        { { 1, 0, 0 }, { 0, 0, 1 }, { 0, -1, 0 } },   /* -z up */
+    };
+    sr_mat4 m = sr_mat4_identity();
+    for (int c = 0; c < 3; c++) {
+        for (int r = 0; r < 3; r++) {
+            m.m[c * 4 + r] = columns[axis][c][r];
+        }
+    }
+    return m;
 }
 
 int framing_default_lights(const sr_camera_basis *b, sr_light *lights)

@@ -31,7 +31,7 @@ sr_result cli_write_image(const char *path, int width, int height, const uint8_t
     int level = opt->png_level < 0 ? 0 : (opt->png_level == 0 ? -1 : opt->png_level);
     return sr_write_png(path, width, height, rgba, stride,
                         &(sr_png_write_desc){ .compression_level = level,
-                                              .no_alpha = !opt->keep_alpha,
+                                              .channels = opt->keep_alpha ? SR_PNG_RGBA : SR_PNG_RGB,
                                               .context = opt->context },
                         err);
 }

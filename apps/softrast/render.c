@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 
@@ -35,13 +36,14 @@ static void note_mtl(void *inputs, const char *path)
     cli_inputs_add(inputs, path, "MTL file");
 }
 
-static int load_model(const render_opts *o, cli_inputs *inputs, scene *s)
+static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs, scene *s)
 {
     memset(s, 0, sizeof *s);
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    sr_result r = sr_load_mesh(o->model, &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
+    sr_result r = sr_load_mesh(ctx, o->model,
+                               &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
                                &ob->mesh, &err);
     if (r != SR_OK) {
         fprintf(stderr, "%s\n", err.message);
@@ -71,8 +73,8 @@ static int prepare_normals(const render_opts *o, sr_context *ctx, scene *s)
         if (mode == 0) {
             continue;
         }
-        sr_result r = sr_mesh_compute_normals_ctx(ctx, m,
-                                                  mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
+        sr_result r = sr_mesh_compute_normals(ctx, m,
+                                              mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
         if (r != SR_OK) {
             cli_error("computing normals: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
@@ -86,17 +88,62 @@ typedef struct camera {
     sr_camera_basis basis;
 } camera;
 
-/* The eye, target and up the options ask for: --camera, else the default
- * framing of the objects' bounding sphere. */
-static void resolve_camera(const render_opts *o, const scene *s, sr_vec3 *eye, sr_vec3 *target,
-                           sr_vec3 *up)
+/* The default camera: framing_fit of the framed objects in the image
+ * the options ask for; false when it cannot fit them. */
+static bool fit_default(const render_opts *o, const scene *s, framing_view *v)
+{
+    framing_points sets[SCENE_MAX_OBJECTS];
+    int n = 0;
+    for (int i = 0; i < s->count; i++) {
+        const scene_object *ob = &s->objects[i];
+        if (ob->frame) {
+            sets[n++] = (framing_points){ ob->mesh.positions, ob->mesh.vertex_count, &ob->model };
+        }
+    }
+    sr_vec3 c;
+    float r;
+    scene_bounds(s, true, &c, &r);
+    return framing_fit(sets, n, c, o->fov_deg * PI_F / 180.0f, o->width, o->height, o->ortho, v);
+}
+
+/* fit_default, answered from the scene's cache when it was made for the
+ * same image size, field of view and projection: a render checks the
+ * camera before drawing, then makes it again to draw. */
+static bool cached_fit(const render_opts *o, scene *s, framing_view *v)
+{
+    if (!(s->fit_cached && s->fit_width == o->width && s->fit_height == o->height &&
+          s->fit_fov_deg == o->fov_deg && s->fit_ortho == o->ortho)) {
+        s->fit_ok = fit_default(o, s, &s->fit);
+        s->fit_width = o->width;
+        s->fit_height = o->height;
+        s->fit_fov_deg = o->fov_deg;
+        s->fit_ortho = o->ortho;
+        s->fit_cached = true;
+    }
+    *v = s->fit;
+    return s->fit_ok;
+}
+
+/* The eye, target and up the options ask for: --camera, else `fit` (the
+ * default camera, or NULL when there is none), else the framing of the
+ * objects' bounding sphere. */
+static void resolve_camera(const render_opts *o, const scene *s, const framing_view *fit,
+                           sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up)
 {
     sr_vec3 c;
     float r;
     scene_bounds(s, true, &c, &r);
-    *target = o->have_target ? o->target : c;
     *up = o->have_up ? o->up : (sr_vec3){ 0, 1, 0 };
-    *eye = o->have_eye ? o->eye : framing_default_eye(c, r, o->fov_deg * PI_F / 180.0f);
+    if (o->have_eye) {
+        *eye = o->eye;
+        *target = o->have_target ? o->target : c;
+    } else if (fit) {
+        *eye = fit->eye;
+        *target = fit->target;
+    } else {
+        *eye = framing_default_eye(c, r, o->fov_deg * PI_F / 180.0f);
+        *target = c;
+    }
 }
 
 static bool finite_mat(const sr_mat4 *m)
@@ -114,7 +161,7 @@ static bool finite_mat(const sr_mat4 *m)
  * target in one point, or sizes or distances whose squares overflow
  * float (from about 1e19) or underflow it (below about 1e-19) - the
  * readers accept such coordinates, the framing cannot use them. */
-static const char *setup_camera(const render_opts *o, const scene *s, camera *cam,
+static const char *setup_camera(const render_opts *o, scene *s, camera *cam,
                                 float *near_out, float *far_out)
 {
     sr_vec3 c;
@@ -122,8 +169,10 @@ static const char *setup_camera(const render_opts *o, const scene *s, camera *ca
     scene_bounds(s, true, &c, &r);
     float fov = o->fov_deg * PI_F / 180.0f;
 
+    framing_view fit;
+    bool fitted = !o->have_eye && cached_fit(o, s, &fit);
     sr_vec3 eye, target, up;
-    resolve_camera(o, s, &eye, &target, &up);
+    resolve_camera(o, s, fitted ? &fit : NULL, &eye, &target, &up);
     sr_vec3 gaze = sr_vec3_sub(target, eye);
     /* Looking straight along the up vector: pick another up; one of the
      * last two is never parallel to a gaze. */
@@ -157,8 +206,8 @@ static const char *setup_camera(const render_opts *o, const scene *s, camera *ca
     float aspect = (float)o->width / (float)o->height;
     if (o->ortho) {
         float half = r * 1.04f;
-        float hw = aspect >= 1.0f ? half * aspect : half;
-        float hh = aspect >= 1.0f ? half : half / aspect;
+        float hw = fitted ? fit.half_w : aspect >= 1.0f ? half * aspect : half;
+        float hh = fitted ? fit.half_h : aspect >= 1.0f ? half : half / aspect;
         cam->proj = sr_ortho(-hw, hw, -hh, hh, near_z, far_z, false);
     } else {
         cam->proj = sr_perspective(sr_fit_fovy(fov, o->width, o->height), aspect, near_z, far_z, false);
@@ -193,7 +242,7 @@ static int farther_first(const void *a, const void *b)
 
 /* A translucent object's triangles [first, first + n) as indices sorted
  * back to front by each triangle's centroid distance along the view
- * direction (the seeds: "you still have to sort for transparency");
+ * direction (blending is order-dependent, so transparency needs sorting);
  * malloc'd, or NULL when out of memory. */
 static uint32_t *sorted_indices(const scene_object *ob, const camera *cam, size_t first,
                                 size_t n)
@@ -260,7 +309,7 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                         return SR_OUT_OF_MEMORY;
                     }
                     indices = sorted;
-                    st.no_depth_write = true;
+                    st.depth_write = SR_OFF;
                     st.blend = (sr_blend){ .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
                                            .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA,
                                            .src_alpha = SR_BLEND_ONE,
@@ -298,7 +347,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     sr_vec3 ink = o->have_line_color ? o->line_color
                 : light_bg ? (sr_vec3){ 0.125f, 0.125f, 0.125f }
                            : (sr_vec3){ 0.91f, 0.925f, 0.957f };
-    sr_material ink_material = { .diffuse = ink, .no_vertex_color = true };
+    sr_material ink_material = { .diffuse = ink, .vertex_color = SR_OFF };
     sr_result r = SR_OK;
     if (o->lines != LINES_WIREFRAME) {
         sr_state fill = st;
@@ -308,7 +357,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
             r = draw_scene(ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
-            fill.material = (sr_material){ .diffuse = o->background, .no_vertex_color = true };
+            fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
             r = draw_scene(ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
@@ -326,8 +375,8 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     lines.polygon_mode_front = lines.polygon_mode_back = mode;
     if (o->lines == LINES_WIREFRAME) {
         lines.cull = SR_CULL_NONE;
-        lines.no_depth_test = true;
-        lines.no_depth_write = true;
+        lines.depth_test = SR_OFF;
+        lines.depth_write = SR_OFF;
     } else {
         lines.depth_func = SR_LEQUAL;
     }
@@ -341,6 +390,10 @@ struct render_job {
     scene s;
     bool have_scene;
     sr_context *ctx;
+    /* The scene's meshes live on a context of their own, made with the
+     * first options' threads: it outlives the drawing context, which a
+     * change of --threads replaces. */
+    sr_context *mesh_ctx;
     sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
                              * format) when the caller's framebuffer cannot be drawn into */
     cli_inputs inputs;      /* the files read: model, MTL, textures */
@@ -365,13 +418,16 @@ int render_job_parse(int argc, char **argv, render_job **out)
     return -1;
 }
 
-/* The context, unless made already (cmd_render makes it first). */
+/* The contexts, unless made already (cmd_render makes them first). */
 static int start_context(render_job *job)
 {
     if (job->ctx) {
         return -1;
     }
     sr_result r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->ctx);
+    if (r == SR_OK && !job->mesh_ctx) {
+        r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->mesh_ctx);
+    }
     if (r != SR_OK) {
         cli_error("render: %s", sr_result_text(r));
         return EXIT_FAILURE_RUN;
@@ -407,12 +463,12 @@ static int load_objects(render_job *job)
     render_opts *o = &job->o;
     scene *s = &job->s;
     if (o->model) {
-        int status = load_model(o, &job->inputs, s);
+        int status = load_model(o, job->mesh_ctx, &job->inputs, s);
         if (status >= 0) {
             return status;
         }
     } else {
-        sr_result r = scene_builtin(s, o->detail);
+        sr_result r = scene_builtin(job->mesh_ctx, s, o->detail);
         if (r != SR_OK) {
             cli_error("building the teapot scene: %s", sr_result_text(r));
             return EXIT_FAILURE_RUN;
@@ -422,13 +478,25 @@ static int load_objects(render_job *job)
     return -1;
 }
 
+/* --up, or the up axis the model's format implies: +z for STL, the
+ * format of CAD and 3D printing; +y for the rest (glTF specifies it, OBJ
+ * and PLY from modelling tools mostly follow it) and the teapot. */
+static int render_model_up(const render_opts *o)
+{
+    if (o->model_up != UP_AUTO) {
+        return o->model_up;
+    }
+    const char *dot = o->model ? strrchr(o->model, '.') : NULL;
+    return dot && strcasecmp(dot, ".stl") == 0 ? UP_POS_Z : UP_POS_Y;
+}
+
 /* The rest of the scene, with the context's threads for the normals:
  * materials, turn, bounds, and a check that a camera can be made. */
 static int finish_scene(render_job *job)
 {
     render_opts *o = &job->o;
     scene *s = &job->s;
-    int status = prepare_normals(o, job->ctx, s);
+    int status = prepare_normals(o, job->mesh_ctx, s);
     if (status >= 0) {
         return status;
     }
@@ -436,7 +504,7 @@ static int finish_scene(render_job *job)
         scene_object *ob = &s->objects[i];
         if (o->have_mat_color && ob->frame) {
             ob->material.diffuse = o->mat_color;
-            ob->material.no_vertex_color = true;
+            ob->material.vertex_color = SR_OFF;
         }
         if (o->have_specular && ob->frame) {
             ob->material.specular = o->specular;
@@ -448,6 +516,13 @@ static int finish_scene(render_job *job)
             /* Zero means the default (opaque) in sr_material: keep a
              * fully transparent request just above it. */
             ob->material.opacity = o->opacity > 0.0f ? o->opacity : 1e-6f;
+        }
+    }
+    int up = render_model_up(o);
+    for (int i = 0; i < s->count && up != UP_POS_Y; i++) {
+        if (s->objects[i].frame) {
+            sr_mat4 m = framing_upright(up);
+            s->objects[i].model = sr_mat4_mul(&m, &s->objects[i].model);
         }
     }
     if (o->turn_deg != 0.0f) {
@@ -521,7 +596,9 @@ int render_job_configure(render_job *job, int argc, char **argv)
 
 void render_job_camera(const render_job *job, sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up)
 {
-    resolve_camera(&job->o, &job->s, eye, target, up);
+    framing_view fit;
+    bool fitted = !job->o.have_eye && fit_default(&job->o, &job->s, &fit);
+    resolve_camera(&job->o, &job->s, fitted ? &fit : NULL, eye, target, up);
 }
 
 void render_job_bounds(const render_job *job, sr_vec3 *centre, float *radius)
@@ -629,6 +706,7 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     if (r == SR_OK) {
         r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o->background.x, o->background.y,
                                                            o->background.z, 1.0f },
+                                                .depth_action = SR_ACTION_CLEAR,
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
     if (r == SR_OK) {
@@ -652,8 +730,9 @@ void render_job_free(render_job *job)
     }
     drop_context(job);
     if (job->have_scene) {
-        scene_free(&job->s);
+        scene_free(job->mesh_ctx, &job->s);
     }
+    sr_destroy_context(job->mesh_ctx);
     cli_inputs_free(&job->inputs);
     free(job);
 }
@@ -711,9 +790,9 @@ int cmd_render(int argc, char **argv)
     /* The framebuffer is made on a thread of its own while the model
      * file is read on this one: its fresh pages (16 MB at 1920 x 1080)
      * took the kernel 2-25 ms to zero, time the reader's one core leaves
-     * the other free for.  The context is used again only once the
-     * framebuffer is made (finish_scene's normals, make_context's
-     * textures). */
+     * the other free for.  The reader allocates on the mesh context; the
+     * drawing context is used again only once the framebuffer is made
+     * (make_context's textures). */
     status = start_context(job);
     if (status >= 0) {
         render_job_free(job);

@@ -30,6 +30,7 @@ static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", "msaa
 static const int aa_ssaa[] = { 1, 2, 3, 4, 1, 1, 1, 1 };
 static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
 static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
+static const char *const up_names[] = { "+x", "-x", "+y", "-y", "+z", "-z", NULL };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 
 static void render_help(void)
@@ -76,11 +77,16 @@ static void render_help(void)
         "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
         "camera:\n"
         "  --camera eye=X,Y,Z[,target=X,Y,Z][,up=X,Y,Z]\n"
-        "                           (default: a three-quarter view from above that\n"
-        "                           frames the model's bounding sphere)\n"
+        "                           (default: a three-quarter view from above, the\n"
+        "                           model filling the image to a 5%% margin on its\n"
+        "                           limiting side, centred on the other)\n"
         "  --fov DEG                field of view across the smaller image side\n"
         "                           (default 35)\n"
         "  --ortho                  orthographic projection\n"
+        "  --up AXIS                +x|-x|+y|-y|+z|-z: the model's up axis, turned to\n"
+        "                           point up the image (default +z for .stl, as CAD\n"
+        "                           and 3D printing use; +y for every other format,\n"
+        "                           as glTF specifies, and the built-in teapot)\n"
         "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
         "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
         "pipeline:\n"
@@ -107,7 +113,7 @@ static void render_help(void)
         "  --aa MODE                none|ssaa2|ssaa3|ssaa4: render k x k samples per pixel\n"
         "                           and filter them down; msaa2|msaa4|msaa8|msaa16: that\n"
         "                           many coverage and depth samples per pixel, shaded\n"
-        "                           once, box-resolved (default none)\n"
+        "                           once, box-resolved (default msaa4)\n"
         "  --filter F               box|tent|gaussian|mitchell, the SSAA reconstruction\n"
         "                           filter (default box)\n"
         "  --rasterizer R           halfspace|scanline|barycentric (default halfspace;\n"
@@ -336,6 +342,8 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
                 return EXIT_USAGE;
             }
             o->ortho = true;
+        } else if (IS("--up")) {
+            CHOICE(up_names, o->model_up, k_);
         } else if (IS("--turn")) {
             VALUE();
             if (!parse_float(arg, value, -36000.0f, 36000.0f, &o->turn_deg)) {
@@ -431,7 +439,7 @@ render_opts render_opts_defaults(void)
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
-        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 1, .opacity = 1.0f,
-        .offset_factor = 1.0f, .offset_units = 1.0f,
+        .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 4, .opacity = 1.0f,
+        .offset_factor = 1.0f, .offset_units = 1.0f, .model_up = UP_AUTO,
     };
 }

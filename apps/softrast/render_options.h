@@ -23,6 +23,7 @@ typedef struct render_opts {
     float fov_deg;
     bool ortho;
     float turn_deg;
+    int model_up;                  /* --up: UP_AUTO, or UP_POS_X ... UP_NEG_Z */
     float near_z, far_z;           /* 0: fitted */
     sr_light lights[SR_MAX_LIGHTS];
     int light_count;
@@ -53,6 +54,10 @@ typedef struct render_opts {
     float opacity;                 /* of the model; 1: opaque */
     sr_resample_filter filter;
 } render_opts;
+
+/* The model's up axis (--up), in the order of its names +x -x +y -y +z -z;
+ * UP_AUTO: by the model file's format (render_model_up). */
+enum { UP_AUTO = -1, UP_POS_X = 0, UP_NEG_X, UP_POS_Y, UP_NEG_Y, UP_POS_Z, UP_NEG_Z };
 
 /* What the line modes draw besides (or instead of) the shaded model. */
 enum { LINES_NONE = 0, LINES_WIREFRAME, LINES_HIDDEN, LINES_EDGES, LINES_POINTS };

@@ -9,16 +9,25 @@
 /* A square ground of n x n tiles in the plane y = 0, centred on the origin,
  * with alternating colors.  Each tile has its own four vertices so the
  * colors stay crisp under interpolation. */
-static sr_result make_ground(sr_mesh *m, float half, int n)
+static void free_arrays(sr_mesh *m)
 {
-    memset(m, 0, sizeof *m);
+    free(m->positions);
+    free(m->normals);
+    free(m->colors);
+    free(m->indices);
+}
+
+/* Built in malloc'd arrays, then made a mesh on ctx. */
+static sr_result make_ground(sr_context *ctx, sr_mesh *out, float half, int n)
+{
+    sr_mesh ground = { 0 }, *m = &ground;
     size_t verts = (size_t)n * n * 4, tris = (size_t)n * n * 2;
     m->positions = malloc(verts * 3 * sizeof(float));
     m->normals = malloc(verts * 3 * sizeof(float));
     m->colors = malloc(verts * 4 * sizeof(float));
     m->indices = malloc(tris * 3 * sizeof(uint32_t));
     if (!m->positions || !m->normals || !m->colors || !m->indices) {
-        sr_mesh_free(m);
+        free_arrays(m);
         return SR_OUT_OF_MEMORY;
     }
     m->vertex_count = verts;
@@ -59,14 +68,16 @@ static sr_result make_ground(sr_mesh *m, float half, int n)
             t += 2;
         }
     }
-    return SR_OK;
+    sr_result r = sr_make_mesh(ctx, m, out);
+    free_arrays(m);
+    return r;
 }
 
-sr_result scene_builtin(scene *s, int detail)
+sr_result scene_builtin(sr_context *ctx, scene *s, int detail)
 {
     memset(s, 0, sizeof *s);
     scene_object *pot = &s->objects[0];
-    sr_result r = sr_make_teapot(detail, &pot->mesh);
+    sr_result r = sr_make_teapot(ctx, detail, &pot->mesh);
     if (r != SR_OK) {
         return r;
     }
@@ -83,9 +94,9 @@ sr_result scene_builtin(scene *s, int detail)
     sr_mesh_bounds(&pot->mesh, &lo, &hi);
     float extent = fmaxf(hi.x - lo.x, hi.z - lo.z);
     scene_object *ground = &s->objects[1];
-    r = make_ground(&ground->mesh, extent * 1.6f, 12);
+    r = make_ground(ctx, &ground->mesh, extent * 1.6f, 12);
     if (r != SR_OK) {
-        scene_free(s);
+        scene_free(ctx, s);
         return r;
     }
     ground->material = (sr_material){ .diffuse = { 1, 1, 1 }, .specular = { 0.08f, 0.08f, 0.08f },
@@ -96,10 +107,10 @@ sr_result scene_builtin(scene *s, int detail)
     return SR_OK;
 }
 
-void scene_free(scene *s)
+void scene_free(sr_context *ctx, scene *s)
 {
     for (int i = 0; i < s->count; i++) {
-        sr_mesh_free(&s->objects[i].mesh);
+        sr_destroy_mesh(ctx, &s->objects[i].mesh);
     }
     s->count = 0;
 }
@@ -161,6 +172,7 @@ void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radi
 void scene_cache_bounds(scene *s)
 {
     s->bounds_cached = false;
+    s->fit_cached = false;
     scene_bounds(s, true, &s->cached_centre[0], &s->cached_radius[0]);
     bool all_framed = true;
     for (int o = 0; o < s->count; o++) {

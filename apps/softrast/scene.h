@@ -4,6 +4,7 @@
 #ifndef SR_SCENE_H
 #define SR_SCENE_H
 
+#include "framing.h"
 #include "softrast.h"
 
 #define SCENE_MAX_OBJECTS 4
@@ -30,11 +31,20 @@ typedef struct scene {
     bool bounds_cached;
     sr_vec3 cached_centre[2];
     float cached_radius[2];
+    /* render.c's default camera, fitted to the vertices, for the image
+     * size, field of view and projection it was fitted for; reset by
+     * scene_cache_bounds. */
+    bool fit_cached, fit_ok, fit_ortho;
+    int fit_width, fit_height;
+    float fit_fov_deg;
+    framing_view fit;
 } scene;
 
-/* The Utah teapot at `detail` standing on a checkered ground plane. */
-sr_result scene_builtin(scene *s, int detail);
-void scene_free(scene *s);
+/* The Utah teapot at `detail` standing on a checkered ground plane, its
+ * meshes made on ctx. */
+sr_result scene_builtin(sr_context *ctx, scene *s, int detail);
+/* Destroys the meshes, on the context they were made on. */
+void scene_free(sr_context *ctx, scene *s);
 
 /* Bounding sphere of the objects with `frame` set (or of all objects),
  * after their model matrices. */

@@ -207,7 +207,7 @@ static glyph *make_glyph(view_font *f, sr_context *ctx, unsigned cp)
             g->mask = NULL;
         }
     }
-    sr_destroy_path(path);
+    sr_destroy_path(ctx, path);
     return g;
 }
 

@@ -8,7 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
-/* choices[0] is render's default. */
+/* choices[0] is render's default, except for antialiasing: the viewer
+ * starts without it, for speed, where render's default is msaa4. */
 const view_mode view_modes[] = {
     { 'm', "shading", { { "phong", "--shading=phong" }, { "flat", "--shading=flat" },
                         { "gouraud", "--shading=gouraud" }, { "normals", "--shading=normals" },

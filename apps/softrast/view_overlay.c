@@ -40,7 +40,7 @@ static sr_result panel(sr_context *ctx, sr_framebuffer *fb, double x, double y, 
     sr_path_close(p);
     res = sr_fill_path(ctx, fb, p, panel_color,
                        &(sr_fill_desc){ .rule = SR_NONZERO, .antialias = SR_AA_AREA });
-    sr_destroy_path(p);
+    sr_destroy_path(ctx, p);
     return res;
 }
 

@@ -2,7 +2,7 @@
  * segment in pixel coordinates snapped to 1/256 px ("q8"), produces one
  * pixel per major step through a plot callback: the naive and incremental
  * DDA, the midpoint/Bresenham line as the exact diamond-exit closed form
- * of RASTER_RULES 6.2 (with the integer fast path for endpoints on pixel
+ * of docs/raster-rules.md §7.1 (with the integer fast path for endpoints on pixel
  * centres), and wide lines.  Runs on the caller's thread.
  *
  * Conventions: y down; pixel (x, y) covers [x, x+1) x [y, y+1), centre
@@ -227,7 +227,7 @@ static bool on_centre(int64_t v_q8)
     return floor_div(v_q8 - H, S) * S == v_q8 - H;
 }
 
-/* The seed's midpoint algorithm for endpoints on pixel centres, in all
+/* The textbook midpoint algorithm for endpoints on pixel centres, in all
  * eight octants: canonicalize so the major coordinate increases, reflect
  * the minor axis by s = sign(dv), then the decision variable
  * d = 2 F(midpoint) starts at 2dy - dx and grows by 2dy (step E) or
@@ -334,7 +334,7 @@ void sr__line_dda(const sr__line_q8 *l, bool incremental, sr__irect clip,
     }
     int64_t ka = max64(k0, lo), kb = min64(k1, hi);
     if (!incremental) {
-        /* The seed's first DrawLine: v = v_a + m (u - u_a) at each centre,
+        /* The line equation evaluated per column: v = v_a + m (u - u_a) at each centre,
          * rounded to the nearest pixel: floor(v) with centres at +1/2. */
         const double slope = (double)dv / (double)du;
         const double ua = (double)m.au / 256.0, va = (double)m.av / 256.0;

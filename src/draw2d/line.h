@@ -45,7 +45,7 @@ typedef struct sr__line_q8 { int64_t ax, ay, bx, by; } sr__line_q8;
 /* Snap a finite coordinate (|v| <= SR__LINE_MAX_COORD) to 1/256 px. */
 int64_t sr__line_snap_q8(double v);
 
-/* Midpoint/Bresenham: the diamond-exit closed form of RASTER_RULES 6.2
+/* Midpoint/Bresenham: the diamond-exit closed form of docs/raster-rules.md §7.1
  * (D3D ties: a boundary point belongs to the smaller minor index; the end
  * pixel is left out).  Uses the integer fast path when both endpoints are
  * on pixel centres, unless `closed_form_only`. */

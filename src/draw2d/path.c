@@ -60,12 +60,11 @@ sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out)
     return SR_OK;
 }
 
-void sr_destroy_path(sr_path *path)
+void sr_destroy_path(sr_context *ctx, sr_path *path)
 {
-    if (!path) {
+    if (!ctx || !path) {
         return;
     }
-    sr_context *ctx = path->ctx;
     sr__free(ctx, path->pts);
     sr__free(ctx, path->counts);
     sr__free(ctx, path->closed);
@@ -513,10 +512,10 @@ static sr_result stroke_desc_defaults(sr_context *ctx, const char *fn, const sr_
     return SR_OK;
 }
 
-sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_stroke_desc *desc,
-                            sr_polygon2 *out)
+sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
+                                 const sr_stroke_desc *desc, sr_polygon2 *out)
 {
-    static const char fn[] = "sr_stroke_outline";
+    static const char fn[] = "sr_make_stroke_outline";
     if (!ctx) {
         return SR_INVALID_ARG;
     }
@@ -546,7 +545,7 @@ sr_result sr_stroke_outline(sr_context *ctx, const sr_path *path, const sr_strok
     return SR_OK;
 }
 
-void sr_free_stroke_outline(sr_context *ctx, sr_polygon2 *outline)
+void sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline)
 {
     if (!ctx || !outline) {
         return;
@@ -566,7 +565,7 @@ sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *pat
         return sr__fail(ctx, SR_INVALID_ARG, "sr_stroke_path: fb is NULL");
     }
     sr_polygon2 poly;
-    sr_result r = sr_stroke_outline(ctx, path, desc, &poly);
+    sr_result r = sr_make_stroke_outline(ctx, path, desc, &poly);
     if (r != SR_OK) {
         return r;
     }
@@ -574,6 +573,6 @@ sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *pat
     sr_fill_desc f = { SR_NONZERO, d ? d->antialias : SR_AA_DEFAULT, d ? d->samples : 0,
                        d ? d->linear_light : false };
     r = sr_fill_polygon(ctx, fb, &poly, color, &f);
-    sr_free_stroke_outline(ctx, &poly);
+    sr_destroy_stroke_outline(ctx, &poly);
     return r;
 }

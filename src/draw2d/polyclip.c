@@ -188,7 +188,7 @@ sr_result sr_clip_polygon_rect(sr_context *ctx, const sr_point2 *in, int count, 
         return sr__fail(ctx, SR_INVALID_ARG, "%s: the rectangle needs finite xmin <= xmax and "
                         "ymin <= ymax", fn);
     }
-    /* The seeds' order: left, bottom, right, top (bottom = y max, y down). */
+    /* The textbook order: left, bottom, right, top (bottom = y max, y down). */
     half_plane planes[4] = {
         { .axis = 0, .bound = xmin, .sign = +1 },
         { .axis = 1, .bound = ymax, .sign = -1 },

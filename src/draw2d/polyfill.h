@@ -49,10 +49,10 @@ sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polyg
 typedef struct sr__window { int x0, y0, x1, y1; } sr__window;
 
 /* Scan-line fill with an edge table and an active edge table (point
- * sampling at pixel centres, RASTER_RULES 9.2). */
+ * sampling at pixel centres, docs/raster-rules.md §10.2). */
 sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count,
                               sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user);
-/* Exact area coverage by signed-area accumulation (RASTER_RULES 9.3). */
+/* Exact area coverage by signed-area accumulation (docs/raster-rules.md §10.3). */
 sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
                         sr__window win, sr__span_fn fn, void *user);
 /* n x n supersampling: edges built with scale n; samples at

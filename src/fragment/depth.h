@@ -1,5 +1,5 @@
 /* depth.h - depth quantization and the eight compare functions (fragment
- * stage; any thread).  RASTER_RULES 1.5: clamp to [0, 1], then once per
+ * stage; any thread).  docs/raster-rules.md §6.1: clamp to [0, 1], then once per
  * sample q = floor(z (2^n - 1) + 0.5) in double for UNORM formats (exact for
  * n <= 32: the product keeps >= 21 fractional bits), or round to float32 for
  * D32F.  The test compares quantized values, as Direct3D specifies. */

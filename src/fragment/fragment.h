@@ -24,7 +24,7 @@ SR_INLINE uint8_t sr__unorm8(float v)
 }
 
 /* Perspective-correct barycentrics from the exact integer edge values
- * (RASTER_RULES 4.4): q_i = e_i / w_i, normalized.  In affine mode setup
+ * (docs/raster-rules.md §5.1): q_i = e_i / w_i, normalized.  In affine mode setup
  * set every w_i to 1, which is exactly screen-space interpolation.  Float
  * is ample here: e_i is exact, the weights need ~1e-6. */
 static inline void sr__bary(const sr_draw_state *ds, const sr_tri *t,
@@ -55,7 +55,7 @@ static inline double sr__tri_depth(const sr_tri *t, int64_t e1, int64_t e2)
 }
 
 /* Clamp to the depth range after offset (*z keeps the clamped value), then
- * quantize once (RASTER_RULES 1.5): round half up for UNORM (z >= 0 here,
+ * quantize once (docs/raster-rules.md §6.1): round half up for UNORM (z >= 0 here,
  * so truncation is floor), the float's bits for D32F. */
 SR_INLINE uint32_t sr__quantize_depth(const sr_draw_state *ds, double *z)
 {

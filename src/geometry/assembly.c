@@ -1,6 +1,6 @@
 /* assembly.c - primitive assembly (geometry stage): the vertices of each
  * triangle, strip, fan, line, loop or point of a draw gathered from the
- * post-transform vertices, with the provoking vertex of RASTER_RULES 4.2;
+ * post-transform vertices, with the provoking vertex of docs/raster-rules.md §5.4;
  * trivial reject and homogeneous clipping (clip.c) of what crosses a clip
  * plane; culling by the snapped area; polygon modes; and the hand-off to
  * setup (raster/setup_tri.h), whose records each chunk bins by tile.  Runs
@@ -24,7 +24,7 @@ static bool is_culled(const sr_draw_state *ds, bool front)
 }
 
 /* On the y-down framebuffer, a triangle that is counter-clockwise on
- * screen has a negative snapped area2 (RASTER_RULES 2.7). */
+ * screen has a negative snapped area2 (docs/raster-rules.md §3.3). */
 static bool facing_front(const sr_draw_state *ds, int64_t area2)
 {
     return ds->front_ccw ? area2 < 0 : area2 > 0;
@@ -216,7 +216,7 @@ static __attribute__((noinline)) void clipped_triangle(const sr_front_end *fe, s
          * origin (the band planes force x = y = 0, near/far z = 0), e.g. the
          * midpoint of an edge from v to -v.  A polygon through it has
          * linearly dependent vertices, so no area; the divide would give
-         * 0/0 = NaN.  Discard (RASTER_RULES 3.4). */
+         * 0/0 = NaN.  Discard (docs/raster-rules.md §4.3). */
         if (!(poly[i].pos[3] > 0.0f)) {
             c->info.triangles_culled++;
             return;
@@ -349,7 +349,7 @@ static void segment(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs
     emit_line(fe, c, &w0, &w1, 0.0, true, flat);
 }
 
-/* A point is drawn when its vertex is inside every plane (RASTER_RULES 7). */
+/* A point is drawn when its vertex is inside every plane (docs/raster-rules.md §4.4). */
 static void point(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs, uint32_t i)
 {
     const sr_draw_state *ds = fe->ds;
@@ -362,7 +362,7 @@ static void point(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs, 
     emit_point(fe, c, &w, 0.0, true, provoking_color(ds, a));
 }
 
-/* Primitive p of the draw, with the provoking vertex of RASTER_RULES 4.2. */
+/* Primitive p of the draw, with the provoking vertex of docs/raster-rules.md §5.4. */
 static void primitive(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs, size_t p)
 {
     const sr_draw_desc *d = fe->d;

@@ -1,10 +1,10 @@
 /* bezier.c - geometry stage, built-in surfaces: bicubic Bezier patches to
  * triangles.  Consumes patches of 16 control points ([u][v] row-major, xyz);
  * produces an sr_mesh with (detail+1)^2 vertices (position, unit normal,
- * texcoord = (u, v)) and 2 detail^2 triangles per patch.  Reentrant: any
- * thread may call it; it touches nothing but its arguments and malloc.
+ * texcoord = (u, v)) and 2 detail^2 triangles per patch, allocated on the
+ * caller's context.  Any thread may call it with a context of its own.
  *
- * Method: the seeds' incremental algorithm for polynomials ("forward
+ * Method: the incremental evaluation of polynomials ("forward
  * differencing").  A cubic F(t) = a t^3 + b t^2 + c t + d sampled at steps of
  * h has constant third difference D3 = 6 a h^3, so once F, its first
  * difference DF and its second difference D2F are known at t = 0, every next
@@ -22,6 +22,7 @@
  */
 #include "softrast.h"
 #include "geometry/bezier.h"
+#include "context.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -115,7 +116,7 @@ static void fwd_diff_start(fwd_diff *s, const double a[3], const double b[3],
     }
 }
 
-/* The seeds' N-order difference update, for N = 3. */
+/* The N-order forward difference update, for N = 3. */
 static void fwd_diff_step(fwd_diff *s)
 {
     for (int k = 0; k < 3; k++) {
@@ -308,21 +309,31 @@ static void tessellate_patch(const float cp[16][3], int detail,
 
 /* ---- the mesh ----------------------------------------------------------- */
 
-sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count,
-                               int detail, sr_mesh *out)
+sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
+                              size_t patch_count, int detail, sr_mesh *out)
 {
-    if (!out) {
+    static const char fn[] = "sr_make_bezier_mesh";
+    if (!ctx) {
         return SR_INVALID_ARG;
     }
+    if (!out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: out is NULL", fn);
+    }
     memset(out, 0, sizeof *out);
-    if (!patches || patch_count == 0 || detail < 1 || detail > MAX_DETAIL) {
-        return SR_INVALID_ARG;
+    if (!patches || patch_count == 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: no patches given", fn);
+    }
+    if (detail < 1 || detail > MAX_DETAIL) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: detail %d is not in 1..%d", fn, detail,
+                        MAX_DETAIL);
     }
     for (size_t p = 0; p < patch_count; p++) {
         for (int c = 0; c < 16; c++) {
             for (int k = 0; k < 3; k++) {
                 if (!isfinite(patches[p][c][k])) {
-                    return SR_INVALID_ARG;
+                    return sr__fail(ctx, SR_INVALID_ARG,
+                                    "%s: control point %d of patch %zu is not finite", fn, c,
+                                    p);
                 }
             }
         }
@@ -335,21 +346,22 @@ sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count
      * triangles < 2 * vertices, so bounding vertices by 2^32 / 8 keeps every
      * byte count below 2^32 (safe for a 32-bit size_t too). */
     if (patch_count > (UINT32_MAX / 8) / verts_per_patch) {
-        return SR_TOO_LARGE;
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: %zu patches at detail %d exceed 2^29 vertices",
+                        fn, patch_count, detail);
     }
     const size_t vertex_count = patch_count * verts_per_patch;
     const size_t triangle_count = patch_count * tris_per_patch;
 
-    float *positions = malloc(vertex_count * 3 * sizeof(float));
-    float *normals = malloc(vertex_count * 3 * sizeof(float));
-    float *texcoords = malloc(vertex_count * 2 * sizeof(float));
-    uint32_t *indices = malloc(triangle_count * 3 * sizeof(uint32_t));
+    float *positions = sr__alloc(ctx, vertex_count * 3 * sizeof(float));
+    float *normals = sr__alloc(ctx, vertex_count * 3 * sizeof(float));
+    float *texcoords = sr__alloc(ctx, vertex_count * 2 * sizeof(float));
+    uint32_t *indices = sr__alloc(ctx, triangle_count * 3 * sizeof(uint32_t));
     if (!positions || !normals || !texcoords || !indices) {
-        free(positions);
-        free(normals);
-        free(texcoords);
-        free(indices);
-        return SR_OUT_OF_MEMORY;
+        sr__free(ctx, positions);
+        sr__free(ctx, normals);
+        sr__free(ctx, texcoords);
+        sr__free(ctx, indices);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: no memory", fn);
     }
 
     uint32_t *ix = indices;
@@ -380,5 +392,6 @@ sr_result sr_tessellate_bezier(const float (*patches)[16][3], size_t patch_count
     out->texcoords = texcoords;
     out->triangle_count = triangle_count;
     out->indices = indices;
+    sr__ok(ctx);
     return SR_OK;
 }

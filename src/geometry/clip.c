@@ -1,7 +1,7 @@
 /* clip.c - clipping in homogeneous clip space, before the divide (geometry
  * stage; any thread, no shared state).
  *
- * Planes (RASTER_RULES 3): w >= epsilon (so nothing behind or at the eye
+ * Planes (docs/raster-rules.md §4): w >= epsilon (so nothing behind or at the eye
  * reaches the divide), near, far, and the four planes of the fixed-point
  * guard band [-16384, 16384) px - never the viewport planes: the rasterizer
  * trims to the viewport exactly, so visible shared edges are untouched.

@@ -3,7 +3,8 @@
  * Consumes meshes as the readers and built-in generators produce them;
  * produces bounding boxes and per-vertex normals (smooth or flat).
  * No I/O and no shared state: any thread may call these on its own mesh
- * (sr_mesh_compute_normals_ctx uses its context's threads too).
+ * and context (smooth normals use the context's threads too).  Every
+ * array is allocated on the mesh's context.
  */
 #include "softrast.h"
 
@@ -11,27 +12,108 @@
 #include "parallel/pool.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
-void sr_mesh_free(sr_mesh *mesh)
+void sr_destroy_mesh(sr_context *ctx, sr_mesh *mesh)
 {
-    if (!mesh) {
+    if (!ctx || !mesh) {
         return;
     }
-    free(mesh->positions);
-    free(mesh->normals);
-    free(mesh->colors);
-    free(mesh->texcoords);
-    free(mesh->indices);
-    free(mesh->texture_path);
-    free(mesh->texture_data);
+    sr__free(ctx, mesh->positions);
+    sr__free(ctx, mesh->normals);
+    sr__free(ctx, mesh->colors);
+    sr__free(ctx, mesh->texcoords);
+    sr__free(ctx, mesh->indices);
+    sr__free(ctx, mesh->texture_path);
+    sr__free(ctx, mesh->texture_data);
     for (size_t i = 0; mesh->parts && i < mesh->part_count; i++) {
-        free(mesh->parts[i].texture_path);
-        free(mesh->parts[i].texture_data);
+        sr__free(ctx, mesh->parts[i].texture_path);
+        sr__free(ctx, mesh->parts[i].texture_data);
     }
-    free(mesh->parts);
+    sr__free(ctx, mesh->parts);
     memset(mesh, 0, sizeof *mesh);
+}
+
+/* A copy of `bytes` bytes of from on ctx in *to (NULL for none); false
+ * when out of memory. */
+static bool copy_array(sr_context *ctx, void *to, const void *from, size_t bytes)
+{
+    void **p = to;
+    *p = NULL;
+    if (!from || bytes == 0) {
+        return true;
+    }
+    *p = sr__alloc(ctx, bytes);
+    if (*p) {
+        memcpy(*p, from, bytes);
+    }
+    return *p != NULL;
+}
+
+static size_t string_bytes(const char *s)
+{
+    return s ? strlen(s) + 1 : 0;
+}
+
+static bool copy_part(sr_context *ctx, sr_mesh_part *to, const sr_mesh_part *from)
+{
+    *to = *from;
+    bool ok = copy_array(ctx, &to->texture_path, from->texture_path,
+                         string_bytes(from->texture_path));
+    return copy_array(ctx, &to->texture_data, from->texture_data, from->texture_size) && ok;
+}
+
+static sr_result validate_mesh(const sr_mesh *mesh);
+
+sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out)
+{
+    static const char fn[] = "sr_make_mesh";
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: out is NULL", fn);
+    }
+    memset(out, 0, sizeof *out);
+    if (validate_mesh(src) != SR_OK) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: src is NULL, lacks an array it counts, or has an index >= "
+                        "vertex_count", fn);
+    }
+    if (src->part_count > 0 && !src->parts) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: src->part_count %zu with no parts", fn,
+                        src->part_count);
+    }
+    size_t v = src->vertex_count;
+    if (v > SIZE_MAX / (4 * sizeof(float)) || src->triangle_count > SIZE_MAX / 12 ||
+        src->part_count > SIZE_MAX / sizeof(sr_mesh_part)) {
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: the arrays' sizes overflow size_t", fn);
+    }
+    sr_mesh m = *src;
+    bool ok = copy_array(ctx, &m.positions, src->positions, v * 3 * sizeof(float));
+    ok &= copy_array(ctx, &m.normals, src->normals, v * 3 * sizeof(float));
+    ok &= copy_array(ctx, &m.colors, src->colors, v * 4 * sizeof(float));
+    ok &= copy_array(ctx, &m.texcoords, src->texcoords, v * 2 * sizeof(float));
+    ok &= copy_array(ctx, &m.indices, src->indices, src->triangle_count * 3 * sizeof(uint32_t));
+    ok &= copy_array(ctx, &m.texture_path, src->texture_path, string_bytes(src->texture_path));
+    ok &= copy_array(ctx, &m.texture_data, src->texture_data, src->texture_size);
+    m.parts = NULL;
+    m.part_count = 0;
+    if (src->parts && src->part_count > 0) {
+        m.parts = sr__calloc(ctx, src->part_count, sizeof *m.parts);
+        ok &= m.parts != NULL;
+        for (size_t i = 0; m.parts && i < src->part_count; i++) {
+            ok &= copy_part(ctx, &m.parts[i], &src->parts[i]);
+            m.part_count = i + 1;
+        }
+    }
+    if (!ok) {
+        sr_destroy_mesh(ctx, &m);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: no memory", fn);
+    }
+    *out = m;
+    sr__ok(ctx);
+    return SR_OK;
 }
 
 bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max)
@@ -217,11 +299,12 @@ static void run_smooth_range(void *arg, int job, int thread)
  * diagonal each face was cut along.  With a pool, the vertices are cut
  * into two ranges a thread (smooth_range): each range's faces are found
  * by a pass over the indices, cheap beside the angles' atan2. */
-static sr_result smooth_normals(sr_mesh *mesh, struct sr_pool *pool, int threads)
+static sr_result smooth_normals(sr_context *ctx, sr_mesh *mesh)
 {
+    struct sr_pool *pool = ctx->pool;
     size_t n = mesh->vertex_count;
     if (n == 0) {
-        free(mesh->normals);
+        sr__free(ctx, mesh->normals);
         mesh->normals = NULL;
         return SR_OK;
     }
@@ -231,23 +314,22 @@ static sr_result smooth_normals(sr_mesh *mesh, struct sr_pool *pool, int threads
     }
     /* Accumulate in double: a vertex shared by thousands of thin faces
      * would otherwise lose the small contributions. */
-    double *sum = calloc(floats, sizeof *sum);
-    float *normals = malloc(floats * sizeof *normals);
+    double *sum = sr__calloc(ctx, floats, sizeof *sum);
+    float *normals = sr__alloc(ctx, floats * sizeof *normals);
     if (!sum || !normals) {
-        free(sum);
-        free(normals);
+        sr__free(ctx, sum);
+        sr__free(ctx, normals);
         return SR_OUT_OF_MEMORY;
     }
-    sr__populate(sum, floats * sizeof *sum);          /* both are written whole */
-    sr__populate(normals, floats * sizeof *normals);
-    size_t ranges = pool ? 2 * (size_t)threads : 1;
+    sr__populate(normals, floats * sizeof *normals); /* written whole */
+    size_t ranges = pool ? 2 * (size_t)ctx->threads : 1;
     if (ranges > n) {
         ranges = n;
     }
     smooth_job job = { .mesh = mesh, .sum = sum, .normals = normals, .ranges = ranges };
     sr__pool_run(pool, run_smooth_range, &job, (int)ranges);
-    free(sum);
-    free(mesh->normals);
+    sr__free(ctx, sum);
+    sr__free(ctx, mesh->normals);
     mesh->normals = normals;
     return SR_OK;
 }
@@ -255,13 +337,13 @@ static sr_result smooth_normals(sr_mesh *mesh, struct sr_pool *pool, int threads
 /* Every triangle gets three vertices of its own carrying the face normal,
  * so the normal does not blend across edges.  Colors and texcoords are
  * copied per corner; the mesh is only touched once every array exists. */
-static sr_result flat_normals(sr_mesh *mesh)
+static sr_result flat_normals(sr_context *ctx, sr_mesh *mesh)
 {
     size_t tris = mesh->triangle_count;
     if (tris == 0) {
         /* Splitting would drop every vertex; with no faces to be flat
          * against, keep the vertices and give them the fallback normal. */
-        return smooth_normals(mesh, NULL, 1);
+        return smooth_normals(ctx, mesh);
     }
     size_t verts;
     if (__builtin_mul_overflow(tris, (size_t)3, &verts) || verts > UINT32_MAX) {
@@ -271,18 +353,18 @@ static sr_result flat_normals(sr_mesh *mesh)
     if (__builtin_mul_overflow(verts, 3 * sizeof(float), &bytes3)) {
         return SR_OUT_OF_MEMORY;
     }
-    float *positions = malloc(bytes3);
-    float *normals = malloc(bytes3);
-    uint32_t *indices = malloc(verts * sizeof *indices);
-    float *colors = mesh->colors ? malloc(verts * 4 * sizeof(float)) : NULL;
-    float *texcoords = mesh->texcoords ? malloc(verts * 2 * sizeof(float)) : NULL;
+    float *positions = sr__alloc(ctx, bytes3);
+    float *normals = sr__alloc(ctx, bytes3);
+    uint32_t *indices = sr__alloc(ctx, verts * sizeof *indices);
+    float *colors = mesh->colors ? sr__alloc(ctx, verts * 4 * sizeof(float)) : NULL;
+    float *texcoords = mesh->texcoords ? sr__alloc(ctx, verts * 2 * sizeof(float)) : NULL;
     if (!positions || !normals || !indices || (mesh->colors && !colors) ||
         (mesh->texcoords && !texcoords)) {
-        free(positions);
-        free(normals);
-        free(indices);
-        free(colors);
-        free(texcoords);
+        sr__free(ctx, positions);
+        sr__free(ctx, normals);
+        sr__free(ctx, indices);
+        sr__free(ctx, colors);
+        sr__free(ctx, texcoords);
         return SR_OUT_OF_MEMORY;
     }
     const float *p = mesh->positions;
@@ -312,11 +394,11 @@ static sr_result flat_normals(sr_mesh *mesh)
             indices[dst] = (uint32_t)dst;
         }
     }
-    free(mesh->positions);
-    free(mesh->normals);
-    free(mesh->colors);
-    free(mesh->texcoords);
-    free(mesh->indices);
+    sr__free(ctx, mesh->positions);
+    sr__free(ctx, mesh->normals);
+    sr__free(ctx, mesh->colors);
+    sr__free(ctx, mesh->texcoords);
+    sr__free(ctx, mesh->indices);
     mesh->positions = positions;
     mesh->normals = normals;
     mesh->colors = colors;
@@ -326,22 +408,34 @@ static sr_result flat_normals(sr_mesh *mesh)
     return SR_OK;
 }
 
-sr_result sr_mesh_compute_normals_ctx(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode)
+sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode)
 {
-    sr_result r = validate_mesh(mesh);
-    if (r != SR_OK) {
-        return r;
+    static const char fn[] = "sr_mesh_compute_normals";
+    if (!ctx) {
+        return SR_INVALID_ARG;
     }
+    if (validate_mesh(mesh) != SR_OK) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: mesh is NULL, lacks an array it counts, or has an index >= "
+                        "vertex_count", fn);
+    }
+    sr_result r;
     switch (mode) {
     case SR_NORMALS_SMOOTH:
-        return smooth_normals(mesh, ctx ? ctx->pool : NULL, ctx ? ctx->threads : 1);
+        r = smooth_normals(ctx, mesh);
+        break;
     case SR_NORMALS_FLAT:
-        return flat_normals(mesh);
+        r = flat_normals(ctx, mesh);
+        break;
+    default:
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: mode %d is not an sr_normal_mode", fn,
+                        (int)mode);
     }
-    return SR_INVALID_ARG;
-}
-
-sr_result sr_mesh_compute_normals(sr_mesh *mesh, sr_normal_mode mode)
-{
-    return sr_mesh_compute_normals_ctx(NULL, mesh, mode);
+    if (r != SR_OK) {
+        return sr__fail(ctx, r, "%s: %s", fn,
+                        r == SR_TOO_LARGE ? "the split vertices would not fit uint32 indices"
+                                          : "no memory");
+    }
+    sr__ok(ctx);
+    return SR_OK;
 }

@@ -1,6 +1,6 @@
 /* teapot.c - geometry stage, built-in surfaces: the Utah teapot.
  * Consumes nothing but a detail level; produces an sr_mesh through
- * sr_tessellate_bezier: Newell's 32 bicubic patches, y up, standing on
+ * sr_make_bezier_mesh: Newell's 32 bicubic patches, y up, standing on
  * y = 0, spout towards +x, every triangle facing outward.  Any thread.
  */
 #include "softrast.h"
@@ -196,7 +196,7 @@ static const uint16_t teapot_patches[32][16] = {
     {269, 269, 269, 269, 299, 304, 305, 278, 296, 302, 303, 274, 293, 300, 301, 270},
 };
 
-sr_result sr_make_teapot(int detail, sr_mesh *out)
+sr_result sr_make_teapot(sr_context *ctx, int detail, sr_mesh *out)
 {
     float patches[32][16][3];
     for (int p = 0; p < 32; p++) {
@@ -223,5 +223,5 @@ sr_result sr_make_teapot(int detail, sr_mesh *out)
             }
         }
     }
-    return sr_tessellate_bezier((const float (*)[16][3])patches, 32, detail, out);
+    return sr_make_bezier_mesh(ctx, (const float (*)[16][3])patches, 32, detail, out);
 }

@@ -314,7 +314,7 @@ static bool diffuse_textures(const struct aiScene *scene, const char *model_path
             p->first_triangle = t;
             if (!copy_texture(&r, model_path, &p->texture_path, &p->texture_data,
                               &p->texture_size)) {
-                return false; /* sr_mesh_free frees what the parts hold */
+                return false; /* sr__free_malloc_mesh frees what the parts hold */
             }
         }
         m->parts[n - 1].triangle_count += tris;
@@ -394,7 +394,7 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
     m.indices = malloc(tris * 3 * sizeof(uint32_t));
     if (!m.positions || (normals && !m.normals) || (colors && !m.colors) ||
         (texcoords && !m.texcoords) || !m.indices) {
-        sr_mesh_free(&m);
+        sr__free_malloc_mesh(&m);
         aiReleaseImport(scene);
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory for %zu vertices",
                            verts);
@@ -462,7 +462,7 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
     }
     aiReleaseImport(scene);
     if (res != SR_OK) {
-        sr_mesh_free(&m);
+        sr__free_malloc_mesh(&m);
         return res;
     }
     *out = m;

@@ -2,14 +2,96 @@
  * load.c - io stage: sr_load_mesh, the one entry point for model files.
  * Consumes a path (and an optional format); picks a reader by the name's
  * extension, then by the first bytes of the file, then hands anything else
- * to Assimp.  Produces the reader's sr_mesh.  Any thread may call it.
+ * to Assimp.  Produces the reader's sr_mesh, copied onto the caller's
+ * context (the readers grow arrays with realloc, which sr_allocator does
+ * not offer).  Also the public readers on memory.  Any thread may call
+ * these with a context of its own.
  */
 #include "io/io_util.h"
 #include "io/readers.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+
+void sr__free_malloc_mesh(sr_mesh *mesh)
+{
+    free(mesh->positions);
+    free(mesh->normals);
+    free(mesh->colors);
+    free(mesh->texcoords);
+    free(mesh->indices);
+    free(mesh->texture_path);
+    free(mesh->texture_data);
+    for (size_t i = 0; mesh->parts && i < mesh->part_count; i++) {
+        free(mesh->parts[i].texture_path);
+        free(mesh->parts[i].texture_data);
+    }
+    free(mesh->parts);
+    memset(mesh, 0, sizeof *mesh);
+}
+
+/* The reader's result `res` on a malloc'd mesh m, handed out as *out: a
+ * copy on ctx, m freed. */
+static sr_result hand_out(sr_context *ctx, const char *name, sr_result res, sr_mesh *m,
+                          sr_mesh *out, sr_io_error *err)
+{
+    if (res == SR_OK && sr_make_mesh(ctx, m, out) != SR_OK) {
+        res = sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0,
+                          "out of memory (copying the mesh onto the context)");
+    }
+    sr__free_malloc_mesh(m);
+    return res;
+}
+
+static sr_result check_ctx(sr_context *ctx, const char *name, sr_mesh *out, sr_io_error *err)
+{
+    if (out) {
+        memset(out, 0, sizeof *out);
+    }
+    if (!ctx) {
+        return sr__io_fail(err, SR_INVALID_ARG, name ? name : "<input>", 0, "no context given");
+    }
+    return SR_OK;
+}
+
+static sr_result parse_obj_bytes(const char *name, const uint8_t *data, size_t size,
+                                 sr_mesh *out, sr_io_error *err)
+{
+    return sr__parse_obj(name, (const char *)data, size, out, err);
+}
+
+/* A reader on memory, its mesh handed out on ctx. */
+static sr_result parse_on(sr_context *ctx, sr_parse_fn parse, const char *name,
+                          const uint8_t *data, size_t size, sr_mesh *out, sr_io_error *err)
+{
+    sr_result res = check_ctx(ctx, name, out, err);
+    if (res != SR_OK) {
+        return res;
+    }
+    sr_mesh m = {0};
+    res = parse(name, data, size, out ? &m : NULL, err);
+    return out ? hand_out(ctx, name ? name : "<input>", res, &m, out, err) : res;
+}
+
+sr_result sr_parse_obj(sr_context *ctx, const char *name, const char *data, size_t size,
+                       sr_mesh *out, sr_io_error *err)
+{
+    return parse_on(ctx, parse_obj_bytes, name, (const uint8_t *)data, size, out, err);
+}
+
+sr_result sr_parse_ply(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
+                       sr_mesh *out, sr_io_error *err)
+{
+    return parse_on(ctx, sr__parse_ply, name, data, size, out, err);
+}
+
+sr_result sr_parse_stl(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
+                       sr_mesh *out, sr_io_error *err)
+{
+    return parse_on(ctx, sr__parse_stl, name, data, size, out, err);
+}
 
 bool sr_io_have_assimp(void)
 {
@@ -83,18 +165,10 @@ static sr_model_format format_from_content(const char *path)
     return SR_FORMAT_AUTO;
 }
 
-sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
-                       sr_mesh *out, sr_io_error *err)
+/* The reader for path, by desc's format, the name, the content, or Assimp. */
+static sr_result load_malloc_mesh(const char *path, const sr_load_desc *desc, sr_mesh *out,
+                                  sr_io_error *err)
 {
-    if (out) {
-        memset(out, 0, sizeof *out);
-    }
-    if (!path) {
-        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
-    }
-    if (!out) {
-        return sr__io_fail(err, SR_INVALID_ARG, path, 0, "no output mesh given");
-    }
     sr_model_format format = desc ? desc->format : SR_FORMAT_AUTO;
     if (format == SR_FORMAT_AUTO) {
         format = format_from_extension(path);
@@ -127,4 +201,25 @@ sr_result sr_load_mesh(const char *path, const sr_load_desc *desc,
     }
     fclose(f);
     return sr__load_assimp(path, out, err);
+}
+
+sr_result sr_load_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                       sr_mesh *out, sr_io_error *err)
+{
+    if (out) {
+        memset(out, 0, sizeof *out);
+    }
+    if (!path) {
+        return sr__io_fail(err, SR_INVALID_ARG, "<null>", 0, "no file name given");
+    }
+    if (!out) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0, "no output mesh given");
+    }
+    sr_result res = check_ctx(ctx, path, out, err);
+    if (res != SR_OK) {
+        return res;
+    }
+    sr_mesh m = {0};
+    res = load_malloc_mesh(path, desc, &m, err);
+    return hand_out(ctx, path, res, &m, out, err);
 }

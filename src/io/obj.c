@@ -1586,8 +1586,8 @@ static sr_result parse(const char *name, const char *data, size_t size,
     return res;
 }
 
-sr_result sr_parse_obj(const char *name, const char *data, size_t size,
-                       sr_mesh *out, sr_io_error *err)
+sr_result sr__parse_obj(const char *name, const char *data, size_t size,
+                        sr_mesh *out, sr_io_error *err)
 {
     if (!name) {
         name = "<memory>";

@@ -1041,8 +1041,8 @@ static void free_reader(ply_reader *r)
     r->elem_count = 0;
 }
 
-sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
-                       sr_mesh *out, sr_io_error *err)
+sr_result sr__parse_ply(const char *name, const uint8_t *data, size_t size,
+                        sr_mesh *out, sr_io_error *err)
 {
     if (!name) {
         name = "<input>";
@@ -1080,7 +1080,7 @@ sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
     }
     free_reader(&r);
     if (res != SR_OK) {
-        sr_mesh_free(&r.mesh);
+        sr__free_malloc_mesh(&r.mesh);
         return res;
     }
     /* Give back the growth slack of the index array. */
@@ -1094,5 +1094,5 @@ sr_result sr_parse_ply(const char *name, const uint8_t *data, size_t size,
 
 sr_result sr__load_ply(const char *path, sr_mesh *out, sr_io_error *err)
 {
-    return sr__load_file_with(path, sr_parse_ply, out, err);
+    return sr__load_file_with(path, sr__parse_ply, out, err);
 }

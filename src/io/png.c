@@ -173,12 +173,6 @@ static void decode_png(FILE *f, png_mem *mem, png_image_out *out, png_status *st
     out->height = (int)h;
 }
 
-sr_result sr_read_png(const char *path, int *width, int *height,
-                      uint8_t **pixels, sr_io_error *err)
-{
-    return sr_read_png_desc(path, NULL, width, height, pixels, err);
-}
-
 /* The rest of a read once the input is open as `f` (a file, or memory
  * through fmemopen): signature, decode, messages naming `name`.  Closes f. */
 static sr_result read_png_stream(FILE *f, const char *name, const sr_png_read_desc *desc,
@@ -232,8 +226,8 @@ static sr_result read_png_stream(FILE *f, const char *name, const sr_png_read_de
     return SR_OK;
 }
 
-sr_result sr_read_png_desc(const char *path, const sr_png_read_desc *desc, int *width,
-                           int *height, uint8_t **pixels, sr_io_error *err)
+sr_result sr_read_png(const char *path, const sr_png_read_desc *desc, int *width,
+                      int *height, uint8_t **pixels, sr_io_error *err)
 {
     sr__image_outputs_clear(width, height, pixels, err);
     if (!path || !path[0]) {

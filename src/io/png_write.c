@@ -62,7 +62,7 @@ typedef struct png_job {
     const uint8_t *rgba;
     size_t stride;
     int width, height;
-    int channels;              /* 4, or 3 with no_alpha */
+    int channels;              /* 4, or 3 with SR_PNG_RGB */
     int level;                 /* zlib level, 0 = stored */
     size_t row_bytes;          /* a filtered row, its filter byte included */
     int band_rows, bands;
@@ -368,11 +368,16 @@ static sr_result png_settings(const char *name, int width, int height, const uin
         return sr__io_fail(err, SR_INVALID_ARG, name, 0,
                            "sr_png_write_desc.allocator needs both alloc and free");
     }
+    if (desc && (unsigned)desc->channels > SR_PNG_RGB) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "sr_png_write_desc.channels %d is not an sr_png_channels",
+                           (int)desc->channels);
+    }
     sr_context *ctx = desc ? desc->context : NULL;
 
     *j = (png_job){
         .rgba = rgba, .stride = stride, .width = width, .height = height,
-        .channels = desc && desc->no_alpha ? 3 : 4, .level = level,
+        .channels = desc && desc->channels == SR_PNG_RGB ? 3 : 4, .level = level,
     };
     j->row_bytes = 1 + (size_t)j->channels * (size_t)width;
     j->band_rows = j->row_bytes >= BAND_BYTES ? 1 : (int)(BAND_BYTES / j->row_bytes);

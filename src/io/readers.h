@@ -1,6 +1,8 @@
 /* readers.h - the per-format model readers behind sr_load_mesh (src/io).
  * Each takes a file path, fills *out (zeroed on failure, nothing leaked)
  * and reports problems through sr_io_error in the forms of io_util.h.
+ * The readers grow their arrays with realloc, so the meshes they fill are
+ * malloc'd; load.c copies them onto the caller's context.
  * Shared by load.c and the readers; not part of the public API. */
 #ifndef SR_IO_READERS_H
 #define SR_IO_READERS_H
@@ -21,5 +23,16 @@ sr_result sr__load_stl(const char *path, sr_mesh *out, sr_io_error *err);
 sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err);
 /* true when the build has Assimp's headers and the library opens. */
 bool sr__assimp_available(void);
+
+/* The readers on memory (behind sr_parse_obj, sr_parse_ply, sr_parse_stl). */
+sr_result sr__parse_obj(const char *name, const char *data, size_t size, sr_mesh *out,
+                        sr_io_error *err);
+sr_result sr__parse_ply(const char *name, const uint8_t *data, size_t size, sr_mesh *out,
+                        sr_io_error *err);
+sr_result sr__parse_stl(const char *name, const uint8_t *data, size_t size, sr_mesh *out,
+                        sr_io_error *err);
+
+/* Frees a mesh whose arrays a reader malloc'd, and zeroes it. */
+void sr__free_malloc_mesh(sr_mesh *mesh);
 
 #endif /* SR_IO_READERS_H */

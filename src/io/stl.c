@@ -541,8 +541,8 @@ static bool looks_binary(const uint8_t *data, size_t size)
     return false;
 }
 
-sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
-                       sr_mesh *out, sr_io_error *err)
+sr_result sr__parse_stl(const char *name, const uint8_t *data, size_t size,
+                        sr_mesh *out, sr_io_error *err)
 {
     if (!name) {
         name = "<input>";
@@ -565,5 +565,5 @@ sr_result sr_parse_stl(const char *name, const uint8_t *data, size_t size,
 
 sr_result sr__load_stl(const char *path, sr_mesh *out, sr_io_error *err)
 {
-    return sr__load_file_with(path, sr_parse_stl, out, err);
+    return sr__load_file_with(path, sr__parse_stl, out, err);
 }

@@ -843,7 +843,7 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, b
             return;
         }
         sr_polygon2 outline;
-        sr_result r = sr_stroke_outline(doc->ctx, path,
+        sr_result r = sr_make_stroke_outline(doc->ctx, path,
                                         &(sr_stroke_desc){ .width = st->stroke_width,
                                                            .join = st->join, .cap = st->cap,
                                                            .miter_limit = st->miter_limit },
@@ -855,7 +855,7 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, b
         sr_rgba c = st->stroke;
         c.a = (float)(st->stroke_opacity * st->opacity);
         fill_mapped(doc, outline, f->m, c, SR_NONZERO, st->crisp);
-        sr_free_stroke_outline(doc->ctx, &outline);
+        sr_destroy_stroke_outline(doc->ctx, &outline);
     }
 }
 
@@ -1228,7 +1228,7 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
             doc->points_used += sr_path_polygon(p).point_count;
             draw_path(doc, &f, p, tol, fillable);
         }
-        sr_destroy_path(p);
+        sr_destroy_path(doc->ctx, p);
     }
 }
 

@@ -93,7 +93,7 @@ sr_mat4 sr_perspective(float fovy, float aspect, float n, float f, bool zero_to_
     return sr_frustum(-r, r, -t, t, n, f, zero_to_one);
 }
 
-/* The seeds' "derive x, y fields of view from the viewport": the field of
+/* Deriving the x and y fields of view from the viewport: the field of
  * view is wanted across the smaller dimension; in a tall viewport the
  * vertical one must grow so the horizontal one keeps the requested angle. */
 float sr_fit_fovy(float fov, int width, int height)

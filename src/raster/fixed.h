@@ -5,7 +5,7 @@
  * [-16384, 16384) px, so |X_q8| < 2^22.  Edge deltas are then < 2^23, an edge
  * value multiplies two deltas (< 2^46) and is held in int64; three of them sum
  * to area2 < 2^48, which a double holds exactly, so barycentrics
- * e_i / area2 are exact to one rounding (RASTER_RULES 2.8). */
+ * e_i / area2 are exact to one rounding (docs/raster-rules.md §2.2). */
 #ifndef SR_FIXED_H
 #define SR_FIXED_H
 

@@ -3,7 +3,7 @@
  * point.c.
  *
  * Lines follow the diamond-exit rule in its exact closed form
- * (RASTER_RULES 6.1-6.2): with endpoints snapped to 1/256 px, an x-major
+ * (docs/raster-rules.md §7.1): with endpoints snapped to 1/256 px, an x-major
  * segment covers, in each column whose centre it spans, the pixel holding
  * the segment's point at that centre (a boundary point goes to the smaller
  * minor index, Direct3D's tie rule); the start pixel is added when the
@@ -55,8 +55,8 @@ typedef struct line_ctx {
 } line_ctx;
 
 /* One path pixel's fragments: project its centre onto the segment for t,
- * then depth linear in t and varyings perspective-correct (RASTER_RULES
- * 4.1).  A wide line's path is the segment moved by -(width - 1)/2 along
+ * then depth linear in t and varyings perspective-correct (docs/raster-rules.md
+ * §5.5).  A wide line's path is the segment moved by -(width - 1)/2 along
  * the minor axis and each of its pixels starts a run of `width` toward
  * +minor (setup_walk in line_setup.c); the run's centre, (width - 1)/2
  * past the path pixel's, is projected onto the unmoved segment, which is

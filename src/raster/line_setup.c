@@ -1,6 +1,6 @@
 /* line_setup.c - a clipped segment into a binned record (raster stage,
- * front-end workers): the diamond-exit rule's closed form (RASTER_RULES
- * 6.1-6.2, see line.c) solved once per segment - the columns the segment
+ * front-end workers): the diamond-exit rule's closed form (docs/raster-rules.md
+ * §7.1, see line.c) solved once per segment - the columns the segment
  * spans, the DDA of their pixels, the start's and end's diamond pixels -
  * and the tiles its pixels reach, so binning puts the segment only in
  * those, not in its whole bounding box. */
@@ -56,7 +56,7 @@ static int64_t minor_at(const sr_line *l, int64_t k)
  * it touches: the columns, the DDA of their pixels, and the pixels whose
  * diamonds own the two ends.  A wide line's are those of its path: the
  * segment moved by -(width - 1)/2 px along the minor axis, (width - 1)
- * half pixels, exact in q8 (GL's wide lines, RASTER_RULES 6.3); each path
+ * half pixels, exact in q8 (GL's wide lines, docs/raster-rules.md §7.2); each path
  * pixel then starts a run of `width` pixels toward +minor.  For an odd
  * width that is the one-pixel line's pixel with (width - 1)/2 on each
  * side; for an even width the run's extra pixel is on the side where the

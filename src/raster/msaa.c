@@ -2,7 +2,7 @@
  * coverage, and the stencil test, for every triangle rasterizer choice.
  * Runs on tile workers.
  *
- * Coverage (RASTER_RULES 8.2): sample s of pixel (x, y) lies at the pixel
+ * Coverage (docs/raster-rules.md §9.2): sample s of pixel (x, y) lies at the pixel
  * centre plus the standard offset (16 x the D3D position, so an integer
  * in q8) and is covered iff every biased edge function is >= 0 there: the
  * same top-left rule as single sampling, decided in the same exact

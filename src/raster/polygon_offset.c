@@ -9,7 +9,7 @@
 #include <math.h>
 
 /* Polygon offset o = factor m + units r, with the slope m of the triangle's
- * snapped plane (RASTER_RULES 5.3), in depth-range units.  Applied to the
+ * snapped plane (docs/raster-rules.md §6.4), in depth-range units.  Applied to the
  * triangle's fill, or to its outline or vertices in the other polygon
  * modes, each enabled separately. */
 double sr__polygon_offset(const sr_draw_state *ds, const sr_window_vertex *v0,

@@ -159,7 +159,7 @@ _Static_assert(SR_GUARD_BAND_MAX + 2 <= INT16_MAX && SR_GUARD_BAND_MIN - 2 - 32 
 /* A line segment after setup, drawn by the diamond-exit rule from a to b
  * (b's pixel excluded).  Depth is linear in screen space along the
  * segment; varyings are interpolated perspective-correctly by the
- * projected parameter t (RASTER_RULES 4.1). */
+ * projected parameter t (docs/raster-rules.md §5.5). */
 typedef struct sr_line {
     sr_prim_head h;
     int32_t xa, ya, xb, yb;           /* q8 endpoints */

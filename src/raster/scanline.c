@@ -1,5 +1,5 @@
 /* scanline.c - scan-line edge walking, a reference rasterizer (raster
- * stage).  The seeds' triangle scan conversion: split the triangle at its
+ * stage).  The classic triangle scan conversion: split the triangle at its
  * middle vertex into two regions and, scanline by scanline, step x along
  * the left and the right edges, filling the span between them.
  *

@@ -103,7 +103,7 @@ sr__setup_tri(const sr_draw_state *ds, const sr_window_vertex *w0, const sr_wind
     span_y = span_y < held ? span_y : held;
     t->fits32 = span_x * span_y <= INT32_MAX - 1;
 
-    /* Depth: linear in screen space (RASTER_RULES 4.1). */
+    /* Depth: linear in screen space (docs/raster-rules.md §5.2). */
     double z[3] = { v[0]->z, v[1]->z, v[2]->z };
     /* NaN: the fill's own offset (0 when it is off); otherwise the
      * caller's (the quads that stand for multisampled lines carry their

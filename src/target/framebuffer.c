@@ -352,7 +352,7 @@ sr_result sr_sample_position(int samples, int index, float *x, float *y)
 }
 
 /* The box resolve of one tile into dst (single-sampled, same size): each
- * channel (sum + n/2) / n, the rounded average (RASTER_RULES 8.2).  A tile
+ * channel (sum + n/2) / n, the rounded average (docs/raster-rules.md §9.3).  A tile
  * whose clear is still pending resolves to the clear color without
  * touching its samples, and a pixel whose samples agree (every pixel
  * inside a triangle) is copied: most of a frame costs one compare per
@@ -589,13 +589,35 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
             return sr__fail(ctx, SR_INVALID_ARG, "sr_clear_desc.color[%d] is not finite", c);
         }
     }
+    if ((unsigned)desc->color_action > SR_ACTION_KEEP ||
+        (unsigned)desc->depth_action > SR_ACTION_KEEP ||
+        (unsigned)desc->stencil_action > SR_ACTION_KEEP) {
+        const char *field = (unsigned)desc->color_action > SR_ACTION_KEEP ? "color_action"
+                            : (unsigned)desc->depth_action > SR_ACTION_KEEP ? "depth_action"
+                                                                             : "stencil_action";
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_clear_desc.%s is not an sr_clear_action", field);
+    }
     if (!(desc->depth >= 0.0f && desc->depth <= 1.0f)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_clear_desc.depth must be in [0, 1] (got %g)",
                         (double)desc->depth);
     }
+    /* The default actions clear to fixed values; a value they would drop is
+     * most likely a forgotten SR_ACTION_CLEAR. */
+    if (desc->depth_action == SR_ACTION_DEFAULT && desc->depth != 0.0f && desc->depth != 1.0f) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_clear_desc.depth %g needs depth_action = SR_ACTION_CLEAR "
+                        "(the default action clears to 1)", (double)desc->depth);
+    }
+    if (desc->stencil_action == SR_ACTION_DEFAULT && desc->stencil != 0) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_clear_desc.stencil %d needs stencil_action = SR_ACTION_CLEAR "
+                        "(the default action clears to 0)", desc->stencil);
+    }
+    float depth = desc->depth_action == SR_ACTION_CLEAR ? desc->depth : 1.0f;
+    uint8_t stencil = desc->stencil_action == SR_ACTION_CLEAR ? desc->stencil : 0;
     unsigned pending = 0;
     bool same_color = false;
-    if (!desc->no_color) {
+    if (desc->color_action != SR_ACTION_KEEP) {
         uint8_t rgba[4] = { unorm8(desc->color[0]), unorm8(desc->color[1]),
                             unorm8(desc->color[2]), unorm8(desc->color[3]) };
         uint32_t color;
@@ -604,12 +626,12 @@ sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *des
         fb->clear_color = color;
         pending |= SR_TILE_PENDING_COLOR;
     }
-    if (!desc->no_depth && fb->depth) {
-        fb->clear_depth = sr__depth_quantize(desc->depth, fb->depth_bits);
+    if (desc->depth_action != SR_ACTION_KEEP && fb->depth) {
+        fb->clear_depth = sr__depth_quantize(depth, fb->depth_bits);
         pending |= SR_TILE_PENDING_DEPTH;
     }
-    if (!desc->no_stencil && fb->stencil) {
-        fb->clear_stencil = desc->stencil;
+    if (desc->stencil_action != SR_ACTION_KEEP && fb->stencil) {
+        fb->clear_stencil = stencil;
         pending |= SR_TILE_PENDING_STENCIL;
     }
     int tiles = fb->tiles_x * fb->tiles_y;

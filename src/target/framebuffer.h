@@ -70,7 +70,7 @@ struct sr_framebuffer {
 };
 
 /* The standard positions as q8 offsets from the pixel centre, x then y
- * (RASTER_RULES 8.1: 16 x the D3D offset in 1/16 px, -128..112).  NULL
+ * (docs/raster-rules.md §9.1: 16 x the D3D offset in 1/16 px, -128..112).  NULL
  * for a count that is not 1, 2, 4, 8 or 16. */
 const int8_t (*sr__sample_offsets(int samples))[2];
 

@@ -160,13 +160,13 @@ static void decode(reader *r, decoded *o)
     st->depth_far = depths[u8(r) % 8];
     uint8_t f = u8(r);
     st->depth_zero_to_one = f & 1;
-    st->no_depth_test = (f >> 1) & 1;
-    st->no_depth_write = (f >> 2) & 1;
+    st->depth_test = (f >> 1) & 1 ? SR_OFF : SR_SWITCH_DEFAULT;
+    st->depth_write = (f >> 2) & 1 ? SR_OFF : SR_ON;
     st->two_sided = (f >> 3) & 1;
     st->offset.fill = (f >> 4) & 1;
     st->offset.line = (f >> 5) & 1;
     st->offset.point = (f >> 6) & 1;
-    st->material.no_vertex_color = (f >> 7) & 1;
+    st->material.vertex_color = (f >> 7) & 1 ? SR_OFF : SR_SWITCH_DEFAULT;
     st->cull = (sr_cull_mode)(u8(r) % 5);
     st->front_face = (sr_front_face)(u8(r) % 3);
     st->rasterizer = (sr_rasterizer)(u8(r) % 4);
@@ -309,7 +309,8 @@ static void run_once(int which, const decoded *o, run *out, run *before)
         .samples = o->samples, .stencil = o->stencil }, &fb);
     FUZZ_CHECK(r == SR_OK);
     /* A recognisable background that no draw produces by accident. */
-    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.2f, 0.4f, 0.6f, 0.8f }, .depth = 0.625f,
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.2f, 0.4f, 0.6f, 0.8f }, .depth_action = SR_ACTION_CLEAR,
+                                        .depth = 0.625f, .stencil_action = SR_ACTION_CLEAR,
                                         .stencil = 0x5a });
     size_t npx = (size_t)o->fb_w * o->fb_h;
     bool has_depth = o->depth_format != SR_DEPTH_NONE;

@@ -22,6 +22,16 @@
         }                                                                    \
     } while (0)
 
+/* The context that owns the meshes: made once, kept for the process. */
+static inline sr_context *fuzz_context(void)
+{
+    static sr_context *ctx;
+    if (!ctx) {
+        FUZZ_CHECK(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    }
+    return ctx;
+}
+
 static inline void fuzz_check_mesh(sr_result r, sr_mesh *m, const sr_io_error *err)
 {
     if (r != SR_OK) {
@@ -60,11 +70,12 @@ static inline void fuzz_check_mesh(sr_result r, sr_mesh *m, const sr_io_error *e
         FUZZ_CHECK(sr_mesh_bounds(m, &lo, &hi));
         /* Computed normals replace the file's: exercises the mesh code on
          * whatever geometry the reader accepted. */
-        sr_result rn = sr_mesh_compute_normals(m, (m->triangle_count & 1) ? SR_NORMALS_FLAT
-                                                                           : SR_NORMALS_SMOOTH);
+        sr_result rn = sr_mesh_compute_normals(fuzz_context(), m,
+                                               (m->triangle_count & 1) ? SR_NORMALS_FLAT
+                                                                       : SR_NORMALS_SMOOTH);
         FUZZ_CHECK(rn == SR_OK || rn == SR_OUT_OF_MEMORY || rn == SR_TOO_LARGE);
     }
-    sr_mesh_free(m);
+    sr_destroy_mesh(fuzz_context(), m);
 }
 
 #endif

@@ -10,7 +10,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sr_io_error err;
     memset(&m, 0, sizeof m);
     memset(&err, 0, sizeof err);
-    sr_result r = sr_parse_obj("fuzz.obj", (const char *)data, size, &m, &err);
+    sr_result r = sr_parse_obj(fuzz_context(), "fuzz.obj", (const char *)data, size, &m, &err);
     fuzz_check_mesh(r, &m, &err);
     return 0;
 }
