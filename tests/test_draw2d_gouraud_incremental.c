@@ -276,3 +276,27 @@ SR_TEST(sr_fill_gouraud_rejects_bad_arguments)
              SR_OK);
     canvas_free(&c);
 }
+
+/* 2D drawing needs a single-sampled target: every path refuses a
+ * multisampled one, after building its edges (the sanitizer build checks
+ * that they are freed). */
+SR_TEST(gouraud_fills_refuse_a_multisampled_framebuffer)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 16, .height = 16,
+                                .samples = 4 }, &fb) == SR_OK);
+    sr_point2 p[4] = { { 1, 1 }, { 14, 2 }, { 12, 13 }, { 2, 12 } };
+    sr_rgba col[4] = { { 1, 0, 0, 1 }, { 0, 1, 0, 1 }, { 0, 0, 1, 1 }, { 1, 1, 1, 1 } };
+    for (int n = 3; n <= 4; n++) {
+        for (int m = SR_GOURAUD_DEFAULT; m <= SR_GOURAUD_INCREMENTAL; m++) {
+            CHECK_EQ(sr_fill_gouraud(ctx, fb, &(sr_polygon2){ p, n, NULL, 0 }, col,
+                                     &(sr_gouraud_desc){ .method = (sr_gouraud_method)m }),
+                     SR_INVALID_ARG);
+            CHECK_STR_CONTAINS(sr_context_error(ctx), "multisampled");
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}

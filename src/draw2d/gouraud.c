@@ -83,12 +83,11 @@ sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr
     double area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
     if (area2 != 0) {
         t.inv_area2 = 1.0 / area2;
-        sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
-        if (r2d != SR_OK) {
-            return r2d;
+        r = sr__fb_begin_2d(ctx, fn, fb);
+        if (r == SR_OK) {
+            r = sr__scan_edge_table(ctx, edges, count, SR_NONZERO,
+                                    (sr__window){ 0, 0, fb->width, fb->height }, tri_span, &t);
         }
-        r = sr__scan_edge_table(ctx, edges, count, SR_NONZERO,
-                                (sr__window){ 0, 0, fb->width, fb->height }, tri_span, &t);
     }
     sr__free(ctx, edges);
     if (r == SR_OK) {
@@ -165,12 +164,11 @@ sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_
         return sr__fail(ctx, SR_INVALID_ARG, "%s: a color is not finite", fn);
     }
     poly_shade s = { fb, edges, colors };
-    sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
-    if (r2d != SR_OK) {
-        return r2d;
+    r = sr__fb_begin_2d(ctx, fn, fb);
+    if (r == SR_OK) {
+        r = sr__scan_edge_table(ctx, edges, count, d.rule,
+                                (sr__window){ 0, 0, fb->width, fb->height }, poly_span, &s);
     }
-    r = sr__scan_edge_table(ctx, edges, count, d.rule, (sr__window){ 0, 0, fb->width, fb->height },
-                            poly_span, &s);
     sr__free(ctx, edges);
     if (r == SR_OK) {
         sr__ok(ctx);
