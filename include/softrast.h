@@ -149,6 +149,7 @@
  *     sr_destroy_mesh            frees a mesh's arrays
  *     sr_mesh_compute_normals    smooth or flat normals
  *     sr_mesh_bounds             the axis-aligned bounding box
+ *     sr_newell_normal           a polygon's normal by Newell's method
  *   built-in geometry
  *     sr_make_bezier_mesh        bicubic Bezier patches tessellated
  *     sr_make_teapot             the Utah teapot
@@ -175,6 +176,7 @@
  *   Gouraud-shaded 2D polygons
  *     sr_fill_triangle_gouraud   a triangle with a color at each vertex
  *     sr_fill_polygon_gouraud    a polygon with a color at each vertex
+ *     sr_fill_gouraud            either, direct or incremental (FillPoly)
  *   paths and strokes
  *     sr_make_path               an empty path
  *     sr_destroy_path            frees it
@@ -859,7 +861,11 @@ typedef struct sr_state {
     sr_scissor scissor;            /* also trims the viewport: nothing outside is touched */
     sr_blend blend;
     sr_color_mask color_mask;
-    float depth_near, depth_far;   /* depth range; both zero -> [0, 1] */
+    /* Depth range: z_ndc maps onto [depth_near, depth_far].  Both zero ->
+     * [0, 1].  As glDepthRange, each is clamped to [0, 1] (infinities too;
+     * NaN is refused), and depth_near > depth_far is allowed: it inverts
+     * depth, nearer fragments getting larger values. */
+    float depth_near, depth_far;
     bool depth_zero_to_one;        /* clip space z in [0, w] (D3D/Vulkan), not [-w, w] */
 
     sr_cull_mode cull;
@@ -1077,6 +1083,25 @@ typedef enum sr_normal_mode {
 SR_API sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
 /* Axis-aligned bounding box; false for an empty mesh. */
 SR_API bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
+
+/* Newell's method: the normal of the polygon points[0..count-1] (closed,
+ * planar or not), unnormalized.  It computes, over the edges i -> j = i + 1
+ * (mod count),
+ *     out.x = sum (y_i - y_j)(z_i + z_j)
+ *     out.y = sum (z_i - z_j)(x_i + x_j)
+ *     out.z = sum (x_i - x_j)(y_i + y_j)
+ * each twice the signed area of the polygon projected on one axis plane.
+ * For a planar polygon, out is normal to its plane, points to the side from
+ * which the corners run counter-clockwise (reversing them negates it), and
+ * |out| is twice its area; sr_vec3_normalize(out) is the unit normal.  For a
+ * non-planar polygon it is the best-fit plane's normal.  Sums run in double,
+ * relative to points[0].  A degenerate polygon (collinear or repeated
+ * corners, or projected areas that cancel, as in a figure eight) has zero
+ * area: out is the zero vector and the result SR_OK, so test |out| before
+ * normalizing.  SR_INVALID_ARG for NULL, count < 3 or a non-finite
+ * coordinate (out zeroed when not NULL); SR_TOO_LARGE if a component
+ * overflows float. */
+SR_API sr_result sr_newell_normal(const sr_vec3 *points, int count, sr_vec3 *out);
 
 /* ---- built-in geometry -------------------------------------------------- */
 
@@ -1306,6 +1331,32 @@ SR_API sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, c
 /* colors: one per polygon point; rule: SR_FILL_RULE_DEFAULT -> nonzero. */
 SR_API sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
                                          const sr_rgba *colors, sr_fill_rule rule);
+
+/* How sr_fill_gouraud finds each pixel's color.  Both cover the pixels of
+ * sr_fill_polygon (the same edge-table converter). */
+typedef enum sr_gouraud_method {
+    SR_GOURAUD_DEFAULT = 0,     /* -> SR_GOURAUD_DIRECT */
+    SR_GOURAUD_DIRECT,          /* each pixel from scratch, in double: a one-contour
+                                 * triangle as sr_fill_triangle_gouraud, anything else as
+                                 * sr_fill_polygon_gouraud */
+    SR_GOURAUD_INCREMENTAL,     /* the notes' FillPoly / FillSpan: along each edge x steps
+                                 * by 1/m and the color by dI/dy per scanline (for a
+                                 * triangle: edges AB then BC beside AC, split at the
+                                 * middle vertex B), along each span the color steps by
+                                 * (I_R - I_L) / (x_R - x_L) per pixel, summed in float.
+                                 * Each walk starts at its first sample (y + 1/2, x + 1/2).
+                                 * Colors within one 8-bit step of DIRECT's: the sums
+                                 * accumulate rounding (docs/draw2d.md) */
+} sr_gouraud_method;
+
+typedef struct sr_gouraud_desc {
+    sr_fill_rule rule;          /* SR_FILL_RULE_DEFAULT -> nonzero */
+    sr_gouraud_method method;
+} sr_gouraud_desc;
+
+/* colors: one per polygon point; desc NULL: all defaults. */
+SR_API sr_result sr_fill_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                                 const sr_rgba *colors, const sr_gouraud_desc *desc);
 
 /* ---- paths and strokes -------------------------------------------------- */
 /*

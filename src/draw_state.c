@@ -146,6 +146,10 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
     if (dn == 0.0 && df == 0.0) {
         df = 1.0;
     }
+    /* glDepthRange clamps both ends to [0, 1]; near > far stays allowed and
+     * inverts depth. */
+    dn = fmin(fmax(dn, 0.0), 1.0);
+    df = fmin(fmax(df, 0.0), 1.0);
     ds->zero_to_one = st->depth_zero_to_one;
     /* The viewport matrix S, onto pixel edges (docs/raster-rules.md §1.3). */
     ds->vp_px = vp.width * 0.5;

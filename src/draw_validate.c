@@ -250,9 +250,10 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
                         "sr_state.viewport (%d, %d, %d x %d) is outside the supported range",
                         vp->x, vp->y, vp->width, vp->height);
     }
-    if (!(st->depth_near >= 0.0f && st->depth_near <= 1.0f && st->depth_far >= 0.0f &&
-          st->depth_far <= 1.0f)) {
-        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.depth_near/depth_far must be in [0, 1]");
+    /* Out-of-range values are clamped to [0, 1] when the state is resolved,
+     * as glDepthRange does; NaN has no place in that range to go to. */
+    if (isnan(st->depth_near) || isnan(st->depth_far)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.depth_near/depth_far must not be NaN");
     }
     if (!isfinite(st->offset.factor) || !isfinite(st->offset.units) || !isfinite(st->offset.clamp)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.offset: factor, units and clamp must be finite");

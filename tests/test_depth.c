@@ -334,6 +334,40 @@ SR_TEST(depth_range_and_zero_to_one_map_ndc_depth)
     target_free(&t);
 }
 
+/* Depths a sloped full-screen quad writes under the range [n, f]. */
+static void range_depths(int fi, float n, float f, float *d)
+{
+    target t = target_make(16, 16, fi);
+    target_clear(&t, 0.5f);
+    sr_state st = { .depth_near = n, .depth_far = f, .depth_func = SR_ALWAYS };
+    CHECK_EQ(draw_quad(&t, &st, 0.1, 0.6, -0.3, WHITE), SR_OK);
+    CHECK_EQ(count_color(&t, WHITE), 16 * 16);
+    REQUIRE(sr_read_depth(t.ctx, t.fb, 0, 0, 16, 16, d, 16) == SR_OK);
+    target_free(&t);
+}
+
+SR_TEST(depth_range_out_of_0_1_is_clamped_as_gl_does)
+{
+    static float want[16 * 16], got[16 * 16];
+    for (int fi = 0; fi < 4; fi++) {
+        range_depths(fi, 0.0f, 1.0f, want);
+        /* The quad's depth varies, so equal buffers say something. */
+        CHECK(want[0] != want[15] && want[0] != want[16 * 15]);
+        range_depths(fi, -1.0f, 2.0f, got);
+        CHECK(memcmp(want, got, sizeof want) == 0);
+        range_depths(fi, -INFINITY, INFINITY, got);
+        CHECK(memcmp(want, got, sizeof want) == 0);
+        /* Reversed, clamped the same way: [1, 0], depth inverted. */
+        range_depths(fi, 1.0f, 0.0f, want);
+        range_depths(fi, 3.0f, -0.5f, got);
+        CHECK(memcmp(want, got, sizeof want) == 0);
+        /* One end out: [0.25, 1]. */
+        range_depths(fi, 0.25f, 1.0f, want);
+        range_depths(fi, 0.25f, 7.0f, got);
+        CHECK(memcmp(want, got, sizeof want) == 0);
+    }
+}
+
 /* ---- polygon offset ------------------------------------------------------- */
 
 enum { PW = 64, PH = 64 };

@@ -126,8 +126,8 @@ static bool make_bad(int i, sr_state *st, sr_draw_desc *d, sr_mat4 *m, bad_draw 
     case 14: st->viewport = (sr_viewport){ -20000, 0, 8, 8 }; want->needle = "sr_state.viewport"; break;
     case 15: st->viewport = (sr_viewport){ 0, 0, 9000, 8 }; want->needle = "sr_state.viewport"; break;
     case 16: st->viewport = (sr_viewport){ 0, 16380, 8, 8 }; want->needle = "sr_state.viewport"; break;
-    case 17: st->depth_near = -0.1f;                       want->needle = "depth_near"; break;
-    case 18: st->depth_far = 1.5f;                         want->needle = "depth_far"; break;
+    case 17: st->depth_far = nan_f;                        want->needle = "depth_far"; break;
+    case 18: st->depth_near = -0.1f; st->depth_far = -nan_f; want->needle = "depth_far"; break;
     case 19: st->depth_near = nan_f;                       want->needle = "depth_near"; break;
     case 20: st->offset.units = nan_f;                     want->needle = "sr_state.offset"; break;
     case 21: st->offset.clamp = INFINITY;                  want->needle = "sr_state.offset"; break;

@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-static bool colors_ok(const sr_rgba *c, int n)
+bool sr__colors_finite(const sr_rgba *c, int n)
 {
     for (int i = 0; i < n; i++) {
         if (!isfinite(c[i].r) || !isfinite(c[i].g) || !isfinite(c[i].b) || !isfinite(c[i].a)) {
@@ -65,7 +65,7 @@ sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn,
                         !fb ? "fb" : !v ? "v" : "colors");
     }
-    if (!colors_ok(colors, 3)) {
+    if (!sr__colors_finite(colors, 3)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: a color is not finite", fn);
     }
     sr__edge2 *edges;
@@ -83,12 +83,11 @@ sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr
     double area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
     if (area2 != 0) {
         t.inv_area2 = 1.0 / area2;
-        sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
-        if (r2d != SR_OK) {
-            return r2d;
+        r = sr__fb_begin_2d(ctx, fn, fb);
+        if (r == SR_OK) {
+            r = sr__scan_edge_table(ctx, edges, count, SR_NONZERO,
+                                    (sr__window){ 0, 0, fb->width, fb->height }, tri_span, &t);
         }
-        r = sr__scan_edge_table(ctx, edges, count, SR_NONZERO,
-                                (sr__window){ 0, 0, fb->width, fb->height }, tri_span, &t);
     }
     sr__free(ctx, edges);
     if (r == SR_OK) {
@@ -160,17 +159,16 @@ sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_
     if (r != SR_OK) {
         return r;
     }
-    if (!colors_ok(colors, poly->point_count)) {
+    if (!sr__colors_finite(colors, poly->point_count)) {
         sr__free(ctx, edges);
         return sr__fail(ctx, SR_INVALID_ARG, "%s: a color is not finite", fn);
     }
     poly_shade s = { fb, edges, colors };
-    sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
-    if (r2d != SR_OK) {
-        return r2d;
+    r = sr__fb_begin_2d(ctx, fn, fb);
+    if (r == SR_OK) {
+        r = sr__scan_edge_table(ctx, edges, count, d.rule,
+                                (sr__window){ 0, 0, fb->width, fb->height }, poly_span, &s);
     }
-    r = sr__scan_edge_table(ctx, edges, count, d.rule, (sr__window){ 0, 0, fb->width, fb->height },
-                            poly_span, &s);
     sr__free(ctx, edges);
     if (r == SR_OK) {
         sr__ok(ctx);

@@ -69,4 +69,7 @@ sr_result sr__rasterize_polygon(sr_context *ctx, const char *fn, const sr_polygo
                                 const sr_fill_desc *desc, sr__window win,
                                 sr__span_fn fn_span, void *user);
 
+/* True when every component of the n colors is finite (gouraud.c). */
+bool sr__colors_finite(const sr_rgba *c, int n);
+
 #endif

@@ -31,6 +31,7 @@
 #include "io/io_util.h"
 #include "io/number.h"
 
+#include "geometry/newell.h"
 #include "populate.h"
 
 #include <math.h>
@@ -1107,13 +1108,11 @@ static sr_result triangulate(obj_parser *P, long line, size_t n)
      * (y_i - y_j)(z_i + z_j) etc. is twice the area projected on each axis
      * plane, so it is robust for non-planar and partly collinear polygons
      * and points to the side from which the corners run counter-clockwise. */
-    double nx = 0, ny = 0, nz = 0;
+    double nn[3] = { 0, 0, 0 };
     for (size_t i = 0; i < n; i++) {
-        const double *a = p + 3 * i, *b = p + 3 * ((i + 1) % n);
-        nx += (a[1] - b[1]) * (a[2] + b[2]);
-        ny += (a[2] - b[2]) * (a[0] + b[0]);
-        nz += (a[0] - b[0]) * (a[1] + b[1]);
+        sr__newell_add(nn, p + 3 * i, p + 3 * ((i + 1) % n));
     }
+    const double nx = nn[0], ny = nn[1], nz = nn[2];
     /* Convex when no corner turns against the Newell normal.  A zero normal
      * (degenerate polygon) passes too: any split of it is as good. */
     bool convex = true;
