@@ -183,8 +183,23 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
 #ifdef SR_SIMD_WIDE
 #include "raster/simd_wide.h"
 #endif
+/* The AVX-512 level's stamps and walks (its SR_SIMD_INSTANCE among
+ * them); at the other levels SR_SIMD_INSTANCE makes raster_name straight
+ * from raster_as. */
 #ifdef SR_SIMD_WIDE16
 #include "raster/simd_wide16.h"
+#include "raster/simd_wide16_walk.h"
+#else
+#define SR_SIMD_INSTANCE(name, shading, dmode)                                         \
+    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##name)(                              \
+        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,  \
+        sr_frag_stats *st)                                                             \
+    {                                                                                  \
+        sr_edges ed;                                                                   \
+        sr__tri_edges(t, &ed);                                                         \
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,      \
+                              SR_WALK_PLAIN);                                          \
+    }
 #endif
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
@@ -448,23 +463,6 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     }
 }
 
-/* The AVX-512 instance picks its walk and edge lanes (raster_dispatch in
- * simd_wide16_walk.h, which also defines its SR_SIMD_INSTANCE); the
- * others walk in double lanes. */
-#ifdef SR_SIMD_WIDE16
-#include "raster/simd_wide16_walk.h"
-#else
-#define SR_SIMD_INSTANCE(name, shading, dmode)                                         \
-    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##name)(                              \
-        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,  \
-        sr_frag_stats *st)                                                             \
-    {                                                                                  \
-        sr_edges ed;                                                                   \
-        sr__tri_edges(t, &ed);                                                         \
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,      \
-                              SR_WALK_PLAIN);                                          \
-    }
-#endif
 /* SR_SIMD_INSTANCE(name, ...) defines raster_name (and, at the AVX-512
  * level, its tiny_name and walk_name halves); SR_SIMD_FN suffixes each
  * with the level, so raster_unlit_less_avx512 is raster_unlit_less below. */
@@ -493,7 +491,7 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
     if (ds->texture) {
         /* Textured color in the AVX-512 instance; the other textured
          * models and instances take the scalar path. */
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* a hook function here reorders this function's blocks */
         if (sr__color_varying_shading(ds->shading)) {
             return less ? SR_SIMD_FN(raster_tex_less) : SR_SIMD_FN(raster_tex_off);
         }
