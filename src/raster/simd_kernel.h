@@ -3,8 +3,11 @@
  * by triangle_simd.c - compiled for AVX-512 (sixteen-lane stamps and
  * walks: simd_wide16.h, simd_wide16_walk.h), for AVX2 (eight-lane block
  * rows, simd_wide.h) and for the baseline instruction set (four-lane
- * groups) - with SR_SIMD_FN naming the copies (f_avx512, f_avx2, f_base).  Written with GCC/Clang vector extensions and intrinsics, so
- * one source serves all three.
+ * groups) - with SR_SIMD_FN naming the copies (f_avx512, f_avx2, f_base).
+ * Written with GCC/Clang vector extensions and intrinsics, so one source
+ * serves all three.  The AVX-512 paths that branch off raster_as stay in
+ * line under #ifdef SR_SIMD_WIDE16: moved into functions, they change the
+ * AVX-512 instances' generated code.
  *
  * Exactness: edge values are integers below 2^53, so holding them in
  * double lanes is exact; the AVX-512 copy holds them in 32-bit lanes
@@ -230,7 +233,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         g4[i] = (v4d){ g, g, g, g };
     }
     const v4i all = { -1, -1, -1, -1 };
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* in line: in a struct or a function, the AVX-512 code changes */
     __m512d lx8[3], nb8[3];
     __m512i nb32[3], off82[3], off44[3];
     SR_SIMD_FN(w16_edge_lanes)(ed, sx, lx8, nb8, nb32);
@@ -242,12 +245,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 #endif
     SR_SIMD_FN(tri_lanes) lanes;
     SR_SIMD_FN(make_lanes)(t, &lanes);
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* apart from the block above: merged, the AVX-512 code changes */
     SR_SIMD_FN(w16_lanes) wl;
     SR_SIMD_FN(w16_make)(t, shading, &wl);
 #endif
 
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* in line: even as always_inline functions, the AVX-512 code changes */
     if (rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
         /* Tiny triangles: the bounding box in 4 x 4 stamps, lane (x, y)
          * at offset x a + y b from the stamp's corner. */
@@ -377,7 +380,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 r[i] = (double)(e[i] - ed->bias[i] + sy[i] * (py0 - by));
             }
             bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
-#if defined(SR_SIMD_WIDE16)
+#if defined(SR_SIMD_WIDE16) /* in line, as the small-triangle walks above */
             {
                 /* The block's rows in pairs, sixteen lanes, with the span
                  * [px0, px1) and the rows that exist as the lane mask. */
