@@ -126,6 +126,10 @@
  *     sr_texture_levels          its number of mip levels
  *   supersampling
  *     sr_downsample              a supersampled image filtered down
+ *   tone mapping
+ *     sr_tonemap                 linear float pixels to RGBA8 sRGB: exposure, curve, encode
+ *     sr_tonemap_rgb             one colour through a tone curve
+ *     sr_srgb_encode8            a display-linear value to its 8-bit sRGB code
  *   programmable stages
  *     sr_make_builtin_program    a built-in shading model as a program
  *     sr_builtin_program         the sr_program to draw it with
@@ -537,6 +541,40 @@ typedef enum sr_resample_filter {
  * clamped), in the bytes' own space, rounded and clamped. */
 sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst,
                         sr_resample_filter filter);
+
+/* ---- tone mapping ------------------------------------------------------- */
+
+/* Tone curves from linear light (Rec. 709 primaries, any non-negative
+ * value) to display-linear [0, 1] (docs/tonemap.md). */
+typedef enum sr_tonemap_op {
+    SR_TONEMAP_DEFAULT = 0,  /* -> SR_TONEMAP_PBR_NEUTRAL */
+    SR_TONEMAP_PBR_NEUTRAL,  /* Khronos PBR Neutral: base colours stay true, highlights compress */
+    SR_TONEMAP_ACES,         /* ACES filmic, Stephen Hill's RRT+ODT fit, input / 0.6 (three.js) */
+    SR_TONEMAP_NONE,         /* clamp to [0, 1] */
+} sr_tonemap_op;
+
+typedef struct sr_tonemap_desc {
+    sr_tonemap_op op;
+    float exposure;          /* EV: the input times 2^exposure first; -64..64, 0 = as is */
+    int channels;            /* floats a pixel: 3 (RGB, alpha out 255) or 4 (RGBA); 0 -> 4 */
+} sr_tonemap_desc;
+
+/* Linear-light float pixels (width x height, `stride` bytes a row, 0 =
+ * packed) to RGBA8 sRGB in `out` (`out_stride` bytes a row, 0 = 4 width):
+ * exposure, tone curve, then the exact piecewise sRGB OETF rounded to the
+ * nearest code (sr_srgb_encode8).  NaN and negative values become 0, +inf
+ * the brightest white; alpha is clamped to [0, 1] and scaled, not
+ * encoded.  `pixels` and `out` must not overlap.  desc may be NULL (the
+ * defaults).  Rows run on the context's threads; the bytes are the same
+ * for any thread count. */
+sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height, size_t stride,
+                     uint8_t *out, size_t out_stride, const sr_tonemap_desc *desc);
+/* One colour through a tone curve (no exposure, no encode): out in [0, 1]. */
+sr_result sr_tonemap_rgb(sr_tonemap_op op, const float in[3], float out[3]);
+/* A display-linear value to its 8-bit sRGB code: the OETF (12.92 x up to
+ * 0.0031308, 1.055 x^(1/2.4) - 0.055 above), times 255, rounded to
+ * nearest; NaN and values <= 0 give 0, values >= 1 give 255. */
+uint8_t sr_srgb_encode8(float linear);
 
 /* ---- pipeline state ----------------------------------------------------- */
 

@@ -185,6 +185,29 @@ sr_result sr_read_image(const char *path, int *width, int *height,
 sr_result sr_decode_image(const char *name, const uint8_t *data, size_t size,
                           int *width, int *height, uint8_t **pixels, sr_io_error *err);
 
+/* Radiance RGBE pictures (.hdr, .pic), such as equirectangular
+ * environment maps, read as linear float RGB: 3 floats a pixel, rows top
+ * first, *pixels malloc'd (free it with free()).  The header must start
+ * with #?RADIANCE or #?RGBE; FORMAT, when given, must be 32-bit_rle_rgbe
+ * (XYZE is SR_UNSUPPORTED).  EXPOSURE and the other header variables are
+ * ignored: the values are those stored, as three.js, Blender and stb_image
+ * read them (scale with the tone mapper's exposure instead).  Resolution
+ * lines "-Y H +X W" (the usual one), "+Y" (bottom row first) and "-X"
+ * (right to left) are read; X before Y (column order) is SR_UNSUPPORTED.
+ * Scanlines are new-style run-length or flat; old-style runs (a 1,1,1
+ * pixel) are SR_UNSUPPORTED.  A pixel (m, e) is (m + 0.5) * 2^(e - 136),
+ * 0 when e == 0, as Radiance's own reader converts it.  At most
+ * SR_HDR_MAX_SIDE a side and SR_HDR_MAX_PIXELS pixels, checked, with the
+ * file's length, before anything is allocated; bytes after the last
+ * scanline are ignored. */
+#define SR_HDR_MAX_SIDE   32768
+#define SR_HDR_MAX_PIXELS ((size_t)1 << 27)   /* 1.5 GiB of floats */
+sr_result sr_read_hdr(const char *path, int *width, int *height, float **pixels,
+                      sr_io_error *err);
+/* The same on a file already in memory; `name` is used in messages. */
+sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t size, int *width,
+                        int *height, float **pixels, sr_io_error *err);
+
 /* SVG 1.1 drawings, rendered with the 2D toolkit: svg, g, path, rect,
  * circle, ellipse, line, polyline, polygon; transforms; fill and stroke
  * with their opacities, rules, joins and caps; shape-rendering; display
