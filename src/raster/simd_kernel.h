@@ -3,8 +3,11 @@
  * by triangle_simd.c - compiled for AVX-512 (sixteen-lane stamps and
  * walks: simd_wide16.h, simd_wide16_walk.h), for AVX2 (eight-lane block
  * rows, simd_wide.h) and for the baseline instruction set (four-lane
- * groups) - with SR_SIMD_FN naming the copies (f_avx512, f_avx2, f_base).  Written with GCC/Clang vector extensions and intrinsics, so
- * one source serves all three.
+ * groups) - with SR_SIMD_FN naming the copies (f_avx512, f_avx2, f_base).
+ * Written with GCC/Clang vector extensions and intrinsics, so one source
+ * serves all three.  The AVX-512 paths that branch off raster_as stay in
+ * line under #ifdef SR_SIMD_WIDE16: moved into functions, they change the
+ * AVX-512 instances' generated code.
  *
  * Exactness: edge values are integers below 2^53, so holding them in
  * double lanes is exact; the AVX-512 copy holds them in 32-bit lanes
@@ -183,8 +186,23 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
 #ifdef SR_SIMD_WIDE
 #include "raster/simd_wide.h"
 #endif
+/* The AVX-512 level's stamps and walks (its SR_SIMD_INSTANCE among
+ * them); at the other levels SR_SIMD_INSTANCE makes raster_name straight
+ * from raster_as. */
 #ifdef SR_SIMD_WIDE16
 #include "raster/simd_wide16.h"
+#include "raster/simd_wide16_walk.h"
+#else
+#define SR_SIMD_INSTANCE(name, shading, dmode)                                         \
+    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##name)(                              \
+        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,  \
+        sr_frag_stats *st)                                                             \
+    {                                                                                  \
+        sr_edges ed;                                                                   \
+        sr__tri_edges(t, &ed);                                                         \
+        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,      \
+                              SR_WALK_PLAIN);                                          \
+    }
 #endif
 
 SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
@@ -215,7 +233,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
         g4[i] = (v4d){ g, g, g, g };
     }
     const v4i all = { -1, -1, -1, -1 };
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* in line: in a struct or a function, the AVX-512 code changes */
     __m512d lx8[3], nb8[3];
     __m512i nb32[3], off82[3], off44[3];
     SR_SIMD_FN(w16_edge_lanes)(ed, sx, lx8, nb8, nb32);
@@ -227,12 +245,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
 #endif
     SR_SIMD_FN(tri_lanes) lanes;
     SR_SIMD_FN(make_lanes)(t, &lanes);
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* apart from the block above: merged, the AVX-512 code changes */
     SR_SIMD_FN(w16_lanes) wl;
     SR_SIMD_FN(w16_make)(t, shading, &wl);
 #endif
 
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* in line: even as always_inline functions, the AVX-512 code changes */
     if (rx1 - rx0 <= 4 && ry1 - ry0 <= 2 * SR_BLOCK_SIZE) {
         /* Tiny triangles: the bounding box in 4 x 4 stamps, lane (x, y)
          * at offset x a + y b from the stamp's corner. */
@@ -362,7 +380,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
                 r[i] = (double)(e[i] - ed->bias[i] + sy[i] * (py0 - by));
             }
             bool full_width = px0 == bx && px1 == bx + SR_BLOCK_SIZE;
-#if defined(SR_SIMD_WIDE16)
+#if defined(SR_SIMD_WIDE16) /* in line, as the small-triangle walks above */
             {
                 /* The block's rows in pairs, sixteen lanes, with the span
                  * [px0, px1) and the rows that exist as the lane mask. */
@@ -448,23 +466,6 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, con
     }
 }
 
-/* The AVX-512 instance picks its walk and edge lanes (raster_dispatch in
- * simd_wide16_walk.h, which also defines its SR_SIMD_INSTANCE); the
- * others walk in double lanes. */
-#ifdef SR_SIMD_WIDE16
-#include "raster/simd_wide16_walk.h"
-#else
-#define SR_SIMD_INSTANCE(name, shading, dmode)                                         \
-    SR_SIMD_TARGET static void SR_SIMD_FN(raster_##name)(                              \
-        const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1, int ry1,  \
-        sr_frag_stats *st)                                                             \
-    {                                                                                  \
-        sr_edges ed;                                                                   \
-        sr__tri_edges(t, &ed);                                                         \
-        SR_SIMD_FN(raster_as)(ds, t, &ed, rx0, ry0, rx1, ry1, st, shading, dmode,      \
-                              SR_WALK_PLAIN);                                          \
-    }
-#endif
 /* SR_SIMD_INSTANCE(name, ...) defines raster_name (and, at the AVX-512
  * level, its tiny_name and walk_name halves); SR_SIMD_FN suffixes each
  * with the level, so raster_unlit_less_avx512 is raster_unlit_less below. */
@@ -493,7 +494,7 @@ static sr_raster_fn SR_SIMD_FN(select)(const sr_draw_state *ds)
     if (ds->texture) {
         /* Textured color in the AVX-512 instance; the other textured
          * models and instances take the scalar path. */
-#ifdef SR_SIMD_WIDE16
+#ifdef SR_SIMD_WIDE16 /* a hook function here reorders this function's blocks */
         if (sr__color_varying_shading(ds->shading)) {
             return less ? SR_SIMD_FN(raster_tex_less) : SR_SIMD_FN(raster_tex_off);
         }

@@ -3,8 +3,15 @@
  * covered whole in rows of sixteen, tiny triangles in a function of their
  * own, the textured instances, and the SR_SIMD_INSTANCE that makes this
  * level's raster_name from them.  Included by simd_kernel.h in its
- * AVX-512 instance only, after raster_as, which the walks call; the
+ * AVX-512 instance only, before raster_as, which the walks call; the
  * stamps they draw are simd_wide16.h's. */
+
+/* Defined after this file, in simd_kernel.h; the walks below call it. */
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_as)(const sr_draw_state *ds, const sr_tri *t,
+                                                    const sr_edges *ed,
+                                                    int rx0, int ry0, int rx1, int ry1,
+                                                    sr_frag_stats *st, sr_shading shading,
+                                                    sr_depth_mode dmode, sr_walk_flags walk);
 
 /* A box the triangle covers whole (a large triangle over most of its
  * tiles): no blocks and no coverage test, each row in spans of sixteen,
