@@ -1021,7 +1021,7 @@ static void run_fault_injection(const char *what, sr_result (*run)(sr_mesh *, sr
 {
     int failures = 0;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1,
-                                                .allocator = { fault_alloc, fault_free } },
+                                                .allocator = { .alloc = fault_alloc, .free = fault_free } },
                             &fault_ctx) == SR_OK);
     for (long k = 0; k < 100000; k++) {
         sr_mesh m;
