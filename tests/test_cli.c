@@ -18,6 +18,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <signal.h>
 #include <spawn.h>
 #include <stdlib.h>
@@ -2238,5 +2239,181 @@ SR_TEST(demo_and_svg_write_a_jpeg_for_a_jpg_name)
         CHECK(corner[0] >= 247 && corner[1] >= 247 && corner[2] >= 247);
         free(px);
     }
+#endif
+}
+
+/* ---- softrast thumbnail ------------------------------------------------- */
+
+/* A fresh DIR holding a unit cube as box.stl; `out` names DIR/thumb.png. */
+static bool thumb_dir(const char *name, char *dir, char *model, char *out)
+{
+    fresh_dir(name, dir, 1024);
+    snprintf(model, 1100, "%s/box.stl", dir);
+    snprintf(out, 1100, "%s/thumb.png", dir);
+    return write_box_stl(model, 1.0f, 1.0f, 1.0f);
+}
+
+/* The freedesktop form `softrast thumbnail -s SIZE INPUT OUTPUT`: a
+ * SIZE x SIZE PNG with the model framed in its middle, from a path or a
+ * file:// URI (percent-decoded). */
+SR_TEST(thumbnail_frames_the_model_in_a_square_png)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], model[1100], out[1100], uri[1300];
+    REQUIRE(thumb_dir("thumb ok", dir, model, out));
+    /* The directory's space is "%20" in the URI. */
+    const char *space = strchr(model, ' ');
+    REQUIRE(space != NULL);
+    snprintf(uri, sizeof uri, "file://%.*s%%20%s", (int)(space - model), model, space + 1);
+    const char *const inputs[2] = { model, uri };
+    for (int i = 0; i < 2; i++) {
+        const char *label = i ? "file:// URI" : "path";
+        remove(out);
+        cli_run r;
+        REQUIRE(run_cli(ARGS("thumbnail", "-s", "128", inputs[i], out), &r));
+        if (r.status != 0 || r.err_len != 0 || r.out_len != 0) {
+            FAILF("%s: status %d, stderr: %s", label, r.status, r.err);
+        }
+        cli_run_free(&r);
+        int w = 0, h = 0;
+        uint8_t *px = NULL;
+        sr_io_error err;
+        if (sr_read_png(out, NULL, &w, &h, &px, &err) != SR_OK) {
+            FAILF("%s: %s", label, err.message);
+            continue;
+        }
+        free(px);
+        CHECK(w == 128 && h == 128);
+        silhouette box;
+        if (!read_silhouette(label, out, &box)) {
+            FAILF("%s: nothing drawn", label);
+            continue;
+        }
+        /* Centred: the silhouette's middle within 5% of the image's. */
+        double cx = 0.5 * (box.x0 + box.x1), cy = 0.5 * (box.y0 + box.y1);
+        if (fabs(cx - 63.5) > 6.4 || fabs(cy - 63.5) > 6.4) {
+            FAILF("%s: silhouette x %d..%d y %d..%d is not centred", label, box.x0, box.x1,
+                  box.y0, box.y1);
+        }
+        CHECK(box.x1 - box.x0 > 64 || box.y1 - box.y0 > 64);
+    }
+}
+
+/* Bad sizes, missing files and an output that is the input: status 2,
+ * one line, and the input left as it was. */
+SR_TEST(thumbnail_refuses_bad_input_in_one_line)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], model[1100], out[1100], missing[1100];
+    REQUIRE(thumb_dir("thumb bad", dir, model, out));
+    snprintf(missing, sizeof missing, "%s/missing.stl", dir);
+    size_t before = 0;
+    char *kept = read_whole(model, &before);
+    REQUIRE(kept != NULL);
+    const struct {
+        const char *label;
+        const char *const *args;
+        const char *needle;
+    } cases[] = {
+        { "-s 0", ARGS("thumbnail", "-s", "0", model, out), "-s" },
+        { "-s x", ARGS("thumbnail", "-s", "x", model, out), "-s" },
+        { "-s without value", ARGS("thumbnail", model, out, "-s"), "-s" },
+        { "no size", ARGS("thumbnail", model, out), "usage" },
+        { "no output", ARGS("thumbnail", "-s", "64", model), "usage" },
+        { "no files", ARGS("thumbnail"), "usage" },
+        { "missing input", ARGS("thumbnail", "-s", "64", missing, out), "missing.stl" },
+        { "remote URI", ARGS("thumbnail", "-s", "64", "file://host/x.stl", out), "URI" },
+        { "bad escape", ARGS("thumbnail", "-s", "64", "file:///x%2.stl", out), "escape" },
+        { "output is input", ARGS("thumbnail", "-s", "64", model, model), "model being read" },
+        { "JPEG output", ARGS("thumbnail", "-s", "64", model, "t.jpg"), "PNG" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        cli_run r;
+        REQUIRE(run_cli(cases[i].args, &r));
+        check_failure_output(cases[i].label, &r, 2, cases[i].needle);
+        cli_run_free(&r);
+    }
+    CHECK_EQ(count_entries(dir, NULL, 0), 1);
+    size_t after = 0;
+    char *now = read_whole(model, &after);
+    CHECK(now && after == before && memcmp(now, kept, before) == 0);
+    free(now);
+    free(kept);
+}
+
+/* The file managers' entry: [Thumbnailer Entry] with key=value lines, an
+ * Exec that runs `softrast thumbnail -s %s %i %o`, and the MIME types of
+ * STL, OBJ, PLY, glTF and GLB. */
+SR_TEST(thumbnailer_file_runs_the_thumbnail_command)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/../share/thumbnailers/softrast.thumbnailer", sr_test_src_dir());
+    size_t n = 0;
+    char *text = read_whole(path, &n);
+    REQUIRE(text != NULL);
+    bool group = false, exec = false, tryexec = false, mime = false;
+    int line_no = 0;
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+        line_no++;
+        if (line_no == 1) {
+            group = strcmp(line, "[Thumbnailer Entry]") == 0;
+            continue;
+        }
+        char *eq = strchr(line, '=');
+        if (line[0] == '#') {
+            continue;
+        }
+        if (!eq || eq == line) {
+            FAILF("line %d is not key=value: %s", line_no, line);
+            continue;
+        }
+        *eq = '\0';
+        const char *value = eq + 1;
+        if (strcmp(line, "Exec") == 0) {
+            exec = strcmp(value, "softrast thumbnail -s %s %i %o") == 0;
+        } else if (strcmp(line, "TryExec") == 0) {
+            tryexec = strcmp(value, "softrast") == 0;
+        } else if (strcmp(line, "MimeType") == 0) {
+            mime = strstr(value, "model/stl;") && strstr(value, "model/obj;") &&
+                   strstr(value, "ply;") && strstr(value, "model/gltf+json;") &&
+                   strstr(value, "model/gltf-binary;");
+        }
+    }
+    free(text);
+    CHECK(group);
+    CHECK(exec);
+    CHECK(tryexec);
+    CHECK(mime);
+}
+
+/* File managers run thumbnailers in sandboxes without a display: the tool
+ * links no X11, EGL or GL library. */
+SR_TEST(softrast_links_no_display_library)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (access("/usr/bin/ldd", X_OK) != 0) {
+        SKIP("no ldd on this system");
+    }
+    FILE *p = popen("/usr/bin/ldd '" SR_CLI_PATH "'", "r");
+    REQUIRE(p != NULL);
+    char line[1024];
+    int libs = 0;
+    while (fgets(line, sizeof line, p)) {
+        libs++;
+        const char *const banned[] = { "libX11", "libEGL", "libGL", "libOSMesa", "libSDL2" };
+        for (size_t i = 0; i < sizeof banned / sizeof banned[0]; i++) {
+            if (strstr(line, banned[i])) {
+                FAILF("softrast links %s: %s", banned[i], line);
+            }
+        }
+    }
+    CHECK_EQ(pclose(p), 0);
+    CHECK(libs > 1);
 #endif
 }

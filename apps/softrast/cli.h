@@ -15,6 +15,7 @@ enum { EXIT_OK = 0, EXIT_FAILURE_RUN = 1, EXIT_USAGE = 2 };
 
 int cmd_render(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
+int cmd_thumbnail(int argc, char **argv); /* thumbnail.c: a render for file managers */
 int cmd_svg(int argc, char **argv);   /* svg.c; needs expat */
 int cmd_view(int argc, char **argv);  /* view.c; needs SDL2 and FreeType */
 

@@ -66,6 +66,9 @@ static void usage(FILE *f)
             "commands:\n"
             "  render [MODEL] [options]   render a model file (OBJ, PLY, STL, ...) or the\n"
             "                             built-in teapot scene to a PNG\n"
+            "  thumbnail -s SIZE INPUT OUTPUT\n"
+            "                             a SIZE x SIZE PNG preview of a model for file\n"
+            "                             managers (the freedesktop thumbnailer convention)\n"
             "  svg INPUT.svg [options]    render an SVG drawing to a PNG with the 2D toolkit\n"
             "  demo NAME [options]        an image that shows a pipeline phenomenon\n"
             "                             ('softrast demo --help' lists them)\n"
@@ -93,6 +96,9 @@ static int run(int argc, char **argv)
     }
     if (strcmp(cmd, "render") == 0) {
         return cmd_render(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "thumbnail") == 0) {
+        return cmd_thumbnail(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "demo") == 0) {
         return cmd_demo(argc - 1, argv + 1);
