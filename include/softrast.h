@@ -665,6 +665,16 @@ typedef enum sr_rasterizer {
     SR_RASTER_BARYCENTRIC,   /* bounding box, barycentric test per pixel */
 } sr_rasterizer;
 
+/* Where triangles are clipped (docs/clipping.md).  Both give the same
+ * pixels up to the float rounding of the new vertices. */
+typedef enum sr_clipper {
+    SR_CLIPPER_DEFAULT = 0,    /* -> SR_CLIPPER_HOMOGENEOUS */
+    SR_CLIPPER_HOMOGENEOUS,    /* clip space, before the divide, with a guard band */
+    SR_CLIPPER_VIEW_VOLUME,    /* view space, the six planes of the view volume;
+                                  built-in shading only (no program), and the
+                                  projection must be invertible */
+} sr_clipper;
+
 typedef enum sr_light_type {
     SR_LIGHT_OFF = 0,
     SR_LIGHT_DIRECTIONAL,    /* `vector` is the direction the light travels */
@@ -871,6 +881,7 @@ typedef struct sr_state {
     sr_cull_mode cull;
     sr_front_face front_face;
     sr_rasterizer rasterizer;
+    sr_clipper clipper;            /* triangles only: lines and points clip homogeneously */
     sr_polygon_mode polygon_mode_front;
     sr_polygon_mode polygon_mode_back;
     float line_width;              /* whole pixels, 1..64; 0 -> 1 (runs across the minor axis) */
