@@ -3,7 +3,8 @@
  *
  * softrast is the raster pipeline of a graphics course made exact: object
  * coordinates go through the model, camera and projection matrices (M_O, E,
- * P), are clipped in homogeneous clip space, divided by w, mapped to pixels
+ * P), are clipped in homogeneous clip space (or, on request, in view space
+ * against the six planes of the view volume), divided by w, mapped to pixels
  * by the viewport matrix S, snapped to 8 sub-pixel bits and scan-converted
  * with integer edge functions under the top-left fill rule.  Attributes are
  * interpolated perspective-correctly, depth is tested against a z-buffer,
