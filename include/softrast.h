@@ -3,7 +3,8 @@
  *
  * softrast is the raster pipeline of a graphics course made exact: object
  * coordinates go through the model, camera and projection matrices (M_O, E,
- * P), are clipped in homogeneous clip space, divided by w, mapped to pixels
+ * P), are clipped in homogeneous clip space (or, on request, in view space
+ * against the six planes of the view volume), divided by w, mapped to pixels
  * by the viewport matrix S, snapped to 8 sub-pixel bits and scan-converted
  * with integer edge functions under the top-left fill rule.  Attributes are
  * interpolated perspective-correctly, depth is tested against a z-buffer,
@@ -665,6 +666,16 @@ typedef enum sr_rasterizer {
     SR_RASTER_BARYCENTRIC,   /* bounding box, barycentric test per pixel */
 } sr_rasterizer;
 
+/* Where triangles are clipped (docs/clipping.md).  Both give the same
+ * pixels up to the float rounding of the new vertices. */
+typedef enum sr_clipper {
+    SR_CLIPPER_DEFAULT = 0,    /* -> SR_CLIPPER_HOMOGENEOUS */
+    SR_CLIPPER_HOMOGENEOUS,    /* clip space, before the divide, with a guard band */
+    SR_CLIPPER_VIEW_VOLUME,    /* view space, the six planes of the view volume;
+                                  built-in shading only (no program), and the
+                                  projection must be invertible */
+} sr_clipper;
+
 typedef enum sr_light_type {
     SR_LIGHT_OFF = 0,
     SR_LIGHT_DIRECTIONAL,    /* `vector` is the direction the light travels */
@@ -871,6 +882,7 @@ typedef struct sr_state {
     sr_cull_mode cull;
     sr_front_face front_face;
     sr_rasterizer rasterizer;
+    sr_clipper clipper;            /* triangles only: lines and points clip homogeneously */
     sr_polygon_mode polygon_mode_front;
     sr_polygon_mode polygon_mode_back;
     float line_width;              /* whole pixels, 1..64; 0 -> 1 (runs across the minor axis) */

@@ -4,6 +4,7 @@
  * eye space, and the vector kernels this CPU runs.  Application thread. */
 #include "context.h"
 #include "fragment/depth.h"
+#include "pipeline.h"
 #include "raster/triangle_simd.h"
 
 #include <math.h>
@@ -204,6 +205,10 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
     ds->cull = st->cull == SR_CULL_DEFAULT ? SR_CULL_NONE : st->cull;
     ds->front_ccw = st->front_face != SR_FRONT_CW;
     ds->rasterizer = st->rasterizer == SR_RASTER_DEFAULT ? SR_RASTER_HALFSPACE : st->rasterizer;
+    ds->view_volume = st->clipper == SR_CLIPPER_VIEW_VOLUME;
+    if (ds->view_volume) {
+        sr__view_volume_matrices(proj, ds->proj, ds->proj_inv); /* validated invertible */
+    }
     ds->depth_test = st->depth_test != SR_OFF && fb->depth != NULL;
     ds->depth_write = st->depth_write != SR_OFF && fb->depth != NULL;
     ds->depth_func = st->depth_func == SR_DEPTH_FUNC_DEFAULT ? SR_LESS : st->depth_func;

@@ -48,6 +48,11 @@ typedef struct sr_draw_state {
     sr_cull_mode cull;
     bool front_ccw;
     sr_rasterizer rasterizer;
+    /* SR_CLIPPER_VIEW_VOLUME: triangles are clipped in view space
+     * (geometry/clip_view.c) with the projection P and its inverse,
+     * column-major as sr_mat4. */
+    bool view_volume;
+    double proj[16], proj_inv[16];
 
     bool depth_test, depth_write;
     sr_depth_func depth_func;

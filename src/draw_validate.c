@@ -229,6 +229,24 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.rasterizer %d is not a rasterizer",
                         (int)st->rasterizer);
     }
+    if ((unsigned)st->clipper > SR_CLIPPER_VIEW_VOLUME) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.clipper %d is not a clipper", (int)st->clipper);
+    }
+    if (st->clipper == SR_CLIPPER_VIEW_VOLUME) {
+        /* A program's vertex shader writes clip space only: there is no
+         * view space to clip in. */
+        if (st->program) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_state.clipper SR_CLIPPER_VIEW_VOLUME needs the built-in shading "
+                            "models' view space; a program writes clip space only");
+        }
+        double p[16], inv[16];
+        if (!sr__view_volume_matrices(d->projection, p, inv)) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_state.clipper SR_CLIPPER_VIEW_VOLUME needs an invertible "
+                            "sr_draw_desc.projection");
+        }
+    }
     if ((unsigned)st->interpolation > SR_INTERP_AFFINE) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.interpolation %d is not valid",
                         (int)st->interpolation);

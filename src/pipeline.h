@@ -168,6 +168,14 @@ static inline unsigned sr__clip_outcode_with(const sr_clip_planes *k, const floa
 }
 int sr__clip_polygon(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
                      unsigned planes, sr_clip_vertex *out);
+/* geometry/clip_view.c: the view-volume clipper.  P (NULL -> identity)
+ * and its inverse in double; false when P is singular. */
+bool sr__view_volume_matrices(const sr_mat4 *proj, double p[16], double inv[16]);
+/* Clip a triangle in view space against the six planes of the view volume
+ * and map the polygon back to clip space; the vertex count, < 3 when
+ * nothing is left. */
+int sr__clip_polygon_view(const sr_draw_state *ds, const sr_clip_vertex *const in[3],
+                          sr_clip_vertex *out);
 /* Clip segment ab to the planes; false when nothing is left. */
 bool sr__clip_segment(const sr_draw_state *ds, const sr_clip_vertex *a, const sr_clip_vertex *b,
                       unsigned planes, sr_clip_vertex *out_a, sr_clip_vertex *out_b);

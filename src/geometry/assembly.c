@@ -205,7 +205,8 @@ static __attribute__((noinline)) void clipped_triangle(const sr_front_end *fe, s
     clip_vertex(ds, p2, a2, &v[2]);
     const sr_clip_vertex *in[3] = { &v[0], &v[1], &v[2] };
     sr_clip_vertex poly[SR_CLIP_MAX_VERTS];
-    int n = sr__clip_polygon(ds, in, (c0 | c1 | c2), poly);
+    int n = ds->view_volume ? sr__clip_polygon_view(ds, in, poly)
+                            : sr__clip_polygon(ds, in, (c0 | c1 | c2), poly);
     if (n < 3) {
         c->info.triangles_culled++;
         return;
