@@ -77,16 +77,12 @@ static void frame_mesh(bench_scene *s, sr_camera_basis *basis)
     float r;
     mesh_sphere(&s->mesh, &c, &r);
     float fov = FRAMING_FOV_DEG * PI_F / 180.0f;
-    s->model = sr_mat4_identity();
-    framing_points points = { s->mesh.positions, s->mesh.vertex_count, &s->model };
-    framing_view fit;
-    sr_vec3 eye = framing_default_eye(c, r, fov), target = c;
-    if (framing_fit(&points, 1, c, fov, s->width, s->height, false, &fit)) {
-        eye = fit.eye;
-        target = fit.target;
-    }
-    sr_camera_frame(eye, sr_vec3_sub(target, eye), (sr_vec3){ 0, 1, 0 }, basis);
+    /* The bounding sphere's framing, not the CLI's tighter fit: a scene's
+     * pixels stay what they were, so its figures compare across dates. */
+    sr_vec3 eye = framing_default_eye(c, r, fov);
+    sr_camera_frame(eye, sr_vec3_sub(c, eye), (sr_vec3){ 0, 1, 0 }, basis);
     s->view = sr_camera_matrix(basis);
+    s->model = sr_mat4_identity();
     float near_z, far_z;
     framing_near_far(eye, c, r, &near_z, &far_z);
     float aspect = (float)s->width / (float)s->height;
