@@ -700,6 +700,48 @@ typedef struct sr_material {
                               * SR_OFF: the material's diffuse whatever the draw carries */
 } sr_material;
 
+/* ---- physically based materials ----------------------------------------- */
+
+/* glTF 2.0's metallic-roughness material (its specification's Appendix B),
+ * drawn by the PBR program.  Factors are taken as written: a zeroed
+ * material is a black, smooth dielectric, and sr_pbr_default_material()
+ * gives glTF's defaults (white, metallic 1, roughness 1). */
+typedef enum sr_alpha_mode {
+    SR_ALPHA_OPAQUE = 0,     /* alpha ignored: written as 1 */
+    SR_ALPHA_MASK,           /* fragments with alpha < alpha_cutoff are discarded */
+    SR_ALPHA_BLEND,          /* blended over what is behind (the caller sorts) */
+} sr_alpha_mode;
+
+/* A texture as a material reads it: glTF's textureInfo with its sampler
+ * and KHR_texture_transform.  uv' = T(offset) R(rotation) S(scale) uv. */
+typedef struct sr_texture_slot {
+    const sr_texture *texture;     /* NULL: the slot is empty */
+    int texcoord;                  /* which coordinate set: 0 or 1 */
+    sr_texture_filter filter;
+    sr_texture_wrap wrap_u, wrap_v;
+    float offset[2];
+    float rotation;                /* radians, counter-clockwise in uv */
+    float scale[2];                /* {0, 0} -> {1, 1} */
+} sr_texture_slot;
+
+typedef struct sr_pbr_material {
+    float base_color[4];           /* linear RGBA, times the texture and vertex color */
+    sr_texture_slot base_color_texture;          /* sRGB */
+    float metallic, roughness;     /* 0..1, times the texture's B and G */
+    sr_texture_slot metallic_roughness_texture;  /* linear */
+    sr_texture_slot normal_texture;              /* tangent space, linear */
+    float normal_scale;            /* scales the map's x and y */
+    sr_texture_slot occlusion_texture;           /* R channel, linear */
+    float occlusion_strength;      /* 0: none, 1: the full map */
+    float emissive[3];             /* linear RGB */
+    float emissive_strength;       /* KHR_materials_emissive_strength; 0 -> 1 */
+    sr_texture_slot emissive_texture;            /* sRGB */
+    sr_alpha_mode alpha_mode;
+    float alpha_cutoff;            /* for SR_ALPHA_MASK; 0 -> 0.5 */
+    bool double_sided;             /* back faces drawn, lit with the flipped normal */
+    bool unlit;                    /* KHR_materials_unlit: the base color as it is */
+} sr_pbr_material;
+
 typedef struct sr_polygon_offset {
     float factor;            /* times the depth slope m = max(|dz/dx|, |dz/dy|) */
     float units;             /* times r, the format's smallest step */
