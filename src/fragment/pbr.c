@@ -1,0 +1,730 @@
+/* pbr.c - glTF's metallic-roughness material as a program (fragment
+ * stage): the vertex shader moves positions, normals and tangents to world
+ * space, the fragment shader lights a 2x2 quad with Appendix B of the glTF
+ * specification and writes tone-mapped, sRGB-encoded colors.
+ *
+ * The uniforms are resolved once (sr_make_pbr_program) and read-only
+ * after, so every tile worker shades with them at once.  Per-fragment math
+ * runs as loops over the quad's four lanes, one array per quantity, so the
+ * compiler turns each loop into vector instructions; texture fetches and
+ * the tone curve stay per lane. */
+#include "context.h"
+#include "fragment/texture.h"
+#include "fragment/tonemap.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PI_F          3.14159265358979f
+#define MIN_ROUGHNESS 0.05f     /* a perfect mirror has no highlight from a point light */
+#define MAX_EXPOSURE  64.0f
+
+enum { SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE, SLOT_COUNT };
+
+/* Varyings 0..2 world position, 3..5 world normal; the rest as needed. */
+enum { VARY_POS = 0, VARY_NORMAL = 3, VARY_FIXED = 6 };
+
+typedef struct pbr_slot {
+    const sr_texture *tex;        /* NULL: empty */
+    sr_texture_filter filter;
+    sr_texture_wrap wu, wv;
+    int vary;                     /* varying index of its texcoords */
+    /* KHR_texture_transform moved into sr_texture's frame (v up):
+     * u' = xf[0] s + xf[1] t + xf[2], v' = xf[3] s + xf[4] t + xf[5]. */
+    float xf[6];
+} pbr_slot;
+
+struct sr_pbr {
+    sr_program program;
+    sr_pbr_material m;
+    pbr_slot slot[SLOT_COUNT];
+    sr_mat4 model, view_projection;
+    float normal_matrix[9];       /* row-major 3x3: inverse transpose of the model's */
+    float eye[3];                 /* the camera's world position */
+    int nlights;
+    float light_vec[SR_MAX_LIGHTS][3];  /* directional: unit vector to the light; point: position */
+    float light_rad[SR_MAX_LIGHTS][3];
+    bool light_point[SR_MAX_LIGHTS];
+    bool ambient;
+    float sky[3], ground[3];
+    float scale;                  /* 2^exposure */
+    sr_tonemap_op tonemap;
+    const srgb_table *srgb;
+    int vary_uv[2], vary_color, vary_tangent;   /* -1: absent */
+    size_t vertex_count;
+    const uint8_t *tangents, *texcoords1;
+    size_t tangent_stride, texcoord1_stride;
+};
+
+sr_pbr_material sr_pbr_default_material(void)
+{
+    sr_pbr_material m = {
+        .base_color = { 1, 1, 1, 1 },
+        .metallic = 1.0f,
+        .roughness = 1.0f,
+        .normal_scale = 1.0f,
+        .occlusion_strength = 1.0f,
+        .emissive_strength = 1.0f,
+        .alpha_cutoff = 0.5f,
+    };
+    sr_texture_slot *slots[] = { &m.base_color_texture, &m.metallic_roughness_texture,
+                                 &m.normal_texture, &m.occlusion_texture, &m.emissive_texture };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        slots[i]->scale[0] = slots[i]->scale[1] = 1.0f;
+    }
+    return m;
+}
+
+/* ---- vertex shader ------------------------------------------------------ */
+
+static void pbr_vs(const void *uniforms, const sr_vertex_input *in, float clip[4], float *vary)
+{
+    const sr_pbr *p = uniforms;
+    const float *m = p->model.m;
+    const float *pos = in->position;
+    float w[4];
+    for (int r = 0; r < 4; r++) {
+        w[r] = m[r] * pos[0] + m[4 + r] * pos[1] + m[8 + r] * pos[2] + m[12 + r] * pos[3];
+    }
+    const float *vp = p->view_projection.m;
+    for (int r = 0; r < 4; r++) {
+        clip[r] = vp[r] * w[0] + vp[4 + r] * w[1] + vp[8 + r] * w[2] + vp[12 + r] * w[3];
+    }
+    float iw = w[3] != 0.0f ? 1.0f / w[3] : 1.0f;
+    const float *nm = p->normal_matrix;
+    for (int r = 0; r < 3; r++) {
+        vary[VARY_POS + r] = w[r] * iw;
+        vary[VARY_NORMAL + r] =
+            nm[3 * r] * in->normal[0] + nm[3 * r + 1] * in->normal[1] + nm[3 * r + 2] * in->normal[2];
+    }
+    bool inside = in->index < p->vertex_count;
+    if (p->vary_uv[0] >= 0) {
+        vary[p->vary_uv[0]] = in->texcoord[0];
+        vary[p->vary_uv[0] + 1] = in->texcoord[1];
+    }
+    if (p->vary_uv[1] >= 0) {
+        const float *t = (const float *)(p->texcoords1 + in->index * p->texcoord1_stride);
+        vary[p->vary_uv[1]] = inside ? t[0] : 0.0f;
+        vary[p->vary_uv[1] + 1] = inside ? t[1] : 0.0f;
+    }
+    if (p->vary_color >= 0) {
+        /* A draw without colors multiplies by white. */
+        for (int c = 0; c < 4; c++) {
+            vary[p->vary_color + c] = in->has_color ? in->color[c] : 1.0f;
+        }
+    }
+    if (p->vary_tangent >= 0) {
+        float t[4] = { 0, 0, 0, 1 };
+        if (inside) {
+            memcpy(t, p->tangents + in->index * p->tangent_stride, sizeof t);
+        }
+        /* Tangents lie in the surface: they move with the model matrix. */
+        for (int r = 0; r < 3; r++) {
+            vary[p->vary_tangent + r] = m[r] * t[0] + m[4 + r] * t[1] + m[8 + r] * t[2];
+        }
+        vary[p->vary_tangent + 3] = t[3] < 0.0f ? -1.0f : 1.0f;
+    }
+}
+
+/* ---- fragment shader ---------------------------------------------------- */
+
+/* The slot's texels at the quad's fragments, [channel][lane]; the level of
+ * detail from the transformed coordinates' lane differences.  Texels come
+ * as sr_texture decodes them: linear light for sRGB textures. */
+static void sample_slot(const pbr_slot *s, const sr_fragment_quad *q, float out[4][4],
+                        float uv[2][4])
+{
+    const float *su = q->varyings[s->vary], *sv = q->varyings[s->vary + 1];
+    for (int i = 0; i < 4; i++) {
+        uv[0][i] = s->xf[0] * su[i] + s->xf[1] * sv[i] + s->xf[2];
+        uv[1][i] = s->xf[3] * su[i] + s->xf[4] * sv[i] + s->xf[5];
+    }
+    float lod = 0.0f;
+    if (s->filter == SR_FILTER_TRILINEAR) {
+        lod = sr__texture_lod(s->tex, uv[0][1] - uv[0][0], uv[1][1] - uv[1][0],
+                              uv[0][2] - uv[0][0], uv[1][2] - uv[1][0]);
+    }
+    for (int i = 0; i < 4; i++) {
+        float t[4] = { 0, 0, 0, 1 };
+        if (q->mask >> i & 1) {
+            sr__texture_sample(s->tex, s->filter, s->wu, s->wv, uv[0][i], uv[1][i], lod, t);
+        }
+        for (int c = 0; c < 4; c++) {
+            out[c][i] = t[c];
+        }
+    }
+}
+
+static void normalize4(float v[3][4])
+{
+    for (int i = 0; i < 4; i++) {
+        float l2 = v[0][i] * v[0][i] + v[1][i] * v[1][i] + v[2][i] * v[2][i];
+        float s = l2 > 0.0f ? 1.0f / sqrtf(l2) : 0.0f;
+        v[0][i] *= s;
+        v[1][i] *= s;
+        v[2][i] *= s;
+    }
+}
+
+/* The normal map's tangent frame at each lane, T and B (the normal N is
+ * already the shading side's).  From the tangent varying when the draw
+ * has tangents, else from the screen-space derivatives of position and
+ * the map's coordinates (the surface gradients of u and v). */
+static void tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3][4],
+                          float uv[2][4], float t[3][4], float b[3][4])
+{
+    if (p->vary_tangent >= 0) {
+        const float (*tv)[4] = &q->varyings[p->vary_tangent];
+        float flip = q->front ? 1.0f : -1.0f;
+        for (int i = 0; i < 4; i++) {
+            /* N is flipped on back faces; T and B flip with it. */
+            float tn = (tv[0][i] * n[0][i] + tv[1][i] * n[1][i] + tv[2][i] * n[2][i]) * flip;
+            for (int k = 0; k < 3; k++) {
+                t[k][i] = (tv[k][i] - n[k][i] * flip * tn) * flip;
+            }
+        }
+        normalize4(t);
+        for (int i = 0; i < 4; i++) {
+            float w = tv[3][i] < 0.0f ? -1.0f : 1.0f;
+            b[0][i] = (n[1][i] * t[2][i] - n[2][i] * t[1][i]) * w;
+            b[1][i] = (n[2][i] * t[0][i] - n[0][i] * t[2][i]) * w;
+            b[2][i] = (n[0][i] * t[1][i] - n[1][i] * t[0][i]) * w;
+        }
+        return;
+    }
+    float dp1[3], dp2[3];
+    for (int k = 0; k < 3; k++) {
+        dp1[k] = q->varyings[VARY_POS + k][1] - q->varyings[VARY_POS + k][0];
+        dp2[k] = q->varyings[VARY_POS + k][2] - q->varyings[VARY_POS + k][0];
+    }
+    float du1 = uv[0][1] - uv[0][0], dv1 = uv[1][1] - uv[1][0];
+    float du2 = uv[0][2] - uv[0][0], dv2 = uv[1][2] - uv[1][0];
+    for (int i = 0; i < 4; i++) {
+        float nx = n[0][i], ny = n[1][i], nz = n[2][i];
+        /* dp2 x N and N x dp1: with screen y down, dp1 x dp2 points away
+         * from the viewer, so the sums are minus the gradients. */
+        float a[3] = { dp2[1] * nz - dp2[2] * ny, dp2[2] * nx - dp2[0] * nz, dp2[0] * ny - dp2[1] * nx };
+        float c[3] = { ny * dp1[2] - nz * dp1[1], nz * dp1[0] - nx * dp1[2], nx * dp1[1] - ny * dp1[0] };
+        float tt = 0.0f, bb = 0.0f;
+        for (int k = 0; k < 3; k++) {
+            t[k][i] = -(a[k] * du1 + c[k] * du2);
+            b[k][i] = -(a[k] * dv1 + c[k] * dv2);
+            tt += t[k][i] * t[k][i];
+            bb += b[k][i] * b[k][i];
+        }
+        float m = fmaxf(tt, bb);
+        float s = m > 0.0f ? 1.0f / sqrtf(m) : 0.0f;
+        for (int k = 0; k < 3; k++) {
+            t[k][i] *= s;
+            b[k][i] *= s;
+        }
+    }
+}
+
+/* Radiance of the hemisphere light in direction d (world, unit). */
+static void hemisphere(const sr_pbr *p, const float d[3][4], float out[3][4])
+{
+    for (int i = 0; i < 4; i++) {
+        float s = 0.5f + 0.5f * d[1][i];
+        for (int c = 0; c < 3; c++) {
+            out[c][i] = p->ground[c] + (p->sky[c] - p->ground[c]) * s;
+        }
+    }
+}
+
+/* Appendix B at four lanes: the punctual lights through the
+ * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
+ * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
+ * ambient light times the occlusion.  Radiance out, linear, unexposed. */
+static void shade_lanes(const sr_pbr *p, const float pos[3][4], const float n[3][4],
+                        const float v[3][4],
+                        const float base[4][4], const float metal[4], const float rough[4],
+                        const float ao[4], float out[3][4])
+{
+    float cdiff[3][4], f0[3][4], a2[4], nv[4];
+    for (int i = 0; i < 4; i++) {
+        float mt = fminf(fmaxf(metal[i], 0.0f), 1.0f);
+        for (int c = 0; c < 3; c++) {
+            cdiff[c][i] = base[c][i] * (1.0f - mt);
+            f0[c][i] = 0.04f + (base[c][i] - 0.04f) * mt;
+            out[c][i] = 0.0f;
+        }
+        float r = fminf(fmaxf(rough[i], MIN_ROUGHNESS), 1.0f);
+        a2[i] = r * r * r * r;
+        float d = n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i];
+        nv[i] = fmaxf(d, 1e-4f);
+    }
+    for (int l = 0; l < p->nlights; l++) {
+        float ld[3][4], rad[3][4];
+        for (int i = 0; i < 4; i++) {
+            for (int c = 0; c < 3; c++) {
+                ld[c][i] = p->light_vec[l][c];
+                rad[c][i] = p->light_rad[l][c];
+            }
+        }
+        if (p->light_point[l]) {
+            /* KHR_lights_punctual: intensity over the squared distance. */
+            for (int c = 0; c < 3; c++) {
+                for (int i = 0; i < 4; i++) {
+                    ld[c][i] -= pos[c][i];
+                }
+            }
+            for (int i = 0; i < 4; i++) {
+                float d2 = ld[0][i] * ld[0][i] + ld[1][i] * ld[1][i] + ld[2][i] * ld[2][i];
+                float fall = d2 > 0.0f ? 1.0f / d2 : 0.0f;
+                for (int c = 0; c < 3; c++) {
+                    rad[c][i] *= fall;
+                }
+            }
+            normalize4(ld);
+        }
+        for (int i = 0; i < 4; i++) {
+            float hx = ld[0][i] + v[0][i], hy = ld[1][i] + v[1][i], hz = ld[2][i] + v[2][i];
+            float hl = hx * hx + hy * hy + hz * hz;
+            float hs = hl > 0.0f ? 1.0f / sqrtf(hl) : 0.0f;
+            hx *= hs, hy *= hs, hz *= hs;
+            float nl = n[0][i] * ld[0][i] + n[1][i] * ld[1][i] + n[2][i] * ld[2][i];
+            nl = fmaxf(nl, 0.0f);
+            float nh = fmaxf(n[0][i] * hx + n[1][i] * hy + n[2][i] * hz, 0.0f);
+            float vh = fmaxf(v[0][i] * hx + v[1][i] * hy + v[2][i] * hz, 0.0f);
+            float x = 1.0f - vh, x2 = x * x, fw = x2 * x2 * x;
+            float dd = nh * nh * (a2[i] - 1.0f) + 1.0f;
+            float dist = a2[i] / (PI_F * dd * dd);
+            float ga = nl * sqrtf(nv[i] * nv[i] * (1.0f - a2[i]) + a2[i]);
+            float gb = nv[i] * sqrtf(nl * nl * (1.0f - a2[i]) + a2[i]);
+            float vis = ga + gb > 0.0f ? 0.5f / (ga + gb) : 0.0f;
+            float dv = dist * vis;
+            for (int c = 0; c < 3; c++) {
+                float f = f0[c][i] + (1.0f - f0[c][i]) * fw;
+                out[c][i] += ((1.0f - f) * cdiff[c][i] * (1.0f / PI_F) + f * dv) * rad[c][i] * nl;
+            }
+        }
+    }
+    if (!p->ambient) {
+        return;
+    }
+    /* The split sum's scale and bias of f0 from Karis's analytic fit
+     * (mobile UE4), and the hemisphere seen along N and along R. */
+    float r3[3][4], en[3][4], er[3][4];
+    for (int i = 0; i < 4; i++) {
+        float nd = n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i];
+        for (int k = 0; k < 3; k++) {
+            r3[k][i] = 2.0f * nd * n[k][i] - v[k][i];
+        }
+    }
+    hemisphere(p, n, en);
+    hemisphere(p, (const float(*)[4])r3, er);
+    for (int i = 0; i < 4; i++) {
+        float r = fminf(fmaxf(rough[i], 0.0f), 1.0f);
+        float rx = -r + 1.0f, ry = -0.0275f * r + 0.0425f;
+        float rz = -0.572f * r + 1.04f, rw = 0.022f * r - 0.04f;
+        float a004 = fminf(rx * rx, exp2f(-9.28f * nv[i])) * rx + ry;
+        float sa = -1.04f * a004 + rz, sb = 1.04f * a004 + rw;
+        for (int c = 0; c < 3; c++) {
+            /* What the specular lobe reflects the diffuse cannot. */
+            float spec = f0[c][i] * sa + sb;
+            out[c][i] += (cdiff[c][i] * (1.0f - spec) * en[c][i] + spec * er[c][i]) * ao[i];
+        }
+    }
+}
+
+static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
+{
+    const sr_pbr *p = uniforms;
+    const sr_pbr_material *m = &p->m;
+    float base[4][4], tex[4][4], uv[2][4];
+    for (int c = 0; c < 4; c++) {
+        for (int i = 0; i < 4; i++) {
+            base[c][i] = m->base_color[c];
+        }
+    }
+    if (p->vary_color >= 0) {
+        for (int c = 0; c < 4; c++) {
+            for (int i = 0; i < 4; i++) {
+                base[c][i] *= q->varyings[p->vary_color + c][i];
+            }
+        }
+    }
+    if (p->slot[SLOT_BASE].tex) {
+        sample_slot(&p->slot[SLOT_BASE], q, tex, uv);
+        for (int c = 0; c < 4; c++) {
+            for (int i = 0; i < 4; i++) {
+                base[c][i] *= tex[c][i];
+            }
+        }
+    }
+    float alpha[4];
+    for (int i = 0; i < 4; i++) {
+        alpha[i] = m->alpha_mode == SR_ALPHA_BLEND ? fminf(fmaxf(base[3][i], 0.0f), 1.0f) : 1.0f;
+    }
+    if (m->alpha_mode == SR_ALPHA_MASK) {
+        for (int i = 0; i < 4; i++) {
+            q->discard |= base[3][i] < m->alpha_cutoff ? 1u << i : 0u;
+        }
+    }
+    float out[3][4];
+    if (m->unlit) {
+        for (int c = 0; c < 3; c++) {
+            for (int i = 0; i < 4; i++) {
+                out[c][i] = base[c][i];
+            }
+        }
+    } else {
+        float metal[4], rough[4], ao[4];
+        for (int i = 0; i < 4; i++) {
+            metal[i] = m->metallic;
+            rough[i] = m->roughness;
+            ao[i] = 1.0f;
+        }
+        if (p->slot[SLOT_MR].tex) {
+            sample_slot(&p->slot[SLOT_MR], q, tex, uv);
+            for (int i = 0; i < 4; i++) {
+                rough[i] *= tex[1][i];
+                metal[i] *= tex[2][i];
+            }
+        }
+        if (p->slot[SLOT_OCCLUSION].tex) {
+            sample_slot(&p->slot[SLOT_OCCLUSION], q, tex, uv);
+            for (int i = 0; i < 4; i++) {
+                ao[i] = 1.0f + m->occlusion_strength * (tex[0][i] - 1.0f);
+            }
+        }
+        float n[3][4], v[3][4];
+        float side = q->front ? 1.0f : -1.0f;
+        for (int k = 0; k < 3; k++) {
+            for (int i = 0; i < 4; i++) {
+                n[k][i] = q->varyings[VARY_NORMAL + k][i] * side;
+                v[k][i] = p->eye[k] - q->varyings[VARY_POS + k][i];
+            }
+        }
+        normalize4(n);
+        normalize4(v);
+        if (p->slot[SLOT_NORMAL].tex) {
+            float t[3][4], b[3][4];
+            sample_slot(&p->slot[SLOT_NORMAL], q, tex, uv);
+            tangent_frame(p, q, n, uv, t, b);
+            for (int i = 0; i < 4; i++) {
+                float x = (2.0f * tex[0][i] - 1.0f) * m->normal_scale;
+                float y = (2.0f * tex[1][i] - 1.0f) * m->normal_scale;
+                float z = 2.0f * tex[2][i] - 1.0f;
+                for (int k = 0; k < 3; k++) {
+                    n[k][i] = t[k][i] * x + b[k][i] * y + n[k][i] * z;
+                }
+            }
+            normalize4(n);
+        }
+        float pos[3][4];
+        memcpy(pos, &q->varyings[VARY_POS], sizeof pos);
+        shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n,
+                    (const float(*)[4])v, (const float(*)[4])base, metal, rough, ao, out);
+        if (p->slot[SLOT_EMISSIVE].tex) {
+            sample_slot(&p->slot[SLOT_EMISSIVE], q, tex, uv);
+        } else {
+            for (int c = 0; c < 3; c++) {
+                for (int i = 0; i < 4; i++) {
+                    tex[c][i] = 1.0f;
+                }
+            }
+        }
+        float es = m->emissive_strength;
+        for (int c = 0; c < 3; c++) {
+            for (int i = 0; i < 4; i++) {
+                out[c][i] = (out[c][i] + m->emissive[c] * es * tex[c][i]) * p->scale;
+            }
+        }
+    }
+    for (int i = 0; i < 4; i++) {
+        float c[3] = { out[0][i], out[1][i], out[2][i] }, d[3];
+        if (m->unlit) {
+            for (int k = 0; k < 3; k++) {
+                d[k] = c[k];
+            }
+        } else {
+            sr__tone_curve(p->tonemap, c, d);
+        }
+        for (int k = 0; k < 3; k++) {
+            q->color[k][i] = (float)sr__srgb_code(p->srgb, d[k]) * (1.0f / 255.0f);
+        }
+        q->color[3][i] = alpha[i];
+    }
+}
+
+/* ---- the program -------------------------------------------------------- */
+
+static bool finite_n(const float *v, int n)
+{
+    for (int i = 0; i < n; i++) {
+        if (!isfinite(v[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static sr_result check_slot(sr_context *ctx, const sr_texture_slot *s, const char *name)
+{
+    if (!s->texture) {
+        return SR_OK;
+    }
+    if (s->texcoord != 0 && s->texcoord != 1) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.%s.texcoord %d must be 0 or 1",
+                        name, s->texcoord);
+    }
+    if ((unsigned)s->filter > SR_FILTER_TRILINEAR || (unsigned)s->wrap_u > SR_WRAP_MIRROR ||
+        (unsigned)s->wrap_v > SR_WRAP_MIRROR) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.%s: unknown filter or wrap mode",
+                        name);
+    }
+    if (!finite_n(s->offset, 2) || !finite_n(s->scale, 2) || !isfinite(s->rotation)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.%s: transform is not finite", name);
+    }
+    return SR_OK;
+}
+
+static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
+{
+    if (!finite_n(m->base_color, 4) || !finite_n(m->emissive, 3) || !isfinite(m->metallic) ||
+        !isfinite(m->roughness) || !isfinite(m->normal_scale) ||
+        !isfinite(m->occlusion_strength) || !isfinite(m->emissive_strength) ||
+        !isfinite(m->alpha_cutoff)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material: a factor is not finite");
+    }
+    if ((unsigned)m->alpha_mode > SR_ALPHA_BLEND) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.alpha_mode %d is not a mode",
+                        (int)m->alpha_mode);
+    }
+    const sr_texture_slot *slots[] = { &m->base_color_texture, &m->metallic_roughness_texture,
+                                       &m->normal_texture, &m->occlusion_texture,
+                                       &m->emissive_texture };
+    static const char *const names[] = { "base_color_texture", "metallic_roughness_texture",
+                                         "normal_texture", "occlusion_texture",
+                                         "emissive_texture" };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        sr_result r = check_slot(ctx, slots[i], names[i]);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    return SR_OK;
+}
+
+/* KHR_texture_transform, uv' = T R S uv in glTF's frame (v down), taken to
+ * sr_texture's (t = 1 - v): t' = 1 - v'(s, 1 - t). */
+static void resolve_slot(const sr_texture_slot *in, pbr_slot *out)
+{
+    out->tex = in->texture;
+    out->filter = in->filter ? in->filter : SR_FILTER_TRILINEAR;
+    out->wu = in->wrap_u ? in->wrap_u : SR_WRAP_REPEAT;
+    out->wv = in->wrap_v ? in->wrap_v : SR_WRAP_REPEAT;
+    float sx = in->scale[0], sy = in->scale[1];
+    if (sx == 0.0f && sy == 0.0f) {
+        sx = sy = 1.0f;
+    }
+    float c = cosf(in->rotation), s = sinf(in->rotation);
+    /* glTF: u' = c sx u + s sy v + ox, v' = -s sx u + c sy v + oy. */
+    out->xf[0] = c * sx;
+    out->xf[1] = -s * sy;
+    out->xf[2] = s * sy + in->offset[0];
+    out->xf[3] = s * sx;
+    out->xf[4] = c * sy;
+    out->xf[5] = 1.0f - c * sy - in->offset[1];
+}
+
+static sr_result check_desc(sr_context *ctx, const sr_pbr_desc *d)
+{
+    if (!(fabsf(d->exposure) <= MAX_EXPOSURE)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.exposure %g is not in -64..64 EV",
+                        (double)d->exposure);
+    }
+    if ((unsigned)d->tonemap > SR_TONEMAP_NONE) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.tonemap %d is not an operator",
+                        (int)d->tonemap);
+    }
+    if ((unsigned)d->vertex_color > SR_OFF) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.vertex_color %d is not a switch",
+                        (int)d->vertex_color);
+    }
+    if ((d->tangents || d->texcoords1) && d->vertex_count == 0) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_desc.vertex_count must be > 0 with tangents or texcoords1");
+    }
+    if ((d->tangent_stride && d->tangent_stride < 16) || d->tangent_stride % 4 ||
+        (d->texcoord1_stride && d->texcoord1_stride < 8) || d->texcoord1_stride % 4) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_desc: strides must be multiples of 4 and hold their floats");
+    }
+    if (!finite_n(&d->sky.x, 3) || !finite_n(&d->ground.x, 3) || d->sky.x < 0 || d->sky.y < 0 ||
+        d->sky.z < 0 || d->ground.x < 0 || d->ground.y < 0 || d->ground.z < 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc: sky and ground must be finite and >= 0");
+    }
+    for (int l = 0; l < SR_MAX_LIGHTS; l++) {
+        const sr_light *li = &d->lights[l];
+        if ((unsigned)li->type > SR_LIGHT_POINT) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d].type %d is not a type", l,
+                            (int)li->type);
+        }
+        if (li->type != SR_LIGHT_OFF &&
+            (!finite_n(&li->vector.x, 3) || !finite_n(&li->color.x, 3) || !isfinite(li->intensity))) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d] is not finite", l);
+        }
+    }
+    return SR_OK;
+}
+
+static void resolve_lights(const sr_pbr_desc *d, sr_pbr *p)
+{
+    for (int l = 0; l < SR_MAX_LIGHTS; l++) {
+        const sr_light *li = &d->lights[l];
+        if (li->type == SR_LIGHT_OFF) {
+            continue;
+        }
+        int k = p->nlights++;
+        sr_vec3 col = li->color;
+        if (col.x == 0 && col.y == 0 && col.z == 0) {
+            col = (sr_vec3){ 1, 1, 1 };
+        }
+        float in = li->intensity != 0.0f ? li->intensity : 1.0f;
+        p->light_rad[k][0] = col.x * in;
+        p->light_rad[k][1] = col.y * in;
+        p->light_rad[k][2] = col.z * in;
+        p->light_point[k] = li->type == SR_LIGHT_POINT;
+        /* A directional light's vector is the way it travels: shading
+         * wants the way back to it. */
+        sr_vec3 v = p->light_point[k] ? li->vector : sr_vec3_normalize(sr_vec3_scale(li->vector, -1));
+        p->light_vec[k][0] = v.x;
+        p->light_vec[k][1] = v.y;
+        p->light_vec[k][2] = v.z;
+    }
+}
+
+/* Varyings after the fixed six: the texcoord sets the slots read, vertex
+ * colors, then tangents if there is room (else the derivative frame). */
+static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
+{
+    int n = VARY_FIXED;
+    bool uses[2] = { false, false };
+    bool lit = !p->m.unlit;
+    const sr_texture_slot *slots[] = { &p->m.base_color_texture,
+                                       &p->m.metallic_roughness_texture, &p->m.normal_texture,
+                                       &p->m.occlusion_texture, &p->m.emissive_texture };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        if (p->slot[i].tex && (lit || i == SLOT_BASE)) {
+            uses[slots[i]->texcoord] = true;
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        p->vary_uv[k] = -1;
+        if (uses[k] && (k == 0 || d->texcoords1)) {
+            p->vary_uv[k] = n;
+            n += 2;
+        }
+    }
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        int set = slots[i]->texcoord;
+        /* A slot on a set the draw cannot give reads set 0 (zero if absent). */
+        p->slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
+        if (p->slot[i].vary < 0) {
+            p->slot[i].tex = NULL;
+        }
+    }
+    p->vary_color = -1;
+    if (d->vertex_color != SR_OFF) {
+        p->vary_color = n;
+        n += 4;
+    }
+    p->vary_tangent = -1;
+    if (lit && p->slot[SLOT_NORMAL].tex && d->tangents && n + 4 <= SR_SHADER_MAX_VARYINGS) {
+        p->vary_tangent = n;
+        n += 4;
+    }
+    return n;
+}
+
+sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!desc || !out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_pbr_program: %s is NULL",
+                        desc ? "out" : "desc");
+    }
+    *out = NULL;
+    sr_pbr_material mat = desc->material ? *desc->material : sr_pbr_default_material();
+    sr_result r = check_desc(ctx, desc);
+    if (r == SR_OK) {
+        r = check_material(ctx, &mat);
+    }
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_pbr *p = sr__calloc(ctx, 1, sizeof *p);
+    if (!p) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
+    }
+    p->m = mat;
+    if (p->m.emissive_strength == 0.0f) {
+        p->m.emissive_strength = 1.0f;
+    }
+    if (p->m.alpha_cutoff == 0.0f) {
+        p->m.alpha_cutoff = 0.5f;
+    }
+    const sr_texture_slot *slots[] = { &mat.base_color_texture, &mat.metallic_roughness_texture,
+                                       &mat.normal_texture, &mat.occlusion_texture,
+                                       &mat.emissive_texture };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        resolve_slot(slots[i], &p->slot[i]);
+    }
+    p->model = desc->model ? *desc->model : sr_mat4_identity();
+    sr_mat4 view = desc->view ? *desc->view : sr_mat4_identity();
+    sr_mat4 proj = desc->projection ? *desc->projection : sr_mat4_identity();
+    p->view_projection = sr_mat4_mul(&proj, &view);
+    sr_mat4 nm;
+    if (!sr_normal_matrix(&p->model, &nm)) {
+        nm = p->model;
+    }
+    for (int r3 = 0; r3 < 3; r3++) {
+        for (int c = 0; c < 3; c++) {
+            p->normal_matrix[3 * r3 + c] = nm.m[4 * c + r3];
+        }
+    }
+    sr_mat4 inv;
+    if (sr_mat4_invert(&view, &inv)) {
+        p->eye[0] = inv.m[12];
+        p->eye[1] = inv.m[13];
+        p->eye[2] = inv.m[14];
+    }
+    resolve_lights(desc, p);
+    memcpy(p->sky, &desc->sky.x, sizeof p->sky);
+    memcpy(p->ground, &desc->ground.x, sizeof p->ground);
+    p->ambient = p->sky[0] + p->sky[1] + p->sky[2] + p->ground[0] + p->ground[1] + p->ground[2] > 0;
+    p->scale = exp2f(desc->exposure);
+    p->tonemap = desc->tonemap ? desc->tonemap : SR_TONEMAP_PBR_NEUTRAL;
+    p->srgb = sr__srgb_table();
+    p->vertex_count = desc->tangents || desc->texcoords1 ? desc->vertex_count : 0;
+    p->tangents = (const uint8_t *)desc->tangents;
+    p->tangent_stride = desc->tangent_stride ? desc->tangent_stride : 4 * sizeof(float);
+    p->texcoords1 = (const uint8_t *)desc->texcoords1;
+    p->texcoord1_stride = desc->texcoord1_stride ? desc->texcoord1_stride : 2 * sizeof(float);
+    sr_program *pr = &p->program;
+    pr->vertex = pbr_vs;
+    pr->fragment = pbr_fs;
+    pr->uniforms = p;
+    pr->varying_count = layout_varyings(desc, p);
+    pr->may_discard = mat.alpha_mode == SR_ALPHA_MASK;
+    *out = p;
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+const sr_program *sr_pbr_program(const sr_pbr *p)
+{
+    return p ? &p->program : NULL;
+}
+
+void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p)
+{
+    if (ctx && p) {
+        sr__free(ctx, p);
+    }
+}
