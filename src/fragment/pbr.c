@@ -9,15 +9,90 @@
  * compiler turns each loop into vector instructions; texture fetches and
  * the tone curve stay per lane. */
 #include "context.h"
+#include "fragment/light_lanes.h"
 #include "fragment/texture.h"
 #include "fragment/tonemap.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
 #define PI_F          3.14159265358979f
 #define MIN_ROUGHNESS 0.05f     /* a perfect mirror has no highlight from a point light */
 #define MAX_EXPOSURE  64.0f
+
+/* min and max as comparisons: one instruction each, where fminf and
+ * fmaxf are library calls that stop the lane loops from vectorizing. */
+static inline float min_f(float a, float b)
+{
+    return a < b ? a : b;
+}
+
+static inline float max_f(float a, float b)
+{
+    return a > b ? a : b;
+}
+
+static inline float clamp01(float a)
+{
+    return min_f(max_f(a, 0.0f), 1.0f);
+}
+
+static inline v4f load(const float a[4])
+{
+    v4f v;
+    memcpy(&v, a, sizeof v);
+    return v;
+}
+
+static inline void store(float a[4], v4f v)
+{
+    memcpy(a, &v, sizeof v);
+}
+
+static inline void load3(v4f v[3], const float a[][4])
+{
+    for (int k = 0; k < 3; k++) {
+        v[k] = load(a[k]);
+    }
+}
+
+static inline v4f dot3(const v4f a[3], const v4f b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline v4f vmin(v4f a, v4f b)
+{
+    return sr__v4_sel(a < b, a, b);
+}
+
+static inline v4f vmax(v4f a, v4f b)
+{
+    return sr__v4_sel(a > b, a, b);
+}
+
+/* NaN goes to lo. */
+static inline v4f vclamp(v4f a, float lo, float hi)
+{
+    return vmin(vmax(a, lo - (v4f){ 0 }), hi - (v4f){ 0 });
+}
+
+/* 2^x for x <= 0 within 2e-4 relative (the split-sum fit it feeds is
+ * itself a fit): the integer part into the exponent bits, a cubic for
+ * the fraction. */
+static inline v4f exp2_approx(v4f x)
+{
+    x = vmax(x, -126.0f - (v4f){ 0 });
+    v4i xi = __builtin_convertvector(x, v4i);     /* towards zero: x <= 0 */
+    v4f fl = __builtin_convertvector(xi, v4f);
+    v4i below = fl > x;
+    fl = sr__v4_sel(below, fl - 1.0f, fl);
+    xi += below;                                  /* true is -1 */
+    v4f f = x - fl;
+    v4f poly = 1.0f + f * (0.6951786f + f * (0.2261354f + f * 0.0786338f));
+    return poly * (v4f)((xi + 127) << 23);
+}
 
 enum { SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE, SLOT_COUNT };
 
@@ -155,14 +230,14 @@ static void sample_slot(const pbr_slot *s, const sr_fragment_quad *q, float out[
     }
 }
 
-static void normalize4(float v[3][4])
+static void normalize4(float a[3][4])
 {
-    for (int i = 0; i < 4; i++) {
-        float l2 = v[0][i] * v[0][i] + v[1][i] * v[1][i] + v[2][i] * v[2][i];
-        float s = l2 > 0.0f ? 1.0f / sqrtf(l2) : 0.0f;
-        v[0][i] *= s;
-        v[1][i] *= s;
-        v[2][i] *= s;
+    v4f v[3];
+    load3(v, a);
+    v4f l2 = dot3(v, v);
+    v4f s = sr__v4_sel(l2 > 0.0f, 1.0f / sr__v4_sqrt(l2), (v4f){ 0 });
+    for (int k = 0; k < 3; k++) {
+        store(a[k], v[k] * s);
     }
 }
 
@@ -212,7 +287,7 @@ static void tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3]
             tt += t[k][i] * t[k][i];
             bb += b[k][i] * b[k][i];
         }
-        float m = fmaxf(tt, bb);
+        float m = max_f(tt, bb);
         float s = m > 0.0f ? 1.0f / sqrtf(m) : 0.0f;
         for (int k = 0; k < 3; k++) {
             t[k][i] *= s;
@@ -222,13 +297,11 @@ static void tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3]
 }
 
 /* Radiance of the hemisphere light in direction d (world, unit). */
-static void hemisphere(const sr_pbr *p, const float d[3][4], float out[3][4])
+static void hemisphere(const sr_pbr *p, const v4f d[3], v4f out[3])
 {
-    for (int i = 0; i < 4; i++) {
-        float s = 0.5f + 0.5f * d[1][i];
-        for (int c = 0; c < 3; c++) {
-            out[c][i] = p->ground[c] + (p->sky[c] - p->ground[c]) * s;
-        }
+    v4f s = 0.5f + 0.5f * d[1];
+    for (int c = 0; c < 3; c++) {
+        out[c] = p->ground[c] + (p->sky[c] - p->ground[c]) * s;
     }
 }
 
@@ -236,95 +309,124 @@ static void hemisphere(const sr_pbr *p, const float d[3][4], float out[3][4])
  * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
  * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
  * ambient light times the occlusion.  Radiance out, linear, unexposed. */
-static void shade_lanes(const sr_pbr *p, const float pos[3][4], const float n[3][4],
-                        const float v[3][4],
-                        const float base[4][4], const float metal[4], const float rough[4],
-                        const float ao[4], float out[3][4])
+static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
+                        const float v_[3][4], const float base_[4][4], const float metal_[4],
+                        const float rough_[4], const float ao_[4], float out_[3][4])
 {
-    float cdiff[3][4], f0[3][4], a2[4], nv[4];
-    for (int i = 0; i < 4; i++) {
-        float mt = fminf(fmaxf(metal[i], 0.0f), 1.0f);
-        for (int c = 0; c < 3; c++) {
-            cdiff[c][i] = base[c][i] * (1.0f - mt);
-            f0[c][i] = 0.04f + (base[c][i] - 0.04f) * mt;
-            out[c][i] = 0.0f;
-        }
-        float r = fminf(fmaxf(rough[i], MIN_ROUGHNESS), 1.0f);
-        a2[i] = r * r * r * r;
-        float d = n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i];
-        nv[i] = fmaxf(d, 1e-4f);
+    v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3];
+    load3(pos, pos_);
+    load3(n, n_);
+    load3(v, v_);
+    load3(base, base_);
+    v4f mt = vclamp(load(metal_), 0.0f, 1.0f);
+    for (int c = 0; c < 3; c++) {
+        cdiff[c] = base[c] * (1.0f - mt);
+        f0[c] = 0.04f + (base[c] - 0.04f) * mt;
+        out[c] = (v4f){ 0 };
     }
+    v4f r = vclamp(load(rough_), MIN_ROUGHNESS, 1.0f);
+    v4f a2 = r * r * r * r, one_a2 = 1.0f - a2;
+    v4f nv = vmax(dot3(n, v), (v4f){ 1e-4f, 1e-4f, 1e-4f, 1e-4f });
+    /* The visibility term's view half is the same for every light. */
+    v4f gv = sr__v4_sqrt(nv * nv * one_a2 + a2);
     for (int l = 0; l < p->nlights; l++) {
-        float ld[3][4], rad[3][4];
-        for (int i = 0; i < 4; i++) {
-            for (int c = 0; c < 3; c++) {
-                ld[c][i] = p->light_vec[l][c];
-                rad[c][i] = p->light_rad[l][c];
-            }
+        v4f ld[3], rad[3];
+        for (int c = 0; c < 3; c++) {
+            ld[c] = p->light_vec[l][c] - (v4f){ 0 };
+            rad[c] = p->light_rad[l][c] - (v4f){ 0 };
         }
         if (p->light_point[l]) {
             /* KHR_lights_punctual: intensity over the squared distance. */
             for (int c = 0; c < 3; c++) {
-                for (int i = 0; i < 4; i++) {
-                    ld[c][i] -= pos[c][i];
-                }
+                ld[c] -= pos[c];
             }
-            for (int i = 0; i < 4; i++) {
-                float d2 = ld[0][i] * ld[0][i] + ld[1][i] * ld[1][i] + ld[2][i] * ld[2][i];
-                float fall = d2 > 0.0f ? 1.0f / d2 : 0.0f;
-                for (int c = 0; c < 3; c++) {
-                    rad[c][i] *= fall;
-                }
-            }
-            normalize4(ld);
-        }
-        for (int i = 0; i < 4; i++) {
-            float hx = ld[0][i] + v[0][i], hy = ld[1][i] + v[1][i], hz = ld[2][i] + v[2][i];
-            float hl = hx * hx + hy * hy + hz * hz;
-            float hs = hl > 0.0f ? 1.0f / sqrtf(hl) : 0.0f;
-            hx *= hs, hy *= hs, hz *= hs;
-            float nl = n[0][i] * ld[0][i] + n[1][i] * ld[1][i] + n[2][i] * ld[2][i];
-            nl = fmaxf(nl, 0.0f);
-            float nh = fmaxf(n[0][i] * hx + n[1][i] * hy + n[2][i] * hz, 0.0f);
-            float vh = fmaxf(v[0][i] * hx + v[1][i] * hy + v[2][i] * hz, 0.0f);
-            float x = 1.0f - vh, x2 = x * x, fw = x2 * x2 * x;
-            float dd = nh * nh * (a2[i] - 1.0f) + 1.0f;
-            float dist = a2[i] / (PI_F * dd * dd);
-            float ga = nl * sqrtf(nv[i] * nv[i] * (1.0f - a2[i]) + a2[i]);
-            float gb = nv[i] * sqrtf(nl * nl * (1.0f - a2[i]) + a2[i]);
-            float vis = ga + gb > 0.0f ? 0.5f / (ga + gb) : 0.0f;
-            float dv = dist * vis;
+            v4f d2 = dot3(ld, ld);
+            v4f fall = sr__v4_sel(d2 > 0.0f, 1.0f / d2, (v4f){ 0 });
+            v4f il = sr__v4_sqrt(fall);
             for (int c = 0; c < 3; c++) {
-                float f = f0[c][i] + (1.0f - f0[c][i]) * fw;
-                out[c][i] += ((1.0f - f) * cdiff[c][i] * (1.0f / PI_F) + f * dv) * rad[c][i] * nl;
+                rad[c] *= fall;
+                ld[c] *= il;
             }
         }
-    }
-    if (!p->ambient) {
-        return;
-    }
-    /* The split sum's scale and bias of f0 from Karis's analytic fit
-     * (mobile UE4), and the hemisphere seen along N and along R. */
-    float r3[3][4], en[3][4], er[3][4];
-    for (int i = 0; i < 4; i++) {
-        float nd = n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i];
-        for (int k = 0; k < 3; k++) {
-            r3[k][i] = 2.0f * nd * n[k][i] - v[k][i];
+        v4f h[3] = { ld[0] + v[0], ld[1] + v[1], ld[2] + v[2] };
+        v4f hl = dot3(h, h);
+        v4f hs = sr__v4_sel(hl > 0.0f, 1.0f / sr__v4_sqrt(hl), (v4f){ 0 });
+        for (int c = 0; c < 3; c++) {
+            h[c] *= hs;
+        }
+        v4f zero = { 0 };
+        v4f nl = vmax(dot3(n, ld), zero);
+        v4f nh = vmax(dot3(n, h), zero);
+        v4f vh = vmax(dot3(v, h), zero);
+        v4f x = 1.0f - vh, x2 = x * x, fw = x2 * x2 * x;
+        v4f dd = nh * nh * (a2 - 1.0f) + 1.0f;
+        v4f gl = sr__v4_sqrt(nl * nl * one_a2 + a2);
+        /* D times V in one division: a2 / (pi dd^2) times 0.5 / (the
+         * visibility's sum), which is positive as nv > 0 and a2 > 0. */
+        v4f dv = a2 * 0.5f / (PI_F * dd * dd * (nl * gv + nv * gl));
+        for (int c = 0; c < 3; c++) {
+            v4f f = f0[c] + (1.0f - f0[c]) * fw;
+            out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
         }
     }
-    hemisphere(p, n, en);
-    hemisphere(p, (const float(*)[4])r3, er);
-    for (int i = 0; i < 4; i++) {
-        float r = fminf(fmaxf(rough[i], 0.0f), 1.0f);
-        float rx = -r + 1.0f, ry = -0.0275f * r + 0.0425f;
-        float rz = -0.572f * r + 1.04f, rw = 0.022f * r - 0.04f;
-        float a004 = fminf(rx * rx, exp2f(-9.28f * nv[i])) * rx + ry;
-        float sa = -1.04f * a004 + rz, sb = 1.04f * a004 + rw;
+    if (p->ambient) {
+        /* The split sum's scale and bias of f0 from Karis's analytic fit
+         * (mobile UE4), and the hemisphere seen along N and along R. */
+        v4f nd = dot3(n, v), rr[3], en[3], er[3];
+        for (int k = 0; k < 3; k++) {
+            rr[k] = 2.0f * nd * n[k] - v[k];
+        }
+        hemisphere(p, n, en);
+        hemisphere(p, rr, er);
+        v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
+        v4f rx = 1.0f - rc, ry = -0.0275f * rc + 0.0425f;
+        v4f rz = -0.572f * rc + 1.04f, rw = 0.022f * rc - 0.04f;
+        v4f e = exp2_approx(-9.28f * nv);
+        v4f a004 = vmin(rx * rx, e) * rx + ry;
+        v4f sa = -1.04f * a004 + rz, sb = 1.04f * a004 + rw;
         for (int c = 0; c < 3; c++) {
             /* What the specular lobe reflects the diffuse cannot. */
-            float spec = f0[c][i] * sa + sb;
-            out[c][i] += (cdiff[c][i] * (1.0f - spec) * en[c][i] + spec * er[c][i]) * ao[i];
+            v4f spec = f0[c] * sa + sb;
+            out[c] += (cdiff[c] * (1.0f - spec) * en[c] + spec * er[c]) * ao;
         }
+    }
+    for (int c = 0; c < 3; c++) {
+        store(out_[c], out[c]);
+    }
+}
+
+/* The tone curve at four lanes: Khronos PBR Neutral (the default) as
+ * sr__tone_curve computes it, both of its branches evaluated and selected
+ * so the lanes stay in vectors; the other curves per lane. */
+static void tone_lanes(sr_tonemap_op op, float a[3][4])
+{
+    if (op != SR_TONEMAP_PBR_NEUTRAL) {
+        for (int i = 0; i < 4; i++) {
+            float in[3] = { a[0][i], a[1][i], a[2][i] }, o[3];
+            sr__tone_curve(op, in, o);
+            a[0][i] = o[0], a[1][i] = o[1], a[2][i] = o[2];
+        }
+        return;
+    }
+    const float start = 0.8f - 0.04f, desaturation = 0.15f, d = 1.0f - start;
+    v4f c[3];
+    for (int k = 0; k < 3; k++) {
+        /* NaN and negatives are black, infinities the largest float. */
+        c[k] = vclamp(load(a[k]), 0.0f, FLT_MAX);
+    }
+    v4f x = vmin(c[0], vmin(c[1], c[2]));
+    v4f offset = sr__v4_sel(x < 0.08f, x - 6.25f * x * x, 0.04f - (v4f){ 0 });
+    for (int k = 0; k < 3; k++) {
+        c[k] -= offset;
+    }
+    v4f peak = vmax(c[0], vmax(c[1], c[2]));
+    v4f new_peak = 1.0f - d * d / (peak + d - start);
+    v4f g = 1.0f - 1.0f / (desaturation * (peak - new_peak) + 1.0f);
+    v4f sc = new_peak / vmax(peak, start - (v4f){ 0 });
+    v4i keep = peak < start;
+    for (int k = 0; k < 3; k++) {
+        v4f cv = c[k] * sc;
+        store(a[k], sr__v4_sel(keep, c[k], cv + (new_peak - cv) * g));
     }
 }
 
@@ -355,7 +457,7 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
     }
     float alpha[4];
     for (int i = 0; i < 4; i++) {
-        alpha[i] = m->alpha_mode == SR_ALPHA_BLEND ? fminf(fmaxf(base[3][i], 0.0f), 1.0f) : 1.0f;
+        alpha[i] = m->alpha_mode == SR_ALPHA_BLEND ? clamp01(base[3][i]) : 1.0f;
     }
     if (m->alpha_mode == SR_ALPHA_MASK) {
         for (int i = 0; i < 4; i++) {
@@ -433,17 +535,12 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             }
         }
     }
+    if (!m->unlit) {
+        tone_lanes(p->tonemap, out);
+    }
     for (int i = 0; i < 4; i++) {
-        float c[3] = { out[0][i], out[1][i], out[2][i] }, d[3];
-        if (m->unlit) {
-            for (int k = 0; k < 3; k++) {
-                d[k] = c[k];
-            }
-        } else {
-            sr__tone_curve(p->tonemap, c, d);
-        }
         for (int k = 0; k < 3; k++) {
-            q->color[k][i] = (float)sr__srgb_code(p->srgb, d[k]) * (1.0f / 255.0f);
+            q->color[k][i] = (float)sr__srgb_code(p->srgb, out[k][i]) * (1.0f / 255.0f);
         }
         q->color[3][i] = alpha[i];
     }
