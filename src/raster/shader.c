@@ -21,6 +21,8 @@ typedef struct quad_job {
     bool early;                   /* tests before shading */
     int64_t so[16][3];            /* sample offsets of the edge values */
     int64_t bias[3];              /* the edges' top-left bias */
+    int64_t reach[3];             /* bias plus the largest sample offset: an edge value
+                                   * below -reach at a pixel centre covers none of its samples */
     float inv_area;               /* for screen-space (noperspective) weights */
 } quad_job;
 
@@ -51,6 +53,18 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     const sr_tri *t = j->t;
     int n = ds->samples;
     unsigned all = (1u << n) - 1u;
+    /* Most quads of a small triangle's blocks hold none of it: the edge
+     * values are linear, so the largest over the four lane centres is at
+     * one corner, and a quad beyond any edge's reach is skipped before
+     * its samples are tested (the same coverage, found sooner). */
+    for (int e = 0; e < 3; e++) {
+        int64_t best = u00[e] + j->reach[e] +
+                       ((int64_t)(t->a[e] > 0 ? t->a[e] : 0) + (t->b[e] > 0 ? t->b[e] : 0)) *
+                           SR_SUBPIXEL_ONE;
+        if (best < 0) {
+            return;
+        }
+    }
     int64_t u[4][3];
     unsigned cover[4] = { 0, 0, 0, 0 }, live = 0;
     for (int i = 0; i < 4; i++) {
@@ -130,10 +144,17 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     sr__tri_edges(t, &ed);
     j.inv_area = 1.0f / (float)(ed.c[0] + ed.c[1] + ed.c[2]);   /* area2 */
     memcpy(j.bias, ed.bias, sizeof j.bias);
+    for (int i = 0; i < 3; i++) {
+        j.reach[i] = INT64_MIN;
+    }
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
             j.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];
+            j.reach[i] = j.so[s][i] > j.reach[i] ? j.so[s][i] : j.reach[i];
         }
+    }
+    for (int i = 0; i < 3; i++) {
+        j.reach[i] += j.bias[i];
     }
     sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);
 }
