@@ -72,6 +72,31 @@ static inline v4f vmax(v4f a, v4f b)
     return sr__v4_sel(a > b, a, b);
 }
 
+/* 1 / sqrt(x) and 1 / x for x > 0 to about 2 ulps: the SSE estimates
+ * (12 bits) refined by one Newton step, where sqrtps and divps would
+ * hold up the lane math for their latency.  The estimates are exact
+ * functions of their input but differ between CPU vendors, so pixels may
+ * differ by a code between machines, as libm differences already allow. */
+static inline v4f rsqrt_nr(v4f x)
+{
+#if defined(__SSE__)
+    v4f y = (v4f)_mm_rsqrt_ps((__m128)x);
+    return y * (1.5f - 0.5f * x * y * y);
+#else
+    return 1.0f / sr__v4_sqrt(x);
+#endif
+}
+
+static inline v4f rcp_nr(v4f x)
+{
+#if defined(__SSE__)
+    v4f y = (v4f)_mm_rcp_ps((__m128)x);
+    return y * (2.0f - x * y);
+#else
+    return 1.0f / x;
+#endif
+}
+
 /* NaN goes to lo. */
 static inline v4f vclamp(v4f a, float lo, float hi)
 {
@@ -235,7 +260,7 @@ static void normalize4(float a[3][4])
     v4f v[3];
     load3(v, a);
     v4f l2 = dot3(v, v);
-    v4f s = sr__v4_sel(l2 > 0.0f, 1.0f / sr__v4_sqrt(l2), (v4f){ 0 });
+    v4f s = sr__v4_sel(l2 > 0.0f, rsqrt_nr(l2), (v4f){ 0 });
     for (int k = 0; k < 3; k++) {
         store(a[k], v[k] * s);
     }
@@ -328,7 +353,8 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
     v4f a2 = r * r * r * r, one_a2 = 1.0f - a2;
     v4f nv = vmax(dot3(n, v), (v4f){ 1e-4f, 1e-4f, 1e-4f, 1e-4f });
     /* The visibility term's view half is the same for every light. */
-    v4f gv = sr__v4_sqrt(nv * nv * one_a2 + a2);
+    v4f gv2 = nv * nv * one_a2 + a2;    /* >= a2 > 0 */
+    v4f gv = gv2 * rsqrt_nr(gv2);
     for (int l = 0; l < p->nlights; l++) {
         v4f ld[3], rad[3];
         for (int c = 0; c < 3; c++) {
@@ -348,22 +374,22 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
                 ld[c] *= il;
             }
         }
-        v4f h[3] = { ld[0] + v[0], ld[1] + v[1], ld[2] + v[2] };
-        v4f hl = dot3(h, h);
-        v4f hs = sr__v4_sel(hl > 0.0f, 1.0f / sr__v4_sqrt(hl), (v4f){ 0 });
-        for (int c = 0; c < 3; c++) {
-            h[c] *= hs;
-        }
+        /* H = (L + V) / |L + V| without forming it: |L + V|^2 = 2 + 2 L.V,
+         * N.H = (N.L + N.V) / |L + V|, V.H = (1 + L.V) / |L + V|. */
         v4f zero = { 0 };
-        v4f nl = vmax(dot3(n, ld), zero);
-        v4f nh = vmax(dot3(n, h), zero);
-        v4f vh = vmax(dot3(v, h), zero);
+        v4f nlr = dot3(n, ld), lv = dot3(ld, v);
+        v4f hl = 2.0f + 2.0f * lv;
+        v4f hs = sr__v4_sel(hl > 1e-12f, rsqrt_nr(vmax(hl, 1e-12f - zero)), zero);
+        v4f nl = vmax(nlr, zero);
+        v4f nh = vmax((nlr + dot3(n, v)) * hs, zero);
+        v4f vh = vmax((1.0f + lv) * hs, zero);
         v4f x = 1.0f - vh, x2 = x * x, fw = x2 * x2 * x;
         v4f dd = nh * nh * (a2 - 1.0f) + 1.0f;
-        v4f gl = sr__v4_sqrt(nl * nl * one_a2 + a2);
+        v4f gl2 = nl * nl * one_a2 + a2;
+        v4f gl = gl2 * rsqrt_nr(gl2);
         /* D times V in one division: a2 / (pi dd^2) times 0.5 / (the
          * visibility's sum), which is positive as nv > 0 and a2 > 0. */
-        v4f dv = a2 * 0.5f / (PI_F * dd * dd * (nl * gv + nv * gl));
+        v4f dv = a2 * 0.5f * rcp_nr(PI_F * dd * dd * (nl * gv + nv * gl));
         for (int c = 0; c < 3; c++) {
             v4f f = f0[c] + (1.0f - f0[c]) * fw;
             out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
@@ -427,6 +453,24 @@ static void tone_lanes(sr_tonemap_op op, float a[3][4])
     for (int k = 0; k < 3; k++) {
         v4f cv = c[k] * sc;
         store(a[k], sr__v4_sel(keep, c[k], cv + (new_peak - cv) * g));
+    }
+}
+
+/* sr__srgb_code at four lanes: the clamp and the bucket index in vectors,
+ * the two table reads per channel and lane without a branch. */
+static void encode_lanes(const srgb_table *t, const float a[3][4], sr_fragment_quad *q)
+{
+    for (int k = 0; k < 3; k++) {
+        v4f x = vclamp(load(a[k]), 0.0f, 1.0f);
+        v4i bucket = (v4i)x >> SR_SRGB_BUCKET_SHIFT;
+        v4f code;
+        for (int i = 0; i < 4; i++) {
+            int c = t->first[bucket[i]];
+            /* step[255] does not exist: 1.0 and above are 255 already. */
+            c += c < 255 && x[i] >= t->step[c < 255 ? c : 254];
+            code[i] = (float)c;
+        }
+        store(q->color[k], code * (1.0f / 255.0f));
     }
 }
 
@@ -538,10 +582,8 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
     if (!m->unlit) {
         tone_lanes(p->tonemap, out);
     }
+    encode_lanes(p->srgb, out, q);
     for (int i = 0; i < 4; i++) {
-        for (int k = 0; k < 3; k++) {
-            q->color[k][i] = (float)sr__srgb_code(p->srgb, out[k][i]) * (1.0f / 255.0f);
-        }
         q->color[3][i] = alpha[i];
     }
 }
