@@ -169,7 +169,7 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         m.roughness = 0.5f;
         sr_pbr_desc d = { .material = &m, .model = &s->model, .view = &s->view,
                           .projection = &s->projection, .vertex_color = SR_OFF };
-        framing_pbr_lights(&basis, &d);
+        framing_pbr_lights(s->state.lights, &d);
         r = sr_make_pbr_program(s->mesh_ctx, &d, &s->pbr);
         if (r != SR_OK) {
             snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));

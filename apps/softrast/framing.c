@@ -215,14 +215,15 @@ int framing_default_lights(const sr_camera_basis *b, sr_light *lights)
     return 3;
 }
 
-void framing_pbr_lights(const sr_camera_basis *b, sr_pbr_desc *d)
+void framing_pbr_lights(const sr_light *lights, sr_pbr_desc *d)
 {
-    int n = framing_default_lights(b, d->lights);
-    /* Radiance for a BRDF whose white Lambertian part is 1/pi: pi times
-     * the classic intensities gives a surface facing the key light about
-     * the brightness the Blinn-Phong look gives it. */
-    for (int i = 0; i < n; i++) {
-        d->lights[i].intensity *= 1.6f;
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        d->lights[i] = lights[i];
+        /* Radiance for a BRDF whose white Lambertian part is 1/pi: this
+         * scale gives a surface facing the key light, encoded to sRGB,
+         * about the brightness the Blinn-Phong look gives it. */
+        float in = lights[i].intensity != 0.0f ? lights[i].intensity : 1.0f;
+        d->lights[i].intensity = in * FRAMING_PBR_LIGHT_SCALE;
     }
     d->sky = (sr_vec3){ 0.16f, 0.165f, 0.18f };
     d->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };

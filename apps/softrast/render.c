@@ -272,13 +272,49 @@ static uint32_t *sorted_indices(const scene_object *ob, const camera *cam, size_
     return out;
 }
 
+static float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+/* The physically based look of a classic material, as glTF viewers read
+ * OBJ materials: its (display-space) color as the base color, white
+ * under a texture or the vertex colors unless --material color= asks,
+ * a dielectric of roughness 0.5 (1 - sqrt(N / 1000) for --material
+ * shininess=N), translucent through BLEND. */
+static sr_pbr_material pbr_material(const render_opts *o, const scene_object *ob,
+                                    const sr_texture *tex)
+{
+    sr_pbr_material m = sr_pbr_default_material();
+    m.metallic = 0.0f;
+    m.roughness = 0.5f;
+    if (o->have_shininess && ob->frame) {
+        m.roughness = 1.0f - sqrtf(fminf(o->shininess, 1000.0f) / 1000.0f);
+    }
+    bool given = o->have_mat_color && ob->frame;
+    bool colored = ob->mesh.colors && ob->material.vertex_color != SR_OFF;
+    for (int c = 0; c < 3 && (given || !(tex || colored)); c++) {
+        m.base_color[c] = srgb_to_linear((&ob->material.diffuse.x)[c]);
+    }
+    m.base_color_texture = (sr_texture_slot){ .texture = tex, .filter = o->texture_filter,
+                                              .wrap_u = o->wrap, .wrap_v = o->wrap,
+                                              .scale = { 1, 1 } };
+    if (translucent(ob)) {
+        m.alpha_mode = SR_ALPHA_BLEND;
+        m.base_color[3] = ob->material.opacity;
+    }
+    m.double_sided = o->cull == SR_CULL_NONE;
+    return m;
+}
+
 /* Opaque objects first, then translucent ones back to front with
  * source-over blending and no depth writes (they still test against the
  * opaque depth). */
-static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
-                            const camera *cam, bool keep_material, uint64_t *tris,
-                            uint64_t *frags)
+static sr_result draw_scene(const render_opts *o, sr_context *ctx, sr_framebuffer *fb,
+                            sr_state *state, scene *s, const camera *cam, bool keep_material,
+                            uint64_t *tris, uint64_t *frags)
 {
+    bool pbr = o->pbr && !keep_material;
     sr_result r = SR_OK;
     for (int pass = 0; pass < 2 && r == SR_OK; pass++) {
         for (int i = 0; i < s->count && r == SR_OK; i++) {
@@ -315,6 +351,25 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                                            .src_alpha = SR_BLEND_ONE,
                                            .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA };
                 }
+                sr_pbr *program = NULL;
+                if (pbr) {
+                    sr_pbr_material m = pbr_material(o, ob, st.texture);
+                    sr_pbr_desc d = { .material = &m, .model = &ob->model, .view = &cam->view,
+                                      .projection = &cam->proj, .exposure = o->exposure,
+                                      .tonemap = o->tonemap,
+                                      .vertex_color = ob->mesh.colors
+                                                          ? ob->material.vertex_color : SR_OFF };
+                    framing_pbr_lights(state->lights, &d);
+                    if (o->have_ambient) {
+                        d.sky = d.ground = o->ambient;
+                    }
+                    r = sr_make_pbr_program(ctx, &d, &program);
+                    if (r != SR_OK) {
+                        free(sorted);
+                        return r;
+                    }
+                    st.program = sr_pbr_program(program);
+                }
                 r = sr_draw(ctx, fb, &st, &(sr_draw_desc){
                     .positions = ob->mesh.positions, .normals = ob->mesh.normals,
                     .colors = ob->mesh.colors, .color_size = 4,
@@ -322,6 +377,7 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                     .indices = indices, .index_type = SR_INDEX_U32, .index_count = count * 3,
                     .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
                 free(sorted);
+                sr_destroy_pbr_program(ctx, program);
                 sr_draw_info info = sr_last_draw_info(ctx);
                 *tris += info.triangles_in;
                 *frags += info.fragments;
@@ -341,7 +397,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
 {
     sr_state st = *base;
     if (o->lines == LINES_NONE) {
-        return draw_scene(ctx, fb, &st, s, cam, false, tris, frags);
+        return draw_scene(o, ctx, fb, &st, s, cam, false, tris, frags);
     }
     bool light_bg = o->background.x + o->background.y + o->background.z > 1.5f;
     sr_vec3 ink = o->have_line_color ? o->line_color
@@ -354,11 +410,11 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
         fill.offset = (sr_polygon_offset){ .factor = o->offset_factor,
                                            .units = o->offset_units, .fill = true };
         if (o->lines == LINES_EDGES) {
-            r = draw_scene(ctx, fb, &fill, s, cam, false, tris, frags);
+            r = draw_scene(o, ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
             fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
-            r = draw_scene(ctx, fb, &fill, s, cam, true, tris, frags);
+            r = draw_scene(o, ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
     if (r != SR_OK) {
@@ -380,7 +436,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     } else {
         lines.depth_func = SR_LEQUAL;
     }
-    return draw_scene(ctx, fb, &lines, s, cam, true, tris, frags);
+    return draw_scene(o, ctx, fb, &lines, s, cam, true, tris, frags);
 }
 
 /* ---- render jobs: what `softrast render` and `softrast view` share ------- */

@@ -9,10 +9,17 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *const shading_names[] = { "flat", "gouraud", "phong", "normals", "depth",
-                                             "unlit", NULL };
-static const sr_shading shading_values[] = { SR_SHADING_FLAT, SR_SHADING_GOURAUD, SR_SHADING_PHONG,
-                                             SR_SHADING_NORMALS, SR_SHADING_DEPTH, SR_SHADING_UNLIT };
+/* "pbr" is the metallic-roughness program; the classic models keep its
+ * slot's sr_shading at Phong (per-pixel normals) for what asks. */
+static const char *const shading_names[] = { "pbr", "flat", "gouraud", "phong", "normals",
+                                             "depth", "unlit", NULL };
+static const sr_shading shading_values[] = { SR_SHADING_PHONG, SR_SHADING_FLAT,
+                                             SR_SHADING_GOURAUD, SR_SHADING_PHONG,
+                                             SR_SHADING_NORMALS, SR_SHADING_DEPTH,
+                                             SR_SHADING_UNLIT };
+static const char *const tonemap_names[] = { "neutral", "aces", "none", NULL };
+static const sr_tonemap_op tonemap_values[] = { SR_TONEMAP_PBR_NEUTRAL, SR_TONEMAP_ACES,
+                                                SR_TONEMAP_NONE };
 static const char *const cull_names[] = { "back", "front", "none", NULL };
 static const sr_cull_mode cull_values[] = { SR_CULL_BACK, SR_CULL_FRONT, SR_CULL_NONE };
 static const char *const front_names[] = { "ccw", "cw", NULL };
@@ -51,12 +58,20 @@ static void render_help(void)
         "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
-        "  --shading MODE           flat|gouraud|phong|normals|depth|unlit (default phong)\n"
+        "  --shading MODE           pbr|flat|gouraud|phong|normals|depth|unlit (default\n"
+        "                           pbr: glTF's metallic-roughness model, lit by the\n"
+        "                           lights and a sky-and-ground ambient, tone mapped;\n"
+        "                           the others are the classic Blinn-Phong models)\n"
+        "  --tonemap T              neutral|aces|none, pbr's tone curve: Khronos PBR\n"
+        "                           Neutral, ACES filmic, or a clamp (default neutral)\n"
+        "  --exposure EV            pbr's exposure in stops, -20..20 (default 0)\n"
         "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
         "                           smooth ones, or one per face (default: file if the\n"
         "                           model has them, else smooth)\n"
         "  --material KEY=V,...     color=COLOR, specular=COLOR, shininess=N\n"
-        "                           (default: light gray, specular 0.25, shininess 40)\n"
+        "                           (default: light gray, specular 0.25, shininess 40;\n"
+        "                           pbr: the color as base color, a dielectric of\n"
+        "                           roughness 0.5, or 1 - sqrt(N/1000) for shininess N)\n"
         "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14)\n"
         "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
         "                           surfaces are drawn after opaque ones, back to front\n"
@@ -248,7 +263,17 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
                 return EXIT_USAGE;
             }
         } else if (IS("--shading")) {
-            CHOICE(shading_names, o->shading, shading_values[k_]);
+            int sh;
+            CHOICE(shading_names, sh, k_);
+            o->shading = shading_values[sh];
+            o->pbr = sh == 0;
+        } else if (IS("--tonemap")) {
+            CHOICE(tonemap_names, o->tonemap, tonemap_values[k_]);
+        } else if (IS("--exposure")) {
+            VALUE();
+            if (!parse_float(arg, value, -20.0f, 20.0f, &o->exposure)) {
+                return EXIT_USAGE;
+            }
         } else if (IS("--cull")) {
             CHOICE(cull_names, o->cull, cull_values[k_]);
         } else if (IS("--front-face")) {
@@ -435,6 +460,7 @@ render_opts render_opts_defaults(void)
 {
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
+        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,

@@ -15,7 +15,10 @@ typedef struct render_opts {
     sr_texture_wrap wrap;
     bool texture_srgb;
     int width, height;
-    sr_shading shading;
+    sr_shading shading;            /* the classic model, or Phong under pbr */
+    bool pbr;                      /* --shading pbr: the metallic-roughness program */
+    sr_tonemap_op tonemap;         /* pbr's tone curve */
+    float exposure;                /* pbr's exposure, EV */
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;
