@@ -11,6 +11,7 @@
  * as the GL order of operations says. */
 #include "fragment/msaa_ops.h"
 #include "raster/msaa_walk.h"
+#include "simd_types.h"
 
 #include <string.h>
 
@@ -26,24 +27,37 @@ typedef struct quad_job {
     float inv_area;               /* for screen-space (noperspective) weights */
 } quad_job;
 
-/* Varyings and depth of lane i from its unbiased centre values u. */
-static void interpolate_lane(const quad_job *j, const int64_t u[3], int i, sr_fragment_quad *q)
+/* Varyings and depth of the four lanes from their unbiased centre
+ * values u: sr__bary and sr__interp with the lanes in vectors - the same
+ * operations in the same order, so the same bits as one lane at a time. */
+static void interpolate_quad(const quad_job *j, const int64_t u[4][3], sr_fragment_quad *q)
 {
     const sr_draw_state *ds = j->ds;
     const sr_tri *t = j->t;
-    float l[3], ls[3];
-    sr__bary(ds, t, u[0], u[1], u[2], l);
-    if (ds->noperspective_mask) {
-        ls[0] = (float)u[0] * j->inv_area;
-        ls[1] = (float)u[1] * j->inv_area;
-        ls[2] = (float)u[2] * j->inv_area;
+    v4f e[3];
+    for (int k = 0; k < 3; k++) {
+        e[k] = (v4f){ (float)u[0][k], (float)u[1][k], (float)u[2][k], (float)u[3][k] };
     }
-    for (int k = 0; k < t->ninterp; k++) {
-        q->varyings[k][i] = sr__interp(t, (ds->noperspective_mask >> k) & 1 ? ls : l, k);
+    v4f q0 = e[0] * t->w[0], q1 = e[1] * t->w[1], q2 = e[2] * t->w[2];
+    v4f sum = q0 + q1 + q2;
+    /* 1 / sum, and 0 where the sum is 0 (divided as 1 there). */
+    v4i nonzero = sum != 0.0f;
+    v4f divisor = (v4f)((nonzero & (v4i)sum) | (~nonzero & (v4i)(v4f){ 1, 1, 1, 1 }));
+    v4f inv = (v4f)(nonzero & (v4i)(1.0f / divisor));
+    v4f l1 = q1 * inv, l2 = q2 * inv;
+    v4f s1 = e[1] * j->inv_area, s2 = e[2] * j->inv_area;
+    int n = t->ninterp;
+    for (int k = 0; k < n; k++) {
+        bool linear = (ds->noperspective_mask >> k) & 1;
+        v4f a = linear ? s1 : l1, b = linear ? s2 : l2;
+        v4f r = t->vary[k] + a * t->vary[n + k] + b * t->vary[2 * n + k];
+        memcpy(q->varyings[k], &r, sizeof r);
     }
-    double z = sr__tri_depth(t, u[1], u[2]);
-    (void)sr__quantize_depth(ds, &z);
-    q->z[i] = (float)(z / ds->depth_scale);
+    for (int i = 0; i < 4; i++) {
+        double z = sr__tri_depth(t, u[i][1], u[i][2]);
+        (void)sr__quantize_depth(ds, &z);
+        q->z[i] = (float)(z / ds->depth_scale);
+    }
 }
 
 static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, const int rect[4])
@@ -106,8 +120,8 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     q.y = qy;
     q.front = t->front;
     q.discard = 0;
+    interpolate_quad(j, (const int64_t(*)[3])u, &q);
     for (int i = 0; i < 4; i++) {
-        interpolate_lane(j, u[i], i, &q);
         q.color[0][i] = q.color[1][i] = q.color[2][i] = 0.0f;
         q.color[3][i] = 1.0f;
     }
