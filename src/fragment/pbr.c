@@ -255,7 +255,7 @@ static void sample_slot(const pbr_slot *s, const sr_fragment_quad *q, float out[
     }
 }
 
-static void normalize4(float a[3][4])
+static inline __attribute__((always_inline)) void normalize4(float a[3][4])
 {
     v4f v[3];
     load3(v, a);
