@@ -1,0 +1,191 @@
+/* environment_prefilter.c - image-based light's precomputation (fragment
+ * stage, docs/ibl.md): an environment image's diffuse irradiance as
+ * spherical harmonics, and its radiance convolved with the GGX lobe of
+ * each roughness level under the split sum's N = V = R assumption.
+ * Called by sr_make_environment; the levels are written by bands of rows
+ * on the context's threads, each texel on its own, so the floats do not
+ * depend on the thread count.
+ */
+#include "context.h"
+#include "fragment/environment.h"
+
+#include <string.h>
+
+/* ---- irradiance -------------------------------------------------------- */
+
+/* Real spherical harmonics up to order 2 at a unit direction. */
+static void sh_basis(const float d[3], float y[9])
+{
+    float x = d[0], yy = d[1], z = d[2];
+    y[0] = 0.282095f;
+    y[1] = 0.488603f * yy;
+    y[2] = 0.488603f * z;
+    y[3] = 0.488603f * x;
+    y[4] = 1.092548f * x * yy;
+    y[5] = 1.092548f * yy * z;
+    y[6] = 0.315392f * (3.0f * z * z - 1.0f);
+    y[7] = 1.092548f * x * z;
+    y[8] = 0.546274f * (x * x - yy * yy);
+}
+
+void sr__irradiance_sh(const sr__equirect *e, float sh[9][3])
+{
+    double acc[9][3] = { { 0 } };
+    for (int j = 0; j < e->h; j++) {
+        /* the exact solid angle of a texel of this row */
+        double t0 = SR__PI_D * j / e->h, t1 = SR__PI_D * (j + 1) / e->h;
+        double d_omega = 2.0 * SR__PI_D / e->w * (cos(t0) - cos(t1));
+        const float *p = e->rgb + (size_t)j * e->w * 3;
+        for (int i = 0; i < e->w; i++) {
+            float d[3], y[9];
+            sr__equirect_direction(i, j, e->w, e->h, d);
+            sh_basis(d, y);
+            for (int k = 0; k < 9; k++) {
+                for (int c = 0; c < 3; c++) {
+                    acc[k][c] += d_omega * y[k] * p[3 * i + c];
+                }
+            }
+        }
+    }
+    /* Ramamoorthi and Hanrahan's convolution with the clamped cosine,
+     * A_l = pi, 2 pi / 3, pi / 4, then divided by pi for E / pi. */
+    static const float band_scale[9] = { 1.0f,        2.0f / 3.0f, 2.0f / 3.0f,
+                                         2.0f / 3.0f, 0.25f,       0.25f,
+                                         0.25f,       0.25f,       0.25f };
+    for (int k = 0; k < 9; k++) {
+        for (int c = 0; c < 3; c++) {
+            sh[k][c] = (float)acc[k][c] * band_scale[k];
+        }
+    }
+}
+
+void sr__irradiance_eval(const float sh[9][3], const float d[3], float out[3])
+{
+    float y[9];
+    sh_basis(d, y);
+    for (int c = 0; c < 3; c++) {
+        float v = 0.0f;
+        for (int k = 0; k < 9; k++) {
+            v += sh[k][c] * y[k];
+        }
+        /* a high-contrast image's truncated series can dip below zero */
+        out[c] = v > 0.0f ? v : 0.0f;
+    }
+}
+
+/* ---- source mips ------------------------------------------------------- */
+
+/* dst (w/2 x h/2, at least 1) as 2 x 2 boxes of src; an odd last column or
+ * row is folded into its neighbour's box by clamping. */
+void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst)
+{
+    for (int j = 0; j < dst->h; j++) {
+        int j0 = 2 * j < src->h ? 2 * j : src->h - 1;
+        int j1 = 2 * j + 1 < src->h ? 2 * j + 1 : src->h - 1;
+        const float *r0 = src->rgb + (size_t)j0 * src->w * 3;
+        const float *r1 = src->rgb + (size_t)j1 * src->w * 3;
+        float *o = dst->rgb + (size_t)j * dst->w * 3;
+        for (int i = 0; i < dst->w; i++) {
+            int i0 = 2 * i < src->w ? 2 * i : src->w - 1;
+            int i1 = 2 * i + 1 < src->w ? 2 * i + 1 : src->w - 1;
+            for (int c = 0; c < 3; c++) {
+                o[3 * i + c] = 0.25f * (r0[3 * i0 + c] + r0[3 * i1 + c] + r1[3 * i0 + c] +
+                                        r1[3 * i1 + c]);
+            }
+        }
+    }
+}
+
+/* ---- specular levels --------------------------------------------------- */
+
+/* The GGX sample set of one level, in tangent space (N = V = +z). */
+void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
+                          sr__spec_sample *s, int *count)
+{
+    float alpha = roughness * roughness;
+    float a2 = alpha * alpha;
+    /* Karis's mip-filtered sampling: a sample stands for the solid angle
+     * 1 / (n pdf); read the mip whose texels are about that size, one
+     * level blurrier to hide the sample pattern. */
+    float texel_omega = 4.0f * SR__PI / ((float)source_w * (float)source_h);
+    int n = 0;
+    for (int i = 0; i < SR__SPEC_SAMPLES; i++) {
+        float h[3];
+        sr__ggx_half_vector(((float)i + 0.5f) / SR__SPEC_SAMPLES, sr__radical_inverse((unsigned)i),
+                            alpha, h);
+        float nl = 2.0f * h[2] * h[2] - 1.0f;
+        if (nl <= 0.0f) {
+            continue;
+        }
+        float nh = h[2];
+        float q = nh * nh * (a2 - 1.0f) + 1.0f;
+        float pdf = a2 / (SR__PI * q * q) / 4.0f;
+        float sample_omega = 1.0f / (SR__SPEC_SAMPLES * pdf + 1e-6f);
+        float lod = 0.5f * log2f(sample_omega / texel_omega) + 1.0f;
+        lod = lod < 0.0f ? 0.0f : (lod > (float)(mips - 1) ? (float)(mips - 1) : lod);
+        s[n] = (sr__spec_sample){ .l = { 2.0f * h[2] * h[0], 2.0f * h[2] * h[1], nl },
+                                  .weight = nl, .lod = lod };
+        n++;
+    }
+    *count = n;
+}
+
+/* A direction's sample between two mips. */
+static void sample_lod(const sr__equirect *mip, const float d[3], float lod, float out[3])
+{
+    float u = 0.5f + sr__atan2(d[2], d[0]) * (0.5f / SR__PI);
+    float t = sr__acos(d[1]) * (1.0f / SR__PI);
+    int m0 = (int)lod;
+    float f = lod - (float)m0;
+    sr__equirect_bilinear(&mip[m0], u * mip[m0].w, t * mip[m0].h, out);
+    if (f > 0.0f) {
+        float b[3];
+        sr__equirect_bilinear(&mip[m0 + 1], u * mip[m0 + 1].w, t * mip[m0 + 1].h, b);
+        for (int c = 0; c < 3; c++) {
+            out[c] += f * (b[c] - out[c]);
+        }
+    }
+}
+
+void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_sample *s, int count,
+                        sr__equirect *dst, int row0, int row1)
+{
+    for (int j = row0; j < row1; j++) {
+        float *o = dst->rgb + (size_t)j * dst->w * 3;
+        for (int i = 0; i < dst->w; i++) {
+            float n[3];
+            sr__equirect_direction(i, j, dst->w, dst->h, n);
+            /* a tangent frame around n: t = normalize(up x n), b = n x t */
+            float up[3] = { 0.0f, 1.0f, 0.0f };
+            if (fabsf(n[1]) > 0.999f) {
+                up[0] = 1.0f;
+                up[1] = 0.0f;
+            }
+            float t[3] = { up[1] * n[2] - up[2] * n[1], up[2] * n[0] - up[0] * n[2],
+                           up[0] * n[1] - up[1] * n[0] };
+            float tl = 1.0f / sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            t[0] *= tl;
+            t[1] *= tl;
+            t[2] *= tl;
+            float b[3] = { n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2],
+                           n[0] * t[1] - n[1] * t[0] };
+            float sum[3] = { 0, 0, 0 }, wsum = 0.0f;
+            for (int k = 0; k < count; k++) {
+                const float *l = s[k].l;
+                float d[3];
+                for (int c = 0; c < 3; c++) {
+                    d[c] = t[c] * l[0] + b[c] * l[1] + n[c] * l[2];
+                }
+                float v[3];
+                sample_lod(mip, d, s[k].lod, v);
+                for (int c = 0; c < 3; c++) {
+                    sum[c] += s[k].weight * v[c];
+                }
+                wsum += s[k].weight;
+            }
+            for (int c = 0; c < 3; c++) {
+                o[3 * i + c] = sum[c] / wsum;
+            }
+        }
+    }
+}
