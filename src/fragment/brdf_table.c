@@ -29,23 +29,27 @@ static void table_row(void *arg, int row, int thread)
     float roughness = (float)row / (TABLE_SIZE - 1);
     float alpha = roughness * roughness;
     float a2 = alpha * alpha;
+    /* the half vectors depend on the roughness only */
+    float h[TABLE_SAMPLES][3];
+    for (unsigned i = 0; i < TABLE_SAMPLES; i++) {
+        sr__ggx_half_vector(((float)i + 0.5f) / TABLE_SAMPLES, sr__radical_inverse(i), alpha, h[i]);
+    }
     for (int col = 0; col < TABLE_SIZE; col++) {
         float nv = fmaxf((float)col / (TABLE_SIZE - 1), MIN_N_DOT_V);
         float v[3] = { sqrtf(1.0f - nv * nv), 0.0f, nv };
+        float vis_v = sqrtf(nv * nv * (1.0f - a2) + a2);
         double scale = 0.0, bias = 0.0;
         for (unsigned i = 0; i < TABLE_SAMPLES; i++) {
-            float h[3];
-            sr__ggx_half_vector(((float)i + 0.5f) / TABLE_SAMPLES, sr__radical_inverse(i), alpha, h);
-            float vh = v[0] * h[0] + v[1] * h[1] + v[2] * h[2];
-            float nl = 2.0f * vh * h[2] - v[2];
+            float vh = v[0] * h[i][0] + v[2] * h[i][2];
+            float nl = 2.0f * vh * h[i][2] - v[2];
             if (nl <= 0.0f || vh <= 0.0f) {
                 continue;
             }
-            float nh = h[2];
-            float vis = 0.5f / (nl * sqrtf(nv * nv * (1.0f - a2) + a2) +
-                                nv * sqrtf(nl * nl * (1.0f - a2) + a2));
+            float nh = h[i][2];
+            float vis = 0.5f / (nl * vis_v + nv * sqrtf(nl * nl * (1.0f - a2) + a2));
             float g = vis * 4.0f * nl * vh / nh;
-            float fc = powf(1.0f - vh, 5.0f);
+            float m = 1.0f - vh, m2 = m * m;
+            float fc = m2 * m2 * m;
             scale += (1.0f - fc) * g;
             bias += fc * g;
         }

@@ -13,13 +13,13 @@
  * holds all of it, small enough to make in about a millisecond. */
 #define STUDIO_WIDTH  256
 #define STUDIO_HEIGHT 128
-/* The first specular level is at most this wide; each next one half as
- * wide, down to LEVEL_MIN_WIDTH (a GGX lobe of roughness 0.2 spans a few
- * degrees, a texel of a 256-wide image 1.4). */
-#define LEVEL_MAX_WIDTH 256
+/* The first specular level is half the source's width, at most
+ * SR__LEVEL_MAX_WIDTH; each next one half as wide, down to
+ * LEVEL_MIN_WIDTH (a GGX lobe of roughness 0.2 spans a few degrees, a
+ * texel of a 256-wide image 1.4). */
 #define LEVEL_MIN_WIDTH 32
 /* The SH are projected from the first mip at most this wide. */
-#define SH_MAX_WIDTH 128
+#define SH_MAX_WIDTH 64
 #define BAND_ROWS    4
 
 typedef struct prefilter_job {
@@ -130,7 +130,8 @@ static sr_result prefilter(sr_context *ctx, prefilter_work *w)
     }
     sr__irradiance_sh(&mip[sh_mip], env->sh);
 
-    int first = env->level[0].w / 2 < LEVEL_MAX_WIDTH ? env->level[0].w / 2 : LEVEL_MAX_WIDTH;
+    int first = env->level[0].w / 2;
+    first = first < SR__LEVEL_MAX_WIDTH ? first : SR__LEVEL_MAX_WIDTH;
     int jobs = 0;
     for (int k = 1; k < SR_ENVIRONMENT_LEVELS; k++) {
         int lw = first >> (k - 1);

@@ -137,8 +137,11 @@ void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst);
 #define SR__SPEC_SAMPLES 32
 typedef struct sr__spec_sample {
     float l[3];
-    float weight, lod;
+    float weight;
+    int mip;
 } sr__spec_sample;
+/* The widest specular level (the first, for a source twice as wide). */
+#define SR__LEVEL_MAX_WIDTH 256
 /* The level's samples (at most SR__SPEC_SAMPLES) for a source of
  * source_w x source_h pixels with `mips` mips. */
 void sr__specular_samples(float roughness, int source_w, int source_h, int mips,

@@ -9,6 +9,7 @@
 #include "context.h"
 #include "fragment/environment.h"
 
+#include <assert.h>
 #include <string.h>
 
 /* ---- irradiance -------------------------------------------------------- */
@@ -102,6 +103,9 @@ void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst)
 void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
                           sr__spec_sample *s, int *count)
 {
+    /* A narrow lobe needs fewer samples: half as many, each read from a mip
+     * half a level coarser. */
+    int samples = roughness < 0.3f ? SR__SPEC_SAMPLES / 2 : SR__SPEC_SAMPLES;
     float alpha = roughness * roughness;
     float a2 = alpha * alpha;
     /* Karis's mip-filtered sampling: a sample stands for the solid angle
@@ -109,10 +113,9 @@ void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
      * level blurrier to hide the sample pattern. */
     float texel_omega = 4.0f * SR__PI / ((float)source_w * (float)source_h);
     int n = 0;
-    for (int i = 0; i < SR__SPEC_SAMPLES; i++) {
+    for (int i = 0; i < samples; i++) {
         float h[3];
-        sr__ggx_half_vector(((float)i + 0.5f) / SR__SPEC_SAMPLES, sr__radical_inverse((unsigned)i),
-                            alpha, h);
+        sr__ggx_half_vector(((float)i + 0.5f) / samples, sr__radical_inverse((unsigned)i), alpha, h);
         float nl = 2.0f * h[2] * h[2] - 1.0f;
         if (nl <= 0.0f) {
             continue;
@@ -120,72 +123,75 @@ void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
         float nh = h[2];
         float q = nh * nh * (a2 - 1.0f) + 1.0f;
         float pdf = a2 / (SR__PI * q * q) / 4.0f;
-        float sample_omega = 1.0f / (SR__SPEC_SAMPLES * pdf + 1e-6f);
+        float sample_omega = 1.0f / ((float)samples * pdf + 1e-6f);
         float lod = 0.5f * log2f(sample_omega / texel_omega) + 1.0f;
-        lod = lod < 0.0f ? 0.0f : (lod > (float)(mips - 1) ? (float)(mips - 1) : lod);
+        /* Every texel reads sample i from the same mip, so rounding the
+         * level changes the blur a little but leaves no seams. */
+        int m = (int)(lod + 0.5f);
+        m = m < 0 ? 0 : (m > mips - 1 ? mips - 1 : m);
         s[n] = (sr__spec_sample){ .l = { 2.0f * h[2] * h[0], 2.0f * h[2] * h[1], nl },
-                                  .weight = nl, .lod = lod };
+                                  .weight = nl, .mip = m };
         n++;
     }
     *count = n;
 }
 
-/* A direction's sample between two mips. */
-static void sample_lod(const sr__equirect *mip, const float d[3], float lod, float out[3])
-{
-    float u = 0.5f + sr__atan2(d[2], d[0]) * (0.5f / SR__PI);
-    float t = sr__acos(d[1]) * (1.0f / SR__PI);
-    int m0 = (int)lod;
-    float f = lod - (float)m0;
-    sr__equirect_bilinear(&mip[m0], u * mip[m0].w, t * mip[m0].h, out);
-    if (f > 0.0f) {
-        float b[3];
-        sr__equirect_bilinear(&mip[m0 + 1], u * mip[m0 + 1].w, t * mip[m0 + 1].h, b);
-        for (int c = 0; c < 3; c++) {
-            out[c] += f * (b[c] - out[c]);
-        }
-    }
-}
-
 void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_sample *s, int count,
                         sr__equirect *dst, int row0, int row1)
 {
+    assert(dst->w <= SR__LEVEL_MAX_WIDTH);
+    float sum[SR__LEVEL_MAX_WIDTH * 3];
+    float wsum = 0.0f;
+    for (int k = 0; k < count; k++) {
+        wsum += s[k].weight;
+    }
     for (int j = row0; j < row1; j++) {
-        float *o = dst->rgb + (size_t)j * dst->w * 3;
-        for (int i = 0; i < dst->w; i++) {
-            float n[3];
-            sr__equirect_direction(i, j, dst->w, dst->h, n);
-            /* a tangent frame around n: t = normalize(up x n), b = n x t */
-            float up[3] = { 0.0f, 1.0f, 0.0f };
-            if (fabsf(n[1]) > 0.999f) {
-                up[0] = 1.0f;
-                up[1] = 0.0f;
-            }
-            float t[3] = { up[1] * n[2] - up[2] * n[1], up[2] * n[0] - up[0] * n[2],
-                           up[0] * n[1] - up[1] * n[0] };
-            float tl = 1.0f / sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-            t[0] *= tl;
-            t[1] *= tl;
-            t[2] *= tl;
-            float b[3] = { n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2],
-                           n[0] * t[1] - n[1] * t[0] };
-            float sum[3] = { 0, 0, 0 }, wsum = 0.0f;
-            for (int k = 0; k < count; k++) {
-                const float *l = s[k].l;
-                float d[3];
-                for (int c = 0; c < 3; c++) {
-                    d[c] = t[c] * l[0] + b[c] * l[1] + n[c] * l[2];
-                }
-                float v[3];
-                sample_lod(mip, d, s[k].lod, v);
-                for (int c = 0; c < 3; c++) {
-                    sum[c] += s[k].weight * v[c];
-                }
-                wsum += s[k].weight;
-            }
+        /* Texels of a row differ only by a rotation about +Y, which moves
+         * every sample by the same step in u: find the samples of the
+         * row's first texel and slide them along.  The frame t = up x n,
+         * b = n x t turns with n (no texel centre lies on a pole). */
+        float n[3];
+        sr__equirect_direction(0, j, dst->w, dst->h, n);
+        float tl = 1.0f / sqrtf(n[2] * n[2] + n[0] * n[0]);
+        float t[3] = { n[2] * tl, 0.0f, -n[0] * tl };
+        float b[3] = { n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2],
+                       n[0] * t[1] - n[1] * t[0] };
+        memset(sum, 0, sizeof(float) * 3 * (size_t)dst->w);
+        for (int k = 0; k < count; k++) {
+            const float *l = s[k].l;
+            float d[3];
             for (int c = 0; c < 3; c++) {
-                o[3 * i + c] = sum[c] / wsum;
+                d[c] = t[c] * l[0] + b[c] * l[1] + n[c] * l[2];
             }
+            float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            const sr__equirect *m = &mip[s[k].mip];
+            float px, py;
+            sr__equirect_coords(d[0] / len, d[1] / len, d[2] / len, m->w, m->h, &px, &py);
+            /* sr__equirect_bilinear with the row pair fixed */
+            float fy = py - 0.5f, y0f = floorf(fy), ay = fy - y0f;
+            int y0 = (int)y0f, y1 = y0 + 1;
+            y0 = y0 < 0 ? 0 : (y0 >= m->h ? m->h - 1 : y0);
+            y1 = y1 < 0 ? 0 : (y1 >= m->h ? m->h - 1 : y1);
+            const float *r0 = m->rgb + (size_t)y0 * m->w * 3, *r1 = m->rgb + (size_t)y1 * m->w * 3;
+            float w0 = s[k].weight * (1.0f - ay), w1 = s[k].weight * ay;
+            float step = (float)m->w / (float)dst->w;
+            for (int i = 0; i < dst->w; i++) {
+                /* px in [0, w) and step i < w: one wrap either way at most */
+                float fx = px + step * (float)i - 0.5f;
+                float x0f = floorf(fx), ax = fx - x0f;
+                int x0 = (int)x0f;
+                x0 = x0 < 0 ? x0 + m->w : (x0 >= m->w ? x0 - m->w : x0);
+                int x1 = x0 + 1 == m->w ? 0 : x0 + 1;
+                for (int c = 0; c < 3; c++) {
+                    float top = r0[3 * x0 + c] + ax * (r0[3 * x1 + c] - r0[3 * x0 + c]);
+                    float bot = r1[3 * x0 + c] + ax * (r1[3 * x1 + c] - r1[3 * x0 + c]);
+                    sum[3 * i + c] += w0 * top + w1 * bot;
+                }
+            }
+        }
+        float *o = dst->rgb + (size_t)j * dst->w * 3;
+        for (int i = 0; i < 3 * dst->w; i++) {
+            o[i] = sum[i] / wsum;
         }
     }
 }

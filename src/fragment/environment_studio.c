@@ -9,6 +9,8 @@
  */
 #include "fragment/environment.h"
 
+#include <assert.h>
+
 /* A rectangular light seen in direction `centre`: half extents as the
  * tangents of its half angles along `right` and along centre x right,
  * edges softened over `soft` of each half extent. */
@@ -73,11 +75,20 @@ static float studio_radiance(const float d[3])
 
 void sr__studio_rows(sr__equirect *e, int row0, int row1)
 {
+    enum { MAX_WIDTH = 1024 };
+    assert(e->w <= MAX_WIDTH);
+    float cos_phi[MAX_WIDTH], sin_phi[MAX_WIDTH];
+    for (int i = 0; i < e->w; i++) {
+        float phi = ((float)i + 0.5f) / (float)e->w * 2.0f * SR__PI - SR__PI;
+        cos_phi[i] = cosf(phi);
+        sin_phi[i] = sinf(phi);
+    }
     for (int j = row0; j < row1; j++) {
+        float theta = ((float)j + 0.5f) / (float)e->h * SR__PI;
+        float st = sinf(theta), ct = cosf(theta);
         float *p = e->rgb + (size_t)j * e->w * 3;
         for (int i = 0; i < e->w; i++) {
-            float d[3];
-            sr__equirect_direction(i, j, e->w, e->h, d);
+            float d[3] = { st * cos_phi[i], ct, st * sin_phi[i] };
             float L = studio_radiance(d);
             p[3 * i + 0] = L;
             p[3 * i + 1] = L;
