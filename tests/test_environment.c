@@ -3,8 +3,8 @@
  * table against a Monte Carlo estimate of the directional albedo and
  * within energy; the SH irradiance against brute-force integration; the
  * rotation and intensity; identical results for any thread count; bad
- * input and allocation failures; and pictures of the built-in studio and
- * its specular levels (tests/out/environment_*.png). */
+ * input and allocation failures; and pictures of the built-in studio, its
+ * specular levels and spheres lit by it (tests/out/environment_*.png). */
 #include "softrast.h"
 #include "softrast_io.h"
 #include "failing_alloc.h"
@@ -416,6 +416,68 @@ SR_TEST(builtin_studio_is_a_neutral_lit_room)
     sr_io_error err;
     CHECK(sr_write_png(path, W, H * LEVELS, rgba, W * 4, NULL, &err) == SR_OK);
     free(rgba);
+    sr_destroy_environment(ctx, env);
+    sr_destroy_context(ctx);
+}
+
+/* The split sum of docs/ibl.md for a sphere's point with normal n seen
+ * along -Z (v = +Z), in linear RGB. */
+static void shade(const sr_environment *env, const float n[3], const float base[3],
+                  float metallic, float roughness, float out[3])
+{
+    float nv = n[2] > 1e-4f ? n[2] : 1e-4f;
+    float r[3] = { 2 * nv * n[0], 2 * nv * n[1], 2 * nv * n[2] - 1 };
+    float e[3], l[3], ab[2];
+    sr_environment_irradiance(env, n, e);
+    sr_environment_specular(env, r, roughness, l);
+    sr_brdf_table(nv, roughness, ab);
+    for (int c = 0; c < 3; c++) {
+        float f0 = 0.04f + (base[c] - 0.04f) * metallic;
+        float es = f0 * ab[0] + ab[1];
+        out[c] = (1 - es) * base[c] * (1 - metallic) * e[c] + es * l[c];
+    }
+}
+
+SR_TEST(builtin_studio_lights_spheres_from_above)
+{
+    /* Rows: white dielectric, white metal, gold; roughness 0 .. 1 left to
+     * right, on the blurred background (tests/out/environment_spheres.png). */
+    enum { S = 64, COLS = 6, ROWS = 3, W = S * COLS, H = S * ROWS };
+    static const float base[ROWS][3] = { { 1, 1, 1 }, { 1, 1, 1 }, { 1.0f, 0.766f, 0.336f } };
+    static const float metal[ROWS] = { 0, 1, 1 };
+    sr_context *ctx = make_ctx(2);
+    sr_environment *env = NULL;
+    REQUIRE(sr_make_environment(ctx, NULL, &env) == SR_OK);
+    float *f = malloc((size_t)W * H * 3 * sizeof *f);
+    float top_minus_bottom = 0;
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            int row = y / S, col = x / S;
+            float sx = ((x % S) + 0.5f) / S * 2 - 1, sy = 1 - ((y % S) + 0.5f) / S * 2;
+            float *o = f + ((size_t)y * W + x) * 3;
+            float r2 = (sx * sx + sy * sy) / 0.9f / 0.9f;
+            if (r2 >= 1) {
+                float d[3] = { (x - W / 2.0f) / W, (H / 2.0f - y) / W, -1 };
+                sr_environment_background(env, d, 0.6f, o);
+                continue;
+            }
+            float n[3] = { sx / 0.9f, sy / 0.9f, sqrtf(1 - r2) };
+            shade(env, n, base[row], metal[row], (float)col / (COLS - 1), o);
+            if (row == 1 && col == 0 && (x % S) == S / 2) {
+                top_minus_bottom += sy > 0 ? o[0] : -o[0];
+            }
+        }
+    }
+    /* A mirror sphere shows the bright ceiling above and the floor below. */
+    CHECK(top_minus_bottom > 0);
+    uint8_t *rgba = malloc((size_t)W * H * 4);
+    REQUIRE(sr_tonemap(ctx, f, W, H, 0, rgba, 0, &(sr_tonemap_desc){ .channels = 3 }) == SR_OK);
+    char path[512];
+    snprintf(path, sizeof path, "%s/environment_spheres.png", sr_test_out_dir());
+    sr_io_error err;
+    CHECK(sr_write_png(path, W, H, rgba, W * 4, NULL, &err) == SR_OK);
+    free(rgba);
+    free(f);
     sr_destroy_environment(ctx, env);
     sr_destroy_context(ctx);
 }

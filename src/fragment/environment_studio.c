@@ -23,7 +23,7 @@ typedef struct softbox {
 
 static const softbox boxes[] = {
     /* the overhead key panel, tilted towards +Z (where a default camera stands) */
-    { { 0.0f, 0.9578f, 0.2873f }, { 1.0f, 0.0f, 0.0f }, 0.70f, 0.45f, 0.35f, 2.6f },
+    { { 0.0f, 0.9578f, 0.2873f }, { 1.0f, 0.0f, 0.0f }, 0.70f, 0.45f, 0.35f, 2.2f },
     /* a tall softbox front left */
     { { -0.7518f, 0.2631f, 0.6014f }, { 0.6247f, 0.0f, 0.7809f }, 0.20f, 0.42f, 0.25f, 3.2f },
     /* a wider, dimmer one back right */
