@@ -7,6 +7,9 @@
 #include "context.h"
 #include "fragment/environment.h"
 
+#include <float.h>
+#include <limits.h>
+#include <stdatomic.h>
 #include <string.h>
 
 /* The built-in studio's source image: soft enough that this resolution
@@ -21,6 +24,7 @@
 /* The SH are projected from the first mip at most this wide. */
 #define SH_MAX_WIDTH 64
 #define BAND_ROWS    4
+#define COPY_ROWS    16         /* rows a job when copying or halving an image */
 
 typedef struct prefilter_job {
     int level, row0, row1;
@@ -33,14 +37,61 @@ typedef struct prefilter_work {
     int counts[SR_ENVIRONMENT_LEVELS];
     prefilter_job *jobs;
     float intensity;
+    const float *pixels;        /* the caller's image */
+    atomic_int first_bad_row;   /* INT_MAX, or the first row holding a bad value */
+    const sr__equirect *half_src;
+    sr__equirect *half_dst;
 } prefilter_work;
+
+static int band_end(int job, int rows, int h)
+{
+    return (job + 1) * rows < h ? (job + 1) * rows : h;
+}
+
+/* Rows of the caller's image into level 0, times the intensity, noting
+ * the first row that holds a negative, infinite or NaN value. */
+static void copy_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    prefilter_work *w = arg;
+    sr__equirect *e = &w->env->level[0];
+    int row1 = band_end(job, COPY_ROWS, e->h);
+    const float scale = w->intensity;
+    for (int j = job * COPY_ROWS; j < row1; j++) {
+        size_t n = (size_t)e->w * 3, at = (size_t)j * n;
+        const float *restrict src = w->pixels + at;
+        float *restrict dst = e->rgb + at;
+        /* written so that the compiler vectorizes it: an OR of compares,
+         * no early exit */
+        int bad = 0;
+        for (size_t i = 0; i < n; i++) {
+            float v = src[i];
+            bad |= (v < 0.0f) | (v != v) | (v > FLT_MAX);
+            dst[i] = v * scale;
+        }
+        if (bad) {
+            int seen = atomic_load(&w->first_bad_row);
+            while (j < seen && !atomic_compare_exchange_weak(&w->first_bad_row, &seen, j)) {
+            }
+            return;
+        }
+    }
+}
+
+static void halve_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    prefilter_work *w = arg;
+    sr__equirect_halve(w->half_src, w->half_dst, job * COPY_ROWS,
+                       band_end(job, COPY_ROWS, w->half_dst->h));
+}
 
 static void studio_job(void *arg, int job, int thread)
 {
     (void)thread;
     prefilter_work *w = arg;
     sr__equirect *e = &w->env->level[0];
-    int row1 = (job + 1) * BAND_ROWS < e->h ? (job + 1) * BAND_ROWS : e->h;
+    int row1 = band_end(job, BAND_ROWS, e->h);
     sr__studio_rows(e, job * BAND_ROWS, row1);
     if (w->intensity != 1.0f) {
         float *p = e->rgb + (size_t)job * BAND_ROWS * e->w * 3;
@@ -87,16 +138,6 @@ static sr_result validate(sr_context *ctx, const sr_environment_desc *d)
                         "sr_environment_desc: %dx%d exceeds %d a side or %zu pixels", d->width,
                         d->height, SR_ENVIRONMENT_MAX_SIDE, SR_ENVIRONMENT_MAX_PIXELS);
     }
-    size_t n = (size_t)d->width * (size_t)d->height * 3;
-    for (size_t i = 0; i < n; i++) {
-        float v = d->pixels[i];
-        if (!(v >= 0.0f) || v == INFINITY) {
-            return sr__fail(ctx, SR_INVALID_ARG,
-                            "sr_environment_desc.pixels: pixel (%zu, %zu) channel %zu is %g; "
-                            "radiance must be finite and >= 0",
-                            i / 3 % (size_t)d->width, i / 3 / (size_t)d->width, i % 3, (double)v);
-        }
-    }
     return SR_OK;
 }
 
@@ -121,7 +162,9 @@ static sr_result prefilter(sr_context *ctx, prefilter_work *w)
             r = SR_OUT_OF_MEMORY;
             goto done;
         }
-        sr__equirect_halve(src, &mip[mips]);
+        w->half_src = src;
+        w->half_dst = &mip[mips];
+        sr_run_jobs(ctx, halve_job, w, (mip[mips].h + COPY_ROWS - 1) / COPY_ROWS);
         mips++;
     }
     int sh_mip = 0;
@@ -196,9 +239,22 @@ sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
     if (!alloc_image(ctx, &env->level[0], sw, sh)) {
         r = SR_OUT_OF_MEMORY;
     } else if (d.pixels) {
-        size_t n = (size_t)sw * (size_t)sh * 3;
-        for (size_t i = 0; i < n; i++) {
-            env->level[0].rgb[i] = d.pixels[i] * w->intensity;
+        w->pixels = d.pixels;
+        atomic_init(&w->first_bad_row, INT_MAX);
+        sr_run_jobs(ctx, copy_job, w, (sh + COPY_ROWS - 1) / COPY_ROWS);
+        int row = atomic_load(&w->first_bad_row);
+        if (row != INT_MAX) {
+            const float *p = d.pixels + (size_t)row * sw * 3;
+            int i = 0;
+            while (p[i] >= 0.0f && p[i] <= FLT_MAX) {
+                i++;
+            }
+            sr__free(ctx, w);
+            sr_destroy_environment(ctx, env);
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_environment_desc.pixels: pixel (%d, %d) channel %d is %g; "
+                            "radiance must be finite and >= 0",
+                            i / 3, row, i % 3, (double)p[i]);
         }
     } else {
         sr_run_jobs(ctx, studio_job, w, (sh + BAND_ROWS - 1) / BAND_ROWS);

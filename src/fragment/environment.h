@@ -87,7 +87,12 @@ static inline void sr__equirect_bilinear(const sr__equirect *e, float px, float 
     float fx = px - 0.5f, fy = py - 0.5f;
     float x0f = floorf(fx), y0f = floorf(fy);
     float ax = fx - x0f, ay = fy - y0f;
-    int x0 = (int)x0f % e->w;
+    /* px in [0, w] (u in [0, 1]) puts x0 in [-1, w - 1]; other callers'
+     * px may lie anywhere */
+    int x0 = (int)x0f;
+    if (x0 < -1 || x0 >= e->w) {
+        x0 %= e->w;
+    }
     x0 = x0 < 0 ? x0 + e->w : x0;
     int x1 = x0 + 1 == e->w ? 0 : x0 + 1;
     int y0 = (int)y0f, y1 = y0 + 1;
@@ -129,8 +134,9 @@ void sr__studio_rows(sr__equirect *e, int row0, int row1);
  * (divided by pi) of an image, and their value at a unit direction. */
 void sr__irradiance_sh(const sr__equirect *e, float sh[9][3]);
 void sr__irradiance_eval(const float sh[9][3], const float d[3], float out[3]);
-/* dst (its w and h set to src's halves, at least 1) as 2 x 2 boxes of src. */
-void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst);
+/* Rows [row0, row1) of dst (its w and h set to src's halves, at least 1)
+ * as 2 x 2 boxes of src. */
+void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, int row1);
 
 /* One GGX sample of a specular level: the light direction in tangent
  * space (z along N = V), its weight (N.L) and the source mip to read. */

@@ -78,9 +78,9 @@ void sr__irradiance_eval(const float sh[9][3], const float d[3], float out[3])
 
 /* dst (w/2 x h/2, at least 1) as 2 x 2 boxes of src; an odd last column or
  * row is folded into its neighbour's box by clamping. */
-void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst)
+void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, int row1)
 {
-    for (int j = 0; j < dst->h; j++) {
+    for (int j = row0; j < row1; j++) {
         int j0 = 2 * j < src->h ? 2 * j : src->h - 1;
         int j1 = 2 * j + 1 < src->h ? 2 * j + 1 : src->h - 1;
         const float *r0 = src->rgb + (size_t)j0 * src->w * 3;
