@@ -673,7 +673,8 @@ SR_API void sr_environment_irradiance4(const sr_environment *env, const sr_vec3x
  * `roughness` (perceptual, alpha = roughness^2, clamped to [0, 1]), under
  * the split sum's N = V = R assumption: bilinear within a level,
  * linear between the two levels around roughness.  Roughness 0 is the
- * source image itself.  A uniform environment of radiance L gives L. */
+ * source image itself (the built-in studio's own function, sharp at any
+ * size).  A uniform environment of radiance L gives L. */
 SR_API void sr_environment_specular(const sr_environment *env, const float dir[3],
                                     float roughness, float out[3]);
 SR_API void sr_environment_specular4(const sr_environment *env, const sr_vec3x4 *dir,

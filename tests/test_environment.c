@@ -525,6 +525,20 @@ SR_TEST(bad_descriptions_are_refused)
         CHECK_STR_CONTAINS(sr_context_error(ctx), "pixel (2, 0) channel 1");
     }
     px[7] = 1;
+    /* The first bad row is named whichever thread finds which. */
+    sr_context *ctx2 = make_ctx(2);
+    enum { BW = 8, BH = 64 };
+    float *big = make_image(BW, BH, white);
+    big[(40 * BW + 3) * 3 + 2] = -5;
+    big[(9 * BW + 5) * 3 + 0] = NAN;
+    big[(60 * BW + 1) * 3 + 1] = INFINITY;
+    CHECK_EQ(sr_make_environment(ctx2, &(sr_environment_desc){ .pixels = big, .width = BW,
+                                                               .height = BH },
+                                 &env),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx2), "pixel (5, 9) channel 0 is nan");
+    free(big);
+    sr_destroy_context(ctx2);
     CHECK_EQ(sr_make_environment(ctx, &(sr_environment_desc){ .intensity = -1 }, &env),
              SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(ctx), "intensity");

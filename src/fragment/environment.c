@@ -257,6 +257,7 @@ sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
                             i / 3, row, i % 3, (double)p[i]);
         }
     } else {
+        env->studio_intensity = w->intensity;
         sr_run_jobs(ctx, studio_job, w, (sh + BAND_ROWS - 1) / BAND_ROWS);
     }
     if (r == SR_OK) {
@@ -324,7 +325,9 @@ static inline void specular_at(const sr_environment *env, const float d[3], floa
     float a = f - (float)k;
     const sr__equirect *e0 = &env->level[k], *e1 = &env->level[k + 1];
     float c0[3] = { 0, 0, 0 }, c1[3] = { 0, 0, 0 };
-    if (a < 1.0f) {
+    if (a < 1.0f && k == 0 && env->studio_intensity > 0.0f) {
+        c0[0] = c0[1] = c0[2] = env->studio_intensity * sr__studio_radiance(d);
+    } else if (a < 1.0f) {
         sr__equirect_bilinear(e0, u * e0->w, t * e0->h, c0);
     }
     if (a > 0.0f) {

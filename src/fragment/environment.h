@@ -30,6 +30,9 @@ struct sr_environment {
     sr__equirect level[SR_ENVIRONMENT_LEVELS];
     float sh[9][3];             /* irradiance / pi, Lambert-convolved, in image space */
     float cos_rot, sin_rot;     /* world -> image: rotation by -desc.rotation about +Y */
+    /* The built-in studio's level 0 is its function, sharp at any size,
+     * times this intensity; 0 for an image. */
+    float studio_intensity;
 };
 
 /* atan(x) for |x| <= 1: Abramowitz and Stegun 4.4.49-style odd
@@ -126,8 +129,9 @@ static inline void sr__equirect_direction(int i, int j, int w, int h, float d[3]
     d[2] = st * sinf(phi);
 }
 
-/* The built-in neutral studio at w x h (environment_studio.c), rows
- * [row0, row1). */
+/* The built-in neutral studio (environment_studio.c): its radiance in a
+ * unit direction, and rows [row0, row1) of it as a w x h image. */
+float sr__studio_radiance(const float d[3]);
 void sr__studio_rows(sr__equirect *e, int row0, int row1);
 
 /* environment_prefilter.c: the 9 Lambert-convolved SH coefficients

@@ -49,7 +49,7 @@ static float soft_edge(float a, float half, float soft)
     return 1.0f - smoothstep(half * (1.0f - soft), half, fabsf(a));
 }
 
-static float studio_radiance(const float d[3])
+float sr__studio_radiance(const float d[3])
 {
     float y = d[1];
     float sky = SKY_HORIZON + (SKY_ZENITH - SKY_HORIZON) * (y > 0.0f ? y : 0.0f);
@@ -89,7 +89,7 @@ void sr__studio_rows(sr__equirect *e, int row0, int row1)
         float *p = e->rgb + (size_t)j * e->w * 3;
         for (int i = 0; i < e->w; i++) {
             float d[3] = { st * cos_phi[i], ct, st * sin_phi[i] };
-            float L = studio_radiance(d);
+            float L = sr__studio_radiance(d);
             p[3 * i + 0] = L;
             p[3 * i + 1] = L;
             p[3 * i + 2] = L;
