@@ -288,24 +288,25 @@ void sr_destroy_environment(sr_context *ctx, sr_environment *env)
 
 /* ---- queries ----------------------------------------------------------- */
 
-/* A world direction to a unit direction in the image's frame; zero or
- * NaN gives +Y. */
-static inline void to_image(const sr_environment *env, float x, float y, float z, float d[3])
+/* The queries' arithmetic is written per lane without branches, so that
+ * the 4-lane forms' loops vectorize; a scalar query runs the same code
+ * on one lane, and IEEE arithmetic (no contraction, no reassociation)
+ * makes both give the same floats.  Only the texel reads are per lane. */
+
+/* A world direction to a unit direction in the image's frame; zero,
+ * infinite or NaN gives +Y. */
+static inline void to_image(const sr_environment *env, float x, float y, float z, float *dx,
+                            float *dy, float *dz)
 {
     float len2 = x * x + y * y + z * z;
-    if (!(len2 > 0.0f) || len2 == INFINITY) {
-        d[0] = 0.0f;
-        d[1] = 1.0f;
-        d[2] = 0.0f;
-        return;
-    }
-    float s = 1.0f / sqrtf(len2);
-    x *= s;
-    y *= s;
-    z *= s;
-    d[0] = x * env->cos_rot - z * env->sin_rot;
-    d[1] = y;
-    d[2] = x * env->sin_rot + z * env->cos_rot;
+    int ok = (len2 > 0.0f) & (len2 < INFINITY);
+    float s = 1.0f / sqrtf(ok ? len2 : 1.0f);
+    x = ok ? x * s : 0.0f;
+    y = ok ? y * s : 1.0f;
+    z = ok ? z * s : 0.0f;
+    *dx = x * env->cos_rot - z * env->sin_rot;
+    *dy = y;
+    *dz = x * env->sin_rot + z * env->cos_rot;
 }
 
 static inline float clamp01(float x)
@@ -313,19 +314,32 @@ static inline float clamp01(float x)
     return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;  /* NaN -> 0 */
 }
 
-/* Linear between the two levels around `roughness` at image direction d. */
-static inline void specular_at(const sr_environment *env, const float d[3], float roughness,
-                               float out[3])
+/* The lane-wise part of a specular query: the image direction, its
+ * equirectangular (u, t) and the level coordinate f = roughness * 5. */
+typedef struct spec_lanes {
+    float dx[4], dy[4], dz[4], u[4], t[4], f[4];
+} spec_lanes;
+
+static inline void spec_lane(const sr_environment *env, spec_lanes *q, int i, float x, float y,
+                             float z, float roughness)
 {
-    float u = 0.5f + sr__atan2(d[2], d[0]) * (0.5f / SR__PI);
-    float t = sr__acos(d[1]) * (1.0f / SR__PI);
-    float f = clamp01(roughness) * (SR_ENVIRONMENT_LEVELS - 1);
+    to_image(env, x, y, z, &q->dx[i], &q->dy[i], &q->dz[i]);
+    q->u[i] = 0.5f + sr__atan2(q->dz[i], q->dx[i]) * (0.5f / SR__PI);
+    q->t[i] = sr__acos(q->dy[i]) * (1.0f / SR__PI);
+    q->f[i] = clamp01(roughness) * (SR_ENVIRONMENT_LEVELS - 1);
+}
+
+/* Lane i's texel reads: linear between the two levels around f. */
+static inline void spec_read(const sr_environment *env, const spec_lanes *q, int i, float out[3])
+{
+    float f = q->f[i], u = q->u[i], t = q->t[i];
     int k = (int)f;
     k = k < SR_ENVIRONMENT_LEVELS - 1 ? k : SR_ENVIRONMENT_LEVELS - 2;
     float a = f - (float)k;
     const sr__equirect *e0 = &env->level[k], *e1 = &env->level[k + 1];
     float c0[3] = { 0, 0, 0 }, c1[3] = { 0, 0, 0 };
     if (a < 1.0f && k == 0 && env->studio_intensity > 0.0f) {
+        float d[3] = { q->dx[i], q->dy[i], q->dz[i] };
         c0[0] = c0[1] = c0[2] = env->studio_intensity * sr__studio_radiance(d);
     } else if (a < 1.0f) {
         sr__equirect_bilinear(e0, u * e0->w, t * e0->h, c0);
@@ -348,7 +362,7 @@ void sr_environment_irradiance(const sr_environment *env, const float normal[3],
         return;
     }
     float d[3];
-    to_image(env, normal[0], normal[1], normal[2], d);
+    to_image(env, normal[0], normal[1], normal[2], &d[0], &d[1], &d[2]);
     sr__irradiance_eval(env->sh, d, out);
 }
 
@@ -358,18 +372,15 @@ void sr_environment_irradiance4(const sr_environment *env, const sr_vec3x4 *norm
     if (!out) {
         return;
     }
-    for (int i = 0; i < 4; i++) {
-        float n[3], c[3] = { 0, 0, 0 };
-        if (normal) {
-            n[0] = normal->x[i];
-            n[1] = normal->y[i];
-            n[2] = normal->z[i];
-            sr_environment_irradiance(env, n, c);
-        }
-        out->x[i] = c[0];
-        out->y[i] = c[1];
-        out->z[i] = c[2];
+    if (!env || !normal) {
+        memset(out, 0, sizeof *out);
+        return;
     }
+    sr_vec3x4 d;
+    for (int i = 0; i < 4; i++) {
+        to_image(env, normal->x[i], normal->y[i], normal->z[i], &d.x[i], &d.y[i], &d.z[i]);
+    }
+    sr__irradiance_eval4(env->sh, &d, out);
 }
 
 void sr_environment_specular(const sr_environment *env, const float dir[3], float roughness,
@@ -382,9 +393,9 @@ void sr_environment_specular(const sr_environment *env, const float dir[3], floa
         out[0] = out[1] = out[2] = 0.0f;
         return;
     }
-    float d[3];
-    to_image(env, dir[0], dir[1], dir[2], d);
-    specular_at(env, d, roughness, out);
+    spec_lanes q;
+    spec_lane(env, &q, 0, dir[0], dir[1], dir[2], roughness);
+    spec_read(env, &q, 0, out);
 }
 
 void sr_environment_specular4(const sr_environment *env, const sr_vec3x4 *dir,
@@ -393,14 +404,17 @@ void sr_environment_specular4(const sr_environment *env, const sr_vec3x4 *dir,
     if (!out) {
         return;
     }
+    if (!env || !dir || !roughness) {
+        memset(out, 0, sizeof *out);
+        return;
+    }
+    spec_lanes q;
     for (int i = 0; i < 4; i++) {
-        float v[3], c[3] = { 0, 0, 0 };
-        if (dir && roughness) {
-            v[0] = dir->x[i];
-            v[1] = dir->y[i];
-            v[2] = dir->z[i];
-            sr_environment_specular(env, v, roughness[i], c);
-        }
+        spec_lane(env, &q, i, dir->x[i], dir->y[i], dir->z[i], roughness[i]);
+    }
+    for (int i = 0; i < 4; i++) {
+        float c[3];
+        spec_read(env, &q, i, c);
         out->x[i] = c[0];
         out->y[i] = c[1];
         out->z[i] = c[2];

@@ -49,7 +49,9 @@ static inline float sr__atan2(float y, float x)
 {
     float ax = fabsf(x), ay = fabsf(y);
     float mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
-    float a = sr__atan_unit(mx > 0.0f ? mn / mx : 0.0f);
+    /* select, then divide: a division under a condition keeps the
+     * compiler from vectorizing the lanes */
+    float a = sr__atan_unit(mn / (mx > 0.0f ? mx : 1.0f));
     a = ay > ax ? 0.5f * SR__PI - a : a;
     a = x < 0.0f ? SR__PI - a : a;
     return y < 0.0f ? -a : a;
@@ -138,6 +140,7 @@ void sr__studio_rows(sr__equirect *e, int row0, int row1);
  * (divided by pi) of an image, and their value at a unit direction. */
 void sr__irradiance_sh(const sr__equirect *e, float sh[9][3]);
 void sr__irradiance_eval(const float sh[9][3], const float d[3], float out[3]);
+void sr__irradiance_eval4(const float sh[9][3], const sr_vec3x4 *d, sr_vec3x4 *out);
 /* Rows [row0, row1) of dst (its w and h set to src's halves, at least 1)
  * as 2 x 2 boxes of src. */
 void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, int row1);

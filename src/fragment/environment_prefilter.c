@@ -60,17 +60,40 @@ void sr__irradiance_sh(const sr__equirect *e, float sh[9][3])
     }
 }
 
+/* sh_basis's terms summed, branch-free per lane: the 4-lane loop
+ * vectorizes and a single lane gives the same floats. */
+static inline float sh_sum(const float sh[9][3], int c, float x, float y, float z)
+{
+    float v = sh[0][c] * 0.282095f;
+    v += sh[1][c] * (0.488603f * y);
+    v += sh[2][c] * (0.488603f * z);
+    v += sh[3][c] * (0.488603f * x);
+    v += sh[4][c] * (1.092548f * x * y);
+    v += sh[5][c] * (1.092548f * y * z);
+    v += sh[6][c] * (0.315392f * (3.0f * z * z - 1.0f));
+    v += sh[7][c] * (1.092548f * x * z);
+    v += sh[8][c] * (0.546274f * (x * x - y * y));
+    /* a high-contrast image's truncated series can dip below zero */
+    return v > 0.0f ? v : 0.0f;
+}
+
 void sr__irradiance_eval(const float sh[9][3], const float d[3], float out[3])
 {
-    float y[9];
-    sh_basis(d, y);
     for (int c = 0; c < 3; c++) {
-        float v = 0.0f;
-        for (int k = 0; k < 9; k++) {
-            v += sh[k][c] * y[k];
-        }
-        /* a high-contrast image's truncated series can dip below zero */
-        out[c] = v > 0.0f ? v : 0.0f;
+        out[c] = sh_sum(sh, c, d[0], d[1], d[2]);
+    }
+}
+
+void sr__irradiance_eval4(const float sh[9][3], const sr_vec3x4 *d, sr_vec3x4 *out)
+{
+    for (int i = 0; i < 4; i++) {
+        out->x[i] = sh_sum(sh, 0, d->x[i], d->y[i], d->z[i]);
+    }
+    for (int i = 0; i < 4; i++) {
+        out->y[i] = sh_sum(sh, 1, d->x[i], d->y[i], d->z[i]);
+    }
+    for (int i = 0; i < 4; i++) {
+        out->z[i] = sh_sum(sh, 2, d->x[i], d->y[i], d->z[i]);
     }
 }
 
