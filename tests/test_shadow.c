@@ -208,6 +208,33 @@ SR_TEST(clear_empties_the_map)
     CHECK_NEAR(vis_at(sm, 0, 0, 0), 0, 1e-6);
     CHECK(sr_shadow_map_clear(ctx, sm) == SR_OK);
     CHECK_NEAR(vis_at(sm, 0, 0, 0), 1, 1e-6);
+    /* Cleared and redrawn with the quad moved by (1, 0, 1), the map
+     * answers as one that only ever held the moved quad, in the old
+     * quad's place too and across the edge they share. */
+    float moved[12];
+    for (int i = 0; i < 12; i++) {
+        moved[i] = quad_xyz[i] + (i % 3 != 1 ? 1.0f : 0.0f);
+    }
+    sr_draw_desc d = { .positions = moved, .vertex_count = 4, .indices = quad_idx,
+                       .index_type = SR_INDEX_U32, .index_count = 6 };
+    sr_shadow_map *fresh = NULL;
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 },
+                                                       .bounds_min = { -2, 0, -2 }, .bounds_max = { 2, 1, 2 },
+                                                       .size = 64 }, &fresh) == SR_OK);
+    CHECK(sr_shadow_map_draw(ctx, sm, &d) == SR_OK);
+    CHECK(sr_shadow_map_draw(ctx, fresh, &d) == SR_OK);
+    int differ = 0, partial = 0;
+    for (float z = -1.5f; z <= 1.5f; z += 0.05f) {
+        for (float x = -1.5f; x <= 1.5f; x += 0.013f) {
+            float a = vis_at(sm, x, 0, z), b = vis_at(fresh, x, 0, z);
+            differ += a != b;
+            partial += a > 0 && a < 1;
+        }
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(partial > 100);
+    CHECK_NEAR(vis_at(sm, -0.5f, 0, -0.5f), 1, 1e-6);
+    sr_destroy_shadow_map(ctx, fresh);
     sr_destroy_shadow_map(ctx, sm);
     sr_destroy_context(ctx);
 }

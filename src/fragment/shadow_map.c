@@ -1,6 +1,6 @@
 /* shadow_map.c - the shadow map of a directional light (fragment stage's
  * input, drawn by the whole pipeline): fits the light's orthographic view
- * to a world-space box, and draws occluders into a depth-only D32F
+ * to a world-space box, and draws occluders into the depth of a D24
  * framebuffer through sr_draw with slope-scaled polygon offset.  The
  * lookup is in shadow_lookup.c.  One thread at a time per map, as a
  * framebuffer. */
@@ -121,6 +121,76 @@ static void fit(sr_shadow_map *sm, sr_vec3 dir, sr_vec3 lo, sr_vec3 hi, float ma
     sm->offset_clamp = (float)(OFFSET_CLAMP_TEXELS * texel_depth);
 }
 
+/* Recompute the extremes of the blocks [bx0, bx1) x [by0, by1). */
+static void update_blocks(sr_shadow_map *sm, int bx0, int by0, int bx1, int by1)
+{
+    int size = sm->size;
+    for (int by = by0; by < by1; by++) {
+        int y0 = by << SR_SHADOW_BLOCK_ORDER;
+        int y1 = y0 + SR_SHADOW_BLOCK_SIZE < size ? y0 + SR_SHADOW_BLOCK_SIZE : size;
+        for (int bx = bx0; bx < bx1; bx++) {
+            int x0 = bx << SR_SHADOW_BLOCK_ORDER;
+            int x1 = x0 + SR_SHADOW_BLOCK_SIZE < size ? x0 + SR_SHADOW_BLOCK_SIZE : size;
+            uint32_t lo = UINT32_MAX, hi = 0;
+            for (int y = y0; y < y1; y++) {
+                const uint32_t *row = sm->depth + (size_t)y * (size_t)size;
+                for (int x = x0; x < x1; x++) {
+                    lo = row[x] < lo ? row[x] : lo;
+                    hi = row[x] > hi ? row[x] : hi;
+                }
+            }
+            sm->block_min[(size_t)by * sm->blocks + bx] = lo;
+            sm->block_max[(size_t)by * sm->blocks + bx] = hi;
+        }
+    }
+}
+
+/* The blocks a draw can have touched: its vertices' texel rectangle
+ * (every vertex, referenced or not), a texel wider on each side for the
+ * rasterizer's rounding; every block when a position is not finite or
+ * has its own w. */
+static void draw_block_rect(const sr_shadow_map *sm, const sr_draw_desc *d, int rect[4])
+{
+    rect[0] = rect[1] = 0;
+    rect[2] = rect[3] = sm->blocks;
+    if (d->position_size == 4) {
+        return;
+    }
+    sr_mat4 model = d->model ? *d->model : sr_mat4_identity();
+    float m[2][4];
+    for (int r = 0; r < 2; r++) {
+        for (int k = 0; k < 4; k++) {
+            m[r][k] = sm->to_map[r][0] * model.m[k * 4 + 0] + sm->to_map[r][1] * model.m[k * 4 + 1] +
+                      sm->to_map[r][2] * model.m[k * 4 + 2] + (k == 3 ? sm->to_map[r][3] : 0.0f);
+        }
+    }
+    size_t stride = d->position_stride ? d->position_stride : 3 * sizeof(float);
+    float u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+    for (size_t i = 0; i < d->vertex_count; i++) {
+        const float *p = (const float *)((const char *)d->positions + i * stride);
+        float u = m[0][0] * p[0] + m[0][1] * p[1] + m[0][2] * p[2] + m[0][3];
+        float v = m[1][0] * p[0] + m[1][1] * p[1] + m[1][2] * p[2] + m[1][3];
+        if (!(isfinite(u) && isfinite(v))) {
+            return;
+        }
+        u0 = u < u0 ? u : u0, u1 = u > u1 ? u : u1;
+        v0 = v < v0 ? v : v0, v1 = v > v1 ? v : v1;
+    }
+    float lim = (float)sm->size;
+    if (!(u0 <= u1) || u1 < -1.0f || v1 < -1.0f || u0 > lim + 1.0f || v0 > lim + 1.0f) {
+        rect[2] = rect[3] = 0;   /* nothing on the map */
+        return;
+    }
+    u0 = u0 - 1.0f > 0.0f ? u0 - 1.0f : 0.0f, v0 = v0 - 1.0f > 0.0f ? v0 - 1.0f : 0.0f;
+    u1 = u1 + 1.0f < lim ? u1 + 1.0f : lim, v1 = v1 + 1.0f < lim ? v1 + 1.0f : lim;
+    rect[0] = (int)u0 >> SR_SHADOW_BLOCK_ORDER;
+    rect[1] = (int)v0 >> SR_SHADOW_BLOCK_ORDER;
+    rect[2] = ((int)u1 >> SR_SHADOW_BLOCK_ORDER) + 1;
+    rect[3] = ((int)v1 >> SR_SHADOW_BLOCK_ORDER) + 1;
+    rect[2] = rect[2] < sm->blocks ? rect[2] : sm->blocks;
+    rect[3] = rect[3] < sm->blocks ? rect[3] : sm->blocks;
+}
+
 sr_result sr_make_shadow_map(sr_context *ctx, const sr_shadow_desc *desc, sr_shadow_map **out)
 {
     if (!ctx) {
@@ -147,8 +217,14 @@ sr_result sr_make_shadow_map(sr_context *ctx, const sr_shadow_desc *desc, sr_sha
      * that inside the map for every point of the box. */
     fit(sm, sr_vec3_normalize(desc->direction), desc->bounds_min, desc->bounds_max,
         sm->filter_radius + 2.0f);
-    r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = sm->size, .height = sm->size,
-                                                        .depth_format = SR_DEPTH_D32F }, &sm->fb);
+    sm->blocks = (sm->size + SR_SHADOW_BLOCK_SIZE - 1) >> SR_SHADOW_BLOCK_ORDER;
+    size_t nb = (size_t)sm->blocks * (size_t)sm->blocks;
+    sm->block_min = sr__calloc(ctx, nb, sizeof *sm->block_min);
+    sm->block_max = sr__calloc(ctx, nb, sizeof *sm->block_max);
+    r = sm->block_min && sm->block_max
+        ? sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = sm->size, .height = sm->size,
+                                                          .depth_format = SR_DEPTH_D24 }, &sm->fb)
+        : sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_shadow_map: out of memory");
     if (r == SR_OK) {
         r = sr_shadow_map_clear(ctx, sm);
     }
@@ -167,6 +243,8 @@ void sr_destroy_shadow_map(sr_context *ctx, sr_shadow_map *sm)
         return;
     }
     sr_destroy_framebuffer(ctx, sm->fb);
+    sr__free(ctx, sm->block_min);
+    sr__free(ctx, sm->block_max);
     sr__free(ctx, sm);
 }
 
@@ -187,6 +265,10 @@ sr_result sr_shadow_map_clear(sr_context *ctx, sr_shadow_map *sm)
      * stay pending. */
     sr__fb_resolve(sm->fb, SR_TILE_PENDING_DEPTH);
     sm->depth = sm->fb->depth;
+    size_t nb = (size_t)sm->blocks * (size_t)sm->blocks;
+    for (size_t i = 0; i < nb; i++) {
+        sm->block_min[i] = sm->block_max[i] = sm->fb->clear_depth;
+    }
     return SR_OK;
 }
 
@@ -206,16 +288,21 @@ sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr_draw_d
     d.view = &sm->view;
     d.projection = &sm->projection;
     /* Both faces: a mesh's winding need not be consistent for its shadow
-     * to be whole (STL and scans often are not). */
+     * to be whole (STL and scans often are not).  Color is written though
+     * never read: a color mask or a float depth buffer would leave the
+     * vector kernels for the scalar path, 4x slower (docs/shadows.md). */
     sr_state st = {
-        .color_mask = SR_COLOR_MASK_NONE,
         .cull = SR_CULL_NONE,
         .depth_zero_to_one = true,
         .offset = { .factor = sm->offset_factor, .units = sm->offset_units,
                     .clamp = sm->offset_clamp, .fill = true },
     };
     sr_result r = sr_draw(ctx, sm->fb, &st, &d);
-    sr__fb_resolve(sm->fb, SR_TILE_PENDING_DEPTH);
+    if (r == SR_OK) {
+        int rect[4];
+        draw_block_rect(sm, &d, rect);
+        update_blocks(sm, rect[0], rect[1], rect[2], rect[3]);
+    }
     return r;
 }
 
