@@ -159,7 +159,7 @@
  *     sr_make_shadow_map         a directional light's shadow map fitted to bounds
  *     sr_destroy_shadow_map      frees it
  *     sr_shadow_map_clear        empties it for a new frame
- *     sr_shadow_map_draw         occluders into it, depth only
+ *     sr_shadow_map_draw         occluders into it, their depth
  *     sr_query_shadow_map        its light matrices and texel size
  *     sr_shadow_visibility       how lit a world-space point is, filtered
  *     sr_shadow_visibility4      the same for the four lanes of a fragment quad
@@ -1203,7 +1203,7 @@ SR_API sr_result sr_make_ground_mesh(sr_context *ctx, const sr_ground_desc *desc
  * view and projection are replaced by the light's), then look the map up
  * from the shaders with sr_shadow_visibility or sr_shadow_visibility4.
  *
- * Occluders are drawn depth-only through sr_draw with both faces kept and
+ * Occluders are drawn into its depth through sr_draw with both faces kept and
  * slope-scaled polygon offset (sr_polygon_offset: factor x the depth slope
  * of each triangle, plus units x the format's step), so a lit surface does
  * not shadow itself where the map's depth is a rasterized approximation of
