@@ -1209,9 +1209,9 @@ SR_API sr_result sr_make_ground_mesh(sr_context *ctx, const sr_ground_desc *desc
  * not shadow itself where the map's depth is a rasterized approximation of
  * it.  The lookup moves the receiver along its normal by a few texels
  * (more where it is steep to the light) before comparing: the filter's
- * outer taps compare against texels up to radius + 1 texels away, which
- * the offset at the caster alone would have to cover with a larger bias
- * (and more peter-panning).  The lookup is percentage-closer filtering:
+ * outer taps compare against texels up to (radius + 1/2) sqrt 2 texels
+ * away, which the offset at the caster alone would have to cover with a
+ * larger bias (and more peter-panning).  The lookup is percentage-closer filtering:
  * the fraction of the map's texels, weighted by how much of each a box of
  * half-width filter_radius texels around the point covers, that lie
  * farther from the light than the point, so the penumbra is continuous
@@ -1256,7 +1256,8 @@ SR_API sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr
 SR_API sr_result sr_query_shadow_map(const sr_shadow_map *sm, sr_shadow_info *out);
 /* Visibility of the world-space point pos[0..2] in [0, 1]: 0 in shadow,
  * 1 lit.  normal (may be NULL: no normal offset) is the surface's
- * world-space normal, any length; a point that is not finite is lit. */
+ * world-space geometric normal (the interpolated vertex normal, not a
+ * normal map's), any length; a point that is not finite is lit. */
 SR_API sr_result sr_shadow_visibility(const sr_shadow_map *sm, const float pos[3],
                                       const float normal[3], float *out);
 /* Four points at once, laid out as three varyings of an sr_fragment_quad:
