@@ -164,6 +164,15 @@
  *   built-in geometry
  *     sr_make_bezier_mesh        bicubic Bezier patches tessellated
  *     sr_make_teapot             the Utah teapot
+ *     sr_make_ground_mesh        a ground plane under a scene's bounds
+ *   shadows
+ *     sr_make_shadow_map         a directional light's shadow map fitted to bounds
+ *     sr_destroy_shadow_map      frees it
+ *     sr_shadow_map_clear        empties it for a new frame
+ *     sr_shadow_map_draw         occluders into it, their depth
+ *     sr_query_shadow_map        its light matrices and texel size
+ *     sr_shadow_visibility       how lit a world-space point is, filtered
+ *     sr_shadow_visibility4      the same for the four lanes of a fragment quad
  *   2D raster API
  *     sr_draw_text               a label in the built-in 5x7 font
  *     sr_text_width              its width in pixels
@@ -1265,6 +1274,95 @@ SR_API sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16]
 /* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x.
  * Release with sr_destroy_mesh. */
 SR_API sr_result sr_make_teapot(sr_context *ctx, int detail, sr_mesh *out);
+
+/* A ground plane for a scene (docs/shadows.md): a square of side
+ * `scale` x the largest extent of the bounds across `up`, centred under
+ * the bounds' centre, in the plane through the bounds' lowest corner
+ * along `up` (moved down by `drop` x that extent), facing `up`, with
+ * normals and texcoords (0..1 over the square).  Two triangles,
+ * counter-clockwise seen from above. */
+typedef struct sr_ground_desc {
+    sr_vec3 bounds_min, bounds_max;  /* the scene's world-space box, min <= max */
+    sr_vec3 up;                      /* zero -> +Y; any length > 0 */
+    float scale;                     /* 0 -> 4; 0.01 .. 1000 */
+    float drop;                      /* 0 -> none; 0 .. 1 */
+} sr_ground_desc;
+SR_API sr_result sr_make_ground_mesh(sr_context *ctx, const sr_ground_desc *desc, sr_mesh *out);
+
+/* ---- shadows ------------------------------------------------------------ */
+/*
+ * A shadow map for a directional key light (docs/shadows.md).  The light's
+ * orthographic view is fitted to a world-space box that holds every
+ * occluder: its depth range to the box's extent along the light, its
+ * rectangle to the box's outline as the light sees it (plus a margin for
+ * the filter).  Each frame: sr_shadow_map_clear, sr_shadow_map_draw for
+ * every occluder (a mesh's positions with its model matrix; the draw's
+ * view and projection are replaced by the light's), then look the map up
+ * from the shaders with sr_shadow_visibility or sr_shadow_visibility4.
+ *
+ * Occluders are drawn into its depth through sr_draw with both faces kept and
+ * slope-scaled polygon offset (sr_polygon_offset: factor x the depth slope
+ * of each triangle, plus units x the format's step), so a lit surface does
+ * not shadow itself where the map's depth is a rasterized approximation of
+ * it.  The lookup moves the receiver along its normal by a few texels
+ * (more where it is steep to the light) before comparing: the filter's
+ * outer taps compare against texels up to (radius + 1/2) sqrt 2 texels
+ * away, which the offset at the caster alone would have to cover with a
+ * larger bias (and more peter-panning).  The lookup is percentage-closer filtering:
+ * the fraction of the map's texels, weighted by how much of each a box of
+ * half-width filter_radius texels around the point covers, that lie
+ * farther from the light than the point, so the penumbra is continuous
+ * and monotonic across an edge.  Points outside the map are lit.
+ *
+ * Lookups only read the map: shaders on every thread may call them at
+ * once between draws, and they give the same value for the same point.
+ */
+typedef struct sr_shadow_map sr_shadow_map;
+
+typedef struct sr_shadow_desc {
+    sr_vec3 direction;               /* required: the direction the light travels,
+                                      * from the light to the scene (as the vector of
+                                      * an SR_LIGHT_DIRECTIONAL sr_light); any length > 0 */
+    sr_vec3 bounds_min, bounds_max;  /* world-space box of the occluders, min <= max */
+    int size;                        /* texels a side: 0 -> 2048; 16 .. SR_MAX_FRAMEBUFFER_SIZE */
+    float offset_factor;             /* polygon offset of the occluders: 0 -> 1.5 */
+    float offset_units;              /* 0 -> 2 */
+    float filter_radius;             /* PCF half-width, texels: 0 -> 1.5; 0.5 .. 8 */
+    /* The receiver moves along its normal by (normal_offset + 1.5
+     * filter_radius) texels times the sine of the angle between normal
+     * and light: 0 -> 1; 0 .. 64 (a NULL normal at lookup: no move). */
+    float normal_offset;
+} sr_shadow_desc;
+
+/* The light's transform as the map uses it. */
+typedef struct sr_shadow_info {
+    sr_mat4 view;                    /* world -> light eye space (looking along direction) */
+    sr_mat4 projection;              /* orthographic, depth in [0, 1] (zero_to_one) */
+    int size;                        /* texels a side */
+    float texel_size;                /* world units a texel spans */
+    float filter_radius, normal_offset;  /* resolved */
+} sr_shadow_info;
+
+SR_API sr_result sr_make_shadow_map(sr_context *ctx, const sr_shadow_desc *desc, sr_shadow_map **out);
+SR_API void      sr_destroy_shadow_map(sr_context *ctx, sr_shadow_map *sm);
+/* Empties the map (every point lit) for a new frame. */
+SR_API sr_result sr_shadow_map_clear(sr_context *ctx, sr_shadow_map *sm);
+/* Draws draw's triangles into the map as occluders: positions and model
+ * (other arrays ignored), the light's view and projection. */
+SR_API sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr_draw_desc *draw);
+SR_API sr_result sr_query_shadow_map(const sr_shadow_map *sm, sr_shadow_info *out);
+/* Visibility of the world-space point pos[0..2] in [0, 1]: 0 in shadow,
+ * 1 lit.  normal (may be NULL: no normal offset) is the surface's
+ * world-space geometric normal (the interpolated vertex normal, not a
+ * normal map's), any length; a point that is not finite is lit. */
+SR_API sr_result sr_shadow_visibility(const sr_shadow_map *sm, const float pos[3],
+                                      const float normal[3], float *out);
+/* Four points at once, laid out as three varyings of an sr_fragment_quad:
+ * pos[0..3] the x of lanes 0..3, pos[4..7] their y, pos[8..11] their z;
+ * normal likewise (or NULL); out[i] the visibility of lane i, the same
+ * value sr_shadow_visibility gives for it. */
+SR_API sr_result sr_shadow_visibility4(const sr_shadow_map *sm, const float *pos,
+                                       const float *normal, float out[4]);
 
 /* ---- 2D raster API ------------------------------------------------------ */
 /*
