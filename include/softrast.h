@@ -1106,7 +1106,8 @@ SR_API void sr_destroy_builtin_program(sr_context *ctx, sr_builtin *b);
  * program (docs/pbr.md): base color, metallic and roughness, GGX
  * distribution, height-correlated Smith visibility, Schlick Fresnel,
  * Lambert diffuse; normal, occlusion and emissive maps; alpha modes;
- * double-sided and unlit materials.  Shading is in world space and linear
+ * double-sided and unlit materials; punctual lights, a hemisphere or an
+ * environment's image-based light, and a shadow map for the key light.  Shading is in world space and linear
  * light; each fragment's color is scaled by 2^exposure, tone mapped and
  * sRGB-encoded into the RGBA8 target (as three.js draws to a canvas), so
  * blending happens on the encoded values.  Unlit materials skip exposure
@@ -1139,6 +1140,15 @@ typedef struct sr_pbr_desc {
      * and specular (by the reflected ray, weighted by the split-sum BRDF's
      * analytic fit).  Occlusion maps darken it.  Both zero: no ambient. */
     sr_vec3 sky, ground;
+    /* Image-based light (docs/ibl.md) in place of the hemisphere:
+     * (1 - Es) c_diff E(N) + Es L(R, roughness), Es = F0 A + B from the
+     * split-sum table, times the occlusion.  Must outlive the program. */
+    const sr_environment *environment;
+    /* The key light's shadow (docs/shadows.md): lights[0], which should
+     * be the map's directional light, is scaled by the filtered visibility
+     * at each fragment (looked up with the interpolated vertex normal).
+     * Must outlive the program and be drawn before the program's draws. */
+    const struct sr_shadow_map *shadow;   /* declared with the shadows below */
     float exposure;                    /* EV: radiance times 2^exposure; -64..64 */
     sr_tonemap_op tonemap;             /* DEFAULT -> Khronos PBR Neutral */
     sr_switch vertex_color;            /* SR_OFF: ignore the draw's colors (4 varyings fewer) */

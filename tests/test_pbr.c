@@ -638,3 +638,113 @@ SR_TEST(white_furnace_hemisphere)
     }
     free_sphere(&s);
 }
+
+/* The same furnace through image-based light: a uniform white
+ * environment (an equirectangular image of ones) in place of the
+ * hemisphere.  Printed per roughness and metallic, bounded as above. */
+SR_TEST(white_furnace_environment)
+{
+    float white[8 * 4 * 3];
+    for (int i = 0; i < 8 * 4 * 3; i++) {
+        white[i] = 1.0f;
+    }
+    sr_environment *env = NULL;
+    REQUIRE(sr_make_environment(sr_test_ctx(),
+                                &(sr_environment_desc){ .pixels = white, .width = 8, .height = 4 },
+                                &env) == SR_OK);
+    sphere s = make_sphere(48, 24);
+    sr_mat4 view = test_view(), proj = test_projection();
+    for (int k = 0; k <= 8; k++) {
+        sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+        REQUIRE(fb);
+        sr_pbr_material m = sr_pbr_default_material();
+        m.metallic = k > 4 ? 1.0f : 0.0f;
+        m.roughness = (float)(k > 4 ? k - 4 : k) / 4.0f;
+        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                          .environment = env, .exposure = -1.0f, .tonemap = SR_TONEMAP_NONE };
+        REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
+        double lo = 1e9, hi = 0, sum = 0;
+        int n = 0;
+        for (int y = 0; y < CELL; y++) {
+            for (int x = 0; x < CELL; x++) {
+                const uint8_t *c = px(fb, x, y);
+                if (c[0] == 0) {
+                    continue;
+                }
+                double lin = srgb_decode(c[0]) * 2.0;
+                lo = lin < lo ? lin : lo;
+                hi = lin > hi ? lin : hi;
+                sum += lin;
+                n++;
+            }
+        }
+        REQUIRE(n > 2000);
+        fprintf(stderr, "furnace (environment) metallic %.0f roughness %.2f: min %.3f mean %.3f "
+                "max %.3f\n", (double)m.metallic, (double)m.roughness, lo, sum / n, hi);
+        if (m.metallic == 0.0f) {
+            CHECK(lo > 0.97);
+            CHECK(hi < 1.04);
+        } else {
+            CHECK(hi <= 1.03);
+            CHECK(lo > 0.25);
+        }
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+    free_sphere(&s);
+    sr_destroy_environment(sr_test_ctx(), env);
+}
+
+/* A ground square under a smaller square, the key light straight down,
+ * seen from above: with the shadow map the ground under the occluder
+ * gets only the ambient; without it, the light everywhere. */
+SR_TEST(shadow_map_darkens_the_key_light)
+{
+    sr_context *ctx = sr_test_ctx();
+    const float ground[] = { -1, 0, 1, 1, 0, 1, 1, 0, -1, -1, 0, -1 };
+    const float up[] = { 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0 };
+    const float blocker[] = { -0.3f, 0.5f, 0.3f, 0.3f, 0.5f, 0.3f, 0.3f, 0.5f, -0.3f,
+                              -0.3f, 0.5f, -0.3f };
+    const uint32_t idx[] = { 0, 1, 2, 0, 2, 3 };
+    sr_shadow_map *sm = NULL;
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 },
+                                                       .bounds_min = { -1, 0, -1 },
+                                                       .bounds_max = { 1, 0.5f, 1 }, .size = 256 },
+                               &sm) == SR_OK);
+    REQUIRE(sr_shadow_map_clear(ctx, sm) == SR_OK);
+    REQUIRE(sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = blocker, .vertex_count = 4,
+                                                         .indices = idx,
+                                                         .index_type = SR_INDEX_U32,
+                                                         .index_count = 6 }) == SR_OK);
+    sr_mat4 view = sr_look_at((sr_vec3){ 0, 5, 0 }, (sr_vec3){ 0, 0, 0 }, (sr_vec3){ 0, 0, -1 });
+    sr_mat4 proj = test_projection();
+    sr_pbr_material m = sr_pbr_default_material();
+    m.metallic = 0.0f;
+    int centre[2], corner[2];
+    for (int k = 0; k < 2; k++) {
+        sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+        REQUIRE(fb);
+        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                          .sky = { 0.1f, 0.1f, 0.1f }, .ground = { 0.1f, 0.1f, 0.1f },
+                          .shadow = k ? sm : NULL };
+        d.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, -1, 0 },
+                                  .intensity = 2.0f };
+        sr_pbr *p;
+        REQUIRE(sr_make_pbr_program(ctx, &d, &p) == SR_OK);
+        CHECK_EQ(sr_draw(ctx, fb, &(sr_state){ .program = sr_pbr_program(p) },
+                         &(sr_draw_desc){ .positions = ground, .normals = up, .vertex_count = 4,
+                                          .indices = idx, .index_type = SR_INDEX_U32,
+                                          .index_count = 6 }),
+                 SR_OK);
+        sr_destroy_pbr_program(ctx, p);
+        centre[k] = px(fb, CELL / 2, CELL / 2)[1];
+        corner[k] = px(fb, 8, 8)[1];
+        if (k) {
+            save(fb, "pbr_shadow");
+        }
+        sr_destroy_framebuffer(ctx, fb);
+    }
+    CHECK_EQ(centre[0], corner[0]);          /* no map: lit alike */
+    CHECK_EQ(corner[1], corner[0]);          /* outside the shadow: as lit */
+    CHECK(centre[1] < corner[1] - 60);       /* under the blocker: the ambient only */
+    sr_destroy_shadow_map(ctx, sm);
+}

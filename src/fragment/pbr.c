@@ -147,6 +147,8 @@ struct sr_pbr {
     bool light_point[SR_MAX_LIGHTS];
     bool ambient;
     float sky[3], ground[3];
+    const sr_environment *environment;  /* replaces the hemisphere when set */
+    const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
     sr_tonemap_op tonemap;
     const srgb_table *srgb;
@@ -336,7 +338,8 @@ static void hemisphere(const sr_pbr *p, const v4f d[3], v4f out[3])
  * ambient light times the occlusion.  Radiance out, linear, unexposed. */
 static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
                         const float v_[3][4], const float base_[4][4], const float metal_[4],
-                        const float rough_[4], const float ao_[4], float out_[3][4])
+                        const float rough_[4], const float ao_[4], const float shadow_[4],
+                        float out_[3][4])
 {
     v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3];
     load3(pos, pos_);
@@ -360,6 +363,12 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
         for (int c = 0; c < 3; c++) {
             ld[c] = p->light_vec[l][c] - (v4f){ 0 };
             rad[c] = p->light_rad[l][c] - (v4f){ 0 };
+        }
+        if (l == 0) {
+            /* The shadow map belongs to the key light. */
+            for (int c = 0; c < 3; c++) {
+                rad[c] *= load(shadow_);
+            }
         }
         if (p->light_point[l]) {
             /* KHR_lights_punctual: intensity over the squared distance. */
@@ -395,27 +404,50 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
             out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
         }
     }
-    if (p->ambient) {
-        /* The split sum's scale and bias of f0 from Karis's analytic fit
-         * (mobile UE4), and the hemisphere seen along N and along R. */
-        v4f nd = dot3(n, v), rr[3], en[3], er[3];
+    if (!p->environment && !p->ambient) {
+        goto done;
+    }
+    v4f nd = dot3(n, v), rr[3], en[3], er[3], sa, sb;
+    for (int k = 0; k < 3; k++) {
+        rr[k] = 2.0f * nd * n[k] - v[k];
+    }
+    v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
+    if (p->environment) {
+        /* Image-based light: irradiance (E / pi) along N, the
+         * prefiltered radiance along R, the split sum's table. */
+        sr_vec3x4 dn, dr, e_n, e_r;
+        float rl[4], nvl[4], a[4], b[4];
         for (int k = 0; k < 3; k++) {
-            rr[k] = 2.0f * nd * n[k] - v[k];
+            store(k == 0 ? dn.x : k == 1 ? dn.y : dn.z, n[k]);
+            store(k == 0 ? dr.x : k == 1 ? dr.y : dr.z, rr[k]);
         }
+        store(rl, rc);
+        store(nvl, nv);
+        sr_environment_irradiance4(p->environment, &dn, &e_n);
+        sr_environment_specular4(p->environment, &dr, rl, &e_r);
+        sr_brdf_table4(nvl, rl, a, b);
+        en[0] = load(e_n.x), en[1] = load(e_n.y), en[2] = load(e_n.z);
+        er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
+        sa = load(a);
+        sb = load(b);
+    } else {
+        /* The hemisphere along N and along R; the split sum's scale and
+         * bias of f0 from Karis's analytic fit (mobile UE4). */
         hemisphere(p, n, en);
         hemisphere(p, rr, er);
-        v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
         v4f rx = 1.0f - rc, ry = -0.0275f * rc + 0.0425f;
         v4f rz = -0.572f * rc + 1.04f, rw = 0.022f * rc - 0.04f;
         v4f e = exp2_approx(-9.28f * nv);
         v4f a004 = vmin(rx * rx, e) * rx + ry;
-        v4f sa = -1.04f * a004 + rz, sb = 1.04f * a004 + rw;
-        for (int c = 0; c < 3; c++) {
-            /* What the specular lobe reflects the diffuse cannot. */
-            v4f spec = f0[c] * sa + sb;
-            out[c] += (cdiff[c] * (1.0f - spec) * en[c] + spec * er[c]) * ao;
-        }
+        sa = -1.04f * a004 + rz;
+        sb = 1.04f * a004 + rw;
     }
+    for (int c = 0; c < 3; c++) {
+        /* What the specular lobe reflects the diffuse cannot. */
+        v4f spec = f0[c] * sa + sb;
+        out[c] += (cdiff[c] * (1.0f - spec) * en[c] + spec * er[c]) * ao;
+    }
+done:
     for (int c = 0; c < 3; c++) {
         store(out_[c], out[c]);
     }
@@ -559,10 +591,21 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             }
             normalize4(n);
         }
-        float pos[3][4];
+        float pos[3][4], shadow[4] = { 1, 1, 1, 1 };
         memcpy(pos, &q->varyings[VARY_POS], sizeof pos);
-        shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n,
-                    (const float(*)[4])v, (const float(*)[4])base, metal, rough, ao, out);
+        if (p->shadow) {
+            /* The geometric normal (the interpolated vertex normal, facing
+             * the shaded side), not the normal map's. */
+            float g[3][4];
+            for (int k = 0; k < 3; k++) {
+                for (int i = 0; i < 4; i++) {
+                    g[k][i] = q->varyings[VARY_NORMAL + k][i] * side;
+                }
+            }
+            sr_shadow_visibility4(p->shadow, &pos[0][0], &g[0][0], shadow);
+        }
+        shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
+                    (const float(*)[4])base, metal, rough, ao, shadow, out);
         if (p->slot[SLOT_EMISSIVE].tex) {
             sample_slot(&p->slot[SLOT_EMISSIVE], q, tex, uv);
         } else {
@@ -836,6 +879,8 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     resolve_lights(desc, p);
     memcpy(p->sky, &desc->sky.x, sizeof p->sky);
     memcpy(p->ground, &desc->ground.x, sizeof p->ground);
+    p->environment = desc->environment;
+    p->shadow = desc->shadow;
     p->ambient = p->sky[0] + p->sky[1] + p->sky[2] + p->ground[0] + p->ground[1] + p->ground[2] > 0;
     p->scale = exp2f(desc->exposure);
     p->tonemap = desc->tonemap ? desc->tonemap : SR_TONEMAP_PBR_NEUTRAL;
