@@ -496,6 +496,25 @@ SR_TEST(missing_model_file_is_reported)
     }
 }
 
+/* --environment FILE.hdr that is missing or not a Radiance picture: exit
+ * 2, one line naming the file, no output. */
+SR_TEST(bad_environment_file_is_reported)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], missing[1100], junk[1100];
+    fresh_dir("environments", dir, sizeof dir);
+    snprintf(missing, sizeof missing, "%s/no_such.hdr", dir);
+    snprintf(junk, sizeof junk, "%s/junk.hdr", dir);
+    const char *text = "not a radiance picture\n";
+    REQUIRE(write_whole(junk, text, strlen(text)));
+    expect_render_failure("missing environment", ARGS("--size", "16x12", "--environment", missing),
+                          2, "no_such.hdr: cannot open");
+    expect_render_failure("junk environment", ARGS("--size", "16x12", "--environment", junk), 2,
+                          "junk.hdr");
+}
+
 /* Opening a FIFO for reading waits for a writer, here forever: each input
  * the CLI reads must refuse one at once (run_cli kills a child that hangs),
  * except an MTL, which is skipped as a missing one is. */
@@ -584,6 +603,8 @@ static const option_case option_errors[] = {
     { "tonemap bogus", { "--tonemap", "filmic" }, "--tonemap: expected one of neutral|aces|none" },
     { "exposure 30", { "--exposure", "30" }, "--exposure: expected a number" },
     { "exposure nan", { "--exposure", "nan" }, "--exposure: expected a number" },
+    { "environment intensity 0", { "--environment-intensity", "0" },
+      "--environment-intensity: expected a number" },
     { "fov 0", { "--fov", "0" }, "--fov: expected a number" },
     { "polygon offset one number", { "--polygon-offset", "1" },
       "--polygon-offset: expected FACTOR,UNITS" },
@@ -1015,7 +1036,8 @@ static const char *const value_options[] = {
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
-    "--polygon-offset", "--up", "--tonemap", "--exposure",
+    "--polygon-offset", "--up", "--tonemap", "--exposure", "--environment",
+    "--environment-intensity",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",

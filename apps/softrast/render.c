@@ -310,9 +310,9 @@ static sr_pbr_material pbr_material(const render_opts *o, const scene_object *ob
 /* Opaque objects first, then translucent ones back to front with
  * source-over blending and no depth writes (they still test against the
  * opaque depth). */
-static sr_result draw_scene(const render_opts *o, sr_context *ctx, sr_framebuffer *fb,
-                            sr_state *state, scene *s, const camera *cam, bool keep_material,
-                            uint64_t *tris, uint64_t *frags)
+static sr_result draw_scene(const render_opts *o, const sr_environment *env, sr_context *ctx,
+                            sr_framebuffer *fb, sr_state *state, scene *s, const camera *cam,
+                            bool keep_material, uint64_t *tris, uint64_t *frags)
 {
     bool pbr = o->pbr && !keep_material;
     sr_result r = SR_OK;
@@ -360,9 +360,17 @@ static sr_result draw_scene(const render_opts *o, sr_context *ctx, sr_framebuffe
                                       .vertex_color = ob->mesh.colors
                                                           ? ob->material.vertex_color : SR_OFF };
                     framing_pbr_lights(state->lights, &d);
+                    if (env && o->light_count == 0) {
+                        /* The studio is the fill and the rim: of the
+                         * classic rig only the key light stays, for shape. */
+                        for (int l = 1; l < SR_MAX_LIGHTS; l++) {
+                            d.lights[l].type = SR_LIGHT_OFF;
+                        }
+                    }
                     if (o->have_ambient) {
                         d.sky = d.ground = o->ambient;
                     }
+                    d.environment = env;
                     r = sr_make_pbr_program(ctx, &d, &program);
                     if (r != SR_OK) {
                         free(sorted);
@@ -391,13 +399,14 @@ static sr_result draw_scene(const render_opts *o, sr_context *ctx, sr_framebuffe
  * depth buffer with the model pushed back by polygon offset (factor 1,
  * units 1 unless --polygon-offset says otherwise), so lines on its surface win the LEQUAL test without stitching
  * or z-fighting; hidden-line and points fill with the background color. */
-static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuffer *fb,
+static sr_result draw_passes(const render_opts *o, const sr_environment *env, sr_context *ctx,
+                             sr_framebuffer *fb,
                              const sr_state *base, scene *s, const camera *cam, uint64_t *tris,
                              uint64_t *frags)
 {
     sr_state st = *base;
     if (o->lines == LINES_NONE) {
-        return draw_scene(o, ctx, fb, &st, s, cam, false, tris, frags);
+        return draw_scene(o, env, ctx, fb, &st, s, cam, false, tris, frags);
     }
     bool light_bg = o->background.x + o->background.y + o->background.z > 1.5f;
     sr_vec3 ink = o->have_line_color ? o->line_color
@@ -410,11 +419,11 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
         fill.offset = (sr_polygon_offset){ .factor = o->offset_factor,
                                            .units = o->offset_units, .fill = true };
         if (o->lines == LINES_EDGES) {
-            r = draw_scene(o, ctx, fb, &fill, s, cam, false, tris, frags);
+            r = draw_scene(o, env, ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
             fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
-            r = draw_scene(o, ctx, fb, &fill, s, cam, true, tris, frags);
+            r = draw_scene(o, env, ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
     if (r != SR_OK) {
@@ -436,7 +445,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     } else {
         lines.depth_func = SR_LEQUAL;
     }
-    return draw_scene(o, ctx, fb, &lines, s, cam, true, tris, frags);
+    return draw_scene(o, env, ctx, fb, &lines, s, cam, true, tris, frags);
 }
 
 /* ---- render jobs: what `softrast render` and `softrast view` share ------- */
@@ -453,6 +462,7 @@ struct render_job {
     sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
                              * format) when the caller's framebuffer cannot be drawn into */
     cli_inputs inputs;      /* the files read: model, MTL, textures */
+    sr_environment *env;    /* pbr's image-based light, on mesh_ctx; NULL: the hemisphere */
     char error[512];
 };
 
@@ -622,6 +632,35 @@ static int finish_scene(render_job *job)
     return -1;
 }
 
+/* --environment: the built-in studio, an equirectangular Radiance
+ * picture, or none (the sky-and-ground hemisphere); prefiltered once. */
+static int load_environment(render_job *job)
+{
+    const render_opts *o = &job->o;
+    if (!o->pbr || o->have_ambient || strcmp(o->environment, "none") == 0) {
+        return -1;
+    }
+    sr_environment_desc d = { .intensity = o->environment_intensity };
+    float *px = NULL;
+    if (strcmp(o->environment, "studio") != 0) {
+        sr_io_error err;
+        cli_inputs_add(&job->inputs, o->environment, "environment");
+        sr_result r = sr_read_hdr(o->environment, &d.width, &d.height, &px, &err);
+        if (r != SR_OK) {
+            fprintf(stderr, "%s\n", err.message);
+            return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+        }
+        d.pixels = px;
+    }
+    sr_result r = sr_make_environment(job->mesh_ctx, &d, &job->env);
+    free(px);
+    if (r != SR_OK) {
+        cli_error("%s: %s", o->environment, sr_context_error(job->mesh_ctx));
+        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    return -1;
+}
+
 int render_job_load(render_job *job)
 {
     int status = start_context(job);
@@ -630,6 +669,9 @@ int render_job_load(render_job *job)
     }
     if (status < 0) {
         status = finish_scene(job);
+    }
+    if (status < 0) {
+        status = load_environment(job);
     }
     return status >= 0 ? status : make_context(job);
 }
@@ -766,7 +808,8 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
     if (r == SR_OK) {
-        r = draw_passes(o, ctx, fb, &state, &job->s, &cam, &info->triangles, &info->fragments);
+        r = draw_passes(o, job->env, ctx, fb, &state, &job->s, &cam, &info->triangles,
+                        &info->fragments);
     }
     if (r == SR_OK && fb != out) {
         r = o->msaa > 1 ? sr_resolve(ctx, fb, out) : sr_downsample(ctx, fb, out, o->filter);
@@ -785,6 +828,7 @@ void render_job_free(render_job *job)
         return;
     }
     drop_context(job);
+    sr_destroy_environment(job->mesh_ctx, job->env);
     if (job->have_scene) {
         scene_free(job->mesh_ctx, &job->s);
     }
@@ -870,6 +914,9 @@ int cmd_render(int argc, char **argv)
     double setup_ms = now_ms() - t_wait;
     if (status < 0) {
         status = finish_scene(job);
+    }
+    if (status < 0) {
+        status = load_environment(job);
     }
     if (status < 0) {
         status = make_context(job);

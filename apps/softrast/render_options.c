@@ -59,12 +59,17 @@ static void render_help(void)
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
         "  --shading MODE           pbr|flat|gouraud|phong|normals|depth|unlit (default\n"
-        "                           pbr: glTF's metallic-roughness model, lit by the\n"
-        "                           lights and a sky-and-ground ambient, tone mapped;\n"
-        "                           the others are the classic Blinn-Phong models)\n"
+        "                           pbr: glTF's metallic-roughness model, lit by a key\n"
+        "                           light and a studio environment, tone mapped; the\n"
+        "                           others are the classic Blinn-Phong models)\n"
         "  --tonemap T              neutral|aces|none, pbr's tone curve: Khronos PBR\n"
         "                           Neutral, ACES filmic, or a clamp (default neutral)\n"
         "  --exposure EV            pbr's exposure in stops, -20..20 (default 0)\n"
+        "  --environment E          pbr's ambient light: studio (a built-in neutral\n"
+        "                           studio, the default), FILE.hdr (an equirectangular\n"
+        "                           Radiance picture, +y up), or none (a gray sky over a\n"
+        "                           darker ground); prefiltered once\n"
+        "  --environment-intensity S  its radiance scale, 0.001..1000 (default 0.6)\n"
         "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
         "                           smooth ones, or one per face (default: file if the\n"
         "                           model has them, else smooth)\n"
@@ -73,7 +78,7 @@ static void render_help(void)
         "                           pbr: the color as base color, a dielectric of\n"
         "                           roughness 0.5, or 1 - sqrt(N/1000) for shininess N)\n"
         "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14; pbr:\n"
-        "                           a gray sky over a darker ground, uniform COLOR if given)\n"
+        "                           the environment, or uniform COLOR if given)\n"
         "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
         "                           surfaces are drawn after opaque ones, back to front\n"
         "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
@@ -271,6 +276,14 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             o->pbr = sh == 0;
         } else if (IS("--tonemap")) {
             CHOICE(tonemap_names, o->tonemap, tonemap_values[k_]);
+        } else if (IS("--environment")) {
+            VALUE();
+            o->environment = value;
+        } else if (IS("--environment-intensity")) {
+            VALUE();
+            if (!parse_float(arg, value, 0.001f, 1000.0f, &o->environment_intensity)) {
+                return EXIT_USAGE;
+            }
         } else if (IS("--exposure")) {
             VALUE();
             if (!parse_float(arg, value, -20.0f, 20.0f, &o->exposure)) {
@@ -462,7 +475,8 @@ render_opts render_opts_defaults(void)
 {
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
-        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL,
+        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "studio",
+        .environment_intensity = 0.6f,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,

@@ -19,6 +19,8 @@ typedef struct render_opts {
     bool pbr;                      /* --shading pbr: the metallic-roughness program */
     sr_tonemap_op tonemap;         /* pbr's tone curve */
     float exposure;                /* pbr's exposure, EV */
+    const char *environment;       /* "studio", "none" or an .hdr file */
+    float environment_intensity;
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;
