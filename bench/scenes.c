@@ -167,9 +167,21 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         m.base_color[2] = 0.74f;
         m.metallic = 0.0f;
         m.roughness = 0.5f;
+        /* The CLI's default light: the built-in studio at 0.6 and the
+         * rig's key light. */
+        r = sr_make_environment(s->mesh_ctx, &(sr_environment_desc){ .intensity = 0.6f },
+                                &s->env);
+        if (r != SR_OK) {
+            snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));
+            return r;
+        }
         sr_pbr_desc d = { .material = &m, .model = &s->model, .view = &s->view,
-                          .projection = &s->projection, .vertex_color = SR_OFF };
+                          .projection = &s->projection, .vertex_color = SR_OFF,
+                          .environment = s->env };
         framing_pbr_lights(s->state.lights, &d);
+        for (int l = 1; l < SR_MAX_LIGHTS; l++) {
+            d.lights[l].type = SR_LIGHT_OFF;
+        }
         r = sr_make_pbr_program(s->mesh_ctx, &d, &s->pbr);
         if (r != SR_OK) {
             snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));
@@ -397,7 +409,9 @@ sr_result bench_scene_make(const bench_scene_info *info, int width, int height,
 void bench_scene_free(bench_scene *s)
 {
     sr_destroy_pbr_program(s->mesh_ctx, s->pbr);
+    sr_destroy_environment(s->mesh_ctx, s->env);
     s->pbr = NULL;
+    s->env = NULL;
     sr_destroy_mesh(s->mesh_ctx, &s->mesh);
     sr_destroy_context(s->mesh_ctx);
     free(s->own_positions);

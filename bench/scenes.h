@@ -74,6 +74,7 @@ typedef struct bench_scene {
     sr_context *mesh_ctx;  /* owns mesh (one thread: the normals are made once) */
     sr_mesh mesh;
     sr_pbr *pbr;           /* BENCH_LOOK_PBR: the program state.program points into */
+    sr_environment *env;   /* and the environment it lights with */
     float *own_positions, *own_colors;
     uint32_t *own_indices;
 } bench_scene;

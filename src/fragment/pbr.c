@@ -119,6 +119,90 @@ static inline v4f exp2_approx(v4f x)
     return poly * (v4f)((xi + 127) << 23);
 }
 
+/* An octahedral map (Engelhardt and Dachsbacher; Cigolle et al. 2014):
+ * directions onto the unit square through the octahedron |x|+|y|+|z| = 1,
+ * the lower half folded over the upper; no trigonometry either way. */
+#define OCT_SIZE 64
+#define OCT_IRR_SIZE 16           /* irradiance is 9 spherical harmonics: smooth */
+#define OCT_MIN_ROUGHNESS 0.35f   /* below it the map's texels blur the lobe */
+
+static void oct_decode(float u, float v, float d[3])
+{
+    float px = 2.0f * u - 1.0f, py = 2.0f * v - 1.0f;
+    float y = 1.0f - fabsf(px) - fabsf(py);
+    if (y < 0.0f) {
+        float ax = fabsf(px), ay = fabsf(py);
+        px = (1.0f - ay) * (px >= 0.0f ? 1.0f : -1.0f);
+        py = (1.0f - ax) * (py >= 0.0f ? 1.0f : -1.0f);
+    }
+    d[0] = px;
+    d[1] = y;
+    d[2] = py;
+}
+
+static inline v4f vabs(v4f x)
+{
+    return (v4f)((v4i)x & 0x7fffffff);
+}
+
+/* +1 where x >= 0, else -1. */
+static inline v4f vsign(v4f x)
+{
+    return sr__v4_sel(x >= 0.0f, (v4f){ 1, 1, 1, 1 }, (v4f){ -1, -1, -1, -1 });
+}
+
+/* Four directions d (any length > 0) looked up bilinearly on an n x n
+ * octahedral map of RGBA texels, clamped to its edge texels: the mapping
+ * and the weights in vectors, one 4-float load per texel and lane. */
+static void oct_lookup4(const float *map, int n, const v4f d[3], v4f out[3])
+{
+    v4f l1 = vabs(d[0]) + vabs(d[1]) + vabs(d[2]);
+    v4f s = 1.0f / vmax(l1, 1e-30f - (v4f){ 0 });
+    v4f px = d[0] * s, pz = d[2] * s;               /* +y is up: fold along y */
+    v4i lower = d[1] < 0.0f;
+    v4f fx_ = (1.0f - vabs(pz)) * vsign(d[0]), fz_ = (1.0f - vabs(px)) * vsign(d[2]);
+    px = sr__v4_sel(lower, fx_, px);
+    pz = sr__v4_sel(lower, fz_, pz);
+    v4f top = (v4f){ 0 } + (float)(n - 1);
+    v4f fx = vmin(vmax((px * 0.5f + 0.5f) * (float)n - 0.5f, (v4f){ 0 }), top);
+    v4f fy = vmin(vmax((pz * 0.5f + 0.5f) * (float)n - 0.5f, (v4f){ 0 }), top);
+    v4i x0 = __builtin_convertvector(fx, v4i), y0 = __builtin_convertvector(fy, v4i);
+    v4f ax = fx - __builtin_convertvector(x0, v4f), ay = fy - __builtin_convertvector(y0, v4f);
+    for (int i = 0; i < 4; i++) {
+        int x1 = x0[i] + 1 < n ? x0[i] + 1 : x0[i], y1 = y0[i] + 1 < n ? y0[i] + 1 : y0[i];
+        v4f t00 = load(&map[4 * (y0[i] * n + x0[i])]), t10 = load(&map[4 * (y0[i] * n + x1)]);
+        v4f t01 = load(&map[4 * (y1 * n + x0[i])]), t11 = load(&map[4 * (y1 * n + x1)]);
+        v4f upper = t00 + (t10 - t00) * ax[i], lower_row = t01 + (t11 - t01) * ax[i];
+        v4f c = upper + (lower_row - upper) * ay[i];
+        out[0][i] = c[0];
+        out[1][i] = c[1];
+        out[2][i] = c[2];
+    }
+}
+
+/* An n x n octahedral map of RGBA texels from query(env, direction, r). */
+static float *oct_build(sr_context *ctx, const sr_environment *env, int n, float roughness,
+                        bool specular)
+{
+    float *map = sr__alloc(ctx, (size_t)n * (size_t)n * 4 * sizeof(float));
+    if (!map) {
+        return NULL;
+    }
+    for (int y = 0; y < n; y++) {
+        for (int x = 0; x < n; x++) {
+            float d[3], *t = &map[4 * (y * n + x)];
+            oct_decode(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n, d);
+            if (specular) {
+                sr_environment_specular(env, d, roughness, t);
+            } else {
+                sr_environment_irradiance(env, d, t);
+            }
+            t[3] = 0.0f;
+        }
+    }
+    return map;
+}
+
 enum { SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE, SLOT_COUNT };
 
 /* Varyings 0..2 world position, 3..5 world normal; the rest as needed. */
@@ -148,6 +232,11 @@ struct sr_pbr {
     bool ambient;
     float sky[3], ground[3];
     const sr_environment *environment;  /* replaces the hemisphere when set */
+    /* The environment's prefiltered radiance at the material's one
+     * roughness on an octahedral map (OCT_SIZE^2 RGB), or NULL: queried
+     * per fragment instead. */
+    float *oct;
+    float *oct_irr;               /* its irradiance, OCT_IRR_SIZE^2 RGB */
     const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
     sr_tonemap_op tonemap;
@@ -413,28 +502,31 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
     }
     v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
     if (p->environment) {
-        /* Image-based light: irradiance (E / pi) along N, the
-         * prefiltered radiance along R, the split sum's table. */
-        sr_vec3x4 dn, dr, e_n, e_r;
-        float rl[4], nvl[4], a[4], b[4];
-        for (int k = 0; k < 3; k++) {
-            store(k == 0 ? dn.x : k == 1 ? dn.y : dn.z, n[k]);
-            store(k == 0 ? dr.x : k == 1 ? dr.y : dr.z, rr[k]);
+        /* Image-based light: irradiance (E / pi) along N and the
+         * prefiltered radiance along R, from tables made with the program
+         * (octahedral maps) where they can be. */
+        oct_lookup4(p->oct_irr, OCT_IRR_SIZE, n, en);
+        if (p->oct) {
+            oct_lookup4(p->oct, OCT_SIZE, rr, er);
+        } else {
+            sr_vec3x4 dr, e_r;
+            float rl[4];
+            store(dr.x, rr[0]);
+            store(dr.y, rr[1]);
+            store(dr.z, rr[2]);
+            store(rl, rc);
+            sr_environment_specular4(p->environment, &dr, rl, &e_r);
+            er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
         }
-        store(rl, rc);
-        store(nvl, nv);
-        sr_environment_irradiance4(p->environment, &dn, &e_n);
-        sr_environment_specular4(p->environment, &dr, rl, &e_r);
-        sr_brdf_table4(nvl, rl, a, b);
-        en[0] = load(e_n.x), en[1] = load(e_n.y), en[2] = load(e_n.z);
-        er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
-        sa = load(a);
-        sb = load(b);
     } else {
-        /* The hemisphere along N and along R; the split sum's scale and
-         * bias of f0 from Karis's analytic fit (mobile UE4). */
+        /* The hemisphere along N and along R. */
         hemisphere(p, n, en);
         hemisphere(p, rr, er);
+    }
+    {
+        /* The split sum's scale and bias of f0 from Karis's analytic fit
+         * of its table (mobile UE4), within 2% of sr_brdf_table at a
+         * fraction of its cost. */
         v4f rx = 1.0f - rc, ry = -0.0275f * rc + 0.0425f;
         v4f rz = -0.572f * rc + 1.04f, rw = 0.022f * rc - 0.04f;
         v4f e = exp2_approx(-9.28f * nv);
@@ -896,6 +988,24 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     pr->uniforms = p;
     pr->varying_count = layout_varyings(desc, p);
     pr->may_discard = mat.alpha_mode == SR_ALPHA_MASK;
+    float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
+    if (p->environment && !p->m.unlit) {
+        /* Irradiance always, and with one roughness for every fragment
+         * its prefiltered radiance too, tabulated once (256 and 4096
+         * queries) and read per fragment without the queries' trigonometry. */
+        p->oct_irr = oct_build(ctx, p->environment, OCT_IRR_SIZE, 0.0f, false);
+        if (p->oct_irr && !p->slot[SLOT_MR].tex && rough >= OCT_MIN_ROUGHNESS) {
+            p->oct = oct_build(ctx, p->environment, OCT_SIZE, rough, true);
+            if (!p->oct) {
+                sr__free(ctx, p->oct_irr);
+                p->oct_irr = NULL;
+            }
+        }
+        if (!p->oct_irr) {
+            sr__free(ctx, p);
+            return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
+        }
+    }
     *out = p;
     sr__ok(ctx);
     return SR_OK;
@@ -909,6 +1019,8 @@ const sr_program *sr_pbr_program(const sr_pbr *p)
 void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p)
 {
     if (ctx && p) {
+        sr__free(ctx, p->oct);
+        sr__free(ctx, p->oct_irr);
         sr__free(ctx, p);
     }
 }
