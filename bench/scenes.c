@@ -28,6 +28,7 @@ const bench_scene_info bench_scene_list[] = {
     { "spot_tex", BENCH_MESH, "spot.obj", 0, "spot_texture.png", 0 },
     { "phong",  BENCH_MESH,  "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PHONG },
     { "pbr",    BENCH_MESH,  "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PBR },
+    { "pbr_studio", BENCH_MESH, "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PBR_STUDIO },
 };
 const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);
 
@@ -160,27 +161,29 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
     framing_default_lights(&basis, s->state.lights);
     if (s->info->look == BENCH_LOOK_PHONG) {
         s->state.shading = SR_SHADING_PHONG;
-    } else if (s->info->look == BENCH_LOOK_PBR) {
+    } else if (s->info->look != BENCH_LOOK_GOURAUD) {
         /* render.c's default material: a light gray dielectric. */
         sr_pbr_material m = sr_pbr_default_material();
         m.base_color[0] = m.base_color[1] = 0.72f;
         m.base_color[2] = 0.74f;
         m.metallic = 0.0f;
         m.roughness = 0.5f;
-        /* The CLI's default light: the built-in studio at 0.6 and the
-         * rig's key light. */
-        r = sr_make_environment(s->mesh_ctx, &(sr_environment_desc){ .intensity = 0.6f },
-                                &s->env);
-        if (r != SR_OK) {
-            snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));
-            return r;
-        }
         sr_pbr_desc d = { .material = &m, .model = &s->model, .view = &s->view,
-                          .projection = &s->projection, .vertex_color = SR_OFF,
-                          .environment = s->env };
+                          .projection = &s->projection, .vertex_color = SR_OFF };
         framing_pbr_lights(s->state.lights, &d);
-        for (int l = 1; l < SR_MAX_LIGHTS; l++) {
-            d.lights[l].type = SR_LIGHT_OFF;
+        if (s->info->look == BENCH_LOOK_PBR_STUDIO) {
+            /* --environment studio: the built-in studio at 0.6 and the
+             * rig's key light. */
+            r = sr_make_environment(s->mesh_ctx, &(sr_environment_desc){ .intensity = 0.6f },
+                                    &s->env);
+            if (r != SR_OK) {
+                snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));
+                return r;
+            }
+            d.environment = s->env;
+            for (int l = 1; l < SR_MAX_LIGHTS; l++) {
+                d.lights[l].type = SR_LIGHT_OFF;
+            }
         }
         r = sr_make_pbr_program(s->mesh_ctx, &d, &s->pbr);
         if (r != SR_OK) {

@@ -24,6 +24,7 @@ typedef enum bench_look {
     BENCH_LOOK_GOURAUD = 0, /* Blinn-Phong per vertex, `softrast render --shading gouraud` */
     BENCH_LOOK_PHONG,       /* Blinn-Phong per pixel */
     BENCH_LOOK_PBR,         /* the metallic-roughness program, the CLI's default look */
+    BENCH_LOOK_PBR_STUDIO,  /* the same lit by the built-in studio environment */
 } bench_look;
 
 typedef struct bench_scene_info {

@@ -59,16 +59,17 @@ static void render_help(void)
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
         "  --shading MODE           pbr|flat|gouraud|phong|normals|depth|unlit (default\n"
-        "                           pbr: glTF's metallic-roughness model, lit by a key\n"
-        "                           light and a studio environment, tone mapped; the\n"
-        "                           others are the classic Blinn-Phong models)\n"
+        "                           pbr: glTF's metallic-roughness model, lit by the\n"
+        "                           lights and a sky-and-ground ambient, tone mapped;\n"
+        "                           the others are the classic Blinn-Phong models)\n"
         "  --tonemap T              neutral|aces|none, pbr's tone curve: Khronos PBR\n"
         "                           Neutral, ACES filmic, or a clamp (default neutral)\n"
         "  --exposure EV            pbr's exposure in stops, -20..20 (default 0)\n"
-        "  --environment E          pbr's ambient light: studio (a built-in neutral\n"
-        "                           studio, the default), FILE.hdr (an equirectangular\n"
-        "                           Radiance picture, +y up), or none (a gray sky over a\n"
-        "                           darker ground); prefiltered once\n"
+        "  --environment E          pbr's ambient light: none (a gray sky over a darker\n"
+        "                           ground, with the key, fill and rim lights; the\n"
+        "                           default), studio (a built-in neutral studio and the\n"
+        "                           key light) or FILE.hdr (an equirectangular Radiance\n"
+        "                           picture, +y up, and the key light); prefiltered once\n"
         "  --environment-intensity S  its radiance scale, 0.001..1000 (default 0.6)\n"
         "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
         "                           smooth ones, or one per face (default: file if the\n"
@@ -78,7 +79,7 @@ static void render_help(void)
         "                           pbr: the color as base color, a dielectric of\n"
         "                           roughness 0.5, or 1 - sqrt(N/1000) for shininess N)\n"
         "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14; pbr:\n"
-        "                           the environment, or uniform COLOR if given)\n"
+        "                           uniform COLOR in place of the sky and ground)\n"
         "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
         "                           surfaces are drawn after opaque ones, back to front\n"
         "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
@@ -475,7 +476,7 @@ render_opts render_opts_defaults(void)
 {
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
-        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "studio",
+        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "none",
         .environment_intensity = 0.6f,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
