@@ -1048,7 +1048,8 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
                            "invalid JSON: %s (column %d)", jerr.text, jerr.column);
     }
     if (!json_is_object(d->root)) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT, ": the document is not a JSON object");
+        return sr__io_fail(d->err, SR_BAD_FORMAT, d->name, 0,
+                           "the document is not a JSON object");
     }
     if ((r = check_asset(d)) != SR_OK) {
         return r;
