@@ -101,7 +101,9 @@ typedef struct sr_scene_primitive {
     size_t vertex_count;
     const float *positions;     /* 3 a vertex */
     const float *normals;       /* 3 a vertex, or NULL */
-    const float *tangents;      /* 4 a vertex (w: the bitangent's sign), or NULL */
+    const float *tangents;      /* 4 a vertex, or NULL; the bitangent is
+                                 * cross(normal, tangent.xyz) * w, toward +v (the
+                                 * image's top, a normal map's green) */
     const float *texcoords0;    /* 2 a vertex, or NULL */
     const float *texcoords1;    /* 2 a vertex, or NULL */
     const float *colors;        /* 4 a vertex, or NULL */

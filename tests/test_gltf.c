@@ -545,6 +545,17 @@ SR_TEST(other_formats_become_one_primitive_with_a_dielectric)
     CHECK_EQ(s->primitives[0].world[15], 1.0f);
     CHECK(!s->primitives[0].mirrored);
     CHECK_NEAR(s->bounds_max.y, 3, 0);
+    CHECK_EQ(s->primitives[0].colors, NULL);
+    sr_destroy_scene(sr_test_ctx(), s);
+    /* Vertex colors (here OBJ's extension; an MTL's Kd comes the same way)
+     * are the base color: the factor is white. */
+    const char colored[] = "v 0 0 0 1 0 0\nv 2 0 0 1 0 0\nv 0 3 0 1 0 0\nf 1 2 3\n";
+    write_file(path, colored, strlen(colored));
+    REQUIRE(sr_load_scene(sr_test_ctx(), path, NULL, &s, &e) == SR_OK);
+    REQUIRE(s->primitives[0].colors != NULL);
+    CHECK_EQ(s->primitives[0].colors[0], 1.0f);
+    CHECK_EQ(s->materials[0].base_color[1], 1.0f);
+    CHECK_EQ(s->materials[0].roughness, 0.5f);
     sr_destroy_scene(sr_test_ctx(), s);
 }
 

@@ -184,12 +184,13 @@ static const float *keep_copy(sr_scene *s, const float *src, size_t n, bool *ok)
 }
 
 /* The material of a texture run: the dielectric, white under a texture
- * (the texture is the base color), that texture decoded as sRGB.  A
- * texture that cannot be read is left out with a warning, as the CLI
- * does with a mesh's textures. */
+ * (the texture is the base color) or vertex colors (an OBJ's Kd, a PLY's
+ * colors: they are the base color, as glTF viewers take Kd), the texture
+ * decoded as sRGB.  A texture that cannot be read is left out with a
+ * warning, as the CLI does with a mesh's textures. */
 static sr_result run_material(sr_context *ctx, const char *path, const sr_load_desc *desc,
                               sr_scene *s, const char *tex_path, const uint8_t *tex_data,
-                              size_t tex_size, int *material, sr_io_error *err)
+                              size_t tex_size, bool colors, int *material, sr_io_error *err)
 {
     sr_pbr_material *m = sr__scene_grow(s, (void **)&s->materials, &s->material_count,
                                         sizeof *m, 1);
@@ -197,6 +198,9 @@ static sr_result run_material(sr_context *ctx, const char *path, const sr_load_d
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory");
     }
     dielectric(m);
+    if (colors) {
+        m->base_color[0] = m->base_color[1] = m->base_color[2] = 1;
+    }
     *material = (int)(s->material_count - 1);
     if (!tex_path && !tex_data) {
         return SR_OK;
@@ -267,7 +271,8 @@ static sr_result scene_from_mesh(sr_context *ctx, const char *path, const sr_loa
         p->triangle_count = parts[i].triangle_count;
         int material = 0;
         sr_result r = run_material(ctx, path, desc, s, parts[i].texture_path,
-                                   parts[i].texture_data, parts[i].texture_size, &material, err);
+                                   parts[i].texture_data, parts[i].texture_size,
+                                   mesh->colors != NULL, &material, err);
         if (r != SR_OK) {
             return r;
         }
