@@ -127,6 +127,17 @@ SR_TEST(the_scene_property_picks_the_scene_drawn)
     CHECK_EQ(s->primitives[0].node, 1);
     CHECK_NEAR(s->bounds_min.z, 7, 0);
     sr_destroy_scene(sr_test_ctx(), s);
+    /* No scenes: every root node; whole reals taken as integers. */
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0.0,\"children\":[1]},{\"mesh\":0},{\"mesh\":0}]",
+             tri_mesh);
+    s = load_doc(tri, sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->primitive_count == 3);
+    CHECK_EQ(s->primitives[0].node, 0);
+    CHECK_EQ(s->primitives[1].node, 1);
+    CHECK_EQ(s->primitives[2].node, 2);
+    sr_destroy_scene(sr_test_ctx(), s);
 }
 
 SR_TEST(quantized_and_normalized_attributes_are_decoded)

@@ -56,10 +56,12 @@ sr_result sr__gltf_size(gltf_doc *d, const json_t *obj, const char *ptr, const c
     if (!v) {
         return required ? sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: missing", ptr, key) : SR_OK;
     }
-    if (!json_is_integer(v)) {
+    /* Some writers print integers as reals ("36.0"): whole ones are taken. */
+    double real = json_is_real(v) ? json_real_value(v) : 0.5;
+    if (!json_is_integer(v) && !(real == floor(real) && fabs(real) < 9e15)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: not an integer", ptr, key);
     }
-    json_int_t i = json_integer_value(v);
+    json_int_t i = json_is_integer(v) ? json_integer_value(v) : (json_int_t)real;
     if (i < 0 || (unsigned long long)i < lo || (unsigned long long)i > hi) {
         return sr__gltf_fail(d, i < 0 || (unsigned long long)i < lo ? SR_BAD_FORMAT : SR_TOO_LARGE,
                              "%s/%s: %lld is outside %zu..%zu", ptr, key, (long long)i, lo, hi);
@@ -73,10 +75,10 @@ sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const 
 {
     size_t v = 0;
     json_t *m = json_object_get(obj, key);
-    if (m && json_is_integer(m) && (json_integer_value(m) < 0 ||
-                                    (unsigned long long)json_integer_value(m) >= limit)) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %lld is not an index below %zu", ptr, key,
-                             (long long)json_integer_value(m), limit);
+    double value = json_number_value(m);
+    if (json_is_number(m) && value == floor(value) && (value < 0 || value >= (double)limit)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %.0f is not an index below %zu", ptr, key,
+                             value, limit);
     }
     sr_result r = sr__gltf_size(d, obj, ptr, key, 0, limit - 1, required, &v);
     if (r == SR_OK && m) {
