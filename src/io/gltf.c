@@ -931,7 +931,7 @@ static sr_result read_nodes(gltf_doc *d)
         }
     }
     if (r == SR_OK) {
-        r = walk_nodes(d, roots ? roots : json_array(), rptr, parent, node_count);
+        r = walk_nodes(d, roots, rptr, parent, node_count);   /* NULL: no roots */
     }
     json_decref(all);
     free(parent);
