@@ -686,3 +686,27 @@ SR_TEST(missing_buffers_and_bad_documents_are_reported)
     CHECK_EQ(sr_load_scene(sr_test_ctx(), NULL, NULL, &s, &e), SR_INVALID_ARG);
     sr_destroy_scene(sr_test_ctx(), NULL);
 }
+
+SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
+{
+    /* 131070 zero vertices (no bufferView: cheap to store), drawn by 1025
+     * nodes: 134 346 750 vertices, past 2^27. */
+    size_t cap = 1025 * 16 + 1024;
+    char *body = malloc(cap);
+    size_t at = (size_t)snprintf(body, cap,
+                                 ",\"accessors\":[{\"componentType\":5126,\"type\":\"VEC3\","
+                                 "\"count\":131070}]" MESH_OF("0") ",\"nodes\":[");
+    for (int i = 0; i < 1025; i++) {
+        at += (size_t)snprintf(body + at, cap - at, "%s{\"mesh\":0}", i ? "," : "");
+    }
+    snprintf(body + at, cap - at, "]");
+    char *json = doc(tri, sizeof tri, body);
+    sr_scene *s;
+    sr_io_error e;
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "big.gltf", (const uint8_t *)json, strlen(json), NULL,
+                           &s, &e),
+             SR_TOO_LARGE);
+    CHECK_STR_CONTAINS(e.message, "big.gltf: /nodes/1024: more than 134217728 vertices to draw");
+    free(json);
+    free(body);
+}

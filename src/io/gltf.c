@@ -783,6 +783,13 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
             return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu primitives to draw", ptr,
                                  SR_SCENE_MAX_DRAWS);
         }
+        /* Instances are cheap to list but each costs its vertices to
+         * bound and to draw. */
+        d->drawn_vertices += g->vertex_count;
+        if (d->drawn_vertices > SR_SCENE_MAX_DRAWN_VERTICES) {
+            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu vertices to draw in all", ptr,
+                                 SR_SCENE_MAX_DRAWN_VERTICES);
+        }
         sr_scene_primitive *p = sr__scene_grow(d->scene, (void **)&d->scene->primitives,
                                                &d->scene->primitive_count, sizeof *p, 1);
         if (!p) {
