@@ -348,7 +348,9 @@ SR_TEST(material_factors_and_extensions_are_read)
              "\"emissiveFactor\":[1,0.5,0],\"alphaMode\":\"MASK\",\"alphaCutoff\":0.3,"
              "\"doubleSided\":true,\"extensions\":{\"KHR_materials_emissive_strength\":"
              "{\"emissiveStrength\":4},\"KHR_materials_unlit\":{},\"EXT_whatever\":{}}},"
-             "{\"alphaMode\":\"BLEND\"}]",
+             "{\"alphaMode\":\"BLEND\"},{\"alphaMode\":\"MASK\",\"alphaCutoff\":0,"
+             "\"emissiveFactor\":[1,1,1],\"extensions\":{\"KHR_materials_emissive_strength\":"
+             "{\"emissiveStrength\":0}}}]",
              "");
     /* Two meshes: one with material 0, one with none. */
     char full[4096];
@@ -362,7 +364,7 @@ SR_TEST(material_factors_and_extensions_are_read)
     warnings w = {0};
     sr_scene *s = load_doc(tri, sizeof tri, full, &w);
     REQUIRE(s);
-    REQUIRE(s->material_count == 3);
+    REQUIRE(s->material_count == 4);
     REQUIRE(s->primitive_count == 2);
     const sr_pbr_material *m = &s->materials[s->primitives[0].material];
     CHECK_NEAR(m->base_color[2], 0.3, 1e-6);
@@ -377,9 +379,13 @@ SR_TEST(material_factors_and_extensions_are_read)
     CHECK(m->unlit);
     CHECK_EQ(s->materials[1].alpha_mode, SR_ALPHA_BLEND);
     CHECK(!s->materials[1].unlit);
+    /* sr_pbr_material's zeros are defaults: a cutoff of 0 keeps every
+     * fragment (opaque), a strength of 0 is no emission. */
+    CHECK_EQ(s->materials[2].alpha_mode, SR_ALPHA_OPAQUE);
+    CHECK_EQ(s->materials[2].emissive[0], 0.0f);
     /* No material: glTF's default, white, metallic and rough. */
-    CHECK_EQ(s->primitives[1].material, 2);
-    const sr_pbr_material *d = &s->materials[2];
+    CHECK_EQ(s->primitives[1].material, 3);
+    const sr_pbr_material *d = &s->materials[3];
     CHECK_EQ(d->base_color[0], 1.0f);
     CHECK_EQ(d->metallic, 1.0f);
     CHECK_EQ(d->roughness, 1.0f);

@@ -297,6 +297,15 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
         }
     }
     m->unlit = sr__gltf_extension(mat, "KHR_materials_unlit") != NULL;
+    /* Zeros that sr_pbr_material reads as defaults, said another way: no
+     * emission at strength 0, and a cutoff of 0 keeps every fragment. */
+    if (m->emissive_strength == 0) {
+        memset(m->emissive, 0, sizeof m->emissive);
+        m->emissive_strength = 1;
+    }
+    if (m->alpha_mode == SR_ALPHA_MASK && m->alpha_cutoff <= 0) {
+        m->alpha_mode = SR_ALPHA_OPAQUE;
+    }
     return SR_OK;
 }
 
