@@ -172,6 +172,16 @@ SR_API sr_result sr_load_scene(sr_context *ctx, const char *path, const sr_load_
  * than data: are refused). */
 SR_API sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
                                const sr_load_desc *desc, sr_scene **out, sr_io_error *err);
+/* A scene camera's view matrix E (world -> camera: the inverse of its
+ * world matrix with scale and shear taken out, as glTF asks) and its
+ * projection P (OpenGL's clip space, z_ndc in [-1, 1]) for a viewport of
+ * `aspect` = width / height: glTF's own matrices, the infinite one when
+ * zfar is 0.  The vertical extent (yfov, ymag) is kept and the horizontal
+ * one follows the viewport, so nothing is stretched whatever the file's
+ * aspectRatio or xmag.  SR_INVALID_ARG for NULL, a non-finite or
+ * non-positive aspect, or a degenerate world matrix. */
+SR_API sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect,
+                                          sr_mat4 *view, sr_mat4 *projection);
 /* Frees the scene, its arrays and its textures; NULL is ignored. */
 SR_API void sr_destroy_scene(sr_context *ctx, sr_scene *scene);
 /* true when this build reads glTF (it found jansson). */

@@ -422,6 +422,27 @@ SR_TEST(cameras_come_with_their_world_transforms_in_node_order)
     CHECK_NEAR(p->znear, 0.1, 1e-6);
     CHECK_EQ(p->zfar, 0.0f);                  /* infinite */
     CHECK_NEAR(p->world[12], 3, 0);
+    /* Matrices for a 2:1 viewport: the perspective camera at (3, 0, 0)
+     * looking down -Z; infinite far plane, vertical field kept. */
+    sr_mat4 v, pr;
+    REQUIRE(sr_scene_camera_matrices(p, 2.0f, &v, &pr) == SR_OK);
+    sr_vec4 e = sr_mat4_mul_vec4(&v, (sr_vec4){ 3, 0, -10, 1 });
+    CHECK_NEAR(e.x, 0, 1e-6);
+    CHECK_NEAR(e.z, -10, 1e-6);
+    sr_vec4 c = sr_mat4_mul_vec4(&pr, (sr_vec4){ 0, tanf(0.4f), -1, 1 });
+    CHECK_NEAR(c.y / c.w, 1, 1e-5);                 /* the top of the field */
+    CHECK_NEAR(c.w, 1, 0);
+    c = sr_mat4_mul_vec4(&pr, (sr_vec4){ 0, 0, -0.1f, 1 });
+    CHECK_NEAR(c.z / c.w, -1, 1e-5);                /* znear at -1 */
+    c = sr_mat4_mul_vec4(&pr, (sr_vec4){ 2 * tanf(0.4f), 0, -1, 1 });
+    CHECK_NEAR(c.x / c.w, 1, 1e-5);                 /* the viewport's aspect */
+    /* The orthographic one 5 units up Z: its box is 2 ymag high. */
+    REQUIRE(sr_scene_camera_matrices(o, 1.0f, &v, &pr) == SR_OK);
+    c = sr_mat4_mul_vec4(&pr, sr_mat4_mul_vec4(&v, (sr_vec4){ 1, 1, 0, 1 }));
+    CHECK_NEAR(c.x, 1, 1e-6);
+    CHECK_NEAR(c.y, 1, 1e-6);
+    CHECK_EQ(sr_scene_camera_matrices(o, 0.0f, &v, &pr), SR_INVALID_ARG);
+    CHECK_EQ(sr_scene_camera_matrices(NULL, 1.0f, &v, &pr), SR_INVALID_ARG);
     sr_destroy_scene(sr_test_ctx(), s);
 }
 

@@ -153,6 +153,61 @@ void sr_destroy_scene(sr_context *ctx, sr_scene *scene)
     free(scene);
 }
 
+/* ---- cameras -------------------------------------------------------------- */
+
+sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect, sr_mat4 *view,
+                                   sr_mat4 *projection)
+{
+    if (!camera || !view || !projection || !(aspect > 0) || !isfinite(aspect)) {
+        return SR_INVALID_ARG;
+    }
+    /* An orthonormal frame from the world matrix: -Z (the gaze) kept,
+     * X made perpendicular to it, Y completing a right-handed frame. */
+    const float *w = camera->world;
+    sr_vec3 z = sr_vec3_normalize(sr_vec3_make(w[8], w[9], w[10]));
+    sr_vec3 x = sr_vec3_make(w[0], w[1], w[2]);
+    x = sr_vec3_normalize(sr_vec3_sub(x, sr_vec3_scale(z, sr_vec3_dot(x, z))));
+    sr_vec3 y = sr_vec3_cross(z, x);
+    if (sr_vec3_length(y) < 0.5f) {
+        return SR_INVALID_ARG;
+    }
+    sr_vec3 t = sr_vec3_make(w[12], w[13], w[14]);
+    const sr_vec3 axes[3] = { x, y, z };
+    memset(view, 0, sizeof *view);
+    for (int r = 0; r < 3; r++) {
+        view->m[r] = axes[r].x;
+        view->m[4 + r] = axes[r].y;
+        view->m[8 + r] = axes[r].z;
+        view->m[12 + r] = -sr_vec3_dot(axes[r], t);
+    }
+    view->m[15] = 1;
+    float n = camera->znear, f = camera->zfar;
+    if (camera->type == SR_SCENE_CAMERA_ORTHOGRAPHIC) {
+        float ymag = fabsf(camera->ymag), xmag = ymag * aspect;
+        if (!(ymag > 0) || !(f > n)) {
+            return SR_INVALID_ARG;
+        }
+        *projection = sr_ortho(-xmag, xmag, -ymag, ymag, n, f, false);
+        return SR_OK;
+    }
+    if (!(camera->yfov > 0) || !(n > 0) || (f != 0 && !(f > n))) {
+        return SR_INVALID_ARG;
+    }
+    if (f != 0) {
+        *projection = sr_perspective(camera->yfov, aspect, n, f, false);
+        return SR_OK;
+    }
+    /* glTF's infinite projection: the far row's limit as zfar grows. */
+    float c = 1.0f / tanf(0.5f * camera->yfov);
+    memset(projection, 0, sizeof *projection);
+    projection->m[0] = c / aspect;
+    projection->m[5] = c;
+    projection->m[10] = -1;
+    projection->m[11] = -1;
+    projection->m[14] = -2 * n;
+    return SR_OK;
+}
+
 /* ---- other formats as a scene ------------------------------------------- */
 
 /* What glTF viewers show an untextured model with: a light grey
