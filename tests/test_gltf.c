@@ -643,6 +643,16 @@ static const bad_case bad_cases[] = {
     { VIEW0 ACC("\"count\":3")
       ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":3}]}]" NODES,
       SR_BAD_FORMAT, "bad.gltf: /meshes/0/primitives/0/material: 3 is not an index below 0" },
+    { VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\","
+      "\"count\":3},{\"bufferView\":0,\"componentType\":5121,\"normalized\":true,"
+      "\"type\":\"MAT2\",\"count\":3}],\"meshes\":[{\"primitives\":[{\"attributes\":"
+      "{\"POSITION\":0,\"TANGENT\":1}}]}]" NODES, SR_BAD_FORMAT,
+      "bad.gltf: /meshes/0/primitives/0/attributes/TANGENT: accessor 1 holds matrices, not "
+      "vectors" },
+    { VIEW0 ACC("\"count\":3") ",\"meshes\":[{\"primitives\":[{\"attributes\":"
+      "{\"POSITION\":0,\"TEXCOORD_0\":0}}]}]" NODES, SR_BAD_FORMAT,
+      "bad.gltf: /meshes/0/primitives/0/attributes/TEXCOORD_0: accessor 0 has 3 components per "
+      "element, not what this attribute takes" },
     { ",\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]", SR_UNSUPPORTED,
       "bad.gltf: /extensionsRequired/0: extension KHR_draco_mesh_compression is not "
       "supported" },

@@ -94,6 +94,7 @@ sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char 
 typedef struct gltf_accessor_info {
     size_t count;
     int components;        /* 1 SCALAR .. 16 MAT4 */
+    bool matrix;           /* MAT2, MAT3 or MAT4 */
     int component_type;    /* 5120 .. 5126 */
     bool normalized;
 } gltf_accessor_info;

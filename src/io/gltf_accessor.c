@@ -163,6 +163,7 @@ static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_ac
                              aptr);
     }
     info->component_type = (int)ctype;
+    info->matrix = rows != 0;
     json_t *norm = json_object_get(a, "normalized");
     if (norm && !json_is_boolean(norm)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/normalized: not true or false", aptr);
@@ -410,6 +411,10 @@ sr_result sr__gltf_read_floats(gltf_doc *d, long index, const char *ptr, unsigne
     sr_result r = peek(d, index, ptr, info);
     if (r != SR_OK) {
         return r;
+    }
+    if (info->matrix) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld holds matrices, not vectors", ptr,
+                             index);
     }
     if (!(allowed & (1u << info->components))) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld has %d components per element, "
