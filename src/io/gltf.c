@@ -232,11 +232,8 @@ static int hex_value(char c)
     return -1;
 }
 
-/* The bytes a URI names: a data: URI decoded, or a relative reference
- * (percent-decoded) read from the document's directory.  *owned is the
- * block to free (*from_file: with sr__free_file). */
-sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr,
-                          char **owned, size_t *size, bool *from_file)
+sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char **owned,
+                            size_t *size, bool *from_file)
 {
     *owned = NULL;
     *from_file = false;
@@ -270,7 +267,7 @@ sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr,
     size_t o = dlen;
     for (size_t i = 0; i < ulen; i++) {
         int hi, lo;
-        if (uri[i] == '%' && i + 2 < ulen + 1 && (hi = hex_value(uri[i + 1])) >= 0 &&
+        if (uri[i] == '%' && i + 2 < ulen && (hi = hex_value(uri[i + 1])) >= 0 &&
             (lo = hex_value(uri[i + 2])) >= 0 && (hi | lo) != 0) {
             path[o++] = (char)(hi << 4 | lo);
             i += 2;
@@ -390,14 +387,11 @@ sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *use, const ui
 
 /* ---- meshes -------------------------------------------------------------- */
 
-/* A mesh primitive decoded once, drawn by every node that uses its mesh
- * (NULL positions: skipped). */
-typedef struct gltf_geometry {
-    sr_scene_primitive p;     /* arrays, counts and material; world unset */
-} gltf_geometry;
-
+/* A mesh's primitives decoded once, drawn by every node that uses the
+ * mesh: arrays, counts and material set, world not (NULL positions:
+ * skipped). */
 typedef struct gltf_mesh {
-    gltf_geometry *prims;
+    sr_scene_primitive *prims;
     size_t count;
     bool decoded;
 } gltf_mesh;
@@ -594,7 +588,7 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
     for (size_t i = 0; i < n; i++) {
         char pptr[GLTF_PTR];
         snprintf(pptr, sizeof pptr, "%s/primitives/%zu", ptr, i);
-        sr_scene_primitive *p = &meshes[m].prims[i].p;
+        sr_scene_primitive *p = &meshes[m].prims[i];
         p->mesh = (int)m;
         if ((r = read_primitive(d, json_array_get(prims, i), pptr, p)) != SR_OK) {
             return r;
@@ -775,7 +769,7 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
         return r;
     }
     for (size_t i = 0; i < m->count; i++) {
-        const sr_scene_primitive *g = &m->prims[i].p;
+        const sr_scene_primitive *g = &m->prims[i];
         if (!g->positions || g->triangle_count == 0) {
             continue;
         }
