@@ -828,8 +828,9 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
             r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%zu: not a node index below %zu", roots_ptr,
                               i, node_count);
         } else if (parent[n] != -1) {
-            r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%zu: node %lld is not a root (node %ld's child)",
-                              roots_ptr, i, (long long)n, parent[n]);
+            r = sr__gltf_fail(d, SR_BAD_FORMAT,
+                              "%s/%zu: node %lld is not a root (node %ld's child)", roots_ptr, i,
+                              (long long)n, parent[n]);
         } else if (seen[n]) {
             r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%zu: node %lld is listed twice", roots_ptr, i,
                               (long long)n);
