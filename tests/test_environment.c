@@ -567,6 +567,28 @@ SR_TEST(bad_descriptions_are_refused)
     sr_destroy_context(ctx);
 }
 
+SR_TEST(sizes_past_the_limits_are_refused_before_any_allocation)
+{
+    failing f = { .fail_at = -1 };
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){
+        .threads = 1, .allocator = { fail_alloc, fail_free, &f } }, &ctx) == SR_OK);
+    long before = f.count;
+    float px[3] = { 1, 1, 1 };
+    static const int sizes[][2] = { { SR_ENVIRONMENT_MAX_SIDE + 1, 1 },
+                                    { 1, SR_ENVIRONMENT_MAX_SIDE + 1 },
+                                    { 1 << 14, 1 << 14 },
+                                    { 0x7fffffff, 0x7fffffff } };
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        sr_environment *env = NULL;
+        sr_environment_desc d = { .pixels = px, .width = sizes[i][0], .height = sizes[i][1] };
+        CHECK_EQ(sr_make_environment(ctx, &d, &env), SR_TOO_LARGE);
+        CHECK(env == NULL);
+    }
+    CHECK_EQ(f.count, before);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(every_allocation_failure_is_reported_cleanly)
 {
     float *img = make_image(64, 32, smooth_sky);
