@@ -621,3 +621,60 @@ SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
     sr_destroy_mesh(ctx, &pot);
     sr_destroy_context(ctx);
 }
+
+/* ---- soft shadows from a light of some size -------------------------------- */
+
+/* Samples of a sweep across the shadow edge x = 1 of a quad at `height`
+ * over y = 0 (straight-down light of angular radius `light`, 512^2 map
+ * over a 4-unit box) whose visibility lies strictly between 0 and 1. */
+static int penumbra_samples(sr_context *ctx, float height, float light)
+{
+    float xyz[12];
+    for (int i = 0; i < 12; i++) {
+        xyz[i] = i % 3 == 1 ? height : quad_xyz[i];
+    }
+    sr_shadow_map *sm = NULL;
+    if (sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 }, .bounds_min = { -2, 0, -2 },
+                                                   .bounds_max = { 2, 2, 2 }, .size = 512,
+                                                   .light_radius = light }, &sm) != SR_OK ||
+        sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = xyz, .vertex_count = 4,
+                                                     .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                     .index_count = 6 }) != SR_OK) {
+        sr_destroy_shadow_map(ctx, sm);
+        return -1;
+    }
+    int partial = 0;
+    float prev = 0;
+    bool monotonic = true;
+    for (float x = 0.8f; x <= 1.2f; x += 0.001f) {
+        float v = vis_at(sm, x, 0, 0.2f);
+        partial += v > 0.001f && v < 0.999f;
+        monotonic &= v >= prev - 0.02f;   /* the blocker search may wobble a little */
+        prev = v;
+    }
+    sr_destroy_shadow_map(ctx, sm);
+    return monotonic && prev == 1.0f ? partial : -2;
+}
+
+SR_TEST(light_radius_softens_the_shadow_with_distance_from_the_caster)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    int fixed_low = penumbra_samples(ctx, 0.1f, 0);
+    int fixed_high = penumbra_samples(ctx, 1.5f, 0);
+    int soft_low = penumbra_samples(ctx, 0.1f, 0.02f);
+    int soft_high = penumbra_samples(ctx, 1.5f, 0.02f);
+    REQUIRE(fixed_low > 0 && fixed_high > 0 && soft_low > 0 && soft_high > 0);
+    /* The fixed filter: the same 3 texels (0.024 units) at any height. */
+    CHECK(abs(fixed_low - fixed_high) <= 2);
+    /* A light of 0.02 rad: the penumbra's half-width is the height times
+     * tan 0.02 (0.03 units at 1.5, clamped to 8 texels = 0.0625 units),
+     * and near the caster no wider than the fixed filter's. */
+    CHECK(soft_high >= 50 && soft_high <= 70);   /* 2 x 0.03 units in steps of 0.001 */
+    CHECK(soft_low <= fixed_low + 4);
+    sr_shadow_map *sm = NULL;
+    CHECK_EQ(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 },
+                                                        .light_radius = 1 }, &sm), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "light_radius");
+    sr_destroy_context(ctx);
+}
