@@ -2,7 +2,7 @@
  * it, lit beside it, a monotonic penumbra, on the side away from a
  * slanted light), no acne on a lit sphere at grazing slopes, the fit
  * covering the bounds, the ground mesh, bad input refused, and the same
- * map and visibility for 1 and 2 threads.  Writes shadow_*.png to the
+ * map and visibility for 1 and 2 threads and with the vector kernels off.  Writes shadow_*.png to the
  * test output directory to look at. */
 #include "sr_test.h"
 #include "softrast.h"
@@ -487,13 +487,13 @@ SR_TEST(bad_input_is_refused)
 
 /* The teapot's map and a grid of lookups over the ground, on a context
  * of `threads` threads: the map's depth words then the visibilities. */
-static bool teapot_map_bytes(int threads, uint32_t **depth, float **vis, int *size)
+static bool teapot_map_bytes(int threads, sr_simd_level simd, uint32_t **depth, float **vis, int *size)
 {
     enum { N = 64 };
     sr_context *ctx = NULL;
     sr_mesh pot = { 0 };
     sr_shadow_map *sm = NULL;
-    bool ok = sr_make_context(&(sr_context_desc){ .threads = threads }, &ctx) == SR_OK &&
+    bool ok = sr_make_context(&(sr_context_desc){ .threads = threads, .simd = simd }, &ctx) == SR_OK &&
               sr_make_teapot(ctx, 6, &pot) == SR_OK;
     sr_vec3 lo, hi;
     ok = ok && sr_mesh_bounds(&pot, &lo, &hi);
@@ -523,16 +523,21 @@ static bool teapot_map_bytes(int threads, uint32_t **depth, float **vis, int *si
     return ok;
 }
 
-SR_TEST(same_map_and_visibility_for_1_and_2_threads)
+SR_TEST(same_map_and_visibility_for_any_threads_and_simd)
 {
-    uint32_t *d1 = NULL, *d2 = NULL;
-    float *v1 = NULL, *v2 = NULL;
-    int s1 = 0, s2 = 0;
-    REQUIRE(teapot_map_bytes(1, &d1, &v1, &s1));
-    REQUIRE(teapot_map_bytes(2, &d2, &v2, &s2));
+    uint32_t *d1 = NULL, *d2 = NULL, *d3 = NULL;
+    float *v1 = NULL, *v2 = NULL, *v3 = NULL;
+    int s1 = 0, s2 = 0, s3 = 0;
+    REQUIRE(teapot_map_bytes(1, SR_SIMD_DEFAULT, &d1, &v1, &s1));
+    REQUIRE(teapot_map_bytes(2, SR_SIMD_DEFAULT, &d2, &v2, &s2));
+    /* And with the scalar kernels drawing the map. */
+    REQUIRE(teapot_map_bytes(2, SR_SIMD_OFF, &d3, &v3, &s3));
     CHECK_EQ(s1, s2);
+    CHECK_EQ(s1, s3);
     CHECK(memcmp(d1, d2, (size_t)s1 * s1 * sizeof *d1) == 0);
     CHECK(memcmp(v1, v2, 64 * 64 * sizeof *v1) == 0);
+    CHECK(memcmp(d1, d3, (size_t)s1 * s1 * sizeof *d1) == 0);
+    CHECK(memcmp(v1, v3, 64 * 64 * sizeof *v1) == 0);
     /* The pot's shadow is on the ground: some of it dark, some lit. */
     int dark = 0, lit = 0;
     for (int i = 0; i < 64 * 64; i++) {
@@ -541,7 +546,7 @@ SR_TEST(same_map_and_visibility_for_1_and_2_threads)
     }
     CHECK(dark > 200);
     CHECK(lit > 200);
-    free(d1), free(d2), free(v1), free(v2);
+    free(d1), free(d2), free(d3), free(v1), free(v2), free(v3);
 }
 
 SR_TEST(lanes_match_the_single_lookup)
