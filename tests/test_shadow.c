@@ -1,9 +1,10 @@
 /* test_shadow.c - shadow maps: a quad's shadow on a plane (dark under
  * it, lit beside it, a monotonic penumbra, on the side away from a
  * slanted light), no acne on a lit sphere at grazing slopes, the fit
- * covering the bounds, the ground mesh, bad input refused, and the same
- * map and visibility for 1 and 2 threads and with the vector kernels off.  Writes shadow_*.png to the
- * test output directory to look at. */
+ * covering the bounds, the ground mesh, bad input refused, the same map
+ * and visibility for 1 and 2 threads and with the vector kernels off,
+ * and soft shadows that widen away from the caster.  Writes shadow_*.png
+ * to the test output directory to look at. */
 #include "sr_test.h"
 #include "softrast.h"
 #include "softrast_io.h"
