@@ -197,6 +197,20 @@ SR_TEST(slanted_light_casts_the_shadow_away_from_it)
     CHECK_NEAR(vis_at(sm, -0.5f, 0, 0), 1, 1e-6);
     CHECK_NEAR(vis_at(sm, 1.0f, 0, 1.5f), 1, 1e-6);
     sr_destroy_shadow_map(ctx, sm);
+    /* Bounds around the quad alone: the plane lies past the far plane,
+     * and still receives the shadow (its depth clamps to the far value,
+     * which only an empty texel passes). */
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 1, -1, 0 }, .bounds_min = { -1, 1, -1 },
+                                                       .bounds_max = { 1, 1, 1 }, .size = 512 }, &sm) == SR_OK);
+    REQUIRE(sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = quad_xyz, .vertex_count = 4,
+                                                         .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                         .index_count = 6 }) == SR_OK);
+    CHECK_NEAR(vis_at(sm, 1.0f, 0, 0), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, 1.9f, 0, 0.5f), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, -0.5f, 0, 0), 1, 1e-6);
+    CHECK_NEAR(vis_at(sm, 2.5f, 0, 0), 1, 1e-6);
+    CHECK_NEAR(vis_at(sm, 0, 2, 0), 1, 1e-6);     /* above it, before the near plane */
+    sr_destroy_shadow_map(ctx, sm);
     sr_destroy_context(ctx);
 }
 
