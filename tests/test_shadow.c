@@ -698,3 +698,51 @@ SR_TEST(light_radius_softens_the_shadow_with_distance_from_the_caster)
     CHECK_STR_CONTAINS(sr_context_error(ctx), "light_radius");
     sr_destroy_context(ctx);
 }
+
+/* The same quad placed by a model matrix, or given as 4-component
+ * positions, shadows exactly as the quad moved in its own positions. */
+SR_TEST(model_matrix_and_w_positions_shadow_as_moved_positions)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    float moved[12], xyzw[16];
+    for (int v = 0; v < 4; v++) {
+        for (int c = 0; c < 3; c++) {
+            moved[3 * v + c] = quad_xyz[3 * v + c] + (c != 1 ? 0.7f : 0.0f);
+            xyzw[4 * v + c] = 2.0f * moved[3 * v + c];
+        }
+        xyzw[4 * v + 3] = 2.0f;
+    }
+    sr_mat4 model = sr_mat4_translate(0.7f, 0, 0.7f);
+    sr_draw_desc draws[3] = {
+        { .positions = moved, .vertex_count = 4, .indices = quad_idx, .index_type = SR_INDEX_U32, .index_count = 6 },
+        { .positions = quad_xyz, .vertex_count = 4, .indices = quad_idx, .index_type = SR_INDEX_U32,
+          .index_count = 6, .model = &model },
+        { .positions = xyzw, .position_size = 4, .vertex_count = 4, .indices = quad_idx,
+          .index_type = SR_INDEX_U32, .index_count = 6 },
+    };
+    sr_shadow_map *sm[3] = { 0 };
+    for (int k = 0; k < 3; k++) {
+        REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0.2f, -1, 0.1f },
+                                                           .bounds_min = { -2, 0, -2 }, .bounds_max = { 2, 1, 2 },
+                                                           .size = 128 }, &sm[k]) == SR_OK);
+        REQUIRE(sr_shadow_map_draw(ctx, sm[k], &draws[k]) == SR_OK);
+    }
+    int differ = 0, dark = 0;
+    for (float z = -1.9f; z <= 1.9f; z += 0.021f) {
+        for (float x = -1.9f; x <= 1.9f; x += 0.017f) {
+            float a = vis_at(sm[0], x, 0, z);
+            differ += a != vis_at(sm[1], x, 0, z);
+            differ += a != vis_at(sm[2], x, 0, z);
+            dark += a == 0;
+        }
+    }
+    CHECK(dark > 1000);
+    CHECK(differ <= 20);   /* the pipeline may round transformed positions a little apart */
+    for (int k = 0; k < 3; k++) {
+        CHECK_NEAR(vis_at(sm[k], 0.7f + 0.2f, 0, 0.7f + 0.1f), 0, 1e-6);
+        CHECK_NEAR(vis_at(sm[k], -1.0f, 0, -1.0f), 1, 1e-6);
+        sr_destroy_shadow_map(ctx, sm[k]);
+    }
+    sr_destroy_context(ctx);
+}

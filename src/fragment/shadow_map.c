@@ -154,15 +154,17 @@ static void update_blocks(sr_shadow_map *sm, int bx0, int by0, int bx1, int by1)
 /* The blocks a draw can have touched: its vertices' texel rectangle
  * (every vertex, referenced or not), a texel wider on each side for the
  * rasterizer's rounding; every block when a position is not finite or
- * has its own w. */
+ * w is not 1 (4-component positions, a model matrix that is not
+ * affine). */
 static void draw_block_rect(const sr_shadow_map *sm, const sr_draw_desc *d, int rect[4])
 {
     rect[0] = rect[1] = 0;
     rect[2] = rect[3] = sm->blocks;
-    if (d->position_size == 4) {
+    sr_mat4 model = d->model ? *d->model : sr_mat4_identity();
+    if (d->position_size == 4 || model.m[3] != 0.0f || model.m[7] != 0.0f || model.m[11] != 0.0f ||
+        model.m[15] != 1.0f) {
         return;
     }
-    sr_mat4 model = d->model ? *d->model : sr_mat4_identity();
     float m[2][4];
     for (int r = 0; r < 2; r++) {
         for (int k = 0; k < 4; k++) {
