@@ -132,6 +132,16 @@
  *     sr_tonemap                 linear float pixels to RGBA8 sRGB: exposure, curve, encode
  *     sr_tonemap_rgb             one colour through a tone curve
  *     sr_srgb_encode8            a display-linear value to its 8-bit sRGB code
+ *   image-based light
+ *     sr_make_environment        an equirectangular or built-in environment, prefiltered
+ *     sr_destroy_environment     frees it
+ *     sr_environment_irradiance  diffuse light for a normal, as E/pi
+ *     sr_environment_irradiance4 the same for 4 normals
+ *     sr_environment_specular    prefiltered radiance for a direction and roughness
+ *     sr_environment_specular4   the same for 4 directions and roughnesses
+ *     sr_environment_background  the environment seen in a direction, sharp or blurred
+ *     sr_brdf_table              the split-sum BRDF scale and bias
+ *     sr_brdf_table4             the same for 4 (N.V, roughness) pairs
  *   programmable stages
  *     sr_make_builtin_program    a built-in shading model as a program
  *     sr_builtin_program         the sr_program to draw it with
@@ -606,6 +616,93 @@ SR_API sr_result sr_tonemap_rgb(sr_tonemap_op op, const float in[3], float out[3
  * 0.0031308, 1.055 x^(1/2.4) - 0.055 above), times 255, rounded to
  * nearest; NaN and values <= 0 give 0, values >= 1 give 255. */
 SR_API uint8_t sr_srgb_encode8(float linear);
+
+/* ---- image-based light -------------------------------------------------- */
+
+/* An environment: light arriving from every direction, given as an
+ * equirectangular image, prefiltered once for the physically based
+ * shading of glTF's metallic-roughness model with the split-sum
+ * approximation (docs/ibl.md):
+ *   diffuse  = c_diff * irradiance(n)                 (irradiance is E/pi)
+ *   specular = specular(r, roughness) * (F0 * A + B)  (A, B from sr_brdf_table)
+ * with r = reflect(-v, n) and (A, B) = sr_brdf_table(N.V, roughness).
+ *
+ * Conventions: directions are in world space, need not be unit length
+ * (zero gives the +Y value), +Y is up.  An equirectangular image's column
+ * u in [0, 1] (left to right) is u = 1/2 + atan2(z, x) / 2 pi and its row
+ * t in [0, 1] (top to bottom) is t = 1/2 - asin(y) / pi, the mapping of
+ * three.js's equirectUv: the image's centre is +X, u = 1/4 is -Z (what a
+ * default camera looks at), u = 3/4 is +Z, the left and right edges -X,
+ * the top row +Y.  Radiance is linear RGB, Rec. 709 primaries.
+ *
+ * An environment is read-only once made: the query functions may be
+ * called from any number of threads at once. */
+typedef struct sr_environment sr_environment;
+
+#define SR_ENVIRONMENT_MAX_SIDE   32768
+#define SR_ENVIRONMENT_MAX_PIXELS ((size_t)1 << 27)
+/* Roughness levels of the prefiltered specular chain: roughness k / (n - 1). */
+#define SR_ENVIRONMENT_LEVELS     6
+
+typedef struct sr_environment_desc {
+    /* An equirectangular image, linear RGB, 3 floats a pixel, rows top
+     * first (as sr_read_hdr gives it): every value finite and >= 0, at
+     * most SR_ENVIRONMENT_MAX_SIDE a side and SR_ENVIRONMENT_MAX_PIXELS
+     * pixels.  NULL (with width and height 0): the built-in neutral
+     * studio, a soft overhead light, two softboxes and a grey floor. */
+    const float *pixels;
+    int width, height;
+    float intensity;         /* radiance scale; 0 -> 1; must be finite and >= 0 */
+    float rotation;          /* radians about +Y, right-handed: 0 keeps the image's
+                              * mapping, pi/2 moves what was at +X to -Z */
+} sr_environment_desc;
+
+/* Prefilter an environment: the source's box-filtered mip chain, the
+ * diffuse irradiance as 9 spherical-harmonic coefficients (Ramamoorthi and
+ * Hanrahan), the GGX-importance-sampled specular levels, and, the first
+ * time in the process, the BRDF table.  Runs on ctx's threads; the result
+ * is the same for any thread count.  desc may be NULL (the built-in
+ * studio).  Release it with sr_destroy_environment. */
+SR_API sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
+                                     sr_environment **out);
+SR_API void      sr_destroy_environment(sr_context *ctx, sr_environment *env);
+
+/* Four lanes of 3-vectors or colours, structure of arrays. */
+typedef struct sr_vec3x4 { float x[4], y[4], z[4]; } sr_vec3x4;
+
+/* The irradiance E at a surface facing `normal`, divided by pi: the
+ * outgoing radiance of a white Lambertian surface, so multiply by the
+ * diffuse colour and nothing else.  A uniform environment of radiance L
+ * gives L for every normal.  env NULL gives black. */
+SR_API void sr_environment_irradiance(const sr_environment *env, const float normal[3],
+                                      float out[3]);
+SR_API void sr_environment_irradiance4(const sr_environment *env, const sr_vec3x4 *normal,
+                                       sr_vec3x4 *out);
+/* The environment's radiance around `dir` convolved with the GGX lobe of
+ * `roughness` (perceptual, alpha = roughness^2, clamped to [0, 1]), under
+ * the split sum's N = V = R assumption: bilinear within a level,
+ * linear between the two levels around roughness.  Roughness 0 is the
+ * source image itself (the built-in studio's own function, sharp at any
+ * size).  A uniform environment of radiance L gives L. */
+SR_API void sr_environment_specular(const sr_environment *env, const float dir[3],
+                                    float roughness, float out[3]);
+SR_API void sr_environment_specular4(const sr_environment *env, const sr_vec3x4 *dir,
+                                     const float roughness[4], sr_vec3x4 *out);
+/* What a camera sees of the environment in `dir` (a background):
+ * blur 0 is the image itself, blur in (0, 1] the specular level of that
+ * roughness. */
+SR_API void sr_environment_background(const sr_environment *env, const float dir[3],
+                                      float blur, float out[3]);
+
+/* The split-sum BRDF table (Karis): the directional albedo of the GGX,
+ * height-correlated-Smith specular BRDF with Schlick's Fresnel is
+ * F0 * out[0] + out[1] (scale, bias) for a view at N.V and a perceptual
+ * roughness, both clamped to [0, 1]; bilinear in a 32 x 32 table
+ * computed once a process (by sr_make_environment, or by the first call
+ * here).  out[0] + out[1] <= 1. */
+SR_API void sr_brdf_table(float n_dot_v, float roughness, float out[2]);
+SR_API void sr_brdf_table4(const float n_dot_v[4], const float roughness[4], float scale[4],
+                           float bias[4]);
 
 /* ---- pipeline state ----------------------------------------------------- */
 
