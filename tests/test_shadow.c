@@ -71,6 +71,33 @@ static void lambert_flags_fs(const void *u, sr_fragment_quad *q)
     }
 }
 
+/* A shadow catcher (docs/shadows.md): the ground shows only the shadow,
+ * black at 60% where fully shadowed, fading out over the outer half of
+ * the ground (its texcoords) so it has no visible edge.  Blended
+ * source-over, so a lit ground leaves the background as it was.
+ * Varyings: 0..2 world position, 3..5 world normal, 6..7 texcoord. */
+static void catcher_vs(const void *u, const sr_vertex_input *in, float clip[4], float *vary)
+{
+    lambert_vs(u, in, clip, vary);
+    vary[6] = in->texcoord[0], vary[7] = in->texcoord[1];
+}
+
+static void catcher_fs(const void *u, sr_fragment_quad *q)
+{
+    const lambert_uniforms *l = u;
+    float vis[4];
+    sr_shadow_visibility4(l->sm, q->varyings[0], q->varyings[3], vis);
+    for (int i = 0; i < 4; i++) {
+        float dx = q->varyings[6][i] - 0.5f, dy = q->varyings[7][i] - 0.5f;
+        float r = 2.0f * sqrtf(dx * dx + dy * dy);            /* 0 centre, 1 edge midpoints */
+        float fade = fminf(fmaxf(2.0f - 2.0f * r, 0.0f), 1.0f);
+        for (int c = 0; c < 3; c++) {
+            q->color[c][i] = 0;
+        }
+        q->color[3][i] = 0.6f * (1.0f - vis[i]) * fade;
+    }
+}
+
 static sr_draw_desc mesh_draw(const sr_mesh *m)
 {
     return (sr_draw_desc){ .positions = m->positions, .normals = m->normals,
@@ -594,7 +621,8 @@ SR_TEST(lanes_match_the_single_lookup)
 
 /* The teapot over a ground plane lit from the upper left (the light
  * travels towards +x): shadow_teapot.png.  The ground right of the pot is
- * in shadow, left of it lit, and the pot's lit side has no dark pixel. */
+ * in shadow, left of it lit.  Then with the ground as a shadow catcher
+ * and a soft light: shadow_catcher.png. */
 SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
 {
     enum { W = 480, H = 320 };
@@ -635,6 +663,39 @@ SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
     sr_shadow_visibility(sm, (const float[3]){ lo.x - 0.3f, lo.y, 0 }, (const float[3]){ 0, 1, 0 }, &lit);
     CHECK(shade < 0.05f);
     CHECK(lit > 0.95f);
+
+    /* The same scene with the ground as a shadow catcher over the
+     * background, and a light of 0.04 rad for a shadow that softens away
+     * from the pot: the ground's lit part leaves the background's bytes. */
+    sr_shadow_map *soft = NULL;
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = dir, .bounds_min = lo, .bounds_max = hi,
+                                                       .size = 1024, .light_radius = 0.04f }, &soft) == SR_OK);
+    REQUIRE(sr_shadow_map_draw(ctx, soft, &pot_draw) == SR_OK);
+    u.sm = ug.sm = soft;
+    sr_program catcher = { .vertex = catcher_vs, .fragment = catcher_fs, .uniforms = &ug,
+                           .varying_count = 8 };
+    sr_state blend = { .program = &catcher, .depth_write = SR_OFF,
+                       .blend = { .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
+                                  .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA, .src_alpha = SR_BLEND_ZERO,
+                                  .dst_alpha = SR_BLEND_ONE } };
+    const float bg[4] = { 0.93f, 0.93f, 0.95f, 1 };
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { bg[0], bg[1], bg[2], bg[3] } });
+    CHECK(sr_draw(ctx, fb, &blend, &(sr_draw_desc){ .positions = ground.positions, .normals = ground.normals,
+                                                    .texcoords = ground.texcoords, .vertex_count = 4,
+                                                    .indices = ground.indices, .index_type = SR_INDEX_U32,
+                                                    .index_count = 6 }) == SR_OK);
+    CHECK(sr_draw(ctx, fb, &(sr_state){ .program = &prog }, &pot_draw) == SR_OK);
+    save(fb, "shadow_catcher.png");
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    const uint8_t *corner = px + 4 * ((H - 2) * W + 2);        /* ground, lit, far from the pot */
+    CHECK_EQ(corner[0], px[0]);                                /* the background's bytes */
+    CHECK_EQ(corner[1], px[1]);
+    int darker = 0;
+    for (int i = 0; i < W * H; i++) {
+        darker += px[4 * i + 2] < px[2] - 40 && px[4 * i] < px[0] - 40;
+    }
+    CHECK(darker > 2000);                                      /* the pot and its shadow */
+    sr_destroy_shadow_map(ctx, soft);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_shadow_map(ctx, sm);
     sr_destroy_mesh(ctx, &ground);
