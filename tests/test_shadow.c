@@ -9,6 +9,7 @@
 #include "softrast.h"
 #include "softrast_io.h"
 #include "fragment/shadow.h"
+#include "failing_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -806,4 +807,42 @@ SR_TEST(model_matrix_and_w_positions_shadow_as_moved_positions)
         sr_destroy_shadow_map(ctx, sm[k]);
     }
     sr_destroy_context(ctx);
+}
+
+/* Every allocation of making, drawing and looking up a map refused in
+ * turn: each failure is SR_OUT_OF_MEMORY (or the draw's own), nothing
+ * leaks, and a map that was made still answers sanely. */
+SR_TEST(every_allocation_failure_is_reported_cleanly)
+{
+    for (long fail_at = 0;; fail_at++) {
+        failing f = { .fail_at = fail_at };
+        sr_context *ctx = NULL;
+        if (sr_make_context(&(sr_context_desc){ .threads = 1,
+                                                .allocator = { fail_alloc, fail_free, &f } }, &ctx) != SR_OK) {
+            CHECK_EQ(f.live, 0);
+            continue;
+        }
+        sr_shadow_map *sm = NULL;
+        sr_result r = sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 },
+                                                                 .bounds_min = { -2, 0, -2 },
+                                                                 .bounds_max = { 2, 1, 2 }, .size = 64 }, &sm);
+        if (r == SR_OK) {
+            r = sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = quad_xyz, .vertex_count = 4,
+                                                             .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                             .index_count = 6 });
+            /* Drawn or not, the map answers from what it holds. */
+            float v = vis_at(sm, 0, 0, 0);
+            CHECK(r == SR_OK ? v == 0.0f : (v == 0.0f || v == 1.0f));
+            CHECK_NEAR(vis_at(sm, 1.8f, 0, 1.8f), 1, 0);
+        } else {
+            CHECK(sm == NULL);
+        }
+        CHECK(r == SR_OK || r == SR_OUT_OF_MEMORY);
+        sr_destroy_shadow_map(ctx, sm);
+        sr_destroy_context(ctx);
+        CHECK_EQ(f.live, 0);
+        if (f.failed == 0) {
+            break;   /* a run that refused nothing: every allocation was tried */
+        }
+    }
 }

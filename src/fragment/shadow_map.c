@@ -307,11 +307,15 @@ sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr_draw_d
                     .clamp = sm->offset_clamp, .fill = true },
     };
     sr_result r = sr_draw(ctx, sm->fb, &st, &d);
+    int rect[4] = { 0, 0, sm->blocks, sm->blocks };
     if (r == SR_OK) {
-        int rect[4];
         draw_block_rect(sm, &d, rect);
-        update_blocks(sm, rect[0], rect[1], rect[2], rect[3]);
+    } else if (r == SR_INVALID_ARG) {
+        return r;   /* refused before anything was drawn */
     }
+    /* Other failures (out of memory) may come after some tiles were
+     * drawn: every block is taken again. */
+    update_blocks(sm, rect[0], rect[1], rect[2], rect[3]);
     return r;
 }
 
