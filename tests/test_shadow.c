@@ -352,6 +352,10 @@ SR_TEST(lit_sphere_shows_no_acne_at_grazing_slopes)
         CHECK(lit > 5000);
         /* No pixel facing the light is in its own shadow. */
         CHECK_EQ(dark, 0);
+        /* Nor with a light of some size (wider filters, larger offsets). */
+        dark = sphere_dark_pixels(ctx, lights[k], &(sr_shadow_desc){ .size = 1024, .light_radius = 0.05f },
+                                  false, &lit, NULL);
+        CHECK_EQ(dark, 0);
     }
     /* Without the offsets the same scene does show acne: the test can see it. */
     int lit = 0;
