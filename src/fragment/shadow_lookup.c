@@ -100,12 +100,12 @@ static void to_map(const sr_shadow_map *sm, const float *pos, const float *n, v4
      * the light (why: visibility()); a zero or non-finite normal does not
      * move the point. */
     v4i ok = (len2 > 0.0f) & (len2 < INFINITY);
-    v4f inv_len = 1.0f / sr__v4_sqrt(sr__v4_sel(ok, len2, (v4f){ 1, 1, 1, 1 }));
     sr_vec3 l = sm->toward_light;
-    v4f c = (nx * l.x + ny * l.y + nz * l.z) * inv_len;
-    v4f sin2 = 1.0f - c * c;
-    v4f s = sr__v4_sqrt(sr__v4_sel(sin2 > 0.0f, sin2, (v4f){ 0 }));
-    v4f k = sr__v4_sel(ok, s * sm->texel_size * inv_len, (v4f){ 0 });
+    /* sin t / |n| = sqrt(|n|^2 - (n.l)^2) / |n|^2: one root, one divide. */
+    v4f nl = nx * l.x + ny * l.y + nz * l.z;
+    v4f s2 = len2 - nl * nl;
+    v4f s = sr__v4_sqrt(sr__v4_sel(s2 > 0.0f, s2, (v4f){ 0 }));
+    v4f k = sr__v4_sel(ok, s * sm->texel_size / sr__v4_sel(ok, len2, (v4f){ 1, 1, 1, 1 }), (v4f){ 0 });
     nx *= k, ny *= k, nz *= k;
     for (int r = 0; r < 3; r++) {
         out[3 + r] = m[r][0] * nx + m[r][1] * ny + m[r][2] * nz;
@@ -214,6 +214,49 @@ static bool finite_point(float x, float y, float z)
     return isfinite(x) && isfinite(y) && isfinite(z);
 }
 
+/* The four lanes of a fragment quad usually lie within a texel or two of
+ * each other: one block test over the union of their filter boxes, with
+ * the nearest and farthest of their depths, settles them all at once
+ * when they are all lit or all in shadow (fixed filter only).  Then each
+ * lane's own test would have said the same, so the values equal
+ * visibility()'s; -1 when the lanes must go one by one. */
+static float quad_verdict(const sr_shadow_map *sm, const float *pos, const v4f m[6])
+{
+    if (sm->light_tan > 0.0f) {
+        return -1.0f;
+    }
+    float r = sm->filter_radius;
+    float move = sm->normal_offset + 1.5f * r;
+    int i0 = INT32_MAX, j0 = INT32_MAX, i1 = INT32_MIN, j1 = INT32_MIN;
+    uint32_t zlo = UINT32_MAX, zhi = 0;
+    for (int i = 0; i < 4; i++) {
+        float u = m[0][i], v = m[1][i], w = m[2][i];
+        if (!(finite_point(pos[i], pos[4 + i], pos[8 + i]) && fabsf(u) < 1e7f && fabsf(v) < 1e7f &&
+              isfinite(w))) {
+            return -1.0f;
+        }
+        /* As visibility() moves the point. */
+        u += move * m[3][i], v += move * m[4][i], w += move * m[5][i];
+        int a = floor_int(u - r), b = floor_int(v - r), c = floor_int(u + r), d = floor_int(v + r);
+        i0 = a < i0 ? a : i0, j0 = b < j0 ? b : j0;
+        i1 = c > i1 ? c : i1, j1 = d > j1 ? d : j1;
+        uint32_t zq = depth_q24(w);
+        zlo = zq < zlo ? zq : zlo, zhi = zq > zhi ? zq : zhi;
+    }
+    int size = sm->size;
+    if (i1 < 0 || j1 < 0 || i0 >= size || j0 >= size) {
+        return 1.0f;   /* all four off the map */
+    }
+    /* A union too wide (lanes far apart) costs more blocks than it saves. */
+    if (i1 - i0 > 2 * SR_SHADOW_BLOCK_SIZE || j1 - j0 > 2 * SR_SHADOW_BLOCK_SIZE) {
+        return -1.0f;
+    }
+    if (block_verdict(sm, zhi, i0, j0, i1, j1) == 1) {
+        return 1.0f;
+    }
+    return block_verdict(sm, zlo, i0, j0, i1, j1) == 0 ? 0.0f : -1.0f;
+}
+
 sr_result sr_shadow_visibility(const sr_shadow_map *sm, const float pos[3], const float normal[3],
                                float *out)
 {
@@ -243,8 +286,10 @@ sr_result sr_shadow_visibility4(const sr_shadow_map *sm, const float *pos, const
     }
     v4f m[6];
     to_map(sm, pos, normal, m);
+    float quad = quad_verdict(sm, pos, m);
     for (int i = 0; i < 4; i++) {
-        out[i] = finite_point(pos[i], pos[4 + i], pos[8 + i])
+        out[i] = quad >= 0.0f ? quad
+                 : finite_point(pos[i], pos[4 + i], pos[8 + i])
                  ? visibility(sm, m[0][i], m[1][i], m[2][i], m[3][i], m[4][i], m[5][i]) : 1.0f;
     }
     return SR_OK;
