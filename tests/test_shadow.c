@@ -596,29 +596,53 @@ SR_TEST(same_map_and_visibility_for_any_threads_and_simd)
     free(d1), free(d2), free(d3), free(v1), free(v2), free(v3);
 }
 
+/* Four lanes scattered, or clustered as a fragment quad's are (which the
+ * quad test settles together when it can), with the fixed filter and
+ * with a light of some size: each lane equals the one-point lookup. */
 SR_TEST(lanes_match_the_single_lookup)
 {
     sr_context *ctx = NULL;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
-    sr_shadow_map *sm = quad_map(ctx, (sr_vec3){ 0.3f, -1, 0.2f }, 128, 2.5f);
-    REQUIRE(sm);
-    sr_rng rng = { 77 };
-    for (int k = 0; k < 500; k++) {
-        float pos[12], nrm[12], out[4];
+    for (int soft = 0; soft < 2; soft++) {
+        float xyz[12];
         for (int i = 0; i < 12; i++) {
-            pos[i] = (float)sr_rng_range(&rng, -2, 2) * (i >= 4 && i < 8 ? 0.3f : 1.0f);
-            nrm[i] = (float)sr_rng_range(&rng, -1, 1);
+            xyz[i] = quad_xyz[i] * (i % 3 == 1 ? 0.5f : 1.0f);   /* at height 0.5 */
         }
-        REQUIRE(sr_shadow_visibility4(sm, pos, nrm, out) == SR_OK);
-        for (int i = 0; i < 4; i++) {
-            float v;
-            sr_shadow_visibility(sm, (const float[3]){ pos[i], pos[4 + i], pos[8 + i] },
-                                 (const float[3]){ nrm[i], nrm[4 + i], nrm[8 + i] }, &v);
-            CHECK(v == out[i]);
-            CHECK(v >= 0 && v <= 1);
+        sr_shadow_map *sm = NULL;
+        REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0.3f, -1, 0.2f },
+                                                           .bounds_min = { -2, 0, -2 }, .bounds_max = { 2, 1, 2 },
+                                                           .size = 128, .filter_radius = 2.5f,
+                                                           .light_radius = soft ? 0.1f : 0 }, &sm) == SR_OK);
+        REQUIRE(sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = xyz, .vertex_count = 4,
+                                                             .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                             .index_count = 6 }) == SR_OK);
+        sr_rng rng = { 77 };
+        int settled[3] = { 0 };   /* quads all lit, all dark, mixed */
+        for (int k = 0; k < 4000; k++) {
+            float pos[12], nrm[12], out[4];
+            float spread = k & 1 ? 2.0f : 0.01f;
+            float base[3] = { (float)sr_rng_range(&rng, -2, 2), (float)sr_rng_range(&rng, 0, 0.3),
+                              (float)sr_rng_range(&rng, -2, 2) };
+            for (int i = 0; i < 12; i++) {
+                pos[i] = base[i / 4] + (float)sr_rng_range(&rng, -spread, spread) * (i / 4 == 1 ? 0.1f : 1.0f);
+                nrm[i] = (float)sr_rng_range(&rng, -1, 1) + (i / 4 == 1 ? 1.5f : 0.0f);
+            }
+            REQUIRE(sr_shadow_visibility4(sm, pos, nrm, out) == SR_OK);
+            int lit = 0, dark = 0;
+            for (int i = 0; i < 4; i++) {
+                float v;
+                sr_shadow_visibility(sm, (const float[3]){ pos[i], pos[4 + i], pos[8 + i] },
+                                     (const float[3]){ nrm[i], nrm[4 + i], nrm[8 + i] }, &v);
+                CHECK(v == out[i]);
+                CHECK(v >= 0 && v <= 1);
+                lit += v == 1, dark += v == 0;
+            }
+            settled[lit == 4 ? 0 : dark == 4 ? 1 : 2]++;
         }
+        /* Every kind of quad came up. */
+        CHECK(settled[0] > 100 && settled[1] > 100 && settled[2] > 100);
+        sr_destroy_shadow_map(ctx, sm);
     }
-    sr_destroy_shadow_map(ctx, sm);
     sr_destroy_context(ctx);
 }
 

@@ -217,38 +217,42 @@ static bool finite_point(float x, float y, float z)
 /* The four lanes of a fragment quad usually lie within a texel or two of
  * each other: one block test over the union of their filter boxes, with
  * the nearest and farthest of their depths, settles them all at once
- * when they are all lit or all in shadow (fixed filter only).  Then each
- * lane's own test would have said the same, so the values equal
- * visibility()'s; -1 when the lanes must go one by one. */
+ * when they are all lit or all in shadow.  Then each lane's own test
+ * would have said the same, so the values equal visibility()'s; -1 when
+ * the lanes must go one by one.  With a light of some size the radius is
+ * not known yet: the union takes the widest filter, and the point at both
+ * ends of the normal offsets that radius range gives (the move is linear
+ * in the offset, so every offset's point lies between them). */
 static float quad_verdict(const sr_shadow_map *sm, const float *pos, const v4f m[6])
 {
-    if (sm->light_tan > 0.0f) {
-        return -1.0f;
-    }
-    float r = sm->filter_radius;
-    float move = sm->normal_offset + 1.5f * r;
+    float r = sm->light_tan > 0.0f ? SR_SHADOW_MAX_RADIUS : sm->filter_radius;
+    float moves[2] = { sm->normal_offset + 1.5f * sm->filter_radius, sm->normal_offset + 1.5f * r };
+    int ends = moves[1] != moves[0] ? 2 : 1;
     int i0 = INT32_MAX, j0 = INT32_MAX, i1 = INT32_MIN, j1 = INT32_MIN;
     uint32_t zlo = UINT32_MAX, zhi = 0;
     for (int i = 0; i < 4; i++) {
-        float u = m[0][i], v = m[1][i], w = m[2][i];
-        if (!(finite_point(pos[i], pos[4 + i], pos[8 + i]) && fabsf(u) < 1e7f && fabsf(v) < 1e7f &&
-              isfinite(w))) {
+        if (!(finite_point(pos[i], pos[4 + i], pos[8 + i]) && fabsf(m[0][i]) < 1e7f &&
+              fabsf(m[1][i]) < 1e7f && isfinite(m[2][i]))) {
             return -1.0f;
         }
-        /* As visibility() moves the point. */
-        u += move * m[3][i], v += move * m[4][i], w += move * m[5][i];
-        int a = floor_int(u - r), b = floor_int(v - r), c = floor_int(u + r), d = floor_int(v + r);
-        i0 = a < i0 ? a : i0, j0 = b < j0 ? b : j0;
-        i1 = c > i1 ? c : i1, j1 = d > j1 ? d : j1;
-        uint32_t zq = depth_q24(w);
-        zlo = zq < zlo ? zq : zlo, zhi = zq > zhi ? zq : zhi;
+        for (int e = 0; e < ends; e++) {
+            /* As visibility() moves the point. */
+            float u = m[0][i] + moves[e] * m[3][i];
+            float v = m[1][i] + moves[e] * m[4][i];
+            float w = m[2][i] + moves[e] * m[5][i];
+            int a = floor_int(u - r), b = floor_int(v - r), c = floor_int(u + r), d = floor_int(v + r);
+            i0 = a < i0 ? a : i0, j0 = b < j0 ? b : j0;
+            i1 = c > i1 ? c : i1, j1 = d > j1 ? d : j1;
+            uint32_t zq = depth_q24(w);
+            zlo = zq < zlo ? zq : zlo, zhi = zq > zhi ? zq : zhi;
+        }
     }
     int size = sm->size;
     if (i1 < 0 || j1 < 0 || i0 >= size || j0 >= size) {
         return 1.0f;   /* all four off the map */
     }
     /* A union too wide (lanes far apart) costs more blocks than it saves. */
-    if (i1 - i0 > 2 * SR_SHADOW_BLOCK_SIZE || j1 - j0 > 2 * SR_SHADOW_BLOCK_SIZE) {
+    if (i1 - i0 > 4 * SR_SHADOW_BLOCK_SIZE || j1 - j0 > 4 * SR_SHADOW_BLOCK_SIZE) {
         return -1.0f;
     }
     if (block_verdict(sm, zhi, i0, j0, i1, j1) == 1) {
