@@ -1012,11 +1012,12 @@ static const char *const value_options[] = {
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
-    "--polygon-offset", "--up",
+    "--polygon-offset", "--up", "--batch", "--output-dir", "--name", "--log", "--shard",
+    "--shard-count",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",
-                                             "--smooth", "--texture-srgb" };
+                                             "--smooth", "--texture-srgb", "--skip-existing" };
 
 SR_TEST(render_help_lists_every_option)
 {

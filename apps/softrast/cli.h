@@ -16,6 +16,9 @@ enum { EXIT_OK = 0, EXIT_FAILURE_RUN = 1, EXIT_USAGE = 2 };
 int cmd_render(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_thumbnail(int argc, char **argv); /* thumbnail.c: a render for file managers */
+/* batch.c: `softrast render` with several models, a directory, a list or
+ * the batch options; -1 when the arguments ask for one plain render. */
+int batch_render(int argc, char **argv);
 int cmd_svg(int argc, char **argv);   /* svg.c; needs expat */
 int cmd_view(int argc, char **argv);  /* view.c; needs SDL2 and FreeType */
 
@@ -55,6 +58,12 @@ sr_result cli_write_image(const char *path, int width, int height, const uint8_t
 
 /* Print "softrast: ..." to stderr (one line). */
 void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Print one line to stderr as it is (a reader's "FILE:LINE: why"). */
+void cli_message(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Hold the messages of cli_error and cli_message in buf (joined by "; ",
+ * without the "softrast: " prefix) instead of printing them, until
+ * cli_capture(NULL, 0): a batch reports one line per failed input. */
+void cli_capture(char *buf, size_t size);
 
 /* Parsers: return false after printing "softrast render: OPTION: why". */
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);

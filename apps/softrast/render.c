@@ -46,7 +46,7 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
                                &ob->mesh, &err);
     if (r != SR_OK) {
-        fprintf(stderr, "%s\n", err.message);
+        cli_message("%s", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     s->count = 1;
@@ -578,6 +578,20 @@ int render_job_load(render_job *job)
     return status >= 0 ? status : make_context(job);
 }
 
+int render_job_reload(render_job *job, const char *model)
+{
+    if (job->ctx) {
+        render_textures_free(job->ctx, &job->s);
+    }
+    if (job->have_scene) {
+        scene_free(job->mesh_ctx, &job->s);
+        job->have_scene = false;
+    }
+    cli_inputs_free(&job->inputs);
+    job->o.model = model;
+    return render_job_load(job);
+}
+
 int render_job_configure(render_job *job, int argc, char **argv)
 {
     render_opts o = render_opts_defaults();
@@ -759,8 +773,12 @@ static void *make_fb(void *arg)
 
 int cmd_render(int argc, char **argv)
 {
+    int status = batch_render(argc, argv);
+    if (status >= 0) {
+        return status;
+    }
     render_job *job;
-    int status = render_job_parse(argc, argv, &job);
+    status = render_job_parse(argc, argv, &job);
     if (status >= 0) {
         return status;
     }

@@ -414,6 +414,10 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         } else if (!*arg) {
             cli_error("%s: the model's file name is empty", argv[0]);
             return EXIT_USAGE;
+        } else if (o->model_fn) {
+            if (!o->model_fn(o->model_user, arg)) {
+                return EXIT_FAILURE_RUN;
+            }
         } else if (!o->model) {
             o->model = arg;
         } else {

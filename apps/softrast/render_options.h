@@ -53,6 +53,10 @@ typedef struct render_opts {
     int msaa;                      /* 1: off; n: n samples per pixel, shaded once */
     float opacity;                 /* of the model; 1: opaque */
     sr_resample_filter filter;
+    /* When set, each model named is passed to model_fn (a batch's list)
+     * instead of being o->model; false from it stops the parse. */
+    bool (*model_fn)(void *user, const char *path);
+    void *model_user;
 } render_opts;
 
 /* The model's up axis (--up), in the order of its names +x -x +y -y +z -z;
