@@ -280,6 +280,8 @@ static void render_one(batch_run *run, const batch_item *it, batch_record *rec)
     } else if (cli_write_image(it->output, o->width, o->height, sr_framebuffer_pixels(run->fb),
                                &(cli_image_options){ .png_level = o->png_level,
                                                      .jpeg_quality = o->jpeg_quality,
+                                                     .keep_alpha = o->background_alpha < 1.0f,
+                                                     .premultiplied = true,
                                                      .context = render_job_context(run->job),
                                                      .inputs = render_job_inputs(run->job) },
                                &err) != SR_OK) {

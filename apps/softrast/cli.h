@@ -48,6 +48,8 @@ typedef struct cli_image_options {
     int png_level;         /* -1: the library's default; 0: stored; 1..9 */
     int jpeg_quality;      /* 0: the library's default; 1..100 */
     bool keep_alpha;       /* PNG only: write RGBA rather than RGB */
+    bool premultiplied;    /* the colors are multiplied by alpha (a render over a
+                            * transparent background): written straight */
     sr_context *context;   /* PNG only: compress on its threads (may be NULL) */
     const cli_inputs *inputs; /* never written over: SR_INVALID_ARG (may be NULL) */
 } cli_image_options;

@@ -719,7 +719,8 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     bool clear_to_near = o->depth_func == SR_GREATER || o->depth_func == SR_GEQUAL;
     if (r == SR_OK) {
         r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o->background.x, o->background.y,
-                                                           o->background.z, 1.0f },
+                                                           o->background.z,
+                                                           o->background_alpha },
                                                 .depth_action = SR_ACTION_CLEAR,
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
@@ -796,6 +797,12 @@ int cmd_render(int argc, char **argv)
         return EXIT_USAGE;
     }
     bool jpeg = cli_is_jpeg_name(o->output);
+    if (jpeg && o->background_alpha < 1.0f) {
+        cli_error("--background transparent: the output '%s' is a JPEG, which has no alpha",
+                  o->output);
+        render_job_free(job);
+        return EXIT_USAGE;
+    }
     if (jpeg ? o->png_level >= 0 : o->jpeg_quality > 0) {
         cli_error(jpeg ? "--png-level: the output '%s' is a JPEG (see --jpeg-quality)"
                        : "--jpeg-quality: the output '%s' is a PNG (name it .jpg for a JPEG)",
@@ -865,6 +872,8 @@ int cmd_render(int argc, char **argv)
     r = cli_write_image(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
                         &(cli_image_options){ .png_level = o->png_level,
                                               .jpeg_quality = o->jpeg_quality,
+                                              .keep_alpha = o->background_alpha < 1.0f,
+                                              .premultiplied = true,
                                               .context = job->ctx,
                                               .inputs = &job->inputs },
                         &err);

@@ -33,6 +33,7 @@ typedef struct render_opts {
     sr_vec3 mat_color, specular;
     float shininess;
     sr_vec3 background;
+    float background_alpha;        /* 1, or 0 for --background transparent */
     sr_depth_format depth_format;
     sr_depth_func depth_func;
     sr_interpolation interp;
