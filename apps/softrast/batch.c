@@ -5,6 +5,7 @@
  * stderr and one record in the log, and the batch goes on; the exit
  * status says whether all, some or none of the inputs were rendered. */
 #include "batch.h"
+#include "batch_writer.h"
 #include "cli.h"
 #include "render.h"
 #include "render_options.h"
@@ -195,26 +196,6 @@ static bool is_listed_input(const file_id *ids, size_t n, const char *path)
     return bsearch(&key, ids, n, sizeof *ids, by_id) != NULL;
 }
 
-/* Make the directories above `path` (mkdir -p of its dirname); false
- * after one line. */
-static bool make_parents(const char *path)
-{
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s", path);
-    for (char *p = dir + 1; *p; p++) {
-        if (*p != '/') {
-            continue;
-        }
-        *p = '\0';
-        if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-            cli_error("cannot make the directory '%s': %s", dir, strerror(errno));
-            return false;
-        }
-        *p = '/';
-    }
-    return true;
-}
-
 static bool exists_whole(const char *path)
 {
     struct stat st;
@@ -227,16 +208,51 @@ typedef struct batch_run {
     sr_framebuffer *fb;
     const file_id *ids;
     size_t id_count;
-    char message[2048];        /* the held messages of the current input */
+    batch_writer writer;
+    batch_progress progress;
+    size_t ok;
+    int log_fd;
+    int log_errno;             /* why the log could not be written, or 0 */
+    char message[2048];        /* the held messages of the input being drawn */
 } batch_run;
 
-/* Render one input to its output; its record filled in.  Any message
- * (why it failed, or a warning) is left in run->message. */
-static void render_one(batch_run *run, const batch_item *it, batch_record *rec)
+/* One line on stderr for a failed input (or a warning), naming the input
+ * unless the message starts with it already ("FILE:LINE: why").  Printed
+ * directly: the writer's thread calls this while the batch may be
+ * holding its own messages (cli_capture). */
+static void report(batch_progress *p, const char *input, const char *message)
+{
+    batch_progress_clear(p);
+    size_t n = strlen(input);
+    bool named = strncmp(message, input, n) == 0 && message[n] == ':';
+    fprintf(stderr, "softrast: %s%s%s\n", named ? "" : input, named ? "" : ": ", message);
+}
+
+/* An input is finished (batch_done_fn): count, report, log, redraw. */
+static void finish(void *user, batch_record *rec, const char *message)
+{
+    batch_run *run = user;
+    bool failed = strcmp(rec->status, "failed") == 0;
+    run->ok += !failed;
+    run->progress.failed += failed;
+    run->progress.skipped += strcmp(rec->status, "skipped") == 0;
+    run->progress.done++;
+    if (message && *message) {
+        report(&run->progress, rec->input, message);
+    }
+    rec->error = failed ? (message && *message ? message : "failed") : NULL;
+    if (run->log_fd >= 0 && run->log_errno == 0 && !batch_log_write(run->log_fd, rec)) {
+        run->log_errno = errno ? errno : EIO;
+    }
+    batch_progress_show(&run->progress, now_ms(), false);
+}
+
+/* Draw one input into run->fb; false when it failed (why in
+ * run->message, which may also hold a warning when it succeeded). */
+static bool draw_one(batch_run *run, const batch_item *it, batch_record *rec)
 {
     const render_opts *o = run->o;
     double t0 = now_ms();
-    rec->status = "failed";
     cli_capture(run->message, sizeof run->message);
     struct stat st;
     int status = -1;
@@ -261,48 +277,24 @@ static void render_one(batch_run *run, const batch_item *it, batch_record *rec)
             status = EXIT_FAILURE_RUN;
         }
     }
+    /* The model's own other files (MTL, textures) are inputs too. */
+    if (status < 0 && !cli_check_output(render_job_inputs(run->job), "--name", it->output)) {
+        status = EXIT_USAGE;
+    }
     double t1 = now_ms();
     rec->load_ms = t1 - t0;
-    if (status >= 0) {
-        cli_capture(NULL, 0);
-        return;
+    if (status < 0) {
+        render_frame_info info;
+        if (render_job_draw(run->job, run->fb, &info) == SR_OK) {
+            rec->triangles = info.triangles;
+        } else {
+            cli_error("%s", render_job_error(run->job));
+            status = EXIT_FAILURE_RUN;
+        }
+        rec->render_ms = now_ms() - t1;
     }
-    render_frame_info info;
-    sr_result r = render_job_draw(run->job, run->fb, &info);
-    double t2 = now_ms();
-    rec->render_ms = t2 - t1;
-    rec->triangles = info.triangles;
-    sr_io_error err;
-    if (r != SR_OK) {
-        cli_error("%s", render_job_error(run->job));
-    } else if (!make_parents(it->output)) {
-        /* make_parents said why */
-    } else if (cli_write_image(it->output, o->width, o->height, sr_framebuffer_pixels(run->fb),
-                               &(cli_image_options){ .png_level = o->png_level,
-                                                     .jpeg_quality = o->jpeg_quality,
-                                                     .keep_alpha = o->background_alpha < 1.0f,
-                                                     .premultiplied = true,
-                                                     .context = render_job_context(run->job),
-                                                     .inputs = render_job_inputs(run->job) },
-                               &err) != SR_OK) {
-        cli_error("%s", err.message);
-    } else {
-        rec->status = "ok";
-    }
-    rec->encode_ms = now_ms() - t2;
     cli_capture(NULL, 0);
-}
-
-/* One line for a failed input (or a warning), naming the input unless
- * the message starts with it already ("FILE:LINE: why"). */
-static void report(const char *input, const char *message)
-{
-    size_t n = strlen(input);
-    if (strncmp(message, input, n) == 0 && message[n] == ':') {
-        cli_error("%s", message);
-    } else {
-        cli_error("%s: %s", input, message);
-    }
+    return status < 0;
 }
 
 /* The inputs of the options: the MODEL arguments and the list. */
@@ -327,71 +319,83 @@ static int gather(const batch_opts *b, batch_list *l)
     return status;
 }
 
+/* Render the shard's inputs in list order, each image handed to the
+ * writer while the next model is read and drawn. */
+static void render_all(batch_run *run, const batch_list *list, const batch_shard *shard,
+                       bool skip_existing)
+{
+    const render_opts *o = run->o;
+    const cli_image_options image = { .png_level = o->png_level,
+                                       .jpeg_quality = o->jpeg_quality,
+                                       .keep_alpha = o->background_alpha < 1.0f,
+                                       .premultiplied = true };
+    for (size_t i = 0; i < list->count; i++) {
+        const batch_item *it = &list->items[i];
+        if (!batch_in_shard(it->input, shard)) {
+            continue;
+        }
+        batch_record rec = { .input = it->input, .output = it->output, .index = it->index,
+                             .status = "failed" };
+        run->message[0] = '\0';
+        if (skip_existing && exists_whole(it->output)) {
+            rec.status = "skipped";
+        } else if (draw_one(run, it, &rec)) {
+            if (run->message[0]) {
+                batch_writer_wait(&run->writer);
+                report(&run->progress, it->input, run->message);   /* a warning */
+            }
+            if (batch_writer_put(&run->writer, &rec, o->width, o->height,
+                                 sr_framebuffer_pixels(run->fb), &image)) {
+                continue;
+            }
+            snprintf(run->message, sizeof run->message, "out of memory");
+        }
+        batch_writer_wait(&run->writer);
+        finish(run, &rec, run->message);
+    }
+    batch_writer_wait(&run->writer);
+}
+
 static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
 {
     batch_shard shard;
     batch_list list = { 0 };
+    batch_run run = { .o = o, .job = job, .log_fd = -1 };
     int status = batch_shard_resolve(b->shard, b->shard_count, &shard);
     if (status < 0) {
         status = gather(b, &list);
     }
-    int log_fd = -1;
     if (status < 0 && b->log) {
-        log_fd = open(b->log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-        if (log_fd < 0) {
+        run.log_fd = open(b->log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+        if (run.log_fd < 0) {
             cli_error("--log: %s: %s", b->log, strerror(errno));
             status = EXIT_USAGE;
         }
     }
-    batch_run run = { .o = o, .job = job };
     file_id *ids = status < 0 ? input_ids(&list, &run.id_count) : NULL;
     if (status < 0 && !ids) {
         cli_error("out of memory listing the inputs");
         status = EXIT_FAILURE_RUN;
     }
     run.ids = ids;
-    size_t mine = 0;
-    for (size_t i = 0; i < list.count; i++) {
-        mine += batch_in_shard(list.items[i].input, &shard);
-    }
-    batch_progress progress;
-    batch_progress_start(&progress, mine, now_ms());
-    size_t ok = 0;
-    for (size_t i = 0; status < 0 && i < list.count; i++) {
-        const batch_item *it = &list.items[i];
-        if (!batch_in_shard(it->input, &shard)) {
-            continue;
-        }
-        batch_record rec = { .input = it->input, .output = it->output, .index = it->index };
-        run.message[0] = '\0';
-        if (b->skip_existing && exists_whole(it->output)) {
-            rec.status = "skipped";
-            progress.skipped++;
-        } else {
-            render_one(&run, it, &rec);
-        }
-        bool failed = strcmp(rec.status, "failed") == 0;
-        ok += !failed;
-        progress.failed += failed;
-        progress.done++;
-        if (run.message[0]) {
-            batch_progress_clear(&progress);
-            report(it->input, run.message);
-        }
-        rec.error = failed ? (run.message[0] ? run.message : "failed") : NULL;
-        if (log_fd >= 0 && !batch_log_write(log_fd, &rec)) {
-            cli_error("--log: %s: %s", b->log, strerror(errno));
-            status = EXIT_FAILURE_RUN;
-        }
-        batch_progress_show(&progress, now_ms(), false);
-    }
     if (status < 0) {
-        batch_progress_show(&progress, now_ms(), true);
-        status = progress.failed == 0 ? EXIT_OK
-               : ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
+        size_t mine = 0;
+        for (size_t i = 0; i < list.count; i++) {
+            mine += batch_in_shard(list.items[i].input, &shard);
+        }
+        batch_progress_start(&run.progress, mine, now_ms());
+        batch_writer_start(&run.writer, finish, &run);
+        render_all(&run, &list, &shard, b->skip_existing);
+        batch_writer_stop(&run.writer);
+        batch_progress_show(&run.progress, now_ms(), true);
+        status = run.progress.failed == 0 ? EXIT_OK
+               : run.ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
     }
-    if (log_fd >= 0 && close(log_fd) != 0 && status < EXIT_USAGE) {
-        cli_error("--log: %s: %s", b->log, strerror(errno));
+    if (run.log_fd >= 0 && close(run.log_fd) != 0 && run.log_errno == 0) {
+        run.log_errno = errno;
+    }
+    if (run.log_errno != 0) {
+        cli_error("--log: %s: %s", b->log, strerror(run.log_errno));
         status = EXIT_FAILURE_RUN;
     }
     if (run.fb) {

@@ -342,7 +342,8 @@ int batch_name_outputs(batch_list *l, const char *dir, const char *pattern)
     int status = -1;
     for (size_t i = 1; i < l->count && status < 0; i++) {
         if (strcmp(sorted[i - 1]->output, sorted[i]->output) == 0) {
-            cli_error("--name: '%s' and '%s' would both be written to '%s' (use {rel} or {index})",
+            cli_error("--name: '%s' and '%s' would both be written to '%s' "
+                      "(add {ext} or {index} to --name)",
                       sorted[i - 1]->input, sorted[i]->input, sorted[i]->output);
             status = EXIT_USAGE;
         }
