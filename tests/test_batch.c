@@ -926,3 +926,128 @@ SR_TEST(killed_shard_resumes_with_skip_existing)
         CHECK(had[i] ? same_file_state(png, &done[i]) : is_thumbnail(png, 1024, 1024));
     }
 }
+
+/* ---- views and sheets --------------------------------------------------- */
+
+static uint8_t *read_rgba(const char *path, int *w, int *h)
+{
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_image(path, w, h, &px, &err) != SR_OK) {
+        FAILF("%s: %s", path, err.message);
+        return NULL;
+    }
+    return px;
+}
+
+/* --views N: N images a model, {view} in their names, each a different
+ * side; the same angle gives the same image whatever N. */
+SR_TEST(views_render_a_turntable)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], model[1100], logp[1100];
+    fresh_dir("views", dir, sizeof dir);
+    fresh_dir("views_out", out, sizeof out);
+    snprintf(model, sizeof model, "%s/m.stl", dir);
+    snprintf(logp, sizeof logp, "%s/log.jsonl", dir);
+    REQUIRE(write_stl(model, 3.0f));
+    run_result r;
+    REQUIRE(run(ARGS("render", model, "--views", "4", "--output-dir", out, "--size", "48x48",
+                     "--log", logp), &r));
+    CHECK_EQ(r.status, 0);
+    record recs[8];
+    CHECK_EQ(read_log(logp, recs, 8), 4);
+    uint8_t *px[4] = { NULL };
+    for (int v = 0; v < 4; v++) {
+        char png[1200];
+        snprintf(png, sizeof png, "%s/m_%d.png", out, v);
+        CHECK(is_thumbnail(png, 48, 48));
+        CHECK(find_record(recs, 4, model) && strcmp(recs[v].output, png) == 0);
+        int w, h;
+        px[v] = read_rgba(png, &w, &h);
+    }
+    for (int v = 1; v < 4; v++) {
+        CHECK(px[0] && px[v] && memcmp(px[0], px[v], 48 * 48 * 4) != 0);
+    }
+    /* 180 degrees is view 2 of 4 and view 4 of 8. */
+    fresh_dir("views_out", out, sizeof out);
+    REQUIRE(run(ARGS("render", model, "--views", "8", "--output-dir", out, "--size", "48x48",
+                     "--name", "v{view}.png"), &r));
+    CHECK_EQ(r.status, 0);
+    char png[1200];
+    snprintf(png, sizeof png, "%s/v4.png", out);
+    int w, h;
+    uint8_t *half = read_rgba(png, &w, &h);
+    CHECK(half && px[2] && memcmp(half, px[2], 48 * 48 * 4) == 0);
+    free(half);
+    for (int v = 0; v < 4; v++) {
+        free(px[v]);
+    }
+    REQUIRE(run(ARGS("render", model, "--views", "4", "--output-dir", out, "--name", "x.png"),
+                &r));
+    CHECK(r.status == 2 && strstr(r.err, "{view}"));
+}
+
+/* --sheet: every image in one grid, captioned; a failed model's cell is
+ * empty with its caption, and the sheet is still written. */
+SR_TEST(sheet_lays_out_models_with_captions)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], sheet[1100], paths[MODELS][1200];
+    fresh_dir("sheet", dir, sizeof dir);
+    fresh_dir("sheet_out", out, sizeof out);
+    REQUIRE(write_models(dir, paths) == MODELS);
+    snprintf(sheet, sizeof sheet, "%s/sheet.png", out);
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--size", "40x30", "--sheet-columns", "2"),
+                &r));
+    CHECK_EQ(r.status, 3);
+    CHECK_EQ(count_lines(r.err), 1);
+    int w, h;
+    uint8_t *px = read_rgba(sheet, &w, &h);
+    REQUIRE(px != NULL);
+    /* Five cells, two a row: three rows of 30 pixels and a 12-pixel caption. */
+    CHECK(w == 80 && h == 3 * 42);
+    /* The first cell is the first model's image as a batch draws it alone. */
+    REQUIRE(run(ARGS("render", paths[0], "--output-dir", out, "--size", "40x30"), &r));
+    char single[1200];
+    snprintf(single, sizeof single, "%s/a_tetra.png", out);
+    int sw, sh;
+    uint8_t *one = read_rgba(single, &sw, &sh);
+    bool same = one != NULL;
+    for (int y = 0; same && y < 30; y++) {
+        same = memcmp(px + 4 * (size_t)(y * w), one + 4 * (size_t)(y * 40), 4 * 40) == 0;
+    }
+    CHECK(same);
+    free(one);
+    /* Captions: ink in every used cell's strip; the bad model's (cell 2,
+     * left of row 1) is red, and its image area is background only. */
+    for (int cell = 0; cell < MODELS; cell++) {
+        int x0 = (cell % 2) * 40, y0 = (cell / 2) * 42;
+        size_t ink = 0, red = 0, drawn = 0;
+        for (int y = y0 + 30; y < y0 + 42; y++) {
+            for (int x = x0; x < x0 + 40; x++) {
+                const uint8_t *p = px + 4 * (size_t)(y * w + x);
+                ink += memcmp(p, px, 3) != 0;
+                red += p[0] > 160 && p[1] < 120;
+            }
+        }
+        for (int y = y0; y < y0 + 30; y++) {
+            for (int x = x0; x < x0 + 40; x++) {
+                drawn += memcmp(px + 4 * (size_t)(y * w + x), px, 3) != 0;
+            }
+        }
+        CHECK(ink > 10);
+        CHECK((red > 0) == (cell == BAD_MODEL));
+        CHECK((drawn > 0) == (cell != BAD_MODEL));
+    }
+    free(px);
+
+    /* Sheets that cannot be made, and options that do not go with one. */
+    REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--size", "4000x4000"), &r));
+    CHECK(r.status == 2 && strstr(r.err, "--sheet"));
+    REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--skip-existing"), &r));
+    CHECK(r.status == 2 && strstr(r.err, "--skip-existing"));
+    REQUIRE(run(ARGS("render", dir, "--sheet-columns", "3"), &r));
+    CHECK(r.status == 2 && strstr(r.err, "--sheet"));
+}

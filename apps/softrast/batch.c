@@ -5,6 +5,7 @@
  * stderr and one record in the log, and the batch goes on; the exit
  * status says whether all, some or none of the inputs were rendered. */
 #include "batch.h"
+#include "batch_views.h"
 #include "batch_writer.h"
 #include "cli.h"
 #include "render.h"
@@ -22,9 +23,13 @@
 typedef struct batch_opts {
     const char *list;          /* --batch LIST */
     const char *output_dir;    /* --output-dir DIR (default .) */
-    const char *name;          /* --name PATTERN (default {stem}.png) */
+    const char *name;          /* --name PATTERN (default {rel}.png, {rel}_{view}.png) */
     const char *log;           /* --log FILE.jsonl */
     const char *shard, *shard_count;
+    const char *views_arg, *sheet, *columns_arg;  /* --views N, --sheet FILE, --sheet-columns N */
+    int views, columns;
+    char **job_argv;           /* the render options, for render_job_configure */
+    int job_argc;
     bool skip_existing;
     bool any;                  /* a batch option was given */
     bool output;               /* -o was given */
@@ -70,6 +75,13 @@ static void batch_help(void)
         "                           --shard-count, else SLURM_ARRAY_TASK_ID (less\n"
         "                           SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_STEP) of\n"
         "                           SLURM_ARRAY_TASK_COUNT; --shard 0/1 renders all\n"
+        "  --views N                N views round each model, 360/N degrees apart about\n"
+        "                           the vertical axis (a turntable), each its own image:\n"
+        "                           {view} in --name (default {rel}_{view}.png)\n"
+        "  --sheet FILE             one contact sheet of every image instead, each\n"
+        "                           captioned with its model's name (and view's angle)\n"
+        "  --sheet-columns N        images a row (default: one model's views a row, or\n"
+        "                           about square)\n"
         "\n"
         "A batch draws a progress line on a terminal and otherwise prints only one\n"
         "line per failed input.  Exit status: 0 when every input was rendered or\n"
@@ -99,9 +111,10 @@ static bool add_model(void *user, const char *path)
 static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *rest_count)
 {
     static const char *const valued[] = { "--batch", "--output-dir", "--name", "--log",
-                                          "--shard", "--shard-count", NULL };
+                                          "--shard", "--shard-count", "--views", "--sheet",
+                                          "--sheet-columns", NULL };
     const char **dst[] = { &b->list, &b->output_dir, &b->name, &b->log, &b->shard,
-                           &b->shard_count };
+                           &b->shard_count, &b->views_arg, &b->sheet, &b->columns_arg };
     int n = 0;
     rest[n++] = argv[0];
     for (int i = 1; i < argc; i++) {
@@ -203,12 +216,15 @@ static bool exists_whole(const char *path)
 }
 
 typedef struct batch_run {
+    const batch_opts *b;
     const render_opts *o;
     render_job *job;
     sr_framebuffer *fb;
     const file_id *ids;
     size_t id_count;
     batch_writer writer;
+    batch_sheet sheet;         /* --sheet: made on the job's context at its first cell */
+    int sheet_images;
     batch_progress progress;
     size_t ok;
     int log_fd;
@@ -247,21 +263,18 @@ static void finish(void *user, batch_record *rec, const char *message)
     batch_progress_show(&run->progress, now_ms(), false);
 }
 
-/* Draw one input into run->fb; false when it failed (why in
- * run->message, which may also hold a warning when it succeeded). */
-static bool draw_one(batch_run *run, const batch_item *it, batch_record *rec)
+/* Read one input into the job (after resetting its options, which a
+ * view's camera changed) and make the framebuffer once; false when it
+ * failed (why in run->message, which may also hold a warning when it
+ * succeeded). */
+static bool load_one(batch_run *run, const batch_item *it, batch_record *rec)
 {
     const render_opts *o = run->o;
     double t0 = now_ms();
     cli_capture(run->message, sizeof run->message);
-    struct stat st;
     int status = -1;
-    if (stat(it->output, &st) == 0 && S_ISDIR(st.st_mode)) {
-        cli_error("'%s' is a directory", it->output);
-        status = EXIT_USAGE;
-    } else if (is_listed_input(run->ids, run->id_count, it->output)) {
-        cli_error("'%s' is an input of the batch; choose another --name", it->output);
-        status = EXIT_USAGE;
+    if (run->b->views > 1) {
+        status = render_job_configure(run->job, run->b->job_argc, run->b->job_argv);
     }
     if (status < 0) {
         status = render_job_reload(run->job, it->input);
@@ -277,24 +290,56 @@ static bool draw_one(batch_run *run, const batch_item *it, batch_record *rec)
             status = EXIT_FAILURE_RUN;
         }
     }
-    /* The model's own other files (MTL, textures) are inputs too. */
-    if (status < 0 && !cli_check_output(render_job_inputs(run->job), "--name", it->output)) {
-        status = EXIT_USAGE;
+    cli_capture(NULL, 0);
+    rec->load_ms = now_ms() - t0;
+    return status < 0;
+}
+
+/* Draw view `view` of the loaded input into run->fb, for `output` (NULL
+ * on a sheet); false when it failed (why in run->message). */
+static bool draw_view(batch_run *run, const char *output, int view, batch_record *rec)
+{
+    double t0 = now_ms();
+    run->message[0] = '\0';
+    cli_capture(run->message, sizeof run->message);
+    struct stat st;
+    bool ok = true;
+    if (output && stat(output, &st) == 0 && S_ISDIR(st.st_mode)) {
+        cli_error("'%s' is a directory", output);
+        ok = false;
+    } else if (output && is_listed_input(run->ids, run->id_count, output)) {
+        cli_error("'%s' is an input of the batch; choose another --name", output);
+        ok = false;
+    } else if (output && !cli_check_output(render_job_inputs(run->job), "--name", output)) {
+        ok = false;   /* the model's own other files (MTL, textures) */
     }
-    double t1 = now_ms();
-    rec->load_ms = t1 - t0;
-    if (status < 0) {
-        render_frame_info info;
-        if (render_job_draw(run->job, run->fb, &info) == SR_OK) {
-            rec->triangles = info.triangles;
-        } else {
-            cli_error("%s", render_job_error(run->job));
-            status = EXIT_FAILURE_RUN;
-        }
-        rec->render_ms = now_ms() - t1;
+    if (ok && run->b->views > 1) {
+        batch_view_camera(run->job, run->o->have_eye, view, run->b->views);
+    }
+    render_frame_info info;
+    if (ok && render_job_draw(run->job, run->fb, &info) == SR_OK) {
+        rec->triangles = info.triangles;
+    } else if (ok) {
+        cli_error("%s", render_job_error(run->job));
+        ok = false;
     }
     cli_capture(NULL, 0);
-    return status < 0;
+    rec->render_ms = now_ms() - t0;
+    return ok;
+}
+
+/* A sheet cell's caption: the model's file name, and the view's angle. */
+static void caption_of(const batch_run *run, const batch_item *it, int view, char *out,
+                       size_t size)
+{
+    const char *base = strrchr(it->input, '/');
+    base = base ? base + 1 : it->input;
+    if (run->b->views > 1) {
+        int views = run->b->views;
+        snprintf(out, size, "%s %ddeg", base, (360 * view + views / 2) / views);
+    } else {
+        snprintf(out, size, "%s", base);
+    }
 }
 
 /* The inputs of the options: the MODEL arguments and the list. */
@@ -311,56 +356,152 @@ static int gather(const batch_opts *b, batch_list *l)
         cli_error("render: no models to render (a directory holds none, or the list is empty)");
         status = EXIT_USAGE;
     }
+    for (size_t i = 0; status < 0 && i < l->count && b->views > 1 && !b->sheet; i++) {
+        if (l->items[i].output) {
+            cli_error("--views: the list names one output for '%s'; views are named by --name",
+                      l->items[i].input);
+            status = EXIT_USAGE;
+        }
+    }
     if (status < 0) {
         batch_list_sort(l);
+    }
+    if (status < 0 && !b->sheet) {   /* a sheet is the one output */
+        const char *dflt = b->views > 1 && !b->sheet ? "{rel}_{view}.png" : "{rel}.png";
         status = batch_name_outputs(l, b->output_dir ? b->output_dir : ".",
-                                    b->name ? b->name : "{rel}.png");
+                                    b->name ? b->name : dflt);
     }
     return status;
 }
 
+/* Fill the sheet's next cell, making the sheet first; false after the
+ * reason is in run->message. */
+static bool sheet_put(batch_run *run, const batch_item *it, int view, const uint8_t *rgba)
+{
+    sr_context *ctx = render_job_context(run->job);
+    sr_result r = ctx ? SR_OK : SR_INVALID_ARG;
+    if (r == SR_OK && !run->sheet.fb) {
+        r = batch_sheet_start(&run->sheet, ctx, run->sheet_images, run->b->columns,
+                              run->o->width, run->o->height, run->o->background,
+                              run->o->background_alpha);
+    }
+    char caption[512];
+    caption_of(run, it, view, caption, sizeof caption);
+    if (r == SR_OK) {
+        r = batch_sheet_put(&run->sheet, ctx, rgba, caption, rgba == NULL);
+    }
+    if (r != SR_OK) {
+        snprintf(run->message, sizeof run->message, "--sheet: %s",
+                 ctx && sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(r));
+    }
+    return r == SR_OK;
+}
+
 /* Render the shard's inputs in list order, each image handed to the
- * writer while the next model is read and drawn. */
-static void render_all(batch_run *run, const batch_list *list, const batch_shard *shard,
-                       bool skip_existing)
+ * writer (or put on the sheet) while the next is read and drawn. */
+static void render_all(batch_run *run, const batch_list *list, const batch_shard *shard)
 {
     const render_opts *o = run->o;
+    const batch_opts *b = run->b;
     const cli_image_options image = { .png_level = o->png_level,
                                        .jpeg_quality = o->jpeg_quality,
                                        .keep_alpha = o->background_alpha < 1.0f,
                                        .premultiplied = true };
+    char output[4096];
     for (size_t i = 0; i < list->count; i++) {
         const batch_item *it = &list->items[i];
         if (!batch_in_shard(it->input, shard)) {
             continue;
         }
-        batch_record rec = { .input = it->input, .output = it->output, .index = it->index,
-                             .status = "failed" };
+        /* With --skip-existing, an input whose every view exists is not read. */
+        int missing = b->sheet ? b->views : 0;
+        for (int v = 0; v < b->views && !missing; v++) {
+            missing += !b->skip_existing || !batch_view_output(list, it, v, output, sizeof output) ||
+                       !exists_whole(output);
+        }
+        batch_record rec = { .input = it->input, .output = b->sheet ? b->sheet : it->output,
+                             .index = it->index, .status = "failed" };
         run->message[0] = '\0';
-        if (skip_existing && exists_whole(it->output)) {
-            rec.status = "skipped";
-        } else if (draw_one(run, it, &rec)) {
-            if (run->message[0]) {
-                batch_writer_wait(&run->writer);
-                report(&run->progress, it->input, run->message);   /* a warning */
+        bool loaded = missing > 0 && load_one(run, it, &rec);
+        if (loaded && run->message[0]) {
+            batch_writer_wait(&run->writer);
+            report(&run->progress, it->input, run->message);   /* a warning */
+        }
+        for (int v = 0; v < b->views; v++) {
+            if (!b->sheet && !batch_view_output(list, it, v, output, sizeof output)) {
+                snprintf(output, sizeof output, "%s", it->output);   /* view 0's, checked */
             }
-            if (batch_writer_put(&run->writer, &rec, o->width, o->height,
-                                 sr_framebuffer_pixels(run->fb), &image)) {
+            rec.output = b->sheet ? b->sheet : output;
+            bool skip = !b->sheet && b->skip_existing && exists_whole(output);
+            if (skip || (missing > 0 && !loaded)) {
+                rec.status = skip ? "skipped" : "failed";
+                batch_writer_wait(&run->writer);
+                if (b->sheet) {
+                    sheet_put(run, it, v, NULL);
+                }
+                finish(run, &rec, skip || v > 0 ? NULL : run->message);
                 continue;
             }
-            snprintf(run->message, sizeof run->message, "out of memory");
+            rec.status = "failed";
+            bool drawn = draw_view(run, b->sheet ? NULL : output, v, &rec);
+            if (drawn && b->sheet) {
+                rec.status = sheet_put(run, it, v, sr_framebuffer_pixels(run->fb)) ? "ok"
+                                                                                    : "failed";
+            } else if (drawn && batch_writer_put(&run->writer, &rec, o->width, o->height,
+                                                 sr_framebuffer_pixels(run->fb), &image)) {
+                rec.load_ms = 0.0;   /* a model is read once for all its views */
+                continue;
+            } else if (drawn) {
+                snprintf(run->message, sizeof run->message, "out of memory");
+            }
+            batch_writer_wait(&run->writer);
+            finish(run, &rec, run->message);
+            rec.load_ms = 0.0;
         }
-        batch_writer_wait(&run->writer);
-        finish(run, &rec, run->message);
     }
     batch_writer_wait(&run->writer);
+}
+
+/* Write the sheet (after every input); false after one line. */
+static bool write_sheet(batch_run *run)
+{
+    const render_opts *o = run->o;
+    const char *path = run->b->sheet;
+    sr_io_error err;
+    if (is_listed_input(run->ids, run->id_count, path)) {
+        cli_error("--sheet: '%s' is an input of the batch", path);
+        return false;
+    }
+    sr_framebuffer *fb = run->sheet.fb;
+    if (cli_write_image(path, sr_framebuffer_width(fb), sr_framebuffer_height(fb),
+                        sr_framebuffer_pixels(fb),
+                        &(cli_image_options){ .png_level = o->png_level,
+                                              .jpeg_quality = o->jpeg_quality,
+                                              .keep_alpha = o->background_alpha < 1.0f,
+                                              .premultiplied = true,
+                                              .context = render_job_context(run->job) },
+                        &err) != SR_OK) {
+        cli_error("--sheet: %s", err.message);
+        return false;
+    }
+    return true;
+}
+
+/* How many inputs of the list are the shard's. */
+static size_t mine_total(const batch_list *list, const batch_shard *shard)
+{
+    size_t mine = 0;
+    for (size_t i = 0; i < list->count; i++) {
+        mine += batch_in_shard(list->items[i].input, shard);
+    }
+    return mine;
 }
 
 static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
 {
     batch_shard shard;
     batch_list list = { 0 };
-    batch_run run = { .o = o, .job = job, .log_fd = -1 };
+    batch_run run = { .b = b, .o = o, .job = job, .log_fd = -1 };
     int status = batch_shard_resolve(b->shard, b->shard_count, &shard);
     if (status < 0) {
         status = gather(b, &list);
@@ -379,17 +520,34 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     run.ids = ids;
     if (status < 0) {
-        size_t mine = 0;
-        for (size_t i = 0; i < list.count; i++) {
-            mine += batch_in_shard(list.items[i].input, &shard);
+        size_t mine = mine_total(&list, &shard);
+        run.sheet_images = (int)(mine * (size_t)b->views);
+        int cols, rows;
+        long sw, sh;
+        if (b->sheet && (mine > (size_t)SR_MAX_FRAMEBUFFER_SIZE ||
+                         !batch_sheet_size(run.sheet_images, b->columns, o->width, o->height,
+                                           &cols, &rows, &sw, &sh))) {
+            cli_error("--sheet: %zu images of %dx%d need more than %d pixels a side (use a "
+                      "smaller --size, --sheet-columns or fewer models)", mine * (size_t)b->views,
+                      o->width, o->height, SR_MAX_FRAMEBUFFER_SIZE);
+            status = EXIT_USAGE;
         }
-        batch_progress_start(&run.progress, mine, now_ms());
+    }
+    if (status < 0) {
+        batch_progress_start(&run.progress, mine_total(&list, &shard) * (size_t)b->views,
+                             now_ms());
         batch_writer_start(&run.writer, finish, &run);
-        render_all(&run, &list, &shard, b->skip_existing);
+        render_all(&run, &list, &shard);
         batch_writer_stop(&run.writer);
         batch_progress_show(&run.progress, now_ms(), true);
         status = run.progress.failed == 0 ? EXIT_OK
                : run.ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
+        if (run.sheet.fb && !write_sheet(&run)) {
+            status = EXIT_FAILURE_RUN;
+        }
+    }
+    if (run.sheet.fb) {
+        batch_sheet_free(&run.sheet, render_job_context(job));
     }
     if (run.log_fd >= 0 && close(run.log_fd) != 0 && run.log_errno == 0) {
         run.log_errno = errno;
@@ -404,6 +562,40 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     free(ids);
     batch_list_free(&list);
     return status;
+}
+
+/* --views, --sheet and --sheet-columns, and how they go with the other
+ * options; -1 or an exit status after one line. */
+static int check_views(batch_opts *b, const render_opts *o)
+{
+    b->views = 1;
+    if (b->views_arg && !parse_int("--views", b->views_arg, 1, 360, &b->views)) {
+        return EXIT_USAGE;
+    }
+    if (b->columns_arg && !parse_int("--sheet-columns", b->columns_arg, 1, 1000, &b->columns)) {
+        return EXIT_USAGE;
+    }
+    if (b->columns_arg && !b->sheet) {
+        cli_error("--sheet-columns: needs --sheet FILE");
+        return EXIT_USAGE;
+    }
+    if (!b->columns && b->sheet && b->views > 1) {
+        b->columns = b->views;   /* a model's views a row */
+    }
+    if (b->sheet && b->skip_existing) {
+        cli_error("--skip-existing: a sheet is drawn whole each time (nothing to resume)");
+        return EXIT_USAGE;
+    }
+    if (b->sheet && cli_is_jpeg_name(b->sheet) && o->background_alpha < 1.0f) {
+        cli_error("--background transparent: the sheet '%s' is a JPEG, which has no alpha",
+                  b->sheet);
+        return EXIT_USAGE;
+    }
+    if (!b->sheet && b->views > 1 && b->name && !strstr(b->name, "{view}")) {
+        cli_error("--name: '%s' needs {view} to name %d views apart", b->name, b->views);
+        return EXIT_USAGE;
+    }
+    return -1;
 }
 
 int batch_render(int argc, char **argv)
@@ -437,6 +629,9 @@ int batch_render(int argc, char **argv)
     if (status < 0 && b.name && !batch_check_pattern(b.name)) {
         status = EXIT_USAGE;
     }
+    if (status < 0) {
+        status = check_views(&b, &o);
+    }
     /* The job's options without the models, which come in the same order. */
     int n = 0;
     for (int i = 0, j = 0; i < rest_count; i++) {
@@ -447,6 +642,8 @@ int batch_render(int argc, char **argv)
         }
     }
     rest[n] = NULL;
+    b.job_argv = rest;
+    b.job_argc = n;
     render_job *job = NULL;
     if (status < 0) {
         status = render_job_parse(n, rest, &job);

@@ -18,11 +18,13 @@ typedef struct batch_item {
     char *output;   /* named by the list, else NULL until batch_name_outputs */
     char *rel;      /* the path below the directory it was found in, or NULL */
     size_t index;   /* position in the sorted list, the same in every shard */
+    bool named;     /* the output is the list's, not the pattern's */
 } batch_item;
 
 typedef struct batch_list {
     batch_item *items;
     size_t count, cap;
+    const char *dir, *pattern;   /* what batch_name_outputs named the outputs by */
 } batch_list;
 
 /* A model path, a directory (searched for model files, hidden entries
@@ -38,10 +40,14 @@ void batch_list_free(batch_list *l);
 
 /* Check an output name pattern (--name): false after one line. */
 bool batch_check_pattern(const char *pattern);
-/* Name every output without one: DIR/PATTERN with {stem}, {ext}, {rel}
- * and {index} filled in; then refuse two inputs with one output.  -1, or
- * an exit status after one line. */
+/* Name every output without one: DIR/PATTERN with {stem}, {ext}, {rel},
+ * {index} and {view} (0) filled in; then refuse two inputs with one
+ * output.  -1, or an exit status after one line. */
 int batch_name_outputs(batch_list *l, const char *dir, const char *pattern);
+/* The output of view `view` of an input named by the pattern, in
+ * out[size]; false when too long. */
+bool batch_view_output(const batch_list *l, const batch_item *it, int view, char *out,
+                       size_t size);
 
 /* The share of the list this process renders. */
 typedef struct batch_shard {

@@ -28,7 +28,8 @@ static bool add_item(batch_list *l, const char *input, const char *output, const
         l->items = grown;
         l->cap = cap;
     }
-    batch_item it = { strdup(input), output ? strdup(output) : NULL, rel ? strdup(rel) : NULL, 0 };
+    batch_item it = { strdup(input), output ? strdup(output) : NULL, rel ? strdup(rel) : NULL, 0,
+                      output != NULL };
     if (!it.input || (output && !it.output) || (rel && !it.rel)) {
         free(it.input);
         free(it.output);
@@ -244,7 +245,7 @@ void batch_list_free(batch_list *l)
 
 /* ---- output names ------------------------------------------------------ */
 
-static const char *const fields[] = { "stem", "ext", "rel", "index", NULL };
+static const char *const fields[] = { "stem", "ext", "rel", "index", "view", NULL };
 
 /* The field at p ("{name}"), its index in `fields`, or -1. */
 static int field_at(const char *p, size_t *len)
@@ -269,7 +270,8 @@ bool batch_check_pattern(const char *pattern)
         size_t len;
         if (*p == '{' && field_at(p, &len) < 0) {
             const char *end = strchr(p, '}');
-            cli_error("--name: unknown field '%.*s' (expected {stem}, {ext}, {rel} or {index})",
+            cli_error("--name: unknown field '%.*s' (expected {stem}, {ext}, {rel}, {index} or "
+                      "{view})",
                       end ? (int)(end - p + 1) : (int)strlen(p), p);
             return false;
         }
@@ -279,8 +281,8 @@ bool batch_check_pattern(const char *pattern)
 
 /* The output of `it`, DIR/PATTERN filled in, in out[size]; false when
  * too long. */
-static bool fill_pattern(const batch_item *it, const char *dir, const char *pattern, char *out,
-                         size_t size)
+static bool fill_pattern(const batch_item *it, const char *dir, const char *pattern, int view,
+                         char *out, size_t size)
 {
     const char *base = strrchr(it->input, '/');
     base = base ? base + 1 : it->input;
@@ -295,9 +297,9 @@ static bool fill_pattern(const batch_item *it, const char *dir, const char *patt
         size_t len = 1;
         int k = *p == '{' ? field_at(p, &len) : -1;
         char index[32];
-        snprintf(index, sizeof index, "%zu", it->index);
+        snprintf(index, sizeof index, "%zu", k == 4 ? (size_t)view : it->index);
         const char *text = k == 0 ? base : k == 1 ? (stem_len < strlen(base) ? dot + 1 : "")
-                         : k == 2 ? rel : k == 3 ? index : p;
+                         : k == 2 ? rel : k >= 3 ? index : p;
         size_t text_len = k == 0 ? stem_len : k == 2 ? rel_len : k < 0 ? 1 : strlen(text);
         n += snprintf(out + n, size - (size_t)n, "%.*s", (int)text_len, text);
         p += len;
@@ -311,15 +313,26 @@ static int by_output(const void *a, const void *b)
     return strcmp((*x)->output, (*y)->output);
 }
 
+bool batch_view_output(const batch_list *l, const batch_item *it, int view, char *out,
+                       size_t size)
+{
+    if (it->named) {
+        return snprintf(out, size, "%s", it->output) < (int)size;
+    }
+    return fill_pattern(it, l->dir, l->pattern, view, out, size);
+}
+
 int batch_name_outputs(batch_list *l, const char *dir, const char *pattern)
 {
     char out[4096];
+    l->dir = dir;
+    l->pattern = pattern;
     for (size_t i = 0; i < l->count; i++) {
         batch_item *it = &l->items[i];
         if (it->output) {
             continue;
         }
-        if (!fill_pattern(it, dir, pattern, out, sizeof out)) {
+        if (!fill_pattern(it, dir, pattern, 0, out, sizeof out)) {
             cli_error("%s: the output name is too long", it->input);
             return EXIT_USAGE;
         }

@@ -108,6 +108,8 @@ bool batch_writer_put(batch_writer *w, const batch_record *rec, int width, int h
     }
     memcpy(w->pixels, rgba, bytes);
     w->rec = *rec;
+    snprintf(w->output, sizeof w->output, "%s", rec->output);
+    w->rec.output = w->output;
     w->width = width;
     w->height = height;
     w->opt = *opt;

@@ -24,6 +24,7 @@ typedef struct batch_writer {
     bool threaded, full, stop;
     /* The image in hand (while full). */
     batch_record rec;
+    char output[4096];         /* rec.output's copy: the batch names the next one */
     uint8_t *pixels;
     size_t capacity;
     int width, height;
