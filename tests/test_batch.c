@@ -1051,3 +1051,59 @@ SR_TEST(sheet_lays_out_models_with_captions)
     REQUIRE(run(ARGS("render", dir, "--sheet-columns", "3"), &r));
     CHECK(r.status == 2 && strstr(r.err, "--sheet"));
 }
+
+/* How many animation frames (ANMF chunks) an extended WebP file has at
+ * its top level, and whether its VP8X header flags an animation; -1 when
+ * the file is not an extended WebP. */
+static int count_anmf(const uint8_t *p, size_t n, bool *animated)
+{
+    if (n < 30 || memcmp(p, "RIFF", 4) != 0 || memcmp(p + 8, "WEBPVP8X", 8) != 0) {
+        return -1;
+    }
+    *animated = (p[20] & 0x02) != 0;   /* VP8X flags: the animation bit */
+    int frames = 0;
+    for (size_t at = 12; at + 8 <= n;) {
+        uint32_t size = (uint32_t)p[at + 4] | (uint32_t)p[at + 5] << 8 |
+                        (uint32_t)p[at + 6] << 16 | (uint32_t)p[at + 7] << 24;
+        frames += memcmp(p + at, "ANMF", 4) == 0;
+        at += 8 + size + (size & 1);
+    }
+    return frames;
+}
+
+/* --animate: each model's views as the frames of one animated WebP. */
+SR_TEST(animate_writes_a_turntable_webp)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], model[1100], webp[1200];
+    fresh_dir("anim", dir, sizeof dir);
+    fresh_dir("anim_out", out, sizeof out);
+    snprintf(model, sizeof model, "%s/m.obj", dir);
+    REQUIRE(write_obj(model, 1.0f));
+    run_result r;
+    REQUIRE(run(ARGS("render", model, "--views", "5", "--animate", "{stem}.webp",
+                     "--output-dir", out, "--size", "40x30"), &r));
+    if (r.status == 2 && strstr(r.err, "without libwebp")) {
+        SKIP("this softrast was built without libwebp");
+    }
+    CHECK_EQ(r.status, 0);
+    snprintf(webp, sizeof webp, "%s/m.webp", out);
+    size_t n = 0;
+    uint8_t *bytes = sr_test_read_file(webp, &n);
+    bool animated = false;
+    CHECK_EQ(bytes ? count_anmf(bytes, n, &animated) : -1, 5);
+    CHECK(animated);
+    free(bytes);
+    const struct {
+        const char *const *args;
+        const char *needle;
+    } bad[] = {
+        { ARGS("render", model, "--animate", "t.png", "--output-dir", out), ".webp" },
+        { ARGS("render", model, "--animate", "t.webp", "--sheet", "s.png"), "--sheet" },
+        { ARGS("render", model, "--animate", "t.webp", "--name", "x.png"), "--name" },
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        REQUIRE(run(bad[i].args, &r));
+        CHECK(r.status == 2 && count_lines(r.err) == 1 && strstr(r.err, bad[i].needle));
+    }
+}

@@ -1013,7 +1013,7 @@ static const char *const value_options[] = {
     "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
     "--polygon-offset", "--up", "--batch", "--output-dir", "--name", "--log", "--shard",
-    "--shard-count", "--views", "--sheet", "--sheet-columns",
+    "--shard-count", "--views", "--sheet", "--sheet-columns", "--animate",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",

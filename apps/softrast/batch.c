@@ -5,6 +5,7 @@
  * stderr and one record in the log, and the batch goes on; the exit
  * status says whether all, some or none of the inputs were rendered. */
 #include "batch.h"
+#include "batch_anim.h"
 #include "batch_views.h"
 #include "batch_writer.h"
 #include "cli.h"
@@ -16,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -27,6 +29,7 @@ typedef struct batch_opts {
     const char *log;           /* --log FILE.jsonl */
     const char *shard, *shard_count;
     const char *views_arg, *sheet, *columns_arg;  /* --views N, --sheet FILE, --sheet-columns N */
+    const char *animate;       /* --animate PATTERN: each model's views as an animated WebP */
     int views, columns;
     char **job_argv;           /* the render options, for render_job_configure */
     int job_argc;
@@ -82,6 +85,9 @@ static void batch_help(void)
         "                           captioned with its model's name (and view's angle)\n"
         "  --sheet-columns N        images a row (default: one model's views a row, or\n"
         "                           about square)\n"
+        "  --animate PATTERN        each model's views as one animated WebP, a turn in\n"
+        "                           3 s, named like --name (e.g. turn.webp, {rel}.webp;\n"
+        "                           --views defaults to 24)\n"
         "\n"
         "A batch draws a progress line on a terminal and otherwise prints only one\n"
         "line per failed input.  Exit status: 0 when every input was rendered or\n"
@@ -112,9 +118,10 @@ static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *re
 {
     static const char *const valued[] = { "--batch", "--output-dir", "--name", "--log",
                                           "--shard", "--shard-count", "--views", "--sheet",
-                                          "--sheet-columns", NULL };
+                                          "--sheet-columns", "--animate", NULL };
     const char **dst[] = { &b->list, &b->output_dir, &b->name, &b->log, &b->shard,
-                           &b->shard_count, &b->views_arg, &b->sheet, &b->columns_arg };
+                           &b->shard_count, &b->views_arg, &b->sheet, &b->columns_arg,
+                           &b->animate };
     int n = 0;
     rest[n++] = argv[0];
     for (int i = 1; i < argc; i++) {
@@ -356,7 +363,8 @@ static int gather(const batch_opts *b, batch_list *l)
         cli_error("render: no models to render (a directory holds none, or the list is empty)");
         status = EXIT_USAGE;
     }
-    for (size_t i = 0; status < 0 && i < l->count && b->views > 1 && !b->sheet; i++) {
+    for (size_t i = 0; status < 0 && i < l->count && b->views > 1 && !b->sheet && !b->animate;
+         i++) {
         if (l->items[i].output) {
             cli_error("--views: the list names one output for '%s'; views are named by --name",
                       l->items[i].input);
@@ -367,7 +375,8 @@ static int gather(const batch_opts *b, batch_list *l)
         batch_list_sort(l);
     }
     if (status < 0 && !b->sheet) {   /* a sheet is the one output */
-        const char *dflt = b->views > 1 && !b->sheet ? "{rel}_{view}.png" : "{rel}.png";
+        const char *dflt = b->animate ? b->animate
+                         : b->views > 1 ? "{rel}_{view}.png" : "{rel}.png";
         status = batch_name_outputs(l, b->output_dir ? b->output_dir : ".",
                                     b->name ? b->name : dflt);
     }
@@ -397,6 +406,55 @@ static bool sheet_put(batch_run *run, const batch_item *it, int view, const uint
     return r == SR_OK;
 }
 
+/* --animate: one model's views as the frames of one WebP. */
+static void animate_one(batch_run *run, const batch_item *it)
+{
+    const render_opts *o = run->o;
+    int views = run->b->views, frame_ms = 3000 / views > 20 ? 3000 / views : 20;
+    batch_record rec = { .input = it->input, .output = it->output, .index = it->index,
+                         .status = "failed" };
+    run->message[0] = '\0';
+    if (run->b->skip_existing && exists_whole(it->output)) {
+        rec.status = "skipped";
+        finish(run, &rec, NULL);
+        return;
+    }
+    bool ok = load_one(run, it, &rec);
+    if (ok && run->message[0]) {
+        report(&run->progress, it->input, run->message);   /* a warning */
+    }
+    bool alpha = o->background_alpha < 1.0f;
+    batch_anim *anim = ok ? batch_anim_start(o->width, o->height, alpha, run->message,
+                                             sizeof run->message) : NULL;
+    ok = anim != NULL;
+    double render_ms = 0.0, t0 = now_ms();
+    size_t pixels = (size_t)o->width * (size_t)o->height;
+    for (int v = 0; v < views && ok; v++) {
+        ok = draw_view(run, v == 0 ? it->output : NULL, v, &rec);
+        render_ms += rec.render_ms;
+        uint8_t *straight = ok && alpha ? cli_straight_alpha(sr_framebuffer_pixels(run->fb),
+                                                             pixels) : NULL;
+        if (ok && alpha && !straight) {
+            snprintf(run->message, sizeof run->message, "out of memory");
+            ok = false;
+        }
+        ok = ok && batch_anim_add(anim, straight ? straight : sr_framebuffer_pixels(run->fb),
+                                  v * frame_ms, run->message, sizeof run->message);
+        free(straight);
+    }
+    sr_io_error err;
+    if (ok && !(batch_make_parents(it->output, &err) &&
+                batch_anim_write(anim, it->output, views * frame_ms, &err))) {
+        snprintf(run->message, sizeof run->message, "%s", err.message);
+        ok = false;
+    }
+    batch_anim_free(anim);
+    rec.render_ms = render_ms;
+    rec.encode_ms = now_ms() - t0 - render_ms;
+    rec.status = ok ? "ok" : "failed";
+    finish(run, &rec, ok ? NULL : run->message);
+}
+
 /* Render the shard's inputs in list order, each image handed to the
  * writer (or put on the sheet) while the next is read and drawn. */
 static void render_all(batch_run *run, const batch_list *list, const batch_shard *shard)
@@ -411,6 +469,10 @@ static void render_all(batch_run *run, const batch_list *list, const batch_shard
     for (size_t i = 0; i < list->count; i++) {
         const batch_item *it = &list->items[i];
         if (!batch_in_shard(it->input, shard)) {
+            continue;
+        }
+        if (b->animate) {
+            animate_one(run, it);
             continue;
         }
         /* With --skip-existing, an input whose every view exists is not read. */
@@ -534,7 +596,8 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
         }
     }
     if (status < 0) {
-        batch_progress_start(&run.progress, mine_total(&list, &shard) * (size_t)b->views,
+        size_t records = b->animate ? 1 : (size_t)b->views;   /* a model's */
+        batch_progress_start(&run.progress, mine_total(&list, &shard) * records,
                              now_ms());
         batch_writer_start(&run.writer, finish, &run);
         render_all(&run, &list, &shard);
@@ -591,7 +654,32 @@ static int check_views(batch_opts *b, const render_opts *o)
                   b->sheet);
         return EXIT_USAGE;
     }
-    if (!b->sheet && b->views > 1 && b->name && !strstr(b->name, "{view}")) {
+    if (b->animate) {
+        if (b->sheet || b->name) {
+            cli_error("--animate: names the outputs itself (not with %s)",
+                      b->sheet ? "--sheet" : "--name");
+            return EXIT_USAGE;
+        }
+        const char *dot = strrchr(b->animate, '.');
+        if (!dot || strcasecmp(dot, ".webp") != 0) {
+            cli_error("--animate: '%s': an animation is a WebP (name it .webp)", b->animate);
+            return EXIT_USAGE;
+        }
+        if (!batch_check_pattern(b->animate)) {
+            return EXIT_USAGE;
+        }
+        if (!b->views_arg) {
+            b->views = 24;
+        }
+        char why[256];
+        batch_anim *probe = batch_anim_start(1, 1, false, why, sizeof why);
+        if (!probe) {
+            cli_error("%s", why);
+            return EXIT_USAGE;
+        }
+        batch_anim_free(probe);
+    }
+    if (!b->sheet && !b->animate && b->views > 1 && b->name && !strstr(b->name, "{view}")) {
         cli_error("--name: '%s' needs {view} to name %d views apart", b->name, b->views);
         return EXIT_USAGE;
     }

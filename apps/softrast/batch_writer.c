@@ -21,9 +21,7 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-/* Make the directories above `path` (mkdir -p of its dirname); false with
- * the reason in err. */
-static bool make_parents(const char *path, sr_io_error *err)
+bool batch_make_parents(const char *path, sr_io_error *err)
 {
     char dir[4096];
     snprintf(dir, sizeof dir, "%s", path);
@@ -47,7 +45,7 @@ static void write_image(batch_writer *w)
 {
     sr_io_error err = { { 0 } };
     double t0 = now_ms();
-    bool ok = make_parents(w->rec.output, &err) &&
+    bool ok = batch_make_parents(w->rec.output, &err) &&
               cli_write_image(w->rec.output, w->width, w->height, w->pixels, &w->opt, &err) ==
                   SR_OK;
     w->rec.encode_ms = now_ms() - t0;

@@ -31,6 +31,10 @@ typedef struct batch_writer {
     cli_image_options opt;
 } batch_writer;
 
+/* Make the directories above `path` (mkdir -p of its dirname); false with
+ * the reason in err. */
+bool batch_make_parents(const char *path, sr_io_error *err);
+
 /* Start the thread (without one, batch_writer_put writes at once). */
 void batch_writer_start(batch_writer *w, batch_done_fn done, void *user);
 /* Hand over an image (copied): waits for the previous one to be written.

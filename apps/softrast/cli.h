@@ -55,6 +55,11 @@ typedef struct cli_image_options {
 } cli_image_options;
 
 bool cli_is_jpeg_name(const char *path);
+/* PNG and WebP store straight alpha: a render over a transparent
+ * background has its edges' colors multiplied by their coverage (the
+ * resolve averages the model's samples with transparent black), so this
+ * divides it out.  A malloc'd copy, or NULL. */
+uint8_t *cli_straight_alpha(const uint8_t *rgba, size_t pixels);
 sr_result cli_write_image(const char *path, int width, int height, const uint8_t *rgba,
                           const cli_image_options *opt, sr_io_error *err);
 

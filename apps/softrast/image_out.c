@@ -10,11 +10,7 @@
 #include <string.h>
 #include <strings.h>
 
-/* PNG stores straight alpha: a render over a transparent background has
- * its edges' colors multiplied by their coverage (the resolve averages
- * the model's samples with transparent black), so divide it out.  A
- * malloc'd copy, or NULL. */
-static uint8_t *unpremultiply(const uint8_t *rgba, size_t pixels)
+uint8_t *cli_straight_alpha(const uint8_t *rgba, size_t pixels)
 {
     uint8_t *out = malloc(4 * pixels);
     for (size_t i = 0; out && i < pixels; i++) {
@@ -51,7 +47,7 @@ sr_result cli_write_image(const char *path, int width, int height, const uint8_t
     }
     uint8_t *straight = NULL;
     if (opt->keep_alpha && opt->premultiplied) {
-        straight = unpremultiply(rgba, (size_t)width * (size_t)height);
+        straight = cli_straight_alpha(rgba, (size_t)width * (size_t)height);
         if (!straight) {
             snprintf(err->message, sizeof err->message, "%s: out of memory", path);
             return SR_OUT_OF_MEMORY;
