@@ -649,9 +649,9 @@ static int check_views(batch_opts *b, const render_opts *o)
         cli_error("--skip-existing: a sheet is drawn whole each time (nothing to resume)");
         return EXIT_USAGE;
     }
-    if (b->sheet && cli_is_jpeg_name(b->sheet) && o->background_alpha < 1.0f) {
-        cli_error("--background transparent: the sheet '%s' is a JPEG, which has no alpha",
-                  b->sheet);
+    const char *named = b->sheet ? b->sheet : b->name;
+    if (named && cli_is_jpeg_name(named) && o->background_alpha < 1.0f) {
+        cli_error("--background transparent: '%s' names JPEGs, which have no alpha", named);
         return EXIT_USAGE;
     }
     if (b->animate) {
