@@ -4,6 +4,7 @@
  * array sets, standard input from a file, and its --log read back as
  * JSON.  Models are written by the test (STL and OBJ), with a bad one
  * among them. */
+#define _XOPEN_SOURCE 700   /* posix_openpt, grantpt, unlockpt, ptsname */
 #include "softrast_io.h"
 #include "sr_test.h"
 
@@ -1106,4 +1107,45 @@ SR_TEST(animate_writes_a_turntable_webp)
         REQUIRE(run(bad[i].args, &r));
         CHECK(r.status == 2 && count_lines(r.err) == 1 && strstr(r.err, bad[i].needle));
     }
+}
+
+/* On a terminal, a progress line on stderr, redrawn in place, that ends
+ * with every input done and the failures counted; the failure's own line
+ * is printed over a cleared line. */
+SR_TEST(progress_line_on_a_terminal)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], paths[MODELS][1200];
+    fresh_dir("tty", dir, sizeof dir);
+    fresh_dir("tty_out", out, sizeof out);
+    REQUIRE(write_models(dir, paths) == MODELS);
+    int master = posix_openpt(O_RDWR | O_NOCTTY);
+    if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0) {
+        SKIP("no pseudo-terminal");
+    }
+    char slave_path[128];
+    snprintf(slave_path, sizeof slave_path, "%s", ptsname(master));
+    /* Held open here too, so that what the child wrote stays readable. */
+    int slave = open(slave_path, O_RDWR | O_NOCTTY);
+    REQUIRE(slave >= 0);
+    pid_t pid = start_cli(ARGS("render", dir, "--output-dir", out, "--size", "16x16"), NO_ENV,
+                          NULL, slave_path);
+    REQUIRE(pid > 0);
+    CHECK_EQ(wait_status(pid), 3);
+    fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
+    char text[8192];
+    size_t n = 0;
+    for (ssize_t got; n + 1 < sizeof text &&
+                      (got = read(master, text + n, sizeof text - 1 - n)) > 0;) {
+        n += (size_t)got;
+    }
+    text[n] = '\0';
+    close(slave);
+    close(master);
+    CHECK_STR_CONTAINS(text, "\r\033[K");
+    CHECK_STR_CONTAINS(text, "5/5");
+    CHECK_STR_CONTAINS(text, "1 failed");
+    CHECK_STR_CONTAINS(text, "\r\033[Ksoftrast: ");
+    CHECK_STR_CONTAINS(text, "c_bad.stl");
+    CHECK(n > 0 && text[n - 1] == '\n');
 }
