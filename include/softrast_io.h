@@ -39,6 +39,8 @@ typedef enum sr_model_format {
     SR_FORMAT_PLY,
     SR_FORMAT_STL,
     SR_FORMAT_ASSIMP,     /* anything else Assimp reads */
+    SR_FORMAT_GLTF,       /* glTF 2.0, .gltf or .glb: sr_load_scene's own reader
+                           * (sr_load_mesh hands it to Assimp) */
 } sr_model_format;
 
 typedef struct sr_load_desc {
@@ -49,7 +51,11 @@ typedef struct sr_load_desc {
      * the texture paths in the mesh are not reported (the caller has
      * them), nor the files Assimp opens itself. */
     void (*file_read)(void *user, const char *path);
-    void *user;                  /* passed to file_read */
+    void *user;                  /* passed to file_read and warn */
+    /* Optional: called with each warning of sr_load_scene, one line
+     * "FILE: /json/pointer: what was skipped" (a points or lines
+     * primitive, a texture without a PNG or JPEG source). */
+    void (*warn)(void *user, const char *message);
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
@@ -70,6 +76,116 @@ SR_API sr_result sr_parse_ply(sr_context *ctx, const char *name, const uint8_t *
                               sr_mesh *out, sr_io_error *err);
 SR_API sr_result sr_parse_stl(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
                               sr_mesh *out, sr_io_error *err);
+
+/* Scenes: a model file flattened for drawing (docs/gltf.md).  glTF 2.0
+ * (.gltf with external files or data: URIs, .glb) is read by softrast's own
+ * reader with its node hierarchy, materials, textures and cameras; any
+ * other format is sr_load_mesh's mesh as one primitive (a part per
+ * texture) with a default dielectric material.  One call gives everything
+ * to draw: for each primitive, its vertex arrays, triangles, world matrix
+ * and material. */
+
+/* One draw: a glTF mesh primitive as one node instances it.  Instances of
+ * the same primitive share their arrays.  Arrays hold vertex_count
+ * entries of floats, or are NULL when the file has none (normals: compute
+ * flat ones, as glTF asks; tangents: generate them).  Texture coordinates
+ * follow sr_make_texture's convention ((0, 0) bottom-left): glTF's are
+ * converted (v -> 1 - v), and the material's texture transforms with them.
+ * Colors are linear RGBA (a VEC3 gets alpha 1). */
+typedef struct sr_scene_primitive {
+    float world[16];            /* object -> world, column-major */
+    bool mirrored;              /* det(world) < 0: the winding flips, so front
+                                 * faces look clockwise after the transform */
+    int material;               /* index into sr_scene.materials */
+    int node, mesh;             /* where it came from (-1: not glTF) */
+    size_t vertex_count;
+    const float *positions;     /* 3 a vertex */
+    const float *normals;       /* 3 a vertex, or NULL */
+    const float *tangents;      /* 4 a vertex, or NULL; the bitangent is
+                                 * cross(normal, tangent.xyz) * w, toward +v (the
+                                 * image's top, a normal map's green) */
+    const float *texcoords0;    /* 2 a vertex, or NULL */
+    const float *texcoords1;    /* 2 a vertex, or NULL */
+    const float *colors;        /* 4 a vertex, or NULL */
+    size_t triangle_count;
+    const uint32_t *indices;    /* 3 a triangle, counter-clockwise front faces
+                                 * (strips and fans converted) */
+} sr_scene_primitive;
+
+typedef enum sr_scene_camera_type {
+    SR_SCENE_CAMERA_PERSPECTIVE = 0,
+    SR_SCENE_CAMERA_ORTHOGRAPHIC,
+} sr_scene_camera_type;
+
+/* A camera as a node instances it.  It looks down its local -Z with +Y up;
+ * world maps its local frame to world space (the inverse of the view
+ * matrix E when it has no scale). */
+typedef struct sr_scene_camera {
+    sr_scene_camera_type type;
+    float world[16];            /* camera -> world, column-major */
+    float yfov;                 /* perspective: vertical field of view, radians */
+    float aspect;               /* perspective: width / height; 0: the viewport's */
+    float xmag, ymag;           /* orthographic: half the view's width and height */
+    float znear;
+    float zfar;                 /* 0: infinite (perspective only) */
+    int camera, node;           /* its index in the file's cameras, and its node */
+} sr_scene_camera;
+
+typedef struct sr_scene {
+    sr_scene_primitive *primitives;
+    size_t primitive_count;
+    sr_pbr_material *materials;   /* every primitive's material is one of these */
+    size_t material_count;
+    sr_texture **textures;        /* made on the context; the materials point here */
+    size_t texture_count;
+    sr_scene_camera *cameras;     /* in node order (depth first, as the file lists
+                                   * children): what --camera-index counts */
+    size_t camera_count;
+    sr_vec3 bounds_min, bounds_max; /* of every primitive, world space; zero when none */
+    int warning_count;            /* warnings given to sr_load_desc.warn */
+    struct sr_scene_store *store; /* the arrays' memory (internal) */
+} sr_scene;
+
+/* Limits of the glTF reader, checked before allocating: at most this many
+ * draws (node instances of primitives) drawing at most this many vertices
+ * in all (instances counted each time), and accessors decoded whose
+ * elements sum to at most SR_SCENE_ELEMENTS_PER_BYTE per byte of input
+ * (the JSON, its buffers) plus SR_SCENE_ELEMENTS_BASE, so that a small
+ * file cannot ask for gigabytes with a large count and no data. */
+#define SR_SCENE_MAX_DRAWS          ((size_t)1 << 20)
+#define SR_SCENE_MAX_DRAWN_VERTICES ((size_t)1 << 27)
+#define SR_SCENE_ELEMENTS_PER_BYTE  16
+#define SR_SCENE_ELEMENTS_BASE      ((size_t)1 << 20)
+
+/* Load `path` as a scene into *out (NULL on failure).  Format by desc's
+ * format (SR_FORMAT_GLTF forces the glTF reader), by the name (.gltf,
+ * .glb), by the content (GLB's magic, a JSON object), else through
+ * sr_load_mesh.  glTF errors are one line "FILE: /json/pointer: what is
+ * wrong"; bad JSON is "FILE:LINE: ...".  The scene and its arrays come
+ * from malloc, the textures from ctx; release all with sr_destroy_scene on
+ * the same ctx.  SR_UNSUPPORTED for glTF in a build without jansson. */
+SR_API sr_result sr_load_scene(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                               sr_scene **out, sr_io_error *err);
+/* A glTF 2.0 document in memory, JSON or GLB (told apart by GLB's magic);
+ * `name` (may be NULL: "<memory>") is used in messages, and relative URIs
+ * are read from the directory of `name` (absolute paths and schemes other
+ * than data: are refused). */
+SR_API sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
+                               const sr_load_desc *desc, sr_scene **out, sr_io_error *err);
+/* A scene camera's view matrix E (world -> camera: the inverse of its
+ * world matrix with scale and shear taken out, as glTF asks) and its
+ * projection P (OpenGL's clip space, z_ndc in [-1, 1]) for a viewport of
+ * `aspect` = width / height: glTF's own matrices, the infinite one when
+ * zfar is 0.  The vertical extent (yfov, ymag) is kept and the horizontal
+ * one follows the viewport, so nothing is stretched whatever the file's
+ * aspectRatio or xmag.  SR_INVALID_ARG for NULL, a non-finite or
+ * non-positive aspect, or a degenerate world matrix. */
+SR_API sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect,
+                                          sr_mat4 *view, sr_mat4 *projection);
+/* Frees the scene, its arrays and its textures; NULL is ignored. */
+SR_API void sr_destroy_scene(sr_context *ctx, sr_scene *scene);
+/* true when this build reads glTF (it found jansson). */
+SR_API bool sr_io_have_gltf(void);
 
 /* true when this build can read other formats through Assimp. */
 SR_API bool sr_io_have_assimp(void);

@@ -2,7 +2,7 @@
 # scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]
 #
 # Builds one fuzz target of tests/fuzz (fuzz_obj, fuzz_ply, fuzz_stl, fuzz_jpeg, fuzz_hdr,
-# fuzz_fill2d, fuzz_draw, fuzz_svg) with clang, libFuzzer, ASan and UBSan in build-fuzz/ (or
+# fuzz_fill2d, fuzz_draw, fuzz_svg, fuzz_gltf) with clang, libFuzzer, ASan and UBSan in build-fuzz/ (or
 # $SR_FUZZ_BUILD), and runs it for SECONDS on its seed corpus
 # tests/fuzz/corpus/TARGET/.  New inputs go to build-fuzz/corpus/TARGET/,
 # crashes to build-fuzz/artifacts/.  Exits non-zero on any crash, leak,

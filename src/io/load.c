@@ -185,6 +185,7 @@ static sr_result load_malloc_mesh(const char *path, const sr_load_desc *desc, sr
         return sr__load_stl(path, out, err);
     case SR_FORMAT_AUTO:
     case SR_FORMAT_ASSIMP:
+    case SR_FORMAT_GLTF:      /* sr_load_mesh reads glTF through Assimp */
         break;
     default:
         return sr__io_fail(err, SR_INVALID_ARG, path, 0,

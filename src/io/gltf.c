@@ -1,0 +1,1108 @@
+/*
+ * gltf.c - io stage: glTF 2.0 documents (.gltf, .glb) read into an
+ * sr_scene.  Consumes the JSON (parsed by jansson) and its buffers - the
+ * GLB's BIN chunk, data: URIs, files beside the document; produces the
+ * scene flattened for drawing: one primitive per node instance of a mesh
+ * primitive with its world matrix, the cameras the nodes place, the
+ * materials (gltf_material.c) and the bounds.  Any thread may call it with
+ * a context of its own; jansson keeps no shared state.
+ */
+#include "io/gltf.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- messages ------------------------------------------------------------ */
+
+sr_result sr__gltf_fail(gltf_doc *d, sr_result code, const char *fmt, ...)
+{
+    if (d->err && d->err->message[0] == 0) {
+        char reason[sizeof d->err->message];
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(reason, sizeof reason, fmt, ap);
+        va_end(ap);
+        sr__io_fail(d->err, code, d->name, 0, "%s", reason);
+    }
+    return code;
+}
+
+void sr__gltf_warn(gltf_doc *d, const char *fmt, ...)
+{
+    if (d->scene) {
+        d->scene->warning_count++;
+    }
+    if (!d->desc || !d->desc->warn) {
+        return;
+    }
+    char reason[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    va_end(ap);
+    sr_io_error line = {{0}};
+    sr__io_fail(&line, SR_OK, d->name, 0, "warning: %s", reason);
+    d->desc->warn(d->desc->user, line.message);
+}
+
+/* ---- JSON members -------------------------------------------------------- */
+
+sr_result sr__gltf_size(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                        size_t lo, size_t hi, bool required, size_t *out)
+{
+    json_t *v = json_object_get(obj, key);
+    if (!v) {
+        return required ? sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: missing", ptr, key) : SR_OK;
+    }
+    /* Some writers print integers as reals ("36.0"): whole ones are taken. */
+    double real = json_is_real(v) ? json_real_value(v) : 0.5;
+    if (!json_is_integer(v) && !(real == floor(real) && fabs(real) < 9e15)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: not an integer", ptr, key);
+    }
+    json_int_t i = json_is_integer(v) ? json_integer_value(v) : (json_int_t)real;
+    if (i < 0 || (unsigned long long)i < lo || (unsigned long long)i > hi) {
+        return sr__gltf_fail(d, i < 0 || (unsigned long long)i < lo ? SR_BAD_FORMAT : SR_TOO_LARGE,
+                             "%s/%s: %lld is outside %zu..%zu", ptr, key, (long long)i, lo, hi);
+    }
+    *out = (size_t)i;
+    return SR_OK;
+}
+
+sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                         size_t limit, bool required, long *out)
+{
+    size_t v = 0;
+    json_t *m = json_object_get(obj, key);
+    double value = json_number_value(m);
+    if (json_is_number(m) && value == floor(value) && (value < 0 || value >= (double)limit)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %.0f is not an index below %zu", ptr, key,
+                             value, limit);
+    }
+    sr_result r = sr__gltf_size(d, obj, ptr, key, 0, limit - 1, required, &v);
+    if (r == SR_OK && m) {
+        *out = (long)v;
+    }
+    return r;
+}
+
+sr_result sr__gltf_number(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                          float *out)
+{
+    json_t *v = json_object_get(obj, key);
+    if (!v) {
+        return SR_OK;
+    }
+    if (!json_is_number(v) || !isfinite((float)json_number_value(v))) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: not a finite number", ptr, key);
+    }
+    *out = (float)json_number_value(v);
+    return SR_OK;
+}
+
+sr_result sr__gltf_numbers(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                           size_t n, float *out)
+{
+    json_t *v = json_object_get(obj, key);
+    if (!v) {
+        return SR_OK;
+    }
+    if (!json_is_array(v) || json_array_size(v) != n) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: not an array of %zu numbers", ptr, key, n);
+    }
+    for (size_t i = 0; i < n; i++) {
+        json_t *e = json_array_get(v, i);
+        if (!json_is_number(e) || !isfinite((float)json_number_value(e))) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s/%zu: not a finite number", ptr, key, i);
+        }
+        out[i] = (float)json_number_value(e);
+    }
+    return SR_OK;
+}
+
+sr_result sr__gltf_array(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                         json_t **out, size_t *count)
+{
+    json_t *v = json_object_get(obj, key);
+    *out = NULL;
+    *count = 0;
+    if (!v) {
+        return SR_OK;
+    }
+    if (!json_is_array(v)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: not an array", ptr, key);
+    }
+    *out = v;
+    *count = json_array_size(v);
+    return SR_OK;
+}
+
+sr_result sr__gltf_object(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                          json_t **out)
+{
+    json_t *v = json_object_get(obj, key);
+    *out = NULL;
+    if (v && !json_is_object(v)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: not an object", ptr, key);
+    }
+    *out = v;
+    return SR_OK;
+}
+
+json_t *sr__gltf_extension(const json_t *obj, const char *name)
+{
+    json_t *e = json_object_get(json_object_get(obj, "extensions"), name);
+    return json_is_object(e) ? e : NULL;
+}
+
+/* The element `i` of root[key], which must be an object: *ptr is set to
+ * "/key/i". */
+static sr_result element(gltf_doc *d, const char *key, long i, const char *use, json_t **out,
+                         char *ptr, size_t cap)
+{
+    json_t *arr;
+    size_t n;
+    *out = NULL;
+    sr_result r = sr__gltf_array(d, d->root, "", key, &arr, &n);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (i < 0 || (size_t)i >= n) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: %s %ld does not exist (%zu of them)", use, key,
+                             i, n);
+    }
+    snprintf(ptr, cap, "/%s/%ld", key, i);
+    *out = json_array_get(arr, (size_t)i);
+    if (!json_is_object(*out)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+    }
+    return SR_OK;
+}
+
+/* ---- URIs and buffers ---------------------------------------------------- */
+
+static int base64_value(unsigned char c)
+{
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    if (c == '+' || c == '-') return 62;
+    if (c == '/' || c == '_') return 63;
+    return -1;
+}
+
+/* Standard (or URL-safe) base64, '=' padding optional: a malloc'd block. */
+static bool base64_decode(const char *s, size_t n, uint8_t **out, size_t *size)
+{
+    while (n > 0 && s[n - 1] == '=') {
+        n--;
+    }
+    uint8_t *b = malloc(n / 4 * 3 + 3);
+    if (!b) {
+        return false;
+    }
+    size_t o = 0;
+    uint32_t acc = 0;
+    int bits = 0;
+    for (size_t i = 0; i < n; i++) {
+        int v = base64_value((unsigned char)s[i]);
+        if (v < 0) {
+            free(b);
+            *out = NULL;
+            return true;
+        }
+        acc = acc << 6 | (uint32_t)v;
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            b[o++] = (uint8_t)(acc >> bits);
+        }
+    }
+    *out = b;
+    *size = o;
+    return true;
+}
+
+static int hex_value(char c)
+{
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char **owned,
+                            size_t *size, bool *from_file)
+{
+    *owned = NULL;
+    *from_file = false;
+    if (strncmp(uri, "data:", 5) == 0) {
+        const char *comma = strchr(uri, ',');
+        if (!comma || comma - uri < 12 || strncmp(comma - 7, ";base64", 7) != 0) {
+            return sr__gltf_fail(d, SR_UNSUPPORTED, "%s: only base64 data: URIs are read", ptr);
+        }
+        uint8_t *b;
+        if (!base64_decode(comma + 1, strlen(comma + 1), &b, size)) {
+            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
+        if (!b) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: invalid base64", ptr);
+        }
+        *owned = (char *)b;
+        return SR_OK;
+    }
+    const char *colon = strpbrk(uri, ":/?#");
+    if (uri[0] == '/' || (colon && *colon == ':')) {
+        return sr__gltf_fail(d, SR_UNSUPPORTED,
+                             "%s: only relative file names and data: URIs are read", ptr);
+    }
+    const char *dir = d->dir;
+    size_t dlen = strlen(dir), ulen = strlen(uri);
+    char *path = malloc(dlen + ulen + 2);
+    if (!path) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    memcpy(path, dir, dlen);
+    size_t o = dlen;
+    for (size_t i = 0; i < ulen; i++) {
+        int hi, lo;
+        if (uri[i] == '%' && i + 2 < ulen && (hi = hex_value(uri[i + 1])) >= 0 &&
+            (lo = hex_value(uri[i + 2])) >= 0 && (hi | lo) != 0) {
+            path[o++] = (char)(hi << 4 | lo);
+            i += 2;
+        } else {
+            path[o++] = uri[i];
+        }
+    }
+    path[o] = 0;
+    sr_io_error inner = {{0}};
+    char *data;
+    sr_result r = sr__read_file(path, &data, size, &inner);
+    if (r == SR_OK && d->desc && d->desc->file_read) {
+        d->desc->file_read(d->desc->user, path);
+    }
+    free(path);
+    if (r != SR_OK) {
+        return sr__gltf_fail(d, r, "%s: %s", ptr, inner.message);
+    }
+    *owned = data;
+    *from_file = true;
+    return SR_OK;
+}
+
+/* Buffer i's bytes, read on first use. */
+static sr_result load_buffer(gltf_doc *d, long i, const char *use, gltf_buffer **out)
+{
+    char ptr[GLTF_PTR];
+    json_t *b;
+    sr_result r = element(d, "buffers", i, use, &b, ptr, sizeof ptr);
+    if (r != SR_OK) {
+        return r;
+    }
+    gltf_buffer *buf = &d->buffers[i];
+    *out = buf;
+    if (buf->loaded) {
+        return SR_OK;
+    }
+    size_t length = 0;
+    if ((r = sr__gltf_size(d, b, ptr, "byteLength", 1, SR_IO_MAX_FILE_BYTES, true, &length)) !=
+        SR_OK) {
+        return r;
+    }
+    json_t *uri = json_object_get(b, "uri");
+    const uint8_t *data;
+    size_t size;
+    if (uri) {
+        if (!json_is_string(uri)) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/uri: not a string", ptr);
+        }
+        char uptr[GLTF_PTR];
+        snprintf(uptr, sizeof uptr, "%s/uri", ptr);
+        if ((r = sr__gltf_read_uri(d, json_string_value(uri), uptr, &buf->owned,
+                          &buf->owned_size, &buf->from_file)) != SR_OK) {
+            return r;
+        }
+        data = (const uint8_t *)buf->owned;
+        size = buf->owned_size;
+        d->input_bytes += size;
+        /* Data read from elsewhere earns its own decoding budget. */
+        size_t more;
+        if (sr__mul_ok(size, SR_SCENE_ELEMENTS_PER_BYTE, &more) &&
+            !__builtin_add_overflow(d->elements_left, more, &more)) {
+            d->elements_left = more;
+        }
+    } else if (i == 0 && d->bin) {
+        data = d->bin;
+        size = d->bin_size;
+    } else {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/uri: missing (and no GLB BIN chunk)", ptr);
+    }
+    if (length > size) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/byteLength: %zu, but only %zu bytes are there",
+                             ptr, length, size);
+    }
+    buf->data = data;
+    buf->size = length;
+    buf->loaded = true;
+    return SR_OK;
+}
+
+sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *use, const uint8_t **data,
+                               size_t *size, size_t *stride)
+{
+    char ptr[GLTF_PTR];
+    json_t *v;
+    sr_result r = element(d, "bufferViews", view, use, &v, ptr, sizeof ptr);
+    if (r != SR_OK) {
+        return r;
+    }
+    long buffer = -1;
+    size_t offset = 0, length = 0;
+    *stride = 0;
+    if ((r = sr__gltf_index(d, v, ptr, "buffer", d->buffer_count ? d->buffer_count : 1, true,
+                            &buffer)) != SR_OK ||
+        (r = sr__gltf_size(d, v, ptr, "byteOffset", 0, SR_IO_MAX_FILE_BYTES, false, &offset)) !=
+            SR_OK ||
+        (r = sr__gltf_size(d, v, ptr, "byteLength", 1, SR_IO_MAX_FILE_BYTES, true, &length)) !=
+            SR_OK ||
+        (r = sr__gltf_size(d, v, ptr, "byteStride", 4, 252, false, stride)) != SR_OK) {
+        return r;
+    }
+    char bptr[GLTF_PTR];
+    snprintf(bptr, sizeof bptr, "%s/buffer", ptr);
+    gltf_buffer *b;
+    if ((r = load_buffer(d, buffer, bptr, &b)) != SR_OK) {
+        return r;
+    }
+    if (offset > b->size || length > b->size - offset) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s/byteLength: bytes %zu..%zu run past the %zu bytes of buffer %ld",
+                             ptr, offset, offset + length, b->size, buffer);
+    }
+    *data = b->data + offset;
+    *size = length;
+    return SR_OK;
+}
+
+/* ---- meshes -------------------------------------------------------------- */
+
+/* A mesh's primitives decoded once, drawn by every node that uses the
+ * mesh: arrays, counts and material set, world not (NULL positions:
+ * skipped). */
+typedef struct gltf_mesh {
+    sr_scene_primitive *prims;
+    size_t count;
+    bool decoded;
+} gltf_mesh;
+
+/* Triangles from a primitive's mode, as indices into its vertices. */
+static sr_result triangles_of(gltf_doc *d, const char *ptr, long mode, const uint32_t *idx,
+                              size_t n, size_t vertex_count, sr_scene_primitive *p)
+{
+    size_t tris;
+    if (mode == 4) {
+        if (n % 3 != 0) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                 "%s: %zu vertices do not make whole triangles", ptr, n);
+        }
+        tris = n / 3;
+    } else {
+        tris = n >= 3 ? n - 2 : 0;
+    }
+    for (size_t i = 0; i < n; i++) {
+        uint32_t v = idx ? idx[i] : (uint32_t)i;
+        if (v >= vertex_count) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                 "%s/indices: element %zu is %u, past the %zu vertices", ptr, i,
+                                 v, vertex_count);
+        }
+    }
+    uint32_t *out = sr__scene_alloc(d->scene, tris * 3 * sizeof *out + 1);
+    if (!out) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+#define IDX(k) (idx ? idx[k] : (uint32_t)(k))
+    for (size_t t = 0; t < tris; t++) {
+        uint32_t *o = out + 3 * t;
+        if (mode == 4) {
+            o[0] = IDX(3 * t), o[1] = IDX(3 * t + 1), o[2] = IDX(3 * t + 2);
+        } else if (mode == 5) {
+            /* Strip: every other triangle reversed to keep the winding. */
+            o[0] = IDX(t), o[1] = IDX(t + 1 + t % 2), o[2] = IDX(t + 2 - t % 2);
+        } else {
+            o[0] = IDX(t + 1), o[1] = IDX(t + 2), o[2] = IDX(0);
+        }
+    }
+#undef IDX
+    p->indices = out;
+    p->triangle_count = tris;
+    return SR_OK;
+}
+
+/* One vertex attribute into the scene: `name` of the primitive's
+ * attributes, checked against the vertex count. */
+static sr_result attribute(gltf_doc *d, const json_t *attrs, const char *aptr, const char *name,
+                           unsigned allowed, size_t vertex_count, gltf_accessor_info *info,
+                           float **out)
+{
+    *out = NULL;
+    long index = -1;
+    sr_result r = sr__gltf_index(d, attrs, aptr, name, (size_t)-1 / 2, false, &index);
+    if (r != SR_OK || index < 0) {
+        return r;
+    }
+    char ptr[GLTF_PTR];
+    snprintf(ptr, sizeof ptr, "%s/%s", aptr, name);
+    float *f;
+    if ((r = sr__gltf_read_floats(d, index, ptr, allowed, info, &f)) != SR_OK) {
+        return r;
+    }
+    if (!sr__scene_keep(d->scene, f)) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    if (vertex_count != (size_t)-1 && info->count != vertex_count) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld has %zu elements, POSITION %zu",
+                             ptr, index, info->count, vertex_count);
+    }
+    *out = f;
+    return SR_OK;
+}
+
+/* glTF's v runs down the image, sr_make_texture's up. */
+static void flip_v(float *uv, size_t n)
+{
+    for (size_t i = 0; uv && i < n; i++) {
+        uv[2 * i + 1] = 1.0f - uv[2 * i + 1];
+    }
+}
+
+static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr,
+                                sr_scene_primitive *p)
+{
+    json_t *attrs;
+    long mode = 4, indices = -1, material = -1;
+    sr_result r;
+    if (!json_is_object(prim)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+    }
+    if ((r = sr__gltf_object(d, prim, ptr, "attributes", &attrs)) != SR_OK ||
+        (r = sr__gltf_index(d, prim, ptr, "mode", 7, false, &mode)) != SR_OK ||
+        (r = sr__gltf_index(d, prim, ptr, "indices", (size_t)-1 / 2, false, &indices)) != SR_OK ||
+        (r = sr__gltf_index(d, prim, ptr, "material", d->scene->material_count - 1, false,
+                            &material)) != SR_OK) {
+        return r;
+    }
+    if (!attrs) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/attributes: missing", ptr);
+    }
+    p->material = material >= 0 ? (int)material : (int)d->scene->material_count - 1;
+    if (mode < 4) {
+        sr__gltf_warn(d, "%s/mode: points and lines (mode %ld) are not drawn", ptr, mode);
+        return SR_OK;
+    }
+    char aptr[GLTF_PTR];
+    snprintf(aptr, sizeof aptr, "%s/attributes", ptr);
+    if (!json_object_get(attrs, "POSITION")) {
+        sr__gltf_warn(d, "%s: no POSITION, not drawn", aptr);
+        return SR_OK;
+    }
+    gltf_accessor_info info;
+    float *pos, *nrm, *tan, *uv0, *uv1, *col;
+    if ((r = attribute(d, attrs, aptr, "POSITION", 1u << 3, (size_t)-1, &info, &pos)) != SR_OK) {
+        return r;
+    }
+    size_t n = info.count;
+    if ((r = attribute(d, attrs, aptr, "NORMAL", 1u << 3, n, &info, &nrm)) != SR_OK ||
+        (r = attribute(d, attrs, aptr, "TANGENT", 1u << 4, n, &info, &tan)) != SR_OK ||
+        (r = attribute(d, attrs, aptr, "TEXCOORD_0", 1u << 2, n, &info, &uv0)) != SR_OK ||
+        (r = attribute(d, attrs, aptr, "TEXCOORD_1", 1u << 2, n, &info, &uv1)) != SR_OK ||
+        (r = attribute(d, attrs, aptr, "COLOR_0", 1u << 3 | 1u << 4, n, &info, &col)) != SR_OK) {
+        return r;
+    }
+    if (col && info.components == 3) {
+        float *rgba = sr__scene_alloc(d->scene, n * 4 * sizeof *rgba);
+        if (!rgba) {
+            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", aptr);
+        }
+        for (size_t i = 0; i < n; i++) {
+            memcpy(rgba + 4 * i, col + 3 * i, 3 * sizeof *col);
+            rgba[4 * i + 3] = 1;
+        }
+        col = rgba;
+    }
+    flip_v(uv0, n);
+    flip_v(uv1, n);
+    uint32_t *idx = NULL;
+    size_t count = n;
+    if (indices >= 0) {
+        char iptr[GLTF_PTR];
+        snprintf(iptr, sizeof iptr, "%s/indices", ptr);
+        if ((r = sr__gltf_read_indices(d, indices, iptr, &info, &idx)) != SR_OK) {
+            return r;
+        }
+        count = info.count;
+    }
+    r = triangles_of(d, ptr, mode, idx, count, n, p);
+    free(idx);
+    if (r != SR_OK) {
+        return r;
+    }
+    p->vertex_count = n;
+    p->positions = pos;
+    p->normals = nrm;
+    p->tangents = tan;
+    p->texcoords0 = uv0;
+    p->texcoords1 = uv1;
+    p->colors = col;
+    return SR_OK;
+}
+
+/* Mesh m's primitives, decoded on first use. */
+static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use,
+                         gltf_mesh **out)
+{
+    char ptr[GLTF_PTR];
+    json_t *mesh, *prims;
+    size_t n;
+    sr_result r = element(d, "meshes", m, use, &mesh, ptr, sizeof ptr);
+    if (r != SR_OK) {
+        return r;
+    }
+    *out = &meshes[m];
+    if (meshes[m].decoded) {
+        return SR_OK;
+    }
+    meshes[m].decoded = true;
+    if ((r = sr__gltf_array(d, mesh, ptr, "primitives", &prims, &n)) != SR_OK) {
+        return r;
+    }
+    if (n == 0) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/primitives: missing or empty", ptr);
+    }
+    meshes[m].prims = sr__scene_alloc(d->scene, n * sizeof *meshes[m].prims);
+    if (!meshes[m].prims) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    meshes[m].count = n;
+    for (size_t i = 0; i < n; i++) {
+        char pptr[GLTF_PTR];
+        snprintf(pptr, sizeof pptr, "%s/primitives/%zu", ptr, i);
+        sr_scene_primitive *p = &meshes[m].prims[i];
+        p->mesh = (int)m;
+        if ((r = read_primitive(d, json_array_get(prims, i), pptr, p)) != SR_OK) {
+            return r;
+        }
+    }
+    return SR_OK;
+}
+
+/* ---- nodes and cameras --------------------------------------------------- */
+
+/* A node's local matrix: `matrix`, or T * R * S. */
+static sr_result local_matrix(gltf_doc *d, const json_t *node, const char *ptr, float *m)
+{
+    static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    memcpy(m, identity, sizeof identity);
+    sr_result r;
+    if (json_object_get(node, "matrix")) {
+        return sr__gltf_numbers(d, node, ptr, "matrix", 16, m);
+    }
+    float t[3] = { 0, 0, 0 }, q[4] = { 0, 0, 0, 1 }, s[3] = { 1, 1, 1 };
+    if ((r = sr__gltf_numbers(d, node, ptr, "translation", 3, t)) != SR_OK ||
+        (r = sr__gltf_numbers(d, node, ptr, "rotation", 4, q)) != SR_OK ||
+        (r = sr__gltf_numbers(d, node, ptr, "scale", 3, s)) != SR_OK) {
+        return r;
+    }
+    /* The unit quaternion (x, y, z, w) as a rotation matrix, columns
+     * scaled by s; normalized first, as viewers do with rounded files. */
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double len = sqrt(x * x + y * y + z * z + w * w);
+    if (len > 0) {
+        x /= len, y /= len, z /= len, w /= len;
+    } else {
+        w = 1;
+    }
+    double rot[9] = {
+        1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+        2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+        2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y),
+    };
+    for (int c = 0; c < 3; c++) {
+        for (int row = 0; row < 3; row++) {
+            m[c * 4 + row] = (float)(rot[c * 3 + row] * s[c]);
+        }
+        m[12 + c] = t[c];
+    }
+    return SR_OK;
+}
+
+static sr_result read_camera(gltf_doc *d, long index, const char *use, sr_scene_camera *c)
+{
+    char ptr[GLTF_PTR], sub[GLTF_PTR];
+    json_t *cam, *p;
+    sr_result r = element(d, "cameras", index, use, &cam, ptr, sizeof ptr);
+    if (r != SR_OK) {
+        return r;
+    }
+    json_t *type = json_object_get(cam, "type");
+    const char *t = json_is_string(type) ? json_string_value(type) : "";
+    bool persp = strcmp(t, "perspective") == 0;
+    if (!persp && strcmp(t, "orthographic") != 0) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/type: not perspective or orthographic", ptr);
+    }
+    c->type = persp ? SR_SCENE_CAMERA_PERSPECTIVE : SR_SCENE_CAMERA_ORTHOGRAPHIC;
+    c->camera = (int)index;
+    if ((r = sr__gltf_object(d, cam, ptr, t, &p)) != SR_OK) {
+        return r;
+    }
+    snprintf(sub, sizeof sub, "%s/%s", ptr, t);
+    if (!p) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: missing", sub);
+    }
+    c->znear = c->zfar = c->yfov = c->aspect = c->xmag = c->ymag = -1;
+    if ((r = sr__gltf_number(d, p, sub, "znear", &c->znear)) != SR_OK ||
+        (r = sr__gltf_number(d, p, sub, "zfar", &c->zfar)) != SR_OK ||
+        (r = sr__gltf_number(d, p, sub, "yfov", &c->yfov)) != SR_OK ||
+        (r = sr__gltf_number(d, p, sub, "aspectRatio", &c->aspect)) != SR_OK ||
+        (r = sr__gltf_number(d, p, sub, "xmag", &c->xmag)) != SR_OK ||
+        (r = sr__gltf_number(d, p, sub, "ymag", &c->ymag)) != SR_OK) {
+        return r;
+    }
+    const char *bad = NULL;
+    if (persp) {
+        bad = c->yfov <= 0 || c->yfov >= 3.14159f ? "yfov"
+            : c->znear <= 0                      ? "znear"
+            : c->zfar != -1 && c->zfar <= c->znear ? "zfar"
+            : c->aspect != -1 && c->aspect <= 0  ? "aspectRatio" : NULL;
+        c->aspect = fmaxf(c->aspect, 0);
+        c->zfar = fmaxf(c->zfar, 0);
+        c->xmag = c->ymag = 0;
+    } else {
+        bad = c->xmag == 0 || c->xmag == -1  ? "xmag"
+            : c->ymag == 0 || c->ymag == -1  ? "ymag"
+            : c->znear < 0                   ? "znear"
+            : c->zfar <= c->znear            ? "zfar" : NULL;
+        c->yfov = c->aspect = 0;
+    }
+    if (bad) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: missing or out of range", sub, bad);
+    }
+    return SR_OK;
+}
+
+/* Each node's parent (-1 for roots), checking that the nodes make a
+ * forest: no node a child twice, no cycle. */
+static sr_result node_parents(gltf_doc *d, const json_t *nodes, size_t n, long *parent)
+{
+    sr_result r;
+    for (size_t i = 0; i < n; i++) {
+        parent[i] = -1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        char ptr[GLTF_PTR];
+        json_t *node = json_array_get(nodes, i), *children;
+        size_t k;
+        snprintf(ptr, sizeof ptr, "/nodes/%zu", i);
+        if (!json_is_object(node)) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+        }
+        if ((r = sr__gltf_array(d, node, ptr, "children", &children, &k)) != SR_OK) {
+            return r;
+        }
+        for (size_t c = 0; c < k; c++) {
+            json_t *v = json_array_get(children, c);
+            json_int_t ch = json_is_integer(v) ? json_integer_value(v) : -1;
+            if (ch < 0 || (size_t)ch >= n) {
+                return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                     "%s/children/%zu: not a node index below %zu", ptr, c, n);
+            }
+            if (parent[ch] != -1 || (size_t)ch == i) {
+                return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                     "%s/children/%zu: node %lld already has a parent (node %ld)",
+                                     ptr, c, (long long)ch, (size_t)ch == i ? (long)i : parent[ch]);
+            }
+            parent[ch] = (long)i;
+        }
+    }
+    /* With one parent each, a cycle is a parent chain that comes back:
+     * walk each chain once, marking nodes (1: on this walk, 2: leads to a
+     * root). */
+    unsigned char *mark = calloc(n ? n : 1, 1);
+    if (!mark) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/nodes: out of memory");
+    }
+    r = SR_OK;
+    for (size_t i = 0; i < n && r == SR_OK; i++) {
+        long v = (long)i;
+        while (v >= 0 && mark[v] == 0) {
+            mark[v] = 1;
+            v = parent[v];
+        }
+        if (v >= 0 && mark[v] == 1) {
+            r = sr__gltf_fail(d, SR_BAD_FORMAT,
+                              "/nodes/%ld/children: node %ld is its own ancestor (a cycle)",
+                              parent[v], v);
+        }
+        for (long u = (long)i; u >= 0 && mark[u] == 1; u = parent[u]) {
+            mark[u] = 2;
+        }
+    }
+    free(mark);
+    return r;
+}
+
+/* Work for the depth-first walk: a node and its parent's world matrix. */
+typedef struct walk_item {
+    long node;
+    float parent[16];
+} walk_item;
+
+static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, const char *ptr,
+                           long mesh, const float *world)
+{
+    char use[GLTF_PTR];
+    snprintf(use, sizeof use, "%s/mesh", ptr);
+    gltf_mesh *m;
+    sr_result r = mesh_of(d, meshes, mesh, use, &m);
+    if (r != SR_OK) {
+        return r;
+    }
+    for (size_t i = 0; i < m->count; i++) {
+        const sr_scene_primitive *g = &m->prims[i];
+        if (!g->positions || g->triangle_count == 0) {
+            continue;
+        }
+        if (d->scene->primitive_count >= SR_SCENE_MAX_DRAWS) {
+            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu primitives to draw", ptr,
+                                 SR_SCENE_MAX_DRAWS);
+        }
+        /* Instances are cheap to list but each costs its vertices to
+         * bound and to draw. */
+        d->drawn_vertices += g->vertex_count;
+        if (d->drawn_vertices > SR_SCENE_MAX_DRAWN_VERTICES) {
+            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu vertices to draw in all", ptr,
+                                 SR_SCENE_MAX_DRAWN_VERTICES);
+        }
+        sr_scene_primitive *p = sr__scene_grow(d->scene, (void **)&d->scene->primitives,
+                                               &d->scene->primitive_count, sizeof *p, 1);
+        if (!p) {
+            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
+        *p = *g;
+        memcpy(p->world, world, sizeof p->world);
+        p->node = (int)node_index;
+        const float *w = world;
+        double det = (double)w[0] * ((double)w[5] * w[10] - (double)w[9] * w[6]) -
+                     (double)w[4] * ((double)w[1] * w[10] - (double)w[9] * w[2]) +
+                     (double)w[8] * ((double)w[1] * w[6] - (double)w[5] * w[2]);
+        p->mirrored = det < 0;
+    }
+    return SR_OK;
+}
+
+/* The scene's node trees, depth first in the order the file lists them. */
+static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_ptr,
+                            const long *parent, size_t node_count)
+{
+    json_t *nodes = json_object_get(d->root, "nodes");
+    size_t mesh_count = json_array_size(json_object_get(d->root, "meshes"));
+    gltf_mesh *meshes = calloc(mesh_count ? mesh_count : 1, sizeof *meshes);
+    walk_item *stack = malloc((node_count ? node_count : 1) * sizeof *stack);
+    unsigned char *seen = calloc(node_count ? node_count : 1, 1);
+    if (!meshes || !stack || !seen) {
+        free(meshes);
+        free(stack);
+        free(seen);
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/nodes: out of memory");
+    }
+    static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    sr_result r = SR_OK;
+    size_t nroots = json_array_size(roots);
+    /* Roots pushed last first, so the first is drawn first. */
+    size_t top = 0;
+    for (size_t i = nroots; i-- > 0 && r == SR_OK;) {
+        json_t *v = json_array_get(roots, i);
+        json_int_t n = json_is_integer(v) ? json_integer_value(v) : -1;
+        if (n < 0 || (size_t)n >= node_count) {
+            r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%zu: not a node index below %zu", roots_ptr,
+                              i, node_count);
+        } else if (parent[n] != -1) {
+            r = sr__gltf_fail(d, SR_BAD_FORMAT,
+                              "%s/%zu: node %lld is not a root (node %ld's child)", roots_ptr, i,
+                              (long long)n, parent[n]);
+        } else if (seen[n]) {
+            r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%zu: node %lld is listed twice", roots_ptr, i,
+                              (long long)n);
+        } else {
+            seen[n] = 1;
+            stack[top].node = (long)n;
+            memcpy(stack[top].parent, identity, sizeof identity);
+            top++;
+        }
+    }
+    while (r == SR_OK && top > 0) {
+        walk_item it = stack[--top];
+        char ptr[GLTF_PTR];
+        snprintf(ptr, sizeof ptr, "/nodes/%ld", it.node);
+        json_t *node = json_array_get(nodes, (size_t)it.node), *children;
+        float local[16], world[16];
+        long mesh = -1, camera = -1;
+        size_t k;
+        if ((r = local_matrix(d, node, ptr, local)) != SR_OK ||
+            (r = sr__gltf_index(d, node, ptr, "mesh", (size_t)-1 / 2, false, &mesh)) != SR_OK ||
+            (r = sr__gltf_index(d, node, ptr, "camera", (size_t)-1 / 2, false, &camera)) !=
+                SR_OK) {
+            break;
+        }
+        sr__mat4_mul(it.parent, local, world);
+        if (mesh >= 0 && (r = add_draws(d, meshes, it.node, ptr, mesh, world)) != SR_OK) {
+            break;
+        }
+        if (camera >= 0) {
+            sr_scene_camera *c = sr__scene_grow(d->scene, (void **)&d->scene->cameras,
+                                                &d->scene->camera_count, sizeof *c, 1);
+            char use[GLTF_PTR];
+            snprintf(use, sizeof use, "%s/camera", ptr);
+            if (!c) {
+                r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+                break;
+            }
+            if ((r = read_camera(d, camera, use, c)) != SR_OK) {
+                break;
+            }
+            memcpy(c->world, world, sizeof world);
+            c->node = (int)it.node;
+        }
+        /* node_parents checked the children; each node is pushed once. */
+        sr__gltf_array(d, node, ptr, "children", &children, &k);
+        for (size_t c = k; c-- > 0;) {
+            stack[top].node = (long)json_integer_value(json_array_get(children, c));
+            memcpy(stack[top].parent, world, sizeof world);
+            top++;
+        }
+    }
+    free(meshes);
+    free(stack);
+    free(seen);
+    return r;
+}
+
+/* The nodes of the scene to draw: `scene`, else scene 0, else (a file
+ * with no scenes) every root node. */
+static sr_result read_nodes(gltf_doc *d)
+{
+    json_t *nodes, *scenes, *roots = NULL;
+    size_t node_count, scene_count;
+    sr_result r;
+    if ((r = sr__gltf_array(d, d->root, "", "nodes", &nodes, &node_count)) != SR_OK ||
+        (r = sr__gltf_array(d, d->root, "", "scenes", &scenes, &scene_count)) != SR_OK) {
+        return r;
+    }
+    long scene = scene_count > 0 ? 0 : -1;
+    if ((r = sr__gltf_index(d, d->root, "", "scene", scene_count ? scene_count : 1, false,
+                            &scene)) != SR_OK) {
+        return r;
+    }
+    if (json_object_get(d->root, "scene") && scene_count == 0) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "/scene: given, but there are no scenes");
+    }
+    long *parent = malloc((node_count ? node_count : 1) * sizeof *parent);
+    if (!parent) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/nodes: out of memory");
+    }
+    r = node_parents(d, nodes, node_count, parent);
+    char rptr[GLTF_PTR] = "/nodes";
+    json_t *all = NULL;
+    if (r == SR_OK && scene >= 0) {
+        json_t *s = json_array_get(scenes, (size_t)scene);
+        snprintf(rptr, sizeof rptr, "/scenes/%ld", scene);
+        size_t n;
+        if (!json_is_object(s)) {
+            r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", rptr);
+        } else {
+            r = sr__gltf_array(d, s, rptr, "nodes", &roots, &n);
+            snprintf(rptr, sizeof rptr, "/scenes/%ld/nodes", scene);
+        }
+    } else if (r == SR_OK) {
+        all = roots = json_array();
+        for (size_t i = 0; roots && i < node_count; i++) {
+            if (parent[i] == -1) {
+                json_array_append_new(roots, json_integer((json_int_t)i));
+            }
+        }
+    }
+    if (r == SR_OK) {
+        r = walk_nodes(d, roots, rptr, parent, node_count);   /* NULL: no roots */
+    }
+    json_decref(all);
+    free(parent);
+    return r;
+}
+
+/* ---- the document ------------------------------------------------------- */
+
+static const char *supported_extensions[] = {
+    "KHR_mesh_quantization",
+    "KHR_texture_transform",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",
+};
+
+static sr_result check_asset(gltf_doc *d)
+{
+    json_t *asset;
+    sr_result r = sr__gltf_object(d, d->root, "", "asset", &asset);
+    if (r != SR_OK) {
+        return r;
+    }
+    json_t *version = json_object_get(asset, "version");
+    if (!asset || !json_is_string(version)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "/asset/version: missing");
+    }
+    if (strncmp(json_string_value(version), "2.", 2) != 0) {
+        return sr__gltf_fail(d, SR_UNSUPPORTED, "/asset/version: \"%.20s\" is not glTF 2.x",
+                             json_string_value(version));
+    }
+    json_t *min = json_object_get(asset, "minVersion");
+    if (json_is_string(min) && strcmp(json_string_value(min), "2.0") != 0) {
+        return sr__gltf_fail(d, SR_UNSUPPORTED, "/asset/minVersion: \"%.20s\" is newer than 2.0",
+                             json_string_value(min));
+    }
+    json_t *req;
+    size_t n;
+    if ((r = sr__gltf_array(d, d->root, "", "extensionsRequired", &req, &n)) != SR_OK) {
+        return r;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const char *name = json_string_value(json_array_get(req, i));
+        bool known = false;
+        for (size_t k = 0; name && k < sizeof supported_extensions / sizeof *supported_extensions;
+             k++) {
+            known |= strcmp(name, supported_extensions[k]) == 0;
+        }
+        if (!known) {
+            return sr__gltf_fail(d, SR_UNSUPPORTED,
+                                 "/extensionsRequired/%zu: extension %.64s is not supported", i,
+                                 name ? name : "(not a string)");
+        }
+    }
+    return SR_OK;
+}
+
+static uint32_t le32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* The JSON and BIN chunks of a GLB. */
+static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const char **json,
+                          size_t *json_size)
+{
+    if (size < 20) {
+        return sr__io_fail(d->err, SR_BAD_FORMAT, d->name, 0, "GLB header cut short");
+    }
+    uint32_t version = le32(data + 4), length = le32(data + 8);
+    if (version != 2) {
+        return sr__io_fail(d->err, SR_UNSUPPORTED, d->name, 0, "GLB version %u, not 2", version);
+    }
+    if (length > size || length < 20) {
+        return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, 8,
+                              "GLB length %u, but the file has %zu bytes", length, size);
+    }
+    *json = NULL;
+    for (size_t at = 12; at + 8 <= length;) {
+        uint32_t clen = le32(data + at), type = le32(data + at + 4);
+        if (clen > length - at - 8) {
+            return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, at,
+                                  "chunk of %u bytes runs past the end", clen);
+        }
+        if (at == 12) {
+            if (type != 0x4E4F534Au) {
+                return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, at + 4,
+                                      "the first chunk is not JSON");
+            }
+            *json = (const char *)data + at + 8;
+            *json_size = clen;
+        } else if (type == 0x004E4942u && !d->bin) {
+            d->bin = data + at + 8;
+            d->bin_size = clen;
+        }
+        at += 8 + (size_t)clen;
+    }
+    if (!*json) {
+        return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, 12, "no JSON chunk");
+    }
+    return SR_OK;
+}
+
+static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
+{
+    const char *json = (const char *)data;
+    size_t json_size = size;
+    sr_result r;
+    if (size >= 4 && memcmp(data, "glTF", 4) == 0 &&
+        (r = read_glb(d, data, size, &json, &json_size)) != SR_OK) {
+        return r;
+    }
+    json_error_t jerr;
+    d->root = json_loadb(json, json_size, JSON_REJECT_DUPLICATES, &jerr);
+    if (!d->root) {
+        return sr__io_fail(d->err, SR_BAD_FORMAT, d->name, jerr.line > 0 ? jerr.line : 0,
+                           "invalid JSON: %s (column %d)", jerr.text, jerr.column);
+    }
+    if (!json_is_object(d->root)) {
+        return sr__io_fail(d->err, SR_BAD_FORMAT, d->name, 0,
+                           "the document is not a JSON object");
+    }
+    if ((r = check_asset(d)) != SR_OK) {
+        return r;
+    }
+    json_t *buffers, *images;
+    if ((r = sr__gltf_array(d, d->root, "", "buffers", &buffers, &d->buffer_count)) != SR_OK ||
+        (r = sr__gltf_array(d, d->root, "", "images", &images, &d->image_count)) != SR_OK) {
+        return r;
+    }
+    d->buffers = calloc(d->buffer_count ? d->buffer_count : 1, sizeof *d->buffers);
+    d->image_textures = calloc(d->image_count ? 2 * d->image_count : 1, sizeof(sr_texture *));
+    if (!d->buffers || !d->image_textures) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/buffers: out of memory");
+    }
+    if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = read_nodes(d)) != SR_OK) {
+        return r;
+    }
+    sr__scene_bounds(d->scene);
+    return SR_OK;
+}
+
+sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, const uint8_t *data,
+                         size_t size, const sr_load_desc *desc, sr_scene **out,
+                         sr_io_error *err)
+{
+    gltf_doc d = { .ctx = ctx, .name = name, .desc = desc, .err = err, .dir = dir };
+    *out = NULL;
+    d.input_bytes = size;
+    d.elements_left = SR_SCENE_ELEMENTS_BASE;
+    if (size < (size_t)-1 / SR_SCENE_ELEMENTS_PER_BYTE / 2) {
+        d.elements_left += size * SR_SCENE_ELEMENTS_PER_BYTE;
+    }
+    d.scene = sr__scene_new();
+    sr_result r = d.scene ? read_document(&d, data, size)
+                          : sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0, "out of memory");
+    for (size_t i = 0; d.buffers && i < d.buffer_count; i++) {
+        if (d.buffers[i].from_file) {
+            sr__free_file(d.buffers[i].owned, d.buffers[i].owned_size);
+        } else {
+            free(d.buffers[i].owned);
+        }
+    }
+    free(d.buffers);
+    free(d.image_textures);
+    json_decref(d.root);
+    if (r != SR_OK) {
+        sr_destroy_scene(ctx, d.scene);
+        return r;
+    }
+    *out = d.scene;
+    return SR_OK;
+}

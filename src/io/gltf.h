@@ -1,0 +1,118 @@
+/* gltf.h - the glTF 2.0 reader's shared state (src/io/gltf*.c), on jansson.
+ * gltf.c reads the document, buffers, meshes, nodes and cameras;
+ * gltf_accessor.c decodes accessors; gltf_material.c reads materials,
+ * textures and images; scene_store.c holds the scene's memory.  Every
+ * error is one line "NAME: /json/pointer: what is wrong", the first one
+ * only.  Internal to src/io. */
+#ifndef SR_IO_GLTF_H
+#define SR_IO_GLTF_H
+
+#include "io/io_util.h"
+#include "io/scene.h"
+
+#include <jansson.h>
+
+/* Room for a JSON pointer in a message: three indices and a few member
+ * names at most, far below this.  GCC cannot see that bound and warns
+ * that the pointers built from pointers "may be truncated"; a cut one
+ * would only shorten a message. */
+#define GLTF_PTR 256
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wformat-truncation"
+#endif
+
+/* Where a buffer's bytes come from: the GLB's BIN chunk (borrowed), a
+ * data: URI (decoded, owned) or an external file (owned, sr__free_file). */
+typedef struct gltf_buffer {
+    const uint8_t *data;
+    size_t size;           /* the buffer's byteLength */
+    char *owned;           /* to free, or NULL */
+    size_t owned_size;
+    bool from_file;        /* owned came from sr__read_file */
+    bool loaded;
+} gltf_buffer;
+
+typedef struct gltf_doc {
+    sr_context *ctx;
+    const char *name;            /* the file, in messages */
+    const char *dir;             /* relative URIs start here ("" or ending in '/') */
+    const sr_load_desc *desc;    /* may be NULL */
+    sr_io_error *err;
+    json_t *root;
+    const uint8_t *bin;          /* the GLB's BIN chunk, or NULL */
+    size_t bin_size;
+    gltf_buffer *buffers;
+    size_t buffer_count;
+    size_t elements_left;        /* the decoding budget (SR_SCENE_ELEMENTS_*) */
+    size_t input_bytes;          /* the document and the buffers read so far */
+    size_t drawn_vertices;       /* over every draw, against SR_SCENE_MAX_DRAWN_VERTICES */
+    sr_scene *scene;
+    /* Textures made so far, two per image (linear, sRGB); NULL: not yet. */
+    sr_texture **image_textures;
+    size_t image_count;
+} gltf_doc;
+
+/* The error "NAME: POINTER: reason" (the pointer is part of fmt's
+ * arguments: callers write "%s/count: ...", ptr).  Returns code. */
+sr_result sr__gltf_fail(gltf_doc *d, sr_result code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+/* A warning "NAME: reason" to desc->warn, counted in the scene. */
+void sr__gltf_warn(gltf_doc *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Reading the JSON.  `ptr` is the JSON pointer of obj.  Absent members
+ * leave *out at the caller's default and succeed, unless required. */
+sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                         size_t limit, bool required, long *out);
+sr_result sr__gltf_size(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                        size_t lo, size_t hi, bool required, size_t *out);
+sr_result sr__gltf_number(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                          float *out);
+sr_result sr__gltf_numbers(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                           size_t n, float *out);
+/* root[key] when it is an array (*count its length); NULL and 0 when
+ * absent; an error when present and not an array. */
+sr_result sr__gltf_array(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                         json_t **out, size_t *count);
+/* An object member that must be an object when present (NULL when absent). */
+sr_result sr__gltf_object(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                          json_t **out);
+/* obj.extensions[name] when it is an object, else NULL. */
+json_t *sr__gltf_extension(const json_t *obj, const char *name);
+
+/* The bytes of bufferView `view` (loading its buffer on first use): the
+ * view's start and length, its byteStride (0: none). */
+sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *ptr, const uint8_t **data,
+                               size_t *size, size_t *stride);
+
+/* The bytes a URI (`ptr` in messages) names: a base64 data: URI decoded,
+ * or a relative reference (percent-decoded) read from d->dir.  *owned is
+ * the block to free (*from_file: with sr__free_file). */
+sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char **owned,
+                            size_t *size, bool *from_file);
+
+/* gltf_accessor.c.  An accessor's element type, for checks. */
+typedef struct gltf_accessor_info {
+    size_t count;
+    int components;        /* 1 SCALAR .. 16 MAT4 */
+    bool matrix;           /* MAT2, MAT3 or MAT4 */
+    int component_type;    /* 5120 .. 5126 */
+    bool normalized;
+} gltf_accessor_info;
+
+/* Accessor `index` (named `ptr` in messages: the member that refers to
+ * it) decoded into a malloc'd array of count * components floats
+ * (normalized integers mapped to [0, 1] or [-1, 1], sparse values
+ * applied); `allowed` lists the component counts the use accepts (a
+ * bitmask, bit n for n components). */
+sr_result sr__gltf_read_floats(gltf_doc *d, long index, const char *ptr, unsigned allowed,
+                               gltf_accessor_info *info, float **out);
+/* The same for indices: a SCALAR of unsigned bytes, shorts or ints. */
+sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
+                                gltf_accessor_info *info, uint32_t **out);
+
+/* gltf_material.c: every /materials entry into scene->materials, plus the
+ * default material (glTF's: white, metallic 1, roughness 1) at the end
+ * for primitives without one. */
+sr_result sr__gltf_read_materials(gltf_doc *d);
+
+#endif

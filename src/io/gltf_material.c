@@ -1,0 +1,334 @@
+/*
+ * gltf_material.c - io stage: glTF materials as sr_pbr_material.
+ * Consumes /materials, /textures, /samplers and /images (PNG or JPEG, from
+ * a bufferView, a file or a data: URI); produces the scene's materials and
+ * the textures they point to, made on the context once per image and
+ * color space (base color and emissive sRGB, the others linear).
+ * KHR_texture_transform, KHR_materials_emissive_strength and
+ * KHR_materials_unlit are applied.  Called by the thread reading the
+ * document.
+ */
+#include "io/gltf.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Image i as a texture in the given color space, decoded on first use. */
+static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
+                               const sr_texture **out)
+{
+    json_t *images, *img;
+    size_t n;
+    sr_result r = sr__gltf_array(d, d->root, "", "images", &images, &n);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (i < 0 || (size_t)i >= n) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: image %ld does not exist (%zu images)", use,
+                             i, n);
+    }
+    sr_texture **cached = &d->image_textures[2 * i + (srgb ? 1 : 0)];
+    if (*cached) {
+        *out = *cached;
+        return SR_OK;
+    }
+    char ptr[GLTF_PTR];
+    snprintf(ptr, sizeof ptr, "/images/%ld", i);
+    img = json_array_get(images, (size_t)i);
+    if (!json_is_object(img)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+    }
+    json_t *uri = json_object_get(img, "uri");
+    long view = -1;
+    const uint8_t *bytes = NULL;
+    size_t size = 0, stride;
+    char *owned = NULL;
+    bool from_file = false;
+    if (uri) {
+        char uptr[GLTF_PTR];
+        snprintf(uptr, sizeof uptr, "%s/uri", ptr);
+        if (!json_is_string(uri)) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not a string", uptr);
+        }
+        if ((r = sr__gltf_read_uri(d, json_string_value(uri), uptr, &owned, &size,
+                                   &from_file)) != SR_OK) {
+            return r;
+        }
+        bytes = (const uint8_t *)owned;
+    } else {
+        char vptr[GLTF_PTR];
+        snprintf(vptr, sizeof vptr, "%s/bufferView", ptr);
+        if ((r = sr__gltf_index(d, img, ptr, "bufferView", (size_t)-1 / 2, true, &view)) !=
+                SR_OK ||
+            (r = sr__gltf_buffer_view(d, view, vptr, &bytes, &size, &stride)) != SR_OK) {
+            return r;
+        }
+    }
+    int w, h;
+    uint8_t *pixels;
+    sr_io_error inner = {{0}};
+    r = sr_decode_image(ptr, bytes, size, &w, &h, &pixels, &inner);
+    if (from_file) {
+        sr__free_file(owned, size);
+    } else {
+        free(owned);
+    }
+    if (r != SR_OK) {
+        /* inner reads "/images/N: what is wrong", the pointer first. */
+        return sr__gltf_fail(d, r, "%s", inner.message);
+    }
+    sr_texture *tex = NULL;
+    r = sr_make_texture(d->ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = pixels,
+                                                    .srgb = srgb },
+                        &tex);
+    free(pixels);
+    if (r != SR_OK || !sr__scene_add_texture(d->ctx, d->scene, tex)) {
+        return sr__gltf_fail(d, r != SR_OK ? r : SR_OUT_OF_MEMORY, "%s: %s", ptr,
+                             r != SR_OK ? sr_context_error(d->ctx) : "out of memory");
+    }
+    *cached = tex;
+    *out = tex;
+    return SR_OK;
+}
+
+/* A glTF sampler's filters and wraps on the slot. */
+static sr_result read_sampler(gltf_doc *d, long s, const char *use, sr_texture_slot *slot)
+{
+    json_t *samplers, *sm;
+    size_t n;
+    sr_result r = sr__gltf_array(d, d->root, "", "samplers", &samplers, &n);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (s < 0 || (size_t)s >= n || !json_is_object(sm = json_array_get(samplers, (size_t)s))) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: sampler %ld does not exist", use, s);
+    }
+    char ptr[GLTF_PTR];
+    snprintf(ptr, sizeof ptr, "/samplers/%ld", s);
+    long mag = 0, min = 0, wrap[2] = { 10497, 10497 };
+    if ((r = sr__gltf_index(d, sm, ptr, "magFilter", 100000, false, &mag)) != SR_OK ||
+        (r = sr__gltf_index(d, sm, ptr, "minFilter", 100000, false, &min)) != SR_OK ||
+        (r = sr__gltf_index(d, sm, ptr, "wrapS", 100000, false, &wrap[0])) != SR_OK ||
+        (r = sr__gltf_index(d, sm, ptr, "wrapT", 100000, false, &wrap[1])) != SR_OK) {
+        return r;
+    }
+    /* One filter does for both: the minification filter decides (mipmaps
+     * or not), NEAREST magnification alone asks for nearest texels. */
+    switch (min) {
+    case 9728: slot->filter = SR_FILTER_NEAREST; break;
+    case 9729: slot->filter = SR_FILTER_BILINEAR; break;
+    case 9984: case 9985: case 9986: case 9987: slot->filter = SR_FILTER_TRILINEAR; break;
+    case 0: slot->filter = mag == 9728 ? SR_FILTER_NEAREST : SR_FILTER_TRILINEAR; break;
+    default:
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/minFilter: %ld is not a filter", ptr, min);
+    }
+    if (mag != 0 && mag != 9728 && mag != 9729) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/magFilter: %ld is not a filter", ptr, mag);
+    }
+    sr_texture_wrap *out[2] = { &slot->wrap_u, &slot->wrap_v };
+    for (int k = 0; k < 2; k++) {
+        switch (wrap[k]) {
+        case 10497: *out[k] = SR_WRAP_REPEAT; break;
+        case 33071: *out[k] = SR_WRAP_CLAMP; break;
+        case 33648: *out[k] = SR_WRAP_MIRROR; break;
+        default:
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %ld is not a wrap mode", ptr,
+                                 k ? "wrapT" : "wrapS", wrap[k]);
+        }
+    }
+    return SR_OK;
+}
+
+/* KHR_texture_transform into the slot, in sr_make_texture's uv (v up):
+ * glTF's uv' = T(o) R(r) S(s) uv, with v flipped on both sides, is
+ * T(o') R(r) S(s) with o' = (o.x + s.y sin r, 1 - o.y - s.y cos r), R
+ * counter-clockwise in the flipped space (docs/gltf.md derives it). */
+static sr_result read_transform(gltf_doc *d, const json_t *info, const char *ptr,
+                                sr_texture_slot *slot, long *texcoord)
+{
+    json_t *t = sr__gltf_extension(info, "KHR_texture_transform");
+    float o[2] = { 0, 0 }, s[2] = { 1, 1 }, rot = 0;
+    if (t) {
+        char tptr[GLTF_PTR];
+        snprintf(tptr, sizeof tptr, "%s/extensions/KHR_texture_transform", ptr);
+        sr_result r;
+        if ((r = sr__gltf_numbers(d, t, tptr, "offset", 2, o)) != SR_OK ||
+            (r = sr__gltf_numbers(d, t, tptr, "scale", 2, s)) != SR_OK ||
+            (r = sr__gltf_number(d, t, tptr, "rotation", &rot)) != SR_OK ||
+            (r = sr__gltf_index(d, t, tptr, "texCoord", 1000, false, texcoord)) != SR_OK) {
+            return r;
+        }
+    }
+    slot->offset[0] = o[0] + s[1] * sinf(rot);
+    slot->offset[1] = 1.0f - o[1] - s[1] * cosf(rot);
+    slot->rotation = rot;
+    slot->scale[0] = s[0];
+    slot->scale[1] = s[1];
+    return SR_OK;
+}
+
+/* A textureInfo (material member `key`) into a slot; an absent one leaves
+ * the slot empty.  `extra` ("scale", "strength") goes to *extra_value. */
+static sr_result read_slot(gltf_doc *d, const json_t *owner, const char *owner_ptr,
+                           const char *key, bool srgb, sr_texture_slot *slot, const char *extra,
+                           float *extra_value)
+{
+    json_t *info;
+    sr_result r = sr__gltf_object(d, owner, owner_ptr, key, &info);
+    if (r != SR_OK || !info) {
+        return r;
+    }
+    char ptr[GLTF_PTR];
+    snprintf(ptr, sizeof ptr, "%s/%s", owner_ptr, key);
+    long tex = -1, texcoord = 0;
+    if ((r = sr__gltf_index(d, info, ptr, "index", (size_t)-1 / 2, true, &tex)) != SR_OK ||
+        (r = sr__gltf_index(d, info, ptr, "texCoord", 1000, false, &texcoord)) != SR_OK ||
+        (extra && (r = sr__gltf_number(d, info, ptr, extra, extra_value)) != SR_OK) ||
+        (r = read_transform(d, info, ptr, slot, &texcoord)) != SR_OK) {
+        return r;
+    }
+    json_t *textures, *t;
+    size_t n;
+    if ((r = sr__gltf_array(d, d->root, "", "textures", &textures, &n)) != SR_OK) {
+        return r;
+    }
+    if ((size_t)tex >= n || !json_is_object(t = json_array_get(textures, (size_t)tex))) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/index: texture %ld does not exist", ptr, tex);
+    }
+    if (texcoord > 1) {
+        sr__gltf_warn(d, "%s/texCoord: set %ld is not read (only 0 and 1), texture dropped", ptr,
+                      texcoord);
+        return SR_OK;
+    }
+    char tptr[GLTF_PTR];
+    snprintf(tptr, sizeof tptr, "/textures/%ld", tex);
+    long source = -1, sampler = -1;
+    if ((r = sr__gltf_index(d, t, tptr, "source", (size_t)-1 / 2, false, &source)) != SR_OK ||
+        (r = sr__gltf_index(d, t, tptr, "sampler", (size_t)-1 / 2, false, &sampler)) != SR_OK) {
+        return r;
+    }
+    if (source < 0) {
+        sr__gltf_warn(d, "%s: no PNG or JPEG source, texture dropped", tptr);
+        return SR_OK;
+    }
+    char use[GLTF_PTR];
+    snprintf(use, sizeof use, "%s/source", tptr);
+    if ((r = image_texture(d, source, use, srgb, &slot->texture)) != SR_OK) {
+        return r;
+    }
+    snprintf(use, sizeof use, "%s/sampler", tptr);
+    if (sampler >= 0 && (r = read_sampler(d, sampler, use, slot)) != SR_OK) {
+        return r;
+    }
+    slot->texcoord = (int)texcoord;
+    return SR_OK;
+}
+
+static void default_material(sr_pbr_material *m)
+{
+    memset(m, 0, sizeof *m);
+    for (int c = 0; c < 4; c++) {
+        m->base_color[c] = 1;
+    }
+    m->metallic = m->roughness = 1;
+    m->normal_scale = m->occlusion_strength = m->emissive_strength = 1;
+    m->alpha_cutoff = 0.5f;
+}
+
+static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
+                               sr_pbr_material *m)
+{
+    default_material(m);
+    if (!json_is_object(mat)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+    }
+    json_t *pbr;
+    char pptr[GLTF_PTR];
+    snprintf(pptr, sizeof pptr, "%s/pbrMetallicRoughness", ptr);
+    sr_result r;
+    if ((r = sr__gltf_object(d, mat, ptr, "pbrMetallicRoughness", &pbr)) != SR_OK) {
+        return r;
+    }
+    if (pbr && ((r = sr__gltf_numbers(d, pbr, pptr, "baseColorFactor", 4, m->base_color)) !=
+                    SR_OK ||
+                (r = sr__gltf_number(d, pbr, pptr, "metallicFactor", &m->metallic)) != SR_OK ||
+                (r = sr__gltf_number(d, pbr, pptr, "roughnessFactor", &m->roughness)) != SR_OK ||
+                (r = read_slot(d, pbr, pptr, "baseColorTexture", true, &m->base_color_texture,
+                               NULL, NULL)) != SR_OK ||
+                (r = read_slot(d, pbr, pptr, "metallicRoughnessTexture", false,
+                               &m->metallic_roughness_texture, NULL, NULL)) != SR_OK)) {
+        return r;
+    }
+    if ((r = read_slot(d, mat, ptr, "normalTexture", false, &m->normal_texture, "scale",
+                       &m->normal_scale)) != SR_OK ||
+        (r = read_slot(d, mat, ptr, "occlusionTexture", false, &m->occlusion_texture, "strength",
+                       &m->occlusion_strength)) != SR_OK ||
+        (r = read_slot(d, mat, ptr, "emissiveTexture", true, &m->emissive_texture, NULL, NULL)) !=
+            SR_OK ||
+        (r = sr__gltf_numbers(d, mat, ptr, "emissiveFactor", 3, m->emissive)) != SR_OK ||
+        (r = sr__gltf_number(d, mat, ptr, "alphaCutoff", &m->alpha_cutoff)) != SR_OK) {
+        return r;
+    }
+    json_t *mode = json_object_get(mat, "alphaMode"), *ds = json_object_get(mat, "doubleSided");
+    if (mode) {
+        const char *s = json_is_string(mode) ? json_string_value(mode) : "";
+        if (strcmp(s, "OPAQUE") == 0) {
+            m->alpha_mode = SR_ALPHA_OPAQUE;
+        } else if (strcmp(s, "MASK") == 0) {
+            m->alpha_mode = SR_ALPHA_MASK;
+        } else if (strcmp(s, "BLEND") == 0) {
+            m->alpha_mode = SR_ALPHA_BLEND;
+        } else {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/alphaMode: not OPAQUE, MASK or BLEND", ptr);
+        }
+    }
+    if (ds && !json_is_boolean(ds)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/doubleSided: not true or false", ptr);
+    }
+    m->double_sided = json_is_true(ds);
+    json_t *es = sr__gltf_extension(mat, "KHR_materials_emissive_strength");
+    if (es) {
+        char eptr[GLTF_PTR];
+        snprintf(eptr, sizeof eptr, "%s/extensions/KHR_materials_emissive_strength", ptr);
+        if ((r = sr__gltf_number(d, es, eptr, "emissiveStrength", &m->emissive_strength)) !=
+            SR_OK) {
+            return r;
+        }
+    }
+    m->unlit = sr__gltf_extension(mat, "KHR_materials_unlit") != NULL;
+    /* Zeros that sr_pbr_material reads as defaults, said another way: no
+     * emission at strength 0, and a cutoff of 0 keeps every fragment. */
+    if (m->emissive_strength == 0) {
+        memset(m->emissive, 0, sizeof m->emissive);
+        m->emissive_strength = 1;
+    }
+    if (m->alpha_mode == SR_ALPHA_MASK && m->alpha_cutoff <= 0) {
+        m->alpha_mode = SR_ALPHA_OPAQUE;
+    }
+    return SR_OK;
+}
+
+sr_result sr__gltf_read_materials(gltf_doc *d)
+{
+    json_t *mats;
+    size_t n;
+    sr_result r = sr__gltf_array(d, d->root, "", "materials", &mats, &n);
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_pbr_material *m = sr__scene_grow(d->scene, (void **)&d->scene->materials,
+                                        &d->scene->material_count, sizeof *m, n + 1);
+    if (!m) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/materials: out of memory");
+    }
+    for (size_t i = 0; i < n; i++) {
+        char ptr[GLTF_PTR];
+        snprintf(ptr, sizeof ptr, "/materials/%zu", i);
+        if ((r = read_material(d, json_array_get(mats, i), ptr, &m[i])) != SR_OK) {
+            return r;
+        }
+    }
+    default_material(&m[n]);
+    return SR_OK;
+}

@@ -1,0 +1,31 @@
+/* scene.h - the memory of an sr_scene (scene_store.c) and the readers
+ * behind sr_load_scene (scene.c, gltf.c).  Internal to src/io. */
+#ifndef SR_IO_SCENE_H
+#define SR_IO_SCENE_H
+
+#include "softrast_io.h"
+
+/* An empty scene whose blocks are freed by sr_destroy_scene, or NULL. */
+sr_scene *sr__scene_new(void);
+/* A zeroed block the scene owns, or NULL when out of memory. */
+void *sr__scene_alloc(sr_scene *scene, size_t size);
+/* Hands a malloc'd block to the scene (freed with it; on failure, now). */
+bool sr__scene_keep(sr_scene *scene, void *block);
+/* Adds a texture to scene->textures, destroyed with the scene (on
+ * failure, now). */
+bool sr__scene_add_texture(sr_context *ctx, sr_scene *scene, sr_texture *tex);
+/* Appends n zeroed entries to one of the scene's growing arrays (items of
+ * `size` bytes, *count of them); the first new one, or NULL. */
+void *sr__scene_grow(sr_scene *scene, void **items, size_t *count, size_t size, size_t n);
+/* bounds_min/max over every primitive's world positions. */
+void sr__scene_bounds(sr_scene *scene);
+/* The column-major product a * b. */
+void sr__mat4_mul(const float *a, const float *b, float *out);
+
+/* gltf.c: a glTF document (JSON or GLB) into a new scene; relative URIs
+ * are read from `dir` ("" for the current directory). */
+sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, const uint8_t *data,
+                         size_t size, const sr_load_desc *desc, sr_scene **out,
+                         sr_io_error *err);
+
+#endif

@@ -1,0 +1,751 @@
+/* test_gltf.c - the glTF 2.0 reader behind sr_load_scene: node
+ * hierarchies, accessors of every kind (quantized, normalized, strided,
+ * sparse), primitive modes, materials with texture transforms and
+ * samplers, cameras, external files, GLB, and one message naming the JSON
+ * pointer for each kind of malformed file. */
+#include "gltf_write.h"
+#include "sr_test.h"
+#include "wbuf.h"
+
+#include "softrast.h"
+#include "softrast_io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A document whose buffer 0 holds bin (a data URI); `body` is the rest of
+ * the top-level object, starting with a comma.  malloc'd. */
+static char *doc(const void *bin, size_t n, const char *body)
+{
+    char *b64 = malloc(4 * (n / 3 + 1) + 1);
+    size_t cap = 4 * (n / 3 + 1) + strlen(body) + 200;
+    char *json = malloc(cap);
+    gltf_base64(bin, n, b64);
+    snprintf(json, cap,
+             "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu,"
+             "\"uri\":\"data:application/octet-stream;base64,%s\"}]%s}",
+             n, b64, body);
+    free(b64);
+    return json;
+}
+
+typedef struct warnings {
+    int count;
+    char last[600];
+} warnings;
+
+static void on_warn(void *user, const char *message)
+{
+    warnings *w = user;
+    w->count++;
+    snprintf(w->last, sizeof w->last, "%s", message);
+}
+
+static sr_result parse(const char *json, warnings *w, sr_scene **s, sr_io_error *e)
+{
+    sr_load_desc desc = { .warn = on_warn, .user = w };
+    return sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), &desc, s,
+                         e);
+}
+
+/* bin and body as a document, parsed; NULL (a failed check) when it
+ * does not parse. */
+static sr_scene *load_doc(const void *bin, size_t n, const char *body, warnings *w)
+{
+    char *json = doc(bin, n, body);
+    sr_io_error e;
+    sr_scene *s = NULL;
+    if (parse(json, w, &s, &e) != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "%s", e.message);
+    }
+    free(json);
+    return s;
+}
+
+static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+static const char tri_mesh[] =
+    ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}],"
+    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]";
+
+SR_TEST(node_hierarchy_composes_transforms_and_flags_mirroring)
+{
+    char body[2048];
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"translation\":[1,0,0],\"children\":[1]},"
+             "{\"scale\":[-1,1,1],\"mesh\":0},"
+             "{\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,2,0,1],\"children\":[3]},"
+             "{\"rotation\":[0,0,0.70710678,0.70710678],\"mesh\":0}],"
+             "\"scenes\":[{\"nodes\":[0,2]}],\"scene\":0",
+             tri_mesh);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->primitive_count == 2);
+    const sr_scene_primitive *a = &s->primitives[0], *b = &s->primitives[1];
+    CHECK_EQ(a->node, 1);
+    CHECK(a->mirrored);
+    CHECK_NEAR(a->world[0], -1, 1e-6);
+    CHECK_NEAR(a->world[12], 1, 1e-6);
+    CHECK_EQ(b->node, 3);
+    CHECK(!b->mirrored);
+    /* T(0, 2, 0) Rz(90 degrees): x goes to y. */
+    CHECK_NEAR(b->world[0], 0, 1e-6);
+    CHECK_NEAR(b->world[1], 1, 1e-6);
+    CHECK_NEAR(b->world[4], -1, 1e-6);
+    CHECK_NEAR(b->world[13], 2, 1e-6);
+    CHECK(a->positions == b->positions);   /* one mesh, two instances */
+    CHECK_EQ(a->triangle_count, 1);
+    CHECK_EQ(a->indices[0], 0);
+    CHECK_EQ(a->indices[2], 2);
+    CHECK_EQ(a->normals, NULL);
+    /* Bounds: (0..1, 0..1) from node 1, (-1..0, 2..3) from node 3. */
+    CHECK_NEAR(s->bounds_min.x, -1, 1e-6);
+    CHECK_NEAR(s->bounds_min.y, 0, 1e-6);
+    CHECK_NEAR(s->bounds_max.x, 1, 1e-6);
+    CHECK_NEAR(s->bounds_max.y, 3, 1e-6);
+    CHECK_EQ(s->material_count, 1);            /* the default one */
+    CHECK_EQ(a->material, 0);
+    CHECK_EQ(s->materials[0].metallic, 1.0f);
+    CHECK_EQ(w.count, 0);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+SR_TEST(the_scene_property_picks_the_scene_drawn)
+{
+    char body[1024];
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0},{\"mesh\":0,\"translation\":[0,0,7]}],"
+             "\"scenes\":[{\"nodes\":[0]},{\"nodes\":[1]}],\"scene\":1",
+             tri_mesh);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->primitive_count == 1);
+    CHECK_EQ(s->primitives[0].node, 1);
+    CHECK_NEAR(s->bounds_min.z, 7, 0);
+    sr_destroy_scene(sr_test_ctx(), s);
+    /* No scenes: every root node; whole reals taken as integers. */
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0.0,\"children\":[1]},{\"mesh\":0},{\"mesh\":0}]",
+             tri_mesh);
+    s = load_doc(tri, sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->primitive_count == 3);
+    CHECK_EQ(s->primitives[0].node, 0);
+    CHECK_EQ(s->primitives[1].node, 1);
+    CHECK_EQ(s->primitives[2].node, 2);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+SR_TEST(quantized_and_normalized_attributes_are_decoded)
+{
+    uint8_t bin[72] = {0};
+    int16_t pos[12] = { 32767, 0, 0, 0, 0, -32767, 0, 0, 0, 0, -32768, 0 };  /* stride 8 */
+    int8_t nrm[12] = { 127, 0, 0, 0, 0, -127, 0, 0, 0, 0, -128, 0 };        /* stride 4 */
+    uint8_t uv0[12] = { 255, 0, 0, 0, 0, 255, 0, 0, 51, 102, 0, 0 };
+    uint8_t col[12] = { 255, 0, 0, 0, 0, 255, 0, 0, 0, 0, 255, 0 };
+    int16_t uv1[6] = { 2, 0, 0, 3, 1, 1 };
+    memcpy(bin, pos, 24);
+    memcpy(bin + 24, nrm, 12);
+    memcpy(bin + 36, uv0, 12);
+    memcpy(bin + 48, col, 12);
+    memcpy(bin + 60, uv1, 12);
+    const char *body =
+        ",\"extensionsUsed\":[\"KHR_mesh_quantization\"],"
+        "\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":24,\"byteStride\":8},"
+        "{\"buffer\":0,\"byteOffset\":24,\"byteLength\":36,\"byteStride\":4},"
+        "{\"buffer\":0,\"byteOffset\":60,\"byteLength\":12,\"byteStride\":4}],"
+        "\"accessors\":["
+        "{\"bufferView\":0,\"componentType\":5122,\"normalized\":true,\"count\":3,"
+        "\"type\":\"VEC3\"},"
+        "{\"bufferView\":1,\"componentType\":5120,\"normalized\":true,\"count\":3,"
+        "\"type\":\"VEC3\"},"
+        "{\"bufferView\":1,\"byteOffset\":12,\"componentType\":5121,\"normalized\":true,"
+        "\"count\":3,\"type\":\"VEC2\"},"
+        "{\"bufferView\":1,\"byteOffset\":24,\"componentType\":5121,\"normalized\":true,"
+        "\"count\":3,\"type\":\"VEC3\"},"
+        "{\"bufferView\":2,\"componentType\":5122,\"count\":3,\"type\":\"VEC2\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,"
+        "\"TEXCOORD_0\":2,\"COLOR_0\":3,\"TEXCOORD_1\":4}}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+    warnings w = {0};
+    sr_scene *s = load_doc(bin, sizeof bin, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->primitive_count == 1);
+    const sr_scene_primitive *p = &s->primitives[0];
+    static const float want_pos[9] = { 1, 0, 0, 0, -1, 0, 0, 0, -1 };   /* -32768 clamps */
+    for (int i = 0; i < 9; i++) {
+        CHECK_NEAR(p->positions[i], want_pos[i], 1e-6);
+        CHECK_NEAR(p->normals[i], want_pos[i], 1e-6);
+    }
+    /* v flipped to sr_make_texture's convention. */
+    static const float want_uv0[6] = { 1, 1, 0, 0, 0.2f, 0.6f };
+    static const float want_uv1[6] = { 2, 1, 0, -2, 1, 0 };
+    for (int i = 0; i < 6; i++) {
+        CHECK_NEAR(p->texcoords0[i], want_uv0[i], 1e-6);
+        CHECK_NEAR(p->texcoords1[i], want_uv1[i], 1e-6);
+    }
+    static const float want_col[12] = { 1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1 };
+    for (int i = 0; i < 12; i++) {
+        CHECK_NEAR(p->colors[i], want_col[i], 1e-6);
+    }
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+SR_TEST(sparse_accessors_replace_elements_with_or_without_a_buffer_view)
+{
+    uint8_t bin[64] = {0};
+    memcpy(bin, tri, 36);
+    bin[36] = 2;                                     /* sparse index, UNSIGNED_BYTE */
+    const float v[3] = { 5, 6, 7 };
+    memcpy(bin + 40, v, 12);
+    const uint16_t uv_index = 1;
+    memcpy(bin + 52, &uv_index, 2);
+    const float uv[2] = { 0.5f, 0.25f };
+    memcpy(bin + 56, uv, 8);
+    const char *body =
+        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},"
+        "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":1},"
+        "{\"buffer\":0,\"byteOffset\":40,\"byteLength\":12},"
+        "{\"buffer\":0,\"byteOffset\":52,\"byteLength\":2},"
+        "{\"buffer\":0,\"byteOffset\":56,\"byteLength\":8}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+        "\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,\"componentType\":5121},"
+        "\"values\":{\"bufferView\":2}}},"
+        "{\"componentType\":5126,\"count\":3,\"type\":\"VEC2\","
+        "\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":3,\"componentType\":5123},"
+        "\"values\":{\"bufferView\":4}}}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1}}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+    warnings w = {0};
+    sr_scene *s = load_doc(bin, sizeof bin, body, &w);
+    REQUIRE(s);
+    const sr_scene_primitive *p = &s->primitives[0];
+    static const float want[9] = { 0, 0, 0, 1, 0, 0, 5, 6, 7 };
+    for (int i = 0; i < 9; i++) {
+        CHECK_EQ(p->positions[i], want[i]);
+    }
+    static const float want_uv[6] = { 0, 1, 0.5f, 0.75f, 0, 1 };   /* v flipped */
+    for (int i = 0; i < 6; i++) {
+        CHECK_EQ(p->texcoords0[i], want_uv[i]);
+    }
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+SR_TEST(strips_and_fans_become_triangles_and_points_are_skipped)
+{
+    const float quad[12] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };
+    const char *body =
+        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":48}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"mode\":5},"
+        "{\"attributes\":{\"POSITION\":0},\"mode\":6},"
+        "{\"attributes\":{\"POSITION\":0},\"mode\":0}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+    warnings w = {0};
+    sr_scene *s = load_doc(quad, sizeof quad, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->primitive_count == 2);
+    static const uint32_t strip[6] = { 0, 1, 2, 1, 3, 2 }, fan[6] = { 1, 2, 0, 2, 3, 0 };
+    CHECK_EQ(s->primitives[0].triangle_count, 2);
+    CHECK_EQ(s->primitives[1].triangle_count, 2);
+    for (int i = 0; i < 6; i++) {
+        CHECK_EQ(s->primitives[0].indices[i], strip[i]);
+        CHECK_EQ(s->primitives[1].indices[i], fan[i]);
+    }
+    CHECK_EQ(w.count, 1);
+    CHECK_EQ(s->warning_count, 1);
+    CHECK_STR_CONTAINS(w.last, "t.gltf: warning: /meshes/0/primitives/2/mode: points and lines");
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* A 2x2 PNG in memory. */
+static bool collect(void *user, const void *data, size_t size)
+{
+    wb_put(user, data, size);
+    return true;
+}
+
+static wbuf small_png(void)
+{
+    static const uint8_t rgba[16] = { 255, 0, 0, 255, 0, 255, 0, 255,
+                                      0, 0, 255, 255, 255, 255, 255, 255 };
+    wbuf b = {0};
+    sr_io_error e;
+    sr_encode_png(collect, &b, 2, 2, rgba, 8, NULL, &e);
+    return b;
+}
+
+SR_TEST(texture_transform_sampler_and_uv_set_reach_the_slot)
+{
+    wbuf png = small_png();
+    REQUIRE(png.n > 0);
+    char *b64 = malloc(4 * (png.n / 3 + 1) + 1);
+    gltf_base64(png.p, png.n, b64);
+    char *body = malloc(strlen(b64) + 4096);
+    sprintf(body,
+            "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+            "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+            "\"samplers\":[{\"magFilter\":9728,\"minFilter\":9728,\"wrapS\":33071,"
+            "\"wrapT\":33648}],"
+            "\"textures\":[{\"source\":0,\"sampler\":0},{\"source\":0}],"
+            "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0,"
+            "\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.5,0.25],"
+            "\"rotation\":0.5,\"scale\":[2,3],\"texCoord\":1}}},"
+            "\"metallicRoughnessTexture\":{\"index\":1}},"
+            "\"emissiveTexture\":{\"index\":1}}]",
+            tri_mesh, b64);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->material_count == 2);
+    const sr_pbr_material *m = &s->materials[0];
+    const sr_texture_slot *t = &m->base_color_texture;
+    REQUIRE(t->texture != NULL);
+    CHECK_EQ(t->texcoord, 1);                    /* the extension's texCoord wins */
+    CHECK_EQ(t->filter, SR_FILTER_NEAREST);
+    CHECK_EQ(t->wrap_u, SR_WRAP_CLAMP);
+    CHECK_EQ(t->wrap_v, SR_WRAP_MIRROR);
+    CHECK_NEAR(t->rotation, 0.5, 1e-6);
+    CHECK_NEAR(t->scale[0], 2, 0);
+    CHECK_NEAR(t->scale[1], 3, 0);
+    /* The slot's transform in flipped space agrees with glTF's in its
+     * own: for a few uv, flip(T R S (uv)) == T' R' S' (flip(uv)), with
+     * glTF's R = [c s; -s c] and the slot's counter-clockwise [c -s; s c]. */
+    const float uvs[3][2] = { { 0, 0 }, { 1, 0.25f }, { 0.3f, 0.9f } };
+    for (int i = 0; i < 3; i++) {
+        float su = 2 * uvs[i][0], sv = 3 * uvs[i][1], c = cosf(0.5f), sn = sinf(0.5f);
+        float gu = c * su + sn * sv + 0.5f, gv = -sn * su + c * sv + 0.25f;
+        float fu = t->scale[0] * uvs[i][0], fv = t->scale[1] * (1 - uvs[i][1]);
+        float ou = c * fu - sn * fv + t->offset[0], ov = sn * fu + c * fv + t->offset[1];
+        CHECK_NEAR(ou, gu, 1e-5);
+        CHECK_NEAR(ov, 1 - gv, 1e-5);
+    }
+    /* Samplerless texture: defaults; the image as sRGB (base color,
+     * emissive: one texture) and linear (metallic-roughness). */
+    CHECK_EQ(m->emissive_texture.texture, t->texture);
+    CHECK(m->metallic_roughness_texture.texture != t->texture);
+    CHECK_EQ(m->metallic_roughness_texture.filter, SR_FILTER_DEFAULT);
+    CHECK_EQ(m->emissive_texture.scale[0], 1.0f);
+    CHECK_EQ(m->emissive_texture.offset[1], 0.0f);   /* identity stays identity */
+    CHECK_EQ(s->texture_count, 2);
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(body);
+    free(b64);
+    free(png.p);
+}
+
+SR_TEST(material_factors_and_extensions_are_read)
+{
+    char body[2048];
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0},{\"mesh\":1}],\"scenes\":[{\"nodes\":[0,1]}],"
+             "\"extensionsUsed\":[\"KHR_materials_unlit\",\"EXT_whatever\"],"
+             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.2,0.3,0.4],"
+             "\"metallicFactor\":0.25,\"roughnessFactor\":0.75},"
+             "\"emissiveFactor\":[1,0.5,0],\"alphaMode\":\"MASK\",\"alphaCutoff\":0.3,"
+             "\"doubleSided\":true,\"extensions\":{\"KHR_materials_emissive_strength\":"
+             "{\"emissiveStrength\":4},\"KHR_materials_unlit\":{},\"EXT_whatever\":{}}},"
+             "{\"alphaMode\":\"BLEND\"},{\"alphaMode\":\"MASK\",\"alphaCutoff\":0,"
+             "\"emissiveFactor\":[1,1,1],\"extensions\":{\"KHR_materials_emissive_strength\":"
+             "{\"emissiveStrength\":0}}}]",
+             "");
+    /* Two meshes: one with material 0, one with none. */
+    char full[4096];
+    snprintf(full, sizeof full,
+             ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+             "\"type\":\"VEC3\"}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]},"
+             "{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]%s",
+             body);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri, sizeof tri, full, &w);
+    REQUIRE(s);
+    REQUIRE(s->material_count == 4);
+    REQUIRE(s->primitive_count == 2);
+    const sr_pbr_material *m = &s->materials[s->primitives[0].material];
+    CHECK_NEAR(m->base_color[2], 0.3, 1e-6);
+    CHECK_NEAR(m->base_color[3], 0.4, 1e-6);
+    CHECK_NEAR(m->metallic, 0.25, 0);
+    CHECK_NEAR(m->roughness, 0.75, 0);
+    CHECK_NEAR(m->emissive[1], 0.5, 0);
+    CHECK_NEAR(m->emissive_strength, 4, 0);
+    CHECK_EQ(m->alpha_mode, SR_ALPHA_MASK);
+    CHECK_NEAR(m->alpha_cutoff, 0.3, 1e-6);
+    CHECK(m->double_sided);
+    CHECK(m->unlit);
+    CHECK_EQ(s->materials[1].alpha_mode, SR_ALPHA_BLEND);
+    CHECK(!s->materials[1].unlit);
+    /* sr_pbr_material's zeros are defaults: a cutoff of 0 keeps every
+     * fragment (opaque), a strength of 0 is no emission. */
+    CHECK_EQ(s->materials[2].alpha_mode, SR_ALPHA_OPAQUE);
+    CHECK_EQ(s->materials[2].emissive[0], 0.0f);
+    /* No material: glTF's default, white, metallic and rough. */
+    CHECK_EQ(s->primitives[1].material, 3);
+    const sr_pbr_material *d = &s->materials[3];
+    CHECK_EQ(d->base_color[0], 1.0f);
+    CHECK_EQ(d->metallic, 1.0f);
+    CHECK_EQ(d->roughness, 1.0f);
+    CHECK_EQ(d->alpha_mode, SR_ALPHA_OPAQUE);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+SR_TEST(cameras_come_with_their_world_transforms_in_node_order)
+{
+    char body[2048];
+    snprintf(body, sizeof body,
+             "%s,\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,"
+             "\"znear\":0.1,\"aspectRatio\":1.5}},"
+             "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":2,\"ymag\":1,\"znear\":0,"
+             "\"zfar\":50}}],"
+             "\"nodes\":[{\"mesh\":0,\"children\":[1,2]},{\"camera\":1,\"translation\":[0,0,5]},"
+             "{\"camera\":0,\"translation\":[3,0,0]}],\"scenes\":[{\"nodes\":[0]}]",
+             tri_mesh);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->camera_count == 2);
+    const sr_scene_camera *o = &s->cameras[0], *p = &s->cameras[1];
+    CHECK_EQ(o->type, SR_SCENE_CAMERA_ORTHOGRAPHIC);
+    CHECK_EQ(o->camera, 1);
+    CHECK_EQ(o->node, 1);
+    CHECK_NEAR(o->xmag, 2, 0);
+    CHECK_NEAR(o->ymag, 1, 0);
+    CHECK_NEAR(o->zfar, 50, 0);
+    CHECK_NEAR(o->world[14], 5, 0);
+    CHECK_EQ(p->type, SR_SCENE_CAMERA_PERSPECTIVE);
+    CHECK_NEAR(p->yfov, 0.8, 1e-6);
+    CHECK_NEAR(p->aspect, 1.5, 0);
+    CHECK_NEAR(p->znear, 0.1, 1e-6);
+    CHECK_EQ(p->zfar, 0.0f);                  /* infinite */
+    CHECK_NEAR(p->world[12], 3, 0);
+    /* Matrices for a 2:1 viewport: the perspective camera at (3, 0, 0)
+     * looking down -Z; infinite far plane, vertical field kept. */
+    sr_mat4 v, pr;
+    REQUIRE(sr_scene_camera_matrices(p, 2.0f, &v, &pr) == SR_OK);
+    sr_vec4 e = sr_mat4_mul_vec4(&v, (sr_vec4){ 3, 0, -10, 1 });
+    CHECK_NEAR(e.x, 0, 1e-6);
+    CHECK_NEAR(e.z, -10, 1e-6);
+    sr_vec4 c = sr_mat4_mul_vec4(&pr, (sr_vec4){ 0, tanf(0.4f), -1, 1 });
+    CHECK_NEAR(c.y / c.w, 1, 1e-5);                 /* the top of the field */
+    CHECK_NEAR(c.w, 1, 0);
+    c = sr_mat4_mul_vec4(&pr, (sr_vec4){ 0, 0, -0.1f, 1 });
+    CHECK_NEAR(c.z / c.w, -1, 1e-5);                /* znear at -1 */
+    c = sr_mat4_mul_vec4(&pr, (sr_vec4){ 2 * tanf(0.4f), 0, -1, 1 });
+    CHECK_NEAR(c.x / c.w, 1, 1e-5);                 /* the viewport's aspect */
+    /* The orthographic one 5 units up Z: its box is 2 ymag high. */
+    REQUIRE(sr_scene_camera_matrices(o, 1.0f, &v, &pr) == SR_OK);
+    c = sr_mat4_mul_vec4(&pr, sr_mat4_mul_vec4(&v, (sr_vec4){ 1, 1, 0, 1 }));
+    CHECK_NEAR(c.x, 1, 1e-6);
+    CHECK_NEAR(c.y, 1, 1e-6);
+    CHECK_EQ(sr_scene_camera_matrices(o, 0.0f, &v, &pr), SR_INVALID_ARG);
+    CHECK_EQ(sr_scene_camera_matrices(NULL, 1.0f, &v, &pr), SR_INVALID_ARG);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+static void write_file(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    REQUIRE(f);
+    fwrite(data, 1, n, f);
+    fclose(f);
+}
+
+typedef struct reads {
+    int count;
+    char paths[4][512];
+} reads;
+
+static void on_read(void *user, const char *path)
+{
+    reads *r = user;
+    if (r->count < 4) {
+        snprintf(r->paths[r->count], sizeof r->paths[0], "%s", path);
+    }
+    r->count++;
+}
+
+SR_TEST(external_buffers_and_images_are_read_beside_the_file)
+{
+    char dir[512], path[600];
+    snprintf(dir, sizeof dir, "%s", sr_test_out_dir());
+    snprintf(path, sizeof path, "%s/gltf ext.bin", dir);
+    write_file(path, tri, sizeof tri);
+    wbuf png = small_png();
+    snprintf(path, sizeof path, "%s/gltf tex.png", dir);
+    write_file(path, png.p, png.n);
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},"
+             "\"buffers\":[{\"byteLength\":36,\"uri\":\"gltf%%20ext.bin\"}]%s,"
+             "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+             "\"images\":[{\"uri\":\"gltf%%20tex.png\"}],\"textures\":[{\"source\":0}],"
+             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}]}",
+             tri_mesh);
+    snprintf(path, sizeof path, "%s/gltf_ext.gltf", dir);
+    write_file(path, json, strlen(json));
+    reads r = {0};
+    sr_scene *s;
+    sr_io_error e;
+    sr_load_desc desc = { .file_read = on_read, .user = &r };
+    REQUIRE(sr_load_scene(sr_test_ctx(), path, &desc, &s, &e) == SR_OK);
+    CHECK_EQ(s->primitive_count, 1);
+    CHECK_EQ(s->primitives[0].positions[3], 1.0f);
+    CHECK(s->materials[0].base_color_texture.texture != NULL);
+    CHECK_EQ(r.count, 2);
+    /* Materials are read first, so the image comes before the buffer. */
+    CHECK_STR_CONTAINS(r.paths[0], "/gltf tex.png");
+    CHECK_STR_CONTAINS(r.paths[1], "/gltf ext.bin");
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(png.p);
+}
+
+/* A GLB of json and bin, padded as the format asks. */
+static wbuf glb(const char *json, const void *bin, size_t n)
+{
+    wbuf b = {0};
+    size_t jn = (strlen(json) + 3) & ~(size_t)3, bn = (n + 3) & ~(size_t)3;
+    uint32_t head[3] = { 0x46546C67u, 2, (uint32_t)(12 + 8 + jn + (n ? 8 + bn : 0)) };
+    uint32_t jc[2] = { (uint32_t)jn, 0x4E4F534Au }, bc[2] = { (uint32_t)bn, 0x004E4942u };
+    wb_put(&b, head, 12);
+    wb_put(&b, jc, 8);
+    wb_put(&b, json, strlen(json));
+    wb_put(&b, "   ", jn - strlen(json));
+    if (n) {
+        wb_put(&b, bc, 8);
+        wb_put(&b, bin, n);
+        wb_put(&b, "\0\0\0", bn - n);
+    }
+    return b;
+}
+
+SR_TEST(glb_reads_its_bin_chunk_and_images_from_buffer_views)
+{
+    wbuf png = small_png();
+    uint8_t bin[512];
+    REQUIRE(png.n + 36 <= sizeof bin);
+    memcpy(bin, tri, 36);
+    memcpy(bin + 36, png.p, png.n);
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},"
+             "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":%zu}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+             "\"type\":\"VEC3\"}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]}],"
+             "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+             "\"images\":[{\"bufferView\":1,\"mimeType\":\"image/png\"}],"
+             "\"textures\":[{\"source\":0}],"
+             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}]}",
+             36 + png.n, png.n);
+    wbuf g = glb(json, bin, 36 + png.n);
+    char path[600];
+    snprintf(path, sizeof path, "%s/gltf_bin.glb", sr_test_out_dir());
+    write_file(path, g.p, g.n);
+    sr_scene *s;
+    sr_io_error e;
+    REQUIRE(sr_load_scene(sr_test_ctx(), path, NULL, &s, &e) == SR_OK);
+    CHECK_EQ(s->primitive_count, 1);
+    CHECK_EQ(s->primitives[0].positions[7], 1.0f);
+    CHECK(s->materials[0].base_color_texture.texture != NULL);
+    sr_destroy_scene(sr_test_ctx(), s);
+    /* The same bytes in memory, and cut short. */
+    REQUIRE(sr_parse_gltf(sr_test_ctx(), "m.glb", g.p, g.n, NULL, &s, &e) == SR_OK);
+    sr_destroy_scene(sr_test_ctx(), s);
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "m.glb", g.p, g.n - 4, NULL, &s, &e), SR_BAD_FORMAT);
+    CHECK_EQ(s, NULL);
+    CHECK_STR_CONTAINS(e.message, "m.glb: byte 8: GLB length");
+    free(g.p);
+    free(png.p);
+}
+
+SR_TEST(other_formats_become_one_primitive_with_a_dielectric)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/gltf_scene.obj", sr_test_out_dir());
+    const char obj[] = "v 0 0 0\nv 2 0 0\nv 0 3 0\nf 1 2 3\n";
+    write_file(path, obj, strlen(obj));
+    sr_scene *s;
+    sr_io_error e;
+    REQUIRE(sr_load_scene(sr_test_ctx(), path, NULL, &s, &e) == SR_OK);
+    REQUIRE(s->primitive_count == 1);
+    REQUIRE(s->material_count == 1);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK_NEAR(m->base_color[0], 0.8, 1e-6);
+    CHECK_EQ(m->metallic, 0.0f);
+    CHECK_EQ(m->roughness, 0.5f);
+    CHECK_EQ(m->base_color_texture.texture, NULL);
+    CHECK_EQ(s->primitives[0].node, -1);
+    CHECK_EQ(s->primitives[0].world[15], 1.0f);
+    CHECK(!s->primitives[0].mirrored);
+    CHECK_NEAR(s->bounds_max.y, 3, 0);
+    CHECK_EQ(s->primitives[0].colors, NULL);
+    sr_destroy_scene(sr_test_ctx(), s);
+    /* Vertex colors (here OBJ's extension; an MTL's Kd comes the same way)
+     * are the base color: the factor is white. */
+    const char colored[] = "v 0 0 0 1 0 0\nv 2 0 0 1 0 0\nv 0 3 0 1 0 0\nf 1 2 3\n";
+    write_file(path, colored, strlen(colored));
+    REQUIRE(sr_load_scene(sr_test_ctx(), path, NULL, &s, &e) == SR_OK);
+    REQUIRE(s->primitives[0].colors != NULL);
+    CHECK_EQ(s->primitives[0].colors[0], 1.0f);
+    CHECK_EQ(s->materials[0].base_color[1], 1.0f);
+    CHECK_EQ(s->materials[0].roughness, 0.5f);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* ---- malformed files: one message with the JSON pointer ------------------ */
+
+typedef struct bad_case {
+    const char *body;        /* after the buffer; the triangle's 36 bytes in buffer 0 */
+    sr_result result;
+    const char *message;     /* the whole message starts so */
+} bad_case;
+
+#define MESH_OF(acc) \
+    ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" acc "}}]}]"
+#define NODES ",\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]"
+#define VIEW0 ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}]"
+#define ACC(extra) \
+    ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\"," extra "}]"
+
+static const bad_case bad_cases[] = {
+    { VIEW0 ACC("\"count\":4") MESH_OF("0") NODES, SR_BAD_FORMAT,
+      "bad.gltf: /accessors/0/count: 4 elements of 12 bytes, 12 apart, from byte 0 run past "
+      "the 36 bytes of bufferView 0" },
+    { ",\"bufferViews\":[{\"buffer\":0,\"byteOffset\":8,\"byteLength\":36}]"
+      ACC("\"count\":3") MESH_OF("0") NODES, SR_BAD_FORMAT,
+      "bad.gltf: /bufferViews/0/byteLength: bytes 8..44 run past the 36 bytes of buffer 0" },
+    { ",\"nodes\":[{\"children\":[1]},{\"children\":[0]}]", SR_BAD_FORMAT,
+      "bad.gltf: /nodes/1/children: node 0 is its own ancestor (a cycle)" },
+    { ",\"nodes\":[{\"children\":[2]},{\"children\":[2]},{}]", SR_BAD_FORMAT,
+      "bad.gltf: /nodes/1/children/0: node 2 already has a parent (node 0)" },
+    { ",\"nodes\":[{\"children\":[1]},{}],\"scenes\":[{\"nodes\":[0,1]}]", SR_BAD_FORMAT,
+      "bad.gltf: /scenes/0/nodes/1: node 1 is not a root (node 0's child)" },
+    { ",\"accessors\":[{\"componentType\":5126,\"type\":\"VEC3\",\"count\":100000000}]"
+      MESH_OF("0") NODES, SR_TOO_LARGE,
+      "bad.gltf: /accessors/0/count: 100000000 elements of 3 components are more than" },
+    { VIEW0 ACC("\"count\":3") ",\"meshes\":[{\"primitives\":[{\"attributes\":"
+      "{\"POSITION\":0},\"indices\":1}]}],\"accessors\":[]" NODES, SR_BAD_FORMAT,
+      "bad.gltf:1: invalid JSON: duplicate object key" },
+    { VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\","
+      "\"count\":3},{\"bufferView\":0,\"byteOffset\":12,\"componentType\":5121,"
+      "\"type\":\"SCALAR\",\"count\":3}]"
+      ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}]" NODES,
+      SR_BAD_FORMAT,
+      "bad.gltf: /meshes/0/primitives/0/indices: element 2 is 128, past the 3 vertices" },
+    { VIEW0 ACC("\"count\":3") MESH_OF("5") NODES, SR_BAD_FORMAT,
+      "bad.gltf: /meshes/0/primitives/0/attributes/POSITION: accessor 5 does not exist "
+      "(1 accessors)" },
+    { VIEW0 ACC("\"count\":3")
+      ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":3}]}]" NODES,
+      SR_BAD_FORMAT, "bad.gltf: /meshes/0/primitives/0/material: 3 is not an index below 0" },
+    { VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\","
+      "\"count\":3},{\"bufferView\":0,\"componentType\":5121,\"normalized\":true,"
+      "\"type\":\"MAT2\",\"count\":3}],\"meshes\":[{\"primitives\":[{\"attributes\":"
+      "{\"POSITION\":0,\"TANGENT\":1}}]}]" NODES, SR_BAD_FORMAT,
+      "bad.gltf: /meshes/0/primitives/0/attributes/TANGENT: accessor 1 holds matrices, not "
+      "vectors" },
+    { VIEW0 ACC("\"count\":3") ",\"meshes\":[{\"primitives\":[{\"attributes\":"
+      "{\"POSITION\":0,\"TEXCOORD_0\":0}}]}]" NODES, SR_BAD_FORMAT,
+      "bad.gltf: /meshes/0/primitives/0/attributes/TEXCOORD_0: accessor 0 has 3 components per "
+      "element, not what this attribute takes" },
+    { ",\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]", SR_UNSUPPORTED,
+      "bad.gltf: /extensionsRequired/0: extension KHR_draco_mesh_compression is not "
+      "supported" },
+    { VIEW0 ACC("\"count\":3") MESH_OF("0") NODES
+      ",\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"no_such_image.png\"}],"
+      "\"materials\":[{\"emissiveTexture\":{\"index\":0}}]", SR_IO_ERROR,
+      "bad.gltf: /images/0/uri: no_such_image.png: cannot open" },
+    { VIEW0 ACC("\"count\":3,\"byteOffset\":2") MESH_OF("0") NODES, SR_BAD_FORMAT,
+      "bad.gltf: /accessors/0/byteOffset: 2 is not a multiple of the component size 4" },
+    { VIEW0 ACC("\"count\":3") MESH_OF("0")
+      ",\"nodes\":[{\"mesh\":0,\"scale\":[1,1]}],\"scenes\":[{\"nodes\":[0]}]", SR_BAD_FORMAT,
+      "bad.gltf: /nodes/0/scale: not an array of 3 numbers" },
+    { ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5}}],"
+      "\"nodes\":[{\"camera\":0}]", SR_BAD_FORMAT,
+      "bad.gltf: /cameras/0/perspective/znear: missing or out of range" },
+};
+
+SR_TEST(malformed_files_give_one_message_with_the_json_pointer)
+{
+    for (size_t i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
+        char *json = doc(tri, sizeof tri, bad_cases[i].body);
+        sr_scene *s = (sr_scene *)json;  /* must come back NULL */
+        sr_io_error e;
+        sr_result r = sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)json,
+                                    strlen(json), NULL, &s, &e);
+        if (r != bad_cases[i].result || s != NULL ||
+            strncmp(e.message, bad_cases[i].message, strlen(bad_cases[i].message)) != 0 ||
+            strchr(e.message, '\n')) {
+            sr_test_fail(__FILE__, __LINE__, "case %zu: %s (%s), want %s (%s)", i,
+                         sr_result_name(r), e.message, sr_result_name(bad_cases[i].result),
+                         bad_cases[i].message);
+        }
+        free(json);
+    }
+}
+
+SR_TEST(missing_buffers_and_bad_documents_are_reported)
+{
+    sr_scene *s;
+    sr_io_error e;
+    const char *missing = "{\"asset\":{\"version\":\"2.0\"},"
+                          "\"buffers\":[{\"byteLength\":36,\"uri\":\"no_such.bin\"}]" VIEW0
+                          ACC("\"count\":3") MESH_OF("0") NODES "}";
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)missing, strlen(missing),
+                           NULL, &s, &e),
+             SR_IO_ERROR);
+    CHECK_STR_CONTAINS(e.message, "bad.gltf: /buffers/0/uri: no_such.bin: cannot open");
+    const char *absolute = "{\"asset\":{\"version\":\"2.0\"},"
+                           "\"buffers\":[{\"byteLength\":36,\"uri\":\"/etc/passwd\"}]" VIEW0
+                           ACC("\"count\":3") MESH_OF("0") NODES "}";
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)absolute,
+                           strlen(absolute), NULL, &s, &e),
+             SR_UNSUPPORTED);
+    CHECK_STR_CONTAINS(e.message, "bad.gltf: /buffers/0/uri: only relative file names");
+    const char *broken = "{\"asset\":{\"version\":\"2.0\"},\n\"nodes\":[}";
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)broken, strlen(broken),
+                           NULL, &s, &e),
+             SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "bad.gltf:2: invalid JSON");
+    const char *v1 = "{\"asset\":{\"version\":\"1.0\"}}";
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)v1, strlen(v1), NULL, &s,
+                           &e),
+             SR_UNSUPPORTED);
+    CHECK_STR_CONTAINS(e.message, "bad.gltf: /asset/version: \"1.0\" is not glTF 2.x");
+    CHECK_EQ(sr_parse_gltf(NULL, "x", (const uint8_t *)v1, 3, NULL, &s, &e), SR_INVALID_ARG);
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "x", (const uint8_t *)v1, 3, NULL, NULL, &e),
+             SR_INVALID_ARG);
+    CHECK_EQ(sr_load_scene(sr_test_ctx(), NULL, NULL, &s, &e), SR_INVALID_ARG);
+    sr_destroy_scene(sr_test_ctx(), NULL);
+}
+
+SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
+{
+    /* 131070 zero vertices (no bufferView: cheap to store), drawn by 1025
+     * nodes: 134 346 750 vertices, past 2^27. */
+    size_t cap = 1025 * 16 + 1024;
+    char *body = malloc(cap);
+    size_t at = (size_t)snprintf(body, cap,
+                                 ",\"accessors\":[{\"componentType\":5126,\"type\":\"VEC3\","
+                                 "\"count\":131070}]" MESH_OF("0") ",\"nodes\":[");
+    for (int i = 0; i < 1025; i++) {
+        at += (size_t)snprintf(body + at, cap - at, "%s{\"mesh\":0}", i ? "," : "");
+    }
+    snprintf(body + at, cap - at, "]");
+    char *json = doc(tri, sizeof tri, body);
+    sr_scene *s;
+    sr_io_error e;
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "big.gltf", (const uint8_t *)json, strlen(json), NULL,
+                           &s, &e),
+             SR_TOO_LARGE);
+    CHECK_STR_CONTAINS(e.message, "big.gltf: /nodes/1024: more than 134217728 vertices to draw");
+    free(json);
+    free(body);
+}
