@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* "pbr" is the metallic-roughness program; the classic models keep its
@@ -112,6 +113,8 @@ static void render_help(void)
         "                           and 3D printing use; +y for every other format,\n"
         "                           as glTF specifies, and the built-in teapot)\n"
         "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
+        "  --camera-index N         a glTF file's camera N (0 first, in node order) in\n"
+        "                           place of the default camera\n"
         "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
         "pipeline:\n"
         "  --cull MODE              back|front|none (default back)\n"
@@ -278,6 +281,15 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             o->pbr = sh == 0;
         } else if (IS("--tonemap")) {
             CHOICE(tonemap_names, o->tonemap, tonemap_values[k_]);
+        } else if (IS("--camera-index")) {
+            VALUE();
+            char *end = NULL;
+            long n = strtol(value, &end, 10);
+            if (end == value || *end != 0 || n < 0 || n > 1000000) {
+                cli_error("%s: expected a camera number from 0 (got '%s')", arg, value);
+                return EXIT_USAGE;
+            }
+            o->camera_index = (int)n;
         } else if (IS("--environment")) {
             VALUE();
             o->environment = value;
@@ -485,7 +497,7 @@ render_opts render_opts_defaults(void)
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
         .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "none",
-        .environment_intensity = 0.6f,
+        .environment_intensity = 0.6f, .camera_index = -1,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,

@@ -21,6 +21,7 @@ typedef struct render_opts {
     float exposure;                /* pbr's exposure, EV */
     const char *environment;       /* "studio", "none" or an .hdr file */
     float environment_intensity;
+    int camera_index;              /* --camera-index: a glTF camera, or -1 */
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;
