@@ -1107,10 +1107,11 @@ SR_API void sr_destroy_builtin_program(sr_context *ctx, sr_builtin *b);
  * distribution, height-correlated Smith visibility, Schlick Fresnel,
  * Lambert diffuse; normal, occlusion and emissive maps; alpha modes;
  * double-sided and unlit materials; punctual lights, a hemisphere or an
- * environment's image-based light, and a shadow map for the key light.  Shading is in world space and linear
- * light; each fragment's color is scaled by 2^exposure, tone mapped and
- * sRGB-encoded into the RGBA8 target (as three.js draws to a canvas), so
- * blending happens on the encoded values.  Unlit materials skip exposure
+ * environment's image-based light, and a shadow map for the key light.
+ * Shading is in world space and linear light; each fragment's color is
+ * scaled by 2^exposure, tone mapped and sRGB-encoded into the RGBA8 target
+ * (as three.js draws to a canvas), so blending happens on the encoded
+ * values.  Unlit materials skip exposure
  * and the tone curve: their base color is shown as it is, encoded.
  *
  * The draw gives positions, normals (needed), colors (multiplied into the

@@ -113,8 +113,8 @@ static sr_framebuffer *make_fb(int cols, int rows, float gray)
 {
     sr_framebuffer *fb = NULL;
     sr_context *ctx = sr_test_ctx();
-    if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = cols * CELL, .height = rows * CELL },
-                            &fb) != SR_OK) {
+    sr_framebuffer_desc desc = { .width = cols * CELL, .height = rows * CELL };
+    if (sr_make_framebuffer(ctx, &desc, &fb) != SR_OK) {
         return NULL;
     }
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { gray, gray, gray, 1 } });
@@ -127,14 +127,16 @@ static void save(const sr_framebuffer *fb, const char *name)
     snprintf(path, sizeof path, "%s/%s.png", sr_test_out_dir(), name);
     sr_io_error err;
     if (sr_write_png(path, sr_framebuffer_width(fb), sr_framebuffer_height(fb),
-                     sr_framebuffer_pixels(fb), 4 * (size_t)sr_framebuffer_width(fb), NULL, &err) != SR_OK) {
+                     sr_framebuffer_pixels(fb), 4 * (size_t)sr_framebuffer_width(fb), NULL,
+                     &err) != SR_OK) {
         fprintf(stderr, "%s\n", err.message);
     }
 }
 
 static const uint8_t *px(const sr_framebuffer *fb, int x, int y)
 {
-    return sr_framebuffer_pixels(fb) + 4 * ((size_t)y * (size_t)sr_framebuffer_width(fb) + (size_t)x);
+    size_t w = (size_t)sr_framebuffer_width(fb);
+    return sr_framebuffer_pixels(fb) + 4 * ((size_t)y * w + (size_t)x);
 }
 
 /* The brightest pixel of a cell by its green channel, and the largest
@@ -431,8 +433,8 @@ SR_TEST(texture_transform_follows_the_extension)
         img[4 * i + 3] = 255;
     }
     sr_texture *t = NULL;
-    REQUIRE(sr_make_texture(sr_test_ctx(), &(sr_texture_desc){ .width = 4, .height = 4, .pixels = img },
-                            &t) == SR_OK);
+    sr_texture_desc td = { .width = 4, .height = 4, .pixels = img };
+    REQUIRE(sr_make_texture(sr_test_ctx(), &td, &t) == SR_OK);
     sr_framebuffer *fb = make_fb(1, 1, 0.0f);
     REQUIRE(fb);
     sr_mat4 view = test_view(), proj = test_projection();

@@ -286,7 +286,8 @@ static void pbr_vs(const void *uniforms, const sr_vertex_input *in, float clip[4
     for (int r = 0; r < 3; r++) {
         vary[VARY_POS + r] = w[r] * iw;
         vary[VARY_NORMAL + r] =
-            nm[3 * r] * in->normal[0] + nm[3 * r + 1] * in->normal[1] + nm[3 * r + 2] * in->normal[2];
+            nm[3 * r] * in->normal[0] + nm[3 * r + 1] * in->normal[1] +
+            nm[3 * r + 2] * in->normal[2];
     }
     bool inside = in->index < p->vertex_count;
     if (p->vary_uv[0] >= 0) {
@@ -394,8 +395,10 @@ static void tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3]
         float nx = n[0][i], ny = n[1][i], nz = n[2][i];
         /* dp2 x N and N x dp1: with screen y down, dp1 x dp2 points away
          * from the viewer, so the sums are minus the gradients. */
-        float a[3] = { dp2[1] * nz - dp2[2] * ny, dp2[2] * nx - dp2[0] * nz, dp2[0] * ny - dp2[1] * nx };
-        float c[3] = { ny * dp1[2] - nz * dp1[1], nz * dp1[0] - nx * dp1[2], nx * dp1[1] - ny * dp1[0] };
+        float a[3] = { dp2[1] * nz - dp2[2] * ny, dp2[2] * nx - dp2[0] * nz,
+                       dp2[0] * ny - dp2[1] * nx };
+        float c[3] = { ny * dp1[2] - nz * dp1[1], nz * dp1[0] - nx * dp1[2],
+                       nx * dp1[1] - ny * dp1[0] };
         float tt = 0.0f, bb = 0.0f;
         for (int k = 0; k < 3; k++) {
             t[k][i] = -(a[k] * du1 + c[k] * du2);
@@ -838,7 +841,8 @@ static sr_result check_desc(sr_context *ctx, const sr_pbr_desc *d)
                             (int)li->type);
         }
         if (li->type != SR_LIGHT_OFF &&
-            (!finite_n(&li->vector.x, 3) || !finite_n(&li->color.x, 3) || !isfinite(li->intensity))) {
+            (!finite_n(&li->vector.x, 3) || !finite_n(&li->color.x, 3) ||
+             !isfinite(li->intensity))) {
             return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d] is not finite", l);
         }
     }
@@ -864,7 +868,8 @@ static void resolve_lights(const sr_pbr_desc *d, sr_pbr *p)
         p->light_point[k] = li->type == SR_LIGHT_POINT;
         /* A directional light's vector is the way it travels: shading
          * wants the way back to it. */
-        sr_vec3 v = p->light_point[k] ? li->vector : sr_vec3_normalize(sr_vec3_scale(li->vector, -1));
+        sr_vec3 v = p->light_point[k] ? li->vector
+                                       : sr_vec3_normalize(sr_vec3_scale(li->vector, -1));
         p->light_vec[k][0] = v.x;
         p->light_vec[k][1] = v.y;
         p->light_vec[k][2] = v.z;
