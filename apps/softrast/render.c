@@ -43,7 +43,9 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    if (render_gltf_is(o->model)) {
+    if (o->pbr && render_gltf_is(o->model)) {
+        /* The physically based look draws glTF's own materials; the
+         * classic models keep the mesh reader's diffuse color and texture. */
         return render_gltf_load(o->model, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
