@@ -136,9 +136,9 @@ function sky(width, height) {
             const d = [Math.sin(theta) * Math.cos(phi), Math.cos(theta), Math.sin(theta) * Math.sin(phi)];
             const up = d[1];
             let c = up >= 0
-                ? [0.55 + 0.25 * up, 0.6 + 0.3 * up, 0.7 + 0.5 * up]
-                : [0.18 + 0.1 * (1 + up), 0.16 + 0.1 * (1 + up), 0.14 + 0.1 * (1 + up)];
-            const t = box(d, top, 0.35) * 6, k = box(d, key, 0.25) * 12;
+                ? [0.3 + 0.1 * up, 0.33 + 0.15 * up, 0.38 + 0.25 * up]
+                : [0.1 + 0.06 * (1 + up), 0.09 + 0.06 * (1 + up), 0.08 + 0.06 * (1 + up)];
+            const t = box(d, top, 0.35) * 2.5, k = box(d, key, 0.25) * 5;
             c = [c[0] + t + k * 1.0, c[1] + t + k * 0.9, c[2] + t + k * 0.75];
             px.set(rgbe(...c), (y * width + x) * 4);
         }
