@@ -91,6 +91,7 @@ for asset in $assets; do
     json=$(node "$here/compare.mjs" "$out/$name-softrast.png" "$out/$name-three.png" \
         --threshold "$threshold" --background "$background" \
         --diff "$out/$name-diff.png" --sheet "$sheets/$name.png")
+    # shellcheck disable=SC2016 # the single quotes hold JavaScript
     row=$(printf '%s' "$json" | node -e '
         const j = JSON.parse(require("fs").readFileSync(0, "utf8"));
         const [name, link] = process.argv.slice(1);
