@@ -132,6 +132,16 @@
  *     sr_tonemap                 linear float pixels to RGBA8 sRGB: exposure, curve, encode
  *     sr_tonemap_rgb             one colour through a tone curve
  *     sr_srgb_encode8            a display-linear value to its 8-bit sRGB code
+ *   image-based light
+ *     sr_make_environment        an equirectangular or built-in environment, prefiltered
+ *     sr_destroy_environment     frees it
+ *     sr_environment_irradiance  diffuse light for a normal, as E/pi
+ *     sr_environment_irradiance4 the same for 4 normals
+ *     sr_environment_specular    prefiltered radiance for a direction and roughness
+ *     sr_environment_specular4   the same for 4 directions and roughnesses
+ *     sr_environment_background  the environment seen in a direction, sharp or blurred
+ *     sr_brdf_table              the split-sum BRDF scale and bias
+ *     sr_brdf_table4             the same for 4 (N.V, roughness) pairs
  *   programmable stages
  *     sr_make_builtin_program    a built-in shading model as a program
  *     sr_builtin_program         the sr_program to draw it with
@@ -154,6 +164,15 @@
  *   built-in geometry
  *     sr_make_bezier_mesh        bicubic Bezier patches tessellated
  *     sr_make_teapot             the Utah teapot
+ *     sr_make_ground_mesh        a ground plane under a scene's bounds
+ *   shadows
+ *     sr_make_shadow_map         a directional light's shadow map fitted to bounds
+ *     sr_destroy_shadow_map      frees it
+ *     sr_shadow_map_clear        empties it for a new frame
+ *     sr_shadow_map_draw         occluders into it, their depth
+ *     sr_query_shadow_map        its light matrices and texel size
+ *     sr_shadow_visibility       how lit a world-space point is, filtered
+ *     sr_shadow_visibility4      the same for the four lanes of a fragment quad
  *   2D raster API
  *     sr_draw_text               a label in the built-in 5x7 font
  *     sr_text_width              its width in pixels
@@ -597,6 +616,93 @@ SR_API sr_result sr_tonemap_rgb(sr_tonemap_op op, const float in[3], float out[3
  * 0.0031308, 1.055 x^(1/2.4) - 0.055 above), times 255, rounded to
  * nearest; NaN and values <= 0 give 0, values >= 1 give 255. */
 SR_API uint8_t sr_srgb_encode8(float linear);
+
+/* ---- image-based light -------------------------------------------------- */
+
+/* An environment: light arriving from every direction, given as an
+ * equirectangular image, prefiltered once for the physically based
+ * shading of glTF's metallic-roughness model with the split-sum
+ * approximation (docs/ibl.md):
+ *   diffuse  = c_diff * irradiance(n)                 (irradiance is E/pi)
+ *   specular = specular(r, roughness) * (F0 * A + B)  (A, B from sr_brdf_table)
+ * with r = reflect(-v, n) and (A, B) = sr_brdf_table(N.V, roughness).
+ *
+ * Conventions: directions are in world space, need not be unit length
+ * (zero gives the +Y value), +Y is up.  An equirectangular image's column
+ * u in [0, 1] (left to right) is u = 1/2 + atan2(z, x) / 2 pi and its row
+ * t in [0, 1] (top to bottom) is t = 1/2 - asin(y) / pi, the mapping of
+ * three.js's equirectUv: the image's centre is +X, u = 1/4 is -Z (what a
+ * default camera looks at), u = 3/4 is +Z, the left and right edges -X,
+ * the top row +Y.  Radiance is linear RGB, Rec. 709 primaries.
+ *
+ * An environment is read-only once made: the query functions may be
+ * called from any number of threads at once. */
+typedef struct sr_environment sr_environment;
+
+#define SR_ENVIRONMENT_MAX_SIDE   32768
+#define SR_ENVIRONMENT_MAX_PIXELS ((size_t)1 << 27)
+/* Roughness levels of the prefiltered specular chain: roughness k / (n - 1). */
+#define SR_ENVIRONMENT_LEVELS     6
+
+typedef struct sr_environment_desc {
+    /* An equirectangular image, linear RGB, 3 floats a pixel, rows top
+     * first (as sr_read_hdr gives it): every value finite and >= 0, at
+     * most SR_ENVIRONMENT_MAX_SIDE a side and SR_ENVIRONMENT_MAX_PIXELS
+     * pixels.  NULL (with width and height 0): the built-in neutral
+     * studio, a soft overhead light, two softboxes and a grey floor. */
+    const float *pixels;
+    int width, height;
+    float intensity;         /* radiance scale; 0 -> 1; must be finite and >= 0 */
+    float rotation;          /* radians about +Y, right-handed: 0 keeps the image's
+                              * mapping, pi/2 moves what was at +X to -Z */
+} sr_environment_desc;
+
+/* Prefilter an environment: the source's box-filtered mip chain, the
+ * diffuse irradiance as 9 spherical-harmonic coefficients (Ramamoorthi and
+ * Hanrahan), the GGX-importance-sampled specular levels, and, the first
+ * time in the process, the BRDF table.  Runs on ctx's threads; the result
+ * is the same for any thread count.  desc may be NULL (the built-in
+ * studio).  Release it with sr_destroy_environment. */
+SR_API sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
+                                     sr_environment **out);
+SR_API void      sr_destroy_environment(sr_context *ctx, sr_environment *env);
+
+/* Four lanes of 3-vectors or colours, structure of arrays. */
+typedef struct sr_vec3x4 { float x[4], y[4], z[4]; } sr_vec3x4;
+
+/* The irradiance E at a surface facing `normal`, divided by pi: the
+ * outgoing radiance of a white Lambertian surface, so multiply by the
+ * diffuse colour and nothing else.  A uniform environment of radiance L
+ * gives L for every normal.  env NULL gives black. */
+SR_API void sr_environment_irradiance(const sr_environment *env, const float normal[3],
+                                      float out[3]);
+SR_API void sr_environment_irradiance4(const sr_environment *env, const sr_vec3x4 *normal,
+                                       sr_vec3x4 *out);
+/* The environment's radiance around `dir` convolved with the GGX lobe of
+ * `roughness` (perceptual, alpha = roughness^2, clamped to [0, 1]), under
+ * the split sum's N = V = R assumption: bilinear within a level,
+ * linear between the two levels around roughness.  Roughness 0 is the
+ * source image itself (the built-in studio's own function, sharp at any
+ * size).  A uniform environment of radiance L gives L. */
+SR_API void sr_environment_specular(const sr_environment *env, const float dir[3],
+                                    float roughness, float out[3]);
+SR_API void sr_environment_specular4(const sr_environment *env, const sr_vec3x4 *dir,
+                                     const float roughness[4], sr_vec3x4 *out);
+/* What a camera sees of the environment in `dir` (a background):
+ * blur 0 is the image itself, blur in (0, 1] the specular level of that
+ * roughness. */
+SR_API void sr_environment_background(const sr_environment *env, const float dir[3],
+                                      float blur, float out[3]);
+
+/* The split-sum BRDF table (Karis): the directional albedo of the GGX,
+ * height-correlated-Smith specular BRDF with Schlick's Fresnel is
+ * F0 * out[0] + out[1] (scale, bias) for a view at N.V and a perceptual
+ * roughness, both clamped to [0, 1]; bilinear in a 32 x 32 table
+ * computed once a process (by sr_make_environment, or by the first call
+ * here).  out[0] + out[1] <= 1. */
+SR_API void sr_brdf_table(float n_dot_v, float roughness, float out[2]);
+SR_API void sr_brdf_table4(const float n_dot_v[4], const float roughness[4], float scale[4],
+                           float bias[4]);
 
 /* ---- pipeline state ----------------------------------------------------- */
 
@@ -1168,6 +1274,95 @@ SR_API sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16]
 /* The Utah teapot (32 patches), y up, standing on y = 0, spout towards +x.
  * Release with sr_destroy_mesh. */
 SR_API sr_result sr_make_teapot(sr_context *ctx, int detail, sr_mesh *out);
+
+/* A ground plane for a scene (docs/shadows.md): a square of side
+ * `scale` x the largest extent of the bounds across `up`, centred under
+ * the bounds' centre, in the plane through the bounds' lowest corner
+ * along `up` (moved down by `drop` x that extent), facing `up`, with
+ * normals and texcoords (0..1 over the square).  Two triangles,
+ * counter-clockwise seen from above. */
+typedef struct sr_ground_desc {
+    sr_vec3 bounds_min, bounds_max;  /* the scene's world-space box, min <= max */
+    sr_vec3 up;                      /* zero -> +Y; any length > 0 */
+    float scale;                     /* 0 -> 4; 0.01 .. 1000 */
+    float drop;                      /* 0 -> none; 0 .. 1 */
+} sr_ground_desc;
+SR_API sr_result sr_make_ground_mesh(sr_context *ctx, const sr_ground_desc *desc, sr_mesh *out);
+
+/* ---- shadows ------------------------------------------------------------ */
+/*
+ * A shadow map for a directional key light (docs/shadows.md).  The light's
+ * orthographic view is fitted to a world-space box that holds every
+ * occluder: its depth range to the box's extent along the light, its
+ * rectangle to the box's outline as the light sees it (plus a margin for
+ * the filter).  Each frame: sr_shadow_map_clear, sr_shadow_map_draw for
+ * every occluder (a mesh's positions with its model matrix; the draw's
+ * view and projection are replaced by the light's), then look the map up
+ * from the shaders with sr_shadow_visibility or sr_shadow_visibility4.
+ *
+ * Occluders are drawn into its depth through sr_draw with both faces kept and
+ * slope-scaled polygon offset (sr_polygon_offset: factor x the depth slope
+ * of each triangle, plus units x the format's step), so a lit surface does
+ * not shadow itself where the map's depth is a rasterized approximation of
+ * it.  The lookup moves the receiver along its normal by a few texels
+ * (more where it is steep to the light) before comparing: the filter's
+ * outer taps compare against texels up to (radius + 1/2) sqrt 2 texels
+ * away, which the offset at the caster alone would have to cover with a
+ * larger bias (and more peter-panning).  The lookup is percentage-closer filtering:
+ * the fraction of the map's texels, weighted by how much of each a box of
+ * half-width filter_radius texels around the point covers, that lie
+ * farther from the light than the point, so the penumbra is continuous
+ * and monotonic across an edge.  Points outside the map are lit.
+ *
+ * Lookups only read the map: shaders on every thread may call them at
+ * once between draws, and they give the same value for the same point.
+ */
+typedef struct sr_shadow_map sr_shadow_map;
+
+typedef struct sr_shadow_desc {
+    sr_vec3 direction;               /* required: the direction the light travels,
+                                      * from the light to the scene (as the vector of
+                                      * an SR_LIGHT_DIRECTIONAL sr_light); any length > 0 */
+    sr_vec3 bounds_min, bounds_max;  /* world-space box of the occluders, min <= max */
+    int size;                        /* texels a side: 0 -> 2048; 16 .. SR_MAX_FRAMEBUFFER_SIZE */
+    float offset_factor;             /* polygon offset of the occluders: 0 -> 1.5 */
+    float offset_units;              /* 0 -> 2 */
+    float filter_radius;             /* PCF half-width, texels: 0 -> 1.5; 0.5 .. 8 */
+    /* The receiver moves along its normal by (normal_offset + 1.5
+     * filter_radius) texels times the sine of the angle between normal
+     * and light: 0 -> 1; 0 .. 64 (a NULL normal at lookup: no move). */
+    float normal_offset;
+} sr_shadow_desc;
+
+/* The light's transform as the map uses it. */
+typedef struct sr_shadow_info {
+    sr_mat4 view;                    /* world -> light eye space (looking along direction) */
+    sr_mat4 projection;              /* orthographic, depth in [0, 1] (zero_to_one) */
+    int size;                        /* texels a side */
+    float texel_size;                /* world units a texel spans */
+    float filter_radius, normal_offset;  /* resolved */
+} sr_shadow_info;
+
+SR_API sr_result sr_make_shadow_map(sr_context *ctx, const sr_shadow_desc *desc, sr_shadow_map **out);
+SR_API void      sr_destroy_shadow_map(sr_context *ctx, sr_shadow_map *sm);
+/* Empties the map (every point lit) for a new frame. */
+SR_API sr_result sr_shadow_map_clear(sr_context *ctx, sr_shadow_map *sm);
+/* Draws draw's triangles into the map as occluders: positions and model
+ * (other arrays ignored), the light's view and projection. */
+SR_API sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr_draw_desc *draw);
+SR_API sr_result sr_query_shadow_map(const sr_shadow_map *sm, sr_shadow_info *out);
+/* Visibility of the world-space point pos[0..2] in [0, 1]: 0 in shadow,
+ * 1 lit.  normal (may be NULL: no normal offset) is the surface's
+ * world-space geometric normal (the interpolated vertex normal, not a
+ * normal map's), any length; a point that is not finite is lit. */
+SR_API sr_result sr_shadow_visibility(const sr_shadow_map *sm, const float pos[3],
+                                      const float normal[3], float *out);
+/* Four points at once, laid out as three varyings of an sr_fragment_quad:
+ * pos[0..3] the x of lanes 0..3, pos[4..7] their y, pos[8..11] their z;
+ * normal likewise (or NULL); out[i] the visibility of lane i, the same
+ * value sr_shadow_visibility gives for it. */
+SR_API sr_result sr_shadow_visibility4(const sr_shadow_map *sm, const float *pos,
+                                       const float *normal, float out[4]);
 
 /* ---- 2D raster API ------------------------------------------------------ */
 /*

@@ -1,0 +1,428 @@
+/* environment.c - image-based light (fragment stage, docs/ibl.md): makes
+ * an sr_environment from an equirectangular image or the built-in studio
+ * (validation, the source and its mips, the irradiance SH, the specular
+ * levels on the context's threads) and answers the shaders' per-fragment
+ * queries, which only read it and may run on any thread.
+ */
+#include "context.h"
+#include "fragment/environment.h"
+
+#include <float.h>
+#include <limits.h>
+#include <stdatomic.h>
+#include <string.h>
+
+/* The built-in studio's source image: soft enough that this resolution
+ * holds all of it, small enough to make in about a millisecond. */
+#define STUDIO_WIDTH  256
+#define STUDIO_HEIGHT 128
+/* The first specular level is half the source's width, at most
+ * SR__LEVEL_MAX_WIDTH; each next one half as wide, down to
+ * LEVEL_MIN_WIDTH (a GGX lobe of roughness 0.2 spans a few degrees, a
+ * texel of a 256-wide image 1.4). */
+#define LEVEL_MIN_WIDTH 32
+/* The SH are projected from the first mip at most this wide. */
+#define SH_MAX_WIDTH 64
+#define BAND_ROWS    4
+#define COPY_ROWS    16         /* rows a job when copying or halving an image */
+
+typedef struct prefilter_job {
+    int level, row0, row1;
+} prefilter_job;
+
+typedef struct prefilter_work {
+    sr_environment *env;
+    const sr__equirect *mip;
+    sr__spec_sample samples[SR_ENVIRONMENT_LEVELS][SR__SPEC_SAMPLES];
+    int counts[SR_ENVIRONMENT_LEVELS];
+    prefilter_job *jobs;
+    float intensity;
+    const float *pixels;        /* the caller's image */
+    atomic_int first_bad_row;   /* INT_MAX, or the first row holding a bad value */
+    const sr__equirect *half_src;
+    sr__equirect *half_dst;
+} prefilter_work;
+
+static int band_end(int job, int rows, int h)
+{
+    return (job + 1) * rows < h ? (job + 1) * rows : h;
+}
+
+/* Rows of the caller's image into level 0, times the intensity, noting
+ * the first row that holds a negative, infinite or NaN value. */
+static void copy_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    prefilter_work *w = arg;
+    sr__equirect *e = &w->env->level[0];
+    int row1 = band_end(job, COPY_ROWS, e->h);
+    const float scale = w->intensity;
+    for (int j = job * COPY_ROWS; j < row1; j++) {
+        size_t n = (size_t)e->w * 3, at = (size_t)j * n;
+        const float *restrict src = w->pixels + at;
+        float *restrict dst = e->rgb + at;
+        /* written so that the compiler vectorizes it: an OR of compares,
+         * no early exit */
+        int bad = 0;
+        for (size_t i = 0; i < n; i++) {
+            float v = src[i];
+            bad |= (v < 0.0f) | (v != v) | (v > FLT_MAX);
+            dst[i] = v * scale;
+        }
+        if (bad) {
+            int seen = atomic_load(&w->first_bad_row);
+            while (j < seen && !atomic_compare_exchange_weak(&w->first_bad_row, &seen, j)) {
+            }
+            return;
+        }
+    }
+}
+
+static void halve_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    prefilter_work *w = arg;
+    sr__equirect_halve(w->half_src, w->half_dst, job * COPY_ROWS,
+                       band_end(job, COPY_ROWS, w->half_dst->h));
+}
+
+static void studio_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    prefilter_work *w = arg;
+    sr__equirect *e = &w->env->level[0];
+    int row1 = band_end(job, BAND_ROWS, e->h);
+    sr__studio_rows(e, job * BAND_ROWS, row1);
+    if (w->intensity != 1.0f) {
+        float *p = e->rgb + (size_t)job * BAND_ROWS * e->w * 3;
+        for (size_t i = 0; i < (size_t)(row1 - job * BAND_ROWS) * e->w * 3; i++) {
+            p[i] *= w->intensity;
+        }
+    }
+}
+
+static void level_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    prefilter_work *w = arg;
+    const prefilter_job *j = &w->jobs[job];
+    sr__prefilter_rows(w->mip, w->samples[j->level], w->counts[j->level],
+                       &w->env->level[j->level], j->row0, j->row1);
+}
+
+static sr_result validate(sr_context *ctx, const sr_environment_desc *d)
+{
+    if (!isfinite(d->intensity) || d->intensity < 0.0f) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_environment_desc.intensity must be finite and >= 0 (got %g)",
+                        (double)d->intensity);
+    }
+    if (!isfinite(d->rotation)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_environment_desc.rotation must be finite");
+    }
+    if (!d->pixels) {
+        if (d->width != 0 || d->height != 0) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_environment_desc.pixels is NULL but the size is %dx%d",
+                            d->width, d->height);
+        }
+        return SR_OK;
+    }
+    if (d->width < 1 || d->height < 1) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_environment_desc.%s must be >= 1 (got %d)",
+                        d->width < 1 ? "width" : "height", d->width < 1 ? d->width : d->height);
+    }
+    if (d->width > SR_ENVIRONMENT_MAX_SIDE || d->height > SR_ENVIRONMENT_MAX_SIDE ||
+        (size_t)d->width * (size_t)d->height > SR_ENVIRONMENT_MAX_PIXELS) {
+        return sr__fail(ctx, SR_TOO_LARGE,
+                        "sr_environment_desc: %dx%d exceeds %d a side or %zu pixels", d->width,
+                        d->height, SR_ENVIRONMENT_MAX_SIDE, SR_ENVIRONMENT_MAX_PIXELS);
+    }
+    return SR_OK;
+}
+
+static float *alloc_image(sr_context *ctx, sr__equirect *e, int w, int h)
+{
+    e->w = w;
+    e->h = h;
+    e->rgb = sr__alloc_large(ctx, (size_t)w * (size_t)h * 3 * sizeof(float));
+    return e->rgb;
+}
+
+/* The specular levels from the source's mips, then the mips freed. */
+static sr_result prefilter(sr_context *ctx, prefilter_work *w)
+{
+    sr_environment *env = w->env;
+    sr__equirect mip[SR__ENV_MAX_MIPS] = { env->level[0] };
+    int mips = 1;
+    sr_result r = SR_OK;
+    while (mips < SR__ENV_MAX_MIPS && mip[mips - 1].w > SR__MIP_MIN_WIDTH) {
+        const sr__equirect *src = &mip[mips - 1];
+        if (!alloc_image(ctx, &mip[mips], src->w / 2, src->h > 1 ? src->h / 2 : 1)) {
+            r = SR_OUT_OF_MEMORY;
+            goto done;
+        }
+        w->half_src = src;
+        w->half_dst = &mip[mips];
+        sr_run_jobs(ctx, halve_job, w, (mip[mips].h + COPY_ROWS - 1) / COPY_ROWS);
+        mips++;
+    }
+    int sh_mip = 0;
+    while (sh_mip + 1 < mips && mip[sh_mip].w > SH_MAX_WIDTH) {
+        sh_mip++;
+    }
+    sr__irradiance_sh(&mip[sh_mip], env->sh);
+
+    int first = env->level[0].w / 2;
+    first = first < SR__LEVEL_MAX_WIDTH ? first : SR__LEVEL_MAX_WIDTH;
+    int jobs = 0;
+    for (int k = 1; k < SR_ENVIRONMENT_LEVELS; k++) {
+        int lw = first >> (k - 1);
+        lw = lw > LEVEL_MIN_WIDTH ? lw : LEVEL_MIN_WIDTH;
+        if (!alloc_image(ctx, &env->level[k], lw, lw / 2)) {
+            r = SR_OUT_OF_MEMORY;
+            goto done;
+        }
+        jobs += (lw / 2 + BAND_ROWS - 1) / BAND_ROWS;
+        float roughness = (float)k / (SR_ENVIRONMENT_LEVELS - 1);
+        sr__specular_samples(roughness, mip[0].w, mip[0].h, mips, w->samples[k], &w->counts[k]);
+    }
+    w->jobs = sr__alloc(ctx, (size_t)jobs * sizeof *w->jobs);
+    if (!w->jobs) {
+        r = SR_OUT_OF_MEMORY;
+        goto done;
+    }
+    int n = 0;
+    for (int k = 1; k < SR_ENVIRONMENT_LEVELS; k++) {
+        for (int row = 0; row < env->level[k].h; row += BAND_ROWS) {
+            int row1 = row + BAND_ROWS < env->level[k].h ? row + BAND_ROWS : env->level[k].h;
+            w->jobs[n++] = (prefilter_job){ k, row, row1 };
+        }
+    }
+    w->mip = mip;
+    sr_run_jobs(ctx, level_job, w, n);
+    sr__free(ctx, w->jobs);
+done:
+    for (int m = 1; m < mips; m++) {
+        sr__free(ctx, mip[m].rgb);
+    }
+    return r;
+}
+
+sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
+                              sr_environment **out)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_environment: out is NULL");
+    }
+    *out = NULL;
+    sr_environment_desc d = desc ? *desc : (sr_environment_desc){ 0 };
+    sr_result r = validate(ctx, &d);
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_environment *env = sr__calloc(ctx, 1, sizeof *env);
+    prefilter_work *w = sr__calloc(ctx, 1, sizeof *w);
+    if (!env || !w) {
+        sr__free(ctx, w);
+        sr__free(ctx, env);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_environment: out of memory");
+    }
+    w->env = env;
+    w->intensity = d.intensity == 0.0f ? 1.0f : d.intensity;
+    env->cos_rot = cosf(d.rotation);
+    env->sin_rot = sinf(d.rotation);
+    int sw = d.pixels ? d.width : STUDIO_WIDTH, sh = d.pixels ? d.height : STUDIO_HEIGHT;
+    if (!alloc_image(ctx, &env->level[0], sw, sh)) {
+        r = SR_OUT_OF_MEMORY;
+    } else if (d.pixels) {
+        w->pixels = d.pixels;
+        atomic_init(&w->first_bad_row, INT_MAX);
+        sr_run_jobs(ctx, copy_job, w, (sh + COPY_ROWS - 1) / COPY_ROWS);
+        int row = atomic_load(&w->first_bad_row);
+        if (row != INT_MAX) {
+            const float *p = d.pixels + (size_t)row * sw * 3;
+            int i = 0;
+            while (p[i] >= 0.0f && p[i] <= FLT_MAX) {
+                i++;
+            }
+            sr__free(ctx, w);
+            sr_destroy_environment(ctx, env);
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_environment_desc.pixels: pixel (%d, %d) channel %d is %g; "
+                            "radiance must be finite and >= 0",
+                            i / 3, row, i % 3, (double)p[i]);
+        }
+    } else {
+        env->studio_intensity = w->intensity;
+        sr_run_jobs(ctx, studio_job, w, (sh + BAND_ROWS - 1) / BAND_ROWS);
+    }
+    if (r == SR_OK) {
+        r = prefilter(ctx, w);
+    }
+    sr__free(ctx, w);
+    if (r != SR_OK) {
+        sr_destroy_environment(ctx, env);
+        return sr__fail(ctx, r, "sr_make_environment: out of memory for a %dx%d environment",
+                        sw, sh);
+    }
+    sr__brdf_table_init(ctx);
+    *out = env;
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+void sr_destroy_environment(sr_context *ctx, sr_environment *env)
+{
+    if (!ctx || !env) {
+        return;
+    }
+    for (int k = 0; k < SR_ENVIRONMENT_LEVELS; k++) {
+        sr__free(ctx, env->level[k].rgb);
+    }
+    sr__free(ctx, env);
+}
+
+/* ---- queries ----------------------------------------------------------- */
+
+/* The queries' arithmetic is written per lane without branches, so that
+ * the 4-lane forms' loops vectorize; a scalar query runs the same code
+ * on one lane, and IEEE arithmetic (no contraction, no reassociation)
+ * makes both give the same floats.  Only the texel reads are per lane. */
+
+/* A world direction to a unit direction in the image's frame; zero,
+ * infinite or NaN gives +Y. */
+static inline void to_image(const sr_environment *env, float x, float y, float z, float *dx,
+                            float *dy, float *dz)
+{
+    float len2 = x * x + y * y + z * z;
+    int ok = (len2 > 0.0f) & (len2 < INFINITY);
+    float s = 1.0f / sqrtf(ok ? len2 : 1.0f);
+    x = ok ? x * s : 0.0f;
+    y = ok ? y * s : 1.0f;
+    z = ok ? z * s : 0.0f;
+    *dx = x * env->cos_rot - z * env->sin_rot;
+    *dy = y;
+    *dz = x * env->sin_rot + z * env->cos_rot;
+}
+
+static inline float clamp01(float x)
+{
+    return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;  /* NaN -> 0 */
+}
+
+/* The lane-wise part of a specular query: the image direction, its
+ * equirectangular (u, t) and the level coordinate f = roughness * 5. */
+typedef struct spec_lanes {
+    float dx[4], dy[4], dz[4], u[4], t[4], f[4];
+} spec_lanes;
+
+static inline void spec_lane(const sr_environment *env, spec_lanes *q, int i, float x, float y,
+                             float z, float roughness)
+{
+    to_image(env, x, y, z, &q->dx[i], &q->dy[i], &q->dz[i]);
+    q->u[i] = 0.5f + sr__atan2(q->dz[i], q->dx[i]) * (0.5f / SR__PI);
+    q->t[i] = sr__acos(q->dy[i]) * (1.0f / SR__PI);
+    q->f[i] = clamp01(roughness) * (SR_ENVIRONMENT_LEVELS - 1);
+}
+
+/* Lane i's texel reads: linear between the two levels around f. */
+static inline void spec_read(const sr_environment *env, const spec_lanes *q, int i, float out[3])
+{
+    float f = q->f[i], u = q->u[i], t = q->t[i];
+    int k = (int)f;
+    k = k < SR_ENVIRONMENT_LEVELS - 1 ? k : SR_ENVIRONMENT_LEVELS - 2;
+    float a = f - (float)k;
+    const sr__equirect *e0 = &env->level[k], *e1 = &env->level[k + 1];
+    float c0[3] = { 0, 0, 0 }, c1[3] = { 0, 0, 0 };
+    if (a < 1.0f && k == 0 && env->studio_intensity > 0.0f) {
+        float d[3] = { q->dx[i], q->dy[i], q->dz[i] };
+        c0[0] = c0[1] = c0[2] = env->studio_intensity * sr__studio_radiance(d);
+    } else if (a < 1.0f) {
+        sr__equirect_bilinear(e0, u * e0->w, t * e0->h, c0);
+    }
+    if (a > 0.0f) {
+        sr__equirect_bilinear(e1, u * e1->w, t * e1->h, c1);
+    }
+    for (int c = 0; c < 3; c++) {
+        out[c] = c0[c] + a * (c1[c] - c0[c]);
+    }
+}
+
+void sr_environment_irradiance(const sr_environment *env, const float normal[3], float out[3])
+{
+    if (!out) {
+        return;
+    }
+    if (!env || !normal) {
+        out[0] = out[1] = out[2] = 0.0f;
+        return;
+    }
+    float d[3];
+    to_image(env, normal[0], normal[1], normal[2], &d[0], &d[1], &d[2]);
+    sr__irradiance_eval(env->sh, d, out);
+}
+
+void sr_environment_irradiance4(const sr_environment *env, const sr_vec3x4 *normal,
+                                sr_vec3x4 *out)
+{
+    if (!out) {
+        return;
+    }
+    if (!env || !normal) {
+        memset(out, 0, sizeof *out);
+        return;
+    }
+    sr_vec3x4 d;
+    for (int i = 0; i < 4; i++) {
+        to_image(env, normal->x[i], normal->y[i], normal->z[i], &d.x[i], &d.y[i], &d.z[i]);
+    }
+    sr__irradiance_eval4(env->sh, &d, out);
+}
+
+void sr_environment_specular(const sr_environment *env, const float dir[3], float roughness,
+                             float out[3])
+{
+    if (!out) {
+        return;
+    }
+    if (!env || !dir) {
+        out[0] = out[1] = out[2] = 0.0f;
+        return;
+    }
+    spec_lanes q;
+    spec_lane(env, &q, 0, dir[0], dir[1], dir[2], roughness);
+    spec_read(env, &q, 0, out);
+}
+
+void sr_environment_specular4(const sr_environment *env, const sr_vec3x4 *dir,
+                              const float roughness[4], sr_vec3x4 *out)
+{
+    if (!out) {
+        return;
+    }
+    if (!env || !dir || !roughness) {
+        memset(out, 0, sizeof *out);
+        return;
+    }
+    spec_lanes q;
+    for (int i = 0; i < 4; i++) {
+        spec_lane(env, &q, i, dir->x[i], dir->y[i], dir->z[i], roughness[i]);
+    }
+    for (int i = 0; i < 4; i++) {
+        float c[3];
+        spec_read(env, &q, i, c);
+        out->x[i] = c[0];
+        out->y[i] = c[1];
+        out->z[i] = c[2];
+    }
+}
+
+void sr_environment_background(const sr_environment *env, const float dir[3], float blur,
+                               float out[3])
+{
+    sr_environment_specular(env, dir, blur, out);
+}

@@ -1,0 +1,195 @@
+/* environment.h - image-based light, shared by the files that make an
+ * environment (environment.c, environment_prefilter.c,
+ * environment_studio.c) and the BRDF table (brdf_table.c): equirectangular
+ * images of linear RGB, sampled bilinearly with fast polynomial
+ * arc functions.  Internal to the library; every function here is pure and
+ * may run on any thread. */
+#ifndef SR_FRAGMENT_ENVIRONMENT_H
+#define SR_FRAGMENT_ENVIRONMENT_H
+
+#include "softrast.h"
+
+#include <math.h>
+
+#define SR__PI_D 3.14159265358979323846
+#define SR__PI ((float)SR__PI_D)
+
+/* An equirectangular image: w x h pixels of 3 floats, row 0 at +Y. */
+typedef struct sr__equirect {
+    int w, h;
+    float *rgb;
+} sr__equirect;
+
+/* Box-filtered mips of the source, down to SR__MIP_MIN_WIDTH wide. */
+#define SR__ENV_MAX_MIPS    16
+#define SR__MIP_MIN_WIDTH   8
+
+struct sr_environment {
+    /* level[0] is the source (times the intensity); level[k] the
+     * radiance prefiltered for roughness k / (SR_ENVIRONMENT_LEVELS - 1). */
+    sr__equirect level[SR_ENVIRONMENT_LEVELS];
+    float sh[9][3];             /* irradiance / pi, Lambert-convolved, in image space */
+    float cos_rot, sin_rot;     /* world -> image: rotation by -desc.rotation about +Y */
+    /* The built-in studio's level 0 is its function, sharp at any size,
+     * times this intensity; 0 for an image. */
+    float studio_intensity;
+};
+
+/* atan(x) for |x| <= 1: Abramowitz and Stegun 4.4.49-style odd
+ * polynomial, absolute error below 1e-5 rad (a texel of a 32768-wide
+ * image is 2e-4 rad). */
+static inline float sr__atan_unit(float x)
+{
+    float x2 = x * x;
+    return x * (0.99986602f +
+                x2 * (-0.33029950f + x2 * (0.18014100f + x2 * (-0.08513300f + x2 * 0.02083510f))));
+}
+
+static inline float sr__atan2(float y, float x)
+{
+    float ax = fabsf(x), ay = fabsf(y);
+    float mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
+    /* select, then divide: a division under a condition keeps the
+     * compiler from vectorizing the lanes */
+    float a = sr__atan_unit(mn / (mx > 0.0f ? mx : 1.0f));
+    a = ay > ax ? 0.5f * SR__PI - a : a;
+    a = x < 0.0f ? SR__PI - a : a;
+    return y < 0.0f ? -a : a;
+}
+
+/* acos(x) for x in [-1, 1]: A&S 4.4.46, error below 2e-8 rad before rounding. */
+static inline float sr__acos(float x)
+{
+    float ax = fabsf(x);
+    ax = ax < 1.0f ? ax : 1.0f;
+    float p = -0.0012624911f;
+    p = p * ax + 0.0066700901f;
+    p = p * ax - 0.0170881256f;
+    p = p * ax + 0.0308918810f;
+    p = p * ax - 0.0501743046f;
+    p = p * ax + 0.0889789874f;
+    p = p * ax - 0.2145988016f;
+    p = p * ax + 1.5707963050f;
+    float r = sqrtf(1.0f - ax) * p;
+    return x < 0.0f ? SR__PI - r : r;
+}
+
+/* Image coordinates of a unit direction, in pixels of a w x h image
+ * (pixel centres at +0.5): px from u = 1/2 + atan2(z, x) / 2 pi, py from
+ * t = acos(y) / pi, the same as 1/2 - asin(y) / pi. */
+static inline void sr__equirect_coords(float x, float y, float z, int w, int h, float *px,
+                                       float *py)
+{
+    float u = 0.5f + sr__atan2(z, x) * (0.5f / SR__PI);
+    float t = sr__acos(y) * (1.0f / SR__PI);
+    *px = u * (float)w;
+    *py = t * (float)h;
+}
+
+/* Bilinear sample at pixel coordinates (px, py): wraps in x, clamps in y. */
+static inline void sr__equirect_bilinear(const sr__equirect *e, float px, float py, float out[3])
+{
+    float fx = px - 0.5f, fy = py - 0.5f;
+    float x0f = floorf(fx), y0f = floorf(fy);
+    float ax = fx - x0f, ay = fy - y0f;
+    /* px in [0, w] (u in [0, 1]) puts x0 in [-1, w - 1]; other callers'
+     * px may lie anywhere */
+    int x0 = (int)x0f;
+    if (x0 < -1 || x0 >= e->w) {
+        x0 %= e->w;
+    }
+    x0 = x0 < 0 ? x0 + e->w : x0;
+    int x1 = x0 + 1 == e->w ? 0 : x0 + 1;
+    int y0 = (int)y0f, y1 = y0 + 1;
+    y0 = y0 < 0 ? 0 : (y0 >= e->h ? e->h - 1 : y0);
+    y1 = y1 < 0 ? 0 : (y1 >= e->h ? e->h - 1 : y1);
+    const float *r0 = e->rgb + (size_t)y0 * e->w * 3, *r1 = e->rgb + (size_t)y1 * e->w * 3;
+    float w00 = (1 - ax) * (1 - ay), w10 = ax * (1 - ay), w01 = (1 - ax) * ay, w11 = ax * ay;
+    for (int c = 0; c < 3; c++) {
+        out[c] = w00 * r0[x0 * 3 + c] + w10 * r0[x1 * 3 + c] + w01 * r1[x0 * 3 + c] +
+                 w11 * r1[x1 * 3 + c];
+    }
+}
+
+/* A unit direction's bilinear sample. */
+static inline void sr__equirect_sample(const sr__equirect *e, float x, float y, float z,
+                                       float out[3])
+{
+    float px, py;
+    sr__equirect_coords(x, y, z, e->w, e->h, &px, &py);
+    sr__equirect_bilinear(e, px, py, out);
+}
+
+/* The unit direction through the centre of pixel (i, j) of a w x h image. */
+static inline void sr__equirect_direction(int i, int j, int w, int h, float d[3])
+{
+    float phi = ((float)i + 0.5f) / (float)w * 2.0f * SR__PI - SR__PI;
+    float theta = ((float)j + 0.5f) / (float)h * SR__PI;
+    float st = sinf(theta);
+    d[0] = st * cosf(phi);
+    d[1] = cosf(theta);
+    d[2] = st * sinf(phi);
+}
+
+/* The built-in neutral studio (environment_studio.c): its radiance in a
+ * unit direction, and rows [row0, row1) of it as a w x h image. */
+float sr__studio_radiance(const float d[3]);
+void sr__studio_rows(sr__equirect *e, int row0, int row1);
+
+/* environment_prefilter.c: the 9 Lambert-convolved SH coefficients
+ * (divided by pi) of an image, and their value at a unit direction. */
+void sr__irradiance_sh(const sr__equirect *e, float sh[9][3]);
+void sr__irradiance_eval(const float sh[9][3], const float d[3], float out[3]);
+void sr__irradiance_eval4(const float sh[9][3], const sr_vec3x4 *d, sr_vec3x4 *out);
+/* Rows [row0, row1) of dst (its w and h set to src's halves, at least 1)
+ * as 2 x 2 boxes of src. */
+void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, int row1);
+
+/* One GGX sample of a specular level: the light direction in tangent
+ * space (z along N = V), its weight (N.L) and the source mip to read. */
+#define SR__SPEC_SAMPLES 32
+typedef struct sr__spec_sample {
+    float l[3];
+    float weight;
+    int mip;
+} sr__spec_sample;
+/* The widest specular level (the first, for a source twice as wide). */
+#define SR__LEVEL_MAX_WIDTH 256
+/* The level's samples (at most SR__SPEC_SAMPLES) for a source of
+ * source_w x source_h pixels with `mips` mips. */
+void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
+                          sr__spec_sample *s, int *count);
+/* Rows [row0, row1) of a specular level from the source's mips. */
+void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_sample *s, int count,
+                        sr__equirect *dst, int row0, int row1);
+
+/* Make sure the BRDF table exists, computing it on ctx's threads
+ * (brdf_table.c). */
+void sr__brdf_table_init(sr_context *ctx);
+
+/* GGX sampling shared by the table and the prefilter: the half vector of
+ * the 2D point (e1, e2) in [0, 1)^2 for alpha, in tangent space (z along N). */
+static inline void sr__ggx_half_vector(float e1, float e2, float alpha, float h[3])
+{
+    float a2 = alpha * alpha;
+    float cos_t = sqrtf((1.0f - e2) / (1.0f + (a2 - 1.0f) * e2));
+    float sin_t = sqrtf(fmaxf(0.0f, 1.0f - cos_t * cos_t));
+    float phi = 2.0f * SR__PI * e1;
+    h[0] = sin_t * cosf(phi);
+    h[1] = sin_t * sinf(phi);
+    h[2] = cos_t;
+}
+
+/* Van der Corput's radical inverse in base 2: the Hammersley set's second
+ * coordinate. */
+static inline float sr__radical_inverse(unsigned bits)
+{
+    bits = (bits << 16) | (bits >> 16);
+    bits = ((bits & 0x55555555u) << 1) | ((bits & 0xAAAAAAAAu) >> 1);
+    bits = ((bits & 0x33333333u) << 2) | ((bits & 0xCCCCCCCCu) >> 2);
+    bits = ((bits & 0x0F0F0F0Fu) << 4) | ((bits & 0xF0F0F0F0u) >> 4);
+    bits = ((bits & 0x00FF00FFu) << 8) | ((bits & 0xFF00FF00u) >> 8);
+    return (float)bits * 2.3283064365386963e-10f;
+}
+
+#endif

@@ -1,0 +1,623 @@
+/* test_shadow.c - shadow maps: a quad's shadow on a plane (dark under
+ * it, lit beside it, a monotonic penumbra, on the side away from a
+ * slanted light), no acne on a lit sphere at grazing slopes, the fit
+ * covering the bounds, the ground mesh, bad input refused, and the same
+ * map and visibility for 1 and 2 threads.  Writes shadow_*.png to the
+ * test output directory to look at. */
+#include "sr_test.h"
+#include "softrast.h"
+#include "softrast_io.h"
+#include "fragment/shadow.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- a Lambert program that multiplies by the visibility ----------------- */
+
+typedef struct lambert_uniforms {
+    sr_mat4 mvp;
+    const sr_shadow_map *sm;
+    float to_light[3];          /* unit */
+    float base[3];
+    float ambient;
+    bool no_normal;             /* look up without the normal offset */
+} lambert_uniforms;
+
+/* Varyings: 0..2 world position, 3..5 world normal (model = identity). */
+static void lambert_vs(const void *u, const sr_vertex_input *in, float clip[4], float *vary)
+{
+    const lambert_uniforms *l = u;
+    sr_vec4 c = sr_mat4_mul_vec4(&l->mvp, (sr_vec4){ in->position[0], in->position[1],
+                                                     in->position[2], 1.0f });
+    clip[0] = c.x, clip[1] = c.y, clip[2] = c.z, clip[3] = c.w;
+    memcpy(vary, in->position, 3 * sizeof(float));
+    memcpy(vary + 3, in->normal, 3 * sizeof(float));
+}
+
+/* Red: the shaded color's luminance; green: 255 where the surface faces
+ * the light by more than grazing (n.l > 0.05); blue: the visibility. */
+static void lambert_fs(const void *u, sr_fragment_quad *q)
+{
+    const lambert_uniforms *l = u;
+    float vis[4];
+    sr_shadow_visibility4(l->sm, q->varyings[0], l->no_normal ? NULL : q->varyings[3], vis);
+    for (int i = 0; i < 4; i++) {
+        float n[3] = { q->varyings[3][i], q->varyings[4][i], q->varyings[5][i] };
+        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        float ndl = len > 0 ? (n[0] * l->to_light[0] + n[1] * l->to_light[1] +
+                               n[2] * l->to_light[2]) / len : 0;
+        float k = l->ambient + (1 - l->ambient) * fmaxf(ndl, 0) * vis[i];
+        for (int c = 0; c < 3; c++) {
+            q->color[c][i] = l->base[c] * k;
+        }
+        q->color[3][i] = 1;
+    }
+}
+
+static void lambert_flags_fs(const void *u, sr_fragment_quad *q)
+{
+    const lambert_uniforms *l = u;
+    float vis[4];
+    lambert_fs(u, q);
+    sr_shadow_visibility4(l->sm, q->varyings[0], l->no_normal ? NULL : q->varyings[3], vis);
+    for (int i = 0; i < 4; i++) {
+        float n[3] = { q->varyings[3][i], q->varyings[4][i], q->varyings[5][i] };
+        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        float ndl = (n[0] * l->to_light[0] + n[1] * l->to_light[1] + n[2] * l->to_light[2]) / len;
+        q->color[1][i] = ndl > 0.05f ? 1.0f : 0.0f;
+        q->color[2][i] = vis[i];
+    }
+}
+
+static sr_draw_desc mesh_draw(const sr_mesh *m)
+{
+    return (sr_draw_desc){ .positions = m->positions, .normals = m->normals,
+                           .vertex_count = m->vertex_count, .indices = m->indices,
+                           .index_type = SR_INDEX_U32, .index_count = 3 * m->triangle_count };
+}
+
+/* A UV sphere of radius r at c with smooth normals. */
+static bool make_sphere(sr_context *ctx, sr_vec3 c, float r, int stacks, int slices, sr_mesh *out)
+{
+    size_t nv = (size_t)(stacks + 1) * (slices + 1), nt = (size_t)stacks * slices * 2;
+    float *p = malloc(nv * 3 * sizeof *p), *n = malloc(nv * 3 * sizeof *n);
+    uint32_t *idx = malloc(nt * 3 * sizeof *idx);
+    bool ok = p && n && idx;
+    for (int i = 0; ok && i <= stacks; i++) {
+        float th = (float)M_PI * (float)i / (float)stacks;
+        for (int j = 0; j <= slices; j++) {
+            float ph = 2.0f * (float)M_PI * (float)j / (float)slices;
+            size_t v = (size_t)i * (slices + 1) + j;
+            float d[3] = { sinf(th) * cosf(ph), cosf(th), -sinf(th) * sinf(ph) };
+            for (int k = 0; k < 3; k++) {
+                n[3 * v + k] = d[k];
+            }
+            p[3 * v + 0] = c.x + r * d[0], p[3 * v + 1] = c.y + r * d[1], p[3 * v + 2] = c.z + r * d[2];
+        }
+    }
+    size_t t = 0;
+    for (int i = 0; ok && i < stacks; i++) {
+        for (int j = 0; j < slices; j++) {
+            uint32_t a = (uint32_t)(i * (slices + 1) + j), b = a + (uint32_t)(slices + 1);
+            uint32_t q[6] = { a, b, a + 1, a + 1, b, b + 1 };
+            memcpy(idx + 3 * t, q, sizeof q);
+            t += 2;
+        }
+    }
+    sr_mesh src = { .vertex_count = nv, .positions = p, .normals = n, .triangle_count = nt,
+                    .indices = idx };
+    ok = ok && sr_make_mesh(ctx, &src, out) == SR_OK;
+    free(p), free(n), free(idx);
+    return ok;
+}
+
+static void save(sr_framebuffer *fb, const char *name)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", sr_test_out_dir(), name);
+    sr_write_png(path, sr_framebuffer_width(fb), sr_framebuffer_height(fb),
+                 sr_framebuffer_pixels(fb), 4 * (size_t)sr_framebuffer_width(fb), NULL, NULL);
+}
+
+/* ---- a quad over a plane ------------------------------------------------- */
+
+/* The quad [-1, 1] x [-1, 1] at height 1 over the plane y = 0. */
+static const float quad_xyz[] = { -1, 1, -1, -1, 1, 1, 1, 1, 1, 1, 1, -1 };
+static const uint32_t quad_idx[] = { 0, 1, 2, 0, 2, 3 };
+
+static sr_shadow_map *quad_map(sr_context *ctx, sr_vec3 dir, int size, float radius)
+{
+    sr_shadow_map *sm = NULL;
+    sr_shadow_desc d = { .direction = dir, .bounds_min = { -2, 0, -2 }, .bounds_max = { 2, 1, 2 },
+                         .size = size, .filter_radius = radius };
+    if (sr_make_shadow_map(ctx, &d, &sm) != SR_OK) {
+        return NULL;
+    }
+    sr_result r = sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){
+        .positions = quad_xyz, .vertex_count = 4, .indices = quad_idx,
+        .index_type = SR_INDEX_U32, .index_count = 6 });
+    if (r != SR_OK) {
+        sr_destroy_shadow_map(ctx, sm);
+        return NULL;
+    }
+    return sm;
+}
+
+static float vis_at(const sr_shadow_map *sm, float x, float y, float z)
+{
+    static const float up[3] = { 0, 1, 0 };
+    float v = -1;
+    sr_shadow_visibility(sm, (const float[3]){ x, y, z }, up, &v);
+    return v;
+}
+
+SR_TEST(quad_shadows_the_plane_under_it)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_shadow_map *sm = quad_map(ctx, (sr_vec3){ 0, -1, 0 }, 256, 0);
+    REQUIRE(sm);
+    CHECK_NEAR(vis_at(sm, 0, 0, 0), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, 0.8f, 0, -0.8f), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, 1.5f, 0, 0), 1, 1e-6);
+    CHECK_NEAR(vis_at(sm, -1.9f, 0, 1.9f), 1, 1e-6);
+    CHECK_NEAR(vis_at(sm, 0, 0, 5), 1, 1e-6);     /* off the map */
+    /* Above the quad is lit: nothing is nearer the light. */
+    CHECK_NEAR(vis_at(sm, 0, 1.5f, 0), 1, 1e-6);
+    /* Across the edge x = 1 the visibility rises from 0 to 1 without a
+     * step back, over about 2 radius texels. */
+    sr_shadow_info info;
+    REQUIRE(sr_query_shadow_map(sm, &info) == SR_OK);
+    float prev = 0, t = info.texel_size;
+    int partial = 0;
+    for (float x = 1 - 4 * t; x <= 1 + 4 * t; x += t / 16) {
+        float v = vis_at(sm, x, 0, 0.3f);
+        CHECK(v >= prev - 1e-6f);
+        partial += v > 0.01f && v < 0.99f;
+        prev = v;
+    }
+    CHECK_NEAR(prev, 1, 1e-6);
+    CHECK(partial >= 16 * 2 && partial <= 16 * 4);   /* 2r = 3 texels of penumbra */
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(slanted_light_casts_the_shadow_away_from_it)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* Light travelling towards +x and down at 45 degrees: the quad's shadow
+     * on y = 0 is the quad moved by +1 in x. */
+    sr_shadow_map *sm = quad_map(ctx, (sr_vec3){ 1, -1, 0 }, 512, 0);
+    REQUIRE(sm);
+    CHECK_NEAR(vis_at(sm, 1.0f, 0, 0), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, 1.9f, 0, 0.5f), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, -0.5f, 0, 0), 1, 1e-6);
+    CHECK_NEAR(vis_at(sm, 1.0f, 0, 1.5f), 1, 1e-6);
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(clear_empties_the_map)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_shadow_map *sm = quad_map(ctx, (sr_vec3){ 0, -1, 0 }, 64, 0);
+    REQUIRE(sm);
+    CHECK_NEAR(vis_at(sm, 0, 0, 0), 0, 1e-6);
+    CHECK(sr_shadow_map_clear(ctx, sm) == SR_OK);
+    CHECK_NEAR(vis_at(sm, 0, 0, 0), 1, 1e-6);
+    /* Cleared and redrawn with the quad moved by (1, 0, 1), the map
+     * answers as one that only ever held the moved quad, in the old
+     * quad's place too and across the edge they share. */
+    float moved[12];
+    for (int i = 0; i < 12; i++) {
+        moved[i] = quad_xyz[i] + (i % 3 != 1 ? 1.0f : 0.0f);
+    }
+    sr_draw_desc d = { .positions = moved, .vertex_count = 4, .indices = quad_idx,
+                       .index_type = SR_INDEX_U32, .index_count = 6 };
+    sr_shadow_map *fresh = NULL;
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 },
+                                                       .bounds_min = { -2, 0, -2 }, .bounds_max = { 2, 1, 2 },
+                                                       .size = 64 }, &fresh) == SR_OK);
+    CHECK(sr_shadow_map_draw(ctx, sm, &d) == SR_OK);
+    CHECK(sr_shadow_map_draw(ctx, fresh, &d) == SR_OK);
+    int differ = 0, partial = 0;
+    for (float z = -1.5f; z <= 1.5f; z += 0.05f) {
+        for (float x = -1.5f; x <= 1.5f; x += 0.013f) {
+            float a = vis_at(sm, x, 0, z), b = vis_at(fresh, x, 0, z);
+            differ += a != b;
+            partial += a > 0 && a < 1;
+        }
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(partial > 100);
+    CHECK_NEAR(vis_at(sm, -0.5f, 0, -0.5f), 1, 1e-6);
+    sr_destroy_shadow_map(ctx, fresh);
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_context(ctx);
+}
+
+/* ---- acne ---------------------------------------------------------------- */
+
+/* Renders the sphere lit from `to_light` with its own shadow map; returns
+ * the count of pixels facing the light (n.l > 0.05) whose visibility is
+ * below 1/2, and in *lit the count facing it. */
+static int sphere_dark_pixels(sr_context *ctx, sr_vec3 to_light, const sr_shadow_desc *extra,
+                              bool no_normal, int *lit, const char *png)
+{
+    enum { W = 256, H = 256 };
+    sr_mesh sphere = { 0 };
+    sr_shadow_map *sm = NULL;
+    sr_framebuffer *fb = NULL;
+    int dark = -1;
+    *lit = 0;
+    if (!make_sphere(ctx, (sr_vec3){ 0, 0, 0 }, 1, 48, 96, &sphere)) {
+        return -1;
+    }
+    sr_shadow_desc d = *extra;
+    d.direction = sr_vec3_scale(to_light, -1);
+    d.bounds_min = (sr_vec3){ -1, -1, -1 };
+    d.bounds_max = (sr_vec3){ 1, 1, 1 };
+    sr_draw_desc draw = mesh_draw(&sphere);
+    if (sr_make_shadow_map(ctx, &d, &sm) == SR_OK && sr_shadow_map_draw(ctx, sm, &draw) == SR_OK &&
+        sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &fb) == SR_OK) {
+        sr_vec3 l = sr_vec3_normalize(to_light);
+        /* The camera sees the terminator side on. */
+        sr_mat4 view = sr_look_at((sr_vec3){ 0.3f, 0.5f, 3.5f }, (sr_vec3){ 0, 0, 0 }, (sr_vec3){ 0, 1, 0 });
+        sr_mat4 proj = sr_perspective(0.7f, 1, 0.5f, 10, false);
+        lambert_uniforms u = { .mvp = sr_mat4_mul(&proj, &view), .sm = sm,
+                               .to_light = { l.x, l.y, l.z }, .base = { 1, 1, 1 }, .ambient = 0.1f,
+                               .no_normal = no_normal };
+        sr_program prog = { .vertex = lambert_vs, .fragment = png ? lambert_fs : lambert_flags_fs,
+                            .uniforms = &u, .varying_count = 6 };
+        sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+        if (png) {
+            sr_draw(ctx, fb, &(sr_state){ .program = &prog }, &draw);
+            save(fb, png);
+            prog.fragment = lambert_flags_fs;
+            sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+        }
+        if (sr_draw(ctx, fb, &(sr_state){ .program = &prog }, &draw) == SR_OK) {
+            const uint8_t *px = sr_framebuffer_pixels(fb);
+            dark = 0;
+            for (int i = 0; i < W * H; i++) {
+                if (px[4 * i + 1] == 255) {
+                    ++*lit;
+                    dark += px[4 * i + 2] < 230;
+                }
+            }
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_mesh(ctx, &sphere);
+    return dark;
+}
+
+SR_TEST(lit_sphere_shows_no_acne_at_grazing_slopes)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
+    /* Light from the side: the terminator runs down the visible face. */
+    sr_vec3 lights[] = { { 1, 0.2f, 0.1f }, { 0.3f, 1, 0.4f }, { -0.7f, 0.5f, 0.5f } };
+    for (int k = 0; k < 3; k++) {
+        int lit = 0;
+        int dark = sphere_dark_pixels(ctx, lights[k], &(sr_shadow_desc){ .size = 1024 }, false, &lit,
+                                      k == 0 ? "shadow_sphere.png" : NULL);
+        CHECK(lit > 5000);
+        /* No pixel facing the light is in its own shadow. */
+        CHECK_EQ(dark, 0);
+    }
+    /* Without the offsets the same scene does show acne: the test can see it. */
+    int lit = 0;
+    int dark = sphere_dark_pixels(ctx, lights[0],
+                                  &(sr_shadow_desc){ .size = 1024, .offset_factor = 1e-6f,
+                                                     .offset_units = 1e-6f, .normal_offset = 1e-6f,
+                                                     .filter_radius = 0.5f }, true, &lit,
+                                  "shadow_sphere_no_offset.png");
+    CHECK(dark > lit / 100);
+    sr_destroy_context(ctx);
+}
+
+/* ---- fitting ------------------------------------------------------------- */
+
+SR_TEST(fit_covers_the_bounds_from_any_direction)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_rng rng = { 0x5eed5 };
+    for (int k = 0; k < 200; k++) {
+        sr_vec3 dir = { (float)sr_rng_range(&rng, -1, 1), (float)sr_rng_range(&rng, -1, 1),
+                        (float)sr_rng_range(&rng, -1, 1) };
+        if (k == 0) {
+            dir = (sr_vec3){ 0, -1, 0 };     /* straight down: the up hint must change */
+        }
+        sr_vec3 lo = { (float)sr_rng_range(&rng, -100, 100), (float)sr_rng_range(&rng, -100, 100),
+                       (float)sr_rng_range(&rng, -100, 100) };
+        sr_vec3 hi = { lo.x + (float)sr_rng_range(&rng, 0, 50), lo.y + (float)sr_rng_range(&rng, 0, 50),
+                       lo.z + (k == 1 ? 0.0f : (float)sr_rng_range(&rng, 0, 50)) };
+        sr_shadow_map *sm = NULL;
+        REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = dir, .bounds_min = lo,
+                                                           .bounds_max = hi, .size = 64 }, &sm) == SR_OK);
+        sr_shadow_info info;
+        REQUIRE(sr_query_shadow_map(sm, &info) == SR_OK);
+        sr_mat4 vp = sr_mat4_mul(&info.projection, &info.view);
+        /* Every corner inside the square, the filter's margin (radius + 2
+         * texels) from its edge, and inside the depth range. */
+        float margin = 2.0f * (info.filter_radius + 2.0f) / (float)info.size;
+        float widest = 0;
+        for (int i = 0; i < 8; i++) {
+            sr_vec4 c = sr_mat4_mul_vec4(&vp, (sr_vec4){ i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y,
+                                                         i & 4 ? hi.z : lo.z, 1 });
+            CHECK(fabsf(c.x) <= 1 - margin + 1e-5f);
+            CHECK(fabsf(c.y) <= 1 - margin + 1e-5f);
+            CHECK(c.z > 0 && c.z < 1);
+            widest = fmaxf(widest, fmaxf(fabsf(c.x), fabsf(c.y)));
+        }
+        /* And tightly: some corner reaches the margin. */
+        CHECK(widest >= 1 - margin - 1e-4f);
+        /* The light looks along the direction: a point nearer the light
+         * has the smaller depth. */
+        sr_vec3 c = sr_vec3_scale(sr_vec3_add(lo, hi), 0.5f);
+        sr_vec3 toward = sr_vec3_sub(c, sr_vec3_scale(sr_vec3_normalize(dir), 0.1f));
+        sr_vec4 a = sr_mat4_mul_vec4(&vp, (sr_vec4){ c.x, c.y, c.z, 1 });
+        sr_vec4 b = sr_mat4_mul_vec4(&vp, (sr_vec4){ toward.x, toward.y, toward.z, 1 });
+        CHECK(b.z < a.z);
+        sr_destroy_shadow_map(ctx, sm);
+    }
+    sr_destroy_context(ctx);
+}
+
+/* ---- the ground ---------------------------------------------------------- */
+
+SR_TEST(ground_lies_under_the_bounds_facing_up)
+{
+    sr_context *ctx = sr_test_ctx();
+    struct { sr_vec3 up; int axis; } cases[] = { { { 0, 0, 0 }, 1 }, { { 0, 0, 2 }, 2 }, { { -1, 0, 0 }, 0 } };
+    sr_vec3 lo = { -1, 2, 3 }, hi = { 3, 4, 4 };
+    for (int k = 0; k < 3; k++) {
+        sr_mesh g = { 0 };
+        REQUIRE(sr_make_ground_mesh(ctx, &(sr_ground_desc){ .bounds_min = lo, .bounds_max = hi,
+                                                            .up = cases[k].up, .scale = 2 }, &g) == SR_OK);
+        CHECK_EQ(g.vertex_count, 4);
+        CHECK_EQ(g.triangle_count, 2);
+        int a = cases[k].axis;
+        float sign = k == 2 ? -1.0f : 1.0f;
+        float base = sign > 0 ? (&lo.x)[a] : (&hi.x)[a];
+        float extent = 0;
+        for (int j = 0; j < 3; j++) {
+            extent = j == a ? extent : fmaxf(extent, (&hi.x)[j] - (&lo.x)[j]);
+        }
+        for (size_t v = 0; v < 4; v++) {
+            CHECK_NEAR(g.positions[3 * v + a], base, 1e-5);
+            CHECK_NEAR(g.normals[3 * v + a], sign, 1e-6);
+            /* Centred under the box, 2 x its widest extent a side. */
+            for (int j = 0; j < 3; j++) {
+                if (j != a) {
+                    float mid = 0.5f * ((&lo.x)[j] + (&hi.x)[j]);
+                    CHECK_NEAR(fabsf(g.positions[3 * v + j] - mid), extent, 1e-4);
+                }
+            }
+        }
+        /* Counter-clockwise seen from above: the winding's normal is up. */
+        for (size_t t = 0; t < 2; t++) {
+            const float *p0 = &g.positions[3 * g.indices[3 * t]];
+            const float *p1 = &g.positions[3 * g.indices[3 * t + 1]];
+            const float *p2 = &g.positions[3 * g.indices[3 * t + 2]];
+            sr_vec3 e1 = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
+            sr_vec3 e2 = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
+            sr_vec3 n = sr_vec3_cross(e1, e2);
+            CHECK((&n.x)[a] * sign > 0);
+        }
+        sr_destroy_mesh(ctx, &g);
+    }
+}
+
+/* ---- bad input ----------------------------------------------------------- */
+
+SR_TEST(bad_input_is_refused)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_shadow_map *sm = NULL;
+    const sr_shadow_desc good = { .direction = { 0, -1, 0 }, .bounds_min = { -1, -1, -1 },
+                                  .bounds_max = { 1, 1, 1 }, .size = 32 };
+    CHECK_EQ(sr_make_shadow_map(NULL, &good, &sm), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_shadow_map(ctx, NULL, &sm), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_shadow_map(ctx, &good, NULL), SR_INVALID_ARG);
+    struct { sr_shadow_desc d; sr_result r; const char *field; } bad[] = {
+        { { .bounds_min = { -1, -1, -1 }, .bounds_max = { 1, 1, 1 } }, SR_INVALID_ARG, "direction" },
+        { { .direction = { NAN, -1, 0 }, .bounds_max = { 1, 1, 1 } }, SR_INVALID_ARG, "direction" },
+        { { .direction = { 0, -INFINITY, 0 }, .bounds_max = { 1, 1, 1 } }, SR_INVALID_ARG, "direction" },
+        { { .direction = { 0, -1, 0 }, .bounds_min = { 0, NAN, 0 } }, SR_INVALID_ARG, "bounds" },
+        { { .direction = { 0, -1, 0 }, .bounds_min = { 2, 0, 0 }, .bounds_max = { 1, 1, 1 } },
+          SR_INVALID_ARG, "bounds_min must be <= bounds_max" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1e30f, 1, 1 } }, SR_TOO_LARGE, "1e18" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 }, .size = 8 }, SR_INVALID_ARG, "size" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 }, .size = 100000 }, SR_INVALID_ARG, "size" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 }, .size = -4 }, SR_INVALID_ARG, "size" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 }, .filter_radius = 100 },
+          SR_INVALID_ARG, "filter_radius" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 }, .filter_radius = NAN },
+          SR_INVALID_ARG, "filter_radius" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 }, .normal_offset = -1 },
+          SR_INVALID_ARG, "normal_offset" },
+        { { .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 }, .offset_factor = INFINITY },
+          SR_INVALID_ARG, "offset_factor" },
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sm = (sr_shadow_map *)&good;   /* must come back NULL */
+        CHECK_EQ(sr_make_shadow_map(ctx, &bad[i].d, &sm), bad[i].r);
+        CHECK(sm == NULL);
+        CHECK_STR_CONTAINS(sr_context_error(ctx), bad[i].field);
+    }
+    REQUIRE(sr_make_shadow_map(ctx, &good, &sm) == SR_OK);
+    float v = 0, v4[4];
+    const float p[12] = { 0 };
+    CHECK_EQ(sr_shadow_map_draw(ctx, sm, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_map_draw(ctx, NULL, &(sr_draw_desc){ 0 }), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .vertex_count = 3 }), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_map_clear(ctx, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_visibility(NULL, p, NULL, &v), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_visibility(sm, NULL, NULL, &v), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_visibility(sm, p, NULL, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_visibility4(NULL, p, NULL, v4), SR_INVALID_ARG);
+    CHECK_EQ(sr_shadow_visibility4(sm, p, NULL, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_query_shadow_map(sm, NULL), SR_INVALID_ARG);
+    /* A point that is not finite is lit, not NaN. */
+    CHECK_EQ(sr_shadow_visibility(sm, (const float[3]){ NAN, 0, 0 }, NULL, &v), SR_OK);
+    CHECK(v == 1.0f);
+    sr_destroy_shadow_map(ctx, sm);
+
+    sr_mesh g = { 0 };
+    CHECK_EQ(sr_make_ground_mesh(NULL, &(sr_ground_desc){ 0 }, &g), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_ground_mesh(ctx, NULL, &g), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_ground_mesh(ctx, &(sr_ground_desc){ 0 }, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_ground_mesh(ctx, &(sr_ground_desc){ .bounds_min = { 1, 0, 0 } }, &g), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_ground_mesh(ctx, &(sr_ground_desc){ .up = { NAN, 1, 0 } }, &g), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_ground_mesh(ctx, &(sr_ground_desc){ .scale = -1 }, &g), SR_INVALID_ARG);
+    CHECK_EQ(sr_make_ground_mesh(ctx, &(sr_ground_desc){ .drop = 2 }, &g), SR_INVALID_ARG);
+    CHECK(g.positions == NULL);
+    sr_destroy_context(ctx);
+}
+
+/* ---- threads ------------------------------------------------------------- */
+
+/* The teapot's map and a grid of lookups over the ground, on a context
+ * of `threads` threads: the map's depth words then the visibilities. */
+static bool teapot_map_bytes(int threads, uint32_t **depth, float **vis, int *size)
+{
+    enum { N = 64 };
+    sr_context *ctx = NULL;
+    sr_mesh pot = { 0 };
+    sr_shadow_map *sm = NULL;
+    bool ok = sr_make_context(&(sr_context_desc){ .threads = threads }, &ctx) == SR_OK &&
+              sr_make_teapot(ctx, 6, &pot) == SR_OK;
+    sr_vec3 lo, hi;
+    ok = ok && sr_mesh_bounds(&pot, &lo, &hi);
+    ok = ok && sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0.4f, -1, -0.3f },
+                                                          .bounds_min = lo, .bounds_max = hi,
+                                                          .size = 512 }, &sm) == SR_OK;
+    sr_draw_desc draw = mesh_draw(&pot);
+    ok = ok && sr_shadow_map_draw(ctx, sm, &draw) == SR_OK;
+    if (ok) {
+        *size = sm->size;
+        *depth = malloc((size_t)sm->size * sm->size * sizeof **depth);
+        *vis = malloc(N * N * sizeof **vis);
+        ok = *depth && *vis;
+    }
+    if (ok) {
+        memcpy(*depth, sm->depth, (size_t)sm->size * sm->size * sizeof **depth);
+        for (int j = 0; j < N; j++) {
+            for (int i = 0; i < N; i++) {
+                float p[3] = { lo.x + (hi.x - lo.x) * i / (N - 1), lo.y, lo.z + (hi.z - lo.z) * j / (N - 1) };
+                sr_shadow_visibility(sm, p, (const float[3]){ 0, 1, 0 }, &(*vis)[j * N + i]);
+            }
+        }
+    }
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_mesh(ctx, &pot);
+    sr_destroy_context(ctx);
+    return ok;
+}
+
+SR_TEST(same_map_and_visibility_for_1_and_2_threads)
+{
+    uint32_t *d1 = NULL, *d2 = NULL;
+    float *v1 = NULL, *v2 = NULL;
+    int s1 = 0, s2 = 0;
+    REQUIRE(teapot_map_bytes(1, &d1, &v1, &s1));
+    REQUIRE(teapot_map_bytes(2, &d2, &v2, &s2));
+    CHECK_EQ(s1, s2);
+    CHECK(memcmp(d1, d2, (size_t)s1 * s1 * sizeof *d1) == 0);
+    CHECK(memcmp(v1, v2, 64 * 64 * sizeof *v1) == 0);
+    /* The pot's shadow is on the ground: some of it dark, some lit. */
+    int dark = 0, lit = 0;
+    for (int i = 0; i < 64 * 64; i++) {
+        dark += v1[i] < 0.01f;
+        lit += v1[i] > 0.99f;
+    }
+    CHECK(dark > 200);
+    CHECK(lit > 200);
+    free(d1), free(d2), free(v1), free(v2);
+}
+
+SR_TEST(lanes_match_the_single_lookup)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_shadow_map *sm = quad_map(ctx, (sr_vec3){ 0.3f, -1, 0.2f }, 128, 2.5f);
+    REQUIRE(sm);
+    sr_rng rng = { 77 };
+    for (int k = 0; k < 500; k++) {
+        float pos[12], nrm[12], out[4];
+        for (int i = 0; i < 12; i++) {
+            pos[i] = (float)sr_rng_range(&rng, -2, 2) * (i >= 4 && i < 8 ? 0.3f : 1.0f);
+            nrm[i] = (float)sr_rng_range(&rng, -1, 1);
+        }
+        REQUIRE(sr_shadow_visibility4(sm, pos, nrm, out) == SR_OK);
+        for (int i = 0; i < 4; i++) {
+            float v;
+            sr_shadow_visibility(sm, (const float[3]){ pos[i], pos[4 + i], pos[8 + i] },
+                                 (const float[3]){ nrm[i], nrm[4 + i], nrm[8 + i] }, &v);
+            CHECK(v == out[i]);
+            CHECK(v >= 0 && v <= 1);
+        }
+    }
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_context(ctx);
+}
+
+/* ---- a thumbnail ----------------------------------------------------------- */
+
+/* The teapot over a ground plane lit from the upper left (the light
+ * travels towards +x): shadow_teapot.png.  The ground right of the pot is
+ * in shadow, left of it lit, and the pot's lit side has no dark pixel. */
+SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
+{
+    enum { W = 480, H = 320 };
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(NULL, &ctx) == SR_OK);
+    sr_mesh pot = { 0 }, ground = { 0 };
+    sr_shadow_map *sm = NULL;
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_teapot(ctx, 8, &pot) == SR_OK);
+    sr_vec3 lo, hi;
+    REQUIRE(sr_mesh_bounds(&pot, &lo, &hi));
+    REQUIRE(sr_make_ground_mesh(ctx, &(sr_ground_desc){ .bounds_min = lo, .bounds_max = hi }, &ground) == SR_OK);
+    sr_vec3 dir = { 1, -1.2f, -0.5f };
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = dir, .bounds_min = lo,
+                                                       .bounds_max = hi }, &sm) == SR_OK);
+    sr_draw_desc pot_draw = mesh_draw(&pot), ground_draw = mesh_draw(&ground);
+    REQUIRE(sr_shadow_map_draw(ctx, sm, &pot_draw) == SR_OK);
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H, .samples = 4 },
+                                &fb) == SR_OK);
+    sr_vec3 l = sr_vec3_normalize(sr_vec3_scale(dir, -1));
+    sr_mat4 view = sr_look_at((sr_vec3){ 1.5f, 4.5f, 8.0f }, (sr_vec3){ 0.6f, 0.8f, 0 },
+                              (sr_vec3){ 0, 1, 0 });
+    sr_mat4 proj = sr_perspective(0.75f, (float)W / H, 1, 30, false);
+    lambert_uniforms u = { .mvp = sr_mat4_mul(&proj, &view), .sm = sm, .to_light = { l.x, l.y, l.z },
+                           .base = { 0.9f, 0.55f, 0.3f }, .ambient = 0.25f };
+    lambert_uniforms ug = u;
+    ug.base[0] = ug.base[1] = ug.base[2] = 0.85f;
+    sr_program prog = { .vertex = lambert_vs, .fragment = lambert_fs, .uniforms = &u, .varying_count = 6 };
+    sr_program progg = prog;
+    progg.uniforms = &ug;
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.2f, 0.22f, 0.25f, 1 } });
+    CHECK(sr_draw(ctx, fb, &(sr_state){ .program = &progg }, &ground_draw) == SR_OK);
+    CHECK(sr_draw(ctx, fb, &(sr_state){ .program = &prog }, &pot_draw) == SR_OK);
+    save(fb, "shadow_teapot.png");
+    /* On the ground: right of the pot and behind it (the shadow's side), left of it. */
+    float shade = -1, lit = -1;
+    sr_shadow_visibility(sm, (const float[3]){ 2.0f, lo.y, -0.8f }, (const float[3]){ 0, 1, 0 }, &shade);
+    sr_shadow_visibility(sm, (const float[3]){ lo.x - 0.3f, lo.y, 0 }, (const float[3]){ 0, 1, 0 }, &lit);
+    CHECK(shade < 0.05f);
+    CHECK(lit > 0.95f);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_mesh(ctx, &ground);
+    sr_destroy_mesh(ctx, &pot);
+    sr_destroy_context(ctx);
+}
