@@ -1332,6 +1332,13 @@ typedef struct sr_shadow_desc {
      * filter_radius) texels times the sine of the angle between normal
      * and light: 0 -> 1; 0 .. 64 (a NULL normal at lookup: no move). */
     float normal_offset;
+    /* The light's angular radius, radians, for shadows that are sharp
+     * where they touch their caster and soften with distance from it
+     * (percentage-closer soft shadows): 0 -> a fixed filter of
+     * filter_radius; > 0 (at most 0.5) -> a penumbra of half-width
+     * (distance to the blockers) x tan(light_radius), from filter_radius
+     * up to 8 texels. */
+    float light_radius;
 } sr_shadow_desc;
 
 /* The light's transform as the map uses it. */

@@ -1,9 +1,10 @@
 #!/bin/sh
 # Installs what softrast needs on a fresh Debian 12 machine: the compiler and
 # CMake, libpng (PNG in and out), libjpeg-turbo (JPEG textures in), Assimp
-# (model formats beyond OBJ/PLY/STL), jansson (the glTF
-# reader's JSON), expat (the SVG reader), Mesa's OSMesa
-# (llvmpipe, for the benchmark's side-by-side comparison), cairo (the 2D fill benchmark's comparison), and
+# (model formats beyond OBJ/PLY/STL), jansson (the glTF reader's JSON), expat (the SVG
+# reader), Mesa's OSMesa (llvmpipe, for the benchmark's side-by-side comparison), cairo (the
+# 2D fill benchmark's comparison), libwebp (animated WebP turntables, 'softrast render
+# --animate'), and
 # clang with its sanitizer and fuzzer runtimes, and for `softrast view` SDL2
 # (the window), FreeType and DejaVu (the overlay font's outlines) with Xvfb
 # and xauth (its tests run on a virtual display), and the de_DE.UTF-8 locale
@@ -17,7 +18,8 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake pkg-config ca-certificates \
-    libpng-dev zlib1g-dev libjpeg-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev libjansson-dev \
+    libpng-dev zlib1g-dev libjpeg-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev \
+    libjansson-dev libwebp-dev \
     clang libclang-rt-14-dev \
     libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth locales >/dev/null
 # Generate de_DE.UTF-8 once: uncomment (or add) its line, then locale-gen.

@@ -102,6 +102,16 @@ uint8_t *sr_test_read_file(const char *path, size_t *size)
     return buf;
 }
 
+bool sr_test_write_file(const char *path, const void *data, size_t size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        return false;
+    }
+    bool ok = fwrite(data, 1, size, f) == size;
+    return fclose(f) == 0 && ok;
+}
+
 int sr_test_run_cli(const char *const *args)
 {
 #ifdef SR_CLI_PATH

@@ -37,6 +37,8 @@ struct sr_context *sr_test_ctx(void);
 const char *sr_test_src_dir(void);
 /* A whole file, malloc'd (free it), or NULL when it cannot be opened. */
 uint8_t *sr_test_read_file(const char *path, size_t *size);
+/* Write a whole file; false when it cannot be written. */
+bool sr_test_write_file(const char *path, const void *data, size_t size);
 /* Run the built softrast CLI with args (NULL-terminated, without the
  * program name), no shell; its exit status, or -1 if it could not run. */
 int sr_test_run_cli(const char *const *args);

@@ -340,28 +340,61 @@ SR_TEST(same_results_for_any_thread_count)
 
 SR_TEST(four_lane_queries_equal_the_single_ones)
 {
+    /* Bit for bit, on random directions and roughnesses and on the edge
+     * cases: axes, signed zeros, a zero vector, huge, tiny, infinite and
+     * NaN components, roughness outside [0, 1] and NaN. */
+    static const float special[][4] = {
+        { 1, 0, 0, 0 }, { -1, 0, 0, 1 }, { 0, 1, 0, 0.2f }, { 0, -1, 0, 0.4f },
+        { 0, 0, 1, 0.5f }, { 0, 0, -1, 0.99f }, { -0.0f, 0.0f, -1, 0 }, { -1, -0.0f, 0.0f, 0.3f },
+        { 0, 0, 0, 0.5f }, { 1e30f, 1e30f, 0, 0.1f }, { 1e-30f, -1e-30f, 1e-30f, 0.7f },
+        { INFINITY, 0, 1, 0.6f }, { NAN, 0, 1, 0.6f }, { 0.3f, 0.4f, 0.5f, -2 },
+        { 0.3f, -0.4f, 0.5f, 7 }, { -0.3f, 0.4f, -0.5f, NAN },
+    };
     sr_context *ctx = make_ctx(1);
-    sr_environment *env = NULL;
-    REQUIRE(sr_make_environment(ctx, NULL, &env) == SR_OK);
-    sr_vec3x4 d, irr, spec;
-    float rough[4] = { 0, 0.3f, 0.71f, 1 };
-    for (int i = 0; i < 4; i++) {
-        float v[3];
-        random_direction(v);
-        d.x[i] = v[0];
-        d.y[i] = v[1];
-        d.z[i] = v[2];
+    float *img = make_image(64, 32, smooth_sky);
+    sr_environment *envs[3] = { NULL, NULL, NULL };
+    REQUIRE(sr_make_environment(ctx, NULL, &envs[0]) == SR_OK);
+    REQUIRE(sr_make_environment(ctx, &(sr_environment_desc){ .pixels = img, .width = 64,
+                                                             .height = 32, .rotation = 2.5f },
+                                &envs[1]) == SR_OK);
+    REQUIRE(sr_make_environment(ctx, &(sr_environment_desc){ .rotation = -1 }, &envs[2]) == SR_OK);
+    int differ = 0;
+    for (int e = 0; e < 3; e++) {
+        for (int n = 0; n < 2000; n++) {
+            sr_vec3x4 d, irr, spec;
+            float rough[4];
+            for (int i = 0; i < 4; i++) {
+                int k = (n * 4 + i) % 64;
+                if (n < 8 && k < (int)(sizeof special / sizeof special[0])) {
+                    d.x[i] = special[k][0];
+                    d.y[i] = special[k][1];
+                    d.z[i] = special[k][2];
+                    rough[i] = special[k][3];
+                } else {
+                    float v[3];
+                    random_direction(v);
+                    d.x[i] = v[0] * 3;
+                    d.y[i] = v[1] * 3;
+                    d.z[i] = v[2] * 3;
+                    rough[i] = (float)drand();
+                }
+            }
+            sr_environment_irradiance4(envs[e], &d, &irr);
+            sr_environment_specular4(envs[e], &d, rough, &spec);
+            for (int i = 0; i < 4; i++) {
+                float v[3] = { d.x[i], d.y[i], d.z[i] }, a[3], b[3];
+                sr_environment_irradiance(envs[e], v, a);
+                sr_environment_specular(envs[e], v, rough[i], b);
+                float la[3] = { irr.x[i], irr.y[i], irr.z[i] };
+                float lb[3] = { spec.x[i], spec.y[i], spec.z[i] };
+                differ += memcmp(a, la, sizeof a) != 0 || memcmp(b, lb, sizeof b) != 0;
+                differ += !(isfinite(b[0]) && b[0] >= 0 && isfinite(a[0]) && a[0] >= 0);
+            }
+        }
+        sr_destroy_environment(ctx, envs[e]);
     }
-    sr_environment_irradiance4(env, &d, &irr);
-    sr_environment_specular4(env, &d, rough, &spec);
-    for (int i = 0; i < 4; i++) {
-        float v[3] = { d.x[i], d.y[i], d.z[i] }, a[3], b[3];
-        sr_environment_irradiance(env, v, a);
-        sr_environment_specular(env, v, rough[i], b);
-        CHECK(a[0] == irr.x[i] && a[1] == irr.y[i] && a[2] == irr.z[i]);
-        CHECK(b[0] == spec.x[i] && b[1] == spec.y[i] && b[2] == spec.z[i]);
-    }
-    sr_destroy_environment(ctx, env);
+    CHECK_EQ(differ, 0);
+    free(img);
     sr_destroy_context(ctx);
 }
 
@@ -564,6 +597,28 @@ SR_TEST(bad_descriptions_are_refused)
     sr_environment_specular(NULL, d, 0.5f, NULL);
     sr_brdf_table(0.5f, 0.5f, NULL);
     sr_destroy_environment(ctx, NULL);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(sizes_past_the_limits_are_refused_before_any_allocation)
+{
+    failing f = { .fail_at = -1 };
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){
+        .threads = 1, .allocator = { fail_alloc, fail_free, &f } }, &ctx) == SR_OK);
+    long before = f.count;
+    float px[3] = { 1, 1, 1 };
+    static const int sizes[][2] = { { SR_ENVIRONMENT_MAX_SIDE + 1, 1 },
+                                    { 1, SR_ENVIRONMENT_MAX_SIDE + 1 },
+                                    { 1 << 14, 1 << 14 },
+                                    { 0x7fffffff, 0x7fffffff } };
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        sr_environment *env = NULL;
+        sr_environment_desc d = { .pixels = px, .width = sizes[i][0], .height = sizes[i][1] };
+        CHECK_EQ(sr_make_environment(ctx, &d, &env), SR_TOO_LARGE);
+        CHECK(env == NULL);
+    }
+    CHECK_EQ(f.count, before);
     sr_destroy_context(ctx);
 }
 

@@ -1,13 +1,15 @@
 /* test_shadow.c - shadow maps: a quad's shadow on a plane (dark under
  * it, lit beside it, a monotonic penumbra, on the side away from a
  * slanted light), no acne on a lit sphere at grazing slopes, the fit
- * covering the bounds, the ground mesh, bad input refused, and the same
- * map and visibility for 1 and 2 threads.  Writes shadow_*.png to the
- * test output directory to look at. */
+ * covering the bounds, the ground mesh, bad input refused, the same map
+ * and visibility for 1 and 2 threads and with the vector kernels off,
+ * and soft shadows that widen away from the caster.  Writes shadow_*.png
+ * to the test output directory to look at. */
 #include "sr_test.h"
 #include "softrast.h"
 #include "softrast_io.h"
 #include "fragment/shadow.h"
+#include "failing_alloc.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -67,6 +69,33 @@ static void lambert_flags_fs(const void *u, sr_fragment_quad *q)
         float ndl = (n[0] * l->to_light[0] + n[1] * l->to_light[1] + n[2] * l->to_light[2]) / len;
         q->color[1][i] = ndl > 0.05f ? 1.0f : 0.0f;
         q->color[2][i] = vis[i];
+    }
+}
+
+/* A shadow catcher (docs/shadows.md): the ground shows only the shadow,
+ * black at 60% where fully shadowed, fading out over the outer half of
+ * the ground (its texcoords) so it has no visible edge.  Blended
+ * source-over, so a lit ground leaves the background as it was.
+ * Varyings: 0..2 world position, 3..5 world normal, 6..7 texcoord. */
+static void catcher_vs(const void *u, const sr_vertex_input *in, float clip[4], float *vary)
+{
+    lambert_vs(u, in, clip, vary);
+    vary[6] = in->texcoord[0], vary[7] = in->texcoord[1];
+}
+
+static void catcher_fs(const void *u, sr_fragment_quad *q)
+{
+    const lambert_uniforms *l = u;
+    float vis[4];
+    sr_shadow_visibility4(l->sm, q->varyings[0], q->varyings[3], vis);
+    for (int i = 0; i < 4; i++) {
+        float dx = q->varyings[6][i] - 0.5f, dy = q->varyings[7][i] - 0.5f;
+        float r = 2.0f * sqrtf(dx * dx + dy * dy);            /* 0 centre, 1 edge midpoints */
+        float fade = fminf(fmaxf(2.0f - 2.0f * r, 0.0f), 1.0f);
+        for (int c = 0; c < 3; c++) {
+            q->color[c][i] = 0;
+        }
+        q->color[3][i] = 0.6f * (1.0f - vis[i]) * fade;
     }
 }
 
@@ -196,6 +225,20 @@ SR_TEST(slanted_light_casts_the_shadow_away_from_it)
     CHECK_NEAR(vis_at(sm, -0.5f, 0, 0), 1, 1e-6);
     CHECK_NEAR(vis_at(sm, 1.0f, 0, 1.5f), 1, 1e-6);
     sr_destroy_shadow_map(ctx, sm);
+    /* Bounds around the quad alone: the plane lies past the far plane,
+     * and still receives the shadow (its depth clamps to the far value,
+     * which only an empty texel passes). */
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 1, -1, 0 }, .bounds_min = { -1, 1, -1 },
+                                                       .bounds_max = { 1, 1, 1 }, .size = 512 }, &sm) == SR_OK);
+    REQUIRE(sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = quad_xyz, .vertex_count = 4,
+                                                         .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                         .index_count = 6 }) == SR_OK);
+    CHECK_NEAR(vis_at(sm, 1.0f, 0, 0), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, 1.9f, 0, 0.5f), 0, 1e-6);
+    CHECK_NEAR(vis_at(sm, -0.5f, 0, 0), 1, 1e-6);
+    CHECK_NEAR(vis_at(sm, 2.5f, 0, 0), 1, 1e-6);
+    CHECK_NEAR(vis_at(sm, 0, 2, 0), 1, 1e-6);     /* above it, before the near plane */
+    sr_destroy_shadow_map(ctx, sm);
     sr_destroy_context(ctx);
 }
 
@@ -308,6 +351,10 @@ SR_TEST(lit_sphere_shows_no_acne_at_grazing_slopes)
                                       k == 0 ? "shadow_sphere.png" : NULL);
         CHECK(lit > 5000);
         /* No pixel facing the light is in its own shadow. */
+        CHECK_EQ(dark, 0);
+        /* Nor with a light of some size (wider filters, larger offsets). */
+        dark = sphere_dark_pixels(ctx, lights[k], &(sr_shadow_desc){ .size = 1024, .light_radius = 0.05f },
+                                  false, &lit, NULL);
         CHECK_EQ(dark, 0);
     }
     /* Without the offsets the same scene does show acne: the test can see it. */
@@ -487,13 +534,13 @@ SR_TEST(bad_input_is_refused)
 
 /* The teapot's map and a grid of lookups over the ground, on a context
  * of `threads` threads: the map's depth words then the visibilities. */
-static bool teapot_map_bytes(int threads, uint32_t **depth, float **vis, int *size)
+static bool teapot_map_bytes(int threads, sr_simd_level simd, uint32_t **depth, float **vis, int *size)
 {
     enum { N = 64 };
     sr_context *ctx = NULL;
     sr_mesh pot = { 0 };
     sr_shadow_map *sm = NULL;
-    bool ok = sr_make_context(&(sr_context_desc){ .threads = threads }, &ctx) == SR_OK &&
+    bool ok = sr_make_context(&(sr_context_desc){ .threads = threads, .simd = simd }, &ctx) == SR_OK &&
               sr_make_teapot(ctx, 6, &pot) == SR_OK;
     sr_vec3 lo, hi;
     ok = ok && sr_mesh_bounds(&pot, &lo, &hi);
@@ -523,16 +570,21 @@ static bool teapot_map_bytes(int threads, uint32_t **depth, float **vis, int *si
     return ok;
 }
 
-SR_TEST(same_map_and_visibility_for_1_and_2_threads)
+SR_TEST(same_map_and_visibility_for_any_threads_and_simd)
 {
-    uint32_t *d1 = NULL, *d2 = NULL;
-    float *v1 = NULL, *v2 = NULL;
-    int s1 = 0, s2 = 0;
-    REQUIRE(teapot_map_bytes(1, &d1, &v1, &s1));
-    REQUIRE(teapot_map_bytes(2, &d2, &v2, &s2));
+    uint32_t *d1 = NULL, *d2 = NULL, *d3 = NULL;
+    float *v1 = NULL, *v2 = NULL, *v3 = NULL;
+    int s1 = 0, s2 = 0, s3 = 0;
+    REQUIRE(teapot_map_bytes(1, SR_SIMD_DEFAULT, &d1, &v1, &s1));
+    REQUIRE(teapot_map_bytes(2, SR_SIMD_DEFAULT, &d2, &v2, &s2));
+    /* And with the scalar kernels drawing the map. */
+    REQUIRE(teapot_map_bytes(2, SR_SIMD_OFF, &d3, &v3, &s3));
     CHECK_EQ(s1, s2);
+    CHECK_EQ(s1, s3);
     CHECK(memcmp(d1, d2, (size_t)s1 * s1 * sizeof *d1) == 0);
     CHECK(memcmp(v1, v2, 64 * 64 * sizeof *v1) == 0);
+    CHECK(memcmp(d1, d3, (size_t)s1 * s1 * sizeof *d1) == 0);
+    CHECK(memcmp(v1, v3, 64 * 64 * sizeof *v1) == 0);
     /* The pot's shadow is on the ground: some of it dark, some lit. */
     int dark = 0, lit = 0;
     for (int i = 0; i < 64 * 64; i++) {
@@ -541,32 +593,56 @@ SR_TEST(same_map_and_visibility_for_1_and_2_threads)
     }
     CHECK(dark > 200);
     CHECK(lit > 200);
-    free(d1), free(d2), free(v1), free(v2);
+    free(d1), free(d2), free(d3), free(v1), free(v2), free(v3);
 }
 
+/* Four lanes scattered, or clustered as a fragment quad's are (which the
+ * quad test settles together when it can), with the fixed filter and
+ * with a light of some size: each lane equals the one-point lookup. */
 SR_TEST(lanes_match_the_single_lookup)
 {
     sr_context *ctx = NULL;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
-    sr_shadow_map *sm = quad_map(ctx, (sr_vec3){ 0.3f, -1, 0.2f }, 128, 2.5f);
-    REQUIRE(sm);
-    sr_rng rng = { 77 };
-    for (int k = 0; k < 500; k++) {
-        float pos[12], nrm[12], out[4];
+    for (int soft = 0; soft < 2; soft++) {
+        float xyz[12];
         for (int i = 0; i < 12; i++) {
-            pos[i] = (float)sr_rng_range(&rng, -2, 2) * (i >= 4 && i < 8 ? 0.3f : 1.0f);
-            nrm[i] = (float)sr_rng_range(&rng, -1, 1);
+            xyz[i] = quad_xyz[i] * (i % 3 == 1 ? 0.5f : 1.0f);   /* at height 0.5 */
         }
-        REQUIRE(sr_shadow_visibility4(sm, pos, nrm, out) == SR_OK);
-        for (int i = 0; i < 4; i++) {
-            float v;
-            sr_shadow_visibility(sm, (const float[3]){ pos[i], pos[4 + i], pos[8 + i] },
-                                 (const float[3]){ nrm[i], nrm[4 + i], nrm[8 + i] }, &v);
-            CHECK(v == out[i]);
-            CHECK(v >= 0 && v <= 1);
+        sr_shadow_map *sm = NULL;
+        REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0.3f, -1, 0.2f },
+                                                           .bounds_min = { -2, 0, -2 }, .bounds_max = { 2, 1, 2 },
+                                                           .size = 128, .filter_radius = 2.5f,
+                                                           .light_radius = soft ? 0.1f : 0 }, &sm) == SR_OK);
+        REQUIRE(sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = xyz, .vertex_count = 4,
+                                                             .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                             .index_count = 6 }) == SR_OK);
+        sr_rng rng = { 77 };
+        int settled[3] = { 0 };   /* quads all lit, all dark, mixed */
+        for (int k = 0; k < 4000; k++) {
+            float pos[12], nrm[12], out[4];
+            float spread = k & 1 ? 2.0f : 0.01f;
+            float base[3] = { (float)sr_rng_range(&rng, -2, 2), (float)sr_rng_range(&rng, 0, 0.3),
+                              (float)sr_rng_range(&rng, -2, 2) };
+            for (int i = 0; i < 12; i++) {
+                pos[i] = base[i / 4] + (float)sr_rng_range(&rng, -spread, spread) * (i / 4 == 1 ? 0.1f : 1.0f);
+                nrm[i] = (float)sr_rng_range(&rng, -1, 1) + (i / 4 == 1 ? 1.5f : 0.0f);
+            }
+            REQUIRE(sr_shadow_visibility4(sm, pos, nrm, out) == SR_OK);
+            int lit = 0, dark = 0;
+            for (int i = 0; i < 4; i++) {
+                float v;
+                sr_shadow_visibility(sm, (const float[3]){ pos[i], pos[4 + i], pos[8 + i] },
+                                     (const float[3]){ nrm[i], nrm[4 + i], nrm[8 + i] }, &v);
+                CHECK(v == out[i]);
+                CHECK(v >= 0 && v <= 1);
+                lit += v == 1, dark += v == 0;
+            }
+            settled[lit == 4 ? 0 : dark == 4 ? 1 : 2]++;
         }
+        /* Every kind of quad came up. */
+        CHECK(settled[0] > 100 && settled[1] > 100 && settled[2] > 100);
+        sr_destroy_shadow_map(ctx, sm);
     }
-    sr_destroy_shadow_map(ctx, sm);
     sr_destroy_context(ctx);
 }
 
@@ -574,7 +650,8 @@ SR_TEST(lanes_match_the_single_lookup)
 
 /* The teapot over a ground plane lit from the upper left (the light
  * travels towards +x): shadow_teapot.png.  The ground right of the pot is
- * in shadow, left of it lit, and the pot's lit side has no dark pixel. */
+ * in shadow, left of it lit.  Then with the ground as a shadow catcher
+ * and a soft light: shadow_catcher.png. */
 SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
 {
     enum { W = 480, H = 320 };
@@ -615,9 +692,185 @@ SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
     sr_shadow_visibility(sm, (const float[3]){ lo.x - 0.3f, lo.y, 0 }, (const float[3]){ 0, 1, 0 }, &lit);
     CHECK(shade < 0.05f);
     CHECK(lit > 0.95f);
+
+    /* The same scene with the ground as a shadow catcher over the
+     * background, and a light of 0.04 rad for a shadow that softens away
+     * from the pot: the ground's lit part leaves the background's bytes. */
+    sr_shadow_map *soft = NULL;
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = dir, .bounds_min = lo, .bounds_max = hi,
+                                                       .size = 1024, .light_radius = 0.04f }, &soft) == SR_OK);
+    REQUIRE(sr_shadow_map_draw(ctx, soft, &pot_draw) == SR_OK);
+    u.sm = ug.sm = soft;
+    sr_program catcher = { .vertex = catcher_vs, .fragment = catcher_fs, .uniforms = &ug,
+                           .varying_count = 8 };
+    sr_state blend = { .program = &catcher, .depth_write = SR_OFF,
+                       .blend = { .enabled = true, .src_rgb = SR_BLEND_SRC_ALPHA,
+                                  .dst_rgb = SR_BLEND_ONE_MINUS_SRC_ALPHA, .src_alpha = SR_BLEND_ZERO,
+                                  .dst_alpha = SR_BLEND_ONE } };
+    const float bg[4] = { 0.93f, 0.93f, 0.95f, 1 };
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { bg[0], bg[1], bg[2], bg[3] } });
+    CHECK(sr_draw(ctx, fb, &blend, &(sr_draw_desc){ .positions = ground.positions, .normals = ground.normals,
+                                                    .texcoords = ground.texcoords, .vertex_count = 4,
+                                                    .indices = ground.indices, .index_type = SR_INDEX_U32,
+                                                    .index_count = 6 }) == SR_OK);
+    CHECK(sr_draw(ctx, fb, &(sr_state){ .program = &prog }, &pot_draw) == SR_OK);
+    save(fb, "shadow_catcher.png");
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    const uint8_t *corner = px + 4 * ((H - 2) * W + 2);        /* ground, lit, far from the pot */
+    CHECK_EQ(corner[0], px[0]);                                /* the background's bytes */
+    CHECK_EQ(corner[1], px[1]);
+    int darker = 0;
+    for (int i = 0; i < W * H; i++) {
+        darker += px[4 * i + 2] < px[2] - 40 && px[4 * i] < px[0] - 40;
+    }
+    CHECK(darker > 2000);                                      /* the pot and its shadow */
+    sr_destroy_shadow_map(ctx, soft);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_shadow_map(ctx, sm);
     sr_destroy_mesh(ctx, &ground);
     sr_destroy_mesh(ctx, &pot);
     sr_destroy_context(ctx);
+}
+
+/* ---- soft shadows from a light of some size -------------------------------- */
+
+/* Samples of a sweep across the shadow edge x = 1 of a quad at `height`
+ * over y = 0 (straight-down light of angular radius `light`, 512^2 map
+ * over a 4-unit box) whose visibility lies strictly between 0 and 1. */
+static int penumbra_samples(sr_context *ctx, float height, float light)
+{
+    float xyz[12];
+    for (int i = 0; i < 12; i++) {
+        xyz[i] = i % 3 == 1 ? height : quad_xyz[i];
+    }
+    sr_shadow_map *sm = NULL;
+    if (sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 }, .bounds_min = { -2, 0, -2 },
+                                                   .bounds_max = { 2, 2, 2 }, .size = 512,
+                                                   .light_radius = light }, &sm) != SR_OK ||
+        sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = xyz, .vertex_count = 4,
+                                                     .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                     .index_count = 6 }) != SR_OK) {
+        sr_destroy_shadow_map(ctx, sm);
+        return -1;
+    }
+    int partial = 0;
+    float prev = 0;
+    bool monotonic = true;
+    for (float x = 0.8f; x <= 1.2f; x += 0.001f) {
+        float v = vis_at(sm, x, 0, 0.2f);
+        partial += v > 0.001f && v < 0.999f;
+        monotonic &= v >= prev - 0.02f;   /* the blocker search may wobble a little */
+        prev = v;
+    }
+    sr_destroy_shadow_map(ctx, sm);
+    return monotonic && prev == 1.0f ? partial : -2;
+}
+
+SR_TEST(light_radius_softens_the_shadow_with_distance_from_the_caster)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    int fixed_low = penumbra_samples(ctx, 0.1f, 0);
+    int fixed_high = penumbra_samples(ctx, 1.5f, 0);
+    int soft_low = penumbra_samples(ctx, 0.1f, 0.02f);
+    int soft_high = penumbra_samples(ctx, 1.5f, 0.02f);
+    REQUIRE(fixed_low > 0 && fixed_high > 0 && soft_low > 0 && soft_high > 0);
+    /* The fixed filter: the same 3 texels (0.024 units) at any height. */
+    CHECK(abs(fixed_low - fixed_high) <= 2);
+    /* A light of 0.02 rad: the penumbra's half-width is the height times
+     * tan 0.02 (0.03 units at 1.5, clamped to 8 texels = 0.0625 units),
+     * and near the caster no wider than the fixed filter's. */
+    CHECK(soft_high >= 50 && soft_high <= 70);   /* 2 x 0.03 units in steps of 0.001 */
+    CHECK(soft_low <= fixed_low + 4);
+    sr_shadow_map *sm = NULL;
+    CHECK_EQ(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 }, .bounds_max = { 1, 1, 1 },
+                                                        .light_radius = 1 }, &sm), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "light_radius");
+    sr_destroy_context(ctx);
+}
+
+/* The same quad placed by a model matrix, or given as 4-component
+ * positions, shadows exactly as the quad moved in its own positions. */
+SR_TEST(model_matrix_and_w_positions_shadow_as_moved_positions)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    float moved[12], xyzw[16];
+    for (int v = 0; v < 4; v++) {
+        for (int c = 0; c < 3; c++) {
+            moved[3 * v + c] = quad_xyz[3 * v + c] + (c != 1 ? 0.7f : 0.0f);
+            xyzw[4 * v + c] = 2.0f * moved[3 * v + c];
+        }
+        xyzw[4 * v + 3] = 2.0f;
+    }
+    sr_mat4 model = sr_mat4_translate(0.7f, 0, 0.7f);
+    sr_draw_desc draws[3] = {
+        { .positions = moved, .vertex_count = 4, .indices = quad_idx, .index_type = SR_INDEX_U32, .index_count = 6 },
+        { .positions = quad_xyz, .vertex_count = 4, .indices = quad_idx, .index_type = SR_INDEX_U32,
+          .index_count = 6, .model = &model },
+        { .positions = xyzw, .position_size = 4, .vertex_count = 4, .indices = quad_idx,
+          .index_type = SR_INDEX_U32, .index_count = 6 },
+    };
+    sr_shadow_map *sm[3] = { 0 };
+    for (int k = 0; k < 3; k++) {
+        REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0.2f, -1, 0.1f },
+                                                           .bounds_min = { -2, 0, -2 }, .bounds_max = { 2, 1, 2 },
+                                                           .size = 128 }, &sm[k]) == SR_OK);
+        REQUIRE(sr_shadow_map_draw(ctx, sm[k], &draws[k]) == SR_OK);
+    }
+    int differ = 0, dark = 0;
+    for (float z = -1.9f; z <= 1.9f; z += 0.021f) {
+        for (float x = -1.9f; x <= 1.9f; x += 0.017f) {
+            float a = vis_at(sm[0], x, 0, z);
+            differ += a != vis_at(sm[1], x, 0, z);
+            differ += a != vis_at(sm[2], x, 0, z);
+            dark += a == 0;
+        }
+    }
+    CHECK(dark > 1000);
+    CHECK(differ <= 20);   /* the pipeline may round transformed positions a little apart */
+    for (int k = 0; k < 3; k++) {
+        CHECK_NEAR(vis_at(sm[k], 0.7f + 0.2f, 0, 0.7f + 0.1f), 0, 1e-6);
+        CHECK_NEAR(vis_at(sm[k], -1.0f, 0, -1.0f), 1, 1e-6);
+        sr_destroy_shadow_map(ctx, sm[k]);
+    }
+    sr_destroy_context(ctx);
+}
+
+/* Every allocation of making, drawing and looking up a map refused in
+ * turn: each failure is SR_OUT_OF_MEMORY (or the draw's own), nothing
+ * leaks, and a map that was made still answers sanely. */
+SR_TEST(every_allocation_failure_is_reported_cleanly)
+{
+    for (long fail_at = 0;; fail_at++) {
+        failing f = { .fail_at = fail_at };
+        sr_context *ctx = NULL;
+        if (sr_make_context(&(sr_context_desc){ .threads = 1,
+                                                .allocator = { fail_alloc, fail_free, &f } }, &ctx) != SR_OK) {
+            CHECK_EQ(f.live, 0);
+            continue;
+        }
+        sr_shadow_map *sm = NULL;
+        sr_result r = sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { 0, -1, 0 },
+                                                                 .bounds_min = { -2, 0, -2 },
+                                                                 .bounds_max = { 2, 1, 2 }, .size = 64 }, &sm);
+        if (r == SR_OK) {
+            r = sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = quad_xyz, .vertex_count = 4,
+                                                             .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                                             .index_count = 6 });
+            /* Drawn or not, the map answers from what it holds. */
+            float v = vis_at(sm, 0, 0, 0);
+            CHECK(r == SR_OK ? v == 0.0f : (v == 0.0f || v == 1.0f));
+            CHECK_NEAR(vis_at(sm, 1.8f, 0, 1.8f), 1, 0);
+        } else {
+            CHECK(sm == NULL);
+        }
+        CHECK(r == SR_OK || r == SR_OUT_OF_MEMORY);
+        sr_destroy_shadow_map(ctx, sm);
+        sr_destroy_context(ctx);
+        CHECK_EQ(f.live, 0);
+        if (f.failed == 0) {
+            break;   /* a run that refused nothing: every allocation was tried */
+        }
+    }
 }

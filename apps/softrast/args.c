@@ -12,14 +12,52 @@
 #include <string.h>
 #include <strings.h>
 
+/* Where messages go instead of stderr while a batch holds them (cli_capture). */
+static char *capture_buf;
+static size_t capture_size;
+
+void cli_capture(char *buf, size_t size)
+{
+    capture_buf = size ? buf : NULL;
+    capture_size = size;
+    if (capture_buf) {
+        capture_buf[0] = '\0';
+    }
+}
+
+static void report(const char *prefix, const char *fmt, va_list ap)
+{
+    if (!capture_buf) {
+        fputs(prefix, stderr);
+        vfprintf(stderr, fmt, ap);
+        fputc('\n', stderr);
+        return;
+    }
+    /* Held messages are joined with "; " into one line. */
+    size_t n = strlen(capture_buf);
+    if (n > 0 && n + 2 < capture_size) {
+        memcpy(capture_buf + n, "; ", 3);
+        n += 2;
+    }
+    if (n + 1 < capture_size) {
+        vsnprintf(capture_buf + n, capture_size - n, fmt, ap);
+    }
+}
+
 void cli_error(const char *fmt, ...)
 {
     va_list ap;
-    fputs("softrast: ", stderr);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    report("softrast: ", fmt, ap);
     va_end(ap);
-    fputc('\n', stderr);
+}
+
+void cli_message(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    report("", fmt, ap);
+    va_end(ap);
 }
 
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out)

@@ -16,6 +16,9 @@ enum { EXIT_OK = 0, EXIT_FAILURE_RUN = 1, EXIT_USAGE = 2 };
 int cmd_render(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_thumbnail(int argc, char **argv); /* thumbnail.c: a render for file managers */
+/* batch.c: `softrast render` with several models, a directory, a list or
+ * the batch options; -1 when the arguments ask for one plain render. */
+int batch_render(int argc, char **argv);
 int cmd_svg(int argc, char **argv);   /* svg.c; needs expat */
 int cmd_view(int argc, char **argv);  /* view.c; needs SDL2 and FreeType */
 
@@ -45,16 +48,29 @@ typedef struct cli_image_options {
     int png_level;         /* -1: the library's default; 0: stored; 1..9 */
     int jpeg_quality;      /* 0: the library's default; 1..100 */
     bool keep_alpha;       /* PNG only: write RGBA rather than RGB */
+    bool premultiplied;    /* the colors are multiplied by alpha (a render over a
+                            * transparent background): written straight */
     sr_context *context;   /* PNG only: compress on its threads (may be NULL) */
     const cli_inputs *inputs; /* never written over: SR_INVALID_ARG (may be NULL) */
 } cli_image_options;
 
 bool cli_is_jpeg_name(const char *path);
+/* PNG and WebP store straight alpha: a render over a transparent
+ * background has its edges' colors multiplied by their coverage (the
+ * resolve averages the model's samples with transparent black), so this
+ * divides it out.  A malloc'd copy, or NULL. */
+uint8_t *cli_straight_alpha(const uint8_t *rgba, size_t pixels);
 sr_result cli_write_image(const char *path, int width, int height, const uint8_t *rgba,
                           const cli_image_options *opt, sr_io_error *err);
 
 /* Print "softrast: ..." to stderr (one line). */
 void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Print one line to stderr as it is (a reader's "FILE:LINE: why"). */
+void cli_message(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Hold the messages of cli_error and cli_message in buf (joined by "; ",
+ * without the "softrast: " prefix) instead of printing them, until
+ * cli_capture(NULL, 0): a batch reports one line per failed input. */
+void cli_capture(char *buf, size_t size);
 
 /* Parsers: return false after printing "softrast render: OPTION: why". */
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);

@@ -5,8 +5,25 @@
 #include "cli.h"
 #include "softrast_io.h"
 
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+
+uint8_t *cli_straight_alpha(const uint8_t *rgba, size_t pixels)
+{
+    uint8_t *out = malloc(4 * pixels);
+    for (size_t i = 0; out && i < pixels; i++) {
+        const uint8_t *p = rgba + 4 * i;
+        unsigned a = p[3];
+        for (int c = 0; c < 3; c++) {
+            unsigned v = a == 0 ? 0 : a == 255 ? p[c] : (p[c] * 255u + a / 2) / a;
+            out[4 * i + c] = (uint8_t)(v > 255 ? 255 : v);
+        }
+        out[4 * i + 3] = (uint8_t)a;
+    }
+    return out;
+}
 
 bool cli_is_jpeg_name(const char *path)
 {
@@ -28,10 +45,21 @@ sr_result cli_write_image(const char *path, int width, int height, const uint8_t
         return sr_write_jpeg(path, width, height, rgba, stride,
                              &(sr_jpeg_write_desc){ .quality = opt->jpeg_quality }, err);
     }
+    uint8_t *straight = NULL;
+    if (opt->keep_alpha && opt->premultiplied) {
+        straight = cli_straight_alpha(rgba, (size_t)width * (size_t)height);
+        if (!straight) {
+            snprintf(err->message, sizeof err->message, "%s: out of memory", path);
+            return SR_OUT_OF_MEMORY;
+        }
+    }
     int level = opt->png_level < 0 ? 0 : (opt->png_level == 0 ? -1 : opt->png_level);
-    return sr_write_png(path, width, height, rgba, stride,
-                        &(sr_png_write_desc){ .compression_level = level,
-                                              .channels = opt->keep_alpha ? SR_PNG_RGBA : SR_PNG_RGB,
-                                              .context = opt->context },
-                        err);
+    sr_result r = sr_write_png(path, width, height, straight ? straight : rgba, stride,
+                               &(sr_png_write_desc){ .compression_level = level,
+                                                     .channels = opt->keep_alpha ? SR_PNG_RGBA
+                                                                                 : SR_PNG_RGB,
+                                                     .context = opt->context },
+                               err);
+    free(straight);
+    return r;
 }

@@ -46,7 +46,7 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
                                &ob->mesh, &err);
     if (r != SR_OK) {
-        fprintf(stderr, "%s\n", err.message);
+        cli_message("%s", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     s->count = 1;
@@ -578,6 +578,20 @@ int render_job_load(render_job *job)
     return status >= 0 ? status : make_context(job);
 }
 
+int render_job_reload(render_job *job, const char *model)
+{
+    if (job->ctx) {
+        render_textures_free(job->ctx, &job->s);
+    }
+    if (job->have_scene) {
+        scene_free(job->mesh_ctx, &job->s);
+        job->have_scene = false;
+    }
+    cli_inputs_free(&job->inputs);
+    job->o.model = model;
+    return render_job_load(job);
+}
+
 int render_job_configure(render_job *job, int argc, char **argv)
 {
     render_opts o = render_opts_defaults();
@@ -705,7 +719,8 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     bool clear_to_near = o->depth_func == SR_GREATER || o->depth_func == SR_GEQUAL;
     if (r == SR_OK) {
         r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o->background.x, o->background.y,
-                                                           o->background.z, 1.0f },
+                                                           o->background.z,
+                                                           o->background_alpha },
                                                 .depth_action = SR_ACTION_CLEAR,
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
@@ -759,8 +774,12 @@ static void *make_fb(void *arg)
 
 int cmd_render(int argc, char **argv)
 {
+    int status = batch_render(argc, argv);
+    if (status >= 0) {
+        return status;
+    }
     render_job *job;
-    int status = render_job_parse(argc, argv, &job);
+    status = render_job_parse(argc, argv, &job);
     if (status >= 0) {
         return status;
     }
@@ -778,6 +797,12 @@ int cmd_render(int argc, char **argv)
         return EXIT_USAGE;
     }
     bool jpeg = cli_is_jpeg_name(o->output);
+    if (jpeg && o->background_alpha < 1.0f) {
+        cli_error("--background transparent: the output '%s' is a JPEG, which has no alpha",
+                  o->output);
+        render_job_free(job);
+        return EXIT_USAGE;
+    }
     if (jpeg ? o->png_level >= 0 : o->jpeg_quality > 0) {
         cli_error(jpeg ? "--png-level: the output '%s' is a JPEG (see --jpeg-quality)"
                        : "--jpeg-quality: the output '%s' is a PNG (name it .jpg for a JPEG)",
@@ -847,6 +872,8 @@ int cmd_render(int argc, char **argv)
     r = cli_write_image(o->output, o->width, o->height, sr_framebuffer_pixels(fb),
                         &(cli_image_options){ .png_level = o->png_level,
                                               .jpeg_quality = o->jpeg_quality,
+                                              .keep_alpha = o->background_alpha < 1.0f,
+                                              .premultiplied = true,
                                               .context = job->ctx,
                                               .inputs = &job->inputs },
                         &err);

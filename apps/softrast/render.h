@@ -35,6 +35,10 @@ int render_job_load(render_job *job);
  * exit status. */
 int render_job_configure(render_job *job, int argc, char **argv);
 void render_job_free(render_job *job);
+/* Load another model into a loaded job (a batch's next input), keeping
+ * its contexts: the old scene, textures and inputs are dropped first.
+ * -1, or an exit status after the reason was reported (cli_error). */
+int render_job_reload(render_job *job, const char *model);
 
 /* The camera the options give: --camera, else the default framing. */
 void render_job_camera(const render_job *job, sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up);

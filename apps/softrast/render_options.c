@@ -47,7 +47,8 @@ static void render_help(void)
         "                           .jpg or .jpeg, else a PNG (default softrast.png)\n"
         "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
         "  --background COLOR       name, #rgb, #rrggbb, R,G,B in 0..1, or a gray level\n"
-        "                           in 0..1 (default #1d2230)\n"
+        "                           in 0..1 (default #1d2230); transparent: a PNG with\n"
+        "                           alpha, the model's edges blended into nothing\n"
         "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
@@ -383,7 +384,10 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             }
         } else if (IS("--background")) {
             VALUE();
-            if (!parse_color(arg, value, &o->background)) {
+            bool clear = strcmp(value, "transparent") == 0;
+            o->background = (sr_vec3){ 0, 0, 0 };
+            o->background_alpha = clear ? 0.0f : 1.0f;
+            if (!clear && !parse_color(arg, value, &o->background)) {
                 return EXIT_USAGE;
             }
         } else if (IS("--png-level")) {
@@ -414,6 +418,10 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         } else if (!*arg) {
             cli_error("%s: the model's file name is empty", argv[0]);
             return EXIT_USAGE;
+        } else if (o->model_fn) {
+            if (!o->model_fn(o->model_user, arg)) {
+                return EXIT_FAILURE_RUN;
+            }
         } else if (!o->model) {
             o->model = arg;
         } else {
@@ -436,7 +444,7 @@ render_opts render_opts_defaults(void)
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
-        .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f },
+        .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
         .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 4, .opacity = 1.0f,

@@ -33,6 +33,7 @@ typedef struct render_opts {
     sr_vec3 mat_color, specular;
     float shininess;
     sr_vec3 background;
+    float background_alpha;        /* 1, or 0 for --background transparent */
     sr_depth_format depth_format;
     sr_depth_func depth_func;
     sr_interpolation interp;
@@ -53,6 +54,10 @@ typedef struct render_opts {
     int msaa;                      /* 1: off; n: n samples per pixel, shaded once */
     float opacity;                 /* of the model; 1: opaque */
     sr_resample_filter filter;
+    /* When set, each model named is passed to model_fn (a batch's list)
+     * instead of being o->model; false from it stops the parse. */
+    bool (*model_fn)(void *user, const char *path);
+    void *model_user;
 } render_opts;
 
 /* The model's up axis (--up), in the order of its names +x -x +y -y +z -z;

@@ -52,7 +52,7 @@ static int read_texture(const render_opts *o, sr_context *ctx, const char *path,
             cli_error("warning: %s (drawing %s)", err.message, what);
             return -1;
         }
-        fprintf(stderr, "%s\n", err.message);
+        cli_message("%s", err.message);
         return rr == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     return upload_texture(o, ctx, path ? path : name, w, h, px, out);

@@ -16,15 +16,17 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: softrast thumbnail -s SIZE INPUT OUTPUT\n"
+            "usage: softrast thumbnail -s SIZE [--transparent] INPUT OUTPUT\n"
             "\n"
             "A SIZE x SIZE PNG preview of a model (OBJ, PLY, STL, glTF, GLB) for file\n"
             "managers: the model framed to fit, in the default look of 'softrast render'\n"
             "(msaa4 antialiasing).  INPUT is a path or a file:// URI.  Installed as\n"
             "share/thumbnailers/softrast.thumbnailer for GNOME and KDE.\n"
             "\n"
-            "  -s SIZE      the image's side in pixels (1 to %d)\n"
-            "  -h, --help   this text\n",
+            "  -s SIZE        the image's side in pixels (1 to %d)\n"
+            "  --transparent  no background: an RGBA PNG, the model's edges blended\n"
+            "                 into nothing\n"
+            "  -h, --help     this text\n",
             THUMB_MAX_SIZE);
 }
 
@@ -83,6 +85,7 @@ static bool input_path(const char *input, char *path, size_t size)
 int cmd_thumbnail(int argc, char **argv)
 {
     int size = 0;
+    bool transparent = false;
     const char *files[2] = { NULL, NULL };
     int nfiles = 0;
     for (int i = 1; i < argc; i++) {
@@ -99,6 +102,8 @@ int cmd_thumbnail(int argc, char **argv)
             if (!parse_int(a, argv[++i], 1, THUMB_MAX_SIZE, &size)) {
                 return EXIT_USAGE;
             }
+        } else if (strcmp(a, "--transparent") == 0) {
+            transparent = true;
         } else if (a[0] == '-' && a[1] != '\0') {
             cli_error("thumbnail: unknown option '%s' (try 'softrast thumbnail --help')", a);
             return EXIT_USAGE;
@@ -126,7 +131,16 @@ int cmd_thumbnail(int argc, char **argv)
         return EXIT_USAGE;
     }
     snprintf(output, sizeof output, "%s%s", files[1][0] == '-' ? "./" : "", files[1]);
+    /* Render would name its -o: say OUTPUT, the argument given here. */
+    cli_inputs in = { 0 };
+    cli_inputs_add(&in, model, "model");
+    bool distinct = cli_check_output(&in, "thumbnail: OUTPUT", output);
+    cli_inputs_free(&in);
+    if (!distinct) {
+        return EXIT_USAGE;
+    }
     snprintf(size_arg, sizeof size_arg, "%dx%d", size, size);
-    char *render_argv[] = { "thumbnail", model, "-o", output, "--size", size_arg, NULL };
-    return cmd_render(6, render_argv);
+    char *render_argv[] = { "thumbnail", model, "-o", output, "--size", size_arg,
+                            "--background", "transparent", NULL };
+    return cmd_render(transparent ? 8 : 6, render_argv);
 }

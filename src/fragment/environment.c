@@ -9,6 +9,9 @@
 
 #include <float.h>
 #include <limits.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <stdatomic.h>
 #include <string.h>
 
@@ -329,6 +332,71 @@ static inline void spec_lane(const sr_environment *env, spec_lanes *q, int i, fl
     q->f[i] = clamp01(roughness) * (SR_ENVIRONMENT_LEVELS - 1);
 }
 
+#if defined(__SSE2__)
+/* spec_lane on four lanes at once, operation for operation (the same
+ * IEEE additions, products, quotients and square roots in the same
+ * order, ternaries as masks), so every float is the one spec_lane gives. */
+static inline __m128 select4(__m128 mask, __m128 a, __m128 b)
+{
+    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+}
+
+static inline void spec_lanes4(const sr_environment *env, spec_lanes *q, const sr_vec3x4 *dir,
+                               const float roughness[4])
+{
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const __m128 sign = _mm_castsi128_ps(_mm_set1_epi32((int)0x80000000u));
+    __m128 x = _mm_loadu_ps(dir->x), y = _mm_loadu_ps(dir->y), z = _mm_loadu_ps(dir->z);
+    /* to_image */
+    __m128 len2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z));
+    __m128 ok = _mm_and_ps(_mm_cmpgt_ps(len2, zero), _mm_cmplt_ps(len2, _mm_set1_ps(INFINITY)));
+    __m128 s = _mm_div_ps(one, _mm_sqrt_ps(select4(ok, len2, one)));
+    x = select4(ok, _mm_mul_ps(x, s), zero);
+    y = select4(ok, _mm_mul_ps(y, s), one);
+    z = select4(ok, _mm_mul_ps(z, s), zero);
+    __m128 c = _mm_set1_ps(env->cos_rot), sn = _mm_set1_ps(env->sin_rot);
+    __m128 dx = _mm_sub_ps(_mm_mul_ps(x, c), _mm_mul_ps(z, sn));
+    __m128 dz = _mm_add_ps(_mm_mul_ps(x, sn), _mm_mul_ps(z, c));
+    _mm_storeu_ps(q->dx, dx);
+    _mm_storeu_ps(q->dy, y);
+    _mm_storeu_ps(q->dz, dz);
+    /* sr__atan2(dz, dx) */
+    __m128 ax = _mm_and_ps(dx, abs_mask), ay = _mm_and_ps(dz, abs_mask);
+    __m128 gt = _mm_cmpgt_ps(ax, ay);
+    __m128 mx = select4(gt, ax, ay), mn = select4(gt, ay, ax);
+    __m128 r = _mm_div_ps(mn, select4(_mm_cmpgt_ps(mx, zero), mx, one));
+    __m128 r2 = _mm_mul_ps(r, r);
+    __m128 p = _mm_mul_ps(r2, _mm_set1_ps(0.02083510f));
+    p = _mm_mul_ps(r2, _mm_add_ps(_mm_set1_ps(-0.08513300f), p));
+    p = _mm_mul_ps(r2, _mm_add_ps(_mm_set1_ps(0.18014100f), p));
+    p = _mm_mul_ps(r2, _mm_add_ps(_mm_set1_ps(-0.33029950f), p));
+    __m128 a = _mm_mul_ps(r, _mm_add_ps(_mm_set1_ps(0.99986602f), p));
+    a = select4(_mm_cmpgt_ps(ay, ax), _mm_sub_ps(_mm_set1_ps(0.5f * SR__PI), a), a);
+    a = select4(_mm_cmplt_ps(dx, zero), _mm_sub_ps(_mm_set1_ps(SR__PI), a), a);
+    a = select4(_mm_cmplt_ps(dz, zero), _mm_xor_ps(a, sign), a);
+    _mm_storeu_ps(q->u, _mm_add_ps(_mm_set1_ps(0.5f), _mm_mul_ps(a, _mm_set1_ps(0.5f / SR__PI))));
+    /* sr__acos(dy) */
+    __m128 ey = _mm_and_ps(y, abs_mask);
+    ey = select4(_mm_cmplt_ps(ey, one), ey, one);
+    __m128 h = _mm_set1_ps(-0.0012624911f);
+    h = _mm_add_ps(_mm_mul_ps(h, ey), _mm_set1_ps(0.0066700901f));
+    h = _mm_sub_ps(_mm_mul_ps(h, ey), _mm_set1_ps(0.0170881256f));
+    h = _mm_add_ps(_mm_mul_ps(h, ey), _mm_set1_ps(0.0308918810f));
+    h = _mm_sub_ps(_mm_mul_ps(h, ey), _mm_set1_ps(0.0501743046f));
+    h = _mm_add_ps(_mm_mul_ps(h, ey), _mm_set1_ps(0.0889789874f));
+    h = _mm_sub_ps(_mm_mul_ps(h, ey), _mm_set1_ps(0.2145988016f));
+    h = _mm_add_ps(_mm_mul_ps(h, ey), _mm_set1_ps(1.5707963050f));
+    __m128 ac = _mm_mul_ps(_mm_sqrt_ps(_mm_sub_ps(one, ey)), h);
+    ac = select4(_mm_cmplt_ps(y, zero), _mm_sub_ps(_mm_set1_ps(SR__PI), ac), ac);
+    _mm_storeu_ps(q->t, _mm_mul_ps(ac, _mm_set1_ps(1.0f / SR__PI)));
+    /* clamp01(roughness) * levels */
+    __m128 rg = _mm_loadu_ps(roughness);
+    rg = select4(_mm_cmpgt_ps(rg, zero), select4(_mm_cmplt_ps(rg, one), rg, one), zero);
+    _mm_storeu_ps(q->f, _mm_mul_ps(rg, _mm_set1_ps((float)(SR_ENVIRONMENT_LEVELS - 1))));
+}
+#endif
+
 /* Lane i's texel reads: linear between the two levels around f. */
 static inline void spec_read(const sr_environment *env, const spec_lanes *q, int i, float out[3])
 {
@@ -409,9 +477,13 @@ void sr_environment_specular4(const sr_environment *env, const sr_vec3x4 *dir,
         return;
     }
     spec_lanes q;
+#if defined(__SSE2__)
+    spec_lanes4(env, &q, dir, roughness);
+#else
     for (int i = 0; i < 4; i++) {
         spec_lane(env, &q, i, dir->x[i], dir->y[i], dir->z[i], roughness[i]);
     }
+#endif
     for (int i = 0; i < 4; i++) {
         float c[3];
         spec_read(env, &q, i, c);

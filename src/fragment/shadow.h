@@ -13,6 +13,8 @@
  * in a penumbra read the texels one by one. */
 #define SR_SHADOW_BLOCK_ORDER 3
 #define SR_SHADOW_BLOCK_SIZE (1 << SR_SHADOW_BLOCK_ORDER)
+/* The widest filter: half-width in texels. */
+#define SR_SHADOW_MAX_RADIUS 8.0f
 
 struct sr_shadow_map {
     sr_framebuffer *fb;          /* size x size, D24; its color is never read */
@@ -28,6 +30,8 @@ struct sr_shadow_map {
     float texel_size;            /* world units a texel spans */
     float filter_radius;         /* texels */
     float normal_offset;         /* texels */
+    float light_tan;             /* tan of the light's angular radius; 0: fixed filter */
+    float depth_extent;          /* world units from window depth 0 to 1 */
     float offset_factor, offset_units, offset_clamp;
 };
 

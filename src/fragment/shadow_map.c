@@ -17,7 +17,8 @@
 #define DEFAULT_UNITS         2.0f
 #define DEFAULT_FILTER_RADIUS 1.5f
 #define MIN_FILTER_RADIUS     0.5f
-#define MAX_FILTER_RADIUS     8.0f
+#define MAX_FILTER_RADIUS     SR_SHADOW_MAX_RADIUS
+#define MAX_LIGHT_RADIUS      0.5f
 #define DEFAULT_NORMAL_OFFSET 1.0f
 #define MAX_NORMAL_OFFSET     64.0f
 /* The polygon offset's slope term is capped at this many texels' worth of
@@ -68,6 +69,10 @@ static sr_result validate(sr_context *ctx, const sr_shadow_desc *d)
         return sr__fail(ctx, SR_INVALID_ARG, "sr_shadow_desc.normal_offset must be 0 .. %g (got %g)",
                         MAX_NORMAL_OFFSET, d->normal_offset);
     }
+    if (!(d->light_radius >= 0.0f && d->light_radius <= MAX_LIGHT_RADIUS)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_shadow_desc.light_radius must be 0 .. %g (got %g)",
+                        MAX_LIGHT_RADIUS, d->light_radius);
+    }
     return SR_OK;
 }
 
@@ -117,6 +122,7 @@ static void fit(sr_shadow_map *sm, sr_vec3 dir, sr_vec3 lo, sr_vec3 hi, float ma
         sm->to_map[2][k] = m.m[k * 4 + 2];
     }
     /* A texel's step in depth: lateral world units over the depth range. */
+    sm->depth_extent = far_z - near_z;
     double texel_depth = (double)sm->texel_size / ((double)far_z - (double)near_z);
     sm->offset_clamp = (float)(OFFSET_CLAMP_TEXELS * texel_depth);
 }
@@ -148,15 +154,17 @@ static void update_blocks(sr_shadow_map *sm, int bx0, int by0, int bx1, int by1)
 /* The blocks a draw can have touched: its vertices' texel rectangle
  * (every vertex, referenced or not), a texel wider on each side for the
  * rasterizer's rounding; every block when a position is not finite or
- * has its own w. */
+ * w is not 1 (4-component positions, a model matrix that is not
+ * affine). */
 static void draw_block_rect(const sr_shadow_map *sm, const sr_draw_desc *d, int rect[4])
 {
     rect[0] = rect[1] = 0;
     rect[2] = rect[3] = sm->blocks;
-    if (d->position_size == 4) {
+    sr_mat4 model = d->model ? *d->model : sr_mat4_identity();
+    if (d->position_size == 4 || model.m[3] != 0.0f || model.m[7] != 0.0f || model.m[11] != 0.0f ||
+        model.m[15] != 1.0f) {
         return;
     }
-    sr_mat4 model = d->model ? *d->model : sr_mat4_identity();
     float m[2][4];
     for (int r = 0; r < 2; r++) {
         for (int k = 0; k < 4; k++) {
@@ -213,6 +221,7 @@ sr_result sr_make_shadow_map(sr_context *ctx, const sr_shadow_desc *desc, sr_sha
     sm->normal_offset = desc->normal_offset != 0.0f ? desc->normal_offset : DEFAULT_NORMAL_OFFSET;
     sm->offset_factor = desc->offset_factor != 0.0f ? desc->offset_factor : DEFAULT_FACTOR;
     sm->offset_units = desc->offset_units != 0.0f ? desc->offset_units : DEFAULT_UNITS;
+    sm->light_tan = tanf(desc->light_radius);
     /* The filter reads up to radius + 1 texels around the point: keep
      * that inside the map for every point of the box. */
     fit(sm, sr_vec3_normalize(desc->direction), desc->bounds_min, desc->bounds_max,
@@ -298,11 +307,15 @@ sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr_draw_d
                     .clamp = sm->offset_clamp, .fill = true },
     };
     sr_result r = sr_draw(ctx, sm->fb, &st, &d);
+    int rect[4] = { 0, 0, sm->blocks, sm->blocks };
     if (r == SR_OK) {
-        int rect[4];
         draw_block_rect(sm, &d, rect);
-        update_blocks(sm, rect[0], rect[1], rect[2], rect[3]);
+    } else if (r == SR_INVALID_ARG) {
+        return r;   /* refused before anything was drawn */
     }
+    /* Other failures (out of memory) may come after some tiles were
+     * drawn: every block is taken again. */
+    update_blocks(sm, rect[0], rect[1], rect[2], rect[3]);
     return r;
 }
 

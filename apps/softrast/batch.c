@@ -1,0 +1,746 @@
+/* batch.c - `softrast render` over many models in one process: several
+ * MODEL arguments, directories, glob patterns or a --batch list, each
+ * drawn by one render job whose contexts (and their thread pool) and
+ * framebuffer serve every input in turn.  A bad input is one line on
+ * stderr and one record in the log, and the batch goes on; the exit
+ * status says whether all, some or none of the inputs were rendered. */
+#include "batch.h"
+#include "batch_anim.h"
+#include "batch_views.h"
+#include "batch_writer.h"
+#include "cli.h"
+#include "render.h"
+#include "render_options.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+typedef struct batch_opts {
+    const char *list;          /* --batch LIST */
+    const char *output_dir;    /* --output-dir DIR (default .) */
+    const char *name;          /* --name PATTERN (default {rel}.png, {rel}_{view}.png) */
+    const char *log;           /* --log FILE.jsonl */
+    const char *shard, *shard_count;
+    const char *views_arg, *sheet, *columns_arg;  /* --views N, --sheet FILE, --sheet-columns N */
+    const char *animate;       /* --animate PATTERN: each model's views as an animated WebP */
+    int views, columns;
+    char **job_argv;           /* the render options, for render_job_configure */
+    int job_argc;
+    bool skip_existing;
+    bool any;                  /* a batch option was given */
+    bool output;               /* -o was given */
+    const char **models;       /* the MODEL arguments */
+    size_t model_count, model_cap;
+} batch_opts;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static void batch_help(void)
+{
+    printf(
+        "\n"
+        "batch (several MODELs, a directory, a glob pattern or --batch):\n"
+        "  softrast render MODEL|DIR|PATTERN... [--batch LIST] [options]\n"
+        "                           renders every model in one process with the options\n"
+        "                           above; a directory is searched (below it too) for\n"
+        "                           .stl .obj .ply files (and Assimp's formats when built\n"
+        "                           with it); a quoted pattern ('models/*.stl') is\n"
+        "                           expanded here\n"
+        "  --batch LIST             one INPUT or INPUT<TAB>OUTPUT per line; '-' reads\n"
+        "                           standard input; blank and '#' lines are skipped\n"
+        "  --output-dir DIR         where outputs go (default .)\n"
+        "  --name PATTERN           output name below DIR (default {rel}.png): {stem}\n"
+        "                           the input's name without extension, {ext} its\n"
+        "                           extension, {rel} its path below the directory it was\n"
+        "                           found in without extension, {index} its place in the\n"
+        "                           sorted list; .jpg or .jpeg makes JPEGs\n"
+        "  --skip-existing          leave outputs that exist alone (resumes a batch)\n"
+        "  --log FILE.jsonl         append one JSON object per input: input, output,\n"
+        "                           index, status (ok, failed, skipped), error,\n"
+        "                           triangles, load_ms, render_ms, encode_ms, ms\n"
+        "  --shard I/N              render shard I (from 0) of N: the inputs whose path\n"
+        "                           hashes to I mod N\n"
+        "  --shard-count N          the shard count for JOB_COMPLETION_INDEX\n"
+        "                           (a Kubernetes Indexed Job)\n"
+        "                           Without --shard, the shard is JOB_COMPLETION_INDEX of\n"
+        "                           --shard-count, else SLURM_ARRAY_TASK_ID (less\n"
+        "                           SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_STEP) of\n"
+        "                           SLURM_ARRAY_TASK_COUNT; --shard 0/1 renders all\n"
+        "  --views N                N views round each model, 360/N degrees apart about\n"
+        "                           the vertical axis (a turntable), each its own image:\n"
+        "                           {view} in --name (default {rel}_{view}.png)\n"
+        "  --sheet FILE             one contact sheet of every image instead, each\n"
+        "                           captioned with its model's name (and view's angle)\n"
+        "  --sheet-columns N        images a row (default: one model's views a row, or\n"
+        "                           about square)\n"
+        "  --animate PATTERN        each model's views as one animated WebP, a turn in\n"
+        "                           3 s, named like --name (e.g. turn.webp, {rel}.webp;\n"
+        "                           --views defaults to 24)\n"
+        "\n"
+        "A batch draws a progress line on a terminal and otherwise prints only one\n"
+        "line per failed input.  Exit status: 0 when every input was rendered or\n"
+        "skipped, 3 when some failed, 4 when all failed, 2 for bad options (nothing\n"
+        "rendered), 1 when the batch could not start.\n");
+}
+
+static bool add_model(void *user, const char *path)
+{
+    batch_opts *b = user;
+    if (b->model_count == b->model_cap) {
+        size_t cap = b->model_cap ? 2 * b->model_cap : 16;
+        const char **grown = realloc(b->models, cap * sizeof *grown);
+        if (!grown) {
+            cli_error("out of memory");
+            return false;
+        }
+        b->models = grown;
+        b->model_cap = cap;
+    }
+    b->models[b->model_count++] = path;
+    return true;
+}
+
+/* The batch's own options out of argv into b; the rest (with argv[0])
+ * into rest, for the render options' parser. */
+static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *rest_count)
+{
+    static const char *const valued[] = { "--batch", "--output-dir", "--name", "--log",
+                                          "--shard", "--shard-count", "--views", "--sheet",
+                                          "--sheet-columns", "--animate", NULL };
+    const char **dst[] = { &b->list, &b->output_dir, &b->name, &b->log, &b->shard,
+                           &b->shard_count, &b->views_arg, &b->sheet, &b->columns_arg,
+                           &b->animate };
+    int n = 0;
+    rest[n++] = argv[0];
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--skip-existing") == 0) {
+            b->skip_existing = b->any = true;
+            continue;
+        }
+        if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
+            strncmp(a, "--output=", 9) == 0) {
+            b->output = true;
+        }
+        int k = 0;
+        size_t len = 0;
+        for (; valued[k]; k++) {
+            len = strlen(valued[k]);
+            if (strncmp(a, valued[k], len) == 0 && (a[len] == '\0' || a[len] == '=')) {
+                break;
+            }
+        }
+        if (!valued[k]) {
+            rest[n++] = argv[i];
+            continue;
+        }
+        const char *value = a[len] == '=' ? a + len + 1 : i + 1 < argc ? argv[++i] : NULL;
+        if (!value || !*value) {
+            cli_error("%s: %s value", valued[k], value ? "empty" : "missing");
+            return EXIT_USAGE;
+        }
+        *dst[k] = value;
+        b->any = true;
+    }
+    rest[n] = NULL;
+    *rest_count = n;
+    return -1;
+}
+
+/* Whether the arguments ask for a batch rather than one render. */
+static bool is_batch(const batch_opts *b)
+{
+    struct stat st;
+    if (b->any) {
+        return true;
+    }
+    if (b->output || b->model_count > 1) {
+        return !b->output;   /* -o names one image: render says what is wrong */
+    }
+    /* One argument that is a directory, or a pattern no file is named. */
+    const char *m = b->model_count ? b->models[0] : NULL;
+    return m && ((stat(m, &st) == 0 && S_ISDIR(st.st_mode)) ||
+                 (stat(m, &st) != 0 && strpbrk(m, "*?[")));
+}
+
+/* The inputs as (device, inode), sorted, so that no output replaces any
+ * input of the list (not only its own) in O(log n) a check. */
+typedef struct file_id {
+    dev_t dev;
+    ino_t ino;
+} file_id;
+
+static int by_id(const void *a, const void *b)
+{
+    const file_id *x = a, *y = b;
+    return x->dev != y->dev ? (x->dev < y->dev ? -1 : 1)
+         : x->ino != y->ino ? (x->ino < y->ino ? -1 : 1) : 0;
+}
+
+static file_id *input_ids(const batch_list *l, size_t *count)
+{
+    file_id *ids = malloc((l->count + 1) * sizeof *ids);
+    size_t n = 0;
+    for (size_t i = 0; ids && i < l->count; i++) {
+        struct stat st;
+        if (stat(l->items[i].input, &st) == 0) {
+            ids[n++] = (file_id){ st.st_dev, st.st_ino };
+        }
+    }
+    if (ids) {
+        qsort(ids, n, sizeof *ids, by_id);
+    }
+    *count = n;
+    return ids;
+}
+
+static bool is_listed_input(const file_id *ids, size_t n, const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        return false;
+    }
+    file_id key = { st.st_dev, st.st_ino };
+    return bsearch(&key, ids, n, sizeof *ids, by_id) != NULL;
+}
+
+static bool exists_whole(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
+}
+
+typedef struct batch_run {
+    const batch_opts *b;
+    const render_opts *o;
+    render_job *job;
+    sr_framebuffer *fb;
+    const file_id *ids;
+    size_t id_count;
+    batch_writer writer;
+    batch_sheet sheet;         /* --sheet: made on the job's context at its first cell */
+    int sheet_images;
+    batch_progress progress;
+    size_t ok;
+    int log_fd;
+    int log_errno;             /* why the log could not be written, or 0 */
+    char message[2048];        /* the held messages of the input being drawn */
+} batch_run;
+
+/* One line on stderr for a failed input (or a warning), naming the input
+ * unless the message starts with it already ("FILE:LINE: why").  Printed
+ * directly: the writer's thread calls this while the batch may be
+ * holding its own messages (cli_capture). */
+static void report(batch_progress *p, const char *input, const char *message)
+{
+    batch_progress_clear(p);
+    size_t n = strlen(input);
+    bool named = strncmp(message, input, n) == 0 && message[n] == ':';
+    fprintf(stderr, "softrast: %s%s%s\n", named ? "" : input, named ? "" : ": ", message);
+}
+
+/* An input is finished (batch_done_fn): count, report, log, redraw. */
+static void finish(void *user, batch_record *rec, const char *message)
+{
+    batch_run *run = user;
+    bool failed = strcmp(rec->status, "failed") == 0;
+    run->ok += !failed;
+    run->progress.failed += failed;
+    run->progress.skipped += strcmp(rec->status, "skipped") == 0;
+    run->progress.done++;
+    if (message && *message) {
+        report(&run->progress, rec->input, message);
+    }
+    rec->error = failed ? (message && *message ? message : "failed") : NULL;
+    if (run->log_fd >= 0 && run->log_errno == 0 && !batch_log_write(run->log_fd, rec)) {
+        run->log_errno = errno ? errno : EIO;
+    }
+    batch_progress_show(&run->progress, now_ms(), false);
+}
+
+/* Read one input into the job (after resetting its options, which a
+ * view's camera changed) and make the framebuffer once; false when it
+ * failed (why in run->message, which may also hold a warning when it
+ * succeeded). */
+static bool load_one(batch_run *run, const batch_item *it, batch_record *rec)
+{
+    const render_opts *o = run->o;
+    double t0 = now_ms();
+    cli_capture(run->message, sizeof run->message);
+    int status = -1;
+    if (run->b->views > 1) {
+        status = render_job_configure(run->job, run->b->job_argc, run->b->job_argv);
+    }
+    if (status < 0) {
+        status = render_job_reload(run->job, it->input);
+    }
+    if (status < 0 && !run->fb) {
+        sr_context *ctx = render_job_context(run->job);
+        sr_result r = sr_make_framebuffer(
+            ctx, &(sr_framebuffer_desc){ .width = o->width, .height = o->height,
+                                         .depth_format = render_job_depth_format(run->job) },
+            &run->fb);
+        if (r != SR_OK) {
+            cli_error("%s", sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(r));
+            status = EXIT_FAILURE_RUN;
+        }
+    }
+    cli_capture(NULL, 0);
+    rec->load_ms = now_ms() - t0;
+    return status < 0;
+}
+
+/* Draw view `view` of the loaded input into run->fb, for `output` (NULL
+ * on a sheet); false when it failed (why in run->message). */
+static bool draw_view(batch_run *run, const char *output, int view, batch_record *rec)
+{
+    double t0 = now_ms();
+    run->message[0] = '\0';
+    cli_capture(run->message, sizeof run->message);
+    struct stat st;
+    bool ok = true;
+    if (output && stat(output, &st) == 0 && S_ISDIR(st.st_mode)) {
+        cli_error("'%s' is a directory", output);
+        ok = false;
+    } else if (output && is_listed_input(run->ids, run->id_count, output)) {
+        cli_error("'%s' is an input of the batch; choose another --name", output);
+        ok = false;
+    } else if (output && !cli_check_output(render_job_inputs(run->job), "--name", output)) {
+        ok = false;   /* the model's own other files (MTL, textures) */
+    }
+    if (ok && run->b->views > 1) {
+        batch_view_camera(run->job, run->o->have_eye, view, run->b->views);
+    }
+    render_frame_info info;
+    if (ok && render_job_draw(run->job, run->fb, &info) == SR_OK) {
+        rec->triangles = info.triangles;
+    } else if (ok) {
+        cli_error("%s", render_job_error(run->job));
+        ok = false;
+    }
+    cli_capture(NULL, 0);
+    rec->render_ms = now_ms() - t0;
+    return ok;
+}
+
+/* A sheet cell's caption: the model's file name, and the view's angle. */
+static void caption_of(const batch_run *run, const batch_item *it, int view, char *out,
+                       size_t size)
+{
+    const char *base = strrchr(it->input, '/');
+    base = base ? base + 1 : it->input;
+    if (run->b->views > 1) {
+        int views = run->b->views;
+        snprintf(out, size, "%s %ddeg", base, (360 * view + views / 2) / views);
+    } else {
+        snprintf(out, size, "%s", base);
+    }
+}
+
+/* The inputs of the options: the MODEL arguments and the list. */
+static int gather(const batch_opts *b, batch_list *l)
+{
+    int status = -1;
+    for (size_t i = 0; i < b->model_count && status < 0; i++) {
+        status = batch_add_arg(l, b->models[i]);
+    }
+    if (status < 0 && b->list) {
+        status = batch_read_list(l, b->list);
+    }
+    if (status < 0 && l->count == 0) {
+        cli_error("render: no models to render (a directory holds none, or the list is empty)");
+        status = EXIT_USAGE;
+    }
+    for (size_t i = 0; status < 0 && i < l->count && b->views > 1 && !b->sheet && !b->animate;
+         i++) {
+        if (l->items[i].output) {
+            cli_error("--views: the list names one output for '%s'; views are named by --name",
+                      l->items[i].input);
+            status = EXIT_USAGE;
+        }
+    }
+    if (status < 0) {
+        batch_list_sort(l);
+    }
+    if (status < 0 && !b->sheet) {   /* a sheet is the one output */
+        const char *dflt = b->animate ? b->animate
+                         : b->views > 1 ? "{rel}_{view}.png" : "{rel}.png";
+        status = batch_name_outputs(l, b->output_dir ? b->output_dir : ".",
+                                    b->name ? b->name : dflt);
+    }
+    return status;
+}
+
+/* Fill the sheet's next cell, making the sheet first; false after the
+ * reason is in run->message. */
+static bool sheet_put(batch_run *run, const batch_item *it, int view, const uint8_t *rgba)
+{
+    sr_context *ctx = render_job_context(run->job);
+    sr_result r = ctx ? SR_OK : SR_INVALID_ARG;
+    if (r == SR_OK && !run->sheet.fb) {
+        r = batch_sheet_start(&run->sheet, ctx, run->sheet_images, run->b->columns,
+                              run->o->width, run->o->height, run->o->background,
+                              run->o->background_alpha);
+    }
+    char caption[512];
+    caption_of(run, it, view, caption, sizeof caption);
+    if (r == SR_OK) {
+        r = batch_sheet_put(&run->sheet, ctx, rgba, caption, rgba == NULL);
+    }
+    if (r != SR_OK) {
+        snprintf(run->message, sizeof run->message, "--sheet: %s",
+                 ctx && sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(r));
+    }
+    return r == SR_OK;
+}
+
+/* --animate: one model's views as the frames of one WebP. */
+static void animate_one(batch_run *run, const batch_item *it)
+{
+    const render_opts *o = run->o;
+    int views = run->b->views, frame_ms = 3000 / views > 20 ? 3000 / views : 20;
+    batch_record rec = { .input = it->input, .output = it->output, .index = it->index,
+                         .status = "failed" };
+    run->message[0] = '\0';
+    if (run->b->skip_existing && exists_whole(it->output)) {
+        rec.status = "skipped";
+        finish(run, &rec, NULL);
+        return;
+    }
+    bool ok = load_one(run, it, &rec);
+    if (ok && run->message[0]) {
+        report(&run->progress, it->input, run->message);   /* a warning */
+    }
+    bool alpha = o->background_alpha < 1.0f;
+    batch_anim *anim = ok ? batch_anim_start(o->width, o->height, alpha, run->message,
+                                             sizeof run->message) : NULL;
+    ok = anim != NULL;
+    double render_ms = 0.0, t0 = now_ms();
+    size_t pixels = (size_t)o->width * (size_t)o->height;
+    for (int v = 0; v < views && ok; v++) {
+        ok = draw_view(run, v == 0 ? it->output : NULL, v, &rec);
+        render_ms += rec.render_ms;
+        uint8_t *straight = ok && alpha ? cli_straight_alpha(sr_framebuffer_pixels(run->fb),
+                                                             pixels) : NULL;
+        if (ok && alpha && !straight) {
+            snprintf(run->message, sizeof run->message, "out of memory");
+            ok = false;
+        }
+        ok = ok && batch_anim_add(anim, straight ? straight : sr_framebuffer_pixels(run->fb),
+                                  v * frame_ms, run->message, sizeof run->message);
+        free(straight);
+    }
+    sr_io_error err;
+    if (ok && !(batch_make_parents(it->output, &err) &&
+                batch_anim_write(anim, it->output, views * frame_ms, &err))) {
+        snprintf(run->message, sizeof run->message, "%s", err.message);
+        ok = false;
+    }
+    batch_anim_free(anim);
+    rec.render_ms = render_ms;
+    rec.encode_ms = now_ms() - t0 - render_ms;
+    rec.status = ok ? "ok" : "failed";
+    finish(run, &rec, ok ? NULL : run->message);
+}
+
+/* Render the shard's inputs in list order, each image handed to the
+ * writer (or put on the sheet) while the next is read and drawn. */
+static void render_all(batch_run *run, const batch_list *list, const batch_shard *shard)
+{
+    const render_opts *o = run->o;
+    const batch_opts *b = run->b;
+    const cli_image_options image = { .png_level = o->png_level,
+                                       .jpeg_quality = o->jpeg_quality,
+                                       .keep_alpha = o->background_alpha < 1.0f,
+                                       .premultiplied = true };
+    char output[4096];
+    for (size_t i = 0; i < list->count; i++) {
+        const batch_item *it = &list->items[i];
+        if (!batch_in_shard(it->input, shard)) {
+            continue;
+        }
+        if (b->animate) {
+            animate_one(run, it);
+            continue;
+        }
+        /* With --skip-existing, an input whose every view exists is not read. */
+        int missing = b->sheet ? b->views : 0;
+        for (int v = 0; v < b->views && !missing; v++) {
+            missing += !b->skip_existing || !batch_view_output(list, it, v, output, sizeof output) ||
+                       !exists_whole(output);
+        }
+        batch_record rec = { .input = it->input, .output = b->sheet ? b->sheet : it->output,
+                             .index = it->index, .status = "failed" };
+        run->message[0] = '\0';
+        bool loaded = missing > 0 && load_one(run, it, &rec);
+        if (loaded && run->message[0]) {
+            batch_writer_wait(&run->writer);
+            report(&run->progress, it->input, run->message);   /* a warning */
+        }
+        for (int v = 0; v < b->views; v++) {
+            if (!b->sheet && !batch_view_output(list, it, v, output, sizeof output)) {
+                snprintf(output, sizeof output, "%s", it->output);   /* view 0's, checked */
+            }
+            rec.output = b->sheet ? b->sheet : output;
+            bool skip = !b->sheet && b->skip_existing && exists_whole(output);
+            if (skip || (missing > 0 && !loaded)) {
+                rec.status = skip ? "skipped" : "failed";
+                batch_writer_wait(&run->writer);
+                if (b->sheet) {
+                    sheet_put(run, it, v, NULL);
+                }
+                finish(run, &rec, skip || v > 0 ? NULL : run->message);
+                continue;
+            }
+            rec.status = "failed";
+            bool drawn = draw_view(run, b->sheet ? NULL : output, v, &rec);
+            if (drawn && b->sheet) {
+                rec.status = sheet_put(run, it, v, sr_framebuffer_pixels(run->fb)) ? "ok"
+                                                                                    : "failed";
+            } else if (drawn && batch_writer_put(&run->writer, &rec, o->width, o->height,
+                                                 sr_framebuffer_pixels(run->fb), &image)) {
+                rec.load_ms = 0.0;   /* a model is read once for all its views */
+                continue;
+            } else if (drawn) {
+                snprintf(run->message, sizeof run->message, "out of memory");
+            }
+            batch_writer_wait(&run->writer);
+            finish(run, &rec, run->message);
+            rec.load_ms = 0.0;
+        }
+    }
+    batch_writer_wait(&run->writer);
+}
+
+/* Write the sheet (after every input); false after one line. */
+static bool write_sheet(batch_run *run)
+{
+    const render_opts *o = run->o;
+    const char *path = run->b->sheet;
+    sr_io_error err;
+    if (is_listed_input(run->ids, run->id_count, path)) {
+        cli_error("--sheet: '%s' is an input of the batch", path);
+        return false;
+    }
+    sr_framebuffer *fb = run->sheet.fb;
+    if (cli_write_image(path, sr_framebuffer_width(fb), sr_framebuffer_height(fb),
+                        sr_framebuffer_pixels(fb),
+                        &(cli_image_options){ .png_level = o->png_level,
+                                              .jpeg_quality = o->jpeg_quality,
+                                              .keep_alpha = o->background_alpha < 1.0f,
+                                              .premultiplied = true,
+                                              .context = render_job_context(run->job) },
+                        &err) != SR_OK) {
+        cli_error("--sheet: %s", err.message);
+        return false;
+    }
+    return true;
+}
+
+/* How many inputs of the list are the shard's. */
+static size_t mine_total(const batch_list *list, const batch_shard *shard)
+{
+    size_t mine = 0;
+    for (size_t i = 0; i < list->count; i++) {
+        mine += batch_in_shard(list->items[i].input, shard);
+    }
+    return mine;
+}
+
+static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
+{
+    batch_shard shard;
+    batch_list list = { 0 };
+    batch_run run = { .b = b, .o = o, .job = job, .log_fd = -1 };
+    int status = batch_shard_resolve(b->shard, b->shard_count, &shard);
+    if (status < 0) {
+        status = gather(b, &list);
+    }
+    if (status < 0 && b->log) {
+        run.log_fd = open(b->log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+        if (run.log_fd < 0) {
+            cli_error("--log: %s: %s", b->log, strerror(errno));
+            status = EXIT_USAGE;
+        }
+    }
+    file_id *ids = status < 0 ? input_ids(&list, &run.id_count) : NULL;
+    if (status < 0 && !ids) {
+        cli_error("out of memory listing the inputs");
+        status = EXIT_FAILURE_RUN;
+    }
+    run.ids = ids;
+    if (status < 0) {
+        size_t mine = mine_total(&list, &shard);
+        run.sheet_images = (int)(mine * (size_t)b->views);
+        int cols, rows;
+        long sw, sh;
+        if (b->sheet && (mine > (size_t)SR_MAX_FRAMEBUFFER_SIZE ||
+                         !batch_sheet_size(run.sheet_images, b->columns, o->width, o->height,
+                                           &cols, &rows, &sw, &sh))) {
+            cli_error("--sheet: %zu images of %dx%d need more than %d pixels a side (use a "
+                      "smaller --size, --sheet-columns or fewer models)", mine * (size_t)b->views,
+                      o->width, o->height, SR_MAX_FRAMEBUFFER_SIZE);
+            status = EXIT_USAGE;
+        }
+    }
+    if (status < 0) {
+        size_t records = b->animate ? 1 : (size_t)b->views;   /* a model's */
+        batch_progress_start(&run.progress, mine_total(&list, &shard) * records,
+                             now_ms());
+        batch_writer_start(&run.writer, finish, &run);
+        render_all(&run, &list, &shard);
+        batch_writer_stop(&run.writer);
+        batch_progress_show(&run.progress, now_ms(), true);
+        status = run.progress.failed == 0 ? EXIT_OK
+               : run.ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
+        if (run.sheet.fb && !write_sheet(&run)) {
+            status = EXIT_FAILURE_RUN;
+        }
+    }
+    if (run.sheet.fb) {
+        batch_sheet_free(&run.sheet, render_job_context(job));
+    }
+    if (run.log_fd >= 0 && close(run.log_fd) != 0 && run.log_errno == 0) {
+        run.log_errno = errno;
+    }
+    if (run.log_errno != 0) {
+        cli_error("--log: %s: %s", b->log, strerror(run.log_errno));
+        status = EXIT_FAILURE_RUN;
+    }
+    if (run.fb) {
+        sr_destroy_framebuffer(render_job_context(job), run.fb);
+    }
+    free(ids);
+    batch_list_free(&list);
+    return status;
+}
+
+/* --views, --sheet and --sheet-columns, and how they go with the other
+ * options; -1 or an exit status after one line. */
+static int check_views(batch_opts *b, const render_opts *o)
+{
+    b->views = 1;
+    if (b->views_arg && !parse_int("--views", b->views_arg, 1, 360, &b->views)) {
+        return EXIT_USAGE;
+    }
+    if (b->columns_arg && !parse_int("--sheet-columns", b->columns_arg, 1, 1000, &b->columns)) {
+        return EXIT_USAGE;
+    }
+    if (b->columns_arg && !b->sheet) {
+        cli_error("--sheet-columns: needs --sheet FILE");
+        return EXIT_USAGE;
+    }
+    if (!b->columns && b->sheet && b->views > 1) {
+        b->columns = b->views;   /* a model's views a row */
+    }
+    if (b->sheet && b->skip_existing) {
+        cli_error("--skip-existing: a sheet is drawn whole each time (nothing to resume)");
+        return EXIT_USAGE;
+    }
+    const char *named = b->sheet ? b->sheet : b->name;
+    if (named && cli_is_jpeg_name(named) && o->background_alpha < 1.0f) {
+        cli_error("--background transparent: '%s' names JPEGs, which have no alpha", named);
+        return EXIT_USAGE;
+    }
+    if (b->animate) {
+        if (b->sheet || b->name) {
+            cli_error("--animate: names the outputs itself (not with %s)",
+                      b->sheet ? "--sheet" : "--name");
+            return EXIT_USAGE;
+        }
+        const char *dot = strrchr(b->animate, '.');
+        if (!dot || strcasecmp(dot, ".webp") != 0) {
+            cli_error("--animate: '%s': an animation is a WebP (name it .webp)", b->animate);
+            return EXIT_USAGE;
+        }
+        if (!batch_check_pattern(b->animate)) {
+            return EXIT_USAGE;
+        }
+        if (!b->views_arg) {
+            b->views = 24;
+        }
+        char why[256];
+        batch_anim *probe = batch_anim_start(1, 1, false, why, sizeof why);
+        if (!probe) {
+            cli_error("%s", why);
+            return EXIT_USAGE;
+        }
+        batch_anim_free(probe);
+    }
+    if (!b->sheet && !b->animate && b->views > 1 && b->name && !strstr(b->name, "{view}")) {
+        cli_error("--name: '%s' needs {view} to name %d views apart", b->name, b->views);
+        return EXIT_USAGE;
+    }
+    return -1;
+}
+
+int batch_render(int argc, char **argv)
+{
+    batch_opts b = { 0 };
+    char **rest = malloc(((size_t)argc + 1) * sizeof *rest);
+    if (!rest) {
+        cli_error("out of memory");
+        return EXIT_FAILURE_RUN;
+    }
+    int rest_count = 0;
+    int status = split_args(argc, argv, &b, rest, &rest_count);
+    render_opts o = render_opts_defaults();
+    o.model_fn = add_model;
+    o.model_user = &b;
+    if (status < 0) {
+        status = render_opts_parse(rest_count, rest, &o);
+        if (status == EXIT_OK) {
+            batch_help();   /* after render's --help */
+        }
+    }
+    if (status < 0 && !is_batch(&b)) {
+        free(b.models);
+        free(rest);
+        return -1;          /* one plain render */
+    }
+    if (status < 0 && b.output) {
+        cli_error("-o: names one output; a batch names its outputs with --output-dir and --name");
+        status = EXIT_USAGE;
+    }
+    if (status < 0 && b.name && !batch_check_pattern(b.name)) {
+        status = EXIT_USAGE;
+    }
+    if (status < 0) {
+        status = check_views(&b, &o);
+    }
+    /* The job's options without the models, which come in the same order. */
+    int n = 0;
+    for (int i = 0, j = 0; i < rest_count; i++) {
+        if ((size_t)j < b.model_count && rest[i] == b.models[j]) {
+            j++;
+        } else {
+            rest[n++] = rest[i];
+        }
+    }
+    rest[n] = NULL;
+    b.job_argv = rest;
+    b.job_argc = n;
+    render_job *job = NULL;
+    if (status < 0) {
+        status = render_job_parse(n, rest, &job);
+    }
+    if (status < 0) {
+        status = run_batch(&b, &o, job);
+    }
+    render_job_free(job);
+    free(b.models);
+    free(rest);
+    return status;
+}

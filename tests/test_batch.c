@@ -1,0 +1,1151 @@
+/* test_batch.c - `softrast render` over many models in one process, as a
+ * pipeline or a cluster's scheduler runs it: the real executable
+ * (SR_CLI_PATH) with the environment a Kubernetes Indexed Job or a Slurm
+ * array sets, standard input from a file, and its --log read back as
+ * JSON.  Models are written by the test (STL and OBJ), with a bad one
+ * among them. */
+#define _XOPEN_SOURCE 700   /* posix_openpt, grantpt, unlockpt, ptsname */
+#include "softrast_io.h"
+#include "sr_test.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+extern char **environ;
+
+#define FAILF(...) sr_test_fail(__FILE__, __LINE__, __VA_ARGS__)
+#define ARGS(...) ((const char *const[]){ __VA_ARGS__, NULL })
+#define ENV(...) ((const char *const[]){ __VA_ARGS__, NULL })
+#define NO_ENV ((const char *const[]){ NULL })
+
+#ifdef SR_CLI_PATH
+#define NEED_CLI() ((void)0)
+#else
+#define NEED_CLI() SKIP("the softrast tool is not part of this build")
+#endif
+
+/* ---- running the tool --------------------------------------------------- */
+
+typedef struct run_result {
+    int status;         /* exit status, 128 + signal when killed, -1 when not run */
+    char err[8192];     /* stderr, NUL-terminated (cut at the buffer's size) */
+} run_result;
+
+/* Start SR_CLI_PATH with args and an environment of this process's
+ * without the schedulers' variables, plus `env` ("NAME=VALUE"); stdin
+ * from `in` (or /dev/null), stderr into `err_path`.  0 when not run. */
+static pid_t start_cli(const char *const *args, const char *const *env, const char *in,
+                       const char *err_path)
+{
+#ifdef SR_CLI_PATH
+    const char *argv[64], *envp[256];
+    int n = 0, e = 0;
+    argv[n++] = SR_CLI_PATH;
+    for (int i = 0; args[i] && n < 63; i++) {
+        argv[n++] = args[i];
+    }
+    argv[n] = NULL;
+    for (char **p = environ; *p && e < 200; p++) {
+        if (strncmp(*p, "JOB_COMPLETION_INDEX=", 21) != 0 && strncmp(*p, "SLURM_", 6) != 0) {
+            envp[e++] = *p;
+        }
+    }
+    for (int i = 0; env[i] && e < 255; i++) {
+        envp[e++] = env[i];
+    }
+    envp[e] = NULL;
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 0, in ? in : "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    int r = posix_spawn(&pid, SR_CLI_PATH, &fa, NULL, (char *const *)argv, (char *const *)envp);
+    posix_spawn_file_actions_destroy(&fa);
+    return r == 0 ? pid : 0;
+#else
+    (void)args, (void)env, (void)in, (void)err_path;
+    return 0;
+#endif
+}
+
+static int wait_status(pid_t pid)
+{
+    int ws;
+    while (waitpid(pid, &ws, 0) < 0) {
+        if (errno != EINTR) {
+            return -1;
+        }
+    }
+    return WIFEXITED(ws) ? WEXITSTATUS(ws) : WIFSIGNALED(ws) ? 128 + WTERMSIG(ws) : -1;
+}
+
+static bool run_env(const char *const *args, const char *const *env, const char *in,
+                    run_result *r)
+{
+    char err_path[1024];
+    snprintf(err_path, sizeof err_path, "%s/batch_stderr.txt", sr_test_out_dir());
+    r->status = -1;
+    r->err[0] = '\0';
+    pid_t pid = start_cli(args, env, in, err_path);
+    if (!pid) {
+        FAILF("cannot run %s", args[0]);
+        return false;
+    }
+    r->status = wait_status(pid);
+    FILE *f = fopen(err_path, "rb");
+    size_t n = f ? fread(r->err, 1, sizeof r->err - 1, f) : 0;
+    r->err[n] = '\0';
+    if (f) {
+        fclose(f);
+    }
+    return true;
+}
+
+static bool run(const char *const *args, run_result *r)
+{
+    return run_env(args, NO_ENV, NULL, r);
+}
+
+static int count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++) {
+        n += *s == '\n';
+    }
+    return n;
+}
+
+/* ---- files -------------------------------------------------------------- */
+
+static void clean_dir(const char *path)
+{
+    DIR *d = opendir(path);
+    if (d) {
+        struct dirent *e;
+        while ((e = readdir(d)) != NULL) {
+            if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) {
+                char p[2048];
+                snprintf(p, sizeof p, "%s/%s", path, e->d_name);
+                struct stat st;
+                if (lstat(p, &st) == 0 && S_ISDIR(st.st_mode)) {
+                    clean_dir(p);
+                    rmdir(p);
+                } else {
+                    unlink(p);
+                }
+            }
+        }
+        closedir(d);
+    }
+    mkdir(path, 0777);
+}
+
+static const char *fresh_dir(const char *name, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s/batch_%s", sr_test_out_dir(), name);
+    clean_dir(buf);
+    return buf;
+}
+
+static bool write_text(const char *path, const char *text)
+{
+    return sr_test_write_file(path, text, strlen(text));
+}
+
+/* A binary STL of a tetrahedron stretched by s along x (4 triangles). */
+static bool write_stl(const char *path, float s)
+{
+    const float v[4][3] = { { 0, 0, 0 }, { s, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+    const int t[4][3] = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } };
+    uint8_t buf[84 + 4 * 50] = { 0 };
+    uint32_t count = 4;
+    memcpy(buf + 80, &count, 4);
+    for (int i = 0; i < 4; i++) {
+        uint8_t *rec = buf + 84 + 50 * i;
+        for (int k = 0; k < 3; k++) {
+            memcpy(rec + 12 + 12 * k, v[t[i][k]], 12);
+        }
+    }
+    return sr_test_write_file(path, buf, sizeof buf);
+}
+
+/* An OBJ cube of side s (12 triangles). */
+static bool write_obj(const char *path, float s)
+{
+    char text[1024];
+    int n = 0;
+    for (int i = 0; i < 8; i++) {
+        n += snprintf(text + n, sizeof text - (size_t)n, "v %g %g %g\n", (double)(i & 1 ? s : 0),
+                      (double)(i & 2 ? s : 0), (double)(i & 4 ? s : 0));
+    }
+    snprintf(text + n, sizeof text - (size_t)n,
+             "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n");
+    return write_text(path, text);
+}
+
+static bool is_stl(const char *path)
+{
+    return strcmp(strrchr(path, '.'), ".stl") == 0;
+}
+
+/* The batch's models in dir: good STL and OBJ files and, sorted in the
+ * middle, one that is no model; their paths (as the batch names them
+ * from the directory) in `paths`.  Returns the count. */
+enum { MODELS = 5, BAD_MODEL = 2 };
+static int write_models(const char *dir, char paths[MODELS][1200])
+{
+    const char *names[MODELS] = { "a_tetra.stl", "b_cube.obj", "c_bad.stl", "d_long.stl",
+                                  "e_big.obj" };
+    for (int i = 0; i < MODELS; i++) {
+        snprintf(paths[i], 1200, "%s/%s", dir, names[i]);
+        bool ok = i == BAD_MODEL ? write_text(paths[i], "solid nothing but a name\n")
+                : is_stl(names[i]) ? write_stl(paths[i], 1.0f + (float)i)
+                                 : write_obj(paths[i], (float)i);
+        if (!ok) {
+            FAILF("cannot write %s", paths[i]);
+            return 0;
+        }
+    }
+    return MODELS;
+}
+
+/* A w x h image with some pixels other than the corner's (the model). */
+static bool is_thumbnail(const char *path, int w, int h)
+{
+    int pw, ph;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_image(path, &pw, &ph, &px, &err) != SR_OK) {
+        FAILF("%s: %s", path, err.message);
+        return false;
+    }
+    size_t differ = 0;
+    for (size_t i = 0; i < (size_t)pw * (size_t)ph; i++) {
+        differ += memcmp(px + 4 * i, px, 3) != 0;
+    }
+    free(px);
+    if (pw != w || ph != h || differ < (size_t)(w * h) / 50) {
+        FAILF("%s: %dx%d with %zu model pixels, expected %dx%d with some", path, pw, ph, differ,
+              w, h);
+        return false;
+    }
+    return true;
+}
+
+static bool file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* ---- the log ------------------------------------------------------------ */
+
+/* One record of a --log file: the fields a pipeline reads. */
+typedef struct record {
+    char input[1200], output[1200], status[16], error[1024];
+    bool error_null;
+    double index, triangles, load_ms, render_ms, encode_ms, ms;
+    int fields;
+} record;
+
+/* A JSON string at *p into dst (escapes decoded; \u to one '?' beyond
+ * ASCII); false when it is not one. */
+static bool json_string(const char **p, char *dst, size_t size)
+{
+    const char *s = *p;
+    size_t n = 0;
+    if (*s++ != '"') {
+        return false;
+    }
+    for (; *s && *s != '"'; s++) {
+        char c = *s;
+        if (c == '\\') {
+            s++;
+            c = *s == 'n' ? '\n' : *s == 't' ? '\t' : *s == 'u' ? '?' : *s;
+            if (*s == 'u') {
+                for (int k = 1; k <= 4; k++) {
+                    if (!strchr("0123456789abcdefABCDEF", s[k]) || !s[k]) {
+                        return false;
+                    }
+                }
+                s += 4;
+            }
+        } else if ((unsigned char)c < 0x20) {
+            return false;
+        }
+        if (n + 1 < size) {
+            dst[n++] = c;
+        }
+    }
+    dst[n] = '\0';
+    if (*s != '"') {
+        return false;
+    }
+    *p = s + 1;
+    return true;
+}
+
+/* One line of the log as a flat JSON object with the known keys; false
+ * (after a failure naming the line) when it is not exactly that. */
+static bool parse_record(const char *line, record *r)
+{
+    memset(r, 0, sizeof *r);
+    const char *p = line;
+    if (*p++ != '{') {
+        FAILF("log line is not an object: %s", line);
+        return false;
+    }
+    while (*p && *p != '}') {
+        char key[32];
+        if (!json_string(&p, key, sizeof key) || *p++ != ':') {
+            FAILF("log line: bad key: %s", line);
+            return false;
+        }
+        char *dst = strcmp(key, "input") == 0 ? r->input : strcmp(key, "output") == 0 ? r->output
+                  : strcmp(key, "status") == 0 ? r->status : strcmp(key, "error") == 0 ? r->error
+                  : NULL;
+        size_t size = dst == r->status ? sizeof r->status : dst == r->error ? sizeof r->error
+                                                                               : sizeof r->input;
+        double *num = strcmp(key, "index") == 0       ? &r->index
+                    : strcmp(key, "triangles") == 0   ? &r->triangles
+                    : strcmp(key, "load_ms") == 0     ? &r->load_ms
+                    : strcmp(key, "render_ms") == 0   ? &r->render_ms
+                    : strcmp(key, "encode_ms") == 0   ? &r->encode_ms
+                    : strcmp(key, "ms") == 0          ? &r->ms : NULL;
+        if (dst == r->error && strncmp(p, "null", 4) == 0) {
+            r->error_null = true;
+            p += 4;
+        } else if (dst) {
+            if (!json_string(&p, dst, size)) {
+                FAILF("log line: '%s' is not a string: %s", key, line);
+                return false;
+            }
+        } else if (num) {
+            char *end;
+            *num = strtod(p, &end);
+            if (end == p) {
+                FAILF("log line: '%s' is not a number: %s", key, line);
+                return false;
+            }
+            p = end;
+        } else {
+            FAILF("log line: unknown key '%s'", key);
+            return false;
+        }
+        r->fields++;
+        if (*p == ',') {
+            p++;
+        }
+    }
+    if (strcmp(p, "}") != 0 || r->fields != 10) {
+        FAILF("log line: %d fields or text after the object: %s", r->fields, line);
+        return false;
+    }
+    return true;
+}
+
+/* The records of a log file (at most max); -1 when it cannot be read. */
+static int read_log(const char *path, record *recs, int max)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        FAILF("cannot open the log %s", path);
+        return -1;
+    }
+    char line[8192];
+    int n = 0;
+    while (fgets(line, sizeof line, f)) {
+        size_t len = strlen(line);
+        if (len == 0 || line[len - 1] != '\n') {
+            FAILF("%s: a line without its newline", path);
+            n = -1;
+            break;
+        }
+        line[len - 1] = '\0';
+        if (n < max && !parse_record(line, &recs[n])) {
+            n = -1;
+            break;
+        }
+        n++;
+    }
+    fclose(f);
+    return n;
+}
+
+static const record *find_record(const record *recs, int n, const char *input)
+{
+    for (int i = 0; i < n; i++) {
+        if (strcmp(recs[i].input, input) == 0) {
+            return &recs[i];
+        }
+    }
+    return NULL;
+}
+
+/* ---- tests -------------------------------------------------------------- */
+
+/* A directory of models with a bad one in the middle: every good one is
+ * rendered, the bad one is one line and a failed record, the exit status
+ * says some failed, and the log holds one whole record per input. */
+SR_TEST(batch_renders_every_model_past_a_bad_one)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], logp[1100], paths[MODELS][1200];
+    fresh_dir("models", dir, sizeof dir);
+    fresh_dir("out", out, sizeof out);
+    snprintf(logp, sizeof logp, "%s/../batch_log.jsonl", out);
+    unlink(logp);
+    REQUIRE(write_models(dir, paths) == MODELS);
+
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--size", "64x48", "--log", logp), &r));
+    CHECK_EQ(r.status, 3);
+    CHECK_EQ(count_lines(r.err), 1);
+    CHECK_STR_CONTAINS(r.err, "c_bad.stl");
+
+    record recs[16];
+    int n = read_log(logp, recs, 16);
+    CHECK_EQ(n, MODELS);
+    for (int i = 0; i < MODELS && n == MODELS; i++) {
+        const record *rec = find_record(recs, n, paths[i]);
+        if (!rec) {
+            FAILF("no record for %s", paths[i]);
+            continue;
+        }
+        char want[1300];
+        snprintf(want, sizeof want, "%s/%.*s.png", out, (int)(strrchr(paths[i], '.') -
+                 strrchr(paths[i], '/') - 1), strrchr(paths[i], '/') + 1);
+        CHECK(strcmp(rec->output, want) == 0);
+        CHECK_EQ(rec->index, i);
+        CHECK(rec->ms >= rec->load_ms && rec->load_ms >= 0 && rec->render_ms >= 0 &&
+              rec->encode_ms >= 0);
+        if (i == BAD_MODEL) {
+            CHECK(strcmp(rec->status, "failed") == 0);
+            CHECK(!rec->error_null && strstr(rec->error, "c_bad.stl"));
+            CHECK(!file_exists(want));
+        } else {
+            CHECK(strcmp(rec->status, "ok") == 0);
+            CHECK(rec->error_null);
+            CHECK_EQ(rec->triangles, is_stl(paths[i]) ? 4 : 12);
+            CHECK(is_thumbnail(want, 64, 48));
+        }
+    }
+
+    /* A batch draws each model exactly as a single render does. */
+    char single[1200];
+    snprintf(single, sizeof single, "%s/../batch_single.png", out);
+    REQUIRE(run(ARGS("render", paths[1], "-o", single, "--size", "64x48"), &r));
+    CHECK_EQ(r.status, 0);
+    size_t na, nb;
+    char batch_png[1300];
+    snprintf(batch_png, sizeof batch_png, "%s/b_cube.png", out);
+    uint8_t *a = sr_test_read_file(single, &na), *b = sr_test_read_file(batch_png, &nb);
+    CHECK(a && b && na == nb && memcmp(a, b, na) == 0);
+    free(a);
+    free(b);
+}
+
+static bool same_file_state(const char *path, const struct stat *before)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && st.st_ino == before->st_ino &&
+           st.st_mtim.tv_sec == before->st_mtim.tv_sec &&
+           st.st_mtim.tv_nsec == before->st_mtim.tv_nsec;
+}
+
+/* --skip-existing leaves every finished image alone and renders only what
+ * is missing; the exit status counts a skipped input as done. */
+SR_TEST(skip_existing_renders_only_missing_outputs)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], logp[1100], paths[MODELS][1200];
+    fresh_dir("skip_models", dir, sizeof dir);
+    fresh_dir("skip_out", out, sizeof out);
+    snprintf(logp, sizeof logp, "%s/log.jsonl", dir);
+    REQUIRE(write_models(dir, paths) == MODELS);
+    unlink(paths[BAD_MODEL]);
+
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--size", "32x32"), &r));
+    REQUIRE(r.status == 0);
+    char outs[MODELS][1300];
+    struct stat before[MODELS];
+    for (int i = 0; i < MODELS; i++) {
+        snprintf(outs[i], sizeof outs[i], "%s/%.*s.png", out, (int)(strrchr(paths[i], '.') -
+                 strrchr(paths[i], '/') - 1), strrchr(paths[i], '/') + 1);
+        CHECK(i == BAD_MODEL || stat(outs[i], &before[i]) == 0);
+    }
+    unlink(outs[3]);
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--size", "32x32", "--skip-existing",
+                     "--log", logp), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err[0], '\0');
+    record recs[16];
+    int n = read_log(logp, recs, 16);
+    CHECK_EQ(n, MODELS - 1);
+    for (int i = 0; i < MODELS && n == MODELS - 1; i++) {
+        if (i == BAD_MODEL) {
+            continue;
+        }
+        const record *rec = find_record(recs, n, paths[i]);
+        CHECK(rec && strcmp(rec->status, i == 3 ? "ok" : "skipped") == 0);
+        if (i != 3) {
+            CHECK(same_file_state(outs[i], &before[i]));
+        } else {
+            CHECK(is_thumbnail(outs[i], 32, 32));
+        }
+    }
+}
+
+/* The exit status: 0 when all inputs were rendered, 4 when none was. */
+SR_TEST(exit_status_says_all_or_none)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], bad1[1100], bad2[1100], good[1100];
+    fresh_dir("status", dir, sizeof dir);
+    fresh_dir("status_out", out, sizeof out);
+    snprintf(bad1, sizeof bad1, "%s/x.stl", dir);
+    snprintf(bad2, sizeof bad2, "%s/missing.obj", dir);
+    snprintf(good, sizeof good, "%s/g.stl", dir);
+    REQUIRE(write_text(bad1, "not a model\n") && write_stl(good, 1.0f));
+    run_result r;
+    REQUIRE(run(ARGS("render", bad1, bad2, "--output-dir", out, "--size", "16x16"), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK_EQ(count_lines(r.err), 2);
+    CHECK_STR_CONTAINS(r.err, "missing.obj");
+    REQUIRE(run(ARGS("render", good, "--output-dir", out, "--size", "16x16"), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err[0], '\0');
+}
+
+/* --batch: a list on standard input, with an output named on one line, a
+ * comment and a blank line; a quoted glob pattern expanded by the tool. */
+SR_TEST(list_on_stdin_and_glob_patterns)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], list[1100], named[1100], paths[MODELS][1200];
+    fresh_dir("list", dir, sizeof dir);
+    fresh_dir("list_out", out, sizeof out);
+    REQUIRE(write_models(dir, paths) == MODELS);
+    snprintf(list, sizeof list, "%s/list.txt", dir);
+    snprintf(named, sizeof named, "%s/sub/named.png", out);
+    char text[4096];
+    snprintf(text, sizeof text, "# the list\n%s\n\n%s\t%s\n", paths[0], paths[1], named);
+    REQUIRE(write_text(list, text));
+    run_result r;
+    REQUIRE(run_env(ARGS("render", "--batch", "-", "--output-dir", out, "--size", "24x24",
+                         "--name", "{index}-{stem}.{ext}.png"),
+                    NO_ENV, list, &r));
+    CHECK_EQ(r.status, 0);
+    char first[1300];
+    snprintf(first, sizeof first, "%s/0-a_tetra.stl.png", out);
+    CHECK(is_thumbnail(first, 24, 24));
+    CHECK(is_thumbnail(named, 24, 24));
+
+    char pattern[1100], obj_out[1300], stl_out[1300];
+    snprintf(pattern, sizeof pattern, "%s/*.obj", dir);
+    fresh_dir("list_out", out, sizeof out);
+    REQUIRE(run(ARGS("render", pattern, "--output-dir", out, "--size", "24x24"), &r));
+    CHECK_EQ(r.status, 0);
+    snprintf(obj_out, sizeof obj_out, "%s/e_big.png", out);
+    snprintf(stl_out, sizeof stl_out, "%s/a_tetra.png", out);
+    CHECK(file_exists(obj_out) && !file_exists(stl_out));
+}
+
+/* Mistakes that would lose work are refused before anything is drawn. */
+SR_TEST(batch_refuses_bad_options_in_one_line)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], paths[MODELS][1200], nomatch[1100], empty[1100];
+    fresh_dir("refuse", dir, sizeof dir);
+    fresh_dir("refuse_out", out, sizeof out);
+    REQUIRE(write_models(dir, paths) == MODELS);
+    snprintf(nomatch, sizeof nomatch, "%s/*.nothing", dir);
+    snprintf(empty, sizeof empty, "%s/empty", dir);
+    mkdir(empty, 0777);
+    struct {
+        const char *label;
+        const char *const *args;
+        const char *needle;
+    } cases[] = {
+        { "-o in a batch", ARGS("render", dir, "--output-dir", out, "-o", "x.png"), "-o" },
+        { "unknown field", ARGS("render", dir, "--output-dir", out, "--name", "{nope}.png"),
+          "{nope}" },
+        { "absolute name", ARGS("render", dir, "--name", "/tmp/x.png"), "--name" },
+        { "one output for all", ARGS("render", dir, "--output-dir", out, "--name", "all.png"),
+          "both be written" },
+        { "pattern matches nothing", ARGS("render", nomatch, "--output-dir", out), "no file" },
+        { "empty directory", ARGS("render", empty, "--output-dir", out), "no models" },
+        { "missing list", ARGS("render", "--batch", "/nonexistent/list", "--output-dir", out),
+          "--batch" },
+        { "--log without value", ARGS("render", dir, "--log"), "--log" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        run_result r;
+        REQUIRE(run(cases[i].args, &r));
+        if (r.status != 2 || count_lines(r.err) != 1 || !strstr(r.err, cases[i].needle)) {
+            FAILF("%s: status %d, stderr \"%s\" (expected 2 and one line with '%s')",
+                  cases[i].label, r.status, r.err, cases[i].needle);
+        }
+    }
+    DIR *d = opendir(out);
+    int entries = 0;
+    for (struct dirent *e; d && (e = readdir(d)) != NULL;) {
+        entries += e->d_name[0] != '.';
+    }
+    if (d) {
+        closedir(d);
+    }
+    CHECK_EQ(entries, 0);
+
+    /* An output that is an input of the batch fails that input, and the
+     * input keeps its bytes. */
+    size_t before_n, after_n;
+    uint8_t *before = sr_test_read_file(paths[0], &before_n);
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--output-dir", dir, "--name", "{stem}.{ext}"), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK_STR_CONTAINS(r.err, "input of the batch");
+    uint8_t *after = sr_test_read_file(paths[0], &after_n);
+    CHECK(before && after && before_n == after_n && memcmp(before, after, before_n) == 0);
+    free(before);
+    free(after);
+}
+
+/* ---- shards ------------------------------------------------------------- */
+
+enum { SHARD_INPUTS = 23 };
+
+/* A list file of SHARD_INPUTS models (in dir), in forward or reverse order. */
+static bool write_shard_models(const char *dir, const char *list, bool reverse,
+                               char paths[SHARD_INPUTS][1200])
+{
+    char text[SHARD_INPUTS * 1210] = "";
+    size_t n = 0;
+    for (int k = 0; k < SHARD_INPUTS; k++) {
+        int i = reverse ? SHARD_INPUTS - 1 - k : k;
+        snprintf(paths[i], 1200, "%s/m%02d.stl", dir, i);
+        if (!write_stl(paths[i], 1.0f + 0.1f * (float)i)) {
+            return false;
+        }
+        n += (size_t)snprintf(text + n, sizeof text - n, "%s\n", paths[i]);
+    }
+    return write_text(list, text);
+}
+
+/* Run `count` shards over the list, each with the environment `env_of`
+ * gives it (and, when it names one, an option followed by the count),
+ * then check from their logs that every
+ * input was rendered exactly once.  Records which shard took each input
+ * in owner[] (for comparing two runs). */
+typedef void (*shard_env_fn)(int index, int count, char env[3][64], const char **extra);
+
+static void run_shards(const char *label, const char *list, char paths[SHARD_INPUTS][1200],
+                       int count, shard_env_fn env_of, int owner[SHARD_INPUTS])
+{
+    char out[1024], logp[1100];
+    fresh_dir("shard_out", out, sizeof out);
+    for (int i = 0; i < SHARD_INPUTS; i++) {
+        owner[i] = -1;
+    }
+    for (int s = 0; s < count; s++) {
+        char env[3][64] = { "", "", "" }, count_s[16];
+        const char *extra = NULL;
+        env_of(s, count, env, &extra);
+        snprintf(count_s, sizeof count_s, "%d", count);
+        snprintf(logp, sizeof logp, "%s/shard%d.jsonl", out, s);
+        const char *envp[4] = { NULL, NULL, NULL, NULL };
+        for (int k = 0, m = 0; k < 3; k++) {
+            if (env[k][0]) {
+                envp[m++] = env[k];
+            }
+        }
+        run_result r;
+        bool ran = extra ? run_env(ARGS("render", "--batch", list, "--output-dir", out, "--size",
+                                        "8x8", "--aa", "none", "--log", logp, extra, count_s),
+                                   envp, NULL, &r)
+                         : run_env(ARGS("render", "--batch", list, "--output-dir", out, "--size",
+                                        "8x8", "--aa", "none", "--log", logp),
+                                   envp, NULL, &r);
+        if (!ran || r.status != 0) {
+            FAILF("%s: shard %d of %d: status %d: %s", label, s, count, r.status, r.err);
+            return;
+        }
+        record recs[SHARD_INPUTS + 1];
+        int n = read_log(logp, recs, SHARD_INPUTS + 1);
+        for (int k = 0; k < n && k <= SHARD_INPUTS; k++) {
+            int i = 0;
+            while (i < SHARD_INPUTS && strcmp(paths[i], recs[k].input) != 0) {
+                i++;
+            }
+            if (i == SHARD_INPUTS || strcmp(recs[k].status, "ok") != 0) {
+                FAILF("%s: shard %d: unexpected record for %s (%s)", label, s, recs[k].input,
+                      recs[k].status);
+            } else if (owner[i] >= 0) {
+                FAILF("%s: %s rendered by shards %d and %d of %d", label, paths[i], owner[i], s,
+                      count);
+            } else {
+                owner[i] = s;
+            }
+        }
+    }
+    for (int i = 0; i < SHARD_INPUTS; i++) {
+        if (owner[i] < 0) {
+            FAILF("%s: %s rendered by none of %d shards", label, paths[i], count);
+        }
+    }
+}
+
+static void env_kubernetes(int index, int count, char env[3][64], const char **extra)
+{
+    (void)count;
+    snprintf(env[0], 64, "JOB_COMPLETION_INDEX=%d", index);
+    *extra = "--shard-count";
+}
+
+/* Slurm's --array=1-N numbers its tasks from 1: the index is less MIN. */
+static void env_slurm(int index, int count, char env[3][64], const char **extra)
+{
+    *extra = NULL;
+    snprintf(env[0], 64, "SLURM_ARRAY_TASK_ID=%d", index + 1);
+    snprintf(env[1], 64, "SLURM_ARRAY_TASK_COUNT=%d", count);
+    snprintf(env[2], 64, "SLURM_ARRAY_TASK_MIN=1");
+}
+
+SR_TEST(shards_partition_the_inputs)
+{
+    NEED_CLI();
+    char dir[1024], list[1100], rlist[1100], paths[SHARD_INPUTS][1200];
+    fresh_dir("shard_models", dir, sizeof dir);
+    snprintf(list, sizeof list, "%s/list.txt", dir);
+    snprintf(rlist, sizeof rlist, "%s/reversed.txt", dir);
+    REQUIRE(write_shard_models(dir, rlist, true, paths));
+    REQUIRE(write_shard_models(dir, list, false, paths));
+    const int counts[] = { 1, 2, 3, 7 };
+    for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) {
+        int n = counts[c];
+        int by_k8s[SHARD_INPUTS], by_slurm[SHARD_INPUTS], reversed[SHARD_INPUTS];
+        run_shards("JOB_COMPLETION_INDEX", list, paths, n, env_kubernetes, by_k8s);
+        run_shards("SLURM_ARRAY_TASK_ID", list, paths, n, env_slurm, by_slurm);
+        run_shards("reversed list", rlist, paths, n, env_kubernetes, reversed);
+        int used[8] = { 0 };
+        for (int i = 0; i < SHARD_INPUTS; i++) {
+            /* The same input lands on the same shard, whatever the
+             * scheduler or the order of the list. */
+            CHECK_EQ(by_k8s[i], by_slurm[i]);
+            CHECK_EQ(by_k8s[i], reversed[i]);
+            if (by_k8s[i] >= 0) {
+                used[by_k8s[i]]++;
+            }
+        }
+        for (int s = 0; s < n && n <= 3; s++) {
+            CHECK(used[s] > 0);   /* 23 inputs leave no shard of three empty */
+        }
+    }
+}
+
+/* --shard I/N gives the same shards as the schedulers' variables, and
+ * wins over them. */
+SR_TEST(shard_option_matches_the_environment)
+{
+    NEED_CLI();
+    char dir[1024], list[1100], out[1024], logp[1100], paths[SHARD_INPUTS][1200];
+    fresh_dir("shard_opt", dir, sizeof dir);
+    snprintf(list, sizeof list, "%s/list.txt", dir);
+    REQUIRE(write_shard_models(dir, list, false, paths));
+    int by_k8s[SHARD_INPUTS];
+    run_shards("JOB_COMPLETION_INDEX", list, paths, 3, env_kubernetes, by_k8s);
+    for (int s = 0; s < 3; s++) {
+        char shard[16];
+        snprintf(shard, sizeof shard, "%d/3", s);
+        fresh_dir("shard_opt_out", out, sizeof out);
+        snprintf(logp, sizeof logp, "%s/log.jsonl", out);
+        run_result r;
+        /* A bad scheduler variable is ignored when --shard is given. */
+        REQUIRE(run_env(ARGS("render", "--batch", list, "--output-dir", out, "--size", "8x8",
+                             "--log", logp, "--shard", shard),
+                        ENV("JOB_COMPLETION_INDEX=junk"), NULL, &r));
+        CHECK_EQ(r.status, 0);
+        record recs[SHARD_INPUTS + 1];
+        int n = read_log(logp, recs, SHARD_INPUTS + 1);
+        int want = 0;
+        for (int i = 0; i < SHARD_INPUTS; i++) {
+            want += by_k8s[i] == s;
+            CHECK((find_record(recs, n, paths[i]) != NULL) == (by_k8s[i] == s));
+        }
+        CHECK_EQ(n, want);
+    }
+}
+
+/* Bad shard settings, from the option or from the environment, are
+ * refused with one line naming the option or the variable. */
+SR_TEST(bad_shard_settings_are_refused)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], model[1100];
+    fresh_dir("shard_bad", dir, sizeof dir);
+    fresh_dir("shard_bad_out", out, sizeof out);
+    snprintf(model, sizeof model, "%s/m.stl", dir);
+    REQUIRE(write_stl(model, 1.0f));
+    struct {
+        const char *const *env;
+        const char *shard, *count, *needle;
+    } cases[] = {
+        { NO_ENV, "3/3", NULL, "--shard" },
+        { NO_ENV, "1", NULL, "--shard" },
+        { NO_ENV, "-1/2", NULL, "--shard" },
+        { NO_ENV, "0/0", NULL, "--shard" },
+        { NO_ENV, "a/b", NULL, "--shard" },
+        { NO_ENV, "0/2", "2", "--shard-count" },
+        { NO_ENV, NULL, "2", "--shard-count" },
+        { ENV("JOB_COMPLETION_INDEX=1"), NULL, NULL, "--shard-count" },
+        { ENV("JOB_COMPLETION_INDEX=abc"), NULL, "4", "JOB_COMPLETION_INDEX" },
+        { ENV("JOB_COMPLETION_INDEX="), NULL, "4", "JOB_COMPLETION_INDEX" },
+        { ENV("JOB_COMPLETION_INDEX=4"), NULL, "4", "JOB_COMPLETION_INDEX" },
+        { ENV("JOB_COMPLETION_INDEX=-1"), NULL, "4", "JOB_COMPLETION_INDEX" },
+        { ENV("JOB_COMPLETION_INDEX=0"), NULL, "zero", "--shard-count" },
+        { ENV("SLURM_ARRAY_TASK_ID=x", "SLURM_ARRAY_TASK_COUNT=2"), NULL, NULL,
+          "SLURM_ARRAY_TASK_ID" },
+        { ENV("SLURM_ARRAY_TASK_ID=1"), NULL, NULL, "SLURM_ARRAY_TASK_COUNT" },
+        { ENV("SLURM_ARRAY_TASK_ID=5", "SLURM_ARRAY_TASK_COUNT=3"), NULL, NULL,
+          "SLURM_ARRAY_TASK_ID 5" },
+        { ENV("SLURM_ARRAY_TASK_ID=1", "SLURM_ARRAY_TASK_COUNT=0"), NULL, NULL,
+          "SLURM_ARRAY_TASK_COUNT" },
+        { ENV("SLURM_ARRAY_TASK_ID=3", "SLURM_ARRAY_TASK_COUNT=2", "SLURM_ARRAY_TASK_STEP=2"),
+          NULL, NULL, "SLURM_ARRAY_TASK_ID 3" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *args[16] = { "render", model, "--output-dir", out };
+        int n = 4;
+        if (cases[i].shard) {
+            args[n++] = "--shard";
+            args[n++] = cases[i].shard;
+        }
+        if (cases[i].count) {
+            args[n++] = "--shard-count";
+            args[n++] = cases[i].count;
+        }
+        args[n] = NULL;
+        run_result r;
+        REQUIRE(run_env(args, cases[i].env, NULL, &r));
+        if (r.status != 2 || count_lines(r.err) != 1 || !strstr(r.err, cases[i].needle)) {
+            FAILF("case %zu (%s): status %d, stderr \"%s\" (expected 2 and one line with '%s')",
+                  i, cases[i].env[0] ? cases[i].env[0] : cases[i].shard, r.status, r.err,
+                  cases[i].needle);
+        }
+    }
+    char png[1200];
+    snprintf(png, sizeof png, "%s/m.png", out);
+    CHECK(!file_exists(png));
+}
+
+/* A shard killed part-way (SIGKILL) leaves only whole images; rerun with
+ * --skip-existing it renders what was missing and redoes nothing that was
+ * finished. */
+SR_TEST(killed_shard_resumes_with_skip_existing)
+{
+    NEED_CLI();
+    char dir[1024], list[1100], out[1024], logp[1100], err[1100], paths[SHARD_INPUTS][1200];
+    fresh_dir("kill", dir, sizeof dir);
+    fresh_dir("kill_out", out, sizeof out);
+    snprintf(list, sizeof list, "%s/list.txt", dir);
+    snprintf(logp, sizeof logp, "%s/first.jsonl", dir);
+    snprintf(err, sizeof err, "%s/stderr.txt", dir);
+    REQUIRE(write_shard_models(dir, list, false, paths));
+    /* Big, supersampled images on one thread: slow enough to be killed
+     * part-way on any machine. */
+    const char *const args[] = { "render", "--batch", list, "--output-dir", out, "--size",
+                                 "1024x1024", "--aa", "ssaa4", "--threads", "1", "--log", logp,
+                                 NULL };
+    pid_t pid = start_cli(args, ENV("SLURM_ARRAY_TASK_ID=0", "SLURM_ARRAY_TASK_COUNT=1"), NULL,
+                          err);
+    REQUIRE(pid > 0);
+    /* Kill once two records are written. */
+    for (int waited = 0; waited < 60000; waited++) {
+        struct stat st;
+        FILE *f = fopen(logp, "r");
+        int lines = 0;
+        for (int c; f && (c = fgetc(f)) != EOF;) {
+            lines += c == '\n';
+        }
+        if (f) {
+            fclose(f);
+        }
+        if (lines >= 2 || (stat(logp, &st) == 0 && waitpid(pid, NULL, WNOHANG) == pid)) {
+            break;
+        }
+        struct timespec ts = { 0, 1000000 };
+        nanosleep(&ts, NULL);
+    }
+    kill(pid, SIGKILL);
+    int status = wait_status(pid);
+    if (status != 128 + SIGKILL) {
+        SKIP("the batch finished before it could be killed");
+    }
+
+    /* Only whole images, and a record for each. */
+    record first[SHARD_INPUTS + 1];
+    int nfirst = read_log(logp, first, SHARD_INPUTS + 1);
+    CHECK(nfirst >= 2 && nfirst < SHARD_INPUTS);
+    struct stat done[SHARD_INPUTS];
+    bool had[SHARD_INPUTS];
+    int nhad = 0;
+    for (int i = 0; i < SHARD_INPUTS; i++) {
+        char png[1300];
+        snprintf(png, sizeof png, "%s/m%02d.png", out, i);
+        had[i] = stat(png, &done[i]) == 0;
+        nhad += had[i];
+        if (had[i]) {
+            CHECK(is_thumbnail(png, 1024, 1024));
+        }
+    }
+    CHECK(nhad >= nfirst);
+
+    snprintf(logp, sizeof logp, "%s/second.jsonl", dir);
+    run_result r;
+    REQUIRE(run(ARGS("render", "--batch", list, "--output-dir", out, "--size", "1024x1024",
+                     "--aa", "none", "--skip-existing", "--log", logp), &r));
+    CHECK_EQ(r.status, 0);
+    record second[SHARD_INPUTS + 1];
+    int nsecond = read_log(logp, second, SHARD_INPUTS + 1);
+    CHECK_EQ(nsecond, SHARD_INPUTS);
+    for (int i = 0; i < SHARD_INPUTS && nsecond == SHARD_INPUTS; i++) {
+        const record *rec = find_record(second, nsecond, paths[i]);
+        char png[1300];
+        snprintf(png, sizeof png, "%s/m%02d.png", out, i);
+        CHECK(rec && strcmp(rec->status, had[i] ? "skipped" : "ok") == 0);
+        CHECK(had[i] ? same_file_state(png, &done[i]) : is_thumbnail(png, 1024, 1024));
+    }
+}
+
+/* ---- views and sheets --------------------------------------------------- */
+
+static uint8_t *read_rgba(const char *path, int *w, int *h)
+{
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_image(path, w, h, &px, &err) != SR_OK) {
+        FAILF("%s: %s", path, err.message);
+        return NULL;
+    }
+    return px;
+}
+
+/* --views N: N images a model, {view} in their names, each a different
+ * side; the same angle gives the same image whatever N. */
+SR_TEST(views_render_a_turntable)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], model[1100], logp[1100];
+    fresh_dir("views", dir, sizeof dir);
+    fresh_dir("views_out", out, sizeof out);
+    snprintf(model, sizeof model, "%s/m.stl", dir);
+    snprintf(logp, sizeof logp, "%s/log.jsonl", dir);
+    REQUIRE(write_stl(model, 3.0f));
+    run_result r;
+    REQUIRE(run(ARGS("render", model, "--views", "4", "--output-dir", out, "--size", "48x48",
+                     "--log", logp), &r));
+    CHECK_EQ(r.status, 0);
+    record recs[8];
+    CHECK_EQ(read_log(logp, recs, 8), 4);
+    uint8_t *px[4] = { NULL };
+    for (int v = 0; v < 4; v++) {
+        char png[1200];
+        snprintf(png, sizeof png, "%s/m_%d.png", out, v);
+        CHECK(is_thumbnail(png, 48, 48));
+        CHECK(find_record(recs, 4, model) && strcmp(recs[v].output, png) == 0);
+        int w, h;
+        px[v] = read_rgba(png, &w, &h);
+    }
+    for (int v = 1; v < 4; v++) {
+        CHECK(px[0] && px[v] && memcmp(px[0], px[v], 48 * 48 * 4) != 0);
+    }
+    /* 180 degrees is view 2 of 4 and view 4 of 8. */
+    fresh_dir("views_out", out, sizeof out);
+    REQUIRE(run(ARGS("render", model, "--views", "8", "--output-dir", out, "--size", "48x48",
+                     "--name", "v{view}.png"), &r));
+    CHECK_EQ(r.status, 0);
+    char png[1200];
+    snprintf(png, sizeof png, "%s/v4.png", out);
+    int w, h;
+    uint8_t *half = read_rgba(png, &w, &h);
+    CHECK(half && px[2] && memcmp(half, px[2], 48 * 48 * 4) == 0);
+    free(half);
+    for (int v = 0; v < 4; v++) {
+        free(px[v]);
+    }
+    REQUIRE(run(ARGS("render", model, "--views", "4", "--output-dir", out, "--name", "x.png"),
+                &r));
+    CHECK(r.status == 2 && strstr(r.err, "{view}"));
+}
+
+/* --sheet: every image in one grid, captioned; a failed model's cell is
+ * empty with its caption, and the sheet is still written. */
+SR_TEST(sheet_lays_out_models_with_captions)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], sheet[1100], paths[MODELS][1200];
+    fresh_dir("sheet", dir, sizeof dir);
+    fresh_dir("sheet_out", out, sizeof out);
+    REQUIRE(write_models(dir, paths) == MODELS);
+    snprintf(sheet, sizeof sheet, "%s/sheet.png", out);
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--size", "40x30", "--sheet-columns", "2"),
+                &r));
+    CHECK_EQ(r.status, 3);
+    CHECK_EQ(count_lines(r.err), 1);
+    int w, h;
+    uint8_t *px = read_rgba(sheet, &w, &h);
+    REQUIRE(px != NULL);
+    /* Five cells, two a row: three rows of 30 pixels and a 12-pixel caption. */
+    CHECK(w == 80 && h == 3 * 42);
+    /* The first cell is the first model's image as a batch draws it alone. */
+    REQUIRE(run(ARGS("render", paths[0], "--output-dir", out, "--size", "40x30"), &r));
+    char single[1200];
+    snprintf(single, sizeof single, "%s/a_tetra.png", out);
+    int sw, sh;
+    uint8_t *one = read_rgba(single, &sw, &sh);
+    bool same = one != NULL;
+    for (int y = 0; same && y < 30; y++) {
+        same = memcmp(px + 4 * (size_t)(y * w), one + 4 * (size_t)(y * 40), 4 * 40) == 0;
+    }
+    CHECK(same);
+    free(one);
+    /* Captions: ink in every used cell's strip; the bad model's (cell 2,
+     * left of row 1) is red, and its image area is background only. */
+    for (int cell = 0; cell < MODELS; cell++) {
+        int x0 = (cell % 2) * 40, y0 = (cell / 2) * 42;
+        size_t ink = 0, red = 0, drawn = 0;
+        for (int y = y0 + 30; y < y0 + 42; y++) {
+            for (int x = x0; x < x0 + 40; x++) {
+                const uint8_t *p = px + 4 * (size_t)(y * w + x);
+                ink += memcmp(p, px, 3) != 0;
+                red += p[0] > 160 && p[1] < 120;
+            }
+        }
+        for (int y = y0; y < y0 + 30; y++) {
+            for (int x = x0; x < x0 + 40; x++) {
+                drawn += memcmp(px + 4 * (size_t)(y * w + x), px, 3) != 0;
+            }
+        }
+        CHECK(ink > 10);
+        CHECK((red > 0) == (cell == BAD_MODEL));
+        CHECK((drawn > 0) == (cell != BAD_MODEL));
+    }
+    free(px);
+
+    /* Sheets that cannot be made, and options that do not go with one. */
+    REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--size", "4000x4000"), &r));
+    CHECK(r.status == 2 && strstr(r.err, "--sheet"));
+    REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--skip-existing"), &r));
+    CHECK(r.status == 2 && strstr(r.err, "--skip-existing"));
+    REQUIRE(run(ARGS("render", dir, "--sheet-columns", "3"), &r));
+    CHECK(r.status == 2 && strstr(r.err, "--sheet"));
+}
+
+/* How many animation frames (ANMF chunks) an extended WebP file has at
+ * its top level, and whether its VP8X header flags an animation; -1 when
+ * the file is not an extended WebP. */
+static int count_anmf(const uint8_t *p, size_t n, bool *animated)
+{
+    if (n < 30 || memcmp(p, "RIFF", 4) != 0 || memcmp(p + 8, "WEBPVP8X", 8) != 0) {
+        return -1;
+    }
+    *animated = (p[20] & 0x02) != 0;   /* VP8X flags: the animation bit */
+    int frames = 0;
+    for (size_t at = 12; at + 8 <= n;) {
+        uint32_t size = (uint32_t)p[at + 4] | (uint32_t)p[at + 5] << 8 |
+                        (uint32_t)p[at + 6] << 16 | (uint32_t)p[at + 7] << 24;
+        frames += memcmp(p + at, "ANMF", 4) == 0;
+        at += 8 + size + (size & 1);
+    }
+    return frames;
+}
+
+/* --animate: each model's views as the frames of one animated WebP. */
+SR_TEST(animate_writes_a_turntable_webp)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], model[1100], webp[1200];
+    fresh_dir("anim", dir, sizeof dir);
+    fresh_dir("anim_out", out, sizeof out);
+    snprintf(model, sizeof model, "%s/m.obj", dir);
+    REQUIRE(write_obj(model, 1.0f));
+    run_result r;
+    REQUIRE(run(ARGS("render", model, "--views", "5", "--animate", "{stem}.webp",
+                     "--output-dir", out, "--size", "40x30"), &r));
+    if (r.status == 2 && strstr(r.err, "without libwebp")) {
+        SKIP("this softrast was built without libwebp");
+    }
+    CHECK_EQ(r.status, 0);
+    snprintf(webp, sizeof webp, "%s/m.webp", out);
+    size_t n = 0;
+    uint8_t *bytes = sr_test_read_file(webp, &n);
+    bool animated = false;
+    CHECK_EQ(bytes ? count_anmf(bytes, n, &animated) : -1, 5);
+    CHECK(animated);
+    free(bytes);
+    const struct {
+        const char *const *args;
+        const char *needle;
+    } bad[] = {
+        { ARGS("render", model, "--animate", "t.png", "--output-dir", out), ".webp" },
+        { ARGS("render", model, "--animate", "t.webp", "--sheet", "s.png"), "--sheet" },
+        { ARGS("render", model, "--animate", "t.webp", "--name", "x.png"), "--name" },
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        REQUIRE(run(bad[i].args, &r));
+        CHECK(r.status == 2 && count_lines(r.err) == 1 && strstr(r.err, bad[i].needle));
+    }
+}
+
+/* On a terminal, a progress line on stderr, redrawn in place, that ends
+ * with every input done and the failures counted; the failure's own line
+ * is printed over a cleared line. */
+SR_TEST(progress_line_on_a_terminal)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], paths[MODELS][1200];
+    fresh_dir("tty", dir, sizeof dir);
+    fresh_dir("tty_out", out, sizeof out);
+    REQUIRE(write_models(dir, paths) == MODELS);
+    int master = posix_openpt(O_RDWR | O_NOCTTY);
+    if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0) {
+        SKIP("no pseudo-terminal");
+    }
+    char slave_path[128];
+    snprintf(slave_path, sizeof slave_path, "%s", ptsname(master));
+    /* Held open here too, so that what the child wrote stays readable. */
+    int slave = open(slave_path, O_RDWR | O_NOCTTY);
+    REQUIRE(slave >= 0);
+    pid_t pid = start_cli(ARGS("render", dir, "--output-dir", out, "--size", "16x16"), NO_ENV,
+                          NULL, slave_path);
+    REQUIRE(pid > 0);
+    CHECK_EQ(wait_status(pid), 3);
+    fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
+    char text[8192];
+    size_t n = 0;
+    for (ssize_t got; n + 1 < sizeof text &&
+                      (got = read(master, text + n, sizeof text - 1 - n)) > 0;) {
+        n += (size_t)got;
+    }
+    text[n] = '\0';
+    close(slave);
+    close(master);
+    CHECK_STR_CONTAINS(text, "\r\033[K");
+    CHECK_STR_CONTAINS(text, "5/5");
+    CHECK_STR_CONTAINS(text, "1 failed");
+    CHECK_STR_CONTAINS(text, "\r\033[Ksoftrast: ");
+    CHECK_STR_CONTAINS(text, "c_bad.stl");
+    CHECK(n > 0 && text[n - 1] == '\n');
+}
