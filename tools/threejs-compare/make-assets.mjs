@@ -1,0 +1,187 @@
+// make-assets.mjs - writes the comparison's test assets into a directory:
+// small .glb files for the glTF cases issue 35 names (the material model's
+// tell-tale cases) and a Radiance .hdr sky to light them.
+//
+//   node make-assets.mjs OUTDIR
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+
+// --- Geometry: positions, normals and 16-bit indices, counter-clockwise
+// seen from outside (glTF's front face).
+
+function cube(half) {
+    const faces = [
+        // normal, then the two axes spanning the face (u x v = normal)
+        [[1, 0, 0], [0, 1, 0], [0, 0, 1]],
+        [[-1, 0, 0], [0, 0, 1], [0, 1, 0]],
+        [[0, 1, 0], [0, 0, 1], [1, 0, 0]],
+        [[0, -1, 0], [1, 0, 0], [0, 0, 1]],
+        [[0, 0, 1], [1, 0, 0], [0, 1, 0]],
+        [[0, 0, -1], [0, 1, 0], [1, 0, 0]],
+    ];
+    const pos = [], nrm = [], idx = [];
+    for (const [n, u, v] of faces) {
+        const base = pos.length / 3;
+        for (const [su, sv] of [[-1, -1], [1, -1], [1, 1], [-1, 1]]) {
+            for (let k = 0; k < 3; k++) {
+                pos.push(half * (n[k] + su * u[k] + sv * v[k]));
+                nrm.push(n[k]);
+            }
+        }
+        idx.push(base, base + 1, base + 2, base, base + 2, base + 3);
+    }
+    return { pos, nrm, idx };
+}
+
+function sphere(radius, slices, stacks) {
+    const pos = [], nrm = [], idx = [];
+    for (let i = 0; i <= stacks; i++) {
+        const theta = (Math.PI * i) / stacks;   // from the north pole
+        for (let j = 0; j <= slices; j++) {
+            const phi = (2 * Math.PI * j) / slices;
+            const n = [Math.sin(theta) * Math.sin(phi), Math.cos(theta), Math.sin(theta) * Math.cos(phi)];
+            nrm.push(...n);
+            pos.push(...n.map((c) => c * radius));
+        }
+    }
+    const row = slices + 1;
+    for (let i = 0; i < stacks; i++) {
+        for (let j = 0; j < slices; j++) {
+            const a = i * row + j, b = a + row;
+            if (i > 0) idx.push(a, b, a + 1);
+            if (i < stacks - 1) idx.push(a + 1, b, b + 1);
+        }
+    }
+    return { pos, nrm, idx };
+}
+
+// --- A .glb holding one mesh (one primitive) used by several nodes, each
+// node naming its material through its own mesh entry.
+
+function glb(shape, nodes, materials, extensionsUsed = []) {
+    const posBytes = Buffer.from(new Float32Array(shape.pos).buffer);
+    const nrmBytes = Buffer.from(new Float32Array(shape.nrm).buffer);
+    const idxRaw = Buffer.from(new Uint16Array(shape.idx).buffer);
+    const idxBytes = Buffer.concat([idxRaw, Buffer.alloc((4 - (idxRaw.length % 4)) % 4)]);
+    const bin = Buffer.concat([posBytes, nrmBytes, idxBytes]);
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < shape.pos.length; i++) {
+        lo[i % 3] = Math.min(lo[i % 3], Math.fround(shape.pos[i]));
+        hi[i % 3] = Math.max(hi[i % 3], Math.fround(shape.pos[i]));
+    }
+    const count = shape.pos.length / 3;
+    const json = {
+        asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
+        scene: 0,
+        scenes: [{ nodes: nodes.map((_, i) => i) }],
+        nodes: nodes.map((n, i) => ({ mesh: i, ...(n.translation ? { translation: n.translation } : {}) })),
+        meshes: nodes.map((n) => ({
+            primitives: [{ attributes: { POSITION: 0, NORMAL: 1 }, indices: 2, material: n.material }],
+        })),
+        materials,
+        accessors: [
+            { bufferView: 0, componentType: 5126, count, type: 'VEC3', min: lo, max: hi },
+            { bufferView: 1, componentType: 5126, count, type: 'VEC3' },
+            { bufferView: 2, componentType: 5123, count: shape.idx.length, type: 'SCALAR' },
+        ],
+        bufferViews: [
+            { buffer: 0, byteOffset: 0, byteLength: posBytes.length, target: 34962 },
+            { buffer: 0, byteOffset: posBytes.length, byteLength: nrmBytes.length, target: 34962 },
+            { buffer: 0, byteOffset: posBytes.length + nrmBytes.length, byteLength: idxRaw.length,
+              target: 34963 },
+        ],
+        buffers: [{ byteLength: bin.length }],
+    };
+    if (extensionsUsed.length) json.extensionsUsed = extensionsUsed;
+    let text = Buffer.from(JSON.stringify(json));
+    text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
+    const header = Buffer.alloc(12), jsonHead = Buffer.alloc(8), binHead = Buffer.alloc(8);
+    header.write('glTF', 0);
+    header.writeUInt32LE(2, 4);
+    header.writeUInt32LE(12 + 8 + text.length + 8 + bin.length, 8);
+    jsonHead.writeUInt32LE(text.length, 0);
+    jsonHead.write('JSON', 4);
+    binHead.writeUInt32LE(bin.length, 0);
+    binHead.write('BIN\0', 4);
+    return Buffer.concat([header, jsonHead, text, binHead, bin]);
+}
+
+// --- A Radiance RGBE picture, flat scanlines (every reader takes them).
+
+function rgbe(r, g, b) {
+    const m = Math.max(r, g, b);
+    if (m < 1e-32) return [0, 0, 0, 0];
+    const e = Math.floor(Math.log2(m)) + 1;   // frexp's exponent: m / 2^e in [0.5, 1)
+    const s = 256 / 2 ** e;
+    return [Math.min(255, Math.floor(r * s)), Math.min(255, Math.floor(g * s)),
+            Math.min(255, Math.floor(b * s)), e + 128];
+}
+
+// A studio-like sky, equirectangular as three.js maps it: +Y up, the top
+// row straight up, and column u facing (cos p, 0, sin p) with p = 2 pi (u - 0.5).
+// A bright overhead softbox, a warm key box to the upper left of the
+// default view, a cool horizon and a dark floor.
+function sky(width, height) {
+    const px = Buffer.alloc(width * height * 4);
+    const box = (d, c, size) => {
+        const dot = d[0] * c[0] + d[1] * c[1] + d[2] * c[2];
+        return Math.max(0, Math.min(1, (dot - Math.cos(size)) / 0.02));
+    };
+    const norm = (v) => { const l = Math.hypot(...v); return v.map((x) => x / l); };
+    const top = [0, 1, 0], key = norm([-1, 0.8, 0.6]);
+    for (let y = 0; y < height; y++) {
+        const theta = (Math.PI * (y + 0.5)) / height;
+        for (let x = 0; x < width; x++) {
+            const phi = 2 * Math.PI * ((x + 0.5) / width - 0.5);
+            const d = [Math.sin(theta) * Math.cos(phi), Math.cos(theta), Math.sin(theta) * Math.sin(phi)];
+            const up = d[1];
+            let c = up >= 0
+                ? [0.3 + 0.1 * up, 0.33 + 0.15 * up, 0.38 + 0.25 * up]
+                : [0.1 + 0.06 * (1 + up), 0.09 + 0.06 * (1 + up), 0.08 + 0.06 * (1 + up)];
+            const t = box(d, top, 0.35) * 2.5, k = box(d, key, 0.25) * 5;
+            c = [c[0] + t + k * 1.0, c[1] + t + k * 0.9, c[2] + t + k * 0.75];
+            px.set(rgbe(...c), (y * width + x) * 4);
+        }
+    }
+    const head = `#?RADIANCE\n# softrast tools/threejs-compare/make-assets.mjs\nFORMAT=32-bit_rle_rgbe\n\n-Y ${height} +X ${width}\n`;
+    return Buffer.concat([Buffer.from(head), px]);
+}
+
+// --- The assets.
+
+const out = process.argv[2];
+if (!out) {
+    console.error('usage: node make-assets.mjs OUTDIR');
+    process.exit(2);
+}
+mkdirSync(out, { recursive: true });
+
+const pbr = (base, metallic, roughness) => ({ baseColorFactor: [...base, 1], metallicFactor: metallic,
+                                              roughnessFactor: roughness });
+
+writeFileSync(join(out, 'emissive-cube.glb'), glb(cube(0.5), [{ material: 0 }], [
+    { name: 'black, orange emissive', pbrMetallicRoughness: pbr([0, 0, 0], 0, 1),
+      emissiveFactor: [1, 0.5, 0] },
+]));
+writeFileSync(join(out, 'red-metal-sphere.glb'), glb(sphere(0.5, 64, 32), [{ material: 0 }], [
+    { name: 'red metal', pbrMetallicRoughness: pbr([1, 0, 0], 1, 0.2) },
+]));
+writeFileSync(join(out, 'unlit-green-cube.glb'), glb(cube(0.5), [{ material: 0 }], [
+    { name: 'unlit green', pbrMetallicRoughness: pbr([0, 1, 0], 0, 1),
+      extensions: { KHR_materials_unlit: {} } },
+], ['KHR_materials_unlit']));
+
+// Metallic 0..1 left to right, roughness 0..1 bottom to top.
+const n = 5, nodes = [], materials = [];
+for (let row = 0; row < n; row++) {
+    for (let col = 0; col < n; col++) {
+        const metallic = col / (n - 1), roughness = row / (n - 1);
+        materials.push({ name: `metallic ${metallic} roughness ${roughness}`,
+                         pbrMetallicRoughness: pbr([0.95, 0.64, 0.54], metallic, roughness) });
+        nodes.push({ material: materials.length - 1, translation: [(col - (n - 1) / 2) * 1.1,
+                                                                  (row - (n - 1) / 2) * 1.1, 0] });
+    }
+}
+writeFileSync(join(out, 'metal-rough-spheres.glb'), glb(sphere(0.5, 48, 24), nodes, materials));
+
+writeFileSync(join(out, 'sky.hdr'), sky(256, 128));
