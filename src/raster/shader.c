@@ -92,7 +92,10 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
         unsigned m = all;
         if (!inside) {
             m = 0;
-            for (int s = 0; s < n; s++) {
+            /* A lane beyond an edge's reach covers none of its samples. */
+            bool beyond = ((u[i][0] + j->reach[0]) | (u[i][1] + j->reach[1]) |
+                           (u[i][2] + j->reach[2])) < 0;
+            for (int s = 0; s < n && !beyond; s++) {
                 if (((u[i][0] + j->so[s][0] + j->bias[0]) | (u[i][1] + j->so[s][1] + j->bias[1]) |
                      (u[i][2] + j->so[s][2] + j->bias[2])) >= 0) {
                     m |= 1u << s;
