@@ -72,29 +72,17 @@ static inline v4f vmax(v4f a, v4f b)
     return sr__v4_sel(a > b, a, b);
 }
 
-/* 1 / sqrt(x) and 1 / x for x > 0 to about 2 ulps: the SSE estimates
- * (12 bits) refined by one Newton step, where sqrtps and divps would
- * hold up the lane math for their latency.  The estimates are exact
- * functions of their input but differ between CPU vendors, so pixels may
- * differ by a code between machines, as libm differences already allow. */
+/* 1 / sqrt(x) and 1 / x, correctly rounded (sqrtps, divps): the SSE
+ * estimates would be quicker but differ between CPU vendors, and the same
+ * scene must give the same bytes on every machine. */
 static inline v4f rsqrt_nr(v4f x)
 {
-#if defined(__SSE__)
-    v4f y = (v4f)_mm_rsqrt_ps((__m128)x);
-    return y * (1.5f - 0.5f * x * y * y);
-#else
     return 1.0f / sr__v4_sqrt(x);
-#endif
 }
 
 static inline v4f rcp_nr(v4f x)
 {
-#if defined(__SSE__)
-    v4f y = (v4f)_mm_rcp_ps((__m128)x);
-    return y * (2.0f - x * y);
-#else
     return 1.0f / x;
-#endif
 }
 
 /* NaN goes to lo. */
