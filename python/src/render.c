@@ -1,0 +1,544 @@
+/*
+ * render.c - softrast._softrast.render: one camera's geometry buffers
+ * (depth, triangle and instance IDs, barycentrics, normals, mask) and
+ * color from a list of mesh instances.  The Python layer (softrast/
+ * _render.py) validates cameras and poses and loops over batches; this
+ * file checks what it is handed again so that no call can crash, then
+ * draws with the GIL released.
+ *
+ * The geometry buffers come from one sr_program per instance.  Its vertex
+ * shader reads the mesh's own arrays (float32 or float64 vertices, int32
+ * or int64 faces) by triangle corner, so the draw is non-indexed, three
+ * corners a face: corner c of the draw is corner c % 3 of face c / 3,
+ * which gives the face's ID and barycentric corner to flat and smooth
+ * varyings.  Its fragment shader writes the outputs of the fragments that
+ * pass the depth test; fragments of one tile are shaded in draw order, so
+ * the last write to a pixel is the visible surface's, the same for any
+ * thread count.  Color comes from a second pass through the built-in
+ * shading (textures, vertex colors, a headlight) on the same projection.
+ */
+#include "module.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Varyings of the geometry program. */
+enum {
+    V_BARY = 0,      /* 3, smooth: the corner's unit vector */
+    V_Z = 3,         /* 1, smooth: camera-space z, the metric depth */
+    V_TRI_HI = 4,    /* 2, flat: the face index in two 16-bit halves,      */
+    V_TRI_LO = 5,    /*    each exact in a float */
+    V_NORMAL = 6,    /* 3, smooth (vertex normals) or flat (face normal) */
+    V_COUNT = 9,
+};
+
+typedef struct geometry_uniforms {
+    const void *vertices;
+    bool vertices64;
+    const void *faces;
+    bool faces64;
+    const float *normals;       /* NULL: face normals */
+    double a[3][4];             /* object -> camera */
+    double nm[3][3];            /* object normal -> the normal output's frame */
+    double kx[3], ky[2];        /* clip x and y rows from K */
+    float near;
+    int width;
+    int32_t instance_id;
+    float *depth;
+    int32_t *triangle_id, *instance_out;
+    float *barycentric, *normal;
+    npy_bool *mask;
+} geometry_uniforms;
+
+static void fetch_vertex(const geometry_uniforms *u, size_t v, double p[3])
+{
+    for (int k = 0; k < 3; k++) {
+        p[k] = u->vertices64 ? ((const double *)u->vertices)[3 * v + k]
+                             : (double)((const float *)u->vertices)[3 * v + k];
+    }
+}
+
+static size_t fetch_index(const geometry_uniforms *u, size_t i)
+{
+    return u->faces64 ? (size_t)((const int64_t *)u->faces)[i]
+                      : (size_t)((const int32_t *)u->faces)[i];
+}
+
+static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
+                            float *vary)
+{
+    const geometry_uniforms *u = uniforms;
+    size_t face = in->index / 3;
+    unsigned corner = in->index % 3;
+    double p[3], c[3];
+    fetch_vertex(u, fetch_index(u, in->index), p);
+    for (int r = 0; r < 3; r++) {
+        c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3];
+    }
+    /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
+     * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
+     * nearest (the depth test is GREATER), infinite far plane. */
+    clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2]);
+    clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
+    clip[2] = u->near;
+    clip[3] = (float)c[2];
+    vary[V_BARY + 0] = corner == 0;
+    vary[V_BARY + 1] = corner == 1;
+    vary[V_BARY + 2] = corner == 2;
+    vary[V_Z] = (float)c[2];
+    vary[V_TRI_HI] = (float)(face >> 16);
+    vary[V_TRI_LO] = (float)(face & 0xffff);
+    double n[3];
+    if (u->normals) {
+        size_t v = fetch_index(u, in->index);
+        for (int k = 0; k < 3; k++) {
+            n[k] = u->normals[3 * v + k];
+        }
+    } else {
+        double q[3][3];
+        for (int k = 0; k < 3; k++) {
+            fetch_vertex(u, fetch_index(u, 3 * face + (size_t)k), q[k]);
+        }
+        double e1[3] = { q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2] };
+        double e2[3] = { q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2] };
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    }
+    for (int r = 0; r < 3; r++) {
+        vary[V_NORMAL + r] = (float)(u->nm[r][0] * n[0] + u->nm[r][1] * n[1] + u->nm[r][2] * n[2]);
+    }
+}
+
+static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
+{
+    const geometry_uniforms *u = uniforms;
+    for (int i = 0; i < 4; i++) {
+        if (!(q->mask >> i & 1)) {
+            continue;
+        }
+        size_t p = (size_t)(q->y + (i >> 1)) * (size_t)u->width + (size_t)(q->x + (i & 1));
+        if (u->depth) {
+            u->depth[p] = q->varyings[V_Z][i];
+        }
+        if (u->triangle_id) {
+            u->triangle_id[p] = (int32_t)(lrintf(q->varyings[V_TRI_HI][i]) << 16 |
+                                          lrintf(q->varyings[V_TRI_LO][i]));
+        }
+        if (u->instance_out) {
+            u->instance_out[p] = u->instance_id;
+        }
+        if (u->barycentric) {
+            for (int k = 0; k < 3; k++) {
+                u->barycentric[3 * p + k] = q->varyings[V_BARY + k][i];
+            }
+        }
+        if (u->normal) {
+            float n[3] = { q->varyings[V_NORMAL][i], q->varyings[V_NORMAL + 1][i],
+                           q->varyings[V_NORMAL + 2][i] };
+            float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            float s = len > 0.0f ? 1.0f / len : 0.0f;
+            for (int k = 0; k < 3; k++) {
+                u->normal[3 * p + k] = n[k] * s;
+            }
+        }
+        if (u->mask) {
+            u->mask[p] = 1;
+        }
+    }
+}
+
+/* One instance as render() was handed it. */
+typedef struct instance {
+    MeshObject *mesh;
+    double a[3][4], nm[3][3];
+    int32_t id;
+    const float *positions;     /* for the color pass */
+    const uint32_t *indices;
+} instance;
+
+typedef struct render_job {
+    instance *inst;
+    size_t count;
+    int width, height, threads;
+    double k[3][3];
+    float near;
+    float background[3];
+    float *depth;
+    int32_t *triangle_id, *instance_id;
+    float *barycentric, *normal;
+    uint8_t *color;
+    npy_bool *mask;
+    char error[512];
+} render_job;
+
+static void fill_outputs(const render_job *j)
+{
+    size_t n = (size_t)j->width * (size_t)j->height;
+    for (size_t i = 0; i < n; i++) {
+        if (j->depth) {
+            j->depth[i] = INFINITY;
+        }
+        if (j->triangle_id) {
+            j->triangle_id[i] = -1;
+        }
+        if (j->instance_id) {
+            j->instance_id[i] = -1;
+        }
+    }
+    if (j->barycentric) {
+        memset(j->barycentric, 0, 3 * n * sizeof(float));
+    }
+    if (j->normal) {
+        memset(j->normal, 0, 3 * n * sizeof(float));
+    }
+    if (j->mask) {
+        memset(j->mask, 0, n * sizeof(npy_bool));
+    }
+}
+
+static void clip_rows(const render_job *j, double kx[3], double ky[2])
+{
+    double w = j->width, h = j->height;
+    kx[0] = 2.0 * j->k[0][0] / w;
+    kx[1] = 2.0 * j->k[0][1] / w;
+    kx[2] = 2.0 * (j->k[0][2] + 0.5) / w - 1.0;
+    ky[0] = -2.0 * j->k[1][1] / h;
+    ky[1] = 1.0 - 2.0 * (j->k[1][2] + 0.5) / h;
+}
+
+static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, render_job *j)
+{
+    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){ .depth_action = SR_ACTION_CLEAR, .depth = 0,
+                                                       .color_action = SR_ACTION_KEEP });
+    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
+        instance *in = &j->inst[i];
+        MeshObject *m = in->mesh;
+        size_t faces = (size_t)PyArray_DIM(m->faces, 0);
+        if (faces == 0) {
+            continue;
+        }
+        geometry_uniforms u = {
+            .vertices = PyArray_DATA(m->vertices),
+            .vertices64 = PyArray_TYPE(m->vertices) == NPY_FLOAT64,
+            .faces = PyArray_DATA(m->faces),
+            .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
+            .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
+            .near = j->near, .width = j->width, .instance_id = in->id,
+            .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
+            .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
+        };
+        memcpy(u.a, in->a, sizeof u.a);
+        memcpy(u.nm, in->nm, sizeof u.nm);
+        clip_rows(j, u.kx, u.ky);
+        sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
+                            .uniforms = &u, .varying_count = V_COUNT };
+        prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
+        if (!m->normals) {
+            for (int k = 0; k < 3; k++) {
+                prog.modes[V_NORMAL + k] = SR_VARYING_FLAT;
+            }
+        }
+        /* The shader reads the mesh itself; sr_draw still wants a position
+         * array of vertex_count entries.  Overlapping ones 4 bytes apart
+         * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
+        r = sr_draw(ctx, fb,
+                    &(sr_state){ .program = &prog, .depth_zero_to_one = true,
+                                 .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+                                 .color_mask = SR_COLOR_MASK_NONE },
+                    &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
+                                     .vertex_count = 3 * faces });
+    }
+    return r;
+}
+
+static void mat_from_rows(const double a[3][4], sr_mat4 *out)
+{
+    memset(out, 0, sizeof *out);
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 4; c++) {
+            out->m[c * 4 + r] = (float)a[r][c];
+        }
+    }
+    out->m[15] = 1.0f;
+}
+
+static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, render_job *j)
+{
+    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
+        .color = { j->background[0], j->background[1], j->background[2], 1.0f },
+        .depth_action = SR_ACTION_CLEAR, .depth = 0 });
+    double kx[3], ky[2];
+    clip_rows(j, kx, ky);
+    /* The same clip coordinates as geometry_vertex, as a matrix. */
+    sr_mat4 proj = { { 0 } };
+    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1], proj.m[8] = (float)kx[2];
+    proj.m[5] = (float)ky[0], proj.m[9] = (float)ky[1];
+    proj.m[14] = j->near;
+    proj.m[11] = 1.0f;
+    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
+        instance *in = &j->inst[i];
+        MeshObject *m = in->mesh;
+        size_t faces = (size_t)PyArray_DIM(m->faces, 0);
+        if (faces == 0) {
+            continue;
+        }
+        sr_texture *tex = NULL;
+        if (m->texture) {
+            int th = (int)PyArray_DIM(m->texture, 0), tw = (int)PyArray_DIM(m->texture, 1);
+            int ch = (int)PyArray_DIM(m->texture, 2);
+            const uint8_t *src = PyArray_DATA(m->texture);
+            uint8_t *rgba = NULL;
+            if (ch == 3) {
+                rgba = malloc((size_t)tw * (size_t)th * 4);
+                if (!rgba) {
+                    return SR_OUT_OF_MEMORY;
+                }
+                for (size_t p = 0; p < (size_t)tw * (size_t)th; p++) {
+                    memcpy(rgba + 4 * p, src + 3 * p, 3);
+                    rgba[4 * p + 3] = 255;
+                }
+            }
+            r = sr_make_texture(ctx, &(sr_texture_desc){ .width = tw, .height = th,
+                                                         .pixels = rgba ? rgba : src, .srgb = true },
+                                &tex);
+            free(rgba);
+            if (r != SR_OK) {
+                break;
+            }
+        }
+        sr_mat4 model;
+        mat_from_rows(in->a, &model);
+        sr_state st = {
+            .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+            .shading = m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT, .two_sided = true,
+            .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
+            /* A headlight: the view is the identity, so "world" is camera space. */
+            .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
+        };
+        sr_draw_desc d = {
+            .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
+            .positions = in->positions,
+            .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
+            .colors = m->colors ? PyArray_DATA(m->colors) : NULL,
+            .color_size = m->colors ? (int)PyArray_DIM(m->colors, 1) : 0,
+            .texcoords = m->uvs ? PyArray_DATA(m->uvs) : NULL,
+            .indices = in->indices, .index_type = SR_INDEX_U32, .index_count = 3 * faces,
+            .model = &model, .projection = &proj,
+        };
+        r = sr_draw(ctx, fb, &st, &d);
+        sr_destroy_texture(ctx, tex);
+    }
+    if (r == SR_OK) {
+        const uint8_t *px = sr_framebuffer_pixels(fb);
+        for (size_t p = 0; p < (size_t)j->width * (size_t)j->height; p++) {
+            memcpy(j->color + 3 * p, px + 4 * p, 3);
+        }
+    }
+    return r;
+}
+
+/* Runs without the GIL: touches no Python object, only array memory. */
+static void run(render_job *j)
+{
+    sr_context *ctx = NULL;
+    sr_framebuffer *fb = NULL;
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = j->threads }, &ctx);
+    if (r != SR_OK) {
+        snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_result_text(r));
+        return;
+    }
+    fill_outputs(j);
+    r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = j->width, .height = j->height,
+                                                          .depth_format = SR_DEPTH_D32F },
+                            &fb);
+    bool geometry = j->depth || j->triangle_id || j->instance_id || j->barycentric || j->normal ||
+                    j->mask;
+    if (r == SR_OK && geometry) {
+        r = geometry_pass(ctx, fb, j);
+    }
+    if (r == SR_OK && j->color) {
+        r = color_pass(ctx, fb, j);
+    }
+    if (r != SR_OK) {
+        snprintf(j->error, sizeof j->error, "%s", sr_context_error(ctx));
+        if (!j->error[0]) {
+            snprintf(j->error, sizeof j->error, "%s", sr_result_text(r));
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* An output array from the Python layer: None, or C-contiguous of the
+ * given type and shape (height, width[, channels]). */
+static int take_output(PyObject *obj, const char *name, int type, int height, int width, int channels,
+                       void **out)
+{
+    *out = NULL;
+    if (obj == Py_None) {
+        return 0;
+    }
+    const int types[] = { type, -1 };
+    npy_intp shape[3] = { height, width, channels };
+    PyArrayObject *a = sr_py_take_array(obj, name, channels ? 3 : 2, shape, types);
+    if (!a) {
+        return -1;
+    }
+    if (!PyArray_ISWRITEABLE(a)) {
+        PyErr_Format(PyExc_ValueError, "%s: array is read-only", name);
+        Py_DECREF(a);
+        return -1;
+    }
+    *out = PyArray_DATA(a);
+    Py_DECREF(a);   /* the caller holds obj for the call */
+    return 0;
+}
+
+static int take_matrix(PyObject *obj, const char *name, int rows, int cols, double *out)
+{
+    static const int types[] = { NPY_FLOAT64, -1 };
+    npy_intp shape[2] = { rows, cols };
+    PyArrayObject *a = sr_py_take_array(obj, name, 2, shape, types);
+    if (!a) {
+        return -1;
+    }
+    memcpy(out, PyArray_DATA(a), sizeof(double) * (size_t)(rows * cols));
+    Py_DECREF(a);
+    for (int i = 0; i < rows * cols; i++) {
+        if (!isfinite(out[i])) {
+            PyErr_Format(PyExc_ValueError, "%s: contains NaN or infinity", name);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int take_instances(PyObject *seq, render_job *j)
+{
+    PyObject *fast = PySequence_Fast(seq, "instances: expected a sequence");
+    if (!fast) {
+        return -1;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(fast);
+    j->inst = calloc(n ? (size_t)n : 1, sizeof *j->inst);
+    if (!j->inst) {
+        Py_DECREF(fast);
+        PyErr_NoMemory();
+        return -1;
+    }
+    j->count = (size_t)n;
+    for (Py_ssize_t i = 0; i < n; i++) {
+        PyObject *item = PySequence_Fast_GET_ITEM(fast, i);
+        PyObject *mesh, *a, *nm;
+        int id;
+        if (!PyTuple_Check(item) ||
+            !PyArg_ParseTuple(item, "O!OOi", &sr_py_MeshType, &mesh, &a, &nm, &id)) {
+            PyErr_Clear();
+            PyErr_Format(PyExc_TypeError,
+                         "instances[%zd]: expected (Mesh, (3, 4) matrix, (3, 3) matrix, int)", i);
+            goto fail;
+        }
+        instance *in = &j->inst[i];
+        in->mesh = (MeshObject *)mesh;
+        in->id = id;
+        if (!in->mesh->vertices) {
+            PyErr_Format(PyExc_ValueError, "instances[%zd]: the Mesh was never initialized", i);
+            goto fail;
+        }
+        if (take_matrix(a, "pose", 3, 4, &in->a[0][0]) < 0 ||
+            take_matrix(nm, "normal matrix", 3, 3, &in->nm[0][0]) < 0) {
+            goto fail;
+        }
+        MeshObject *m = in->mesh;
+        size_t faces = (size_t)PyArray_DIM(m->faces, 0);
+        if (m->zeros_count < 3 * faces + 2) {
+            free(m->zeros);
+            m->zeros = calloc(3 * faces + 2, sizeof(float));
+            m->zeros_count = m->zeros ? 3 * faces + 2 : 0;
+            if (!m->zeros) {
+                PyErr_NoMemory();
+                goto fail;
+            }
+        }
+        Py_ssize_t bad = sr_py_mesh_bad_face(m);
+        if (bad >= 0) {
+            PyErr_Format(PyExc_ValueError,
+                         "instances[%zd]: faces: face %zd has an index outside [0, %zd) "
+                         "(the array changed after the Mesh was made)",
+                         i, bad, (Py_ssize_t)PyArray_DIM(m->vertices, 0));
+            goto fail;
+        }
+        if (j->color && sr_py_mesh_draw_arrays(m, &in->positions, &in->indices) < 0) {
+            goto fail;
+        }
+    }
+    Py_DECREF(fast);
+    return 0;
+fail:
+    Py_DECREF(fast);
+    return -1;
+}
+
+PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
+                              "triangle_id", "instance_id", "barycentric", "normal", "color",
+                              "mask", "background", NULL };
+    PyObject *instances, *K, *outs[7];
+    render_job j = { 0 };
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff):render", kwlist, &instances,
+                                     &K, &j.width, &j.height, &j.near, &j.threads, &outs[0],
+                                     &outs[1], &outs[2], &outs[3], &outs[4], &outs[5], &outs[6],
+                                     &j.background[0], &j.background[1], &j.background[2])) {
+        return NULL;
+    }
+    if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
+        j.height > SR_MAX_FRAMEBUFFER_SIZE) {
+        PyErr_Format(PyExc_ValueError, "width, height: must be in 1 .. %d, got %d x %d",
+                     SR_MAX_FRAMEBUFFER_SIZE, j.width, j.height);
+        return NULL;
+    }
+    if (!(j.near > 0.0f) || !isfinite(j.near)) {
+        PyErr_SetString(PyExc_ValueError, "near: must be a positive finite distance");
+        return NULL;
+    }
+    if (j.threads < 0 || j.threads > 64) {
+        PyErr_Format(PyExc_ValueError, "threads: must be in 0 .. 64 (0: every CPU), got %d",
+                     j.threads);
+        return NULL;
+    }
+    if (take_matrix(K, "K", 3, 3, &j.k[0][0]) < 0) {
+        return NULL;
+    }
+    int H = j.height, W = j.width;
+    void *ptr[7];
+    if (take_output(outs[0], "depth", NPY_FLOAT32, H, W, 0, &ptr[0]) < 0 ||
+        take_output(outs[1], "triangle_id", NPY_INT32, H, W, 0, &ptr[1]) < 0 ||
+        take_output(outs[2], "instance_id", NPY_INT32, H, W, 0, &ptr[2]) < 0 ||
+        take_output(outs[3], "barycentric", NPY_FLOAT32, H, W, 3, &ptr[3]) < 0 ||
+        take_output(outs[4], "normal", NPY_FLOAT32, H, W, 3, &ptr[4]) < 0 ||
+        take_output(outs[5], "color", NPY_UINT8, H, W, 3, &ptr[5]) < 0 ||
+        take_output(outs[6], "mask", NPY_BOOL, H, W, 0, &ptr[6]) < 0) {
+        return NULL;
+    }
+    j.depth = ptr[0], j.triangle_id = ptr[1], j.instance_id = ptr[2];
+    j.barycentric = ptr[3], j.normal = ptr[4], j.color = ptr[5], j.mask = ptr[6];
+    if (take_instances(instances, &j) < 0) {
+        free(j.inst);
+        return NULL;
+    }
+    /* The instances' meshes and the outputs stay referenced by the
+     * caller's arguments for the whole call. */
+    Py_BEGIN_ALLOW_THREADS
+    run(&j);
+    Py_END_ALLOW_THREADS
+    free(j.inst);
+    if (j.error[0]) {
+        PyErr_SetString(PyExc_RuntimeError, j.error);
+        return NULL;
+    }
+    Py_RETURN_NONE;
+}
