@@ -119,7 +119,7 @@ def _int_arg(value, name, low, high):
 
 def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
            outputs=("color", "depth"), threads=0, near=1e-3, normal_frame="camera",
-           background=(0.0, 0.0, 0.0)):
+           background=(0.0, 0.0, 0.0), shading="lit"):
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -133,8 +133,9 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     width, height: the image size in pixels, 1 .. 8192.
     outputs: names from :data:`OUTPUTS`:
 
-        - ``color`` (H, W, 3) uint8: vertex colors or the texture (or gray)
-          lit by a headlight, over ``background`` (RGB in [0, 1]).
+        - ``color`` (H, W, 3) uint8: vertex colors times the texture (gray
+          without either), lit by a headlight (``shading="lit"``) or as they
+          are (``shading="unlit"``), over ``background`` (RGB in [0, 1]).
         - ``depth`` (H, W) float32: camera-space z (distance along the
           optical axis, the unit of the vertices), ``inf`` where nothing is.
         - ``normal`` (H, W, 3) float32: unit normal in the camera frame, or
@@ -176,6 +177,8 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
         raise ValueError(f"near: must be a positive finite number, got {near}")
     if normal_frame not in ("camera", "world"):
         raise ValueError(f"normal_frame: must be 'camera' or 'world', got {normal_frame!r}")
+    if shading not in ("lit", "unlit"):
+        raise ValueError(f"shading: must be 'lit' or 'unlit', got {shading!r}")
     bg = _float_array(background, "background")
     if bg.shape != (3,):
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
@@ -196,7 +199,7 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
                          *(out[name][b] if name in out else None
                            for name in ("depth", "triangle_id", "instance_id", "barycentric",
                                         "normal", "color", "mask")),
-                         bg)
+                         bg, shading == "lit")
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return out

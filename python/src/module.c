@@ -8,7 +8,7 @@
 
 PyDoc_STRVAR(render_doc,
 "render(instances, K, width, height, near, threads, depth, triangle_id, instance_id,\n"
-"       barycentric, normal, color, mask, background)\n"
+"       barycentric, normal, color, mask, background, lit)\n"
 "--\n"
 "\n"
 "The C renderer behind softrast.render (use that): one camera.\n"

@@ -10,12 +10,13 @@
  * shader reads the mesh's own arrays (float32 or float64 vertices, int32
  * or int64 faces) by triangle corner, so the draw is non-indexed, three
  * corners a face: corner c of the draw is corner c % 3 of face c / 3,
- * which gives the face's ID and barycentric corner to flat and smooth
- * varyings.  Its fragment shader writes the outputs of the fragments that
- * pass the depth test; fragments of one tile are shaded in draw order, so
- * the last write to a pixel is the visible surface's, the same for any
- * thread count.  Color comes from a second pass through the built-in
- * shading (textures, vertex colors, a headlight) on the same projection.
+ * whose index reaches the fragment shader as a flat varying.  The fragment
+ * shader intersects the pixel's ray with that face for depth, barycentrics
+ * and normal, and writes them for the fragments that pass the depth test;
+ * fragments of one tile are shaded in draw order, so the last write to a
+ * pixel is the visible surface's, the same for any thread count.  Color
+ * comes from a second pass through the built-in shading (textures, vertex
+ * colors, a headlight) on the same projection.
  */
 #include "module.h"
 
@@ -23,15 +24,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Varyings of the geometry program. */
-enum {
-    V_BARY = 0,      /* 3, smooth: the corner's unit vector */
-    V_Z = 3,         /* 1, smooth: camera-space z, the metric depth */
-    V_TRI_HI = 4,    /* 2, flat: the face index in two 16-bit halves,      */
-    V_TRI_LO = 5,    /*    each exact in a float */
-    V_NORMAL = 6,    /* 3, smooth (vertex normals) or flat (face normal) */
-    V_COUNT = 9,
-};
+/* Varyings of the geometry program: the face index in two 16-bit halves,
+ * each exact in a float, flat. */
+enum { V_TRI_HI = 0, V_TRI_LO = 1, V_COUNT = 2 };
 
 typedef struct geometry_uniforms {
     const void *vertices;
@@ -42,6 +37,7 @@ typedef struct geometry_uniforms {
     double a[3][4];             /* object -> camera */
     double nm[3][3];            /* object normal -> the normal output's frame */
     double kx[3], ky[2];        /* clip x and y rows from K */
+    double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
     float near;
     int width;
     int32_t instance_id;
@@ -65,17 +61,33 @@ static size_t fetch_index(const geometry_uniforms *u, size_t i)
                       : (size_t)((const int32_t *)u->faces)[i];
 }
 
+static void to_camera(const geometry_uniforms *u, const double p[3], double c[3])
+{
+    for (int r = 0; r < 3; r++) {
+        c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3];
+    }
+}
+
+static void cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
                             float *vary)
 {
     const geometry_uniforms *u = uniforms;
     size_t face = in->index / 3;
-    unsigned corner = in->index % 3;
     double p[3], c[3];
     fetch_vertex(u, fetch_index(u, in->index), p);
-    for (int r = 0; r < 3; r++) {
-        c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3];
-    }
+    to_camera(u, p, c);
     /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
      * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
      * nearest (the depth test is GREATER), infinite far plane. */
@@ -83,31 +95,82 @@ static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, flo
     clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
     clip[2] = u->near;
     clip[3] = (float)c[2];
-    vary[V_BARY + 0] = corner == 0;
-    vary[V_BARY + 1] = corner == 1;
-    vary[V_BARY + 2] = corner == 2;
-    vary[V_Z] = (float)c[2];
     vary[V_TRI_HI] = (float)(face >> 16);
     vary[V_TRI_LO] = (float)(face & 0xffff);
-    double n[3];
-    if (u->normals) {
-        size_t v = fetch_index(u, in->index);
-        for (int k = 0; k < 3; k++) {
-            n[k] = u->normals[3 * v + k];
-        }
-    } else {
-        double q[3][3];
-        for (int k = 0; k < 3; k++) {
-            fetch_vertex(u, fetch_index(u, 3 * face + (size_t)k), q[k]);
-        }
-        double e1[3] = { q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2] };
-        double e2[3] = { q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2] };
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+/* The visible face's outputs at pixel (x, y), from the ray through the
+ * pixel's centre and the face's camera-space plane, in double: depth and
+ * barycentrics are the exact intersection rounded once to float, not
+ * interpolated from vertices snapped to the raster's sub-pixel grid. */
+static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z)
+{
+    size_t p = (size_t)y * (size_t)u->width + (size_t)x;
+    size_t vi[3];
+    double o[3][3], c[3][3];
+    for (int k = 0; k < 3; k++) {
+        vi[k] = fetch_index(u, 3 * face + (size_t)k);
+        fetch_vertex(u, vi[k], o[k]);
+        to_camera(u, o[k], c[k]);
     }
-    for (int r = 0; r < 3; r++) {
-        vary[V_NORMAL + r] = (float)(u->nm[r][0] * n[0] + u->nm[r][1] * n[1] + u->nm[r][2] * n[2]);
+    double dy = ((double)y - u->cy) / u->fy;
+    double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
+    double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
+    double e2[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
+    double n[3];
+    cross(e1, e2, n);
+    double denom = dot(n, d), nn = dot(n, n);
+    double z, lambda[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 };
+    if (denom != 0.0 && nn > 0.0) {
+        z = dot(n, c[0]) / denom;
+        double w[3] = { z * d[0] - c[0][0], z * d[1] - c[0][1], z * d[2] - c[0][2] }, t[3];
+        cross(w, e2, t);
+        lambda[1] = dot(t, n) / nn;
+        cross(e1, w, t);
+        lambda[2] = dot(t, n) / nn;
+        lambda[0] = 1.0 - lambda[1] - lambda[2];
+    } else {
+        /* Seen edge-on: no area to intersect; the raster's depth. */
+        z = u->near / window_z;
+    }
+    if (u->depth) {
+        u->depth[p] = (float)z;
+    }
+    if (u->triangle_id) {
+        u->triangle_id[p] = (int32_t)face;
+    }
+    if (u->instance_out) {
+        u->instance_out[p] = u->instance_id;
+    }
+    if (u->barycentric) {
+        for (int k = 0; k < 3; k++) {
+            u->barycentric[3 * p + k] = (float)lambda[k];
+        }
+    }
+    if (u->normal) {
+        double on[3] = { 0, 0, 0 }, fn[3];
+        if (u->normals) {
+            for (int k = 0; k < 3; k++) {
+                for (int i = 0; i < 3; i++) {
+                    on[i] += lambda[k] * u->normals[3 * vi[k] + i];
+                }
+            }
+        } else {
+            double oe1[3] = { o[1][0] - o[0][0], o[1][1] - o[0][1], o[1][2] - o[0][2] };
+            double oe2[3] = { o[2][0] - o[0][0], o[2][1] - o[0][1], o[2][2] - o[0][2] };
+            cross(oe1, oe2, on);
+        }
+        for (int r = 0; r < 3; r++) {
+            fn[r] = u->nm[r][0] * on[0] + u->nm[r][1] * on[1] + u->nm[r][2] * on[2];
+        }
+        double len = sqrt(dot(fn, fn));
+        double scale = len > 0.0 ? 1.0 / len : 0.0;
+        for (int r = 0; r < 3; r++) {
+            u->normal[3 * p + r] = (float)(fn[r] * scale);
+        }
+    }
+    if (u->mask) {
+        u->mask[p] = 1;
     }
 }
 
@@ -115,36 +178,10 @@ static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
 {
     const geometry_uniforms *u = uniforms;
     for (int i = 0; i < 4; i++) {
-        if (!(q->mask >> i & 1)) {
-            continue;
-        }
-        size_t p = (size_t)(q->y + (i >> 1)) * (size_t)u->width + (size_t)(q->x + (i & 1));
-        if (u->depth) {
-            u->depth[p] = q->varyings[V_Z][i];
-        }
-        if (u->triangle_id) {
-            u->triangle_id[p] = (int32_t)(lrintf(q->varyings[V_TRI_HI][i]) << 16 |
-                                          lrintf(q->varyings[V_TRI_LO][i]));
-        }
-        if (u->instance_out) {
-            u->instance_out[p] = u->instance_id;
-        }
-        if (u->barycentric) {
-            for (int k = 0; k < 3; k++) {
-                u->barycentric[3 * p + k] = q->varyings[V_BARY + k][i];
-            }
-        }
-        if (u->normal) {
-            float n[3] = { q->varyings[V_NORMAL][i], q->varyings[V_NORMAL + 1][i],
-                           q->varyings[V_NORMAL + 2][i] };
-            float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            float s = len > 0.0f ? 1.0f / len : 0.0f;
-            for (int k = 0; k < 3; k++) {
-                u->normal[3 * p + k] = n[k] * s;
-            }
-        }
-        if (u->mask) {
-            u->mask[p] = 1;
+        if (q->mask >> i & 1) {
+            size_t face = (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
+                          (size_t)lrintf(q->varyings[V_TRI_LO][i]);
+            shade_pixel(u, face, q->x + (i & 1), q->y + (i >> 1), q->z[i]);
         }
     }
 }
@@ -165,6 +202,7 @@ typedef struct render_job {
     double k[3][3];
     float near;
     float background[3];
+    bool lit;                   /* color: headlight-lit, else the colors as they are */
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;
@@ -232,14 +270,11 @@ static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, render_job *
         memcpy(u.a, in->a, sizeof u.a);
         memcpy(u.nm, in->nm, sizeof u.nm);
         clip_rows(j, u.kx, u.ky);
+        u.fx = j->k[0][0], u.s = j->k[0][1], u.cx = j->k[0][2];
+        u.fy = j->k[1][1], u.cy = j->k[1][2];
         sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
                             .uniforms = &u, .varying_count = V_COUNT };
         prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
-        if (!m->normals) {
-            for (int k = 0; k < 3; k++) {
-                prog.modes[V_NORMAL + k] = SR_VARYING_FLAT;
-            }
-        }
         /* The shader reads the mesh itself; sr_draw still wants a position
          * array of vertex_count entries.  Overlapping ones 4 bytes apart
          * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
@@ -312,7 +347,8 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, render_job *j)
         mat_from_rows(in->a, &model);
         sr_state st = {
             .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
-            .shading = m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT, .two_sided = true,
+            .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
+            .two_sided = true,
             .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
             /* A headlight: the view is the identity, so "world" is camera space. */
             .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
@@ -486,13 +522,14 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     (void)self;
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
-                              "mask", "background", NULL };
+                              "mask", "background", "lit", NULL };
     PyObject *instances, *K, *outs[7];
     render_job j = { 0 };
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff):render", kwlist, &instances,
+    int lit = 1;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p:render", kwlist, &instances,
                                      &K, &j.width, &j.height, &j.near, &j.threads, &outs[0],
                                      &outs[1], &outs[2], &outs[3], &outs[4], &outs[5], &outs[6],
-                                     &j.background[0], &j.background[1], &j.background[2])) {
+                                     &j.background[0], &j.background[1], &j.background[2], &lit)) {
         return NULL;
     }
     if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
@@ -510,6 +547,7 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                      j.threads);
         return NULL;
     }
+    j.lit = lit;
     if (take_matrix(K, "K", 3, 3, &j.k[0][0]) < 0) {
         return NULL;
     }
