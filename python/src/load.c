@@ -130,6 +130,34 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
     return d;
 }
 
+PyObject *sr_py_read_image(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_obj;
+    if (!PyArg_ParseTuple(args, "O&:read_image", PyUnicode_FSConverter, &path_obj)) {
+        return NULL;
+    }
+    int w = 0, h = 0;
+    uint8_t *px = NULL;
+    sr_io_error err = { { 0 } };
+    const char *path = PyBytes_AS_STRING(path_obj);
+    sr_result r;
+    Py_BEGIN_ALLOW_THREADS
+    r = sr_read_image(path, &w, &h, &px, &err);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(path_obj);
+    if (r != SR_OK) {
+        return io_error(r, &err);
+    }
+    npy_intp shape[3] = { h, w, 4 };
+    PyObject *a = PyArray_SimpleNew(3, shape, NPY_UINT8);
+    if (a) {
+        memcpy(PyArray_DATA((PyArrayObject *)a), px, (size_t)w * (size_t)h * 4);
+    }
+    free(px);
+    return a;
+}
+
 /* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world)]}: the
  * primitives that share arrays share one entry of "meshes". */
 static PyObject *scene_dict(const sr_scene *s)

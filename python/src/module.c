@@ -26,10 +26,17 @@ PyDoc_STRVAR(load_scene_doc,
 "sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
 "(4, 4) world matrix)]}.  Use softrast.load.");
 
+PyDoc_STRVAR(read_image_doc,
+"read_image(path)\n--\n\n"
+"A PNG or JPEG file (told apart by its first bytes) as an (H, W, 4) uint8\n"
+"RGBA array, row 0 at the top: a texture for softrast.Mesh.  Raises\n"
+"OSError when the file cannot be read, ValueError when it is malformed.");
+
 static PyMethodDef methods[] = {
     { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
     { "load_scene", sr_py_load_scene, METH_VARARGS, load_scene_doc },
+    { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
     { NULL, NULL, 0, NULL },
 };
 

@@ -58,5 +58,6 @@ Py_ssize_t sr_py_mesh_bad_face(const MeshObject *m);
 PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
+PyObject *sr_py_read_image(PyObject *self, PyObject *args);
 
 #endif
