@@ -3,11 +3,9 @@
  * library reads: OBJ, PLY, STL, and through Assimp glTF, FBX, DAE ...) and
  * sr_load_scene (glTF's node hierarchy, one instance a drawn primitive).
  * The arrays are copied out of the library's memory, which is freed before
- * returning; the Python layer (softrast/_load.py) makes Mesh objects.
+ * returning; the Python layer (softrast/_scene.py) makes Mesh objects.
  */
 #include "module.h"
-
-#include <softrast_io.h>
 
 #include <stdlib.h>
 #include <string.h>
@@ -53,7 +51,7 @@ static PyObject *arrays_dict(size_t vertices, const float *positions, const floa
     return d;
 }
 
-static PyObject *io_error(sr_result r, const sr_io_error *err)
+PyObject *sr_py_io_error(sr_result r, const sr_io_error *err)
 {
     PyObject *type = r == SR_IO_ERROR ? PyExc_OSError : PyExc_ValueError;
     PyErr_SetString(type, err->message[0] ? err->message : sr_result_text(r));
@@ -86,13 +84,7 @@ static PyObject *mesh_texture(const sr_mesh *m)
         }
         Py_RETURN_NONE;
     }
-    npy_intp shape[3] = { h, w, 4 };
-    PyObject *a = PyArray_SimpleNew(3, shape, NPY_UINT8);
-    if (a) {
-        memcpy(PyArray_DATA((PyArrayObject *)a), px, (size_t)w * (size_t)h * 4);
-    }
-    free(px);
-    return a;
+    return sr_py_image_array(px, w, h);
 }
 
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
@@ -117,7 +109,7 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
     Py_DECREF(path_obj);
     PyObject *d = NULL;
     if (r != SR_OK) {
-        io_error(r, &err);
+        sr_py_io_error(r, &err);
     } else {
         d = arrays_dict(mesh.vertex_count, mesh.positions, mesh.normals, mesh.colors, mesh.texcoords,
                         mesh.triangle_count, mesh.indices);
@@ -128,34 +120,6 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
     sr_destroy_mesh(ctx, &mesh);
     sr_destroy_context(ctx);
     return d;
-}
-
-PyObject *sr_py_read_image(PyObject *self, PyObject *args)
-{
-    (void)self;
-    PyObject *path_obj;
-    if (!PyArg_ParseTuple(args, "O&:read_image", PyUnicode_FSConverter, &path_obj)) {
-        return NULL;
-    }
-    int w = 0, h = 0;
-    uint8_t *px = NULL;
-    sr_io_error err = { { 0 } };
-    const char *path = PyBytes_AS_STRING(path_obj);
-    sr_result r;
-    Py_BEGIN_ALLOW_THREADS
-    r = sr_read_image(path, &w, &h, &px, &err);
-    Py_END_ALLOW_THREADS
-    Py_DECREF(path_obj);
-    if (r != SR_OK) {
-        return io_error(r, &err);
-    }
-    npy_intp shape[3] = { h, w, 4 };
-    PyObject *a = PyArray_SimpleNew(3, shape, NPY_UINT8);
-    if (a) {
-        memcpy(PyArray_DATA((PyArrayObject *)a), px, (size_t)w * (size_t)h * 4);
-    }
-    free(px);
-    return a;
 }
 
 /* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world)]}: the
@@ -235,7 +199,7 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
         snprintf(err.message, sizeof err.message, "cannot make a context");
     }
     Py_DECREF(path_obj);
-    PyObject *d = r == SR_OK ? scene_dict(scene) : io_error(r, &err);
+    PyObject *d = r == SR_OK ? scene_dict(scene) : sr_py_io_error(r, &err);
     sr_destroy_scene(ctx, scene);
     sr_destroy_context(ctx);
     return d;

@@ -91,9 +91,10 @@ PyArrayObject *sr_py_take_array(PyObject *obj, const char *name, int ndim, const
         return NULL;
     }
     if (!PyArray_ISALIGNED(a)) {
-        PyErr_Format(PyExc_ValueError, "%s: array is not aligned", name);
+        /* Unpickled arrays may lie at any address: read a copy. */
+        PyArrayObject *copy = (PyArrayObject *)PyArray_NewCopy(a, NPY_CORDER);
         Py_DECREF(a);
-        return NULL;
+        a = copy;
     }
     return a;
 }
@@ -343,6 +344,27 @@ static PyObject *mesh_repr(MeshObject *m)
                                 m->texture ? ", texture" : "");
 }
 
+/* Pickling (Dask sends meshes to its workers): the arrays, by value. */
+static PyObject *mesh_reduce(MeshObject *m, PyObject *unused)
+{
+    (void)unused;
+    if (!m->vertices) {
+        PyErr_SetString(PyExc_ValueError, "cannot pickle an uninitialized Mesh");
+        return NULL;
+    }
+    PyObject *none = Py_None;
+#define SR_PY_OR_NONE(a) ((a) ? (PyObject *)(a) : none)
+    return Py_BuildValue("(O(OOOOOO))", (PyObject *)Py_TYPE(m), (PyObject *)m->vertices,
+                         (PyObject *)m->faces, SR_PY_OR_NONE(m->normals), SR_PY_OR_NONE(m->colors),
+                         SR_PY_OR_NONE(m->uvs), SR_PY_OR_NONE(m->texture));
+#undef SR_PY_OR_NONE
+}
+
+static PyMethodDef mesh_methods[] = {
+    { "__reduce__", (PyCFunction)mesh_reduce, METH_NOARGS, "Pickle support." },
+    { NULL, NULL, 0, NULL },
+};
+
 static PyGetSetDef mesh_getset[] = {
     { "vertices", (getter)mesh_vertices, NULL, "(N, 3) float32 or float64 vertex positions.", NULL },
     { "faces", (getter)mesh_faces, NULL, "(M, 3) int32 or int64 vertex indices of the triangles.", NULL },
@@ -383,5 +405,6 @@ PyTypeObject sr_py_MeshType = {
     .tp_traverse = (traverseproc)mesh_traverse,
     .tp_clear = (inquiry)mesh_clear,
     .tp_getset = mesh_getset,
+    .tp_methods = mesh_methods,
     .tp_repr = (reprfunc)mesh_repr,
 };

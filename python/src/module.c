@@ -32,11 +32,18 @@ PyDoc_STRVAR(read_image_doc,
 "RGBA array, row 0 at the top: a texture for softrast.Mesh.  Raises\n"
 "OSError when the file cannot be read, ValueError when it is malformed.");
 
+PyDoc_STRVAR(write_png_doc,
+"write_png(path, image)\n--\n\n"
+"Write an (H, W, 3) or (H, W, 4) uint8 C-contiguous image as a PNG, row 0\n"
+"at the top, atomically: a temporary file renamed over `path`, so a write\n"
+"that fails or is killed leaves no partial file.");
+
 static PyMethodDef methods[] = {
     { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
     { "load_scene", sr_py_load_scene, METH_VARARGS, load_scene_doc },
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
+    { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
     { NULL, NULL, 0, NULL },
 };
 

@@ -1,6 +1,7 @@
 /*
  * module.h - what the files of softrast._softrast share: the Mesh type
- * (mesh.c), the render entry point (render.c) and the loaders (load.c).
+ * (mesh.c), the render entry point (render.c), the model readers (load.c)
+ * and the image files (image.c).
  * Every function here runs with the GIL held unless it says otherwise.
  */
 #ifndef SR_PY_MODULE_H
@@ -16,6 +17,7 @@
 #include <numpy/arrayobject.h>
 
 #include <softrast.h>
+#include <softrast_io.h>
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -43,7 +45,8 @@ extern PyTypeObject sr_py_MeshType;
 /* Checks `obj` is an ndarray of `ndim` dimensions, C-contiguous, of one of
  * the given type numbers (terminated by -1), with shape[d] == shape_want[d]
  * where shape_want[d] >= 0; raises TypeError or ValueError naming `name`
- * and returns NULL otherwise.  Returns a new reference. */
+ * and returns NULL otherwise.  Returns a new reference: to obj itself, or
+ * to an aligned copy when obj is not aligned. */
 PyArrayObject *sr_py_take_array(PyObject *obj, const char *name, int ndim, const npy_intp *shape_want,
                                 const int *types);
 
@@ -59,5 +62,12 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
 PyObject *sr_py_read_image(PyObject *self, PyObject *args);
+PyObject *sr_py_write_png(PyObject *self, PyObject *args);
+/* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
+ * ValueError) with its one-line message; returns NULL. */
+PyObject *sr_py_io_error(sr_result r, const sr_io_error *err);
+/* An (h, w, 4) uint8 array holding a copy of the RGBA pixels px, which it
+ * frees (they come from the readers' malloc); NULL on failure. */
+PyObject *sr_py_image_array(uint8_t *px, int w, int h);
 
 #endif

@@ -422,8 +422,8 @@ static int take_output(PyObject *obj, const char *name, int type, int height, in
     if (!a) {
         return -1;
     }
-    if (!PyArray_ISWRITEABLE(a)) {
-        PyErr_Format(PyExc_ValueError, "%s: array is read-only", name);
+    if ((PyObject *)a != obj || !PyArray_ISWRITEABLE(a)) {
+        PyErr_Format(PyExc_ValueError, "%s: array is read-only or not aligned", name);
         Py_DECREF(a);
         return -1;
     }

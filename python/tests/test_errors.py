@@ -126,3 +126,13 @@ def test_zero_copy():
     faces = F.astype(np.int64)
     mesh = softrast.Mesh(verts, faces)
     assert mesh.vertices is verts and mesh.faces is faces
+
+
+def test_mesh_pickles_by_value():
+    import pickle
+    mesh = softrast.Mesh(V, F, colors=np.ones((3, 3), np.float32))
+    copy = pickle.loads(pickle.dumps(mesh))
+    assert np.array_equal(copy.vertices, V) and np.array_equal(copy.faces, F)
+    assert copy.normals is None and np.array_equal(copy.colors, mesh.colors)
+    with pytest.raises(ValueError, match="uninitialized"):
+        pickle.dumps(softrast.Mesh.__new__(softrast.Mesh))
