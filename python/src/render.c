@@ -246,46 +246,61 @@ static void clip_rows(const render_job *j, double kx[3], double ky[2])
     ky[1] = 1.0 - 2.0 * (j->k[1][2] + 0.5) / h;
 }
 
-static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, render_job *j)
+/* One instance's draw in one pass; `faces` > 0. */
+typedef sr_result (*instance_draw)(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                                   const instance *in, size_t faces, const void *arg);
+
+static sr_result draw_instances(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                                instance_draw draw, const void *arg)
+{
+    sr_result r = SR_OK;
+    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
+        size_t faces = (size_t)PyArray_DIM(j->inst[i].mesh->faces, 0);
+        if (faces > 0) {
+            r = draw(ctx, fb, j, &j->inst[i], faces, arg);
+        }
+    }
+    return r;
+}
+
+static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                               const instance *in, size_t faces, const void *arg)
+{
+    (void)arg;
+    const MeshObject *m = in->mesh;
+    geometry_uniforms u = {
+        .vertices = PyArray_DATA(m->vertices),
+        .vertices64 = PyArray_TYPE(m->vertices) == NPY_FLOAT64,
+        .faces = PyArray_DATA(m->faces),
+        .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
+        .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
+        .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1], .cy = j->k[1][2],
+        .near = j->near, .width = j->width, .instance_id = in->id,
+        .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
+        .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
+    };
+    memcpy(u.a, in->a, sizeof u.a);
+    memcpy(u.nm, in->nm, sizeof u.nm);
+    clip_rows(j, u.kx, u.ky);
+    sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
+                        .uniforms = &u, .varying_count = V_COUNT };
+    prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
+    /* The shader reads the mesh itself; sr_draw still wants a position
+     * array of vertex_count entries.  Overlapping ones 4 bytes apart
+     * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
+    return sr_draw(ctx, fb,
+                   &(sr_state){ .program = &prog, .depth_zero_to_one = true,
+                                .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+                                .color_mask = SR_COLOR_MASK_NONE },
+                   &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
+                                    .vertex_count = 3 * faces });
+}
+
+static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
     sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){ .depth_action = SR_ACTION_CLEAR, .depth = 0,
                                                        .color_action = SR_ACTION_KEEP });
-    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
-        instance *in = &j->inst[i];
-        MeshObject *m = in->mesh;
-        size_t faces = (size_t)PyArray_DIM(m->faces, 0);
-        if (faces == 0) {
-            continue;
-        }
-        geometry_uniforms u = {
-            .vertices = PyArray_DATA(m->vertices),
-            .vertices64 = PyArray_TYPE(m->vertices) == NPY_FLOAT64,
-            .faces = PyArray_DATA(m->faces),
-            .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
-            .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
-            .near = j->near, .width = j->width, .instance_id = in->id,
-            .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
-            .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
-        };
-        memcpy(u.a, in->a, sizeof u.a);
-        memcpy(u.nm, in->nm, sizeof u.nm);
-        clip_rows(j, u.kx, u.ky);
-        u.fx = j->k[0][0], u.s = j->k[0][1], u.cx = j->k[0][2];
-        u.fy = j->k[1][1], u.cy = j->k[1][2];
-        sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
-                            .uniforms = &u, .varying_count = V_COUNT };
-        prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
-        /* The shader reads the mesh itself; sr_draw still wants a position
-         * array of vertex_count entries.  Overlapping ones 4 bytes apart
-         * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
-        r = sr_draw(ctx, fb,
-                    &(sr_state){ .program = &prog, .depth_zero_to_one = true,
-                                 .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
-                                 .color_mask = SR_COLOR_MASK_NONE },
-                    &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
-                                     .vertex_count = 3 * faces });
-    }
-    return r;
+    return r == SR_OK ? draw_instances(ctx, fb, j, geometry_draw, NULL) : r;
 }
 
 static void mat_from_rows(const double a[3][4], sr_mat4 *out)
@@ -299,7 +314,68 @@ static void mat_from_rows(const double a[3][4], sr_mat4 *out)
     out->m[15] = 1.0f;
 }
 
-static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, render_job *j)
+/* The mesh's texture on ctx (RGB expanded to RGBA), or NULL without one. */
+static sr_result make_texture(sr_context *ctx, const MeshObject *m, sr_texture **tex)
+{
+    *tex = NULL;
+    if (!m->texture) {
+        return SR_OK;
+    }
+    int th = (int)PyArray_DIM(m->texture, 0), tw = (int)PyArray_DIM(m->texture, 1);
+    const uint8_t *src = PyArray_DATA(m->texture);
+    uint8_t *rgba = NULL;
+    if (PyArray_DIM(m->texture, 2) == 3) {
+        rgba = malloc((size_t)tw * (size_t)th * 4);
+        if (!rgba) {
+            return SR_OUT_OF_MEMORY;
+        }
+        for (size_t p = 0; p < (size_t)tw * (size_t)th; p++) {
+            memcpy(rgba + 4 * p, src + 3 * p, 3);
+            rgba[4 * p + 3] = 255;
+        }
+    }
+    sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = tw, .height = th,
+                                                           .pixels = rgba ? rgba : src, .srgb = true },
+                                  tex);
+    free(rgba);
+    return r;
+}
+
+static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                            const instance *in, size_t faces, const void *proj)
+{
+    const MeshObject *m = in->mesh;
+    sr_texture *tex;
+    sr_result r = make_texture(ctx, m, &tex);
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_mat4 model;
+    mat_from_rows(in->a, &model);
+    sr_state st = {
+        .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+        .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
+        .two_sided = true,
+        .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
+        /* A headlight: the view is the identity, so "world" is camera space. */
+        .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
+    };
+    sr_draw_desc d = {
+        .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
+        .positions = in->positions,
+        .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
+        .colors = m->colors ? PyArray_DATA(m->colors) : NULL,
+        .color_size = m->colors ? (int)PyArray_DIM(m->colors, 1) : 0,
+        .texcoords = m->uvs ? PyArray_DATA(m->uvs) : NULL,
+        .indices = in->indices, .index_type = SR_INDEX_U32, .index_count = 3 * faces,
+        .model = &model, .projection = proj,
+    };
+    r = sr_draw(ctx, fb, &st, &d);
+    sr_destroy_texture(ctx, tex);
+    return r;
+}
+
+static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
     sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
         .color = { j->background[0], j->background[1], j->background[2], 1.0f },
@@ -312,59 +388,8 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, render_job *j)
     proj.m[5] = (float)ky[0], proj.m[9] = (float)ky[1];
     proj.m[14] = j->near;
     proj.m[11] = 1.0f;
-    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
-        instance *in = &j->inst[i];
-        MeshObject *m = in->mesh;
-        size_t faces = (size_t)PyArray_DIM(m->faces, 0);
-        if (faces == 0) {
-            continue;
-        }
-        sr_texture *tex = NULL;
-        if (m->texture) {
-            int th = (int)PyArray_DIM(m->texture, 0), tw = (int)PyArray_DIM(m->texture, 1);
-            int ch = (int)PyArray_DIM(m->texture, 2);
-            const uint8_t *src = PyArray_DATA(m->texture);
-            uint8_t *rgba = NULL;
-            if (ch == 3) {
-                rgba = malloc((size_t)tw * (size_t)th * 4);
-                if (!rgba) {
-                    return SR_OUT_OF_MEMORY;
-                }
-                for (size_t p = 0; p < (size_t)tw * (size_t)th; p++) {
-                    memcpy(rgba + 4 * p, src + 3 * p, 3);
-                    rgba[4 * p + 3] = 255;
-                }
-            }
-            r = sr_make_texture(ctx, &(sr_texture_desc){ .width = tw, .height = th,
-                                                         .pixels = rgba ? rgba : src, .srgb = true },
-                                &tex);
-            free(rgba);
-            if (r != SR_OK) {
-                break;
-            }
-        }
-        sr_mat4 model;
-        mat_from_rows(in->a, &model);
-        sr_state st = {
-            .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
-            .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
-            .two_sided = true,
-            .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
-            /* A headlight: the view is the identity, so "world" is camera space. */
-            .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
-        };
-        sr_draw_desc d = {
-            .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
-            .positions = in->positions,
-            .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
-            .colors = m->colors ? PyArray_DATA(m->colors) : NULL,
-            .color_size = m->colors ? (int)PyArray_DIM(m->colors, 1) : 0,
-            .texcoords = m->uvs ? PyArray_DATA(m->uvs) : NULL,
-            .indices = in->indices, .index_type = SR_INDEX_U32, .index_count = 3 * faces,
-            .model = &model, .projection = &proj,
-        };
-        r = sr_draw(ctx, fb, &st, &d);
-        sr_destroy_texture(ctx, tex);
+    if (r == SR_OK) {
+        r = draw_instances(ctx, fb, j, color_draw, &proj);
     }
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);

@@ -136,3 +136,24 @@ def test_normals_in_camera_and_world_frames():
     assert np.allclose(world["normal"][m], [0, 0, 1])
     assert np.allclose(cam["normal"][m], R @ [0, 0, 1])     # towards the camera: -z
     assert np.all(cam["normal"][~m] == 0)
+
+
+def test_python_threads_render_at_once():
+    """With the GIL released, views rendered on several Python threads at
+    once are the views rendered one after another."""
+    import concurrent.futures
+    rng = np.random.default_rng(13)
+    verts, faces = random_triangles(rng, 500)
+    mesh = softrast.Mesh(verts, faces)
+    cams = [softrast.look_at(eye=(0.1 * i, 0, 0), target=(0, 0, 4), width=W, height=H)
+            for i in range(8)]
+
+    def view(cam):
+        K, R, t = cam
+        return softrast.render(mesh, K=K, R=R, t=t, width=W, height=H,
+                               outputs=("depth", "triangle_id"), threads=1)
+    alone = [view(c) for c in cams]
+    with concurrent.futures.ThreadPoolExecutor(4) as pool:
+        together = list(pool.map(view, cams))
+    for a, b in zip(alone, together):
+        assert np.array_equal(a["depth"], b["depth"]) and np.array_equal(a["triangle_id"], b["triangle_id"])
