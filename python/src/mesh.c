@@ -201,7 +201,11 @@ static int mesh_init(MeshObject *m, PyObject *args, PyObject *kwargs)
                                      &normals, &colors, &uvs, &texture)) {
         return -1;
     }
-    mesh_clear_arrays(m);
+    if (m->vertices) {
+        /* Another thread may be drawing it with the GIL released. */
+        PyErr_SetString(PyExc_TypeError, "Mesh: a mesh cannot be initialized twice; make a new one");
+        return -1;
+    }
     const npy_intp v_shape[2] = { -1, 3 };
     m->vertices = sr_py_take_array(vertices, "vertices", 2, v_shape, float_types);
     if (!m->vertices) {

@@ -121,6 +121,13 @@ def test_empty_mesh_renders_background():
     assert not out["mask"].any()
 
 
+def test_mesh_is_initialized_once():
+    mesh = softrast.Mesh(V, F)
+    with pytest.raises(TypeError, match="Mesh"):
+        mesh.__init__(V, F)
+    assert mesh.vertices is V
+
+
 def test_zero_copy():
     verts = V.astype(np.float64)
     faces = F.astype(np.int64)
