@@ -938,11 +938,11 @@ SR_TEST(obj_random_corruption_never_crashes)
  * nothing leaked.  glibc lets a program replace malloc; the sanitizers
  * replace it themselves, so there the test is skipped. */
 #if defined(__has_feature)
-#if __has_feature(address_sanitizer)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
 #define OBJ_NO_FAULT_INJECTION 1
 #endif
 #endif
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define OBJ_NO_FAULT_INJECTION 1
 #endif
 
