@@ -643,6 +643,12 @@ static const option_case option_errors[] = {
     { "front-face bogus", { "--front-face", "up" }, "--front-face: expected one of ccw|cw" },
     { "projection-interp bogus", { "--projection-interp", "linear" }, "--projection-interp: expected one of" },
     { "rasterizer bogus", { "--rasterizer", "raytrace" }, "--rasterizer: expected one of halfspace|" },
+    { "clipper bogus", { "--clipper", "guard-band" }, "--clipper: expected one of homogeneous|view-volume" },
+    { "view-volume clipper under pbr", { "--clipper", "view-volume" },
+      "--clipper view-volume clips the built-in shading models' view space" },
+    { "depth-range one number", { "--depth-range", "0.5" }, "--depth-range: expected NEAR,FAR" },
+    { "depth-range junk after", { "--depth-range", "0,1x" }, "--depth-range: expected NEAR,FAR" },
+    { "depth-range nan", { "--depth-range", "nan,1" }, "--depth-range: expected NEAR,FAR" },
     { "normals bogus", { "--normals", "bent" }, "--normals: expected one of file|smooth|flat" },
     { "ortho with a value", { "--ortho=yes" }, "--ortho: takes no value" },
     { "turn huge", { "--turn", "1e9" }, "--turn: expected a number" },
@@ -1042,7 +1048,7 @@ static const char *const value_options[] = {
     "--normals",
     "--material", "--ambient", "--light", "--camera", "--fov", "--turn", "--near", "--far",
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
-    "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
+    "--rasterizer", "--clipper", "--depth-range", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
     "--polygon-offset", "--up", "--tonemap", "--exposure", "--environment",
     "--environment-intensity", "--camera-index", "--batch", "--output-dir", "--name", "--log", "--shard",
@@ -2643,5 +2649,67 @@ SR_TEST(gltf_blend_primitives_are_sorted_back_to_front)
     const uint8_t *both = px + 4 * ((size_t)(h / 2) * w + x);
     CHECK(both[2] > both[0] + 20);
     free(px);
+#endif
+}
+
+/* --depth-range and --clipper reach sr_state: the range 1,0 inverts depth
+ * (the less test then keeps the farthest surface, a different picture)
+ * and, with --depth-func greater, gives the default picture back; 0,0 is
+ * GL's zero-width range, not the library's {0} default; the view-volume
+ * clipper gives the homogeneous clipper's pixels with the near plane
+ * cutting the teapot, up to the float rounding docs/clipping.md allows. */
+SR_TEST(depth_range_and_clipper_options_change_the_draw)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], out[1100];
+    fresh_dir("depthrange", dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/d.png", dir);
+    const char *variants[][8] = {
+        { "--cull", "none" },
+        { "--cull", "none", "--depth-range", "1,0" },
+        { "--cull", "none", "--depth-range", "1,0", "--depth-func", "greater" },
+        { "--cull", "none", "--depth-range", "0,0" },
+    };
+    uint8_t *px[4] = { NULL };
+    int w = 0, h = 0;
+    for (int v = 0; v < 4; v++) {
+        const char *base[] = { "render", "--size", "96x64", "--detail", "4", "-o", out, NULL };
+        const char *args[MAX_ARGS + 1];
+        join_args(args, base, variants[v]);
+        px[v] = render_pixels(args, out, &w, &h);
+        REQUIRE(px[v]);
+    }
+    size_t n = (size_t)w * h * 4;
+    CHECK(memcmp(px[0], px[1], n) != 0);
+    CHECK(memcmp(px[0], px[2], n) == 0);
+    CHECK(memcmp(px[0], px[3], n) != 0);
+    CHECK(memcmp(px[1], px[3], n) != 0);
+    for (int v = 0; v < 4; v++) {
+        free(px[v]);
+    }
+
+    /* The default camera with the near plane through the teapot. */
+    uint8_t *clip[3];
+    const char *names[3] = { "homogeneous", "view-volume", NULL };
+    for (int k = 0; k < 3; k++) {
+        const char *args[] = { "render", "--size", "96x64", "--detail", "4", "--shading",
+                               "gouraud", "--aa", "none", "-o", out, names[k] ? "--near" : NULL,
+                               "6", "--clipper", names[k], NULL };
+        clip[k] = render_pixels(args, out, &w, &h);
+        REQUIRE(clip[k]);
+    }
+    long differ = 0, cut = 0;
+    for (int i = 0; i < w * h; i++) {
+        differ += memcmp(clip[0] + 4 * i, clip[1] + 4 * i, 4) != 0;
+        cut += memcmp(clip[0] + 4 * i, clip[2] + 4 * i, 4) != 0;
+    }
+    printf("clippers: %ld of %d pixels differ; the near plane changes %ld\n", differ, w * h, cut);
+    CHECK(cut > w * h / 10);
+    CHECK(differ * 100 <= w * h); /* at most 1% */
+    for (int k = 0; k < 3; k++) {
+        free(clip[k]);
+    }
 #endif
 }

@@ -32,6 +32,7 @@ static const char *const depth_func_names[] = { "never", "less", "equal", "lequa
 static const char *const interp_names[] = { "perspective", "affine", NULL };
 static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
 static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
+static const char *const clipper_names[] = { "homogeneous", "view-volume", NULL };
 static const char *const filter_names[] = { "nearest", "bilinear", "trilinear", NULL };
 static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", "msaa2", "msaa4",
                                          "msaa8", "msaa16", NULL };
@@ -123,6 +124,13 @@ static void render_help(void)
         "  --depth-func F           never|less|equal|lequal|greater|notequal|gequal|always\n"
         "                           (default less; greater and gequal clear depth to 0)\n"
         "  --projection-interp M    perspective|affine (default perspective)\n"
+        "  --depth-range NEAR,FAR   window depths of the near and far planes, each\n"
+        "                           clamped to [0, 1] as glDepthRange (default 0,1;\n"
+        "                           NEAR > FAR inverts depth)\n"
+        "  --clipper C              homogeneous|view-volume: clip triangles in clip\n"
+        "                           space or against the view volume's six planes in\n"
+        "                           view space (default homogeneous; view-volume needs\n"
+        "                           a --shading other than pbr)\n"
         "lines and points:\n"
         "  --wireframe              every edge, hidden ones too, no shading\n"
         "  --hidden-line            only the visible edges (a depth pass pushed back by\n"
@@ -317,6 +325,21 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             CHOICE(normals_names, o->normals, k_);
         } else if (IS("--rasterizer")) {
             CHOICE(raster_names, o->rasterizer, (sr_rasterizer)(SR_RASTER_HALFSPACE + k_));
+        } else if (IS("--clipper")) {
+            CHOICE(clipper_names, o->clipper, (sr_clipper)(SR_CLIPPER_HOMOGENEOUS + k_));
+        } else if (IS("--depth-range")) {
+            VALUE();
+            int n = 0;
+            if (sscanf(value, "%f,%f%n", &o->depth_near, &o->depth_far, &n) != 2 ||
+                value[n] != 0 || isnan(o->depth_near) || isnan(o->depth_far)) {
+                cli_error("%s: expected NEAR,FAR, two numbers (got '%s')", arg, value);
+                return EXIT_USAGE;
+            }
+            /* sr_state reads exactly 0,0 as its default [0, 1]; -1 clamps
+             * to the 0 asked for. */
+            if (o->depth_near == 0.0f && o->depth_far == 0.0f) {
+                o->depth_near = o->depth_far = -1.0f;
+            }
         } else if (IS("--camera")) {
             VALUE();
             if (!parse_kv_list(arg, value, camera_kv, o)) {
@@ -484,6 +507,11 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
 #undef IS
 #undef VALUE
 #undef CHOICE
+    }
+    if (o->clipper == SR_CLIPPER_VIEW_VOLUME && o->pbr) {
+        cli_error("--clipper view-volume clips the built-in shading models' view space; "
+                  "pbr's program has none (give --shading phong, or another)");
+        return EXIT_USAGE;
     }
     if (o->near_z > 0 && o->far_z > 0 && o->near_z >= o->far_z) {
         cli_error("--near %g must be less than --far %g", (double)o->near_z, (double)o->far_z);

@@ -46,6 +46,8 @@ typedef struct render_opts {
     int normals;                   /* -1 auto, 0 file, 1 smooth, 2 flat */
     int detail;
     sr_rasterizer rasterizer;
+    sr_clipper clipper;
+    float depth_near, depth_far;   /* sr_state's: 0,0 -> [0, 1] */
     int threads;
     int png_level;
     int jpeg_quality;              /* 0: not given */
