@@ -788,7 +788,7 @@ typedef enum sr_clipper {
                                   projection must be invertible */
 } sr_clipper;
 
-/* How hidden surfaces are removed (docs/raster-rules.md, "Visibility"). */
+/* How hidden surfaces are removed (docs/raster-rules.md §6.5). */
 typedef enum sr_visibility {
     SR_VISIBILITY_DEFAULT = 0, /* -> SR_VISIBILITY_Z_BUFFER */
     SR_VISIBILITY_Z_BUFFER,    /* per sample, by the depth test and depth_func */
