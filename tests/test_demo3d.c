@@ -1,6 +1,6 @@
 /* test_demo3d.c - the 3D pipeline demos end to end: `softrast demo
  * gouraud-highlight | perspective | zfight | normals | viewport | clip |
- * painter | orientation`
+ * painter | orientation | depth-range`
  * through the CLI, each image compared with tests/ref/demo_NAME.png, and
  * each phenomenon measured in the panels where the demo draws it (the
  * layouts are shared with the demos through demo3d_layout.h).
@@ -343,6 +343,17 @@ SR_TEST(demo_clip_3d_section_shows_clip_generated_edges)
     free(im.px);
 }
 
+/* Render `demo` into *im and point p[0 .. n) at its first n panels;
+ * false when it could not be rendered. */
+static bool render_panels(const char *demo, demo3d_layout l, image *im, panel *p, int n)
+{
+    *im = render_demo(demo);
+    for (int i = 0; im->px && i < n; i++) {
+        p[i] = cell(im, l, 0, i);
+    }
+    return im->px != NULL;
+}
+
 /* Where the painter's panel differs from the z-buffer's, and how: pixels
  * where `want` holds of the z-buffer's color and the painter's. */
 typedef bool (*pixel_pair)(const uint8_t *zbuf, const uint8_t *painter, int x, int w);
@@ -381,13 +392,9 @@ static bool green_became_red_on_the_left(const uint8_t *zb, const uint8_t *pa, i
 
 SR_TEST(demo_painter_fails_where_the_z_buffer_does_not)
 {
-    image im = render_demo("painter");
-    REQUIRE(im.px);
-    demo3d_layout l = DEMO3D_LAYOUT_PAINTER;
+    image im;
     panel p[4];
-    for (int i = 0; i < 4; i++) {
-        p[i] = cell(&im, l, 0, i);
-    }
+    REQUIRE(render_panels("painter", DEMO3D_LAYOUT_PAINTER, &im, p, 4));
     long differ, wanted;
     count_differences(&p[0], &p[1], red_became_blue, &differ, &wanted);
     printf("painter demo, cyclic: %ld pixels differ, %ld red -> blue\n", differ, wanted);
@@ -429,13 +436,9 @@ static double turned_difference(const panel *upright, const panel *turned, doubl
 
 SR_TEST(demo_orientation_only_triangles_turn_with_the_square)
 {
-    image im = render_demo("orientation");
-    REQUIRE(im.px);
-    demo3d_layout l = DEMO3D_LAYOUT_ORIENTATION;
+    image im;
     panel p[6];
-    for (int i = 0; i < 6; i++) {
-        p[i] = cell(&im, l, 0, i);
-    }
+    REQUIRE(render_panels("orientation", DEMO3D_LAYOUT_ORIENTATION, &im, p, 6));
     const double turn[3] = { 0, 30, 45 };
     for (int t = 1; t < 3; t++) {
         double scan = turned_difference(&p[0], &p[t], turn[t]);
@@ -445,5 +448,38 @@ SR_TEST(demo_orientation_only_triangles_turn_with_the_square)
         CHECK(scan > 20.0);
         CHECK(tri < 3.0);
     }
+    free(im.px);
+}
+
+/* Range 0.25,0.75 holds the depths of range 0,1 halved and moved up a
+ * quarter (the cleared background stays 1); 1,0 with LESS shows the blue
+ * sphere through the red one; the marker behind the red sphere shows in
+ * front in its own range. */
+SR_TEST(demo_depth_range_maps_inverts_and_splits_depth)
+{
+    image im;
+    panel p[4];
+    REQUIRE(render_panels("depth-range", DEMO3D_LAYOUT_DEPTH_RANGE, &im, p, 4));
+    long covered = 0, off = 0, through = 0, marker = 0;
+    for (int y = 0; y < p[0].h; y++) {
+        for (int x = 0; x < p[0].w; x++) {
+            int g0 = at(&p[0], x, y)[0], g1 = at(&p[1], x, y)[0];
+            if (g0 == 255) {
+                off += g1 != 255;
+            } else {
+                covered++;
+                off += abs(4 * g1 - (255 + 2 * g0)) > 6; /* g1 = 63.75 + g0 / 2, +-1.5 */
+            }
+            const uint8_t *inv = at(&p[2], x, y), *split = at(&p[3], x, y);
+            through += inv[2] > inv[0] + 40 && split[0] > split[2] + 40;
+            marker += split[0] > 150 && split[1] > 150 && split[2] < 100;
+        }
+    }
+    printf("depth-range demo: %ld covered, %ld off the mapping, %ld blue through red, "
+           "%ld marker pixels\n", covered, off, through, marker);
+    CHECK(covered > 5000);
+    CHECK_EQ(off, 0);
+    CHECK(through > 500);
+    CHECK(marker > 200);
     free(im.px);
 }
