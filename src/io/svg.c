@@ -407,10 +407,32 @@ static double clamp01(double v)
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
     "stroke-dasharray", "stroke-dashoffset", "clip-path", "clip-rule", "mask", "filter",
-    "marker", "marker-start", "marker-mid", "marker-end", "font", "font-family", "font-size",
-    "font-weight", "font-style", "text-anchor",
-    "fill-paint", "paint-order", "vector-effect", "image-rendering", "color-interpolation",
-    "mix-blend-mode", "isolation", NULL,
+    "marker-start", "marker-mid", "marker-end",
+    "fill-paint", "paint-order", "vector-effect", "mix-blend-mode", "isolation", NULL,
+};
+
+/* Properties that change nothing this reader draws (rendering hints,
+ * filter and text settings), taken silently; and properties whose value
+ * here is their initial one, which the reader does already. */
+static const char *const no_effect_props[] = {
+    "image-rendering", "color-interpolation", "color-interpolation-filters", "color-rendering",
+    "text-rendering", "enable-background", "overflow", "solid-color", "solid-opacity",
+    "font", "font-family", "font-size", "font-weight", "font-style", "font-variant",
+    "font-stretch", "text-anchor", "letter-spacing", "word-spacing", "line-height",
+    "writing-mode", "text-decoration", "direction", "baseline-shift", "dominant-baseline",
+    "alignment-baseline", "text-align", "text-indent", "white-space", "inline-size",
+    "shape-padding", "shape-margin", "shape-inside", "block-progression", "marker",
+    "-inkscape-font-specification", "font-feature-settings", "font-variant-ligatures",
+    "font-variant-caps", "font-variant-numeric", "font-variant-east-asian", "flood-color",
+    "flood-opacity", "lighting-color", "clip", NULL,
+};
+
+static const struct { const char *name, *value; } initial_values[] = {
+    { "stroke-dasharray", "none" }, { "stroke-dashoffset", "0" }, { "mix-blend-mode", "normal" },
+    { "isolation", "auto" }, { "filter", "none" }, { "clip-path", "none" }, { "mask", "none" },
+    { "marker-start", "none" }, { "marker-mid", "none" }, { "marker-end", "none" },
+    { "paint-order", "normal" }, { "vector-effect", "none" }, { "clip-rule", "nonzero" },
+    { "clip-rule", "evenodd" },
 };
 
 static svg_node *find_id(const svg_doc *doc, const char *id);
@@ -599,6 +621,17 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     } else if (strcmp(name, "visibility") == 0) {
         st->invisible = strcmp(v, "hidden") == 0 || strcmp(v, "collapse") == 0;
     } else {
+        for (size_t i = 0; i < sizeof initial_values / sizeof initial_values[0]; i++) {
+            if (strcmp(name, initial_values[i].name) == 0 &&
+                strcmp(v, initial_values[i].value) == 0) {
+                return true;
+            }
+        }
+        for (int i = 0; no_effect_props[i]; i++) {
+            if (strcmp(name, no_effect_props[i]) == 0) {
+                return true;
+            }
+        }
         for (int i = 0; unsupported_props[i]; i++) {
             if (strcmp(name, unsupported_props[i]) == 0) {
                 warn_once(doc, "property", name);
@@ -1507,6 +1540,7 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
         return;
     }
     node->line = doc->line;
+    node->foreign = name != qname && strncmp(qname, "svg:", 4) != 0;
     node->parent = doc->open;
     if (!doc->root) {
         doc->root = node;
@@ -1829,7 +1863,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         warn_once(doc, "element", "svg (nested; drawn as a group)");
         group = true;
     } else if (!group && !shape && !use && node != doc->root) {
-        if (!is_named(node, not_drawn)) {
+        if (!is_named(node, not_drawn) && !node->foreign) {
             warn_once(doc, "element", node->name);
         }
         return;

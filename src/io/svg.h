@@ -31,6 +31,7 @@ typedef struct svg_node {
     char *text;                  /* character data, kept for <style> only */
     size_t text_len;
     bool active;                 /* being drawn through a use chain */
+    bool foreign;                /* a prefix other than svg: (editor data) */
 } svg_node;
 
 /* ---- style sheets (svg_css.c) ----------------------------------------- */

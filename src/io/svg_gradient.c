@@ -108,10 +108,16 @@ static void blend(uint8_t *d, sr_rgba c, float cov)
     if (a <= 0.0f) {
         return;
     }
-    for (int i = 0; i < 3; i++) {
-        d[i] = unorm8((s[i] * a + d[i] * (1.0f - a)) * (1.0f / 255.0f));
+    /* Straight alpha: the destination's color counts by its alpha. */
+    float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
+    if (d[3] < 255) {
+        keep = oa > 0.0f ? da * keep / oa : 0.0f;
+        a = oa > 0.0f ? a / oa : 0.0f;
     }
-    d[3] = unorm8(a + d[3] * (1.0f / 255.0f) * (1.0f - a));
+    for (int i = 0; i < 3; i++) {
+        d[i] = unorm8((s[i] * a + d[i] * keep) * (1.0f / 255.0f));
+    }
+    d[3] = unorm8(oa);
 }
 
 sr_result svg_fill_gradient(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
