@@ -190,3 +190,37 @@ SR_TEST(use_cycles_are_refused_with_file_and_line)
     CHECK(fb == NULL);
     sr_destroy_context(ctx);
 }
+
+SR_TEST(clip_paths_and_group_opacity_match_reference)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    check_drawing("layers.svg", "svg_layers");
+}
+
+SR_TEST(group_opacity_is_one_layer_and_clips_cut)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* two overlapping black squares at group opacity 0.5: where they
+     * overlap the group is as light as where they do not (one layer);
+     * then a clip keeps x < 30 of a rect drawn over x 20..40 */
+    sr_framebuffer *fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='40' height='10'>"
+        "<clipPath id='k'><rect width='30' height='10'/></clipPath>"
+        "<g opacity='0.5'><rect width='10' height='10'/><rect x='5' width='10' height='10'/></g>"
+        "<rect x='20' width='20' height='10' fill='#00f' clip-path='url(#k)'/></svg>",
+        SR_OK, NULL, 0);
+    REQUIRE(fb);
+    CHECK_NEAR(pixel(fb, 2, 5)[0], 128, 1);
+    CHECK_EQ(pixel(fb, 7, 5)[0], pixel(fb, 2, 5)[0]);
+    CHECK_EQ(pixel(fb, 25, 5)[2], 255);
+    CHECK_EQ(pixel(fb, 25, 5)[0], 0);
+    CHECK_EQ(pixel(fb, 35, 5)[0], 255); /* clipped away: the white background */
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}

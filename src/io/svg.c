@@ -14,8 +14,8 @@
  * edge-table fill under shape-rendering="crispEdges"; a gradient paints
  * after the same coverage (svg_gradient.c).
  *
- * Supported: see the table in docs/draw2d.md.  Group opacity multiplies
- * into the children's opacities (exact unless children overlap).
+ * Supported: see the table in docs/draw2d.md.  Group opacity and clip
+ * paths draw the element into a layer of its own, composited after.
  * Anything else is skipped with one warning per name.
  * Malformed XML, path data or numbers, and drawings beyond the limits of
  * softrast_io.h (bounded work): one line "NAME:LINE: what is wrong" in the
@@ -75,7 +75,11 @@ typedef struct style {
     sr_rgba color;               /* the color property, for currentColor */
     sr_rgba stop_color;          /* of a gradient stop (not inherited) */
     double stop_opacity;
-    double fill_opacity, stroke_opacity, opacity;
+    double fill_opacity, stroke_opacity;
+    double opacity;              /* the ancestors' opacities folded into shapes */
+    double own_opacity;          /* this element's opacity (not inherited) */
+    const svg_node *clip;        /* clip-path (not inherited), or NULL */
+    sr_fill_rule clip_rule;
     sr_fill_rule fill_rule;
     double stroke_width;
     sr_stroke_join join;
@@ -113,6 +117,7 @@ typedef struct svg_doc {
     svg_css_sheet sheet;
     long match_work;         /* selector matching steps so far */
     int draw_depth;          /* elements drawn inside each other, uses included */
+    int layers;              /* layers open (group opacity, clip paths) */
     sr_result status;        /* SR_OK until something fails */
     char *msg;               /* the failure's line goes here */
     size_t msg_size;
@@ -406,7 +411,7 @@ static double clamp01(double v)
 
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
-    "stroke-dasharray", "stroke-dashoffset", "clip-path", "clip-rule", "mask", "filter",
+    "stroke-dasharray", "stroke-dashoffset", "mask", "filter",
     "marker-start", "marker-mid", "marker-end",
     "fill-paint", "paint-order", "vector-effect", "mix-blend-mode", "isolation", NULL,
 };
@@ -429,10 +434,9 @@ static const char *const no_effect_props[] = {
 
 static const struct { const char *name, *value; } initial_values[] = {
     { "stroke-dasharray", "none" }, { "stroke-dashoffset", "0" }, { "mix-blend-mode", "normal" },
-    { "isolation", "auto" }, { "filter", "none" }, { "clip-path", "none" }, { "mask", "none" },
+    { "isolation", "auto" }, { "filter", "none" }, { "mask", "none" },
     { "marker-start", "none" }, { "marker-mid", "none" }, { "marker-end", "none" },
-    { "paint-order", "normal" }, { "vector-effect", "none" }, { "clip-rule", "nonzero" },
-    { "clip-rule", "evenodd" },
+    { "paint-order", "normal" }, { "vector-effect", "none" },
 };
 
 static svg_node *find_id(const svg_doc *doc, const char *id);
@@ -571,13 +575,21 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
         if (!parse_unit_number(v, &num)) {
             warn_once(doc, name, v);
         } else if (name[0] == 'o') {
-            st->opacity *= clamp01(num);
+            st->own_opacity = clamp01(num);
         } else {
             *(name[0] == 'f' ? &st->fill_opacity : &st->stroke_opacity) = clamp01(num);
         }
-    } else if (strcmp(name, "fill-rule") == 0) {
+    } else if (strcmp(name, "clip-path") == 0) {
+        svg_node *c = strcmp(v, "none") == 0 ? NULL : reference(doc, v, NULL);
+        if (c && strcmp(c->name, "clipPath") != 0) {
+            warn_once(doc, "clip-path", v);
+            c = NULL;
+        }
+        st->clip = c; /* a missing clip path: drawn unclipped, as rsvg-convert does */
+    } else if (strcmp(name, "fill-rule") == 0 || strcmp(name, "clip-rule") == 0) {
         if (strcmp(v, "nonzero") == 0 || strcmp(v, "evenodd") == 0) {
-            st->fill_rule = v[0] == 'n' ? SR_NONZERO : SR_EVENODD;
+            *(name[0] == 'f' ? &st->fill_rule : &st->clip_rule) =
+                v[0] == 'n' ? SR_NONZERO : SR_EVENODD;
         } else {
             warn_once(doc, "fill-rule", v);
         }
@@ -885,36 +897,54 @@ static double fill_work(const sr_point2 *pts, const sr_polygon2 *poly, int w, in
     return rows + (bw > 0 && bh > 0 ? bw * bh : 0);
 }
 
-/* Map a polygon to pixels and fill it, within the document's budget. */
-static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
-                        const svg_gradient *grad, sr_fill_rule rule, bool crisp)
+/* The document's pixel work (svg.h): false after reporting that `work`
+ * more would pass it. */
+static bool work_within_budget(svg_doc *doc, double work)
 {
-    if (poly.point_count == 0) {
-        return;
-    }
-    if (!points_within_budget(doc, poly.point_count)) {
-        return;
-    }
-    doc->points_used += poly.point_count;
-    sr_point2 *pts = malloc((size_t)poly.point_count * sizeof *pts);
-    if (!pts) {
-        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
-        return;
-    }
-    for (int i = 0; i < poly.point_count; i++) {
-        pts[i] = mat_apply(m, poly.points[i]);
-    }
-    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
-    double work = fill_work(pts, &poly, w, h);
     if (doc->work_used + work > doc->work_budget) {
-        free(pts);
+        int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
         svg_fail(doc, SR_TOO_LARGE,
                  "the drawing costs more than %.0f pixel operations, the limit for a %dx%d "
                  "image (%d per pixel + %d)",
                  doc->work_budget, w, h, SR_SVG_WORK_PER_PIXEL, SR_SVG_WORK_BASE);
-        return;
+        return false;
     }
     doc->work_used += work;
+    return true;
+}
+
+/* The polygon mapped to pixels (a new array in *pts), its points and
+ * pixel work counted; false after reporting a failure. */
+static bool map_polygon(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_point2 **pts)
+{
+    if (!points_within_budget(doc, poly.point_count)) {
+        return false;
+    }
+    doc->points_used += poly.point_count;
+    *pts = malloc((size_t)poly.point_count * sizeof **pts);
+    if (!*pts) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return false;
+    }
+    for (int i = 0; i < poly.point_count; i++) {
+        (*pts)[i] = mat_apply(m, poly.points[i]);
+    }
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    if (!work_within_budget(doc, fill_work(*pts, &poly, w, h))) {
+        free(*pts);
+        return false;
+    }
+    return true;
+}
+
+/* Map a polygon to pixels and fill it, within the document's budget. */
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
+                        const svg_gradient *grad, sr_fill_rule rule, bool crisp)
+{
+    sr_point2 *pts;
+    if (poly.point_count == 0 || !map_polygon(doc, poly, m, &pts)) {
+        return;
+    }
     poly.points = pts;
     sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
     sr_result r = grad ? svg_fill_gradient(doc->ctx, doc->fb, &poly, &desc, grad, color.a)
@@ -1756,6 +1786,7 @@ static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "s
                                          "clipPath", "script", NULL };
 
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
+static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use);
 
 static void draw_children(svg_doc *doc, svg_node *node, const frame *f)
 {
@@ -1766,27 +1797,178 @@ static void draw_children(svg_doc *doc, svg_node *node, const frame *f)
 
 /* The shape's path, flattened finely enough for the transform's scale,
  * filled and stroked. */
-static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
+/* The shape's path in user units, flattened finely enough for the
+ * frame's scale (*tol); NULL when there is nothing to draw or after a
+ * failure.  Flattening is work too, drawn or not (fill="none"). */
+static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *f, double *tol,
+                               bool *fillable)
 {
     double scale = matrix_scale(f->m);
-    double tol = scale > 0 ? 0.1 / scale : 0.1;
-    if (!(tol > 0) || !isfinite(tol)) {
-        return; /* a singular transform: nothing visible */
+    *tol = scale > 0 ? 0.1 / scale : 0.1;
+    if (!(*tol > 0) || !isfinite(*tol)) {
+        return NULL; /* a singular transform: nothing visible */
     }
     sr_path *p = NULL;
-    sr_result r = sr_make_path(doc->ctx, tol, &p);
+    sr_result r = sr_make_path(doc->ctx, *tol, &p);
     if (r != SR_OK) {
         lib_fail(doc, r);
-        return;
+        return NULL;
     }
-    bool fillable;
-    /* Flattening is work too, drawn or not (fill="none"). */
-    if (shape_path(doc, f, node->name, node->atts, p, &fillable) && doc->status == SR_OK &&
+    if (shape_path(doc, f, node->name, node->atts, p, fillable) && doc->status == SR_OK &&
         points_within_budget(doc, sr_path_polygon(p).point_count)) {
         doc->points_used += sr_path_polygon(p).point_count;
-        draw_path(doc, f, p, tol, fillable);
+        return p;
     }
     sr_destroy_path(doc->ctx, p);
+    return NULL;
+}
+
+static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    double tol;
+    bool fillable;
+    sr_path *p = shape_at_scale(doc, node, f, &tol, &fillable);
+    if (p) {
+        draw_path(doc, f, p, tol, fillable);
+        sr_destroy_path(doc->ctx, p);
+    }
+}
+
+/* ---- clipping and layers ------------------------------------------------------------- */
+
+/* Layers (group opacity, clip paths) nested deeper than this fold their
+ * opacity into the shapes and draw unclipped, with a warning: each layer
+ * is a whole image of memory. */
+#define MAX_LAYERS 8
+
+/* Add the coverage of one clip shape to the mask: union, a + b - ab. */
+static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *mask,
+                       uint8_t *scratch)
+{
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    double tol;
+    bool fillable;
+    sr_path *p = f->st.display_none || f->st.invisible
+                     ? NULL : shape_at_scale(doc, shape, f, &tol, &fillable);
+    sr_point2 *pts;
+    sr_polygon2 poly;
+    if (p && fillable && (poly = sr_path_polygon(p)).point_count > 0 &&
+        map_polygon(doc, poly, f->m, &pts)) {
+        poly.points = pts;
+        sr_fill_desc desc = { .rule = f->st.clip_rule,
+                              .antialias = f->st.crisp ? SR_AA_NONE : SR_AA_AREA };
+        sr_result r = sr_polygon_coverage(doc->ctx, &poly, &desc, 0, 0, w, h, scratch, (size_t)w);
+        free(pts);
+        if (r != SR_OK) {
+            lib_fail(doc, r);
+        } else {
+            for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+                unsigned a = mask[i], b = scratch[i];
+                mask[i] = (uint8_t)(a + b - (a * b + 127) / 255);
+            }
+        }
+    }
+    if (p) {
+        sr_destroy_path(doc->ctx, p);
+    }
+}
+
+/* The coverage of a clipPath for an element drawn under frame f: its
+ * shapes (and uses of shapes) with their clip-rule, in the element's
+ * user space.  NULL with a warning for what is not supported (units of
+ * the bounding box), or after a failure. */
+static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, const frame *f)
+{
+    const char *units = attr(clip->atts, "clipPathUnits");
+    if (units && strcmp(units, "objectBoundingBox") == 0) {
+        warn_once(doc, "clipPathUnits", units);
+        return NULL;
+    }
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    if (!work_within_budget(doc, (double)w * h)) {
+        return NULL;
+    }
+    uint8_t *mask = calloc((size_t)w * (size_t)h, 2);
+    if (!mask) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return NULL;
+    }
+    frame cf = *f;
+    cf.st.own_opacity = 1;
+    apply_cascade(doc, clip, &cf.st);
+    const char *tr = attr(clip->atts, "transform");
+    mat2d t;
+    if (tr && parse_transform(tr, &t)) {
+        cf.m = mat_mul(cf.m, t);
+    }
+    for (svg_node *c = clip->first; c && doc->status == SR_OK; c = c->next) {
+        svg_node *shape = c;
+        frame sf = cf;
+        doc->line = c->line;
+        apply_cascade(doc, c, &sf.st);
+        tr = attr(c->atts, "transform");
+        if (tr && parse_transform(tr, &t)) {
+            sf.m = mat_mul(sf.m, t);
+        }
+        if (strcmp(c->name, "use") == 0) {
+            const char *href = href_of(c);
+            shape = href ? reference(doc, href, NULL) : NULL;
+            double x = 0, y = 0;
+            if (!shape || !length_attr(doc, &sf, "x", attr(c->atts, "x"), &x) ||
+                !length_attr(doc, &sf, "y", attr(c->atts, "y"), &y)) {
+                continue;
+            }
+            sf.m = mat_mul(sf.m, (mat2d){ 1, 0, 0, 1, x, y });
+            apply_cascade(doc, shape, &sf.st);
+            tr = attr(shape->atts, "transform");
+            if (tr && parse_transform(tr, &t)) {
+                sf.m = mat_mul(sf.m, t);
+            }
+        }
+        if (is_shape(shape->name)) {
+            clip_shape(doc, shape, &sf, mask, mask + (size_t)w * (size_t)h);
+        }
+    }
+    if (doc->status != SR_OK) {
+        free(mask);
+        return NULL;
+    }
+    return mask;
+}
+
+/* Composite a layer over the image through a mask (or none) at an
+ * opacity: straight-alpha source-over, as the fills blend. */
+static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
+                            double opacity)
+{
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    if (!work_within_budget(doc, (double)w * h)) {
+        return;
+    }
+    size_t n = (size_t)w * (size_t)h;
+    uint8_t *px = malloc(n * 4);
+    if (!px) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    sr_result r = sr_read_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
+    const uint8_t *src = sr_framebuffer_pixels(layer);
+    for (size_t i = 0; r == SR_OK && i < n; i++) {
+        const uint8_t *l = src + i * 4;
+        if (l[3] == 0 || (mask && mask[i] == 0)) {
+            continue;
+        }
+        sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
+                      (float)(l[3] / 255.0 * opacity) };
+        svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
+    }
+    if (r == SR_OK) {
+        r = sr_write_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
+    }
+    free(px);
+    if (r != SR_OK) {
+        lib_fail(doc, r);
+    }
 }
 
 /* A symbol drawn by a use: its viewBox onto the use's width and height
@@ -1875,7 +2057,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     }
     doc->points_used++;
     frame f = *parent;
-    f.st.opacity = parent->st.opacity;
+    f.st.own_opacity = 1;
+    f.st.clip = NULL;
     apply_cascade(doc, node, &f.st);
     if (doc->status != SR_OK || f.st.display_none) {
         return;
@@ -1889,6 +2072,54 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         }
         f.m = mat_mul(f.m, t);
     }
+    /* A group's opacity and any clip path apply to the element drawn
+     * whole in a layer of its own; a lone shape's opacity folds into its
+     * fill and stroke. */
+    bool layer = f.st.clip || (f.st.own_opacity < 1 && !shape);
+    if (layer && doc->layers == MAX_LAYERS) {
+        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip ignored)");
+        layer = false;
+    }
+    if (!layer) {
+        f.st.opacity *= f.st.own_opacity;
+        if (f.st.opacity <= 0) {
+            return;
+        }
+        draw_content(doc, node, &f, shape, use);
+        return;
+    }
+    uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, &f) : NULL;
+    sr_framebuffer *under = doc->fb, *top = NULL;
+    sr_result r = doc->status == SR_OK
+                      ? sr_make_framebuffer(doc->ctx,
+                                            &(sr_framebuffer_desc){
+                                                .width = sr_framebuffer_width(under),
+                                                .height = sr_framebuffer_height(under),
+                                                .depth_format = SR_DEPTH_NONE },
+                                            &top)
+                      : SR_OK;
+    if (r != SR_OK) {
+        lib_fail(doc, r);
+    }
+    if (top) {
+        sr_clear(doc->ctx, top, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+        doc->fb = top;
+        doc->layers++;
+        draw_content(doc, node, &f, shape, use);
+        doc->layers--;
+        doc->fb = under;
+        if (doc->status == SR_OK) {
+            composite_layer(doc, top, mask, f.st.own_opacity);
+        }
+        sr_destroy_framebuffer(doc->ctx, top);
+    }
+    free(mask);
+}
+
+/* The element itself, its frame set: a shape, a use or the children. */
+static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use)
+{
+    frame f = *fp;
     doc->draw_depth++;
     node->active = true;
     if (shape) {
@@ -1968,6 +2199,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                             .stroke = { .kind = SVG_PAINT_NONE },
                             .color = { 0, 0, 0, 1 },
                             .fill_opacity = 1, .stroke_opacity = 1, .opacity = 1,
+                            .own_opacity = 1, .clip_rule = SR_NONZERO,
                             .fill_rule = SR_NONZERO, .stroke_width = 1,
                             .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
                             .miter_limit = 4 } };

@@ -104,6 +104,10 @@ typedef struct svg_gradient {
 /* The gradient's color at the pixel coordinates (x, y). */
 sr_rgba svg_gradient_at(const svg_gradient *g, double x, double y);
 
+/* Source-over of a straight-alpha color with coverage (0..1) onto an RGBA8
+ * pixel, as the 2D fills blend (the color quantized to RGBA8 first). */
+void svg_blend(uint8_t *d, sr_rgba c, float cov);
+
 /* Fill a polygon in pixel coordinates with the gradient times opacity:
  * the coverage is sr_polygon_coverage's (the same pixels and weights as
  * sr_fill_polygon with that desc), the paint is applied after it and

@@ -99,9 +99,7 @@ static uint8_t unorm8(float v)
     return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
 }
 
-/* Source-over of a straight-alpha color with coverage, as the 2D fills
- * blend (the color quantized to RGBA8 first). */
-static void blend(uint8_t *d, sr_rgba c, float cov)
+void svg_blend(uint8_t *d, sr_rgba c, float cov)
 {
     uint8_t s[4] = { unorm8(c.r), unorm8(c.g), unorm8(c.b), 0 };
     float a = (c.a < 0 ? 0 : c.a > 1 ? 1 : c.a) * cov;
@@ -157,7 +155,7 @@ sr_result svg_fill_gradient(sr_context *ctx, sr_framebuffer *fb, const sr_polygo
                 }
                 sr_rgba c = svg_gradient_at(g, bx0 + x + 0.5, by0 + y + 0.5);
                 c.a *= opacity;
-                blend(px + ((size_t)y * w + x) * 4, c, (float)cov * (1.0f / 255.0f));
+                svg_blend(px + ((size_t)y * w + x) * 4, c, (float)cov * (1.0f / 255.0f));
             }
         }
         r = sr_write_pixels(ctx, fb, bx0, by0, w, h, px, (size_t)w * 4);
