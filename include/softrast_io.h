@@ -94,8 +94,9 @@ SR_API sr_result sr_parse_stl(sr_context *ctx, const char *name, const uint8_t *
  * Colors are linear RGBA (a VEC3 gets alpha 1). */
 typedef struct sr_scene_primitive {
     float world[16];            /* object -> world, column-major */
-    bool mirrored;              /* det(world) < 0: the winding flips, so front
-                                 * faces look clockwise after the transform */
+    bool mirrored;              /* det(world) < 0: the transform mirrors, turning
+                                 * front faces clockwise; draw it with
+                                 * sr_state.front_face flipped */
     int material;               /* index into sr_scene.materials */
     int node, mesh;             /* where it came from (-1: not glTF) */
     size_t vertex_count;
