@@ -422,14 +422,10 @@ static const char *const unsupported_props[] = {
 static const char *const no_effect_props[] = {
     "image-rendering", "color-interpolation", "color-interpolation-filters", "color-rendering",
     "text-rendering", "enable-background", "overflow", "solid-color", "solid-opacity",
-    "font", "font-family", "font-size", "font-weight", "font-style", "font-variant",
-    "font-stretch", "text-anchor", "letter-spacing", "word-spacing", "line-height",
-    "writing-mode", "text-decoration", "direction", "baseline-shift", "dominant-baseline",
-    "alignment-baseline", "text-align", "text-indent", "white-space", "inline-size",
+    "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
+    "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
     "shape-padding", "shape-margin", "shape-inside", "block-progression", "marker",
-    "-inkscape-font-specification", "font-feature-settings", "font-variant-ligatures",
-    "font-variant-caps", "font-variant-numeric", "font-variant-east-asian", "flood-color",
-    "flood-opacity", "lighting-color", "clip", NULL,
+    "flood-color", "flood-opacity", "lighting-color", "clip", NULL,
 };
 
 static const struct { const char *name, *value; } initial_values[] = {
@@ -641,6 +637,14 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
         }
         for (int i = 0; no_effect_props[i]; i++) {
             if (strcmp(name, no_effect_props[i]) == 0) {
+                return true;
+            }
+        }
+        /* Text and font settings (no text is drawn), editors' private
+         * properties (Inkscape's filter-*, -inkscape-*, ...). */
+        static const char *const quiet_prefixes[] = { "text-", "font-", "filter-", "-", NULL };
+        for (int i = 0; quiet_prefixes[i]; i++) {
+            if (strncmp(name, quiet_prefixes[i], strlen(quiet_prefixes[i])) == 0) {
                 return true;
             }
         }
