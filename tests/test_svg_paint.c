@@ -1,11 +1,11 @@
 /* test_svg_paint.c - the SVG reader's structure, styling and paint
  * servers: style sheets with the cascade, currentColor, CSS colors, defs
- * and use, linear and radial gradients.  Two drawings in tests/data/svg
- * are compared with references (checked against rsvg-convert when made;
+ * and use, linear and radial gradients, clip paths, masks and group
+ * opacity in layers.  Four drawings in tests/data/svg are compared with references (checked against rsvg-convert when made;
  * channel tolerance 2, at most 0.5% of the pixels beyond it; the diff
  * image goes to the test output directory), and single pixels are checked
- * against values worked out by hand.  Reference cycles through use are
- * refused with FILE:LINE. */
+ * against values worked out by hand.  Reference cycles through use and
+ * mask are refused with FILE:LINE. */
 #include "image_compare.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -55,20 +55,20 @@ static void check_drawing(const char *file, const char *ref)
     sr_destroy_context(ctx);
 }
 
-SR_TEST(style_sheets_use_and_colors_match_reference)
+/* styles: sheets, use, colors; gradients; layers: clip paths and group
+ * opacity; masks */
+SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    check_drawing("styles.svg", "svg_styles");
-}
-
-SR_TEST(gradients_match_reference)
-{
-    if (!sr_io_have_svg()) {
-        SKIP("built without expat");
+    static const char *const names[] = { "styles", "gradients", "layers", "masks" };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        char file[64], ref[64];
+        snprintf(file, sizeof file, "%s.svg", names[i]);
+        snprintf(ref, sizeof ref, "svg_%s", names[i]);
+        check_drawing(file, ref);
     }
-    check_drawing("gradients.svg", "svg_gradients");
 }
 
 SR_TEST(cascade_orders_attributes_sheets_style_and_important)
@@ -157,7 +157,7 @@ SR_TEST(linear_gradient_interpolates_between_stops)
     sr_destroy_context(ctx);
 }
 
-SR_TEST(use_cycles_are_refused_with_file_and_line)
+SR_TEST(reference_cycles_are_refused_with_file_and_line)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
@@ -177,6 +177,13 @@ SR_TEST(use_cycles_are_refused_with_file_and_line)
         SR_BAD_FORMAT, msg, sizeof msg);
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "t.svg:2: use: reference cycle");
+    fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n"
+        "<mask id='m'>\n<rect width='4' height='4' fill='white' mask='url(#m)'/></mask>\n"
+        "<rect width='4' height='4' mask='url(#m)'/></svg>",
+        SR_BAD_FORMAT, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:3: mask: reference cycle through \"#m\"");
     /* uses nested a thousand times over: refused by the budget, quickly */
     char big[4096];
     int n = snprintf(big, sizeof big, "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>"
@@ -189,14 +196,6 @@ SR_TEST(use_cycles_are_refused_with_file_and_line)
     fb = render(ctx, big, SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
     sr_destroy_context(ctx);
-}
-
-SR_TEST(clip_paths_and_group_opacity_match_reference)
-{
-    if (!sr_io_have_svg()) {
-        SKIP("built without expat");
-    }
-    check_drawing("layers.svg", "svg_layers");
 }
 
 SR_TEST(group_opacity_is_one_layer_and_clips_cut)

@@ -79,6 +79,8 @@ typedef struct style {
     double opacity;              /* the ancestors' opacities folded into shapes */
     double own_opacity;          /* this element's opacity (not inherited) */
     const svg_node *clip;        /* clip-path (not inherited), or NULL */
+    const svg_node *mask;        /* mask (not inherited), or NULL */
+    bool mask_alpha;             /* mask-type: alpha (of a mask element) */
     sr_fill_rule clip_rule;
     sr_fill_rule fill_rule;
     double stroke_width;
@@ -118,6 +120,7 @@ typedef struct svg_doc {
     long match_work;         /* selector matching steps so far */
     int draw_depth;          /* elements drawn inside each other, uses included */
     int layers;              /* layers open (group opacity, clip paths) */
+    style initial;           /* the initial style, for mask content */
     sr_result status;        /* SR_OK until something fails */
     char *msg;               /* the failure's line goes here */
     size_t msg_size;
@@ -411,7 +414,7 @@ static double clamp01(double v)
 
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
-    "stroke-dasharray", "stroke-dashoffset", "mask", "filter",
+    "stroke-dasharray", "stroke-dashoffset", "filter",
     "marker-start", "marker-mid", "marker-end",
     "fill-paint", "paint-order", "vector-effect", "mix-blend-mode", "isolation", NULL,
 };
@@ -430,7 +433,7 @@ static const char *const no_effect_props[] = {
 
 static const struct { const char *name, *value; } initial_values[] = {
     { "stroke-dasharray", "none" }, { "stroke-dashoffset", "0" }, { "mix-blend-mode", "normal" },
-    { "isolation", "auto" }, { "filter", "none" }, { "mask", "none" },
+    { "isolation", "auto" }, { "filter", "none" },
     { "marker-start", "none" }, { "marker-mid", "none" }, { "marker-end", "none" },
     { "paint-order", "normal" }, { "vector-effect", "none" },
 };
@@ -575,13 +578,17 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
         } else {
             *(name[0] == 'f' ? &st->fill_opacity : &st->stroke_opacity) = clamp01(num);
         }
-    } else if (strcmp(name, "clip-path") == 0) {
+    } else if (strcmp(name, "clip-path") == 0 || strcmp(name, "mask") == 0) {
+        bool clip = name[0] == 'c';
         svg_node *c = strcmp(v, "none") == 0 ? NULL : reference(doc, v, NULL);
-        if (c && strcmp(c->name, "clipPath") != 0) {
-            warn_once(doc, "clip-path", v);
+        if (c && strcmp(c->name, clip ? "clipPath" : "mask") != 0) {
+            warn_once(doc, name, v);
             c = NULL;
         }
-        st->clip = c; /* a missing clip path: drawn unclipped, as rsvg-convert does */
+        /* a missing clip path or mask: drawn without, as rsvg-convert does */
+        *(clip ? &st->clip : &st->mask) = c;
+    } else if (strcmp(name, "mask-type") == 0) {
+        st->mask_alpha = strcmp(v, "alpha") == 0;
     } else if (strcmp(name, "fill-rule") == 0 || strcmp(name, "clip-rule") == 0) {
         if (strcmp(v, "nonzero") == 0 || strcmp(v, "evenodd") == 0) {
             *(name[0] == 'f' ? &st->fill_rule : &st->clip_rule) =
@@ -1787,7 +1794,7 @@ static bool is_named(const svg_node *n, const char *const *names)
 /* Elements that draw nothing where they stand: definitions, metadata. */
 static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "style",
                                          "linearGradient", "radialGradient", "stop", "symbol",
-                                         "clipPath", "script", NULL };
+                                         "clipPath", "mask", "script", NULL };
 
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
 static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use);
@@ -1975,6 +1982,90 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
     }
 }
 
+/* A new transparent layer the size of the image, drawn into from now
+ * until close_layer; NULL after reporting a failure. */
+static sr_framebuffer *open_layer(svg_doc *doc)
+{
+    sr_framebuffer *top = NULL;
+    sr_result r = sr_make_framebuffer(doc->ctx,
+                                      &(sr_framebuffer_desc){
+                                          .width = sr_framebuffer_width(doc->fb),
+                                          .height = sr_framebuffer_height(doc->fb),
+                                          .depth_format = SR_DEPTH_NONE },
+                                      &top);
+    if (r != SR_OK) {
+        lib_fail(doc, r);
+        return NULL;
+    }
+    sr_clear(doc->ctx, top, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    doc->fb = top;
+    doc->layers++;
+    return top;
+}
+
+static void close_layer(svg_doc *doc, sr_framebuffer *under)
+{
+    doc->layers--;
+    doc->fb = under;
+}
+
+static void draw_children(svg_doc *doc, svg_node *node, const frame *f);
+
+/* A <mask> for an element drawn under frame f: its content drawn in a
+ * layer, in the element's user space, then per pixel its luminance times
+ * its alpha (mask-type="alpha": the alpha alone), multiplied into `into`
+ * (NULL: all 255).  The mask region is not applied: the content is taken
+ * whole.  Returns the coverage, or NULL (into freed) after a failure. */
+static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t *into)
+{
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    size_t n = (size_t)w * (size_t)h;
+    if (m->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "mask: reference cycle through \"#%s\"", m->id ? m->id : "");
+    }
+    const char *units = attr(m->atts, "maskContentUnits");
+    if (units && strcmp(units, "objectBoundingBox") == 0) {
+        warn_once(doc, "maskContentUnits", units);
+    }
+    uint8_t *cov = into ? into : malloc(n);
+    if (!cov || doc->status != SR_OK || !work_within_budget(doc, (double)n)) {
+        if (!cov) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        }
+        free(cov);
+        return NULL;
+    }
+    if (!into) {
+        memset(cov, 255, n);
+    }
+    frame mf = { .m = f->m, .st = doc->initial, .vp_w = f->vp_w, .vp_h = f->vp_h };
+    apply_cascade(doc, m, &mf.st);
+    const char *type = attr(m->atts, "mask-type");
+    bool alpha = (type && strcmp(type, "alpha") == 0) || mf.st.mask_alpha;
+    sr_framebuffer *under = doc->fb, *layer = open_layer(doc);
+    if (layer) {
+        m->active = true;
+        draw_children(doc, m, &mf);
+        m->active = false;
+        close_layer(doc, under);
+        const uint8_t *px = sr_framebuffer_pixels(layer);
+        for (size_t i = 0; i < n; i++) {
+            const uint8_t *p = px + i * 4;
+            double v = p[3] / 255.0;
+            if (!alpha) { /* luminance of the sRGB values (CSS Masking) */
+                v *= (0.2125 * p[0] + 0.7154 * p[1] + 0.0721 * p[2]) / 255.0;
+            }
+            cov[i] = (uint8_t)(cov[i] * v + 0.5);
+        }
+        sr_destroy_framebuffer(doc->ctx, layer);
+    }
+    if (doc->status != SR_OK) {
+        free(cov);
+        return NULL;
+    }
+    return cov;
+}
+
 /* A symbol drawn by a use: its viewBox onto the use's width and height
  * (100% of the viewport when not given), its children as a group. */
 static void draw_symbol(svg_doc *doc, svg_node *use, svg_node *symbol, frame *f)
@@ -2062,7 +2153,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     doc->points_used++;
     frame f = *parent;
     f.st.own_opacity = 1;
-    f.st.clip = NULL;
+    f.st.clip = f.st.mask = NULL;
     apply_cascade(doc, node, &f.st);
     if (doc->status != SR_OK || f.st.display_none) {
         return;
@@ -2079,9 +2170,9 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     /* A group's opacity and any clip path apply to the element drawn
      * whole in a layer of its own; a lone shape's opacity folds into its
      * fill and stroke. */
-    bool layer = f.st.clip || (f.st.own_opacity < 1 && !shape);
+    bool layer = f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape);
     if (layer && doc->layers == MAX_LAYERS) {
-        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip ignored)");
+        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
         layer = false;
     }
     if (!layer) {
@@ -2093,25 +2184,13 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         return;
     }
     uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, &f) : NULL;
-    sr_framebuffer *under = doc->fb, *top = NULL;
-    sr_result r = doc->status == SR_OK
-                      ? sr_make_framebuffer(doc->ctx,
-                                            &(sr_framebuffer_desc){
-                                                .width = sr_framebuffer_width(under),
-                                                .height = sr_framebuffer_height(under),
-                                                .depth_format = SR_DEPTH_NONE },
-                                            &top)
-                      : SR_OK;
-    if (r != SR_OK) {
-        lib_fail(doc, r);
+    if (f.st.mask && doc->status == SR_OK) {
+        mask = mask_coverage(doc, (svg_node *)f.st.mask, &f, mask);
     }
+    sr_framebuffer *under = doc->fb, *top = doc->status == SR_OK ? open_layer(doc) : NULL;
     if (top) {
-        sr_clear(doc->ctx, top, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
-        doc->fb = top;
-        doc->layers++;
         draw_content(doc, node, &f, shape, use);
-        doc->layers--;
-        doc->fb = under;
+        close_layer(doc, under);
         if (doc->status == SR_OK) {
             composite_layer(doc, top, mask, f.st.own_opacity);
         }
@@ -2208,6 +2287,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                             .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
                             .miter_limit = 4 } };
         doc->line = doc->root->line;
+        doc->initial = f.st;
         if (root_element(doc, doc->root->atts, &f)) {
             draw_node(doc, doc->root, &f);
         }
