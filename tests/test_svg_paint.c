@@ -1,10 +1,11 @@
 /* test_svg_paint.c - the SVG reader's structure, styling and paint
  * servers: style sheets with the cascade, currentColor, CSS colors, defs
  * and use, linear and radial gradients, clip paths, masks and group
- * opacity in layers.  Four drawings in tests/data/svg are compared with references (checked against rsvg-convert when made;
- * channel tolerance 2, at most 0.5% of the pixels beyond it; the diff
- * image goes to the test output directory), and single pixels are checked
- * against values worked out by hand.  Reference cycles through use and
+ * opacity in layers.  Five drawings in tests/data/svg are compared with
+ * references (checked against rsvg-convert when made; channel tolerance
+ * 2, at most 0.5% of the pixels beyond it; the diff image goes to the
+ * test output directory), and single pixels are checked against values
+ * worked out by hand.  Reference cycles through use and
  * mask are refused with FILE:LINE. */
 #include "image_compare.h"
 #include "softrast_io.h"
@@ -56,13 +57,13 @@ static void check_drawing(const char *file, const char *ref)
 }
 
 /* styles: sheets, use, colors; gradients; layers: clip paths and group
- * opacity; masks */
+ * opacity; clipbox: clips in bounding-box units; masks */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    static const char *const names[] = { "styles", "gradients", "layers", "masks" };
+    static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);

@@ -1884,16 +1884,81 @@ static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint
     }
 }
 
+/* Add the bounding box of element n (its geometry, without strokes) to
+ * b[4] = x0, y0, x1, y1, where m maps n's coordinates (its transform
+ * applied) into the box's space. */
+static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double b[4])
+{
+    if (n->active || doc->status != SR_OK || doc->draw_depth + 1 >= MAX_DEPTH) {
+        return; /* drawing refuses the cycle or the depth itself */
+    }
+    const char *disp = attr(n->atts, "display");
+    if (disp && strcmp(disp, "none") == 0) {
+        return;
+    }
+    frame tf = *f;
+    tf.m = mat_mul(f->m, m);
+    doc->draw_depth++;
+    n->active = true;
+    if (is_shape(n->name)) {
+        double tol;
+        bool fillable;
+        sr_path *p = shape_at_scale(doc, n, &tf, &tol, &fillable);
+        if (p) {
+            sr_polygon2 poly = sr_path_polygon(p);
+            for (int i = 0; i < poly.point_count; i++) {
+                sr_point2 q = mat_apply(m, poly.points[i]);
+                b[0] = fmin(b[0], q.x);
+                b[1] = fmin(b[1], q.y);
+                b[2] = fmax(b[2], q.x);
+                b[3] = fmax(b[3], q.y);
+            }
+            sr_destroy_path(doc->ctx, p);
+        }
+    } else {
+        bool use = strcmp(n->name, "use") == 0;
+        svg_node *c = use ? (href_of(n) ? reference(doc, href_of(n), NULL) : NULL) : n->first;
+        mat2d base = m;
+        if (use) {
+            double x = 0, y = 0;
+            length_attr(doc, f, "x", attr(n->atts, "x"), &x);
+            length_attr(doc, f, "y", attr(n->atts, "y"), &y);
+            base = mat_mul(m, (mat2d){ 1, 0, 0, 1, x, y });
+        }
+        for (; c && doc->status == SR_OK; c = use ? NULL : c->next) {
+            mat2d t = IDENTITY;
+            const char *tr = attr(c->atts, "transform");
+            if (tr && !parse_transform(tr, &t)) {
+                continue;
+            }
+            if (is_shape(c->name) || !is_named(c, not_drawn)) {
+                bbox_add(doc, c, f, mat_mul(base, t), b);
+            }
+        }
+    }
+    n->active = false;
+    doc->draw_depth--;
+}
+
 /* The coverage of a clipPath for an element drawn under frame f: its
  * shapes (and uses of shapes) with their clip-rule, in the element's
  * user space.  NULL with a warning for what is not supported (units of
  * the bounding box), or after a failure. */
-static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, const frame *f)
+static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const frame *f)
 {
+    frame cf = *f;
     const char *units = attr(clip->atts, "clipPathUnits");
     if (units && strcmp(units, "objectBoundingBox") == 0) {
-        warn_once(doc, "clipPathUnits", units);
-        return NULL;
+        /* the clip's unit square onto the element's bounding box */
+        double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+        bool was = node->active;
+        node->active = false;
+        bbox_add(doc, node, f, IDENTITY, b);
+        node->active = was;
+        cf.m = mat_mul(f->m, (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], b[0], b[1] });
+        if (!(b[2] > b[0] && b[3] > b[1])) {
+            cf.m = (mat2d){ 0, 0, 0, 0, 0, 0 }; /* no box: nothing is inside */
+        }
     }
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     if (!work_within_budget(doc, (double)w * h)) {
@@ -1904,7 +1969,6 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, const frame *f)
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
-    frame cf = *f;
     cf.st.own_opacity = 1;
     apply_cascade(doc, clip, &cf.st);
     const char *tr = attr(clip->atts, "transform");
@@ -2183,7 +2247,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         draw_content(doc, node, &f, shape, use);
         return;
     }
-    uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, &f) : NULL;
+    uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, node, &f) : NULL;
     if (f.st.mask && doc->status == SR_OK) {
         mask = mask_coverage(doc, (svg_node *)f.st.mask, &f, mask);
     }
