@@ -131,6 +131,13 @@ SR_TEST(css_color_syntaxes_give_the_same_color)
         }
         sr_destroy_framebuffer(ctx, fb);
     }
+    /* too many hex digits: not a color (warned), the fill stays black */
+    sr_framebuffer *fb = render(ctx, "<svg xmlns='http://www.w3.org/2000/svg' width='4' "
+                                     "height='4'><rect width='4' height='4' "
+                                     "fill='#ff8000ff00ff8000ff'/></svg>", SR_OK, NULL, 0);
+    REQUIRE(fb);
+    CHECK_EQ(pixel(fb, 2, 2)[0], 0);
+    sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
 
@@ -221,6 +228,19 @@ SR_TEST(group_opacity_is_one_layer_and_clips_cut)
     CHECK_EQ(pixel(fb, 25, 5)[2], 255);
     CHECK_EQ(pixel(fb, 25, 5)[0], 0);
     CHECK_EQ(pixel(fb, 35, 5)[0], 255); /* clipped away: the white background */
+    sr_destroy_framebuffer(ctx, fb);
+    /* a clip on a clip: a disc cut to its left half (SVG intersects them;
+     * rsvg-convert 2.54 ignores the outer clip) */
+    fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='40' height='20'>"
+        "<clipPath id='left'><rect width='20' height='20'/></clipPath>"
+        "<clipPath id='disc' clip-path='url(#left)'><circle cx='20' cy='10' r='9'/></clipPath>"
+        "<rect width='40' height='20' fill='#000' clip-path='url(#disc)'/></svg>",
+        SR_OK, NULL, 0);
+    REQUIRE(fb);
+    CHECK_EQ(pixel(fb, 15, 10)[0], 0);
+    CHECK_EQ(pixel(fb, 25, 10)[0], 255);
+    CHECK_EQ(pixel(fb, 2, 10)[0], 255);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }

@@ -1970,6 +1970,7 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
         return NULL;
     }
     cf.st.own_opacity = 1;
+    cf.st.clip = NULL;
     apply_cascade(doc, clip, &cf.st);
     const char *tr = attr(clip->atts, "transform");
     mat2d t;
@@ -2002,6 +2003,21 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
         }
         if (is_shape(shape->name)) {
             clip_shape(doc, shape, &sf, mask, mask + (size_t)w * (size_t)h);
+        }
+    }
+    /* A clip path clipped in turn: the two coverages multiply. */
+    if (cf.st.clip && doc->status == SR_OK) {
+        if (clip->active || cf.st.clip == clip) {
+            svg_fail(doc, SR_BAD_FORMAT, "clip-path: reference cycle through \"#%s\"",
+                     clip->id ? clip->id : "");
+        } else {
+            clip->active = true;
+            uint8_t *outer = clip_mask(doc, (svg_node *)cf.st.clip, node, f);
+            clip->active = false;
+            for (size_t i = 0; outer && i < (size_t)w * (size_t)h; i++) {
+                mask[i] = (uint8_t)((mask[i] * outer[i] + 127) / 255);
+            }
+            free(outer);
         }
     }
     if (doc->status != SR_OK) {

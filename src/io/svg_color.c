@@ -196,6 +196,9 @@ svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
     }
     if (buf[0] == '#') {
         unsigned d[8];
+        if (n != 4 && n != 5 && n != 7 && n != 9) {
+            return SVG_PAINT_INVALID;
+        }
         for (size_t i = 1; i < n; i++) {
             if (!isxdigit((unsigned char)buf[i])) {
                 return SVG_PAINT_INVALID;
@@ -208,12 +211,10 @@ svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
             for (size_t i = 0; i + 1 < n; i++) {
                 c[i] = (float)(d[i] * 17) / 255.0f;
             }
-        } else if (n == 7 || n == 9) { /* #rrggbb, #rrggbbaa */
+        } else { /* #rrggbb, #rrggbbaa */
             for (size_t i = 0; 2 * i + 1 < n; i++) {
                 c[i] = (float)(d[2 * i] * 16 + d[2 * i + 1]) / 255.0f;
             }
-        } else {
-            return SVG_PAINT_INVALID;
         }
         *out = (sr_rgba){ c[0], c[1], c[2], c[3] };
         return SVG_PAINT_COLOR;
