@@ -78,6 +78,10 @@ static void usage(FILE *f)
         "  msaa4                the bunny with 4x MSAA, resolved every frame (llvmpipe:\n"
         "                       a 4-sample FBO blitted to the buffer)\n"
         "  polyfill, polyfill_aa  a 10,000-edge 2D polygon, aliased and antialiased\n"
+        "  phong                the bunny, Blinn-Phong per pixel (llvmpipe: Gouraud)\n"
+        "  pbr                  the bunny through the metallic-roughness program, the\n"
+        "                       CLI's default look (softrast only)\n"
+        "  pbr_studio           the same under --environment studio\n"
         "\n"
         "options:\n"
         "  --threads N          rasterizer threads (default: SR_THREADS or CPUs);\n"
@@ -424,7 +428,8 @@ static void run_drawn_scene(bench_run *run, const bench_scene_info *info)
         return;
     }
 
-    bool compare = o->compare && need_gl(run);
+    /* llvmpipe draws the fixed-function models only. */
+    bool compare = o->compare && !s.state.program && need_gl(run);
     if (compare && !gl_prepare(run->gl, &s, msg, sizeof msg)) {
         fprintf(stderr, "softrast-bench: %s: llvmpipe skipped: %s\n", info->name, msg);
         compare = false;

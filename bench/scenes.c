@@ -15,17 +15,20 @@
 #define PI_F 3.14159265358979f
 
 const bench_scene_info bench_scene_list[] = {
-    { "bunny",  BENCH_MESH,  "stanford-bunny.obj", 0, NULL },
-    { "spot",   BENCH_MESH,  "spot.obj", 0, NULL },
-    { "teapot", BENCH_MESH,  "teapot.obj", 0, NULL },
-    { "small",  BENCH_SMALL, NULL, 0, NULL },
-    { "fill",   BENCH_FILL,  NULL, 0, NULL },
-    { "cli",    BENCH_CLI,   "stanford-bunny.obj", 0, NULL },
-    { "lines",  BENCH_LINES, NULL, 0, NULL },
-    { "polyfill", BENCH_POLYFILL, NULL, 0, NULL },
-    { "polyfill_aa", BENCH_POLYFILL_AA, NULL, 0, NULL },
-    { "msaa4",  BENCH_MESH,  "stanford-bunny.obj", 4, NULL },
-    { "spot_tex", BENCH_MESH, "spot.obj", 0, "spot_texture.png" },
+    { "bunny",  BENCH_MESH,  "stanford-bunny.obj", 0, NULL, 0 },
+    { "spot",   BENCH_MESH,  "spot.obj", 0, NULL, 0 },
+    { "teapot", BENCH_MESH,  "teapot.obj", 0, NULL, 0 },
+    { "small",  BENCH_SMALL, NULL, 0, NULL, 0 },
+    { "fill",   BENCH_FILL,  NULL, 0, NULL, 0 },
+    { "cli",    BENCH_CLI,   "stanford-bunny.obj", 0, NULL, 0 },
+    { "lines",  BENCH_LINES, NULL, 0, NULL, 0 },
+    { "polyfill", BENCH_POLYFILL, NULL, 0, NULL, 0 },
+    { "polyfill_aa", BENCH_POLYFILL_AA, NULL, 0, NULL, 0 },
+    { "msaa4",  BENCH_MESH,  "stanford-bunny.obj", 4, NULL, 0 },
+    { "spot_tex", BENCH_MESH, "spot.obj", 0, "spot_texture.png", 0 },
+    { "phong",  BENCH_MESH,  "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PHONG },
+    { "pbr",    BENCH_MESH,  "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PBR },
+    { "pbr_studio", BENCH_MESH, "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PBR_STUDIO },
 };
 const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);
 
@@ -156,6 +159,39 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         .ambient = { 0.12f, 0.12f, 0.14f },
     };
     framing_default_lights(&basis, s->state.lights);
+    if (s->info->look == BENCH_LOOK_PHONG) {
+        s->state.shading = SR_SHADING_PHONG;
+    } else if (s->info->look != BENCH_LOOK_GOURAUD) {
+        /* render.c's default material: a light gray dielectric. */
+        sr_pbr_material m = sr_pbr_default_material();
+        m.base_color[0] = m.base_color[1] = 0.72f;
+        m.base_color[2] = 0.74f;
+        m.metallic = 0.0f;
+        m.roughness = 0.5f;
+        sr_pbr_desc d = { .material = &m, .model = &s->model, .view = &s->view,
+                          .projection = &s->projection, .vertex_color = SR_OFF };
+        framing_pbr_lights(s->state.lights, &d);
+        if (s->info->look == BENCH_LOOK_PBR_STUDIO) {
+            /* --environment studio: the built-in studio at 0.6 and the
+             * rig's key light. */
+            r = sr_make_environment(s->mesh_ctx, &(sr_environment_desc){ .intensity = 0.6f },
+                                    &s->env);
+            if (r != SR_OK) {
+                snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));
+                return r;
+            }
+            d.environment = s->env;
+            for (int l = 1; l < SR_MAX_LIGHTS; l++) {
+                d.lights[l].type = SR_LIGHT_OFF;
+            }
+        }
+        r = sr_make_pbr_program(s->mesh_ctx, &d, &s->pbr);
+        if (r != SR_OK) {
+            snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));
+            return r;
+        }
+        s->state.program = sr_pbr_program(s->pbr);
+    }
     if (s->texture_pixels) {
         /* The texel multiplies the lit (Gouraud) color: GL_MODULATE. */
         s->state.texture_filter = SR_FILTER_TRILINEAR;
@@ -375,6 +411,10 @@ sr_result bench_scene_make(const bench_scene_info *info, int width, int height,
 
 void bench_scene_free(bench_scene *s)
 {
+    sr_destroy_pbr_program(s->mesh_ctx, s->pbr);
+    sr_destroy_environment(s->mesh_ctx, s->env);
+    s->pbr = NULL;
+    s->env = NULL;
     sr_destroy_mesh(s->mesh_ctx, &s->mesh);
     sr_destroy_context(s->mesh_ctx);
     free(s->own_positions);

@@ -20,6 +20,13 @@ typedef enum bench_kind {
     BENCH_CLI,      /* the whole `softrast render` process */
 } bench_kind;
 
+typedef enum bench_look {
+    BENCH_LOOK_GOURAUD = 0, /* Blinn-Phong per vertex, `softrast render --shading gouraud` */
+    BENCH_LOOK_PHONG,       /* Blinn-Phong per pixel */
+    BENCH_LOOK_PBR,         /* the metallic-roughness program, the CLI's default look */
+    BENCH_LOOK_PBR_STUDIO,  /* the same lit by the built-in studio environment */
+} bench_look;
+
 typedef struct bench_scene_info {
     const char *name;
     bench_kind kind;
@@ -27,6 +34,7 @@ typedef struct bench_scene_info {
     int samples;             /* MSAA samples per pixel; 0: one */
     const char *texture_file;/* BENCH_MESH: a PNG in the models directory that
                               * modulates the lit color (trilinear), or NULL */
+    bench_look look;         /* BENCH_MESH: how it is shaded */
 } bench_scene_info;
 
 /* Every scene in the order a run without SCENE arguments uses. */
@@ -66,6 +74,8 @@ typedef struct bench_scene {
     /* Storage owned by the scene. */
     sr_context *mesh_ctx;  /* owns mesh (one thread: the normals are made once) */
     sr_mesh mesh;
+    sr_pbr *pbr;           /* BENCH_LOOK_PBR: the program state.program points into */
+    sr_environment *env;   /* and the environment it lights with */
     float *own_positions, *own_colors;
     uint32_t *own_indices;
 } bench_scene;

@@ -146,6 +146,11 @@
  *     sr_make_builtin_program    a built-in shading model as a program
  *     sr_builtin_program         the sr_program to draw it with
  *     sr_destroy_builtin_program frees it
+ *   physically based shading
+ *     sr_pbr_default_material    glTF's default material
+ *     sr_make_pbr_program        the metallic-roughness model as a program
+ *     sr_pbr_program             the sr_program to draw it with
+ *     sr_destroy_pbr_program     frees it
  *   drawing
  *     sr_draw                    primitives through the whole pipeline
  *     sr_last_draw_info          counts of the last draw
@@ -159,6 +164,7 @@
  *     sr_make_mesh               a copy of caller arrays as a mesh on the context
  *     sr_destroy_mesh            frees a mesh's arrays
  *     sr_mesh_compute_normals    smooth or flat normals
+ *     sr_mesh_compute_tangents   tangents for normal maps (MikkTSpace conventions)
  *     sr_mesh_bounds             the axis-aligned bounding box
  *     sr_newell_normal           a polygon's normal by Newell's method
  *   built-in geometry
@@ -1094,6 +1100,81 @@ SR_API sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state,
 SR_API const sr_program *sr_builtin_program(const sr_builtin *b);
 SR_API void sr_destroy_builtin_program(sr_context *ctx, sr_builtin *b);
 
+/* ---- physically based shading ------------------------------------------- */
+
+/* glTF's metallic-roughness model (its specification's Appendix B) as a
+ * program (docs/pbr.md): base color, metallic and roughness, GGX
+ * distribution, height-correlated Smith visibility, Schlick Fresnel,
+ * Lambert diffuse; normal, occlusion and emissive maps; alpha modes;
+ * double-sided and unlit materials; punctual lights, a hemisphere or an
+ * environment's image-based light, and a shadow map for the key light.
+ * Shading is in world space and linear light; each fragment's color is
+ * scaled by 2^exposure, tone mapped and sRGB-encoded into the RGBA8 target
+ * (as three.js draws to a canvas), so blending happens on the encoded
+ * values.  Unlit materials skip exposure
+ * and the tone curve: their base color is shown as it is, encoded.
+ *
+ * The draw gives positions, normals (needed), colors (multiplied into the
+ * base color when `vertex_color` is not SR_OFF), texcoords (set 0).  Set 1
+ * and tangents are not in sr_draw_desc: they come from the arrays below,
+ * read at sr_vertex_input.index.  Texture coordinates follow sr_texture (v
+ * up): a glTF reader flips the file's v, and each slot's
+ * KHR_texture_transform is applied in the file's frame (v down), so the
+ * file's offset, rotation and scale mean what they say there.
+ *
+ * Draw state the material needs is the caller's: SR_CULL_BACK unless
+ * double_sided; for SR_ALPHA_BLEND, source-over blending (SR_BLEND_SRC_ALPHA,
+ * SR_BLEND_ONE_MINUS_SRC_ALPHA), depth writes off and the primitives sorted
+ * back to front. */
+typedef struct sr_pbr_desc {
+    const sr_pbr_material *material;   /* NULL -> sr_pbr_default_material(); textures
+                                        * must outlive the program */
+    const sr_mat4 *model;              /* object -> world; NULL -> identity */
+    const sr_mat4 *view;               /* world -> eye;    NULL -> identity */
+    const sr_mat4 *projection;         /* NULL -> identity */
+    /* Punctual lights in world space (KHR_lights_punctual): radiance
+     * color x intensity (sr_light's zero defaults: white, 1); point lights
+     * fall off with the inverse square of the distance. */
+    sr_light lights[SR_MAX_LIGHTS];
+    /* Ambient light from a hemisphere: radiance `sky` from world +y down to
+     * `ground` from -y, blended by direction, for diffuse (by the normal)
+     * and specular (by the reflected ray, weighted by the split-sum BRDF's
+     * analytic fit).  Occlusion maps darken it.  Both zero: no ambient. */
+    sr_vec3 sky, ground;
+    /* Image-based light (docs/ibl.md) in place of the hemisphere:
+     * (1 - Es) c_diff E(N) + Es L(R, roughness), Es = F0 A + B from the
+     * split-sum table, times the occlusion.  Must outlive the program. */
+    const sr_environment *environment;
+    /* The key light's shadow (docs/shadows.md): lights[0], which should
+     * be the map's directional light, is scaled by the filtered visibility
+     * at each fragment (looked up with the interpolated vertex normal).
+     * Must outlive the program and be drawn before the program's draws. */
+    const struct sr_shadow_map *shadow;   /* declared with the shadows below */
+    float exposure;                    /* EV: radiance times 2^exposure; -64..64 */
+    sr_tonemap_op tonemap;             /* DEFAULT -> Khronos PBR Neutral */
+    sr_switch vertex_color;            /* SR_OFF: ignore the draw's colors (4 varyings fewer) */
+    /* Per-vertex arrays the draw does not carry, `vertex_count` entries
+     * each (needed when either is given; indices past it read zero).
+     * Tangents: xyz in object space, w = +1 or -1 the bitangent's sign
+     * (B = w N x T); NULL: the normal map's frame comes from the
+     * screen-space derivatives of position and texcoords. */
+    size_t vertex_count;
+    const float *tangents;             /* 4 floats a vertex */
+    size_t tangent_stride;             /* bytes; 0 -> packed */
+    const float *texcoords1;           /* 2 floats a vertex: texcoord set 1 */
+    size_t texcoord1_stride;
+} sr_pbr_desc;
+
+/* glTF's defaults: base color white, metallic 1, roughness 1, normal scale
+ * and occlusion strength 1, no emission, opaque, cutoff 0.5, single-sided,
+ * empty slots (scale 1). */
+SR_API sr_pbr_material sr_pbr_default_material(void);
+
+typedef struct sr_pbr sr_pbr;
+SR_API sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out);
+SR_API const sr_program *sr_pbr_program(const sr_pbr *p);
+SR_API void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p);
+
 /* ---- drawing ------------------------------------------------------------ */
 
 typedef enum sr_primitive {
@@ -1241,6 +1322,15 @@ typedef enum sr_normal_mode {
  * smooth ones are computed on ctx's threads, the same bits for any
  * thread count. */
 SR_API sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode mode);
+/* Tangents for tangent-space normal maps, 4 floats a vertex into
+ * `tangents` (the caller's, mesh->vertex_count entries), with MikkTSpace's
+ * conventions: each triangle's tangent and bitangent from its texcoord
+ * derivatives (dP/du, dP/dv), summed per vertex, the tangent made
+ * orthogonal to the normal (Gram-Schmidt) and normalized, w = +1 when
+ * (N x T) . B > 0 and -1 otherwise.  Needs normals and texcoords; a
+ * vertex no triangle gives a direction to gets any unit vector orthogonal
+ * to its normal. */
+SR_API sr_result sr_mesh_compute_tangents(sr_context *ctx, const sr_mesh *mesh, float *tangents);
 /* Axis-aligned bounding box; false for an empty mesh. */
 SR_API bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
 

@@ -46,11 +46,24 @@ static void check_render(const char *name, const char *const *extra)
     free(px);
 }
 
-/* The default output, antialiased; the other checks turn antialiasing
- * off unless it is what they check. */
+/* The default output (the physically based look), antialiased, and the
+ * classic Blinn-Phong look.  The other checks turn antialiasing off
+ * unless it is what they check, and ask for Phong where the pipeline
+ * feature, not the look, is what they hold to a reference. */
 SR_TEST(builtin_scene_matches_reference)
 {
-    check_render("builtin_phong", (const char *[]){ "--size", "240x160", NULL });
+    check_render("builtin_pbr", (const char *[]){ "--size", "240x160", NULL });
+    check_render("builtin_phong", (const char *[]){ "--size", "240x160", "--shading", "phong", NULL });
+}
+
+/* The physically based look's options: ACES and a stop brighter; the
+ * built-in studio environment instead of the sky-and-ground hemisphere. */
+SR_TEST(builtin_scene_tone_mapped_matches_reference)
+{
+    check_render("builtin_pbr_studio", (const char *[]){ "--size", "160x120", "--environment",
+                                                         "studio", "--aa", "none", NULL });
+    check_render("builtin_pbr_aces_ev1", (const char *[]){ "--size", "160x120", "--tonemap", "aces",
+                                                           "--exposure", "1", "--aa", "none", NULL });
 }
 
 SR_TEST(builtin_scene_in_every_shading_mode_matches_reference)
@@ -67,29 +80,35 @@ SR_TEST(builtin_scene_in_every_shading_mode_matches_reference)
 SR_TEST(builtin_scene_supersampled_matches_reference)
 {
     check_render("builtin_ssaa3_gaussian", (const char *[]){ "--size", "160x120", "--aa", "ssaa3",
-                                                             "--filter", "gaussian", NULL });
+                                                             "--filter", "gaussian", "--shading",
+                                                             "phong", NULL });
 }
 
 /* 4x and 16x multisampling, and the hidden-line outlines multisampled
  * (lines as rectangles covered per sample). */
 SR_TEST(builtin_scene_multisampled_matches_reference)
 {
-    check_render("builtin_msaa4", (const char *[]){ "--size", "160x120", "--aa", "msaa4", NULL });
+    check_render("builtin_msaa4", (const char *[]){ "--size", "160x120", "--aa", "msaa4",
+                                                    "--shading", "phong", NULL });
     check_render("builtin_msaa16_hidden_line",
                  (const char *[]){ "--size", "160x120", "--aa", "msaa16", "--hidden-line", NULL });
 }
 
-/* A translucent teapot drawn after the ground, back to front. */
+/* A translucent teapot drawn after the ground, back to front: Phong, and
+ * the physically based look's BLEND. */
 SR_TEST(builtin_scene_translucent_matches_reference)
 {
     check_render("builtin_opacity", (const char *[]){ "--size", "160x120", "--opacity", "0.5",
-                                                      "--aa", "none", NULL });
+                                                      "--aa", "none", "--shading", "phong", NULL });
+    check_render("builtin_opacity_pbr", (const char *[]){ "--size", "160x120", "--opacity", "0.5",
+                                                          "--aa", "none", NULL });
 }
 
 SR_TEST(builtin_scene_orthographic_and_affine_match_reference)
 {
     check_render("builtin_ortho",
-                 (const char *[]){ "--size", "160x120", "--ortho", "--aa", "none", NULL });
+                 (const char *[]){ "--size", "160x120", "--ortho", "--aa", "none", "--shading",
+                                   "phong", NULL });
     check_render("builtin_affine", (const char *[]){ "--size", "160x120", "--projection-interp",
                                                      "affine", "--shading", "unlit", "--aa",
                                                      "none", NULL });
@@ -106,6 +125,9 @@ SR_TEST(shared_models_match_reference)
         char path[1024], name[64];
         snprintf(path, sizeof path, "%s/%s.obj", dir, models[i]);
         snprintf(name, sizeof name, "model_%s", models[i]);
+        check_render(name, (const char *[]){ path, "--size", "160x120", "--aa", "none",
+                                             "--shading", "phong", NULL });
+        snprintf(name, sizeof name, "model_pbr_%s", models[i]);
         check_render(name, (const char *[]){ path, "--size", "160x120", "--aa", "none", NULL });
     }
 }
@@ -120,7 +142,10 @@ SR_TEST(textured_model_matches_reference)
     char path[1024];
     snprintf(path, sizeof path, "%s/spot.obj", dir);
     check_render("model_spot_textured", (const char *[]){ path, "--size", "160x120", "--turn",
-                                                          "200", "--aa", "none", NULL });
+                                                          "200", "--aa", "none", "--shading",
+                                                          "phong", NULL });
+    check_render("model_spot_textured_pbr", (const char *[]){ path, "--size", "160x120", "--turn",
+                                                              "200", "--aa", "none", NULL });
     check_render("model_spot_textured_nearest",
                  (const char *[]){ path, "--size", "160x120", "--turn", "200", "--texture-filter",
                                    "nearest", "--shading", "flat", "--aa", "none", NULL });
@@ -129,7 +154,8 @@ SR_TEST(textured_model_matches_reference)
 SR_TEST(wireframe_and_hidden_line_renders_match_reference)
 {
     check_render("builtin_edges",
-                 (const char *[]){ "--size", "160x120", "--edges", "--aa", "none", NULL });
+                 (const char *[]){ "--size", "160x120", "--edges", "--aa", "none", "--shading",
+                                   "phong", NULL });
     const char *dir = sr_test_models_dir();
     if (!dir) {
         SKIP("../shared/models not found (set SR_MODELS_DIR)");

@@ -420,7 +420,7 @@ SR_TEST(view_screenshot_after_scripted_input_equals_render)
     snprintf(plain, sizeof plain, "%s/view-default.png", out);
     remove(shot);
     /* Orbit, pan and zoom through real input handling; then keys: M twice
-     * (gouraud), W three times (edges), C (no culling), A (ssaa2). */
+     * (pbr -> flat -> gouraud), W three times (edges), C (no culling), A (ssaa2). */
     REQUIRE(write_text(events, "drag left 160 120 230 90\n"
                                "frames 1\n"
                                "drag right 100 100 120 110 4\n"

@@ -214,3 +214,17 @@ int framing_default_lights(const sr_camera_basis *b, sr_light *lights)
     }
     return 3;
 }
+
+void framing_pbr_lights(const sr_light *lights, sr_pbr_desc *d)
+{
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        d->lights[i] = lights[i];
+        /* Radiance for a BRDF whose white Lambertian part is 1/pi: this
+         * scale gives a surface facing the key light, encoded to sRGB,
+         * about the brightness the Blinn-Phong look gives it. */
+        float in = lights[i].intensity != 0.0f ? lights[i].intensity : 1.0f;
+        d->lights[i].intensity = in * FRAMING_PBR_LIGHT_SCALE;
+    }
+    d->sky = (sr_vec3){ 0.16f, 0.165f, 0.18f };
+    d->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };
+}

@@ -59,5 +59,10 @@ sr_mat4 framing_upright(int axis);
  * the view, the side facing the viewer is lit from the upper left and the
  * silhouette stands out from the background.  Writes 3 lights. */
 int framing_default_lights(const sr_camera_basis *b, sr_light *lights);
+/* The physically based look's lights in d: the classic lights (SR_MAX_LIGHTS
+ * of them, framing_default_lights' rig or the user's) as radiance, and a
+ * hemisphere ambient, a gray sky over a darker ground. */
+#define FRAMING_PBR_LIGHT_SCALE 1.6f
+void framing_pbr_lights(const sr_light *lights, sr_pbr_desc *d);
 
 #endif

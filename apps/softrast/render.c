@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "framing.h"
 #include "render.h"
+#include "render_gltf.h"
 #include "render_options.h"
 #include "render_textures.h"
 #include "scene.h"
@@ -42,6 +43,11 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
+    if (o->pbr && render_gltf_is(o->model)) {
+        /* The physically based look draws glTF's own materials; the
+         * classic models keep the mesh reader's diffuse color and texture. */
+        return render_gltf_load(o->model, ctx, inputs, s);
+    }
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
                                &ob->mesh, &err);
@@ -164,6 +170,27 @@ static bool finite_mat(const sr_mat4 *m)
 static const char *setup_camera(const render_opts *o, scene *s, camera *cam,
                                 float *near_out, float *far_out)
 {
+    if (o->camera_index >= 0) {
+        /* The file's own camera: its matrices as glTF defines them. */
+        float aspect = (float)o->width / (float)o->height;
+        const char *why = render_gltf_camera(s, o->camera_index, aspect, &cam->view, &cam->proj);
+        if (why) {
+            return why;
+        }
+        const float *e = cam->view.m;
+        sr_mat4 inv;
+        sr_mat4_invert(&cam->view, &inv);
+        cam->basis = (sr_camera_basis){ .u = { e[0], e[4], e[8] }, .v = { e[1], e[5], e[9] },
+                                        .w = { e[2], e[6], e[10] },
+                                        .e = { inv.m[12], inv.m[13], inv.m[14] } };
+        /* The near and far planes from the projection (reported by -v). */
+        const float *p = cam->proj.m;
+        bool ortho = p[15] == 1.0f;
+        *near_out = ortho ? (p[14] + 1.0f) / p[10] : p[14] / (p[10] - 1.0f);
+        *far_out = ortho ? (p[14] - 1.0f) / p[10]
+                 : p[10] != -1.0f ? p[14] / (p[10] + 1.0f) : INFINITY;
+        return NULL;
+    }
     sr_vec3 c;
     float r;
     scene_bounds(s, true, &c, &r);
@@ -272,27 +299,110 @@ static uint32_t *sorted_indices(const scene_object *ob, const camera *cam, size_
     return out;
 }
 
+/* The parts of ob in the order to blend them: farthest first by the mean
+ * eye-space depth of their vertices (malloc'd, or NULL when out of memory). */
+static size_t *parts_back_to_front(const scene_object *ob, const camera *cam)
+{
+    size_t n = ob->mesh.part_count;
+    depth_key *keys = malloc((n ? n : 1) * sizeof *keys);
+    size_t *order = malloc((n ? n : 1) * sizeof *order);
+    if (!keys || !order) {
+        free(keys);
+        free(order);
+        return NULL;
+    }
+    sr_mat4 mv = sr_mat4_mul(&cam->view, &ob->model);
+    for (size_t p = 0; p < n; p++) {
+        const sr_mesh_part *part = &ob->mesh.parts[p];
+        double z = 0.0;
+        size_t end = 3 * (part->first_triangle + part->triangle_count);
+        for (size_t i = 3 * part->first_triangle; i < end; i++) {
+            const float *q = &ob->mesh.positions[ob->mesh.indices[i] * 3];
+            z += mv.m[2] * q[0] + mv.m[6] * q[1] + mv.m[10] * q[2] + mv.m[14];
+        }
+        size_t corners = 3 * part->triangle_count;
+        keys[p] = (depth_key){ corners ? (float)(-z / (double)corners) : 0.0f, (uint32_t)p };
+    }
+    qsort(keys, n, sizeof *keys, farther_first);
+    for (size_t p = 0; p < n; p++) {
+        order[p] = keys[p].tri;
+    }
+    free(keys);
+    return order;
+}
+
+static float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+/* The physically based look of a classic material, as glTF viewers read
+ * OBJ materials: its (display-space) color as the base color, white
+ * under a texture or the vertex colors unless --material color= asks,
+ * a dielectric of roughness 0.5 (1 - sqrt(N / 1000) for --material
+ * shininess=N), translucent through BLEND. */
+static sr_pbr_material pbr_material(const render_opts *o, const scene_object *ob,
+                                    const sr_texture *tex)
+{
+    sr_pbr_material m = sr_pbr_default_material();
+    m.metallic = 0.0f;
+    m.roughness = 0.5f;
+    if (o->have_shininess && ob->frame) {
+        m.roughness = 1.0f - sqrtf(fminf(o->shininess, 1000.0f) / 1000.0f);
+    }
+    bool given = o->have_mat_color && ob->frame;
+    bool colored = ob->mesh.colors && ob->material.vertex_color != SR_OFF;
+    for (int c = 0; c < 3 && (given || !(tex || colored)); c++) {
+        m.base_color[c] = srgb_to_linear((&ob->material.diffuse.x)[c]);
+    }
+    m.base_color_texture = (sr_texture_slot){ .texture = tex, .filter = o->texture_filter,
+                                              .wrap_u = o->wrap, .wrap_v = o->wrap,
+                                              .scale = { 1, 1 } };
+    if (translucent(ob)) {
+        m.alpha_mode = SR_ALPHA_BLEND;
+        m.base_color[3] = ob->material.opacity;
+    }
+    m.double_sided = o->cull == SR_CULL_NONE;
+    return m;
+}
+
 /* Opaque objects first, then translucent ones back to front with
  * source-over blending and no depth writes (they still test against the
  * opaque depth). */
-static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
-                            const camera *cam, bool keep_material, uint64_t *tris,
-                            uint64_t *frags)
+static sr_result draw_scene(const render_opts *o, const sr_environment *env, sr_context *ctx,
+                            sr_framebuffer *fb, sr_state *state, scene *s, const camera *cam,
+                            bool keep_material, uint64_t *tris, uint64_t *frags)
 {
+    bool pbr = o->pbr && !keep_material;
     sr_result r = SR_OK;
     for (int pass = 0; pass < 2 && r == SR_OK; pass++) {
         for (int i = 0; i < s->count && r == SR_OK; i++) {
             scene_object *ob = &s->objects[i];
+            bool gltf = ob->part_material && s->gltf;
             bool see_through = !keep_material && translucent(ob);
-            if (see_through != (pass == 1)) {
+            if (!gltf && see_through != (pass == 1)) {
                 continue;
             }
             /* The texture colors the surface, not the line modes' plain
-             * passes; a mesh whose parts take different textures is drawn
-             * part by part (a translucent one sorted within each part). */
-            bool by_part = !keep_material && ob->part_textures;
+             * passes; a mesh whose parts take different textures (or, from
+             * glTF, materials) is drawn part by part (a translucent one
+             * sorted within each part, glTF's BLEND parts back to front). */
+            bool by_part = !keep_material && (ob->part_textures || gltf);
             size_t parts = by_part ? ob->mesh.part_count : 1;
-            for (size_t p = 0; p < parts && r == SR_OK; p++) {
+            size_t *order = gltf && pass == 1 ? parts_back_to_front(ob, cam) : NULL;
+            if (gltf && pass == 1 && !order) {
+                return SR_OUT_OF_MEMORY;
+            }
+            for (size_t k = 0; k < parts && r == SR_OK; k++) {
+                size_t p = order ? order[k] : k;
+                const sr_pbr_material *gm =
+                    gltf && !keep_material ? &s->gltf->materials[ob->part_material[p]] : NULL;
+                if (gltf) {
+                    see_through = gm && gm->alpha_mode == SR_ALPHA_BLEND;
+                    if (see_through != (pass == 1)) {
+                        continue;
+                    }
+                }
                 size_t first = by_part ? ob->mesh.parts[p].first_triangle : 0;
                 size_t count = by_part ? ob->mesh.parts[p].triangle_count
                                        : ob->mesh.triangle_count;
@@ -300,12 +410,24 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                 if (!keep_material) {
                     st.material = ob->material;
                 }
-                st.texture = keep_material ? NULL : by_part ? ob->part_textures[p] : ob->texture;
+                st.texture = keep_material ? NULL
+                           : gm ? gm->base_color_texture.texture
+                           : by_part ? ob->part_textures[p] : ob->texture;
+                if (gm) {
+                    /* The classic models take the base color as it is. */
+                    st.material.diffuse = (sr_vec3){ gm->base_color[0], gm->base_color[1],
+                                                     gm->base_color[2] };
+                }
+                if (gm && gm->double_sided) {
+                    st.cull = SR_CULL_NONE;
+                    st.two_sided = true;
+                }
                 const uint32_t *indices = ob->mesh.indices + 3 * first;
                 uint32_t *sorted = NULL;
                 if (see_through) {
                     sorted = sorted_indices(ob, cam, first, count);
                     if (!sorted) {
+                        free(order);
                         return SR_OUT_OF_MEMORY;
                     }
                     indices = sorted;
@@ -315,6 +437,38 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                                            .src_alpha = SR_BLEND_ONE,
                                            .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA };
                 }
+                sr_pbr *program = NULL;
+                if (pbr) {
+                    sr_pbr_material m = gm ? *gm : pbr_material(o, ob, st.texture);
+                    sr_pbr_desc d = { .material = &m, .model = &ob->model, .view = &cam->view,
+                                      .projection = &cam->proj, .exposure = o->exposure,
+                                      .tonemap = o->tonemap,
+                                      .vertex_color = ob->mesh.colors
+                                                          ? ob->material.vertex_color : SR_OFF,
+                                      .tangents = ob->tangents, .texcoords1 = ob->texcoords1 };
+                    if (ob->tangents || ob->texcoords1) {
+                        d.vertex_count = ob->mesh.vertex_count;
+                    }
+                    framing_pbr_lights(state->lights, &d);
+                    if (env && o->light_count == 0) {
+                        /* The studio is the fill and the rim: of the
+                         * classic rig only the key light stays, for shape. */
+                        for (int l = 1; l < SR_MAX_LIGHTS; l++) {
+                            d.lights[l].type = SR_LIGHT_OFF;
+                        }
+                    }
+                    if (o->have_ambient) {
+                        d.sky = d.ground = o->ambient;
+                    }
+                    d.environment = env;
+                    r = sr_make_pbr_program(ctx, &d, &program);
+                    if (r != SR_OK) {
+                        free(sorted);
+                        free(order);
+                        return r;
+                    }
+                    st.program = sr_pbr_program(program);
+                }
                 r = sr_draw(ctx, fb, &st, &(sr_draw_desc){
                     .positions = ob->mesh.positions, .normals = ob->mesh.normals,
                     .colors = ob->mesh.colors, .color_size = 4,
@@ -322,10 +476,12 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
                     .indices = indices, .index_type = SR_INDEX_U32, .index_count = count * 3,
                     .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
                 free(sorted);
+                sr_destroy_pbr_program(ctx, program);
                 sr_draw_info info = sr_last_draw_info(ctx);
                 *tris += info.triangles_in;
                 *frags += info.fragments;
             }
+            free(order);
         }
     }
     return r;
@@ -335,13 +491,14 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, sr_state *state
  * depth buffer with the model pushed back by polygon offset (factor 1,
  * units 1 unless --polygon-offset says otherwise), so lines on its surface win the LEQUAL test without stitching
  * or z-fighting; hidden-line and points fill with the background color. */
-static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuffer *fb,
+static sr_result draw_passes(const render_opts *o, const sr_environment *env, sr_context *ctx,
+                             sr_framebuffer *fb,
                              const sr_state *base, scene *s, const camera *cam, uint64_t *tris,
                              uint64_t *frags)
 {
     sr_state st = *base;
     if (o->lines == LINES_NONE) {
-        return draw_scene(ctx, fb, &st, s, cam, false, tris, frags);
+        return draw_scene(o, env, ctx, fb, &st, s, cam, false, tris, frags);
     }
     bool light_bg = o->background.x + o->background.y + o->background.z > 1.5f;
     sr_vec3 ink = o->have_line_color ? o->line_color
@@ -354,11 +511,11 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
         fill.offset = (sr_polygon_offset){ .factor = o->offset_factor,
                                            .units = o->offset_units, .fill = true };
         if (o->lines == LINES_EDGES) {
-            r = draw_scene(ctx, fb, &fill, s, cam, false, tris, frags);
+            r = draw_scene(o, env, ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
             fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
-            r = draw_scene(ctx, fb, &fill, s, cam, true, tris, frags);
+            r = draw_scene(o, env, ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
     if (r != SR_OK) {
@@ -380,7 +537,7 @@ static sr_result draw_passes(const render_opts *o, sr_context *ctx, sr_framebuff
     } else {
         lines.depth_func = SR_LEQUAL;
     }
-    return draw_scene(ctx, fb, &lines, s, cam, true, tris, frags);
+    return draw_scene(o, env, ctx, fb, &lines, s, cam, true, tris, frags);
 }
 
 /* ---- render jobs: what `softrast render` and `softrast view` share ------- */
@@ -397,6 +554,7 @@ struct render_job {
     sr_framebuffer *work;   /* the supersampled image (or one with the requested depth
                              * format) when the caller's framebuffer cannot be drawn into */
     cli_inputs inputs;      /* the files read: model, MTL, textures */
+    sr_environment *env;    /* pbr's image-based light, on mesh_ctx; NULL: the hemisphere */
     char error[512];
 };
 
@@ -496,9 +654,32 @@ static int finish_scene(render_job *job)
 {
     render_opts *o = &job->o;
     scene *s = &job->s;
+    size_t vertices = s->objects[0].mesh.vertex_count;
     int status = prepare_normals(o, job->mesh_ctx, s);
     if (status >= 0) {
         return status;
+    }
+    scene_object *first = &s->objects[0];
+    if (first->mesh.vertex_count != vertices) {
+        /* --normals flat split the vertices: the per-vertex extras no
+         * longer match (the normal maps take the derivative frame). */
+        free(first->tangents);
+        free(first->texcoords1);
+        first->tangents = first->texcoords1 = NULL;
+    }
+    if (s->gltf && !first->tangents && first->mesh.texcoords && first->mesh.normals) {
+        /* Normal maps with a primitive that has no tangents: MikkTSpace's
+         * for the whole merged mesh. */
+        bool mapped = false;
+        for (size_t i = 0; i < s->gltf->material_count; i++) {
+            mapped |= s->gltf->materials[i].normal_texture.texture != NULL;
+        }
+        first->tangents = mapped ? malloc(first->mesh.vertex_count * 4 * sizeof(float)) : NULL;
+        if (mapped && (!first->tangents || sr_mesh_compute_tangents(job->mesh_ctx, &first->mesh,
+                                                                    first->tangents) != SR_OK)) {
+            cli_error("%s: computing tangents: %s", o->model, sr_context_error(job->mesh_ctx));
+            return EXIT_FAILURE_RUN;
+        }
     }
     for (int i = 0; i < s->count; i++) {
         scene_object *ob = &s->objects[i];
@@ -566,6 +747,35 @@ static int finish_scene(render_job *job)
     return -1;
 }
 
+/* --environment: the built-in studio, an equirectangular Radiance
+ * picture, or none (the sky-and-ground hemisphere); prefiltered once. */
+static int load_environment(render_job *job)
+{
+    const render_opts *o = &job->o;
+    if (!o->pbr || o->have_ambient || strcmp(o->environment, "none") == 0) {
+        return -1;
+    }
+    sr_environment_desc d = { .intensity = o->environment_intensity };
+    float *px = NULL;
+    if (strcmp(o->environment, "studio") != 0) {
+        sr_io_error err;
+        cli_inputs_add(&job->inputs, o->environment, "environment");
+        sr_result r = sr_read_hdr(o->environment, &d.width, &d.height, &px, &err);
+        if (r != SR_OK) {
+            fprintf(stderr, "%s\n", err.message);
+            return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+        }
+        d.pixels = px;
+    }
+    sr_result r = sr_make_environment(job->mesh_ctx, &d, &job->env);
+    free(px);
+    if (r != SR_OK) {
+        cli_error("%s: %s", o->environment, sr_context_error(job->mesh_ctx));
+        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    return -1;
+}
+
 int render_job_load(render_job *job)
 {
     int status = start_context(job);
@@ -574,6 +784,9 @@ int render_job_load(render_job *job)
     }
     if (status < 0) {
         status = finish_scene(job);
+    }
+    if (status < 0) {
+        status = load_environment(job);
     }
     return status >= 0 ? status : make_context(job);
 }
@@ -725,7 +938,8 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
     if (r == SR_OK) {
-        r = draw_passes(o, ctx, fb, &state, &job->s, &cam, &info->triangles, &info->fragments);
+        r = draw_passes(o, job->env, ctx, fb, &state, &job->s, &cam, &info->triangles,
+                        &info->fragments);
     }
     if (r == SR_OK && fb != out) {
         r = o->msaa > 1 ? sr_resolve(ctx, fb, out) : sr_downsample(ctx, fb, out, o->filter);
@@ -744,6 +958,7 @@ void render_job_free(render_job *job)
         return;
     }
     drop_context(job);
+    sr_destroy_environment(job->mesh_ctx, job->env);
     if (job->have_scene) {
         scene_free(job->mesh_ctx, &job->s);
     }
@@ -839,6 +1054,9 @@ int cmd_render(int argc, char **argv)
     double setup_ms = now_ms() - t_wait;
     if (status < 0) {
         status = finish_scene(job);
+    }
+    if (status < 0) {
+        status = load_environment(job);
     }
     if (status < 0) {
         status = make_context(job);

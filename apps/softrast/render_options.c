@@ -7,12 +7,20 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-static const char *const shading_names[] = { "flat", "gouraud", "phong", "normals", "depth",
-                                             "unlit", NULL };
-static const sr_shading shading_values[] = { SR_SHADING_FLAT, SR_SHADING_GOURAUD, SR_SHADING_PHONG,
-                                             SR_SHADING_NORMALS, SR_SHADING_DEPTH, SR_SHADING_UNLIT };
+/* "pbr" is the metallic-roughness program; the classic models keep its
+ * slot's sr_shading at Phong (per-pixel normals) for what asks. */
+static const char *const shading_names[] = { "pbr", "flat", "gouraud", "phong", "normals",
+                                             "depth", "unlit", NULL };
+static const sr_shading shading_values[] = { SR_SHADING_PHONG, SR_SHADING_FLAT,
+                                             SR_SHADING_GOURAUD, SR_SHADING_PHONG,
+                                             SR_SHADING_NORMALS, SR_SHADING_DEPTH,
+                                             SR_SHADING_UNLIT };
+static const char *const tonemap_names[] = { "neutral", "aces", "none", NULL };
+static const sr_tonemap_op tonemap_values[] = { SR_TONEMAP_PBR_NEUTRAL, SR_TONEMAP_ACES,
+                                                SR_TONEMAP_NONE };
 static const char *const cull_names[] = { "back", "front", "none", NULL };
 static const sr_cull_mode cull_values[] = { SR_CULL_BACK, SR_CULL_FRONT, SR_CULL_NONE };
 static const char *const front_names[] = { "ccw", "cw", NULL };
@@ -52,13 +60,28 @@ static void render_help(void)
         "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
-        "  --shading MODE           flat|gouraud|phong|normals|depth|unlit (default phong)\n"
+        "  --shading MODE           pbr|flat|gouraud|phong|normals|depth|unlit (default\n"
+        "                           pbr: glTF's metallic-roughness model, lit by the\n"
+        "                           lights and a sky-and-ground ambient, tone mapped;\n"
+        "                           the others are the classic Blinn-Phong models)\n"
+        "  --tonemap T              neutral|aces|none, pbr's tone curve: Khronos PBR\n"
+        "                           Neutral, ACES filmic, or a clamp (default neutral)\n"
+        "  --exposure EV            pbr's exposure in stops, -20..20 (default 0)\n"
+        "  --environment E          pbr's ambient light: none (a gray sky over a darker\n"
+        "                           ground, with the key, fill and rim lights; the\n"
+        "                           default), studio (a built-in neutral studio and the\n"
+        "                           key light) or FILE.hdr (an equirectangular Radiance\n"
+        "                           picture, +y up, and the key light); prefiltered once\n"
+        "  --environment-intensity S  its radiance scale, 0.001..1000 (default 0.6)\n"
         "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
         "                           smooth ones, or one per face (default: file if the\n"
         "                           model has them, else smooth)\n"
         "  --material KEY=V,...     color=COLOR, specular=COLOR, shininess=N\n"
-        "                           (default: light gray, specular 0.25, shininess 40)\n"
-        "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14)\n"
+        "                           (default: light gray, specular 0.25, shininess 40;\n"
+        "                           pbr: the color as base color, a dielectric of\n"
+        "                           roughness 0.5, or 1 - sqrt(N/1000) for shininess N)\n"
+        "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14; pbr:\n"
+        "                           uniform COLOR in place of the sky and ground)\n"
         "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
         "                           surfaces are drawn after opaque ones, back to front\n"
         "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
@@ -75,7 +98,8 @@ static void render_help(void)
         "                           one of those that cannot be read is a warning)\n"
         "  --texture-filter F       nearest|bilinear|trilinear (default trilinear)\n"
         "  --wrap MODE              repeat|clamp|mirror (default repeat)\n"
-        "  --texture-srgb           filter texels in linear light (sRGB-correct)\n"
+        "  --texture-srgb           filter texels in linear light (sRGB-correct; always\n"
+        "                           so under pbr)\n"
         "camera:\n"
         "  --camera eye=X,Y,Z[,target=X,Y,Z][,up=X,Y,Z]\n"
         "                           (default: a three-quarter view from above, the\n"
@@ -89,6 +113,8 @@ static void render_help(void)
         "                           and 3D printing use; +y for every other format,\n"
         "                           as glTF specifies, and the built-in teapot)\n"
         "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
+        "  --camera-index N         a glTF file's camera N (0 first, in node order) in\n"
+        "                           place of the default camera (pbr only)\n"
         "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
         "pipeline:\n"
         "  --cull MODE              back|front|none (default back)\n"
@@ -249,7 +275,34 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
                 return EXIT_USAGE;
             }
         } else if (IS("--shading")) {
-            CHOICE(shading_names, o->shading, shading_values[k_]);
+            int sh;
+            CHOICE(shading_names, sh, k_);
+            o->shading = shading_values[sh];
+            o->pbr = sh == 0;
+        } else if (IS("--tonemap")) {
+            CHOICE(tonemap_names, o->tonemap, tonemap_values[k_]);
+        } else if (IS("--camera-index")) {
+            VALUE();
+            char *end = NULL;
+            long n = strtol(value, &end, 10);
+            if (end == value || *end != 0 || n < 0 || n > 1000000) {
+                cli_error("%s: expected a camera number from 0 (got '%s')", arg, value);
+                return EXIT_USAGE;
+            }
+            o->camera_index = (int)n;
+        } else if (IS("--environment")) {
+            VALUE();
+            o->environment = value;
+        } else if (IS("--environment-intensity")) {
+            VALUE();
+            if (!parse_float(arg, value, 0.001f, 1000.0f, &o->environment_intensity)) {
+                return EXIT_USAGE;
+            }
+        } else if (IS("--exposure")) {
+            VALUE();
+            if (!parse_float(arg, value, -20.0f, 20.0f, &o->exposure)) {
+                return EXIT_USAGE;
+            }
         } else if (IS("--cull")) {
             CHOICE(cull_names, o->cull, cull_values[k_]);
         } else if (IS("--front-face")) {
@@ -443,6 +496,8 @@ render_opts render_opts_defaults(void)
 {
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
+        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "none",
+        .environment_intensity = 0.6f, .camera_index = -1,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,

@@ -15,7 +15,13 @@ typedef struct render_opts {
     sr_texture_wrap wrap;
     bool texture_srgb;
     int width, height;
-    sr_shading shading;
+    sr_shading shading;            /* the classic model, or Phong under pbr */
+    bool pbr;                      /* --shading pbr: the metallic-roughness program */
+    sr_tonemap_op tonemap;         /* pbr's tone curve */
+    float exposure;                /* pbr's exposure, EV */
+    const char *environment;       /* "studio", "none" or an .hdr file */
+    float environment_intensity;
+    int camera_index;              /* --camera-index: a glTF camera, or -1 */
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;

@@ -23,7 +23,7 @@ static int upload_texture(const render_opts *o, sr_context *ctx, const char *nam
                           uint8_t *px, sr_texture **out)
 {
     sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = px,
-                                                            .srgb = o->texture_srgb },
+                                                            .srgb = o->texture_srgb || o->pbr },
                                   out);
     free(px);
     if (r != SR_OK) {

@@ -1,6 +1,7 @@
 /* scene.c - the built-in scene: the Utah teapot, tessellated at run time
  * from its Bezier patches, on a checkered ground plane. */
 #include "scene.h"
+#include "softrast_io.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -111,7 +112,14 @@ void scene_free(sr_context *ctx, scene *s)
 {
     for (int i = 0; i < s->count; i++) {
         sr_destroy_mesh(ctx, &s->objects[i].mesh);
+        free(s->objects[i].part_material);
+        free(s->objects[i].tangents);
+        free(s->objects[i].texcoords1);
+        s->objects[i].part_material = NULL;
+        s->objects[i].tangents = s->objects[i].texcoords1 = NULL;
     }
+    sr_destroy_scene(ctx, s->gltf);
+    s->gltf = NULL;
     s->count = 0;
 }
 

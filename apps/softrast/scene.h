@@ -21,11 +21,17 @@ typedef struct scene_object {
     sr_texture **part_textures;
     sr_texture **owned;
     size_t owned_count;
+    /* A glTF scene merged into this object (render_gltf.c): each part is
+     * a primitive, in world space, with its material in scene.gltf. */
+    int *part_material;            /* mesh.part_count entries (malloc'd), or NULL */
+    float *tangents, *texcoords1;  /* 4 and 2 a vertex (malloc'd), or NULL */
 } scene_object;
 
 typedef struct scene {
     scene_object objects[SCENE_MAX_OBJECTS];
     int count;
+    struct sr_scene *gltf;         /* the glTF file's scene (materials, textures,
+                                    * cameras), on the mesh context, or NULL */
     /* scene_cache_bounds: the two spheres of scene_bounds, kept once the
      * objects and their matrices are final ([0] framed only, [1] all). */
     bool bounds_cached;

@@ -11,8 +11,9 @@
 /* choices[0] is render's default, except for antialiasing: the viewer
  * starts without it, for speed, where render's default is msaa4. */
 const view_mode view_modes[] = {
-    { 'm', "shading", { { "phong", "--shading=phong" }, { "flat", "--shading=flat" },
-                        { "gouraud", "--shading=gouraud" }, { "normals", "--shading=normals" },
+    { 'm', "shading", { { "pbr", "--shading=pbr" }, { "flat", "--shading=flat" },
+                        { "gouraud", "--shading=gouraud" }, { "phong", "--shading=phong" },
+                        { "normals", "--shading=normals" },
                         { "depth", "--shading=depth" }, { "unlit", "--shading=unlit" } } },
     { 'w', "lines", { { "filled", NULL }, { "wireframe", "--wireframe" },
                       { "hidden-line", "--hidden-line" }, { "edges", "--edges" },

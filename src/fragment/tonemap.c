@@ -5,10 +5,12 @@
  * its own, so the bytes do not depend on the thread count.
  */
 #include "context.h"
+#include "fragment/tonemap.h"
 #include "parallel/pool.h"
 
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <string.h>
 
 #define MAX_EXPOSURE 64.0f      /* EV either way: 2^64 keeps every float finite or flushed */
@@ -83,7 +85,7 @@ static float sanitize(float v)
     return v > 0.0f ? fminf(v, FLT_MAX) : 0.0f;
 }
 
-static void tone_curve(sr_tonemap_op op, const float in[3], float out[3])
+void sr__tone_curve(sr_tonemap_op op, const float in[3], float out[3])
 {
     float c[3] = { sanitize(in[0]), sanitize(in[1]), sanitize(in[2]) };
     switch (op) {
@@ -106,7 +108,7 @@ sr_result sr_tonemap_rgb(sr_tonemap_op op, const float in[3], float out[3])
     if (!in || !out || (unsigned)op > SR_TONEMAP_NONE) {
         return SR_INVALID_ARG;
     }
-    tone_curve(op, in, out);
+    sr__tone_curve(op, in, out);
     return SR_OK;
 }
 
@@ -126,22 +128,7 @@ static int srgb_code_exact(double x)
     return (int)floor(s * 255.0 + 0.5);
 }
 
-/* step[k]: the smallest float whose code is above k, found from the
- * inverse OETF and nudged by ulps until the formula agrees.  first[i]:
- * the code of the smallest float whose bits, shifted right by
- * BUCKET_SHIFT, are i.  A bucket spans 1/128 of an octave, over which the
- * code rises by less than one, so the code of x is first[bucket] plus at
- * most one step - equal to srgb_code_exact for every float, without a pow
- * per channel. */
-#define BUCKET_SHIFT 16
-#define BUCKETS      ((0x3F800000u >> BUCKET_SHIFT) + 1) /* up to 1.0f */
-
-typedef struct srgb_table {
-    float step[255];
-    uint8_t first[BUCKETS];
-} srgb_table;
-
-static void srgb_table_init(srgb_table *t)
+void sr__srgb_table_init(srgb_table *t)
 {
     for (int k = 0; k < 255; k++) {
         double s = (k + 0.5) / 255.0;
@@ -156,8 +143,8 @@ static void srgb_table_init(srgb_table *t)
         t->step[k] = f;
     }
     int code = 0;
-    for (uint32_t i = 0; i < BUCKETS; i++) {
-        uint32_t bits = i << BUCKET_SHIFT;
+    for (uint32_t i = 0; i < SR_SRGB_BUCKETS; i++) {
+        uint32_t bits = i << SR_SRGB_BUCKET_SHIFT;
         float x;
         memcpy(&x, &bits, sizeof x);
         while (code < 255 && x >= t->step[code]) {
@@ -167,19 +154,18 @@ static void srgb_table_init(srgb_table *t)
     }
 }
 
-static uint8_t srgb_code(const srgb_table *t, float x)
+static srgb_table shared_table;
+static pthread_once_t shared_once = PTHREAD_ONCE_INIT;
+
+static void shared_table_init(void)
 {
-    if (!(x > 0.0f)) {
-        return 0;
-    }
-    if (x >= 1.0f) {
-        return 255;
-    }
-    uint32_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    int code = t->first[bits >> BUCKET_SHIFT];
-    code += code < 255 && x >= t->step[code];
-    return (uint8_t)code;
+    sr__srgb_table_init(&shared_table);
+}
+
+const srgb_table *sr__srgb_table(void)
+{
+    pthread_once(&shared_once, shared_table_init);
+    return &shared_table;
 }
 
 uint8_t sr_srgb_encode8(float linear)
@@ -210,9 +196,9 @@ static void tonemap_band(void *arg, int job, int thread)
         uint8_t *d = j->dst + (size_t)y * j->out_stride;
         for (int x = 0; x < j->width; x++, s += j->channels, d += 4) {
             float c[3] = { s[0] * j->scale, s[1] * j->scale, s[2] * j->scale }, m[3];
-            tone_curve(j->op, c, m);
+            sr__tone_curve(j->op, c, m);
             for (int i = 0; i < 3; i++) {
-                d[i] = srgb_code(&j->srgb, m[i]);
+                d[i] = sr__srgb_code(&j->srgb, m[i]);
             }
             /* Alpha is coverage, not light: clamped and scaled, not encoded. */
             float a = j->channels == 4 ? s[3] : 1.0f;
@@ -284,7 +270,7 @@ sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height
         .scale = (float)exp2((double)d.exposure),
         .op = d.op == SR_TONEMAP_DEFAULT ? SR_TONEMAP_PBR_NEUTRAL : d.op,
     };
-    srgb_table_init(&j->srgb);
+    sr__srgb_table_init(&j->srgb);
     sr__pool_run(ctx->pool, tonemap_band, j, (height + BAND_ROWS - 1) / BAND_ROWS);
     sr__free(ctx, j);
     sr__ok(ctx);

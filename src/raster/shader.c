@@ -11,6 +11,7 @@
  * as the GL order of operations says. */
 #include "fragment/msaa_ops.h"
 #include "raster/msaa_walk.h"
+#include "simd_types.h"
 
 #include <string.h>
 
@@ -21,27 +22,42 @@ typedef struct quad_job {
     bool early;                   /* tests before shading */
     int64_t so[16][3];            /* sample offsets of the edge values */
     int64_t bias[3];              /* the edges' top-left bias */
+    int64_t reach[3];             /* bias plus the largest sample offset: an edge value
+                                   * below -reach at a pixel centre covers none of its samples */
     float inv_area;               /* for screen-space (noperspective) weights */
 } quad_job;
 
-/* Varyings and depth of lane i from its unbiased centre values u. */
-static void interpolate_lane(const quad_job *j, const int64_t u[3], int i, sr_fragment_quad *q)
+/* Varyings and depth of the four lanes from their unbiased centre
+ * values u: sr__bary and sr__interp with the lanes in vectors - the same
+ * operations in the same order, so the same bits as one lane at a time. */
+static void interpolate_quad(const quad_job *j, const int64_t u[4][3], sr_fragment_quad *q)
 {
     const sr_draw_state *ds = j->ds;
     const sr_tri *t = j->t;
-    float l[3], ls[3];
-    sr__bary(ds, t, u[0], u[1], u[2], l);
-    if (ds->noperspective_mask) {
-        ls[0] = (float)u[0] * j->inv_area;
-        ls[1] = (float)u[1] * j->inv_area;
-        ls[2] = (float)u[2] * j->inv_area;
+    v4f e[3];
+    for (int k = 0; k < 3; k++) {
+        e[k] = (v4f){ (float)u[0][k], (float)u[1][k], (float)u[2][k], (float)u[3][k] };
     }
-    for (int k = 0; k < t->ninterp; k++) {
-        q->varyings[k][i] = sr__interp(t, (ds->noperspective_mask >> k) & 1 ? ls : l, k);
+    v4f q0 = e[0] * t->w[0], q1 = e[1] * t->w[1], q2 = e[2] * t->w[2];
+    v4f sum = q0 + q1 + q2;
+    /* 1 / sum, and 0 where the sum is 0 (divided as 1 there). */
+    v4i nonzero = sum != 0.0f;
+    v4f divisor = (v4f)((nonzero & (v4i)sum) | (~nonzero & (v4i)(v4f){ 1, 1, 1, 1 }));
+    v4f inv = (v4f)(nonzero & (v4i)(1.0f / divisor));
+    v4f l1 = q1 * inv, l2 = q2 * inv;
+    v4f s1 = e[1] * j->inv_area, s2 = e[2] * j->inv_area;
+    int n = t->ninterp;
+    for (int k = 0; k < n; k++) {
+        bool linear = (ds->noperspective_mask >> k) & 1;
+        v4f a = linear ? s1 : l1, b = linear ? s2 : l2;
+        v4f r = t->vary[k] + a * t->vary[n + k] + b * t->vary[2 * n + k];
+        memcpy(q->varyings[k], &r, sizeof r);
     }
-    double z = sr__tri_depth(t, u[1], u[2]);
-    (void)sr__quantize_depth(ds, &z);
-    q->z[i] = (float)(z / ds->depth_scale);
+    for (int i = 0; i < 4; i++) {
+        double z = sr__tri_depth(t, u[i][1], u[i][2]);
+        (void)sr__quantize_depth(ds, &z);
+        q->z[i] = (float)(z / ds->depth_scale);
+    }
 }
 
 static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, const int rect[4])
@@ -51,6 +67,18 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     const sr_tri *t = j->t;
     int n = ds->samples;
     unsigned all = (1u << n) - 1u;
+    /* Most quads of a small triangle's blocks hold none of it: the edge
+     * values are linear, so the largest over the four lane centres is at
+     * one corner, and a quad beyond any edge's reach is skipped before
+     * its samples are tested (the same coverage, found sooner). */
+    for (int e = 0; e < 3; e++) {
+        int64_t best = u00[e] + j->reach[e] +
+                       ((int64_t)(t->a[e] > 0 ? t->a[e] : 0) + (t->b[e] > 0 ? t->b[e] : 0)) *
+                           SR_SUBPIXEL_ONE;
+        if (best < 0) {
+            return;
+        }
+    }
     int64_t u[4][3];
     unsigned cover[4] = { 0, 0, 0, 0 }, live = 0;
     for (int i = 0; i < 4; i++) {
@@ -64,7 +92,10 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
         unsigned m = all;
         if (!inside) {
             m = 0;
-            for (int s = 0; s < n; s++) {
+            /* A lane beyond an edge's reach covers none of its samples. */
+            bool beyond = ((u[i][0] + j->reach[0]) | (u[i][1] + j->reach[1]) |
+                           (u[i][2] + j->reach[2])) < 0;
+            for (int s = 0; s < n && !beyond; s++) {
                 if (((u[i][0] + j->so[s][0] + j->bias[0]) | (u[i][1] + j->so[s][1] + j->bias[1]) |
                      (u[i][2] + j->so[s][2] + j->bias[2])) >= 0) {
                     m |= 1u << s;
@@ -92,8 +123,8 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     q.y = qy;
     q.front = t->front;
     q.discard = 0;
+    interpolate_quad(j, (const int64_t(*)[3])u, &q);
     for (int i = 0; i < 4; i++) {
-        interpolate_lane(j, u[i], i, &q);
         q.color[0][i] = q.color[1][i] = q.color[2][i] = 0.0f;
         q.color[3][i] = 1.0f;
     }
@@ -130,10 +161,17 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     sr__tri_edges(t, &ed);
     j.inv_area = 1.0f / (float)(ed.c[0] + ed.c[1] + ed.c[2]);   /* area2 */
     memcpy(j.bias, ed.bias, sizeof j.bias);
+    for (int i = 0; i < 3; i++) {
+        j.reach[i] = INT64_MIN;
+    }
     for (int s = 0; s < ds->samples; s++) {
         for (int i = 0; i < 3; i++) {
             j.so[s][i] = (int64_t)t->a[i] * ds->sample_off[s][0] + (int64_t)t->b[i] * ds->sample_off[s][1];
+            j.reach[i] = j.so[s][i] > j.reach[i] ? j.so[s][i] : j.reach[i];
         }
+    }
+    for (int i = 0; i < 3; i++) {
+        j.reach[i] += j.bias[i];
     }
     sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);
 }

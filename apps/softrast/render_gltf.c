@@ -1,0 +1,175 @@
+/* render_gltf.c - a glTF file for `softrast render`: sr_load_scene's
+ * primitives merged into one scene object in world space, a part per
+ * primitive with its material (so the framing, --up and --turn treat the
+ * file as one model), and the file's cameras for --camera-index. */
+#include "cli.h"
+#include "render_gltf.h"
+#include "softrast_io.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+bool render_gltf_is(const char *path)
+{
+    const char *dot = path ? strrchr(path, '.') : NULL;
+    return dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
+}
+
+static void warn_line(void *user, const char *message)
+{
+    (void)user;
+    fprintf(stderr, "softrast: warning: %s\n", message);
+}
+
+static void note_file(void *inputs, const char *path)
+{
+    cli_inputs_add(inputs, path, "glTF resource");
+}
+
+/* p's world matrix applied to a point (w = 1) or, with the normal matrix,
+ * to a direction. */
+static void transform(const float *m, const float *p, float w, float out[3])
+{
+    for (int k = 0; k < 3; k++) {
+        out[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k] * w;
+    }
+}
+
+/* Every primitive's arrays, moved to world space, one after the other;
+ * a mirrored primitive's triangles turned back to counter-clockwise. */
+static bool merge(const sr_scene *sc, sr_mesh *m, sr_mesh_part *parts, scene_object *ob)
+{
+    bool normals = true, tangents = true, uv0 = false, uv1 = false, colors = false;
+    size_t nv = 0, nt = 0;
+    for (size_t i = 0; i < sc->primitive_count; i++) {
+        const sr_scene_primitive *p = &sc->primitives[i];
+        normals &= p->normals != NULL;
+        tangents &= p->tangents != NULL;
+        uv0 |= p->texcoords0 != NULL;
+        uv1 |= p->texcoords1 != NULL;
+        colors |= p->colors != NULL;
+        nv += p->vertex_count;
+        nt += p->triangle_count;
+    }
+    m->vertex_count = nv;
+    m->triangle_count = nt;
+    m->positions = malloc((nv ? nv : 1) * 3 * sizeof(float));
+    m->normals = normals ? malloc((nv ? nv : 1) * 3 * sizeof(float)) : NULL;
+    m->texcoords = uv0 ? calloc(nv ? nv : 1, 2 * sizeof(float)) : NULL;
+    m->colors = colors ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
+    m->indices = malloc((nt ? nt : 1) * 3 * sizeof(uint32_t));
+    ob->tangents = tangents && uv0 ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
+    ob->texcoords1 = uv1 ? calloc(nv ? nv : 1, 2 * sizeof(float)) : NULL;
+    ob->part_material = malloc((sc->primitive_count ? sc->primitive_count : 1) * sizeof(int));
+    if (!m->positions || (normals && !m->normals) || (uv0 && !m->texcoords) ||
+        (colors && !m->colors) || !m->indices || (tangents && uv0 && !ob->tangents) ||
+        (uv1 && !ob->texcoords1) || !ob->part_material) {
+        return false;
+    }
+    size_t v0 = 0, t0 = 0;
+    for (size_t i = 0; i < sc->primitive_count; i++) {
+        const sr_scene_primitive *p = &sc->primitives[i];
+        sr_mat4 world, nm;
+        memcpy(world.m, p->world, sizeof world.m);
+        if (!sr_normal_matrix(&world, &nm)) {
+            nm = world;
+        }
+        for (size_t v = 0; v < p->vertex_count; v++) {
+            size_t o = v0 + v;
+            transform(world.m, &p->positions[3 * v], 1.0f, &m->positions[3 * o]);
+            if (m->normals) {
+                transform(nm.m, &p->normals[3 * v], 0.0f, &m->normals[3 * o]);
+            }
+            if (ob->tangents) {
+                transform(world.m, &p->tangents[4 * v], 0.0f, &ob->tangents[4 * o]);
+                ob->tangents[4 * o + 3] = p->tangents[4 * v + 3];
+            }
+            if (p->texcoords0) {
+                memcpy(&m->texcoords[2 * o], &p->texcoords0[2 * v], 2 * sizeof(float));
+            }
+            if (p->texcoords1) {
+                memcpy(&ob->texcoords1[2 * o], &p->texcoords1[2 * v], 2 * sizeof(float));
+            }
+            if (m->colors) {
+                static const float white[4] = { 1, 1, 1, 1 };
+                memcpy(&m->colors[4 * o], p->colors ? &p->colors[4 * v] : white, sizeof white);
+            }
+        }
+        for (size_t t = 0; t < p->triangle_count; t++) {
+            uint32_t *dst = &m->indices[3 * (t0 + t)];
+            const uint32_t *src = &p->indices[3 * t];
+            /* A mirrored world matrix flips the winding: swap two corners. */
+            dst[0] = (uint32_t)v0 + src[0];
+            dst[1] = (uint32_t)v0 + src[p->mirrored ? 2 : 1];
+            dst[2] = (uint32_t)v0 + src[p->mirrored ? 1 : 2];
+        }
+        parts[i] = (sr_mesh_part){ .first_triangle = t0, .triangle_count = p->triangle_count };
+        ob->part_material[i] = p->material;
+        v0 += p->vertex_count;
+        t0 += p->triangle_count;
+    }
+    m->parts = parts;
+    m->part_count = sc->primitive_count;
+    return true;
+}
+
+int render_gltf_load(const char *path, sr_context *ctx, cli_inputs *inputs, scene *s)
+{
+    scene_object *ob = &s->objects[0];
+    sr_io_error err;
+    sr_scene *sc = NULL;
+    sr_result r = sr_load_scene(ctx, path,
+                                &(sr_load_desc){ .format = SR_FORMAT_GLTF, .file_read = note_file,
+                                                 .user = inputs, .warn = warn_line },
+                                &sc, &err);
+    if (r != SR_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    s->gltf = sc;
+    if (sc->primitive_count == 0 || sc->primitive_count > UINT32_MAX) {
+        cli_error("%s: the scene has no triangles to draw", path);
+        return EXIT_USAGE;
+    }
+    sr_mesh merged = { 0 };
+    sr_mesh_part *parts = calloc(sc->primitive_count, sizeof *parts);
+    bool ok = parts && merge(sc, &merged, parts, ob);
+    if (ok) {
+        r = sr_make_mesh(ctx, &merged, &ob->mesh);
+    }
+    free(merged.positions);
+    free(merged.normals);
+    free(merged.texcoords);
+    free(merged.colors);
+    free(merged.indices);
+    free(parts);
+    if (!ok || r != SR_OK) {
+        cli_error("%s: %s", path, ok ? sr_context_error(ctx) : "out of memory");
+        return EXIT_FAILURE_RUN;
+    }
+    s->count = 1;
+    ob->model = sr_mat4_identity();
+    ob->frame = true;
+    ob->material = (sr_material){ .diffuse = { 1, 1, 1 } };
+    return -1;
+}
+
+const char *render_gltf_camera(const scene *s, int index, float aspect, sr_mat4 *view,
+                               sr_mat4 *projection)
+{
+    static char why[160];
+    size_t n = s->gltf ? s->gltf->camera_count : 0;
+    if ((size_t)index >= n) {
+        snprintf(why, sizeof why, "--camera-index %d: the model has %zu camera%s", index, n,
+                 n == 1 ? "" : "s");
+        return why;
+    }
+    if (sr_scene_camera_matrices(&s->gltf->cameras[index], aspect, view, projection) != SR_OK) {
+        snprintf(why, sizeof why, "--camera-index %d: the camera's matrices are degenerate",
+                 index);
+        return why;
+    }
+    return NULL;
+}

@@ -1,0 +1,21 @@
+/* render_gltf.h - glTF files for the render job (render_gltf.c). */
+#ifndef SR_RENDER_GLTF_H
+#define SR_RENDER_GLTF_H
+
+#include "cli.h"
+#include "scene.h"
+
+#include <stdbool.h>
+
+/* Whether path names a glTF file (.gltf or .glb), which sr_load_scene reads. */
+bool render_gltf_is(const char *path);
+/* Reads the file into s (one object, a part per primitive, s->gltf kept
+ * for the materials and cameras) on ctx.  Returns an exit status after
+ * one line, or -1. */
+int render_gltf_load(const char *path, sr_context *ctx, cli_inputs *inputs, scene *s);
+/* The view and projection of the file's camera `index` for `aspect`, or
+ * why there is none (a message for the user). */
+const char *render_gltf_camera(const scene *s, int index, float aspect, sr_mat4 *view,
+                               sr_mat4 *projection);
+
+#endif

@@ -1,0 +1,1019 @@
+/* pbr.c - glTF's metallic-roughness material as a program (fragment
+ * stage): the vertex shader moves positions, normals and tangents to world
+ * space, the fragment shader lights a 2x2 quad with Appendix B of the glTF
+ * specification and writes tone-mapped, sRGB-encoded colors.
+ *
+ * The uniforms are resolved once (sr_make_pbr_program) and read-only
+ * after, so every tile worker shades with them at once.  Per-fragment math
+ * runs as loops over the quad's four lanes, one array per quantity, so the
+ * compiler turns each loop into vector instructions; texture fetches and
+ * the tone curve stay per lane. */
+#include "context.h"
+#include "fragment/light_lanes.h"
+#include "fragment/texture.h"
+#include "fragment/tonemap.h"
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#define PI_F          3.14159265358979f
+#define MIN_ROUGHNESS 0.05f     /* a perfect mirror has no highlight from a point light */
+#define MAX_EXPOSURE  64.0f
+
+/* min and max as comparisons: one instruction each, where fminf and
+ * fmaxf are library calls that stop the lane loops from vectorizing. */
+static inline float min_f(float a, float b)
+{
+    return a < b ? a : b;
+}
+
+static inline float max_f(float a, float b)
+{
+    return a > b ? a : b;
+}
+
+static inline float clamp01(float a)
+{
+    return min_f(max_f(a, 0.0f), 1.0f);
+}
+
+static inline v4f load(const float a[4])
+{
+    v4f v;
+    memcpy(&v, a, sizeof v);
+    return v;
+}
+
+static inline void store(float a[4], v4f v)
+{
+    memcpy(a, &v, sizeof v);
+}
+
+static inline void load3(v4f v[3], const float a[][4])
+{
+    for (int k = 0; k < 3; k++) {
+        v[k] = load(a[k]);
+    }
+}
+
+static inline v4f dot3(const v4f a[3], const v4f b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static inline v4f vmin(v4f a, v4f b)
+{
+    return sr__v4_sel(a < b, a, b);
+}
+
+static inline v4f vmax(v4f a, v4f b)
+{
+    return sr__v4_sel(a > b, a, b);
+}
+
+/* 1 / sqrt(x) and 1 / x, correctly rounded (sqrtps, divps): the SSE
+ * estimates would be quicker but differ between CPU vendors, and the same
+ * scene must give the same bytes on every machine. */
+static inline v4f rsqrt_nr(v4f x)
+{
+    return 1.0f / sr__v4_sqrt(x);
+}
+
+static inline v4f rcp_nr(v4f x)
+{
+    return 1.0f / x;
+}
+
+/* NaN goes to lo. */
+static inline v4f vclamp(v4f a, float lo, float hi)
+{
+    return vmin(vmax(a, lo - (v4f){ 0 }), hi - (v4f){ 0 });
+}
+
+/* 2^x for x <= 0 within 2e-4 relative (the split-sum fit it feeds is
+ * itself a fit): the integer part into the exponent bits, a cubic for
+ * the fraction. */
+static inline v4f exp2_approx(v4f x)
+{
+    x = vmax(x, -126.0f - (v4f){ 0 });
+    v4i xi = __builtin_convertvector(x, v4i);     /* towards zero: x <= 0 */
+    v4f fl = __builtin_convertvector(xi, v4f);
+    v4i below = fl > x;
+    fl = sr__v4_sel(below, fl - 1.0f, fl);
+    xi += below;                                  /* true is -1 */
+    v4f f = x - fl;
+    v4f poly = 1.0f + f * (0.6951786f + f * (0.2261354f + f * 0.0786338f));
+    return poly * (v4f)((xi + 127) << 23);
+}
+
+/* An octahedral map (Engelhardt and Dachsbacher; Cigolle et al. 2014):
+ * directions onto the unit square through the octahedron |x|+|y|+|z| = 1,
+ * the lower half folded over the upper; no trigonometry either way. */
+#define OCT_SIZE 64
+#define OCT_IRR_SIZE 16           /* irradiance is 9 spherical harmonics: smooth */
+#define OCT_MIN_ROUGHNESS 0.35f   /* below it the map's texels blur the lobe */
+
+static void oct_decode(float u, float v, float d[3])
+{
+    float px = 2.0f * u - 1.0f, py = 2.0f * v - 1.0f;
+    float y = 1.0f - fabsf(px) - fabsf(py);
+    if (y < 0.0f) {
+        float ax = fabsf(px), ay = fabsf(py);
+        px = (1.0f - ay) * (px >= 0.0f ? 1.0f : -1.0f);
+        py = (1.0f - ax) * (py >= 0.0f ? 1.0f : -1.0f);
+    }
+    d[0] = px;
+    d[1] = y;
+    d[2] = py;
+}
+
+static inline v4f vabs(v4f x)
+{
+    return (v4f)((v4i)x & 0x7fffffff);
+}
+
+/* +1 where x >= 0, else -1. */
+static inline v4f vsign(v4f x)
+{
+    return sr__v4_sel(x >= 0.0f, (v4f){ 1, 1, 1, 1 }, (v4f){ -1, -1, -1, -1 });
+}
+
+/* Four directions d (any length > 0) looked up bilinearly on an n x n
+ * octahedral map of RGBA texels, clamped to its edge texels: the mapping
+ * and the weights in vectors, one 4-float load per texel and lane. */
+static void oct_lookup4(const float *map, int n, const v4f d[3], v4f out[3])
+{
+    v4f l1 = vabs(d[0]) + vabs(d[1]) + vabs(d[2]);
+    v4f s = 1.0f / vmax(l1, 1e-30f - (v4f){ 0 });
+    v4f px = d[0] * s, pz = d[2] * s;               /* +y is up: fold along y */
+    v4i lower = d[1] < 0.0f;
+    v4f fx_ = (1.0f - vabs(pz)) * vsign(d[0]), fz_ = (1.0f - vabs(px)) * vsign(d[2]);
+    px = sr__v4_sel(lower, fx_, px);
+    pz = sr__v4_sel(lower, fz_, pz);
+    v4f top = (v4f){ 0 } + (float)(n - 1);
+    v4f fx = vmin(vmax((px * 0.5f + 0.5f) * (float)n - 0.5f, (v4f){ 0 }), top);
+    v4f fy = vmin(vmax((pz * 0.5f + 0.5f) * (float)n - 0.5f, (v4f){ 0 }), top);
+    v4i x0 = __builtin_convertvector(fx, v4i), y0 = __builtin_convertvector(fy, v4i);
+    v4f ax = fx - __builtin_convertvector(x0, v4f), ay = fy - __builtin_convertvector(y0, v4f);
+    for (int i = 0; i < 4; i++) {
+        int x1 = x0[i] + 1 < n ? x0[i] + 1 : x0[i], y1 = y0[i] + 1 < n ? y0[i] + 1 : y0[i];
+        v4f t00 = load(&map[4 * (y0[i] * n + x0[i])]), t10 = load(&map[4 * (y0[i] * n + x1)]);
+        v4f t01 = load(&map[4 * (y1 * n + x0[i])]), t11 = load(&map[4 * (y1 * n + x1)]);
+        v4f upper = t00 + (t10 - t00) * ax[i], lower_row = t01 + (t11 - t01) * ax[i];
+        v4f c = upper + (lower_row - upper) * ay[i];
+        out[0][i] = c[0];
+        out[1][i] = c[1];
+        out[2][i] = c[2];
+    }
+}
+
+/* An n x n octahedral map of RGBA texels from query(env, direction, r). */
+static float *oct_build(sr_context *ctx, const sr_environment *env, int n, float roughness,
+                        bool specular)
+{
+    float *map = sr__alloc(ctx, (size_t)n * (size_t)n * 4 * sizeof(float));
+    if (!map) {
+        return NULL;
+    }
+    for (int y = 0; y < n; y++) {
+        for (int x = 0; x < n; x++) {
+            float d[3], *t = &map[4 * (y * n + x)];
+            oct_decode(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n, d);
+            if (specular) {
+                sr_environment_specular(env, d, roughness, t);
+            } else {
+                sr_environment_irradiance(env, d, t);
+            }
+            t[3] = 0.0f;
+        }
+    }
+    return map;
+}
+
+enum { SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE, SLOT_COUNT };
+
+/* Varyings 0..2 world position, 3..5 world normal; the rest as needed. */
+enum { VARY_POS = 0, VARY_NORMAL = 3, VARY_FIXED = 6 };
+
+typedef struct pbr_slot {
+    const sr_texture *tex;        /* NULL: empty */
+    sr_texture_filter filter;
+    sr_texture_wrap wu, wv;
+    int vary;                     /* varying index of its texcoords */
+    /* KHR_texture_transform moved into sr_texture's frame (v up):
+     * u' = xf[0] s + xf[1] t + xf[2], v' = xf[3] s + xf[4] t + xf[5]. */
+    float xf[6];
+} pbr_slot;
+
+struct sr_pbr {
+    sr_program program;
+    sr_pbr_material m;
+    pbr_slot slot[SLOT_COUNT];
+    sr_mat4 model, view_projection;
+    float normal_matrix[9];       /* row-major 3x3: inverse transpose of the model's */
+    float eye[3];                 /* the camera's world position */
+    int nlights;
+    float light_vec[SR_MAX_LIGHTS][3];  /* directional: unit vector to the light; point: position */
+    float light_rad[SR_MAX_LIGHTS][3];
+    bool light_point[SR_MAX_LIGHTS];
+    bool ambient;
+    float sky[3], ground[3];
+    const sr_environment *environment;  /* replaces the hemisphere when set */
+    /* The environment's prefiltered radiance at the material's one
+     * roughness on an octahedral map (OCT_SIZE^2 RGB), or NULL: queried
+     * per fragment instead. */
+    float *oct;
+    float *oct_irr;               /* its irradiance, OCT_IRR_SIZE^2 RGB */
+    const sr_shadow_map *shadow;        /* darkens lights[0] when set */
+    float scale;                  /* 2^exposure */
+    sr_tonemap_op tonemap;
+    const srgb_table *srgb;
+    int vary_uv[2], vary_color, vary_tangent;   /* -1: absent */
+    size_t vertex_count;
+    const uint8_t *tangents, *texcoords1;
+    size_t tangent_stride, texcoord1_stride;
+};
+
+sr_pbr_material sr_pbr_default_material(void)
+{
+    sr_pbr_material m = {
+        .base_color = { 1, 1, 1, 1 },
+        .metallic = 1.0f,
+        .roughness = 1.0f,
+        .normal_scale = 1.0f,
+        .occlusion_strength = 1.0f,
+        .emissive_strength = 1.0f,
+        .alpha_cutoff = 0.5f,
+    };
+    sr_texture_slot *slots[] = { &m.base_color_texture, &m.metallic_roughness_texture,
+                                 &m.normal_texture, &m.occlusion_texture, &m.emissive_texture };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        slots[i]->scale[0] = slots[i]->scale[1] = 1.0f;
+    }
+    return m;
+}
+
+/* ---- vertex shader ------------------------------------------------------ */
+
+static void pbr_vs(const void *uniforms, const sr_vertex_input *in, float clip[4], float *vary)
+{
+    const sr_pbr *p = uniforms;
+    const float *m = p->model.m;
+    const float *pos = in->position;
+    float w[4];
+    for (int r = 0; r < 4; r++) {
+        w[r] = m[r] * pos[0] + m[4 + r] * pos[1] + m[8 + r] * pos[2] + m[12 + r] * pos[3];
+    }
+    const float *vp = p->view_projection.m;
+    for (int r = 0; r < 4; r++) {
+        clip[r] = vp[r] * w[0] + vp[4 + r] * w[1] + vp[8 + r] * w[2] + vp[12 + r] * w[3];
+    }
+    float iw = w[3] != 0.0f ? 1.0f / w[3] : 1.0f;
+    const float *nm = p->normal_matrix;
+    for (int r = 0; r < 3; r++) {
+        vary[VARY_POS + r] = w[r] * iw;
+        vary[VARY_NORMAL + r] =
+            nm[3 * r] * in->normal[0] + nm[3 * r + 1] * in->normal[1] +
+            nm[3 * r + 2] * in->normal[2];
+    }
+    bool inside = in->index < p->vertex_count;
+    if (p->vary_uv[0] >= 0) {
+        vary[p->vary_uv[0]] = in->texcoord[0];
+        vary[p->vary_uv[0] + 1] = in->texcoord[1];
+    }
+    if (p->vary_uv[1] >= 0) {
+        const float *t = (const float *)(p->texcoords1 + in->index * p->texcoord1_stride);
+        vary[p->vary_uv[1]] = inside ? t[0] : 0.0f;
+        vary[p->vary_uv[1] + 1] = inside ? t[1] : 0.0f;
+    }
+    if (p->vary_color >= 0) {
+        /* A draw without colors multiplies by white. */
+        for (int c = 0; c < 4; c++) {
+            vary[p->vary_color + c] = in->has_color ? in->color[c] : 1.0f;
+        }
+    }
+    if (p->vary_tangent >= 0) {
+        float t[4] = { 0, 0, 0, 1 };
+        if (inside) {
+            memcpy(t, p->tangents + in->index * p->tangent_stride, sizeof t);
+        }
+        /* Tangents lie in the surface: they move with the model matrix. */
+        for (int r = 0; r < 3; r++) {
+            vary[p->vary_tangent + r] = m[r] * t[0] + m[4 + r] * t[1] + m[8 + r] * t[2];
+        }
+        vary[p->vary_tangent + 3] = t[3] < 0.0f ? -1.0f : 1.0f;
+    }
+}
+
+/* ---- fragment shader ---------------------------------------------------- */
+
+/* The slot's texels at the quad's fragments, [channel][lane]; the level of
+ * detail from the transformed coordinates' lane differences.  Texels come
+ * as sr_texture decodes them: linear light for sRGB textures. */
+static void sample_slot(const pbr_slot *s, const sr_fragment_quad *q, float out[4][4],
+                        float uv[2][4])
+{
+    const float *su = q->varyings[s->vary], *sv = q->varyings[s->vary + 1];
+    for (int i = 0; i < 4; i++) {
+        uv[0][i] = s->xf[0] * su[i] + s->xf[1] * sv[i] + s->xf[2];
+        uv[1][i] = s->xf[3] * su[i] + s->xf[4] * sv[i] + s->xf[5];
+    }
+    float lod = 0.0f;
+    if (s->filter == SR_FILTER_TRILINEAR) {
+        lod = sr__texture_lod(s->tex, uv[0][1] - uv[0][0], uv[1][1] - uv[1][0],
+                              uv[0][2] - uv[0][0], uv[1][2] - uv[1][0]);
+    }
+    for (int i = 0; i < 4; i++) {
+        float t[4] = { 0, 0, 0, 1 };
+        if (q->mask >> i & 1) {
+            sr__texture_sample(s->tex, s->filter, s->wu, s->wv, uv[0][i], uv[1][i], lod, t);
+        }
+        for (int c = 0; c < 4; c++) {
+            out[c][i] = t[c];
+        }
+    }
+}
+
+static inline __attribute__((always_inline)) void normalize4(float a[3][4])
+{
+    v4f v[3];
+    load3(v, a);
+    v4f l2 = dot3(v, v);
+    v4f s = sr__v4_sel(l2 > 0.0f, rsqrt_nr(l2), (v4f){ 0 });
+    for (int k = 0; k < 3; k++) {
+        store(a[k], v[k] * s);
+    }
+}
+
+/* The normal map's tangent frame at each lane, T and B (the normal N is
+ * already the shading side's).  From the tangent varying when the draw
+ * has tangents, else from the screen-space derivatives of position and
+ * the map's coordinates (the surface gradients of u and v). */
+static void tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3][4],
+                          float uv[2][4], float t[3][4], float b[3][4])
+{
+    if (p->vary_tangent >= 0) {
+        const float (*tv)[4] = &q->varyings[p->vary_tangent];
+        float flip = q->front ? 1.0f : -1.0f;
+        for (int i = 0; i < 4; i++) {
+            /* N is flipped on back faces; T and B flip with it. */
+            float tn = (tv[0][i] * n[0][i] + tv[1][i] * n[1][i] + tv[2][i] * n[2][i]) * flip;
+            for (int k = 0; k < 3; k++) {
+                t[k][i] = (tv[k][i] - n[k][i] * flip * tn) * flip;
+            }
+        }
+        normalize4(t);
+        for (int i = 0; i < 4; i++) {
+            float w = tv[3][i] < 0.0f ? -1.0f : 1.0f;
+            b[0][i] = (n[1][i] * t[2][i] - n[2][i] * t[1][i]) * w;
+            b[1][i] = (n[2][i] * t[0][i] - n[0][i] * t[2][i]) * w;
+            b[2][i] = (n[0][i] * t[1][i] - n[1][i] * t[0][i]) * w;
+        }
+        return;
+    }
+    float dp1[3], dp2[3];
+    for (int k = 0; k < 3; k++) {
+        dp1[k] = q->varyings[VARY_POS + k][1] - q->varyings[VARY_POS + k][0];
+        dp2[k] = q->varyings[VARY_POS + k][2] - q->varyings[VARY_POS + k][0];
+    }
+    float du1 = uv[0][1] - uv[0][0], dv1 = uv[1][1] - uv[1][0];
+    float du2 = uv[0][2] - uv[0][0], dv2 = uv[1][2] - uv[1][0];
+    for (int i = 0; i < 4; i++) {
+        float nx = n[0][i], ny = n[1][i], nz = n[2][i];
+        /* dp2 x N and N x dp1: with screen y down, dp1 x dp2 points away
+         * from the viewer, so the sums are minus the gradients. */
+        float a[3] = { dp2[1] * nz - dp2[2] * ny, dp2[2] * nx - dp2[0] * nz,
+                       dp2[0] * ny - dp2[1] * nx };
+        float c[3] = { ny * dp1[2] - nz * dp1[1], nz * dp1[0] - nx * dp1[2],
+                       nx * dp1[1] - ny * dp1[0] };
+        float tt = 0.0f, bb = 0.0f;
+        for (int k = 0; k < 3; k++) {
+            t[k][i] = -(a[k] * du1 + c[k] * du2);
+            b[k][i] = -(a[k] * dv1 + c[k] * dv2);
+            tt += t[k][i] * t[k][i];
+            bb += b[k][i] * b[k][i];
+        }
+        float m = max_f(tt, bb);
+        float s = m > 0.0f ? 1.0f / sqrtf(m) : 0.0f;
+        for (int k = 0; k < 3; k++) {
+            t[k][i] *= s;
+            b[k][i] *= s;
+        }
+    }
+}
+
+/* Radiance of the hemisphere light in direction d (world, unit). */
+static void hemisphere(const sr_pbr *p, const v4f d[3], v4f out[3])
+{
+    v4f s = 0.5f + 0.5f * d[1];
+    for (int c = 0; c < 3; c++) {
+        out[c] = p->ground[c] + (p->sky[c] - p->ground[c]) * s;
+    }
+}
+
+/* Appendix B at four lanes: the punctual lights through the
+ * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
+ * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
+ * ambient light times the occlusion.  Radiance out, linear, unexposed. */
+static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
+                        const float v_[3][4], const float base_[4][4], const float metal_[4],
+                        const float rough_[4], const float ao_[4], const float shadow_[4],
+                        float out_[3][4])
+{
+    v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3];
+    load3(pos, pos_);
+    load3(n, n_);
+    load3(v, v_);
+    load3(base, base_);
+    v4f mt = vclamp(load(metal_), 0.0f, 1.0f);
+    for (int c = 0; c < 3; c++) {
+        cdiff[c] = base[c] * (1.0f - mt);
+        f0[c] = 0.04f + (base[c] - 0.04f) * mt;
+        out[c] = (v4f){ 0 };
+    }
+    v4f r = vclamp(load(rough_), MIN_ROUGHNESS, 1.0f);
+    v4f a2 = r * r * r * r, one_a2 = 1.0f - a2;
+    v4f nv = vmax(dot3(n, v), (v4f){ 1e-4f, 1e-4f, 1e-4f, 1e-4f });
+    /* The visibility term's view half is the same for every light. */
+    v4f gv2 = nv * nv * one_a2 + a2;    /* >= a2 > 0 */
+    v4f gv = gv2 * rsqrt_nr(gv2);
+    for (int l = 0; l < p->nlights; l++) {
+        v4f ld[3], rad[3];
+        for (int c = 0; c < 3; c++) {
+            ld[c] = p->light_vec[l][c] - (v4f){ 0 };
+            rad[c] = p->light_rad[l][c] - (v4f){ 0 };
+        }
+        if (l == 0) {
+            /* The shadow map belongs to the key light. */
+            for (int c = 0; c < 3; c++) {
+                rad[c] *= load(shadow_);
+            }
+        }
+        if (p->light_point[l]) {
+            /* KHR_lights_punctual: intensity over the squared distance. */
+            for (int c = 0; c < 3; c++) {
+                ld[c] -= pos[c];
+            }
+            v4f d2 = dot3(ld, ld);
+            v4f fall = sr__v4_sel(d2 > 0.0f, 1.0f / d2, (v4f){ 0 });
+            v4f il = sr__v4_sqrt(fall);
+            for (int c = 0; c < 3; c++) {
+                rad[c] *= fall;
+                ld[c] *= il;
+            }
+        }
+        /* H = (L + V) / |L + V| without forming it: |L + V|^2 = 2 + 2 L.V,
+         * N.H = (N.L + N.V) / |L + V|, V.H = (1 + L.V) / |L + V|. */
+        v4f zero = { 0 };
+        v4f nlr = dot3(n, ld), lv = dot3(ld, v);
+        v4f hl = 2.0f + 2.0f * lv;
+        v4f hs = sr__v4_sel(hl > 1e-12f, rsqrt_nr(vmax(hl, 1e-12f - zero)), zero);
+        v4f nl = vmax(nlr, zero);
+        v4f nh = vmax((nlr + dot3(n, v)) * hs, zero);
+        v4f vh = vmax((1.0f + lv) * hs, zero);
+        v4f x = 1.0f - vh, x2 = x * x, fw = x2 * x2 * x;
+        v4f dd = nh * nh * (a2 - 1.0f) + 1.0f;
+        v4f gl2 = nl * nl * one_a2 + a2;
+        v4f gl = gl2 * rsqrt_nr(gl2);
+        /* D times V in one division: a2 / (pi dd^2) times 0.5 / (the
+         * visibility's sum), which is positive as nv > 0 and a2 > 0. */
+        v4f dv = a2 * 0.5f * rcp_nr(PI_F * dd * dd * (nl * gv + nv * gl));
+        for (int c = 0; c < 3; c++) {
+            v4f f = f0[c] + (1.0f - f0[c]) * fw;
+            out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
+        }
+    }
+    if (!p->environment && !p->ambient) {
+        goto done;
+    }
+    v4f nd = dot3(n, v), rr[3], en[3], er[3], sa, sb;
+    for (int k = 0; k < 3; k++) {
+        rr[k] = 2.0f * nd * n[k] - v[k];
+    }
+    v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
+    if (p->environment) {
+        /* Image-based light: irradiance (E / pi) along N and the
+         * prefiltered radiance along R, from tables made with the program
+         * (octahedral maps) where they can be. */
+        oct_lookup4(p->oct_irr, OCT_IRR_SIZE, n, en);
+        if (p->oct) {
+            oct_lookup4(p->oct, OCT_SIZE, rr, er);
+        } else {
+            sr_vec3x4 dr, e_r;
+            float rl[4];
+            store(dr.x, rr[0]);
+            store(dr.y, rr[1]);
+            store(dr.z, rr[2]);
+            store(rl, rc);
+            sr_environment_specular4(p->environment, &dr, rl, &e_r);
+            er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
+        }
+    } else {
+        /* The hemisphere along N and along R. */
+        hemisphere(p, n, en);
+        hemisphere(p, rr, er);
+    }
+    {
+        /* The split sum's scale and bias of f0 from Karis's analytic fit
+         * of its table (mobile UE4), within 2% of sr_brdf_table at a
+         * fraction of its cost. */
+        v4f rx = 1.0f - rc, ry = -0.0275f * rc + 0.0425f;
+        v4f rz = -0.572f * rc + 1.04f, rw = 0.022f * rc - 0.04f;
+        v4f e = exp2_approx(-9.28f * nv);
+        v4f a004 = vmin(rx * rx, e) * rx + ry;
+        sa = -1.04f * a004 + rz;
+        sb = 1.04f * a004 + rw;
+    }
+    for (int c = 0; c < 3; c++) {
+        /* What the specular lobe reflects the diffuse cannot. */
+        v4f spec = f0[c] * sa + sb;
+        out[c] += (cdiff[c] * (1.0f - spec) * en[c] + spec * er[c]) * ao;
+    }
+done:
+    for (int c = 0; c < 3; c++) {
+        store(out_[c], out[c]);
+    }
+}
+
+/* The tone curve at four lanes: Khronos PBR Neutral (the default) as
+ * sr__tone_curve computes it, both of its branches evaluated and selected
+ * so the lanes stay in vectors; the other curves per lane. */
+static void tone_lanes(sr_tonemap_op op, float a[3][4])
+{
+    if (op != SR_TONEMAP_PBR_NEUTRAL) {
+        for (int i = 0; i < 4; i++) {
+            float in[3] = { a[0][i], a[1][i], a[2][i] }, o[3];
+            sr__tone_curve(op, in, o);
+            a[0][i] = o[0], a[1][i] = o[1], a[2][i] = o[2];
+        }
+        return;
+    }
+    const float start = 0.8f - 0.04f, desaturation = 0.15f, d = 1.0f - start;
+    v4f c[3];
+    for (int k = 0; k < 3; k++) {
+        /* NaN and negatives are black, infinities the largest float. */
+        c[k] = vclamp(load(a[k]), 0.0f, FLT_MAX);
+    }
+    v4f x = vmin(c[0], vmin(c[1], c[2]));
+    v4f offset = sr__v4_sel(x < 0.08f, x - 6.25f * x * x, 0.04f - (v4f){ 0 });
+    for (int k = 0; k < 3; k++) {
+        c[k] -= offset;
+    }
+    v4f peak = vmax(c[0], vmax(c[1], c[2]));
+    v4f new_peak = 1.0f - d * d / (peak + d - start);
+    v4f g = 1.0f - 1.0f / (desaturation * (peak - new_peak) + 1.0f);
+    v4f sc = new_peak / vmax(peak, start - (v4f){ 0 });
+    v4i keep = peak < start;
+    for (int k = 0; k < 3; k++) {
+        v4f cv = c[k] * sc;
+        store(a[k], sr__v4_sel(keep, c[k], cv + (new_peak - cv) * g));
+    }
+}
+
+/* sr__srgb_code at four lanes: the clamp and the bucket index in vectors,
+ * the two table reads per channel and lane without a branch. */
+static void encode_lanes(const srgb_table *t, const float a[3][4], sr_fragment_quad *q)
+{
+    for (int k = 0; k < 3; k++) {
+        v4f x = vclamp(load(a[k]), 0.0f, 1.0f);
+        v4i bucket = (v4i)x >> SR_SRGB_BUCKET_SHIFT;
+        v4f code;
+        for (int i = 0; i < 4; i++) {
+            int c = t->first[bucket[i]];
+            /* step[255] does not exist: 1.0 and above are 255 already. */
+            c += c < 255 && x[i] >= t->step[c < 255 ? c : 254];
+            code[i] = (float)c;
+        }
+        store(q->color[k], code * (1.0f / 255.0f));
+    }
+}
+
+static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
+{
+    const sr_pbr *p = uniforms;
+    const sr_pbr_material *m = &p->m;
+    float base[4][4], tex[4][4], uv[2][4];
+    for (int c = 0; c < 4; c++) {
+        for (int i = 0; i < 4; i++) {
+            base[c][i] = m->base_color[c];
+        }
+    }
+    if (p->vary_color >= 0) {
+        for (int c = 0; c < 4; c++) {
+            for (int i = 0; i < 4; i++) {
+                base[c][i] *= q->varyings[p->vary_color + c][i];
+            }
+        }
+    }
+    if (p->slot[SLOT_BASE].tex) {
+        sample_slot(&p->slot[SLOT_BASE], q, tex, uv);
+        for (int c = 0; c < 4; c++) {
+            for (int i = 0; i < 4; i++) {
+                base[c][i] *= tex[c][i];
+            }
+        }
+    }
+    float alpha[4];
+    for (int i = 0; i < 4; i++) {
+        alpha[i] = m->alpha_mode == SR_ALPHA_BLEND ? clamp01(base[3][i]) : 1.0f;
+    }
+    if (m->alpha_mode == SR_ALPHA_MASK) {
+        for (int i = 0; i < 4; i++) {
+            q->discard |= base[3][i] < m->alpha_cutoff ? 1u << i : 0u;
+        }
+    }
+    float out[3][4];
+    if (m->unlit) {
+        for (int c = 0; c < 3; c++) {
+            for (int i = 0; i < 4; i++) {
+                out[c][i] = base[c][i];
+            }
+        }
+    } else {
+        float metal[4], rough[4], ao[4];
+        for (int i = 0; i < 4; i++) {
+            metal[i] = m->metallic;
+            rough[i] = m->roughness;
+            ao[i] = 1.0f;
+        }
+        if (p->slot[SLOT_MR].tex) {
+            sample_slot(&p->slot[SLOT_MR], q, tex, uv);
+            for (int i = 0; i < 4; i++) {
+                rough[i] *= tex[1][i];
+                metal[i] *= tex[2][i];
+            }
+        }
+        if (p->slot[SLOT_OCCLUSION].tex) {
+            sample_slot(&p->slot[SLOT_OCCLUSION], q, tex, uv);
+            for (int i = 0; i < 4; i++) {
+                ao[i] = 1.0f + m->occlusion_strength * (tex[0][i] - 1.0f);
+            }
+        }
+        float n[3][4], v[3][4];
+        float side = q->front ? 1.0f : -1.0f;
+        for (int k = 0; k < 3; k++) {
+            for (int i = 0; i < 4; i++) {
+                n[k][i] = q->varyings[VARY_NORMAL + k][i] * side;
+                v[k][i] = p->eye[k] - q->varyings[VARY_POS + k][i];
+            }
+        }
+        normalize4(n);
+        normalize4(v);
+        if (p->slot[SLOT_NORMAL].tex) {
+            float t[3][4], b[3][4];
+            sample_slot(&p->slot[SLOT_NORMAL], q, tex, uv);
+            tangent_frame(p, q, n, uv, t, b);
+            for (int i = 0; i < 4; i++) {
+                float x = (2.0f * tex[0][i] - 1.0f) * m->normal_scale;
+                float y = (2.0f * tex[1][i] - 1.0f) * m->normal_scale;
+                float z = 2.0f * tex[2][i] - 1.0f;
+                for (int k = 0; k < 3; k++) {
+                    n[k][i] = t[k][i] * x + b[k][i] * y + n[k][i] * z;
+                }
+            }
+            normalize4(n);
+        }
+        float pos[3][4], shadow[4] = { 1, 1, 1, 1 };
+        memcpy(pos, &q->varyings[VARY_POS], sizeof pos);
+        if (p->shadow) {
+            /* The geometric normal (the interpolated vertex normal, facing
+             * the shaded side), not the normal map's. */
+            float g[3][4];
+            for (int k = 0; k < 3; k++) {
+                for (int i = 0; i < 4; i++) {
+                    g[k][i] = q->varyings[VARY_NORMAL + k][i] * side;
+                }
+            }
+            sr_shadow_visibility4(p->shadow, &pos[0][0], &g[0][0], shadow);
+        }
+        shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
+                    (const float(*)[4])base, metal, rough, ao, shadow, out);
+        if (p->slot[SLOT_EMISSIVE].tex) {
+            sample_slot(&p->slot[SLOT_EMISSIVE], q, tex, uv);
+        } else {
+            for (int c = 0; c < 3; c++) {
+                for (int i = 0; i < 4; i++) {
+                    tex[c][i] = 1.0f;
+                }
+            }
+        }
+        float es = m->emissive_strength;
+        for (int c = 0; c < 3; c++) {
+            for (int i = 0; i < 4; i++) {
+                out[c][i] = (out[c][i] + m->emissive[c] * es * tex[c][i]) * p->scale;
+            }
+        }
+    }
+    if (!m->unlit) {
+        tone_lanes(p->tonemap, out);
+    }
+    encode_lanes(p->srgb, out, q);
+    for (int i = 0; i < 4; i++) {
+        q->color[3][i] = alpha[i];
+    }
+}
+
+/* ---- the program -------------------------------------------------------- */
+
+static bool finite_n(const float *v, int n)
+{
+    for (int i = 0; i < n; i++) {
+        if (!isfinite(v[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static sr_result check_slot(sr_context *ctx, const sr_texture_slot *s, const char *name)
+{
+    if (!s->texture) {
+        return SR_OK;
+    }
+    if (s->texcoord != 0 && s->texcoord != 1) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.%s.texcoord %d must be 0 or 1",
+                        name, s->texcoord);
+    }
+    if ((unsigned)s->filter > SR_FILTER_TRILINEAR || (unsigned)s->wrap_u > SR_WRAP_MIRROR ||
+        (unsigned)s->wrap_v > SR_WRAP_MIRROR) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.%s: unknown filter or wrap mode",
+                        name);
+    }
+    if (!finite_n(s->offset, 2) || !finite_n(s->scale, 2) || !isfinite(s->rotation)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.%s: transform is not finite", name);
+    }
+    return SR_OK;
+}
+
+static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
+{
+    if (!finite_n(m->base_color, 4) || !finite_n(m->emissive, 3) || !isfinite(m->metallic) ||
+        !isfinite(m->roughness) || !isfinite(m->normal_scale) ||
+        !isfinite(m->occlusion_strength) || !isfinite(m->emissive_strength) ||
+        !isfinite(m->alpha_cutoff)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material: a factor is not finite");
+    }
+    if ((unsigned)m->alpha_mode > SR_ALPHA_BLEND) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.alpha_mode %d is not a mode",
+                        (int)m->alpha_mode);
+    }
+    const sr_texture_slot *slots[] = { &m->base_color_texture, &m->metallic_roughness_texture,
+                                       &m->normal_texture, &m->occlusion_texture,
+                                       &m->emissive_texture };
+    static const char *const names[] = { "base_color_texture", "metallic_roughness_texture",
+                                         "normal_texture", "occlusion_texture",
+                                         "emissive_texture" };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        sr_result r = check_slot(ctx, slots[i], names[i]);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    return SR_OK;
+}
+
+/* KHR_texture_transform, uv' = T R S uv in glTF's frame (v down), taken to
+ * sr_texture's (t = 1 - v): t' = 1 - v'(s, 1 - t). */
+static void resolve_slot(const sr_texture_slot *in, pbr_slot *out)
+{
+    out->tex = in->texture;
+    out->filter = in->filter ? in->filter : SR_FILTER_TRILINEAR;
+    out->wu = in->wrap_u ? in->wrap_u : SR_WRAP_REPEAT;
+    out->wv = in->wrap_v ? in->wrap_v : SR_WRAP_REPEAT;
+    float sx = in->scale[0], sy = in->scale[1];
+    if (sx == 0.0f && sy == 0.0f) {
+        sx = sy = 1.0f;
+    }
+    float c = cosf(in->rotation), s = sinf(in->rotation);
+    /* glTF: u' = c sx u + s sy v + ox, v' = -s sx u + c sy v + oy. */
+    out->xf[0] = c * sx;
+    out->xf[1] = -s * sy;
+    out->xf[2] = s * sy + in->offset[0];
+    out->xf[3] = s * sx;
+    out->xf[4] = c * sy;
+    out->xf[5] = 1.0f - c * sy - in->offset[1];
+}
+
+static sr_result check_desc(sr_context *ctx, const sr_pbr_desc *d)
+{
+    if (!(fabsf(d->exposure) <= MAX_EXPOSURE)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.exposure %g is not in -64..64 EV",
+                        (double)d->exposure);
+    }
+    if ((unsigned)d->tonemap > SR_TONEMAP_NONE) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.tonemap %d is not an operator",
+                        (int)d->tonemap);
+    }
+    if ((unsigned)d->vertex_color > SR_OFF) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.vertex_color %d is not a switch",
+                        (int)d->vertex_color);
+    }
+    if ((d->tangents || d->texcoords1) && d->vertex_count == 0) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_desc.vertex_count must be > 0 with tangents or texcoords1");
+    }
+    if ((d->tangent_stride && d->tangent_stride < 16) || d->tangent_stride % 4 ||
+        (d->texcoord1_stride && d->texcoord1_stride < 8) || d->texcoord1_stride % 4) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_desc: strides must be multiples of 4 and hold their floats");
+    }
+    if (!finite_n(&d->sky.x, 3) || !finite_n(&d->ground.x, 3) || d->sky.x < 0 || d->sky.y < 0 ||
+        d->sky.z < 0 || d->ground.x < 0 || d->ground.y < 0 || d->ground.z < 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc: sky and ground must be finite and >= 0");
+    }
+    for (int l = 0; l < SR_MAX_LIGHTS; l++) {
+        const sr_light *li = &d->lights[l];
+        if ((unsigned)li->type > SR_LIGHT_POINT) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d].type %d is not a type", l,
+                            (int)li->type);
+        }
+        if (li->type != SR_LIGHT_OFF &&
+            (!finite_n(&li->vector.x, 3) || !finite_n(&li->color.x, 3) ||
+             !isfinite(li->intensity))) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d] is not finite", l);
+        }
+    }
+    return SR_OK;
+}
+
+static void resolve_lights(const sr_pbr_desc *d, sr_pbr *p)
+{
+    for (int l = 0; l < SR_MAX_LIGHTS; l++) {
+        const sr_light *li = &d->lights[l];
+        if (li->type == SR_LIGHT_OFF) {
+            continue;
+        }
+        int k = p->nlights++;
+        sr_vec3 col = li->color;
+        if (col.x == 0 && col.y == 0 && col.z == 0) {
+            col = (sr_vec3){ 1, 1, 1 };
+        }
+        float in = li->intensity != 0.0f ? li->intensity : 1.0f;
+        p->light_rad[k][0] = col.x * in;
+        p->light_rad[k][1] = col.y * in;
+        p->light_rad[k][2] = col.z * in;
+        p->light_point[k] = li->type == SR_LIGHT_POINT;
+        /* A directional light's vector is the way it travels: shading
+         * wants the way back to it. */
+        sr_vec3 v = p->light_point[k] ? li->vector
+                                       : sr_vec3_normalize(sr_vec3_scale(li->vector, -1));
+        p->light_vec[k][0] = v.x;
+        p->light_vec[k][1] = v.y;
+        p->light_vec[k][2] = v.z;
+    }
+}
+
+/* Varyings after the fixed six: the texcoord sets the slots read, vertex
+ * colors, then tangents if there is room (else the derivative frame). */
+static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
+{
+    int n = VARY_FIXED;
+    bool uses[2] = { false, false };
+    bool lit = !p->m.unlit;
+    const sr_texture_slot *slots[] = { &p->m.base_color_texture,
+                                       &p->m.metallic_roughness_texture, &p->m.normal_texture,
+                                       &p->m.occlusion_texture, &p->m.emissive_texture };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        if (p->slot[i].tex && (lit || i == SLOT_BASE)) {
+            uses[slots[i]->texcoord] = true;
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        p->vary_uv[k] = -1;
+        if (uses[k] && (k == 0 || d->texcoords1)) {
+            p->vary_uv[k] = n;
+            n += 2;
+        }
+    }
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        int set = slots[i]->texcoord;
+        /* A slot on a set the draw cannot give reads set 0 (zero if absent). */
+        p->slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
+        if (p->slot[i].vary < 0) {
+            p->slot[i].tex = NULL;
+        }
+    }
+    p->vary_color = -1;
+    if (d->vertex_color != SR_OFF) {
+        p->vary_color = n;
+        n += 4;
+    }
+    p->vary_tangent = -1;
+    if (lit && p->slot[SLOT_NORMAL].tex && d->tangents && n + 4 <= SR_SHADER_MAX_VARYINGS) {
+        p->vary_tangent = n;
+        n += 4;
+    }
+    return n;
+}
+
+sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!desc || !out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_make_pbr_program: %s is NULL",
+                        desc ? "out" : "desc");
+    }
+    *out = NULL;
+    sr_pbr_material mat = desc->material ? *desc->material : sr_pbr_default_material();
+    sr_result r = check_desc(ctx, desc);
+    if (r == SR_OK) {
+        r = check_material(ctx, &mat);
+    }
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_pbr *p = sr__calloc(ctx, 1, sizeof *p);
+    if (!p) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
+    }
+    p->m = mat;
+    if (p->m.emissive_strength == 0.0f) {
+        p->m.emissive_strength = 1.0f;
+    }
+    if (p->m.alpha_cutoff == 0.0f) {
+        p->m.alpha_cutoff = 0.5f;
+    }
+    const sr_texture_slot *slots[] = { &mat.base_color_texture, &mat.metallic_roughness_texture,
+                                       &mat.normal_texture, &mat.occlusion_texture,
+                                       &mat.emissive_texture };
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        resolve_slot(slots[i], &p->slot[i]);
+    }
+    p->model = desc->model ? *desc->model : sr_mat4_identity();
+    sr_mat4 view = desc->view ? *desc->view : sr_mat4_identity();
+    sr_mat4 proj = desc->projection ? *desc->projection : sr_mat4_identity();
+    p->view_projection = sr_mat4_mul(&proj, &view);
+    sr_mat4 nm;
+    if (!sr_normal_matrix(&p->model, &nm)) {
+        nm = p->model;
+    }
+    for (int r3 = 0; r3 < 3; r3++) {
+        for (int c = 0; c < 3; c++) {
+            p->normal_matrix[3 * r3 + c] = nm.m[4 * c + r3];
+        }
+    }
+    sr_mat4 inv;
+    if (sr_mat4_invert(&view, &inv)) {
+        p->eye[0] = inv.m[12];
+        p->eye[1] = inv.m[13];
+        p->eye[2] = inv.m[14];
+    }
+    resolve_lights(desc, p);
+    memcpy(p->sky, &desc->sky.x, sizeof p->sky);
+    memcpy(p->ground, &desc->ground.x, sizeof p->ground);
+    p->environment = desc->environment;
+    p->shadow = desc->shadow;
+    p->ambient = p->sky[0] + p->sky[1] + p->sky[2] + p->ground[0] + p->ground[1] + p->ground[2] > 0;
+    p->scale = exp2f(desc->exposure);
+    p->tonemap = desc->tonemap ? desc->tonemap : SR_TONEMAP_PBR_NEUTRAL;
+    p->srgb = sr__srgb_table();
+    p->vertex_count = desc->tangents || desc->texcoords1 ? desc->vertex_count : 0;
+    p->tangents = (const uint8_t *)desc->tangents;
+    p->tangent_stride = desc->tangent_stride ? desc->tangent_stride : 4 * sizeof(float);
+    p->texcoords1 = (const uint8_t *)desc->texcoords1;
+    p->texcoord1_stride = desc->texcoord1_stride ? desc->texcoord1_stride : 2 * sizeof(float);
+    sr_program *pr = &p->program;
+    pr->vertex = pbr_vs;
+    pr->fragment = pbr_fs;
+    pr->uniforms = p;
+    pr->varying_count = layout_varyings(desc, p);
+    pr->may_discard = mat.alpha_mode == SR_ALPHA_MASK;
+    float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
+    if (p->environment && !p->m.unlit) {
+        /* Irradiance always, and with one roughness for every fragment
+         * its prefiltered radiance too, tabulated once (256 and 4096
+         * queries) and read per fragment without the queries' trigonometry. */
+        p->oct_irr = oct_build(ctx, p->environment, OCT_IRR_SIZE, 0.0f, false);
+        if (p->oct_irr && !p->slot[SLOT_MR].tex && rough >= OCT_MIN_ROUGHNESS) {
+            p->oct = oct_build(ctx, p->environment, OCT_SIZE, rough, true);
+            if (!p->oct) {
+                sr__free(ctx, p->oct_irr);
+                p->oct_irr = NULL;
+            }
+        }
+        if (!p->oct_irr) {
+            sr__free(ctx, p);
+            return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
+        }
+    }
+    *out = p;
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+const sr_program *sr_pbr_program(const sr_pbr *p)
+{
+    return p ? &p->program : NULL;
+}
+
+void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p)
+{
+    if (ctx && p) {
+        sr__free(ctx, p->oct);
+        sr__free(ctx, p->oct_irr);
+        sr__free(ctx, p);
+    }
+}
