@@ -1,12 +1,12 @@
 /* test_svg_paint.c - the SVG reader's structure, styling and paint
  * servers: style sheets with the cascade, currentColor, CSS colors, defs
  * and use, linear and radial gradients, clip paths, masks and group
- * opacity in layers.  Five drawings in tests/data/svg are compared with
- * references (checked against rsvg-convert when made; channel tolerance
- * 2, at most 0.5% of the pixels beyond it; the diff image goes to the
- * test output directory), and single pixels are checked against values
- * worked out by hand.  Reference cycles through use and
- * mask are refused with FILE:LINE. */
+ * opacity in layers, nested viewports.  Six drawings in tests/data/svg
+ * are compared with references (checked against rsvg-convert when made;
+ * channel tolerance 2, at most 0.5% of the pixels beyond it; the diff
+ * image goes to the test output directory), and single pixels are
+ * checked against values worked out by hand.  Reference cycles through
+ * use, clip-path and mask are refused with FILE:LINE. */
 #include "image_compare.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -57,13 +57,15 @@ static void check_drawing(const char *file, const char *ref)
 }
 
 /* styles: sheets, use, colors; gradients; layers: clip paths and group
- * opacity; clipbox: clips in bounding-box units; masks */
+ * opacity; clipbox: clips in bounding-box units; masks; nested svg
+ * viewports */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks" };
+    static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
+                                          "nested" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);
@@ -192,6 +194,13 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
         SR_BAD_FORMAT, msg, sizeof msg);
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "t.svg:3: mask: reference cycle through \"#m\"");
+    fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n"
+        "<clipPath id='a' clip-path='url(#b)'/><clipPath id='b' clip-path='url(#a)'/>\n"
+        "<rect width='4' height='4' clip-path='url(#a)'/></svg>",
+        SR_BAD_FORMAT, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:3: clip-path: reference cycle through \"#a\"");
     /* uses nested a thousand times over: refused by the budget, quickly */
     char big[4096];
     int n = snprintf(big, sizeof big, "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>"

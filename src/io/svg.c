@@ -1940,6 +1940,85 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
     doc->draw_depth--;
 }
 
+/* a[i] *= b[i] / 255 over the image (b NULL: nothing to do). */
+static void multiply_coverage(uint8_t *a, const uint8_t *b, const svg_doc *doc)
+{
+    size_t n = (size_t)sr_framebuffer_width(doc->fb) * (size_t)sr_framebuffer_height(doc->fb);
+    for (size_t i = 0; b && i < n; i++) {
+        a[i] = (uint8_t)((a[i] * b[i] + 127) / 255);
+    }
+}
+
+/* A nested svg's viewport: x, y, width, height (100% when not given) in
+ * the parent's user space. False when it is empty (nothing drawn). */
+static bool viewport_rect(svg_doc *doc, const svg_node *node, const frame *f, double r[4])
+{
+    r[2] = f->vp_w;
+    r[3] = f->vp_h;
+    const char *ws = attr(node->atts, "width"), *hs = attr(node->atts, "height");
+    return length_attr(doc, f, "x", attr(node->atts, "x"), &r[0]) &&
+           length_attr(doc, f, "y", attr(node->atts, "y"), &r[1]) &&
+           (!ws || length_attr(doc, f, "width", ws, &r[2])) &&
+           (!hs || length_attr(doc, f, "height", hs, &r[3])) && r[2] > 0 && r[3] > 0;
+}
+
+/* The frame inside a nested svg: its viewBox onto its viewport. */
+static frame viewport_frame(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    frame in = *f;
+    double r[4], vb[4];
+    if (!viewport_rect(doc, node, f, r)) {
+        return in;
+    }
+    const char *vbs = attr(node->atts, "viewBox");
+    if (vbs && parse_viewbox(vbs, vb)) {
+        in.m = mat_mul(f->m, viewbox_matrix(doc, node->atts, vb, r[0], r[1], r[2], r[3]));
+        in.vp_w = vb[2];
+        in.vp_h = vb[3];
+    } else {
+        in.m = mat_mul(f->m, (mat2d){ 1, 0, 0, 1, r[0], r[1] });
+        in.vp_w = r[2];
+        in.vp_h = r[3];
+    }
+    return in;
+}
+
+/* The coverage of a nested svg's viewport (overflow is hidden); NULL
+ * when it is empty or after a failure. */
+static uint8_t *nested_viewport(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    double r[4];
+    if (!viewport_rect(doc, node, f, r)) {
+        return NULL;
+    }
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    sr_point2 corners[4] = { { r[0], r[1] }, { r[0] + r[2], r[1] },
+                             { r[0] + r[2], r[1] + r[3] }, { r[0], r[1] + r[3] } };
+    sr_point2 *pts;
+    sr_polygon2 poly = { corners, 4, NULL, 0 };
+    uint8_t *cov = malloc((size_t)w * (size_t)h);
+    if (!cov) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return NULL;
+    }
+    if (!map_polygon(doc, poly, f->m, &pts)) {
+        free(cov);
+        return NULL;
+    }
+    poly.points = pts;
+    sr_result res = sr_polygon_coverage(doc->ctx, &poly,
+                                        &(sr_fill_desc){ .antialias = f->st.crisp ? SR_AA_NONE
+                                                                                  : SR_AA_AREA },
+                                        0, 0, w, h, cov, (size_t)w);
+    free(pts);
+    if (res != SR_OK) {
+        lib_fail(doc, res);
+        free(cov);
+        return NULL;
+    }
+    return cov;
+}
+
 /* The coverage of a clipPath for an element drawn under frame f: its
  * shapes (and uses of shapes) with their clip-rule, in the element's
  * user space.  NULL with a warning for what is not supported (units of
@@ -2014,9 +2093,7 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
             clip->active = true;
             uint8_t *outer = clip_mask(doc, (svg_node *)cf.st.clip, node, f);
             clip->active = false;
-            for (size_t i = 0; outer && i < (size_t)w * (size_t)h; i++) {
-                mask[i] = (uint8_t)((mask[i] * outer[i] + 127) / 255);
-            }
+            multiply_coverage(mask, outer, doc);
             free(outer);
         }
     }
@@ -2216,8 +2293,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     bool group = strcmp(node->name, "g") == 0 || strcmp(node->name, "a") == 0 ||
                  strcmp(node->name, "switch") == 0;
     bool shape = is_shape(node->name), use = strcmp(node->name, "use") == 0;
-    if (strcmp(node->name, "svg") == 0 && node != doc->root) {
-        warn_once(doc, "element", "svg (nested; drawn as a group)");
+    bool nested = strcmp(node->name, "svg") == 0 && node != doc->root;
+    if (nested) {
         group = true;
     } else if (!group && !shape && !use && node != doc->root) {
         if (!is_named(node, not_drawn) && !node->foreign) {
@@ -2247,15 +2324,24 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         }
         f.m = mat_mul(f.m, t);
     }
+    /* A nested svg: a new viewport, which clips what it holds. */
+    uint8_t *viewport = NULL;
+    if (nested && !(viewport = nested_viewport(doc, node, &f))) {
+        return;
+    }
     /* A group's opacity and any clip path apply to the element drawn
      * whole in a layer of its own; a lone shape's opacity folds into its
      * fill and stroke. */
-    bool layer = f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape);
+    bool layer = viewport || f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape);
     if (layer && doc->layers == MAX_LAYERS) {
         warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
         layer = false;
     }
     if (!layer) {
+        if (viewport) { /* no layer left: the viewport maps, but does not clip */
+            free(viewport);
+            f = viewport_frame(doc, node, &f);
+        }
         f.st.opacity *= f.st.own_opacity;
         if (f.st.opacity <= 0) {
             return;
@@ -2266,6 +2352,12 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, node, &f) : NULL;
     if (f.st.mask && doc->status == SR_OK) {
         mask = mask_coverage(doc, (svg_node *)f.st.mask, &f, mask);
+    }
+    if (viewport) {
+        multiply_coverage(viewport, mask, doc);
+        free(mask);
+        mask = viewport;
+        f = viewport_frame(doc, node, &f);
     }
     sr_framebuffer *under = doc->fb, *top = doc->status == SR_OK ? open_layer(doc) : NULL;
     if (top) {
