@@ -174,33 +174,27 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
     }
     sr_context *ctx = NULL;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
-    char msg[1024];
-    sr_framebuffer *fb = render(ctx,
-        "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n"
-        "<g id='a'>\n<use href='#b'/></g>\n<g id='b'>\n<use href='#a'/></g></svg>",
-        SR_BAD_FORMAT, msg, sizeof msg);
-    CHECK(fb == NULL);
-    CHECK_STR_CONTAINS(msg, "t.svg:5: use: reference cycle through \"#a\"");
-    fb = render(ctx,
-        "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n"
-        "<g id='s'><use href='#s'/></g></svg>",
-        SR_BAD_FORMAT, msg, sizeof msg);
-    CHECK(fb == NULL);
-    CHECK_STR_CONTAINS(msg, "t.svg:2: use: reference cycle");
-    fb = render(ctx,
-        "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n"
-        "<mask id='m'>\n<rect width='4' height='4' fill='white' mask='url(#m)'/></mask>\n"
-        "<rect width='4' height='4' mask='url(#m)'/></svg>",
-        SR_BAD_FORMAT, msg, sizeof msg);
-    CHECK(fb == NULL);
-    CHECK_STR_CONTAINS(msg, "t.svg:3: mask: reference cycle through \"#m\"");
-    fb = render(ctx,
-        "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n"
-        "<clipPath id='a' clip-path='url(#b)'/><clipPath id='b' clip-path='url(#a)'/>\n"
-        "<rect width='4' height='4' clip-path='url(#a)'/></svg>",
-        SR_BAD_FORMAT, msg, sizeof msg);
-    CHECK(fb == NULL);
-    CHECK_STR_CONTAINS(msg, "t.svg:3: clip-path: reference cycle through \"#a\"");
+    static const struct { const char *body, *want; } cases[] = {
+        { "<g id='a'>\n<use href='#b'/></g>\n<g id='b'>\n<use href='#a'/></g>",
+          "t.svg:5: use: reference cycle through \"#a\"" },
+        { "<g id='s'><use href='#s'/></g>", "t.svg:2: use: reference cycle" },
+        { "<mask id='m'>\n<rect width='4' height='4' fill='white' mask='url(#m)'/></mask>\n"
+          "<rect width='4' height='4' mask='url(#m)'/>",
+          "t.svg:3: mask: reference cycle through \"#m\"" },
+        { "<clipPath id='a' clip-path='url(#b)'/><clipPath id='b' clip-path='url(#a)'/>\n"
+          "<rect width='4' height='4' clip-path='url(#a)'/>",
+          "t.svg:3: clip-path: reference cycle through \"#a\"" },
+    };
+    char msg[1024], svg[1024];
+    sr_framebuffer *fb;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n%s</svg>",
+                 cases[i].body);
+        fb = render(ctx, svg, SR_BAD_FORMAT, msg, sizeof msg);
+        CHECK(fb == NULL);
+        CHECK_STR_CONTAINS(msg, cases[i].want);
+    }
     /* uses nested a thousand times over: refused by the budget, quickly */
     char big[4096];
     int n = snprintf(big, sizeof big, "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>"
