@@ -11,7 +11,8 @@ differently stay under it.  A file matches when at most --match of its
 pixels differ.  softrast's exit status and warnings (stderr lines) are
 counted too: a crash is any status other than 0 (drawn) or 2 (refused).
 Standard library only: the PNGs are decoded here (8-bit RGBA, the form
-both programs write).
+both programs write).  rsvg-convert is Debian's librsvg2-bin (not a build
+dependency: only this tool uses it).
 """
 import argparse
 import os
