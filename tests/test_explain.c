@@ -66,15 +66,34 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
     return last;
 }
 
-static int run_explain(const char *algorithm, const char *prim_opt, const char *prim,
-                       const char *dir)
+static int run_explain_rule(const char *algorithm, const char *prim_opt, const char *prim,
+                            const char *rule, const char *dir)
 {
     char grid[16], zoom[8];
     snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
     snprintf(zoom, sizeof zoom, "%d", ZOOM);
     const char *args[] = { "explain", algorithm, prim_opt, prim, "--grid", grid, "--zoom", zoom,
-                           "-o", dir, NULL };
+                           "-o", dir, rule ? "--fill-rule" : NULL, rule, NULL };
     return sr_test_run_cli(args);
+}
+
+static int run_explain(const char *algorithm, const char *prim_opt, const char *prim,
+                       const char *dir)
+{
+    return run_explain_rule(algorithm, prim_opt, prim, NULL, dir);
+}
+
+/* Count the cells that differ from want; report them once. */
+static int compare_cells(const uint8_t *cells, const uint8_t *want, const char *what)
+{
+    int diff = 0;
+    for (int i = 0; i < GRID * GRID; i++) {
+        diff += cells[i] != want[i];
+    }
+    if (diff) {
+        FAILF("%s: %d cells differ", what, diff);
+    }
+    return diff;
 }
 
 static const char *out_dir(const char *name, char *buf, size_t n)
@@ -111,18 +130,63 @@ SR_TEST(triangle_last_frame_is_what_sr_draw_covers)
             rt_clear(&t);
             REQUIRE(rt_draw_tris(&t, v, 1, NULL, (sr_rasterizer)r) == SR_OK);
             rt_mask(&t, want);
-            int diff = 0;
             for (int i = 0; i < GRID * GRID; i++) {
-                diff += cells[i] != want[i];
                 drawn_total += r == SR_RASTER_HALFSPACE && want[i];
             }
-            if (diff) {
-                FAILF("triangle %s, rasterizer %d: %d cells differ", prim, r, diff);
-            }
+            char what[300];
+            snprintf(what, sizeof what, "triangle %s, rasterizer %d", prim, r);
+            compare_cells(cells, want, what);
         }
     }
     CHECK(drawn_total > 500);   /* the triangles do cover pixels */
     rt_free(&t);
+}
+
+SR_TEST(scanline_last_frame_is_what_sr_fill_polygon_fills)
+{
+    NEEDS_CLI();
+    /* the example (a horizontal edge, a vertex on a sample height, a
+     * notch), then random polygons, self-intersecting ones too, with
+     * vertices on the half-pixel grid so crossings fall on pixel centres
+     * and vertices on sample heights; under both fill rules */
+    sr_rng rng = { 3939 };
+    int drawn_total = 0;
+    for (int k = 0; k < 24; k++) {
+        sr_point2 v[8] = { { 1.3, 1.4 }, { 7.0, 4.5 }, { 13.7, 1.4 }, { 10.5, 10.5 },
+                           { 3.5, 10.5 }, { 1.3, 6.5 } };
+        int n = 6;
+        if (k > 1) {
+            n = sr_rng_int(&rng, 3, 8);
+            for (int i = 0; i < n; i++) {
+                v[i].x = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5 + (k % 4 == 0 ? 0.3 : 0);
+                v[i].y = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            }
+        }
+        char prim[512] = "", dir[1024], name[32];
+        for (int i = 0; i < n; i++) {
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g", i ? "," : "", v[i].x, v[i].y);
+        }
+        sr_fill_rule rule = k % 2 ? SR_NONZERO : SR_EVENODD;
+        snprintf(name, sizeof name, "scanline_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_rule("scanline", "--polygon", prim,
+                                 rule == SR_EVENODD ? "evenodd" : "nonzero", dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        REQUIRE(sr_polygon_coverage(sr_test_ctx(), &(sr_polygon2){ v, n, NULL, 0 },
+                                    &(sr_fill_desc){ .rule = rule }, 0, 0, GRID, GRID, want,
+                                    GRID) == SR_OK);
+        for (int i = 0; i < GRID * GRID; i++) {
+            want[i] = want[i] != 0;
+            drawn_total += want[i];
+        }
+        char what[600];
+        snprintf(what, sizeof what, "polygon %s, %s", prim,
+                 rule == SR_EVENODD ? "even-odd" : "nonzero");
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 500);
 }
 
 SR_TEST(explain_refuses_bad_input)
@@ -134,6 +198,8 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", NULL }), 2);
     CHECK_EQ(run_explain("triangle", "--triangle", "1,2,3,4,5", dir), 2);
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain_rule("scanline", "--polygon", "1,2,3,4,5,6", "odd", dir), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--zoom", "3", "-o", dir,
                                                NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "a%s%d", NULL }), 2);

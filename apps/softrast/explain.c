@@ -25,8 +25,14 @@ typedef struct algorithm {
 
 static const algorithm algorithms[] = {
     { "triangle", EX_TRIANGLE, explain_triangle,
-      { EX_TRIANGLE, { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, 3 }, 15, 13, 32,
-      "edge functions E0..E2 at each pixel centre, the top-left rule on ties, coverage" },
+      { EX_TRIANGLE, { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, 3, SR_NONZERO }, 15, 13, 32,
+      "edge functions E0..E2 at each pixel centre, the top-left\n"
+      "             rule on ties, coverage" },
+    { "scanline", EX_POLYGON, explain_scanline,
+      { EX_POLYGON, { { 1.3, 1.4 }, { 7.0, 4.5 }, { 13.7, 1.4 }, { 10.5, 10.5 }, { 3.5, 10.5 },
+                      { 1.3, 6.5 } }, 6, SR_EVENODD }, 16, 12, 32,
+      "the polygon fill's edge table, then the active edge table, parity and\n"
+      "             spans on each scanline" },
 };
 
 static void usage(FILE *f)
@@ -49,6 +55,9 @@ static void usage(FILE *f)
             "  --triangle X0,Y0,X1,Y1,X2,Y2\n"
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
+            "  --fill-rule evenodd|nonzero\n"
+            "                             polygons: inside by parity (the default) or by\n"
+            "                             winding number\n"
             "\n"
             "view:\n"
             "  --grid WxH                 pixels shown (from 1x1 to %dx%d)\n"
@@ -208,6 +217,7 @@ int cmd_explain(int argc, char **argv)
         return EXIT_USAGE;
     }
     ex_primitive prim = alg->example;
+    sr_fill_rule rule = SR_EVENODD;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL;
     for (int i = 2; i < argc; i++) {
@@ -234,6 +244,11 @@ int cmd_explain(int argc, char **argv)
                : p.kind == EX_LINE     ? parse_points(a, v, 2, 2, true, &p)
                                        : parse_points(a, v, 3, EX_MAX_POINTS, false, &p);
             prim = p;
+        } else if (strcmp(a, "--fill-rule") == 0) {
+            static const char *const rules[] = { "evenodd", "nonzero", NULL };
+            int k;
+            ok = parse_choice(a, v, rules, &k);
+            rule = k == 0 ? SR_EVENODD : SR_NONZERO;
         } else if (strcmp(a, "--grid") == 0) {
             ok = parse_size(a, v, &grid_w, &grid_h);
             if (ok && (grid_w > MAX_GRID || grid_h > MAX_GRID)) {
@@ -263,6 +278,7 @@ int cmd_explain(int argc, char **argv)
         cli_error("explain: no output: give -o DIR and/or --sheet FILE.png");
         return EXIT_USAGE;
     }
+    prim.rule = rule;
     grid_w = grid_w ? grid_w : alg->grid_w;
     grid_h = grid_h ? grid_h : alg->grid_h;
     zoom = zoom ? zoom : alg->zoom;
@@ -279,7 +295,9 @@ int cmd_explain(int argc, char **argv)
     }
     ex_canvas c;
     int status = EXIT_OK;
-    if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom) != SR_OK || alg->run(&c, &prim) != SR_OK) {
+    /* polygons list their edges in the captions */
+    int lines = alg->kind == EX_POLYGON ? 8 + prim.count : 7;
+    if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK || alg->run(&c, &prim) != SR_OK) {
         cli_error("explain %s: %s", alg->name,
                   sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
         status = EXIT_FAILURE_RUN;

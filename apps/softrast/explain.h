@@ -23,6 +23,7 @@ typedef struct ex_primitive {
     ex_kind kind;
     sr_point2 pts[EX_MAX_POINTS];
     int count;
+    sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -42,7 +43,10 @@ typedef struct ex_canvas {
 extern const sr_rgba EX_BG, EX_GRID, EX_INK, EX_CELL_OUT, EX_CELL_IN, EX_TIE,
     EX_EDGE, EX_HILITE, EX_TEXT, EX_BAD;
 
-sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, int zoom);
+/* A canvas for frames of grid_w x grid_h cells of zoom x zoom frame
+ * pixels, with room for caption_lines lines of caption under them. */
+sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, int zoom,
+                         int caption_lines);
 void ex_canvas_free(ex_canvas *c);
 
 /* Start a frame: background, empty cells, grid lines. */
@@ -69,6 +73,7 @@ void ex_end(ex_canvas *c, const char *caption);
 /* The algorithms: each draws its frames; SR_OK or the first failure. */
 typedef sr_result (*ex_algorithm_fn)(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_scanline(ex_canvas *c, const ex_primitive *prim);
 
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);

@@ -7,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define CAPTION_LINES 7
 #define MIN_TEXT_WIDTH 420  /* frame pixels: room for a caption line at scale 2 */
 
 const sr_rgba EX_BG = { 0.97f, 0.97f, 0.96f, 1 };
@@ -26,7 +25,8 @@ int64_t ex_snap(double v)
     return (int64_t)nearbyint(v * 256.0);
 }
 
-sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, int zoom)
+sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, int zoom,
+                         int caption_lines)
 {
     *c = (ex_canvas){ .ctx = ctx, .grid_w = grid_w, .grid_h = grid_h, .zoom = zoom };
     int gw = grid_w * zoom;
@@ -34,8 +34,8 @@ sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, 
     c->width = 2 * EX_MARGIN + (gw > MIN_TEXT_WIDTH / 2 * c->text_scale
                                     ? gw : MIN_TEXT_WIDTH / 2 * c->text_scale);
     c->caption_y = EX_MARGIN + grid_h * zoom + EX_MARGIN;
-    c->caption_lines = CAPTION_LINES;
-    c->height = c->caption_y + CAPTION_LINES * 10 * c->text_scale + EX_MARGIN;
+    c->caption_lines = caption_lines;
+    c->height = c->caption_y + caption_lines * 10 * c->text_scale + EX_MARGIN;
     c->error = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = c->width,
                                                                 .height = c->height,
                                                                 .depth_format = SR_DEPTH_NONE },
