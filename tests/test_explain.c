@@ -189,6 +189,53 @@ SR_TEST(scanline_last_frame_is_what_sr_fill_polygon_fills)
     CHECK(drawn_total > 500);
 }
 
+/* Lines in every octant: k = 0 is the algorithm's example. */
+static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
+{
+    sr_rng rng = { alg * 77u };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0;
+    for (int k = 0; k < 24; k++) {
+        double v[4];
+        for (int i = 0; i < 4; i++) {
+            v[i] = centres ? sr_rng_int(&rng, -2, GRID + 1) + 0.5
+                           : sr_rng_int(&rng, -16, (GRID + 4) * 8) / 8.0;
+        }
+        char prim[128], dir[1024], name[40];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g", v[0], v[1], v[2], v[3]);
+        snprintf(name, sizeof name, "%s_%02d", algorithm, k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain(algorithm, "--line", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        rt_clear(&t);
+        REQUIRE(sr_draw_line(t.ctx, t.fb, (sr_point2){ v[0], v[1] }, (sr_point2){ v[2], v[3] },
+                             (sr_rgba){ 1, 1, 1, 1 },
+                             &(sr_line_desc){ .algorithm = alg }) == SR_OK);
+        rt_mask(&t, want);
+        for (int i = 0; i < GRID * GRID; i++) {
+            drawn_total += want[i];
+        }
+        char what[200];
+        snprintf(what, sizeof what, "%s line %s", algorithm, prim);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 150);
+    rt_free(&t);
+}
+
+SR_TEST(bresenham_last_frame_is_what_sr_draw_line_draws)
+{
+    NEEDS_CLI();
+    check_lines("bresenham", SR_LINE_BRESENHAM, true);
+}
+
+SR_TEST(dda_last_frame_is_what_sr_draw_line_draws)
+{
+    NEEDS_CLI();
+    check_lines("dda", SR_LINE_DDA_INCREMENTAL, false);
+}
+
 SR_TEST(explain_refuses_bad_input)
 {
     NEEDS_CLI();
@@ -199,6 +246,7 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(run_explain("triangle", "--triangle", "1,2,3,4,5", dir), 2);
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain("bresenham", "--line", "1.5,2.5,7,3.5", dir), 2);
     CHECK_EQ(run_explain_rule("scanline", "--polygon", "1,2,3,4,5,6", "odd", dir), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--zoom", "3", "-o", dir,
                                                NULL }), 2);

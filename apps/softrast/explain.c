@@ -33,6 +33,13 @@ static const algorithm algorithms[] = {
                       { 1.3, 6.5 } }, 6, SR_EVENODD }, 16, 12, 32,
       "the polygon fill's edge table, then the active edge table, parity and\n"
       "             spans on each scanline" },
+    { "bresenham", EX_LINE, explain_bresenham,
+      { EX_LINE, { { 1.5, 2.5 }, { 13.5, 7.5 } }, 2, SR_NONZERO }, 16, 10, 32,
+      "the midpoint line's decision variable at each step (ends on\n"
+      "             pixel centres, x.5,y.5)" },
+    { "dda", EX_LINE, explain_dda,
+      { EX_LINE, { { 1.2, 2.7 }, { 14.6, 8.1 } }, 2, SR_NONZERO }, 16, 10, 32,
+      "the incremental DDA: the minor coordinate stepped by the slope" },
 };
 
 static void usage(FILE *f)
@@ -279,6 +286,11 @@ int cmd_explain(int argc, char **argv)
         return EXIT_USAGE;
     }
     prim.rule = rule;
+    if (alg->run == explain_bresenham && !ex_line_on_centres(&prim)) {
+        cli_error("explain bresenham: --line: the midpoint algorithm takes ends on pixel "
+                  "centres (x.5,y.5); 'softrast explain dda' takes any");
+        return EXIT_USAGE;
+    }
     grid_w = grid_w ? grid_w : alg->grid_w;
     grid_h = grid_h ? grid_h : alg->grid_h;
     zoom = zoom ? zoom : alg->zoom;

@@ -74,6 +74,11 @@ void ex_end(ex_canvas *c, const char *caption);
 typedef sr_result (*ex_algorithm_fn)(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_scanline(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
+/* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
+ * which the midpoint algorithm's integer decision variable needs. */
+bool ex_line_on_centres(const ex_primitive *prim);
 
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);
