@@ -189,6 +189,58 @@ SR_TEST(scanline_last_frame_is_what_sr_fill_polygon_fills)
     CHECK(drawn_total > 500);
 }
 
+SR_TEST(clip_last_frame_is_the_fill_of_the_clipped_polygon)
+{
+    NEEDS_CLI();
+    /* random polygons against integer windows: no pixel centre is on the
+     * window's border, so the clipped polygon fills exactly the pixels of
+     * the whole polygon whose centres are inside the window */
+    sr_rng rng = { 3940 };
+    int drawn_total = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 v[8];
+        int n = sr_rng_int(&rng, 3, 8);
+        for (int i = 0; i < n; i++) {
+            v[i].x = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0 + 0.3;
+            v[i].y = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0 + 0.3;
+        }
+        int w[4] = { sr_rng_int(&rng, 0, 6), sr_rng_int(&rng, 0, 6), sr_rng_int(&rng, 9, GRID),
+                     sr_rng_int(&rng, 9, GRID) };
+        char prim[512] = "", win[64], dir[1024], name[32], grid[16], zoom[8];
+        for (int i = 0; i < n; i++) {
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g", i ? "," : "", v[i].x, v[i].y);
+        }
+        snprintf(win, sizeof win, "%d,%d,%d,%d", w[0], w[1], w[2], w[3]);
+        snprintf(name, sizeof name, "clip_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        snprintf(zoom, sizeof zoom, "%d", ZOOM);
+        sr_fill_rule rule = k % 2 ? SR_NONZERO : SR_EVENODD;
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip", "--polygon", prim,
+                                                  "--window", win, "--grid", grid, "--zoom",
+                                                  zoom, "--fill-rule",
+                                                  rule == SR_EVENODD ? "evenodd" : "nonzero",
+                                                  "-o", dir, NULL }) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        REQUIRE(sr_polygon_coverage(sr_test_ctx(), &(sr_polygon2){ v, n, NULL, 0 },
+                                    &(sr_fill_desc){ .rule = rule }, 0, 0, GRID, GRID, want,
+                                    GRID) == SR_OK);
+        for (int y = 0; y < GRID; y++) {
+            for (int x = 0; x < GRID; x++) {
+                bool in = x >= w[0] && x < w[2] && y >= w[1] && y < w[3];
+                want[y * GRID + x] = want[y * GRID + x] && in;
+                drawn_total += want[y * GRID + x];
+            }
+        }
+        char what[600];
+        snprintf(what, sizeof what, "polygon %s clipped to %s", prim, win);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 300);
+}
+
 /* Lines in every octant: k = 0 is the algorithm's example. */
 static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
 {
@@ -247,6 +299,8 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("bresenham", "--line", "1.5,2.5,7,3.5", dir), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "clip", "--window", "5,1,2,8", "-o",
+                                               dir, NULL }), 2);
     CHECK_EQ(run_explain_rule("scanline", "--polygon", "1,2,3,4,5,6", "odd", dir), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--zoom", "3", "-o", dir,
                                                NULL }), 2);

@@ -25,20 +25,24 @@ typedef struct algorithm {
 
 static const algorithm algorithms[] = {
     { "triangle", EX_TRIANGLE, explain_triangle,
-      { EX_TRIANGLE, { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, 3, SR_NONZERO }, 15, 13, 32,
+      { EX_TRIANGLE, { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, 3, SR_NONZERO, { 0 } }, 15, 13, 32,
       "edge functions E0..E2 at each pixel centre, the top-left\n"
       "             rule on ties, coverage" },
     { "scanline", EX_POLYGON, explain_scanline,
       { EX_POLYGON, { { 1.3, 1.4 }, { 7.0, 4.5 }, { 13.7, 1.4 }, { 10.5, 10.5 }, { 3.5, 10.5 },
-                      { 1.3, 6.5 } }, 6, SR_EVENODD }, 16, 12, 32,
+                      { 1.3, 6.5 } }, 6, SR_EVENODD, { 0 } }, 16, 12, 32,
       "the polygon fill's edge table, then the active edge table, parity and\n"
       "             spans on each scanline" },
+    { "clip", EX_POLYGON, explain_clip,
+      { EX_POLYGON, { { 1.2, 5.3 }, { 7.5, 0.6 }, { 15.2, 4.4 }, { 11.3, 11.5 }, { 6.2, 7.4 },
+                      { 4.1, 11.2 } }, 6, SR_EVENODD, { 3, 2, 13, 10 } }, 16, 12, 32,
+      "Sutherland-Hodgman against a window, after each clip edge" },
     { "bresenham", EX_LINE, explain_bresenham,
-      { EX_LINE, { { 1.5, 2.5 }, { 13.5, 7.5 } }, 2, SR_NONZERO }, 16, 10, 32,
+      { EX_LINE, { { 1.5, 2.5 }, { 13.5, 7.5 } }, 2, SR_NONZERO, { 0 } }, 16, 10, 32,
       "the midpoint line's decision variable at each step (ends on\n"
       "             pixel centres, x.5,y.5)" },
     { "dda", EX_LINE, explain_dda,
-      { EX_LINE, { { 1.2, 2.7 }, { 14.6, 8.1 } }, 2, SR_NONZERO }, 16, 10, 32,
+      { EX_LINE, { { 1.2, 2.7 }, { 14.6, 8.1 } }, 2, SR_NONZERO, { 0 } }, 16, 10, 32,
       "the incremental DDA: the minor coordinate stepped by the slope" },
 };
 
@@ -62,6 +66,8 @@ static void usage(FILE *f)
             "  --triangle X0,Y0,X1,Y1,X2,Y2\n"
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
+            "  --window XMIN,YMIN,XMAX,YMAX\n"
+            "                             clip: the clip window\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -225,6 +231,8 @@ int cmd_explain(int argc, char **argv)
     }
     ex_primitive prim = alg->example;
     sr_fill_rule rule = SR_EVENODD;
+    ex_primitive window = { .count = 0 };
+    bool prim_given = false;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL;
     for (int i = 2; i < argc; i++) {
@@ -251,11 +259,21 @@ int cmd_explain(int argc, char **argv)
                : p.kind == EX_LINE     ? parse_points(a, v, 2, 2, true, &p)
                                        : parse_points(a, v, 3, EX_MAX_POINTS, false, &p);
             prim = p;
+            prim_given = true;
         } else if (strcmp(a, "--fill-rule") == 0) {
             static const char *const rules[] = { "evenodd", "nonzero", NULL };
             int k;
             ok = parse_choice(a, v, rules, &k);
             rule = k == 0 ? SR_EVENODD : SR_NONZERO;
+        } else if (strcmp(a, "--window") == 0) {
+            ex_primitive wp = { 0 };
+            ok = parse_points(a, v, 2, 2, true, &wp);
+            if (ok && (wp.pts[0].x >= wp.pts[1].x || wp.pts[0].y >= wp.pts[1].y)) {
+                cli_error("%s: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX "
+                          "(got '%s')", a, v);
+                ok = false;
+            }
+            window = wp;
         } else if (strcmp(a, "--grid") == 0) {
             ok = parse_size(a, v, &grid_w, &grid_h);
             if (ok && (grid_w > MAX_GRID || grid_h > MAX_GRID)) {
@@ -294,6 +312,13 @@ int cmd_explain(int argc, char **argv)
     grid_w = grid_w ? grid_w : alg->grid_w;
     grid_h = grid_h ? grid_h : alg->grid_h;
     zoom = zoom ? zoom : alg->zoom;
+    if (window.count == 2) {
+        double w[4] = { window.pts[0].x, window.pts[0].y, window.pts[1].x, window.pts[1].y };
+        memcpy(prim.window, w, sizeof w);
+    } else if (prim_given) {   /* the middle of the grid */
+        double w[4] = { grid_w / 4, grid_h / 4, grid_w - grid_w / 4, grid_h - grid_h / 4 };
+        memcpy(prim.window, w, sizeof w);
+    }
     if ((int64_t)grid_w * zoom > 8192 || (int64_t)grid_h * zoom > 8192) {
         cli_error("explain: the grid times the zoom is over 8192 frame pixels: "
                   "make --grid or --zoom smaller");
@@ -307,8 +332,8 @@ int cmd_explain(int argc, char **argv)
     }
     ex_canvas c;
     int status = EXIT_OK;
-    /* polygons list their edges in the captions */
-    int lines = alg->kind == EX_POLYGON ? 8 + prim.count : 7;
+    /* the scan-line fill lists its edge table in a caption */
+    int lines = alg->run == explain_scanline ? 8 + prim.count : 7;
     if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK || alg->run(&c, &prim) != SR_OK) {
         cli_error("explain %s: %s", alg->name,
                   sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));

@@ -24,6 +24,7 @@ typedef struct ex_primitive {
     sr_point2 pts[EX_MAX_POINTS];
     int count;
     sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
+    double window[4];       /* clip: xmin, ymin, xmax, ymax */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -74,6 +75,7 @@ void ex_end(ex_canvas *c, const char *caption);
 typedef sr_result (*ex_algorithm_fn)(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_scanline(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_clip(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
