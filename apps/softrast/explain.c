@@ -31,8 +31,8 @@ static const algorithm algorithms[] = {
     { "scanline", EX_POLYGON, explain_scanline,
       { EX_POLYGON, { { 1.3, 1.4 }, { 7.0, 4.5 }, { 13.7, 1.4 }, { 10.5, 10.5 }, { 3.5, 10.5 },
                       { 1.3, 6.5 } }, 6, SR_EVENODD, { 0 } }, 16, 12, 32,
-      "the polygon fill's edge table, then the active edge table, parity and\n"
-      "             spans on each scanline" },
+      "the polygon fill's edge table, then the active edge table,\n"
+      "             parity and spans on each scanline" },
     { "clip", EX_POLYGON, explain_clip,
       { EX_POLYGON, { { 1.2, 5.3 }, { 7.5, 0.6 }, { 15.2, 4.4 }, { 11.3, 11.5 }, { 6.2, 7.4 },
                       { 4.1, 11.2 } }, 6, SR_EVENODD, { 3, 2, 13, 10 } }, 16, 12, 32,
