@@ -525,10 +525,19 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
         sa = -1.04f * a004 + rz;
         sb = 1.04f * a004 + rw;
     }
+    /* Multiple scattering (Fdez-Aguera 2019, as three.js and Khronos'
+     * sample viewer light with an environment): a single GGX bounce
+     * reflects only Ess = A + B of the light; the rest, Ems, comes back
+     * after more bounces, tinted by the average Fresnel, as irradiance.
+     * The diffuse takes what neither reflects, so a white furnace stays
+     * white for dielectrics and metals at every roughness. */
+    v4f ems = 1.0f - (sa + sb);
     for (int c = 0; c < 3; c++) {
-        /* What the specular lobe reflects the diffuse cannot. */
-        v4f spec = f0[c] * sa + sb;
-        out[c] += (cdiff[c] * (1.0f - spec) * en[c] + spec * er[c]) * ao;
+        v4f fss_ess = f0[c] * sa + sb;
+        v4f favg = f0[c] + (1.0f - f0[c]) * (1.0f / 21.0f);
+        v4f fms_ems = ems * fss_ess * favg / (1.0f - ems * favg);
+        v4f kd = cdiff[c] * (1.0f - (fss_ess + fms_ems));
+        out[c] += (fss_ess * er[c] + (fms_ems + kd) * en[c]) * ao;
     }
 done:
     for (int c = 0; c < 3; c++) {
@@ -625,9 +634,12 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
     }
     float out[3][4];
     if (m->unlit) {
+        /* Unlit is the base colour as radiance: exposed and tone mapped like
+         * every other surface, as glTF viewers do, so an unlit label keeps
+         * its tone beside lit parts; --tonemap none shows it as it is. */
         for (int c = 0; c < 3; c++) {
             for (int i = 0; i < 4; i++) {
-                out[c][i] = base[c][i];
+                out[c][i] = base[c][i] * p->scale;
             }
         }
     } else {
@@ -705,9 +717,7 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             }
         }
     }
-    if (!m->unlit) {
-        tone_lanes(p->tonemap, out);
-    }
+    tone_lanes(p->tonemap, out);
     encode_lanes(p->srgb, out, q);
     for (int i = 0; i < 4; i++) {
         q->color[3][i] = alpha[i];
