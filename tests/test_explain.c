@@ -66,6 +66,37 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
     return last;
 }
 
+/* The covered samples of each cell of the last frame of `dir` (an
+ * msaa explanation with n samples): the cell's commonest colour is the
+ * fill blue over white in k/n, as the resolve rounds it. */
+static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/frame-003.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    if (sr_read_png(path, NULL, &w, &h, &px, NULL) != SR_OK) {
+        FAILF("cannot read %s", path);
+        return false;
+    }
+    for (int cy = 0; cy < GRID; cy++) {
+        for (int cx = 0; cx < GRID; cx++) {
+            int hist[256] = { 0 }, best = 0;
+            for (int y = 1; y < ZOOM; y++) {   /* inside the grid lines */
+                for (int x = 1; x < ZOOM; x++) {
+                    hist[px[((size_t)(MARGIN + cy * ZOOM + y) * w + MARGIN + cx * ZOOM + x) * 4]]++;
+                }
+            }
+            for (int r = 1; r < 256; r++) {
+                best = hist[r] > hist[best] ? r : best;
+            }
+            k_out[cy * GRID + cx] = (uint8_t)lround((255.0 - best) * n / (255.0 - 51.0));
+        }
+    }
+    free(px);
+    return true;
+}
+
 static int run_explain_rule(const char *algorithm, const char *prim_opt, const char *prim,
                             const char *rule, const char *dir)
 {
@@ -241,6 +272,49 @@ SR_TEST(clip_last_frame_is_the_fill_of_the_clipped_polygon)
     CHECK(drawn_total > 300);
 }
 
+SR_TEST(msaa_last_frame_is_what_a_multisampled_sr_draw_resolves)
+{
+    NEEDS_CLI();
+    sr_rng rng = { 4039 };
+    for (int k = 0; k < 16; k++) {
+        int n = 2 << (k % 4);
+        double v[6];
+        for (int i = 0; i < 6; i++) {
+            v[i] = sr_rng_int(&rng, -16, (GRID + 2) * 16) / 16.0;
+        }
+        char prim[256], dir[1024], name[32], grid[16], zoom[8], ns[8];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
+        snprintf(name, sizeof name, "msaa_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        snprintf(zoom, sizeof zoom, "%d", ZOOM);
+        snprintf(ns, sizeof ns, "%d", n);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "msaa", "--triangle", prim,
+                                                  "--samples", ns, "--grid", grid, "--zoom",
+                                                  zoom, "-o", dir, NULL }) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_samples(dir, n, cells));
+        rt_target t = { sr_test_ctx(), NULL, GRID, GRID };
+        REQUIRE(sr_make_framebuffer(t.ctx, &(sr_framebuffer_desc){ .width = GRID,
+                                                                   .height = GRID,
+                                                                   .samples = n },
+                                    &t.fb) == SR_OK);
+        rt_clear(&t);
+        REQUIRE(rt_draw_tris(&t, v, 1, NULL, SR_RASTER_HALFSPACE) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int partial = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            want[i] = (uint8_t)lround(px[i * 4] * n / 255.0);
+            partial += want[i] > 0 && want[i] < n;
+        }
+        sr_destroy_framebuffer(t.ctx, t.fb);
+        char what[300];
+        snprintf(what, sizeof what, "msaa %d, triangle %s", n, prim);
+        compare_cells(cells, want, what);
+        CHECK(partial > 0 || want[0] == want[GRID * GRID - 1]);
+    }
+}
+
 /* Lines in every octant: k = 0 is the algorithm's example. */
 static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
 {
@@ -299,6 +373,8 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("bresenham", "--line", "1.5,2.5,7,3.5", dir), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "msaa", "--samples", "3", "-o", dir,
+                                               NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "clip", "--window", "5,1,2,8", "-o",
                                                dir, NULL }), 2);
     CHECK_EQ(run_explain_rule("scanline", "--polygon", "1,2,3,4,5,6", "odd", dir), 2);

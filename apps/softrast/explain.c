@@ -25,24 +25,28 @@ typedef struct algorithm {
 
 static const algorithm algorithms[] = {
     { "triangle", EX_TRIANGLE, explain_triangle,
-      { EX_TRIANGLE, { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, 3, SR_NONZERO, { 0 } }, 15, 13, 32,
+      { .kind = EX_TRIANGLE, .pts = { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, .count = 3 }, 15, 13, 32,
       "edge functions E0..E2 at each pixel centre, the top-left\n"
       "             rule on ties, coverage" },
+    { "msaa", EX_TRIANGLE, explain_msaa,
+      { .kind = EX_TRIANGLE, .pts = { { 1.3, 1.2 }, { 10.6, 3.4 }, { 3.2, 8.7 } }, .count = 3 },
+      12, 10, 40, "the triangle's coverage per sample and the resolve (--samples)" },
     { "scanline", EX_POLYGON, explain_scanline,
-      { EX_POLYGON, { { 1.3, 1.4 }, { 7.0, 4.5 }, { 13.7, 1.4 }, { 10.5, 10.5 }, { 3.5, 10.5 },
-                      { 1.3, 6.5 } }, 6, SR_EVENODD, { 0 } }, 16, 12, 32,
+      { .kind = EX_POLYGON, .pts = { { 1.3, 1.4 }, { 7.0, 4.5 }, { 13.7, 1.4 }, { 10.5, 10.5 },
+                                     { 3.5, 10.5 }, { 1.3, 6.5 } }, .count = 6 }, 16, 12, 32,
       "the polygon fill's edge table, then the active edge table,\n"
       "             parity and spans on each scanline" },
     { "clip", EX_POLYGON, explain_clip,
-      { EX_POLYGON, { { 1.2, 5.3 }, { 7.5, 0.6 }, { 15.2, 4.4 }, { 11.3, 11.5 }, { 6.2, 7.4 },
-                      { 4.1, 11.2 } }, 6, SR_EVENODD, { 3, 2, 13, 10 } }, 16, 12, 32,
+      { .kind = EX_POLYGON, .pts = { { 1.2, 5.3 }, { 7.5, 0.6 }, { 15.2, 4.4 }, { 11.3, 11.5 },
+                                     { 6.2, 7.4 }, { 4.1, 11.2 } }, .count = 6,
+        .window = { 3, 2, 13, 10 } }, 16, 12, 32,
       "Sutherland-Hodgman against a window, after each clip edge" },
     { "bresenham", EX_LINE, explain_bresenham,
-      { EX_LINE, { { 1.5, 2.5 }, { 13.5, 7.5 } }, 2, SR_NONZERO, { 0 } }, 16, 10, 32,
+      { .kind = EX_LINE, .pts = { { 1.5, 2.5 }, { 13.5, 7.5 } }, .count = 2 }, 16, 10, 32,
       "the midpoint line's decision variable at each step (ends on\n"
       "             pixel centres, x.5,y.5)" },
     { "dda", EX_LINE, explain_dda,
-      { EX_LINE, { { 1.2, 2.7 }, { 14.6, 8.1 } }, 2, SR_NONZERO, { 0 } }, 16, 10, 32,
+      { .kind = EX_LINE, .pts = { { 1.2, 2.7 }, { 14.6, 8.1 } }, .count = 2 }, 16, 10, 32,
       "the incremental DDA: the minor coordinate stepped by the slope" },
 };
 
@@ -68,6 +72,7 @@ static void usage(FILE *f)
             "  --line X0,Y0,X1,Y1\n"
             "  --window XMIN,YMIN,XMAX,YMAX\n"
             "                             clip: the clip window\n"
+            "  --samples N                msaa: 2, 4 (the default), 8 or 16 per pixel\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -233,6 +238,7 @@ int cmd_explain(int argc, char **argv)
     sr_fill_rule rule = SR_EVENODD;
     ex_primitive window = { .count = 0 };
     bool prim_given = false;
+    int samples = 4;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL;
     for (int i = 2; i < argc; i++) {
@@ -274,6 +280,12 @@ int cmd_explain(int argc, char **argv)
                 ok = false;
             }
             window = wp;
+        } else if (strcmp(a, "--samples") == 0) {
+            ok = parse_int(a, v, 2, 16, &samples);
+            if (ok && (samples & (samples - 1)) != 0) {
+                cli_error("%s: expected 2, 4, 8 or 16 (got '%s')", a, v);
+                ok = false;
+            }
         } else if (strcmp(a, "--grid") == 0) {
             ok = parse_size(a, v, &grid_w, &grid_h);
             if (ok && (grid_w > MAX_GRID || grid_h > MAX_GRID)) {
@@ -304,6 +316,7 @@ int cmd_explain(int argc, char **argv)
         return EXIT_USAGE;
     }
     prim.rule = rule;
+    prim.samples = samples;
     if (alg->run == explain_bresenham && !ex_line_on_centres(&prim)) {
         cli_error("explain bresenham: --line: the midpoint algorithm takes ends on pixel "
                   "centres (x.5,y.5); 'softrast explain dda' takes any");

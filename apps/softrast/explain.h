@@ -25,6 +25,7 @@ typedef struct ex_primitive {
     int count;
     sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
     double window[4];       /* clip: xmin, ymin, xmax, ymax */
+    int samples;            /* msaa: samples per pixel */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -75,12 +76,29 @@ void ex_end(ex_canvas *c, const char *caption);
 typedef sr_result (*ex_algorithm_fn)(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_scanline(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_msaa(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_clip(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);
+
+/* A triangle as the pipeline sets it up (explain_triangle.c). */
+typedef struct ex_tri {
+    int64_t x[3], y[3];     /* snapped, q8; ordered so that inside is E > 0 */
+    bool top_left[3];       /* edge i = vertex i -> vertex i+1 */
+    int64_t area2;
+} ex_tri;
+
+/* Snap and order; whether two vertices were swapped (clockwise given). */
+bool ex_tri_setup(ex_tri *t, const ex_primitive *prim);
+/* Edge function i at the point (sx, sy) in q8. */
+int64_t ex_tri_edge(const ex_tri *t, int i, int64_t sx, int64_t sy);
+/* Whether the point (sx, sy) in q8 is covered, ties by the top-left rule. */
+bool ex_tri_covers(const ex_tri *t, int64_t sx, int64_t sy);
+/* Outline, vertices and their names; edge `hilite` (or -1) stressed. */
+void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite);
 
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);

@@ -10,29 +10,54 @@
 
 #include <stdio.h>
 
-typedef struct tri {
-    int64_t x[3], y[3];     /* snapped, q8; ordered so that inside is E > 0 */
-    bool top_left[3];       /* edge i = vertex i -> vertex i+1 */
-    int64_t area2;
-} tri;
+typedef ex_tri tri;
 
-static int64_t edge_at(const tri *t, int i, int px, int py)
+int64_t ex_tri_edge(const ex_tri *t, int i, int64_t sx, int64_t sy)
 {
     int a = i, b = (i + 1) % 3;
-    int64_t sx = (int64_t)px * 256 + 128, sy = (int64_t)py * 256 + 128;
     return (t->x[b] - t->x[a]) * (sy - t->y[a]) - (t->y[b] - t->y[a]) * (sx - t->x[a]);
 }
 
-/* Covered: every edge positive, or zero on a top or left edge. */
-static bool covered(const tri *t, int px, int py)
+static int64_t edge_at(const tri *t, int i, int px, int py)
+{
+    return ex_tri_edge(t, i, (int64_t)px * 256 + 128, (int64_t)py * 256 + 128);
+}
+
+bool ex_tri_covers(const ex_tri *t, int64_t sx, int64_t sy)
 {
     for (int i = 0; i < 3; i++) {
-        int64_t e = edge_at(t, i, px, py);
+        int64_t e = ex_tri_edge(t, i, sx, sy);
         if (e < 0 || (e == 0 && !t->top_left[i])) {
             return false;
         }
     }
     return true;
+}
+
+static bool covered(const tri *t, int px, int py)
+{
+    return ex_tri_covers(t, (int64_t)px * 256 + 128, (int64_t)py * 256 + 128);
+}
+
+bool ex_tri_setup(ex_tri *t, const ex_primitive *prim)
+{
+    for (int i = 0; i < 3; i++) {
+        t->x[i] = ex_snap(prim->pts[i].x);
+        t->y[i] = ex_snap(prim->pts[i].y);
+    }
+    t->area2 = (t->x[1] - t->x[0]) * (t->y[2] - t->y[0]) - (t->y[1] - t->y[0]) * (t->x[2] - t->x[0]);
+    bool swapped = t->area2 < 0;
+    if (swapped) {   /* the rasterizers take either winding: reorder, not cull */
+        int64_t tx = t->x[1], ty = t->y[1];
+        t->x[1] = t->x[2]; t->y[1] = t->y[2];
+        t->x[2] = tx; t->y[2] = ty;
+        t->area2 = -t->area2;
+    }
+    for (int i = 0; i < 3; i++) {
+        int64_t dx = t->x[(i + 1) % 3] - t->x[i], dy = t->y[(i + 1) % 3] - t->y[i];
+        t->top_left[i] = dy < 0 || (dy == 0 && dx > 0);
+    }
+    return swapped;
 }
 
 /* Whether no edge function is negative at the centre of (px, py);
@@ -53,12 +78,12 @@ static const char *edge_kind(const tri *t, int i)
     return dy < 0 ? "a left edge" : "a right edge";
 }
 
-static sr_point2 vertex(const tri *t, int i)
+static sr_point2 vertex(const ex_tri *t, int i)
 {
     return (sr_point2){ t->x[i] / 256.0, t->y[i] / 256.0 };
 }
 
-static void draw_triangle(ex_canvas *c, const tri *t, int hilite)
+void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite)
 {
     sr_point2 v[3] = { vertex(t, 0), vertex(t, 1), vertex(t, 2) };
     ex_outline(c, v, 3, true, EX_EDGE, 1.5);
@@ -101,22 +126,7 @@ static void fmt_q8(char *buf, size_t size, int64_t q)
 sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
 {
     tri t;
-    for (int i = 0; i < 3; i++) {
-        t.x[i] = ex_snap(prim->pts[i].x);
-        t.y[i] = ex_snap(prim->pts[i].y);
-    }
-    t.area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
-    bool swapped = t.area2 < 0;
-    if (swapped) {   /* the rasterizers take either winding: reorder, not cull */
-        int64_t tx = t.x[1], ty = t.y[1];
-        t.x[1] = t.x[2]; t.y[1] = t.y[2];
-        t.x[2] = tx; t.y[2] = ty;
-        t.area2 = -t.area2;
-    }
-    for (int i = 0; i < 3; i++) {
-        int64_t dx = t.x[(i + 1) % 3] - t.x[i], dy = t.y[(i + 1) % 3] - t.y[i];
-        t.top_left[i] = dy < 0 || (dy == 0 && dx > 0);
-    }
+    bool swapped = ex_tri_setup(&t, prim);
     char cap[512], a[3][2][24];
     for (int i = 0; i < 3; i++) {
         fmt_q8(a[i][0], sizeof a[i][0], t.x[i]);
@@ -126,7 +136,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
     /* 1: the triangle over the sample points */
     ex_begin(c);
     samples(c);
-    draw_triangle(c, &t, -1);
+    ex_tri_draw(c, &t, -1);
     snprintf(cap, sizeof cap,
              "1. The triangle V0 (%s, %s), V1 (%s, %s), V2 (%s, %s), snapped to 1/256 pixel "
              "(8 sub-pixel bits). A pixel is a point sample at its centre (x+1/2, y+1/2): it is "
@@ -137,7 +147,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
     if (t.area2 == 0) {
         ex_begin(c);
         samples(c);
-        draw_triangle(c, &t, -1);
+        ex_tri_draw(c, &t, -1);
         ex_end(c, "2. The triangle has no area (its vertices are on one line after snapping): "
                   "it covers no pixel.");
         return c->error;
@@ -160,7 +170,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
             }
         }
         samples(c);
-        draw_triangle(c, &t, i);
+        ex_tri_draw(c, &t, i);
         snprintf(cap, sizeof cap,
                  "%d. Edge function E%d of V%d->V%d: E%d(x,y) = (x%d-x%d)(y-y%d) - (y%d-y%d)(x-x%d), "
                  "exact in integers. Green: E%d > 0 (inside this edge, %d pixels); "
@@ -183,7 +193,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
         }
     }
     samples(c);
-    draw_triangle(c, &t, -1);
+    ex_tri_draw(c, &t, -1);
     snprintf(cap, sizeof cap,
              "5. The edge equations together: %d centres have E0, E1 and E2 all > 0 (green) and "
              "are covered. %d centres lie exactly on an edge (yellow, some E = 0): "
@@ -212,7 +222,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
         }
     }
     samples(c);
-    draw_triangle(c, &t, -1);
+    ex_tri_draw(c, &t, -1);
     snprintf(cap, sizeof cap,
              "6. Top-left rule: a tie on a top edge (horizontal, inside below) or a left edge "
              "is covered (ringed: %d), one on a right or bottom edge is not (crossed: %d), so "
@@ -231,7 +241,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
             }
         }
     }
-    draw_triangle(c, &t, -1);
+    ex_tri_draw(c, &t, -1);
     snprintf(cap, sizeof cap,
              "7. Coverage: %d pixels, exactly those sr_draw fills for this triangle with any of "
              "its rasterizers (half-space, scan-line, barycentric).",
