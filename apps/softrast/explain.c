@@ -79,7 +79,9 @@ static void usage(FILE *f)
             "\n"
             "view:\n"
             "  --grid WxH                 pixels shown (from 1x1 to %dx%d)\n"
-            "  --zoom N                   frame pixels per pixel, 4 to 64\n"
+            "  --zoom N                   frame pixels per pixel, 4 to 64; the grid times\n"
+            "                             the zoom at most 4096 a side, all the frames\n"
+            "                             at most 1 GiB\n"
             "\n"
             "output (at least one):\n"
             "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ... (DIR is\n"
@@ -332,8 +334,8 @@ int cmd_explain(int argc, char **argv)
         double w[4] = { grid_w / 4, grid_h / 4, grid_w - grid_w / 4, grid_h - grid_h / 4 };
         memcpy(prim.window, w, sizeof w);
     }
-    if ((int64_t)grid_w * zoom > 8192 || (int64_t)grid_h * zoom > 8192) {
-        cli_error("explain: the grid times the zoom is over 8192 frame pixels: "
+    if ((int64_t)grid_w * zoom > 4096 || (int64_t)grid_h * zoom > 4096) {
+        cli_error("explain: the grid times the zoom is over 4096 frame pixels: "
                   "make --grid or --zoom smaller");
         return EXIT_USAGE;
     }
@@ -348,9 +350,15 @@ int cmd_explain(int argc, char **argv)
     /* the scan-line fill lists its edge table in a caption */
     int lines = alg->run == explain_scanline ? 8 + prim.count : 7;
     if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK || alg->run(&c, &prim) != SR_OK) {
-        cli_error("explain %s: %s", alg->name,
-                  sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
-        status = EXIT_FAILURE_RUN;
+        if (c.too_many) {
+            cli_error("explain %s: the frames would take over %zu MiB: make --grid or --zoom "
+                      "smaller", alg->name, EX_MAX_FRAME_BYTES >> 20);
+            status = EXIT_USAGE;
+        } else {
+            cli_error("explain %s: %s", alg->name,
+                      sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
+            status = EXIT_FAILURE_RUN;
+        }
     } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet))) {
         status = EXIT_FAILURE_RUN;
     }

@@ -15,6 +15,7 @@
 
 #define EX_MARGIN 16      /* frame pixels around the grid: its top-left corner */
 #define EX_MAX_POINTS 64  /* vertices of a --polygon */
+#define EX_MAX_FRAME_BYTES ((size_t)1 << 30)  /* all frames are kept for the sheet */
 
 /* The primitive the user gave (window coordinates, pixels, y down). */
 typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE } ex_kind;
@@ -38,6 +39,8 @@ typedef struct ex_canvas {
     int text_scale, caption_y, caption_lines;
     uint8_t **frames;
     int frame_count, frame_cap;
+    size_t kept_bytes;        /* of all the frames, at most EX_MAX_FRAME_BYTES */
+    bool too_many;            /* ex_end refused a frame over that limit */
     sr_result error;          /* the first failure; later calls do nothing */
 } ex_canvas;
 

@@ -267,6 +267,12 @@ void ex_end(ex_canvas *c, const char *text)
         c->frame_cap = cap;
     }
     size_t size = (size_t)c->width * (size_t)c->height * 4;
+    if (c->kept_bytes + size > EX_MAX_FRAME_BYTES) {
+        c->too_many = true;
+        c->error = SR_TOO_LARGE;
+        return;
+    }
+    c->kept_bytes += size;
     uint8_t *px = malloc(size);
     if (!px) {
         c->error = SR_OUT_OF_MEMORY;
