@@ -39,6 +39,7 @@ static const int aa_ssaa[] = { 1, 2, 3, 4, 1, 1, 1, 1 };
 static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
 static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
 static const char *const up_names[] = { "+x", "-x", "+y", "-y", "+z", "-z", NULL };
+static const char *const switch_names[] = { "on", "off", NULL };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 
 static void render_help(void)
@@ -438,11 +439,22 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         } else if (IS("--background")) {
             VALUE();
             bool clear = strcmp(value, "transparent") == 0;
+            o->background_env = strcmp(value, "environment") == 0 ? BACKGROUND_SHARP
+                              : strcmp(value, "blur") == 0        ? BACKGROUND_BLUR
+                                                                  : BACKGROUND_COLOR;
             o->background = (sr_vec3){ 0, 0, 0 };
             o->background_alpha = clear ? 0.0f : 1.0f;
-            if (!clear && !parse_color(arg, value, &o->background)) {
+            if (!clear && !o->background_env && !parse_color(arg, value, &o->background)) {
                 return EXIT_USAGE;
             }
+        } else if (IS("--shadows")) {
+            CHOICE(switch_names, o->shadows, k_ == 0 ? 1 : 0);
+        } else if (IS("--ground")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->ground = true;
         } else if (IS("--png-level")) {
             VALUE();
             if (!parse_int(arg, value, 0, 9, &o->png_level)) {
@@ -485,11 +497,23 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
 #undef VALUE
 #undef CHOICE
     }
+    if (o->background_env && !render_opts_image_light(o)) {
+        cli_error("--background %s: shows the environment of --environment studio or FILE.hdr "
+                  "under --shading pbr, without --ambient",
+                  o->background_env == BACKGROUND_BLUR ? "blur" : "environment");
+        return EXIT_USAGE;
+    }
     if (o->near_z > 0 && o->far_z > 0 && o->near_z >= o->far_z) {
         cli_error("--near %g must be less than --far %g", (double)o->near_z, (double)o->far_z);
         return EXIT_USAGE;
     }
     return -1;
+}
+
+bool render_opts_image_light(const render_opts *o)
+{
+    return o->pbr && !o->have_ambient && strcmp(o->environment, "hemisphere") != 0 &&
+           strcmp(o->environment, "none") != 0;
 }
 
 render_opts render_opts_defaults(void)
@@ -500,6 +524,7 @@ render_opts render_opts_defaults(void)
         .environment_intensity = 0.6f, .camera_index = -1,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,
+        .shadows = -1,
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
         .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 4, .opacity = 1.0f,
