@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "framing.h"
 #include "render.h"
+#include "render_background.h"
 #include "render_gltf.h"
 #include "render_options.h"
 #include "render_shadow.h"
@@ -887,6 +888,10 @@ cli_inputs *render_job_inputs(render_job *job)
  * floor) receives them: on a model alone the shadow only falls on the
  * model, and there it was half again the CPU time of the `cli` scene
  * (docs/shadows.md). */
+/* --background blur: the environment as the specular reflection of a
+ * surface this rough shows it, soft but still recognisable. */
+#define BACKGROUND_BLUR_ROUGHNESS 0.5f
+
 static bool wants_shadows(const render_opts *o, const scene *s)
 {
     bool ground = false;
@@ -961,6 +966,13 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
                                                            o->background_alpha },
                                                 .depth_action = SR_ACTION_CLEAR,
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
+    }
+    if (r == SR_OK && o->background_env && job->env) {
+        r = render_background_draw(ctx, fb, job->env,
+                                   o->background_env == BACKGROUND_BLUR ? BACKGROUND_BLUR_ROUGHNESS
+                                                                        : 0.0f,
+                                   &cam.view, &cam.proj, o->exposure, o->tonemap,
+                                   sr_context_threads(ctx));
     }
     /* The key light's shadow: its map, then the catcher over the
      * background, before the objects. */

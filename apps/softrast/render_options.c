@@ -57,7 +57,9 @@ static void render_help(void)
         "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
         "  --background COLOR       name, #rgb, #rrggbb, R,G,B in 0..1, or a gray level\n"
         "                           in 0..1 (default #1d2230); transparent: a PNG with\n"
-        "                           alpha, the model's edges blended into nothing\n"
+        "                           alpha, the model's edges blended into nothing;\n"
+        "                           environment or blur: the --environment (studio or\n"
+        "                           FILE.hdr) behind the model, sharp or blurred\n"
         "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
@@ -68,12 +70,20 @@ static void render_help(void)
         "  --tonemap T              neutral|aces|none, pbr's tone curve: Khronos PBR\n"
         "                           Neutral, ACES filmic, or a clamp (default neutral)\n"
         "  --exposure EV            pbr's exposure in stops, -20..20 (default 0)\n"
-        "  --environment E          pbr's ambient light: none (a gray sky over a darker\n"
-        "                           ground, with the key, fill and rim lights; the\n"
-        "                           default), studio (a built-in neutral studio and the\n"
-        "                           key light) or FILE.hdr (an equirectangular Radiance\n"
-        "                           picture, +y up, and the key light); prefiltered once\n"
+        "  --environment E          pbr's ambient light: hemisphere (a gray sky over a\n"
+        "                           darker ground, with the key, fill and rim lights;\n"
+        "                           the default; also 'none'), studio (a built-in\n"
+        "                           neutral studio and the key light) or FILE.hdr (an\n"
+        "                           equirectangular Radiance picture, +y up, and the key\n"
+        "                           light); prefiltered once\n"
         "  --environment-intensity S  its radiance scale, 0.001..1000 (default 0.6)\n"
+        "  --shadows on|off         pbr: the key light casts a shadow (a shadow map\n"
+        "                           fitted to the model; default: on where a ground\n"
+        "                           receives it - --ground, the teapot's floor - else\n"
+        "                           off)\n"
+        "  --ground                 pbr: a shadow catcher under the model: the ground\n"
+        "                           shows only the model's soft shadow over the\n"
+        "                           background (replaces the teapot's floor)\n"
         "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
         "                           smooth ones, or one per face (default: file if the\n"
         "                           model has them, else smooth)\n"
@@ -520,7 +530,7 @@ render_opts render_opts_defaults(void)
 {
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
-        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "none",
+        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "hemisphere",
         .environment_intensity = 0.6f, .camera_index = -1,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,
