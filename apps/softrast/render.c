@@ -372,13 +372,21 @@ static sr_pbr_material pbr_material(const render_opts *o, const scene_object *ob
  * source-over blending and no depth writes (they still test against the
  * opaque depth). */
 static sr_result draw_scene(const render_opts *o, const sr_environment *env,
-                            const sr_shadow_map *shadow, sr_context *ctx, sr_framebuffer *fb,
+                            const render_shadow *shadow, sr_context *ctx, sr_framebuffer *fb,
                             sr_state *state, scene *s, const camera *cam, bool keep_material,
                             uint64_t *tris, uint64_t *frags)
 {
     bool pbr = o->pbr && !keep_material;
     sr_result r = SR_OK;
     for (int pass = 0; pass < 2 && r == SR_OK; pass++) {
+        /* A shadow catcher after the opaque objects, whose depth hides the
+         * ground behind them, and before the translucent ones. */
+        for (int i = 0; i < s->count && r == SR_OK && pass == 1 && pbr && shadow; i++) {
+            if (s->objects[i].catcher) {
+                r = render_catcher_draw(ctx, fb, state, shadow, &s->objects[i], &cam->view,
+                                        &cam->proj);
+            }
+        }
         for (int i = 0; i < s->count && r == SR_OK; i++) {
             scene_object *ob = &s->objects[i];
             bool gltf = ob->part_material && s->gltf;
@@ -464,7 +472,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                         d.sky = d.ground = o->ambient;
                     }
                     d.environment = env;
-                    d.shadow = shadow;
+                    d.shadow = shadow ? shadow->map : NULL;
                     r = sr_make_pbr_program(ctx, &d, &program);
                     if (r != SR_OK) {
                         free(sorted);
@@ -496,7 +504,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
  * units 1 unless --polygon-offset says otherwise), so lines on its surface win the LEQUAL test without stitching
  * or z-fighting; hidden-line and points fill with the background color. */
 static sr_result draw_passes(const render_opts *o, const sr_environment *env,
-                             const sr_shadow_map *shadow, sr_context *ctx, sr_framebuffer *fb,
+                             const render_shadow *shadow, sr_context *ctx, sr_framebuffer *fb,
                              const sr_state *base, scene *s, const camera *cam, uint64_t *tris,
                              uint64_t *frags)
 {
@@ -974,19 +982,12 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
                                    &cam.view, &cam.proj, o->exposure, o->tonemap,
                                    sr_context_threads(ctx));
     }
-    /* The key light's shadow: its map, then the catcher over the
-     * background, before the objects. */
-    const sr_shadow_map *shadow = NULL;
+    /* The key light's shadow map, before the objects that receive it. */
+    const render_shadow *shadow = NULL;
     if (r == SR_OK && o->pbr && wants_shadows(o, &job->s) &&
         state.lights[0].type == SR_LIGHT_DIRECTIONAL) {
         r = render_shadow_draw(ctx, &job->shadow, &job->s, state.lights[0].vector);
-        shadow = job->shadow.map;
-    }
-    for (int i = 0; i < job->s.count && r == SR_OK && shadow; i++) {
-        if (job->s.objects[i].catcher) {
-            r = render_catcher_draw(ctx, fb, &state, shadow, &job->s.objects[i], &cam.view,
-                                    &cam.proj);
-        }
+        shadow = &job->shadow;
     }
     if (r == SR_OK) {
         r = draw_passes(o, job->env, shadow, ctx, fb, &state, &job->s, &cam, &info->triangles,

@@ -26,12 +26,13 @@ void render_shadow_free(sr_context *ctx, render_shadow *sh);
  * cache the bounds again.  Needs scene_cache_bounds. */
 sr_result render_ground_add(sr_context *ctx, scene *s);
 
-/* Draw a catcher: black with alpha strength x (1 - visibility) x a fade
- * over the outer half of the square, blended source-over with depth
- * writes off, so where the ground is lit the background keeps its bytes.
- * Draw it after the background and before the objects. */
+/* Draw a catcher (a ground of render_ground_add) with sh's drawn map:
+ * black with alpha strength x (1 - visibility) x a fade over the outer
+ * half of the square, blended source-over with depth writes off, so where
+ * the ground is lit the background keeps its bytes.  Draw it after the
+ * opaque objects (their depth hides the ground behind them, unshaded). */
 sr_result render_catcher_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *base,
-                              const sr_shadow_map *map, const scene_object *ground,
+                              const render_shadow *sh, const scene_object *ground,
                               const sr_mat4 *view, const sr_mat4 *projection);
 
 #endif
