@@ -851,7 +851,8 @@ typedef struct sr_pbr_material {
     sr_alpha_mode alpha_mode;
     float alpha_cutoff;            /* for SR_ALPHA_MASK; 0 -> 0.5 */
     bool double_sided;             /* back faces drawn, lit with the flipped normal */
-    bool unlit;                    /* KHR_materials_unlit: the base color as it is */
+    bool unlit;                    /* KHR_materials_unlit: the base color, no lights
+                                    * (still exposed and tone mapped) */
 } sr_pbr_material;
 
 typedef struct sr_polygon_offset {

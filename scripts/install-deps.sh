@@ -9,8 +9,10 @@
 # (the window), FreeType and DejaVu (the overlay font's outlines) with Xvfb
 # and xauth (its tests run on a virtual display), and the de_DE.UTF-8 locale
 # (the readers' numbers must not depend on a host program's locale; the
-# test sets one whose decimal separator is a comma).  Runs apt-get directly
-# as root, through sudo otherwise.
+# test sets one whose decimal separator is a comma), and for the Python
+# package (python/) Python's headers, NumPy, pytest, setuptools, pip and
+# Dask's distributed (softrast.dask's tests on a local cluster).
+# Runs apt-get directly as root, through sudo otherwise.
 set -eu
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
@@ -21,7 +23,9 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     libpng-dev zlib1g-dev libjpeg-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev \
     libjansson-dev libwebp-dev \
     clang libclang-rt-14-dev \
-    libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth locales >/dev/null
+    libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth locales \
+    python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed \
+    >/dev/null
 # Generate de_DE.UTF-8 once: uncomment (or add) its line, then locale-gen.
 if ! locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
     if grep -q '^# *de_DE.UTF-8 UTF-8' /etc/locale.gen; then

@@ -72,29 +72,17 @@ static inline v4f vmax(v4f a, v4f b)
     return sr__v4_sel(a > b, a, b);
 }
 
-/* 1 / sqrt(x) and 1 / x for x > 0 to about 2 ulps: the SSE estimates
- * (12 bits) refined by one Newton step, where sqrtps and divps would
- * hold up the lane math for their latency.  The estimates are exact
- * functions of their input but differ between CPU vendors, so pixels may
- * differ by a code between machines, as libm differences already allow. */
+/* 1 / sqrt(x) and 1 / x, correctly rounded (sqrtps, divps): the SSE
+ * estimates would be quicker but differ between CPU vendors, and the same
+ * scene must give the same bytes on every machine. */
 static inline v4f rsqrt_nr(v4f x)
 {
-#if defined(__SSE__)
-    v4f y = (v4f)_mm_rsqrt_ps((__m128)x);
-    return y * (1.5f - 0.5f * x * y * y);
-#else
     return 1.0f / sr__v4_sqrt(x);
-#endif
 }
 
 static inline v4f rcp_nr(v4f x)
 {
-#if defined(__SSE__)
-    v4f y = (v4f)_mm_rcp_ps((__m128)x);
-    return y * (2.0f - x * y);
-#else
     return 1.0f / x;
-#endif
 }
 
 /* NaN goes to lo. */
@@ -537,10 +525,19 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
         sa = -1.04f * a004 + rz;
         sb = 1.04f * a004 + rw;
     }
+    /* Multiple scattering (Fdez-Aguera 2019, as three.js and Khronos'
+     * sample viewer light with an environment): a single GGX bounce
+     * reflects only Ess = A + B of the light; the rest, Ems, comes back
+     * after more bounces, tinted by the average Fresnel, as irradiance.
+     * The diffuse takes what neither reflects, so a white furnace stays
+     * white for dielectrics and metals at every roughness. */
+    v4f ems = 1.0f - (sa + sb);
     for (int c = 0; c < 3; c++) {
-        /* What the specular lobe reflects the diffuse cannot. */
-        v4f spec = f0[c] * sa + sb;
-        out[c] += (cdiff[c] * (1.0f - spec) * en[c] + spec * er[c]) * ao;
+        v4f fss_ess = f0[c] * sa + sb;
+        v4f favg = f0[c] + (1.0f - f0[c]) * (1.0f / 21.0f);
+        v4f fms_ems = ems * fss_ess * favg / (1.0f - ems * favg);
+        v4f kd = cdiff[c] * (1.0f - (fss_ess + fms_ems));
+        out[c] += (fss_ess * er[c] + (fms_ems + kd) * en[c]) * ao;
     }
 done:
     for (int c = 0; c < 3; c++) {
@@ -637,9 +634,12 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
     }
     float out[3][4];
     if (m->unlit) {
+        /* Unlit is the base colour as radiance: exposed and tone mapped like
+         * every other surface, as glTF viewers do, so an unlit label keeps
+         * its tone beside lit parts; --tonemap none shows it as it is. */
         for (int c = 0; c < 3; c++) {
             for (int i = 0; i < 4; i++) {
-                out[c][i] = base[c][i];
+                out[c][i] = base[c][i] * p->scale;
             }
         }
     } else {
@@ -717,9 +717,7 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             }
         }
     }
-    if (!m->unlit) {
-        tone_lanes(p->tonemap, out);
-    }
+    tone_lanes(p->tonemap, out);
     encode_lanes(p->srgb, out, q);
     for (int i = 0; i < 4; i++) {
         q->color[3][i] = alpha[i];

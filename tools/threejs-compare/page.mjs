@@ -121,17 +121,19 @@ window.renderAsset = async (o) => {
     camera.up.set(0, 1, 0);
     camera.lookAt(target);
 
-    // softrast's camera-relative rig (framing_default_lights), when asked.
-    if (o.rig > 0) {
-        const { u, v, w } = basis(eye.clone().sub(target));
-        for (const [a, b, c, intensity] of [[-0.55, 0.7, 0.45, 0.95], [0.8, 0.05, 0.6, 0.35],
-                                            [0.1, 0.55, -0.85, 0.45]]) {
-            const l = new THREE.DirectionalLight(new THREE.Color().setRGB(1, 0.98, 0.95, THREE.LinearSRGBColorSpace),
-                                                 intensity * o.rig);
-            l.position.copy(u.clone().multiplyScalar(a).add(v.clone().multiplyScalar(b))
-                .add(w.clone().multiplyScalar(c)).normalize());
-            scene.add(l);
-        }
+    // softrast's camera-relative lights (framing_default_lights): its key
+    // light alone (what it adds to an environment) or all three, in
+    // radiance units where a white Lambertian surface reflects 1/pi, as
+    // three.js's lights are.
+    const rig = [[-0.55, 0.7, 0.45, 0.95], [0.8, 0.05, 0.6, 0.35], [0.1, 0.55, -0.85, 0.45]];
+    const count = { none: 0, key: 1, rig: 3 }[o.lights];
+    const { u, v, w } = basis(eye.clone().sub(target));
+    for (const [a, b, c, intensity] of rig.slice(0, count)) {
+        const l = new THREE.DirectionalLight(new THREE.Color().setRGB(1, 0.98, 0.95, THREE.LinearSRGBColorSpace),
+                                             intensity * o.lightScale);
+        l.position.copy(u.clone().multiplyScalar(a).add(v.clone().multiplyScalar(b))
+            .add(w.clone().multiplyScalar(c)).normalize());
+        scene.add(l);
     }
 
     renderer.render(scene, camera);

@@ -4,7 +4,8 @@
 //
 //   node render-three.mjs MODEL.glb -o OUT.png [--size WxH] [--fov DEG]
 //        [--tonemap neutral|aces|none] [--exposure EV] [--environment FILE.hdr]
-//        [--background #rrggbb] [--env-intensity K] [--rig K]
+//        [--background #rrggbb] [--env-intensity K] [--lights none|key|rig]
+//        [--light-scale S]
 //        [--camera eye=X,Y,Z[,target=X,Y,Z]] [--aa on|off] [--chromium PATH]
 import { readFileSync, writeFileSync, existsSync } from 'node:fs';
 import { dirname, extname, join, resolve } from 'node:path';
@@ -21,7 +22,7 @@ function usage(msg) {
 
 function parseArgs(argv) {
     const o = { width: 256, height: 256, fov: 35, tonemap: 'neutral', exposure: 0, environment: null,
-                background: '#1d2230', envIntensity: 1, rig: 0, antialias: true, eye: null, target: null,
+                background: '#1d2230', envIntensity: 1, lights: 'none', lightScale: 1.6, antialias: true, eye: null, target: null,
                 chromium: process.env.CHROMIUM || '/usr/bin/chromium', model: null, output: null };
     const num = (name, v) => {
         const x = Number(v);
@@ -52,7 +53,10 @@ function parseArgs(argv) {
             o.background = take();
             if (!/^#([0-9a-f]{3}|[0-9a-f]{6})$/i.test(o.background)) usage(`--background: expected #rrggbb, got '${v}'`);
         } else if (a === '--env-intensity') o.envIntensity = num(a, take());
-        else if (a === '--rig') o.rig = num(a, take());
+        else if (a === '--lights') {
+            o.lights = take();
+            if (!['none', 'key', 'rig'].includes(o.lights)) usage(`--lights: none|key|rig, got '${v}'`);
+        } else if (a === '--light-scale') o.lightScale = num(a, take());
         else if (a === '--aa') o.antialias = take() !== 'off';
         else if (a === '--chromium') o.chromium = take();
         else if (a === '--camera') {

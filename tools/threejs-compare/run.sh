@@ -13,13 +13,15 @@
 #   --exposure EV       (default 0)
 #   --environment F     equirectangular Radiance .hdr (default: make-assets's sky.hdr)
 #   --background #RGB   #rrggbb (default #1d2230, softrast's)
+#   --environment-intensity S  the environment's radiance scale (default 0.6, softrast's)
 # Options of this script:
 #   --softrast BIN      (default build/softrast of this checkout)
 #   --out DIR           renders, differences and assets (default out/threejs-compare)
 #   --sheets DIR        where the side-by-side sheets go (default: --out)
 #   --threshold T       codes a channel may differ before a pixel counts (default 16)
-#   --rig K             three.js also gets softrast's key/fill/rim lights at K
-#                       times their intensities (default 0: the environment only)
+#   --lights L          none|key|rig: softrast's camera-relative lights three.js
+#                       also gets (default key: what softrast adds to an environment)
+#   --light-scale S     their intensities' scale (default 1.6, FRAMING_PBR_LIGHT_SCALE)
 # Everything after `--` goes to softrast alone.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
@@ -33,18 +35,22 @@ exposure=0
 environment=
 background='#1d2230'
 threshold=16
-rig=0
+env_intensity=0.6
+lights=key
+light_scale=1.6
 assets=
 die() { echo "run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case $1 in
-        --size|--tonemap|--exposure|--environment|--background|--softrast|--out|--sheets|--threshold|--rig)
+        --size|--tonemap|--exposure|--environment|--environment-intensity|--background|--softrast|--out|\
+        --sheets|--threshold|--lights|--light-scale)
             [ $# -ge 2 ] || die "$1: missing value"
             case $1 in
                 --size) size=$2 ;; --tonemap) tonemap=$2 ;; --exposure) exposure=$2 ;;
                 --environment) environment=$(realpath "$2") ;; --background) background=$2 ;;
                 --softrast) softrast=$(realpath "$2") ;; --out) out=$2 ;; --sheets) sheets=$2 ;;
-                --threshold) threshold=$2 ;; --rig) rig=$2 ;;
+                --threshold) threshold=$2 ;; --lights) lights=$2 ;; --light-scale) light_scale=$2 ;;
+                --environment-intensity) env_intensity=$2 ;;
             esac
             shift 2 ;;
         --) shift; break ;;
@@ -71,6 +77,11 @@ has() { printf '%s\n' "$help" | grep -q -- "^ *$1 "; }
 if has --tonemap; then sr_opts="$sr_opts --tonemap $tonemap"; else missing="$missing --tonemap"; fi
 if has --exposure; then sr_opts="$sr_opts --exposure $exposure"; else missing="$missing --exposure"; fi
 if has --environment; then sr_opts="$sr_opts --environment $environment"; else missing="$missing --environment"; fi
+if has --environment-intensity; then
+    sr_opts="$sr_opts --environment-intensity $env_intensity"
+else
+    missing="$missing --environment-intensity"
+fi
 
 # Relative to docs/ when the sheets are there, so the table links work in docs/*.md.
 case $(realpath "$sheets") in
@@ -86,7 +97,8 @@ for asset in $assets; do
     "$softrast" render "$asset" $sr_opts "$@" -o "$out/$name-softrast.png" >&2
     info=$(node "$here/render-three.mjs" "$asset" -o "$out/$name-three.png" --size "$size" \
         --tonemap "$tonemap" --exposure "$exposure" --environment "$environment" \
-        --background "$background" --rig "$rig")
+        --background "$background" --env-intensity "$env_intensity" --lights "$lights" \
+        --light-scale "$light_scale")
     webgl=${info##*webgl=}
     json=$(node "$here/compare.mjs" "$out/$name-softrast.png" "$out/$name-three.png" \
         --threshold "$threshold" --background "$background" \
@@ -108,7 +120,8 @@ chromium=$(chromium --version 2>/dev/null || echo unknown)
 echo "$(date -u '+%Y-%m-%d %H:%M UTC'), softrast $commit, $cpu; three.js $three in $chromium, WebGL: $webgl."
 echo
 echo "softrast render ASSET$(echo " $sr_opts $*" | sed "s|$root/||g; s|  *$||"); three.js: the same size,"
-echo "background and framing, tone mapping $tonemap, exposure $exposure EV, environment $(basename "$environment")$( [ "$rig" = 0 ] || echo ", softrast's light rig x $rig")."
+echo "background and framing, tone mapping $tonemap, exposure $exposure EV, environment $(basename "$environment")"
+echo "x $env_intensity, softrast's lights: $lights x $light_scale."
 [ -z "$missing" ] || echo "softrast render has no${missing}: those are three.js's alone."
 echo
 echo "| asset | MAD R / G / B | PSNR (dB) | px > $threshold (%) | object PSNR (dB) | object px > $threshold (%) | softrast, three.js, difference x4 |"

@@ -1,0 +1,88 @@
+"""Builds softrast._softrast from the C sources of this checkout.
+
+pip install ./python                        # with a package index
+pip install --no-build-isolation ./python   # without one (Debian: python3-setuptools,
+                                            # python3-numpy, python3-dev installed)
+
+The extension compiles the library's own sources (../src) into itself, with
+the optional readers whose libraries pkg-config finds (jansson: glTF,
+libjpeg: JPEG, expat: SVG, Assimp: other model formats), as the CMake build
+does.  libpng and zlib are required.
+"""
+
+import glob
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy
+from setuptools import Extension, setup
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+
+
+def rel(path):
+    return os.path.relpath(path, HERE)
+
+
+def pkg_config(*args):
+    if not shutil.which("pkg-config"):
+        return None
+    r = subprocess.run(["pkg-config", *args], capture_output=True, text=True)
+    return r.stdout.split() if r.returncode == 0 else None
+
+
+def version():
+    with open(os.path.join(ROOT, "include", "softrast.h")) as f:
+        for line in f:
+            if line.startswith("#define SR_VERSION_STRING"):
+                return line.split('"')[1]
+    raise RuntimeError("SR_VERSION_STRING not found in include/softrast.h")
+
+
+if not os.path.exists(os.path.join(ROOT, "src", "draw.c")):
+    sys.exit("setup.py: build from a softrast checkout (python/ inside it): ../src is missing")
+
+core = [d for d in ("", "math", "geometry", "raster", "fragment", "target", "parallel", "draw2d")]
+sources = sorted(glob.glob(os.path.join(HERE, "src", "*.c")))
+for d in core:
+    sources += sorted(glob.glob(os.path.join(ROOT, "src", d, "*.c")))
+io_sources = sorted(glob.glob(os.path.join(ROOT, "src", "io", "*.c")))
+
+macros = [("_POSIX_C_SOURCE", "200809L")]
+include_dirs = [os.path.join(ROOT, "include"), os.path.join(ROOT, "src"), numpy.get_include()]
+libraries = ["png", "z", "m", "pthread"]
+compile_args = ["-std=c11", "-ffp-contract=off", "-fvisibility=hidden", "-Wno-psabi"]
+link_args = []
+
+optional = [("jansson", "SR_HAVE_JANSSON"), ("libjpeg", "SR_HAVE_JPEG"), ("expat", "SR_HAVE_EXPAT")]
+for module, macro in optional:
+    libs = pkg_config("--libs", module)
+    if libs is None:
+        if module == "jansson":
+            io_sources = [s for s in io_sources if not os.path.basename(s).startswith("gltf")]
+        continue
+    macros.append((macro, "1"))
+    compile_args += pkg_config("--cflags", module) or []
+    link_args += libs
+assimp = pkg_config("--cflags", "assimp")
+if assimp is not None:
+    # Headers only: the library is opened with dlopen when a file needs it.
+    macros.append(("SR_HAVE_ASSIMP", "1"))
+    compile_args += assimp
+    libraries.append("dl")
+
+setup(
+    name="softrast",
+    version=version(),
+    description="Exact, deterministic CPU rendering of triangle meshes to numpy arrays",
+    packages=["softrast"],
+    python_requires=">=3.8",
+    install_requires=["numpy"],
+    ext_modules=[Extension(
+        "softrast._softrast", [rel(s) for s in sources + io_sources], define_macros=macros,
+        include_dirs=include_dirs, libraries=libraries, extra_compile_args=compile_args,
+        extra_link_args=link_args)],
+)

@@ -1,0 +1,26 @@
+"""softrast: exact, deterministic CPU rendering of triangle meshes to numpy arrays.
+
+Depth, triangle and instance IDs, barycentric coordinates, normals, a
+coverage mask and a shaded color image from one call, for OpenCV-style
+cameras (intrinsics ``K``, world-to-camera ``R``, ``t``), on the CPU, with no
+OpenGL.  The same inputs give the same bytes for any number of threads.
+
+>>> import numpy as np, softrast
+>>> mesh = softrast.Mesh(vertices, faces)            # or softrast.load_mesh(path)
+>>> K, R, t = softrast.look_at(eye=(0, 0, 3), target=(0, 0, 0), width=640, height=480)
+>>> out = softrast.render(mesh, K=K, R=R, t=t, width=640, height=480,
+...                       outputs=("depth", "triangle_id"))
+>>> out["depth"].shape, out["depth"].dtype
+((480, 640), dtype('float32'))
+
+See docs/python.md in the source tree for the conventions.
+"""
+
+from ._softrast import Mesh, library_version, read_image, write_png
+from ._camera import look_at
+from ._scene import Instance, Scene, load, load_mesh
+from ._render import OUTPUTS, render
+
+__version__ = library_version
+__all__ = ["Mesh", "Instance", "Scene", "load", "load_mesh", "look_at", "read_image", "render",
+           "write_png", "OUTPUTS", "__version__"]

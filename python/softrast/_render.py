@@ -1,0 +1,205 @@
+"""render(): cameras and scene checked and composed here, pixels drawn in C."""
+
+import numpy as np
+
+from . import _softrast
+from ._scene import Instance, Scene
+from ._softrast import Mesh
+
+#: The outputs render() can return, with their per-view shape suffix and dtype.
+OUTPUTS = {
+    "color": ((3,), np.uint8),
+    "depth": ((), np.float32),
+    "normal": ((3,), np.float32),
+    "triangle_id": ((), np.int32),
+    "instance_id": ((), np.int32),
+    "barycentric": ((3,), np.float32),
+    "mask": ((), np.bool_),
+}
+
+
+def _float_array(value, name):
+    if isinstance(value, np.ndarray) and value.dtype.kind not in "biuf":
+        raise TypeError(f"{name}: dtype must be numeric, got {value.dtype}")
+    try:
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}: expected a numeric array, got {type(value).__name__}") from None
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name}: contains NaN or infinity")
+    return a
+
+
+def _batched(value, name, shape):
+    """(value as float64 with a leading batch axis, whether it had one)."""
+    a = _float_array(value, name)
+    if a.shape == shape:
+        return a[None], False
+    if a.ndim == len(shape) + 1 and a.shape[1:] == shape and a.shape[0] >= 1:
+        return a, True
+    want = ", ".join(map(str, shape))
+    raise ValueError(f"{name}: shape must be ({want}) or (B, {want}), got {a.shape}")
+
+
+def _cameras(K, R, t, extrinsics):
+    """K (B, 3, 3) and [R | t] (B, 3, 4), and whether the result is batched."""
+    Ks, k_batched = _batched(K, "K", (3, 3))
+    if not np.array_equal(Ks[:, 2], np.broadcast_to([0.0, 0.0, 1.0], Ks[:, 2].shape)):
+        raise ValueError("K: last row must be (0, 0, 1)")
+    if np.any(Ks[:, 1, 0] != 0):
+        raise ValueError("K: K[1, 0] must be 0")
+    if np.any(Ks[:, 0, 0] <= 0) or np.any(Ks[:, 1, 1] <= 0):
+        raise ValueError("K: focal lengths K[0, 0] and K[1, 1] must be positive")
+    if extrinsics is not None:
+        if R is not None or t is not None:
+            raise TypeError("extrinsics: give either extrinsics or R and t, not both")
+        a = _float_array(extrinsics, "extrinsics")
+        if a.shape[-2:] == (4, 4):
+            if not np.array_equal(a[..., 3, :], np.broadcast_to([0.0, 0.0, 0.0, 1.0], a[..., 3, :].shape)):
+                raise ValueError("extrinsics: last row must be (0, 0, 0, 1)")
+            a = a[..., :3, :]
+        Rts, rt_batched = _batched(a, "extrinsics", (3, 4))
+    else:
+        if R is None or t is None:
+            raise TypeError("R, t: both are required (or extrinsics)")
+        Rs, r_batched = _batched(R, "R", (3, 3))
+        t_arr = _float_array(t, "t")
+        if t_arr.shape[-2:] == (3, 1):
+            t_arr = t_arr[..., 0]
+        ts, t_batched = _batched(t_arr, "t", (3,))
+        if len(Rs) != len(ts) and 1 not in (len(Rs), len(ts)):
+            raise ValueError(f"R, t: batch sizes differ ({len(Rs)} and {len(ts)})")
+        n = max(len(Rs), len(ts))
+        Rts = np.concatenate([np.broadcast_to(Rs, (n, 3, 3)), np.broadcast_to(ts, (n, 3))[..., None]],
+                             axis=2)
+        rt_batched = r_batched or t_batched
+    rot = Rts[:, :, :3]
+    err = np.abs(rot @ rot.transpose(0, 2, 1) - np.eye(3)).max()
+    if err > 1e-5 or np.any(np.linalg.det(rot) < 0):
+        raise ValueError("R: must be a rotation (orthonormal, determinant +1)")
+    if len(Ks) != len(Rts) and 1 not in (len(Ks), len(Rts)):
+        raise ValueError(f"K, R: batch sizes differ ({len(Ks)} and {len(Rts)})")
+    n = max(len(Ks), len(Rts))
+    return (np.broadcast_to(Ks, (n, 3, 3)), np.broadcast_to(Rts, (n, 3, 4)),
+            k_batched or rt_batched)
+
+
+def _scene(scene):
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, (Mesh, Instance)):
+        return Scene([scene])
+    if isinstance(scene, (list, tuple)):
+        return Scene(scene)
+    raise TypeError(f"scene: expected a Mesh, Instance, Scene or list of them, "
+                    f"got {type(scene).__name__}")
+
+
+def _outputs(outputs):
+    if isinstance(outputs, str) or not hasattr(outputs, "__iter__"):
+        raise TypeError("outputs: expected a sequence of output names, e.g. ('depth',)")
+    names = list(outputs)
+    for name in names:
+        if name not in OUTPUTS:
+            raise ValueError(f"outputs: unknown output {name!r}; choose from {', '.join(OUTPUTS)}")
+    if len(set(names)) != len(names):
+        raise ValueError("outputs: a name is repeated")
+    if not names:
+        raise ValueError("outputs: asks for nothing")
+    return names
+
+
+def _int_arg(value, name, low, high):
+    if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
+        raise TypeError(f"{name}: expected an int, got {type(value).__name__}")
+    if not low <= value <= high:
+        raise ValueError(f"{name}: must be in {low} .. {high}, got {value}")
+    return int(value)
+
+
+def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
+           outputs=("color", "depth"), threads=0, near=1e-3, normal_frame="camera",
+           background=(0.0, 0.0, 0.0), shading="lit"):
+    """Render a scene from one camera or a batch of cameras.
+
+    scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
+        of them (see Scene).
+    K: (3, 3) or (B, 3, 3) OpenCV intrinsics ``[[fx, s, cx], [0, fy, cy],
+        [0, 0, 1]]``: pixel (u, v) has its centre at u = fx x/z + s y/z + cx,
+        v = fy y/z + cy, integer u, v at pixel centres (OpenCV's convention).
+    R, t: (3, 3) and (3,) (or batched) world-to-camera rotation and
+        translation, ``x_cam = R @ x_world + t``, camera x right, y down,
+        z forward.  Or ``extrinsics``: (3, 4)/(4, 4), or batched, ``[R | t]``.
+    width, height: the image size in pixels, 1 .. 8192.
+    outputs: names from :data:`OUTPUTS`:
+
+        - ``color`` (H, W, 3) uint8: vertex colors times the texture (gray
+          without either), lit by a headlight (``shading="lit"``) or as they
+          are (``shading="unlit"``), over ``background`` (RGB in [0, 1]).
+        - ``depth`` (H, W) float32: camera-space z (distance along the
+          optical axis, the unit of the vertices), ``inf`` where nothing is.
+        - ``normal`` (H, W, 3) float32: unit normal in the camera frame, or
+          the world frame with ``normal_frame="world"``; interpolated vertex
+          normals, else the face normal (counter-clockwise faces' front);
+          zero where nothing is.
+        - ``triangle_id`` (H, W) int32: the index of the visible face in its
+          mesh's ``faces``, -1 where nothing is.
+        - ``instance_id`` (H, W) int32: the visible instance's ID, -1 where
+          nothing is.
+        - ``barycentric`` (H, W, 3) float32: the perspective-correct weights
+          of the visible face's three vertices (in ``faces`` order).
+        - ``mask`` (H, W) bool: where a surface is.
+
+        IDs, depth, barycentrics and mask are never blended or antialiased:
+        each pixel shows the surface nearest along its centre's ray (the
+        first drawn of equals), sampled at the pixel centre.
+    threads: rendering threads, 0 for every CPU; the result does not depend
+        on it.
+    near: surfaces closer than this (camera z) are clipped; there is no far
+        plane.
+
+    Returns a dict from each requested name to its array; with batched
+    cameras every array has a leading dimension B.  The GIL is released
+    while drawing.  Raises TypeError or ValueError naming the argument
+    that is wrong.
+    """
+    sc = _scene(scene)
+    Ks, Rts, batched = _cameras(K, R, t, extrinsics)
+    width = _int_arg(width, "width", 1, 8192)
+    height = _int_arg(height, "height", 1, 8192)
+    threads = _int_arg(threads, "threads", 0, 64)
+    names = _outputs(outputs)
+    try:
+        near = float(near)
+    except (TypeError, ValueError):
+        raise TypeError(f"near: expected a number, got {type(near).__name__}") from None
+    if not (np.isfinite(near) and near > 0):
+        raise ValueError(f"near: must be a positive finite number, got {near}")
+    if normal_frame not in ("camera", "world"):
+        raise ValueError(f"normal_frame: must be 'camera' or 'world', got {normal_frame!r}")
+    if shading not in ("lit", "unlit"):
+        raise ValueError(f"shading: must be 'lit' or 'unlit', got {shading!r}")
+    bg = _float_array(background, "background")
+    if bg.shape != (3,):
+        raise ValueError(f"background: shape must be (3,), got {bg.shape}")
+    bg = tuple(float(c) for c in np.clip(bg, 0.0, 1.0))
+
+    n = len(Ks)
+    out = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
+    inv_t = [np.linalg.inv(inst.pose[:3, :3]).T for inst in sc]
+    ids = [i if inst.instance_id is None else inst.instance_id for i, inst in enumerate(sc)]
+    for b in range(n):
+        Rt = Rts[b]
+        instances = []
+        for inst, nt, iid in zip(sc, inv_t, ids):
+            a = np.ascontiguousarray(Rt[:, :3] @ inst.pose[:3, :] + np.hstack([np.zeros((3, 3)), Rt[:, 3:]]))
+            nm = np.ascontiguousarray(Rt[:, :3] @ nt if normal_frame == "camera" else nt)
+            instances.append((inst.mesh, a, nm, iid))
+        _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height, near, threads,
+                         *(out[name][b] if name in out else None
+                           for name in ("depth", "triangle_id", "instance_id", "barycentric",
+                                        "normal", "color", "mask")),
+                         bg, shading == "lit")
+    if not batched:
+        out = {name: a[0] for name, a in out.items()}
+    return out

@@ -1,0 +1,134 @@
+"""Scenes: meshes placed by poses, each with an instance ID, and the model readers."""
+
+import os
+
+import numpy as np
+
+from . import _softrast
+from ._softrast import Mesh
+
+
+class Instance:
+    """A mesh placed in the world.
+
+    mesh: a :class:`Mesh`.
+    pose: (4, 4) or (3, 4) object-to-world matrix (any invertible affine
+        map), or None for the identity.
+    instance_id: the value of the ``instance_id`` output where this instance
+        shows, an int in [0, 2**31); None takes its position in the scene.
+    """
+
+    __slots__ = ("mesh", "pose", "instance_id")
+
+    def __init__(self, mesh, pose=None, instance_id=None):
+        if not isinstance(mesh, Mesh):
+            raise TypeError(f"mesh: expected softrast.Mesh, got {type(mesh).__name__}")
+        self.mesh = mesh
+        self.pose = _pose(pose, "pose")
+        if instance_id is not None:
+            if not isinstance(instance_id, (int, np.integer)) or isinstance(instance_id, bool):
+                raise TypeError(f"instance_id: expected an int, got {type(instance_id).__name__}")
+            if not 0 <= instance_id < 2**31:
+                raise ValueError(f"instance_id: must be in [0, 2**31), got {instance_id}")
+            instance_id = int(instance_id)
+        self.instance_id = instance_id
+
+    def __repr__(self):
+        return f"Instance({self.mesh!r}, instance_id={self.instance_id})"
+
+
+def _pose(pose, name):
+    """A (4, 4) float64 affine matrix from None, (3, 4) or (4, 4)."""
+    if pose is None:
+        return np.eye(4)
+    try:
+        p = np.asarray(pose, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}: expected a (4, 4) or (3, 4) array") from None
+    if p.shape not in ((4, 4), (3, 4)):
+        raise ValueError(f"{name}: shape must be (4, 4) or (3, 4), got {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise ValueError(f"{name}: contains NaN or infinity")
+    if p.shape == (3, 4):
+        p = np.vstack([p, [0.0, 0.0, 0.0, 1.0]])
+    elif not np.array_equal(p[3], [0.0, 0.0, 0.0, 1.0]):
+        raise ValueError(f"{name}: last row must be (0, 0, 0, 1)")
+    if abs(np.linalg.det(p[:3, :3])) < 1e-12:
+        raise ValueError(f"{name}: the 3x3 part is singular")
+    return p
+
+
+class Scene:
+    """Mesh instances rendered together.
+
+    ``Scene([mesh_a, (mesh_b, pose), Instance(mesh_c, pose, 7)])``; an item
+    is a :class:`Mesh` (identity pose), a ``(mesh, pose)`` or ``(mesh, pose,
+    instance_id)`` tuple, or an :class:`Instance`.  Instances without an ID
+    take their index in the scene.
+    """
+
+    def __init__(self, instances=()):
+        self.instances = []
+        for item in instances:
+            self.add(item)
+
+    def add(self, item, pose=None, instance_id=None):
+        """Append a Mesh (with ``pose`` and ``instance_id``), a tuple or an Instance."""
+        where = f"instances[{len(self.instances)}]"
+        if isinstance(item, Instance):
+            inst = item
+        elif isinstance(item, Mesh):
+            inst = Instance(item, pose, instance_id)
+        elif isinstance(item, tuple) and 2 <= len(item) <= 3:
+            try:
+                inst = Instance(*item)
+            except (TypeError, ValueError) as e:
+                raise type(e)(f"{where}: {e}") from None
+        else:
+            raise TypeError(f"{where}: expected a Mesh, an Instance or a (mesh, pose[, id]) tuple, "
+                            f"got {type(item).__name__}")
+        self.instances.append(inst)
+        return inst
+
+    def __len__(self):
+        return len(self.instances)
+
+    def __iter__(self):
+        return iter(self.instances)
+
+    def __repr__(self):
+        return f"Scene({len(self.instances)} instances)"
+
+
+def _path(path):
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise TypeError(f"path: expected a str or os.PathLike, got {type(path).__name__}")
+    return os.fspath(path)
+
+
+def load_mesh(path):
+    """Read a model file as one :class:`Mesh` (sr_load_mesh).
+
+    Every format the library reads: OBJ (with its MTL's diffuse texture),
+    PLY, STL, and through Assimp, when the library was built with it, glTF,
+    FBX, Collada, 3DS, OFF and more.  Faces with more than three vertices are
+    triangulated.  The mesh's one diffuse texture, if any, becomes
+    ``Mesh.texture``; a mesh whose parts take different textures keeps none
+    (with a warning).  Raises OSError when the file cannot be read and
+    ValueError when it is malformed.
+    """
+    return Mesh(**_softrast.load_mesh(_path(path)))
+
+
+def load(path):
+    """Read a model file as a :class:`Scene` (sr_load_scene).
+
+    glTF 2.0 (.gltf, .glb) is read with its node hierarchy: one instance per
+    node that draws a mesh primitive, posed by the node's world matrix,
+    primitives shared between nodes sharing one :class:`Mesh`.  Any other
+    format is the one mesh of :func:`load_mesh` (without its texture).
+    Materials, textures and the file's cameras are not carried over.
+    """
+    d = _softrast.load_scene(_path(path))
+    meshes = [Mesh(**m) for m in d["meshes"]]
+    return Scene(Instance(meshes[i], world) for i, world in d["instances"])

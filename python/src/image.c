@@ -1,0 +1,94 @@
+/*
+ * image.c - PNG and JPEG files to and from numpy arrays: read_image
+ * (sr_read_image) for textures, write_png (sr_write_png, atomic) for the
+ * color images of softrast.dask's shards.
+ */
+#include "module.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+PyObject *sr_py_image_array(uint8_t *px, int w, int h)
+{
+    npy_intp shape[3] = { h, w, 4 };
+    PyObject *a = PyArray_SimpleNew(3, shape, NPY_UINT8);
+    if (a) {
+        memcpy(PyArray_DATA((PyArrayObject *)a), px, (size_t)w * (size_t)h * 4);
+    }
+    free(px);
+    return a;
+}
+
+PyObject *sr_py_read_image(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_obj;
+    if (!PyArg_ParseTuple(args, "O&:read_image", PyUnicode_FSConverter, &path_obj)) {
+        return NULL;
+    }
+    int w = 0, h = 0;
+    uint8_t *px = NULL;
+    sr_io_error err = { { 0 } };
+    const char *path = PyBytes_AS_STRING(path_obj);
+    sr_result r;
+    Py_BEGIN_ALLOW_THREADS
+    r = sr_read_image(path, &w, &h, &px, &err);
+    Py_END_ALLOW_THREADS
+    Py_DECREF(path_obj);
+    if (r != SR_OK) {
+        return sr_py_io_error(r, &err);
+    }
+    return sr_py_image_array(px, w, h);
+}
+
+PyObject *sr_py_write_png(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_obj, *image;
+    if (!PyArg_ParseTuple(args, "O&O:write_png", PyUnicode_FSConverter, &path_obj, &image)) {
+        return NULL;
+    }
+    static const int u8[] = { NPY_UINT8, -1 };
+    const npy_intp shape[3] = { -1, -1, -1 };
+    PyArrayObject *a = sr_py_take_array(image, "image", 3, shape, u8);
+    if (!a) {
+        Py_DECREF(path_obj);
+        return NULL;
+    }
+    npy_intp h = PyArray_DIM(a, 0), w = PyArray_DIM(a, 1), c = PyArray_DIM(a, 2);
+    if ((c != 3 && c != 4) || h < 1 || w < 1 || h > 65535 || w > 65535) {
+        PyErr_SetString(PyExc_ValueError, "image: shape must be (H, W, 3) or (H, W, 4), "
+                                          "1 <= H, W <= 65535");
+        Py_DECREF(a);
+        Py_DECREF(path_obj);
+        return NULL;
+    }
+    const uint8_t *src = PyArray_DATA(a);
+    uint8_t *rgba = NULL;
+    if (c == 3) {
+        rgba = malloc((size_t)w * (size_t)h * 4);
+        if (!rgba) {
+            Py_DECREF(a);
+            Py_DECREF(path_obj);
+            return PyErr_NoMemory();
+        }
+        for (size_t p = 0; p < (size_t)w * (size_t)h; p++) {
+            memcpy(rgba + 4 * p, src + 3 * p, 3);
+            rgba[4 * p + 3] = 255;
+        }
+    }
+    sr_io_error err = { { 0 } };
+    const char *path = PyBytes_AS_STRING(path_obj);
+    sr_png_write_desc desc = { .channels = c == 3 ? SR_PNG_RGB : SR_PNG_RGBA };
+    sr_result r;
+    Py_BEGIN_ALLOW_THREADS
+    r = sr_write_png(path, (int)w, (int)h, rgba ? rgba : src, (size_t)w * 4, &desc, &err);
+    Py_END_ALLOW_THREADS
+    free(rgba);
+    Py_DECREF(a);
+    Py_DECREF(path_obj);
+    if (r != SR_OK) {
+        return sr_py_io_error(r, &err);
+    }
+    Py_RETURN_NONE;
+}

@@ -1,0 +1,206 @@
+/*
+ * load.c - model files into numpy arrays: sr_load_mesh (every format the
+ * library reads: OBJ, PLY, STL, and through Assimp glTF, FBX, DAE ...) and
+ * sr_load_scene (glTF's node hierarchy, one instance a drawn primitive).
+ * The arrays are copied out of the library's memory, which is freed before
+ * returning; the Python layer (softrast/_scene.py) makes Mesh objects.
+ */
+#include "module.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* A new (rows, cols) array of `type` holding a copy of data, or None
+ * when data is NULL. */
+static PyObject *copy_array(const void *data, size_t rows, int cols, int type, size_t elem)
+{
+    if (!data) {
+        Py_RETURN_NONE;
+    }
+    npy_intp shape[2] = { (npy_intp)rows, cols };
+    PyObject *a = PyArray_SimpleNew(2, shape, type);
+    if (a && rows) {
+        memcpy(PyArray_DATA((PyArrayObject *)a), data, rows * (size_t)cols * elem);
+    }
+    return a;
+}
+
+static int set_item(PyObject *dict, const char *key, PyObject *value)
+{
+    if (!value) {
+        return -1;
+    }
+    int r = PyDict_SetItemString(dict, key, value);
+    Py_DECREF(value);
+    return r;
+}
+
+static PyObject *arrays_dict(size_t vertices, const float *positions, const float *normals,
+                             const float *colors, const float *texcoords, size_t triangles,
+                             const uint32_t *indices)
+{
+    PyObject *d = PyDict_New();
+    if (!d || set_item(d, "vertices", copy_array(positions, vertices, 3, NPY_FLOAT32, 4)) < 0 ||
+        set_item(d, "faces", copy_array(indices, triangles, 3, NPY_INT32, 4)) < 0 ||
+        set_item(d, "normals", copy_array(normals, vertices, 3, NPY_FLOAT32, 4)) < 0 ||
+        set_item(d, "colors", copy_array(colors, vertices, 4, NPY_FLOAT32, 4)) < 0 ||
+        set_item(d, "uvs", copy_array(texcoords, vertices, 2, NPY_FLOAT32, 4)) < 0) {
+        Py_XDECREF(d);
+        return NULL;
+    }
+    return d;
+}
+
+PyObject *sr_py_io_error(sr_result r, const sr_io_error *err)
+{
+    PyObject *type = r == SR_IO_ERROR ? PyExc_OSError : PyExc_ValueError;
+    PyErr_SetString(type, err->message[0] ? err->message : sr_result_text(r));
+    return NULL;
+}
+
+/* The mesh's one texture as an (H, W, 4) uint8 array, None when it names
+ * none, or a warning and None when it cannot be read. */
+static PyObject *mesh_texture(const sr_mesh *m)
+{
+    if ((!m->texture_path && !m->texture_data) || m->part_count > 1) {
+        if (m->part_count > 1 &&
+            PyErr_WarnEx(PyExc_UserWarning,
+                         "softrast.load_mesh: the mesh takes several textures; none is kept", 1) < 0) {
+            return NULL;
+        }
+        Py_RETURN_NONE;
+    }
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err = { { 0 } };
+    sr_result r = m->texture_data
+                      ? sr_decode_image("<embedded texture>", m->texture_data, m->texture_size, &w,
+                                        &h, &px, &err)
+                      : sr_read_image(m->texture_path, &w, &h, &px, &err);
+    if (r != SR_OK) {
+        if (PyErr_WarnFormat(PyExc_UserWarning, 1, "softrast.load_mesh: texture not kept: %s",
+                             err.message) < 0) {
+            return NULL;
+        }
+        Py_RETURN_NONE;
+    }
+    return sr_py_image_array(px, w, h);
+}
+
+PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_obj;
+    if (!PyArg_ParseTuple(args, "O&:load_mesh", PyUnicode_FSConverter, &path_obj)) {
+        return NULL;
+    }
+    sr_context *ctx = NULL;
+    sr_mesh mesh = { 0 };
+    sr_io_error err = { { 0 } };
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
+    if (r == SR_OK) {
+        const char *path = PyBytes_AS_STRING(path_obj);
+        Py_BEGIN_ALLOW_THREADS
+        r = sr_load_mesh(ctx, path, NULL, &mesh, &err);
+        Py_END_ALLOW_THREADS
+    } else {
+        snprintf(err.message, sizeof err.message, "cannot make a context");
+    }
+    Py_DECREF(path_obj);
+    PyObject *d = NULL;
+    if (r != SR_OK) {
+        sr_py_io_error(r, &err);
+    } else {
+        d = arrays_dict(mesh.vertex_count, mesh.positions, mesh.normals, mesh.colors, mesh.texcoords,
+                        mesh.triangle_count, mesh.indices);
+        if (d && set_item(d, "texture", mesh_texture(&mesh)) < 0) {
+            Py_CLEAR(d);
+        }
+    }
+    sr_destroy_mesh(ctx, &mesh);
+    sr_destroy_context(ctx);
+    return d;
+}
+
+/* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world)]}: the
+ * primitives that share arrays share one entry of "meshes". */
+static PyObject *scene_dict(const sr_scene *s)
+{
+    PyObject *meshes = PyList_New(0), *instances = PyList_New(0), *seen = PyDict_New();
+    PyObject *out = NULL;
+    if (!meshes || !instances || !seen) {
+        goto done;
+    }
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        const sr_scene_primitive *p = &s->primitives[i];
+        PyObject *key = PyLong_FromVoidPtr((void *)p->positions);
+        if (!key) {
+            goto done;
+        }
+        PyObject *index = PyDict_GetItemWithError(seen, key);
+        if (!index) {
+            PyObject *d = PyErr_Occurred() ? NULL
+                                           : arrays_dict(p->vertex_count, p->positions, p->normals,
+                                                         p->colors, p->texcoords0, p->triangle_count,
+                                                         p->indices);
+            index = d ? PyLong_FromSsize_t(PyList_GET_SIZE(meshes)) : NULL;
+            int bad = !index || PyList_Append(meshes, d) < 0 || PyDict_SetItem(seen, key, index) < 0;
+            Py_XDECREF(d);
+            Py_XDECREF(index);
+            if (bad) {
+                Py_DECREF(key);
+                goto done;
+            }
+        }
+        Py_DECREF(key);
+        npy_intp shape[2] = { 4, 4 };
+        PyObject *world = PyArray_SimpleNew(2, shape, NPY_FLOAT64);
+        if (!world) {
+            goto done;
+        }
+        double *w = PyArray_DATA((PyArrayObject *)world);
+        for (int r = 0; r < 4; r++) {
+            for (int c = 0; c < 4; c++) {
+                w[4 * r + c] = p->world[4 * c + r];   /* column-major -> rows */
+            }
+        }
+        PyObject *item = Py_BuildValue("(ON)", index, world);
+        if (!item || PyList_Append(instances, item) < 0) {
+            Py_XDECREF(item);
+            goto done;
+        }
+        Py_DECREF(item);
+    }
+    out = Py_BuildValue("{sOsO}", "meshes", meshes, "instances", instances);
+done:
+    Py_XDECREF(meshes);
+    Py_XDECREF(instances);
+    Py_XDECREF(seen);
+    return out;
+}
+
+PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_obj;
+    if (!PyArg_ParseTuple(args, "O&:load", PyUnicode_FSConverter, &path_obj)) {
+        return NULL;
+    }
+    sr_context *ctx = NULL;
+    sr_scene *scene = NULL;
+    sr_io_error err = { { 0 } };
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
+    if (r == SR_OK) {
+        const char *path = PyBytes_AS_STRING(path_obj);
+        Py_BEGIN_ALLOW_THREADS
+        r = sr_load_scene(ctx, path, NULL, &scene, &err);
+        Py_END_ALLOW_THREADS
+    } else {
+        snprintf(err.message, sizeof err.message, "cannot make a context");
+    }
+    Py_DECREF(path_obj);
+    PyObject *d = r == SR_OK ? scene_dict(scene) : sr_py_io_error(r, &err);
+    sr_destroy_scene(ctx, scene);
+    sr_destroy_context(ctx);
+    return d;
+}

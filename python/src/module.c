@@ -1,0 +1,78 @@
+/*
+ * module.c - the softrast._softrast extension module: its functions, the
+ * Mesh type, and the library's version.  The Python package softrast
+ * (softrast/__init__.py) wraps it; use that.
+ */
+#define SR_PY_IMPORT_ARRAY
+#include "module.h"
+
+PyDoc_STRVAR(render_doc,
+"render(instances, K, width, height, near, threads, depth, triangle_id, instance_id,\n"
+"       barycentric, normal, color, mask, background, lit)\n"
+"--\n"
+"\n"
+"The C renderer behind softrast.render (use that): one camera.\n"
+"instances: a sequence of (Mesh, (3, 4) float64 object->camera matrix,\n"
+"(3, 3) float64 normal matrix, int id); K: (3, 3) float64.  The outputs\n"
+"are written into the given C-contiguous arrays (None: not wanted).");
+
+PyDoc_STRVAR(load_mesh_doc,
+"load_mesh(path)\n--\n\n"
+"sr_load_mesh: a dict of arrays (vertices, faces, normals, colors, uvs,\n"
+"texture).  Use softrast.load_mesh.");
+
+PyDoc_STRVAR(load_scene_doc,
+"load_scene(path)\n--\n\n"
+"sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
+"(4, 4) world matrix)]}.  Use softrast.load.");
+
+PyDoc_STRVAR(read_image_doc,
+"read_image(path)\n--\n\n"
+"A PNG or JPEG file (told apart by its first bytes) as an (H, W, 4) uint8\n"
+"RGBA array, row 0 at the top: a texture for softrast.Mesh.  Raises\n"
+"OSError when the file cannot be read, ValueError when it is malformed.");
+
+PyDoc_STRVAR(write_png_doc,
+"write_png(path, image)\n--\n\n"
+"Write an (H, W, 3) or (H, W, 4) uint8 C-contiguous image as a PNG, row 0\n"
+"at the top, atomically: a temporary file renamed over `path`, so a write\n"
+"that fails or is killed leaves no partial file.");
+
+static PyMethodDef methods[] = {
+    { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
+    { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
+    { "load_scene", sr_py_load_scene, METH_VARARGS, load_scene_doc },
+    { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
+    { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
+    { NULL, NULL, 0, NULL },
+};
+
+static struct PyModuleDef module = {
+    PyModuleDef_HEAD_INIT,
+    .m_name = "softrast._softrast",
+    .m_doc = "softrast's C extension: the renderer, the Mesh type and the model readers.",
+    .m_size = -1,
+    .m_methods = methods,
+};
+
+PyMODINIT_FUNC PyInit__softrast(void);
+
+PyMODINIT_FUNC PyInit__softrast(void)
+{
+    import_array();
+    if (PyType_Ready(&sr_py_MeshType) < 0) {
+        return NULL;
+    }
+    PyObject *m = PyModule_Create(&module);
+    if (!m) {
+        return NULL;
+    }
+    Py_INCREF(&sr_py_MeshType);
+    if (PyModule_AddObject(m, "Mesh", (PyObject *)&sr_py_MeshType) < 0 ||
+        PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0) {
+        Py_DECREF(&sr_py_MeshType);
+        Py_DECREF(m);
+        return NULL;
+    }
+    return m;
+}

@@ -1,0 +1,73 @@
+/*
+ * module.h - what the files of softrast._softrast share: the Mesh type
+ * (mesh.c), the render entry point (render.c), the model readers (load.c)
+ * and the image files (image.c).
+ * Every function here runs with the GIL held unless it says otherwise.
+ */
+#ifndef SR_PY_MODULE_H
+#define SR_PY_MODULE_H
+
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
+#define PY_ARRAY_UNIQUE_SYMBOL sr_py_ARRAY_API
+#ifndef SR_PY_IMPORT_ARRAY
+#define NO_IMPORT_ARRAY
+#endif
+#include <numpy/arrayobject.h>
+
+#include <softrast.h>
+#include <softrast_io.h>
+
+#include <stdbool.h>
+#include <stdint.h>
+
+/* A triangle mesh holding references to the caller's arrays (no copy
+ * when they are C-contiguous float32/float64 and int32/int64).  The
+ * renderer's programs read them in place; the float32 positions and
+ * uint32 indices the built-in color pass needs are made on first use. */
+typedef struct MeshObject {
+    PyObject_HEAD
+    PyArrayObject *vertices;    /* (N, 3) float32 or float64 */
+    PyArrayObject *faces;       /* (M, 3) int32 or int64 */
+    PyArrayObject *normals;     /* (N, 3) float32, or NULL */
+    PyArrayObject *colors;      /* (N, 3|4) float32, or NULL */
+    PyArrayObject *uvs;         /* (N, 2) float32, or NULL */
+    PyArrayObject *texture;     /* (H, W, 3|4) uint8, or NULL */
+    PyArrayObject *positions32; /* float32 copy of vertices when they are float64 */
+    PyArrayObject *indices32;   /* uint32 copy of faces when they are int64 */
+    float *zeros;               /* the draw's position array (render.c says why) */
+    size_t zeros_count;
+} MeshObject;
+
+extern PyTypeObject sr_py_MeshType;
+
+/* Checks `obj` is an ndarray of `ndim` dimensions, C-contiguous, of one of
+ * the given type numbers (terminated by -1), with shape[d] == shape_want[d]
+ * where shape_want[d] >= 0; raises TypeError or ValueError naming `name`
+ * and returns NULL otherwise.  Returns a new reference: to obj itself, or
+ * to an aligned copy when obj is not aligned. */
+PyArrayObject *sr_py_take_array(PyObject *obj, const char *name, int ndim, const npy_intp *shape_want,
+                                const int *types);
+
+/* The mesh's float32 positions and uint32 indices for sr_draw (made once).
+ * -1 with an exception set on failure. */
+int sr_py_mesh_draw_arrays(MeshObject *m, const float **positions, const uint32_t **indices);
+
+/* Scans faces for an index outside [0, N); returns the first offending
+ * face or -1.  Needs no GIL. */
+Py_ssize_t sr_py_mesh_bad_face(const MeshObject *m);
+
+PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
+PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
+PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
+PyObject *sr_py_read_image(PyObject *self, PyObject *args);
+PyObject *sr_py_write_png(PyObject *self, PyObject *args);
+/* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
+ * ValueError) with its one-line message; returns NULL. */
+PyObject *sr_py_io_error(sr_result r, const sr_io_error *err);
+/* An (h, w, 4) uint8 array holding a copy of the RGBA pixels px, which it
+ * frees (they come from the readers' malloc); NULL on failure. */
+PyObject *sr_py_image_array(uint8_t *px, int w, int h);
+
+#endif

@@ -1,0 +1,607 @@
+/*
+ * render.c - softrast._softrast.render: one camera's geometry buffers
+ * (depth, triangle and instance IDs, barycentrics, normals, mask) and
+ * color from a list of mesh instances.  The Python layer (softrast/
+ * _render.py) validates cameras and poses and loops over batches; this
+ * file checks what it is handed again so that no call can crash, then
+ * draws with the GIL released.
+ *
+ * The geometry buffers come from one sr_program per instance.  Its vertex
+ * shader reads the mesh's own arrays (float32 or float64 vertices, int32
+ * or int64 faces) by triangle corner, so the draw is non-indexed, three
+ * corners a face: corner c of the draw is corner c % 3 of face c / 3,
+ * whose index reaches the fragment shader as a flat varying.  The fragment
+ * shader intersects the pixel's ray with that face for depth, barycentrics
+ * and normal, and writes them for the fragments that pass the depth test;
+ * fragments of one tile are shaded in draw order, so the last write to a
+ * pixel is the visible surface's, the same for any thread count.  Color
+ * comes from a second pass through the built-in shading (textures, vertex
+ * colors, a headlight) on the same projection.
+ */
+#include "module.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Varyings of the geometry program: the face index in two 16-bit halves,
+ * each exact in a float, flat. */
+enum { V_TRI_HI = 0, V_TRI_LO = 1, V_COUNT = 2 };
+
+typedef struct geometry_uniforms {
+    const void *vertices;
+    bool vertices64;
+    const void *faces;
+    bool faces64;
+    const float *normals;       /* NULL: face normals */
+    double a[3][4];             /* object -> camera */
+    double nm[3][3];            /* object normal -> the normal output's frame */
+    double kx[3], ky[2];        /* clip x and y rows from K */
+    double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
+    float near;
+    int width;
+    int32_t instance_id;
+    float *depth;
+    int32_t *triangle_id, *instance_out;
+    float *barycentric, *normal;
+    npy_bool *mask;
+} geometry_uniforms;
+
+static void fetch_vertex(const geometry_uniforms *u, size_t v, double p[3])
+{
+    for (int k = 0; k < 3; k++) {
+        p[k] = u->vertices64 ? ((const double *)u->vertices)[3 * v + k]
+                             : (double)((const float *)u->vertices)[3 * v + k];
+    }
+}
+
+static size_t fetch_index(const geometry_uniforms *u, size_t i)
+{
+    return u->faces64 ? (size_t)((const int64_t *)u->faces)[i]
+                      : (size_t)((const int32_t *)u->faces)[i];
+}
+
+static void to_camera(const geometry_uniforms *u, const double p[3], double c[3])
+{
+    for (int r = 0; r < 3; r++) {
+        c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3];
+    }
+}
+
+static void cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
+                            float *vary)
+{
+    const geometry_uniforms *u = uniforms;
+    size_t face = in->index / 3;
+    double p[3], c[3];
+    fetch_vertex(u, fetch_index(u, in->index), p);
+    to_camera(u, p, c);
+    /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
+     * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
+     * nearest (the depth test is GREATER), infinite far plane. */
+    clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2]);
+    clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
+    clip[2] = u->near;
+    clip[3] = (float)c[2];
+    vary[V_TRI_HI] = (float)(face >> 16);
+    vary[V_TRI_LO] = (float)(face & 0xffff);
+}
+
+/* The visible face's outputs at pixel (x, y), from the ray through the
+ * pixel's centre and the face's camera-space plane, in double: depth and
+ * barycentrics are the exact intersection rounded once to float, not
+ * interpolated from vertices snapped to the raster's sub-pixel grid. */
+static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z)
+{
+    size_t p = (size_t)y * (size_t)u->width + (size_t)x;
+    size_t vi[3];
+    double o[3][3], c[3][3];
+    for (int k = 0; k < 3; k++) {
+        vi[k] = fetch_index(u, 3 * face + (size_t)k);
+        fetch_vertex(u, vi[k], o[k]);
+        to_camera(u, o[k], c[k]);
+    }
+    double dy = ((double)y - u->cy) / u->fy;
+    double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
+    double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
+    double e2[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
+    double n[3];
+    cross(e1, e2, n);
+    double denom = dot(n, d), nn = dot(n, n);
+    double z, lambda[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 };
+    if (denom != 0.0 && nn > 0.0) {
+        z = dot(n, c[0]) / denom;
+        double w[3] = { z * d[0] - c[0][0], z * d[1] - c[0][1], z * d[2] - c[0][2] }, t[3];
+        cross(w, e2, t);
+        lambda[1] = dot(t, n) / nn;
+        cross(e1, w, t);
+        lambda[2] = dot(t, n) / nn;
+        lambda[0] = 1.0 - lambda[1] - lambda[2];
+    } else {
+        /* Seen edge-on: no area to intersect; the raster's depth. */
+        z = u->near / window_z;
+    }
+    if (u->depth) {
+        u->depth[p] = (float)z;
+    }
+    if (u->triangle_id) {
+        u->triangle_id[p] = (int32_t)face;
+    }
+    if (u->instance_out) {
+        u->instance_out[p] = u->instance_id;
+    }
+    if (u->barycentric) {
+        for (int k = 0; k < 3; k++) {
+            u->barycentric[3 * p + k] = (float)lambda[k];
+        }
+    }
+    if (u->normal) {
+        double on[3] = { 0, 0, 0 }, fn[3];
+        if (u->normals) {
+            for (int k = 0; k < 3; k++) {
+                for (int i = 0; i < 3; i++) {
+                    on[i] += lambda[k] * u->normals[3 * vi[k] + i];
+                }
+            }
+        } else {
+            double oe1[3] = { o[1][0] - o[0][0], o[1][1] - o[0][1], o[1][2] - o[0][2] };
+            double oe2[3] = { o[2][0] - o[0][0], o[2][1] - o[0][1], o[2][2] - o[0][2] };
+            cross(oe1, oe2, on);
+        }
+        for (int r = 0; r < 3; r++) {
+            fn[r] = u->nm[r][0] * on[0] + u->nm[r][1] * on[1] + u->nm[r][2] * on[2];
+        }
+        double len = sqrt(dot(fn, fn));
+        double scale = len > 0.0 ? 1.0 / len : 0.0;
+        for (int r = 0; r < 3; r++) {
+            u->normal[3 * p + r] = (float)(fn[r] * scale);
+        }
+    }
+    if (u->mask) {
+        u->mask[p] = 1;
+    }
+}
+
+static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
+{
+    const geometry_uniforms *u = uniforms;
+    for (int i = 0; i < 4; i++) {
+        if (q->mask >> i & 1) {
+            size_t face = (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
+                          (size_t)lrintf(q->varyings[V_TRI_LO][i]);
+            shade_pixel(u, face, q->x + (i & 1), q->y + (i >> 1), q->z[i]);
+        }
+    }
+}
+
+/* One instance as render() was handed it. */
+typedef struct instance {
+    MeshObject *mesh;
+    double a[3][4], nm[3][3];
+    int32_t id;
+    const float *positions;     /* for the color pass */
+    const uint32_t *indices;
+} instance;
+
+typedef struct render_job {
+    instance *inst;
+    size_t count;
+    int width, height, threads;
+    double k[3][3];
+    float near;
+    float background[3];
+    bool lit;                   /* color: headlight-lit, else the colors as they are */
+    float *depth;
+    int32_t *triangle_id, *instance_id;
+    float *barycentric, *normal;
+    uint8_t *color;
+    npy_bool *mask;
+    char error[512];
+} render_job;
+
+static void fill_outputs(const render_job *j)
+{
+    size_t n = (size_t)j->width * (size_t)j->height;
+    for (size_t i = 0; i < n; i++) {
+        if (j->depth) {
+            j->depth[i] = INFINITY;
+        }
+        if (j->triangle_id) {
+            j->triangle_id[i] = -1;
+        }
+        if (j->instance_id) {
+            j->instance_id[i] = -1;
+        }
+    }
+    if (j->barycentric) {
+        memset(j->barycentric, 0, 3 * n * sizeof(float));
+    }
+    if (j->normal) {
+        memset(j->normal, 0, 3 * n * sizeof(float));
+    }
+    if (j->mask) {
+        memset(j->mask, 0, n * sizeof(npy_bool));
+    }
+}
+
+static void clip_rows(const render_job *j, double kx[3], double ky[2])
+{
+    double w = j->width, h = j->height;
+    kx[0] = 2.0 * j->k[0][0] / w;
+    kx[1] = 2.0 * j->k[0][1] / w;
+    kx[2] = 2.0 * (j->k[0][2] + 0.5) / w - 1.0;
+    ky[0] = -2.0 * j->k[1][1] / h;
+    ky[1] = 1.0 - 2.0 * (j->k[1][2] + 0.5) / h;
+}
+
+/* One instance's draw in one pass; `faces` > 0. */
+typedef sr_result (*instance_draw)(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                                   const instance *in, size_t faces, const void *arg);
+
+static sr_result draw_instances(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                                instance_draw draw, const void *arg)
+{
+    sr_result r = SR_OK;
+    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
+        size_t faces = (size_t)PyArray_DIM(j->inst[i].mesh->faces, 0);
+        if (faces > 0) {
+            r = draw(ctx, fb, j, &j->inst[i], faces, arg);
+        }
+    }
+    return r;
+}
+
+static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                               const instance *in, size_t faces, const void *arg)
+{
+    (void)arg;
+    const MeshObject *m = in->mesh;
+    geometry_uniforms u = {
+        .vertices = PyArray_DATA(m->vertices),
+        .vertices64 = PyArray_TYPE(m->vertices) == NPY_FLOAT64,
+        .faces = PyArray_DATA(m->faces),
+        .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
+        .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
+        .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1], .cy = j->k[1][2],
+        .near = j->near, .width = j->width, .instance_id = in->id,
+        .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
+        .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
+    };
+    memcpy(u.a, in->a, sizeof u.a);
+    memcpy(u.nm, in->nm, sizeof u.nm);
+    clip_rows(j, u.kx, u.ky);
+    sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
+                        .uniforms = &u, .varying_count = V_COUNT };
+    prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
+    /* The shader reads the mesh itself; sr_draw still wants a position
+     * array of vertex_count entries.  Overlapping ones 4 bytes apart
+     * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
+    return sr_draw(ctx, fb,
+                   &(sr_state){ .program = &prog, .depth_zero_to_one = true,
+                                .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+                                .color_mask = SR_COLOR_MASK_NONE },
+                   &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
+                                    .vertex_count = 3 * faces });
+}
+
+static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
+{
+    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){ .depth_action = SR_ACTION_CLEAR, .depth = 0,
+                                                       .color_action = SR_ACTION_KEEP });
+    return r == SR_OK ? draw_instances(ctx, fb, j, geometry_draw, NULL) : r;
+}
+
+static void mat_from_rows(const double a[3][4], sr_mat4 *out)
+{
+    memset(out, 0, sizeof *out);
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 4; c++) {
+            out->m[c * 4 + r] = (float)a[r][c];
+        }
+    }
+    out->m[15] = 1.0f;
+}
+
+/* The mesh's texture on ctx (RGB expanded to RGBA), or NULL without one. */
+static sr_result make_texture(sr_context *ctx, const MeshObject *m, sr_texture **tex)
+{
+    *tex = NULL;
+    if (!m->texture) {
+        return SR_OK;
+    }
+    int th = (int)PyArray_DIM(m->texture, 0), tw = (int)PyArray_DIM(m->texture, 1);
+    const uint8_t *src = PyArray_DATA(m->texture);
+    uint8_t *rgba = NULL;
+    if (PyArray_DIM(m->texture, 2) == 3) {
+        rgba = malloc((size_t)tw * (size_t)th * 4);
+        if (!rgba) {
+            return SR_OUT_OF_MEMORY;
+        }
+        for (size_t p = 0; p < (size_t)tw * (size_t)th; p++) {
+            memcpy(rgba + 4 * p, src + 3 * p, 3);
+            rgba[4 * p + 3] = 255;
+        }
+    }
+    sr_result r = sr_make_texture(ctx, &(sr_texture_desc){ .width = tw, .height = th,
+                                                           .pixels = rgba ? rgba : src, .srgb = true },
+                                  tex);
+    free(rgba);
+    return r;
+}
+
+static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                            const instance *in, size_t faces, const void *proj)
+{
+    const MeshObject *m = in->mesh;
+    sr_texture *tex;
+    sr_result r = make_texture(ctx, m, &tex);
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_mat4 model;
+    mat_from_rows(in->a, &model);
+    sr_state st = {
+        .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+        .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
+        .two_sided = true,
+        .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
+        /* A headlight: the view is the identity, so "world" is camera space. */
+        .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
+    };
+    sr_draw_desc d = {
+        .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
+        .positions = in->positions,
+        .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
+        .colors = m->colors ? PyArray_DATA(m->colors) : NULL,
+        .color_size = m->colors ? (int)PyArray_DIM(m->colors, 1) : 0,
+        .texcoords = m->uvs ? PyArray_DATA(m->uvs) : NULL,
+        .indices = in->indices, .index_type = SR_INDEX_U32, .index_count = 3 * faces,
+        .model = &model, .projection = proj,
+    };
+    r = sr_draw(ctx, fb, &st, &d);
+    sr_destroy_texture(ctx, tex);
+    return r;
+}
+
+static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
+{
+    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
+        .color = { j->background[0], j->background[1], j->background[2], 1.0f },
+        .depth_action = SR_ACTION_CLEAR, .depth = 0 });
+    double kx[3], ky[2];
+    clip_rows(j, kx, ky);
+    /* The same clip coordinates as geometry_vertex, as a matrix. */
+    sr_mat4 proj = { { 0 } };
+    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1], proj.m[8] = (float)kx[2];
+    proj.m[5] = (float)ky[0], proj.m[9] = (float)ky[1];
+    proj.m[14] = j->near;
+    proj.m[11] = 1.0f;
+    if (r == SR_OK) {
+        r = draw_instances(ctx, fb, j, color_draw, &proj);
+    }
+    if (r == SR_OK) {
+        const uint8_t *px = sr_framebuffer_pixels(fb);
+        for (size_t p = 0; p < (size_t)j->width * (size_t)j->height; p++) {
+            memcpy(j->color + 3 * p, px + 4 * p, 3);
+        }
+    }
+    return r;
+}
+
+/* Runs without the GIL: touches no Python object, only array memory. */
+static void run(render_job *j)
+{
+    sr_context *ctx = NULL;
+    sr_framebuffer *fb = NULL;
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = j->threads }, &ctx);
+    if (r != SR_OK) {
+        snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_result_text(r));
+        return;
+    }
+    fill_outputs(j);
+    r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = j->width, .height = j->height,
+                                                          .depth_format = SR_DEPTH_D32F },
+                            &fb);
+    bool geometry = j->depth || j->triangle_id || j->instance_id || j->barycentric || j->normal ||
+                    j->mask;
+    if (r == SR_OK && geometry) {
+        r = geometry_pass(ctx, fb, j);
+    }
+    if (r == SR_OK && j->color) {
+        r = color_pass(ctx, fb, j);
+    }
+    if (r != SR_OK) {
+        snprintf(j->error, sizeof j->error, "%s", sr_context_error(ctx));
+        if (!j->error[0]) {
+            snprintf(j->error, sizeof j->error, "%s", sr_result_text(r));
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* An output array from the Python layer: None, or C-contiguous of the
+ * given type and shape (height, width[, channels]). */
+static int take_output(PyObject *obj, const char *name, int type, int height, int width, int channels,
+                       void **out)
+{
+    *out = NULL;
+    if (obj == Py_None) {
+        return 0;
+    }
+    const int types[] = { type, -1 };
+    npy_intp shape[3] = { height, width, channels };
+    PyArrayObject *a = sr_py_take_array(obj, name, channels ? 3 : 2, shape, types);
+    if (!a) {
+        return -1;
+    }
+    if ((PyObject *)a != obj || !PyArray_ISWRITEABLE(a)) {
+        PyErr_Format(PyExc_ValueError, "%s: array is read-only or not aligned", name);
+        Py_DECREF(a);
+        return -1;
+    }
+    *out = PyArray_DATA(a);
+    Py_DECREF(a);   /* the caller holds obj for the call */
+    return 0;
+}
+
+static int take_matrix(PyObject *obj, const char *name, int rows, int cols, double *out)
+{
+    static const int types[] = { NPY_FLOAT64, -1 };
+    npy_intp shape[2] = { rows, cols };
+    PyArrayObject *a = sr_py_take_array(obj, name, 2, shape, types);
+    if (!a) {
+        return -1;
+    }
+    memcpy(out, PyArray_DATA(a), sizeof(double) * (size_t)(rows * cols));
+    Py_DECREF(a);
+    for (int i = 0; i < rows * cols; i++) {
+        if (!isfinite(out[i])) {
+            PyErr_Format(PyExc_ValueError, "%s: contains NaN or infinity", name);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int take_instances(PyObject *seq, render_job *j)
+{
+    PyObject *fast = PySequence_Fast(seq, "instances: expected a sequence");
+    if (!fast) {
+        return -1;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(fast);
+    j->inst = calloc(n ? (size_t)n : 1, sizeof *j->inst);
+    if (!j->inst) {
+        Py_DECREF(fast);
+        PyErr_NoMemory();
+        return -1;
+    }
+    j->count = (size_t)n;
+    for (Py_ssize_t i = 0; i < n; i++) {
+        PyObject *item = PySequence_Fast_GET_ITEM(fast, i);
+        PyObject *mesh, *a, *nm;
+        int id;
+        if (!PyTuple_Check(item) ||
+            !PyArg_ParseTuple(item, "O!OOi", &sr_py_MeshType, &mesh, &a, &nm, &id)) {
+            PyErr_Clear();
+            PyErr_Format(PyExc_TypeError,
+                         "instances[%zd]: expected (Mesh, (3, 4) matrix, (3, 3) matrix, int)", i);
+            goto fail;
+        }
+        instance *in = &j->inst[i];
+        in->mesh = (MeshObject *)mesh;
+        in->id = id;
+        if (!in->mesh->vertices) {
+            PyErr_Format(PyExc_ValueError, "instances[%zd]: the Mesh was never initialized", i);
+            goto fail;
+        }
+        if (take_matrix(a, "pose", 3, 4, &in->a[0][0]) < 0 ||
+            take_matrix(nm, "normal matrix", 3, 3, &in->nm[0][0]) < 0) {
+            goto fail;
+        }
+        MeshObject *m = in->mesh;
+        size_t faces = (size_t)PyArray_DIM(m->faces, 0);
+        if (m->zeros_count < 3 * faces + 2) {
+            free(m->zeros);
+            m->zeros = calloc(3 * faces + 2, sizeof(float));
+            m->zeros_count = m->zeros ? 3 * faces + 2 : 0;
+            if (!m->zeros) {
+                PyErr_NoMemory();
+                goto fail;
+            }
+        }
+        Py_ssize_t bad = sr_py_mesh_bad_face(m);
+        if (bad >= 0) {
+            PyErr_Format(PyExc_ValueError,
+                         "instances[%zd]: faces: face %zd has an index outside [0, %zd) "
+                         "(the array changed after the Mesh was made)",
+                         i, bad, (Py_ssize_t)PyArray_DIM(m->vertices, 0));
+            goto fail;
+        }
+        if (j->color && sr_py_mesh_draw_arrays(m, &in->positions, &in->indices) < 0) {
+            goto fail;
+        }
+    }
+    Py_DECREF(fast);
+    return 0;
+fail:
+    Py_DECREF(fast);
+    return -1;
+}
+
+PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
+                              "triangle_id", "instance_id", "barycentric", "normal", "color",
+                              "mask", "background", "lit", NULL };
+    PyObject *instances, *K, *outs[7];
+    render_job j = { 0 };
+    int lit = 1;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p:render", kwlist, &instances,
+                                     &K, &j.width, &j.height, &j.near, &j.threads, &outs[0],
+                                     &outs[1], &outs[2], &outs[3], &outs[4], &outs[5], &outs[6],
+                                     &j.background[0], &j.background[1], &j.background[2], &lit)) {
+        return NULL;
+    }
+    if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
+        j.height > SR_MAX_FRAMEBUFFER_SIZE) {
+        PyErr_Format(PyExc_ValueError, "width, height: must be in 1 .. %d, got %d x %d",
+                     SR_MAX_FRAMEBUFFER_SIZE, j.width, j.height);
+        return NULL;
+    }
+    if (!(j.near > 0.0f) || !isfinite(j.near)) {
+        PyErr_SetString(PyExc_ValueError, "near: must be a positive finite distance");
+        return NULL;
+    }
+    if (j.threads < 0 || j.threads > 64) {
+        PyErr_Format(PyExc_ValueError, "threads: must be in 0 .. 64 (0: every CPU), got %d",
+                     j.threads);
+        return NULL;
+    }
+    j.lit = lit;
+    if (take_matrix(K, "K", 3, 3, &j.k[0][0]) < 0) {
+        return NULL;
+    }
+    int H = j.height, W = j.width;
+    void *ptr[7];
+    if (take_output(outs[0], "depth", NPY_FLOAT32, H, W, 0, &ptr[0]) < 0 ||
+        take_output(outs[1], "triangle_id", NPY_INT32, H, W, 0, &ptr[1]) < 0 ||
+        take_output(outs[2], "instance_id", NPY_INT32, H, W, 0, &ptr[2]) < 0 ||
+        take_output(outs[3], "barycentric", NPY_FLOAT32, H, W, 3, &ptr[3]) < 0 ||
+        take_output(outs[4], "normal", NPY_FLOAT32, H, W, 3, &ptr[4]) < 0 ||
+        take_output(outs[5], "color", NPY_UINT8, H, W, 3, &ptr[5]) < 0 ||
+        take_output(outs[6], "mask", NPY_BOOL, H, W, 0, &ptr[6]) < 0) {
+        return NULL;
+    }
+    j.depth = ptr[0], j.triangle_id = ptr[1], j.instance_id = ptr[2];
+    j.barycentric = ptr[3], j.normal = ptr[4], j.color = ptr[5], j.mask = ptr[6];
+    if (take_instances(instances, &j) < 0) {
+        free(j.inst);
+        return NULL;
+    }
+    /* The instances' meshes and the outputs stay referenced by the
+     * caller's arguments for the whole call. */
+    Py_BEGIN_ALLOW_THREADS
+    run(&j);
+    Py_END_ALLOW_THREADS
+    free(j.inst);
+    if (j.error[0]) {
+        PyErr_SetString(PyExc_RuntimeError, j.error);
+        return NULL;
+    }
+    Py_RETURN_NONE;
+}

@@ -1,0 +1,39 @@
+"""Shared helpers of the softrast Python tests (run by CTest's python_package)."""
+
+import os
+
+import numpy as np
+import pytest
+
+softrast = pytest.importorskip("softrast", reason="softrast is not importable: build it with CMake "
+                               "(PYTHONPATH=build/python) or pip install ./python")
+
+MODELS = os.environ.get("SR_SHARED_MODELS_DIR",
+                        os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "models"))
+
+
+def pixel_rays(K, width, height):
+    """(H, W, 3) float64 camera-space directions through the pixel centres, z = 1."""
+    u, v = np.meshgrid(np.arange(width, dtype=np.float64), np.arange(height, dtype=np.float64))
+    uv1 = np.stack([u, v, np.ones_like(u)], axis=-1)
+    return uv1 @ np.linalg.inv(K).T
+
+
+def random_triangles(rng, count, depth_range=(2.0, 6.0), size=0.6):
+    """Separate triangles in front of a camera at the origin looking down +z:
+    (3 * count, 3) float64 vertices, (count, 3) int64 faces."""
+    centres = np.column_stack([rng.uniform(-1.5, 1.5, count), rng.uniform(-1.0, 1.0, count),
+                               rng.uniform(*depth_range, count)])
+    corners = centres[:, None, :] + rng.uniform(-size, size, (count, 3, 3))
+    return corners.reshape(-1, 3), np.arange(3 * count, dtype=np.int64).reshape(-1, 3)
+
+
+def default_camera(width, height, fov_y=1.0):
+    return softrast.look_at(eye=(0.0, 0.0, 0.0), target=(0.0, 0.0, 1.0), up=(0.0, -1.0, 0.0),
+                            fov_y=fov_y, width=width, height=height)
+
+
+def ray_plane_depth(rays, p0, p1, p2):
+    """Camera z where each ray (z = 1) meets the plane through p0, p1, p2."""
+    n = np.cross(p1 - p0, p2 - p0)
+    return (n @ p0) / (rays @ n)

@@ -1,0 +1,90 @@
+"""softrast.load (sr_load_scene) and softrast.load_mesh (sr_load_mesh)."""
+
+import base64
+import json
+import os
+
+import numpy as np
+import pytest
+import softrast
+from conftest import MODELS
+
+
+def test_load_mesh_obj(tmp_path):
+    path = tmp_path / "quad.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n")
+    mesh = softrast.load_mesh(path)
+    assert mesh.vertices.dtype == np.float32 and mesh.faces.dtype == np.int32
+    assert mesh.faces.shape == (2, 3)
+    assert np.allclose(mesh.normals, [0, 0, 1])
+    assert set(map(tuple, mesh.vertices[mesh.faces].reshape(-1, 3).tolist())) == \
+        {(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)}
+
+
+def test_load_mesh_shared_model_with_texture():
+    path = os.path.join(MODELS, "spot.obj")
+    if not os.path.exists(path):
+        pytest.skip(f"{path} is missing")
+    loaded = softrast.load_mesh(path)
+    assert len(loaded.faces) > 1000 and loaded.uvs is not None
+    texture = softrast.read_image(os.path.join(MODELS, "spot_texture.png"))
+    assert texture.dtype == np.uint8 and texture.ndim == 3 and texture.shape[2] == 4
+    mesh = softrast.Mesh(loaded.vertices, loaded.faces, uvs=loaded.uvs, texture=texture)
+    K, R, t = softrast.look_at(eye=(0, 0.5, 3), target=(0, 0.3, 0), width=64, height=64)
+    out = softrast.render(mesh, K=K, R=R, t=t, width=64, height=64, outputs=("color", "mask"))
+    assert out["mask"].sum() > 300
+    assert out["color"][out["mask"]].std() > 5       # textured, not flat
+
+
+def test_load_errors(tmp_path):
+    with pytest.raises(OSError, match="missing.obj"):
+        softrast.load_mesh(tmp_path / "missing.obj")
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0 0\nf 1 2 3\n")
+    with pytest.raises(ValueError, match="bad.obj"):
+        softrast.load_mesh(bad)
+    with pytest.raises(TypeError, match="path"):
+        softrast.load(3)
+
+
+def write_gltf(path):
+    """One triangle, drawn by two nodes: at the origin and moved by x + 2."""
+    pos = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32).tobytes()
+    idx = np.array([0, 1, 2, 0], np.uint16).tobytes()
+    data = pos + idx
+    doc = {
+        "asset": {"version": "2.0"},
+        "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0}, {"mesh": 0, "translation": [2, 0, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                        {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    }
+    path.write_text(json.dumps(doc))
+
+
+def test_load_gltf_scene(tmp_path):
+    path = tmp_path / "two.gltf"
+    write_gltf(path)
+    try:
+        scene = softrast.load(path)
+    except ValueError as e:
+        if "jansson" in str(e) or "not supported" in str(e):
+            pytest.skip("this build reads no glTF")
+        raise
+    assert len(scene) == 2
+    a, b = scene.instances
+    assert a.mesh is b.mesh, "the primitive's arrays are shared"
+    assert np.allclose(b.pose[:3, 3], [2, 0, 0]) and np.allclose(a.pose, np.eye(4))
+    K, R, t = softrast.look_at(eye=(1.5, 0.5, 4), target=(1.5, 0.5, 0), width=80, height=40,
+                               fov_y=0.6)
+    out = softrast.render(scene, K=K, R=R, t=t, width=80, height=40, outputs=("instance_id",))
+    ids = out["instance_id"]
+    cols = np.nonzero(ids >= 0)[1]
+    assert set(np.unique(ids)) == {-1, 0, 1}
+    assert cols[ids[ids >= 0] == 0].max() < cols[ids[ids >= 0] == 1].min()
