@@ -2776,3 +2776,37 @@ SR_TEST(background_environment_shows_the_studio)
     free(px[1]);
 #endif
 }
+
+/* Without a ground the default draws no shadow map: the same bytes as
+ * --shadows off; --shadows on darkens the model where it shadows itself. */
+SR_TEST(shadows_are_off_on_a_model_alone_unless_asked)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], model[1100], out[3][1100];
+    fresh_dir("model_shadows", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/stanford-bunny.obj", sr_test_models_dir());
+    const char *const set[3][2] = { { "--turn", "0" }, { "--shadows", "off" },
+                                    { "--shadows", "on" } };
+    uint8_t *px[3];
+    int w = 0, h = 0;
+    for (int k = 0; k < 3; k++) {
+        snprintf(out[k], sizeof out[k], "%s/%d.png", dir, k);
+        px[k] = render_pixels(ARGS("render", model, set[k][0], set[k][1], "--size", "96x72",
+                                   "--aa", "none", "-o", out[k]),
+                              out[k], &w, &h);
+        REQUIRE(px[k]);
+    }
+    CHECK(memcmp(px[0], px[1], (size_t)w * h * 4) == 0);
+    size_t darker = 0;
+    for (size_t i = 0; i < (size_t)w * h * 4; i++) {
+        CHECK(px[2][i] <= px[1][i] || i % 4 == 3);   /* a shadow only takes light away */
+        darker += px[2][i] + 8 < px[1][i];
+    }
+    CHECK(darker > 20);
+    for (int k = 0; k < 3; k++) {
+        free(px[k]);
+    }
+#endif
+}
