@@ -2669,6 +2669,19 @@ static uint8_t *render_grounded(const char *dir, const char *name, const char *l
                          out, w, h);
 }
 
+/* The bunny at 96 x 72, no antialiasing, with the options a0 a1 a2 a3,
+ * into DIR/NAME.png: its pixels, or NULL after a failure. */
+static uint8_t *render_small_bunny(const char *dir, const char *name, const char *a0,
+                                   const char *a1, const char *a2, const char *a3, int *w, int *h)
+{
+    char model[1100], out[1100];
+    snprintf(model, sizeof model, "%s/stanford-bunny.obj", sr_test_models_dir());
+    snprintf(out, sizeof out, "%s/%s.png", dir, name);
+    return render_pixels(ARGS("render", model, a0, a1, a2, a3, "--size", "96x72", "--aa", "none",
+                              "-o", out),
+                         out, w, h);
+}
+
 /* Over the pixels that show the background in `plain` (the same render
  * without a shadow): the summed darkening of `px` below the background
  * in the left and right halves, and how many of them `px` changed. */
@@ -2745,17 +2758,14 @@ SR_TEST(background_environment_shows_the_studio)
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #else
-    char dir[1024], model[1100], out[2][1100];
+    char dir[1024];
     fresh_dir("background_env", dir, sizeof dir);
-    snprintf(model, sizeof model, "%s/stanford-bunny.obj", sr_test_models_dir());
     const char *kinds[2] = { "environment", "blur" };
     uint8_t *px[2];
     int w = 0, h = 0;
     for (int m = 0; m < 2; m++) {
-        snprintf(out[m], sizeof out[m], "%s/%s.png", dir, kinds[m]);
-        px[m] = render_pixels(ARGS("render", model, "--environment", "studio", "--background",
-                                   kinds[m], "--size", "96x72", "--aa", "none", "-o", out[m]),
-                              out[m], &w, &h);
+        px[m] = render_small_bunny(dir, kinds[m], "--environment", "studio", "--background",
+                                   kinds[m], &w, &h);
         REQUIRE(px[m]);
     }
     size_t default_bg = 0, opaque = 0;
@@ -2784,18 +2794,16 @@ SR_TEST(shadows_are_off_on_a_model_alone_unless_asked)
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #else
-    char dir[1024], model[1100], out[3][1100];
+    char dir[1024];
     fresh_dir("model_shadows", dir, sizeof dir);
-    snprintf(model, sizeof model, "%s/stanford-bunny.obj", sr_test_models_dir());
+    /* --turn 0 and --exposure 0 change nothing: the default. */
     const char *const set[3][2] = { { "--turn", "0" }, { "--shadows", "off" },
                                     { "--shadows", "on" } };
+    const char *names[3] = { "default", "off", "on" };
     uint8_t *px[3];
     int w = 0, h = 0;
     for (int k = 0; k < 3; k++) {
-        snprintf(out[k], sizeof out[k], "%s/%d.png", dir, k);
-        px[k] = render_pixels(ARGS("render", model, set[k][0], set[k][1], "--size", "96x72",
-                                   "--aa", "none", "-o", out[k]),
-                              out[k], &w, &h);
+        px[k] = render_small_bunny(dir, names[k], set[k][0], set[k][1], "--exposure", "0", &w, &h);
         REQUIRE(px[k]);
     }
     CHECK(memcmp(px[0], px[1], (size_t)w * h * 4) == 0);
