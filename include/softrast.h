@@ -788,6 +788,19 @@ typedef enum sr_clipper {
                                   projection must be invertible */
 } sr_clipper;
 
+/* How hidden surfaces are removed (docs/raster-rules.md §6.5). */
+typedef enum sr_visibility {
+    SR_VISIBILITY_DEFAULT = 0, /* -> SR_VISIBILITY_Z_BUFFER */
+    SR_VISIBILITY_Z_BUFFER,    /* per sample, by the depth test and depth_func */
+    SR_VISIBILITY_PAINTER,     /* the painter's algorithm: the draw's triangles sorted
+                                  back to front by their farthest vertex in eye space
+                                  (then their nearest, then their order) and drawn
+                                  in that order with no depth test or write.  Wrong
+                                  where triangles overlap cyclically or
+                                  interpenetrate.  Triangle lists of the built-in
+                                  shading only (no program) */
+} sr_visibility;
+
 typedef enum sr_light_type {
     SR_LIGHT_OFF = 0,
     SR_LIGHT_DIRECTIONAL,    /* `vector` is the direction the light travels */
@@ -1038,6 +1051,7 @@ typedef struct sr_state {
     sr_front_face front_face;
     sr_rasterizer rasterizer;
     sr_clipper clipper;            /* triangles only: lines and points clip homogeneously */
+    sr_visibility visibility;      /* z-buffer or painter's algorithm */
     sr_polygon_mode polygon_mode_front;
     sr_polygon_mode polygon_mode_back;
     float line_width;              /* whole pixels, 1..64; 0 -> 1 (runs across the minor axis) */

@@ -328,7 +328,11 @@ SR_API sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t siz
 /* SVG 1.1 drawings, rendered with the 2D toolkit: svg, g, path, rect,
  * circle, ellipse, line, polyline, polygon; transforms; fill and stroke
  * with their opacities, rules, joins and caps; shape-rendering; display
- * and visibility.  Anything else is skipped with one warning per name.
+ * and visibility; <style> sheets and style attributes, currentColor, CSS
+ * colors; defs, use, symbol; linear and radial gradients; clip paths,
+ * masks and group opacity (drawn in layers); the table in docs/draw2d.md
+ * says what else.  Anything else is skipped with one warning per name;
+ * reference cycles (use, clip-path, mask) are refused.
  * The work is bounded by the size of the document and of the image (the
  * limits below, docs/robustness.md): a few hundred bytes cannot make the
  * renderer spin for seconds or allocate gigabytes. */

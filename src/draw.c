@@ -93,6 +93,9 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     if (r != SR_OK) {
         return r;
     }
+    if (state->visibility == SR_VISIBILITY_PAINTER) {
+        return sr__draw_painter(ctx, fb, state, d);
+    }
     size_t count = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
 
     sr_draw_state ds;

@@ -247,6 +247,24 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
                             "sr_draw_desc.projection");
         }
     }
+    if ((unsigned)st->visibility > SR_VISIBILITY_PAINTER) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.visibility %d is not a visibility method",
+                        (int)st->visibility);
+    }
+    if (st->visibility == SR_VISIBILITY_PAINTER) {
+        /* The sort reads eye-space depth, which only the built-in
+         * shading models have, and sorts whole triangles of a list. */
+        if (st->program) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_state.visibility SR_VISIBILITY_PAINTER needs the built-in shading "
+                            "models' eye space; a program writes clip space only");
+        }
+        if (d->primitive != SR_PRIM_DEFAULT && d->primitive != SR_PRIM_TRIANGLES) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_state.visibility SR_VISIBILITY_PAINTER sorts triangle lists only "
+                            "(sr_draw_desc.primitive %d)", (int)d->primitive);
+        }
+    }
     if ((unsigned)st->interpolation > SR_INTERP_AFFINE) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.interpolation %d is not valid",
                         (int)st->interpolation);

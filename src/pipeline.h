@@ -51,6 +51,11 @@ typedef struct sr_vertex_post {
 sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_state *st,
                             const sr_draw_desc *d);
 
+/* draw_painter.c: a validated triangle-list draw with SR_VISIBILITY_PAINTER,
+ * drawn back to front without a depth test. */
+sr_result sr__draw_painter(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
+                           const sr_draw_desc *d);
+
 /* draw_state.c: the whole draw state resolved into ds, and its shading
  * half alone (model, varyings, texture, material, lights in eye space),
  * which the built-in programs (fragment/builtin.c) use. */

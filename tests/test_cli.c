@@ -633,6 +633,13 @@ static const option_case option_errors[] = {
       "--light: at most 8 lights" },
     { "background nocolor", { "--background", "nocolor" }, "--background: expected a color name" },
     { "background #12", { "--background", "#12" }, "--background: expected a color name" },
+    { "background environment under the hemisphere", { "--background", "environment" },
+      "--background environment: shows the environment of --environment studio or FILE.hdr" },
+    { "background blur under phong",
+      { "--environment", "studio", "--background", "blur", "--shading", "phong" },
+      "--background blur: shows the environment" },
+    { "shadows maybe", { "--shadows", "maybe" }, "--shadows: expected one of on|off" },
+    { "ground with a value", { "--ground=yes" }, "--ground: takes no value" },
     { "ambient -1,0,0", { "--ambient", "-1,0,0" }, "--ambient: expected a color name" },
     { "material unknown key", { "--material", "gloss=1" }, "--material: unknown key 'gloss'" },
     { "material shininess 0", { "--material", "shininess=0" }, "--material: expected a number" },
@@ -643,6 +650,12 @@ static const option_case option_errors[] = {
     { "front-face bogus", { "--front-face", "up" }, "--front-face: expected one of ccw|cw" },
     { "projection-interp bogus", { "--projection-interp", "linear" }, "--projection-interp: expected one of" },
     { "rasterizer bogus", { "--rasterizer", "raytrace" }, "--rasterizer: expected one of halfspace|" },
+    { "clipper bogus", { "--clipper", "guard-band" }, "--clipper: expected one of homogeneous|view-volume" },
+    { "view-volume clipper under pbr", { "--clipper", "view-volume" },
+      "--clipper view-volume clips the built-in shading models' view space" },
+    { "depth-range one number", { "--depth-range", "0.5" }, "--depth-range: expected NEAR,FAR" },
+    { "depth-range junk after", { "--depth-range", "0,1x" }, "--depth-range: expected NEAR,FAR" },
+    { "depth-range nan", { "--depth-range", "nan,1" }, "--depth-range: expected NEAR,FAR" },
     { "normals bogus", { "--normals", "bent" }, "--normals: expected one of file|smooth|flat" },
     { "ortho with a value", { "--ortho=yes" }, "--ortho: takes no value" },
     { "turn huge", { "--turn", "1e9" }, "--turn: expected a number" },
@@ -1042,15 +1055,16 @@ static const char *const value_options[] = {
     "--normals",
     "--material", "--ambient", "--light", "--camera", "--fov", "--turn", "--near", "--far",
     "--cull", "--front-face", "--depth-format", "--depth-func", "--projection-interp",
-    "--rasterizer", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
+    "--rasterizer", "--clipper", "--depth-range", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
     "--polygon-offset", "--up", "--tonemap", "--exposure", "--environment",
-    "--environment-intensity", "--camera-index", "--batch", "--output-dir", "--name", "--log", "--shard",
+    "--environment-intensity", "--camera-index", "--shadows", "--batch", "--output-dir", "--name", "--log", "--shard",
     "--shard-count", "--views", "--sheet", "--sheet-columns", "--animate",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",
-                                             "--smooth", "--texture-srgb", "--skip-existing" };
+                                             "--smooth", "--texture-srgb", "--skip-existing",
+                                             "--ground" };
 
 SR_TEST(render_help_lists_every_option)
 {
@@ -2643,5 +2657,232 @@ SR_TEST(gltf_blend_primitives_are_sorted_back_to_front)
     const uint8_t *both = px + 4 * ((size_t)(h / 2) * w + x);
     CHECK(both[2] > both[0] + 20);
     free(px);
+#endif
+}
+
+#ifdef SR_CLI_PATH
+/* The bunny over a --ground shadow catcher, on a light gray background,
+ * its key light the one directional --light DIR. */
+static uint8_t *render_grounded(const char *dir, const char *name, const char *light,
+                                const char *shadows, int *w, int *h)
+{
+    char model[1100], out[1100];
+    snprintf(model, sizeof model, "%s/stanford-bunny.obj", sr_test_models_dir());
+    snprintf(out, sizeof out, "%s/%s.png", dir, name);
+    return render_pixels(ARGS("render", model, "--ground", "--shadows", shadows, "--light", light,
+                              "--background", "0.8", "--size", "160x120", "--aa", "none", "-o",
+                              out),
+                         out, w, h);
+}
+
+/* The bunny at 96 x 72, no antialiasing, with the options a0 a1 a2 a3,
+ * into DIR/NAME.png: its pixels, or NULL after a failure. */
+static uint8_t *render_small_bunny(const char *dir, const char *name, const char *a0,
+                                   const char *a1, const char *a2, const char *a3, int *w, int *h)
+{
+    char model[1100], out[1100];
+    snprintf(model, sizeof model, "%s/stanford-bunny.obj", sr_test_models_dir());
+    snprintf(out, sizeof out, "%s/%s.png", dir, name);
+    return render_pixels(ARGS("render", model, a0, a1, a2, a3, "--size", "96x72", "--aa", "none",
+                              "-o", out),
+                         out, w, h);
+}
+
+/* Over the pixels that show the background in `plain` (the same render
+ * without a shadow): the summed darkening of `px` below the background
+ * in the left and right halves, and how many of them `px` changed. */
+static size_t shadow_sides(const uint8_t *px, const uint8_t *plain, int w, int h, uint8_t bg,
+                           double *left, double *right)
+{
+    size_t changed = 0;
+    *left = *right = 0.0;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p = px + 4 * ((size_t)y * w + x), *q = plain + 4 * ((size_t)y * w + x);
+            if (q[0] != bg || q[1] != bg || q[2] != bg) {
+                continue;   /* the model */
+            }
+            changed += memcmp(p, q, 4) != 0;
+            double dark = 3.0 * bg - p[0] - p[1] - p[2];
+            *(x < w / 2 ? left : right) += dark;
+        }
+    }
+    return changed;
+}
+#endif
+
+/* --ground: the catcher darkens the background only where the model's
+ * shadow falls, on the side away from the key light (the light travels
+ * +x, the default camera's right, or -x); --shadows off leaves every
+ * ground pixel the background's bytes. */
+SR_TEST(ground_shadow_falls_away_from_the_key_light)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024];
+    fresh_dir("ground_shadow", dir, sizeof dir);
+    int w, h;
+    uint8_t *plain = render_grounded(dir, "off", "dir=1,-1,0", "off", &w, &h);
+    uint8_t *right = render_grounded(dir, "right", "dir=1,-1,0", "on", &w, &h);
+    uint8_t *left = render_grounded(dir, "left", "dir=-1,-1,0", "on", &w, &h);
+    REQUIRE(plain && right && left);
+    uint8_t bg = plain[0];                /* the corner: 0.8 as a byte */
+    CHECK(bg == 204);
+    size_t model = 0;
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        model += plain[4 * i] != bg;
+    }
+    CHECK(model > (size_t)w * h / 20 && model < (size_t)w * h / 2);   /* the bunny is there */
+    double l, r;
+    size_t n = shadow_sides(right, plain, w, h, bg, &l, &r);
+    CHECK(n > (size_t)w * h / 50);   /* a shadow of some size */
+    CHECK(r > 4.0 * l);
+    CHECK(r > 60.0 * (double)n);     /* 20 levels a channel darker, on average */
+    n = shadow_sides(left, plain, w, h, bg, &l, &r);
+    CHECK(n > (size_t)w * h / 50);
+    CHECK(l > 4.0 * r);
+    CHECK(l > 60.0 * (double)n);
+    /* Nothing brightens the background: the catcher only darkens. */
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        if (plain[4 * i] == bg) {
+            CHECK(right[4 * i] <= bg && left[4 * i] <= bg);
+        }
+    }
+    free(plain);
+    free(right);
+    free(left);
+#endif
+}
+
+/* --background environment|blur: the studio fills the frame behind the
+ * model (no pixel keeps the default color, the picture is opaque and
+ * not one color); blurring changes it, but keeps it close to the sharp
+ * one (the mean difference, in levels of green). */
+SR_TEST(background_environment_shows_the_studio)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024];
+    fresh_dir("background_env", dir, sizeof dir);
+    const char *kinds[2] = { "environment", "blur" };
+    uint8_t *px[2];
+    int w = 0, h = 0;
+    for (int m = 0; m < 2; m++) {
+        px[m] = render_small_bunny(dir, kinds[m], "--environment", "studio", "--background",
+                                   kinds[m], &w, &h);
+        REQUIRE(px[m]);
+    }
+    size_t default_bg = 0, opaque = 0;
+    int lo = 255, hi = 0;
+    double diff = 0.0;
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        default_bg += is_background(px[0] + 4 * i);
+        opaque += px[0][4 * i + 3] == 255 && px[1][4 * i + 3] == 255;
+        lo = px[0][4 * i] < lo ? px[0][4 * i] : lo;
+        hi = px[0][4 * i] > hi ? px[0][4 * i] : hi;
+        diff += abs(px[0][4 * i + 1] - px[1][4 * i + 1]);
+    }
+    CHECK_EQ(default_bg, 0);
+    CHECK_EQ(opaque, (size_t)w * h);
+    CHECK(hi - lo > 30);
+    CHECK(diff / ((double)w * h) > 0.5 && diff / ((double)w * h) < 12.0);
+    free(px[0]);
+    free(px[1]);
+#endif
+}
+
+/* Without a ground the default draws no shadow map: the same bytes as
+ * --shadows off; --shadows on darkens the model where it shadows itself. */
+SR_TEST(shadows_are_off_on_a_model_alone_unless_asked)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024];
+    fresh_dir("model_shadows", dir, sizeof dir);
+    /* --turn 0 and --exposure 0 change nothing: the default. */
+    const char *const set[3][2] = { { "--turn", "0" }, { "--shadows", "off" },
+                                    { "--shadows", "on" } };
+    const char *names[3] = { "default", "off", "on" };
+    uint8_t *px[3];
+    int w = 0, h = 0;
+    for (int k = 0; k < 3; k++) {
+        px[k] = render_small_bunny(dir, names[k], set[k][0], set[k][1], "--exposure", "0", &w, &h);
+        REQUIRE(px[k]);
+    }
+    CHECK(memcmp(px[0], px[1], (size_t)w * h * 4) == 0);
+    size_t darker = 0;
+    for (size_t i = 0; i < (size_t)w * h * 4; i++) {
+        CHECK(px[2][i] <= px[1][i] || i % 4 == 3);   /* a shadow only takes light away */
+        darker += px[2][i] + 8 < px[1][i];
+    }
+    CHECK(darker > 20);
+    for (int k = 0; k < 3; k++) {
+        free(px[k]);
+    }
+#endif
+}
+
+/* --depth-range and --clipper reach sr_state: the range 1,0 inverts depth
+ * (the less test then keeps the farthest surface, a different picture)
+ * and, with --depth-func greater, gives the default picture back; 0,0 is
+ * GL's zero-width range, not the library's {0} default; the view-volume
+ * clipper gives the homogeneous clipper's pixels with the near plane
+ * cutting the teapot, up to the float rounding docs/clipping.md allows. */
+SR_TEST(depth_range_and_clipper_options_change_the_draw)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], out[1100];
+    fresh_dir("depthrange", dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/d.png", dir);
+    const char *variants[][8] = {
+        { "--cull", "none" },
+        { "--cull", "none", "--depth-range", "1,0" },
+        { "--cull", "none", "--depth-range", "1,0", "--depth-func", "greater" },
+        { "--cull", "none", "--depth-range", "0,0" },
+    };
+    uint8_t *px[4] = { NULL };
+    int w = 0, h = 0;
+    for (int v = 0; v < 4; v++) {
+        const char *base[] = { "render", "--size", "96x64", "--detail", "4", "-o", out, NULL };
+        const char *args[MAX_ARGS + 1];
+        join_args(args, base, variants[v]);
+        px[v] = render_pixels(args, out, &w, &h);
+        REQUIRE(px[v]);
+    }
+    size_t n = (size_t)w * h * 4;
+    CHECK(memcmp(px[0], px[1], n) != 0);
+    CHECK(memcmp(px[0], px[2], n) == 0);
+    CHECK(memcmp(px[0], px[3], n) != 0);
+    CHECK(memcmp(px[1], px[3], n) != 0);
+    for (int v = 0; v < 4; v++) {
+        free(px[v]);
+    }
+
+    /* The default camera with the near plane through the teapot. */
+    uint8_t *clip[3];
+    const char *names[3] = { "homogeneous", "view-volume", NULL };
+    for (int k = 0; k < 3; k++) {
+        const char *args[] = { "render", "--size", "96x64", "--detail", "4", "--shading",
+                               "gouraud", "--aa", "none", "-o", out, names[k] ? "--near" : NULL,
+                               "6", "--clipper", names[k], NULL };
+        clip[k] = render_pixels(args, out, &w, &h);
+        REQUIRE(clip[k]);
+    }
+    long differ = 0, cut = 0;
+    for (int i = 0; i < w * h; i++) {
+        differ += memcmp(clip[0] + 4 * i, clip[1] + 4 * i, 4) != 0;
+        cut += memcmp(clip[0] + 4 * i, clip[2] + 4 * i, 4) != 0;
+    }
+    printf("clippers: %ld of %d pixels differ; the near plane changes %ld\n", differ, w * h, cut);
+    CHECK(cut > w * h / 10);
+    CHECK(differ * 100 <= w * h); /* at most 1% */
+    for (int k = 0; k < 3; k++) {
+        free(clip[k]);
+    }
 #endif
 }

@@ -1,5 +1,6 @@
 /* test_demo3d.c - the 3D pipeline demos end to end: `softrast demo
- * gouraud-highlight | perspective | zfight | normals | viewport | clip`
+ * gouraud-highlight | perspective | zfight | normals | viewport | clip |
+ * painter | orientation | depth-range`
  * through the CLI, each image compared with tests/ref/demo_NAME.png, and
  * each phenomenon measured in the panels where the demo draws it (the
  * layouts are shared with the demos through demo3d_layout.h).
@@ -15,6 +16,7 @@
 #include "softrast_io.h"
 #include "sr_test.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -338,5 +340,146 @@ SR_TEST(demo_clip_3d_section_shows_clip_generated_edges)
     CHECK(covered > scene.w * scene.h / 2);      /* the scene fills most of the view */
     CHECK(outlined > 500 && outlined < covered / 4);
     CHECK(red > 400);                            /* edges on the near, far and side planes */
+    free(im.px);
+}
+
+/* Render `demo` into *im and point p[0 .. n) at its first n panels;
+ * false when it could not be rendered. */
+static bool render_panels(const char *demo, demo3d_layout l, image *im, panel *p, int n)
+{
+    *im = render_demo(demo);
+    for (int i = 0; im->px && i < n; i++) {
+        p[i] = cell(im, l, 0, i);
+    }
+    return im->px != NULL;
+}
+
+/* Where the painter's panel differs from the z-buffer's, and how: pixels
+ * where `want` holds of the z-buffer's color and the painter's. */
+typedef bool (*pixel_pair)(const uint8_t *zbuf, const uint8_t *painter, int x, int w);
+
+static void count_differences(const panel *zb, const panel *pa, pixel_pair want, long *differ,
+                              long *as_wanted)
+{
+    *differ = *as_wanted = 0;
+    for (int y = 0; y < zb->h; y++) {
+        for (int x = 0; x < zb->w; x++) {
+            const uint8_t *a = at(zb, x, y), *b = at(pa, x, y);
+            if (memcmp(a, b, 3) != 0) {
+                ++*differ;
+                *as_wanted += want(a, b, x, zb->w);
+            }
+        }
+    }
+}
+
+/* Cyclic overlap: only red (the pencil that should be on top at the top
+ * corner) turned blue (the last pencil, painted over it). */
+static bool red_became_blue(const uint8_t *zb, const uint8_t *pa, int x, int w)
+{
+    (void)x;
+    (void)w;
+    return zb[0] > zb[2] && pa[2] > pa[0];
+}
+
+/* Interpenetration: only the green that comes out of the red triangle on
+ * the left turned red (green passes through red 2 pixels right of the
+ * panel's middle). */
+static bool green_became_red_on_the_left(const uint8_t *zb, const uint8_t *pa, int x, int w)
+{
+    return zb[1] > zb[0] && pa[0] > pa[1] && x < w / 2 + 4;
+}
+
+SR_TEST(demo_painter_fails_where_the_z_buffer_does_not)
+{
+    image im;
+    panel p[4];
+    REQUIRE(render_panels("painter", DEMO3D_LAYOUT_PAINTER, &im, p, 4));
+    long differ, wanted;
+    count_differences(&p[0], &p[1], red_became_blue, &differ, &wanted);
+    printf("painter demo, cyclic: %ld pixels differ, %ld red -> blue\n", differ, wanted);
+    CHECK(differ > 300);
+    CHECK_EQ(wanted, differ);
+    count_differences(&p[2], &p[3], green_became_red_on_the_left, &differ, &wanted);
+    printf("painter demo, interpenetrating: %ld pixels differ, %ld green -> red on the left\n",
+           differ, wanted);
+    CHECK(differ > 300);
+    CHECK_EQ(wanted, differ);
+    free(im.px);
+}
+
+/* Mean channel difference between the 0-degree panel and the panel
+ * turned by `deg`, sampled back through the turn, over the square's
+ * inside (points at least 4 pixels from its edges). */
+static double turned_difference(const panel *upright, const panel *turned, double deg)
+{
+    double c = cos(deg * 3.14159265358979 / 180.0), s = sin(deg * 3.14159265358979 / 180.0);
+    double cx = upright->w / 2.0, cy = upright->h / 2.0;
+    double half = 0.85 * (cx < cy ? cx : cy) / sqrt(2.0) - 4.0; /* the demo's square, inset */
+    double sum = 0;
+    long n = 0;
+    for (int y = 0; y < upright->h; y++) {
+        for (int x = 0; x < upright->w; x++) {
+            double ux = x + 0.5 - cx, uy = y + 0.5 - cy;
+            if (fabs(ux) > half || fabs(uy) > half) {
+                continue;
+            }
+            int tx = (int)floor(cx + c * ux - s * uy), ty = (int)floor(cy + s * ux + c * uy);
+            for (int k = 0; k < 3; k++) {
+                sum += abs((int)at(upright, x, y)[k] - (int)at(turned, tx, ty)[k]);
+            }
+            n += 3;
+        }
+    }
+    return n ? sum / (double)n : 1e9;
+}
+
+SR_TEST(demo_orientation_only_triangles_turn_with_the_square)
+{
+    image im;
+    panel p[6];
+    REQUIRE(render_panels("orientation", DEMO3D_LAYOUT_ORIENTATION, &im, p, 6));
+    const double turn[3] = { 0, 30, 45 };
+    for (int t = 1; t < 3; t++) {
+        double scan = turned_difference(&p[0], &p[t], turn[t]);
+        double tri = turned_difference(&p[3], &p[3 + t], turn[t]);
+        printf("orientation demo, %g deg: scan lines differ by %.2f, triangles by %.2f\n",
+               turn[t], scan, tri);
+        CHECK(scan > 20.0);
+        CHECK(tri < 3.0);
+    }
+    free(im.px);
+}
+
+/* Range 0.25,0.75 holds the depths of range 0,1 halved and moved up a
+ * quarter (the cleared background stays 1); 1,0 with LESS shows the blue
+ * sphere through the red one; the marker behind the red sphere shows in
+ * front in its own range. */
+SR_TEST(demo_depth_range_maps_inverts_and_splits_depth)
+{
+    image im;
+    panel p[4];
+    REQUIRE(render_panels("depth-range", DEMO3D_LAYOUT_DEPTH_RANGE, &im, p, 4));
+    long covered = 0, off = 0, through = 0, marker = 0;
+    for (int y = 0; y < p[0].h; y++) {
+        for (int x = 0; x < p[0].w; x++) {
+            int g0 = at(&p[0], x, y)[0], g1 = at(&p[1], x, y)[0];
+            if (g0 == 255) {
+                off += g1 != 255;
+            } else {
+                covered++;
+                off += abs(4 * g1 - (255 + 2 * g0)) > 6; /* g1 = 63.75 + g0 / 2, +-1.5 */
+            }
+            const uint8_t *inv = at(&p[2], x, y), *split = at(&p[3], x, y);
+            through += inv[2] > inv[0] + 40 && split[0] > split[2] + 40;
+            marker += split[0] > 150 && split[1] > 150 && split[2] < 100;
+        }
+    }
+    printf("depth-range demo: %ld covered, %ld off the mapping, %ld blue through red, "
+           "%ld marker pixels\n", covered, off, through, marker);
+    CHECK(covered > 5000);
+    CHECK_EQ(off, 0);
+    CHECK(through > 500);
+    CHECK(marker > 200);
     free(im.px);
 }

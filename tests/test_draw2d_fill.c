@@ -450,6 +450,36 @@ SR_TEST(fill_polygon_blends_and_clips_to_the_framebuffer)
     sr_destroy_context(ctx);
 }
 
+SR_TEST(partial_coverage_over_transparent_pixels_keeps_the_color)
+{
+    sr_context *ctx = new_ctx();
+    REQUIRE(ctx);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 3, .height = 1 }, &fb) == SR_OK);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    /* pixel 0: a quarter of it in orange over transparent: the color
+     * stays orange (straight alpha), only alpha is 1/4; pixel 1: then
+     * half of it in blue over that: alpha 1/4 + 1/2 (3/4) = 5/8, color
+     * (blue 1/2 + orange 1/8) / (5/8); pixel 2: opaque, as before */
+    sr_point2 a[4] = { { 0, 0 }, { 0.25, 0 }, { 0.25, 1 }, { 0, 1 } };
+    sr_point2 b[4] = { { 1, 0 }, { 1.25, 0 }, { 1.25, 1 }, { 1, 1 } };
+    sr_point2 c[4] = { { 1, 0 }, { 1.5, 0 }, { 1.5, 1 }, { 1, 1 } };
+    sr_fill_desc aa = { .antialias = SR_AA_AREA };
+    sr_fill_polygon(ctx, fb, &(sr_polygon2){ a, 4, NULL, 0 }, (sr_rgba){ 1, 0.5f, 0, 1 }, &aa);
+    sr_fill_polygon(ctx, fb, &(sr_polygon2){ b, 4, NULL, 0 }, (sr_rgba){ 1, 0.5f, 0, 1 }, &aa);
+    sr_fill_polygon(ctx, fb, &(sr_polygon2){ c, 4, NULL, 0 }, (sr_rgba){ 0, 0, 1, 1 }, &aa);
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    CHECK_NEAR(px[0], 255, 1);
+    CHECK_NEAR(px[1], 128, 1);
+    CHECK_NEAR(px[3], 64, 1);
+    CHECK_NEAR(px[4], 51, 1);  /* 255 * (1/8) / (5/8) */
+    CHECK_NEAR(px[6], 204, 1); /* 255 * (1/2) / (5/8) */
+    CHECK_NEAR(px[7], 159, 1);
+    CHECK_EQ(px[11], 0);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(partial_coverage_blends_in_linear_light_on_request)
 {
     sr_context *ctx = new_ctx();

@@ -66,6 +66,20 @@ SR_TEST(builtin_scene_tone_mapped_matches_reference)
                                                            "--exposure", "1", "--aa", "none", NULL });
 }
 
+/* The thumbnail look: the teapot over a --ground shadow catcher (its
+ * soft shadow, down and right, away from the key light at the upper
+ * left), the studio environment behind it, sharp and blurred. */
+SR_TEST(builtin_scene_over_a_shadow_catcher_matches_reference)
+{
+    check_render("builtin_ground_studio", (const char *[]){ "--size", "160x120", "--ground",
+                                                            "--environment", "studio",
+                                                            "--background", "environment",
+                                                            NULL });
+    check_render("builtin_ground_blur", (const char *[]){ "--size", "160x120", "--ground",
+                                                          "--environment", "studio",
+                                                          "--background", "blur", NULL });
+}
+
 SR_TEST(builtin_scene_in_every_shading_mode_matches_reference)
 {
     const char *modes[] = { "flat", "gouraud", "normals", "depth", "unlit" };

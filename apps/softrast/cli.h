@@ -20,6 +20,7 @@ int cmd_thumbnail(int argc, char **argv); /* thumbnail.c: a render for file mana
  * the batch options; -1 when the arguments ask for one plain render. */
 int batch_render(int argc, char **argv);
 int cmd_svg(int argc, char **argv);   /* svg.c; needs expat */
+int cmd_explain(int argc, char **argv); /* explain.c: an algorithm step by step */
 int cmd_view(int argc, char **argv);  /* view.c; needs SDL2 and FreeType */
 
 /* The files a command reads (inputs.c), so that no output replaces one:

@@ -40,7 +40,10 @@ typedef struct demo_entry {
     X(zfight, "zfight", "z-fighting: D16/D24/D32F depth at several far/near ratios, reversed-Z, polygon offset") \
     X(normals, "normals", "a non-uniformly scaled sphere lit with normals transformed by M vs by M^-T") \
     X(viewport, "viewport", "one scene in wide and tall viewports, stretched vs aspect ratio preserved") \
-    X(aa, "aa", "a star and a turned square aliased, MSAA 4/8/16, exact area, SSAA with four filters")
+    X(aa, "aa", "a star and a turned square aliased, MSAA 4/8/16, exact area, SSAA with four filters") \
+    X(painter, "painter", "the painter's algorithm vs the z-buffer: cyclic overlap and interpenetration") \
+    X(orientation, "orientation", "a quad's colors interpolated by scan lines change as it turns; as two triangles they do not") \
+    X(depth_range, "depth-range", "the depth range: window depths in 0,1 and 0.25,0.75, inverted, split for an overlay")
 
 /* Each demo_<id>.c defines the function declared here. */
 #define DEMO_DECLARE(id, name, summary) int demo_##id(sr_context *, const demo_args *, sr_framebuffer **);

@@ -24,6 +24,9 @@ typedef struct demo3d_layout {
  * default) so the pixels show. */
 #define DEMO3D_LAYOUT_AA          ((demo3d_layout){ 4, 3, 64, 36 })
 #define DEMO3D_AA_SCALE 5
+#define DEMO3D_LAYOUT_PAINTER      ((demo3d_layout){ 2, 2, 300, 210 })
+#define DEMO3D_LAYOUT_ORIENTATION  ((demo3d_layout){ 3, 2, 200, 200 })
+#define DEMO3D_LAYOUT_DEPTH_RANGE  ((demo3d_layout){ 2, 2, 300, 210 })
 /* The 3D section under the 2D panels of `softrast demo clip` (not scaled). */
 #define DEMO3D_LAYOUT_CLIP        ((demo3d_layout){ 2, 2, 300, 210 })
 

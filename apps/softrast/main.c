@@ -73,6 +73,9 @@ static void usage(FILE *f)
             "  svg INPUT.svg [options]    render an SVG drawing to a PNG with the 2D toolkit\n"
             "  demo NAME [options]        an image that shows a pipeline phenomenon\n"
             "                             ('softrast demo --help' lists them)\n"
+            "  explain ALGORITHM [options]\n"
+            "                             one primitive through one algorithm, step by\n"
+            "                             step, as PNG frames or a contact sheet\n"
             "  view [MODEL] [options]     an interactive window onto the pipeline (SDL2):\n"
             "                             orbit, zoom, and keys for every mode\n"
             "\n"
@@ -103,6 +106,9 @@ static int run(int argc, char **argv)
     }
     if (strcmp(cmd, "demo") == 0) {
         return cmd_demo(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "explain") == 0) {
+        return cmd_explain(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "view") == 0) {
         return cmd_view(argc - 1, argv + 1);

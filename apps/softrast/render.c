@@ -6,8 +6,10 @@
 #include "cli.h"
 #include "framing.h"
 #include "render.h"
+#include "render_background.h"
 #include "render_gltf.h"
 #include "render_options.h"
+#include "render_shadow.h"
 #include "render_textures.h"
 #include "scene.h"
 #include "softrast_io.h"
@@ -369,18 +371,27 @@ static sr_pbr_material pbr_material(const render_opts *o, const scene_object *ob
 /* Opaque objects first, then translucent ones back to front with
  * source-over blending and no depth writes (they still test against the
  * opaque depth). */
-static sr_result draw_scene(const render_opts *o, const sr_environment *env, sr_context *ctx,
-                            sr_framebuffer *fb, sr_state *state, scene *s, const camera *cam,
-                            bool keep_material, uint64_t *tris, uint64_t *frags)
+static sr_result draw_scene(const render_opts *o, const sr_environment *env,
+                            const render_shadow *shadow, sr_context *ctx, sr_framebuffer *fb,
+                            sr_state *state, scene *s, const camera *cam, bool keep_material,
+                            uint64_t *tris, uint64_t *frags)
 {
     bool pbr = o->pbr && !keep_material;
     sr_result r = SR_OK;
     for (int pass = 0; pass < 2 && r == SR_OK; pass++) {
+        /* A shadow catcher after the opaque objects, whose depth hides the
+         * ground behind them, and before the translucent ones. */
+        for (int i = 0; i < s->count && r == SR_OK && pass == 1 && pbr && shadow; i++) {
+            if (s->objects[i].catcher) {
+                r = render_catcher_draw(ctx, fb, state, shadow, &s->objects[i], &cam->view,
+                                        &cam->proj);
+            }
+        }
         for (int i = 0; i < s->count && r == SR_OK; i++) {
             scene_object *ob = &s->objects[i];
             bool gltf = ob->part_material && s->gltf;
             bool see_through = !keep_material && translucent(ob);
-            if (!gltf && see_through != (pass == 1)) {
+            if (ob->catcher || (!gltf && see_through != (pass == 1))) {
                 continue;
             }
             /* The texture colors the surface, not the line modes' plain
@@ -461,6 +472,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env, sr_
                         d.sky = d.ground = o->ambient;
                     }
                     d.environment = env;
+                    d.shadow = shadow ? shadow->map : NULL;
                     r = sr_make_pbr_program(ctx, &d, &program);
                     if (r != SR_OK) {
                         free(sorted);
@@ -491,14 +503,14 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env, sr_
  * depth buffer with the model pushed back by polygon offset (factor 1,
  * units 1 unless --polygon-offset says otherwise), so lines on its surface win the LEQUAL test without stitching
  * or z-fighting; hidden-line and points fill with the background color. */
-static sr_result draw_passes(const render_opts *o, const sr_environment *env, sr_context *ctx,
-                             sr_framebuffer *fb,
+static sr_result draw_passes(const render_opts *o, const sr_environment *env,
+                             const render_shadow *shadow, sr_context *ctx, sr_framebuffer *fb,
                              const sr_state *base, scene *s, const camera *cam, uint64_t *tris,
                              uint64_t *frags)
 {
     sr_state st = *base;
     if (o->lines == LINES_NONE) {
-        return draw_scene(o, env, ctx, fb, &st, s, cam, false, tris, frags);
+        return draw_scene(o, env, shadow, ctx, fb, &st, s, cam, false, tris, frags);
     }
     bool light_bg = o->background.x + o->background.y + o->background.z > 1.5f;
     sr_vec3 ink = o->have_line_color ? o->line_color
@@ -511,11 +523,11 @@ static sr_result draw_passes(const render_opts *o, const sr_environment *env, sr
         fill.offset = (sr_polygon_offset){ .factor = o->offset_factor,
                                            .units = o->offset_units, .fill = true };
         if (o->lines == LINES_EDGES) {
-            r = draw_scene(o, env, ctx, fb, &fill, s, cam, false, tris, frags);
+            r = draw_scene(o, env, shadow, ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
             fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
-            r = draw_scene(o, env, ctx, fb, &fill, s, cam, true, tris, frags);
+            r = draw_scene(o, env, shadow, ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
     if (r != SR_OK) {
@@ -537,7 +549,7 @@ static sr_result draw_passes(const render_opts *o, const sr_environment *env, sr
     } else {
         lines.depth_func = SR_LEQUAL;
     }
-    return draw_scene(o, env, ctx, fb, &lines, s, cam, true, tris, frags);
+    return draw_scene(o, env, shadow, ctx, fb, &lines, s, cam, true, tris, frags);
 }
 
 /* ---- render jobs: what `softrast render` and `softrast view` share ------- */
@@ -555,6 +567,7 @@ struct render_job {
                              * format) when the caller's framebuffer cannot be drawn into */
     cli_inputs inputs;      /* the files read: model, MTL, textures */
     sr_environment *env;    /* pbr's image-based light, on mesh_ctx; NULL: the hemisphere */
+    render_shadow shadow;   /* the key light's map, on ctx */
     char error[512];
 };
 
@@ -607,6 +620,7 @@ static void drop_context(render_job *job)
 {
     if (job->ctx) {
         render_textures_free(job->ctx, &job->s);
+        render_shadow_free(job->ctx, &job->shadow);
         sr_destroy_framebuffer(job->ctx, job->work);
         sr_destroy_context(job->ctx);
     }
@@ -724,6 +738,13 @@ static int finish_scene(render_job *job)
     }
     /* The objects and their matrices are final: frame from cached bounds. */
     scene_cache_bounds(s);
+    if (o->ground && o->pbr && o->shadows != 0) {
+        sr_result r = render_ground_add(job->mesh_ctx, s);
+        if (r != SR_OK) {
+            cli_error("making the ground: %s", sr_result_text(r));
+            return EXIT_FAILURE_RUN;
+        }
+    }
     /* A camera that cannot be made is the input's fault: say so now, as a
      * usage error, rather than when drawing. */
     camera cam;
@@ -752,7 +773,7 @@ static int finish_scene(render_job *job)
 static int load_environment(render_job *job)
 {
     const render_opts *o = &job->o;
-    if (!o->pbr || o->have_ambient || strcmp(o->environment, "none") == 0) {
+    if (!render_opts_image_light(o)) {
         return -1;
     }
     sr_environment_desc d = { .intensity = o->environment_intensity };
@@ -871,6 +892,23 @@ cli_inputs *render_job_inputs(render_job *job)
     return &job->inputs;
 }
 
+/* --shadows, by default on where a ground (--ground, the teapot's
+ * floor) receives them: on a model alone the shadow only falls on the
+ * model, and there it was half again the CPU time of the `cli` scene
+ * (docs/shadows.md). */
+/* --background blur: the environment as the specular reflection of a
+ * surface this rough shows it, soft but still recognisable. */
+#define BACKGROUND_BLUR_ROUGHNESS 0.5f
+
+static bool wants_shadows(const render_opts *o, const scene *s)
+{
+    bool ground = false;
+    for (int i = 0; i < s->count; i++) {
+        ground |= !s->objects[i].frame;
+    }
+    return o->shadows > 0 || (o->shadows < 0 && ground);
+}
+
 sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info)
 {
     render_opts *o = &job->o;
@@ -896,6 +934,7 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     sr_state state = {
         .cull = o->cull, .front_face = o->front, .depth_func = o->depth_func,
         .shading = o->shading, .interpolation = o->interp, .rasterizer = o->rasterizer,
+        .clipper = o->clipper, .depth_near = o->depth_near, .depth_far = o->depth_far,
         .ambient = o->have_ambient ? o->ambient : (sr_vec3){ 0.12f, 0.12f, 0.14f },
         .two_sided = o->cull == SR_CULL_NONE,
         .texture_filter = o->texture_filter, .wrap_u = o->wrap, .wrap_v = o->wrap,
@@ -937,8 +976,22 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
                                                 .depth_action = SR_ACTION_CLEAR,
                                                 .depth = clear_to_near ? 0.0f : 1.0f });
     }
+    if (r == SR_OK && o->background_env && job->env) {
+        r = render_background_draw(ctx, fb, job->env,
+                                   o->background_env == BACKGROUND_BLUR ? BACKGROUND_BLUR_ROUGHNESS
+                                                                        : 0.0f,
+                                   &cam.view, &cam.proj, o->exposure, o->tonemap,
+                                   sr_context_threads(ctx));
+    }
+    /* The key light's shadow map, before the objects that receive it. */
+    const render_shadow *shadow = NULL;
+    if (r == SR_OK && o->pbr && wants_shadows(o, &job->s) &&
+        state.lights[0].type == SR_LIGHT_DIRECTIONAL) {
+        r = render_shadow_draw(ctx, &job->shadow, &job->s, state.lights[0].vector);
+        shadow = &job->shadow;
+    }
     if (r == SR_OK) {
-        r = draw_passes(o, job->env, ctx, fb, &state, &job->s, &cam, &info->triangles,
+        r = draw_passes(o, job->env, shadow, ctx, fb, &state, &job->s, &cam, &info->triangles,
                         &info->fragments);
     }
     if (r == SR_OK && fb != out) {

@@ -32,6 +32,7 @@ static const char *const depth_func_names[] = { "never", "less", "equal", "lequa
 static const char *const interp_names[] = { "perspective", "affine", NULL };
 static const char *const normals_names[] = { "file", "smooth", "flat", NULL };
 static const char *const raster_names[] = { "halfspace", "scanline", "barycentric", NULL };
+static const char *const clipper_names[] = { "homogeneous", "view-volume", NULL };
 static const char *const filter_names[] = { "nearest", "bilinear", "trilinear", NULL };
 static const char *const aa_names[] = { "none", "ssaa2", "ssaa3", "ssaa4", "msaa2", "msaa4",
                                          "msaa8", "msaa16", NULL };
@@ -39,6 +40,7 @@ static const int aa_ssaa[] = { 1, 2, 3, 4, 1, 1, 1, 1 };
 static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
 static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
 static const char *const up_names[] = { "+x", "-x", "+y", "-y", "+z", "-z", NULL };
+static const char *const switch_names[] = { "on", "off", NULL };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 
 static void render_help(void)
@@ -56,7 +58,9 @@ static void render_help(void)
         "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
         "  --background COLOR       name, #rgb, #rrggbb, R,G,B in 0..1, or a gray level\n"
         "                           in 0..1 (default #1d2230); transparent: a PNG with\n"
-        "                           alpha, the model's edges blended into nothing\n"
+        "                           alpha, the model's edges blended into nothing;\n"
+        "                           environment or blur: the --environment (studio or\n"
+        "                           FILE.hdr) behind the model, sharp or blurred\n"
         "  --png-level N            zlib level 0..9 (default 1: fast, see docs)\n"
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
@@ -67,12 +71,20 @@ static void render_help(void)
         "  --tonemap T              neutral|aces|none, pbr's tone curve: Khronos PBR\n"
         "                           Neutral, ACES filmic, or a clamp (default neutral)\n"
         "  --exposure EV            pbr's exposure in stops, -20..20 (default 0)\n"
-        "  --environment E          pbr's ambient light: none (a gray sky over a darker\n"
-        "                           ground, with the key, fill and rim lights; the\n"
-        "                           default), studio (a built-in neutral studio and the\n"
-        "                           key light) or FILE.hdr (an equirectangular Radiance\n"
-        "                           picture, +y up, and the key light); prefiltered once\n"
+        "  --environment E          pbr's ambient light: hemisphere (a gray sky over a\n"
+        "                           darker ground, with the key, fill and rim lights;\n"
+        "                           the default; also 'none'), studio (a built-in\n"
+        "                           neutral studio and the key light) or FILE.hdr (an\n"
+        "                           equirectangular Radiance picture, +y up, and the key\n"
+        "                           light); prefiltered once\n"
         "  --environment-intensity S  its radiance scale, 0.001..1000 (default 0.6)\n"
+        "  --shadows on|off         pbr: the key light casts a shadow (a shadow map\n"
+        "                           fitted to the model; default: on where a ground\n"
+        "                           receives it - --ground, the teapot's floor - else\n"
+        "                           off)\n"
+        "  --ground                 pbr: a shadow catcher under the model: the ground\n"
+        "                           shows only the model's soft shadow over the\n"
+        "                           background (replaces the teapot's floor)\n"
         "  --normals MODE           file|smooth|flat: the file's normals, angle-weighted\n"
         "                           smooth ones, or one per face (default: file if the\n"
         "                           model has them, else smooth)\n"
@@ -123,6 +135,13 @@ static void render_help(void)
         "  --depth-func F           never|less|equal|lequal|greater|notequal|gequal|always\n"
         "                           (default less; greater and gequal clear depth to 0)\n"
         "  --projection-interp M    perspective|affine (default perspective)\n"
+        "  --depth-range NEAR,FAR   window depths of the near and far planes, each\n"
+        "                           clamped to [0, 1] as glDepthRange (default 0,1;\n"
+        "                           NEAR > FAR inverts depth)\n"
+        "  --clipper C              homogeneous|view-volume: clip triangles in clip\n"
+        "                           space or against the view volume's six planes in\n"
+        "                           view space (default homogeneous; view-volume needs\n"
+        "                           a --shading other than pbr)\n"
         "lines and points:\n"
         "  --wireframe              every edge, hidden ones too, no shading\n"
         "  --hidden-line            only the visible edges (a depth pass pushed back by\n"
@@ -317,6 +336,21 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             CHOICE(normals_names, o->normals, k_);
         } else if (IS("--rasterizer")) {
             CHOICE(raster_names, o->rasterizer, (sr_rasterizer)(SR_RASTER_HALFSPACE + k_));
+        } else if (IS("--clipper")) {
+            CHOICE(clipper_names, o->clipper, (sr_clipper)(SR_CLIPPER_HOMOGENEOUS + k_));
+        } else if (IS("--depth-range")) {
+            VALUE();
+            int n = 0;
+            if (sscanf(value, "%f,%f%n", &o->depth_near, &o->depth_far, &n) != 2 ||
+                value[n] != 0 || isnan(o->depth_near) || isnan(o->depth_far)) {
+                cli_error("%s: expected NEAR,FAR, two numbers (got '%s')", arg, value);
+                return EXIT_USAGE;
+            }
+            /* sr_state reads exactly 0,0 as its default [0, 1]; -1 clamps
+             * to the 0 asked for. */
+            if (o->depth_near == 0.0f && o->depth_far == 0.0f) {
+                o->depth_near = o->depth_far = -1.0f;
+            }
         } else if (IS("--camera")) {
             VALUE();
             if (!parse_kv_list(arg, value, camera_kv, o)) {
@@ -438,11 +472,22 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         } else if (IS("--background")) {
             VALUE();
             bool clear = strcmp(value, "transparent") == 0;
+            o->background_env = strcmp(value, "environment") == 0 ? BACKGROUND_SHARP
+                              : strcmp(value, "blur") == 0        ? BACKGROUND_BLUR
+                                                                  : BACKGROUND_COLOR;
             o->background = (sr_vec3){ 0, 0, 0 };
             o->background_alpha = clear ? 0.0f : 1.0f;
-            if (!clear && !parse_color(arg, value, &o->background)) {
+            if (!clear && !o->background_env && !parse_color(arg, value, &o->background)) {
                 return EXIT_USAGE;
             }
+        } else if (IS("--shadows")) {
+            CHOICE(switch_names, o->shadows, k_ == 0 ? 1 : 0);
+        } else if (IS("--ground")) {
+            if (value) {
+                cli_error("%s: takes no value", arg);
+                return EXIT_USAGE;
+            }
+            o->ground = true;
         } else if (IS("--png-level")) {
             VALUE();
             if (!parse_int(arg, value, 0, 9, &o->png_level)) {
@@ -485,6 +530,17 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
 #undef VALUE
 #undef CHOICE
     }
+    if (o->clipper == SR_CLIPPER_VIEW_VOLUME && o->pbr) {
+        cli_error("--clipper view-volume clips the built-in shading models' view space; "
+                  "pbr's program has none (give --shading phong, or another)");
+        return EXIT_USAGE;
+    }
+    if (o->background_env && !render_opts_image_light(o)) {
+        cli_error("--background %s: shows the environment of --environment studio or FILE.hdr "
+                  "under --shading pbr, without --ambient",
+                  o->background_env == BACKGROUND_BLUR ? "blur" : "environment");
+        return EXIT_USAGE;
+    }
     if (o->near_z > 0 && o->far_z > 0 && o->near_z >= o->far_z) {
         cli_error("--near %g must be less than --far %g", (double)o->near_z, (double)o->far_z);
         return EXIT_USAGE;
@@ -492,14 +548,21 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
     return -1;
 }
 
+bool render_opts_image_light(const render_opts *o)
+{
+    return o->pbr && !o->have_ambient && strcmp(o->environment, "hemisphere") != 0 &&
+           strcmp(o->environment, "none") != 0;
+}
+
 render_opts render_opts_defaults(void)
 {
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
-        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "none",
+        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "hemisphere",
         .environment_intensity = 0.6f, .camera_index = -1,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,
+        .shadows = -1,
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,
         .normals = -1, .detail = 12, .rasterizer = SR_RASTER_HALFSPACE, .png_level = -1,
         .line_width = 1.0f, .point_size = 3.0f, .ssaa = 1, .msaa = 4, .opacity = 1.0f,

@@ -19,7 +19,7 @@ typedef struct render_opts {
     bool pbr;                      /* --shading pbr: the metallic-roughness program */
     sr_tonemap_op tonemap;         /* pbr's tone curve */
     float exposure;                /* pbr's exposure, EV */
-    const char *environment;       /* "studio", "none" or an .hdr file */
+    const char *environment;       /* "studio", "hemisphere" or an .hdr file */
     float environment_intensity;
     int camera_index;              /* --camera-index: a glTF camera, or -1 */
     sr_cull_mode cull;
@@ -40,12 +40,18 @@ typedef struct render_opts {
     float shininess;
     sr_vec3 background;
     float background_alpha;        /* 1, or 0 for --background transparent */
+    int background_env;            /* BACKGROUND_COLOR, or the environment shown */
+    int shadows;                   /* pbr: the key light's shadow map: 1 on, 0 off,
+                                    * -1 on when a ground receives it */
+    bool ground;                   /* a shadow catcher under the model */
     sr_depth_format depth_format;
     sr_depth_func depth_func;
     sr_interpolation interp;
     int normals;                   /* -1 auto, 0 file, 1 smooth, 2 flat */
     int detail;
     sr_rasterizer rasterizer;
+    sr_clipper clipper;
+    float depth_near, depth_far;   /* sr_state's: 0,0 -> [0, 1] */
     int threads;
     int png_level;
     int jpeg_quality;              /* 0: not given */
@@ -70,6 +76,9 @@ typedef struct render_opts {
  * UP_AUTO: by the model file's format (render_model_up). */
 enum { UP_AUTO = -1, UP_POS_X = 0, UP_NEG_X, UP_POS_Y, UP_NEG_Y, UP_POS_Z, UP_NEG_Z };
 
+/* --background environment|blur: the environment itself, or blurred. */
+enum { BACKGROUND_COLOR = 0, BACKGROUND_SHARP, BACKGROUND_BLUR };
+
 /* What the line modes draw besides (or instead of) the shaded model. */
 enum { LINES_NONE = 0, LINES_WIREFRAME, LINES_HIDDEN, LINES_EDGES, LINES_POINTS };
 
@@ -79,5 +88,9 @@ render_opts render_opts_defaults(void);
  * the defaults.  Returns -1 to continue, else the exit status (EXIT_OK
  * after --help). */
 int render_opts_parse(int argc, char **argv, render_opts *o);
+
+/* The options ask for an environment's image-based light (studio or an
+ * .hdr file, under pbr, without --ambient) rather than the hemisphere. */
+bool render_opts_image_light(const render_opts *o);
 
 #endif

@@ -133,18 +133,16 @@ static inline void to_world(const sr_mat4 *m, const float *p, double q[3])
     }
 }
 
-/* Sphere around the transformed bounding-box centre that holds every
- * transformed vertex.  The running bounds are never NaN, so `q < lo ? q :
- * lo` is fmin(lo, q) to the bit (a NaN q is skipped, and of two zeros the
- * bound keeps its own, as glibc's fmin does) without a call per value. */
-void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radius)
+/* The box of the transformed vertices (infinite when there are none).
+ * The running bounds are never NaN, so `q < lo ? q : lo` is fmin(lo, q)
+ * to the bit (a NaN q is skipped, and of two zeros the bound keeps its
+ * own, as glibc's fmin does) without a call per value. */
+static void world_box(const scene *s, bool framed_only, double lo[3], double hi[3])
 {
-    if (s->bounds_cached) {
-        *centre = s->cached_centre[framed_only ? 0 : 1];
-        *radius = s->cached_radius[framed_only ? 0 : 1];
-        return;
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
     }
-    double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
     for (int o = 0; o < s->count; o++) {
         const scene_object *ob = &s->objects[o];
         for (size_t i = 0; i < ob->mesh.vertex_count && (ob->frame || !framed_only); i++) {
@@ -156,6 +154,19 @@ void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radi
             }
         }
     }
+}
+
+/* Sphere around the transformed bounding-box centre that holds every
+ * transformed vertex. */
+void scene_bounds(const scene *s, bool framed_only, sr_vec3 *centre, float *radius)
+{
+    if (s->bounds_cached) {
+        *centre = s->cached_centre[framed_only ? 0 : 1];
+        *radius = s->cached_radius[framed_only ? 0 : 1];
+        return;
+    }
+    double lo[3], hi[3];
+    world_box(s, framed_only, lo, hi);
     double c[3] = { (lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 };
     if (!isfinite(c[0])) {
         *centre = (sr_vec3){ 0, 0, 0 };
@@ -192,5 +203,10 @@ void scene_cache_bounds(scene *s)
     } else {
         scene_bounds(s, false, &s->cached_centre[1], &s->cached_radius[1]);
     }
+    double lo[3], hi[3];
+    world_box(s, true, lo, hi);
+    bool finite = isfinite(lo[0]) && isfinite(hi[0]);
+    s->box_min = finite ? (sr_vec3){ (float)lo[0], (float)lo[1], (float)lo[2] } : s->cached_centre[0];
+    s->box_max = finite ? (sr_vec3){ (float)hi[0], (float)hi[1], (float)hi[2] } : s->cached_centre[0];
     s->bounds_cached = true;
 }

@@ -13,7 +13,8 @@ typedef struct scene_object {
     sr_mesh mesh;
     sr_material material;
     sr_mat4 model;
-    bool frame;          /* the camera frames this object */
+    bool frame;          /* the camera frames this object; it casts the key light's shadow */
+    bool catcher;        /* a ground that shows only the shadow (render_shadow.c) */
     sr_texture *texture; /* owned by the context that made it, or NULL */
     /* With mesh.parts: each part's texture (NULL: none, or unreadable),
      * pointing into `owned`, one entry a distinct file (NULL when it could
@@ -32,11 +33,13 @@ typedef struct scene {
     int count;
     struct sr_scene *gltf;         /* the glTF file's scene (materials, textures,
                                     * cameras), on the mesh context, or NULL */
-    /* scene_cache_bounds: the two spheres of scene_bounds, kept once the
-     * objects and their matrices are final ([0] framed only, [1] all). */
+    /* scene_cache_bounds: the two spheres of scene_bounds and the framed
+     * objects' box, kept once the objects and their matrices are final
+     * ([0] framed only, [1] all). */
     bool bounds_cached;
     sr_vec3 cached_centre[2];
     float cached_radius[2];
+    sr_vec3 box_min, box_max;      /* the framed objects' world-space box */
     /* render.c's default camera, fitted to the vertices, for the image
      * size, field of view and projection it was fitted for; reset by
      * scene_cache_bounds. */

@@ -79,18 +79,26 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
     }
     uint8_t d[4];
     memcpy(d, dst, sizeof d);
+    /* Straight alpha: the destination's color counts by its own alpha, and
+     * the sum is divided by the result's alpha.  Over an opaque pixel both
+     * are 1 and the plain mix below is the same operator. */
+    float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
+    if (d[3] < 255) {
+        keep = oa > 0.0f ? da * keep / oa : 0.0f;
+        a = oa > 0.0f ? a / oa : 0.0f;
+    }
     if (p->linear_light) {
         for (int i = 0; i < 3; i++) {
             float dl = sr__srgb_to_linear(d[i] / 255.0f);
-            d[i] = sr__unorm8(sr__linear_to_srgb(p->linear[i] * a + dl * (1.0f - a)));
+            d[i] = sr__unorm8(sr__linear_to_srgb(p->linear[i] * a + dl * keep));
         }
     } else {
         for (int i = 0; i < 3; i++) {
-            d[i] = sr__unorm8((p->rgba[i] * a + d[i] * (1.0f - a)) * (1.0f / 255.0f));
+            d[i] = sr__unorm8((p->rgba[i] * a + d[i] * keep) * (1.0f / 255.0f));
         }
     }
     /* Source-over alpha: a + d.a (1 - a). */
-    d[3] = sr__unorm8(a + d[3] * (1.0f / 255.0f) * (1.0f - a));
+    d[3] = sr__unorm8(oa);
     memcpy(dst, d, sizeof d);
 }
 
@@ -113,9 +121,15 @@ void sr__blend_rgba(uint32_t *dst, const float rgba[4])
     float a = rgba[3] < 0.0f ? 0.0f : rgba[3] > 1.0f ? 1.0f : rgba[3];
     uint8_t d[4];
     memcpy(d, dst, sizeof d);
-    for (int i = 0; i < 3; i++) {
-        d[i] = sr__unorm8(rgba[i] * a + d[i] * (1.0f / 255.0f) * (1.0f - a));
+    /* Straight alpha, as sr__paint_pixel. */
+    float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
+    if (d[3] < 255) {
+        keep = oa > 0.0f ? da * keep / oa : 0.0f;
+        a = oa > 0.0f ? a / oa : 0.0f;
     }
-    d[3] = sr__unorm8(a + d[3] * (1.0f / 255.0f) * (1.0f - a));
+    for (int i = 0; i < 3; i++) {
+        d[i] = sr__unorm8(rgba[i] * a + d[i] * (1.0f / 255.0f) * keep);
+    }
+    d[3] = sr__unorm8(oa);
     memcpy(dst, d, sizeof d);
 }

@@ -3,22 +3,20 @@
  * softrast_io.h); `softrast svg` (apps/softrast/svg_cmd.c) is the command
  * around it.
  *
- * The document is read with expat in one pass: the root <svg> fixes the
- * image size and the viewBox mapping, then every shape is drawn as its
- * start tag arrives, with the transform and style inherited down a stack.
- * Shapes become paths in user units (flattened finely enough for the
- * current scale), then the fill polygon or the stroke outline is mapped
- * to pixels and filled: antialiased by exact area coverage, or aliased by
- * the edge-table fill under shape-rendering="crispEdges".
+ * The document is read with expat into a tree (so that ids, defs and
+ * <style> sheets anywhere apply everywhere); the root <svg> fixes the
+ * image size and the viewBox mapping, then the tree is drawn depth first
+ * with the transform and the cascaded style (presentation attributes,
+ * sheets by specificity, style="", !important) inherited down.  Shapes
+ * become paths in user units (flattened finely enough for the current
+ * scale), then the fill polygon or the stroke outline is mapped to pixels
+ * and filled: antialiased by exact area coverage, or aliased by the
+ * edge-table fill under shape-rendering="crispEdges"; a gradient paints
+ * after the same coverage (svg_gradient.c).
  *
- * Supported: svg (width, height, viewBox, preserveAspectRatio), g, path
- * (every command), rect (rx, ry), circle, ellipse, line, polyline,
- * polygon; transform (matrix, translate, scale, rotate, skewX, skewY);
- * fill, stroke, fill-opacity, stroke-opacity, opacity, fill-rule,
- * stroke-width, stroke-linejoin, stroke-linecap, stroke-miterlimit,
- * shape-rendering, display="none", as attributes or in style="...".
- * Group opacity multiplies into the children's opacities (exact unless
- * children overlap).  Anything else is skipped with one warning per name.
+ * Supported: see the table in docs/draw2d.md.  Group opacity and clip
+ * paths draw the element into a layer of its own, composited after.
+ * Anything else is skipped with one warning per name.
  * Malformed XML, path data or numbers, and drawings beyond the limits of
  * softrast_io.h (bounded work): one line "NAME:LINE: what is wrong" in the
  * sr_io_error and no image.  Warnings go to the caller's callback.
@@ -31,6 +29,7 @@
 #include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,10 +62,26 @@ static sr_point2 mat_apply(mat2d m, sr_point2 p)
     return (sr_point2){ m.a * p.x + m.c * p.y + m.e, m.b * p.x + m.d * p.y + m.f };
 }
 
+/* A fill or stroke: none, a color, currentColor or a paint server. */
+typedef struct paint {
+    svg_paint_kind kind;
+    sr_rgba color;               /* SVG_PAINT_COLOR; a server's fallback */
+    bool has_fallback;           /* url(#id) followed by a color */
+    const svg_node *server;      /* SVG_PAINT_URL */
+} paint;
+
 typedef struct style {
-    bool has_fill, has_stroke;
-    sr_rgba fill, stroke;
-    double fill_opacity, stroke_opacity, opacity;
+    paint fill, stroke;
+    sr_rgba color;               /* the color property, for currentColor */
+    sr_rgba stop_color;          /* of a gradient stop (not inherited) */
+    double stop_opacity;
+    double fill_opacity, stroke_opacity;
+    double opacity;              /* the ancestors' opacities folded into shapes */
+    double own_opacity;          /* this element's opacity (not inherited) */
+    const svg_node *clip;        /* clip-path (not inherited), or NULL */
+    const svg_node *mask;        /* mask (not inherited), or NULL */
+    bool mask_alpha;             /* mask-type: alpha (of a mask element) */
+    sr_fill_rule clip_rule;
     sr_fill_rule fill_rule;
     double stroke_width;
     sr_stroke_join join;
@@ -80,7 +95,14 @@ typedef struct style {
 typedef struct frame {
     mat2d m;
     style st;
+    double vp_w, vp_h;           /* the viewport, for percentages */
 } frame;
+
+/* An id and its element, in a table sorted by id. */
+typedef struct id_entry {
+    const char *id;
+    svg_node *node;
+} id_entry;
 
 typedef struct svg_doc {
     const char *file;        /* name in messages */
@@ -88,10 +110,17 @@ typedef struct svg_doc {
     XML_Parser parser;
     sr_context *ctx;
     sr_framebuffer *fb;
-    frame stack[MAX_DEPTH];
-    int depth;
-    int skip;                /* > 0: inside a skipped subtree, its depth */
-    bool seen_root;
+    svg_node *root;
+    svg_node *open;          /* the element being read */
+    int depth;               /* of the element being read */
+    size_t nodes;            /* read so far */
+    id_entry *ids;           /* sorted by id after reading */
+    size_t n_ids;
+    svg_css_sheet sheet;
+    long match_work;         /* selector matching steps so far */
+    int draw_depth;          /* elements drawn inside each other, uses included */
+    int layers;              /* layers open (group opacity, clip paths) */
+    style initial;           /* the initial style, for mask content */
     sr_result status;        /* SR_OK until something fails */
     char *msg;               /* the failure's line goes here */
     size_t msg_size;
@@ -208,8 +237,9 @@ static bool parse_number(const char **s, double *out)
     return true;
 }
 
-/* A length: number with an optional absolute unit; 96 px per inch.
- * *percent is set (and the number returned as is) for "%". */
+/* A length: number with an optional unit; 96 px per inch, em and ex of
+ * the initial font (16 px; ex half of it: no font is read).  *percent is
+ * set (and the number returned as is) for "%". */
 static bool parse_length(const char *s, double *out, bool *percent)
 {
     s = skip_ws(s);
@@ -218,7 +248,7 @@ static bool parse_length(const char *s, double *out, bool *percent)
     }
     static const struct { const char *unit; double px; } units[] = {
         { "px", 1 }, { "pt", 96.0 / 72 }, { "pc", 16 }, { "in", 96 }, { "cm", 96 / 2.54 },
-        { "mm", 96 / 25.4 },
+        { "mm", 96 / 25.4 }, { "em", 16 }, { "ex", 8 },
     };
     if (percent) {
         *percent = false;
@@ -241,8 +271,11 @@ static bool parse_length(const char *s, double *out, bool *percent)
     return false;
 }
 
-/* A length attribute of a shape; false after reporting a malformed one. */
-static bool length_attr(svg_doc *doc, const char *name, const char *value, double *out)
+/* A length attribute of a shape; false after reporting a malformed one.
+ * Percentages are of the viewport's width (x, width, cx, rx, x1, x2), its
+ * height (y, ...) or its normalized diagonal (r and the rest). */
+static bool length_attr(svg_doc *doc, const frame *f, const char *name, const char *value,
+                        double *out)
 {
     if (!value) {
         *out = 0;
@@ -254,8 +287,15 @@ static bool length_attr(svg_doc *doc, const char *name, const char *value, doubl
         return false;
     }
     if (pct) {
-        warn_once(doc, "length unit", "%");
-        *out = 0;
+        double ref = sqrt((f->vp_w * f->vp_w + f->vp_h * f->vp_h) / 2);
+        if (name[0] == 'x' || strcmp(name, "width") == 0 || strcmp(name, "cx") == 0 ||
+            strcmp(name, "rx") == 0) {
+            ref = f->vp_w;
+        } else if (name[0] == 'y' || strcmp(name, "height") == 0 || strcmp(name, "cy") == 0 ||
+                   strcmp(name, "ry") == 0) {
+            ref = f->vp_h;
+        }
+        *out *= ref / 100;
     }
     return true;
 }
@@ -374,12 +414,115 @@ static double clamp01(double v)
 
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
-    "stroke-dasharray", "stroke-dashoffset", "clip-path", "clip-rule", "mask", "filter",
-    "marker", "marker-start", "marker-mid", "marker-end", "font", "font-family", "font-size",
-    "font-weight", "font-style", "text-anchor", "color", "stop-color", "stop-opacity",
-    "fill-paint", "paint-order", "vector-effect", "image-rendering", "color-interpolation",
-    "mix-blend-mode", "isolation", NULL,
+    "stroke-dasharray", "stroke-dashoffset", "filter",
+    "marker-start", "marker-mid", "marker-end",
+    "fill-paint", "paint-order", "vector-effect", "mix-blend-mode", "isolation", NULL,
 };
+
+/* Properties that change nothing this reader draws (rendering hints,
+ * filter and text settings), taken silently; and properties whose value
+ * here is their initial one, which the reader does already. */
+static const char *const no_effect_props[] = {
+    "image-rendering", "color-interpolation", "color-interpolation-filters", "color-rendering",
+    "text-rendering", "enable-background", "overflow", "solid-color", "solid-opacity",
+    "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
+    "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
+    "shape-padding", "shape-margin", "shape-inside", "block-progression", "marker",
+    "flood-color", "flood-opacity", "lighting-color", "clip", NULL,
+};
+
+static const struct { const char *name, *value; } initial_values[] = {
+    { "stroke-dasharray", "none" }, { "stroke-dashoffset", "0" }, { "mix-blend-mode", "normal" },
+    { "isolation", "auto" }, { "filter", "none" },
+    { "marker-start", "none" }, { "marker-mid", "none" }, { "marker-end", "none" },
+    { "paint-order", "normal" }, { "vector-effect", "none" },
+};
+
+static svg_node *find_id(const svg_doc *doc, const char *id);
+
+/* The target of "#id" (an href) or "url(#id)" (a paint, a clip), the
+ * rest of the value after it in *rest; NULL when there is none. */
+static svg_node *reference(const svg_doc *doc, const char *v, const char **rest)
+{
+    v = skip_ws(v);
+    bool url = strncmp(v, "url(", 4) == 0;
+    if (url) {
+        v = skip_ws(v + 4);
+        if (*v == '\'' || *v == '"') {
+            v++;
+        }
+    }
+    if (*v != '#') {
+        return NULL;
+    }
+    v++;
+    char id[256];
+    size_t n = 0;
+    while (v[n] && n + 1 < sizeof id &&
+           (url ? v[n] != ')' && v[n] != '\'' && v[n] != '"' && !isspace((unsigned char)v[n])
+                : !isspace((unsigned char)v[n]))) {
+        id[n] = v[n];
+        n++;
+    }
+    id[n] = 0;
+    v += n;
+    if (url) {
+        while (*v && *v != ')') {
+            v++;
+        }
+        v += *v == ')';
+    }
+    if (rest) {
+        *rest = skip_ws(v);
+    }
+    return find_id(doc, id);
+}
+
+static bool is_gradient(const svg_node *n)
+{
+    return n && (strcmp(n->name, "linearGradient") == 0 || strcmp(n->name, "radialGradient") == 0);
+}
+
+/* fill or stroke: a color, none, currentColor or url(#id) [fallback]. */
+static void parse_paint(svg_doc *doc, paint *p, const char *v)
+{
+    sr_rgba c;
+    switch (svg_parse_color(v, &c)) {
+    case SVG_PAINT_NONE:
+        *p = (paint){ .kind = SVG_PAINT_NONE };
+        break;
+    case SVG_PAINT_COLOR:
+        *p = (paint){ .kind = SVG_PAINT_COLOR, .color = c };
+        break;
+    case SVG_PAINT_CURRENT:
+        *p = (paint){ .kind = SVG_PAINT_CURRENT };
+        break;
+    case SVG_PAINT_URL: {
+        const char *rest = "";
+        svg_node *server = reference(doc, v, &rest);
+        paint fallback = { .kind = SVG_PAINT_NONE };
+        if (*rest) {
+            svg_paint_kind k = svg_parse_color(rest, &c);
+            fallback = (paint){ .kind = k == SVG_PAINT_COLOR || k == SVG_PAINT_CURRENT ? k
+                                                                                 : SVG_PAINT_NONE,
+                                .color = c };
+        }
+        if (is_gradient(server)) {
+            *p = (paint){ .kind = SVG_PAINT_URL, .server = server,
+                          .has_fallback = fallback.kind == SVG_PAINT_COLOR, .color = fallback.color };
+        } else {
+            if (server) {
+                warn_once(doc, "paint server", server->name);
+            }
+            *p = fallback; /* a missing server: the fallback, else none */
+        }
+        break;
+    }
+    default:
+        warn_once(doc, "color", v);
+        break;
+    }
+}
 
 /* Apply one property to a style.  Returns false only when the property
  * name is not a presentation property at all (so shapes may consume it). */
@@ -403,36 +546,53 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     }
     double num;
     if (strcmp(name, "fill") == 0 || strcmp(name, "stroke") == 0) {
-        bool fill = name[0] == 'f';
+        parse_paint(doc, name[0] == 'f' ? &st->fill : &st->stroke, v);
+    } else if (strcmp(name, "stop-color") == 0) {
         sr_rgba c;
-        switch (svg_parse_color(v, &c)) {
-        case SVG_PAINT_NONE:
-            *(fill ? &st->has_fill : &st->has_stroke) = false;
-            break;
-        case SVG_PAINT_COLOR:
-            *(fill ? &st->has_fill : &st->has_stroke) = true;
-            *(fill ? &st->fill : &st->stroke) = c;
-            break;
-        case SVG_PAINT_UNSUPPORTED:
-            warn_once(doc, "paint", v);
-            *(fill ? &st->has_fill : &st->has_stroke) = false;
-            break;
-        default:
+        svg_paint_kind k = svg_parse_color(v, &c);
+        if (k == SVG_PAINT_COLOR || k == SVG_PAINT_CURRENT) {
+            st->stop_color = k == SVG_PAINT_COLOR ? c : st->color;
+        } else {
+            warn_once(doc, "stop-color", v);
+        }
+    } else if (strcmp(name, "stop-opacity") == 0) {
+        if (parse_unit_number(v, &num)) {
+            st->stop_opacity = clamp01(num);
+        } else {
+            warn_once(doc, name, v);
+        }
+    } else if (strcmp(name, "color") == 0) {
+        sr_rgba c;
+        svg_paint_kind k = svg_parse_color(v, &c);
+        if (k == SVG_PAINT_COLOR) {
+            st->color = c;
+        } else if (k != SVG_PAINT_CURRENT) { /* color: currentColor keeps the parent's */
             warn_once(doc, "color", v);
-            break;
         }
     } else if (strcmp(name, "fill-opacity") == 0 || strcmp(name, "stroke-opacity") == 0 ||
                strcmp(name, "opacity") == 0) {
         if (!parse_unit_number(v, &num)) {
             warn_once(doc, name, v);
         } else if (name[0] == 'o') {
-            st->opacity *= clamp01(num);
+            st->own_opacity = clamp01(num);
         } else {
             *(name[0] == 'f' ? &st->fill_opacity : &st->stroke_opacity) = clamp01(num);
         }
-    } else if (strcmp(name, "fill-rule") == 0) {
+    } else if (strcmp(name, "clip-path") == 0 || strcmp(name, "mask") == 0) {
+        bool clip = name[0] == 'c';
+        svg_node *c = strcmp(v, "none") == 0 ? NULL : reference(doc, v, NULL);
+        if (c && strcmp(c->name, clip ? "clipPath" : "mask") != 0) {
+            warn_once(doc, name, v);
+            c = NULL;
+        }
+        /* a missing clip path or mask: drawn without, as rsvg-convert does */
+        *(clip ? &st->clip : &st->mask) = c;
+    } else if (strcmp(name, "mask-type") == 0) {
+        st->mask_alpha = strcmp(v, "alpha") == 0;
+    } else if (strcmp(name, "fill-rule") == 0 || strcmp(name, "clip-rule") == 0) {
         if (strcmp(v, "nonzero") == 0 || strcmp(v, "evenodd") == 0) {
-            st->fill_rule = v[0] == 'n' ? SR_NONZERO : SR_EVENODD;
+            *(name[0] == 'f' ? &st->fill_rule : &st->clip_rule) =
+                v[0] == 'n' ? SR_NONZERO : SR_EVENODD;
         } else {
             warn_once(doc, "fill-rule", v);
         }
@@ -476,6 +636,25 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     } else if (strcmp(name, "visibility") == 0) {
         st->invisible = strcmp(v, "hidden") == 0 || strcmp(v, "collapse") == 0;
     } else {
+        for (size_t i = 0; i < sizeof initial_values / sizeof initial_values[0]; i++) {
+            if (strcmp(name, initial_values[i].name) == 0 &&
+                strcmp(v, initial_values[i].value) == 0) {
+                return true;
+            }
+        }
+        for (int i = 0; no_effect_props[i]; i++) {
+            if (strcmp(name, no_effect_props[i]) == 0) {
+                return true;
+            }
+        }
+        /* Text and font settings (no text is drawn), editors' private
+         * properties (Inkscape's filter-*, -inkscape-*, ...). */
+        static const char *const quiet_prefixes[] = { "text-", "font-", "filter-", "-", NULL };
+        for (int i = 0; quiet_prefixes[i]; i++) {
+            if (strncmp(name, quiet_prefixes[i], strlen(quiet_prefixes[i])) == 0) {
+                return true;
+            }
+        }
         for (int i = 0; unsupported_props[i]; i++) {
             if (strcmp(name, unsupported_props[i]) == 0) {
                 warn_once(doc, "property", name);
@@ -485,32 +664,6 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
         return false;
     }
     return true;
-}
-
-/* style="name: value; ...", applied after the presentation attributes. */
-static void apply_style_attr(svg_doc *doc, style *st, const char *s)
-{
-    char buf[2048];
-    snprintf(buf, sizeof buf, "%s", s);
-    char *save = NULL;
-    for (char *decl = strtok_r(buf, ";", &save); decl; decl = strtok_r(NULL, ";", &save)) {
-        char *colon = strchr(decl, ':');
-        if (!colon) {
-            continue;
-        }
-        *colon = 0;
-        char *name = decl;
-        while (isspace((unsigned char)*name)) {
-            name++;
-        }
-        char *end = name + strlen(name);
-        while (end > name && isspace((unsigned char)end[-1])) {
-            *--end = 0;
-        }
-        if (!apply_property(doc, st, name, colon + 1)) {
-            warn_once(doc, "property", name);
-        }
-    }
 }
 
 /* ---- path data ----------------------------------------------------------------- */
@@ -755,44 +908,224 @@ static double fill_work(const sr_point2 *pts, const sr_polygon2 *poly, int w, in
     return rows + (bw > 0 && bh > 0 ? bw * bh : 0);
 }
 
-/* Map a polygon to pixels and fill it, within the document's budget. */
-static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
-                        sr_fill_rule rule, bool crisp)
+/* The document's pixel work (svg.h): false after reporting that `work`
+ * more would pass it. */
+static bool work_within_budget(svg_doc *doc, double work)
 {
-    if (poly.point_count == 0) {
-        return;
-    }
-    if (!points_within_budget(doc, poly.point_count)) {
-        return;
-    }
-    doc->points_used += poly.point_count;
-    sr_point2 *pts = malloc((size_t)poly.point_count * sizeof *pts);
-    if (!pts) {
-        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
-        return;
-    }
-    for (int i = 0; i < poly.point_count; i++) {
-        pts[i] = mat_apply(m, poly.points[i]);
-    }
-    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
-    double work = fill_work(pts, &poly, w, h);
     if (doc->work_used + work > doc->work_budget) {
-        free(pts);
+        int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
         svg_fail(doc, SR_TOO_LARGE,
                  "the drawing costs more than %.0f pixel operations, the limit for a %dx%d "
                  "image (%d per pixel + %d)",
                  doc->work_budget, w, h, SR_SVG_WORK_PER_PIXEL, SR_SVG_WORK_BASE);
-        return;
+        return false;
     }
     doc->work_used += work;
+    return true;
+}
+
+/* The polygon mapped to pixels (a new array in *pts), its points and
+ * pixel work counted; false after reporting a failure. */
+static bool map_polygon(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_point2 **pts)
+{
+    if (!points_within_budget(doc, poly.point_count)) {
+        return false;
+    }
+    doc->points_used += poly.point_count;
+    *pts = malloc((size_t)poly.point_count * sizeof **pts);
+    if (!*pts) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return false;
+    }
+    for (int i = 0; i < poly.point_count; i++) {
+        (*pts)[i] = mat_apply(m, poly.points[i]);
+    }
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    if (!work_within_budget(doc, fill_work(*pts, &poly, w, h))) {
+        free(*pts);
+        return false;
+    }
+    return true;
+}
+
+/* Map a polygon to pixels and fill it, within the document's budget. */
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
+                        const svg_gradient *grad, sr_fill_rule rule, bool crisp)
+{
+    sr_point2 *pts;
+    if (poly.point_count == 0 || !map_polygon(doc, poly, m, &pts)) {
+        return;
+    }
     poly.points = pts;
-    sr_result r = sr_fill_polygon(doc->ctx, doc->fb, &poly, color,
-                                  &(sr_fill_desc){ .rule = rule,
-                                                   .antialias = crisp ? SR_AA_NONE : SR_AA_AREA });
+    sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
+    sr_result r = grad ? svg_fill_gradient(doc->ctx, doc->fb, &poly, &desc, grad, color.a)
+                       : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
     free(pts);
     if (r != SR_OK) {
         lib_fail(doc, r);
     }
+}
+
+static void apply_cascade(svg_doc *doc, const svg_node *node, style *st);
+
+/* ---- gradients ------------------------------------------------------------------- */
+
+/* Gradients inheriting through href: how long a chain may be. */
+#define MAX_HREF_CHAIN 16
+
+static const char *href_of(const svg_node *n)
+{
+    const char *h = attr(n->atts, "href");
+    return h ? h : attr(n->atts, "xlink:href");
+}
+
+/* An attribute of a gradient, else of the gradients it names by href. */
+static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *name)
+{
+    for (int i = 0; g && i < MAX_HREF_CHAIN; i++) {
+        const char *v = attr(g->atts, name);
+        if (v) {
+            return v;
+        }
+        const char *h = href_of(g);
+        g = h ? reference(doc, h, NULL) : NULL;
+        g = is_gradient(g) ? g : NULL;
+    }
+    return NULL;
+}
+
+/* A gradient coordinate: a number, or a percentage of ref (1 for
+ * objectBoundingBox); def when absent or malformed. */
+static double grad_coord(svg_doc *doc, const svg_node *g, const char *name, double ref, double def)
+{
+    const char *v = grad_attr(doc, g, name);
+    double x;
+    bool pct;
+    if (!v) {
+        return def;
+    }
+    if (!parse_length(v, &x, &pct)) {
+        warn_once(doc, name, v);
+        return def;
+    }
+    return pct ? x * ref / 100 : x;
+}
+
+static bool mat_invert(mat2d m, mat2d *out)
+{
+    double det = m.a * m.d - m.b * m.c;
+    if (!(fabs(det) > 1e-12) || !isfinite(det)) {
+        return false;
+    }
+    *out = (mat2d){ m.d / det, -m.b / det, -m.c / det, m.a / det, (m.c * m.f - m.d * m.e) / det,
+                    (m.b * m.e - m.a * m.f) / det };
+    return true;
+}
+
+/* The stops of the first gradient of the href chain that has any. */
+static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg_gradient *out)
+{
+    out->n_stops = 0;
+    for (int i = 0; g && i < MAX_HREF_CHAIN && out->n_stops == 0; i++) {
+        for (const svg_node *c = g->first; c; c = c->next) {
+            if (strcmp(c->name, "stop") != 0 || out->n_stops == SVG_MAX_STOPS) {
+                continue;
+            }
+            style s = *st;
+            s.stop_color = (sr_rgba){ 0, 0, 0, 1 };
+            s.stop_opacity = 1;
+            apply_cascade(doc, c, &s);
+            double off = 0;
+            bool pct;
+            const char *o = attr(c->atts, "offset");
+            if (o && !parse_length(o, &off, &pct)) {
+                warn_once(doc, "offset", o);
+            } else if (o && pct) {
+                off /= 100;
+            }
+            off = clamp01(off);
+            int k = out->n_stops++;
+            /* each offset at least the one before it */
+            out->offset[k] = k > 0 && off < out->offset[k - 1] ? out->offset[k - 1] : off;
+            out->color[k] = s.stop_color;
+            out->color[k].a *= (float)s.stop_opacity;
+        }
+        const char *h = href_of(g);
+        g = h ? reference(doc, h, NULL) : NULL;
+        g = is_gradient(g) ? g : NULL;
+    }
+}
+
+/* The gradient `server` for a shape whose user-space geometry is `shape`
+ * under the frame; false when it paints nothing (no stops, an empty
+ * bounding box, a singular transform). */
+static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *f,
+                             sr_polygon2 shape, svg_gradient *g)
+{
+    memset(g, 0, offsetof(svg_gradient, offset));
+    gradient_stops(doc, server, &f->st, g);
+    if (g->n_stops == 0) {
+        return false;
+    }
+    const char *units = grad_attr(doc, server, "gradientUnits");
+    bool bbox = !units || strcmp(units, "userSpaceOnUse") != 0;
+    mat2d to_user = IDENTITY;
+    double rw = 1, rh = 1;
+    if (bbox) {
+        double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+        for (int i = 0; i < shape.point_count; i++) {
+            x0 = fmin(x0, shape.points[i].x);
+            x1 = fmax(x1, shape.points[i].x);
+            y0 = fmin(y0, shape.points[i].y);
+            y1 = fmax(y1, shape.points[i].y);
+        }
+        if (!(x1 > x0 && y1 > y0)) {
+            return false;
+        }
+        to_user = (mat2d){ x1 - x0, 0, 0, y1 - y0, x0, y0 };
+    } else {
+        rw = f->vp_w;
+        rh = f->vp_h;
+    }
+    double rd = sqrt((rw * rw + rh * rh) / 2);
+    const char *tr = grad_attr(doc, server, "gradientTransform");
+    mat2d gt = IDENTITY;
+    if (tr && !parse_transform(tr, &gt)) {
+        warn_once(doc, "gradientTransform", tr);
+    }
+    mat2d inv;
+    if (!mat_invert(mat_mul(f->m, mat_mul(to_user, gt)), &inv)) {
+        return false;
+    }
+    memcpy(g->inv, &inv, sizeof g->inv);
+    const char *sp = grad_attr(doc, server, "spreadMethod");
+    g->spread = sp && strcmp(sp, "reflect") == 0  ? SVG_SPREAD_REFLECT
+                : sp && strcmp(sp, "repeat") == 0 ? SVG_SPREAD_REPEAT
+                                                  : SVG_SPREAD_PAD;
+    g->radial = strcmp(server->name, "radialGradient") == 0;
+    if (!g->radial) {
+        g->x1 = grad_coord(doc, server, "x1", rw, 0);
+        g->y1 = grad_coord(doc, server, "y1", rh, 0);
+        g->x2 = grad_coord(doc, server, "x2", rw, rw);
+        g->y2 = grad_coord(doc, server, "y2", rh, 0);
+        return true;
+    }
+    g->cx = grad_coord(doc, server, "cx", rw, rw / 2);
+    g->cy = grad_coord(doc, server, "cy", rh, rh / 2);
+    g->r = grad_coord(doc, server, "r", rd, rd / 2);
+    g->fx = grad_coord(doc, server, "fx", rw, g->cx);
+    g->fy = grad_coord(doc, server, "fy", rh, g->cy);
+    g->fr = grad_coord(doc, server, "fr", rd, 0);
+    if (!(g->r > 0)) {
+        return false; /* r = 0: the area is painted with the last stop */
+    }
+    /* A focal point outside the end circle is moved onto it (SVG 1.1). */
+    double dx = g->fx - g->cx, dy = g->fy - g->cy, d = sqrt(dx * dx + dy * dy);
+    if (d > g->r * 0.999) {
+        g->fx = g->cx + dx * g->r * 0.999 / d;
+        g->fy = g->cy + dy * g->r * 0.999 / d;
+    }
+    return true;
 }
 
 /* Points of a round join or cap: as add_disc in src/draw2d/path.c (the
@@ -819,18 +1152,40 @@ static double stroke_points(const sr_polygon2 *poly, const style *st, double tol
     return (double)poly->point_count * (4 + join) + 2.0 * poly->contour_count * cap;
 }
 
+/* Fill a user-space polygon with a paint at an opacity; a gradient's
+ * bounding box is the shape's geometry (the fill's path, for a stroke). */
+static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_polygon2 geometry,
+                          const paint *p, double opacity, sr_fill_rule rule)
+{
+    sr_rgba c = p->kind == SVG_PAINT_CURRENT ? f->st.color : p->color;
+    if (p->kind == SVG_PAINT_URL) {
+        svg_gradient g;
+        if (resolve_gradient(doc, p->server, f, geometry, &g)) {
+            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, &g, rule,
+                        f->st.crisp);
+            return;
+        }
+        if (!p->has_fallback || doc->status != SR_OK) {
+            return;
+        }
+    }
+    c.a *= (float)opacity;
+    if (c.a > 0) {
+        fill_mapped(doc, poly, f->m, c, NULL, rule, f->st.crisp);
+    }
+}
+
 static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable)
 {
     const style *st = &f->st;
     if (st->display_none || st->invisible) {
         return;
     }
-    if (fillable && st->has_fill && st->fill_opacity * st->opacity > 0) {
-        sr_rgba c = st->fill;
-        c.a = (float)(st->fill_opacity * st->opacity);
-        fill_mapped(doc, sr_path_polygon(path), f->m, c, st->fill_rule, st->crisp);
+    if (fillable && st->fill.kind != SVG_PAINT_NONE && st->fill_opacity * st->opacity > 0) {
+        paint_polygon(doc, f, sr_path_polygon(path), sr_path_polygon(path), &st->fill,
+                      st->fill_opacity * st->opacity, st->fill_rule);
     }
-    if (st->has_stroke && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
+    if (st->stroke.kind != SVG_PAINT_NONE && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
         doc->status == SR_OK) {
         sr_polygon2 poly = sr_path_polygon(path);
         double est = stroke_points(&poly, st, tol);
@@ -852,9 +1207,8 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, b
             lib_fail(doc, r);
             return;
         }
-        sr_rgba c = st->stroke;
-        c.a = (float)(st->stroke_opacity * st->opacity);
-        fill_mapped(doc, outline, f->m, c, SR_NONZERO, st->crisp);
+        paint_polygon(doc, f, outline, sr_path_polygon(path), &st->stroke,
+                      st->stroke_opacity * st->opacity, SR_NONZERO);
         sr_destroy_stroke_outline(doc->ctx, &outline);
     }
 }
@@ -870,8 +1224,8 @@ static bool path_ok(svg_doc *doc, sr_result r)
 }
 
 /* Build the path of a basic shape (false: nothing to draw or an error). */
-static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_path *p,
-                       bool *fillable)
+static bool shape_path(svg_doc *doc, const frame *f, const char *name, const char **atts,
+                       sr_path *p, bool *fillable)
 {
     *fillable = true;
     double v[6];
@@ -881,11 +1235,11 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
     }
     if (strcmp(name, "rect") == 0) {
         const char *rx_s = attr(atts, "rx"), *ry_s = attr(atts, "ry");
-        if (!length_attr(doc, "x", attr(atts, "x"), &v[0]) ||
-            !length_attr(doc, "y", attr(atts, "y"), &v[1]) ||
-            !length_attr(doc, "width", attr(atts, "width"), &v[2]) ||
-            !length_attr(doc, "height", attr(atts, "height"), &v[3]) ||
-            !length_attr(doc, "rx", rx_s, &v[4]) || !length_attr(doc, "ry", ry_s, &v[5])) {
+        if (!length_attr(doc, f, "x", attr(atts, "x"), &v[0]) ||
+            !length_attr(doc, f, "y", attr(atts, "y"), &v[1]) ||
+            !length_attr(doc, f, "width", attr(atts, "width"), &v[2]) ||
+            !length_attr(doc, f, "height", attr(atts, "height"), &v[3]) ||
+            !length_attr(doc, f, "rx", rx_s, &v[4]) || !length_attr(doc, f, "ry", ry_s, &v[5])) {
             return false;
         }
         if (v[2] < 0 || v[3] < 0 || v[4] < 0 || v[5] < 0) {
@@ -921,17 +1275,17 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
     }
     if (strcmp(name, "circle") == 0 || strcmp(name, "ellipse") == 0) {
         bool circle = name[0] == 'c';
-        if (!length_attr(doc, "cx", attr(atts, "cx"), &v[0]) ||
-            !length_attr(doc, "cy", attr(atts, "cy"), &v[1])) {
+        if (!length_attr(doc, f, "cx", attr(atts, "cx"), &v[0]) ||
+            !length_attr(doc, f, "cy", attr(atts, "cy"), &v[1])) {
             return false;
         }
         if (circle) {
-            if (!length_attr(doc, "r", attr(atts, "r"), &v[2])) {
+            if (!length_attr(doc, f, "r", attr(atts, "r"), &v[2])) {
                 return false;
             }
             v[3] = v[2];
-        } else if (!length_attr(doc, "rx", attr(atts, "rx"), &v[2]) ||
-                   !length_attr(doc, "ry", attr(atts, "ry"), &v[3])) {
+        } else if (!length_attr(doc, f, "rx", attr(atts, "rx"), &v[2]) ||
+                   !length_attr(doc, f, "ry", attr(atts, "ry"), &v[3])) {
             return false;
         }
         if (v[2] < 0 || v[3] < 0) {
@@ -948,10 +1302,10 @@ static bool shape_path(svg_doc *doc, const char *name, const char **atts, sr_pat
     }
     if (strcmp(name, "line") == 0) {
         *fillable = false;
-        if (!length_attr(doc, "x1", attr(atts, "x1"), &v[0]) ||
-            !length_attr(doc, "y1", attr(atts, "y1"), &v[1]) ||
-            !length_attr(doc, "x2", attr(atts, "x2"), &v[2]) ||
-            !length_attr(doc, "y2", attr(atts, "y2"), &v[3])) {
+        if (!length_attr(doc, f, "x1", attr(atts, "x1"), &v[0]) ||
+            !length_attr(doc, f, "y1", attr(atts, "y1"), &v[1]) ||
+            !length_attr(doc, f, "x2", attr(atts, "x2"), &v[2]) ||
+            !length_attr(doc, f, "y2", attr(atts, "y2"), &v[3])) {
             return false;
         }
         return path_ok(doc, sr_path_move_to(p, v[0], v[1])) &&
@@ -1042,6 +1396,31 @@ static bool parse_aspect(const char *s, double *ax, double *ay, bool *slice)
     return *skip_ws(s) == 0;
 }
 
+/* The viewBox vb onto the viewport (x, y, w, h) as preserveAspectRatio
+ * of the element says. */
+static mat2d viewbox_matrix(svg_doc *doc, const char **atts, const double vb[4], double x,
+                            double y, double w, double h)
+{
+    double ax, ay;
+    bool slice;
+    const char *par = attr(atts, "preserveAspectRatio");
+    if (!parse_aspect(par, &ax, &ay, &slice)) {
+        warn_once(doc, "preserveAspectRatio", par);
+        ax = ay = 0.5;
+        slice = false;
+    }
+    double sx = w / vb[2], sy = h / vb[3];
+    if (ax >= 0) {
+        sx = sy = slice ? fmax(sx, sy) : fmin(sx, sy);
+    }
+    double tx = x - vb[0] * sx, ty = y - vb[1] * sy;
+    if (ax >= 0) {
+        tx += (w - vb[2] * sx) * ax;
+        ty += (h - vb[3] * sy) * ay;
+    }
+    return (mat2d){ sx, 0, 0, sy, tx, ty };
+}
+
 static bool root_element(svg_doc *doc, const char **atts, frame *f)
 {
     double vb[4];
@@ -1097,25 +1476,10 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         out_w = (int)ow;
         out_h = (int)oh;
     }
-    double ax, ay;
-    bool slice;
-    const char *par = attr(atts, "preserveAspectRatio");
-    if (!parse_aspect(par, &ax, &ay, &slice)) {
-        warn_once(doc, "preserveAspectRatio", par);
-        ax = ay = 0.5;
-        slice = false;
-    }
     /* The viewBox onto the whole image. */
-    double sx = out_w / vb[2], sy = out_h / vb[3];
-    if (ax >= 0) {
-        sx = sy = slice ? fmax(sx, sy) : fmin(sx, sy);
-    }
-    double tx = -vb[0] * sx, ty = -vb[1] * sy;
-    if (ax >= 0) {
-        tx += (out_w - vb[2] * sx) * ax;
-        ty += (out_h - vb[3] * sy) * ay;
-    }
-    f->m = (mat2d){ sx, 0, 0, sy, tx, ty };
+    f->m = viewbox_matrix(doc, atts, vb, 0, 0, out_w, out_h);
+    f->vp_w = vb[2];
+    f->vp_h = vb[3];
     sr_result r = sr_make_framebuffer(doc->ctx, &(sr_framebuffer_desc){
                                           .width = out_w, .height = out_h,
                                           .depth_format = SR_DEPTH_NONE }, &doc->fb);
@@ -1149,6 +1513,46 @@ static bool is_shape(const char *n)
     return false;
 }
 
+/* ---- reading the tree -------------------------------------------------------------- */
+
+/* One allocation per element: the node, its attribute array and strings. */
+static svg_node *make_node(const char *name, const char **atts)
+{
+    size_t n = 0, bytes = strlen(name) + 1;
+    for (; atts[n]; n++) {
+        bytes += strlen(atts[n]) + 1;
+    }
+    size_t head = sizeof(svg_node) + (n + 1) * sizeof(char *);
+    svg_node *node = calloc(1, head + bytes);
+    if (!node) {
+        return NULL;
+    }
+    const char **a = (const char **)(node + 1);
+    char *str = (char *)node + head;
+    node->name = strcpy(str, name);
+    str += strlen(name) + 1;
+    for (size_t i = 0; i < n; i++) {
+        a[i] = strcpy(str, atts[i]);
+        str += strlen(atts[i]) + 1;
+    }
+    a[n] = NULL;
+    node->atts = a;
+    node->id = attr(a, "id");
+    node->cls = attr(a, "class");
+    return node;
+}
+
+static void free_tree(svg_node *n)
+{
+    while (n) {
+        svg_node *next = n->next;
+        free_tree(n->first);
+        free(n->text);
+        free(n);
+        n = next;
+    }
+}
+
 static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char **atts)
 {
     svg_doc *doc = user;
@@ -1156,48 +1560,762 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
         return;
     }
     doc->line = XML_GetCurrentLineNumber(doc->parser);
-    if (doc->skip) {
-        doc->skip++;
-        return;
-    }
     const char *name = local_name(qname);
     if (doc->depth + 1 >= MAX_DEPTH) {
         svg_fail(doc, SR_BAD_FORMAT, "elements nested deeper than %d", MAX_DEPTH);
         return;
     }
-    frame f = doc->stack[doc->depth];
-    if (!doc->seen_root) {
-        if (strcmp(name, "svg") != 0) {
-            svg_fail(doc, SR_BAD_FORMAT, "the root element is <%s>, not <svg>", name);
-            return;
-        }
-        doc->seen_root = true;
-        if (!root_element(doc, atts, &f)) {
-            return;
-        }
-    } else if (strcmp(name, "svg") == 0) {
-        warn_once(doc, "element", "svg (nested; drawn as a group)");
-    } else if (strcmp(name, "title") == 0 || strcmp(name, "desc") == 0 ||
-               strcmp(name, "metadata") == 0) {
-        doc->skip = 1; /* no rendering: skipped silently */
-        return;
-    } else if (strcmp(name, "g") != 0 && !is_shape(name)) {
-        warn_once(doc, "element", name);
-        doc->skip = 1;
+    if (!doc->root && strcmp(name, "svg") != 0) {
+        svg_fail(doc, SR_BAD_FORMAT, "the root element is <%s>, not <svg>", name);
         return;
     }
-    /* Style: presentation attributes, then style="" over them. */
-    f.st.opacity = doc->stack[doc->depth].st.opacity;
-    for (int i = 0; atts[i]; i += 2) {
-        if (strcmp(atts[i], "style") != 0 && strcmp(atts[i], "transform") != 0) {
-            apply_property(doc, &f.st, atts[i], atts[i + 1]);
+    /* Each element is a point of the budget: a document of empty
+     * elements is bounded like one of points. */
+    if (!points_within_budget(doc, 1)) {
+        return;
+    }
+    doc->points_used++;
+    svg_node *node = make_node(name, atts);
+    if (!node) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    node->line = doc->line;
+    node->foreign = name != qname && strncmp(qname, "svg:", 4) != 0;
+    node->parent = doc->open;
+    if (!doc->root) {
+        doc->root = node;
+    } else if (doc->open->last) {
+        doc->open->last = doc->open->last->next = node;
+    } else {
+        doc->open->first = doc->open->last = node;
+    }
+    doc->open = node;
+    doc->depth++;
+    doc->nodes++;
+}
+
+static void XMLCALL on_end(void *user, const XML_Char *name)
+{
+    (void)name;
+    svg_doc *doc = user;
+    if (doc->open) {
+        doc->open = doc->open->parent;
+        doc->depth--;
+    }
+}
+
+/* Character data is kept for <style> only (the sheets are read after
+ * the whole document). */
+static void XMLCALL on_text(void *user, const XML_Char *s, int len)
+{
+    svg_doc *doc = user;
+    svg_node *n = doc->open;
+    if (doc->status != SR_OK || !n || strcmp(n->name, "style") != 0 || len <= 0) {
+        return;
+    }
+    char *grown = realloc(n->text, n->text_len + (size_t)len + 1);
+    if (!grown) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    memcpy(grown + n->text_len, s, (size_t)len);
+    n->text_len += (size_t)len;
+    grown[n->text_len] = 0;
+    n->text = grown;
+}
+
+/* ---- ids and style sheets ------------------------------------------------------------ */
+
+static int cmp_id(const void *a, const void *b)
+{
+    const id_entry *x = a, *y = b;
+    int c = strcmp(x->id, y->id);
+    /* the first in document order wins: ties keep their order */
+    return c ? c : (x->node->line > y->node->line) - (x->node->line < y->node->line);
+}
+
+static void collect(svg_doc *doc, svg_node *n, size_t *k)
+{
+    for (; n; n = n->next) {
+        if (n->id && doc->ids) {
+            doc->ids[(*k)++] = (id_entry){ n->id, n };
+        }
+        if (strcmp(n->name, "style") == 0 && n->text) {
+            const char *type = attr(n->atts, "type");
+            if (type && *type && strcmp(type, "text/css") != 0) {
+                warn_once(doc, "style type", type);
+            } else {
+                int unsupported = 0;
+                if (!svg_css_parse(&doc->sheet, n->text, &unsupported)) {
+                    svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+                    return;
+                }
+                if (unsupported) {
+                    doc->line = n->line;
+                    warn_once(doc, "CSS", "selectors or at-rules");
+                }
+            }
+        }
+        collect(doc, n->first, k);
+    }
+}
+
+/* The id table and the style sheets, once the tree is read. */
+static bool index_document(svg_doc *doc)
+{
+    doc->ids = calloc(doc->nodes ? doc->nodes : 1, sizeof *doc->ids);
+    if (!doc->ids) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return false;
+    }
+    size_t k = 0;
+    collect(doc, doc->root, &k);
+    doc->n_ids = k;
+    qsort(doc->ids, k, sizeof *doc->ids, cmp_id);
+    return doc->status == SR_OK;
+}
+
+static svg_node *find_id(const svg_doc *doc, const char *id)
+{
+    size_t lo = 0, hi = doc->n_ids;
+    while (lo < hi) { /* the first entry not below id */
+        size_t mid = (lo + hi) / 2;
+        if (strcmp(doc->ids[mid].id, id) < 0) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
         }
     }
-    const char *style_attr = attr(atts, "style");
-    if (style_attr) {
-        apply_style_attr(doc, &f.st, style_attr);
+    return lo < doc->n_ids && strcmp(doc->ids[lo].id, id) == 0 ? doc->ids[lo].node : NULL;
+}
+
+/* A declaration with where it comes from, for the cascade. */
+typedef struct cascaded {
+    const svg_css_decl *decl;
+    long rank;               /* origin and importance, then specificity */
+    int order;
+} cascaded;
+
+static int cmp_cascaded(const void *a, const void *b)
+{
+    const cascaded *x = a, *y = b;
+    if (x->rank != y->rank) {
+        return x->rank < y->rank ? -1 : 1;
     }
-    const char *tr = attr(atts, "transform");
+    return (x->order > y->order) - (x->order < y->order);
+}
+
+/* Ranks: presentation attributes, then sheet rules by specificity, then
+ * the style attribute; !important sheet rules above all of those, and
+ * !important in the style attribute above everything. */
+#define RANK_SHEET 1L
+#define RANK_STYLE_ATTR (1L << 40)
+#define RANK_IMPORTANT (1L << 41)
+
+/* The element's own declarations in cascade order, applied to st. */
+static void apply_cascade(svg_doc *doc, const svg_node *node, style *st)
+{
+    for (int i = 0; node->atts[i]; i += 2) {
+        const char *a = node->atts[i];
+        if (strcmp(a, "style") != 0 && strcmp(a, "transform") != 0 && strcmp(a, "class") != 0 &&
+            strcmp(a, "id") != 0) {
+            apply_property(doc, st, a, node->atts[i + 1]);
+        }
+    }
+    svg_css_rule inline_rule = { 0 };
+    const char *style_attr = attr(node->atts, "style");
+    if (style_attr && !svg_css_parse_decls(style_attr, style_attr + strlen(style_attr),
+                                           &inline_rule)) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+    }
+    size_t n = (size_t)inline_rule.n_decls, cap = n;
+    cascaded *list = NULL;
+    for (int r = 0; r < doc->sheet.n_rules; r++) {
+        const svg_css_rule *rule = &doc->sheet.rules[r];
+        if (!svg_css_matches(&rule->selector, node, &doc->match_work)) {
+            continue;
+        }
+        cap += (size_t)rule->n_decls;
+    }
+    if (doc->match_work > SVG_CSS_MAX_WORK) {
+        svg_fail(doc, SR_TOO_LARGE, "style sheets: matching selectors takes more than %ld steps",
+                 SVG_CSS_MAX_WORK);
+    }
+    if (doc->status != SR_OK || cap == 0) {
+        svg_css_free_rule(&inline_rule);
+        return;
+    }
+    list = malloc(cap * sizeof *list);
+    if (!list) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        svg_css_free_rule(&inline_rule);
+        return;
+    }
+    size_t k = 0;
+    long unused = 0;
+    for (int r = 0; r < doc->sheet.n_rules && k < cap; r++) {
+        const svg_css_rule *rule = &doc->sheet.rules[r];
+        if (rule->n_decls == 0 || !svg_css_matches(&rule->selector, node, &unused)) {
+            continue;
+        }
+        for (int d = 0; d < rule->n_decls && k < cap; d++) {
+            long rank = RANK_SHEET + rule->selector.specificity +
+                        (rule->decls[d].important ? RANK_IMPORTANT : 0);
+            list[k++] = (cascaded){ &rule->decls[d], rank, rule->order * 1000 + d };
+        }
+    }
+    for (int d = 0; d < inline_rule.n_decls && k < cap; d++) {
+        long rank = RANK_STYLE_ATTR + (inline_rule.decls[d].important ? 2 * RANK_IMPORTANT : 0);
+        list[k++] = (cascaded){ &inline_rule.decls[d], rank, d };
+    }
+    qsort(list, k, sizeof *list, cmp_cascaded);
+    for (size_t i = 0; i < k; i++) {
+        if (!apply_property(doc, st, list[i].decl->name, list[i].decl->value)) {
+            warn_once(doc, "property", list[i].decl->name);
+        }
+    }
+    free(list);
+    svg_css_free_rule(&inline_rule);
+}
+
+/* ---- drawing the tree ---------------------------------------------------------------- */
+
+static bool is_named(const svg_node *n, const char *const *names)
+{
+    for (int i = 0; names[i]; i++) {
+        if (strcmp(n->name, names[i]) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Elements that draw nothing where they stand: definitions, metadata. */
+static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "style",
+                                         "linearGradient", "radialGradient", "stop", "symbol",
+                                         "clipPath", "mask", "script", NULL };
+
+static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
+static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use);
+
+static void draw_children(svg_doc *doc, svg_node *node, const frame *f)
+{
+    for (svg_node *c = node->first; c && doc->status == SR_OK; c = c->next) {
+        draw_node(doc, c, f);
+    }
+}
+
+/* The shape's path, flattened finely enough for the transform's scale,
+ * filled and stroked. */
+/* The shape's path in user units, flattened finely enough for the
+ * frame's scale (*tol); NULL when there is nothing to draw or after a
+ * failure.  Flattening is work too, drawn or not (fill="none"). */
+static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *f, double *tol,
+                               bool *fillable)
+{
+    double scale = matrix_scale(f->m);
+    *tol = scale > 0 ? 0.1 / scale : 0.1;
+    if (!(*tol > 0) || !isfinite(*tol)) {
+        return NULL; /* a singular transform: nothing visible */
+    }
+    sr_path *p = NULL;
+    sr_result r = sr_make_path(doc->ctx, *tol, &p);
+    if (r != SR_OK) {
+        lib_fail(doc, r);
+        return NULL;
+    }
+    if (shape_path(doc, f, node->name, node->atts, p, fillable) && doc->status == SR_OK &&
+        points_within_budget(doc, sr_path_polygon(p).point_count)) {
+        doc->points_used += sr_path_polygon(p).point_count;
+        return p;
+    }
+    sr_destroy_path(doc->ctx, p);
+    return NULL;
+}
+
+static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    double tol;
+    bool fillable;
+    sr_path *p = shape_at_scale(doc, node, f, &tol, &fillable);
+    if (p) {
+        draw_path(doc, f, p, tol, fillable);
+        sr_destroy_path(doc->ctx, p);
+    }
+}
+
+/* ---- clipping and layers ------------------------------------------------------------- */
+
+/* Layers (group opacity, clip paths) nested deeper than this fold their
+ * opacity into the shapes and draw unclipped, with a warning: each layer
+ * is a whole image of memory. */
+#define MAX_LAYERS 8
+
+/* Add the coverage of one clip shape to the mask: union, a + b - ab. */
+static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *mask,
+                       uint8_t *scratch)
+{
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    double tol;
+    bool fillable;
+    sr_path *p = f->st.display_none || f->st.invisible
+                     ? NULL : shape_at_scale(doc, shape, f, &tol, &fillable);
+    sr_point2 *pts;
+    sr_polygon2 poly;
+    if (p && fillable && (poly = sr_path_polygon(p)).point_count > 0 &&
+        map_polygon(doc, poly, f->m, &pts)) {
+        poly.points = pts;
+        sr_fill_desc desc = { .rule = f->st.clip_rule,
+                              .antialias = f->st.crisp ? SR_AA_NONE : SR_AA_AREA };
+        sr_result r = sr_polygon_coverage(doc->ctx, &poly, &desc, 0, 0, w, h, scratch, (size_t)w);
+        free(pts);
+        if (r != SR_OK) {
+            lib_fail(doc, r);
+        } else {
+            for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+                unsigned a = mask[i], b = scratch[i];
+                mask[i] = (uint8_t)(a + b - (a * b + 127) / 255);
+            }
+        }
+    }
+    if (p) {
+        sr_destroy_path(doc->ctx, p);
+    }
+}
+
+/* Add the bounding box of element n (its geometry, without strokes) to
+ * b[4] = x0, y0, x1, y1, where m maps n's coordinates (its transform
+ * applied) into the box's space. */
+static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double b[4])
+{
+    if (n->active || doc->status != SR_OK || doc->draw_depth + 1 >= MAX_DEPTH) {
+        return; /* drawing refuses the cycle or the depth itself */
+    }
+    const char *disp = attr(n->atts, "display");
+    if (disp && strcmp(disp, "none") == 0) {
+        return;
+    }
+    frame tf = *f;
+    tf.m = mat_mul(f->m, m);
+    doc->draw_depth++;
+    n->active = true;
+    if (is_shape(n->name)) {
+        double tol;
+        bool fillable;
+        sr_path *p = shape_at_scale(doc, n, &tf, &tol, &fillable);
+        if (p) {
+            sr_polygon2 poly = sr_path_polygon(p);
+            for (int i = 0; i < poly.point_count; i++) {
+                sr_point2 q = mat_apply(m, poly.points[i]);
+                b[0] = fmin(b[0], q.x);
+                b[1] = fmin(b[1], q.y);
+                b[2] = fmax(b[2], q.x);
+                b[3] = fmax(b[3], q.y);
+            }
+            sr_destroy_path(doc->ctx, p);
+        }
+    } else {
+        bool use = strcmp(n->name, "use") == 0;
+        svg_node *c = use ? (href_of(n) ? reference(doc, href_of(n), NULL) : NULL) : n->first;
+        mat2d base = m;
+        if (use) {
+            double x = 0, y = 0;
+            length_attr(doc, f, "x", attr(n->atts, "x"), &x);
+            length_attr(doc, f, "y", attr(n->atts, "y"), &y);
+            base = mat_mul(m, (mat2d){ 1, 0, 0, 1, x, y });
+        }
+        for (; c && doc->status == SR_OK; c = use ? NULL : c->next) {
+            mat2d t = IDENTITY;
+            const char *tr = attr(c->atts, "transform");
+            if (tr && !parse_transform(tr, &t)) {
+                continue;
+            }
+            if (is_shape(c->name) || !is_named(c, not_drawn)) {
+                bbox_add(doc, c, f, mat_mul(base, t), b);
+            }
+        }
+    }
+    n->active = false;
+    doc->draw_depth--;
+}
+
+/* a[i] *= b[i] / 255 over the image (b NULL: nothing to do). */
+static void multiply_coverage(uint8_t *a, const uint8_t *b, const svg_doc *doc)
+{
+    size_t n = (size_t)sr_framebuffer_width(doc->fb) * (size_t)sr_framebuffer_height(doc->fb);
+    for (size_t i = 0; b && i < n; i++) {
+        a[i] = (uint8_t)((a[i] * b[i] + 127) / 255);
+    }
+}
+
+/* A nested svg's viewport: x, y, width, height (100% when not given) in
+ * the parent's user space. False when it is empty (nothing drawn). */
+static bool viewport_rect(svg_doc *doc, const svg_node *node, const frame *f, double r[4])
+{
+    r[2] = f->vp_w;
+    r[3] = f->vp_h;
+    const char *ws = attr(node->atts, "width"), *hs = attr(node->atts, "height");
+    return length_attr(doc, f, "x", attr(node->atts, "x"), &r[0]) &&
+           length_attr(doc, f, "y", attr(node->atts, "y"), &r[1]) &&
+           (!ws || length_attr(doc, f, "width", ws, &r[2])) &&
+           (!hs || length_attr(doc, f, "height", hs, &r[3])) && r[2] > 0 && r[3] > 0;
+}
+
+/* The frame inside a nested svg: its viewBox onto its viewport. */
+static frame viewport_frame(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    frame in = *f;
+    double r[4], vb[4];
+    if (!viewport_rect(doc, node, f, r)) {
+        return in;
+    }
+    const char *vbs = attr(node->atts, "viewBox");
+    if (vbs && parse_viewbox(vbs, vb)) {
+        in.m = mat_mul(f->m, viewbox_matrix(doc, node->atts, vb, r[0], r[1], r[2], r[3]));
+        in.vp_w = vb[2];
+        in.vp_h = vb[3];
+    } else {
+        in.m = mat_mul(f->m, (mat2d){ 1, 0, 0, 1, r[0], r[1] });
+        in.vp_w = r[2];
+        in.vp_h = r[3];
+    }
+    return in;
+}
+
+/* The coverage of a nested svg's viewport (overflow is hidden); NULL
+ * when it is empty or after a failure. */
+static uint8_t *nested_viewport(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    double r[4];
+    if (!viewport_rect(doc, node, f, r)) {
+        return NULL;
+    }
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    sr_point2 corners[4] = { { r[0], r[1] }, { r[0] + r[2], r[1] },
+                             { r[0] + r[2], r[1] + r[3] }, { r[0], r[1] + r[3] } };
+    sr_point2 *pts;
+    sr_polygon2 poly = { corners, 4, NULL, 0 };
+    uint8_t *cov = malloc((size_t)w * (size_t)h);
+    if (!cov) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return NULL;
+    }
+    if (!map_polygon(doc, poly, f->m, &pts)) {
+        free(cov);
+        return NULL;
+    }
+    poly.points = pts;
+    sr_result res = sr_polygon_coverage(doc->ctx, &poly,
+                                        &(sr_fill_desc){ .antialias = f->st.crisp ? SR_AA_NONE
+                                                                                  : SR_AA_AREA },
+                                        0, 0, w, h, cov, (size_t)w);
+    free(pts);
+    if (res != SR_OK) {
+        lib_fail(doc, res);
+        free(cov);
+        return NULL;
+    }
+    return cov;
+}
+
+/* The coverage of a clipPath for an element drawn under frame f: its
+ * shapes (and uses of shapes) with their clip-rule, in the element's
+ * user space.  NULL with a warning for what is not supported (units of
+ * the bounding box), or after a failure. */
+static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const frame *f)
+{
+    frame cf = *f;
+    const char *units = attr(clip->atts, "clipPathUnits");
+    if (units && strcmp(units, "objectBoundingBox") == 0) {
+        /* the clip's unit square onto the element's bounding box */
+        double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+        bool was = node->active;
+        node->active = false;
+        bbox_add(doc, node, f, IDENTITY, b);
+        node->active = was;
+        cf.m = mat_mul(f->m, (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], b[0], b[1] });
+        if (!(b[2] > b[0] && b[3] > b[1])) {
+            cf.m = (mat2d){ 0, 0, 0, 0, 0, 0 }; /* no box: nothing is inside */
+        }
+    }
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    if (!work_within_budget(doc, (double)w * h)) {
+        return NULL;
+    }
+    uint8_t *mask = calloc((size_t)w * (size_t)h, 2);
+    if (!mask) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return NULL;
+    }
+    cf.st.own_opacity = 1;
+    cf.st.clip = NULL;
+    apply_cascade(doc, clip, &cf.st);
+    const char *tr = attr(clip->atts, "transform");
+    mat2d t;
+    if (tr && parse_transform(tr, &t)) {
+        cf.m = mat_mul(cf.m, t);
+    }
+    for (svg_node *c = clip->first; c && doc->status == SR_OK; c = c->next) {
+        svg_node *shape = c;
+        frame sf = cf;
+        doc->line = c->line;
+        apply_cascade(doc, c, &sf.st);
+        tr = attr(c->atts, "transform");
+        if (tr && parse_transform(tr, &t)) {
+            sf.m = mat_mul(sf.m, t);
+        }
+        if (strcmp(c->name, "use") == 0) {
+            const char *href = href_of(c);
+            shape = href ? reference(doc, href, NULL) : NULL;
+            double x = 0, y = 0;
+            if (!shape || !length_attr(doc, &sf, "x", attr(c->atts, "x"), &x) ||
+                !length_attr(doc, &sf, "y", attr(c->atts, "y"), &y)) {
+                continue;
+            }
+            sf.m = mat_mul(sf.m, (mat2d){ 1, 0, 0, 1, x, y });
+            apply_cascade(doc, shape, &sf.st);
+            tr = attr(shape->atts, "transform");
+            if (tr && parse_transform(tr, &t)) {
+                sf.m = mat_mul(sf.m, t);
+            }
+        }
+        if (is_shape(shape->name)) {
+            clip_shape(doc, shape, &sf, mask, mask + (size_t)w * (size_t)h);
+        }
+    }
+    /* A clip path clipped in turn: the two coverages multiply. */
+    if (cf.st.clip && doc->status == SR_OK) {
+        if (clip->active || cf.st.clip == clip) {
+            svg_fail(doc, SR_BAD_FORMAT, "clip-path: reference cycle through \"#%s\"",
+                     clip->id ? clip->id : "");
+        } else {
+            clip->active = true;
+            uint8_t *outer = clip_mask(doc, (svg_node *)cf.st.clip, node, f);
+            clip->active = false;
+            multiply_coverage(mask, outer, doc);
+            free(outer);
+        }
+    }
+    if (doc->status != SR_OK) {
+        free(mask);
+        return NULL;
+    }
+    return mask;
+}
+
+/* Composite a layer over the image through a mask (or none) at an
+ * opacity: straight-alpha source-over, as the fills blend. */
+static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
+                            double opacity)
+{
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    if (!work_within_budget(doc, (double)w * h)) {
+        return;
+    }
+    size_t n = (size_t)w * (size_t)h;
+    uint8_t *px = malloc(n * 4);
+    if (!px) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    sr_result r = sr_read_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
+    const uint8_t *src = sr_framebuffer_pixels(layer);
+    for (size_t i = 0; r == SR_OK && i < n; i++) {
+        const uint8_t *l = src + i * 4;
+        if (l[3] == 0 || (mask && mask[i] == 0)) {
+            continue;
+        }
+        sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
+                      (float)(l[3] / 255.0 * opacity) };
+        svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
+    }
+    if (r == SR_OK) {
+        r = sr_write_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
+    }
+    free(px);
+    if (r != SR_OK) {
+        lib_fail(doc, r);
+    }
+}
+
+/* A new transparent layer the size of the image, drawn into from now
+ * until close_layer; NULL after reporting a failure. */
+static sr_framebuffer *open_layer(svg_doc *doc)
+{
+    sr_framebuffer *top = NULL;
+    sr_result r = sr_make_framebuffer(doc->ctx,
+                                      &(sr_framebuffer_desc){
+                                          .width = sr_framebuffer_width(doc->fb),
+                                          .height = sr_framebuffer_height(doc->fb),
+                                          .depth_format = SR_DEPTH_NONE },
+                                      &top);
+    if (r != SR_OK) {
+        lib_fail(doc, r);
+        return NULL;
+    }
+    sr_clear(doc->ctx, top, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    doc->fb = top;
+    doc->layers++;
+    return top;
+}
+
+static void close_layer(svg_doc *doc, sr_framebuffer *under)
+{
+    doc->layers--;
+    doc->fb = under;
+}
+
+static void draw_children(svg_doc *doc, svg_node *node, const frame *f);
+
+/* A <mask> for an element drawn under frame f: its content drawn in a
+ * layer, in the element's user space, then per pixel its luminance times
+ * its alpha (mask-type="alpha": the alpha alone), multiplied into `into`
+ * (NULL: all 255).  The mask region is not applied: the content is taken
+ * whole.  Returns the coverage, or NULL (into freed) after a failure. */
+static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t *into)
+{
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    size_t n = (size_t)w * (size_t)h;
+    if (m->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "mask: reference cycle through \"#%s\"", m->id ? m->id : "");
+    }
+    const char *units = attr(m->atts, "maskContentUnits");
+    if (units && strcmp(units, "objectBoundingBox") == 0) {
+        warn_once(doc, "maskContentUnits", units);
+    }
+    uint8_t *cov = into ? into : malloc(n);
+    if (!cov || doc->status != SR_OK || !work_within_budget(doc, (double)n)) {
+        if (!cov) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        }
+        free(cov);
+        return NULL;
+    }
+    if (!into) {
+        memset(cov, 255, n);
+    }
+    frame mf = { .m = f->m, .st = doc->initial, .vp_w = f->vp_w, .vp_h = f->vp_h };
+    apply_cascade(doc, m, &mf.st);
+    const char *type = attr(m->atts, "mask-type");
+    bool alpha = (type && strcmp(type, "alpha") == 0) || mf.st.mask_alpha;
+    sr_framebuffer *under = doc->fb, *layer = open_layer(doc);
+    if (layer) {
+        m->active = true;
+        draw_children(doc, m, &mf);
+        m->active = false;
+        close_layer(doc, under);
+        const uint8_t *px = sr_framebuffer_pixels(layer);
+        for (size_t i = 0; i < n; i++) {
+            const uint8_t *p = px + i * 4;
+            double v = p[3] / 255.0;
+            if (!alpha) { /* luminance of the sRGB values (CSS Masking) */
+                v *= (0.2125 * p[0] + 0.7154 * p[1] + 0.0721 * p[2]) / 255.0;
+            }
+            cov[i] = (uint8_t)(cov[i] * v + 0.5);
+        }
+        sr_destroy_framebuffer(doc->ctx, layer);
+    }
+    if (doc->status != SR_OK) {
+        free(cov);
+        return NULL;
+    }
+    return cov;
+}
+
+/* A symbol drawn by a use: its viewBox onto the use's width and height
+ * (100% of the viewport when not given), its children as a group. */
+static void draw_symbol(svg_doc *doc, svg_node *use, svg_node *symbol, frame *f)
+{
+    doc->line = symbol->line;
+    frame sf = *f;
+    apply_cascade(doc, symbol, &sf.st);
+    double vb[4], w = f->vp_w, h = f->vp_h;
+    const char *ws = attr(use->atts, "width"), *hs = attr(use->atts, "height");
+    if ((ws && !length_attr(doc, f, "width", ws, &w)) ||
+        (hs && !length_attr(doc, f, "height", hs, &h)) || doc->status != SR_OK ||
+        sf.st.display_none) {
+        return;
+    }
+    const char *vbs = attr(symbol->atts, "viewBox");
+    if (vbs && parse_viewbox(vbs, vb) && w > 0 && h > 0) {
+        sf.m = mat_mul(sf.m, viewbox_matrix(doc, symbol->atts, vb, 0, 0, w, h));
+        sf.vp_w = vb[2];
+        sf.vp_h = vb[3];
+    }
+    symbol->active = true;
+    draw_children(doc, symbol, &sf);
+    symbol->active = false;
+}
+
+/* <use href="#id" x y>: the element drawn as a child of the use, moved by
+ * (x, y); a reference back into the chain being drawn is refused. */
+static void draw_use(svg_doc *doc, svg_node *node, frame *f)
+{
+    const char *href = attr(node->atts, "href");
+    if (!href) {
+        href = attr(node->atts, "xlink:href");
+    }
+    if (!href) {
+        return;
+    }
+    svg_node *target = reference(doc, href, NULL);
+    if (!target) {
+        warn_once(doc, "use of a missing element", href);
+        return;
+    }
+    if (target->active || target == node) {
+        svg_fail(doc, SR_BAD_FORMAT, "use: reference cycle through \"%s\"", href);
+        return;
+    }
+    double x, y;
+    if (!length_attr(doc, f, "x", attr(node->atts, "x"), &x) ||
+        !length_attr(doc, f, "y", attr(node->atts, "y"), &y)) {
+        return;
+    }
+    f->m = mat_mul(f->m, (mat2d){ 1, 0, 0, 1, x, y });
+    node->active = true;
+    if (strcmp(target->name, "symbol") == 0) {
+        draw_symbol(doc, node, target, f);
+    } else {
+        draw_node(doc, target, f);
+    }
+    node->active = false;
+}
+
+static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
+{
+    doc->line = node->line;
+    if (doc->draw_depth + 1 >= MAX_DEPTH) {
+        svg_fail(doc, SR_BAD_FORMAT, "elements and uses nested deeper than %d", MAX_DEPTH);
+        return;
+    }
+    bool group = strcmp(node->name, "g") == 0 || strcmp(node->name, "a") == 0 ||
+                 strcmp(node->name, "switch") == 0;
+    bool shape = is_shape(node->name), use = strcmp(node->name, "use") == 0;
+    bool nested = strcmp(node->name, "svg") == 0 && node != doc->root;
+    if (nested) {
+        group = true;
+    } else if (!group && !shape && !use && node != doc->root) {
+        if (!is_named(node, not_drawn) && !node->foreign) {
+            warn_once(doc, "element", node->name);
+        }
+        return;
+    }
+    /* Uses and nested elements are visited again and again: each visit is
+     * a point of the budget, so a tree of uses cannot grow without bound. */
+    if (!points_within_budget(doc, 1)) {
+        return;
+    }
+    doc->points_used++;
+    frame f = *parent;
+    f.st.own_opacity = 1;
+    f.st.clip = f.st.mask = NULL;
+    apply_cascade(doc, node, &f.st);
+    if (doc->status != SR_OK || f.st.display_none) {
+        return;
+    }
+    const char *tr = attr(node->atts, "transform");
     if (tr) {
         mat2d t;
         if (!parse_transform(tr, &t)) {
@@ -1206,43 +2324,78 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
         }
         f.m = mat_mul(f.m, t);
     }
-    doc->stack[++doc->depth] = f;
-    if (is_shape(name) && !f.st.display_none && !f.st.invisible) {
-        /* Flatten in user units finely enough for the pixels: the
-         * tolerance shrinks with the transform's scale. */
-        double scale = matrix_scale(f.m);
-        double tol = scale > 0 ? 0.1 / scale : 0.1;
-        if (!(tol > 0) || !isfinite(tol)) {
-            return; /* a singular transform: nothing visible */
-        }
-        sr_path *p = NULL;
-        sr_result r = sr_make_path(doc->ctx, tol, &p);
-        if (r != SR_OK) {
-            lib_fail(doc, r);
-            return;
-        }
-        bool fillable;
-        /* Flattening is work too, drawn or not (fill="none"). */
-        if (shape_path(doc, name, atts, p, &fillable) && doc->status == SR_OK &&
-            points_within_budget(doc, sr_path_polygon(p).point_count)) {
-            doc->points_used += sr_path_polygon(p).point_count;
-            draw_path(doc, &f, p, tol, fillable);
-        }
-        sr_destroy_path(doc->ctx, p);
-    }
-}
-
-static void XMLCALL on_end(void *user, const XML_Char *name)
-{
-    (void)name;
-    svg_doc *doc = user;
-    if (doc->skip) {
-        doc->skip--;
+    /* A nested svg: a new viewport, which clips what it holds. */
+    uint8_t *viewport = NULL;
+    if (nested && !(viewport = nested_viewport(doc, node, &f))) {
         return;
     }
-    if (doc->depth > 0) {
-        doc->depth--;
+    /* A group's opacity and any clip path apply to the element drawn
+     * whole in a layer of its own; a lone shape's opacity folds into its
+     * fill and stroke. */
+    bool layer = viewport || f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape);
+    if (layer && doc->layers == MAX_LAYERS) {
+        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
+        layer = false;
     }
+    if (!layer) {
+        if (viewport) { /* no layer left: the viewport maps, but does not clip */
+            free(viewport);
+            f = viewport_frame(doc, node, &f);
+        }
+        f.st.opacity *= f.st.own_opacity;
+        if (f.st.opacity <= 0) {
+            return;
+        }
+        draw_content(doc, node, &f, shape, use);
+        return;
+    }
+    uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, node, &f) : NULL;
+    if (f.st.mask && doc->status == SR_OK) {
+        mask = mask_coverage(doc, (svg_node *)f.st.mask, &f, mask);
+    }
+    if (viewport) {
+        multiply_coverage(viewport, mask, doc);
+        free(mask);
+        mask = viewport;
+        f = viewport_frame(doc, node, &f);
+    }
+    sr_framebuffer *under = doc->fb, *top = doc->status == SR_OK ? open_layer(doc) : NULL;
+    if (top) {
+        draw_content(doc, node, &f, shape, use);
+        close_layer(doc, under);
+        if (doc->status == SR_OK) {
+            composite_layer(doc, top, mask, f.st.own_opacity);
+        }
+        sr_destroy_framebuffer(doc->ctx, top);
+    }
+    free(mask);
+}
+
+/* The element itself, its frame set: a shape, a use or the children. */
+static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use)
+{
+    frame f = *fp;
+    doc->draw_depth++;
+    node->active = true;
+    if (shape) {
+        if (!f.st.invisible) {
+            draw_shape(doc, node, &f);
+        }
+    } else if (use) {
+        draw_use(doc, node, &f);
+    } else if (strcmp(node->name, "switch") == 0) {
+        /* the first child whose conditions hold: none are tested here */
+        for (svg_node *c = node->first; c; c = c->next) {
+            if (is_shape(c->name) || !is_named(c, not_drawn)) {
+                draw_node(doc, c, &f);
+                break;
+            }
+        }
+    } else {
+        draw_children(doc, node, &f);
+    }
+    node->active = false;
+    doc->draw_depth--;
 }
 
 /* ---- the entry point -------------------------------------------------------------- */
@@ -1256,7 +2409,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                  size, SR_SVG_MAX_INPUT_BYTES >> 20);
         return SR_TOO_LARGE;
     }
-    svg_doc *doc = calloc(1, sizeof *doc); /* the frame stack is 40 KB: not on the stack */
+    svg_doc *doc = calloc(1, sizeof *doc);
     if (!doc) {
         snprintf(msg, msg_size, "%s: out of memory", name);
         return SR_OUT_OF_MEMORY;
@@ -1274,13 +2427,9 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
         snprintf(msg, msg_size, "%s: out of memory", name);
         return SR_OUT_OF_MEMORY;
     }
-    /* Initial style (SVG defaults): fill black, no stroke, width 1. */
-    doc->stack[0] = (frame){ IDENTITY,
-                             { true, false, { 0, 0, 0, 1 }, { 0, 0, 0, 1 }, 1, 1, 1, SR_NONZERO, 1,
-                               SR_STROKE_JOIN_MITER, SR_STROKE_CAP_BUTT, 4, false, false,
-                               false } };
     XML_SetUserData(doc->parser, doc);
     XML_SetElementHandler(doc->parser, on_start, on_end);
+    XML_SetCharacterDataHandler(doc->parser, on_text);
     /* XML_Parse takes an int length: feed the buffer in pieces. */
     const size_t piece = (size_t)1 << 20;
     size_t at = 0;
@@ -1298,6 +2447,23 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
         }
         at += n;
     } while (at < size && doc->status == SR_OK);
+    if (doc->status == SR_OK && doc->root && index_document(doc)) {
+        /* Initial style (SVG defaults): fill black, no stroke, width 1. */
+        frame f = { .m = IDENTITY,
+                    .st = { .fill = { .kind = SVG_PAINT_COLOR, .color = { 0, 0, 0, 1 } },
+                            .stroke = { .kind = SVG_PAINT_NONE },
+                            .color = { 0, 0, 0, 1 },
+                            .fill_opacity = 1, .stroke_opacity = 1, .opacity = 1,
+                            .own_opacity = 1, .clip_rule = SR_NONZERO,
+                            .fill_rule = SR_NONZERO, .stroke_width = 1,
+                            .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
+                            .miter_limit = 4 } };
+        doc->line = doc->root->line;
+        doc->initial = f.st;
+        if (root_element(doc, doc->root->atts, &f)) {
+            draw_node(doc, doc->root, &f);
+        }
+    }
     if (doc->status == SR_OK && !doc->fb) {
         snprintf(msg, msg_size, "%s:1: no <svg> element", name);
         doc->status = SR_BAD_FORMAT;
@@ -1315,6 +2481,9 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
         free(doc->warned[i]);
     }
     XML_ParserFree(doc->parser);
+    free_tree(doc->root);
+    free(doc->ids);
+    svg_css_free(&doc->sheet);
     free(doc);
     return status;
 }

@@ -10,11 +10,109 @@ typedef enum svg_paint_kind {
     SVG_PAINT_INVALID = 0,   /* not a color */
     SVG_PAINT_NONE,          /* "none" */
     SVG_PAINT_COLOR,         /* *out set, alpha 1 */
-    SVG_PAINT_UNSUPPORTED,   /* url(...) paint servers, currentColor */
+    SVG_PAINT_CURRENT,       /* "currentColor": the color property */
+    SVG_PAINT_URL,           /* url(#id) [fallback]: a paint server */
 } svg_paint_kind;
 
-/* An SVG 1.1 color: keyword, #rgb, #rrggbb, rgb(r, g, b) (integers or
- * percentages) or "none". */
+/* A CSS color: keyword, "transparent", #rgb, #rgba, #rrggbb, #rrggbbaa,
+ * rgb()/rgba() and hsl()/hsla() (commas or blanks, integers, numbers or
+ * percentages, an alpha after ',' or '/'), "currentColor", url(...) or
+ * "none".  *out is set for SVG_PAINT_COLOR, alpha included. */
 svg_paint_kind svg_parse_color(const char *s, sr_rgba *out);
+
+/* ---- the document tree (svg.c) ---------------------------------------- */
+
+typedef struct svg_node {
+    const char *name;            /* local name, no namespace prefix */
+    const char **atts;           /* name, value, ..., NULL (as expat gave them) */
+    const char *id, *cls;        /* the id and class attributes, or NULL */
+    unsigned long line;          /* of the start tag */
+    struct svg_node *parent, *first, *last, *next;
+    char *text;                  /* character data, kept for <style> only */
+    size_t text_len;
+    bool active;                 /* being drawn through a use chain */
+    bool foreign;                /* a prefix other than svg: (editor data) */
+} svg_node;
+
+/* ---- style sheets (svg_css.c) ----------------------------------------- */
+
+#define SVG_CSS_MAX_COMPOUNDS 8
+#define SVG_CSS_MAX_CLASSES 8
+/* Matching steps for one document: beyond this it is refused. */
+#define SVG_CSS_MAX_WORK 20000000L
+
+typedef struct svg_css_compound {
+    char *type, *id;             /* NULL: any */
+    char *classes[SVG_CSS_MAX_CLASSES];
+    int n_classes;
+    char combinator;             /* to the compound on its left: ' ' or '>' */
+} svg_css_compound;
+
+typedef struct svg_css_selector {
+    svg_css_compound parts[SVG_CSS_MAX_COMPOUNDS]; /* left to right */
+    int n;
+    long specificity;            /* ids * 10000 + classes * 100 + types */
+} svg_css_selector;
+
+typedef struct svg_css_decl {
+    char *name, *value;
+    bool important;
+} svg_css_decl;
+
+typedef struct svg_css_rule {
+    svg_css_selector selector;
+    svg_css_decl *decls;
+    int n_decls;
+    int order;                   /* in the document, for equal specificity */
+} svg_css_rule;
+
+typedef struct svg_css_sheet {
+    svg_css_rule *rules;
+    int n_rules;
+} svg_css_sheet;
+
+/* Add the rules of a style sheet's text; *unsupported counts selectors
+ * and at-rules skipped.  False: out of memory. */
+bool svg_css_parse(svg_css_sheet *sheet, const char *text, int *unsupported);
+/* Append the declarations "name: value [!important]; ..." of s..e (a
+ * style attribute or a rule's block) to rule.  False: out of memory. */
+bool svg_css_parse_decls(const char *s, const char *e, svg_css_rule *rule);
+/* Whether the selector matches the element; *work counts the steps. */
+bool svg_css_matches(const svg_css_selector *sel, const svg_node *node, long *work);
+void svg_css_free_rule(svg_css_rule *rule);
+void svg_css_free(svg_css_sheet *sheet);
+
+/* ---- gradients (svg_gradient.c) --------------------------------------- */
+
+#define SVG_MAX_STOPS 256
+
+typedef enum svg_spread { SVG_SPREAD_PAD, SVG_SPREAD_REFLECT, SVG_SPREAD_REPEAT } svg_spread;
+
+/* A gradient resolved for one shape: its geometry in gradient space and
+ * the map from pixel coordinates into that space. */
+typedef struct svg_gradient {
+    bool radial;
+    double x1, y1, x2, y2;       /* linear: the gradient vector */
+    double cx, cy, r, fx, fy, fr;/* radial: end circle, focal circle */
+    svg_spread spread;
+    double inv[6];               /* pixel -> gradient space (a b c d e f) */
+    int n_stops;                 /* >= 1 */
+    double offset[SVG_MAX_STOPS];/* non-decreasing, in [0, 1] */
+    sr_rgba color[SVG_MAX_STOPS];/* straight alpha, opacity included */
+} svg_gradient;
+
+/* The gradient's color at the pixel coordinates (x, y). */
+sr_rgba svg_gradient_at(const svg_gradient *g, double x, double y);
+
+/* Source-over of a straight-alpha color with coverage (0..1) onto an RGBA8
+ * pixel, as the 2D fills blend (the color quantized to RGBA8 first). */
+void svg_blend(uint8_t *d, sr_rgba c, float cov);
+
+/* Fill a polygon in pixel coordinates with the gradient times opacity:
+ * the coverage is sr_polygon_coverage's (the same pixels and weights as
+ * sr_fill_polygon with that desc), the paint is applied after it and
+ * blended source-over as the fills blend. */
+sr_result svg_fill_gradient(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                            const sr_fill_desc *desc, const svg_gradient *g, float opacity);
 
 #endif

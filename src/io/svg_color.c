@@ -1,10 +1,11 @@
-/* svg_color.c - the SVG reader (src/io): SVG 1.1 colors (section 4.4): the
- * 147 recognized color keywords, #rgb, #rrggbb and rgb() with integers or
- * percentages.  Pure parsing; used by svg.c. */
+/* svg_color.c - the SVG reader (src/io): CSS colors (CSS Color 3 and the
+ * blank-separated forms of level 4): the 147 keywords, transparent, hex with
+ * or without alpha, rgb()/rgba(), hsl()/hsla().  Pure parsing; used by svg.c. */
 #include "io/svg.h"
 #include "io/number.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -75,29 +76,93 @@ static sr_rgba rgb24(unsigned v)
                       1.0f };
 }
 
-/* One rgb() component: an integer 0..255 or a percentage, clamped. */
-static bool rgb_component(const char **s, float *out)
+/* One number of a color function, with '%' noted; blanks skipped after. */
+static bool color_number(const char **s, double *v, bool *pct)
 {
     while (isspace((unsigned char)**s)) {
         (*s)++;
     }
     const char *e = *s + strlen(*s);
     size_t n = sr__scan_decimal(*s, e);
-    double v;
-    /* 1e999 overflows to infinity, clamped below like any large value. */
-    if (n == 0 || sr__parse_double(*s, *s + n, &v) == SR_NUM_MALFORMED) {
+    /* 1e999 overflows to infinity, clamped later like any large value. */
+    if (n == 0 || sr__parse_double(*s, *s + n, v) == SR_NUM_MALFORMED) {
         return false;
     }
     *s += n;
-    if (**s == '%') {
+    *pct = **s == '%';
+    if (*pct) {
         (*s)++;
-        v = v * 255.0 / 100.0;
+    } else if (strncasecmp(*s, "deg", 3) == 0) { /* hue units: deg only */
+        *s += 3;
     }
-    v = v < 0 ? 0 : v > 255 ? 255 : v;
-    *out = (float)(v / 255.0);
     while (isspace((unsigned char)**s)) {
         (*s)++;
     }
+    return true;
+}
+
+static float clamp_unit(double v)
+{
+    return (float)(v < 0 ? 0 : v > 1 ? 1 : v);
+}
+
+/* HSL to RGB (CSS Color 3). */
+static float hue_channel(double m1, double m2, double h)
+{
+    h -= floor(h);
+    if (h * 6 < 1) {
+        return (float)(m1 + (m2 - m1) * h * 6);
+    }
+    if (h * 2 < 1) {
+        return (float)m2;
+    }
+    if (h * 3 < 2) {
+        return (float)(m1 + (m2 - m1) * (2.0 / 3 - h) * 6);
+    }
+    return (float)m1;
+}
+
+/* rgb(), rgba(), hsl(), hsla() after the '(' : three numbers and an
+ * optional alpha, separated by commas, or by blanks with '/' before alpha. */
+static bool color_function(const char *p, bool hsl, sr_rgba *out)
+{
+    double v[4] = { 0, 0, 0, 1 };
+    bool pct[4] = { false, false, false, false };
+    int n = 0;
+    bool commas = false;
+    for (;;) {
+        if (n == 4 || !color_number(&p, &v[n], &pct[n])) {
+            return false;
+        }
+        n++;
+        if (*p == ')') {
+            break;
+        }
+        if (*p == ',' && (n == 1 || commas)) {
+            commas = true;
+            p++;
+        } else if (*p == '/' && !commas && n == 3) {
+            p++;
+        } else if (commas || n >= 3) {
+            return false;
+        }
+    }
+    if ((n != 3 && n != 4) || p[1] != 0) {
+        return false;
+    }
+    float a = clamp_unit(pct[3] ? v[3] / 100 : v[3]);
+    if (hsl) {
+        double h = v[0] / 360, sat = clamp_unit(v[1] / 100), l = clamp_unit(v[2] / 100);
+        double m2 = l <= 0.5 ? l * (sat + 1) : l + sat - l * sat, m1 = l * 2 - m2;
+        *out = (sr_rgba){ hue_channel(m1, m2, h + 1.0 / 3), hue_channel(m1, m2, h),
+                          hue_channel(m1, m2, h - 1.0 / 3), a };
+        return true;
+    }
+    float c[3];
+    for (int i = 0; i < 3; i++) {
+        c[i] = clamp_unit(pct[i] ? v[i] / 100 : v[i] / 255);
+    }
+    *out = (sr_rgba){ c[0], c[1], c[2], a };
     return true;
 }
 
@@ -110,7 +175,10 @@ svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
     while (n > 0 && isspace((unsigned char)s[n - 1])) {
         n--;
     }
-    char buf[64];
+    if (n >= 4 && strncasecmp(s, "url(", 4) == 0) {
+        return SVG_PAINT_URL;
+    }
+    char buf[96];
     if (n == 0 || n >= sizeof buf) {
         return SVG_PAINT_INVALID;
     }
@@ -119,43 +187,46 @@ svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
     if (strcasecmp(buf, "none") == 0) {
         return SVG_PAINT_NONE;
     }
+    if (strcasecmp(buf, "currentColor") == 0) {
+        return SVG_PAINT_CURRENT;
+    }
+    if (strcasecmp(buf, "transparent") == 0) {
+        *out = (sr_rgba){ 0, 0, 0, 0 };
+        return SVG_PAINT_COLOR;
+    }
     if (buf[0] == '#') {
+        unsigned d[8];
+        if (n != 4 && n != 5 && n != 7 && n != 9) {
+            return SVG_PAINT_INVALID;
+        }
         for (size_t i = 1; i < n; i++) {
             if (!isxdigit((unsigned char)buf[i])) {
                 return SVG_PAINT_INVALID;
             }
+            d[i - 1] = (unsigned)(isdigit((unsigned char)buf[i]) ? buf[i] - '0'
+                                                                 : (tolower((unsigned char)buf[i]) - 'a' + 10));
         }
-        unsigned v = (unsigned)strtoul(buf + 1, NULL, 16);
-        if (n == 4) {
-            unsigned r = (v >> 8) & 15, g = (v >> 4) & 15, b = v & 15;
-            *out = rgb24((r * 17) << 16 | (g * 17) << 8 | (b * 17));
-            return SVG_PAINT_COLOR;
-        }
-        if (n == 7) {
-            *out = rgb24(v);
-            return SVG_PAINT_COLOR;
-        }
-        return SVG_PAINT_INVALID;
-    }
-    if (strncasecmp(buf, "rgb(", 4) == 0) {
-        const char *p = buf + 4;
-        float c[3];
-        for (int i = 0; i < 3; i++) {
-            if (!rgb_component(&p, &c[i])) {
-                return SVG_PAINT_INVALID;
+        float c[4] = { 0, 0, 0, 1 };
+        if (n == 4 || n == 5) { /* #rgb, #rgba */
+            for (size_t i = 0; i + 1 < n; i++) {
+                c[i] = (float)(d[i] * 17) / 255.0f;
             }
-            if (i < 2 && *p++ != ',') {
-                return SVG_PAINT_INVALID;
+        } else { /* #rrggbb, #rrggbbaa */
+            for (size_t i = 0; 2 * i + 1 < n; i++) {
+                c[i] = (float)(d[2 * i] * 16 + d[2 * i + 1]) / 255.0f;
             }
         }
-        if (*p != ')' || p[1] != 0) {
-            return SVG_PAINT_INVALID;
-        }
-        *out = (sr_rgba){ c[0], c[1], c[2], 1.0f };
+        *out = (sr_rgba){ c[0], c[1], c[2], c[3] };
         return SVG_PAINT_COLOR;
     }
-    if (strncasecmp(buf, "url(", 4) == 0 || strcasecmp(buf, "currentColor") == 0) {
-        return SVG_PAINT_UNSUPPORTED;
+    static const struct { const char *prefix; bool hsl; } fns[] = {
+        { "rgb(", false }, { "rgba(", false }, { "hsl(", true }, { "hsla(", true },
+    };
+    for (size_t i = 0; i < sizeof fns / sizeof fns[0]; i++) {
+        size_t k = strlen(fns[i].prefix);
+        if (strncasecmp(buf, fns[i].prefix, k) == 0) {
+            return color_function(buf + k, fns[i].hsl, out) ? SVG_PAINT_COLOR : SVG_PAINT_INVALID;
+        }
     }
     const named_color *nc = bsearch(buf, svg_named, sizeof svg_named / sizeof svg_named[0],
                                     sizeof svg_named[0], cmp_name);

@@ -1,0 +1,109 @@
+/* explain.h - `softrast explain`: one primitive through one algorithm,
+ * step by step.  Each algorithm (explain_*.c) draws its steps as frames on
+ * a canvas: the primitive's pixel grid magnified `zoom` times, with sample
+ * points, edges and marks over it and a caption below, all drawn by the
+ * library (cells and marks as polygons, captions with sr_draw_text).  The
+ * last frame of every algorithm shows, cell for cell, the pixels the
+ * library draws for the primitive. */
+#ifndef SR_EXPLAIN_H
+#define SR_EXPLAIN_H
+
+#include "softrast.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define EX_MARGIN 16      /* frame pixels around the grid: its top-left corner */
+#define EX_MAX_POINTS 64  /* vertices of a --polygon */
+#define EX_MAX_FRAME_BYTES ((size_t)1 << 30)  /* all frames are kept for the sheet */
+
+/* The primitive the user gave (window coordinates, pixels, y down). */
+typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE } ex_kind;
+
+typedef struct ex_primitive {
+    ex_kind kind;
+    sr_point2 pts[EX_MAX_POINTS];
+    int count;
+    sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
+    double window[4];       /* clip: xmin, ymin, xmax, ymax */
+    int samples;            /* msaa: samples per pixel */
+} ex_primitive;
+
+/* The frames drawn so far (RGBA8, all the same size) and the canvas the
+ * next one is drawn on. */
+typedef struct ex_canvas {
+    sr_context *ctx;
+    sr_framebuffer *fb;
+    int grid_w, grid_h, zoom;
+    int width, height;
+    int text_scale, caption_y, caption_lines;
+    uint8_t **frames;
+    int frame_count, frame_cap;
+    size_t kept_bytes;        /* of all the frames, at most EX_MAX_FRAME_BYTES */
+    bool too_many;            /* ex_end refused a frame over that limit */
+    sr_result error;          /* the first failure; later calls do nothing */
+} ex_canvas;
+
+/* The course's colours, shared so every algorithm reads the same way. */
+extern const sr_rgba EX_BG, EX_GRID, EX_INK, EX_CELL_OUT, EX_CELL_IN, EX_TIE,
+    EX_EDGE, EX_HILITE, EX_TEXT, EX_BAD;
+
+/* A canvas for frames of grid_w x grid_h cells of zoom x zoom frame
+ * pixels, with room for caption_lines lines of caption under them. */
+sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, int zoom,
+                         int caption_lines);
+void ex_canvas_free(ex_canvas *c);
+
+/* Start a frame: background, empty cells, grid lines. */
+void ex_begin(ex_canvas *c);
+void ex_cell(ex_canvas *c, int x, int y, sr_rgba color);
+/* A small mark at the centre of cell (x, y): the sample point. */
+void ex_sample(ex_canvas *c, int x, int y, sr_rgba color);
+/* A ring around the sample point of cell (x, y). */
+void ex_ring(ex_canvas *c, int x, int y, sr_rgba color);
+/* A diagonal cross over cell (x, y). */
+void ex_cross(ex_canvas *c, int x, int y, sr_rgba color);
+/* Text centred in cell (x, y), only when it fits; whether it was drawn. */
+bool ex_cell_text(ex_canvas *c, int x, int y, const char *text, sr_rgba color);
+/* A segment or closed outline in grid coordinates (pixels). */
+void ex_segment(ex_canvas *c, sr_point2 a, sr_point2 b, sr_rgba color, double width);
+void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba color,
+                double width);
+void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color);
+/* A label beside a point in grid coordinates. */
+void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color);
+/* The caption under the grid, word-wrapped; then the frame is kept. */
+void ex_end(ex_canvas *c, const char *caption);
+
+/* The algorithms: each draws its frames; SR_OK or the first failure. */
+typedef sr_result (*ex_algorithm_fn)(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_scanline(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_msaa(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_clip(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
+/* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
+ * which the midpoint algorithm's integer decision variable needs. */
+bool ex_line_on_centres(const ex_primitive *prim);
+
+/* A triangle as the pipeline sets it up (explain_triangle.c). */
+typedef struct ex_tri {
+    int64_t x[3], y[3];     /* snapped, q8; ordered so that inside is E > 0 */
+    bool top_left[3];       /* edge i = vertex i -> vertex i+1 */
+    int64_t area2;
+} ex_tri;
+
+/* Snap and order; whether two vertices were swapped (clockwise given). */
+bool ex_tri_setup(ex_tri *t, const ex_primitive *prim);
+/* Edge function i at the point (sx, sy) in q8. */
+int64_t ex_tri_edge(const ex_tri *t, int i, int64_t sx, int64_t sy);
+/* Whether the point (sx, sy) in q8 is covered, ties by the top-left rule. */
+bool ex_tri_covers(const ex_tri *t, int64_t sx, int64_t sy);
+/* Outline, vertices and their names; edge `hilite` (or -1) stressed. */
+void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite);
+
+/* Snap to the 1/256-pixel grid the rasterizers use. */
+int64_t ex_snap(double v);
+
+#endif

@@ -1,0 +1,283 @@
+/* explain_canvas.c - the magnified pixel grid `softrast explain` draws its
+ * steps on (see explain.h): cells are aliased rectangles, marks and edges
+ * antialiased paths, captions the library's 5x7 font. */
+#include "explain.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MIN_TEXT_WIDTH 420  /* frame pixels: room for a caption line at scale 2 */
+
+const sr_rgba EX_BG = { 0.97f, 0.97f, 0.96f, 1 };
+const sr_rgba EX_GRID = { 0.72f, 0.74f, 0.78f, 1 };
+const sr_rgba EX_CELL_OUT = { 1, 1, 1, 1 };
+const sr_rgba EX_CELL_IN = { 0.55f, 0.80f, 0.55f, 1 };
+const sr_rgba EX_INK = { 0.20f, 0.45f, 0.85f, 1 };
+const sr_rgba EX_TIE = { 0.98f, 0.80f, 0.20f, 1 };
+const sr_rgba EX_EDGE = { 0.10f, 0.10f, 0.12f, 1 };
+const sr_rgba EX_HILITE = { 0.85f, 0.25f, 0.55f, 1 };
+const sr_rgba EX_TEXT = { 0.10f, 0.10f, 0.12f, 1 };
+const sr_rgba EX_BAD = { 0.85f, 0.15f, 0.10f, 1 };
+
+int64_t ex_snap(double v)
+{
+    return (int64_t)nearbyint(v * 256.0);
+}
+
+sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, int zoom,
+                         int caption_lines)
+{
+    *c = (ex_canvas){ .ctx = ctx, .grid_w = grid_w, .grid_h = grid_h, .zoom = zoom };
+    int gw = grid_w * zoom;
+    c->text_scale = gw >= MIN_TEXT_WIDTH ? 2 : 1;
+    c->width = 2 * EX_MARGIN + (gw > MIN_TEXT_WIDTH / 2 * c->text_scale
+                                    ? gw : MIN_TEXT_WIDTH / 2 * c->text_scale);
+    c->caption_y = EX_MARGIN + grid_h * zoom + EX_MARGIN;
+    c->caption_lines = caption_lines;
+    c->height = c->caption_y + caption_lines * 10 * c->text_scale + EX_MARGIN;
+    c->error = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = c->width,
+                                                                .height = c->height,
+                                                                .depth_format = SR_DEPTH_NONE },
+                                   &c->fb);
+    return c->error;
+}
+
+void ex_canvas_free(ex_canvas *c)
+{
+    for (int i = 0; i < c->frame_count; i++) {
+        free(c->frames[i]);
+    }
+    free(c->frames);
+    sr_destroy_framebuffer(c->ctx, c->fb);
+    *c = (ex_canvas){ 0 };
+}
+
+static void keep(ex_canvas *c, sr_result r)
+{
+    if (c->error == SR_OK) {
+        c->error = r;
+    }
+}
+
+/* An aliased rectangle in frame pixels (integer corners: exactly its
+ * pixels). */
+static void rect(ex_canvas *c, int x, int y, int w, int h, sr_rgba color)
+{
+    if (c->error != SR_OK) {
+        return;
+    }
+    sr_point2 p[4] = { { x, y }, { x + w, y }, { x + w, y + h }, { x, y + h } };
+    keep(c, sr_fill_polygon(c->ctx, c->fb, &(sr_polygon2){ p, 4, NULL, 0 }, color, NULL));
+}
+
+static sr_point2 to_frame(const ex_canvas *c, sr_point2 p)
+{
+    return (sr_point2){ EX_MARGIN + p.x * c->zoom, EX_MARGIN + p.y * c->zoom };
+}
+
+void ex_begin(ex_canvas *c)
+{
+    if (c->error != SR_OK) {
+        return;
+    }
+    keep(c, sr_clear(c->ctx, c->fb, &(sr_clear_desc){ .color = { EX_BG.r, EX_BG.g, EX_BG.b, 1 } }));
+    for (int y = 0; y < c->grid_h; y++) {
+        for (int x = 0; x < c->grid_w; x++) {
+            ex_cell(c, x, y, EX_CELL_OUT);
+        }
+    }
+}
+
+void ex_cell(ex_canvas *c, int x, int y, sr_rgba color)
+{
+    /* the cell without its one-pixel grid line on the top and left, which
+     * the background shows through (and one past the last row/column) */
+    int line = c->zoom >= 6 ? 1 : 0;
+    rect(c, EX_MARGIN + x * c->zoom + line, EX_MARGIN + y * c->zoom + line, c->zoom - line,
+         c->zoom - line, color);
+    if (line && x == c->grid_w - 1) {
+        rect(c, EX_MARGIN + (x + 1) * c->zoom, EX_MARGIN + y * c->zoom, 1, c->zoom + 1, EX_GRID);
+    }
+    if (line && y == c->grid_h - 1) {
+        rect(c, EX_MARGIN + x * c->zoom, EX_MARGIN + (y + 1) * c->zoom, c->zoom + 1, 1, EX_GRID);
+    }
+    if (line) {
+        rect(c, EX_MARGIN + x * c->zoom, EX_MARGIN + y * c->zoom, c->zoom, 1, EX_GRID);
+        rect(c, EX_MARGIN + x * c->zoom, EX_MARGIN + y * c->zoom, 1, c->zoom, EX_GRID);
+    }
+}
+
+static void path_fill(ex_canvas *c, sr_path *path, sr_rgba color)
+{
+    keep(c, sr_fill_path(c->ctx, c->fb, path, color, &(sr_fill_desc){ .antialias = SR_AA_AREA }));
+}
+
+static void circle(ex_canvas *c, sr_point2 q, double r, sr_rgba color, double ring)
+{
+    sr_path *path = NULL;
+    if (c->error != SR_OK || (c->error = sr_make_path(c->ctx, 0.05, &path)) != SR_OK) {
+        return;
+    }
+    sr_path_move_to(path, q.x - r, q.y);
+    sr_path_arc_to(path, r, r, 0, false, true, q.x + r, q.y);
+    sr_path_arc_to(path, r, r, 0, false, true, q.x - r, q.y);
+    sr_path_close(path);
+    if (ring > 0) {
+        keep(c, sr_stroke_path(c->ctx, c->fb, path, color,
+                               &(sr_stroke_desc){ .width = ring, .antialias = SR_AA_SUPERSAMPLE,
+                                                  .samples = 4 }));
+    } else {
+        path_fill(c, path, color);
+    }
+    sr_destroy_path(c->ctx, path);
+}
+
+static sr_point2 cell_centre(const ex_canvas *c, int x, int y)
+{
+    return to_frame(c, (sr_point2){ x + 0.5, y + 0.5 });
+}
+
+void ex_sample(ex_canvas *c, int x, int y, sr_rgba color)
+{
+    circle(c, cell_centre(c, x, y), c->zoom >= 16 ? 2.5 : 1.2, color, 0);
+}
+
+void ex_ring(ex_canvas *c, int x, int y, sr_rgba color)
+{
+    circle(c, cell_centre(c, x, y), c->zoom * 0.32, color, c->zoom >= 16 ? 2.5 : 1.5);
+}
+
+void ex_cross(ex_canvas *c, int x, int y, sr_rgba color)
+{
+    double k = 0.22;
+    ex_segment(c, (sr_point2){ x + k, y + k }, (sr_point2){ x + 1 - k, y + 1 - k }, color, 2.5);
+    ex_segment(c, (sr_point2){ x + 1 - k, y + k }, (sr_point2){ x + k, y + 1 - k }, color, 2.5);
+}
+
+bool ex_cell_text(ex_canvas *c, int x, int y, const char *text, sr_rgba color)
+{
+    int w = sr_text_width(text, 1);
+    if (w > c->zoom - 3 || c->zoom < 20 || c->error != SR_OK) {
+        return false;
+    }
+    int px = EX_MARGIN + x * c->zoom + (c->zoom - w + 1) / 2;
+    int py = EX_MARGIN + y * c->zoom + c->zoom - 9;   /* under the sample point */
+    keep(c, sr_draw_text(c->ctx, c->fb, px, py, 1, text, color));
+    return true;
+}
+
+void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba color,
+                double width)
+{
+    sr_path *path = NULL;
+    if (n < 2 || c->error != SR_OK || (c->error = sr_make_path(c->ctx, 0.05, &path)) != SR_OK) {
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        sr_point2 q = to_frame(c, pts[i]);
+        if (i == 0) {
+            sr_path_move_to(path, q.x, q.y);
+        } else {
+            sr_path_line_to(path, q.x, q.y);
+        }
+    }
+    if (closed) {
+        sr_path_close(path);
+    }
+    keep(c, sr_stroke_path(c->ctx, c->fb, path, color,
+                           &(sr_stroke_desc){ .width = width, .join = SR_STROKE_JOIN_ROUND,
+                                              .cap = SR_STROKE_CAP_ROUND,
+                                              .antialias = SR_AA_SUPERSAMPLE, .samples = 4 }));
+    sr_destroy_path(c->ctx, path);
+}
+
+void ex_segment(ex_canvas *c, sr_point2 a, sr_point2 b, sr_rgba color, double width)
+{
+    ex_outline(c, (sr_point2[2]){ a, b }, 2, false, color, width);
+}
+
+void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color)
+{
+    circle(c, to_frame(c, p), radius, color, 0);
+}
+
+void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color)
+{
+    if (c->error != SR_OK) {
+        return;
+    }
+    sr_point2 q = to_frame(c, p);
+    int s = c->text_scale;
+    int x = (int)q.x + 5, y = (int)q.y - 8 * s - 3;
+    /* kept inside the frame */
+    int w = sr_text_width(text, s);
+    x = x + w > c->width - 2 ? c->width - 2 - w : x;
+    x = x < 2 ? 2 : x;
+    y = y < 2 ? 2 : y;
+    keep(c, sr_draw_text(c->ctx, c->fb, x, y, s, text, color));
+}
+
+/* Draw `text` wrapped at spaces (and at '\n') into the caption lines. */
+static void caption(ex_canvas *c, const char *text)
+{
+    int s = c->text_scale;
+    int max_chars = (c->width - 2 * EX_MARGIN) / (6 * s);
+    int line = 0;
+    const char *p = text;
+    while (*p && line < c->caption_lines && c->error == SR_OK) {
+        int n = 0, cut = -1;
+        while (p[n] && p[n] != '\n' && n < max_chars) {
+            if (p[n] == ' ') {
+                cut = n;
+            }
+            n++;
+        }
+        if (p[n] && p[n] != '\n' && p[n] != ' ' && cut > 0) {
+            n = cut;   /* break at the last space that fits */
+        }
+        char buf[256];
+        int k = n < (int)sizeof buf - 1 ? n : (int)sizeof buf - 1;
+        memcpy(buf, p, (size_t)k);
+        buf[k] = 0;
+        keep(c, sr_draw_text(c->ctx, c->fb, EX_MARGIN, c->caption_y + line * 10 * s, s, buf,
+                             EX_TEXT));
+        p += n;
+        while (*p == ' ' || *p == '\n') {
+            p++;
+        }
+        line++;
+    }
+}
+
+void ex_end(ex_canvas *c, const char *text)
+{
+    caption(c, text);
+    if (c->error != SR_OK) {
+        return;
+    }
+    if (c->frame_count == c->frame_cap) {
+        int cap = c->frame_cap ? c->frame_cap * 2 : 16;
+        uint8_t **f = realloc(c->frames, sizeof *f * (size_t)cap);
+        if (!f) {
+            c->error = SR_OUT_OF_MEMORY;
+            return;
+        }
+        c->frames = f;
+        c->frame_cap = cap;
+    }
+    size_t size = (size_t)c->width * (size_t)c->height * 4;
+    if (c->kept_bytes + size > EX_MAX_FRAME_BYTES) {
+        c->too_many = true;
+        c->error = SR_TOO_LARGE;
+        return;
+    }
+    c->kept_bytes += size;
+    uint8_t *px = malloc(size);
+    if (!px) {
+        c->error = SR_OUT_OF_MEMORY;
+        return;
+    }
+    memcpy(px, sr_framebuffer_pixels(c->fb), size);
+    c->frames[c->frame_count++] = px;
+}

@@ -1,0 +1,414 @@
+/* test_explain.c - `softrast explain`: every algorithm's last frame shows,
+ * cell for cell, the pixels the library draws for the same primitive at
+ * 1x.  The frames are read back as PNGs; a cell counts as drawn when any
+ * of its pixels is the frame's fill blue: the edges, marks and labels
+ * drawn over the cells are black or grey, and blended over white they stay
+ * grey, so blue shows only where a cell was filled. */
+#include "raster_util.h"
+#include "softrast_io.h"
+#include "sr_test.h"
+
+#include <stdio.h>
+#include <sys/stat.h>
+
+#define ZOOM 8
+#define MARGIN 16   /* the grid's top-left corner in a frame (docs/explain.md) */
+#define GRID 16
+#ifdef SR_CLI_PATH
+#define NEEDS_CLI() (void)0
+#else
+#define NEEDS_CLI() SKIP("the softrast tool is not part of this build")
+#endif
+#define FAILF(...) sr_test_fail(__FILE__, __LINE__, __VA_ARGS__)
+
+static bool is_fill_blue(const uint8_t *p)
+{
+    return p[2] > p[0] + 100 && p[2] > p[1] + 60;
+}
+
+/* The cells drawn in the last frame-NNN.png of dir; its number, or 0. */
+static int last_frame_cells(const char *dir, uint8_t *cells)
+{
+    char path[1200];
+    int last = 0;
+    for (int i = 1; i < 100; i++) {
+        struct stat st;
+        snprintf(path, sizeof path, "%s/frame-%03d.png", dir, i);
+        if (stat(path, &st) != 0) {
+            break;
+        }
+        last = i;
+    }
+    if (last == 0) {
+        return 0;
+    }
+    snprintf(path, sizeof path, "%s/frame-%03d.png", dir, last);
+    int w, h;
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(path, NULL, &w, &h, &px, &err) != SR_OK) {
+        FAILF("%s", err.message);
+        return 0;
+    }
+    for (int cy = 0; cy < GRID; cy++) {
+        for (int cx = 0; cx < GRID; cx++) {
+            int blue = 0;
+            for (int y = 1; y < ZOOM; y++) {
+                for (int x = 1; x < ZOOM; x++) {
+                    int fx = MARGIN + cx * ZOOM + x, fy = MARGIN + cy * ZOOM + y;
+                    blue += fx < w && fy < h && is_fill_blue(px + ((size_t)fy * w + fx) * 4);
+                }
+            }
+            cells[cy * GRID + cx] = blue > 0;
+        }
+    }
+    free(px);
+    return last;
+}
+
+/* The covered samples of each cell of the last frame of `dir` (an
+ * msaa explanation with n samples): the cell's commonest colour is the
+ * fill blue over white in k/n, as the resolve rounds it. */
+static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/frame-003.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    if (sr_read_png(path, NULL, &w, &h, &px, NULL) != SR_OK) {
+        FAILF("cannot read %s", path);
+        return false;
+    }
+    for (int cy = 0; cy < GRID; cy++) {
+        for (int cx = 0; cx < GRID; cx++) {
+            int hist[256] = { 0 }, best = 0;
+            for (int y = 1; y < ZOOM; y++) {   /* inside the grid lines */
+                for (int x = 1; x < ZOOM; x++) {
+                    hist[px[((size_t)(MARGIN + cy * ZOOM + y) * w + MARGIN + cx * ZOOM + x) * 4]]++;
+                }
+            }
+            for (int r = 1; r < 256; r++) {
+                best = hist[r] > hist[best] ? r : best;
+            }
+            k_out[cy * GRID + cx] = (uint8_t)lround((255.0 - best) * n / (255.0 - 51.0));
+        }
+    }
+    free(px);
+    return true;
+}
+
+static int run_explain_rule(const char *algorithm, const char *prim_opt, const char *prim,
+                            const char *rule, const char *dir)
+{
+    char grid[16], zoom[8];
+    snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+    snprintf(zoom, sizeof zoom, "%d", ZOOM);
+    const char *args[] = { "explain", algorithm, prim_opt, prim, "--grid", grid, "--zoom", zoom,
+                           "-o", dir, rule ? "--fill-rule" : NULL, rule, NULL };
+    return sr_test_run_cli(args);
+}
+
+static int run_explain(const char *algorithm, const char *prim_opt, const char *prim,
+                       const char *dir)
+{
+    return run_explain_rule(algorithm, prim_opt, prim, NULL, dir);
+}
+
+/* Count the cells that differ from want; report them once. */
+static int compare_cells(const uint8_t *cells, const uint8_t *want, const char *what)
+{
+    int diff = 0;
+    for (int i = 0; i < GRID * GRID; i++) {
+        diff += cells[i] != want[i];
+    }
+    if (diff) {
+        FAILF("%s: %d cells differ", what, diff);
+    }
+    return diff;
+}
+
+static const char *out_dir(const char *name, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s/explain_%s", sr_test_out_dir(), name);
+    mkdir(buf, 0777);
+    return buf;
+}
+
+SR_TEST(triangle_last_frame_is_what_sr_draw_covers)
+{
+    NEEDS_CLI();
+    /* the example (ties on a top, a left and a right edge), then random
+     * triangles of either winding with vertices on the half-pixel grid,
+     * so that many pixel centres fall exactly on edges */
+    sr_rng rng = { 39 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0;
+    for (int k = 0; k < 24; k++) {
+        double v[6] = { 2.5, 1.5, 12.5, 1.5, 4.5, 11.5 };
+        if (k > 0) {
+            for (int i = 0; i < 6; i++) {
+                v[i] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5 + (k % 3 == 0 ? 0.125 : 0);
+            }
+        }
+        char prim[256], dir[1024], name[32];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
+        snprintf(name, sizeof name, "triangle_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("triangle", "--triangle", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        for (int r = SR_RASTER_HALFSPACE; r <= SR_RASTER_BARYCENTRIC; r++) {
+            rt_clear(&t);
+            REQUIRE(rt_draw_tris(&t, v, 1, NULL, (sr_rasterizer)r) == SR_OK);
+            rt_mask(&t, want);
+            for (int i = 0; i < GRID * GRID; i++) {
+                drawn_total += r == SR_RASTER_HALFSPACE && want[i];
+            }
+            char what[300];
+            snprintf(what, sizeof what, "triangle %s, rasterizer %d", prim, r);
+            compare_cells(cells, want, what);
+        }
+    }
+    CHECK(drawn_total > 500);   /* the triangles do cover pixels */
+    rt_free(&t);
+}
+
+SR_TEST(scanline_last_frame_is_what_sr_fill_polygon_fills)
+{
+    NEEDS_CLI();
+    /* the example (a horizontal edge, a vertex on a sample height, a
+     * notch), then random polygons, self-intersecting ones too, with
+     * vertices on the half-pixel grid so crossings fall on pixel centres
+     * and vertices on sample heights; under both fill rules */
+    sr_rng rng = { 3939 };
+    int drawn_total = 0;
+    for (int k = 0; k < 24; k++) {
+        sr_point2 v[8] = { { 1.3, 1.4 }, { 7.0, 4.5 }, { 13.7, 1.4 }, { 10.5, 10.5 },
+                           { 3.5, 10.5 }, { 1.3, 6.5 } };
+        int n = 6;
+        if (k > 1) {
+            n = sr_rng_int(&rng, 3, 8);
+            for (int i = 0; i < n; i++) {
+                v[i].x = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5 + (k % 4 == 0 ? 0.3 : 0);
+                v[i].y = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            }
+        }
+        char prim[512] = "", dir[1024], name[32];
+        for (int i = 0; i < n; i++) {
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g", i ? "," : "", v[i].x, v[i].y);
+        }
+        sr_fill_rule rule = k % 2 ? SR_NONZERO : SR_EVENODD;
+        snprintf(name, sizeof name, "scanline_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_rule("scanline", "--polygon", prim,
+                                 rule == SR_EVENODD ? "evenodd" : "nonzero", dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        REQUIRE(sr_polygon_coverage(sr_test_ctx(), &(sr_polygon2){ v, n, NULL, 0 },
+                                    &(sr_fill_desc){ .rule = rule }, 0, 0, GRID, GRID, want,
+                                    GRID) == SR_OK);
+        for (int i = 0; i < GRID * GRID; i++) {
+            want[i] = want[i] != 0;
+            drawn_total += want[i];
+        }
+        char what[600];
+        snprintf(what, sizeof what, "polygon %s, %s", prim,
+                 rule == SR_EVENODD ? "even-odd" : "nonzero");
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 500);
+}
+
+SR_TEST(clip_last_frame_is_the_fill_of_the_clipped_polygon)
+{
+    NEEDS_CLI();
+    /* random polygons against integer windows: no pixel centre is on the
+     * window's border, so the clipped polygon fills exactly the pixels of
+     * the whole polygon whose centres are inside the window */
+    sr_rng rng = { 3940 };
+    int drawn_total = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 v[8];
+        int n = sr_rng_int(&rng, 3, 8);
+        for (int i = 0; i < n; i++) {
+            v[i].x = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0 + 0.3;
+            v[i].y = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0 + 0.3;
+        }
+        int w[4] = { sr_rng_int(&rng, 0, 6), sr_rng_int(&rng, 0, 6), sr_rng_int(&rng, 9, GRID),
+                     sr_rng_int(&rng, 9, GRID) };
+        char prim[512] = "", win[64], dir[1024], name[32], grid[16], zoom[8];
+        for (int i = 0; i < n; i++) {
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g", i ? "," : "", v[i].x, v[i].y);
+        }
+        snprintf(win, sizeof win, "%d,%d,%d,%d", w[0], w[1], w[2], w[3]);
+        snprintf(name, sizeof name, "clip_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        snprintf(zoom, sizeof zoom, "%d", ZOOM);
+        sr_fill_rule rule = k % 2 ? SR_NONZERO : SR_EVENODD;
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip", "--polygon", prim,
+                                                  "--window", win, "--grid", grid, "--zoom",
+                                                  zoom, "--fill-rule",
+                                                  rule == SR_EVENODD ? "evenodd" : "nonzero",
+                                                  "-o", dir, NULL }) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        REQUIRE(sr_polygon_coverage(sr_test_ctx(), &(sr_polygon2){ v, n, NULL, 0 },
+                                    &(sr_fill_desc){ .rule = rule }, 0, 0, GRID, GRID, want,
+                                    GRID) == SR_OK);
+        for (int y = 0; y < GRID; y++) {
+            for (int x = 0; x < GRID; x++) {
+                bool in = x >= w[0] && x < w[2] && y >= w[1] && y < w[3];
+                want[y * GRID + x] = want[y * GRID + x] && in;
+                drawn_total += want[y * GRID + x];
+            }
+        }
+        char what[600];
+        snprintf(what, sizeof what, "polygon %s clipped to %s", prim, win);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 300);
+}
+
+SR_TEST(msaa_last_frame_is_what_a_multisampled_sr_draw_resolves)
+{
+    NEEDS_CLI();
+    sr_rng rng = { 4039 };
+    for (int k = 0; k < 16; k++) {
+        int n = 2 << (k % 4);
+        double v[6];
+        for (int i = 0; i < 6; i++) {
+            v[i] = sr_rng_int(&rng, -16, (GRID + 2) * 16) / 16.0;
+        }
+        char prim[256], dir[1024], name[32], grid[16], zoom[8], ns[8];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
+        snprintf(name, sizeof name, "msaa_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        snprintf(zoom, sizeof zoom, "%d", ZOOM);
+        snprintf(ns, sizeof ns, "%d", n);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "msaa", "--triangle", prim,
+                                                  "--samples", ns, "--grid", grid, "--zoom",
+                                                  zoom, "-o", dir, NULL }) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_samples(dir, n, cells));
+        rt_target t = { sr_test_ctx(), NULL, GRID, GRID };
+        REQUIRE(sr_make_framebuffer(t.ctx, &(sr_framebuffer_desc){ .width = GRID,
+                                                                   .height = GRID,
+                                                                   .samples = n },
+                                    &t.fb) == SR_OK);
+        rt_clear(&t);
+        REQUIRE(rt_draw_tris(&t, v, 1, NULL, SR_RASTER_HALFSPACE) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int partial = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            want[i] = (uint8_t)lround(px[i * 4] * n / 255.0);
+            partial += want[i] > 0 && want[i] < n;
+        }
+        sr_destroy_framebuffer(t.ctx, t.fb);
+        char what[300];
+        snprintf(what, sizeof what, "msaa %d, triangle %s", n, prim);
+        compare_cells(cells, want, what);
+        CHECK(partial > 0 || want[0] == want[GRID * GRID - 1]);
+    }
+}
+
+/* Lines in every octant: k = 0 is the algorithm's example. */
+static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
+{
+    sr_rng rng = { alg * 77u };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0;
+    for (int k = 0; k < 24; k++) {
+        double v[4];
+        for (int i = 0; i < 4; i++) {
+            v[i] = centres ? sr_rng_int(&rng, -2, GRID + 1) + 0.5
+                           : sr_rng_int(&rng, -16, (GRID + 4) * 8) / 8.0;
+        }
+        char prim[128], dir[1024], name[40];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g", v[0], v[1], v[2], v[3]);
+        snprintf(name, sizeof name, "%s_%02d", algorithm, k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain(algorithm, "--line", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        rt_clear(&t);
+        REQUIRE(sr_draw_line(t.ctx, t.fb, (sr_point2){ v[0], v[1] }, (sr_point2){ v[2], v[3] },
+                             (sr_rgba){ 1, 1, 1, 1 },
+                             &(sr_line_desc){ .algorithm = alg }) == SR_OK);
+        rt_mask(&t, want);
+        for (int i = 0; i < GRID * GRID; i++) {
+            drawn_total += want[i];
+        }
+        char what[200];
+        snprintf(what, sizeof what, "%s line %s", algorithm, prim);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 150);
+    rt_free(&t);
+}
+
+SR_TEST(bresenham_last_frame_is_what_sr_draw_line_draws)
+{
+    NEEDS_CLI();
+    check_lines("bresenham", SR_LINE_BRESENHAM, true);
+}
+
+SR_TEST(dda_last_frame_is_what_sr_draw_line_draws)
+{
+    NEEDS_CLI();
+    check_lines("dda", SR_LINE_DDA_INCREMENTAL, false);
+}
+
+SR_TEST(explain_refuses_bad_input)
+{
+    NEEDS_CLI();
+    char dir[1024];
+    out_dir("bad", dir, sizeof dir);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "nosuch", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", NULL }), 2);
+    CHECK_EQ(run_explain("triangle", "--triangle", "1,2,3,4,5", dir), 2);
+    CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain("bresenham", "--line", "1.5,2.5,7,3.5", dir), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "msaa", "--samples", "3", "-o", dir,
+                                               NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "clip", "--window", "5,1,2,8", "-o",
+                                               dir, NULL }), 2);
+    CHECK_EQ(run_explain_rule("scanline", "--polygon", "1,2,3,4,5,6", "odd", dir), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--zoom", "3", "-o", dir,
+                                               NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "a%s%d", NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
+}
+
+SR_TEST(sheet_holds_every_frame)
+{
+    NEEDS_CLI();
+    char dir[1024], sheet[1200];
+    out_dir("sheet", dir, sizeof dir);
+    snprintf(sheet, sizeof sheet, "%s/sheet.png", dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", dir, "--sheet", sheet,
+                                              NULL }) == 0);
+    int fw, fh, sw, sh;
+    uint8_t *f = NULL, *s = NULL;
+    char first[1200];
+    snprintf(first, sizeof first, "%s/frame-001.png", dir);
+    REQUIRE(sr_read_png(first, NULL, &fw, &fh, &f, NULL) == SR_OK);
+    REQUIRE(sr_read_png(sheet, NULL, &sw, &sh, &s, NULL) == SR_OK);
+    uint8_t cells[GRID * GRID];
+    int frames = last_frame_cells(dir, cells);
+    CHECK(frames >= 5);
+    /* three frames to a row; the first frame at (8, 8), byte for byte */
+    CHECK(sw > 3 * fw && sh > ((frames + 2) / 3) * fh);
+    int diff = 0;
+    for (int y = 0; y < fh && sw > fw + 8 && sh > fh + 8; y++) {
+        diff += memcmp(s + ((size_t)(y + 8) * sw + 8) * 4, f + (size_t)y * fw * 4,
+                       (size_t)fw * 4) != 0;
+    }
+    CHECK_EQ(diff, 0);
+    free(f);
+    free(s);
+}
