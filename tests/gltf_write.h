@@ -27,6 +27,23 @@ static inline void gltf_base64(const uint8_t *src, size_t n, char *dst)
 
 /* One quad of gltf_quads: the rectangle [x0, x1] x [y0, y1] at z = 0,
  * texture coordinates 0..1 across it, and the material it takes. */
+/* Copies count elements of `size` bytes from src, in the host's byte order,
+ * to dst in little-endian order: the byte order of glTF buffers, GLB
+ * chunks and binary STL, whatever machine runs the tests. */
+static inline void le_copy(void *dst, const void *src, size_t count, size_t size)
+{
+    const uint16_t one = 1;
+    uint8_t little;
+    memcpy(&little, &one, 1);
+    const uint8_t *s = src;
+    uint8_t *d = dst;
+    for (size_t i = 0; i < count; i++, s += size, d += size) {
+        for (size_t k = 0; k < size; k++) {
+            d[k] = little ? s[k] : s[size - 1 - k];
+        }
+    }
+}
+
 typedef struct gltf_quad {
     float x0, y0, x1, y1;
     int material;
@@ -54,10 +71,10 @@ static inline char *gltf_quads(const gltf_quad *quads, size_t n, const char *tai
         const gltf_quad *g = &quads[q];
         float pos[12] = { g->x0, g->y0, 0, g->x1, g->y0, 0, g->x1, g->y1, 0, g->x0, g->y1, 0 };
         float uv[8] = { 0, 1, 1, 1, 1, 0, 0, 0 };
-        memcpy(bin + 80 * q, pos, 48);
-        memcpy(bin + 80 * q + 48, uv, 32);
+        le_copy(bin + 80 * q, pos, 12, 4);
+        le_copy(bin + 80 * q + 48, uv, 8, 4);
     }
-    memcpy(bin + 80 * n, idx, 12);
+    le_copy(bin + 80 * n, idx, 6, 2);
     gltf_base64(bin, bin_len, b64);
     size_t at = (size_t)snprintf(json, cap,
                                  "{\"asset\":{\"version\":\"2.0\"},"

@@ -65,6 +65,14 @@ static sr_scene *load_doc(const void *bin, size_t n, const char *body, warnings 
 }
 
 static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+
+/* tri as a glTF buffer holds it (little-endian). */
+static const uint8_t *tri_le(void)
+{
+    static uint8_t b[sizeof tri];
+    le_copy(b, tri, 9, 4);
+    return b;
+}
 static const char tri_mesh[] =
     ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
     "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}],"
@@ -81,7 +89,7 @@ SR_TEST(node_hierarchy_composes_transforms_and_flags_mirroring)
              "\"scenes\":[{\"nodes\":[0,2]}],\"scene\":0",
              tri_mesh);
     warnings w = {0};
-    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
     REQUIRE(s->primitive_count == 2);
     const sr_scene_primitive *a = &s->primitives[0], *b = &s->primitives[1];
@@ -121,7 +129,7 @@ SR_TEST(the_scene_property_picks_the_scene_drawn)
              "\"scenes\":[{\"nodes\":[0]},{\"nodes\":[1]}],\"scene\":1",
              tri_mesh);
     warnings w = {0};
-    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
     REQUIRE(s->primitive_count == 1);
     CHECK_EQ(s->primitives[0].node, 1);
@@ -131,7 +139,7 @@ SR_TEST(the_scene_property_picks_the_scene_drawn)
     snprintf(body, sizeof body,
              "%s,\"nodes\":[{\"mesh\":0.0,\"children\":[1]},{\"mesh\":0},{\"mesh\":0}]",
              tri_mesh);
-    s = load_doc(tri, sizeof tri, body, &w);
+    s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
     REQUIRE(s->primitive_count == 3);
     CHECK_EQ(s->primitives[0].node, 0);
@@ -148,11 +156,11 @@ SR_TEST(quantized_and_normalized_attributes_are_decoded)
     uint8_t uv0[12] = { 255, 0, 0, 0, 0, 255, 0, 0, 51, 102, 0, 0 };
     uint8_t col[12] = { 255, 0, 0, 0, 0, 255, 0, 0, 0, 0, 255, 0 };
     int16_t uv1[6] = { 2, 0, 0, 3, 1, 1 };
-    memcpy(bin, pos, 24);
+    le_copy(bin, pos, 12, 2);
     memcpy(bin + 24, nrm, 12);
     memcpy(bin + 36, uv0, 12);
     memcpy(bin + 48, col, 12);
-    memcpy(bin + 60, uv1, 12);
+    le_copy(bin + 60, uv1, 6, 2);
     const char *body =
         ",\"extensionsUsed\":[\"KHR_mesh_quantization\"],"
         "\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
@@ -199,14 +207,14 @@ SR_TEST(quantized_and_normalized_attributes_are_decoded)
 SR_TEST(sparse_accessors_replace_elements_with_or_without_a_buffer_view)
 {
     uint8_t bin[64] = {0};
-    memcpy(bin, tri, 36);
+    memcpy(bin, tri_le(), 36);
     bin[36] = 2;                                     /* sparse index, UNSIGNED_BYTE */
     const float v[3] = { 5, 6, 7 };
-    memcpy(bin + 40, v, 12);
+    le_copy(bin + 40, v, 3, 4);
     const uint16_t uv_index = 1;
-    memcpy(bin + 52, &uv_index, 2);
+    le_copy(bin + 52, &uv_index, 1, 2);
     const float uv[2] = { 0.5f, 0.25f };
-    memcpy(bin + 56, uv, 8);
+    le_copy(bin + 56, uv, 2, 4);
     const char *body =
         ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},"
         "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":1},"
@@ -246,8 +254,10 @@ SR_TEST(strips_and_fans_become_triangles_and_points_are_skipped)
         "{\"attributes\":{\"POSITION\":0},\"mode\":6},"
         "{\"attributes\":{\"POSITION\":0},\"mode\":0}]}],"
         "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+    uint8_t bin[sizeof quad];
+    le_copy(bin, quad, 12, 4);
     warnings w = {0};
-    sr_scene *s = load_doc(quad, sizeof quad, body, &w);
+    sr_scene *s = load_doc(bin, sizeof bin, body, &w);
     REQUIRE(s);
     REQUIRE(s->primitive_count == 2);
     static const uint32_t strip[6] = { 0, 1, 2, 1, 3, 2 }, fan[6] = { 1, 2, 0, 2, 3, 0 };
@@ -300,7 +310,7 @@ SR_TEST(texture_transform_sampler_and_uv_set_reach_the_slot)
             "\"emissiveTexture\":{\"index\":1}}]",
             tri_mesh, b64);
     warnings w = {0};
-    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
     REQUIRE(s->material_count == 2);
     const sr_pbr_material *m = &s->materials[0];
@@ -364,7 +374,7 @@ SR_TEST(material_factors_and_extensions_are_read)
              "{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]%s",
              body);
     warnings w = {0};
-    sr_scene *s = load_doc(tri, sizeof tri, full, &w);
+    sr_scene *s = load_doc(tri_le(), sizeof tri, full, &w);
     REQUIRE(s);
     REQUIRE(s->material_count == 4);
     REQUIRE(s->primitive_count == 2);
@@ -407,7 +417,7 @@ SR_TEST(cameras_come_with_their_world_transforms_in_node_order)
              "{\"camera\":0,\"translation\":[3,0,0]}],\"scenes\":[{\"nodes\":[0]}]",
              tri_mesh);
     warnings w = {0};
-    sr_scene *s = load_doc(tri, sizeof tri, body, &w);
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
     REQUIRE(s->camera_count == 2);
     const sr_scene_camera *o = &s->cameras[0], *p = &s->cameras[1];
@@ -475,7 +485,7 @@ SR_TEST(external_buffers_and_images_are_read_beside_the_file)
     char dir[512], path[600];
     snprintf(dir, sizeof dir, "%s", sr_test_out_dir());
     snprintf(path, sizeof path, "%s/gltf ext.bin", dir);
-    write_file(path, tri, sizeof tri);
+    write_file(path, tri_le(), sizeof tri);
     wbuf png = small_png();
     snprintf(path, sizeof path, "%s/gltf tex.png", dir);
     write_file(path, png.p, png.n);
@@ -512,12 +522,16 @@ static wbuf glb(const char *json, const void *bin, size_t n)
     size_t jn = (strlen(json) + 3) & ~(size_t)3, bn = (n + 3) & ~(size_t)3;
     uint32_t head[3] = { 0x46546C67u, 2, (uint32_t)(12 + 8 + jn + (n ? 8 + bn : 0)) };
     uint32_t jc[2] = { (uint32_t)jn, 0x4E4F534Au }, bc[2] = { (uint32_t)bn, 0x004E4942u };
-    wb_put(&b, head, 12);
-    wb_put(&b, jc, 8);
+    uint8_t le[12];
+    le_copy(le, head, 3, 4);
+    wb_put(&b, le, 12);
+    le_copy(le, jc, 2, 4);
+    wb_put(&b, le, 8);
     wb_put(&b, json, strlen(json));
     wb_put(&b, "   ", jn - strlen(json));
     if (n) {
-        wb_put(&b, bc, 8);
+        le_copy(le, bc, 2, 4);
+        wb_put(&b, le, 8);
         wb_put(&b, bin, n);
         wb_put(&b, "\0\0\0", bn - n);
     }
@@ -529,7 +543,7 @@ SR_TEST(glb_reads_its_bin_chunk_and_images_from_buffer_views)
     wbuf png = small_png();
     uint8_t bin[512];
     REQUIRE(png.n + 36 <= sizeof bin);
-    memcpy(bin, tri, 36);
+    memcpy(bin, tri_le(), 36);
     memcpy(bin + 36, png.p, png.n);
     char json[2048];
     snprintf(json, sizeof json,
@@ -675,7 +689,7 @@ static const bad_case bad_cases[] = {
 SR_TEST(malformed_files_give_one_message_with_the_json_pointer)
 {
     for (size_t i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
-        char *json = doc(tri, sizeof tri, bad_cases[i].body);
+        char *json = doc(tri_le(), sizeof tri, bad_cases[i].body);
         sr_scene *s = (sr_scene *)json;  /* must come back NULL */
         sr_io_error e;
         sr_result r = sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)json,
@@ -739,7 +753,7 @@ SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
         at += (size_t)snprintf(body + at, cap - at, "%s{\"mesh\":0}", i ? "," : "");
     }
     snprintf(body + at, cap - at, "]");
-    char *json = doc(tri, sizeof tri, body);
+    char *json = doc(tri_le(), sizeof tri, body);
     sr_scene *s;
     sr_io_error e;
     CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "big.gltf", (const uint8_t *)json, strlen(json), NULL,

@@ -7,6 +7,7 @@
  * materials (gltf_material.c) and the bounds.  Any thread may call it with
  * a context of its own; jansson keeps no shared state.
  */
+#include "io/byteorder.h"
 #include "io/gltf.h"
 
 #include <math.h>
@@ -990,11 +991,6 @@ static sr_result check_asset(gltf_doc *d)
     return SR_OK;
 }
 
-static uint32_t le32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
 /* The JSON and BIN chunks of a GLB. */
 static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const char **json,
                           size_t *json_size)
@@ -1002,7 +998,7 @@ static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const c
     if (size < 20) {
         return sr__io_fail(d->err, SR_BAD_FORMAT, d->name, 0, "GLB header cut short");
     }
-    uint32_t version = le32(data + 4), length = le32(data + 8);
+    uint32_t version = sr__le32(data + 4), length = sr__le32(data + 8);
     if (version != 2) {
         return sr__io_fail(d->err, SR_UNSUPPORTED, d->name, 0, "GLB version %u, not 2", version);
     }
@@ -1012,7 +1008,7 @@ static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const c
     }
     *json = NULL;
     for (size_t at = 12; at + 8 <= length;) {
-        uint32_t clen = le32(data + at), type = le32(data + at + 4);
+        uint32_t clen = sr__le32(data + at), type = sr__le32(data + at + 4);
         if (clen > length - at - 8) {
             return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, at,
                                   "chunk of %u bytes runs past the end", clen);

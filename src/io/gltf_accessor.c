@@ -6,6 +6,7 @@
  * against the view and the buffer before a byte is read.  Called by the
  * thread reading the document.
  */
+#include "io/byteorder.h"
 #include "io/gltf.h"
 
 #include <math.h>
@@ -45,32 +46,23 @@ static double read_component(const uint8_t *p, long type, bool normalized)
 {
     switch (type) {
     case 5120: {
-        int8_t v;
-        memcpy(&v, p, 1);
+        int8_t v = (int8_t)p[0];
         return normalized ? fmax(v / 127.0, -1.0) : v;
     }
     case 5121:
         return normalized ? p[0] / 255.0 : p[0];
     case 5122: {
-        int16_t v;
-        memcpy(&v, p, 2);
+        int16_t v = (int16_t)sr__le16(p);
         return normalized ? fmax(v / 32767.0, -1.0) : v;
     }
     case 5123: {
-        uint16_t v;
-        memcpy(&v, p, 2);
+        uint16_t v = sr__le16(p);
         return normalized ? v / 65535.0 : v;
     }
-    case 5125: {
-        uint32_t v;
-        memcpy(&v, p, 4);
-        return v;
-    }
-    default: {
-        float v;
-        memcpy(&v, p, 4);
-        return v;
-    }
+    case 5125:
+        return sr__le32(p);
+    default:
+        return sr__le_float(p);
     }
 }
 

@@ -9,6 +9,7 @@
  * weld corners so that callers can compute smooth normals, and drop the
  * facet normals, which writers often leave zero or get wrong.
  */
+#include "io/byteorder.h"
 #include "io/io_util.h"
 #include "io/number.h"
 #include "io/readers.h"
@@ -190,25 +191,12 @@ static const char *result_what(sr_result r)
 
 /* ---- binary ------------------------------------------------------------- */
 
-static uint32_t le32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-static float le_float(const uint8_t *p)
-{
-    uint32_t bits = le32(p);
-    float f;
-    memcpy(&f, &bits, sizeof f);
-    return f;
-}
-
 static bool binary_size_matches(const uint8_t *data, size_t size)
 {
     if (size < STL_PREFIX_BYTES) {
         return false;
     }
-    uint64_t count = le32(data + STL_HEADER_BYTES);
+    uint64_t count = sr__le32(data + STL_HEADER_BYTES);
     return STL_PREFIX_BYTES + STL_TRIANGLE_BYTES * count == (uint64_t)size;
 }
 
@@ -220,7 +208,7 @@ static sr_result parse_binary(const char *name, const uint8_t *data, size_t size
                            "not an STL file (%zu bytes: too short for a binary STL's "
                            "84-byte header, and no 'solid' at the start)", size);
     }
-    uint32_t count = le32(data + STL_HEADER_BYTES);
+    uint32_t count = sr__le32(data + STL_HEADER_BYTES);
     uint64_t expected = STL_PREFIX_BYTES + STL_TRIANGLE_BYTES * (uint64_t)count;
     if (expected != (uint64_t)size) {
         return sr__io_fail_at(err, SR_BAD_FORMAT, name, STL_HEADER_BYTES,
@@ -259,7 +247,7 @@ static sr_result parse_binary(const char *name, const uint8_t *data, size_t size
         uint32_t tri[3];
         for (int k = 0; k < 3; k++) {
             const uint8_t *c = rec + 12 + 12 * k;
-            float p[3] = { le_float(c), le_float(c + 4), le_float(c + 8) };
+            float p[3] = { sr__le_float(c), sr__le_float(c + 4), sr__le_float(c + 8) };
             for (int a = 0; a < 3; a++) {
                 if (!isfinite(p[a])) {
                     builder_free(&b);
