@@ -343,10 +343,11 @@ SR_TEST(stl_binary_size_must_match_the_count)
 SR_TEST(stl_binary_nan_is_refused_at_its_byte)
 {
     wbuf b = binary_cube("binary");
-    float nan = NAN;
-    /* Triangle 2, corner 1, y: 84 + 2*50 + 12 + 12 + 4. */
+    /* Triangle 2, corner 1, y: 84 + 2*50 + 12 + 12 + 4; a quiet NaN,
+     * little-endian as binary STL stores it. */
     size_t at = 84 + 2 * 50 + 12 + 12 + 4;
-    memcpy(b.p + at, &nan, 4);
+    static const uint8_t nan_le[4] = { 0x00, 0x00, 0xC0, 0x7F };
+    memcpy(b.p + at, nan_le, 4);
     char want[96];
     snprintf(want, sizeof want, "t.stl: byte %zu: triangle 2: vertex coordinate is not finite", at);
     expect_error(b.p, b.n, SR_BAD_FORMAT, want);
