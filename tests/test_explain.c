@@ -26,8 +26,15 @@ static bool is_fill_blue(const uint8_t *p)
     return p[2] > p[0] + 100 && p[2] > p[1] + 60;
 }
 
-/* The cells drawn in the last frame-NNN.png of dir; its number, or 0. */
-static int last_frame_cells(const char *dir, uint8_t *cells)
+/* zbuffer's first triangle, drawn orange */
+static bool is_fill_orange(const uint8_t *p)
+{
+    return p[0] > p[2] + 100 && p[0] > p[1] + 60;
+}
+
+/* The cells of the last frame-NNN.png of dir with a pixel that `is_fill`
+ * takes for the fill; the frame's number, or 0. */
+static int last_frame_colour(const char *dir, bool (*is_fill)(const uint8_t *), uint8_t *cells)
 {
     char path[1200];
     int last = 0;
@@ -56,7 +63,7 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
             for (int y = 1; y < ZOOM; y++) {
                 for (int x = 1; x < ZOOM; x++) {
                     int fx = MARGIN + cx * ZOOM + x, fy = MARGIN + cy * ZOOM + y;
-                    blue += fx < w && fy < h && is_fill_blue(px + ((size_t)fy * w + fx) * 4);
+                    blue += fx < w && fy < h && is_fill(px + ((size_t)fy * w + fx) * 4);
                 }
             }
             cells[cy * GRID + cx] = blue > 0;
@@ -64,6 +71,12 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
     }
     free(px);
     return last;
+}
+
+/* The cells drawn in the frame blue in the last frame of dir. */
+static int last_frame_cells(const char *dir, uint8_t *cells)
+{
+    return last_frame_colour(dir, is_fill_blue, cells);
 }
 
 /* The covered samples of each cell of the last frame of `dir` (an
@@ -315,6 +328,77 @@ SR_TEST(msaa_last_frame_is_what_a_multisampled_sr_draw_resolves)
     }
 }
 
+SR_TEST(zbuffer_last_frame_is_what_sr_draw_leaves_with_a_depth_test)
+{
+    NEEDS_CLI();
+    /* two triangles with depths on the 1/64 grid (exact in float, so the
+     * window depth sr_draw sees is the one given), A drawn red then B blue
+     * into a 16-bit depth buffer; the last frame shows A's pixels orange
+     * and B's blue.  Every fourth pair is at one depth: B's ties with A
+     * fail the LESS test. */
+    sr_rng rng = { 4139 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(t.ctx, &(sr_framebuffer_desc){ .width = GRID, .height = GRID,
+                                                              .depth_format = SR_DEPTH_D16 },
+                                &fb) == SR_OK);
+    int both = 0;
+    for (int k = 0; k < 16; k++) {
+        double v[18];
+        char prim[512] = "", dir[1024], name[32];
+        for (int i = 0; i < 6; i++) {
+            v[3 * i] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            v[3 * i + 1] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            v[3 * i + 2] = k % 4 == 0 ? 0.5 : sr_rng_int(&rng, 0, 64) / 64.0;
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g,%g", i ? "," : "", v[3 * i],
+                     v[3 * i + 1], v[3 * i + 2]);
+        }
+        snprintf(name, sizeof name, "zbuffer_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("zbuffer", "--triangles", prim, dir) == 0);
+        uint8_t blue[GRID * GRID], orange[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, blue) >= 3);
+        REQUIRE(last_frame_colour(dir, is_fill_orange, orange) >= 3);
+
+        float pos[18], col[24];
+        for (int i = 0; i < 6; i++) {
+            pos[3 * i] = rt_ndc_x(&t, v[3 * i]);
+            pos[3 * i + 1] = rt_ndc_y(&t, v[3 * i + 1]);
+            pos[3 * i + 2] = (float)v[3 * i + 2];
+            float *c = col + 4 * i;
+            c[0] = i < 3;
+            c[1] = 0;
+            c[2] = i >= 3;
+            c[3] = 1;
+        }
+        sr_clear(t.ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+        sr_state st = { .shading = SR_SHADING_UNLIT, .depth_zero_to_one = true,
+                        .material = { .diffuse = { 1, 1, 1 } } };
+        REQUIRE(sr_draw(t.ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 6,
+                                                         .colors = col, .color_size = 4 })
+                == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(fb);
+        uint8_t want_a[GRID * GRID], want_b[GRID * GRID];
+        int na = 0, nb = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            want_a[i] = px[i * 4] > 128;
+            want_b[i] = px[i * 4 + 2] > 128;
+            na += want_a[i];
+            nb += want_b[i];
+        }
+        both += na > 0 && nb > 0;
+        char what[600];
+        snprintf(what, sizeof what, "zbuffer %s: A", prim);
+        compare_cells(orange, want_a, what);
+        snprintf(what, sizeof what, "zbuffer %s: B", prim);
+        compare_cells(blue, want_b, what);
+    }
+    CHECK(both >= 8);   /* most pairs leave pixels of both */
+    sr_destroy_framebuffer(t.ctx, fb);
+    rt_free(&t);
+}
+
 /* Lines in every octant: k = 0 is the algorithm's example. */
 static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
 {
@@ -371,6 +455,8 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", NULL }), 2);
     CHECK_EQ(run_explain("triangle", "--triangle", "1,2,3,4,5", dir), 2);
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain("zbuffer", "--triangles", "1,1,0,5,1,0,1,5,0,9,9,0,5,9,0,9,5,1.5", dir),
+             2);
     CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("bresenham", "--line", "1.5,2.5,7,3.5", dir), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "msaa", "--samples", "3", "-o", dir,

@@ -48,6 +48,12 @@ static const algorithm algorithms[] = {
     { "dda", EX_LINE, explain_dda,
       { .kind = EX_LINE, .pts = { { 1.2, 2.7 }, { 14.6, 8.1 } }, .count = 2 }, 16, 10, 32,
       "the incremental DDA: the minor coordinate stepped by the slope" },
+    { "zbuffer", EX_TRIANGLES, explain_zbuffer,
+      { .kind = EX_TRIANGLES, .pts = { { 1.5, 1.5 }, { 12.5, 3.5 }, { 3.5, 10.5 },
+                                       { 11.5, 0.5 }, { 12.5, 10.5 }, { 2.5, 6.5 } },
+        .z = { 0.25, 0.25, 0.75, 0.5, 0.125, 0.5 }, .count = 6 }, 14, 11, 40,
+      "two triangles through the z-buffer: the quantized depth at\n"
+      "             each covered pixel and the depth test" },
 };
 
 static void usage(FILE *f)
@@ -70,6 +76,8 @@ static void usage(FILE *f)
             "  --triangle X0,Y0,X1,Y1,X2,Y2\n"
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
+            "  --triangles X,Y,Z,...      zbuffer: two triangles, 18 numbers, Z the window\n"
+            "                             depth of each vertex in 0..1 (0 near)\n"
             "  --window XMIN,YMIN,XMAX,YMAX\n"
             "                             clip: the clip window\n"
             "  --samples N                msaa: 2, 4 (the default), 8 or 16 per pixel\n"
@@ -91,26 +99,28 @@ static void usage(FILE *f)
             EX_MAX_POINTS, MAX_GRID, MAX_GRID);
 }
 
-/* "x,y,x,y,..." into pts; false after one line naming the option. */
-static bool parse_points(const char *opt, const char *s, int min, int max, bool exact,
+/* "x,y,x,y,..." (dims 2) or "x,y,z,..." (dims 3) into pts and z; false
+ * after one line naming the option. */
+static bool parse_points(const char *opt, const char *s, int dims, int min, int max, bool exact,
                          ex_primitive *prim)
 {
-    double v[2 * EX_MAX_POINTS];
+    double v[3 * EX_MAX_POINTS];
     int n = 0;
     const char *p = s;
     for (;;) {
         char *end;
         errno = 0;
         double d = strtod(p, &end);
-        if (errno || end == p || !isfinite(d) || fabs(d) > 16384 || n == 2 * max) {
+        if (errno || end == p || !isfinite(d) || fabs(d) > 16384 || n == dims * max) {
             break;
         }
         v[n++] = d;
         if (*end == 0) {
-            if (n % 2 == 0 && n / 2 >= min) {
-                prim->count = n / 2;
+            if (n % dims == 0 && n / dims >= min) {
+                prim->count = n / dims;
                 for (int i = 0; i < prim->count; i++) {
-                    prim->pts[i] = (sr_point2){ v[2 * i], v[2 * i + 1] };
+                    prim->pts[i] = (sr_point2){ v[dims * i], v[dims * i + 1] };
+                    prim->z[i] = dims == 3 ? v[dims * i + 2] : 0;
                 }
                 return true;
             }
@@ -121,12 +131,30 @@ static bool parse_points(const char *opt, const char *s, int min, int max, bool 
         }
         p = end + 1;
     }
+    const char *names = dims == 3 ? "X,Y,Z" : "X,Y";
     if (exact) {
-        cli_error("%s: expected %d numbers X,Y,... in -16384..16384 (got '%s')", opt, 2 * min, s);
+        cli_error("%s: expected %d numbers %s,... in -16384..16384 (got '%s')", opt, dims * min,
+                  names, s);
     } else {
-        cli_error("%s: expected %d to %d X,Y pairs in -16384..16384 (got '%s')", opt, min, max, s);
+        cli_error("%s: expected %d to %d %s groups in -16384..16384 (got '%s')", opt, min, max,
+                  names, s);
     }
     return false;
+}
+
+/* Two triangles with a window depth in [0, 1] at each vertex. */
+static bool parse_depths(const char *opt, const char *s, ex_primitive *prim)
+{
+    if (!parse_points(opt, s, 3, 6, 6, true, prim)) {
+        return false;
+    }
+    for (int i = 0; i < 6; i++) {
+        if (!(prim->z[i] >= 0 && prim->z[i] <= 1)) {
+            cli_error("%s: each Z is a window depth in 0..1 (got '%s')", opt, s);
+            return false;
+        }
+    }
+    return true;
 }
 
 /* A frame file name: a pattern with one %d (flags and width allowed), or
@@ -213,7 +241,8 @@ static bool write_sheet(const ex_canvas *c, const char *path)
 
 static const char *kind_option(ex_kind k)
 {
-    return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon" : "--line";
+    return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
+         : k == EX_TRIANGLES ? "--triangles" : "--line";
 }
 
 int cmd_explain(int argc, char **argv)
@@ -257,15 +286,17 @@ int cmd_explain(int argc, char **argv)
         bool ok = true;
         ex_primitive p = { 0 };
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
-            strcmp(a, "--line") == 0) {
-            p.kind = a[2] == 't' ? EX_TRIANGLE : a[2] == 'p' ? EX_POLYGON : EX_LINE;
+            strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0) {
+            p.kind = strcmp(a, "--triangles") == 0 ? EX_TRIANGLES
+                   : a[2] == 't' ? EX_TRIANGLE : a[2] == 'p' ? EX_POLYGON : EX_LINE;
             if (p.kind != alg->kind) {
                 cli_error("explain %s: takes %s, not %s", alg->name, kind_option(alg->kind), a);
                 return EXIT_USAGE;
             }
-            ok = p.kind == EX_TRIANGLE ? parse_points(a, v, 3, 3, true, &p)
-               : p.kind == EX_LINE     ? parse_points(a, v, 2, 2, true, &p)
-                                       : parse_points(a, v, 3, EX_MAX_POINTS, false, &p);
+            ok = p.kind == EX_TRIANGLE  ? parse_points(a, v, 2, 3, 3, true, &p)
+               : p.kind == EX_LINE      ? parse_points(a, v, 2, 2, 2, true, &p)
+               : p.kind == EX_TRIANGLES ? parse_depths(a, v, &p)
+                                        : parse_points(a, v, 2, 3, EX_MAX_POINTS, false, &p);
             prim = p;
             prim_given = true;
         } else if (strcmp(a, "--fill-rule") == 0) {
@@ -275,7 +306,7 @@ int cmd_explain(int argc, char **argv)
             rule = k == 0 ? SR_EVENODD : SR_NONZERO;
         } else if (strcmp(a, "--window") == 0) {
             ex_primitive wp = { 0 };
-            ok = parse_points(a, v, 2, 2, true, &wp);
+            ok = parse_points(a, v, 2, 2, 2, true, &wp);
             if (ok && (wp.pts[0].x >= wp.pts[1].x || wp.pts[0].y >= wp.pts[1].y)) {
                 cli_error("%s: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX "
                           "(got '%s')", a, v);
