@@ -79,13 +79,11 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
     return last_frame_colour(dir, is_fill_blue, cells);
 }
 
-/* The covered samples of each cell of the last frame of `dir` (an
- * msaa explanation with n samples): the cell's commonest colour is the
- * fill blue over white in k/n, as the resolve rounds it. */
-static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
+/* The commonest colour inside each cell of frame `frame` of dir, RGB. */
+static bool frame_cell_colours(const char *dir, int frame, uint8_t *rgb)
 {
     char path[1200];
-    snprintf(path, sizeof path, "%s/frame-003.png", dir);
+    snprintf(path, sizeof path, "%s/frame-%03d.png", dir, frame);
     int w, h;
     uint8_t *px = NULL;
     if (sr_read_png(path, NULL, &w, &h, &px, NULL) != SR_OK) {
@@ -94,19 +92,47 @@ static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
     }
     for (int cy = 0; cy < GRID; cy++) {
         for (int cx = 0; cx < GRID; cx++) {
-            int hist[256] = { 0 }, best = 0;
+            uint32_t seen[(ZOOM - 1) * (ZOOM - 1)];
+            int count[(ZOOM - 1) * (ZOOM - 1)], n = 0, best = 0;
             for (int y = 1; y < ZOOM; y++) {   /* inside the grid lines */
                 for (int x = 1; x < ZOOM; x++) {
-                    hist[px[((size_t)(MARGIN + cy * ZOOM + y) * w + MARGIN + cx * ZOOM + x) * 4]]++;
+                    const uint8_t *p = px + ((size_t)(MARGIN + cy * ZOOM + y) * w + MARGIN +
+                                             cx * ZOOM + x) * 4;
+                    uint32_t c = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+                    int i = 0;
+                    while (i < n && seen[i] != c) {
+                        i++;
+                    }
+                    if (i == n) {
+                        seen[n] = c;
+                        count[n++] = 0;
+                    }
+                    count[i]++;
+                    best = count[i] > count[best] ? i : best;
                 }
             }
-            for (int r = 1; r < 256; r++) {
-                best = hist[r] > hist[best] ? r : best;
-            }
-            k_out[cy * GRID + cx] = (uint8_t)lround((255.0 - best) * n / (255.0 - 51.0));
+            uint8_t *o = rgb + (cy * GRID + cx) * 3;
+            o[0] = (uint8_t)(seen[best] >> 16);
+            o[1] = (uint8_t)(seen[best] >> 8);
+            o[2] = (uint8_t)seen[best];
         }
     }
     free(px);
+    return true;
+}
+
+/* The covered samples of each cell of the last frame of `dir` (an
+ * msaa explanation with n samples): the cell's commonest colour is the
+ * fill blue over white in k/n, as the resolve rounds it. */
+static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
+{
+    uint8_t rgb[GRID * GRID * 3];
+    if (!frame_cell_colours(dir, 3, rgb)) {
+        return false;
+    }
+    for (int i = 0; i < GRID * GRID; i++) {
+        k_out[i] = (uint8_t)lround((255.0 - rgb[i * 3]) * n / (255.0 - 51.0));
+    }
     return true;
 }
 
@@ -396,6 +422,70 @@ SR_TEST(zbuffer_last_frame_is_what_sr_draw_leaves_with_a_depth_test)
     }
     CHECK(both >= 8);   /* most pairs leave pixels of both */
     sr_destroy_framebuffer(t.ctx, fb);
+    rt_free(&t);
+}
+
+SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
+{
+    NEEDS_CLI();
+    /* random triangles with w in 1/2..4 (powers of two: x w / w is exact
+     * in float, so sr_draw snaps the vertices where they were given), red,
+     * green and blue at the vertices; the cells of the last frame hold
+     * sr_draw's perspective-correct colours, within one step of rounding */
+    sr_rng rng = { 4239 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int far_from_affine = 0;
+    for (int k = 0; k < 16; k++) {
+        double v[6], w[3];
+        for (int i = 0; i < 6; i++) {
+            v[i] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+        }
+        for (int i = 0; i < 3; i++) {
+            w[i] = ldexp(1.0, sr_rng_int(&rng, -1, 2));
+        }
+        char prim[256], ws[64], dir[1024], name[32], grid[16], zoom[8];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
+        snprintf(ws, sizeof ws, "%g,%g,%g", w[0], w[1], w[2]);
+        snprintf(name, sizeof name, "perspective_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        snprintf(zoom, sizeof zoom, "%d", ZOOM);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--triangle", prim,
+                                                  "--w", ws, "--grid", grid, "--zoom", zoom,
+                                                  "-o", dir, NULL }) == 0);
+        uint8_t got[GRID * GRID * 3], affine[GRID * GRID * 3];
+        REQUIRE(frame_cell_colours(dir, 5, got));
+        REQUIRE(frame_cell_colours(dir, 4, affine));
+        float pos[12], col[12] = { 1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1 };
+        for (int i = 0; i < 3; i++) {
+            pos[4 * i] = rt_ndc_x(&t, v[2 * i]) * (float)w[i];
+            pos[4 * i + 1] = rt_ndc_y(&t, v[2 * i + 1]) * (float)w[i];
+            pos[4 * i + 2] = 0;
+            pos[4 * i + 3] = (float)w[i];
+        }
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } } };
+        REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .position_size = 4,
+                                                           .vertex_count = 3, .colors = col,
+                                                           .color_size = 4 }) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int bad = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            int worst = 0, off_affine = 0;
+            for (int ch = 0; ch < 3; ch++) {
+                int d = abs(got[i * 3 + ch] - px[i * 4 + ch]);
+                worst = d > worst ? d : worst;
+                d = abs(affine[i * 3 + ch] - px[i * 4 + ch]);
+                off_affine = d > off_affine ? d : off_affine;
+            }
+            bad += worst > 1;
+            far_from_affine += off_affine > 8;
+        }
+        if (bad) {
+            FAILF("perspective %s, w %s: %d cells differ", prim, ws, bad);
+        }
+    }
+    CHECK(far_from_affine > 50);   /* the two interpolations do differ */
     rt_free(&t);
 }
 

@@ -54,6 +54,11 @@ static const algorithm algorithms[] = {
         .z = { 0.25, 0.25, 0.75, 0.5, 0.125, 0.5 }, .count = 6 }, 14, 11, 40,
       "two triangles through the z-buffer: the quantized depth at\n"
       "             each covered pixel and the depth test" },
+    { "perspective", EX_TRIANGLE, explain_perspective,
+      { .kind = EX_TRIANGLE, .pts = { { 1.5, 1.5 }, { 14.5, 4.5 }, { 2.5, 11.5 } },
+        .z = { 1, 4, 1 }, .count = 3, .row = 5 }, 16, 13, 32,
+      "perspective-correct versus affine interpolation along one\n"
+      "             span (--w, --row)" },
 };
 
 static void usage(FILE *f)
@@ -81,6 +86,10 @@ static void usage(FILE *f)
             "  --window XMIN,YMIN,XMAX,YMAX\n"
             "                             clip: the clip window\n"
             "  --samples N                msaa: 2, 4 (the default), 8 or 16 per pixel\n"
+            "  --w W0,W1,W2               perspective: each vertex's eye distance (its\n"
+            "                             clip-space w), 1/64 to 1024 (default 1,1,1)\n"
+            "  --row Y                    perspective: the span's scanline (default: the\n"
+            "                             triangle's middle)\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -269,6 +278,8 @@ int cmd_explain(int argc, char **argv)
     sr_fill_rule rule = SR_EVENODD;
     ex_primitive window = { .count = 0 };
     bool prim_given = false;
+    ex_primitive ws = { .count = 0 };
+    int row = -1;
     int samples = 4;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL;
@@ -319,6 +330,17 @@ int cmd_explain(int argc, char **argv)
                 cli_error("%s: expected 2, 4, 8 or 16 (got '%s')", a, v);
                 ok = false;
             }
+        } else if (strcmp(a, "--w") == 0) {
+            ok = parse_points(a, v, 3, 1, 1, true, &ws);
+            for (int k = 0; ok && k < 3; k++) {
+                double w = k == 0 ? ws.pts[0].x : k == 1 ? ws.pts[0].y : ws.z[0];
+                if (!(w >= 1.0 / 64 && w <= 1024)) {
+                    cli_error("%s: each W in 1/64..1024 (got '%s')", a, v);
+                    ok = false;
+                }
+            }
+        } else if (strcmp(a, "--row") == 0) {
+            ok = parse_int(a, v, 0, MAX_GRID - 1, &row);
         } else if (strcmp(a, "--grid") == 0) {
             ok = parse_size(a, v, &grid_w, &grid_h);
             if (ok && (grid_w > MAX_GRID || grid_h > MAX_GRID)) {
@@ -350,6 +372,16 @@ int cmd_explain(int argc, char **argv)
     }
     prim.rule = rule;
     prim.samples = samples;
+    if (alg->run == explain_perspective) {
+        if (ws.count == 1) {
+            double w[3] = { ws.pts[0].x, ws.pts[0].y, ws.z[0] };
+            memcpy(prim.z, w, sizeof w);
+        } else if (prim_given) {
+            double w[3] = { 1, 1, 1 };
+            memcpy(prim.z, w, sizeof w);
+        }
+        prim.row = row >= 0 ? row : prim_given ? -1 : prim.row;
+    }
     if (alg->run == explain_bresenham && !ex_line_on_centres(&prim)) {
         cli_error("explain bresenham: --line: the midpoint algorithm takes ends on pixel "
                   "centres (x.5,y.5); 'softrast explain dda' takes any");

@@ -28,6 +28,7 @@ typedef struct ex_primitive {
     sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
     double window[4];       /* clip: xmin, ymin, xmax, ymax */
     int samples;            /* msaa: samples per pixel */
+    int row;                /* perspective: the scanline of the span */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -85,6 +86,7 @@ sr_result explain_clip(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);
@@ -98,6 +100,12 @@ typedef struct ex_tri {
 
 /* Snap and order; whether two vertices were swapped (clockwise given). */
 bool ex_tri_setup(ex_tri *t, const ex_primitive *prim);
+/* The same for points first..first+2 of prim, with the value z[] of each
+ * vertex (prim->z) kept beside it through the reordering. */
+bool ex_tri_setup_at(ex_tri *t, double z[3], const ex_primitive *prim, int first);
+/* The barycentric weights of the point (sx, sy) in q8: the edge function
+ * of the edge opposite each vertex over twice the area. */
+void ex_tri_weights(const ex_tri *t, int64_t sx, int64_t sy, double l[3]);
 /* Edge function i at the point (sx, sy) in q8. */
 int64_t ex_tri_edge(const ex_tri *t, int i, int64_t sx, int64_t sy);
 /* Whether the point (sx, sy) in q8 is covered, ties by the top-left rule. */

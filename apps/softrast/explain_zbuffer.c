@@ -23,20 +23,6 @@ typedef struct depth_tri {
     double z[3];     /* in the order ex_tri_setup left the vertices */
 } depth_tri;
 
-static void setup(depth_tri *d, const ex_primitive *prim, int first)
-{
-    ex_primitive one = { .kind = EX_TRIANGLE, .count = 3 };
-    for (int i = 0; i < 3; i++) {
-        one.pts[i] = prim->pts[first + i];
-        d->z[i] = prim->z[first + i];
-    }
-    if (ex_tri_setup(&d->t, &one)) {   /* V1 and V2 were swapped */
-        double z1 = d->z[1];
-        d->z[1] = d->z[2];
-        d->z[2] = z1;
-    }
-}
-
 /* The quantized depth at the centre of (px, py), or -1 when the triangle
  * does not cover it.  Weight of vertex k: the edge function of the edge
  * opposite it over twice the area (edge i runs from Vi to Vi+1). */
@@ -46,9 +32,9 @@ static int64_t depth_at(const depth_tri *d, int px, int py)
     if (!ex_tri_covers(&d->t, sx, sy)) {
         return -1;
     }
-    double per_area = DEPTH_MAX / (double)d->t.area2;
-    double z = d->z[0] * DEPTH_MAX + (double)ex_tri_edge(&d->t, 2, sx, sy) * (d->z[1] - d->z[0]) * per_area
-             + (double)ex_tri_edge(&d->t, 0, sx, sy) * (d->z[2] - d->z[0]) * per_area;
+    double l[3];
+    ex_tri_weights(&d->t, sx, sy, l);
+    double z = (d->z[0] + l[1] * (d->z[1] - d->z[0]) + l[2] * (d->z[2] - d->z[0])) * DEPTH_MAX;
     z = z < 0 ? 0 : z > DEPTH_MAX ? DEPTH_MAX : z;
     return (int64_t)floor(z + 0.5);
 }
@@ -85,8 +71,8 @@ static void number(ex_canvas *c, int x, int y, int64_t q, sr_rgba color)
 sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim)
 {
     depth_tri a, b;
-    setup(&a, prim, 0);
-    setup(&b, prim, 3);
+    ex_tri_setup_at(&a.t, a.z, prim, 0);
+    ex_tri_setup_at(&b.t, b.z, prim, 3);
     int n = c->grid_w * c->grid_h;
     int64_t *depth = malloc(sizeof *depth * (size_t)n);
     int8_t *owner = malloc((size_t)n);   /* 0 background, 1 A, 2 B */
