@@ -489,6 +489,65 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
     rt_free(&t);
 }
 
+SR_TEST(fillpoly_last_frame_is_what_the_incremental_gouraud_fill_draws)
+{
+    NEEDS_CLI();
+    /* random triangles, flat tops and bottoms among them (half-pixel
+     * grid), with random intensities: the cells of the last frame hold
+     * sr_fill_gouraud's SR_GOURAUD_INCREMENTAL grey within one step */
+    sr_rng rng = { 4339 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int covered = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 v[3];
+        double in[3];
+        for (int i = 0; i < 3; i++) {
+            v[i].x = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5 + (k % 2 ? 0.3 : 0);
+            v[i].y = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            in[i] = sr_rng_int(&rng, 0, 100) / 100.0;
+        }
+        char prim[256], is[64], dir[1024], name[32], grid[16], zoom[8];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0].x, v[0].y, v[1].x, v[1].y, v[2].x,
+                 v[2].y);
+        snprintf(is, sizeof is, "%g,%g,%g", in[0], in[1], in[2]);
+        snprintf(name, sizeof name, "fillpoly_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        snprintf(zoom, sizeof zoom, "%d", ZOOM);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--triangle", prim,
+                                                  "--intensity", is, "--grid", grid, "--zoom",
+                                                  zoom, "-o", dir, NULL }) == 0);
+        uint8_t cells[GRID * GRID], got[GRID * GRID * 3];
+        int last = last_frame_cells(dir, cells);
+        REQUIRE(last >= 2);
+        REQUIRE(frame_cell_colours(dir, last, got));
+        sr_rgba col[3];
+        for (int i = 0; i < 3; i++) {
+            col[i] = (sr_rgba){ (float)in[i], (float)in[i], (float)in[i], 1 };
+        }
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        REQUIRE(sr_fill_gouraud(t.ctx, t.fb, &(sr_polygon2){ v, 3, NULL, 0 }, col,
+                                &(sr_gouraud_desc){ .method = SR_GOURAUD_INCREMENTAL })
+                == SR_OK);
+        uint8_t mask[GRID * GRID];
+        REQUIRE(sr_polygon_coverage(t.ctx, &(sr_polygon2){ v, 3, NULL, 0 }, NULL, 0, 0, GRID,
+                                    GRID, mask, GRID) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int bad = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            covered += mask[i] != 0;
+            for (int ch = 0; ch < 3; ch++) {
+                bad += abs(got[i * 3 + ch] - px[i * 4 + ch]) > 1;
+            }
+        }
+        if (bad) {
+            FAILF("fillpoly %s, I %s: %d channels differ", prim, is, bad);
+        }
+    }
+    CHECK(covered > 300);
+    rt_free(&t);
+}
+
 /* Lines in every octant: k = 0 is the algorithm's example. */
 static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
 {

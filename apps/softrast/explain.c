@@ -59,6 +59,11 @@ static const algorithm algorithms[] = {
         .z = { 1, 4, 1 }, .count = 3, .row = 5 }, 16, 13, 32,
       "perspective-correct versus affine interpolation along one\n"
       "             span (--w, --row)" },
+    { "fillpoly", EX_TRIANGLE, explain_fillpoly,
+      { .kind = EX_TRIANGLE, .pts = { { 6.5, 0.7 }, { 14.3, 6.6 }, { 1.4, 10.6 } },
+        .z = { 1, 0.2, 0.55 }, .count = 3 }, 16, 12, 32,
+      "FillPoly/FillSpan: x by 1/m and the intensity by dI along\n"
+      "             the edges and each span, split at the middle vertex" },
 };
 
 static void usage(FILE *f)
@@ -90,6 +95,8 @@ static void usage(FILE *f)
             "                             clip-space w), 1/64 to 1024 (default 1,1,1)\n"
             "  --row Y                    perspective: the span's scanline (default: the\n"
             "                             triangle's middle)\n"
+            "  --intensity IA,IB,IC       fillpoly: the intensity at each vertex, 0..1\n"
+            "                             (default 1,0.2,0.55)\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -162,6 +169,24 @@ static bool parse_depths(const char *opt, const char *s, ex_primitive *prim)
             cli_error("%s: each Z is a window depth in 0..1 (got '%s')", opt, s);
             return false;
         }
+    }
+    return true;
+}
+
+/* Three numbers in lo..hi, one per vertex, into out. */
+static bool parse_three(const char *opt, const char *s, double lo, double hi, double out[3])
+{
+    ex_primitive p = { 0 };
+    if (!parse_points(opt, s, 3, 1, 1, true, &p)) {
+        return false;
+    }
+    double v[3] = { p.pts[0].x, p.pts[0].y, p.z[0] };
+    for (int k = 0; k < 3; k++) {
+        if (!(v[k] >= lo && v[k] <= hi)) {
+            cli_error("%s: each value in %g..%g (got '%s')", opt, lo, hi, s);
+            return false;
+        }
+        out[k] = v[k];
     }
     return true;
 }
@@ -278,7 +303,8 @@ int cmd_explain(int argc, char **argv)
     sr_fill_rule rule = SR_EVENODD;
     ex_primitive window = { .count = 0 };
     bool prim_given = false;
-    ex_primitive ws = { .count = 0 };
+    double per_vertex[3];
+    bool per_vertex_given = false;
     int row = -1;
     int samples = 4;
     int grid_w = 0, grid_h = 0, zoom = 0;
@@ -330,15 +356,15 @@ int cmd_explain(int argc, char **argv)
                 cli_error("%s: expected 2, 4, 8 or 16 (got '%s')", a, v);
                 ok = false;
             }
-        } else if (strcmp(a, "--w") == 0) {
-            ok = parse_points(a, v, 3, 1, 1, true, &ws);
-            for (int k = 0; ok && k < 3; k++) {
-                double w = k == 0 ? ws.pts[0].x : k == 1 ? ws.pts[0].y : ws.z[0];
-                if (!(w >= 1.0 / 64 && w <= 1024)) {
-                    cli_error("%s: each W in 1/64..1024 (got '%s')", a, v);
-                    ok = false;
-                }
+        } else if (strcmp(a, "--w") == 0 || strcmp(a, "--intensity") == 0) {
+            bool w = a[2] == 'w';
+            if (alg->run != (w ? explain_perspective : explain_fillpoly)) {
+                cli_error("explain %s: %s is for '%s'", alg->name, a, w ? "perspective" : "fillpoly");
+                return EXIT_USAGE;
             }
+            ok = w ? parse_three(a, v, 1.0 / 64, 1024, per_vertex)
+                   : parse_three(a, v, 0, 1, per_vertex);
+            per_vertex_given = true;
         } else if (strcmp(a, "--row") == 0) {
             ok = parse_int(a, v, 0, MAX_GRID - 1, &row);
         } else if (strcmp(a, "--grid") == 0) {
@@ -372,14 +398,13 @@ int cmd_explain(int argc, char **argv)
     }
     prim.rule = rule;
     prim.samples = samples;
+    if (per_vertex_given) {
+        memcpy(prim.z, per_vertex, sizeof per_vertex);
+    } else if (prim_given && alg->kind == EX_TRIANGLE) {   /* the example's values */
+        memcpy(prim.z, alg->run == explain_perspective ? (double[3]){ 1, 1, 1 } : alg->example.z,
+               sizeof per_vertex);
+    }
     if (alg->run == explain_perspective) {
-        if (ws.count == 1) {
-            double w[3] = { ws.pts[0].x, ws.pts[0].y, ws.z[0] };
-            memcpy(prim.z, w, sizeof w);
-        } else if (prim_given) {
-            double w[3] = { 1, 1, 1 };
-            memcpy(prim.z, w, sizeof w);
-        }
         prim.row = row >= 0 ? row : prim_given ? -1 : prim.row;
     }
     if (alg->run == explain_bresenham && !ex_line_on_centres(&prim)) {
@@ -411,7 +436,7 @@ int cmd_explain(int argc, char **argv)
     ex_canvas c;
     int status = EXIT_OK;
     /* the scan-line fill lists its edge table in a caption */
-    int lines = alg->run == explain_scanline ? 8 + prim.count : 7;
+    int lines = alg->run == explain_scanline ? 8 + prim.count : alg->run == explain_fillpoly ? 9 : 7;
     if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK || alg->run(&c, &prim) != SR_OK) {
         if (c.too_many) {
             cli_error("explain %s: the frames would take over %zu MiB: make --grid or --zoom "

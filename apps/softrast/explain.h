@@ -23,7 +23,9 @@ typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES }
 typedef struct ex_primitive {
     ex_kind kind;
     sr_point2 pts[EX_MAX_POINTS];
-    double z[EX_MAX_POINTS];  /* --triangles: window depth of each vertex, 0..1 */
+    /* a value at each vertex: --triangles' window depth (0..1), --w's eye
+     * distance (perspective), --intensity's I (fillpoly) */
+    double z[EX_MAX_POINTS];
     int count;
     sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
     double window[4];       /* clip: xmin, ymin, xmax, ymax */
@@ -87,6 +89,7 @@ sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);

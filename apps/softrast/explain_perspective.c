@@ -67,7 +67,7 @@ static void draw_tri(ex_canvas *c, const persp *p, int row)
         v[i] = (sr_point2){ p->t.x[i] / 256.0, p->t.y[i] / 256.0 };
     }
     ex_outline(c, v, 3, true, EX_EDGE, 1.5);
-    if (row >= 0) {   /* -1, -2: no span */
+    if (row >= 0) {   /* -1: no span */
         ex_segment(c, (sr_point2){ 0, row + 0.5 }, (sr_point2){ c->grid_w, row + 0.5 }, EX_HILITE,
                    1.5);
     }
@@ -75,9 +75,7 @@ static void draw_tri(ex_canvas *c, const persp *p, int row)
         char label[32];
         snprintf(label, sizeof label, "w=%g", p->w[i]);
         ex_dot(c, v[i], c->zoom >= 20 ? 5 : c->zoom * 0.25, vcolor(p, i));
-        if (row != -2) {   /* the full triangles go unlabelled: no text over the cells */
-            ex_label(c, v[i], label, EX_EDGE);
-        }
+        ex_label(c, v[i], label, EX_EDGE);
     }
 }
 
@@ -161,14 +159,13 @@ sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim)
 
     ex_begin(c);
     fill(c, &p, -1, false, true, affine, xs);
-    draw_tri(c, &p, -2);
+    /* frames 4 and 5: the cells alone, nothing drawn over them */
     ex_end(c, "4. The whole triangle affine (SR_INTERP_AFFINE): each weight is constant along "
               "lines parallel to the opposite edge on the screen, as if no vertex were further "
               "than another: wrong under perspective.");
 
     ex_begin(c);
     fill(c, &p, -1, true, true, correct, xs);
-    draw_tri(c, &p, -2);
     ex_end(c, "5. The whole triangle perspective-correct, what sr_draw draws for these "
               "vertices given with their w (the default interpolation): the near vertices' "
               "colours reach further, the far vertex's is squeezed toward it, as the far "
