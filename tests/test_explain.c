@@ -166,10 +166,17 @@ static int compare_cells(const uint8_t *cells, const uint8_t *want, const char *
     return diff;
 }
 
+/* An empty directory for one run's frames: the frames of an earlier run
+ * with more steps would pass for this run's last. */
 static const char *out_dir(const char *name, char *buf, size_t n)
 {
     snprintf(buf, n, "%s/explain_%s", sr_test_out_dir(), name);
     mkdir(buf, 0777);
+    for (int i = 1; i < 100; i++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/frame-%03d.png", buf, i);
+        remove(path);
+    }
     return buf;
 }
 
@@ -548,6 +555,39 @@ SR_TEST(fillpoly_last_frame_is_what_the_incremental_gouraud_fill_draws)
     rt_free(&t);
 }
 
+SR_TEST(circle_last_frame_is_what_sr_draw_circle_draws)
+{
+    NEEDS_CLI();
+    /* centres and radii on the 1/8 grid (many centres exactly on a
+     * circle), some circles past the grid's edges */
+    sr_rng rng = { 4439 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0;
+    for (int k = 0; k < 20; k++) {
+        double cx = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0;
+        double cy = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0;
+        double r = sr_rng_int(&rng, 0, 12 * 8) / 8.0;
+        char prim[128], dir[1024], name[32];
+        snprintf(prim, sizeof prim, "%g,%g,%g", cx, cy, r);
+        snprintf(name, sizeof name, "circle_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("circle", "--circle", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 1);
+        rt_clear(&t);
+        REQUIRE(sr_draw_circle(t.ctx, t.fb, cx, cy, r, (sr_rgba){ 1, 1, 1, 1 }, false) == SR_OK);
+        rt_mask(&t, want);
+        for (int i = 0; i < GRID * GRID; i++) {
+            drawn_total += want[i];
+        }
+        char what[200];
+        snprintf(what, sizeof what, "circle %s", prim);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 150);
+    rt_free(&t);
+}
+
 /* Lines in every octant: k = 0 is the algorithm's example. */
 static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
 {
@@ -604,6 +644,11 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", NULL }), 2);
     CHECK_EQ(run_explain("triangle", "--triangle", "1,2,3,4,5", dir), 2);
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain("circle", "--circle", "4,4,-1", dir), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--w", "1,2,3", "-o", dir,
+                                               NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--intensity", "0,2,1",
+                                               "-o", dir, NULL }), 2);
     CHECK_EQ(run_explain("zbuffer", "--triangles", "1,1,0,5,1,0,1,5,0,9,9,0,5,9,0,9,5,1.5", dir),
              2);
     CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);

@@ -64,6 +64,10 @@ static const algorithm algorithms[] = {
         .z = { 1, 0.2, 0.55 }, .count = 3 }, 16, 12, 32,
       "FillPoly/FillSpan: x by 1/m and the intensity by dI along\n"
       "             the edges and each span, split at the middle vertex" },
+    { "circle", EX_CIRCLE, explain_circle,
+      { .kind = EX_CIRCLE, .pts = { { 7.3, 6.6 } }, .z = { 5.4 }, .count = 1 }, 15, 14, 36,
+      "the midpoint circle: its decision variable at the pixel\n"
+      "             centres each row walks, stepped by forward differences" },
 };
 
 static void usage(FILE *f)
@@ -86,6 +90,7 @@ static void usage(FILE *f)
             "  --triangle X0,Y0,X1,Y1,X2,Y2\n"
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
+            "  --circle CX,CY,R           circle: centre and radius (R at most 4096)\n"
             "  --triangles X,Y,Z,...      zbuffer: two triangles, 18 numbers, Z the window\n"
             "                             depth of each vertex in 0..1 (0 near)\n"
             "  --window XMIN,YMIN,XMAX,YMAX\n"
@@ -169,6 +174,15 @@ static bool parse_depths(const char *opt, const char *s, ex_primitive *prim)
             cli_error("%s: each Z is a window depth in 0..1 (got '%s')", opt, s);
             return false;
         }
+    }
+    return true;
+}
+
+static bool parse_radius(const char *opt, const char *s, double r)
+{
+    if (r < 0 || r > 4096) {
+        cli_error("%s: expected CX,CY,R with R in 0..4096 (got '%s')", opt, s);
+        return false;
     }
     return true;
 }
@@ -276,7 +290,7 @@ static bool write_sheet(const ex_canvas *c, const char *path)
 static const char *kind_option(ex_kind k)
 {
     return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
-         : k == EX_TRIANGLES ? "--triangles" : "--line";
+         : k == EX_TRIANGLES ? "--triangles" : k == EX_CIRCLE ? "--circle" : "--line";
 }
 
 int cmd_explain(int argc, char **argv)
@@ -323,8 +337,10 @@ int cmd_explain(int argc, char **argv)
         bool ok = true;
         ex_primitive p = { 0 };
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
-            strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0) {
+            strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0 ||
+            strcmp(a, "--circle") == 0) {
             p.kind = strcmp(a, "--triangles") == 0 ? EX_TRIANGLES
+                   : strcmp(a, "--circle") == 0    ? EX_CIRCLE
                    : a[2] == 't' ? EX_TRIANGLE : a[2] == 'p' ? EX_POLYGON : EX_LINE;
             if (p.kind != alg->kind) {
                 cli_error("explain %s: takes %s, not %s", alg->name, kind_option(alg->kind), a);
@@ -333,6 +349,8 @@ int cmd_explain(int argc, char **argv)
             ok = p.kind == EX_TRIANGLE  ? parse_points(a, v, 2, 3, 3, true, &p)
                : p.kind == EX_LINE      ? parse_points(a, v, 2, 2, 2, true, &p)
                : p.kind == EX_TRIANGLES ? parse_depths(a, v, &p)
+               : p.kind == EX_CIRCLE    ? parse_points(a, v, 3, 1, 1, true, &p) &&
+                                              parse_radius(a, v, p.z[0])
                                         : parse_points(a, v, 2, 3, EX_MAX_POINTS, false, &p);
             prim = p;
             prim_given = true;
