@@ -136,15 +136,23 @@ static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
     return true;
 }
 
-static int run_explain_rule(const char *algorithm, const char *prim_opt, const char *prim,
-                            const char *rule, const char *dir)
+/* The tool on one primitive at the tests' grid and zoom, with one more
+ * option (opt NULL: none). */
+static int run_explain_with(const char *algorithm, const char *prim_opt, const char *prim,
+                            const char *opt, const char *value, const char *dir)
 {
     char grid[16], zoom[8];
     snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
     snprintf(zoom, sizeof zoom, "%d", ZOOM);
     const char *args[] = { "explain", algorithm, prim_opt, prim, "--grid", grid, "--zoom", zoom,
-                           "-o", dir, rule ? "--fill-rule" : NULL, rule, NULL };
+                           "-o", dir, opt, value, NULL };
     return sr_test_run_cli(args);
+}
+
+static int run_explain_rule(const char *algorithm, const char *prim_opt, const char *prim,
+                            const char *rule, const char *dir)
+{
+    return run_explain_with(algorithm, prim_opt, prim, rule ? "--fill-rule" : NULL, rule, dir);
 }
 
 static int run_explain(const char *algorithm, const char *prim_opt, const char *prim,
@@ -328,16 +336,12 @@ SR_TEST(msaa_last_frame_is_what_a_multisampled_sr_draw_resolves)
         for (int i = 0; i < 6; i++) {
             v[i] = sr_rng_int(&rng, -16, (GRID + 2) * 16) / 16.0;
         }
-        char prim[256], dir[1024], name[32], grid[16], zoom[8], ns[8];
+        char prim[256], dir[1024], name[32], ns[8];
         snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
         snprintf(name, sizeof name, "msaa_%02d", k);
-        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
-        snprintf(zoom, sizeof zoom, "%d", ZOOM);
         snprintf(ns, sizeof ns, "%d", n);
         out_dir(name, dir, sizeof dir);
-        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "msaa", "--triangle", prim,
-                                                  "--samples", ns, "--grid", grid, "--zoom",
-                                                  zoom, "-o", dir, NULL }) == 0);
+        REQUIRE(run_explain_with("msaa", "--triangle", prim, "--samples", ns, dir) == 0);
         uint8_t cells[GRID * GRID], want[GRID * GRID];
         REQUIRE(last_frame_samples(dir, n, cells));
         rt_target t = { sr_test_ctx(), NULL, GRID, GRID };
@@ -450,16 +454,12 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
         for (int i = 0; i < 3; i++) {
             w[i] = ldexp(1.0, sr_rng_int(&rng, -1, 2));
         }
-        char prim[256], ws[64], dir[1024], name[32], grid[16], zoom[8];
+        char prim[256], ws[64], dir[1024], name[32];
         snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
         snprintf(ws, sizeof ws, "%g,%g,%g", w[0], w[1], w[2]);
         snprintf(name, sizeof name, "perspective_%02d", k);
-        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
-        snprintf(zoom, sizeof zoom, "%d", ZOOM);
         out_dir(name, dir, sizeof dir);
-        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--triangle", prim,
-                                                  "--w", ws, "--grid", grid, "--zoom", zoom,
-                                                  "-o", dir, NULL }) == 0);
+        REQUIRE(run_explain_with("perspective", "--triangle", prim, "--w", ws, dir) == 0);
         uint8_t got[GRID * GRID * 3], affine[GRID * GRID * 3];
         REQUIRE(frame_cell_colours(dir, 5, got));
         REQUIRE(frame_cell_colours(dir, 4, affine));
@@ -513,17 +513,13 @@ SR_TEST(fillpoly_last_frame_is_what_the_incremental_gouraud_fill_draws)
             v[i].y = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
             in[i] = sr_rng_int(&rng, 0, 100) / 100.0;
         }
-        char prim[256], is[64], dir[1024], name[32], grid[16], zoom[8];
+        char prim[256], is[64], dir[1024], name[32];
         snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0].x, v[0].y, v[1].x, v[1].y, v[2].x,
                  v[2].y);
         snprintf(is, sizeof is, "%g,%g,%g", in[0], in[1], in[2]);
         snprintf(name, sizeof name, "fillpoly_%02d", k);
-        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
-        snprintf(zoom, sizeof zoom, "%d", ZOOM);
         out_dir(name, dir, sizeof dir);
-        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--triangle", prim,
-                                                  "--intensity", is, "--grid", grid, "--zoom",
-                                                  zoom, "-o", dir, NULL }) == 0);
+        REQUIRE(run_explain_with("fillpoly", "--triangle", prim, "--intensity", is, dir) == 0);
         uint8_t cells[GRID * GRID], got[GRID * GRID * 3];
         int last = last_frame_cells(dir, cells);
         REQUIRE(last >= 2);
@@ -588,6 +584,51 @@ SR_TEST(circle_last_frame_is_what_sr_draw_circle_draws)
     rt_free(&t);
 }
 
+SR_TEST(forward_differencing_last_frame_is_what_the_flattened_cubic_draws)
+{
+    NEEDS_CLI();
+    /* random cubics and tolerances: the last frame's cells are the lines
+     * sr_draw_line draws through sr_flatten_cubic's points */
+    sr_rng rng = { 4539 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 p[4];
+        for (int i = 0; i < 4; i++) {
+            p[i] = (sr_point2){ sr_rng_int(&rng, 0, GRID * 8) / 8.0,
+                                sr_rng_int(&rng, 0, GRID * 8) / 8.0 };
+        }
+        double tol = k % 2 ? 0.25 : 1.0;
+        char prim[256], ts[16], dir[1024], name[40];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g,%g,%g", p[0].x, p[0].y, p[1].x, p[1].y,
+                 p[2].x, p[2].y, p[3].x, p[3].y);
+        snprintf(ts, sizeof ts, "%g", tol);
+        snprintf(name, sizeof name, "fwdiff_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_with("forward-differencing", "--cubic", prim, "--tolerance", ts, dir)
+                == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 3);
+        sr_point2 pts[65] = { p[0] };
+        int n = 0;
+        REQUIRE(sr_flatten_cubic(t.ctx, p[0], p[1], p[2], p[3], tol, pts + 1, 64, &n) == SR_OK);
+        rt_clear(&t);
+        for (int i = 0; i < n; i++) {
+            REQUIRE(sr_draw_line(t.ctx, t.fb, pts[i], pts[i + 1], (sr_rgba){ 1, 1, 1, 1 }, NULL)
+                    == SR_OK);
+        }
+        rt_mask(&t, want);
+        for (int i = 0; i < GRID * GRID; i++) {
+            drawn_total += want[i];
+        }
+        char what[300];
+        snprintf(what, sizeof what, "cubic %s, tolerance %g", prim, tol);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 150);
+    rt_free(&t);
+}
+
 /* Lines in every octant: k = 0 is the algorithm's example. */
 static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
 {
@@ -645,6 +686,8 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(run_explain("triangle", "--triangle", "1,2,3,4,5", dir), 2);
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("circle", "--circle", "4,4,-1", dir), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "forward-differencing", "--tolerance",
+                                               "0.001", "-o", dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--w", "1,2,3", "-o", dir,
                                                NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--intensity", "0,2,1",

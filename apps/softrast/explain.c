@@ -68,6 +68,11 @@ static const algorithm algorithms[] = {
       { .kind = EX_CIRCLE, .pts = { { 7.3, 6.6 } }, .z = { 5.4 }, .count = 1 }, 15, 14, 36,
       "the midpoint circle: its decision variable at the pixel\n"
       "             centres each row walks, stepped by forward differences" },
+    { "forward-differencing", EX_CUBIC, explain_fwdiff,
+      { .kind = EX_CUBIC, .pts = { { 1.5, 10.5 }, { 3.5, 0.5 }, { 11.5, 1.5 }, { 14.5, 9.5 } },
+        .z = { 0.25 }, .count = 4 }, 16, 12, 32,
+      "a cubic Bezier flattened by forward differences: each\n"
+      "             point by three additions (--cubic, --tolerance)" },
 };
 
 static void usage(FILE *f)
@@ -81,7 +86,9 @@ static void usage(FILE *f)
             "\n"
             "algorithms:\n");
     for (size_t i = 0; i < sizeof algorithms / sizeof algorithms[0]; i++) {
-        fprintf(f, "  %-10s %s\n", algorithms[i].name, algorithms[i].summary);
+        const char *name = algorithms[i].name;
+        fprintf(f, strlen(name) > 10 ? "  %s\n             %s\n" : "  %-10s %s\n", name,
+                algorithms[i].summary);
     }
     fprintf(f,
             "\n"
@@ -91,6 +98,11 @@ static void usage(FILE *f)
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
             "  --circle CX,CY,R           circle: centre and radius (R at most 4096)\n"
+            "  --cubic X0,Y0,...,X3,Y3    forward-differencing: a cubic Bezier's four\n"
+            "                             control points\n"
+            "  --tolerance T              forward-differencing: how far the chords may stray\n"
+            "                             from the curve, pixels (default 0.25; at most 64\n"
+            "                             steps)\n"
             "  --triangles X,Y,Z,...      zbuffer: two triangles, 18 numbers, Z the window\n"
             "                             depth of each vertex in 0..1 (0 near)\n"
             "  --window XMIN,YMIN,XMAX,YMAX\n"
@@ -290,7 +302,8 @@ static bool write_sheet(const ex_canvas *c, const char *path)
 static const char *kind_option(ex_kind k)
 {
     return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
-         : k == EX_TRIANGLES ? "--triangles" : k == EX_CIRCLE ? "--circle" : "--line";
+         : k == EX_TRIANGLES ? "--triangles" : k == EX_CIRCLE ? "--circle"
+         : k == EX_CUBIC ? "--cubic" : "--line";
 }
 
 int cmd_explain(int argc, char **argv)
@@ -320,6 +333,7 @@ int cmd_explain(int argc, char **argv)
     double per_vertex[3];
     bool per_vertex_given = false;
     int row = -1;
+    double tolerance = 0;
     int samples = 4;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL;
@@ -338,9 +352,10 @@ int cmd_explain(int argc, char **argv)
         ex_primitive p = { 0 };
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
             strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0 ||
-            strcmp(a, "--circle") == 0) {
+            strcmp(a, "--circle") == 0 || strcmp(a, "--cubic") == 0) {
             p.kind = strcmp(a, "--triangles") == 0 ? EX_TRIANGLES
                    : strcmp(a, "--circle") == 0    ? EX_CIRCLE
+                   : strcmp(a, "--cubic") == 0     ? EX_CUBIC
                    : a[2] == 't' ? EX_TRIANGLE : a[2] == 'p' ? EX_POLYGON : EX_LINE;
             if (p.kind != alg->kind) {
                 cli_error("explain %s: takes %s, not %s", alg->name, kind_option(alg->kind), a);
@@ -349,6 +364,7 @@ int cmd_explain(int argc, char **argv)
             ok = p.kind == EX_TRIANGLE  ? parse_points(a, v, 2, 3, 3, true, &p)
                : p.kind == EX_LINE      ? parse_points(a, v, 2, 2, 2, true, &p)
                : p.kind == EX_TRIANGLES ? parse_depths(a, v, &p)
+               : p.kind == EX_CUBIC     ? parse_points(a, v, 2, 4, 4, true, &p)
                : p.kind == EX_CIRCLE    ? parse_points(a, v, 3, 1, 1, true, &p) &&
                                               parse_radius(a, v, p.z[0])
                                         : parse_points(a, v, 2, 3, EX_MAX_POINTS, false, &p);
@@ -383,6 +399,13 @@ int cmd_explain(int argc, char **argv)
             ok = w ? parse_three(a, v, 1.0 / 64, 1024, per_vertex)
                    : parse_three(a, v, 0, 1, per_vertex);
             per_vertex_given = true;
+        } else if (strcmp(a, "--tolerance") == 0) {
+            char *end;
+            tolerance = strtod(v, &end);
+            if (*end || end == v || !(tolerance >= 0.001 && tolerance <= 100)) {
+                cli_error("%s: expected a number of pixels in 0.001..100 (got '%s')", a, v);
+                ok = false;
+            }
         } else if (strcmp(a, "--row") == 0) {
             ok = parse_int(a, v, 0, MAX_GRID - 1, &row);
         } else if (strcmp(a, "--grid") == 0) {
@@ -422,6 +445,9 @@ int cmd_explain(int argc, char **argv)
         memcpy(prim.z, alg->run == explain_perspective ? (double[3]){ 1, 1, 1 } : alg->example.z,
                sizeof per_vertex);
     }
+    if (alg->kind == EX_CUBIC) {
+        prim.z[0] = tolerance > 0 ? tolerance : alg->example.z[0];
+    }
     if (alg->run == explain_perspective) {
         prim.row = row >= 0 ? row : prim_given ? -1 : prim.row;
     }
@@ -454,11 +480,18 @@ int cmd_explain(int argc, char **argv)
     ex_canvas c;
     int status = EXIT_OK;
     /* the scan-line fill lists its edge table in a caption */
-    int lines = alg->run == explain_scanline ? 8 + prim.count : alg->run == explain_fillpoly ? 9 : 7;
-    if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK || alg->run(&c, &prim) != SR_OK) {
+    int lines = alg->run == explain_scanline ? 8 + prim.count : alg->run == explain_fillpoly ||
+                                                                     alg->run == explain_fwdiff ? 9 : 7;
+    sr_result run = SR_OK;
+    if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK ||
+        (run = alg->run(&c, &prim)) != SR_OK) {
         if (c.too_many) {
             cli_error("explain %s: the frames would take over %zu MiB: make --grid or --zoom "
                       "smaller", alg->name, EX_MAX_FRAME_BYTES >> 20);
+            status = EXIT_USAGE;
+        } else if (alg->run == explain_fwdiff && run == SR_TOO_LARGE) {
+            cli_error("explain %s: the curve needs more than 64 steps at this tolerance: "
+                      "give a larger --tolerance", alg->name);
             status = EXIT_USAGE;
         } else {
             cli_error("explain %s: %s", alg->name,

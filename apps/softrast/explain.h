@@ -18,14 +18,15 @@
 #define EX_MAX_FRAME_BYTES ((size_t)1 << 30)  /* all frames are kept for the sheet */
 
 /* The primitive the user gave (window coordinates, pixels, y down). */
-typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES, EX_CIRCLE } ex_kind;
+typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES, EX_CIRCLE,
+               EX_CUBIC } ex_kind;
 
 typedef struct ex_primitive {
     ex_kind kind;
     sr_point2 pts[EX_MAX_POINTS];
     /* a value at each vertex: --triangles' window depth (0..1), --w's eye
      * distance (perspective), --intensity's I (fillpoly); --circle's
-     * radius in z[0] (its centre in pts[0]) */
+     * radius in z[0] (its centre in pts[0]); --tolerance in z[0] (cubic) */
     double z[EX_MAX_POINTS];
     int count;
     sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
@@ -92,6 +93,7 @@ sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_circle(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);
