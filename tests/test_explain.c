@@ -629,6 +629,65 @@ SR_TEST(forward_differencing_last_frame_is_what_the_flattened_cubic_draws)
     rt_free(&t);
 }
 
+SR_TEST(floodfill_last_frame_is_what_sr_flood_fill_recolours)
+{
+    NEEDS_CLI();
+    /* random polygon outlines drawn with sr_draw_line, random seeds (on
+     * the outline now and then), 4- and 8-connected */
+    sr_rng rng = { 4639 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0, differ_4_8 = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 v[8];
+        int n = sr_rng_int(&rng, 3, 8);
+        char prim[512] = "", seed[32], dir[1024], name[32];
+        for (int i = 0; i < n; i++) {
+            v[i] = (sr_point2){ sr_rng_int(&rng, 0, GRID - 1) + 0.5,
+                                sr_rng_int(&rng, 0, GRID - 1) + 0.5 };
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g", i ? "," : "", v[i].x, v[i].y);
+        }
+        int sx = sr_rng_int(&rng, 0, GRID - 1), sy = sr_rng_int(&rng, 0, GRID - 1);
+        snprintf(seed, sizeof seed, "%d,%d", sx, sy);
+        int got_n[2] = { 0, 0 };
+        for (int conn = 4; conn <= 8; conn += 4) {
+            snprintf(name, sizeof name, "floodfill_%02d_%d", k, conn);
+            out_dir(name, dir, sizeof dir);
+            char grid[16], zoom[8];
+            snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+            snprintf(zoom, sizeof zoom, "%d", ZOOM);
+            REQUIRE(sr_test_run_cli((const char *[]){ "explain", "floodfill", "--polygon", prim,
+                                                      "--seed", seed, "--connectivity",
+                                                      conn == 4 ? "4" : "8", "--grid", grid,
+                                                      "--zoom", zoom, "-o", dir, NULL }) == 0);
+            uint8_t cells[GRID * GRID], want[GRID * GRID];
+            REQUIRE(last_frame_cells(dir, cells) >= 2);
+            sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+            for (int i = 0; i < n; i++) {
+                REQUIRE(sr_draw_line(t.ctx, t.fb, v[i], v[(i + 1) % n], (sr_rgba){ 0, 0, 0, 1 },
+                                     NULL) == SR_OK);
+            }
+            REQUIRE(sr_flood_fill(t.ctx, t.fb, sx, sy, (sr_rgba){ 0, 0, 1, 1 },
+                                  &(sr_region_fill_desc){ .connectivity = conn == 4
+                                                              ? SR_CONNECT_4 : SR_CONNECT_8 },
+                                  NULL) == SR_OK);
+            const uint8_t *px = sr_framebuffer_pixels(t.fb);
+            for (int i = 0; i < GRID * GRID; i++) {
+                want[i] = px[i * 4 + 2] == 255 && px[i * 4] == 0;
+                got_n[conn / 8] += want[i];
+            }
+            drawn_total += got_n[conn / 8];
+            char what[600];
+            snprintf(what, sizeof what, "floodfill %s from %s, %d-connected", prim, seed, conn);
+            compare_cells(cells, want, what);
+        }
+        differ_4_8 += got_n[0] != got_n[1];
+    }
+    CHECK(drawn_total > 500);
+    CHECK(differ_4_8 > 0);   /* 8-connected fills leak through diagonal steps */
+    rt_free(&t);
+}
+
 /* Lines in every octant: k = 0 is the algorithm's example. */
 static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centres)
 {

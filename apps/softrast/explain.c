@@ -73,6 +73,12 @@ static const algorithm algorithms[] = {
         .z = { 0.25 }, .count = 4 }, 16, 12, 32,
       "a cubic Bezier flattened by forward differences: each\n"
       "             point by three additions (--cubic, --tolerance)" },
+    { "floodfill", EX_POLYGON, explain_floodfill,
+      { .kind = EX_POLYGON, .pts = { { 1.5, 1.5 }, { 13.5, 1.5 }, { 13.5, 10.5 }, { 10.5, 10.5 },
+                                     { 7.5, 4.5 }, { 4.5, 10.5 }, { 1.5, 10.5 } }, .count = 7,
+        .seed = { 3, 3 } }, 16, 12, 32,
+      "flood fill inside a polygon's outline: run by run from a\n"
+      "             stack of seeds (--seed, --connectivity 4|8)" },
 };
 
 static void usage(FILE *f)
@@ -100,6 +106,10 @@ static void usage(FILE *f)
             "  --circle CX,CY,R           circle: centre and radius (R at most 4096)\n"
             "  --cubic X0,Y0,...,X3,Y3    forward-differencing: a cubic Bezier's four\n"
             "                             control points\n"
+            "  --seed X,Y                 floodfill: the seed pixel (default: the example's,\n"
+            "                             or the grid's middle)\n"
+            "  --connectivity 4|8         floodfill: neighbours across edges (4, the\n"
+            "                             default) or corners too (8)\n"
             "  --tolerance T              forward-differencing: how far the chords may stray\n"
             "                             from the curve, pixels (default 0.25; at most 64\n"
             "                             steps)\n"
@@ -334,6 +344,8 @@ int cmd_explain(int argc, char **argv)
     bool per_vertex_given = false;
     int row = -1;
     double tolerance = 0;
+    int seed[2] = { 0, 0 }, connectivity = 4;
+    bool seed_given = false;
     int samples = 4;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL;
@@ -406,6 +418,18 @@ int cmd_explain(int argc, char **argv)
                 cli_error("%s: expected a number of pixels in 0.001..100 (got '%s')", a, v);
                 ok = false;
             }
+        } else if (strcmp(a, "--seed") == 0) {
+            ex_primitive sp = { 0 };
+            ok = parse_points(a, v, 2, 1, 1, true, &sp);
+            seed[0] = (int)floor(sp.pts[0].x);
+            seed[1] = (int)floor(sp.pts[0].y);
+            seed_given = true;
+        } else if (strcmp(a, "--connectivity") == 0) {
+            ok = parse_int(a, v, 4, 8, &connectivity);
+            if (ok && connectivity != 4 && connectivity != 8) {
+                cli_error("%s: expected 4 or 8 (got '%s')", a, v);
+                ok = false;
+            }
         } else if (strcmp(a, "--row") == 0) {
             ok = parse_int(a, v, 0, MAX_GRID - 1, &row);
         } else if (strcmp(a, "--grid") == 0) {
@@ -445,6 +469,14 @@ int cmd_explain(int argc, char **argv)
         memcpy(prim.z, alg->run == explain_perspective ? (double[3]){ 1, 1, 1 } : alg->example.z,
                sizeof per_vertex);
     }
+    prim.connectivity = connectivity;
+    if (seed_given) {
+        prim.seed[0] = seed[0];
+        prim.seed[1] = seed[1];
+    } else if (prim_given) {
+        prim.seed[0] = (grid_w ? grid_w : alg->grid_w) / 2;
+        prim.seed[1] = (grid_h ? grid_h : alg->grid_h) / 2;
+    }
     if (alg->kind == EX_CUBIC) {
         prim.z[0] = tolerance > 0 ? tolerance : alg->example.z[0];
     }
@@ -465,6 +497,12 @@ int cmd_explain(int argc, char **argv)
     } else if (prim_given) {   /* the middle of the grid */
         double w[4] = { grid_w / 4, grid_h / 4, grid_w - grid_w / 4, grid_h - grid_h / 4 };
         memcpy(prim.window, w, sizeof w);
+    }
+    if (alg->run == explain_floodfill &&
+        (prim.seed[0] < 0 || prim.seed[1] < 0 || prim.seed[0] >= grid_w || prim.seed[1] >= grid_h)) {
+        cli_error("explain floodfill: --seed: (%d, %d) is outside the %dx%d grid", prim.seed[0],
+                  prim.seed[1], grid_w, grid_h);
+        return EXIT_USAGE;
     }
     if ((int64_t)grid_w * zoom > 4096 || (int64_t)grid_h * zoom > 4096) {
         cli_error("explain: the grid times the zoom is over 4096 frame pixels: "

@@ -33,6 +33,8 @@ typedef struct ex_primitive {
     double window[4];       /* clip: xmin, ymin, xmax, ymax */
     int samples;            /* msaa: samples per pixel */
     int row;                /* perspective: the scanline of the span */
+    int seed[2];            /* floodfill: the seed pixel */
+    int connectivity;       /* floodfill: 4 or 8 */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -78,6 +80,10 @@ void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba 
 void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color);
 /* A label beside a point in grid coordinates. */
 void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color);
+/* The pixels of the grid that sr_draw_line draws for the segments
+ * through pts (closed: and back to the first), 1 in mask, row by row. */
+sr_result ex_polyline_pixels(ex_canvas *c, const sr_point2 *pts, int n, bool closed,
+                             uint8_t *mask);
 /* The caption under the grid, word-wrapped; then the frame is kept. */
 void ex_end(ex_canvas *c, const char *caption);
 
@@ -94,6 +100,7 @@ sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_circle(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_floodfill(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);

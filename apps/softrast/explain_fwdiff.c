@@ -42,29 +42,6 @@ static void backdrop(ex_canvas *c, const sr_point2 *p)
     }
 }
 
-/* The pixels sr_draw_line draws for the chords, as a grid mask. */
-static sr_result chord_pixels(ex_canvas *c, const sr_point2 *pts, int n, uint8_t *mask)
-{
-    sr_framebuffer *fb = NULL;
-    sr_result r = sr_make_framebuffer(c->ctx, &(sr_framebuffer_desc){ .width = c->grid_w,
-                                                                       .height = c->grid_h,
-                                                                       .depth_format = SR_DEPTH_NONE },
-                                      &fb);
-    if (r != SR_OK) {
-        return r;
-    }
-    r = sr_clear(c->ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
-    for (int i = 0; i + 1 < n && r == SR_OK; i++) {
-        r = sr_draw_line(c->ctx, fb, pts[i], pts[i + 1], (sr_rgba){ 1, 1, 1, 1 }, NULL);
-    }
-    const uint8_t *px = sr_framebuffer_pixels(fb);
-    for (int i = 0; i < c->grid_w * c->grid_h; i++) {
-        mask[i] = px[i * 4] != 0;
-    }
-    sr_destroy_framebuffer(c->ctx, fb);
-    return r;
-}
-
 sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim)
 {
     const sr_point2 *p = prim->pts;
@@ -138,7 +115,7 @@ sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim)
     if (!mask) {
         return SR_OUT_OF_MEMORY;
     }
-    sr_result r = chord_pixels(c, pts, n + 1, mask);
+    sr_result r = ex_polyline_pixels(c, pts, n + 1, false, mask);
     ex_begin(c);
     for (int yy = 0; yy < c->grid_h; yy++) {
         for (int xx = 0; xx < c->grid_w; xx++) {
