@@ -79,6 +79,12 @@ static const algorithm algorithms[] = {
         .seed = { 3, 3 } }, 16, 12, 32,
       "flood fill inside a polygon's outline: run by run from a\n"
       "             stack of seeds (--seed, --connectivity 4|8)" },
+    { "clip4d", EX_CLIP_TRIANGLE, explain_clip4d,
+      { .kind = EX_CLIP_TRIANGLE, .count = 3,
+        .clip = { { -0.9, -0.7, 0.2, 1 }, { 2.2, 0.2, 0.6, 1.5 }, { 0.5, 1.4, -1.6, -0.8 } } },
+      16, 12, 32,
+      "a triangle clipped in 4D against the six planes of the\n"
+      "             view volume, before the divide (--clip-triangle)" },
 };
 
 static void usage(FILE *f)
@@ -110,6 +116,10 @@ static void usage(FILE *f)
             "                             or the grid's middle)\n"
             "  --connectivity 4|8         floodfill: neighbours across edges (4, the\n"
             "                             default) or corners too (8)\n"
+            "  --clip-triangle X,Y,Z,W,X,Y,Z,W,X,Y,Z,W\n"
+            "                             clip4d: a triangle in clip space (before the\n"
+            "                             divide; the viewport is the grid less a fifth on\n"
+            "                             each side)\n"
             "  --tolerance T              forward-differencing: how far the chords may stray\n"
             "                             from the curve, pixels (default 0.25; at most 64\n"
             "                             steps)\n"
@@ -197,6 +207,22 @@ static bool parse_depths(const char *opt, const char *s, ex_primitive *prim)
             return false;
         }
     }
+    return true;
+}
+
+/* Three points x, y, z, w: 12 numbers through the 2D parser, as six
+ * pairs. */
+static bool parse_clip(const char *opt, const char *s, ex_primitive *prim)
+{
+    ex_primitive p = { 0 };
+    if (!parse_points(opt, s, 2, 6, 6, true, &p)) {
+        return false;
+    }
+    for (int i = 0; i < 3; i++) {
+        double v[4] = { p.pts[2 * i].x, p.pts[2 * i].y, p.pts[2 * i + 1].x, p.pts[2 * i + 1].y };
+        memcpy(prim->clip[i], v, sizeof v);
+    }
+    prim->count = 3;
     return true;
 }
 
@@ -313,7 +339,7 @@ static const char *kind_option(ex_kind k)
 {
     return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
          : k == EX_TRIANGLES ? "--triangles" : k == EX_CIRCLE ? "--circle"
-         : k == EX_CUBIC ? "--cubic" : "--line";
+         : k == EX_CUBIC ? "--cubic" : k == EX_CLIP_TRIANGLE ? "--clip-triangle" : "--line";
 }
 
 int cmd_explain(int argc, char **argv)
@@ -364,10 +390,12 @@ int cmd_explain(int argc, char **argv)
         ex_primitive p = { 0 };
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
             strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0 ||
-            strcmp(a, "--circle") == 0 || strcmp(a, "--cubic") == 0) {
+            strcmp(a, "--circle") == 0 || strcmp(a, "--cubic") == 0 ||
+            strcmp(a, "--clip-triangle") == 0) {
             p.kind = strcmp(a, "--triangles") == 0 ? EX_TRIANGLES
                    : strcmp(a, "--circle") == 0    ? EX_CIRCLE
                    : strcmp(a, "--cubic") == 0     ? EX_CUBIC
+                   : strcmp(a, "--clip-triangle") == 0 ? EX_CLIP_TRIANGLE
                    : a[2] == 't' ? EX_TRIANGLE : a[2] == 'p' ? EX_POLYGON : EX_LINE;
             if (p.kind != alg->kind) {
                 cli_error("explain %s: takes %s, not %s", alg->name, kind_option(alg->kind), a);
@@ -377,6 +405,7 @@ int cmd_explain(int argc, char **argv)
                : p.kind == EX_LINE      ? parse_points(a, v, 2, 2, 2, true, &p)
                : p.kind == EX_TRIANGLES ? parse_depths(a, v, &p)
                : p.kind == EX_CUBIC     ? parse_points(a, v, 2, 4, 4, true, &p)
+               : p.kind == EX_CLIP_TRIANGLE ? parse_clip(a, v, &p)
                : p.kind == EX_CIRCLE    ? parse_points(a, v, 3, 1, 1, true, &p) &&
                                               parse_radius(a, v, p.z[0])
                                         : parse_points(a, v, 2, 3, EX_MAX_POINTS, false, &p);
@@ -519,7 +548,8 @@ int cmd_explain(int argc, char **argv)
     int status = EXIT_OK;
     /* the scan-line fill lists its edge table in a caption */
     int lines = alg->run == explain_scanline ? 8 + prim.count : alg->run == explain_fillpoly ||
-                                                                     alg->run == explain_fwdiff ? 9 : 7;
+                                                                     alg->run == explain_fwdiff ||
+                                                                     alg->run == explain_clip4d ? 9 : 7;
     sr_result run = SR_OK;
     if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK ||
         (run = alg->run(&c, &prim)) != SR_OK) {

@@ -19,7 +19,7 @@
 
 /* The primitive the user gave (window coordinates, pixels, y down). */
 typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES, EX_CIRCLE,
-               EX_CUBIC } ex_kind;
+               EX_CUBIC, EX_CLIP_TRIANGLE } ex_kind;
 
 typedef struct ex_primitive {
     ex_kind kind;
@@ -34,6 +34,7 @@ typedef struct ex_primitive {
     int samples;            /* msaa: samples per pixel */
     int row;                /* perspective: the scanline of the span */
     int seed[2];            /* floodfill: the seed pixel */
+    double clip[3][4];      /* clip4d: the triangle in clip space, x, y, z, w */
     int connectivity;       /* floodfill: 4 or 8 */
 } ex_primitive;
 
@@ -101,6 +102,7 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_circle(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_floodfill(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_clip4d(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);
