@@ -817,6 +817,33 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
 }
 
+SR_TEST(webp_is_an_animation_of_every_frame)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("webp", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/circle.webp", dir);
+    remove(path);
+    int rc = sr_test_run_cli((const char *[]){ "explain", "circle", "--webp", path, NULL });
+    if (rc == 2) {
+        SKIP("this build has no libwebp");
+    }
+    REQUIRE(rc == 0);
+    FILE *f = fopen(path, "rb");
+    REQUIRE(f != NULL);
+    static uint8_t buf[1 << 20];
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    REQUIRE(n > 64);
+    CHECK(memcmp(buf, "RIFF", 4) == 0 && memcmp(buf + 8, "WEBP", 4) == 0);
+    /* one ANMF chunk per frame: the example circle has 13 */
+    int frames = 0;
+    for (size_t i = 12; i + 4 <= n; i++) {
+        frames += memcmp(buf + i, "ANMF", 4) == 0;
+    }
+    CHECK_EQ(frames, 13);
+}
+
 SR_TEST(sheet_holds_every_frame)
 {
     NEEDS_CLI();

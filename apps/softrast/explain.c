@@ -1,6 +1,7 @@
 /* explain.c - `softrast explain ALGORITHM [options]`: parses the primitive
  * and the outputs, runs one algorithm's steps (explain_*.c) and writes them
  * as numbered PNG frames and/or a contact sheet of all of them. */
+#include "batch_anim.h"
 #include "cli.h"
 #include "explain.h"
 
@@ -13,6 +14,7 @@
 
 #define MAX_GRID 256
 #define SHEET_GAP 8
+#define WEBP_FRAME_MS 1500   /* long enough to read a caption */
 
 typedef struct algorithm {
     const char *name;
@@ -148,7 +150,9 @@ static void usage(FILE *f)
             "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ... (DIR is\n"
             "                             made if missing), or a PATTERN with one %%d,\n"
             "                             e.g. out/step-%%02d.png\n"
-            "  --sheet FILE.png           all the steps on one captioned contact sheet\n",
+            "  --sheet FILE.png           all the steps on one captioned contact sheet\n"
+            "  --webp FILE.webp           all the steps as one animated WebP, 1.5 s each\n"
+            "                             (needs a build with libwebp)\n",
             EX_MAX_POINTS, MAX_GRID, MAX_GRID);
 }
 
@@ -335,6 +339,28 @@ static bool write_sheet(const ex_canvas *c, const char *path)
     return ok;
 }
 
+/* The frames as one animated WebP, each shown WEBP_FRAME_MS, the last
+ * twice as long before it loops. */
+static bool write_webp(const ex_canvas *c, const char *path)
+{
+    char why[600];
+    batch_anim *anim = batch_anim_start(c->width, c->height, false, why, sizeof why);
+    bool ok = anim != NULL;
+    for (int i = 0; i < c->frame_count && ok; i++) {
+        ok = batch_anim_add(anim, c->frames[i], i * WEBP_FRAME_MS, why, sizeof why);
+    }
+    sr_io_error err;
+    if (ok && !batch_anim_write(anim, path, (c->frame_count + 1) * WEBP_FRAME_MS, &err)) {
+        snprintf(why, sizeof why, "%s", err.message);
+        ok = false;
+    }
+    batch_anim_free(anim);
+    if (!ok) {
+        cli_error("explain: --webp: %s", why);
+    }
+    return ok;
+}
+
 static const char *kind_option(ex_kind k)
 {
     return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
@@ -374,7 +400,7 @@ int cmd_explain(int argc, char **argv)
     bool seed_given = false;
     int samples = 4;
     int grid_w = 0, grid_h = 0, zoom = 0;
-    const char *out = NULL, *sheet = NULL;
+    const char *out = NULL, *sheet = NULL, *webp = NULL;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
@@ -476,6 +502,12 @@ int cmd_explain(int argc, char **argv)
                 cli_error("%s: a directory, or a file name with one %%d (got '%s')", a, v);
                 ok = false;
             }
+        } else if (strcmp(a, "--webp") == 0) {
+            webp = v;
+            if (!batch_anim_available()) {
+                cli_error("%s: this build has no libwebp (install libwebp-dev and rebuild)", a);
+                ok = false;
+            }
         } else if (strcmp(a, "--sheet") == 0) {
             sheet = v;
         } else {
@@ -486,8 +518,8 @@ int cmd_explain(int argc, char **argv)
             return EXIT_USAGE;
         }
     }
-    if (!out && !sheet) {
-        cli_error("explain: no output: give -o DIR and/or --sheet FILE.png");
+    if (!out && !sheet && !webp) {
+        cli_error("explain: no output: give -o DIR, --sheet FILE.png and/or --webp FILE.webp");
         return EXIT_USAGE;
     }
     prim.rule = rule;
@@ -566,7 +598,8 @@ int cmd_explain(int argc, char **argv)
                       sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
             status = EXIT_FAILURE_RUN;
         }
-    } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet))) {
+    } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet)) ||
+               (webp && !write_webp(&c, webp))) {
         status = EXIT_FAILURE_RUN;
     }
     ex_canvas_free(&c);
