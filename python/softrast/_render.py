@@ -9,6 +9,7 @@ from ._softrast import Mesh
 #: The outputs render() can return, with their per-view shape suffix and dtype.
 OUTPUTS = {
     "color": ((3,), np.uint8),
+    "rgba": ((4,), np.uint8),
     "depth": ((), np.float32),
     "normal": ((3,), np.float32),
     "triangle_id": ((), np.int32),
@@ -134,8 +135,14 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     outputs: names from :data:`OUTPUTS`:
 
         - ``color`` (H, W, 3) uint8: vertex colors times the texture (gray
-          without either), lit by a headlight (``shading="lit"``) or as they
-          are (``shading="unlit"``), over ``background`` (RGB in [0, 1]).
+          without either; a glTF material's base color and base color
+          texture, see :func:`load`), lit by a headlight
+          (``shading="lit"``) or as they are (``shading="unlit"``), over
+          ``background`` (RGB in [0, 1]).
+        - ``rgba`` (H, W, 4) uint8: ``color`` with alpha, straight (not
+          premultiplied): the surface's alpha (vertex color alpha times
+          the texture's), 0 where nothing is.  No blending: a translucent
+          surface hides what is behind it.
         - ``depth`` (H, W) float32: camera-space z (distance along the
           optical axis, the unit of the vertices), ``inf`` where nothing is.
         - ``normal`` (H, W, 3) float32: unit normal in the camera frame, or
@@ -199,7 +206,7 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
                          *(out[name][b] if name in out else None
                            for name in ("depth", "triangle_id", "instance_id", "barycentric",
                                         "normal", "color", "mask")),
-                         bg, shading == "lit")
+                         bg, shading == "lit", rgba=out["rgba"][b] if "rgba" in out else None)
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return out

@@ -1,7 +1,8 @@
 /*
  * render.c - softrast._softrast.render: one camera's geometry buffers
  * (depth, triangle and instance IDs, barycentrics, normals, mask) and
- * color from a list of mesh instances.  The Python layer (softrast/
+ * color (RGB, or RGBA with a transparent background) from a list of mesh
+ * instances.  The Python layer (softrast/
  * _render.py) validates cameras and poses and loops over batches; this
  * file checks what it is handed again so that no call can crash, then
  * draws with the GIL released.
@@ -206,7 +207,7 @@ typedef struct render_job {
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;
-    uint8_t *color;
+    uint8_t *color, *rgba;
     npy_bool *mask;
     char error[512];
 } render_job;
@@ -378,7 +379,7 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
 static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
     sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
-        .color = { j->background[0], j->background[1], j->background[2], 1.0f },
+        .color = { j->background[0], j->background[1], j->background[2], j->rgba ? 0.0f : 1.0f },
         .depth_action = SR_ACTION_CLEAR, .depth = 0 });
     double kx[3], ky[2];
     clip_rows(j, kx, ky);
@@ -393,8 +394,12 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
     }
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);
-        for (size_t p = 0; p < (size_t)j->width * (size_t)j->height; p++) {
+        size_t n = (size_t)j->width * (size_t)j->height;
+        for (size_t p = 0; j->color && p < n; p++) {
             memcpy(j->color + 3 * p, px + 4 * p, 3);
+        }
+        if (j->rgba) {
+            memcpy(j->rgba, px, 4 * n);
         }
     }
     return r;
@@ -419,7 +424,7 @@ static void run(render_job *j)
     if (r == SR_OK && geometry) {
         r = geometry_pass(ctx, fb, j);
     }
-    if (r == SR_OK && j->color) {
+    if (r == SR_OK && (j->color || j->rgba)) {
         r = color_pass(ctx, fb, j);
     }
     if (r != SR_OK) {
@@ -531,7 +536,7 @@ static int take_instances(PyObject *seq, render_job *j)
                          i, bad, (Py_ssize_t)PyArray_DIM(m->vertices, 0));
             goto fail;
         }
-        if (j->color && sr_py_mesh_draw_arrays(m, &in->positions, &in->indices) < 0) {
+        if ((j->color || j->rgba) && sr_py_mesh_draw_arrays(m, &in->positions, &in->indices) < 0) {
             goto fail;
         }
     }
@@ -547,14 +552,15 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     (void)self;
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
-                              "mask", "background", "lit", NULL };
-    PyObject *instances, *K, *outs[7];
+                              "mask", "background", "lit", "rgba", NULL };
+    PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     render_job j = { 0 };
     int lit = 1;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p:render", kwlist, &instances,
-                                     &K, &j.width, &j.height, &j.near, &j.threads, &outs[0],
-                                     &outs[1], &outs[2], &outs[3], &outs[4], &outs[5], &outs[6],
-                                     &j.background[0], &j.background[1], &j.background[2], &lit)) {
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|O:render", kwlist,
+                                     &instances, &K, &j.width, &j.height, &j.near, &j.threads,
+                                     &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
+                                     &outs[6], &j.background[0], &j.background[1],
+                                     &j.background[2], &lit, &outs[7])) {
         return NULL;
     }
     if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
@@ -577,18 +583,20 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
         return NULL;
     }
     int H = j.height, W = j.width;
-    void *ptr[7];
+    void *ptr[8];
     if (take_output(outs[0], "depth", NPY_FLOAT32, H, W, 0, &ptr[0]) < 0 ||
         take_output(outs[1], "triangle_id", NPY_INT32, H, W, 0, &ptr[1]) < 0 ||
         take_output(outs[2], "instance_id", NPY_INT32, H, W, 0, &ptr[2]) < 0 ||
         take_output(outs[3], "barycentric", NPY_FLOAT32, H, W, 3, &ptr[3]) < 0 ||
         take_output(outs[4], "normal", NPY_FLOAT32, H, W, 3, &ptr[4]) < 0 ||
         take_output(outs[5], "color", NPY_UINT8, H, W, 3, &ptr[5]) < 0 ||
-        take_output(outs[6], "mask", NPY_BOOL, H, W, 0, &ptr[6]) < 0) {
+        take_output(outs[6], "mask", NPY_BOOL, H, W, 0, &ptr[6]) < 0 ||
+        take_output(outs[7], "rgba", NPY_UINT8, H, W, 4, &ptr[7]) < 0) {
         return NULL;
     }
     j.depth = ptr[0], j.triangle_id = ptr[1], j.instance_id = ptr[2];
     j.barycentric = ptr[3], j.normal = ptr[4], j.color = ptr[5], j.mask = ptr[6];
+    j.rgba = ptr[7];
     if (take_instances(instances, &j) < 0) {
         free(j.inst);
         return NULL;

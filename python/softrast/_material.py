@@ -1,0 +1,78 @@
+"""Materials of loaded scenes: glTF's metallic-roughness factors and base color texture."""
+
+import numpy as np
+
+
+class Material:
+    """A glTF 2.0 metallic-roughness material as :func:`softrast.load` reads it.
+
+    base_color: (4,) float32 linear RGBA factor.
+    base_color_texture: (H, W, 4) uint8 sRGB image, row 0 at the top, or None.
+    texcoord: the texture coordinate set the texture reads (0 or 1).
+    metallic, roughness: factors in [0, 1].
+    emissive: (3,) float32 linear RGB (times ``emissive_strength``).
+    alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
+    double_sided, unlit: the material's flags (KHR_materials_unlit).
+
+    ``render`` draws the base color (factor times texture times vertex
+    color) into ``color`` and ``rgba``; the other factors are carried for
+    the caller (the color pass has no physically based shading).
+    """
+
+    __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
+                 "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
+                 "unlit", "normal_scale", "occlusion_strength")
+
+    def __init__(self, factors, base_color_texture=None):
+        slot = factors["base_color_texture"]
+        self.base_color = np.array(factors["base_color"], np.float32)
+        self.base_color_texture = base_color_texture
+        self.texcoord = slot["texcoord"] if slot else 0
+        self.metallic = factors["metallic"]
+        self.roughness = factors["roughness"]
+        self.emissive = np.array(factors["emissive"], np.float32)
+        self.emissive_strength = factors["emissive_strength"]
+        self.alpha_mode = factors["alpha_mode"]
+        self.alpha_cutoff = factors["alpha_cutoff"]
+        self.double_sided = factors["double_sided"]
+        self.unlit = factors["unlit"]
+        self.normal_scale = factors["normal_scale"]
+        self.occlusion_strength = factors["occlusion_strength"]
+
+    def __repr__(self):
+        tex = "none" if self.base_color_texture is None else \
+            "x".join(map(str, self.base_color_texture.shape[1::-1]))
+        return (f"Material(base_color={self.base_color.tolist()}, texture={tex}, "
+                f"alpha_mode={self.alpha_mode!r})")
+
+
+def texture_transform(uvs, slot):
+    """uvs (N, 2) through a slot's T(offset) R(rotation) S(scale), in the
+    library's texture frame ((0, 0) the image's bottom-left)."""
+    if slot is None:
+        return uvs
+    c, s = np.cos(slot["rotation"]), np.sin(slot["rotation"])
+    scaled = uvs.astype(np.float64) * slot["scale"]
+    out = np.stack([c * scaled[:, 0] - s * scaled[:, 1], s * scaled[:, 0] + c * scaled[:, 1]], -1)
+    return (out + slot["offset"]).astype(np.float32)
+
+
+def material_arrays(arrays, factors, texture):
+    """A loaded primitive's Mesh arguments with its material drawn in:
+    colors = vertex colors (white without) times the base color factor,
+    uvs = the texture's coordinate set through its transform, texture =
+    the base color image; alpha dropped for opaque materials."""
+    out = {k: v for k, v in arrays.items() if k != "uvs1"}
+    slot = factors["base_color_texture"]
+    n = len(arrays["vertices"])
+    colors = arrays["colors"] if arrays["colors"] is not None else np.ones((n, 4), np.float32)
+    colors = colors * np.asarray(factors["base_color"], np.float32)
+    if factors["alpha_mode"] == "opaque":
+        colors[:, 3] = 1.0
+    out["colors"] = colors.astype(np.float32)
+    uvs = arrays["uvs1"] if slot and slot["texcoord"] == 1 else arrays["uvs"]
+    if texture is not None and uvs is not None:
+        out["uvs"] = texture_transform(uvs, slot)
+        out["texture"] = np.ascontiguousarray(texture[..., :3]) \
+            if factors["alpha_mode"] == "opaque" else texture
+    return out
