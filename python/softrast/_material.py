@@ -4,7 +4,8 @@ import numpy as np
 
 
 class Material:
-    """A glTF 2.0 metallic-roughness material as :func:`softrast.load` reads it.
+    """A glTF 2.0 metallic-roughness material as :func:`softrast.load` reads it
+    (the defaults are glTF's).
 
     base_color: (4,) float32 linear RGBA factor.
     base_color_texture: (H, W, 4) uint8 sRGB image, row 0 at the top, or None.
@@ -23,21 +24,33 @@ class Material:
                  "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
                  "unlit", "normal_scale", "occlusion_strength")
 
-    def __init__(self, factors, base_color_texture=None):
-        slot = factors["base_color_texture"]
-        self.base_color = np.array(factors["base_color"], np.float32)
+    def __init__(self, base_color=(1.0, 1.0, 1.0, 1.0), base_color_texture=None, *, texcoord=0,
+                 metallic=1.0, roughness=1.0, emissive=(0.0, 0.0, 0.0), emissive_strength=1.0,
+                 alpha_mode="opaque", alpha_cutoff=0.5, double_sided=False, unlit=False,
+                 normal_scale=1.0, occlusion_strength=1.0):
+        self.base_color = np.array(base_color, np.float32).reshape(4)
         self.base_color_texture = base_color_texture
-        self.texcoord = slot["texcoord"] if slot else 0
-        self.metallic = factors["metallic"]
-        self.roughness = factors["roughness"]
-        self.emissive = np.array(factors["emissive"], np.float32)
-        self.emissive_strength = factors["emissive_strength"]
-        self.alpha_mode = factors["alpha_mode"]
-        self.alpha_cutoff = factors["alpha_cutoff"]
-        self.double_sided = factors["double_sided"]
-        self.unlit = factors["unlit"]
-        self.normal_scale = factors["normal_scale"]
-        self.occlusion_strength = factors["occlusion_strength"]
+        self.texcoord = int(texcoord)
+        self.metallic = float(metallic)
+        self.roughness = float(roughness)
+        self.emissive = np.array(emissive, np.float32).reshape(3)
+        self.emissive_strength = float(emissive_strength)
+        if alpha_mode not in ("opaque", "mask", "blend"):
+            raise ValueError(f"alpha_mode: must be 'opaque', 'mask' or 'blend', got {alpha_mode!r}")
+        self.alpha_mode = alpha_mode
+        self.alpha_cutoff = float(alpha_cutoff)
+        self.double_sided = bool(double_sided)
+        self.unlit = bool(unlit)
+        self.normal_scale = float(normal_scale)
+        self.occlusion_strength = float(occlusion_strength)
+
+    @classmethod
+    def _from_factors(cls, factors, base_color_texture):
+        """From sr_load_scene's material dict (_softrast.load_scene)."""
+        slot = factors["base_color_texture"]
+        kw = {k: v for k, v in factors.items() if k != "base_color_texture"}
+        return cls(base_color_texture=base_color_texture, texcoord=slot["texcoord"] if slot else 0,
+                   **kw)
 
     def __repr__(self):
         tex = "none" if self.base_color_texture is None else \

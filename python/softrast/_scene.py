@@ -148,7 +148,7 @@ def load(path):
     if not d["gltf"]:
         return Scene([load_mesh(path)])
     images = base_color_images(path, d["materials"])
-    materials = [Material(m, images.get(i)) for i, m in enumerate(d["materials"])]
+    materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
     meshes = {}
     instances = []
     for mesh_index, world, material in d["instances"]:
