@@ -16,8 +16,9 @@ class Material:
     double_sided, unlit: the material's flags (KHR_materials_unlit).
 
     ``render`` draws the base color (factor times texture times vertex
-    color) into ``color`` and ``rgba``; the other factors are carried for
-    the caller (the color pass has no physically based shading).
+    color) into ``color`` and ``rgba``; with ``shading="pbr"`` also
+    metallic, roughness and emissive.  The other factors are carried for
+    the caller.
     """
 
     __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
@@ -28,13 +29,18 @@ class Material:
                  metallic=1.0, roughness=1.0, emissive=(0.0, 0.0, 0.0), emissive_strength=1.0,
                  alpha_mode="opaque", alpha_cutoff=0.5, double_sided=False, unlit=False,
                  normal_scale=1.0, occlusion_strength=1.0):
-        self.base_color = np.array(base_color, np.float32).reshape(4)
+        self.base_color = _factors(base_color, "base_color", 4, 1.0)
+        if base_color_texture is not None and not (
+                isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
+                and base_color_texture.ndim == 3 and base_color_texture.shape[2] in (3, 4)):
+            raise TypeError("base_color_texture: expected an (H, W, 3|4) uint8 array or None")
         self.base_color_texture = base_color_texture
         self.texcoord = int(texcoord)
-        self.metallic = float(metallic)
-        self.roughness = float(roughness)
-        self.emissive = np.array(emissive, np.float32).reshape(3)
-        self.emissive_strength = float(emissive_strength)
+        self.metallic = float(_factors(metallic, "metallic", 1, 1.0)[0])
+        self.roughness = float(_factors(roughness, "roughness", 1, 1.0)[0])
+        self.emissive = _factors(emissive, "emissive", 3, np.inf)
+        self.emissive_strength = float(_factors(emissive_strength, "emissive_strength", 1,
+                                                np.inf)[0])
         if alpha_mode not in ("opaque", "mask", "blend"):
             raise ValueError(f"alpha_mode: must be 'opaque', 'mask' or 'blend', got {alpha_mode!r}")
         self.alpha_mode = alpha_mode
@@ -57,6 +63,17 @@ class Material:
             "x".join(map(str, self.base_color_texture.shape[1::-1]))
         return (f"Material(base_color={self.base_color.tolist()}, texture={tex}, "
                 f"alpha_mode={self.alpha_mode!r})")
+
+
+def _factors(value, name, count, high):
+    """`count` float32 factors in [0, high], or a ValueError naming `name`."""
+    try:
+        a = np.array(value, np.float32).reshape(count)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected {count} number(s), got {value!r}") from None
+    if not np.all((a >= 0) & (a <= high)):
+        raise ValueError(f"{name}: must be in [0, {high}], got {value!r}")
+    return a
 
 
 def texture_transform(uvs, slot):

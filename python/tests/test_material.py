@@ -66,7 +66,8 @@ def gltf_doc(materials, textures=(), images=(), image_bytes=None, primitive_mate
 def write_glb(path, doc, data):
     js = json.dumps(doc).encode()
     js += b" " * (-len(js) % 4)
-    body = struct.pack("<II", len(js), 0x4E4F534A) + js + struct.pack("<II", len(data), 0x004E4942) + data
+    body = (struct.pack("<II", len(js), 0x4E4F534A) + js +
+            struct.pack("<II", len(data), 0x004E4942) + data)
     path.write_bytes(b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body)
 
 
@@ -141,7 +142,8 @@ def test_rgba_alpha(tmp_path):
     assert np.array_equal(opaque["rgba"][..., :3], opaque["color"])
     assert np.all(opaque["rgba"][..., 3][~opaque["mask"]] == 0), "nothing drawn: transparent"
     assert np.all(opaque["rgba"][..., 3][opaque["mask"]] == 255), "opaque drops the image's alpha"
-    blend = draw(load(textured(tmp_path, "BLEND", factor=(1, 1, 1, 0.5))), outputs=("rgba",))["rgba"]
+    blend = draw(load(textured(tmp_path, "BLEND", factor=(1, 1, 1, 0.5))),
+                 outputs=("rgba",))["rgba"]
     assert mean_rgb(blend, TOP)[3] == pytest.approx(128, abs=2), "factor alpha 0.5 times 255"
     assert mean_rgb(blend, BOTTOM)[3] == pytest.approx(32, abs=2), "times the texel's 64"
 
@@ -178,3 +180,61 @@ def test_load_obj_keeps_its_texture(tmp_path):
     assert scene.instances[0].mesh.texture is not None
     color = draw(scene)["color"]
     assert mean_rgb(color, TOP)[0] > 200 and mean_rgb(color, BOTTOM)[2] > 200
+
+
+def one_material(tmp_path, **pbr):
+    """The quad with one untextured material of the given glTF members."""
+    material = {"pbrMetallicRoughness": {k: v for k, v in pbr.items() if k != "emissiveFactor"}}
+    if "emissiveFactor" in pbr:
+        material["emissiveFactor"] = pbr["emissiveFactor"]
+    path = tmp_path / "material.gltf"
+    path.write_text(json.dumps(gltf_doc([material])[0]))
+    return load(path)
+
+
+def test_pbr_shading_draws_the_geometry_pass_faces_and_the_factors(tmp_path):
+    red = one_material(tmp_path, baseColorFactor=[0.8, 0.05, 0.05, 1], metallicFactor=0,
+                       roughnessFactor=0.6)
+    K, R, t = softrast.look_at(eye=(0.5, 0.4, 3), target=(0, 0, 0), width=W, height=H, fov_y=0.8)
+    args = dict(K=K, R=R, t=t, width=W, height=H)
+    out = softrast.render(red, outputs=("rgba", "color", "mask", "depth"), shading="pbr",
+                          background=(0.2, 0.4, 0.6), **args)
+    lit = softrast.render(red, outputs=("color", "mask", "depth"), **args)
+    assert out["mask"].sum() > 200
+    assert np.array_equal(out["mask"], lit["mask"]) and np.array_equal(out["depth"], lit["depth"])
+    assert np.array_equal(out["rgba"][..., 3], np.where(out["mask"], 255, 0)), \
+        "the color pass covers exactly the geometry pass's pixels"
+    assert np.all(out["color"][~out["mask"]] == [51, 102, 153]), "the background elsewhere"
+    inside = out["color"][out["mask"]].astype(int)
+    assert np.all(inside[:, 0] > inside[:, 1] + 30), "red base color"
+    assert not np.array_equal(out["color"], lit["color"]), "not the headlight look"
+    for threads in (1, 3):
+        again = softrast.render(red, outputs=("rgba",), shading="pbr", background=(0.2, 0.4, 0.6),
+                                threads=threads, **args)
+        assert np.array_equal(again["rgba"], out["rgba"]), f"the same bytes on {threads} threads"
+    glowing = one_material(tmp_path, baseColorFactor=[0, 0, 0, 1], emissiveFactor=[1, 1, 1])
+    dark = one_material(tmp_path, baseColorFactor=[0, 0, 0, 1])
+    assert glowing.instances[0].material.emissive.tolist() == [1, 1, 1]
+    bright = softrast.render(glowing, outputs=("color",), shading="pbr", **args)["color"]
+    black = softrast.render(dark, outputs=("color",), shading="pbr", **args)["color"]
+    m = out["mask"]
+    assert bright[m].min() > 200 and black[m].max() < 60, "emissive is drawn"
+    metal = softrast.render(one_material(tmp_path, baseColorFactor=[0.8, 0.05, 0.05, 1],
+                                         metallicFactor=1, roughnessFactor=0.6),
+                            outputs=("color",), shading="pbr", **args)["color"]
+    assert np.abs(metal[m].astype(int) - out["color"][m]).max() > 10, "metallic is drawn"
+
+
+def test_material_arguments():
+    m = softrast.Material(base_color=(1, 0, 0, 1), metallic=0.0, roughness=0.3)
+    assert m.alpha_mode == "opaque" and m.base_color.dtype == np.float32
+    for kw, name in [({"metallic": 1.5}, "metallic"), ({"roughness": -1}, "roughness"),
+                     ({"base_color": (1, 1, 1)}, "base_color"),
+                     ({"emissive": (np.nan, 0, 0)}, "emissive")]:
+        with pytest.raises(ValueError, match=name):
+            softrast.Material(**kw)
+    with pytest.raises(TypeError, match="base_color_texture"):
+        softrast.Material(base_color_texture=np.zeros((4, 4, 4), np.float32))
+    with pytest.raises(TypeError, match="material"):
+        softrast.Instance(softrast.Mesh(QUAD, QUAD_FACES.reshape(-1, 3).astype(np.int32)),
+                          material="red")
