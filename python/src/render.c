@@ -2,10 +2,9 @@
  * render.c - softrast._softrast.render: one camera's geometry buffers
  * (depth, triangle and instance IDs, barycentrics, normals, mask) and
  * color (RGB, or RGBA with a transparent background) from a list of mesh
- * instances.  The Python layer (softrast/
- * _render.py) validates cameras and poses and loops over batches; this
- * file checks what it is handed again so that no call can crash, then
- * draws with the GIL released.
+ * instances.  The Python layer (softrast/_render.py) validates cameras and
+ * poses and loops over batches; this file checks what it is handed again
+ * so that no call can crash, then draws with the GIL released.
  *
  * The geometry buffers come from one sr_program per instance.  Its vertex
  * shader reads the mesh's own arrays (float32 or float64 vertices, int32
