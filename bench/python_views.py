@@ -171,10 +171,13 @@ def main():
     faces = np.asarray(mesh.faces, np.uint32)
     lo, hi = verts.min(0), verts.max(0)
     centre, size = (lo + hi) / 2, float(np.linalg.norm(hi - lo))
-    print(f"mesh: {len(faces)} triangles; {args.views} views; {args.threads} threads")
+    print(f"mesh: {len(faces)} triangles; {args.views} views; {args.threads} threads; "
+          f"load average {os.getloadavg()[0]:.1f}")
     if o3d is not None:
         scene = o3d.t.geometry.RaycastingScene()
         scene.add_triangles(o3d.core.Tensor(verts), o3d.core.Tensor(faces))
+        # Embree builds its BVH at the first cast, once for every view: not timed.
+        scene.cast_rays(o3d.core.Tensor(np.array([[0, 0, 0, 0, 0, 1]], np.float32)))
     print(f"{'size':>9} {'softrast views/s':>17} {'Open3D views/s':>15} {'ratio':>6} "
           f"{'depth agreement':>16} {'pixels':>8} {'same triangle':>14}")
     for width, height in [(256, 256), (640, 480)]:
