@@ -909,17 +909,16 @@ static bool wants_shadows(const render_opts *o, const scene *s)
     return o->shadows > 0 || (o->shadows < 0 && ground);
 }
 
-/* The work image render_job_draw draws into for an output of width x
- * height whose depth format is out_depth: false when it draws into the
- * output itself.  The size is checked by the caller. */
-static bool work_desc(const render_opts *o, int width, int height, sr_depth_format out_depth,
-                      sr_framebuffer_desc *desc)
+sr_framebuffer_desc render_job_direct_desc(const render_job *job, int width, int height)
 {
-    sr_depth_format want = o->depth_format == SR_DEPTH_DEFAULT ? SR_DEPTH_D24 : o->depth_format;
-    *desc = (sr_framebuffer_desc){ .width = width * o->ssaa, .height = height * o->ssaa,
-                                   .depth_format = want, .samples = o->msaa };
-    return o->ssaa > 1 || o->msaa > 1 || out_depth != want;
+    const render_opts *o = &job->o;
+    bool msaa = o->msaa > 1 && o->ssaa == 1;
+    return (sr_framebuffer_desc){ .width = width, .height = height,
+                                  .depth_format = msaa ? o->depth_format
+                                                       : render_job_depth_format(job),
+                                  .samples = msaa ? o->msaa : 1 };
 }
+
 
 sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info)
 {
@@ -958,21 +957,28 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     }
 
     /* SSAA renders k x k samples per output pixel into the work image,
-     * then filters them down into `out`; MSAA renders into a multisampled
-     * work image of the output's size and resolves it. */
+     * then filters them down into `out`; MSAA renders into `out` itself
+     * when it has the samples and depth (render_job_direct_desc), else
+     * into a multisampled work image of the output's size and resolves
+     * it. */
     sr_framebuffer *fb = out;
     sr_result r = SR_OK;
-    sr_framebuffer_desc wd;
-    if (work_desc(o, o->width, o->height, sr_framebuffer_depth_format(out), &wd)) {
-        if (job->work && (sr_framebuffer_width(job->work) != wd.width ||
-                          sr_framebuffer_height(job->work) != wd.height ||
+    sr_depth_format want = o->depth_format == SR_DEPTH_DEFAULT ? SR_DEPTH_D24 : o->depth_format;
+    if (o->ssaa > 1 || sr_framebuffer_samples(out) != o->msaa ||
+        sr_framebuffer_depth_format(out) != want) {
+        if (job->work && (sr_framebuffer_width(job->work) != sw ||
+                          sr_framebuffer_height(job->work) != sh ||
                           sr_framebuffer_samples(job->work) != o->msaa ||
-                          sr_framebuffer_depth_format(job->work) != wd.depth_format)) {
+                          sr_framebuffer_depth_format(job->work) != want)) {
             sr_destroy_framebuffer(ctx, job->work);
             job->work = NULL;
         }
         if (!job->work) {
-            r = sr_make_framebuffer(ctx, &wd, &job->work);
+            r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = (int)sw,
+                                                                .height = (int)sh,
+                                                                .depth_format = want,
+                                                                .samples = o->msaa },
+                                    &job->work);
         }
         fb = job->work;
     }
@@ -1028,14 +1034,11 @@ void render_job_free(render_job *job)
     free(job);
 }
 
-/* sr_make_framebuffer on a thread of its own (cmd_render): the output
- * and, when render_job_draw will want one, its work image. */
+/* sr_make_framebuffer on a thread of its own (cmd_render). */
 typedef struct fb_maker {
     sr_context *ctx;
-    const render_opts *o;
     sr_framebuffer_desc desc;
     sr_framebuffer *fb;
-    sr_framebuffer *work;   /* NULL if none is wanted or it could not be made */
     sr_result result;
     char error[256];        /* sr_context_error, read before the context is used again */
     pthread_t thread;
@@ -1047,15 +1050,6 @@ static void *make_fb(void *arg)
     m->result = sr_make_framebuffer(m->ctx, &m->desc, &m->fb);
     if (m->result != SR_OK) {
         snprintf(m->error, sizeof m->error, "%s", sr_context_error(m->ctx));
-        return NULL;
-    }
-    /* A work image that cannot be made here is left to render_job_draw,
-     * which makes it again and reports why it cannot. */
-    sr_framebuffer_desc wd;
-    if (work_desc(m->o, m->desc.width, m->desc.height, m->desc.depth_format, &wd) &&
-        wd.width <= SR_MAX_FRAMEBUFFER_SIZE && wd.height <= SR_MAX_FRAMEBUFFER_SIZE &&
-        sr_make_framebuffer(m->ctx, &wd, &m->work) != SR_OK) {
-        m->work = NULL;
     }
     return NULL;
 }
@@ -1100,21 +1094,20 @@ int cmd_render(int argc, char **argv)
     }
 
     double t0 = now_ms();
-    /* The framebuffers are made on a thread of its own while the model
-     * file is read on this one: their fresh pages (the output's 8 MB at
-     * 1920 x 1080 and, with the default 4x MSAA, the work image's 75 MB of
-     * samples and resolve buffer) are the kernel's to zero, time the
-     * reader's one core leaves the other free for.  The reader allocates
-     * on the mesh context; the drawing context is used again only once
-     * the framebuffers are made (make_context's textures). */
+    /* The framebuffer is made on a thread of its own while the model
+     * file is read on this one: its fresh pages (with the default 4x MSAA
+     * at 1920 x 1080, 66 MB of samples and the 8 MB resolved image) are
+     * the kernel's to zero, time the reader's one core leaves the other
+     * free for.  The reader allocates on the mesh context; the drawing
+     * context is used again only once the framebuffer is made
+     * (make_context's textures). */
     status = start_context(job);
     if (status >= 0) {
         render_job_free(job);
         return status;
     }
-    fb_maker maker = { .ctx = job->ctx, .o = o,
-                       .desc = { .width = o->width, .height = o->height,
-                                 .depth_format = render_job_depth_format(job) } };
+    fb_maker maker = { .ctx = job->ctx,
+                       .desc = render_job_direct_desc(job, o->width, o->height) };
     bool threaded = pthread_create(&maker.thread, NULL, make_fb, &maker) == 0;
     if (!threaded) {
         make_fb(&maker);  /* no thread to spare: one after the other */
@@ -1126,7 +1119,6 @@ int cmd_render(int argc, char **argv)
         pthread_join(maker.thread, NULL);
     }
     double setup_ms = now_ms() - t_wait;
-    job->work = maker.work;
     if (status < 0) {
         status = finish_scene(job);
     }

@@ -55,8 +55,17 @@ sr_context *render_job_context(const render_job *job);
  * image and copies or filters it down). */
 sr_depth_format render_job_depth_format(const render_job *job);
 
-/* Draw one frame into `out` (single-sampled, made on the job's context),
- * at out's size.  On failure render_job_error says why in one line. */
+/* The framebuffer to make for render_job_draw when only its resolved
+ * pixels are read (sr_framebuffer_pixels): with MSAA (and no SSAA) it is
+ * multisampled with the job's samples and depth format, and the job draws
+ * into it directly rather than into a work image resolved into it, which
+ * saves a full-size image; otherwise it is single-sampled with
+ * render_job_depth_format. */
+sr_framebuffer_desc render_job_direct_desc(const render_job *job, int width, int height);
+
+/* Draw one frame into `out` (made on the job's context; single-sampled,
+ * or as render_job_direct_desc says), at out's size.  On failure
+ * render_job_error says why in one line. */
 sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info);
 const char *render_job_error(const render_job *job);
 /* The model file, or NULL for the built-in scene. */
