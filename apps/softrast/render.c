@@ -919,7 +919,6 @@ sr_framebuffer_desc render_job_direct_desc(const render_job *job, int width, int
                                   .samples = msaa ? o->msaa : 1 };
 }
 
-
 sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info)
 {
     render_opts *o = &job->o;

@@ -27,9 +27,10 @@ typedef struct quad_job {
     float inv_area;               /* for screen-space (noperspective) weights */
     int64_t lane[4][3];           /* quad lane i's edge values less lane 0's */
     bool test4;                   /* early and the state of test4: the vector test */
-    v4d so4[3];                   /* per edge: so[0..3][e] as double lanes */
+    v4d so4[2];                   /* so[0..3][1] and so[0..3][2] as double lanes */
 } quad_job;
 
+/* A mask of four lanes (each 0 or -1) as the bits 0..3 of a sample mask. */
 static unsigned lane_bits(v4i m)
 {
     return (unsigned)(m[0] & 1) | (unsigned)(m[1] & 2) | (unsigned)(m[2] & 4) |
@@ -47,7 +48,7 @@ static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsign
 {
     const sr_draw_state *ds = j->ds;
     const sr_tri *t = j->t;
-    v4d e1 = (double)u[1] + j->so4[1], e2 = (double)u[2] + j->so4[2];
+    v4d e1 = (double)u[1] + j->so4[0], e2 = (double)u[2] + j->so4[1];
     v4d z = t->z0 + e1 * t->dz1 + e2 * t->dz2;
     v4d lo = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
     v4d hi = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
@@ -237,9 +238,8 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     j.test4 = j.early && ds->samples == 4 && !ds->stencil_test &&
               ds->depth_mode == SR_DEPTH_MODE_LESS && ds->depth_bits >= 1 && ds->depth_bits <= 24;
     for (int s = 0; s < 4 && j.test4; s++) {
-        for (int e = 0; e < 3; e++) {
-            j.so4[e][s] = (double)j.so[s][e];
-        }
+        j.so4[0][s] = (double)j.so[s][1];
+        j.so4[1][s] = (double)j.so[s][2];
     }
     sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);
 }
