@@ -769,18 +769,25 @@ static int finish_scene(render_job *job)
 }
 
 /* --environment: the built-in studio, an equirectangular Radiance
- * picture, or none (the sky-and-ground hemisphere); prefiltered once. */
+ * picture, or none (the sky-and-ground hemisphere); prefiltered once a
+ * job, not once a model: a batch's models all share the light. */
 static int load_environment(render_job *job)
 {
     const render_opts *o = &job->o;
     if (!render_opts_image_light(o)) {
         return -1;
     }
+    bool file = strcmp(o->environment, "studio") != 0;
+    if (file) {
+        cli_inputs_add(&job->inputs, o->environment, "environment");
+    }
+    if (job->env) {
+        return -1;
+    }
     sr_environment_desc d = { .intensity = o->environment_intensity };
     float *px = NULL;
-    if (strcmp(o->environment, "studio") != 0) {
+    if (file) {
         sr_io_error err;
-        cli_inputs_add(&job->inputs, o->environment, "environment");
         sr_result r = sr_read_hdr(o->environment, &d.width, &d.height, &px, &err);
         if (r != SR_OK) {
             fprintf(stderr, "%s\n", err.message);
