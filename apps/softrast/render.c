@@ -14,6 +14,7 @@
 #include "scene.h"
 #include "softrast_io.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -567,6 +568,7 @@ struct render_job {
                              * format) when the caller's framebuffer cannot be drawn into */
     cli_inputs inputs;      /* the files read: model, MTL, textures */
     sr_environment *env;    /* pbr's image-based light, on mesh_ctx; NULL: the hemisphere */
+    bool env_shared;        /* env is another job's (render_job_share_light) */
     render_shadow shadow;   /* the key light's map, on ctx */
     char error[512];
 };
@@ -804,6 +806,19 @@ static int load_environment(render_job *job)
     return -1;
 }
 
+int render_job_prepare(render_job *job)
+{
+    int status = start_context(job);
+    return status >= 0 ? status : load_environment(job);
+}
+
+void render_job_share_light(render_job *job, const render_job *from)
+{
+    assert(!job->env);
+    job->env = from->env;
+    job->env_shared = job->env != NULL;
+}
+
 int render_job_load(render_job *job)
 {
     int status = start_context(job);
@@ -1018,7 +1033,9 @@ void render_job_free(render_job *job)
         return;
     }
     drop_context(job);
-    sr_destroy_environment(job->mesh_ctx, job->env);
+    if (!job->env_shared) {
+        sr_destroy_environment(job->mesh_ctx, job->env);
+    }
     if (job->have_scene) {
         scene_free(job->mesh_ctx, &job->s);
     }
