@@ -511,6 +511,14 @@ SR_TEST(batch_reads_ahead_without_changing_a_byte)
         free(a);
         free(b);
     }
+
+    /* The light is made once, before any input: a bad one is a bad option. */
+    char hdr[1200];
+    snprintf(hdr, sizeof hdr, "%s/none.hdr", dir);
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--environment", hdr), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_EQ(count_lines(r.err), 1);
+    CHECK_STR_CONTAINS(r.err, "none.hdr");
 }
 
 static bool same_file_state(const char *path, const struct stat *before)
