@@ -14,6 +14,7 @@
 #include "scene.h"
 #include "softrast_io.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -567,6 +568,7 @@ struct render_job {
                              * format) when the caller's framebuffer cannot be drawn into */
     cli_inputs inputs;      /* the files read: model, MTL, textures */
     sr_environment *env;    /* pbr's image-based light, on mesh_ctx; NULL: the hemisphere */
+    bool env_shared;        /* env is another job's (render_job_share_light) */
     render_shadow shadow;   /* the key light's map, on ctx */
     char error[512];
 };
@@ -769,18 +771,25 @@ static int finish_scene(render_job *job)
 }
 
 /* --environment: the built-in studio, an equirectangular Radiance
- * picture, or none (the sky-and-ground hemisphere); prefiltered once. */
+ * picture, or none (the sky-and-ground hemisphere); prefiltered once a
+ * job, not once a model: a batch's models all share the light. */
 static int load_environment(render_job *job)
 {
     const render_opts *o = &job->o;
     if (!render_opts_image_light(o)) {
         return -1;
     }
+    bool file = strcmp(o->environment, "studio") != 0;
+    if (file) {
+        cli_inputs_add(&job->inputs, o->environment, "environment");
+    }
+    if (job->env) {
+        return -1;
+    }
     sr_environment_desc d = { .intensity = o->environment_intensity };
     float *px = NULL;
-    if (strcmp(o->environment, "studio") != 0) {
+    if (file) {
         sr_io_error err;
-        cli_inputs_add(&job->inputs, o->environment, "environment");
         sr_result r = sr_read_hdr(o->environment, &d.width, &d.height, &px, &err);
         if (r != SR_OK) {
             fprintf(stderr, "%s\n", err.message);
@@ -795,6 +804,19 @@ static int load_environment(render_job *job)
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     return -1;
+}
+
+int render_job_prepare(render_job *job)
+{
+    int status = start_context(job);
+    return status >= 0 ? status : load_environment(job);
+}
+
+void render_job_share_light(render_job *job, const render_job *from)
+{
+    assert(!job->env);
+    job->env = from->env;
+    job->env_shared = job->env != NULL;
 }
 
 int render_job_load(render_job *job)
@@ -1024,7 +1046,9 @@ void render_job_free(render_job *job)
         return;
     }
     drop_context(job);
-    sr_destroy_environment(job->mesh_ctx, job->env);
+    if (!job->env_shared) {
+        sr_destroy_environment(job->mesh_ctx, job->env);
+    }
     if (job->have_scene) {
         scene_free(job->mesh_ctx, &job->s);
     }

@@ -35,6 +35,14 @@ int render_job_load(render_job *job);
  * exit status. */
 int render_job_configure(render_job *job, int argc, char **argv);
 void render_job_free(render_job *job);
+/* Make the contexts and the environment light (--environment) of a job
+ * that has no model yet, so that another job can share the light:
+ * render_job_load does this itself otherwise.  -1 or an exit status. */
+int render_job_prepare(render_job *job);
+/* Light `job` with the environment of `from` (prepared, and freed after
+ * job) instead of prefiltering its own: a batch's two jobs, one reading
+ * a model while the other draws, share one. */
+void render_job_share_light(render_job *job, const render_job *from);
 /* Load another model into a loaded job (a batch's next input), keeping
  * its contexts: the old scene, textures and inputs are dropped first.
  * -1, or an exit status after the reason was reported (cli_error). */
