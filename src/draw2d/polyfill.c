@@ -440,43 +440,69 @@ static void deposit_piece(double *acc, int w, int wx0, double xa, double xb, dou
 }
 
 /* Deposit the part of an edge between heights ya < yb (within one row),
- * x from xa to xb, split at integer x. */
+ * x from xa to xb, split at integer x.  The walk goes from xa to xb one
+ * column at a time; each piece's height is the difference of the heights
+ * ya + (x - xa) dy/dx at its ends, so the pieces sum to yb - ya exactly.
+ * Everything left of the window lands in acc[0] in one piece, everything
+ * right of it is dropped in one piece. */
 static void deposit_segment(double *acc, int w, int wx0, double xa, double ya, double xb,
                             double yb, double dir)
 {
     double xmin = xa < xb ? xa : xb, xmax = xa < xb ? xb : xa;
-    if (xa == xb || xmax <= wx0 || xmin >= (double)wx0 + w) {
+    double right = (double)wx0 + w;
+    if (xa == xb || xmax <= wx0 || xmin >= right) {
         /* One piece: within a column, wholly left (into acc[0]) or wholly
          * right (dropped) of the window. */
         deposit_piece(acc, w, wx0, xa, xb, dir * (yb - ya));
         return;
     }
     double dydx = (yb - ya) / (xb - xa);
-    double step = xb > xa ? 1.0 : -1.0;
     double x = xa, y = ya;
-    /* Clamp the walk to the window: everything left of it lands in acc[0]
-     * anyway, everything right of it is dropped. */
+    if (xb > xa) {
+        if (x < wx0) {
+            double ny = ya + (wx0 - xa) * dydx;
+            acc[0] += dir * (ny - y);
+            x = wx0;
+            y = ny;
+        }
+        /* Column cf holds the piece from x to the next integer (or xb). */
+        double cf = floor(x);
+        int c = (int)cf - wx0;
+        while (x != xb && x < right) {
+            double nx = cf + 1.0 > xb ? xb : cf + 1.0;
+            double ny = nx == xb ? yb : ya + (nx - xa) * dydx;
+            double d = dir * (ny - y), f = 0.5 * (x + nx) - cf;
+            acc[c] += d * (1.0 - f);
+            acc[c + 1] += d * f;
+            x = nx;
+            y = ny;
+            cf += 1.0;
+            c++;
+        }
+        return;
+    }
+    if (x > right) {
+        /* The part right of the window is dropped. */
+        y = ya + (right - xa) * dydx;
+        x = right;
+    }
+    /* Column cf holds the piece from x down to the integer below (or xb). */
+    double cf = ceil(x) - 1.0;
+    int c = (int)cf - wx0;
     while (x != xb) {
-        double nx = step > 0 ? floor(x) + 1.0 : ceil(x) - 1.0;
-        if ((step > 0 && nx > xb) || (step < 0 && nx < xb)) {
-            nx = xb;
+        if (x <= wx0) {
+            acc[0] += dir * (yb - y);
+            return;
         }
-        if (step > 0 && x >= (double)wx0 + w) {
-            nx = xb; /* right of the window: one piece, dropped */
-        }
-        if (step < 0 && x <= wx0) {
-            nx = xb; /* left of the window: one piece, into acc[0] */
-        }
-        if (step > 0 && nx < wx0 && xb > wx0) {
-            nx = wx0; /* jump the part left of the window at once */
-        }
-        if (step < 0 && x > (double)wx0 + w && xb < (double)wx0 + w) {
-            nx = (double)wx0 + w; /* likewise from the right */
-        }
-        double ny = (nx == xb) ? yb : ya + (nx - xa) * dydx;
-        deposit_piece(acc, w, wx0, x, nx, dir * (ny - y));
+        double nx = cf < xb ? xb : cf;
+        double ny = nx == xb ? yb : ya + (nx - xa) * dydx;
+        double d = dir * (ny - y), f = 0.5 * (x + nx) - cf;
+        acc[c] += d * (1.0 - f);
+        acc[c + 1] += d * f;
         x = nx;
         y = ny;
+        cf -= 1.0;
+        c--;
     }
 }
 
@@ -497,6 +523,7 @@ static uint8_t coverage_byte(sr_fill_rule rule, double s)
 typedef struct area_entry {
     double x0, y0, x1, y1; /* pixels, y0 < y1 */
     double dir;
+    double inv;            /* dx / dy */
     int last_row;
     int next;
 } area_entry;
@@ -545,6 +572,7 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
         e->x1 = s->x1 / 256.0;
         e->y1 = s->y1 / 256.0;
         e->dir = s->dir;
+        e->inv = (e->x1 - e->x0) / (e->y1 - e->y0);
         e->last_row = (int)last;
         int b = (int)(first - win.y0);
         e->next = bucket[b];
@@ -573,7 +601,7 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
             if (!(ya < yb)) {
                 continue;
             }
-            double inv = (e->x1 - e->x0) / (e->y1 - e->y0);
+            double inv = e->inv;
             double xa = (ya == e->y0) ? e->x0 : e->x0 + (ya - e->y0) * inv;
             double xb = (yb == e->y1) ? e->x1 : e->x0 + (yb - e->y0) * inv;
             deposit_segment(acc, w, win.x0, xa, ya, xb, yb, e->dir);
