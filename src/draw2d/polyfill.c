@@ -439,6 +439,15 @@ static void deposit_piece(double *acc, int w, int wx0, double xa, double xb, dou
     acc[c + 1] += d * f;
 }
 
+/* deposit_piece for a piece from x to nx known to lie in window column c
+ * (pixel column cf). */
+static void split_piece(double *acc, int c, double cf, double x, double nx, double d)
+{
+    double f = 0.5 * (x + nx) - cf;
+    acc[c] += d * (1.0 - f);
+    acc[c + 1] += d * f;
+}
+
 /* Deposit the part of an edge between heights ya < yb (within one row),
  * x from xa to xb, split at integer x.  The walk goes from xa to xb one
  * column at a time; each piece's height is the difference of the heights
@@ -471,9 +480,7 @@ static void deposit_segment(double *acc, int w, int wx0, double xa, double ya, d
         while (x != xb && x < right) {
             double nx = cf + 1.0 > xb ? xb : cf + 1.0;
             double ny = nx == xb ? yb : ya + (nx - xa) * dydx;
-            double d = dir * (ny - y), f = 0.5 * (x + nx) - cf;
-            acc[c] += d * (1.0 - f);
-            acc[c + 1] += d * f;
+            split_piece(acc, c, cf, x, nx, dir * (ny - y));
             x = nx;
             y = ny;
             cf += 1.0;
@@ -496,9 +503,7 @@ static void deposit_segment(double *acc, int w, int wx0, double xa, double ya, d
         }
         double nx = cf < xb ? xb : cf;
         double ny = nx == xb ? yb : ya + (nx - xa) * dydx;
-        double d = dir * (ny - y), f = 0.5 * (x + nx) - cf;
-        acc[c] += d * (1.0 - f);
-        acc[c + 1] += d * f;
+        split_piece(acc, c, cf, x, nx, dir * (ny - y));
         x = nx;
         y = ny;
         cf -= 1.0;
