@@ -811,14 +811,8 @@ typedef struct paint_target {
 static void paint_span(void *user, const sr__span *sp)
 {
     paint_target *t = user;
-    if (!sp->cov) {
-        sr__paint_span(&t->paint, t->fb, sp->y, sp->x0, sp->x1);
-        return;
-    }
     uint32_t *row = t->fb->color + (size_t)sp->y * (size_t)t->fb->width;
-    for (int x = sp->x0; x < sp->x1; x++) {
-        sr__paint_pixel(&t->paint, &row[x], sp->cov[x - sp->x0]);
-    }
+    sr__paint_row(&t->paint, row + sp->x0, sp->cov, sp->x1 - sp->x0);
 }
 
 sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
