@@ -29,6 +29,8 @@
 /* Shapes per batch: MAX_SHAPES, fewer for large sizes so a batch's
  * bounding boxes stay within the SVG renderer's fill-work budget. */
 #define BATCH_PIXELS 10000000
+/* Timed frames per case at most: 90 cases make a long run already. */
+#define MAX_FRAMES 5
 
 typedef enum shape_kind { SHAPE_RECT, SHAPE_POLY, SHAPE_CURVE } shape_kind;
 typedef enum paint_kind { PAINT_SOLID, PAINT_LINEAR, PAINT_RADIAL } paint_kind;
@@ -295,6 +297,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
 
 bool bench_shapes2d(sr_context *ctx, int frames, bool compare)
 {
+    frames = frames > MAX_FRAMES ? MAX_FRAMES : frames;
     shape *sh = malloc(sizeof *sh * MAX_SHAPES);
     double *ms = calloc((size_t)frames, sizeof *ms), *cr_ms = calloc((size_t)frames, sizeof *ms);
     text t = { 0 };
