@@ -2618,6 +2618,23 @@ SR_TEST(gltf_scene_draws_each_primitive_with_its_material)
     CHECK(mid[0] > 2 * mid[2] && mid[0] > 60);        /* red */
     CHECK(right[2] > 2 * right[0] && right[2] > 60);  /* blue */
     free(px);
+    /* The classic models look through the same camera, each primitive in
+     * its base color. */
+    const char *classic[] = { "phong", "gouraud", "flat" };
+    for (int k = 0; k < 3; k++) {
+        px = render_pixels(ARGS("render", model, "--camera-index", "0", "--shading", classic[k],
+                                "--size", "120x60", "--aa", "none", "-o", out), out, &w, &h);
+        REQUIRE(px);
+        left = px + 4 * ((size_t)(h / 2) * w + w / 2 - 23);
+        mid = px + 4 * ((size_t)(h / 2) * w + w / 2 - 4);
+        right = px + 4 * ((size_t)(h / 2) * w + w / 2 + 23);
+        const uint8_t *above = px + 4 * ((size_t)4 * w + w / 2 - 4);   /* background */
+        CHECK(left[2] > 2 * left[0] && left[2] > 60);
+        CHECK(mid[0] > 2 * mid[2] && mid[0] > 60);
+        CHECK(right[2] > 2 * right[0] && right[2] > 60);
+        CHECK(above[0] == 0x1d && above[1] == 0x22 && above[2] == 0x30);
+        free(px);
+    }
     cli_run r;
     REQUIRE(run_cli(ARGS("render", model, "--camera-index", "1", "--size", "32x16", "-o", out),
                     &r));

@@ -45,9 +45,12 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    if (o->pbr && render_gltf_is(o->model)) {
+    if ((o->pbr || o->camera_index >= 0) && render_gltf_is(o->model)) {
         /* The physically based look draws glTF's own materials; the
-         * classic models keep the mesh reader's diffuse color and texture. */
+         * classic models keep the mesh reader's diffuse color and texture,
+         * except with one of the file's cameras, which only the glTF
+         * reader gives: then they take each primitive's base color and
+         * texture from it, in the same world space as the camera. */
         return render_gltf_load(o->model, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,

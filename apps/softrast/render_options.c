@@ -126,7 +126,7 @@ static void render_help(void)
         "                           as glTF specifies, and the built-in teapot)\n"
         "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
         "  --camera-index N         a glTF file's camera N (0 first, in node order) in\n"
-        "                           place of the default camera (pbr only)\n"
+        "                           place of the default camera (any --shading)\n"
         "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
         "pipeline:\n"
         "  --cull MODE              back|front|none (default back)\n"
