@@ -50,15 +50,20 @@ void render_bump_to_normals(uint8_t *height, int w, int h, float scale)
 
 bool render_bump_is_normal_map(const uint8_t *rgba, int w, int h)
 {
-    double sum[3] = { 0, 0, 0 };
-    size_t n = (size_t)w * h;
+    size_t n = (size_t)w * h, unit = 0, gray = 0;
     for (size_t i = 0; i < n; i++) {
+        const uint8_t *p = rgba + 4 * i;
+        float v[3];
         for (int k = 0; k < 3; k++) {
-            sum[k] += rgba[4 * i + k];
+            v[k] = p[k] / 127.5f - 1.0f;
         }
+        float len = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        unit += fabsf(len - 1.0f) < 0.1f && v[2] > 0.3f;
+        gray += p[0] == p[1] && p[1] == p[2];
     }
-    double r = sum[0] / (255.0 * n), g = sum[1] / (255.0 * n), b = sum[2] / (255.0 * n);
-    return b > 0.6 && b - fmax(r, g) > 0.2 && fabs(r - 0.5) < 0.15 && fabs(g - 0.5) < 0.15;
+    /* Nearly every texel a unit vector out of the surface, and a height
+     * map's gray levels for fewer than half of them. */
+    return unit >= n - n / 20 && gray < n / 2;
 }
 
 /* Part p's bump map as a normal map into *out; NULL and a warning when

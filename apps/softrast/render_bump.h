@@ -23,8 +23,8 @@ void render_bump_free(sr_context *ctx, scene *s);
  * tilting the normal by 45 degrees.  Written over `height`. */
 void render_bump_to_normals(uint8_t *height, int w, int h, float scale);
 /* Whether an image's texels look like a tangent-space normal map's rather
- * than a height map's: blue well above red and green, red and green
- * around one half on average. */
+ * than a height map's: nearly all of them unit vectors pointing out of the
+ * surface, most of them not gray. */
 bool render_bump_is_normal_map(const uint8_t *rgba, int w, int h);
 
 #endif
