@@ -279,7 +279,8 @@ int main(int argc, char **argv)
     size_t vcount = (size_t)nu * nv, icount = (size_t)MAJOR_SEGMENTS * MINOR_SEGMENTS * 6;
     vertex *verts = malloc(vcount * sizeof *verts);
     uint32_t *idx = malloc(icount * sizeof *idx);
-    size_t big = (size_t)MAP_SIZE * MAP_SIZE * 4, small = (size_t)SMALL_MAP_SIZE * SMALL_MAP_SIZE * 4;
+    size_t big = (size_t)MAP_SIZE * MAP_SIZE * 4;
+    size_t small = (size_t)SMALL_MAP_SIZE * SMALL_MAP_SIZE * 4;
     uint8_t *maps[4] = { malloc(big), malloc(big), malloc(small), malloc(small) };
     bytes bin = { 0 };
     if (!verts || !idx || !maps[0] || !maps[1] || !maps[2] || !maps[3]) {
@@ -366,7 +367,8 @@ int main(int argc, char **argv)
         "{\"source\":2,\"sampler\":0},{\"source\":3,\"sampler\":0}],"
         "\"samplers\":[{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}],"
         "\"images\":[{\"bufferView\":5,\"mimeType\":\"image/png\"},"
-        "{\"bufferView\":6,\"mimeType\":\"image/png\"},{\"bufferView\":7,\"mimeType\":\"image/png\"},"
+        "{\"bufferView\":6,\"mimeType\":\"image/png\"},"
+        "{\"bufferView\":7,\"mimeType\":\"image/png\"},"
         "{\"bufferView\":8,\"mimeType\":\"image/png\"}],"
         "\"accessors\":["
         "{\"bufferView\":0,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\","

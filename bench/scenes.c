@@ -98,6 +98,11 @@ static void frame_mesh(bench_scene *s, sr_camera_basis *basis)
  * file stays loaded (s->gltf) for its material and tangents. */
 static sr_result load_gltf_mesh(bench_scene *s, const char *path, char *msg, size_t msg_size)
 {
+    if (!sr_io_have_gltf()) {
+        /* Counted as a missing model, not a failure. */
+        snprintf(msg, msg_size, "%s: this build reads no glTF (install libjansson-dev)", path);
+        return SR_IO_ERROR;
+    }
     sr_io_error err;
     sr_result r = sr_load_scene(s->mesh_ctx, path,
                                 &(sr_load_desc){ .format = SR_FORMAT_GLTF }, &s->gltf, &err);

@@ -2712,7 +2712,8 @@ SR_TEST(obj_bump_map_lights_from_the_right_side)
     fresh_dir("obj_bump", dir, sizeof dir);
     int flat[3], right[3], left[3], tilted[3], norm[3];
     REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.8 0.8 0.8\nNs 100\n", NULL, flat));
-    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.8 0.8 0.8\nNs 100\nmap_Bump -bm 10 up_right.png\n",
+    REQUIRE(render_obj_square(dir,
+                              "newmtl m\nKd 0.8 0.8 0.8\nNs 100\nmap_Bump -bm 10 up_right.png\n",
                               "up_right", right));
     REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.8 0.8 0.8\nNs 100\nbump -bm 10 up_left.png\n",
                               "up_left", left));

@@ -519,7 +519,8 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 }
                 sr_pbr *program = NULL;
                 if (pbr) {
-                    sr_pbr_material m = gm ? *gm : pbr_material(o, ob, st.texture, by_part ? p : SIZE_MAX);
+                    sr_pbr_material m = gm ? *gm
+                                       : pbr_material(o, ob, st.texture, by_part ? p : SIZE_MAX);
                     sr_pbr_desc d = { .material = &m, .model = &ob->model, .view = &cam->view,
                                       .projection = &cam->proj, .exposure = o->exposure,
                                       .tonemap = o->tonemap,
