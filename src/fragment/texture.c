@@ -41,8 +41,8 @@ static void downsample(const sr_texture *t, int k, uint8_t *dst)
                                     src + ((size_t)y1 * w + x0) * 4, src + ((size_t)y1 * w + x1) * 4 };
             for (int c = 0; c < 4; c++) {
                 float sum = 0.0f;
-                /* color_value holds each byte decoded once (sRGB or not);
-                 * alpha is linear in both. */
+                /* The decode tables hold srgb_to_linear(i / 255) (or i / 255):
+                 * the same values as calling it, without a powf each. */
                 const float *value = c < 3 ? t->color_value : t->alpha_value;
                 for (int i = 0; i < 4; i++) {
                     sum += value[p[i][c]];
