@@ -194,8 +194,8 @@ float sr__texture_lod_rho2(float rho2)
     return rho2 > 1.0f ? 0.5f * log2f(rho2) : 0.0f;
 }
 
-void sr__texture_sample(const sr_texture *t, sr_texture_filter filter, sr_texture_wrap wu,
-                        sr_texture_wrap wv, float u, float v, float lod, float out[4])
+void sr__texture_sample_linear(const sr_texture *t, sr_texture_filter filter, sr_texture_wrap wu,
+                               sr_texture_wrap wv, float u, float v, float lod, float out[4])
 {
     if (!isfinite(u) || !isfinite(v)) {
         u = 0.0f;
@@ -216,6 +216,12 @@ void sr__texture_sample(const sr_texture *t, sr_texture_filter filter, sr_textur
     } else {
         sample_level(t, 0, filter != SR_FILTER_NEAREST, wu, wv, u, v, out);
     }
+}
+
+void sr__texture_sample(const sr_texture *t, sr_texture_filter filter, sr_texture_wrap wu,
+                        sr_texture_wrap wv, float u, float v, float lod, float out[4])
+{
+    sr__texture_sample_linear(t, filter, wu, wv, u, v, lod, out);
     if (t->srgb) {
         for (int c = 0; c < 3; c++) {
             out[c] = linear_to_srgb(out[c] > 0.0f ? out[c] : 0.0f);
