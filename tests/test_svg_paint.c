@@ -1,8 +1,8 @@
 /* test_svg_paint.c - the SVG reader's structure, styling and paint
  * servers: style sheets with the cascade, currentColor, CSS colors, defs
  * and use, linear and radial gradients, clip paths, masks and group
- * opacity in layers, nested viewports.  Six drawings in tests/data/svg
- * are compared with references (checked against rsvg-convert when made;
+ * opacity in layers, nested viewports, dashed strokes.  The drawings in
+ * tests/data/svg are compared with references (checked against rsvg-convert when made;
  * channel tolerance 2, at most 0.5% of the pixels beyond it; the diff
  * image goes to the test output directory), and single pixels are
  * checked against values worked out by hand.  Reference cycles through
@@ -58,14 +58,15 @@ static void check_drawing(const char *file, const char *ref)
 
 /* styles: sheets, use, colors; gradients; layers: clip paths and group
  * opacity; clipbox: clips in bounding-box units; masks; nested svg
- * viewports */
+ * viewports; dashes: stroke-dasharray and -dashoffset on lines, curves
+ * and closed shapes */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
-                                          "nested" };
+                                          "nested", "dashes" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);
@@ -163,6 +164,38 @@ SR_TEST(linear_gradient_interpolates_between_stops)
         double want = x >= 100 ? 255 : 255 * (x + 0.5) / 100;
         CHECK(abs(pixel(fb, x, 2)[0] - (int)(want + 0.5)) <= 1);
     }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(dashes_and_gaps_fall_where_the_pattern_says)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* dashes of 4 from x = 0, 8, 16 (the offset -2 moves them to 2, 10,
+     * 18); a closed square whose last dash runs on over its start */
+    sr_framebuffer *fb = render(ctx,
+                                "<svg xmlns='http://www.w3.org/2000/svg' width='24' height='24'>"
+                                "<g stroke='#000' stroke-width='2' fill='none'>"
+                                "<line y1='1' x2='24' y2='1' stroke-dasharray='4'/>"
+                                "<line y1='5' x2='24' y2='5' stroke-dasharray='4'"
+                                " stroke-dashoffset='-2'/>"
+                                "<rect x='4' y='10' width='10' height='10'"
+                                " stroke-dasharray='6 4' stroke-dashoffset='3'/></g></svg>",
+                                SR_OK, NULL, 0);
+    REQUIRE(fb != NULL);
+    for (int x = 0; x < 24; x++) {
+        CHECK_EQ(pixel(fb, x, 0)[0], (x / 4) % 2 ? 255 : 0);
+        CHECK_EQ(pixel(fb, x, 4)[0], ((x + 2) / 4) % 2 ? 0 : 255);
+    }
+    /* the square's dash over its corner (4, 10): 3 before it, 3 after */
+    CHECK_EQ(pixel(fb, 5, 10)[0], 0);
+    CHECK_EQ(pixel(fb, 4, 17)[0], 0);
+    CHECK_EQ(pixel(fb, 4, 14)[0], 255);
+    CHECK_EQ(pixel(fb, 9, 10)[0], 255);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }

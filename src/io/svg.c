@@ -87,6 +87,11 @@ typedef struct style {
     sr_stroke_join join;
     sr_stroke_cap cap;
     double miter_limit;
+    double dash[SVG_MAX_DASHES]; /* stroke-dasharray, even count; 0: solid */
+    int n_dash;
+    unsigned dash_pct;           /* bit i: dash[i] is a percentage */
+    double dash_offset;
+    bool dash_offset_pct;
     bool crisp;
     bool display_none;       /* display="none" here or on an ancestor */
     bool invisible;          /* visibility (inherited, children may undo it) */
@@ -414,7 +419,7 @@ static double clamp01(double v)
 
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
-    "stroke-dasharray", "stroke-dashoffset", "filter",
+    "filter",
     "marker-start", "marker-mid", "marker-end",
     "fill-paint", "paint-order", "vector-effect", "mix-blend-mode", "isolation", NULL,
 };
@@ -432,7 +437,7 @@ static const char *const no_effect_props[] = {
 };
 
 static const struct { const char *name, *value; } initial_values[] = {
-    { "stroke-dasharray", "none" }, { "stroke-dashoffset", "0" }, { "mix-blend-mode", "normal" },
+    { "mix-blend-mode", "normal" },
     { "isolation", "auto" }, { "filter", "none" },
     { "marker-start", "none" }, { "marker-mid", "none" }, { "marker-end", "none" },
     { "paint-order", "normal" }, { "vector-effect", "none" },
@@ -524,6 +529,54 @@ static void parse_paint(svg_doc *doc, paint *p, const char *v)
     }
 }
 
+/* stroke-dasharray: none, or lengths and percentages separated by commas
+ * or blanks, repeated once when their count is odd; false when malformed
+ * or negative (the declaration is then ignored). */
+static bool parse_dasharray(const char *v, style *st)
+{
+    if (strcmp(v, "none") == 0) {
+        st->n_dash = 0;
+        return true;
+    }
+    double d[SVG_MAX_DASHES];
+    unsigned pct_bits = 0;
+    int n = 0;
+    double sum = 0;
+    const char *s = skip_ws(v);
+    while (*s) {
+        const char *e = s;
+        while (*e && *e != ',' && !isspace((unsigned char)*e)) {
+            e++;
+        }
+        char item[64];
+        bool pct;
+        if (n == SVG_MAX_DASHES / 2 || (size_t)(e - s) >= sizeof item) {
+            return false;
+        }
+        memcpy(item, s, (size_t)(e - s));
+        item[e - s] = 0;
+        if (!parse_length(item, &d[n], &pct) || !(d[n] >= 0) || !isfinite(d[n])) {
+            return false;
+        }
+        pct_bits |= pct ? 1u << n : 0;
+        sum += d[n++];
+        s = skip_ws_comma(e);
+    }
+    if (n == 0) {
+        return false;
+    }
+    int total = n % 2 ? 2 * n : n;
+    for (int i = 0; i < total; i++) {
+        st->dash[i] = d[i % n];
+        if (pct_bits & 1u << (i % n)) {
+            pct_bits |= 1u << i;
+        }
+    }
+    st->n_dash = sum > 0 ? total : 0; /* all zero: a solid stroke */
+    st->dash_pct = pct_bits;
+    return true;
+}
+
 /* Apply one property to a style.  Returns false only when the property
  * name is not a presentation property at all (so shapes may consume it). */
 static bool apply_property(svg_doc *doc, style *st, const char *name, const char *value)
@@ -602,6 +655,18 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             warn_once(doc, "stroke-width", v);
         } else {
             st->stroke_width = num;
+        }
+    } else if (strcmp(name, "stroke-dasharray") == 0) {
+        if (!parse_dasharray(v, st)) {
+            warn_once(doc, "stroke-dasharray", v);
+        }
+    } else if (strcmp(name, "stroke-dashoffset") == 0) {
+        bool pct;
+        if (!parse_length(v, &num, &pct) || !isfinite(num)) {
+            warn_once(doc, "stroke-dashoffset", v);
+        } else {
+            st->dash_offset = num;
+            st->dash_offset_pct = pct;
         }
     } else if (strcmp(name, "stroke-linejoin") == 0) {
         if (strcmp(v, "miter") == 0) {
@@ -1175,6 +1240,44 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
     }
 }
 
+/* The dashes of the path as a new path (stroke-dasharray, its lengths
+ * in user units, percentages of the viewport's normalized diagonal);
+ * NULL after reporting a failure.  A pattern so fine that its dashes
+ * would pass the drawing's point budget is refused before it is cut. */
+static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, double tol)
+{
+    const style *st = &f->st;
+    double diag = sqrt((f->vp_w * f->vp_w + f->vp_h * f->vp_h) / 2), dash[SVG_MAX_DASHES];
+    double period = 0;
+    for (int i = 0; i < st->n_dash; i++) {
+        dash[i] = st->dash[i] * (st->dash_pct & 1u << i ? diag / 100 : 1);
+        period += dash[i];
+    }
+    double offset = st->dash_offset * (st->dash_offset_pct ? diag / 100 : 1);
+    sr_polygon2 poly = sr_path_polygon(path);
+    double pieces = svg_path_length(path) / period * st->n_dash + poly.contour_count;
+    double est = poly.point_count + 2 * pieces;
+    if (!(period > 0) || !isfinite(est) || doc->points_used + est > doc->points_budget) {
+        svg_fail(doc, SR_TOO_LARGE,
+                 "stroke-dasharray: a pattern of period %g along this path makes about %.0f "
+                 "dashes, beyond the drawing's %.0f points (%d + %d per byte of the document)",
+                 period, pieces, doc->points_budget, SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
+        return NULL;
+    }
+    doc->points_used += est;
+    sr_path *out = NULL;
+    sr_result r = sr_make_path(doc->ctx, tol, &out);
+    if (r == SR_OK) {
+        r = svg_dash_path(path, dash, st->n_dash, offset, out);
+    }
+    if (r != SR_OK) {
+        sr_destroy_path(doc->ctx, out);
+        lib_fail(doc, r);
+        return NULL;
+    }
+    return out;
+}
+
 static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable)
 {
     const style *st = &f->st;
@@ -1187,7 +1290,12 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, b
     }
     if (st->stroke.kind != SVG_PAINT_NONE && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
         doc->status == SR_OK) {
-        sr_polygon2 poly = sr_path_polygon(path);
+        sr_path *dashed = st->n_dash > 0 ? dash_path(doc, f, path, tol) : NULL;
+        if (st->n_dash > 0 && !dashed) {
+            return;
+        }
+        const sr_path *stroked = dashed ? dashed : path;
+        sr_polygon2 poly = sr_path_polygon(stroked);
         double est = stroke_points(&poly, st, tol);
         if (doc->points_used + est > doc->points_budget) {
             svg_fail(doc, SR_TOO_LARGE,
@@ -1195,14 +1303,16 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, b
                      "%.0f points, beyond the drawing's %.0f (%d + %d per byte of the document)",
                      st->stroke_width, poly.point_count, est, doc->points_budget,
                      SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
+            sr_destroy_path(doc->ctx, dashed);
             return;
         }
         sr_polygon2 outline;
-        sr_result r = sr_make_stroke_outline(doc->ctx, path,
+        sr_result r = sr_make_stroke_outline(doc->ctx, stroked,
                                         &(sr_stroke_desc){ .width = st->stroke_width,
                                                            .join = st->join, .cap = st->cap,
                                                            .miter_limit = st->miter_limit },
                                         &outline);
+        sr_destroy_path(doc->ctx, dashed);
         if (r != SR_OK) {
             lib_fail(doc, r);
             return;

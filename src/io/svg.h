@@ -115,4 +115,19 @@ void svg_blend(uint8_t *d, sr_rgba c, float cov);
 sr_result svg_fill_gradient(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
                             const sr_fill_desc *desc, const svg_gradient *g, float opacity);
 
+/* ---- dashes (svg_dash.c) ----------------------------------------------- */
+
+/* Values of a stroke-dasharray, at most. */
+#define SVG_MAX_DASHES 32
+
+/* The length of the flattened path, closing segments included. */
+double svg_path_length(const sr_path *path);
+
+/* Append to out the dashes of path `in`: dash[0..n) are the lengths of
+ * dashes and gaps in turn (n even, each >= 0, their sum > 0), the pattern
+ * starting `offset` into itself at every subpath.  The caller bounds the
+ * work: about length / sum * n dashes. */
+sr_result svg_dash_path(const sr_path *in, const double *dash, int n, double offset,
+                        sr_path *out);
+
 #endif
