@@ -1,12 +1,13 @@
 /* test_svg_paint.c - the SVG reader's structure, styling and paint
  * servers: style sheets with the cascade, currentColor, CSS colors, defs
  * and use, linear and radial gradients, clip paths, masks and group
- * opacity in layers, nested viewports, dashed strokes.  The drawings in
+ * opacity in layers, nested viewports, dashed strokes, markers and
+ * paint-order.  The drawings in
  * tests/data/svg are compared with references (checked against rsvg-convert when made;
  * channel tolerance 2, at most 0.5% of the pixels beyond it; the diff
  * image goes to the test output directory), and single pixels are
  * checked against values worked out by hand.  Reference cycles through
- * use, clip-path and mask are refused with FILE:LINE. */
+ * use, clip-path, mask and marker are refused with FILE:LINE. */
 #include "image_compare.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -59,14 +60,14 @@ static void check_drawing(const char *file, const char *ref)
 /* styles: sheets, use, colors; gradients; layers: clip paths and group
  * opacity; clipbox: clips in bounding-box units; masks; nested svg
  * viewports; dashes: stroke-dasharray and -dashoffset on lines, curves
- * and closed shapes */
+ * and closed shapes; markers: orient, markerUnits, viewBox, paint-order */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
-                                          "nested", "dashes" };
+                                          "nested", "dashes", "markers" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);
@@ -217,6 +218,9 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
         { "<clipPath id='a' clip-path='url(#b)'/><clipPath id='b' clip-path='url(#a)'/>\n"
           "<rect width='4' height='4' clip-path='url(#a)'/>",
           "t.svg:3: clip-path: reference cycle through \"#a\"" },
+        { "<marker id='m'>\n<path d='M0 0 L1 1' marker-end='url(#m)'/></marker>\n"
+          "<path d='M0 0 L2 2' marker-start='url(#m)'/>",
+          "t.svg:2: marker: reference cycle through \"#m\"" },
     };
     char msg[1024], svg[1024];
     sr_framebuffer *fb;

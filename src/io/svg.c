@@ -92,10 +92,22 @@ typedef struct style {
     unsigned dash_pct;           /* bit i: dash[i] is a percentage */
     double dash_offset;
     bool dash_offset_pct;
+    const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
+    unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
     bool crisp;
     bool display_none;       /* display="none" here or on an ancestor */
     bool invisible;          /* visibility (inherited, children may undo it) */
 } style;
+
+enum { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS };
+
+/* A vertex of a path for markers: its point in the flattened polygon and
+ * its subpath; 'M' starts a subpath, 'Z' closes one (at its first point),
+ * 'L' ends any other command. */
+typedef struct svg_vertex {
+    int at, contour;
+    char kind;
+} svg_vertex;
 
 typedef struct frame {
     mat2d m;
@@ -134,6 +146,9 @@ typedef struct svg_doc {
     bool warnings_capped;    /* "further warnings not shown" was said */
     int warnings;            /* given so far */
     unsigned long line;      /* of the element being handled */
+    svg_vertex *verts;       /* of the path being read, when want_verts */
+    int n_verts, cap_verts;
+    bool want_verts;
     /* Bounded work (softrast_io.h): what the document has used so far. */
     double points_used, points_budget;
     double work_used, work_budget;
@@ -421,7 +436,7 @@ static double clamp01(double v)
 static const char *const unsupported_props[] = {
     "filter",
     "marker-start", "marker-mid", "marker-end",
-    "fill-paint", "paint-order", "vector-effect", "mix-blend-mode", "isolation", NULL,
+    "fill-paint", "vector-effect", "mix-blend-mode", "isolation", NULL,
 };
 
 /* Properties that change nothing this reader draws (rendering hints,
@@ -432,15 +447,14 @@ static const char *const no_effect_props[] = {
     "text-rendering", "enable-background", "overflow", "solid-color", "solid-opacity",
     "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
     "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
-    "shape-padding", "shape-margin", "shape-inside", "block-progression", "marker",
+    "shape-padding", "shape-margin", "shape-inside", "block-progression",
     "flood-color", "flood-opacity", "lighting-color", "clip", NULL,
 };
 
 static const struct { const char *name, *value; } initial_values[] = {
     { "mix-blend-mode", "normal" },
     { "isolation", "auto" }, { "filter", "none" },
-    { "marker-start", "none" }, { "marker-mid", "none" }, { "marker-end", "none" },
-    { "paint-order", "normal" }, { "vector-effect", "none" },
+    { "vector-effect", "none" },
 };
 
 static svg_node *find_id(const svg_doc *doc, const char *id);
@@ -577,6 +591,44 @@ static bool parse_dasharray(const char *v, style *st)
     return true;
 }
 
+/* paint-order: normal, or some of fill, stroke, markers (the missing ones
+ * follow in that order); false when malformed. */
+static bool parse_paint_order(const char *v, style *st)
+{
+    static const char *const names[3] = { "fill", "stroke", "markers" };
+    unsigned char order[3];
+    int n = 0;
+    unsigned seen = 0;
+    const char *s = skip_ws(v);
+    if (strcmp(s, "normal") == 0) {
+        s += 6;
+    }
+    while (*s) {
+        int k = -1;
+        for (int i = 0; i < 3; i++) {
+            size_t len = strlen(names[i]);
+            if (strncmp(s, names[i], len) == 0 &&
+                (s[len] == 0 || isspace((unsigned char)s[len]))) {
+                k = i;
+                s = skip_ws(s + len);
+                break;
+            }
+        }
+        if (k < 0 || seen & 1u << k) {
+            return false;
+        }
+        seen |= 1u << k;
+        order[n++] = (unsigned char)k;
+    }
+    for (int i = 0; i < 3; i++) {
+        if (!(seen & 1u << i)) {
+            order[n++] = (unsigned char)i;
+        }
+    }
+    memcpy(st->paint_order, order, sizeof order);
+    return true;
+}
+
 /* Apply one property to a style.  Returns false only when the property
  * name is not a presentation property at all (so shapes may consume it). */
 static bool apply_property(svg_doc *doc, style *st, const char *name, const char *value)
@@ -655,6 +707,25 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             warn_once(doc, "stroke-width", v);
         } else {
             st->stroke_width = num;
+        }
+    } else if (strncmp(name, "marker", 6) == 0 &&
+               (name[6] == 0 || strcmp(name + 6, "-start") == 0 ||
+                strcmp(name + 6, "-mid") == 0 || strcmp(name + 6, "-end") == 0)) {
+        svg_node *m = strcmp(v, "none") == 0 ? NULL : reference(doc, v, NULL);
+        if (m && strcmp(m->name, "marker") != 0) {
+            warn_once(doc, name, v);
+            m = NULL;
+        }
+        /* "marker" sets all three; a missing marker draws nothing */
+        int which = name[6] == 0 ? -1 : name[7] == 's' ? 0 : name[7] == 'm' ? 1 : 2;
+        for (int i = 0; i < 3; i++) {
+            if (which < 0 || which == i) {
+                st->marker[i] = m;
+            }
+        }
+    } else if (strcmp(name, "paint-order") == 0) {
+        if (!parse_paint_order(v, st)) {
+            warn_once(doc, "paint-order", v);
         }
     } else if (strcmp(name, "stroke-dasharray") == 0) {
         if (!parse_dasharray(v, st)) {
@@ -867,6 +938,34 @@ static bool path_within_limits(svg_doc *doc, const sr_path *path, const char *wh
     return points_within_budget(doc, poly.point_count);
 }
 
+/* Record the vertex a command just ended on, when markers want them:
+ * the path's last point ('M', 'L') or its last subpath's first ('Z'). */
+static bool add_vertex(svg_doc *doc, const sr_path *path, char kind)
+{
+    if (!doc->want_verts) {
+        return true;
+    }
+    sr_polygon2 poly = sr_path_polygon(path);
+    if (poly.contour_count == 0) {
+        return true;
+    }
+    if (doc->n_verts == doc->cap_verts) {
+        int cap = doc->cap_verts ? 2 * doc->cap_verts : 64;
+        svg_vertex *v = realloc(doc->verts, (size_t)cap * sizeof *v);
+        if (!v) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+            return false;
+        }
+        doc->verts = v;
+        doc->cap_verts = cap;
+    }
+    int c = poly.contour_count - 1;
+    doc->verts[doc->n_verts++] = (svg_vertex){
+        .at = kind == 'Z' ? poly.point_count - poly.contour_counts[c] : poly.point_count - 1,
+        .contour = c, .kind = kind };
+    return true;
+}
+
 /* Parse d="..." into the path; false after reporting an error. */
 static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
 {
@@ -890,6 +989,9 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
                 sr_result r = path_command(&b, cmd, NULL);
                 if (r != SR_OK) {
                     lib_fail(doc, r);
+                    return false;
+                }
+                if (!add_vertex(doc, path, 'Z')) {
                     return false;
                 }
                 s = skip_ws_comma(s);
@@ -925,7 +1027,8 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
             lib_fail(doc, r);
             return false;
         }
-        if (!path_within_limits(doc, path, "path data", (long)(s - d))) {
+        if (!add_vertex(doc, path, up == 'M' ? 'M' : 'L') ||
+            !path_within_limits(doc, path, "path data", (long)(s - d))) {
             return false;
         }
         /* After a moveto, further pairs are linetos. */
@@ -1278,15 +1381,20 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
     return out;
 }
 
-static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable)
+/* The fill (what: PAINT_FILL) or the stroke (PAINT_STROKE) of a path. */
+static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable,
+                      int what)
 {
     const style *st = &f->st;
     if (st->display_none || st->invisible) {
         return;
     }
-    if (fillable && st->fill.kind != SVG_PAINT_NONE && st->fill_opacity * st->opacity > 0) {
-        paint_polygon(doc, f, sr_path_polygon(path), sr_path_polygon(path), &st->fill,
-                      st->fill_opacity * st->opacity, st->fill_rule);
+    if (what == PAINT_FILL) {
+        if (fillable && st->fill.kind != SVG_PAINT_NONE && st->fill_opacity * st->opacity > 0) {
+            paint_polygon(doc, f, sr_path_polygon(path), sr_path_polygon(path), &st->fill,
+                          st->fill_opacity * st->opacity, st->fill_rule);
+        }
+        return;
     }
     if (st->stroke.kind != SVG_PAINT_NONE && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
         doc->status == SR_OK) {
@@ -1418,8 +1526,8 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
             !length_attr(doc, f, "y2", attr(atts, "y2"), &v[3])) {
             return false;
         }
-        return path_ok(doc, sr_path_move_to(p, v[0], v[1])) &&
-               path_ok(doc, sr_path_line_to(p, v[2], v[3]));
+        return path_ok(doc, sr_path_move_to(p, v[0], v[1])) && add_vertex(doc, p, 'M') &&
+               path_ok(doc, sr_path_line_to(p, v[2], v[3])) && add_vertex(doc, p, 'L');
     }
     /* polyline, polygon */
     const char *pts = attr(atts, "points");
@@ -1436,12 +1544,15 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
             return false;
         }
         s = skip_ws_comma(s);
-        if (!path_ok(doc, n++ == 0 ? sr_path_move_to(p, x, y) : sr_path_line_to(p, x, y)) ||
+        bool first = n++ == 0;
+        if (!path_ok(doc, first ? sr_path_move_to(p, x, y) : sr_path_line_to(p, x, y)) ||
+            !add_vertex(doc, p, first ? 'M' : 'L') ||
             !path_within_limits(doc, p, name, (long)(s - pts))) {
             return false;
         }
     }
-    if (strcmp(name, "polygon") == 0 && !path_ok(doc, sr_path_close(p))) {
+    if (strcmp(name, "polygon") == 0 &&
+        (!path_ok(doc, sr_path_close(p)) || (n > 0 && !add_vertex(doc, p, 'Z')))) {
         return false;
     }
     return n > 0;
@@ -1904,7 +2015,7 @@ static bool is_named(const svg_node *n, const char *const *names)
 /* Elements that draw nothing where they stand: definitions, metadata. */
 static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "style",
                                          "linearGradient", "radialGradient", "stop", "symbol",
-                                         "clipPath", "mask", "script", NULL };
+                                         "clipPath", "mask", "script", "marker", NULL };
 
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
 static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use);
@@ -1944,15 +2055,190 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
     return NULL;
 }
 
+/* ---- markers ----------------------------------------------------------------------- */
+
+/* The style a marker's content starts from: the initial one cascaded
+ * down the marker's own ancestors (not the shape's), display ignored. */
+static style marker_style(svg_doc *doc, const svg_node *m)
+{
+    const svg_node *chain[MAX_DEPTH];
+    int n = 0;
+    for (const svg_node *a = m; a && n < MAX_DEPTH; a = a->parent) {
+        chain[n++] = a;
+    }
+    style st = doc->initial;
+    while (n-- > 0 && doc->status == SR_OK) {
+        st.own_opacity = 1;
+        st.clip = st.mask = NULL;
+        apply_cascade(doc, chain[n], &st);
+    }
+    st.display_none = false;
+    st.opacity = 1;
+    return st;
+}
+
+/* An angle: a number of degrees, or with deg, rad, grad or turn. */
+static bool parse_angle(const char *v, double *deg)
+{
+    static const struct { const char *unit; double deg; } units[] = {
+        { "deg", 1 }, { "grad", 0.9 }, { "rad", 180 / M_PI }, { "turn", 360 }, { "", 1 },
+    };
+    const char *s = skip_ws(v);
+    if (!parse_number(&s, deg)) {
+        return false;
+    }
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
+        size_t n = strlen(units[i].unit);
+        if (strncmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+            *deg *= units[i].deg;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* One marker at user-space point p; `angle` (radians) is the path's
+ * direction there, for orient="auto". */
+static void draw_marker(svg_doc *doc, const frame *f, svg_node *m, sr_point2 p, double angle,
+                        bool start)
+{
+    doc->line = m->line;
+    if (m->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "marker: reference cycle through \"#%s\"",
+                 m->id ? m->id : "");
+        return;
+    }
+    if (!points_within_budget(doc, 1)) {
+        return;
+    }
+    doc->points_used++;
+    const char *orient = attr(m->atts, "orient");
+    double a = 0, deg;
+    if (orient && strcmp(orient, "auto") == 0) {
+        a = angle;
+    } else if (orient && strcmp(orient, "auto-start-reverse") == 0) {
+        a = start ? angle + M_PI : angle;
+    } else if (orient && parse_angle(orient, &deg)) {
+        a = deg * M_PI / 180;
+    } else if (orient) {
+        warn_once(doc, "orient", orient);
+    }
+    double mw = 3, mh = 3, rx = 0, ry = 0, vb[4];
+    const char *mws = attr(m->atts, "markerWidth"), *mhs = attr(m->atts, "markerHeight");
+    if ((mws && !length_attr(doc, f, "width", mws, &mw)) ||
+        (mhs && !length_attr(doc, f, "height", mhs, &mh)) ||
+        !length_attr(doc, f, "x", attr(m->atts, "refX"), &rx) ||
+        !length_attr(doc, f, "y", attr(m->atts, "refY"), &ry) || !(mw > 0 && mh > 0)) {
+        return;
+    }
+    const char *units = attr(m->atts, "markerUnits");
+    double sw = units && strcmp(units, "userSpaceOnUse") == 0 ? 1 : f->st.stroke_width;
+    double c = cos(a), si = sin(a);
+    mat2d place = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, p.x, p.y }, (mat2d){ c, si, -si, c, 0, 0 }),
+                          (mat2d){ sw, 0, 0, sw, 0, 0 });
+    frame mf = { .st = marker_style(doc, m), .vp_w = mw, .vp_h = mh };
+    mat2d content = IDENTITY;
+    const char *vbs = attr(m->atts, "viewBox");
+    if (vbs && parse_viewbox(vbs, vb)) {
+        content = viewbox_matrix(doc, m->atts, vb, 0, 0, mw, mh);
+        mf.vp_w = vb[2];
+        mf.vp_h = vb[3];
+    }
+    /* refX, refY (content units) land on the vertex */
+    sr_point2 ref = mat_apply(content, (sr_point2){ rx, ry });
+    content = mat_mul((mat2d){ 1, 0, 0, 1, -ref.x, -ref.y }, content);
+    mf.m = mat_mul(mat_mul(f->m, place), content);
+    if (doc->status != SR_OK || !(sw > 0)) {
+        return;
+    }
+    m->active = true;
+    draw_children(doc, m, &mf);
+    m->active = false;
+}
+
+/* The direction into (dir -1) or out of (dir 1) vertex v of the path,
+ * false when the subpath has no other point; a closed subpath wraps. */
+static bool vertex_direction(const sr_polygon2 *poly, int start, int count, bool closed,
+                             const svg_vertex *v, int dir, double *angle)
+{
+    sr_point2 p = poly->points[v->at];
+    int i = v->at - start;
+    if (v->kind == 'Z') {
+        i = dir < 0 ? count : 0; /* in: the closing segment; out: the first one */
+    }
+    for (int k = 1; k < count; k++) {
+        int j = i + dir * k;
+        if (j < 0 || j >= count) {
+            if (!closed) {
+                return false;
+            }
+            j = (j + count) % count;
+        }
+        sr_point2 q = poly->points[start + j];
+        if (q.x != p.x || q.y != p.y) {
+            *angle = dir < 0 ? atan2(p.y - q.y, p.x - q.x) : atan2(q.y - p.y, q.x - p.x);
+            return true;
+        }
+    }
+    return false;
+}
+
+/* marker-start on the first vertex, marker-end on the last, marker-mid
+ * on the others, each turned along the path's direction there (the
+ * bisector where a segment comes in and one goes out). */
+static void draw_markers(svg_doc *doc, const frame *f, const sr_path *path, const svg_vertex *v,
+                         int n)
+{
+    sr_polygon2 poly = sr_path_polygon(path);
+    int contour = -1, start = 0;
+    for (int i = 0; i < n && doc->status == SR_OK; i++) {
+        while (contour < v[i].contour) {
+            start += contour >= 0 ? poly.contour_counts[contour] : 0;
+            contour++;
+        }
+        int which = i == 0 ? 0 : i == n - 1 ? 2 : 1;
+        if (!f->st.marker[which]) {
+            continue;
+        }
+        int count = poly.contour_counts[contour];
+        bool closed = sr_path_subpath_closed(path, contour);
+        double in = 0, out = 0;
+        bool has_in = vertex_direction(&poly, start, count, closed, &v[i], -1, &in);
+        bool has_out = vertex_direction(&poly, start, count, closed, &v[i], 1, &out);
+        double angle = has_in ? in : out;
+        if (has_in && has_out) {
+            double d = remainder(out - in, 2 * M_PI);
+            angle = in + d / 2;
+        }
+        draw_marker(doc, f, (svg_node *)f->st.marker[which], poly.points[v[i].at], angle,
+                    which == 0);
+    }
+}
+
 static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
 {
     double tol;
     bool fillable;
+    static const char *const markable[] = { "path", "line", "polyline", "polygon", NULL };
+    doc->want_verts = (f->st.marker[0] || f->st.marker[1] || f->st.marker[2]) &&
+                      is_named(node, markable);
+    doc->n_verts = 0;
     sr_path *p = shape_at_scale(doc, node, f, &tol, &fillable);
-    if (p) {
-        draw_path(doc, f, p, tol, fillable);
-        sr_destroy_path(doc->ctx, p);
+    /* the vertices are this shape's: markers draw paths of their own */
+    svg_vertex *verts = doc->verts;
+    int n_verts = doc->n_verts;
+    doc->verts = NULL;
+    doc->n_verts = doc->cap_verts = 0;
+    doc->want_verts = false;
+    for (int i = 0; p && i < 3 && doc->status == SR_OK; i++) {
+        if (f->st.paint_order[i] == PAINT_MARKERS) {
+            draw_markers(doc, f, p, verts, n_verts);
+        } else {
+            draw_path(doc, f, p, tol, fillable, f->st.paint_order[i]);
+        }
     }
+    free(verts);
+    sr_destroy_path(doc->ctx, p);
 }
 
 /* ---- clipping and layers ------------------------------------------------------------- */
@@ -2567,7 +2853,8 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                             .own_opacity = 1, .clip_rule = SR_NONZERO,
                             .fill_rule = SR_NONZERO, .stroke_width = 1,
                             .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
-                            .miter_limit = 4 } };
+                            .miter_limit = 4,
+                            .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } } };
         doc->line = doc->root->line;
         doc->initial = f.st;
         if (root_element(doc, doc->root->atts, &f)) {
@@ -2593,6 +2880,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
     XML_ParserFree(doc->parser);
     free_tree(doc->root);
     free(doc->ids);
+    free(doc->verts);
     svg_css_free(&doc->sheet);
     free(doc);
     return status;
