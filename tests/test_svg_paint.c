@@ -1,13 +1,13 @@
 /* test_svg_paint.c - the SVG reader's structure, styling and paint
  * servers: style sheets with the cascade, currentColor, CSS colors, defs
  * and use, linear and radial gradients, clip paths, masks and group
- * opacity in layers, nested viewports, dashed strokes, markers and
- * paint-order.  The drawings in
+ * opacity in layers, nested viewports, dashed strokes, markers,
+ * paint-order and patterns.  The drawings in
  * tests/data/svg are compared with references (checked against rsvg-convert when made;
  * channel tolerance 2, at most 0.5% of the pixels beyond it; the diff
  * image goes to the test output directory), and single pixels are
  * checked against values worked out by hand.  Reference cycles through
- * use, clip-path, mask and marker are refused with FILE:LINE. */
+ * use, clip-path, mask, marker and pattern are refused with FILE:LINE. */
 #include "image_compare.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -60,14 +60,15 @@ static void check_drawing(const char *file, const char *ref)
 /* styles: sheets, use, colors; gradients; layers: clip paths and group
  * opacity; clipbox: clips in bounding-box units; masks; nested svg
  * viewports; dashes: stroke-dasharray and -dashoffset on lines, curves
- * and closed shapes; markers: orient, markerUnits, viewBox, paint-order */
+ * and closed shapes; markers: orient, markerUnits, viewBox, paint-order;
+ * patterns: units, viewBox, patternTransform, href inheritance */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
-                                          "nested", "dashes", "markers" };
+                                          "nested", "dashes", "markers", "patterns" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);
@@ -221,6 +222,13 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
         { "<marker id='m'>\n<path d='M0 0 L1 1' marker-end='url(#m)'/></marker>\n"
           "<path d='M0 0 L2 2' marker-start='url(#m)'/>",
           "t.svg:2: marker: reference cycle through \"#m\"" },
+        { "<pattern id='p' width='2' height='2' patternUnits='userSpaceOnUse'>\n"
+          "<rect width='1' height='1' fill='url(#p)'/></pattern>\n"
+          "<rect width='4' height='4' fill='url(#p)'/>",
+          "t.svg:2: pattern: reference cycle through \"#p\"" },
+        { "<pattern id='a' href='#b'/>\n<pattern id='b' href='#a'/>\n"
+          "<rect width='4' height='4' fill='url(#a)'/>",
+          "t.svg:2: pattern: href chain through \"#a\" is a cycle" },
     };
     char msg[1024], svg[1024];
     sr_framebuffer *fb;

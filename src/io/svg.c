@@ -526,7 +526,7 @@ static void parse_paint(svg_doc *doc, paint *p, const char *v)
                                                                                  : SVG_PAINT_NONE,
                                 .color = c };
         }
-        if (is_gradient(server)) {
+        if (is_gradient(server) || (server && strcmp(server->name, "pattern") == 0)) {
             *p = (paint){ .kind = SVG_PAINT_URL, .server = server,
                           .has_fallback = fallback.kind == SVG_PAINT_COLOR, .color = fallback.color };
         } else {
@@ -1116,9 +1116,10 @@ static bool map_polygon(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_point2 **pts
     return true;
 }
 
-/* Map a polygon to pixels and fill it, within the document's budget. */
-static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
-                        const svg_gradient *grad, sr_fill_rule rule, bool crisp)
+/* Map a polygon to pixels and fill it with a color, or with a paint
+ * server's colors (at, server: color.a is then the opacity), within the document's budget. */
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_paint_fn at,
+                        const void *server, sr_fill_rule rule, bool crisp)
 {
     sr_point2 *pts;
     if (poly.point_count == 0 || !map_polygon(doc, poly, m, &pts)) {
@@ -1126,7 +1127,7 @@ static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
     }
     poly.points = pts;
     sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
-    sr_result r = grad ? svg_fill_gradient(doc->ctx, doc->fb, &poly, &desc, grad, color.a)
+    sr_result r = at ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, at, server, color.a)
                        : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
     free(pts);
     if (r != SR_OK) {
@@ -1147,7 +1148,8 @@ static const char *href_of(const svg_node *n)
     return h ? h : attr(n->atts, "xlink:href");
 }
 
-/* An attribute of a gradient, else of the gradients it names by href. */
+/* An attribute of a gradient (a pattern), else of the gradients (the
+ * patterns) it names by href. */
 static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *name)
 {
     for (int i = 0; g && i < MAX_HREF_CHAIN; i++) {
@@ -1156,8 +1158,9 @@ static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *
             return v;
         }
         const char *h = href_of(g);
-        g = h ? reference(doc, h, NULL) : NULL;
-        g = is_gradient(g) ? g : NULL;
+        const svg_node *next = h ? reference(doc, h, NULL) : NULL;
+        g = next && (is_gradient(g) ? is_gradient(next) : strcmp(next->name, g->name) == 0)
+                ? next : NULL;
     }
     return NULL;
 }
@@ -1224,6 +1227,21 @@ static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg
     }
 }
 
+/* The bounding box x0, y0, x1, y1 of the points; false when it is empty
+ * (no area: objectBoundingBox units have nothing to map onto). */
+static bool bounding_box(sr_polygon2 shape, double b[4])
+{
+    b[0] = b[1] = INFINITY;
+    b[2] = b[3] = -INFINITY;
+    for (int i = 0; i < shape.point_count; i++) {
+        b[0] = fmin(b[0], shape.points[i].x);
+        b[2] = fmax(b[2], shape.points[i].x);
+        b[1] = fmin(b[1], shape.points[i].y);
+        b[3] = fmax(b[3], shape.points[i].y);
+    }
+    return b[2] > b[0] && b[3] > b[1];
+}
+
 /* The gradient `server` for a shape whose user-space geometry is `shape`
  * under the frame; false when it paints nothing (no stops, an empty
  * bounding box, a singular transform). */
@@ -1240,17 +1258,11 @@ static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *
     mat2d to_user = IDENTITY;
     double rw = 1, rh = 1;
     if (bbox) {
-        double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-        for (int i = 0; i < shape.point_count; i++) {
-            x0 = fmin(x0, shape.points[i].x);
-            x1 = fmax(x1, shape.points[i].x);
-            y0 = fmin(y0, shape.points[i].y);
-            y1 = fmax(y1, shape.points[i].y);
-        }
-        if (!(x1 > x0 && y1 > y0)) {
+        double b[4];
+        if (!bounding_box(shape, b)) {
             return false;
         }
-        to_user = (mat2d){ x1 - x0, 0, 0, y1 - y0, x0, y0 };
+        to_user = (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], b[0], b[1] };
     } else {
         rw = f->vp_w;
         rh = f->vp_h;
@@ -1320,17 +1332,25 @@ static double stroke_points(const sr_polygon2 *poly, const style *st, double tol
     return (double)poly->point_count * (4 + join) + 2.0 * poly->contour_count * cap;
 }
 
+static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygon2 poly,
+                          sr_polygon2 geometry, double opacity, sr_fill_rule rule);
+
 /* Fill a user-space polygon with a paint at an opacity; a gradient's
  * bounding box is the shape's geometry (the fill's path, for a stroke). */
 static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_polygon2 geometry,
                           const paint *p, double opacity, sr_fill_rule rule)
 {
     sr_rgba c = p->kind == SVG_PAINT_CURRENT ? f->st.color : p->color;
-    if (p->kind == SVG_PAINT_URL) {
+    if (p->kind == SVG_PAINT_URL && !is_gradient(p->server)) {
+        if (paint_pattern(doc, (svg_node *)p->server, f, poly, geometry, opacity, rule) ||
+            !p->has_fallback || doc->status != SR_OK) {
+            return;
+        }
+    } else if (p->kind == SVG_PAINT_URL) {
         svg_gradient g;
         if (resolve_gradient(doc, p->server, f, geometry, &g)) {
-            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, &g, rule,
-                        f->st.crisp);
+            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_paint,
+                        &g, rule, f->st.crisp);
             return;
         }
         if (!p->has_fallback || doc->status != SR_OK) {
@@ -1339,7 +1359,7 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
     }
     c.a *= (float)opacity;
     if (c.a > 0) {
-        fill_mapped(doc, poly, f->m, c, NULL, rule, f->st.crisp);
+        fill_mapped(doc, poly, f->m, c, NULL, NULL, rule, f->st.crisp);
     }
 }
 
@@ -2015,7 +2035,8 @@ static bool is_named(const svg_node *n, const char *const *names)
 /* Elements that draw nothing where they stand: definitions, metadata. */
 static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "style",
                                          "linearGradient", "radialGradient", "stop", "symbol",
-                                         "clipPath", "mask", "script", "marker", NULL };
+                                         "clipPath", "mask", "script", "marker", "pattern",
+                                         NULL };
 
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
 static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use);
@@ -2057,9 +2078,10 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
 
 /* ---- markers ----------------------------------------------------------------------- */
 
-/* The style a marker's content starts from: the initial one cascaded
- * down the marker's own ancestors (not the shape's), display ignored. */
-static style marker_style(svg_doc *doc, const svg_node *m)
+/* The style the content of a marker or pattern starts from: the initial
+ * one cascaded down that element's own ancestors (not the shape's),
+ * display ignored. */
+static style ancestor_style(svg_doc *doc, const svg_node *m)
 {
     const svg_node *chain[MAX_DEPTH];
     int n = 0;
@@ -2136,7 +2158,7 @@ static void draw_marker(svg_doc *doc, const frame *f, svg_node *m, sr_point2 p, 
     double c = cos(a), si = sin(a);
     mat2d place = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, p.x, p.y }, (mat2d){ c, si, -si, c, 0, 0 }),
                           (mat2d){ sw, 0, 0, sw, 0, 0 });
-    frame mf = { .st = marker_style(doc, m), .vp_w = mw, .vp_h = mh };
+    frame mf = { .st = ancestor_style(doc, m), .vp_w = mw, .vp_h = mh };
     mat2d content = IDENTITY;
     const char *vbs = attr(m->atts, "viewBox");
     if (vbs && parse_viewbox(vbs, vb)) {
@@ -2537,14 +2559,13 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
 
 /* A new transparent layer the size of the image, drawn into from now
  * until close_layer; NULL after reporting a failure. */
-static sr_framebuffer *open_layer(svg_doc *doc)
+/* A transparent w x h image drawn into instead of the current one. */
+static sr_framebuffer *open_layer_sized(svg_doc *doc, int w, int h)
 {
     sr_framebuffer *top = NULL;
     sr_result r = sr_make_framebuffer(doc->ctx,
-                                      &(sr_framebuffer_desc){
-                                          .width = sr_framebuffer_width(doc->fb),
-                                          .height = sr_framebuffer_height(doc->fb),
-                                          .depth_format = SR_DEPTH_NONE },
+                                      &(sr_framebuffer_desc){ .width = w, .height = h,
+                                                              .depth_format = SR_DEPTH_NONE },
                                       &top);
     if (r != SR_OK) {
         lib_fail(doc, r);
@@ -2556,10 +2577,127 @@ static sr_framebuffer *open_layer(svg_doc *doc)
     return top;
 }
 
+static sr_framebuffer *open_layer(svg_doc *doc)
+{
+    return open_layer_sized(doc, sr_framebuffer_width(doc->fb), sr_framebuffer_height(doc->fb));
+}
+
 static void close_layer(svg_doc *doc, sr_framebuffer *under)
 {
     doc->layers--;
     doc->fb = under;
+}
+
+/* ---- patterns ------------------------------------------------------------------------ */
+
+/* Pixels of a pattern tile, at most (beyond: drawn at a lower resolution). */
+#define MAX_TILE_PIXELS (4L << 20)
+
+/* Fill poly (user space of f) with the pattern: its tile drawn once into an
+ * image at about the device resolution, then repeated.  False when the
+ * pattern paints nothing (an empty tile, a singular transform) and the
+ * fallback color should be used; failures are reported. */
+static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygon2 poly,
+                          sr_polygon2 geometry, double opacity, sr_fill_rule rule)
+{
+    doc->line = pat->line;
+    const svg_node *g = pat, *content = NULL;
+    for (int i = 0; g; i++) {
+        if (i == MAX_HREF_CHAIN) {
+            svg_fail(doc, SR_BAD_FORMAT, "pattern: href chain through \"#%s\" is a cycle or "
+                     "longer than %d", pat->id ? pat->id : "", MAX_HREF_CHAIN);
+            return true;
+        }
+        content = !content && g->first ? g : content;
+        const char *h = href_of(g);
+        g = h ? reference(doc, h, NULL) : NULL;
+        g = g && strcmp(g->name, "pattern") == 0 ? g : NULL;
+    }
+    if (pat->active || (content && content->active)) {
+        svg_fail(doc, SR_BAD_FORMAT, "pattern: reference cycle through \"#%s\"",
+                 pat->id ? pat->id : "");
+        return true;
+    }
+    double b[4];
+    bool have_box = bounding_box(geometry, b);
+    const char *units = grad_attr(doc, pat, "patternUnits");
+    bool bbox_units = !units || strcmp(units, "userSpaceOnUse") != 0;
+    if (bbox_units && !have_box) {
+        return false;
+    }
+    double rw = bbox_units ? 1 : f->vp_w, rh = bbox_units ? 1 : f->vp_h;
+    double x = grad_coord(doc, pat, "x", rw, 0), y = grad_coord(doc, pat, "y", rh, 0);
+    double w = grad_coord(doc, pat, "width", rw, 0), h = grad_coord(doc, pat, "height", rh, 0);
+    if (bbox_units) {
+        x = b[0] + x * (b[2] - b[0]);
+        y = b[1] + y * (b[3] - b[1]);
+        w *= b[2] - b[0];
+        h *= b[3] - b[1];
+    }
+    if (!(w > 0 && h > 0) || !isfinite(w * h)) {
+        return true; /* an empty tile paints nothing */
+    }
+    /* the content's units onto the tile, its top left at the origin */
+    mat2d cm = IDENTITY;
+    double vb[4];
+    const char *vbs = grad_attr(doc, pat, "viewBox");
+    const char *cu = grad_attr(doc, pat, "patternContentUnits");
+    if (vbs && parse_viewbox(vbs, vb)) {
+        const svg_node *with_vb = pat;
+        while (!attr(with_vb->atts, "viewBox")) { /* preserveAspectRatio of the same element */
+            with_vb = reference(doc, href_of(with_vb), NULL);
+        }
+        cm = viewbox_matrix(doc, with_vb->atts, vb, 0, 0, w, h);
+    } else if (cu && strcmp(cu, "objectBoundingBox") == 0 && have_box) {
+        cm = (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], 0, 0 };
+    }
+    mat2d pm = f->m, t;
+    const char *tr = grad_attr(doc, pat, "patternTransform");
+    if (tr && !parse_transform(tr, &t)) {
+        warn_once(doc, "patternTransform", tr);
+    } else if (tr) {
+        pm = mat_mul(pm, t);
+    }
+    /* The tile at the device's scale along each of its axes. */
+    double sx = hypot(pm.a, pm.b), sy = hypot(pm.c, pm.d), tw = w * sx, th = h * sy;
+    if (!(tw > 0 && th > 0) || !isfinite(tw * th)) {
+        return false;
+    }
+    double k = tw * th > MAX_TILE_PIXELS ? sqrt(MAX_TILE_PIXELS / (tw * th)) : 1;
+    tw = fmin(fmax(ceil(tw * k - 1e-9), 1), SR_MAX_FRAMEBUFFER_SIZE);
+    th = fmin(fmax(ceil(th * k - 1e-9), 1), SR_MAX_FRAMEBUFFER_SIZE);
+    mat2d to_tile = { tw / w, 0, 0, th / h, 0, 0 }, inv;
+    if (!mat_invert(pm, &inv) || !work_within_budget(doc, tw * th)) {
+        return doc->status != SR_OK;
+    }
+    if (doc->layers == MAX_LAYERS) {
+        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
+        return false;
+    }
+    sr_framebuffer *under = doc->fb, *tile = open_layer_sized(doc, (int)tw, (int)th);
+    if (!tile) {
+        return true;
+    }
+    frame tf = { .m = mat_mul(to_tile, cm), .st = ancestor_style(doc, pat), .vp_w = f->vp_w,
+                 .vp_h = f->vp_h };
+    if (content) {
+        pat->active = true;
+        ((svg_node *)content)->active = true;
+        draw_children(doc, (svg_node *)content, &tf);
+        ((svg_node *)content)->active = false;
+        pat->active = false;
+    }
+    close_layer(doc, under);
+    svg_image im = { .rgba = sr_framebuffer_pixels(tile), .w = (int)tw, .h = (int)th,
+                     .repeat = true };
+    mat2d px_to_tile = mat_mul(mat_mul(to_tile, (mat2d){ 1, 0, 0, 1, -x, -y }), inv);
+    memcpy(im.inv, &px_to_tile, sizeof im.inv);
+    if (doc->status == SR_OK) {
+        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_image_at, &im, rule,
+                    f->st.crisp);
+    }
+    sr_destroy_framebuffer(doc->ctx, tile);
+    return true;
 }
 
 static void draw_children(svg_doc *doc, svg_node *node, const frame *f);

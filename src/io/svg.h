@@ -104,16 +104,37 @@ typedef struct svg_gradient {
 /* The gradient's color at the pixel coordinates (x, y). */
 sr_rgba svg_gradient_at(const svg_gradient *g, double x, double y);
 
+/* A paint's straight-alpha color at pixel coordinates (x, y). */
+typedef sr_rgba (*svg_paint_fn)(const void *paint, double x, double y);
+
+/* svg_gradient_at as an svg_paint_fn. */
+sr_rgba svg_gradient_paint(const void *g, double x, double y);
+
+/* ---- painted fills (svg_fill.c) ------------------------------------------ */
+
 /* Source-over of a straight-alpha color with coverage (0..1) onto an RGBA8
  * pixel, as the 2D fills blend (the color quantized to RGBA8 first). */
 void svg_blend(uint8_t *d, sr_rgba c, float cov);
 
-/* Fill a polygon in pixel coordinates with the gradient times opacity:
- * the coverage is sr_polygon_coverage's (the same pixels and weights as
+/* Fill a polygon in pixel coordinates with a paint times opacity: the
+ * coverage is sr_polygon_coverage's (the same pixels and weights as
  * sr_fill_polygon with that desc), the paint is applied after it and
  * blended source-over as the fills blend. */
-sr_result svg_fill_gradient(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                            const sr_fill_desc *desc, const svg_gradient *g, float opacity);
+sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                         const sr_fill_desc *desc, svg_paint_fn at, const void *paint,
+                         float opacity);
+
+/* An RGBA8 image (straight alpha) as a paint: pixel coordinates map into
+ * it by inv; sampled bilinearly, repeated (a pattern tile) or transparent
+ * outside (an image). */
+typedef struct svg_image {
+    const uint8_t *rgba;
+    int w, h;
+    double inv[6];               /* pixel -> image texels (a b c d e f) */
+    bool repeat;
+} svg_image;
+
+sr_rgba svg_image_at(const void *image, double x, double y);
 
 /* ---- dashes (svg_dash.c) ----------------------------------------------- */
 
