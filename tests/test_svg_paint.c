@@ -61,14 +61,16 @@ static void check_drawing(const char *file, const char *ref)
  * opacity; clipbox: clips in bounding-box units; masks; nested svg
  * viewports; dashes: stroke-dasharray and -dashoffset on lines, curves
  * and closed shapes; markers: orient, markerUnits, viewBox, paint-order;
- * patterns: units, viewBox, patternTransform, href inheritance */
+ * patterns: units, viewBox, patternTransform, href inheritance;
+ * maskregion: mask regions and content units, mask-type in a sheet */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
-                                          "nested", "dashes", "markers", "patterns" };
+                                          "nested", "dashes", "markers", "patterns",
+                                          "maskregion" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);

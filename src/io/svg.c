@@ -2403,12 +2403,18 @@ static frame viewport_frame(svg_doc *doc, const svg_node *node, const frame *f)
 
 /* The coverage of a nested svg's viewport (overflow is hidden); NULL
  * when it is empty or after a failure. */
+static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f);
+
 static uint8_t *nested_viewport(svg_doc *doc, const svg_node *node, const frame *f)
 {
     double r[4];
-    if (!viewport_rect(doc, node, f, r)) {
-        return NULL;
-    }
+    return viewport_rect(doc, node, f, r) ? rect_coverage(doc, r, f) : NULL;
+}
+
+/* The coverage of the rectangle x, y, width, height = r in f's user
+ * space; NULL after a failure. */
+static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f)
+{
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     sr_point2 corners[4] = { { r[0], r[1] }, { r[0] + r[2], r[1] },
                              { r[0] + r[2], r[1] + r[3] }, { r[0], r[1] + r[3] } };
@@ -2702,22 +2708,54 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
 
 static void draw_children(svg_doc *doc, svg_node *node, const frame *f);
 
-/* A <mask> for an element drawn under frame f: its content drawn in a
- * layer, in the element's user space, then per pixel its luminance times
- * its alpha (mask-type="alpha": the alpha alone), multiplied into `into`
- * (NULL: all 255).  The mask region is not applied: the content is taken
- * whole.  Returns the coverage, or NULL (into freed) after a failure. */
-static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t *into)
+/* A <mask> for element `node` drawn under frame f: its content drawn in
+ * a layer (in the element's user space, or its bounding box's for
+ * maskContentUnits="objectBoundingBox"), then per pixel its luminance
+ * times its alpha (mask-type="alpha": the alpha alone), inside the mask
+ * region only, multiplied into `into` (NULL: all 255).  Returns the
+ * coverage, or NULL (into freed) after a failure. */
+static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, svg_node *node, const frame *f,
+                              uint8_t *into)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     size_t n = (size_t)w * (size_t)h;
     if (m->active) {
         svg_fail(doc, SR_BAD_FORMAT, "mask: reference cycle through \"#%s\"", m->id ? m->id : "");
     }
-    const char *units = attr(m->atts, "maskContentUnits");
-    if (units && strcmp(units, "objectBoundingBox") == 0) {
-        warn_once(doc, "maskContentUnits", units);
+    /* The element's bounding box, for the units that need it. */
+    const char *units = attr(m->atts, "maskUnits"), *cunits = attr(m->atts, "maskContentUnits");
+    bool region_bbox = !units || strcmp(units, "userSpaceOnUse") != 0;
+    bool content_bbox = cunits && strcmp(cunits, "objectBoundingBox") == 0;
+    double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    if (region_bbox || content_bbox) {
+        bool was = node->active;
+        node->active = false;
+        bbox_add(doc, node, f, IDENTITY, b);
+        node->active = was;
     }
+    bool have_box = b[2] > b[0] && b[3] > b[1];
+    double r[4] = { -0.1, -0.1, 1.2, 1.2 };
+    static const char *const names[4] = { "x", "y", "width", "height" };
+    for (int i = 0; i < 4; i++) {
+        const char *v = attr(m->atts, names[i]);
+        double x;
+        bool pct;
+        if (v && parse_length(v, &x, &pct)) {
+            r[i] = pct ? x / 100 : x;
+        } else if (v) {
+            warn_once(doc, names[i], v);
+        }
+        if (!region_bbox && (!v || pct)) {
+            r[i] = r[i] * (i % 2 ? f->vp_h : f->vp_w); /* percentages of the viewport */
+        }
+    }
+    if (region_bbox) {
+        r[0] = b[0] + r[0] * (b[2] - b[0]);
+        r[1] = b[1] + r[1] * (b[3] - b[1]);
+        r[2] *= b[2] - b[0];
+        r[3] *= b[3] - b[1];
+    }
+    bool empty = !(r[2] > 0 && r[3] > 0) || ((region_bbox || content_bbox) && !have_box);
     uint8_t *cov = into ? into : malloc(n);
     if (!cov || doc->status != SR_OK || !work_within_budget(doc, (double)n)) {
         if (!cov) {
@@ -2729,11 +2767,18 @@ static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t
     if (!into) {
         memset(cov, 255, n);
     }
-    frame mf = { .m = f->m, .st = doc->initial, .vp_w = f->vp_w, .vp_h = f->vp_h };
-    apply_cascade(doc, m, &mf.st);
+    if (empty) { /* nothing of the element shows */
+        memset(cov, 0, n);
+        return cov;
+    }
+    frame mf = { .m = f->m, .st = ancestor_style(doc, m), .vp_w = f->vp_w, .vp_h = f->vp_h };
+    uint8_t *region = rect_coverage(doc, r, &mf);
+    if (content_bbox) {
+        mf.m = mat_mul(f->m, (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], b[0], b[1] });
+    }
     const char *type = attr(m->atts, "mask-type");
     bool alpha = (type && strcmp(type, "alpha") == 0) || mf.st.mask_alpha;
-    sr_framebuffer *under = doc->fb, *layer = open_layer(doc);
+    sr_framebuffer *under = doc->fb, *layer = region ? open_layer(doc) : NULL;
     if (layer) {
         m->active = true;
         draw_children(doc, m, &mf);
@@ -2742,7 +2787,7 @@ static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t
         const uint8_t *px = sr_framebuffer_pixels(layer);
         for (size_t i = 0; i < n; i++) {
             const uint8_t *p = px + i * 4;
-            double v = p[3] / 255.0;
+            double v = p[3] / 255.0 * region[i] / 255.0;
             if (!alpha) { /* luminance of the sRGB values (CSS Masking) */
                 v *= (0.2125 * p[0] + 0.7154 * p[1] + 0.0721 * p[2]) / 255.0;
             }
@@ -2750,6 +2795,7 @@ static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t
         }
         sr_destroy_framebuffer(doc->ctx, layer);
     }
+    free(region);
     if (doc->status != SR_OK) {
         free(cov);
         return NULL;
@@ -2885,7 +2931,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     }
     uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, node, &f) : NULL;
     if (f.st.mask && doc->status == SR_OK) {
-        mask = mask_coverage(doc, (svg_node *)f.st.mask, &f, mask);
+        mask = mask_coverage(doc, (svg_node *)f.st.mask, node, &f, mask);
     }
     if (viewport) {
         multiply_coverage(viewport, mask, doc);
