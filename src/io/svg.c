@@ -33,6 +33,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -2038,6 +2039,41 @@ static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "s
                                          "clipPath", "mask", "script", "marker", "pattern",
                                          NULL };
 
+/* The language conditional processing tests against. */
+#define SVG_LANGUAGE "en"
+
+/* Whether `tag` (up to a comma or a blank) names SVG_LANGUAGE or one of
+ * its regional forms ("en", "en-GB"), case aside. */
+static bool language_matches(const char *tag, size_t n)
+{
+    size_t k = strlen(SVG_LANGUAGE);
+    return n >= k && strncasecmp(tag, SVG_LANGUAGE, k) == 0 && (n == k || tag[k] == '-');
+}
+
+/* The conditional processing attributes: systemLanguage (a comma list of
+ * language tags, one of which must match), requiredExtensions (none is
+ * supported, so any list fails) and requiredFeatures (SVG 2 drops it:
+ * true). */
+static bool conditions_hold(const svg_node *node)
+{
+    const char *ext = attr(node->atts, "requiredExtensions");
+    if (ext) {
+        return false;
+    }
+    const char *lang = attr(node->atts, "systemLanguage");
+    if (!lang) {
+        return true;
+    }
+    for (const char *s = skip_ws(lang); *s; s = skip_ws_comma(s)) {
+        size_t n = strcspn(s, ", \t\r\n");
+        if (language_matches(s, n)) {
+            return true;
+        }
+        s += n;
+    }
+    return false;
+}
+
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
 static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use);
 
@@ -2882,6 +2918,9 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         }
         return;
     }
+    if (!conditions_hold(node)) {
+        return;
+    }
     /* Uses and nested elements are visited again and again: each visit is
      * a point of the budget, so a tree of uses cannot grow without bound. */
     if (!points_within_budget(doc, 1)) {
@@ -2964,9 +3003,10 @@ static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bo
     } else if (use) {
         draw_use(doc, node, &f);
     } else if (strcmp(node->name, "switch") == 0) {
-        /* the first child whose conditions hold: none are tested here */
+        /* the first drawable child whose conditions hold */
         for (svg_node *c = node->first; c; c = c->next) {
-            if (is_shape(c->name) || !is_named(c, not_drawn)) {
+            if ((is_shape(c->name) || !is_named(c, not_drawn)) && !c->foreign &&
+                conditions_hold(c)) {
                 draw_node(doc, c, &f);
                 break;
             }
