@@ -205,6 +205,31 @@ SR_TEST(dashes_and_gaps_fall_where_the_pattern_says)
     sr_destroy_context(ctx);
 }
 
+SR_TEST(inherit_takes_the_parents_value_of_properties_not_inherited)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* opacity 0.5 on the group and again on the rect: a quarter of black
+     * over white; the grey mask (x < 4) on the group and again on the
+     * rect: black at (128/255)^2, nothing at x >= 4 */
+    sr_framebuffer *fb = render(ctx,
+                                "<svg xmlns='http://www.w3.org/2000/svg' width='8' height='4'>"
+                                "<mask id='m'><rect width='4' height='4' fill='#808080'/></mask>"
+                                "<g opacity='0.5'><rect width='8' height='2' opacity='inherit'/></g>"
+                                "<g mask='url(#m)'><rect y='2' width='8' height='2'"
+                                " style='mask: inherit'/></g></svg>",
+                                SR_OK, NULL, 0);
+    REQUIRE(fb != NULL);
+    CHECK_NEAR(pixel(fb, 1, 0)[0], 191, 1); /* 255 * (1 - 0.5 * 0.5) */
+    CHECK_NEAR(pixel(fb, 1, 3)[0], 191, 2);
+    CHECK_EQ(pixel(fb, 6, 3)[0], 255);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(reference_cycles_are_refused_with_file_and_line)
 {
     if (!sr_io_have_svg()) {

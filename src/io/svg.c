@@ -138,6 +138,7 @@ typedef struct svg_doc {
     long match_work;         /* selector matching steps so far */
     int draw_depth;          /* elements drawn inside each other, uses included */
     int layers;              /* layers open (group opacity, clip paths) */
+    const style *inherit_from; /* the parent's style while an element cascades */
     style initial;           /* the initial style, for mask content */
     sr_result status;        /* SR_OK until something fails */
     char *msg;               /* the failure's line goes here */
@@ -648,7 +649,26 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     memcpy(v, value, n);
     v[n] = 0;
     if (strcmp(v, "inherit") == 0) {
-        return true; /* the parent's value is already there */
+        /* An inherited property has the parent's value already; the others
+         * take it from the parent's style, when there is a parent. */
+        const style *p = doc->inherit_from;
+        if (!p) {
+            return true;
+        }
+        if (strcmp(name, "opacity") == 0) {
+            st->own_opacity = p->own_opacity;
+        } else if (strcmp(name, "clip-path") == 0) {
+            st->clip = p->clip;
+        } else if (strcmp(name, "mask") == 0) {
+            st->mask = p->mask;
+        } else if (strcmp(name, "mask-type") == 0) {
+            st->mask_alpha = p->mask_alpha;
+        } else if (strcmp(name, "stop-color") == 0) {
+            st->stop_color = p->stop_color;
+        } else if (strcmp(name, "stop-opacity") == 0) {
+            st->stop_opacity = p->stop_opacity;
+        }
+        return true;
     }
     double num;
     if (strcmp(name, "fill") == 0 || strcmp(name, "stroke") == 0) {
@@ -2930,7 +2950,9 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     frame f = *parent;
     f.st.own_opacity = 1;
     f.st.clip = f.st.mask = NULL;
+    doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
+    doc->inherit_from = NULL;
     if (doc->status != SR_OK || f.st.display_none) {
         return;
     }
