@@ -93,6 +93,7 @@ typedef struct style {
     unsigned dash_pct;           /* bit i: dash[i] is a percentage */
     double dash_offset;
     bool dash_offset_pct;
+    bool non_scaling;            /* vector-effect: non-scaling-stroke (not inherited) */
     const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
     unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
     bool crisp;
@@ -138,6 +139,7 @@ typedef struct svg_doc {
     long match_work;         /* selector matching steps so far */
     int draw_depth;          /* elements drawn inside each other, uses included */
     int layers;              /* layers open (group opacity, clip paths) */
+    mat2d root_m;            /* the outermost viewport's user space to pixels */
     const style *inherit_from; /* the parent's style while an element cascades */
     style initial;           /* the initial style, for mask content */
     sr_result status;        /* SR_OK until something fails */
@@ -438,7 +440,7 @@ static double clamp01(double v)
 static const char *const unsupported_props[] = {
     "filter",
     "marker-start", "marker-mid", "marker-end",
-    "fill-paint", "vector-effect", "mix-blend-mode", "isolation", NULL,
+    "fill-paint", "mix-blend-mode", "isolation", NULL,
 };
 
 /* Properties that change nothing this reader draws (rendering hints,
@@ -456,7 +458,7 @@ static const char *const no_effect_props[] = {
 static const struct { const char *name, *value; } initial_values[] = {
     { "mix-blend-mode", "normal" },
     { "isolation", "auto" }, { "filter", "none" },
-    { "vector-effect", "none" },
+
 };
 
 static svg_node *find_id(const svg_doc *doc, const char *id);
@@ -743,6 +745,12 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             if (which < 0 || which == i) {
                 st->marker[i] = m;
             }
+        }
+    } else if (strcmp(name, "vector-effect") == 0) {
+        if (strcmp(v, "none") == 0 || strcmp(v, "non-scaling-stroke") == 0) {
+            st->non_scaling = strcmp(v, "non-scaling-stroke") == 0;
+        } else {
+            warn_once(doc, "vector-effect", v);
         }
     } else if (strcmp(name, "paint-order") == 0) {
         if (!parse_paint_order(v, st)) {
@@ -1422,12 +1430,90 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
     return out;
 }
 
+/* The path mapped by m into a new path (flattened points as lines, the
+ * closed subpaths closed); NULL after reporting a failure. */
+static sr_path *mapped_path(svg_doc *doc, const sr_path *path, mat2d m)
+{
+    sr_polygon2 poly = sr_path_polygon(path);
+    sr_path *out = NULL;
+    sr_result r = sr_make_path(doc->ctx, 0.1, &out);
+    for (int c = 0, at = 0; r == SR_OK && c < poly.contour_count; at += poly.contour_counts[c++]) {
+        for (int i = 0; r == SR_OK && i < poly.contour_counts[c]; i++) {
+            sr_point2 p = mat_apply(m, poly.points[at + i]);
+            r = i == 0 ? sr_path_move_to(out, p.x, p.y) : sr_path_line_to(out, p.x, p.y);
+        }
+        if (r == SR_OK && sr_path_subpath_closed(path, c)) {
+            r = sr_path_close(out);
+        }
+    }
+    if (r != SR_OK) {
+        sr_destroy_path(doc->ctx, out);
+        lib_fail(doc, r);
+        return NULL;
+    }
+    return out;
+}
+
+/* The stroke of a path: its outline (of the dashes, if any) filled with
+ * the stroke's paint.  Under vector-effect="non-scaling-stroke" the
+ * outline is made in the outermost viewport's coordinates (widths and
+ * dashes in its units, whatever the transforms between) and mapped back. */
+static void draw_stroke(svg_doc *doc, const frame *f, const sr_path *path, double tol)
+{
+    const style *st = &f->st;
+    sr_path *host = NULL;
+    mat2d back = IDENTITY;
+    if (st->non_scaling) {
+        mat2d to_host;
+        if (!mat_invert(doc->root_m, &to_host) || !mat_invert(mat_mul(to_host, f->m), &back) ||
+            !(host = mapped_path(doc, path, mat_mul(to_host, f->m)))) {
+            return;
+        }
+        tol = 0.1 / matrix_scale(doc->root_m);
+    }
+    const sr_path *source = host ? host : path;
+    sr_path *dashed = st->n_dash > 0 ? dash_path(doc, f, source, tol) : NULL;
+    const sr_path *stroked = dashed ? dashed : source;
+    sr_polygon2 poly = sr_path_polygon(stroked);
+    double est = stroke_points(&poly, st, tol);
+    if (st->n_dash > 0 && !dashed) {
+        /* reported by dash_path */
+    } else if (doc->points_used + est > doc->points_budget) {
+        svg_fail(doc, SR_TOO_LARGE,
+                 "stroke: the outline of stroke-width %g over %d points would need about "
+                 "%.0f points, beyond the drawing's %.0f (%d + %d per byte of the document)",
+                 st->stroke_width, poly.point_count, est, doc->points_budget,
+                 SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
+    } else {
+        sr_polygon2 outline;
+        sr_result r = sr_make_stroke_outline(doc->ctx, stroked,
+                                             &(sr_stroke_desc){ .width = st->stroke_width,
+                                                                .join = st->join, .cap = st->cap,
+                                                                .miter_limit = st->miter_limit },
+                                             &outline);
+        if (r != SR_OK) {
+            lib_fail(doc, r);
+        } else {
+            /* the outline is ours (made above): mapped back in place */
+            sr_point2 *pts = (sr_point2 *)outline.points;
+            for (int i = 0; host && i < outline.point_count; i++) {
+                pts[i] = mat_apply(back, pts[i]);
+            }
+            paint_polygon(doc, f, outline, sr_path_polygon(path), &st->stroke,
+                          st->stroke_opacity * st->opacity, SR_NONZERO);
+            sr_destroy_stroke_outline(doc->ctx, &outline);
+        }
+    }
+    sr_destroy_path(doc->ctx, dashed);
+    sr_destroy_path(doc->ctx, host);
+}
+
 /* The fill (what: PAINT_FILL) or the stroke (PAINT_STROKE) of a path. */
 static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable,
                       int what)
 {
     const style *st = &f->st;
-    if (st->display_none || st->invisible) {
+    if (st->display_none || st->invisible || doc->status != SR_OK) {
         return;
     }
     if (what == PAINT_FILL) {
@@ -1435,40 +1521,9 @@ static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, b
             paint_polygon(doc, f, sr_path_polygon(path), sr_path_polygon(path), &st->fill,
                           st->fill_opacity * st->opacity, st->fill_rule);
         }
-        return;
-    }
-    if (st->stroke.kind != SVG_PAINT_NONE && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
-        doc->status == SR_OK) {
-        sr_path *dashed = st->n_dash > 0 ? dash_path(doc, f, path, tol) : NULL;
-        if (st->n_dash > 0 && !dashed) {
-            return;
-        }
-        const sr_path *stroked = dashed ? dashed : path;
-        sr_polygon2 poly = sr_path_polygon(stroked);
-        double est = stroke_points(&poly, st, tol);
-        if (doc->points_used + est > doc->points_budget) {
-            svg_fail(doc, SR_TOO_LARGE,
-                     "stroke: the outline of stroke-width %g over %d points would need about "
-                     "%.0f points, beyond the drawing's %.0f (%d + %d per byte of the document)",
-                     st->stroke_width, poly.point_count, est, doc->points_budget,
-                     SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
-            sr_destroy_path(doc->ctx, dashed);
-            return;
-        }
-        sr_polygon2 outline;
-        sr_result r = sr_make_stroke_outline(doc->ctx, stroked,
-                                        &(sr_stroke_desc){ .width = st->stroke_width,
-                                                           .join = st->join, .cap = st->cap,
-                                                           .miter_limit = st->miter_limit },
-                                        &outline);
-        sr_destroy_path(doc->ctx, dashed);
-        if (r != SR_OK) {
-            lib_fail(doc, r);
-            return;
-        }
-        paint_polygon(doc, f, outline, sr_path_polygon(path), &st->stroke,
-                      st->stroke_opacity * st->opacity, SR_NONZERO);
-        sr_destroy_stroke_outline(doc->ctx, &outline);
+    } else if (st->stroke.kind != SVG_PAINT_NONE && st->stroke_width > 0 &&
+               st->stroke_opacity * st->opacity > 0) {
+        draw_stroke(doc, f, path, tol);
     }
 }
 
@@ -2950,6 +3005,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     frame f = *parent;
     f.st.own_opacity = 1;
     f.st.clip = f.st.mask = NULL;
+    f.st.non_scaling = false;
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
@@ -3104,6 +3160,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
         doc->line = doc->root->line;
         doc->initial = f.st;
         if (root_element(doc, doc->root->atts, &f)) {
+            doc->root_m = f.m;
             draw_node(doc, doc->root, &f);
         }
     }
