@@ -64,7 +64,7 @@ static void check_drawing(const char *file, const char *ref)
  * patterns: units, viewBox, patternTransform, href inheritance;
  * maskregion: mask regions and content units, mask-type in a sheet;
  * switch: systemLanguage and requiredExtensions in and out of a switch;
- * nonscaling: vector-effect="non-scaling-stroke" */
+ * nonscaling: vector-effect="non-scaling-stroke"; origin: transform-origin */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -72,7 +72,8 @@ SR_TEST(drawings_match_references)
     }
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
                                           "nested", "dashes", "markers", "patterns",
-                                          "maskregion", "switch", "nonscaling" };
+                                          "maskregion", "switch", "nonscaling",
+                                          "origin" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);

@@ -94,6 +94,8 @@ typedef struct style {
     double dash_offset;
     bool dash_offset_pct;
     bool non_scaling;            /* vector-effect: non-scaling-stroke (not inherited) */
+    double origin[2];            /* transform-origin (not inherited) */
+    unsigned origin_pct;         /* bit i: origin[i] is a fraction of the viewport */
     const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
     unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
     bool crisp;
@@ -595,6 +597,62 @@ static bool parse_dasharray(const char *v, style *st)
     return true;
 }
 
+/* transform-origin: one or two of a length, a percentage (of the
+ * viewport), left, center, right, top, bottom (a third value, the z
+ * offset, must be 0); false when malformed. */
+static bool parse_origin(const char *v, style *st)
+{
+    double o[2] = { 0.5, 0.5 };
+    unsigned pct = 3;
+    int n = 0, axis_of[2] = { -1, -1 };
+    const char *s = skip_ws(v);
+    while (*s && n < 3) {
+        size_t len = strcspn(s, " \t\r\n");
+        char item[64];
+        if (len >= sizeof item) {
+            return false;
+        }
+        memcpy(item, s, len);
+        item[len] = 0;
+        s = skip_ws(s + len);
+        static const struct { const char *word; int axis; double at; } words[] = {
+            { "left", 0, 0 }, { "right", 0, 1 }, { "top", 1, 0 }, { "bottom", 1, 1 },
+            { "center", -1, 0.5 },
+        };
+        int axis = n; /* a length: x first, then y */
+        double at;
+        bool is_pct = true, word = false;
+        for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
+            if (strcmp(item, words[i].word) == 0) {
+                axis = words[i].axis < 0 ? (n == 1 && axis_of[0] == 1 ? 0 : n) : words[i].axis;
+                at = words[i].at;
+                word = true;
+            }
+        }
+        if (!word) {
+            if (n == 2) { /* the z offset: only 0 means anything here */
+                return parse_length(item, &at, NULL) && at == 0;
+            }
+            if (!parse_length(item, &at, &is_pct)) {
+                return false;
+            }
+            at = is_pct ? at / 100 : at;
+        }
+        if (n == 2 || axis > 1 || (axis_of[0] == axis && n == 1)) {
+            return false;
+        }
+        o[axis] = at;
+        pct = is_pct ? pct | 1u << axis : pct & ~(1u << axis);
+        axis_of[n++] = axis;
+    }
+    if (n == 0 || *s) {
+        return false;
+    }
+    memcpy(st->origin, o, sizeof o);
+    st->origin_pct = pct;
+    return true;
+}
+
 /* paint-order: normal, or some of fill, stroke, markers (the missing ones
  * follow in that order); false when malformed. */
 static bool parse_paint_order(const char *v, style *st)
@@ -745,6 +803,10 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             if (which < 0 || which == i) {
                 st->marker[i] = m;
             }
+        }
+    } else if (strcmp(name, "transform-origin") == 0) {
+        if (!parse_origin(v, st)) {
+            warn_once(doc, "transform-origin", v);
         }
     } else if (strcmp(name, "vector-effect") == 0) {
         if (strcmp(v, "none") == 0 || strcmp(v, "non-scaling-stroke") == 0) {
@@ -3006,6 +3068,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     f.st.own_opacity = 1;
     f.st.clip = f.st.mask = NULL;
     f.st.non_scaling = false;
+    f.st.origin[0] = f.st.origin[1] = 0;
+    f.st.origin_pct = 0;
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
@@ -3019,6 +3083,10 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
             svg_fail(doc, SR_BAD_FORMAT, "transform=\"%s\" is malformed", tr);
             return;
         }
+        /* about transform-origin: move it to 0, transform, move back */
+        double ox = f.st.origin[0] * (f.st.origin_pct & 1 ? f.vp_w : 1);
+        double oy = f.st.origin[1] * (f.st.origin_pct & 2 ? f.vp_h : 1);
+        t = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, ox, oy }, t), (mat2d){ 1, 0, 0, 1, -ox, -oy });
         f.m = mat_mul(f.m, t);
     }
     /* A nested svg: a new viewport, which clips what it holds. */
