@@ -64,7 +64,8 @@ static void check_drawing(const char *file, const char *ref)
  * patterns: units, viewBox, patternTransform, href inheritance;
  * maskregion: mask regions and content units, mask-type in a sheet;
  * switch: systemLanguage and requiredExtensions in and out of a switch;
- * nonscaling: vector-effect="non-scaling-stroke"; origin: transform-origin */
+ * nonscaling: vector-effect="non-scaling-stroke"; origin: transform-origin;
+ * blend: the sixteen mix-blend-modes and isolation */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -73,7 +74,7 @@ SR_TEST(drawings_match_references)
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
                                           "nested", "dashes", "markers", "patterns",
                                           "maskregion", "switch", "nonscaling",
-                                          "origin" };
+                                          "origin", "blend" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);

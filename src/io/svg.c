@@ -95,6 +95,8 @@ typedef struct style {
     bool dash_offset_pct;
     bool non_scaling;            /* vector-effect: non-scaling-stroke (not inherited) */
     double origin[2];            /* transform-origin (not inherited) */
+    svg_blend_kind blend;        /* mix-blend-mode (not inherited) */
+    bool isolate;                /* isolation: isolate (not inherited) */
     unsigned origin_pct;         /* bit i: origin[i] is a fraction of the viewport */
     const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
     unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
@@ -440,9 +442,7 @@ static double clamp01(double v)
 
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
-    "filter",
-    "marker-start", "marker-mid", "marker-end",
-    "fill-paint", "mix-blend-mode", "isolation", NULL,
+    "filter", "fill-paint", NULL,
 };
 
 /* Properties that change nothing this reader draws (rendering hints,
@@ -458,8 +458,7 @@ static const char *const no_effect_props[] = {
 };
 
 static const struct { const char *name, *value; } initial_values[] = {
-    { "mix-blend-mode", "normal" },
-    { "isolation", "auto" }, { "filter", "none" },
+    { "filter", "none" },
 
 };
 
@@ -803,6 +802,19 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             if (which < 0 || which == i) {
                 st->marker[i] = m;
             }
+        }
+    } else if (strcmp(name, "mix-blend-mode") == 0) {
+        int mode = svg_blend_mode(v);
+        if (mode < 0) {
+            warn_once(doc, "mix-blend-mode", v);
+        } else {
+            st->blend = (svg_blend_kind)mode;
+        }
+    } else if (strcmp(name, "isolation") == 0) {
+        if (strcmp(v, "auto") == 0 || strcmp(v, "isolate") == 0) {
+            st->isolate = v[0] == 'i';
+        } else {
+            warn_once(doc, "isolation", v);
         }
     } else if (strcmp(name, "transform-origin") == 0) {
         if (!parse_origin(v, st)) {
@@ -2704,7 +2716,7 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
 /* Composite a layer over the image through a mask (or none) at an
  * opacity: straight-alpha source-over, as the fills blend. */
 static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
-                            double opacity)
+                            double opacity, svg_blend_kind mode)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     if (!work_within_budget(doc, (double)w * h)) {
@@ -2725,6 +2737,9 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
         }
         sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
                       (float)(l[3] / 255.0 * opacity) };
+        if (mode != SVG_BLEND_NORMAL) {
+            c = svg_blend_color(mode, px + i * 4, c);
+        }
         svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
     }
     if (r == SR_OK) {
@@ -3070,6 +3085,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     f.st.non_scaling = false;
     f.st.origin[0] = f.st.origin[1] = 0;
     f.st.origin_pct = 0;
+    f.st.blend = SVG_BLEND_NORMAL;
+    f.st.isolate = false;
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
@@ -3097,7 +3114,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     /* A group's opacity and any clip path apply to the element drawn
      * whole in a layer of its own; a lone shape's opacity folds into its
      * fill and stroke. */
-    bool layer = viewport || f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape);
+    bool layer = viewport || f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape) ||
+                 f.st.blend != SVG_BLEND_NORMAL || f.st.isolate;
     if (layer && doc->layers == MAX_LAYERS) {
         warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
         layer = false;
@@ -3129,7 +3147,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         draw_content(doc, node, &f, shape, use);
         close_layer(doc, under);
         if (doc->status == SR_OK) {
-            composite_layer(doc, top, mask, f.st.own_opacity);
+            composite_layer(doc, top, mask, f.st.own_opacity, f.st.blend);
         }
         sr_destroy_framebuffer(doc->ctx, top);
     }

@@ -136,6 +136,24 @@ typedef struct svg_image {
 
 sr_rgba svg_image_at(const void *image, double x, double y);
 
+/* ---- blend modes (svg_blend.c) ------------------------------------------ */
+
+typedef enum svg_blend_kind {
+    SVG_BLEND_NORMAL, SVG_BLEND_MULTIPLY, SVG_BLEND_SCREEN, SVG_BLEND_OVERLAY,
+    SVG_BLEND_DARKEN, SVG_BLEND_LIGHTEN, SVG_BLEND_COLOR_DODGE, SVG_BLEND_COLOR_BURN,
+    SVG_BLEND_HARD_LIGHT, SVG_BLEND_SOFT_LIGHT, SVG_BLEND_DIFFERENCE, SVG_BLEND_EXCLUSION,
+    SVG_BLEND_HUE, SVG_BLEND_SATURATION, SVG_BLEND_COLOR, SVG_BLEND_LUMINOSITY,
+    SVG_BLEND_COUNT
+} svg_blend_kind;
+
+/* The mode a mix-blend-mode keyword names, or -1. */
+int svg_blend_mode(const char *name);
+
+/* The color (straight alpha, src.a kept) that src takes over the RGBA8
+ * backdrop under the mode: B(backdrop, src) where the backdrop is
+ * opaque, src itself where it is transparent, mixed by its alpha. */
+sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba src);
+
 /* ---- dashes (svg_dash.c) ----------------------------------------------- */
 
 /* Values of a stroke-dasharray, at most. */
