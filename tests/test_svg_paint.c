@@ -65,7 +65,8 @@ static void check_drawing(const char *file, const char *ref)
  * maskregion: mask regions and content units, mask-type in a sheet;
  * switch: systemLanguage and requiredExtensions in and out of a switch;
  * nonscaling: vector-effect="non-scaling-stroke"; origin: transform-origin;
- * blend: the sixteen mix-blend-modes and isolation */
+ * blend: the sixteen mix-blend-modes and isolation; images: a JPEG file
+ * and a PNG data: URI under preserveAspectRatio */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -74,8 +75,11 @@ SR_TEST(drawings_match_references)
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
                                           "nested", "dashes", "markers", "patterns",
                                           "maskregion", "switch", "nonscaling",
-                                          "origin", "blend" };
+                                          "origin", "blend", "images" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
+            continue; /* its picture is a JPEG */
+        }
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);
         snprintf(ref, sizeof ref, "svg_%s", names[i]);
@@ -230,6 +234,38 @@ SR_TEST(inherit_takes_the_parents_value_of_properties_not_inherited)
     CHECK_NEAR(pixel(fb, 1, 3)[0], 191, 2);
     CHECK_EQ(pixel(fb, 6, 3)[0], 255);
     sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(images_that_do_not_read_or_lie_outside_are_skipped_with_a_warning)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* a path climbing out, an absolute one, a URL, a missing file, a
+     * broken data: URI, an SVG where a PNG should be: none is read */
+    static const char *const hrefs[] = { "../images.svg", "/etc/hostname", "http://x/a.png",
+                                         "missing.png", "data:image/png;base64,!!",
+                                         "images.svg" };
+    char name[1024], svg[512];
+    snprintf(name, sizeof name, "%s/data/svg/t.svg", sr_test_src_dir());
+    for (size_t i = 0; i < sizeof hrefs / sizeof hrefs[0]; i++) {
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>"
+                 "<image href='%s' width='4' height='4'/></svg>", hrefs[i]);
+        sr_framebuffer *fb = NULL;
+        sr_svg_info info;
+        sr_io_error err;
+        CHECK_EQ(sr_render_svg(ctx, svg, strlen(svg), &(sr_svg_desc){ .name = name }, &fb, &info,
+                               &err),
+                 SR_OK);
+        CHECK_EQ(info.warnings, 1);
+        REQUIRE(fb != NULL);
+        CHECK_EQ(pixel(fb, 2, 2)[3], 0);
+        sr_destroy_framebuffer(ctx, fb);
+    }
     sr_destroy_context(ctx);
 }
 

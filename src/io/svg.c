@@ -2448,6 +2448,70 @@ static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
     sr_destroy_path(doc->ctx, p);
 }
 
+/* ---- images -------------------------------------------------------------------------- */
+
+/* <image>: a PNG or a JPEG, from a base64 data: URI or a file next to
+ * the document, fitted into its viewport (x, y, width, height; a missing
+ * size is the picture's own) as preserveAspectRatio says, sampled
+ * bilinearly.  What does not read is skipped with a warning. */
+static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    const char *href = href_of(node);
+    if (!href || f->st.invisible) {
+        return;
+    }
+    sr_io_error err;
+    int iw = 0, ih = 0;
+    uint8_t *px = NULL, *bytes = NULL;
+    size_t n;
+    sr_result r = SR_BAD_FORMAT;
+    if (strncmp(href, "data:", 5) == 0) {
+        if (svg_data_uri(href, &bytes, &n)) {
+            r = sr_decode_image(doc->file, bytes, n, &iw, &ih, &px, &err);
+            free(bytes);
+        }
+    } else {
+        char *path = svg_image_path(doc->opt->name, href);
+        if (path) {
+            r = sr_read_image(path, &iw, &ih, &px, &err);
+            free(path);
+        }
+    }
+    if (r != SR_OK) {
+        char what[64];
+        snprintf(what, sizeof what, "%.60s", href);
+        warn_once(doc, "image source (not a readable PNG or JPEG next to the document)", what);
+        free(px);
+        return;
+    }
+    double x, y, w = iw, h = ih;
+    const char *ws = attr(node->atts, "width"), *hs = attr(node->atts, "height");
+    bool w_auto = !ws || strcmp(ws, "auto") == 0, h_auto = !hs || strcmp(hs, "auto") == 0;
+    if (length_attr(doc, f, "x", attr(node->atts, "x"), &x) &&
+        length_attr(doc, f, "y", attr(node->atts, "y"), &y) &&
+        (w_auto || length_attr(doc, f, "width", ws, &w)) &&
+        (h_auto || length_attr(doc, f, "height", hs, &h)) &&
+        work_within_budget(doc, (double)iw * ih)) {
+        /* one side given: the other keeps the picture's proportions */
+        w = w_auto && !h_auto ? h * iw / ih : w;
+        h = h_auto && !w_auto ? w * ih / iw : h;
+        double vb[4] = { 0, 0, iw, ih };
+        mat2d fit = viewbox_matrix(doc, node->atts, vb, x, y, w, h), inv;
+        /* drawn where the picture and its viewport meet */
+        double x0 = fmax(x, fit.e), y0 = fmax(y, fit.f);
+        double x1 = fmin(x + w, fit.e + iw * fit.a), y1 = fmin(y + h, fit.f + ih * fit.d);
+        if (x1 > x0 && y1 > y0 && mat_invert(mat_mul(f->m, fit), &inv)) {
+            svg_image im = { .rgba = px, .w = iw, .h = ih };
+            memcpy(im.inv, &inv, sizeof im.inv);
+            sr_point2 corners[4] = { { x0, y0 }, { x1, y0 }, { x1, y1 }, { x0, y1 } };
+            fill_mapped(doc, (sr_polygon2){ corners, 4, NULL, 0 }, f->m,
+                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, svg_image_at, &im, SR_NONZERO,
+                        f->st.crisp);
+        }
+    }
+    free(px);
+}
+
 /* ---- clipping and layers ------------------------------------------------------------- */
 
 /* Layers (group opacity, clip paths) nested deeper than this fold their
@@ -3060,7 +3124,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     }
     bool group = strcmp(node->name, "g") == 0 || strcmp(node->name, "a") == 0 ||
                  strcmp(node->name, "switch") == 0;
-    bool shape = is_shape(node->name), use = strcmp(node->name, "use") == 0;
+    bool image = strcmp(node->name, "image") == 0;
+    bool shape = is_shape(node->name) || image, use = strcmp(node->name, "use") == 0;
     bool nested = strcmp(node->name, "svg") == 0 && node != doc->root;
     if (nested) {
         group = true;
@@ -3160,7 +3225,9 @@ static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bo
     frame f = *fp;
     doc->draw_depth++;
     node->active = true;
-    if (shape) {
+    if (strcmp(node->name, "image") == 0) {
+        draw_image(doc, node, &f);
+    } else if (shape) {
         if (!f.st.invisible) {
             draw_shape(doc, node, &f);
         }

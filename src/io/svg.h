@@ -125,8 +125,8 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
                          float opacity);
 
 /* An RGBA8 image (straight alpha) as a paint: pixel coordinates map into
- * it by inv; sampled bilinearly, repeated (a pattern tile) or transparent
- * outside (an image). */
+ * it by inv; sampled bilinearly, repeated (a pattern tile) or its edge
+ * texels extended (an image: the fill stays inside it). */
 typedef struct svg_image {
     const uint8_t *rgba;
     int w, h;
@@ -135,6 +135,17 @@ typedef struct svg_image {
 } svg_image;
 
 sr_rgba svg_image_at(const void *image, double x, double y);
+
+/* ---- image sources (svg_image.c) ---------------------------------------- */
+
+/* The bytes of a base64 data: URI (*out malloc'd); false when uri is not
+ * one (another scheme, no base64, a bad character) or out of memory. */
+bool svg_data_uri(const char *uri, uint8_t **out, size_t *size);
+
+/* The file an <image> href names, relative to the directory of the
+ * document's path (malloc'd); NULL for what is not read: absolute paths,
+ * URLs, paths that climb out with "..". */
+char *svg_image_path(const char *document, const char *href);
 
 /* ---- blend modes (svg_blend.c) ------------------------------------------ */
 

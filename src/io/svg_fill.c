@@ -79,8 +79,8 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
     return r;
 }
 
-/* Texel (i, j) of the image premultiplied, transparent outside unless it
- * repeats. */
+/* Texel (i, j) of the image premultiplied: repeated, or the nearest edge
+ * texel outside. */
 static void texel(const svg_image *im, long i, long j, float out[4])
 {
     if (im->repeat) {
@@ -88,9 +88,9 @@ static void texel(const svg_image *im, long i, long j, float out[4])
         j %= im->h;
         i += i < 0 ? im->w : 0;
         j += j < 0 ? im->h : 0;
-    } else if (i < 0 || j < 0 || i >= im->w || j >= im->h) {
-        out[0] = out[1] = out[2] = out[3] = 0;
-        return;
+    } else {
+        i = i < 0 ? 0 : i >= im->w ? im->w - 1 : i;
+        j = j < 0 ? 0 : j >= im->h ? im->h - 1 : j;
     }
     const uint8_t *p = im->rgba + ((size_t)j * (size_t)im->w + (size_t)i) * 4;
     float a = p[3] * (1.0f / 255.0f);
