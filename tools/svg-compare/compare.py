@@ -122,13 +122,18 @@ def share_between(ours, theirs, threshold):
 
 def render_resvg(jobs):
     """Render (svg, png, width) jobs with resvg in one node process; the
-    set of pngs written."""
+    set of pngs written.  resvg aborts the process on some drawings (a
+    panic): that file counts as failed and the rest go to a new process."""
     script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "render-resvg.js")
-    text = "".join("%s\t%s\t%d\n" % job for job in jobs)
-    r = subprocess.run(["node", script], input=text, capture_output=True, text=True,
-                       errors="replace")
-    answers = r.stdout.splitlines()
-    return {job[1] for job, answer in zip(jobs, answers) if answer == "ok"}
+    written = set()
+    while jobs:
+        text = "".join("%s\t%s\t%d\n" % job for job in jobs)
+        r = subprocess.run(["node", script], input=text, capture_output=True, text=True,
+                           errors="replace")
+        answers = r.stdout.splitlines()
+        written |= {job[1] for job, answer in zip(jobs, answers) if answer == "ok"}
+        jobs = jobs[len(answers) + 1:]
+    return written
 
 
 def have_resvg():
