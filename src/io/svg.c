@@ -2471,7 +2471,8 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
             free(bytes);
         }
     } else {
-        char *path = svg_image_path(doc->opt->name, href);
+        /* a document without a name has no directory to read from */
+        char *path = doc->opt->name ? svg_image_path(doc->opt->name, href) : NULL;
         if (path) {
             r = sr_read_image(path, &iw, &ih, &px, &err);
             free(path);

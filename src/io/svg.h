@@ -144,7 +144,7 @@ bool svg_data_uri(const char *uri, uint8_t **out, size_t *size);
 
 /* The file an <image> href names, relative to the directory of the
  * document's path (malloc'd); NULL for what is not read: absolute paths,
- * URLs, paths that climb out with "..". */
+ * URLs, paths that climb out with "..", or out of memory. */
 char *svg_image_path(const char *document, const char *href);
 
 /* ---- blend modes (svg_blend.c) ------------------------------------------ */

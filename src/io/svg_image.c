@@ -38,7 +38,7 @@ char *svg_image_path(const char *document, const char *href)
             return NULL;
         }
     }
-    const char *slash = document ? strrchr(document, '/') : NULL;
+    const char *slash = strrchr(document, '/');
     size_t dir = slash ? (size_t)(slash - document + 1) : 0;
     char *path = malloc(dir + strlen(href) + 1);
     if (path) {
