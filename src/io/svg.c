@@ -45,6 +45,7 @@
 
 #define MAX_DEPTH 256
 #define MAX_WARNED 64
+#define MAX_WINDOWS 8
 
 /* x' = a x + c y + e, y' = b x + d y + f (SVG's matrix(a b c d e f)). */
 typedef struct mat2d { double a, b, c, d, e, f; } mat2d;
@@ -97,6 +98,7 @@ typedef struct style {
     double origin[2];            /* transform-origin (not inherited) */
     svg_blend_kind blend;        /* mix-blend-mode (not inherited) */
     bool isolate;                /* isolation: isolate (not inherited) */
+    bool overflow_visible;       /* overflow: visible or auto (not inherited; markers) */
     unsigned origin_pct;         /* bit i: origin[i] is a fraction of the viewport */
     const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
     unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
@@ -144,6 +146,8 @@ typedef struct svg_doc {
     int draw_depth;          /* elements drawn inside each other, uses included */
     int layers;              /* layers open (group opacity, clip paths) */
     mat2d root_m;            /* the outermost viewport's user space to pixels */
+    sr_point2 windows[MAX_WINDOWS][4]; /* markers' viewports in pixels: fills clip to them */
+    int n_windows;
     const style *inherit_from; /* the parent's style while an element cascades */
     style initial;           /* the initial style, for mask content */
     sr_result status;        /* SR_OK until something fails */
@@ -450,7 +454,7 @@ static const char *const unsupported_props[] = {
  * here is their initial one, which the reader does already. */
 static const char *const no_effect_props[] = {
     "image-rendering", "color-interpolation", "color-interpolation-filters", "color-rendering",
-    "text-rendering", "enable-background", "overflow", "solid-color", "solid-opacity",
+    "text-rendering", "enable-background", "solid-color", "solid-opacity",
     "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
     "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
     "shape-padding", "shape-margin", "shape-inside", "block-progression",
@@ -810,6 +814,8 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
         } else {
             st->blend = (svg_blend_kind)mode;
         }
+    } else if (strcmp(name, "overflow") == 0) {
+        st->overflow_visible = strcmp(v, "visible") == 0 || strcmp(v, "auto") == 0;
     } else if (strcmp(name, "isolation") == 0) {
         if (strcmp(v, "auto") == 0 || strcmp(v, "isolate") == 0) {
             st->isolate = v[0] == 'i';
@@ -1221,18 +1227,69 @@ static bool map_polygon(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_point2 **pts
 
 /* Map a polygon to pixels and fill it with a color, or with a paint
  * server's colors (at, server: color.a is then the opacity), within the document's budget. */
+/* Clip each contour of the polygon in pixels (its points pts, replaced)
+ * to the window, Sutherland-Hodgman: inside a convex window every point
+ * keeps its winding number, so either fill rule gives the same inside.
+ * *counts is the new contours' sizes (malloc'd); false after reporting a
+ * failure. */
+static bool clip_to_window(svg_doc *doc, sr_polygon2 *poly, sr_point2 **pts, int **counts,
+                           const sr_point2 window[4])
+{
+    int nc = poly->contour_counts ? poly->contour_count : 1;
+    int cap = poly->point_count * 2 + 8 * nc, n = 0;
+    sr_point2 *out = malloc((size_t)cap * sizeof *out);
+    int *oc = malloc((size_t)nc * sizeof *oc);
+    sr_result r = out && oc ? SR_OK : SR_OUT_OF_MEMORY;
+    for (int c = 0, at = 0; r == SR_OK && c < nc; c++) {
+        int count = poly->contour_counts ? poly->contour_counts[c] : poly->point_count, got;
+        r = sr_clip_polygon_convex(doc->ctx, *pts + at, count, window, 4, NULL, out + n, cap - n,
+                                   &got);
+        if (r == SR_TOO_LARGE) { /* room for got more points, then again */
+            sr_point2 *more = realloc(out, (size_t)(cap + got) * sizeof *out);
+            r = more ? SR_OK : SR_OUT_OF_MEMORY;
+            out = more ? more : out;
+            cap += got;
+            c--;
+            continue;
+        }
+        oc[c] = got;
+        n += got;
+        at += count;
+    }
+    if (r != SR_OK) {
+        free(out);
+        free(oc);
+        lib_fail(doc, r);
+        return false;
+    }
+    free(*pts);
+    free(*counts);
+    *pts = out;
+    *counts = oc;
+    *poly = (sr_polygon2){ out, n, oc, nc };
+    return true;
+}
+
 static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_paint_fn at,
                         const void *server, sr_fill_rule rule, bool crisp)
 {
     sr_point2 *pts;
+    int *counts = NULL;
     if (poly.point_count == 0 || !map_polygon(doc, poly, m, &pts)) {
         return;
     }
     poly.points = pts;
+    for (int i = 0; i < doc->n_windows; i++) {
+        if (!clip_to_window(doc, &poly, &pts, &counts, doc->windows[i])) {
+            free(pts);
+            return;
+        }
+    }
     sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
     sr_result r = at ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, at, server, color.a)
                        : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
     free(pts);
+    free(counts);
     if (r != SR_OK) {
         lib_fail(doc, r);
     }
@@ -2277,6 +2334,7 @@ static style ancestor_style(svg_doc *doc, const svg_node *m)
     while (n-- > 0 && doc->status == SR_OK) {
         st.own_opacity = 1;
         st.clip = st.mask = NULL;
+        st.overflow_visible = false;
         apply_cascade(doc, chain[n], &st);
     }
     st.display_none = false;
@@ -2358,9 +2416,24 @@ static void draw_marker(svg_doc *doc, const frame *f, svg_node *m, sr_point2 p, 
     if (doc->status != SR_OK || !(sw > 0)) {
         return;
     }
+    /* Unless overflow is visible, what the marker draws is cut to its
+     * viewport: the fills of its content clip to it in pixels. */
+    bool clip = !mf.st.overflow_visible && doc->n_windows < MAX_WINDOWS;
+    mat2d to_px = mat_mul(f->m, place);
+    if (clip && !(fabs(to_px.a * to_px.d - to_px.b * to_px.c) > 1e-12)) {
+        return; /* a viewport of no area in pixels shows nothing */
+    }
+    if (clip) {
+        sr_point2 *w = doc->windows[doc->n_windows++];
+        w[0] = mat_apply(to_px, (sr_point2){ -ref.x, -ref.y });
+        w[1] = mat_apply(to_px, (sr_point2){ -ref.x + mw, -ref.y });
+        w[2] = mat_apply(to_px, (sr_point2){ -ref.x + mw, -ref.y + mh });
+        w[3] = mat_apply(to_px, (sr_point2){ -ref.x, -ref.y + mh });
+    }
     m->active = true;
     draw_children(doc, m, &mf);
     m->active = false;
+    doc->n_windows -= clip;
 }
 
 /* The direction into (dir -1) or out of (dir 1) vertex v of the path,
@@ -2939,6 +3012,8 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
     }
     frame tf = { .m = mat_mul(to_tile, cm), .st = ancestor_style(doc, pat), .vp_w = f->vp_w,
                  .vp_h = f->vp_h };
+    int windows = doc->n_windows; /* the tile has pixels of its own */
+    doc->n_windows = 0;
     if (content) {
         pat->active = true;
         ((svg_node *)content)->active = true;
@@ -2946,6 +3021,7 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
         ((svg_node *)content)->active = false;
         pat->active = false;
     }
+    doc->n_windows = windows;
     close_layer(doc, under);
     svg_image im = { .rgba = sr_framebuffer_pixels(tile), .w = (int)tw, .h = (int)th,
                      .repeat = true };
