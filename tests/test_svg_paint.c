@@ -227,12 +227,17 @@ SR_TEST(inherit_takes_the_parents_value_of_properties_not_inherited)
                                 "<mask id='m'><rect width='4' height='4' fill='#808080'/></mask>"
                                 "<g opacity='0.5'><rect width='8' height='2' opacity='inherit'/></g>"
                                 "<g mask='url(#m)'><rect y='2' width='8' height='2'"
-                                " style='mask: inherit'/></g></svg>",
+                                " style='mask: inherit'/></g>"
+                                "<linearGradient id='g' stop-color='#00f'><stop stop-color='inherit'/>"
+                                "</linearGradient><rect x='6' width='2' height='2' fill='url(#g)'/>"
+                                "</svg>",
                                 SR_OK, NULL, 0);
     REQUIRE(fb != NULL);
     CHECK_NEAR(pixel(fb, 1, 0)[0], 191, 1); /* 255 * (1 - 0.5 * 0.5) */
     CHECK_NEAR(pixel(fb, 1, 3)[0], 191, 2);
     CHECK_EQ(pixel(fb, 6, 3)[0], 255);
+    /* stop-color: inherit takes the gradient's */
+    CHECK(pixel(fb, 7, 0)[2] == 255 && pixel(fb, 7, 0)[0] == 0);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
@@ -266,6 +271,31 @@ SR_TEST(images_that_do_not_read_or_lie_outside_are_skipped_with_a_warning)
         CHECK_EQ(pixel(fb, 2, 2)[3], 0);
         sr_destroy_framebuffer(ctx, fb);
     }
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(an_image_has_a_bounding_box_for_clips_in_its_units)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* a 6 x 6 PNG whose top left quarter is opaque #639, drawn 8 x 8 and
+     * clipped to the left quarter of its box */
+    static const char svg[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='8' height='8'>"
+        "<clipPath id='c' clipPathUnits='objectBoundingBox'>"
+        "<rect width='0.25' height='1'/></clipPath>"
+        "<image clip-path='url(#c)' width='8' height='8' href='data:image/png;base64,"
+        "iVBORw0KGgoAAAANSUhEUgAAAAYAAAAGCAYAAADgzO9IAAAAN0lEQVR4AXXBQQHAQAgDsIKl"
+        "eio2zkbxhCb23YcEolf0il78JA6JQ/ZU9FT0VIh+op/olzgkDh9FPBEhoKXwywAAAABJRU5E"
+        "rkJggg=='/></svg>";
+    sr_framebuffer *fb = render(ctx, svg, SR_OK, NULL, 0);
+    REQUIRE(fb != NULL);
+    CHECK(pixel(fb, 1, 1)[0] == 0x66 && pixel(fb, 1, 1)[2] == 0x99);
+    CHECK_EQ(pixel(fb, 3, 1)[0], 255);
+    sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
 

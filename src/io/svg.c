@@ -1358,6 +1358,11 @@ static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg
 {
     out->n_stops = 0;
     for (int i = 0; g && i < MAX_HREF_CHAIN && out->n_stops == 0; i++) {
+        /* the gradient's own stop-color and stop-opacity, for inherit */
+        style gs = *st;
+        gs.stop_color = (sr_rgba){ 0, 0, 0, 1 };
+        gs.stop_opacity = 1;
+        apply_cascade(doc, g, &gs);
         for (const svg_node *c = g->first; c; c = c->next) {
             if (strcmp(c->name, "stop") != 0 || out->n_stops == SVG_MAX_STOPS) {
                 continue;
@@ -1365,7 +1370,10 @@ static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg
             style s = *st;
             s.stop_color = (sr_rgba){ 0, 0, 0, 1 };
             s.stop_opacity = 1;
+            const style *outer = doc->inherit_from;
+            doc->inherit_from = &gs;
             apply_cascade(doc, c, &s);
+            doc->inherit_from = outer;
             double off = 0;
             bool pct;
             const char *o = attr(c->atts, "offset");
@@ -2523,6 +2531,19 @@ static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
 
 /* ---- images -------------------------------------------------------------------------- */
 
+/* An image's viewport x, y, width, height in r; a width or height that
+ * is missing or "auto" (the picture's own, known once it is read) is -1.
+ * False after reporting a malformed length. */
+static bool image_rect(svg_doc *doc, const svg_node *node, const frame *f, double r[4])
+{
+    const char *ws = attr(node->atts, "width"), *hs = attr(node->atts, "height");
+    r[2] = r[3] = -1;
+    return length_attr(doc, f, "x", attr(node->atts, "x"), &r[0]) &&
+           length_attr(doc, f, "y", attr(node->atts, "y"), &r[1]) &&
+           (!ws || strcmp(ws, "auto") == 0 || length_attr(doc, f, "width", ws, &r[2])) &&
+           (!hs || strcmp(hs, "auto") == 0 || length_attr(doc, f, "height", hs, &r[3]));
+}
+
 /* <image>: a PNG or a JPEG, from a base64 data: URI or a file next to
  * the document, fitted into its viewport (x, y, width, height; a missing
  * size is the picture's own) as preserveAspectRatio says, sampled
@@ -2558,17 +2579,13 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
         free(px);
         return;
     }
-    double x, y, w = iw, h = ih;
-    const char *ws = attr(node->atts, "width"), *hs = attr(node->atts, "height");
-    bool w_auto = !ws || strcmp(ws, "auto") == 0, h_auto = !hs || strcmp(hs, "auto") == 0;
-    if (length_attr(doc, f, "x", attr(node->atts, "x"), &x) &&
-        length_attr(doc, f, "y", attr(node->atts, "y"), &y) &&
-        (w_auto || length_attr(doc, f, "width", ws, &w)) &&
-        (h_auto || length_attr(doc, f, "height", hs, &h)) &&
-        work_within_budget(doc, (double)iw * ih)) {
-        /* one side given: the other keeps the picture's proportions */
-        w = w_auto && !h_auto ? h * iw / ih : w;
-        h = h_auto && !w_auto ? w * ih / iw : h;
+    double vp[4];
+    if (image_rect(doc, node, f, vp) && work_within_budget(doc, (double)iw * ih)) {
+        /* a missing size is the picture's; one side given: the other
+         * keeps the picture's proportions */
+        double x = vp[0], y = vp[1], w = vp[2], h = vp[3];
+        w = w >= 0 ? w : h >= 0 ? h * iw / ih : iw;
+        h = h >= 0 ? h : vp[2] >= 0 ? w * ih / iw : ih;
         double vb[4] = { 0, 0, iw, ih };
         mat2d fit = viewbox_matrix(doc, node->atts, vb, x, y, w, h), inv;
         /* drawn where the picture and its viewport meet */
@@ -2641,7 +2658,16 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
     tf.m = mat_mul(f->m, m);
     doc->draw_depth++;
     n->active = true;
-    if (is_shape(n->name)) {
+    double r[4];
+    if (strcmp(n->name, "image") == 0 && image_rect(doc, n, f, r) && r[2] > 0 && r[3] > 0) {
+        for (int i = 0; i < 4; i++) { /* its viewport's corners */
+            sr_point2 q = mat_apply(m, (sr_point2){ r[0] + r[2] * (i % 2), r[1] + r[3] * (i / 2) });
+            b[0] = fmin(b[0], q.x);
+            b[1] = fmin(b[1], q.y);
+            b[2] = fmax(b[2], q.x);
+            b[3] = fmax(b[3], q.y);
+        }
+    } else if (is_shape(n->name)) {
         double tol;
         bool fillable;
         sr_path *p = shape_at_scale(doc, n, &tf, &tol, &fillable);
