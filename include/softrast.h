@@ -214,6 +214,7 @@
  *     sr_path_arc_to             an SVG arc
  *     sr_path_close              closes the subpath
  *     sr_path_polygon            the flattened path as a polygon
+ *     sr_path_subpath_closed     whether a subpath was closed
  *     sr_fill_path               fills it
  *     sr_stroke_path             strokes it
  *     sr_make_stroke_outline     the stroke's outline polygon
@@ -1759,6 +1760,9 @@ SR_API sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rota
 SR_API sr_result sr_path_close(sr_path *path);
 /* The flattened path as a polygon (valid until the path changes). */
 SR_API sr_polygon2 sr_path_polygon(const sr_path *path);
+/* Whether subpath i (0 .. contour_count - 1 of the polygon) was closed by
+ * sr_path_close; false for a NULL path or an i out of range. */
+SR_API bool      sr_path_subpath_closed(const sr_path *path, int i);
 
 typedef enum sr_stroke_join {
     SR_STROKE_JOIN_DEFAULT = 0, /* -> SR_STROKE_JOIN_MITER (SVG's default) */
