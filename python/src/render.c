@@ -25,20 +25,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Varyings of the geometry program: the face index in two 16-bit halves,
- * each exact in a float, flat. */
-enum { V_TRI_HI = 0, V_TRI_LO = 1, V_COUNT = 2 };
-
-/* A vertex of the mesh seen from the camera, computed once a view rather
- * than once a triangle corner: its camera-space position (for the
- * fragments' rays) and its clip position. */
-typedef struct view_vertex {
-    double c[3];
-    float clip[4];
-} view_vertex;
+/* Varyings of the geometry program: the face index, exact in a float up
+ * to 2^24 faces; beyond, in two 16-bit halves (V_TRI_HI and V_TRI_LO).
+ * One varying where it does makes each triangle's set-up record
+ * smaller. */
+enum { V_TRI = 0, V_TRI_HI = 0, V_TRI_LO = 1 };
+#define ONE_VARYING_FACES ((size_t)1 << 24)
 
 typedef struct geometry_uniforms {
-    const view_vertex *view;    /* per vertex of the mesh */
+    /* Per mesh vertex, computed once a view rather than once a triangle
+     * corner (view_of): the clip position, read by the vertex shader,
+     * and the camera-space one, for the fragments' rays; apart, so that
+     * the vertex shader's reads stay dense. */
+    const float (*clip)[4];
+    const double (*camera)[3];
+    size_t faces_count;
     const void *vertices;
     bool vertices64;
     const void *faces;
@@ -90,21 +91,20 @@ static double dot(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* The view of vertex v: geometry_vertex's clip position and
- * shade_pixel's camera-space position. */
-static void view_of(const geometry_uniforms *u, size_t v, view_vertex *out)
+/* Mesh vertex v seen from the camera: its clip and camera-space
+ * positions. */
+static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3])
 {
     double p[3];
     fetch_vertex(u, v, p);
-    to_camera(u, p, out->c);
-    const double *c = out->c;
+    to_camera(u, p, c);
     /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
      * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
      * nearest (the depth test is GREATER), infinite far plane. */
-    out->clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2]);
-    out->clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
-    out->clip[2] = u->near;
-    out->clip[3] = (float)c[2];
+    clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2]);
+    clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
+    clip[2] = u->near;
+    clip[3] = (float)c[2];
 }
 
 static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
@@ -112,9 +112,13 @@ static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, flo
 {
     const geometry_uniforms *u = uniforms;
     size_t face = in->index / 3;
-    memcpy(clip, u->view[fetch_index(u, in->index)].clip, 4 * sizeof(float));
-    vary[V_TRI_HI] = (float)(face >> 16);
-    vary[V_TRI_LO] = (float)(face & 0xffff);
+    memcpy(clip, u->clip[fetch_index(u, in->index)], 4 * sizeof(float));
+    if (u->faces_count <= ONE_VARYING_FACES) {
+        vary[V_TRI] = (float)face;
+    } else {
+        vary[V_TRI_HI] = (float)(face >> 16);
+        vary[V_TRI_LO] = (float)(face & 0xffff);
+    }
 }
 
 /* The visible face's outputs at pixel (x, y), from the ray through the
@@ -128,7 +132,7 @@ static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, f
     double o[3][3], c[3][3];
     for (int k = 0; k < 3; k++) {
         vi[k] = fetch_index(u, 3 * face + (size_t)k);
-        memcpy(c[k], u->view[vi[k]].c, sizeof c[k]);
+        memcpy(c[k], u->camera[vi[k]], sizeof c[k]);
     }
     double dy = ((double)y - u->cy) / u->fy;
     double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
@@ -199,8 +203,10 @@ static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
     const geometry_uniforms *u = uniforms;
     for (int i = 0; i < 4; i++) {
         if (q->mask >> i & 1) {
-            size_t face = (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
-                          (size_t)lrintf(q->varyings[V_TRI_LO][i]);
+            size_t face = u->faces_count <= ONE_VARYING_FACES
+                              ? (size_t)lrintf(q->varyings[V_TRI][i])
+                              : (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
+                                    (size_t)lrintf(q->varyings[V_TRI_LO][i]);
             shade_pixel(u, face, q->x + (i & 1), q->y + (i >> 1), q->z[i]);
         }
     }
@@ -307,21 +313,25 @@ static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const render
     clip_rows(j, u.kx, u.ky);
     size_t nv = (size_t)PyArray_DIM(m->vertices, 0);
     sr_py_render_set *set = j->set;
-    if (set->vertices_bytes < nv * sizeof(view_vertex)) {
-        void *grown = realloc(set->vertices, nv * sizeof(view_vertex));
+    size_t bytes = nv * (4 * sizeof(float) + 3 * sizeof(double));
+    if (set->vertices_bytes < bytes) {
+        void *grown = realloc(set->vertices, bytes);
         if (!grown) {
             return SR_OUT_OF_MEMORY;
         }
         set->vertices = grown;
-        set->vertices_bytes = nv * sizeof(view_vertex);
+        set->vertices_bytes = bytes;
     }
-    view_vertex *view = set->vertices;
+    float (*clip)[4] = set->vertices;
+    double (*camera)[3] = (double (*)[3])(clip + nv);
     for (size_t v = 0; v < nv; v++) {
-        view_of(&u, v, &view[v]);
+        view_of(&u, v, clip[v], camera[v]);
     }
-    u.view = view;
+    u.clip = (const float (*)[4])clip;
+    u.camera = (const double (*)[3])camera;
+    u.faces_count = faces;
     sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
-                        .uniforms = &u, .varying_count = V_COUNT };
+                        .uniforms = &u, .varying_count = faces <= ONE_VARYING_FACES ? 1 : 2 };
     prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
     /* The shader reads the mesh itself; sr_draw still wants a position
      * array of vertex_count entries.  Overlapping ones 4 bytes apart
