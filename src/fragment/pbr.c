@@ -701,6 +701,12 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
         }
         shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
                     (const float(*)[4])base, metal, rough, ao, shadow, out);
+        /* Without emission (no texture, a zero factor) the sum would add
+         * a zero, which changes at most the sign of a zero radiance: every
+         * tone curve sends both zeros to black (sr__tone_curve), so the
+         * bytes are the same without the sum. */
+        bool emits = p->slot[SLOT_EMISSIVE].tex || m->emissive[0] != 0.0f ||
+                     m->emissive[1] != 0.0f || m->emissive[2] != 0.0f;
         if (p->slot[SLOT_EMISSIVE].tex) {
             sample_slot(&p->slot[SLOT_EMISSIVE], q, tex, uv);
         } else {
@@ -713,7 +719,8 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
         float es = m->emissive_strength;
         for (int c = 0; c < 3; c++) {
             for (int i = 0; i < 4; i++) {
-                out[c][i] = (out[c][i] + m->emissive[c] * es * tex[c][i]) * p->scale;
+                out[c][i] = emits ? (out[c][i] + m->emissive[c] * es * tex[c][i]) * p->scale
+                                  : out[c][i] * p->scale;
             }
         }
     }
