@@ -225,8 +225,14 @@ static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t
                            .has_generic = d->generic != NULL };
     for (size_t i = first; i < first + count; i++) {
         in.index = (uint32_t)i;
-        memcpy(in.position, element(d->positions, d->position_stride, (size_t)psize, i),
-               (size_t)psize * sizeof(float));
+        const float *pos = element(d->positions, d->position_stride, (size_t)psize, i);
+        /* Three components, the usual count, as a fixed-size copy the
+         * compiler inlines rather than a call to memcpy a vertex. */
+        if (psize == 3) {
+            memcpy(in.position, pos, 3 * sizeof(float));
+        } else {
+            memcpy(in.position, pos, (size_t)psize * sizeof(float));
+        }
         if (d->normals) {
             memcpy(in.normal, element(d->normals, d->normal_stride, 3, i), sizeof in.normal);
         }
