@@ -1284,6 +1284,21 @@ SR_API sr_draw_info sr_last_draw_info(const sr_context *ctx);
  * (OBJ: the faces after a `usemtl` whose material's map_Kd differs from
  * the run before; glTF, FBX and the other Assimp formats: the meshes whose
  * material names a different image from the meshes before). */
+/* A run's surface as the model file describes it beside its color and
+ * texture (OBJ's MTL statements; docs/pbr.md says how the physically based
+ * look maps them).  Each has_ flag says whether the file gave the value. */
+typedef struct sr_mesh_material {
+    bool has_specular, has_shininess, has_opacity, has_metallic, has_roughness;
+    float specular[3];     /* Ks */
+    float shininess;       /* Ns, the Phong exponent */
+    float opacity;         /* d, or 1 - Tr */
+    float metallic;        /* Pm (the PBR extension of MTL) */
+    float roughness;       /* Pr */
+    char *bump_path;       /* map_Bump, bump or norm: the image file, or NULL */
+    bool bump_is_normal;   /* norm: a tangent-space normal map; else a height map */
+    float bump_scale;      /* -bm, the height map's scale; 0 -> 1 */
+} sr_mesh_material;
+
 typedef struct sr_mesh_part {
     size_t first_triangle, triangle_count;
     char *texture_path;    /* this run's texture file, or NULL */
@@ -1292,6 +1307,7 @@ typedef struct sr_mesh_part {
      * NULL: the run takes no texture. */
     uint8_t *texture_data;
     size_t texture_size;
+    sr_mesh_material material;   /* all zero: the file says nothing more */
 } sr_mesh_part;
 
 /* A triangle mesh as the model readers and the built-in generators produce
