@@ -13,6 +13,8 @@ const OPTIONS = [
       applies: (a) => a.kind === 'polygon' },
     { option: '--samples', label: 'samples per pixel', values: ['4', '2', '8', '16'],
       applies: (a) => a.name === 'msaa' },
+    { option: '--connectivity', label: 'connectivity', values: ['4', '8'],
+      applies: (a) => a.name === 'floodfill' },
 ];
 // Lines whose ends the algorithm takes on pixel centres only.
 const ENDS_ON_CENTRES = ['bresenham'];
@@ -61,7 +63,8 @@ async function main() {
 
     // The arguments after `softrast explain NAME` for what the page shows.
     function args() {
-        const a = [`--${alg.kind}`, state.points.map((p) => p.map(number).join(',')).join(',')];
+        const a = alg.kind === 'none' ? []
+            : [`--${alg.kind}`, state.points.map((p) => p.map(number).join(',')).join(',')];
         if (hasWindow) {
             a.push('--window', state.window.map(number).join(','));
         }
@@ -119,7 +122,7 @@ async function main() {
     // The draggable points in grid coordinates: the primitive's vertices,
     // then the clip window's two corners.
     function handles() {
-        const h = state.points.map((p) => p.slice());
+        const h = alg.kind === 'none' ? [] : state.points.map((p) => p.slice());
         if (hasWindow) {
             h.push(state.window.slice(0, 2), state.window.slice(2, 4));
         }

@@ -125,9 +125,11 @@ EMSCRIPTEN_KEEPALIVE const char *web_algorithm(int i)
     if (!explain_algorithm(i, &name, &summary, &ex, &gw, &gh, &zoom)) {
         return NULL;
     }
+    /* The primitive's option is --KIND; a kind without one is "none". */
     static const char *const kinds[] = { "none", "triangle", "polygon", "line" };
+    const char *kind = (size_t)ex.kind < sizeof kinds / sizeof kinds[0] ? kinds[ex.kind] : "none";
     int n = snprintf(json, sizeof json, "{\"name\":\"%s\",\"kind\":\"%s\",\"summary\":\"", name,
-                     kinds[ex.kind]);
+                     kind);
     for (const char *s = summary; *s && n < (int)sizeof json - 1024; s++) {
         if (*s == '\n') {            /* the help text's wrapped lines, joined */
             while (s[1] == ' ') {
