@@ -7,6 +7,7 @@
 #include "gl_compare.h"
 #include "scenes.h"
 #include "polyfill.h"
+#include "shapes2d.h"
 #include "softrast_io.h"
 
 #include <errno.h>
@@ -78,6 +79,14 @@ static void usage(FILE *f)
         "  msaa4                the bunny with 4x MSAA, resolved every frame (llvmpipe:\n"
         "                       a 4-sample FBO blitted to the buffer)\n"
         "  polyfill, polyfill_aa  a 10,000-edge 2D polygon, aliased and antialiased\n"
+        "  shapes2d             Blend2D bl_bench-like batches: rect, poly10/20/40, curves;\n"
+        "                       8-256 px; solid, linear, radial paint; softrast renders\n"
+        "                       each batch as SVG (--compare: cairo draws it);\n"
+        "                       --frames counts at most 5 per case\n"
+        "  icons                every 16th SVG of $SR_BENCH_ICONS (default %s),\n"
+        "                       each rendered and written as PNG in this process, then by\n"
+        "                       `softrast svg` and `rsvg-convert` one process per file;\n"
+        "                       files per second and ratios (--frames: passes, at most 3)\n"
         "  phong                the bunny, Blinn-Phong per pixel (llvmpipe: Gouraud)\n"
         "  pbr                  the bunny through the metallic-roughness program, the\n"
         "                       CLI's default look (softrast only)\n"
@@ -98,7 +107,7 @@ static void usage(FILE *f)
         "                       kernel and faults it in again every frame (see docs)\n"
         "  --save-images DIR    write DIR/SCENE-RENDERER.png (the last frame)\n"
         "  -h, --help           this help\n",
-        SR_BENCH_MODELS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
+        SR_BENCH_MODELS_DIR, SR_BENCH_ICONS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
 }
 
 static bool parse_int(const char *opt, const char *s, int lo, int hi, int *out)
@@ -706,6 +715,12 @@ int main(int argc, char **argv)
                                 info->kind == BENCH_POLYFILL_AA, info->name)) {
                 run.failures++;
             }
+            break;
+        case BENCH_SHAPES2D:
+            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare);
+            break;
+        case BENCH_ICONS:
+            run.failures += !bench_icons(o.frames);
             break;
         default:
             run_drawn_scene(&run, info);

@@ -24,6 +24,8 @@ const bench_scene_info bench_scene_list[] = {
     { "lines",  BENCH_LINES, NULL, 0, NULL, 0 },
     { "polyfill", BENCH_POLYFILL, NULL, 0, NULL, 0 },
     { "polyfill_aa", BENCH_POLYFILL_AA, NULL, 0, NULL, 0 },
+    { "shapes2d", BENCH_SHAPES2D, NULL, 0, NULL, 0 },
+    { "icons", BENCH_ICONS, NULL, 0, NULL, 0 },
     { "msaa4",  BENCH_MESH,  "stanford-bunny.obj", 4, NULL, 0 },
     { "spot_tex", BENCH_MESH, "spot.obj", 0, "spot_texture.png", 0 },
     { "phong",  BENCH_MESH,  "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PHONG },

@@ -18,6 +18,8 @@ typedef enum bench_kind {
     BENCH_POLYFILL, /* a 10,000-edge polygon in 2D, aliased (bench/polyfill.c) */
     BENCH_POLYFILL_AA, /* the same with exact area antialiasing */
     BENCH_CLI,      /* the whole `softrast render` process */
+    BENCH_SHAPES2D, /* bl_bench-like 2D shapes and paints against cairo (bench/shapes2d.c) */
+    BENCH_ICONS,    /* an icon theme's SVGs against rsvg-convert (bench/icons.c) */
 } bench_kind;
 
 typedef enum bench_look {

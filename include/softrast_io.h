@@ -235,6 +235,15 @@ SR_API sr_result sr_write_png(const char *path, int width, int height,
                               const uint8_t *rgba, size_t stride,
                               const sr_png_write_desc *desc, sr_io_error *err);
 
+/* Write `size` bytes (any file already encoded: an animated WebP, a
+ * JSON sidecar) to `path` atomically, as sr_write_png does: the file
+ * appears whole or not at all, an existing one keeps its bytes when the
+ * write fails and its permissions when it succeeds, a symbolic link's
+ * target is replaced.  SR_INVALID_ARG for a NULL or empty path or NULL
+ * data with size > 0; SR_IO_ERROR (a directory, a full disk, ...). */
+SR_API sr_result sr_write_file(const char *path, const void *data, size_t size,
+                               sr_io_error *err);
+
 /* Where an encoder's bytes go (stb_image_write's "_to_func"): called in
  * order with consecutive pieces of the file (a socket, a growing buffer);
  * return false to stop, and the encoder returns SR_IO_ERROR ("<memory>:

@@ -467,9 +467,13 @@ SR_TEST(texture_transform_follows_the_extension)
     CHECK_EQ(tl[1], want_tl[1]);
     CHECK_EQ(br[0], want_br[0]);
     CHECK_EQ(br[1], want_br[1]);
-    m.base_color_texture.offset[1] = 1.0f;
-    m.base_color_texture.rotation = 1.57079632679f;
-    m.base_color_texture.scale[0] = m.base_color_texture.scale[1] = 0.5f;
+    /* The example as a glTF reader stores it in sr_texture's frame
+     * (docs/gltf.md): offset' = (o.x + s.y sin r, 1 - o.y - s.y cos r). */
+    const float o[2] = { 0, 1 }, r = 1.57079632679f, sc = 0.5f;
+    m.base_color_texture.offset[0] = o[0] + sc * sinf(r);
+    m.base_color_texture.offset[1] = 1.0f - o[1] - sc * cosf(r);
+    m.base_color_texture.rotation = r;
+    m.base_color_texture.scale[0] = m.base_color_texture.scale[1] = sc;
     sr_clear(sr_test_ctx(), fb, &(sr_clear_desc){ 0 });
     draw_quad(fb, &d, false);
     /* glTF (0, 0) -> (0, 1): column 0, row 3.  (1, 0) (screen top-right)

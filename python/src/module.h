@@ -62,6 +62,7 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
 PyObject *sr_py_read_image(PyObject *self, PyObject *args);
+PyObject *sr_py_decode_image(PyObject *self, PyObject *args);
 PyObject *sr_py_write_png(PyObject *self, PyObject *args);
 /* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
  * ValueError) with its one-line message; returns NULL. */
