@@ -1225,9 +1225,9 @@ typedef struct sr_buffer sr_buffer;
 
 /* Copies `bytes` bytes from data, or zeroes them when data is NULL: 0
  * bytes is SR_INVALID_ARG, more than SR_BUFFER_MAX (16 GiB, the most a
- * draw of 2^28 vertices can read of one array) SR_TOO_LARGE before any
- * allocation. */
-#define SR_BUFFER_MAX ((size_t)1 << 34)
+ * draw of 2^28 vertices can read of one array; SIZE_MAX where size_t has
+ * 32 bits) SR_TOO_LARGE before any allocation. */
+#define SR_BUFFER_MAX ((size_t)(SIZE_MAX >> 31 >> 3 ? (uint64_t)1 << 34 : SIZE_MAX))
 SR_API sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
 SR_API void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as

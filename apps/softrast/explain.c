@@ -606,3 +606,19 @@ int cmd_explain(int argc, char **argv)
     sr_destroy_context(ctx);
     return status;
 }
+
+bool explain_algorithm(int i, const char **name, const char **summary, ex_primitive *example,
+                       int *grid_w, int *grid_h, int *zoom)
+{
+    if (i < 0 || (size_t)i >= sizeof algorithms / sizeof algorithms[0]) {
+        return false;
+    }
+    const algorithm *a = &algorithms[i];
+    *name = a->name;
+    *summary = a->summary;
+    *example = a->example;
+    *grid_w = a->grid_w;
+    *grid_h = a->grid_h;
+    *zoom = a->zoom;
+    return true;
+}

@@ -132,4 +132,10 @@ void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite);
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);
 
+/* Algorithm i (0, 1, ...) of `softrast explain`: its name, one-line help,
+ * example primitive and default view; false past the last.  The web pages
+ * (web/) list the algorithms and start from their examples with it. */
+bool explain_algorithm(int i, const char **name, const char **summary, ex_primitive *example,
+                       int *grid_w, int *grid_h, int *zoom);
+
 #endif
