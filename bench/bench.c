@@ -7,6 +7,7 @@
 #include "gl_compare.h"
 #include "scenes.h"
 #include "polyfill.h"
+#include "shapes2d.h"
 #include "softrast_io.h"
 
 #include <errno.h>
@@ -78,10 +79,22 @@ static void usage(FILE *f)
         "  msaa4                the bunny with 4x MSAA, resolved every frame (llvmpipe:\n"
         "                       a 4-sample FBO blitted to the buffer)\n"
         "  polyfill, polyfill_aa  a 10,000-edge 2D polygon, aliased and antialiased\n"
+        "  shapes2d             Blend2D bl_bench-like batches: rect, poly10/20/40, curves;\n"
+        "                       8-256 px; solid, linear, radial paint; softrast renders\n"
+        "                       each batch as SVG (--compare: cairo draws it);\n"
+        "                       --frames counts at most 5 per case\n"
+        "  icons                every 16th SVG of $SR_BENCH_ICONS (default %s),\n"
+        "                       each rendered and written as PNG in this process, then by\n"
+        "                       `softrast svg` and `rsvg-convert` one process per file;\n"
+        "                       files per second and ratios (--frames: passes, at most 3)\n"
         "  phong                the bunny, Blinn-Phong per pixel (llvmpipe: Gouraud)\n"
         "  pbr                  the bunny through the metallic-roughness program, the\n"
         "                       CLI's default look (softrast only)\n"
         "  pbr_studio           the same under --environment studio\n"
+        "  pbr_textured         a tiled torus from a generated .glb (softrast-pbr-asset):\n"
+        "                       its base color, metallic-roughness, normal and occlusion\n"
+        "                       maps, the studio environment and the key light's shadow\n"
+        "                       map, drawn every frame (softrast only)\n"
         "\n"
         "options:\n"
         "  --threads N          rasterizer threads (default: SR_THREADS or CPUs);\n"
@@ -98,7 +111,7 @@ static void usage(FILE *f)
         "                       kernel and faults it in again every frame (see docs)\n"
         "  --save-images DIR    write DIR/SCENE-RENDERER.png (the last frame)\n"
         "  -h, --help           this help\n",
-        SR_BENCH_MODELS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
+        SR_BENCH_MODELS_DIR, SR_BENCH_ICONS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
 }
 
 static bool parse_int(const char *opt, const char *s, int lo, int hi, int *out)
@@ -292,8 +305,21 @@ static sr_result sr_frame(bench_run *run, const bench_scene *s)
 {
     const float *c = s->clear_color;
     sr_framebuffer *fb = s->info->samples > 1 ? run->ms_fb : run->fb;
-    sr_result r = sr_clear(run->ctx, fb,
-                           &(sr_clear_desc){ .color = { c[0], c[1], c[2], c[3] }, .depth = 1.0f });
+    sr_result r = SR_OK;
+    if (s->shadow) {
+        /* The key light's shadow map, drawn every frame as the CLI does. */
+        r = sr_shadow_map_clear(run->ctx, s->shadow);
+        if (r == SR_OK) {
+            r = sr_shadow_map_draw(run->ctx, s->shadow, &(sr_draw_desc){
+                .positions = s->positions, .vertex_count = s->vertex_count,
+                .indices = s->indices, .index_type = SR_INDEX_U32,
+                .index_count = s->index_count, .model = &s->model });
+        }
+    }
+    if (r == SR_OK) {
+        r = sr_clear(run->ctx, fb,
+                     &(sr_clear_desc){ .color = { c[0], c[1], c[2], c[3] }, .depth = 1.0f });
+    }
     if (r != SR_OK) {
         return r;
     }
@@ -706,6 +732,12 @@ int main(int argc, char **argv)
                                 info->kind == BENCH_POLYFILL_AA, info->name)) {
                 run.failures++;
             }
+            break;
+        case BENCH_SHAPES2D:
+            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare);
+            break;
+        case BENCH_ICONS:
+            run.failures += !bench_icons(o.frames);
             break;
         default:
             run_drawn_scene(&run, info);

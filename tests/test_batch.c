@@ -455,6 +455,72 @@ SR_TEST(batch_renders_every_model_past_a_bad_one)
     free(b);
 }
 
+/* The next model is read while the last is drawn (by a second job): the
+ * images are byte for byte those of batches of one model each, and the
+ * failures come on stderr and in the log in the order of the list. */
+SR_TEST(batch_reads_ahead_without_changing_a_byte)
+{
+    NEED_CLI();
+    enum { N = 6 };
+    const char *names[N] = { "a_tetra.stl", "b_bad.stl", "c_cube.obj", "d_bad.obj",
+                             "e_long.stl", "f_big.obj" };
+    char dir[1024], out[1024], one[1024], logp[1100], paths[N][1200];
+    fresh_dir("ahead", dir, sizeof dir);
+    fresh_dir("ahead_out", out, sizeof out);
+    fresh_dir("ahead_one", one, sizeof one);
+    snprintf(logp, sizeof logp, "%s/../ahead_log.jsonl", out);
+    unlink(logp);
+    for (int i = 0; i < N; i++) {
+        snprintf(paths[i], sizeof paths[i], "%s/%s", dir, names[i]);
+        bool ok = strstr(names[i], "_bad.") ? write_text(paths[i], is_stl(names[i]) ? "solid nothing\n"
+                                                             : "v 0 0 0\nf 1 2 3\n")
+                : is_stl(names[i]) ? write_stl(paths[i], 1.0f + (float)i)
+                                   : write_obj(paths[i], (float)i);
+        REQUIRE(ok);
+    }
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--size", "40x30", "--threads", "2",
+                     "--environment", "studio", "--log", logp), &r));
+    CHECK_EQ(r.status, 3);
+    CHECK_EQ(count_lines(r.err), 2);
+    const char *first = strstr(r.err, "b_bad.stl"), *second = strstr(r.err, "d_bad.obj");
+    CHECK(first && second && first < second);
+
+    record recs[N + 1];
+    CHECK_EQ(read_log(logp, recs, N + 1), N);
+    for (int i = 0; i < N; i++) {
+        CHECK(strcmp(recs[i].input, paths[i]) == 0);
+        bool bad = strstr(names[i], "_bad.") != NULL;
+        CHECK(strcmp(recs[i].status, bad ? "failed" : "ok") == 0);
+        if (bad) {
+            continue;
+        }
+        char batch_png[1300], one_png[1300];
+        snprintf(batch_png, sizeof batch_png, "%s/%.*s.png", out, (int)strcspn(names[i], "."),
+                 names[i]);
+        snprintf(one_png, sizeof one_png, "%s/%.*s.png", one, (int)strcspn(names[i], "."),
+                 names[i]);
+        REQUIRE(run(ARGS("render", paths[i], "--output-dir", one, "--size", "40x30",
+                         "--threads", "2", "--environment", "studio"), &r));
+        CHECK_EQ(r.status, 0);
+        size_t na, nb;
+        uint8_t *a = sr_test_read_file(one_png, &na), *b = sr_test_read_file(batch_png, &nb);
+        if (!(a && b && na == nb && memcmp(a, b, na) == 0)) {
+            FAILF("%s: the batch's image differs from a batch of that model alone", names[i]);
+        }
+        free(a);
+        free(b);
+    }
+
+    /* The light is made once, before any input: a bad one is a bad option. */
+    char hdr[1200];
+    snprintf(hdr, sizeof hdr, "%s/none.hdr", dir);
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--environment", hdr), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_EQ(count_lines(r.err), 1);
+    CHECK_STR_CONTAINS(r.err, "none.hdr");
+}
+
 static bool same_file_state(const char *path, const struct stat *before)
 {
     struct stat st;

@@ -377,6 +377,33 @@ static sr_texture *solid_texture(const uint8_t rgba[4], bool srgb)
     return t;
 }
 
+/* An sRGB base colour map is decoded to linear light before it multiplies
+ * the factor (glTF: "the texture's sRGB values are converted to linear"):
+ * an unlit quad with no tone curve shows the texel's own code, not the
+ * code of the code read as linear. */
+SR_TEST(srgb_base_color_map_reaches_the_shader_linear)
+{
+    sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+    REQUIRE(fb);
+    const uint8_t gray[4] = { 128, 64, 200, 255 };
+    sr_texture *t = solid_texture(gray, true);
+    REQUIRE(t);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m = sr_pbr_default_material();
+    m.unlit = true;
+    m.base_color_texture.texture = t;
+    m.base_color_texture.filter = SR_FILTER_TRILINEAR;
+    sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                      .tonemap = SR_TONEMAP_NONE };
+    draw_quad(fb, &d, false);
+    const uint8_t *c = px(fb, CELL / 2, CELL / 2);
+    CHECK_NEAR(c[0], 128, 1);
+    CHECK_NEAR(c[1], 64, 1);
+    CHECK_NEAR(c[2], 200, 1);
+    sr_destroy_texture(sr_test_ctx(), t);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
 /* Luminance-ish sum at the quad's centre lit from +x by a grazing light,
  * through a normal map of one tilted normal. */
 static int tilted_brightness(const uint8_t tilt[4], bool mirror_u, const float *tangents)
@@ -467,9 +494,13 @@ SR_TEST(texture_transform_follows_the_extension)
     CHECK_EQ(tl[1], want_tl[1]);
     CHECK_EQ(br[0], want_br[0]);
     CHECK_EQ(br[1], want_br[1]);
-    m.base_color_texture.offset[1] = 1.0f;
-    m.base_color_texture.rotation = 1.57079632679f;
-    m.base_color_texture.scale[0] = m.base_color_texture.scale[1] = 0.5f;
+    /* The example as a glTF reader stores it in sr_texture's frame
+     * (docs/gltf.md): offset' = (o.x + s.y sin r, 1 - o.y - s.y cos r). */
+    const float o[2] = { 0, 1 }, r = 1.57079632679f, sc = 0.5f;
+    m.base_color_texture.offset[0] = o[0] + sc * sinf(r);
+    m.base_color_texture.offset[1] = 1.0f - o[1] - sc * cosf(r);
+    m.base_color_texture.rotation = r;
+    m.base_color_texture.scale[0] = m.base_color_texture.scale[1] = sc;
     sr_clear(sr_test_ctx(), fb, &(sr_clear_desc){ 0 });
     draw_quad(fb, &d, false);
     /* glTF (0, 0) -> (0, 1): column 0, row 3.  (1, 0) (screen top-right)

@@ -45,6 +45,34 @@ static const char *test_dir(const char *name)
     return path;
 }
 
+/* Files limited to 8 KiB (RLIMIT_FSIZE) with SIGXFSZ ignored, so that a
+ * longer write fails with EFBIG as on a full disk, until file_limit_end. */
+typedef struct file_limit {
+    struct rlimit old;
+    void (*old_handler)(int);
+} file_limit;
+
+static bool file_limit_begin(file_limit *l)
+{
+    if (getrlimit(RLIMIT_FSIZE, &l->old) != 0) {
+        return false;
+    }
+    struct rlimit lim = l->old;
+    lim.rlim_cur = 8192;
+    l->old_handler = signal(SIGXFSZ, SIG_IGN); /* EFBIG instead of death */
+    if (setrlimit(RLIMIT_FSIZE, &lim) != 0) {
+        signal(SIGXFSZ, l->old_handler);
+        return false;
+    }
+    return true;
+}
+
+static void file_limit_end(const file_limit *l)
+{
+    setrlimit(RLIMIT_FSIZE, &l->old);
+    signal(SIGXFSZ, l->old_handler);
+}
+
 static int count_entries(const char *dir, bool hidden_only)
 {
     DIR *d = opendir(dir);
@@ -547,15 +575,10 @@ SR_TEST(png_failed_write_leaves_existing_file_untouched)
     /* Noise does not compress: 256x256 RGBA is ~256 KiB, far past 8 KiB. */
     int w = 256, h = 256;
     uint8_t *noise = random_image(&rng, h, 4 * (size_t)w);
-    struct rlimit old;
-    REQUIRE(getrlimit(RLIMIT_FSIZE, &old) == 0);
-    void (*old_handler)(int) = signal(SIGXFSZ, SIG_IGN); /* EFBIG instead of death */
-    struct rlimit lim = old;
-    lim.rlim_cur = 8192;
-    REQUIRE(setrlimit(RLIMIT_FSIZE, &lim) == 0);
+    file_limit lim;
+    REQUIRE(file_limit_begin(&lim));
     sr_result r = sr_write_png(path, w, h, noise, 4 * (size_t)w, NULL, &err);
-    setrlimit(RLIMIT_FSIZE, &old);
-    signal(SIGXFSZ, old_handler);
+    file_limit_end(&lim);
 
     CHECK_EQ(r, SR_IO_ERROR);
     CHECK_STR_CONTAINS(err.message, path);
@@ -611,6 +634,66 @@ SR_TEST(png_successful_write_replaces_and_keeps_permissions)
     free(px);
     CHECK_EQ(count_entries(dir, true), 0);
     CHECK_EQ(count_entries(dir, false), 2);
+}
+
+/* sr_write_file, the atomic writer under sr_write_png, for bytes encoded
+ * elsewhere: whole files in place, an existing one kept when the write
+ * fails half-way, no temporary left either way. */
+SR_TEST(write_file_replaces_whole_or_not_at_all)
+{
+    const char *dir = test_dir("write_file");
+    char path[1200];
+    snprintf(path, sizeof path, "%s/anim.webp", dir);
+    const char first[] = "RIFF first", second[] = "RIFF the second, longer";
+    sr_io_error err;
+    REQUIRE(sr_write_file(path, first, sizeof first, &err) == SR_OK);
+    CHECK_EQ(err.message[0], '\0');
+    REQUIRE(sr_write_file(path, second, sizeof second, &err) == SR_OK);
+    size_t n = 0;
+    uint8_t *got = sr_test_read_file(path, &n);
+    CHECK(got && n == sizeof second && memcmp(got, second, n) == 0);
+    free(got);
+
+    /* Past RLIMIT_FSIZE the write fails (EFBIG, as on a full disk). */
+    size_t big_n = 64 * 1024;
+    uint8_t *big = calloc(1, big_n);
+    REQUIRE(big != NULL);
+    file_limit lim;
+    REQUIRE(file_limit_begin(&lim));
+    sr_result r = sr_write_file(path, big, big_n, &err);
+    file_limit_end(&lim);
+    free(big);
+    CHECK_EQ(r, SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, path);
+    CHECK_STR_CONTAINS(err.message, "write failed");
+    got = sr_test_read_file(path, &n);
+    CHECK(got && n == sizeof second && memcmp(got, second, n) == 0);
+    free(got);
+
+    /* Nothing to write is an empty file. */
+    char empty[1300];
+    snprintf(empty, sizeof empty, "%s/empty", dir);
+    CHECK_EQ(sr_write_file(empty, NULL, 0, &err), SR_OK);
+    struct stat st;
+    CHECK(stat(empty, &st) == 0 && st.st_size == 0);
+    CHECK_EQ(count_entries(dir, true), 0);
+    CHECK_EQ(count_entries(dir, false), 2);
+}
+
+SR_TEST(write_file_rejects_invalid_arguments)
+{
+    const char *dir = test_dir("write_file_args");
+    char path[1200];
+    snprintf(path, sizeof path, "%s/x.bin", dir);
+    sr_io_error err;
+    CHECK_EQ(sr_write_file(NULL, "x", 1, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_file("", "x", 1, &err), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_file(path, NULL, 1, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "data is NULL");
+    CHECK_EQ(sr_write_file(dir, "x", 1, &err), SR_IO_ERROR);
+    CHECK_STR_CONTAINS(err.message, "is a directory");
+    CHECK_EQ(sr_write_file(path, NULL, 1, NULL), SR_INVALID_ARG);   /* err may be NULL */
+    CHECK_EQ(count_entries(dir, false), 0);
 }
 
 SR_TEST(png_write_rejects_invalid_arguments)

@@ -84,6 +84,30 @@ static void free_scene(scene *s)
     free(s->col);
 }
 
+/* a and b hold the same pixels (every sample, resolved) and depth, and
+ * more than half of the w x h pixels were drawn over the clear. */
+static void check_same(sr_context *ctx, const sr_framebuffer *a, const sr_framebuffer *b, int w,
+                       int h)
+{
+    const uint8_t *pa = sr_framebuffer_pixels(a), *pb = sr_framebuffer_pixels(b);
+    int differ = 0, drawn = 0;
+    for (int i = 0; i < w * h * 4; i++) {
+        differ += pa[i] != pb[i];
+    }
+    for (int i = 0; i < w * h; i++) {
+        drawn += pa[i * 4] != (uint8_t)(0.1f * 255 + 0.5f);
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(drawn > w * h / 2);
+    float *da = malloc(sizeof(float) * (size_t)(w * h)), *db = malloc(sizeof(float) * (size_t)(w * h));
+    REQUIRE(da && db);
+    sr_read_depth(ctx, a, 0, 0, w, h, da, (size_t)w);
+    sr_read_depth(ctx, b, 0, 0, w, h, db, (size_t)w);
+    CHECK(memcmp(da, db, sizeof(float) * (size_t)(w * h)) == 0);
+    free(da);
+    free(db);
+}
+
 static void render_both(int samples, int threads)
 {
     enum { W = 128, H = 96 };
@@ -104,22 +128,7 @@ static void render_both(int samples, int threads)
     sr_program prog = { .vertex = unlit_vs, .fragment = unlit_fs, .uniforms = &u,
                         .varying_count = 4 };
     REQUIRE(sr_draw(ctx, b, &(sr_state){ .program = &prog }, &d) == SR_OK);
-    const uint8_t *pa = sr_framebuffer_pixels(a), *pb = sr_framebuffer_pixels(b);
-    int differ = 0, drawn = 0;
-    for (int i = 0; i < W * H * 4; i++) {
-        differ += pa[i] != pb[i];
-    }
-    for (int i = 0; i < W * H; i++) {
-        drawn += pa[i * 4] != (uint8_t)(0.1f * 255 + 0.5f);
-    }
-    CHECK_EQ(differ, 0);
-    CHECK(drawn > W * H / 2);
-    float *da = malloc(sizeof(float) * W * H), *db = malloc(sizeof(float) * W * H);
-    sr_read_depth(ctx, a, 0, 0, W, H, da, W);
-    sr_read_depth(ctx, b, 0, 0, W, H, db, W);
-    CHECK(memcmp(da, db, sizeof(float) * W * H) == 0);
-    free(da);
-    free(db);
+    check_same(ctx, a, b, W, H);
     sr_destroy_framebuffer(ctx, a);
     sr_destroy_framebuffer(ctx, b);
     sr_destroy_context(ctx);
@@ -134,6 +143,41 @@ SR_TEST(a_program_restating_unlit_gives_its_bytes)
 SR_TEST(a_program_restating_unlit_gives_its_bytes_multisampled)
 {
     render_both(4, 2);
+}
+
+/* A program's early depth test takes four samples at once in the common
+ * state (four samples, LESS on D24, no stencil) and one at a time
+ * otherwise: a stencil test that always passes and keeps the stencil
+ * sends the same draw down the per-sample path, and the bytes must agree
+ * (every sample's color, through the resolve, and the depth read back). */
+SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
+{
+    enum { W = 128, H = 96 };
+    scene s = random_scene(600, 29);
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
+    sr_framebuffer *a, *b;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
+                                                            .samples = 4 }, &a) == SR_OK);
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
+                                                            .samples = 4, .stencil = true },
+                                &b) == SR_OK);
+    sr_clear_desc cl = { .color = { 0.1f, 0.1f, 0.2f, 1 }, .depth = 1 };
+    sr_clear(ctx, a, &cl);
+    sr_clear(ctx, b, &cl);
+    sr_draw_desc d = { .positions = s.pos, .colors = s.col, .vertex_count = 3 * (size_t)s.tris,
+                       .projection = &s.proj };
+    unlit_uniforms u = { sr_mat4_mul(&s.proj, &s.view) };
+    sr_program prog = { .vertex = unlit_vs, .fragment = unlit_fs, .uniforms = &u,
+                        .varying_count = 4 };
+    REQUIRE(sr_draw(ctx, a, &(sr_state){ .program = &prog }, &d) == SR_OK);
+    REQUIRE(sr_draw(ctx, b, &(sr_state){ .program = &prog, .stencil = { .enabled = true } },
+                    &d) == SR_OK);
+    check_same(ctx, a, b, W, H);
+    sr_destroy_framebuffer(ctx, a);
+    sr_destroy_framebuffer(ctx, b);
+    sr_destroy_context(ctx);
+    free_scene(&s);
 }
 
 /* ---- varying qualifiers -------------------------------------------------- */

@@ -12,9 +12,11 @@
 #include <string.h>
 #include <strings.h>
 
-/* Where messages go instead of stderr while a batch holds them (cli_capture). */
-static char *capture_buf;
-static size_t capture_size;
+/* Where messages go instead of stderr while a batch holds them
+ * (cli_capture): one place a thread, as a batch reads the next model on
+ * one thread while it draws the last on another. */
+static _Thread_local char *capture_buf;
+static _Thread_local size_t capture_size;
 
 void cli_capture(char *buf, size_t size)
 {

@@ -1,11 +1,14 @@
 /* batch.c - `softrast render` over many models in one process: several
  * MODEL arguments, directories, glob patterns or a --batch list, each
- * drawn by one render job whose contexts (and their thread pool) and
- * framebuffer serve every input in turn.  A bad input is one line on
+ * read by one render job while the one before it is drawn by another
+ * (batch_reader.c) and written while the one after it is drawn
+ * (batch_writer.c); the two jobs' contexts (and their thread pools) and
+ * framebuffers serve every input in turn.  A bad input is one line on
  * stderr and one record in the log, and the batch goes on; the exit
  * status says whether all, some or none of the inputs were rendered. */
 #include "batch.h"
 #include "batch_anim.h"
+#include "batch_reader.h"
 #include "batch_views.h"
 #include "batch_writer.h"
 #include "cli.h"
@@ -225,8 +228,12 @@ static bool exists_whole(const char *path)
 typedef struct batch_run {
     const batch_opts *b;
     const render_opts *o;
-    render_job *job;
+    const batch_list *list;
+    render_job *jobs[2];       /* one reads the next input while the other draws */
+    render_job *job;           /* the input's (one of jobs), and its framebuffer */
     sr_framebuffer *fb;
+    batch_reader reader;
+    sr_context *sheet_ctx;     /* --sheet's: the jobs' contexts are busy reading */
     const file_id *ids;
     size_t id_count;
     batch_writer writer;
@@ -270,36 +277,25 @@ static void finish(void *user, batch_record *rec, const char *message)
     batch_progress_show(&run->progress, now_ms(), false);
 }
 
-/* Read one input into the job (after resetting its options, which a
- * view's camera changed) and make the framebuffer once; false when it
- * failed (why in run->message, which may also hold a warning when it
- * succeeded). */
-static bool load_one(batch_run *run, const batch_item *it, batch_record *rec)
+/* batch_want_fn: with --skip-existing, an input whose every output
+ * exists is not read. */
+static bool wants_reading(void *user, const batch_item *it)
 {
-    const render_opts *o = run->o;
-    double t0 = now_ms();
-    cli_capture(run->message, sizeof run->message);
-    int status = -1;
-    if (run->b->views > 1) {
-        status = render_job_configure(run->job, run->b->job_argc, run->b->job_argv);
+    const batch_run *run = user;
+    const batch_opts *b = run->b;
+    if (!b->skip_existing || b->sheet) {
+        return true;
     }
-    if (status < 0) {
-        status = render_job_reload(run->job, it->input);
+    if (b->animate) {
+        return !exists_whole(it->output);
     }
-    if (status < 0 && !run->fb) {
-        sr_context *ctx = render_job_context(run->job);
-        sr_result r = sr_make_framebuffer(
-            ctx, &(sr_framebuffer_desc){ .width = o->width, .height = o->height,
-                                         .depth_format = render_job_depth_format(run->job) },
-            &run->fb);
-        if (r != SR_OK) {
-            cli_error("%s", sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(r));
-            status = EXIT_FAILURE_RUN;
+    char output[4096];
+    for (int v = 0; v < b->views; v++) {
+        if (!batch_view_output(run->list, it, v, output, sizeof output) || !exists_whole(output)) {
+            return true;
         }
     }
-    cli_capture(NULL, 0);
-    rec->load_ms = now_ms() - t0;
-    return status < 0;
+    return false;
 }
 
 /* Draw view `view` of the loaded input into run->fb, for `output` (NULL
@@ -387,7 +383,7 @@ static int gather(const batch_opts *b, batch_list *l)
  * reason is in run->message. */
 static bool sheet_put(batch_run *run, const batch_item *it, int view, const uint8_t *rgba)
 {
-    sr_context *ctx = render_job_context(run->job);
+    sr_context *ctx = run->sheet_ctx;
     sr_result r = ctx ? SR_OK : SR_INVALID_ARG;
     if (r == SR_OK && !run->sheet.fb) {
         r = batch_sheet_start(&run->sheet, ctx, run->sheet_images, run->b->columns,
@@ -407,19 +403,19 @@ static bool sheet_put(batch_run *run, const batch_item *it, int view, const uint
 }
 
 /* --animate: one model's views as the frames of one WebP. */
-static void animate_one(batch_run *run, const batch_item *it)
+static void animate_one(batch_run *run, const batch_read *rd)
 {
+    const batch_item *it = rd->item;
     const render_opts *o = run->o;
     int views = run->b->views, frame_ms = 3000 / views > 20 ? 3000 / views : 20;
     batch_record rec = { .input = it->input, .output = it->output, .index = it->index,
-                         .status = "failed" };
-    run->message[0] = '\0';
-    if (run->b->skip_existing && exists_whole(it->output)) {
+                         .status = "failed", .load_ms = rd->load_ms };
+    if (!rd->wanted) {
         rec.status = "skipped";
         finish(run, &rec, NULL);
         return;
     }
-    bool ok = load_one(run, it, &rec);
+    bool ok = rd->loaded;
     if (ok && run->message[0]) {
         report(&run->progress, it->input, run->message);   /* a warning */
     }
@@ -455,10 +451,12 @@ static void animate_one(batch_run *run, const batch_item *it)
     finish(run, &rec, ok ? NULL : run->message);
 }
 
-/* Render the shard's inputs in list order, each image handed to the
- * writer (or put on the sheet) while the next is read and drawn. */
-static void render_all(batch_run *run, const batch_list *list, const batch_shard *shard)
+/* Render the shard's inputs in list order as the reader hands them
+ * over, each image handed to the writer (or put on the sheet) while the
+ * next is drawn. */
+static void render_all(batch_run *run)
 {
+    const batch_list *list = run->list;
     const render_opts *o = run->o;
     const batch_opts *b = run->b;
     const cli_image_options image = { .png_level = o->png_level,
@@ -466,25 +464,18 @@ static void render_all(batch_run *run, const batch_list *list, const batch_shard
                                        .keep_alpha = o->background_alpha < 1.0f,
                                        .premultiplied = true };
     char output[4096];
-    for (size_t i = 0; i < list->count; i++) {
-        const batch_item *it = &list->items[i];
-        if (!batch_in_shard(it->input, shard)) {
-            continue;
-        }
+    for (batch_read *rd; (rd = batch_reader_next(&run->reader)) != NULL;) {
+        const batch_item *it = rd->item;
+        run->job = rd->job;
+        run->fb = rd->fb;
+        snprintf(run->message, sizeof run->message, "%s", rd->message);
         if (b->animate) {
-            animate_one(run, it);
+            animate_one(run, rd);
             continue;
-        }
-        /* With --skip-existing, an input whose every view exists is not read. */
-        int missing = b->sheet ? b->views : 0;
-        for (int v = 0; v < b->views && !missing; v++) {
-            missing += !b->skip_existing || !batch_view_output(list, it, v, output, sizeof output) ||
-                       !exists_whole(output);
         }
         batch_record rec = { .input = it->input, .output = b->sheet ? b->sheet : it->output,
-                             .index = it->index, .status = "failed" };
-        run->message[0] = '\0';
-        bool loaded = missing > 0 && load_one(run, it, &rec);
+                             .index = it->index, .status = "failed", .load_ms = rd->load_ms };
+        bool loaded = rd->loaded;
         if (loaded && run->message[0]) {
             batch_writer_wait(&run->writer);
             report(&run->progress, it->input, run->message);   /* a warning */
@@ -495,7 +486,7 @@ static void render_all(batch_run *run, const batch_list *list, const batch_shard
             }
             rec.output = b->sheet ? b->sheet : output;
             bool skip = !b->sheet && b->skip_existing && exists_whole(output);
-            if (skip || (missing > 0 && !loaded)) {
+            if (skip || (rd->wanted && !loaded)) {
                 rec.status = skip ? "skipped" : "failed";
                 batch_writer_wait(&run->writer);
                 if (b->sheet) {
@@ -541,7 +532,7 @@ static bool write_sheet(batch_run *run)
                                               .jpeg_quality = o->jpeg_quality,
                                               .keep_alpha = o->background_alpha < 1.0f,
                                               .premultiplied = true,
-                                              .context = render_job_context(run->job) },
+                                              .context = run->sheet_ctx },
                         &err) != SR_OK) {
         cli_error("--sheet: %s", err.message);
         return false;
@@ -563,7 +554,7 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
 {
     batch_shard shard;
     batch_list list = { 0 };
-    batch_run run = { .b = b, .o = o, .job = job, .log_fd = -1 };
+    batch_run run = { .b = b, .o = o, .list = &list, .jobs = { job }, .log_fd = -1 };
     int status = batch_shard_resolve(b->shard, b->shard_count, &shard);
     if (status < 0) {
         status = gather(b, &list);
@@ -595,13 +586,33 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
             status = EXIT_USAGE;
         }
     }
+    /* The second job, which reads while the first draws, shares its light. */
+    if (status < 0) {
+        status = render_job_prepare(job);
+    }
+    if (status < 0) {
+        status = render_job_parse(b->job_argc, b->job_argv, &run.jobs[1]);
+    }
+    if (status < 0) {
+        render_job_share_light(run.jobs[1], job);
+    }
+    if (status < 0 && b->sheet) {
+        sr_result r = sr_make_context(&(sr_context_desc){ .threads = o->threads }, &run.sheet_ctx);
+        if (r != SR_OK) {
+            cli_error("--sheet: %s", sr_result_text(r));
+            status = EXIT_FAILURE_RUN;
+        }
+    }
     if (status < 0) {
         size_t records = b->animate ? 1 : (size_t)b->views;   /* a model's */
         batch_progress_start(&run.progress, mine_total(&list, &shard) * records,
                              now_ms());
         batch_writer_start(&run.writer, finish, &run);
-        render_all(&run, &list, &shard);
+        batch_reader_start(&run.reader, &list, &shard, wants_reading, &run, run.jobs,
+                           b->job_argc, b->views > 1 ? b->job_argv : NULL, o->width, o->height);
+        render_all(&run);
         batch_writer_stop(&run.writer);
+        batch_reader_stop(&run.reader);
         batch_progress_show(&run.progress, now_ms(), true);
         status = run.progress.failed == 0 ? EXIT_OK
                : run.ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
@@ -610,17 +621,16 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
         }
     }
     if (run.sheet.fb) {
-        batch_sheet_free(&run.sheet, render_job_context(job));
+        batch_sheet_free(&run.sheet, run.sheet_ctx);
     }
+    sr_destroy_context(run.sheet_ctx);
+    render_job_free(run.jobs[1]);   /* before the first, whose light it shares */
     if (run.log_fd >= 0 && close(run.log_fd) != 0 && run.log_errno == 0) {
         run.log_errno = errno;
     }
     if (run.log_errno != 0) {
         cli_error("--log: %s: %s", b->log, strerror(run.log_errno));
         status = EXIT_FAILURE_RUN;
-    }
-    if (run.fb) {
-        sr_destroy_framebuffer(render_job_context(job), run.fb);
     }
     free(ids);
     batch_list_free(&list);

@@ -11,8 +11,6 @@
 #include <string.h>
 
 #ifdef SR_HAVE_WEBP
-#include "io/io_util.h"
-
 #include <webp/encode.h>
 #include <webp/mux.h>
 
@@ -82,16 +80,7 @@ bool batch_anim_write(batch_anim *a, const char *path, int end_ms, sr_io_error *
                  WebPAnimEncoderGetError(a->enc));
         return false;
     }
-    sr_atomic_file f;
-    bool ok = sr__atomic_create(&f, path, (sr_allocator){ 0 }, err) == SR_OK;
-    if (ok && !sr__write_all(f.fd, data.bytes, data.size)) {
-        snprintf(err->message, sizeof err->message, "%s: cannot write: %s", path,
-                 strerror(errno));
-        sr__atomic_discard(&f);
-        ok = false;
-    } else if (ok) {
-        ok = sr__atomic_commit(&f, err) == SR_OK;
-    }
+    bool ok = sr_write_file(path, data.bytes, data.size, err) == SR_OK;
     WebPDataClear(&data);
     return ok;
 }

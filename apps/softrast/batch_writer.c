@@ -1,9 +1,10 @@
 /* batch_writer.c - a batch's image files, written on a thread of their
  * own: while it compresses one image and waits for the disk to take it
  * (each output is fsync'd before it is renamed into place), the batch
- * reads and draws the next model.  One image is in hand at a time; the
- * writer has its own copy of the pixels, so the framebuffer can be drawn
- * again at once.  It compresses on one thread: the render job's context
+ * draws the next model.  It holds up to BATCH_WRITER_DEPTH images, each
+ * its own copy of the pixels, so the framebuffer can be drawn again at
+ * once and one slow fsync does not stop the drawing; they are written,
+ * and reported, in the order they came.  It compresses on one thread: the render job's context
  * is busy drawing. */
 #include "batch_writer.h"
 
@@ -40,34 +41,38 @@ bool batch_make_parents(const char *path, sr_io_error *err)
     return true;
 }
 
-/* Write the image in hand and pass its record on. */
-static void write_image(batch_writer *w)
+/* Write an image in hand and pass its record on. */
+static void write_image(batch_writer *w, batch_image *im)
 {
     sr_io_error err = { { 0 } };
     double t0 = now_ms();
-    bool ok = batch_make_parents(w->rec.output, &err) &&
-              cli_write_image(w->rec.output, w->width, w->height, w->pixels, &w->opt, &err) ==
-                  SR_OK;
-    w->rec.encode_ms = now_ms() - t0;
-    w->rec.status = ok ? "ok" : "failed";
-    w->done(w->user, &w->rec, ok ? NULL : err.message);
+    bool ok = batch_make_parents(im->rec.output, &err) &&
+              cli_write_image(im->rec.output, im->width, im->height, im->pixels, &im->opt,
+                              &err) == SR_OK;
+    im->rec.encode_ms = now_ms() - t0;
+    im->rec.status = ok ? "ok" : "failed";
+    w->done(w->user, &im->rec, ok ? NULL : err.message);
 }
 
+/* The oldest image is written while the batch may add the next one to
+ * the ring (never into the slot being written: count stays until then). */
 static void *writer_main(void *arg)
 {
     batch_writer *w = arg;
     pthread_mutex_lock(&w->lock);
     for (;;) {
-        while (!w->full && !w->stop) {
+        while (w->count == 0 && !w->stop) {
             pthread_cond_wait(&w->wake, &w->lock);
         }
-        if (!w->full) {
+        if (w->count == 0) {
             break;
         }
+        batch_image *im = &w->images[w->first];
         pthread_mutex_unlock(&w->lock);
-        write_image(w);
+        write_image(w, im);
         pthread_mutex_lock(&w->lock);
-        w->full = false;
+        w->first = (w->first + 1) % BATCH_WRITER_DEPTH;
+        w->count--;
         pthread_cond_broadcast(&w->wake);
     }
     pthread_mutex_unlock(&w->lock);
@@ -82,43 +87,53 @@ void batch_writer_start(batch_writer *w, batch_done_fn done, void *user)
     w->threaded = pthread_create(&w->thread, NULL, writer_main, w) == 0;
 }
 
-void batch_writer_wait(batch_writer *w)
+/* Wait until the writer holds at most `most` images. */
+static void wait_for(batch_writer *w, int most)
 {
     pthread_mutex_lock(&w->lock);
-    while (w->full) {
+    while (w->count > most) {
         pthread_cond_wait(&w->wake, &w->lock);
     }
     pthread_mutex_unlock(&w->lock);
 }
 
+void batch_writer_wait(batch_writer *w)
+{
+    wait_for(w, 0);
+}
+
 bool batch_writer_put(batch_writer *w, const batch_record *rec, int width, int height,
                       const uint8_t *rgba, const cli_image_options *opt)
 {
-    batch_writer_wait(w);
+    wait_for(w, BATCH_WRITER_DEPTH - 1);
+    /* Only this thread adds images, so the free slot stays free. */
+    pthread_mutex_lock(&w->lock);
+    batch_image *im = &w->images[(w->first + w->count) % BATCH_WRITER_DEPTH];
+    pthread_mutex_unlock(&w->lock);
     size_t bytes = 4 * (size_t)width * (size_t)height;
-    if (bytes > w->capacity) {
-        uint8_t *grown = realloc(w->pixels, bytes);
+    if (bytes > im->capacity) {
+        uint8_t *grown = realloc(im->pixels, bytes);
         if (!grown) {
             return false;
         }
-        w->pixels = grown;
-        w->capacity = bytes;
+        im->pixels = grown;
+        im->capacity = bytes;
     }
-    memcpy(w->pixels, rgba, bytes);
-    w->rec = *rec;
-    snprintf(w->output, sizeof w->output, "%s", rec->output);
-    w->rec.output = w->output;
-    w->width = width;
-    w->height = height;
-    w->opt = *opt;
-    w->opt.context = NULL;   /* the render job's context is not ours to use */
-    w->opt.inputs = NULL;    /* the batch checked them; the job's change with the next model */
+    memcpy(im->pixels, rgba, bytes);
+    im->rec = *rec;
+    snprintf(im->output, sizeof im->output, "%s", rec->output);
+    im->rec.output = im->output;
+    im->width = width;
+    im->height = height;
+    im->opt = *opt;
+    im->opt.context = NULL;   /* the render job's context is not ours to use */
+    im->opt.inputs = NULL;    /* the batch checked them; the job's change with the next model */
     if (!w->threaded) {
-        write_image(w);
+        write_image(w, im);
         return true;
     }
     pthread_mutex_lock(&w->lock);
-    w->full = true;
+    w->count++;
     pthread_cond_broadcast(&w->wake);
     pthread_mutex_unlock(&w->lock);
     return true;
@@ -135,6 +150,8 @@ void batch_writer_stop(batch_writer *w)
     }
     pthread_cond_destroy(&w->wake);
     pthread_mutex_destroy(&w->lock);
-    free(w->pixels);
-    w->pixels = NULL;
+    for (int i = 0; i < BATCH_WRITER_DEPTH; i++) {
+        free(w->images[i].pixels);
+        w->images[i].pixels = NULL;
+    }
 }

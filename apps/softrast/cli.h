@@ -70,7 +70,8 @@ void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void cli_message(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Hold the messages of cli_error and cli_message in buf (joined by "; ",
  * without the "softrast: " prefix) instead of printing them, until
- * cli_capture(NULL, 0): a batch reports one line per failed input. */
+ * cli_capture(NULL, 0): a batch reports one line per failed input.  Each
+ * thread holds its own messages. */
 void cli_capture(char *buf, size_t size);
 
 /* Parsers: return false after printing "softrast render: OPTION: why". */

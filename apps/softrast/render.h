@@ -35,6 +35,14 @@ int render_job_load(render_job *job);
  * exit status. */
 int render_job_configure(render_job *job, int argc, char **argv);
 void render_job_free(render_job *job);
+/* Make the contexts and the environment light (--environment) of a job
+ * that has no model yet, so that another job can share the light:
+ * render_job_load does this itself otherwise.  -1 or an exit status. */
+int render_job_prepare(render_job *job);
+/* Light `job` with the environment of `from` (prepared, and freed after
+ * job) instead of prefiltering its own: a batch's two jobs, one reading
+ * a model while the other draws, share one. */
+void render_job_share_light(render_job *job, const render_job *from);
 /* Load another model into a loaded job (a batch's next input), keeping
  * its contexts: the old scene, textures and inputs are dropped first.
  * -1, or an exit status after the reason was reported (cli_error). */
@@ -55,8 +63,17 @@ sr_context *render_job_context(const render_job *job);
  * image and copies or filters it down). */
 sr_depth_format render_job_depth_format(const render_job *job);
 
-/* Draw one frame into `out` (single-sampled, made on the job's context),
- * at out's size.  On failure render_job_error says why in one line. */
+/* The framebuffer to make for render_job_draw when only its resolved
+ * pixels are read (sr_framebuffer_pixels): with MSAA (and no SSAA) it is
+ * multisampled with the job's samples and depth format, and the job draws
+ * into it directly rather than into a work image resolved into it, which
+ * saves a full-size image; otherwise it is single-sampled with
+ * render_job_depth_format. */
+sr_framebuffer_desc render_job_direct_desc(const render_job *job, int width, int height);
+
+/* Draw one frame into `out` (made on the job's context; single-sampled,
+ * or as render_job_direct_desc says), at out's size.  On failure
+ * render_job_error says why in one line. */
 sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_info *info);
 const char *render_job_error(const render_job *job);
 /* The model file, or NULL for the built-in scene. */

@@ -6,7 +6,7 @@ cameras (intrinsics ``K``, world-to-camera ``R``, ``t``), on the CPU, with no
 OpenGL.  The same inputs give the same bytes for any number of threads.
 
 >>> import numpy as np, softrast
->>> mesh = softrast.Mesh(vertices, faces)            # or softrast.load_mesh(path)
+>>> mesh = softrast.Mesh(vertices, faces)            # or softrast.load(path)
 >>> K, R, t = softrast.look_at(eye=(0, 0, 3), target=(0, 0, 0), width=640, height=480)
 >>> out = softrast.render(mesh, K=K, R=R, t=t, width=640, height=480,
 ...                       outputs=("depth", "triangle_id"))
@@ -18,9 +18,10 @@ See docs/python.md in the source tree for the conventions.
 
 from ._softrast import Mesh, library_version, read_image, write_png
 from ._camera import look_at
+from ._material import Material
 from ._scene import Instance, Scene, load, load_mesh
 from ._render import OUTPUTS, render
 
 __version__ = library_version
-__all__ = ["Mesh", "Instance", "Scene", "load", "load_mesh", "look_at", "read_image", "render",
-           "write_png", "OUTPUTS", "__version__"]
+__all__ = ["Mesh", "Instance", "Material", "Scene", "load", "load_mesh", "look_at", "read_image",
+           "render", "write_png", "OUTPUTS", "__version__"]

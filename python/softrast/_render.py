@@ -9,6 +9,7 @@ from ._softrast import Mesh
 #: The outputs render() can return, with their per-view shape suffix and dtype.
 OUTPUTS = {
     "color": ((3,), np.uint8),
+    "rgba": ((4,), np.uint8),
     "depth": ((), np.float32),
     "normal": ((3,), np.float32),
     "triangle_id": ((), np.int32),
@@ -109,6 +110,35 @@ def _outputs(outputs):
     return names
 
 
+def _flat(mesh):
+    """The mesh with each face's corners its own vertices and the face's
+    normal, as glTF shades a mesh without normals (the metallic-roughness
+    program needs normals); faces keep their order."""
+    corners = np.asarray(mesh.faces, np.int64).reshape(-1)
+    v = np.asarray(mesh.vertices, np.float64)[corners].reshape(-1, 3, 3)
+    n = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
+    length = np.linalg.norm(n, axis=1, keepdims=True)
+    n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+
+    def per_corner(a):
+        return None if a is None else np.ascontiguousarray(np.asarray(a)[corners])
+
+    return Mesh(np.ascontiguousarray(np.asarray(mesh.vertices)[corners]),
+                np.arange(len(corners), dtype=np.int64).reshape(-1, 3),
+                normals=np.repeat(n, 3, axis=0).astype(np.float32), colors=per_corner(mesh.colors),
+                uvs=per_corner(mesh.uvs), texture=mesh.texture)
+
+
+def _pbr_factors(inst):
+    """(metallic, roughness, emissive r, g, b) of an instance: its
+    material's, else a rough dielectric."""
+    m = inst.material
+    if m is None:
+        return (0.0, 0.5, 0.0, 0.0, 0.0)
+    e = m.emissive * m.emissive_strength
+    return (m.metallic, m.roughness, float(e[0]), float(e[1]), float(e[2]))
+
+
 def _int_arg(value, name, low, high):
     if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
         raise TypeError(f"{name}: expected an int, got {type(value).__name__}")
@@ -134,8 +164,18 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     outputs: names from :data:`OUTPUTS`:
 
         - ``color`` (H, W, 3) uint8: vertex colors times the texture (gray
-          without either), lit by a headlight (``shading="lit"``) or as they
-          are (``shading="unlit"``), over ``background`` (RGB in [0, 1]).
+          without either; a glTF material's base color and base color
+          texture, see :func:`load`), lit by a headlight
+          (``shading="lit"``), as they are (``shading="unlit"``), or by
+          glTF's metallic-roughness model (``shading="pbr"``: each
+          instance's :class:`Material`, a rough dielectric without one;
+          softrast render's default lights, sky-and-ground ambient and
+          tone curve; meshes without normals shaded flat, as glTF asks),
+          over ``background`` (RGB in [0, 1]).
+        - ``rgba`` (H, W, 4) uint8: ``color`` with alpha, straight (not
+          premultiplied): the surface's alpha (vertex color alpha times
+          the texture's), 0 where nothing is.  No blending: a translucent
+          surface hides what is behind it.
         - ``depth`` (H, W) float32: camera-space z (distance along the
           optical axis, the unit of the vertices), ``inf`` where nothing is.
         - ``normal`` (H, W, 3) float32: unit normal in the camera frame, or
@@ -177,8 +217,8 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
         raise ValueError(f"near: must be a positive finite number, got {near}")
     if normal_frame not in ("camera", "world"):
         raise ValueError(f"normal_frame: must be 'camera' or 'world', got {normal_frame!r}")
-    if shading not in ("lit", "unlit"):
-        raise ValueError(f"shading: must be 'lit' or 'unlit', got {shading!r}")
+    if shading not in ("lit", "unlit", "pbr"):
+        raise ValueError(f"shading: must be 'lit', 'unlit' or 'pbr', got {shading!r}")
     bg = _float_array(background, "background")
     if bg.shape != (3,):
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
@@ -188,18 +228,33 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     out = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
     inv_t = [np.linalg.inv(inst.pose[:3, :3]).T for inst in sc]
     ids = [i if inst.instance_id is None else inst.instance_id for i, inst in enumerate(sc)]
+    images = [name for name in ("color", "rgba") if name in out]
+    # The metallic-roughness look draws meshes without normals flat, from
+    # copies: the geometry outputs are drawn from the meshes as given.
+    pbr = shading == "pbr" and images
+    passes = [(names, [inst.mesh for inst in sc])]
+    if pbr:
+        passes = [([name for name in names if name not in images], passes[0][1]),
+                  (images, [_flat(inst.mesh) if inst.mesh.normals is None else inst.mesh
+                            for inst in sc])]
     for b in range(n):
         Rt = Rts[b]
-        instances = []
-        for inst, nt, iid in zip(sc, inv_t, ids):
-            a = np.ascontiguousarray(Rt[:, :3] @ inst.pose[:3, :] + np.hstack([np.zeros((3, 3)), Rt[:, 3:]]))
-            nm = np.ascontiguousarray(Rt[:, :3] @ nt if normal_frame == "camera" else nt)
-            instances.append((inst.mesh, a, nm, iid))
-        _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height, near, threads,
-                         *(out[name][b] if name in out else None
-                           for name in ("depth", "triangle_id", "instance_id", "barycentric",
-                                        "normal", "color", "mask")),
-                         bg, shading == "lit")
+        poses = [(np.ascontiguousarray(Rt[:, :3] @ inst.pose[:3, :] +
+                                       np.hstack([np.zeros((3, 3)), Rt[:, 3:]])),
+                  np.ascontiguousarray(Rt[:, :3] @ nt if normal_frame == "camera" else nt))
+                 for inst, nt in zip(sc, inv_t)]
+        for wanted, meshes in passes:
+            if not wanted:
+                continue
+            color_pbr = pbr and wanted is images
+            instances = [(mesh, a, nm, iid) + ((_pbr_factors(inst),) if color_pbr else ())
+                         for inst, mesh, (a, nm), iid in zip(sc, meshes, poses, ids)]
+            _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height, near, threads,
+                             *(out[name][b] if name in wanted else None
+                               for name in ("depth", "triangle_id", "instance_id", "barycentric",
+                                            "normal", "color", "mask")),
+                             bg, shading == "lit",
+                             rgba=out["rgba"][b] if "rgba" in wanted else None, pbr=color_pbr)
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return out

@@ -5,6 +5,8 @@ import os
 import numpy as np
 
 from . import _softrast
+from ._gltf import base_color_images
+from ._material import Material, material_arrays
 from ._softrast import Mesh
 
 
@@ -16,11 +18,13 @@ class Instance:
         map), or None for the identity.
     instance_id: the value of the ``instance_id`` output where this instance
         shows, an int in [0, 2**31); None takes its position in the scene.
+    material: the :class:`Material` a model file gave it (already drawn
+        into the mesh's colors and texture), or None.
     """
 
-    __slots__ = ("mesh", "pose", "instance_id")
+    __slots__ = ("mesh", "pose", "instance_id", "material")
 
-    def __init__(self, mesh, pose=None, instance_id=None):
+    def __init__(self, mesh, pose=None, instance_id=None, material=None):
         if not isinstance(mesh, Mesh):
             raise TypeError(f"mesh: expected softrast.Mesh, got {type(mesh).__name__}")
         self.mesh = mesh
@@ -32,6 +36,10 @@ class Instance:
                 raise ValueError(f"instance_id: must be in [0, 2**31), got {instance_id}")
             instance_id = int(instance_id)
         self.instance_id = instance_id
+        if material is not None and not isinstance(material, Material):
+            raise TypeError(f"material: expected softrast.Material or None, "
+                            f"got {type(material).__name__}")
+        self.material = material
 
     def __repr__(self):
         return f"Instance({self.mesh!r}, instance_id={self.instance_id})"
@@ -125,10 +133,28 @@ def load(path):
 
     glTF 2.0 (.gltf, .glb) is read with its node hierarchy: one instance per
     node that draws a mesh primitive, posed by the node's world matrix,
-    primitives shared between nodes sharing one :class:`Mesh`.  Any other
-    format is the one mesh of :func:`load_mesh` (without its texture).
-    Materials, textures and the file's cameras are not carried over.
+    primitives shared between nodes sharing one :class:`Mesh`.  Each
+    primitive's material is drawn into its Mesh as ``render``'s color pass
+    takes it: ``colors`` = vertex colors (white without) times the base
+    color factor, ``texture`` = the base color texture (its image, with
+    ``uvs`` its coordinate set through its KHR_texture_transform); alpha
+    is kept for "mask" and "blend" materials, dropped for "opaque" ones.
+    The whole material is ``Instance.material``.  Any other format is the
+    one mesh of :func:`load_mesh`, with its texture.  The file's cameras
+    are not carried over.
     """
-    d = _softrast.load_scene(_path(path))
-    meshes = [Mesh(**m) for m in d["meshes"]]
-    return Scene(Instance(meshes[i], world) for i, world in d["instances"])
+    path = _path(path)
+    d = _softrast.load_scene(path)
+    if not d["gltf"]:
+        return Scene([load_mesh(path)])
+    images = base_color_images(path, d["materials"])
+    materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
+    meshes = {}
+    instances = []
+    for mesh_index, world, material in d["instances"]:
+        key = (mesh_index, material)
+        if key not in meshes:
+            meshes[key] = Mesh(**material_arrays(d["meshes"][mesh_index], d["materials"][material],
+                                                 images.get(material)))
+        instances.append(Instance(meshes[key], world, material=materials[material]))
+    return Scene(instances)

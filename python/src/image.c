@@ -1,6 +1,7 @@
 /*
  * image.c - PNG and JPEG files to and from numpy arrays: read_image
- * (sr_read_image) for textures, write_png (sr_write_png, atomic) for the
+ * (sr_read_image) and decode_image (sr_decode_image, for the images a
+ * glTF file embeds) for textures, write_png (sr_write_png, atomic) for the
  * color images of softrast.dask's shards.
  */
 #include "module.h"
@@ -35,6 +36,28 @@ PyObject *sr_py_read_image(PyObject *self, PyObject *args)
     r = sr_read_image(path, &w, &h, &px, &err);
     Py_END_ALLOW_THREADS
     Py_DECREF(path_obj);
+    if (r != SR_OK) {
+        return sr_py_io_error(r, &err);
+    }
+    return sr_py_image_array(px, w, h);
+}
+
+PyObject *sr_py_decode_image(PyObject *self, PyObject *args)
+{
+    (void)self;
+    Py_buffer data;
+    const char *name;
+    if (!PyArg_ParseTuple(args, "y*s:decode_image", &data, &name)) {
+        return NULL;
+    }
+    int w = 0, h = 0;
+    uint8_t *px = NULL;
+    sr_io_error err = { { 0 } };
+    sr_result r;
+    Py_BEGIN_ALLOW_THREADS
+    r = sr_decode_image(name, data.buf, (size_t)data.len, &w, &h, &px, &err);
+    Py_END_ALLOW_THREADS
+    PyBuffer_Release(&data);
     if (r != SR_OK) {
         return sr_py_io_error(r, &err);
     }

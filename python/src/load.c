@@ -1,9 +1,10 @@
 /*
  * load.c - model files into numpy arrays: sr_load_mesh (every format the
  * library reads: OBJ, PLY, STL, and through Assimp glTF, FBX, DAE ...) and
- * sr_load_scene (glTF's node hierarchy, one instance a drawn primitive).
- * The arrays are copied out of the library's memory, which is freed before
- * returning; the Python layer (softrast/_scene.py) makes Mesh objects.
+ * sr_load_scene (glTF's node hierarchy, one instance a drawn primitive,
+ * and the materials' factors).  The arrays are copied out of the library's
+ * memory, which is freed before returning; the Python layer (softrast/
+ * _scene.py, _gltf.py) makes Mesh and Material objects.
  */
 #include "module.h"
 
@@ -122,12 +123,66 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
     return d;
 }
 
-/* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world)]}: the
- * primitives that share arrays share one entry of "meshes". */
+static const char *alpha_mode_name(sr_alpha_mode mode)
+{
+    return mode == SR_ALPHA_MASK ? "mask" : mode == SR_ALPHA_BLEND ? "blend" : "opaque";
+}
+
+/* A texture slot's use as the Python layer needs it: None when empty,
+ * else its coordinate set and its transform (sr_texture_slot's uv' =
+ * T(offset) R(rotation) S(scale) uv, in sr_make_texture's frame). */
+static PyObject *slot_dict(const sr_texture_slot *t)
+{
+    if (!t->texture) {
+        Py_RETURN_NONE;
+    }
+    bool unit = t->scale[0] == 0.0f && t->scale[1] == 0.0f;
+    return Py_BuildValue("{sisNsdsN}", "texcoord", t->texcoord, "offset",
+                         Py_BuildValue("(dd)", (double)t->offset[0], (double)t->offset[1]),
+                         "rotation", (double)t->rotation, "scale",
+                         Py_BuildValue("(dd)", unit ? 1.0 : (double)t->scale[0],
+                                       unit ? 1.0 : (double)t->scale[1]));
+}
+
+/* sr_pbr_material's factors as a dict (the textures' pixels are the
+ * file's images, which the Python layer decodes itself). */
+static PyObject *material_dict(const sr_pbr_material *m)
+{
+    const float *c = m->base_color, *e = m->emissive;
+    return Py_BuildValue("{sNsNsdsdsNsdsssdsOsOsdsd}", "base_color",
+                         Py_BuildValue("(dddd)", (double)c[0], (double)c[1], (double)c[2],
+                                       (double)c[3]),
+                         "base_color_texture", slot_dict(&m->base_color_texture), "metallic",
+                         (double)m->metallic, "roughness", (double)m->roughness, "emissive",
+                         Py_BuildValue("(ddd)", (double)e[0], (double)e[1], (double)e[2]),
+                         "emissive_strength",
+                         m->emissive_strength != 0.0f ? (double)m->emissive_strength : 1.0,
+                         "alpha_mode", alpha_mode_name(m->alpha_mode), "alpha_cutoff",
+                         m->alpha_cutoff != 0.0f ? (double)m->alpha_cutoff : 0.5, "double_sided",
+                         m->double_sided ? Py_True : Py_False, "unlit",
+                         m->unlit ? Py_True : Py_False, "normal_scale", (double)m->normal_scale,
+                         "occlusion_strength", (double)m->occlusion_strength);
+}
+
+/* A primitive's arrays, with its second texture coordinate set as "uvs1". */
+static PyObject *primitive_dict(const sr_scene_primitive *p)
+{
+    PyObject *d = arrays_dict(p->vertex_count, p->positions, p->normals, p->colors, p->texcoords0,
+                              p->triangle_count, p->indices);
+    if (d && set_item(d, "uvs1", copy_array(p->texcoords1, p->vertex_count, 2, NPY_FLOAT32, 4)) < 0) {
+        Py_CLEAR(d);
+    }
+    return d;
+}
+
+/* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world,
+ * material index)], "materials": [dict...], "gltf": whether the glTF
+ * reader read it}: the primitives that share arrays share one entry of
+ * "meshes". */
 static PyObject *scene_dict(const sr_scene *s)
 {
     PyObject *meshes = PyList_New(0), *instances = PyList_New(0), *seen = PyDict_New();
-    PyObject *out = NULL;
+    PyObject *materials = NULL, *out = NULL;
     if (!meshes || !instances || !seen) {
         goto done;
     }
@@ -139,10 +194,7 @@ static PyObject *scene_dict(const sr_scene *s)
         }
         PyObject *index = PyDict_GetItemWithError(seen, key);
         if (!index) {
-            PyObject *d = PyErr_Occurred() ? NULL
-                                           : arrays_dict(p->vertex_count, p->positions, p->normals,
-                                                         p->colors, p->texcoords0, p->triangle_count,
-                                                         p->indices);
+            PyObject *d = PyErr_Occurred() ? NULL : primitive_dict(p);
             index = d ? PyLong_FromSsize_t(PyList_GET_SIZE(meshes)) : NULL;
             int bad = !index || PyList_Append(meshes, d) < 0 || PyDict_SetItem(seen, key, index) < 0;
             Py_XDECREF(d);
@@ -164,15 +216,29 @@ static PyObject *scene_dict(const sr_scene *s)
                 w[4 * r + c] = p->world[4 * c + r];   /* column-major -> rows */
             }
         }
-        PyObject *item = Py_BuildValue("(ON)", index, world);
+        PyObject *item = Py_BuildValue("(ONi)", index, world, p->material);
         if (!item || PyList_Append(instances, item) < 0) {
             Py_XDECREF(item);
             goto done;
         }
         Py_DECREF(item);
     }
-    out = Py_BuildValue("{sOsO}", "meshes", meshes, "instances", instances);
+    materials = PyList_New((Py_ssize_t)s->material_count);
+    for (size_t i = 0; materials && i < s->material_count; i++) {
+        PyObject *m = material_dict(&s->materials[i]);
+        if (!m) {
+            goto done;
+        }
+        PyList_SET_ITEM(materials, (Py_ssize_t)i, m);
+    }
+    if (materials) {
+        /* sr_load_mesh's one primitive comes from no node. */
+        bool gltf = s->primitive_count == 0 || s->primitives[0].node >= 0;
+        out = Py_BuildValue("{sOsOsOsO}", "meshes", meshes, "instances", instances, "materials",
+                            materials, "gltf", gltf ? Py_True : Py_False);
+    }
 done:
+    Py_XDECREF(materials);
     Py_XDECREF(meshes);
     Py_XDECREF(instances);
     Py_XDECREF(seen);

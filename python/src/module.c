@@ -8,12 +8,13 @@
 
 PyDoc_STRVAR(render_doc,
 "render(instances, K, width, height, near, threads, depth, triangle_id, instance_id,\n"
-"       barycentric, normal, color, mask, background, lit)\n"
+"       barycentric, normal, color, mask, background, lit, rgba=None, pbr=False)\n"
 "--\n"
 "\n"
 "The C renderer behind softrast.render (use that): one camera.\n"
 "instances: a sequence of (Mesh, (3, 4) float64 object->camera matrix,\n"
-"(3, 3) float64 normal matrix, int id); K: (3, 3) float64.  The outputs\n"
+"(3, 3) float64 normal matrix, int id[, (metallic, roughness, emissive\n"
+"r, g, b)]); K: (3, 3) float64.  The outputs\n"
 "are written into the given C-contiguous arrays (None: not wanted).");
 
 PyDoc_STRVAR(load_mesh_doc,
@@ -24,13 +25,19 @@ PyDoc_STRVAR(load_mesh_doc,
 PyDoc_STRVAR(load_scene_doc,
 "load_scene(path)\n--\n\n"
 "sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
-"(4, 4) world matrix)]}.  Use softrast.load.");
+"(4, 4) world matrix, material index)], 'materials': [dict of factors]}.\n"
+"Use softrast.load.");
 
 PyDoc_STRVAR(read_image_doc,
 "read_image(path)\n--\n\n"
 "A PNG or JPEG file (told apart by its first bytes) as an (H, W, 4) uint8\n"
 "RGBA array, row 0 at the top: a texture for softrast.Mesh.  Raises\n"
 "OSError when the file cannot be read, ValueError when it is malformed.");
+
+PyDoc_STRVAR(decode_image_doc,
+"decode_image(data, name)\n--\n\n"
+"PNG or JPEG bytes as an (H, W, 4) uint8 RGBA array, row 0 at the top;\n"
+"`name` is used in the error, a ValueError when the data is malformed.");
 
 PyDoc_STRVAR(write_png_doc,
 "write_png(path, image)\n--\n\n"
@@ -43,6 +50,7 @@ static PyMethodDef methods[] = {
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
     { "load_scene", sr_py_load_scene, METH_VARARGS, load_scene_doc },
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
+    { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },
     { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
     { NULL, NULL, 0, NULL },
 };

@@ -1,10 +1,10 @@
 /*
  * render.c - softrast._softrast.render: one camera's geometry buffers
  * (depth, triangle and instance IDs, barycentrics, normals, mask) and
- * color from a list of mesh instances.  The Python layer (softrast/
- * _render.py) validates cameras and poses and loops over batches; this
- * file checks what it is handed again so that no call can crash, then
- * draws with the GIL released.
+ * color (RGB, or RGBA with a transparent background) from a list of mesh
+ * instances.  The Python layer (softrast/_render.py) validates cameras and
+ * poses and loops over batches; this file checks what it is handed again
+ * so that no call can crash, then draws with the GIL released.
  *
  * The geometry buffers come from one sr_program per instance.  Its vertex
  * shader reads the mesh's own arrays (float32 or float64 vertices, int32
@@ -15,8 +15,9 @@
  * and normal, and writes them for the fragments that pass the depth test;
  * fragments of one tile are shaded in draw order, so the last write to a
  * pixel is the visible surface's, the same for any thread count.  Color
- * comes from a second pass through the built-in shading (textures, vertex
- * colors, a headlight) on the same projection.
+ * comes from a second pass on the same projection: the built-in shading
+ * (textures, vertex colors, a headlight), or the metallic-roughness
+ * program lit as softrast render's default look.
  */
 #include "module.h"
 
@@ -24,11 +25,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Varyings of the geometry program: the face index in two 16-bit halves,
- * each exact in a float, flat. */
-enum { V_TRI_HI = 0, V_TRI_LO = 1, V_COUNT = 2 };
+/* Varyings of the geometry program: the face index, exact in a float up
+ * to 2^24 faces; beyond, in two 16-bit halves (V_TRI_HI and V_TRI_LO).
+ * One varying where it does makes each triangle's set-up record
+ * smaller. */
+enum { V_TRI = 0, V_TRI_HI = 0, V_TRI_LO = 1 };
+#define ONE_VARYING_FACES ((size_t)1 << 24)
 
 typedef struct geometry_uniforms {
+    /* Per mesh vertex, computed once a view rather than once a triangle
+     * corner (view_of): the clip position, read by the vertex shader,
+     * and the camera-space one, for the fragments' rays; apart, so that
+     * the vertex shader's reads stay dense. */
+    const float (*clip)[4];
+    const double (*camera)[3];
+    size_t faces_count;
     const void *vertices;
     bool vertices64;
     const void *faces;
@@ -80,13 +91,12 @@ static double dot(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
-                            float *vary)
+/* Mesh vertex v seen from the camera: its clip and camera-space
+ * positions. */
+static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3])
 {
-    const geometry_uniforms *u = uniforms;
-    size_t face = in->index / 3;
-    double p[3], c[3];
-    fetch_vertex(u, fetch_index(u, in->index), p);
+    double p[3];
+    fetch_vertex(u, v, p);
     to_camera(u, p, c);
     /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
      * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
@@ -95,8 +105,20 @@ static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, flo
     clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
     clip[2] = u->near;
     clip[3] = (float)c[2];
-    vary[V_TRI_HI] = (float)(face >> 16);
-    vary[V_TRI_LO] = (float)(face & 0xffff);
+}
+
+static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
+                            float *vary)
+{
+    const geometry_uniforms *u = uniforms;
+    size_t face = in->index / 3;
+    memcpy(clip, u->clip[fetch_index(u, in->index)], 4 * sizeof(float));
+    if (u->faces_count <= ONE_VARYING_FACES) {
+        vary[V_TRI] = (float)face;
+    } else {
+        vary[V_TRI_HI] = (float)(face >> 16);
+        vary[V_TRI_LO] = (float)(face & 0xffff);
+    }
 }
 
 /* The visible face's outputs at pixel (x, y), from the ray through the
@@ -110,8 +132,7 @@ static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, f
     double o[3][3], c[3][3];
     for (int k = 0; k < 3; k++) {
         vi[k] = fetch_index(u, 3 * face + (size_t)k);
-        fetch_vertex(u, vi[k], o[k]);
-        to_camera(u, o[k], c[k]);
+        memcpy(c[k], u->camera[vi[k]], sizeof c[k]);
     }
     double dy = ((double)y - u->cy) / u->fy;
     double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
@@ -156,6 +177,9 @@ static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, f
                 }
             }
         } else {
+            for (int k = 0; k < 3; k++) {
+                fetch_vertex(u, vi[k], o[k]);
+            }
             double oe1[3] = { o[1][0] - o[0][0], o[1][1] - o[0][1], o[1][2] - o[0][2] };
             double oe2[3] = { o[2][0] - o[0][0], o[2][1] - o[0][1], o[2][2] - o[0][2] };
             cross(oe1, oe2, on);
@@ -179,8 +203,10 @@ static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
     const geometry_uniforms *u = uniforms;
     for (int i = 0; i < 4; i++) {
         if (q->mask >> i & 1) {
-            size_t face = (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
-                          (size_t)lrintf(q->varyings[V_TRI_LO][i]);
+            size_t face = u->faces_count <= ONE_VARYING_FACES
+                              ? (size_t)lrintf(q->varyings[V_TRI][i])
+                              : (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
+                                    (size_t)lrintf(q->varyings[V_TRI_LO][i]);
             shade_pixel(u, face, q->x + (i & 1), q->y + (i >> 1), q->z[i]);
         }
     }
@@ -193,6 +219,7 @@ typedef struct instance {
     int32_t id;
     const float *positions;     /* for the color pass */
     const uint32_t *indices;
+    float metallic, roughness, emissive[3];   /* for the metallic-roughness look */
 } instance;
 
 typedef struct render_job {
@@ -203,11 +230,13 @@ typedef struct render_job {
     float near;
     float background[3];
     bool lit;                   /* color: headlight-lit, else the colors as they are */
+    bool pbr;                   /* color: the metallic-roughness program instead */
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;
-    uint8_t *color;
+    uint8_t *color, *rgba;
     npy_bool *mask;
+    sr_py_render_set *set;      /* what run() draws with */
     char error[512];
 } render_job;
 
@@ -282,8 +311,27 @@ static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const render
     memcpy(u.a, in->a, sizeof u.a);
     memcpy(u.nm, in->nm, sizeof u.nm);
     clip_rows(j, u.kx, u.ky);
+    size_t nv = (size_t)PyArray_DIM(m->vertices, 0);
+    sr_py_render_set *set = j->set;
+    size_t bytes = nv * (4 * sizeof(float) + 3 * sizeof(double));
+    if (set->vertices_bytes < bytes) {
+        void *grown = realloc(set->vertices, bytes);
+        if (!grown) {
+            return SR_OUT_OF_MEMORY;
+        }
+        set->vertices = grown;
+        set->vertices_bytes = bytes;
+    }
+    float (*clip)[4] = set->vertices;
+    double (*camera)[3] = (double (*)[3])(clip + nv);
+    for (size_t v = 0; v < nv; v++) {
+        view_of(&u, v, clip[v], camera[v]);
+    }
+    u.clip = (const float (*)[4])clip;
+    u.camera = (const double (*)[3])camera;
+    u.faces_count = faces;
     sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
-                        .uniforms = &u, .varying_count = V_COUNT };
+                        .uniforms = &u, .varying_count = faces <= ONE_VARYING_FACES ? 1 : 2 };
     prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
     /* The shader reads the mesh itself; sr_draw still wants a position
      * array of vertex_count entries.  Overlapping ones 4 bytes apart
@@ -341,6 +389,51 @@ static sr_result make_texture(sr_context *ctx, const MeshObject *m, sr_texture *
     return r;
 }
 
+/* OpenCV's camera frame (y down, z forward) to OpenGL's eye space (y up,
+ * z backward): the metallic-roughness look's world, so that its sky is
+ * above and its eye at the origin looking down -z. */
+static const double cv_to_gl[3] = { 1.0, -1.0, -1.0 };
+
+/* softrast render's default lights (its key, fill and rim, from the
+ * camera's right, up and towards the viewer, and its sky and ground),
+ * so that color looks like the command's picture of the same model. */
+static void pbr_lights(sr_pbr_desc *d)
+{
+    static const float rig[3][4] = {
+        { -0.55f, 0.70f, 0.45f, 0.95f },
+        { 0.80f, 0.05f, 0.60f, 0.35f },
+        { 0.10f, 0.55f, -0.85f, 0.45f },
+    };
+    for (int i = 0; i < 3; i++) {
+        float len = sqrtf(rig[i][0] * rig[i][0] + rig[i][1] * rig[i][1] + rig[i][2] * rig[i][2]);
+        d->lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
+                                   .vector = { -rig[i][0] / len, -rig[i][1] / len,
+                                               -rig[i][2] / len },
+                                   .color = { 1.0f, 0.98f, 0.95f },
+                                   .intensity = rig[i][3] * 1.6f };
+    }
+    d->sky = (sr_vec3){ 0.16f, 0.165f, 0.18f };
+    d->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };
+}
+
+/* The metallic-roughness program for one instance: the base color is
+ * the mesh's colors times its texture (a loaded material's factor is in
+ * the colors already). */
+static sr_result make_pbr(sr_context *ctx, const instance *in, const sr_texture *tex,
+                          const sr_mat4 *model, const sr_mat4 *proj, sr_pbr **out)
+{
+    sr_pbr_material mat = sr_pbr_default_material();
+    mat.base_color_texture.texture = tex;
+    mat.metallic = in->metallic;
+    mat.roughness = in->roughness;
+    memcpy(mat.emissive, in->emissive, sizeof mat.emissive);
+    mat.double_sided = true;
+    sr_pbr_desc d = { .material = &mat, .model = model, .projection = proj,
+                      .vertex_color = in->mesh->colors ? SR_ON : SR_OFF };
+    pbr_lights(&d);
+    return sr_make_pbr_program(ctx, &d, out);
+}
+
 static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
                             const instance *in, size_t faces, const void *proj)
 {
@@ -351,7 +444,18 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         return r;
     }
     sr_mat4 model;
-    mat_from_rows(in->a, &model);
+    double a[3][4];
+    for (int row = 0; row < 3; row++) {
+        for (int c = 0; c < 4; c++) {
+            a[row][c] = j->pbr ? cv_to_gl[row] * in->a[row][c] : in->a[row][c];
+        }
+    }
+    mat_from_rows(a, &model);
+    sr_pbr *pbr = NULL;
+    if (j->pbr && (r = make_pbr(ctx, in, tex, &model, proj, &pbr)) != SR_OK) {
+        sr_destroy_texture(ctx, tex);
+        return r;
+    }
     sr_state st = {
         .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
         .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
@@ -359,6 +463,7 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
         /* A headlight: the view is the identity, so "world" is camera space. */
         .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
+        .program = pbr ? sr_pbr_program(pbr) : NULL,
     };
     sr_draw_desc d = {
         .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
@@ -371,6 +476,7 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         .model = &model, .projection = proj,
     };
     r = sr_draw(ctx, fb, &st, &d);
+    sr_destroy_pbr_program(ctx, pbr);
     sr_destroy_texture(ctx, tex);
     return r;
 }
@@ -378,7 +484,7 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
 static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
     sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
-        .color = { j->background[0], j->background[1], j->background[2], 1.0f },
+        .color = { j->background[0], j->background[1], j->background[2], j->rgba ? 0.0f : 1.0f },
         .depth_action = SR_ACTION_CLEAR, .depth = 0 });
     double kx[3], ky[2];
     clip_rows(j, kx, ky);
@@ -388,38 +494,80 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
     proj.m[5] = (float)ky[0], proj.m[9] = (float)ky[1];
     proj.m[14] = j->near;
     proj.m[11] = 1.0f;
+    if (j->pbr) {
+        /* The model matrix is taken to OpenGL's eye space: undo it here. */
+        for (int c = 1; c < 3; c++) {
+            for (int row = 0; row < 4; row++) {
+                proj.m[c * 4 + row] = -proj.m[c * 4 + row];
+            }
+        }
+    }
     if (r == SR_OK) {
         r = draw_instances(ctx, fb, j, color_draw, &proj);
     }
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);
-        for (size_t p = 0; p < (size_t)j->width * (size_t)j->height; p++) {
+        size_t n = (size_t)j->width * (size_t)j->height;
+        for (size_t p = 0; j->color && p < n; p++) {
             memcpy(j->color + 3 * p, px + 4 * p, 3);
+        }
+        if (j->rgba) {
+            memcpy(j->rgba, px, 4 * n);
         }
     }
     return r;
 }
 
-/* Runs without the GIL: touches no Python object, only array memory. */
-static void run(render_job *j)
+/* Makes what the set lacks for j: a context, and a framebuffer of j's
+ * size (replacing one of another size). */
+static sr_result prepare_set(sr_py_render_set *s, const render_job *j)
 {
-    sr_context *ctx = NULL;
-    sr_framebuffer *fb = NULL;
-    sr_result r = sr_make_context(&(sr_context_desc){ .threads = j->threads }, &ctx);
-    if (r != SR_OK) {
+    sr_result r = SR_OK;
+    if (!s->ctx) {
+        r = sr_make_context(&(sr_context_desc){ .threads = j->threads }, &s->ctx);
+        if (r != SR_OK) {
+            s->ctx = NULL;
+            return r;
+        }
+        s->threads = j->threads;
+    }
+    if (s->fb && (s->width != j->width || s->height != j->height)) {
+        sr_destroy_framebuffer(s->ctx, s->fb);
+        s->fb = NULL;
+    }
+    if (!s->fb) {
+        r = sr_make_framebuffer(s->ctx, &(sr_framebuffer_desc){ .width = j->width,
+                                                                 .height = j->height,
+                                                                 .depth_format = SR_DEPTH_D32F },
+                                &s->fb);
+        if (r != SR_OK) {
+            s->fb = NULL;
+            return r;
+        }
+        s->width = j->width;
+        s->height = j->height;
+    }
+    return r;
+}
+
+/* Runs without the GIL: touches no Python object, only array memory. */
+static void run(render_job *j, sr_py_render_set *s)
+{
+    j->set = s;
+    sr_result r = prepare_set(s, j);
+    if (r != SR_OK && !s->ctx) {
         snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_result_text(r));
         return;
     }
     fill_outputs(j);
-    r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = j->width, .height = j->height,
-                                                          .depth_format = SR_DEPTH_D32F },
-                            &fb);
+    sr_context *ctx = s->ctx;
+    sr_framebuffer *fb = s->fb;
     bool geometry = j->depth || j->triangle_id || j->instance_id || j->barycentric || j->normal ||
                     j->mask;
     if (r == SR_OK && geometry) {
         r = geometry_pass(ctx, fb, j);
     }
-    if (r == SR_OK && j->color) {
+    if (r == SR_OK && (j->color || j->rgba)) {
         r = color_pass(ctx, fb, j);
     }
     if (r != SR_OK) {
@@ -428,8 +576,6 @@ static void run(render_job *j)
             snprintf(j->error, sizeof j->error, "%s", sr_result_text(r));
         }
     }
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 /* An output array from the Python layer: None, or C-contiguous of the
@@ -494,14 +640,19 @@ static int take_instances(PyObject *seq, render_job *j)
         PyObject *item = PySequence_Fast_GET_ITEM(fast, i);
         PyObject *mesh, *a, *nm;
         int id;
+        instance *in = &j->inst[i];
+        /* The metallic-roughness factors: a dielectric unless given. */
+        in->roughness = 0.5f;
         if (!PyTuple_Check(item) ||
-            !PyArg_ParseTuple(item, "O!OOi", &sr_py_MeshType, &mesh, &a, &nm, &id)) {
+            !PyArg_ParseTuple(item, "O!OOi|(fffff)", &sr_py_MeshType, &mesh, &a, &nm, &id,
+                              &in->metallic, &in->roughness, &in->emissive[0], &in->emissive[1],
+                              &in->emissive[2])) {
             PyErr_Clear();
             PyErr_Format(PyExc_TypeError,
-                         "instances[%zd]: expected (Mesh, (3, 4) matrix, (3, 3) matrix, int)", i);
+                         "instances[%zd]: expected (Mesh, (3, 4) matrix, (3, 3) matrix, int"
+                         "[, (metallic, roughness, emissive r, g, b)])", i);
             goto fail;
         }
-        instance *in = &j->inst[i];
         in->mesh = (MeshObject *)mesh;
         in->id = id;
         if (!in->mesh->vertices) {
@@ -531,7 +682,7 @@ static int take_instances(PyObject *seq, render_job *j)
                          i, bad, (Py_ssize_t)PyArray_DIM(m->vertices, 0));
             goto fail;
         }
-        if (j->color && sr_py_mesh_draw_arrays(m, &in->positions, &in->indices) < 0) {
+        if ((j->color || j->rgba) && sr_py_mesh_draw_arrays(m, &in->positions, &in->indices) < 0) {
             goto fail;
         }
     }
@@ -547,14 +698,15 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     (void)self;
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
-                              "mask", "background", "lit", NULL };
-    PyObject *instances, *K, *outs[7];
+                              "mask", "background", "lit", "rgba", "pbr", NULL };
+    PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     render_job j = { 0 };
-    int lit = 1;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p:render", kwlist, &instances,
-                                     &K, &j.width, &j.height, &j.near, &j.threads, &outs[0],
-                                     &outs[1], &outs[2], &outs[3], &outs[4], &outs[5], &outs[6],
-                                     &j.background[0], &j.background[1], &j.background[2], &lit)) {
+    int lit = 1, pbr = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|Op:render", kwlist,
+                                     &instances, &K, &j.width, &j.height, &j.near, &j.threads,
+                                     &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
+                                     &outs[6], &j.background[0], &j.background[1],
+                                     &j.background[2], &lit, &outs[7], &pbr)) {
         return NULL;
     }
     if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
@@ -573,31 +725,37 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
         return NULL;
     }
     j.lit = lit;
+    j.pbr = pbr;
     if (take_matrix(K, "K", 3, 3, &j.k[0][0]) < 0) {
         return NULL;
     }
     int H = j.height, W = j.width;
-    void *ptr[7];
+    void *ptr[8];
     if (take_output(outs[0], "depth", NPY_FLOAT32, H, W, 0, &ptr[0]) < 0 ||
         take_output(outs[1], "triangle_id", NPY_INT32, H, W, 0, &ptr[1]) < 0 ||
         take_output(outs[2], "instance_id", NPY_INT32, H, W, 0, &ptr[2]) < 0 ||
         take_output(outs[3], "barycentric", NPY_FLOAT32, H, W, 3, &ptr[3]) < 0 ||
         take_output(outs[4], "normal", NPY_FLOAT32, H, W, 3, &ptr[4]) < 0 ||
         take_output(outs[5], "color", NPY_UINT8, H, W, 3, &ptr[5]) < 0 ||
-        take_output(outs[6], "mask", NPY_BOOL, H, W, 0, &ptr[6]) < 0) {
+        take_output(outs[6], "mask", NPY_BOOL, H, W, 0, &ptr[6]) < 0 ||
+        take_output(outs[7], "rgba", NPY_UINT8, H, W, 4, &ptr[7]) < 0) {
         return NULL;
     }
     j.depth = ptr[0], j.triangle_id = ptr[1], j.instance_id = ptr[2];
     j.barycentric = ptr[3], j.normal = ptr[4], j.color = ptr[5], j.mask = ptr[6];
+    j.rgba = ptr[7];
     if (take_instances(instances, &j) < 0) {
         free(j.inst);
         return NULL;
     }
     /* The instances' meshes and the outputs stay referenced by the
      * caller's arguments for the whole call. */
+    sr_py_render_set set;
+    sr_py_take_render_set(j.threads, &set);
     Py_BEGIN_ALLOW_THREADS
-    run(&j);
+    run(&j, &set);
     Py_END_ALLOW_THREADS
+    sr_py_give_back_render_set(&set, !j.error[0]);
     free(j.inst);
     if (j.error[0]) {
         PyErr_SetString(PyExc_RuntimeError, j.error);

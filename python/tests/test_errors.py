@@ -1,5 +1,8 @@
 """Bad arguments raise TypeError or ValueError naming the argument, and
-never crash."""
+never crash; the version and docstrings."""
+
+import os
+import re
 
 import numpy as np
 import pytest
@@ -143,3 +146,14 @@ def test_mesh_pickles_by_value():
     assert copy.normals is None and np.array_equal(copy.colors, mesh.colors)
     with pytest.raises(ValueError, match="uninitialized"):
         pickle.dumps(softrast.Mesh.__new__(softrast.Mesh))
+
+
+def test_version_and_docstrings():
+    cmake = open(os.path.join(os.path.dirname(__file__), "..", "..", "CMakeLists.txt")).read()
+    project = re.search(r"project\(softrast\s+VERSION\s+([0-9.]+)", cmake)
+    assert project and softrast.__version__ == project.group(1)
+    for name in softrast.__all__:
+        if name != "__version__" and name != "OUTPUTS":
+            assert (getattr(softrast, name).__doc__ or "").strip(), f"{name} has no docstring"
+    with pytest.raises(ValueError, match="alpha_mode"):
+        softrast.Material(alpha_mode="glass")

@@ -40,8 +40,8 @@ sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, in
     for (long long py = y0; py < y1; py++) {
         const uint8_t *m = mask + (size_t)(py - y) * stride;
         uint32_t *row = fb->color + (size_t)py * (size_t)fb->width;
-        for (long long px = x0; px < x1; px++) {
-            sr__paint_pixel(&paint, &row[px], m[px - x]);
+        if (x1 > x0) {
+            sr__paint_row(&paint, row + x0, m + (x0 - x), (int)(x1 - x0));
         }
     }
     sr__ok(ctx);

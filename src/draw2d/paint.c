@@ -102,18 +102,36 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
     memcpy(dst, d, sizeof d);
 }
 
-void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x1)
+void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
 {
-    uint32_t *row = fb->color + (size_t)y * (size_t)fb->width;
-    if (p->alpha >= 1.0f) {
-        for (int x = x0; x < x1; x++) {
-            row[x] = p->packed;
+    if (!cov && p->alpha >= 1.0f) {
+        for (int i = 0; i < n; i++) {
+            dst[i] = p->packed;
         }
         return;
     }
-    for (int x = x0; x < x1; x++) {
-        sr__paint_pixel(p, &row[x], 255);
+    /* A blend is a pure function of the pixel and the coverage, and runs
+     * of equal pairs are common (a shape's inside over an empty or flat
+     * background), so the last result is reused: the same bytes, one
+     * blend per run. */
+    uint32_t in = 0, out = 0;
+    unsigned last_cov = 256;
+    for (int i = 0; i < n; i++) {
+        unsigned c = cov ? cov[i] : 255;
+        if (c != last_cov || dst[i] != in) {
+            in = dst[i];
+            last_cov = c;
+            sr__paint_pixel(p, &dst[i], c);
+            out = dst[i];
+        } else {
+            dst[i] = out;
+        }
     }
+}
+
+void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x1)
+{
+    sr__paint_row(p, fb->color + (size_t)y * (size_t)fb->width + x0, NULL, x1 - x0);
 }
 
 void sr__blend_rgba(uint32_t *dst, const float rgba[4])

@@ -1,9 +1,11 @@
 /* polyfill.c - draw2d stage: polygon scan conversion.
  * Consumes contours of sr_point2, produces spans or coverage rows for a
- * window.  Three converters: the scan-line fill with an edge table (ET)
- * and an active edge table (AET) in exact integer arithmetic, the
+ * window.  Four converters: the scan-line fill with an edge table (ET)
+ * and a sorted active edge table (AET) in exact integer arithmetic, the
+ * same fill with unsorted winding cells and a prefix sum (the fast one the
+ * fills use; the sorted one is its reference and names span edges), the
  * signed-area accumulator for exact antialiased coverage, and n x n
- * supersampling built on the ET converter.  Runs on the caller's thread. */
+ * supersampling built on the winding cells.  Runs on the caller's thread. */
 #include "draw2d/polyfill.h"
 
 #include "context.h"
@@ -126,6 +128,16 @@ static sr__window rows_of_edges(const sr__edge2 *edges, int count, sr__window wi
     return win;
 }
 
+/* Shrink *win to the edges' rows; false when nothing is left to scan. */
+static bool rows_to_scan(const sr__edge2 *edges, int count, sr__window *win)
+{
+    if (count <= 0) {
+        return false;
+    }
+    *win = rows_of_edges(edges, count, *win);
+    return win->x0 < win->x1 && win->y0 < win->y1;
+}
+
 /* ---- scan-line fill: edge table + active edge table ------------------- */
 
 /* An edge-table entry.  At scanline y (sample height yc = 256 y + 128 in
@@ -156,28 +168,15 @@ static bool fill_rule_inside(sr_fill_rule rule, int w)
     return rule == SR_EVENODD ? (w & 1) != 0 : w != 0;
 }
 
-sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count,
-                              sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user)
+/* Build the ET: bucket each edge by its first scanline in the window
+ * (bucket[] has one list head per row, -1 when empty).  Active on y iff
+ * y0 <= 256 y + 128 < y1 (half-open in y).  Returns the entry count. */
+static int build_edge_table(const sr__edge2 *edges, int count, sr__window win, et_entry *et,
+                            int *bucket)
 {
-    win = rows_of_edges(edges, count, win);
-    if (count <= 0 || win.x0 >= win.x1 || win.y0 >= win.y1) {
-        return SR_OK;
-    }
-    int rows = win.y1 - win.y0;
-    et_entry *et = sr__alloc(ctx, (size_t)count * sizeof *et);
-    int *bucket = sr__alloc(ctx, (size_t)rows * sizeof *bucket);
-    int *aet = sr__alloc(ctx, (size_t)count * sizeof *aet);
-    if (!et || !bucket || !aet) {
-        sr__free(ctx, et);
-        sr__free(ctx, bucket);
-        sr__free(ctx, aet);
-        return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for the edge table");
-    }
-    for (int y = 0; y < rows; y++) {
+    for (int y = 0; y < win.y1 - win.y0; y++) {
         bucket[y] = -1;
     }
-    /* Build the ET: bucket each edge by its first scanline in the window.
-     * Active on y iff y0 <= 256 y + 128 < y1 (half-open in y). */
     int n_et = 0;
     for (int i = 0; i < count; i++) {
         const sr__edge2 *s = &edges[i];
@@ -208,6 +207,37 @@ sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count
         e->next = bucket[b];
         bucket[b] = n_et++;
     }
+    return n_et;
+}
+
+/* x(y+1) = x(y) + 1/m: the DDA step with remainder. */
+static void et_step(et_entry *e)
+{
+    e->f += e->q;
+    e->r += e->rem;
+    if (e->r >= e->D) {
+        e->r -= e->D;
+        e->f++;
+    }
+}
+
+sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count,
+                              sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user)
+{
+    if (!rows_to_scan(edges, count, &win)) {
+        return SR_OK;
+    }
+    int rows = win.y1 - win.y0;
+    et_entry *et = sr__alloc(ctx, (size_t)count * sizeof *et);
+    int *bucket = sr__alloc(ctx, (size_t)rows * sizeof *bucket);
+    int *aet = sr__alloc(ctx, (size_t)count * sizeof *aet);
+    if (!et || !bucket || !aet) {
+        sr__free(ctx, et);
+        sr__free(ctx, bucket);
+        sr__free(ctx, aet);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for the edge table");
+    }
+    build_edge_table(edges, count, win, et, bucket);
     int n_aet = 0;
     for (int y = win.y0; y < win.y1; y++) {
         /* Drop edges that ended, add the ET bucket of this scanline. */
@@ -255,19 +285,135 @@ sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count
         }
         /* Step every active edge to the next scanline. */
         for (int k = 0; k < n_aet; k++) {
-            et_entry *e = &et[aet[k]];
-            e->f += e->q;
-            e->r += e->rem;
-            if (e->r >= e->D) {
-                e->r -= e->D;
-                e->f++;
-            }
+            et_step(&et[aet[k]]);
         }
     }
     sr__free(ctx, et);
     sr__free(ctx, bucket);
     sr__free(ctx, aet);
     return SR_OK;
+}
+
+/* ---- scan-line fill, fast: edge table + winding cells ------------------ */
+
+/* The same edge table and the same active edges, but the AET is never
+ * sorted: each active edge adds its direction to the winding cell of its
+ * first pixel (the sort key above; crossings left of the window count at
+ * its first column, those right of it are dropped), and a prefix sum along
+ * the row gives the winding number at every pixel centre.  A pixel's
+ * winding is the sum over the crossings at or left of it whichever order
+ * they come in, so the spans are those of the sorted walk, merged where
+ * they touch.  Ended edges leave the active list by swap-remove, since
+ * order no longer matters. */
+/* The active edges of the winding-cell fill, one array per field so the
+ * step over all of them is a straight vectorizable loop. */
+typedef struct cell_aet {
+    int64_t *f, *r, *q, *rem, *D;
+    int *last_row, *dir;
+    int n;
+} cell_aet;
+
+static void cell_aet_remove(cell_aet *a, int k)
+{
+    int m = --a->n;
+    a->f[k] = a->f[m];
+    a->r[k] = a->r[m];
+    a->q[k] = a->q[m];
+    a->rem[k] = a->rem[m];
+    a->D[k] = a->D[m];
+    a->last_row[k] = a->last_row[m];
+    a->dir[k] = a->dir[m];
+}
+
+sr_result sr__scan_winding_cells(sr_context *ctx, const sr__edge2 *edges, int count,
+                                 sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user)
+{
+    if (!rows_to_scan(edges, count, &win)) {
+        return SR_OK;
+    }
+    int rows = win.y1 - win.y0, w = win.x1 - win.x0;
+    et_entry *et = sr__alloc(ctx, (size_t)count * sizeof *et);
+    int *bucket = sr__alloc(ctx, (size_t)rows * sizeof *bucket);
+    int *ends = sr__calloc(ctx, (size_t)rows, sizeof *ends);
+    int64_t *wide = sr__alloc(ctx, (size_t)count * 5 * sizeof *wide);
+    int *narrow = sr__alloc(ctx, (size_t)count * 2 * sizeof *narrow);
+    int *cell = sr__calloc(ctx, (size_t)w, sizeof *cell);
+    sr_result res = SR_OK;
+    if (!et || !bucket || !ends || !wide || !narrow || !cell) {
+        res = sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for winding cells");
+        goto done;
+    }
+    int n_et = build_edge_table(edges, count, win, et, bucket);
+    for (int i = 0; i < n_et; i++) {
+        ends[et[i].last_row - win.y0]++;
+    }
+    size_t n = (size_t)count;
+    cell_aet a = { wide, wide + n, wide + 2 * n, wide + 3 * n, wide + 4 * n, narrow, narrow + n,
+                   0 };
+    for (int y = win.y0; y < win.y1; y++) {
+        for (int i = bucket[y - win.y0]; i >= 0; i = et[i].next) {
+            int k = a.n++;
+            a.f[k] = et[i].f;
+            a.r[k] = et[i].r;
+            a.q[k] = et[i].q;
+            a.rem[k] = et[i].rem;
+            a.D[k] = et[i].D;
+            a.last_row[k] = et[i].last_row;
+            a.dir[k] = et[i].dir;
+        }
+        int lo = w, hi = -1;
+        for (int k = 0; k < a.n; k++) {
+            int64_t c = a.f[k] + (a.r[k] > 0) - win.x0;
+            c = c < 0 ? 0 : c;
+            if (c < w) {
+                cell[c] += a.dir[k];
+                lo = (int)c < lo ? (int)c : lo;
+                hi = (int)c > hi ? (int)c : hi;
+            }
+        }
+        /* Step every active edge (the DDA with remainder, branch-free),
+         * then let the edges that ended on this row go. */
+        for (int k = 0; k < a.n; k++) {
+            int64_t r = a.r[k] + a.rem[k];
+            int64_t carry = r >= a.D[k];
+            a.f[k] += a.q[k] + carry;
+            a.r[k] = r - (a.D[k] & -carry);
+        }
+        for (int k = 0, left = ends[y - win.y0]; left > 0;) {
+            if (a.last_row[k] == y) {
+                cell_aet_remove(&a, k); /* look at the moved entry next */
+                left--;
+            } else {
+                k++;
+            }
+        }
+        /* Prefix sum over the touched cells, clearing them for the next
+         * row; a span still open after the last crossing runs to the
+         * window's right side (its closing crossings were dropped). */
+        int wind = 0, open = -1;
+        for (int c = lo; c <= hi; c++) {
+            wind += cell[c];
+            cell[c] = 0;
+            bool in = fill_rule_inside(rule, wind);
+            if (in && open < 0) {
+                open = c;
+            } else if (!in && open >= 0) {
+                fn(user, &(sr__span){ y, win.x0 + open, win.x0 + c, NULL, -1, -1, y + 0.5 });
+                open = -1;
+            }
+        }
+        if (open >= 0) {
+            fn(user, &(sr__span){ y, win.x0 + open, win.x1, NULL, -1, -1, y + 0.5 });
+        }
+    }
+done:
+    sr__free(ctx, et);
+    sr__free(ctx, bucket);
+    sr__free(ctx, ends);
+    sr__free(ctx, wide);
+    sr__free(ctx, narrow);
+    sr__free(ctx, cell);
+    return res;
 }
 
 /* ---- exact area coverage: signed-area accumulation -------------------- */
@@ -293,44 +439,75 @@ static void deposit_piece(double *acc, int w, int wx0, double xa, double xb, dou
     acc[c + 1] += d * f;
 }
 
+/* deposit_piece for a piece from x to nx known to lie in window column c
+ * (pixel column cf). */
+static void split_piece(double *acc, int c, double cf, double x, double nx, double d)
+{
+    double f = 0.5 * (x + nx) - cf;
+    acc[c] += d * (1.0 - f);
+    acc[c + 1] += d * f;
+}
+
 /* Deposit the part of an edge between heights ya < yb (within one row),
- * x from xa to xb, split at integer x. */
+ * x from xa to xb, split at integer x.  The walk goes from xa to xb one
+ * column at a time; each piece's height is the difference of the heights
+ * ya + (x - xa) dy/dx at its ends, so the pieces sum to yb - ya exactly.
+ * Everything left of the window lands in acc[0] in one piece, everything
+ * right of it is dropped in one piece. */
 static void deposit_segment(double *acc, int w, int wx0, double xa, double ya, double xb,
                             double yb, double dir)
 {
     double xmin = xa < xb ? xa : xb, xmax = xa < xb ? xb : xa;
-    if (xa == xb || xmax <= wx0 || xmin >= (double)wx0 + w) {
+    double right = (double)wx0 + w;
+    if (xa == xb || xmax <= wx0 || xmin >= right) {
         /* One piece: within a column, wholly left (into acc[0]) or wholly
          * right (dropped) of the window. */
         deposit_piece(acc, w, wx0, xa, xb, dir * (yb - ya));
         return;
     }
     double dydx = (yb - ya) / (xb - xa);
-    double step = xb > xa ? 1.0 : -1.0;
     double x = xa, y = ya;
-    /* Clamp the walk to the window: everything left of it lands in acc[0]
-     * anyway, everything right of it is dropped. */
+    if (xb > xa) {
+        if (x < wx0) {
+            double ny = ya + (wx0 - xa) * dydx;
+            acc[0] += dir * (ny - y);
+            x = wx0;
+            y = ny;
+        }
+        /* Column cf holds the piece from x to the next integer (or xb). */
+        double cf = floor(x);
+        int c = (int)cf - wx0;
+        while (x != xb && x < right) {
+            double nx = cf + 1.0 > xb ? xb : cf + 1.0;
+            double ny = nx == xb ? yb : ya + (nx - xa) * dydx;
+            split_piece(acc, c, cf, x, nx, dir * (ny - y));
+            x = nx;
+            y = ny;
+            cf += 1.0;
+            c++;
+        }
+        return;
+    }
+    if (x > right) {
+        /* The part right of the window is dropped. */
+        y = ya + (right - xa) * dydx;
+        x = right;
+    }
+    /* Column cf holds the piece from x down to the integer below (or xb). */
+    double cf = ceil(x) - 1.0;
+    int c = (int)cf - wx0;
     while (x != xb) {
-        double nx = step > 0 ? floor(x) + 1.0 : ceil(x) - 1.0;
-        if ((step > 0 && nx > xb) || (step < 0 && nx < xb)) {
-            nx = xb;
+        if (x <= wx0) {
+            acc[0] += dir * (yb - y);
+            return;
         }
-        if (step > 0 && x >= (double)wx0 + w) {
-            nx = xb; /* right of the window: one piece, dropped */
-        }
-        if (step < 0 && x <= wx0) {
-            nx = xb; /* left of the window: one piece, into acc[0] */
-        }
-        if (step > 0 && nx < wx0 && xb > wx0) {
-            nx = wx0; /* jump the part left of the window at once */
-        }
-        if (step < 0 && x > (double)wx0 + w && xb < (double)wx0 + w) {
-            nx = (double)wx0 + w; /* likewise from the right */
-        }
-        double ny = (nx == xb) ? yb : ya + (nx - xa) * dydx;
-        deposit_piece(acc, w, wx0, x, nx, dir * (ny - y));
+        double nx = cf < xb ? xb : cf;
+        double ny = nx == xb ? yb : ya + (nx - xa) * dydx;
+        split_piece(acc, c, cf, x, nx, dir * (ny - y));
         x = nx;
         y = ny;
+        cf -= 1.0;
+        c--;
     }
 }
 
@@ -351,6 +528,7 @@ static uint8_t coverage_byte(sr_fill_rule rule, double s)
 typedef struct area_entry {
     double x0, y0, x1, y1; /* pixels, y0 < y1 */
     double dir;
+    double inv;            /* dx / dy */
     int last_row;
     int next;
 } area_entry;
@@ -358,8 +536,7 @@ typedef struct area_entry {
 sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
                         sr__window win, sr__span_fn fn, void *user)
 {
-    win = rows_of_edges(edges, count, win);
-    if (count <= 0 || win.x0 >= win.x1 || win.y0 >= win.y1) {
+    if (!rows_to_scan(edges, count, &win)) {
         return SR_OK;
     }
     int rows = win.y1 - win.y0, w = win.x1 - win.x0;
@@ -400,6 +577,7 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
         e->x1 = s->x1 / 256.0;
         e->y1 = s->y1 / 256.0;
         e->dir = s->dir;
+        e->inv = (e->x1 - e->x0) / (e->y1 - e->y0);
         e->last_row = (int)last;
         int b = (int)(first - win.y0);
         e->next = bucket[b];
@@ -428,7 +606,7 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
             if (!(ya < yb)) {
                 continue;
             }
-            double inv = (e->x1 - e->x0) / (e->y1 - e->y0);
+            double inv = e->inv;
             double xa = (ya == e->y0) ? e->x0 : e->x0 + (ya - e->y0) * inv;
             double xb = (yb == e->y1) ? e->x1 : e->x0 + (yb - e->y0) * inv;
             deposit_segment(acc, w, win.x0, xa, ya, xb, yb, e->dir);
@@ -557,11 +735,11 @@ sr_result sr__scan_supersample(sr_context *ctx, const sr__edge2 *edges, int coun
         sr__free(ctx, s.cov);
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for sample counts");
     }
-    /* The ET converter on the n-times finer grid (edges were built with
+    /* The winding-cell converter on the n-times finer grid (edges were built with
      * their vertices scaled by n): sample row j of pixel row y is scanline
      * n y + j; spans arrive row by row and are counted per pixel. */
     sr__window sw = { win.x0 * n, win.y0 * n, win.x1 * n, win.y1 * n };
-    sr_result r = sr__scan_edge_table(ctx, edges, count, rule, sw, ss_span, &s);
+    sr_result r = sr__scan_winding_cells(ctx, edges, count, rule, sw, ss_span, &s);
     ss_flush(&s);
     sr__free(ctx, s.count);
     sr__free(ctx, s.cov);
@@ -618,7 +796,7 @@ sr_result sr__rasterize_polygon(sr_context *ctx, const char *fn, const sr_polygo
         r = sr__scan_supersample(ctx, edges, count, desc->rule, scale, win, fn_span, user);
         break;
     default:
-        r = sr__scan_edge_table(ctx, edges, count, desc->rule, win, fn_span, user);
+        r = sr__scan_winding_cells(ctx, edges, count, desc->rule, win, fn_span, user);
         break;
     }
     sr__free(ctx, edges);
@@ -633,14 +811,8 @@ typedef struct paint_target {
 static void paint_span(void *user, const sr__span *sp)
 {
     paint_target *t = user;
-    if (!sp->cov) {
-        sr__paint_span(&t->paint, t->fb, sp->y, sp->x0, sp->x1);
-        return;
-    }
     uint32_t *row = t->fb->color + (size_t)sp->y * (size_t)t->fb->width;
-    for (int x = sp->x0; x < sp->x1; x++) {
-        sr__paint_pixel(&t->paint, &row[x], sp->cov[x - sp->x0]);
-    }
+    sr__paint_row(&t->paint, row + sp->x0, sp->cov, sp->x1 - sp->x0);
 }
 
 sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,

@@ -52,6 +52,13 @@ typedef struct sr__window { int x0, y0, x1, y1; } sr__window;
  * sampling at pixel centres, docs/raster-rules.md §10.2). */
 sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count,
                               sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user);
+/* The same pixels from the same edge table without sorting the AET: each
+ * crossing adds its direction to a winding cell per pixel and a prefix
+ * sum along the row gives the winding at each pixel centre.  Touching
+ * spans come merged and name no edges (edge_l = edge_r = -1).  The fills
+ * use it; sr__scan_edge_table is the reference it is tested against. */
+sr_result sr__scan_winding_cells(sr_context *ctx, const sr__edge2 *edges, int count,
+                                 sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user);
 /* Exact area coverage by signed-area accumulation (docs/raster-rules.md §10.3). */
 sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
                         sr__window win, sr__span_fn fn, void *user);

@@ -201,7 +201,7 @@ typedef struct pbr_slot {
     sr_texture_filter filter;
     sr_texture_wrap wu, wv;
     int vary;                     /* varying index of its texcoords */
-    /* KHR_texture_transform moved into sr_texture's frame (v up):
+    /* KHR_texture_transform in sr_texture's frame (v up):
      * u' = xf[0] s + xf[1] t + xf[2], v' = xf[3] s + xf[4] t + xf[5]. */
     float xf[6];
 } pbr_slot;
@@ -327,7 +327,8 @@ static void sample_slot(const pbr_slot *s, const sr_fragment_quad *q, float out[
     for (int i = 0; i < 4; i++) {
         float t[4] = { 0, 0, 0, 1 };
         if (q->mask >> i & 1) {
-            sr__texture_sample(s->tex, s->filter, s->wu, s->wv, uv[0][i], uv[1][i], lod, t);
+            sr__texture_sample_linear(s->tex, s->filter, s->wu, s->wv, uv[0][i], uv[1][i], lod,
+                                      t);
         }
         for (int c = 0; c < 4; c++) {
             out[c][i] = t[c];
@@ -701,6 +702,12 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
         }
         shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
                     (const float(*)[4])base, metal, rough, ao, shadow, out);
+        /* Without emission (no texture, a zero factor) the sum would add
+         * a zero, which changes at most the sign of a zero radiance: every
+         * tone curve sends both zeros to black (sr__tone_curve), so the
+         * bytes are the same without the sum. */
+        bool emits = p->slot[SLOT_EMISSIVE].tex || m->emissive[0] != 0.0f ||
+                     m->emissive[1] != 0.0f || m->emissive[2] != 0.0f;
         if (p->slot[SLOT_EMISSIVE].tex) {
             sample_slot(&p->slot[SLOT_EMISSIVE], q, tex, uv);
         } else {
@@ -713,7 +720,8 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
         float es = m->emissive_strength;
         for (int c = 0; c < 3; c++) {
             for (int i = 0; i < 4; i++) {
-                out[c][i] = (out[c][i] + m->emissive[c] * es * tex[c][i]) * p->scale;
+                out[c][i] = emits ? (out[c][i] + m->emissive[c] * es * tex[c][i]) * p->scale
+                                  : out[c][i] * p->scale;
             }
         }
     }
@@ -783,8 +791,9 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
     return SR_OK;
 }
 
-/* KHR_texture_transform, uv' = T R S uv in glTF's frame (v down), taken to
- * sr_texture's (t = 1 - v): t' = 1 - v'(s, 1 - t). */
+/* The slot's transform is already in sr_texture's frame (v up; a glTF
+ * reader converts the file's, docs/gltf.md): uv' = T R S uv with R
+ * counter-clockwise. */
 static void resolve_slot(const sr_texture_slot *in, pbr_slot *out)
 {
     out->tex = in->texture;
@@ -796,13 +805,12 @@ static void resolve_slot(const sr_texture_slot *in, pbr_slot *out)
         sx = sy = 1.0f;
     }
     float c = cosf(in->rotation), s = sinf(in->rotation);
-    /* glTF: u' = c sx u + s sy v + ox, v' = -s sx u + c sy v + oy. */
     out->xf[0] = c * sx;
     out->xf[1] = -s * sy;
-    out->xf[2] = s * sy + in->offset[0];
+    out->xf[2] = in->offset[0];
     out->xf[3] = s * sx;
     out->xf[4] = c * sy;
-    out->xf[5] = 1.0f - c * sy - in->offset[1];
+    out->xf[5] = in->offset[1];
 }
 
 static sr_result check_desc(sr_context *ctx, const sr_pbr_desc *d)

@@ -2,7 +2,8 @@
  * the end of the pipeline): the image is written to a temporary file in
  * the target's directory, fsync'd, then renamed over the target, so a
  * failed write never leaves a partial file or clobbers an existing one.
- * Shared by the PNG and JPEG writers. */
+ * Shared by the PNG and JPEG writers, and public as sr_write_file for
+ * files encoded elsewhere (the CLI's animated WebPs). */
 /* realpath() is XSI, not in the build's plain _POSIX_C_SOURCE. */
 #define _XOPEN_SOURCE 700
 
@@ -218,4 +219,26 @@ sr_result sr__atomic_commit(sr_atomic_file *f, sr_io_error *err)
     sync_directory(f->target);
     atomic_release(f);
     return SR_OK;
+}
+
+sr_result sr_write_file(const char *path, const void *data, size_t size, sr_io_error *err)
+{
+    if (err) {
+        err->message[0] = '\0';
+    }
+    if (!data && size > 0) {
+        return sr__io_fail(err, SR_INVALID_ARG, path ? path : "<null>", 0,
+                           "sr_write_file: data is NULL for %zu bytes", size);
+    }
+    sr_atomic_file f;
+    sr_result r = sr__atomic_create(&f, path, (sr_allocator){ 0 }, err);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (!sr__write_all(f.fd, data, size)) {
+        r = sr__io_fail(err, SR_IO_ERROR, path, 0, "write failed: %s", strerror(errno));
+        sr__atomic_discard(&f);
+        return r;
+    }
+    return sr__atomic_commit(&f, err);
 }

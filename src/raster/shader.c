@@ -20,12 +20,65 @@ typedef struct quad_job {
     const sr_tri *t;
     sr_frag_stats *st;
     bool early;                   /* tests before shading */
+    bool writes_color;            /* some channel is written (a masked write keeps every byte) */
     int64_t so[16][3];            /* sample offsets of the edge values */
     int64_t bias[3];              /* the edges' top-left bias */
     int64_t reach[3];             /* bias plus the largest sample offset: an edge value
                                    * below -reach at a pixel centre covers none of its samples */
     float inv_area;               /* for screen-space (noperspective) weights */
+    int64_t lane[4][3];           /* quad lane i's edge values less lane 0's */
+    bool test4;                   /* early and the state of test4: the vector test */
+    v4d so4[2];                   /* so[0..3][1] and so[0..3][2] as double lanes */
 } quad_job;
+
+/* A mask of four lanes (each 0 or -1) as the bits 0..3 of a sample mask. */
+static unsigned lane_bits(v4i m)
+{
+    return (unsigned)(m[0] & 1) | (unsigned)(m[1] & 2) | (unsigned)(m[2] & 4) |
+           (unsigned)(m[3] & 8);
+}
+
+/* The early depth test of one pixel's four samples at once, for the state
+ * msaa_kernel.h covers (four samples, LESS with writes on a D16 or D24
+ * buffer, no stencil): sr__test_tri_samples' operations lane by lane -
+ * edge values are integers below 2^53, exact in doubles, depth is
+ * sr__tri_depth's sum in its order (no FMA), clamped and rounded as
+ * sr__quantize_depth does - so the same depth words and the same mask;
+ * the four depth words are consecutive (framebuffer.h). */
+static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsigned cover)
+{
+    const sr_draw_state *ds = j->ds;
+    const sr_tri *t = j->t;
+    v4d e1 = (double)u[1] + j->so4[0], e2 = (double)u[2] + j->so4[1];
+    v4d z = t->z0 + e1 * t->dz1 + e2 * t->dz2;
+    v4d lo = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
+    v4d hi = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
+    v4l above = z >= lo;
+    z = (v4d)((above & (v4l)z) | (~above & (v4l)lo));
+    v4l below = z <= hi;
+    z = (v4d)((below & (v4l)z) | (~below & (v4l)hi));
+    /* Non-negative and below 2^24: truncation is the scalar (uint32_t) cast. */
+    v4i q = __builtin_convertvector(z + 0.5, v4i);
+    uint32_t *dp = &ds->fb->depth[base];
+    v4i d;
+    memcpy(&d, dp, sizeof d);
+    v4i lanes = { (int32_t)(cover & 1u), (int32_t)(cover >> 1 & 1u), (int32_t)(cover >> 2 & 1u),
+                  (int32_t)(cover >> 3 & 1u) };
+    v4i pass = (lanes != 0) & (q < d);
+    d = (pass & q) | (~pass & d);
+    memcpy(dp, &d, sizeof d);
+    return lane_bits(pass);
+}
+
+/* The number of set bits of a sample mask (at most 16 samples), without
+ * the library call __builtin_popcount becomes on the baseline build. */
+static unsigned count16(unsigned x)
+{
+    x = x - ((x >> 1) & 0x5555u);
+    x = (x & 0x3333u) + ((x >> 2) & 0x3333u);
+    x = (x + (x >> 4)) & 0x0f0fu;
+    return (x + (x >> 8)) & 0x1fu;
+}
 
 /* Varyings and depth of the four lanes from their unbiased centre
  * values u: sr__bary and sr__interp with the lanes in vectors - the same
@@ -84,7 +137,7 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     for (int i = 0; i < 4; i++) {
         int px = qx + (i & 1), py = qy + (i >> 1);
         for (int e = 0; e < 3; e++) {
-            u[i][e] = u00[e] + ((int64_t)t->a[e] * (i & 1) + (int64_t)t->b[e] * (i >> 1)) * SR_SUBPIXEL_ONE;
+            u[i][e] = u00[e] + j->lane[i][e];
         }
         if (px < rect[0] || px >= rect[2] || py < rect[1] || py >= rect[3]) {
             continue;
@@ -106,9 +159,14 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     }
     size_t width = (size_t)ds->fb->width;
     size_t base[4];
+    base[0] = ((size_t)qy * width + (size_t)qx) * (size_t)n;
+    base[1] = base[0] + (size_t)n;
+    base[2] = base[0] + width * (size_t)n;
+    base[3] = base[2] + (size_t)n;
     for (int i = 0; i < 4; i++) {
-        base[i] = ((size_t)(qy + (i >> 1)) * width + (size_t)(qx + (i & 1))) * (size_t)n;
-        if (cover[i] && j->early) {
+        if (cover[i] && j->test4) {
+            cover[i] = test4(j, base[i], u[i], cover[i]);
+        } else if (cover[i] && j->early) {
             cover[i] = sr__test_tri_samples(ds, t, base[i], u[i], (const int64_t(*)[3])j->so,
                                             cover[i], NULL);
         }
@@ -146,8 +204,10 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
                         : 0;
         }
         if (pass) {
-            sr__write_samples(ds, base[i], pass, c, &ds->blend);
-            j->st->fragments += (uint64_t)__builtin_popcount(pass);
+            if (j->writes_color) {
+                sr__write_samples(ds, base[i], pass, c, &ds->blend);
+            }
+            j->st->fragments += count16(pass);
         }
     }
 }
@@ -155,7 +215,16 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
 void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
                        int ry1, sr_frag_stats *st)
 {
-    quad_job j = { .ds = ds, .t = t, .st = st };
+    /* Field by field rather than by an initializer, which would zero
+     * all sixteen samples' offsets where only ds->samples are read: for
+     * a triangle of a pixel or less that store is a large part of its
+     * cost here. */
+    quad_job j;
+    j.ds = ds;
+    j.t = t;
+    j.st = st;
+    j.writes_color = (ds->write_mask[0] | ds->write_mask[1] | ds->write_mask[2] |
+                      ds->write_mask[3]) != 0;
     j.early = !ds->program->writes_depth && !ds->program->may_discard && !ds->alpha_to_coverage;
     sr_edges ed;
     sr__tri_edges(t, &ed);
@@ -172,6 +241,17 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     }
     for (int i = 0; i < 3; i++) {
         j.reach[i] += j.bias[i];
+    }
+    for (int i = 0; i < 4; i++) {
+        for (int e = 0; e < 3; e++) {
+            j.lane[i][e] = ((int64_t)t->a[e] * (i & 1) + (int64_t)t->b[e] * (i >> 1)) * SR_SUBPIXEL_ONE;
+        }
+    }
+    j.test4 = j.early && ds->samples == 4 && !ds->stencil_test &&
+              ds->depth_mode == SR_DEPTH_MODE_LESS && ds->depth_bits >= 1 && ds->depth_bits <= 24;
+    for (int s = 0; s < 4 && j.test4; s++) {
+        j.so4[0][s] = (double)j.so[s][1];
+        j.so4[1][s] = (double)j.so[s][2];
     }
     sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);
 }

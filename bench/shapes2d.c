@@ -1,0 +1,351 @@
+/* shapes2d.c - the 2D shape benchmark (bench), modelled on Blend2D's
+ * bl_bench: batches of rectangles, polygons of 10, 20 and 40 random
+ * vertices (nonzero) and closed cubic curves, 8 to 256 px, at random
+ * places on a 512x600 canvas, painted solid (random colors, alpha 0.5-1),
+ * with a linear or with a radial gradient over each shape's bounding box,
+ * antialiased.  softrast renders each batch as one SVG document
+ * (sr_render_svg: parsing, flattening, coverage and paint, as `softrast
+ * svg` does); cairo draws the same shapes through its API, frame by frame
+ * in the same run.  Main thread; each batch is made once. */
+#include "shapes2d.h"
+
+#include "softrast_io.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#ifdef SR_HAVE_CAIRO
+#include <cairo.h>
+#endif
+
+#define CANVAS_W 512
+#define CANVAS_H 600
+#define MAX_VERTS 40
+#define MAX_SHAPES 1000
+/* Shapes per batch: MAX_SHAPES, fewer for large sizes so a batch's
+ * bounding boxes stay within the SVG renderer's fill-work budget. */
+#define BATCH_PIXELS 10000000
+/* Timed frames per case at most: 90 cases make a long run already. */
+#define MAX_FRAMES 5
+
+typedef enum shape_kind { SHAPE_RECT, SHAPE_POLY, SHAPE_CURVE } shape_kind;
+typedef enum paint_kind { PAINT_SOLID, PAINT_LINEAR, PAINT_RADIAL } paint_kind;
+
+static const struct { const char *name; shape_kind kind; int verts; } shapes[] = {
+    { "rect", SHAPE_RECT, 4 },   { "poly10", SHAPE_POLY, 10 }, { "poly20", SHAPE_POLY, 20 },
+    { "poly40", SHAPE_POLY, 40 }, { "curves", SHAPE_CURVE, 13 },
+};
+static const char *const paint_names[] = { "solid", "linear", "radial" };
+static const int sizes[] = { 8, 16, 32, 64, 128, 256 };
+/* The gradients' stops, shared by both renderers. */
+static const double stops[3][4] = { { 0, 0.9, 0.2, 0.1 }, { 0.5, 0.2, 0.7, 0.9 },
+                                    { 1, 1.0, 0.9, 0.2 } };
+
+/* One shape: its points (a rectangle's corners, a polygon's vertices, or
+ * a start point and four cubic segments for a curve) and its color. */
+typedef struct shape {
+    double x[MAX_VERTS], y[MAX_VERTS];
+    double r, g, b, a;
+} shape;
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static double rng_unit(uint64_t *s)
+{
+    *s ^= *s >> 12;
+    *s ^= *s << 25;
+    *s ^= *s >> 27;
+    return (double)((*s * 2685821657736338717ULL) >> 11) / 9007199254740992.0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static void make_batch(shape *sh, int count, shape_kind kind, int verts, int size, uint64_t *rng)
+{
+    for (int i = 0; i < count; i++) {
+        shape *s = &sh[i];
+        double ox = rng_unit(rng) * (CANVAS_W - size), oy = rng_unit(rng) * (CANVAS_H - size);
+        if (kind == SHAPE_RECT) {
+            s->x[0] = ox;
+            s->y[0] = oy;
+        } else {
+            for (int k = 0; k < verts; k++) {
+                s->x[k] = ox + rng_unit(rng) * size;
+                s->y[k] = oy + rng_unit(rng) * size;
+            }
+        }
+        s->r = rng_unit(rng);
+        s->g = rng_unit(rng);
+        s->b = rng_unit(rng);
+        s->a = 0.5 + 0.5 * rng_unit(rng);
+    }
+}
+
+/* Append printf output to a growing buffer; false when out of memory. */
+typedef struct text { char *p; size_t len, cap; } text;
+
+static bool put(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static bool put(text *t, const char *fmt, ...)
+{
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(t->p ? t->p + t->len : NULL, t->p ? t->cap - t->len : 0, fmt, ap);
+        va_end(ap);
+        if (n < 0) {
+            return false;
+        }
+        if (t->p && t->len + (size_t)n < t->cap) {
+            t->len += (size_t)n;
+            return true;
+        }
+        size_t cap = (t->cap + (size_t)n + 1) * 2;
+        char *p = realloc(t->p, cap);
+        if (!p) {
+            return false;
+        }
+        t->p = p;
+        t->cap = cap;
+    }
+}
+
+static bool svg_stops(text *t)
+{
+    bool ok = true;
+    for (int k = 0; k < 3; k++) {
+        ok = ok && put(t, "<stop offset='%g' stop-color='rgb(%d,%d,%d)'/>", stops[k][0],
+                       (int)(stops[k][1] * 255 + 0.5), (int)(stops[k][2] * 255 + 0.5),
+                       (int)(stops[k][3] * 255 + 0.5));
+    }
+    return ok;
+}
+
+/* The batch as an SVG document; the gradients use objectBoundingBox
+ * units (the default), so one definition paints every shape's box. */
+static bool batch_svg(text *t, const shape *sh, int count, shape_kind kind, int verts, int size,
+                      paint_kind paint)
+{
+    bool ok = put(t, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d'><defs>"
+                     "<linearGradient id='l'>", CANVAS_W, CANVAS_H) &&
+              svg_stops(t) && put(t, "</linearGradient><radialGradient id='r'>") &&
+              svg_stops(t) && put(t, "</radialGradient></defs>\n");
+    for (int i = 0; ok && i < count; i++) {
+        const shape *s = &sh[i];
+        if (kind == SHAPE_RECT) {
+            ok = put(t, "<rect x='%.3f' y='%.3f' width='%d' height='%d'", s->x[0], s->y[0], size,
+                     size);
+        } else if (kind == SHAPE_POLY) {
+            ok = put(t, "<polygon points='");
+            for (int k = 0; ok && k < verts; k++) {
+                ok = put(t, "%.3f,%.3f ", s->x[k], s->y[k]);
+            }
+            ok = ok && put(t, "'");
+        } else {
+            ok = put(t, "<path d='M%.3f,%.3f C", s->x[0], s->y[0]);
+            for (int k = 1; ok && k < verts; k++) {
+                ok = put(t, " %.3f,%.3f", s->x[k], s->y[k]);
+            }
+            ok = ok && put(t, " Z'");
+        }
+        if (ok && paint == PAINT_SOLID) {
+            ok = put(t, " fill='rgb(%d,%d,%d)' fill-opacity='%.3f'/>\n", (int)(s->r * 255 + 0.5),
+                     (int)(s->g * 255 + 0.5), (int)(s->b * 255 + 0.5), s->a);
+        } else if (ok) {
+            ok = put(t, " fill='url(#%c)'/>\n", paint == PAINT_LINEAR ? 'l' : 'r');
+        }
+    }
+    return ok && put(t, "</svg>\n");
+}
+
+#ifdef SR_HAVE_CAIRO
+static void cairo_shape(cairo_t *cr, const shape *s, shape_kind kind, int verts, int size)
+{
+    if (kind == SHAPE_RECT) {
+        cairo_rectangle(cr, s->x[0], s->y[0], size, size);
+        return;
+    }
+    cairo_move_to(cr, s->x[0], s->y[0]);
+    if (kind == SHAPE_POLY) {
+        for (int k = 1; k < verts; k++) {
+            cairo_line_to(cr, s->x[k], s->y[k]);
+        }
+    } else {
+        for (int k = 1; k + 2 < verts; k += 3) {
+            cairo_curve_to(cr, s->x[k], s->y[k], s->x[k + 1], s->y[k + 1], s->x[k + 2],
+                           s->y[k + 2]);
+        }
+    }
+    cairo_close_path(cr);
+}
+
+static void cairo_batch(cairo_t *cr, const shape *sh, int count, shape_kind kind, int verts,
+                        int size, paint_kind paint)
+{
+    cairo_set_operator(cr, CAIRO_OPERATOR_CLEAR);
+    cairo_paint(cr);
+    cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
+    for (int i = 0; i < count; i++) {
+        const shape *s = &sh[i];
+        cairo_shape(cr, s, kind, verts, size);
+        if (paint == PAINT_SOLID) {
+            cairo_set_source_rgba(cr, s->r, s->g, s->b, s->a);
+            cairo_fill(cr);
+            continue;
+        }
+        /* The gradient over the unit square, mapped onto the shape's box. */
+        double x0, y0, x1, y1;
+        cairo_path_extents(cr, &x0, &y0, &x1, &y1);
+        cairo_pattern_t *p = paint == PAINT_LINEAR
+                                 ? cairo_pattern_create_linear(0, 0, 1, 0)
+                                 : cairo_pattern_create_radial(0.5, 0.5, 0, 0.5, 0.5, 0.5);
+        for (int k = 0; k < 3; k++) {
+            cairo_pattern_add_color_stop_rgb(p, stops[k][0], stops[k][1], stops[k][2],
+                                             stops[k][3]);
+        }
+        cairo_matrix_t m;
+        cairo_matrix_init(&m, x1 - x0 > 0 ? x1 - x0 : 1, 0, 0, y1 - y0 > 0 ? y1 - y0 : 1, x0,
+                          y0);
+        cairo_matrix_invert(&m);
+        cairo_pattern_set_matrix(p, &m);
+        cairo_set_source(cr, p);
+        cairo_fill(cr);
+        cairo_pattern_destroy(p);
+    }
+}
+#endif
+
+/* Times one batch on both renderers, alternating; false on failure. */
+static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg, size_t len,
+                     const shape *sh, int count, int si, int size, paint_kind paint,
+                     double *ms, double *cr_ms, double *log_ratio)
+{
+    (void)sh;
+#ifdef SR_HAVE_CAIRO
+    cairo_surface_t *surface = compare ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32,
+                                                                    CANVAS_W, CANVAS_H)
+                                       : NULL;
+    cairo_t *cr = surface ? cairo_create(surface) : NULL;
+#else
+    (void)compare;
+    (void)cr_ms;
+    (void)log_ratio;
+#endif
+    sr_svg_desc desc = { .name = "shapes2d" };
+    for (int f = -1; f < frames; f++) {
+        double t0 = now_ms();
+        sr_framebuffer *fb = NULL;
+        sr_io_error err;
+        if (sr_render_svg(ctx, svg, len, &desc, &fb, NULL, &err) != SR_OK) {
+            fprintf(stderr, "softrast-bench: shapes2d %s %d: %s\n", shapes[si].name, size,
+                    err.message);
+#ifdef SR_HAVE_CAIRO
+            cairo_destroy(cr);
+            cairo_surface_destroy(surface);
+#endif
+            return false;
+        }
+        sr_framebuffer_pixels(fb);
+        sr_destroy_framebuffer(ctx, fb);
+        if (f >= 0) {
+            ms[f] = now_ms() - t0;
+        }
+#ifdef SR_HAVE_CAIRO
+        if (cr) {
+            double c0 = now_ms();
+            cairo_batch(cr, sh, count, shapes[si].kind, shapes[si].verts, size, paint);
+            cairo_surface_flush(surface);
+            if (f >= 0) {
+                cr_ms[f] = now_ms() - c0;
+            }
+        }
+#endif
+    }
+    qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
+    printf("scene=shapes2d shape=%s size=%d paint=%s shapes=%d renderer=softrast frames=%d "
+           "median_ms=%.3f min_ms=%.3f\n",
+           shapes[si].name, size, paint_names[paint], count, frames, ms[frames / 2], ms[0]);
+#ifdef SR_HAVE_CAIRO
+    if (cr) {
+        qsort(cr_ms, (size_t)frames, sizeof *cr_ms, cmp_double);
+        double ratio = cr_ms[frames / 2] / ms[frames / 2];
+        printf("scene=shapes2d shape=%s size=%d paint=%s shapes=%d renderer=cairo frames=%d "
+               "median_ms=%.3f min_ms=%.3f\n"
+               "scene=shapes2d shape=%s size=%d paint=%s ratio=%.3f\n",
+               shapes[si].name, size, paint_names[paint], count, frames, cr_ms[frames / 2],
+               cr_ms[0], shapes[si].name, size, paint_names[paint], ratio);
+        *log_ratio += log(ratio);
+        cairo_destroy(cr);
+        cairo_surface_destroy(surface);
+    }
+#endif
+    fflush(stdout);
+    return true;
+}
+
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare)
+{
+    frames = frames > MAX_FRAMES ? MAX_FRAMES : frames;
+    shape *sh = malloc(sizeof *sh * MAX_SHAPES);
+    double *ms = calloc((size_t)frames, sizeof *ms), *cr_ms = calloc((size_t)frames, sizeof *ms);
+    text t = { 0 };
+    bool ok = sh && ms && cr_ms;
+    if (!ok) {
+        fprintf(stderr, "softrast-bench: shapes2d: out of memory\n");
+    }
+#ifndef SR_HAVE_CAIRO
+    if (compare) {
+        fprintf(stderr, "softrast-bench: shapes2d: cairo comparison skipped (install "
+                        "libcairo2-dev and rebuild)\n");
+    }
+#endif
+    if (ok && !sr_io_have_svg()) {
+        fprintf(stderr, "softrast-bench: shapes2d: this build reads no SVG (install libexpat1-dev)\n");
+        ok = false;
+    }
+    double log_ratio = 0;
+    int cases = 0;
+    uint64_t rng = 0x5ba9e2d1;
+    for (int si = 0; ok && si < (int)(sizeof shapes / sizeof shapes[0]); si++) {
+        for (int zi = 0; ok && zi < (int)(sizeof sizes / sizeof sizes[0]); zi++) {
+            int size = sizes[zi];
+            int count = BATCH_PIXELS / (size * size);
+            count = count > MAX_SHAPES ? MAX_SHAPES : count;
+            make_batch(sh, count, shapes[si].kind, shapes[si].verts, size, &rng);
+            for (int p = PAINT_SOLID; ok && p <= PAINT_RADIAL; p++) {
+                t.len = 0;
+                ok = batch_svg(&t, sh, count, shapes[si].kind, shapes[si].verts, size,
+                               (paint_kind)p);
+                if (!ok) {
+                    fprintf(stderr, "softrast-bench: shapes2d: out of memory\n");
+                    break;
+                }
+                ok = run_case(ctx, frames, compare, t.p, t.len, sh, count, si, size,
+                              (paint_kind)p, ms, cr_ms, &log_ratio);
+                cases++;
+            }
+        }
+    }
+#ifdef SR_HAVE_CAIRO
+    if (ok && compare && cases > 0) {
+        printf("scene=shapes2d cases=%d geomean_ratio=%.3f\n", cases, exp(log_ratio / cases));
+    }
+#endif
+    free(sh);
+    free(ms);
+    free(cr_ms);
+    free(t.p);
+    return ok;
+}

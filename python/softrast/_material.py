@@ -1,0 +1,108 @@
+"""Materials of loaded scenes: glTF's metallic-roughness factors and base color texture."""
+
+import numpy as np
+
+
+class Material:
+    """A glTF 2.0 metallic-roughness material as :func:`softrast.load` reads it
+    (the defaults are glTF's).
+
+    base_color: (4,) float32 linear RGBA factor.
+    base_color_texture: (H, W, 4) uint8 sRGB image, row 0 at the top, or None.
+    texcoord: the texture coordinate set the texture reads (0 or 1).
+    metallic, roughness: factors in [0, 1].
+    emissive: (3,) float32 linear RGB (times ``emissive_strength``).
+    alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
+    double_sided, unlit: the material's flags (KHR_materials_unlit).
+
+    ``render`` draws the base color (factor times texture times vertex
+    color) into ``color`` and ``rgba``; with ``shading="pbr"`` also
+    metallic, roughness and emissive.  The other factors are carried for
+    the caller.
+    """
+
+    __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
+                 "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
+                 "unlit", "normal_scale", "occlusion_strength")
+
+    def __init__(self, base_color=(1.0, 1.0, 1.0, 1.0), base_color_texture=None, *, texcoord=0,
+                 metallic=1.0, roughness=1.0, emissive=(0.0, 0.0, 0.0), emissive_strength=1.0,
+                 alpha_mode="opaque", alpha_cutoff=0.5, double_sided=False, unlit=False,
+                 normal_scale=1.0, occlusion_strength=1.0):
+        self.base_color = _factors(base_color, "base_color", 4, 1.0)
+        if base_color_texture is not None and not (
+                isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
+                and base_color_texture.ndim == 3 and base_color_texture.shape[2] in (3, 4)):
+            raise TypeError("base_color_texture: expected an (H, W, 3|4) uint8 array or None")
+        self.base_color_texture = base_color_texture
+        self.texcoord = int(texcoord)
+        self.metallic = float(_factors(metallic, "metallic", 1, 1.0)[0])
+        self.roughness = float(_factors(roughness, "roughness", 1, 1.0)[0])
+        self.emissive = _factors(emissive, "emissive", 3, np.inf)
+        self.emissive_strength = float(_factors(emissive_strength, "emissive_strength", 1,
+                                                np.inf)[0])
+        if alpha_mode not in ("opaque", "mask", "blend"):
+            raise ValueError(f"alpha_mode: must be 'opaque', 'mask' or 'blend', got {alpha_mode!r}")
+        self.alpha_mode = alpha_mode
+        self.alpha_cutoff = float(alpha_cutoff)
+        self.double_sided = bool(double_sided)
+        self.unlit = bool(unlit)
+        self.normal_scale = float(normal_scale)
+        self.occlusion_strength = float(occlusion_strength)
+
+    @classmethod
+    def _from_factors(cls, factors, base_color_texture):
+        """From sr_load_scene's material dict (_softrast.load_scene)."""
+        slot = factors["base_color_texture"]
+        kw = {k: v for k, v in factors.items() if k != "base_color_texture"}
+        return cls(base_color_texture=base_color_texture, texcoord=slot["texcoord"] if slot else 0,
+                   **kw)
+
+    def __repr__(self):
+        tex = "none" if self.base_color_texture is None else \
+            "x".join(map(str, self.base_color_texture.shape[1::-1]))
+        return (f"Material(base_color={self.base_color.tolist()}, texture={tex}, "
+                f"alpha_mode={self.alpha_mode!r})")
+
+
+def _factors(value, name, count, high):
+    """`count` float32 factors in [0, high], or a ValueError naming `name`."""
+    try:
+        a = np.array(value, np.float32).reshape(count)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected {count} number(s), got {value!r}") from None
+    if not np.all((a >= 0) & (a <= high)):
+        raise ValueError(f"{name}: must be in [0, {high}], got {value!r}")
+    return a
+
+
+def texture_transform(uvs, slot):
+    """uvs (N, 2) through a slot's T(offset) R(rotation) S(scale), in the
+    library's texture frame ((0, 0) the image's bottom-left)."""
+    if slot is None:
+        return uvs
+    c, s = np.cos(slot["rotation"]), np.sin(slot["rotation"])
+    scaled = uvs.astype(np.float64) * slot["scale"]
+    out = np.stack([c * scaled[:, 0] - s * scaled[:, 1], s * scaled[:, 0] + c * scaled[:, 1]], -1)
+    return (out + slot["offset"]).astype(np.float32)
+
+
+def material_arrays(arrays, factors, texture):
+    """A loaded primitive's Mesh arguments with its material drawn in:
+    colors = vertex colors (white without) times the base color factor,
+    uvs = the texture's coordinate set through its transform, texture =
+    the base color image; alpha dropped for opaque materials."""
+    out = {k: v for k, v in arrays.items() if k != "uvs1"}
+    slot = factors["base_color_texture"]
+    n = len(arrays["vertices"])
+    colors = arrays["colors"] if arrays["colors"] is not None else np.ones((n, 4), np.float32)
+    colors = colors * np.asarray(factors["base_color"], np.float32)
+    if factors["alpha_mode"] == "opaque":
+        colors[:, 3] = 1.0
+    out["colors"] = colors.astype(np.float32)
+    uvs = arrays["uvs1"] if slot and slot["texcoord"] == 1 else arrays["uvs"]
+    if texture is not None and uvs is not None:
+        out["uvs"] = texture_transform(uvs, slot)
+        out["texture"] = np.ascontiguousarray(texture[..., :3]) \
+            if factors["alpha_mode"] == "opaque" else texture
+    return out
