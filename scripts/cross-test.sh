@@ -1,39 +1,43 @@
 #!/bin/sh
 # scripts/cross-test.sh ARCH [ctest options...]
 #
-# Cross-builds the library, the CLI and the tests for ARCH (aarch64) with
-# Debian's cross compiler in build-ARCH/ (or $SR_CROSS_BUILD) and runs the
-# test suite under qemu-user.  Needs, on Debian 12:
+# Cross-builds the library, the CLI and the tests for ARCH (aarch64: little
+# endian; s390x: big endian) with Debian's cross compiler in build-ARCH/ (or
+# $SR_CROSS_BUILD) and runs the test suite under qemu-user.  Needs, on
+# Debian 12, what scripts/install-cross-deps.sh installs: qemu-user, the
+# cross compilers, and dpkg's arm64 and s390x architectures.
 #
-#   dpkg --add-architecture arm64 && apt-get update
-#   apt-get install gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user \
-#       libpng-dev:arm64 zlib1g-dev:arm64
+# The target's libraries (libpng, zlib, expat, jansson) are not installed
+# as multiarch packages: a multiarch library must have the same version for
+# every architecture, and Debian 12's security archive no longer builds
+# s390x, so libpng16-16:s390x can never match the amd64 one.  This script
+# downloads them (`apt-get download`, which needs only the architecture's
+# package lists) and unpacks them into a sysroot of its own, build-ARCH/sysroot.
 #
-# The tests run as `qemu-aarch64 TEST`, without -L: the binaries' loader
-# /lib/ld-linux-aarch64.so.1 is then libc6:arm64's own, the one that matches
-# the libc.so.6 it loads from /lib/aarch64-linux-gnu.  With
-# -L /usr/aarch64-linux-gnu the loader comes from libc6-arm64-cross, a
-# different glibc build than that libc.so.6, and the two disagree on their
-# private data: the first pthread_create loops forever in the thread-stack
-# cache, so every test that starts a thread pool hangs.
+# The programs then run as `qemu-ARCH -L /usr/TRIPLET`: the loader and the
+# C library both come from libc6-ARCH-cross, one glibc build.  (Mixing the
+# cross package's loader with a multiarch libc6:ARCH's libc.so.6 makes the
+# first pthread_create loop forever in the thread-stack cache.)  The
+# sysroot's libraries are found through LD_LIBRARY_PATH, set for the guest
+# only (qemu's -E).
 #
 # The tests that run the `softrast` tool or the examples start them as
 # programs, which works under qemu-user only with qemu registered in
 # binfmt_misc (qemu-user-binfmt); without that they are left out, and the
-# script says which.  Emulated, the suite takes about half an hour on two
-# shared cores with -j2, most of it test_properties and test_msaa (the
-# emulator's one-hour test limit, tests/CMakeLists.txt, allows for that).
+# script says which.  SR_CROSS_EXCLUDE names more tests to leave out
+# (.ci/run's long sweeps).
 set -eu
 if [ $# -lt 1 ]; then
-    echo "usage: scripts/cross-test.sh ARCH [ctest options...]  (ARCH: aarch64)" >&2
+    echo "usage: scripts/cross-test.sh ARCH [ctest options...]  (ARCH: aarch64, s390x)" >&2
     exit 2
 fi
 arch=$1
 shift
 case $arch in
-aarch64) triplet=aarch64-linux-gnu ;;
+aarch64) triplet=aarch64-linux-gnu debarch=arm64 ;;
+s390x) triplet=s390x-linux-gnu debarch=s390x ;;
 *)
-    echo "cross-test.sh: unknown ARCH '$arch' (known: aarch64)" >&2
+    echo "cross-test.sh: unknown ARCH '$arch' (known: aarch64, s390x)" >&2
     exit 2
     ;;
 esac
@@ -45,26 +49,67 @@ for tool in "$triplet-gcc" "qemu-$arch"; do
 done
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SR_CROSS_BUILD:-$root/build-$arch}
+sysroot=$build/sysroot
 mkdir -p "$build"
-# Only the target's libraries and .pc files: the host's libexpat or SDL2
-# would otherwise be found and fail to link.
+
+if [ ! -e "$sysroot/.complete" ]; then
+    rm -rf "$sysroot" "$build/debs"
+    mkdir -p "$sysroot" "$build/debs"
+    packages="libpng-dev libpng16-16 zlib1g zlib1g-dev libexpat1 libexpat1-dev libjansson4 libjansson-dev"
+    # apt-get download writes into the current directory, as _apt when it can.
+    chmod 777 "$build/debs"
+    (
+        cd "$build/debs"
+        # shellcheck disable=SC2046
+        apt-get download -q $(for p in $packages; do echo "$p:$debarch"; done) >/dev/null
+    ) || {
+        echo "cross-test.sh: could not download the $debarch libraries" \
+            "(is the architecture added? dpkg --add-architecture $debarch && apt-get update)" >&2
+        exit 2
+    }
+    for deb in "$build"/debs/*.deb; do
+        dpkg-deb -x "$deb" "$sysroot"
+    done
+    # Absolute links (libz.so -> /lib/TRIPLET/libz.so.1.2.13) point into
+    # the host's root: aim them into the sysroot.
+    find "$sysroot" -type l | while read -r link; do
+        target=$(readlink "$link")
+        case $target in
+        /*) ln -sf "$sysroot$target" "$link" ;;
+        esac
+    done
+    touch "$sysroot/.complete"
+fi
+
+libpath=$sysroot/lib/$triplet:$sysroot/usr/lib/$triplet
 cat >"$build/toolchain.cmake" <<EOF
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR $arch)
 set(CMAKE_C_COMPILER $triplet-gcc)
 set(CMAKE_LIBRARY_ARCHITECTURE $triplet)
-set(CMAKE_IGNORE_PATH /usr/lib/x86_64-linux-gnu /lib/x86_64-linux-gnu)
-set(CMAKE_CROSSCOMPILING_EMULATOR qemu-$arch)
+set(CMAKE_FIND_ROOT_PATH $sysroot)
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
+set(CMAKE_EXE_LINKER_FLAGS_INIT "-Wl,-rpath-link,$libpath")
+set(CMAKE_SHARED_LINKER_FLAGS_INIT "-Wl,-rpath-link,$libpath")
+set(CMAKE_CROSSCOMPILING_EMULATOR qemu-$arch -L /usr/$triplet -E LD_LIBRARY_PATH=$libpath)
 EOF
-PKG_CONFIG_LIBDIR=/usr/lib/$triplet/pkgconfig:/usr/share/pkgconfig \
+PKG_CONFIG_LIBDIR=$sysroot/usr/lib/$triplet/pkgconfig:$sysroot/usr/share/pkgconfig \
+PKG_CONFIG_SYSROOT_DIR=$sysroot \
 cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$build/toolchain.cmake" \
-    -DCMAKE_BUILD_TYPE=Release -DSR_BUILD_BENCH=OFF -DSR_WITH_ASSIMP=OFF >/dev/null
+    -DCMAKE_BUILD_TYPE=Release -DSR_BUILD_BENCH=OFF -DSR_WITH_ASSIMP=OFF \
+    -DSR_BUILD_PYTHON=OFF -DSR_BUILD_EXAMPLES=OFF >/dev/null
 cmake --build "$build" -j2 >/dev/null
-skip=
+# Tests to leave out: $SR_CROSS_EXCLUDE (names, space-separated), and the
+# ones that start programs when qemu is not in binfmt_misc.
+skip=$(printf '%s' "${SR_CROSS_EXCLUDE:-}" | tr -s ' \n' '||')
 if [ ! -e "/proc/sys/fs/binfmt_misc/qemu-$arch" ]; then
-    skip=$(cd "$root/tests" && grep -l -e sr_test_run_cli -e SR_CLI_PATH -e SR_EXAMPLE_ test_*.c | sed 's/\.c$//' | paste -sd'|')
+    cli=$(cd "$root/tests" && grep -l -e sr_test_run_cli -e SR_CLI_PATH -e SR_EXAMPLE_ test_*.c | sed 's/\.c$//' | paste -sd'|')
     echo "cross-test.sh: qemu-$arch is not in binfmt_misc: leaving out the tests that run" \
-        "the softrast tool or the examples ($skip)"
+        "the softrast tool or the examples ($cli)"
+    skip=${skip:+$skip|}$cli
 fi
 echo "== $arch: ctest under qemu-$arch =="
 cd "$build"
