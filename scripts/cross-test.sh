@@ -15,11 +15,11 @@
 # package lists) and unpacks them into a sysroot of its own, build-ARCH/sysroot.
 #
 # The programs then run as `qemu-ARCH -L /usr/TRIPLET`: the loader and the
-# C library both come from libc6-ARCH-cross, one glibc build.  (Mixing the
-# cross package's loader with a multiarch libc6:ARCH's libc.so.6 makes the
-# first pthread_create loop forever in the thread-stack cache.)  The
-# sysroot's libraries are found through LD_LIBRARY_PATH, set for the guest
-# only (qemu's -E).
+# C library both come from libc6-ARCH-cross, one glibc build: the cross
+# package's lib/ leads LD_LIBRARY_PATH, set for the guest only (qemu's -E),
+# then the sysroot's libraries.  (Mixing the cross package's loader with a
+# multiarch libc6:ARCH's libc.so.6 makes the first pthread_create loop
+# forever in the thread-stack cache.)
 #
 # The tests that run the `softrast` tool or the examples start them as
 # programs, which works under qemu-user only with qemu registered in
@@ -81,7 +81,10 @@ if [ ! -e "$sysroot/.complete" ]; then
     touch "$sysroot/.complete"
 fi
 
-libpath=$sysroot/lib/$triplet:$sysroot/usr/lib/$triplet
+# The cross package's C library first: where libc6:ARCH is also installed
+# (multiarch), the loader would otherwise find that one in
+# /lib/TRIPLET, a different glibc build than the loader.
+libpath=/usr/$triplet/lib:$sysroot/lib/$triplet:$sysroot/usr/lib/$triplet
 cat >"$build/toolchain.cmake" <<EOF
 set(CMAKE_SYSTEM_NAME Linux)
 set(CMAKE_SYSTEM_PROCESSOR $arch)
@@ -95,9 +98,12 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
 set(CMAKE_EXE_LINKER_FLAGS_INIT "-Wl,-rpath-link,$libpath")
 set(CMAKE_SHARED_LINKER_FLAGS_INIT "-Wl,-rpath-link,$libpath")
 set(CMAKE_CROSSCOMPILING_EMULATOR qemu-$arch -L /usr/$triplet -E LD_LIBRARY_PATH=$libpath)
+# Here, not in cmake's environment, so that a re-run of the configure step
+# (a CMakeLists.txt changed, then cmake --build) finds the target's
+# packages too and never the host's.
+set(ENV{PKG_CONFIG_LIBDIR} $sysroot/usr/lib/$triplet/pkgconfig:$sysroot/usr/share/pkgconfig)
+set(ENV{PKG_CONFIG_SYSROOT_DIR} $sysroot)
 EOF
-PKG_CONFIG_LIBDIR=$sysroot/usr/lib/$triplet/pkgconfig:$sysroot/usr/share/pkgconfig \
-PKG_CONFIG_SYSROOT_DIR=$sysroot \
 cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$build/toolchain.cmake" \
     -DCMAKE_BUILD_TYPE=Release -DSR_BUILD_BENCH=OFF -DSR_WITH_ASSIMP=OFF \
     -DSR_BUILD_PYTHON=OFF -DSR_BUILD_EXAMPLES=OFF >/dev/null

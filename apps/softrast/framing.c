@@ -110,13 +110,16 @@ bool framing_fit(const framing_points *sets, int set_count, sr_vec3 centre, floa
         for (size_t i = 0; i < sets[s].count; i++) {
             double q[3];
             apply(&rows, &sets[s].xyz[i * 3], q);
+            /* Comparisons, which skip a NaN as fmin/fmax do: GCC 12 for
+             * aarch64 crashes vectorizing an fmin/fmax reduction. */
             for (int k = 0; k < 2; k++) {
-                plus[k] = fmax(plus[k], q[k] + t[k] * q[2]);
-                minus[k] = fmax(minus[k], t[k] * q[2] - q[k]);
+                double p = q[k] + t[k] * q[2], m = t[k] * q[2] - q[k];
+                plus[k] = p > plus[k] ? p : plus[k];
+                minus[k] = m > minus[k] ? m : minus[k];
             }
             for (int k = 0; k < 3; k++) {
-                lo[k] = fmin(lo[k], q[k]);
-                hi[k] = fmax(hi[k], q[k]);
+                lo[k] = q[k] < lo[k] ? q[k] : lo[k];
+                hi[k] = q[k] > hi[k] ? q[k] : hi[k];
             }
         }
     }

@@ -2642,6 +2642,17 @@ static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint
     }
 }
 
+/* Grow the box b[4] = x0, y0, x1, y1 to hold q.  Comparisons, which skip a
+ * NaN as fmin/fmax do: GCC 12 for aarch64 crashes vectorizing a loop of
+ * fmin/fmax reductions. */
+static void box_point(double b[4], sr_point2 q)
+{
+    b[0] = q.x < b[0] ? q.x : b[0];
+    b[1] = q.y < b[1] ? q.y : b[1];
+    b[2] = q.x > b[2] ? q.x : b[2];
+    b[3] = q.y > b[3] ? q.y : b[3];
+}
+
 /* Add the bounding box of element n (its geometry, without strokes) to
  * b[4] = x0, y0, x1, y1, where m maps n's coordinates (its transform
  * applied) into the box's space. */
@@ -2662,10 +2673,7 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
     if (strcmp(n->name, "image") == 0 && image_rect(doc, n, f, r) && r[2] > 0 && r[3] > 0) {
         for (int i = 0; i < 4; i++) { /* its viewport's corners */
             sr_point2 q = mat_apply(m, (sr_point2){ r[0] + r[2] * (i % 2), r[1] + r[3] * (i / 2) });
-            b[0] = fmin(b[0], q.x);
-            b[1] = fmin(b[1], q.y);
-            b[2] = fmax(b[2], q.x);
-            b[3] = fmax(b[3], q.y);
+            box_point(b, q);
         }
     } else if (is_shape(n->name)) {
         double tol;
@@ -2675,10 +2683,7 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
             sr_polygon2 poly = sr_path_polygon(p);
             for (int i = 0; i < poly.point_count; i++) {
                 sr_point2 q = mat_apply(m, poly.points[i]);
-                b[0] = fmin(b[0], q.x);
-                b[1] = fmin(b[1], q.y);
-                b[2] = fmax(b[2], q.x);
-                b[3] = fmax(b[3], q.y);
+                box_point(b, q);
             }
             sr_destroy_path(doc->ctx, p);
         }
