@@ -536,6 +536,60 @@ SR_API sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
 SR_API sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
                                  int x, int y, int w, int h, uint8_t *out, size_t stride);
 
+/* ---- band rendering ----------------------------------------------------- */
+
+/* A frame drawn as a sequence of horizontal bands through one small band
+ * framebuffer, each finished band handed to a callback (an SPI display
+ * driver, say): the working memory is a band's, not a frame's.  For each
+ * band, top to bottom, sr_render_bands readies the band framebuffer as a
+ * fresh one (a pending clear to transparent black, the far depth and
+ * stencil 0), calls `draw`, which issues the frame's clears and draws on
+ * it exactly as it would on a whole framebuffer (same viewport, same
+ * scissor, in frame coordinates), then resolves the band and calls
+ * `output` with its pixels.  The band framebuffer is width x height for
+ * every call and holds only the band's rows: draws and clears stop at the
+ * band's edges, sr_read_pixels and its kin accept only rectangles inside
+ * the band, sr_framebuffer_pixels gives NULL, and the 2D toolkit,
+ * sr_resolve and sr_downsample refuse it.  Every band's pixels are the
+ * bytes the same draws give on a whole framebuffer. */
+/* The formats a band is handed over in.  The small ones round each 8-bit
+ * channel c to n bits as (c * (2^n - 1) + 127) / 255, the nearest value
+ * (never a tie), and drop alpha. */
+typedef enum sr_pixel_format {
+    SR_PIXEL_DEFAULT = 0, /* -> SR_PIXEL_RGBA8 */
+    SR_PIXEL_RGBA8,       /* 4 bytes r, g, b, a (sr_framebuffer_pixels' layout) */
+    /* 2 bytes, the high one first: rrrrrggg gggbbbbb, the order display
+     * controllers such as the ILI9341 and ST7789 take over SPI, the
+     * same bytes on every machine. */
+    SR_PIXEL_RGB565,
+    SR_PIXEL_RGB332,      /* 1 byte: rrrgggbb */
+} sr_pixel_format;
+
+typedef struct sr_band {
+    int y, rows;             /* the frame's rows [y, y + rows) */
+    int width;               /* pixels per row (the frame's width) */
+    const uint8_t *pixels;   /* row y first; valid during the callback only */
+    size_t stride;           /* bytes from one row to the next */
+    sr_pixel_format format;  /* resolved: never SR_PIXEL_DEFAULT */
+} sr_band;
+
+typedef struct sr_bands_desc {
+    int width, height;            /* the frame, required, 1 .. SR_MAX_FRAMEBUFFER_SIZE */
+    int band_rows;                /* rows per band, 1 .. height (the last band may be shorter) */
+    sr_depth_format depth_format; /* as sr_framebuffer_desc */
+    int samples;
+    bool stencil;
+    sr_pixel_format format;       /* of the pixels handed to `output` */
+    /* Issues the frame's clears and draws on fb; called once per band.  A
+     * result other than SR_OK stops the frame and is returned. */
+    sr_result (*draw)(sr_context *ctx, sr_framebuffer *fb, const sr_band *band, void *user);
+    /* Takes a finished band (its pixels in `format`).  Required. */
+    void (*output)(const sr_band *band, void *user);
+    void *user;                   /* passed to both callbacks */
+} sr_bands_desc;
+
+SR_API sr_result sr_render_bands(sr_context *ctx, const sr_bands_desc *desc);
+
 /* ---- textures ----------------------------------------------------------- */
 
 typedef struct sr_texture sr_texture;
