@@ -420,6 +420,15 @@ typedef struct sr_context_desc {
      * set-up records (about 250 bytes each).  0: SR_BATCH_DEFAULT;
      * otherwise SR_BATCH_MIN .. SR_BATCH_MAX. */
     int batch_primitives;
+    /* A fixed arena for systems without malloc: with arena non-NULL, the
+     * context and everything made with it (framebuffers, meshes, draw
+     * scratch) take their memory from these arena_size bytes and from
+     * nowhere else, and a request the arena cannot meet fails with
+     * SR_OUT_OF_MEMORY.  The memory must outlive the context; it needs no
+     * alignment.  An arena is not locked, so such a context has one
+     * thread (threads 0 or 1) and excludes `allocator`. */
+    void *arena;
+    size_t arena_size;
 } sr_context_desc;
 
 #define SR_BATCH_DEFAULT 98304
@@ -431,6 +440,9 @@ SR_API void        sr_destroy_context(sr_context *ctx);
 /* Message for the last failed call on ctx ("" after a success). */
 SR_API const char *sr_context_error(const sr_context *ctx);
 SR_API int         sr_context_threads(const sr_context *ctx);
+/* The arena's high-water mark: the most bytes from its start ever in use,
+ * bookkeeping included (0 for a context without an arena). */
+SR_API size_t      sr_context_arena_peak(const sr_context *ctx);
 /* Runs fn(arg, job, thread) for job = 0 .. count-1 on ctx's threads and
  * returns when all are done: thread is 0 for the caller, 1 .. threads-1 for
  * the context's workers.  The jobs must be independent of each other.
