@@ -16,8 +16,50 @@
 
 /* 128-bit integers for the ellipse decision variable: with centre and
  * radii in q8 below 2^27, (x - cx)^2 < 2^56 and ry^2 < 2^54, so every term
- * of F stays below 2^111. */
+ * of F stays below 2^111.  Each term is a product of two int64 values; F
+ * is their sum.  Compilers for 32-bit targets have no __int128: there two
+ * 64-bit words in two's complement hold the same values. */
+#ifdef __SIZEOF_INT128__
 __extension__ typedef __int128 i128;
+
+static inline i128 mul_wide(int64_t a, int64_t b) { return (i128)a * b; }
+static inline i128 add_wide(i128 a, i128 b) { return a + b; }
+static inline i128 sub_wide(i128 a, i128 b) { return a - b; }
+static inline bool is_negative(i128 a) { return a < 0; }
+#else
+typedef struct i128 { uint64_t lo, hi; } i128;
+
+static i128 add_wide(i128 a, i128 b)
+{
+    uint64_t lo = a.lo + b.lo;
+    return (i128){ lo, a.hi + b.hi + (lo < a.lo) };
+}
+
+static i128 sub_wide(i128 a, i128 b)
+{
+    return (i128){ a.lo - b.lo, a.hi - b.hi - (a.lo < b.lo) };
+}
+
+static bool is_negative(i128 a)
+{
+    return (a.hi >> 63) != 0;
+}
+
+/* The product of the magnitudes from 32-bit halves, then the sign. */
+static i128 mul_wide(int64_t a, int64_t b)
+{
+    uint64_t ua = a < 0 ? 0 - (uint64_t)a : (uint64_t)a;
+    uint64_t ub = b < 0 ? 0 - (uint64_t)b : (uint64_t)b;
+    uint64_t a0 = ua & 0xffffffffu, a1 = ua >> 32, b0 = ub & 0xffffffffu, b1 = ub >> 32;
+    uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    uint64_t mid = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);
+    i128 r = { (p00 & 0xffffffffu) | (mid << 32), p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32) };
+    if ((a < 0) != (b < 0)) {
+        r = sub_wide((i128){ 0, 0 }, r);
+    }
+    return r;
+}
+#endif
 
 #define Q8_ONE 256
 #define MAX_FLATTEN_STEPS (1 << 16)
@@ -35,7 +77,8 @@ static int64_t floor_div(int64_t a, int64_t b)
 
 typedef struct ellipse_q8 {
     int64_t cx, cy;   /* centre, q8 */
-    i128 a, b, c;     /* F = a dx^2 + b dy^2 - c, a = ry^2, b = rx^2, c = rx^2 ry^2 */
+    int64_t a, b;     /* F = a dx^2 + b dy^2 - c, a = ry^2, b = rx^2, c = rx^2 ry^2 */
+    i128 c;
 } ellipse_q8;
 
 /* The decision variable at pixel (i, j)'s centre, with dx of that centre. */
@@ -47,21 +90,21 @@ typedef struct decision {
 static decision decide(const ellipse_q8 *e, int64_t i, int64_t j)
 {
     int64_t dx = i * Q8_ONE + Q8_ONE / 2 - e->cx, dy = j * Q8_ONE + Q8_ONE / 2 - e->cy;
-    decision d = { e->a * dx * dx + e->b * dy * dy - e->c, dx };
+    decision d = { sub_wide(add_wide(mul_wide(e->a, dx * dx), mul_wide(e->b, dy * dy)), e->c), dx };
     return d;
 }
 
 /* Forward differences in x: F(dx + 256) - F(dx) = a (512 dx + 65536). */
 static void step_right(const ellipse_q8 *e, decision *d)
 {
-    d->f += e->a * (i128)(2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE);
+    d->f = add_wide(d->f, mul_wide(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
     d->dx += Q8_ONE;
 }
 
 static void step_left(const ellipse_q8 *e, decision *d)
 {
     d->dx -= Q8_ONE;
-    d->f -= e->a * (i128)(2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE);
+    d->f = sub_wide(d->f, mul_wide(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
 }
 
 /* Inside pixels of row j: lo..hi (false when none).  Walks from the
@@ -71,23 +114,23 @@ static bool ellipse_row(const ellipse_q8 *e, int64_t j, int64_t ic, bool have_hi
                         int64_t hint_lo, int64_t hint_hi, int64_t *lo, int64_t *hi)
 {
     decision centre = decide(e, ic, j);
-    if (centre.f >= 0) {
+    if (!is_negative(centre.f)) {
         return false;
     }
     int64_t i = have_hint && hint_lo < ic ? hint_lo : ic;
     decision d = decide(e, i, j);
-    if (d.f < 0) {
+    if (is_negative(d.f)) {
         for (;;) { /* extend left while the next pixel is inside */
             decision t = d;
             step_left(e, &t);
-            if (t.f >= 0) {
+            if (!is_negative(t.f)) {
                 break;
             }
             d = t;
             i--;
         }
     } else {
-        while (d.f >= 0) {
+        while (!is_negative(d.f)) {
             step_right(e, &d);
             i++;
         }
@@ -95,18 +138,18 @@ static bool ellipse_row(const ellipse_q8 *e, int64_t j, int64_t ic, bool have_hi
     *lo = i;
     i = have_hint && hint_hi > ic ? hint_hi : ic;
     d = decide(e, i, j);
-    if (d.f < 0) {
+    if (is_negative(d.f)) {
         for (;;) {
             decision t = d;
             step_right(e, &t);
-            if (t.f >= 0) {
+            if (!is_negative(t.f)) {
                 break;
             }
             d = t;
             i++;
         }
     } else {
-        while (d.f >= 0) {
+        while (!is_negative(d.f)) {
             step_left(e, &d);
             i--;
         }
@@ -199,7 +242,7 @@ sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double
     }
     int64_t rxq = (int64_t)nearbyint(rx * Q8_ONE), ryq = (int64_t)nearbyint(ry * Q8_ONE);
     ellipse_q8 e = { (int64_t)nearbyint(cx * Q8_ONE), (int64_t)nearbyint(cy * Q8_ONE),
-                     (i128)ryq * ryq, (i128)rxq * rxq, (i128)rxq * rxq * ryq * ryq };
+                     ryq * ryq, rxq * rxq, mul_wide(rxq * rxq, ryq * ryq) };
     /* The pixel whose centre is nearest the ellipse centre in x. */
     int64_t ic = floor_div(e.cx, Q8_ONE);
     /* Rows that can hold inside pixels, with one more above and below for
