@@ -431,8 +431,15 @@ typedef struct sr_context_desc {
     size_t arena_size;
 } sr_context_desc;
 
+/* The embedded profile (SR_EMBEDDED, docs/portability.md) sets up few
+ * primitives at a time: its memory is counted in kilobytes. */
+#ifdef SR_EMBEDDED
+#define SR_BATCH_DEFAULT 64
+#define SR_BATCH_MIN     16
+#else
 #define SR_BATCH_DEFAULT 98304
 #define SR_BATCH_MIN     1024
+#endif
 #define SR_BATCH_MAX     (1 << 22)
 
 SR_API sr_result   sr_make_context(const sr_context_desc *desc, sr_context **out);
@@ -1290,9 +1297,9 @@ typedef struct sr_buffer sr_buffer;
 
 /* Copies `bytes` bytes from data, or zeroes them when data is NULL: 0
  * bytes is SR_INVALID_ARG, more than SR_BUFFER_MAX (16 GiB, the most a
- * draw of 2^28 vertices can read of one array) SR_TOO_LARGE before any
- * allocation. */
-#define SR_BUFFER_MAX ((size_t)1 << 34)
+ * draw of 2^28 vertices can read of one array; SIZE_MAX on 32-bit
+ * targets) SR_TOO_LARGE before any allocation. */
+#define SR_BUFFER_MAX ((size_t)(SIZE_MAX > 0xffffffffu ? (uint64_t)1 << 34 : SIZE_MAX))
 SR_API sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
 SR_API void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as

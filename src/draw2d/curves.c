@@ -6,6 +6,7 @@
  * lists.  Caller's thread only. */
 #include "context.h"
 #include "draw2d/paint.h"
+#include "math/wide.h"
 
 #include <math.h>
 #include <string.h>
@@ -14,52 +15,10 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* 128-bit integers for the ellipse decision variable: with centre and
- * radii in q8 below 2^27, (x - cx)^2 < 2^56 and ry^2 < 2^54, so every term
- * of F stays below 2^111.  Each term is a product of two int64 values; F
- * is their sum.  Compilers for 32-bit targets have no __int128: there two
- * 64-bit words in two's complement hold the same values. */
-#ifdef __SIZEOF_INT128__
-__extension__ typedef __int128 i128;
-
-static inline i128 mul_wide(int64_t a, int64_t b) { return (i128)a * b; }
-static inline i128 add_wide(i128 a, i128 b) { return a + b; }
-static inline i128 sub_wide(i128 a, i128 b) { return a - b; }
-static inline bool is_negative(i128 a) { return a < 0; }
-#else
-typedef struct i128 { uint64_t lo, hi; } i128;
-
-static i128 add_wide(i128 a, i128 b)
-{
-    uint64_t lo = a.lo + b.lo;
-    return (i128){ lo, a.hi + b.hi + (lo < a.lo) };
-}
-
-static i128 sub_wide(i128 a, i128 b)
-{
-    return (i128){ a.lo - b.lo, a.hi - b.hi - (a.lo < b.lo) };
-}
-
-static bool is_negative(i128 a)
-{
-    return (a.hi >> 63) != 0;
-}
-
-/* The product of the magnitudes from 32-bit halves, then the sign. */
-static i128 mul_wide(int64_t a, int64_t b)
-{
-    uint64_t ua = a < 0 ? 0 - (uint64_t)a : (uint64_t)a;
-    uint64_t ub = b < 0 ? 0 - (uint64_t)b : (uint64_t)b;
-    uint64_t a0 = ua & 0xffffffffu, a1 = ua >> 32, b0 = ub & 0xffffffffu, b1 = ub >> 32;
-    uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
-    uint64_t mid = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);
-    i128 r = { (p00 & 0xffffffffu) | (mid << 32), p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32) };
-    if ((a < 0) != (b < 0)) {
-        r = sub_wide((i128){ 0, 0 }, r);
-    }
-    return r;
-}
-#endif
+/* 128-bit integers for the ellipse decision variable (math/wide.h): with
+ * centre and radii in q8 below 2^27, (x - cx)^2 < 2^56 and ry^2 < 2^54,
+ * so every term of F stays below 2^111. */
+typedef sr_i128 i128;
 
 #define Q8_ONE 256
 #define MAX_FLATTEN_STEPS (1 << 16)
@@ -90,21 +49,21 @@ typedef struct decision {
 static decision decide(const ellipse_q8 *e, int64_t i, int64_t j)
 {
     int64_t dx = i * Q8_ONE + Q8_ONE / 2 - e->cx, dy = j * Q8_ONE + Q8_ONE / 2 - e->cy;
-    decision d = { sub_wide(add_wide(mul_wide(e->a, dx * dx), mul_wide(e->b, dy * dy)), e->c), dx };
+    decision d = { sr__wide_sub(sr__wide_add(sr__wide_mul(e->a, dx * dx), sr__wide_mul(e->b, dy * dy)), e->c), dx };
     return d;
 }
 
 /* Forward differences in x: F(dx + 256) - F(dx) = a (512 dx + 65536). */
 static void step_right(const ellipse_q8 *e, decision *d)
 {
-    d->f = add_wide(d->f, mul_wide(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
+    d->f = sr__wide_add(d->f, sr__wide_mul(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
     d->dx += Q8_ONE;
 }
 
 static void step_left(const ellipse_q8 *e, decision *d)
 {
     d->dx -= Q8_ONE;
-    d->f = sub_wide(d->f, mul_wide(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
+    d->f = sr__wide_sub(d->f, sr__wide_mul(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
 }
 
 /* Inside pixels of row j: lo..hi (false when none).  Walks from the
@@ -114,23 +73,23 @@ static bool ellipse_row(const ellipse_q8 *e, int64_t j, int64_t ic, bool have_hi
                         int64_t hint_lo, int64_t hint_hi, int64_t *lo, int64_t *hi)
 {
     decision centre = decide(e, ic, j);
-    if (!is_negative(centre.f)) {
+    if (!sr__wide_negative(centre.f)) {
         return false;
     }
     int64_t i = have_hint && hint_lo < ic ? hint_lo : ic;
     decision d = decide(e, i, j);
-    if (is_negative(d.f)) {
+    if (sr__wide_negative(d.f)) {
         for (;;) { /* extend left while the next pixel is inside */
             decision t = d;
             step_left(e, &t);
-            if (!is_negative(t.f)) {
+            if (!sr__wide_negative(t.f)) {
                 break;
             }
             d = t;
             i--;
         }
     } else {
-        while (!is_negative(d.f)) {
+        while (!sr__wide_negative(d.f)) {
             step_right(e, &d);
             i++;
         }
@@ -138,18 +97,18 @@ static bool ellipse_row(const ellipse_q8 *e, int64_t j, int64_t ic, bool have_hi
     *lo = i;
     i = have_hint && hint_hi > ic ? hint_hi : ic;
     d = decide(e, i, j);
-    if (is_negative(d.f)) {
+    if (sr__wide_negative(d.f)) {
         for (;;) {
             decision t = d;
             step_right(e, &t);
-            if (!is_negative(t.f)) {
+            if (!sr__wide_negative(t.f)) {
                 break;
             }
             d = t;
             i++;
         }
     } else {
-        while (!is_negative(d.f)) {
+        while (!sr__wide_negative(d.f)) {
             step_left(e, &d);
             i--;
         }
@@ -242,7 +201,7 @@ sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double
     }
     int64_t rxq = (int64_t)nearbyint(rx * Q8_ONE), ryq = (int64_t)nearbyint(ry * Q8_ONE);
     ellipse_q8 e = { (int64_t)nearbyint(cx * Q8_ONE), (int64_t)nearbyint(cy * Q8_ONE),
-                     ryq * ryq, rxq * rxq, mul_wide(rxq * rxq, ryq * ryq) };
+                     ryq * ryq, rxq * rxq, sr__wide_mul(rxq * rxq, ryq * ryq) };
     /* The pixel whose centre is nearest the ellipse centre in x. */
     int64_t ic = floor_div(e.cx, Q8_ONE);
     /* Rows that can hold inside pixels, with one more above and below for
