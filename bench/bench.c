@@ -91,6 +91,10 @@ static void usage(FILE *f)
         "  pbr                  the bunny through the metallic-roughness program, the\n"
         "                       CLI's default look (softrast only)\n"
         "  pbr_studio           the same under --environment studio\n"
+        "  pbr_textured         a tiled torus from a generated .glb (softrast-pbr-asset):\n"
+        "                       its base color, metallic-roughness, normal and occlusion\n"
+        "                       maps, the studio environment and the key light's shadow\n"
+        "                       map, drawn every frame (softrast only)\n"
         "\n"
         "options:\n"
         "  --threads N          rasterizer threads (default: SR_THREADS or CPUs);\n"
@@ -301,8 +305,21 @@ static sr_result sr_frame(bench_run *run, const bench_scene *s)
 {
     const float *c = s->clear_color;
     sr_framebuffer *fb = s->info->samples > 1 ? run->ms_fb : run->fb;
-    sr_result r = sr_clear(run->ctx, fb,
-                           &(sr_clear_desc){ .color = { c[0], c[1], c[2], c[3] }, .depth = 1.0f });
+    sr_result r = SR_OK;
+    if (s->shadow) {
+        /* The key light's shadow map, drawn every frame as the CLI does. */
+        r = sr_shadow_map_clear(run->ctx, s->shadow);
+        if (r == SR_OK) {
+            r = sr_shadow_map_draw(run->ctx, s->shadow, &(sr_draw_desc){
+                .positions = s->positions, .vertex_count = s->vertex_count,
+                .indices = s->indices, .index_type = SR_INDEX_U32,
+                .index_count = s->index_count, .model = &s->model });
+        }
+    }
+    if (r == SR_OK) {
+        r = sr_clear(run->ctx, fb,
+                     &(sr_clear_desc){ .color = { c[0], c[1], c[2], c[3] }, .depth = 1.0f });
+    }
     if (r != SR_OK) {
         return r;
     }

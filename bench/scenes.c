@@ -31,6 +31,7 @@ const bench_scene_info bench_scene_list[] = {
     { "phong",  BENCH_MESH,  "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PHONG },
     { "pbr",    BENCH_MESH,  "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PBR },
     { "pbr_studio", BENCH_MESH, "stanford-bunny.obj", 0, NULL, BENCH_LOOK_PBR_STUDIO },
+    { "pbr_textured", BENCH_MESH, "pbr_tiles.glb", 0, NULL, BENCH_LOOK_PBR_TEXTURED },
 };
 const int bench_scene_count = (int)(sizeof bench_scene_list / sizeof bench_scene_list[0]);
 
@@ -95,10 +96,62 @@ static void frame_mesh(bench_scene *s, sr_camera_basis *basis)
                                    false);
 }
 
+/* The one primitive of the generated glTF asset as the scene's mesh; the
+ * file stays loaded (s->gltf) for its material and tangents. */
+static sr_result load_gltf_mesh(bench_scene *s, const char *path, char *msg, size_t msg_size)
+{
+    if (!sr_io_have_gltf()) {
+        /* Counted as a missing model, not a failure. */
+        snprintf(msg, msg_size, "%s: this build reads no glTF (install libjansson-dev)", path);
+        return SR_IO_ERROR;
+    }
+    sr_io_error err;
+    sr_result r = sr_load_scene(s->mesh_ctx, path,
+                                &(sr_load_desc){ .format = SR_FORMAT_GLTF }, &s->gltf, &err);
+    if (r != SR_OK) {
+        snprintf(msg, msg_size, "%s", err.message);
+        return r;
+    }
+    const sr_scene_primitive *p = &s->gltf->primitives[0];
+    static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    if (s->gltf->primitive_count != 1 || memcmp(p->world, identity, sizeof identity) != 0 ||
+        !p->normals || !p->texcoords0) {
+        snprintf(msg, msg_size, "%s: not the asset softrast-pbr-asset writes", path);
+        return SR_BAD_FORMAT;
+    }
+    r = sr_make_mesh(s->mesh_ctx, &(sr_mesh){
+        .vertex_count = p->vertex_count, .positions = (float *)p->positions,
+        .normals = (float *)p->normals, .texcoords = (float *)p->texcoords0,
+        .triangle_count = p->triangle_count, .indices = (uint32_t *)p->indices }, &s->mesh);
+    if (r != SR_OK) {
+        snprintf(msg, msg_size, "%s: %s", path, sr_context_error(s->mesh_ctx));
+    }
+    return r;
+}
+
+/* `softrast render --environment studio --shadows on`'s shadow for the
+ * key light, d->lights[0] (apps/softrast/render_shadow.c): a 1024-texel
+ * map with a soft light over the mesh's box; the file's tangents for the
+ * normal map. */
+static sr_result make_gltf_shadow(bench_scene *s, sr_pbr_desc *d)
+{
+    sr_vec3 lo, hi;
+    sr_mesh_bounds(&s->mesh, &lo, &hi);
+    sr_result r = sr_make_shadow_map(s->mesh_ctx, &(sr_shadow_desc){
+        .direction = s->state.lights[0].vector, .bounds_min = lo, .bounds_max = hi,
+        .size = 1024, .light_radius = 0.04f }, &s->shadow);
+    d->shadow = s->shadow;
+    d->vertex_count = s->gltf->primitives[0].vertex_count;
+    d->tangents = s->gltf->primitives[0].tangents;
+    return r;
+}
+
 static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
 {
     char path[4096];
-    int n = snprintf(path, sizeof path, "%s/%s", bench_models_dir(), s->info->model_file);
+    bool gltf = s->info->look == BENCH_LOOK_PBR_TEXTURED;
+    int n = snprintf(path, sizeof path, "%s/%s", gltf ? SR_BENCH_ASSET_DIR : bench_models_dir(),
+                     s->info->model_file);
     if (n < 0 || (size_t)n >= sizeof path) {
         snprintf(msg, msg_size, "%s: model path too long", s->info->name);
         return SR_INVALID_ARG;
@@ -109,16 +162,23 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         snprintf(msg, msg_size, "%s: %s", s->info->name, sr_result_text(r));
         return r;
     }
-    r = sr_load_mesh(s->mesh_ctx, path, NULL, &s->mesh, &err);
-    if (r != SR_OK) {
-        snprintf(msg, msg_size, "%s", err.message);
-        return r;
-    }
-    /* Smooth normals once, at load: the per-vertex lighting reads them. */
-    r = sr_mesh_compute_normals(s->mesh_ctx, &s->mesh, SR_NORMALS_SMOOTH);
-    if (r != SR_OK) {
-        snprintf(msg, msg_size, "%s: computing normals: %s", path, sr_result_text(r));
-        return r;
+    if (gltf) {
+        r = load_gltf_mesh(s, path, msg, msg_size);
+        if (r != SR_OK) {
+            return r;
+        }
+    } else {
+        r = sr_load_mesh(s->mesh_ctx, path, NULL, &s->mesh, &err);
+        if (r != SR_OK) {
+            snprintf(msg, msg_size, "%s", err.message);
+            return r;
+        }
+        /* Smooth normals once, at load: the per-vertex lighting reads them. */
+        r = sr_mesh_compute_normals(s->mesh_ctx, &s->mesh, SR_NORMALS_SMOOTH);
+        if (r != SR_OK) {
+            snprintf(msg, msg_size, "%s: computing normals: %s", path, sr_result_text(r));
+            return r;
+        }
     }
     if (s->info->texture_file) {
         if (!s->mesh.texcoords) {
@@ -137,6 +197,9 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
             return r;
         }
         s->texcoords = s->mesh.texcoords;
+    }
+    if (gltf) {
+        s->texcoords = s->mesh.texcoords;   /* the maps' coordinates */
     }
     s->vertex_count = s->mesh.vertex_count;
     s->positions = s->mesh.positions;
@@ -164,16 +227,20 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
     if (s->info->look == BENCH_LOOK_PHONG) {
         s->state.shading = SR_SHADING_PHONG;
     } else if (s->info->look != BENCH_LOOK_GOURAUD) {
-        /* render.c's default material: a light gray dielectric. */
+        /* render.c's default material: a light gray dielectric; or the
+         * file's own. */
         sr_pbr_material m = sr_pbr_default_material();
         m.base_color[0] = m.base_color[1] = 0.72f;
         m.base_color[2] = 0.74f;
         m.metallic = 0.0f;
         m.roughness = 0.5f;
+        if (gltf) {
+            m = s->gltf->materials[s->gltf->primitives[0].material];
+        }
         sr_pbr_desc d = { .material = &m, .model = &s->model, .view = &s->view,
                           .projection = &s->projection, .vertex_color = SR_OFF };
         framing_pbr_lights(s->state.lights, &d);
-        if (s->info->look == BENCH_LOOK_PBR_STUDIO) {
+        if (s->info->look == BENCH_LOOK_PBR_STUDIO || gltf) {
             /* --environment studio: the built-in studio at 0.6 and the
              * rig's key light. */
             r = sr_make_environment(s->mesh_ctx, &(sr_environment_desc){ .intensity = 0.6f },
@@ -185,6 +252,13 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
             d.environment = s->env;
             for (int l = 1; l < SR_MAX_LIGHTS; l++) {
                 d.lights[l].type = SR_LIGHT_OFF;
+            }
+        }
+        if (gltf) {
+            r = make_gltf_shadow(s, &d);
+            if (r != SR_OK) {
+                snprintf(msg, msg_size, "%s: %s", s->info->name, sr_context_error(s->mesh_ctx));
+                return r;
             }
         }
         r = sr_make_pbr_program(s->mesh_ctx, &d, &s->pbr);
@@ -415,8 +489,12 @@ void bench_scene_free(bench_scene *s)
 {
     sr_destroy_pbr_program(s->mesh_ctx, s->pbr);
     sr_destroy_environment(s->mesh_ctx, s->env);
+    sr_destroy_shadow_map(s->mesh_ctx, s->shadow);
+    sr_destroy_scene(s->mesh_ctx, s->gltf);
     s->pbr = NULL;
     s->env = NULL;
+    s->shadow = NULL;
+    s->gltf = NULL;
     sr_destroy_mesh(s->mesh_ctx, &s->mesh);
     sr_destroy_context(s->mesh_ctx);
     free(s->own_positions);

@@ -27,12 +27,16 @@ typedef enum bench_look {
     BENCH_LOOK_PHONG,       /* Blinn-Phong per pixel */
     BENCH_LOOK_PBR,         /* the metallic-roughness program, the CLI's default look */
     BENCH_LOOK_PBR_STUDIO,  /* the same lit by the built-in studio environment */
+    BENCH_LOOK_PBR_TEXTURED,/* a glTF file's own material (its maps), the studio
+                             * and the key light's shadow map */
 } bench_look;
 
 typedef struct bench_scene_info {
     const char *name;
     bench_kind kind;
-    const char *model_file;  /* BENCH_MESH and BENCH_CLI: file in the models directory */
+    const char *model_file;  /* BENCH_MESH and BENCH_CLI: file in the models directory
+                              * (BENCH_LOOK_PBR_TEXTURED: in the build's bench
+                              * directory, written by softrast-pbr-asset) */
     int samples;             /* MSAA samples per pixel; 0: one */
     const char *texture_file;/* BENCH_MESH: a PNG in the models directory that
                               * modulates the lit color (trilinear), or NULL */
@@ -78,6 +82,9 @@ typedef struct bench_scene {
     sr_mesh mesh;
     sr_pbr *pbr;           /* BENCH_LOOK_PBR: the program state.program points into */
     sr_environment *env;   /* and the environment it lights with */
+    sr_shadow_map *shadow; /* BENCH_LOOK_PBR_TEXTURED: the key light's map, drawn
+                            * from the mesh at the start of every frame */
+    struct sr_scene *gltf; /* BENCH_LOOK_PBR_TEXTURED: the file, for its material */
     float *own_positions, *own_colors;
     uint32_t *own_indices;
 } bench_scene;

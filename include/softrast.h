@@ -214,6 +214,7 @@
  *     sr_path_arc_to             an SVG arc
  *     sr_path_close              closes the subpath
  *     sr_path_polygon            the flattened path as a polygon
+ *     sr_path_subpath_closed     whether a subpath was closed
  *     sr_fill_path               fills it
  *     sr_stroke_path             strokes it
  *     sr_make_stroke_outline     the stroke's outline polygon
@@ -1297,9 +1298,9 @@ typedef struct sr_buffer sr_buffer;
 
 /* Copies `bytes` bytes from data, or zeroes them when data is NULL: 0
  * bytes is SR_INVALID_ARG, more than SR_BUFFER_MAX (16 GiB, the most a
- * draw of 2^28 vertices can read of one array; SIZE_MAX on 32-bit
- * targets) SR_TOO_LARGE before any allocation. */
-#define SR_BUFFER_MAX ((size_t)(SIZE_MAX > 0xffffffffu ? (uint64_t)1 << 34 : SIZE_MAX))
+ * draw of 2^28 vertices can read of one array; SIZE_MAX where size_t has
+ * 32 bits) SR_TOO_LARGE before any allocation. */
+#define SR_BUFFER_MAX ((size_t)(SIZE_MAX >> 31 >> 3 ? (uint64_t)1 << 34 : SIZE_MAX))
 SR_API sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
 SR_API void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as
@@ -1357,6 +1358,21 @@ SR_API sr_draw_info sr_last_draw_info(const sr_context *ctx);
  * (OBJ: the faces after a `usemtl` whose material's map_Kd differs from
  * the run before; glTF, FBX and the other Assimp formats: the meshes whose
  * material names a different image from the meshes before). */
+/* A run's surface as the model file describes it beside its color and
+ * texture (OBJ's MTL statements; docs/pbr.md says how the physically based
+ * look maps them).  Each has_ flag says whether the file gave the value. */
+typedef struct sr_mesh_material {
+    bool has_specular, has_shininess, has_opacity, has_metallic, has_roughness;
+    float specular[3];     /* Ks */
+    float shininess;       /* Ns, the Phong exponent */
+    float opacity;         /* d, or 1 - Tr */
+    float metallic;        /* Pm (the PBR extension of MTL) */
+    float roughness;       /* Pr */
+    char *bump_path;       /* map_Bump, bump or norm: the image file, or NULL */
+    bool bump_is_normal;   /* norm: a tangent-space normal map; else a height map */
+    float bump_scale;      /* -bm, the height map's scale; 0 -> 1 */
+} sr_mesh_material;
+
 typedef struct sr_mesh_part {
     size_t first_triangle, triangle_count;
     char *texture_path;    /* this run's texture file, or NULL */
@@ -1365,6 +1381,7 @@ typedef struct sr_mesh_part {
      * NULL: the run takes no texture. */
     uint8_t *texture_data;
     size_t texture_size;
+    sr_mesh_material material;   /* all zero: the file says nothing more */
 } sr_mesh_part;
 
 /* A triangle mesh as the model readers and the built-in generators produce
@@ -1816,6 +1833,9 @@ SR_API sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rota
 SR_API sr_result sr_path_close(sr_path *path);
 /* The flattened path as a polygon (valid until the path changes). */
 SR_API sr_polygon2 sr_path_polygon(const sr_path *path);
+/* Whether subpath i (0 .. contour_count - 1 of the polygon) was closed by
+ * sr_path_close; false for a NULL path or an i out of range. */
+SR_API bool      sr_path_subpath_closed(const sr_path *path, int i);
 
 typedef enum sr_stroke_join {
     SR_STROKE_JOIN_DEFAULT = 0, /* -> SR_STROKE_JOIN_MITER (SVG's default) */

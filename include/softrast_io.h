@@ -335,13 +335,15 @@ SR_API sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t siz
                                int *height, float **pixels, sr_io_error *err);
 
 /* SVG 1.1 drawings, rendered with the 2D toolkit: svg, g, path, rect,
- * circle, ellipse, line, polyline, polygon; transforms; fill and stroke
- * with their opacities, rules, joins and caps; shape-rendering; display
- * and visibility; <style> sheets and style attributes, currentColor, CSS
- * colors; defs, use, symbol; linear and radial gradients; clip paths,
- * masks and group opacity (drawn in layers); the table in docs/draw2d.md
- * says what else.  Anything else is skipped with one warning per name;
- * reference cycles (use, clip-path, mask) are refused.
+ * circle, ellipse, line, polyline, polygon, image (PNG, JPEG); transforms;
+ * fill and stroke with their opacities, rules, joins, caps and dashes;
+ * markers, paint-order; shape-rendering; display and visibility; <style>
+ * sheets and style attributes, currentColor, CSS colors; defs, use,
+ * symbol, switch; linear and radial gradients, patterns; clip paths,
+ * masks, group opacity and blend modes (drawn in layers); the table in
+ * docs/draw2d.md says what else.  Anything else is skipped with one
+ * warning per name; reference cycles (use, clip-path, mask, marker,
+ * pattern) are refused.
  * The work is bounded by the size of the document and of the image (the
  * limits below, docs/robustness.md): a few hundred bytes cannot make the
  * renderer spin for seconds or allocate gigabytes. */
@@ -364,7 +366,8 @@ SR_API sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t siz
 typedef void (*sr_svg_warn_fn)(void *user, const char *message);
 
 typedef struct sr_svg_desc {
-    const char *name;        /* the document's name in messages; NULL -> "<svg>" */
+    const char *name;        /* the document's name in messages, and the directory its
+                              * <image> files are read from; NULL -> "<svg>", no files */
     int width, height;       /* the image size (the viewBox is fitted in), or 0:
                               * the drawing's own size times scale */
     double scale;            /* 0 -> 1 */

@@ -11,7 +11,10 @@
 # (the readers' numbers must not depend on a host program's locale; the
 # test sets one whose decimal separator is a comma), and for the Python
 # package (python/) Python's headers, NumPy, pytest, setuptools, pip and
-# Dask's distributed (softrast.dask's tests on a local cluster).
+# Dask's distributed (softrast.dask's tests on a local cluster), and for the
+# WebAssembly build (scripts/wasm.sh) emscripten with node-acorn (it compiles
+# offline with them), chromium for the explain pages' browser test and npm
+# for its one package, playwright-core (web/package.json).
 # Runs apt-get directly as root, through sudo otherwise.
 set -eu
 SUDO=""
@@ -25,7 +28,13 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     clang libclang-rt-14-dev \
     libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth locales \
     python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed \
+    emscripten node-acorn chromium \
     >/dev/null
+# Node.js from elsewhere (NodeSource) brings its own npm, which Debian's
+# package would conflict with.
+if ! command -v npm >/dev/null; then
+    $SUDO apt-get install -y -qq --no-install-recommends npm >/dev/null
+fi
 # Generate de_DE.UTF-8 once: uncomment (or add) its line, then locale-gen.
 if ! locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; then
     if grep -q '^# *de_DE.UTF-8 UTF-8' /etc/locale.gen; then

@@ -140,8 +140,8 @@ static void check_bands(int threads, int variant, int samples)
     sr_destroy_context(ctx);
 }
 
-/* The embedded profile (SR_EMBEDDED) has one thread. */
-#ifdef SR_EMBEDDED
+/* The embedded profile (SR_EMBEDDED) and WebAssembly have one thread. */
+#if defined(SR_EMBEDDED) || defined(__EMSCRIPTEN__)
 #define MORE_THREADS 1
 #else
 #define MORE_THREADS 2

@@ -2660,12 +2660,139 @@ SR_TEST(gltf_scene_draws_each_primitive_with_its_material)
     CHECK(mid[0] > 2 * mid[2] && mid[0] > 60);        /* red */
     CHECK(right[2] > 2 * right[0] && right[2] > 60);  /* blue */
     free(px);
+    /* The classic models look through the same camera, each primitive in
+     * its base color. */
+    const char *classic[] = { "phong", "gouraud", "flat" };
+    for (int k = 0; k < 3; k++) {
+        px = render_pixels(ARGS("render", model, "--camera-index", "0", "--shading", classic[k],
+                                "--size", "120x60", "--aa", "none", "-o", out), out, &w, &h);
+        REQUIRE(px);
+        left = px + 4 * ((size_t)(h / 2) * w + w / 2 - 23);
+        mid = px + 4 * ((size_t)(h / 2) * w + w / 2 - 4);
+        right = px + 4 * ((size_t)(h / 2) * w + w / 2 + 23);
+        const uint8_t *above = px + 4 * ((size_t)4 * w + w / 2 - 4);   /* background */
+        CHECK(left[2] > 2 * left[0] && left[2] > 60);
+        CHECK(mid[0] > 2 * mid[2] && mid[0] > 60);
+        CHECK(right[2] > 2 * right[0] && right[2] > 60);
+        CHECK(above[0] == 0x1d && above[1] == 0x22 && above[2] == 0x30);
+        free(px);
+    }
     cli_run r;
     REQUIRE(run_cli(ARGS("render", model, "--camera-index", "1", "--size", "32x16", "-o", out),
                     &r));
     CHECK_EQ(r.status, 2);
     CHECK_STR_CONTAINS(r.err, "--camera-index 1: the model has 1 camera");
     cli_run_free(&r);
+#endif
+}
+
+#ifdef SR_CLI_PATH
+/* A square [-1, 1]^2 facing +z with texture coordinates over it, its
+ * material `mtl` (the MTL's text), rendered head on at 64x64 with one
+ * light coming from +x and no ambient; the centre pixel into px[0..2].
+ * `ramp` (may be NULL) names a 32x32 image in dir: a height ramp up to
+ * the right ("up_right"), up to the left ("up_left"), or one normal
+ * tilted to the right ("tilted").  False on failure. */
+static bool render_obj_square(const char *dir, const char *mtl, const char *ramp, int px[3])
+{
+    char obj[1100], mtl_path[1100], img[1100], out[1100];
+    snprintf(obj, sizeof obj, "%s/square.obj", dir);
+    snprintf(mtl_path, sizeof mtl_path, "%s/square.mtl", dir);
+    snprintf(out, sizeof out, "%s/square.png", dir);
+    static const char square[] =
+        "mtllib square.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nusemtl m\nf 1/1/1 2/2/1 3/3/1 4/4/1\n";
+    if (!write_whole(obj, square, strlen(square)) || !write_whole(mtl_path, mtl, strlen(mtl))) {
+        return false;
+    }
+    if (ramp) {
+        uint8_t texels[32 * 32 * 4];
+        for (int y = 0; y < 32; y++) {
+            for (int x = 0; x < 32; x++) {
+                uint8_t *t = &texels[4 * (y * 32 + x)];
+                uint8_t h = (uint8_t)(strcmp(ramp, "up_right") == 0 ? 8 * x : 248 - 8 * x);
+                bool tilted = strcmp(ramp, "tilted") == 0;
+                t[0] = tilted ? 218 : h;
+                t[1] = tilted ? 128 : h;
+                t[2] = tilted ? 218 : h;
+                t[3] = 255;
+            }
+        }
+        sr_io_error err;
+        snprintf(img, sizeof img, "%s/%s.png", dir, ramp);
+        if (sr_write_png(img, 32, 32, texels, 32 * 4, NULL, &err) != SR_OK) {
+            return false;
+        }
+    }
+    int w, h;
+    uint8_t *pixels = render_pixels(ARGS("render", obj, "--camera", "eye=0,0,4,target=0,0,0",
+                                         "--light", "dir=-1,0,-0.4", "--environment", "none",
+                                         "--size", "64x64", "--aa", "none", "-o", out),
+                                    out, &w, &h);
+    if (!pixels) {
+        return false;
+    }
+    for (int k = 0; k < 3; k++) {
+        px[k] = pixels[4 * (32 * w + 32) + k];
+    }
+    free(pixels);
+    return true;
+}
+#endif
+
+/* An OBJ material's bump map is the physically based look's normal map:
+ * a height map rising to the right faces its slopes away from a light on
+ * the right, one rising to the left toward it; a map_Bump image that is a
+ * normal map (Blender writes them there) and a `norm` map are read as
+ * normal maps. */
+SR_TEST(obj_bump_map_lights_from_the_right_side)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024];
+    fresh_dir("obj_bump", dir, sizeof dir);
+    int flat[3], right[3], left[3], tilted[3], norm[3];
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.8 0.8 0.8\nNs 100\n", NULL, flat));
+    REQUIRE(render_obj_square(dir,
+                              "newmtl m\nKd 0.8 0.8 0.8\nNs 100\nmap_Bump -bm 10 up_right.png\n",
+                              "up_right", right));
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.8 0.8 0.8\nNs 100\nbump -bm 10 up_left.png\n",
+                              "up_left", left));
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.8 0.8 0.8\nNs 100\nmap_Bump tilted.png\n",
+                              "tilted", tilted));
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.8 0.8 0.8\nNs 100\nnorm tilted.png\n",
+                              "tilted", norm));
+    CHECK(flat[0] > 20);
+    CHECK(right[0] + 10 < flat[0]);
+    CHECK(left[0] > flat[0] + 10);
+    CHECK(tilted[0] > flat[0] + 10);
+    CHECK_EQ(norm[0], tilted[0]);
+#endif
+}
+
+/* Pm/Pr and d/Tr of an OBJ material reach the physically based look: a
+ * red metal away from its highlight is darker than red plastic (a metal
+ * has no diffuse light), and d 0.3 (or Tr 0.7) lets the background
+ * through. */
+SR_TEST(obj_materials_map_onto_the_physically_based_look)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024];
+    fresh_dir("obj_looks", dir, sizeof dir);
+    int plastic[3], metal[3], opaque[3], clear[3], tr[3];
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 1 0 0\nKs 1 1 1\nPr 0.3\n", NULL, plastic));
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 1 0 0\nKs 1 1 1\nPr 0.3\nPm 1\n", NULL, metal));
+    CHECK(metal[0] + 20 < plastic[0]);
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.9 0.9 0.9\nNs 50\n", NULL, opaque));
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.9 0.9 0.9\nNs 50\nd 0.3\n", NULL, clear));
+    REQUIRE(render_obj_square(dir, "newmtl m\nKd 0.9 0.9 0.9\nNs 50\nTr 0.7\n", NULL, tr));
+    /* The background is #1d2230. */
+    CHECK(clear[0] > 0x1d && clear[0] < opaque[0] - 10);
+    CHECK(clear[2] > 0x30 || clear[2] < opaque[2]);
+    CHECK_EQ(tr[0], clear[0]);
 #endif
 }
 

@@ -228,6 +228,22 @@ SR_TEST(joins_fill_the_outer_corner_as_specified)
     CHECK(!px_at(fb, 42, 7)[0]);
     CHECK(px_at(fb, 40, 9)[0]);
     sr_destroy_path(ctx, path);
+    /* a round join before a segment shorter than half the width: nothing
+     * past that segment's butt end (a whole disc there would reach y 45) */
+    sr_point2 s[3] = { { 10, 40 }, { 40, 40 }, { 40, 41 } };
+    path = line_path(ctx, s, 3, false);
+    REQUIRE(path);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+    sr_stroke_path(ctx, fb, path, (sr_rgba){ 1, 1, 1, 1 },
+                   &(sr_stroke_desc){ .width = 10, .join = SR_STROKE_JOIN_ROUND });
+    CHECK(!px_at(fb, 41, 43)[0] && !px_at(fb, 43, 42)[0]);
+    CHECK(px_at(fb, 43, 40)[0] && px_at(fb, 40, 36)[0]);
+    /* the outer sector: round, inside the corner square's circle */
+    CHECK(px_at(fb, 42, 37)[0] && !px_at(fb, 44, 35)[0]);
+    sr_destroy_path(ctx, path);
+    REQUIRE(sr_path_subpath_closed(path = line_path(ctx, l, 3, true), 0));
+    CHECK(!sr_path_subpath_closed(path, 1) && !sr_path_subpath_closed(NULL, 0));
+    sr_destroy_path(ctx, path);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }

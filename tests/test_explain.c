@@ -26,8 +26,15 @@ static bool is_fill_blue(const uint8_t *p)
     return p[2] > p[0] + 100 && p[2] > p[1] + 60;
 }
 
-/* The cells drawn in the last frame-NNN.png of dir; its number, or 0. */
-static int last_frame_cells(const char *dir, uint8_t *cells)
+/* zbuffer's first triangle, drawn orange */
+static bool is_fill_orange(const uint8_t *p)
+{
+    return p[0] > p[2] + 100 && p[0] > p[1] + 60;
+}
+
+/* The cells of the last frame-NNN.png of dir with a pixel that `is_fill`
+ * takes for the fill; the frame's number, or 0. */
+static int last_frame_colour(const char *dir, bool (*is_fill)(const uint8_t *), uint8_t *cells)
 {
     char path[1200];
     int last = 0;
@@ -56,7 +63,7 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
             for (int y = 1; y < ZOOM; y++) {
                 for (int x = 1; x < ZOOM; x++) {
                     int fx = MARGIN + cx * ZOOM + x, fy = MARGIN + cy * ZOOM + y;
-                    blue += fx < w && fy < h && is_fill_blue(px + ((size_t)fy * w + fx) * 4);
+                    blue += fx < w && fy < h && is_fill(px + ((size_t)fy * w + fx) * 4);
                 }
             }
             cells[cy * GRID + cx] = blue > 0;
@@ -66,13 +73,17 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
     return last;
 }
 
-/* The covered samples of each cell of the last frame of `dir` (an
- * msaa explanation with n samples): the cell's commonest colour is the
- * fill blue over white in k/n, as the resolve rounds it. */
-static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
+/* The cells drawn in the frame blue in the last frame of dir. */
+static int last_frame_cells(const char *dir, uint8_t *cells)
+{
+    return last_frame_colour(dir, is_fill_blue, cells);
+}
+
+/* The commonest colour inside each cell of frame `frame` of dir, RGB. */
+static bool frame_cell_colours(const char *dir, int frame, uint8_t *rgb)
 {
     char path[1200];
-    snprintf(path, sizeof path, "%s/frame-003.png", dir);
+    snprintf(path, sizeof path, "%s/frame-%03d.png", dir, frame);
     int w, h;
     uint8_t *px = NULL;
     if (sr_read_png(path, NULL, &w, &h, &px, NULL) != SR_OK) {
@@ -81,31 +92,67 @@ static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
     }
     for (int cy = 0; cy < GRID; cy++) {
         for (int cx = 0; cx < GRID; cx++) {
-            int hist[256] = { 0 }, best = 0;
+            uint32_t seen[(ZOOM - 1) * (ZOOM - 1)];
+            int count[(ZOOM - 1) * (ZOOM - 1)], n = 0, best = 0;
             for (int y = 1; y < ZOOM; y++) {   /* inside the grid lines */
                 for (int x = 1; x < ZOOM; x++) {
-                    hist[px[((size_t)(MARGIN + cy * ZOOM + y) * w + MARGIN + cx * ZOOM + x) * 4]]++;
+                    const uint8_t *p = px + ((size_t)(MARGIN + cy * ZOOM + y) * w + MARGIN +
+                                             cx * ZOOM + x) * 4;
+                    uint32_t c = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+                    int i = 0;
+                    while (i < n && seen[i] != c) {
+                        i++;
+                    }
+                    if (i == n) {
+                        seen[n] = c;
+                        count[n++] = 0;
+                    }
+                    count[i]++;
+                    best = count[i] > count[best] ? i : best;
                 }
             }
-            for (int r = 1; r < 256; r++) {
-                best = hist[r] > hist[best] ? r : best;
-            }
-            k_out[cy * GRID + cx] = (uint8_t)lround((255.0 - best) * n / (255.0 - 51.0));
+            uint8_t *o = rgb + (cy * GRID + cx) * 3;
+            o[0] = (uint8_t)(seen[best] >> 16);
+            o[1] = (uint8_t)(seen[best] >> 8);
+            o[2] = (uint8_t)seen[best];
         }
     }
     free(px);
     return true;
 }
 
-static int run_explain_rule(const char *algorithm, const char *prim_opt, const char *prim,
-                            const char *rule, const char *dir)
+/* The covered samples of each cell of the last frame of `dir` (an
+ * msaa explanation with n samples): the cell's commonest colour is the
+ * fill blue over white in k/n, as the resolve rounds it. */
+static bool last_frame_samples(const char *dir, int n, uint8_t *k_out)
+{
+    uint8_t rgb[GRID * GRID * 3];
+    if (!frame_cell_colours(dir, 3, rgb)) {
+        return false;
+    }
+    for (int i = 0; i < GRID * GRID; i++) {
+        k_out[i] = (uint8_t)lround((255.0 - rgb[i * 3]) * n / (255.0 - 51.0));
+    }
+    return true;
+}
+
+/* The tool on one primitive at the tests' grid and zoom, with one more
+ * option (opt NULL: none). */
+static int run_explain_with(const char *algorithm, const char *prim_opt, const char *prim,
+                            const char *opt, const char *value, const char *dir)
 {
     char grid[16], zoom[8];
     snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
     snprintf(zoom, sizeof zoom, "%d", ZOOM);
     const char *args[] = { "explain", algorithm, prim_opt, prim, "--grid", grid, "--zoom", zoom,
-                           "-o", dir, rule ? "--fill-rule" : NULL, rule, NULL };
+                           "-o", dir, opt, value, NULL };
     return sr_test_run_cli(args);
+}
+
+static int run_explain_rule(const char *algorithm, const char *prim_opt, const char *prim,
+                            const char *rule, const char *dir)
+{
+    return run_explain_with(algorithm, prim_opt, prim, rule ? "--fill-rule" : NULL, rule, dir);
 }
 
 static int run_explain(const char *algorithm, const char *prim_opt, const char *prim,
@@ -127,10 +174,17 @@ static int compare_cells(const uint8_t *cells, const uint8_t *want, const char *
     return diff;
 }
 
+/* An empty directory for one run's frames: the frames of an earlier run
+ * with more steps would pass for this run's last. */
 static const char *out_dir(const char *name, char *buf, size_t n)
 {
     snprintf(buf, n, "%s/explain_%s", sr_test_out_dir(), name);
     mkdir(buf, 0777);
+    for (int i = 1; i < 100; i++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/frame-%03d.png", buf, i);
+        remove(path);
+    }
     return buf;
 }
 
@@ -282,16 +336,12 @@ SR_TEST(msaa_last_frame_is_what_a_multisampled_sr_draw_resolves)
         for (int i = 0; i < 6; i++) {
             v[i] = sr_rng_int(&rng, -16, (GRID + 2) * 16) / 16.0;
         }
-        char prim[256], dir[1024], name[32], grid[16], zoom[8], ns[8];
+        char prim[256], dir[1024], name[32], ns[8];
         snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
         snprintf(name, sizeof name, "msaa_%02d", k);
-        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
-        snprintf(zoom, sizeof zoom, "%d", ZOOM);
         snprintf(ns, sizeof ns, "%d", n);
         out_dir(name, dir, sizeof dir);
-        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "msaa", "--triangle", prim,
-                                                  "--samples", ns, "--grid", grid, "--zoom",
-                                                  zoom, "-o", dir, NULL }) == 0);
+        REQUIRE(run_explain_with("msaa", "--triangle", prim, "--samples", ns, dir) == 0);
         uint8_t cells[GRID * GRID], want[GRID * GRID];
         REQUIRE(last_frame_samples(dir, n, cells));
         rt_target t = { sr_test_ctx(), NULL, GRID, GRID };
@@ -313,6 +363,380 @@ SR_TEST(msaa_last_frame_is_what_a_multisampled_sr_draw_resolves)
         compare_cells(cells, want, what);
         CHECK(partial > 0 || want[0] == want[GRID * GRID - 1]);
     }
+}
+
+SR_TEST(zbuffer_last_frame_is_what_sr_draw_leaves_with_a_depth_test)
+{
+    NEEDS_CLI();
+    /* two triangles with depths on the 1/64 grid (exact in float, so the
+     * window depth sr_draw sees is the one given), A drawn red then B blue
+     * into a 16-bit depth buffer; the last frame shows A's pixels orange
+     * and B's blue.  Every fourth pair is at one depth: B's ties with A
+     * fail the LESS test. */
+    sr_rng rng = { 4139 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(t.ctx, &(sr_framebuffer_desc){ .width = GRID, .height = GRID,
+                                                              .depth_format = SR_DEPTH_D16 },
+                                &fb) == SR_OK);
+    int both = 0;
+    for (int k = 0; k < 16; k++) {
+        double v[18];
+        char prim[512] = "", dir[1024], name[32];
+        for (int i = 0; i < 6; i++) {
+            v[3 * i] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            v[3 * i + 1] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            v[3 * i + 2] = k % 4 == 0 ? 0.5 : sr_rng_int(&rng, 0, 64) / 64.0;
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g,%g", i ? "," : "", v[3 * i],
+                     v[3 * i + 1], v[3 * i + 2]);
+        }
+        snprintf(name, sizeof name, "zbuffer_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("zbuffer", "--triangles", prim, dir) == 0);
+        uint8_t blue[GRID * GRID], orange[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, blue) >= 3);
+        REQUIRE(last_frame_colour(dir, is_fill_orange, orange) >= 3);
+
+        float pos[18], col[24];
+        for (int i = 0; i < 6; i++) {
+            pos[3 * i] = rt_ndc_x(&t, v[3 * i]);
+            pos[3 * i + 1] = rt_ndc_y(&t, v[3 * i + 1]);
+            pos[3 * i + 2] = (float)v[3 * i + 2];
+            float *c = col + 4 * i;
+            c[0] = i < 3;
+            c[1] = 0;
+            c[2] = i >= 3;
+            c[3] = 1;
+        }
+        sr_clear(t.ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+        sr_state st = { .shading = SR_SHADING_UNLIT, .depth_zero_to_one = true,
+                        .material = { .diffuse = { 1, 1, 1 } } };
+        REQUIRE(sr_draw(t.ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 6,
+                                                         .colors = col, .color_size = 4 })
+                == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(fb);
+        uint8_t want_a[GRID * GRID], want_b[GRID * GRID];
+        int na = 0, nb = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            want_a[i] = px[i * 4] > 128;
+            want_b[i] = px[i * 4 + 2] > 128;
+            na += want_a[i];
+            nb += want_b[i];
+        }
+        both += na > 0 && nb > 0;
+        char what[600];
+        snprintf(what, sizeof what, "zbuffer %s: A", prim);
+        compare_cells(orange, want_a, what);
+        snprintf(what, sizeof what, "zbuffer %s: B", prim);
+        compare_cells(blue, want_b, what);
+    }
+    CHECK(both >= 8);   /* most pairs leave pixels of both */
+    sr_destroy_framebuffer(t.ctx, fb);
+    rt_free(&t);
+}
+
+SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
+{
+    NEEDS_CLI();
+    /* random triangles with w in 1/2..4 (powers of two: x w / w is exact
+     * in float, so sr_draw snaps the vertices where they were given), red,
+     * green and blue at the vertices; the cells of the last frame hold
+     * sr_draw's perspective-correct colours, within one step of rounding */
+    sr_rng rng = { 4239 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int far_from_affine = 0;
+    for (int k = 0; k < 16; k++) {
+        double v[6], w[3];
+        for (int i = 0; i < 6; i++) {
+            v[i] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+        }
+        for (int i = 0; i < 3; i++) {
+            w[i] = ldexp(1.0, sr_rng_int(&rng, -1, 2));
+        }
+        char prim[256], ws[64], dir[1024], name[32];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
+        snprintf(ws, sizeof ws, "%g,%g,%g", w[0], w[1], w[2]);
+        snprintf(name, sizeof name, "perspective_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_with("perspective", "--triangle", prim, "--w", ws, dir) == 0);
+        uint8_t got[GRID * GRID * 3], affine[GRID * GRID * 3];
+        REQUIRE(frame_cell_colours(dir, 5, got));
+        REQUIRE(frame_cell_colours(dir, 4, affine));
+        float pos[12], col[12] = { 1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1 };
+        for (int i = 0; i < 3; i++) {
+            pos[4 * i] = rt_ndc_x(&t, v[2 * i]) * (float)w[i];
+            pos[4 * i + 1] = rt_ndc_y(&t, v[2 * i + 1]) * (float)w[i];
+            pos[4 * i + 2] = 0;
+            pos[4 * i + 3] = (float)w[i];
+        }
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } } };
+        REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .position_size = 4,
+                                                           .vertex_count = 3, .colors = col,
+                                                           .color_size = 4 }) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int bad = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            int worst = 0, off_affine = 0;
+            for (int ch = 0; ch < 3; ch++) {
+                int d = abs(got[i * 3 + ch] - px[i * 4 + ch]);
+                worst = d > worst ? d : worst;
+                d = abs(affine[i * 3 + ch] - px[i * 4 + ch]);
+                off_affine = d > off_affine ? d : off_affine;
+            }
+            bad += worst > 1;
+            far_from_affine += off_affine > 8;
+        }
+        if (bad) {
+            FAILF("perspective %s, w %s: %d cells differ", prim, ws, bad);
+        }
+    }
+    CHECK(far_from_affine > 50);   /* the two interpolations do differ */
+    rt_free(&t);
+}
+
+SR_TEST(fillpoly_last_frame_is_what_the_incremental_gouraud_fill_draws)
+{
+    NEEDS_CLI();
+    /* random triangles, flat tops and bottoms among them (half-pixel
+     * grid), with random intensities: the cells of the last frame hold
+     * sr_fill_gouraud's SR_GOURAUD_INCREMENTAL grey within one step */
+    sr_rng rng = { 4339 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int covered = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 v[3];
+        double in[3];
+        for (int i = 0; i < 3; i++) {
+            v[i].x = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5 + (k % 2 ? 0.3 : 0);
+            v[i].y = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+            in[i] = sr_rng_int(&rng, 0, 100) / 100.0;
+        }
+        char prim[256], is[64], dir[1024], name[32];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0].x, v[0].y, v[1].x, v[1].y, v[2].x,
+                 v[2].y);
+        snprintf(is, sizeof is, "%g,%g,%g", in[0], in[1], in[2]);
+        snprintf(name, sizeof name, "fillpoly_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_with("fillpoly", "--triangle", prim, "--intensity", is, dir) == 0);
+        uint8_t cells[GRID * GRID], got[GRID * GRID * 3];
+        int last = last_frame_cells(dir, cells);
+        REQUIRE(last >= 2);
+        REQUIRE(frame_cell_colours(dir, last, got));
+        sr_rgba col[3];
+        for (int i = 0; i < 3; i++) {
+            col[i] = (sr_rgba){ (float)in[i], (float)in[i], (float)in[i], 1 };
+        }
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        REQUIRE(sr_fill_gouraud(t.ctx, t.fb, &(sr_polygon2){ v, 3, NULL, 0 }, col,
+                                &(sr_gouraud_desc){ .method = SR_GOURAUD_INCREMENTAL })
+                == SR_OK);
+        uint8_t mask[GRID * GRID];
+        REQUIRE(sr_polygon_coverage(t.ctx, &(sr_polygon2){ v, 3, NULL, 0 }, NULL, 0, 0, GRID,
+                                    GRID, mask, GRID) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int bad = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            covered += mask[i] != 0;
+            for (int ch = 0; ch < 3; ch++) {
+                bad += abs(got[i * 3 + ch] - px[i * 4 + ch]) > 1;
+            }
+        }
+        if (bad) {
+            FAILF("fillpoly %s, I %s: %d channels differ", prim, is, bad);
+        }
+    }
+    CHECK(covered > 300);
+    rt_free(&t);
+}
+
+SR_TEST(circle_last_frame_is_what_sr_draw_circle_draws)
+{
+    NEEDS_CLI();
+    /* centres and radii on the 1/8 grid (many centres exactly on a
+     * circle), some circles past the grid's edges */
+    sr_rng rng = { 4439 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0;
+    for (int k = 0; k < 20; k++) {
+        double cx = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0;
+        double cy = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0;
+        double r = sr_rng_int(&rng, 0, 12 * 8) / 8.0;
+        char prim[128], dir[1024], name[32];
+        snprintf(prim, sizeof prim, "%g,%g,%g", cx, cy, r);
+        snprintf(name, sizeof name, "circle_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("circle", "--circle", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 1);
+        rt_clear(&t);
+        REQUIRE(sr_draw_circle(t.ctx, t.fb, cx, cy, r, (sr_rgba){ 1, 1, 1, 1 }, false) == SR_OK);
+        rt_mask(&t, want);
+        for (int i = 0; i < GRID * GRID; i++) {
+            drawn_total += want[i];
+        }
+        char what[200];
+        snprintf(what, sizeof what, "circle %s", prim);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 150);
+    rt_free(&t);
+}
+
+SR_TEST(forward_differencing_last_frame_is_what_the_flattened_cubic_draws)
+{
+    NEEDS_CLI();
+    /* random cubics and tolerances: the last frame's cells are the lines
+     * sr_draw_line draws through sr_flatten_cubic's points */
+    sr_rng rng = { 4539 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 p[4];
+        for (int i = 0; i < 4; i++) {
+            p[i] = (sr_point2){ sr_rng_int(&rng, 0, GRID * 8) / 8.0,
+                                sr_rng_int(&rng, 0, GRID * 8) / 8.0 };
+        }
+        double tol = k % 2 ? 0.25 : 1.0;
+        char prim[256], ts[16], dir[1024], name[40];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g,%g,%g", p[0].x, p[0].y, p[1].x, p[1].y,
+                 p[2].x, p[2].y, p[3].x, p[3].y);
+        snprintf(ts, sizeof ts, "%g", tol);
+        snprintf(name, sizeof name, "fwdiff_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_with("forward-differencing", "--cubic", prim, "--tolerance", ts, dir)
+                == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 3);
+        sr_point2 pts[65] = { p[0] };
+        int n = 0;
+        REQUIRE(sr_flatten_cubic(t.ctx, p[0], p[1], p[2], p[3], tol, pts + 1, 64, &n) == SR_OK);
+        rt_clear(&t);
+        for (int i = 0; i < n; i++) {
+            REQUIRE(sr_draw_line(t.ctx, t.fb, pts[i], pts[i + 1], (sr_rgba){ 1, 1, 1, 1 }, NULL)
+                    == SR_OK);
+        }
+        rt_mask(&t, want);
+        for (int i = 0; i < GRID * GRID; i++) {
+            drawn_total += want[i];
+        }
+        char what[300];
+        snprintf(what, sizeof what, "cubic %s, tolerance %g", prim, tol);
+        compare_cells(cells, want, what);
+    }
+    CHECK(drawn_total > 150);
+    rt_free(&t);
+}
+
+SR_TEST(floodfill_last_frame_is_what_sr_flood_fill_recolours)
+{
+    NEEDS_CLI();
+    /* random polygon outlines drawn with sr_draw_line, random seeds (on
+     * the outline now and then), 4- and 8-connected */
+    sr_rng rng = { 4639 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0, differ_4_8 = 0;
+    for (int k = 0; k < 16; k++) {
+        sr_point2 v[8];
+        int n = sr_rng_int(&rng, 3, 8);
+        char prim[512] = "", seed[32], dir[1024], name[32];
+        for (int i = 0; i < n; i++) {
+            v[i] = (sr_point2){ sr_rng_int(&rng, 0, GRID - 1) + 0.5,
+                                sr_rng_int(&rng, 0, GRID - 1) + 0.5 };
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g,%g", i ? "," : "", v[i].x, v[i].y);
+        }
+        int sx = sr_rng_int(&rng, 0, GRID - 1), sy = sr_rng_int(&rng, 0, GRID - 1);
+        snprintf(seed, sizeof seed, "%d,%d", sx, sy);
+        int got_n[2] = { 0, 0 };
+        for (int conn = 4; conn <= 8; conn += 4) {
+            snprintf(name, sizeof name, "floodfill_%02d_%d", k, conn);
+            out_dir(name, dir, sizeof dir);
+            char grid[16], zoom[8];
+            snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+            snprintf(zoom, sizeof zoom, "%d", ZOOM);
+            REQUIRE(sr_test_run_cli((const char *[]){ "explain", "floodfill", "--polygon", prim,
+                                                      "--seed", seed, "--connectivity",
+                                                      conn == 4 ? "4" : "8", "--grid", grid,
+                                                      "--zoom", zoom, "-o", dir, NULL }) == 0);
+            uint8_t cells[GRID * GRID], want[GRID * GRID];
+            REQUIRE(last_frame_cells(dir, cells) >= 2);
+            sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+            for (int i = 0; i < n; i++) {
+                REQUIRE(sr_draw_line(t.ctx, t.fb, v[i], v[(i + 1) % n], (sr_rgba){ 0, 0, 0, 1 },
+                                     NULL) == SR_OK);
+            }
+            REQUIRE(sr_flood_fill(t.ctx, t.fb, sx, sy, (sr_rgba){ 0, 0, 1, 1 },
+                                  &(sr_region_fill_desc){ .connectivity = conn == 4
+                                                              ? SR_CONNECT_4 : SR_CONNECT_8 },
+                                  NULL) == SR_OK);
+            const uint8_t *px = sr_framebuffer_pixels(t.fb);
+            for (int i = 0; i < GRID * GRID; i++) {
+                want[i] = px[i * 4 + 2] == 255 && px[i * 4] == 0;
+                got_n[conn / 8] += want[i];
+            }
+            drawn_total += got_n[conn / 8];
+            char what[600];
+            snprintf(what, sizeof what, "floodfill %s from %s, %d-connected", prim, seed, conn);
+            compare_cells(cells, want, what);
+        }
+        differ_4_8 += got_n[0] != got_n[1];
+    }
+    CHECK(drawn_total > 500);
+    CHECK(differ_4_8 > 0);   /* 8-connected fills leak through diagonal steps */
+    rt_free(&t);
+}
+
+SR_TEST(clip4d_last_frame_is_what_sr_draw_draws_for_the_clip_space_triangle)
+{
+    NEEDS_CLI();
+    /* random clip-space triangles, a vertex behind the eye (w < 0) or
+     * past the near or far plane in most, drawn by sr_draw into the same
+     * viewport (the grid less a fifth on each side).  The new vertices are
+     * rounded differently (sr_draw's intersections are float), so a pixel
+     * centre within that rounding of an edge may differ: at most 3 cells
+     * in all the triangles. */
+    sr_rng rng = { 4739 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0, diff_total = 0, clipped = 0;
+    for (int k = 0; k < 24; k++) {
+        float pos[12];
+        char prim[512] = "", dir[1024], name[32];
+        for (int i = 0; i < 12; i++) {
+            pos[i] = (float)(sr_rng_int(&rng, -24, 24) / 8.0);
+            if (i % 4 == 3 && i != 11) {
+                pos[i] = (float)(sr_rng_int(&rng, 4, 24) / 8.0);   /* w > 0 for two of them */
+            }
+            size_t len = strlen(prim);
+            snprintf(prim + len, sizeof prim - len, "%s%g", i ? "," : "", pos[i]);
+        }
+        for (int i = 0; i < 3; i++) {
+            clipped += !(pos[4 * i + 3] > 0 && fabsf(pos[4 * i + 2]) <= pos[4 * i + 3]);
+        }
+        snprintf(name, sizeof name, "clip4d_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("clip4d", "--clip-triangle", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) >= 2);
+        rt_clear(&t);
+        int v0 = GRID / 5, vs = GRID - 2 * (GRID / 5);
+        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
+                        .viewport = { v0, v0, vs, vs } };
+        REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .position_size = 4,
+                                                           .vertex_count = 3 }) == SR_OK);
+        rt_mask(&t, want);
+        int diff = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            drawn_total += want[i];
+            diff += cells[i] != want[i];
+        }
+        diff_total += diff;
+    }
+    CHECK(diff_total <= 3);
+    CHECK(drawn_total > 200);
+    CHECK(clipped > 10);   /* near, far or w clipping was needed */
+    rt_free(&t);
 }
 
 /* Lines in every octant: k = 0 is the algorithm's example. */
@@ -371,6 +795,15 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", NULL }), 2);
     CHECK_EQ(run_explain("triangle", "--triangle", "1,2,3,4,5", dir), 2);
     CHECK_EQ(run_explain("triangle", "--line", "1,2,3,4", dir), 2);
+    CHECK_EQ(run_explain("circle", "--circle", "4,4,-1", dir), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "forward-differencing", "--tolerance",
+                                               "0.001", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--w", "1,2,3", "-o", dir,
+                                               NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--intensity", "0,2,1",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(run_explain("zbuffer", "--triangles", "1,1,0,5,1,0,1,5,0,9,9,0,5,9,0,9,5,1.5", dir),
+             2);
     CHECK_EQ(run_explain("scanline", "--polygon", "1,2,3,4", dir), 2);
     CHECK_EQ(run_explain("bresenham", "--line", "1.5,2.5,7,3.5", dir), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "msaa", "--samples", "3", "-o", dir,
@@ -382,6 +815,33 @@ SR_TEST(explain_refuses_bad_input)
                                                NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "a%s%d", NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
+}
+
+SR_TEST(webp_is_an_animation_of_every_frame)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("webp", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/circle.webp", dir);
+    remove(path);
+    int rc = sr_test_run_cli((const char *[]){ "explain", "circle", "--webp", path, NULL });
+    if (rc == 2) {
+        SKIP("this build has no libwebp");
+    }
+    REQUIRE(rc == 0);
+    FILE *f = fopen(path, "rb");
+    REQUIRE(f != NULL);
+    static uint8_t buf[1 << 20];
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    REQUIRE(n > 64);
+    CHECK(memcmp(buf, "RIFF", 4) == 0 && memcmp(buf + 8, "WEBP", 4) == 0);
+    /* one ANMF chunk per frame: the example circle has 13 */
+    int frames = 0;
+    for (size_t i = 12; i + 4 <= n; i++) {
+        frames += memcmp(buf + i, "ANMF", 4) == 0;
+    }
+    CHECK_EQ(frames, 13);
 }
 
 SR_TEST(sheet_holds_every_frame)

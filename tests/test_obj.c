@@ -514,16 +514,19 @@ SR_TEST(obj_mtl_kd_colors_and_map_kd)
         CHECK_STR_CONTAINS(m.texture_path, want);
         CHECK_EQ(strlen(m.texture_path), strlen(want));
         /* The faces take different textures, so they come in parts: the
-         * first face none, then red, blue, and the last two none (a
-         * material without map_Kd, and one the MTL does not define). */
-        static const size_t first[4] = { 0, 1, 2, 3 }, count[4] = { 1, 1, 1, 2 };
+         * first face none, then red, blue, and the last two none - a
+         * material without map_Kd but with an Ns of its own (so a part of
+         * its own), and one the MTL does not define. */
         REQUIRE(m.parts != NULL);
-        CHECK_EQ(m.part_count, 4);
-        for (size_t i = 0; i < 4 && i < m.part_count; i++) {
-            CHECK_EQ(m.parts[i].first_triangle, first[i]);
-            CHECK_EQ(m.parts[i].triangle_count, count[i]);
+        CHECK_EQ(m.part_count, 5);
+        for (size_t i = 0; i < 5 && i < m.part_count; i++) {
+            CHECK_EQ(m.parts[i].first_triangle, i);
+            CHECK_EQ(m.parts[i].triangle_count, 1);
         }
-        CHECK(m.parts[0].texture_path == NULL && m.parts[3].texture_path == NULL);
+        CHECK(m.parts[0].texture_path == NULL && m.parts[3].texture_path == NULL &&
+              m.parts[4].texture_path == NULL);
+        CHECK(m.parts[3].material.has_shininess && m.parts[3].material.shininess == 10.0f);
+        CHECK(!m.parts[4].material.has_shininess);
         REQUIRE(m.parts[1].texture_path && m.parts[2].texture_path);
         CHECK(strcmp(m.parts[1].texture_path, m.texture_path) == 0);
         char *blue = join_path(mats, "blue.png");
@@ -584,6 +587,58 @@ SR_TEST(obj_parts_follow_textures_not_materials)
     REQUIRE(m.texture_path != NULL);
     CHECK(strstr(m.texture_path, "wood.png") != NULL);
     sr_destroy_mesh(sr_test_ctx(), &m);
+    free(obj);
+    free(mtl);
+}
+
+/* Ks, Ns, d, Tr, Pm, Pr and the bump maps reach sr_mesh_part.material;
+ * a material saying them is a part of its own even when it is the only
+ * one, and a malformed statement names its line. */
+SR_TEST(obj_material_statements_reach_the_parts)
+{
+    char *obj = join_path(sr_test_out_dir(), "obj_looks.obj");
+    char *mtl = join_path(sr_test_out_dir(), "obj_looks.mtl");
+    write_file(mtl, "newmtl shiny\nKd 1 0 0\nKs 0.5 0.25 1\nNs 250\nd 0.4\n"
+                    "map_Bump -bm 2.5 -clamp on bumps.png\n"
+                    "newmtl metal\nKs 0.3\nTr 0.25\nPm 1\nPr 0.2\nnorm normals.png\n"
+                    "newmtl plain\nKd 0 1 0\n");
+    write_file(obj, "mtllib obj_looks.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                    "usemtl shiny\nf 1 2 3\nusemtl metal\nf 2 4 3\nusemtl plain\nf 1 2 4\n");
+    sr_mesh m;
+    sr_io_error err;
+    REQUIRE(sr_load_mesh(sr_test_ctx(), obj, &obj_desc, &m, &err) == SR_OK);
+    REQUIRE(m.part_count == 3);
+    const sr_mesh_material *a = &m.parts[0].material, *b = &m.parts[1].material,
+                           *c = &m.parts[2].material;
+    CHECK(a->has_specular && a->specular[0] == 0.5f && a->specular[1] == 0.25f &&
+          a->specular[2] == 1.0f);
+    CHECK(a->has_shininess && a->shininess == 250.0f);
+    CHECK(a->has_opacity && a->opacity == 0.4f);
+    CHECK(!a->has_metallic && !a->has_roughness);
+    CHECK(a->bump_path && strstr(a->bump_path, "bumps.png") && !a->bump_is_normal);
+    CHECK_EQ(a->bump_scale, 2.5f);
+    CHECK(b->has_specular && b->specular[0] == 0.3f && b->specular[2] == 0.3f);
+    CHECK(b->has_opacity && b->opacity == 0.75f);
+    CHECK(b->has_metallic && b->metallic == 1.0f && b->has_roughness && b->roughness == 0.2f);
+    CHECK(b->bump_path && strstr(b->bump_path, "normals.png") && b->bump_is_normal);
+    CHECK(!c->has_specular && !c->has_opacity && !c->bump_path);
+    /* The copy sr_make_mesh makes carries the bump path too. */
+    sr_mesh copy;
+    REQUIRE(sr_make_mesh(sr_test_ctx(), &m, &copy) == SR_OK);
+    CHECK(copy.parts[1].material.bump_path != m.parts[1].material.bump_path &&
+          strcmp(copy.parts[1].material.bump_path, m.parts[1].material.bump_path) == 0);
+    sr_destroy_mesh(sr_test_ctx(), &copy);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+
+    write_file(obj, "mtllib obj_looks.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl shiny\nf 1 2 3\n");
+    REQUIRE(sr_load_mesh(sr_test_ctx(), obj, &obj_desc, &m, &err) == SR_OK);
+    CHECK(m.part_count == 1 && m.parts[0].triangle_count == 1 &&
+          m.parts[0].material.has_shininess);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+
+    write_file(mtl, "newmtl shiny\nNs 1 2\n");
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), obj, &obj_desc, &m, &err), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "obj_looks.mtl:2: 'Ns' takes one number");
     free(obj);
     free(mtl);
 }

@@ -377,6 +377,33 @@ static sr_texture *solid_texture(const uint8_t rgba[4], bool srgb)
     return t;
 }
 
+/* An sRGB base colour map is decoded to linear light before it multiplies
+ * the factor (glTF: "the texture's sRGB values are converted to linear"):
+ * an unlit quad with no tone curve shows the texel's own code, not the
+ * code of the code read as linear. */
+SR_TEST(srgb_base_color_map_reaches_the_shader_linear)
+{
+    sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+    REQUIRE(fb);
+    const uint8_t gray[4] = { 128, 64, 200, 255 };
+    sr_texture *t = solid_texture(gray, true);
+    REQUIRE(t);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m = sr_pbr_default_material();
+    m.unlit = true;
+    m.base_color_texture.texture = t;
+    m.base_color_texture.filter = SR_FILTER_TRILINEAR;
+    sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                      .tonemap = SR_TONEMAP_NONE };
+    draw_quad(fb, &d, false);
+    const uint8_t *c = px(fb, CELL / 2, CELL / 2);
+    CHECK_NEAR(c[0], 128, 1);
+    CHECK_NEAR(c[1], 64, 1);
+    CHECK_NEAR(c[2], 200, 1);
+    sr_destroy_texture(sr_test_ctx(), t);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
 /* Luminance-ish sum at the quad's centre lit from +x by a grazing light,
  * through a normal map of one tilted normal. */
 static int tilted_brightness(const uint8_t tilt[4], bool mirror_u, const float *tangents)

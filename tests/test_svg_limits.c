@@ -1,7 +1,7 @@
 /* test_svg_limits.c - the SVG reader bounds its work (softrast_io.h,
  * docs/robustness.md): a small document that asks for millions of points,
- * a wide round-joined stroke, or fills that cover the image hundreds of
- * times over is refused by sr_render_svg with SR_TOO_LARGE after counted
+ * a wide round-joined stroke, a dash pattern far finer than its path, or
+ * fills that cover the image hundreds of times over is refused by sr_render_svg with SR_TOO_LARGE after counted
  * work within the documented budgets (no clock: the operations are
  * counted), and by `softrast svg` with one line "FILE:LINE: ..." and exit
  * status 2, without an output file; arcs whose radii square to infinity or
@@ -202,6 +202,18 @@ SR_TEST(svg_wide_round_stroke_over_a_long_path_is_refused_before_outlining)
                    "<svg width='100' height='100'><polyline fill='none' stroke='red' "
                    "stroke-width='5000' stroke-linejoin='round' points='",
                    "0,0 1,1 ", 5000, "'/></svg>", 100, 100, "stroke: the outline");
+}
+
+SR_TEST(svg_dash_pattern_finer_than_the_point_budget_is_refused_before_cutting)
+{
+    if (!have_svg()) {
+        SKIP("SVG is not available (built without expat)");
+    }
+    /* a billion dashes along one line of a 100-byte document */
+    expect_refused("limit_dash.svg",
+                   "<svg width='100' height='100'><line x2='1e6' stroke='red' "
+                   "stroke-dasharray='0.001'/></svg>",
+                   "", 0, "", 100, 100, "stroke-dasharray: a pattern of period 0.002");
 }
 
 SR_TEST(svg_many_shapes_beyond_the_document_point_budget_are_refused)

@@ -1,12 +1,13 @@
 /* test_svg_paint.c - the SVG reader's structure, styling and paint
  * servers: style sheets with the cascade, currentColor, CSS colors, defs
  * and use, linear and radial gradients, clip paths, masks and group
- * opacity in layers, nested viewports.  Six drawings in tests/data/svg
- * are compared with references (checked against rsvg-convert when made;
+ * opacity in layers, nested viewports, dashed strokes, markers,
+ * paint-order and patterns.  The drawings in
+ * tests/data/svg are compared with references (checked against rsvg-convert when made;
  * channel tolerance 2, at most 0.5% of the pixels beyond it; the diff
  * image goes to the test output directory), and single pixels are
  * checked against values worked out by hand.  Reference cycles through
- * use, clip-path and mask are refused with FILE:LINE. */
+ * use, clip-path, mask, marker and pattern are refused with FILE:LINE. */
 #include "image_compare.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -58,15 +59,27 @@ static void check_drawing(const char *file, const char *ref)
 
 /* styles: sheets, use, colors; gradients; layers: clip paths and group
  * opacity; clipbox: clips in bounding-box units; masks; nested svg
- * viewports */
+ * viewports; dashes: stroke-dasharray and -dashoffset on lines, curves
+ * and closed shapes; markers: orient, markerUnits, viewBox, paint-order;
+ * patterns: units, viewBox, patternTransform, href inheritance;
+ * maskregion: mask regions and content units, mask-type in a sheet;
+ * switch: systemLanguage and requiredExtensions in and out of a switch;
+ * nonscaling: vector-effect="non-scaling-stroke"; origin: transform-origin;
+ * blend: the sixteen mix-blend-modes and isolation; images: a JPEG file
+ * and a PNG data: URI under preserveAspectRatio */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
-                                          "nested" };
+                                          "nested", "dashes", "markers", "patterns",
+                                          "maskregion", "switch", "nonscaling",
+                                          "origin", "blend", "images" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
+            continue; /* its picture is a JPEG */
+        }
         char file[64], ref[64];
         snprintf(file, sizeof file, "%s.svg", names[i]);
         snprintf(ref, sizeof ref, "svg_%s", names[i]);
@@ -167,6 +180,125 @@ SR_TEST(linear_gradient_interpolates_between_stops)
     sr_destroy_context(ctx);
 }
 
+SR_TEST(dashes_and_gaps_fall_where_the_pattern_says)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* dashes of 4 from x = 0, 8, 16 (the offset -2 moves them to 2, 10,
+     * 18); a closed square whose last dash runs on over its start */
+    sr_framebuffer *fb = render(ctx,
+                                "<svg xmlns='http://www.w3.org/2000/svg' width='24' height='24'>"
+                                "<g stroke='#000' stroke-width='2' fill='none'>"
+                                "<line y1='1' x2='24' y2='1' stroke-dasharray='4'/>"
+                                "<line y1='5' x2='24' y2='5' stroke-dasharray='4'"
+                                " stroke-dashoffset='-2'/>"
+                                "<rect x='4' y='10' width='10' height='10'"
+                                " stroke-dasharray='6 4' stroke-dashoffset='3'/></g></svg>",
+                                SR_OK, NULL, 0);
+    REQUIRE(fb != NULL);
+    for (int x = 0; x < 24; x++) {
+        CHECK_EQ(pixel(fb, x, 0)[0], (x / 4) % 2 ? 255 : 0);
+        CHECK_EQ(pixel(fb, x, 4)[0], ((x + 2) / 4) % 2 ? 0 : 255);
+    }
+    /* the square's dash over its corner (4, 10): 3 before it, 3 after */
+    CHECK_EQ(pixel(fb, 5, 10)[0], 0);
+    CHECK_EQ(pixel(fb, 4, 17)[0], 0);
+    CHECK_EQ(pixel(fb, 4, 14)[0], 255);
+    CHECK_EQ(pixel(fb, 9, 10)[0], 255);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(inherit_takes_the_parents_value_of_properties_not_inherited)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* opacity 0.5 on the group and again on the rect: a quarter of black
+     * over white; the grey mask (x < 4) on the group and again on the
+     * rect: black at (128/255)^2, nothing at x >= 4 */
+    sr_framebuffer *fb = render(ctx,
+                                "<svg xmlns='http://www.w3.org/2000/svg' width='8' height='4'>"
+                                "<mask id='m'><rect width='4' height='4' fill='#808080'/></mask>"
+                                "<g opacity='0.5'><rect width='8' height='2' opacity='inherit'/></g>"
+                                "<g mask='url(#m)'><rect y='2' width='8' height='2'"
+                                " style='mask: inherit'/></g>"
+                                "<linearGradient id='g' stop-color='#00f'><stop stop-color='inherit'/>"
+                                "</linearGradient><rect x='6' width='2' height='2' fill='url(#g)'/>"
+                                "</svg>",
+                                SR_OK, NULL, 0);
+    REQUIRE(fb != NULL);
+    CHECK_NEAR(pixel(fb, 1, 0)[0], 191, 1); /* 255 * (1 - 0.5 * 0.5) */
+    CHECK_NEAR(pixel(fb, 1, 3)[0], 191, 2);
+    CHECK_EQ(pixel(fb, 6, 3)[0], 255);
+    /* stop-color: inherit takes the gradient's */
+    CHECK(pixel(fb, 7, 0)[2] == 255 && pixel(fb, 7, 0)[0] == 0);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(images_that_do_not_read_or_lie_outside_are_skipped_with_a_warning)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* a path climbing out, an absolute one, a URL, a missing file, a
+     * broken data: URI, an SVG where a PNG should be: none is read */
+    static const char *const hrefs[] = { "../images.svg", "/etc/hostname", "http://x/a.png",
+                                         "missing.png", "data:image/png;base64,!!",
+                                         "images.svg" };
+    char name[1024], svg[512];
+    snprintf(name, sizeof name, "%s/data/svg/t.svg", sr_test_src_dir());
+    for (size_t i = 0; i < sizeof hrefs / sizeof hrefs[0]; i++) {
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>"
+                 "<image href='%s' width='4' height='4'/></svg>", hrefs[i]);
+        sr_framebuffer *fb = NULL;
+        sr_svg_info info;
+        sr_io_error err;
+        CHECK_EQ(sr_render_svg(ctx, svg, strlen(svg), &(sr_svg_desc){ .name = name }, &fb, &info,
+                               &err),
+                 SR_OK);
+        CHECK_EQ(info.warnings, 1);
+        REQUIRE(fb != NULL);
+        CHECK_EQ(pixel(fb, 2, 2)[3], 0);
+        sr_destroy_framebuffer(ctx, fb);
+    }
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(an_image_has_a_bounding_box_for_clips_in_its_units)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* a 6 x 6 PNG whose top left quarter is opaque #639, drawn 8 x 8 and
+     * clipped to the left quarter of its box */
+    static const char svg[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='8' height='8'>"
+        "<clipPath id='c' clipPathUnits='objectBoundingBox'>"
+        "<rect width='0.25' height='1'/></clipPath>"
+        "<image clip-path='url(#c)' width='8' height='8' href='data:image/png;base64,"
+        "iVBORw0KGgoAAAANSUhEUgAAAAYAAAAGCAYAAADgzO9IAAAAN0lEQVR4AXXBQQHAQAgDsIKl"
+        "eio2zkbxhCb23YcEolf0il78JA6JQ/ZU9FT0VIh+op/olzgkDh9FPBEhoKXwywAAAABJRU5E"
+        "rkJggg=='/></svg>";
+    sr_framebuffer *fb = render(ctx, svg, SR_OK, NULL, 0);
+    REQUIRE(fb != NULL);
+    CHECK(pixel(fb, 1, 1)[0] == 0x66 && pixel(fb, 1, 1)[2] == 0x99);
+    CHECK_EQ(pixel(fb, 3, 1)[0], 255);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(reference_cycles_are_refused_with_file_and_line)
 {
     if (!sr_io_have_svg()) {
@@ -184,6 +316,16 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
         { "<clipPath id='a' clip-path='url(#b)'/><clipPath id='b' clip-path='url(#a)'/>\n"
           "<rect width='4' height='4' clip-path='url(#a)'/>",
           "t.svg:3: clip-path: reference cycle through \"#a\"" },
+        { "<marker id='m'>\n<path d='M0 0 L1 1' marker-end='url(#m)'/></marker>\n"
+          "<path d='M0 0 L2 2' marker-start='url(#m)'/>",
+          "t.svg:2: marker: reference cycle through \"#m\"" },
+        { "<pattern id='p' width='2' height='2' patternUnits='userSpaceOnUse'>\n"
+          "<rect width='1' height='1' fill='url(#p)'/></pattern>\n"
+          "<rect width='4' height='4' fill='url(#p)'/>",
+          "t.svg:2: pattern: reference cycle through \"#p\"" },
+        { "<pattern id='a' href='#b'/>\n<pattern id='b' href='#a'/>\n"
+          "<rect width='4' height='4' fill='url(#a)'/>",
+          "t.svg:2: pattern: href chain through \"#a\" is a cycle" },
     };
     char msg[1024], svg[1024];
     sr_framebuffer *fb;

@@ -1,6 +1,7 @@
 /* explain.c - `softrast explain ALGORITHM [options]`: parses the primitive
  * and the outputs, runs one algorithm's steps (explain_*.c) and writes them
  * as numbered PNG frames and/or a contact sheet of all of them. */
+#include "batch_anim.h"
 #include "cli.h"
 #include "explain.h"
 
@@ -13,6 +14,7 @@
 
 #define MAX_GRID 256
 #define SHEET_GAP 8
+#define WEBP_FRAME_MS 1500   /* long enough to read a caption */
 
 typedef struct algorithm {
     const char *name;
@@ -48,6 +50,43 @@ static const algorithm algorithms[] = {
     { "dda", EX_LINE, explain_dda,
       { .kind = EX_LINE, .pts = { { 1.2, 2.7 }, { 14.6, 8.1 } }, .count = 2 }, 16, 10, 32,
       "the incremental DDA: the minor coordinate stepped by the slope" },
+    { "zbuffer", EX_TRIANGLES, explain_zbuffer,
+      { .kind = EX_TRIANGLES, .pts = { { 1.5, 1.5 }, { 12.5, 3.5 }, { 3.5, 10.5 },
+                                       { 11.5, 0.5 }, { 12.5, 10.5 }, { 2.5, 6.5 } },
+        .z = { 0.25, 0.25, 0.75, 0.5, 0.125, 0.5 }, .count = 6 }, 14, 11, 40,
+      "two triangles through the z-buffer: the quantized depth at\n"
+      "             each covered pixel and the depth test" },
+    { "perspective", EX_TRIANGLE, explain_perspective,
+      { .kind = EX_TRIANGLE, .pts = { { 1.5, 1.5 }, { 14.5, 4.5 }, { 2.5, 11.5 } },
+        .z = { 1, 4, 1 }, .count = 3, .row = 5 }, 16, 13, 32,
+      "perspective-correct versus affine interpolation along one\n"
+      "             span (--w, --row)" },
+    { "fillpoly", EX_TRIANGLE, explain_fillpoly,
+      { .kind = EX_TRIANGLE, .pts = { { 6.5, 0.7 }, { 14.3, 6.6 }, { 1.4, 10.6 } },
+        .z = { 1, 0.2, 0.55 }, .count = 3 }, 16, 12, 32,
+      "FillPoly/FillSpan: x by 1/m and the intensity by dI along\n"
+      "             the edges and each span, split at the middle vertex" },
+    { "circle", EX_CIRCLE, explain_circle,
+      { .kind = EX_CIRCLE, .pts = { { 7.3, 6.6 } }, .z = { 5.4 }, .count = 1 }, 15, 14, 36,
+      "the midpoint circle: its decision variable at the pixel\n"
+      "             centres each row walks, stepped by forward differences" },
+    { "forward-differencing", EX_CUBIC, explain_fwdiff,
+      { .kind = EX_CUBIC, .pts = { { 1.5, 10.5 }, { 3.5, 0.5 }, { 11.5, 1.5 }, { 14.5, 9.5 } },
+        .z = { 0.25 }, .count = 4 }, 16, 12, 32,
+      "a cubic Bezier flattened by forward differences: each\n"
+      "             point by three additions (--cubic, --tolerance)" },
+    { "floodfill", EX_POLYGON, explain_floodfill,
+      { .kind = EX_POLYGON, .pts = { { 1.5, 1.5 }, { 13.5, 1.5 }, { 13.5, 10.5 }, { 10.5, 10.5 },
+                                     { 7.5, 4.5 }, { 4.5, 10.5 }, { 1.5, 10.5 } }, .count = 7,
+        .seed = { 3, 3 } }, 16, 12, 32,
+      "flood fill inside a polygon's outline: run by run from a\n"
+      "             stack of seeds (--seed, --connectivity 4|8)" },
+    { "clip4d", EX_CLIP_TRIANGLE, explain_clip4d,
+      { .kind = EX_CLIP_TRIANGLE, .count = 3,
+        .clip = { { -0.9, -0.7, 0.2, 1 }, { 2.2, 0.2, 0.6, 1.5 }, { 0.5, 1.4, -1.6, -0.8 } } },
+      16, 12, 32,
+      "a triangle clipped in 4D against the six planes of the\n"
+      "             view volume, before the divide (--clip-triangle)" },
 };
 
 static void usage(FILE *f)
@@ -61,7 +100,9 @@ static void usage(FILE *f)
             "\n"
             "algorithms:\n");
     for (size_t i = 0; i < sizeof algorithms / sizeof algorithms[0]; i++) {
-        fprintf(f, "  %-10s %s\n", algorithms[i].name, algorithms[i].summary);
+        const char *name = algorithms[i].name;
+        fprintf(f, strlen(name) > 10 ? "  %s\n             %s\n" : "  %-10s %s\n", name,
+                algorithms[i].summary);
     }
     fprintf(f,
             "\n"
@@ -70,9 +111,31 @@ static void usage(FILE *f)
             "  --triangle X0,Y0,X1,Y1,X2,Y2\n"
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
+            "  --circle CX,CY,R           circle: centre and radius (R at most 4096)\n"
+            "  --cubic X0,Y0,...,X3,Y3    forward-differencing: a cubic Bezier's four\n"
+            "                             control points\n"
+            "  --seed X,Y                 floodfill: the seed pixel (default: the example's,\n"
+            "                             or the grid's middle)\n"
+            "  --connectivity 4|8         floodfill: neighbours across edges (4, the\n"
+            "                             default) or corners too (8)\n"
+            "  --clip-triangle X,Y,Z,W,X,Y,Z,W,X,Y,Z,W\n"
+            "                             clip4d: a triangle in clip space (before the\n"
+            "                             divide; the viewport is the grid less a fifth on\n"
+            "                             each side)\n"
+            "  --tolerance T              forward-differencing: how far the chords may stray\n"
+            "                             from the curve, pixels (default 0.25; at most 64\n"
+            "                             steps)\n"
+            "  --triangles X,Y,Z,...      zbuffer: two triangles, 18 numbers, Z the window\n"
+            "                             depth of each vertex in 0..1 (0 near)\n"
             "  --window XMIN,YMIN,XMAX,YMAX\n"
             "                             clip: the clip window\n"
             "  --samples N                msaa: 2, 4 (the default), 8 or 16 per pixel\n"
+            "  --w W0,W1,W2               perspective: each vertex's eye distance (its\n"
+            "                             clip-space w), 1/64 to 1024 (default 1,1,1)\n"
+            "  --row Y                    perspective: the span's scanline (default: the\n"
+            "                             triangle's middle)\n"
+            "  --intensity IA,IB,IC       fillpoly: the intensity at each vertex, 0..1\n"
+            "                             (default 1,0.2,0.55)\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -87,30 +150,34 @@ static void usage(FILE *f)
             "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ... (DIR is\n"
             "                             made if missing), or a PATTERN with one %%d,\n"
             "                             e.g. out/step-%%02d.png\n"
-            "  --sheet FILE.png           all the steps on one captioned contact sheet\n",
+            "  --sheet FILE.png           all the steps on one captioned contact sheet\n"
+            "  --webp FILE.webp           all the steps as one animated WebP, 1.5 s each\n"
+            "                             (needs a build with libwebp)\n",
             EX_MAX_POINTS, MAX_GRID, MAX_GRID);
 }
 
-/* "x,y,x,y,..." into pts; false after one line naming the option. */
-static bool parse_points(const char *opt, const char *s, int min, int max, bool exact,
+/* "x,y,x,y,..." (dims 2) or "x,y,z,..." (dims 3) into pts and z; false
+ * after one line naming the option. */
+static bool parse_points(const char *opt, const char *s, int dims, int min, int max, bool exact,
                          ex_primitive *prim)
 {
-    double v[2 * EX_MAX_POINTS];
+    double v[3 * EX_MAX_POINTS];
     int n = 0;
     const char *p = s;
     for (;;) {
         char *end;
         errno = 0;
         double d = strtod(p, &end);
-        if (errno || end == p || !isfinite(d) || fabs(d) > 16384 || n == 2 * max) {
+        if (errno || end == p || !isfinite(d) || fabs(d) > 16384 || n == dims * max) {
             break;
         }
         v[n++] = d;
         if (*end == 0) {
-            if (n % 2 == 0 && n / 2 >= min) {
-                prim->count = n / 2;
+            if (n % dims == 0 && n / dims >= min) {
+                prim->count = n / dims;
                 for (int i = 0; i < prim->count; i++) {
-                    prim->pts[i] = (sr_point2){ v[2 * i], v[2 * i + 1] };
+                    prim->pts[i] = (sr_point2){ v[dims * i], v[dims * i + 1] };
+                    prim->z[i] = dims == 3 ? v[dims * i + 2] : 0;
                 }
                 return true;
             }
@@ -121,12 +188,73 @@ static bool parse_points(const char *opt, const char *s, int min, int max, bool 
         }
         p = end + 1;
     }
+    const char *names = dims == 3 ? "X,Y,Z" : "X,Y";
     if (exact) {
-        cli_error("%s: expected %d numbers X,Y,... in -16384..16384 (got '%s')", opt, 2 * min, s);
+        cli_error("%s: expected %d numbers %s,... in -16384..16384 (got '%s')", opt, dims * min,
+                  names, s);
     } else {
-        cli_error("%s: expected %d to %d X,Y pairs in -16384..16384 (got '%s')", opt, min, max, s);
+        cli_error("%s: expected %d to %d %s groups in -16384..16384 (got '%s')", opt, min, max,
+                  names, s);
     }
     return false;
+}
+
+/* Two triangles with a window depth in [0, 1] at each vertex. */
+static bool parse_depths(const char *opt, const char *s, ex_primitive *prim)
+{
+    if (!parse_points(opt, s, 3, 6, 6, true, prim)) {
+        return false;
+    }
+    for (int i = 0; i < 6; i++) {
+        if (!(prim->z[i] >= 0 && prim->z[i] <= 1)) {
+            cli_error("%s: each Z is a window depth in 0..1 (got '%s')", opt, s);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Three points x, y, z, w: 12 numbers through the 2D parser, as six
+ * pairs. */
+static bool parse_clip(const char *opt, const char *s, ex_primitive *prim)
+{
+    ex_primitive p = { 0 };
+    if (!parse_points(opt, s, 2, 6, 6, true, &p)) {
+        return false;
+    }
+    for (int i = 0; i < 3; i++) {
+        double v[4] = { p.pts[2 * i].x, p.pts[2 * i].y, p.pts[2 * i + 1].x, p.pts[2 * i + 1].y };
+        memcpy(prim->clip[i], v, sizeof v);
+    }
+    prim->count = 3;
+    return true;
+}
+
+static bool parse_radius(const char *opt, const char *s, double r)
+{
+    if (r < 0 || r > 4096) {
+        cli_error("%s: expected CX,CY,R with R in 0..4096 (got '%s')", opt, s);
+        return false;
+    }
+    return true;
+}
+
+/* Three numbers in lo..hi, one per vertex, into out. */
+static bool parse_three(const char *opt, const char *s, double lo, double hi, double out[3])
+{
+    ex_primitive p = { 0 };
+    if (!parse_points(opt, s, 3, 1, 1, true, &p)) {
+        return false;
+    }
+    double v[3] = { p.pts[0].x, p.pts[0].y, p.z[0] };
+    for (int k = 0; k < 3; k++) {
+        if (!(v[k] >= lo && v[k] <= hi)) {
+            cli_error("%s: each value in %g..%g (got '%s')", opt, lo, hi, s);
+            return false;
+        }
+        out[k] = v[k];
+    }
+    return true;
 }
 
 /* A frame file name: a pattern with one %d (flags and width allowed), or
@@ -211,9 +339,33 @@ static bool write_sheet(const ex_canvas *c, const char *path)
     return ok;
 }
 
+/* The frames as one animated WebP, each shown WEBP_FRAME_MS, the last
+ * twice as long before it loops. */
+static bool write_webp(const ex_canvas *c, const char *path)
+{
+    char why[600];
+    batch_anim *anim = batch_anim_start(c->width, c->height, false, why, sizeof why);
+    bool ok = anim != NULL;
+    for (int i = 0; i < c->frame_count && ok; i++) {
+        ok = batch_anim_add(anim, c->frames[i], i * WEBP_FRAME_MS, why, sizeof why);
+    }
+    sr_io_error err;
+    if (ok && !batch_anim_write(anim, path, (c->frame_count + 1) * WEBP_FRAME_MS, &err)) {
+        snprintf(why, sizeof why, "%s", err.message);
+        ok = false;
+    }
+    batch_anim_free(anim);
+    if (!ok) {
+        cli_error("explain: --webp: %s", why);
+    }
+    return ok;
+}
+
 static const char *kind_option(ex_kind k)
 {
-    return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon" : "--line";
+    return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
+         : k == EX_TRIANGLES ? "--triangles" : k == EX_CIRCLE ? "--circle"
+         : k == EX_CUBIC ? "--cubic" : k == EX_CLIP_TRIANGLE ? "--clip-triangle" : "--line";
 }
 
 int cmd_explain(int argc, char **argv)
@@ -240,9 +392,15 @@ int cmd_explain(int argc, char **argv)
     sr_fill_rule rule = SR_EVENODD;
     ex_primitive window = { .count = 0 };
     bool prim_given = false;
+    double per_vertex[3];
+    bool per_vertex_given = false;
+    int row = -1;
+    double tolerance = 0;
+    int seed[2] = { 0, 0 }, connectivity = 4;
+    bool seed_given = false;
     int samples = 4;
     int grid_w = 0, grid_h = 0, zoom = 0;
-    const char *out = NULL, *sheet = NULL;
+    const char *out = NULL, *sheet = NULL, *webp = NULL;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
@@ -257,15 +415,26 @@ int cmd_explain(int argc, char **argv)
         bool ok = true;
         ex_primitive p = { 0 };
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
-            strcmp(a, "--line") == 0) {
-            p.kind = a[2] == 't' ? EX_TRIANGLE : a[2] == 'p' ? EX_POLYGON : EX_LINE;
+            strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0 ||
+            strcmp(a, "--circle") == 0 || strcmp(a, "--cubic") == 0 ||
+            strcmp(a, "--clip-triangle") == 0) {
+            p.kind = strcmp(a, "--triangles") == 0 ? EX_TRIANGLES
+                   : strcmp(a, "--circle") == 0    ? EX_CIRCLE
+                   : strcmp(a, "--cubic") == 0     ? EX_CUBIC
+                   : strcmp(a, "--clip-triangle") == 0 ? EX_CLIP_TRIANGLE
+                   : a[2] == 't' ? EX_TRIANGLE : a[2] == 'p' ? EX_POLYGON : EX_LINE;
             if (p.kind != alg->kind) {
                 cli_error("explain %s: takes %s, not %s", alg->name, kind_option(alg->kind), a);
                 return EXIT_USAGE;
             }
-            ok = p.kind == EX_TRIANGLE ? parse_points(a, v, 3, 3, true, &p)
-               : p.kind == EX_LINE     ? parse_points(a, v, 2, 2, true, &p)
-                                       : parse_points(a, v, 3, EX_MAX_POINTS, false, &p);
+            ok = p.kind == EX_TRIANGLE  ? parse_points(a, v, 2, 3, 3, true, &p)
+               : p.kind == EX_LINE      ? parse_points(a, v, 2, 2, 2, true, &p)
+               : p.kind == EX_TRIANGLES ? parse_depths(a, v, &p)
+               : p.kind == EX_CUBIC     ? parse_points(a, v, 2, 4, 4, true, &p)
+               : p.kind == EX_CLIP_TRIANGLE ? parse_clip(a, v, &p)
+               : p.kind == EX_CIRCLE    ? parse_points(a, v, 3, 1, 1, true, &p) &&
+                                              parse_radius(a, v, p.z[0])
+                                        : parse_points(a, v, 2, 3, EX_MAX_POINTS, false, &p);
             prim = p;
             prim_given = true;
         } else if (strcmp(a, "--fill-rule") == 0) {
@@ -275,7 +444,7 @@ int cmd_explain(int argc, char **argv)
             rule = k == 0 ? SR_EVENODD : SR_NONZERO;
         } else if (strcmp(a, "--window") == 0) {
             ex_primitive wp = { 0 };
-            ok = parse_points(a, v, 2, 2, true, &wp);
+            ok = parse_points(a, v, 2, 2, 2, true, &wp);
             if (ok && (wp.pts[0].x >= wp.pts[1].x || wp.pts[0].y >= wp.pts[1].y)) {
                 cli_error("%s: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX "
                           "(got '%s')", a, v);
@@ -288,6 +457,36 @@ int cmd_explain(int argc, char **argv)
                 cli_error("%s: expected 2, 4, 8 or 16 (got '%s')", a, v);
                 ok = false;
             }
+        } else if (strcmp(a, "--w") == 0 || strcmp(a, "--intensity") == 0) {
+            bool w = a[2] == 'w';
+            if (alg->run != (w ? explain_perspective : explain_fillpoly)) {
+                cli_error("explain %s: %s is for '%s'", alg->name, a, w ? "perspective" : "fillpoly");
+                return EXIT_USAGE;
+            }
+            ok = w ? parse_three(a, v, 1.0 / 64, 1024, per_vertex)
+                   : parse_three(a, v, 0, 1, per_vertex);
+            per_vertex_given = true;
+        } else if (strcmp(a, "--tolerance") == 0) {
+            char *end;
+            tolerance = strtod(v, &end);
+            if (*end || end == v || !(tolerance >= 0.001 && tolerance <= 100)) {
+                cli_error("%s: expected a number of pixels in 0.001..100 (got '%s')", a, v);
+                ok = false;
+            }
+        } else if (strcmp(a, "--seed") == 0) {
+            ex_primitive sp = { 0 };
+            ok = parse_points(a, v, 2, 1, 1, true, &sp);
+            seed[0] = (int)floor(sp.pts[0].x);
+            seed[1] = (int)floor(sp.pts[0].y);
+            seed_given = true;
+        } else if (strcmp(a, "--connectivity") == 0) {
+            ok = parse_int(a, v, 4, 8, &connectivity);
+            if (ok && connectivity != 4 && connectivity != 8) {
+                cli_error("%s: expected 4 or 8 (got '%s')", a, v);
+                ok = false;
+            }
+        } else if (strcmp(a, "--row") == 0) {
+            ok = parse_int(a, v, 0, MAX_GRID - 1, &row);
         } else if (strcmp(a, "--grid") == 0) {
             ok = parse_size(a, v, &grid_w, &grid_h);
             if (ok && (grid_w > MAX_GRID || grid_h > MAX_GRID)) {
@@ -303,6 +502,12 @@ int cmd_explain(int argc, char **argv)
                 cli_error("%s: a directory, or a file name with one %%d (got '%s')", a, v);
                 ok = false;
             }
+        } else if (strcmp(a, "--webp") == 0) {
+            webp = v;
+            if (!batch_anim_available()) {
+                cli_error("%s: this build has no libwebp (install libwebp-dev and rebuild)", a);
+                ok = false;
+            }
         } else if (strcmp(a, "--sheet") == 0) {
             sheet = v;
         } else {
@@ -313,12 +518,32 @@ int cmd_explain(int argc, char **argv)
             return EXIT_USAGE;
         }
     }
-    if (!out && !sheet) {
-        cli_error("explain: no output: give -o DIR and/or --sheet FILE.png");
+    if (!out && !sheet && !webp) {
+        cli_error("explain: no output: give -o DIR, --sheet FILE.png and/or --webp FILE.webp");
         return EXIT_USAGE;
     }
     prim.rule = rule;
     prim.samples = samples;
+    if (per_vertex_given) {
+        memcpy(prim.z, per_vertex, sizeof per_vertex);
+    } else if (prim_given && alg->kind == EX_TRIANGLE) {   /* the example's values */
+        memcpy(prim.z, alg->run == explain_perspective ? (double[3]){ 1, 1, 1 } : alg->example.z,
+               sizeof per_vertex);
+    }
+    prim.connectivity = connectivity;
+    if (seed_given) {
+        prim.seed[0] = seed[0];
+        prim.seed[1] = seed[1];
+    } else if (prim_given) {
+        prim.seed[0] = (grid_w ? grid_w : alg->grid_w) / 2;
+        prim.seed[1] = (grid_h ? grid_h : alg->grid_h) / 2;
+    }
+    if (alg->kind == EX_CUBIC) {
+        prim.z[0] = tolerance > 0 ? tolerance : alg->example.z[0];
+    }
+    if (alg->run == explain_perspective) {
+        prim.row = row >= 0 ? row : prim_given ? -1 : prim.row;
+    }
     if (alg->run == explain_bresenham && !ex_line_on_centres(&prim)) {
         cli_error("explain bresenham: --line: the midpoint algorithm takes ends on pixel "
                   "centres (x.5,y.5); 'softrast explain dda' takes any");
@@ -334,6 +559,12 @@ int cmd_explain(int argc, char **argv)
         double w[4] = { grid_w / 4, grid_h / 4, grid_w - grid_w / 4, grid_h - grid_h / 4 };
         memcpy(prim.window, w, sizeof w);
     }
+    if (alg->run == explain_floodfill &&
+        (prim.seed[0] < 0 || prim.seed[1] < 0 || prim.seed[0] >= grid_w || prim.seed[1] >= grid_h)) {
+        cli_error("explain floodfill: --seed: (%d, %d) is outside the %dx%d grid", prim.seed[0],
+                  prim.seed[1], grid_w, grid_h);
+        return EXIT_USAGE;
+    }
     if ((int64_t)grid_w * zoom > 4096 || (int64_t)grid_h * zoom > 4096) {
         cli_error("explain: the grid times the zoom is over 4096 frame pixels: "
                   "make --grid or --zoom smaller");
@@ -348,21 +579,46 @@ int cmd_explain(int argc, char **argv)
     ex_canvas c;
     int status = EXIT_OK;
     /* the scan-line fill lists its edge table in a caption */
-    int lines = alg->run == explain_scanline ? 8 + prim.count : 7;
-    if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK || alg->run(&c, &prim) != SR_OK) {
+    int lines = alg->run == explain_scanline ? 8 + prim.count : alg->run == explain_fillpoly ||
+                                                                     alg->run == explain_fwdiff ||
+                                                                     alg->run == explain_clip4d ? 9 : 7;
+    sr_result run = SR_OK;
+    if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK ||
+        (run = alg->run(&c, &prim)) != SR_OK) {
         if (c.too_many) {
             cli_error("explain %s: the frames would take over %zu MiB: make --grid or --zoom "
                       "smaller", alg->name, EX_MAX_FRAME_BYTES >> 20);
+            status = EXIT_USAGE;
+        } else if (alg->run == explain_fwdiff && run == SR_TOO_LARGE) {
+            cli_error("explain %s: the curve needs more than 64 steps at this tolerance: "
+                      "give a larger --tolerance", alg->name);
             status = EXIT_USAGE;
         } else {
             cli_error("explain %s: %s", alg->name,
                       sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
             status = EXIT_FAILURE_RUN;
         }
-    } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet))) {
+    } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet)) ||
+               (webp && !write_webp(&c, webp))) {
         status = EXIT_FAILURE_RUN;
     }
     ex_canvas_free(&c);
     sr_destroy_context(ctx);
     return status;
+}
+
+bool explain_algorithm(int i, const char **name, const char **summary, ex_primitive *example,
+                       int *grid_w, int *grid_h, int *zoom)
+{
+    if (i < 0 || (size_t)i >= sizeof algorithms / sizeof algorithms[0]) {
+        return false;
+    }
+    const algorithm *a = &algorithms[i];
+    *name = a->name;
+    *summary = a->summary;
+    *example = a->example;
+    *grid_w = a->grid_w;
+    *grid_h = a->grid_h;
+    *zoom = a->zoom;
+    return true;
 }

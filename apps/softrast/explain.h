@@ -18,15 +18,24 @@
 #define EX_MAX_FRAME_BYTES ((size_t)1 << 30)  /* all frames are kept for the sheet */
 
 /* The primitive the user gave (window coordinates, pixels, y down). */
-typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE } ex_kind;
+typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES, EX_CIRCLE,
+               EX_CUBIC, EX_CLIP_TRIANGLE } ex_kind;
 
 typedef struct ex_primitive {
     ex_kind kind;
     sr_point2 pts[EX_MAX_POINTS];
+    /* a value at each vertex: --triangles' window depth (0..1), --w's eye
+     * distance (perspective), --intensity's I (fillpoly); --circle's
+     * radius in z[0] (its centre in pts[0]); --tolerance in z[0] (cubic) */
+    double z[EX_MAX_POINTS];
     int count;
     sr_fill_rule rule;      /* polygons: SR_EVENODD or SR_NONZERO */
     double window[4];       /* clip: xmin, ymin, xmax, ymax */
     int samples;            /* msaa: samples per pixel */
+    int row;                /* perspective: the scanline of the span */
+    int seed[2];            /* floodfill: the seed pixel */
+    double clip[3][4];      /* clip4d: the triangle in clip space, x, y, z, w */
+    int connectivity;       /* floodfill: 4 or 8 */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -72,6 +81,10 @@ void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba 
 void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color);
 /* A label beside a point in grid coordinates. */
 void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color);
+/* The pixels of the grid that sr_draw_line draws for the segments
+ * through pts (closed: and back to the first), 1 in mask, row by row. */
+sr_result ex_polyline_pixels(ex_canvas *c, const sr_point2 *pts, int n, bool closed,
+                             uint8_t *mask);
 /* The caption under the grid, word-wrapped; then the frame is kept. */
 void ex_end(ex_canvas *c, const char *caption);
 
@@ -83,6 +96,13 @@ sr_result explain_msaa(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_clip(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_circle(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_floodfill(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_clip4d(ex_canvas *c, const ex_primitive *prim);
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);
@@ -96,6 +116,12 @@ typedef struct ex_tri {
 
 /* Snap and order; whether two vertices were swapped (clockwise given). */
 bool ex_tri_setup(ex_tri *t, const ex_primitive *prim);
+/* The same for points first..first+2 of prim, with the value z[] of each
+ * vertex (prim->z) kept beside it through the reordering. */
+bool ex_tri_setup_at(ex_tri *t, double z[3], const ex_primitive *prim, int first);
+/* The barycentric weights of the point (sx, sy) in q8: the edge function
+ * of the edge opposite each vertex over twice the area. */
+void ex_tri_weights(const ex_tri *t, int64_t sx, int64_t sy, double l[3]);
 /* Edge function i at the point (sx, sy) in q8. */
 int64_t ex_tri_edge(const ex_tri *t, int i, int64_t sx, int64_t sy);
 /* Whether the point (sx, sy) in q8 is covered, ties by the top-left rule. */
@@ -105,5 +131,11 @@ void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite);
 
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);
+
+/* Algorithm i (0, 1, ...) of `softrast explain`: its name, one-line help,
+ * example primitive and default view; false past the last.  The web pages
+ * (web/) list the algorithms and start from their examples with it. */
+bool explain_algorithm(int i, const char **name, const char **summary, ex_primitive *example,
+                       int *grid_w, int *grid_h, int *zoom);
 
 #endif

@@ -281,3 +281,27 @@ void ex_end(ex_canvas *c, const char *text)
     memcpy(px, sr_framebuffer_pixels(c->fb), size);
     c->frames[c->frame_count++] = px;
 }
+
+sr_result ex_polyline_pixels(ex_canvas *c, const sr_point2 *pts, int n, bool closed,
+                             uint8_t *mask)
+{
+    sr_framebuffer *fb = NULL;
+    sr_result r = sr_make_framebuffer(c->ctx, &(sr_framebuffer_desc){ .width = c->grid_w,
+                                                                       .height = c->grid_h,
+                                                                       .depth_format = SR_DEPTH_NONE },
+                                      &fb);
+    if (r != SR_OK) {
+        return r;
+    }
+    r = sr_clear(c->ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    int segments = closed ? n : n - 1;
+    for (int i = 0; i < segments && r == SR_OK; i++) {
+        r = sr_draw_line(c->ctx, fb, pts[i], pts[(i + 1) % n], (sr_rgba){ 1, 1, 1, 1 }, NULL);
+    }
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    for (int i = 0; i < c->grid_w * c->grid_h; i++) {
+        mask[i] = px[i * 4] != 0;
+    }
+    sr_destroy_framebuffer(c->ctx, fb);
+    return r;
+}

@@ -60,6 +60,30 @@ bool ex_tri_setup(ex_tri *t, const ex_primitive *prim)
     return swapped;
 }
 
+bool ex_tri_setup_at(ex_tri *t, double z[3], const ex_primitive *prim, int first)
+{
+    ex_primitive one = { .kind = EX_TRIANGLE, .count = 3 };
+    for (int i = 0; i < 3; i++) {
+        one.pts[i] = prim->pts[first + i];
+        z[i] = prim->z[first + i];
+    }
+    bool swapped = ex_tri_setup(t, &one);
+    if (swapped) {
+        double z1 = z[1];
+        z[1] = z[2];
+        z[2] = z1;
+    }
+    return swapped;
+}
+
+void ex_tri_weights(const ex_tri *t, int64_t sx, int64_t sy, double l[3])
+{
+    /* edge i runs from Vi to Vi+1: edge 1 is opposite V0, and so on */
+    for (int k = 0; k < 3; k++) {
+        l[k] = (double)ex_tri_edge(t, (k + 1) % 3, sx, sy) / (double)t->area2;
+    }
+}
+
 /* Whether no edge function is negative at the centre of (px, py);
  * *strict: whether all are positive. */
 static bool on_or_inside(const tri *t, int px, int py, bool *strict)

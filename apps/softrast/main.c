@@ -75,7 +75,7 @@ static void usage(FILE *f)
             "                             ('softrast demo --help' lists them)\n"
             "  explain ALGORITHM [options]\n"
             "                             one primitive through one algorithm, step by\n"
-            "                             step, as PNG frames or a contact sheet\n"
+            "                             step, as PNG frames, a contact sheet or a WebP\n"
             "  view [MODEL] [options]     an interactive window onto the pipeline (SDL2):\n"
             "                             orbit, zoom, and keys for every mode\n"
             "\n"

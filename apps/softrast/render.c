@@ -7,6 +7,7 @@
 #include "framing.h"
 #include "render.h"
 #include "render_background.h"
+#include "render_bump.h"
 #include "render_gltf.h"
 #include "render_options.h"
 #include "render_shadow.h"
@@ -46,9 +47,12 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    if (o->pbr && render_gltf_is(o->model)) {
+    if ((o->pbr || o->camera_index >= 0) && render_gltf_is(o->model)) {
         /* The physically based look draws glTF's own materials; the
-         * classic models keep the mesh reader's diffuse color and texture. */
+         * classic models keep the mesh reader's diffuse color and texture,
+         * except with one of the file's cameras, which only the glTF
+         * reader gives: then they take each primitive's base color and
+         * texture from it, in the same world space as the camera. */
         return render_gltf_load(o->model, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
@@ -339,19 +343,59 @@ static float srgb_to_linear(float c)
     return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
 }
 
+static float roughness_of_shininess(float n)
+{
+    return 1.0f - sqrtf(fminf(fmaxf(n, 0.0f), 1000.0f) / 1000.0f);
+}
+
+/* An OBJ part's material statements (docs/pbr.md), as Blender's OBJ
+ * importer maps them: Pr, else Ns as 1 - sqrt(Ns / 1000), else a black
+ * Ks (no highlight) as fully rough; Pm as metallic; d or Tr below 1 as
+ * BLEND; the bump map as the normal map. */
+static void apply_part_look(const sr_mesh_material *l, const sr_texture *normal_map,
+                            sr_pbr_material *m)
+{
+    if (l->has_roughness) {
+        m->roughness = fminf(fmaxf(l->roughness, 0.0f), 1.0f);
+    } else if (l->has_shininess) {
+        m->roughness = roughness_of_shininess(l->shininess);
+    } else if (l->has_specular && l->specular[0] <= 0.0f && l->specular[1] <= 0.0f &&
+               l->specular[2] <= 0.0f) {
+        m->roughness = 1.0f;
+    }
+    if (l->has_metallic) {
+        m->metallic = fminf(fmaxf(l->metallic, 0.0f), 1.0f);
+    }
+    if (l->has_opacity && l->opacity < 1.0f) {
+        m->alpha_mode = SR_ALPHA_BLEND;
+        m->base_color[3] *= fmaxf(l->opacity, 0.0f);
+    }
+    if (normal_map) {
+        m->normal_texture = (sr_texture_slot){ .texture = normal_map,
+                                               .filter = SR_FILTER_TRILINEAR,
+                                               .wrap_u = SR_WRAP_REPEAT,
+                                               .wrap_v = SR_WRAP_REPEAT, .scale = { 1, 1 } };
+    }
+}
+
 /* The physically based look of a classic material, as glTF viewers read
  * OBJ materials: its (display-space) color as the base color, white
  * under a texture or the vertex colors unless --material color= asks,
- * a dielectric of roughness 0.5 (1 - sqrt(N / 1000) for --material
- * shininess=N), translucent through BLEND. */
+ * a dielectric of roughness 0.5, the part's own material statements
+ * (`part`, may be NULL) over that, --material shininess=N (1 - sqrt(N /
+ * 1000)) over those, translucent through BLEND. */
 static sr_pbr_material pbr_material(const render_opts *o, const scene_object *ob,
-                                    const sr_texture *tex)
+                                    const sr_texture *tex, size_t part)
 {
     sr_pbr_material m = sr_pbr_default_material();
     m.metallic = 0.0f;
     m.roughness = 0.5f;
+    if (ob->mesh.parts && part < ob->mesh.part_count) {
+        apply_part_look(&ob->mesh.parts[part].material,
+                        ob->part_normal_maps ? ob->part_normal_maps[part] : NULL, &m);
+    }
     if (o->have_shininess && ob->frame) {
-        m.roughness = 1.0f - sqrtf(fminf(o->shininess, 1000.0f) / 1000.0f);
+        m.roughness = roughness_of_shininess(o->shininess);
     }
     bool given = o->have_mat_color && ob->frame;
     bool colored = ob->mesh.colors && ob->material.vertex_color != SR_OFF;
@@ -363,10 +407,24 @@ static sr_pbr_material pbr_material(const render_opts *o, const scene_object *ob
                                               .scale = { 1, 1 } };
     if (translucent(ob)) {
         m.alpha_mode = SR_ALPHA_BLEND;
-        m.base_color[3] = ob->material.opacity;
+        m.base_color[3] *= ob->material.opacity;
     }
     m.double_sided = o->cull == SR_CULL_NONE;
     return m;
+}
+
+/* Whether any part of ob's mesh carries material statements (an OBJ's
+ * Ks, Ns, d, Pm, Pr or bump map). */
+static bool part_looks(const scene_object *ob)
+{
+    for (size_t p = 0; ob->mesh.parts && p < ob->mesh.part_count; p++) {
+        const sr_mesh_material *l = &ob->mesh.parts[p].material;
+        if (l->has_specular || l->has_shininess || l->has_opacity || l->has_metallic ||
+            l->has_roughness || l->bump_path) {
+            return true;
+        }
+    }
+    return false;
 }
 
 /* Opaque objects first, then translucent ones back to front with
@@ -391,18 +449,23 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
         for (int i = 0; i < s->count && r == SR_OK; i++) {
             scene_object *ob = &s->objects[i];
             bool gltf = ob->part_material && s->gltf;
+            /* An OBJ whose materials say more than a color (part_looks) is
+             * drawn part by part under pbr, each part in the pass its
+             * opacity asks for, as glTF's primitives are. */
+            bool looks = pbr && !gltf && part_looks(ob);
+            bool per_part = gltf || looks;
             bool see_through = !keep_material && translucent(ob);
-            if (ob->catcher || (!gltf && see_through != (pass == 1))) {
+            if (ob->catcher || (!per_part && see_through != (pass == 1))) {
                 continue;
             }
             /* The texture colors the surface, not the line modes' plain
              * passes; a mesh whose parts take different textures (or, from
              * glTF, materials) is drawn part by part (a translucent one
              * sorted within each part, glTF's BLEND parts back to front). */
-            bool by_part = !keep_material && (ob->part_textures || gltf);
+            bool by_part = !keep_material && (ob->part_textures || per_part);
             size_t parts = by_part ? ob->mesh.part_count : 1;
-            size_t *order = gltf && pass == 1 ? parts_back_to_front(ob, cam) : NULL;
-            if (gltf && pass == 1 && !order) {
+            size_t *order = per_part && pass == 1 ? parts_back_to_front(ob, cam) : NULL;
+            if (per_part && pass == 1 && !order) {
                 return SR_OUT_OF_MEMORY;
             }
             for (size_t k = 0; k < parts && r == SR_OK; k++) {
@@ -411,6 +474,12 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     gltf && !keep_material ? &s->gltf->materials[ob->part_material[p]] : NULL;
                 if (gltf) {
                     see_through = gm && gm->alpha_mode == SR_ALPHA_BLEND;
+                    if (see_through != (pass == 1)) {
+                        continue;
+                    }
+                } else if (looks) {
+                    const sr_mesh_material *l = &ob->mesh.parts[p].material;
+                    see_through = translucent(ob) || (l->has_opacity && l->opacity < 1.0f);
                     if (see_through != (pass == 1)) {
                         continue;
                     }
@@ -424,7 +493,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 }
                 st.texture = keep_material ? NULL
                            : gm ? gm->base_color_texture.texture
-                           : by_part ? ob->part_textures[p] : ob->texture;
+                           : by_part && ob->part_textures ? ob->part_textures[p] : ob->texture;
                 if (gm) {
                     /* The classic models take the base color as it is. */
                     st.material.diffuse = (sr_vec3){ gm->base_color[0], gm->base_color[1],
@@ -451,7 +520,8 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 }
                 sr_pbr *program = NULL;
                 if (pbr) {
-                    sr_pbr_material m = gm ? *gm : pbr_material(o, ob, st.texture);
+                    sr_pbr_material m = gm ? *gm
+                                       : pbr_material(o, ob, st.texture, by_part ? p : SIZE_MAX);
                     sr_pbr_desc d = { .material = &m, .model = &ob->model, .view = &cam->view,
                                       .projection = &cam->proj, .exposure = o->exposure,
                                       .tonemap = o->tonemap,
@@ -615,13 +685,15 @@ static int make_context(render_job *job)
     if (status >= 0) {
         return status;
     }
-    return render_textures_load(&job->o, job->ctx, &job->inputs, &job->s);
+    status = render_textures_load(&job->o, job->ctx, &job->inputs, &job->s);
+    return status >= 0 ? status : render_bump_load(&job->o, job->ctx, &job->inputs, &job->s);
 }
 
 static void drop_context(render_job *job)
 {
     if (job->ctx) {
         render_textures_free(job->ctx, &job->s);
+        render_bump_free(job->ctx, &job->s);
         render_shadow_free(job->ctx, &job->shadow);
         sr_destroy_framebuffer(job->ctx, job->work);
         sr_destroy_context(job->ctx);
@@ -838,6 +910,7 @@ int render_job_reload(render_job *job, const char *model)
 {
     if (job->ctx) {
         render_textures_free(job->ctx, &job->s);
+        render_bump_free(job->ctx, &job->s);
     }
     if (job->have_scene) {
         scene_free(job->mesh_ctx, &job->s);

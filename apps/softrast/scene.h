@@ -22,6 +22,12 @@ typedef struct scene_object {
     sr_texture **part_textures;
     sr_texture **owned;
     size_t owned_count;
+    /* With mesh.parts, under pbr: each part's normal map from its
+     * material's bump map (render_bump.c; NULL: none), pointing into
+     * `owned_normal_maps`, one entry a distinct file; else NULL. */
+    sr_texture **part_normal_maps;
+    sr_texture **owned_normal_maps;
+    size_t owned_normal_map_count;
     /* A glTF scene merged into this object (render_gltf.c): each part is
      * a primitive, in world space, with its material in scene.gltf. */
     int *part_material;            /* mesh.part_count entries (malloc'd), or NULL */

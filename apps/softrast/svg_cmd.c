@@ -17,9 +17,10 @@ static void svg_help(FILE *f)
 {
     fprintf(f, "usage: softrast svg INPUT.svg [-o OUT.png] [--size WxH | --scale S]\n"
                "                    [--background COLOR]\n\n"
-               "Render an SVG 1.1 drawing (shapes, paths, transforms, fills and strokes,\n"
-               "style sheets, defs and use, gradients, clip paths, masks, group opacity) with\n"
-               "softrast's 2D toolkit; docs/draw2d.md lists what is supported.\n\n"
+               "Render an SVG 1.1 drawing (shapes, paths, transforms, fills, strokes and\n"
+               "dashes, markers, style sheets, defs and use, gradients, patterns, clip paths,\n"
+               "masks, group opacity, blend modes, PNG and JPEG images; no text or filters)\n"
+               "with softrast's 2D toolkit; docs/draw2d.md lists what is supported.\n\n"
                "options:\n"
                "  -o, --output FILE    PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
                "                       (needs --background) (default: INPUT with .png)\n"

@@ -120,24 +120,36 @@ static bool all_finite(PyArrayObject *a)
     return true;
 }
 
+/* Indices [begin, end) of f as unsigned (a negative one becomes one too
+ * large), in blocks whose largest is found without a branch, which the
+ * compiler vectorizes; only a block holding a bad index is searched for
+ * the first. */
+#define BAD_FACE_SCAN(UT)                                                                 \
+    for (size_t b = 0; b < count; b += block) {                                           \
+        size_t end = count - b < block ? count : b + block;                               \
+        UT most = 0;                                                                      \
+        for (size_t i = b; i < end; i++) {                                                \
+            most = (UT)f[i] > most ? (UT)f[i] : most;                                     \
+        }                                                                                 \
+        if ((uint64_t)most >= n) {                                                        \
+            for (size_t i = b; i < end; i++) {                                            \
+                if (f[i] < 0 || (uint64_t)f[i] >= n) {                                    \
+                    return (Py_ssize_t)(i / 3);                                           \
+                }                                                                         \
+            }                                                                             \
+        }                                                                                 \
+    }
+
 Py_ssize_t sr_py_mesh_bad_face(const MeshObject *m)
 {
-    size_t faces = (size_t)PyArray_DIM(m->faces, 0);
+    size_t count = 3 * (size_t)PyArray_DIM(m->faces, 0), block = 3 << 10;
     uint64_t n = (uint64_t)PyArray_DIM(m->vertices, 0);
     if (PyArray_TYPE(m->faces) == NPY_INT32) {
         const int32_t *f = PyArray_DATA(m->faces);
-        for (size_t i = 0; i < 3 * faces; i++) {
-            if (f[i] < 0 || (uint64_t)f[i] >= n) {
-                return (Py_ssize_t)(i / 3);
-            }
-        }
+        BAD_FACE_SCAN(uint32_t)
     } else {
         const int64_t *f = PyArray_DATA(m->faces);
-        for (size_t i = 0; i < 3 * faces; i++) {
-            if (f[i] < 0 || (uint64_t)f[i] >= n) {
-                return (Py_ssize_t)(i / 3);
-            }
-        }
+        BAD_FACE_SCAN(uint64_t)
     }
     return -1;
 }

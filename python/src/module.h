@@ -58,6 +58,27 @@ int sr_py_mesh_draw_arrays(MeshObject *m, const float **positions, const uint32_
  * face or -1.  Needs no GIL. */
 Py_ssize_t sr_py_mesh_bad_face(const MeshObject *m);
 
+/* What render() draws with (context_cache.c): a context of `threads`
+ * threads and its framebuffer (either NULL until made), and room for the
+ * per-vertex data of a view (render.c). */
+typedef struct sr_py_render_set {
+    sr_context *ctx;
+    sr_framebuffer *fb;
+    int threads, width, height; /* the context's; the framebuffer's size */
+    void *vertices;
+    size_t vertices_bytes;
+    bool cached;                /* the kept set, to be given back */
+} sr_py_render_set;
+
+/* The set kept from an earlier call when it is free and was made for
+ * `threads` (and the same SR_THREADS and SR_SIMD), else an empty one to
+ * fill.  Give every set taken back: `keep` (false after a failed draw)
+ * keeps it for the next call when none is kept, else it is released. */
+void sr_py_take_render_set(int threads, sr_py_render_set *out);
+void sr_py_give_back_render_set(sr_py_render_set *s, bool keep);
+/* Frees what the set holds and empties it.  Needs no GIL. */
+void sr_py_release_render_set(sr_py_render_set *s);
+
 PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);

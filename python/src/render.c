@@ -25,11 +25,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Varyings of the geometry program: the face index in two 16-bit halves,
- * each exact in a float, flat. */
-enum { V_TRI_HI = 0, V_TRI_LO = 1, V_COUNT = 2 };
+/* Varyings of the geometry program: the face index, exact in a float up
+ * to 2^24 faces; beyond, in two 16-bit halves (V_TRI_HI and V_TRI_LO).
+ * One varying where it does makes each triangle's set-up record
+ * smaller. */
+enum { V_TRI = 0, V_TRI_HI = 0, V_TRI_LO = 1 };
+#define ONE_VARYING_FACES ((size_t)1 << 24)
 
 typedef struct geometry_uniforms {
+    /* Per mesh vertex, computed once a view rather than once a triangle
+     * corner (view_of): the clip position, read by the vertex shader,
+     * and the camera-space one, for the fragments' rays; apart, so that
+     * the vertex shader's reads stay dense. */
+    const float (*clip)[4];
+    const double (*camera)[3];
+    size_t faces_count;
     const void *vertices;
     bool vertices64;
     const void *faces;
@@ -81,13 +91,12 @@ static double dot(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
-                            float *vary)
+/* Mesh vertex v seen from the camera: its clip and camera-space
+ * positions. */
+static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3])
 {
-    const geometry_uniforms *u = uniforms;
-    size_t face = in->index / 3;
-    double p[3], c[3];
-    fetch_vertex(u, fetch_index(u, in->index), p);
+    double p[3];
+    fetch_vertex(u, v, p);
     to_camera(u, p, c);
     /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
      * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
@@ -96,8 +105,20 @@ static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, flo
     clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
     clip[2] = u->near;
     clip[3] = (float)c[2];
-    vary[V_TRI_HI] = (float)(face >> 16);
-    vary[V_TRI_LO] = (float)(face & 0xffff);
+}
+
+static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
+                            float *vary)
+{
+    const geometry_uniforms *u = uniforms;
+    size_t face = in->index / 3;
+    memcpy(clip, u->clip[fetch_index(u, in->index)], 4 * sizeof(float));
+    if (u->faces_count <= ONE_VARYING_FACES) {
+        vary[V_TRI] = (float)face;
+    } else {
+        vary[V_TRI_HI] = (float)(face >> 16);
+        vary[V_TRI_LO] = (float)(face & 0xffff);
+    }
 }
 
 /* The visible face's outputs at pixel (x, y), from the ray through the
@@ -111,8 +132,7 @@ static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, f
     double o[3][3], c[3][3];
     for (int k = 0; k < 3; k++) {
         vi[k] = fetch_index(u, 3 * face + (size_t)k);
-        fetch_vertex(u, vi[k], o[k]);
-        to_camera(u, o[k], c[k]);
+        memcpy(c[k], u->camera[vi[k]], sizeof c[k]);
     }
     double dy = ((double)y - u->cy) / u->fy;
     double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
@@ -157,6 +177,9 @@ static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, f
                 }
             }
         } else {
+            for (int k = 0; k < 3; k++) {
+                fetch_vertex(u, vi[k], o[k]);
+            }
             double oe1[3] = { o[1][0] - o[0][0], o[1][1] - o[0][1], o[1][2] - o[0][2] };
             double oe2[3] = { o[2][0] - o[0][0], o[2][1] - o[0][1], o[2][2] - o[0][2] };
             cross(oe1, oe2, on);
@@ -180,8 +203,10 @@ static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
     const geometry_uniforms *u = uniforms;
     for (int i = 0; i < 4; i++) {
         if (q->mask >> i & 1) {
-            size_t face = (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
-                          (size_t)lrintf(q->varyings[V_TRI_LO][i]);
+            size_t face = u->faces_count <= ONE_VARYING_FACES
+                              ? (size_t)lrintf(q->varyings[V_TRI][i])
+                              : (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
+                                    (size_t)lrintf(q->varyings[V_TRI_LO][i]);
             shade_pixel(u, face, q->x + (i & 1), q->y + (i >> 1), q->z[i]);
         }
     }
@@ -211,6 +236,7 @@ typedef struct render_job {
     float *barycentric, *normal;
     uint8_t *color, *rgba;
     npy_bool *mask;
+    sr_py_render_set *set;      /* what run() draws with */
     char error[512];
 } render_job;
 
@@ -285,8 +311,27 @@ static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const render
     memcpy(u.a, in->a, sizeof u.a);
     memcpy(u.nm, in->nm, sizeof u.nm);
     clip_rows(j, u.kx, u.ky);
+    size_t nv = (size_t)PyArray_DIM(m->vertices, 0);
+    sr_py_render_set *set = j->set;
+    size_t bytes = nv * (4 * sizeof(float) + 3 * sizeof(double));
+    if (set->vertices_bytes < bytes) {
+        void *grown = realloc(set->vertices, bytes);
+        if (!grown) {
+            return SR_OUT_OF_MEMORY;
+        }
+        set->vertices = grown;
+        set->vertices_bytes = bytes;
+    }
+    float (*clip)[4] = set->vertices;
+    double (*camera)[3] = (double (*)[3])(clip + nv);
+    for (size_t v = 0; v < nv; v++) {
+        view_of(&u, v, clip[v], camera[v]);
+    }
+    u.clip = (const float (*)[4])clip;
+    u.camera = (const double (*)[3])camera;
+    u.faces_count = faces;
     sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
-                        .uniforms = &u, .varying_count = V_COUNT };
+                        .uniforms = &u, .varying_count = faces <= ONE_VARYING_FACES ? 1 : 2 };
     prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
     /* The shader reads the mesh itself; sr_draw still wants a position
      * array of vertex_count entries.  Overlapping ones 4 bytes apart
@@ -473,20 +518,50 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
     return r;
 }
 
-/* Runs without the GIL: touches no Python object, only array memory. */
-static void run(render_job *j)
+/* Makes what the set lacks for j: a context, and a framebuffer of j's
+ * size (replacing one of another size). */
+static sr_result prepare_set(sr_py_render_set *s, const render_job *j)
 {
-    sr_context *ctx = NULL;
-    sr_framebuffer *fb = NULL;
-    sr_result r = sr_make_context(&(sr_context_desc){ .threads = j->threads }, &ctx);
-    if (r != SR_OK) {
+    sr_result r = SR_OK;
+    if (!s->ctx) {
+        r = sr_make_context(&(sr_context_desc){ .threads = j->threads }, &s->ctx);
+        if (r != SR_OK) {
+            s->ctx = NULL;
+            return r;
+        }
+        s->threads = j->threads;
+    }
+    if (s->fb && (s->width != j->width || s->height != j->height)) {
+        sr_destroy_framebuffer(s->ctx, s->fb);
+        s->fb = NULL;
+    }
+    if (!s->fb) {
+        r = sr_make_framebuffer(s->ctx, &(sr_framebuffer_desc){ .width = j->width,
+                                                                 .height = j->height,
+                                                                 .depth_format = SR_DEPTH_D32F },
+                                &s->fb);
+        if (r != SR_OK) {
+            s->fb = NULL;
+            return r;
+        }
+        s->width = j->width;
+        s->height = j->height;
+    }
+    return r;
+}
+
+/* Runs without the GIL: touches no Python object, only array memory. */
+static void run(render_job *j, sr_py_render_set *s)
+{
+    j->set = s;
+    sr_result r = prepare_set(s, j);
+    if (r != SR_OK && !s->ctx) {
         snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_result_text(r));
         return;
     }
     fill_outputs(j);
-    r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = j->width, .height = j->height,
-                                                          .depth_format = SR_DEPTH_D32F },
-                            &fb);
+    sr_context *ctx = s->ctx;
+    sr_framebuffer *fb = s->fb;
     bool geometry = j->depth || j->triangle_id || j->instance_id || j->barycentric || j->normal ||
                     j->mask;
     if (r == SR_OK && geometry) {
@@ -501,8 +576,6 @@ static void run(render_job *j)
             snprintf(j->error, sizeof j->error, "%s", sr_result_text(r));
         }
     }
-    sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 /* An output array from the Python layer: None, or C-contiguous of the
@@ -677,9 +750,12 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     }
     /* The instances' meshes and the outputs stay referenced by the
      * caller's arguments for the whole call. */
+    sr_py_render_set set;
+    sr_py_take_render_set(j.threads, &set);
     Py_BEGIN_ALLOW_THREADS
-    run(&j);
+    run(&j, &set);
     Py_END_ALLOW_THREADS
+    sr_py_give_back_render_set(&set, !j.error[0]);
     free(j.inst);
     if (j.error[0]) {
         PyErr_SetString(PyExc_RuntimeError, j.error);

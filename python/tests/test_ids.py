@@ -157,3 +157,40 @@ def test_python_threads_render_at_once():
         together = list(pool.map(view, cams))
     for a, b in zip(alone, together):
         assert np.array_equal(a["depth"], b["depth"]) and np.array_equal(a["triangle_id"], b["triangle_id"])
+
+
+def _depth_and_ids(mesh, cam, size, threads):
+    K, R, t = cam
+    out = softrast.render(mesh, K=K, R=R, t=t, width=size[0], height=size[1],
+                          outputs=("depth", "triangle_id", "normal"), threads=threads)
+    return {name: a.tobytes() for name, a in out.items()}
+
+
+_FORKED = {}
+
+
+def _forked_view():
+    """_depth_and_ids of _FORKED's arguments, in a forked child (a Mesh
+    is not pickled: the child has the parent's memory)."""
+    return _depth_and_ids(*_FORKED["args"])
+
+
+def test_calls_carry_nothing_over():
+    """render keeps its context, framebuffer and scratch from one call for
+    the next: a view rendered after others (other sizes, meshes and thread
+    counts) is the same bytes as when it is the first, also in a forked
+    child, which cannot use its parent's pool threads."""
+    import multiprocessing
+    rng = np.random.default_rng(21)
+    small = softrast.Mesh(*random_triangles(rng, 200))
+    big = softrast.Mesh(*random_triangles(rng, 4000, size=0.4))
+    cam = softrast.look_at(eye=(0.2, 0.1, 0), target=(0, 0, 4), width=W, height=H)
+    first = _depth_and_ids(small, cam, (W, H), 2)
+    _depth_and_ids(big, softrast.look_at(eye=(0, 0, 0), target=(0, 0, 4), width=320, height=200),
+                   (320, 200), 2)
+    _depth_and_ids(big, cam, (W, H), 1)
+    assert _depth_and_ids(small, cam, (W, H), 2) == first
+    _FORKED["args"] = (small, cam, (W, H), 2)
+    with multiprocessing.get_context("fork").Pool(1) as pool:
+        child = pool.apply_async(_forked_view).get(timeout=120)
+    assert child == first

@@ -295,6 +295,11 @@ sr_polygon2 sr_path_polygon(const sr_path *path)
     return (sr_polygon2){ path->pts, path->n, path->counts, path->nc };
 }
 
+bool sr_path_subpath_closed(const sr_path *path, int i)
+{
+    return path && i >= 0 && i < path->nc && path->closed[i] != 0;
+}
+
 sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path, sr_rgba color,
                        const sr_fill_desc *desc)
 {
@@ -343,7 +348,8 @@ static void add_piece(outline *o, const sr_point2 *p, int n)
     o->counts[o->nc++] = n;
 }
 
-static void add_disc(outline *o, sr_point2 c, double r, double tol)
+/* Points of a whole circle of radius r within tol: 8 .. 4096. */
+static int disc_steps(double r, double tol)
 {
     double a = tol >= r ? M_PI / 2 : 2 * acos(1 - tol / r);
     if (!(a > 0)) {
@@ -353,7 +359,12 @@ static void add_disc(outline *o, sr_point2 c, double r, double tol)
         a = 2 * sqrt(2 * (tol / r));
     }
     double steps = a > 0 ? ceil(2 * M_PI / a) : 4096;
-    int n = steps > 4096 ? 4096 : steps < 8 ? 8 : (int)steps;
+    return steps > 4096 ? 4096 : steps < 8 ? 8 : (int)steps;
+}
+
+static void add_disc(outline *o, sr_point2 c, double r, double tol)
+{
+    int n = disc_steps(r, tol);
     sr_point2 pts[4096];
     for (int i = 0; i < n; i++) {
         double t = 2 * M_PI * i / n;
@@ -390,15 +401,31 @@ static void add_join(outline *o, sr_point2 p, sr_point2 d0, sr_point2 d1, double
     if (fabs(cross) < 1e-12 && dot > 0) {
         return; /* straight on: the segment quads already meet */
     }
-    if (d->join == SR_STROKE_JOIN_ROUND) {
-        add_disc(o, p, hw, tol);
-        return;
-    }
     /* The outer side is away from the turn: n = d rotated +90 degrees lies
      * on the side the path turns to when cross > 0. */
     double s = cross > 0 ? -1.0 : 1.0;
     sr_point2 n0 = { -d0.y, d0.x }, n1 = { -d1.y, d1.x };
     sr_point2 a = pt_add(p, s * hw, n0), b = pt_add(p, s * hw, n1);
+    if (d->join == SR_STROKE_JOIN_ROUND) {
+        /* The sector between the two outer edges only: a whole disc would
+         * stand out past the butt end of a segment shorter than hw (the
+         * short pieces a dash ends on). */
+        double turn = atan2(cross, dot), a0 = atan2(s * n0.y, s * n0.x);
+        double step = 2 * M_PI / disc_steps(hw, tol);
+        int n = (int)ceil(fabs(turn) / step);
+        n = n < 1 ? 1 : n > 2048 ? 2048 : n;
+        double rr = hw / cos(fabs(turn) / n / 2);
+        sr_point2 q[2051];
+        q[0] = p;
+        q[1] = a;
+        for (int i = 1; i < n; i++) {
+            double t = a0 + turn * i / n;
+            q[i + 1] = (sr_point2){ p.x + rr * cos(t), p.y + rr * sin(t) };
+        }
+        q[n + 1] = b;
+        add_piece(o, q, n + 2);
+        return;
+    }
     if (d->join == SR_STROKE_JOIN_MITER) {
         /* miter length / width = 1 / sin(theta / 2), theta the angle between
          * the segments = 1 / cos(phi / 2), phi the turning angle */

@@ -327,7 +327,8 @@ static void sample_slot(const pbr_slot *s, const sr_fragment_quad *q, float out[
     for (int i = 0; i < 4; i++) {
         float t[4] = { 0, 0, 0, 1 };
         if (q->mask >> i & 1) {
-            sr__texture_sample(s->tex, s->filter, s->wu, s->wv, uv[0][i], uv[1][i], lod, t);
+            sr__texture_sample_linear(s->tex, s->filter, s->wu, s->wv, uv[0][i], uv[1][i], lod,
+                                      t);
         }
         for (int c = 0; c < 4; c++) {
             out[c][i] = t[c];

@@ -45,7 +45,12 @@ static inline int sr__texture_wrap(int i, int n, sr_texture_wrap mode)
 }
 
 /* Filtered texel at (u, v) for a level of detail lod = log2 of the texels
- * per pixel at level 0; rgba in [0, 1]. */
+ * per pixel at level 0; rgba in [0, 1].  An sRGB texture is filtered in
+ * linear light and its colour encoded back to sRGB, the fixed-function
+ * texture's contract; sr__texture_sample_linear leaves it linear, as a
+ * shader working in linear light wants it. */
+void sr__texture_sample_linear(const sr_texture *t, sr_texture_filter filter, sr_texture_wrap wu,
+                               sr_texture_wrap wv, float u, float v, float lod, float out[4]);
 void sr__texture_sample(const sr_texture *t, sr_texture_filter filter, sr_texture_wrap wu,
                         sr_texture_wrap wv, float u, float v, float lod, float out[4]);
 

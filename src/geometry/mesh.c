@@ -30,6 +30,7 @@ void sr_destroy_mesh(sr_context *ctx, sr_mesh *mesh)
     sr__free(ctx, mesh->texture_data);
     for (size_t i = 0; mesh->parts && i < mesh->part_count; i++) {
         sr__free(ctx, mesh->parts[i].texture_path);
+        sr__free(ctx, mesh->parts[i].material.bump_path);
         sr__free(ctx, mesh->parts[i].texture_data);
     }
     sr__free(ctx, mesh->parts);
@@ -62,6 +63,8 @@ static bool copy_part(sr_context *ctx, sr_mesh_part *to, const sr_mesh_part *fro
     *to = *from;
     bool ok = copy_array(ctx, &to->texture_path, from->texture_path,
                          string_bytes(from->texture_path));
+    ok &= copy_array(ctx, &to->material.bump_path, from->material.bump_path,
+                     string_bytes(from->material.bump_path));
     return copy_array(ctx, &to->texture_data, from->texture_data, from->texture_size) && ok;
 }
 

@@ -216,15 +216,23 @@ static void program_stage(const sr_draw_state *ds, const sr_draw_desc *d, size_t
     int psize = d->position_size ? d->position_size : 3;
     int csize = d->color_size ? d->color_size : 4;
     int gsize = d->generic_size ? d->generic_size : 4;
+    /* Filled once: each vertex overwrites only its index and the
+     * components its arrays have, so the absent ones keep their defaults
+     * (the shader gets a const pointer and cannot change them). */
+    sr_vertex_input in = { .position = { 0, 0, 0, 1 }, .color = { 0, 0, 0, 1 },
+                           .generic = { 0, 0, 0, 1 }, .has_normal = d->normals != NULL,
+                           .has_color = d->colors != NULL, .has_texcoord = d->texcoords != NULL,
+                           .has_generic = d->generic != NULL };
     for (size_t i = first; i < first + count; i++) {
-        sr_vertex_input in = { .index = (uint32_t)i, .position = { 0, 0, 0, 1 },
-                               .color = { 0, 0, 0, 1 }, .generic = { 0, 0, 0, 1 } };
-        memcpy(in.position, element(d->positions, d->position_stride, (size_t)psize, i),
-               (size_t)psize * sizeof(float));
-        in.has_normal = d->normals != NULL;
-        in.has_color = d->colors != NULL;
-        in.has_texcoord = d->texcoords != NULL;
-        in.has_generic = d->generic != NULL;
+        in.index = (uint32_t)i;
+        const float *pos = element(d->positions, d->position_stride, (size_t)psize, i);
+        /* Three components, the usual count, as a fixed-size copy the
+         * compiler inlines rather than a call to memcpy a vertex. */
+        if (psize == 3) {
+            memcpy(in.position, pos, 3 * sizeof(float));
+        } else {
+            memcpy(in.position, pos, (size_t)psize * sizeof(float));
+        }
         if (d->normals) {
             memcpy(in.normal, element(d->normals, d->normal_stride, 3, i), sizeof in.normal);
         }

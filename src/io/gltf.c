@@ -182,48 +182,6 @@ static sr_result element(gltf_doc *d, const char *key, long i, const char *use, 
 
 /* ---- URIs and buffers ---------------------------------------------------- */
 
-static int base64_value(unsigned char c)
-{
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    if (c == '+' || c == '-') return 62;
-    if (c == '/' || c == '_') return 63;
-    return -1;
-}
-
-/* Standard (or URL-safe) base64, '=' padding optional: a malloc'd block. */
-static bool base64_decode(const char *s, size_t n, uint8_t **out, size_t *size)
-{
-    while (n > 0 && s[n - 1] == '=') {
-        n--;
-    }
-    uint8_t *b = malloc(n / 4 * 3 + 3);
-    if (!b) {
-        return false;
-    }
-    size_t o = 0;
-    uint32_t acc = 0;
-    int bits = 0;
-    for (size_t i = 0; i < n; i++) {
-        int v = base64_value((unsigned char)s[i]);
-        if (v < 0) {
-            free(b);
-            *out = NULL;
-            return true;
-        }
-        acc = acc << 6 | (uint32_t)v;
-        bits += 6;
-        if (bits >= 8) {
-            bits -= 8;
-            b[o++] = (uint8_t)(acc >> bits);
-        }
-    }
-    *out = b;
-    *size = o;
-    return true;
-}
-
 static int hex_value(char c)
 {
     if (c >= '0' && c <= '9') return c - '0';
@@ -243,7 +201,7 @@ sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char 
             return sr__gltf_fail(d, SR_UNSUPPORTED, "%s: only base64 data: URIs are read", ptr);
         }
         uint8_t *b;
-        if (!base64_decode(comma + 1, strlen(comma + 1), &b, size)) {
+        if (!sr__base64_decode(comma + 1, strlen(comma + 1), &b, size)) {
             return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
         }
         if (!b) {

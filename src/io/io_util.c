@@ -2,6 +2,7 @@
 #define _DEFAULT_SOURCE 1           /* MAP_ANONYMOUS, MAP_POPULATE */
 #include "io/io_util.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -327,4 +328,48 @@ void sr__io_free(const sr_allocator *a, void *p)
             free(p);
         }
     }
+}
+
+static int base64_value(unsigned char c)
+{
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    if (c == '+' || c == '-') return 62;
+    if (c == '/' || c == '_') return 63;
+    return -1;
+}
+
+bool sr__base64_decode(const char *s, size_t n, uint8_t **out, size_t *size)
+{
+    while (n > 0 && (s[n - 1] == '=' || isspace((unsigned char)s[n - 1]))) {
+        n--;
+    }
+    uint8_t *b = malloc(n / 4 * 3 + 3);
+    if (!b) {
+        return false;
+    }
+    size_t o = 0;
+    uint32_t acc = 0;
+    int bits = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (isspace((unsigned char)s[i])) {
+            continue;
+        }
+        int v = base64_value((unsigned char)s[i]);
+        if (v < 0) {
+            free(b);
+            *out = NULL;
+            return true;
+        }
+        acc = acc << 6 | (uint32_t)v;
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            b[o++] = (uint8_t)(acc >> bits);
+        }
+    }
+    *out = b;
+    *size = o;
+    return true;
 }

@@ -94,4 +94,9 @@ static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)
     return !__builtin_mul_overflow(a, b, out);
 }
 
+/* Standard (or URL-safe) base64, '=' padding optional, blanks skipped:
+ * *out a malloc'd block of *size bytes, or NULL (true returned) when a
+ * character is not base64; false only when out of memory. */
+bool sr__base64_decode(const char *s, size_t n, uint8_t **out, size_t *size);
+
 #endif

@@ -27,6 +27,7 @@ void sr__free_malloc_mesh(sr_mesh *mesh)
     for (size_t i = 0; mesh->parts && i < mesh->part_count; i++) {
         free(mesh->parts[i].texture_path);
         free(mesh->parts[i].texture_data);
+        free(mesh->parts[i].material.bump_path);
     }
     free(mesh->parts);
     memset(mesh, 0, sizeof *mesh);

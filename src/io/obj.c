@@ -11,7 +11,9 @@
  *    v/vt, v//vn or v/vt/vn, indices from 1 or negative (relative).  An
  *    index must refer to data defined earlier in the file, as the format
  *    says.  `o g s l p vp` and unknown statements are skipped.
- *  - `mtllib` (files only) and `usemtl`: MTL `newmtl`, `Kd` and `map_Kd`.
+ *  - `mtllib` (files only) and `usemtl`: MTL `newmtl`, `Kd` and `map_Kd`;
+ *    `Ks`, `Ns`, `d`, `Tr`, `Pm`, `Pr`, `map_Bump`/`bump` (a height map,
+ *    its `-bm` scale) and `norm` (a normal map) for sr_mesh_part.material.
  *  - '#' starts a comment where a token could start.  CR LF, tabs and a
  *    UTF-8 byte order mark are fine; a backslash ending a line that is not
  *    a comment joins it with the next.
@@ -78,6 +80,9 @@ typedef struct material {
     str_ref map_kd;     /* resolved path; len 0 when none */
     float kd[3];
     bool has_kd;
+    str_ref bump;       /* map_Bump, bump or norm: resolved path; len 0 when none */
+    sr_mesh_material look;  /* Ks, Ns, d/Tr, Pm, Pr and the bump map's kind and scale
+                             * (look.bump_path stays NULL: the part gets its copy) */
 } material;
 
 /* Hands out logical lines: CR stripped, continuations joined, bytes
@@ -570,6 +575,94 @@ static int map_option_args(const char *s, size_t n)
     return -1;
 }
 
+/* A map statement's file name after its options, resolved against the
+ * MTL's folder into *file; *bm (when not NULL) takes a -bm value.  False
+ * when out of memory. */
+static bool map_file(obj_parser *P, const char *path, size_t path_dir_len, const char *s,
+                     const char *e, str_ref *file, float *bm)
+{
+    const char *q = s, *a, *b;
+    const char *name_start = e;
+    while (next_token(&q, e, &a, &b)) {
+        int args = *a == '-' ? map_option_args(a, (size_t)(b - a)) : -1;
+        if (args < 0) {
+            name_start = a;
+            break;
+        }
+        bool is_bm = token_is(a, (size_t)(b - a), "-bm");
+        for (int i = 0; i < args; i++) {
+            const char *q2 = q, *a2, *b2;
+            float value;
+            if (!next_token(&q2, e, &a2, &b2)) {
+                break;
+            }
+            bool number = sr__parse_float(a2, b2, &value) == SR_NUM_OK;
+            /* -o/-s/-t take "u [v [w]]": stop at the first non-number. */
+            if (args == 3 && !number) {
+                break;
+            }
+            if (is_bm && bm && number && isfinite(value)) {
+                *bm = value;
+            }
+            q = q2;
+        }
+    }
+    const char *ns, *ne;
+    rest_of_line(name_start, e, &ns, &ne);
+    return ne <= ns || arena_path(P, path, path_dir_len, ns, (size_t)(ne - ns), file);
+}
+
+/* Ks r g b (or one gray), Ns, d, Tr, Pm, Pr: the numbers after the
+ * keyword ts..te into look.  Ks's spectral and xyz forms are ignored, as
+ * Kd's are; d's "-halo" option is skipped. */
+static sr_result parse_look(const char *path, sr_io_error *err, long line, const char *ts,
+                            const char *te, const char *s, const char *e, sr_mesh_material *look)
+{
+    size_t kl = (size_t)(te - ts);
+    bool ks = token_is(ts, kl, "Ks");
+    const char *q = s, *a, *b;
+    if (next_token(&q, e, &a, &b)) {
+        size_t al = (size_t)(b - a);
+        if (ks && (token_is(a, al, "spectral") || token_is(a, al, "xyz"))) {
+            return SR_OK;
+        }
+        if (token_is(ts, kl, "d") && token_is(a, al, "-halo")) {
+            s = q;
+        }
+    }
+    float c[3];
+    int n = 0;
+    sr_result res = read_numbers(path, err, line, s, e, c, 3, &n);
+    if (res != SR_OK) {
+        return res;
+    }
+    if (ks ? n != 1 && n != 3 : n != 1) {
+        return sr__io_fail(err, SR_BAD_FORMAT, path, line, "'%.*s' takes %s, found %s%d numbers",
+                           (int)kl, ts, ks ? "r g b (or one gray value)" : "one number",
+                           n > 3 ? "more than " : "", n > 3 ? 3 : n);
+    }
+    if (ks) {
+        look->has_specular = true;
+        look->specular[0] = c[0];
+        look->specular[1] = n == 3 ? c[1] : c[0];
+        look->specular[2] = n == 3 ? c[2] : c[0];
+    } else if (token_is(ts, kl, "Ns")) {
+        look->has_shininess = true;
+        look->shininess = c[0];
+    } else if (token_is(ts, kl, "d") || token_is(ts, kl, "Tr")) {
+        /* Tr is 1 - d (some writers use one, some the other). */
+        look->has_opacity = true;
+        look->opacity = token_is(ts, kl, "d") ? c[0] : 1.0f - c[0];
+    } else if (token_is(ts, kl, "Pm")) {
+        look->has_metallic = true;
+        look->metallic = c[0];
+    } else {
+        look->has_roughness = true;
+        look->roughness = c[0];
+    }
+    return SR_OK;
+}
+
 static sr_result parse_mtl(obj_parser *P, const char *path, size_t path_dir_len,
                            const char *data, size_t size)
 {
@@ -627,33 +720,23 @@ static sr_result parse_mtl(obj_parser *P, const char *path, size_t path_dir_len,
             mt->kd[2] = n == 3 ? c[2] : c[0];
             mt->has_kd = true;
         } else if (token_is(ts, kl, "map_Kd") && cur != SIZE_MAX && P->mats[cur].map_kd.len == 0) {
-            /* Skip the options; what remains is the file name. */
-            const char *q = s, *a, *b;
-            const char *name_start = e;
-            while (next_token(&q, e, &a, &b)) {
-                int args = *a == '-' ? map_option_args(a, (size_t)(b - a)) : -1;
-                if (args < 0) {
-                    name_start = a;
-                    break;
-                }
-                for (int i = 0; i < args; i++) {
-                    const char *q2 = q, *a2, *b2;
-                    float ignored;
-                    if (!next_token(&q2, e, &a2, &b2)) {
-                        break;
-                    }
-                    /* -o/-s/-t take "u [v [w]]": stop at the first non-number. */
-                    if (args == 3 && sr__parse_float(a2, b2, &ignored) != SR_NUM_OK) {
-                        break;
-                    }
-                    q = q2;
-                }
-            }
-            const char *ns, *ne;
-            rest_of_line(name_start, e, &ns, &ne);
-            if (ne > ns && !arena_path(P, path, path_dir_len, ns, (size_t)(ne - ns),
-                                       &P->mats[cur].map_kd)) {
+            if (!map_file(P, path, path_dir_len, s, e, &P->mats[cur].map_kd, NULL)) {
                 res = oom(P, 0);
+                break;
+            }
+        } else if ((token_is(ts, kl, "map_Bump") || token_is(ts, kl, "bump") ||
+                    token_is(ts, kl, "norm")) && cur != SIZE_MAX && P->mats[cur].bump.len == 0) {
+            material *mt = &P->mats[cur];
+            if (!map_file(P, path, path_dir_len, s, e, &mt->bump, &mt->look.bump_scale)) {
+                res = oom(P, 0);
+                break;
+            }
+            mt->look.bump_is_normal = token_is(ts, kl, "norm");
+        } else if (cur != SIZE_MAX && (token_is(ts, kl, "Ks") || token_is(ts, kl, "Ns") ||
+                                       token_is(ts, kl, "d") || token_is(ts, kl, "Tr") ||
+                                       token_is(ts, kl, "Pm") || token_is(ts, kl, "Pr"))) {
+            res = parse_look(path, P->err, r.line, ts, te, s, e, &P->mats[cur].look);
+            if (res != SR_OK) {
                 break;
             }
         }
@@ -1252,6 +1335,15 @@ static size_t pow2_at_least(size_t n)
     return c;
 }
 
+/* Whether a material says more than Kd and map_Kd: its runs are then
+ * parts of their own, carrying it. */
+static bool has_look(const material *m)
+{
+    const sr_mesh_material *l = &m->look;
+    return l->has_specular || l->has_shininess || l->has_opacity || l->has_metallic ||
+           l->has_roughness || m->bump.len > 0;
+}
+
 /* Map each usemtl entry to the material that colors it (first definition
  * of a name wins) and pick the texture: the map_Kd of the first material
  * used, else the first map_Kd of any loaded material. */
@@ -1295,11 +1387,11 @@ static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, uint32_t *us
                 if (mt->has_kd) {
                     use_kd[u] = table[h] - 1;
                 }
-                if (mt->map_kd.len > 0) {
+                if (mt->map_kd.len > 0 || has_look(mt)) {
                     use_tex[u] = table[h] - 1;
-                    if (texture->len == 0) {
-                        *texture = mt->map_kd;
-                    }
+                }
+                if (mt->map_kd.len > 0 && texture->len == 0) {
+                    *texture = mt->map_kd;
                 }
                 break;
             }
@@ -1312,12 +1404,16 @@ static sr_result resolve_materials(obj_parser *P, uint32_t *use_kd, uint32_t *us
     return SR_OK;
 }
 
-/* Whether materials a and b (indices, or NO_INDEX for none) give the same
- * texture: the same resolved map_Kd path, or both none. */
+/* Whether materials a and b (indices, or NO_INDEX for none) draw alike:
+ * the same resolved map_Kd path, or both none, and neither with more to
+ * say (has_look). */
 static bool same_texture(const obj_parser *P, uint32_t a, uint32_t b)
 {
     if (a == b || a == NO_INDEX || b == NO_INDEX) {
         return a == b;   /* the common case, a run's next face, ends here */
+    }
+    if (has_look(&P->mats[a]) || has_look(&P->mats[b])) {
+        return false;
     }
     str_ref x = P->mats[a].map_kd, y = P->mats[b].map_kd;
     return x.len == y.len && memcmp(arena_str(P, x), arena_str(P, y), x.len) == 0;
@@ -1333,8 +1429,19 @@ static uint32_t triangle_texture(const obj_parser *P, const uint32_t *use_tex, s
 }
 
 /* sr_mesh.parts: the runs of triangles whose usemtl selects the same
- * texture, when there is more than one run (else none: one texture, or
- * none, serves the whole mesh). */
+ * texture (and the same material where it says more than Kd), when there
+ * is more than one run or its material says more (else none: one
+ * texture, or none, serves the whole mesh). */
+/* A malloc'd copy of an arena string in *out; false when out of memory. */
+static bool arena_copy(const obj_parser *P, str_ref str, char **out)
+{
+    *out = malloc(str.len + 1);
+    if (*out) {
+        memcpy(*out, arena_str(P, str), str.len + 1);
+    }
+    return *out != NULL;
+}
+
 static sr_result make_parts(obj_parser *P, const uint32_t *use_tex, sr_mesh *mesh)
 {
     size_t tris = P->nindices / 3, runs = 0;
@@ -1342,7 +1449,8 @@ static sr_result make_parts(obj_parser *P, const uint32_t *use_tex, sr_mesh *mes
         runs += t == 0 || !same_texture(P, triangle_texture(P, use_tex, t),
                                         triangle_texture(P, use_tex, t - 1));
     }
-    if (runs <= 1) {
+    uint32_t first = tris ? triangle_texture(P, use_tex, 0) : NO_INDEX;
+    if (runs == 0 || (runs == 1 && (first == NO_INDEX || !has_look(&P->mats[first])))) {
         return SR_OK;
     }
     sr_mesh_part *parts = calloc(runs, sizeof *parts);
@@ -1360,15 +1468,16 @@ static sr_result make_parts(obj_parser *P, const uint32_t *use_tex, sr_mesh *mes
             continue;
         }
         parts[n] = (sr_mesh_part){ .first_triangle = t, .triangle_count = 1 };
-        if (tex != NO_INDEX) {
-            str_ref path = P->mats[tex].map_kd;
-            parts[n].texture_path = malloc(path.len + 1);
-            if (!parts[n].texture_path) {
-                return oom(P, 0);
-            }
-            memcpy(parts[n].texture_path, arena_str(P, path), path.len + 1);
-        }
         n++;
+        if (tex == NO_INDEX) {
+            continue;
+        }
+        const material *mt = &P->mats[tex];
+        parts[n - 1].material = mt->look;
+        if ((mt->map_kd.len > 0 && !arena_copy(P, mt->map_kd, &parts[n - 1].texture_path)) ||
+            (mt->bump.len > 0 && !arena_copy(P, mt->bump, &parts[n - 1].material.bump_path))) {
+            return oom(P, 0);
+        }
     }
     return SR_OK;
 }
@@ -1498,6 +1607,7 @@ static sr_result build_mesh(obj_parser *P, sr_mesh *out)
 done:
     for (size_t i = 0; mesh.parts && i < mesh.part_count; i++) {
         free(mesh.parts[i].texture_path);
+        free(mesh.parts[i].material.bump_path);
     }
     free(mesh.parts);
     free(use_kd);

@@ -33,6 +33,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -44,6 +45,7 @@
 
 #define MAX_DEPTH 256
 #define MAX_WARNED 64
+#define MAX_WINDOWS 8
 
 /* x' = a x + c y + e, y' = b x + d y + f (SVG's matrix(a b c d e f)). */
 typedef struct mat2d { double a, b, c, d, e, f; } mat2d;
@@ -87,10 +89,33 @@ typedef struct style {
     sr_stroke_join join;
     sr_stroke_cap cap;
     double miter_limit;
+    double dash[SVG_MAX_DASHES]; /* stroke-dasharray, even count; 0: solid */
+    int n_dash;
+    unsigned dash_pct;           /* bit i: dash[i] is a percentage */
+    double dash_offset;
+    bool dash_offset_pct;
+    bool non_scaling;            /* vector-effect: non-scaling-stroke (not inherited) */
+    double origin[2];            /* transform-origin (not inherited) */
+    svg_blend_kind blend;        /* mix-blend-mode (not inherited) */
+    bool isolate;                /* isolation: isolate (not inherited) */
+    bool overflow_visible;       /* overflow: visible or auto (not inherited; markers) */
+    unsigned origin_pct;         /* bit i: origin[i] is a fraction of the viewport */
+    const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
+    unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
     bool crisp;
     bool display_none;       /* display="none" here or on an ancestor */
     bool invisible;          /* visibility (inherited, children may undo it) */
 } style;
+
+enum { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS };
+
+/* A vertex of a path for markers: its point in the flattened polygon and
+ * its subpath; 'M' starts a subpath, 'Z' closes one (at its first point),
+ * 'L' ends any other command. */
+typedef struct svg_vertex {
+    int at, contour;
+    char kind;
+} svg_vertex;
 
 typedef struct frame {
     mat2d m;
@@ -120,6 +145,10 @@ typedef struct svg_doc {
     long match_work;         /* selector matching steps so far */
     int draw_depth;          /* elements drawn inside each other, uses included */
     int layers;              /* layers open (group opacity, clip paths) */
+    mat2d root_m;            /* the outermost viewport's user space to pixels */
+    sr_point2 windows[MAX_WINDOWS][4]; /* markers' viewports in pixels: fills clip to them */
+    int n_windows;
+    const style *inherit_from; /* the parent's style while an element cascades */
     style initial;           /* the initial style, for mask content */
     sr_result status;        /* SR_OK until something fails */
     char *msg;               /* the failure's line goes here */
@@ -129,6 +158,9 @@ typedef struct svg_doc {
     bool warnings_capped;    /* "further warnings not shown" was said */
     int warnings;            /* given so far */
     unsigned long line;      /* of the element being handled */
+    svg_vertex *verts;       /* of the path being read, when want_verts */
+    int n_verts, cap_verts;
+    bool want_verts;
     /* Bounded work (softrast_io.h): what the document has used so far. */
     double points_used, points_budget;
     double work_used, work_budget;
@@ -414,9 +446,7 @@ static double clamp01(double v)
 
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
-    "stroke-dasharray", "stroke-dashoffset", "filter",
-    "marker-start", "marker-mid", "marker-end",
-    "fill-paint", "paint-order", "vector-effect", "mix-blend-mode", "isolation", NULL,
+    "filter", "fill-paint", NULL,
 };
 
 /* Properties that change nothing this reader draws (rendering hints,
@@ -424,18 +454,16 @@ static const char *const unsupported_props[] = {
  * here is their initial one, which the reader does already. */
 static const char *const no_effect_props[] = {
     "image-rendering", "color-interpolation", "color-interpolation-filters", "color-rendering",
-    "text-rendering", "enable-background", "overflow", "solid-color", "solid-opacity",
+    "text-rendering", "enable-background", "solid-color", "solid-opacity",
     "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
     "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
-    "shape-padding", "shape-margin", "shape-inside", "block-progression", "marker",
+    "shape-padding", "shape-margin", "shape-inside", "block-progression",
     "flood-color", "flood-opacity", "lighting-color", "clip", NULL,
 };
 
 static const struct { const char *name, *value; } initial_values[] = {
-    { "stroke-dasharray", "none" }, { "stroke-dashoffset", "0" }, { "mix-blend-mode", "normal" },
-    { "isolation", "auto" }, { "filter", "none" },
-    { "marker-start", "none" }, { "marker-mid", "none" }, { "marker-end", "none" },
-    { "paint-order", "normal" }, { "vector-effect", "none" },
+    { "filter", "none" },
+
 };
 
 static svg_node *find_id(const svg_doc *doc, const char *id);
@@ -507,7 +535,7 @@ static void parse_paint(svg_doc *doc, paint *p, const char *v)
                                                                                  : SVG_PAINT_NONE,
                                 .color = c };
         }
-        if (is_gradient(server)) {
+        if (is_gradient(server) || (server && strcmp(server->name, "pattern") == 0)) {
             *p = (paint){ .kind = SVG_PAINT_URL, .server = server,
                           .has_fallback = fallback.kind == SVG_PAINT_COLOR, .color = fallback.color };
         } else {
@@ -522,6 +550,148 @@ static void parse_paint(svg_doc *doc, paint *p, const char *v)
         warn_once(doc, "color", v);
         break;
     }
+}
+
+/* stroke-dasharray: none, or lengths and percentages separated by commas
+ * or blanks, repeated once when their count is odd; false when malformed
+ * or negative (the declaration is then ignored). */
+static bool parse_dasharray(const char *v, style *st)
+{
+    if (strcmp(v, "none") == 0) {
+        st->n_dash = 0;
+        return true;
+    }
+    double d[SVG_MAX_DASHES];
+    unsigned pct_bits = 0;
+    int n = 0;
+    double sum = 0;
+    const char *s = skip_ws(v);
+    while (*s) {
+        const char *e = s;
+        while (*e && *e != ',' && !isspace((unsigned char)*e)) {
+            e++;
+        }
+        char item[64];
+        bool pct;
+        if (n == SVG_MAX_DASHES / 2 || (size_t)(e - s) >= sizeof item) {
+            return false;
+        }
+        memcpy(item, s, (size_t)(e - s));
+        item[e - s] = 0;
+        if (!parse_length(item, &d[n], &pct) || !(d[n] >= 0) || !isfinite(d[n])) {
+            return false;
+        }
+        pct_bits |= pct ? 1u << n : 0;
+        sum += d[n++];
+        s = skip_ws_comma(e);
+    }
+    if (n == 0) {
+        return false;
+    }
+    int total = n % 2 ? 2 * n : n;
+    for (int i = 0; i < total; i++) {
+        st->dash[i] = d[i % n];
+        if (pct_bits & 1u << (i % n)) {
+            pct_bits |= 1u << i;
+        }
+    }
+    st->n_dash = sum > 0 ? total : 0; /* all zero: a solid stroke */
+    st->dash_pct = pct_bits;
+    return true;
+}
+
+/* transform-origin: one or two of a length, a percentage (of the
+ * viewport), left, center, right, top, bottom (a third value, the z
+ * offset, must be 0); false when malformed. */
+static bool parse_origin(const char *v, style *st)
+{
+    double o[2] = { 0.5, 0.5 };
+    unsigned pct = 3;
+    int n = 0, axis_of[2] = { -1, -1 };
+    const char *s = skip_ws(v);
+    while (*s && n < 3) {
+        size_t len = strcspn(s, " \t\r\n");
+        char item[64];
+        if (len >= sizeof item) {
+            return false;
+        }
+        memcpy(item, s, len);
+        item[len] = 0;
+        s = skip_ws(s + len);
+        static const struct { const char *word; int axis; double at; } words[] = {
+            { "left", 0, 0 }, { "right", 0, 1 }, { "top", 1, 0 }, { "bottom", 1, 1 },
+            { "center", -1, 0.5 },
+        };
+        int axis = n; /* a length: x first, then y */
+        double at;
+        bool is_pct = true, word = false;
+        for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
+            if (strcmp(item, words[i].word) == 0) {
+                axis = words[i].axis < 0 ? (n == 1 && axis_of[0] == 1 ? 0 : n) : words[i].axis;
+                at = words[i].at;
+                word = true;
+            }
+        }
+        if (!word) {
+            if (n == 2) { /* the z offset: only 0 means anything here */
+                return parse_length(item, &at, NULL) && at == 0;
+            }
+            if (!parse_length(item, &at, &is_pct)) {
+                return false;
+            }
+            at = is_pct ? at / 100 : at;
+        }
+        if (n == 2 || axis > 1 || (axis_of[0] == axis && n == 1)) {
+            return false;
+        }
+        o[axis] = at;
+        pct = is_pct ? pct | 1u << axis : pct & ~(1u << axis);
+        axis_of[n++] = axis;
+    }
+    if (n == 0 || *s) {
+        return false;
+    }
+    memcpy(st->origin, o, sizeof o);
+    st->origin_pct = pct;
+    return true;
+}
+
+/* paint-order: normal, or some of fill, stroke, markers (the missing ones
+ * follow in that order); false when malformed. */
+static bool parse_paint_order(const char *v, style *st)
+{
+    static const char *const names[3] = { "fill", "stroke", "markers" };
+    unsigned char order[3];
+    int n = 0;
+    unsigned seen = 0;
+    const char *s = skip_ws(v);
+    if (strcmp(s, "normal") == 0) {
+        s += 6;
+    }
+    while (*s) {
+        int k = -1;
+        for (int i = 0; i < 3; i++) {
+            size_t len = strlen(names[i]);
+            if (strncmp(s, names[i], len) == 0 &&
+                (s[len] == 0 || isspace((unsigned char)s[len]))) {
+                k = i;
+                s = skip_ws(s + len);
+                break;
+            }
+        }
+        if (k < 0 || seen & 1u << k) {
+            return false;
+        }
+        seen |= 1u << k;
+        order[n++] = (unsigned char)k;
+    }
+    for (int i = 0; i < 3; i++) {
+        if (!(seen & 1u << i)) {
+            order[n++] = (unsigned char)i;
+        }
+    }
+    memcpy(st->paint_order, order, sizeof order);
+    return true;
 }
 
 /* Apply one property to a style.  Returns false only when the property
@@ -542,7 +712,26 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     memcpy(v, value, n);
     v[n] = 0;
     if (strcmp(v, "inherit") == 0) {
-        return true; /* the parent's value is already there */
+        /* An inherited property has the parent's value already; the others
+         * take it from the parent's style, when there is a parent. */
+        const style *p = doc->inherit_from;
+        if (!p) {
+            return true;
+        }
+        if (strcmp(name, "opacity") == 0) {
+            st->own_opacity = p->own_opacity;
+        } else if (strcmp(name, "clip-path") == 0) {
+            st->clip = p->clip;
+        } else if (strcmp(name, "mask") == 0) {
+            st->mask = p->mask;
+        } else if (strcmp(name, "mask-type") == 0) {
+            st->mask_alpha = p->mask_alpha;
+        } else if (strcmp(name, "stop-color") == 0) {
+            st->stop_color = p->stop_color;
+        } else if (strcmp(name, "stop-opacity") == 0) {
+            st->stop_opacity = p->stop_opacity;
+        }
+        return true;
     }
     double num;
     if (strcmp(name, "fill") == 0 || strcmp(name, "stroke") == 0) {
@@ -602,6 +791,62 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             warn_once(doc, "stroke-width", v);
         } else {
             st->stroke_width = num;
+        }
+    } else if (strncmp(name, "marker", 6) == 0 &&
+               (name[6] == 0 || strcmp(name + 6, "-start") == 0 ||
+                strcmp(name + 6, "-mid") == 0 || strcmp(name + 6, "-end") == 0)) {
+        svg_node *m = strcmp(v, "none") == 0 ? NULL : reference(doc, v, NULL);
+        if (m && strcmp(m->name, "marker") != 0) {
+            warn_once(doc, name, v);
+            m = NULL;
+        }
+        /* "marker" sets all three; a missing marker draws nothing */
+        int which = name[6] == 0 ? -1 : name[7] == 's' ? 0 : name[7] == 'm' ? 1 : 2;
+        for (int i = 0; i < 3; i++) {
+            if (which < 0 || which == i) {
+                st->marker[i] = m;
+            }
+        }
+    } else if (strcmp(name, "mix-blend-mode") == 0) {
+        int mode = svg_blend_mode(v);
+        if (mode < 0) {
+            warn_once(doc, "mix-blend-mode", v);
+        } else {
+            st->blend = (svg_blend_kind)mode;
+        }
+    } else if (strcmp(name, "overflow") == 0) {
+        st->overflow_visible = strcmp(v, "visible") == 0 || strcmp(v, "auto") == 0;
+    } else if (strcmp(name, "isolation") == 0) {
+        if (strcmp(v, "auto") == 0 || strcmp(v, "isolate") == 0) {
+            st->isolate = v[0] == 'i';
+        } else {
+            warn_once(doc, "isolation", v);
+        }
+    } else if (strcmp(name, "transform-origin") == 0) {
+        if (!parse_origin(v, st)) {
+            warn_once(doc, "transform-origin", v);
+        }
+    } else if (strcmp(name, "vector-effect") == 0) {
+        if (strcmp(v, "none") == 0 || strcmp(v, "non-scaling-stroke") == 0) {
+            st->non_scaling = strcmp(v, "non-scaling-stroke") == 0;
+        } else {
+            warn_once(doc, "vector-effect", v);
+        }
+    } else if (strcmp(name, "paint-order") == 0) {
+        if (!parse_paint_order(v, st)) {
+            warn_once(doc, "paint-order", v);
+        }
+    } else if (strcmp(name, "stroke-dasharray") == 0) {
+        if (!parse_dasharray(v, st)) {
+            warn_once(doc, "stroke-dasharray", v);
+        }
+    } else if (strcmp(name, "stroke-dashoffset") == 0) {
+        bool pct;
+        if (!parse_length(v, &num, &pct) || !isfinite(num)) {
+            warn_once(doc, "stroke-dashoffset", v);
+        } else {
+            st->dash_offset = num;
+            st->dash_offset_pct = pct;
         }
     } else if (strcmp(name, "stroke-linejoin") == 0) {
         if (strcmp(v, "miter") == 0) {
@@ -802,6 +1047,34 @@ static bool path_within_limits(svg_doc *doc, const sr_path *path, const char *wh
     return points_within_budget(doc, poly.point_count);
 }
 
+/* Record the vertex a command just ended on, when markers want them:
+ * the path's last point ('M', 'L') or its last subpath's first ('Z'). */
+static bool add_vertex(svg_doc *doc, const sr_path *path, char kind)
+{
+    if (!doc->want_verts) {
+        return true;
+    }
+    sr_polygon2 poly = sr_path_polygon(path);
+    if (poly.contour_count == 0) {
+        return true;
+    }
+    if (doc->n_verts == doc->cap_verts) {
+        int cap = doc->cap_verts ? 2 * doc->cap_verts : 64;
+        svg_vertex *v = realloc(doc->verts, (size_t)cap * sizeof *v);
+        if (!v) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+            return false;
+        }
+        doc->verts = v;
+        doc->cap_verts = cap;
+    }
+    int c = poly.contour_count - 1;
+    doc->verts[doc->n_verts++] = (svg_vertex){
+        .at = kind == 'Z' ? poly.point_count - poly.contour_counts[c] : poly.point_count - 1,
+        .contour = c, .kind = kind };
+    return true;
+}
+
 /* Parse d="..." into the path; false after reporting an error. */
 static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
 {
@@ -825,6 +1098,9 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
                 sr_result r = path_command(&b, cmd, NULL);
                 if (r != SR_OK) {
                     lib_fail(doc, r);
+                    return false;
+                }
+                if (!add_vertex(doc, path, 'Z')) {
                     return false;
                 }
                 s = skip_ws_comma(s);
@@ -860,7 +1136,8 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
             lib_fail(doc, r);
             return false;
         }
-        if (!path_within_limits(doc, path, "path data", (long)(s - d))) {
+        if (!add_vertex(doc, path, up == 'M' ? 'M' : 'L') ||
+            !path_within_limits(doc, path, "path data", (long)(s - d))) {
             return false;
         }
         /* After a moveto, further pairs are linetos. */
@@ -948,19 +1225,71 @@ static bool map_polygon(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_point2 **pts
     return true;
 }
 
-/* Map a polygon to pixels and fill it, within the document's budget. */
-static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
-                        const svg_gradient *grad, sr_fill_rule rule, bool crisp)
+/* Map a polygon to pixels and fill it with a color, or with a paint
+ * server's colors (at, server: color.a is then the opacity), within the document's budget. */
+/* Clip each contour of the polygon in pixels (its points pts, replaced)
+ * to the window, Sutherland-Hodgman: inside a convex window every point
+ * keeps its winding number, so either fill rule gives the same inside.
+ * *counts is the new contours' sizes (malloc'd); false after reporting a
+ * failure. */
+static bool clip_to_window(svg_doc *doc, sr_polygon2 *poly, sr_point2 **pts, int **counts,
+                           const sr_point2 window[4])
+{
+    int nc = poly->contour_counts ? poly->contour_count : 1;
+    int cap = poly->point_count * 2 + 8 * nc, n = 0;
+    sr_point2 *out = malloc((size_t)cap * sizeof *out);
+    int *oc = malloc((size_t)nc * sizeof *oc);
+    sr_result r = out && oc ? SR_OK : SR_OUT_OF_MEMORY;
+    for (int c = 0, at = 0; r == SR_OK && c < nc; c++) {
+        int count = poly->contour_counts ? poly->contour_counts[c] : poly->point_count, got;
+        r = sr_clip_polygon_convex(doc->ctx, *pts + at, count, window, 4, NULL, out + n, cap - n,
+                                   &got);
+        if (r == SR_TOO_LARGE) { /* room for got more points, then again */
+            sr_point2 *more = realloc(out, (size_t)(cap + got) * sizeof *out);
+            r = more ? SR_OK : SR_OUT_OF_MEMORY;
+            out = more ? more : out;
+            cap += got;
+            c--;
+            continue;
+        }
+        oc[c] = got;
+        n += got;
+        at += count;
+    }
+    if (r != SR_OK) {
+        free(out);
+        free(oc);
+        lib_fail(doc, r);
+        return false;
+    }
+    free(*pts);
+    free(*counts);
+    *pts = out;
+    *counts = oc;
+    *poly = (sr_polygon2){ out, n, oc, nc };
+    return true;
+}
+
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_paint_fn at,
+                        const void *server, sr_fill_rule rule, bool crisp)
 {
     sr_point2 *pts;
+    int *counts = NULL;
     if (poly.point_count == 0 || !map_polygon(doc, poly, m, &pts)) {
         return;
     }
     poly.points = pts;
+    for (int i = 0; i < doc->n_windows; i++) {
+        if (!clip_to_window(doc, &poly, &pts, &counts, doc->windows[i])) {
+            free(pts);
+            return;
+        }
+    }
     sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
-    sr_result r = grad ? svg_fill_gradient(doc->ctx, doc->fb, &poly, &desc, grad, color.a)
+    sr_result r = at ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, at, server, color.a)
                        : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
     free(pts);
+    free(counts);
     if (r != SR_OK) {
         lib_fail(doc, r);
     }
@@ -979,7 +1308,8 @@ static const char *href_of(const svg_node *n)
     return h ? h : attr(n->atts, "xlink:href");
 }
 
-/* An attribute of a gradient, else of the gradients it names by href. */
+/* An attribute of a gradient (a pattern), else of the gradients (the
+ * patterns) it names by href. */
 static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *name)
 {
     for (int i = 0; g && i < MAX_HREF_CHAIN; i++) {
@@ -988,8 +1318,9 @@ static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *
             return v;
         }
         const char *h = href_of(g);
-        g = h ? reference(doc, h, NULL) : NULL;
-        g = is_gradient(g) ? g : NULL;
+        const svg_node *next = h ? reference(doc, h, NULL) : NULL;
+        g = next && (is_gradient(g) ? is_gradient(next) : strcmp(next->name, g->name) == 0)
+                ? next : NULL;
     }
     return NULL;
 }
@@ -1027,6 +1358,11 @@ static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg
 {
     out->n_stops = 0;
     for (int i = 0; g && i < MAX_HREF_CHAIN && out->n_stops == 0; i++) {
+        /* the gradient's own stop-color and stop-opacity, for inherit */
+        style gs = *st;
+        gs.stop_color = (sr_rgba){ 0, 0, 0, 1 };
+        gs.stop_opacity = 1;
+        apply_cascade(doc, g, &gs);
         for (const svg_node *c = g->first; c; c = c->next) {
             if (strcmp(c->name, "stop") != 0 || out->n_stops == SVG_MAX_STOPS) {
                 continue;
@@ -1034,7 +1370,10 @@ static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg
             style s = *st;
             s.stop_color = (sr_rgba){ 0, 0, 0, 1 };
             s.stop_opacity = 1;
+            const style *outer = doc->inherit_from;
+            doc->inherit_from = &gs;
             apply_cascade(doc, c, &s);
+            doc->inherit_from = outer;
             double off = 0;
             bool pct;
             const char *o = attr(c->atts, "offset");
@@ -1056,6 +1395,21 @@ static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg
     }
 }
 
+/* The bounding box x0, y0, x1, y1 of the points; false when it is empty
+ * (no area: objectBoundingBox units have nothing to map onto). */
+static bool bounding_box(sr_polygon2 shape, double b[4])
+{
+    b[0] = b[1] = INFINITY;
+    b[2] = b[3] = -INFINITY;
+    for (int i = 0; i < shape.point_count; i++) {
+        b[0] = fmin(b[0], shape.points[i].x);
+        b[2] = fmax(b[2], shape.points[i].x);
+        b[1] = fmin(b[1], shape.points[i].y);
+        b[3] = fmax(b[3], shape.points[i].y);
+    }
+    return b[2] > b[0] && b[3] > b[1];
+}
+
 /* The gradient `server` for a shape whose user-space geometry is `shape`
  * under the frame; false when it paints nothing (no stops, an empty
  * bounding box, a singular transform). */
@@ -1072,17 +1426,11 @@ static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *
     mat2d to_user = IDENTITY;
     double rw = 1, rh = 1;
     if (bbox) {
-        double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-        for (int i = 0; i < shape.point_count; i++) {
-            x0 = fmin(x0, shape.points[i].x);
-            x1 = fmax(x1, shape.points[i].x);
-            y0 = fmin(y0, shape.points[i].y);
-            y1 = fmax(y1, shape.points[i].y);
-        }
-        if (!(x1 > x0 && y1 > y0)) {
+        double b[4];
+        if (!bounding_box(shape, b)) {
             return false;
         }
-        to_user = (mat2d){ x1 - x0, 0, 0, y1 - y0, x0, y0 };
+        to_user = (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], b[0], b[1] };
     } else {
         rw = f->vp_w;
         rh = f->vp_h;
@@ -1152,17 +1500,25 @@ static double stroke_points(const sr_polygon2 *poly, const style *st, double tol
     return (double)poly->point_count * (4 + join) + 2.0 * poly->contour_count * cap;
 }
 
+static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygon2 poly,
+                          sr_polygon2 geometry, double opacity, sr_fill_rule rule);
+
 /* Fill a user-space polygon with a paint at an opacity; a gradient's
  * bounding box is the shape's geometry (the fill's path, for a stroke). */
 static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_polygon2 geometry,
                           const paint *p, double opacity, sr_fill_rule rule)
 {
     sr_rgba c = p->kind == SVG_PAINT_CURRENT ? f->st.color : p->color;
-    if (p->kind == SVG_PAINT_URL) {
+    if (p->kind == SVG_PAINT_URL && !is_gradient(p->server)) {
+        if (paint_pattern(doc, (svg_node *)p->server, f, poly, geometry, opacity, rule) ||
+            !p->has_fallback || doc->status != SR_OK) {
+            return;
+        }
+    } else if (p->kind == SVG_PAINT_URL) {
         svg_gradient g;
         if (resolve_gradient(doc, p->server, f, geometry, &g)) {
-            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, &g, rule,
-                        f->st.crisp);
+            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_paint,
+                        &g, rule, f->st.crisp);
             return;
         }
         if (!p->has_fallback || doc->status != SR_OK) {
@@ -1171,45 +1527,142 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
     }
     c.a *= (float)opacity;
     if (c.a > 0) {
-        fill_mapped(doc, poly, f->m, c, NULL, rule, f->st.crisp);
+        fill_mapped(doc, poly, f->m, c, NULL, NULL, rule, f->st.crisp);
     }
 }
 
-static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable)
+/* The dashes of the path as a new path (stroke-dasharray, its lengths
+ * in user units, percentages of the viewport's normalized diagonal);
+ * NULL after reporting a failure.  A pattern so fine that its dashes
+ * would pass the drawing's point budget is refused before it is cut. */
+static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, double tol)
 {
     const style *st = &f->st;
-    if (st->display_none || st->invisible) {
-        return;
+    double diag = sqrt((f->vp_w * f->vp_w + f->vp_h * f->vp_h) / 2), dash[SVG_MAX_DASHES];
+    double period = 0;
+    for (int i = 0; i < st->n_dash; i++) {
+        dash[i] = st->dash[i] * (st->dash_pct & 1u << i ? diag / 100 : 1);
+        period += dash[i];
     }
-    if (fillable && st->fill.kind != SVG_PAINT_NONE && st->fill_opacity * st->opacity > 0) {
-        paint_polygon(doc, f, sr_path_polygon(path), sr_path_polygon(path), &st->fill,
-                      st->fill_opacity * st->opacity, st->fill_rule);
+    double offset = st->dash_offset * (st->dash_offset_pct ? diag / 100 : 1);
+    sr_polygon2 poly = sr_path_polygon(path);
+    double pieces = svg_path_length(path) / period * st->n_dash + poly.contour_count;
+    double est = poly.point_count + 2 * pieces;
+    if (!(period > 0) || !isfinite(est) || doc->points_used + est > doc->points_budget) {
+        svg_fail(doc, SR_TOO_LARGE,
+                 "stroke-dasharray: a pattern of period %g along this path makes about %.0f "
+                 "dashes, beyond the drawing's %.0f points (%d + %d per byte of the document)",
+                 period, pieces, doc->points_budget, SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
+        return NULL;
     }
-    if (st->stroke.kind != SVG_PAINT_NONE && st->stroke_width > 0 && st->stroke_opacity * st->opacity > 0 &&
-        doc->status == SR_OK) {
-        sr_polygon2 poly = sr_path_polygon(path);
-        double est = stroke_points(&poly, st, tol);
-        if (doc->points_used + est > doc->points_budget) {
-            svg_fail(doc, SR_TOO_LARGE,
-                     "stroke: the outline of stroke-width %g over %d points would need about "
-                     "%.0f points, beyond the drawing's %.0f (%d + %d per byte of the document)",
-                     st->stroke_width, poly.point_count, est, doc->points_budget,
-                     SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
+    doc->points_used += est;
+    sr_path *out = NULL;
+    sr_result r = sr_make_path(doc->ctx, tol, &out);
+    if (r == SR_OK) {
+        r = svg_dash_path(path, dash, st->n_dash, offset, out);
+    }
+    if (r != SR_OK) {
+        sr_destroy_path(doc->ctx, out);
+        lib_fail(doc, r);
+        return NULL;
+    }
+    return out;
+}
+
+/* The path mapped by m into a new path (flattened points as lines, the
+ * closed subpaths closed); NULL after reporting a failure. */
+static sr_path *mapped_path(svg_doc *doc, const sr_path *path, mat2d m)
+{
+    sr_polygon2 poly = sr_path_polygon(path);
+    sr_path *out = NULL;
+    sr_result r = sr_make_path(doc->ctx, 0.1, &out);
+    for (int c = 0, at = 0; r == SR_OK && c < poly.contour_count; at += poly.contour_counts[c++]) {
+        for (int i = 0; r == SR_OK && i < poly.contour_counts[c]; i++) {
+            sr_point2 p = mat_apply(m, poly.points[at + i]);
+            r = i == 0 ? sr_path_move_to(out, p.x, p.y) : sr_path_line_to(out, p.x, p.y);
+        }
+        if (r == SR_OK && sr_path_subpath_closed(path, c)) {
+            r = sr_path_close(out);
+        }
+    }
+    if (r != SR_OK) {
+        sr_destroy_path(doc->ctx, out);
+        lib_fail(doc, r);
+        return NULL;
+    }
+    return out;
+}
+
+/* The stroke of a path: its outline (of the dashes, if any) filled with
+ * the stroke's paint.  Under vector-effect="non-scaling-stroke" the
+ * outline is made in the outermost viewport's coordinates (widths and
+ * dashes in its units, whatever the transforms between) and mapped back. */
+static void draw_stroke(svg_doc *doc, const frame *f, const sr_path *path, double tol)
+{
+    const style *st = &f->st;
+    sr_path *host = NULL;
+    mat2d back = IDENTITY;
+    if (st->non_scaling) {
+        mat2d to_host;
+        if (!mat_invert(doc->root_m, &to_host) || !mat_invert(mat_mul(to_host, f->m), &back) ||
+            !(host = mapped_path(doc, path, mat_mul(to_host, f->m)))) {
             return;
         }
+        tol = 0.1 / matrix_scale(doc->root_m);
+    }
+    const sr_path *source = host ? host : path;
+    sr_path *dashed = st->n_dash > 0 ? dash_path(doc, f, source, tol) : NULL;
+    const sr_path *stroked = dashed ? dashed : source;
+    sr_polygon2 poly = sr_path_polygon(stroked);
+    double est = stroke_points(&poly, st, tol);
+    if (st->n_dash > 0 && !dashed) {
+        /* reported by dash_path */
+    } else if (doc->points_used + est > doc->points_budget) {
+        svg_fail(doc, SR_TOO_LARGE,
+                 "stroke: the outline of stroke-width %g over %d points would need about "
+                 "%.0f points, beyond the drawing's %.0f (%d + %d per byte of the document)",
+                 st->stroke_width, poly.point_count, est, doc->points_budget,
+                 SR_SVG_POINTS_BASE, SR_SVG_POINTS_PER_BYTE);
+    } else {
         sr_polygon2 outline;
-        sr_result r = sr_make_stroke_outline(doc->ctx, path,
-                                        &(sr_stroke_desc){ .width = st->stroke_width,
-                                                           .join = st->join, .cap = st->cap,
-                                                           .miter_limit = st->miter_limit },
-                                        &outline);
+        sr_result r = sr_make_stroke_outline(doc->ctx, stroked,
+                                             &(sr_stroke_desc){ .width = st->stroke_width,
+                                                                .join = st->join, .cap = st->cap,
+                                                                .miter_limit = st->miter_limit },
+                                             &outline);
         if (r != SR_OK) {
             lib_fail(doc, r);
-            return;
+        } else {
+            /* the outline is ours (made above): mapped back in place */
+            sr_point2 *pts = (sr_point2 *)outline.points;
+            for (int i = 0; host && i < outline.point_count; i++) {
+                pts[i] = mat_apply(back, pts[i]);
+            }
+            paint_polygon(doc, f, outline, sr_path_polygon(path), &st->stroke,
+                          st->stroke_opacity * st->opacity, SR_NONZERO);
+            sr_destroy_stroke_outline(doc->ctx, &outline);
         }
-        paint_polygon(doc, f, outline, sr_path_polygon(path), &st->stroke,
-                      st->stroke_opacity * st->opacity, SR_NONZERO);
-        sr_destroy_stroke_outline(doc->ctx, &outline);
+    }
+    sr_destroy_path(doc->ctx, dashed);
+    sr_destroy_path(doc->ctx, host);
+}
+
+/* The fill (what: PAINT_FILL) or the stroke (PAINT_STROKE) of a path. */
+static void draw_path(svg_doc *doc, const frame *f, sr_path *path, double tol, bool fillable,
+                      int what)
+{
+    const style *st = &f->st;
+    if (st->display_none || st->invisible || doc->status != SR_OK) {
+        return;
+    }
+    if (what == PAINT_FILL) {
+        if (fillable && st->fill.kind != SVG_PAINT_NONE && st->fill_opacity * st->opacity > 0) {
+            paint_polygon(doc, f, sr_path_polygon(path), sr_path_polygon(path), &st->fill,
+                          st->fill_opacity * st->opacity, st->fill_rule);
+        }
+    } else if (st->stroke.kind != SVG_PAINT_NONE && st->stroke_width > 0 &&
+               st->stroke_opacity * st->opacity > 0) {
+        draw_stroke(doc, f, path, tol);
     }
 }
 
@@ -1308,8 +1761,8 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
             !length_attr(doc, f, "y2", attr(atts, "y2"), &v[3])) {
             return false;
         }
-        return path_ok(doc, sr_path_move_to(p, v[0], v[1])) &&
-               path_ok(doc, sr_path_line_to(p, v[2], v[3]));
+        return path_ok(doc, sr_path_move_to(p, v[0], v[1])) && add_vertex(doc, p, 'M') &&
+               path_ok(doc, sr_path_line_to(p, v[2], v[3])) && add_vertex(doc, p, 'L');
     }
     /* polyline, polygon */
     const char *pts = attr(atts, "points");
@@ -1326,12 +1779,15 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
             return false;
         }
         s = skip_ws_comma(s);
-        if (!path_ok(doc, n++ == 0 ? sr_path_move_to(p, x, y) : sr_path_line_to(p, x, y)) ||
+        bool first = n++ == 0;
+        if (!path_ok(doc, first ? sr_path_move_to(p, x, y) : sr_path_line_to(p, x, y)) ||
+            !add_vertex(doc, p, first ? 'M' : 'L') ||
             !path_within_limits(doc, p, name, (long)(s - pts))) {
             return false;
         }
     }
-    if (strcmp(name, "polygon") == 0 && !path_ok(doc, sr_path_close(p))) {
+    if (strcmp(name, "polygon") == 0 &&
+        (!path_ok(doc, sr_path_close(p)) || (n > 0 && !add_vertex(doc, p, 'Z')))) {
         return false;
     }
     return n > 0;
@@ -1794,7 +2250,43 @@ static bool is_named(const svg_node *n, const char *const *names)
 /* Elements that draw nothing where they stand: definitions, metadata. */
 static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "style",
                                          "linearGradient", "radialGradient", "stop", "symbol",
-                                         "clipPath", "mask", "script", NULL };
+                                         "clipPath", "mask", "script", "marker", "pattern",
+                                         NULL };
+
+/* The language conditional processing tests against. */
+#define SVG_LANGUAGE "en"
+
+/* Whether `tag` (up to a comma or a blank) names SVG_LANGUAGE or one of
+ * its regional forms ("en", "en-GB"), case aside. */
+static bool language_matches(const char *tag, size_t n)
+{
+    size_t k = strlen(SVG_LANGUAGE);
+    return n >= k && strncasecmp(tag, SVG_LANGUAGE, k) == 0 && (n == k || tag[k] == '-');
+}
+
+/* The conditional processing attributes: systemLanguage (a comma list of
+ * language tags, one of which must match), requiredExtensions (none is
+ * supported, so any list fails) and requiredFeatures (SVG 2 drops it:
+ * true). */
+static bool conditions_hold(const svg_node *node)
+{
+    const char *ext = attr(node->atts, "requiredExtensions");
+    if (ext) {
+        return false;
+    }
+    const char *lang = attr(node->atts, "systemLanguage");
+    if (!lang) {
+        return true;
+    }
+    for (const char *s = skip_ws(lang); *s; s = skip_ws_comma(s)) {
+        size_t n = strcspn(s, ", \t\r\n");
+        if (language_matches(s, n)) {
+            return true;
+        }
+        s += n;
+    }
+    return false;
+}
 
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
 static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bool use);
@@ -1834,15 +2326,281 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
     return NULL;
 }
 
+/* ---- markers ----------------------------------------------------------------------- */
+
+/* The style the content of a marker or pattern starts from: the initial
+ * one cascaded down that element's own ancestors (not the shape's),
+ * display ignored. */
+static style ancestor_style(svg_doc *doc, const svg_node *m)
+{
+    const svg_node *chain[MAX_DEPTH];
+    int n = 0;
+    for (const svg_node *a = m; a && n < MAX_DEPTH; a = a->parent) {
+        chain[n++] = a;
+    }
+    style st = doc->initial;
+    while (n-- > 0 && doc->status == SR_OK) {
+        st.own_opacity = 1;
+        st.clip = st.mask = NULL;
+        st.overflow_visible = false;
+        apply_cascade(doc, chain[n], &st);
+    }
+    st.display_none = false;
+    st.opacity = 1;
+    return st;
+}
+
+/* An angle: a number of degrees, or with deg, rad, grad or turn. */
+static bool parse_angle(const char *v, double *deg)
+{
+    static const struct { const char *unit; double deg; } units[] = {
+        { "deg", 1 }, { "grad", 0.9 }, { "rad", 180 / M_PI }, { "turn", 360 }, { "", 1 },
+    };
+    const char *s = skip_ws(v);
+    if (!parse_number(&s, deg)) {
+        return false;
+    }
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
+        size_t n = strlen(units[i].unit);
+        if (strncmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+            *deg *= units[i].deg;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* One marker at user-space point p; `angle` (radians) is the path's
+ * direction there, for orient="auto". */
+static void draw_marker(svg_doc *doc, const frame *f, svg_node *m, sr_point2 p, double angle,
+                        bool start)
+{
+    doc->line = m->line;
+    if (m->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "marker: reference cycle through \"#%s\"",
+                 m->id ? m->id : "");
+        return;
+    }
+    if (!points_within_budget(doc, 1)) {
+        return;
+    }
+    doc->points_used++;
+    const char *orient = attr(m->atts, "orient");
+    double a = 0, deg;
+    if (orient && strcmp(orient, "auto") == 0) {
+        a = angle;
+    } else if (orient && strcmp(orient, "auto-start-reverse") == 0) {
+        a = start ? angle + M_PI : angle;
+    } else if (orient && parse_angle(orient, &deg)) {
+        a = deg * M_PI / 180;
+    } else if (orient) {
+        warn_once(doc, "orient", orient);
+    }
+    double mw = 3, mh = 3, rx = 0, ry = 0, vb[4];
+    const char *mws = attr(m->atts, "markerWidth"), *mhs = attr(m->atts, "markerHeight");
+    if ((mws && !length_attr(doc, f, "width", mws, &mw)) ||
+        (mhs && !length_attr(doc, f, "height", mhs, &mh)) ||
+        !length_attr(doc, f, "x", attr(m->atts, "refX"), &rx) ||
+        !length_attr(doc, f, "y", attr(m->atts, "refY"), &ry) || !(mw > 0 && mh > 0)) {
+        return;
+    }
+    const char *units = attr(m->atts, "markerUnits");
+    double sw = units && strcmp(units, "userSpaceOnUse") == 0 ? 1 : f->st.stroke_width;
+    double c = cos(a), si = sin(a);
+    mat2d place = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, p.x, p.y }, (mat2d){ c, si, -si, c, 0, 0 }),
+                          (mat2d){ sw, 0, 0, sw, 0, 0 });
+    frame mf = { .st = ancestor_style(doc, m), .vp_w = mw, .vp_h = mh };
+    mat2d content = IDENTITY;
+    const char *vbs = attr(m->atts, "viewBox");
+    if (vbs && parse_viewbox(vbs, vb)) {
+        content = viewbox_matrix(doc, m->atts, vb, 0, 0, mw, mh);
+        mf.vp_w = vb[2];
+        mf.vp_h = vb[3];
+    }
+    /* refX, refY (content units) land on the vertex */
+    sr_point2 ref = mat_apply(content, (sr_point2){ rx, ry });
+    content = mat_mul((mat2d){ 1, 0, 0, 1, -ref.x, -ref.y }, content);
+    mf.m = mat_mul(mat_mul(f->m, place), content);
+    if (doc->status != SR_OK || !(sw > 0)) {
+        return;
+    }
+    /* Unless overflow is visible, what the marker draws is cut to its
+     * viewport: the fills of its content clip to it in pixels. */
+    bool clip = !mf.st.overflow_visible && doc->n_windows < MAX_WINDOWS;
+    mat2d to_px = mat_mul(f->m, place);
+    if (clip && !(fabs(to_px.a * to_px.d - to_px.b * to_px.c) > 1e-12)) {
+        return; /* a viewport of no area in pixels shows nothing */
+    }
+    if (clip) {
+        sr_point2 *w = doc->windows[doc->n_windows++];
+        w[0] = mat_apply(to_px, (sr_point2){ -ref.x, -ref.y });
+        w[1] = mat_apply(to_px, (sr_point2){ -ref.x + mw, -ref.y });
+        w[2] = mat_apply(to_px, (sr_point2){ -ref.x + mw, -ref.y + mh });
+        w[3] = mat_apply(to_px, (sr_point2){ -ref.x, -ref.y + mh });
+    }
+    m->active = true;
+    draw_children(doc, m, &mf);
+    m->active = false;
+    doc->n_windows -= clip;
+}
+
+/* The direction into (dir -1) or out of (dir 1) vertex v of the path,
+ * false when the subpath has no other point; a closed subpath wraps. */
+static bool vertex_direction(const sr_polygon2 *poly, int start, int count, bool closed,
+                             const svg_vertex *v, int dir, double *angle)
+{
+    sr_point2 p = poly->points[v->at];
+    int i = v->at - start;
+    if (v->kind == 'Z') {
+        i = dir < 0 ? count : 0; /* in: the closing segment; out: the first one */
+    }
+    for (int k = 1; k < count; k++) {
+        int j = i + dir * k;
+        if (j < 0 || j >= count) {
+            if (!closed) {
+                return false;
+            }
+            j = (j + count) % count;
+        }
+        sr_point2 q = poly->points[start + j];
+        if (q.x != p.x || q.y != p.y) {
+            *angle = dir < 0 ? atan2(p.y - q.y, p.x - q.x) : atan2(q.y - p.y, q.x - p.x);
+            return true;
+        }
+    }
+    return false;
+}
+
+/* marker-start on the first vertex, marker-end on the last, marker-mid
+ * on the others, each turned along the path's direction there (the
+ * bisector where a segment comes in and one goes out). */
+static void draw_markers(svg_doc *doc, const frame *f, const sr_path *path, const svg_vertex *v,
+                         int n)
+{
+    sr_polygon2 poly = sr_path_polygon(path);
+    int contour = -1, start = 0;
+    for (int i = 0; i < n && doc->status == SR_OK; i++) {
+        while (contour < v[i].contour) {
+            start += contour >= 0 ? poly.contour_counts[contour] : 0;
+            contour++;
+        }
+        int which = i == 0 ? 0 : i == n - 1 ? 2 : 1;
+        if (!f->st.marker[which]) {
+            continue;
+        }
+        int count = poly.contour_counts[contour];
+        bool closed = sr_path_subpath_closed(path, contour);
+        double in = 0, out = 0;
+        bool has_in = vertex_direction(&poly, start, count, closed, &v[i], -1, &in);
+        bool has_out = vertex_direction(&poly, start, count, closed, &v[i], 1, &out);
+        double angle = has_in ? in : out;
+        if (has_in && has_out) {
+            double d = remainder(out - in, 2 * M_PI);
+            angle = in + d / 2;
+        }
+        draw_marker(doc, f, (svg_node *)f->st.marker[which], poly.points[v[i].at], angle,
+                    which == 0);
+    }
+}
+
 static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
 {
     double tol;
     bool fillable;
+    static const char *const markable[] = { "path", "line", "polyline", "polygon", NULL };
+    doc->want_verts = (f->st.marker[0] || f->st.marker[1] || f->st.marker[2]) &&
+                      is_named(node, markable);
+    doc->n_verts = 0;
     sr_path *p = shape_at_scale(doc, node, f, &tol, &fillable);
-    if (p) {
-        draw_path(doc, f, p, tol, fillable);
-        sr_destroy_path(doc->ctx, p);
+    /* the vertices are this shape's: markers draw paths of their own */
+    svg_vertex *verts = doc->verts;
+    int n_verts = doc->n_verts;
+    doc->verts = NULL;
+    doc->n_verts = doc->cap_verts = 0;
+    doc->want_verts = false;
+    for (int i = 0; p && i < 3 && doc->status == SR_OK; i++) {
+        if (f->st.paint_order[i] == PAINT_MARKERS) {
+            draw_markers(doc, f, p, verts, n_verts);
+        } else {
+            draw_path(doc, f, p, tol, fillable, f->st.paint_order[i]);
+        }
     }
+    free(verts);
+    sr_destroy_path(doc->ctx, p);
+}
+
+/* ---- images -------------------------------------------------------------------------- */
+
+/* An image's viewport x, y, width, height in r; a width or height that
+ * is missing or "auto" (the picture's own, known once it is read) is -1.
+ * False after reporting a malformed length. */
+static bool image_rect(svg_doc *doc, const svg_node *node, const frame *f, double r[4])
+{
+    const char *ws = attr(node->atts, "width"), *hs = attr(node->atts, "height");
+    r[2] = r[3] = -1;
+    return length_attr(doc, f, "x", attr(node->atts, "x"), &r[0]) &&
+           length_attr(doc, f, "y", attr(node->atts, "y"), &r[1]) &&
+           (!ws || strcmp(ws, "auto") == 0 || length_attr(doc, f, "width", ws, &r[2])) &&
+           (!hs || strcmp(hs, "auto") == 0 || length_attr(doc, f, "height", hs, &r[3]));
+}
+
+/* <image>: a PNG or a JPEG, from a base64 data: URI or a file next to
+ * the document, fitted into its viewport (x, y, width, height; a missing
+ * size is the picture's own) as preserveAspectRatio says, sampled
+ * bilinearly.  What does not read is skipped with a warning. */
+static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    const char *href = href_of(node);
+    if (!href || f->st.invisible) {
+        return;
+    }
+    sr_io_error err;
+    int iw = 0, ih = 0;
+    uint8_t *px = NULL, *bytes = NULL;
+    size_t n;
+    sr_result r = SR_BAD_FORMAT;
+    if (strncmp(href, "data:", 5) == 0) {
+        if (svg_data_uri(href, &bytes, &n)) {
+            r = sr_decode_image(doc->file, bytes, n, &iw, &ih, &px, &err);
+            free(bytes);
+        }
+    } else {
+        /* a document without a name has no directory to read from */
+        char *path = doc->opt->name ? svg_image_path(doc->opt->name, href) : NULL;
+        if (path) {
+            r = sr_read_image(path, &iw, &ih, &px, &err);
+            free(path);
+        }
+    }
+    if (r != SR_OK) {
+        char what[64];
+        snprintf(what, sizeof what, "%.60s", href);
+        warn_once(doc, "image source (not a readable PNG or JPEG next to the document)", what);
+        free(px);
+        return;
+    }
+    double vp[4];
+    if (image_rect(doc, node, f, vp) && work_within_budget(doc, (double)iw * ih)) {
+        /* a missing size is the picture's; one side given: the other
+         * keeps the picture's proportions */
+        double x = vp[0], y = vp[1], w = vp[2], h = vp[3];
+        w = w >= 0 ? w : h >= 0 ? h * iw / ih : iw;
+        h = h >= 0 ? h : vp[2] >= 0 ? w * ih / iw : ih;
+        double vb[4] = { 0, 0, iw, ih };
+        mat2d fit = viewbox_matrix(doc, node->atts, vb, x, y, w, h), inv;
+        /* drawn where the picture and its viewport meet */
+        double x0 = fmax(x, fit.e), y0 = fmax(y, fit.f);
+        double x1 = fmin(x + w, fit.e + iw * fit.a), y1 = fmin(y + h, fit.f + ih * fit.d);
+        if (x1 > x0 && y1 > y0 && mat_invert(mat_mul(f->m, fit), &inv)) {
+            svg_image im = { .rgba = px, .w = iw, .h = ih };
+            memcpy(im.inv, &inv, sizeof im.inv);
+            sr_point2 corners[4] = { { x0, y0 }, { x1, y0 }, { x1, y1 }, { x0, y1 } };
+            fill_mapped(doc, (sr_polygon2){ corners, 4, NULL, 0 }, f->m,
+                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, svg_image_at, &im, SR_NONZERO,
+                        f->st.crisp);
+        }
+    }
+    free(px);
 }
 
 /* ---- clipping and layers ------------------------------------------------------------- */
@@ -1900,7 +2658,16 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
     tf.m = mat_mul(f->m, m);
     doc->draw_depth++;
     n->active = true;
-    if (is_shape(n->name)) {
+    double r[4];
+    if (strcmp(n->name, "image") == 0 && image_rect(doc, n, f, r) && r[2] > 0 && r[3] > 0) {
+        for (int i = 0; i < 4; i++) { /* its viewport's corners */
+            sr_point2 q = mat_apply(m, (sr_point2){ r[0] + r[2] * (i % 2), r[1] + r[3] * (i / 2) });
+            b[0] = fmin(b[0], q.x);
+            b[1] = fmin(b[1], q.y);
+            b[2] = fmax(b[2], q.x);
+            b[3] = fmax(b[3], q.y);
+        }
+    } else if (is_shape(n->name)) {
         double tol;
         bool fillable;
         sr_path *p = shape_at_scale(doc, n, &tf, &tol, &fillable);
@@ -1985,12 +2752,18 @@ static frame viewport_frame(svg_doc *doc, const svg_node *node, const frame *f)
 
 /* The coverage of a nested svg's viewport (overflow is hidden); NULL
  * when it is empty or after a failure. */
+static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f);
+
 static uint8_t *nested_viewport(svg_doc *doc, const svg_node *node, const frame *f)
 {
     double r[4];
-    if (!viewport_rect(doc, node, f, r)) {
-        return NULL;
-    }
+    return viewport_rect(doc, node, f, r) ? rect_coverage(doc, r, f) : NULL;
+}
+
+/* The coverage of the rectangle x, y, width, height = r in f's user
+ * space; NULL after a failure. */
+static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f)
+{
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     sr_point2 corners[4] = { { r[0], r[1] }, { r[0] + r[2], r[1] },
                              { r[0] + r[2], r[1] + r[3] }, { r[0], r[1] + r[3] } };
@@ -2107,7 +2880,7 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
 /* Composite a layer over the image through a mask (or none) at an
  * opacity: straight-alpha source-over, as the fills blend. */
 static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
-                            double opacity)
+                            double opacity, svg_blend_kind mode)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     if (!work_within_budget(doc, (double)w * h)) {
@@ -2128,6 +2901,9 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
         }
         sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
                       (float)(l[3] / 255.0 * opacity) };
+        if (mode != SVG_BLEND_NORMAL) {
+            c = svg_blend_color(mode, px + i * 4, c);
+        }
         svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
     }
     if (r == SR_OK) {
@@ -2141,14 +2917,13 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
 
 /* A new transparent layer the size of the image, drawn into from now
  * until close_layer; NULL after reporting a failure. */
-static sr_framebuffer *open_layer(svg_doc *doc)
+/* A transparent w x h image drawn into instead of the current one. */
+static sr_framebuffer *open_layer_sized(svg_doc *doc, int w, int h)
 {
     sr_framebuffer *top = NULL;
     sr_result r = sr_make_framebuffer(doc->ctx,
-                                      &(sr_framebuffer_desc){
-                                          .width = sr_framebuffer_width(doc->fb),
-                                          .height = sr_framebuffer_height(doc->fb),
-                                          .depth_format = SR_DEPTH_NONE },
+                                      &(sr_framebuffer_desc){ .width = w, .height = h,
+                                                              .depth_format = SR_DEPTH_NONE },
                                       &top);
     if (r != SR_OK) {
         lib_fail(doc, r);
@@ -2160,30 +2935,182 @@ static sr_framebuffer *open_layer(svg_doc *doc)
     return top;
 }
 
+static sr_framebuffer *open_layer(svg_doc *doc)
+{
+    return open_layer_sized(doc, sr_framebuffer_width(doc->fb), sr_framebuffer_height(doc->fb));
+}
+
 static void close_layer(svg_doc *doc, sr_framebuffer *under)
 {
     doc->layers--;
     doc->fb = under;
 }
 
+/* ---- patterns ------------------------------------------------------------------------ */
+
+/* Pixels of a pattern tile, at most (beyond: drawn at a lower resolution). */
+#define MAX_TILE_PIXELS (4L << 20)
+
+/* Fill poly (user space of f) with the pattern: its tile drawn once into an
+ * image at about the device resolution, then repeated.  False when the
+ * pattern paints nothing (an empty tile, a singular transform) and the
+ * fallback color should be used; failures are reported. */
+static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygon2 poly,
+                          sr_polygon2 geometry, double opacity, sr_fill_rule rule)
+{
+    doc->line = pat->line;
+    const svg_node *g = pat, *content = NULL;
+    for (int i = 0; g; i++) {
+        if (i == MAX_HREF_CHAIN) {
+            svg_fail(doc, SR_BAD_FORMAT, "pattern: href chain through \"#%s\" is a cycle or "
+                     "longer than %d", pat->id ? pat->id : "", MAX_HREF_CHAIN);
+            return true;
+        }
+        content = !content && g->first ? g : content;
+        const char *h = href_of(g);
+        g = h ? reference(doc, h, NULL) : NULL;
+        g = g && strcmp(g->name, "pattern") == 0 ? g : NULL;
+    }
+    if (pat->active || (content && content->active)) {
+        svg_fail(doc, SR_BAD_FORMAT, "pattern: reference cycle through \"#%s\"",
+                 pat->id ? pat->id : "");
+        return true;
+    }
+    double b[4];
+    bool have_box = bounding_box(geometry, b);
+    const char *units = grad_attr(doc, pat, "patternUnits");
+    bool bbox_units = !units || strcmp(units, "userSpaceOnUse") != 0;
+    if (bbox_units && !have_box) {
+        return false;
+    }
+    double rw = bbox_units ? 1 : f->vp_w, rh = bbox_units ? 1 : f->vp_h;
+    double x = grad_coord(doc, pat, "x", rw, 0), y = grad_coord(doc, pat, "y", rh, 0);
+    double w = grad_coord(doc, pat, "width", rw, 0), h = grad_coord(doc, pat, "height", rh, 0);
+    if (bbox_units) {
+        x = b[0] + x * (b[2] - b[0]);
+        y = b[1] + y * (b[3] - b[1]);
+        w *= b[2] - b[0];
+        h *= b[3] - b[1];
+    }
+    if (!(w > 0 && h > 0) || !isfinite(w * h)) {
+        return true; /* an empty tile paints nothing */
+    }
+    /* the content's units onto the tile, its top left at the origin */
+    mat2d cm = IDENTITY;
+    double vb[4];
+    const char *vbs = grad_attr(doc, pat, "viewBox");
+    const char *cu = grad_attr(doc, pat, "patternContentUnits");
+    if (vbs && parse_viewbox(vbs, vb)) {
+        const svg_node *with_vb = pat;
+        while (!attr(with_vb->atts, "viewBox")) { /* preserveAspectRatio of the same element */
+            with_vb = reference(doc, href_of(with_vb), NULL);
+        }
+        cm = viewbox_matrix(doc, with_vb->atts, vb, 0, 0, w, h);
+    } else if (cu && strcmp(cu, "objectBoundingBox") == 0 && have_box) {
+        cm = (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], 0, 0 };
+    }
+    mat2d pm = f->m, t;
+    const char *tr = grad_attr(doc, pat, "patternTransform");
+    if (tr && !parse_transform(tr, &t)) {
+        warn_once(doc, "patternTransform", tr);
+    } else if (tr) {
+        pm = mat_mul(pm, t);
+    }
+    /* The tile at the device's scale along each of its axes. */
+    double sx = hypot(pm.a, pm.b), sy = hypot(pm.c, pm.d), tw = w * sx, th = h * sy;
+    if (!(tw > 0 && th > 0) || !isfinite(tw * th)) {
+        return false;
+    }
+    double k = tw * th > MAX_TILE_PIXELS ? sqrt(MAX_TILE_PIXELS / (tw * th)) : 1;
+    tw = fmin(fmax(ceil(tw * k - 1e-9), 1), SR_MAX_FRAMEBUFFER_SIZE);
+    th = fmin(fmax(ceil(th * k - 1e-9), 1), SR_MAX_FRAMEBUFFER_SIZE);
+    mat2d to_tile = { tw / w, 0, 0, th / h, 0, 0 }, inv;
+    if (!mat_invert(pm, &inv) || !work_within_budget(doc, tw * th)) {
+        return doc->status != SR_OK;
+    }
+    if (doc->layers == MAX_LAYERS) {
+        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
+        return false;
+    }
+    sr_framebuffer *under = doc->fb, *tile = open_layer_sized(doc, (int)tw, (int)th);
+    if (!tile) {
+        return true;
+    }
+    frame tf = { .m = mat_mul(to_tile, cm), .st = ancestor_style(doc, pat), .vp_w = f->vp_w,
+                 .vp_h = f->vp_h };
+    int windows = doc->n_windows; /* the tile has pixels of its own */
+    doc->n_windows = 0;
+    if (content) {
+        pat->active = true;
+        ((svg_node *)content)->active = true;
+        draw_children(doc, (svg_node *)content, &tf);
+        ((svg_node *)content)->active = false;
+        pat->active = false;
+    }
+    doc->n_windows = windows;
+    close_layer(doc, under);
+    svg_image im = { .rgba = sr_framebuffer_pixels(tile), .w = (int)tw, .h = (int)th,
+                     .repeat = true };
+    mat2d px_to_tile = mat_mul(mat_mul(to_tile, (mat2d){ 1, 0, 0, 1, -x, -y }), inv);
+    memcpy(im.inv, &px_to_tile, sizeof im.inv);
+    if (doc->status == SR_OK) {
+        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_image_at, &im, rule,
+                    f->st.crisp);
+    }
+    sr_destroy_framebuffer(doc->ctx, tile);
+    return true;
+}
+
 static void draw_children(svg_doc *doc, svg_node *node, const frame *f);
 
-/* A <mask> for an element drawn under frame f: its content drawn in a
- * layer, in the element's user space, then per pixel its luminance times
- * its alpha (mask-type="alpha": the alpha alone), multiplied into `into`
- * (NULL: all 255).  The mask region is not applied: the content is taken
- * whole.  Returns the coverage, or NULL (into freed) after a failure. */
-static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t *into)
+/* A <mask> for element `node` drawn under frame f: its content drawn in
+ * a layer (in the element's user space, or its bounding box's for
+ * maskContentUnits="objectBoundingBox"), then per pixel its luminance
+ * times its alpha (mask-type="alpha": the alpha alone), inside the mask
+ * region only, multiplied into `into` (NULL: all 255).  Returns the
+ * coverage, or NULL (into freed) after a failure. */
+static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, svg_node *node, const frame *f,
+                              uint8_t *into)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     size_t n = (size_t)w * (size_t)h;
     if (m->active) {
         svg_fail(doc, SR_BAD_FORMAT, "mask: reference cycle through \"#%s\"", m->id ? m->id : "");
     }
-    const char *units = attr(m->atts, "maskContentUnits");
-    if (units && strcmp(units, "objectBoundingBox") == 0) {
-        warn_once(doc, "maskContentUnits", units);
+    /* The element's bounding box, for the units that need it. */
+    const char *units = attr(m->atts, "maskUnits"), *cunits = attr(m->atts, "maskContentUnits");
+    bool region_bbox = !units || strcmp(units, "userSpaceOnUse") != 0;
+    bool content_bbox = cunits && strcmp(cunits, "objectBoundingBox") == 0;
+    double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    if (region_bbox || content_bbox) {
+        bool was = node->active;
+        node->active = false;
+        bbox_add(doc, node, f, IDENTITY, b);
+        node->active = was;
     }
+    bool have_box = b[2] > b[0] && b[3] > b[1];
+    double r[4] = { -0.1, -0.1, 1.2, 1.2 };
+    static const char *const names[4] = { "x", "y", "width", "height" };
+    for (int i = 0; i < 4; i++) {
+        const char *v = attr(m->atts, names[i]);
+        double x;
+        bool pct;
+        if (v && parse_length(v, &x, &pct)) {
+            r[i] = pct ? x / 100 : x;
+        } else if (v) {
+            warn_once(doc, names[i], v);
+        }
+        if (!region_bbox && (!v || pct)) {
+            r[i] = r[i] * (i % 2 ? f->vp_h : f->vp_w); /* percentages of the viewport */
+        }
+    }
+    if (region_bbox) {
+        r[0] = b[0] + r[0] * (b[2] - b[0]);
+        r[1] = b[1] + r[1] * (b[3] - b[1]);
+        r[2] *= b[2] - b[0];
+        r[3] *= b[3] - b[1];
+    }
+    bool empty = !(r[2] > 0 && r[3] > 0) || ((region_bbox || content_bbox) && !have_box);
     uint8_t *cov = into ? into : malloc(n);
     if (!cov || doc->status != SR_OK || !work_within_budget(doc, (double)n)) {
         if (!cov) {
@@ -2195,11 +3122,18 @@ static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t
     if (!into) {
         memset(cov, 255, n);
     }
-    frame mf = { .m = f->m, .st = doc->initial, .vp_w = f->vp_w, .vp_h = f->vp_h };
-    apply_cascade(doc, m, &mf.st);
+    if (empty) { /* nothing of the element shows */
+        memset(cov, 0, n);
+        return cov;
+    }
+    frame mf = { .m = f->m, .st = ancestor_style(doc, m), .vp_w = f->vp_w, .vp_h = f->vp_h };
+    uint8_t *region = rect_coverage(doc, r, &mf);
+    if (content_bbox) {
+        mf.m = mat_mul(f->m, (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], b[0], b[1] });
+    }
     const char *type = attr(m->atts, "mask-type");
     bool alpha = (type && strcmp(type, "alpha") == 0) || mf.st.mask_alpha;
-    sr_framebuffer *under = doc->fb, *layer = open_layer(doc);
+    sr_framebuffer *under = doc->fb, *layer = region ? open_layer(doc) : NULL;
     if (layer) {
         m->active = true;
         draw_children(doc, m, &mf);
@@ -2208,7 +3142,7 @@ static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t
         const uint8_t *px = sr_framebuffer_pixels(layer);
         for (size_t i = 0; i < n; i++) {
             const uint8_t *p = px + i * 4;
-            double v = p[3] / 255.0;
+            double v = p[3] / 255.0 * region[i] / 255.0;
             if (!alpha) { /* luminance of the sRGB values (CSS Masking) */
                 v *= (0.2125 * p[0] + 0.7154 * p[1] + 0.0721 * p[2]) / 255.0;
             }
@@ -2216,6 +3150,7 @@ static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, const frame *f, uint8_t
         }
         sr_destroy_framebuffer(doc->ctx, layer);
     }
+    free(region);
     if (doc->status != SR_OK) {
         free(cov);
         return NULL;
@@ -2292,7 +3227,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     }
     bool group = strcmp(node->name, "g") == 0 || strcmp(node->name, "a") == 0 ||
                  strcmp(node->name, "switch") == 0;
-    bool shape = is_shape(node->name), use = strcmp(node->name, "use") == 0;
+    bool image = strcmp(node->name, "image") == 0;
+    bool shape = is_shape(node->name) || image, use = strcmp(node->name, "use") == 0;
     bool nested = strcmp(node->name, "svg") == 0 && node != doc->root;
     if (nested) {
         group = true;
@@ -2300,6 +3236,9 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         if (!is_named(node, not_drawn) && !node->foreign) {
             warn_once(doc, "element", node->name);
         }
+        return;
+    }
+    if (!conditions_hold(node)) {
         return;
     }
     /* Uses and nested elements are visited again and again: each visit is
@@ -2311,7 +3250,14 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     frame f = *parent;
     f.st.own_opacity = 1;
     f.st.clip = f.st.mask = NULL;
+    f.st.non_scaling = false;
+    f.st.origin[0] = f.st.origin[1] = 0;
+    f.st.origin_pct = 0;
+    f.st.blend = SVG_BLEND_NORMAL;
+    f.st.isolate = false;
+    doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
+    doc->inherit_from = NULL;
     if (doc->status != SR_OK || f.st.display_none) {
         return;
     }
@@ -2322,6 +3268,10 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
             svg_fail(doc, SR_BAD_FORMAT, "transform=\"%s\" is malformed", tr);
             return;
         }
+        /* about transform-origin: move it to 0, transform, move back */
+        double ox = f.st.origin[0] * (f.st.origin_pct & 1 ? f.vp_w : 1);
+        double oy = f.st.origin[1] * (f.st.origin_pct & 2 ? f.vp_h : 1);
+        t = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, ox, oy }, t), (mat2d){ 1, 0, 0, 1, -ox, -oy });
         f.m = mat_mul(f.m, t);
     }
     /* A nested svg: a new viewport, which clips what it holds. */
@@ -2332,7 +3282,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     /* A group's opacity and any clip path apply to the element drawn
      * whole in a layer of its own; a lone shape's opacity folds into its
      * fill and stroke. */
-    bool layer = viewport || f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape);
+    bool layer = viewport || f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape) ||
+                 f.st.blend != SVG_BLEND_NORMAL || f.st.isolate;
     if (layer && doc->layers == MAX_LAYERS) {
         warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
         layer = false;
@@ -2351,7 +3302,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     }
     uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, node, &f) : NULL;
     if (f.st.mask && doc->status == SR_OK) {
-        mask = mask_coverage(doc, (svg_node *)f.st.mask, &f, mask);
+        mask = mask_coverage(doc, (svg_node *)f.st.mask, node, &f, mask);
     }
     if (viewport) {
         multiply_coverage(viewport, mask, doc);
@@ -2364,7 +3315,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         draw_content(doc, node, &f, shape, use);
         close_layer(doc, under);
         if (doc->status == SR_OK) {
-            composite_layer(doc, top, mask, f.st.own_opacity);
+            composite_layer(doc, top, mask, f.st.own_opacity, f.st.blend);
         }
         sr_destroy_framebuffer(doc->ctx, top);
     }
@@ -2377,16 +3328,19 @@ static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bo
     frame f = *fp;
     doc->draw_depth++;
     node->active = true;
-    if (shape) {
+    if (strcmp(node->name, "image") == 0) {
+        draw_image(doc, node, &f);
+    } else if (shape) {
         if (!f.st.invisible) {
             draw_shape(doc, node, &f);
         }
     } else if (use) {
         draw_use(doc, node, &f);
     } else if (strcmp(node->name, "switch") == 0) {
-        /* the first child whose conditions hold: none are tested here */
+        /* the first drawable child whose conditions hold */
         for (svg_node *c = node->first; c; c = c->next) {
-            if (is_shape(c->name) || !is_named(c, not_drawn)) {
+            if ((is_shape(c->name) || !is_named(c, not_drawn)) && !c->foreign &&
+                conditions_hold(c)) {
                 draw_node(doc, c, &f);
                 break;
             }
@@ -2457,10 +3411,12 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                             .own_opacity = 1, .clip_rule = SR_NONZERO,
                             .fill_rule = SR_NONZERO, .stroke_width = 1,
                             .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
-                            .miter_limit = 4 } };
+                            .miter_limit = 4,
+                            .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } } };
         doc->line = doc->root->line;
         doc->initial = f.st;
         if (root_element(doc, doc->root->atts, &f)) {
+            doc->root_m = f.m;
             draw_node(doc, doc->root, &f);
         }
     }
@@ -2483,6 +3439,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
     XML_ParserFree(doc->parser);
     free_tree(doc->root);
     free(doc->ids);
+    free(doc->verts);
     svg_css_free(&doc->sheet);
     free(doc);
     return status;

@@ -104,15 +104,80 @@ typedef struct svg_gradient {
 /* The gradient's color at the pixel coordinates (x, y). */
 sr_rgba svg_gradient_at(const svg_gradient *g, double x, double y);
 
+/* A paint's straight-alpha color at pixel coordinates (x, y). */
+typedef sr_rgba (*svg_paint_fn)(const void *paint, double x, double y);
+
+/* svg_gradient_at as an svg_paint_fn. */
+sr_rgba svg_gradient_paint(const void *g, double x, double y);
+
+/* ---- painted fills (svg_fill.c) ------------------------------------------ */
+
 /* Source-over of a straight-alpha color with coverage (0..1) onto an RGBA8
  * pixel, as the 2D fills blend (the color quantized to RGBA8 first). */
 void svg_blend(uint8_t *d, sr_rgba c, float cov);
 
-/* Fill a polygon in pixel coordinates with the gradient times opacity:
- * the coverage is sr_polygon_coverage's (the same pixels and weights as
+/* Fill a polygon in pixel coordinates with a paint times opacity: the
+ * coverage is sr_polygon_coverage's (the same pixels and weights as
  * sr_fill_polygon with that desc), the paint is applied after it and
  * blended source-over as the fills blend. */
-sr_result svg_fill_gradient(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                            const sr_fill_desc *desc, const svg_gradient *g, float opacity);
+sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
+                         const sr_fill_desc *desc, svg_paint_fn at, const void *paint,
+                         float opacity);
+
+/* An RGBA8 image (straight alpha) as a paint: pixel coordinates map into
+ * it by inv; sampled bilinearly, repeated (a pattern tile) or its edge
+ * texels extended (an image: the fill stays inside it). */
+typedef struct svg_image {
+    const uint8_t *rgba;
+    int w, h;
+    double inv[6];               /* pixel -> image texels (a b c d e f) */
+    bool repeat;
+} svg_image;
+
+sr_rgba svg_image_at(const void *image, double x, double y);
+
+/* ---- image sources (svg_image.c) ---------------------------------------- */
+
+/* The bytes of a base64 data: URI (*out malloc'd); false when uri is not
+ * one (another scheme, no base64, a bad character) or out of memory. */
+bool svg_data_uri(const char *uri, uint8_t **out, size_t *size);
+
+/* The file an <image> href names, relative to the directory of the
+ * document's path (malloc'd); NULL for what is not read: absolute paths,
+ * URLs, paths that climb out with "..", or out of memory. */
+char *svg_image_path(const char *document, const char *href);
+
+/* ---- blend modes (svg_blend.c) ------------------------------------------ */
+
+typedef enum svg_blend_kind {
+    SVG_BLEND_NORMAL, SVG_BLEND_MULTIPLY, SVG_BLEND_SCREEN, SVG_BLEND_OVERLAY,
+    SVG_BLEND_DARKEN, SVG_BLEND_LIGHTEN, SVG_BLEND_COLOR_DODGE, SVG_BLEND_COLOR_BURN,
+    SVG_BLEND_HARD_LIGHT, SVG_BLEND_SOFT_LIGHT, SVG_BLEND_DIFFERENCE, SVG_BLEND_EXCLUSION,
+    SVG_BLEND_HUE, SVG_BLEND_SATURATION, SVG_BLEND_COLOR, SVG_BLEND_LUMINOSITY,
+    SVG_BLEND_COUNT
+} svg_blend_kind;
+
+/* The mode a mix-blend-mode keyword names, or -1. */
+int svg_blend_mode(const char *name);
+
+/* The color (straight alpha, src.a kept) that src takes over the RGBA8
+ * backdrop under the mode: B(backdrop, src) where the backdrop is
+ * opaque, src itself where it is transparent, mixed by its alpha. */
+sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba src);
+
+/* ---- dashes (svg_dash.c) ----------------------------------------------- */
+
+/* Values of a stroke-dasharray, at most. */
+#define SVG_MAX_DASHES 32
+
+/* The length of the flattened path, closing segments included. */
+double svg_path_length(const sr_path *path);
+
+/* Append to out the dashes of path `in`: dash[0..n) are the lengths of
+ * dashes and gaps in turn (n even, each >= 0, their sum > 0), the pattern
+ * starting `offset` into itself at every subpath.  The caller bounds the
+ * work: about length / sum * n dashes. */
+sr_result svg_dash_path(const sr_path *in, const double *dash, int n, double offset,
+                        sr_path *out);
 
 #endif

@@ -1,13 +1,10 @@
 /* svg_gradient.c - the SVG reader's paint servers (src/io): linear and
  * radial gradients evaluated per pixel (spread pad, reflect, repeat; a
- * radial gradient's focal circle as the two-circle cone of SVG 2), and a
- * polygon filled with one: coverage from the 2D filler, then the paint.
- * Pure functions of their arguments; used by svg.c. */
+ * radial gradient's focal circle as the two-circle cone of SVG 2).  Pure
+ * functions of their arguments; used by svg.c. */
 #include "io/svg.h"
 
 #include <math.h>
-#include <stdlib.h>
-#include <string.h>
 
 /* The gradient parameter t of a point in gradient space; false where a
  * radial gradient's cone does not reach (the pixel is left unpainted). */
@@ -94,73 +91,7 @@ sr_rgba svg_gradient_at(const svg_gradient *g, double x, double y)
     return color_at(g, spread(g->spread, t));
 }
 
-static uint8_t unorm8(float v)
+sr_rgba svg_gradient_paint(const void *g, double x, double y)
 {
-    return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
-}
-
-void svg_blend(uint8_t *d, sr_rgba c, float cov)
-{
-    uint8_t s[4] = { unorm8(c.r), unorm8(c.g), unorm8(c.b), 0 };
-    float a = (c.a < 0 ? 0 : c.a > 1 ? 1 : c.a) * cov;
-    if (a <= 0.0f) {
-        return;
-    }
-    /* Straight alpha: the destination's color counts by its alpha. */
-    float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
-    if (d[3] < 255) {
-        keep = oa > 0.0f ? da * keep / oa : 0.0f;
-        a = oa > 0.0f ? a / oa : 0.0f;
-    }
-    for (int i = 0; i < 3; i++) {
-        d[i] = unorm8((s[i] * a + d[i] * keep) * (1.0f / 255.0f));
-    }
-    d[3] = unorm8(oa);
-}
-
-sr_result svg_fill_gradient(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                            const sr_fill_desc *desc, const svg_gradient *g, float opacity)
-{
-    int fw = sr_framebuffer_width(fb), fh = sr_framebuffer_height(fb);
-    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-    for (int i = 0; i < poly->point_count; i++) {
-        x0 = fmin(x0, poly->points[i].x);
-        x1 = fmax(x1, poly->points[i].x);
-        y0 = fmin(y0, poly->points[i].y);
-        y1 = fmax(y1, poly->points[i].y);
-    }
-    int bx0 = x0 > 0 ? (int)fmin(floor(x0), fw) : 0, by0 = y0 > 0 ? (int)fmin(floor(y0), fh) : 0;
-    int bx1 = x1 < fw ? (int)fmax(ceil(x1) + 1, 0) : fw, by1 = y1 < fh ? (int)fmax(ceil(y1) + 1, 0) : fh;
-    bx1 = bx1 > fw ? fw : bx1;
-    by1 = by1 > fh ? fh : by1;
-    int w = bx1 - bx0, h = by1 - by0;
-    if (w <= 0 || h <= 0) {
-        return SR_OK;
-    }
-    uint8_t *mask = malloc((size_t)w * (size_t)h);
-    uint8_t *px = malloc((size_t)w * (size_t)h * 4);
-    sr_result r = mask && px ? SR_OK : SR_OUT_OF_MEMORY;
-    if (r == SR_OK) {
-        r = sr_polygon_coverage(ctx, poly, desc, bx0, by0, w, h, mask, (size_t)w);
-    }
-    if (r == SR_OK) {
-        r = sr_read_pixels(ctx, fb, bx0, by0, w, h, px, (size_t)w * 4);
-    }
-    if (r == SR_OK) {
-        for (int y = 0; y < h; y++) {
-            for (int x = 0; x < w; x++) {
-                unsigned cov = mask[(size_t)y * w + x];
-                if (cov == 0) {
-                    continue;
-                }
-                sr_rgba c = svg_gradient_at(g, bx0 + x + 0.5, by0 + y + 0.5);
-                c.a *= opacity;
-                svg_blend(px + ((size_t)y * w + x) * 4, c, (float)cov * (1.0f / 255.0f));
-            }
-        }
-        r = sr_write_pixels(ctx, fb, bx0, by0, w, h, px, (size_t)w * 4);
-    }
-    free(mask);
-    free(px);
-    return r;
+    return svg_gradient_at(g, x, y);
 }

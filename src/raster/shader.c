@@ -20,6 +20,7 @@ typedef struct quad_job {
     const sr_tri *t;
     sr_frag_stats *st;
     bool early;                   /* tests before shading */
+    bool writes_color;            /* some channel is written (a masked write keeps every byte) */
     int64_t so[16][3];            /* sample offsets of the edge values */
     int64_t bias[3];              /* the edges' top-left bias */
     int64_t reach[3];             /* bias plus the largest sample offset: an edge value
@@ -203,7 +204,9 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
                         : 0;
         }
         if (pass) {
-            sr__write_samples(ds, base[i], pass, c, &ds->blend);
+            if (j->writes_color) {
+                sr__write_samples(ds, base[i], pass, c, &ds->blend);
+            }
             j->st->fragments += count16(pass);
         }
     }
@@ -212,7 +215,16 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
 void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0, int rx1,
                        int ry1, sr_frag_stats *st)
 {
-    quad_job j = { .ds = ds, .t = t, .st = st };
+    /* Field by field rather than by an initializer, which would zero
+     * all sixteen samples' offsets where only ds->samples are read: for
+     * a triangle of a pixel or less that store is a large part of its
+     * cost here. */
+    quad_job j;
+    j.ds = ds;
+    j.t = t;
+    j.st = st;
+    j.writes_color = (ds->write_mask[0] | ds->write_mask[1] | ds->write_mask[2] |
+                      ds->write_mask[3]) != 0;
     j.early = !ds->program->writes_depth && !ds->program->may_discard && !ds->alpha_to_coverage;
     sr_edges ed;
     sr__tri_edges(t, &ed);

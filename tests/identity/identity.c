@@ -27,6 +27,28 @@
 
 typedef sr_result (*scene_fn)(sr_context *ctx, sr_framebuffer **fb);
 
+/* The sine and cosine the scenes' geometry takes, from additions,
+ * multiplications and divisions alone, which IEEE 754 rounds the same
+ * everywhere: libm's sinf and cosf differ in the last place between C
+ * libraries (glibc's and Emscripten's musl round some of these angles
+ * apart), which moves a vertex and changes a depth. */
+static float exact_sin(double x)
+{
+    const double two_pi = 6.283185307179586;
+    double r = x - two_pi * nearbyint(x / two_pi);  /* in [-pi, pi] */
+    double term = r, sum = r;
+    for (int k = 1; k <= 12; k++) {                 /* the Taylor series to r^25 */
+        term = -term * r * r / (double)((2 * k) * (2 * k + 1));
+        sum += term;
+    }
+    return (float)sum;
+}
+
+static float exact_cos(double x)
+{
+    return exact_sin(x + 1.5707963267948966);
+}
+
 static sr_result make_fb(sr_context *ctx, int samples, bool stencil, sr_framebuffer **fb)
 {
     sr_result r = sr_make_framebuffer(
@@ -133,10 +155,11 @@ static sr_result make_lumpy(sr_context *ctx, sr_mesh *out)
             float th = 3.14159265f * (float)j / STACKS;
             for (int i = 0; i <= SLICES; i++, v++) {
                 float ph = 6.2831853f * (float)i / SLICES;
-                float rad = 1.0f + 0.12f * sinf(5 * ph) * sinf(4 * th) + 0.05f * cosf(11 * th);
-                pos[3 * v] = rad * sinf(th) * cosf(ph);
-                pos[3 * v + 1] = 0.8f + rad * cosf(th);
-                pos[3 * v + 2] = -rad * sinf(th) * sinf(ph);
+                float rad = 1.0f + 0.12f * exact_sin(5 * ph) * exact_sin(4 * th) +
+                            0.05f * exact_cos(11 * th);
+                pos[3 * v] = rad * exact_sin(th) * exact_cos(ph);
+                pos[3 * v + 1] = 0.8f + rad * exact_cos(th);
+                pos[3 * v + 2] = -rad * exact_sin(th) * exact_sin(ph);
                 uv[2 * v] = 2.0f * (float)i / SLICES;
                 uv[2 * v + 1] = 1.0f - (float)j / STACKS;
             }
@@ -225,9 +248,9 @@ static sr_result lines_points(sr_context *ctx, sr_framebuffer **fb)
     float xyz[3 * N], rgb[3 * N];
     for (int i = 0; i < N; i++) {
         float t = (float)i / N;
-        xyz[3 * i] = (0.3f + 1.2f * t) * cosf(18.0f * t);
+        xyz[3 * i] = (0.3f + 1.2f * t) * exact_cos(18.0f * t);
         xyz[3 * i + 1] = 0.1f + 1.6f * t;
-        xyz[3 * i + 2] = (0.3f + 1.2f * t) * sinf(18.0f * t);
+        xyz[3 * i + 2] = (0.3f + 1.2f * t) * exact_sin(18.0f * t);
         rgb[3 * i] = t;
         rgb[3 * i + 1] = 1.0f - t;
         rgb[3 * i + 2] = 0.5f;
