@@ -104,6 +104,7 @@
  *     sr_destroy_context         frees it and everything made on it
  *     sr_context_error           the message of the last failed call
  *     sr_context_threads         how many threads draw
+ *     sr_context_arena_peak      the high-water mark of its fixed arena
  *     sr_run_jobs                runs independent jobs on its threads
  *     sr_context_simd            which vector kernels it runs
  *   framebuffers
@@ -122,6 +123,7 @@
  *     sr_write_pixels            copy a rectangle of RGBA8 in
  *     sr_read_depth              copy out depth as floats
  *     sr_read_stencil            copy out stencil values
+ *     sr_render_bands            a frame drawn band by band, each band to a callback
  *   textures
  *     sr_make_texture            a mipmapped texture from RGBA8 pixels
  *     sr_destroy_texture         frees it
