@@ -104,6 +104,7 @@
  *     sr_destroy_context         frees it and everything made on it
  *     sr_context_error           the message of the last failed call
  *     sr_context_threads         how many threads draw
+ *     sr_context_arena_peak      the high-water mark of its fixed arena
  *     sr_run_jobs                runs independent jobs on its threads
  *     sr_context_simd            which vector kernels it runs
  *   framebuffers
@@ -122,6 +123,7 @@
  *     sr_write_pixels            copy a rectangle of RGBA8 in
  *     sr_read_depth              copy out depth as floats
  *     sr_read_stencil            copy out stencil values
+ *     sr_render_bands            a frame drawn band by band, each band to a callback
  *   textures
  *     sr_make_texture            a mipmapped texture from RGBA8 pixels
  *     sr_destroy_texture         frees it
@@ -421,10 +423,26 @@ typedef struct sr_context_desc {
      * set-up records (about 250 bytes each).  0: SR_BATCH_DEFAULT;
      * otherwise SR_BATCH_MIN .. SR_BATCH_MAX. */
     int batch_primitives;
+    /* A fixed arena for systems without malloc: with arena non-NULL, the
+     * context and everything made with it (framebuffers, meshes, draw
+     * scratch) take their memory from these arena_size bytes and from
+     * nowhere else, and a request the arena cannot meet fails with
+     * SR_OUT_OF_MEMORY.  The memory must outlive the context; it needs no
+     * alignment.  An arena is not locked, so such a context has one
+     * thread (threads 0 or 1) and excludes `allocator`. */
+    void *arena;
+    size_t arena_size;
 } sr_context_desc;
 
+/* The embedded profile (SR_EMBEDDED, docs/portability.md) sets up few
+ * primitives at a time: its memory is counted in kilobytes. */
+#ifdef SR_EMBEDDED
+#define SR_BATCH_DEFAULT 64
+#define SR_BATCH_MIN     16
+#else
 #define SR_BATCH_DEFAULT 98304
 #define SR_BATCH_MIN     1024
+#endif
 #define SR_BATCH_MAX     (1 << 22)
 
 SR_API sr_result   sr_make_context(const sr_context_desc *desc, sr_context **out);
@@ -432,6 +450,9 @@ SR_API void        sr_destroy_context(sr_context *ctx);
 /* Message for the last failed call on ctx ("" after a success). */
 SR_API const char *sr_context_error(const sr_context *ctx);
 SR_API int         sr_context_threads(const sr_context *ctx);
+/* The arena's high-water mark: the most bytes from its start ever in use,
+ * bookkeeping included (0 for a context without an arena). */
+SR_API size_t      sr_context_arena_peak(const sr_context *ctx);
 /* Runs fn(arg, job, thread) for job = 0 .. count-1 on ctx's threads and
  * returns when all are done: thread is 0 for the caller, 1 .. threads-1 for
  * the context's workers.  The jobs must be independent of each other.
@@ -536,6 +557,60 @@ SR_API sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
                                int x, int y, int w, int h, float *out, size_t stride_floats);
 SR_API sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
                                  int x, int y, int w, int h, uint8_t *out, size_t stride);
+
+/* ---- band rendering ----------------------------------------------------- */
+
+/* A frame drawn as a sequence of horizontal bands through one small band
+ * framebuffer, each finished band handed to a callback (an SPI display
+ * driver, say): the working memory is a band's, not a frame's.  For each
+ * band, top to bottom, sr_render_bands readies the band framebuffer as a
+ * fresh one (a pending clear to transparent black, the far depth and
+ * stencil 0), calls `draw`, which issues the frame's clears and draws on
+ * it exactly as it would on a whole framebuffer (same viewport, same
+ * scissor, in frame coordinates), then resolves the band and calls
+ * `output` with its pixels.  The band framebuffer is width x height for
+ * every call and holds only the band's rows: draws and clears stop at the
+ * band's edges, sr_read_pixels and its kin accept only rectangles inside
+ * the band, sr_framebuffer_pixels gives NULL, and the 2D toolkit,
+ * sr_resolve and sr_downsample refuse it.  Every band's pixels are the
+ * bytes the same draws give on a whole framebuffer. */
+/* The formats a band is handed over in.  The small ones round each 8-bit
+ * channel c to n bits as (c * (2^n - 1) + 127) / 255, the nearest value
+ * (never a tie), and drop alpha. */
+typedef enum sr_pixel_format {
+    SR_PIXEL_DEFAULT = 0, /* -> SR_PIXEL_RGBA8 */
+    SR_PIXEL_RGBA8,       /* 4 bytes r, g, b, a (sr_framebuffer_pixels' layout) */
+    /* 2 bytes, the high one first: rrrrrggg gggbbbbb, the order display
+     * controllers such as the ILI9341 and ST7789 take over SPI, the
+     * same bytes on every machine. */
+    SR_PIXEL_RGB565,
+    SR_PIXEL_RGB332,      /* 1 byte: rrrgggbb */
+} sr_pixel_format;
+
+typedef struct sr_band {
+    int y, rows;             /* the frame's rows [y, y + rows) */
+    int width;               /* pixels per row (the frame's width) */
+    const uint8_t *pixels;   /* row y first; valid during the callback only */
+    size_t stride;           /* bytes from one row to the next */
+    sr_pixel_format format;  /* resolved: never SR_PIXEL_DEFAULT */
+} sr_band;
+
+typedef struct sr_bands_desc {
+    int width, height;            /* the frame, required, 1 .. SR_MAX_FRAMEBUFFER_SIZE */
+    int band_rows;                /* rows per band, 1 .. height (the last band may be shorter) */
+    sr_depth_format depth_format; /* as sr_framebuffer_desc */
+    int samples;
+    bool stencil;
+    sr_pixel_format format;       /* of the pixels handed to `output` */
+    /* Issues the frame's clears and draws on fb; called once per band.  A
+     * result other than SR_OK stops the frame and is returned. */
+    sr_result (*draw)(sr_context *ctx, sr_framebuffer *fb, const sr_band *band, void *user);
+    /* Takes a finished band (its pixels in `format`).  Required. */
+    void (*output)(const sr_band *band, void *user);
+    void *user;                   /* passed to both callbacks */
+} sr_bands_desc;
+
+SR_API sr_result sr_render_bands(sr_context *ctx, const sr_bands_desc *desc);
 
 /* ---- textures ----------------------------------------------------------- */
 

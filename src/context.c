@@ -4,6 +4,7 @@
 /* _SC_NPROCESSORS_ONLN is not POSIX: ask glibc for it. */
 #define _DEFAULT_SOURCE 1
 #include "context.h"
+#include "arena.h"
 #include "parallel/pool.h"
 #include "scratch.h"
 #include "raster/triangle_simd.h"
@@ -54,6 +55,11 @@ void sr__ok(sr_context *ctx)
 const char *sr_context_error(const sr_context *ctx)
 {
     return ctx ? ctx->error : "sr_context is NULL";
+}
+
+size_t sr_context_arena_peak(const sr_context *ctx)
+{
+    return ctx ? sr__arena_peak(ctx->arena) : 0;
 }
 
 int sr_context_threads(const sr_context *ctx)
@@ -151,6 +157,19 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
         (d.batch_primitives < SR_BATCH_MIN || d.batch_primitives > SR_BATCH_MAX)) {
         return SR_INVALID_ARG;
     }
+    sr_arena *arena = NULL;
+    if (d.arena) {
+        if (d.allocator.alloc || d.threads > 1) {
+            return SR_INVALID_ARG; /* an arena is the only memory, on one thread */
+        }
+        arena = sr__arena_init(d.arena, d.arena_size, &d.allocator);
+        if (!arena) {
+            return SR_OUT_OF_MEMORY;
+        }
+        d.threads = 1;
+    } else if (d.arena_size) {
+        return SR_INVALID_ARG;
+    }
     if (!d.allocator.alloc) {
         d.allocator = sr__default_allocator();
     }
@@ -160,6 +179,7 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
     }
     memset(ctx, 0, sizeof *ctx);
     ctx->allocator = d.allocator;
+    ctx->arena = arena;
     ctx->threads = resolve_threads(d.threads);
     ctx->simd = resolve_simd(d.simd);
     ctx->batch_prims = d.batch_primitives ? (size_t)d.batch_primitives : SR_BATCH_DEFAULT;

@@ -14,6 +14,7 @@ struct sr_scratch;
 
 struct sr_context {
     sr_allocator allocator;
+    struct sr_arena *arena;        /* sr_context_desc.arena's, or NULL */
     int threads;
     sr_simd_level simd;        /* resolved once by sr_make_context; every draw follows it */
     size_t batch_prims;        /* sr_context_desc.batch_primitives, resolved */

@@ -185,6 +185,9 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
         ds->rect_x1 = sx1 < ds->rect_x1 ? (int)sx1 : ds->rect_x1;
         ds->rect_y1 = sy1 < ds->rect_y1 ? (int)sy1 : ds->rect_y1;
     }
+    /* A band framebuffer (sr_render_bands) trims it to the rows it holds. */
+    ds->rect_y0 = fb->row0 > ds->rect_y0 ? fb->row0 : ds->rect_y0;
+    ds->rect_y1 = fb->row1 < ds->rect_y1 ? fb->row1 : ds->rect_y1;
     ds->blend = st->blend;
     if (ds->blend.enabled) {
         sr_blend *b = &ds->blend;

@@ -13,7 +13,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef __SIZEOF_INT128__
 __extension__ typedef __int128 i128;
+#else
+/* 32-bit targets: the reference's products of two q8 coordinates fit 64
+ * bits while the lines stay in BIG (below 2^21 q8 a coordinate). */
+typedef int64_t i128;
+#endif
 
 /* ---- pixel sets ------------------------------------------------------------------ */
 

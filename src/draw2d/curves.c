@@ -6,6 +6,7 @@
  * lists.  Caller's thread only. */
 #include "context.h"
 #include "draw2d/paint.h"
+#include "math/wide.h"
 
 #include <math.h>
 #include <string.h>
@@ -14,10 +15,10 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* 128-bit integers for the ellipse decision variable: with centre and
- * radii in q8 below 2^27, (x - cx)^2 < 2^56 and ry^2 < 2^54, so every term
- * of F stays below 2^111. */
-__extension__ typedef __int128 i128;
+/* 128-bit integers for the ellipse decision variable (math/wide.h): with
+ * centre and radii in q8 below 2^27, (x - cx)^2 < 2^56 and ry^2 < 2^54,
+ * so every term of F stays below 2^111. */
+typedef sr_i128 i128;
 
 #define Q8_ONE 256
 #define MAX_FLATTEN_STEPS (1 << 16)
@@ -35,7 +36,8 @@ static int64_t floor_div(int64_t a, int64_t b)
 
 typedef struct ellipse_q8 {
     int64_t cx, cy;   /* centre, q8 */
-    i128 a, b, c;     /* F = a dx^2 + b dy^2 - c, a = ry^2, b = rx^2, c = rx^2 ry^2 */
+    int64_t a, b;     /* F = a dx^2 + b dy^2 - c, a = ry^2, b = rx^2, c = rx^2 ry^2 */
+    i128 c;
 } ellipse_q8;
 
 /* The decision variable at pixel (i, j)'s centre, with dx of that centre. */
@@ -47,21 +49,21 @@ typedef struct decision {
 static decision decide(const ellipse_q8 *e, int64_t i, int64_t j)
 {
     int64_t dx = i * Q8_ONE + Q8_ONE / 2 - e->cx, dy = j * Q8_ONE + Q8_ONE / 2 - e->cy;
-    decision d = { e->a * dx * dx + e->b * dy * dy - e->c, dx };
+    decision d = { sr__wide_sub(sr__wide_add(sr__wide_mul(e->a, dx * dx), sr__wide_mul(e->b, dy * dy)), e->c), dx };
     return d;
 }
 
 /* Forward differences in x: F(dx + 256) - F(dx) = a (512 dx + 65536). */
 static void step_right(const ellipse_q8 *e, decision *d)
 {
-    d->f += e->a * (i128)(2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE);
+    d->f = sr__wide_add(d->f, sr__wide_mul(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
     d->dx += Q8_ONE;
 }
 
 static void step_left(const ellipse_q8 *e, decision *d)
 {
     d->dx -= Q8_ONE;
-    d->f -= e->a * (i128)(2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE);
+    d->f = sr__wide_sub(d->f, sr__wide_mul(e->a, 2 * Q8_ONE * d->dx + Q8_ONE * Q8_ONE));
 }
 
 /* Inside pixels of row j: lo..hi (false when none).  Walks from the
@@ -71,23 +73,23 @@ static bool ellipse_row(const ellipse_q8 *e, int64_t j, int64_t ic, bool have_hi
                         int64_t hint_lo, int64_t hint_hi, int64_t *lo, int64_t *hi)
 {
     decision centre = decide(e, ic, j);
-    if (centre.f >= 0) {
+    if (!sr__wide_negative(centre.f)) {
         return false;
     }
     int64_t i = have_hint && hint_lo < ic ? hint_lo : ic;
     decision d = decide(e, i, j);
-    if (d.f < 0) {
+    if (sr__wide_negative(d.f)) {
         for (;;) { /* extend left while the next pixel is inside */
             decision t = d;
             step_left(e, &t);
-            if (t.f >= 0) {
+            if (!sr__wide_negative(t.f)) {
                 break;
             }
             d = t;
             i--;
         }
     } else {
-        while (d.f >= 0) {
+        while (!sr__wide_negative(d.f)) {
             step_right(e, &d);
             i++;
         }
@@ -95,18 +97,18 @@ static bool ellipse_row(const ellipse_q8 *e, int64_t j, int64_t ic, bool have_hi
     *lo = i;
     i = have_hint && hint_hi > ic ? hint_hi : ic;
     d = decide(e, i, j);
-    if (d.f < 0) {
+    if (sr__wide_negative(d.f)) {
         for (;;) {
             decision t = d;
             step_right(e, &t);
-            if (t.f >= 0) {
+            if (!sr__wide_negative(t.f)) {
                 break;
             }
             d = t;
             i++;
         }
     } else {
-        while (d.f >= 0) {
+        while (!sr__wide_negative(d.f)) {
             step_left(e, &d);
             i--;
         }
@@ -199,7 +201,7 @@ sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double
     }
     int64_t rxq = (int64_t)nearbyint(rx * Q8_ONE), ryq = (int64_t)nearbyint(ry * Q8_ONE);
     ellipse_q8 e = { (int64_t)nearbyint(cx * Q8_ONE), (int64_t)nearbyint(cy * Q8_ONE),
-                     (i128)ryq * ryq, (i128)rxq * rxq, (i128)rxq * rxq * ryq * ryq };
+                     ryq * ryq, rxq * rxq, sr__wide_mul(rxq * rxq, ryq * ryq) };
     /* The pixel whose centre is nearest the ellipse centre in x. */
     int64_t ic = floor_div(e.cx, Q8_ONE);
     /* Rows that can hold inside pixels, with one more above and below for

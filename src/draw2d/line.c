@@ -14,15 +14,13 @@
 #include "context.h"
 #include "draw2d/paint.h"
 #include "target/framebuffer.h"
+#include "math/wide.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef __SIZEOF_INT128__
-#error "softrast's line setup needs a 128-bit integer type (GCC or Clang on a 64-bit target)"
-#endif
-__extension__ typedef __int128 i128;
+typedef sr_i128 i128;   /* math/wide.h */
 
 #define S ((int64_t)256)   /* q8: sub-pixel steps per pixel */
 #define H ((int64_t)128)   /* half a pixel */
@@ -38,24 +36,14 @@ static int64_t ceil_div(int64_t a, int64_t b)
     int64_t q = a / b;
     return (a % b != 0 && a > 0) ? q + 1 : q;
 }
-static i128 floor_div128(i128 a, i128 b)
-{
-    i128 q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
-}
-static i128 ceil_div128(i128 a, i128 b)
-{
-    i128 q = a / b;
-    return (a % b != 0 && a > 0) ? q + 1 : q;
-}
 /* a / b rounded to nearest, halves up, for b != 0. */
-static i128 round_div128(i128 a, i128 b)
+static i128 round_div128(i128 a, int64_t b)
 {
     if (b < 0) {
-        a = -a;
+        a = sr__wide_neg(a);
         b = -b;
     }
-    return floor_div128(2 * a + b, 2 * b);
+    return sr__wide_floor_div(sr__wide_add(sr__wide_mul64(a, 2), sr__wide(b)), 2 * b);
 }
 static int64_t max64(int64_t a, int64_t b) { return a > b ? a : b; }
 static int64_t min64(int64_t a, int64_t b) { return a < b ? a : b; }
@@ -176,9 +164,9 @@ static void closed_form(const sr__line_q8 *l, int64_t klo, int64_t khi, emit_fn 
          * Per column num grows by S dv', and |S dv'| <= D (|dv| <= |du|),
          * so one correction step keeps r in range. */
         const int64_t D = den * S, step = S * dvn;
-        i128 num = (i128)m.av * den + (i128)(ka * S + H - m.au) * dvn;
-        int64_t q = (int64_t)floor_div128(num, D);
-        int64_t r = (int64_t)(num - (i128)q * D);
+        i128 num = sr__wide_add(sr__wide_mul(m.av, den), sr__wide_mul(ka * S + H - m.au, dvn));
+        int64_t q = sr__wide_low(sr__wide_floor_div(num, D));
+        int64_t r = sr__wide_low(sr__wide_sub(num, sr__wide_mul(q, D)));
         for (int64_t k = ka; k <= kb; k++) {
             int64_t j = q + (r != 0) - 1;          /* ceil(v) - 1 */
             if (!(has_e && k == ek && j == ej)) {
@@ -259,10 +247,11 @@ static bool bresenham_centres(const sr__line_q8 *l, int64_t klo, int64_t khi, em
      * decision for column ka + 1, both from the closed form
      * i = round(n dy / dx) with the tie rule, n = ka - u0. */
     int64_t n = ka - u0;
-    i128 t2 = (i128)2 * n * dy + dx;
-    int64_t i = s > 0 ? (int64_t)ceil_div128(t2, (i128)2 * dx) - 1
-                      : (int64_t)floor_div128(t2, (i128)2 * dx);
-    int64_t d = (int64_t)((i128)2 * dy * (n + 1) - (i128)dx * (2 * i + 1));
+    i128 t2 = sr__wide_add(sr__wide_mul64(sr__wide_mul(2, n), dy), sr__wide(dx));
+    int64_t i = s > 0 ? sr__wide_low(sr__wide_ceil_div(t2, 2 * dx)) - 1
+                      : sr__wide_low(sr__wide_floor_div(t2, 2 * dx));
+    int64_t d = sr__wide_low(sr__wide_sub(sr__wide_mul64(sr__wide_mul(2, dy), n + 1),
+                                          sr__wide_mul(dx, 2 * i + 1)));
     const int64_t dE = 2 * dy, dNE = 2 * (dy - dx);
     for (int64_t k = ka; k <= kb; k++) {
         if (k != end_k) {
@@ -351,14 +340,15 @@ void sr__line_dda(const sr__line_q8 *l, bool incremental, sr__irect clip,
      * step, which is the DDA's accumulated rounding. */
     const int64_t first = du > 0 ? k0 : k1;
     /* per step of travel */
-    const i128 inc = round_div128((i128)dv * ((i128)1 << 32), du > 0 ? du : -du);
-    const i128 v_first = (i128)m.av * (1 << 24) +
-                         round_div128((i128)(first * S + H - m.au) * dv * (1 << 24), du);
-    const i128 inc_k = du > 0 ? inc : -inc;       /* per +1 in k */
-    i128 v = v_first + (i128)(ka - first) * inc_k;
+    const i128 inc = round_div128(sr__wide_mul(dv, (int64_t)1 << 32), du > 0 ? du : -du);
+    const i128 v_first = sr__wide_add(
+        sr__wide_mul(m.av, 1 << 24),
+        round_div128(sr__wide_mul64(sr__wide_mul(first * S + H - m.au, dv), 1 << 24), du));
+    const i128 inc_k = du > 0 ? inc : sr__wide_neg(inc);       /* per +1 in k */
+    i128 v = sr__wide_add(v_first, sr__wide_mul64(inc_k, ka - first));
     for (int64_t k = ka; k <= kb; k++) {
-        emit_thin(&t, k, (int64_t)floor_div128(v, (i128)1 << 32));
-        v += inc_k;
+        emit_thin(&t, k, sr__wide_low(sr__wide_floor_div(v, (int64_t)1 << 32)));
+        v = sr__wide_add(v, inc_k);
     }
 }
 

@@ -9,7 +9,13 @@
 
 #include "softrast.h"
 
+/* The embedded profile has no threads: one chunk set and one set of
+ * per-thread records in the draw scratch instead of 64. */
+#ifdef SR_EMBEDDED
+#define SR_MAX_THREADS 1
+#else
 #define SR_MAX_THREADS 64
+#endif
 
 typedef struct sr_pool sr_pool;
 /* fn(arg, job, thread) - thread is 0 for the caller, 1..n-1 for workers. */

@@ -69,6 +69,8 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     size_t n = pixels * (size_t)samples;
     fb->width = desc->width;
     fb->height = desc->height;
+    fb->row0 = 0;
+    fb->row1 = desc->height;
     fb->samples = samples;
     fb->wide_stores = ctx->simd == SR_SIMD_AVX512;
     fb->depth_format = fmt;
@@ -194,6 +196,11 @@ static unsigned clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool 
     sr_tile_memo *m = &fb->tile_memo[tile];
     int dx0 = x0 + m->x0, dy0 = y0 + m->y0;
     int dx1 = x0 + m->x1 < x1 ? x0 + m->x1 : x1, dy1 = y0 + m->y1 < y1 ? y0 + m->y1 : y1;
+    /* Only the rows in memory (a band's). */
+    y0 = y0 > fb->row0 ? y0 : fb->row0;
+    y1 = y1 < fb->row1 ? y1 : fb->row1;
+    dy0 = dy0 > fb->row0 ? dy0 : fb->row0;
+    dy1 = dy1 < fb->row1 ? dy1 : fb->row1;
     unsigned flags = fb->tile_pending[tile];
     struct {
         unsigned pending, base;
@@ -300,6 +307,10 @@ sr_result sr__fb_begin_2d(sr_context *ctx, const char *fn, sr_framebuffer *fb)
         return sr__fail(ctx, SR_INVALID_ARG,
                         "%s: the framebuffer is multisampled; 2D drawing needs a single-sampled "
                         "one (sr_resolve into it first)", fn);
+    }
+    if (sr__fb_is_band(fb)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: 2D drawing needs a whole framebuffer, "
+                        "not a band of sr_render_bands", fn);
     }
     sr__fb_begin_write(fb);
     return SR_OK;
@@ -422,6 +433,8 @@ static void resolve_tile(const sr_framebuffer *src, uint32_t *dst, int tile, boo
     int x0 = tx << SR_TILE_ORDER, y0 = ty << SR_TILE_ORDER;
     int x1 = x0 + SR_TILE_SIZE < src->width ? x0 + SR_TILE_SIZE : src->width;
     int y1 = y0 + SR_TILE_SIZE < src->height ? y0 + SR_TILE_SIZE : src->height;
+    y0 = y0 > src->row0 ? y0 : src->row0;
+    y1 = y1 < src->row1 ? y1 : src->row1;
     bool pending = src->tile_pending[tile] & SR_TILE_PENDING_COLOR;
     for (int y = y0; y < y1; y++) {
         int x = x0;
@@ -514,7 +527,7 @@ static void resolve_all(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
 /* Reading resolves deferred clears (and multisampled pixels): logically the
  * framebuffer is unchanged, so the read functions keep their const
  * parameter. */
-static const uint32_t *color_image(const sr_framebuffer *fb)
+const uint32_t *sr__fb_color_image(const sr_framebuffer *fb)
 {
     if (fb->samples == 1) {
         sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_COLOR);
@@ -526,10 +539,10 @@ static const uint32_t *color_image(const sr_framebuffer *fb)
 
 const uint8_t *sr_framebuffer_pixels(const sr_framebuffer *fb)
 {
-    if (!fb) {
+    if (!fb || sr__fb_is_band(fb)) {
         return NULL;
     }
-    return (const uint8_t *)color_image(fb);
+    return (const uint8_t *)sr__fb_color_image(fb);
 }
 
 sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst)
@@ -545,6 +558,9 @@ sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer 
                         "sr_resolve: the destination must be single-sampled and %dx%d "
                         "(got %d samples, %dx%d)", src->width, src->height, dst->samples,
                         dst->width, dst->height);
+    }
+    if (sr__fb_is_band(src) || sr__fb_is_band(dst)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_resolve: not on a band of sr_render_bands");
     }
     if (src == dst) {
         sr__fb_resolve(dst, SR_TILE_PENDING_COLOR);
@@ -662,6 +678,11 @@ static sr_result check_rect(sr_context *ctx, const char *fn, const sr_framebuffe
                         "%s: rectangle (%d, %d, %d x %d) is not inside the %dx%d framebuffer",
                         fn, x, y, w, h, fb->width, fb->height);
     }
+    if (y < fb->row0 || y + h > fb->row1) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: rows %d .. %d are not all in the band (rows %d .. %d)",
+                        fn, y, y + h - 1, fb->row0, fb->row1 - 1);
+    }
     return SR_OK;
 }
 
@@ -688,7 +709,7 @@ sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
     if (r != SR_OK) {
         return r;
     }
-    const uint32_t *image = color_image(fb);
+    const uint32_t *image = sr__fb_color_image(fb);
     for (int row = 0; row < h; row++) {
         memcpy(out + (size_t)row * stride, image + (size_t)(y + row) * fb->width + x,
                (size_t)w * 4);

@@ -53,6 +53,11 @@ typedef struct sr_tile_memo {
  * to them together. */
 struct sr_framebuffer {
     int width, height;
+    /* The rows [row0, row1) are in memory: all of them, except in a band
+     * framebuffer (sr_render_bands), whose pointers below are offset so
+     * that row y is still at y * width, and whose draws and clears stop at
+     * the band's edges. */
+    int row0, row1;
     int samples;                    /* 1, 2, 4, 8, 16 */
     bool wide_stores;               /* its context's level is AVX-512: clears in 64-byte stores */
     sr_depth_format depth_format;   /* resolved: never SR_DEPTH_DEFAULT */
@@ -69,6 +74,13 @@ struct sr_framebuffer {
     uint8_t clear_stencil;
 };
 
+/* Whether fb holds only some of its rows (a band of sr_render_bands):
+ * what would touch every row refuses it. */
+static inline bool sr__fb_is_band(const sr_framebuffer *fb)
+{
+    return fb->row0 != 0 || fb->row1 != fb->height;
+}
+
 /* The standard positions as q8 offsets from the pixel centre, x then y
  * (docs/raster-rules.md §9.1: 16 x the D3D offset in 1/16 px, -128..112).  NULL
  * for a count that is not 1, 2, 4, 8 or 16. */
@@ -84,6 +96,9 @@ void sr__tile_drawn(sr_framebuffer *fb, int tile, int x0, int y0, int x1, int y1
 /* Before reading: carry out every pending clear of the given components.
  * The tiles whose color this writes become clean. */
 void sr__fb_resolve(sr_framebuffer *fb, unsigned components);
+/* The single-sampled RGBA8 image of fb, pending clears carried out
+ * (multisampled: resolved into fb->resolved); row y at y * width. */
+const uint32_t *sr__fb_color_image(const sr_framebuffer *fb);
 /* Before writing color anywhere outside the tile jobs: carry out the
  * pending color clears and drop every tile's clean flag. */
 void sr__fb_begin_write(sr_framebuffer *fb);

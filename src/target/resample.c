@@ -98,6 +98,9 @@ sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_downsample: multisampled framebuffers are resolved with sr_resolve");
     }
+    if (sr__fb_is_band(src) || sr__fb_is_band(dst)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_downsample: not on a band of sr_render_bands");
+    }
     if ((unsigned)filter > SR_RESAMPLE_MITCHELL) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_downsample: filter %d is not a filter", (int)filter);
     }
