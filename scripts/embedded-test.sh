@@ -49,5 +49,5 @@ EOT
     cmake --build "$build" -j2 >/dev/null
     echo "== embedded profile, $target: libsoftrast.a =="
     "$size_tool" -t "$build/libsoftrast.a" | tail -n 1
-    ctest --test-dir "$build" --output-on-failure
+    ctest --test-dir "$build" --output-on-failure -j2
 done
