@@ -105,23 +105,28 @@ for (const file of pages) {
         const mod = document.body.dataset.algorithm;
         return JSON.stringify({ name: mod, args: window.explainArgs });
     }));
-    const first = alg.args[2].split(',').map(Number);
+    // Pages of algorithms whose primitive has no handles yet (kind 'none':
+    // zbuffer, circle, ... step through their example only) skip the drag.
+    const draggable = ['--triangle', '--polygon', '--line'].includes(alg.args[1]);
+    const first = draggable ? alg.args[2].split(',').map(Number) : [0, 0];
     const zoom = Number(alg.args[alg.args.indexOf('--zoom') + 1]);
     const margin = 16;
     const x0 = at.left + margin + first[0] * zoom, y0 = at.top + margin + first[1] * zoom;
-    await page.mouse.move(x0, y0);
-    await page.mouse.down();
-    for (let k = 1; k <= 4; k++) {
-        await page.mouse.move(x0 + 0.75 * k * zoom, y0 + 0.5 * k * zoom);
+    if (draggable) {
+        await page.mouse.move(x0, y0);
+        await page.mouse.down();
+        for (let k = 1; k <= 4; k++) {
+            await page.mouse.move(x0 + 0.75 * k * zoom, y0 + 0.5 * k * zoom);
+        }
+        await page.mouse.up();
+        await page.waitForFunction((a) => window.explainArgs.join(' ') !== a, argsBefore,
+                                   { timeout: 10000 }).catch(() => {});
     }
-    await page.mouse.up();
-    await page.waitForFunction((a) => window.explainArgs.join(' ') !== a, argsBefore,
-                               { timeout: 10000 }).catch(() => {});
     const after = await canvasPixels(page);
     const args = await page.evaluate(() => window.explainArgs);
-    if (args.join(' ') === argsBefore) {
+    if (draggable && args.join(' ') === argsBefore) {
         fail(file, 'the drag did not move the vertex');
-    } else if (after === before) {
+    } else if (draggable && after === before) {
         fail(file, 'the drag did not change the canvas');
     }
 
@@ -152,7 +157,7 @@ for (const file of pages) {
         fail(file, `console errors: ${errors.join('; ')}`);
     }
     if (!differ && !errors.length) {
-        console.log(`ok   ${file}: ${frames.length} steps equal the native frames after the drag`);
+        console.log(`ok   ${file}: ${frames.length} steps equal the native frames${draggable ? " after the drag" : " (no handles)"}`);
     }
     await page.close();
 }
