@@ -21,6 +21,11 @@
 # multiarch libc6:ARCH's libc.so.6 makes the first pthread_create loop
 # forever in the thread-stack cache.)
 #
+# Warnings are not errors here, whatever SR_WERROR says: GCC's cross
+# compilers warn where the native one does not (a stringop-overflow false
+# positive in a fuzz target's vectorized loop on s390x, say), and the
+# native builds already hold the code to -Werror.
+#
 # The tests that run the `softrast` tool or the examples start them as
 # programs, which works under qemu-user only with qemu registered in
 # binfmt_misc (qemu-user-binfmt); without that they are left out, and the
@@ -106,7 +111,7 @@ set(ENV{PKG_CONFIG_SYSROOT_DIR} $sysroot)
 EOF
 cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$build/toolchain.cmake" \
     -DCMAKE_BUILD_TYPE=Release -DSR_BUILD_BENCH=OFF -DSR_WITH_ASSIMP=OFF \
-    -DSR_BUILD_PYTHON=OFF -DSR_BUILD_EXAMPLES=OFF >/dev/null
+    -DSR_BUILD_PYTHON=OFF -DSR_BUILD_EXAMPLES=OFF -DSR_WERROR=OFF >/dev/null
 cmake --build "$build" -j2 >/dev/null
 # Tests to leave out: $SR_CROSS_EXCLUDE (names, space-separated), and the
 # ones that start programs when qemu is not in binfmt_misc.

@@ -9,6 +9,10 @@
 #
 #   apt-get install gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user
 #
+# The armhf build does not treat warnings as errors (as scripts/cross-test.sh:
+# a cross compiler's false positives are not the code's; the native build
+# holds it to -Werror).
+#
 # The profile has no threads, so the cross package's loader and libc
 # (qemu-arm -L /usr/arm-linux-gnueabihf) serve its tests.
 set -eu
@@ -38,7 +42,7 @@ set(CMAKE_C_COMPILER $triplet-gcc)
 set(CMAKE_CROSSCOMPILING_EMULATOR qemu-arm -L /usr/$triplet)
 EOT
         cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$build/toolchain.cmake" \
-            -DSR_EMBEDDED=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
+            -DSR_EMBEDDED=ON -DCMAKE_BUILD_TYPE=Release -DSR_WERROR=OFF >/dev/null
         size_tool=$triplet-size
         ;;
     *)

@@ -19,6 +19,8 @@
 
 #define FAILF(...) sr_test_fail(__FILE__, __LINE__, __VA_ARGS__)
 
+#ifdef SR_HAVE_JPEG_TEST
+
 static char *out_path(const char *name, char *buf, size_t n)
 {
     snprintf(buf, n, "%s/jpeg_%s", sr_test_out_dir(), name);
@@ -41,8 +43,6 @@ static uint8_t channel_at(int x, int y, int c, int w, int h)
     int v = c == 0 ? 255 * x / (w - 1) : c == 1 ? 255 * y / (h - 1) : 255 * (x + y) / (w + h - 2);
     return (uint8_t)v;
 }
-
-#ifdef SR_HAVE_JPEG_TEST
 
 typedef enum sample_kind { RGB_444, RGB_420_PROGRESSIVE, GRAY, CMYK_ADOBE } sample_kind;
 

@@ -195,7 +195,7 @@ svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
         return SVG_PAINT_COLOR;
     }
     if (buf[0] == '#') {
-        unsigned d[8];
+        unsigned d[8] = { 0 };
         if (n != 4 && n != 5 && n != 7 && n != 9) {
             return SVG_PAINT_INVALID;
         }
