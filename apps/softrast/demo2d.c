@@ -4,6 +4,7 @@
 
 #include "cli.h"
 #include "demo.h"
+#include "outline.h"
 
 #include <string.h>
 
@@ -69,32 +70,23 @@ sr_point2 demo2d_map(const demo2d *d, int index, sr_point2 p)
     return (sr_point2){ ox + p.x * d->scale, oy + p.y * d->scale };
 }
 
+/* demo2d_map for outline_stroke: the demo and the panel's index. */
+typedef struct panel {
+    const demo2d *d;
+    int index;
+} panel;
+
+static sr_point2 panel_map(const void *user, sr_point2 p)
+{
+    const panel *at = user;
+    return demo2d_map(at->d, at->index, p);
+}
+
 void demo2d_outline(demo2d *d, int index, const sr_point2 *pts, int n, bool closed,
                     sr_rgba color, double width_px)
 {
-    if (n < 2) {
-        return;
-    }
-    sr_path *path = NULL;
-    if (sr_make_path(d->ctx, 0.05, &path) != SR_OK) {
-        return;
-    }
-    for (int i = 0; i < n; i++) {
-        sr_point2 q = demo2d_map(d, index, pts[i]);
-        if (i == 0) {
-            sr_path_move_to(path, q.x, q.y);
-        } else {
-            sr_path_line_to(path, q.x, q.y);
-        }
-    }
-    if (closed) {
-        sr_path_close(path);
-    }
-    sr_stroke_path(d->ctx, d->out, path, color,
-                   &(sr_stroke_desc){ .width = width_px, .join = SR_STROKE_JOIN_ROUND,
-                                      .cap = SR_STROKE_CAP_ROUND,
-                                      .antialias = SR_AA_SUPERSAMPLE, .samples = 4 });
-    sr_destroy_path(d->ctx, path);
+    outline_stroke(d->ctx, d->out, pts, n, closed, panel_map, &(panel){ d, index }, color,
+                   width_px);
 }
 
 void demo2d_dot(demo2d *d, int index, sr_point2 p, double radius_px, sr_rgba color)

@@ -2,6 +2,7 @@
  * steps on (see explain.h): cells are aliased rectangles, marks and edges
  * antialiased paths, captions the library's 5x7 font. */
 #include "explain.h"
+#include "outline.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -167,29 +168,17 @@ bool ex_cell_text(ex_canvas *c, int x, int y, const char *text, sr_rgba color)
     return true;
 }
 
+static sr_point2 frame_map(const void *c, sr_point2 p)
+{
+    return to_frame(c, p);
+}
+
 void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba color,
                 double width)
 {
-    sr_path *path = NULL;
-    if (n < 2 || c->error != SR_OK || (c->error = sr_make_path(c->ctx, 0.05, &path)) != SR_OK) {
-        return;
+    if (c->error == SR_OK) {
+        keep(c, outline_stroke(c->ctx, c->fb, pts, n, closed, frame_map, c, color, width));
     }
-    for (int i = 0; i < n; i++) {
-        sr_point2 q = to_frame(c, pts[i]);
-        if (i == 0) {
-            sr_path_move_to(path, q.x, q.y);
-        } else {
-            sr_path_line_to(path, q.x, q.y);
-        }
-    }
-    if (closed) {
-        sr_path_close(path);
-    }
-    keep(c, sr_stroke_path(c->ctx, c->fb, path, color,
-                           &(sr_stroke_desc){ .width = width, .join = SR_STROKE_JOIN_ROUND,
-                                              .cap = SR_STROKE_CAP_ROUND,
-                                              .antialias = SR_AA_SUPERSAMPLE, .samples = 4 }));
-    sr_destroy_path(c->ctx, path);
 }
 
 void ex_segment(ex_canvas *c, sr_point2 a, sr_point2 b, sr_rgba color, double width)
