@@ -1,0 +1,266 @@
+/*
+ * visibility.c - the geometry outputs through a visibility buffer: every
+ * face rasterized for its depth and index alone (no vertex program,
+ * varyings, set-up records, bins or fragment program), then each covered
+ * pixel resolved from the index of its visible face by
+ * sr_py_shade_pixel.  Runs without the GIL, on the render set's context's
+ * threads.
+ *
+ * The coverage and the depth test are the general pass's, computed by the
+ * library's own inline functions under the draw state sr_draw resolves
+ * for the geometry program: each vertex classified against the clip
+ * planes and snapped (sr__clip_outcode_with, sr__project) from the same
+ * clip position, each face set up by sr__setup_tri, and each covered
+ * pixel centre's depth sr__tri_depth quantized by sr__quantize_depth and
+ * tested GREATER against the faces before it.  A face crossing a clip
+ * plane makes the caller draw the view the general way instead.
+ *
+ * The faces (of all instances, in draw order) are split into consecutive
+ * ranges, each drawn into its own depth and index buffers.  The merge
+ * takes the greatest depth and, of equal depths, the earlier range's:
+ * the face a draw in order keeps (the first of the nearest), so the bytes
+ * do not depend on the number of threads.  Most faces of a dense mesh
+ * cover no pixel centre; sr__setup_tri finds that from the snapped box
+ * before anything else, which is why this pass is much cheaper per face
+ * than the general one.
+ */
+#include "geometry.h"
+
+#include "context.h"
+#include "draw_state.h"
+#include "fragment/fragment.h"
+#include "parallel/pool.h"
+#include "pipeline.h"
+#include "raster/setup_tri.h"
+
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Ranges of faces drawn into buffers of their own: at most this many,
+ * so that a machine of many CPUs does not need as many full-image
+ * buffers (the resolve still uses every thread). */
+enum { MAX_RANGES = 8, ROWS_PER_JOB = 16 };
+
+/* A vertex classified: its outcode (0 inside every clip plane) and,
+ * inside, its snapped window position. */
+typedef struct window_vertex {
+    int32_t x_q8, y_q8;
+    double z;
+} window_vertex;
+
+typedef struct vis_job {
+    const sr_draw_state *ds;
+    const geometry_uniforms *u;
+    size_t count;
+    const size_t *first_vertex, *first_face;   /* count + 1 each: prefix sums */
+    window_vertex *win;
+    uint32_t *outcode;
+    int ranges, vertex_jobs, height, width;
+    size_t pixels;
+    uint32_t *depth, *face;      /* ranges x pixels each */
+    atomic_bool crosses;         /* some face crosses a clip plane */
+} vis_job;
+
+/* The instance holding global index i of a prefix-sum array `first`. */
+static size_t instance_of(const size_t *first, size_t count, size_t i)
+{
+    size_t lo = 0, hi = count;
+    while (hi - lo > 1) {
+        size_t mid = (lo + hi) / 2;
+        if (first[mid] <= i) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
+}
+
+/* The vertex stage's classify (geometry/vertex.c), vertex by vertex. */
+static void classify_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    vis_job *j = arg;
+    size_t total = j->first_vertex[j->count];
+    size_t lo = total * (size_t)job / (size_t)j->vertex_jobs;
+    size_t hi = total * (size_t)(job + 1) / (size_t)j->vertex_jobs;
+    sr_clip_planes k;
+    sr__clip_planes(j->ds, &k);
+    size_t inst = instance_of(j->first_vertex, j->count, lo);
+    for (size_t v = lo; v < hi; v++) {
+        while (v >= j->first_vertex[inst + 1]) {
+            inst++;
+        }
+        const float *pos = j->u[inst].clip[v - j->first_vertex[inst]];
+        if (!(isfinite(pos[0]) && isfinite(pos[1]) && isfinite(pos[2]) && isfinite(pos[3]))) {
+            j->outcode[v] = SR_OUTCODE_NONFINITE;
+            continue;
+        }
+        j->outcode[v] = sr__clip_outcode_with(&k, pos);
+        if (j->outcode[v] == 0) {
+            float inv_w;
+            sr__project(j->ds, pos, &j->win[v].x_q8, &j->win[v].y_q8, &j->win[v].z, &inv_w);
+        }
+    }
+}
+
+/* The covered pixel centres of one set-up face into a range's buffers,
+ * where it passes the depth test. */
+static void raster_face(const sr_draw_state *ds, const sr_tri *t, uint32_t g, int width,
+                        uint32_t *depth, uint32_t *face)
+{
+    sr_edges ed;
+    sr__tri_edges(t, &ed);
+    for (int y = t->h.y0; y < t->h.y1; y++) {
+        int64_t Y = sr__centre_q8(y);
+        size_t row = (size_t)y * (size_t)width;
+        for (int x = t->h.x0; x < t->h.x1; x++) {
+            int64_t X = sr__centre_q8(x);
+            int64_t e0 = sr__edge_at(&ed, 0, X, Y), e1 = sr__edge_at(&ed, 1, X, Y);
+            int64_t e2 = sr__edge_at(&ed, 2, X, Y);
+            if (((e0 + ed.bias[0]) | (e1 + ed.bias[1]) | (e2 + ed.bias[2])) < 0) {
+                continue;
+            }
+            double z = sr__tri_depth(t, e1, e2);
+            uint32_t q = sr__quantize_depth(ds, &z);
+            if (q > depth[row + (size_t)x]) {
+                depth[row + (size_t)x] = q;
+                face[row + (size_t)x] = g;
+            }
+        }
+    }
+}
+
+/* Range `job` of the faces: the front end's triangle() (assembly.c) for
+ * faces inside every clip plane, then setup and the depth test. */
+static void faces_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    vis_job *j = arg;
+    const sr_draw_state *ds = j->ds;
+    uint32_t *depth = j->depth + (size_t)job * j->pixels;
+    uint32_t *face = j->face + (size_t)job * j->pixels;
+    memset(depth, 0, j->pixels * sizeof *depth);   /* cleared to depth 0, the far end */
+    size_t total = j->first_face[j->count];
+    size_t lo = total * (size_t)job / (size_t)j->ranges;
+    size_t hi = total * (size_t)(job + 1) / (size_t)j->ranges;
+    size_t inst = instance_of(j->first_face, j->count, lo);
+    for (size_t g = lo; g < hi; g++) {
+        while (g >= j->first_face[inst + 1]) {
+            inst++;
+        }
+        const geometry_uniforms *u = &j->u[inst];
+        size_t f = g - j->first_face[inst], base = j->first_vertex[inst];
+        size_t v0 = base + sr_py_face_index(u, 3 * f), v1 = base + sr_py_face_index(u, 3 * f + 1);
+        size_t v2 = base + sr_py_face_index(u, 3 * f + 2);
+        uint32_t c0 = j->outcode[v0], c1 = j->outcode[v1], c2 = j->outcode[v2];
+        if ((c0 | c1 | c2) != 0) {
+            if (((c0 | c1 | c2) & SR_OUTCODE_NONFINITE) || (c0 & c1 & c2)) {
+                continue;   /* discarded, or outside one plane: drawn by neither pass */
+            }
+            atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
+            return;
+        }
+        sr_window_vertex w[3] = {
+            { j->win[v0].x_q8, j->win[v0].y_q8, j->win[v0].z, 1.0f, NULL },
+            { j->win[v1].x_q8, j->win[v1].y_q8, j->win[v1].z, 1.0f, NULL },
+            { j->win[v2].x_q8, j->win[v2].y_q8, j->win[v2].z, 1.0f, NULL },
+        };
+        int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
+        sr_tri t;
+        if (area2 != 0 && sr__setup_tri(ds, &w[0], &w[1], &w[2], area2, NAN, true, 0, NULL, &t)) {
+            raster_face(ds, &t, (uint32_t)g, j->width, depth, face);
+        }
+    }
+}
+
+/* Rows of the image: the ranges' buffers merged, and each covered pixel
+ * resolved. */
+static void resolve_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    vis_job *j = arg;
+    int y1 = (job + 1) * ROWS_PER_JOB < j->height ? (job + 1) * ROWS_PER_JOB : j->height;
+    for (int y = job * ROWS_PER_JOB; y < y1; y++) {
+        for (int x = 0; x < j->width; x++) {
+            size_t p = (size_t)y * (size_t)j->width + (size_t)x;
+            uint32_t best = j->depth[p], g = j->face[p];
+            for (int r = 1; r < j->ranges; r++) {
+                uint32_t d = j->depth[(size_t)r * j->pixels + p];
+                if (d > best) {
+                    best = d;
+                    g = j->face[(size_t)r * j->pixels + p];
+                }
+            }
+            if (best == 0) {
+                continue;   /* no face passed: the background stays */
+            }
+            size_t inst = instance_of(j->first_face, j->count, g);
+            float z;
+            memcpy(&z, &best, sizeof z);   /* the float depth buffer's word */
+            sr_py_shade_pixel(&j->u[inst], g - j->first_face[inst], x, y, z);
+        }
+    }
+}
+
+sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *u, size_t count,
+                                bool *done)
+{
+    *done = false;
+    sr_context *ctx = set->ctx;
+    sr_framebuffer *fb = set->fb;
+    /* The general pass's draw state, as sr_draw resolves it. */
+    sr_program prog = { .varying_count = 1 };
+    prog.modes[0] = SR_VARYING_FLAT;
+    sr_state st = sr_py_geometry_state(&prog);
+    sr_draw_state ds;
+    sr__resolve_draw_state(fb, &st, NULL, NULL, ctx->simd, &ds);
+    if (ds.samples != 1 || ds.depth_bits != 0 || ds.depth_scale != 1.0) {
+        return SR_OK;
+    }
+    size_t *first = malloc(2 * (count + 1) * sizeof *first);
+    if (!first) {
+        return SR_OUT_OF_MEMORY;
+    }
+    vis_job j = { .ds = &ds, .u = u, .count = count, .first_vertex = first,
+                  .first_face = first + count + 1, .width = fb->width, .height = fb->height };
+    first[0] = first[count + 1] = 0;
+    for (size_t i = 0; i < count; i++) {
+        first[i + 1] = first[i] + u[i].vertices_count;
+        first[count + 2 + i] = first[count + 1 + i] + u[i].faces_count;
+    }
+    size_t faces = j.first_face[count], vertices = j.first_vertex[count];
+    if (faces >= UINT32_MAX) {
+        free(first);
+        return SR_OK;   /* face indices would not fit the index buffer */
+    }
+    int threads = ctx->threads > 0 ? ctx->threads : 1;
+    j.ranges = threads < MAX_RANGES ? threads : MAX_RANGES;
+    j.vertex_jobs = threads;
+    j.pixels = (size_t)j.width * (size_t)j.height;
+    size_t bytes = vertices * (sizeof(window_vertex) + sizeof(uint32_t)) +
+                   2 * (size_t)j.ranges * j.pixels * sizeof(uint32_t);
+    if (set->visibility_bytes < bytes) {
+        free(set->visibility);
+        set->visibility = malloc(bytes);
+        set->visibility_bytes = set->visibility ? bytes : 0;
+        if (!set->visibility) {
+            free(first);
+            return SR_OUT_OF_MEMORY;
+        }
+    }
+    j.win = set->visibility;
+    j.depth = (uint32_t *)(j.win + vertices);
+    j.face = j.depth + (size_t)j.ranges * j.pixels;
+    j.outcode = j.face + (size_t)j.ranges * j.pixels;
+    atomic_init(&j.crosses, false);
+    sr__pool_run(ctx->pool, classify_job, &j, j.vertex_jobs);
+    sr__pool_run(ctx->pool, faces_job, &j, j.ranges);
+    if (!atomic_load(&j.crosses)) {
+        sr__pool_run(ctx->pool, resolve_job, &j, (j.height + ROWS_PER_JOB - 1) / ROWS_PER_JOB);
+        *done = true;
+    }
+    free(first);
+    return SR_OK;
+}
