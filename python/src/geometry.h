@@ -55,6 +55,12 @@ static inline size_t sr_py_face_index(const geometry_uniforms *u, size_t i)
  * positions. */
 void sr_py_view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3]);
 
+/* Fills u's clip and camera tables for vertices [lo, hi). */
+void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
+
+/* The outputs of pixel p (y * width + x) where nothing is visible. */
+void sr_py_background_pixel(const geometry_uniforms *u, size_t p);
+
 /* The outputs of pixel (x, y) where face `face` is visible, with
  * `window_z` its depth-buffer value there (reversed: near / z). */
 void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z);
@@ -63,9 +69,11 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
  * rasterized for depth and face index alone, then each covered pixel
  * resolved by sr_py_shade_pixel: the same bytes as the general pass,
  * whose coverage and depth test it repeats with the library's own setup
- * and depth arithmetic.  `u[i].clip` must be filled.  *done is false
- * (and nothing written) when some face crosses a clip plane: clipping
- * is left to the general pass. */
+ * and depth arithmetic.  Fills the instances' vertex tables
+ * (sr_py_view_vertices) and every pixel of the outputs.  *done is false,
+ * the outputs unwritten and the tables maybe unfilled, when some face
+ * crosses a clip plane (clipping is left to the general pass) or the pass
+ * cannot draw the view. */
 sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *u, size_t count,
                                 bool *done);
 

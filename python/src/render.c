@@ -73,6 +73,17 @@ void sr_py_view_of(const geometry_uniforms *u, size_t v, float clip[4], double c
     clip[3] = (float)c[2];
 }
 
+void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi)
+{
+    /* The tables are the render set's, handed out read-only to the
+     * shaders. */
+    float (*clip)[4] = (float (*)[4])u->clip;
+    double (*camera)[3] = (double (*)[3])u->camera;
+    for (size_t v = lo; v < hi; v++) {
+        sr_py_view_of(u, v, clip[v], camera[v]);
+    }
+}
+
 static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
                             float *vary)
 {
@@ -164,6 +175,28 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
     }
 }
 
+void sr_py_background_pixel(const geometry_uniforms *u, size_t p)
+{
+    if (u->depth) {
+        u->depth[p] = INFINITY;
+    }
+    if (u->triangle_id) {
+        u->triangle_id[p] = -1;
+    }
+    if (u->instance_out) {
+        u->instance_out[p] = -1;
+    }
+    if (u->barycentric) {
+        memset(&u->barycentric[3 * p], 0, 3 * sizeof(float));
+    }
+    if (u->normal) {
+        memset(&u->normal[3 * p], 0, 3 * sizeof(float));
+    }
+    if (u->mask) {
+        u->mask[p] = 0;
+    }
+}
+
 static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
 {
     const geometry_uniforms *u = uniforms;
@@ -207,28 +240,15 @@ typedef struct render_job {
     char error[512];
 } render_job;
 
+/* Every pixel of the geometry outputs as where nothing is visible. */
 static void fill_outputs(const render_job *j)
 {
+    geometry_uniforms u = { .depth = j->depth, .triangle_id = j->triangle_id,
+                            .instance_out = j->instance_id, .barycentric = j->barycentric,
+                            .normal = j->normal, .mask = j->mask };
     size_t n = (size_t)j->width * (size_t)j->height;
-    for (size_t i = 0; i < n; i++) {
-        if (j->depth) {
-            j->depth[i] = INFINITY;
-        }
-        if (j->triangle_id) {
-            j->triangle_id[i] = -1;
-        }
-        if (j->instance_id) {
-            j->instance_id[i] = -1;
-        }
-    }
-    if (j->barycentric) {
-        memset(j->barycentric, 0, 3 * n * sizeof(float));
-    }
-    if (j->normal) {
-        memset(j->normal, 0, 3 * n * sizeof(float));
-    }
-    if (j->mask) {
-        memset(j->mask, 0, n * sizeof(npy_bool));
+    for (size_t p = 0; p < n; p++) {
+        sr_py_background_pixel(&u, p);
     }
 }
 
@@ -259,10 +279,11 @@ static sr_result draw_instances(sr_context *ctx, sr_framebuffer *fb, const rende
     return r;
 }
 
-/* Each instance's uniforms, its vertices seen from the camera in the
- * set's per-vertex room: every instance's at once, as the visibility pass
- * resolves any of them at any pixel. */
-static sr_result geometry_uniforms_of(const render_job *j, geometry_uniforms *u)
+/* Each instance's uniforms, with room for its vertices seen from the
+ * camera in the set's per-vertex tables (every instance's at once, as the
+ * visibility pass resolves any of them at any pixel), filled when `view`
+ * (the visibility pass fills them on its threads). */
+static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_uniforms *u)
 {
     size_t total = 0;
     for (size_t i = 0; i < j->count; i++) {
@@ -299,11 +320,11 @@ static sr_result geometry_uniforms_of(const render_job *j, geometry_uniforms *u)
         memcpy(u[i].a, in->a, sizeof u[i].a);
         memcpy(u[i].nm, in->nm, sizeof u[i].nm);
         clip_rows(j, u[i].kx, u[i].ky);
-        for (size_t v = 0; v < u[i].vertices_count; v++) {
-            sr_py_view_of(&u[i], v, clip[v], camera[v]);
-        }
         u[i].clip = (const float (*)[4])clip;
         u[i].camera = (const double (*)[3])camera;
+        if (view) {
+            sr_py_view_vertices(&u[i], 0, u[i].vertices_count);
+        }
         clip += u[i].vertices_count;
         camera += u[i].vertices_count;
     }
@@ -336,12 +357,16 @@ static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render
     if (!u) {
         return SR_OUT_OF_MEMORY;
     }
-    sr_result r = geometry_uniforms_of(j, u);
+    sr_result r = geometry_uniforms_of(j, j->general, u);
     bool done = false;
     if (r == SR_OK && !j->general) {
         r = sr_py_visibility_pass(j->set, u, j->count, &done);
     }
     if (r == SR_OK && !done) {
+        for (size_t i = 0; i < j->count && !j->general; i++) {
+            sr_py_view_vertices(&u[i], 0, u[i].vertices_count);
+        }
+        fill_outputs(j);
         r = sr_clear(ctx, fb, &(sr_clear_desc){ .depth_action = SR_ACTION_CLEAR, .depth = 0,
                                                  .color_action = SR_ACTION_KEEP });
         for (size_t i = 0; i < j->count && r == SR_OK; i++) {
@@ -562,7 +587,6 @@ static void run(render_job *j, sr_py_render_set *s)
         snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_result_text(r));
         return;
     }
-    fill_outputs(j);
     sr_context *ctx = s->ctx;
     sr_framebuffer *fb = s->fb;
     bool geometry = j->depth || j->triangle_id || j->instance_id || j->barycentric || j->normal ||

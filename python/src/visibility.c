@@ -41,6 +41,9 @@
  * so that a machine of many CPUs does not need as many full-image
  * buffers (the resolve still uses every thread). */
 enum { MAX_RANGES = 8, ROWS_PER_JOB = 16 };
+/* Boxes of at most this many pixel centres are tested by may_pass before
+ * setup. */
+enum { SMALL_BOX = 4 };
 
 /* A vertex classified: its outcode (0 inside every clip plane) and,
  * inside, its snapped window position. */
@@ -49,16 +52,27 @@ typedef struct window_vertex {
     double z;
 } window_vertex;
 
+/* The pixel centres a vertex's own box spans, [x0, x1) x [y0, y1) (empty
+ * when it lies between centres): setup's box of a face is the smallest
+ * of the x0, y0 and the largest of the x1, y1 of its vertices (rounding
+ * up or down is monotonic), so a face covering no centre is found from
+ * these 8 bytes a vertex, before its window positions are read. */
+typedef struct centre_span {
+    int16_t x0, x1, y0, y1;
+} centre_span;
+
 typedef struct vis_job {
     const sr_draw_state *ds;
     const geometry_uniforms *u;
     size_t count;
     const size_t *first_vertex, *first_face;   /* count + 1 each: prefix sums */
     window_vertex *win;
+    centre_span *span;
     uint32_t *outcode;
     int ranges, vertex_jobs, height, width;
     size_t pixels;
     uint32_t *depth, *face;      /* ranges x pixels each */
+    atomic_bool outside;         /* some vertex is outside a clip plane */
     atomic_bool crosses;         /* some face crosses a clip plane */
 } vis_job;
 
@@ -87,22 +101,53 @@ static void classify_job(void *arg, int job, int thread)
     size_t hi = total * (size_t)(job + 1) / (size_t)j->vertex_jobs;
     sr_clip_planes k;
     sr__clip_planes(j->ds, &k);
-    size_t inst = instance_of(j->first_vertex, j->count, lo);
-    for (size_t v = lo; v < hi; v++) {
-        while (v >= j->first_vertex[inst + 1]) {
-            inst++;
-        }
-        const float *pos = j->u[inst].clip[v - j->first_vertex[inst]];
-        if (!(isfinite(pos[0]) && isfinite(pos[1]) && isfinite(pos[2]) && isfinite(pos[3]))) {
+    bool outside = false;
+    /* Instance by instance: its vertices seen from the camera, then
+     * classified. */
+    for (size_t inst = instance_of(j->first_vertex, j->count, lo), v = lo; v < hi; inst++) {
+        const geometry_uniforms *u = &j->u[inst];
+        size_t base = j->first_vertex[inst];
+        size_t end = j->first_vertex[inst + 1] < hi ? j->first_vertex[inst + 1] : hi;
+        sr_py_view_vertices(u, v - base, end - base);
+        for (; v < end; v++) {
+            const float *pos = u->clip[v - base];
             j->outcode[v] = SR_OUTCODE_NONFINITE;
-            continue;
-        }
-        j->outcode[v] = sr__clip_outcode_with(&k, pos);
-        if (j->outcode[v] == 0) {
-            float inv_w;
-            sr__project(j->ds, pos, &j->win[v].x_q8, &j->win[v].y_q8, &j->win[v].z, &inv_w);
+            if (isfinite(pos[0]) && isfinite(pos[1]) && isfinite(pos[2]) && isfinite(pos[3])) {
+                j->outcode[v] = sr__clip_outcode_with(&k, pos);
+            }
+            window_vertex *w = &j->win[v];
+            if (j->outcode[v] != 0) {
+                outside = true;
+                w->x_q8 = w->y_q8 = 0;
+                w->z = 0.0;
+            } else {
+                float inv_w;
+                sr__project(j->ds, pos, &w->x_q8, &w->y_q8, &w->z, &inv_w);
+            }
+            /* setup_tri.h's single-sample box, of this vertex alone. */
+            j->span[v] = (centre_span){
+                (int16_t)sr__ceil_q8((int64_t)w->x_q8 - SR_SUBPIXEL_HALF),
+                (int16_t)(sr__floor_q8((int64_t)w->x_q8 - SR_SUBPIXEL_HALF) + 1),
+                (int16_t)sr__ceil_q8((int64_t)w->y_q8 - SR_SUBPIXEL_HALF),
+                (int16_t)(sr__floor_q8((int64_t)w->y_q8 - SR_SUBPIXEL_HALF) + 1),
+            };
         }
     }
+    if (outside) {
+        atomic_store_explicit(&j->outside, true, memory_order_relaxed);
+    }
+}
+
+static inline int min3(int a, int b, int c)
+{
+    int m = a < b ? a : b;
+    return m < c ? m : c;
+}
+
+static inline int max3(int a, int b, int c)
+{
+    int m = a > b ? a : b;
+    return m > c ? m : c;
 }
 
 /* The covered pixel centres of one set-up face into a range's buffers,
@@ -132,6 +177,44 @@ static void raster_face(const sr_draw_state *ds, const sr_tri *t, uint32_t g, in
     }
 }
 
+/* Whether some pixel centre of the box [x0, x1) x [y0, y1) may be
+ * covered by the face and pass the depth test: a necessary condition,
+ * cheaper than setup, which decides.  Covered centres lie in the closed
+ * half-planes of the three edges (the fill rule only removes some on
+ * the edges), and their depth, the plane through the vertex depths at
+ * barycentric weights in [0, 1], exceeds the largest vertex depth only
+ * by rounding (a few units in the last place of 1; setup_tri.h's
+ * z_inside takes the same 1e-9 margin), so a centre whose stored depth
+ * is at least that bound, quantized, cannot pass. */
+static bool may_pass(const sr_draw_state *ds, const sr_window_vertex w[3], int64_t area2, int x0,
+                     int y0, int x1, int y1, int width, const uint32_t *depth)
+{
+    int64_t sign = area2 > 0 ? 1 : -1;
+    int64_t dx[3], dy[3];
+    for (int i = 0; i < 3; i++) {
+        const sr_window_vertex *a = &w[(i + 1) % 3], *b = &w[(i + 2) % 3];
+        dx[i] = sign * ((int64_t)b->x_q8 - a->x_q8);
+        dy[i] = sign * ((int64_t)b->y_q8 - a->y_q8);
+    }
+    double zhi = sr__max_d(w[0].z, sr__max_d(w[1].z, w[2].z)) + 1e-9;
+    uint32_t bound = sr__quantize_depth(ds, &zhi);
+    for (int y = y0; y < y1; y++) {
+        int64_t Y = sr__centre_q8(y);
+        for (int x = x0; x < x1; x++) {
+            int64_t X = sr__centre_q8(x);
+            bool inside = true;
+            for (int i = 0; i < 3; i++) {
+                const sr_window_vertex *a = &w[(i + 1) % 3];
+                inside &= dx[i] * (Y - a->y_q8) - dy[i] * (X - a->x_q8) >= 0;
+            }
+            if (inside && bound > depth[(size_t)y * (size_t)width + (size_t)x]) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
 /* Range `job` of the faces: the front end's triangle() (assembly.c) for
  * faces inside every clip plane, then setup and the depth test. */
 static void faces_job(void *arg, int job, int thread)
@@ -141,6 +224,7 @@ static void faces_job(void *arg, int job, int thread)
     const sr_draw_state *ds = j->ds;
     uint32_t *depth = j->depth + (size_t)job * j->pixels;
     uint32_t *face = j->face + (size_t)job * j->pixels;
+    bool outside = atomic_load_explicit(&j->outside, memory_order_relaxed);
     memset(depth, 0, j->pixels * sizeof *depth);   /* cleared to depth 0, the far end */
     size_t total = j->first_face[j->count];
     size_t lo = total * (size_t)job / (size_t)j->ranges;
@@ -154,13 +238,23 @@ static void faces_job(void *arg, int job, int thread)
         size_t f = g - j->first_face[inst], base = j->first_vertex[inst];
         size_t v0 = base + sr_py_face_index(u, 3 * f), v1 = base + sr_py_face_index(u, 3 * f + 1);
         size_t v2 = base + sr_py_face_index(u, 3 * f + 2);
-        uint32_t c0 = j->outcode[v0], c1 = j->outcode[v1], c2 = j->outcode[v2];
-        if ((c0 | c1 | c2) != 0) {
+        if (outside) {
+            uint32_t c0 = j->outcode[v0], c1 = j->outcode[v1], c2 = j->outcode[v2];
             if (((c0 | c1 | c2) & SR_OUTCODE_NONFINITE) || (c0 & c1 & c2)) {
                 continue;   /* discarded, or outside one plane: drawn by neither pass */
             }
-            atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
-            return;
+            if ((c0 | c1 | c2) != 0) {
+                atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
+                return;
+            }
+        }
+        const centre_span *s0 = &j->span[v0], *s1 = &j->span[v1], *s2 = &j->span[v2];
+        int x0 = max3(min3(s0->x0, s1->x0, s2->x0), ds->rect_x0, INT16_MIN);
+        int x1 = min3(max3(s0->x1, s1->x1, s2->x1), ds->rect_x1, INT16_MAX);
+        int y0 = max3(min3(s0->y0, s1->y0, s2->y0), ds->rect_y0, INT16_MIN);
+        int y1 = min3(max3(s0->y1, s1->y1, s2->y1), ds->rect_y1, INT16_MAX);
+        if (x0 >= x1 || y0 >= y1) {
+            continue;   /* no pixel centre in its box: setup would find none */
         }
         sr_window_vertex w[3] = {
             { j->win[v0].x_q8, j->win[v0].y_q8, j->win[v0].z, 1.0f, NULL },
@@ -168,8 +262,12 @@ static void faces_job(void *arg, int job, int thread)
             { j->win[v2].x_q8, j->win[v2].y_q8, j->win[v2].z, 1.0f, NULL },
         };
         int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
+        if (area2 == 0 || ((x1 - x0) * (y1 - y0) <= SMALL_BOX &&
+                           !may_pass(ds, w, area2, x0, y0, x1, y1, j->width, depth))) {
+            continue;
+        }
         sr_tri t;
-        if (area2 != 0 && sr__setup_tri(ds, &w[0], &w[1], &w[2], area2, NAN, true, 0, NULL, &t)) {
+        if (sr__setup_tri(ds, &w[0], &w[1], &w[2], area2, NAN, true, 0, NULL, &t)) {
             raster_face(ds, &t, (uint32_t)g, j->width, depth, face);
         }
     }
@@ -194,7 +292,8 @@ static void resolve_job(void *arg, int job, int thread)
                 }
             }
             if (best == 0) {
-                continue;   /* no face passed: the background stays */
+                sr_py_background_pixel(j->u, p);   /* no face passed */
+                continue;
             }
             size_t inst = instance_of(j->first_face, j->count, g);
             float z;
@@ -208,6 +307,9 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
                                 bool *done)
 {
     *done = false;
+    if (count == 0) {
+        return SR_OK;   /* nothing to draw: the general pass fills the outputs */
+    }
     sr_context *ctx = set->ctx;
     sr_framebuffer *fb = set->fb;
     /* The general pass's draw state, as sr_draw resolves it. */
@@ -239,7 +341,7 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     j.ranges = threads < MAX_RANGES ? threads : MAX_RANGES;
     j.vertex_jobs = threads;
     j.pixels = (size_t)j.width * (size_t)j.height;
-    size_t bytes = vertices * (sizeof(window_vertex) + sizeof(uint32_t)) +
+    size_t bytes = vertices * (sizeof(window_vertex) + sizeof(centre_span) + sizeof(uint32_t)) +
                    2 * (size_t)j.ranges * j.pixels * sizeof(uint32_t);
     if (set->visibility_bytes < bytes) {
         free(set->visibility);
@@ -253,7 +355,9 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     j.win = set->visibility;
     j.depth = (uint32_t *)(j.win + vertices);
     j.face = j.depth + (size_t)j.ranges * j.pixels;
-    j.outcode = j.face + (size_t)j.ranges * j.pixels;
+    j.span = (centre_span *)(j.face + (size_t)j.ranges * j.pixels);
+    j.outcode = (uint32_t *)(j.span + vertices);
+    atomic_init(&j.outside, false);
     atomic_init(&j.crosses, false);
     sr__pool_run(ctx->pool, classify_job, &j, j.vertex_jobs);
     sr__pool_run(ctx->pool, faces_job, &j, j.ranges);
