@@ -69,6 +69,7 @@ typedef struct sr_py_render_set {
     size_t vertices_bytes;
     void *visibility;           /* the visibility pass's buffers (visibility.c) */
     size_t visibility_bytes;
+    size_t visibility_cleared;  /* its leading pixel words known to be 0 */
     bool cached;                /* the kept set, to be given back */
 } sr_py_render_set;
 

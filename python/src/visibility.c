@@ -15,11 +15,12 @@
  * tested GREATER against the faces before it.  A face crossing a clip
  * plane makes the caller draw the view the general way instead.
  *
- * The faces (of all instances, in draw order) are split into consecutive
- * ranges, each drawn into its own depth and index buffers.  The merge
- * takes the greatest depth and, of equal depths, the earlier range's:
- * the face a draw in order keeps (the first of the nearest), so the bytes
- * do not depend on the number of threads.  Most faces of a dense mesh
+ * A draw in order keeps at each pixel the first of the faces with the
+ * greatest depth.  Each pixel's word here is (depth << 32 | ~face), face
+ * numbering the faces of all instances in draw order, raised to each
+ * face's word by an atomic maximum: the same winner, whatever the order
+ * in which the threads get to the faces, so the bytes do not depend on
+ * the number of threads or on their timing.  Most faces of a dense mesh
  * cover no pixel centre; sr__setup_tri finds that from the snapped box
  * before anything else, which is why this pass is much cheaper per face
  * than the general one.
@@ -37,10 +38,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Ranges of faces drawn into buffers of their own: at most this many,
- * so that a machine of many CPUs does not need as many full-image
- * buffers (the resolve still uses every thread). */
-enum { MAX_RANGES = 8, ROWS_PER_JOB = 16 };
+/* Faces and rows in a job: jobs small enough for the pool's threads to
+ * even out the work between them. */
+enum { FACES_PER_JOB = 4096, ROWS_PER_JOB = 16 };
 /* Boxes of at most this many pixel centres are tested by may_pass before
  * setup. */
 enum { SMALL_BOX = 4 };
@@ -69,9 +69,9 @@ typedef struct vis_job {
     window_vertex *win;
     centre_span *span;
     uint32_t *outcode;
-    int ranges, vertex_jobs, height, width;
+    int vertex_jobs, face_jobs, height, width;
     size_t pixels;
-    uint32_t *depth, *face;      /* ranges x pixels each */
+    _Atomic uint64_t *word;      /* per pixel: depth << 32 | ~face, 0 for none */
     atomic_bool outside;         /* some vertex is outside a clip plane */
     atomic_bool crosses;         /* some face crosses a clip plane */
 } vis_job;
@@ -150,10 +150,17 @@ static inline int max3(int a, int b, int c)
     return m > c ? m : c;
 }
 
-/* The covered pixel centres of one set-up face into a range's buffers,
- * where it passes the depth test. */
+/* The depth-buffer value of a pixel's word. */
+static inline uint32_t word_depth(uint64_t w)
+{
+    return (uint32_t)(w >> 32);
+}
+
+/* The covered pixel centres of one set-up face, g of the draw, where it
+ * passes the depth test: greater than the depth there, or equal and
+ * drawn before the face that has it. */
 static void raster_face(const sr_draw_state *ds, const sr_tri *t, uint32_t g, int width,
-                        uint32_t *depth, uint32_t *face)
+                        _Atomic uint64_t *word)
 {
     sr_edges ed;
     sr__tri_edges(t, &ed);
@@ -169,9 +176,15 @@ static void raster_face(const sr_draw_state *ds, const sr_tri *t, uint32_t g, in
             }
             double z = sr__tri_depth(t, e1, e2);
             uint32_t q = sr__quantize_depth(ds, &z);
-            if (q > depth[row + (size_t)x]) {
-                depth[row + (size_t)x] = q;
-                face[row + (size_t)x] = g;
+            if (q == 0) {
+                continue;   /* not greater than the cleared depth */
+            }
+            uint64_t mine = (uint64_t)q << 32 | (uint32_t)~g;
+            _Atomic uint64_t *w = &word[row + (size_t)x];
+            uint64_t cur = atomic_load_explicit(w, memory_order_relaxed);
+            while (mine > cur &&
+                   !atomic_compare_exchange_weak_explicit(w, &cur, mine, memory_order_relaxed,
+                                                          memory_order_relaxed)) {
             }
         }
     }
@@ -185,9 +198,10 @@ static void raster_face(const sr_draw_state *ds, const sr_tri *t, uint32_t g, in
  * barycentric weights in [0, 1], exceeds the largest vertex depth only
  * by rounding (a few units in the last place of 1; setup_tri.h's
  * z_inside takes the same 1e-9 margin), so a centre whose stored depth
- * is at least that bound, quantized, cannot pass. */
+ * is greater than that bound, quantized, cannot pass (equal still can,
+ * for a face drawn before the one there). */
 static bool may_pass(const sr_draw_state *ds, const sr_window_vertex w[3], int64_t area2, int x0,
-                     int y0, int x1, int y1, int width, const uint32_t *depth)
+                     int y0, int x1, int y1, int width, _Atomic uint64_t *word)
 {
     int64_t sign = area2 > 0 ? 1 : -1;
     int64_t dx[3], dy[3];
@@ -207,7 +221,8 @@ static bool may_pass(const sr_draw_state *ds, const sr_window_vertex w[3], int64
                 const sr_window_vertex *a = &w[(i + 1) % 3];
                 inside &= dx[i] * (Y - a->y_q8) - dy[i] * (X - a->x_q8) >= 0;
             }
-            if (inside && bound > depth[(size_t)y * (size_t)width + (size_t)x]) {
+            _Atomic uint64_t *at = &word[(size_t)y * (size_t)width + (size_t)x];
+            if (inside && bound >= word_depth(atomic_load_explicit(at, memory_order_relaxed))) {
                 return true;
             }
         }
@@ -215,20 +230,18 @@ static bool may_pass(const sr_draw_state *ds, const sr_window_vertex w[3], int64
     return false;
 }
 
-/* Range `job` of the faces: the front end's triangle() (assembly.c) for
- * faces inside every clip plane, then setup and the depth test. */
+/* Faces [FACES_PER_JOB job, ...) of the draw: the front end's triangle()
+ * (assembly.c) for faces inside every clip plane, then setup and the
+ * depth test. */
 static void faces_job(void *arg, int job, int thread)
 {
     (void)thread;
     vis_job *j = arg;
     const sr_draw_state *ds = j->ds;
-    uint32_t *depth = j->depth + (size_t)job * j->pixels;
-    uint32_t *face = j->face + (size_t)job * j->pixels;
     bool outside = atomic_load_explicit(&j->outside, memory_order_relaxed);
-    memset(depth, 0, j->pixels * sizeof *depth);   /* cleared to depth 0, the far end */
     size_t total = j->first_face[j->count];
-    size_t lo = total * (size_t)job / (size_t)j->ranges;
-    size_t hi = total * (size_t)(job + 1) / (size_t)j->ranges;
+    size_t lo = (size_t)job * FACES_PER_JOB;
+    size_t hi = lo + FACES_PER_JOB < total ? lo + FACES_PER_JOB : total;
     size_t inst = instance_of(j->first_face, j->count, lo);
     for (size_t g = lo; g < hi; g++) {
         while (g >= j->first_face[inst + 1]) {
@@ -263,18 +276,18 @@ static void faces_job(void *arg, int job, int thread)
         };
         int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
         if (area2 == 0 || ((x1 - x0) * (y1 - y0) <= SMALL_BOX &&
-                           !may_pass(ds, w, area2, x0, y0, x1, y1, j->width, depth))) {
+                           !may_pass(ds, w, area2, x0, y0, x1, y1, j->width, j->word))) {
             continue;
         }
         sr_tri t;
         if (sr__setup_tri(ds, &w[0], &w[1], &w[2], area2, NAN, true, 0, NULL, &t)) {
-            raster_face(ds, &t, (uint32_t)g, j->width, depth, face);
+            raster_face(ds, &t, (uint32_t)g, j->width, j->word);
         }
     }
 }
 
-/* Rows of the image: the ranges' buffers merged, and each covered pixel
- * resolved. */
+/* Rows of the image: each covered pixel resolved from its word, which
+ * is cleared for the next view. */
 static void resolve_job(void *arg, int job, int thread)
 {
     (void)thread;
@@ -283,21 +296,16 @@ static void resolve_job(void *arg, int job, int thread)
     for (int y = job * ROWS_PER_JOB; y < y1; y++) {
         for (int x = 0; x < j->width; x++) {
             size_t p = (size_t)y * (size_t)j->width + (size_t)x;
-            uint32_t best = j->depth[p], g = j->face[p];
-            for (int r = 1; r < j->ranges; r++) {
-                uint32_t d = j->depth[(size_t)r * j->pixels + p];
-                if (d > best) {
-                    best = d;
-                    g = j->face[(size_t)r * j->pixels + p];
-                }
-            }
-            if (best == 0) {
+            uint64_t w = atomic_load_explicit(&j->word[p], memory_order_relaxed);
+            if (w == 0) {
                 sr_py_background_pixel(j->u, p);   /* no face passed */
                 continue;
             }
+            atomic_store_explicit(&j->word[p], 0, memory_order_relaxed);
+            uint32_t q = word_depth(w), g = ~(uint32_t)w;
             size_t inst = instance_of(j->first_face, j->count, g);
             float z;
-            memcpy(&z, &best, sizeof z);   /* the float depth buffer's word */
+            memcpy(&z, &q, sizeof z);   /* the float depth buffer's value */
             sr_py_shade_pixel(&j->u[inst], g - j->first_face[inst], x, y, z);
         }
     }
@@ -335,33 +343,40 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     size_t faces = j.first_face[count], vertices = j.first_vertex[count];
     if (faces >= UINT32_MAX) {
         free(first);
-        return SR_OK;   /* face indices would not fit the index buffer */
+        return SR_OK;   /* ~face would reach 0, the word of no face */
     }
-    int threads = ctx->threads > 0 ? ctx->threads : 1;
-    j.ranges = threads < MAX_RANGES ? threads : MAX_RANGES;
-    j.vertex_jobs = threads;
+    j.vertex_jobs = ctx->threads > 0 ? ctx->threads : 1;
+    j.face_jobs = (int)((faces + FACES_PER_JOB - 1) / FACES_PER_JOB);
     j.pixels = (size_t)j.width * (size_t)j.height;
-    size_t bytes = vertices * (sizeof(window_vertex) + sizeof(centre_span) + sizeof(uint32_t)) +
-                   2 * (size_t)j.ranges * j.pixels * sizeof(uint32_t);
+    /* The pixels' words first, so that those left cleared by the last
+     * view's resolve stay where they are. */
+    size_t bytes = j.pixels * sizeof(uint64_t) +
+                   vertices * (sizeof(window_vertex) + sizeof(centre_span) + sizeof(uint32_t));
     if (set->visibility_bytes < bytes) {
-        free(set->visibility);
-        set->visibility = malloc(bytes);
-        set->visibility_bytes = set->visibility ? bytes : 0;
-        if (!set->visibility) {
+        void *grown = realloc(set->visibility, bytes);
+        if (!grown) {
             free(first);
             return SR_OUT_OF_MEMORY;
         }
+        set->visibility = grown;
+        set->visibility_bytes = bytes;
     }
-    j.win = set->visibility;
-    j.depth = (uint32_t *)(j.win + vertices);
-    j.face = j.depth + (size_t)j.ranges * j.pixels;
-    j.span = (centre_span *)(j.face + (size_t)j.ranges * j.pixels);
+    j.word = set->visibility;
+    if (set->visibility_cleared < j.pixels) {
+        memset(j.word + set->visibility_cleared, 0,
+               (j.pixels - set->visibility_cleared) * sizeof(uint64_t));
+        set->visibility_cleared = j.pixels;
+    }
+    j.win = (window_vertex *)(j.word + j.pixels);
+    j.span = (centre_span *)(j.win + vertices);
     j.outcode = (uint32_t *)(j.span + vertices);
     atomic_init(&j.outside, false);
     atomic_init(&j.crosses, false);
     sr__pool_run(ctx->pool, classify_job, &j, j.vertex_jobs);
-    sr__pool_run(ctx->pool, faces_job, &j, j.ranges);
-    if (!atomic_load(&j.crosses)) {
+    sr__pool_run(ctx->pool, faces_job, &j, j.face_jobs);
+    if (atomic_load(&j.crosses)) {
+        set->visibility_cleared = 0;   /* words left behind */
+    } else {
         sr__pool_run(ctx->pool, resolve_job, &j, (j.height + ROWS_PER_JOB - 1) / ROWS_PER_JOB);
         *done = true;
     }
