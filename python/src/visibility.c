@@ -44,6 +44,8 @@ enum { FACES_PER_JOB = 4096, ROWS_PER_JOB = 16 };
 /* Boxes of at most this many pixel centres are tested by may_pass before
  * setup. */
 enum { SMALL_BOX = 4 };
+/* Faces whose boxes are tested before any is set up. */
+enum { CANDIDATE_BLOCK = 256 };
 
 /* A vertex classified: its outcode (0 inside every clip plane) and,
  * inside, its snapped window position. */
@@ -230,6 +232,51 @@ static bool may_pass(const sr_draw_state *ds, const sr_window_vertex w[3], int64
     return false;
 }
 
+/* A face whose box holds a pixel centre: its index in the draw, its
+ * vertices' (in the classified arrays) and its box. */
+typedef struct candidate {
+    uint32_t g, v[3];
+    int16_t x0, x1, y0, y1;
+} candidate;
+
+/* Faces [lo, hi) of instance `inst` whose box holds a pixel centre, into
+ * out[]; their number, or -1 when one crosses a clip plane.  Without
+ * branches on the box test (whose outcome a dense mesh makes random):
+ * each face is written and kept by the count's step. */
+static long find_candidates(const vis_job *j, size_t inst, size_t lo, size_t hi, bool outside,
+                            candidate *out)
+{
+    const sr_draw_state *ds = j->ds;
+    const geometry_uniforms *u = &j->u[inst];
+    size_t first = j->first_face[inst], base = j->first_vertex[inst];
+    long n = 0;
+    for (size_t g = lo; g < hi; g++) {
+        size_t f = g - first;
+        uint32_t v0 = (uint32_t)(base + sr_py_face_index(u, 3 * f));
+        uint32_t v1 = (uint32_t)(base + sr_py_face_index(u, 3 * f + 1));
+        uint32_t v2 = (uint32_t)(base + sr_py_face_index(u, 3 * f + 2));
+        bool keep = true;
+        if (outside) {
+            uint32_t c0 = j->outcode[v0], c1 = j->outcode[v1], c2 = j->outcode[v2];
+            /* Discarded, or outside one plane: drawn by neither pass. */
+            keep = !(((c0 | c1 | c2) & SR_OUTCODE_NONFINITE) || (c0 & c1 & c2));
+            if (keep && (c0 | c1 | c2) != 0) {
+                return -1;
+            }
+        }
+        const centre_span *s0 = &j->span[v0], *s1 = &j->span[v1], *s2 = &j->span[v2];
+        int x0 = max3(min3(s0->x0, s1->x0, s2->x0), ds->rect_x0, INT16_MIN);
+        int x1 = min3(max3(s0->x1, s1->x1, s2->x1), ds->rect_x1, INT16_MAX);
+        int y0 = max3(min3(s0->y0, s1->y0, s2->y0), ds->rect_y0, INT16_MIN);
+        int y1 = min3(max3(s0->y1, s1->y1, s2->y1), ds->rect_y1, INT16_MAX);
+        out[n] = (candidate){ (uint32_t)g, { v0, v1, v2 }, (int16_t)x0, (int16_t)x1,
+                              (int16_t)y0, (int16_t)y1 };
+        /* No pixel centre in its box: setup would find none. */
+        n += keep & (x0 < x1) & (y0 < y1);
+    }
+    return n;
+}
+
 /* Faces [FACES_PER_JOB job, ...) of the draw: the front end's triangle()
  * (assembly.c) for faces inside every clip plane, then setup and the
  * depth test. */
@@ -242,46 +289,38 @@ static void faces_job(void *arg, int job, int thread)
     size_t total = j->first_face[j->count];
     size_t lo = (size_t)job * FACES_PER_JOB;
     size_t hi = lo + FACES_PER_JOB < total ? lo + FACES_PER_JOB : total;
-    size_t inst = instance_of(j->first_face, j->count, lo);
-    for (size_t g = lo; g < hi; g++) {
+    candidate cand[CANDIDATE_BLOCK];
+    for (size_t inst = instance_of(j->first_face, j->count, lo), g = lo; g < hi;) {
         while (g >= j->first_face[inst + 1]) {
             inst++;
         }
-        const geometry_uniforms *u = &j->u[inst];
-        size_t f = g - j->first_face[inst], base = j->first_vertex[inst];
-        size_t v0 = base + sr_py_face_index(u, 3 * f), v1 = base + sr_py_face_index(u, 3 * f + 1);
-        size_t v2 = base + sr_py_face_index(u, 3 * f + 2);
-        if (outside) {
-            uint32_t c0 = j->outcode[v0], c1 = j->outcode[v1], c2 = j->outcode[v2];
-            if (((c0 | c1 | c2) & SR_OUTCODE_NONFINITE) || (c0 & c1 & c2)) {
-                continue;   /* discarded, or outside one plane: drawn by neither pass */
+        size_t end = j->first_face[inst + 1] < hi ? j->first_face[inst + 1] : hi;
+        end = end - g > CANDIDATE_BLOCK ? g + CANDIDATE_BLOCK : end;
+        long n = find_candidates(j, inst, g, end, outside, cand);
+        if (n < 0) {
+            atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
+            return;
+        }
+        g = end;
+        for (long i = 0; i < n; i++) {
+            const candidate *c = &cand[i];
+            const window_vertex *p0 = &j->win[c->v[0]], *p1 = &j->win[c->v[1]];
+            const window_vertex *p2 = &j->win[c->v[2]];
+            sr_window_vertex w[3] = {
+                { p0->x_q8, p0->y_q8, p0->z, 1.0f, NULL },
+                { p1->x_q8, p1->y_q8, p1->z, 1.0f, NULL },
+                { p2->x_q8, p2->y_q8, p2->z, 1.0f, NULL },
+            };
+            int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
+            if (area2 == 0 || ((c->x1 - c->x0) * (c->y1 - c->y0) <= SMALL_BOX &&
+                               !may_pass(ds, w, area2, c->x0, c->y0, c->x1, c->y1, j->width,
+                                         j->word))) {
+                continue;
             }
-            if ((c0 | c1 | c2) != 0) {
-                atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
-                return;
+            sr_tri t;
+            if (sr__setup_tri(ds, &w[0], &w[1], &w[2], area2, NAN, true, 0, NULL, &t)) {
+                raster_face(ds, &t, c->g, j->width, j->word);
             }
-        }
-        const centre_span *s0 = &j->span[v0], *s1 = &j->span[v1], *s2 = &j->span[v2];
-        int x0 = max3(min3(s0->x0, s1->x0, s2->x0), ds->rect_x0, INT16_MIN);
-        int x1 = min3(max3(s0->x1, s1->x1, s2->x1), ds->rect_x1, INT16_MAX);
-        int y0 = max3(min3(s0->y0, s1->y0, s2->y0), ds->rect_y0, INT16_MIN);
-        int y1 = min3(max3(s0->y1, s1->y1, s2->y1), ds->rect_y1, INT16_MAX);
-        if (x0 >= x1 || y0 >= y1) {
-            continue;   /* no pixel centre in its box: setup would find none */
-        }
-        sr_window_vertex w[3] = {
-            { j->win[v0].x_q8, j->win[v0].y_q8, j->win[v0].z, 1.0f, NULL },
-            { j->win[v1].x_q8, j->win[v1].y_q8, j->win[v1].z, 1.0f, NULL },
-            { j->win[v2].x_q8, j->win[v2].y_q8, j->win[v2].z, 1.0f, NULL },
-        };
-        int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
-        if (area2 == 0 || ((x1 - x0) * (y1 - y0) <= SMALL_BOX &&
-                           !may_pass(ds, w, area2, x0, y0, x1, y1, j->width, j->word))) {
-            continue;
-        }
-        sr_tri t;
-        if (sr__setup_tri(ds, &w[0], &w[1], &w[2], area2, NAN, true, 0, NULL, &t)) {
-            raster_face(ds, &t, (uint32_t)g, j->width, j->word);
         }
     }
 }
@@ -341,9 +380,9 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
         first[count + 2 + i] = first[count + 1 + i] + u[i].faces_count;
     }
     size_t faces = j.first_face[count], vertices = j.first_vertex[count];
-    if (faces >= UINT32_MAX) {
+    if (faces >= UINT32_MAX || vertices > UINT32_MAX) {
         free(first);
-        return SR_OK;   /* ~face would reach 0, the word of no face */
+        return SR_OK;   /* indices beyond 32 bits (and ~face 0 is the word of none) */
     }
     j.vertex_jobs = ctx->threads > 0 ? ctx->threads : 1;
     j.face_jobs = (int)((faces + FACES_PER_JOB - 1) / FACES_PER_JOB);
