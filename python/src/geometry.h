@@ -10,6 +10,9 @@
 
 #include "module.h"
 
+#include <math.h>
+#include <string.h>
+
 typedef struct geometry_uniforms {
     /* Per mesh vertex, computed once a view rather than once a triangle
      * corner (sr_py_view_of): the clip position, read by the vertex
@@ -58,8 +61,29 @@ void sr_py_view_of(const geometry_uniforms *u, size_t v, float clip[4], double c
 /* Fills u's clip and camera tables for vertices [lo, hi). */
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
 
-/* The outputs of pixel p (y * width + x) where nothing is visible. */
-void sr_py_background_pixel(const geometry_uniforms *u, size_t p);
+/* The outputs of pixel p (y * width + x) where nothing is visible.
+ * Inline, so that a loop over pixels tests which outputs exist once. */
+static inline void sr_py_background_pixel(const geometry_uniforms *u, size_t p)
+{
+    if (u->depth) {
+        u->depth[p] = INFINITY;
+    }
+    if (u->triangle_id) {
+        u->triangle_id[p] = -1;
+    }
+    if (u->instance_out) {
+        u->instance_out[p] = -1;
+    }
+    if (u->barycentric) {
+        memset(&u->barycentric[3 * p], 0, 3 * sizeof(float));
+    }
+    if (u->normal) {
+        memset(&u->normal[3 * p], 0, 3 * sizeof(float));
+    }
+    if (u->mask) {
+        u->mask[p] = 0;
+    }
+}
 
 /* The outputs of pixel (x, y) where face `face` is visible, with
  * `window_z` its depth-buffer value there (reversed: near / z). */

@@ -175,28 +175,6 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
     }
 }
 
-void sr_py_background_pixel(const geometry_uniforms *u, size_t p)
-{
-    if (u->depth) {
-        u->depth[p] = INFINITY;
-    }
-    if (u->triangle_id) {
-        u->triangle_id[p] = -1;
-    }
-    if (u->instance_out) {
-        u->instance_out[p] = -1;
-    }
-    if (u->barycentric) {
-        memset(&u->barycentric[3 * p], 0, 3 * sizeof(float));
-    }
-    if (u->normal) {
-        memset(&u->normal[3 * p], 0, 3 * sizeof(float));
-    }
-    if (u->mask) {
-        u->mask[p] = 0;
-    }
-}
-
 static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
 {
     const geometry_uniforms *u = uniforms;
