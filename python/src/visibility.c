@@ -44,8 +44,9 @@ enum { FACES_PER_JOB = 4096, ROWS_PER_JOB = 16 };
 /* Boxes of at most this many pixel centres are tested by may_pass before
  * setup. */
 enum { SMALL_BOX = 4 };
-/* Faces whose boxes are tested before any is set up. */
-enum { CANDIDATE_BLOCK = 256 };
+/* Faces whose boxes are tested before any is set up; vertices
+ * classified together. */
+enum { CANDIDATE_BLOCK = 256, CLASSIFY_BLOCK = 256 };
 
 /* A vertex classified: its outcode (0 inside every clip plane) and,
  * inside, its snapped window position. */
@@ -93,38 +94,46 @@ static size_t instance_of(const size_t *first, size_t count, size_t i)
     return lo;
 }
 
-/* The vertex stage's classify (geometry/vertex.c), vertex by vertex. */
-static void classify_job(void *arg, int job, int thread)
+/* Vertices [lo, hi) of the draw, those of instance u from `base`:
+ * classified and snapped as the vertex stage does (vertex.c's classify,
+ * sixteen at a time where the draw state says the CPU can, with the
+ * same values), a block at a time from their clip positions.  True when
+ * one is outside a clip plane. */
+static bool classify_vertices(const vis_job *j, const geometry_uniforms *u, size_t base, size_t lo,
+                              size_t hi)
 {
-    (void)thread;
-    vis_job *j = arg;
-    size_t total = j->first_vertex[j->count];
-    size_t lo = total * (size_t)job / (size_t)j->vertex_jobs;
-    size_t hi = total * (size_t)(job + 1) / (size_t)j->vertex_jobs;
+    const sr_draw_state *ds = j->ds;
     sr_clip_planes k;
-    sr__clip_planes(j->ds, &k);
+    sr__clip_planes(ds, &k);
+    sr_vertex_post post[CLASSIFY_BLOCK];
     bool outside = false;
-    /* Instance by instance: its vertices seen from the camera, then
-     * classified. */
-    for (size_t inst = instance_of(j->first_vertex, j->count, lo), v = lo; v < hi; inst++) {
-        const geometry_uniforms *u = &j->u[inst];
-        size_t base = j->first_vertex[inst];
-        size_t end = j->first_vertex[inst + 1] < hi ? j->first_vertex[inst + 1] : hi;
-        sr_py_view_vertices(u, v - base, end - base);
-        for (; v < end; v++) {
-            const float *pos = u->clip[v - base];
-            j->outcode[v] = SR_OUTCODE_NONFINITE;
-            if (isfinite(pos[0]) && isfinite(pos[1]) && isfinite(pos[2]) && isfinite(pos[3])) {
-                j->outcode[v] = sr__clip_outcode_with(&k, pos);
+    for (size_t b = lo; b < hi; b += CLASSIFY_BLOCK) {
+        size_t n = hi - b < CLASSIFY_BLOCK ? hi - b : CLASSIFY_BLOCK;
+        for (size_t i = 0; i < n; i++) {
+            memcpy(post[i].pos, u->clip[b + i - base], sizeof post[i].pos);
+        }
+        if (!(ds->vertex_lanes16 && sr__classify16(ds, post, n))) {
+            for (size_t i = 0; i < n; i++) {
+                const float *pos = post[i].pos;
+                post[i].outcode = SR_OUTCODE_NONFINITE;
+                if (isfinite(pos[0]) && isfinite(pos[1]) && isfinite(pos[2]) && isfinite(pos[3])) {
+                    post[i].outcode = sr__clip_outcode_with(&k, pos);
+                }
+                if (post[i].outcode == 0) {
+                    sr__project(ds, pos, &post[i].x_q8, &post[i].y_q8, &post[i].z,
+                                &post[i].inv_w);
+                }
             }
+        }
+        for (size_t i = 0; i < n; i++) {
+            size_t v = b + i;
+            j->outcode[v] = post[i].outcode;
             window_vertex *w = &j->win[v];
-            if (j->outcode[v] != 0) {
+            if (post[i].outcode != 0) {
                 outside = true;
-                w->x_q8 = w->y_q8 = 0;
-                w->z = 0.0;
+                *w = (window_vertex){ 0, 0, 0.0 };
             } else {
-                float inv_w;
-                sr__project(j->ds, pos, &w->x_q8, &w->y_q8, &w->z, &inv_w);
+                *w = (window_vertex){ post[i].x_q8, post[i].y_q8, post[i].z };
             }
             /* setup_tri.h's single-sample box, of this vertex alone. */
             j->span[v] = (centre_span){
@@ -134,6 +143,27 @@ static void classify_job(void *arg, int job, int thread)
                 (int16_t)(sr__floor_q8((int64_t)w->y_q8 - SR_SUBPIXEL_HALF) + 1),
             };
         }
+    }
+    return outside;
+}
+
+/* The draw's vertices in equal shares: seen from the camera, then
+ * classified. */
+static void classify_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    vis_job *j = arg;
+    size_t total = j->first_vertex[j->count];
+    size_t lo = total * (size_t)job / (size_t)j->vertex_jobs;
+    size_t hi = total * (size_t)(job + 1) / (size_t)j->vertex_jobs;
+    bool outside = false;
+    for (size_t inst = instance_of(j->first_vertex, j->count, lo), v = lo; v < hi; inst++) {
+        const geometry_uniforms *u = &j->u[inst];
+        size_t base = j->first_vertex[inst];
+        size_t end = j->first_vertex[inst + 1] < hi ? j->first_vertex[inst + 1] : hi;
+        sr_py_view_vertices(u, v - base, end - base);
+        outside |= classify_vertices(j, u, base, v, end);
+        v = end;
     }
     if (outside) {
         atomic_store_explicit(&j->outside, true, memory_order_relaxed);

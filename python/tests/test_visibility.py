@@ -122,3 +122,15 @@ def test_empty_scene_and_empty_mesh():
     assert (out["triangle_id"] == -1).all() and np.isinf(out["depth"]).all()
     out = render_both([], K=K, R=R, t=t)
     assert not out["mask"].any()
+
+
+@pytest.mark.parametrize("level", ["off", "avx2"])
+def test_every_simd_level(monkeypatch, level):
+    """The vertices are classified sixteen at a time where the CPU has
+    AVX-512, one at a time otherwise (SR_SIMD lowers the level): the
+    same bytes."""
+    monkeypatch.setenv("SR_SIMD", level)
+    rng = np.random.default_rng(15)
+    verts, faces = random_triangles(rng, 300, size=0.8)
+    K, R, t = default_camera(W, H)
+    render_both(softrast.Mesh(verts.astype(np.float32), faces.astype(np.int32)), K=K, R=R, t=t)
