@@ -21,9 +21,9 @@
  * face's word by an atomic maximum: the same winner, whatever the order
  * in which the threads get to the faces, so the bytes do not depend on
  * the number of threads or on their timing.  Most faces of a dense mesh
- * cover no pixel centre; sr__setup_tri finds that from the snapped box
- * before anything else, which is why this pass is much cheaper per face
- * than the general one.
+ * cover no pixel centre: they are dropped from their vertices' spans of
+ * pixel centres before anything else is read, and a small face is tested
+ * against its box's centres before it is set up.
  */
 #include "geometry.h"
 
@@ -48,8 +48,8 @@ enum { SMALL_BOX = 4 };
  * classified together. */
 enum { CANDIDATE_BLOCK = 256, CLASSIFY_BLOCK = 256 };
 
-/* A vertex classified: its outcode (0 inside every clip plane) and,
- * inside, its snapped window position. */
+/* A vertex's snapped window position (zeros for a vertex outside a clip
+ * plane, whose outcode says so). */
 typedef struct window_vertex {
     int32_t x_q8, y_q8;
     double z;
