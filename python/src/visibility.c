@@ -47,6 +47,8 @@ enum { SMALL_BOX = 4 };
 /* Faces whose boxes are tested before any is set up; vertices
  * classified together. */
 enum { CANDIDATE_BLOCK = 256, CLASSIFY_BLOCK = 256 };
+/* Candidates between a prefetch and the candidate's set-up. */
+enum { PREFETCH_AHEAD = 8 };
 
 /* A vertex's snapped window position (zeros for a vertex outside a clip
  * plane, whose outcode says so). */
@@ -334,6 +336,15 @@ static void faces_job(void *arg, int job, int thread)
         g = end;
         for (long i = 0; i < n; i++) {
             const candidate *c = &cand[i];
+            /* What a later candidate reads, asked for ahead: its window
+             * vertices and its box's first pixel word. */
+            if (i + PREFETCH_AHEAD < n) {
+                const candidate *ahead = &cand[i + PREFETCH_AHEAD];
+                for (int k = 0; k < 3; k++) {
+                    __builtin_prefetch(&j->win[ahead->v[k]]);
+                }
+                __builtin_prefetch(&j->word[(size_t)ahead->y0 * (size_t)j->width + ahead->x0]);
+            }
             const window_vertex *p0 = &j->win[c->v[0]], *p1 = &j->win[c->v[1]];
             const window_vertex *p2 = &j->win[c->v[2]];
             sr_window_vertex w[3] = {
