@@ -15,7 +15,7 @@
 
 typedef struct geometry_uniforms {
     /* Per mesh vertex, computed once a view rather than once a triangle
-     * corner (sr_py_view_of): the clip position, read by the vertex
+     * corner (sr_py_view_vertices): the clip position, read by the vertex
      * shader, and the camera-space one, for the fragments' rays; apart,
      * so that the vertex shader's reads stay dense. */
     const float (*clip)[4];
@@ -54,11 +54,8 @@ static inline size_t sr_py_face_index(const geometry_uniforms *u, size_t i)
                       : (size_t)((const int32_t *)u->faces)[i];
 }
 
-/* Mesh vertex v seen from the camera: its clip and camera-space
- * positions. */
-void sr_py_view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3]);
-
-/* Fills u's clip and camera tables for vertices [lo, hi). */
+/* Fills u's clip and camera tables for mesh vertices [lo, hi): each
+ * vertex seen from the camera. */
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
 
 /* The outputs of pixel p (y * width + x) where nothing is visible.

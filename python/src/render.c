@@ -14,7 +14,9 @@
  * shader intersects the pixel's ray with that face for depth, barycentrics
  * and normal, and writes them for the fragments that pass the depth test;
  * fragments of one tile are shaded in draw order, so the last write to a
- * pixel is the visible surface's, the same for any thread count.  Color
+ * pixel is the visible surface's, the same for any thread count.  That is
+ * the general pass: a view in which no face crosses a clip plane takes
+ * the visibility pass instead (visibility.c), with the same bytes.  Color
  * comes from a second pass on the same projection: the built-in shading
  * (textures, vertex colors, a headlight), or the metallic-roughness
  * program lit as softrast render's default look.
@@ -59,7 +61,9 @@ static double dot(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-void sr_py_view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3])
+/* Mesh vertex v seen from the camera: its clip and camera-space
+ * positions. */
+static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3])
 {
     double p[3];
     fetch_vertex(u, v, p);
@@ -80,7 +84,7 @@ void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi)
     float (*clip)[4] = (float (*)[4])u->clip;
     double (*camera)[3] = (double (*)[3])u->camera;
     for (size_t v = lo; v < hi; v++) {
-        sr_py_view_of(u, v, clip[v], camera[v]);
+        view_of(u, v, clip[v], camera[v]);
     }
 }
 
