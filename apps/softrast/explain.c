@@ -136,6 +136,12 @@ static void usage(FILE *f)
             "                             triangle's middle)\n"
             "  --intensity IA,IB,IC       fillpoly: the intensity at each vertex, 0..1\n"
             "                             (default 1,0.2,0.55)\n"
+            "  --rasterizer R             triangle: whose steps to show, halfspace (edge\n"
+            "                             functions, the default), scanline (edge walking)\n"
+            "                             or barycentric (the bounding box's weights)\n"
+            "  --interpolation M          perspective: what the last step draws, the whole\n"
+            "                             triangle perspective-correct (the default) or\n"
+            "                             affine (SR_INTERP_AFFINE)\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -399,6 +405,8 @@ int cmd_explain(int argc, char **argv)
     int seed[2] = { 0, 0 }, connectivity = 4;
     bool seed_given = false;
     int samples = 4;
+    sr_rasterizer rasterizer = SR_RASTER_HALFSPACE;
+    sr_interpolation interpolation = SR_INTERP_PERSPECTIVE;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL, *webp = NULL;
     for (int i = 2; i < argc; i++) {
@@ -442,6 +450,22 @@ int cmd_explain(int argc, char **argv)
             int k;
             ok = parse_choice(a, v, rules, &k);
             rule = k == 0 ? SR_EVENODD : SR_NONZERO;
+        } else if (strcmp(a, "--rasterizer") == 0 || strcmp(a, "--interpolation") == 0) {
+            static const char *const rasterizers[] = { "halfspace", "scanline", "barycentric",
+                                                       NULL };
+            static const char *const interpolations[] = { "perspective", "affine", NULL };
+            bool r = a[2] == 'r';
+            if (alg->run != (r ? explain_triangle : explain_perspective)) {
+                cli_error("explain %s: %s is for '%s'", alg->name, a, r ? "triangle" : "perspective");
+                return EXIT_USAGE;
+            }
+            int k;
+            ok = parse_choice(a, v, r ? rasterizers : interpolations, &k);
+            if (r) {
+                rasterizer = (sr_rasterizer)(SR_RASTER_HALFSPACE + k);
+            } else {
+                interpolation = k == 0 ? SR_INTERP_PERSPECTIVE : SR_INTERP_AFFINE;
+            }
         } else if (strcmp(a, "--window") == 0) {
             ex_primitive wp = { 0 };
             ok = parse_points(a, v, 2, 2, 2, true, &wp);
@@ -524,6 +548,8 @@ int cmd_explain(int argc, char **argv)
     }
     prim.rule = rule;
     prim.samples = samples;
+    prim.rasterizer = rasterizer;
+    prim.interpolation = interpolation;
     if (per_vertex_given) {
         memcpy(prim.z, per_vertex, sizeof per_vertex);
     } else if (prim_given && alg->kind == EX_TRIANGLE) {   /* the example's values */

@@ -36,6 +36,8 @@ typedef struct ex_primitive {
     int seed[2];            /* floodfill: the seed pixel */
     double clip[3][4];      /* clip4d: the triangle in clip space, x, y, z, w */
     int connectivity;       /* floodfill: 4 or 8 */
+    sr_rasterizer rasterizer;        /* triangle: the rasterizer whose steps are shown */
+    sr_interpolation interpolation;  /* perspective: what the last frame draws */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -128,6 +130,14 @@ int64_t ex_tri_edge(const ex_tri *t, int i, int64_t sx, int64_t sy);
 bool ex_tri_covers(const ex_tri *t, int64_t sx, int64_t sy);
 /* Outline, vertices and their names; edge `hilite` (or -1) stressed. */
 void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite);
+/* A sample point at every pixel centre of the grid. */
+void ex_tri_samples(ex_canvas *c);
+/* The last frame: the covered pixels, with the caption's first words. */
+void ex_tri_coverage(ex_canvas *c, const ex_tri *t, const char *lead);
+/* explain_triangle_walk.c: frames 2.. of the scan-line and the
+ * barycentric rasterizers (explain_triangle draws the half-space one). */
+void ex_tri_scanline_steps(ex_canvas *c, const ex_tri *t);
+void ex_tri_barycentric_steps(ex_canvas *c, const ex_tri *t);
 
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);

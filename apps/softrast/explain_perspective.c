@@ -157,18 +157,25 @@ sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim)
              n ? xs[worst] : 0, n ? correct[worst] : 0.0, n ? affine[worst] : 0.0);
     ex_end(c, cap);
 
-    ex_begin(c);
-    fill(c, &p, -1, false, true, affine, xs);
-    /* frames 4 and 5: the cells alone, nothing drawn over them */
-    ex_end(c, "4. The whole triangle affine (SR_INTERP_AFFINE): each weight is constant along "
-              "lines parallel to the opposite edge on the screen, as if no vertex were further "
-              "than another: wrong under perspective.");
-
-    ex_begin(c);
-    fill(c, &p, -1, true, true, correct, xs);
-    ex_end(c, "5. The whole triangle perspective-correct, what sr_draw draws for these "
-              "vertices given with their w (the default interpolation): the near vertices' "
-              "colours reach further, the far vertex's is squeezed toward it, as the far "
-              "squares of a checkerboard shrink.");
+    /* frames 4 and 5: the cells alone, nothing drawn over them; the one
+     * --interpolation asks for last, as sr_draw draws it */
+    bool last_affine = prim->interpolation == SR_INTERP_AFFINE;
+    for (int k = 0; k < 2; k++) {
+        bool affine_now = last_affine ? k == 1 : k == 0;
+        ex_begin(c);
+        fill(c, &p, -1, !affine_now, true, affine_now ? affine : correct, xs);
+        snprintf(cap, sizeof cap, "%d. The whole triangle %s%s", 4 + k,
+                 affine_now ? "affine: each weight is constant along lines parallel to the "
+                              "opposite edge on the screen, as if no vertex were further than "
+                              "another: wrong under perspective"
+                            : "perspective-correct: the near vertices' colours reach further, "
+                              "the far vertex's is squeezed toward it, as the far squares of a "
+                              "checkerboard shrink",
+                 k == 0 ? "."
+                 : affine_now ? ". What sr_draw draws with interpolation SR_INTERP_AFFINE."
+                              : ". What sr_draw draws for these vertices given with their w "
+                                "(the default interpolation).");
+        ex_end(c, cap);
+    }
     return c->error;
 }
