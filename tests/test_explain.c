@@ -465,7 +465,9 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
      * in float, so sr_draw snaps the vertices where they were given), red,
      * green and blue at the vertices; the cells of the last frame hold
      * sr_draw's colours, perspective-correct or (--interpolation affine)
-     * affine, within one step of rounding */
+     * affine, or sr_fill_gouraud's FillPoly/FillSpan (fillspan), within
+     * one step of rounding; and FillSpan's are affine's within two */
+    static const char *const interps[] = { "perspective", "affine", "fillspan" };
     sr_rng rng = { 4239 };
     rt_target t = rt_make(GRID, GRID, 1);
     int interps_differ = 0;
@@ -482,15 +484,14 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
         snprintf(ws, sizeof ws, "%g,%g,%g", w[0], w[1], w[2]);
         snprintf(name, sizeof name, "perspective_%02d", k);
         out_dir(name, dir, sizeof dir);
-        /* odd k: --interpolation affine, the last frame sr_draw's affine */
-        sr_interpolation interp = k % 2 ? SR_INTERP_AFFINE : SR_INTERP_PERSPECTIVE;
+        int e = k % 3;
         char grid[16], zoom[8];
         snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
         snprintf(zoom, sizeof zoom, "%d", ZOOM);
         REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--triangle", prim,
-                                                  "--w", ws, "--interpolation",
-                                                  k % 2 ? "affine" : "perspective", "--grid",
-                                                  grid, "--zoom", zoom, "-o", dir, NULL }) == 0);
+                                                  "--w", ws, "--interpolation", interps[e],
+                                                  "--grid", grid, "--zoom", zoom, "-o", dir,
+                                                  NULL }) == 0);
         uint8_t got[GRID * GRID * 3], other[GRID * GRID * 3];
         REQUIRE(frame_cell_colours(dir, 5, got));
         REQUIRE(frame_cell_colours(dir, 4, other));
@@ -503,10 +504,37 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
         }
         sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
         sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
-                        .interpolation = interp };
+                        .interpolation = e == 0 ? SR_INTERP_PERSPECTIVE : SR_INTERP_AFFINE };
         REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .position_size = 4,
                                                            .vertex_count = 3, .colors = col,
                                                            .color_size = 4 }) == SR_OK);
+        uint8_t affine_px[GRID * GRID * 4];
+        memcpy(affine_px, sr_framebuffer_pixels(t.fb), sizeof affine_px);
+        if (e == 2) {
+            sr_point2 pv[3];
+            sr_rgba pc[3];
+            for (int i = 0; i < 3; i++) {
+                pv[i] = (sr_point2){ v[2 * i], v[2 * i + 1] };
+                pc[i] = (sr_rgba){ col[4 * i], col[4 * i + 1], col[4 * i + 2], 1 };
+            }
+            sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+            REQUIRE(sr_fill_gouraud(t.ctx, t.fb, &(sr_polygon2){ pv, 3, NULL, 0 }, pc,
+                                    &(sr_gouraud_desc){ .method = SR_GOURAUD_INCREMENTAL })
+                    == SR_OK);
+            /* covered by both, FillSpan's colours are affine's */
+            const uint8_t *g = sr_framebuffer_pixels(t.fb);
+            int far = 0;
+            for (int i = 0; i < GRID * GRID * 4; i += 4) {
+                bool both = memcmp(g + i, "\xff\xff\xff", 3) != 0 &&
+                            memcmp(affine_px + i, "\xff\xff\xff", 3) != 0;
+                for (int ch = 0; ch < 3; ch++) {
+                    far += both && abs(g[i + ch] - affine_px[i + ch]) > 2;
+                }
+            }
+            if (far) {
+                FAILF("perspective %s: %d channels of FillSpan are not affine's", prim, far);
+            }
+        }
         const uint8_t *px = sr_framebuffer_pixels(t.fb);
         int bad = 0;
         for (int i = 0; i < GRID * GRID; i++) {
@@ -521,8 +549,7 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
             interps_differ += off_other > 8;
         }
         if (bad) {
-            FAILF("perspective %s, w %s, %s: %d cells differ", prim, ws,
-                  k % 2 ? "affine" : "perspective-correct", bad);
+            FAILF("perspective %s, w %s, %s: %d cells differ", prim, ws, interps[e], bad);
         }
     }
     CHECK(interps_differ > 50);   /* the two interpolations do differ */
@@ -832,6 +859,8 @@ SR_TEST(explain_refuses_bad_input)
                               dir), 2);
     CHECK_EQ(run_explain_with("perspective", "--triangle", "1,1,9,1,1,9", "--interpolation",
                               "flat", dir), 2);
+    CHECK_EQ(run_explain_with("triangle", "--triangle", "1,1,9,1,1,9", "--interpolation",
+                              "affine", dir), 2);
     CHECK_EQ(run_explain_with("fillpoly", "--triangle", "1,1,9,1,1,9", "--interpolation",
                               "affine", dir), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--zoom", "3", "-o", dir,

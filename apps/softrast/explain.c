@@ -140,8 +140,9 @@ static void usage(FILE *f)
             "                             functions, the default), scanline (edge walking)\n"
             "                             or barycentric (the bounding box's weights)\n"
             "  --interpolation M          perspective: what the last step draws, the whole\n"
-            "                             triangle perspective-correct (the default) or\n"
-            "                             affine (SR_INTERP_AFFINE)\n"
+            "                             triangle perspective-correct (the default),\n"
+            "                             affine (SR_INTERP_AFFINE) or by FillPoly/FillSpan's\n"
+            "                             screen-space increments (fillspan)\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -406,7 +407,7 @@ int cmd_explain(int argc, char **argv)
     bool seed_given = false;
     int samples = 4;
     sr_rasterizer rasterizer = SR_RASTER_HALFSPACE;
-    sr_interpolation interpolation = SR_INTERP_PERSPECTIVE;
+    ex_interp interpolation = EX_INTERP_PERSPECTIVE;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL, *webp = NULL;
     for (int i = 2; i < argc; i++) {
@@ -453,7 +454,8 @@ int cmd_explain(int argc, char **argv)
         } else if (strcmp(a, "--rasterizer") == 0 || strcmp(a, "--interpolation") == 0) {
             static const char *const rasterizers[] = { "halfspace", "scanline", "barycentric",
                                                        NULL };
-            static const char *const interpolations[] = { "perspective", "affine", NULL };
+            static const char *const interpolations[] = { "perspective", "affine", "fillspan",
+                                                          NULL };
             bool r = a[2] == 'r';
             if (alg->run != (r ? explain_triangle : explain_perspective)) {
                 cli_error("explain %s: %s is for '%s'", alg->name, a, r ? "triangle" : "perspective");
@@ -464,7 +466,7 @@ int cmd_explain(int argc, char **argv)
             if (r) {
                 rasterizer = (sr_rasterizer)(SR_RASTER_HALFSPACE + k);
             } else {
-                interpolation = k == 0 ? SR_INTERP_PERSPECTIVE : SR_INTERP_AFFINE;
+                interpolation = (ex_interp)k;
             }
         } else if (strcmp(a, "--window") == 0) {
             ex_primitive wp = { 0 };

@@ -17,6 +17,11 @@
 #define EX_MAX_POINTS 64  /* vertices of a --polygon */
 #define EX_MAX_FRAME_BYTES ((size_t)1 << 30)  /* all frames are kept for the sheet */
 
+/* perspective's last frame: the whole triangle as sr_draw interpolates it
+ * (SR_INTERP_PERSPECTIVE, SR_INTERP_AFFINE) or as sr_fill_gouraud's
+ * FillPoly/FillSpan (SR_GOURAUD_INCREMENTAL) does in screen space. */
+typedef enum ex_interp { EX_INTERP_PERSPECTIVE, EX_INTERP_AFFINE, EX_INTERP_FILLSPAN } ex_interp;
+
 /* The primitive the user gave (window coordinates, pixels, y down). */
 typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES, EX_CIRCLE,
                EX_CUBIC, EX_CLIP_TRIANGLE } ex_kind;
@@ -37,7 +42,7 @@ typedef struct ex_primitive {
     double clip[3][4];      /* clip4d: the triangle in clip space, x, y, z, w */
     int connectivity;       /* floodfill: 4 or 8 */
     sr_rasterizer rasterizer;        /* triangle: the rasterizer whose steps are shown */
-    sr_interpolation interpolation;  /* perspective: what the last frame draws */
+    ex_interp interpolation;         /* perspective: what the last frame draws */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
