@@ -29,7 +29,7 @@ static const algorithm algorithms[] = {
     { "triangle", EX_TRIANGLE, explain_triangle,
       { .kind = EX_TRIANGLE, .pts = { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, .count = 3 }, 15, 13, 32,
       "edge functions E0..E2 at each pixel centre, the top-left\n"
-      "             rule on ties, coverage" },
+      "             rule on ties, coverage (or --rasterizer's steps)" },
     { "msaa", EX_TRIANGLE, explain_msaa,
       { .kind = EX_TRIANGLE, .pts = { { 1.3, 1.2 }, { 10.6, 3.4 }, { 3.2, 8.7 } }, .count = 3 },
       12, 10, 40, "the triangle's coverage per sample and the resolve (--samples)" },
@@ -60,7 +60,7 @@ static const algorithm algorithms[] = {
       { .kind = EX_TRIANGLE, .pts = { { 1.5, 1.5 }, { 14.5, 4.5 }, { 2.5, 11.5 } },
         .z = { 1, 4, 1 }, .count = 3, .row = 5 }, 16, 13, 32,
       "perspective-correct versus affine interpolation along one\n"
-      "             span (--w, --row)" },
+      "             span (--w, --row, --interpolation)" },
     { "fillpoly", EX_TRIANGLE, explain_fillpoly,
       { .kind = EX_TRIANGLE, .pts = { { 6.5, 0.7 }, { 14.3, 6.6 }, { 1.4, 10.6 } },
         .z = { 1, 0.2, 0.55 }, .count = 3 }, 16, 12, 32,
