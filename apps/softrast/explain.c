@@ -458,7 +458,8 @@ int cmd_explain(int argc, char **argv)
                                                           NULL };
             bool r = a[2] == 'r';
             if (alg->run != (r ? explain_triangle : explain_perspective)) {
-                cli_error("explain %s: %s is for '%s'", alg->name, a, r ? "triangle" : "perspective");
+                cli_error("explain %s: %s is for '%s'", alg->name, a,
+                          r ? "triangle" : "perspective");
                 return EXIT_USAGE;
             }
             int k;

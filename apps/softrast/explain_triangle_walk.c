@@ -84,7 +84,8 @@ void ex_tri_scanline_steps(ex_canvas *c, const ex_tri *t)
     double y_top = px(t->y[top]), y_mid = px(t->y[mid]), y_bot = px(t->y[bot]);
     bool long_left = cross_x(t, top, bot, y_mid) < px(t->x[mid]);
     /* the scanlines whose centre line meets the triangle, within the grid */
-    int first = (int)fmax(0, ceil(y_top - 0.5)), last = (int)fmin(c->grid_h - 1, ceil(y_bot - 0.5) - 1);
+    int first = (int)fmax(0, ceil(y_top - 0.5));
+    int last = (int)fmin(c->grid_h - 1, ceil(y_bot - 0.5) - 1);
     char cap[640];
 
     ex_begin(c);
