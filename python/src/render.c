@@ -20,6 +20,7 @@
  * program lit as softrast render's default look.
  */
 #include "module.h"
+#include "math/dvec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -79,18 +80,6 @@ static void to_camera(const geometry_uniforms *u, const double p[3], double c[3]
     }
 }
 
-static void cross(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Mesh vertex v seen from the camera: its clip and camera-space
  * positions. */
 static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double c[3])
@@ -139,16 +128,16 @@ static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, f
     double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
     double e2[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
     double n[3];
-    cross(e1, e2, n);
-    double denom = dot(n, d), nn = dot(n, n);
+    sr__dcross(e1, e2, n);
+    double denom = sr__ddot(n, d), nn = sr__ddot(n, n);
     double z, lambda[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 };
     if (denom != 0.0 && nn > 0.0) {
-        z = dot(n, c[0]) / denom;
+        z = sr__ddot(n, c[0]) / denom;
         double w[3] = { z * d[0] - c[0][0], z * d[1] - c[0][1], z * d[2] - c[0][2] }, t[3];
-        cross(w, e2, t);
-        lambda[1] = dot(t, n) / nn;
-        cross(e1, w, t);
-        lambda[2] = dot(t, n) / nn;
+        sr__dcross(w, e2, t);
+        lambda[1] = sr__ddot(t, n) / nn;
+        sr__dcross(e1, w, t);
+        lambda[2] = sr__ddot(t, n) / nn;
         lambda[0] = 1.0 - lambda[1] - lambda[2];
     } else {
         /* Seen edge-on: no area to intersect; the raster's depth. */
@@ -182,12 +171,12 @@ static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, f
             }
             double oe1[3] = { o[1][0] - o[0][0], o[1][1] - o[0][1], o[1][2] - o[0][2] };
             double oe2[3] = { o[2][0] - o[0][0], o[2][1] - o[0][1], o[2][2] - o[0][2] };
-            cross(oe1, oe2, on);
+            sr__dcross(oe1, oe2, on);
         }
         for (int r = 0; r < 3; r++) {
             fn[r] = u->nm[r][0] * on[0] + u->nm[r][1] * on[1] + u->nm[r][2] * on[2];
         }
-        double len = sqrt(dot(fn, fn));
+        double len = sqrt(sr__ddot(fn, fn));
         double scale = len > 0.0 ? 1.0 / len : 0.0;
         for (int r = 0; r < 3; r++) {
             u->normal[3 * p + r] = (float)(fn[r] * scale);
