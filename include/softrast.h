@@ -150,6 +150,8 @@
  *     sr_destroy_builtin_program frees it
  *   physically based shading
  *     sr_pbr_default_material    glTF's default material
+ *     sr_default_lights          softrast render's key, fill and rim lights for a camera
+ *     sr_pbr_default_lighting    those lights as radiance, and its sky and ground
  *     sr_make_pbr_program        the metallic-roughness model as a program
  *     sr_pbr_program             the sr_program to draw it with
  *     sr_destroy_pbr_program     frees it
@@ -1260,6 +1262,27 @@ typedef struct sr_pbr_desc {
  * and occlusion strength 1, no emission, opaque, cutoff 0.5, single-sided,
  * empty slots (scale 1). */
 SR_API sr_pbr_material sr_pbr_default_material(void);
+
+/* softrast render's default lighting (docs/pbr.md), for programs that
+ * want to look like it.  sr_default_lights writes the key, fill and rim
+ * directional lights placed relative to a camera basis (sr_camera_frame),
+ * so that whatever the view the side facing the viewer is lit from the
+ * upper left and the silhouette stands out: key from (-0.55 u + 0.70 v +
+ * 0.45 w), fill from (0.80 u + 0.05 v + 0.60 w), rim from (0.10 u + 0.55 v
+ * - 0.85 w), intensities 0.95, 0.35, 0.45, a warm white (1, 0.98, 0.95);
+ * lights[3 ..] are SR_LIGHT_OFF.  SR_INVALID_ARG for NULL or a basis
+ * whose u, v, w are not finite unit vectors.
+ * sr_pbr_default_lighting sets desc's lights to `lights` (SR_MAX_LIGHTS,
+ * the classic sr_state lights: the rig above or the caller's) as radiance,
+ * each intensity (zero -> 1) times SR_PBR_LIGHT_SCALE, so that a white
+ * surface facing the key light looks about as bright as the Blinn-Phong
+ * models show it; and its hemisphere: sky (0.16, 0.165, 0.18) over ground
+ * (0.05, 0.048, 0.045).  SR_INVALID_ARG for NULL or a light with a
+ * non-finite vector, color or intensity. */
+#define SR_DEFAULT_LIGHT_COUNT 3
+#define SR_PBR_LIGHT_SCALE 1.6f
+SR_API sr_result sr_default_lights(const sr_camera_basis *basis, sr_light lights[SR_MAX_LIGHTS]);
+SR_API sr_result sr_pbr_default_lighting(const sr_light lights[SR_MAX_LIGHTS], sr_pbr_desc *desc);
 
 typedef struct sr_pbr sr_pbr;
 SR_API sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out);

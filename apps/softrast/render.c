@@ -531,7 +531,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     if (ob->tangents || ob->texcoords1) {
                         d.vertex_count = ob->mesh.vertex_count;
                     }
-                    framing_pbr_lights(state->lights, &d);
+                    sr_pbr_default_lighting(state->lights, &d);
                     if (env && o->light_count == 0) {
                         /* The studio is the fill and the rim: of the
                          * classic rig only the key light stays, for shape. */
@@ -1046,8 +1046,9 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     };
     if (o->light_count > 0) {
         memcpy(state.lights, o->lights, sizeof o->lights);
-    } else {
-        framing_default_lights(&cam.basis, state.lights);
+    } else if (sr_default_lights(&cam.basis, state.lights) != SR_OK) {
+        snprintf(job->error, sizeof job->error, "the camera's frame is degenerate");
+        return SR_INVALID_ARG;
     }
 
     /* SSAA renders k x k samples per output pixel into the work image,

@@ -386,23 +386,13 @@ static const double cv_to_gl[3] = { 1.0, -1.0, -1.0 };
 /* softrast render's default lights (its key, fill and rim, from the
  * camera's right, up and towards the viewer, and its sky and ground),
  * so that color looks like the command's picture of the same model. */
-static void pbr_lights(sr_pbr_desc *d)
+static sr_result pbr_lights(sr_pbr_desc *d)
 {
-    static const float rig[3][4] = {
-        { -0.55f, 0.70f, 0.45f, 0.95f },
-        { 0.80f, 0.05f, 0.60f, 0.35f },
-        { 0.10f, 0.55f, -0.85f, 0.45f },
-    };
-    for (int i = 0; i < 3; i++) {
-        float len = sqrtf(rig[i][0] * rig[i][0] + rig[i][1] * rig[i][1] + rig[i][2] * rig[i][2]);
-        d->lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
-                                   .vector = { -rig[i][0] / len, -rig[i][1] / len,
-                                               -rig[i][2] / len },
-                                   .color = { 1.0f, 0.98f, 0.95f },
-                                   .intensity = rig[i][3] * 1.6f };
-    }
-    d->sky = (sr_vec3){ 0.16f, 0.165f, 0.18f };
-    d->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };
+    /* The basis of OpenGL's eye space, where the program shades. */
+    const sr_camera_basis eye = { .u = { 1, 0, 0 }, .v = { 0, 1, 0 }, .w = { 0, 0, 1 } };
+    sr_light rig[SR_MAX_LIGHTS];
+    sr_result r = sr_default_lights(&eye, rig);
+    return r == SR_OK ? sr_pbr_default_lighting(rig, d) : r;
 }
 
 /* The metallic-roughness program for one instance: the base color is
@@ -419,8 +409,8 @@ static sr_result make_pbr(sr_context *ctx, const instance *in, const sr_texture 
     mat.double_sided = true;
     sr_pbr_desc d = { .material = &mat, .model = model, .projection = proj,
                       .vertex_color = in->mesh->colors ? SR_ON : SR_OFF };
-    pbr_lights(&d);
-    return sr_make_pbr_program(ctx, &d, out);
+    sr_result r = pbr_lights(&d);
+    return r == SR_OK ? sr_make_pbr_program(ctx, &d, out) : r;
 }
 
 static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
