@@ -19,7 +19,7 @@
  * (textures, vertex colors, a headlight), or the metallic-roughness
  * program lit as softrast render's default look.
  */
-#include "module.h"
+#include "render.h"
 #include "math/dvec3.h"
 
 #include <math.h>
@@ -201,34 +201,6 @@ static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
     }
 }
 
-/* One instance as render() was handed it. */
-typedef struct instance {
-    MeshObject *mesh;
-    double a[3][4], nm[3][3];
-    int32_t id;
-    const float *positions;     /* for the color pass */
-    const uint32_t *indices;
-    float metallic, roughness, emissive[3];   /* for the metallic-roughness look */
-} instance;
-
-typedef struct render_job {
-    instance *inst;
-    size_t count;
-    int width, height, threads;
-    double k[3][3];
-    float near;
-    float background[3];
-    bool lit;                   /* color: headlight-lit, else the colors as they are */
-    bool pbr;                   /* color: the metallic-roughness program instead */
-    float *depth;
-    int32_t *triangle_id, *instance_id;
-    float *barycentric, *normal;
-    uint8_t *color, *rgba;
-    npy_bool *mask;
-    sr_py_render_set *set;      /* what run() draws with */
-    char error[512];
-} render_job;
-
 static void fill_outputs(const render_job *j)
 {
     size_t n = (size_t)j->width * (size_t)j->height;
@@ -340,7 +312,7 @@ static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render
     return r == SR_OK ? draw_instances(ctx, fb, j, geometry_draw, NULL) : r;
 }
 
-static void mat_from_rows(const double a[3][4], sr_mat4 *out)
+void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out)
 {
     memset(out, 0, sizeof *out);
     for (int r = 0; r < 3; r++) {
@@ -351,8 +323,7 @@ static void mat_from_rows(const double a[3][4], sr_mat4 *out)
     out->m[15] = 1.0f;
 }
 
-/* The mesh's texture on ctx (RGB expanded to RGBA), or NULL without one. */
-static sr_result make_texture(sr_context *ctx, const MeshObject *m, sr_texture **tex)
+sr_result sr_py_make_texture(sr_context *ctx, const MeshObject *m, sr_texture **tex)
 {
     *tex = NULL;
     if (!m->texture) {
@@ -378,63 +349,17 @@ static sr_result make_texture(sr_context *ctx, const MeshObject *m, sr_texture *
     return r;
 }
 
-/* OpenCV's camera frame (y down, z forward) to OpenGL's eye space (y up,
- * z backward): the metallic-roughness look's world, so that its sky is
- * above and its eye at the origin looking down -z. */
-static const double cv_to_gl[3] = { 1.0, -1.0, -1.0 };
-
-/* softrast render's default lights (its key, fill and rim, from the
- * camera's right, up and towards the viewer, and its sky and ground),
- * so that color looks like the command's picture of the same model. */
-static sr_result pbr_lights(sr_pbr_desc *d)
-{
-    /* The basis of OpenGL's eye space, where the program shades. */
-    const sr_camera_basis eye = { .u = { 1, 0, 0 }, .v = { 0, 1, 0 }, .w = { 0, 0, 1 } };
-    sr_light rig[SR_MAX_LIGHTS];
-    sr_result r = sr_default_lights(&eye, rig);
-    return r == SR_OK ? sr_pbr_default_lighting(rig, d) : r;
-}
-
-/* The metallic-roughness program for one instance: the base color is
- * the mesh's colors times its texture (a loaded material's factor is in
- * the colors already). */
-static sr_result make_pbr(sr_context *ctx, const instance *in, const sr_texture *tex,
-                          const sr_mat4 *model, const sr_mat4 *proj, sr_pbr **out)
-{
-    sr_pbr_material mat = sr_pbr_default_material();
-    mat.base_color_texture.texture = tex;
-    mat.metallic = in->metallic;
-    mat.roughness = in->roughness;
-    memcpy(mat.emissive, in->emissive, sizeof mat.emissive);
-    mat.double_sided = true;
-    sr_pbr_desc d = { .material = &mat, .model = model, .projection = proj,
-                      .vertex_color = in->mesh->colors ? SR_ON : SR_OFF };
-    sr_result r = pbr_lights(&d);
-    return r == SR_OK ? sr_make_pbr_program(ctx, &d, out) : r;
-}
-
 static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
                             const instance *in, size_t faces, const void *proj)
 {
     const MeshObject *m = in->mesh;
     sr_texture *tex;
-    sr_result r = make_texture(ctx, m, &tex);
+    sr_result r = sr_py_make_texture(ctx, m, &tex);
     if (r != SR_OK) {
         return r;
     }
     sr_mat4 model;
-    double a[3][4];
-    for (int row = 0; row < 3; row++) {
-        for (int c = 0; c < 4; c++) {
-            a[row][c] = j->pbr ? cv_to_gl[row] * in->a[row][c] : in->a[row][c];
-        }
-    }
-    mat_from_rows(a, &model);
-    sr_pbr *pbr = NULL;
-    if (j->pbr && (r = make_pbr(ctx, in, tex, &model, proj, &pbr)) != SR_OK) {
-        sr_destroy_texture(ctx, tex);
-        return r;
-    }
+    sr_py_mat_from_rows(in->a, &model);
     sr_state st = {
         .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
         .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
@@ -442,7 +367,6 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
         /* A headlight: the view is the identity, so "world" is camera space. */
         .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
-        .program = pbr ? sr_pbr_program(pbr) : NULL,
     };
     sr_draw_desc d = {
         .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
@@ -455,7 +379,6 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         .model = &model, .projection = proj,
     };
     r = sr_draw(ctx, fb, &st, &d);
-    sr_destroy_pbr_program(ctx, pbr);
     sr_destroy_texture(ctx, tex);
     return r;
 }
@@ -474,7 +397,8 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
     proj.m[14] = j->near;
     proj.m[11] = 1.0f;
     if (j->pbr) {
-        /* The model matrix is taken to OpenGL's eye space: undo it here. */
+        /* The program's view takes the world to OpenGL's eye space (y up,
+         * z backward): undo the flip of y and z here. */
         for (int c = 1; c < 3; c++) {
             for (int row = 0; row < 4; row++) {
                 proj.m[c * 4 + row] = -proj.m[c * 4 + row];
@@ -482,7 +406,8 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
         }
     }
     if (r == SR_OK) {
-        r = draw_instances(ctx, fb, j, color_draw, &proj);
+        r = j->pbr ? sr_py_pbr_pass(ctx, fb, j, &proj)
+                   : draw_instances(ctx, fb, j, color_draw, &proj);
     }
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);
@@ -601,6 +526,52 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
     return 0;
 }
 
+/* An instance's look for the metallic-roughness pass: (pose (3, 4),
+ * base color (4), metallic, roughness, emissive (3), emissive strength,
+ * alpha mode (0 opaque, 1 mask, 2 blend), alpha cutoff, double-sided,
+ * unlit, normal scale, occlusion strength, source: None or (the loaded
+ * scene's capsule, primitive index)). */
+static int take_look(PyObject *look, Py_ssize_t i, instance *in)
+{
+    PyObject *pose, *source;
+    sr_pbr_material *m = &in->factors;
+    *m = sr_pbr_default_material();
+    int mode, double_sided, unlit;
+    float *c = m->base_color, *e = m->emissive;
+    if (!PyTuple_Check(look) ||
+        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffO", &pose, &c[0], &c[1], &c[2], &c[3],
+                          &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
+                          &m->emissive_strength, &mode, &m->alpha_cutoff, &double_sided, &unlit,
+                          &m->normal_scale, &m->occlusion_strength, &source)) {
+        PyErr_Clear();
+        PyErr_Format(PyExc_TypeError, "instances[%zd]: the look is malformed", i);
+        return -1;
+    }
+    if (mode < 0 || mode > 2) {
+        PyErr_Format(PyExc_ValueError, "instances[%zd]: alpha mode %d", i, mode);
+        return -1;
+    }
+    m->alpha_mode = mode == 1 ? SR_ALPHA_MASK : mode == 2 ? SR_ALPHA_BLEND : SR_ALPHA_OPAQUE;
+    m->double_sided = double_sided;
+    m->unlit = unlit;
+    if (take_matrix(pose, "pose", 3, 4, &in->pose[0][0]) < 0) {
+        return -1;
+    }
+    in->src = NULL;
+    if (source != Py_None) {
+        PyObject *capsule;
+        Py_ssize_t index;
+        if (!PyArg_ParseTuple(source, "On", &capsule, &index)) {
+            return -1;
+        }
+        in->src = sr_py_file_draw_of(capsule, index);
+        if (!in->src) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
 static int take_instances(PyObject *seq, render_job *j)
 {
     PyObject *fast = PySequence_Fast(seq, "instances: expected a sequence");
@@ -617,19 +588,21 @@ static int take_instances(PyObject *seq, render_job *j)
     j->count = (size_t)n;
     for (Py_ssize_t i = 0; i < n; i++) {
         PyObject *item = PySequence_Fast_GET_ITEM(fast, i);
-        PyObject *mesh, *a, *nm;
+        PyObject *mesh, *a, *nm, *look = NULL;
         int id;
         instance *in = &j->inst[i];
-        /* The metallic-roughness factors: a dielectric unless given. */
-        in->roughness = 0.5f;
         if (!PyTuple_Check(item) ||
-            !PyArg_ParseTuple(item, "O!OOi|(fffff)", &sr_py_MeshType, &mesh, &a, &nm, &id,
-                              &in->metallic, &in->roughness, &in->emissive[0], &in->emissive[1],
-                              &in->emissive[2])) {
+            !PyArg_ParseTuple(item, "O!OOi|O", &sr_py_MeshType, &mesh, &a, &nm, &id, &look)) {
             PyErr_Clear();
             PyErr_Format(PyExc_TypeError,
                          "instances[%zd]: expected (Mesh, (3, 4) matrix, (3, 3) matrix, int"
-                         "[, (metallic, roughness, emissive r, g, b)])", i);
+                         "[, look])", i);
+            goto fail;
+        }
+        if (j->pbr && (!look || take_look(look, i, in) < 0)) {
+            if (!look) {
+                PyErr_Format(PyExc_TypeError, "instances[%zd]: pbr needs the look", i);
+            }
             goto fail;
         }
         in->mesh = (MeshObject *)mesh;
@@ -677,15 +650,26 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     (void)self;
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
-                              "mask", "background", "lit", "rgba", "pbr", NULL };
+                              "mask", "background", "lit", "rgba", "pbr", "view",
+                              "environment", "shadows", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
+    PyObject *view = Py_None, *env = Py_None;
     render_job j = { 0 };
-    int lit = 1, pbr = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|Op:render", kwlist,
+    int lit = 1, pbr = 0, shadows = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOp:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
-                                     &j.background[2], &lit, &outs[7], &pbr)) {
+                                     &j.background[2], &lit, &outs[7], &pbr, &view, &env,
+                                     &shadows)) {
+        return NULL;
+    }
+    j.pbr = pbr;
+    j.shadows = shadows;
+    if (pbr && take_matrix(view, "view", 3, 4, &j.view[0][0]) < 0) {
+        return NULL;
+    }
+    if (env != Py_None && !(j.env = sr_py_environment_of(env))) {
         return NULL;
     }
     if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
@@ -704,7 +688,6 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
         return NULL;
     }
     j.lit = lit;
-    j.pbr = pbr;
     if (take_matrix(K, "K", 3, 3, &j.k[0][0]) < 0) {
         return NULL;
     }
