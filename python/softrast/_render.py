@@ -141,15 +141,18 @@ def _look(inst):
     dielectric without one), and the loaded primitive it came from."""
     m = inst.material
     pose = np.ascontiguousarray(inst.pose[:3, :])
+    source = inst._source
+    if source is not None:
+        source = None if source[0] is None else (source[0].capsule, source[1])
     if m is None:
         return (pose, (1.0, 1.0, 1.0, 1.0), 0.0, 0.5, (0.0, 0.0, 0.0), 1.0, 0, 0.5, True, False,
-                1.0, 1.0, inst._source)
+                1.0, 1.0, source)
     # (A loaded instance is drawn from the file's own arrays, whose colors
     # do not have the factor its Mesh's have.)
     base = tuple(float(c) for c in m.base_color)
     return (pose, base, m.metallic, m.roughness, tuple(float(c) for c in m.emissive),
             m.emissive_strength, _ALPHA_MODES[m.alpha_mode], m.alpha_cutoff, m.double_sided,
-            m.unlit, m.normal_scale, m.occlusion_strength, inst._source)
+            m.unlit, m.normal_scale, m.occlusion_strength, source)
 
 
 # Prefiltered environments, by (file, its size and time, intensity): a few
@@ -328,10 +331,12 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     pbr = shading == "pbr" and images
     passes = [(names, [inst.mesh for inst in sc])]
     if pbr:
+        # (A loaded instance's look brings the file's arrays, flat normals made.)
+        looks = [(_look(inst),) for inst in sc]
         passes = [([name for name in names if name not in images], passes[0][1]),
                   (images, [_flat(inst.mesh) if inst.mesh.normals is None and
-                            inst._source is None else inst.mesh for inst in sc])]
-        looks = [(_look(inst),) for inst in sc]
+                            look[0][-1] is None else inst.mesh
+                            for inst, look in zip(sc, looks)])]
     for b in range(n):
         Rt = Rts[b]
         poses = [(np.ascontiguousarray(Rt[:, :3] @ inst.pose[:3, :] +

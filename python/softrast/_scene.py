@@ -1,6 +1,7 @@
 """Scenes: meshes placed by poses, each with an instance ID, and the model readers."""
 
 import os
+import warnings
 
 import numpy as np
 
@@ -114,6 +115,31 @@ class Scene:
         return f"Scene({len(self.instances)} instances)"
 
 
+class _SceneFile:
+    """The library's scene of a loaded glTF file (its materials with their
+    textures, the primitives' arrays), for shading="pbr".  Pickled as its
+    path: read again where it is unpickled (a Dask worker), or, when it
+    cannot be, dropped with a warning (its instances then draw their
+    Mesh's base colors)."""
+
+    __slots__ = ("path", "capsule")
+
+    def __init__(self, path, capsule):
+        self.path = path
+        self.capsule = capsule
+
+    def __reduce__(self):
+        return (_read_scene_file, (self.path,))
+
+
+def _read_scene_file(path):
+    try:
+        return _SceneFile(path, _softrast.load_scene(path)["file"])
+    except (OSError, ValueError) as e:
+        warnings.warn(f"softrast: {path}: the file's materials are not kept: {e}", stacklevel=2)
+        return None
+
+
 def _path(path):
     if not isinstance(path, (str, bytes, os.PathLike)):
         raise TypeError(f"path: expected a str or os.PathLike, got {type(path).__name__}")
@@ -159,12 +185,13 @@ def load(path):
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
     meshes = {}
     instances = []
+    source = _SceneFile(path, d["file"])
     for primitive, (mesh_index, world, material) in enumerate(d["instances"]):
         key = (mesh_index, material)
         if key not in meshes:
             meshes[key] = Mesh(**material_arrays(d["meshes"][mesh_index], d["materials"][material],
                                                  images.get(material)))
         inst = Instance(meshes[key], world, material=materials[material])
-        inst._source = (d["file"], primitive)
+        inst._source = (source, primitive)
         instances.append(inst)
     return Scene(instances, [Camera(c) for c in d["cameras"]])

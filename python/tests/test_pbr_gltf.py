@@ -286,3 +286,20 @@ def test_own_mesh_with_a_material(tmp_path):
     half = front(softrast.Instance(mesh, material=softrast.Material((1, 1, 1, 0.3),
                                                                    alpha_mode="mask")))
     assert np.all(half["color"][24, 24] == bg), "alpha 0.3 under the cutoff 0.5: cut out"
+
+
+def test_pickled_scene_keeps_the_files_materials(tmp_path):
+    # A loaded scene goes to Dask workers pickled: the file's materials
+    # are read again there, so the picture is the same.
+    import pickle
+    scene = load(materials_scene(tmp_path))
+    args = dict(camera=scene.cameras[0], width=64, height=48, shading="pbr", outputs=("color",))
+    again = pickle.loads(pickle.dumps(scene))
+    assert np.array_equal(softrast.render(again, **args)["color"],
+                          softrast.render(scene, **args)["color"])
+    path = tmp_path / "materials.gltf"
+    data = pickle.dumps(scene)
+    path.rename(tmp_path / "moved.gltf")
+    with pytest.warns(UserWarning, match="materials are not kept"):
+        lost = pickle.loads(data)
+    assert softrast.render(lost, **args)["color"].shape == (48, 64, 3), "drawn from its Meshes"
