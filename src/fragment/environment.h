@@ -68,8 +68,9 @@ static inline int sr__level_width(int w, int k)
 }
 
 struct sr_environment {
-    /* level[0] is the source (times the intensity); level[k] the
-     * radiance prefiltered for roughness k / (SR_ENVIRONMENT_LEVELS - 1). */
+    /* level[0] is the source (times the intensity; none for the built-in
+     * studio); level[k] the radiance prefiltered for roughness
+     * k / (SR_ENVIRONMENT_LEVELS - 1). */
     sr__equirect level[SR_ENVIRONMENT_LEVELS];
     float sh[9][3];             /* irradiance / pi, Lambert-convolved, in image space */
     float cos_rot, sin_rot;     /* world -> image: rotation by -desc.rotation about +Y */
