@@ -241,8 +241,8 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
                           .projection = &s->projection, .vertex_color = SR_OFF };
         sr_pbr_default_lighting(s->state.lights, &d);
         if (s->info->look == BENCH_LOOK_PBR_STUDIO || gltf) {
-            /* --environment studio: the built-in studio at 0.6 and the
-             * rig's key light. */
+            /* The CLI's default light: the built-in studio at 0.6 and
+             * the rig's key light. */
             r = sr_make_environment(s->mesh_ctx, &(sr_environment_desc){ .intensity = 0.6f },
                                     &s->env);
             if (r != SR_OK) {

@@ -746,10 +746,11 @@ typedef struct sr_environment_desc {
 
 /* Prefilter an environment: the source's box-filtered mip chain, the
  * diffuse irradiance as 9 spherical-harmonic coefficients (Ramamoorthi and
- * Hanrahan), the GGX-importance-sampled specular levels, and, the first
- * time in the process, the BRDF table.  Runs on ctx's threads; the result
- * is the same for any thread count.  desc may be NULL (the built-in
- * studio).  Release it with sr_destroy_environment. */
+ * Hanrahan) and the GGX-importance-sampled specular levels.  Runs on ctx's
+ * threads; the result is the same for any thread count.  desc may be NULL
+ * (the built-in studio, whose levels and SH were computed when the library
+ * was built: making it only copies them).  Release it with
+ * sr_destroy_environment. */
 SR_API sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
                                      sr_environment **out);
 SR_API void      sr_destroy_environment(sr_context *ctx, sr_environment *env);
@@ -785,8 +786,7 @@ SR_API void sr_environment_background(const sr_environment *env, const float dir
  * height-correlated-Smith specular BRDF with Schlick's Fresnel is
  * F0 * out[0] + out[1] (scale, bias) for a view at N.V and a perceptual
  * roughness, both clamped to [0, 1]; bilinear in a 32 x 32 table
- * computed once a process (by sr_make_environment, or by the first call
- * here).  out[0] + out[1] <= 1. */
+ * computed when the library was built.  out[0] + out[1] <= 1. */
 SR_API void sr_brdf_table(float n_dot_v, float roughness, float out[2]);
 SR_API void sr_brdf_table4(const float n_dot_v[4], const float roughness[4], float scale[4],
                            float bias[4]);

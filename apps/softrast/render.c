@@ -807,9 +807,10 @@ static int finish_scene(render_job *job)
     return -1;
 }
 
-/* --environment: the built-in studio, an equirectangular Radiance
- * picture, or none (the sky-and-ground hemisphere); prefiltered once a
- * job, not once a model: a batch's models all share the light. */
+/* --environment: the built-in studio (the default, prefiltered at build
+ * time), an equirectangular Radiance picture, or hemisphere / none (the
+ * sky-and-ground hemisphere); made once a job, not once a model: a
+ * batch's models all share the light. */
 static int load_environment(render_job *job)
 {
     const render_opts *o = &job->o;

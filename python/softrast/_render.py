@@ -162,6 +162,8 @@ _ENVIRONMENTS = {}
 
 def _environment(environment, intensity, threads):
     if environment is None:
+        environment = "studio"
+    if isinstance(environment, str) and environment == "hemisphere":
         return None
     try:
         intensity = float(intensity)
@@ -180,7 +182,7 @@ def _environment(environment, intensity, threads):
             raise OSError(f"environment: {path}: {e.strerror}") from None
         key = (path, (st.st_size, st.st_mtime_ns), intensity)
     else:
-        raise TypeError(f"environment: expected 'studio' or an .hdr file's path, "
+        raise TypeError(f"environment: expected 'studio', 'hemisphere' or an .hdr file's path, "
                         f"got {type(environment).__name__}")
     if key not in _ENVIRONMENTS:
         if len(_ENVIRONMENTS) >= 4:
@@ -268,10 +270,11 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     shading: "lit", "unlit" or "pbr" (see ``color``).  With "pbr" the
         world's +y is up for the sky, the environment and the shadow's
         fit, as in glTF and softrast render.
-    environment: "pbr" only: None for the sky-and-ground ambient with the
-        key, fill and rim lights; "studio" (the built-in neutral studio)
-        or the path of an equirectangular Radiance ``.hdr`` file (+y up)
-        for image-based light with the key light alone, each at
+    environment: "pbr" only: "studio" (the built-in neutral studio; the
+        default, None, as softrast render's) or the path of an
+        equirectangular Radiance ``.hdr`` file (+y up) for image-based
+        light with the key light alone; "hemisphere" for the sky-and-ground
+        ambient with the key, fill and rim lights.  Environments are at
         ``environment_intensity`` (default 0.6, as softrast render;
         0.001 .. 1000).  Prefiltered once and kept for later calls.
     shadows: "pbr" only: the key light casts a shadow (a 1024-texel
@@ -319,7 +322,7 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
         raise ValueError("environment, shadows: need shading='pbr'")
     if not isinstance(shadows, (bool, np.bool_)):
         raise TypeError(f"shadows: expected a bool, got {type(shadows).__name__}")
-    env = _environment(environment, environment_intensity, threads)
+    env = _environment(environment, environment_intensity, threads) if shading == "pbr" else None
 
     n = len(Ks)
     out = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}

@@ -187,10 +187,12 @@ def test_environment(tmp_path):
                 environment_intensity=1.0)["color"][24, 24].astype(int)
     blue = front(scene, environment=write_hdr(tmp_path / "blue.hdr", (0.02, 0.02, 1.0)),
                  environment_intensity=1.0)["color"][24, 24].astype(int)
-    hemi = front(scene)["color"][24, 24].astype(int)
+    hemi = front(scene, environment="hemisphere")["color"][24, 24].astype(int)
     studio = front(scene, environment="studio")["color"][24, 24].astype(int)
+    default = front(scene)["color"][24, 24].astype(int)
     assert red[0] > red[2] + 30 and blue[2] > blue[0] + 30, (red, blue)
     assert np.abs(studio - hemi).max() > 3
+    assert (default == studio).all(), "the default light is the studio, as softrast render's"
     with pytest.raises(OSError, match="environment"):
         front(scene, environment=tmp_path / "missing.hdr")
     with pytest.raises(ValueError, match="environment_intensity"):
