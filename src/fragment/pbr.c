@@ -999,6 +999,13 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     pr->uniforms = p;
     pr->varying_count = layout_varyings(desc, p);
     pr->may_discard = mat.alpha_mode == SR_ALPHA_MASK;
+    /* Only the texture lookups read lane differences (level of detail,
+     * the derivative tangent frame); the shadow's quad verdict equals
+     * its lanes' own tests. */
+    pr->independent_lanes = true;
+    for (int i = 0; i < SLOT_COUNT; i++) {
+        pr->independent_lanes &= !p->slot[i].tex;
+    }
     float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
     if (p->environment && !p->m.unlit) {
         /* Irradiance always, and with one roughness for every fragment

@@ -5,6 +5,9 @@
  * the exact edge values at their pixel centres (helper lanes outside the
  * triangle too, so lane differences are derivatives), the shader runs once
  * per quad, and each lane's color goes to its pixel's surviving samples.
+ * A program whose lanes are independent gets full calls instead: the
+ * triangle's surviving fragments, quad after quad, four to a call (each
+ * lane interpolated as its own, so the same bits as in its quad).
  * Depth and stencil are tested before the shader (early, so hidden
  * fragments cost no shading) unless the program writes depth or may
  * discard, or alpha to coverage needs the shaded alpha: then after it,
@@ -29,6 +32,12 @@ typedef struct quad_job {
     int64_t lane[4][3];           /* quad lane i's edge values less lane 0's */
     bool test4;                   /* early and the state of test4: the vector test */
     v4d so4[2];                   /* so[0..3][1] and so[0..3][2] as double lanes */
+    bool pack;                    /* early and independent lanes: fragments gather in lanes */
+    int packed;                   /* lanes gathered so far */
+    int px, py;                   /* the first gathered lane's pixel */
+    int64_t pu[4][3];             /* the gathered lanes' edge values, */
+    size_t pbase[4];              /* first samples */
+    unsigned pcover[4];           /* and surviving samples */
 } quad_job;
 
 /* A mask of four lanes (each 0 or -1) as the bits 0..3 of a sample mask. */
@@ -113,9 +122,67 @@ static void interpolate_quad(const quad_job *j, const int64_t u[4][3], sr_fragme
     }
 }
 
+/* The program on the lanes `live` (the rest helpers) with edge values u,
+ * then each surviving lane's color to its pixel's samples: cover (the
+ * early tests' survivors, else the covered samples, tested here). */
+static void shade_lanes(const quad_job *j, int x, int y, unsigned live, const int64_t u[4][3],
+                        const size_t base[4], const unsigned cover[4])
+{
+    const sr_draw_state *ds = j->ds;
+    const sr_tri *t = j->t;
+    sr_fragment_quad q;
+    q.mask = live;
+    q.x = x;
+    q.y = y;
+    q.front = t->front;
+    q.discard = 0;
+    interpolate_quad(j, u, &q);
+    for (int i = 0; i < 4; i++) {
+        q.color[0][i] = q.color[1][i] = q.color[2][i] = 0.0f;
+        q.color[3][i] = 1.0f;
+    }
+    ds->program->fragment(ds->program->uniforms, &q);
+    live &= ~q.discard;
+    for (int i = 0; i < 4; i++) {
+        if (!(live >> i & 1)) {
+            continue;
+        }
+        float c[4] = { q.color[0][i], q.color[1][i], q.color[2][i], q.color[3][i] };
+        unsigned pass = cover[i];
+        if (!j->early) {
+            if (ds->alpha_to_coverage) {
+                pass &= sr__alpha_coverage(c[3], ds->samples);
+            }
+            double zs = (double)q.z[i] * ds->depth_scale;
+            pass = pass ? sr__test_tri_samples(ds, t, base[i], u[i], (const int64_t(*)[3])j->so,
+                                               pass, ds->program->writes_depth ? &zs : NULL)
+                        : 0;
+        }
+        if (pass) {
+            if (j->writes_color) {
+                sr__write_samples(ds, base[i], pass, c, &ds->blend);
+            }
+            j->st->fragments += count16(pass);
+        }
+    }
+}
+
+/* The gathered fragments as one call; lanes not filled repeat lane 0
+ * (finite inputs for the helpers). */
+static void flush_packed(quad_job *j)
+{
+    int n = j->packed;
+    for (int k = n; k < 4; k++) {
+        memcpy(j->pu[k], j->pu[0], sizeof j->pu[k]);
+    }
+    shade_lanes(j, j->px, j->py, (1u << n) - 1u, (const int64_t(*)[3])j->pu, j->pbase,
+                j->pcover);
+    j->packed = 0;
+}
+
 static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, const int rect[4])
 {
-    const quad_job *j = arg;
+    quad_job *j = arg;
     const sr_draw_state *ds = j->ds;
     const sr_tri *t = j->t;
     int n = ds->samples;
@@ -175,39 +242,24 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     if (!live) {
         return;
     }
-    sr_fragment_quad q;
-    q.mask = live;
-    q.x = qx;
-    q.y = qy;
-    q.front = t->front;
-    q.discard = 0;
-    interpolate_quad(j, (const int64_t(*)[3])u, &q);
-    for (int i = 0; i < 4; i++) {
-        q.color[0][i] = q.color[1][i] = q.color[2][i] = 0.0f;
-        q.color[3][i] = 1.0f;
+    if (!j->pack) {
+        shade_lanes(j, qx, qy, live, (const int64_t(*)[3])u, base, cover);
+        return;
     }
-    ds->program->fragment(ds->program->uniforms, &q);
-    live &= ~q.discard;
     for (int i = 0; i < 4; i++) {
         if (!(live >> i & 1)) {
             continue;
         }
-        float c[4] = { q.color[0][i], q.color[1][i], q.color[2][i], q.color[3][i] };
-        unsigned pass = cover[i];
-        if (!j->early) {
-            if (ds->alpha_to_coverage) {
-                pass &= sr__alpha_coverage(c[3], n);
-            }
-            double zs = (double)q.z[i] * ds->depth_scale;
-            pass = pass ? sr__test_tri_samples(ds, t, base[i], u[i], (const int64_t(*)[3])j->so,
-                                               pass, ds->program->writes_depth ? &zs : NULL)
-                        : 0;
+        int k = j->packed++;
+        if (k == 0) {
+            j->px = qx + (i & 1);
+            j->py = qy + (i >> 1);
         }
-        if (pass) {
-            if (j->writes_color) {
-                sr__write_samples(ds, base[i], pass, c, &ds->blend);
-            }
-            j->st->fragments += count16(pass);
+        memcpy(j->pu[k], u[i], sizeof j->pu[k]);
+        j->pbase[k] = base[i];
+        j->pcover[k] = cover[i];
+        if (k == 3) {
+            flush_packed(j);
         }
     }
 }
@@ -253,7 +305,12 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
         j.so4[0][s] = (double)j.so[s][1];
         j.so4[1][s] = (double)j.so[s][2];
     }
+    j.pack = j.early && ds->program->independent_lanes;
+    j.packed = 0;
     sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);
+    if (j.packed) {
+        flush_packed(&j);
+    }
 }
 
 bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, int px, int py,
