@@ -204,12 +204,13 @@ SR_TEST(independent_lanes_fill_every_call_but_the_last)
     CHECK(seen[0].full < seen[0].calls);
 }
 
-/* A program's early depth test takes four samples at once in the common
- * state (four samples, LESS on D24, no stencil) and one at a time
- * otherwise: a stencil test that always passes and keeps the stencil
- * sends the same draw down the per-sample path, and the bytes must agree
- * (every sample's color, through the resolve, and the depth read back). */
-SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
+/* A program's early depth test takes a pixel's four samples, or a quad's
+ * four pixels of one sample, at once in the common state (LESS on D24, no
+ * stencil) and one at a time otherwise: a stencil test that always
+ * passes and keeps the stencil sends the same draw down the per-sample
+ * path, and the bytes must agree (every sample's color, through the
+ * resolve, and the depth read back). */
+static void vector_depth_test_matches_the_per_sample_one(int samples)
 {
     enum { W = 128, H = 96 };
     scene s = random_scene(600, 29);
@@ -217,9 +218,9 @@ SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
     sr_framebuffer *a, *b;
     REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
-                                                            .samples = 4 }, &a) == SR_OK);
+                                                            .samples = samples }, &a) == SR_OK);
     REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
-                                                            .samples = 4, .stencil = true },
+                                                            .samples = samples, .stencil = true },
                                 &b) == SR_OK);
     sr_clear_desc cl = { .color = { 0.1f, 0.1f, 0.2f, 1 }, .depth = 1 };
     sr_clear(ctx, a, &cl);
@@ -237,6 +238,16 @@ SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
     sr_destroy_framebuffer(ctx, b);
     sr_destroy_context(ctx);
     free_scene(&s);
+}
+
+SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
+{
+    vector_depth_test_matches_the_per_sample_one(4);
+}
+
+SR_TEST(quad_early_depth_test_matches_the_per_sample_one)
+{
+    vector_depth_test_matches_the_per_sample_one(1);
 }
 
 /* ---- varying qualifiers -------------------------------------------------- */

@@ -31,6 +31,7 @@ typedef struct quad_job {
     float inv_area;               /* for screen-space (noperspective) weights */
     int64_t lane[4][3];           /* quad lane i's edge values less lane 0's */
     bool test4;                   /* early and the state of test4: the vector test */
+    bool test1;                   /* the same state with one sample: test_pixels */
     v4d so4[2];                   /* so[0..3][1] and so[0..3][2] as double lanes */
     bool pack;                    /* early and independent lanes: fragments gather in lanes */
     int packed;                   /* lanes gathered so far */
@@ -54,18 +55,23 @@ static unsigned lane_bits(v4i m)
  * sr__tri_depth's sum in its order (no FMA), clamped and rounded as
  * sr__quantize_depth does - so the same depth words and the same mask;
  * the four depth words are consecutive (framebuffer.h). */
-static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsigned cover)
+/* sr__tri_depth at four points, clamped as sr__quantize_depth clamps
+ * (NaN to the minimum). */
+static v4d depth4(const sr_draw_state *ds, const sr_tri *t, v4d e1, v4d e2)
 {
-    const sr_draw_state *ds = j->ds;
-    const sr_tri *t = j->t;
-    v4d e1 = (double)u[1] + j->so4[0], e2 = (double)u[2] + j->so4[1];
     v4d z = t->z0 + e1 * t->dz1 + e2 * t->dz2;
     v4d lo = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
     v4d hi = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
     v4l above = z >= lo;
     z = (v4d)((above & (v4l)z) | (~above & (v4l)lo));
     v4l below = z <= hi;
-    z = (v4d)((below & (v4l)z) | (~below & (v4l)hi));
+    return (v4d)((below & (v4l)z) | (~below & (v4l)hi));
+}
+
+static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsigned cover)
+{
+    const sr_draw_state *ds = j->ds;
+    v4d z = depth4(ds, j->t, (double)u[1] + j->so4[0], (double)u[2] + j->so4[1]);
     /* Non-negative and below 2^24: truncation is the scalar (uint32_t) cast. */
     v4i q = __builtin_convertvector(z + 0.5, v4i);
     uint32_t *dp = &ds->fb->depth[base];
@@ -76,6 +82,32 @@ static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsign
     v4i pass = (lanes != 0) & (q < d);
     d = (pass & q) | (~pass & d);
     memcpy(dp, &d, sizeof d);
+    return lane_bits(pass);
+}
+
+/* test4 for a quad's four pixels of one sample each, the covered ones
+ * (cover[i] 1 or 0, left at 1 where the pixel passed): their depth words
+ * are two pairs of rows apart, so read and written lane by lane. */
+static unsigned test_pixels(const quad_job *j, const size_t base[4], const int64_t u[4][3],
+                            unsigned cover[4])
+{
+    v4d e1 = { (double)u[0][1], (double)u[1][1], (double)u[2][1], (double)u[3][1] };
+    v4d e2 = { (double)u[0][2], (double)u[1][2], (double)u[2][2], (double)u[3][2] };
+    v4d z = depth4(j->ds, j->t, e1 + j->so4[0], e2 + j->so4[1]);
+    v4i q = __builtin_convertvector(z + 0.5, v4i);
+    uint32_t *dp = j->ds->fb->depth;
+    v4i d, lanes;
+    for (int i = 0; i < 4; i++) {
+        lanes[i] = -(int32_t)cover[i];
+        d[i] = cover[i] ? (int32_t)dp[base[i]] : 0;
+    }
+    v4i pass = lanes & (q < d);
+    for (int i = 0; i < 4; i++) {
+        if (pass[i]) {
+            dp[base[i]] = (uint32_t)q[i];
+        }
+        cover[i] = (unsigned)pass[i] & 1u;
+    }
     return lane_bits(pass);
 }
 
@@ -115,10 +147,42 @@ static void interpolate_quad(const quad_job *j, const int64_t u[4][3], sr_fragme
         v4f r = t->vary[k] + a * t->vary[n + k] + b * t->vary[2 * n + k];
         memcpy(q->varyings[k], &r, sizeof r);
     }
+    v4d z = depth4(ds, t, (v4d){ (double)u[0][1], (double)u[1][1], (double)u[2][1], (double)u[3][1] },
+                   (v4d){ (double)u[0][2], (double)u[1][2], (double)u[2][2], (double)u[3][2] });
+    v4f zf = __builtin_convertvector(z / ds->depth_scale, v4f);
+    memcpy(q->z, &zf, sizeof zf);
+}
+
+/* The colors of the lanes `live` to their samples `cover`, which passed
+ * the tests, without blending: sr__write_samples' conversion (sr__unorm8)
+ * in vectors, channel by channel. */
+static void write_lanes(const quad_job *j, const sr_fragment_quad *q, unsigned live,
+                        const size_t base[4], const unsigned cover[4])
+{
+    v4i code[4];
+    for (int c = 0; c < 4; c++) {
+        v4f v;
+        memcpy(&v, q->color[c], sizeof v);
+        v = (v4f)((v > 0.0f) & (v4i)v);                          /* NaN to 0 */
+        v4i below = v < 1.0f;
+        v = (v4f)((below & (v4i)v) | (~below & (v4i)(v4f){ 1, 1, 1, 1 }));
+        code[c] = __builtin_convertvector(v * 255.0f + 0.5f, v4i);
+    }
+    uint32_t *color = j->ds->fb->color;
     for (int i = 0; i < 4; i++) {
-        double z = sr__tri_depth(t, u[i][1], u[i][2]);
-        (void)sr__quantize_depth(ds, &z);
-        q->z[i] = (float)(z / ds->depth_scale);
+        if (!(live >> i & 1) || !cover[i]) {
+            continue;
+        }
+        if (j->writes_color) {
+            uint8_t out[4] = { (uint8_t)code[0][i], (uint8_t)code[1][i], (uint8_t)code[2][i],
+                               (uint8_t)code[3][i] };
+            uint32_t packed;
+            memcpy(&packed, out, sizeof packed);
+            for (unsigned m = cover[i]; m; m &= m - 1) {
+                color[base[i] + (size_t)__builtin_ctz(m)] = packed;
+            }
+        }
+        j->st->fragments += count16(cover[i]);
     }
 }
 
@@ -143,6 +207,10 @@ static void shade_lanes(const quad_job *j, int x, int y, unsigned live, const in
     }
     ds->program->fragment(ds->program->uniforms, &q);
     live &= ~q.discard;
+    if (j->early && !ds->blending) {
+        write_lanes(j, &q, live, base, cover);
+        return;
+    }
     for (int i = 0; i < 4; i++) {
         if (!(live >> i & 1)) {
             continue;
@@ -230,7 +298,7 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     base[1] = base[0] + (size_t)n;
     base[2] = base[0] + width * (size_t)n;
     base[3] = base[2] + (size_t)n;
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < 4 && !j->test1; i++) {
         if (cover[i] && j->test4) {
             cover[i] = test4(j, base[i], u[i], cover[i]);
         } else if (cover[i] && j->early) {
@@ -238,6 +306,9 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
                                             cover[i], NULL);
         }
         live |= cover[i] ? 1u << i : 0u;
+    }
+    if (j->test1 && (cover[0] | cover[1] | cover[2] | cover[3])) {
+        live = test_pixels(j, base, (const int64_t(*)[3])u, cover);
     }
     if (!live) {
         return;
@@ -299,11 +370,14 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
             j.lane[i][e] = ((int64_t)t->a[e] * (i & 1) + (int64_t)t->b[e] * (i >> 1)) * SR_SUBPIXEL_ONE;
         }
     }
-    j.test4 = j.early && ds->samples == 4 && !ds->stencil_test &&
+    j.test4 = j.early && !ds->stencil_test &&
               ds->depth_mode == SR_DEPTH_MODE_LESS && ds->depth_bits >= 1 && ds->depth_bits <= 24;
-    for (int s = 0; s < 4 && j.test4; s++) {
-        j.so4[0][s] = (double)j.so[s][1];
-        j.so4[1][s] = (double)j.so[s][2];
+    j.test1 = j.test4 && ds->samples == 1;
+    j.test4 = j.test4 && ds->samples == 4;
+    for (int s = 0; s < 4 && (j.test4 || j.test1); s++) {
+        /* One sample: its offsets in every lane. */
+        j.so4[0][s] = (double)j.so[j.test1 ? 0 : s][1];
+        j.so4[1][s] = (double)j.so[j.test1 ? 0 : s][2];
     }
     j.pack = j.early && ds->program->independent_lanes;
     j.packed = 0;
