@@ -28,6 +28,8 @@ typedef struct quad_job {
     int64_t bias[3];              /* the edges' top-left bias */
     int64_t reach[3];             /* bias plus the largest sample offset: an edge value
                                    * below -reach at a pixel centre covers none of its samples */
+    int64_t corner[3];            /* reach plus the largest lane offset: the same for a quad */
+    int64_t centre[3];            /* bias plus the one sample's offset (test1) */
     float inv_area;               /* for screen-space (noperspective) weights */
     int64_t lane[4][3];           /* quad lane i's edge values less lane 0's */
     bool test4;                   /* early and the state of test4: the vector test */
@@ -141,10 +143,17 @@ static void interpolate_quad(const quad_job *j, const int64_t u[4][3], sr_fragme
     v4f l1 = q1 * inv, l2 = q2 * inv;
     v4f s1 = e[1] * j->inv_area, s2 = e[2] * j->inv_area;
     int n = t->ninterp;
-    for (int k = 0; k < n; k++) {
+    const float *v0 = t->vary, *d1 = &t->vary[n], *d2 = &t->vary[2 * n];
+    if (!ds->noperspective_mask) {
+        for (int k = 0; k < n; k++) {
+            v4f r = v0[k] + l1 * d1[k] + l2 * d2[k];
+            memcpy(q->varyings[k], &r, sizeof r);
+        }
+    }
+    for (int k = 0; k < n && ds->noperspective_mask; k++) {
         bool linear = (ds->noperspective_mask >> k) & 1;
         v4f a = linear ? s1 : l1, b = linear ? s2 : l2;
-        v4f r = t->vary[k] + a * t->vary[n + k] + b * t->vary[2 * n + k];
+        v4f r = v0[k] + a * d1[k] + b * d2[k];
         memcpy(q->varyings[k], &r, sizeof r);
     }
     v4d z = depth4(ds, t, (v4d){ (double)u[0][1], (double)u[1][1], (double)u[2][1], (double)u[3][1] },
@@ -169,6 +178,7 @@ static void write_lanes(const quad_job *j, const sr_fragment_quad *q, unsigned l
         code[c] = __builtin_convertvector(v * 255.0f + 0.5f, v4i);
     }
     uint32_t *color = j->ds->fb->color;
+    bool one = j->ds->samples == 1;   /* cover[i] is 1 */
     for (int i = 0; i < 4; i++) {
         if (!(live >> i & 1) || !cover[i]) {
             continue;
@@ -178,11 +188,14 @@ static void write_lanes(const quad_job *j, const sr_fragment_quad *q, unsigned l
                                (uint8_t)code[3][i] };
             uint32_t packed;
             memcpy(&packed, out, sizeof packed);
-            for (unsigned m = cover[i]; m; m &= m - 1) {
+            if (one) {
+                color[base[i]] = packed;
+            }
+            for (unsigned m = one ? 0u : cover[i]; m; m &= m - 1) {
                 color[base[i] + (size_t)__builtin_ctz(m)] = packed;
             }
         }
-        j->st->fragments += count16(cover[i]);
+        j->st->fragments += one ? 1u : count16(cover[i]);
     }
 }
 
@@ -259,17 +272,27 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
      * values are linear, so the largest over the four lane centres is at
      * one corner, and a quad beyond any edge's reach is skipped before
      * its samples are tested (the same coverage, found sooner). */
-    for (int e = 0; e < 3; e++) {
-        int64_t best = u00[e] + j->reach[e] +
-                       ((int64_t)(t->a[e] > 0 ? t->a[e] : 0) + (t->b[e] > 0 ? t->b[e] : 0)) *
-                           SR_SUBPIXEL_ONE;
-        if (best < 0) {
-            return;
-        }
+    if ((u00[0] + j->corner[0]) < 0 || (u00[1] + j->corner[1]) < 0 ||
+        (u00[2] + j->corner[2]) < 0) {
+        return;
     }
     int64_t u[4][3];
     unsigned cover[4] = { 0, 0, 0, 0 }, live = 0;
-    for (int i = 0; i < 4; i++) {
+    if (j->test1) {
+        /* One sample per pixel, without branches: the lanes inside the
+         * block's part (its columns, then its rows), then each one's edges. */
+        unsigned part = (qx >= rect[0] ? 5u : 0u) | (qx + 1 < rect[2] ? 10u : 0u);
+        part &= (qy >= rect[1] ? 3u : 0u) | (qy + 1 < rect[3] ? 12u : 0u);
+        for (int i = 0; i < 4; i++) {
+            for (int e = 0; e < 3; e++) {
+                u[i][e] = u00[e] + j->lane[i][e];
+            }
+            bool covered = inside || ((u[i][0] + j->centre[0]) | (u[i][1] + j->centre[1]) |
+                                      (u[i][2] + j->centre[2])) >= 0;
+            cover[i] = (part >> i & 1u) & (unsigned)covered;
+        }
+    }
+    for (int i = 0; i < 4 && !j->test1; i++) {
         int px = qx + (i & 1), py = qy + (i >> 1);
         for (int e = 0; e < 3; e++) {
             u[i][e] = u00[e] + j->lane[i][e];
@@ -364,6 +387,9 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     }
     for (int i = 0; i < 3; i++) {
         j.reach[i] += j.bias[i];
+        j.corner[i] = j.reach[i] + ((int64_t)(t->a[i] > 0 ? t->a[i] : 0) +
+                                    (t->b[i] > 0 ? t->b[i] : 0)) * SR_SUBPIXEL_ONE;
+        j.centre[i] = j.so[0][i] + j.bias[i];
     }
     for (int i = 0; i < 4; i++) {
         for (int e = 0; e < 3; e++) {
