@@ -1121,6 +1121,10 @@ typedef struct sr_program {
     sr_varying_mode modes[SR_SHADER_MAX_VARYINGS];
     bool writes_depth;             /* the fragment shader sets z[]: depth is tested after it */
     bool may_discard;              /* the fragment shader may set discard: likewise */
+    /* Each lane's color depends on that lane's inputs alone (no lane
+     * differences, no x, y): a triangle's fragments may then fill the
+     * lanes of one call from several quads, x, y being lane 0's pixel. */
+    bool independent_lanes;
 } sr_program;
 
 typedef struct sr_state {

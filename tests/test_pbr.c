@@ -849,3 +849,84 @@ SR_TEST(default_lights_follow_the_camera)
     CHECK_EQ(sr_pbr_default_lighting(l, &d), SR_INVALID_ARG);
     CHECK_EQ(sr_pbr_default_lighting(NULL, &d), SR_INVALID_ARG);
 }
+
+/* Without textures every lane's color is its own (the shadow's quad
+ * verdict equals the lanes' tests), so the program lets the rasterizer
+ * fill calls from several quads: the same bytes as quad by quad, for a
+ * sphere under the studio and the key light's soft shadow on a ground.
+ * A texture reads lane differences: then quads stay whole. */
+SR_TEST(untextured_program_packs_lanes_to_the_same_bytes)
+{
+    sr_context *ctx = sr_test_ctx();
+    sphere s = make_sphere(24, 16);
+    const float ground[] = { -3, -1, 3, 3, -1, 3, 3, -1, -3, -3, -1, -3 };
+    const float up[] = { 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0 };
+    const uint32_t quad_idx[] = { 0, 1, 2, 0, 2, 3 };
+    sr_environment *env = NULL;
+    REQUIRE(sr_make_environment(ctx, NULL, &env) == SR_OK);
+    sr_shadow_map *sm = NULL;
+    REQUIRE(sr_make_shadow_map(ctx, &(sr_shadow_desc){ .direction = { -0.3f, -1, -0.2f },
+                                                       .bounds_min = { -3, -1, -3 },
+                                                       .bounds_max = { 3, 1, 3 }, .size = 256 },
+                               &sm) == SR_OK);
+    REQUIRE(sr_shadow_map_clear(ctx, sm) == SR_OK);
+    REQUIRE(sr_shadow_map_draw(ctx, sm, &(sr_draw_desc){ .positions = s.pos,
+                                                         .vertex_count = s.nv, .indices = s.idx,
+                                                         .index_type = SR_INDEX_U32,
+                                                         .index_count = s.ni }) == SR_OK);
+    sr_mat4 view = sr_look_at((sr_vec3){ 2, 3, 5 }, (sr_vec3){ 0, -0.5f, 0 }, (sr_vec3){ 0, 1, 0 });
+    sr_mat4 proj = sr_perspective(0.8f, 1.0f, 1.0f, 20.0f, false);
+    sr_pbr_material m = sr_pbr_default_material();
+    m.metallic = 0.3f;
+    m.roughness = 0.45f;
+    sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj, .environment = env,
+                      .shadow = sm };
+    d.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { -0.3f, -1, -0.2f },
+                              .intensity = 3.0f };
+    sr_pbr *p;
+    REQUIRE(sr_make_pbr_program(ctx, &d, &p) == SR_OK);
+    CHECK(sr_pbr_program(p)->independent_lanes);
+    const uint8_t *pixels[2];
+    sr_framebuffer *fb[2];
+    for (int k = 0; k < 2; k++) {
+        sr_program prog = *sr_pbr_program(p);
+        prog.independent_lanes = k == 1;
+        fb[k] = make_fb(3, 3, 0.0f);
+        REQUIRE(fb[k]);
+        sr_clear(ctx, fb[k], &(sr_clear_desc){ .color = { 0, 0, 0, 1 }, .depth = 1 });
+        CHECK_EQ(sr_draw(ctx, fb[k], &(sr_state){ .program = &prog },
+                         &(sr_draw_desc){ .positions = ground, .normals = up, .vertex_count = 4,
+                                          .indices = quad_idx, .index_type = SR_INDEX_U32,
+                                          .index_count = 6 }),
+                 SR_OK);
+        CHECK_EQ(sr_draw(ctx, fb[k], &(sr_state){ .program = &prog, .cull = SR_CULL_BACK },
+                         &(sr_draw_desc){ .positions = s.pos, .normals = s.nrm,
+                                          .vertex_count = s.nv, .indices = s.idx,
+                                          .index_type = SR_INDEX_U32, .index_count = s.ni }),
+                 SR_OK);
+        pixels[k] = sr_framebuffer_pixels(fb[k]);
+    }
+    save(fb[1], "pbr_packed_lanes");
+    size_t bytes = 4 * (size_t)(3 * CELL) * (size_t)(3 * CELL);
+    int lit = 0;
+    for (size_t i = 0; i < bytes; i += 4) {
+        lit += pixels[1][i + 1] > 0;
+    }
+    CHECK(lit > (int)(bytes / 4 / 2));
+    CHECK(memcmp(pixels[0], pixels[1], bytes) == 0);
+    sr_destroy_pbr_program(ctx, p);
+    const uint8_t white[4] = { 255, 255, 255, 255 };
+    sr_texture *t = solid_texture(white, false);
+    REQUIRE(t);
+    m.metallic_roughness_texture.texture = t;
+    REQUIRE(sr_make_pbr_program(ctx, &d, &p) == SR_OK);
+    CHECK(!sr_pbr_program(p)->independent_lanes);
+    sr_destroy_pbr_program(ctx, p);
+    sr_destroy_texture(ctx, t);
+    for (int k = 0; k < 2; k++) {
+        sr_destroy_framebuffer(ctx, fb[k]);
+    }
+    sr_destroy_shadow_map(ctx, sm);
+    sr_destroy_environment(ctx, env);
+    free_sphere(&s);
+}

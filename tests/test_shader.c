@@ -108,7 +108,7 @@ static void check_same(sr_context *ctx, const sr_framebuffer *a, const sr_frameb
     free(db);
 }
 
-static void render_both(int samples, int threads)
+static void render_both(int samples, int threads, bool independent)
 {
     enum { W = 128, H = 96 };
     scene s = random_scene(600, 17 + (uint64_t)samples);
@@ -126,7 +126,7 @@ static void render_both(int samples, int threads)
     REQUIRE(sr_draw(ctx, a, &(sr_state){ .shading = SR_SHADING_UNLIT }, &d) == SR_OK);
     unlit_uniforms u = { sr_mat4_mul(&s.proj, &s.view) };
     sr_program prog = { .vertex = unlit_vs, .fragment = unlit_fs, .uniforms = &u,
-                        .varying_count = 4 };
+                        .varying_count = 4, .independent_lanes = independent };
     REQUIRE(sr_draw(ctx, b, &(sr_state){ .program = &prog }, &d) == SR_OK);
     check_same(ctx, a, b, W, H);
     sr_destroy_framebuffer(ctx, a);
@@ -137,20 +137,80 @@ static void render_both(int samples, int threads)
 
 SR_TEST(a_program_restating_unlit_gives_its_bytes)
 {
-    render_both(1, 2);
+    render_both(1, 2, false);
 }
 
 SR_TEST(a_program_restating_unlit_gives_its_bytes_multisampled)
 {
-    render_both(4, 2);
+    render_both(4, 2, false);
 }
 
-/* A program's early depth test takes four samples at once in the common
- * state (four samples, LESS on D24, no stencil) and one at a time
- * otherwise: a stencil test that always passes and keeps the stencil
- * sends the same draw down the per-sample path, and the bytes must agree
- * (every sample's color, through the resolve, and the depth read back). */
-SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
+/* Fragments of several quads in one call: each lane as in its own quad. */
+SR_TEST(independent_lanes_give_the_same_bytes)
+{
+    render_both(1, 2, true);
+    render_both(4, 2, true);
+}
+
+/* Calls and fragments a counting shader saw (one thread). */
+typedef struct lane_count {
+    int calls, lanes, full, contiguous;
+} lane_count;
+
+static void count_vs(const void *u, const sr_vertex_input *in, float clip[4], float *vary)
+{
+    (void)u;
+    memcpy(clip, in->position, 4 * sizeof(float));
+    memcpy(vary, in->color, 4 * sizeof(float));
+}
+
+static void count_fs(const void *u, sr_fragment_quad *q)
+{
+    lane_count *n = (lane_count *)u;   /* a test's own counters: one thread */
+    int k = __builtin_popcount(q->mask);
+    n->calls++;
+    n->lanes += k;
+    n->full += q->mask == 0xfu;
+    n->contiguous += q->mask == (1u << k) - 1u;
+    unlit_fs(u, q);
+}
+
+/* A triangle inside one tile: its fragments come four to a call, the
+ * last call holding the rest, where quads leave lanes empty. */
+SR_TEST(independent_lanes_fill_every_call_but_the_last)
+{
+    const float tri[9] = { -0.9f, -0.8f, 0, 0.7f, -0.3f, 0, -0.2f, 0.9f, 0 };
+    lane_count seen[2];
+    for (int mode = 0; mode < 2; mode++) {
+        sr_context *ctx;
+        sr_framebuffer *fb;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 100, .height = 100 },
+                                    &fb) == SR_OK);
+        sr_clear(ctx, fb, &(sr_clear_desc){ .depth = 1 });
+        seen[mode] = (lane_count){ 0 };
+        sr_program prog = { .vertex = count_vs, .fragment = count_fs, .uniforms = &seen[mode],
+                            .varying_count = 4, .independent_lanes = mode == 1 };
+        REQUIRE(sr_draw(ctx, fb, &(sr_state){ .program = &prog, .cull = SR_CULL_NONE },
+                        &(sr_draw_desc){ .positions = tri, .vertex_count = 3 }) == SR_OK);
+        sr_destroy_framebuffer(ctx, fb);
+        sr_destroy_context(ctx);
+    }
+    CHECK(seen[0].lanes > 1000);
+    CHECK_EQ(seen[1].lanes, seen[0].lanes);
+    CHECK_EQ(seen[1].calls, (seen[0].lanes + 3) / 4);
+    CHECK_EQ(seen[1].contiguous, seen[1].calls);
+    CHECK(seen[0].calls > seen[1].calls);
+    CHECK(seen[0].full < seen[0].calls);
+}
+
+/* A program's early depth test takes a pixel's four samples, or a quad's
+ * four pixels of one sample, at once in the common state (LESS on D24, no
+ * stencil) and one at a time otherwise: a stencil test that always
+ * passes and keeps the stencil sends the same draw down the per-sample
+ * path, and the bytes must agree (every sample's color, through the
+ * resolve, and the depth read back). */
+static void vector_depth_test_matches_the_per_sample_one(int samples)
 {
     enum { W = 128, H = 96 };
     scene s = random_scene(600, 29);
@@ -158,9 +218,9 @@ SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);
     sr_framebuffer *a, *b;
     REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
-                                                            .samples = 4 }, &a) == SR_OK);
+                                                            .samples = samples }, &a) == SR_OK);
     REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
-                                                            .samples = 4, .stencil = true },
+                                                            .samples = samples, .stencil = true },
                                 &b) == SR_OK);
     sr_clear_desc cl = { .color = { 0.1f, 0.1f, 0.2f, 1 }, .depth = 1 };
     sr_clear(ctx, a, &cl);
@@ -178,6 +238,16 @@ SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
     sr_destroy_framebuffer(ctx, b);
     sr_destroy_context(ctx);
     free_scene(&s);
+}
+
+SR_TEST(four_sample_early_depth_test_matches_the_per_sample_one)
+{
+    vector_depth_test_matches_the_per_sample_one(4);
+}
+
+SR_TEST(quad_early_depth_test_matches_the_per_sample_one)
+{
+    vector_depth_test_matches_the_per_sample_one(1);
 }
 
 /* ---- varying qualifiers -------------------------------------------------- */

@@ -5,6 +5,9 @@
  * the exact edge values at their pixel centres (helper lanes outside the
  * triangle too, so lane differences are derivatives), the shader runs once
  * per quad, and each lane's color goes to its pixel's surviving samples.
+ * A program whose lanes are independent gets full calls instead: the
+ * triangle's surviving fragments, quad after quad, four to a call (each
+ * lane interpolated as its own, so the same bits as in its quad).
  * Depth and stencil are tested before the shader (early, so hidden
  * fragments cost no shading) unless the program writes depth or may
  * discard, or alpha to coverage needs the shaded alpha: then after it,
@@ -25,10 +28,19 @@ typedef struct quad_job {
     int64_t bias[3];              /* the edges' top-left bias */
     int64_t reach[3];             /* bias plus the largest sample offset: an edge value
                                    * below -reach at a pixel centre covers none of its samples */
+    int64_t corner[3];            /* reach plus the largest lane offset: the same for a quad */
+    int64_t centre[3];            /* bias plus the one sample's offset (test1) */
     float inv_area;               /* for screen-space (noperspective) weights */
     int64_t lane[4][3];           /* quad lane i's edge values less lane 0's */
     bool test4;                   /* early and the state of test4: the vector test */
+    bool test1;                   /* the same state with one sample: test_pixels */
     v4d so4[2];                   /* so[0..3][1] and so[0..3][2] as double lanes */
+    bool pack;                    /* early and independent lanes: fragments gather in lanes */
+    int packed;                   /* lanes gathered so far */
+    int px, py;                   /* the first gathered lane's pixel */
+    int64_t pu[4][3];             /* the gathered lanes' edge values, */
+    size_t pbase[4];              /* first samples */
+    unsigned pcover[4];           /* and surviving samples */
 } quad_job;
 
 /* A mask of four lanes (each 0 or -1) as the bits 0..3 of a sample mask. */
@@ -45,18 +57,23 @@ static unsigned lane_bits(v4i m)
  * sr__tri_depth's sum in its order (no FMA), clamped and rounded as
  * sr__quantize_depth does - so the same depth words and the same mask;
  * the four depth words are consecutive (framebuffer.h). */
-static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsigned cover)
+/* sr__tri_depth at four points, clamped as sr__quantize_depth clamps
+ * (NaN to the minimum). */
+static v4d depth4(const sr_draw_state *ds, const sr_tri *t, v4d e1, v4d e2)
 {
-    const sr_draw_state *ds = j->ds;
-    const sr_tri *t = j->t;
-    v4d e1 = (double)u[1] + j->so4[0], e2 = (double)u[2] + j->so4[1];
     v4d z = t->z0 + e1 * t->dz1 + e2 * t->dz2;
     v4d lo = { ds->zq_min, ds->zq_min, ds->zq_min, ds->zq_min };
     v4d hi = { ds->zq_max, ds->zq_max, ds->zq_max, ds->zq_max };
     v4l above = z >= lo;
     z = (v4d)((above & (v4l)z) | (~above & (v4l)lo));
     v4l below = z <= hi;
-    z = (v4d)((below & (v4l)z) | (~below & (v4l)hi));
+    return (v4d)((below & (v4l)z) | (~below & (v4l)hi));
+}
+
+static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsigned cover)
+{
+    const sr_draw_state *ds = j->ds;
+    v4d z = depth4(ds, j->t, (double)u[1] + j->so4[0], (double)u[2] + j->so4[1]);
     /* Non-negative and below 2^24: truncation is the scalar (uint32_t) cast. */
     v4i q = __builtin_convertvector(z + 0.5, v4i);
     uint32_t *dp = &ds->fb->depth[base];
@@ -67,6 +84,32 @@ static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsign
     v4i pass = (lanes != 0) & (q < d);
     d = (pass & q) | (~pass & d);
     memcpy(dp, &d, sizeof d);
+    return lane_bits(pass);
+}
+
+/* test4 for a quad's four pixels of one sample each, the covered ones
+ * (cover[i] 1 or 0, left at 1 where the pixel passed): their depth words
+ * are two pairs of rows apart, so read and written lane by lane. */
+static unsigned test_pixels(const quad_job *j, const size_t base[4], const int64_t u[4][3],
+                            unsigned cover[4])
+{
+    v4d e1 = { (double)u[0][1], (double)u[1][1], (double)u[2][1], (double)u[3][1] };
+    v4d e2 = { (double)u[0][2], (double)u[1][2], (double)u[2][2], (double)u[3][2] };
+    v4d z = depth4(j->ds, j->t, e1 + j->so4[0], e2 + j->so4[1]);
+    v4i q = __builtin_convertvector(z + 0.5, v4i);
+    uint32_t *dp = j->ds->fb->depth;
+    v4i d, lanes;
+    for (int i = 0; i < 4; i++) {
+        lanes[i] = -(int32_t)cover[i];
+        d[i] = cover[i] ? (int32_t)dp[base[i]] : 0;
+    }
+    v4i pass = lanes & (q < d);
+    for (int i = 0; i < 4; i++) {
+        if (pass[i]) {
+            dp[base[i]] = (uint32_t)q[i];
+        }
+        cover[i] = (unsigned)pass[i] & 1u;
+    }
     return lane_bits(pass);
 }
 
@@ -100,22 +143,127 @@ static void interpolate_quad(const quad_job *j, const int64_t u[4][3], sr_fragme
     v4f l1 = q1 * inv, l2 = q2 * inv;
     v4f s1 = e[1] * j->inv_area, s2 = e[2] * j->inv_area;
     int n = t->ninterp;
-    for (int k = 0; k < n; k++) {
+    const float *v0 = t->vary, *d1 = &t->vary[n], *d2 = &t->vary[2 * n];
+    if (!ds->noperspective_mask) {
+        for (int k = 0; k < n; k++) {
+            v4f r = v0[k] + l1 * d1[k] + l2 * d2[k];
+            memcpy(q->varyings[k], &r, sizeof r);
+        }
+    }
+    for (int k = 0; k < n && ds->noperspective_mask; k++) {
         bool linear = (ds->noperspective_mask >> k) & 1;
         v4f a = linear ? s1 : l1, b = linear ? s2 : l2;
-        v4f r = t->vary[k] + a * t->vary[n + k] + b * t->vary[2 * n + k];
+        v4f r = v0[k] + a * d1[k] + b * d2[k];
         memcpy(q->varyings[k], &r, sizeof r);
     }
-    for (int i = 0; i < 4; i++) {
-        double z = sr__tri_depth(t, u[i][1], u[i][2]);
-        (void)sr__quantize_depth(ds, &z);
-        q->z[i] = (float)(z / ds->depth_scale);
+    v4d z = depth4(ds, t, (v4d){ (double)u[0][1], (double)u[1][1], (double)u[2][1], (double)u[3][1] },
+                   (v4d){ (double)u[0][2], (double)u[1][2], (double)u[2][2], (double)u[3][2] });
+    v4f zf = __builtin_convertvector(z / ds->depth_scale, v4f);
+    memcpy(q->z, &zf, sizeof zf);
+}
+
+/* The colors of the lanes `live` to their samples `cover`, which passed
+ * the tests, without blending: sr__write_samples' conversion (sr__unorm8)
+ * in vectors, channel by channel. */
+static void write_lanes(const quad_job *j, const sr_fragment_quad *q, unsigned live,
+                        const size_t base[4], const unsigned cover[4])
+{
+    v4i code[4];
+    for (int c = 0; c < 4; c++) {
+        v4f v;
+        memcpy(&v, q->color[c], sizeof v);
+        v = (v4f)((v > 0.0f) & (v4i)v);                          /* NaN to 0 */
+        v4i below = v < 1.0f;
+        v = (v4f)((below & (v4i)v) | (~below & (v4i)(v4f){ 1, 1, 1, 1 }));
+        code[c] = __builtin_convertvector(v * 255.0f + 0.5f, v4i);
     }
+    uint32_t *color = j->ds->fb->color;
+    bool one = j->ds->samples == 1;   /* cover[i] is 1 */
+    for (int i = 0; i < 4; i++) {
+        if (!(live >> i & 1) || !cover[i]) {
+            continue;
+        }
+        if (j->writes_color) {
+            uint8_t out[4] = { (uint8_t)code[0][i], (uint8_t)code[1][i], (uint8_t)code[2][i],
+                               (uint8_t)code[3][i] };
+            uint32_t packed;
+            memcpy(&packed, out, sizeof packed);
+            if (one) {
+                color[base[i]] = packed;
+            }
+            for (unsigned m = one ? 0u : cover[i]; m; m &= m - 1) {
+                color[base[i] + (size_t)__builtin_ctz(m)] = packed;
+            }
+        }
+        j->st->fragments += one ? 1u : count16(cover[i]);
+    }
+}
+
+/* The program on the lanes `live` (the rest helpers) with edge values u,
+ * then each surviving lane's color to its pixel's samples: cover (the
+ * early tests' survivors, else the covered samples, tested here). */
+static void shade_lanes(const quad_job *j, int x, int y, unsigned live, const int64_t u[4][3],
+                        const size_t base[4], const unsigned cover[4])
+{
+    const sr_draw_state *ds = j->ds;
+    const sr_tri *t = j->t;
+    sr_fragment_quad q;
+    q.mask = live;
+    q.x = x;
+    q.y = y;
+    q.front = t->front;
+    q.discard = 0;
+    interpolate_quad(j, u, &q);
+    for (int i = 0; i < 4; i++) {
+        q.color[0][i] = q.color[1][i] = q.color[2][i] = 0.0f;
+        q.color[3][i] = 1.0f;
+    }
+    ds->program->fragment(ds->program->uniforms, &q);
+    live &= ~q.discard;
+    if (j->early && !ds->blending) {
+        write_lanes(j, &q, live, base, cover);
+        return;
+    }
+    for (int i = 0; i < 4; i++) {
+        if (!(live >> i & 1)) {
+            continue;
+        }
+        float c[4] = { q.color[0][i], q.color[1][i], q.color[2][i], q.color[3][i] };
+        unsigned pass = cover[i];
+        if (!j->early) {
+            if (ds->alpha_to_coverage) {
+                pass &= sr__alpha_coverage(c[3], ds->samples);
+            }
+            double zs = (double)q.z[i] * ds->depth_scale;
+            pass = pass ? sr__test_tri_samples(ds, t, base[i], u[i], (const int64_t(*)[3])j->so,
+                                               pass, ds->program->writes_depth ? &zs : NULL)
+                        : 0;
+        }
+        if (pass) {
+            if (j->writes_color) {
+                sr__write_samples(ds, base[i], pass, c, &ds->blend);
+            }
+            j->st->fragments += count16(pass);
+        }
+    }
+}
+
+/* The gathered fragments as one call; lanes not filled repeat lane 0
+ * (finite inputs for the helpers). */
+static void flush_packed(quad_job *j)
+{
+    int n = j->packed;
+    for (int k = n; k < 4; k++) {
+        memcpy(j->pu[k], j->pu[0], sizeof j->pu[k]);
+    }
+    shade_lanes(j, j->px, j->py, (1u << n) - 1u, (const int64_t(*)[3])j->pu, j->pbase,
+                j->pcover);
+    j->packed = 0;
 }
 
 static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, const int rect[4])
 {
-    const quad_job *j = arg;
+    quad_job *j = arg;
     const sr_draw_state *ds = j->ds;
     const sr_tri *t = j->t;
     int n = ds->samples;
@@ -124,17 +272,27 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
      * values are linear, so the largest over the four lane centres is at
      * one corner, and a quad beyond any edge's reach is skipped before
      * its samples are tested (the same coverage, found sooner). */
-    for (int e = 0; e < 3; e++) {
-        int64_t best = u00[e] + j->reach[e] +
-                       ((int64_t)(t->a[e] > 0 ? t->a[e] : 0) + (t->b[e] > 0 ? t->b[e] : 0)) *
-                           SR_SUBPIXEL_ONE;
-        if (best < 0) {
-            return;
-        }
+    if ((u00[0] + j->corner[0]) < 0 || (u00[1] + j->corner[1]) < 0 ||
+        (u00[2] + j->corner[2]) < 0) {
+        return;
     }
     int64_t u[4][3];
     unsigned cover[4] = { 0, 0, 0, 0 }, live = 0;
-    for (int i = 0; i < 4; i++) {
+    if (j->test1) {
+        /* One sample per pixel, without branches: the lanes inside the
+         * block's part (its columns, then its rows), then each one's edges. */
+        unsigned part = (qx >= rect[0] ? 5u : 0u) | (qx + 1 < rect[2] ? 10u : 0u);
+        part &= (qy >= rect[1] ? 3u : 0u) | (qy + 1 < rect[3] ? 12u : 0u);
+        for (int i = 0; i < 4; i++) {
+            for (int e = 0; e < 3; e++) {
+                u[i][e] = u00[e] + j->lane[i][e];
+            }
+            bool covered = inside || ((u[i][0] + j->centre[0]) | (u[i][1] + j->centre[1]) |
+                                      (u[i][2] + j->centre[2])) >= 0;
+            cover[i] = (part >> i & 1u) & (unsigned)covered;
+        }
+    }
+    for (int i = 0; i < 4 && !j->test1; i++) {
         int px = qx + (i & 1), py = qy + (i >> 1);
         for (int e = 0; e < 3; e++) {
             u[i][e] = u00[e] + j->lane[i][e];
@@ -163,7 +321,7 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
     base[1] = base[0] + (size_t)n;
     base[2] = base[0] + width * (size_t)n;
     base[3] = base[2] + (size_t)n;
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < 4 && !j->test1; i++) {
         if (cover[i] && j->test4) {
             cover[i] = test4(j, base[i], u[i], cover[i]);
         } else if (cover[i] && j->early) {
@@ -172,42 +330,30 @@ static void quad_fn(void *arg, int qx, int qy, const int64_t *u00, bool inside, 
         }
         live |= cover[i] ? 1u << i : 0u;
     }
+    if (j->test1 && (cover[0] | cover[1] | cover[2] | cover[3])) {
+        live = test_pixels(j, base, (const int64_t(*)[3])u, cover);
+    }
     if (!live) {
         return;
     }
-    sr_fragment_quad q;
-    q.mask = live;
-    q.x = qx;
-    q.y = qy;
-    q.front = t->front;
-    q.discard = 0;
-    interpolate_quad(j, (const int64_t(*)[3])u, &q);
-    for (int i = 0; i < 4; i++) {
-        q.color[0][i] = q.color[1][i] = q.color[2][i] = 0.0f;
-        q.color[3][i] = 1.0f;
+    if (!j->pack) {
+        shade_lanes(j, qx, qy, live, (const int64_t(*)[3])u, base, cover);
+        return;
     }
-    ds->program->fragment(ds->program->uniforms, &q);
-    live &= ~q.discard;
     for (int i = 0; i < 4; i++) {
         if (!(live >> i & 1)) {
             continue;
         }
-        float c[4] = { q.color[0][i], q.color[1][i], q.color[2][i], q.color[3][i] };
-        unsigned pass = cover[i];
-        if (!j->early) {
-            if (ds->alpha_to_coverage) {
-                pass &= sr__alpha_coverage(c[3], n);
-            }
-            double zs = (double)q.z[i] * ds->depth_scale;
-            pass = pass ? sr__test_tri_samples(ds, t, base[i], u[i], (const int64_t(*)[3])j->so,
-                                               pass, ds->program->writes_depth ? &zs : NULL)
-                        : 0;
+        int k = j->packed++;
+        if (k == 0) {
+            j->px = qx + (i & 1);
+            j->py = qy + (i >> 1);
         }
-        if (pass) {
-            if (j->writes_color) {
-                sr__write_samples(ds, base[i], pass, c, &ds->blend);
-            }
-            j->st->fragments += count16(pass);
+        memcpy(j->pu[k], u[i], sizeof j->pu[k]);
+        j->pbase[k] = base[i];
+        j->pcover[k] = cover[i];
+        if (k == 3) {
+            flush_packed(j);
         }
     }
 }
@@ -241,19 +387,30 @@ void sr__raster_shader(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry
     }
     for (int i = 0; i < 3; i++) {
         j.reach[i] += j.bias[i];
+        j.corner[i] = j.reach[i] + ((int64_t)(t->a[i] > 0 ? t->a[i] : 0) +
+                                    (t->b[i] > 0 ? t->b[i] : 0)) * SR_SUBPIXEL_ONE;
+        j.centre[i] = j.so[0][i] + j.bias[i];
     }
     for (int i = 0; i < 4; i++) {
         for (int e = 0; e < 3; e++) {
             j.lane[i][e] = ((int64_t)t->a[e] * (i & 1) + (int64_t)t->b[e] * (i >> 1)) * SR_SUBPIXEL_ONE;
         }
     }
-    j.test4 = j.early && ds->samples == 4 && !ds->stencil_test &&
+    j.test4 = j.early && !ds->stencil_test &&
               ds->depth_mode == SR_DEPTH_MODE_LESS && ds->depth_bits >= 1 && ds->depth_bits <= 24;
-    for (int s = 0; s < 4 && j.test4; s++) {
-        j.so4[0][s] = (double)j.so[s][1];
-        j.so4[1][s] = (double)j.so[s][2];
+    j.test1 = j.test4 && ds->samples == 1;
+    j.test4 = j.test4 && ds->samples == 4;
+    for (int s = 0; s < 4 && (j.test4 || j.test1); s++) {
+        /* One sample: its offsets in every lane. */
+        j.so4[0][s] = (double)j.so[j.test1 ? 0 : s][1];
+        j.so4[1][s] = (double)j.so[j.test1 ? 0 : s][2];
     }
+    j.pack = j.early && ds->program->independent_lanes;
+    j.packed = 0;
     sr__quad_walk(ds, t, rx0, ry0, rx1, ry1, &j, quad_fn);
+    if (j.packed) {
+        flush_packed(&j);
+    }
 }
 
 bool sr__program_shade_one(const sr_draw_state *ds, const float *v, bool front, int px, int py,

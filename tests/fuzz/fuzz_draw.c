@@ -280,7 +280,8 @@ static void decode(reader *r, decoded *o)
     if (gk & 1) {
         o->prog = (sr_program){ .vertex = fuzz_vs, .fragment = fuzz_fs, .uniforms = &o->uniforms,
                                 .varying_count = (gk >> 1) & 1 ? 5 : 17,  /* 17 is invalid */
-                                .may_discard = (gk >> 2) & 1, .writes_depth = (gk >> 3) & 1 };
+                                .may_discard = (gk >> 2) & 1, .writes_depth = (gk >> 3) & 1,
+                                .independent_lanes = (gk >> 6) & 1 };
         o->prog.modes[4] = (sr_varying_mode)((gk >> 4) % 4);           /* 3 is invalid */
         o->uniforms.discard = o->prog.may_discard ? u8(r) : 0;
         o->uniforms.write_z = o->prog.writes_depth;
