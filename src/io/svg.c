@@ -46,6 +46,10 @@
 #define MAX_DEPTH 256
 #define MAX_WARNED 64
 #define MAX_WINDOWS 8
+/* Layers (group opacity, clip paths) nested deeper than this fold their
+ * opacity into the shapes and draw unclipped, with a warning: each layer
+ * is a whole image of memory. */
+#define MAX_LAYERS 8
 
 /* x' = a x + c y + e, y' = b x + d y + f (SVG's matrix(a b c d e f)). */
 typedef struct mat2d { double a, b, c, d, e, f; } mat2d;
@@ -131,6 +135,11 @@ typedef struct id_entry {
 
 typedef struct svg_doc {
     const char *file;        /* name in messages */
+    const char *base;        /* the path image files are read next to, or NULL */
+    unsigned long pinned_line; /* nonzero: the line messages name (an SVG image from a
+                                * data: URI, whose own lines are not the file's) */
+    struct svg_doc *outer;   /* the document whose <image> this one is, or NULL */
+    int nesting;             /* documents outside this one */
     const sr_svg_desc *opt;
     XML_Parser parser;
     sr_context *ctx;
@@ -168,6 +177,11 @@ typedef struct svg_doc {
 
 /* ---- messages -------------------------------------------------------------- */
 
+static unsigned long msg_line(const svg_doc *doc)
+{
+    return doc->pinned_line ? doc->pinned_line : doc->line;
+}
+
 static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
@@ -177,7 +191,7 @@ static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
     if (doc->status != SR_OK) {
         return;
     }
-    int n = snprintf(doc->msg, doc->msg_size, "%s:%lu: ", doc->file, doc->line);
+    int n = snprintf(doc->msg, doc->msg_size, "%s:%lu: ", doc->file, msg_line(doc));
     if (n >= 0 && (size_t)n < doc->msg_size) {
         va_list ap;
         va_start(ap, fmt);
@@ -191,7 +205,9 @@ static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
         }
     }
     doc->status = status;
-    XML_StopParser(doc->parser, XML_FALSE);
+    if (doc->parser) {
+        XML_StopParser(doc->parser, XML_FALSE);
+    }
 }
 
 /* A library call failed: out of memory is the run's failure, anything
@@ -208,6 +224,14 @@ static void lib_fail(svg_doc *doc, sr_result r)
  * million. */
 static void warn_once(svg_doc *doc, const char *kind, const char *name)
 {
+    /* an SVG image's warnings count once for the whole drawing */
+    svg_doc *top = doc;
+    while (top->outer) {
+        top = top->outer;
+    }
+    const char *file = doc->file;
+    unsigned long at = msg_line(doc);
+    doc = top;
     if (doc->warnings_capped) {
         return;
     }
@@ -222,15 +246,15 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
     if (doc->n_warned == MAX_WARNED) {
         snprintf(line, sizeof line,
                  "%s:%lu: warning: more unsupported names; further warnings not shown",
-                 doc->file, doc->line);
+                 file, at);
         doc->warnings_capped = true;
     } else {
         doc->warned[doc->n_warned] = strdup(key);
         if (doc->warned[doc->n_warned]) {
             doc->n_warned++;
         }
-        snprintf(line, sizeof line, "%s:%lu: warning: unsupported %s '%s' skipped", doc->file,
-                 doc->line, kind, name);
+        snprintf(line, sizeof line, "%s:%lu: warning: unsupported %s '%s' skipped", file, at,
+                 kind, name);
     }
     doc->warnings++;
     if (doc->opt->warn) {
@@ -1877,9 +1901,12 @@ static mat2d viewbox_matrix(svg_doc *doc, const char **atts, const double vb[4],
     return (mat2d){ sx, 0, 0, sy, tx, ty };
 }
 
-static bool root_element(svg_doc *doc, const char **atts, frame *f)
+/* A root svg's viewBox (its width and height when it has none) and its
+ * intrinsic size: width and height, else the viewBox's, else 300 x 150.
+ * False after reporting a malformed one. */
+static bool intrinsic_size(svg_doc *doc, const char **atts, double vb[4], double *pw,
+                           double *ph)
 {
-    double vb[4];
     const char *vbs = attr(atts, "viewBox");
     bool have_vb = vbs && parse_viewbox(vbs, vb);
     if (vbs && !have_vb) {
@@ -1897,7 +1924,6 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         svg_fail(doc, SR_BAD_FORMAT, "height=\"%s\" is not a length", hs);
         return false;
     }
-    /* Intrinsic size: width/height, else the viewBox's, else 300 x 150. */
     if (!ws || wp || w <= 0) {
         w = have_vb ? vb[2] : 300;
     }
@@ -1908,6 +1934,17 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         vb[0] = vb[1] = 0;
         vb[2] = w;
         vb[3] = h;
+    }
+    *pw = w;
+    *ph = h;
+    return true;
+}
+
+static bool root_element(svg_doc *doc, const char **atts, frame *f)
+{
+    double vb[4], w, h;
+    if (!intrinsic_size(doc, atts, vb, &w, &h)) {
+        return false;
     }
     const sr_svg_desc *opt = doc->opt;
     int max_side = opt->max_side > 0 && opt->max_side < SR_MAX_FRAMEBUFFER_SIZE
@@ -2544,10 +2581,151 @@ static bool image_rect(svg_doc *doc, const svg_node *node, const frame *f, doubl
            (!hs || strcmp(hs, "auto") == 0 || length_attr(doc, f, "height", hs, &r[3]));
 }
 
-/* <image>: a PNG or a JPEG, from a base64 data: URI or a file next to
- * the document, fitted into its viewport (x, y, width, height; a missing
- * size is the picture's own) as preserveAspectRatio says, sampled
- * bilinearly.  What does not read is skipped with a warning. */
+/* SVG images inside SVG images, at most: each is drawn in a layer of its
+ * own, and this leaves one of the MAX_LAYERS for the outer document. */
+#define MAX_NESTED_IMAGES (MAX_LAYERS - 1)
+
+static bool read_document(svg_doc *doc, const char *data, size_t size);
+static void free_document(svg_doc *doc);
+static style initial_style(void);
+static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f);
+static sr_framebuffer *open_layer(svg_doc *doc);
+static void close_layer(svg_doc *doc, sr_framebuffer *under);
+static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
+                            double opacity, svg_blend_kind mode);
+
+/* The image's viewport for a picture of intrinsic size iw x ih: a
+ * missing size is the picture's; one side given, the other keeps its
+ * proportions.  False after reporting a malformed length. */
+static bool image_viewport(svg_doc *doc, const svg_node *node, const frame *f, double iw,
+                           double ih, double r[4])
+{
+    if (!image_rect(doc, node, f, r)) {
+        return false;
+    }
+    double w = r[2], h = r[3];
+    r[2] = w >= 0 ? w : h >= 0 ? h * iw / ih : iw;
+    r[3] = h >= 0 ? h : w >= 0 ? r[2] * ih / iw : ih;
+    return true;
+}
+
+/* Draw the SVG document `in` (read) as the content of an <image>: its
+ * viewBox fitted into the image's viewport by the image's
+ * preserveAspectRatio, in a layer clipped to that viewport and
+ * composited at the image's opacity.  Its styles, ids and sheets are its
+ * own; its work counts against the drawing's budgets. */
+static void draw_document_image(svg_doc *doc, svg_doc *in, const svg_node *node,
+                                const frame *f)
+{
+    double vb[4], iw, ih, vp[4];
+    in->line = in->root->line;
+    if (!intrinsic_size(in, in->root->atts, vb, &iw, &ih) ||
+        !image_viewport(doc, node, f, iw, ih, vp) || !(vp[2] > 0 && vp[3] > 0)) {
+        return;
+    }
+    if (doc->layers == MAX_LAYERS) {
+        warn_once(doc, "nesting of layers", "beyond 8 (an SVG image skipped)");
+        return;
+    }
+    uint8_t *clip = rect_coverage(doc, vp, f);
+    sr_framebuffer *under = doc->fb, *top = clip ? open_layer(doc) : NULL;
+    if (top) {
+        frame cf = { .m = mat_mul(f->m, viewbox_matrix(doc, node->atts, vb, vp[0], vp[1], vp[2],
+                                                       vp[3])),
+                     .st = initial_style(), .vp_w = vb[2], .vp_h = vb[3] };
+        in->fb = top;
+        in->layers = doc->layers;
+        in->initial = cf.st;
+        in->root_m = cf.m;
+        in->points_used = doc->points_used;
+        in->work_used = doc->work_used;
+        draw_node(in, in->root, &cf);
+        doc->points_used = in->points_used;
+        doc->work_used = in->work_used;
+        close_layer(doc, under);
+        if (in->status != SR_OK) {
+            doc->status = in->status; /* the message is written */
+        } else {
+            composite_layer(doc, top, clip, f->st.opacity, SVG_BLEND_NORMAL);
+        }
+        sr_destroy_framebuffer(doc->ctx, top);
+    }
+    free(clip);
+}
+
+/* An <image> of an SVG document (data..size; path: the file it came
+ * from, NULL for a data: URI).  A file that is being drawn already - a
+ * document including itself, directly or through others - is refused. */
+static void draw_svg_image(svg_doc *doc, const svg_node *node, const frame *f, const char *data,
+                           size_t size, const char *path, const char *href)
+{
+    for (const svg_doc *d = doc; d && path; d = d->outer) {
+        if (d->base && strcmp(d->base, path) == 0) {
+            svg_fail(doc, SR_BAD_FORMAT, "image: reference cycle through \"%s\"", href);
+            return;
+        }
+    }
+    if (doc->nesting + 1 > MAX_NESTED_IMAGES) {
+        svg_fail(doc, SR_BAD_FORMAT, "image: SVG images nested deeper than %d",
+                 MAX_NESTED_IMAGES);
+        return;
+    }
+    /* Reading costs its bytes of the pixel work, so that an image drawn
+     * again and again cannot be read without bound; its elements and
+     * points have the allowance its bytes would have inline. */
+    if (!work_within_budget(doc, (double)size)) {
+        return;
+    }
+    svg_doc *in = calloc(1, sizeof *in);
+    if (!in) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    in->file = path ? path : doc->file;
+    in->pinned_line = path ? 0 : msg_line(doc);
+    in->base = path ? path : doc->base;
+    in->outer = doc;
+    in->nesting = doc->nesting + 1;
+    in->opt = doc->opt;
+    in->ctx = doc->ctx;
+    in->fb = doc->fb;
+    in->status = SR_OK;
+    in->msg = doc->msg;
+    in->msg_size = doc->msg_size;
+    in->points_used = doc->points_used;
+    doc->points_budget += (double)SR_SVG_POINTS_PER_BYTE * (double)size;
+    in->points_budget = doc->points_budget;
+    in->work_budget = doc->work_budget;
+    in->work_used = doc->work_used;
+    if (read_document(in, data, size)) {
+        doc->points_used = in->points_used;
+        draw_document_image(doc, in, node, f);
+    } else {
+        doc->status = in->status;
+    }
+    if (in->status != SR_OK) {
+        doc->status = in->status;
+    }
+    free_document(in);
+    free(in);
+}
+
+/* Whether bytes hold XML (an SVG) rather than a PNG or a JPEG: '<'
+ * first, after an optional byte-order mark and white space. */
+static bool looks_like_xml(const uint8_t *b, size_t n)
+{
+    size_t i = n >= 3 && b[0] == 0xEF && b[1] == 0xBB && b[2] == 0xBF ? 3 : 0;
+    while (i < n && isspace(b[i])) {
+        i++;
+    }
+    return i < n && b[i] == '<';
+}
+
+/* <image>: a PNG, a JPEG or an SVG document, from a data: URI or a file
+ * next to the document, fitted into its viewport (x, y, width, height;
+ * a missing size is the picture's own) as preserveAspectRatio says; a
+ * picture is sampled bilinearly, an SVG drawn as vector content.  What
+ * does not read is skipped with a warning. */
 static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
 {
     const char *href = href_of(node);
@@ -2557,35 +2735,39 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
     sr_io_error err;
     int iw = 0, ih = 0;
     uint8_t *px = NULL, *bytes = NULL;
-    size_t n;
+    size_t n = 0;
+    char *path = NULL, *file = NULL;
     sr_result r = SR_BAD_FORMAT;
     if (strncmp(href, "data:", 5) == 0) {
-        if (svg_data_uri(href, &bytes, &n)) {
-            r = sr_decode_image(doc->file, bytes, n, &iw, &ih, &px, &err);
-            free(bytes);
+        if (!svg_data_uri(href, &bytes, &n)) {
+            bytes = NULL;
         }
-    } else {
-        /* a document without a name has no directory to read from */
-        char *path = doc->opt->name ? svg_image_path(doc->opt->name, href) : NULL;
-        if (path) {
-            r = sr_read_image(path, &iw, &ih, &px, &err);
-            free(path);
-        }
+    } else if (doc->base && (path = svg_image_path(doc->base, href)) != NULL &&
+               sr__read_file_as(path, "an image file", &file, &n, &err) == SR_OK) {
+        bytes = (uint8_t *)file;
     }
+    if (bytes && looks_like_xml(bytes, n)) {
+        draw_svg_image(doc, node, f, (const char *)bytes, n, path, href);
+        r = SR_OK;
+    } else if (bytes) {
+        r = sr_decode_image(path ? path : doc->file, bytes, n, &iw, &ih, &px, &err);
+    }
+    if (file) {
+        sr__free_file(file, n);
+    } else {
+        free(bytes);
+    }
+    free(path);
     if (r != SR_OK) {
         char what[64];
         snprintf(what, sizeof what, "%.60s", href);
-        warn_once(doc, "image source (not a readable PNG or JPEG next to the document)", what);
-        free(px);
-        return;
+        warn_once(doc, "image source (not a readable PNG, JPEG or SVG next to the document)",
+                  what);
     }
     double vp[4];
-    if (image_rect(doc, node, f, vp) && work_within_budget(doc, (double)iw * ih)) {
-        /* a missing size is the picture's; one side given: the other
-         * keeps the picture's proportions */
+    if (px && image_viewport(doc, node, f, iw, ih, vp) &&
+        work_within_budget(doc, (double)iw * ih)) {
         double x = vp[0], y = vp[1], w = vp[2], h = vp[3];
-        w = w >= 0 ? w : h >= 0 ? h * iw / ih : iw;
-        h = h >= 0 ? h : vp[2] >= 0 ? w * ih / iw : ih;
         double vb[4] = { 0, 0, iw, ih };
         mat2d fit = viewbox_matrix(doc, node->atts, vb, x, y, w, h), inv;
         /* drawn where the picture and its viewport meet */
@@ -2604,11 +2786,6 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
 }
 
 /* ---- clipping and layers ------------------------------------------------------------- */
-
-/* Layers (group opacity, clip paths) nested deeper than this fold their
- * opacity into the shapes and draw unclipped, with a warning: each layer
- * is a whole image of memory. */
-#define MAX_LAYERS 8
 
 /* Add the coverage of one clip shape to the mask: union, a + b - ab. */
 static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *mask,
@@ -2757,8 +2934,6 @@ static frame viewport_frame(svg_doc *doc, const svg_node *node, const frame *f)
 
 /* The coverage of a nested svg's viewport (overflow is hidden); NULL
  * when it is empty or after a failure. */
-static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f);
-
 static uint8_t *nested_viewport(svg_doc *doc, const svg_node *node, const frame *f)
 {
     double r[4];
@@ -3359,6 +3534,69 @@ static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bo
 
 /* ---- the entry point -------------------------------------------------------------- */
 
+/* Read the tree, the ids and the style sheets of data; false after a
+ * failure (reported in doc->msg). */
+static bool read_document(svg_doc *doc, const char *data, size_t size)
+{
+    doc->parser = XML_ParserCreate(NULL);
+    if (!doc->parser) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return false;
+    }
+    XML_SetUserData(doc->parser, doc);
+    XML_SetElementHandler(doc->parser, on_start, on_end);
+    XML_SetCharacterDataHandler(doc->parser, on_text);
+    /* XML_Parse takes an int length: feed the buffer in pieces. */
+    const size_t piece = (size_t)1 << 20;
+    size_t at = 0;
+    do {
+        size_t n = size - at < piece ? size - at : piece;
+        bool last = at + n == size;
+        if (XML_Parse(doc->parser, data ? data + at : "", (int)n, last) == XML_STATUS_ERROR) {
+            if (doc->status == SR_OK) {
+                doc->line = XML_GetCurrentLineNumber(doc->parser);
+                svg_fail(doc, SR_BAD_FORMAT, "%s", XML_ErrorString(XML_GetErrorCode(doc->parser)));
+            }
+            break;
+        }
+        at += n;
+    } while (at < size && doc->status == SR_OK);
+    if (doc->status == SR_OK && !doc->root) {
+        doc->line = 1;
+        svg_fail(doc, SR_BAD_FORMAT, "no <svg> element");
+    }
+    return doc->status == SR_OK && index_document(doc);
+}
+
+/* What read_document and the drawing allocated, the image aside. */
+static void free_document(svg_doc *doc)
+{
+    for (int i = 0; i < doc->n_warned; i++) {
+        free(doc->warned[i]);
+    }
+    if (doc->parser) {
+        XML_ParserFree(doc->parser);
+    }
+    free_tree(doc->root);
+    free(doc->ids);
+    free(doc->verts);
+    svg_css_free(&doc->sheet);
+}
+
+/* The initial style (SVG's defaults): fill black, no stroke, width 1. */
+static style initial_style(void)
+{
+    return (style){ .fill = { .kind = SVG_PAINT_COLOR, .color = { 0, 0, 0, 1 } },
+                    .stroke = { .kind = SVG_PAINT_NONE },
+                    .color = { 0, 0, 0, 1 },
+                    .fill_opacity = 1, .stroke_opacity = 1, .opacity = 1,
+                    .own_opacity = 1, .clip_rule = SR_NONZERO,
+                    .fill_rule = SR_NONZERO, .stroke_width = 1,
+                    .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
+                    .miter_limit = 4,
+                    .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } };
+}
+
 static sr_result render(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *opt,
                         sr_framebuffer **out, sr_svg_info *info, char *msg, size_t msg_size)
 {
@@ -3374,60 +3612,21 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
         return SR_OUT_OF_MEMORY;
     }
     doc->file = name;
+    doc->base = opt->name;
     doc->opt = opt;
     doc->ctx = ctx;
     doc->status = SR_OK;
     doc->msg = msg;
     doc->msg_size = msg_size;
     doc->points_budget = SR_SVG_POINTS_BASE + (double)SR_SVG_POINTS_PER_BYTE * (double)size;
-    doc->parser = XML_ParserCreate(NULL);
-    if (!doc->parser) {
-        free(doc);
-        snprintf(msg, msg_size, "%s: out of memory", name);
-        return SR_OUT_OF_MEMORY;
-    }
-    XML_SetUserData(doc->parser, doc);
-    XML_SetElementHandler(doc->parser, on_start, on_end);
-    XML_SetCharacterDataHandler(doc->parser, on_text);
-    /* XML_Parse takes an int length: feed the buffer in pieces. */
-    const size_t piece = (size_t)1 << 20;
-    size_t at = 0;
-    do {
-        size_t n = size - at < piece ? size - at : piece;
-        bool last = at + n == size;
-        if (XML_Parse(doc->parser, data ? data + at : "", (int)n, last) == XML_STATUS_ERROR) {
-            if (doc->status == SR_OK) {
-                snprintf(msg, msg_size, "%s:%lu: %s", name,
-                         (unsigned long)XML_GetCurrentLineNumber(doc->parser),
-                         XML_ErrorString(XML_GetErrorCode(doc->parser)));
-                doc->status = SR_BAD_FORMAT;
-            }
-            break;
-        }
-        at += n;
-    } while (at < size && doc->status == SR_OK);
-    if (doc->status == SR_OK && doc->root && index_document(doc)) {
-        /* Initial style (SVG defaults): fill black, no stroke, width 1. */
-        frame f = { .m = IDENTITY,
-                    .st = { .fill = { .kind = SVG_PAINT_COLOR, .color = { 0, 0, 0, 1 } },
-                            .stroke = { .kind = SVG_PAINT_NONE },
-                            .color = { 0, 0, 0, 1 },
-                            .fill_opacity = 1, .stroke_opacity = 1, .opacity = 1,
-                            .own_opacity = 1, .clip_rule = SR_NONZERO,
-                            .fill_rule = SR_NONZERO, .stroke_width = 1,
-                            .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
-                            .miter_limit = 4,
-                            .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } } };
+    if (read_document(doc, data, size)) {
+        frame f = { .m = IDENTITY, .st = initial_style() };
         doc->line = doc->root->line;
         doc->initial = f.st;
         if (root_element(doc, doc->root->atts, &f)) {
             doc->root_m = f.m;
             draw_node(doc, doc->root, &f);
         }
-    }
-    if (doc->status == SR_OK && !doc->fb) {
-        snprintf(msg, msg_size, "%s:1: no <svg> element", name);
-        doc->status = SR_BAD_FORMAT;
     }
     sr_result status = doc->status;
     if (status == SR_OK) {
@@ -3438,14 +3637,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
     *info = (sr_svg_info){ .points_used = doc->points_used, .points_budget = doc->points_budget,
                            .work_used = doc->work_used, .work_budget = doc->work_budget,
                            .warnings = doc->warnings };
-    for (int i = 0; i < doc->n_warned; i++) {
-        free(doc->warned[i]);
-    }
-    XML_ParserFree(doc->parser);
-    free_tree(doc->root);
-    free(doc->ids);
-    free(doc->verts);
-    svg_css_free(&doc->sheet);
+    free_document(doc);
     free(doc);
     return status;
 }
