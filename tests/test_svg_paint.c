@@ -68,7 +68,8 @@ static void check_drawing(const char *file, const char *ref)
  * blend: the sixteen mix-blend-modes and isolation; images: a JPEG file
  * and a PNG data: URI under preserveAspectRatio; svgimage: SVG documents
  * as images (a file and a percent-encoded data: URI), as vector content
- * clipped to the image's viewport */
+ * clipped to the image's viewport; overflow: nested svg viewports that
+ * clip and those with overflow visible */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -77,7 +78,8 @@ SR_TEST(drawings_match_references)
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
                                           "nested", "dashes", "markers", "patterns",
                                           "maskregion", "switch", "nonscaling",
-                                          "origin", "blend", "images", "svgimage" };
+                                          "origin", "blend", "images", "svgimage",
+                                          "overflow" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */

@@ -102,7 +102,7 @@ typedef struct style {
     double origin[2];            /* transform-origin (not inherited) */
     svg_blend_kind blend;        /* mix-blend-mode (not inherited) */
     bool isolate;                /* isolation: isolate (not inherited) */
-    bool overflow_visible;       /* overflow: visible or auto (not inherited; markers) */
+    bool overflow_visible;       /* overflow: visible or auto (not inherited; markers, svg) */
     unsigned origin_pct;         /* bit i: origin[i] is a fraction of the viewport */
     const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
     unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
@@ -2932,14 +2932,6 @@ static frame viewport_frame(svg_doc *doc, const svg_node *node, const frame *f)
     return in;
 }
 
-/* The coverage of a nested svg's viewport (overflow is hidden); NULL
- * when it is empty or after a failure. */
-static uint8_t *nested_viewport(svg_doc *doc, const svg_node *node, const frame *f)
-{
-    double r[4];
-    return viewport_rect(doc, node, f, r) ? rect_coverage(doc, r, f) : NULL;
-}
-
 /* The coverage of the rectangle x, y, width, height = r in f's user
  * space; NULL after a failure. */
 static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f)
@@ -3435,6 +3427,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     f.st.origin_pct = 0;
     f.st.blend = SVG_BLEND_NORMAL;
     f.st.isolate = false;
+    f.st.overflow_visible = false;
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
@@ -3454,10 +3447,15 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         t = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, ox, oy }, t), (mat2d){ 1, 0, 0, 1, -ox, -oy });
         f.m = mat_mul(f.m, t);
     }
-    /* A nested svg: a new viewport, which clips what it holds. */
+    /* A nested svg: a new viewport, which clips what it holds unless
+     * its overflow is visible; one of no area shows nothing. */
     uint8_t *viewport = NULL;
-    if (nested && !(viewport = nested_viewport(doc, node, &f))) {
-        return;
+    if (nested) {
+        double r[4];
+        if (!viewport_rect(doc, node, &f, r) ||
+            (!f.st.overflow_visible && !(viewport = rect_coverage(doc, r, &f)))) {
+            return;
+        }
     }
     /* A group's opacity and any clip path apply to the element drawn
      * whole in a layer of its own; a lone shape's opacity folds into its
@@ -3469,8 +3467,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         layer = false;
     }
     if (!layer) {
-        if (viewport) { /* no layer left: the viewport maps, but does not clip */
-            free(viewport);
+        free(viewport); /* no layer left: the viewport maps, but does not clip */
+        if (nested) {
             f = viewport_frame(doc, node, &f);
         }
         f.st.opacity *= f.st.own_opacity;
@@ -3488,6 +3486,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         multiply_coverage(viewport, mask, doc);
         free(mask);
         mask = viewport;
+    }
+    if (nested) {
         f = viewport_frame(doc, node, &f);
     }
     sr_framebuffer *under = doc->fb, *top = doc->status == SR_OK ? open_layer(doc) : NULL;
