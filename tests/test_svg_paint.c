@@ -69,7 +69,8 @@ static void check_drawing(const char *file, const char *ref)
  * and a PNG data: URI under preserveAspectRatio; svgimage: SVG documents
  * as images (a file and a percent-encoded data: URI), as vector content
  * clipped to the image's viewport; overflow: nested svg viewports that
- * clip and those with overflow visible */
+ * clip and those with overflow visible; markerlayers: marker content in
+ * layers of its own, cut to the marker's viewport */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -79,7 +80,7 @@ SR_TEST(drawings_match_references)
                                           "nested", "dashes", "markers", "patterns",
                                           "maskregion", "switch", "nonscaling",
                                           "origin", "blend", "images", "svgimage",
-                                          "overflow" };
+                                          "overflow", "markerlayers" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */

@@ -2635,6 +2635,9 @@ static void draw_document_image(svg_doc *doc, svg_doc *in, const svg_node *node,
                      .st = initial_style(), .vp_w = vb[2], .vp_h = vb[3] };
         in->fb = top;
         in->layers = doc->layers;
+        /* inside a marker, the document is cut to its viewport too */
+        in->n_windows = doc->n_windows;
+        memcpy(in->windows, doc->windows, sizeof in->windows);
         in->initial = cf.st;
         in->root_m = cf.m;
         in->points_used = doc->points_used;
