@@ -70,7 +70,8 @@ static void check_drawing(const char *file, const char *ref)
  * as images (a file and a percent-encoded data: URI), as vector content
  * clipped to the image's viewport; overflow: nested svg viewports that
  * clip and those with overflow visible; markerlayers: marker content in
- * layers of its own, cut to the marker's viewport */
+ * layers of its own, cut to the marker's viewport; serverorigin:
+ * transform-origin on gradientTransform and patternTransform */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -80,7 +81,7 @@ SR_TEST(drawings_match_references)
                                           "nested", "dashes", "markers", "patterns",
                                           "maskregion", "switch", "nonscaling",
                                           "origin", "blend", "images", "svgimage",
-                                          "overflow", "markerlayers" };
+                                          "overflow", "markerlayers", "serverorigin" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */
@@ -90,6 +91,35 @@ SR_TEST(drawings_match_references)
         snprintf(ref, sizeof ref, "svg_%s", names[i]);
         check_drawing(file, ref);
     }
+}
+
+/* A drawing of tests/data/svg at scale 3 (NULL after a failure, counted). */
+static sr_framebuffer *render_file(sr_context *ctx, const char *file)
+{
+    char in[1024];
+    snprintf(in, sizeof in, "%s/data/svg/%s", sr_test_src_dir(), file);
+    sr_framebuffer *fb = NULL;
+    CHECK_EQ(sr_render_svg_file(ctx, in, &(sr_svg_desc){ .scale = 3 }, &fb, NULL, NULL), SR_OK);
+    return fb;
+}
+
+SR_TEST(server_transform_origin_is_the_transform_moved_there_and_back)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* each transform-origin O of a gradient or pattern draws what
+     * translate(O) T translate(-O) does, byte for byte */
+    sr_framebuffer *a = render_file(ctx, "serverorigin.svg");
+    sr_framebuffer *b = render_file(ctx, "serverorigin-expanded.svg");
+    REQUIRE(a && b);
+    size_t n = (size_t)sr_framebuffer_width(a) * (size_t)sr_framebuffer_height(a) * 4;
+    CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), n) == 0);
+    sr_destroy_framebuffer(ctx, a);
+    sr_destroy_framebuffer(ctx, b);
+    sr_destroy_context(ctx);
 }
 
 SR_TEST(cascade_orders_attributes_sheets_style_and_important)

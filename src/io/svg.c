@@ -1334,12 +1334,13 @@ static const char *href_of(const svg_node *n)
 
 /* An attribute of a gradient (a pattern), else of the gradients (the
  * patterns) it names by href. */
-static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *name)
+/* The element of g's href chain (gradients with gradients, patterns with
+ * patterns) that has the attribute, or NULL. */
+static const svg_node *grad_defining(const svg_doc *doc, const svg_node *g, const char *name)
 {
     for (int i = 0; g && i < MAX_HREF_CHAIN; i++) {
-        const char *v = attr(g->atts, name);
-        if (v) {
-            return v;
+        if (attr(g->atts, name)) {
+            return g;
         }
         const char *h = href_of(g);
         const svg_node *next = h ? reference(doc, h, NULL) : NULL;
@@ -1347,6 +1348,43 @@ static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *
                 ? next : NULL;
     }
     return NULL;
+}
+
+static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *name)
+{
+    const svg_node *def = grad_defining(doc, g, name);
+    return def ? attr(def->atts, name) : NULL;
+}
+
+/* t about the transform-origin in st: the origin moved to 0, t, moved
+ * back (lengths in the units t applies in, percentages of the viewport). */
+static mat2d about_origin(mat2d t, const style *st, const frame *f)
+{
+    double ox = st->origin[0] * (st->origin_pct & 1 ? f->vp_w : 1);
+    double oy = st->origin[1] * (st->origin_pct & 2 ? f->vp_h : 1);
+    return mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, ox, oy }, t), (mat2d){ 1, 0, 0, 1, -ox, -oy });
+}
+
+/* A paint server's gradientTransform or patternTransform (`name`), from
+ * the element of its href chain that has it, about that element's
+ * transform-origin (SVG 2: both are the transform property); the
+ * identity when there is none or it is malformed (warned). */
+static mat2d server_transform(svg_doc *doc, const svg_node *server, const char *name,
+                              const frame *f)
+{
+    const svg_node *def = grad_defining(doc, server, name);
+    mat2d t = IDENTITY;
+    if (!def) {
+        return t;
+    }
+    const char *tr = attr(def->atts, name);
+    if (!parse_transform(tr, &t)) {
+        warn_once(doc, name, tr);
+        return IDENTITY;
+    }
+    style st = doc->initial;
+    apply_cascade(doc, def, &st);
+    return about_origin(t, &st, f);
 }
 
 /* A gradient coordinate: a number, or a percentage of ref (1 for
@@ -1460,12 +1498,7 @@ static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *
         rh = f->vp_h;
     }
     double rd = sqrt((rw * rw + rh * rh) / 2);
-    const char *tr = grad_attr(doc, server, "gradientTransform");
-    mat2d gt = IDENTITY;
-    if (tr && !parse_transform(tr, &gt)) {
-        warn_once(doc, "gradientTransform", tr);
-    }
-    mat2d inv;
+    mat2d gt = server_transform(doc, server, "gradientTransform", f), inv;
     if (!mat_invert(mat_mul(f->m, mat_mul(to_user, gt)), &inv)) {
         return false;
     }
@@ -3184,13 +3217,7 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
     } else if (cu && strcmp(cu, "objectBoundingBox") == 0 && have_box) {
         cm = (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], 0, 0 };
     }
-    mat2d pm = f->m, t;
-    const char *tr = grad_attr(doc, pat, "patternTransform");
-    if (tr && !parse_transform(tr, &t)) {
-        warn_once(doc, "patternTransform", tr);
-    } else if (tr) {
-        pm = mat_mul(pm, t);
-    }
+    mat2d pm = mat_mul(f->m, server_transform(doc, pat, "patternTransform", f));
     /* The tile at the device's scale along each of its axes. */
     double sx = hypot(pm.a, pm.b), sy = hypot(pm.c, pm.d), tw = w * sx, th = h * sy;
     if (!(tw > 0 && th > 0) || !isfinite(tw * th)) {
@@ -3444,11 +3471,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
             svg_fail(doc, SR_BAD_FORMAT, "transform=\"%s\" is malformed", tr);
             return;
         }
-        /* about transform-origin: move it to 0, transform, move back */
-        double ox = f.st.origin[0] * (f.st.origin_pct & 1 ? f.vp_w : 1);
-        double oy = f.st.origin[1] * (f.st.origin_pct & 2 ? f.vp_h : 1);
-        t = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, ox, oy }, t), (mat2d){ 1, 0, 0, 1, -ox, -oy });
-        f.m = mat_mul(f.m, t);
+        f.m = mat_mul(f.m, about_origin(t, &f.st, &f));
     }
     /* A nested svg: a new viewport, which clips what it holds unless
      * its overflow is visible; one of no area shows nothing. */
