@@ -454,6 +454,16 @@ SR_TEST(svg_images_that_include_themselves_or_nest_too_deep_are_refused)
             REQUIRE(fb);
             CHECK(pixel(fb, 2, 2)[0] == 0 && pixel(fb, 2, 2)[1] == 255);
             sr_destroy_framebuffer(ctx, fb);
+            /* the images' work counts within the (grown) budgets: each
+             * document read costs its bytes (over 100), more than its
+             * layer and the 4 x 4 square cost */
+            sr_svg_info info;
+            CHECK_EQ(sr_render_svg(ctx, doc, strlen(doc), &(sr_svg_desc){ .name = "t.svg" }, &fb,
+                                   &info, NULL),
+                     SR_OK);
+            sr_destroy_framebuffer(ctx, fb);
+            CHECK(info.points_used > depth && info.points_used <= info.points_budget);
+            CHECK(info.work_used >= 100.0 * depth && info.work_used <= info.work_budget);
         } else {
             CHECK(fb == NULL);
             CHECK_STR_CONTAINS(msg, "t.svg:2: image: SVG images nested deeper than 7");

@@ -2677,6 +2677,7 @@ static void draw_document_image(svg_doc *doc, svg_doc *in, const svg_node *node,
         in->work_used = doc->work_used;
         draw_node(in, in->root, &cf);
         doc->points_used = in->points_used;
+        doc->points_budget = in->points_budget; /* grown by its own SVG images */
         doc->work_used = in->work_used;
         close_layer(doc, under);
         if (in->status != SR_OK) {
