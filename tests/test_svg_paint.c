@@ -71,7 +71,8 @@ static void check_drawing(const char *file, const char *ref)
  * clipped to the image's viewport; overflow: nested svg viewports that
  * clip and those with overflow visible; markerlayers: marker content in
  * layers of its own, cut to the marker's viewport; serverorigin:
- * transform-origin on gradientTransform and patternTransform */
+ * transform-origin on gradientTransform and patternTransform; stopinherit:
+ * stops inherit from the gradient's ancestors, not the shape's */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -81,7 +82,8 @@ SR_TEST(drawings_match_references)
                                           "nested", "dashes", "markers", "patterns",
                                           "maskregion", "switch", "nonscaling",
                                           "origin", "blend", "images", "svgimage",
-                                          "overflow", "markerlayers", "serverorigin" };
+                                          "overflow", "markerlayers", "serverorigin",
+                                          "stopinherit" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */

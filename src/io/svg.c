@@ -1416,22 +1416,50 @@ static bool mat_invert(mat2d m, mat2d *out)
 }
 
 /* The stops of the first gradient of the href chain that has any. */
-static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg_gradient *out)
+/* The style the content of a marker, pattern or gradient starts from: the
+ * initial one cascaded down that element's own ancestors (not the
+ * shape's), each level's properties that are not inherited reset and
+ * `inherit` taken from its parent; display ignored. */
+static style ancestor_style(svg_doc *doc, const svg_node *m)
+{
+    const svg_node *chain[MAX_DEPTH];
+    int n = 0;
+    for (const svg_node *a = m; a && n < MAX_DEPTH; a = a->parent) {
+        chain[n++] = a;
+    }
+    style st = doc->initial;
+    const style *outer = doc->inherit_from;
+    while (n-- > 0 && doc->status == SR_OK) {
+        style parent = st;
+        st.own_opacity = 1;
+        st.clip = st.mask = NULL;
+        st.overflow_visible = false;
+        st.stop_color = doc->initial.stop_color;
+        st.stop_opacity = doc->initial.stop_opacity;
+        doc->inherit_from = &parent;
+        apply_cascade(doc, chain[n], &st);
+    }
+    doc->inherit_from = outer;
+    st.display_none = false;
+    st.opacity = 1;
+    return st;
+}
+
+static void gradient_stops(svg_doc *doc, const svg_node *g, svg_gradient *out)
 {
     out->n_stops = 0;
     for (int i = 0; g && i < MAX_HREF_CHAIN && out->n_stops == 0; i++) {
-        /* the gradient's own stop-color and stop-opacity, for inherit */
-        style gs = *st;
-        gs.stop_color = (sr_rgba){ 0, 0, 0, 1 };
-        gs.stop_opacity = 1;
-        apply_cascade(doc, g, &gs);
+        /* the stops inherit from the gradient and its ancestors, not from
+         * the shape painted: color (for currentColor), and stop-color and
+         * stop-opacity for inherit */
+        style gs = ancestor_style(doc, g);
         for (const svg_node *c = g->first; c; c = c->next) {
             if (strcmp(c->name, "stop") != 0 || out->n_stops == SVG_MAX_STOPS) {
                 continue;
             }
-            style s = *st;
-            s.stop_color = (sr_rgba){ 0, 0, 0, 1 };
-            s.stop_opacity = 1;
+            style s = gs;
+            s.stop_color = doc->initial.stop_color;
+            s.stop_opacity = doc->initial.stop_opacity;
             const style *outer = doc->inherit_from;
             doc->inherit_from = &gs;
             apply_cascade(doc, c, &s);
@@ -1479,7 +1507,7 @@ static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *
                              sr_polygon2 shape, svg_gradient *g)
 {
     memset(g, 0, offsetof(svg_gradient, offset));
-    gradient_stops(doc, server, &f->st, g);
+    gradient_stops(doc, server, g);
     if (g->n_stops == 0) {
         return false;
     }
@@ -2398,27 +2426,6 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
 
 /* ---- markers ----------------------------------------------------------------------- */
 
-/* The style the content of a marker or pattern starts from: the initial
- * one cascaded down that element's own ancestors (not the shape's),
- * display ignored. */
-static style ancestor_style(svg_doc *doc, const svg_node *m)
-{
-    const svg_node *chain[MAX_DEPTH];
-    int n = 0;
-    for (const svg_node *a = m; a && n < MAX_DEPTH; a = a->parent) {
-        chain[n++] = a;
-    }
-    style st = doc->initial;
-    while (n-- > 0 && doc->status == SR_OK) {
-        st.own_opacity = 1;
-        st.clip = st.mask = NULL;
-        st.overflow_visible = false;
-        apply_cascade(doc, chain[n], &st);
-    }
-    st.display_none = false;
-    st.opacity = 1;
-    return st;
-}
 
 /* An angle: a number of degrees, or with deg, rad, grad or turn. */
 static bool parse_angle(const char *v, double *deg)
@@ -3615,7 +3622,7 @@ static style initial_style(void)
 {
     return (style){ .fill = { .kind = SVG_PAINT_COLOR, .color = { 0, 0, 0, 1 } },
                     .stroke = { .kind = SVG_PAINT_NONE },
-                    .color = { 0, 0, 0, 1 },
+                    .color = { 0, 0, 0, 1 }, .stop_color = { 0, 0, 0, 1 }, .stop_opacity = 1,
                     .fill_opacity = 1, .stroke_opacity = 1, .opacity = 1,
                     .own_opacity = 1, .clip_rule = SR_NONZERO,
                     .fill_rule = SR_NONZERO, .stroke_width = 1,
