@@ -124,6 +124,36 @@ SR_TEST(server_transform_origin_is_the_transform_moved_there_and_back)
     sr_destroy_context(ctx);
 }
 
+SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* tiles of no width, of no height, of neither (no size given, an href
+     * to nothing): the fallback green paints; without one, nothing does
+     * (the white background stays) */
+    sr_framebuffer *fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='40' height='10'>"
+        "<pattern id='w' width='0' height='4' patternUnits='userSpaceOnUse'>"
+        "<rect width='4' height='4' fill='red'/></pattern>"
+        "<pattern id='h' width='1' height='0'><rect width='1' height='1' fill='red'/></pattern>"
+        "<pattern id='n' href='#missing'><rect width='10' height='10' fill='red'/></pattern>"
+        "<rect width='10' height='10' fill='url(#w) #0f0'/>"
+        "<rect x='10' width='10' height='10' fill='url(#h) #0f0'/>"
+        "<rect x='20' width='10' height='10' fill='url(#n) #0f0'/>"
+        "<rect x='30' width='10' height='10' fill='url(#n)'/></svg>",
+        SR_OK, NULL, 0);
+    REQUIRE(fb);
+    for (int i = 0; i < 4; i++) {
+        const uint8_t *p = pixel(fb, i * 10 + 5, 5);
+        CHECK(p[0] == (i < 3 ? 0 : 255) && p[1] == 255 && p[2] == (i < 3 ? 0 : 255));
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(cascade_orders_attributes_sheets_style_and_important)
 {
     if (!sr_io_have_svg()) {

@@ -3209,7 +3209,7 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
         h *= b[3] - b[1];
     }
     if (!(w > 0 && h > 0) || !isfinite(w * h)) {
-        return true; /* an empty tile paints nothing */
+        return false; /* an empty tile: the fallback color, if any, paints */
     }
     /* the content's units onto the tile, its top left at the origin */
     mat2d cm = IDENTITY;
