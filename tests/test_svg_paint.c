@@ -72,7 +72,8 @@ static void check_drawing(const char *file, const char *ref)
  * clip and those with overflow visible; markerlayers: marker content in
  * layers of its own, cut to the marker's viewport; serverorigin:
  * transform-origin on gradientTransform and patternTransform; stopinherit:
- * stops inherit from the gradient's ancestors, not the shape's */
+ * stops inherit from the gradient's ancestors, not the shape's;
+ * selectors: attribute tests, :first-child, sibling combinators */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -83,7 +84,7 @@ SR_TEST(drawings_match_references)
                                           "maskregion", "switch", "nonscaling",
                                           "origin", "blend", "images", "svgimage",
                                           "overflow", "markerlayers", "serverorigin",
-                                          "stopinherit" };
+                                          "stopinherit", "selectors" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */

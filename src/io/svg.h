@@ -41,11 +41,23 @@ typedef struct svg_node {
 /* Matching steps for one document: beyond this it is refused. */
 #define SVG_CSS_MAX_WORK 20000000L
 
+#define SVG_CSS_MAX_ATTRS 4
+
+/* An attribute test: [name] (op 0), [name=v], [name~=v] (a word of the
+ * list), [name|=v] (v or v-...), [name^=v], [name$=v], [name*=v]. */
+typedef struct svg_css_attr {
+    char *name, *value;
+    char op;                     /* 0, '=', '~', '|', '^', '$', '*' */
+} svg_css_attr;
+
 typedef struct svg_css_compound {
     char *type, *id;             /* NULL: any */
     char *classes[SVG_CSS_MAX_CLASSES];
     int n_classes;
-    char combinator;             /* to the compound on its left: ' ' or '>' */
+    svg_css_attr attrs[SVG_CSS_MAX_ATTRS];
+    int n_attrs;
+    bool first_child;            /* :first-child */
+    char combinator;             /* to the compound on its left: ' ', '>', '+' or '~' */
 } svg_css_compound;
 
 typedef struct svg_css_selector {
