@@ -155,6 +155,30 @@ SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
     sr_destroy_context(ctx);
 }
 
+SR_TEST(the_marker_shorthand_is_a_property_not_an_attribute)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* a 4 x 4 red marker at each vertex of two unstroked lines: through
+     * style="marker: ..." it is drawn, through marker="..." not */
+    sr_framebuffer *fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='20' height='20'>"
+        "<marker id='m' markerWidth='4' markerHeight='4' refX='2' refY='2'"
+        " markerUnits='userSpaceOnUse'><rect width='4' height='4' fill='#f00'/></marker>"
+        "<path d='M5 5 H15' style='marker: url(#m)'/>"
+        "<path d='M5 15 H15' marker='url(#m)'/></svg>",
+        SR_OK, NULL, 0);
+    REQUIRE(fb);
+    CHECK(pixel(fb, 5, 5)[0] == 255 && pixel(fb, 5, 5)[1] == 0);
+    CHECK(pixel(fb, 15, 5)[0] == 255 && pixel(fb, 15, 5)[1] == 0);
+    CHECK(pixel(fb, 5, 15)[1] == 255 && pixel(fb, 15, 15)[1] == 255);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(cascade_orders_attributes_sheets_style_and_important)
 {
     if (!sr_io_have_svg()) {

@@ -2272,8 +2272,10 @@ static void apply_cascade(svg_doc *doc, const svg_node *node, style *st)
 {
     for (int i = 0; node->atts[i]; i += 2) {
         const char *a = node->atts[i];
+        /* the marker shorthand is a property of sheets and style="", not
+         * a presentation attribute */
         if (strcmp(a, "style") != 0 && strcmp(a, "transform") != 0 && strcmp(a, "class") != 0 &&
-            strcmp(a, "id") != 0) {
+            strcmp(a, "id") != 0 && strcmp(a, "marker") != 0) {
             apply_property(doc, st, a, node->atts[i + 1]);
         }
     }
