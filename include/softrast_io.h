@@ -343,7 +343,7 @@ SR_API sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t siz
  * masks, group opacity and blend modes (drawn in layers); the table in
  * docs/draw2d.md says what else.  Anything else is skipped with one
  * warning per name; reference cycles (use, clip-path, mask, marker,
- * pattern) are refused.
+ * pattern, SVG images that include themselves) are refused.
  * The work is bounded by the size of the document and of the image (the
  * limits below, docs/robustness.md): a few hundred bytes cannot make the
  * renderer spin for seconds or allocate gigabytes. */
@@ -352,13 +352,14 @@ SR_API sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t siz
 #define SR_SVG_MAX_SUBPATHS    (1 << 14)   /* subpaths (moveto) of one shape */
 /* Points handled in all - flattened paths, stroke outlines (estimated
  * before they are built), polygons filled - may reach SR_SVG_POINTS_BASE
- * plus SR_SVG_POINTS_PER_BYTE per byte of the document. */
+ * plus SR_SVG_POINTS_PER_BYTE per byte of the document and of each SVG
+ * document its images read. */
 #define SR_SVG_POINTS_BASE     (1 << 19)
 #define SR_SVG_POINTS_PER_BYTE 16
 /* Fill work: the pixels of every filled polygon's bounding box (clipped to
  * the image) plus the image rows each of its edges crosses, summed over the
- * document, may reach SR_SVG_WORK_PER_PIXEL times the image's pixel count
- * plus SR_SVG_WORK_BASE. */
+ * document, and the bytes of each SVG document its images read, may reach
+ * SR_SVG_WORK_PER_PIXEL times the image's pixel count plus SR_SVG_WORK_BASE. */
 #define SR_SVG_WORK_PER_PIXEL  16
 #define SR_SVG_WORK_BASE       (1 << 24)
 

@@ -66,7 +66,14 @@ static void check_drawing(const char *file, const char *ref)
  * switch: systemLanguage and requiredExtensions in and out of a switch;
  * nonscaling: vector-effect="non-scaling-stroke"; origin: transform-origin;
  * blend: the sixteen mix-blend-modes and isolation; images: a JPEG file
- * and a PNG data: URI under preserveAspectRatio */
+ * and a PNG data: URI under preserveAspectRatio; svgimage: SVG documents
+ * as images (a file and a percent-encoded data: URI), as vector content
+ * clipped to the image's viewport; overflow: nested svg viewports that
+ * clip and those with overflow visible; markerlayers: marker content in
+ * layers of its own, cut to the marker's viewport; serverorigin:
+ * transform-origin on gradientTransform and patternTransform; stopinherit:
+ * stops inherit from the gradient's ancestors, not the shape's;
+ * selectors: attribute tests, :first-child, sibling combinators */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -75,7 +82,9 @@ SR_TEST(drawings_match_references)
     static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
                                           "nested", "dashes", "markers", "patterns",
                                           "maskregion", "switch", "nonscaling",
-                                          "origin", "blend", "images" };
+                                          "origin", "blend", "images", "svgimage",
+                                          "overflow", "markerlayers", "serverorigin",
+                                          "stopinherit", "selectors" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */
@@ -85,6 +94,89 @@ SR_TEST(drawings_match_references)
         snprintf(ref, sizeof ref, "svg_%s", names[i]);
         check_drawing(file, ref);
     }
+}
+
+/* A drawing of tests/data/svg at scale 3 (NULL after a failure, counted). */
+static sr_framebuffer *render_file(sr_context *ctx, const char *file)
+{
+    char in[1024];
+    snprintf(in, sizeof in, "%s/data/svg/%s", sr_test_src_dir(), file);
+    sr_framebuffer *fb = NULL;
+    CHECK_EQ(sr_render_svg_file(ctx, in, &(sr_svg_desc){ .scale = 3 }, &fb, NULL, NULL), SR_OK);
+    return fb;
+}
+
+SR_TEST(server_transform_origin_is_the_transform_moved_there_and_back)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* each transform-origin O of a gradient or pattern draws what
+     * translate(O) T translate(-O) does, byte for byte */
+    sr_framebuffer *a = render_file(ctx, "serverorigin.svg");
+    sr_framebuffer *b = render_file(ctx, "serverorigin-expanded.svg");
+    REQUIRE(a && b);
+    size_t n = (size_t)sr_framebuffer_width(a) * (size_t)sr_framebuffer_height(a) * 4;
+    CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), n) == 0);
+    sr_destroy_framebuffer(ctx, a);
+    sr_destroy_framebuffer(ctx, b);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* tiles of no width, of no height, of neither (no size given, an href
+     * to nothing): the fallback green paints; without one, nothing does
+     * (the white background stays) */
+    sr_framebuffer *fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='40' height='10'>"
+        "<pattern id='w' width='0' height='4' patternUnits='userSpaceOnUse'>"
+        "<rect width='4' height='4' fill='red'/></pattern>"
+        "<pattern id='h' width='1' height='0'><rect width='1' height='1' fill='red'/></pattern>"
+        "<pattern id='n' href='#missing'><rect width='10' height='10' fill='red'/></pattern>"
+        "<rect width='10' height='10' fill='url(#w) #0f0'/>"
+        "<rect x='10' width='10' height='10' fill='url(#h) #0f0'/>"
+        "<rect x='20' width='10' height='10' fill='url(#n) #0f0'/>"
+        "<rect x='30' width='10' height='10' fill='url(#n)'/></svg>",
+        SR_OK, NULL, 0);
+    REQUIRE(fb);
+    for (int i = 0; i < 4; i++) {
+        const uint8_t *p = pixel(fb, i * 10 + 5, 5);
+        CHECK(p[0] == (i < 3 ? 0 : 255) && p[1] == 255 && p[2] == (i < 3 ? 0 : 255));
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+SR_TEST(the_marker_shorthand_is_a_property_not_an_attribute)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* a 4 x 4 red marker at each vertex of two unstroked lines: through
+     * style="marker: ..." it is drawn, through marker="..." not */
+    sr_framebuffer *fb = render(ctx,
+        "<svg xmlns='http://www.w3.org/2000/svg' width='20' height='20'>"
+        "<marker id='m' markerWidth='4' markerHeight='4' refX='2' refY='2'"
+        " markerUnits='userSpaceOnUse'><rect width='4' height='4' fill='#f00'/></marker>"
+        "<path d='M5 5 H15' style='marker: url(#m)'/>"
+        "<path d='M5 15 H15' marker='url(#m)'/></svg>",
+        SR_OK, NULL, 0);
+    REQUIRE(fb);
+    CHECK(pixel(fb, 5, 5)[0] == 255 && pixel(fb, 5, 5)[1] == 0);
+    CHECK(pixel(fb, 15, 5)[0] == 255 && pixel(fb, 15, 5)[1] == 0);
+    CHECK(pixel(fb, 5, 15)[1] == 255 && pixel(fb, 15, 15)[1] == 255);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
 }
 
 SR_TEST(cascade_orders_attributes_sheets_style_and_important)
@@ -250,10 +342,10 @@ SR_TEST(images_that_do_not_read_or_lie_outside_are_skipped_with_a_warning)
     sr_context *ctx = NULL;
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
     /* a path climbing out, an absolute one, a URL, a missing file, a
-     * broken data: URI, an SVG where a PNG should be: none is read */
+     * broken data: URI, text that is no picture: none is read */
     static const char *const hrefs[] = { "../images.svg", "/etc/hostname", "http://x/a.png",
                                          "missing.png", "data:image/png;base64,!!",
-                                         "images.svg" };
+                                         "data:text/plain;base64,aGVsbG8=" };
     char name[1024], svg[512];
     snprintf(name, sizeof name, "%s/data/svg/t.svg", sr_test_src_dir());
     for (size_t i = 0; i < sizeof hrefs / sizeof hrefs[0]; i++) {
@@ -348,6 +440,104 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
     snprintf(big + n, sizeof big - (size_t)n, "</defs><use href='#l29'/></svg>");
     fb = render(ctx, big, SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
+    sr_destroy_context(ctx);
+}
+
+/* A document as a percent-encoded data: URI of an <image> (malloc'd). */
+static char *svg_data_image(const char *doc)
+{
+    char *out = malloc(strlen(doc) * 3 + 64), *o = out;
+    if (!out) {
+        abort();
+    }
+    o += sprintf(o, "data:image/svg+xml,");
+    for (const char *c = doc; *c; c++) {
+        o += strchr("%<>'\"&#", *c) ? sprintf(o, "%%%02X", (unsigned char)*c)
+                                    : sprintf(o, "%c", *c);
+    }
+    return out;
+}
+
+/* The document "<svg ...>\n<image href='URI of inner'/></svg>" (malloc'd). */
+static char *svg_wrapping(const char *inner)
+{
+    char *uri = svg_data_image(inner);
+    char *doc = malloc(strlen(uri) + 256);
+    if (!doc) {
+        abort();
+    }
+    sprintf(doc, "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>\n"
+                 "<image href='%s' width='4' height='4'/></svg>", uri);
+    free(uri);
+    return doc;
+}
+
+SR_TEST(svg_images_that_include_themselves_or_nest_too_deep_are_refused)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    /* a file that includes itself, and two that include each other: the
+     * line is the <image> that closes the cycle, in the file that has it */
+    static const struct { const char *file, *want; } files[] = {
+        { "cycle-self.svg", "cycle-self.svg:3: image: reference cycle through \"./cycle-self.svg\"" },
+        { "cycle-a.svg", "cycle-b.svg:3: image: reference cycle through \"cycle-a.svg\"" },
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char in[1024];
+        snprintf(in, sizeof in, "%s/data/svg/%s", sr_test_src_dir(), files[i].file);
+        sr_framebuffer *fb = NULL;
+        sr_io_error err;
+        CHECK_EQ(sr_render_svg_file(ctx, in, &(sr_svg_desc){ 0 }, &fb, NULL, &err),
+                 SR_BAD_FORMAT);
+        CHECK(fb == NULL);
+        CHECK_STR_CONTAINS(err.message, files[i].want);
+    }
+    /* data: URIs inside each other: 7 deep draw (a green square at the
+     * bottom), 8 deep are refused at the outer document's image line
+     * (each is drawn in a layer of its own) */
+    char *doc = strdup("<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>"
+                       "<rect width='4' height='4' fill='#0f0'/></svg>");
+    REQUIRE(doc);
+    for (int depth = 1; depth <= 8; depth++) {
+        char *outer = svg_wrapping(doc);
+        free(doc);
+        doc = outer;
+        char msg[1024];
+        sr_framebuffer *fb = render(ctx, doc, depth < 8 ? SR_OK : SR_BAD_FORMAT, msg, sizeof msg);
+        if (depth < 8) {
+            REQUIRE(fb);
+            CHECK(pixel(fb, 2, 2)[0] == 0 && pixel(fb, 2, 2)[1] == 255);
+            sr_destroy_framebuffer(ctx, fb);
+            /* the images' work counts within the (grown) budgets: each
+             * document read costs its bytes (over 100), more than its
+             * layer and the 4 x 4 square cost */
+            sr_svg_info info;
+            CHECK_EQ(sr_render_svg(ctx, doc, strlen(doc), &(sr_svg_desc){ .name = "t.svg" }, &fb,
+                                   &info, NULL),
+                     SR_OK);
+            sr_destroy_framebuffer(ctx, fb);
+            CHECK(info.points_used > depth && info.points_used <= info.points_budget);
+            CHECK(info.work_used >= 100.0 * depth && info.work_used <= info.work_budget);
+        } else {
+            CHECK(fb == NULL);
+            CHECK_STR_CONTAINS(msg, "t.svg:2: image: SVG images nested deeper than 7");
+        }
+    }
+    free(doc);
+    /* malformed content of a data: URI: one line naming the image's line */
+    doc = svg_wrapping("<svg xmlns='http://www.w3.org/2000/svg'>\n\n<path d='M 1'/></svg>");
+    char msg[1024];
+    CHECK(render(ctx, doc, SR_BAD_FORMAT, msg, sizeof msg) == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:2: ");
+    CHECK(strchr(msg, '\n') == NULL);
+    free(doc);
+    doc = svg_wrapping("<svg xmlns='http://www.w3.org/2000/svg'><rect></svg>");
+    CHECK(render(ctx, doc, SR_BAD_FORMAT, msg, sizeof msg) == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:2: mismatched tag");
+    free(doc);
     sr_destroy_context(ctx);
 }
 

@@ -46,6 +46,10 @@
 #define MAX_DEPTH 256
 #define MAX_WARNED 64
 #define MAX_WINDOWS 8
+/* Layers (group opacity, clip paths) nested deeper than this fold their
+ * opacity into the shapes and draw unclipped, with a warning: each layer
+ * is a whole image of memory. */
+#define MAX_LAYERS 8
 
 /* x' = a x + c y + e, y' = b x + d y + f (SVG's matrix(a b c d e f)). */
 typedef struct mat2d { double a, b, c, d, e, f; } mat2d;
@@ -98,7 +102,7 @@ typedef struct style {
     double origin[2];            /* transform-origin (not inherited) */
     svg_blend_kind blend;        /* mix-blend-mode (not inherited) */
     bool isolate;                /* isolation: isolate (not inherited) */
-    bool overflow_visible;       /* overflow: visible or auto (not inherited; markers) */
+    bool overflow_visible;       /* overflow: visible or auto (not inherited; markers, svg) */
     unsigned origin_pct;         /* bit i: origin[i] is a fraction of the viewport */
     const svg_node *marker[3];   /* marker-start, -mid, -end, or NULL */
     unsigned char paint_order[3];/* PAINT_FILL, PAINT_STROKE, PAINT_MARKERS in turn */
@@ -131,6 +135,11 @@ typedef struct id_entry {
 
 typedef struct svg_doc {
     const char *file;        /* name in messages */
+    const char *base;        /* the path image files are read next to, or NULL */
+    unsigned long pinned_line; /* nonzero: the line messages name (an SVG image from a
+                                * data: URI, whose own lines are not the file's) */
+    struct svg_doc *outer;   /* the document whose <image> this one is, or NULL */
+    int nesting;             /* documents outside this one */
     const sr_svg_desc *opt;
     XML_Parser parser;
     sr_context *ctx;
@@ -168,6 +177,11 @@ typedef struct svg_doc {
 
 /* ---- messages -------------------------------------------------------------- */
 
+static unsigned long msg_line(const svg_doc *doc)
+{
+    return doc->pinned_line ? doc->pinned_line : doc->line;
+}
+
 static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
@@ -177,7 +191,7 @@ static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
     if (doc->status != SR_OK) {
         return;
     }
-    int n = snprintf(doc->msg, doc->msg_size, "%s:%lu: ", doc->file, doc->line);
+    int n = snprintf(doc->msg, doc->msg_size, "%s:%lu: ", doc->file, msg_line(doc));
     if (n >= 0 && (size_t)n < doc->msg_size) {
         va_list ap;
         va_start(ap, fmt);
@@ -191,7 +205,9 @@ static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
         }
     }
     doc->status = status;
-    XML_StopParser(doc->parser, XML_FALSE);
+    if (doc->parser) {
+        XML_StopParser(doc->parser, XML_FALSE);
+    }
 }
 
 /* A library call failed: out of memory is the run's failure, anything
@@ -208,6 +224,14 @@ static void lib_fail(svg_doc *doc, sr_result r)
  * million. */
 static void warn_once(svg_doc *doc, const char *kind, const char *name)
 {
+    /* an SVG image's warnings count once for the whole drawing */
+    svg_doc *top = doc;
+    while (top->outer) {
+        top = top->outer;
+    }
+    const char *file = doc->file;
+    unsigned long at = msg_line(doc);
+    doc = top;
     if (doc->warnings_capped) {
         return;
     }
@@ -222,15 +246,15 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
     if (doc->n_warned == MAX_WARNED) {
         snprintf(line, sizeof line,
                  "%s:%lu: warning: more unsupported names; further warnings not shown",
-                 doc->file, doc->line);
+                 file, at);
         doc->warnings_capped = true;
     } else {
         doc->warned[doc->n_warned] = strdup(key);
         if (doc->warned[doc->n_warned]) {
             doc->n_warned++;
         }
-        snprintf(line, sizeof line, "%s:%lu: warning: unsupported %s '%s' skipped", doc->file,
-                 doc->line, kind, name);
+        snprintf(line, sizeof line, "%s:%lu: warning: unsupported %s '%s' skipped", file, at,
+                 kind, name);
     }
     doc->warnings++;
     if (doc->opt->warn) {
@@ -1310,12 +1334,13 @@ static const char *href_of(const svg_node *n)
 
 /* An attribute of a gradient (a pattern), else of the gradients (the
  * patterns) it names by href. */
-static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *name)
+/* The element of g's href chain (gradients with gradients, patterns with
+ * patterns) that has the attribute, or NULL. */
+static const svg_node *grad_defining(const svg_doc *doc, const svg_node *g, const char *name)
 {
     for (int i = 0; g && i < MAX_HREF_CHAIN; i++) {
-        const char *v = attr(g->atts, name);
-        if (v) {
-            return v;
+        if (attr(g->atts, name)) {
+            return g;
         }
         const char *h = href_of(g);
         const svg_node *next = h ? reference(doc, h, NULL) : NULL;
@@ -1323,6 +1348,43 @@ static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *
                 ? next : NULL;
     }
     return NULL;
+}
+
+static const char *grad_attr(const svg_doc *doc, const svg_node *g, const char *name)
+{
+    const svg_node *def = grad_defining(doc, g, name);
+    return def ? attr(def->atts, name) : NULL;
+}
+
+/* t about the transform-origin in st: the origin moved to 0, t, moved
+ * back (lengths in the units t applies in, percentages of the viewport). */
+static mat2d about_origin(mat2d t, const style *st, const frame *f)
+{
+    double ox = st->origin[0] * (st->origin_pct & 1 ? f->vp_w : 1);
+    double oy = st->origin[1] * (st->origin_pct & 2 ? f->vp_h : 1);
+    return mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, ox, oy }, t), (mat2d){ 1, 0, 0, 1, -ox, -oy });
+}
+
+/* A paint server's gradientTransform or patternTransform (`name`), from
+ * the element of its href chain that has it, about that element's
+ * transform-origin (SVG 2: both are the transform property); the
+ * identity when there is none or it is malformed (warned). */
+static mat2d server_transform(svg_doc *doc, const svg_node *server, const char *name,
+                              const frame *f)
+{
+    const svg_node *def = grad_defining(doc, server, name);
+    mat2d t = IDENTITY;
+    if (!def) {
+        return t;
+    }
+    const char *tr = attr(def->atts, name);
+    if (!parse_transform(tr, &t)) {
+        warn_once(doc, name, tr);
+        return IDENTITY;
+    }
+    style st = doc->initial;
+    apply_cascade(doc, def, &st);
+    return about_origin(t, &st, f);
 }
 
 /* A gradient coordinate: a number, or a percentage of ref (1 for
@@ -1354,22 +1416,50 @@ static bool mat_invert(mat2d m, mat2d *out)
 }
 
 /* The stops of the first gradient of the href chain that has any. */
-static void gradient_stops(svg_doc *doc, const svg_node *g, const style *st, svg_gradient *out)
+/* The style the content of a marker, pattern or gradient starts from: the
+ * initial one cascaded down that element's own ancestors (not the
+ * shape's), each level's properties that are not inherited reset and
+ * `inherit` taken from its parent; display ignored. */
+static style ancestor_style(svg_doc *doc, const svg_node *m)
+{
+    const svg_node *chain[MAX_DEPTH];
+    int n = 0;
+    for (const svg_node *a = m; a && n < MAX_DEPTH; a = a->parent) {
+        chain[n++] = a;
+    }
+    style st = doc->initial;
+    const style *outer = doc->inherit_from;
+    while (n-- > 0 && doc->status == SR_OK) {
+        style parent = st;
+        st.own_opacity = 1;
+        st.clip = st.mask = NULL;
+        st.overflow_visible = false;
+        st.stop_color = doc->initial.stop_color;
+        st.stop_opacity = doc->initial.stop_opacity;
+        doc->inherit_from = &parent;
+        apply_cascade(doc, chain[n], &st);
+    }
+    doc->inherit_from = outer;
+    st.display_none = false;
+    st.opacity = 1;
+    return st;
+}
+
+static void gradient_stops(svg_doc *doc, const svg_node *g, svg_gradient *out)
 {
     out->n_stops = 0;
     for (int i = 0; g && i < MAX_HREF_CHAIN && out->n_stops == 0; i++) {
-        /* the gradient's own stop-color and stop-opacity, for inherit */
-        style gs = *st;
-        gs.stop_color = (sr_rgba){ 0, 0, 0, 1 };
-        gs.stop_opacity = 1;
-        apply_cascade(doc, g, &gs);
+        /* the stops inherit from the gradient and its ancestors, not from
+         * the shape painted: color (for currentColor), and stop-color and
+         * stop-opacity for inherit */
+        style gs = ancestor_style(doc, g);
         for (const svg_node *c = g->first; c; c = c->next) {
             if (strcmp(c->name, "stop") != 0 || out->n_stops == SVG_MAX_STOPS) {
                 continue;
             }
-            style s = *st;
-            s.stop_color = (sr_rgba){ 0, 0, 0, 1 };
-            s.stop_opacity = 1;
+            style s = gs;
+            s.stop_color = doc->initial.stop_color;
+            s.stop_opacity = doc->initial.stop_opacity;
             const style *outer = doc->inherit_from;
             doc->inherit_from = &gs;
             apply_cascade(doc, c, &s);
@@ -1417,7 +1507,7 @@ static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *
                              sr_polygon2 shape, svg_gradient *g)
 {
     memset(g, 0, offsetof(svg_gradient, offset));
-    gradient_stops(doc, server, &f->st, g);
+    gradient_stops(doc, server, g);
     if (g->n_stops == 0) {
         return false;
     }
@@ -1436,12 +1526,7 @@ static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *
         rh = f->vp_h;
     }
     double rd = sqrt((rw * rw + rh * rh) / 2);
-    const char *tr = grad_attr(doc, server, "gradientTransform");
-    mat2d gt = IDENTITY;
-    if (tr && !parse_transform(tr, &gt)) {
-        warn_once(doc, "gradientTransform", tr);
-    }
-    mat2d inv;
+    mat2d gt = server_transform(doc, server, "gradientTransform", f), inv;
     if (!mat_invert(mat_mul(f->m, mat_mul(to_user, gt)), &inv)) {
         return false;
     }
@@ -1877,9 +1962,12 @@ static mat2d viewbox_matrix(svg_doc *doc, const char **atts, const double vb[4],
     return (mat2d){ sx, 0, 0, sy, tx, ty };
 }
 
-static bool root_element(svg_doc *doc, const char **atts, frame *f)
+/* A root svg's viewBox (its width and height when it has none) and its
+ * intrinsic size: width and height, else the viewBox's, else 300 x 150.
+ * False after reporting a malformed one. */
+static bool intrinsic_size(svg_doc *doc, const char **atts, double vb[4], double *pw,
+                           double *ph)
 {
-    double vb[4];
     const char *vbs = attr(atts, "viewBox");
     bool have_vb = vbs && parse_viewbox(vbs, vb);
     if (vbs && !have_vb) {
@@ -1897,7 +1985,6 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         svg_fail(doc, SR_BAD_FORMAT, "height=\"%s\" is not a length", hs);
         return false;
     }
-    /* Intrinsic size: width/height, else the viewBox's, else 300 x 150. */
     if (!ws || wp || w <= 0) {
         w = have_vb ? vb[2] : 300;
     }
@@ -1908,6 +1995,17 @@ static bool root_element(svg_doc *doc, const char **atts, frame *f)
         vb[0] = vb[1] = 0;
         vb[2] = w;
         vb[3] = h;
+    }
+    *pw = w;
+    *ph = h;
+    return true;
+}
+
+static bool root_element(svg_doc *doc, const char **atts, frame *f)
+{
+    double vb[4], w, h;
+    if (!intrinsic_size(doc, atts, vb, &w, &h)) {
+        return false;
     }
     const sr_svg_desc *opt = doc->opt;
     int max_side = opt->max_side > 0 && opt->max_side < SR_MAX_FRAMEBUFFER_SIZE
@@ -2174,8 +2272,10 @@ static void apply_cascade(svg_doc *doc, const svg_node *node, style *st)
 {
     for (int i = 0; node->atts[i]; i += 2) {
         const char *a = node->atts[i];
+        /* the marker shorthand is a property of sheets and style="", not
+         * a presentation attribute */
         if (strcmp(a, "style") != 0 && strcmp(a, "transform") != 0 && strcmp(a, "class") != 0 &&
-            strcmp(a, "id") != 0) {
+            strcmp(a, "id") != 0 && strcmp(a, "marker") != 0) {
             apply_property(doc, st, a, node->atts[i + 1]);
         }
     }
@@ -2328,27 +2428,6 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
 
 /* ---- markers ----------------------------------------------------------------------- */
 
-/* The style the content of a marker or pattern starts from: the initial
- * one cascaded down that element's own ancestors (not the shape's),
- * display ignored. */
-static style ancestor_style(svg_doc *doc, const svg_node *m)
-{
-    const svg_node *chain[MAX_DEPTH];
-    int n = 0;
-    for (const svg_node *a = m; a && n < MAX_DEPTH; a = a->parent) {
-        chain[n++] = a;
-    }
-    style st = doc->initial;
-    while (n-- > 0 && doc->status == SR_OK) {
-        st.own_opacity = 1;
-        st.clip = st.mask = NULL;
-        st.overflow_visible = false;
-        apply_cascade(doc, chain[n], &st);
-    }
-    st.display_none = false;
-    st.opacity = 1;
-    return st;
-}
 
 /* An angle: a number of degrees, or with deg, rad, grad or turn. */
 static bool parse_angle(const char *v, double *deg)
@@ -2544,10 +2623,155 @@ static bool image_rect(svg_doc *doc, const svg_node *node, const frame *f, doubl
            (!hs || strcmp(hs, "auto") == 0 || length_attr(doc, f, "height", hs, &r[3]));
 }
 
-/* <image>: a PNG or a JPEG, from a base64 data: URI or a file next to
- * the document, fitted into its viewport (x, y, width, height; a missing
- * size is the picture's own) as preserveAspectRatio says, sampled
- * bilinearly.  What does not read is skipped with a warning. */
+/* SVG images inside SVG images, at most: each is drawn in a layer of its
+ * own, and this leaves one of the MAX_LAYERS for the outer document. */
+#define MAX_NESTED_IMAGES (MAX_LAYERS - 1)
+
+static bool read_document(svg_doc *doc, const char *data, size_t size);
+static void free_document(svg_doc *doc);
+static style initial_style(void);
+static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f);
+static sr_framebuffer *open_layer(svg_doc *doc);
+static void close_layer(svg_doc *doc, sr_framebuffer *under);
+static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
+                            double opacity, svg_blend_kind mode);
+
+/* The image's viewport for a picture of intrinsic size iw x ih: a
+ * missing size is the picture's; one side given, the other keeps its
+ * proportions.  False after reporting a malformed length. */
+static bool image_viewport(svg_doc *doc, const svg_node *node, const frame *f, double iw,
+                           double ih, double r[4])
+{
+    if (!image_rect(doc, node, f, r)) {
+        return false;
+    }
+    double w = r[2], h = r[3];
+    r[2] = w >= 0 ? w : h >= 0 ? h * iw / ih : iw;
+    r[3] = h >= 0 ? h : w >= 0 ? r[2] * ih / iw : ih;
+    return true;
+}
+
+/* Draw the SVG document `in` (read) as the content of an <image>: its
+ * viewBox fitted into the image's viewport by the image's
+ * preserveAspectRatio, in a layer clipped to that viewport and
+ * composited at the image's opacity.  Its styles, ids and sheets are its
+ * own; its work counts against the drawing's budgets. */
+static void draw_document_image(svg_doc *doc, svg_doc *in, const svg_node *node,
+                                const frame *f)
+{
+    double vb[4], iw, ih, vp[4];
+    in->line = in->root->line;
+    if (!intrinsic_size(in, in->root->atts, vb, &iw, &ih) ||
+        !image_viewport(doc, node, f, iw, ih, vp) || !(vp[2] > 0 && vp[3] > 0)) {
+        return;
+    }
+    if (doc->layers == MAX_LAYERS) {
+        warn_once(doc, "nesting of layers", "beyond 8 (an SVG image skipped)");
+        return;
+    }
+    uint8_t *clip = rect_coverage(doc, vp, f);
+    sr_framebuffer *under = doc->fb, *top = clip ? open_layer(doc) : NULL;
+    if (top) {
+        frame cf = { .m = mat_mul(f->m, viewbox_matrix(doc, node->atts, vb, vp[0], vp[1], vp[2],
+                                                       vp[3])),
+                     .st = initial_style(), .vp_w = vb[2], .vp_h = vb[3] };
+        in->fb = top;
+        in->layers = doc->layers;
+        /* inside a marker, the document is cut to its viewport too */
+        in->n_windows = doc->n_windows;
+        memcpy(in->windows, doc->windows, sizeof in->windows);
+        in->initial = cf.st;
+        in->root_m = cf.m;
+        in->points_used = doc->points_used;
+        in->work_used = doc->work_used;
+        draw_node(in, in->root, &cf);
+        doc->points_used = in->points_used;
+        doc->points_budget = in->points_budget; /* grown by its own SVG images */
+        doc->work_used = in->work_used;
+        close_layer(doc, under);
+        if (in->status != SR_OK) {
+            doc->status = in->status; /* the message is written */
+        } else {
+            composite_layer(doc, top, clip, f->st.opacity, SVG_BLEND_NORMAL);
+        }
+        sr_destroy_framebuffer(doc->ctx, top);
+    }
+    free(clip);
+}
+
+/* An <image> of an SVG document (data..size; path: the file it came
+ * from, NULL for a data: URI).  A file that is being drawn already - a
+ * document including itself, directly or through others - is refused. */
+static void draw_svg_image(svg_doc *doc, const svg_node *node, const frame *f, const char *data,
+                           size_t size, const char *path, const char *href)
+{
+    for (const svg_doc *d = doc; d && path; d = d->outer) {
+        if (d->base && strcmp(d->base, path) == 0) {
+            svg_fail(doc, SR_BAD_FORMAT, "image: reference cycle through \"%s\"", href);
+            return;
+        }
+    }
+    if (doc->nesting + 1 > MAX_NESTED_IMAGES) {
+        svg_fail(doc, SR_BAD_FORMAT, "image: SVG images nested deeper than %d",
+                 MAX_NESTED_IMAGES);
+        return;
+    }
+    /* Reading costs its bytes of the pixel work, so that an image drawn
+     * again and again cannot be read without bound; its elements and
+     * points have the allowance its bytes would have inline. */
+    if (!work_within_budget(doc, (double)size)) {
+        return;
+    }
+    svg_doc *in = calloc(1, sizeof *in);
+    if (!in) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    in->file = path ? path : doc->file;
+    in->pinned_line = path ? 0 : msg_line(doc);
+    in->base = path ? path : doc->base;
+    in->outer = doc;
+    in->nesting = doc->nesting + 1;
+    in->opt = doc->opt;
+    in->ctx = doc->ctx;
+    in->fb = doc->fb;
+    in->status = SR_OK;
+    in->msg = doc->msg;
+    in->msg_size = doc->msg_size;
+    in->points_used = doc->points_used;
+    doc->points_budget += (double)SR_SVG_POINTS_PER_BYTE * (double)size;
+    in->points_budget = doc->points_budget;
+    in->work_budget = doc->work_budget;
+    in->work_used = doc->work_used;
+    if (read_document(in, data, size)) {
+        doc->points_used = in->points_used;
+        draw_document_image(doc, in, node, f);
+    } else {
+        doc->status = in->status;
+    }
+    if (in->status != SR_OK) {
+        doc->status = in->status;
+    }
+    free_document(in);
+    free(in);
+}
+
+/* Whether bytes hold XML (an SVG) rather than a PNG or a JPEG: '<'
+ * first, after an optional byte-order mark and white space. */
+static bool looks_like_xml(const uint8_t *b, size_t n)
+{
+    size_t i = n >= 3 && b[0] == 0xEF && b[1] == 0xBB && b[2] == 0xBF ? 3 : 0;
+    while (i < n && isspace(b[i])) {
+        i++;
+    }
+    return i < n && b[i] == '<';
+}
+
+/* <image>: a PNG, a JPEG or an SVG document, from a data: URI or a file
+ * next to the document, fitted into its viewport (x, y, width, height;
+ * a missing size is the picture's own) as preserveAspectRatio says; a
+ * picture is sampled bilinearly, an SVG drawn as vector content.  What
+ * does not read is skipped with a warning. */
 static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
 {
     const char *href = href_of(node);
@@ -2557,35 +2781,39 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
     sr_io_error err;
     int iw = 0, ih = 0;
     uint8_t *px = NULL, *bytes = NULL;
-    size_t n;
+    size_t n = 0;
+    char *path = NULL, *file = NULL;
     sr_result r = SR_BAD_FORMAT;
     if (strncmp(href, "data:", 5) == 0) {
-        if (svg_data_uri(href, &bytes, &n)) {
-            r = sr_decode_image(doc->file, bytes, n, &iw, &ih, &px, &err);
-            free(bytes);
+        if (!svg_data_uri(href, &bytes, &n)) {
+            bytes = NULL;
         }
-    } else {
-        /* a document without a name has no directory to read from */
-        char *path = doc->opt->name ? svg_image_path(doc->opt->name, href) : NULL;
-        if (path) {
-            r = sr_read_image(path, &iw, &ih, &px, &err);
-            free(path);
-        }
+    } else if (doc->base && (path = svg_image_path(doc->base, href)) != NULL &&
+               sr__read_file_as(path, "an image file", &file, &n, &err) == SR_OK) {
+        bytes = (uint8_t *)file;
     }
+    if (bytes && looks_like_xml(bytes, n)) {
+        draw_svg_image(doc, node, f, (const char *)bytes, n, path, href);
+        r = SR_OK;
+    } else if (bytes) {
+        r = sr_decode_image(path ? path : doc->file, bytes, n, &iw, &ih, &px, &err);
+    }
+    if (file) {
+        sr__free_file(file, n);
+    } else {
+        free(bytes);
+    }
+    free(path);
     if (r != SR_OK) {
         char what[64];
         snprintf(what, sizeof what, "%.60s", href);
-        warn_once(doc, "image source (not a readable PNG or JPEG next to the document)", what);
-        free(px);
-        return;
+        warn_once(doc, "image source (not a readable PNG, JPEG or SVG next to the document)",
+                  what);
     }
     double vp[4];
-    if (image_rect(doc, node, f, vp) && work_within_budget(doc, (double)iw * ih)) {
-        /* a missing size is the picture's; one side given: the other
-         * keeps the picture's proportions */
+    if (px && image_viewport(doc, node, f, iw, ih, vp) &&
+        work_within_budget(doc, (double)iw * ih)) {
         double x = vp[0], y = vp[1], w = vp[2], h = vp[3];
-        w = w >= 0 ? w : h >= 0 ? h * iw / ih : iw;
-        h = h >= 0 ? h : vp[2] >= 0 ? w * ih / iw : ih;
         double vb[4] = { 0, 0, iw, ih };
         mat2d fit = viewbox_matrix(doc, node->atts, vb, x, y, w, h), inv;
         /* drawn where the picture and its viewport meet */
@@ -2604,11 +2832,6 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
 }
 
 /* ---- clipping and layers ------------------------------------------------------------- */
-
-/* Layers (group opacity, clip paths) nested deeper than this fold their
- * opacity into the shapes and draw unclipped, with a warning: each layer
- * is a whole image of memory. */
-#define MAX_LAYERS 8
 
 /* Add the coverage of one clip shape to the mask: union, a + b - ab. */
 static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *mask,
@@ -2753,16 +2976,6 @@ static frame viewport_frame(svg_doc *doc, const svg_node *node, const frame *f)
         in.vp_h = r[3];
     }
     return in;
-}
-
-/* The coverage of a nested svg's viewport (overflow is hidden); NULL
- * when it is empty or after a failure. */
-static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f);
-
-static uint8_t *nested_viewport(svg_doc *doc, const svg_node *node, const frame *f)
-{
-    double r[4];
-    return viewport_rect(doc, node, f, r) ? rect_coverage(doc, r, f) : NULL;
 }
 
 /* The coverage of the rectangle x, y, width, height = r in f's user
@@ -2998,7 +3211,7 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
         h *= b[3] - b[1];
     }
     if (!(w > 0 && h > 0) || !isfinite(w * h)) {
-        return true; /* an empty tile paints nothing */
+        return false; /* an empty tile: the fallback color, if any, paints */
     }
     /* the content's units onto the tile, its top left at the origin */
     mat2d cm = IDENTITY;
@@ -3014,13 +3227,7 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
     } else if (cu && strcmp(cu, "objectBoundingBox") == 0 && have_box) {
         cm = (mat2d){ b[2] - b[0], 0, 0, b[3] - b[1], 0, 0 };
     }
-    mat2d pm = f->m, t;
-    const char *tr = grad_attr(doc, pat, "patternTransform");
-    if (tr && !parse_transform(tr, &t)) {
-        warn_once(doc, "patternTransform", tr);
-    } else if (tr) {
-        pm = mat_mul(pm, t);
-    }
+    mat2d pm = mat_mul(f->m, server_transform(doc, pat, "patternTransform", f));
     /* The tile at the device's scale along each of its axes. */
     double sx = hypot(pm.a, pm.b), sy = hypot(pm.c, pm.d), tw = w * sx, th = h * sy;
     if (!(tw > 0 && th > 0) || !isfinite(tw * th)) {
@@ -3260,6 +3467,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     f.st.origin_pct = 0;
     f.st.blend = SVG_BLEND_NORMAL;
     f.st.isolate = false;
+    f.st.overflow_visible = false;
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
@@ -3273,16 +3481,17 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
             svg_fail(doc, SR_BAD_FORMAT, "transform=\"%s\" is malformed", tr);
             return;
         }
-        /* about transform-origin: move it to 0, transform, move back */
-        double ox = f.st.origin[0] * (f.st.origin_pct & 1 ? f.vp_w : 1);
-        double oy = f.st.origin[1] * (f.st.origin_pct & 2 ? f.vp_h : 1);
-        t = mat_mul(mat_mul((mat2d){ 1, 0, 0, 1, ox, oy }, t), (mat2d){ 1, 0, 0, 1, -ox, -oy });
-        f.m = mat_mul(f.m, t);
+        f.m = mat_mul(f.m, about_origin(t, &f.st, &f));
     }
-    /* A nested svg: a new viewport, which clips what it holds. */
+    /* A nested svg: a new viewport, which clips what it holds unless
+     * its overflow is visible; one of no area shows nothing. */
     uint8_t *viewport = NULL;
-    if (nested && !(viewport = nested_viewport(doc, node, &f))) {
-        return;
+    if (nested) {
+        double r[4];
+        if (!viewport_rect(doc, node, &f, r) ||
+            (!f.st.overflow_visible && !(viewport = rect_coverage(doc, r, &f)))) {
+            return;
+        }
     }
     /* A group's opacity and any clip path apply to the element drawn
      * whole in a layer of its own; a lone shape's opacity folds into its
@@ -3294,8 +3503,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         layer = false;
     }
     if (!layer) {
-        if (viewport) { /* no layer left: the viewport maps, but does not clip */
-            free(viewport);
+        free(viewport); /* no layer left: the viewport maps, but does not clip */
+        if (nested) {
             f = viewport_frame(doc, node, &f);
         }
         f.st.opacity *= f.st.own_opacity;
@@ -3313,6 +3522,8 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         multiply_coverage(viewport, mask, doc);
         free(mask);
         mask = viewport;
+    }
+    if (nested) {
         f = viewport_frame(doc, node, &f);
     }
     sr_framebuffer *under = doc->fb, *top = doc->status == SR_OK ? open_layer(doc) : NULL;
@@ -3359,6 +3570,69 @@ static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bo
 
 /* ---- the entry point -------------------------------------------------------------- */
 
+/* Read the tree, the ids and the style sheets of data; false after a
+ * failure (reported in doc->msg). */
+static bool read_document(svg_doc *doc, const char *data, size_t size)
+{
+    doc->parser = XML_ParserCreate(NULL);
+    if (!doc->parser) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return false;
+    }
+    XML_SetUserData(doc->parser, doc);
+    XML_SetElementHandler(doc->parser, on_start, on_end);
+    XML_SetCharacterDataHandler(doc->parser, on_text);
+    /* XML_Parse takes an int length: feed the buffer in pieces. */
+    const size_t piece = (size_t)1 << 20;
+    size_t at = 0;
+    do {
+        size_t n = size - at < piece ? size - at : piece;
+        bool last = at + n == size;
+        if (XML_Parse(doc->parser, data ? data + at : "", (int)n, last) == XML_STATUS_ERROR) {
+            if (doc->status == SR_OK) {
+                doc->line = XML_GetCurrentLineNumber(doc->parser);
+                svg_fail(doc, SR_BAD_FORMAT, "%s", XML_ErrorString(XML_GetErrorCode(doc->parser)));
+            }
+            break;
+        }
+        at += n;
+    } while (at < size && doc->status == SR_OK);
+    if (doc->status == SR_OK && !doc->root) {
+        doc->line = 1;
+        svg_fail(doc, SR_BAD_FORMAT, "no <svg> element");
+    }
+    return doc->status == SR_OK && index_document(doc);
+}
+
+/* What read_document and the drawing allocated, the image aside. */
+static void free_document(svg_doc *doc)
+{
+    for (int i = 0; i < doc->n_warned; i++) {
+        free(doc->warned[i]);
+    }
+    if (doc->parser) {
+        XML_ParserFree(doc->parser);
+    }
+    free_tree(doc->root);
+    free(doc->ids);
+    free(doc->verts);
+    svg_css_free(&doc->sheet);
+}
+
+/* The initial style (SVG's defaults): fill black, no stroke, width 1. */
+static style initial_style(void)
+{
+    return (style){ .fill = { .kind = SVG_PAINT_COLOR, .color = { 0, 0, 0, 1 } },
+                    .stroke = { .kind = SVG_PAINT_NONE },
+                    .color = { 0, 0, 0, 1 }, .stop_color = { 0, 0, 0, 1 }, .stop_opacity = 1,
+                    .fill_opacity = 1, .stroke_opacity = 1, .opacity = 1,
+                    .own_opacity = 1, .clip_rule = SR_NONZERO,
+                    .fill_rule = SR_NONZERO, .stroke_width = 1,
+                    .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
+                    .miter_limit = 4,
+                    .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } };
+}
+
 static sr_result render(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *opt,
                         sr_framebuffer **out, sr_svg_info *info, char *msg, size_t msg_size)
 {
@@ -3374,60 +3648,21 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
         return SR_OUT_OF_MEMORY;
     }
     doc->file = name;
+    doc->base = opt->name;
     doc->opt = opt;
     doc->ctx = ctx;
     doc->status = SR_OK;
     doc->msg = msg;
     doc->msg_size = msg_size;
     doc->points_budget = SR_SVG_POINTS_BASE + (double)SR_SVG_POINTS_PER_BYTE * (double)size;
-    doc->parser = XML_ParserCreate(NULL);
-    if (!doc->parser) {
-        free(doc);
-        snprintf(msg, msg_size, "%s: out of memory", name);
-        return SR_OUT_OF_MEMORY;
-    }
-    XML_SetUserData(doc->parser, doc);
-    XML_SetElementHandler(doc->parser, on_start, on_end);
-    XML_SetCharacterDataHandler(doc->parser, on_text);
-    /* XML_Parse takes an int length: feed the buffer in pieces. */
-    const size_t piece = (size_t)1 << 20;
-    size_t at = 0;
-    do {
-        size_t n = size - at < piece ? size - at : piece;
-        bool last = at + n == size;
-        if (XML_Parse(doc->parser, data ? data + at : "", (int)n, last) == XML_STATUS_ERROR) {
-            if (doc->status == SR_OK) {
-                snprintf(msg, msg_size, "%s:%lu: %s", name,
-                         (unsigned long)XML_GetCurrentLineNumber(doc->parser),
-                         XML_ErrorString(XML_GetErrorCode(doc->parser)));
-                doc->status = SR_BAD_FORMAT;
-            }
-            break;
-        }
-        at += n;
-    } while (at < size && doc->status == SR_OK);
-    if (doc->status == SR_OK && doc->root && index_document(doc)) {
-        /* Initial style (SVG defaults): fill black, no stroke, width 1. */
-        frame f = { .m = IDENTITY,
-                    .st = { .fill = { .kind = SVG_PAINT_COLOR, .color = { 0, 0, 0, 1 } },
-                            .stroke = { .kind = SVG_PAINT_NONE },
-                            .color = { 0, 0, 0, 1 },
-                            .fill_opacity = 1, .stroke_opacity = 1, .opacity = 1,
-                            .own_opacity = 1, .clip_rule = SR_NONZERO,
-                            .fill_rule = SR_NONZERO, .stroke_width = 1,
-                            .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
-                            .miter_limit = 4,
-                            .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } } };
+    if (read_document(doc, data, size)) {
+        frame f = { .m = IDENTITY, .st = initial_style() };
         doc->line = doc->root->line;
         doc->initial = f.st;
         if (root_element(doc, doc->root->atts, &f)) {
             doc->root_m = f.m;
             draw_node(doc, doc->root, &f);
         }
-    }
-    if (doc->status == SR_OK && !doc->fb) {
-        snprintf(msg, msg_size, "%s:1: no <svg> element", name);
-        doc->status = SR_BAD_FORMAT;
     }
     sr_result status = doc->status;
     if (status == SR_OK) {
@@ -3438,14 +3673,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
     *info = (sr_svg_info){ .points_used = doc->points_used, .points_budget = doc->points_budget,
                            .work_used = doc->work_used, .work_budget = doc->work_budget,
                            .warnings = doc->warnings };
-    for (int i = 0; i < doc->n_warned; i++) {
-        free(doc->warned[i]);
-    }
-    XML_ParserFree(doc->parser);
-    free_tree(doc->root);
-    free(doc->ids);
-    free(doc->verts);
-    svg_css_free(&doc->sheet);
+    free_document(doc);
     free(doc);
     return status;
 }

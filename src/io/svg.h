@@ -41,11 +41,23 @@ typedef struct svg_node {
 /* Matching steps for one document: beyond this it is refused. */
 #define SVG_CSS_MAX_WORK 20000000L
 
+#define SVG_CSS_MAX_ATTRS 4
+
+/* An attribute test: [name] (op 0), [name=v], [name~=v] (a word of the
+ * list), [name|=v] (v or v-...), [name^=v], [name$=v], [name*=v]. */
+typedef struct svg_css_attr {
+    char *name, *value;
+    char op;                     /* 0, '=', '~', '|', '^', '$', '*' */
+} svg_css_attr;
+
 typedef struct svg_css_compound {
     char *type, *id;             /* NULL: any */
     char *classes[SVG_CSS_MAX_CLASSES];
     int n_classes;
-    char combinator;             /* to the compound on its left: ' ' or '>' */
+    svg_css_attr attrs[SVG_CSS_MAX_ATTRS];
+    int n_attrs;
+    bool first_child;            /* :first-child */
+    char combinator;             /* to the compound on its left: ' ', '>', '+' or '~' */
 } svg_css_compound;
 
 typedef struct svg_css_selector {
@@ -138,12 +150,15 @@ sr_rgba svg_image_at(const void *image, double x, double y);
 
 /* ---- image sources (svg_image.c) ---------------------------------------- */
 
-/* The bytes of a base64 data: URI (*out malloc'd); false when uri is not
- * one (another scheme, no base64, a bad character) or out of memory. */
+/* The bytes of a data: URI (*out malloc'd): base64,
+ * or percent-encoded text (an SVG's "data:image/svg+xml,%3Csvg..."); false
+ * when uri is not one (another scheme, a bad character or escape) or out
+ * of memory. */
 bool svg_data_uri(const char *uri, uint8_t **out, size_t *size);
 
 /* The file an <image> href names, relative to the directory of the
- * document's path (malloc'd); NULL for what is not read: absolute paths,
+ * document's path, its "." and empty segments dropped (so that a file
+ * has one name); malloc'd; NULL for what is not read: absolute paths,
  * URLs, paths that climb out with "..", or out of memory. */
 char *svg_image_path(const char *document, const char *href);
 

@@ -2,10 +2,12 @@
  * elements parsed into rules (selector lists and declarations), and the
  * match of one selector against an element of the document tree.
  *
- * Selectors: type, '*', .class, #id, compounds of them, descendant
- * (blank) and child ('>') combinators.  A selector with anything else
- * (attribute tests, pseudo-classes, sibling combinators) never matches and
- * the caller is told once.  At-rules are skipped whole. */
+ * Selectors: type, '*', .class, #id, attribute tests ([a], [a=v], [a~=v],
+ * [a|=v], [a^=v], [a$=v], [a*=v]), :first-child, compounds of them,
+ * descendant (blank), child ('>'), next-sibling ('+') and later-sibling
+ * ('~') combinators.  A selector with anything else (other pseudo-classes,
+ * pseudo-elements, namespaces) never matches and the caller is told once.
+ * At-rules are skipped whole. */
 #include "io/svg.h"
 
 #include <ctype.h>
@@ -42,6 +44,65 @@ static bool is_ident(char c)
     return isalnum((unsigned char)c) || c == '-' || c == '_' || (unsigned char)c >= 0x80;
 }
 
+/* An attribute test "[name op value]" at s (s < e, *s == '['), added to c;
+ * the end of the test, or NULL when it is malformed. */
+static const char *parse_attr_test(const char *s, const char *e, svg_css_compound *c)
+{
+    s = skip_blank(s + 1, e);
+    const char *n = s;
+    while (s < e && (is_ident(*s) || *s == ':')) {
+        s++;
+    }
+    if (s == n) {
+        return NULL;
+    }
+    svg_css_attr a = { .name = dup_range(n, s) };
+    s = skip_blank(s, e);
+    if (s < e && strchr("~|^$*", *s) && s + 1 < e && s[1] == '=') {
+        a.op = *s;
+        s += 2;
+    } else if (s < e && *s == '=') {
+        a.op = '=';
+        s++;
+    }
+    if (a.op) {
+        s = skip_blank(s, e);
+        const char *v = s, *ve;
+        if (s < e && (*s == '"' || *s == '\'')) {
+            const char *q = memchr(s + 1, *s, (size_t)(e - s - 1));
+            if (!q) {
+                free(a.name);
+                return NULL;
+            }
+            v = s + 1;
+            ve = q;
+            s = q + 1;
+        } else {
+            while (s < e && is_ident(*s)) {
+                s++;
+            }
+            ve = s;
+            if (ve == v) {
+                free(a.name);
+                return NULL;
+            }
+        }
+        a.value = malloc((size_t)(ve - v) + 1);
+        if (a.value) {
+            memcpy(a.value, v, (size_t)(ve - v));
+            a.value[ve - v] = 0;
+        }
+    }
+    s = skip_blank(s, e);
+    if (s == e || *s != ']' || !a.name || (a.op && !a.value)) {
+        free(a.name);
+        free(a.value);
+        return NULL;
+    }
+    c->attrs[c->n_attrs++] = a;
+    return s + 1;
+}
+
 /* One selector of a list, s..e; false when it uses what is not supported. */
 static bool parse_selector(const char *s, const char *e, svg_css_selector *sel)
 {
@@ -66,7 +127,26 @@ static bool parse_selector(const char *s, const char *e, svg_css_selector *sel)
             c->type = dup_range(t, s);
             any = true;
         }
-        while (s < e && (*s == '.' || *s == '#')) {
+        while (s < e && (*s == '.' || *s == '#' || *s == '[' || *s == ':')) {
+            if (*s == '[') {
+                if (c->n_attrs == SVG_CSS_MAX_ATTRS || !(s = parse_attr_test(s, e, c))) {
+                    return false;
+                }
+                sel->specificity += 100;
+                any = true;
+                continue;
+            }
+            if (*s == ':') {
+                if ((size_t)(e - s) < 12 || strncmp(s, ":first-child", 12) != 0 ||
+                    (s + 12 < e && is_ident(s[12]))) {
+                    return false;
+                }
+                s += 12;
+                c->first_child = true;
+                sel->specificity += 100;
+                any = true;
+                continue;
+            }
             char kind = *s++;
             const char *t = s;
             while (s < e && is_ident(*s)) {
@@ -98,14 +178,14 @@ static bool parse_selector(const char *s, const char *e, svg_css_selector *sel)
         if (t == e) {
             break;
         }
-        if (*t == '>') {
-            comb = '>';
+        if (*t == '>' || *t == '+' || *t == '~') {
+            comb = *t;
             s = skip_blank(t + 1, e);
         } else if (t > s) {
             comb = ' ';
             s = t;
         } else {
-            return false; /* ':', '[', '+', '~' and the like */
+            return false; /* '|', ',' inside and the like */
         }
     }
     return sel->n > 0;
@@ -118,6 +198,10 @@ static void free_selector(svg_css_selector *sel)
         free(sel->parts[i].id);
         for (int k = 0; k < sel->parts[i].n_classes; k++) {
             free(sel->parts[i].classes[k]);
+        }
+        for (int k = 0; k < sel->parts[i].n_attrs; k++) {
+            free(sel->parts[i].attrs[k].name);
+            free(sel->parts[i].attrs[k].value);
         }
     }
 }
@@ -311,8 +395,61 @@ static bool has_class(const char *list, const char *name)
     return false;
 }
 
+/* Whether the value v passes the attribute test a. */
+static bool attr_matches(const svg_css_attr *a, const char *v)
+{
+    size_t n = a->value ? strlen(a->value) : 0, m = strlen(v);
+    switch (a->op) {
+    case 0:
+        return true;
+    case '=':
+        return strcmp(v, a->value) == 0;
+    case '~':
+        return n > 0 && !strpbrk(a->value, " \t\n\r\f") && has_class(v, a->value);
+    case '|':
+        return strncmp(v, a->value, n) == 0 && (v[n] == 0 || v[n] == '-');
+    case '^':
+        return n > 0 && strncmp(v, a->value, n) == 0;
+    case '$':
+        return n > 0 && m >= n && strcmp(v + m - n, a->value) == 0;
+    default: /* '*' */
+        return n > 0 && strstr(v, a->value) != NULL;
+    }
+}
+
+static const char *node_attr(const svg_node *node, const char *name)
+{
+    for (int i = 0; node->atts[i]; i += 2) {
+        if (strcmp(node->atts[i], name) == 0) {
+            return node->atts[i + 1];
+        }
+    }
+    return NULL;
+}
+
+/* The element before node among its parent's children, or NULL. */
+static const svg_node *previous_sibling(const svg_node *node, long *work)
+{
+    const svg_node *prev = NULL;
+    for (const svg_node *c = node->parent ? node->parent->first : NULL; c && c != node;
+         c = c->next) {
+        ++*work;
+        prev = c;
+    }
+    return prev;
+}
+
 static bool compound_matches(const svg_css_compound *c, const svg_node *node)
 {
+    if (c->first_child && node->parent && node->parent->first != node) {
+        return false;
+    }
+    for (int i = 0; i < c->n_attrs; i++) {
+        const char *v = node_attr(node, c->attrs[i].name);
+        if (!v || !attr_matches(&c->attrs[i], v)) {
+            return false;
+        }
+    }
     if (c->type && strcmp(c->type, node->name) != 0) {
         return false;
     }
@@ -340,6 +477,19 @@ static bool match_from(const svg_css_selector *sel, int k, const svg_node *node,
         return true;
     }
     char comb = sel->parts[k].combinator;
+    if (comb == '+') {
+        const svg_node *p = previous_sibling(node, work);
+        return p && match_from(sel, k - 1, p, work);
+    }
+    if (comb == '~') {
+        for (const svg_node *p = node->parent ? node->parent->first : NULL; p && p != node;
+             p = p->next) {
+            if (match_from(sel, k - 1, p, work)) {
+                return true;
+            }
+        }
+        return false;
+    }
     for (const svg_node *p = node->parent; p; p = p->parent) {
         if (match_from(sel, k - 1, p, work)) {
             return true;

@@ -7,6 +7,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+static int hex_digit(char c)
+{
+    return c >= '0' && c <= '9' ? c - '0'
+           : c >= 'a' && c <= 'f' ? c - 'a' + 10
+           : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+}
+
 bool svg_data_uri(const char *uri, uint8_t **out, size_t *size)
 {
     *out = NULL;
@@ -18,12 +25,32 @@ bool svg_data_uri(const char *uri, uint8_t **out, size_t *size)
     if (!comma) {
         return false;
     }
-    /* only base64 payloads: images are binary */
     const char *b64 = strstr(uri, ";base64");
-    if (!b64 || b64 > comma) {
+    if (b64 && b64 < comma) {
+        return sr__base64_decode(comma + 1, strlen(comma + 1), out, size) && *out;
+    }
+    const char *s = comma + 1;
+    uint8_t *o = malloc(strlen(s) + 1);
+    if (!o) {
         return false;
     }
-    return sr__base64_decode(comma + 1, strlen(comma + 1), out, size) && *out;
+    size_t n = 0;
+    for (; *s; s++) {
+        int hi, lo;
+        if (*s != '%') {
+            o[n++] = (uint8_t)*s;
+        } else if ((hi = hex_digit(s[1])) >= 0 && (lo = hex_digit(s[2])) >= 0) {
+            o[n++] = (uint8_t)(hi * 16 + lo);
+            s += 2;
+        } else {
+            free(o);
+            return false;
+        }
+    }
+    o[n] = 0;
+    *out = o;
+    *size = n;
+    return true;
 }
 
 char *svg_image_path(const char *document, const char *href)
@@ -41,9 +68,22 @@ char *svg_image_path(const char *document, const char *href)
     const char *slash = strrchr(document, '/');
     size_t dir = slash ? (size_t)(slash - document + 1) : 0;
     char *path = malloc(dir + strlen(href) + 1);
-    if (path) {
-        memcpy(path, document, dir);
-        strcpy(path + dir, href);
+    if (!path) {
+        return NULL;
     }
+    memcpy(path, document, dir);
+    char *o = path + dir;
+    for (const char *s = href; *s;) {
+        size_t len = strcspn(s, "/");
+        if (len > 0 && !(len == 1 && s[0] == '.')) {
+            memcpy(o, s, len);
+            o += len;
+            if (s[len] == '/') {
+                *o++ = '/';
+            }
+        }
+        s += len + (s[len] == '/');
+    }
+    *o = 0;
     return path;
 }

@@ -13,7 +13,10 @@ differently stay under it.  A file matches a renderer when at most --match
 of its pixels differ.  softrast's exit status and warnings (stderr lines)
 are counted too: a crash is any status other than 0 (drawn) or 2
 (refused).  One line per file (unless --quiet): the two shares ("-" where
-that renderer failed or gave another size), then the warnings.
+that renderer failed or gave another size), then the warnings.  With
+resvg, a last line takes it as the reference for a conformance suite:
+of all the files resvg drew, how many softrast and rsvg-convert match
+(a file softrast refused counts as not matching).
 
 rsvg-convert is Debian's librsvg2-bin; resvg is the npm package
 @resvg/resvg-js, installed beside this script by
@@ -173,6 +176,7 @@ def main():
     matched = {r: 0 for r in renderers}
     compared = {r: 0 for r in renderers}
     rows = []
+    against_resvg = {"files": 0, "softrast": 0, "rsvg-convert": 0}
     with tempfile.TemporaryDirectory() as tmp:
         drawn = []
         for k, path in enumerate(files):
@@ -201,7 +205,20 @@ def main():
         written = set()
         if use_resvg:
             written = render_resvg([(path, os.path.join(tmp, "%d.resvg.png" % k), args.size)
-                                    for k, path, _ in drawn])
+                                    for k, path in enumerate(files)])
+            # resvg as the reference: every file it drew, and which of
+            # softrast's and rsvg-convert's images match it
+            drawn_k = {k for k, _, _ in drawn}
+            for k in range(len(files)):
+                ref = os.path.join(tmp, "%d.resvg.png" % k)
+                if ref not in written:
+                    continue
+                against_resvg["files"] += 1
+                for name, png in (("softrast", "%d.png" % k), ("rsvg-convert", "%d.rsvg.png" % k)):
+                    if name == "softrast" and k not in drawn_k:
+                        continue
+                    share = share_between(os.path.join(tmp, png), ref, args.threshold)
+                    against_resvg[name] += share is not None and share <= args.match
         for k, path, warnings in drawn:
             ours = os.path.join(tmp, "%d.png" % k)
             shares = []
@@ -234,6 +251,13 @@ def main():
         print("match %s (<= %.1f%% of pixels differing by > %d): %d of %d compared (%.1f%%)"
               % (name, 100 * args.match, args.threshold, matched[name], compared[name],
                  100.0 * matched[name] / compared[name] if compared[name] else 0))
+    n = against_resvg["files"]
+    if use_resvg:
+        print("against resvg, all %d files it drew: softrast matches %d (%.1f%%), rsvg-convert %d "
+              "(%.1f%%)" % (n, against_resvg["softrast"],
+                            100.0 * against_resvg["softrast"] / n if n else 0,
+                            against_resvg["rsvg-convert"],
+                            100.0 * against_resvg["rsvg-convert"] / n if n else 0))
     return 1 if stats["crash"] else 0
 
 
