@@ -434,7 +434,10 @@ typedef struct sr_context_desc {
      * nowhere else, and a request the arena cannot meet fails with
      * SR_OUT_OF_MEMORY.  The memory must outlive the context; it needs no
      * alignment.  An arena is not locked, so such a context has one
-     * thread (threads 0 or 1) and excludes `allocator`. */
+     * thread (threads 0 or 1) and excludes `allocator`.  Its indexed
+     * draws transform their vertices into a window of 128 at a time
+     * (as every context of the embedded profile does), so that the draw
+     * scratch does not grow with the mesh. */
     void *arena;
     size_t arena_size;
 } sr_context_desc;

@@ -125,16 +125,30 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
         }
     }
     bool fused = verts_per_prim != 0;
+    /* A context on a fixed budget (the caller's arena, or the embedded
+     * profile) draws an indexed mesh through a window of its vertices
+     * (geometry/assembly.c), so its scratch does not grow with the mesh;
+     * such a context has one thread. */
+#ifdef SR_EMBEDDED
+    bool bounded = true;
+#else
+    bool bounded = ctx->arena != NULL;
+#endif
+    size_t window = 0;
+    if (!fused && bounded) {
+        window = d->vertex_count < SR_VERTEX_WINDOW ? d->vertex_count : SR_VERTEX_WINDOW;
+    }
     /* More chunks than threads evens out uneven clipping and culling: the
      * bunny's first quarter of triangles takes four times as long to set up
      * as its last (culled backs), and with two chunks a thread the pool's
      * stealing could not even that out. */
     int chunks = ctx->threads == 1 ? 1 : ctx->threads * SR_CHUNKS_PER_THREAD;
     sr_scratch *s = ctx->scratch;
-    if (!sr__scratch_reserve(&ctx->allocator, s, fused ? 0 : d->vertex_count,
+    size_t post_count = fused ? 0 : (window ? window : d->vertex_count);
+    if (!sr__scratch_reserve(&ctx->allocator, s, post_count, ds.nvary,
                              (size_t)ds.tiles_x * ds.tiles_y, chunks)) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_draw: out of memory for %zu vertices",
-                        d->vertex_count);
+                        post_count);
     }
     sr__ok(ctx);
     if (prims == 0 || ds.rect_x0 >= ds.rect_x1 || ds.rect_y0 >= ds.rect_y1 ||
@@ -153,7 +167,13 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     if (!sr_normal_matrix(&mv, &nm)) {
         nm = mv; /* singular model-view (a flattening scale): best effort */
     }
-    if (!fused) {
+    if (window) {
+        sr_result ri = check_indices(ctx, d, max_index(&ds, d, 0, d->index_count));
+        if (ri != SR_OK) {
+            return ri;
+        }
+        s->window_lo = s->window_hi = 0;
+    } else if (!fused) {
         /* Blocks of at most 4096 vertices, a multiple of the thread count
          * of them: the pool gives each thread a contiguous share of the
          * blocks, as it does the front end's chunks, and a mesh's
@@ -190,7 +210,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     size_t record_size =
         sr__record_size(ds.ninterp, ds.shading == SR_SHADING_FLAT, triangles_only);
     sr_front_end fe = { ctx, &ds, d, record_size, chunks, fused, ctx->threads > 1,
-                     verts_per_prim, &mvp, &mv, &nm };
+                     verts_per_prim, window, &mvp, &mv, &nm };
     bool oom = false;
     /* Equal batches of at most the context's batch size, so no batch is a
      * sliver. */

@@ -1,5 +1,6 @@
 /* scratch.h - a draw call's working memory, owned by the context and kept
- * across draws: post-transform vertices, and per front-end chunk its
+ * across draws: post-transform vertices (the draw's, or a window of them),
+ * and per front-end chunk its
  * set-up triangles and tile bins.  Grown on demand, never shrunk until the
  * context is destroyed, so steady-state frames allocate nothing. */
 #ifndef SR_SCRATCH_H
@@ -23,6 +24,11 @@
  * a million small triangles 16%, 4x MSAA 7% slower, for about 35 MB less
  * scratch at the bunny's size). */
 #define SR_CHUNKS_PER_THREAD 4
+/* Vertices in the window a context on a fixed budget draws an indexed
+ * mesh through (sr_front_end.window): 128 hold a few rows of a patch or
+ * grid mesh, whose triangles use vertices near their own place in the
+ * order, in 10 KiB for Phong's 80 bytes a vertex. */
+#define SR_VERTEX_WINDOW 128
 #define SR_MAX_CHUNKS (SR_CHUNKS_PER_THREAD * SR_MAX_THREADS)
 
 /* One front-end chunk: a contiguous range of primitives, the triangles it
@@ -58,8 +64,12 @@ typedef struct sr_chunk {
 
 typedef struct sr_scratch {
     sr_vertex_post *post;
-    float *vary;               /* SR_MAX_VARYINGS per vertex at most */
-    size_t vert_cap;
+    float *vary;               /* the draw's nvary per vertex */
+    size_t vert_cap;           /* capacity of post, in vertices */
+    size_t vary_cap;           /* capacity of vary, in floats */
+    /* Drawing through a vertex window (sr_front_end.window): post and vary
+     * hold vertices [window_lo, window_hi). */
+    size_t window_lo, window_hi;
 
     sr_chunk chunks[SR_MAX_CHUNKS];
     size_t tile_cap;
@@ -70,9 +80,10 @@ typedef struct sr_scratch {
 
 sr_scratch *sr__scratch_create(const sr_allocator *a);
 void sr__scratch_destroy(const sr_allocator *a, sr_scratch *s);
-/* Room for `count` vertices and `tiles` tiles in `chunks` chunks. */
-bool sr__scratch_reserve(const sr_allocator *a, sr_scratch *s, size_t count, size_t tiles,
-                         int chunks);
+/* Room for `count` vertices of `nvary` varyings and `tiles` tiles in
+ * `chunks` chunks. */
+bool sr__scratch_reserve(const sr_allocator *a, sr_scratch *s, size_t count, int nvary,
+                         size_t tiles, int chunks);
 /* Grow a chunk's triangle store to hold `records` of `size` bytes, and its
  * tile boxes to one per record the store can hold (called
  * from front-end workers: the allocator must be thread-safe). */

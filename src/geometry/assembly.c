@@ -10,6 +10,7 @@
 #include "scratch.h"
 #include "raster/setup_tri.h"
 
+#include <assert.h>
 #include <math.h>
 #include <string.h>
 
@@ -363,50 +364,153 @@ static void point(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs, 
     emit_point(fe, c, &w, 0.0, true, provoking_color(ds, a));
 }
 
-/* Primitive p of the draw, with the provoking vertex of docs/raster-rules.md §5.4. */
-static void primitive(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs, size_t p)
+/* The vertices of primitive p of the draw in the order assembly takes
+ * them (a strip's odd triangles swap their first two, to keep winding)
+ * and its provoking vertex (docs/raster-rules.md §5.4): 3 of them for a
+ * triangle, 2 for a segment, 1 for a point. */
+static inline __attribute__((always_inline)) int
+prim_vertices(const sr_draw_desc *d, bool last, size_t p, uint32_t v[3], uint32_t *pv)
 {
-    const sr_draw_desc *d = fe->d;
-    bool last = fe->ds->provoking_last;
     switch (d->primitive) {
     case SR_PRIM_TRIANGLE_STRIP: {
         uint32_t a = sr__index_at(d, p), b = sr__index_at(d, p + 1), e = sr__index_at(d, p + 2);
-        uint32_t pv = last ? e : a;
-        /* Odd triangles swap their first two vertices to keep winding. */
-        if (p & 1) {
-            triangle(fe, c, vs, b, a, e, pv);
-        } else {
-            triangle(fe, c, vs, a, b, e, pv);
-        }
-        break;
+        *pv = last ? e : a;
+        v[0] = p & 1 ? b : a;
+        v[1] = p & 1 ? a : b;
+        v[2] = e;
+        return 3;
     }
-    case SR_PRIM_TRIANGLE_FAN: {
-        uint32_t a = sr__index_at(d, 0), b = sr__index_at(d, p + 1), e = sr__index_at(d, p + 2);
-        triangle(fe, c, vs, a, b, e, last ? e : b);
-        break;
-    }
-    case SR_PRIM_LINES: {
-        uint32_t a = sr__index_at(d, 2 * p), b = sr__index_at(d, 2 * p + 1);
-        segment(fe, c, vs, a, b, last ? b : a);
-        break;
-    }
+    case SR_PRIM_TRIANGLE_FAN:
+        v[0] = sr__index_at(d, 0);
+        v[1] = sr__index_at(d, p + 1);
+        v[2] = sr__index_at(d, p + 2);
+        *pv = last ? v[2] : v[1];
+        return 3;
+    case SR_PRIM_LINES:
+        v[0] = sr__index_at(d, 2 * p);
+        v[1] = sr__index_at(d, 2 * p + 1);
+        *pv = last ? v[1] : v[0];
+        return 2;
     case SR_PRIM_LINE_STRIP:
     case SR_PRIM_LINE_LOOP: {
         /* A loop's last segment closes back to the first vertex. */
         size_t n = d->index_type == SR_INDEX_NONE ? d->vertex_count : d->index_count;
-        uint32_t a = sr__index_at(d, p), b = sr__index_at(d, (p + 1) % n);
-        segment(fe, c, vs, a, b, last ? b : a);
-        break;
+        v[0] = sr__index_at(d, p);
+        v[1] = sr__index_at(d, (p + 1) % n);
+        *pv = last ? v[1] : v[0];
+        return 2;
     }
     case SR_PRIM_POINTS:
-        point(fe, c, vs, sr__index_at(d, p));
-        break;
-    default: {
-        uint32_t a = sr__index_at(d, 3 * p), b = sr__index_at(d, 3 * p + 1);
-        uint32_t e = sr__index_at(d, 3 * p + 2);
-        triangle(fe, c, vs, a, b, e, last ? e : a);
-        break;
+        v[0] = *pv = sr__index_at(d, p);
+        return 1;
+    default:
+        v[0] = sr__index_at(d, 3 * p);
+        v[1] = sr__index_at(d, 3 * p + 1);
+        v[2] = sr__index_at(d, 3 * p + 2);
+        *pv = last ? v[2] : v[0];
+        return 3;
     }
+}
+
+/* The primitive of n vertices v[] with provoking vertex pv, from vs. */
+static inline void assemble(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs, int n,
+                            const uint32_t v[3], uint32_t pv)
+{
+    if (n == 3) {
+        triangle(fe, c, vs, v[0], v[1], v[2], pv);
+    } else if (n == 2) {
+        segment(fe, c, vs, v[0], v[1], pv);
+    } else {
+        point(fe, c, vs, v[0]);
+    }
+}
+
+/* Primitive p of the draw. */
+static void primitive(const sr_front_end *fe, sr_chunk *c, const sr_vertex_src *vs, size_t p)
+{
+    uint32_t v[3], pv;
+    int n = prim_vertices(fe->d, fe->ds->provoking_last, p, v, &pv);
+    assemble(fe, c, vs, n, v, pv);
+}
+
+/* The vertex stage for vertices [first, first + count) into the window's
+ * slots from `slot` on. */
+static void window_fill(const sr_front_end *fe, sr_scratch *s, size_t first, size_t count,
+                        size_t slot)
+{
+    sr__vertex_stage(fe->ds, fe->d, fe->mvp, fe->mv, fe->nm, first, count, s->post + slot,
+                     s->vary + slot * (size_t)fe->ds->nvary);
+}
+
+/* Move the vertex window (s->window_lo .. window_hi) to hold vertices
+ * [lo, hi], hi - lo < fe->window: it starts at lo (ends at the last
+ * vertex near the end), keeps what it held there and runs the vertex
+ * stage for the rest, so that a mesh whose primitives use vertices near
+ * their own place in the order transforms each about once. */
+static void window_cover(const sr_front_end *fe, sr_scratch *s, size_t lo, size_t hi)
+{
+    size_t n = fe->window, count = fe->d->vertex_count, nv = (size_t)fe->ds->nvary;
+    size_t wlo = count - lo < n ? count - n : lo, whi = wlo + n;
+    assert(wlo <= lo && hi < whi);
+    (void)hi;
+    size_t keep_lo = s->window_lo > wlo ? s->window_lo : wlo;
+    size_t keep_hi = s->window_hi < whi ? s->window_hi : whi;
+    if (keep_lo < keep_hi) {
+        memmove(s->post + (keep_lo - wlo), s->post + (keep_lo - s->window_lo),
+                (keep_hi - keep_lo) * sizeof *s->post);
+        memmove(s->vary + (keep_lo - wlo) * nv, s->vary + (keep_lo - s->window_lo) * nv,
+                (keep_hi - keep_lo) * nv * sizeof *s->vary);
+    } else {
+        keep_lo = keep_hi = wlo;
+    }
+    window_fill(fe, s, wlo, keep_lo - wlo, 0);
+    window_fill(fe, s, keep_hi, whi - keep_hi, keep_hi - wlo);
+    s->window_lo = wlo;
+    s->window_hi = whi;
+}
+
+/* A primitive whose vertices lie too far apart for the window: the
+ * vertex stage for each of them alone. */
+static void gathered_primitive(const sr_front_end *fe, sr_chunk *c, int n, const uint32_t v[3],
+                               uint32_t pv)
+{
+    sr_vertex_post post[3];
+    float vary[3 * SR_MAX_VARYINGS];
+    size_t nv = (size_t)fe->ds->nvary;
+    uint32_t slot[3] = { 0, 1, 2 }, pslot = 0;
+    for (int k = n - 1; k >= 0; k--) {
+        sr__vertex_stage(fe->ds, fe->d, fe->mvp, fe->mv, fe->nm, v[k], 1, &post[k],
+                         vary + (size_t)k * nv);
+        pslot = v[k] == pv ? slot[k] : pslot;
+    }
+    sr_vertex_src vs = { post, vary, 0 };
+    assemble(fe, c, &vs, n, slot, pslot);
+}
+
+/* The chunk's primitives through the vertex window (fe->window): the
+ * working memory of an indexed draw bounded by the window's size rather
+ * than the mesh's. */
+static void windowed_primitives(const sr_front_end *fe, sr_chunk *c)
+{
+    sr_scratch *s = fe->ctx->scratch;
+    bool last = fe->ds->provoking_last;
+    for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
+        uint32_t v[3], pv;
+        int n = prim_vertices(fe->d, last, p, v, &pv);
+        uint32_t lo = v[0], hi = v[0];
+        for (int k = 1; k < n; k++) {
+            lo = v[k] < lo ? v[k] : lo;
+            hi = v[k] > hi ? v[k] : hi;
+        }
+        if (hi - lo >= fe->window) {
+            gathered_primitive(fe, c, n, v, pv);
+            continue;
+        }
+        if (lo < s->window_lo || hi >= s->window_hi) {
+            window_cover(fe, s, lo, hi);
+        }
+        sr_vertex_src vs = { s->post, s->vary, s->window_lo };
+        assemble(fe, c, &vs, n, v, pv);
     }
 }
 
@@ -482,6 +586,8 @@ void sr__run_front_end(void *arg, int job, int thread)
                 primitive(fe, c, &vs, q);
             }
         }
+    } else if (fe->window) {
+        windowed_primitives(fe, c);
     } else {
         const sr_scratch *s = fe->ctx->scratch;
         sr_vertex_src vs = { s->post, s->vary, 0 };

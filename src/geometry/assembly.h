@@ -21,7 +21,9 @@ static inline uint32_t sr__index_at(const sr_draw_desc *d, size_t i)
 
 /* The front end of one chunk: what a worker needs to assemble, clip and
  * set up its primitives.  With `fused`, each chunk also runs the vertex
- * stage for its own primitives, a block at a time (see sr__run_front_end). */
+ * stage for its own primitives, a block at a time (see sr__run_front_end);
+ * with a `window`, for the vertices its primitives use as it reaches
+ * them. */
 typedef struct sr_front_end {
     sr_context *ctx;
     const sr_draw_state *ds;
@@ -31,12 +33,15 @@ typedef struct sr_front_end {
     bool fused;
     bool shared;                      /* more than one thread: records are read on every core */
     size_t verts_per_prim;            /* fused: primitive p uses vertices k p .. k p + k - 1 */
+    /* Not fused, and not 0: the vertices a primitive uses are transformed
+     * into a window of this many (scratch.h), one thread. */
+    size_t window;
     const sr_mat4 *mvp, *mv, *nm;
 } sr_front_end;
 
 /* Where primitive assembly finds the vertex stage's output: post[i - base]
  * and vary + (i - base) nvary for vertex i - the whole draw's arrays
- * (base 0), or a block of them on the stack. */
+ * (base 0), a window of them, or a block of them on the stack. */
 typedef struct sr_vertex_src {
     const sr_vertex_post *post;
     const float *vary;
