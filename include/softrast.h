@@ -847,6 +847,13 @@ typedef enum sr_provoking_vertex {
     SR_PROVOKING_LAST,        /* OpenGL's default */
 } sr_provoking_vertex;
 
+/* Which depth range sr_state maps z_ndc onto.  An enum rather than a
+ * special pair of values: [0, 0] is a range like any other. */
+typedef enum sr_depth_range_mode {
+    SR_DEPTH_RANGE_DEFAULT = 0, /* [0, 1]; depth_near and depth_far must be left 0 */
+    SR_DEPTH_RANGE_SET,         /* [depth_near, depth_far], whatever the two values */
+} sr_depth_range_mode;
+
 /* The triangle rasterizers.  All three give exactly the same pixels. */
 typedef enum sr_rasterizer {
     SR_RASTER_DEFAULT = 0,   /* -> SR_RASTER_HALFSPACE */
@@ -1117,10 +1124,12 @@ typedef struct sr_state {
     sr_scissor scissor;            /* also trims the viewport: nothing outside is touched */
     sr_blend blend;
     sr_color_mask color_mask;
-    /* Depth range: z_ndc maps onto [depth_near, depth_far].  Both zero ->
-     * [0, 1].  As glDepthRange, each is clamped to [0, 1] (infinities too;
-     * NaN is refused), and depth_near > depth_far is allowed: it inverts
-     * depth, nearer fragments getting larger values. */
+    /* Depth range: z_ndc maps onto [0, 1], or with depth_range =
+     * SR_DEPTH_RANGE_SET onto [depth_near, depth_far].  As glDepthRange,
+     * each is clamped to [0, 1] (infinities too; NaN is refused), and
+     * depth_near > depth_far is allowed: it inverts depth, nearer
+     * fragments getting larger values. */
+    sr_depth_range_mode depth_range;
     float depth_near, depth_far;
     bool depth_zero_to_one;        /* clip space z in [0, w] (D3D/Vulkan), not [-w, w] */
 

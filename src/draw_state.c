@@ -143,10 +143,8 @@ void sr__resolve_draw_state(const sr_framebuffer *fb, const sr_state *st, const 
     if (vp.width == 0) {
         vp = (sr_viewport){ 0, 0, fb->width, fb->height };
     }
-    double dn = st->depth_near, df = st->depth_far;
-    if (dn == 0.0 && df == 0.0) {
-        df = 1.0;
-    }
+    bool given = st->depth_range == SR_DEPTH_RANGE_SET;
+    double dn = given ? st->depth_near : 0.0, df = given ? st->depth_far : 1.0;
     /* glDepthRange clamps both ends to [0, 1]; near > far stays allowed and
      * inverts depth. */
     dn = fmin(fmax(dn, 0.0), 1.0);

@@ -291,6 +291,17 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
     if (isnan(st->depth_near) || isnan(st->depth_far)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.depth_near/depth_far must not be NaN");
     }
+    if ((unsigned)st->depth_range > SR_DEPTH_RANGE_SET) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_state.depth_range %d is not a depth range mode",
+                        (int)st->depth_range);
+    }
+    /* A range given without SR_DEPTH_RANGE_SET would be silently ignored. */
+    if (st->depth_range == SR_DEPTH_RANGE_DEFAULT &&
+        (st->depth_near != 0.0f || st->depth_far != 0.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_state.depth_near/depth_far are set but sr_state.depth_range is "
+                        "SR_DEPTH_RANGE_DEFAULT ([0, 1]): set it to SR_DEPTH_RANGE_SET");
+    }
     if (!isfinite(st->offset.factor) || !isfinite(st->offset.units) || !isfinite(st->offset.clamp)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_state.offset: factor, units and clamp must be finite");
     }

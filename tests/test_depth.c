@@ -292,24 +292,30 @@ SR_TEST(drawn_depth_is_quantized_once_and_read_back_dequantized)
 
 SR_TEST(depth_range_and_zero_to_one_map_ndc_depth)
 {
-    struct { float n, f; bool z01; double zndc, want; } cases[] = {
-        { 0.2f, 0.6f, false, 0.0, 0.4 },
-        { 0.2f, 0.6f, false, -1.0, 0.2 },
-        { 0.2f, 0.6f, false, 1.0, 0.6 },
-        { 0.8f, 0.2f, false, -1.0, 0.8 },   /* reversed range */
-        { 0.8f, 0.2f, false, 0.5, 0.35 },
-        { 0.0f, 0.0f, false, -0.5, 0.25 },  /* both zero: [0, 1] */
-        { 0.0f, 0.0f, true, 0.5, 0.5 },
-        { 0.0f, 0.0f, true, 0.0, 0.0 },
-        { 0.25f, 0.75f, true, 0.5, 0.5 },
-        { 0.25f, 0.75f, true, 1.0, 0.75 },
-        { 0.6f, 0.2f, true, 0.25, 0.5 },
+    /* SET: the range [n, f] given; DEFAULT: [0, 1] */
+    enum { SET = SR_DEPTH_RANGE_SET, DEFAULT = SR_DEPTH_RANGE_DEFAULT };
+    struct { int mode; float n, f; bool z01; double zndc, want; } cases[] = {
+        { SET, 0.2f, 0.6f, false, 0.0, 0.4 },
+        { SET, 0.2f, 0.6f, false, -1.0, 0.2 },
+        { SET, 0.2f, 0.6f, false, 1.0, 0.6 },
+        { SET, 0.8f, 0.2f, false, -1.0, 0.8 },   /* reversed range */
+        { SET, 0.8f, 0.2f, false, 0.5, 0.35 },
+        { DEFAULT, 0.0f, 0.0f, false, -0.5, 0.25 },
+        { DEFAULT, 0.0f, 0.0f, true, 0.5, 0.5 },
+        { DEFAULT, 0.0f, 0.0f, true, 0.0, 0.0 },
+        { SET, 0.25f, 0.75f, true, 0.5, 0.5 },
+        { SET, 0.25f, 0.75f, true, 1.0, 0.75 },
+        { SET, 0.6f, 0.2f, true, 0.25, 0.5 },
+        { SET, 0.0f, 0.0f, false, -0.5, 0.0 },   /* [0, 0]: a range of zero width */
+        { SET, 0.0f, 0.0f, true, 0.75, 0.0 },
+        { SET, 0.5f, 0.5f, false, 0.9, 0.5 },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         for (int fi = 0; fi < 4; fi++) {
             target t = target_make(8, 8, fi);
             target_clear(&t, 1.0f);
-            sr_state st = { .depth_near = cases[i].n, .depth_far = cases[i].f,
+            sr_state st = { .depth_range = (sr_depth_range_mode)cases[i].mode,
+                            .depth_near = cases[i].n, .depth_far = cases[i].f,
                             .depth_zero_to_one = cases[i].z01, .depth_func = SR_ALWAYS };
             REQUIRE(draw_quad(&t, &st, cases[i].zndc, 0, 0, WHITE) == SR_OK);
             CHECK_EQ(count_color(&t, WHITE), 64);
@@ -339,7 +345,8 @@ static void range_depths(int fi, float n, float f, float *d)
 {
     target t = target_make(16, 16, fi);
     target_clear(&t, 0.5f);
-    sr_state st = { .depth_near = n, .depth_far = f, .depth_func = SR_ALWAYS };
+    sr_state st = { .depth_range = SR_DEPTH_RANGE_SET, .depth_near = n, .depth_far = f,
+                    .depth_func = SR_ALWAYS };
     CHECK_EQ(draw_quad(&t, &st, 0.1, 0.6, -0.3, WHITE), SR_OK);
     CHECK_EQ(count_color(&t, WHITE), 16 * 16);
     REQUIRE(sr_read_depth(t.ctx, t.fb, 0, 0, 16, 16, d, 16) == SR_OK);
@@ -572,13 +579,15 @@ SR_TEST(offset_clamp_limits_the_offset)
     }
     /* Pushed past the end of the depth range: clamped to it. */
     target_clear(&t, 1.0f);
-    sr_state far = { .depth_near = 0.2f, .depth_far = 0.6f, .depth_func = SR_ALWAYS,
+    sr_state far = { .depth_range = SR_DEPTH_RANGE_SET, .depth_near = 0.2f, .depth_far = 0.6f,
+                     .depth_func = SR_ALWAYS,
                      .offset = { .units = 10000, .fill = true } };
     REQUIRE(draw_quad(&t, &far, 0.9, 0, 0, WHITE) == SR_OK);
     float d;
     REQUIRE(sr_read_depth(t.ctx, t.fb, 0, 0, 1, 1, &d, 1) == SR_OK);
     CHECK(d == dq(sr__depth_quantize(0.6f, 16), 16));
-    sr_state near = { .depth_near = 0.2f, .depth_far = 0.6f, .depth_func = SR_ALWAYS,
+    sr_state near = { .depth_range = SR_DEPTH_RANGE_SET, .depth_near = 0.2f, .depth_far = 0.6f,
+                      .depth_func = SR_ALWAYS,
                       .offset = { .units = -10000, .fill = true } };
     REQUIRE(draw_quad(&t, &near, -0.9, 0, 0, WHITE) == SR_OK);
     REQUIRE(sr_read_depth(t.ctx, t.fb, 0, 0, 1, 1, &d, 1) == SR_OK);

@@ -161,17 +161,31 @@ static int run_explain(const char *algorithm, const char *prim_opt, const char *
     return run_explain_rule(algorithm, prim_opt, prim, NULL, dir);
 }
 
-/* Count the cells that differ from want; report them once. */
+/* Count the cells that differ from want; report them once (what NULL:
+ * the caller judges the count). */
 static int compare_cells(const uint8_t *cells, const uint8_t *want, const char *what)
 {
     int diff = 0;
     for (int i = 0; i < GRID * GRID; i++) {
         diff += cells[i] != want[i];
     }
-    if (diff) {
+    if (diff && what) {
         FAILF("%s: %d cells differ", what, diff);
     }
     return diff;
+}
+
+/* The pixels the library drew into t against a last frame's cells: how
+ * many differ (compare_cells); the pixels drawn are added to *drawn. */
+static int compare_with_target(const rt_target *t, const uint8_t *cells, const char *what,
+                               int *drawn)
+{
+    uint8_t want[GRID * GRID];
+    rt_mask(t, want);
+    for (int i = 0; i < GRID * GRID; i++) {
+        *drawn += want[i];
+    }
+    return compare_cells(cells, want, what);
 }
 
 /* An empty directory for one run's frames: the frames of an earlier run
@@ -193,7 +207,11 @@ SR_TEST(triangle_last_frame_is_what_sr_draw_covers)
     NEEDS_CLI();
     /* the example (ties on a top, a left and a right edge), then random
      * triangles of either winding with vertices on the half-pixel grid,
-     * so that many pixel centres fall exactly on edges */
+     * so that many pixel centres fall exactly on edges; each explained by
+     * the steps of each rasterizer (--rasterizer) and held to every one
+     * of sr_draw's */
+    static const char *const rasterizers[] = { "halfspace", "scanline", "barycentric" };
+    int steps[3] = { 0, 0, 0 };
     sr_rng rng = { 39 };
     rt_target t = rt_make(GRID, GRID, 1);
     int drawn_total = 0;
@@ -204,26 +222,30 @@ SR_TEST(triangle_last_frame_is_what_sr_draw_covers)
                 v[i] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5 + (k % 3 == 0 ? 0.125 : 0);
             }
         }
-        char prim[256], dir[1024], name[32];
+        char prim[256], dir[1024], name[48];
         snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
-        snprintf(name, sizeof name, "triangle_%02d", k);
-        out_dir(name, dir, sizeof dir);
-        REQUIRE(run_explain("triangle", "--triangle", prim, dir) == 0);
-        uint8_t cells[GRID * GRID], want[GRID * GRID];
-        REQUIRE(last_frame_cells(dir, cells) >= 2);
-        for (int r = SR_RASTER_HALFSPACE; r <= SR_RASTER_BARYCENTRIC; r++) {
-            rt_clear(&t);
-            REQUIRE(rt_draw_tris(&t, v, 1, NULL, (sr_rasterizer)r) == SR_OK);
-            rt_mask(&t, want);
-            for (int i = 0; i < GRID * GRID; i++) {
-                drawn_total += r == SR_RASTER_HALFSPACE && want[i];
+        for (int e = 0; e < 3; e++) {
+            snprintf(name, sizeof name, "triangle_%02d_%s", k, rasterizers[e]);
+            out_dir(name, dir, sizeof dir);
+            REQUIRE(run_explain_with("triangle", "--triangle", prim, "--rasterizer",
+                                     rasterizers[e], dir) == 0);
+            uint8_t cells[GRID * GRID];
+            int last = last_frame_cells(dir, cells);
+            REQUIRE(last >= 2);
+            steps[e] += last;
+            for (int r = SR_RASTER_HALFSPACE; r <= SR_RASTER_BARYCENTRIC; r++) {
+                rt_clear(&t);
+                REQUIRE(rt_draw_tris(&t, v, 1, NULL, (sr_rasterizer)r) == SR_OK);
+                char what[300];
+                snprintf(what, sizeof what, "triangle %s explained %s, rasterizer %d", prim,
+                         rasterizers[e], r);
+                compare_with_target(&t, cells, what, &drawn_total);
             }
-            char what[300];
-            snprintf(what, sizeof what, "triangle %s, rasterizer %d", prim, r);
-            compare_cells(cells, want, what);
         }
     }
-    CHECK(drawn_total > 500);   /* the triangles do cover pixels */
+    CHECK(drawn_total > 9 * 500);   /* the triangles do cover pixels */
+    /* the three explain different steps */
+    CHECK(steps[0] != steps[1] && steps[1] != steps[2] && steps[0] != steps[2]);
     rt_free(&t);
 }
 
@@ -442,10 +464,13 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
     /* random triangles with w in 1/2..4 (powers of two: x w / w is exact
      * in float, so sr_draw snaps the vertices where they were given), red,
      * green and blue at the vertices; the cells of the last frame hold
-     * sr_draw's perspective-correct colours, within one step of rounding */
+     * sr_draw's colours, perspective-correct or (--interpolation affine)
+     * affine, or sr_fill_gouraud's FillPoly/FillSpan (fillspan), within
+     * one step of rounding; and FillSpan's are affine's within two */
+    static const char *const interps[] = { "perspective", "affine", "fillspan" };
     sr_rng rng = { 4239 };
     rt_target t = rt_make(GRID, GRID, 1);
-    int far_from_affine = 0;
+    int interps_differ = 0;
     for (int k = 0; k < 16; k++) {
         double v[6], w[3];
         for (int i = 0; i < 6; i++) {
@@ -459,10 +484,17 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
         snprintf(ws, sizeof ws, "%g,%g,%g", w[0], w[1], w[2]);
         snprintf(name, sizeof name, "perspective_%02d", k);
         out_dir(name, dir, sizeof dir);
-        REQUIRE(run_explain_with("perspective", "--triangle", prim, "--w", ws, dir) == 0);
-        uint8_t got[GRID * GRID * 3], affine[GRID * GRID * 3];
+        int e = k % 3;
+        char grid[16], zoom[8];
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        snprintf(zoom, sizeof zoom, "%d", ZOOM);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--triangle", prim,
+                                                  "--w", ws, "--interpolation", interps[e],
+                                                  "--grid", grid, "--zoom", zoom, "-o", dir,
+                                                  NULL }) == 0);
+        uint8_t got[GRID * GRID * 3], other[GRID * GRID * 3];
         REQUIRE(frame_cell_colours(dir, 5, got));
-        REQUIRE(frame_cell_colours(dir, 4, affine));
+        REQUIRE(frame_cell_colours(dir, 4, other));
         float pos[12], col[12] = { 1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1 };
         for (int i = 0; i < 3; i++) {
             pos[4 * i] = rt_ndc_x(&t, v[2 * i]) * (float)w[i];
@@ -471,28 +503,56 @@ SR_TEST(perspective_last_frame_is_what_sr_draw_interpolates)
             pos[4 * i + 3] = (float)w[i];
         }
         sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
-        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } } };
+        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
+                        .interpolation = e == 0 ? SR_INTERP_PERSPECTIVE : SR_INTERP_AFFINE };
         REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .position_size = 4,
                                                            .vertex_count = 3, .colors = col,
                                                            .color_size = 4 }) == SR_OK);
+        uint8_t affine_px[GRID * GRID * 4];
+        memcpy(affine_px, sr_framebuffer_pixels(t.fb), sizeof affine_px);
+        if (e == 2) {
+            sr_point2 pv[3];
+            sr_rgba pc[3];
+            for (int i = 0; i < 3; i++) {
+                pv[i] = (sr_point2){ v[2 * i], v[2 * i + 1] };
+                pc[i] = (sr_rgba){ col[4 * i], col[4 * i + 1], col[4 * i + 2], 1 };
+            }
+            sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+            REQUIRE(sr_fill_gouraud(t.ctx, t.fb, &(sr_polygon2){ pv, 3, NULL, 0 }, pc,
+                                    &(sr_gouraud_desc){ .method = SR_GOURAUD_INCREMENTAL })
+                    == SR_OK);
+            /* covered by both, FillSpan's colours are affine's */
+            const uint8_t *g = sr_framebuffer_pixels(t.fb);
+            int far = 0;
+            for (int i = 0; i < GRID * GRID * 4; i += 4) {
+                bool both = memcmp(g + i, "\xff\xff\xff", 3) != 0 &&
+                            memcmp(affine_px + i, "\xff\xff\xff", 3) != 0;
+                for (int ch = 0; ch < 3; ch++) {
+                    far += both && abs(g[i + ch] - affine_px[i + ch]) > 2;
+                }
+            }
+            if (far) {
+                FAILF("perspective %s: %d channels of FillSpan are not affine's", prim, far);
+            }
+        }
         const uint8_t *px = sr_framebuffer_pixels(t.fb);
         int bad = 0;
         for (int i = 0; i < GRID * GRID; i++) {
-            int worst = 0, off_affine = 0;
+            int worst = 0, off_other = 0;
             for (int ch = 0; ch < 3; ch++) {
                 int d = abs(got[i * 3 + ch] - px[i * 4 + ch]);
                 worst = d > worst ? d : worst;
-                d = abs(affine[i * 3 + ch] - px[i * 4 + ch]);
-                off_affine = d > off_affine ? d : off_affine;
+                d = abs(other[i * 3 + ch] - px[i * 4 + ch]);
+                off_other = d > off_other ? d : off_other;
             }
             bad += worst > 1;
-            far_from_affine += off_affine > 8;
+            interps_differ += off_other > 8;
         }
         if (bad) {
-            FAILF("perspective %s, w %s: %d cells differ", prim, ws, bad);
+            FAILF("perspective %s, w %s, %s: %d cells differ", prim, ws, interps[e], bad);
         }
     }
-    CHECK(far_from_affine > 50);   /* the two interpolations do differ */
+    CHECK(interps_differ > 50);   /* the two interpolations do differ */
     rt_free(&t);
 }
 
@@ -568,17 +628,13 @@ SR_TEST(circle_last_frame_is_what_sr_draw_circle_draws)
         snprintf(name, sizeof name, "circle_%02d", k);
         out_dir(name, dir, sizeof dir);
         REQUIRE(run_explain("circle", "--circle", prim, dir) == 0);
-        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        uint8_t cells[GRID * GRID];
         REQUIRE(last_frame_cells(dir, cells) >= 1);
         rt_clear(&t);
         REQUIRE(sr_draw_circle(t.ctx, t.fb, cx, cy, r, (sr_rgba){ 1, 1, 1, 1 }, false) == SR_OK);
-        rt_mask(&t, want);
-        for (int i = 0; i < GRID * GRID; i++) {
-            drawn_total += want[i];
-        }
         char what[200];
         snprintf(what, sizeof what, "circle %s", prim);
-        compare_cells(cells, want, what);
+        compare_with_target(&t, cells, what, &drawn_total);
     }
     CHECK(drawn_total > 150);
     rt_free(&t);
@@ -607,7 +663,7 @@ SR_TEST(forward_differencing_last_frame_is_what_the_flattened_cubic_draws)
         out_dir(name, dir, sizeof dir);
         REQUIRE(run_explain_with("forward-differencing", "--cubic", prim, "--tolerance", ts, dir)
                 == 0);
-        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        uint8_t cells[GRID * GRID];
         REQUIRE(last_frame_cells(dir, cells) >= 3);
         sr_point2 pts[65] = { p[0] };
         int n = 0;
@@ -617,13 +673,9 @@ SR_TEST(forward_differencing_last_frame_is_what_the_flattened_cubic_draws)
             REQUIRE(sr_draw_line(t.ctx, t.fb, pts[i], pts[i + 1], (sr_rgba){ 1, 1, 1, 1 }, NULL)
                     == SR_OK);
         }
-        rt_mask(&t, want);
-        for (int i = 0; i < GRID * GRID; i++) {
-            drawn_total += want[i];
-        }
         char what[300];
         snprintf(what, sizeof what, "cubic %s, tolerance %g", prim, tol);
-        compare_cells(cells, want, what);
+        compare_with_target(&t, cells, what, &drawn_total);
     }
     CHECK(drawn_total > 150);
     rt_free(&t);
@@ -717,7 +769,7 @@ SR_TEST(clip4d_last_frame_is_what_sr_draw_draws_for_the_clip_space_triangle)
         snprintf(name, sizeof name, "clip4d_%02d", k);
         out_dir(name, dir, sizeof dir);
         REQUIRE(run_explain("clip4d", "--clip-triangle", prim, dir) == 0);
-        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        uint8_t cells[GRID * GRID];
         REQUIRE(last_frame_cells(dir, cells) >= 2);
         rt_clear(&t);
         int v0 = GRID / 5, vs = GRID - 2 * (GRID / 5);
@@ -725,13 +777,7 @@ SR_TEST(clip4d_last_frame_is_what_sr_draw_draws_for_the_clip_space_triangle)
                         .viewport = { v0, v0, vs, vs } };
         REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .position_size = 4,
                                                            .vertex_count = 3 }) == SR_OK);
-        rt_mask(&t, want);
-        int diff = 0;
-        for (int i = 0; i < GRID * GRID; i++) {
-            drawn_total += want[i];
-            diff += cells[i] != want[i];
-        }
-        diff_total += diff;
+        diff_total += compare_with_target(&t, cells, NULL, &drawn_total);
     }
     CHECK(diff_total <= 3);
     CHECK(drawn_total > 200);
@@ -756,19 +802,15 @@ static void check_lines(const char *algorithm, sr_line_algorithm alg, bool centr
         snprintf(name, sizeof name, "%s_%02d", algorithm, k);
         out_dir(name, dir, sizeof dir);
         REQUIRE(run_explain(algorithm, "--line", prim, dir) == 0);
-        uint8_t cells[GRID * GRID], want[GRID * GRID];
+        uint8_t cells[GRID * GRID];
         REQUIRE(last_frame_cells(dir, cells) >= 2);
         rt_clear(&t);
         REQUIRE(sr_draw_line(t.ctx, t.fb, (sr_point2){ v[0], v[1] }, (sr_point2){ v[2], v[3] },
                              (sr_rgba){ 1, 1, 1, 1 },
                              &(sr_line_desc){ .algorithm = alg }) == SR_OK);
-        rt_mask(&t, want);
-        for (int i = 0; i < GRID * GRID; i++) {
-            drawn_total += want[i];
-        }
         char what[200];
         snprintf(what, sizeof what, "%s line %s", algorithm, prim);
-        compare_cells(cells, want, what);
+        compare_with_target(&t, cells, what, &drawn_total);
     }
     CHECK(drawn_total > 150);
     rt_free(&t);
@@ -811,6 +853,16 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "clip", "--window", "5,1,2,8", "-o",
                                                dir, NULL }), 2);
     CHECK_EQ(run_explain_rule("scanline", "--polygon", "1,2,3,4,5,6", "odd", dir), 2);
+    CHECK_EQ(run_explain_with("triangle", "--triangle", "1,1,9,1,1,9", "--rasterizer", "wu", dir),
+             2);
+    CHECK_EQ(run_explain_with("msaa", "--triangle", "1,1,9,1,1,9", "--rasterizer", "scanline",
+                              dir), 2);
+    CHECK_EQ(run_explain_with("perspective", "--triangle", "1,1,9,1,1,9", "--interpolation",
+                              "flat", dir), 2);
+    CHECK_EQ(run_explain_with("triangle", "--triangle", "1,1,9,1,1,9", "--interpolation",
+                              "affine", dir), 2);
+    CHECK_EQ(run_explain_with("fillpoly", "--triangle", "1,1,9,1,1,9", "--interpolation",
+                              "affine", dir), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--zoom", "3", "-o", dir,
                                                NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "a%s%d", NULL }), 2);

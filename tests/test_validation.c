@@ -176,6 +176,10 @@ static bool make_bad(int i, sr_state *st, sr_draw_desc *d, sr_mat4 *m, bad_draw 
              want->needle = "sr_draw_desc.indices is not 4-byte aligned"; break;
     case 53: d->indices = idx_odd + 1; d->index_type = SR_INDEX_U16; d->index_count = 3;
              want->needle = "sr_draw_desc.indices is not 2-byte aligned"; break;
+    /* A range without SR_DEPTH_RANGE_SET would be ignored: refused. */
+    case 54: st->depth_range = (sr_depth_range_mode)2;      want->needle = "sr_state.depth_range 2"; break;
+    case 55: st->depth_near = 0.25f;                       want->needle = "SR_DEPTH_RANGE_SET"; break;
+    case 56: st->depth_far = 0.5f;                         want->needle = "SR_DEPTH_RANGE_SET"; break;
     default: return false;
     }
     return true;
@@ -211,7 +215,7 @@ SR_TEST(every_invalid_draw_argument_is_named_and_draws_nothing)
         CHECK_EQ(sr_last_draw_info(f.ctx).fragments, 0);
         CHECK_EQ(sr_last_draw_info(f.ctx).triangles_in, 0);
     }
-    CHECK_EQ(cases, 54);
+    CHECK_EQ(cases, 57);
     fixture_free(&f);
 }
 
@@ -242,6 +246,7 @@ SR_TEST(boundary_values_are_accepted)
     fixture f = fixture_make();
     sr_state st = valid_state();
     sr_draw_desc d = valid_draw();
+    st.depth_range = SR_DEPTH_RANGE_SET;
     st.depth_near = 1.0f;
     st.depth_far = 0.0f;
     st.material.opacity = 1.0f;

@@ -10,12 +10,19 @@
 // which algorithms take it.
 const OPTIONS = [
     { option: '--fill-rule', label: 'fill rule', values: ['evenodd', 'nonzero'],
-      applies: (a) => a.kind === 'polygon' },
+      applies: (a) => ['scanline', 'clip'].includes(a.name) },
+    { option: '--rasterizer', label: 'rasterizer', values: ['halfspace', 'scanline', 'barycentric'],
+      applies: (a) => a.name === 'triangle' },
+    { option: '--interpolation', label: 'interpolation',
+      values: ['perspective', 'affine', 'fillspan'],
+      applies: (a) => a.name === 'perspective' },
     { option: '--samples', label: 'samples per pixel', values: ['4', '2', '8', '16'],
       applies: (a) => a.name === 'msaa' },
     { option: '--connectivity', label: 'connectivity', values: ['4', '8'],
       applies: (a) => a.name === 'floodfill' },
 ];
+// Options that give a value at each vertex: the page keeps the example's.
+const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };
 // Lines whose ends the algorithm takes on pixel centres only.
 const ENDS_ON_CENTRES = ['bresenham'];
 const HANDLE_RADIUS = 12;   // frame pixels within which a handle is caught
@@ -41,18 +48,25 @@ async function main() {
     }
     const margin = mod.ccall('web_margin', 'number', [], []);
     const hasWindow = alg.window.some((v) => v !== 0);
-    document.querySelectorAll('.window-hint').forEach((e) => { e.hidden = !hasWindow; });
+    const hasSeed = alg.seed.some((v) => v !== 0);
+    const hasRow = alg.row > 0;
 
     const canvas = document.getElementById('frame');
     const ctx2d = canvas.getContext('2d');
     const stepInput = document.getElementById('step');
     const message = document.getElementById('message');
     const choices = {};
-    const state = { points: [], window: [], step: 0, frames: [], width: 0, height: 0 };
+    const state = { points: [], values: [], window: [], seed: [], row: 0, clip: [], step: 0,
+                    frames: [], width: 0, height: 0 };
+    // What the handles move, to put back when the tool refuses a position.
+    const snapshot = () => JSON.stringify({ points: state.points, values: state.values,
+                                            window: state.window, seed: state.seed,
+                                            row: state.row, clip: state.clip });
+    const restore = (s) => Object.assign(state, JSON.parse(s));
 
     function reset() {
-        state.points = alg.points.map((p) => p.slice());
-        state.window = alg.window.slice();
+        restore(JSON.stringify({ points: alg.points, values: alg.values, window: alg.window,
+                                 seed: alg.seed, row: alg.row, clip: alg.clip }));
         for (const o of OPTIONS.filter((o) => o.applies(alg))) {
             choices[o.option] = o.values[0];
         }
@@ -61,12 +75,39 @@ async function main() {
         });
     }
 
+    const list = (v) => v.map(number).join(',');
+
+    // The primitive's option and its numbers.
+    function primitive() {
+        switch (alg.kind) {
+        case 'none':
+            return [];
+        case 'circle':   // centre and radius
+            return ['--circle', list([...state.points[0], state.values[0]])];
+        case 'triangles':   // x, y and the depth of each vertex
+            return ['--triangles',
+                    state.points.map((p, k) => list([...p, state.values[k]])).join(',')];
+        case 'clip-triangle':
+            return ['--clip-triangle', list(state.clip)];
+        default:
+            return [`--${alg.kind}`, state.points.map(list).join(',')];
+        }
+    }
+
     // The arguments after `softrast explain NAME` for what the page shows.
     function args() {
-        const a = alg.kind === 'none' ? []
-            : [`--${alg.kind}`, state.points.map((p) => p.map(number).join(',')).join(',')];
+        const a = primitive();
+        if (VALUES_OPTION[alg.name]) {
+            a.push(VALUES_OPTION[alg.name], list(state.values.slice(0, 3)));
+        }
+        if (hasSeed) {
+            a.push('--seed', list(state.seed));
+        }
+        if (hasRow) {
+            a.push('--row', String(state.row));
+        }
         if (hasWindow) {
-            a.push('--window', state.window.map(number).join(','));
+            a.push('--window', list(state.window));
         }
         for (const [option, value] of Object.entries(choices)) {
             a.push(option, value);
@@ -119,23 +160,68 @@ async function main() {
         show();
     }
 
-    // The draggable points in grid coordinates: the primitive's vertices,
-    // then the clip window's two corners.
+    // clip4d's viewport in grid pixels: the grid less a fifth on each side.
+    function clipViewport() {
+        const x = Math.floor(alg.grid[0] / 5), y = Math.floor(alg.grid[1] / 5);
+        return [x, y, alg.grid[0] - 2 * x, alg.grid[1] - 2 * y];
+    }
+
+    // The pixel under a point, kept on the grid.
+    const pixel = (v, size) => Math.max(0, Math.min(size - 1, Math.floor(v)));
+
+    // The draggable points in grid coordinates, each with what dragging it
+    // to (x, y) changes: the primitive's vertices (the circle's centre and a
+    // point on it; of clip4d's triangle, where each vertex in front of the
+    // eye projects), the seed pixel, the span's row (caught anywhere along
+    // it) and the clip window's two corners.
     function handles() {
-        const h = alg.kind === 'none' ? [] : state.points.map((p) => p.slice());
+        const h = [];
+        if (alg.kind === 'circle') {
+            const c = state.points[0], r = state.values[0];
+            h.push({ at: c, move: (x, y) => { state.points[0] = [x, y]; } });
+            // the rim's right end, or its left one when that is off the grid
+            h.push({ at: [c[0] + (c[0] + r <= alg.grid[0] ? r : -r), c[1]],
+                     move: (x, y) => {
+                         state.values[0] = Math.round(Math.hypot(x - c[0], y - c[1]) * 10) / 10;
+                     } });
+        } else if (alg.kind === 'clip-triangle') {
+            const [vx, vy, vw, vh] = clipViewport();
+            for (let k = 0; k < 3; k++) {
+                const w = state.clip[4 * k + 3];
+                if (w > 0) {   // behind the eye a vertex projects nowhere on the grid
+                    h.push({ at: [vx + vw * 0.5 * (1 + state.clip[4 * k] / w),
+                                  vy + vh * 0.5 * (1 - state.clip[4 * k + 1] / w)],
+                             move: (x, y) => {
+                                 state.clip[4 * k] = (2 * (x - vx) / vw - 1) * w;
+                                 state.clip[4 * k + 1] = (1 - 2 * (y - vy) / vh) * w;
+                             } });
+                }
+            }
+        } else if (alg.kind !== 'none') {
+            state.points.forEach((p, k) => {
+                h.push({ at: p, move: (x, y) => { state.points[k] = [x, y]; } });
+            });
+        }
+        if (hasSeed) {
+            h.push({ at: [state.seed[0] + 0.5, state.seed[1] + 0.5],
+                     move: (x, y) => {
+                         state.seed = [pixel(x, alg.grid[0]), pixel(y, alg.grid[1])];
+                     } });
+        }
+        if (hasRow) {
+            h.push({ at: [0.5, state.row + 0.5],
+                     dist: (g) => Math.abs(g[1] - state.row - 0.5),
+                     move: (x, y) => { state.row = pixel(y, alg.grid[1]); } });
+        }
         if (hasWindow) {
-            h.push(state.window.slice(0, 2), state.window.slice(2, 4));
+            for (const k of [0, 2]) {
+                h.push({ at: state.window.slice(k, k + 2),
+                         move: (x, y) => state.window.splice(k, 2, x, y) });
+            }
         }
         return h;
     }
-
-    function moveHandle(k, x, y) {
-        if (k < state.points.length) {
-            state.points[k] = [x, y];
-        } else {
-            state.window.splice(2 * (k - state.points.length), 2, x, y);
-        }
-    }
+    window.explainHandles = () => handles().map((h) => h.at);
 
     // A pointer event's position in grid coordinates (pixels of the
     // primitive), the canvas possibly scaled by the page's width.
@@ -149,8 +235,8 @@ async function main() {
     // The handle within reach of g, or -1.
     function nearest(g) {
         let best = -1, bestD = HANDLE_RADIUS / alg.zoom;
-        handles().forEach((p, k) => {
-            const d = Math.hypot(p[0] - g[0], p[1] - g[1]);
+        handles().forEach((h, k) => {
+            const d = h.dist ? h.dist(g) : Math.hypot(h.at[0] - g[0], h.at[1] - g[1]);
             if (d <= bestD) {
                 best = k;
                 bestD = d;
@@ -185,13 +271,12 @@ async function main() {
             }
             // A position the tool refuses (a clip window turned inside
             // out) keeps the last one it took; its message stays shown.
-            const before = { points: state.points.map((p) => p.slice()), window: state.window.slice() };
-            moveHandle(dragging, pending[0], pending[1]);
+            const before = snapshot();
+            handles()[dragging].move(pending[0], pending[1]);
             pending = null;
             if (!render()) {
                 const why = message.textContent;
-                state.points = before.points;
-                state.window = before.window;
+                restore(before);
                 render();
                 message.textContent = why;
             }

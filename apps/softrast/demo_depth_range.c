@@ -40,7 +40,8 @@ static sr_result draw_sphere(sr_context *ctx, sr_framebuffer *fb, const sphere_m
     sr_mat4 model = sr_mat4_translate(c.x, c.y, c.z), s = sr_mat4_scale(r, r, r);
     model = sr_mat4_mul(&model, &s);
     sr_state st = {
-        .shading = SR_SHADING_GOURAUD, .depth_near = near, .depth_far = far, .depth_func = func,
+        .shading = SR_SHADING_GOURAUD, .depth_range = SR_DEPTH_RANGE_SET, .depth_near = near,
+        .depth_far = far, .depth_func = func,
         .ambient = { 0.25f, 0.25f, 0.25f },
         .material = { .diffuse = rgb },
         .lights[0] = { .type = SR_LIGHT_DIRECTIONAL, .vector = { -0.4f, -0.6f, -0.7f } },

@@ -29,7 +29,7 @@ static const algorithm algorithms[] = {
     { "triangle", EX_TRIANGLE, explain_triangle,
       { .kind = EX_TRIANGLE, .pts = { { 2.5, 1.5 }, { 12.5, 1.5 }, { 4.5, 11.5 } }, .count = 3 }, 15, 13, 32,
       "edge functions E0..E2 at each pixel centre, the top-left\n"
-      "             rule on ties, coverage" },
+      "             rule on ties, coverage (or --rasterizer's steps)" },
     { "msaa", EX_TRIANGLE, explain_msaa,
       { .kind = EX_TRIANGLE, .pts = { { 1.3, 1.2 }, { 10.6, 3.4 }, { 3.2, 8.7 } }, .count = 3 },
       12, 10, 40, "the triangle's coverage per sample and the resolve (--samples)" },
@@ -60,7 +60,7 @@ static const algorithm algorithms[] = {
       { .kind = EX_TRIANGLE, .pts = { { 1.5, 1.5 }, { 14.5, 4.5 }, { 2.5, 11.5 } },
         .z = { 1, 4, 1 }, .count = 3, .row = 5 }, 16, 13, 32,
       "perspective-correct versus affine interpolation along one\n"
-      "             span (--w, --row)" },
+      "             span (--w, --row, --interpolation)" },
     { "fillpoly", EX_TRIANGLE, explain_fillpoly,
       { .kind = EX_TRIANGLE, .pts = { { 6.5, 0.7 }, { 14.3, 6.6 }, { 1.4, 10.6 } },
         .z = { 1, 0.2, 0.55 }, .count = 3 }, 16, 12, 32,
@@ -136,6 +136,13 @@ static void usage(FILE *f)
             "                             triangle's middle)\n"
             "  --intensity IA,IB,IC       fillpoly: the intensity at each vertex, 0..1\n"
             "                             (default 1,0.2,0.55)\n"
+            "  --rasterizer R             triangle: whose steps to show, halfspace (edge\n"
+            "                             functions, the default), scanline (edge walking)\n"
+            "                             or barycentric (the bounding box's weights)\n"
+            "  --interpolation M          perspective: what the last step draws, the whole\n"
+            "                             triangle perspective-correct (the default),\n"
+            "                             affine (SR_INTERP_AFFINE) or by FillPoly/FillSpan's\n"
+            "                             screen-space increments (fillspan)\n"
             "  --fill-rule evenodd|nonzero\n"
             "                             polygons: inside by parity (the default) or by\n"
             "                             winding number\n"
@@ -399,6 +406,8 @@ int cmd_explain(int argc, char **argv)
     int seed[2] = { 0, 0 }, connectivity = 4;
     bool seed_given = false;
     int samples = 4;
+    sr_rasterizer rasterizer = SR_RASTER_HALFSPACE;
+    ex_interp interpolation = EX_INTERP_PERSPECTIVE;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL, *webp = NULL;
     for (int i = 2; i < argc; i++) {
@@ -442,6 +451,24 @@ int cmd_explain(int argc, char **argv)
             int k;
             ok = parse_choice(a, v, rules, &k);
             rule = k == 0 ? SR_EVENODD : SR_NONZERO;
+        } else if (strcmp(a, "--rasterizer") == 0 || strcmp(a, "--interpolation") == 0) {
+            static const char *const rasterizers[] = { "halfspace", "scanline", "barycentric",
+                                                       NULL };
+            static const char *const interpolations[] = { "perspective", "affine", "fillspan",
+                                                          NULL };
+            bool r = a[2] == 'r';
+            if (alg->run != (r ? explain_triangle : explain_perspective)) {
+                cli_error("explain %s: %s is for '%s'", alg->name, a,
+                          r ? "triangle" : "perspective");
+                return EXIT_USAGE;
+            }
+            int k;
+            ok = parse_choice(a, v, r ? rasterizers : interpolations, &k);
+            if (r) {
+                rasterizer = (sr_rasterizer)(SR_RASTER_HALFSPACE + k);
+            } else {
+                interpolation = (ex_interp)k;
+            }
         } else if (strcmp(a, "--window") == 0) {
             ex_primitive wp = { 0 };
             ok = parse_points(a, v, 2, 2, 2, true, &wp);
@@ -524,6 +551,8 @@ int cmd_explain(int argc, char **argv)
     }
     prim.rule = rule;
     prim.samples = samples;
+    prim.rasterizer = rasterizer;
+    prim.interpolation = interpolation;
     if (per_vertex_given) {
         memcpy(prim.z, per_vertex, sizeof per_vertex);
     } else if (prim_given && alg->kind == EX_TRIANGLE) {   /* the example's values */

@@ -17,6 +17,11 @@
 #define EX_MAX_POINTS 64  /* vertices of a --polygon */
 #define EX_MAX_FRAME_BYTES ((size_t)1 << 30)  /* all frames are kept for the sheet */
 
+/* perspective's last frame: the whole triangle as sr_draw interpolates it
+ * (SR_INTERP_PERSPECTIVE, SR_INTERP_AFFINE) or as sr_fill_gouraud's
+ * FillPoly/FillSpan (SR_GOURAUD_INCREMENTAL) does in screen space. */
+typedef enum ex_interp { EX_INTERP_PERSPECTIVE, EX_INTERP_AFFINE, EX_INTERP_FILLSPAN } ex_interp;
+
 /* The primitive the user gave (window coordinates, pixels, y down). */
 typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES, EX_CIRCLE,
                EX_CUBIC, EX_CLIP_TRIANGLE } ex_kind;
@@ -36,6 +41,8 @@ typedef struct ex_primitive {
     int seed[2];            /* floodfill: the seed pixel */
     double clip[3][4];      /* clip4d: the triangle in clip space, x, y, z, w */
     int connectivity;       /* floodfill: 4 or 8 */
+    sr_rasterizer rasterizer;        /* triangle: the rasterizer whose steps are shown */
+    ex_interp interpolation;         /* perspective: what the last frame draws */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -128,6 +135,14 @@ int64_t ex_tri_edge(const ex_tri *t, int i, int64_t sx, int64_t sy);
 bool ex_tri_covers(const ex_tri *t, int64_t sx, int64_t sy);
 /* Outline, vertices and their names; edge `hilite` (or -1) stressed. */
 void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite);
+/* A sample point at every pixel centre of the grid. */
+void ex_tri_samples(ex_canvas *c);
+/* The last frame: the covered pixels, with the caption's first words. */
+void ex_tri_coverage(ex_canvas *c, const ex_tri *t, const char *lead);
+/* explain_triangle_walk.c: frames 2.. of the scan-line and the
+ * barycentric rasterizers (explain_triangle draws the half-space one). */
+void ex_tri_scanline_steps(ex_canvas *c, const ex_tri *t);
+void ex_tri_barycentric_steps(ex_canvas *c, const ex_tri *t);
 
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);

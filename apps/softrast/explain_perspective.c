@@ -110,6 +110,43 @@ static int fill(ex_canvas *c, const persp *p, int row, bool correct, bool all, d
     return n;
 }
 
+/* The triangle as sr_fill_gouraud's FillPoly/FillSpan fills it, read back
+ * from a framebuffer of the grid's size: the incremental scan-line
+ * interpolation of explain_fillpoly.c, the vertex colours stepped in
+ * screen space. */
+static void fill_fillspan(ex_canvas *c, const persp *p)
+{
+    sr_framebuffer *fb = NULL;
+    sr_result r = sr_make_framebuffer(c->ctx, &(sr_framebuffer_desc){
+                                                  .width = c->grid_w, .height = c->grid_h,
+                                                  .depth_format = SR_DEPTH_NONE },
+                                      &fb);
+    sr_point2 v[3];
+    sr_rgba col[3];
+    for (int i = 0; i < 3; i++) {
+        v[i] = (sr_point2){ p->t.x[i] / 256.0, p->t.y[i] / 256.0 };
+        col[i] = vcolor(p, i);
+    }
+    if (r == SR_OK) {
+        sr_clear(c->ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+        r = sr_fill_gouraud(c->ctx, fb, &(sr_polygon2){ v, 3, NULL, 0 }, col,
+                            &(sr_gouraud_desc){ .method = SR_GOURAUD_INCREMENTAL });
+    }
+    if (r != SR_OK) {
+        c->error = c->error ? c->error : r;
+    } else {
+        const uint8_t *px = sr_framebuffer_pixels(fb);
+        for (int i = 0; i < c->grid_w * c->grid_h; i++) {
+            const uint8_t *q = px + (size_t)i * 4;
+            if (q[3]) {   /* filled: the clear left alpha 0 */
+                ex_cell(c, i % c->grid_w, i / c->grid_w,
+                        (sr_rgba){ q[0] / 255.0f, q[1] / 255.0f, q[2] / 255.0f, 1 });
+            }
+        }
+    }
+    sr_destroy_framebuffer(c->ctx, fb);
+}
+
 sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim)
 {
     persp p;
@@ -157,18 +194,39 @@ sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim)
              n ? xs[worst] : 0, n ? correct[worst] : 0.0, n ? affine[worst] : 0.0);
     ex_end(c, cap);
 
-    ex_begin(c);
-    fill(c, &p, -1, false, true, affine, xs);
-    /* frames 4 and 5: the cells alone, nothing drawn over them */
-    ex_end(c, "4. The whole triangle affine (SR_INTERP_AFFINE): each weight is constant along "
-              "lines parallel to the opposite edge on the screen, as if no vertex were further "
-              "than another: wrong under perspective.");
-
-    ex_begin(c);
-    fill(c, &p, -1, true, true, correct, xs);
-    ex_end(c, "5. The whole triangle perspective-correct, what sr_draw draws for these "
-              "vertices given with their w (the default interpolation): the near vertices' "
-              "colours reach further, the far vertex's is squeezed toward it, as the far "
-              "squares of a checkerboard shrink.");
+    /* frames 4 and 5: the cells alone, nothing drawn over them; the one
+     * --interpolation asks for last, as the library draws it */
+    if (prim->interpolation == EX_INTERP_FILLSPAN) {
+        ex_begin(c);
+        fill(c, &p, -1, true, true, correct, xs);
+        ex_end(c, "4. The whole triangle perspective-correct, what sr_draw draws for these "
+                  "vertices given with their w: the near vertices' colours reach further, the "
+                  "far vertex's is squeezed toward it.");
+        ex_begin(c);
+        fill_fillspan(c, &p);
+        ex_end(c, "5. The whole triangle by FillPoly/FillSpan (explain fillpoly), as "
+                  "sr_fill_gouraud draws it (SR_GOURAUD_INCREMENTAL): x and the colour step by "
+                  "constant increments on the screen, so it is affine, blind to w, and wrong "
+                  "under perspective like frame 2.");
+        return c->error;
+    }
+    bool last_affine = prim->interpolation == EX_INTERP_AFFINE;
+    for (int k = 0; k < 2; k++) {
+        bool affine_now = last_affine ? k == 1 : k == 0;
+        ex_begin(c);
+        fill(c, &p, -1, !affine_now, true, affine_now ? affine : correct, xs);
+        snprintf(cap, sizeof cap, "%d. The whole triangle %s%s", 4 + k,
+                 affine_now ? "affine: each weight is constant along lines parallel to the "
+                              "opposite edge on the screen, as if no vertex were further than "
+                              "another: wrong under perspective"
+                            : "perspective-correct: the near vertices' colours reach further, "
+                              "the far vertex's is squeezed toward it, as the far squares of a "
+                              "checkerboard shrink",
+                 k == 0 ? "."
+                 : affine_now ? ". What sr_draw draws with interpolation SR_INTERP_AFFINE."
+                              : ". What sr_draw draws for these vertices given with their w "
+                                "(the default interpolation).");
+        ex_end(c, cap);
+    }
     return c->error;
 }

@@ -122,7 +122,7 @@ void ex_tri_draw(ex_canvas *c, const ex_tri *t, int hilite)
     }
 }
 
-static void samples(ex_canvas *c)
+void ex_tri_samples(ex_canvas *c)
 {
     for (int y = 0; y < c->grid_h; y++) {
         for (int x = 0; x < c->grid_w; x++) {
@@ -147,36 +147,11 @@ static void fmt_q8(char *buf, size_t size, int64_t q)
     snprintf(buf, size, "%g", (double)q / 256.0);
 }
 
-sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
+/* Frames 2-6 of the half-space rasterizer: each edge function's sign,
+ * their intersection, the top-left rule on the ties. */
+static void halfspace_steps(ex_canvas *c, const tri *t)
 {
-    tri t;
-    bool swapped = ex_tri_setup(&t, prim);
-    char cap[512], a[3][2][24];
-    for (int i = 0; i < 3; i++) {
-        fmt_q8(a[i][0], sizeof a[i][0], t.x[i]);
-        fmt_q8(a[i][1], sizeof a[i][1], t.y[i]);
-    }
-
-    /* 1: the triangle over the sample points */
-    ex_begin(c);
-    samples(c);
-    ex_tri_draw(c, &t, -1);
-    snprintf(cap, sizeof cap,
-             "1. The triangle V0 (%s, %s), V1 (%s, %s), V2 (%s, %s), snapped to 1/256 pixel "
-             "(8 sub-pixel bits). A pixel is a point sample at its centre (x+1/2, y+1/2): it is "
-             "covered when its centre is inside.%s",
-             a[0][0], a[0][1], a[1][0], a[1][1], a[2][0], a[2][1],
-             swapped ? " (Given the other way round: V1 and V2 swapped so inside is E > 0.)" : "");
-    ex_end(c, cap);
-    if (t.area2 == 0) {
-        ex_begin(c);
-        samples(c);
-        ex_tri_draw(c, &t, -1);
-        ex_end(c, "2. The triangle has no area (its vertices are on one line after snapping): "
-                  "it covers no pixel.");
-        return c->error;
-    }
-
+    char cap[512];
     /* 2-4: each edge function's sign at every centre */
     for (int i = 0; i < 3; i++) {
         int b = (i + 1) % 3;
@@ -184,7 +159,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
         int pos = 0, zero = 0;
         for (int y = 0; y < c->grid_h; y++) {
             for (int x = 0; x < c->grid_w; x++) {
-                int64_t e = edge_at(&t, i, x, y);
+                int64_t e = edge_at(t, i, x, y);
                 ex_cell(c, x, y, e > 0 ? EX_CELL_IN : e == 0 ? EX_TIE : EX_CELL_OUT);
                 pos += e > 0;
                 zero += e == 0;
@@ -193,13 +168,13 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
                 ex_cell_text(c, x, y, v, EX_TEXT);
             }
         }
-        samples(c);
-        ex_tri_draw(c, &t, i);
+        ex_tri_samples(c);
+        ex_tri_draw(c, t, i);
         snprintf(cap, sizeof cap,
                  "%d. Edge function E%d of V%d->V%d: E%d(x,y) = (x%d-x%d)(y-y%d) - (y%d-y%d)(x-x%d), "
                  "exact in integers. Green: E%d > 0 (inside this edge, %d pixels); "
                  "yellow: E%d = 0 (%d ties). It is %s.",
-                 2 + i, i, i, b, i, b, i, i, b, i, i, i, pos, i, zero, edge_kind(&t, i));
+                 2 + i, i, i, b, i, b, i, i, b, i, i, i, pos, i, zero, edge_kind(t, i));
         ex_end(c, cap);
     }
 
@@ -208,7 +183,7 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
     int inside = 0, ties = 0;
     for (int y = 0; y < c->grid_h; y++) {
         for (int x = 0; x < c->grid_w; x++) {
-            bool strict, nonneg = on_or_inside(&t, x, y, &strict);
+            bool strict, nonneg = on_or_inside(t, x, y, &strict);
             if (nonneg) {
                 ex_cell(c, x, y, strict ? EX_CELL_IN : EX_TIE);
             }
@@ -216,8 +191,8 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
             ties += nonneg && !strict;
         }
     }
-    samples(c);
-    ex_tri_draw(c, &t, -1);
+    ex_tri_samples(c);
+    ex_tri_draw(c, t, -1);
     snprintf(cap, sizeof cap,
              "5. The edge equations together: %d centres have E0, E1 and E2 all > 0 (green) and "
              "are covered. %d centres lie exactly on an edge (yellow, some E = 0): "
@@ -230,11 +205,11 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
     int taken = 0;
     for (int y = 0; y < c->grid_h; y++) {
         for (int x = 0; x < c->grid_w; x++) {
-            bool strict, nonneg = on_or_inside(&t, x, y, &strict);
+            bool strict, nonneg = on_or_inside(t, x, y, &strict);
             if (strict) {
                 ex_cell(c, x, y, EX_CELL_IN);
             } else if (nonneg) {
-                bool in = covered(&t, x, y);
+                bool in = covered(t, x, y);
                 ex_cell(c, x, y, in ? EX_CELL_IN : EX_CELL_OUT);
                 if (in) {
                     ex_ring(c, x, y, EX_INK);
@@ -245,31 +220,76 @@ sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
             }
         }
     }
-    samples(c);
-    ex_tri_draw(c, &t, -1);
+    ex_tri_samples(c);
+    ex_tri_draw(c, t, -1);
     snprintf(cap, sizeof cap,
              "6. Top-left rule: a tie on a top edge (horizontal, inside below) or a left edge "
              "is covered (ringed: %d), one on a right or bottom edge is not (crossed: %d), so "
              "triangles sharing an edge draw it once. E0: %s, E1: %s, E2: %s.",
-             taken, ties - taken, edge_kind(&t, 0), edge_kind(&t, 1), edge_kind(&t, 2));
+             taken, ties - taken, edge_kind(t, 0), edge_kind(t, 1), edge_kind(t, 2));
     ex_end(c, cap);
+}
 
-    /* 7: coverage, what the pipeline draws */
+void ex_tri_coverage(ex_canvas *c, const ex_tri *t, const char *lead)
+{
     ex_begin(c);
     int total = 0;
     for (int y = 0; y < c->grid_h; y++) {
         for (int x = 0; x < c->grid_w; x++) {
-            if (covered(&t, x, y)) {
+            if (covered(t, x, y)) {
                 ex_cell(c, x, y, EX_INK);
                 total++;
             }
         }
     }
+    ex_tri_draw(c, t, -1);
+    char cap[512];
+    snprintf(cap, sizeof cap,
+             "%d. %s: %d pixels, exactly those sr_draw fills for this triangle with any of "
+             "its rasterizers (half-space, scan-line, barycentric).",
+             c->frame_count + 1, lead, total);
+    ex_end(c, cap);
+}
+
+sr_result explain_triangle(ex_canvas *c, const ex_primitive *prim)
+{
+    tri t;
+    bool swapped = ex_tri_setup(&t, prim);
+    char cap[512], a[3][2][24];
+    for (int i = 0; i < 3; i++) {
+        fmt_q8(a[i][0], sizeof a[i][0], t.x[i]);
+        fmt_q8(a[i][1], sizeof a[i][1], t.y[i]);
+    }
+
+    /* 1: the triangle over the sample points */
+    ex_begin(c);
+    ex_tri_samples(c);
     ex_tri_draw(c, &t, -1);
     snprintf(cap, sizeof cap,
-             "7. Coverage: %d pixels, exactly those sr_draw fills for this triangle with any of "
-             "its rasterizers (half-space, scan-line, barycentric).",
-             total);
+             "1. The triangle V0 (%s, %s), V1 (%s, %s), V2 (%s, %s), snapped to 1/256 pixel "
+             "(8 sub-pixel bits). A pixel is a point sample at its centre (x+1/2, y+1/2): it is "
+             "covered when its centre is inside.%s",
+             a[0][0], a[0][1], a[1][0], a[1][1], a[2][0], a[2][1],
+             swapped ? " (Given the other way round: V1 and V2 swapped so inside is E > 0.)" : "");
     ex_end(c, cap);
+    if (t.area2 == 0) {
+        ex_begin(c);
+        ex_tri_samples(c);
+        ex_tri_draw(c, &t, -1);
+        ex_end(c, "2. The triangle has no area (its vertices are on one line after snapping): "
+                  "it covers no pixel.");
+        return c->error;
+    }
+
+    if (prim->rasterizer == SR_RASTER_SCANLINE) {
+        ex_tri_scanline_steps(c, &t);
+    } else if (prim->rasterizer == SR_RASTER_BARYCENTRIC) {
+        ex_tri_barycentric_steps(c, &t);
+    } else {
+        halfspace_steps(c, &t);
+    }
+    ex_tri_coverage(c, &t, prim->rasterizer == SR_RASTER_SCANLINE ? "Spans filled"
+                         : prim->rasterizer == SR_RASTER_BARYCENTRIC ? "Bounding box tested"
+                                                                    : "Coverage");
     return c->error;
 }

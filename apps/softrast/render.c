@@ -1039,7 +1039,8 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     sr_state state = {
         .cull = o->cull, .front_face = o->front, .depth_func = o->depth_func,
         .shading = o->shading, .interpolation = o->interp, .rasterizer = o->rasterizer,
-        .clipper = o->clipper, .depth_near = o->depth_near, .depth_far = o->depth_far,
+        .clipper = o->clipper, .depth_range = o->depth_range, .depth_near = o->depth_near,
+        .depth_far = o->depth_far,
         .ambient = o->have_ambient ? o->ambient : (sr_vec3){ 0.12f, 0.12f, 0.14f },
         .two_sided = o->cull == SR_CULL_NONE,
         .texture_filter = o->texture_filter, .wrap_u = o->wrap, .wrap_v = o->wrap,

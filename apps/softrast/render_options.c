@@ -348,11 +348,7 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
                 cli_error("%s: expected NEAR,FAR, two numbers (got '%s')", arg, value);
                 return EXIT_USAGE;
             }
-            /* sr_state reads exactly 0,0 as its default [0, 1]; -1 clamps
-             * to the 0 asked for. */
-            if (o->depth_near == 0.0f && o->depth_far == 0.0f) {
-                o->depth_near = o->depth_far = -1.0f;
-            }
+            o->depth_range = SR_DEPTH_RANGE_SET;
         } else if (IS("--camera")) {
             VALUE();
             if (!parse_kv_list(arg, value, camera_kv, o)) {

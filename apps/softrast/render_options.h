@@ -51,7 +51,8 @@ typedef struct render_opts {
     int detail;
     sr_rasterizer rasterizer;
     sr_clipper clipper;
-    float depth_near, depth_far;   /* sr_state's: 0,0 -> [0, 1] */
+    sr_depth_range_mode depth_range;   /* SR_DEPTH_RANGE_SET after --depth-range */
+    float depth_near, depth_far;
     int threads;
     int png_level;
     int jpeg_quality;              /* 0: not given */

@@ -48,6 +48,7 @@ void sr_py_release_render_set(sr_py_render_set *s)
         sr_destroy_context(s->ctx);
     }
     free(s->vertices);
+    free(s->visibility);
     memset(s, 0, sizeof *s);
 }
 

@@ -8,14 +8,17 @@
 
 PyDoc_STRVAR(render_doc,
 "render(instances, K, width, height, near, threads, depth, triangle_id, instance_id,\n"
-"       barycentric, normal, color, mask, background, lit, rgba=None, pbr=False)\n"
+"       barycentric, normal, color, mask, background, lit, rgba=None, pbr=False,\n"
+"       general=False)\n"
 "--\n"
 "\n"
 "The C renderer behind softrast.render (use that): one camera.\n"
 "instances: a sequence of (Mesh, (3, 4) float64 object->camera matrix,\n"
 "(3, 3) float64 normal matrix, int id[, (metallic, roughness, emissive\n"
 "r, g, b)]); K: (3, 3) float64.  The outputs\n"
-"are written into the given C-contiguous arrays (None: not wanted).");
+"are written into the given C-contiguous arrays (None: not wanted).\n"
+"general: the geometry outputs through the library's pipeline even where\n"
+"the visibility pass could draw them (the same bytes; for the tests).");
 
 PyDoc_STRVAR(load_mesh_doc,
 "load_mesh(path)\n--\n\n"

@@ -67,6 +67,9 @@ typedef struct sr_py_render_set {
     int threads, width, height; /* the context's; the framebuffer's size */
     void *vertices;
     size_t vertices_bytes;
+    void *visibility;           /* the visibility pass's buffers (visibility.c) */
+    size_t visibility_bytes;
+    size_t visibility_cleared;  /* its leading pixel words known to be 0 */
     bool cached;                /* the kept set, to be given back */
 } sr_py_render_set;
 

@@ -14,12 +14,14 @@
  * shader intersects the pixel's ray with that face for depth, barycentrics
  * and normal, and writes them for the fragments that pass the depth test;
  * fragments of one tile are shaded in draw order, so the last write to a
- * pixel is the visible surface's, the same for any thread count.  Color
+ * pixel is the visible surface's, the same for any thread count.  That is
+ * the general pass: a view in which no face crosses a clip plane takes
+ * the visibility pass instead (visibility.c), with the same bytes.  Color
  * comes from a second pass on the same projection: the built-in shading
  * (textures, vertex colors, a headlight), or the metallic-roughness
  * program lit as softrast render's default look.
  */
-#include "module.h"
+#include "geometry.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -32,44 +34,12 @@
 enum { V_TRI = 0, V_TRI_HI = 0, V_TRI_LO = 1 };
 #define ONE_VARYING_FACES ((size_t)1 << 24)
 
-typedef struct geometry_uniforms {
-    /* Per mesh vertex, computed once a view rather than once a triangle
-     * corner (view_of): the clip position, read by the vertex shader,
-     * and the camera-space one, for the fragments' rays; apart, so that
-     * the vertex shader's reads stay dense. */
-    const float (*clip)[4];
-    const double (*camera)[3];
-    size_t faces_count;
-    const void *vertices;
-    bool vertices64;
-    const void *faces;
-    bool faces64;
-    const float *normals;       /* NULL: face normals */
-    double a[3][4];             /* object -> camera */
-    double nm[3][3];            /* object normal -> the normal output's frame */
-    double kx[3], ky[2];        /* clip x and y rows from K */
-    double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
-    float near;
-    int width;
-    int32_t instance_id;
-    float *depth;
-    int32_t *triangle_id, *instance_out;
-    float *barycentric, *normal;
-    npy_bool *mask;
-} geometry_uniforms;
-
 static void fetch_vertex(const geometry_uniforms *u, size_t v, double p[3])
 {
     for (int k = 0; k < 3; k++) {
         p[k] = u->vertices64 ? ((const double *)u->vertices)[3 * v + k]
                              : (double)((const float *)u->vertices)[3 * v + k];
     }
-}
-
-static size_t fetch_index(const geometry_uniforms *u, size_t i)
-{
-    return u->faces64 ? (size_t)((const int64_t *)u->faces)[i]
-                      : (size_t)((const int32_t *)u->faces)[i];
 }
 
 static void to_camera(const geometry_uniforms *u, const double p[3], double c[3])
@@ -107,12 +77,23 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     clip[3] = (float)c[2];
 }
 
+void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi)
+{
+    /* The tables are the render set's, handed out read-only to the
+     * shaders. */
+    float (*clip)[4] = (float (*)[4])u->clip;
+    double (*camera)[3] = (double (*)[3])u->camera;
+    for (size_t v = lo; v < hi; v++) {
+        view_of(u, v, clip[v], camera[v]);
+    }
+}
+
 static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
                             float *vary)
 {
     const geometry_uniforms *u = uniforms;
     size_t face = in->index / 3;
-    memcpy(clip, u->clip[fetch_index(u, in->index)], 4 * sizeof(float));
+    memcpy(clip, u->clip[sr_py_face_index(u, in->index)], 4 * sizeof(float));
     if (u->faces_count <= ONE_VARYING_FACES) {
         vary[V_TRI] = (float)face;
     } else {
@@ -125,13 +106,13 @@ static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, flo
  * pixel's centre and the face's camera-space plane, in double: depth and
  * barycentrics are the exact intersection rounded once to float, not
  * interpolated from vertices snapped to the raster's sub-pixel grid. */
-static void shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z)
+void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z)
 {
     size_t p = (size_t)y * (size_t)u->width + (size_t)x;
     size_t vi[3];
     double o[3][3], c[3][3];
     for (int k = 0; k < 3; k++) {
-        vi[k] = fetch_index(u, 3 * face + (size_t)k);
+        vi[k] = sr_py_face_index(u, 3 * face + (size_t)k);
         memcpy(c[k], u->camera[vi[k]], sizeof c[k]);
     }
     double dy = ((double)y - u->cy) / u->fy;
@@ -207,7 +188,7 @@ static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
                               ? (size_t)lrintf(q->varyings[V_TRI][i])
                               : (size_t)lrintf(q->varyings[V_TRI_HI][i]) << 16 |
                                     (size_t)lrintf(q->varyings[V_TRI_LO][i]);
-            shade_pixel(u, face, q->x + (i & 1), q->y + (i >> 1), q->z[i]);
+            sr_py_shade_pixel(u, face, q->x + (i & 1), q->y + (i >> 1), q->z[i]);
         }
     }
 }
@@ -236,32 +217,20 @@ typedef struct render_job {
     float *barycentric, *normal;
     uint8_t *color, *rgba;
     npy_bool *mask;
+    bool general;               /* geometry: the library's pipeline, not the visibility pass */
     sr_py_render_set *set;      /* what run() draws with */
     char error[512];
 } render_job;
 
+/* Every pixel of the geometry outputs as where nothing is visible. */
 static void fill_outputs(const render_job *j)
 {
+    geometry_uniforms u = { .depth = j->depth, .triangle_id = j->triangle_id,
+                            .instance_out = j->instance_id, .barycentric = j->barycentric,
+                            .normal = j->normal, .mask = j->mask };
     size_t n = (size_t)j->width * (size_t)j->height;
-    for (size_t i = 0; i < n; i++) {
-        if (j->depth) {
-            j->depth[i] = INFINITY;
-        }
-        if (j->triangle_id) {
-            j->triangle_id[i] = -1;
-        }
-        if (j->instance_id) {
-            j->instance_id[i] = -1;
-        }
-    }
-    if (j->barycentric) {
-        memset(j->barycentric, 0, 3 * n * sizeof(float));
-    }
-    if (j->normal) {
-        memset(j->normal, 0, 3 * n * sizeof(float));
-    }
-    if (j->mask) {
-        memset(j->mask, 0, n * sizeof(npy_bool));
+    for (size_t p = 0; p < n; p++) {
+        sr_py_background_pixel(&u, p);
     }
 }
 
@@ -292,28 +261,18 @@ static sr_result draw_instances(sr_context *ctx, sr_framebuffer *fb, const rende
     return r;
 }
 
-static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
-                               const instance *in, size_t faces, const void *arg)
+/* Each instance's uniforms, with room for its vertices seen from the
+ * camera in the set's per-vertex tables (every instance's at once, as the
+ * visibility pass resolves any of them at any pixel), filled when `view`
+ * (the visibility pass fills them on its threads). */
+static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_uniforms *u)
 {
-    (void)arg;
-    const MeshObject *m = in->mesh;
-    geometry_uniforms u = {
-        .vertices = PyArray_DATA(m->vertices),
-        .vertices64 = PyArray_TYPE(m->vertices) == NPY_FLOAT64,
-        .faces = PyArray_DATA(m->faces),
-        .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
-        .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
-        .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1], .cy = j->k[1][2],
-        .near = j->near, .width = j->width, .instance_id = in->id,
-        .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
-        .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
-    };
-    memcpy(u.a, in->a, sizeof u.a);
-    memcpy(u.nm, in->nm, sizeof u.nm);
-    clip_rows(j, u.kx, u.ky);
-    size_t nv = (size_t)PyArray_DIM(m->vertices, 0);
+    size_t total = 0;
+    for (size_t i = 0; i < j->count; i++) {
+        total += (size_t)PyArray_DIM(j->inst[i].mesh->vertices, 0);
+    }
     sr_py_render_set *set = j->set;
-    size_t bytes = nv * (4 * sizeof(float) + 3 * sizeof(double));
+    size_t bytes = total * (4 * sizeof(float) + 3 * sizeof(double));
     if (set->vertices_bytes < bytes) {
         void *grown = realloc(set->vertices, bytes);
         if (!grown) {
@@ -323,32 +282,83 @@ static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const render
         set->vertices_bytes = bytes;
     }
     float (*clip)[4] = set->vertices;
-    double (*camera)[3] = (double (*)[3])(clip + nv);
-    for (size_t v = 0; v < nv; v++) {
-        view_of(&u, v, clip[v], camera[v]);
+    double (*camera)[3] = (double (*)[3])(clip + total);
+    for (size_t i = 0; i < j->count; i++) {
+        const instance *in = &j->inst[i];
+        const MeshObject *m = in->mesh;
+        u[i] = (geometry_uniforms){
+            .vertices_count = (size_t)PyArray_DIM(m->vertices, 0),
+            .faces_count = (size_t)PyArray_DIM(m->faces, 0),
+            .vertices = PyArray_DATA(m->vertices),
+            .vertices64 = PyArray_TYPE(m->vertices) == NPY_FLOAT64,
+            .faces = PyArray_DATA(m->faces),
+            .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
+            .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
+            .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1],
+            .cy = j->k[1][2], .near = j->near, .width = j->width, .instance_id = in->id,
+            .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
+            .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
+        };
+        memcpy(u[i].a, in->a, sizeof u[i].a);
+        memcpy(u[i].nm, in->nm, sizeof u[i].nm);
+        clip_rows(j, u[i].kx, u[i].ky);
+        u[i].clip = (const float (*)[4])clip;
+        u[i].camera = (const double (*)[3])camera;
+        if (view) {
+            sr_py_view_vertices(&u[i], 0, u[i].vertices_count);
+        }
+        clip += u[i].vertices_count;
+        camera += u[i].vertices_count;
     }
-    u.clip = (const float (*)[4])clip;
-    u.camera = (const double (*)[3])camera;
-    u.faces_count = faces;
+    return SR_OK;
+}
+
+/* One instance through the library's pipeline; `u->faces_count` > 0. */
+static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const geometry_uniforms *u,
+                               const MeshObject *m)
+{
+    size_t faces = u->faces_count;
     sr_program prog = { .vertex = geometry_vertex, .fragment = geometry_fragment,
-                        .uniforms = &u, .varying_count = faces <= ONE_VARYING_FACES ? 1 : 2 };
+                        .uniforms = u, .varying_count = faces <= ONE_VARYING_FACES ? 1 : 2 };
     prog.modes[V_TRI_HI] = prog.modes[V_TRI_LO] = SR_VARYING_FLAT;
     /* The shader reads the mesh itself; sr_draw still wants a position
      * array of vertex_count entries.  Overlapping ones 4 bytes apart
      * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
-    return sr_draw(ctx, fb,
-                   &(sr_state){ .program = &prog, .depth_zero_to_one = true,
-                                .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
-                                .color_mask = SR_COLOR_MASK_NONE },
+    sr_state st = sr_py_geometry_state(&prog);
+    return sr_draw(ctx, fb, &st,
                    &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
                                     .vertex_count = 3 * faces });
 }
 
+/* The visibility pass where it can draw the view (unless the caller
+ * asked for the general one), else each instance through the library's
+ * pipeline: the same bytes either way. */
 static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
-    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){ .depth_action = SR_ACTION_CLEAR, .depth = 0,
-                                                       .color_action = SR_ACTION_KEEP });
-    return r == SR_OK ? draw_instances(ctx, fb, j, geometry_draw, NULL) : r;
+    geometry_uniforms *u = calloc(j->count ? j->count : 1, sizeof *u);
+    if (!u) {
+        return SR_OUT_OF_MEMORY;
+    }
+    sr_result r = geometry_uniforms_of(j, j->general, u);
+    bool done = false;
+    if (r == SR_OK && !j->general) {
+        r = sr_py_visibility_pass(j->set, u, j->count, &done);
+    }
+    if (r == SR_OK && !done) {
+        for (size_t i = 0; i < j->count && !j->general; i++) {
+            sr_py_view_vertices(&u[i], 0, u[i].vertices_count);
+        }
+        fill_outputs(j);
+        r = sr_clear(ctx, fb, &(sr_clear_desc){ .depth_action = SR_ACTION_CLEAR, .depth = 0,
+                                                 .color_action = SR_ACTION_KEEP });
+        for (size_t i = 0; i < j->count && r == SR_OK; i++) {
+            if (u[i].faces_count > 0) {
+                r = geometry_draw(ctx, fb, &u[i], j->inst[i].mesh);
+            }
+        }
+    }
+    free(u);
+    return r;
 }
 
 static void mat_from_rows(const double a[3][4], sr_mat4 *out)
@@ -559,7 +569,6 @@ static void run(render_job *j, sr_py_render_set *s)
         snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_result_text(r));
         return;
     }
-    fill_outputs(j);
     sr_context *ctx = s->ctx;
     sr_framebuffer *fb = s->fb;
     bool geometry = j->depth || j->triangle_id || j->instance_id || j->barycentric || j->normal ||
@@ -698,15 +707,15 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     (void)self;
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
-                              "mask", "background", "lit", "rgba", "pbr", NULL };
+                              "mask", "background", "lit", "rgba", "pbr", "general", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     render_job j = { 0 };
-    int lit = 1, pbr = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|Op:render", kwlist,
+    int lit = 1, pbr = 0, general = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|Opp:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
-                                     &j.background[2], &lit, &outs[7], &pbr)) {
+                                     &j.background[2], &lit, &outs[7], &pbr, &general)) {
         return NULL;
     }
     if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
@@ -726,6 +735,7 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     }
     j.lit = lit;
     j.pbr = pbr;
+    j.general = general;
     if (take_matrix(K, "K", 3, 3, &j.k[0][0]) < 0) {
         return NULL;
     }

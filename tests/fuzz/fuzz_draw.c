@@ -156,6 +156,7 @@ static void decode(reader *r, decoded *o)
         }
     }
     static const float depths[] = { 0.0f, 1.0f, 0.5f, 0.25f, 0.75f, 1e-7f, 0.999999f, 2.0f };
+    st->depth_range = SR_DEPTH_RANGE_SET;
     st->depth_near = depths[u8(r) % 8];
     st->depth_far = depths[u8(r) % 8];
     uint8_t f = u8(r);

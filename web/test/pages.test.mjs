@@ -1,9 +1,11 @@
 // pages.test.mjs - the interactive pages in a real browser: Debian's
 // chromium, headless, driven by playwright-core.  For every page of the
-// built site: it loads without console errors, a scripted drag of the
-// first handle changes the canvas, and every step's canvas equals, pixel
-// for pixel, the PNG frame the native `softrast explain` writes for the
-// same arguments (the page shows them as its command line).
+// built site: it loads without console errors, scripted drags of its
+// first and last handles change the canvas, and every step's canvas
+// equals, pixel for pixel, the PNG frame the native `softrast explain`
+// writes for the same arguments (the page shows them as its command
+// line), after the drags and again with each option the page offers
+// switched.
 //
 //   node test/pages.test.mjs SITE_DIR SOFTRAST [CHROMIUM]
 //
@@ -93,71 +95,94 @@ for (const file of pages) {
         await page.close();
         continue;
     }
-    const before = await canvasPixels(page);
-    const argsBefore = await page.evaluate(() => window.explainArgs.join(' '));
-
-    // Drag the first vertex three cells right and two down, as a user would.
+    const failed = failures;
+    // Drag a handle three cells right and two down, as a user would: the
+    // first (a vertex, the circle's centre) and the last (the seed, the
+    // span's row, a clip window's corner, the circle's rim; on clip4d
+    // another vertex), where they differ.  Each drag must change the
+    // arguments and the canvas.
     const at = await page.evaluate(() => {
         const c = document.getElementById('frame').getBoundingClientRect();
         return { left: c.left, top: c.top };
     });
-    const alg = JSON.parse(await page.evaluate(() => {
-        const mod = document.body.dataset.algorithm;
-        return JSON.stringify({ name: mod, args: window.explainArgs });
-    }));
-    // Pages of algorithms whose primitive has no handles yet (kind 'none':
-    // zbuffer, circle, ... step through their example only) skip the drag.
-    const draggable = ['--triangle', '--polygon', '--line'].includes(alg.args[1]);
-    const first = draggable ? alg.args[2].split(',').map(Number) : [0, 0];
-    const zoom = Number(alg.args[alg.args.indexOf('--zoom') + 1]);
+    const handles = await page.evaluate(() => window.explainHandles());
+    if (handles.length === 0) {
+        fail(file, 'the page has no handle to drag');
+    }
+    const zoomOf = (a) => Number(a[a.indexOf('--zoom') + 1]);
     const margin = 16;
-    const x0 = at.left + margin + first[0] * zoom, y0 = at.top + margin + first[1] * zoom;
-    if (draggable) {
+    for (const k of new Set([0, handles.length - 1].filter((k) => k >= 0 && k < handles.length))) {
+        const before = await canvasPixels(page);
+        const argsBefore = await page.evaluate(() => window.explainArgs.join(' '));
+        const zoom = zoomOf(await page.evaluate(() => window.explainArgs));
+        const h = (await page.evaluate(() => window.explainHandles()))[k];
+        const x0 = at.left + margin + h[0] * zoom, y0 = at.top + margin + h[1] * zoom;
         await page.mouse.move(x0, y0);
         await page.mouse.down();
-        for (let k = 1; k <= 4; k++) {
-            await page.mouse.move(x0 + 0.75 * k * zoom, y0 + 0.5 * k * zoom);
+        for (let i = 1; i <= 4; i++) {
+            await page.mouse.move(x0 + 0.75 * i * zoom, y0 + 0.5 * i * zoom);
         }
         await page.mouse.up();
         await page.waitForFunction((a) => window.explainArgs.join(' ') !== a, argsBefore,
                                    { timeout: 10000 }).catch(() => {});
-    }
-    const after = await canvasPixels(page);
-    const args = await page.evaluate(() => window.explainArgs);
-    if (draggable && args.join(' ') === argsBefore) {
-        fail(file, 'the drag did not move the vertex');
-    } else if (draggable && after === before) {
-        fail(file, 'the drag did not change the canvas');
+        if (await page.evaluate(() => window.explainArgs.join(' ')) === argsBefore) {
+            fail(file, `the drag did not move handle ${k}`);
+        } else if (await canvasPixels(page) === before) {
+            fail(file, `the drag of handle ${k} did not change the canvas`);
+        }
     }
 
-    // Every step against the native tool's frames for the same arguments.
-    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'softrast-web-'));
-    execFileSync(softrast, ['explain', ...args, '-o', dir]);
-    const frames = fs.readdirSync(dir).filter((f) => f.endsWith('.png')).sort();
-    const steps = await page.evaluate(() => Number(document.getElementById('step').max) + 1);
-    if (steps !== frames.length) {
-        fail(file, `${steps} steps in the page, ${frames.length} frames from softrast`);
-    }
-    await page.click('#first');
-    let differ = 0;
-    for (let i = 0; i < Math.min(steps, frames.length); i++) {
-        if (i > 0) {
-            await page.click('#next');
+    // Every step against the native tool's frames for the same arguments:
+    // after the drags, then with each option the page offers switched to
+    // each of its other values in turn.
+    const compare = async (when) => {
+        const args = await page.evaluate(() => window.explainArgs);
+        const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'softrast-web-'));
+        execFileSync(softrast, ['explain', ...args, '-o', dir]);
+        const frames = fs.readdirSync(dir).filter((f) => f.endsWith('.png')).sort();
+        const steps = await page.evaluate(() => Number(document.getElementById('step').max) + 1);
+        if (steps !== frames.length) {
+            fail(file, `${when}: ${steps} steps in the page, ${frames.length} frames from softrast`);
         }
-        const shown = await canvasPixels(page);
-        if (shown !== await pngPixels(page, path.join(dir, frames[i]))) {
-            differ++;
+        await page.click('#first');
+        let differ = 0;
+        for (let i = 0; i < Math.min(steps, frames.length); i++) {
+            if (i > 0) {
+                await page.click('#next');
+            }
+            const shown = await canvasPixels(page);
+            if (shown !== await pngPixels(page, path.join(dir, frames[i]))) {
+                differ++;
+            }
         }
-    }
-    fs.rmSync(dir, { recursive: true });
-    if (differ) {
-        fail(file, `${differ} of ${frames.length} steps differ from softrast explain ${args.join(' ')}`);
+        fs.rmSync(dir, { recursive: true });
+        if (differ) {
+            fail(file, `${when}: ${differ} of ${frames.length} steps differ from ` +
+                       `softrast explain ${args.join(' ')}`);
+        }
+        return differ ? 0 : frames.length;
+    };
+    let checked = [await compare('after the drags')];
+    const options = await page.evaluate(() => [...document.querySelectorAll('#options select')]
+        .flatMap((s) => [...s.options].slice(1).map((o) => ({ name: s.name, value: o.value }))));
+    for (const o of options) {
+        const argsBefore = await page.evaluate(() => window.explainArgs.join(' '));
+        await page.selectOption(`select[name="${o.name}"]`, o.value);
+        await page.waitForFunction((a) => window.explainArgs.join(' ') !== a, argsBefore,
+                                   { timeout: 10000 }).catch(() => {});
+        const args = await page.evaluate(() => window.explainArgs);
+        if (args[args.indexOf(o.name) + 1] !== o.value) {
+            fail(file, `choosing ${o.name} ${o.value} did not reach the arguments`);
+        }
+        checked.push(await compare(`${o.name} ${o.value}`));
     }
     if (errors.length) {
         fail(file, `console errors: ${errors.join('; ')}`);
     }
-    if (!differ && !errors.length) {
-        console.log(`ok   ${file}: ${frames.length} steps equal the native frames${draggable ? " after the drag" : " (no handles)"}`);
+    if (failures === failed && !errors.length) {
+        const then = options.map((o) => `${o.name} ${o.value}`).join(', ');
+        console.log(`ok   ${file}: ${handles.length} handles, first and last dragged; ` +
+                    `${checked.join(' + ')} steps equal the native frames${then ? `, after the drags and with ${then}` : ''}`);
     }
     await page.close();
 }

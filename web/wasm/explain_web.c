@@ -125,8 +125,11 @@ EMSCRIPTEN_KEEPALIVE const char *web_algorithm(int i)
     if (!explain_algorithm(i, &name, &summary, &ex, &gw, &gh, &zoom)) {
         return NULL;
     }
-    /* The primitive's option is --KIND; a kind without one is "none". */
-    static const char *const kinds[] = { "none", "triangle", "polygon", "line" };
+    /* The primitive's option is --KIND (ex_kind's order); the page makes
+     * handles of its points, and of the seed, the row and the clip
+     * window where the example has them. */
+    static const char *const kinds[] = { "none",     "triangle", "polygon", "line",
+                                         "triangles", "circle",  "cubic",   "clip-triangle" };
     const char *kind = (size_t)ex.kind < sizeof kinds / sizeof kinds[0] ? kinds[ex.kind] : "none";
     int n = snprintf(json, sizeof json, "{\"name\":\"%s\",\"kind\":\"%s\",\"summary\":\"", name,
                      kind);
@@ -145,8 +148,20 @@ EMSCRIPTEN_KEEPALIVE const char *web_algorithm(int i)
         n += snprintf(json + n, sizeof json - (size_t)n, "%s[%.17g,%.17g]", k ? "," : "",
                       ex.pts[k].x, ex.pts[k].y);
     }
+    /* each point's value: a depth, w, an intensity, the circle's radius */
+    n += snprintf(json + n, sizeof json - (size_t)n, "],\"values\":[");
+    for (int k = 0; k < ex.count && n < (int)sizeof json - 128; k++) {
+        n += snprintf(json + n, sizeof json - (size_t)n, "%s%.17g", k ? "," : "", ex.z[k]);
+    }
+    n += snprintf(json + n, sizeof json - (size_t)n, "],\"clip\":[");
+    for (int k = 0; k < 12 && n < (int)sizeof json - 128; k++) {
+        n += snprintf(json + n, sizeof json - (size_t)n, "%s%.17g", k ? "," : "",
+                      ex.clip[k / 4][k % 4]);
+    }
     snprintf(json + n, sizeof json - (size_t)n,
-             "],\"window\":[%.17g,%.17g,%.17g,%.17g],\"grid\":[%d,%d],\"zoom\":%d}",
-             ex.window[0], ex.window[1], ex.window[2], ex.window[3], gw, gh, zoom);
+             "],\"window\":[%.17g,%.17g,%.17g,%.17g],\"seed\":[%d,%d],\"row\":%d,"
+             "\"grid\":[%d,%d],\"zoom\":%d}",
+             ex.window[0], ex.window[1], ex.window[2], ex.window[3], ex.seed[0], ex.seed[1], ex.row,
+             gw, gh, zoom);
     return json;
 }

@@ -1,0 +1,101 @@
+/*
+ * geometry.h - what render.c's geometry outputs share with visibility.c:
+ * one instance's uniforms (its vertices seen from the camera, the output
+ * arrays) and the per-pixel resolve from a face index to depth,
+ * barycentrics, normal, IDs and mask.  No Python objects: every function
+ * here runs without the GIL.
+ */
+#ifndef SR_PY_GEOMETRY_H
+#define SR_PY_GEOMETRY_H
+
+#include "module.h"
+
+#include <math.h>
+#include <string.h>
+
+typedef struct geometry_uniforms {
+    /* Per mesh vertex, computed once a view rather than once a triangle
+     * corner (sr_py_view_vertices): the clip position, read by the vertex
+     * shader, and the camera-space one, for the fragments' rays; apart,
+     * so that the vertex shader's reads stay dense. */
+    const float (*clip)[4];
+    const double (*camera)[3];
+    size_t vertices_count, faces_count;
+    const void *vertices;
+    bool vertices64;
+    const void *faces;
+    bool faces64;
+    const float *normals;       /* NULL: face normals */
+    double a[3][4];             /* object -> camera */
+    double nm[3][3];            /* object normal -> the normal output's frame */
+    double kx[3], ky[2];        /* clip x and y rows from K */
+    double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
+    float near;
+    int width;
+    int32_t instance_id;
+    float *depth;
+    int32_t *triangle_id, *instance_out;
+    float *barycentric, *normal;
+    npy_bool *mask;
+} geometry_uniforms;
+
+/* The geometry pass's draw state: a reversed z-buffer (cleared to 0,
+ * GREATER: near / z), both faces drawn, no color written. */
+static inline sr_state sr_py_geometry_state(const sr_program *prog)
+{
+    return (sr_state){ .program = prog, .depth_zero_to_one = true, .depth_func = SR_GREATER,
+                       .cull = SR_CULL_NONE, .color_mask = SR_COLOR_MASK_NONE };
+}
+
+/* Index i of the faces array (3 f + k is corner k of face f). */
+static inline size_t sr_py_face_index(const geometry_uniforms *u, size_t i)
+{
+    return u->faces64 ? (size_t)((const int64_t *)u->faces)[i]
+                      : (size_t)((const int32_t *)u->faces)[i];
+}
+
+/* Fills u's clip and camera tables for mesh vertices [lo, hi): each
+ * vertex seen from the camera. */
+void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
+
+/* The outputs of pixel p (y * width + x) where nothing is visible.
+ * Inline, so that a loop over pixels tests which outputs exist once. */
+static inline void sr_py_background_pixel(const geometry_uniforms *u, size_t p)
+{
+    if (u->depth) {
+        u->depth[p] = INFINITY;
+    }
+    if (u->triangle_id) {
+        u->triangle_id[p] = -1;
+    }
+    if (u->instance_out) {
+        u->instance_out[p] = -1;
+    }
+    if (u->barycentric) {
+        memset(&u->barycentric[3 * p], 0, 3 * sizeof(float));
+    }
+    if (u->normal) {
+        memset(&u->normal[3 * p], 0, 3 * sizeof(float));
+    }
+    if (u->mask) {
+        u->mask[p] = 0;
+    }
+}
+
+/* The outputs of pixel (x, y) where face `face` is visible, with
+ * `window_z` its depth-buffer value there (reversed: near / z). */
+void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z);
+
+/* The visibility-buffer pass (visibility.c): the instances' faces
+ * rasterized for depth and face index alone, then each covered pixel
+ * resolved by sr_py_shade_pixel: the same bytes as the general pass,
+ * whose coverage and depth test it repeats with the library's own setup
+ * and depth arithmetic.  Fills the instances' vertex tables
+ * (sr_py_view_vertices) and every pixel of the outputs.  *done is false,
+ * the outputs unwritten and the tables maybe unfilled, when some face
+ * crosses a clip plane (clipping is left to the general pass) or the pass
+ * cannot draw the view. */
+sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *u, size_t count,
+                                bool *done);
+
+#endif

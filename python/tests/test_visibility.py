@@ -1,0 +1,136 @@
+"""The visibility pass (python/src/visibility.c), which draws the geometry
+outputs of views that need no clipping, gives the bytes of the general
+pass through the library's pipeline (the C renderer's general=True): the
+same coverage, the same winner of equal depths, for any thread count."""
+
+import functools
+
+import numpy as np
+import pytest
+import softrast
+from softrast import _softrast
+from conftest import default_camera, random_triangles
+
+W, H = 160, 120
+GEOMETRY = ("depth", "triangle_id", "instance_id", "barycentric", "normal", "mask")
+
+
+def render_both(scene, threads=(1, 2, 3, 0), **kw):
+    """The general pass's outputs, after checking that the visibility pass
+    gives exactly them on each thread count."""
+    kw.setdefault("width", W)
+    kw.setdefault("height", H)
+    orig = _softrast.render
+    _softrast.render = functools.partial(orig, general=True)
+    try:
+        want = softrast.render(scene, outputs=GEOMETRY, threads=1, **kw)
+    finally:
+        _softrast.render = orig
+    for n in threads:
+        got = softrast.render(scene, outputs=GEOMETRY, threads=n, **kw)
+        for name in GEOMETRY:
+            assert got[name].dtype == want[name].dtype
+            assert got[name].tobytes() == want[name].tobytes(), (name, n)
+    return want
+
+
+def camera_at(eye, target=(0.0, 0.0, 4.0)):
+    return dict(zip("KRt", softrast.look_at(eye=eye, target=target, up=(0.0, -1.0, 0.0),
+                                            fov_y=1.0, width=W, height=H)))
+
+
+def test_random_overlapping_triangles():
+    rng = np.random.default_rng(11)
+    verts, faces = random_triangles(rng, 400, size=0.8)
+    K, R, t = default_camera(W, H)
+    out = render_both(softrast.Mesh(verts.astype(np.float32), faces.astype(np.int32)),
+                      K=K, R=R, t=t)
+    assert (out["triangle_id"] >= 0).mean() > 0.5
+
+
+def test_float64_int64_normals_and_instances():
+    rng = np.random.default_rng(12)
+    verts, faces = random_triangles(rng, 150)
+    normals = rng.normal(size=verts.shape).astype(np.float32)
+    a = softrast.Mesh(verts, faces, normals=normals)
+    b = softrast.Mesh(verts.astype(np.float32), faces.astype(np.int32))
+    pose = np.eye(4)
+    pose[:3, 3] = (0.2, 0.1, 0.5)
+    scene = [softrast.Instance(a, np.eye(4), 7), softrast.Instance(b, pose, 3),
+             softrast.Instance(a, pose, 9)]
+    out = render_both(scene, **camera_at((0.3, -0.2, -0.5)))
+    assert set(np.unique(out["instance_id"])) == {-1, 3, 7, 9}
+
+
+def test_equal_depths_keep_the_first_drawn():
+    """The same face drawn twice, in one mesh and in two instances: the
+    first of equal depths wins, as the depth test GREATER keeps it."""
+    verts = np.array([[-1, -1, 3], [1, -1, 3], [0, 1, 3.5]], np.float32)
+    faces = np.array([[0, 1, 2], [0, 1, 2], [2, 1, 0]], np.int32)
+    mesh = softrast.Mesh(verts, faces)
+    K, R, t = default_camera(W, H)
+    out = render_both(mesh, K=K, R=R, t=t)
+    assert set(np.unique(out["triangle_id"])) == {-1, 0}
+    out = render_both([(mesh, np.eye(4), 5), (mesh, np.eye(4), 6)], K=K, R=R, t=t)
+    assert set(np.unique(out["instance_id"])) == {-1, 5}
+
+
+def test_a_dense_mesh_of_subpixel_faces():
+    """Most faces cover no pixel centre, many one: the case the box test
+    and the pre-setup test are for, with shared vertices."""
+    n = 180
+    theta, phi = np.meshgrid(np.linspace(0, np.pi, n + 1), np.linspace(0, 2 * np.pi, n + 1))
+    r = 1 + 0.1 * np.sin(5 * theta) * np.cos(7 * phi)
+    verts = np.stack([r * np.sin(theta) * np.cos(phi), r * np.cos(theta),
+                      4 + r * np.sin(theta) * np.sin(phi)], -1).reshape(-1, 3)
+    idx = np.arange((n + 1) * (n + 1)).reshape(n + 1, n + 1)
+    quads = np.stack([idx[:-1, :-1], idx[1:, :-1], idx[1:, 1:], idx[:-1, 1:]], -1).reshape(-1, 4)
+    faces = np.ascontiguousarray(np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]]))
+    mesh = softrast.Mesh(verts.astype(np.float32), faces.astype(np.int32))
+    for eye in [(0.0, 0.0, 0.0), (2.5, -1.0, 1.5), (0.5, 3.9, 4.0)]:
+        out = render_both(mesh, **camera_at(eye))
+        assert (out["triangle_id"] >= 0).any()
+
+
+@pytest.mark.parametrize("eye", [(0.0, 0.0, 3.0), (0.0, 0.0, 4.0)])
+def test_views_that_need_clipping(eye):
+    """A camera among the faces: faces crossing the near plane send the
+    view to the general pass, faces wholly behind it are dropped."""
+    rng = np.random.default_rng(13)
+    verts, faces = random_triangles(rng, 300, depth_range=(2.0, 6.0))
+    out = render_both(softrast.Mesh(verts, faces), **camera_at(eye, (0.0, 0.0, 9.0)))
+    assert (out["triangle_id"] >= 0).any()
+
+
+def test_degenerate_offscreen_and_hidden_faces():
+    """A face without area, one off the image, one behind the camera (all
+    three vertices outside the near plane: dropped without clipping)."""
+    rng = np.random.default_rng(14)
+    verts, faces = random_triangles(rng, 100)
+    verts = np.concatenate([verts, [[0, 0, 4], [0, 0, 4], [1, 1, 4], [40, 0, 4], [41, 0, 4],
+                                    [40, 1, 4], [0, 0, -5], [1, 0, -5], [0, 1, -5]]])
+    n = len(verts)
+    faces = np.concatenate([faces, np.arange(n - 9, n).reshape(3, 3)])
+    K, R, t = default_camera(W, H)
+    render_both(softrast.Mesh(verts, faces), K=K, R=R, t=t)
+
+
+def test_empty_scene_and_empty_mesh():
+    K, R, t = default_camera(W, H)
+    empty = softrast.Mesh(np.zeros((0, 3), np.float32), np.zeros((0, 3), np.int32))
+    out = render_both(empty, K=K, R=R, t=t)
+    assert (out["triangle_id"] == -1).all() and np.isinf(out["depth"]).all()
+    out = render_both([], K=K, R=R, t=t)
+    assert not out["mask"].any()
+
+
+@pytest.mark.parametrize("level", ["off", "avx2"])
+def test_every_simd_level(monkeypatch, level):
+    """The vertices are classified sixteen at a time where the CPU has
+    AVX-512, one at a time otherwise (SR_SIMD lowers the level): the
+    same bytes."""
+    monkeypatch.setenv("SR_SIMD", level)
+    rng = np.random.default_rng(15)
+    verts, faces = random_triangles(rng, 300, size=0.8)
+    K, R, t = default_camera(W, H)
+    render_both(softrast.Mesh(verts.astype(np.float32), faces.astype(np.int32)), K=K, R=R, t=t)
