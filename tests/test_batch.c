@@ -5,6 +5,7 @@
  * JSON.  Models are written by the test (STL and OBJ), with a bad one
  * among them. */
 #define _XOPEN_SOURCE 700   /* posix_openpt, grantpt, unlockpt, ptsname */
+#include "gltf_write.h" /* le_copy */
 #include "softrast_io.h"
 #include "sr_test.h"
 
@@ -167,11 +168,11 @@ static bool write_stl(const char *path, float s)
     const int t[4][3] = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } };
     uint8_t buf[84 + 4 * 50] = { 0 };
     uint32_t count = 4;
-    memcpy(buf + 80, &count, 4);
+    le_copy(buf + 80, &count, 1, 4); /* binary STL is little endian on any host */
     for (int i = 0; i < 4; i++) {
         uint8_t *rec = buf + 84 + 50 * i;
         for (int k = 0; k < 3; k++) {
-            memcpy(rec + 12 + 12 * k, v[t[i][k]], 12);
+            le_copy(rec + 12 + 12 * k, v[t[i][k]], 3, 4);
         }
     }
     return sr_test_write_file(path, buf, sizeof buf);

@@ -1849,9 +1849,9 @@ static bool write_gltf_quad(const char *path, const uint8_t *image, size_t n, bo
     uint8_t *glb = malloc(20 + 4 * (n / 3 + 1) + 4096 + 8 + bin_len);
     bool ok = bin && b64buf && b64img && json && glb;
     if (ok) {
-        memcpy(bin, pos, 48);
-        memcpy(bin + 48, uv, 32);
-        memcpy(bin + 80, idx, 12);
+        le_copy(bin, pos, 12, 4); /* glTF and GLB are little endian on any host */
+        le_copy(bin + 48, uv, 8, 4);
+        le_copy(bin + 80, idx, 6, 2);
         memcpy(bin + 92, image, n);
         gltf_base64(bin, 92, b64buf);
         gltf_base64(image, n, b64img);
@@ -1891,12 +1891,12 @@ static bool write_gltf_quad(const char *path, const uint8_t *image, size_t n, bo
             uint32_t words[5] = { 0x46546C67u, 2, (uint32_t)(12 + 8 + json_len + 8 + bin_len),
                                   json_len, 0x4E4F534Au };
             size_t at = 0;
-            memcpy(glb, words, 20);
+            le_copy(glb, words, 5, 4);
             at = 20;
             memcpy(glb + at, json, json_len);
             at += json_len;
             uint32_t bin_head[2] = { (uint32_t)bin_len, 0x004E4942u };
-            memcpy(glb + at, bin_head, 8);
+            le_copy(glb + at, bin_head, 2, 4);
             at += 8;
             memcpy(glb + at, bin, bin_len);
             ok = write_whole(path, glb, at + bin_len);
@@ -2005,8 +2005,8 @@ SR_TEST(gltf_material_colors_color_the_model)
                             0,  -1, 0, 1, -1, 0, 1, 1, 0, 0,  1, 0 };
     const uint16_t idx[6] = { 0, 1, 2, 0, 2, 3 };
     uint8_t buf[108];
-    memcpy(buf, pos, 96);
-    memcpy(buf + 96, idx, 12);
+    le_copy(buf, pos, 24, 4); /* glTF buffers are little endian on any host */
+    le_copy(buf + 96, idx, 6, 2);
     char b64[160], json[3000];
     gltf_base64(buf, sizeof buf, b64);
     snprintf(json, sizeof json,
@@ -2579,8 +2579,8 @@ static bool write_two_quads(const char *path, const char *rest)
                       -0.5f, -1, 0.5f, 0.5f, -1, 0.5f, 0.5f, 1, 0.5f, -0.5f, 1, 0.5f };
     uint16_t idx[6] = { 0, 1, 2, 0, 2, 3 };
     uint8_t bin[108];
-    memcpy(bin, pos, 96);
-    memcpy(bin + 96, idx, 12);
+    le_copy(bin, pos, 24, 4); /* glTF buffers are little endian on any host */
+    le_copy(bin + 96, idx, 6, 2);
     char b64[160], json[4096];
     gltf_base64(bin, sizeof bin, b64);
     snprintf(json, sizeof json,
