@@ -226,7 +226,7 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
                       .shininess = 40.0f },
         .ambient = { 0.12f, 0.12f, 0.14f },
     };
-    framing_default_lights(&basis, s->state.lights);
+    sr_default_lights(&basis, s->state.lights);
     if (s->info->look == BENCH_LOOK_PHONG) {
         s->state.shading = SR_SHADING_PHONG;
     } else if (s->info->look != BENCH_LOOK_GOURAUD) {
@@ -242,10 +242,10 @@ static sr_result make_mesh_scene(bench_scene *s, char *msg, size_t msg_size)
         }
         sr_pbr_desc d = { .material = &m, .model = &s->model, .view = &s->view,
                           .projection = &s->projection, .vertex_color = SR_OFF };
-        framing_pbr_lights(s->state.lights, &d);
+        sr_pbr_default_lighting(s->state.lights, &d);
         if (s->info->look == BENCH_LOOK_PBR_STUDIO || gltf) {
-            /* --environment studio: the built-in studio at 0.6 and the
-             * rig's key light. */
+            /* The CLI's default light: the built-in studio at 0.6 and
+             * the rig's key light. */
             r = sr_make_environment(s->mesh_ctx, &(sr_environment_desc){ .intensity = 0.6f },
                                     &s->env);
             if (r != SR_OK) {

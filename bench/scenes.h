@@ -25,8 +25,8 @@ typedef enum bench_kind {
 typedef enum bench_look {
     BENCH_LOOK_GOURAUD = 0, /* Blinn-Phong per vertex, `softrast render --shading gouraud` */
     BENCH_LOOK_PHONG,       /* Blinn-Phong per pixel */
-    BENCH_LOOK_PBR,         /* the metallic-roughness program, the CLI's default look */
-    BENCH_LOOK_PBR_STUDIO,  /* the same lit by the built-in studio environment */
+    BENCH_LOOK_PBR,         /* the metallic-roughness program, `--environment hemisphere` */
+    BENCH_LOOK_PBR_STUDIO,  /* the same lit by the built-in studio: the CLI's default look */
     BENCH_LOOK_PBR_TEXTURED,/* a glTF file's own material (its maps), the studio
                              * and the key light's shadow map */
 } bench_look;

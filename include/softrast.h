@@ -150,6 +150,8 @@
  *     sr_destroy_builtin_program frees it
  *   physically based shading
  *     sr_pbr_default_material    glTF's default material
+ *     sr_default_lights          softrast render's key, fill and rim lights for a camera
+ *     sr_pbr_default_lighting    those lights as radiance, and its sky and ground
  *     sr_make_pbr_program        the metallic-roughness model as a program
  *     sr_pbr_program             the sr_program to draw it with
  *     sr_destroy_pbr_program     frees it
@@ -167,6 +169,9 @@
  *     sr_destroy_mesh            frees a mesh's arrays
  *     sr_mesh_compute_normals    smooth or flat normals
  *     sr_mesh_compute_tangents   tangents for normal maps (MikkTSpace conventions)
+ *     sr_sort_back_to_front      triangles in blending order, farthest first
+ *     sr_mean_view_depth         a mesh's mean distance from the eye, to order meshes
+ *     sr_order_back_to_front     meshes in blending order by those distances
  *     sr_mesh_bounds             the axis-aligned bounding box
  *     sr_newell_normal           a polygon's normal by Newell's method
  *   built-in geometry
@@ -742,10 +747,11 @@ typedef struct sr_environment_desc {
 
 /* Prefilter an environment: the source's box-filtered mip chain, the
  * diffuse irradiance as 9 spherical-harmonic coefficients (Ramamoorthi and
- * Hanrahan), the GGX-importance-sampled specular levels, and, the first
- * time in the process, the BRDF table.  Runs on ctx's threads; the result
- * is the same for any thread count.  desc may be NULL (the built-in
- * studio).  Release it with sr_destroy_environment. */
+ * Hanrahan) and the GGX-importance-sampled specular levels.  Runs on ctx's
+ * threads; the result is the same for any thread count.  desc may be NULL
+ * (the built-in studio, whose levels and SH were computed when the library
+ * was built: making it only copies them).  Release it with
+ * sr_destroy_environment. */
 SR_API sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
                                      sr_environment **out);
 SR_API void      sr_destroy_environment(sr_context *ctx, sr_environment *env);
@@ -781,8 +787,7 @@ SR_API void sr_environment_background(const sr_environment *env, const float dir
  * height-correlated-Smith specular BRDF with Schlick's Fresnel is
  * F0 * out[0] + out[1] (scale, bias) for a view at N.V and a perceptual
  * roughness, both clamped to [0, 1]; bilinear in a 32 x 32 table
- * computed once a process (by sr_make_environment, or by the first call
- * here).  out[0] + out[1] <= 1. */
+ * computed when the library was built.  out[0] + out[1] <= 1. */
 SR_API void sr_brdf_table(float n_dot_v, float roughness, float out[2]);
 SR_API void sr_brdf_table4(const float n_dot_v[4], const float roughness[4], float scale[4],
                            float bias[4]);
@@ -1271,6 +1276,34 @@ typedef struct sr_pbr_desc {
  * empty slots (scale 1). */
 SR_API sr_pbr_material sr_pbr_default_material(void);
 
+/* softrast render's default lighting (docs/pbr.md), for programs that
+ * want to look like it.  sr_default_lights writes the key, fill and rim
+ * directional lights placed relative to a camera basis (sr_camera_frame),
+ * so that whatever the view the side facing the viewer is lit from the
+ * upper left and the silhouette stands out: key from (-0.55 u + 0.70 v +
+ * 0.45 w), fill from (0.80 u + 0.05 v + 0.60 w), rim from (0.10 u + 0.55 v
+ * - 0.85 w), intensities 0.95, 0.35, 0.45, a warm white (1, 0.98, 0.95);
+ * lights[3 ..] are SR_LIGHT_OFF.  SR_INVALID_ARG for NULL or a basis
+ * whose u, v, w are not finite unit vectors.
+ * sr_pbr_default_lighting sets desc's lights to `lights` (SR_MAX_LIGHTS,
+ * the classic sr_state lights: the rig above or the caller's) as radiance,
+ * each intensity (zero -> 1) times SR_PBR_LIGHT_SCALE, so that a white
+ * surface facing the key light looks about as bright as the Blinn-Phong
+ * models show it; and its hemisphere: sky (0.16, 0.165, 0.18) over ground
+ * (0.05, 0.048, 0.045).  SR_INVALID_ARG for NULL or a light with a
+ * non-finite vector, color or intensity. */
+#define SR_DEFAULT_LIGHT_COUNT 3
+#define SR_PBR_LIGHT_SCALE 1.6f
+/* softrast render's shadow of the key light (docs/shadows.md): an
+ * sr_shadow_desc with the key light's direction, the box of the
+ * occluders, .size = SR_DEFAULT_SHADOW_SIZE (1024: a 1080p picture looks
+ * as it does with 2048, for half the draw) and .light_radius =
+ * SR_DEFAULT_SHADOW_LIGHT_RADIUS (soft away from the contact). */
+#define SR_DEFAULT_SHADOW_SIZE 1024
+#define SR_DEFAULT_SHADOW_LIGHT_RADIUS 0.04f
+SR_API sr_result sr_default_lights(const sr_camera_basis *basis, sr_light lights[SR_MAX_LIGHTS]);
+SR_API sr_result sr_pbr_default_lighting(const sr_light lights[SR_MAX_LIGHTS], sr_pbr_desc *desc);
+
 typedef struct sr_pbr sr_pbr;
 SR_API sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out);
 SR_API const sr_program *sr_pbr_program(const sr_pbr *p);
@@ -1448,6 +1481,29 @@ SR_API sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_norm
  * vertex no triangle gives a direction to gets any unit vector orthogonal
  * to its normal. */
 SR_API sr_result sr_mesh_compute_tangents(sr_context *ctx, const sr_mesh *mesh, float *tangents);
+/* Blending order (SR_ALPHA_BLEND, translucent materials): what is drawn
+ * over what is behind it must be drawn after it, so see-through surfaces
+ * go back to front.  sr_sort_back_to_front writes the triangles of
+ * indices[0 .. 3 triangle_count) into out (the caller's, as many
+ * indices) farthest first by the eye-space depth of their centroid
+ * (model_view takes positions to an eye looking down -z), equal depths
+ * in their first order; sr_mean_view_depth gives the mean eye-space
+ * distance (-z) of the corners of those triangles, and
+ * sr_order_back_to_front the order of `count` meshes or parts by such
+ * distances, farthest first, ties in their first order (order[k] the
+ * index of the k-th to draw).  Positions are 3 floats a vertex,
+ * vertex_count of them.  SR_INVALID_ARG for NULL arrays, an index past
+ * vertex_count, a non-finite matrix or a NaN distance;
+ * SR_OUT_OF_MEMORY. */
+SR_API sr_result sr_sort_back_to_front(sr_context *ctx, const float *positions,
+                                       size_t vertex_count, const uint32_t *indices,
+                                       size_t triangle_count, const sr_mat4 *model_view,
+                                       uint32_t *out);
+SR_API sr_result sr_mean_view_depth(const float *positions, size_t vertex_count,
+                                    const uint32_t *indices, size_t triangle_count,
+                                    const sr_mat4 *model_view, float *out);
+SR_API sr_result sr_order_back_to_front(sr_context *ctx, const float *distances, size_t count,
+                                        size_t *order);
 /* Axis-aligned bounding box; false for an empty mesh. */
 SR_API bool sr_mesh_bounds(const sr_mesh *mesh, sr_vec3 *min, sr_vec3 *max);
 

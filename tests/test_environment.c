@@ -2,12 +2,14 @@
  * irradiance and prefiltered radiance equal to its radiance; the BRDF
  * table against a Monte Carlo estimate of the directional albedo and
  * within energy; the SH irradiance against brute-force integration; the
- * rotation and intensity; identical results for any thread count; bad
+ * rotation and intensity; identical results for any thread count; the
+ * build's tables equal to what the library computes at run time; bad
  * input and allocation failures; and pictures of the built-in studio, its
  * specular levels and spheres lit by it (tests/out/environment_*.png). */
 #include "softrast.h"
 #include "softrast_io.h"
 #include "failing_alloc.h"
+#include "fragment/environment.h"
 #include "sr_test.h"
 
 #include <math.h>
@@ -399,6 +401,49 @@ SR_TEST(four_lane_queries_equal_the_single_ones)
 }
 
 /* ---- the built-in studio ----------------------------------------------- */
+
+/* The tables the build computed (tools/ibl_tables.c) are the bytes the
+ * library's functions give here: the BRDF table row by row, and the
+ * studio's levels and SH those of sr_make_environment given the studio's
+ * own image; so is the built-in studio's environment, at intensity 1. */
+SR_TEST(builtin_tables_equal_the_runtime_computation)
+{
+    int rows_differ = 0;
+    for (int row = 0; row < SR__BRDF_TABLE_SIZE; row++) {
+        float t[SR__BRDF_TABLE_SIZE][2];
+        sr__brdf_table_row(row, t);
+        rows_differ += memcmp(t, sr__brdf_builtin[row], sizeof t) != 0;
+    }
+    CHECK_EQ(rows_differ, 0);
+
+    sr_context *ctx = make_ctx(2);
+    sr__equirect img = { SR__STUDIO_WIDTH, SR__STUDIO_HEIGHT,
+                         malloc(sizeof(float) * 3 * SR__STUDIO_WIDTH * SR__STUDIO_HEIGHT) };
+    REQUIRE(img.rgb);
+    sr__studio_rows(&img, 0, img.h);
+    sr_environment *from_image = NULL, *builtin = NULL;
+    REQUIRE(sr_make_environment(ctx, &(sr_environment_desc){ .pixels = img.rgb, .width = img.w,
+                                                             .height = img.h }, &from_image) == SR_OK);
+    REQUIRE(sr_make_environment(ctx, NULL, &builtin) == SR_OK);
+    for (int k = 1; k < SR_ENVIRONMENT_LEVELS; k++) {
+        const sr__equirect *a = &from_image->level[k], *b = &builtin->level[k];
+        REQUIRE(a->w == b->w && a->h == b->h && a->w == sr__level_width(SR__STUDIO_WIDTH, k));
+        size_t n = (size_t)a->w * a->h;
+        int differ = memcmp(a->rgb, b->rgb, n * 3 * sizeof(float)) != 0;
+        for (size_t i = 0; i < n; i++) {
+            differ += a->rgb[3 * i + 1] != sr__studio_builtin_levels[k][i];
+        }
+        CHECK_EQ(differ, 0);
+    }
+    CHECK(memcmp(from_image->sh, builtin->sh, sizeof builtin->sh) == 0);
+    for (int k = 0; k < 9; k++) {
+        CHECK(builtin->sh[k][2] == sr__studio_builtin_sh[k]);
+    }
+    sr_destroy_environment(ctx, from_image);
+    sr_destroy_environment(ctx, builtin);
+    free(img.rgb);
+    sr_destroy_context(ctx);
+}
 
 /* The environment seen through an equirectangular W x H grid at `blur`,
  * tone mapped to RGBA8 rows of out. */

@@ -57,11 +57,11 @@ SR_TEST(builtin_scene_matches_reference)
 }
 
 /* The physically based look's options: ACES and a stop brighter; the
- * built-in studio environment instead of the sky-and-ground hemisphere. */
+ * sky-and-ground hemisphere instead of the built-in studio environment. */
 SR_TEST(builtin_scene_tone_mapped_matches_reference)
 {
-    check_render("builtin_pbr_studio", (const char *[]){ "--size", "160x120", "--environment",
-                                                         "studio", "--aa", "none", NULL });
+    check_render("builtin_pbr_hemisphere", (const char *[]){ "--size", "160x120", "--environment",
+                                                             "hemisphere", "--aa", "none", NULL });
     check_render("builtin_pbr_aces_ev1", (const char *[]){ "--size", "160x120", "--tonemap", "aces",
                                                            "--exposure", "1", "--aa", "none", NULL });
 }

@@ -571,3 +571,47 @@ SR_TEST(load_mesh_reads_shared_models)
     }
     sr_destroy_mesh(sr_test_ctx(), &m);
 }
+
+/* Blending order: three triangles at eye depths 2, 5 and 3 (the eye looks
+ * down -z through the identity view) come out farthest first; a tie keeps
+ * the first order; the mean depth is that of the corners. */
+SR_TEST(sort_back_to_front_and_mean_view_depth)
+{
+    const float pos[] = { 0, 0, -2, 1, 0, -2, 0, 1, -2,
+                          0, 0, -5, 1, 0, -5, 0, 1, -5,
+                          0, 0, -3, 1, 0, -3, 0, 1, -3 };
+    const uint32_t idx[] = { 0, 1, 2, 3, 4, 5, 6, 7, 8, 2, 1, 0 };
+    uint32_t out[12];
+    sr_mat4 id = sr_mat4_identity();
+    REQUIRE(sr_sort_back_to_front(sr_test_ctx(), pos, 9, idx, 4, &id, out) == SR_OK);
+    const uint32_t want[] = { 3, 4, 5, 6, 7, 8, 0, 1, 2, 2, 1, 0 };
+    CHECK(memcmp(out, want, sizeof want) == 0);
+    float mean = 0.0f;
+    REQUIRE(sr_mean_view_depth(pos, 9, idx, 3, &id, &mean) == SR_OK);
+    CHECK_NEAR(mean, 10.0f / 3.0f, 1e-6f);
+    /* Moved 10 away: everything is 10 farther. */
+    sr_mat4 back = sr_mat4_translate(0, 0, -10);
+    REQUIRE(sr_mean_view_depth(pos, 9, idx, 3, &back, &mean) == SR_OK);
+    CHECK_NEAR(mean, 40.0f / 3.0f, 1e-5f);
+
+    const uint32_t bad[] = { 0, 1, 9 };
+    CHECK_EQ(sr_sort_back_to_front(sr_test_ctx(), pos, 9, bad, 1, &id, out), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(sr_test_ctx()), "sr_sort_back_to_front");
+    CHECK_EQ(sr_mean_view_depth(pos, 9, bad, 1, &id, &mean), SR_INVALID_ARG);
+    CHECK_EQ(sr_sort_back_to_front(sr_test_ctx(), pos, 9, idx, 1, &id, NULL), SR_INVALID_ARG);
+    sr_mat4 nan = id;
+    nan.m[14] = NAN;
+    CHECK_EQ(sr_mean_view_depth(pos, 9, idx, 1, &nan, &mean), SR_INVALID_ARG);
+}
+
+SR_TEST(order_back_to_front)
+{
+    const float d[] = { 2.0f, 5.0f, 3.0f, 5.0f, -1.0f };
+    size_t order[5];
+    REQUIRE(sr_order_back_to_front(sr_test_ctx(), d, 5, order) == SR_OK);
+    const size_t want[] = { 1, 3, 2, 0, 4 };
+    CHECK(memcmp(order, want, sizeof want) == 0);
+    const float nan[] = { 1.0f, NAN };
+    CHECK_EQ(sr_order_back_to_front(sr_test_ctx(), nan, 2, order), SR_INVALID_ARG);
+    CHECK_EQ(sr_order_back_to_front(sr_test_ctx(), d, 5, NULL), SR_INVALID_ARG);
+}

@@ -808,3 +808,44 @@ SR_TEST(environment_table_matches_the_query)
     sr_destroy_texture(sr_test_ctx(), t);
     sr_destroy_environment(sr_test_ctx(), env);
 }
+
+/* The default rig follows the camera: in a turned basis the key light
+ * still comes from the viewer's upper left, and the program's lighting
+ * is that rig as radiance with the sky over the ground. */
+SR_TEST(default_lights_follow_the_camera)
+{
+    sr_camera_basis b;
+    REQUIRE(sr_camera_frame((sr_vec3){ 3, 1, 2 }, (sr_vec3){ -3, -1, -2 }, (sr_vec3){ 0, 1, 0 },
+                            &b));
+    sr_light l[SR_MAX_LIGHTS];
+    REQUIRE(sr_default_lights(&b, l) == SR_OK);
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        CHECK_EQ(l[i].type, i < SR_DEFAULT_LIGHT_COUNT ? SR_LIGHT_DIRECTIONAL : SR_LIGHT_OFF);
+    }
+    /* The key travels away from the upper left and towards the scene:
+     * along +u, -v and -w. */
+    sr_vec3 key = l[0].vector;
+    CHECK(sr_vec3_dot(key, b.u) > 0.4f);
+    CHECK(sr_vec3_dot(key, b.v) < -0.5f);
+    CHECK(sr_vec3_dot(key, b.w) < -0.3f);
+    CHECK_NEAR(sr_vec3_length(key), 1.0f, 1e-6f);
+    /* The rim comes from behind: it travels towards the viewer. */
+    CHECK(sr_vec3_dot(l[2].vector, b.w) > 0.5f);
+    CHECK(l[0].intensity > l[2].intensity && l[2].intensity > l[1].intensity);
+
+    sr_pbr_desc d = { 0 };
+    REQUIRE(sr_pbr_default_lighting(l, &d) == SR_OK);
+    CHECK_NEAR(d.lights[0].intensity, l[0].intensity * SR_PBR_LIGHT_SCALE, 1e-6f);
+    CHECK_NEAR(d.lights[5].intensity, SR_PBR_LIGHT_SCALE, 1e-6f);   /* zero means 1 */
+    CHECK_EQ(d.lights[5].type, SR_LIGHT_OFF);
+    CHECK(d.sky.y > d.ground.y && d.ground.y > 0.0f);
+
+    sr_camera_basis bad = b;
+    bad.v = (sr_vec3){ 0, 2, 0 };
+    CHECK_EQ(sr_default_lights(&bad, l), SR_INVALID_ARG);
+    CHECK_EQ(sr_default_lights(NULL, l), SR_INVALID_ARG);
+    CHECK_EQ(sr_default_lights(&b, NULL), SR_INVALID_ARG);
+    l[1].intensity = NAN;
+    CHECK_EQ(sr_pbr_default_lighting(l, &d), SR_INVALID_ARG);
+    CHECK_EQ(sr_pbr_default_lighting(NULL, &d), SR_INVALID_ARG);
+}

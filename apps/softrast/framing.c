@@ -198,36 +198,3 @@ sr_mat4 framing_upright(int axis)
     }
     return m;
 }
-
-int framing_default_lights(const sr_camera_basis *b, sr_light *lights)
-{
-    struct { float u, v, w, intensity; } rig[3] = {
-        { -0.55f, 0.70f, 0.45f, 0.95f },   /* key: upper left, towards the viewer */
-        { 0.80f, 0.05f, 0.60f, 0.35f },    /* fill: right */
-        { 0.10f, 0.55f, -0.85f, 0.45f },   /* rim: behind, above */
-    };
-    for (int i = 0; i < 3; i++) {
-        sr_vec3 to_light = sr_vec3_add(sr_vec3_add(sr_vec3_scale(b->u, rig[i].u),
-                                                   sr_vec3_scale(b->v, rig[i].v)),
-                                       sr_vec3_scale(b->w, rig[i].w));
-        lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
-                                .vector = sr_vec3_scale(sr_vec3_normalize(to_light), -1.0f),
-                                .color = { 1.0f, 0.98f, 0.95f },
-                                .intensity = rig[i].intensity };
-    }
-    return 3;
-}
-
-void framing_pbr_lights(const sr_light *lights, sr_pbr_desc *d)
-{
-    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
-        d->lights[i] = lights[i];
-        /* Radiance for a BRDF whose white Lambertian part is 1/pi: this
-         * scale gives a surface facing the key light, encoded to sRGB,
-         * about the brightness the Blinn-Phong look gives it. */
-        float in = lights[i].intensity != 0.0f ? lights[i].intensity : 1.0f;
-        d->lights[i].intensity = in * FRAMING_PBR_LIGHT_SCALE;
-    }
-    d->sky = (sr_vec3){ 0.16f, 0.165f, 0.18f };
-    d->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };
-}

@@ -1,7 +1,7 @@
 /* framing.h - how `softrast render` frames and lights a model by default:
  * the model turned upright, the camera placed so the model's projection
- * fills the image to a margin, near and far planes that hug the scene, and
- * the camera-relative key/fill/rim lights.  Shared with
+ * fills the image to a margin and near and far planes that hug the scene
+ * (its lights are the library's sr_default_lights).  Shared with
  * softrast-bench so the benchmark draws exactly what the tool draws. */
 #ifndef SR_FRAMING_H
 #define SR_FRAMING_H
@@ -54,15 +54,5 @@ void framing_near_far(sr_vec3 eye, sr_vec3 centre, float radius, float *near_z, 
 /* The rotation that turns a model whose up axis is `axis` (+x, -x, +y, -y,
  * +z, -z: 0..5) upright, its up axis along +y. */
 sr_mat4 framing_upright(int axis);
-
-/* Key, fill and rim lights placed relative to the camera basis, so whatever
- * the view, the side facing the viewer is lit from the upper left and the
- * silhouette stands out from the background.  Writes 3 lights. */
-int framing_default_lights(const sr_camera_basis *b, sr_light *lights);
-/* The physically based look's lights in d: the classic lights (SR_MAX_LIGHTS
- * of them, framing_default_lights' rig or the user's) as radiance, and a
- * hemisphere ambient, a gray sky over a darker ground. */
-#define FRAMING_PBR_LIGHT_SCALE 1.6f
-void framing_pbr_lights(const sr_light *lights, sr_pbr_desc *d);
 
 #endif

@@ -260,81 +260,46 @@ static bool translucent(const scene_object *ob)
     return ob->material.opacity > 0.0f && ob->material.opacity < 1.0f;
 }
 
-typedef struct depth_key {
-    float depth;
-    uint32_t tri;
-} depth_key;
-
-static int farther_first(const void *a, const void *b)
-{
-    const depth_key *x = a, *y = b;
-    if (x->depth != y->depth) {
-        return x->depth > y->depth ? -1 : 1;
-    }
-    return x->tri < y->tri ? -1 : x->tri > y->tri;
-}
-
 /* A translucent object's triangles [first, first + n) as indices sorted
- * back to front by each triangle's centroid distance along the view
- * direction (blending is order-dependent, so transparency needs sorting);
- * malloc'd, or NULL when out of memory. */
-static uint32_t *sorted_indices(const scene_object *ob, const camera *cam, size_t first,
-                                size_t n)
+ * back to front (sr_sort_back_to_front: blending is order-dependent, so
+ * transparency needs sorting); malloc'd, or NULL on failure. */
+static uint32_t *sorted_indices(sr_context *ctx, const scene_object *ob, const camera *cam,
+                                size_t first, size_t n)
 {
-    const uint32_t *indices = ob->mesh.indices + 3 * first;
-    depth_key *keys = malloc(n * sizeof *keys);
-    uint32_t *out = malloc(n * 3 * sizeof *out);
-    if (!keys || !out) {
-        free(keys);
-        free(out);
-        return NULL;
-    }
+    uint32_t *out = malloc((n ? n : 1) * 3 * sizeof *out);
     sr_mat4 mv = sr_mat4_mul(&cam->view, &ob->model);
-    for (size_t t = 0; t < n; t++) {
-        float z = 0.0f;
-        for (int k = 0; k < 3; k++) {
-            const float *p = &ob->mesh.positions[indices[t * 3 + k] * 3];
-            z += mv.m[2] * p[0] + mv.m[6] * p[1] + mv.m[10] * p[2] + mv.m[14];
-        }
-        keys[t] = (depth_key){ -z, (uint32_t)t };   /* eye looks down -z: distance is -z */
+    if (out && sr_sort_back_to_front(ctx, ob->mesh.positions, ob->mesh.vertex_count,
+                                     ob->mesh.indices + 3 * first, n, &mv, out) != SR_OK) {
+        free(out);
+        out = NULL;
     }
-    qsort(keys, n, sizeof *keys, farther_first);
-    for (size_t t = 0; t < n; t++) {
-        memcpy(&out[t * 3], &indices[keys[t].tri * 3], 3 * sizeof *out);
-    }
-    free(keys);
     return out;
 }
 
 /* The parts of ob in the order to blend them: farthest first by the mean
- * eye-space depth of their vertices (malloc'd, or NULL when out of memory). */
-static size_t *parts_back_to_front(const scene_object *ob, const camera *cam)
+ * eye-space depth of their vertices (sr_mean_view_depth,
+ * sr_order_back_to_front; malloc'd, or NULL on failure). */
+static size_t *parts_back_to_front(sr_context *ctx, const scene_object *ob, const camera *cam)
 {
     size_t n = ob->mesh.part_count;
-    depth_key *keys = malloc((n ? n : 1) * sizeof *keys);
+    float *depth = malloc((n ? n : 1) * sizeof *depth);
     size_t *order = malloc((n ? n : 1) * sizeof *order);
-    if (!keys || !order) {
-        free(keys);
-        free(order);
-        return NULL;
-    }
     sr_mat4 mv = sr_mat4_mul(&cam->view, &ob->model);
-    for (size_t p = 0; p < n; p++) {
+    sr_result r = depth && order ? SR_OK : SR_OUT_OF_MEMORY;
+    for (size_t p = 0; p < n && r == SR_OK; p++) {
         const sr_mesh_part *part = &ob->mesh.parts[p];
-        double z = 0.0;
-        size_t end = 3 * (part->first_triangle + part->triangle_count);
-        for (size_t i = 3 * part->first_triangle; i < end; i++) {
-            const float *q = &ob->mesh.positions[ob->mesh.indices[i] * 3];
-            z += mv.m[2] * q[0] + mv.m[6] * q[1] + mv.m[10] * q[2] + mv.m[14];
-        }
-        size_t corners = 3 * part->triangle_count;
-        keys[p] = (depth_key){ corners ? (float)(-z / (double)corners) : 0.0f, (uint32_t)p };
+        r = sr_mean_view_depth(ob->mesh.positions, ob->mesh.vertex_count,
+                               ob->mesh.indices + 3 * part->first_triangle, part->triangle_count,
+                               &mv, &depth[p]);
     }
-    qsort(keys, n, sizeof *keys, farther_first);
-    for (size_t p = 0; p < n; p++) {
-        order[p] = keys[p].tri;
+    if (r == SR_OK) {
+        r = sr_order_back_to_front(ctx, depth, n, order);
     }
-    free(keys);
+    free(depth);
+    if (r != SR_OK) {
+        free(order);
+        order = NULL;
+    }
     return order;
 }
 
@@ -464,7 +429,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
              * sorted within each part, glTF's BLEND parts back to front). */
             bool by_part = !keep_material && (ob->part_textures || per_part);
             size_t parts = by_part ? ob->mesh.part_count : 1;
-            size_t *order = per_part && pass == 1 ? parts_back_to_front(ob, cam) : NULL;
+            size_t *order = per_part && pass == 1 ? parts_back_to_front(ctx, ob, cam) : NULL;
             if (per_part && pass == 1 && !order) {
                 return SR_OUT_OF_MEMORY;
             }
@@ -506,7 +471,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 const uint32_t *indices = ob->mesh.indices + 3 * first;
                 uint32_t *sorted = NULL;
                 if (see_through) {
-                    sorted = sorted_indices(ob, cam, first, count);
+                    sorted = sorted_indices(ctx, ob, cam, first, count);
                     if (!sorted) {
                         free(order);
                         return SR_OUT_OF_MEMORY;
@@ -531,7 +496,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     if (ob->tangents || ob->texcoords1) {
                         d.vertex_count = ob->mesh.vertex_count;
                     }
-                    framing_pbr_lights(state->lights, &d);
+                    sr_pbr_default_lighting(state->lights, &d);
                     if (env && o->light_count == 0) {
                         /* The studio is the fill and the rim: of the
                          * classic rig only the key light stays, for shape. */
@@ -842,9 +807,10 @@ static int finish_scene(render_job *job)
     return -1;
 }
 
-/* --environment: the built-in studio, an equirectangular Radiance
- * picture, or none (the sky-and-ground hemisphere); prefiltered once a
- * job, not once a model: a batch's models all share the light. */
+/* --environment: the built-in studio (the default, prefiltered at build
+ * time), an equirectangular Radiance picture, or hemisphere / none (the
+ * sky-and-ground hemisphere); made once a job, not once a model: a
+ * batch's models all share the light. */
 static int load_environment(render_job *job)
 {
     const render_opts *o = &job->o;
@@ -1047,8 +1013,9 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     };
     if (o->light_count > 0) {
         memcpy(state.lights, o->lights, sizeof o->lights);
-    } else {
-        framing_default_lights(&cam.basis, state.lights);
+    } else if (sr_default_lights(&cam.basis, state.lights) != SR_OK) {
+        snprintf(job->error, sizeof job->error, "the camera's frame is degenerate");
+        return SR_INVALID_ARG;
     }
 
     /* SSAA renders k x k samples per output pixel into the work image,

@@ -65,18 +65,19 @@ static void render_help(void)
         "  --jpeg-quality N         JPEG quality 1..100 (default 90)\n"
         "shading:\n"
         "  --shading MODE           pbr|flat|gouraud|phong|normals|depth|unlit (default\n"
-        "                           pbr: glTF's metallic-roughness model, lit by the\n"
-        "                           lights and a sky-and-ground ambient, tone mapped;\n"
+        "                           pbr: glTF's metallic-roughness model, lit by a\n"
+        "                           studio environment and the key light, tone mapped;\n"
         "                           the others are the classic Blinn-Phong models)\n"
         "  --tonemap T              neutral|aces|none, pbr's tone curve: Khronos PBR\n"
         "                           Neutral, ACES filmic, or a clamp (default neutral)\n"
         "  --exposure EV            pbr's exposure in stops, -20..20 (default 0)\n"
-        "  --environment E          pbr's ambient light: hemisphere (a gray sky over a\n"
-        "                           darker ground, with the key, fill and rim lights;\n"
-        "                           the default; also 'none'), studio (a built-in\n"
-        "                           neutral studio and the key light) or FILE.hdr (an\n"
-        "                           equirectangular Radiance picture, +y up, and the key\n"
-        "                           light); prefiltered once\n"
+        "  --environment E          pbr's ambient light: studio (a built-in neutral\n"
+        "                           studio, prefiltered when softrast was built, and the\n"
+        "                           key light; the default), FILE.hdr (an\n"
+        "                           equirectangular Radiance picture, +y up, prefiltered\n"
+        "                           once, and the key light) or hemisphere (a gray sky\n"
+        "                           over a darker ground, with the key, fill and rim\n"
+        "                           lights; also 'none')\n"
         "  --environment-intensity S  its radiance scale, 0.001..1000 (default 0.6)\n"
         "  --shadows on|off         pbr: the key light casts a shadow (a shadow map\n"
         "                           fitted to the model; default: on where a ground\n"
@@ -95,7 +96,7 @@ static void render_help(void)
         "                           an OBJ material's Ns, Pr, Pm, d, Tr and bump maps\n"
         "                           apply as docs/pbr.md says)\n"
         "  --ambient COLOR          global ambient light (default 0.12,0.12,0.14; pbr:\n"
-        "                           uniform COLOR in place of the sky and ground)\n"
+        "                           uniform COLOR in place of the environment)\n"
         "  --opacity A              the model's opacity, 0..1 (default 1); translucent\n"
         "                           surfaces are drawn after opaque ones, back to front\n"
         "  --light dir=X,Y,Z[,color=C][,intensity=I]\n"
@@ -556,7 +557,7 @@ render_opts render_opts_defaults(void)
 {
     return (render_opts){
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
-        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "hemisphere",
+        .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "studio",
         .environment_intensity = 0.6f, .camera_index = -1,
         .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,

@@ -7,11 +7,6 @@
 #include <math.h>
 #include <string.h>
 
-/* A 1024-texel map: the bunny's shadows at 1080p look as they do at 2048,
- * for half the draw.  The light's size softens the shadow away from the
- * contact, as a thumbnail's ground shadow wants (docs/shadows.md). */
-#define SHADOW_MAP_SIZE    1024
-#define SHADOW_LIGHT_RADIUS 0.04f
 /* How dark the catcher's full shadow is, and the part of the ground
  * (from its centre, in half-sides) where the shadow fades out. */
 #define CATCHER_STRENGTH   0.6f
@@ -30,7 +25,8 @@ sr_result render_shadow_draw(sr_context *ctx, render_shadow *sh, const scene *s,
         render_shadow_free(ctx, sh);
         sr_result r = sr_make_shadow_map(ctx, &(sr_shadow_desc){
             .direction = direction, .bounds_min = s->box_min, .bounds_max = s->box_max,
-            .size = SHADOW_MAP_SIZE, .light_radius = SHADOW_LIGHT_RADIUS }, &sh->map);
+            .size = SR_DEFAULT_SHADOW_SIZE,
+            .light_radius = SR_DEFAULT_SHADOW_LIGHT_RADIUS }, &sh->map);
         if (r != SR_OK) {
             sh->map = NULL;
             return r;

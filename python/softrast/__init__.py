@@ -17,11 +17,11 @@ See docs/python.md in the source tree for the conventions.
 """
 
 from ._softrast import Mesh, library_version, read_image, write_png
-from ._camera import look_at
+from ._camera import Camera, look_at
 from ._material import Material
 from ._scene import Instance, Scene, load, load_mesh
 from ._render import OUTPUTS, render
 
 __version__ = library_version
-__all__ = ["Mesh", "Instance", "Material", "Scene", "load", "load_mesh", "look_at", "read_image",
-           "render", "write_png", "OUTPUTS", "__version__"]
+__all__ = ["Camera", "Mesh", "Instance", "Material", "Scene", "load", "load_mesh", "look_at",
+           "read_image", "render", "write_png", "OUTPUTS", "__version__"]

@@ -15,10 +15,16 @@ class Material:
     alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
     double_sided, unlit: the material's flags (KHR_materials_unlit).
 
-    ``render`` draws the base color (factor times texture times vertex
-    color) into ``color`` and ``rgba``; with ``shading="pbr"`` also
-    metallic, roughness and emissive.  The other factors are carried for
-    the caller.
+    ``render`` draws the base color of a loaded instance (factor times
+    texture times vertex color, drawn into its Mesh by :func:`load`) into
+    ``color`` and ``rgba``.  With ``shading="pbr"`` it draws the whole
+    material as softrast render does: every factor and flag (a material
+    that is not double-sided has its back faces culled; "mask" cuts out
+    where alpha < alpha_cutoff, "blend" is blended, farthest first, after
+    the rest) and, for an instance :func:`load` made, every texture of the
+    file (base color, metallic-roughness, normal, occlusion, emissive).
+    For an instance of your own Mesh the base color is ``base_color``
+    times the Mesh's colors and texture.
     """
 
     __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",

@@ -1,8 +1,11 @@
 """render(): cameras and scene checked and composed here, pixels drawn in C."""
 
+import os
+
 import numpy as np
 
 from . import _softrast
+from ._camera import Camera
 from ._scene import Instance, Scene
 from ._softrast import Mesh
 
@@ -129,14 +132,75 @@ def _flat(mesh):
                 uvs=per_corner(mesh.uvs), texture=mesh.texture)
 
 
-def _pbr_factors(inst):
-    """(metallic, roughness, emissive r, g, b) of an instance: its
-    material's, else a rough dielectric."""
+_ALPHA_MODES = {"opaque": 0, "mask": 1, "blend": 2}
+
+
+def _look(inst):
+    """What the metallic-roughness pass draws of an instance: its pose, its
+    Material's factors, alpha mode and flags (a rough, double-sided
+    dielectric without one), and the loaded primitive it came from."""
     m = inst.material
+    pose = np.ascontiguousarray(inst.pose[:3, :])
+    source = inst._source
+    if source is not None:
+        source = None if source[0] is None else (source[0].capsule, source[1])
     if m is None:
-        return (0.0, 0.5, 0.0, 0.0, 0.0)
-    e = m.emissive * m.emissive_strength
-    return (m.metallic, m.roughness, float(e[0]), float(e[1]), float(e[2]))
+        return (pose, (1.0, 1.0, 1.0, 1.0), 0.0, 0.5, (0.0, 0.0, 0.0), 1.0, 0, 0.5, True, False,
+                1.0, 1.0, source)
+    # (A loaded instance is drawn from the file's own arrays, whose colors
+    # do not have the factor its Mesh's have.)
+    base = tuple(float(c) for c in m.base_color)
+    return (pose, base, m.metallic, m.roughness, tuple(float(c) for c in m.emissive),
+            m.emissive_strength, _ALPHA_MODES[m.alpha_mode], m.alpha_cutoff, m.double_sided,
+            m.unlit, m.normal_scale, m.occlusion_strength, source)
+
+
+# Prefiltered environments, by (file, its size and time, intensity): a few
+# kept, as prefiltering costs far more than a view.
+_ENVIRONMENTS = {}
+
+
+def _environment(environment, intensity, threads):
+    if environment is None:
+        environment = "studio"
+    if isinstance(environment, str) and environment == "hemisphere":
+        return None
+    try:
+        intensity = float(intensity)
+    except (TypeError, ValueError):
+        raise TypeError(f"environment_intensity: expected a number, "
+                        f"got {type(intensity).__name__}") from None
+    if not (np.isfinite(intensity) and 0.001 <= intensity <= 1000):
+        raise ValueError(f"environment_intensity: must be in 0.001 .. 1000, got {intensity}")
+    if isinstance(environment, str) and environment == "studio":
+        key = ("", None, intensity)
+    elif isinstance(environment, (str, bytes, os.PathLike)):
+        path = os.path.abspath(os.fspath(environment))
+        try:
+            st = os.stat(path)
+        except OSError as e:
+            raise OSError(f"environment: {path}: {e.strerror}") from None
+        key = (path, (st.st_size, st.st_mtime_ns), intensity)
+    else:
+        raise TypeError(f"environment: expected 'studio', 'hemisphere' or an .hdr file's path, "
+                        f"got {type(environment).__name__}")
+    if key not in _ENVIRONMENTS:
+        if len(_ENVIRONMENTS) >= 4:
+            _ENVIRONMENTS.pop(next(iter(_ENVIRONMENTS)))
+        _ENVIRONMENTS[key] = _softrast.make_environment(key[0], intensity, threads)
+    return _ENVIRONMENTS[key]
+
+
+def _file_cameras(camera, width, height):
+    """K (B, 3, 3), [R | t] (B, 3, 4), near (B,) and whether batched, from
+    one Camera or a list of them."""
+    batched = isinstance(camera, (list, tuple))
+    cams = list(camera) if batched else [camera]
+    if not cams or not all(isinstance(c, Camera) for c in cams):
+        raise TypeError("camera: expected a softrast.Camera (Scene.cameras) or a list of them")
+    Ks = np.stack([c.intrinsics(width, height) for c in cams])
+    Rts = np.stack([np.hstack([c.R, c.t[:, None]]) for c in cams])
+    return Ks, Rts, np.array([c.znear for c in cams]), batched
 
 
 def _int_arg(value, name, low, high):
@@ -147,9 +211,10 @@ def _int_arg(value, name, low, high):
     return int(value)
 
 
-def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
-           outputs=("color", "depth"), threads=0, near=1e-3, normal_frame="camera",
-           background=(0.0, 0.0, 0.0), shading="lit"):
+def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width, height,
+           outputs=("color", "depth"), threads=0, near=None, normal_frame="camera",
+           background=(0.0, 0.0, 0.0), shading="lit", environment=None,
+           environment_intensity=0.6, shadows=False):
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -160,6 +225,10 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     R, t: (3, 3) and (3,) (or batched) world-to-camera rotation and
         translation, ``x_cam = R @ x_world + t``, camera x right, y down,
         z forward.  Or ``extrinsics``: (3, 4)/(4, 4), or batched, ``[R | t]``.
+    camera: instead of K, R, t: a :class:`Camera` of a loaded file
+        (``Scene.cameras``), or a list of them for a batch; its K for
+        width x height (:meth:`Camera.intrinsics`), R, t, and its znear as
+        ``near`` unless given.
     width, height: the image size in pixels, 1 .. 8192.
     outputs: names from :data:`OUTPUTS`:
 
@@ -168,10 +237,11 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
           texture, see :func:`load`), lit by a headlight
           (``shading="lit"``), as they are (``shading="unlit"``), or by
           glTF's metallic-roughness model (``shading="pbr"``: each
-          instance's :class:`Material`, a rough dielectric without one;
-          softrast render's default lights, sky-and-ground ambient and
-          tone curve; meshes without normals shaded flat, as glTF asks),
-          over ``background`` (RGB in [0, 1]).
+          instance's :class:`Material` with its alpha mode and a loaded
+          file's textures, a rough dielectric without one; softrast
+          render's default lights, sky-and-ground ambient and tone curve;
+          meshes without normals shaded flat, as glTF asks), over
+          ``background`` (RGB in [0, 1]).
         - ``rgba`` (H, W, 4) uint8: ``color`` with alpha, straight (not
           premultiplied): the surface's alpha (vertex color alpha times
           the texture's), 0 where nothing is.  No blending: a translucent
@@ -195,8 +265,21 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
         first drawn of equals), sampled at the pixel centre.
     threads: rendering threads, 0 for every CPU; the result does not depend
         on it.
-    near: surfaces closer than this (camera z) are clipped; there is no far
-        plane.
+    near: surfaces closer than this (camera z) are clipped (default 1e-3,
+        or the camera's znear); there is no far plane.
+    shading: "lit", "unlit" or "pbr" (see ``color``).  With "pbr" the
+        world's +y is up for the sky, the environment and the shadow's
+        fit, as in glTF and softrast render.
+    environment: "pbr" only: "studio" (the built-in neutral studio; the
+        default, None, as softrast render's) or the path of an
+        equirectangular Radiance ``.hdr`` file (+y up) for image-based
+        light with the key light alone; "hemisphere" for the sky-and-ground
+        ambient with the key, fill and rim lights.  Environments are at
+        ``environment_intensity`` (default 0.6, as softrast render;
+        0.001 .. 1000).  Prefiltered once and kept for later calls.
+    shadows: "pbr" only: the key light casts a shadow (a 1024-texel
+        shadow map fitted to every instance's box, as softrast render's
+        ``--shadows on``).
 
     Returns a dict from each requested name to its array; with batched
     cameras every array has a leading dimension B.  The GIL is released
@@ -204,17 +287,29 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     that is wrong.
     """
     sc = _scene(scene)
-    Ks, Rts, batched = _cameras(K, R, t, extrinsics)
     width = _int_arg(width, "width", 1, 8192)
     height = _int_arg(height, "height", 1, 8192)
+    if camera is not None:
+        if not (K is None and R is None and t is None and extrinsics is None):
+            raise TypeError("camera: give either camera or K with R, t or extrinsics, not both")
+        Ks, Rts, nears, batched = _file_cameras(camera, width, height)
+    elif K is None:
+        raise TypeError("K: required (or camera)")
+    else:
+        Ks, Rts, batched = _cameras(K, R, t, extrinsics)
+        nears = np.full(len(Ks), 1e-3)
     threads = _int_arg(threads, "threads", 0, 64)
     names = _outputs(outputs)
-    try:
-        near = float(near)
-    except (TypeError, ValueError):
-        raise TypeError(f"near: expected a number, got {type(near).__name__}") from None
-    if not (np.isfinite(near) and near > 0):
-        raise ValueError(f"near: must be a positive finite number, got {near}")
+    if near is not None:
+        try:
+            near = float(near)
+        except (TypeError, ValueError):
+            raise TypeError(f"near: expected a number, got {type(near).__name__}") from None
+        if not (np.isfinite(near) and near > 0):
+            raise ValueError(f"near: must be a positive finite number, got {near}")
+        nears = np.full(len(Ks), near)
+    elif not np.all(np.isfinite(nears) & (nears > 0)):
+        raise ValueError("camera: its znear must be a positive finite number")
     if normal_frame not in ("camera", "world"):
         raise ValueError(f"normal_frame: must be 'camera' or 'world', got {normal_frame!r}")
     if shading not in ("lit", "unlit", "pbr"):
@@ -223,6 +318,11 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     if bg.shape != (3,):
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
     bg = tuple(float(c) for c in np.clip(bg, 0.0, 1.0))
+    if (environment is not None or shadows) and shading != "pbr":
+        raise ValueError("environment, shadows: need shading='pbr'")
+    if not isinstance(shadows, (bool, np.bool_)):
+        raise TypeError(f"shadows: expected a bool, got {type(shadows).__name__}")
+    env = _environment(environment, environment_intensity, threads) if shading == "pbr" else None
 
     n = len(Ks)
     out = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
@@ -234,9 +334,12 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
     pbr = shading == "pbr" and images
     passes = [(names, [inst.mesh for inst in sc])]
     if pbr:
+        # (A loaded instance's look brings the file's arrays, flat normals made.)
+        looks = [(_look(inst),) for inst in sc]
         passes = [([name for name in names if name not in images], passes[0][1]),
-                  (images, [_flat(inst.mesh) if inst.mesh.normals is None else inst.mesh
-                            for inst in sc])]
+                  (images, [_flat(inst.mesh) if inst.mesh.normals is None and
+                            look[0][-1] is None else inst.mesh
+                            for inst, look in zip(sc, looks)])]
     for b in range(n):
         Rt = Rts[b]
         poses = [(np.ascontiguousarray(Rt[:, :3] @ inst.pose[:3, :] +
@@ -247,14 +350,18 @@ def render(scene, *, K, R=None, t=None, extrinsics=None, width, height,
             if not wanted:
                 continue
             color_pbr = pbr and wanted is images
-            instances = [(mesh, a, nm, iid) + ((_pbr_factors(inst),) if color_pbr else ())
-                         for inst, mesh, (a, nm), iid in zip(sc, meshes, poses, ids)]
-            _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height, near, threads,
+            instances = [(mesh, a, nm, iid) + (look if color_pbr else ())
+                         for mesh, (a, nm), iid, look in zip(meshes, poses, ids,
+                                                            looks if color_pbr else ids)]
+            extra = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
+                         shadows=bool(shadows)) if color_pbr else {}
+            _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height,
+                             float(nears[b]), threads,
                              *(out[name][b] if name in wanted else None
                                for name in ("depth", "triangle_id", "instance_id", "barycentric",
                                             "normal", "color", "mask")),
                              bg, shading == "lit",
-                             rgba=out["rgba"][b] if "rgba" in wanted else None, pbr=color_pbr)
+                             rgba=out["rgba"][b] if "rgba" in wanted else None, **extra)
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return out

@@ -1,10 +1,12 @@
 """Scenes: meshes placed by poses, each with an instance ID, and the model readers."""
 
 import os
+import warnings
 
 import numpy as np
 
 from . import _softrast
+from ._camera import Camera
 from ._gltf import base_color_images
 from ._material import Material, material_arrays
 from ._softrast import Mesh
@@ -22,9 +24,12 @@ class Instance:
         into the mesh's colors and texture), or None.
     """
 
-    __slots__ = ("mesh", "pose", "instance_id", "material")
+    __slots__ = ("mesh", "pose", "instance_id", "material", "_source")
 
     def __init__(self, mesh, pose=None, instance_id=None, material=None):
+        # (the loaded scene, primitive index) of an instance load made:
+        # the file's arrays and textures for shading="pbr".
+        self._source = None
         if not isinstance(mesh, Mesh):
             raise TypeError(f"mesh: expected softrast.Mesh, got {type(mesh).__name__}")
         self.mesh = mesh
@@ -72,11 +77,13 @@ class Scene:
     ``Scene([mesh_a, (mesh_b, pose), Instance(mesh_c, pose, 7)])``; an item
     is a :class:`Mesh` (identity pose), a ``(mesh, pose)`` or ``(mesh, pose,
     instance_id)`` tuple, or an :class:`Instance`.  Instances without an ID
-    take their index in the scene.
+    take their index in the scene.  ``cameras``: the :class:`Camera` list
+    of the file :func:`load` read (empty otherwise).
     """
 
-    def __init__(self, instances=()):
+    def __init__(self, instances=(), cameras=()):
         self.instances = []
+        self.cameras = list(cameras)
         for item in instances:
             self.add(item)
 
@@ -106,6 +113,31 @@ class Scene:
 
     def __repr__(self):
         return f"Scene({len(self.instances)} instances)"
+
+
+class _SceneFile:
+    """The library's scene of a loaded glTF file (its materials with their
+    textures, the primitives' arrays), for shading="pbr".  Pickled as its
+    path: read again where it is unpickled (a Dask worker), or, when it
+    cannot be, dropped with a warning (its instances then draw their
+    Mesh's base colors)."""
+
+    __slots__ = ("path", "capsule")
+
+    def __init__(self, path, capsule):
+        self.path = path
+        self.capsule = capsule
+
+    def __reduce__(self):
+        return (_read_scene_file, (self.path,))
+
+
+def _read_scene_file(path):
+    try:
+        return _SceneFile(path, _softrast.load_scene(path)["file"])
+    except (OSError, ValueError) as e:
+        warnings.warn(f"softrast: {path}: the file's materials are not kept: {e}", stacklevel=2)
+        return None
 
 
 def _path(path):
@@ -140,8 +172,10 @@ def load(path):
     ``uvs`` its coordinate set through its KHR_texture_transform); alpha
     is kept for "mask" and "blend" materials, dropped for "opaque" ones.
     The whole material is ``Instance.material``.  Any other format is the
-    one mesh of :func:`load_mesh`, with its texture.  The file's cameras
-    are not carried over.
+    one mesh of :func:`load_mesh`, with its texture.  A glTF file's
+    cameras are ``Scene.cameras``, :class:`Camera` objects in the order
+    of softrast render's ``--camera-index`` (node order, depth first):
+    ``render(scene, camera=scene.cameras[0], width=..., height=...)``.
     """
     path = _path(path)
     d = _softrast.load_scene(path)
@@ -151,10 +185,13 @@ def load(path):
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
     meshes = {}
     instances = []
-    for mesh_index, world, material in d["instances"]:
+    source = _SceneFile(path, d["file"])
+    for primitive, (mesh_index, world, material) in enumerate(d["instances"]):
         key = (mesh_index, material)
         if key not in meshes:
             meshes[key] = Mesh(**material_arrays(d["meshes"][mesh_index], d["materials"][material],
                                                  images.get(material)))
-        instances.append(Instance(meshes[key], world, material=materials[material]))
-    return Scene(instances)
+        inst = Instance(meshes[key], world, material=materials[material])
+        inst._source = (source, primitive)
+        instances.append(inst)
+    return Scene(instances, [Camera(c) for c in d["cameras"]])

@@ -175,14 +175,50 @@ static PyObject *primitive_dict(const sr_scene_primitive *p)
     return d;
 }
 
+/* A (4, 4) float64 array of a column-major matrix, in rows. */
+static PyObject *matrix_array(const float *m)
+{
+    npy_intp shape[2] = { 4, 4 };
+    PyObject *a = PyArray_SimpleNew(2, shape, NPY_FLOAT64);
+    if (a) {
+        double *w = PyArray_DATA((PyArrayObject *)a);
+        for (int r = 0; r < 4; r++) {
+            for (int c = 0; c < 4; c++) {
+                w[4 * r + c] = m[4 * c + r];
+            }
+        }
+    }
+    return a;
+}
+
+/* A camera as the Python layer's Camera takes it: its glTF fields and
+ * its view matrix E (world -> the camera's frame, looking down -z, as
+ * sr_scene_camera_matrices gives it; it does not depend on the aspect),
+ * or None when that matrix is degenerate. */
+static PyObject *camera_dict(const sr_scene_camera *c)
+{
+    sr_mat4 view, projection;
+    PyObject *v = sr_scene_camera_matrices(c, 1.0f, &view, &projection) == SR_OK
+                      ? matrix_array(view.m) : (Py_INCREF(Py_None), Py_None);
+    if (!v) {
+        return NULL;
+    }
+    return Py_BuildValue("{sssNsNsdsdsdsdsdsdsisi}", "type",
+                         c->type == SR_SCENE_CAMERA_ORTHOGRAPHIC ? "orthographic" : "perspective",
+                         "world", matrix_array(c->world), "view", v, "yfov", (double)c->yfov,
+                         "aspect", (double)c->aspect, "xmag", (double)c->xmag, "ymag",
+                         (double)c->ymag, "znear", (double)c->znear, "zfar", (double)c->zfar,
+                         "camera", c->camera, "node", c->node);
+}
+
 /* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world,
- * material index)], "materials": [dict...], "gltf": whether the glTF
- * reader read it}: the primitives that share arrays share one entry of
+ * material index)], "materials": [dict...], "cameras": [dict...],
+ * "gltf": whether the glTF reader read it}: the primitives that share arrays share one entry of
  * "meshes". */
 static PyObject *scene_dict(const sr_scene *s)
 {
     PyObject *meshes = PyList_New(0), *instances = PyList_New(0), *seen = PyDict_New();
-    PyObject *materials = NULL, *out = NULL;
+    PyObject *materials = NULL, *cameras = NULL, *out = NULL;
     if (!meshes || !instances || !seen) {
         goto done;
     }
@@ -205,16 +241,9 @@ static PyObject *scene_dict(const sr_scene *s)
             }
         }
         Py_DECREF(key);
-        npy_intp shape[2] = { 4, 4 };
-        PyObject *world = PyArray_SimpleNew(2, shape, NPY_FLOAT64);
+        PyObject *world = matrix_array(p->world);
         if (!world) {
             goto done;
-        }
-        double *w = PyArray_DATA((PyArrayObject *)world);
-        for (int r = 0; r < 4; r++) {
-            for (int c = 0; c < 4; c++) {
-                w[4 * r + c] = p->world[4 * c + r];   /* column-major -> rows */
-            }
         }
         PyObject *item = Py_BuildValue("(ONi)", index, world, p->material);
         if (!item || PyList_Append(instances, item) < 0) {
@@ -223,7 +252,15 @@ static PyObject *scene_dict(const sr_scene *s)
         }
         Py_DECREF(item);
     }
-    materials = PyList_New((Py_ssize_t)s->material_count);
+    cameras = PyList_New((Py_ssize_t)s->camera_count);
+    for (size_t i = 0; cameras && i < s->camera_count; i++) {
+        PyObject *c = camera_dict(&s->cameras[i]);
+        if (!c) {
+            goto done;
+        }
+        PyList_SET_ITEM(cameras, (Py_ssize_t)i, c);
+    }
+    materials = cameras ? PyList_New((Py_ssize_t)s->material_count) : NULL;
     for (size_t i = 0; materials && i < s->material_count; i++) {
         PyObject *m = material_dict(&s->materials[i]);
         if (!m) {
@@ -234,11 +271,12 @@ static PyObject *scene_dict(const sr_scene *s)
     if (materials) {
         /* sr_load_mesh's one primitive comes from no node. */
         bool gltf = s->primitive_count == 0 || s->primitives[0].node >= 0;
-        out = Py_BuildValue("{sOsOsOsO}", "meshes", meshes, "instances", instances, "materials",
-                            materials, "gltf", gltf ? Py_True : Py_False);
+        out = Py_BuildValue("{sOsOsOsOsO}", "meshes", meshes, "instances", instances, "materials",
+                            materials, "cameras", cameras, "gltf", gltf ? Py_True : Py_False);
     }
 done:
     Py_XDECREF(materials);
+    Py_XDECREF(cameras);
     Py_XDECREF(meshes);
     Py_XDECREF(instances);
     Py_XDECREF(seen);
@@ -266,6 +304,17 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     }
     Py_DECREF(path_obj);
     PyObject *d = r == SR_OK ? scene_dict(scene) : sr_py_io_error(r, &err);
+    PyObject *gltf = d ? PyDict_GetItemString(d, "gltf") : NULL;
+    if (gltf == Py_True) {
+        /* Kept, with its textures, for the metallic-roughness look. */
+        if (set_item(d, "file", sr_py_scene_file(ctx, scene)) < 0) {
+            Py_CLEAR(d);
+        }
+        return d;
+    }
+    if (d && set_item(d, "file", (Py_INCREF(Py_None), Py_None)) < 0) {
+        Py_CLEAR(d);
+    }
     sr_destroy_scene(ctx, scene);
     sr_destroy_context(ctx);
     return d;

@@ -28,8 +28,15 @@ PyDoc_STRVAR(load_mesh_doc,
 PyDoc_STRVAR(load_scene_doc,
 "load_scene(path)\n--\n\n"
 "sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
-"(4, 4) world matrix, material index)], 'materials': [dict of factors]}.\n"
+"(4, 4) world matrix, material index)], 'materials': [dict of factors],\n"
+"'cameras': [dict of a camera's fields], 'file': the scene kept for\n"
+"render's metallic-roughness look, or None}.\n"
 "Use softrast.load.");
+
+PyDoc_STRVAR(make_environment_doc,
+"make_environment(path, intensity, threads)\n--\n\n"
+"An image-based light for render(pbr=True): the built-in studio (path '')\n"
+"or an equirectangular .hdr file, prefiltered.  Use render(environment=).");
 
 PyDoc_STRVAR(read_image_doc,
 "read_image(path)\n--\n\n"
@@ -52,6 +59,7 @@ static PyMethodDef methods[] = {
     { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
     { "load_scene", sr_py_load_scene, METH_VARARGS, load_scene_doc },
+    { "make_environment", sr_py_make_environment, METH_VARARGS, make_environment_doc },
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
     { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },
     { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },

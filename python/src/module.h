@@ -82,6 +82,30 @@ void sr_py_give_back_render_set(sr_py_render_set *s, bool keep);
 /* Frees what the set holds and empties it.  Needs no GIL. */
 void sr_py_release_render_set(sr_py_render_set *s);
 
+/* A loaded glTF primitive as the metallic-roughness look draws it
+ * (scene_file.c): its material and the arrays to draw. */
+typedef struct sr_py_file_draw {
+    const sr_pbr_material *material;
+    bool mirrored;              /* its world matrix mirrors */
+    sr_mesh mesh;               /* positions, normals, texcoords (set 0), colors, indices */
+    const float *texcoords1;    /* or NULL */
+    const float *tangents;      /* 4 a vertex, or NULL */
+    bool owned_mesh;            /* mesh made here (flat normals) */
+    float *owned_tangents;
+} sr_py_file_draw;
+
+/* A capsule keeping ctx and scene (sr_load_scene's, both taken over,
+ * also on failure) with each primitive prepared to draw; NULL with an
+ * exception set on failure. */
+PyObject *sr_py_scene_file(sr_context *ctx, sr_scene *scene);
+/* Primitive `index` of such a capsule, or NULL with TypeError. */
+const sr_py_file_draw *sr_py_file_draw_of(PyObject *capsule, Py_ssize_t index);
+/* make_environment(path, intensity, threads): a capsule holding an
+ * sr_environment (path "": the built-in studio); environment.c. */
+PyObject *sr_py_make_environment(PyObject *self, PyObject *args);
+/* The environment of such a capsule, or NULL with TypeError. */
+const sr_environment *sr_py_environment_of(PyObject *capsule);
+
 PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);

@@ -22,6 +22,8 @@
  * program lit as softrast render's default look.
  */
 #include "geometry.h"
+#include "render.h"
+#include "math/dvec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -47,18 +49,6 @@ static void to_camera(const geometry_uniforms *u, const double p[3], double c[3]
     for (int r = 0; r < 3; r++) {
         c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3];
     }
-}
-
-static void cross(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /* Mesh vertex v seen from the camera: its clip and camera-space
@@ -120,16 +110,16 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
     double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
     double e2[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
     double n[3];
-    cross(e1, e2, n);
-    double denom = dot(n, d), nn = dot(n, n);
+    sr__dcross(e1, e2, n);
+    double denom = sr__ddot(n, d), nn = sr__ddot(n, n);
     double z, lambda[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 };
     if (denom != 0.0 && nn > 0.0) {
-        z = dot(n, c[0]) / denom;
+        z = sr__ddot(n, c[0]) / denom;
         double w[3] = { z * d[0] - c[0][0], z * d[1] - c[0][1], z * d[2] - c[0][2] }, t[3];
-        cross(w, e2, t);
-        lambda[1] = dot(t, n) / nn;
-        cross(e1, w, t);
-        lambda[2] = dot(t, n) / nn;
+        sr__dcross(w, e2, t);
+        lambda[1] = sr__ddot(t, n) / nn;
+        sr__dcross(e1, w, t);
+        lambda[2] = sr__ddot(t, n) / nn;
         lambda[0] = 1.0 - lambda[1] - lambda[2];
     } else {
         /* Seen edge-on: no area to intersect; the raster's depth. */
@@ -163,12 +153,12 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
             }
             double oe1[3] = { o[1][0] - o[0][0], o[1][1] - o[0][1], o[1][2] - o[0][2] };
             double oe2[3] = { o[2][0] - o[0][0], o[2][1] - o[0][1], o[2][2] - o[0][2] };
-            cross(oe1, oe2, on);
+            sr__dcross(oe1, oe2, on);
         }
         for (int r = 0; r < 3; r++) {
             fn[r] = u->nm[r][0] * on[0] + u->nm[r][1] * on[1] + u->nm[r][2] * on[2];
         }
-        double len = sqrt(dot(fn, fn));
+        double len = sqrt(sr__ddot(fn, fn));
         double scale = len > 0.0 ? 1.0 / len : 0.0;
         for (int r = 0; r < 3; r++) {
             u->normal[3 * p + r] = (float)(fn[r] * scale);
@@ -192,35 +182,6 @@ static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
         }
     }
 }
-
-/* One instance as render() was handed it. */
-typedef struct instance {
-    MeshObject *mesh;
-    double a[3][4], nm[3][3];
-    int32_t id;
-    const float *positions;     /* for the color pass */
-    const uint32_t *indices;
-    float metallic, roughness, emissive[3];   /* for the metallic-roughness look */
-} instance;
-
-typedef struct render_job {
-    instance *inst;
-    size_t count;
-    int width, height, threads;
-    double k[3][3];
-    float near;
-    float background[3];
-    bool lit;                   /* color: headlight-lit, else the colors as they are */
-    bool pbr;                   /* color: the metallic-roughness program instead */
-    float *depth;
-    int32_t *triangle_id, *instance_id;
-    float *barycentric, *normal;
-    uint8_t *color, *rgba;
-    npy_bool *mask;
-    bool general;               /* geometry: the library's pipeline, not the visibility pass */
-    sr_py_render_set *set;      /* what run() draws with */
-    char error[512];
-} render_job;
 
 /* Every pixel of the geometry outputs as where nothing is visible. */
 static void fill_outputs(const render_job *j)
@@ -361,7 +322,7 @@ static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render
     return r;
 }
 
-static void mat_from_rows(const double a[3][4], sr_mat4 *out)
+void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out)
 {
     memset(out, 0, sizeof *out);
     for (int r = 0; r < 3; r++) {
@@ -372,8 +333,7 @@ static void mat_from_rows(const double a[3][4], sr_mat4 *out)
     out->m[15] = 1.0f;
 }
 
-/* The mesh's texture on ctx (RGB expanded to RGBA), or NULL without one. */
-static sr_result make_texture(sr_context *ctx, const MeshObject *m, sr_texture **tex)
+sr_result sr_py_make_texture(sr_context *ctx, const MeshObject *m, sr_texture **tex)
 {
     *tex = NULL;
     if (!m->texture) {
@@ -399,73 +359,17 @@ static sr_result make_texture(sr_context *ctx, const MeshObject *m, sr_texture *
     return r;
 }
 
-/* OpenCV's camera frame (y down, z forward) to OpenGL's eye space (y up,
- * z backward): the metallic-roughness look's world, so that its sky is
- * above and its eye at the origin looking down -z. */
-static const double cv_to_gl[3] = { 1.0, -1.0, -1.0 };
-
-/* softrast render's default lights (its key, fill and rim, from the
- * camera's right, up and towards the viewer, and its sky and ground),
- * so that color looks like the command's picture of the same model. */
-static void pbr_lights(sr_pbr_desc *d)
-{
-    static const float rig[3][4] = {
-        { -0.55f, 0.70f, 0.45f, 0.95f },
-        { 0.80f, 0.05f, 0.60f, 0.35f },
-        { 0.10f, 0.55f, -0.85f, 0.45f },
-    };
-    for (int i = 0; i < 3; i++) {
-        float len = sqrtf(rig[i][0] * rig[i][0] + rig[i][1] * rig[i][1] + rig[i][2] * rig[i][2]);
-        d->lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
-                                   .vector = { -rig[i][0] / len, -rig[i][1] / len,
-                                               -rig[i][2] / len },
-                                   .color = { 1.0f, 0.98f, 0.95f },
-                                   .intensity = rig[i][3] * 1.6f };
-    }
-    d->sky = (sr_vec3){ 0.16f, 0.165f, 0.18f };
-    d->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };
-}
-
-/* The metallic-roughness program for one instance: the base color is
- * the mesh's colors times its texture (a loaded material's factor is in
- * the colors already). */
-static sr_result make_pbr(sr_context *ctx, const instance *in, const sr_texture *tex,
-                          const sr_mat4 *model, const sr_mat4 *proj, sr_pbr **out)
-{
-    sr_pbr_material mat = sr_pbr_default_material();
-    mat.base_color_texture.texture = tex;
-    mat.metallic = in->metallic;
-    mat.roughness = in->roughness;
-    memcpy(mat.emissive, in->emissive, sizeof mat.emissive);
-    mat.double_sided = true;
-    sr_pbr_desc d = { .material = &mat, .model = model, .projection = proj,
-                      .vertex_color = in->mesh->colors ? SR_ON : SR_OFF };
-    pbr_lights(&d);
-    return sr_make_pbr_program(ctx, &d, out);
-}
-
 static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
                             const instance *in, size_t faces, const void *proj)
 {
     const MeshObject *m = in->mesh;
     sr_texture *tex;
-    sr_result r = make_texture(ctx, m, &tex);
+    sr_result r = sr_py_make_texture(ctx, m, &tex);
     if (r != SR_OK) {
         return r;
     }
     sr_mat4 model;
-    double a[3][4];
-    for (int row = 0; row < 3; row++) {
-        for (int c = 0; c < 4; c++) {
-            a[row][c] = j->pbr ? cv_to_gl[row] * in->a[row][c] : in->a[row][c];
-        }
-    }
-    mat_from_rows(a, &model);
-    sr_pbr *pbr = NULL;
-    if (j->pbr && (r = make_pbr(ctx, in, tex, &model, proj, &pbr)) != SR_OK) {
-        sr_destroy_texture(ctx, tex);
-        return r;
-    }
+    sr_py_mat_from_rows(in->a, &model);
     sr_state st = {
         .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
         .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
@@ -473,7 +377,6 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
         /* A headlight: the view is the identity, so "world" is camera space. */
         .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
-        .program = pbr ? sr_pbr_program(pbr) : NULL,
     };
     sr_draw_desc d = {
         .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
@@ -486,7 +389,6 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         .model = &model, .projection = proj,
     };
     r = sr_draw(ctx, fb, &st, &d);
-    sr_destroy_pbr_program(ctx, pbr);
     sr_destroy_texture(ctx, tex);
     return r;
 }
@@ -505,7 +407,8 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
     proj.m[14] = j->near;
     proj.m[11] = 1.0f;
     if (j->pbr) {
-        /* The model matrix is taken to OpenGL's eye space: undo it here. */
+        /* The program's view takes the world to OpenGL's eye space (y up,
+         * z backward): undo the flip of y and z here. */
         for (int c = 1; c < 3; c++) {
             for (int row = 0; row < 4; row++) {
                 proj.m[c * 4 + row] = -proj.m[c * 4 + row];
@@ -513,7 +416,8 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
         }
     }
     if (r == SR_OK) {
-        r = draw_instances(ctx, fb, j, color_draw, &proj);
+        r = j->pbr ? sr_py_pbr_pass(ctx, fb, j, &proj)
+                   : draw_instances(ctx, fb, j, color_draw, &proj);
     }
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);
@@ -631,6 +535,52 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
     return 0;
 }
 
+/* An instance's look for the metallic-roughness pass: (pose (3, 4),
+ * base color (4), metallic, roughness, emissive (3), emissive strength,
+ * alpha mode (0 opaque, 1 mask, 2 blend), alpha cutoff, double-sided,
+ * unlit, normal scale, occlusion strength, source: None or (the loaded
+ * scene's capsule, primitive index)). */
+static int take_look(PyObject *look, Py_ssize_t i, instance *in)
+{
+    PyObject *pose, *source;
+    sr_pbr_material *m = &in->factors;
+    *m = sr_pbr_default_material();
+    int mode, double_sided, unlit;
+    float *c = m->base_color, *e = m->emissive;
+    if (!PyTuple_Check(look) ||
+        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffO", &pose, &c[0], &c[1], &c[2], &c[3],
+                          &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
+                          &m->emissive_strength, &mode, &m->alpha_cutoff, &double_sided, &unlit,
+                          &m->normal_scale, &m->occlusion_strength, &source)) {
+        PyErr_Clear();
+        PyErr_Format(PyExc_TypeError, "instances[%zd]: the look is malformed", i);
+        return -1;
+    }
+    if (mode < 0 || mode > 2) {
+        PyErr_Format(PyExc_ValueError, "instances[%zd]: alpha mode %d", i, mode);
+        return -1;
+    }
+    m->alpha_mode = mode == 1 ? SR_ALPHA_MASK : mode == 2 ? SR_ALPHA_BLEND : SR_ALPHA_OPAQUE;
+    m->double_sided = double_sided;
+    m->unlit = unlit;
+    if (take_matrix(pose, "pose", 3, 4, &in->pose[0][0]) < 0) {
+        return -1;
+    }
+    in->src = NULL;
+    if (source != Py_None) {
+        PyObject *capsule;
+        Py_ssize_t index;
+        if (!PyArg_ParseTuple(source, "On", &capsule, &index)) {
+            return -1;
+        }
+        in->src = sr_py_file_draw_of(capsule, index);
+        if (!in->src) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
 static int take_instances(PyObject *seq, render_job *j)
 {
     PyObject *fast = PySequence_Fast(seq, "instances: expected a sequence");
@@ -647,19 +597,21 @@ static int take_instances(PyObject *seq, render_job *j)
     j->count = (size_t)n;
     for (Py_ssize_t i = 0; i < n; i++) {
         PyObject *item = PySequence_Fast_GET_ITEM(fast, i);
-        PyObject *mesh, *a, *nm;
+        PyObject *mesh, *a, *nm, *look = NULL;
         int id;
         instance *in = &j->inst[i];
-        /* The metallic-roughness factors: a dielectric unless given. */
-        in->roughness = 0.5f;
         if (!PyTuple_Check(item) ||
-            !PyArg_ParseTuple(item, "O!OOi|(fffff)", &sr_py_MeshType, &mesh, &a, &nm, &id,
-                              &in->metallic, &in->roughness, &in->emissive[0], &in->emissive[1],
-                              &in->emissive[2])) {
+            !PyArg_ParseTuple(item, "O!OOi|O", &sr_py_MeshType, &mesh, &a, &nm, &id, &look)) {
             PyErr_Clear();
             PyErr_Format(PyExc_TypeError,
                          "instances[%zd]: expected (Mesh, (3, 4) matrix, (3, 3) matrix, int"
-                         "[, (metallic, roughness, emissive r, g, b)])", i);
+                         "[, look])", i);
+            goto fail;
+        }
+        if (j->pbr && (!look || take_look(look, i, in) < 0)) {
+            if (!look) {
+                PyErr_Format(PyExc_TypeError, "instances[%zd]: pbr needs the look", i);
+            }
             goto fail;
         }
         in->mesh = (MeshObject *)mesh;
@@ -707,15 +659,27 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     (void)self;
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
-                              "mask", "background", "lit", "rgba", "pbr", "general", NULL };
+                              "mask", "background", "lit", "rgba", "pbr", "view",
+                              "environment", "shadows", "general", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
+    PyObject *view = Py_None, *env = Py_None;
     render_job j = { 0 };
-    int lit = 1, pbr = 0, general = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|Opp:render", kwlist,
+    int lit = 1, pbr = 0, shadows = 0, general = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpp:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
-                                     &j.background[2], &lit, &outs[7], &pbr, &general)) {
+                                     &j.background[2], &lit, &outs[7], &pbr, &view, &env,
+                                     &shadows, &general)) {
+        return NULL;
+    }
+    j.pbr = pbr;
+    j.shadows = shadows;
+    j.general = general;
+    if (pbr && take_matrix(view, "view", 3, 4, &j.view[0][0]) < 0) {
+        return NULL;
+    }
+    if (env != Py_None && !(j.env = sr_py_environment_of(env))) {
         return NULL;
     }
     if (j.width < 1 || j.width > SR_MAX_FRAMEBUFFER_SIZE || j.height < 1 ||
@@ -734,8 +698,6 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
         return NULL;
     }
     j.lit = lit;
-    j.pbr = pbr;
-    j.general = general;
     if (take_matrix(K, "K", 3, 3, &j.k[0][0]) < 0) {
         return NULL;
     }

@@ -1,8 +1,9 @@
 /* environment.c - image-based light (fragment stage, docs/ibl.md): makes
- * an sr_environment from an equirectangular image or the built-in studio
- * (validation, the source and its mips, the irradiance SH, the specular
- * levels on the context's threads) and answers the shaders' per-fragment
- * queries, which only read it and may run on any thread.
+ * an sr_environment from an equirectangular image (validation, the source
+ * and its mips, the irradiance SH, the specular levels on the context's
+ * threads) or from the built-in studio's tables, prefiltered at build
+ * time, and answers the shaders' per-fragment queries, which only read it
+ * and may run on any thread.
  */
 #include "context.h"
 #include "fragment/environment.h"
@@ -15,17 +16,6 @@
 #include <stdatomic.h>
 #include <string.h>
 
-/* The built-in studio's source image: soft enough that this resolution
- * holds all of it, small enough to make in about a millisecond. */
-#define STUDIO_WIDTH  256
-#define STUDIO_HEIGHT 128
-/* The first specular level is half the source's width, at most
- * SR__LEVEL_MAX_WIDTH; each next one half as wide, down to
- * LEVEL_MIN_WIDTH (a GGX lobe of roughness 0.2 spans a few degrees, a
- * texel of a 256-wide image 1.4). */
-#define LEVEL_MIN_WIDTH 32
-/* The SH are projected from the first mip at most this wide. */
-#define SH_MAX_WIDTH 64
 #define BAND_ROWS    4
 #define COPY_ROWS    16         /* rows a job when copying or halving an image */
 
@@ -89,21 +79,6 @@ static void halve_job(void *arg, int job, int thread)
                        band_end(job, COPY_ROWS, w->half_dst->h));
 }
 
-static void studio_job(void *arg, int job, int thread)
-{
-    (void)thread;
-    prefilter_work *w = arg;
-    sr__equirect *e = &w->env->level[0];
-    int row1 = band_end(job, BAND_ROWS, e->h);
-    sr__studio_rows(e, job * BAND_ROWS, row1);
-    if (w->intensity != 1.0f) {
-        float *p = e->rgb + (size_t)job * BAND_ROWS * e->w * 3;
-        for (size_t i = 0; i < (size_t)(row1 - job * BAND_ROWS) * e->w * 3; i++) {
-            p[i] *= w->intensity;
-        }
-    }
-}
-
 static void level_job(void *arg, int job, int thread)
 {
     (void)thread;
@@ -157,31 +132,24 @@ static sr_result prefilter(sr_context *ctx, prefilter_work *w)
 {
     sr_environment *env = w->env;
     sr__equirect mip[SR__ENV_MAX_MIPS] = { env->level[0] };
-    int mips = 1;
+    int mips = sr__mip_count(mip[0].w);
     sr_result r = SR_OK;
-    while (mips < SR__ENV_MAX_MIPS && mip[mips - 1].w > SR__MIP_MIN_WIDTH) {
-        const sr__equirect *src = &mip[mips - 1];
-        if (!alloc_image(ctx, &mip[mips], src->w / 2, src->h > 1 ? src->h / 2 : 1)) {
+    for (int m = 1; m < mips; m++) {
+        const sr__equirect *src = &mip[m - 1];
+        if (!alloc_image(ctx, &mip[m], src->w / 2, src->h > 1 ? src->h / 2 : 1)) {
+            mips = m;
             r = SR_OUT_OF_MEMORY;
             goto done;
         }
         w->half_src = src;
-        w->half_dst = &mip[mips];
-        sr_run_jobs(ctx, halve_job, w, (mip[mips].h + COPY_ROWS - 1) / COPY_ROWS);
-        mips++;
+        w->half_dst = &mip[m];
+        sr_run_jobs(ctx, halve_job, w, (mip[m].h + COPY_ROWS - 1) / COPY_ROWS);
     }
-    int sh_mip = 0;
-    while (sh_mip + 1 < mips && mip[sh_mip].w > SH_MAX_WIDTH) {
-        sh_mip++;
-    }
-    sr__irradiance_sh(&mip[sh_mip], env->sh);
+    sr__irradiance_sh(&mip[sr__sh_mip(mip[0].w, mips)], env->sh);
 
-    int first = env->level[0].w / 2;
-    first = first < SR__LEVEL_MAX_WIDTH ? first : SR__LEVEL_MAX_WIDTH;
     int jobs = 0;
     for (int k = 1; k < SR_ENVIRONMENT_LEVELS; k++) {
-        int lw = first >> (k - 1);
-        lw = lw > LEVEL_MIN_WIDTH ? lw : LEVEL_MIN_WIDTH;
+        int lw = sr__level_width(env->level[0].w, k);
         if (!alloc_image(ctx, &env->level[k], lw, lw / 2)) {
             r = SR_OUT_OF_MEMORY;
             goto done;
@@ -212,6 +180,69 @@ done:
     return r;
 }
 
+/* The caller's image, checked and times the intensity, then prefiltered. */
+static sr_result from_image(sr_context *ctx, const sr_environment_desc *d, float intensity,
+                            sr_environment *env)
+{
+    int sw = d->width, sh = d->height;
+    prefilter_work *w = sr__calloc(ctx, 1, sizeof *w);
+    if (!w || !alloc_image(ctx, &env->level[0], sw, sh)) {
+        sr__free(ctx, w);
+        return sr__fail(ctx, SR_OUT_OF_MEMORY,
+                        "sr_make_environment: out of memory for a %dx%d environment", sw, sh);
+    }
+    w->env = env;
+    w->intensity = intensity;
+    w->pixels = d->pixels;
+    atomic_init(&w->first_bad_row, INT_MAX);
+    sr_run_jobs(ctx, copy_job, w, (sh + COPY_ROWS - 1) / COPY_ROWS);
+    int row = atomic_load(&w->first_bad_row);
+    if (row != INT_MAX) {
+        const float *p = d->pixels + (size_t)row * sw * 3;
+        int i = 0;
+        while (p[i] >= 0.0f && p[i] <= FLT_MAX) {
+            i++;
+        }
+        sr__free(ctx, w);
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_environment_desc.pixels: pixel (%d, %d) channel %d is %g; "
+                        "radiance must be finite and >= 0",
+                        i / 3, row, i % 3, (double)p[i]);
+    }
+    sr_result r = prefilter(ctx, w);
+    sr__free(ctx, w);
+    if (r != SR_OK) {
+        return sr__fail(ctx, r, "sr_make_environment: out of memory for a %dx%d environment",
+                        sw, sh);
+    }
+    return SR_OK;
+}
+
+/* The built-in studio: its levels and SH prefiltered at build time, times
+ * the intensity (prefiltering is linear, so scaling after it is scaling
+ * the source, to the rounding); level 0 stays its function. */
+static sr_result from_studio(sr_context *ctx, float intensity, sr_environment *env)
+{
+    env->studio_intensity = intensity;
+    for (int k = 1; k < SR_ENVIRONMENT_LEVELS; k++) {
+        int lw = sr__level_width(SR__STUDIO_WIDTH, k);
+        if (!alloc_image(ctx, &env->level[k], lw, lw / 2)) {
+            return sr__fail(ctx, SR_OUT_OF_MEMORY,
+                            "sr_make_environment: out of memory for the built-in studio");
+        }
+        const float *src = sr__studio_builtin_levels[k];
+        float *dst = env->level[k].rgb;
+        for (size_t i = 0; i < (size_t)lw * (size_t)(lw / 2); i++) {
+            float v = src[i] * intensity;
+            dst[3 * i] = dst[3 * i + 1] = dst[3 * i + 2] = v;
+        }
+    }
+    for (int k = 0; k < 9; k++) {
+        env->sh[k][0] = env->sh[k][1] = env->sh[k][2] = sr__studio_builtin_sh[k] * intensity;
+    }
+    return SR_OK;
+}
+
 sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
                               sr_environment **out)
 {
@@ -228,51 +259,17 @@ sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
         return r;
     }
     sr_environment *env = sr__calloc(ctx, 1, sizeof *env);
-    prefilter_work *w = sr__calloc(ctx, 1, sizeof *w);
-    if (!env || !w) {
-        sr__free(ctx, w);
-        sr__free(ctx, env);
+    if (!env) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_environment: out of memory");
     }
-    w->env = env;
-    w->intensity = d.intensity == 0.0f ? 1.0f : d.intensity;
+    float intensity = d.intensity == 0.0f ? 1.0f : d.intensity;
     env->cos_rot = cosf(d.rotation);
     env->sin_rot = sinf(d.rotation);
-    int sw = d.pixels ? d.width : STUDIO_WIDTH, sh = d.pixels ? d.height : STUDIO_HEIGHT;
-    if (!alloc_image(ctx, &env->level[0], sw, sh)) {
-        r = SR_OUT_OF_MEMORY;
-    } else if (d.pixels) {
-        w->pixels = d.pixels;
-        atomic_init(&w->first_bad_row, INT_MAX);
-        sr_run_jobs(ctx, copy_job, w, (sh + COPY_ROWS - 1) / COPY_ROWS);
-        int row = atomic_load(&w->first_bad_row);
-        if (row != INT_MAX) {
-            const float *p = d.pixels + (size_t)row * sw * 3;
-            int i = 0;
-            while (p[i] >= 0.0f && p[i] <= FLT_MAX) {
-                i++;
-            }
-            sr__free(ctx, w);
-            sr_destroy_environment(ctx, env);
-            return sr__fail(ctx, SR_INVALID_ARG,
-                            "sr_environment_desc.pixels: pixel (%d, %d) channel %d is %g; "
-                            "radiance must be finite and >= 0",
-                            i / 3, row, i % 3, (double)p[i]);
-        }
-    } else {
-        env->studio_intensity = w->intensity;
-        sr_run_jobs(ctx, studio_job, w, (sh + BAND_ROWS - 1) / BAND_ROWS);
-    }
-    if (r == SR_OK) {
-        r = prefilter(ctx, w);
-    }
-    sr__free(ctx, w);
+    r = d.pixels ? from_image(ctx, &d, intensity, env) : from_studio(ctx, intensity, env);
     if (r != SR_OK) {
         sr_destroy_environment(ctx, env);
-        return sr__fail(ctx, r, "sr_make_environment: out of memory for a %dx%d environment",
-                        sw, sh);
+        return r;
     }
-    sr__brdf_table_init(ctx);
     *out = env;
     sr__ok(ctx);
     return SR_OK;

@@ -1,6 +1,7 @@
 /* environment.h - image-based light, shared by the files that make an
  * environment (environment.c, environment_prefilter.c,
- * environment_studio.c) and the BRDF table (brdf_table.c): equirectangular
+ * environment_studio.c), the BRDF table (brdf_table.c, brdf_integrate.c)
+ * and the build's table generator (tools/ibl_tables.c): equirectangular
  * images of linear RGB, sampled bilinearly with fast polynomial
  * arc functions.  Internal to the library; every function here is pure and
  * may run on any thread. */
@@ -23,10 +24,53 @@ typedef struct sr__equirect {
 /* Box-filtered mips of the source, down to SR__MIP_MIN_WIDTH wide. */
 #define SR__ENV_MAX_MIPS    16
 #define SR__MIP_MIN_WIDTH   8
+/* The SH are projected from the first mip at most this wide. */
+#define SR__SH_MAX_WIDTH    64
+/* The widest specular level (the first, for a source twice as wide). */
+#define SR__LEVEL_MAX_WIDTH 256
+/* The narrowest: a GGX lobe of roughness 0.2 spans a few degrees, a
+ * texel of a 256-wide image 1.4. */
+#define SR__LEVEL_MIN_WIDTH 32
+/* The built-in studio's source image: soft enough that this resolution
+ * holds all of it. */
+#define SR__STUDIO_WIDTH    256
+#define SR__STUDIO_HEIGHT   128
+
+/* How many mips a source w pixels wide has, itself included. */
+static inline int sr__mip_count(int w)
+{
+    int mips = 1;
+    while (mips < SR__ENV_MAX_MIPS && w > SR__MIP_MIN_WIDTH) {
+        w /= 2;
+        mips++;
+    }
+    return mips;
+}
+
+/* The mip the SH are projected from, of `mips` of a source w wide. */
+static inline int sr__sh_mip(int w, int mips)
+{
+    int m = 0;
+    while (m + 1 < mips && (w >> m) > SR__SH_MAX_WIDTH) {
+        m++;
+    }
+    return m;
+}
+
+/* The width of specular level k >= 1 (its height is half of it) for a
+ * source w wide: half the source's, at most SR__LEVEL_MAX_WIDTH, each next
+ * level half as wide, down to SR__LEVEL_MIN_WIDTH. */
+static inline int sr__level_width(int w, int k)
+{
+    int first = w / 2 < SR__LEVEL_MAX_WIDTH ? w / 2 : SR__LEVEL_MAX_WIDTH;
+    int lw = first >> (k - 1);
+    return lw > SR__LEVEL_MIN_WIDTH ? lw : SR__LEVEL_MIN_WIDTH;
+}
 
 struct sr_environment {
-    /* level[0] is the source (times the intensity); level[k] the
-     * radiance prefiltered for roughness k / (SR_ENVIRONMENT_LEVELS - 1). */
+    /* level[0] is the source (times the intensity; none for the built-in
+     * studio); level[k] the radiance prefiltered for roughness
+     * k / (SR_ENVIRONMENT_LEVELS - 1). */
     sr__equirect level[SR_ENVIRONMENT_LEVELS];
     float sh[9][3];             /* irradiance / pi, Lambert-convolved, in image space */
     float cos_rot, sin_rot;     /* world -> image: rotation by -desc.rotation about +Y */
@@ -153,8 +197,6 @@ typedef struct sr__spec_sample {
     float weight;
     int mip;
 } sr__spec_sample;
-/* The widest specular level (the first, for a source twice as wide). */
-#define SR__LEVEL_MAX_WIDTH 256
 /* The level's samples (at most SR__SPEC_SAMPLES) for a source of
  * source_w x source_h pixels with `mips` mips. */
 void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
@@ -163,9 +205,21 @@ void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
 void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_sample *s, int count,
                         sr__equirect *dst, int row0, int row1);
 
-/* Make sure the BRDF table exists, computing it on ctx's threads
- * (brdf_table.c). */
-void sr__brdf_table_init(sr_context *ctx);
+/* The split-sum BRDF table: SR__BRDF_TABLE_SIZE nodes along N.V and
+ * along roughness, each the (scale, bias) of F0; row `row` (one
+ * roughness) computed by GGX importance sampling (brdf_integrate.c). */
+#define SR__BRDF_TABLE_SIZE 32
+void sr__brdf_table_row(int row, float out[SR__BRDF_TABLE_SIZE][2]);
+
+/* Computed at build time (ibl_tables.c, written by tools/ibl_tables.c
+ * with the functions above): the BRDF table, [roughness][n_dot_v]; the
+ * built-in studio prefiltered at intensity 1, one channel a texel (it is
+ * grey), each specular level k >= 1 sr__level_width(SR__STUDIO_WIDTH, k)
+ * wide (level 0 is NULL: the studio's own function), and its irradiance
+ * SH, one channel each. */
+extern const float sr__brdf_builtin[SR__BRDF_TABLE_SIZE][SR__BRDF_TABLE_SIZE][2];
+extern const float *const sr__studio_builtin_levels[SR_ENVIRONMENT_LEVELS];
+extern const float sr__studio_builtin_sh[9];
 
 /* GGX sampling shared by the table and the prefilter: the half vector of
  * the 2D point (e1, e2) in [0, 1)^2 for alpha, in tangent space (z along N). */

@@ -2,11 +2,11 @@
  * stage, docs/ibl.md): an environment image's diffuse irradiance as
  * spherical harmonics, and its radiance convolved with the GGX lobe of
  * each roughness level under the split sum's N = V = R assumption.
- * Called by sr_make_environment; the levels are written by bands of rows
- * on the context's threads, each texel on its own, so the floats do not
- * depend on the thread count.
+ * Called by sr_make_environment, and by the build for the built-in studio
+ * (tools/ibl_tables.c); the levels are written by bands of rows on the
+ * context's threads, each texel on its own, so the floats do not depend
+ * on the thread count.
  */
-#include "context.h"
 #include "fragment/environment.h"
 
 #include <assert.h>

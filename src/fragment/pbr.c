@@ -9,6 +9,7 @@
  * compiler turns each loop into vector instructions; texture fetches and
  * the tone curve stay per lane. */
 #include "context.h"
+#include "fragment/environment.h"
 #include "fragment/light_lanes.h"
 #include "fragment/texture.h"
 #include "fragment/tonemap.h"
@@ -111,7 +112,6 @@ static inline v4f exp2_approx(v4f x)
  * directions onto the unit square through the octahedron |x|+|y|+|z| = 1,
  * the lower half folded over the upper; no trigonometry either way. */
 #define OCT_SIZE 64
-#define OCT_IRR_SIZE 16           /* irradiance is 9 spherical harmonics: smooth */
 #define OCT_MIN_ROUGHNESS 0.35f   /* below it the map's texels blur the lobe */
 
 static void oct_decode(float u, float v, float d[3])
@@ -168,9 +168,9 @@ static void oct_lookup4(const float *map, int n, const v4f d[3], v4f out[3])
     }
 }
 
-/* An n x n octahedral map of RGBA texels from query(env, direction, r). */
-static float *oct_build(sr_context *ctx, const sr_environment *env, int n, float roughness,
-                        bool specular)
+/* An n x n octahedral map of RGBA texels: the environment's prefiltered
+ * radiance at one roughness. */
+static float *oct_build(sr_context *ctx, const sr_environment *env, int n, float roughness)
 {
     float *map = sr__alloc(ctx, (size_t)n * (size_t)n * 4 * sizeof(float));
     if (!map) {
@@ -180,15 +180,32 @@ static float *oct_build(sr_context *ctx, const sr_environment *env, int n, float
         for (int x = 0; x < n; x++) {
             float d[3], *t = &map[4 * (y * n + x)];
             oct_decode(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n, d);
-            if (specular) {
-                sr_environment_specular(env, d, roughness, t);
-            } else {
-                sr_environment_irradiance(env, d, t);
-            }
+            sr_environment_specular(env, d, roughness, t);
             t[3] = 0.0f;
         }
     }
     return map;
+}
+
+/* The irradiance polynomial's terms: 1, y, z, x, xy, yz, z^2, xz, x^2 - y^2. */
+#define IRR_TERMS 9
+
+/* sr__irradiance_eval's sum of SH basis functions times coefficients, with
+ * each basis function's constant folded into its coefficient: the same
+ * function, fewer operations per fragment. */
+static void irr_poly(const float sh[9][3], float q[3][IRR_TERMS])
+{
+    for (int c = 0; c < 3; c++) {
+        q[c][0] = 0.282095f * sh[0][c] - 0.315392f * sh[6][c];
+        q[c][1] = 0.488603f * sh[1][c];
+        q[c][2] = 0.488603f * sh[2][c];
+        q[c][3] = 0.488603f * sh[3][c];
+        q[c][4] = 1.092548f * sh[4][c];
+        q[c][5] = 1.092548f * sh[5][c];
+        q[c][6] = 3.0f * 0.315392f * sh[6][c];
+        q[c][7] = 1.092548f * sh[7][c];
+        q[c][8] = 0.546274f * sh[8][c];
+    }
 }
 
 enum { SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE, SLOT_COUNT };
@@ -224,7 +241,11 @@ struct sr_pbr {
      * roughness on an octahedral map (OCT_SIZE^2 RGB), or NULL: queried
      * per fragment instead. */
     float *oct;
-    float *oct_irr;               /* its irradiance, OCT_IRR_SIZE^2 RGB */
+    /* Its irradiance (E / pi) as the quadratic polynomial in the image
+     * frame's (x, y, z) that its 9 SH coefficients are (irr_poly), and the
+     * world -> image rotation about +Y. */
+    float irr[3][IRR_TERMS];
+    float env_cos, env_sin;
     const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
     sr_tonemap_op tonemap;
@@ -413,6 +434,24 @@ static void hemisphere(const sr_pbr *p, const v4f d[3], v4f out[3])
     }
 }
 
+/* The environment's irradiance (E / pi) along unit normals d (world):
+ * its SH polynomial at d turned into the image's frame, negative values
+ * (a high-contrast image's truncated series) clamped to zero. */
+static void irradiance4(const sr_pbr *p, const v4f d[3], v4f out[3])
+{
+    v4f x = d[0] * p->env_cos - d[2] * p->env_sin, y = d[1];
+    v4f z = d[0] * p->env_sin + d[2] * p->env_cos;
+    v4f term[IRR_TERMS - 1] = { y, z, x, x * y, y * z, z * z, x * z, x * x - y * y };
+    for (int c = 0; c < 3; c++) {
+        const float *q = p->irr[c];
+        v4f e = q[0] + q[1] * term[0];
+        for (int k = 2; k < IRR_TERMS; k++) {
+            e += q[k] * term[k - 1];
+        }
+        out[c] = vmax(e, (v4f){ 0 });
+    }
+}
+
 /* Appendix B at four lanes: the punctual lights through the
  * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
  * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
@@ -497,7 +536,7 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
         /* Image-based light: irradiance (E / pi) along N and the
          * prefiltered radiance along R, from tables made with the program
          * (octahedral maps) where they can be. */
-        oct_lookup4(p->oct_irr, OCT_IRR_SIZE, n, en);
+        irradiance4(p, n, en);
         if (p->oct) {
             oct_lookup4(p->oct, OCT_SIZE, rr, er);
         } else {
@@ -1001,20 +1040,18 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     pr->may_discard = mat.alpha_mode == SR_ALPHA_MASK;
     float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
     if (p->environment && !p->m.unlit) {
-        /* Irradiance always, and with one roughness for every fragment
-         * its prefiltered radiance too, tabulated once (256 and 4096
-         * queries) and read per fragment without the queries' trigonometry. */
-        p->oct_irr = oct_build(ctx, p->environment, OCT_IRR_SIZE, 0.0f, false);
-        if (p->oct_irr && !p->slot[SLOT_MR].tex && rough >= OCT_MIN_ROUGHNESS) {
-            p->oct = oct_build(ctx, p->environment, OCT_SIZE, rough, true);
+        /* Irradiance from the SH, and with one roughness for every
+         * fragment the prefiltered radiance tabulated once (4096 queries)
+         * and read per fragment without the queries' trigonometry. */
+        irr_poly(p->environment->sh, p->irr);
+        p->env_cos = p->environment->cos_rot;
+        p->env_sin = p->environment->sin_rot;
+        if (!p->slot[SLOT_MR].tex && rough >= OCT_MIN_ROUGHNESS) {
+            p->oct = oct_build(ctx, p->environment, OCT_SIZE, rough);
             if (!p->oct) {
-                sr__free(ctx, p->oct_irr);
-                p->oct_irr = NULL;
+                sr__free(ctx, p);
+                return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
             }
-        }
-        if (!p->oct_irr) {
-            sr__free(ctx, p);
-            return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
         }
     }
     *out = p;
@@ -1031,7 +1068,6 @@ void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p)
 {
     if (ctx && p) {
         sr__free(ctx, p->oct);
-        sr__free(ctx, p->oct_irr);
         sr__free(ctx, p);
     }
 }

@@ -23,6 +23,7 @@
 #include "softrast.h"
 #include "geometry/bezier.h"
 #include "context.h"
+#include "math/dvec3.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -154,18 +155,6 @@ static void start_quadratic(fwd_diff *s, const double q[3][3], double h)
 
 /* ---- normals ------------------------------------------------------------ */
 
-static void cross(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Normalize du x dv into out; false when the tangents are (nearly)
  * parallel or zero, as on a collapsed patch edge, where the cross product
  * says nothing about the surface.  `extent2` is the squared size of the
@@ -174,10 +163,10 @@ static bool normal_from_tangents(const double du[3], const double dv[3],
                                  double extent2, float out[3])
 {
     double n[3];
-    cross(du, dv, n);
-    double n2 = dot(n, n);
+    sr__dcross(du, dv, n);
+    double n2 = sr__ddot(n, n);
     /* |du x dv| = |du| |dv| sin(angle): below 1e-7 the angle is noise. */
-    if (n2 <= 1e-14 * dot(du, du) * dot(dv, dv) || n2 <= 1e-24 * extent2 * extent2) {
+    if (n2 <= 1e-14 * sr__ddot(du, du) * sr__ddot(dv, dv) || n2 <= 1e-24 * extent2 * extent2) {
         return false;
     }
     double inv = 1.0 / sqrt(n2);
@@ -234,7 +223,7 @@ static void tessellate_patch(const float cp[16][3], int detail,
         }
     }
     double extent[3] = { hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] };
-    double extent2 = dot(extent, extent);
+    double extent2 = sr__ddot(extent, extent);
 
     /* Column j as a cubic in u, and its derivative, a quadratic in u whose
      * Bezier control points are 3 (cp_{i+1,j} - cp_ij). */

@@ -10,6 +10,7 @@
 #include "softrast.h"
 
 #include "context.h"
+#include "math/dvec3.h"
 #include "populate.h"
 #include "parallel/pool.h"
 
@@ -158,21 +159,9 @@ static void sub3(const float *a, const float *b, double out[3])
     out[2] = (double)a[2] - b[2];
 }
 
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 static double length3(const double a[3])
 {
-    return sqrt(dot3(a, a));
+    return sqrt(sr__ddot(a, a));
 }
 
 /* Angle between two edge vectors leaving the same corner.  atan2 of |a x b|
@@ -181,8 +170,8 @@ static double length3(const double a[3])
 static double corner_angle(const double a[3], const double b[3])
 {
     double c[3];
-    cross3(a, b, c);
-    return atan2(length3(c), dot3(a, b));
+    sr__dcross(a, b, c);
+    return atan2(length3(c), sr__ddot(a, b));
 }
 
 /* Unit normal of triangle (a, b, c), counter-clockwise front.  Returns
@@ -192,7 +181,7 @@ static bool face_normal(const float *a, const float *b, const float *c, double n
     double e1[3], e2[3];
     sub3(b, a, e1);
     sub3(c, a, e2);
-    cross3(e1, e2, n);
+    sr__dcross(e1, e2, n);
     double len = length3(n);
     if (!(len > 0.0) || !isfinite(len)) {
         return false;

@@ -121,7 +121,7 @@ window.renderAsset = async (o) => {
     camera.up.set(0, 1, 0);
     camera.lookAt(target);
 
-    // softrast's camera-relative lights (framing_default_lights): its key
+    // softrast's camera-relative lights (sr_default_lights): its key
     // light alone (what it adds to an environment) or all three, in
     // radiance units where a white Lambertian surface reflects 1/pi, as
     // three.js's lights are.

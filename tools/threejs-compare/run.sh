@@ -21,7 +21,7 @@
 #   --threshold T       codes a channel may differ before a pixel counts (default 16)
 #   --lights L          none|key|rig: softrast's camera-relative lights three.js
 #                       also gets (default key: what softrast adds to an environment)
-#   --light-scale S     their intensities' scale (default 1.6, FRAMING_PBR_LIGHT_SCALE)
+#   --light-scale S     their intensities' scale (default 1.6, SR_PBR_LIGHT_SCALE)
 # Everything after `--` goes to softrast alone.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)

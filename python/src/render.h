@@ -1,0 +1,58 @@
+/*
+ * render.h - what render.c's passes share with the metallic-roughness
+ * pass (render_pbr.c): the instances and the job as render() was handed
+ * them, and the helpers both color passes use.  Read by the drawing
+ * thread without the GIL.
+ */
+#ifndef SR_PY_RENDER_H
+#define SR_PY_RENDER_H
+
+#include "module.h"
+
+/* One instance as render() was handed it. */
+typedef struct instance {
+    MeshObject *mesh;
+    double a[3][4], nm[3][3];
+    int32_t id;
+    const float *positions;     /* for the color pass */
+    const uint32_t *indices;
+    /* For the metallic-roughness look: the object -> world pose, the
+     * Material's factors, alpha mode and flags (no textures), and the
+     * loaded primitive it came from (its textures and arrays), or NULL. */
+    double pose[3][4];
+    sr_pbr_material factors;
+    const sr_py_file_draw *src;
+} instance;
+
+typedef struct render_job {
+    instance *inst;
+    size_t count;
+    int width, height, threads;
+    double k[3][3];
+    double view[3][4];          /* world -> camera [R | t], for the metallic-roughness look */
+    float near;
+    float background[3];
+    bool lit;                   /* color: headlight-lit, else the colors as they are */
+    bool pbr;                   /* color: the metallic-roughness program instead */
+    const sr_environment *env;  /* pbr: its image-based light, or NULL (the hemisphere) */
+    bool shadows;               /* pbr: the key light's shadow map */
+    float *depth;
+    int32_t *triangle_id, *instance_id;
+    float *barycentric, *normal;
+    uint8_t *color, *rgba;
+    npy_bool *mask;
+    bool general;               /* geometry: the library's pipeline, not the visibility pass */
+    sr_py_render_set *set;      /* what run() draws with */
+    char error[512];
+} render_job;
+
+/* The column-major matrix of rows a (the fourth row 0 0 0 1). */
+void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out);
+/* The mesh's texture on ctx (RGB expanded to RGBA), or NULL without one. */
+sr_result sr_py_make_texture(sr_context *ctx, const MeshObject *m, sr_texture **tex);
+/* The color pass of shading="pbr" (render_pbr.c) with `proj` taking
+ * OpenGL's eye space to clip space; the framebuffer is cleared. */
+sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                         const sr_mat4 *proj);
+
+#endif

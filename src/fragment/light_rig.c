@@ -1,0 +1,69 @@
+/* light_rig.c - softrast render's default lighting, as data for the
+ * shading models: the key, fill and rim lights placed relative to the
+ * camera, and for the metallic-roughness program the same lights as
+ * radiance with a sky-and-ground hemisphere.  Pure functions; any thread.
+ * The command, the benchmark and the Python package all light with these,
+ * so that their pictures of one model agree. */
+#include "softrast.h"
+
+#include <math.h>
+#include <string.h>
+
+static bool finite3(sr_vec3 a)
+{
+    return isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
+}
+
+static bool unit(sr_vec3 a)
+{
+    return finite3(a) && fabsf(sr_vec3_length(a) - 1.0f) < 1e-3f;
+}
+
+sr_result sr_default_lights(const sr_camera_basis *basis, sr_light lights[SR_MAX_LIGHTS])
+{
+    if (!basis || !lights || !unit(basis->u) || !unit(basis->v) || !unit(basis->w)) {
+        return SR_INVALID_ARG;
+    }
+    /* Towards each light in the basis (u across, v up, w towards the
+     * viewer), and its intensity. */
+    static const float rig[SR_DEFAULT_LIGHT_COUNT][4] = {
+        { -0.55f, 0.70f, 0.45f, 0.95f },   /* key: upper left, towards the viewer */
+        { 0.80f, 0.05f, 0.60f, 0.35f },    /* fill: right */
+        { 0.10f, 0.55f, -0.85f, 0.45f },   /* rim: behind, above */
+    };
+    memset(lights, 0, SR_MAX_LIGHTS * sizeof *lights);
+    for (int i = 0; i < SR_DEFAULT_LIGHT_COUNT; i++) {
+        sr_vec3 to_light = sr_vec3_add(sr_vec3_add(sr_vec3_scale(basis->u, rig[i][0]),
+                                                   sr_vec3_scale(basis->v, rig[i][1])),
+                                       sr_vec3_scale(basis->w, rig[i][2]));
+        lights[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
+                                .vector = sr_vec3_scale(sr_vec3_normalize(to_light), -1.0f),
+                                .color = { 1.0f, 0.98f, 0.95f },
+                                .intensity = rig[i][3] };
+    }
+    return SR_OK;
+}
+
+sr_result sr_pbr_default_lighting(const sr_light lights[SR_MAX_LIGHTS], sr_pbr_desc *desc)
+{
+    if (!lights || !desc) {
+        return SR_INVALID_ARG;
+    }
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        if (!finite3(lights[i].vector) || !finite3(lights[i].color) ||
+            !isfinite(lights[i].intensity)) {
+            return SR_INVALID_ARG;
+        }
+    }
+    for (int i = 0; i < SR_MAX_LIGHTS; i++) {
+        desc->lights[i] = lights[i];
+        /* Radiance for a BRDF whose white Lambertian part is 1/pi: this
+         * scale gives a surface facing the key light, encoded to sRGB,
+         * about the brightness the Blinn-Phong look gives it. */
+        float in = lights[i].intensity != 0.0f ? lights[i].intensity : 1.0f;
+        desc->lights[i].intensity = in * SR_PBR_LIGHT_SCALE;
+    }
+    desc->sky = (sr_vec3){ 0.16f, 0.165f, 0.18f };
+    desc->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };
+    return SR_OK;
+}
