@@ -69,7 +69,10 @@ static void mesh_sphere(const sr_mesh *m, sr_vec3 *centre, float *radius)
     for (size_t i = 0; i < m->vertex_count; i++) {
         const float *p = &m->positions[i * 3];
         double d[3] = { p[0] - c[0], p[1] - c[1], p[2] - c[2] };
-        r2 = fmax(r2, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        /* A comparison rather than fmax (both skip a NaN): GCC 12 for
+         * aarch64 crashes vectorizing an fmax reduction. */
+        double x = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        r2 = x > r2 ? x : r2;
     }
     *centre = (sr_vec3){ (float)c[0], (float)c[1], (float)c[2] };
     *radius = r2 > 0.0 ? (float)sqrt(r2) : 1.0f;

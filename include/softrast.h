@@ -409,7 +409,8 @@ typedef struct sr_context sr_context;
 typedef enum sr_simd_level {
     SR_SIMD_DEFAULT = 0, /* the SR_SIMD env var, else the widest the CPU runs */
     SR_SIMD_OFF,         /* scalar loops only (SR_SIMD=off) */
-    SR_SIMD_BASE,        /* the baseline instruction set, SSE2 on x86-64 (SR_SIMD=base) */
+    SR_SIMD_BASE,        /* the baseline instruction set: SSE2 on x86-64, NEON on
+                            aarch64, the widest level there (SR_SIMD=base) */
     SR_SIMD_AVX2,        /* SR_SIMD=avx2 */
     SR_SIMD_AVX512,      /* SR_SIMD=avx512 */
 } sr_simd_level;

@@ -26,11 +26,11 @@
 # positive in a fuzz target's vectorized loop on s390x, say), and the
 # native builds already hold the code to -Werror.
 #
-# The tests that run the `softrast` tool or the examples start them as
-# programs, which works under qemu-user only with qemu registered in
-# binfmt_misc (qemu-user-binfmt); without that they are left out, and the
-# script says which.  SR_CROSS_EXCLUDE names more tests to leave out
-# (.ci/run's long sweeps).
+# CTest starts each test through CMAKE_CROSSCOMPILING_EMULATOR, and the
+# tests that run the `softrast` tool or the examples start those through it
+# too (tests/CMakeLists.txt passes it to sr_test_program_argv), so nothing
+# needs qemu registered in binfmt_misc.  SR_CROSS_EXCLUDE names tests to
+# leave out (.ci/run's long sweeps).
 set -eu
 if [ $# -lt 1 ]; then
     echo "usage: scripts/cross-test.sh ARCH [ctest options...]  (ARCH: aarch64, s390x)" >&2
@@ -113,15 +113,8 @@ cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$build/toolchain.cmake" \
     -DCMAKE_BUILD_TYPE=Release -DSR_BUILD_BENCH=OFF -DSR_WITH_ASSIMP=OFF \
     -DSR_BUILD_PYTHON=OFF -DSR_BUILD_EXAMPLES=OFF -DSR_WERROR=OFF >/dev/null
 cmake --build "$build" -j2 >/dev/null
-# Tests to leave out: $SR_CROSS_EXCLUDE (names, space-separated), and the
-# ones that start programs when qemu is not in binfmt_misc.
+# Tests to leave out: $SR_CROSS_EXCLUDE (names, space-separated).
 skip=$(printf '%s' "${SR_CROSS_EXCLUDE:-}" | tr -s ' \n' '||')
-if [ ! -e "/proc/sys/fs/binfmt_misc/qemu-$arch" ]; then
-    cli=$(cd "$root/tests" && grep -l -e sr_test_run_cli -e SR_CLI_PATH -e SR_EXAMPLE_ test_*.c | sed 's/\.c$//' | paste -sd'|')
-    echo "cross-test.sh: qemu-$arch is not in binfmt_misc: leaving out the tests that run" \
-        "the softrast tool or the examples ($cli)"
-    skip=${skip:+$skip|}$cli
-fi
 echo "== $arch: ctest under qemu-$arch =="
 cd "$build"
 if [ -n "$skip" ]; then

@@ -9,6 +9,10 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#ifdef SR_TEST_EMULATED
+#include "sr_test_emulator.h" /* SR_TEST_EMULATOR_WORDS, written by tests/CMakeLists.txt */
+#endif
+
 extern char **environ;
 
 #define MAX_TESTS 1024
@@ -112,18 +116,42 @@ bool sr_test_write_file(const char *path, const void *data, size_t size)
     return fclose(f) == 0 && ok;
 }
 
-int sr_test_run_cli(const char *const *args)
+bool sr_test_program_argv(const char *path, const char *const *args, const char **argv,
+                          size_t cap)
 {
-#ifdef SR_CLI_PATH
-    const char *argv[64];
-    int n = 0;
-    argv[n++] = SR_CLI_PATH;
-    for (int i = 0; args[i] && n < 63; i++) {
+    size_t n = 0;
+#ifdef SR_TEST_EMULATED
+    static const char *const emulator[] = { SR_TEST_EMULATOR_WORDS };
+    for (size_t i = 0; i < sizeof emulator / sizeof emulator[0]; i++) {
+        if (n + 1 >= cap) {
+            return false;
+        }
+        argv[n++] = emulator[i];
+    }
+#endif
+    if (n + 1 >= cap) {
+        return false;
+    }
+    argv[n++] = path;
+    for (size_t i = 0; args[i]; i++) {
+        if (n + 1 >= cap) {
+            return false;
+        }
         argv[n++] = args[i];
     }
     argv[n] = NULL;
+    return true;
+}
+
+int sr_test_run_cli(const char *const *args)
+{
+#ifdef SR_CLI_PATH
+    const char *argv[80];
+    if (!sr_test_program_argv(SR_CLI_PATH, args, argv, sizeof argv / sizeof argv[0])) {
+        return -1;
+    }
     pid_t pid;
-    if (posix_spawn(&pid, SR_CLI_PATH, NULL, NULL, (char *const *)argv, environ) != 0) {
+    if (posix_spawn(&pid, argv[0], NULL, NULL, (char *const *)argv, environ) != 0) {
         return -1;
     }
     int status;

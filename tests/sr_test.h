@@ -42,6 +42,23 @@ bool sr_test_write_file(const char *path, const void *data, size_t size);
 /* Run the built softrast CLI with args (NULL-terminated, without the
  * program name), no shell; its exit status, or -1 if it could not run. */
 int sr_test_run_cli(const char *const *args);
+/* The argument vector that starts the built program `path` with args
+ * (NULL-terminated, without the program name) into argv[0 .. cap - 1],
+ * NULL-terminated: path and args, or in a cross build tested under an
+ * emulator (SR_TEST_EMULATED: CMake's CMAKE_CROSSCOMPILING_EMULATOR, such
+ * as scripts/cross-test.sh's qemu-user) the emulator's words before them,
+ * since the host cannot start the target's programs itself.  Start
+ * argv[0].  False when cap is too small. */
+bool sr_test_program_argv(const char *path, const char *const *args, const char **argv,
+                          size_t cap);
+/* How many times longer than natively a started program may take: 1, or
+ * under an emulator 20 (qemu-user runs softrast 10 to 20 times slower);
+ * for the waits of tests that watch a program run, not for timing it. */
+#ifdef SR_TEST_EMULATED
+#define SR_TEST_SLOWDOWN 20
+#else
+#define SR_TEST_SLOWDOWN 1
+#endif
 
 #define SR_TEST(name)                                                        \
     static void name(void);                                                  \

@@ -5,6 +5,7 @@
  * JSON.  Models are written by the test (STL and OBJ), with a bad one
  * among them. */
 #define _XOPEN_SOURCE 700   /* posix_openpt, grantpt, unlockpt, ptsname */
+#include "gltf_write.h" /* le_copy */
 #include "softrast_io.h"
 #include "sr_test.h"
 
@@ -47,13 +48,11 @@ static pid_t start_cli(const char *const *args, const char *const *env, const ch
                        const char *err_path)
 {
 #ifdef SR_CLI_PATH
-    const char *argv[64], *envp[256];
-    int n = 0, e = 0;
-    argv[n++] = SR_CLI_PATH;
-    for (int i = 0; args[i] && n < 63; i++) {
-        argv[n++] = args[i];
+    const char *argv[80], *envp[256];
+    int e = 0;
+    if (!sr_test_program_argv(SR_CLI_PATH, args, argv, sizeof argv / sizeof argv[0])) {
+        return 0;
     }
-    argv[n] = NULL;
     for (char **p = environ; *p && e < 200; p++) {
         if (strncmp(*p, "JOB_COMPLETION_INDEX=", 21) != 0 && strncmp(*p, "SLURM_", 6) != 0) {
             envp[e++] = *p;
@@ -69,7 +68,7 @@ static pid_t start_cli(const char *const *args, const char *const *env, const ch
     posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid;
-    int r = posix_spawn(&pid, SR_CLI_PATH, &fa, NULL, (char *const *)argv, (char *const *)envp);
+    int r = posix_spawn(&pid, argv[0], &fa, NULL, (char *const *)argv, (char *const *)envp);
     posix_spawn_file_actions_destroy(&fa);
     return r == 0 ? pid : 0;
 #else
@@ -169,11 +168,11 @@ static bool write_stl(const char *path, float s)
     const int t[4][3] = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } };
     uint8_t buf[84 + 4 * 50] = { 0 };
     uint32_t count = 4;
-    memcpy(buf + 80, &count, 4);
+    le_copy(buf + 80, &count, 1, 4); /* binary STL is little endian on any host */
     for (int i = 0; i < 4; i++) {
         uint8_t *rec = buf + 84 + 50 * i;
         for (int k = 0; k < 3; k++) {
-            memcpy(rec + 12 + 12 * k, v[t[i][k]], 12);
+            le_copy(rec + 12 + 12 * k, v[t[i][k]], 3, 4);
         }
     }
     return sr_test_write_file(path, buf, sizeof buf);
@@ -937,7 +936,7 @@ SR_TEST(killed_shard_resumes_with_skip_existing)
                           err);
     REQUIRE(pid > 0);
     /* Kill once two records are written. */
-    for (int waited = 0; waited < 60000; waited++) {
+    for (int waited = 0; waited < 60000 * SR_TEST_SLOWDOWN; waited++) {
         struct stat st;
         FILE *f = fopen(logp, "r");
         int lines = 0;

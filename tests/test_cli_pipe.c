@@ -64,11 +64,10 @@ static bool run(const char *const *args, out_kind kind, run_result *r)
         int fd = kind == OUT_DEV_FULL ? open("/dev/full", O_WRONLY) : out[1];
         dup2(fd, STDOUT_FILENO);
         dup2(err[1], STDERR_FILENO);
-        const char *argv[32] = { SR_CLI_PATH };
-        for (int i = 0; args[i] && i < 30; i++) {
-            argv[i + 1] = args[i];
+        const char *argv[48];
+        if (sr_test_program_argv(SR_CLI_PATH, args, argv, sizeof argv / sizeof argv[0])) {
+            execv(argv[0], (char *const *)argv);
         }
-        execv(SR_CLI_PATH, (char *const *)argv);
         _exit(127);
     }
     close(out[1]);

@@ -184,7 +184,11 @@ static bool run(const char *exe, const char *out)
 {
     pid_t pid = fork();
     if (pid == 0) {
-        execl(exe, exe, out, (char *)NULL);
+        const char *argv[24];
+        if (sr_test_program_argv(exe, (const char *[]){ out, NULL }, argv,
+                                 sizeof argv / sizeof argv[0])) {
+            execv(argv[0], (char *const *)argv);
+        }
         _exit(127);
     }
     int status = 0;

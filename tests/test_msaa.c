@@ -774,8 +774,19 @@ SR_TEST(four_sample_kernel_equals_the_generic_path)
     sr_draw_desc d = { .positions = pos, .vertex_count = 3 * T, .colors = col };
     static const char *const simd[] = { "", "avx2", "base" };
     static const sr_depth_format formats[] = { SR_DEPTH_D16, SR_DEPTH_D24 };
+    unsigned drawn = 0; /* (level, shading) pairs already drawn */
     for (int v = 0; v < 6; v++) {
         setenv("SR_SIMD", simd[v % 3], 1);
+        /* A level the CPU caps to one already drawn runs the same kernel
+         * again (on aarch64 all three are NEON): skipped. */
+        sr_context *probe;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &probe) == SR_OK);
+        unsigned bit = 1u << ((int)sr_context_simd(probe) + 8 * (v / 3));
+        sr_destroy_context(probe);
+        if (drawn & bit) {
+            continue;
+        }
+        drawn |= bit;
         for (int f = 0; f < 2; f++) {
             sr_context *ctx;
             REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 2 }, &ctx) == SR_OK);

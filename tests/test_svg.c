@@ -24,19 +24,16 @@ static int run_cli(const char *const *args, char *err, size_t n)
 {
     char err_path[1024];
     snprintf(err_path, sizeof err_path, "%s/svg_stderr.txt", sr_test_out_dir());
-    const char *argv[32];
-    int k = 0;
-    argv[k++] = SR_CLI_PATH;
-    for (int i = 0; args[i] && k < 31; i++) {
-        argv[k++] = args[i];
+    const char *argv[48];
+    if (!sr_test_program_argv(SR_CLI_PATH, args, argv, sizeof argv / sizeof argv[0])) {
+        return -1;
     }
-    argv[k] = NULL;
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&fa, 2, err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     pid_t pid;
-    int e = posix_spawn(&pid, SR_CLI_PATH, &fa, NULL, (char *const *)argv, environ);
+    int e = posix_spawn(&pid, argv[0], &fa, NULL, (char *const *)argv, environ);
     posix_spawn_file_actions_destroy(&fa);
     if (e != 0) {
         return -1;

@@ -70,7 +70,11 @@ static int run_svg(const char *in, const char *out, char *err, size_t cap)
     if (pid == 0) {
         dup2(p[1], STDERR_FILENO);
         close(p[0]);
-        execl(SR_CLI_PATH, SR_CLI_PATH, "svg", in, "-o", out, (char *)NULL);
+        const char *argv[24];
+        if (sr_test_program_argv(SR_CLI_PATH, (const char *[]){ "svg", in, "-o", out, NULL }, argv,
+                                 sizeof argv / sizeof argv[0])) {
+            execv(argv[0], (char *const *)argv);
+        }
         _exit(127);
     }
     close(p[1]);

@@ -23,7 +23,7 @@
 extern char **environ;
 
 #define FAILF(...) sr_test_fail(__FILE__, __LINE__, __VA_ARGS__)
-#define CHILD_TIMEOUT_MS 120000
+#define CHILD_TIMEOUT_MS (120000 * SR_TEST_SLOWDOWN)
 #define MAX_ARGS 64
 
 typedef struct run_result {
@@ -56,11 +56,21 @@ static void result_free(run_result *r)
     free(r->err);
 }
 
-/* Run argv[0] (looked up in PATH) with `env`, streams captured. */
+/* Run argv[0] (looked up in PATH; the built tool through a cross build's
+ * emulator) with `env`, streams captured. */
 static bool run(const char *const *argv, char *const *env, run_result *r)
 {
     memset(r, 0, sizeof *r);
     r->status = -1;
+#ifdef SR_CLI_PATH
+    const char *emulated[MAX_ARGS + 16];
+    if (strcmp(argv[0], SR_CLI_PATH) == 0) {
+        if (!sr_test_program_argv(argv[0], argv + 1, emulated, MAX_ARGS + 16)) {
+            return false;
+        }
+        argv = emulated;
+    }
+#endif
     char out_path[1100], err_path[1100];
     snprintf(out_path, sizeof out_path, "%s/view-%d.out", sr_test_out_dir(), (int)getpid());
     snprintf(err_path, sizeof err_path, "%s/view-%d.err", sr_test_out_dir(), (int)getpid());
@@ -205,12 +215,17 @@ static bool run_view_xvfb(const char *const *args, run_result *r)
     argv[n++] = auth;
     argv[n++] = "-s";
     argv[n++] = "-screen 0 1024x768x24 -nolisten tcp";
-    argv[n++] = SR_CLI_PATH;
-    argv[n++] = "view";
-    for (int i = 0; args[i] && n < MAX_ARGS - 1; i++) {
-        argv[n++] = args[i];
+    const char *view_args[MAX_ARGS];
+    view_args[0] = "view";
+    int k = 1;
+    for (int i = 0; args[i] && k < MAX_ARGS - 1; i++) {
+        view_args[k++] = args[i];
     }
-    argv[n] = NULL;
+    view_args[k] = NULL;
+    if (!sr_test_program_argv(SR_CLI_PATH, view_args, argv + n, (size_t)(MAX_ARGS - n))) {
+        FAILF("too many arguments for run_view_xvfb");
+        return false;
+    }
     /* In the sanitizer build, leak checking is off for the windowed
      * process only: SDL's X11 and D-Bus libraries keep blocks until exit,
      * some allocated from modules already unloaded, that LeakSanitizer
@@ -219,7 +234,7 @@ static bool run_view_xvfb(const char *const *args, run_result *r)
      * stay leak-checked. */
     static char *env[520];
     char **base = env_without_display();
-    int k = 0;
+    k = 0;
     for (int i = 0; base[i] && k < 510; i++) {
         if (strncmp(base[i], "LSAN_OPTIONS=", 13) != 0) {
             env[k++] = base[i];

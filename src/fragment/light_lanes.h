@@ -1,7 +1,7 @@
 /* light_lanes.h - sr__light (shade.c) on four lanes at once, for the
  * vertex stage's Gouraud lighting (vertex.c) and the Phong vector kernel
  * (simd_kernel.h).  Written with GCC/Clang vector extensions: SSE on x86,
- * whatever the compiler makes of them elsewhere.  The body, and how it
+ * NEON on AArch64, whatever the compiler makes of them elsewhere.  The body, and how it
  * keeps sr__light's bits, is light_lanes_body.h, shared with the
  * sixteen-lane instance of vertex_wide.c. */
 #ifndef SR_LIGHT_LANES_H
@@ -12,6 +12,8 @@
 #include <math.h>
 #if defined(__SSE__)
 #include <xmmintrin.h>
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
 #endif
 
 
@@ -25,6 +27,8 @@ static inline __attribute__((always_inline)) v4f sr__v4_sqrt(v4f x)
 {
 #if defined(__SSE__)
     return (v4f)_mm_sqrt_ps((__m128)x);
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+    return (v4f)vsqrtq_f32((float32x4_t)x);
 #else
     v4f r = x; /* each lane is written below; GCC 12 warns of r unset otherwise */
     for (int k = 0; k < 4; k++) {

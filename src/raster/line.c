@@ -31,6 +31,10 @@
 #include <string.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#elif defined(__aarch64__) && defined(__ARM_NEON) && defined(__BYTE_ORDER__) && \
+    __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define SR_LINE_NEON 1
+#include "raster/unorm8_neon.h"
 #endif
 
 #define H SR_SUBPIXEL_HALF
@@ -211,7 +215,8 @@ static void walk_generic(const line_ctx *lc, int64_t ka, int64_t kb)
 /* sr__unorm8 on r, g, b, a, packed as the framebuffer's bytes.  With SSE2
  * as in the triangle kernels: min(1, v) keeps NaN (min returns its second
  * operand then), truncation sends NaN and negatives to values the
- * saturating packs turn into 0, and anything above 1 became 255. */
+ * saturating packs turn into 0, and anything above 1 became 255.  With
+ * NEON on AArch64 as unorm8_neon.h says. */
 static inline uint32_t pack_unorm8(v4f c)
 {
 #if defined(__SSE2__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
@@ -220,6 +225,8 @@ static inline uint32_t pack_unorm8(v4f c)
                                             _mm_set1_ps(0.5f)));
     q = _mm_packs_epi32(q, q);
     return (uint32_t)_mm_cvtsi128_si32(_mm_packus_epi16(q, q));
+#elif defined(SR_LINE_NEON)
+    return sr__neon_pack_unorm8(c);
 #else
     uint8_t out[4];
     for (int k = 0; k < 4; k++) {

@@ -121,6 +121,16 @@ void sr__raster_msaa(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,
 #undef SR_SIMD_TARGET
 
 #include "raster/msaa_wide.h"
+
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+/* NEON, the AArch64 baseline: the four-sample kernel is vector extensions
+ * only, so it needs no intrinsics of its own. */
+#define SR_HAVE_SAMPLE_KERNEL 1
+#define SR_SIMD_FN(name) name##_neon
+#define SR_SIMD_TARGET
+#include "raster/msaa_kernel.h"
+#undef SR_SIMD_FN
+#undef SR_SIMD_TARGET
 #endif
 
 sr_raster_fn sr__raster_msaa_select(const sr_draw_state *ds)
@@ -136,12 +146,17 @@ sr_raster_fn sr__raster_msaa_select(const sr_draw_state *ds)
      * or flat (as in the half-space kernels' select). */
     bool color = !ds->texture && (sr__color_varying_shading(ds->shading) ||
                                   ds->shading == SR_SHADING_FLAT);
+#if defined(__aarch64__)
+    (void)color;
+    return ds->simd == SR_SIMD_BASE ? raster_ms4_neon : NULL;
+#else
     switch (ds->simd) {
     case SR_SIMD_AVX512: return color ? raster_ms16 : raster_ms4_avx2;
     case SR_SIMD_AVX2: return raster_ms4_avx2;
     case SR_SIMD_BASE: return raster_ms4_base;
     default:           return NULL;
     }
+#endif
 #else
     (void)ds;
     return NULL;

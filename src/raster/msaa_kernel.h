@@ -2,8 +2,8 @@
  * workers): one pixel's four samples in the four lanes of a vector, for
  * the common state - depth LESS with writes on a D16/D24 buffer, no
  * stencil, no blending or masks, no alpha to coverage.  Included twice by
- * msaa.c, for AVX2 and for the baseline instruction set, with
- * SR_SIMD_FN naming the copies.
+ * msaa.c on x86, for AVX2 and for the baseline instruction set, and once
+ * on AArch64, for NEON, with SR_SIMD_FN naming the copies.
  *
  * Exactness: edge values are integers below 2^53, exact in double lanes,
  * so a sample's value u + offset is the scalar path's int64 sum; depth

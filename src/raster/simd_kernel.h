@@ -5,7 +5,9 @@
  * rows, simd_wide.h) and for the baseline instruction set (four-lane
  * groups) - with SR_SIMD_FN naming the copies (f_avx512, f_avx2, f_base).
  * Written with GCC/Clang vector extensions and intrinsics, so one source
- * serves all three.  The AVX-512 paths that branch off raster_as stay in
+ * serves all three; on AArch64 the four-lane copy is the only one (f_neon),
+ * with SR_SIMD_NEON taking its two x86 helpers, bits and pack_rgba, from
+ * unorm8_neon.h.  The AVX-512 paths that branch off raster_as stay in
  * line under #ifdef SR_SIMD_WIDE16: moved into functions, they change the
  * AVX-512 instances' generated code.
  *
@@ -35,7 +37,11 @@ SR_SIMD_TARGET SR_INLINE v4d SR_SIMD_FN(sel_d)(v4l m, v4d a, v4d b)
 /* One bit per lane of a mask (lane 0 = bit 0). */
 SR_SIMD_TARGET SR_INLINE int SR_SIMD_FN(bits)(v4i m)
 {
+#ifdef SR_SIMD_NEON
+    return sr__neon_bits(m);
+#else
     return _mm_movemask_ps((__m128)m);
+#endif
 }
 
 /* sr__unorm8 on four pixels' r, g, b, a, packed into r,g,b,a bytes per
@@ -45,6 +51,9 @@ SR_SIMD_TARGET SR_INLINE int SR_SIMD_FN(bits)(v4i m)
  * above 1 became exactly 255. */
 SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(pack_rgba)(const v4f c[4])
 {
+#ifdef SR_SIMD_NEON
+    return sr__neon_pack4_unorm8(c);
+#else
     const __m128 one = _mm_set1_ps(1.0f);
     __m128i q[4];
     for (int k = 0; k < 4; k++) {
@@ -56,6 +65,7 @@ SR_SIMD_TARGET SR_INLINE v4i SR_SIMD_FN(pack_rgba)(const v4f c[4])
     __m128i x = _mm_packus_epi16(_mm_packs_epi32(q[0], q[2]), _mm_packs_epi32(q[1], q[3]));
     __m128i y = _mm_unpacklo_epi8(x, _mm_srli_si128(x, 8));
     return (v4i)_mm_unpacklo_epi16(y, _mm_srli_si128(y, 8));
+#endif
 }
 
 /* A triangle's constants as lanes, made once per triangle rather than

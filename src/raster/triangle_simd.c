@@ -2,7 +2,8 @@
  * same source (simd_kernel.h) compiled for AVX-512 (sixteen-lane block
  * rows), AVX2 (eight-lane rows) and the baseline instruction set (four-lane
  * groups, as all three use for small triangles); sr__raster_simd_select
- * picks by what the CPU has. */
+ * picks by what the CPU has.  On AArch64 the baseline is NEON, which every
+ * core has: the four-lane copy alone, as the base level. */
 #include "raster/triangle_simd.h"
 
 #include "fragment/fragment.h"
@@ -26,6 +27,7 @@ typedef enum sr_walk_flags {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
     (defined(__x86_64__) || defined(__i386__))
 #define SR_HAVE_SIMD_KERNEL 1
+#define SR_SIMD_KERNEL_X86 1
 #include <immintrin.h>
 
 /* sr__light on sixteen lanes for the AVX-512 instance's PHONG stamps
@@ -55,11 +57,24 @@ typedef enum sr_walk_flags {
 #include "raster/simd_kernel.h"
 #undef SR_SIMD_FN
 #undef SR_SIMD_TARGET
+
+#elif defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
+    defined(__aarch64__) && defined(__ARM_NEON)
+#define SR_HAVE_SIMD_KERNEL 1
+#include "raster/unorm8_neon.h"
+
+#define SR_SIMD_FN(name) name##_neon
+#define SR_SIMD_TARGET
+#define SR_SIMD_NEON 1
+#include "raster/simd_kernel.h"
+#undef SR_SIMD_FN
+#undef SR_SIMD_TARGET
+#undef SR_SIMD_NEON
 #endif
 
 sr_simd_level sr__simd_cpu_level(void)
 {
-#ifdef SR_HAVE_SIMD_KERNEL
+#if defined(SR_SIMD_KERNEL_X86)
     __builtin_cpu_init();
     if (!__builtin_cpu_supports("avx2")) {
         return SR_SIMD_BASE;
@@ -68,6 +83,8 @@ sr_simd_level sr__simd_cpu_level(void)
                   __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
                   __builtin_cpu_supports("popcnt");
     return avx512 ? SR_SIMD_AVX512 : SR_SIMD_AVX2;
+#elif defined(SR_HAVE_SIMD_KERNEL)
+    return SR_SIMD_BASE; /* NEON */
 #else
     return SR_SIMD_OFF;
 #endif
@@ -75,13 +92,15 @@ sr_simd_level sr__simd_cpu_level(void)
 
 sr_raster_fn sr__raster_simd_select(const sr_draw_state *ds)
 {
-#ifdef SR_HAVE_SIMD_KERNEL
+#if defined(SR_SIMD_KERNEL_X86)
     switch (ds->simd) {
     case SR_SIMD_AVX512: return select_avx512(ds);
     case SR_SIMD_AVX2: return select_avx2(ds);
     case SR_SIMD_BASE: return select_base(ds);
     default:           return NULL;
     }
+#elif defined(SR_HAVE_SIMD_KERNEL)
+    return ds->simd == SR_SIMD_BASE ? select_neon(ds) : NULL;
 #else
     (void)ds;
     return NULL;
