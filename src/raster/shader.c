@@ -201,8 +201,10 @@ static void write_lanes(const quad_job *j, const sr_fragment_quad *q, unsigned l
 
 /* The program on the lanes `live` (the rest helpers) with edge values u,
  * then each surviving lane's color to its pixel's samples: cover (the
- * early tests' survivors, else the covered samples, tested here). */
-static void shade_lanes(const quad_job *j, int x, int y, unsigned live, const int64_t u[4][3],
+ * early tests' survivors, else the covered samples, tested here).  u is
+ * a pointer, not u[4][3]: GCC takes an array parameter's bound as an
+ * access size and misreads the packed lanes' rows as one. */
+static void shade_lanes(const quad_job *j, int x, int y, unsigned live, const int64_t (*u)[3],
                         const size_t base[4], const unsigned cover[4])
 {
     const sr_draw_state *ds = j->ds;
