@@ -39,8 +39,7 @@ static void check_drawing(const char *file, const char *ref)
 {
     char in[1024];
     snprintf(in, sizeof in, "%s/data/svg/%s", sr_test_src_dir(), file);
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     sr_framebuffer *fb = NULL;
     sr_svg_info info;
     sr_io_error err;
@@ -54,7 +53,6 @@ static void check_drawing(const char *file, const char *ref)
         sr_test_check_image(ref, sr_framebuffer_pixels(fb), w, h, 2, (long)w * h / 200);
         sr_destroy_framebuffer(ctx, fb);
     }
-    sr_destroy_context(ctx);
 }
 
 /* styles: sheets, use, colors; gradients; layers: clip paths and group
@@ -111,8 +109,7 @@ SR_TEST(server_transform_origin_is_the_transform_moved_there_and_back)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* each transform-origin O of a gradient or pattern draws what
      * translate(O) T translate(-O) does, byte for byte */
     sr_framebuffer *a = render_file(ctx, "serverorigin.svg");
@@ -122,7 +119,6 @@ SR_TEST(server_transform_origin_is_the_transform_moved_there_and_back)
     CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), n) == 0);
     sr_destroy_framebuffer(ctx, a);
     sr_destroy_framebuffer(ctx, b);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
@@ -130,8 +126,7 @@ SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* tiles of no width, of no height, of neither (no size given, an href
      * to nothing): the fallback green paints; without one, nothing does
      * (the white background stays) */
@@ -152,7 +147,6 @@ SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
         CHECK(p[0] == (i < 3 ? 0 : 255) && p[1] == 255 && p[2] == (i < 3 ? 0 : 255));
     }
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(the_marker_shorthand_is_a_property_not_an_attribute)
@@ -160,8 +154,7 @@ SR_TEST(the_marker_shorthand_is_a_property_not_an_attribute)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* a 4 x 4 red marker at each vertex of two unstroked lines: through
      * style="marker: ..." it is drawn, through marker="..." not */
     sr_framebuffer *fb = render(ctx,
@@ -176,7 +169,6 @@ SR_TEST(the_marker_shorthand_is_a_property_not_an_attribute)
     CHECK(pixel(fb, 15, 5)[0] == 255 && pixel(fb, 15, 5)[1] == 0);
     CHECK(pixel(fb, 5, 15)[1] == 255 && pixel(fb, 15, 15)[1] == 255);
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(cascade_orders_attributes_sheets_style_and_important)
@@ -184,8 +176,7 @@ SR_TEST(cascade_orders_attributes_sheets_style_and_important)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* column 0: a sheet rule beats the attribute; 1: the id beats the
      * class; 2: style="" beats the sheet; 3: !important beats style="";
      * 4: the child selector misses a grandchild; 5: currentColor from
@@ -209,7 +200,6 @@ SR_TEST(cascade_orders_attributes_sheets_style_and_important)
         CHECK(p[0] == want[i][0] && p[1] == want[i][1] && p[2] == want[i][2]);
     }
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(css_color_syntaxes_give_the_same_color)
@@ -217,8 +207,7 @@ SR_TEST(css_color_syntaxes_give_the_same_color)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* the same orange at half opacity over white, eight ways */
     static const char *forms[] = { "#ff800080", "#ff8000' fill-opacity='0.502",
                                    "rgba(255, 128, 0, 0.502)", "rgb(255 128 0 / 50.2%)",
@@ -245,7 +234,6 @@ SR_TEST(css_color_syntaxes_give_the_same_color)
     REQUIRE(fb);
     CHECK_EQ(pixel(fb, 2, 2)[0], 0);
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(linear_gradient_interpolates_between_stops)
@@ -253,8 +241,7 @@ SR_TEST(linear_gradient_interpolates_between_stops)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* black to white over x = 0..100: pixel x (centre x + 0.5) is
      * 255 (x + 0.5) / 100, padded beyond the vector's ends */
     sr_framebuffer *fb = render(ctx,
@@ -269,7 +256,6 @@ SR_TEST(linear_gradient_interpolates_between_stops)
         CHECK(abs(pixel(fb, x, 2)[0] - (int)(want + 0.5)) <= 1);
     }
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(dashes_and_gaps_fall_where_the_pattern_says)
@@ -277,8 +263,7 @@ SR_TEST(dashes_and_gaps_fall_where_the_pattern_says)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* dashes of 4 from x = 0, 8, 16 (the offset -2 moves them to 2, 10,
      * 18); a closed square whose last dash runs on over its start */
     sr_framebuffer *fb = render(ctx,
@@ -301,7 +286,6 @@ SR_TEST(dashes_and_gaps_fall_where_the_pattern_says)
     CHECK_EQ(pixel(fb, 4, 14)[0], 255);
     CHECK_EQ(pixel(fb, 9, 10)[0], 255);
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(inherit_takes_the_parents_value_of_properties_not_inherited)
@@ -309,8 +293,7 @@ SR_TEST(inherit_takes_the_parents_value_of_properties_not_inherited)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* opacity 0.5 on the group and again on the rect: a quarter of black
      * over white; the grey mask (x < 4) on the group and again on the
      * rect: black at (128/255)^2, nothing at x >= 4 */
@@ -331,7 +314,6 @@ SR_TEST(inherit_takes_the_parents_value_of_properties_not_inherited)
     /* stop-color: inherit takes the gradient's */
     CHECK(pixel(fb, 7, 0)[2] == 255 && pixel(fb, 7, 0)[0] == 0);
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(images_that_do_not_read_or_lie_outside_are_skipped_with_a_warning)
@@ -339,8 +321,7 @@ SR_TEST(images_that_do_not_read_or_lie_outside_are_skipped_with_a_warning)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* a path climbing out, an absolute one, a URL, a missing file, a
      * broken data: URI, text that is no picture: none is read */
     static const char *const hrefs[] = { "../images.svg", "/etc/hostname", "http://x/a.png",
@@ -363,7 +344,6 @@ SR_TEST(images_that_do_not_read_or_lie_outside_are_skipped_with_a_warning)
         CHECK_EQ(pixel(fb, 2, 2)[3], 0);
         sr_destroy_framebuffer(ctx, fb);
     }
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(an_image_has_a_bounding_box_for_clips_in_its_units)
@@ -371,8 +351,7 @@ SR_TEST(an_image_has_a_bounding_box_for_clips_in_its_units)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* a 6 x 6 PNG whose top left quarter is opaque #639, drawn 8 x 8 and
      * clipped to the left quarter of its box */
     static const char svg[] =
@@ -388,7 +367,6 @@ SR_TEST(an_image_has_a_bounding_box_for_clips_in_its_units)
     CHECK(pixel(fb, 1, 1)[0] == 0x66 && pixel(fb, 1, 1)[2] == 0x99);
     CHECK_EQ(pixel(fb, 3, 1)[0], 255);
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(reference_cycles_are_refused_with_file_and_line)
@@ -396,8 +374,7 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     static const struct { const char *body, *want; } cases[] = {
         { "<g id='a'>\n<use href='#b'/></g>\n<g id='b'>\n<use href='#a'/></g>",
           "t.svg:5: use: reference cycle through \"#a\"" },
@@ -440,7 +417,6 @@ SR_TEST(reference_cycles_are_refused_with_file_and_line)
     snprintf(big + n, sizeof big - (size_t)n, "</defs><use href='#l29'/></svg>");
     fb = render(ctx, big, SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
-    sr_destroy_context(ctx);
 }
 
 /* A document as a percent-encoded data: URI of an <image> (malloc'd). */
@@ -477,8 +453,7 @@ SR_TEST(svg_images_that_include_themselves_or_nest_too_deep_are_refused)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* a file that includes itself, and two that include each other: the
      * line is the <image> that closes the cycle, in the file that has it */
     static const struct { const char *file, *want; } files[] = {
@@ -538,7 +513,6 @@ SR_TEST(svg_images_that_include_themselves_or_nest_too_deep_are_refused)
     CHECK(render(ctx, doc, SR_BAD_FORMAT, msg, sizeof msg) == NULL);
     CHECK_STR_CONTAINS(msg, "t.svg:2: mismatched tag");
     free(doc);
-    sr_destroy_context(ctx);
 }
 
 SR_TEST(group_opacity_is_one_layer_and_clips_cut)
@@ -546,8 +520,7 @@ SR_TEST(group_opacity_is_one_layer_and_clips_cut)
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    sr_context *ctx = NULL;
-    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_context *ctx = sr_test_ctx();
     /* two overlapping black squares at group opacity 0.5: where they
      * overlap the group is as light as where they do not (one layer);
      * then a clip keeps x < 30 of a rect drawn over x 20..40 */
@@ -577,5 +550,4 @@ SR_TEST(group_opacity_is_one_layer_and_clips_cut)
     CHECK_EQ(pixel(fb, 25, 10)[0], 255);
     CHECK_EQ(pixel(fb, 2, 10)[0], 255);
     sr_destroy_framebuffer(ctx, fb);
-    sr_destroy_context(ctx);
 }
