@@ -61,6 +61,15 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
      * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
      * nearest (the depth test is GREATER), infinite far plane. */
+    if (u->ortho) {
+        /* Orthographic: w = 1, and a window depth falling linearly from 1
+         * at near to 0 at far (still largest nearest). */
+        clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2]);
+        clip[1] = (float)(u->ky[0] * c[1] + u->ky[1]);
+        clip[2] = (float)(((double)u->far - c[2]) / ((double)u->far - u->near));
+        clip[3] = 1.0f;
+        return;
+    }
     clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2]);
     clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
     clip[2] = u->near;
@@ -105,6 +114,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
         vi[k] = sr_py_face_index(u, 3 * face + (size_t)k);
         memcpy(c[k], u->camera[vi[k]], sizeof c[k]);
     }
+    /* The pixel centre's ray: from the eye through (d[0], d[1], 1), or,
+     * orthographic, from (d[0], d[1], 0) along +z. */
     double dy = ((double)y - u->cy) / u->fy;
     double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
     double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
@@ -113,9 +124,23 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
     sr__dcross(e1, e2, n);
     double denom = sr__ddot(n, d), nn = sr__ddot(n, n);
     double z, lambda[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 };
+    if (u->ortho) {
+        denom = n[2];
+    }
     if (denom != 0.0 && nn > 0.0) {
-        z = sr__ddot(n, c[0]) / denom;
-        double w[3] = { z * d[0] - c[0][0], z * d[1] - c[0][1], z * d[2] - c[0][2] }, t[3];
+        double w[3], t[3];
+        if (u->ortho) {
+            /* w = the ray's point at depth z, from corner 0. */
+            w[0] = d[0] - c[0][0];
+            w[1] = d[1] - c[0][1];
+            z = c[0][2] - (n[0] * w[0] + n[1] * w[1]) / denom;
+            w[2] = z - c[0][2];
+        } else {
+            z = sr__ddot(n, c[0]) / denom;
+            w[0] = z * d[0] - c[0][0];
+            w[1] = z * d[1] - c[0][1];
+            w[2] = z * d[2] - c[0][2];
+        }
         sr__dcross(w, e2, t);
         lambda[1] = sr__ddot(t, n) / nn;
         sr__dcross(e1, w, t);
@@ -123,7 +148,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
         lambda[0] = 1.0 - lambda[1] - lambda[2];
     } else {
         /* Seen edge-on: no area to intersect; the raster's depth. */
-        z = u->near / window_z;
+        z = u->ortho ? u->far - (double)window_z * ((double)u->far - u->near)
+                     : u->near / window_z;
     }
     if (u->depth) {
         u->depth[p] = (float)z;
@@ -256,7 +282,8 @@ static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_u
             .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
             .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
             .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1],
-            .cy = j->k[1][2], .near = j->near, .width = j->width, .instance_id = in->id,
+            .cy = j->k[1][2], .near = j->near, .ortho = j->ortho, .far = j->far,
+            .width = j->width, .instance_id = in->id,
             .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
             .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
         };
@@ -402,10 +429,18 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
     clip_rows(j, kx, ky);
     /* The same clip coordinates as geometry_vertex, as a matrix. */
     sr_mat4 proj = { { 0 } };
-    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1], proj.m[8] = (float)kx[2];
-    proj.m[5] = (float)ky[0], proj.m[9] = (float)ky[1];
-    proj.m[14] = j->near;
-    proj.m[11] = 1.0f;
+    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1];
+    proj.m[5] = (float)ky[0];
+    if (j->ortho) {
+        double range = (double)j->far - j->near;
+        proj.m[12] = (float)kx[2], proj.m[13] = (float)ky[1];
+        proj.m[10] = (float)(-1.0 / range), proj.m[14] = (float)(j->far / range);
+        proj.m[15] = 1.0f;
+    } else {
+        proj.m[8] = (float)kx[2], proj.m[9] = (float)ky[1];
+        proj.m[14] = j->near;
+        proj.m[11] = 1.0f;
+    }
     if (j->pbr) {
         /* The program's view takes the world to OpenGL's eye space (y up,
          * z backward): undo the flip of y and z here. */
@@ -660,19 +695,20 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
-                              "environment", "shadows", "general", NULL };
+                              "environment", "shadows", "general", "ortho", "far", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None;
     render_job j = { 0 };
-    int lit = 1, pbr = 0, shadows = 0, general = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpp:render", kwlist,
+    int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppf:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
-                                     &shadows, &general)) {
+                                     &shadows, &general, &ortho, &j.far)) {
         return NULL;
     }
+    j.ortho = ortho;
     j.pbr = pbr;
     j.shadows = shadows;
     j.general = general;
@@ -688,8 +724,13 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                      SR_MAX_FRAMEBUFFER_SIZE, j.width, j.height);
         return NULL;
     }
-    if (!(j.near > 0.0f) || !isfinite(j.near)) {
-        PyErr_SetString(PyExc_ValueError, "near: must be a positive finite distance");
+    if (!(j.ortho ? j.near >= 0.0f : j.near > 0.0f) || !isfinite(j.near)) {
+        PyErr_SetString(PyExc_ValueError, j.ortho ? "near: must be a finite distance >= 0"
+                                                  : "near: must be a positive finite distance");
+        return NULL;
+    }
+    if (j.ortho && (!(j.far > j.near) || !isfinite(j.far))) {
+        PyErr_SetString(PyExc_ValueError, "far: must be finite and beyond near");
         return NULL;
     }
     if (j.threads < 0 || j.threads > 64) {

@@ -31,6 +31,8 @@ typedef struct render_job {
     double k[3][3];
     double view[3][4];          /* world -> camera [R | t], for the metallic-roughness look */
     float near;
+    bool ortho;                 /* K maps camera x, y to pixels; rays along +z */
+    float far;                  /* ortho: where the window depth reaches 0 */
     float background[3];
     bool lit;                   /* color: headlight-lit, else the colors as they are */
     bool pbr;                   /* color: the metallic-roughness program instead */
