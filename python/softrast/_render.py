@@ -220,6 +220,26 @@ def _far(instances, poses, near):
     return float(far)
 
 
+#: antialias modes, as softrast render's --aa: (MSAA samples, SSAA factor).
+_ANTIALIAS = {"none": (1, 1), "msaa2": (2, 1), "msaa4": (4, 1), "msaa8": (8, 1),
+              "msaa16": (16, 1), "ssaa2": (1, 2), "ssaa3": (1, 3), "ssaa4": (1, 4)}
+
+
+def _antialias(antialias, width, height):
+    if antialias is None:
+        antialias = "none"
+    if not isinstance(antialias, str):
+        raise TypeError(f"antialias: expected a mode name, got {type(antialias).__name__}")
+    if antialias not in _ANTIALIAS:
+        raise ValueError(f"antialias: unknown mode {antialias!r}; choose from "
+                         f"{', '.join(_ANTIALIAS)}")
+    msaa, ssaa = _ANTIALIAS[antialias]
+    if max(width, height) * ssaa > 8192:
+        raise ValueError(f"antialias: {antialias} at {width} x {height} draws more than 8192 "
+                         f"pixels a side")
+    return msaa, ssaa
+
+
 def _int_arg(value, name, low, high):
     if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
         raise TypeError(f"{name}: expected an int, got {type(value).__name__}")
@@ -231,7 +251,7 @@ def _int_arg(value, name, low, high):
 def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width, height,
            outputs=("color", "depth"), threads=0, near=None, normal_frame="camera",
            background=(0.0, 0.0, 0.0), shading="lit", environment=None,
-           environment_intensity=0.6, shadows=False, projection=None):
+           environment_intensity=0.6, shadows=False, projection=None, antialias=None):
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -285,7 +305,17 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
 
         IDs, depth, barycentrics and mask are never blended or antialiased:
         each pixel shows the surface nearest along its centre's ray (the
-        first drawn of equals), sampled at the pixel centre.
+        first drawn of equals), sampled at the pixel centre, whatever
+        ``antialias`` says.
+    antialias: ``color`` and ``rgba`` only, under every ``shading``, as
+        softrast render's ``--aa``: None or "none" (the default: each
+        pixel sampled at its centre); "msaa2", "msaa4", "msaa8", "msaa16"
+        (that many coverage and depth samples a pixel at the standard
+        positions, shaded once a pixel and triangle, box-resolved);
+        "ssaa2", "ssaa3", "ssaa4" (k x k samples a pixel, each shaded,
+        box-filtered down; at most 8192 samples a side).  An edge pixel
+        mixes the surface with the background (``rgba``: its color
+        channels too, its alpha the covered part).
     threads: rendering threads, 0 for every CPU; the result does not depend
         on it.
     near: surfaces closer than this (camera z) are clipped (default 1e-3,
@@ -361,6 +391,7 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     if not isinstance(shadows, (bool, np.bool_)):
         raise TypeError(f"shadows: expected a bool, got {type(shadows).__name__}")
     env = _environment(environment, environment_intensity, threads) if shading == "pbr" else None
+    msaa, ssaa = _antialias(antialias, width, height)
 
     n = len(Ks)
     out = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
@@ -401,7 +432,7 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
                                             "normal", "color", "mask")),
                              bg, shading == "lit",
                              rgba=out["rgba"][b] if "rgba" in wanted else None,
-                             ortho=bool(orthos[b]), far=far, **extra)
+                             ortho=bool(orthos[b]), far=far, msaa=msaa, ssaa=ssaa, **extra)
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return out

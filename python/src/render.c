@@ -420,9 +420,22 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
     return r;
 }
 
+/* The color pass: into fb, or antialiased into a framebuffer of samples
+ * or of k x k pixels a pixel, then resolved into fb. */
 static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
-    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
+    sr_framebuffer *work = NULL;
+    sr_result r = SR_OK;
+    if (j->msaa > 1 || j->ssaa > 1) {
+        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
+            .width = j->width * j->ssaa, .height = j->height * j->ssaa,
+            .depth_format = SR_DEPTH_D32F, .samples = j->msaa }, &work);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    sr_framebuffer *target = work ? work : fb;
+    r = sr_clear(ctx, target, &(sr_clear_desc){
         .color = { j->background[0], j->background[1], j->background[2], j->rgba ? 0.0f : 1.0f },
         .depth_action = SR_ACTION_CLEAR, .depth = 0 });
     double kx[3], ky[2];
@@ -450,10 +463,16 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
             }
         }
     }
+    /* (Clip space does not depend on the framebuffer's size: the same
+     * projection draws the larger one.) */
     if (r == SR_OK) {
-        r = j->pbr ? sr_py_pbr_pass(ctx, fb, j, &proj)
-                   : draw_instances(ctx, fb, j, color_draw, &proj);
+        r = j->pbr ? sr_py_pbr_pass(ctx, target, j, &proj)
+                   : draw_instances(ctx, target, j, color_draw, &proj);
     }
+    if (r == SR_OK && work) {
+        r = j->msaa > 1 ? sr_resolve(ctx, work, fb) : sr_downsample(ctx, work, fb, SR_RESAMPLE_BOX);
+    }
+    sr_destroy_framebuffer(ctx, work);
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);
         size_t n = (size_t)j->width * (size_t)j->height;
@@ -695,17 +714,18 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
-                              "environment", "shadows", "general", "ortho", "far", NULL };
+                              "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
+                              NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None;
-    render_job j = { 0 };
+    render_job j = { .msaa = 1, .ssaa = 1 };
     int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppf:render", kwlist,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfii:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
-                                     &shadows, &general, &ortho, &j.far)) {
+                                     &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa)) {
         return NULL;
     }
     j.ortho = ortho;
@@ -731,6 +751,15 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     }
     if (j.ortho && (!(j.far > j.near) || !isfinite(j.far))) {
         PyErr_SetString(PyExc_ValueError, "far: must be finite and beyond near");
+        return NULL;
+    }
+    bool msaa_ok = j.msaa == 1 || j.msaa == 2 || j.msaa == 4 || j.msaa == 8 || j.msaa == 16;
+    if (!msaa_ok || j.ssaa < 1 || j.ssaa > 4 || (j.msaa > 1 && j.ssaa > 1) ||
+        (long)j.width * j.ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
+        (long)j.height * j.ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
+        PyErr_Format(PyExc_ValueError, "antialias: msaa %d, ssaa %d at %d x %d: not a mode "
+                     "(msaa 1, 2, 4, 8 or 16; ssaa 1 .. 4 and the image at most %d a side)",
+                     j.msaa, j.ssaa, j.width, j.height, SR_MAX_FRAMEBUFFER_SIZE);
         return NULL;
     }
     if (j.threads < 0 || j.threads > 64) {

@@ -6,21 +6,17 @@ batches, cameras made with Camera.orthographic and read from glTF files,
 and the color against softrast render's picture of a file's orthographic
 camera."""
 
-import os
-import subprocess
-
 import numpy as np
 import pytest
 import softrast
 
 import gltf_build as gb
-from conftest import load_gltf, random_triangles
+from conftest import assert_matches_command, load_gltf, needs_cli, random_triangles
 from test_depth import camera, icosphere, largest_sagitta
 from test_visibility import GEOMETRY, render_both
 
 W, H = 160, 120
 EPS32 = np.finfo(np.float32).eps
-CLI = os.environ.get("SR_CLI")
 
 
 def pixel_points(K, width=W, height=H):
@@ -314,24 +310,11 @@ def test_gltf_orthographic_camera(tmp_path):
     assert axis[1] < 0, "looking down"
 
 
-@pytest.mark.skipif(not CLI, reason="SR_CLI (the softrast command) is not set")
+@needs_cli
 @pytest.mark.parametrize("shading", ["pbr", "unlit"])
 def test_gltf_orthographic_camera_matches_the_command(tmp_path, shading):
-    # The command's --camera-index picture of a file's orthographic camera:
-    # the same pixels, within 2 codes on all but 0.5% of them, as for
-    # perspective cameras (test_pbr_gltf).
-    path = ortho_scene(tmp_path)
-    png = tmp_path / "cli.png"
-    subprocess.run([CLI, "render", str(path), "--camera-index", "0", "--aa", "none",
-                    "--size", f"{W}x{H}", "--shadows", "off", "--shading", shading,
-                    "--background", "#000000", "-o", str(png)], check=True, capture_output=True)
-    scene = load_gltf(path)
-    ours = softrast.render(scene, camera=scene.cameras[0], width=W, height=H, shading=shading,
-                           outputs=("color",))["color"]
-    theirs = softrast.read_image(png)[..., :3]
-    out = os.environ.get("SR_TEST_OUT")
-    if out:
-        softrast.write_png(os.path.join(out, f"ortho_vs_cli_{shading}.png"),
-                           np.concatenate([ours, theirs], 1))
-    diff = np.abs(ours.astype(int) - theirs).max(-1)
-    assert (diff > 2).mean() <= 0.005, f"{(diff > 2).mean():.2%} of the pixels differ"
+    # The command's --camera-index picture of a file's orthographic camera,
+    # as test_pbr_gltf compares them for perspective cameras.
+    assert_matches_command(tmp_path, ortho_scene(tmp_path), f"ortho_vs_cli_{shading}",
+                           ["--aa", "none", "--shadows", "off", "--shading", shading,
+                            "--background", "#000000"], width=W, height=H, shading=shading)
