@@ -251,7 +251,8 @@ def _int_arg(value, name, low, high):
 def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width, height,
            outputs=("color", "depth"), threads=0, near=None, normal_frame="camera",
            background=(0.0, 0.0, 0.0), shading="lit", environment=None,
-           environment_intensity=0.6, shadows=False, projection=None, antialias=None):
+           environment_intensity=0.6, shadows=None, ground=False, projection=None,
+           antialias=None):
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -334,7 +335,16 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
         0.001 .. 1000).  Prefiltered once and kept for later calls.
     shadows: "pbr" only: the key light casts a shadow (a 1024-texel
         shadow map fitted to every instance's box, as softrast render's
-        ``--shadows on``).
+        ``--shadows on``); None (the default): on with ``ground``, else
+        off, as the command's default.
+    ground: "pbr" only: softrast render's ``--ground``, a shadow catcher
+        under the instances (a square 4 times their world box's width,
+        under its lowest point, +y up) that shows the key light's shadow
+        and nothing else: black blended over the background (in ``rgba``
+        the background darkened, with the shadow's alpha where the
+        background is transparent), drawn after the opaque instances and
+        before the blended ones; the rest of the ground is not drawn.  It is in ``color`` and ``rgba`` only, not in the geometry
+        outputs; with ``shadows=False`` it shows nothing.
 
     Returns a dict from each requested name to its array; with batched
     cameras every array has a leading dimension B.  The GIL is released
@@ -386,10 +396,14 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     if bg.shape != (3,):
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
     bg = tuple(float(c) for c in np.clip(bg, 0.0, 1.0))
-    if (environment is not None or shadows) and shading != "pbr":
-        raise ValueError("environment, shadows: need shading='pbr'")
+    if (environment is not None or shadows or ground) and shading != "pbr":
+        raise ValueError("environment, shadows, ground: need shading='pbr'")
+    if not isinstance(ground, (bool, np.bool_)):
+        raise TypeError(f"ground: expected a bool, got {type(ground).__name__}")
+    if shadows is None:
+        shadows = bool(ground)
     if not isinstance(shadows, (bool, np.bool_)):
-        raise TypeError(f"shadows: expected a bool, got {type(shadows).__name__}")
+        raise TypeError(f"shadows: expected a bool or None, got {type(shadows).__name__}")
     env = _environment(environment, environment_intensity, threads) if shading == "pbr" else None
     msaa, ssaa = _antialias(antialias, width, height)
 
@@ -424,7 +438,7 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
                          for mesh, (a, nm), iid, look in zip(meshes, poses, ids,
                                                             looks if color_pbr else ids)]
             extra = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
-                         shadows=bool(shadows)) if color_pbr else {}
+                         shadows=bool(shadows), ground=bool(ground)) if color_pbr else {}
             _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height,
                              float(nears[b]), threads,
                              *(out[name][b] if name in wanted else None

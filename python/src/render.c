@@ -715,22 +715,24 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
                               "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
-                              NULL };
+                              "ground", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None;
     render_job j = { .msaa = 1, .ssaa = 1 };
-    int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfii:render", kwlist,
+    int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiip:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
-                                     &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa)) {
+                                     &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa,
+                                     &ground)) {
         return NULL;
     }
     j.ortho = ortho;
     j.pbr = pbr;
     j.shadows = shadows;
+    j.ground = ground;
     j.general = general;
     if (pbr && take_matrix(view, "view", 3, 4, &j.view[0][0]) < 0) {
         return NULL;

@@ -41,6 +41,7 @@ typedef struct render_job {
     bool pbr;                   /* color: the metallic-roughness program instead */
     const sr_environment *env;  /* pbr: its image-based light, or NULL (the hemisphere) */
     bool shadows;               /* pbr: the key light's shadow map */
+    bool ground;                /* pbr, with shadows: the shadow catcher under the instances */
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;
