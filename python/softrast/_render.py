@@ -264,9 +264,11 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
         translation, ``x_cam = R @ x_world + t``, camera x right, y down,
         z forward.  Or ``extrinsics``: (3, 4)/(4, 4), or batched, ``[R | t]``.
     camera: instead of K, R, t: a :class:`Camera` of a loaded file
-        (``Scene.cameras``), or a list of them for a batch; its K for
-        width x height (:meth:`Camera.intrinsics`), R, t, and its znear as
-        ``near`` unless given.
+        (``Scene.cameras``) or of :meth:`Camera.orthographic` or
+        :meth:`Camera.perspective`, or a list of them for a batch; its K
+        for width x height (:meth:`Camera.intrinsics`), R, t, its type
+        (perspective or orthographic) and its znear as ``near`` unless
+        given.
     projection: with ``K``: "perspective" (the default, a pinhole, as
         above) or "orthographic": rays parallel to the optical axis, pixel
         (u, v) seeing u = fx x + s y + cx, v = fy y + cy (``fx``, ``fy`` in

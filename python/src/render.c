@@ -19,7 +19,9 @@
  * the visibility pass instead (visibility.c), with the same bytes.  Color
  * comes from a second pass on the same projection: the built-in shading
  * (textures, vertex colors, a headlight), or the metallic-roughness
- * program lit as softrast render's default look.
+ * program lit as softrast render's default look, multisampled or
+ * supersampled when asked.  A camera is a pinhole or orthographic (K
+ * applied to camera x and y, rays along +z).
  */
 #include "geometry.h"
 #include "render.h"
@@ -58,18 +60,20 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     double p[3];
     fetch_vertex(u, v, p);
     to_camera(u, p, c);
-    /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
-     * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
-     * nearest (the depth test is GREATER), infinite far plane. */
     if (u->ortho) {
-        /* Orthographic: w = 1, and a window depth falling linearly from 1
-         * at near to 0 at far (still largest nearest). */
+        /* Orthographic: pixel centre (u, v) is at window (u + 1/2, v + 1/2)
+         * with u, v from camera x, y alone; w = 1, and a window depth
+         * falling linearly from 1 at near to 0 at far (still largest
+         * nearest: the depth test is GREATER). */
         clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2]);
         clip[1] = (float)(u->ky[0] * c[1] + u->ky[1]);
         clip[2] = (float)(((double)u->far - c[2]) / ((double)u->far - u->near));
         clip[3] = 1.0f;
         return;
     }
+    /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
+     * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
+     * nearest (the depth test is GREATER), infinite far plane. */
     clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2]);
     clip[1] = (float)(u->ky[0] * c[1] + u->ky[1] * c[2]);
     clip[2] = u->near;
