@@ -1294,8 +1294,8 @@ static bool clip_to_window(svg_doc *doc, sr_polygon2 *poly, sr_point2 **pts, int
     return true;
 }
 
-static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_paint_fn at,
-                        const void *server, sr_fill_rule rule, bool crisp)
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_span_fn span,
+                        void *server, sr_fill_rule rule, bool crisp)
 {
     sr_point2 *pts;
     int *counts = NULL;
@@ -1310,8 +1310,8 @@ static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, 
         }
     }
     sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
-    sr_result r = at ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, at, server, color.a)
-                       : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
+    sr_result r = span ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, span, server, color.a)
+                         : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
     free(pts);
     free(counts);
     if (r != SR_OK) {
@@ -1602,7 +1602,7 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
     } else if (p->kind == SVG_PAINT_URL) {
         svg_gradient g;
         if (resolve_gradient(doc, p->server, f, geometry, &g)) {
-            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_paint,
+            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_span,
                         &g, rule, f->st.crisp);
             return;
         }
@@ -2824,7 +2824,7 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
             memcpy(im.inv, &inv, sizeof im.inv);
             sr_point2 corners[4] = { { x0, y0 }, { x1, y0 }, { x1, y1 }, { x0, y1 } };
             fill_mapped(doc, (sr_polygon2){ corners, 4, NULL, 0 }, f->m,
-                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, svg_image_at, &im, SR_NONZERO,
+                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, svg_image_span, &im, SR_NONZERO,
                         f->st.crisp);
         }
     }
@@ -3266,8 +3266,8 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
     mat2d px_to_tile = mat_mul(mat_mul(to_tile, (mat2d){ 1, 0, 0, 1, -x, -y }), inv);
     memcpy(im.inv, &px_to_tile, sizeof im.inv);
     if (doc->status == SR_OK) {
-        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_image_at, &im, rule,
-                    f->st.crisp);
+        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_image_span, &im,
+                    rule, f->st.crisp);
     }
     sr_destroy_framebuffer(doc->ctx, tile);
     return true;
