@@ -97,10 +97,11 @@ void svg_css_free(svg_css_sheet *sheet);
 /* ---- gradients (svg_gradient.c) --------------------------------------- */
 
 #define SVG_MAX_STOPS 256
-/* Cells of a gradient's color table over t in [0, 1): at 1024 a cell of
- * a stop pair that spans a quarter of the gradient or more changes a
- * full-range channel by at most one code, so its one color is within half
- * a code of the exact ones and the result within one code of them. */
+/* Cells of a gradient's color table over t in [0, 1).  At 1024, a cell
+ * between stops more than 0.26 apart changes a channel by less than 0.98
+ * codes, so its centre's color is within half a code of each exact one
+ * and the pixel within one code; the other cells (stops closer or inside
+ * the cell) evaluate their pixels alone. */
 #define SVG_GRADIENT_LUT 1024
 
 typedef enum svg_spread { SVG_SPREAD_PAD, SVG_SPREAD_REFLECT, SVG_SPREAD_REPEAT } svg_spread;

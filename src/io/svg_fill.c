@@ -102,9 +102,10 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
     if (w <= 0 || h <= 0) {
         return SR_OK;
     }
-    uint8_t *mask = malloc((size_t)w * (size_t)h);
-    uint32_t *px = malloc((size_t)w * (size_t)h * 4), *row = malloc((size_t)w * 4);
-    sr_result r = mask && px && row ? SR_OK : SR_OUT_OF_MEMORY;
+    /* One block: the result, a row of paint, the coverage. */
+    uint32_t *px = malloc((size_t)w * ((size_t)h + 1) * 5), *row = px ? px + (size_t)w * h : NULL;
+    uint8_t *mask = px ? (uint8_t *)(row + w) : NULL;
+    sr_result r = px ? SR_OK : SR_OUT_OF_MEMORY;
     if (r == SR_OK) {
         r = sr_polygon_coverage(ctx, poly, desc, bx0, by0, w, h, mask, (size_t)w);
     }
@@ -145,9 +146,7 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
     if (r == SR_OK) {
         r = sr_write_pixels(ctx, fb, bx0, by0, w, h, (const uint8_t *)px, (size_t)w * 4);
     }
-    free(mask);
     free(px);
-    free(row);
     return r;
 }
 

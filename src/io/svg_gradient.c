@@ -8,41 +8,39 @@
 #include <math.h>
 #include <string.h>
 
-/* A radial gradient's parameter t at a point (pdx, pdy) from the focal
- * centre in gradient space; false where the cone does not reach (the
- * pixel is left unpainted).  Circles (f + t (c - f), fr + t (r - fr)):
- * the largest t with a circle through the point and a radius >= 0. */
-static bool radial_parameter(const svg_gradient *g, double a, double pdx, double pdy, double *t)
+/* Pixels of a radial gradient's span worked out together, so that the
+ * loop that finds their t runs in vector lanes. */
+#define RADIAL_BATCH 64
+
+/* t of n pixels of a radial gradient from (pdx, pdy), the first centre
+ * less the focal point, stepping (sx, sy): NAN where the cone does not
+ * reach (the pixel is left unpainted).  Circles (f + t (c - f),
+ * fr + t (r - fr)): the largest t with a circle through the point and a
+ * radius >= 0, a root of a t^2 - 2 b t + c = 0. */
+static void radial_parameters(const svg_gradient *g, double pdx, double pdy, double sx,
+                              double sy, int n, double *t)
 {
     double cdx = g->cx - g->fx, cdy = g->cy - g->fy, dr = g->r - g->fr;
-    double b = pdx * cdx + pdy * cdy + g->fr * dr;
-    double c = pdx * pdx + pdy * pdy - g->fr * g->fr;
+    double a = cdx * cdx + cdy * cdy - dr * dr, frdr = g->fr * dr, fr2 = g->fr * g->fr;
     if (fabs(a) < 1e-12) {
-        if (fabs(b) < 1e-12) {
-            return false;
+        /* The focal circle touches the end circle: one root. */
+        for (int i = 0; i < n; i++) {
+            double x = pdx + sx * i, y = pdy + sy * i;
+            double b = x * cdx + y * cdy + frdr, c = x * x + y * y - fr2, u = c / (2 * b);
+            t[i] = fabs(b) >= 1e-12 && g->fr + u * dr >= 0 ? u : NAN;
         }
-        *t = c / (2 * b);
-        return g->fr + *t * dr >= 0;
+        return;
     }
-    double disc = b * b - a * c;
-    if (disc < 0) {
-        return false;
+    double ia = 1 / a;
+    for (int i = 0; i < n; i++) {
+        double x = pdx + sx * i, y = pdy + sy * i;
+        double b = x * cdx + y * cdy + frdr, c = x * x + y * y - fr2;
+        double disc = b * b - a * c, sq = sqrt(disc > 0 ? disc : 0);
+        double r0 = (b + sq) * ia, r1 = (b - sq) * ia;
+        double hi = r0 > r1 ? r0 : r1, lo = r0 > r1 ? r1 : r0;
+        double u = g->fr + hi * dr >= 0 ? hi : g->fr + lo * dr >= 0 ? lo : NAN;
+        t[i] = disc < 0 ? NAN : u;
     }
-    double sq = sqrt(disc), t0 = (b + sq) / a, t1 = (b - sq) / a;
-    if (t0 < t1) {
-        double s = t0;
-        t0 = t1;
-        t1 = s;
-    }
-    if (g->fr + t0 * dr >= 0) {
-        *t = t0;
-        return true;
-    }
-    if (g->fr + t1 * dr >= 0) {
-        *t = t1;
-        return true;
-    }
-    return false;
 }
 
 /* t mapped into [0, 1] by the spread method. */
@@ -107,17 +105,22 @@ static uint32_t exact_color(const svg_gradient *g, double t)
     return pack(piece_color(g, stop_above(g, t), t));
 }
 
-/* How far, in codes, a channel of the cell's color c strays from the
- * cell's ends a and b (the color is linear between them). */
-static float stray(sr_rgba c, sr_rgba a, sr_rgba b)
+/* Whether the piece ending at stop i (stop_above) changes a channel by
+ * less than 0.98 codes across a cell: then the color of the cell's centre
+ * is within 0.49 codes of every color of the cell. */
+static bool piece_is_flat(const svg_gradient *g, int i)
 {
-    float d[8] = { c.r - a.r, c.g - a.g, c.b - a.b, c.a - a.a,
-                   c.r - b.r, c.g - b.g, c.b - b.b, c.a - b.a };
-    float m = 0;
-    for (int k = 0; k < 8; k++) {
-        m = fmaxf(m, fabsf(d[k]));
+    if (i == 0 || i == g->n_stops) {
+        return true;
     }
-    return m * 255.0f;
+    sr_rgba a = g->color[i - 1], b = g->color[i];
+    float d[4] = { b.r - a.r, b.g - a.g, b.b - a.b, b.a - a.a }, m = 0;
+    for (int k = 0; k < 4; k++) {
+        float v = d[k] < 0 ? -d[k] : d[k];
+        m = v > m ? v : m;
+    }
+    double span = g->offset[i] - g->offset[i - 1];
+    return m * 255.0 < 0.98 * span * SVG_GRADIENT_LUT;
 }
 
 /* Fill cell k of the table: the color of its centre when every color of
@@ -130,27 +133,27 @@ static void fill_cell(svg_gradient *g, int k)
         return;
     }
     double t0 = (double)k / SVG_GRADIENT_LUT, t1 = (double)(k + 1) / SVG_GRADIENT_LUT;
-    double tm = (k + 0.5) / SVG_GRADIENT_LUT;
     int i = stop_above(g, t0);
     /* A stop inside the cell bends or breaks the color there. */
-    if (i < g->n_stops && g->offset[i] < t1) {
+    if ((i < g->n_stops && g->offset[i] < t1) || !piece_is_flat(g, i)) {
         g->lut_state[k] = 2;
         return;
     }
-    sr_rgba c = piece_color(g, i, tm);
-    bool flat = stray(c, piece_color(g, i, t0), piece_color(g, i, t1)) <= 0.5f;
-    g->lut[k] = pack(c);
-    g->lut_state[k] = flat ? 1 : 2;
+    g->lut[k] = pack(piece_color(g, i, (k + 0.5) / SVG_GRADIENT_LUT));
+    g->lut_state[k] = 1;
 }
 
 /* The color of an unspread t (transparent where it is not finite). */
-static uint32_t color_of(svg_gradient *g, double t)
+static inline uint32_t color_of(svg_gradient *g, double t)
 {
     if (!isfinite(t)) {
         return 0;
     }
     t = spread(g->spread, t);
     int k = t >= 1 ? SVG_GRADIENT_LUT : (int)(t * SVG_GRADIENT_LUT);
+    if (g->lut_state[k] == 1) {
+        return g->lut[k];
+    }
     if (g->lut_state[k] == 0) {
         fill_cell(g, k);
     }
@@ -176,12 +179,13 @@ bool svg_gradient_span(void *paint, int x, int y, int n, uint32_t *out)
          * (gx0 free of y, or gx weighed by 0; the same for gy). */
         return (m[2] == 0 || dx == 0) && (m[3] == 0 || dy == 0);
     }
-    double cdx = g->cx - g->fx, cdy = g->cy - g->fy, dr = g->r - g->fr;
-    double a = cdx * cdx + cdy * cdy - dr * dr;
-    for (int i = 0; i < n; i++) {
-        double t;
-        bool on = radial_parameter(g, a, gx0 + m[0] * i - g->fx, gy0 + m[1] * i - g->fy, &t);
-        out[i] = on ? color_of(g, t) : 0;
+    for (int i = 0; i < n; i += RADIAL_BATCH) {
+        double t[RADIAL_BATCH];
+        int k = n - i < RADIAL_BATCH ? n - i : RADIAL_BATCH;
+        radial_parameters(g, gx0 + m[0] * i - g->fx, gy0 + m[1] * i - g->fy, m[0], m[1], k, t);
+        for (int j = 0; j < k; j++) {
+            out[i + j] = color_of(g, t[j]);
+        }
     }
     return false;
 }
