@@ -157,7 +157,8 @@ SR_TEST(gradient_spans_are_within_one_code_of_the_exact_colors)
     for (int n = 0; n < 600; n++) {
         random_gradient(&g, n % 3 != 0);
         for (int k = 0; k < 8; k++) {
-            int x0 = (int)(unit() * 400) - 50, y = (int)(unit() * 400) - 50, len = 1 + (int)(unit() * 299);
+            int x0 = (int)(unit() * 400) - 50, y = (int)(unit() * 400) - 50;
+            int len = 1 + (int)(unit() * 299);
             svg_gradient_span(&g, x0, y, len, row);
             for (int i = 0; i < len; i++) {
                 double t;
