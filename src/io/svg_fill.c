@@ -60,13 +60,46 @@ static void covered_part(const uint8_t *cov, int w, int *a, int *b)
     *b = j;
 }
 
-/* Row `out` = row `dst` with the paint over it: where the coverage is
- * full and the paint opaque, the paint's bytes (what the blend gives). */
+/* Whether every pixel of paint[a, b) is opaque: the alpha byte of the
+ * AND of them all. */
+static bool opaque_paint(const uint32_t *paint, int a, int b)
+{
+    uint32_t all = ~0u;
+    for (int i = a; i < b; i++) {
+        all &= paint[i];
+    }
+    uint8_t s[4];
+    memcpy(s, &all, sizeof s);
+    return s[3] == 255;
+}
+
+/* The end of the run of full coverage from i (before b). */
+static int full_run(const uint8_t *cov, int i, int b)
+{
+    uint64_t v;
+    while (i + 8 <= b && (memcpy(&v, cov + i, 8), v == ~(uint64_t)0)) {
+        i += 8;
+    }
+    while (i < b && cov[i] == 255) {
+        i++;
+    }
+    return i;
+}
+
+/* Row `out` = row `dst` with the paint over it.  Where the coverage is
+ * full and the paint opaque the blend gives the paint's bytes: with an
+ * opaque paint (`opaque`, opacity 1) such runs are copied whole. */
 static void blend_row(uint32_t *out, const uint32_t *dst, const uint32_t *paint,
-                      const uint8_t *cov, int a, int b, float opacity)
+                      const uint8_t *cov, int a, int b, float opacity, bool opaque)
 {
     for (int i = a; i < b; i++) {
         unsigned c = cov[i];
+        if (opaque && c == 255) {
+            int e = full_run(cov, i, b);
+            memcpy(out + i, paint + i, (size_t)(e - i) * 4);
+            i = e - 1;
+            continue;
+        }
         uint8_t s[4];
         memcpy(s, &paint[i], sizeof s);
         if (c == 255 && s[3] == 255 && opacity >= 1.0f) {
@@ -121,6 +154,7 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
         dst_stride = (size_t)w;
     }
     bool painted = false; /* row holds the paint of every x of a paint of x alone */
+    bool opaque = false;  /* the paint in row[a, b) is opaque and the opacity 1 */
     for (int y = 0; r == SR_OK && y < h; y++) {
         const uint8_t *cov = mask + (size_t)y * w;
         const uint32_t *d = dst + (size_t)y * dst_stride;
@@ -140,8 +174,9 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
             if (painted && (a > 0 || b < w)) {
                 span(paint, bx0, by0 + y, w, row);
             }
+            opaque = opacity >= 1.0f && opaque_paint(row, painted ? 0 : a, painted ? w : b);
         }
-        blend_row(out, d, row, cov, a, b, opacity);
+        blend_row(out, d, row, cov, a, b, opacity, opaque);
     }
     if (r == SR_OK) {
         r = sr_write_pixels(ctx, fb, bx0, by0, w, h, (const uint8_t *)px, (size_t)w * 4);
