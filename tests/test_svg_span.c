@@ -5,7 +5,8 @@
  * close and coincident stops and transparent ones; a paint that says it
  * depends on x alone gives every row the same bytes; an image drawn
  * texel for pixel gives its texels, and any other map the bilinear
- * filter's colors within one code. */
+ * filter's colors within one code; a painted fill leaves each pixel as
+ * svg_blend leaves it (its copies and integer blends are no shortcut). */
 #include "io/svg.h"
 #include "sr_test.h"
 
@@ -300,4 +301,59 @@ SR_TEST(an_image_under_any_other_map_is_filtered_bilinearly)
         }
     }
     CHECK(worst <= 1);
+}
+
+/* ---- fills ------------------------------------------------------------------------- */
+
+SR_TEST(a_painted_fill_blends_each_pixel_as_svg_blend_does)
+{
+    enum { W = 64, H = 48 };
+    sr_context *ctx = sr_test_ctx();
+    static uint8_t before[W * H * 4], want[W * H * 4], mask[W * H], rgba[16 * 16 * 4];
+    for (int n = 0; n < 40; n++) {
+        sr_framebuffer *fb = NULL;
+        REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H,
+                                                                   .depth_format = SR_DEPTH_NONE },
+                                    &fb) == SR_OK);
+        /* a background opaque in most rows, see-through or empty in others */
+        for (int i = 0; i < W * H; i++) {
+            for (int c = 0; c < 4; c++) {
+                before[i * 4 + c] = (uint8_t)(unit() * 256);
+            }
+            int row = i / W;
+            before[i * 4 + 3] = row % 4 == 0 ? 0 : row % 4 == 1 ? before[i * 4 + 3] : 255;
+        }
+        REQUIRE(sr_write_pixels(ctx, fb, 0, 0, W, H, before, W * 4) == SR_OK);
+        svg_image im;
+        make_image(&im, rgba, 16, 16, true);
+        for (int i = 0; i < 16 * 16; i++) { /* mostly opaque, as a tile usually is */
+            rgba[i * 4 + 3] = i % 7 == 0 ? rgba[i * 4 + 3] : 255;
+        }
+        double inv[6] = { 1, 0, 0, 1, (int)(unit() * 16), (int)(unit() * 16) };
+        memcpy(im.inv, inv, sizeof inv);
+        sr_point2 pts[9];
+        for (int k = 0; k < 9; k++) { /* a star, partly off the framebuffer */
+            double a = k * 2.0 * 3.14159265 * 4 / 9, r = 10 + unit() * 30;
+            pts[k] = (sr_point2){ 30 + r * cos(a) + unit() * 8, 24 + r * sin(a) };
+        }
+        sr_polygon2 poly = { pts, 9, NULL, 0 };
+        sr_fill_desc desc = { .rule = n % 2 ? SR_NONZERO : SR_EVENODD, .antialias = SR_AA_AREA };
+        float opacity = n % 3 == 0 ? 0.6f : 1.0f;
+        REQUIRE(sr_polygon_coverage(ctx, &poly, &desc, 0, 0, W, H, mask, W) == SR_OK);
+        memcpy(want, before, sizeof want);
+        for (int y = 0; y < H; y++) {
+            uint32_t paint[W];
+            svg_image_span(&im, 0, y, W, paint);
+            for (int x = 0; x < W; x++) {
+                uint8_t s[4];
+                memcpy(s, &paint[x], 4);
+                sr_rgba c = { s[0] / 255.0f, s[1] / 255.0f, s[2] / 255.0f,
+                              s[3] * (1.0f / 255.0f) * opacity };
+                svg_blend(want + (y * W + x) * 4, c, (float)mask[y * W + x] * (1.0f / 255.0f));
+            }
+        }
+        REQUIRE(svg_fill_paint(ctx, fb, &poly, &desc, svg_image_span, &im, opacity) == SR_OK);
+        CHECK(memcmp(sr_framebuffer_pixels(fb), want, sizeof want) == 0);
+        sr_destroy_framebuffer(ctx, fb);
+    }
 }

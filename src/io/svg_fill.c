@@ -107,6 +107,22 @@ static void blend_row(uint32_t *out, const uint32_t *dst, const uint32_t *paint,
             continue;
         }
         out[i] = dst[i];
+        if (s[3] == 255 && opacity >= 1.0f && c > 0) {
+            uint8_t d[4];
+            memcpy(d, &out[i], sizeof d);
+            if (d[3] == 255) {
+                /* Both opaque: the blend's alpha is c / 255, and its
+                 * result round(n / 255) for n = s c + d (255 - c), in
+                 * integers (n / 255 is never within the float blend's
+                 * error of a half: the same bytes, checked for every
+                 * s, d and c). */
+                for (int k = 0; k < 3; k++) {
+                    d[k] = (uint8_t)((s[k] * c + d[k] * (255 - c) + 127) / 255);
+                }
+                memcpy(&out[i], d, sizeof d);
+                continue;
+            }
+        }
         float alpha = s[3] * (1.0f / 255.0f) * opacity;
         alpha = (alpha > 1.0f ? 1.0f : alpha) * ((float)c * (1.0f / 255.0f));
         if (alpha > 0.0f) {
