@@ -31,6 +31,10 @@ typedef struct geometry_uniforms {
     double kx[3], ky[2];        /* clip x and y rows from K */
     double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
     float near;
+    /* The faces left undrawn: those of this area2 sign (sr__area2 of the
+     * snapped vertices), 0 for none.  Back faces are counter-clockwise on
+     * the y-down screen, unless the pose mirrors the mesh. */
+    int cull_sign;
     int width;
     int32_t instance_id;
     float *depth;
@@ -40,11 +44,14 @@ typedef struct geometry_uniforms {
 } geometry_uniforms;
 
 /* The geometry pass's draw state: a reversed z-buffer (cleared to 0,
- * GREATER: near / z), both faces drawn, no color written. */
-static inline sr_state sr_py_geometry_state(const sr_program *prog)
+ * GREATER: near / z), the faces of `cull_sign` (see geometry_uniforms)
+ * culled, no color written. */
+static inline sr_state sr_py_geometry_state(const sr_program *prog, int cull_sign)
 {
     return (sr_state){ .program = prog, .depth_zero_to_one = true, .depth_func = SR_GREATER,
-                       .cull = SR_CULL_NONE, .color_mask = SR_COLOR_MASK_NONE };
+                       .cull = cull_sign ? SR_CULL_BACK : SR_CULL_NONE,
+                       .front_face = cull_sign < 0 ? SR_FRONT_CW : SR_FRONT_CCW,
+                       .color_mask = SR_COLOR_MASK_NONE };
 }
 
 /* Index i of the faces array (3 f + k is corner k of face f). */

@@ -256,7 +256,8 @@ static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_u
             .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
             .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
             .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1],
-            .cy = j->k[1][2], .near = j->near, .width = j->width, .instance_id = in->id,
+            .cy = j->k[1][2], .near = j->near,
+            .cull_sign = !j->cull_back ? 0 : sr_py_mirrors(in->a) ? -1 : 1, .width = j->width, .instance_id = in->id,
             .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
             .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
         };
@@ -285,7 +286,7 @@ static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const geomet
     /* The shader reads the mesh itself; sr_draw still wants a position
      * array of vertex_count entries.  Overlapping ones 4 bytes apart
      * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
-    sr_state st = sr_py_geometry_state(&prog);
+    sr_state st = sr_py_geometry_state(&prog, u->cull_sign);
     return sr_draw(ctx, fb, &st,
                    &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
                                     .vertex_count = 3 * faces });
@@ -320,6 +321,14 @@ static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render
     }
     free(u);
     return r;
+}
+
+bool sr_py_mirrors(const double a[3][4])
+{
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    return det < 0.0;
 }
 
 void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out)
@@ -371,7 +380,9 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
     sr_mat4 model;
     sr_py_mat_from_rows(in->a, &model);
     sr_state st = {
-        .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+        .depth_zero_to_one = true, .depth_func = SR_GREATER,
+        .cull = j->cull_back ? SR_CULL_BACK : SR_CULL_NONE,
+        .front_face = sr_py_mirrors(in->a) ? SR_FRONT_CW : SR_FRONT_CCW,
         .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
         .two_sided = true,
         .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
@@ -660,21 +671,22 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
-                              "environment", "shadows", "general", NULL };
+                              "environment", "shadows", "cull", "general", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None;
     render_job j = { 0 };
-    int lit = 1, pbr = 0, shadows = 0, general = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpp:render", kwlist,
+    int lit = 1, pbr = 0, shadows = 0, cull = 0, general = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOppp:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
-                                     &shadows, &general)) {
+                                     &shadows, &cull, &general)) {
         return NULL;
     }
     j.pbr = pbr;
     j.shadows = shadows;
+    j.cull_back = cull;
     j.general = general;
     if (pbr && take_matrix(view, "view", 3, 4, &j.view[0][0]) < 0) {
         return NULL;

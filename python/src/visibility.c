@@ -329,6 +329,7 @@ static void faces_job(void *arg, int job, int thread)
         size_t end = j->first_face[inst + 1] < hi ? j->first_face[inst + 1] : hi;
         end = end - g > CANDIDATE_BLOCK ? g + CANDIDATE_BLOCK : end;
         long n = find_candidates(j, inst, g, end, outside, cand);
+        int64_t cull_sign = j->u[inst].cull_sign;
         if (n < 0) {
             atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
             return;
@@ -353,9 +354,10 @@ static void faces_job(void *arg, int job, int thread)
                 { p2->x_q8, p2->y_q8, p2->z, 1.0f, NULL },
             };
             int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
-            if (area2 == 0 || ((c->x1 - c->x0) * (c->y1 - c->y0) <= SMALL_BOX &&
-                               !may_pass(ds, w, area2, c->x0, c->y0, c->x1, c->y1, j->width,
-                                         j->word))) {
+            /* Culled as assembly.c culls: by the snapped area's sign. */
+            if (area2 == 0 || area2 * cull_sign > 0 ||
+                ((c->x1 - c->x0) * (c->y1 - c->y0) <= SMALL_BOX &&
+                 !may_pass(ds, w, area2, c->x0, c->y0, c->x1, c->y1, j->width, j->word))) {
                 continue;
             }
             sr_tri t;
@@ -403,7 +405,7 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     /* The general pass's draw state, as sr_draw resolves it. */
     sr_program prog = { .varying_count = 1 };
     prog.modes[0] = SR_VARYING_FLAT;
-    sr_state st = sr_py_geometry_state(&prog);
+    sr_state st = sr_py_geometry_state(&prog, 0);   /* culled per instance */
     sr_draw_state ds;
     sr__resolve_draw_state(fb, &st, NULL, NULL, ctx->simd, &ds);
     if (ds.samples != 1 || ds.depth_bits != 0 || ds.depth_scale != 1.0) {

@@ -72,6 +72,7 @@ NAN_R[0, 0] = np.nan
     (dict(near=float("nan")), ValueError, "near"),
     (dict(normal_frame="object"), ValueError, "normal_frame"),
     (dict(shading="toon"), ValueError, "shading"),
+    (dict(cull="front"), ValueError, "cull"),
     (dict(background=(1, 2)), ValueError, "background"),
     (dict(scene=V), TypeError, "scene"),
     (dict(scene=[(MESH, np.full((4, 4), np.nan))]), ValueError, "pose"),

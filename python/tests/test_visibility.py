@@ -134,3 +134,33 @@ def test_every_simd_level(monkeypatch, level):
     verts, faces = random_triangles(rng, 300, size=0.8)
     K, R, t = default_camera(W, H)
     render_both(softrast.Mesh(verts.astype(np.float32), faces.astype(np.int32)), K=K, R=R, t=t)
+
+
+def test_cull_back_faces():
+    """cull="back" leaves out the faces whose normal points away from the
+    camera (clockwise on screen), turned round by a mirroring pose: in
+    both passes alike, and in color too."""
+    rng = np.random.default_rng(16)
+    verts, faces = random_triangles(rng, 300, size=0.8)
+    corners = verts[faces]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    away = np.einsum("ij,ij->i", normal, corners[:, 0])   # camera at the origin
+    clear = np.abs(away) > 1e-3 * np.linalg.norm(normal, axis=1) * np.linalg.norm(corners[:, 0],
+                                                                                 axis=1)
+    mesh = softrast.Mesh(verts, faces)
+    K, R, t = default_camera(W, H)
+    shown = render_both(mesh, K=K, R=R, t=t)["triangle_id"]
+    assert (away[shown[shown >= 0]] > 0).any()   # back faces show without culling
+    culled = render_both(mesh, K=K, R=R, t=t, cull="back")["triangle_id"]
+    ids = culled[culled >= 0]
+    assert ids.size and not (clear[ids] & (away[ids] > 0)).any()
+    color = softrast.render(mesh, K=K, R=R, t=t, width=W, height=H, cull="back",
+                            outputs=("color", "triangle_id"))
+    assert np.array_equal(color["triangle_id"], culled)
+    assert np.array_equal(color["color"].any(axis=2), culled >= 0)
+    # Mirrored in x about the optical axis: clockwise on screen is now the
+    # faces' front, and the same faces show their front to the camera.
+    flip = np.diag([-1.0, 1.0, 1.0, 1.0])
+    mirrored = render_both([(mesh, flip, 0)], K=K, R=R, t=t, cull="back")["triangle_id"]
+    ids = mirrored[mirrored >= 0]
+    assert ids.size and not (clear[ids] & (away[ids] > 0)).any()
