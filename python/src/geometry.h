@@ -65,27 +65,30 @@ static inline size_t sr_py_face_index(const geometry_uniforms *u, size_t i)
  * vertex seen from the camera. */
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
 
-/* The outputs of pixel p (y * width + x) where nothing is visible.
- * Inline, so that a loop over pixels tests which outputs exist once. */
-static inline void sr_py_background_pixel(const geometry_uniforms *u, size_t p)
+/* The outputs of the n pixels from p (y * width + x, along the rows)
+ * where nothing is visible: each output filled over the run at once,
+ * which the compiler turns into wide stores. */
+static inline void sr_py_background_run(const geometry_uniforms *u, size_t p, size_t n)
 {
     if (u->depth) {
-        u->depth[p] = INFINITY;
+        for (size_t i = 0; i < n; i++) {
+            u->depth[p + i] = INFINITY;
+        }
     }
     if (u->triangle_id) {
-        u->triangle_id[p] = -1;
+        memset(&u->triangle_id[p], 0xff, n * sizeof(int32_t));   /* -1 */
     }
     if (u->instance_out) {
-        u->instance_out[p] = -1;
+        memset(&u->instance_out[p], 0xff, n * sizeof(int32_t));
     }
     if (u->barycentric) {
-        memset(&u->barycentric[3 * p], 0, 3 * sizeof(float));
+        memset(&u->barycentric[3 * p], 0, 3 * n * sizeof(float));
     }
     if (u->normal) {
-        memset(&u->normal[3 * p], 0, 3 * sizeof(float));
+        memset(&u->normal[3 * p], 0, 3 * n * sizeof(float));
     }
     if (u->mask) {
-        u->mask[p] = 0;
+        memset(&u->mask[p], 0, n * sizeof(npy_bool));
     }
 }
 

@@ -189,10 +189,7 @@ static void fill_outputs(const render_job *j)
     geometry_uniforms u = { .depth = j->depth, .triangle_id = j->triangle_id,
                             .instance_out = j->instance_id, .barycentric = j->barycentric,
                             .normal = j->normal, .mask = j->mask };
-    size_t n = (size_t)j->width * (size_t)j->height;
-    for (size_t p = 0; p < n; p++) {
-        sr_py_background_pixel(&u, p);
-    }
+    sr_py_background_run(&u, 0, (size_t)j->width * (size_t)j->height);
 }
 
 static void clip_rows(const render_job *j, double kx[3], double ky[2])

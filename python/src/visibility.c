@@ -369,26 +369,34 @@ static void faces_job(void *arg, int job, int thread)
 }
 
 /* Rows of the image: each covered pixel resolved from its word, which
- * is cleared for the next view. */
+ * is cleared for the next view; the runs of pixels that no face passed
+ * filled a run at a time. */
 static void resolve_job(void *arg, int job, int thread)
 {
     (void)thread;
     vis_job *j = arg;
     int y1 = (job + 1) * ROWS_PER_JOB < j->height ? (job + 1) * ROWS_PER_JOB : j->height;
     for (int y = job * ROWS_PER_JOB; y < y1; y++) {
-        for (int x = 0; x < j->width; x++) {
-            size_t p = (size_t)y * (size_t)j->width + (size_t)x;
-            uint64_t w = atomic_load_explicit(&j->word[p], memory_order_relaxed);
-            if (w == 0) {
-                sr_py_background_pixel(j->u, p);   /* no face passed */
-                continue;
+        _Atomic uint64_t *row = &j->word[(size_t)y * (size_t)j->width];
+        for (int x = 0; x < j->width;) {
+            int run = x;
+            while (run < j->width && atomic_load_explicit(&row[run], memory_order_relaxed) == 0) {
+                run++;
             }
-            atomic_store_explicit(&j->word[p], 0, memory_order_relaxed);
-            uint32_t q = word_depth(w), g = ~(uint32_t)w;
-            size_t inst = instance_of(j->first_face, j->count, g);
-            float z;
-            memcpy(&z, &q, sizeof z);   /* the float depth buffer's value */
-            sr_py_shade_pixel(&j->u[inst], g - j->first_face[inst], x, y, z);
+            sr_py_background_run(j->u, (size_t)y * (size_t)j->width + (size_t)x,
+                                 (size_t)(run - x));
+            for (x = run; x < j->width; x++) {
+                uint64_t w = atomic_load_explicit(&row[x], memory_order_relaxed);
+                if (w == 0) {
+                    break;
+                }
+                atomic_store_explicit(&row[x], 0, memory_order_relaxed);
+                uint32_t q = word_depth(w), g = ~(uint32_t)w;
+                size_t inst = instance_of(j->first_face, j->count, g);
+                float z;
+                memcpy(&z, &q, sizeof z);   /* the float depth buffer's value */
+                sr_py_shade_pixel(&j->u[inst], g - j->first_face[inst], x, y, z);
+            }
         }
     }
 }
