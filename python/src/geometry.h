@@ -64,6 +64,12 @@ static inline size_t sr_py_face_index(const geometry_uniforms *u, size_t i)
 /* Fills u's clip and camera tables for mesh vertices [lo, hi): each
  * vertex seen from the camera. */
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
+/* The same for the visibility pass: the camera table filled, the clip
+ * positions written to `clip` (vertex lo's) and on, `stride` bytes apart;
+ * in AVX2 lanes when `lanes` (the draw state's SIMD level allows them),
+ * with the same values. */
+void sr_py_view_vertices_to(const geometry_uniforms *u, size_t lo, size_t hi, bool lanes,
+                            float *clip, size_t stride);
 
 /* The outputs of the n pixels from p (y * width + x, along the rows)
  * where nothing is visible: each output filled over the run at once,
@@ -100,8 +106,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
  * rasterized for depth and face index alone, then each covered pixel
  * resolved by sr_py_shade_pixel: the same bytes as the general pass,
  * whose coverage and depth test it repeats with the library's own setup
- * and depth arithmetic.  Fills the instances' vertex tables
- * (sr_py_view_vertices) and every pixel of the outputs.  *done is false,
+ * and depth arithmetic.  Fills the instances' camera tables
+ * (sr_py_view_vertices_to) and every pixel of the outputs.  *done is false,
  * the outputs unwritten and the tables maybe unfilled, when some face
  * crosses a clip plane (clipping is left to the general pass) or the pass
  * cannot draw the view. */

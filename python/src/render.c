@@ -24,6 +24,7 @@
 #include "geometry.h"
 #include "render.h"
 #include "math/dvec3.h"
+#include "simd_types.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -67,15 +68,77 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     clip[3] = (float)c[2];
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SR_PY_VIEW_LANES 1
+/* Mesh vertices [lo, hi) of type T four at a time in AVX2 lanes: view_of's
+ * operations in its order, lane by lane (never contracted, as
+ * SR_EXACT_FP_FLAGS says), so the same values.  Returns the first vertex
+ * left for view_of. */
+#define VIEW_LANES(T)                                                                      \
+    for (; v + 4 <= hi; v += 4) {                                                         \
+        const T *s = (const T *)u->vertices + 3 * v;                                      \
+        v4d p[3];                                                                         \
+        for (int k = 0; k < 3; k++) {                                                     \
+            p[k] = (v4d){ s[k], s[3 + k], s[6 + k], s[9 + k] };                           \
+        }                                                                                 \
+        v4d c[3];                                                                         \
+        for (int r = 0; r < 3; r++) {                                                     \
+            c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3]; \
+        }                                                                                 \
+        v4f x = __builtin_convertvector(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2], \
+                                        v4f);                                             \
+        v4f y = __builtin_convertvector(u->ky[0] * c[1] + u->ky[1] * c[2], v4f);          \
+        v4f w = __builtin_convertvector(c[2], v4f);                                       \
+        for (int i = 0; i < 4; i++) {                                                     \
+            double *cam = camera[v + i];                                                  \
+            cam[0] = c[0][i];                                                             \
+            cam[1] = c[1][i];                                                             \
+            cam[2] = c[2][i];                                                             \
+            float *o = (float *)(clip + (v + i - lo) * stride);                           \
+            o[0] = x[i];                                                                  \
+            o[1] = y[i];                                                                  \
+            o[2] = u->near;                                                               \
+            o[3] = w[i];                                                                  \
+        }                                                                                 \
+    }
+
+__attribute__((target("avx2"))) static size_t view_lanes(const geometry_uniforms *u, size_t lo,
+                                                         size_t hi, char *clip, size_t stride)
+{
+    double (*camera)[3] = (double (*)[3])u->camera;
+    size_t v = lo;
+    if (u->vertices64) {
+        VIEW_LANES(double)
+    } else {
+        VIEW_LANES(float)
+    }
+    return v;
+}
+#undef VIEW_LANES
+#endif
+
+void sr_py_view_vertices_to(const geometry_uniforms *u, size_t lo, size_t hi, bool lanes,
+                            float *clip, size_t stride)
+{
+    double (*camera)[3] = (double (*)[3])u->camera;
+    size_t v = lo;
+#ifdef SR_PY_VIEW_LANES
+    if (lanes) {
+        v = view_lanes(u, lo, hi, (char *)clip, stride);
+    }
+#else
+    (void)lanes;
+#endif
+    for (; v < hi; v++) {
+        view_of(u, v, (float *)((char *)clip + (v - lo) * stride), camera[v]);
+    }
+}
+
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi)
 {
     /* The tables are the render set's, handed out read-only to the
      * shaders. */
-    float (*clip)[4] = (float (*)[4])u->clip;
-    double (*camera)[3] = (double (*)[3])u->camera;
-    for (size_t v = lo; v < hi; v++) {
-        view_of(u, v, clip[v], camera[v]);
-    }
+    sr_py_view_vertices_to(u, lo, hi, false, (float *)u->clip[lo], 4 * sizeof(float));
 }
 
 static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],

@@ -96,11 +96,13 @@ static size_t instance_of(const size_t *first, size_t count, size_t i)
     return lo;
 }
 
-/* Vertices [lo, hi) of the draw, those of instance u from `base`:
- * classified and snapped as the vertex stage does (vertex.c's classify,
- * sixteen at a time where the draw state says the CPU can, with the
- * same values), a block at a time from their clip positions.  True when
- * one is outside a clip plane. */
+/* Vertices [lo, hi) of the draw, those of instance u from `base`: seen
+ * from the camera (sr_py_view_vertices_to, the camera table filled and
+ * the clip positions written straight into the block's records; the
+ * clip table is left to the general pass), then classified and snapped
+ * as the vertex stage does (vertex.c's classify, sixteen at a time where
+ * the draw state says the CPU can, with the same values), a block at a
+ * time.  True when one is outside a clip plane. */
 static bool classify_vertices(const vis_job *j, const geometry_uniforms *u, size_t base, size_t lo,
                               size_t hi)
 {
@@ -111,9 +113,8 @@ static bool classify_vertices(const vis_job *j, const geometry_uniforms *u, size
     bool outside = false;
     for (size_t b = lo; b < hi; b += CLASSIFY_BLOCK) {
         size_t n = hi - b < CLASSIFY_BLOCK ? hi - b : CLASSIFY_BLOCK;
-        for (size_t i = 0; i < n; i++) {
-            memcpy(post[i].pos, u->clip[b + i - base], sizeof post[i].pos);
-        }
+        sr_py_view_vertices_to(u, b - base, b - base + n, ds->simd >= SR_SIMD_AVX2, post[0].pos,
+                               sizeof post[0]);
         if (!(ds->vertex_lanes16 && sr__classify16(ds, post, n))) {
             for (size_t i = 0; i < n; i++) {
                 const float *pos = post[i].pos;
@@ -149,8 +150,7 @@ static bool classify_vertices(const vis_job *j, const geometry_uniforms *u, size
     return outside;
 }
 
-/* The draw's vertices in equal shares: seen from the camera, then
- * classified. */
+/* The draw's vertices in equal shares. */
 static void classify_job(void *arg, int job, int thread)
 {
     (void)thread;
@@ -163,7 +163,6 @@ static void classify_job(void *arg, int job, int thread)
         const geometry_uniforms *u = &j->u[inst];
         size_t base = j->first_vertex[inst];
         size_t end = j->first_vertex[inst + 1] < hi ? j->first_vertex[inst + 1] : hi;
-        sr_py_view_vertices(u, v - base, end - base);
         outside |= classify_vertices(j, u, base, v, end);
         v = end;
     }
