@@ -438,7 +438,8 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     j.face_jobs = (int)((faces + FACES_PER_JOB - 1) / FACES_PER_JOB);
     j.pixels = (size_t)j.width * (size_t)j.height;
     /* The pixels' words first, so that those left cleared by the last
-     * view's resolve stay where they are. */
+     * view's resolve stay where they are (but for those past this view's
+     * pixels, which its vertex arrays overwrite). */
     size_t bytes = j.pixels * sizeof(uint64_t) +
                    vertices * (sizeof(window_vertex) + sizeof(centre_span) + sizeof(uint32_t));
     if (set->visibility_bytes < bytes) {
@@ -454,8 +455,8 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     if (set->visibility_cleared < j.pixels) {
         memset(j.word + set->visibility_cleared, 0,
                (j.pixels - set->visibility_cleared) * sizeof(uint64_t));
-        set->visibility_cleared = j.pixels;
     }
+    set->visibility_cleared = j.pixels;
     j.win = (window_vertex *)(j.word + j.pixels);
     j.span = (centre_span *)(j.win + vertices);
     j.outcode = (uint32_t *)(j.span + vertices);
