@@ -32,9 +32,13 @@ typedef struct geometry_uniforms {
     double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
     float near;
     /* The faces left undrawn: those of this area2 sign (sr__area2 of the
-     * snapped vertices), 0 for none.  Back faces are counter-clockwise on
-     * the y-down screen, unless the pose mirrors the mesh. */
+     * snapped vertices), 0 for none.  Back faces are clockwise on the
+     * y-down screen (area2 > 0), unless the pose mirrors the mesh. */
     int cull_sign;
+    /* Orthographic: K maps camera x, y (not x/z, y/z) to pixels, the rays
+     * run along +z, and the window depth is (far - z) / (far - near). */
+    bool ortho;
+    float far;
     int width;
     int32_t instance_id;
     float *depth;
@@ -66,8 +70,8 @@ static inline size_t sr_py_face_index(const geometry_uniforms *u, size_t i)
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
 /* The same for the visibility pass: the camera table filled, the clip
  * positions written to `clip` (vertex lo's) and on, `stride` bytes apart;
- * in AVX2 lanes when `lanes` (the draw state's SIMD level allows them),
- * with the same values. */
+ * for a pinhole camera in AVX2 lanes when `lanes` (the draw state's SIMD
+ * level allows them), with the same values. */
 void sr_py_view_vertices_to(const geometry_uniforms *u, size_t lo, size_t hi, bool lanes,
                             float *clip, size_t stride);
 
@@ -99,7 +103,8 @@ static inline void sr_py_background_run(const geometry_uniforms *u, size_t p, si
 }
 
 /* The outputs of pixel (x, y) where face `face` is visible, with
- * `window_z` its depth-buffer value there (reversed: near / z). */
+ * `window_z` its depth-buffer value there (reversed: near / z, or
+ * orthographic (far - z) / (far - near)). */
 void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z);
 
 /* The visibility-buffer pass (visibility.c): the instances' faces
