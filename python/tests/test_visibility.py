@@ -164,3 +164,22 @@ def test_cull_back_faces():
     mirrored = render_both([(mesh, flip, 0)], K=K, R=R, t=t, cull="back")["triangle_id"]
     ids = mirrored[mirrored >= 0]
     assert ids.size and not (clear[ids] & (away[ids] > 0)).any()
+
+
+def test_cull_back_faces_orthographic():
+    """Under an orthographic camera (every ray along +z) the back faces
+    are those whose normal has z > 0; the vertices take the scalar path
+    there, the same bytes in both passes."""
+    rng = np.random.default_rng(17)
+    verts, faces = random_triangles(rng, 300, size=0.8)
+    corners = verts[faces]
+    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    clear = np.abs(normal[:, 2]) > 1e-3 * np.linalg.norm(normal, axis=1)
+    mesh = softrast.Mesh(verts.astype(np.float32), faces.astype(np.int32))
+    cam = dict(K=np.array([[30.0, 0.0, 80.0], [0.0, 30.0, 60.0], [0.0, 0.0, 1.0]]), R=np.eye(3),
+               t=np.zeros(3), projection="orthographic")
+    shown = render_both(mesh, **cam)["triangle_id"]
+    assert (normal[shown[shown >= 0], 2] > 0).any()
+    culled = render_both(mesh, cull="back", **cam)["triangle_id"]
+    ids = culled[culled >= 0]
+    assert ids.size and not (clear[ids] & (normal[ids, 2] > 0)).any()
