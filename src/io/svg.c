@@ -17,9 +17,10 @@
  * Supported: see the table in docs/draw2d.md.  Group opacity and clip
  * paths draw the element into a layer of its own, composited after.
  * Anything else is skipped with one warning per name.
- * Malformed XML, path data or numbers, and drawings beyond the limits of
+ * Malformed XML or numbers, and drawings beyond the limits of
  * softrast_io.h (bounded work): one line "NAME:LINE: what is wrong" in the
- * sr_io_error and no image.  Warnings go to the caller's callback.
+ * sr_io_error and no image; path data in error is drawn up to the error,
+ * as SVG asks, with a warning.  Warnings go to the caller's callback.
  * One document per call; nothing global, so calls may run in parallel on
  * different contexts. */
 #include "io/svg.h"
@@ -218,11 +219,13 @@ static void lib_fail(svg_doc *doc, sr_result r)
              sr_context_error(doc->ctx));
 }
 
-/* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", once per name.
- * After MAX_WARNED different names, one last line says the rest are not
- * shown: a document of a million unknown elements gets 65 lines, not a
- * million. */
-static void warn_once(svg_doc *doc, const char *kind, const char *name)
+/* "FILE:LINE: warning: TEXT", once per key.  After MAX_WARNED different
+ * keys, one last line says the rest are not shown: a document of a
+ * million unknown elements gets 65 lines, not a million. */
+static void warn_keyed(svg_doc *doc, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static void warn_keyed(svg_doc *doc, const char *key, const char *fmt, ...)
 {
     /* an SVG image's warnings count once for the whole drawing */
     svg_doc *top = doc;
@@ -235,8 +238,6 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
     if (doc->warnings_capped) {
         return;
     }
-    char key[128];
-    snprintf(key, sizeof key, "%s %s", kind, name);
     for (int i = 0; i < doc->n_warned; i++) {
         if (strcmp(doc->warned[i], key) == 0) {
             return;
@@ -253,13 +254,26 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
         if (doc->warned[doc->n_warned]) {
             doc->n_warned++;
         }
-        snprintf(line, sizeof line, "%s:%lu: warning: unsupported %s '%s' skipped", file, at,
-                 kind, name);
+        int n = snprintf(line, sizeof line, "%s:%lu: warning: ", file, at);
+        if (n >= 0 && (size_t)n < sizeof line) {
+            va_list ap;
+            va_start(ap, fmt);
+            vsnprintf(line + n, sizeof line - (size_t)n, fmt, ap);
+            va_end(ap);
+        }
     }
     doc->warnings++;
     if (doc->opt->warn) {
         doc->opt->warn(doc->opt->warn_user, line);
     }
+}
+
+/* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", once per name. */
+static void warn_once(svg_doc *doc, const char *kind, const char *name)
+{
+    char key[128];
+    snprintf(key, sizeof key, "%.60s %.60s", kind, name);
+    warn_keyed(doc, key, "unsupported %s '%s' skipped", kind, name);
 }
 
 /* ---- numbers, lengths, lists ----------------------------------------------------- */
@@ -1099,7 +1113,28 @@ static bool add_vertex(svg_doc *doc, const sr_path *path, char kind)
     return true;
 }
 
-/* Parse d="..." into the path; false after reporting an error. */
+/* An error in path data or a points list: SVG draws the path up to the
+ * last command (point) before it and drops the rest (SVG 1.1 F.2 and
+ * SVG 2's path error handling), so the path built so far stands and the
+ * error is a warning, once per element and place. */
+static void path_data_error(svg_doc *doc, const char *what, long offset, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static void path_data_error(svg_doc *doc, const char *what, long offset, const char *fmt, ...)
+{
+    char detail[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(detail, sizeof detail, fmt, ap);
+    va_end(ap);
+    char key[128];
+    snprintf(key, sizeof key, "%s error %lu:%ld %s", what, msg_line(doc), offset, doc->file);
+    warn_keyed(doc, key, "%s: %s at offset %ld; drawn up to there", what, detail, offset);
+}
+
+/* Parse d="..." into the path: false after reporting a failure (a
+ * coordinate the library refuses, a limit passed); an error in the data
+ * itself ends the path there with a warning. */
 static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
 {
     path_build b = { .path = path };
@@ -1109,14 +1144,12 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
         if (isalpha((unsigned char)*s)) {
             cmd = *s++;
             if (!args_for((char)toupper((unsigned char)cmd)) && toupper((unsigned char)cmd) != 'Z') {
-                svg_fail(doc, SR_BAD_FORMAT, "path data: unknown command '%c' at offset %ld", cmd,
-                         (long)(s - 1 - d));
-                return false;
+                path_data_error(doc, "path data", (long)(s - 1 - d), "unknown command '%c'", cmd);
+                return true;
             }
             if (!b.started && toupper((unsigned char)cmd) != 'M') {
-                svg_fail(doc, SR_BAD_FORMAT, "path data must start with a moveto (offset %ld)",
-                         (long)(s - 1 - d));
-                return false;
+                path_data_error(doc, "path data", (long)(s - 1 - d), "no moveto first");
+                return true;
             }
             if (toupper((unsigned char)cmd) == 'Z') {
                 sr_result r = path_command(&b, cmd, NULL);
@@ -1131,11 +1164,11 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
                 continue;
             }
         } else if (!cmd || toupper((unsigned char)cmd) == 'Z') {
-            svg_fail(doc, SR_BAD_FORMAT, "path data: expected a command at offset %ld",
-                     (long)(s - d));
-            return false;
+            path_data_error(doc, "path data", (long)(s - d), "expected a command");
+            return true;
         }
-        /* One set of arguments (commands repeat implicitly). */
+        /* One set of arguments (commands repeat implicitly); a set cut
+         * short by an error draws nothing. */
         char up = (char)toupper((unsigned char)cmd);
         double a[7];
         int n = args_for(up);
@@ -1143,15 +1176,13 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
             s = skip_ws(s);
             if (up == 'A' && (i == 3 || i == 4)) { /* flags: a single 0 or 1 */
                 if (*s != '0' && *s != '1') {
-                    svg_fail(doc, SR_BAD_FORMAT, "path data: arc flag must be 0 or 1 at offset %ld",
-                             (long)(s - d));
-                    return false;
+                    path_data_error(doc, "path data", (long)(s - d), "arc flag not 0 or 1");
+                    return true;
                 }
                 a[i] = *s++ - '0';
             } else if (!parse_number(&s, &a[i])) {
-                svg_fail(doc, SR_BAD_FORMAT, "path data: expected a number at offset %ld",
-                         (long)(s - d));
-                return false;
+                path_data_error(doc, "path data", (long)(s - d), "expected a number");
+                return true;
             }
             s = skip_ws_comma(s);
         }
@@ -1859,9 +1890,8 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
     while (*s) {
         double x, y;
         if (!parse_number(&s, &x) || !parse_number((s = skip_ws_comma(s), &s), &y)) {
-            svg_fail(doc, SR_BAD_FORMAT, "%s: points: expected a coordinate pair at offset %ld",
-                     name, (long)(s - pts));
-            return false;
+            path_data_error(doc, name, (long)(s - pts), "points: expected a coordinate pair");
+            break;
         }
         s = skip_ws_comma(s);
         bool first = n++ == 0;
