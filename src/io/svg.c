@@ -307,9 +307,10 @@ static bool parse_number(const char **s, double *out)
     return true;
 }
 
-/* A length: number with an optional unit; 96 px per inch, em and ex of
- * the initial font (16 px; ex half of it: no font is read).  *percent is
- * set (and the number returned as is) for "%". */
+/* A length: number with an optional unit, in any case as CSS reads units
+ * (SVG 2 reads presentation attributes as CSS too: 20PX, 1In); 96 px per
+ * inch, em and ex of the initial font (16 px; ex half of it: no font is
+ * read).  *percent is set (and the number returned as is) for "%". */
 static bool parse_length(const char *s, double *out, bool *percent)
 {
     s = skip_ws(s);
@@ -333,7 +334,7 @@ static bool parse_length(const char *s, double *out, bool *percent)
     }
     for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
         size_t n = strlen(units[i].unit);
-        if (strncmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+        if (strncasecmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
             *out *= units[i].px;
             return true;
         }
@@ -2459,7 +2460,8 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
 /* ---- markers ----------------------------------------------------------------------- */
 
 
-/* An angle: a number of degrees, or with deg, rad, grad or turn. */
+/* An angle: a number of degrees, or with deg, rad, grad or turn (in any
+ * case, as CSS reads units). */
 static bool parse_angle(const char *v, double *deg)
 {
     static const struct { const char *unit; double deg; } units[] = {
@@ -2471,7 +2473,7 @@ static bool parse_angle(const char *v, double *deg)
     }
     for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
         size_t n = strlen(units[i].unit);
-        if (strncmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+        if (strncasecmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
             *deg *= units[i].deg;
             return true;
         }
