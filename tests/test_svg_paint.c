@@ -503,7 +503,7 @@ SR_TEST(svg_images_that_include_themselves_or_nest_too_deep_are_refused)
     }
     free(doc);
     /* malformed content of a data: URI: one line naming the image's line */
-    doc = svg_wrapping("<svg xmlns='http://www.w3.org/2000/svg'>\n\n<path d='M 1'/></svg>");
+    doc = svg_wrapping("<svg xmlns='http://www.w3.org/2000/svg'>\n\n<circle r='1q'/></svg>");
     char msg[1024];
     CHECK(render(ctx, doc, SR_BAD_FORMAT, msg, sizeof msg) == NULL);
     CHECK_STR_CONTAINS(msg, "t.svg:2: ");
