@@ -71,7 +71,8 @@ static void check_drawing(const char *file, const char *ref)
  * layers of its own, cut to the marker's viewport; serverorigin:
  * transform-origin on gradientTransform and patternTransform; stopinherit:
  * stops inherit from the gradient's ancestors, not the shape's;
- * selectors: attribute tests, :first-child, sibling combinators */
+ * selectors: attribute tests, :first-child, sibling combinators;
+ * clipchild: clip-path on the children of a clipPath, and on uses in it */
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
@@ -82,7 +83,7 @@ SR_TEST(drawings_match_references)
                                           "maskregion", "switch", "nonscaling",
                                           "origin", "blend", "images", "svgimage",
                                           "overflow", "markerlayers", "serverorigin",
-                                          "stopinherit", "selectors" };
+                                          "stopinherit", "selectors", "clipchild" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */

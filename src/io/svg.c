@@ -2865,13 +2865,13 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
 
 /* ---- clipping and layers ------------------------------------------------------------- */
 
-/* Add the coverage of one clip shape to the mask: union, a + b - ab. */
-static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *mask,
-                       uint8_t *scratch)
+/* The coverage of one clip shape, with its clip-rule, into cov (the
+ * image's size); false when it covers nothing or after a failure. */
+static bool clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *cov)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     double tol;
-    bool fillable;
+    bool fillable, drawn = false;
     sr_path *p = f->st.display_none || f->st.invisible
                      ? NULL : shape_at_scale(doc, shape, f, &tol, &fillable);
     sr_point2 *pts;
@@ -2881,20 +2881,31 @@ static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint
         poly.points = pts;
         sr_fill_desc desc = { .rule = f->st.clip_rule,
                               .antialias = f->st.crisp ? SR_AA_NONE : SR_AA_AREA };
-        sr_result r = sr_polygon_coverage(doc->ctx, &poly, &desc, 0, 0, w, h, scratch, (size_t)w);
+        sr_result r = sr_polygon_coverage(doc->ctx, &poly, &desc, 0, 0, w, h, cov, (size_t)w);
         free(pts);
         if (r != SR_OK) {
             lib_fail(doc, r);
-        } else {
-            for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
-                unsigned a = mask[i], b = scratch[i];
-                mask[i] = (uint8_t)(a + b - (a * b + 127) / 255);
-            }
         }
+        drawn = r == SR_OK;
     }
     if (p) {
         sr_destroy_path(doc->ctx, p);
     }
+    return drawn;
+}
+
+/* A use's x and y as the translation SVG appends to its transform: its
+ * clip path, mask and bounding box are in the moved user space.  False
+ * after reporting a malformed one. */
+static bool use_offset(svg_doc *doc, const svg_node *use, const frame *f, mat2d *out)
+{
+    double x = 0, y = 0;
+    if (!length_attr(doc, f, "x", attr(use->atts, "x"), &x) ||
+        !length_attr(doc, f, "y", attr(use->atts, "y"), &y)) {
+        return false;
+    }
+    *out = (mat2d){ 1, 0, 0, 1, x, y };
+    return true;
 }
 
 /* Grow the box b[4] = x0, y0, x1, y1 to hold q.  Comparisons, which skip a
@@ -2943,23 +2954,21 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
             sr_destroy_path(doc->ctx, p);
         }
     } else {
+        /* m holds a use's own x and y (use_offset), as it holds its
+         * transform */
         bool use = strcmp(n->name, "use") == 0;
         svg_node *c = use ? (href_of(n) ? reference(doc, href_of(n), NULL) : NULL) : n->first;
-        mat2d base = m;
-        if (use) {
-            double x = 0, y = 0;
-            length_attr(doc, f, "x", attr(n->atts, "x"), &x);
-            length_attr(doc, f, "y", attr(n->atts, "y"), &y);
-            base = mat_mul(m, (mat2d){ 1, 0, 0, 1, x, y });
-        }
         for (; c && doc->status == SR_OK; c = use ? NULL : c->next) {
-            mat2d t = IDENTITY;
+            mat2d t = IDENTITY, o;
             const char *tr = attr(c->atts, "transform");
             if (tr && !parse_transform(tr, &t)) {
                 continue;
             }
+            if (strcmp(c->name, "use") == 0 && !use && use_offset(doc, c, f, &o)) {
+                t = mat_mul(t, o);
+            }
             if (is_shape(c->name) || !is_named(c, not_drawn)) {
-                bbox_add(doc, c, f, mat_mul(base, t), b);
+                bbox_add(doc, c, f, mat_mul(m, t), b);
             }
         }
     }
@@ -3043,11 +3052,21 @@ static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f)
 }
 
 /* The coverage of a clipPath for an element drawn under frame f: its
- * shapes (and uses of shapes) with their clip-rule, in the element's
- * user space.  NULL with a warning for what is not supported (units of
- * the bounding box), or after a failure. */
+ * shapes (and uses of shapes) with their clip-rule, each cut by its own
+ * clip-path, in the element's user space, then cut by the clipPath's
+ * own clip-path; NULL after a failure (a cycle, nesting deeper than
+ * MAX_DEPTH, a budget passed). */
 static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const frame *f)
 {
+    if (clip->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "clip-path: reference cycle through \"#%s\"",
+                 clip->id ? clip->id : "");
+        return NULL;
+    }
+    if (doc->draw_depth + 1 >= MAX_DEPTH) {
+        svg_fail(doc, SR_BAD_FORMAT, "clip paths nested deeper than %d", MAX_DEPTH);
+        return NULL;
+    }
     frame cf = *f;
     const char *units = attr(clip->atts, "clipPathUnits");
     if (units && strcmp(units, "objectBoundingBox") == 0) {
@@ -3066,7 +3085,7 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
     if (!work_within_budget(doc, (double)w * h)) {
         return NULL;
     }
-    uint8_t *mask = calloc((size_t)w * (size_t)h, 2);
+    uint8_t *mask = calloc((size_t)w * (size_t)h, 2), *cov = mask + (size_t)w * (size_t)h;
     if (!mask) {
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return NULL;
@@ -3079,47 +3098,63 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
     if (tr && parse_transform(tr, &t)) {
         cf.m = mat_mul(cf.m, t);
     }
+    clip->active = true;
+    doc->draw_depth++;
     for (svg_node *c = clip->first; c && doc->status == SR_OK; c = c->next) {
-        svg_node *shape = c;
-        frame sf = cf;
+        /* Each child is cut by its own clip-path, and a use also by its
+         * shape's, each in the user space of its element, before the
+         * union: a + b - ab. */
+        svg_node *shape = c, *cut_node[2] = { c, NULL };
+        frame sf = cf, cut_frame[2];
+        sf.st.clip = NULL;
         doc->line = c->line;
         apply_cascade(doc, c, &sf.st);
         tr = attr(c->atts, "transform");
         if (tr && parse_transform(tr, &t)) {
             sf.m = mat_mul(sf.m, t);
         }
+        cut_frame[0] = sf;
         if (strcmp(c->name, "use") == 0) {
             const char *href = href_of(c);
             shape = href ? reference(doc, href, NULL) : NULL;
-            double x = 0, y = 0;
-            if (!shape || !length_attr(doc, &sf, "x", attr(c->atts, "x"), &x) ||
-                !length_attr(doc, &sf, "y", attr(c->atts, "y"), &y)) {
+            if (!shape || !use_offset(doc, c, &sf, &t)) {
                 continue;
             }
-            sf.m = mat_mul(sf.m, (mat2d){ 1, 0, 0, 1, x, y });
+            sf.m = mat_mul(sf.m, t);
+            cut_frame[0] = sf;
+            sf.st.clip = NULL;
             apply_cascade(doc, shape, &sf.st);
             tr = attr(shape->atts, "transform");
             if (tr && parse_transform(tr, &t)) {
                 sf.m = mat_mul(sf.m, t);
             }
+            cut_node[1] = shape;
+            cut_frame[1] = sf;
         }
-        if (is_shape(shape->name)) {
-            clip_shape(doc, shape, &sf, mask, mask + (size_t)w * (size_t)h);
+        if (!is_shape(shape->name) || !clip_shape(doc, shape, &sf, cov)) {
+            continue;
+        }
+        for (int k = 0; k < 2 && doc->status == SR_OK; k++) {
+            if (cut_node[k] && cut_frame[k].st.clip) {
+                uint8_t *cut = clip_mask(doc, (svg_node *)cut_frame[k].st.clip, cut_node[k],
+                                         &cut_frame[k]);
+                multiply_coverage(cov, cut, doc);
+                free(cut);
+            }
+        }
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+            unsigned a = mask[i], b = cov[i];
+            mask[i] = (uint8_t)(a + b - (a * b + 127) / 255);
         }
     }
     /* A clip path clipped in turn: the two coverages multiply. */
     if (cf.st.clip && doc->status == SR_OK) {
-        if (clip->active || cf.st.clip == clip) {
-            svg_fail(doc, SR_BAD_FORMAT, "clip-path: reference cycle through \"#%s\"",
-                     clip->id ? clip->id : "");
-        } else {
-            clip->active = true;
-            uint8_t *outer = clip_mask(doc, (svg_node *)cf.st.clip, node, f);
-            clip->active = false;
-            multiply_coverage(mask, outer, doc);
-            free(outer);
-        }
+        uint8_t *outer = clip_mask(doc, (svg_node *)cf.st.clip, node, f);
+        multiply_coverage(mask, outer, doc);
+        free(outer);
     }
+    clip->active = false;
+    doc->draw_depth--;
     if (doc->status != SR_OK) {
         free(mask);
         return NULL;
@@ -3427,8 +3462,9 @@ static void draw_symbol(svg_doc *doc, svg_node *use, svg_node *symbol, frame *f)
     symbol->active = false;
 }
 
-/* <use href="#id" x y>: the element drawn as a child of the use, moved by
- * (x, y); a reference back into the chain being drawn is refused. */
+/* <use href="#id">: the element drawn as a child of the use (its frame
+ * moved by x and y already, draw_node); a reference back into the chain
+ * being drawn is refused. */
 static void draw_use(svg_doc *doc, svg_node *node, frame *f)
 {
     const char *href = attr(node->atts, "href");
@@ -3447,12 +3483,6 @@ static void draw_use(svg_doc *doc, svg_node *node, frame *f)
         svg_fail(doc, SR_BAD_FORMAT, "use: reference cycle through \"%s\"", href);
         return;
     }
-    double x, y;
-    if (!length_attr(doc, f, "x", attr(node->atts, "x"), &x) ||
-        !length_attr(doc, f, "y", attr(node->atts, "y"), &y)) {
-        return;
-    }
-    f->m = mat_mul(f->m, (mat2d){ 1, 0, 0, 1, x, y });
     node->active = true;
     if (strcmp(target->name, "symbol") == 0) {
         draw_symbol(doc, node, target, f);
@@ -3514,6 +3544,13 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
             return;
         }
         f.m = mat_mul(f.m, about_origin(t, &f.st, &f));
+    }
+    mat2d moved;
+    if (use) {
+        if (!use_offset(doc, node, &f, &moved)) {
+            return;
+        }
+        f.m = mat_mul(f.m, moved);
     }
     /* A nested svg: a new viewport, which clips what it holds unless
      * its overflow is visible; one of no area shows nothing. */
