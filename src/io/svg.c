@@ -2395,15 +2395,56 @@ static bool language_matches(const char *tag, size_t n)
     return n >= k && strncasecmp(tag, SVG_LANGUAGE, k) == 0 && (n == k || tag[k] == '-');
 }
 
+/* The SVG 1.1 feature strings (its appendix A) of what the reader draws:
+ * not text, fonts, filters, foreignObject, colour profiles,
+ * enable-background, the clip property or the dynamic features. */
+static const char *const features[] = {
+    "BasicClip", "BasicGraphicsAttribute", "BasicPaintAttribute", "BasicStructure", "Clip",
+    "ConditionalProcessing", "CoreAttribute", "Gradient", "Image", "Marker", "Mask",
+    "OpacityAttribute", "Pattern", "Shape", "Structure", "Style", "XlinkAttribute", NULL,
+};
+
+/* Whether the feature string of n bytes is one of features[]. */
+static bool feature_supported(const char *f, size_t n)
+{
+    static const char prefix[] = "http://www.w3.org/TR/SVG11/feature#";
+    size_t k = sizeof prefix - 1;
+    if (n <= k || strncmp(f, prefix, k) != 0) {
+        return false;
+    }
+    for (int i = 0; features[i]; i++) {
+        if (strlen(features[i]) == n - k && strncmp(f + k, features[i], n - k) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
 /* The conditional processing attributes: systemLanguage (a comma list of
  * language tags, one of which must match), requiredExtensions (none is
- * supported, so any list fails) and requiredFeatures (SVG 2 drops it:
- * true). */
+ * supported, so any list fails) and requiredFeatures (a list of feature
+ * strings, all of which must be supported; SVG 2 drops the attribute,
+ * but SVG 1.1 drawings use it to offer a fallback for what a renderer
+ * lacks, such as text).  An empty list fails, as SVG 1.1 says. */
 static bool conditions_hold(const svg_node *node)
 {
     const char *ext = attr(node->atts, "requiredExtensions");
     if (ext) {
         return false;
+    }
+    const char *feat = attr(node->atts, "requiredFeatures");
+    if (feat) {
+        const char *s = skip_ws(feat);
+        if (!*s) {
+            return false;
+        }
+        for (; *s; s = skip_ws(s)) {
+            size_t n = strcspn(s, " \t\r\n");
+            if (!feature_supported(s, n)) {
+                return false;
+            }
+            s += n;
+        }
     }
     const char *lang = attr(node->atts, "systemLanguage");
     if (!lang) {
