@@ -3126,11 +3126,12 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
     if (!work_within_budget(doc, (double)w * h)) {
         return NULL;
     }
-    uint8_t *mask = calloc((size_t)w * (size_t)h, 2), *cov = mask + (size_t)w * (size_t)h;
+    uint8_t *mask = calloc((size_t)w * (size_t)h, 2);
     if (!mask) {
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
+    uint8_t *cov = mask + (size_t)w * (size_t)h; /* a child's coverage */
     cf.st.own_opacity = 1;
     cf.st.clip = NULL;
     apply_cascade(doc, clip, &cf.st);
