@@ -125,8 +125,8 @@ SR_TEST(units_are_read_in_any_case)
         SKIP("built without expat");
     }
     /* The same drawing with its units in lower and in mixed or upper
-     * case, in attributes, style="" and a sheet: the same pixels, and no
-     * warning. */
+     * case, in attributes, style="" and a sheet, and an angle: the same
+     * pixels, and no warning. */
     static const char form[] =
         "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>"
         "<style>#c { stroke-width: 3%s }</style>"
@@ -134,16 +134,19 @@ SR_TEST(units_are_read_in_any_case)
         "<circle id='c' cx='40' cy='20' r='1%s' fill='none' stroke='#0a0'/>"
         "<line x1='2' y1='50' x2='60' y2='50' stroke='#f00' style='stroke-width: 0.1%s'/>"
         "<line x1='2' y1='60' x2='60' y2='60' stroke='#f0f' stroke-width='0.05%s'/>"
+        "<marker id='m' markerWidth='4' markerHeight='8' orient='90%s'>"
+        "<rect width='4' height='8' fill='#00f'/></marker>"
+        "<path d='M40 40 L60 40' stroke='#000' marker-start='url(#m)'/>"
         "</svg>";
-    static const char *const cases[][8] = {
-        { "pt", "px", "in", "mm", "pc", "em", "cm", "in" },
-        { "PT", "PX", "IN", "Mm", "pC", "EM", "CM", "In" },
+    static const char *const cases[][9] = {
+        { "pt", "px", "in", "mm", "pc", "em", "cm", "in", "deg" },
+        { "PT", "PX", "IN", "Mm", "pC", "EM", "CM", "In", "DEG" },
     };
     sr_framebuffer *fb[2];
     for (int i = 0; i < 2; i++) {
         const char *const *u = cases[i];
         char svg[1024];
-        snprintf(svg, sizeof svg, form, u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7]);
+        snprintf(svg, sizeof svg, form, u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7], u[8]);
         sr_test_warnings w;
         fb[i] = render(svg, &w);
         CHECK_EQ(w.count, 0);
@@ -151,6 +154,7 @@ SR_TEST(units_are_read_in_any_case)
     REQUIRE(fb[0] && fb[1]);
     CHECK(!white(fb[0], 5, 30)); /* the rect: x 1 to 12.3, y 24 to 56 */
     CHECK(white(fb[0], 5, 20));
+    CHECK(!white(fb[0], 38, 41)); /* the marker turned 90 degrees: x 32 to 40, y 40 to 44 */
     size_t n = (size_t)sr_framebuffer_width(fb[0]) * (size_t)sr_framebuffer_height(fb[0]) * 4;
     CHECK(memcmp(sr_framebuffer_pixels(fb[0]), sr_framebuffer_pixels(fb[1]), n) == 0);
     sr_destroy_framebuffer(sr_test_ctx(), fb[0]);
