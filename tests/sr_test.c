@@ -77,6 +77,14 @@ static void destroy_test_context(void)
     sr_destroy_context(test_ctx);
 }
 
+void sr_test_collect_warning(void *user, const char *message)
+{
+    sr_test_warnings *w = user;
+    w->count++;
+    size_t n = strlen(w->text);
+    snprintf(w->text + n, sizeof w->text - n, "%s|", message);
+}
+
 sr_context *sr_test_ctx(void)
 {
     if (!test_ctx) {

@@ -33,6 +33,14 @@ const char *sr_test_out_dir(void);
  * on first use, destroyed at exit). */
 struct sr_context;
 struct sr_context *sr_test_ctx(void);
+/* Warnings a reader hands its callback (sr_svg_desc.warn): how many, and
+ * their text, each followed by '|' (cut at the buffer's end). */
+typedef struct sr_test_warnings {
+    int count;
+    char text[2048];
+} sr_test_warnings;
+/* The callback; user is an sr_test_warnings. */
+void sr_test_collect_warning(void *user, const char *message);
 /* Source tree's tests/ directory (reference images, data). */
 const char *sr_test_src_dir(void);
 /* A whole file, malloc'd (free it), or NULL when it cannot be opened. */

@@ -51,19 +51,6 @@ SR_TEST(render_file_draws_what_the_command_writes)
     sr_destroy_context(ctx);
 }
 
-typedef struct warnings {
-    int count;
-    char text[2048];
-} warnings;
-
-static void collect(void *user, const char *message)
-{
-    warnings *w = user;
-    w->count++;
-    size_t n = strlen(w->text);
-    snprintf(w->text + n, sizeof w->text - n, "%s|", message);
-}
-
 SR_TEST(warnings_reach_the_callback_once_per_name)
 {
     if (!sr_io_have_svg()) {
@@ -73,12 +60,13 @@ SR_TEST(warnings_reach_the_callback_once_per_name)
                               "<rect width='4' height='4' filter='x'/>\n</svg>\n";
     sr_context *ctx = make_ctx();
     REQUIRE(ctx);
-    warnings w = { 0 };
+    sr_test_warnings w = { 0 };
     sr_framebuffer *fb = NULL;
     sr_svg_info info;
     sr_io_error err;
     CHECK_EQ(sr_render_svg(ctx, doc, sizeof doc - 1,
-                           &(sr_svg_desc){ .name = "w.svg", .warn = collect, .warn_user = &w },
+                           &(sr_svg_desc){ .name = "w.svg", .warn = sr_test_collect_warning,
+                                           .warn_user = &w },
                            &fb, &info, &err),
              SR_OK);
     CHECK_EQ(w.count, 2);
@@ -103,12 +91,12 @@ SR_TEST(failures_are_results_with_file_and_line)
     REQUIRE(ctx);
     sr_framebuffer *fb = (sr_framebuffer *)&fb; /* must come back NULL */
     sr_io_error err;
-    static const char bad[] = "<svg width='8' height='8'>\n<path d='M 0 0 L 1'/>\n</svg>";
+    static const char bad[] = "<svg width='8' height='8'>\n<circle r='1q'/>\n</svg>";
     CHECK_EQ(sr_render_svg(ctx, bad, sizeof bad - 1, &(sr_svg_desc){ .name = "bad.svg" }, &fb,
                            NULL, &err),
              SR_BAD_FORMAT);
     CHECK(fb == NULL);
-    CHECK_STR_CONTAINS(err.message, "bad.svg:2: path data: expected a number");
+    CHECK_STR_CONTAINS(err.message, "bad.svg:2: r=\"1q\" is not a length");
     static const char xml[] = "<svg width='8' height='8'>\n<g>\n</svg>";
     CHECK_EQ(sr_render_svg(ctx, xml, sizeof xml - 1, NULL, &fb, NULL, &err), SR_BAD_FORMAT);
     CHECK_STR_CONTAINS(err.message, "<svg>:3: ");

@@ -17,9 +17,10 @@
  * Supported: see the table in docs/draw2d.md.  Group opacity and clip
  * paths draw the element into a layer of its own, composited after.
  * Anything else is skipped with one warning per name.
- * Malformed XML, path data or numbers, and drawings beyond the limits of
+ * Malformed XML or numbers, and drawings beyond the limits of
  * softrast_io.h (bounded work): one line "NAME:LINE: what is wrong" in the
- * sr_io_error and no image.  Warnings go to the caller's callback.
+ * sr_io_error and no image; path data in error is drawn up to the error,
+ * as SVG asks, with a warning.  Warnings go to the caller's callback.
  * One document per call; nothing global, so calls may run in parallel on
  * different contexts. */
 #include "io/svg.h"
@@ -224,11 +225,13 @@ static void lib_fail(svg_doc *doc, sr_result r)
              sr_context_error(doc->ctx));
 }
 
-/* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", once per name.
- * After MAX_WARNED different names, one last line says the rest are not
- * shown: a document of a million unknown elements gets 65 lines, not a
- * million. */
-static void warn_once(svg_doc *doc, const char *kind, const char *name)
+/* "FILE:LINE: warning: TEXT", once per key.  After MAX_WARNED different
+ * keys, one last line says the rest are not shown: a document of a
+ * million unknown elements gets 65 lines, not a million. */
+static void warn_keyed(svg_doc *doc, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static void warn_keyed(svg_doc *doc, const char *key, const char *fmt, ...)
 {
     /* an SVG image's warnings count once for the whole drawing */
     svg_doc *top = doc;
@@ -241,8 +244,6 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
     if (doc->warnings_capped) {
         return;
     }
-    char key[128];
-    snprintf(key, sizeof key, "%s %s", kind, name);
     for (int i = 0; i < doc->n_warned; i++) {
         if (strcmp(doc->warned[i], key) == 0) {
             return;
@@ -259,13 +260,26 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
         if (doc->warned[doc->n_warned]) {
             doc->n_warned++;
         }
-        snprintf(line, sizeof line, "%s:%lu: warning: unsupported %s '%s' skipped", file, at,
-                 kind, name);
+        int n = snprintf(line, sizeof line, "%s:%lu: warning: ", file, at);
+        if (n >= 0 && (size_t)n < sizeof line) {
+            va_list ap;
+            va_start(ap, fmt);
+            vsnprintf(line + n, sizeof line - (size_t)n, fmt, ap);
+            va_end(ap);
+        }
     }
     doc->warnings++;
     if (doc->opt->warn) {
         doc->opt->warn(doc->opt->warn_user, line);
     }
+}
+
+/* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", once per name. */
+static void warn_once(svg_doc *doc, const char *kind, const char *name)
+{
+    char key[128];
+    snprintf(key, sizeof key, "%.60s %.60s", kind, name);
+    warn_keyed(doc, key, "unsupported %s '%s' skipped", kind, name);
 }
 
 /* ---- numbers, lengths, lists ----------------------------------------------------- */
@@ -299,9 +313,10 @@ static bool parse_number(const char **s, double *out)
     return true;
 }
 
-/* A length: number with an optional unit; 96 px per inch, em and ex of
- * the initial font (16 px; ex half of it: no font is read).  *percent is
- * set (and the number returned as is) for "%". */
+/* A length: number with an optional unit, in any case as CSS reads units
+ * (SVG 2 reads presentation attributes as CSS too: 20PX, 1In); 96 px per
+ * inch, em and ex of the initial font (16 px; ex half of it: no font is
+ * read).  *percent is set (and the number returned as is) for "%". */
 static bool parse_length(const char *s, double *out, bool *percent)
 {
     s = skip_ws(s);
@@ -325,7 +340,7 @@ static bool parse_length(const char *s, double *out, bool *percent)
     }
     for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
         size_t n = strlen(units[i].unit);
-        if (strncmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+        if (strncasecmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
             *out *= units[i].px;
             return true;
         }
@@ -1105,7 +1120,28 @@ static bool add_vertex(svg_doc *doc, const sr_path *path, char kind)
     return true;
 }
 
-/* Parse d="..." into the path; false after reporting an error. */
+/* An error in path data or a points list: SVG draws the path up to the
+ * last command (point) before it and drops the rest (SVG 1.1 F.2 and
+ * SVG 2's path error handling), so the path built so far stands and the
+ * error is a warning, once per element and place. */
+static void path_data_error(svg_doc *doc, const char *what, long offset, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static void path_data_error(svg_doc *doc, const char *what, long offset, const char *fmt, ...)
+{
+    char detail[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(detail, sizeof detail, fmt, ap);
+    va_end(ap);
+    char key[128];
+    snprintf(key, sizeof key, "%s error %lu:%ld %s", what, msg_line(doc), offset, doc->file);
+    warn_keyed(doc, key, "%s: %s at offset %ld; drawn up to there", what, detail, offset);
+}
+
+/* Parse d="..." into the path: false after reporting a failure (a
+ * coordinate the library refuses, a limit passed); an error in the data
+ * itself ends the path there with a warning. */
 static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
 {
     path_build b = { .path = path };
@@ -1115,14 +1151,12 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
         if (isalpha((unsigned char)*s)) {
             cmd = *s++;
             if (!args_for((char)toupper((unsigned char)cmd)) && toupper((unsigned char)cmd) != 'Z') {
-                svg_fail(doc, SR_BAD_FORMAT, "path data: unknown command '%c' at offset %ld", cmd,
-                         (long)(s - 1 - d));
-                return false;
+                path_data_error(doc, "path data", (long)(s - 1 - d), "unknown command '%c'", cmd);
+                return true;
             }
             if (!b.started && toupper((unsigned char)cmd) != 'M') {
-                svg_fail(doc, SR_BAD_FORMAT, "path data must start with a moveto (offset %ld)",
-                         (long)(s - 1 - d));
-                return false;
+                path_data_error(doc, "path data", (long)(s - 1 - d), "no moveto first");
+                return true;
             }
             if (toupper((unsigned char)cmd) == 'Z') {
                 sr_result r = path_command(&b, cmd, NULL);
@@ -1137,11 +1171,11 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
                 continue;
             }
         } else if (!cmd || toupper((unsigned char)cmd) == 'Z') {
-            svg_fail(doc, SR_BAD_FORMAT, "path data: expected a command at offset %ld",
-                     (long)(s - d));
-            return false;
+            path_data_error(doc, "path data", (long)(s - d), "expected a command");
+            return true;
         }
-        /* One set of arguments (commands repeat implicitly). */
+        /* One set of arguments (commands repeat implicitly); a set cut
+         * short by an error draws nothing. */
         char up = (char)toupper((unsigned char)cmd);
         double a[7];
         int n = args_for(up);
@@ -1149,15 +1183,13 @@ static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
             s = skip_ws(s);
             if (up == 'A' && (i == 3 || i == 4)) { /* flags: a single 0 or 1 */
                 if (*s != '0' && *s != '1') {
-                    svg_fail(doc, SR_BAD_FORMAT, "path data: arc flag must be 0 or 1 at offset %ld",
-                             (long)(s - d));
-                    return false;
+                    path_data_error(doc, "path data", (long)(s - d), "arc flag not 0 or 1");
+                    return true;
                 }
                 a[i] = *s++ - '0';
             } else if (!parse_number(&s, &a[i])) {
-                svg_fail(doc, SR_BAD_FORMAT, "path data: expected a number at offset %ld",
-                         (long)(s - d));
-                return false;
+                path_data_error(doc, "path data", (long)(s - d), "expected a number");
+                return true;
             }
             s = skip_ws_comma(s);
         }
@@ -1865,9 +1897,8 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
     while (*s) {
         double x, y;
         if (!parse_number(&s, &x) || !parse_number((s = skip_ws_comma(s), &s), &y)) {
-            svg_fail(doc, SR_BAD_FORMAT, "%s: points: expected a coordinate pair at offset %ld",
-                     name, (long)(s - pts));
-            return false;
+            path_data_error(doc, name, (long)(s - pts), "points: expected a coordinate pair");
+            break;
         }
         s = skip_ws_comma(s);
         bool first = n++ == 0;
@@ -2370,15 +2401,56 @@ static bool language_matches(const char *tag, size_t n)
     return n >= k && strncasecmp(tag, SVG_LANGUAGE, k) == 0 && (n == k || tag[k] == '-');
 }
 
+/* The SVG 1.1 feature strings (its appendix A) of what the reader draws:
+ * not text, fonts, filters, foreignObject, colour profiles,
+ * enable-background, the clip property or the dynamic features. */
+static const char *const features[] = {
+    "BasicClip", "BasicGraphicsAttribute", "BasicPaintAttribute", "BasicStructure", "Clip",
+    "ConditionalProcessing", "CoreAttribute", "Gradient", "Image", "Marker", "Mask",
+    "OpacityAttribute", "Pattern", "Shape", "Structure", "Style", "XlinkAttribute", NULL,
+};
+
+/* Whether the feature string of n bytes is one of features[]. */
+static bool feature_supported(const char *f, size_t n)
+{
+    static const char prefix[] = "http://www.w3.org/TR/SVG11/feature#";
+    size_t k = sizeof prefix - 1;
+    if (n <= k || strncmp(f, prefix, k) != 0) {
+        return false;
+    }
+    for (int i = 0; features[i]; i++) {
+        if (strlen(features[i]) == n - k && strncmp(f + k, features[i], n - k) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
 /* The conditional processing attributes: systemLanguage (a comma list of
  * language tags, one of which must match), requiredExtensions (none is
- * supported, so any list fails) and requiredFeatures (SVG 2 drops it:
- * true). */
+ * supported, so any list fails) and requiredFeatures (a list of feature
+ * strings, all of which must be supported; SVG 2 drops the attribute,
+ * but SVG 1.1 drawings use it to offer a fallback for what a renderer
+ * lacks, such as text).  An empty list fails, as SVG 1.1 says. */
 static bool conditions_hold(const svg_node *node)
 {
     const char *ext = attr(node->atts, "requiredExtensions");
     if (ext) {
         return false;
+    }
+    const char *feat = attr(node->atts, "requiredFeatures");
+    if (feat) {
+        const char *s = skip_ws(feat);
+        if (!*s) {
+            return false;
+        }
+        for (; *s; s = skip_ws(s)) {
+            size_t n = strcspn(s, " \t\r\n");
+            if (!feature_supported(s, n)) {
+                return false;
+            }
+            s += n;
+        }
     }
     const char *lang = attr(node->atts, "systemLanguage");
     if (!lang) {
@@ -2435,7 +2507,8 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
 /* ---- markers ----------------------------------------------------------------------- */
 
 
-/* An angle: a number of degrees, or with deg, rad, grad or turn. */
+/* An angle: a number of degrees, or with deg, rad, grad or turn (in any
+ * case, as CSS reads units). */
 static bool parse_angle(const char *v, double *deg)
 {
     static const struct { const char *unit; double deg; } units[] = {
@@ -2447,7 +2520,7 @@ static bool parse_angle(const char *v, double *deg)
     }
     for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
         size_t n = strlen(units[i].unit);
-        if (strncmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+        if (strncasecmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
             *deg *= units[i].deg;
             return true;
         }
@@ -2839,13 +2912,13 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
 
 /* ---- clipping and layers ------------------------------------------------------------- */
 
-/* Add the coverage of one clip shape to the mask: union, a + b - ab. */
-static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *mask,
-                       uint8_t *scratch)
+/* The coverage of one clip shape, with its clip-rule, into cov (the
+ * image's size); false when it covers nothing or after a failure. */
+static bool clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *cov)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     double tol;
-    bool fillable;
+    bool fillable, drawn = false;
     sr_path *p = f->st.display_none || f->st.invisible
                      ? NULL : shape_at_scale(doc, shape, f, &tol, &fillable);
     sr_point2 *pts;
@@ -2855,20 +2928,31 @@ static void clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint
         poly.points = pts;
         sr_fill_desc desc = { .rule = f->st.clip_rule,
                               .antialias = f->st.crisp ? SR_AA_NONE : SR_AA_AREA };
-        sr_result r = sr_polygon_coverage(doc->ctx, &poly, &desc, 0, 0, w, h, scratch, (size_t)w);
+        sr_result r = sr_polygon_coverage(doc->ctx, &poly, &desc, 0, 0, w, h, cov, (size_t)w);
         free(pts);
         if (r != SR_OK) {
             lib_fail(doc, r);
-        } else {
-            for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
-                unsigned a = mask[i], b = scratch[i];
-                mask[i] = (uint8_t)(a + b - (a * b + 127) / 255);
-            }
         }
+        drawn = r == SR_OK;
     }
     if (p) {
         sr_destroy_path(doc->ctx, p);
     }
+    return drawn;
+}
+
+/* A use's x and y as the translation SVG appends to its transform: its
+ * clip path, mask and bounding box are in the moved user space.  False
+ * after reporting a malformed one. */
+static bool use_offset(svg_doc *doc, const svg_node *use, const frame *f, mat2d *out)
+{
+    double x = 0, y = 0;
+    if (!length_attr(doc, f, "x", attr(use->atts, "x"), &x) ||
+        !length_attr(doc, f, "y", attr(use->atts, "y"), &y)) {
+        return false;
+    }
+    *out = (mat2d){ 1, 0, 0, 1, x, y };
+    return true;
 }
 
 /* Grow the box b[4] = x0, y0, x1, y1 to hold q.  Comparisons, which skip a
@@ -2917,23 +3001,21 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
             sr_destroy_path(doc->ctx, p);
         }
     } else {
+        /* m holds a use's own x and y (use_offset), as it holds its
+         * transform */
         bool use = strcmp(n->name, "use") == 0;
         svg_node *c = use ? (href_of(n) ? reference(doc, href_of(n), NULL) : NULL) : n->first;
-        mat2d base = m;
-        if (use) {
-            double x = 0, y = 0;
-            length_attr(doc, f, "x", attr(n->atts, "x"), &x);
-            length_attr(doc, f, "y", attr(n->atts, "y"), &y);
-            base = mat_mul(m, (mat2d){ 1, 0, 0, 1, x, y });
-        }
         for (; c && doc->status == SR_OK; c = use ? NULL : c->next) {
-            mat2d t = IDENTITY;
+            mat2d t = IDENTITY, o;
             const char *tr = attr(c->atts, "transform");
             if (tr && !parse_transform(tr, &t)) {
                 continue;
             }
+            if (strcmp(c->name, "use") == 0 && !use && use_offset(doc, c, f, &o)) {
+                t = mat_mul(t, o);
+            }
             if (is_shape(c->name) || !is_named(c, not_drawn)) {
-                bbox_add(doc, c, f, mat_mul(base, t), b);
+                bbox_add(doc, c, f, mat_mul(m, t), b);
             }
         }
     }
@@ -3017,11 +3099,21 @@ static uint8_t *rect_coverage(svg_doc *doc, const double r[4], const frame *f)
 }
 
 /* The coverage of a clipPath for an element drawn under frame f: its
- * shapes (and uses of shapes) with their clip-rule, in the element's
- * user space.  NULL with a warning for what is not supported (units of
- * the bounding box), or after a failure. */
+ * shapes (and uses of shapes) with their clip-rule, each cut by its own
+ * clip-path, in the element's user space, then cut by the clipPath's
+ * own clip-path; NULL after a failure (a cycle, nesting deeper than
+ * MAX_DEPTH, a budget passed). */
 static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const frame *f)
 {
+    if (clip->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "clip-path: reference cycle through \"#%s\"",
+                 clip->id ? clip->id : "");
+        return NULL;
+    }
+    if (doc->draw_depth + 1 >= MAX_DEPTH) {
+        svg_fail(doc, SR_BAD_FORMAT, "clip paths nested deeper than %d", MAX_DEPTH);
+        return NULL;
+    }
     frame cf = *f;
     const char *units = attr(clip->atts, "clipPathUnits");
     if (units && strcmp(units, "objectBoundingBox") == 0) {
@@ -3045,6 +3137,7 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return NULL;
     }
+    uint8_t *cov = mask + (size_t)w * (size_t)h; /* a child's coverage */
     cf.st.own_opacity = 1;
     cf.st.clip = NULL;
     apply_cascade(doc, clip, &cf.st);
@@ -3053,47 +3146,63 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
     if (tr && parse_transform(tr, &t)) {
         cf.m = mat_mul(cf.m, t);
     }
+    clip->active = true;
+    doc->draw_depth++;
     for (svg_node *c = clip->first; c && doc->status == SR_OK; c = c->next) {
-        svg_node *shape = c;
-        frame sf = cf;
+        /* Each child is cut by its own clip-path, and a use also by its
+         * shape's, each in the user space of its element, before the
+         * union: a + b - ab. */
+        svg_node *shape = c, *cut_node[2] = { c, NULL };
+        frame sf = cf, cut_frame[2];
+        sf.st.clip = NULL;
         doc->line = c->line;
         apply_cascade(doc, c, &sf.st);
         tr = attr(c->atts, "transform");
         if (tr && parse_transform(tr, &t)) {
             sf.m = mat_mul(sf.m, t);
         }
+        cut_frame[0] = sf;
         if (strcmp(c->name, "use") == 0) {
             const char *href = href_of(c);
             shape = href ? reference(doc, href, NULL) : NULL;
-            double x = 0, y = 0;
-            if (!shape || !length_attr(doc, &sf, "x", attr(c->atts, "x"), &x) ||
-                !length_attr(doc, &sf, "y", attr(c->atts, "y"), &y)) {
+            if (!shape || !use_offset(doc, c, &sf, &t)) {
                 continue;
             }
-            sf.m = mat_mul(sf.m, (mat2d){ 1, 0, 0, 1, x, y });
+            sf.m = mat_mul(sf.m, t);
+            cut_frame[0] = sf;
+            sf.st.clip = NULL;
             apply_cascade(doc, shape, &sf.st);
             tr = attr(shape->atts, "transform");
             if (tr && parse_transform(tr, &t)) {
                 sf.m = mat_mul(sf.m, t);
             }
+            cut_node[1] = shape;
+            cut_frame[1] = sf;
         }
-        if (is_shape(shape->name)) {
-            clip_shape(doc, shape, &sf, mask, mask + (size_t)w * (size_t)h);
+        if (!is_shape(shape->name) || !clip_shape(doc, shape, &sf, cov)) {
+            continue;
+        }
+        for (int k = 0; k < 2 && doc->status == SR_OK; k++) {
+            if (cut_node[k] && cut_frame[k].st.clip) {
+                uint8_t *cut = clip_mask(doc, (svg_node *)cut_frame[k].st.clip, cut_node[k],
+                                         &cut_frame[k]);
+                multiply_coverage(cov, cut, doc);
+                free(cut);
+            }
+        }
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++) {
+            unsigned a = mask[i], b = cov[i];
+            mask[i] = (uint8_t)(a + b - (a * b + 127) / 255);
         }
     }
     /* A clip path clipped in turn: the two coverages multiply. */
     if (cf.st.clip && doc->status == SR_OK) {
-        if (clip->active || cf.st.clip == clip) {
-            svg_fail(doc, SR_BAD_FORMAT, "clip-path: reference cycle through \"#%s\"",
-                     clip->id ? clip->id : "");
-        } else {
-            clip->active = true;
-            uint8_t *outer = clip_mask(doc, (svg_node *)cf.st.clip, node, f);
-            clip->active = false;
-            multiply_coverage(mask, outer, doc);
-            free(outer);
-        }
+        uint8_t *outer = clip_mask(doc, (svg_node *)cf.st.clip, node, f);
+        multiply_coverage(mask, outer, doc);
+        free(outer);
     }
+    clip->active = false;
+    doc->draw_depth--;
     if (doc->status != SR_OK) {
         free(mask);
         return NULL;
@@ -3433,8 +3542,9 @@ static void draw_symbol(svg_doc *doc, svg_node *use, svg_node *symbol, frame *f)
     symbol->active = false;
 }
 
-/* <use href="#id" x y>: the element drawn as a child of the use, moved by
- * (x, y); a reference back into the chain being drawn is refused. */
+/* <use href="#id">: the element drawn as a child of the use (its frame
+ * moved by x and y already, draw_node); a reference back into the chain
+ * being drawn is refused. */
 static void draw_use(svg_doc *doc, svg_node *node, frame *f)
 {
     const char *href = attr(node->atts, "href");
@@ -3453,12 +3563,6 @@ static void draw_use(svg_doc *doc, svg_node *node, frame *f)
         svg_fail(doc, SR_BAD_FORMAT, "use: reference cycle through \"%s\"", href);
         return;
     }
-    double x, y;
-    if (!length_attr(doc, f, "x", attr(node->atts, "x"), &x) ||
-        !length_attr(doc, f, "y", attr(node->atts, "y"), &y)) {
-        return;
-    }
-    f->m = mat_mul(f->m, (mat2d){ 1, 0, 0, 1, x, y });
     node->active = true;
     if (strcmp(target->name, "symbol") == 0) {
         draw_symbol(doc, node, target, f);
@@ -3520,6 +3624,13 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
             return;
         }
         f.m = mat_mul(f.m, about_origin(t, &f.st, &f));
+    }
+    mat2d moved;
+    if (use) {
+        if (!use_offset(doc, node, &f, &moved)) {
+            return;
+        }
+        f.m = mat_mul(f.m, moved);
     }
     /* A nested svg: a new viewport, which clips what it holds unless
      * its overflow is visible; one of no area shows nothing. */
