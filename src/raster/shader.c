@@ -77,13 +77,9 @@ static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsign
     v4d z = depth4(ds, j->t, (double)u[1] + j->so4[0], (double)u[2] + j->so4[1]);
     /* Non-negative and below 2^24: truncation is the scalar (uint32_t) cast. */
     v4i q = __builtin_convertvector(z + 0.5, v4i);
-    v4i d = sr__depth_load4(ds->fb, base);
     v4i lanes = { (int32_t)(cover & 1u), (int32_t)(cover >> 1 & 1u), (int32_t)(cover >> 2 & 1u),
                   (int32_t)(cover >> 3 & 1u) };
-    v4i pass = (lanes != 0) & (q < d);
-    d = (pass & q) | (~pass & d);
-    sr__depth_store4(ds->fb, base, d);
-    return lane_bits(pass);
+    return lane_bits(sr__depth_less4(ds->fb, base, q, lanes != 0));
 }
 
 /* test4 for a quad's four pixels of one sample each, the covered ones

@@ -124,13 +124,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
             z = SR_SIMD_FN(sel_d)(z <= zmax, z, zmax);
         }
         v4i q = __builtin_convertvector(z + 0.5, v4i);   /* < 2^24: fits int32 */
-        v4i old = sr__depth_load4(fb, idx);
-        m &= q < old;
+        m = sr__depth_less4(fb, idx, q, m);
         if (!SR_SIMD_FN(bits)(m)) {
             return;
         }
-        v4i nd = SR_SIMD_FN(sel_i)(m, q, old);
-        sr__depth_store4(fb, idx, nd);
     }
 
     v4i rgba;
