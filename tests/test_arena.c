@@ -262,8 +262,8 @@ SR_TEST(an_exhausted_arena_fails_cleanly)
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &heap) == SR_OK);
     REQUIRE(sr_make_teapot(heap, 8, &pot) == SR_OK);
     /* Room for the draw scratch and a band of a few rows, not for a
-     * whole-frame band (its color and depth alone take 600 KiB). */
-    enum { SIZE = 512 * 1024 };
+     * whole-frame band (its color and D16 depth alone take 450 KiB). */
+    enum { SIZE = 384 * 1024 };
     uint8_t *arena = malloc(SIZE);
     frame f = { .pot = &pot, .image = malloc(W * H * 4), .bpp = 4 };
     REQUIRE(arena && f.image);
