@@ -37,6 +37,7 @@ typedef struct bench_opts {
     bool compare;
     bool gl_default_malloc;  /* leave glibc's thresholds as they are (see keep_gl_memory) */
     const char *save_dir;
+    const char *paints;      /* shapes2d: the paints to time (NULL: all) */
 } bench_opts;
 
 typedef struct bench_run {
@@ -55,7 +56,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
         "usage: softrast-bench [SCENE...] [--threads N] [--size WxH] [--frames N]\n"
-        "                      [--compare] [--save-images DIR]\n"
+        "                      [--compare] [--save-images DIR] [--paint LIST]\n"
         "\n"
         "Times each SCENE (all of them when none is given).  The first line says\n"
         "when and where:  date=YYYY-MM-DDTHH:MM:SSZ cpu=MODEL (the rest of the line);\n"
@@ -80,8 +81,8 @@ static void usage(FILE *f)
         "                       a 4-sample FBO blitted to the buffer)\n"
         "  polyfill, polyfill_aa  a 10,000-edge 2D polygon, aliased and antialiased\n"
         "  shapes2d             Blend2D bl_bench-like batches: rect, poly10/20/40, curves;\n"
-        "                       8-256 px; solid, linear, radial paint; softrast renders\n"
-        "                       each batch as SVG (--compare: cairo draws it);\n"
+        "                       8-256 px; solid, linear, radial, pattern paint; softrast\n"
+        "                       renders each batch as SVG (--compare: cairo draws it);\n"
         "                       --frames counts at most 5 per case\n"
         "  icons                every 16th SVG of $SR_BENCH_ICONS (default %s),\n"
         "                       each rendered and written as PNG in this process, then by\n"
@@ -110,6 +111,8 @@ static void usage(FILE *f)
         "                       llvmpipe then hands its per-frame memory back to the\n"
         "                       kernel and faults it in again every frame (see docs)\n"
         "  --save-images DIR    write DIR/SCENE-RENDERER.png (the last frame)\n"
+        "  --paint LIST         shapes2d: only these paints, comma-separated (solid,\n"
+        "                       linear, radial, pattern); the batches stay the same\n"
         "  -h, --help           this help\n",
         SR_BENCH_MODELS_DIR, SR_BENCH_ICONS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
 }
@@ -164,7 +167,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
         } else if (strcmp(a, "--gl-default-malloc") == 0) {
             o->gl_default_malloc = true;
         } else if (strcmp(a, "--threads") == 0 || strcmp(a, "--size") == 0 ||
-                   strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0) {
+                   strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0 ||
+                   strcmp(a, "--paint") == 0) {
             if (!has_value) {
                 fprintf(stderr, "softrast-bench: %s: missing value\n", a);
                 return 2;
@@ -177,6 +181,9 @@ static int parse_args(int argc, char **argv, bench_opts *o)
                 ok = parse_size(a, v, &o->width, &o->height);
             } else if (strcmp(a, "--frames") == 0) {
                 ok = parse_int(a, v, 1, MAX_FRAMES, &o->frames);
+            } else if (strcmp(a, "--paint") == 0) {
+                o->paints = v;
+                ok = bench_shapes2d_paints(v) != 0;
             } else {
                 o->save_dir = v;
             }
@@ -734,7 +741,7 @@ int main(int argc, char **argv)
             }
             break;
         case BENCH_SHAPES2D:
-            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare);
+            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare, o.paints);
             break;
         case BENCH_ICONS:
             run.failures += !bench_icons(o.frames);

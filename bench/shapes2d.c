@@ -3,7 +3,8 @@
  * vertices (nonzero) and closed cubic curves, 8 to 256 px, at random
  * places on a 512x600 canvas, painted solid (random colors, alpha 0.5-1),
  * with a linear or with a radial gradient over each shape's bounding box,
- * antialiased.  softrast renders each batch as one SVG document
+ * or with a pattern (a 16 px tile of three colors repeated over the
+ * canvas), antialiased.  softrast renders each batch as one SVG document
  * (sr_render_svg: parsing, flattening, coverage and paint, as `softrast
  * svg` does); cairo draws the same shapes through its API, frame by frame
  * in the same run.  Main thread; each batch is made once. */
@@ -29,21 +30,27 @@
 /* Shapes per batch: MAX_SHAPES, fewer for large sizes so a batch's
  * bounding boxes stay within the SVG renderer's fill-work budget. */
 #define BATCH_PIXELS 10000000
-/* Timed frames per case at most: 90 cases make a long run already. */
+/* Timed frames per case at most: 120 cases make a long run already. */
 #define MAX_FRAMES 5
 
 typedef enum shape_kind { SHAPE_RECT, SHAPE_POLY, SHAPE_CURVE } shape_kind;
-typedef enum paint_kind { PAINT_SOLID, PAINT_LINEAR, PAINT_RADIAL } paint_kind;
+typedef enum paint_kind { PAINT_SOLID, PAINT_LINEAR, PAINT_RADIAL, PAINT_PATTERN } paint_kind;
 
 static const struct { const char *name; shape_kind kind; int verts; } shapes[] = {
     { "rect", SHAPE_RECT, 4 },   { "poly10", SHAPE_POLY, 10 }, { "poly20", SHAPE_POLY, 20 },
     { "poly40", SHAPE_POLY, 40 }, { "curves", SHAPE_CURVE, 13 },
 };
-static const char *const paint_names[] = { "solid", "linear", "radial" };
+static const char *const paint_names[] = { "solid", "linear", "radial", "pattern" };
+#define PAINT_COUNT 4
 static const int sizes[] = { 8, 16, 32, 64, 128, 256 };
 /* The gradients' stops, shared by both renderers. */
 static const double stops[3][4] = { { 0, 0.9, 0.2, 0.1 }, { 0.5, 0.2, 0.7, 0.9 },
                                     { 1, 1.0, 0.9, 0.2 } };
+/* The pattern's tile: a square of the first color, its top left and
+ * bottom right quarters in the others (x, y, size, r, g, b). */
+#define TILE 16
+static const int tile_rects[3][6] = { { 0, 0, 16, 230, 200, 60 }, { 0, 0, 8, 40, 90, 200 },
+                                      { 8, 8, 8, 200, 40, 90 } };
 
 /* One shape: its points (a rectangle's corners, a polygon's vertices, or
  * a start point and four cubic segments for a curve) and its color. */
@@ -133,15 +140,29 @@ static bool svg_stops(text *t)
     return ok;
 }
 
+static bool svg_tile(text *t)
+{
+    bool ok = put(t, "<pattern id='p' width='%d' height='%d' patternUnits='userSpaceOnUse'>",
+                  TILE, TILE);
+    for (int k = 0; ok && k < 3; k++) {
+        const int *q = tile_rects[k];
+        ok = put(t, "<rect x='%d' y='%d' width='%d' height='%d' fill='rgb(%d,%d,%d)'/>", q[0],
+                 q[1], q[2], q[2], q[3], q[4], q[5]);
+    }
+    return ok && put(t, "</pattern>");
+}
+
 /* The batch as an SVG document; the gradients use objectBoundingBox
- * units (the default), so one definition paints every shape's box. */
+ * units (the default), so one definition paints every shape's box; the
+ * pattern is in user space, one tile grid over the canvas. */
 static bool batch_svg(text *t, const shape *sh, int count, shape_kind kind, int verts, int size,
                       paint_kind paint)
 {
     bool ok = put(t, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d'><defs>"
                      "<linearGradient id='l'>", CANVAS_W, CANVAS_H) &&
               svg_stops(t) && put(t, "</linearGradient><radialGradient id='r'>") &&
-              svg_stops(t) && put(t, "</radialGradient></defs>\n");
+              svg_stops(t) && put(t, "</radialGradient>") && svg_tile(t) &&
+              put(t, "</defs>\n");
     for (int i = 0; ok && i < count; i++) {
         const shape *s = &sh[i];
         if (kind == SHAPE_RECT) {
@@ -164,7 +185,7 @@ static bool batch_svg(text *t, const shape *sh, int count, shape_kind kind, int 
             ok = put(t, " fill='rgb(%d,%d,%d)' fill-opacity='%.3f'/>\n", (int)(s->r * 255 + 0.5),
                      (int)(s->g * 255 + 0.5), (int)(s->b * 255 + 0.5), s->a);
         } else if (ok) {
-            ok = put(t, " fill='url(#%c)'/>\n", paint == PAINT_LINEAR ? 'l' : 'r');
+            ok = put(t, " fill='url(#%c)'/>\n", "slrp"[paint]);
         }
     }
     return ok && put(t, "</svg>\n");
@@ -191,8 +212,27 @@ static void cairo_shape(cairo_t *cr, const shape *s, shape_kind kind, int verts,
     cairo_close_path(cr);
 }
 
+/* The pattern's tile as a repeating cairo pattern, made once per batch as
+ * an application keeps its textures. */
+static cairo_pattern_t *cairo_tile(void)
+{
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, TILE, TILE);
+    cairo_t *cr = cairo_create(s);
+    for (int k = 0; k < 3; k++) {
+        const int *q = tile_rects[k];
+        cairo_rectangle(cr, q[0], q[1], q[2], q[2]);
+        cairo_set_source_rgb(cr, q[3] / 255.0, q[4] / 255.0, q[5] / 255.0);
+        cairo_fill(cr);
+    }
+    cairo_destroy(cr);
+    cairo_pattern_t *p = cairo_pattern_create_for_surface(s);
+    cairo_pattern_set_extend(p, CAIRO_EXTEND_REPEAT);
+    cairo_surface_destroy(s);
+    return p;
+}
+
 static void cairo_batch(cairo_t *cr, const shape *sh, int count, shape_kind kind, int verts,
-                        int size, paint_kind paint)
+                        int size, paint_kind paint, cairo_pattern_t *tile)
 {
     cairo_set_operator(cr, CAIRO_OPERATOR_CLEAR);
     cairo_paint(cr);
@@ -202,6 +242,11 @@ static void cairo_batch(cairo_t *cr, const shape *sh, int count, shape_kind kind
         cairo_shape(cr, s, kind, verts, size);
         if (paint == PAINT_SOLID) {
             cairo_set_source_rgba(cr, s->r, s->g, s->b, s->a);
+            cairo_fill(cr);
+            continue;
+        }
+        if (paint == PAINT_PATTERN) {
+            cairo_set_source(cr, tile);
             cairo_fill(cr);
             continue;
         }
@@ -238,6 +283,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
                                                                     CANVAS_W, CANVAS_H)
                                        : NULL;
     cairo_t *cr = surface ? cairo_create(surface) : NULL;
+    cairo_pattern_t *tile = surface ? cairo_tile() : NULL;
 #else
     (void)compare;
     (void)cr_ms;
@@ -252,6 +298,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
             fprintf(stderr, "softrast-bench: shapes2d %s %d: %s\n", shapes[si].name, size,
                     err.message);
 #ifdef SR_HAVE_CAIRO
+            cairo_pattern_destroy(tile);
             cairo_destroy(cr);
             cairo_surface_destroy(surface);
 #endif
@@ -265,7 +312,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
 #ifdef SR_HAVE_CAIRO
         if (cr) {
             double c0 = now_ms();
-            cairo_batch(cr, sh, count, shapes[si].kind, shapes[si].verts, size, paint);
+            cairo_batch(cr, sh, count, shapes[si].kind, shapes[si].verts, size, paint, tile);
             cairo_surface_flush(surface);
             if (f >= 0) {
                 cr_ms[f] = now_ms() - c0;
@@ -287,6 +334,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
                shapes[si].name, size, paint_names[paint], count, frames, cr_ms[frames / 2],
                cr_ms[0], shapes[si].name, size, paint_names[paint], ratio);
         *log_ratio += log(ratio);
+        cairo_pattern_destroy(tile);
         cairo_destroy(cr);
         cairo_surface_destroy(surface);
     }
@@ -295,8 +343,33 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
     return true;
 }
 
-bool bench_shapes2d(sr_context *ctx, int frames, bool compare)
+unsigned bench_shapes2d_paints(const char *list)
 {
+    unsigned set = 0;
+    for (const char *s = list; *s;) {
+        size_t len = strcspn(s, ",");
+        int p = 0;
+        while (p < PAINT_COUNT &&
+               !(strlen(paint_names[p]) == len && strncmp(s, paint_names[p], len) == 0)) {
+            p++;
+        }
+        if (p == PAINT_COUNT) {
+            fprintf(stderr, "softrast-bench: --paint: unknown paint '%.*s' (expected solid, "
+                            "linear, radial or pattern)\n", (int)len, s);
+            return 0;
+        }
+        set |= 1u << p;
+        s += len + (s[len] == ',');
+    }
+    if (set == 0) {
+        fprintf(stderr, "softrast-bench: --paint: empty list\n");
+    }
+    return set;
+}
+
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *paints)
+{
+    unsigned paint_set = paints ? bench_shapes2d_paints(paints) : (1u << PAINT_COUNT) - 1;
     frames = frames > MAX_FRAMES ? MAX_FRAMES : frames;
     shape *sh = malloc(sizeof *sh * MAX_SHAPES);
     double *ms = calloc((size_t)frames, sizeof *ms), *cr_ms = calloc((size_t)frames, sizeof *ms);
@@ -324,7 +397,10 @@ bool bench_shapes2d(sr_context *ctx, int frames, bool compare)
             int count = BATCH_PIXELS / (size * size);
             count = count > MAX_SHAPES ? MAX_SHAPES : count;
             make_batch(sh, count, shapes[si].kind, shapes[si].verts, size, &rng);
-            for (int p = PAINT_SOLID; ok && p <= PAINT_RADIAL; p++) {
+            for (int p = PAINT_SOLID; ok && p < PAINT_COUNT; p++) {
+                if (!(paint_set & 1u << p)) {
+                    continue;
+                }
                 t.len = 0;
                 ok = batch_svg(&t, sh, count, shapes[si].kind, shapes[si].verts, size,
                                (paint_kind)p);

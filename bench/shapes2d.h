@@ -1,6 +1,6 @@
 /* shapes2d.h - the 2D shape benchmark modelled on Blend2D's bl_bench
  * (rectangles, polygons of 10/20/40 vertices, curves; 8 to 256 px; solid,
- * linear and radial gradient paint), softrast's SVG renderer against cairo
+ * linear and radial gradient, pattern paint), softrast's SVG renderer against cairo
  * in the same run; and the icon-directory benchmark, every SVG of an icon
  * theme (a fixed subset) rendered in one process against rsvg-convert
  * started once per file. */
@@ -10,7 +10,12 @@
 #include "softrast.h"
 
 /* Print the result lines; return false on failure (after a message). */
-bool bench_shapes2d(sr_context *ctx, int frames, bool compare);
+/* The paints of a comma-separated list of names as a bit set (bit k:
+ * paint k of solid, linear, radial, pattern); 0 after a message when a
+ * name is unknown or the list empty. */
+unsigned bench_shapes2d_paints(const char *list);
+/* paints: such a list, or NULL for all of them. */
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *paints);
 bool bench_icons(int frames);
 
 #endif

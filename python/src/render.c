@@ -19,11 +19,14 @@
  * the visibility pass instead (visibility.c), with the same bytes.  Color
  * comes from a second pass on the same projection: the built-in shading
  * (textures, vertex colors, a headlight), or the metallic-roughness
- * program lit as softrast render's default look.
+ * program lit as softrast render's default look, multisampled or
+ * supersampled when asked.  A camera is a pinhole or orthographic (K
+ * applied to camera x and y, rays along +z).
  */
 #include "geometry.h"
 #include "render.h"
 #include "math/dvec3.h"
+#include "simd_types.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -58,6 +61,17 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     double p[3];
     fetch_vertex(u, v, p);
     to_camera(u, p, c);
+    if (u->ortho) {
+        /* Orthographic: pixel centre (u, v) is at window (u + 1/2, v + 1/2)
+         * with u, v from camera x, y alone; w = 1, and a window depth
+         * falling linearly from 1 at near to 0 at far (still largest
+         * nearest: the depth test is GREATER). */
+        clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2]);
+        clip[1] = (float)(u->ky[0] * c[1] + u->ky[1]);
+        clip[2] = (float)(((double)u->far - c[2]) / ((double)u->far - u->near));
+        clip[3] = 1.0f;
+        return;
+    }
     /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
      * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
      * nearest (the depth test is GREATER), infinite far plane. */
@@ -67,15 +81,77 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     clip[3] = (float)c[2];
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SR_PY_VIEW_LANES 1
+/* Mesh vertices [lo, hi) of type T four at a time in AVX2 lanes: view_of's
+ * perspective operations in its order, lane by lane (never contracted, as
+ * SR_EXACT_FP_FLAGS says), so the same values.  Returns the first vertex
+ * left for view_of. */
+#define VIEW_LANES(T)                                                                      \
+    for (; v + 4 <= hi; v += 4) {                                                         \
+        const T *s = (const T *)u->vertices + 3 * v;                                      \
+        v4d p[3];                                                                         \
+        for (int k = 0; k < 3; k++) {                                                     \
+            p[k] = (v4d){ s[k], s[3 + k], s[6 + k], s[9 + k] };                           \
+        }                                                                                 \
+        v4d c[3];                                                                         \
+        for (int r = 0; r < 3; r++) {                                                     \
+            c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3]; \
+        }                                                                                 \
+        v4f x = __builtin_convertvector(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2], \
+                                        v4f);                                             \
+        v4f y = __builtin_convertvector(u->ky[0] * c[1] + u->ky[1] * c[2], v4f);          \
+        v4f w = __builtin_convertvector(c[2], v4f);                                       \
+        for (int i = 0; i < 4; i++) {                                                     \
+            double *cam = camera[v + i];                                                  \
+            cam[0] = c[0][i];                                                             \
+            cam[1] = c[1][i];                                                             \
+            cam[2] = c[2][i];                                                             \
+            float *o = (float *)(clip + (v + i - lo) * stride);                           \
+            o[0] = x[i];                                                                  \
+            o[1] = y[i];                                                                  \
+            o[2] = u->near;                                                               \
+            o[3] = w[i];                                                                  \
+        }                                                                                 \
+    }
+
+__attribute__((target("avx2"))) static size_t view_lanes(const geometry_uniforms *u, size_t lo,
+                                                         size_t hi, char *clip, size_t stride)
+{
+    double (*camera)[3] = (double (*)[3])u->camera;
+    size_t v = lo;
+    if (u->vertices64) {
+        VIEW_LANES(double)
+    } else {
+        VIEW_LANES(float)
+    }
+    return v;
+}
+#undef VIEW_LANES
+#endif
+
+void sr_py_view_vertices_to(const geometry_uniforms *u, size_t lo, size_t hi, bool lanes,
+                            float *clip, size_t stride)
+{
+    double (*camera)[3] = (double (*)[3])u->camera;
+    size_t v = lo;
+#ifdef SR_PY_VIEW_LANES
+    if (lanes && !u->ortho) {
+        v = view_lanes(u, lo, hi, (char *)clip, stride);
+    }
+#else
+    (void)lanes;
+#endif
+    for (; v < hi; v++) {
+        view_of(u, v, (float *)((char *)clip + (v - lo) * stride), camera[v]);
+    }
+}
+
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi)
 {
     /* The tables are the render set's, handed out read-only to the
      * shaders. */
-    float (*clip)[4] = (float (*)[4])u->clip;
-    double (*camera)[3] = (double (*)[3])u->camera;
-    for (size_t v = lo; v < hi; v++) {
-        view_of(u, v, clip[v], camera[v]);
-    }
+    sr_py_view_vertices_to(u, lo, hi, false, (float *)u->clip[lo], 4 * sizeof(float));
 }
 
 static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
@@ -105,6 +181,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
         vi[k] = sr_py_face_index(u, 3 * face + (size_t)k);
         memcpy(c[k], u->camera[vi[k]], sizeof c[k]);
     }
+    /* The pixel centre's ray: from the eye through (d[0], d[1], 1), or,
+     * orthographic, from (d[0], d[1], 0) along +z. */
     double dy = ((double)y - u->cy) / u->fy;
     double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
     double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
@@ -113,9 +191,23 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
     sr__dcross(e1, e2, n);
     double denom = sr__ddot(n, d), nn = sr__ddot(n, n);
     double z, lambda[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 };
+    if (u->ortho) {
+        denom = n[2];
+    }
     if (denom != 0.0 && nn > 0.0) {
-        z = sr__ddot(n, c[0]) / denom;
-        double w[3] = { z * d[0] - c[0][0], z * d[1] - c[0][1], z * d[2] - c[0][2] }, t[3];
+        double w[3], t[3];
+        if (u->ortho) {
+            /* w = the ray's point at depth z, from corner 0. */
+            w[0] = d[0] - c[0][0];
+            w[1] = d[1] - c[0][1];
+            z = c[0][2] - (n[0] * w[0] + n[1] * w[1]) / denom;
+            w[2] = z - c[0][2];
+        } else {
+            z = sr__ddot(n, c[0]) / denom;
+            w[0] = z * d[0] - c[0][0];
+            w[1] = z * d[1] - c[0][1];
+            w[2] = z * d[2] - c[0][2];
+        }
         sr__dcross(w, e2, t);
         lambda[1] = sr__ddot(t, n) / nn;
         sr__dcross(e1, w, t);
@@ -123,7 +215,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
         lambda[0] = 1.0 - lambda[1] - lambda[2];
     } else {
         /* Seen edge-on: no area to intersect; the raster's depth. */
-        z = u->near / window_z;
+        z = u->ortho ? u->far - (double)window_z * ((double)u->far - u->near)
+                     : u->near / window_z;
     }
     if (u->depth) {
         u->depth[p] = (float)z;
@@ -189,10 +282,7 @@ static void fill_outputs(const render_job *j)
     geometry_uniforms u = { .depth = j->depth, .triangle_id = j->triangle_id,
                             .instance_out = j->instance_id, .barycentric = j->barycentric,
                             .normal = j->normal, .mask = j->mask };
-    size_t n = (size_t)j->width * (size_t)j->height;
-    for (size_t p = 0; p < n; p++) {
-        sr_py_background_pixel(&u, p);
-    }
+    sr_py_background_run(&u, 0, (size_t)j->width * (size_t)j->height);
 }
 
 static void clip_rows(const render_job *j, double kx[3], double ky[2])
@@ -256,7 +346,9 @@ static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_u
             .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
             .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
             .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1],
-            .cy = j->k[1][2], .near = j->near, .width = j->width, .instance_id = in->id,
+            .cy = j->k[1][2], .near = j->near, .ortho = j->ortho, .far = j->far,
+            .cull_sign = !j->cull_back ? 0 : sr_py_mirrors(in->a) ? -1 : 1,
+            .width = j->width, .instance_id = in->id,
             .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
             .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
         };
@@ -285,7 +377,7 @@ static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const geomet
     /* The shader reads the mesh itself; sr_draw still wants a position
      * array of vertex_count entries.  Overlapping ones 4 bytes apart
      * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
-    sr_state st = sr_py_geometry_state(&prog);
+    sr_state st = sr_py_geometry_state(&prog, u->cull_sign);
     return sr_draw(ctx, fb, &st,
                    &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
                                     .vertex_count = 3 * faces });
@@ -320,6 +412,14 @@ static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render
     }
     free(u);
     return r;
+}
+
+bool sr_py_mirrors(const double a[3][4])
+{
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    return det < 0.0;
 }
 
 void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out)
@@ -371,7 +471,9 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
     sr_mat4 model;
     sr_py_mat_from_rows(in->a, &model);
     sr_state st = {
-        .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+        .depth_zero_to_one = true, .depth_func = SR_GREATER,
+        .cull = j->cull_back ? SR_CULL_BACK : SR_CULL_NONE,
+        .front_face = sr_py_mirrors(in->a) ? SR_FRONT_CW : SR_FRONT_CCW,
         .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
         .two_sided = true,
         .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
@@ -393,19 +495,40 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
     return r;
 }
 
+/* The color pass: into fb, or antialiased into a framebuffer of samples
+ * or of k x k pixels a pixel, then resolved into fb. */
 static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
-    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
+    sr_framebuffer *work = NULL;
+    sr_result r = SR_OK;
+    if (j->msaa > 1 || j->ssaa > 1) {
+        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
+            .width = j->width * j->ssaa, .height = j->height * j->ssaa,
+            .depth_format = SR_DEPTH_D32F, .samples = j->msaa }, &work);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    sr_framebuffer *target = work ? work : fb;
+    r = sr_clear(ctx, target, &(sr_clear_desc){
         .color = { j->background[0], j->background[1], j->background[2], j->rgba ? 0.0f : 1.0f },
         .depth_action = SR_ACTION_CLEAR, .depth = 0 });
     double kx[3], ky[2];
     clip_rows(j, kx, ky);
     /* The same clip coordinates as geometry_vertex, as a matrix. */
     sr_mat4 proj = { { 0 } };
-    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1], proj.m[8] = (float)kx[2];
-    proj.m[5] = (float)ky[0], proj.m[9] = (float)ky[1];
-    proj.m[14] = j->near;
-    proj.m[11] = 1.0f;
+    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1];
+    proj.m[5] = (float)ky[0];
+    if (j->ortho) {
+        double range = (double)j->far - j->near;
+        proj.m[12] = (float)kx[2], proj.m[13] = (float)ky[1];
+        proj.m[10] = (float)(-1.0 / range), proj.m[14] = (float)(j->far / range);
+        proj.m[15] = 1.0f;
+    } else {
+        proj.m[8] = (float)kx[2], proj.m[9] = (float)ky[1];
+        proj.m[14] = j->near;
+        proj.m[11] = 1.0f;
+    }
     if (j->pbr) {
         /* The program's view takes the world to OpenGL's eye space (y up,
          * z backward): undo the flip of y and z here. */
@@ -415,10 +538,16 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
             }
         }
     }
+    /* (Clip space does not depend on the framebuffer's size: the same
+     * projection draws the larger one.) */
     if (r == SR_OK) {
-        r = j->pbr ? sr_py_pbr_pass(ctx, fb, j, &proj)
-                   : draw_instances(ctx, fb, j, color_draw, &proj);
+        r = j->pbr ? sr_py_pbr_pass(ctx, target, j, &proj)
+                   : draw_instances(ctx, target, j, color_draw, &proj);
     }
+    if (r == SR_OK && work) {
+        r = j->msaa > 1 ? sr_resolve(ctx, work, fb) : sr_downsample(ctx, work, fb, SR_RESAMPLE_BOX);
+    }
+    sr_destroy_framebuffer(ctx, work);
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);
         size_t n = (size_t)j->width * (size_t)j->height;
@@ -660,21 +789,26 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
-                              "environment", "shadows", "general", NULL };
+                              "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
+                              "ground", "cull", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None;
-    render_job j = { 0 };
-    int lit = 1, pbr = 0, shadows = 0, general = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpp:render", kwlist,
+    render_job j = { .msaa = 1, .ssaa = 1 };
+    int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0, cull = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiipp:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
-                                     &shadows, &general)) {
+                                     &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa,
+                                     &ground, &cull)) {
         return NULL;
     }
+    j.ortho = ortho;
     j.pbr = pbr;
     j.shadows = shadows;
+    j.ground = ground;
+    j.cull_back = cull;
     j.general = general;
     if (pbr && take_matrix(view, "view", 3, 4, &j.view[0][0]) < 0) {
         return NULL;
@@ -688,8 +822,22 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                      SR_MAX_FRAMEBUFFER_SIZE, j.width, j.height);
         return NULL;
     }
-    if (!(j.near > 0.0f) || !isfinite(j.near)) {
-        PyErr_SetString(PyExc_ValueError, "near: must be a positive finite distance");
+    if (!(j.ortho ? j.near >= 0.0f : j.near > 0.0f) || !isfinite(j.near)) {
+        PyErr_SetString(PyExc_ValueError, j.ortho ? "near: must be a finite distance >= 0"
+                                                  : "near: must be a positive finite distance");
+        return NULL;
+    }
+    if (j.ortho && (!(j.far > j.near) || !isfinite(j.far))) {
+        PyErr_SetString(PyExc_ValueError, "far: must be finite and beyond near");
+        return NULL;
+    }
+    bool msaa_ok = j.msaa == 1 || j.msaa == 2 || j.msaa == 4 || j.msaa == 8 || j.msaa == 16;
+    if (!msaa_ok || j.ssaa < 1 || j.ssaa > 4 || (j.msaa > 1 && j.ssaa > 1) ||
+        (long)j.width * j.ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
+        (long)j.height * j.ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
+        PyErr_Format(PyExc_ValueError, "antialias: msaa %d, ssaa %d at %d x %d: not a mode "
+                     "(msaa 1, 2, 4, 8 or 16; ssaa 1 .. 4 and the image at most %d a side)",
+                     j.msaa, j.ssaa, j.width, j.height, SR_MAX_FRAMEBUFFER_SIZE);
         return NULL;
     }
     if (j.threads < 0 || j.threads > 64) {

@@ -31,21 +31,31 @@ typedef struct render_job {
     double k[3][3];
     double view[3][4];          /* world -> camera [R | t], for the metallic-roughness look */
     float near;
+    bool ortho;                 /* K maps camera x, y to pixels; rays along +z */
+    float far;                  /* ortho: where the window depth reaches 0 */
     float background[3];
+    /* color: antialiased with msaa samples a pixel, or drawn ssaa x ssaa
+     * times larger and box-filtered down (at most one of them above 1) */
+    int msaa, ssaa;
     bool lit;                   /* color: headlight-lit, else the colors as they are */
     bool pbr;                   /* color: the metallic-roughness program instead */
     const sr_environment *env;  /* pbr: its image-based light, or NULL (the hemisphere) */
     bool shadows;               /* pbr: the key light's shadow map */
+    bool ground;                /* pbr, with shadows: the shadow catcher under the instances */
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;
     uint8_t *color, *rgba;
     npy_bool *mask;
+    bool cull_back;             /* faces seen from behind are not drawn */
     bool general;               /* geometry: the library's pipeline, not the visibility pass */
     sr_py_render_set *set;      /* what run() draws with */
     char error[512];
 } render_job;
 
+/* Whether the 3x3 part of a flips handedness (its determinant is
+ * negative), turning the mesh's front faces clockwise on screen. */
+bool sr_py_mirrors(const double a[3][4]);
 /* The column-major matrix of rows a (the fourth row 0 0 0 1). */
 void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out);
 /* The mesh's texture on ctx (RGB expanded to RGBA), or NULL without one. */
