@@ -476,11 +476,14 @@ SR_API sr_simd_level sr_context_simd(const sr_context *ctx);
 
 /* ---- framebuffers ------------------------------------------------------- */
 
+/* The depth buffer's format.  The test compares the quantized values (k
+ * for k / (2^n - 1), or D32F's float); a sample takes 2 bytes of memory
+ * with D16 and 4 with the others. */
 typedef enum sr_depth_format {
     SR_DEPTH_DEFAULT = 0, /* -> SR_DEPTH_D24 */
     SR_DEPTH_NONE,
-    SR_DEPTH_D16,
-    SR_DEPTH_D24,
+    SR_DEPTH_D16,         /* 16-bit unsigned normalized, 2 bytes a sample */
+    SR_DEPTH_D24,         /* 24-bit unsigned normalized, in 4 bytes */
     SR_DEPTH_D32,         /* 32-bit unsigned normalized */
     SR_DEPTH_D32F,        /* 32-bit float */
 } sr_depth_format;

@@ -47,11 +47,17 @@ static void keep_band(const sr_band *band, void *user)
     }
 }
 
-static sr_result render(sr_context *ctx, frame *f, int band_rows, sr_pixel_format format)
+static sr_result render_depth(sr_context *ctx, frame *f, int band_rows, sr_pixel_format format,
+                              sr_depth_format depth)
 {
     return sr_render_bands(ctx, &(sr_bands_desc){
-        .width = W, .height = H, .band_rows = band_rows, .depth_format = SR_DEPTH_D16,
+        .width = W, .height = H, .band_rows = band_rows, .depth_format = depth,
         .format = format, .draw = draw_teapot, .output = keep_band, .user = f });
+}
+
+static sr_result render(sr_context *ctx, frame *f, int band_rows, sr_pixel_format format)
+{
+    return render_depth(ctx, f, band_rows, format, SR_DEPTH_D16);
 }
 
 SR_TEST(teapot_in_bands_from_an_arena_is_the_malloc_frame)
@@ -82,6 +88,7 @@ SR_TEST(teapot_in_bands_from_an_arena_is_the_malloc_frame)
     printf("arena high-water mark, %dx%d teapot (%zu vertices) in bands of %d rows: %zu bytes\n",
            W, H, pot.vertex_count, BAND, peak);
     CHECK(peak > 0 && peak <= size);
+    size_t first_peak = peak;
     /* Later frames reuse the freed memory: after the second, the mark
      * stays. */
     CHECK_EQ(render(ctx, &got, BAND, SR_PIXEL_RGB565), SR_OK);
@@ -92,6 +99,20 @@ SR_TEST(teapot_in_bands_from_an_arena_is_the_malloc_frame)
     CHECK_EQ(sr_context_arena_peak(ctx), peak);
     CHECK_EQ(sr_context_arena_peak(heap), 0);
     sr_destroy_context(ctx);
+    /* The band's D16 depth takes 2 bytes a pixel: the same first frame
+     * with D24 (4) peaks higher by exactly the band's W x BAND x 2 bytes,
+     * and draws the same pixels. */
+    sr_context *ctx24 = NULL;
+    frame got24 = { .pot = &pot, .image = malloc(W * H * 2), .bpp = 2 };
+    REQUIRE(got24.image);
+    REQUIRE(sr_make_context(&(sr_context_desc){ .arena = arena, .arena_size = size,
+                                                .batch_primitives = SR_BATCH_MIN }, &ctx24) == SR_OK);
+    CHECK_EQ(render_depth(ctx24, &got24, BAND, SR_PIXEL_RGB565, SR_DEPTH_D24), SR_OK);
+    printf("the same frame with D24: %zu bytes\n", sr_context_arena_peak(ctx24));
+    CHECK_EQ(sr_context_arena_peak(ctx24) - first_peak, (size_t)W * BAND * 2);
+    CHECK(memcmp(want.image, got24.image, W * H * 2) == 0);
+    sr_destroy_context(ctx24);
+    free(got24.image);
     free(got.image);
     free(want.image);
     free(arena);
@@ -241,8 +262,8 @@ SR_TEST(an_exhausted_arena_fails_cleanly)
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &heap) == SR_OK);
     REQUIRE(sr_make_teapot(heap, 8, &pot) == SR_OK);
     /* Room for the draw scratch and a band of a few rows, not for a
-     * whole-frame band (its color and depth alone take 600 KiB). */
-    enum { SIZE = 512 * 1024 };
+     * whole-frame band (its color and D16 depth alone take 450 KiB). */
+    enum { SIZE = 384 * 1024 };
     uint8_t *arena = malloc(SIZE);
     frame f = { .pot = &pot, .image = malloc(W * H * 4), .bpp = 4 };
     REQUIRE(arena && f.image);

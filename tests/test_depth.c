@@ -594,3 +594,144 @@ SR_TEST(offset_clamp_limits_the_offset)
     CHECK(d == dq(sr__depth_quantize(0.2f, 16), 16));
     target_free(&t);
 }
+
+/* ---- D16 storage ---------------------------------------------------------- */
+
+/* The high-water mark of a context in an arena that makes a w x h
+ * framebuffer of `samples` samples with depth format f: the context's
+ * own memory plus the framebuffer's; 0 if either could not be made. */
+static size_t framebuffer_arena_peak(int w, int h, sr_depth_format f, int samples)
+{
+    size_t size = (size_t)4 << 20, peak = 0;
+    void *arena = malloc(size);
+    sr_context *ctx = NULL;
+    if (arena && sr_make_context(&(sr_context_desc){ .arena = arena, .arena_size = size },
+                                 &ctx) == SR_OK) {
+        sr_framebuffer *fb = NULL;
+        if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
+                                                            .depth_format = f,
+                                                            .samples = samples }, &fb) == SR_OK) {
+            peak = sr_context_arena_peak(ctx);
+            sr_destroy_framebuffer(ctx, fb);
+        }
+        sr_destroy_context(ctx);
+    }
+    free(arena);
+    return peak;
+}
+
+SR_TEST(d16_keeps_two_bytes_a_sample_and_the_other_formats_four)
+{
+    /* 64 x 32 samples: every buffer a whole number of the arena's 64-byte
+     * blocks (each with a header block of its own), so the difference of
+     * two formats is that of their depth buffers exactly. */
+    enum { W = 64, H = 32 };
+    for (int samples = 1; samples <= 4; samples *= 4) {
+        size_t n = (size_t)W * H * (size_t)samples;
+        size_t none = framebuffer_arena_peak(W, H, SR_DEPTH_NONE, samples);
+        size_t d16 = framebuffer_arena_peak(W, H, SR_DEPTH_D16, samples);
+        size_t d24 = framebuffer_arena_peak(W, H, SR_DEPTH_D24, samples);
+        REQUIRE(none > 0);
+        CHECK(d16 - none >= 2 * n && d16 - none < 4 * n);
+        CHECK_EQ(d24 - d16, 2 * n);
+        CHECK_EQ(framebuffer_arena_peak(W, H, SR_DEPTH_D32, samples), d24);
+        CHECK_EQ(framebuffer_arena_peak(W, H, SR_DEPTH_D32F, samples), d24);
+    }
+}
+
+/* Window depth of the quad z_ndc = z0 + zx x + zy y at a point of pixel
+ * (px, py) (offset sx, sy in [0, 1) from its upper-left corner). */
+static double quad_window_depth(const double z[3], int px, int py, float sx, float sy, int w,
+                                int h)
+{
+    double x = 2.0 * (px + sx) / w - 1.0, y = 1.0 - 2.0 * (py + sy) / h;
+    return (z[0] + z[1] * x + z[2] * y + 1.0) / 2.0;
+}
+
+/* Every path that tests and writes depth - each vector level the CPU
+ * runs, each rasterizer, one sample and four - on a D16 buffer: depth
+ * reads back as k / 65535, within a step of the nearer of two crossing
+ * slanted quads (each pixel 500 steps from its neighbour, so a lane
+ * stored in the wrong place shows), in the color of the nearer one; and
+ * a flat quad a fifth of a step nearer than what is stored fails LESS,
+ * being equal in 16 bits, while one four fifths of a step nearer passes.
+ * Every path's image is the first one's with as many samples. */
+SR_TEST(d16_buffer_holds_sixteen_bit_steps_on_every_path)
+{
+    enum { W = 64, H = 48 };
+    const double M = 65535.0;
+    const double green[3] = { -0.2, 0.5, 0.1 }, red[3] = { -0.1, -0.5, 0.05 };
+    static uint8_t first[2][W * H * 4];    /* per sample count */
+    static float d[W * H];
+    bool have_first[2] = { false, false };
+    int paths = 0;
+    for (int level = SR_SIMD_OFF; level <= SR_SIMD_AVX512; level++) {
+        for (int rast = SR_RASTER_HALFSPACE; rast <= SR_RASTER_BARYCENTRIC; rast++) {
+            for (int samples = 1; samples <= 4; samples *= 4) {
+                target t = { NULL, NULL, W, H, 16 };
+                REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1,
+                                                            .simd = (sr_simd_level)level },
+                                        &t.ctx) == SR_OK);
+                REQUIRE(sr_make_framebuffer(t.ctx, &(sr_framebuffer_desc){
+                    .width = W, .height = H, .depth_format = SR_DEPTH_D16,
+                    .samples = samples }, &t.fb) == SR_OK);
+                float sx = 0.5f, sy = 0.5f;  /* read_depth reads sample 0 */
+                REQUIRE(sr_sample_position(samples, 0, &sx, &sy) == SR_OK);
+                sr_state st = { .rasterizer = (sr_rasterizer)rast };
+                target_clear(&t, 1.0f);
+                REQUIRE(draw_quad(&t, &st, green[0], green[1], green[2], GREEN) == SR_OK);
+                REQUIRE(draw_quad(&t, &st, red[0], red[1], red[2], RED) == SR_OK);
+                REQUIRE(sr_read_depth(t.ctx, t.fb, 0, 0, W, H, d, W) == SR_OK);
+                const uint8_t *px = sr_framebuffer_pixels(t.fb);
+                int off_step = 0, off_plane = 0, wrong_color = 0;
+                for (int y = 0; y < H; y++) {
+                    for (int x = 0; x < W; x++) {
+                        int i = y * W + x;
+                        double k = floor(d[i] * M + 0.5);
+                        off_step += d[i] != (float)(k / M);
+                        double zg = quad_window_depth(green, x, y, sx, sy, W, H) * M;
+                        double zr = quad_window_depth(red, x, y, sx, sy, W, H) * M;
+                        off_plane += fabs(k - (zg < zr ? zg : zr)) > 1.0;
+                        /* The color at the pixel's centre, where it is
+                         * shaded: away from the crossing, the nearer. */
+                        double cg = quad_window_depth(green, x, y, 0.5f, 0.5f, W, H) * M;
+                        double cr = quad_window_depth(red, x, y, 0.5f, 0.5f, W, H) * M;
+                        if (fabs(cg - cr) > 600.0) {
+                            bool g = px[4 * i + 1] == 255 && px[4 * i] == 0;
+                            bool r = px[4 * i] == 255 && px[4 * i + 1] == 0;
+                            wrong_color += cg < cr ? !g : !r;
+                        }
+                    }
+                }
+                CHECK_EQ(off_step, 0);
+                CHECK_EQ(off_plane, 0);
+                CHECK_EQ(wrong_color, 0);
+                int fi = samples > 1;
+                if (!have_first[fi]) {
+                    memcpy(first[fi], px, sizeof first[fi]);
+                    have_first[fi] = true;
+                } else if (memcmp(first[fi], px, sizeof first[fi]) != 0) {
+                    sr_test_fail(__FILE__, __LINE__, "SIMD level %d, rasterizer %d, %d samples: "
+                                 "not the first path's image", level, rast, samples);
+                }
+                /* Ties at 16 bits: k + 1/5 stored as k, k - 1/5 equal to it. */
+                const double k = 40000.0;
+                target_clear(&t, 1.0f);
+                REQUIRE(draw_quad(&t, &st, 2.0 * (k + 0.2) / M - 1.0, 0, 0, GREEN) == SR_OK);
+                REQUIRE(draw_quad(&t, &st, 2.0 * (k - 0.2) / M - 1.0, 0, 0, RED) == SR_OK);
+                CHECK_EQ(count_color(&t, GREEN), W * H);
+                REQUIRE(draw_quad(&t, &st, 2.0 * (k - 0.8) / M - 1.0, 0, 0, WHITE) == SR_OK);
+                CHECK_EQ(count_color(&t, WHITE), W * H);
+                REQUIRE(sr_read_depth(t.ctx, t.fb, 0, 0, W, H, d, W) == SR_OK);
+                int not_k1 = 0;
+                for (int i = 0; i < W * H; i++) {
+                    not_k1 += d[i] != dq((uint32_t)k - 1, 16);
+                }
+                CHECK_EQ(not_k1, 0);
+                target_free(&t);
+                paths++;
+            }
+        }
+    }
+    CHECK_EQ(paths, 4 * 3 * 2);
+}

@@ -806,7 +806,7 @@ SR_TEST(four_sample_kernel_equals_the_generic_path)
             sr__fb_resolve(b, SR_TILE_PENDING_COLOR | SR_TILE_PENDING_DEPTH);
             size_t n = (size_t)W * H * 4;
             CHECK(memcmp(a->color, b->color, n * 4) == 0);
-            CHECK(memcmp(a->depth, b->depth, n * 4) == 0);
+            CHECK(memcmp(a->depth, b->depth, n * (size_t)sr__depth_size(a)) == 0);
             sr_destroy_framebuffer(ctx, a);
             sr_destroy_framebuffer(ctx, b);
             sr_destroy_context(ctx);

@@ -884,11 +884,14 @@ static sr_result draw_scene(sr_context *ctx, sr_framebuffer *fb, const scene *s,
         .normals = s->nrm, .colors = s->col, .view = &s->view, .projection = &s->proj });
 }
 
-/* Raw depth words (resolving any pending clear first). */
-static const uint32_t *raw_depth(sr_framebuffer *fb)
+/* The stored depth values, widened to 32 bits (resolving any pending
+ * clear first), into out[width * height]. */
+static void raw_depth(sr_framebuffer *fb, uint32_t *out)
 {
     sr__fb_resolve(fb, SR_TILE_PENDING_DEPTH);
-    return fb->depth;
+    for (size_t i = 0; i < (size_t)fb->width * (size_t)fb->height; i++) {
+        out[i] = sr__depth_at(fb, i);
+    }
 }
 
 SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasterizer)
@@ -903,7 +906,7 @@ SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasteri
         REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[i] }, &ctx[i]) == SR_OK);
     }
     uint8_t *c0 = malloc(W * H * 4);
-    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H);
+    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H), *d = malloc(sizeof(uint32_t) * W * H);
     sr_rng rng = { 0xde7e3 };
     static scene s;
     int compared = 0;
@@ -918,10 +921,9 @@ SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasteri
             REQUIRE(sr_make_framebuffer(ctx[ti], &(sr_framebuffer_desc){
                 .width = W, .height = H, .depth_format = df }, &fb) == SR_OK);
             CHECK_EQ(draw_scene(ctx[ti], fb, &s, (sr_viewport){ 0 }, rast), SR_OK);
-            const uint32_t *d = raw_depth(fb);
+            raw_depth(fb, v == 0 ? d0 : d);
             if (v == 0) {
                 memcpy(c0, sr_framebuffer_pixels(fb), W * H * 4);
-                memcpy(d0, d, sizeof(uint32_t) * W * H);
             } else {
                 if (memcmp(c0, sr_framebuffer_pixels(fb), W * H * 4) != 0 ||
                     memcmp(d0, d, sizeof(uint32_t) * W * H) != 0) {
@@ -937,6 +939,7 @@ SR_TEST(random_scenes_give_identical_bytes_for_1_2_3_8_threads_and_every_rasteri
     CHECK(compared > 300);
     free(c0);
     free(d0);
+    free(d);
     for (int i = 0; i < 4; i++) {
         sr_destroy_context(ctx[i]);
     }
@@ -1007,7 +1010,7 @@ static void kernel_test_draw(sr_context *ctx, int w, int h, sr_depth_format df, 
                                                             .depth_format = df }, &fb) == SR_OK);
     sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.1f, 0.2f, 0.3f, 1 }, .depth = 1 });
     CHECK_EQ(sr_draw(ctx, fb, st, desc), SR_OK);
-    memcpy(depth, raw_depth(fb), sizeof(uint32_t) * (size_t)w * (size_t)h);
+    raw_depth(fb, depth);
     memcpy(color, sr_framebuffer_pixels(fb), (size_t)w * (size_t)h * 4);
     sr_destroy_framebuffer(ctx, fb);
     ctx->simd = kept;
@@ -1541,8 +1544,8 @@ SR_TEST(plain_stores_after_a_copied_batch_give_one_threads_bytes)
     enum { W = 10 * SR_TILE_SIZE, H = 6 * SR_TILE_SIZE, N = 6000 };
     float *pos = malloc(sizeof(float) * 9 * 3 * N), *col = malloc(sizeof(float) * 12 * 3 * N);
     uint8_t *c0 = malloc(W * H * 4);
-    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H);
-    REQUIRE(pos && col && c0 && d0);
+    uint32_t *d0 = malloc(sizeof(uint32_t) * W * H), *d1 = malloc(sizeof(uint32_t) * W * H);
+    REQUIRE(pos && col && c0 && d0 && d1);
     sr_rng rng = { 0x9a1e };
     tiny_triangles(&rng, 0, N, false, W, H, pos, col);
     tiny_triangles(&rng, N, N, true, W, H, pos, col);
@@ -1569,11 +1572,10 @@ SR_TEST(plain_stores_after_a_copied_batch_give_one_threads_bytes)
                 guessed_wrong[k] |= c->tri_count > 0 && !c->stream && !c->in_tile_order;
             }
         }
-        const uint32_t *d = raw_depth(fb);
+        raw_depth(fb, v == 0 ? d0 : d1);
         if (v == 0) {
             CHECK(!copied[0] && !copied[2]);
             memcpy(c0, sr_framebuffer_pixels(fb), W * H * 4);
-            memcpy(d0, d, sizeof(uint32_t) * W * H);
         } else {
             /* The paths this test is for were taken: the scattered draws
              * were copied, and the walk after the first was set up with
@@ -1581,7 +1583,7 @@ SR_TEST(plain_stores_after_a_copied_batch_give_one_threads_bytes)
             CHECK(copied[0] && !copied[1] && copied[2]);
             CHECK(guessed_wrong[1]);
             if (memcmp(c0, sr_framebuffer_pixels(fb), W * H * 4) != 0 ||
-                memcmp(d0, d, sizeof(uint32_t) * W * H) != 0) {
+                memcmp(d0, d1, sizeof(uint32_t) * W * H) != 0) {
                 sr_test_fail(__FILE__, __LINE__, "%d threads differ from 1 thread", threads[v]);
             }
         }
@@ -1590,6 +1592,7 @@ SR_TEST(plain_stores_after_a_copied_batch_give_one_threads_bytes)
     }
     free(c0);
     free(d0);
+    free(d1);
     free(pos);
     free(col);
 }
@@ -1621,7 +1624,9 @@ SR_TEST(moving_the_viewport_by_whole_pixels_moves_the_image_exactly)
         CHECK_EQ(draw_scene(ctx, fa, &s, (sr_viewport){ ax, ay, VW, VH }, rast), SR_OK);
         CHECK_EQ(draw_scene(ctx, fb, &s, (sr_viewport){ bx, by, VW, VH }, rast), SR_OK);
         const uint8_t *pa = sr_framebuffer_pixels(fa), *pb = sr_framebuffer_pixels(fb);
-        const uint32_t *da = raw_depth(fa), *db = raw_depth(fb);
+        static uint32_t da[W * H], db[W * H];
+        raw_depth(fa, da);
+        raw_depth(fb, db);
         nonempty += sr_last_draw_info(ctx).fragments > 0;
         for (int y = 0; y < VH; y++) {
             int x = 0;

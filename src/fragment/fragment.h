@@ -280,18 +280,18 @@ SR_INLINE void sr__fragment_as(const sr_draw_state *ds, const sr_tri *t, int px,
         q = sr__quantize_depth(ds, &z);
     }
     if (dmode != SR_DEPTH_MODE_OFF) {
-        uint32_t *dp = &fb->depth[idx];
+        uint32_t d = sr__depth_at(fb, idx);
         if (dmode == SR_DEPTH_MODE_LESS) {
-            if (!(q < *dp)) {
+            if (!(q < d)) {
                 return;
             }
-            *dp = q;
+            sr__depth_put(fb, idx, q);
         } else {
-            if (ds->depth_test && !sr__depth_pass(ds->depth_func, q, *dp)) {
+            if (ds->depth_test && !sr__depth_pass(ds->depth_func, q, d)) {
                 return;
             }
             if (ds->depth_write) {
-                *dp = q;
+                sr__depth_put(fb, idx, q);
             }
         }
     }

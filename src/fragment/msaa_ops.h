@@ -45,7 +45,8 @@ SR_INLINE bool sr__sample_test(const sr_draw_state *ds, size_t i, uint32_t q, bo
 {
     sr_framebuffer *fb = ds->fb;
     bool has_depth = ds->depth_mode != SR_DEPTH_MODE_OFF;
-    bool depth_ok = !has_depth || !ds->depth_test || sr__depth_pass(ds->depth_func, q, fb->depth[i]);
+    bool depth_ok = !has_depth || !ds->depth_test ||
+                    sr__depth_pass(ds->depth_func, q, sr__depth_at(fb, i));
     if (ds->stencil_test) {
         const sr_stencil_face *f = &ds->stencil[front ? 0 : 1];
         uint8_t s = fb->stencil[i];
@@ -59,7 +60,7 @@ SR_INLINE bool sr__sample_test(const sr_draw_state *ds, size_t i, uint32_t q, bo
         return false;
     }
     if (has_depth && ds->depth_write && write_depth) {
-        fb->depth[i] = q;
+        sr__depth_put(fb, i, q);
     }
     return true;
 }

@@ -273,7 +273,7 @@ sr_result sr_shadow_map_clear(sr_context *ctx, sr_shadow_map *sm)
     /* Lookups read depth words directly, from any thread: no clear may
      * stay pending. */
     sr__fb_resolve(sm->fb, SR_TILE_PENDING_DEPTH);
-    sm->depth = sm->fb->depth;
+    sm->depth = sm->fb->depth;     /* D24: uint32 words */
     size_t nb = (size_t)sm->blocks * (size_t)sm->blocks;
     for (size_t i = 0; i < nb; i++) {
         sm->block_min[i] = sm->block_max[i] = sm->fb->clear_depth;

@@ -197,7 +197,7 @@ prefetch_pixels(const sr_framebuffer *fb, const sr_prim_head *ahead, int x0, int
     if (qx0 >= qx1 || qy1 - qy0 > SR_PIXEL_PREFETCH_MAX || qx1 - qx0 > SR_PIXEL_PREFETCH_MAX) {
         return;
     }
-    /* A pixel's samples are consecutive words (framebuffer.h). */
+    /* A pixel's samples are consecutive elements (framebuffer.h). */
     size_t ns = (size_t)fb->samples, w = (size_t)fb->width;
     for (int y = qy0; y < qy1; y++) {
         size_t first = ((size_t)y * w + (size_t)qx0) * ns;
@@ -205,8 +205,9 @@ prefetch_pixels(const sr_framebuffer *fb, const sr_prim_head *ahead, int x0, int
         __builtin_prefetch(&fb->color[first], 1);
         __builtin_prefetch(&fb->color[last], 1);
         if (fb->depth) {
-            __builtin_prefetch(&fb->depth[first], 1);
-            __builtin_prefetch(&fb->depth[last], 1);
+            const char *d = fb->depth;
+            __builtin_prefetch(d + first * (size_t)sr__depth_size(fb), 1);
+            __builtin_prefetch(d + last * (size_t)sr__depth_size(fb), 1);
         }
     }
 }

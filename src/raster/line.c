@@ -247,7 +247,8 @@ typedef enum line_color {
 typedef struct fast_line {
     const sr_draw_state *ds;
     const sr_line *l;
-    uint32_t *color, *depth;
+    uint32_t *color;
+    sr_framebuffer *fb;             /* its depth: sr__depth_at */
     size_t step_u, step_v;          /* buffer elements per column and per minor pixel */
     int64_t au, av, du, dv;         /* q8 start and direction on the major, minor axes */
     double dz;                      /* zb - za */
@@ -287,10 +288,10 @@ SR_INLINE int fast_pixel(const fast_line *f, size_t idx, int64_t num, line_color
     if (less) {
         double z = l->za + t * f->dz;
         uint32_t q = sr__quantize_depth(f->ds, &z);
-        if (!(q < f->depth[idx])) {
+        if (!(q < sr__depth_at(f->fb, idx))) {
             return 0;
         }
-        f->depth[idx] = q;
+        sr__depth_put(f->fb, idx, q);
     }
     uint32_t packed = f->flat;
     if (mode == LINE_COLOR_LERP) {
@@ -467,7 +468,7 @@ static void walk_fast(const sr_draw_state *ds, const sr_line *l, int64_t ka, int
 {
     sr_framebuffer *fb = ds->fb;
     size_t width = (size_t)fb->width;
-    fast_line f = { .ds = ds, .l = l, .color = fb->color, .depth = fb->depth };
+    fast_line f = { .ds = ds, .l = l, .color = fb->color, .fb = fb };
     f.step_u = l->xmajor ? 1 : width;
     f.step_v = l->xmajor ? width : 1;
     f.au = l->xmajor ? l->xa : l->ya;

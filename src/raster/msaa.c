@@ -16,6 +16,7 @@
  * the samples that passed.  With one sample this is exactly the
  * single-sample rule, which is how the stencil test reuses it. */
 #include "fragment/msaa_ops.h"
+#include "raster/depth_lanes.h"
 #include "raster/msaa_walk.h"
 
 #include <stdlib.h>
@@ -120,6 +121,7 @@ void sr__raster_msaa(const sr_draw_state *ds, const sr_tri *t, int rx0, int ry0,
 #undef SR_SIMD_FN
 #undef SR_SIMD_TARGET
 
+#include "raster/rows_avx512.h"
 #include "raster/msaa_wide.h"
 
 #elif defined(__aarch64__) && defined(__ARM_NEON)

@@ -48,15 +48,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(ms4_pixel)(void *arg, int px, int py, c
     /* Non-negative and below 2^24: truncation is the scalar (uint32_t) cast. */
     v4i q = __builtin_convertvector(z + 0.5, v4i);
     size_t base = ((size_t)py * (size_t)ds->fb->width + (size_t)px) * 4;
-    uint32_t *dp = &ds->fb->depth[base];
-    v4i d;
-    memcpy(&d, dp, sizeof d);
-    v4i pass = __builtin_convertvector(cov, v4i) & (q < d);
+    v4i pass = sr__depth_less4(ds->fb, base, q, __builtin_convertvector(cov, v4i));
     if (!(pass[0] | pass[1] | pass[2] | pass[3])) {
         return;
     }
-    d = (pass & q) | (~pass & d);
-    memcpy(dp, &d, sizeof d);
     /* Shading once per pixel, at its centre. */
     float c[4];
     shade_centre(ds, k->t, u, c);

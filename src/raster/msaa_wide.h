@@ -10,8 +10,8 @@
  * value is the pixel's exact integer value plus its offset, held in a
  * double lane - and as simd_kernel.h's quad() for the shading: sr__bary
  * and sr__interp's float operations in order, lane by lane.  The pixels'
- * samples are consecutive words (framebuffer.h), so the four pixels are
- * sixteen consecutive words of each buffer. */
+ * samples are consecutive elements (framebuffer.h), so the four pixels
+ * are sixteen consecutive elements of each buffer (rows_avx512.h). */
 
 typedef struct ms16 {
     const sr_draw_state *ds;
@@ -91,12 +91,12 @@ static inline void ms16_pixels(const ms16 *k, int px, int py, const int64_t u[3]
     }
     __m512i qz = _mm512_inserti64x4(_mm512_castsi256_si512(q[0]), q[1], 1);
     size_t base = ((size_t)py * (size_t)ds->fb->width + (size_t)px) * 4;
-    uint32_t *dp = &ds->fb->depth[base];
-    m = _mm512_mask_cmplt_epi32_mask(m, qz, _mm512_maskz_loadu_epi32(m, dp));
+    sr_framebuffer *fb = ds->fb;
+    m = _mm512_mask_cmplt_epi32_mask(m, qz, sr__row16_load(fb->depth, sr__depth_size(fb), base, m));
     if (!m) {
         return;
     }
-    _mm512_mask_storeu_epi32(dp, m, qz);
+    sr__row16_store(fb->depth, sr__depth_size(fb), base, m, qz);
     /* Shading once per pixel, at its centre. */
     __m256d centre[3];
     for (int i = 0; i < 3; i++) {

@@ -13,6 +13,7 @@
  * discard, or alpha to coverage needs the shaded alpha: then after it,
  * as the GL order of operations says. */
 #include "fragment/msaa_ops.h"
+#include "raster/depth_lanes.h"
 #include "raster/msaa_walk.h"
 #include "simd_types.h"
 
@@ -76,19 +77,13 @@ static unsigned test4(const quad_job *j, size_t base, const int64_t u[3], unsign
     v4d z = depth4(ds, j->t, (double)u[1] + j->so4[0], (double)u[2] + j->so4[1]);
     /* Non-negative and below 2^24: truncation is the scalar (uint32_t) cast. */
     v4i q = __builtin_convertvector(z + 0.5, v4i);
-    uint32_t *dp = &ds->fb->depth[base];
-    v4i d;
-    memcpy(&d, dp, sizeof d);
     v4i lanes = { (int32_t)(cover & 1u), (int32_t)(cover >> 1 & 1u), (int32_t)(cover >> 2 & 1u),
                   (int32_t)(cover >> 3 & 1u) };
-    v4i pass = (lanes != 0) & (q < d);
-    d = (pass & q) | (~pass & d);
-    memcpy(dp, &d, sizeof d);
-    return lane_bits(pass);
+    return lane_bits(sr__depth_less4(ds->fb, base, q, lanes != 0));
 }
 
 /* test4 for a quad's four pixels of one sample each, the covered ones
- * (cover[i] 1 or 0, left at 1 where the pixel passed): their depth words
+ * (cover[i] 1 or 0, left at 1 where the pixel passed): their depth samples
  * are two pairs of rows apart, so read and written lane by lane. */
 static unsigned test_pixels(const quad_job *j, const size_t base[4], const int64_t u[4][3],
                             unsigned cover[4])
@@ -97,17 +92,13 @@ static unsigned test_pixels(const quad_job *j, const size_t base[4], const int64
     v4d e2 = { (double)u[0][2], (double)u[1][2], (double)u[2][2], (double)u[3][2] };
     v4d z = depth4(j->ds, j->t, e1 + j->so4[0], e2 + j->so4[1]);
     v4i q = __builtin_convertvector(z + 0.5, v4i);
-    uint32_t *dp = j->ds->fb->depth;
-    v4i d, lanes;
+    v4i d = sr__depth_gather4(j->ds->fb, base, cover), lanes;
     for (int i = 0; i < 4; i++) {
         lanes[i] = -(int32_t)cover[i];
-        d[i] = cover[i] ? (int32_t)dp[base[i]] : 0;
     }
     v4i pass = lanes & (q < d);
+    sr__depth_scatter4(j->ds->fb, base, pass, q);
     for (int i = 0; i < 4; i++) {
-        if (pass[i]) {
-            dp[base[i]] = (uint32_t)q[i];
-        }
         cover[i] = (unsigned)pass[i] & 1u;
     }
     return lane_bits(pass);

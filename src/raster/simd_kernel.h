@@ -124,14 +124,10 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
             z = SR_SIMD_FN(sel_d)(z <= zmax, z, zmax);
         }
         v4i q = __builtin_convertvector(z + 0.5, v4i);   /* < 2^24: fits int32 */
-        v4i old;
-        memcpy(&old, &fb->depth[idx], sizeof old);
-        m &= q < old;
+        m = sr__depth_less4(fb, idx, q, m);
         if (!SR_SIMD_FN(bits)(m)) {
             return;
         }
-        v4i nd = SR_SIMD_FN(sel_i)(m, q, old);
-        memcpy(&fb->depth[idx], &nd, sizeof nd);
     }
 
     v4i rgba;
@@ -200,6 +196,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(quad)(const sr_draw_state *ds, const sr
  * them); at the other levels SR_SIMD_INSTANCE makes raster_name straight
  * from raster_as. */
 #ifdef SR_SIMD_WIDE16
+#include "raster/rows_avx512.h"
 #include "raster/simd_wide16.h"
 #include "raster/simd_wide16_walk.h"
 #else

@@ -251,6 +251,6 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(rows16_tex)(const sr_draw_state *ds, co
         rgba = _mm512_or_si512(rgba, _mm512_sll_epi32(SR_SIMD_FN(w16_unorm8)(mod),
                                                       _mm_cvtsi32_si128(8 * ch)));
     }
-    SR_SIMD_FN(stamp_store)(fb->color, idx, pitch, m, rgba, shape);
+    SR_SIMD_FN(stamp_store)(fb->color, 4, idx, pitch, m, rgba, shape);
     st->fragments += (uint64_t)__builtin_popcount(lanes);
 }

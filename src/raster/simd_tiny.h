@@ -52,36 +52,37 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(tiny_setup)(const sr_tri *t, uint32_t X
 /* Lane i of v in all sixteen lanes. */
 #define SR_TINY_LANE(v, i) _mm512_broadcastd_epi32(_mm_shuffle_epi32((v), (i) * 0x55))
 
-/* A stamp's rows of a buffer: row r starts at at[r] (4 x 4: four rows
- * of four lanes; 8 x 2: two of eight).  A row the box lacks, whose lanes
- * are off, gets the address of its last row, so no address below the
- * framebuffer is formed. */
-SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(tiny_load)(const uint32_t *buf, const size_t at[4],
-                                                      __mmask16 m, sr_stamp shape)
+/* A stamp's rows of a buffer of `size`-byte elements (rows_avx512.h):
+ * row r starts at at[r] (4 x 4: four rows of four lanes; 8 x 2: two of
+ * eight).  A row the box lacks, whose lanes are off, gets the address of
+ * its last row, so no address below the framebuffer is formed. */
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(tiny_load)(const void *buf, int size,
+                                                      const size_t at[4], __mmask16 m,
+                                                      sr_stamp shape)
 {
     if (shape == SR_STAMP_8X2) {
         return _mm512_inserti64x4(
-            _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &buf[at[0]])),
-            _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[at[1]]), 1);
+            _mm512_castsi256_si512(sr__row8_load(buf, size, at[0], (__mmask8)m)),
+            sr__row8_load(buf, size, at[1], (__mmask8)(m >> 8)), 1);
     }
-    __m512i v = _mm512_castsi128_si512(_mm_maskz_loadu_epi32((__mmask8)m, &buf[at[0]]));
-    v = _mm512_inserti32x4(v, _mm_maskz_loadu_epi32((__mmask8)(m >> 4), &buf[at[1]]), 1);
-    v = _mm512_inserti32x4(v, _mm_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[at[2]]), 2);
-    return _mm512_inserti32x4(v, _mm_maskz_loadu_epi32((__mmask8)(m >> 12), &buf[at[3]]), 3);
+    __m512i v = _mm512_castsi128_si512(sr__row4_load(buf, size, at[0], (__mmask8)m));
+    v = _mm512_inserti32x4(v, sr__row4_load(buf, size, at[1], (__mmask8)(m >> 4)), 1);
+    v = _mm512_inserti32x4(v, sr__row4_load(buf, size, at[2], (__mmask8)(m >> 8)), 2);
+    return _mm512_inserti32x4(v, sr__row4_load(buf, size, at[3], (__mmask8)(m >> 12)), 3);
 }
 
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(tiny_store)(uint32_t *buf, const size_t at[4],
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(tiny_store)(void *buf, int size, const size_t at[4],
                                                     __mmask16 m, __m512i v, sr_stamp shape)
 {
     if (shape == SR_STAMP_8X2) {
-        _mm256_mask_storeu_epi32(&buf[at[0]], (__mmask8)m, _mm512_castsi512_si256(v));
-        _mm256_mask_storeu_epi32(&buf[at[1]], (__mmask8)(m >> 8), _mm512_extracti64x4_epi64(v, 1));
+        sr__row8_store(buf, size, at[0], (__mmask8)m, _mm512_castsi512_si256(v));
+        sr__row8_store(buf, size, at[1], (__mmask8)(m >> 8), _mm512_extracti64x4_epi64(v, 1));
         return;
     }
-    _mm_mask_storeu_epi32(&buf[at[0]], (__mmask8)m, _mm512_castsi512_si128(v));
-    _mm_mask_storeu_epi32(&buf[at[1]], (__mmask8)(m >> 4), _mm512_extracti32x4_epi32(v, 1));
-    _mm_mask_storeu_epi32(&buf[at[2]], (__mmask8)(m >> 8), _mm512_extracti32x4_epi32(v, 2));
-    _mm_mask_storeu_epi32(&buf[at[3]], (__mmask8)(m >> 12), _mm512_extracti32x4_epi32(v, 3));
+    sr__row4_store(buf, size, at[0], (__mmask8)m, _mm512_castsi512_si128(v));
+    sr__row4_store(buf, size, at[1], (__mmask8)(m >> 4), _mm512_extracti32x4_epi32(v, 1));
+    sr__row4_store(buf, size, at[2], (__mmask8)(m >> 8), _mm512_extracti32x4_epi32(v, 2));
+    sr__row4_store(buf, size, at[3], (__mmask8)(m >> 12), _mm512_extracti32x4_epi32(v, 3));
 }
 
 /* The box [rx0, rx1) x [ry0, ry1) of a record with fits32, in stamps from
@@ -167,12 +168,12 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
             SR_SIMD_FN(w16_halves)(e[1], e1);
             SR_SIMD_FN(w16_halves)(e[2], e2);
             __m512i qz = SR_SIMD_FN(w16_zq)(ds, t, e1, e2, &k);
-            __m512i old = SR_SIMD_FN(tiny_load)(fb->depth, at, m, shape);
+            __m512i old = SR_SIMD_FN(tiny_load)(fb->depth, sr__depth_size(fb), at, m, shape);
             m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
             if (!m) {
                 continue;
             }
-            SR_SIMD_FN(tiny_store)(fb->depth, at, m, qz, shape);
+            SR_SIMD_FN(tiny_store)(fb->depth, sr__depth_size(fb), at, m, qz, shape);
         }
         __m512i rgba = flat;
         if (shading != SR_SHADING_FLAT) {
@@ -194,7 +195,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(raster_tiny)(const sr_draw_state *ds, c
                 rgba = SR_SIMD_FN(w16_phong)(ds, t, l1, l2);
             }
         }
-        SR_SIMD_FN(tiny_store)(fb->color, at, m, rgba, shape);
+        SR_SIMD_FN(tiny_store)(fb->color, 4, at, m, rgba, shape);
         st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
     }
 }

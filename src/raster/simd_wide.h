@@ -42,6 +42,30 @@ SR_SIMD_TARGET SR_INLINE __m256i SR_SIMD_FN(wide_pack)(const __m256 c[4])
                                            _mm256_slli_epi32(q[3], 24)));
 }
 
+/* depth_lanes.h's sr__depth_less4 on eight samples from element idx:
+ * the lanes of m (all ones or zero) whose q is below the stored value
+ * write it; returns them.  D16's samples are zero-extended into the
+ * lanes and narrowed back. */
+SR_SIMD_TARGET SR_INLINE __m256i SR_SIMD_FN(depth_less8)(sr_framebuffer *fb, size_t idx,
+                                                         __m256i q, __m256i m)
+{
+    if (fb->depth16) {
+        __m128i *p = (__m128i *)((uint16_t *)fb->depth + idx);
+        __m256i old = _mm256_cvtepu16_epi32(_mm_loadu_si128(p));
+        m = _mm256_and_si256(m, _mm256_cmpgt_epi32(old, q));
+        __m256i d = _mm256_blendv_epi8(old, q, m);
+        /* Every lane is below 2^16: the unsigned saturation keeps it. */
+        _mm_storeu_si128(p, _mm_packus_epi32(_mm256_castsi256_si128(d),
+                                             _mm256_extracti128_si256(d, 1)));
+        return m;
+    }
+    __m256i *p = (__m256i *)((uint32_t *)fb->depth + idx);
+    __m256i old = _mm256_loadu_si256(p);
+    m = _mm256_and_si256(m, _mm256_cmpgt_epi32(old, q));
+    _mm256_storeu_si256(p, _mm256_blendv_epi8(old, q, m));
+    return m;
+}
+
 /* Pixels gx .. gx+7 of row py; e*[0] holds lanes 0-3 and e*[1] lanes 4-7
  * (unbiased edge values).  `inside`: the block lies wholly inside the
  * triangle, so no lane needs its coverage test.  Unlit/Gouraud color or
@@ -80,13 +104,11 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(row8)(const sr_draw_state *ds, const sr
             qh[h] = _mm256_cvttpd_epi32((__m256d)(z + 0.5)); /* < 2^24: fits int32 */
         }
         __m256i q = _mm256_set_m128i(qh[1], qh[0]);
-        __m256i old = _mm256_loadu_si256((const __m256i *)&fb->depth[idx]);
-        m = _mm256_and_si256(m, _mm256_cmpgt_epi32(old, q));
+        m = SR_SIMD_FN(depth_less8)(fb, idx, q, m);
         bits = _mm256_movemask_ps(_mm256_castsi256_ps(m));
         if (!bits) {
             return;
         }
-        _mm256_storeu_si256((__m256i *)&fb->depth[idx], _mm256_blendv_epi8(old, q, m));
     }
 
     __m256i rgba;

@@ -108,21 +108,21 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_bary)(const SR_SIMD_FN(w16_lanes) *
  * for a box the triangle covers whole (lanes 0-15 row py). */
 typedef enum sr_stamp { SR_STAMP_8X2, SR_STAMP_4X4, SR_STAMP_16X1 } sr_stamp;
 
-/* The stamp's words of a buffer (width `pitch`) at `base` = pixel
- * (gx, py), which is always inside the buffer; a row without an enabled
- * lane is never addressed (it uses row 0's address and loads or stores
- * nothing there). */
-SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, size_t base,
+/* The stamp's elements of a buffer (width `pitch`, `size`-byte elements:
+ * rows_avx512.h) at `base` = pixel (gx, py), which is always inside the
+ * buffer; a row without an enabled lane is never addressed (it uses row
+ * 0's address and loads or stores nothing there). */
+SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const void *buf, int size, size_t base,
                                                         size_t pitch, __mmask16 m, sr_stamp shape)
 {
     if (shape == SR_STAMP_16X1) {
-        return _mm512_maskz_loadu_epi32(m, &buf[base]);
+        return sr__row16_load(buf, size, base, m);
     }
     if (shape == SR_STAMP_8X2) {
         size_t b1 = m >> 8 ? base + pitch : base;
         return _mm512_inserti64x4(
-            _mm512_castsi256_si512(_mm256_maskz_loadu_epi32((__mmask8)m, &buf[base])),
-            _mm256_maskz_loadu_epi32((__mmask8)(m >> 8), &buf[b1]), 1);
+            _mm512_castsi256_si512(sr__row8_load(buf, size, base, (__mmask8)m)),
+            sr__row8_load(buf, size, b1, (__mmask8)(m >> 8)), 1);
     }
     /* Row r's lanes.  A row without lanes loads nothing, from row 0's
      * address (a row below the framebuffer's is never formed); chosen by
@@ -133,7 +133,7 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, siz
     for (int r = 0; r < 4; r++) {
         __mmask8 mr = (__mmask8)((m >> (4 * r)) & 0xf);
         size_t at = base + ((size_t)r * pitch & -(size_t)(mr != 0));
-        row[r] = _mm_maskz_loadu_epi32(mr, &buf[at]);
+        row[r] = sr__row4_load(buf, size, at, mr);
     }
     __m512i v = _mm512_castsi128_si512(row[0]);
     v = _mm512_inserti32x4(v, row[1], 1);
@@ -141,18 +141,19 @@ SR_SIMD_TARGET SR_INLINE __m512i SR_SIMD_FN(stamp_load)(const uint32_t *buf, siz
     return _mm512_inserti32x4(v, row[3], 3);
 }
 
-SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base, size_t pitch,
-                                                      __mmask16 m, __m512i v, sr_stamp shape)
+SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(void *buf, int size, size_t base,
+                                                      size_t pitch, __mmask16 m, __m512i v,
+                                                      sr_stamp shape)
 {
     if (shape == SR_STAMP_16X1) {
-        _mm512_mask_storeu_epi32(&buf[base], m, v);
+        sr__row16_store(buf, size, base, m, v);
         return;
     }
     if (shape == SR_STAMP_8X2) {
-        _mm256_mask_storeu_epi32(&buf[base], (__mmask8)m, _mm512_castsi512_si256(v));
+        sr__row8_store(buf, size, base, (__mmask8)m, _mm512_castsi512_si256(v));
         if (m >> 8) {
-            _mm256_mask_storeu_epi32(&buf[base + pitch], (__mmask8)(m >> 8),
-                                     _mm512_extracti64x4_epi64(v, 1));
+            sr__row8_store(buf, size, base + pitch, (__mmask8)(m >> 8),
+                           _mm512_extracti64x4_epi64(v, 1));
         }
         return;
     }
@@ -161,7 +162,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(stamp_store)(uint32_t *buf, size_t base
     for (int r = 0; r < 4; r++) {
         __mmask8 mr = (__mmask8)((m >> (4 * r)) & 0xf);
         size_t at = base + ((size_t)r * pitch & -(size_t)(mr != 0)); /* as in stamp_load */
-        _mm_mask_storeu_epi32(&buf[at], mr, row[r]);
+        sr__row4_store(buf, size, at, mr, row[r]);
     }
 }
 
@@ -209,10 +210,10 @@ SR_SIMD_TARGET SR_INLINE __mmask16 SR_SIMD_FN(w16_depth)(const sr_draw_state *ds
     sr_framebuffer *fb = ds->fb;
     size_t pitch = (size_t)fb->width;
     __m512i qz = SR_SIMD_FN(w16_zq)(ds, t, e1, e2, k);
-    __m512i old = SR_SIMD_FN(stamp_load)(fb->depth, idx, pitch, m, shape);
+    __m512i old = SR_SIMD_FN(stamp_load)(fb->depth, sr__depth_size(fb), idx, pitch, m, shape);
     m = _mm512_mask_cmplt_epi32_mask(m, qz, old);
     if (m) {
-        SR_SIMD_FN(stamp_store)(fb->depth, idx, pitch, m, qz, shape);
+        SR_SIMD_FN(stamp_store)(fb->depth, sr__depth_size(fb), idx, pitch, m, qz, shape);
     }
     return m;
 }
@@ -321,7 +322,7 @@ SR_SIMD_TARGET SR_INLINE void SR_SIMD_FN(w16_shade)(const sr_draw_state *ds, con
 {
     sr_framebuffer *fb = ds->fb;
     __m512i rgba = SR_SIMD_FN(w16_color)(ds, t, l1, l2, k, shading);
-    SR_SIMD_FN(stamp_store)(fb->color, idx, (size_t)fb->width, m, rgba, shape);
+    SR_SIMD_FN(stamp_store)(fb->color, 4, idx, (size_t)fb->width, m, rgba, shape);
     st->fragments += (uint64_t)__builtin_popcount((unsigned)m);
 }
 

@@ -9,6 +9,7 @@
 #include "fragment/fragment.h"
 #include "fragment/light_lanes.h"
 #include "raster/block.h"
+#include "raster/depth_lanes.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -29,7 +29,7 @@ static void hold_rows(sr_framebuffer *fb, int row0, int row1)
     int back = fb->row0 - row0;
     size_t n = (size_t)fb->width * (size_t)fb->samples;
     fb->color = shift(fb->color, back, n, sizeof *fb->color);
-    fb->depth = shift(fb->depth, back, n, sizeof *fb->depth);
+    fb->depth = shift(fb->depth, back, n, (size_t)sr__depth_size(fb));
     fb->stencil = shift(fb->stencil, back, n, 1);
     fb->resolved = shift(fb->resolved, back, (size_t)fb->width, sizeof *fb->resolved);
     fb->row0 = row0;

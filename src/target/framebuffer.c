@@ -75,6 +75,7 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
     fb->wide_stores = ctx->simd == SR_SIMD_AVX512;
     fb->depth_format = fmt;
     fb->depth_bits = bits < 0 ? 0 : bits;
+    fb->depth16 = fmt == SR_DEPTH_D16;
     fb->tiles_x = (desc->width + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
     fb->tiles_y = (desc->height + SR_TILE_SIZE - 1) >> SR_TILE_ORDER;
     fb->tile_pending = sr__calloc(ctx, (size_t)fb->tiles_x * fb->tiles_y, 1);
@@ -86,7 +87,7 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
      * first drawn or read. */
     fb->color = fb->tile_memo ? sr__alloc_large(ctx, n * sizeof(uint32_t)) : NULL;
     if (fb->color && bits >= 0) {
-        fb->depth = sr__alloc_large(ctx, n * sizeof(uint32_t));
+        fb->depth = sr__alloc_large(ctx, n * (size_t)sr__depth_size(fb));
     }
     if (fb->color && desc->stencil) {
         fb->stencil = sr__alloc_large(ctx, n);
@@ -161,9 +162,17 @@ static void fill_words(uint32_t *p, uint32_t v, size_t n, bool wide)
     }
 }
 
-/* Fill [x0, x1) x [y0, y1) of one component (`words` 4-byte values, or
- * bytes of the stencil) with v, a row of samples at a time. */
-static void fill_rect(const sr_framebuffer *fb, uint32_t *words, uint8_t *bytes, uint32_t v,
+static void fill_halves(uint16_t *p, uint16_t v, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        p[i] = v;
+    }
+}
+
+/* Fill [x0, x1) x [y0, y1) of one component (`size`-byte values: color
+ * and depth words, D16's halves, stencil bytes) with v, a row of samples
+ * at a time. */
+static void fill_rect(const sr_framebuffer *fb, void *mem, int size, uint32_t v,
                       int x0, int y0, int x1, int y1, bool wide)
 {
     /* A row of the rectangle is one run of samples in memory
@@ -172,10 +181,12 @@ static void fill_rect(const sr_framebuffer *fb, uint32_t *words, uint8_t *bytes,
     size_t run = x1 > x0 ? (size_t)(x1 - x0) * ns : 0;
     for (int y = y0; y < y1 && run; y++) {
         size_t first = ((size_t)y * fb->width + (size_t)x0) * ns;
-        if (words) {
-            fill_words(words + first, v, run, wide);
+        if (size == 4) {
+            fill_words((uint32_t *)mem + first, v, run, wide);
+        } else if (size == 2) {
+            fill_halves((uint16_t *)mem + first, (uint16_t)v, run);
         } else {
-            memset(bytes + first, (int)v, run);
+            memset((uint8_t *)mem + first, (int)v, run);
         }
     }
 }
@@ -204,18 +215,19 @@ static unsigned clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool 
     unsigned flags = fb->tile_pending[tile];
     struct {
         unsigned pending, base;
-        uint32_t *words;
-        uint8_t *bytes;
+        void *mem;
+        int size;
         uint32_t value, *memo;
     } part[3] = {
-        { SR_TILE_PENDING_COLOR, SR_TILE_BASE_COLOR, fb->color, NULL, fb->clear_color, &m->color },
-        { SR_TILE_PENDING_DEPTH, SR_TILE_BASE_DEPTH, fb->depth, NULL, fb->clear_depth, &m->depth },
-        { SR_TILE_PENDING_STENCIL, SR_TILE_BASE_STENCIL, NULL, fb->stencil, fb->clear_stencil,
+        { SR_TILE_PENDING_COLOR, SR_TILE_BASE_COLOR, fb->color, 4, fb->clear_color, &m->color },
+        { SR_TILE_PENDING_DEPTH, SR_TILE_BASE_DEPTH, fb->depth, sr__depth_size(fb), fb->clear_depth,
+          &m->depth },
+        { SR_TILE_PENDING_STENCIL, SR_TILE_BASE_STENCIL, fb->stencil, 1, fb->clear_stencil,
           &m->stencil },
     };
     unsigned present = 0, cleared = 0;
     for (int k = 0; k < 3; k++) {
-        if (!part[k].words && !part[k].bytes) {
+        if (!part[k].mem) {
             continue;   /* the framebuffer has no such buffer */
         }
         present |= part[k].pending;
@@ -224,10 +236,10 @@ static unsigned clear_tile(sr_framebuffer *fb, int tile, unsigned pending, bool 
         }
         cleared |= part[k].pending;
         if ((flags & part[k].base) && *part[k].memo == part[k].value) {
-            fill_rect(fb, part[k].words, part[k].bytes, part[k].value, dx0, dy0, dx1, dy1, wide);
+            fill_rect(fb, part[k].mem, part[k].size, part[k].value, dx0, dy0, dx1, dy1, wide);
             continue;
         }
-        fill_rect(fb, part[k].words, part[k].bytes, part[k].value, x0, y0, x1, y1, wide);
+        fill_rect(fb, part[k].mem, part[k].size, part[k].value, x0, y0, x1, y1, wide);
         *part[k].memo = part[k].value;
         flags |= part[k].base;
     }
@@ -792,7 +804,7 @@ sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
         for (int col = 0; col < w; col++) {
             /* Multisampled: sample 0's depth. */
             size_t px = (size_t)(y + row) * fb->width + x + col;
-            uint32_t q = fb->depth[px * (size_t)fb->samples];
+            uint32_t q = sr__depth_at(fb, px * (size_t)fb->samples);
             out[(size_t)row * stride + col] = (float)sr__depth_dequantize(q, fb->depth_bits);
         }
     }

@@ -1,8 +1,11 @@
 /* framebuffer.h - render target storage (target stage).  Color is RGBA8 in
  * memory order r, g, b, a, row-major from the top row.  Depth of every
- * format is kept as a uint32 per pixel holding the *quantized* value, so one
- * unsigned compare serves all formats: D16/D24/D32 store k for k/(2^n - 1),
- * D32F stores the bits of a non-negative float, which order like integers. */
+ * format is kept as its *quantized* value, so one unsigned compare serves
+ * all formats: D16/D24/D32 store k for k/(2^n - 1), D32F stores the bits
+ * of a non-negative float, which order like integers.  D16 keeps each
+ * value in a uint16, the others in a uint32 (depth16); the rasterizers
+ * widen what they load to 32 bits and compare there, so the width of the
+ * storage never changes a result. */
 #ifndef SR_FRAMEBUFFER_H
 #define SR_FRAMEBUFFER_H
 
@@ -63,7 +66,11 @@ struct sr_framebuffer {
     sr_depth_format depth_format;   /* resolved: never SR_DEPTH_DEFAULT */
     int depth_bits;                 /* 16, 24, 32; 0 for D32F */
     uint32_t *color;
-    uint32_t *depth;                /* NULL with SR_DEPTH_NONE */
+    void *depth;                    /* NULL with SR_DEPTH_NONE; sr__depth_at */
+    /* D16: depth samples are uint16, else uint32.  A bool, which no store
+     * of depth or color words may alias: the compiler keeps it in a
+     * register across a kernel's stores instead of reloading it. */
+    bool depth16;
     uint8_t *stencil;               /* NULL without a stencil buffer */
     uint32_t *resolved;             /* samples > 1: the box-filtered image read out */
     int tiles_x, tiles_y;
@@ -79,6 +86,31 @@ struct sr_framebuffer {
 static inline bool sr__fb_is_band(const sr_framebuffer *fb)
 {
     return fb->row0 != 0 || fb->row1 != fb->height;
+}
+
+/* Bytes a depth sample of fb takes. */
+static inline int sr__depth_size(const sr_framebuffer *fb)
+{
+    return fb->depth16 ? 2 : 4;
+}
+
+/* Depth sample i of fb (which has depth), widened to 32 bits, and its
+ * store: where the scalar paths meet the storage width. */
+static inline uint32_t sr__depth_at(const sr_framebuffer *fb, size_t i)
+{
+    if (fb->depth16) {
+        return ((const uint16_t *)fb->depth)[i];
+    }
+    return ((const uint32_t *)fb->depth)[i];
+}
+
+static inline void sr__depth_put(sr_framebuffer *fb, size_t i, uint32_t q)
+{
+    if (fb->depth16) {
+        ((uint16_t *)fb->depth)[i] = (uint16_t)q;
+    } else {
+        ((uint32_t *)fb->depth)[i] = q;
+    }
 }
 
 /* The standard positions as q8 offsets from the pixel centre, x then y
