@@ -533,26 +533,62 @@ typedef struct area_entry {
     int next;
 } area_entry;
 
+/* Shrink the window's columns to those the edges can touch, with one
+ * pixel to spare on each side: the columns left of the edges receive no
+ * deposit and those right of them only the row's zero sum, and the spare
+ * pixel keeps the interpolated crossings (rounded near the extreme
+ * vertices) on the same side of the window edges as before, so a small
+ * shape in a wide target gets the same coverage from a small row. */
+static sr__window cols_of_edges(const sr__edge2 *edges, int count, sr__window win)
+{
+    int64_t lo = INT64_MAX, hi = INT64_MIN;
+    for (int i = 0; i < count; i++) {
+        int64_t a = edges[i].x0 < edges[i].x1 ? edges[i].x0 : edges[i].x1;
+        int64_t b = edges[i].x0 < edges[i].x1 ? edges[i].x1 : edges[i].x0;
+        lo = a < lo ? a : lo;
+        hi = b > hi ? b : hi;
+    }
+    int64_t c0 = floor_div(lo, Q8_ONE) - 1, c1 = floor_div(hi, Q8_ONE) + 3;
+    if (c0 > win.x0) {
+        win.x0 = c0 >= win.x1 ? win.x1 : (int)c0;
+    }
+    if (c1 < win.x1) {
+        win.x1 = c1 <= win.x0 ? win.x0 : (int)c1;
+    }
+    return win;
+}
+
+/* Small shapes take their coverage rows from the stack (bytes). */
+#define AREA_STACK_BYTES 4096
+
 sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
                         sr__window win, sr__span_fn fn, void *user)
 {
     if (!rows_to_scan(edges, count, &win)) {
         return SR_OK;
     }
+    win = cols_of_edges(edges, count, win);
+    if (win.x0 >= win.x1) {
+        return SR_OK;
+    }
     int rows = win.y1 - win.y0, w = win.x1 - win.x0;
-    area_entry *et = sr__alloc(ctx, (size_t)count * sizeof *et);
-    int *bucket = sr__alloc(ctx, (size_t)rows * sizeof *bucket);
-    int *active = sr__alloc(ctx, (size_t)count * sizeof *active);
-    double *acc = sr__calloc(ctx, (size_t)w + 2, sizeof *acc);
-    uint8_t *cov = sr__alloc(ctx, (size_t)w + 1);
-    if (!et || !bucket || !active || !acc || !cov) {
-        sr__free(ctx, et);
-        sr__free(ctx, bucket);
-        sr__free(ctx, active);
-        sr__free(ctx, acc);
-        sr__free(ctx, cov);
+    /* One block, by alignment: the edge entries, the accumulator, the
+     * buckets, the active list and the coverage row. */
+    size_t et_bytes = (size_t)count * sizeof(area_entry);
+    size_t acc_bytes = ((size_t)w + 2) * sizeof(double);
+    size_t total = et_bytes + acc_bytes + ((size_t)rows + (size_t)count) * sizeof(int) +
+                   (size_t)w + 1;
+    _Alignas(area_entry) unsigned char stack[AREA_STACK_BYTES];
+    unsigned char *block = total <= sizeof stack ? stack : sr__alloc(ctx, total);
+    if (!block) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for coverage rows");
     }
+    area_entry *et = (area_entry *)block;
+    double *acc = (double *)(block + et_bytes);
+    int *bucket = (int *)(block + et_bytes + acc_bytes);
+    int *active = bucket + rows;
+    uint8_t *cov = (uint8_t *)(active + count);
+    memset(acc, 0, acc_bytes);
     for (int y = 0; y < rows; y++) {
         bucket[y] = -1;
     }
@@ -654,11 +690,9 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
         memset(acc + c0, 0, (size_t)(clear_end - c0) * sizeof *acc);
         acc[0] = 0.0;
     }
-    sr__free(ctx, et);
-    sr__free(ctx, bucket);
-    sr__free(ctx, active);
-    sr__free(ctx, acc);
-    sr__free(ctx, cov);
+    if (block != stack) {
+        sr__free(ctx, block);
+    }
     return SR_OK;
 }
 
