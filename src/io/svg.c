@@ -168,6 +168,8 @@ typedef struct svg_doc {
     bool warnings_capped;    /* "further warnings not shown" was said */
     int warnings;            /* given so far */
     unsigned long line;      /* of the element being handled */
+    sr_path *spare_path;     /* a cleared shape path kept for the next shape, or NULL */
+    double spare_tol;        /* the flattening tolerance it was made with */
     svg_vertex *verts;       /* of the path being read, when want_verts */
     int n_verts, cap_verts;
     bool want_verts;
@@ -2503,8 +2505,27 @@ static void draw_children(svg_doc *doc, svg_node *node, const frame *f)
     }
 }
 
-/* The shape's path, flattened finely enough for the transform's scale,
- * filled and stroked. */
+/* Done with a path shape_at_scale made (NULL allowed): the next shape
+ * reuses it, cleared, when it is flattened with the same tolerance (the
+ * usual case: siblings share a transform), which saves the path's
+ * allocations per element.  A path of many points is freed rather than
+ * kept, so one large shape does not hold its memory to the end. */
+#define SPARE_PATH_MAX_POINTS 4096
+
+static void release_shape_path(svg_doc *doc, sr_path *p, double tol)
+{
+    if (!p) {
+        return;
+    }
+    if (doc->spare_path || sr_path_polygon(p).point_count > SPARE_PATH_MAX_POINTS) {
+        sr_destroy_path(doc->ctx, p);
+        return;
+    }
+    sr_path_clear(p);
+    doc->spare_path = p;
+    doc->spare_tol = tol;
+}
+
 /* The shape's path in user units, flattened finely enough for the
  * frame's scale (*tol); NULL when there is nothing to draw or after a
  * failure.  Flattening is work too, drawn or not (fill="none"). */
@@ -2517,17 +2538,22 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
         return NULL; /* a singular transform: nothing visible */
     }
     sr_path *p = NULL;
-    sr_result r = sr_make_path(doc->ctx, *tol, &p);
-    if (r != SR_OK) {
-        lib_fail(doc, r);
-        return NULL;
+    if (doc->spare_path && doc->spare_tol == *tol) {
+        p = doc->spare_path;
+        doc->spare_path = NULL;
+    } else {
+        sr_result r = sr_make_path(doc->ctx, *tol, &p);
+        if (r != SR_OK) {
+            lib_fail(doc, r);
+            return NULL;
+        }
     }
     if (shape_path(doc, f, node->name, node->atts, p, fillable) && doc->status == SR_OK &&
         points_within_budget(doc, sr_path_polygon(p).point_count)) {
         doc->points_used += sr_path_polygon(p).point_count;
         return p;
     }
-    sr_destroy_path(doc->ctx, p);
+    release_shape_path(doc, p, *tol);
     return NULL;
 }
 
@@ -2711,7 +2737,7 @@ static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
         }
     }
     free(verts);
-    sr_destroy_path(doc->ctx, p);
+    release_shape_path(doc, p, tol);
 }
 
 /* ---- images -------------------------------------------------------------------------- */
@@ -2944,7 +2970,7 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
 static bool clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint8_t *cov)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
-    double tol;
+    double tol = 0;
     bool fillable, drawn = false;
     sr_path *p = f->st.display_none || f->st.invisible
                      ? NULL : shape_at_scale(doc, shape, f, &tol, &fillable);
@@ -2962,9 +2988,7 @@ static bool clip_shape(svg_doc *doc, const svg_node *shape, const frame *f, uint
         }
         drawn = r == SR_OK;
     }
-    if (p) {
-        sr_destroy_path(doc->ctx, p);
-    }
+    release_shape_path(doc, p, tol);
     return drawn;
 }
 
@@ -3025,7 +3049,7 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
                 sr_point2 q = mat_apply(m, poly.points[i]);
                 box_point(b, q);
             }
-            sr_destroy_path(doc->ctx, p);
+            release_shape_path(doc, p, tol);
         }
     } else {
         /* m holds a use's own x and y (use_offset), as it holds its
@@ -3792,6 +3816,7 @@ static void free_document(svg_doc *doc)
     free_tree(doc->root);
     free(doc->ids);
     free(doc->verts);
+    sr_destroy_path(doc->ctx, doc->spare_path);
     svg_css_free(&doc->sheet);
     sr_destroy_framebuffer(doc->ctx, doc->tile);
 }
