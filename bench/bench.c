@@ -37,6 +37,7 @@ typedef struct bench_opts {
     bool compare;
     bool gl_default_malloc;  /* leave glibc's thresholds as they are (see keep_gl_memory) */
     const char *save_dir;
+    const char *cases;       /* shapes2d: --cases LIST, NULL for all */
 } bench_opts;
 
 typedef struct bench_run {
@@ -55,7 +56,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
         "usage: softrast-bench [SCENE...] [--threads N] [--size WxH] [--frames N]\n"
-        "                      [--compare] [--save-images DIR]\n"
+        "                      [--compare] [--save-images DIR] [--cases LIST]\n"
         "\n"
         "Times each SCENE (all of them when none is given).  The first line says\n"
         "when and where:  date=YYYY-MM-DDTHH:MM:SSZ cpu=MODEL (the rest of the line);\n"
@@ -82,7 +83,7 @@ static void usage(FILE *f)
         "  shapes2d             Blend2D bl_bench-like batches: rect, poly10/20/40, curves;\n"
         "                       8-256 px; solid, linear, radial paint; softrast renders\n"
         "                       each batch as SVG (--compare: cairo draws it);\n"
-        "                       --frames counts at most 5 per case\n"
+        "                       --frames counts at most 5 per case; --cases picks some\n"
         "  icons                every 16th SVG of $SR_BENCH_ICONS (default %s),\n"
         "                       each rendered and written as PNG in this process, then by\n"
         "                       `softrast svg` and `rsvg-convert` one process per file;\n"
@@ -110,6 +111,9 @@ static void usage(FILE *f)
         "                       llvmpipe then hands its per-frame memory back to the\n"
         "                       kernel and faults it in again every frame (see docs)\n"
         "  --save-images DIR    write DIR/SCENE-RENDERER.png (the last frame)\n"
+        "  --cases LIST         shapes2d: only the cases that match, a comma-separated\n"
+        "                       list of shapes, paints and sizes (rect,poly10,solid,8):\n"
+        "                       each kind listed must match, a kind not listed matches all\n"
         "  -h, --help           this help\n",
         SR_BENCH_MODELS_DIR, SR_BENCH_ICONS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
 }
@@ -164,7 +168,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
         } else if (strcmp(a, "--gl-default-malloc") == 0) {
             o->gl_default_malloc = true;
         } else if (strcmp(a, "--threads") == 0 || strcmp(a, "--size") == 0 ||
-                   strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0) {
+                   strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0 ||
+                   strcmp(a, "--cases") == 0) {
             if (!has_value) {
                 fprintf(stderr, "softrast-bench: %s: missing value\n", a);
                 return 2;
@@ -177,6 +182,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
                 ok = parse_size(a, v, &o->width, &o->height);
             } else if (strcmp(a, "--frames") == 0) {
                 ok = parse_int(a, v, 1, MAX_FRAMES, &o->frames);
+            } else if (strcmp(a, "--cases") == 0) {
+                o->cases = v;
             } else {
                 o->save_dir = v;
             }
@@ -734,7 +741,7 @@ int main(int argc, char **argv)
             }
             break;
         case BENCH_SHAPES2D:
-            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare);
+            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare, o.cases);
             break;
         case BENCH_ICONS:
             run.failures += !bench_icons(o.frames);

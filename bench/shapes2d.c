@@ -295,8 +295,69 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
     return true;
 }
 
-bool bench_shapes2d(sr_context *ctx, int frames, bool compare)
+/* The --cases filter: which shapes, paints and sizes to run (all of a
+ * kind when the list names none of it). */
+typedef struct case_filter {
+    bool shape[sizeof shapes / sizeof shapes[0]];
+    bool paint[sizeof paint_names / sizeof paint_names[0]];
+    bool size[sizeof sizes / sizeof sizes[0]];
+} case_filter;
+
+/* Set *kind[0..n) to all true when none of it was named. */
+static void all_if_none(bool *kind, int n)
 {
+    bool any = false;
+    for (int i = 0; i < n; i++) {
+        any = any || kind[i];
+    }
+    for (int i = 0; !any && i < n; i++) {
+        kind[i] = true;
+    }
+}
+
+/* Parse "rect,solid,8"; false after a message naming an unknown item. */
+static bool parse_cases(const char *list, case_filter *f)
+{
+    *f = (case_filter){ 0 };
+    for (const char *p = list; p && *p;) {
+        size_t len = strcspn(p, ",");
+        bool known = false;
+        for (int i = 0; i < (int)(sizeof shapes / sizeof shapes[0]); i++) {
+            if (strlen(shapes[i].name) == len && strncmp(p, shapes[i].name, len) == 0) {
+                f->shape[i] = known = true;
+            }
+        }
+        for (int i = 0; i < (int)(sizeof paint_names / sizeof paint_names[0]); i++) {
+            if (strlen(paint_names[i]) == len && strncmp(p, paint_names[i], len) == 0) {
+                f->paint[i] = known = true;
+            }
+        }
+        for (int i = 0; i < (int)(sizeof sizes / sizeof sizes[0]); i++) {
+            char num[16];
+            int n = snprintf(num, sizeof num, "%d", sizes[i]);
+            if ((size_t)n == len && strncmp(p, num, len) == 0) {
+                f->size[i] = known = true;
+            }
+        }
+        if (!known) {
+            fprintf(stderr, "softrast-bench: --cases: '%.*s' is no shape, paint or size of "
+                            "shapes2d\n", (int)len, p);
+            return false;
+        }
+        p += len + (p[len] == ',');
+    }
+    all_if_none(f->shape, (int)(sizeof f->shape / sizeof f->shape[0]));
+    all_if_none(f->paint, (int)(sizeof f->paint / sizeof f->paint[0]));
+    all_if_none(f->size, (int)(sizeof f->size / sizeof f->size[0]));
+    return true;
+}
+
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *only)
+{
+    case_filter filter;
+    if (!parse_cases(only, &filter)) {
+        return false;
+    }
     frames = frames > MAX_FRAMES ? MAX_FRAMES : frames;
     shape *sh = malloc(sizeof *sh * MAX_SHAPES);
     double *ms = calloc((size_t)frames, sizeof *ms), *cr_ms = calloc((size_t)frames, sizeof *ms);
@@ -325,6 +386,9 @@ bool bench_shapes2d(sr_context *ctx, int frames, bool compare)
             count = count > MAX_SHAPES ? MAX_SHAPES : count;
             make_batch(sh, count, shapes[si].kind, shapes[si].verts, size, &rng);
             for (int p = PAINT_SOLID; ok && p <= PAINT_RADIAL; p++) {
+                if (!filter.shape[si] || !filter.size[zi] || !filter.paint[p]) {
+                    continue; /* the batch was still made: the others stay the same */
+                }
                 t.len = 0;
                 ok = batch_svg(&t, sh, count, shapes[si].kind, shapes[si].verts, size,
                                (paint_kind)p);

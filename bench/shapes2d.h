@@ -9,8 +9,9 @@
 
 #include "softrast.h"
 
-/* Print the result lines; return false on failure (after a message). */
-bool bench_shapes2d(sr_context *ctx, int frames, bool compare);
+/* Print the result lines; return false on failure (after a message).
+ * only: NULL for all, else the --cases list (shapes, paints, sizes). */
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *only);
 bool bench_icons(int frames);
 
 #endif
