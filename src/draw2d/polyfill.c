@@ -919,6 +919,7 @@ sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
     if (!sr__paint_init(&t.paint, color, d.linear_light)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
     }
+    t.paint.wide = fb->wide_stores;
     sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
     if (r2d != SR_OK) {
         return r2d;
