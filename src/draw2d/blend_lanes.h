@@ -3,9 +3,9 @@
  * once, in GCC/Clang vector extensions.  Included once per width with
  * BL_LANES, the types BL_F (float lanes), BL_I (their masks), BL_U
  * (packed pixels), BL_B (coverage bytes), BL_FN(name), BL_INLINE
- * (which carries the target attribute of the width) and BL_ALL(mask)
- * (true when every lane of a BL_I mask is set) defined; it undefines
- * them at its end.  The same
+ * (which carries the target attribute of the width), BL_ALL(mask) and
+ * BL_ANY(mask) (true when every lane, any lane, of a BL_I mask is set)
+ * defined; it undefines them at its end.  The same
  * float operations in the same order as the scalar blend, lane by lane:
  * the same bytes at every width. */
 
@@ -45,9 +45,11 @@ BL_INLINE BL_U BL_FN(blend)(const sr__paint *p, BL_U d, BL_U c)
     BL_I none = (BL_I)(c == 0) | (a <= 0.0f);
     BL_F da = BL_FN(channel)(d, 3) * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
     BL_I translucent = (BL_I)(((d >> CHANNEL_SHIFT(3)) & 0xff) < 255), pos = oa > 0.0f;
-    BL_F div = BL_FN(select)(pos, oa, BL_FN(splat)(1.0f));
-    keep = BL_FN(select)(translucent, BL_FN(select)(pos, da * keep / div, zero), keep);
-    a = BL_FN(select)(translucent, BL_FN(select)(pos, a / div, zero), a);
+    if (BL_ANY(translucent)) { /* over opaque pixels only, no lane divides */
+        BL_F div = BL_FN(select)(pos, oa, BL_FN(splat)(1.0f));
+        keep = BL_FN(select)(translucent, BL_FN(select)(pos, da * keep / div, zero), keep);
+        a = BL_FN(select)(translucent, BL_FN(select)(pos, a / div, zero), a);
+    }
     BL_U out = BL_FN(unorm8)(oa, 3);
     for (int k = 0; k < 3; k++) {
         BL_F v = (BL_FN(splat)((float)p->rgba[k]) * a + BL_FN(channel)(d, k) * keep) *
@@ -99,3 +101,4 @@ BL_INLINE int BL_FN(blend_row)(const sr__paint *p, uint32_t *dst, const uint8_t 
 #undef BL_FN
 #undef BL_INLINE
 #undef BL_ALL
+#undef BL_ANY

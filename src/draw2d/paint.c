@@ -118,14 +118,16 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
 typedef uint32_t v4u __attribute__((vector_size(16)));
 typedef uint8_t v4b __attribute__((vector_size(4)));
 
-static inline bool all_lanes4(v4i m)
+/* One bit per set lane of a mask. */
+static inline unsigned lane_bits4(v4i m)
 {
 #if defined(__SSE2__)
-    return _mm_movemask_ps((__m128)m) == 15;
+    return (unsigned)_mm_movemask_ps((__m128)m);
 #else
-    return (m[0] & m[1] & m[2] & m[3]) != 0;
+    return (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
 #endif
 }
+
 #define BL_LANES 4
 #define BL_F v4f
 #define BL_I v4i
@@ -133,7 +135,8 @@ static inline bool all_lanes4(v4i m)
 #define BL_B v4b
 #define BL_FN(name) name##4
 #define BL_INLINE static inline
-#define BL_ALL(m) all_lanes4(m)
+#define BL_ALL(m) (lane_bits4(m) == 15)
+#define BL_ANY(m) (lane_bits4(m) != 0)
 #include "draw2d/blend_lanes.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -147,6 +150,7 @@ typedef uint8_t v16b __attribute__((vector_size(16)));
 #define BL_FN(name) name##16
 #define BL_INLINE static inline __attribute__((always_inline)) SR_TARGET_AVX512
 #define BL_ALL(m) (_mm512_movepi32_mask((__m512i)(m)) == 0xffff)
+#define BL_ANY(m) (_mm512_movepi32_mask((__m512i)(m)) != 0)
 #include "draw2d/blend_lanes.h"
 
 SR_TARGET_AVX512 static int blend_row_avx512(const sr__paint *p, uint32_t *dst,
@@ -168,9 +172,9 @@ void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
     /* A blend is a pure function of the pixel and the coverage, and runs
      * of equal pairs are common (a shape's inside over an empty or flat
      * background), so the last result is reused: the same bytes, one
-     * blend per run.  Without linear light, whole blocks of 4 pixels (16
-     * at the AVX-512 level) go at a time: a block of one pair takes the
-     * last result or one blend, any other block the lanes' blend. */
+     * blend per run.  Without linear light, whole blocks of 16 pixels (at
+     * the AVX-512 level), then of 4, go through the lanes' blend
+     * (blend_lanes.h) first. */
     uint32_t in = 0, out = 0;
     unsigned last_cov = 256;
     int i = 0;
