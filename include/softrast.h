@@ -186,6 +186,7 @@
  *     sr_query_shadow_map        its light matrices and texel size
  *     sr_shadow_visibility       how lit a world-space point is, filtered
  *     sr_shadow_visibility4      the same for the four lanes of a fragment quad
+ *     sr_draw_shadow_catcher     a ground showing only the shadow, over the image
  *   2D raster API
  *     sr_draw_text               a label in the built-in 5x7 font
  *     sr_text_width              its width in pixels
@@ -1640,6 +1641,25 @@ SR_API sr_result sr_shadow_visibility(const sr_shadow_map *sm, const float pos[3
  * value sr_shadow_visibility gives for it. */
 SR_API sr_result sr_shadow_visibility4(const sr_shadow_map *sm, const float *pos,
                                        const float *normal, float out[4]);
+
+/* A shadow catcher (docs/shadows.md): the ground square drawn black with
+ * alpha 0.6 x (1 - visibility) x a fade over the outer half of the square,
+ * blended source-over with depth writes off and both faces, so that where
+ * the ground is lit the framebuffer keeps its bytes.  Only the part of the
+ * square where the map's box can cast a shadow is drawn (nothing when the
+ * light does not come from above).  `state` gives the depth test and the
+ * rest; its program, cull, depth writes and blending are replaced.  Draw
+ * it after the opaque objects, whose depth hides the ground behind them,
+ * and before translucent ones. */
+typedef struct sr_shadow_catcher_desc {
+    const sr_mesh *ground;           /* required: a +Y-up sr_make_ground_mesh square */
+    const sr_shadow_map *map;        /* required: drawn for this frame */
+    sr_vec3 direction;               /* the light's, as the map was made with */
+    sr_vec3 bounds_min, bounds_max;  /* the occluders' box, as the map was made with */
+    const sr_mat4 *view, *projection;  /* required: world -> eye -> clip */
+} sr_shadow_catcher_desc;
+SR_API sr_result sr_draw_shadow_catcher(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
+                                        const sr_shadow_catcher_desc *desc);
 
 /* ---- 2D raster API ------------------------------------------------------ */
 /*

@@ -651,7 +651,8 @@ SR_TEST(lanes_match_the_single_lookup)
 /* The teapot over a ground plane lit from the upper left (the light
  * travels towards +x): shadow_teapot.png.  The ground right of the pot is
  * in shadow, left of it lit.  Then with the ground as a shadow catcher
- * and a soft light: shadow_catcher.png. */
+ * and a soft light: shadow_catcher.png, and sr_draw_shadow_catcher's
+ * catcher alone: shadow_catcher_only.png. */
 SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
 {
     enum { W = 480, H = 320 };
@@ -724,6 +725,76 @@ SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
         darker += px[4 * i + 2] < px[2] - 40 && px[4 * i] < px[0] - 40;
     }
     CHECK(darker > 2000);                                      /* the pot and its shadow */
+
+    /* sr_draw_shadow_catcher alone, in a framebuffer of one sample: the
+     * shadow and nothing else - the lit ground keeps the background's
+     * bytes, the shadow falls away from the light; a light from below
+     * draws nothing; bad arguments are refused. */
+    sr_destroy_framebuffer(ctx, fb);
+    fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = W, .height = H }, &fb) ==
+            SR_OK);
+    sr_shadow_catcher_desc d = { .ground = &ground, .map = soft, .direction = dir,
+                                 .bounds_min = lo, .bounds_max = hi, .view = &view,
+                                 .projection = &proj };
+    const sr_state state = { 0 };
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { bg[0], bg[1], bg[2], bg[3] } });
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &d), SR_OK);
+    save(fb, "shadow_catcher_only.png");
+    px = sr_framebuffer_pixels(fb);
+    /* The pixels of world points on the ground, left of the pot (lit) and
+     * right of and behind it (in its shadow). */
+    sr_mat4 vp = u.mvp;
+    int at[2];
+    const sr_vec3 points[2] = { { lo.x - 0.3f, lo.y, 0 }, { 2.0f, lo.y, -0.8f } };
+    for (int k = 0; k < 2; k++) {
+        sr_vec4 c = sr_mat4_mul_vec4(&vp, (sr_vec4){ points[k].x, points[k].y, points[k].z, 1 });
+        int x = (int)((c.x / c.w + 1) * 0.5f * W), y = (int)((1 - c.y / c.w) * 0.5f * H);
+        REQUIRE(x >= 0 && x < W && y >= 0 && y < H);
+        at[k] = y * W + x;
+    }
+    CHECK_EQ(px[4 * at[0]], px[0]);                            /* lit: the background's bytes */
+    CHECK_EQ(px[4 * at[0] + 2], px[2]);
+    CHECK(px[4 * at[1]] < px[0] - 60);                         /* shadowed: darker */
+    int shadowed = 0, other = 0;
+    for (int i = 0; i < W * H; i++) {
+        shadowed += px[4 * i] < px[0];
+        /* Black blended over: every channel scaled alike, never tinted. */
+        other += px[4 * i] > px[0] || px[4 * i + 2] > px[2] || px[4 * i + 3] != 255;
+    }
+    CHECK(shadowed > 2000);
+    CHECK_EQ(other, 0);
+
+    /* A light from below casts nothing on the ground: nothing is drawn. */
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0.5f, 0.5f, 0.5f, 1 } });
+    sr_shadow_catcher_desc up = d;
+    up.direction = (sr_vec3){ 0, 1, 0 };
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &up), SR_OK);
+    px = sr_framebuffer_pixels(fb);
+    int changed = 0;
+    for (int i = 0; i < W * H; i++) {
+        changed += px[4 * i] != px[0];
+    }
+    CHECK_EQ(changed, 0);
+
+    CHECK_EQ(sr_draw_shadow_catcher(NULL, fb, &state, &d), SR_INVALID_ARG);
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, NULL, &state, &d), SR_INVALID_ARG);
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, NULL, &d), SR_INVALID_ARG);
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, NULL), SR_INVALID_ARG);
+    sr_shadow_catcher_desc bad = d;
+    bad.map = NULL;
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &bad), SR_INVALID_ARG);
+    bad = d;
+    bad.direction.x = NAN;
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &bad), SR_INVALID_ARG);
+    bad = d;
+    bad.bounds_min = hi, bad.bounds_max = lo;
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &bad), SR_INVALID_ARG);
+    sr_mesh no_uv = ground;
+    no_uv.texcoords = NULL;
+    bad = d;
+    bad.ground = &no_uv;
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &bad), SR_INVALID_ARG);
     sr_destroy_shadow_map(ctx, soft);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_shadow_map(ctx, sm);

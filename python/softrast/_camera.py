@@ -17,26 +17,78 @@ def _vector3(value, name):
     return v
 
 
-def look_at(eye, target, up=(0.0, 1.0, 0.0), *, fov_y=math.radians(60.0), width, height):
+def _image_size(width, height):
+    if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))) or \
+            isinstance(width, bool) or isinstance(height, bool):
+        raise TypeError("width, height: must be integers")
+    if width < 1 or height < 1:
+        raise ValueError(f"width, height: must be positive, got {width} x {height}")
+
+
+def _number(value, name):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
+                                                                    np.floating)):
+        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{name}: must be finite, got {value}")
+    return value
+
+
+def _fov_y(fov_y):
+    fov_y = _number(fov_y, "fov_y")
+    if not (0.0 < fov_y < math.pi):
+        raise ValueError(f"fov_y: must be in (0, pi) radians, got {fov_y}")
+    return fov_y
+
+
+def _ymag(ymag):
+    ymag = _number(ymag, "ymag")
+    if not ymag > 0.0:
+        raise ValueError(f"ymag: must be positive, got {ymag}")
+    return ymag
+
+
+def _intrinsics(f, width, height):
+    """K with square pixels of focal length f and the principal point at
+    the image centre."""
+    return np.array([[f, 0.0, 0.5 * (width - 1)], [0.0, f, 0.5 * (height - 1)],
+                     [0.0, 0.0, 1.0]])
+
+
+def look_at(eye, target, up=(0.0, 1.0, 0.0), *, fov_y=None, ymag=None, width, height):
     """Camera intrinsics and extrinsics looking from ``eye`` at ``target``.
 
     Returns ``(K, R, t)``: ``K`` (3, 3) with square pixels and the principal
     point at the image centre, ``((width - 1) / 2, (height - 1) / 2)``, for the
-    vertical field of view ``fov_y`` (radians); ``R`` (3, 3) and ``t`` (3,) map
-    world to camera coordinates, ``x_cam = R @ x_world + t``, in OpenCV's
-    frame: x right, y down, z from the eye towards the target.  ``up`` is the
-    world direction that appears upwards in the image.
+    vertical field of view ``fov_y`` (radians, default 60 degrees); ``R``
+    (3, 3) and ``t`` (3,) map world to camera coordinates, ``x_cam = R @
+    x_world + t``, in OpenCV's frame: x right, y down, z from the eye towards
+    the target.  ``up`` is the world direction that appears upwards in the
+    image.
+
+    ``ymag`` instead of ``fov_y``: an orthographic view ``2 * ymag`` high (in
+    the unit of the vertices, ``ymag * width / height`` half wide), whose
+    ``K`` maps camera x, y straight to pixels (focal lengths in pixels per
+    unit); render it with ``render(..., projection="orthographic")``.
     """
     eye = _vector3(eye, "eye")
     target = _vector3(target, "target")
     up = _vector3(up, "up")
-    if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))):
-        raise TypeError("width, height: must be integers")
-    if width < 1 or height < 1:
-        raise ValueError(f"width, height: must be positive, got {width} x {height}")
-    fov_y = float(fov_y)
-    if not (0.0 < fov_y < math.pi):
-        raise ValueError(f"fov_y: must be in (0, pi) radians, got {fov_y}")
+    _image_size(width, height)
+    if ymag is not None:
+        if fov_y is not None:
+            raise TypeError("fov_y, ymag: give one (perspective or orthographic), not both")
+        f = 0.5 * height / _ymag(ymag)
+    else:
+        fov_y = math.radians(60.0) if fov_y is None else _fov_y(fov_y)
+        f = 0.5 * height / math.tan(0.5 * fov_y)
+    R, t = _frame(eye, target, up)
+    return _intrinsics(f, width, height), R, t
+
+
+def _frame(eye, target, up):
+    """R, t of OpenCV's camera at eye looking at target, ``up`` upwards."""
     z = target - eye
     if not np.linalg.norm(z) > 0:
         raise ValueError("eye, target: must differ")
@@ -47,10 +99,7 @@ def look_at(eye, target, up=(0.0, 1.0, 0.0), *, fov_y=math.radians(60.0), width,
     x = x / np.linalg.norm(x)
     y = np.cross(z, x)
     R = np.stack([x, y, z])
-    t = -R @ eye
-    f = 0.5 * height / math.tan(0.5 * fov_y)
-    K = np.array([[f, 0.0, 0.5 * (width - 1)], [0.0, f, 0.5 * (height - 1)], [0.0, 0.0, 1.0]])
-    return K, R, t
+    return R, -R @ eye
 
 
 # glTF's camera frame (x right, y up, looking down -z) to OpenCV's.
@@ -58,25 +107,29 @@ _GL_TO_CV = np.diag([1.0, -1.0, -1.0])
 
 
 class Camera:
-    """A camera of a model file (a glTF node's camera), as
-    :func:`softrast.load` reads it into ``Scene.cameras``.
+    """A camera: one of a model file (a glTF node's camera), as
+    :func:`softrast.load` reads it into ``Scene.cameras``, or one made by
+    :meth:`Camera.perspective` or :meth:`Camera.orthographic`.
 
     Pass it to :func:`render` as ``camera=`` (a list of them renders a
-    batch), or take its OpenCV parameters: ``R`` (3, 3) and ``t`` (3,),
-    ``x_cam = R @ x_world + t``, and :meth:`intrinsics` for an image size.
+    batch, perspective and orthographic ones mixed), or take its OpenCV
+    parameters: ``R`` (3, 3) and ``t`` (3,), ``x_cam = R @ x_world + t``,
+    and :meth:`intrinsics` for an image size.
 
-    type: "perspective" or "orthographic" (which :func:`render` cannot
-        draw: its cameras are pinholes).
+    type: "perspective" or "orthographic".
     yfov: the vertical field of view in radians (perspective); the
         horizontal one follows the image's aspect, as softrast render's
         ``--camera-index`` does, whatever the file's aspectRatio.
-    xmag, ymag: half the view's width and height (orthographic).
+    xmag, ymag: half the view's width and height (orthographic); the
+        width drawn is ``ymag`` times the image's aspect, as softrast
+        render's ``--camera-index`` does, whatever the file's xmag.
     znear, zfar: the clipping distances (zfar 0: none); ``render`` clips
-        at znear unless given ``near``.
+        at znear unless given ``near``, and has no far plane.
     world: (4, 4) camera-to-world matrix of its node; view: (4, 4)
         world-to-camera matrix in glTF's frame (looking down -z, scale
         and shear taken out).
-    index: its index in the file's ``cameras``; node: its node.
+    index: its index in the file's ``cameras``; node: its node (None for
+        a camera made here).
     """
 
     __slots__ = ("type", "yfov", "aspect", "xmag", "ymag", "znear", "zfar", "world", "view",
@@ -88,27 +141,71 @@ class Camera:
             setattr(self, name, float(fields[name]))
         self.world = np.asarray(fields["world"], np.float64)
         self.view = None if fields["view"] is None else np.asarray(fields["view"], np.float64)
-        self.index = int(fields["camera"])
-        self.node = int(fields["node"])
+        self.index = None if fields["camera"] is None else int(fields["camera"])
+        self.node = None if fields["node"] is None else int(fields["node"])
         self.R = None if self.view is None else _GL_TO_CV @ self.view[:3, :3]
         self.t = None if self.view is None else _GL_TO_CV @ self.view[:3, 3]
+
+    @classmethod
+    def _looking(cls, eye, target, up, znear, **fields):
+        eye = _vector3(eye, "eye")
+        target = _vector3(target, "target")
+        up = _vector3(up, "up")
+        R, t = _frame(eye, target, up)
+        view = np.eye(4)
+        view[:3, :3] = _GL_TO_CV @ R
+        view[:3, 3] = _GL_TO_CV @ t
+        world = np.eye(4)
+        world[:3, :3] = view[:3, :3].T
+        world[:3, 3] = eye
+        base = dict(yfov=0.0, aspect=0.0, xmag=0.0, ymag=0.0, znear=znear, zfar=0.0,
+                    world=world, view=view, camera=None, node=None)
+        base.update(fields)
+        return cls(base)
+
+    @classmethod
+    def perspective(cls, eye, target, up=(0.0, 1.0, 0.0), *, yfov=math.radians(60.0),
+                    znear=1e-3):
+        """A pinhole camera at ``eye`` looking at ``target`` (``up``
+        upwards in the image) with the vertical field of view ``yfov``
+        (radians), clipping at ``znear`` (> 0)."""
+        znear = _number(znear, "znear")
+        if not znear > 0.0:
+            raise ValueError(f"znear: must be positive, got {znear}")
+        return cls._looking(eye, target, up, znear, type="perspective", yfov=_fov_y(yfov))
+
+    @classmethod
+    def orthographic(cls, eye, target, up=(0.0, 1.0, 0.0), *, ymag, znear=0.0):
+        """An orthographic camera at ``eye`` looking at ``target`` (``up``
+        upwards in the image): the view is ``2 * ymag`` high (in the unit
+        of the vertices) and as wide as the image's aspect makes it; rays
+        run parallel to the optical axis from the plane through ``eye``;
+        depth is the distance along the axis from that plane, clipped at
+        ``znear`` (>= 0, may be 0)."""
+        znear = _number(znear, "znear")
+        if not znear >= 0.0:
+            raise ValueError(f"znear: must be >= 0, got {znear}")
+        ymag = _ymag(ymag)
+        return cls._looking(eye, target, up, znear, type="orthographic", ymag=ymag, xmag=ymag)
 
     def intrinsics(self, width, height):
         """K (3, 3) for a width x height image: square pixels, the
         principal point at the image's centre ((width - 1) / 2,
-        (height - 1) / 2), the focal length from ``yfov``."""
-        if self.type != "perspective":
-            raise ValueError(f"camera: camera {self.index} is orthographic; render draws "
-                             f"pinhole cameras only")
+        (height - 1) / 2), the focal length from ``yfov``; for an
+        orthographic camera, pixels per unit from ``ymag`` (``height /
+        (2 ymag)``), K then mapping camera x, y (not x/z, y/z) to
+        pixels."""
         if self.view is None:
             raise ValueError(f"camera: camera {self.index}'s node matrix is degenerate")
-        if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))):
-            raise TypeError("width, height: must be integers")
-        if width < 1 or height < 1:
-            raise ValueError(f"width, height: must be positive, got {width} x {height}")
-        f = 0.5 * height / math.tan(0.5 * self.yfov)
-        return np.array([[f, 0.0, 0.5 * (width - 1)], [0.0, f, 0.5 * (height - 1)],
-                         [0.0, 0.0, 1.0]])
+        _image_size(width, height)
+        if self.type == "orthographic":
+            # (The sign of ymag is ignored, as softrast render does.)
+            if not (abs(self.ymag) > 0.0 and math.isfinite(self.ymag)):
+                raise ValueError(f"camera: camera {self.index}'s ymag must not be 0")
+            return _intrinsics(0.5 * height / abs(self.ymag), width, height)
+        return _intrinsics(0.5 * height / math.tan(0.5 * self.yfov), width, height)
 
     def __repr__(self):
+        if self.index is None:
+            return f"Camera(type={self.type!r})"
         return f"Camera(index={self.index}, node={self.node}, type={self.type!r})"

@@ -192,15 +192,52 @@ def _environment(environment, intensity, threads):
 
 
 def _file_cameras(camera, width, height):
-    """K (B, 3, 3), [R | t] (B, 3, 4), near (B,) and whether batched, from
-    one Camera or a list of them."""
+    """K (B, 3, 3), [R | t] (B, 3, 4), near (B,), orthographic (B,) and
+    whether batched, from one Camera or a list of them."""
     batched = isinstance(camera, (list, tuple))
     cams = list(camera) if batched else [camera]
     if not cams or not all(isinstance(c, Camera) for c in cams):
         raise TypeError("camera: expected a softrast.Camera (Scene.cameras) or a list of them")
     Ks = np.stack([c.intrinsics(width, height) for c in cams])
     Rts = np.stack([np.hstack([c.R, c.t[:, None]]) for c in cams])
-    return Ks, Rts, np.array([c.znear for c in cams]), batched
+    return (Ks, Rts, np.array([c.znear for c in cams]),
+            np.array([c.type == "orthographic" for c in cams]), batched)
+
+
+def _far(instances, poses, near):
+    """An orthographic view's far plane (there is none to give): beyond
+    every vertex's camera z, so that nothing is clipped there, and at
+    least as far again from near, so that the farthest surface's window
+    depth stays well above the cleared 0.  A float32 above both."""
+    z_max = near
+    for inst, (a, _) in zip(instances, poses):
+        v = np.asarray(inst.mesh.vertices)
+        if len(v):
+            z_max = max(z_max, float((v @ a[2, :3]).max() + a[2, 3]))
+    far = np.float32(near + 2.0 * (z_max - near) if z_max > near else near + 1.0)
+    while not (far > z_max and far > np.float32(near)):
+        far = np.nextafter(far, np.float32(np.inf))
+    return float(far)
+
+
+#: antialias modes, as softrast render's --aa: (MSAA samples, SSAA factor).
+_ANTIALIAS = {"none": (1, 1), "msaa2": (2, 1), "msaa4": (4, 1), "msaa8": (8, 1),
+              "msaa16": (16, 1), "ssaa2": (1, 2), "ssaa3": (1, 3), "ssaa4": (1, 4)}
+
+
+def _antialias(antialias, width, height):
+    if antialias is None:
+        antialias = "none"
+    if not isinstance(antialias, str):
+        raise TypeError(f"antialias: expected a mode name, got {type(antialias).__name__}")
+    if antialias not in _ANTIALIAS:
+        raise ValueError(f"antialias: unknown mode {antialias!r}; choose from "
+                         f"{', '.join(_ANTIALIAS)}")
+    msaa, ssaa = _ANTIALIAS[antialias]
+    if max(width, height) * ssaa > 8192:
+        raise ValueError(f"antialias: {antialias} at {width} x {height} draws more than 8192 "
+                         f"pixels a side")
+    return msaa, ssaa
 
 
 def _int_arg(value, name, low, high):
@@ -214,7 +251,8 @@ def _int_arg(value, name, low, high):
 def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width, height,
            outputs=("color", "depth"), threads=0, near=None, normal_frame="camera",
            background=(0.0, 0.0, 0.0), shading="lit", environment=None,
-           environment_intensity=0.6, shadows=False):
+           environment_intensity=0.6, shadows=None, ground=False, projection=None,
+           antialias=None):
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -226,9 +264,17 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
         translation, ``x_cam = R @ x_world + t``, camera x right, y down,
         z forward.  Or ``extrinsics``: (3, 4)/(4, 4), or batched, ``[R | t]``.
     camera: instead of K, R, t: a :class:`Camera` of a loaded file
-        (``Scene.cameras``), or a list of them for a batch; its K for
-        width x height (:meth:`Camera.intrinsics`), R, t, and its znear as
-        ``near`` unless given.
+        (``Scene.cameras``) or of :meth:`Camera.orthographic` or
+        :meth:`Camera.perspective`, or a list of them for a batch; its K
+        for width x height (:meth:`Camera.intrinsics`), R, t, its type
+        (perspective or orthographic) and its znear as ``near`` unless
+        given.
+    projection: with ``K``: "perspective" (the default, a pinhole, as
+        above) or "orthographic": rays parallel to the optical axis, pixel
+        (u, v) seeing u = fx x + s y + cx, v = fy y + cy (``fx``, ``fy`` in
+        pixels per unit of the vertices; :func:`look_at` with ``ymag``
+        makes such a ``K``), depth still camera z, clipped at ``near``
+        (default 0; may be 0).  A :class:`Camera` brings its own type.
     width, height: the image size in pixels, 1 .. 8192.
     outputs: names from :data:`OUTPUTS`:
 
@@ -262,11 +308,23 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
 
         IDs, depth, barycentrics and mask are never blended or antialiased:
         each pixel shows the surface nearest along its centre's ray (the
-        first drawn of equals), sampled at the pixel centre.
+        first drawn of equals), sampled at the pixel centre, whatever
+        ``antialias`` says.
+    antialias: ``color`` and ``rgba`` only, under every ``shading``, as
+        softrast render's ``--aa``: None or "none" (the default: each
+        pixel sampled at its centre); "msaa2", "msaa4", "msaa8", "msaa16"
+        (that many coverage and depth samples a pixel at the standard
+        positions, shaded once a pixel and triangle, box-resolved);
+        "ssaa2", "ssaa3", "ssaa4" (k x k samples a pixel, each shaded,
+        box-filtered down; at most 8192 samples a side).  An edge pixel
+        mixes the surface with the background (``rgba``: its color
+        channels too, its alpha the covered part).
     threads: rendering threads, 0 for every CPU; the result does not depend
         on it.
     near: surfaces closer than this (camera z) are clipped (default 1e-3,
-        or the camera's znear); there is no far plane.
+        0 for an orthographic view, or the camera's znear; > 0 for a
+        perspective view, >= 0 for an orthographic one); there is no far
+        plane.
     shading: "lit", "unlit" or "pbr" (see ``color``).  With "pbr" the
         world's +y is up for the sky, the environment and the shadow's
         fit, as in glTF and softrast render.
@@ -279,7 +337,16 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
         0.001 .. 1000).  Prefiltered once and kept for later calls.
     shadows: "pbr" only: the key light casts a shadow (a 1024-texel
         shadow map fitted to every instance's box, as softrast render's
-        ``--shadows on``).
+        ``--shadows on``); None (the default): on with ``ground``, else
+        off, as the command's default.
+    ground: "pbr" only: softrast render's ``--ground``, a shadow catcher
+        under the instances (a square 4 times their world box's width,
+        under its lowest point, +y up) that shows the key light's shadow
+        and nothing else: black blended over the background (in ``rgba``
+        the background darkened, with the shadow's alpha where the
+        background is transparent), drawn after the opaque instances and
+        before the blended ones; the rest of the ground is not drawn.  It is in ``color`` and ``rgba`` only, not in the geometry
+        outputs; with ``shadows=False`` it shows nothing.
 
     Returns a dict from each requested name to its array; with batched
     cameras every array has a leading dimension B.  The GIL is released
@@ -292,12 +359,23 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     if camera is not None:
         if not (K is None and R is None and t is None and extrinsics is None):
             raise TypeError("camera: give either camera or K with R, t or extrinsics, not both")
-        Ks, Rts, nears, batched = _file_cameras(camera, width, height)
+        if projection is not None:
+            raise TypeError("projection: goes with K; a camera has its own type")
+        Ks, Rts, nears, orthos, batched = _file_cameras(camera, width, height)
     elif K is None:
         raise TypeError("K: required (or camera)")
     else:
+        if projection is None:
+            projection = "perspective"
+        if not isinstance(projection, str):
+            raise TypeError(f"projection: expected 'perspective' or 'orthographic', "
+                            f"got {type(projection).__name__}")
+        if projection not in ("perspective", "orthographic"):
+            raise ValueError(f"projection: must be 'perspective' or 'orthographic', "
+                             f"got {projection!r}")
         Ks, Rts, batched = _cameras(K, R, t, extrinsics)
-        nears = np.full(len(Ks), 1e-3)
+        orthos = np.full(len(Ks), projection == "orthographic")
+        nears = np.where(orthos, 0.0, 1e-3)
     threads = _int_arg(threads, "threads", 0, 64)
     names = _outputs(outputs)
     if near is not None:
@@ -305,11 +383,13 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
             near = float(near)
         except (TypeError, ValueError):
             raise TypeError(f"near: expected a number, got {type(near).__name__}") from None
-        if not (np.isfinite(near) and near > 0):
-            raise ValueError(f"near: must be a positive finite number, got {near}")
+        if not (np.isfinite(near) and (near >= 0 if orthos.all() else near > 0)):
+            want = "finite number >= 0" if orthos.all() else "positive finite number"
+            raise ValueError(f"near: must be a {want}, got {near}")
         nears = np.full(len(Ks), near)
-    elif not np.all(np.isfinite(nears) & (nears > 0)):
-        raise ValueError("camera: its znear must be a positive finite number")
+    elif not np.all(np.isfinite(nears) & np.where(orthos, nears >= 0, nears > 0)):
+        raise ValueError("camera: its znear must be a finite number, positive for a "
+                         "perspective camera, >= 0 for an orthographic one")
     if normal_frame not in ("camera", "world"):
         raise ValueError(f"normal_frame: must be 'camera' or 'world', got {normal_frame!r}")
     if shading not in ("lit", "unlit", "pbr"):
@@ -318,11 +398,16 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     if bg.shape != (3,):
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
     bg = tuple(float(c) for c in np.clip(bg, 0.0, 1.0))
-    if (environment is not None or shadows) and shading != "pbr":
-        raise ValueError("environment, shadows: need shading='pbr'")
+    if (environment is not None or shadows or ground) and shading != "pbr":
+        raise ValueError("environment, shadows, ground: need shading='pbr'")
+    if not isinstance(ground, (bool, np.bool_)):
+        raise TypeError(f"ground: expected a bool, got {type(ground).__name__}")
+    if shadows is None:
+        shadows = bool(ground)
     if not isinstance(shadows, (bool, np.bool_)):
-        raise TypeError(f"shadows: expected a bool, got {type(shadows).__name__}")
+        raise TypeError(f"shadows: expected a bool or None, got {type(shadows).__name__}")
     env = _environment(environment, environment_intensity, threads) if shading == "pbr" else None
+    msaa, ssaa = _antialias(antialias, width, height)
 
     n = len(Ks)
     out = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
@@ -346,6 +431,7 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
                                        np.hstack([np.zeros((3, 3)), Rt[:, 3:]])),
                   np.ascontiguousarray(Rt[:, :3] @ nt if normal_frame == "camera" else nt))
                  for inst, nt in zip(sc, inv_t)]
+        far = _far(sc, poses, float(nears[b])) if orthos[b] else 1.0
         for wanted, meshes in passes:
             if not wanted:
                 continue
@@ -354,14 +440,15 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
                          for mesh, (a, nm), iid, look in zip(meshes, poses, ids,
                                                             looks if color_pbr else ids)]
             extra = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
-                         shadows=bool(shadows)) if color_pbr else {}
+                         shadows=bool(shadows), ground=bool(ground)) if color_pbr else {}
             _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height,
                              float(nears[b]), threads,
                              *(out[name][b] if name in wanted else None
                                for name in ("depth", "triangle_id", "instance_id", "barycentric",
                                             "normal", "color", "mask")),
                              bg, shading == "lit",
-                             rgba=out["rgba"][b] if "rgba" in wanted else None, **extra)
+                             rgba=out["rgba"][b] if "rgba" in wanted else None,
+                             ortho=bool(orthos[b]), far=far, msaa=msaa, ssaa=ssaa, **extra)
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return out

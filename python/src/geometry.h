@@ -31,6 +31,10 @@ typedef struct geometry_uniforms {
     double kx[3], ky[2];        /* clip x and y rows from K */
     double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
     float near;
+    /* Orthographic: K maps camera x, y (not x/z, y/z) to pixels, the rays
+     * run along +z, and the window depth is (far - z) / (far - near). */
+    bool ortho;
+    float far;
     int width;
     int32_t instance_id;
     float *depth;
@@ -83,7 +87,8 @@ static inline void sr_py_background_pixel(const geometry_uniforms *u, size_t p)
 }
 
 /* The outputs of pixel (x, y) where face `face` is visible, with
- * `window_z` its depth-buffer value there (reversed: near / z). */
+ * `window_z` its depth-buffer value there (reversed: near / z, or
+ * orthographic (far - z) / (far - near)). */
 void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, float window_z);
 
 /* The visibility-buffer pass (visibility.c): the instances' faces

@@ -19,7 +19,9 @@
  * the visibility pass instead (visibility.c), with the same bytes.  Color
  * comes from a second pass on the same projection: the built-in shading
  * (textures, vertex colors, a headlight), or the metallic-roughness
- * program lit as softrast render's default look.
+ * program lit as softrast render's default look, multisampled or
+ * supersampled when asked.  A camera is a pinhole or orthographic (K
+ * applied to camera x and y, rays along +z).
  */
 #include "geometry.h"
 #include "render.h"
@@ -58,6 +60,17 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     double p[3];
     fetch_vertex(u, v, p);
     to_camera(u, p, c);
+    if (u->ortho) {
+        /* Orthographic: pixel centre (u, v) is at window (u + 1/2, v + 1/2)
+         * with u, v from camera x, y alone; w = 1, and a window depth
+         * falling linearly from 1 at near to 0 at far (still largest
+         * nearest: the depth test is GREATER). */
+        clip[0] = (float)(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2]);
+        clip[1] = (float)(u->ky[0] * c[1] + u->ky[1]);
+        clip[2] = (float)(((double)u->far - c[2]) / ((double)u->far - u->near));
+        clip[3] = 1.0f;
+        return;
+    }
     /* OpenCV's pinhole: pixel centre (u, v) is at window (u + 1/2, v + 1/2);
      * w = z; clip z = near with z in [0, w] gives z_ndc = near / z, largest
      * nearest (the depth test is GREATER), infinite far plane. */
@@ -105,6 +118,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
         vi[k] = sr_py_face_index(u, 3 * face + (size_t)k);
         memcpy(c[k], u->camera[vi[k]], sizeof c[k]);
     }
+    /* The pixel centre's ray: from the eye through (d[0], d[1], 1), or,
+     * orthographic, from (d[0], d[1], 0) along +z. */
     double dy = ((double)y - u->cy) / u->fy;
     double d[3] = { ((double)x - u->cx - u->s * dy) / u->fx, dy, 1.0 };
     double e1[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
@@ -113,9 +128,23 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
     sr__dcross(e1, e2, n);
     double denom = sr__ddot(n, d), nn = sr__ddot(n, n);
     double z, lambda[3] = { 1.0 / 3, 1.0 / 3, 1.0 / 3 };
+    if (u->ortho) {
+        denom = n[2];
+    }
     if (denom != 0.0 && nn > 0.0) {
-        z = sr__ddot(n, c[0]) / denom;
-        double w[3] = { z * d[0] - c[0][0], z * d[1] - c[0][1], z * d[2] - c[0][2] }, t[3];
+        double w[3], t[3];
+        if (u->ortho) {
+            /* w = the ray's point at depth z, from corner 0. */
+            w[0] = d[0] - c[0][0];
+            w[1] = d[1] - c[0][1];
+            z = c[0][2] - (n[0] * w[0] + n[1] * w[1]) / denom;
+            w[2] = z - c[0][2];
+        } else {
+            z = sr__ddot(n, c[0]) / denom;
+            w[0] = z * d[0] - c[0][0];
+            w[1] = z * d[1] - c[0][1];
+            w[2] = z * d[2] - c[0][2];
+        }
         sr__dcross(w, e2, t);
         lambda[1] = sr__ddot(t, n) / nn;
         sr__dcross(e1, w, t);
@@ -123,7 +152,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
         lambda[0] = 1.0 - lambda[1] - lambda[2];
     } else {
         /* Seen edge-on: no area to intersect; the raster's depth. */
-        z = u->near / window_z;
+        z = u->ortho ? u->far - (double)window_z * ((double)u->far - u->near)
+                     : u->near / window_z;
     }
     if (u->depth) {
         u->depth[p] = (float)z;
@@ -256,7 +286,8 @@ static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_u
             .faces64 = PyArray_TYPE(m->faces) == NPY_INT64,
             .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
             .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1],
-            .cy = j->k[1][2], .near = j->near, .width = j->width, .instance_id = in->id,
+            .cy = j->k[1][2], .near = j->near, .ortho = j->ortho, .far = j->far,
+            .width = j->width, .instance_id = in->id,
             .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
             .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
         };
@@ -393,19 +424,40 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
     return r;
 }
 
+/* The color pass: into fb, or antialiased into a framebuffer of samples
+ * or of k x k pixels a pixel, then resolved into fb. */
 static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j)
 {
-    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){
+    sr_framebuffer *work = NULL;
+    sr_result r = SR_OK;
+    if (j->msaa > 1 || j->ssaa > 1) {
+        r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
+            .width = j->width * j->ssaa, .height = j->height * j->ssaa,
+            .depth_format = SR_DEPTH_D32F, .samples = j->msaa }, &work);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    sr_framebuffer *target = work ? work : fb;
+    r = sr_clear(ctx, target, &(sr_clear_desc){
         .color = { j->background[0], j->background[1], j->background[2], j->rgba ? 0.0f : 1.0f },
         .depth_action = SR_ACTION_CLEAR, .depth = 0 });
     double kx[3], ky[2];
     clip_rows(j, kx, ky);
     /* The same clip coordinates as geometry_vertex, as a matrix. */
     sr_mat4 proj = { { 0 } };
-    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1], proj.m[8] = (float)kx[2];
-    proj.m[5] = (float)ky[0], proj.m[9] = (float)ky[1];
-    proj.m[14] = j->near;
-    proj.m[11] = 1.0f;
+    proj.m[0] = (float)kx[0], proj.m[4] = (float)kx[1];
+    proj.m[5] = (float)ky[0];
+    if (j->ortho) {
+        double range = (double)j->far - j->near;
+        proj.m[12] = (float)kx[2], proj.m[13] = (float)ky[1];
+        proj.m[10] = (float)(-1.0 / range), proj.m[14] = (float)(j->far / range);
+        proj.m[15] = 1.0f;
+    } else {
+        proj.m[8] = (float)kx[2], proj.m[9] = (float)ky[1];
+        proj.m[14] = j->near;
+        proj.m[11] = 1.0f;
+    }
     if (j->pbr) {
         /* The program's view takes the world to OpenGL's eye space (y up,
          * z backward): undo the flip of y and z here. */
@@ -415,10 +467,16 @@ static sr_result color_pass(sr_context *ctx, sr_framebuffer *fb, const render_jo
             }
         }
     }
+    /* (Clip space does not depend on the framebuffer's size: the same
+     * projection draws the larger one.) */
     if (r == SR_OK) {
-        r = j->pbr ? sr_py_pbr_pass(ctx, fb, j, &proj)
-                   : draw_instances(ctx, fb, j, color_draw, &proj);
+        r = j->pbr ? sr_py_pbr_pass(ctx, target, j, &proj)
+                   : draw_instances(ctx, target, j, color_draw, &proj);
     }
+    if (r == SR_OK && work) {
+        r = j->msaa > 1 ? sr_resolve(ctx, work, fb) : sr_downsample(ctx, work, fb, SR_RESAMPLE_BOX);
+    }
+    sr_destroy_framebuffer(ctx, work);
     if (r == SR_OK) {
         const uint8_t *px = sr_framebuffer_pixels(fb);
         size_t n = (size_t)j->width * (size_t)j->height;
@@ -660,21 +718,25 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     static char *kwlist[] = { "instances", "K", "width", "height", "near", "threads", "depth",
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
-                              "environment", "shadows", "general", NULL };
+                              "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
+                              "ground", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None;
-    render_job j = { 0 };
-    int lit = 1, pbr = 0, shadows = 0, general = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpp:render", kwlist,
+    render_job j = { .msaa = 1, .ssaa = 1 };
+    int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiip:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
-                                     &shadows, &general)) {
+                                     &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa,
+                                     &ground)) {
         return NULL;
     }
+    j.ortho = ortho;
     j.pbr = pbr;
     j.shadows = shadows;
+    j.ground = ground;
     j.general = general;
     if (pbr && take_matrix(view, "view", 3, 4, &j.view[0][0]) < 0) {
         return NULL;
@@ -688,8 +750,22 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                      SR_MAX_FRAMEBUFFER_SIZE, j.width, j.height);
         return NULL;
     }
-    if (!(j.near > 0.0f) || !isfinite(j.near)) {
-        PyErr_SetString(PyExc_ValueError, "near: must be a positive finite distance");
+    if (!(j.ortho ? j.near >= 0.0f : j.near > 0.0f) || !isfinite(j.near)) {
+        PyErr_SetString(PyExc_ValueError, j.ortho ? "near: must be a finite distance >= 0"
+                                                  : "near: must be a positive finite distance");
+        return NULL;
+    }
+    if (j.ortho && (!(j.far > j.near) || !isfinite(j.far))) {
+        PyErr_SetString(PyExc_ValueError, "far: must be finite and beyond near");
+        return NULL;
+    }
+    bool msaa_ok = j.msaa == 1 || j.msaa == 2 || j.msaa == 4 || j.msaa == 8 || j.msaa == 16;
+    if (!msaa_ok || j.ssaa < 1 || j.ssaa > 4 || (j.msaa > 1 && j.ssaa > 1) ||
+        (long)j.width * j.ssaa > SR_MAX_FRAMEBUFFER_SIZE ||
+        (long)j.height * j.ssaa > SR_MAX_FRAMEBUFFER_SIZE) {
+        PyErr_Format(PyExc_ValueError, "antialias: msaa %d, ssaa %d at %d x %d: not a mode "
+                     "(msaa 1, 2, 4, 8 or 16; ssaa 1 .. 4 and the image at most %d a side)",
+                     j.msaa, j.ssaa, j.width, j.height, SR_MAX_FRAMEBUFFER_SIZE);
         return NULL;
     }
     if (j.threads < 0 || j.threads > 64) {

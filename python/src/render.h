@@ -31,11 +31,17 @@ typedef struct render_job {
     double k[3][3];
     double view[3][4];          /* world -> camera [R | t], for the metallic-roughness look */
     float near;
+    bool ortho;                 /* K maps camera x, y to pixels; rays along +z */
+    float far;                  /* ortho: where the window depth reaches 0 */
     float background[3];
+    /* color: antialiased with msaa samples a pixel, or drawn ssaa x ssaa
+     * times larger and box-filtered down (at most one of them above 1) */
+    int msaa, ssaa;
     bool lit;                   /* color: headlight-lit, else the colors as they are */
     bool pbr;                   /* color: the metallic-roughness program instead */
     const sr_environment *env;  /* pbr: its image-based light, or NULL (the hemisphere) */
     bool shadows;               /* pbr: the key light's shadow map */
+    bool ground;                /* pbr, with shadows: the shadow catcher under the instances */
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;

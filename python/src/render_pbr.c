@@ -197,6 +197,30 @@ static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job 
     return r;
 }
 
+/* softrast render's --ground: the shadow catcher under the instances'
+ * world box (sr_make_ground_mesh, +y up), after the opaque instances,
+ * whose depth hides the ground behind them, and before the blended
+ * ones. */
+static sr_result draw_ground(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
+                             const pass_light *pl, const sr_mat4 *proj)
+{
+    sr_vec3 lo, hi;
+    if (!world_box(j, &lo, &hi)) {
+        return SR_OK;
+    }
+    sr_mesh ground = { 0 };
+    sr_result r = sr_make_ground_mesh(ctx, &(sr_ground_desc){ .bounds_min = lo, .bounds_max = hi },
+                                      &ground);
+    if (r == SR_OK) {
+        sr_state st = { .depth_zero_to_one = true, .depth_func = SR_GREATER };
+        r = sr_draw_shadow_catcher(ctx, fb, &st, &(sr_shadow_catcher_desc){
+            .ground = &ground, .map = pl->shadow, .direction = pl->lights[0].vector,
+            .bounds_min = lo, .bounds_max = hi, .view = &pl->view, .projection = proj });
+    }
+    sr_destroy_mesh(ctx, &ground);
+    return r;
+}
+
 sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
                          const sr_mat4 *proj)
 {
@@ -246,6 +270,9 @@ sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *
         r = sr_mean_view_depth(pd.d.positions, pd.d.vertex_count, pd.d.indices,
                                pd.d.index_count / 3, &mv, &depth[nb]);
         nb++;
+    }
+    if (r == SR_OK && shadow && j->ground) {
+        r = draw_ground(ctx, fb, j, &pl, proj);
     }
     size_t *order = malloc((nb ? nb : 1) * sizeof *order);
     if (r == SR_OK) {

@@ -1,6 +1,7 @@
 """Shared helpers of the softrast Python tests (run by CTest's python_package)."""
 
 import os
+import subprocess
 
 import numpy as np
 import pytest
@@ -47,3 +48,28 @@ def load_gltf(path):
         if "jansson" in str(e) or "not supported" in str(e):
             pytest.skip("this build reads no glTF")
         raise
+
+
+CLI = os.environ.get("SR_CLI")
+needs_cli = pytest.mark.skipif(not CLI, reason="SR_CLI (the softrast command) is not set")
+
+
+def assert_matches_command(tmp_path, path, name, cli_args, width=160, height=120, **render_kw):
+    """render() of the glTF file's camera 0 against softrast render
+    --camera-index 0 with cli_args: within 2 codes on all but 0.5% of the
+    pixels (rounding of the model's world transform, which the command
+    applies to the vertices and render in the program).  The two side by
+    side go to $SR_TEST_OUT/name.png when it is set."""
+    png = tmp_path / "cli.png"
+    subprocess.run([CLI, "render", str(path), "--camera-index", "0", "--size",
+                    f"{width}x{height}", *cli_args, "-o", str(png)],
+                   check=True, capture_output=True)
+    scene = load_gltf(path)
+    ours = softrast.render(scene, camera=scene.cameras[0], width=width, height=height,
+                           outputs=("color",), **render_kw)["color"]
+    theirs = softrast.read_image(png)[..., :3]
+    out = os.environ.get("SR_TEST_OUT")
+    if out:
+        softrast.write_png(os.path.join(out, f"{name}.png"), np.concatenate([ours, theirs], 1))
+    diff = np.abs(ours.astype(int) - theirs).max(-1)
+    assert (diff > 2).mean() <= 0.005, f"{(diff > 2).mean():.2%} of the pixels differ"

@@ -63,9 +63,10 @@ def box(centre, size):
             "indices": np.asarray(idx, np.uint16)}
 
 
-def write(path, prims, materials, images=(), camera=None):
+def write(path, prims, materials, images=(), camera=None, orthographic=False):
     """prims: list of (primitive dict, material index); camera: (eye,
-    target, yfov) or None.  Each primitive is a node of its own."""
+    target, yfov) or None, (eye, target, ymag) when orthographic.  Each
+    primitive is a node of its own."""
     data = b""
     views, accessors, meshes, nodes = [], [], [], []
 
@@ -98,15 +99,19 @@ def write(path, prims, materials, images=(), camera=None):
         doc["images"] = [{"uri": png_uri(im)} for im in images]
         doc["textures"] = [{"source": i} for i in range(len(images))]
     if camera is not None:
-        eye, target, yfov = camera
+        eye, target, size = camera
         K, R, t = softrast.look_at(eye, target, width=2, height=2)
         # OpenCV's camera (x right, y down, z forward) to glTF's (y up, -z forward).
         to_world = R.T @ np.diag([1.0, -1.0, -1.0])
         m = np.eye(4)
         m[:3, :3] = to_world
         m[:3, 3] = eye
-        doc["cameras"] = [{"type": "perspective",
-                           "perspective": {"yfov": yfov, "znear": 0.05, "zfar": 100.0}}]
+        if orthographic:
+            doc["cameras"] = [{"type": "orthographic", "orthographic": {
+                "xmag": size, "ymag": size, "znear": 0.05, "zfar": 100.0}}]
+        else:
+            doc["cameras"] = [{"type": "perspective",
+                               "perspective": {"yfov": size, "znear": 0.05, "zfar": 100.0}}]
         nodes.append({"camera": 0, "matrix": m.T.reshape(-1).tolist()})
     doc["nodes"] = nodes
     doc["scenes"] = [{"nodes": list(range(len(nodes)))}]

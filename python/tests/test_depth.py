@@ -64,6 +64,17 @@ def icosphere(subdivisions):
     return np.array(verts), np.array(f, np.int64)
 
 
+def largest_sagitta(verts, faces, radius):
+    """How far below a sphere of the radius its inscribed mesh's faces
+    reach: the deepest point of a face is its circumcentre, circumradius
+    abc / 4A."""
+    p = verts[faces] * radius
+    a, b, c = (np.linalg.norm(p[:, i] - p[:, (i + 1) % 3], axis=1) for i in range(3))
+    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+    circum = (a * b * c / (4 * area)).max()
+    return radius - np.sqrt(radius ** 2 - circum ** 2)
+
+
 def test_sphere_depth():
     verts, faces = icosphere(4)
     radius, centre = 1.5, np.array([0.2, -0.1, 5.0])
@@ -89,12 +100,7 @@ def test_sphere_depth():
     # than the sagitta over the cosine of the ray's angle with the normal
     # (where the ray is not grazing, and the sphere's curvature is small
     # over the distance).
-    # The deepest point of a face is its circumcentre, circumradius abc / 4A.
-    p = verts[faces] * radius
-    a, b, c = (np.linalg.norm(p[:, i] - p[:, (i + 1) % 3], axis=1) for i in range(3))
-    area = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
-    circum = (a * b * c / (4 * area)).max()
-    sagitta = radius - np.sqrt(radius ** 2 - circum ** 2)
+    sagitta = largest_sagitta(verts, faces, radius)
     steep = covered & hit
     normal = (sphere[steep][:, None] * rays[steep] - centre) / radius
     cos = np.abs(np.einsum("ij,ij->i", normal, rays[steep])) / np.linalg.norm(rays[steep], axis=1)
