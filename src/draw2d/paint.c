@@ -172,13 +172,16 @@ void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
     /* A blend is a pure function of the pixel and the coverage, and runs
      * of equal pairs are common (a shape's inside over an empty or flat
      * background), so the last result is reused: the same bytes, one
-     * blend per run.  Without linear light, whole blocks of 16 pixels (at
-     * the AVX-512 level), then of 4, go through the lanes' blend
-     * (blend_lanes.h) first. */
+     * blend per run.  A translucent color without linear light takes
+     * whole blocks of 16 pixels (at the AVX-512 level), then of 4, through
+     * the lanes' blend (blend_lanes.h) first.  An opaque color blends only
+     * where the coverage is partial (an edge): there the scalar blend is
+     * as fast, and wide float lanes would slow the clock for the code
+     * around them. */
     uint32_t in = 0, out = 0;
     unsigned last_cov = 256;
     int i = 0;
-    if (!p->linear_light) {
+    if (!p->linear_light && p->alpha < 1.0f) {
 #if defined(__x86_64__) && defined(__GNUC__)
         if (p->wide) {
             i = blend_row_avx512(p, dst, cov, n, &in, &last_cov, &out);
