@@ -3,7 +3,8 @@
  * vertices (nonzero) and closed cubic curves, 8 to 256 px, at random
  * places on a 512x600 canvas, painted solid (random colors, alpha 0.5-1),
  * with a linear or with a radial gradient over each shape's bounding box,
- * antialiased.  softrast renders each batch as one SVG document
+ * or with a pattern (a 16 px tile of three colors repeated over the
+ * canvas), antialiased.  softrast renders each batch as one SVG document
  * (sr_render_svg: parsing, flattening, coverage and paint, as `softrast
  * svg` does); cairo draws the same shapes through its API, frame by frame
  * in the same run.  Main thread; each batch is made once. */
@@ -29,21 +30,27 @@
 /* Shapes per batch: MAX_SHAPES, fewer for large sizes so a batch's
  * bounding boxes stay within the SVG renderer's fill-work budget. */
 #define BATCH_PIXELS 10000000
-/* Timed frames per case at most: 90 cases make a long run already. */
+/* Timed frames per case at most: 120 cases make a long run already. */
 #define MAX_FRAMES 5
 
 typedef enum shape_kind { SHAPE_RECT, SHAPE_POLY, SHAPE_CURVE } shape_kind;
-typedef enum paint_kind { PAINT_SOLID, PAINT_LINEAR, PAINT_RADIAL } paint_kind;
+typedef enum paint_kind { PAINT_SOLID, PAINT_LINEAR, PAINT_RADIAL, PAINT_PATTERN } paint_kind;
 
 static const struct { const char *name; shape_kind kind; int verts; } shapes[] = {
     { "rect", SHAPE_RECT, 4 },   { "poly10", SHAPE_POLY, 10 }, { "poly20", SHAPE_POLY, 20 },
     { "poly40", SHAPE_POLY, 40 }, { "curves", SHAPE_CURVE, 13 },
 };
-static const char *const paint_names[] = { "solid", "linear", "radial" };
+static const char *const paint_names[] = { "solid", "linear", "radial", "pattern" };
+#define PAINT_COUNT 4
 static const int sizes[] = { 8, 16, 32, 64, 128, 256 };
 /* The gradients' stops, shared by both renderers. */
 static const double stops[3][4] = { { 0, 0.9, 0.2, 0.1 }, { 0.5, 0.2, 0.7, 0.9 },
                                     { 1, 1.0, 0.9, 0.2 } };
+/* The pattern's tile: a square of the first color, its top left and
+ * bottom right quarters in the others (x, y, size, r, g, b). */
+#define TILE 16
+static const int tile_rects[3][6] = { { 0, 0, 16, 230, 200, 60 }, { 0, 0, 8, 40, 90, 200 },
+                                      { 8, 8, 8, 200, 40, 90 } };
 
 /* One shape: its points (a rectangle's corners, a polygon's vertices, or
  * a start point and four cubic segments for a curve) and its color. */
@@ -133,15 +140,29 @@ static bool svg_stops(text *t)
     return ok;
 }
 
+static bool svg_tile(text *t)
+{
+    bool ok = put(t, "<pattern id='p' width='%d' height='%d' patternUnits='userSpaceOnUse'>",
+                  TILE, TILE);
+    for (int k = 0; ok && k < 3; k++) {
+        const int *q = tile_rects[k];
+        ok = put(t, "<rect x='%d' y='%d' width='%d' height='%d' fill='rgb(%d,%d,%d)'/>", q[0],
+                 q[1], q[2], q[2], q[3], q[4], q[5]);
+    }
+    return ok && put(t, "</pattern>");
+}
+
 /* The batch as an SVG document; the gradients use objectBoundingBox
- * units (the default), so one definition paints every shape's box. */
+ * units (the default), so one definition paints every shape's box; the
+ * pattern is in user space, one tile grid over the canvas. */
 static bool batch_svg(text *t, const shape *sh, int count, shape_kind kind, int verts, int size,
                       paint_kind paint)
 {
     bool ok = put(t, "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d'><defs>"
                      "<linearGradient id='l'>", CANVAS_W, CANVAS_H) &&
               svg_stops(t) && put(t, "</linearGradient><radialGradient id='r'>") &&
-              svg_stops(t) && put(t, "</radialGradient></defs>\n");
+              svg_stops(t) && put(t, "</radialGradient>") && svg_tile(t) &&
+              put(t, "</defs>\n");
     for (int i = 0; ok && i < count; i++) {
         const shape *s = &sh[i];
         if (kind == SHAPE_RECT) {
@@ -164,7 +185,7 @@ static bool batch_svg(text *t, const shape *sh, int count, shape_kind kind, int 
             ok = put(t, " fill='rgb(%d,%d,%d)' fill-opacity='%.3f'/>\n", (int)(s->r * 255 + 0.5),
                      (int)(s->g * 255 + 0.5), (int)(s->b * 255 + 0.5), s->a);
         } else if (ok) {
-            ok = put(t, " fill='url(#%c)'/>\n", paint == PAINT_LINEAR ? 'l' : 'r');
+            ok = put(t, " fill='url(#%c)'/>\n", "slrp"[paint]);
         }
     }
     return ok && put(t, "</svg>\n");
@@ -191,8 +212,27 @@ static void cairo_shape(cairo_t *cr, const shape *s, shape_kind kind, int verts,
     cairo_close_path(cr);
 }
 
+/* The pattern's tile as a repeating cairo pattern, made once per batch as
+ * an application keeps its textures. */
+static cairo_pattern_t *cairo_tile(void)
+{
+    cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, TILE, TILE);
+    cairo_t *cr = cairo_create(s);
+    for (int k = 0; k < 3; k++) {
+        const int *q = tile_rects[k];
+        cairo_rectangle(cr, q[0], q[1], q[2], q[2]);
+        cairo_set_source_rgb(cr, q[3] / 255.0, q[4] / 255.0, q[5] / 255.0);
+        cairo_fill(cr);
+    }
+    cairo_destroy(cr);
+    cairo_pattern_t *p = cairo_pattern_create_for_surface(s);
+    cairo_pattern_set_extend(p, CAIRO_EXTEND_REPEAT);
+    cairo_surface_destroy(s);
+    return p;
+}
+
 static void cairo_batch(cairo_t *cr, const shape *sh, int count, shape_kind kind, int verts,
-                        int size, paint_kind paint)
+                        int size, paint_kind paint, cairo_pattern_t *tile)
 {
     cairo_set_operator(cr, CAIRO_OPERATOR_CLEAR);
     cairo_paint(cr);
@@ -202,6 +242,11 @@ static void cairo_batch(cairo_t *cr, const shape *sh, int count, shape_kind kind
         cairo_shape(cr, s, kind, verts, size);
         if (paint == PAINT_SOLID) {
             cairo_set_source_rgba(cr, s->r, s->g, s->b, s->a);
+            cairo_fill(cr);
+            continue;
+        }
+        if (paint == PAINT_PATTERN) {
+            cairo_set_source(cr, tile);
             cairo_fill(cr);
             continue;
         }
@@ -238,6 +283,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
                                                                     CANVAS_W, CANVAS_H)
                                        : NULL;
     cairo_t *cr = surface ? cairo_create(surface) : NULL;
+    cairo_pattern_t *tile = surface ? cairo_tile() : NULL;
 #else
     (void)compare;
     (void)cr_ms;
@@ -252,6 +298,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
             fprintf(stderr, "softrast-bench: shapes2d %s %d: %s\n", shapes[si].name, size,
                     err.message);
 #ifdef SR_HAVE_CAIRO
+            cairo_pattern_destroy(tile);
             cairo_destroy(cr);
             cairo_surface_destroy(surface);
 #endif
@@ -265,7 +312,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
 #ifdef SR_HAVE_CAIRO
         if (cr) {
             double c0 = now_ms();
-            cairo_batch(cr, sh, count, shapes[si].kind, shapes[si].verts, size, paint);
+            cairo_batch(cr, sh, count, shapes[si].kind, shapes[si].verts, size, paint, tile);
             cairo_surface_flush(surface);
             if (f >= 0) {
                 cr_ms[f] = now_ms() - c0;
@@ -287,6 +334,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
                shapes[si].name, size, paint_names[paint], count, frames, cr_ms[frames / 2],
                cr_ms[0], shapes[si].name, size, paint_names[paint], ratio);
         *log_ratio += log(ratio);
+        cairo_pattern_destroy(tile);
         cairo_destroy(cr);
         cairo_surface_destroy(surface);
     }
@@ -295,69 +343,63 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
     return true;
 }
 
-/* The --cases filter: which shapes, paints and sizes to run (all of a
- * kind when the list names none of it). */
-typedef struct case_filter {
-    bool shape[sizeof shapes / sizeof shapes[0]];
-    bool paint[sizeof paint_names / sizeof paint_names[0]];
-    bool size[sizeof sizes / sizeof sizes[0]];
-} case_filter;
-
-/* Set *kind[0..n) to all true when none of it was named. */
-static void all_if_none(bool *kind, int n)
+/* The items of a comma-separated list among names[0..n) as a bit set (bit
+ * k: names[k]); 0 after a message naming the option when an item is
+ * unknown or the list empty. */
+static unsigned name_set(const char *opt, const char *list, const char *const *names, int n)
 {
-    bool any = false;
-    for (int i = 0; i < n; i++) {
-        any = any || kind[i];
+    unsigned set = 0;
+    for (const char *s = list; *s;) {
+        size_t len = strcspn(s, ",");
+        int k = 0;
+        while (k < n && !(strlen(names[k]) == len && strncmp(s, names[k], len) == 0)) {
+            k++;
+        }
+        if (k == n) {
+            fprintf(stderr, "softrast-bench: %s: unknown item '%.*s' (expected", opt, (int)len,
+                    s);
+            for (int i = 0; i < n; i++) {
+                fprintf(stderr, "%s%s", i ? ", " : " ", names[i]);
+            }
+            fprintf(stderr, ")\n");
+            return 0;
+        }
+        set |= 1u << k;
+        s += len + (s[len] == ',');
     }
-    for (int i = 0; !any && i < n; i++) {
-        kind[i] = true;
+    if (set == 0) {
+        fprintf(stderr, "softrast-bench: %s: empty list\n", opt);
     }
+    return set;
 }
 
-/* Parse "rect,solid,8"; false after a message naming an unknown item. */
-static bool parse_cases(const char *list, case_filter *f)
+static const char *const shape_names[] = { "rect", "poly10", "poly20", "poly40", "curves" };
+static const char *const size_names[] = { "8", "16", "32", "64", "128", "256" };
+_Static_assert(sizeof shape_names / sizeof shape_names[0] == sizeof shapes / sizeof shapes[0],
+               "a name per shape");
+_Static_assert(sizeof size_names / sizeof size_names[0] == sizeof sizes / sizeof sizes[0],
+               "a name per size");
+
+unsigned bench_shapes2d_paints(const char *list)
 {
-    *f = (case_filter){ 0 };
-    for (const char *p = list; p && *p;) {
-        size_t len = strcspn(p, ",");
-        bool known = false;
-        for (int i = 0; i < (int)(sizeof shapes / sizeof shapes[0]); i++) {
-            if (strlen(shapes[i].name) == len && strncmp(p, shapes[i].name, len) == 0) {
-                f->shape[i] = known = true;
-            }
-        }
-        for (int i = 0; i < (int)(sizeof paint_names / sizeof paint_names[0]); i++) {
-            if (strlen(paint_names[i]) == len && strncmp(p, paint_names[i], len) == 0) {
-                f->paint[i] = known = true;
-            }
-        }
-        for (int i = 0; i < (int)(sizeof sizes / sizeof sizes[0]); i++) {
-            char num[16];
-            int n = snprintf(num, sizeof num, "%d", sizes[i]);
-            if ((size_t)n == len && strncmp(p, num, len) == 0) {
-                f->size[i] = known = true;
-            }
-        }
-        if (!known) {
-            fprintf(stderr, "softrast-bench: --cases: '%.*s' is no shape, paint or size of "
-                            "shapes2d\n", (int)len, p);
-            return false;
-        }
-        p += len + (p[len] == ',');
-    }
-    all_if_none(f->shape, (int)(sizeof f->shape / sizeof f->shape[0]));
-    all_if_none(f->paint, (int)(sizeof f->paint / sizeof f->paint[0]));
-    all_if_none(f->size, (int)(sizeof f->size / sizeof f->size[0]));
-    return true;
+    return name_set("--paint", list, paint_names, PAINT_COUNT);
 }
 
-bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *only)
+unsigned bench_shapes2d_shapes(const char *list)
 {
-    case_filter filter;
-    if (!parse_cases(only, &filter)) {
-        return false;
-    }
+    return name_set("--shape", list, shape_names, (int)(sizeof shape_names / sizeof *shape_names));
+}
+
+unsigned bench_shapes2d_sizes(const char *list)
+{
+    return name_set("--shape-size", list, size_names, (int)(sizeof size_names / sizeof *size_names));
+}
+
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const shapes2d_cases *only)
+{
+    unsigned paint_set = only->paints ? bench_shapes2d_paints(only->paints) : ~0u;
+    unsigned shape_set = only->shapes ? bench_shapes2d_shapes(only->shapes) : ~0u;
+    unsigned size_set = only->sizes ? bench_shapes2d_sizes(only->sizes) : ~0u;
     frames = frames > MAX_FRAMES ? MAX_FRAMES : frames;
     shape *sh = malloc(sizeof *sh * MAX_SHAPES);
     double *ms = calloc((size_t)frames, sizeof *ms), *cr_ms = calloc((size_t)frames, sizeof *ms);
@@ -385,8 +427,8 @@ bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *only)
             int count = BATCH_PIXELS / (size * size);
             count = count > MAX_SHAPES ? MAX_SHAPES : count;
             make_batch(sh, count, shapes[si].kind, shapes[si].verts, size, &rng);
-            for (int p = PAINT_SOLID; ok && p <= PAINT_RADIAL; p++) {
-                if (!filter.shape[si] || !filter.size[zi] || !filter.paint[p]) {
+            for (int p = PAINT_SOLID; ok && p < PAINT_COUNT; p++) {
+                if (!(paint_set & 1u << p) || !(shape_set & 1u << si) || !(size_set & 1u << zi)) {
                     continue; /* the batch was still made: the others stay the same */
                 }
                 t.len = 0;

@@ -149,6 +149,49 @@ SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
     sr_destroy_framebuffer(ctx, fb);
 }
 
+/* A pattern's uses: one after another with the same map (its tile kept),
+ * under another map, with other patterns between (one of the same size)
+ * and inside. */
+static const char pattern_uses[] =
+    "<svg xmlns='http://www.w3.org/2000/svg' width='60' height='20'>"
+    "<pattern id='q' width='1' height='1' patternUnits='userSpaceOnUse'>"
+    "<rect width='1' height='1' fill='#f00'/></pattern>"
+    "<pattern id='p1' width='4' height='4' patternUnits='userSpaceOnUse'>"
+    "<rect width='4' height='4' fill='#00f'/><rect width='2' height='2' fill='url(#q)'/></pattern>"
+    "<pattern id='p2' href='#p1'/><pattern id='p3' href='#p1'/><pattern id='p4' href='#p1'/>"
+    "<rect width='10' height='20' fill='url(#p1)'/>"
+    "<pattern id='g' width='4' height='4' patternUnits='userSpaceOnUse'>"
+    "<rect width='4' height='4' fill='#0f0'/></pattern>"
+    "<rect x='40' width='10' height='20' fill='url(#g)'/>"
+    "<rect x='10' width='10' height='20' fill='url(#p2)'/>"
+    "<g transform='translate(20 0.5) scale(2)'><rect width='10' height='10' fill='url(#p3)'/></g>"
+    "<rect x='50' width='10' height='20' fill='url(#p4)'/></svg>";
+
+SR_TEST(a_kept_pattern_tile_paints_as_a_new_one)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = sr_test_ctx();
+    /* each use its own pattern (a tile drawn for each), then all of them
+     * the same one (its tile kept where the map allows) */
+    char same[sizeof pattern_uses];
+    memcpy(same, pattern_uses, sizeof same);
+    for (char *s = same; (s = strstr(s, "url(#p")) != NULL; s += 6) {
+        s[6] = '1';
+    }
+    sr_framebuffer *a = render(ctx, pattern_uses, SR_OK, NULL, 0);
+    sr_framebuffer *b = render(ctx, same, SR_OK, NULL, 0);
+    REQUIRE(a && b);
+    CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), 60 * 20 * 4) == 0);
+    /* the scaled use has 4 px red squares: the tile drawn again at twice the size */
+    CHECK(pixel(b, 21, 2)[0] == 255 && pixel(b, 24, 2)[2] == 255 && pixel(b, 21, 9)[0] == 255);
+    /* a tile of the same size and map from another pattern */
+    CHECK(pixel(b, 45, 10)[1] == 255 && pixel(b, 45, 10)[0] == 0);
+    sr_destroy_framebuffer(ctx, a);
+    sr_destroy_framebuffer(ctx, b);
+}
+
 SR_TEST(the_marker_shorthand_is_a_property_not_an_attribute)
 {
     if (!sr_io_have_svg()) {

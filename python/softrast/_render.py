@@ -252,7 +252,7 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
            outputs=("color", "depth"), threads=0, near=None, normal_frame="camera",
            background=(0.0, 0.0, 0.0), shading="lit", environment=None,
            environment_intensity=0.6, shadows=None, ground=False, projection=None,
-           antialias=None):
+           antialias=None, cull="none"):
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -319,6 +319,13 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
         box-filtered down; at most 8192 samples a side).  An edge pixel
         mixes the surface with the background (``rgba``: its color
         channels too, its alpha the covered part).
+    cull: "none" (the default: both sides of every face are drawn) or
+        "back": faces seen from behind (clockwise on screen, as their
+        normal points away from the camera; counter-clockwise under a
+        mirroring pose) are not drawn, in every output.  Faster, as a
+        closed mesh seen from outside shows only its front faces; wrong
+        for open meshes, whose back faces show, and for a camera inside a
+        closed one.
     threads: rendering threads, 0 for every CPU; the result does not depend
         on it.
     near: surfaces closer than this (camera z) are clipped (default 1e-3,
@@ -392,6 +399,8 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
                          "perspective camera, >= 0 for an orthographic one")
     if normal_frame not in ("camera", "world"):
         raise ValueError(f"normal_frame: must be 'camera' or 'world', got {normal_frame!r}")
+    if cull not in ("none", "back"):
+        raise ValueError(f"cull: must be 'none' or 'back', got {cull!r}")
     if shading not in ("lit", "unlit", "pbr"):
         raise ValueError(f"shading: must be 'lit', 'unlit' or 'pbr', got {shading!r}")
     bg = _float_array(background, "background")
@@ -448,7 +457,8 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
                                             "normal", "color", "mask")),
                              bg, shading == "lit",
                              rgba=out["rgba"][b] if "rgba" in wanted else None,
-                             ortho=bool(orthos[b]), far=far, msaa=msaa, ssaa=ssaa, **extra)
+                             ortho=bool(orthos[b]), far=far, msaa=msaa, ssaa=ssaa,
+                             cull=cull == "back", **extra)
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return out

@@ -27,6 +27,8 @@ static struct {
 
 static void env_snapshot(char out[ENV_COUNT][ENV_MAX + 2])
 {
+    /* Compared whole (memcmp): the bytes after each value too. */
+    memset(out, 0, ENV_COUNT * (ENV_MAX + 2));
     for (int i = 0; i < ENV_COUNT; i++) {
         const char *v = getenv(env_names[i]);
         out[i][0] = '\0';

@@ -31,6 +31,10 @@ typedef struct geometry_uniforms {
     double kx[3], ky[2];        /* clip x and y rows from K */
     double fx, s, cx, fy, cy;   /* K, for the rays through pixel centres */
     float near;
+    /* The faces left undrawn: those of this area2 sign (sr__area2 of the
+     * snapped vertices), 0 for none.  Back faces are clockwise on the
+     * y-down screen (area2 > 0), unless the pose mirrors the mesh. */
+    int cull_sign;
     /* Orthographic: K maps camera x, y (not x/z, y/z) to pixels, the rays
      * run along +z, and the window depth is (far - z) / (far - near). */
     bool ortho;
@@ -44,11 +48,14 @@ typedef struct geometry_uniforms {
 } geometry_uniforms;
 
 /* The geometry pass's draw state: a reversed z-buffer (cleared to 0,
- * GREATER: near / z), both faces drawn, no color written. */
-static inline sr_state sr_py_geometry_state(const sr_program *prog)
+ * GREATER: near / z), the faces of `cull_sign` (see geometry_uniforms)
+ * culled, no color written. */
+static inline sr_state sr_py_geometry_state(const sr_program *prog, int cull_sign)
 {
     return (sr_state){ .program = prog, .depth_zero_to_one = true, .depth_func = SR_GREATER,
-                       .cull = SR_CULL_NONE, .color_mask = SR_COLOR_MASK_NONE };
+                       .cull = cull_sign ? SR_CULL_BACK : SR_CULL_NONE,
+                       .front_face = cull_sign < 0 ? SR_FRONT_CW : SR_FRONT_CCW,
+                       .color_mask = SR_COLOR_MASK_NONE };
 }
 
 /* Index i of the faces array (3 f + k is corner k of face f). */
@@ -61,28 +68,37 @@ static inline size_t sr_py_face_index(const geometry_uniforms *u, size_t i)
 /* Fills u's clip and camera tables for mesh vertices [lo, hi): each
  * vertex seen from the camera. */
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi);
+/* The same for the visibility pass: the camera table filled, the clip
+ * positions written to `clip` (vertex lo's) and on, `stride` bytes apart;
+ * for a pinhole camera in AVX2 lanes when `lanes` (the draw state's SIMD
+ * level allows them), with the same values. */
+void sr_py_view_vertices_to(const geometry_uniforms *u, size_t lo, size_t hi, bool lanes,
+                            float *clip, size_t stride);
 
-/* The outputs of pixel p (y * width + x) where nothing is visible.
- * Inline, so that a loop over pixels tests which outputs exist once. */
-static inline void sr_py_background_pixel(const geometry_uniforms *u, size_t p)
+/* The outputs of the n pixels from p (y * width + x, along the rows)
+ * where nothing is visible: each output filled over the run at once,
+ * which the compiler turns into wide stores. */
+static inline void sr_py_background_run(const geometry_uniforms *u, size_t p, size_t n)
 {
     if (u->depth) {
-        u->depth[p] = INFINITY;
+        for (size_t i = 0; i < n; i++) {
+            u->depth[p + i] = INFINITY;
+        }
     }
     if (u->triangle_id) {
-        u->triangle_id[p] = -1;
+        memset(&u->triangle_id[p], 0xff, n * sizeof(int32_t));   /* -1 */
     }
     if (u->instance_out) {
-        u->instance_out[p] = -1;
+        memset(&u->instance_out[p], 0xff, n * sizeof(int32_t));
     }
     if (u->barycentric) {
-        memset(&u->barycentric[3 * p], 0, 3 * sizeof(float));
+        memset(&u->barycentric[3 * p], 0, 3 * n * sizeof(float));
     }
     if (u->normal) {
-        memset(&u->normal[3 * p], 0, 3 * sizeof(float));
+        memset(&u->normal[3 * p], 0, 3 * n * sizeof(float));
     }
     if (u->mask) {
-        u->mask[p] = 0;
+        memset(&u->mask[p], 0, n * sizeof(npy_bool));
     }
 }
 
@@ -95,8 +111,8 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
  * rasterized for depth and face index alone, then each covered pixel
  * resolved by sr_py_shade_pixel: the same bytes as the general pass,
  * whose coverage and depth test it repeats with the library's own setup
- * and depth arithmetic.  Fills the instances' vertex tables
- * (sr_py_view_vertices) and every pixel of the outputs.  *done is false,
+ * and depth arithmetic.  Fills the instances' camera tables
+ * (sr_py_view_vertices_to) and every pixel of the outputs.  *done is false,
  * the outputs unwritten and the tables maybe unfilled, when some face
  * crosses a clip plane (clipping is left to the general pass) or the pass
  * cannot draw the view. */

@@ -5,6 +5,8 @@
  * renderer reads in place.  GIL held throughout.
  */
 #include "module.h"
+#include "pipeline.h"
+#include "raster/triangle_simd.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -146,6 +148,13 @@ Py_ssize_t sr_py_mesh_bad_face(const MeshObject *m)
     uint64_t n = (uint64_t)PyArray_DIM(m->vertices, 0);
     if (PyArray_TYPE(m->faces) == NPY_INT32) {
         const int32_t *f = PyArray_DATA(m->faces);
+        /* Read as unsigned, a negative index is at least 2^31: the
+         * library's index check (AVX2 where the CPU has it: the same
+         * largest index) clears the common case at once. */
+        if (n <= (uint64_t)INT32_MAX + 1 &&
+            sr__index_max(SR_INDEX_U32, f, 0, count, sr__simd_cpu_level() >= SR_SIMD_AVX2) < n) {
+            return -1;
+        }
         BAD_FACE_SCAN(uint32_t)
     } else {
         const int64_t *f = PyArray_DATA(m->faces);

@@ -26,6 +26,7 @@
 #include "geometry.h"
 #include "render.h"
 #include "math/dvec3.h"
+#include "simd_types.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -80,15 +81,77 @@ static void view_of(const geometry_uniforms *u, size_t v, float clip[4], double 
     clip[3] = (float)c[2];
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#define SR_PY_VIEW_LANES 1
+/* Mesh vertices [lo, hi) of type T four at a time in AVX2 lanes: view_of's
+ * perspective operations in its order, lane by lane (never contracted, as
+ * SR_EXACT_FP_FLAGS says), so the same values.  Returns the first vertex
+ * left for view_of. */
+#define VIEW_LANES(T)                                                                      \
+    for (; v + 4 <= hi; v += 4) {                                                         \
+        const T *s = (const T *)u->vertices + 3 * v;                                      \
+        v4d p[3];                                                                         \
+        for (int k = 0; k < 3; k++) {                                                     \
+            p[k] = (v4d){ s[k], s[3 + k], s[6 + k], s[9 + k] };                           \
+        }                                                                                 \
+        v4d c[3];                                                                         \
+        for (int r = 0; r < 3; r++) {                                                     \
+            c[r] = u->a[r][0] * p[0] + u->a[r][1] * p[1] + u->a[r][2] * p[2] + u->a[r][3]; \
+        }                                                                                 \
+        v4f x = __builtin_convertvector(u->kx[0] * c[0] + u->kx[1] * c[1] + u->kx[2] * c[2], \
+                                        v4f);                                             \
+        v4f y = __builtin_convertvector(u->ky[0] * c[1] + u->ky[1] * c[2], v4f);          \
+        v4f w = __builtin_convertvector(c[2], v4f);                                       \
+        for (int i = 0; i < 4; i++) {                                                     \
+            double *cam = camera[v + i];                                                  \
+            cam[0] = c[0][i];                                                             \
+            cam[1] = c[1][i];                                                             \
+            cam[2] = c[2][i];                                                             \
+            float *o = (float *)(clip + (v + i - lo) * stride);                           \
+            o[0] = x[i];                                                                  \
+            o[1] = y[i];                                                                  \
+            o[2] = u->near;                                                               \
+            o[3] = w[i];                                                                  \
+        }                                                                                 \
+    }
+
+__attribute__((target("avx2"))) static size_t view_lanes(const geometry_uniforms *u, size_t lo,
+                                                         size_t hi, char *clip, size_t stride)
+{
+    double (*camera)[3] = (double (*)[3])u->camera;
+    size_t v = lo;
+    if (u->vertices64) {
+        VIEW_LANES(double)
+    } else {
+        VIEW_LANES(float)
+    }
+    return v;
+}
+#undef VIEW_LANES
+#endif
+
+void sr_py_view_vertices_to(const geometry_uniforms *u, size_t lo, size_t hi, bool lanes,
+                            float *clip, size_t stride)
+{
+    double (*camera)[3] = (double (*)[3])u->camera;
+    size_t v = lo;
+#ifdef SR_PY_VIEW_LANES
+    if (lanes && !u->ortho) {
+        v = view_lanes(u, lo, hi, (char *)clip, stride);
+    }
+#else
+    (void)lanes;
+#endif
+    for (; v < hi; v++) {
+        view_of(u, v, (float *)((char *)clip + (v - lo) * stride), camera[v]);
+    }
+}
+
 void sr_py_view_vertices(const geometry_uniforms *u, size_t lo, size_t hi)
 {
     /* The tables are the render set's, handed out read-only to the
      * shaders. */
-    float (*clip)[4] = (float (*)[4])u->clip;
-    double (*camera)[3] = (double (*)[3])u->camera;
-    for (size_t v = lo; v < hi; v++) {
-        view_of(u, v, clip[v], camera[v]);
-    }
+    sr_py_view_vertices_to(u, lo, hi, false, (float *)u->clip[lo], 4 * sizeof(float));
 }
 
 static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, float clip[4],
@@ -219,10 +282,7 @@ static void fill_outputs(const render_job *j)
     geometry_uniforms u = { .depth = j->depth, .triangle_id = j->triangle_id,
                             .instance_out = j->instance_id, .barycentric = j->barycentric,
                             .normal = j->normal, .mask = j->mask };
-    size_t n = (size_t)j->width * (size_t)j->height;
-    for (size_t p = 0; p < n; p++) {
-        sr_py_background_pixel(&u, p);
-    }
+    sr_py_background_run(&u, 0, (size_t)j->width * (size_t)j->height);
 }
 
 static void clip_rows(const render_job *j, double kx[3], double ky[2])
@@ -287,6 +347,7 @@ static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_u
             .normals = m->normals ? PyArray_DATA(m->normals) : NULL,
             .fx = j->k[0][0], .s = j->k[0][1], .cx = j->k[0][2], .fy = j->k[1][1],
             .cy = j->k[1][2], .near = j->near, .ortho = j->ortho, .far = j->far,
+            .cull_sign = !j->cull_back ? 0 : sr_py_mirrors(in->a) ? -1 : 1,
             .width = j->width, .instance_id = in->id,
             .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
             .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
@@ -316,7 +377,7 @@ static sr_result geometry_draw(sr_context *ctx, sr_framebuffer *fb, const geomet
     /* The shader reads the mesh itself; sr_draw still wants a position
      * array of vertex_count entries.  Overlapping ones 4 bytes apart
      * (3 * faces + 2 zeros, made with the mesh) are the smallest. */
-    sr_state st = sr_py_geometry_state(&prog);
+    sr_state st = sr_py_geometry_state(&prog, u->cull_sign);
     return sr_draw(ctx, fb, &st,
                    &(sr_draw_desc){ .positions = m->zeros, .position_stride = sizeof(float),
                                     .vertex_count = 3 * faces });
@@ -351,6 +412,14 @@ static sr_result geometry_pass(sr_context *ctx, sr_framebuffer *fb, const render
     }
     free(u);
     return r;
+}
+
+bool sr_py_mirrors(const double a[3][4])
+{
+    double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    return det < 0.0;
 }
 
 void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out)
@@ -402,7 +471,9 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
     sr_mat4 model;
     sr_py_mat_from_rows(in->a, &model);
     sr_state st = {
-        .depth_zero_to_one = true, .depth_func = SR_GREATER, .cull = SR_CULL_NONE,
+        .depth_zero_to_one = true, .depth_func = SR_GREATER,
+        .cull = j->cull_back ? SR_CULL_BACK : SR_CULL_NONE,
+        .front_face = sr_py_mirrors(in->a) ? SR_FRONT_CW : SR_FRONT_CCW,
         .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
         .two_sided = true,
         .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
@@ -719,24 +790,25 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
                               "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
-                              "ground", NULL };
+                              "ground", "cull", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None;
     render_job j = { .msaa = 1, .ssaa = 1 };
-    int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiip:render", kwlist,
+    int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0, cull = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiipp:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
                                      &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa,
-                                     &ground)) {
+                                     &ground, &cull)) {
         return NULL;
     }
     j.ortho = ortho;
     j.pbr = pbr;
     j.shadows = shadows;
     j.ground = ground;
+    j.cull_back = cull;
     j.general = general;
     if (pbr && take_matrix(view, "view", 3, 4, &j.view[0][0]) < 0) {
         return NULL;

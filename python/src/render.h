@@ -47,11 +47,15 @@ typedef struct render_job {
     float *barycentric, *normal;
     uint8_t *color, *rgba;
     npy_bool *mask;
+    bool cull_back;             /* faces seen from behind are not drawn */
     bool general;               /* geometry: the library's pipeline, not the visibility pass */
     sr_py_render_set *set;      /* what run() draws with */
     char error[512];
 } render_job;
 
+/* Whether the 3x3 part of a flips handedness (its determinant is
+ * negative), turning the mesh's front faces clockwise on screen. */
+bool sr_py_mirrors(const double a[3][4]);
 /* The column-major matrix of rows a (the fourth row 0 0 0 1). */
 void sr_py_mat_from_rows(const double a[3][4], sr_mat4 *out);
 /* The mesh's texture on ctx (RGB expanded to RGBA), or NULL without one. */

@@ -29,10 +29,7 @@ static void draw_of(const instance *in, pbr_draw *out)
 {
     memset(out, 0, sizeof *out);
     sr_py_mat_from_rows(in->pose, &out->model);
-    const double (*p)[4] = in->pose;
-    double det = p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
-                 p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-                 p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
+    bool mirrored = sr_py_mirrors(in->pose);
     if (in->src) {
         const sr_mesh *m = &in->src->mesh;
         out->d = (sr_draw_desc){ .positions = m->positions, .normals = m->normals,
@@ -42,7 +39,7 @@ static void draw_of(const instance *in, pbr_draw *out)
                                  .index_count = 3 * m->triangle_count };
         out->tangents = in->src->tangents;
         out->texcoords1 = in->src->texcoords1;
-        out->mirrored = det < 0.0;
+        out->mirrored = mirrored;
         return;
     }
     const MeshObject *m = in->mesh;
@@ -54,7 +51,7 @@ static void draw_of(const instance *in, pbr_draw *out)
         .vertex_count = (size_t)PyArray_DIM(m->vertices, 0),
         .indices = in->indices, .index_type = SR_INDEX_U32,
         .index_count = 3 * (size_t)PyArray_DIM(m->faces, 0) };
-    out->mirrored = det < 0.0;
+    out->mirrored = mirrored;
 }
 
 /* The instance's material: a loaded primitive's (every texture) or one
@@ -168,7 +165,7 @@ static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job 
     }
     sr_state st = {
         .depth_zero_to_one = true, .depth_func = SR_GREATER,
-        .cull = m.double_sided ? SR_CULL_NONE : SR_CULL_BACK,
+        .cull = m.double_sided && !j->cull_back ? SR_CULL_NONE : SR_CULL_BACK,
         .front_face = pd.mirrored ? SR_FRONT_CW : SR_FRONT_CCW,
         .two_sided = m.double_sided,
         .program = program ? sr_pbr_program(program) : NULL,

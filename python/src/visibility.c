@@ -96,11 +96,13 @@ static size_t instance_of(const size_t *first, size_t count, size_t i)
     return lo;
 }
 
-/* Vertices [lo, hi) of the draw, those of instance u from `base`:
- * classified and snapped as the vertex stage does (vertex.c's classify,
- * sixteen at a time where the draw state says the CPU can, with the
- * same values), a block at a time from their clip positions.  True when
- * one is outside a clip plane. */
+/* Vertices [lo, hi) of the draw, those of instance u from `base`: seen
+ * from the camera (sr_py_view_vertices_to, the camera table filled and
+ * the clip positions written straight into the block's records; the
+ * clip table is left to the general pass), then classified and snapped
+ * as the vertex stage does (vertex.c's classify, sixteen at a time where
+ * the draw state says the CPU can, with the same values), a block at a
+ * time.  True when one is outside a clip plane. */
 static bool classify_vertices(const vis_job *j, const geometry_uniforms *u, size_t base, size_t lo,
                               size_t hi)
 {
@@ -111,9 +113,8 @@ static bool classify_vertices(const vis_job *j, const geometry_uniforms *u, size
     bool outside = false;
     for (size_t b = lo; b < hi; b += CLASSIFY_BLOCK) {
         size_t n = hi - b < CLASSIFY_BLOCK ? hi - b : CLASSIFY_BLOCK;
-        for (size_t i = 0; i < n; i++) {
-            memcpy(post[i].pos, u->clip[b + i - base], sizeof post[i].pos);
-        }
+        sr_py_view_vertices_to(u, b - base, b - base + n, ds->simd >= SR_SIMD_AVX2, post[0].pos,
+                               sizeof post[0]);
         if (!(ds->vertex_lanes16 && sr__classify16(ds, post, n))) {
             for (size_t i = 0; i < n; i++) {
                 const float *pos = post[i].pos;
@@ -149,8 +150,7 @@ static bool classify_vertices(const vis_job *j, const geometry_uniforms *u, size
     return outside;
 }
 
-/* The draw's vertices in equal shares: seen from the camera, then
- * classified. */
+/* The draw's vertices in equal shares. */
 static void classify_job(void *arg, int job, int thread)
 {
     (void)thread;
@@ -163,7 +163,6 @@ static void classify_job(void *arg, int job, int thread)
         const geometry_uniforms *u = &j->u[inst];
         size_t base = j->first_vertex[inst];
         size_t end = j->first_vertex[inst + 1] < hi ? j->first_vertex[inst + 1] : hi;
-        sr_py_view_vertices(u, v - base, end - base);
         outside |= classify_vertices(j, u, base, v, end);
         v = end;
     }
@@ -329,6 +328,7 @@ static void faces_job(void *arg, int job, int thread)
         size_t end = j->first_face[inst + 1] < hi ? j->first_face[inst + 1] : hi;
         end = end - g > CANDIDATE_BLOCK ? g + CANDIDATE_BLOCK : end;
         long n = find_candidates(j, inst, g, end, outside, cand);
+        int64_t cull_sign = j->u[inst].cull_sign;
         if (n < 0) {
             atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
             return;
@@ -353,9 +353,10 @@ static void faces_job(void *arg, int job, int thread)
                 { p2->x_q8, p2->y_q8, p2->z, 1.0f, NULL },
             };
             int64_t area2 = sr__area2(&w[0], &w[1], &w[2]);
-            if (area2 == 0 || ((c->x1 - c->x0) * (c->y1 - c->y0) <= SMALL_BOX &&
-                               !may_pass(ds, w, area2, c->x0, c->y0, c->x1, c->y1, j->width,
-                                         j->word))) {
+            /* Culled as assembly.c culls: by the snapped area's sign. */
+            if (area2 == 0 || area2 * cull_sign > 0 ||
+                ((c->x1 - c->x0) * (c->y1 - c->y0) <= SMALL_BOX &&
+                 !may_pass(ds, w, area2, c->x0, c->y0, c->x1, c->y1, j->width, j->word))) {
                 continue;
             }
             sr_tri t;
@@ -367,26 +368,34 @@ static void faces_job(void *arg, int job, int thread)
 }
 
 /* Rows of the image: each covered pixel resolved from its word, which
- * is cleared for the next view. */
+ * is cleared for the next view; the runs of pixels that no face passed
+ * filled a run at a time. */
 static void resolve_job(void *arg, int job, int thread)
 {
     (void)thread;
     vis_job *j = arg;
     int y1 = (job + 1) * ROWS_PER_JOB < j->height ? (job + 1) * ROWS_PER_JOB : j->height;
     for (int y = job * ROWS_PER_JOB; y < y1; y++) {
-        for (int x = 0; x < j->width; x++) {
-            size_t p = (size_t)y * (size_t)j->width + (size_t)x;
-            uint64_t w = atomic_load_explicit(&j->word[p], memory_order_relaxed);
-            if (w == 0) {
-                sr_py_background_pixel(j->u, p);   /* no face passed */
-                continue;
+        _Atomic uint64_t *row = &j->word[(size_t)y * (size_t)j->width];
+        for (int x = 0; x < j->width;) {
+            int run = x;
+            while (run < j->width && atomic_load_explicit(&row[run], memory_order_relaxed) == 0) {
+                run++;
             }
-            atomic_store_explicit(&j->word[p], 0, memory_order_relaxed);
-            uint32_t q = word_depth(w), g = ~(uint32_t)w;
-            size_t inst = instance_of(j->first_face, j->count, g);
-            float z;
-            memcpy(&z, &q, sizeof z);   /* the float depth buffer's value */
-            sr_py_shade_pixel(&j->u[inst], g - j->first_face[inst], x, y, z);
+            sr_py_background_run(j->u, (size_t)y * (size_t)j->width + (size_t)x,
+                                 (size_t)(run - x));
+            for (x = run; x < j->width; x++) {
+                uint64_t w = atomic_load_explicit(&row[x], memory_order_relaxed);
+                if (w == 0) {
+                    break;
+                }
+                atomic_store_explicit(&row[x], 0, memory_order_relaxed);
+                uint32_t q = word_depth(w), g = ~(uint32_t)w;
+                size_t inst = instance_of(j->first_face, j->count, g);
+                float z;
+                memcpy(&z, &q, sizeof z);   /* the float depth buffer's value */
+                sr_py_shade_pixel(&j->u[inst], g - j->first_face[inst], x, y, z);
+            }
         }
     }
 }
@@ -403,7 +412,7 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     /* The general pass's draw state, as sr_draw resolves it. */
     sr_program prog = { .varying_count = 1 };
     prog.modes[0] = SR_VARYING_FLAT;
-    sr_state st = sr_py_geometry_state(&prog);
+    sr_state st = sr_py_geometry_state(&prog, 0);   /* culled per instance */
     sr_draw_state ds;
     sr__resolve_draw_state(fb, &st, NULL, NULL, ctx->simd, &ds);
     if (ds.samples != 1 || ds.depth_bits != 0 || ds.depth_scale != 1.0) {
@@ -429,7 +438,8 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     j.face_jobs = (int)((faces + FACES_PER_JOB - 1) / FACES_PER_JOB);
     j.pixels = (size_t)j.width * (size_t)j.height;
     /* The pixels' words first, so that those left cleared by the last
-     * view's resolve stay where they are. */
+     * view's resolve stay where they are (but for those past this view's
+     * pixels, which its vertex arrays overwrite). */
     size_t bytes = j.pixels * sizeof(uint64_t) +
                    vertices * (sizeof(window_vertex) + sizeof(centre_span) + sizeof(uint32_t));
     if (set->visibility_bytes < bytes) {
@@ -445,8 +455,8 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
     if (set->visibility_cleared < j.pixels) {
         memset(j.word + set->visibility_cleared, 0,
                (j.pixels - set->visibility_cleared) * sizeof(uint64_t));
-        set->visibility_cleared = j.pixels;
     }
+    set->visibility_cleared = j.pixels;
     j.win = (window_vertex *)(j.word + j.pixels);
     j.span = (centre_span *)(j.win + vertices);
     j.outcode = (uint32_t *)(j.span + vertices);

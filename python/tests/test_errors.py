@@ -25,6 +25,7 @@ R, T = np.eye(3), np.zeros(3)
     (dict(faces=F.astype(np.uint8)), TypeError, "faces"),
     (dict(faces=np.array([[0, 1, 3]], np.int32)), ValueError, "faces"),
     (dict(faces=np.array([[0, -1, 2]], np.int64)), ValueError, "faces"),
+    (dict(faces=np.array([[0, -1, 2]], np.int32)), ValueError, "faces"),
     (dict(faces=np.array([0, 1, 2], np.int32)), ValueError, "faces"),
     (dict(faces=np.array([[0, 1, 2, 0, 1, 2]], np.int32)[:, ::2]), ValueError, "faces"),
     (dict(normals=np.zeros((2, 3))), ValueError, "normals"),
@@ -72,6 +73,7 @@ NAN_R[0, 0] = np.nan
     (dict(near=float("nan")), ValueError, "near"),
     (dict(normal_frame="object"), ValueError, "normal_frame"),
     (dict(shading="toon"), ValueError, "shading"),
+    (dict(cull="front"), ValueError, "cull"),
     (dict(background=(1, 2)), ValueError, "background"),
     (dict(scene=V), TypeError, "scene"),
     (dict(scene=[(MESH, np.full((4, 4), np.nan))]), ValueError, "pose"),
@@ -94,6 +96,18 @@ def test_faces_changed_after_the_mesh_was_made():
     mesh = softrast.Mesh(V, faces)
     faces[0, 1] = 1000
     with pytest.raises(ValueError, match="faces"):
+        softrast.render(mesh, K=K, R=R, t=T, width=32, height=24, outputs=("depth",))
+
+
+@pytest.mark.parametrize("dtype", [np.int32, np.int64])
+@pytest.mark.parametrize("bad", [-1, 3, 2**31 - 1])
+def test_the_first_bad_face_of_many_is_named(dtype, bad):
+    """Faces are checked a block at a time (int32 by the library's
+    vectorized index maximum): the message names the first bad face."""
+    faces = np.tile(F, (5000, 1)).astype(dtype)
+    mesh = softrast.Mesh(V, faces)
+    faces[4321, 2] = faces[4400, 0] = bad
+    with pytest.raises(ValueError, match="face 4321 has an index outside"):
         softrast.render(mesh, K=K, R=R, t=T, width=32, height=24, outputs=("depth",))
 
 

@@ -173,6 +173,12 @@ typedef struct svg_doc {
     /* Bounded work (softrast_io.h): what the document has used so far. */
     double points_used, points_budget;
     double work_used, work_budget;
+    /* The last pattern tile drawn and what it was drawn from: the next
+     * fill with the same pattern, map and size reuses its pixels. */
+    sr_framebuffer *tile;
+    const svg_node *tile_pattern;
+    mat2d tile_m;
+    double tile_vp[2];
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
@@ -1294,8 +1300,8 @@ static bool clip_to_window(svg_doc *doc, sr_polygon2 *poly, sr_point2 **pts, int
     return true;
 }
 
-static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_paint_fn at,
-                        const void *server, sr_fill_rule rule, bool crisp)
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_span_fn span,
+                        void *server, sr_fill_rule rule, bool crisp)
 {
     sr_point2 *pts;
     int *counts = NULL;
@@ -1310,8 +1316,8 @@ static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, 
         }
     }
     sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
-    sr_result r = at ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, at, server, color.a)
-                       : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
+    sr_result r = span ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, span, server, color.a)
+                         : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
     free(pts);
     free(counts);
     if (r != SR_OK) {
@@ -1602,7 +1608,7 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
     } else if (p->kind == SVG_PAINT_URL) {
         svg_gradient g;
         if (resolve_gradient(doc, p->server, f, geometry, &g)) {
-            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_paint,
+            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_span,
                         &g, rule, f->st.crisp);
             return;
         }
@@ -2834,7 +2840,7 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
             memcpy(im.inv, &inv, sizeof im.inv);
             sr_point2 corners[4] = { { x0, y0 }, { x1, y0 }, { x1, y1 }, { x0, y1 } };
             fill_mapped(doc, (sr_polygon2){ corners, 4, NULL, 0 }, f->m,
-                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, svg_image_at, &im, SR_NONZERO,
+                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, svg_image_span, &im, SR_NONZERO,
                         f->st.crisp);
         }
     }
@@ -3183,6 +3189,49 @@ static void close_layer(svg_doc *doc, sr_framebuffer *under)
  * image at about the device resolution, then repeated.  False when the
  * pattern paints nothing (an empty tile, a singular transform) and the
  * fallback color should be used; failures are reported. */
+/* Draw a pattern's content (under tf, whose style is set here) into a
+ * new tw x th tile, kept as doc->tile; NULL when it paints nothing (over
+ * budget, too deeply nested, a failure). */
+static sr_framebuffer *draw_tile(svg_doc *doc, svg_node *pat, const svg_node *content,
+                                 frame *tf, int tw, int th)
+{
+    if (!work_within_budget(doc, (double)tw * th)) {
+        return NULL;
+    }
+    if (doc->layers == MAX_LAYERS) {
+        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
+        return NULL;
+    }
+    sr_framebuffer *under = doc->fb, *tile = open_layer_sized(doc, tw, th);
+    if (!tile) {
+        return NULL;
+    }
+    tf->st = ancestor_style(doc, pat);
+    int windows = doc->n_windows; /* the tile has pixels of its own */
+    doc->n_windows = 0;
+    if (content) {
+        pat->active = true;
+        ((svg_node *)content)->active = true;
+        draw_children(doc, (svg_node *)content, tf);
+        ((svg_node *)content)->active = false;
+        pat->active = false;
+    }
+    doc->n_windows = windows;
+    close_layer(doc, under);
+    if (doc->status != SR_OK) {
+        sr_destroy_framebuffer(doc->ctx, tile);
+        return NULL;
+    }
+    /* The content may have drawn tiles of its own: this one replaces them. */
+    sr_destroy_framebuffer(doc->ctx, doc->tile);
+    doc->tile = tile;
+    doc->tile_pattern = pat;
+    doc->tile_m = tf->m;
+    doc->tile_vp[0] = tf->vp_w;
+    doc->tile_vp[1] = tf->vp_h;
+    return tile;
+}
+
 static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygon2 poly,
                           sr_polygon2 geometry, double opacity, sr_fill_rule rule)
 {
@@ -3247,39 +3296,28 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
     tw = fmin(fmax(ceil(tw * k - 1e-9), 1), SR_MAX_FRAMEBUFFER_SIZE);
     th = fmin(fmax(ceil(th * k - 1e-9), 1), SR_MAX_FRAMEBUFFER_SIZE);
     mat2d to_tile = { tw / w, 0, 0, th / h, 0, 0 }, inv;
-    if (!mat_invert(pm, &inv) || !work_within_budget(doc, tw * th)) {
+    if (!mat_invert(pm, &inv)) {
         return doc->status != SR_OK;
     }
-    if (doc->layers == MAX_LAYERS) {
-        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
-        return false;
+    frame tf = { .m = mat_mul(to_tile, cm), .vp_w = f->vp_w, .vp_h = f->vp_h };
+    sr_framebuffer *tile = doc->tile;
+    bool same = tile && doc->tile_pattern == pat && sr_framebuffer_width(tile) == (int)tw &&
+                sr_framebuffer_height(tile) == (int)th && doc->tile_vp[0] == f->vp_w &&
+                doc->tile_vp[1] == f->vp_h && memcmp(&doc->tile_m, &tf.m, sizeof tf.m) == 0;
+    if (!same) {
+        tile = draw_tile(doc, pat, content, &tf, (int)tw, (int)th);
+        if (!tile) {
+            return doc->status != SR_OK;
+        }
     }
-    sr_framebuffer *under = doc->fb, *tile = open_layer_sized(doc, (int)tw, (int)th);
-    if (!tile) {
-        return true;
-    }
-    frame tf = { .m = mat_mul(to_tile, cm), .st = ancestor_style(doc, pat), .vp_w = f->vp_w,
-                 .vp_h = f->vp_h };
-    int windows = doc->n_windows; /* the tile has pixels of its own */
-    doc->n_windows = 0;
-    if (content) {
-        pat->active = true;
-        ((svg_node *)content)->active = true;
-        draw_children(doc, (svg_node *)content, &tf);
-        ((svg_node *)content)->active = false;
-        pat->active = false;
-    }
-    doc->n_windows = windows;
-    close_layer(doc, under);
     svg_image im = { .rgba = sr_framebuffer_pixels(tile), .w = (int)tw, .h = (int)th,
                      .repeat = true };
     mat2d px_to_tile = mat_mul(mat_mul(to_tile, (mat2d){ 1, 0, 0, 1, -x, -y }), inv);
     memcpy(im.inv, &px_to_tile, sizeof im.inv);
     if (doc->status == SR_OK) {
-        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_image_at, &im, rule,
-                    f->st.crisp);
+        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_image_span, &im,
+                    rule, f->st.crisp);
     }
-    sr_destroy_framebuffer(doc->ctx, tile);
     return true;
 }
 
@@ -3627,6 +3665,7 @@ static void free_document(svg_doc *doc)
     free(doc->ids);
     free(doc->verts);
     svg_css_free(&doc->sheet);
+    sr_destroy_framebuffer(doc->ctx, doc->tile);
 }
 
 /* The initial style (SVG's defaults): fill black, no stroke, width 1. */

@@ -97,11 +97,18 @@ void svg_css_free(svg_css_sheet *sheet);
 /* ---- gradients (svg_gradient.c) --------------------------------------- */
 
 #define SVG_MAX_STOPS 256
+/* Cells of a gradient's color table over t in [0, 1).  At 1024, a cell
+ * between stops more than 0.26 apart changes a channel by less than 0.98
+ * codes, so its centre's color is within half a code of each exact one
+ * and the pixel within one code; the other cells (stops closer or inside
+ * the cell) evaluate their pixels alone. */
+#define SVG_GRADIENT_LUT 1024
 
 typedef enum svg_spread { SVG_SPREAD_PAD, SVG_SPREAD_REFLECT, SVG_SPREAD_REPEAT } svg_spread;
 
 /* A gradient resolved for one shape: its geometry in gradient space and
- * the map from pixel coordinates into that space. */
+ * the map from pixel coordinates into that space; the color table is
+ * filled as the fill's pixels ask for it. */
 typedef struct svg_gradient {
     bool radial;
     double x1, y1, x2, y2;       /* linear: the gradient vector */
@@ -109,18 +116,25 @@ typedef struct svg_gradient {
     svg_spread spread;
     double inv[6];               /* pixel -> gradient space (a b c d e f) */
     int n_stops;                 /* >= 1 */
+    /* Cell k of the table: 0 until a pixel asks for it (resolve_gradient
+     * zeroes this with the fields above), then 1 when lut[k] is within
+     * half a code of every color of the cell, 2 when no one color is (a
+     * stop inside, or a fast change): those pixels are evaluated alone.
+     * Cell SVG_GRADIENT_LUT is t >= 1. */
+    uint8_t lut_state[SVG_GRADIENT_LUT + 1];
     double offset[SVG_MAX_STOPS];/* non-decreasing, in [0, 1] */
     sr_rgba color[SVG_MAX_STOPS];/* straight alpha, opacity included */
+    uint32_t lut[SVG_GRADIENT_LUT + 1]; /* RGBA8 in memory order, straight alpha */
 } svg_gradient;
 
-/* The gradient's color at the pixel coordinates (x, y). */
-sr_rgba svg_gradient_at(const svg_gradient *g, double x, double y);
+/* A paint along a row: the straight-alpha RGBA8 colors (memory order r,
+ * g, b, a) at the centres of pixels x..x+n-1 of row y.  True when they
+ * depend on x alone (every row gets the same bytes at the same x).  The
+ * paint is not const: it may keep tables it fills as it goes. */
+typedef bool (*svg_span_fn)(void *paint, int x, int y, int n, uint32_t *out);
 
-/* A paint's straight-alpha color at pixel coordinates (x, y). */
-typedef sr_rgba (*svg_paint_fn)(const void *paint, double x, double y);
-
-/* svg_gradient_at as an svg_paint_fn. */
-sr_rgba svg_gradient_paint(const void *g, double x, double y);
+/* A gradient (svg_gradient) as an svg_span_fn. */
+bool svg_gradient_span(void *g, int x, int y, int n, uint32_t *out);
 
 /* ---- painted fills (svg_fill.c) ------------------------------------------ */
 
@@ -130,10 +144,10 @@ void svg_blend(uint8_t *d, sr_rgba c, float cov);
 
 /* Fill a polygon in pixel coordinates with a paint times opacity: the
  * coverage is sr_polygon_coverage's (the same pixels and weights as
- * sr_fill_polygon with that desc), the paint is applied after it and
- * blended source-over as the fills blend. */
+ * sr_fill_polygon with that desc), the paint is evaluated over each row's
+ * covered span and blended source-over as svg_blend does. */
 sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                         const sr_fill_desc *desc, svg_paint_fn at, const void *paint,
+                         const sr_fill_desc *desc, svg_span_fn span, void *paint,
                          float opacity);
 
 /* An RGBA8 image (straight alpha) as a paint: pixel coordinates map into
@@ -146,7 +160,8 @@ typedef struct svg_image {
     bool repeat;
 } svg_image;
 
-sr_rgba svg_image_at(const void *image, double x, double y);
+/* An image (svg_image) as an svg_span_fn (svg_image_paint.c). */
+bool svg_image_span(void *image, int x, int y, int n, uint32_t *out);
 
 /* ---- image sources (svg_image.c) ---------------------------------------- */
 

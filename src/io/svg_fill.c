@@ -1,24 +1,21 @@
 /* svg_fill.c - the SVG reader's painted fills (src/io): a polygon's
- * coverage from the 2D filler, then a paint evaluated at each covered
- * pixel's centre (a gradient, a pattern tile, an image) and blended
+ * coverage from the 2D filler, then a paint evaluated along each row's
+ * covered span (a gradient, a pattern tile, an image) and blended
  * source-over in straight alpha, as the 2D fills blend.  Used by svg.c. */
 #include "io/svg.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 static uint8_t unorm8(float v)
 {
     return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
 }
 
-void svg_blend(uint8_t *d, sr_rgba c, float cov)
+/* Source-over of the RGBA8 color s at opacity a (0 < a <= 1) onto d. */
+static void blend_rgba8(uint8_t *d, const uint8_t *s, float a)
 {
-    uint8_t s[4] = { unorm8(c.r), unorm8(c.g), unorm8(c.b), 0 };
-    float a = (c.a < 0 ? 0 : c.a > 1 ? 1 : c.a) * cov;
-    if (a <= 0.0f) {
-        return;
-    }
     /* Straight alpha: the destination's color counts by its alpha. */
     float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
     if (d[3] < 255) {
@@ -31,8 +28,111 @@ void svg_blend(uint8_t *d, sr_rgba c, float cov)
     d[3] = unorm8(oa);
 }
 
+void svg_blend(uint8_t *d, sr_rgba c, float cov)
+{
+    uint8_t s[4] = { unorm8(c.r), unorm8(c.g), unorm8(c.b), 0 };
+    float a = (c.a < 0 ? 0 : c.a > 1 ? 1 : c.a) * cov;
+    if (a > 0.0f) {
+        blend_rgba8(d, s, a);
+    }
+}
+
+/* The part of a row of coverage from its first covered pixel to its last:
+ * [*a, *b), empty when *a == *b.  Eight bytes at a time: a coverage row
+ * is mostly zeros around the shape. */
+static void covered_part(const uint8_t *cov, int w, int *a, int *b)
+{
+    int i = 0, j = w;
+    uint64_t v;
+    while (i + 8 <= w && (memcpy(&v, cov + i, 8), v == 0)) {
+        i += 8;
+    }
+    while (i < w && cov[i] == 0) {
+        i++;
+    }
+    while (j - 8 >= i && (memcpy(&v, cov + j - 8, 8), v == 0)) {
+        j -= 8;
+    }
+    while (j > i && cov[j - 1] == 0) {
+        j--;
+    }
+    *a = i;
+    *b = j;
+}
+
+/* Whether every pixel of paint[a, b) is opaque: the alpha byte of the
+ * AND of them all. */
+static bool opaque_paint(const uint32_t *paint, int a, int b)
+{
+    uint32_t all = ~0u;
+    for (int i = a; i < b; i++) {
+        all &= paint[i];
+    }
+    uint8_t s[4];
+    memcpy(s, &all, sizeof s);
+    return s[3] == 255;
+}
+
+/* The end of the run of full coverage from i (before b). */
+static int full_run(const uint8_t *cov, int i, int b)
+{
+    uint64_t v;
+    while (i + 8 <= b && (memcpy(&v, cov + i, 8), v == ~(uint64_t)0)) {
+        i += 8;
+    }
+    while (i < b && cov[i] == 255) {
+        i++;
+    }
+    return i;
+}
+
+/* Row `out` = row `dst` with the paint over it.  Where the coverage is
+ * full and the paint opaque the blend gives the paint's bytes: with an
+ * opaque paint (`opaque`, opacity 1) such runs are copied whole. */
+static void blend_row(uint32_t *out, const uint32_t *dst, const uint32_t *paint,
+                      const uint8_t *cov, int a, int b, float opacity, bool opaque)
+{
+    for (int i = a; i < b; i++) {
+        unsigned c = cov[i];
+        if (opaque && c == 255) {
+            int e = full_run(cov, i, b);
+            memcpy(out + i, paint + i, (size_t)(e - i) * 4);
+            i = e - 1;
+            continue;
+        }
+        uint8_t s[4];
+        memcpy(s, &paint[i], sizeof s);
+        if (c == 255 && s[3] == 255 && opacity >= 1.0f) {
+            out[i] = paint[i];
+            continue;
+        }
+        out[i] = dst[i];
+        if (s[3] == 255 && opacity >= 1.0f && c > 0) {
+            uint8_t d[4];
+            memcpy(d, &out[i], sizeof d);
+            if (d[3] == 255) {
+                /* Both opaque: the blend's alpha is c / 255, and its
+                 * result round(n / 255) for n = s c + d (255 - c), in
+                 * integers (n / 255 is never within the float blend's
+                 * error of a half: the same bytes, checked for every
+                 * s, d and c). */
+                for (int k = 0; k < 3; k++) {
+                    d[k] = (uint8_t)((s[k] * c + d[k] * (255 - c) + 127) / 255);
+                }
+                memcpy(&out[i], d, sizeof d);
+                continue;
+            }
+        }
+        float alpha = s[3] * (1.0f / 255.0f) * opacity;
+        alpha = (alpha > 1.0f ? 1.0f : alpha) * ((float)c * (1.0f / 255.0f));
+        if (alpha > 0.0f) {
+            blend_rgba8((uint8_t *)&out[i], s, alpha);
+        }
+    }
+}
+
 sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                         const sr_fill_desc *desc, svg_paint_fn at, const void *paint,
+                         const sr_fill_desc *desc, svg_span_fn span, void *paint,
                          float opacity)
 {
     int fw = sr_framebuffer_width(fb), fh = sr_framebuffer_height(fb);
@@ -51,77 +151,53 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
     if (w <= 0 || h <= 0) {
         return SR_OK;
     }
-    uint8_t *mask = malloc((size_t)w * (size_t)h);
-    uint8_t *px = malloc((size_t)w * (size_t)h * 4);
-    sr_result r = mask && px ? SR_OK : SR_OUT_OF_MEMORY;
+    /* One block: the result, a row of paint, the coverage. */
+    uint32_t *px = malloc((size_t)w * ((size_t)h + 1) * 5), *row = px ? px + (size_t)w * h : NULL;
+    uint8_t *mask = px ? (uint8_t *)(row + w) : NULL;
+    sr_result r = px ? SR_OK : SR_OUT_OF_MEMORY;
     if (r == SR_OK) {
         r = sr_polygon_coverage(ctx, poly, desc, bx0, by0, w, h, mask, (size_t)w);
     }
-    if (r == SR_OK) {
-        r = sr_read_pixels(ctx, fb, bx0, by0, w, h, px, (size_t)w * 4);
+    /* The destination is read where it is, when the framebuffer lends its
+     * pixels, and the result composed in px: one copy, not two. */
+    const uint32_t *dst = (const uint32_t *)(const void *)sr_framebuffer_pixels(fb);
+    size_t dst_stride = (size_t)fw;
+    if (r == SR_OK && dst) {
+        dst += (size_t)by0 * dst_stride + (size_t)bx0;
+    } else if (r == SR_OK) {
+        r = sr_read_pixels(ctx, fb, bx0, by0, w, h, (uint8_t *)px, (size_t)w * 4);
+        dst = px;
+        dst_stride = (size_t)w;
     }
-    if (r == SR_OK) {
-        for (int y = 0; y < h; y++) {
-            for (int x = 0; x < w; x++) {
-                unsigned cov = mask[(size_t)y * w + x];
-                if (cov == 0) {
-                    continue;
-                }
-                sr_rgba c = at(paint, bx0 + x + 0.5, by0 + y + 0.5);
-                c.a *= opacity;
-                svg_blend(px + ((size_t)y * w + x) * 4, c, (float)cov * (1.0f / 255.0f));
-            }
+    bool painted = false; /* row holds the paint of every x of a paint of x alone */
+    bool opaque = false;  /* the paint in row[a, b) is opaque and the opacity 1 */
+    for (int y = 0; r == SR_OK && y < h; y++) {
+        const uint8_t *cov = mask + (size_t)y * w;
+        const uint32_t *d = dst + (size_t)y * dst_stride;
+        uint32_t *out = px + (size_t)y * w;
+        int a, b;
+        covered_part(cov, w, &a, &b);
+        if (d != out) {
+            memcpy(out, d, (size_t)a * 4);
+            memcpy(out + b, d + b, (size_t)(w - b) * 4);
         }
-        r = sr_write_pixels(ctx, fb, bx0, by0, w, h, px, (size_t)w * 4);
+        if (a == b) {
+            continue;
+        }
+        if (!painted) {
+            /* A paint of x alone is evaluated once, over the whole width. */
+            painted = span(paint, bx0 + a, by0 + y, b - a, row + a);
+            if (painted && (a > 0 || b < w)) {
+                span(paint, bx0, by0 + y, w, row);
+            }
+            opaque = opacity >= 1.0f && opaque_paint(row, painted ? 0 : a, painted ? w : b);
+        }
+        blend_row(out, d, row, cov, a, b, opacity, opaque);
     }
-    free(mask);
+    if (r == SR_OK) {
+        r = sr_write_pixels(ctx, fb, bx0, by0, w, h, (const uint8_t *)px, (size_t)w * 4);
+    }
     free(px);
     return r;
 }
 
-/* Texel (i, j) of the image premultiplied: repeated, or the nearest edge
- * texel outside. */
-static void texel(const svg_image *im, long i, long j, float out[4])
-{
-    if (im->repeat) {
-        i %= im->w;
-        j %= im->h;
-        i += i < 0 ? im->w : 0;
-        j += j < 0 ? im->h : 0;
-    } else {
-        i = i < 0 ? 0 : i >= im->w ? im->w - 1 : i;
-        j = j < 0 ? 0 : j >= im->h ? im->h - 1 : j;
-    }
-    const uint8_t *p = im->rgba + ((size_t)j * (size_t)im->w + (size_t)i) * 4;
-    float a = p[3] * (1.0f / 255.0f);
-    for (int k = 0; k < 3; k++) {
-        out[k] = p[k] * (1.0f / 255.0f) * a;
-    }
-    out[3] = a;
-}
-
-sr_rgba svg_image_at(const void *image, double x, double y)
-{
-    const svg_image *im = image;
-    const double *m = im->inv;
-    double u = m[0] * x + m[2] * y + m[4] - 0.5, v = m[1] * x + m[3] * y + m[5] - 0.5;
-    if (!(fabs(u) < 1e15 && fabs(v) < 1e15)) {
-        return (sr_rgba){ 0, 0, 0, 0 };
-    }
-    double fu = floor(u), fv = floor(v);
-    float tu = (float)(u - fu), tv = (float)(v - fv), c[4][4], o[4];
-    long i = (long)fu, j = (long)fv;
-    /* bilinear, premultiplied: a transparent texel adds no color */
-    texel(im, i, j, c[0]);
-    texel(im, i + 1, j, c[1]);
-    texel(im, i, j + 1, c[2]);
-    texel(im, i + 1, j + 1, c[3]);
-    for (int k = 0; k < 4; k++) {
-        float top = c[0][k] + (c[1][k] - c[0][k]) * tu, bot = c[2][k] + (c[3][k] - c[2][k]) * tu;
-        o[k] = top + (bot - top) * tv;
-    }
-    if (!(o[3] > 0)) {
-        return (sr_rgba){ 0, 0, 0, 0 };
-    }
-    return (sr_rgba){ o[0] / o[3], o[1] / o[3], o[2] / o[3], o[3] };
-}
