@@ -2306,31 +2306,14 @@ static int cmp_cascaded(const void *a, const void *b)
 #define RANK_STYLE_ATTR (1L << 40)
 #define RANK_IMPORTANT (1L << 41)
 
-/* Whether an attribute is one of the shapes' geometry (x, y, width,
- * height, points, d, cx, cy, r, rx, ry, x1, y1, x2, y2): no property has
- * these names, so the cascade passes them by without looking them up in
- * every property table. */
-static bool is_geometry_attr(const char *a)
+/* Attributes that are certainly no property: no property's name has
+ * fewer than three letters (x, y, r, d, cx, rx, x1, fx, ...), and the
+ * other geometry a shape carries on every element.  Skipping them spares
+ * apply_property's walk through every name it knows. */
+static bool is_geometry_attribute(const char *a)
 {
-    switch (a[0]) {
-    case 'x':
-    case 'y':
-        return a[1] == 0 || ((a[1] == '1' || a[1] == '2') && a[2] == 0);
-    case 'c':
-        return (a[1] == 'x' || a[1] == 'y') && a[2] == 0;
-    case 'r':
-        return a[1] == 0 || ((a[1] == 'x' || a[1] == 'y') && a[2] == 0);
-    case 'd':
-        return a[1] == 0;
-    case 'w':
-        return strcmp(a, "width") == 0;
-    case 'h':
-        return strcmp(a, "height") == 0;
-    case 'p':
-        return strcmp(a, "points") == 0;
-    default:
-        return false;
-    }
+    return a[0] == 0 || a[1] == 0 || a[2] == 0 || strcmp(a, "width") == 0 ||
+           strcmp(a, "height") == 0 || strcmp(a, "points") == 0;
 }
 
 /* The element's own declarations in cascade order, applied to st. */
@@ -2340,8 +2323,9 @@ static void apply_cascade(svg_doc *doc, const svg_node *node, style *st)
         const char *a = node->atts[i];
         /* the marker shorthand is a property of sheets and style="", not
          * a presentation attribute */
-        if (!is_geometry_attr(a) && strcmp(a, "style") != 0 && strcmp(a, "transform") != 0 &&
-            strcmp(a, "class") != 0 && strcmp(a, "id") != 0 && strcmp(a, "marker") != 0) {
+        if (!is_geometry_attribute(a) && strcmp(a, "style") != 0 &&
+            strcmp(a, "transform") != 0 && strcmp(a, "class") != 0 && strcmp(a, "id") != 0 &&
+            strcmp(a, "marker") != 0) {
             apply_property(doc, st, a, node->atts[i + 1]);
         }
     }
