@@ -34,8 +34,10 @@ static int64_t floor_div(int64_t a, int64_t b)
 
 /* ---- setup: contours -> q8 edges ------------------------------------- */
 
-sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
-                                 int scale, sr__edge2 **edges, int *count)
+/* sr__edges_from_polygon into `local` (room for local_cap edges) when the
+ * polygon fits there, else into memory from ctx; *edges is one or the other. */
+static sr_result edges_into(sr_context *ctx, const char *fn, const sr_polygon2 *poly, int scale,
+                            sr__edge2 *local, int local_cap, sr__edge2 **edges, int *count)
 {
     *edges = NULL;
     *count = 0;
@@ -76,7 +78,8 @@ sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polyg
     if (poly->point_count == 0) {
         return SR_OK;
     }
-    sr__edge2 *e = sr__calloc(ctx, (size_t)poly->point_count, sizeof *e);
+    sr__edge2 *e = poly->point_count <= local_cap
+                       ? local : sr__calloc(ctx, (size_t)poly->point_count, sizeof *e);
     if (!e) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: no memory for %d edges", fn,
                         poly->point_count);
@@ -106,6 +109,12 @@ sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polyg
     *edges = e;
     *count = n_edges;
     return SR_OK;
+}
+
+sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
+                                 int scale, sr__edge2 **edges, int *count)
+{
+    return edges_into(ctx, fn, poly, scale, NULL, 0, edges, count);
 }
 
 /* Shrink the window's rows to those the edges can touch (pixel rows
@@ -582,6 +591,10 @@ static bool row_is_flat(const area_entry *et, const int *active, int n_active, i
  * flat row's coverage for the flat rows below it, and takes a column no
  * deposit reached from its left neighbour (the running sum is unchanged
  * there), all giving the bytes the plain walk gives. */
+/* A small shape's coverage rows come from the stack (bytes): the fill of
+ * an icon-sized shape then allocates nothing. */
+#define AREA_STACK_BYTES 4096
+
 static sr_result scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
                            sr__window win, sr__span_fn fn, void *user, bool fast)
 {
@@ -600,7 +613,9 @@ static sr_result scan_area(sr_context *ctx, const sr__edge2 *edges, int count, s
     size_t acc_size = ((size_t)w + 2) * sizeof(double);
     size_t et_size = (size_t)count * sizeof(area_entry);
     size_t ints = ((size_t)rows + (size_t)count) * sizeof(int);
-    char *block = sr__alloc(ctx, acc_size + et_size + ints + (size_t)w + 1);
+    size_t total = acc_size + et_size + ints + (size_t)w + 1;
+    _Alignas(double) char stack[AREA_STACK_BYTES];
+    char *block = total <= sizeof stack ? stack : sr__alloc(ctx, total);
     if (!block) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for coverage rows");
     }
@@ -731,7 +746,9 @@ static sr_result scan_area(sr_context *ctx, const sr__edge2 *edges, int count, s
         memset(acc + c0, 0, (size_t)(clear_end - c0) * sizeof *acc);
         acc[0] = 0.0;
     }
-    sr__free(ctx, block);
+    if (block != stack) {
+        sr__free(ctx, block);
+    }
     return SR_OK;
 }
 
@@ -862,14 +879,17 @@ sr_result sr__fill_desc_defaults(sr_context *ctx, const char *fn, const sr_fill_
     return SR_OK;
 }
 
+/* Polygons of up to this many points keep their edges on the stack. */
+#define LOCAL_EDGES 32
+
 sr_result sr__rasterize_polygon(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
                                 const sr_fill_desc *desc, sr__window win,
                                 sr__span_fn fn_span, void *user)
 {
     int scale = desc->antialias == SR_AA_SUPERSAMPLE ? desc->samples : 1;
-    sr__edge2 *edges;
+    sr__edge2 local[LOCAL_EDGES], *edges;
     int count;
-    sr_result r = sr__edges_from_polygon(ctx, fn, poly, scale, &edges, &count);
+    sr_result r = edges_into(ctx, fn, poly, scale, local, LOCAL_EDGES, &edges, &count);
     if (r != SR_OK) {
         return r;
     }
@@ -884,7 +904,9 @@ sr_result sr__rasterize_polygon(sr_context *ctx, const char *fn, const sr_polygo
         r = sr__scan_winding_cells(ctx, edges, count, desc->rule, win, fn_span, user);
         break;
     }
-    sr__free(ctx, edges);
+    if (edges != local) {
+        sr__free(ctx, edges);
+    }
     return r;
 }
 
