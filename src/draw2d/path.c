@@ -26,6 +26,7 @@ struct sr_path {
     int *counts;          /* points per subpath */
     uint8_t *closed;      /* per subpath */
     int nc, ccap;
+    int closed_cap;       /* closed[]'s capacity, ccap once grown */
     bool in_subpath;      /* the last subpath takes further points */
     bool has_current;
     sr_point2 current, start;
@@ -106,17 +107,19 @@ static sr_result begin_subpath(sr_path *p, sr_point2 at)
     if (!grow(p->ctx, (void **)&p->counts, &p->ccap, p->nc + 1, sizeof *p->counts)) {
         return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory");
     }
-    int ccap = p->ccap;
     /* closed[] grows with counts[]: same capacity. */
-    uint8_t *closed = sr__alloc(p->ctx, (size_t)ccap);
-    if (!closed) {
-        return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory");
+    if (p->closed_cap < p->ccap) {
+        uint8_t *closed = sr__alloc(p->ctx, (size_t)p->ccap);
+        if (!closed) {
+            return sr__fail(p->ctx, SR_OUT_OF_MEMORY, "sr_path: no memory");
+        }
+        if (p->closed) {
+            memcpy(closed, p->closed, (size_t)p->nc);
+        }
+        sr__free(p->ctx, p->closed);
+        p->closed = closed;
+        p->closed_cap = p->ccap;
     }
-    if (p->closed) {
-        memcpy(closed, p->closed, (size_t)p->nc);
-    }
-    sr__free(p->ctx, p->closed);
-    p->closed = closed;
     p->counts[p->nc] = 0;
     p->closed[p->nc] = 0;
     p->nc++;
