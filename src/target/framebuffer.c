@@ -307,8 +307,29 @@ static void drop_tile_flags(sr_framebuffer *fb, unsigned bits)
     }
 }
 
+/* Whether any tile has one of the flags `bits`, eight tiles a step: the
+ * 2D fills call sr__fb_begin_write once per shape, and after the first
+ * one nothing is left to resolve or drop. */
+static bool any_tile_flags(const sr_framebuffer *fb, unsigned bits)
+{
+    size_t tiles = (size_t)fb->tiles_x * (size_t)fb->tiles_y, t = 0;
+    uint64_t seen = 0;
+    for (; t + 8 <= tiles; t += 8) {
+        uint64_t eight;
+        memcpy(&eight, fb->tile_pending + t, sizeof eight);
+        seen |= eight;
+    }
+    for (; t < tiles; t++) {
+        seen |= fb->tile_pending[t];
+    }
+    return (seen & (UINT64_C(0x0101010101010101) * (uint8_t)bits)) != 0;
+}
+
 void sr__fb_begin_write(sr_framebuffer *fb)
 {
+    if (!any_tile_flags(fb, SR_TILE_PENDING_COLOR | SR_TILE_COLOR_FROM_CLEARS)) {
+        return;
+    }
     sr__fb_resolve(fb, SR_TILE_PENDING_COLOR);
     drop_tile_flags(fb, SR_TILE_COLOR_FROM_CLEARS);
 }
