@@ -381,8 +381,9 @@ static bool length_attr(svg_doc *doc, const frame *f, const char *name, const ch
 
 static const char *attr(const char **atts, const char *name)
 {
+    /* the first letters differ for most attributes: no call for those */
     for (int i = 0; atts[i]; i += 2) {
-        if (strcmp(atts[i], name) == 0) {
+        if (atts[i][0] == name[0] && strcmp(atts[i], name) == 0) {
             return atts[i + 1];
         }
     }
@@ -2316,16 +2317,33 @@ static bool is_geometry_attribute(const char *a)
            strcmp(a, "height") == 0 || strcmp(a, "points") == 0;
 }
 
+/* style, transform, class, id and marker: attributes the cascade reads
+ * otherwise or not at all (the marker shorthand is a property of sheets
+ * and style="", not a presentation attribute). */
+static bool is_structure_attribute(const char *a)
+{
+    switch (a[0]) {
+    case 's':
+        return strcmp(a, "style") == 0;
+    case 't':
+        return strcmp(a, "transform") == 0;
+    case 'c':
+        return strcmp(a, "class") == 0;
+    case 'i':
+        return strcmp(a, "id") == 0;
+    case 'm':
+        return strcmp(a, "marker") == 0;
+    default:
+        return false;
+    }
+}
+
 /* The element's own declarations in cascade order, applied to st. */
 static void apply_cascade(svg_doc *doc, const svg_node *node, style *st)
 {
     for (int i = 0; node->atts[i]; i += 2) {
         const char *a = node->atts[i];
-        /* the marker shorthand is a property of sheets and style="", not
-         * a presentation attribute */
-        if (!is_geometry_attribute(a) && strcmp(a, "style") != 0 &&
-            strcmp(a, "transform") != 0 && strcmp(a, "class") != 0 && strcmp(a, "id") != 0 &&
-            strcmp(a, "marker") != 0) {
+        if (!is_geometry_attribute(a) && !is_structure_attribute(a)) {
             apply_property(doc, st, a, node->atts[i + 1]);
         }
     }
