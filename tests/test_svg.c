@@ -252,6 +252,34 @@ SR_TEST(malformed_input_is_reported_with_file_and_line)
     expect_input_error("bad_size.svg", "<svg width='100000' height='10'/>", "outside 1..8192");
 }
 
+/* Messages count lines as XML does: CR, LF and CR LF each end one, also
+ * inside a tag and in UTF-16. */
+SR_TEST(message_lines_count_every_line_end)
+{
+    if (!have_svg()) {
+        SKIP("built without expat");
+    }
+    expect_input_error("lines_lf.svg",
+                       "<svg width='10' height='10'>\n\n<rect\nwidth='1' height='1'/><g>\n"
+                       "</g><circle r='abc'/></svg>",
+                       "lines_lf.svg:5: r=\"abc\" is not a length");
+    expect_input_error("lines_crlf.svg",
+                       "<svg width='10'\r\nheight='10'>\r\n\r<rect width='1' height='1'/>\n\r"
+                       "\r\n<circle\r\nr='abc'/></svg>",
+                       "lines_crlf.svg:7: r=\"abc\" is not a length");
+    static const char utf16[] = "\xFF\xFE<\0s\0v\0g\0>\0\r\0\n\0\r\0<\0c\0i\0r\0c\0l\0e\0"
+                                " \0r\0=\0'\0x\0'\0/\0>\0<\0/\0s\0v\0g\0>\0";
+    char in[1024], out[1100], err[2048];
+    out_path("lines_utf16.svg", in, sizeof in);
+    snprintf(out, sizeof out, "%s.png", in);
+    FILE *f = fopen(in, "wb");
+    REQUIRE(f);
+    REQUIRE(fwrite(utf16, 1, sizeof utf16 - 1, f) == sizeof utf16 - 1);
+    REQUIRE(fclose(f) == 0);
+    CHECK_EQ(run_cli((const char *[]){ "svg", in, "-o", out, NULL }, err, sizeof err), 2);
+    CHECK_STR_CONTAINS(err, "lines_utf16.svg:3: r=\"x\" is not a length");
+}
+
 /* Path data in error is drawn up to the error (SVG's error processing
  * for path data, tests/test_svg_syntax.c): a warning, and the image. */
 SR_TEST(path_data_in_error_warns_and_draws)

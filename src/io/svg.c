@@ -168,6 +168,12 @@ typedef struct svg_doc {
     bool warnings_capped;    /* "further warnings not shown" was said */
     int warnings;            /* given so far */
     unsigned long line;      /* of the element being handled */
+    /* Lines counted here, up to byte line_at of `text` (the document's
+     * bytes; NULL when expat counts them: UTF-16 input). */
+    const char *text;
+    bool text_has_cr;        /* a CR anywhere in text: the scan looks at every byte */
+    size_t text_size, line_at;
+    unsigned long lines_before;
     sr_path *spare_path;     /* a cleared shape path kept for the next shape, or NULL */
     double spare_tol;        /* the flattening tolerance it was made with */
     svg_vertex *verts;       /* of the path being read, when want_verts */
@@ -2147,13 +2153,45 @@ static void free_tree(svg_node *n)
     }
 }
 
+/* The line of the event expat is reporting.  Expat's own count walks
+ * every byte since its last report through its tokenizer, about a
+ * thousand instructions for a one-line element; this counts the same
+ * line ends (CR, LF, CR LF) in the bytes, with memchr when the document
+ * has no CR. */
+static unsigned long event_line(svg_doc *doc)
+{
+    XML_Index at = XML_GetCurrentByteIndex(doc->parser);
+    if (!doc->text || at < 0 || (size_t)at < doc->line_at || (size_t)at > doc->text_size) {
+        return XML_GetCurrentLineNumber(doc->parser);
+    }
+    const char *p = doc->text + doc->line_at, *end = doc->text + at;
+    unsigned long lines = doc->lines_before;
+    if (!doc->text_has_cr) { /* the usual case: only LF ends lines */
+        for (const char *q; p < end && (q = memchr(p, '\n', (size_t)(end - p))); p = q + 1) {
+            lines++;
+        }
+        p = end;
+    }
+    for (; p < end; p++) {
+        if (*p == '\n') {
+            lines++;
+        } else if (*p == '\r') {
+            lines++;
+            p += p + 1 < end && p[1] == '\n';
+        }
+    }
+    doc->line_at = (size_t)at;
+    doc->lines_before = lines;
+    return lines + 1;
+}
+
 static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char **atts)
 {
     svg_doc *doc = user;
     if (doc->status != SR_OK) {
         return;
     }
-    doc->line = XML_GetCurrentLineNumber(doc->parser);
+    doc->line = event_line(doc);
     const char *name = local_name(qname);
     if (doc->depth + 1 >= MAX_DEPTH) {
         svg_fail(doc, SR_BAD_FORMAT, "elements nested deeper than %d", MAX_DEPTH);
@@ -3784,6 +3822,16 @@ static bool read_document(svg_doc *doc, const char *data, size_t size)
     XML_SetUserData(doc->parser, doc);
     XML_SetElementHandler(doc->parser, on_start, on_end);
     XML_SetCharacterDataHandler(doc->parser, on_text);
+    /* In UTF-16 (a NUL among the first bytes, or its byte-order mark) a
+     * line end is not one byte: expat counts the lines then. */
+    const unsigned char *u = (const unsigned char *)data;
+    bool utf16 = size >= 2 && (!u[0] || !u[1] || (u[0] == 0xFE && u[1] == 0xFF) ||
+                               (u[0] == 0xFF && u[1] == 0xFE));
+    doc->text = data && !utf16 ? data : NULL;
+    doc->text_has_cr = doc->text && memchr(data, '\r', size) != NULL;
+    doc->text_size = size;
+    doc->line_at = 0;
+    doc->lines_before = 0;
     /* XML_Parse takes an int length: feed the buffer in pieces. */
     const size_t piece = (size_t)1 << 20;
     size_t at = 0;
