@@ -231,3 +231,50 @@ SR_TEST(scan_finds_the_number_in_front)
         CHECK_EQ(sr__scan_decimal(s, s + strlen(s)), cases[i].n);
     }
 }
+
+/* The one-pass prefix parser: the length sr__scan_decimal finds, and the
+ * value and status sr__parse_double gives that prefix; nothing written
+ * when there is no number. */
+static void check_prefix(const char *s)
+{
+    const char *e = s + strlen(s);
+    size_t want_n = sr__scan_decimal(s, e);
+    double got = -12345, want = -12345;
+    sr_num_status st = SR_NUM_MALFORMED, want_st = SR_NUM_MALFORMED;
+    size_t n = sr__parse_double_prefix(s, e, &got, &st);
+    if (want_n > 0) {
+        want_st = sr__parse_double(s, s + want_n, &want);
+    }
+    bool ok = n == want_n && st == want_st && same_double(got, want);
+    if (!ok && mismatches++ < 20) {
+        sr_test_fail(__FILE__, __LINE__, "'%.80s': prefix %zu (%d) %a, want %zu (%d) %a", s, n,
+                     (int)st, got, want_n, (int)want_st, want);
+    }
+}
+
+SR_TEST(prefix_parse_is_scan_then_parse)
+{
+    static const char *cases[] = {
+        "10px", "1.5.5", "-.5e3,", "1e", "1e+", "1e-x", "2E-3x", ".", "-", "abc", "7.", "+3e+07 ",
+        "0", "-0", "00012.500e", "1e400q", "-1e-400,", "123456789012345678901234567890 1",
+        "0.1 0.2", "inf", "nan", "", "9007199254740993,", "1e22e", "5e-324", ".e1", "+.",
+    };
+    mismatches = 0;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        check_prefix(cases[i]);
+    }
+    sr_rng rng = { 0x9f1a5ULL };
+    char s[200];
+    static const char *const tails[] = { "", " ", ",", "px", "e", "e+", ".5", "%", "-1" };
+    for (int i = 0; i < 100000; i++) {
+        double x = (sr_rng_unit(&rng) * 2 - 1) * pow(10.0, sr_rng_int(&rng, -30, 30));
+        const char *tail = tails[sr_rng_int(&rng, 0, 8)];
+        if (i % 2) {
+            snprintf(s, sizeof s, "%.*f%s", sr_rng_int(&rng, 0, 12), x, tail);
+        } else {
+            snprintf(s, sizeof s, "%.*e%s", sr_rng_int(&rng, 0, 25), x, tail);
+        }
+        check_prefix(s);
+    }
+    CHECK_EQ(mismatches, 0);
+}

@@ -452,13 +452,15 @@ static bool read_word(const char *s, const char *e, double *out)
     return true;
 }
 
-/* One pass over [s, e) for the common case: the sign, the first 19
+/* One pass over the decimal number at the start of [s, e) (the one
+ * sr__scan_decimal finds) for the common case: the sign, the first 19
  * significant digits in *m, their count in *nd (more than 19: *m holds
- * only the first) and the exponent of m's last digit.  False when [s, e)
- * is not the digits form. */
-static bool quick_decimal(const char *s, const char *e, bool *neg, uint64_t *m, int *nd,
-                          long *exp10)
+ * only the first) and the exponent of m's last digit.  Returns the
+ * number's length, 0 when there is none. */
+static size_t quick_decimal(const char *s, const char *e, bool *neg, uint64_t *m, int *nd,
+                            long *exp10)
 {
+    const char *start = s;
     *neg = s < e && *s == '-';
     if (s < e && (*s == '+' || *s == '-')) {
         s++;
@@ -496,29 +498,29 @@ static bool quick_decimal(const char *s, const char *e, bool *neg, uint64_t *m, 
         }
     }
     if (!digits) {
-        return false;
+        return 0;
     }
     if (s < e && (*s == 'e' || *s == 'E')) {
-        s++;
-        bool eneg = s < e && *s == '-';
-        if (s < e && (*s == '+' || *s == '-')) {
-            s++;
+        const char *t = s + 1;
+        bool eneg = t < e && *t == '-';
+        if (t < e && (*t == '+' || *t == '-')) {
+            t++;
         }
-        if (s == e || !is_digit(*s)) {
-            return false;
-        }
-        long k = 0;
-        for (; s < e && is_digit(*s); s++) {
-            if (k < 100000000) {
-                k = k * 10 + (*s - '0');
+        if (t < e && is_digit(*t)) { /* else the number ends before the e */
+            long k = 0;
+            for (; t < e && is_digit(*t); t++) {
+                if (k < 100000000) {
+                    k = k * 10 + (*t - '0');
+                }
             }
+            x += eneg ? -k : k;
+            s = t;
         }
-        x += eneg ? -k : k;
     }
     *m = v;
     *nd = n;
     *exp10 = x;
-    return s == e;
+    return (size_t)(s - start);
 }
 
 /* The rare numbers: more than 19 digits, exponents beyond the exact powers
@@ -555,17 +557,12 @@ __attribute__((noinline)) static sr_num_status parse_exact(const char *s, const 
     return SR_NUM_OK;
 }
 
-/* Both types: the value rounded to fmt, as a double (exact for a float
- * too, as every float is a double). */
-static sr_num_status parse(const char *s, const char *e, const format *fmt, double *out)
+/* The number [s, e), which quick_decimal read as neg, m, nd, exp10,
+ * rounded to fmt, as a double (exact for a float too, as every float is
+ * a double). */
+static sr_num_status convert(const char *s, const char *e, const format *fmt, bool neg,
+                             uint64_t m, int nd, long exp10, double *out)
 {
-    bool neg;
-    uint64_t m;
-    int nd;
-    long exp10;
-    if (!quick_decimal(s, e, &neg, &m, &nd, &exp10)) {
-        return read_word(s, e, out) ? SR_NUM_NOT_FINITE : SR_NUM_MALFORMED;
-    }
     double sign = neg ? -1 : 1;
     if (m == 0 && nd <= 19) {
         *out = sign * 0.0;
@@ -600,6 +597,20 @@ static sr_num_status parse(const char *s, const char *e, const format *fmt, doub
     return parse_exact(s, e, fmt, sign, out);
 }
 
+/* Both types: the whole of [s, e). */
+static sr_num_status parse(const char *s, const char *e, const format *fmt, double *out)
+{
+    bool neg;
+    uint64_t m;
+    int nd;
+    long exp10;
+    size_t n = quick_decimal(s, e, &neg, &m, &nd, &exp10);
+    if (n == 0 || n != (size_t)(e - s)) {
+        return read_word(s, e, out) ? SR_NUM_NOT_FINITE : SR_NUM_MALFORMED;
+    }
+    return convert(s, e, fmt, neg, m, nd, exp10, out);
+}
+
 sr_num_status sr__parse_double(const char *s, const char *e, double *out)
 {
     double v = 0;
@@ -608,6 +619,19 @@ sr_num_status sr__parse_double(const char *s, const char *e, double *out)
         *out = v;
     }
     return st;
+}
+
+size_t sr__parse_double_prefix(const char *s, const char *e, double *out, sr_num_status *status)
+{
+    bool neg;
+    uint64_t m;
+    int nd;
+    long exp10;
+    size_t n = quick_decimal(s, e, &neg, &m, &nd, &exp10);
+    if (n > 0) {
+        *status = convert(s, s + n, &DOUBLE, neg, m, nd, exp10, out);
+    }
+    return n;
 }
 
 sr_num_status sr__parse_float(const char *s, const char *e, float *out)

@@ -29,4 +29,9 @@ sr_num_status sr__parse_float(const char *s, const char *e, float *out);
  * for formats where a number runs into what follows ("10px", "1.5.5"). */
 size_t sr__scan_decimal(const char *s, const char *e);
 
+/* sr__scan_decimal and sr__parse_double in one pass: the number's length
+ * (0 when there is none: *out and *status are then untouched), its
+ * status in *status and, unless malformed, its value in *out. */
+size_t sr__parse_double_prefix(const char *s, const char *e, double *out, sr_num_status *status);
+
 #endif /* SR_IO_NUMBER_H */

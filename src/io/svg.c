@@ -313,8 +313,9 @@ static const char *skip_ws_comma(const char *s)
 static bool parse_number(const char **s, double *out)
 {
     const char *e = *s + strnlen(*s, 64);
-    size_t n = sr__scan_decimal(*s, e);
-    if (n == 0 || n == 64 || sr__parse_double(*s, *s + n, out) != SR_NUM_OK) {
+    sr_num_status st = SR_NUM_MALFORMED;
+    size_t n = sr__parse_double_prefix(*s, e, out, &st);
+    if (n == 0 || n == 64 || st != SR_NUM_OK) {
         return false;
     }
     *s += n;
