@@ -11,11 +11,12 @@
  *
  * Exactness: the lanes only drop a face the scalar code would drop.  The
  * box is find_candidates's (the smallest ceiling and largest floor of
- * the vertices' positions less half a pixel, as setup's).  The snapped
- * area and the edge values are differences of products of coordinate
- * differences below 2^23 (fixed.h's guard band), below 2^47 and exact in
- * double.  A face is dropped for no centre in the closed half-planes of
- * its three edges, which the fill rule and the depth test only narrow.
+ * the vertices' positions less half a pixel, as setup's).  For a face
+ * less than 2^14 across (64 pixels), its snapped area and its edge
+ * values at its box's centres are differences of products below 2^29,
+ * exact in int32 lanes; a larger face is left to the scalar code.  A
+ * face is dropped for no centre in the closed half-planes of its three
+ * edges, which the fill rule and the depth test only narrow.
  */
 #if defined(__x86_64__) && defined(__GNUC__)
 #define SR_PY_FACE_LANES 1
@@ -48,12 +49,6 @@ __attribute__((target("avx2"))) static inline __m256i lane_vertices(const geomet
     return _mm256_add_epi32(v, _mm256_set1_epi32((int)base));
 }
 
-/* Half h (lanes 4 h .. 4 h + 3) of eight int32 lanes, as doubles. */
-__attribute__((target("avx2"))) static inline __m256d lane_half(__m256i v, int h)
-{
-    return _mm256_cvtepi32_pd(h ? _mm256_extracti128_si256(v, 1) : _mm256_castsi256_si128(v));
-}
-
 /* The lanes of an int32 comparison as eight bits. */
 __attribute__((target("avx2"))) static inline unsigned lane_bits(__m256i m)
 {
@@ -78,7 +73,6 @@ __attribute__((target("avx2"))) static long find_candidates_lanes(const vis_job 
     const __m256i ry0 = _mm256_set1_epi32(ds->rect_y0 > INT16_MIN ? ds->rect_y0 : INT16_MIN);
     const __m256i rx1 = _mm256_set1_epi32(ds->rect_x1 < INT16_MAX ? ds->rect_x1 : INT16_MAX);
     const __m256i ry1 = _mm256_set1_epi32(ds->rect_y1 < INT16_MAX ? ds->rect_y1 : INT16_MAX);
-    const __m256d dzero = _mm256_setzero_pd(), unit = _mm256_set1_pd(SR_SUBPIXEL_ONE);
     int cull_sign = u->cull_sign;
     long n = 0;
     size_t g = lo;
@@ -120,59 +114,51 @@ __attribute__((target("avx2"))) static long find_candidates_lanes(const vis_job 
         unsigned tall = lane_bits(_mm256_cmpgt_epi32(h, one));
         unsigned large = lane_bits(_mm256_or_si256(_mm256_cmpgt_epi32(w, two),
                                                    _mm256_cmpgt_epi32(h, two)));
+        /* Faces less than 2^14 across in x and y, whose snapped area
+         * and edge values at the box's centres (at most a pixel outside
+         * it) are below 2^30 and exact in int32 lanes; the others are
+         * left to the scalar code. */
+        __m256i across = _mm256_max_epi32(_mm256_sub_epi32(maxx, minx),
+                                          _mm256_sub_epi32(maxy, miny));
+        unsigned near = lane_bits(_mm256_cmpgt_epi32(_mm256_set1_epi32(1 << 14), across));
         /* Edge i, from vertex i + 1 to vertex i + 2: b - a. */
         __m256i ex[3], ey[3];
         for (int i = 0; i < 3; i++) {
             ex[i] = _mm256_sub_epi32(X[(i + 2) % 3], X[(i + 1) % 3]);
             ey[i] = _mm256_sub_epi32(Y[(i + 2) % 3], Y[(i + 1) % 3]);
         }
-        /* The box's first centre, relative to vertex i + 1 of edge i. */
+        /* sr__area2, (x1 - x0)(y2 - y0) - (y1 - y0)(x2 - x0), from edge
+         * 2 (v0 to v1) and edge 1 (v2 to v0). */
+        __m256i area = _mm256_sub_epi32(_mm256_mullo_epi32(ey[2], ex[1]),
+                                        _mm256_mullo_epi32(ex[2], ey[1]));
+        unsigned pos = lane_bits(_mm256_cmpgt_epi32(area, zero));
+        unsigned neg = lane_bits(_mm256_cmpgt_epi32(zero, area));
+        /* may_pass's edge values, turned to the face's winding, at the
+         * box's first centre, a pixel right and a pixel down. */
         __m256i cx = _mm256_add_epi32(_mm256_slli_epi32(x0, SR_SUBPIXEL_BITS), half);
         __m256i cy = _mm256_add_epi32(_mm256_slli_epi32(y0, SR_SUBPIXEL_BITS), half);
-        unsigned pos = 0, neg = 0, hit = 0;
-        for (int k = 0; k < 2; k++) {
-            /* sr__area2: edge 2 (v0 to v1) across edge 1 (v0 to v2)
-             * reversed: (x1 - x0)(y2 - y0) - (y1 - y0)(x2 - x0). */
-            __m256d area = _mm256_sub_pd(
-                _mm256_mul_pd(lane_half(ex[2], k), _mm256_sub_pd(dzero, lane_half(ey[1], k))),
-                _mm256_mul_pd(lane_half(ey[2], k), _mm256_sub_pd(dzero, lane_half(ex[1], k))));
-            unsigned p = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(area, dzero, _CMP_GT_OQ));
-            unsigned q = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(area, dzero, _CMP_LT_OQ));
-            pos |= p << 4 * k;
-            neg |= q << 4 * k;
-            /* may_pass's edge values, turned to the face's winding: at
-             * the first centre, then a pixel right and a pixel down. */
-            __m256d sign = _mm256_blendv_pd(_mm256_set1_pd(1.0), _mm256_set1_pd(-1.0),
-                                            _mm256_cmp_pd(area, dzero, _CMP_LT_OQ));
-            __m256d e[3], step_x[3], step_y[3];
-            for (int i = 0; i < 3; i++) {
-                __m256d dx = _mm256_mul_pd(sign, lane_half(ex[i], k));
-                __m256d dy = _mm256_mul_pd(sign, lane_half(ey[i], k));
-                __m256i a = i == 2 ? X[0] : X[i + 1], b = i == 2 ? Y[0] : Y[i + 1];
-                e[i] = _mm256_sub_pd(
-                    _mm256_mul_pd(dx, lane_half(_mm256_sub_epi32(cy, b), k)),
-                    _mm256_mul_pd(dy, lane_half(_mm256_sub_epi32(cx, a), k)));
-                step_x[i] = _mm256_mul_pd(dy, unit);
-                step_y[i] = _mm256_mul_pd(dx, unit);
-            }
+        __m256i in[4];
+        for (int c = 0; c < 4; c++) {
+            in[c] = _mm256_set1_epi32(-1);
+        }
+        for (int i = 0; i < 3; i++) {
+            __m256i dx = _mm256_sign_epi32(ex[i], area), dy = _mm256_sign_epi32(ey[i], area);
+            __m256i a = i == 2 ? X[0] : X[i + 1], b = i == 2 ? Y[0] : Y[i + 1];
+            __m256i e = _mm256_sub_epi32(_mm256_mullo_epi32(dx, _mm256_sub_epi32(cy, b)),
+                                         _mm256_mullo_epi32(dy, _mm256_sub_epi32(cx, a)));
+            __m256i right = _mm256_slli_epi32(dy, SR_SUBPIXEL_BITS);
+            __m256i down = _mm256_slli_epi32(dx, SR_SUBPIXEL_BITS);
+            __m256i at[4] = { e, _mm256_sub_epi32(e, right), _mm256_add_epi32(e, down),
+                              _mm256_sub_epi32(_mm256_add_epi32(e, down), right) };
             for (int c = 0; c < 4; c++) {
-                __m256d in = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
-                for (int i = 0; i < 3; i++) {
-                    __m256d at = e[i];
-                    if (c & 1) {
-                        at = _mm256_sub_pd(at, step_x[i]);
-                    }
-                    if (c & 2) {
-                        at = _mm256_add_pd(at, step_y[i]);
-                    }
-                    in = _mm256_and_pd(in, _mm256_cmp_pd(at, dzero, _CMP_GE_OQ));
-                }
-                unsigned inside = (unsigned)_mm256_movemask_pd(in) << 4 * k;
-                hit |= inside & ((c & 1) ? wide : ~0u) & ((c & 2) ? tall : ~0u);
+                in[c] = _mm256_and_si256(in[c], _mm256_cmpgt_epi32(at[c], _mm256_set1_epi32(-1)));
             }
         }
+        unsigned hit = lane_bits(in[0]) | (lane_bits(in[1]) & wide) | (lane_bits(in[2]) & tall) |
+                       (lane_bits(in[3]) & wide & tall);
         /* Culled as faces_job culls: no area, or area2 * cull_sign > 0. */
-        keep &= (pos | neg) & ~(cull_sign > 0 ? pos : cull_sign < 0 ? neg : 0u) & (large | hit);
+        unsigned culled = ~(pos | neg) | (cull_sign > 0 ? pos : cull_sign < 0 ? neg : 0u);
+        keep &= ~near | (~culled & (large | hit));
         if (keep == 0) {
             continue;
         }

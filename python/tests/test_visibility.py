@@ -189,7 +189,8 @@ def boundary_faces(rng, width, height):
     """Faces on a 1/256-pixel grid of a camera whose pixel centres are
     the integer (u, v): sub-pixel faces with a vertex or an edge exactly
     on a centre (both windings), faces reaching past the image's border,
-    faces without area, and small random faces, in (u, v) pixels."""
+    faces thousands of pixels across that cover one corner centre, faces
+    without area, and small random faces, in (u, v) pixels."""
     tris = []
     for u, v in rng.integers(1, (width - 1, height - 1), (60, 2)):
         for d in rng.integers(1, 129, 3) / 256:
@@ -210,6 +211,13 @@ def boundary_faces(rng, width, height):
     for u, v in rng.integers(1, (width - 1, height - 1), (20, 2)):
         tris += [[(u, v), (u, v), (u + 1, v)], [(u, v), (u + 0.5, v), (u + 1, v)],
                  [(u, v + 0.5), (u, v + 0.5), (u, v + 0.5)]]
+    # Faces thousands of pixels across whose box is one corner centre.
+    for (u, v), (su, sv) in [((0, 0), (1, 1)), ((width - 1, height - 1), (-1, -1)),
+                             ((width - 1, 0), (-1, 1)), ((0, height - 1), (1, -1))]:
+        for t, size in zip((0, 1 / 256, 0.5) * 2, (200, 500, 3000, 7000, 10000, 14000)):
+            a = (u + su * t, v + sv * t)
+            b, c = (a[0], v - sv * size), (u - su * size, a[1])
+            tris += [[a, b, c], [a, c, b]]
     centres = rng.integers(0, 256 * np.array([width, height]), (400, 1, 2)) / 256
     tris += list(centres + rng.integers(-300, 301, (400, 3, 2)) / 256)
     tris = np.array(tris, np.float64)
