@@ -37,7 +37,7 @@ typedef struct bench_opts {
     bool compare;
     bool gl_default_malloc;  /* leave glibc's thresholds as they are (see keep_gl_memory) */
     const char *save_dir;
-    const char *paints;      /* shapes2d: the paints to time (NULL: all) */
+    shapes2d_cases cases;    /* shapes2d: the paints, shapes, sizes to time (NULL: all) */
 } bench_opts;
 
 typedef struct bench_run {
@@ -57,6 +57,7 @@ static void usage(FILE *f)
     fprintf(f,
         "usage: softrast-bench [SCENE...] [--threads N] [--size WxH] [--frames N]\n"
         "                      [--compare] [--save-images DIR] [--paint LIST]\n"
+        "                      [--shape LIST] [--shape-size LIST]\n"
         "\n"
         "Times each SCENE (all of them when none is given).  The first line says\n"
         "when and where:  date=YYYY-MM-DDTHH:MM:SSZ cpu=MODEL (the rest of the line);\n"
@@ -112,7 +113,9 @@ static void usage(FILE *f)
         "                       kernel and faults it in again every frame (see docs)\n"
         "  --save-images DIR    write DIR/SCENE-RENDERER.png (the last frame)\n"
         "  --paint LIST         shapes2d: only these paints, comma-separated (solid,\n"
-        "                       linear, radial, pattern); the batches stay the same\n"
+        "                       linear, radial, pattern); the batches stay the same\n"        "  --shape LIST         shapes2d: only these shapes (rect, poly10, poly20,\n"
+        "                       poly40, curves)\n"
+        "  --shape-size LIST    shapes2d: only these sizes (8, 16, 32, 64, 128, 256)\n"
         "  -h, --help           this help\n",
         SR_BENCH_MODELS_DIR, SR_BENCH_ICONS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
 }
@@ -168,7 +171,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
             o->gl_default_malloc = true;
         } else if (strcmp(a, "--threads") == 0 || strcmp(a, "--size") == 0 ||
                    strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0 ||
-                   strcmp(a, "--paint") == 0) {
+                   strcmp(a, "--paint") == 0 || strcmp(a, "--shape") == 0 ||
+                   strcmp(a, "--shape-size") == 0) {
             if (!has_value) {
                 fprintf(stderr, "softrast-bench: %s: missing value\n", a);
                 return 2;
@@ -182,8 +186,14 @@ static int parse_args(int argc, char **argv, bench_opts *o)
             } else if (strcmp(a, "--frames") == 0) {
                 ok = parse_int(a, v, 1, MAX_FRAMES, &o->frames);
             } else if (strcmp(a, "--paint") == 0) {
-                o->paints = v;
+                o->cases.paints = v;
                 ok = bench_shapes2d_paints(v) != 0;
+            } else if (strcmp(a, "--shape") == 0) {
+                o->cases.shapes = v;
+                ok = bench_shapes2d_shapes(v) != 0;
+            } else if (strcmp(a, "--shape-size") == 0) {
+                o->cases.sizes = v;
+                ok = bench_shapes2d_sizes(v) != 0;
             } else {
                 o->save_dir = v;
             }
@@ -741,7 +751,7 @@ int main(int argc, char **argv)
             }
             break;
         case BENCH_SHAPES2D:
-            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare, o.paints);
+            run.failures += !bench_shapes2d(run.ctx, o.frames, o.compare, &o.cases);
             break;
         case BENCH_ICONS:
             run.failures += !bench_icons(o.frames);

@@ -343,33 +343,63 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
     return true;
 }
 
-unsigned bench_shapes2d_paints(const char *list)
+/* The items of a comma-separated list among names[0..n) as a bit set (bit
+ * k: names[k]); 0 after a message naming the option when an item is
+ * unknown or the list empty. */
+static unsigned name_set(const char *opt, const char *list, const char *const *names, int n)
 {
     unsigned set = 0;
     for (const char *s = list; *s;) {
         size_t len = strcspn(s, ",");
-        int p = 0;
-        while (p < PAINT_COUNT &&
-               !(strlen(paint_names[p]) == len && strncmp(s, paint_names[p], len) == 0)) {
-            p++;
+        int k = 0;
+        while (k < n && !(strlen(names[k]) == len && strncmp(s, names[k], len) == 0)) {
+            k++;
         }
-        if (p == PAINT_COUNT) {
-            fprintf(stderr, "softrast-bench: --paint: unknown paint '%.*s' (expected solid, "
-                            "linear, radial or pattern)\n", (int)len, s);
+        if (k == n) {
+            fprintf(stderr, "softrast-bench: %s: unknown item '%.*s' (expected", opt, (int)len,
+                    s);
+            for (int i = 0; i < n; i++) {
+                fprintf(stderr, "%s%s", i ? ", " : " ", names[i]);
+            }
+            fprintf(stderr, ")\n");
             return 0;
         }
-        set |= 1u << p;
+        set |= 1u << k;
         s += len + (s[len] == ',');
     }
     if (set == 0) {
-        fprintf(stderr, "softrast-bench: --paint: empty list\n");
+        fprintf(stderr, "softrast-bench: %s: empty list\n", opt);
     }
     return set;
 }
 
-bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *paints)
+static const char *const shape_names[] = { "rect", "poly10", "poly20", "poly40", "curves" };
+static const char *const size_names[] = { "8", "16", "32", "64", "128", "256" };
+_Static_assert(sizeof shape_names / sizeof shape_names[0] == sizeof shapes / sizeof shapes[0],
+               "a name per shape");
+_Static_assert(sizeof size_names / sizeof size_names[0] == sizeof sizes / sizeof sizes[0],
+               "a name per size");
+
+unsigned bench_shapes2d_paints(const char *list)
 {
-    unsigned paint_set = paints ? bench_shapes2d_paints(paints) : (1u << PAINT_COUNT) - 1;
+    return name_set("--paint", list, paint_names, PAINT_COUNT);
+}
+
+unsigned bench_shapes2d_shapes(const char *list)
+{
+    return name_set("--shape", list, shape_names, (int)(sizeof shape_names / sizeof *shape_names));
+}
+
+unsigned bench_shapes2d_sizes(const char *list)
+{
+    return name_set("--shape-size", list, size_names, (int)(sizeof size_names / sizeof *size_names));
+}
+
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const shapes2d_cases *only)
+{
+    unsigned paint_set = only->paints ? bench_shapes2d_paints(only->paints) : ~0u;
+    unsigned shape_set = only->shapes ? bench_shapes2d_shapes(only->shapes) : ~0u;
+    unsigned size_set = only->sizes ? bench_shapes2d_sizes(only->sizes) : ~0u;
     frames = frames > MAX_FRAMES ? MAX_FRAMES : frames;
     shape *sh = malloc(sizeof *sh * MAX_SHAPES);
     double *ms = calloc((size_t)frames, sizeof *ms), *cr_ms = calloc((size_t)frames, sizeof *ms);
@@ -398,8 +428,8 @@ bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *paint
             count = count > MAX_SHAPES ? MAX_SHAPES : count;
             make_batch(sh, count, shapes[si].kind, shapes[si].verts, size, &rng);
             for (int p = PAINT_SOLID; ok && p < PAINT_COUNT; p++) {
-                if (!(paint_set & 1u << p)) {
-                    continue;
+                if (!(paint_set & 1u << p) || !(shape_set & 1u << si) || !(size_set & 1u << zi)) {
+                    continue; /* the batch was still made: the others stay the same */
                 }
                 t.len = 0;
                 ok = batch_svg(&t, sh, count, shapes[si].kind, shapes[si].verts, size,

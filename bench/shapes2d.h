@@ -14,8 +14,15 @@
  * paint k of solid, linear, radial, pattern); 0 after a message when a
  * name is unknown or the list empty. */
 unsigned bench_shapes2d_paints(const char *list);
-/* paints: such a list, or NULL for all of them. */
-bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const char *paints);
+/* The same for shapes (rect, poly10, poly20, poly40, curves) and sizes
+ * (8, 16, 32, 64, 128, 256, in pixels). */
+unsigned bench_shapes2d_shapes(const char *list);
+unsigned bench_shapes2d_sizes(const char *list);
+/* The cases to run: each a list as above, or NULL for all. */
+typedef struct shapes2d_cases {
+    const char *paints, *shapes, *sizes;
+} shapes2d_cases;
+bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const shapes2d_cases *only);
 bool bench_icons(int frames);
 
 #endif

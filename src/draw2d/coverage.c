@@ -27,6 +27,7 @@ sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, in
     if (!sr__paint_init(&paint, color, false)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
     }
+    paint.wide = fb->wide_stores;
     sr_result r = sr__fb_begin_2d(ctx, fn, fb);
     if (r != SR_OK) {
         return r;

@@ -4,8 +4,20 @@
  * owns the framebuffer. */
 #include "draw2d/paint.h"
 
+#include "simd_types.h"
+
 #include <math.h>
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 #include <string.h>
+
+/* Where channel k (memory order: r, g, b, a) sits in a packed pixel. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#define CHANNEL_SHIFT(k) (24 - 8 * (k))
+#else
+#define CHANNEL_SHIFT(k) (8 * (k))
+#endif
 
 uint8_t sr__unorm8(float v)
 {
@@ -52,10 +64,11 @@ bool sr__paint_init(sr__paint *p, sr_rgba color, bool linear_light)
     }
     p->packed = sr__pack_rgba8(p->rgba);
     p->alpha = c[3] < 0.0f ? 0.0f : c[3] > 1.0f ? 1.0f : c[3];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3 && linear_light; i++) {
         p->linear[i] = sr__srgb_to_linear(p->rgba[i] / 255.0f);
     }
     p->linear_light = linear_light;
+    p->wide = false;
     return true;
 }
 
@@ -102,6 +115,52 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
     memcpy(dst, d, sizeof d);
 }
 
+typedef uint32_t v4u __attribute__((vector_size(16)));
+typedef uint8_t v4b __attribute__((vector_size(4)));
+
+/* One bit per set lane of a mask. */
+static inline unsigned lane_bits4(v4i m)
+{
+#if defined(__SSE2__)
+    return (unsigned)_mm_movemask_ps((__m128)m);
+#else
+    return (m[0] & 1u) | (m[1] & 2u) | (m[2] & 4u) | (m[3] & 8u);
+#endif
+}
+
+#define BL_LANES 4
+#define BL_F v4f
+#define BL_I v4i
+#define BL_U v4u
+#define BL_B v4b
+#define BL_FN(name) name##4
+#define BL_INLINE static inline
+#define BL_ALL(m) (lane_bits4(m) == 15)
+#define BL_ANY(m) (lane_bits4(m) != 0)
+#include "draw2d/blend_lanes.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+typedef uint32_t v16u __attribute__((vector_size(64)));
+typedef uint8_t v16b __attribute__((vector_size(16)));
+#define BL_LANES 16
+#define BL_F v16f
+#define BL_I v16i
+#define BL_U v16u
+#define BL_B v16b
+#define BL_FN(name) name##16
+#define BL_INLINE static inline __attribute__((always_inline)) SR_TARGET_AVX512
+#define BL_ALL(m) (_mm512_movepi32_mask((__m512i)(m)) == 0xffff)
+#define BL_ANY(m) (_mm512_movepi32_mask((__m512i)(m)) != 0)
+#include "draw2d/blend_lanes.h"
+
+SR_TARGET_AVX512 static int blend_row_avx512(const sr__paint *p, uint32_t *dst,
+                                             const uint8_t *cov, int n, uint32_t *in,
+                                             unsigned *last_cov, uint32_t *out)
+{
+    return blend_row16(p, dst, cov, n, in, last_cov, out);
+}
+#endif
+
 void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
 {
     if (!cov && p->alpha >= 1.0f) {
@@ -113,10 +172,24 @@ void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
     /* A blend is a pure function of the pixel and the coverage, and runs
      * of equal pairs are common (a shape's inside over an empty or flat
      * background), so the last result is reused: the same bytes, one
-     * blend per run. */
+     * blend per run.  A translucent color without linear light takes
+     * whole blocks of 16 pixels (at the AVX-512 level), then of 4, through
+     * the lanes' blend (blend_lanes.h) first.  An opaque color blends only
+     * where the coverage is partial (an edge): there the scalar blend is
+     * as fast, and wide float lanes would slow the clock for the code
+     * around them. */
     uint32_t in = 0, out = 0;
     unsigned last_cov = 256;
-    for (int i = 0; i < n; i++) {
+    int i = 0;
+    if (!p->linear_light && p->alpha < 1.0f) {
+#if defined(__x86_64__) && defined(__GNUC__)
+        if (p->wide) {
+            i = blend_row_avx512(p, dst, cov, n, &in, &last_cov, &out);
+        }
+#endif
+        i += blend_row4(p, dst + i, cov ? cov + i : NULL, n - i, &in, &last_cov, &out);
+    }
+    for (; i < n; i++) {
         unsigned c = cov ? cov[i] : 255;
         if (c != last_cov || dst[i] != in) {
             in = dst[i];

@@ -15,8 +15,9 @@ typedef struct sr__paint {
     uint8_t rgba[4];     /* the color quantized to RGBA8 */
     uint32_t packed;     /* rgba[] in framebuffer memory order */
     float alpha;         /* color.a clamped to [0, 1] */
-    float linear[3];     /* r, g, b decoded from sRGB (for linear-light blending) */
+    float linear[3];     /* r, g, b decoded from sRGB (set with linear_light only) */
     bool linear_light;   /* blend in linear light: decode, mix, encode */
+    bool wide;           /* rows 16 pixels at a time (AVX-512: fb->wide_stores); init: false */
 } sr__paint;
 
 /* False when a component is not finite (the caller reports which call). */

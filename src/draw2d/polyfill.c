@@ -138,6 +138,32 @@ static bool rows_to_scan(const sr__edge2 *edges, int count, sr__window *win)
     return win->x0 < win->x1 && win->y0 < win->y1;
 }
 
+/* The columns the edges can touch, floor(x_min) .. floor(x_max) + 1 (a
+ * piece in column c also deposits into c + 1), within the window: the
+ * converters' per-row buffers and loops need no more.  Narrowing changes
+ * no pixel: every deposit and crossing lands in the same absolute column,
+ * and what lies left or right of the narrowed window was so of the full
+ * one (a contour wholly left of it sums to zero, in the area converter's
+ * exact height arithmetic as in the winding cells' integers). */
+static sr__window columns_of_edges(const sr__edge2 *edges, int count, sr__window win)
+{
+    int64_t lo = INT64_MAX, hi = INT64_MIN;
+    for (int i = 0; i < count; i++) {
+        int64_t a = edges[i].x0 < edges[i].x1 ? edges[i].x0 : edges[i].x1;
+        int64_t b = edges[i].x0 < edges[i].x1 ? edges[i].x1 : edges[i].x0;
+        lo = a < lo ? a : lo;
+        hi = b > hi ? b : hi;
+    }
+    int64_t c0 = floor_div(lo, Q8_ONE), c1 = floor_div(hi, Q8_ONE) + 2;
+    if (c0 > win.x0) {
+        win.x0 = c0 >= win.x1 ? win.x1 : (int)c0;
+    }
+    if (c1 < win.x1) {
+        win.x1 = c1 <= win.x0 ? win.x0 : (int)c1;
+    }
+    return win;
+}
+
 /* ---- scan-line fill: edge table + active edge table ------------------- */
 
 /* An edge-table entry.  At scanline y (sample height yc = 256 y + 128 in
@@ -329,6 +355,10 @@ sr_result sr__scan_winding_cells(sr_context *ctx, const sr__edge2 *edges, int co
                                  sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user)
 {
     if (!rows_to_scan(edges, count, &win)) {
+        return SR_OK;
+    }
+    win = columns_of_edges(edges, count, win);
+    if (win.x0 >= win.x1) {
         return SR_OK;
     }
     int rows = win.y1 - win.y0, w = win.x1 - win.x0;
@@ -533,26 +563,52 @@ typedef struct area_entry {
     int next;
 } area_entry;
 
-sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
-                        sr__window win, sr__span_fn fn, void *user)
+/* A row is flat when every active edge is vertical and spans it whole:
+ * its deposits then depend on nothing that changes from row to row, so two
+ * flat rows with the same active edges have the same coverage (the inside
+ * of a rectangle, of any shape with only vertical sides). */
+static bool row_is_flat(const area_entry *et, const int *active, int n_active, int y)
+{
+    for (int k = 0; k < n_active; k++) {
+        const area_entry *e = &et[active[k]];
+        if (e->x0 != e->x1 || e->y0 > y || e->y1 < y + 1.0) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The area converter; `fast` narrows the columns to the edges', reuses a
+ * flat row's coverage for the flat rows below it, and takes a column no
+ * deposit reached from its left neighbour (the running sum is unchanged
+ * there), all giving the bytes the plain walk gives. */
+static sr_result scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
+                           sr__window win, sr__span_fn fn, void *user, bool fast)
 {
     if (!rows_to_scan(edges, count, &win)) {
         return SR_OK;
     }
+    if (fast) {
+        win = columns_of_edges(edges, count, win);
+        if (win.x0 >= win.x1) {
+            return SR_OK;
+        }
+    }
     int rows = win.y1 - win.y0, w = win.x1 - win.x0;
-    area_entry *et = sr__alloc(ctx, (size_t)count * sizeof *et);
-    int *bucket = sr__alloc(ctx, (size_t)rows * sizeof *bucket);
-    int *active = sr__alloc(ctx, (size_t)count * sizeof *active);
-    double *acc = sr__calloc(ctx, (size_t)w + 2, sizeof *acc);
-    uint8_t *cov = sr__alloc(ctx, (size_t)w + 1);
-    if (!et || !bucket || !active || !acc || !cov) {
-        sr__free(ctx, et);
-        sr__free(ctx, bucket);
-        sr__free(ctx, active);
-        sr__free(ctx, acc);
-        sr__free(ctx, cov);
+    /* One block for the five arrays (a fill of a small shape is mostly
+     * its setup): the doubles first, then the ints, then the bytes. */
+    size_t acc_size = ((size_t)w + 2) * sizeof(double);
+    size_t et_size = (size_t)count * sizeof(area_entry);
+    size_t ints = ((size_t)rows + (size_t)count) * sizeof(int);
+    char *block = sr__alloc(ctx, acc_size + et_size + ints + (size_t)w + 1);
+    if (!block) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "polygon fill: no memory for coverage rows");
     }
+    double *acc = (double *)block;
+    area_entry *et = (area_entry *)(block + acc_size);
+    int *bucket = (int *)(block + acc_size + et_size), *active = bucket + rows;
+    uint8_t *cov = (uint8_t *)(block + acc_size + et_size + ints);
+    memset(acc, 0, acc_size);
     for (int y = 0; y < rows; y++) {
         bucket[y] = -1;
     }
@@ -584,6 +640,10 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
         bucket[b] = n_et++;
     }
     int n_active = 0;
+    /* The last row's span (span_x1 = 0 without one) and whether that row
+     * was flat, for the next row to reuse. */
+    int span_x0 = 0, span_x1 = 0;
+    bool prev_flat = false;
     for (int y = win.y0; y < win.y1; y++) {
         int kept = 0;
         for (int k = 0; k < n_active; k++) {
@@ -591,9 +651,22 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
                 active[kept++] = active[k];
             }
         }
+        bool same_edges = kept == n_active && bucket[y - win.y0] < 0;
         n_active = kept;
         for (int i = bucket[y - win.y0]; i >= 0; i = et[i].next) {
             active[n_active++] = i;
+        }
+        if (fast) {
+            bool flat = n_active > 0 && row_is_flat(et, active, n_active, y);
+            if (flat && prev_flat && same_edges) {
+                if (span_x1 > span_x0) {
+                    fn(user, &(sr__span){ y, span_x0, span_x1, cov + (span_x0 - win.x0), -1, -1,
+                                          y + 0.5 });
+                }
+                continue;
+            }
+            prev_flat = flat;
+            span_x1 = span_x0;
         }
         if (n_active == 0) {
             continue;
@@ -634,11 +707,15 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
         /* Left of c0 nothing was deposited (c0 > 0 means no edge reaches
          * the window's left side), so the running sum starts at 0. */
         double s = 0.0;
+        uint8_t byte = 0;
         int first_nz = -1, last_nz = -1;
         for (int c = c0; c < c1; c++) {
-            s += acc[c];
-            cov[c] = coverage_byte(rule, s);
-            if (cov[c]) {
+            if (acc[c] != 0.0 || !fast) {
+                s += acc[c];
+                byte = coverage_byte(rule, s);
+            }
+            cov[c] = byte;
+            if (byte) {
                 if (first_nz < 0) {
                     first_nz = c;
                 }
@@ -646,20 +723,28 @@ sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_f
             }
         }
         if (first_nz >= 0) {
-            sr__span sp = { y, win.x0 + first_nz, win.x0 + last_nz + 1, cov + first_nz, -1, -1,
-                            y + 0.5 };
-            fn(user, &sp);
+            span_x0 = win.x0 + first_nz;
+            span_x1 = win.x0 + last_nz + 1;
+            fn(user, &(sr__span){ y, span_x0, span_x1, cov + first_nz, -1, -1, y + 0.5 });
         }
         int clear_end = c1 + 2 < w + 2 ? c1 + 2 : w + 2;
         memset(acc + c0, 0, (size_t)(clear_end - c0) * sizeof *acc);
         acc[0] = 0.0;
     }
-    sr__free(ctx, et);
-    sr__free(ctx, bucket);
-    sr__free(ctx, active);
-    sr__free(ctx, acc);
-    sr__free(ctx, cov);
+    sr__free(ctx, block);
     return SR_OK;
+}
+
+sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
+                        sr__window win, sr__span_fn fn, void *user)
+{
+    return scan_area(ctx, edges, count, rule, win, fn, user, true);
+}
+
+sr_result sr__scan_area_each_row(sr_context *ctx, const sr__edge2 *edges, int count,
+                                 sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user)
+{
+    return scan_area(ctx, edges, count, rule, win, fn, user, false);
 }
 
 /* ---- n x n supersampling over the edge-table converter ------------------ */
@@ -834,6 +919,7 @@ sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
     if (!sr__paint_init(&t.paint, color, d.linear_light)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
     }
+    t.paint.wide = fb->wide_stores;
     sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
     if (r2d != SR_OK) {
         return r2d;

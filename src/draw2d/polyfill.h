@@ -59,9 +59,16 @@ sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count
  * use it; sr__scan_edge_table is the reference it is tested against. */
 sr_result sr__scan_winding_cells(sr_context *ctx, const sr__edge2 *edges, int count,
                                  sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user);
-/* Exact area coverage by signed-area accumulation (docs/raster-rules.md §10.3). */
+/* Exact area coverage by signed-area accumulation (docs/raster-rules.md §10.3).
+ * It works only on the columns the edges reach and computes a row with
+ * only vertical edges once for the rows below it that have the same ones
+ * (a rectangle's inside). */
 sr_result sr__scan_area(sr_context *ctx, const sr__edge2 *edges, int count, sr_fill_rule rule,
                         sr__window win, sr__span_fn fn, void *user);
+/* The same coverage, every row and column of the window walked: the
+ * reference sr__scan_area is tested against. */
+sr_result sr__scan_area_each_row(sr_context *ctx, const sr__edge2 *edges, int count,
+                                 sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user);
 /* n x n supersampling: edges built with scale n; samples at
  * (x + (i + 1/2)/n, y + (j + 1/2)/n). */
 sr_result sr__scan_supersample(sr_context *ctx, const sr__edge2 *edges, int count,

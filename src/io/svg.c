@@ -2305,13 +2305,23 @@ static int cmp_cascaded(const void *a, const void *b)
 #define RANK_IMPORTANT (1L << 41)
 
 /* The element's own declarations in cascade order, applied to st. */
+/* Attributes that are certainly no property: no property's name has
+ * fewer than three letters (x, y, r, d, cx, rx, x1, fx, ...), and the
+ * other geometry a shape carries on every element.  Skipping them spares
+ * apply_property's walk through every name it knows. */
+static bool is_geometry_attribute(const char *a)
+{
+    return a[0] == 0 || a[1] == 0 || a[2] == 0 || strcmp(a, "width") == 0 ||
+           strcmp(a, "height") == 0 || strcmp(a, "points") == 0;
+}
+
 static void apply_cascade(svg_doc *doc, const svg_node *node, style *st)
 {
     for (int i = 0; node->atts[i]; i += 2) {
         const char *a = node->atts[i];
         /* the marker shorthand is a property of sheets and style="", not
          * a presentation attribute */
-        if (strcmp(a, "style") != 0 && strcmp(a, "transform") != 0 && strcmp(a, "class") != 0 &&
+        if (!is_geometry_attribute(a) && strcmp(a, "style") != 0 && strcmp(a, "transform") != 0 && strcmp(a, "class") != 0 &&
             strcmp(a, "id") != 0 && strcmp(a, "marker") != 0) {
             apply_property(doc, st, a, node->atts[i + 1]);
         }
