@@ -13,7 +13,7 @@
  * box is find_candidates's (the smallest ceiling and largest floor of
  * the vertices' positions less half a pixel, as setup's).  For a face
  * less than 2^14 across (64 pixels), its snapped area and its edge
- * values at its box's centres are differences of products below 2^29,
+ * values at its box's centres are differences of products below 2^30,
  * exact in int32 lanes; a larger face is left to the scalar code.  A
  * face is dropped for no centre in the closed half-planes of its three
  * edges, which the fill rule and the depth test only narrow.
@@ -133,6 +133,14 @@ __attribute__((target("avx2"))) static long find_candidates_lanes(const vis_job 
                                         _mm256_mullo_epi32(ex[2], ey[1]));
         unsigned pos = lane_bits(_mm256_cmpgt_epi32(area, zero));
         unsigned neg = lane_bits(_mm256_cmpgt_epi32(zero, area));
+        /* Culled as faces_job culls: no area, or area2 * cull_sign > 0.
+         * Neighbouring faces of a mesh mostly face the same way, so
+         * eight culled at once are common and the branch predictable. */
+        unsigned culled = ~(pos | neg) | (cull_sign > 0 ? pos : cull_sign < 0 ? neg : 0u);
+        keep &= ~near | ~culled;
+        if (keep == 0) {
+            continue;
+        }
         /* may_pass's edge values, turned to the face's winding, at the
          * box's first centre, a pixel right and a pixel down. */
         __m256i cx = _mm256_add_epi32(_mm256_slli_epi32(x0, SR_SUBPIXEL_BITS), half);
@@ -156,9 +164,7 @@ __attribute__((target("avx2"))) static long find_candidates_lanes(const vis_job 
         }
         unsigned hit = lane_bits(in[0]) | (lane_bits(in[1]) & wide) | (lane_bits(in[2]) & tall) |
                        (lane_bits(in[3]) & wide & tall);
-        /* Culled as faces_job culls: no area, or area2 * cull_sign > 0. */
-        unsigned culled = ~(pos | neg) | (cull_sign > 0 ? pos : cull_sign < 0 ? neg : 0u);
-        keep &= ~near | (~culled & (large | hit));
+        keep &= ~near | large | hit;
         if (keep == 0) {
             continue;
         }
