@@ -23,7 +23,9 @@
  * the number of threads or on their timing.  Most faces of a dense mesh
  * cover no pixel centre: they are dropped from their vertices' spans of
  * pixel centres before anything else is read, and a small face is tested
- * against its box's centres before it is set up.
+ * against its box's centres before it is set up.  Where the CPU has AVX2
+ * the faces are first looked at eight at a time (face_lanes.h), which
+ * leaves the scalar code only the faces that may cover a centre.
  */
 #include "geometry.h"
 
@@ -75,6 +77,7 @@ typedef struct vis_job {
     centre_span *span;
     uint32_t *outcode;
     int vertex_jobs, face_jobs, height, width;
+    bool lanes;                  /* faces first looked at in AVX2 lanes */
     size_t pixels;
     _Atomic uint64_t *word;      /* per pixel: depth << 32 | ~face, 0 for none */
     atomic_bool outside;         /* some vertex is outside a clip plane */
@@ -308,6 +311,8 @@ static long find_candidates(const vis_job *j, size_t inst, size_t lo, size_t hi,
     return n;
 }
 
+#include "face_lanes.h"
+
 /* Faces [FACES_PER_JOB job, ...) of the draw: the front end's triangle()
  * (assembly.c) for faces inside every clip plane, then setup and the
  * depth test. */
@@ -327,7 +332,12 @@ static void faces_job(void *arg, int job, int thread)
         }
         size_t end = j->first_face[inst + 1] < hi ? j->first_face[inst + 1] : hi;
         end = end - g > CANDIDATE_BLOCK ? g + CANDIDATE_BLOCK : end;
+#ifdef SR_PY_FACE_LANES
+        long n = j->lanes && !outside ? find_candidates_lanes(j, inst, g, end, cand)
+                                      : find_candidates(j, inst, g, end, outside, cand);
+#else
         long n = find_candidates(j, inst, g, end, outside, cand);
+#endif
         int64_t cull_sign = j->u[inst].cull_sign;
         if (n < 0) {
             atomic_store_explicit(&j->crosses, true, memory_order_relaxed);
@@ -435,6 +445,9 @@ sr_result sr_py_visibility_pass(sr_py_render_set *set, const geometry_uniforms *
         return SR_OK;   /* indices beyond 32 bits (and ~face 0 is the word of none) */
     }
     j.vertex_jobs = ctx->threads > 0 ? ctx->threads : 1;
+#ifdef SR_PY_FACE_LANES
+    j.lanes = ds.simd >= SR_SIMD_AVX2 && vertices < FACE_LANES_MAX_VERTICES;
+#endif
     j.face_jobs = (int)((faces + FACES_PER_JOB - 1) / FACES_PER_JOB);
     j.pixels = (size_t)j.width * (size_t)j.height;
     /* The pixels' words first, so that those left cleared by the last
