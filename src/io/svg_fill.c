@@ -8,11 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static uint8_t unorm8(float v)
-{
-    return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
-}
-
 /* Source-over of the RGBA8 color s at opacity a (0 < a <= 1) onto d. */
 static void blend_rgba8(uint8_t *d, const uint8_t *s, float a)
 {
@@ -23,14 +18,14 @@ static void blend_rgba8(uint8_t *d, const uint8_t *s, float a)
         a = oa > 0.0f ? a / oa : 0.0f;
     }
     for (int i = 0; i < 3; i++) {
-        d[i] = unorm8((s[i] * a + d[i] * keep) * (1.0f / 255.0f));
+        d[i] = svg_unorm8((s[i] * a + d[i] * keep) * (1.0f / 255.0f));
     }
-    d[3] = unorm8(oa);
+    d[3] = svg_unorm8(oa);
 }
 
 void svg_blend(uint8_t *d, sr_rgba c, float cov)
 {
-    uint8_t s[4] = { unorm8(c.r), unorm8(c.g), unorm8(c.b), 0 };
+    uint8_t s[4] = { svg_unorm8(c.r), svg_unorm8(c.g), svg_unorm8(c.b), 0 };
     float a = (c.a < 0 ? 0 : c.a > 1 ? 1 : c.a) * cov;
     if (a > 0.0f) {
         blend_rgba8(d, s, a);

@@ -86,14 +86,9 @@ static sr_rgba piece_color(const svg_gradient *g, int i, double t)
                       a.a + (b.a - a.a) * u };
 }
 
-static uint8_t unorm8(float v)
-{
-    return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
-}
-
 static uint32_t pack(sr_rgba c)
 {
-    uint8_t b[4] = { unorm8(c.r), unorm8(c.g), unorm8(c.b), unorm8(c.a) };
+    uint8_t b[4] = { svg_unorm8(c.r), svg_unorm8(c.g), svg_unorm8(c.b), svg_unorm8(c.a) };
     uint32_t v;
     memcpy(&v, b, sizeof v);
     return v;

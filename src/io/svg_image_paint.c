@@ -33,11 +33,6 @@ static void texel(const svg_image *im, long i, long j, float out[4])
     out[3] = a;
 }
 
-static uint8_t unorm8(float v)
-{
-    return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
-}
-
 /* The image at texel coordinates (u, v) of a texel's corner, bilinear
  * and premultiplied (a transparent texel adds no color), straight RGBA8. */
 static uint32_t sample(const svg_image *im, double u, double v)
@@ -59,7 +54,8 @@ static uint32_t sample(const svg_image *im, double u, double v)
     if (!(o[3] > 0)) {
         return 0;
     }
-    uint8_t b[4] = { unorm8(o[0] / o[3]), unorm8(o[1] / o[3]), unorm8(o[2] / o[3]), unorm8(o[3]) };
+    uint8_t b[4] = { svg_unorm8(o[0] / o[3]), svg_unorm8(o[1] / o[3]), svg_unorm8(o[2] / o[3]),
+                     svg_unorm8(o[3]) };
     uint32_t w;
     memcpy(&w, b, sizeof w);
     return w;
