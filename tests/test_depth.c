@@ -3,6 +3,8 @@
  * sr_read_depth, the depth range and depth_zero_to_one, and polygon offset
  * (z-fighting without it, a deterministic winner with it, units as exactly
  * one step, the slope term and the clamp).  Fixed seeds. */
+#define _DEFAULT_SOURCE /* MAP_ANONYMOUS, for guard_alloc.h */
+#include "guard_alloc.h"
 #include "sr_test.h"
 #include "softrast.h"
 #include "fragment/depth.h"
@@ -734,4 +736,88 @@ SR_TEST(d16_buffer_holds_sixteen_bit_steps_on_every_path)
         }
     }
     CHECK_EQ(paths, 4 * 3 * 2);
+}
+
+/* Small triangles over the whole of small framebuffers, each buffer ending
+ * at an unmapped page (guard_alloc.h): no path reads or writes a lane past
+ * the last row.  AVX-512's four-lane 16-bit load once took eight mask bits
+ * and read four samples past a D16 buffer's end (found by fuzz_draw).
+ * Every level's image and depth are the scalar path's. */
+SR_TEST(no_path_touches_a_sample_past_a_small_buffer)
+{
+#ifndef GUARD_ALLOC_WORKS
+    SKIP("no mmap here to put a guard page after a buffer");
+#else
+    /* Each D16 buffer a multiple of 64 bytes, to end at the page. */
+    static const int sizes[][2] = { { 16, 8 }, { 8, 4 }, { 32, 2 }, { 2, 16 }, { 1, 32 },
+                                    { 3, 32 } };
+    enum { SIZES = sizeof sizes / sizeof sizes[0] };
+    enum { MAX = 128 };
+    static guard g;
+    static uint8_t first[MAX * 4];
+    static float depth_first[MAX], d[MAX];
+    int runs = 0;
+    for (int si = 0; si < SIZES; si++) {
+        int w = sizes[si][0], h = sizes[si][1];
+        for (int fi = 0; fi < 2; fi++) {    /* D16 and D24 */
+            for (int samples = 1; samples <= 4; samples *= 4) {
+                for (int level = SR_SIMD_OFF; level <= SR_SIMD_AVX512; level++) {
+                    sr_context *ctx = NULL;
+                    sr_framebuffer *fb = NULL;
+                    REQUIRE(sr_make_context(&(sr_context_desc){
+                        .threads = 1, .simd = (sr_simd_level)level,
+                        .allocator = { guard_alloc, guard_free, &g } }, &ctx) == SR_OK);
+                    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
+                        .width = w, .height = h, .depth_format = formats[fi],
+                        .samples = samples }, &fb) == SR_OK);
+                    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 },
+                                                        .depth_action = SR_ACTION_CLEAR,
+                                                        .depth = 1.0f });
+                    /* Two layers of 3-pixel triangles, the second nearer on
+                     * alternate cells, so depth is read, tested and written. */
+                    for (int layer = 0; layer < 2; layer++) {
+                        for (int cy = 0; cy < h; cy += 2) {
+                            for (int cx = 0; cx < w; cx += 2) {
+                                float x0 = 2.0f * (float)(cx - 0.5) / (float)w - 1.0f;
+                                float x1 = 2.0f * (float)(cx + 2.5) / (float)w - 1.0f;
+                                float y0 = 1.0f - 2.0f * (float)(cy - 0.5) / (float)h;
+                                float y1 = 1.0f - 2.0f * (float)(cy + 2.5) / (float)h;
+                                float z = layer ? (((cx + cy) & 2) ? -0.5f : 0.5f) : 0.1f;
+                                float pos[18] = { x0, y0, z, x1, y0, z, x0, y1, z,
+                                                  x1, y0, z, x1, y1, z, x0, y1, z };
+                                float col[24];
+                                for (int i = 0; i < 6; i++) {
+                                    col[4 * i] = (float)layer;
+                                    col[4 * i + 1] = (float)((cx * 7 + cy * 3) % 16) / 15.0f;
+                                    col[4 * i + 2] = (float)(i < 3);
+                                    col[4 * i + 3] = 1;
+                                }
+                                REQUIRE(sr_draw(ctx, fb, &(sr_state){ 0 },
+                                                &(sr_draw_desc){ .positions = pos,
+                                                                 .vertex_count = 6,
+                                                                 .colors = col }) == SR_OK);
+                            }
+                        }
+                    }
+                    REQUIRE(sr_read_depth(ctx, fb, 0, 0, w, h, d, w) == SR_OK);
+                    const uint8_t *px = sr_framebuffer_pixels(fb);
+                    if (level == SR_SIMD_OFF) {
+                        memcpy(first, px, (size_t)w * h * 4);
+                        memcpy(depth_first, d, (size_t)w * h * sizeof *d);
+                    } else if (memcmp(first, px, (size_t)w * h * 4) != 0 ||
+                               memcmp(depth_first, d, (size_t)w * h * sizeof *d) != 0) {
+                        sr_test_fail(__FILE__, __LINE__, "%dx%d %s, %d samples, SIMD level "
+                                     "%d: not the scalar path's image", w, h,
+                                     format_names[fi], samples, level);
+                    }
+                    sr_destroy_framebuffer(ctx, fb);
+                    sr_destroy_context(ctx);
+                    runs++;
+                }
+            }
+        }
+    }
+    CHECK_EQ(g.live, 0);
+    CHECK_EQ(runs, SIZES * 2 * 2 * (SR_SIMD_AVX512 - SR_SIMD_OFF + 1));
+#endif
 }
