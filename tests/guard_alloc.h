@@ -2,10 +2,13 @@
  * (single thread), so a read or write past a buffer's end faults at once,
  * in any build and without a sanitizer; vector loads whose extra lanes are
  * masked off do not fault, so this catches only lanes really used.  Plug it
- * in as (sr_allocator){ guard_alloc, guard_free, &g } where the platform
- * has mmap (GUARD_ALLOC_WORKS; define _DEFAULT_SOURCE before any header). */
+ * in as (sr_allocator){ guard_alloc, guard_free, &g }, or make a context
+ * on it with guard_context, where the platform has mmap
+ * (GUARD_ALLOC_WORKS; define _DEFAULT_SOURCE before any header). */
 #ifndef SR_GUARD_ALLOC_H
 #define SR_GUARD_ALLOC_H
+
+#include "softrast.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -65,6 +68,15 @@ static inline void guard_free(void *ptr, void *user)
             return;
         }
     }
+}
+
+/* A single-threaded context at SIMD level `level` whose every block ends
+ * at a guard page. */
+static inline sr_result guard_context(guard *g, int level, sr_context **out)
+{
+    return sr_make_context(&(sr_context_desc){ .threads = 1, .simd = (sr_simd_level)level,
+                                               .allocator = { guard_alloc, guard_free, g } },
+                           out);
 }
 #endif
 

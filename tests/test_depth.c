@@ -764,9 +764,7 @@ SR_TEST(no_path_touches_a_sample_past_a_small_buffer)
                 for (int level = SR_SIMD_OFF; level <= SR_SIMD_AVX512; level++) {
                     sr_context *ctx = NULL;
                     sr_framebuffer *fb = NULL;
-                    REQUIRE(sr_make_context(&(sr_context_desc){
-                        .threads = 1, .simd = (sr_simd_level)level,
-                        .allocator = { guard_alloc, guard_free, &g } }, &ctx) == SR_OK);
+                    REQUIRE(guard_context(&g, level, &ctx) == SR_OK);
                     REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
                         .width = w, .height = h, .depth_format = formats[fi],
                         .samples = samples }, &fb) == SR_OK);

@@ -8,6 +8,8 @@
  * image goes to the test output directory), and single pixels are
  * checked against values worked out by hand.  Reference cycles through
  * use, clip-path, mask, marker and pattern are refused with FILE:LINE. */
+#define _DEFAULT_SOURCE /* MAP_ANONYMOUS, for guard_alloc.h */
+#include "guard_alloc.h"
 #include "image_compare.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -73,18 +75,19 @@ static void check_drawing(const char *file, const char *ref)
  * stops inherit from the gradient's ancestors, not the shape's;
  * selectors: attribute tests, :first-child, sibling combinators;
  * clipchild: clip-path on the children of a clipPath, and on uses in it */
+static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
+                                      "nested", "dashes", "markers", "patterns", "maskregion",
+                                      "switch", "nonscaling", "origin", "blend", "images",
+                                      "svgimage", "overflow", "markerlayers", "serverorigin",
+                                      "stopinherit", "selectors", "clipchild" };
+enum { DRAWINGS = sizeof names / sizeof names[0] };
+
 SR_TEST(drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
-    static const char *const names[] = { "styles", "gradients", "layers", "clipbox", "masks",
-                                          "nested", "dashes", "markers", "patterns",
-                                          "maskregion", "switch", "nonscaling",
-                                          "origin", "blend", "images", "svgimage",
-                                          "overflow", "markerlayers", "serverorigin",
-                                          "stopinherit", "selectors", "clipchild" };
-    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+    for (size_t i = 0; i < DRAWINGS; i++) {
         if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */
         }
@@ -594,4 +597,58 @@ SR_TEST(group_opacity_is_one_layer_and_clips_cut)
     CHECK_EQ(pixel(fb, 25, 10)[0], 255);
     CHECK_EQ(pixel(fb, 2, 10)[0], 255);
     sr_destroy_framebuffer(ctx, fb);
+}
+
+/* Every drawing above rendered small and narrow at every SIMD level, each
+ * buffer the renderer allocates (framebuffer, layers, masks, pattern
+ * tiles, images) ending at an unmapped page (guard_alloc.h): no paint
+ * reads or writes a pixel past a row's buffer, and every level's image is
+ * the scalar level's. */
+SR_TEST(small_drawings_stay_inside_their_buffers_at_every_simd_level)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+#ifndef GUARD_ALLOC_WORKS
+    SKIP("no mmap here to put a guard page after a buffer");
+#else
+    /* Each a multiple of 16 pixels: the framebuffer ends at the page. */
+    static const int sizes[][2] = { { 3, 64 }, { 7, 32 }, { 9, 16 }, { 17, 16 }, { 64, 1 } };
+    enum { SIZES = sizeof sizes / sizeof sizes[0] };
+    static guard g;
+    static uint8_t first[17 * 16 * 4];
+    int runs = 0;
+    for (size_t i = 0; i < DRAWINGS; i++) {
+        if (strcmp(names[i], "images") == 0 && !sr_io_have_jpeg()) {
+            continue; /* its picture is a JPEG */
+        }
+        char in[1024];
+        snprintf(in, sizeof in, "%s/data/svg/%s.svg", sr_test_src_dir(), names[i]);
+        for (int si = 0; si < SIZES; si++) {
+            int w = sizes[si][0], h = sizes[si][1];
+            for (int level = SR_SIMD_OFF; level <= SR_SIMD_AVX512; level++) {
+                sr_context *ctx = NULL;
+                sr_framebuffer *fb = NULL;
+                REQUIRE(guard_context(&g, level, &ctx) == SR_OK);
+                CHECK_EQ(sr_render_svg_file(ctx, in, &(sr_svg_desc){
+                    .width = w, .height = h, .background = { 1, 1, 1, 0.5f } }, &fb, NULL, NULL),
+                         SR_OK);
+                if (fb) {
+                    const uint8_t *px = sr_framebuffer_pixels(fb);
+                    if (level == SR_SIMD_OFF) {
+                        memcpy(first, px, (size_t)w * h * 4);
+                    } else if (memcmp(first, px, (size_t)w * h * 4) != 0) {
+                        sr_test_fail(__FILE__, __LINE__, "%s at %dx%d, SIMD level %d: not the "
+                                     "scalar level's image", names[i], w, h, level);
+                    }
+                    runs++;
+                }
+                sr_destroy_framebuffer(ctx, fb);
+                sr_destroy_context(ctx);
+            }
+        }
+    }
+    CHECK_EQ(g.live, 0);
+    CHECK(runs >= (DRAWINGS - 1) * SIZES * (SR_SIMD_AVX512 - SR_SIMD_OFF + 1));
+#endif
 }
