@@ -3,8 +3,8 @@
  * unmapped page (guard_alloc.h): the 2D fills, lines and Gouraud fills,
  * 3D lines and points, blending and stencil, MSAA with its resolve, the
  * clears, sr_read_pixels and its kin, and band rendering.  Sizes are
- * small and narrow (1, 3, 5, 7, 9, 15 and 17 pixels wide, one row high)
- * so each vector path ends rows in a partial block.  A lane touched past
+ * narrow (1, 3, 5, 7, 9, 15, 17 and 129 pixels wide, or one row high) so
+ * each vector path ends rows in a partial block.  A lane touched past
  * a buffer's end faults at once (SIGSEGV); every level's bytes must be the
  * scalar level's, so each scene's output is asserted too. */
 #define _DEFAULT_SOURCE /* MAP_ANONYMOUS, for guard_alloc.h */
@@ -22,8 +22,9 @@
  * depth, stencil, any sample count) is a multiple of 64 bytes and ends
  * exactly at its guard page. */
 static const int sizes[][2] = { { 1, 64 }, { 3, 64 }, { 5, 64 }, { 7, 64 }, { 9, 64 },
-                                { 15, 64 }, { 17, 64 }, { 64, 1 }, { 192, 1 }, { 16, 4 } };
-enum { SIZES = sizeof sizes / sizeof sizes[0], MAX_PIXELS = 17 * 64 };
+                                { 15, 64 }, { 17, 64 }, { 64, 1 }, { 192, 1 }, { 16, 4 },
+                                { 129, 64 } };
+enum { SIZES = sizeof sizes / sizeof sizes[0], MAX_PIXELS = 129 * 64 };
 
 /* The caller's arrays handed to the library (masks, pixels, vertices),
  * each ending at a guard page too. */
@@ -519,7 +520,7 @@ static sr_result resolved(sr_context *ctx, sr_framebuffer *fb, int w, int h)
     return r;
 }
 
-/* The frame's bands, in each pixel format: the triangles drawn in bands
+/* The frame's bands, in each pixel format: the layers and a grid drawn in bands
  * of 1 and 3 rows (a band framebuffer of one or three rows, on the
  * context's allocator), each band's bytes copied into the frame, which is
  * then written over fb. */
@@ -532,7 +533,8 @@ static sr_result draw_band(sr_context *ctx, sr_framebuffer *fb, const sr_band *b
 {
     (void)band;
     band_frame *f = user;
-    return triangles_3d(ctx, fb, f->w, f->h);
+    sr_result r = layers_3d(ctx, fb, f->w, f->h);
+    return r == SR_OK ? grid_3d(ctx, fb, f->w, f->h, 3.0f, 1) : r;
 }
 
 static void take_band(const sr_band *band, void *user)
@@ -564,7 +566,7 @@ static sr_result bands(sr_context *ctx, sr_framebuffer *fb, int w, int h)
                 r = sr_write_pixels(ctx, fb, 0, 0, w, h, f.bytes, (size_t)w * 4);
             }
             if (r == SR_OK && format != SR_PIXEL_RGB332) {
-                r = triangles_3d(ctx, fb, w, h);   /* each format's frame seen blended */
+                r = layers_3d(ctx, fb, w, h);   /* each format's frame seen blended */
             }
         }
     }
