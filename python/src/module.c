@@ -55,6 +55,12 @@ PyDoc_STRVAR(write_png_doc,
 "at the top, atomically: a temporary file renamed over `path`, so a write\n"
 "that fails or is killed leaves no partial file.");
 
+PyDoc_STRVAR(fit_camera_doc,
+"fit_camera(sets, width, height, fov, ortho)\n--\n\n"
+"sr_fit_camera: softrast render's default camera framing the (vertices\n"
+"(N, 3) float32, model (16,) float32 column-major) pairs: ((eye), (target),\n"
+"(up), fovy, half_width, half_height).  Use softrast.fit_camera.");
+
 static PyMethodDef methods[] = {
     { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
@@ -63,6 +69,7 @@ static PyMethodDef methods[] = {
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
     { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },
     { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
+    { "fit_camera", sr_py_fit_camera, METH_VARARGS, fit_camera_doc },
     { NULL, NULL, 0, NULL },
 };
 
