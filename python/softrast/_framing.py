@@ -11,15 +11,13 @@ from ._scene import as_scene
 
 #: softrast render's default field of view across the smaller image side
 #: (SR_FRAMING_FOV_DEG), radians.
-DEFAULT_FOV = math.radians(35.0)
+DEFAULT_FOV = math.radians(_softrast.framing_fov_deg)
 
-#: The margin fit_camera and orbit keep on each side of the image, a
-#: fraction of its width or height (SR_FRAMING_MARGIN).
-_MARGIN = 0.05
-
-# The default view direction, from the scene towards the eye
-# (sr_framing_direction): a three-quarter view from the front right, above.
-_DIRECTION = np.array([0.62, 0.48, 1.0]) / np.linalg.norm([0.62, 0.48, 1.0])
+# The margin fit_camera and orbit keep on each side of the image, a
+# fraction of its width or height (SR_FRAMING_MARGIN), and the default view
+# direction, from the scene towards the eye (sr_framing_direction).
+_MARGIN = _softrast.framing_margin
+_DIRECTION = np.array(_softrast.framing_direction)
 
 
 def _world_vertices(sc):
@@ -101,9 +99,9 @@ def orbit(scene, n, *, width, height, elevation=None, azimuth=None, fov_y=None,
 
     n: the number of views, >= 1.
     width, height: the image size the cameras are made for.
-    elevation: radians in (-pi/2, pi/2) (default 0.3872, about 22.2
+    elevation: radians in (-pi/2, pi/2) (default 0.3873, about 22.2
         degrees, the default camera's).
-    azimuth: view 0's azimuth, radians (default 0.5551, about 31.8
+    azimuth: view 0's azimuth, radians (default 0.5550, about 31.8
         degrees, the default camera's).
     fov_y: the vertical field of view, radians in (0, pi) (default: 35
         degrees across the smaller image side, as :func:`fit_camera`).

@@ -83,6 +83,30 @@ static struct PyModuleDef module = {
 
 PyMODINIT_FUNC PyInit__softrast(void);
 
+/* The default camera's direction, margin and field of view
+ * (sr_framing_direction, SR_FRAMING_MARGIN, SR_FRAMING_FOV_DEG), for
+ * softrast.orbit's defaults. */
+static int add_framing_constants(PyObject *m)
+{
+    sr_vec3 d = sr_framing_direction();
+    PyObject *dir = Py_BuildValue("(ddd)", (double)d.x, (double)d.y, (double)d.z);
+    if (!dir || PyModule_AddObject(m, "framing_direction", dir) < 0) {
+        Py_XDECREF(dir);
+        return -1;
+    }
+    PyObject *margin = PyFloat_FromDouble(SR_FRAMING_MARGIN);
+    if (!margin || PyModule_AddObject(m, "framing_margin", margin) < 0) {
+        Py_XDECREF(margin);
+        return -1;
+    }
+    PyObject *fov = PyFloat_FromDouble(SR_FRAMING_FOV_DEG);
+    if (!fov || PyModule_AddObject(m, "framing_fov_deg", fov) < 0) {
+        Py_XDECREF(fov);
+        return -1;
+    }
+    return 0;
+}
+
 PyMODINIT_FUNC PyInit__softrast(void)
 {
     import_array();
@@ -95,7 +119,8 @@ PyMODINIT_FUNC PyInit__softrast(void)
     }
     Py_INCREF(&sr_py_MeshType);
     if (PyModule_AddObject(m, "Mesh", (PyObject *)&sr_py_MeshType) < 0 ||
-        PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0) {
+        PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
+        add_framing_constants(m) < 0) {
         Py_DECREF(&sr_py_MeshType);
         Py_DECREF(m);
         return NULL;
