@@ -963,9 +963,15 @@ typedef struct mask_target {
 static void mask_span(void *user, const sr__span *sp)
 {
     mask_target *m = user;
-    uint8_t *row = m->mask + (size_t)(sp->y - m->y0) * m->stride - m->x0;
-    for (int x = sp->x0; x < sp->x1; x++) {
-        row[x] = sp->cov ? sp->cov[x - sp->x0] : 255;
+    if (sp->x1 <= sp->x0) {
+        return;
+    }
+    uint8_t *row = m->mask + (size_t)(sp->y - m->y0) * m->stride + (sp->x0 - m->x0);
+    size_t n = (size_t)(sp->x1 - sp->x0);
+    if (sp->cov) {
+        memcpy(row, sp->cov, n);
+    } else {
+        memset(row, 255, n);
     }
 }
 
