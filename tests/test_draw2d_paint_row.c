@@ -92,6 +92,8 @@ SR_TEST(paint_row_memo_over_many_rows_equals_paint_pixel)
             palette[k] = (uint32_t)sr_rng_next(&rng);
             if (k % 3 == 0) {
                 palette[k] |= sr__pack_rgba8((uint8_t[4]){ 0, 0, 0, 255 });
+            } else if (k % 3 == 1) { /* empty, with a color */
+                palette[k] &= sr__pack_rgba8((uint8_t[4]){ 255, 255, 255, 0 });
             }
         }
         palette[1] = 0;

@@ -92,6 +92,14 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
     }
     uint8_t d[4];
     memcpy(d, dst, sizeof d);
+    if (d[3] == 0 && !p->linear_light) {
+        /* Over an empty pixel the blend below has oa = a, so a / oa = 1
+         * and keep 0 exactly: the color at alpha a, undivided. */
+        memcpy(d, p->rgba, 3);
+        d[3] = sr__unorm8(a);
+        memcpy(dst, d, sizeof d);
+        return;
+    }
     /* Straight alpha: the destination's color counts by its own alpha, and
      * the sum is divided by the result's alpha.  Over an opaque pixel both
      * are 1 and the plain mix below is the same operator. */
