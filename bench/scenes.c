@@ -85,7 +85,7 @@ static void frame_mesh(bench_scene *s, sr_camera_basis *basis)
     sr_vec3 c;
     float r;
     mesh_sphere(&s->mesh, &c, &r);
-    float fov = FRAMING_FOV_DEG * PI_F / 180.0f;
+    float fov = SR_FRAMING_FOV_DEG * PI_F / 180.0f;
     /* The bounding sphere's framing, not the CLI's tighter fit: a scene's
      * pixels stay what they were, so its figures compare across dates. */
     sr_vec3 eye = framing_default_eye(c, r, fov);

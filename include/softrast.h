@@ -178,6 +178,9 @@
  *     sr_make_bezier_mesh        bicubic Bezier patches tessellated
  *     sr_make_teapot             the Utah teapot
  *     sr_make_ground_mesh        a ground plane under a scene's bounds
+ *   framing
+ *     sr_framing_direction       the default view direction, model towards eye
+ *     sr_fit_camera              the default camera: vertices fitted to an image
  *   shadows
  *     sr_make_shadow_map         a directional light's shadow map fitted to bounds
  *     sr_destroy_shadow_map      frees it
@@ -1562,6 +1565,55 @@ typedef struct sr_ground_desc {
     float drop;                      /* 0 -> none; 0 .. 1 */
 } sr_ground_desc;
 SR_API sr_result sr_make_ground_mesh(sr_context *ctx, const sr_ground_desc *desc, sr_mesh *out);
+
+/* ---- framing ------------------------------------------------------------ */
+/*
+ * The default camera of a model, as `softrast render` and the Python
+ * package place it when given none (docs/pipeline.md, "The default
+ * camera"): looking along
+ * -sr_framing_direction() (a three-quarter view from the front right,
+ * above) with +y up, from where the vertices' projections span the image
+ * less SR_FRAMING_MARGIN of its width or height on each side in the
+ * limiting dimension and are centred in the other.  The target is the
+ * point of the line of sight nearest the centre of the vertices' world
+ * box.  Perspective as sr_perspective(info.fovy, width / height, ...)
+ * projects, or orthographic (half extents set; the eye where the
+ * perspective camera would stand, the view as tight).
+ */
+#define SR_FRAMING_FOV_DEG 35.0f   /* default field of view across the smaller side */
+#define SR_FRAMING_MARGIN  0.05f   /* of the image's width or height, each side */
+
+/* From the model towards the eye: normalize(0.62, 0.48, 1). */
+SR_API sr_vec3 sr_framing_direction(void);
+
+typedef struct sr_framing_points {
+    const float *positions;          /* x, y, z a vertex; required when count > 0 */
+    size_t count;                    /* vertices (NaN coordinates are skipped) */
+    const sr_mat4 *model;            /* places them in the world; NULL -> identity */
+} sr_framing_points;
+
+typedef struct sr_framing_desc {
+    const sr_framing_points *sets;   /* required: the vertices to frame */
+    int set_count;                   /* >= 1 */
+    int width, height;               /* the image, required, 1 .. SR_MAX_FRAMEBUFFER_SIZE */
+    float fov;                       /* radians across the smaller side, in (0, pi);
+                                      * 0 -> SR_FRAMING_FOV_DEG */
+    bool ortho;                      /* fit an orthographic view */
+} sr_framing_desc;
+
+typedef struct sr_framing_info {
+    sr_vec3 eye, target, up;         /* for sr_look_at; up is +y */
+    float fovy;                      /* vertical field of view: sr_fit_fovy(fov, width, height) */
+    float half_width, half_height;   /* ortho: the view's half extents (0 for perspective) */
+    sr_vec3 centre;                  /* the centre of the vertices' world box */
+} sr_framing_info;
+
+/* The camera framing desc's vertices (ctx keeps the message of a failure;
+ * it may be NULL).  SR_INVALID_ARG (out zeroed) for a
+ * field out of range, a NULL array, a non-finite model matrix, or vertices
+ * that give no frame: none, all in one point, none finite, or so far out
+ * that the fit overflows float. */
+SR_API sr_result sr_fit_camera(sr_context *ctx, const sr_framing_desc *desc, sr_framing_info *out);
 
 /* ---- shadows ------------------------------------------------------------ */
 /*

@@ -101,28 +101,28 @@ typedef struct camera {
     sr_camera_basis basis;
 } camera;
 
-/* The default camera: framing_fit of the framed objects in the image
+/* The default camera: sr_fit_camera of the framed objects in the image
  * the options ask for; false when it cannot fit them. */
-static bool fit_default(const render_opts *o, const scene *s, framing_view *v)
+static bool fit_default(const render_opts *o, const scene *s, sr_framing_info *v)
 {
-    framing_points sets[SCENE_MAX_OBJECTS];
+    sr_framing_points sets[SCENE_MAX_OBJECTS];
     int n = 0;
     for (int i = 0; i < s->count; i++) {
         const scene_object *ob = &s->objects[i];
         if (ob->frame) {
-            sets[n++] = (framing_points){ ob->mesh.positions, ob->mesh.vertex_count, &ob->model };
+            sets[n++] = (sr_framing_points){ ob->mesh.positions, ob->mesh.vertex_count,
+                                             &ob->model };
         }
     }
-    sr_vec3 c;
-    float r;
-    scene_bounds(s, true, &c, &r);
-    return framing_fit(sets, n, c, o->fov_deg * PI_F / 180.0f, o->width, o->height, o->ortho, v);
+    return n > 0 && sr_fit_camera(NULL, &(sr_framing_desc){
+                        .sets = sets, .set_count = n, .width = o->width, .height = o->height,
+                        .fov = o->fov_deg * PI_F / 180.0f, .ortho = o->ortho }, v) == SR_OK;
 }
 
 /* fit_default, answered from the scene's cache when it was made for the
  * same image size, field of view and projection: a render checks the
  * camera before drawing, then makes it again to draw. */
-static bool cached_fit(const render_opts *o, scene *s, framing_view *v)
+static bool cached_fit(const render_opts *o, scene *s, sr_framing_info *v)
 {
     if (!(s->fit_cached && s->fit_width == o->width && s->fit_height == o->height &&
           s->fit_fov_deg == o->fov_deg && s->fit_ortho == o->ortho)) {
@@ -140,7 +140,7 @@ static bool cached_fit(const render_opts *o, scene *s, framing_view *v)
 /* The eye, target and up the options ask for: --camera, else `fit` (the
  * default camera, or NULL when there is none), else the framing of the
  * objects' bounding sphere. */
-static void resolve_camera(const render_opts *o, const scene *s, const framing_view *fit,
+static void resolve_camera(const render_opts *o, const scene *s, const sr_framing_info *fit,
                            sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up)
 {
     sr_vec3 c;
@@ -203,7 +203,7 @@ static const char *setup_camera(const render_opts *o, scene *s, camera *cam,
     scene_bounds(s, true, &c, &r);
     float fov = o->fov_deg * PI_F / 180.0f;
 
-    framing_view fit;
+    sr_framing_info fit;
     bool fitted = !o->have_eye && cached_fit(o, s, &fit);
     sr_vec3 eye, target, up;
     resolve_camera(o, s, fitted ? &fit : NULL, &eye, &target, &up);
@@ -240,8 +240,8 @@ static const char *setup_camera(const render_opts *o, scene *s, camera *cam,
     float aspect = (float)o->width / (float)o->height;
     if (o->ortho) {
         float half = r * 1.04f;
-        float hw = fitted ? fit.half_w : aspect >= 1.0f ? half * aspect : half;
-        float hh = fitted ? fit.half_h : aspect >= 1.0f ? half : half / aspect;
+        float hw = fitted ? fit.half_width : aspect >= 1.0f ? half * aspect : half;
+        float hh = fitted ? fit.half_height : aspect >= 1.0f ? half : half / aspect;
         cam->proj = sr_ortho(-hw, hw, -hh, hh, near_z, far_z, false);
     } else {
         cam->proj = sr_perspective(sr_fit_fovy(fov, o->width, o->height), aspect, near_z, far_z, false);
@@ -905,7 +905,7 @@ int render_job_configure(render_job *job, int argc, char **argv)
 
 void render_job_camera(const render_job *job, sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up)
 {
-    framing_view fit;
+    sr_framing_info fit;
     bool fitted = !job->o.have_eye && fit_default(&job->o, &job->s, &fit);
     resolve_camera(&job->o, &job->s, fitted ? &fit : NULL, eye, target, up);
 }

@@ -559,7 +559,7 @@ render_opts render_opts_defaults(void)
         .output = "softrast.png", .width = 1280, .height = 720, .shading = SR_SHADING_PHONG,
         .pbr = true, .tonemap = SR_TONEMAP_PBR_NEUTRAL, .environment = "studio",
         .environment_intensity = 0.6f, .camera_index = -1,
-        .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = FRAMING_FOV_DEG,
+        .cull = SR_CULL_BACK, .front = SR_FRONT_CCW, .fov_deg = SR_FRAMING_FOV_DEG,
         .background = { 0x1d / 255.0f, 0x22 / 255.0f, 0x30 / 255.0f }, .background_alpha = 1.0f,
         .shadows = -1,
         .depth_format = SR_DEPTH_D24, .depth_func = SR_LESS, .interp = SR_INTERP_PERSPECTIVE,

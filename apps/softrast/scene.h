@@ -52,7 +52,7 @@ typedef struct scene {
     bool fit_cached, fit_ok, fit_ortho;
     int fit_width, fit_height;
     float fit_fov_deg;
-    framing_view fit;
+    sr_framing_info fit;
 } scene;
 
 /* The Utah teapot at `detail` standing on a checkered ground plane, its

@@ -13,6 +13,10 @@ OpenGL.  The same inputs give the same bytes for any number of threads.
 >>> out["depth"].shape, out["depth"].dtype
 ((480, 640), dtype('float32'))
 
+Without a camera, ``render(mesh, width=640, height=480)`` frames the mesh as
+``softrast render`` does (:func:`fit_camera`); :func:`orbit` makes a batch
+of cameras circling a scene.
+
 See docs/python.md in the source tree for the conventions.
 """
 
@@ -20,8 +24,10 @@ from ._softrast import Mesh, library_version, read_image, write_png
 from ._camera import Camera, look_at
 from ._material import Material
 from ._scene import Instance, Scene, load, load_mesh
+from ._framing import fit_camera, orbit
 from ._render import OUTPUTS, render
 
 __version__ = library_version
 __all__ = ["Camera", "Mesh", "Instance", "Material", "Scene", "load", "load_mesh", "look_at",
+           "fit_camera", "orbit",
            "read_image", "render", "write_png", "OUTPUTS", "__version__"]

@@ -35,10 +35,10 @@ def _number(value, name):
     return value
 
 
-def _fov_y(fov_y):
-    fov_y = _number(fov_y, "fov_y")
+def _fov_y(fov_y, name="fov_y"):
+    fov_y = _number(fov_y, name)
     if not (0.0 < fov_y < math.pi):
-        raise ValueError(f"fov_y: must be in (0, pi) radians, got {fov_y}")
+        raise ValueError(f"{name}: must be in (0, pi) radians, got {fov_y}")
     return fov_y
 
 

@@ -6,7 +6,8 @@ import numpy as np
 
 from . import _softrast
 from ._camera import Camera
-from ._scene import Instance, Scene
+from ._framing import fit_camera
+from ._scene import as_scene
 from ._softrast import Mesh
 
 #: The outputs render() can return, with their per-view shape suffix and dtype.
@@ -86,17 +87,6 @@ def _cameras(K, R, t, extrinsics):
     n = max(len(Ks), len(Rts))
     return (np.broadcast_to(Ks, (n, 3, 3)), np.broadcast_to(Rts, (n, 3, 4)),
             k_batched or rt_batched)
-
-
-def _scene(scene):
-    if isinstance(scene, Scene):
-        return scene
-    if isinstance(scene, (Mesh, Instance)):
-        return Scene([scene])
-    if isinstance(scene, (list, tuple)):
-        return Scene(scene)
-    raise TypeError(f"scene: expected a Mesh, Instance, Scene or list of them, "
-                    f"got {type(scene).__name__}")
 
 
 def _outputs(outputs):
@@ -263,6 +253,9 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     R, t: (3, 3) and (3,) (or batched) world-to-camera rotation and
         translation, ``x_cam = R @ x_world + t``, camera x right, y down,
         z forward.  Or ``extrinsics``: (3, 4)/(4, 4), or batched, ``[R | t]``.
+    (no camera): without K, R, t, extrinsics and camera, softrast render's
+        default camera for the image: :func:`fit_camera` (its
+        ``projection`` from ``projection``).
     camera: instead of K, R, t: a :class:`Camera` of a loaded file
         (``Scene.cameras``) or of :meth:`Camera.orthographic` or
         :meth:`Camera.perspective`, or a list of them for a batch; its K
@@ -360,7 +353,7 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     while drawing.  Raises TypeError or ValueError naming the argument
     that is wrong.
     """
-    sc = _scene(scene)
+    sc = as_scene(scene)
     width = _int_arg(width, "width", 1, 8192)
     height = _int_arg(height, "height", 1, 8192)
     if camera is not None:
@@ -370,7 +363,16 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
             raise TypeError("projection: goes with K; a camera has its own type")
         Ks, Rts, nears, orthos, batched = _file_cameras(camera, width, height)
     elif K is None:
-        raise TypeError("K: required (or camera)")
+        if not (R is None and t is None and extrinsics is None):
+            raise TypeError("K: required with R, t or extrinsics")
+        # No camera: softrast render's default one.
+        if projection is not None and not isinstance(projection, str):
+            raise TypeError(f"projection: expected 'perspective' or 'orthographic', "
+                            f"got {type(projection).__name__}")
+        Ks, Rts, nears, orthos, batched = _file_cameras(
+            fit_camera(sc, width=width, height=height,
+                       projection="perspective" if projection is None else projection),
+            width, height)
     else:
         if projection is None:
             projection = "perspective"

@@ -115,6 +115,18 @@ class Scene:
         return f"Scene({len(self.instances)} instances)"
 
 
+def as_scene(scene):
+    """A Scene from what render takes: a Mesh, an Instance, a Scene or a list."""
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, (Mesh, Instance)):
+        return Scene([scene])
+    if isinstance(scene, (list, tuple)):
+        return Scene(scene)
+    raise TypeError(f"scene: expected a Mesh, Instance, Scene or list of them, "
+                    f"got {type(scene).__name__}")
+
+
 class _SceneFile:
     """The library's scene of a loaded glTF file (its materials with their
     textures, the primitives' arrays), for shading="pbr".  Pickled as its

@@ -55,6 +55,12 @@ PyDoc_STRVAR(write_png_doc,
 "at the top, atomically: a temporary file renamed over `path`, so a write\n"
 "that fails or is killed leaves no partial file.");
 
+PyDoc_STRVAR(fit_camera_doc,
+"fit_camera(sets, width, height, fov, ortho)\n--\n\n"
+"sr_fit_camera: softrast render's default camera framing the (vertices\n"
+"(N, 3) float32, model (16,) float32 column-major) pairs: ((eye), (target),\n"
+"(up), fovy, half_width, half_height).  Use softrast.fit_camera.");
+
 static PyMethodDef methods[] = {
     { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
@@ -63,6 +69,7 @@ static PyMethodDef methods[] = {
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
     { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },
     { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
+    { "fit_camera", sr_py_fit_camera, METH_VARARGS, fit_camera_doc },
     { NULL, NULL, 0, NULL },
 };
 
@@ -76,6 +83,30 @@ static struct PyModuleDef module = {
 
 PyMODINIT_FUNC PyInit__softrast(void);
 
+/* The default camera's direction, margin and field of view
+ * (sr_framing_direction, SR_FRAMING_MARGIN, SR_FRAMING_FOV_DEG), for
+ * softrast.orbit's defaults. */
+static int add_framing_constants(PyObject *m)
+{
+    sr_vec3 d = sr_framing_direction();
+    PyObject *dir = Py_BuildValue("(ddd)", (double)d.x, (double)d.y, (double)d.z);
+    if (!dir || PyModule_AddObject(m, "framing_direction", dir) < 0) {
+        Py_XDECREF(dir);
+        return -1;
+    }
+    PyObject *margin = PyFloat_FromDouble(SR_FRAMING_MARGIN);
+    if (!margin || PyModule_AddObject(m, "framing_margin", margin) < 0) {
+        Py_XDECREF(margin);
+        return -1;
+    }
+    PyObject *fov = PyFloat_FromDouble(SR_FRAMING_FOV_DEG);
+    if (!fov || PyModule_AddObject(m, "framing_fov_deg", fov) < 0) {
+        Py_XDECREF(fov);
+        return -1;
+    }
+    return 0;
+}
+
 PyMODINIT_FUNC PyInit__softrast(void)
 {
     import_array();
@@ -88,7 +119,8 @@ PyMODINIT_FUNC PyInit__softrast(void)
     }
     Py_INCREF(&sr_py_MeshType);
     if (PyModule_AddObject(m, "Mesh", (PyObject *)&sr_py_MeshType) < 0 ||
-        PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0) {
+        PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
+        add_framing_constants(m) < 0) {
         Py_DECREF(&sr_py_MeshType);
         Py_DECREF(m);
         return NULL;

@@ -112,6 +112,9 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
 PyObject *sr_py_read_image(PyObject *self, PyObject *args);
 PyObject *sr_py_decode_image(PyObject *self, PyObject *args);
 PyObject *sr_py_write_png(PyObject *self, PyObject *args);
+
+/* sr_fit_camera of (vertices, model) pairs (framing.c). */
+PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);
 /* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
  * ValueError) with its one-line message; returns NULL. */
 PyObject *sr_py_io_error(sr_result r, const sr_io_error *err);

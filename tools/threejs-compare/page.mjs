@@ -6,8 +6,8 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { RGBELoader } from 'three/addons/loaders/RGBELoader.js';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
 
-// The view direction of softrast's default camera (apps/softrast/framing.c,
-// framing_default_direction) and its margin on the limiting side.
+// The view direction of softrast's default camera (src/geometry/framing.c,
+// sr_framing_direction) and its margin on the limiting side.
 const VIEW_DIR = new THREE.Vector3(0.62, 0.48, 1.0).normalize();
 const MARGIN = 0.05;
 
@@ -24,7 +24,7 @@ function basis(dir) {
     return { u, v, w };
 }
 
-// framing_fit (perspective) on world-space points: the eye that frames the
+// sr_fit_camera (perspective) on world-space points: the eye that frames the
 // points to MARGIN on the limiting side, centred on the other.
 function frame(points, fovRad, width, height) {
     const tanY = Math.tan(fitFovy(fovRad, width, height) / 2);
