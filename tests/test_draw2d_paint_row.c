@@ -70,3 +70,62 @@ SR_TEST(paint_row_equals_paint_pixel_on_every_pixel)
     CHECK(!wide || wide_rows == 4000);
     CHECK(blended > 100000); /* the rows were really painted */
 }
+
+/* One memo kept over many rows of one paint (as a fill keeps it): pixels
+ * and coverages drawn from small palettes, so pairs come back row after
+ * row, from the memo, and collide in its slots. */
+SR_TEST(paint_row_memo_over_many_rows_equals_paint_pixel)
+{
+    enum { N = 61, ROWS = 40, PALETTE = 200 };
+    sr_rng rng = { 0x3e3001u };
+    long differ = 0, hits = 0;
+    bool wide = cpu_runs_wide();
+    for (int iter = 0; iter < 300; iter++) {
+        sr_rgba color = { (float)sr_rng_unit(&rng), (float)sr_rng_unit(&rng),
+                          (float)sr_rng_unit(&rng),
+                          iter % 4 == 0 ? 1.0f : (float)sr_rng_range(&rng, 0.0, 1.0) };
+        sr__paint p;
+        REQUIRE(sr__paint_init(&p, color, iter % 7 == 0));
+        p.wide = wide && iter % 2 == 0;
+        uint32_t palette[PALETTE];
+        for (int k = 0; k < PALETTE; k++) {
+            palette[k] = (uint32_t)sr_rng_next(&rng);
+            if (k % 3 == 0) {
+                palette[k] |= sr__pack_rgba8((uint8_t[4]){ 0, 0, 0, 255 });
+            } else if (k % 3 == 1) { /* empty, with a color */
+                palette[k] &= sr__pack_rgba8((uint8_t[4]){ 255, 255, 255, 0 });
+            }
+        }
+        palette[1] = 0;
+        sr__blend_memo memo;
+        sr__blend_memo_init(&memo);
+        int used = 2 + (int)sr_rng_int(&rng, 0, PALETTE - 2);
+        for (int y = 0; y < ROWS; y++) {
+            uint32_t row[N], want[N];
+            uint8_t cov[N];
+            int k = 0;
+            unsigned c = 255;
+            for (int i = 0; i < N; i++) {
+                if (sr_rng_int(&rng, 0, 4) == 0) {
+                    k = sr_rng_int(&rng, 0, used - 1);
+                }
+                if (sr_rng_int(&rng, 0, 5) == 0) {
+                    c = sr_rng_int(&rng, 0, 2) == 0 ? 255u : (unsigned)sr_rng_int(&rng, 0, 8) * 31;
+                }
+                row[i] = want[i] = palette[k];
+                cov[i] = (uint8_t)c;
+            }
+            bool with_cov = y % 3 != 0;
+            for (int i = 0; i < N; i++) {
+                sr__paint_pixel(&p, &want[i], with_cov ? cov[i] : 255);
+            }
+            sr__paint_row_memo(&p, &memo, row, with_cov ? cov : NULL, N);
+            differ += memcmp(row, want, sizeof row) != 0;
+        }
+        for (int s = 0; s < SR__BLEND_MEMO; s++) {
+            hits += memo.cov[s] != 256;
+        }
+    }
+    CHECK_EQ(differ, 0);
+    CHECK(hits > 300 * SR__BLEND_MEMO / 2); /* the memo was really filled */
+}

@@ -153,6 +153,24 @@ SR_TEST(an_empty_pattern_tile_paints_the_fallback_color)
     sr_destroy_framebuffer(ctx, fb);
 }
 
+/* The document `doc` rendered as it is (*a) and with every reference
+ * that starts with `ref` made to name server 1 of its letter (the digit
+ * of "url(#p2)" made 1: *b). */
+static void render_uses(sr_context *ctx, const char *doc, const char *ref, sr_framebuffer **a,
+                        sr_framebuffer **b)
+{
+    size_t n = strlen(doc);
+    char *same = malloc(n + 1);
+    REQUIRE(same);
+    memcpy(same, doc, n + 1);
+    for (char *s = same; (s = strstr(s, ref)) != NULL; s += 6) {
+        s[6] = '1';
+    }
+    *a = render(ctx, doc, SR_OK, NULL, 0);
+    *b = render(ctx, same, SR_OK, NULL, 0);
+    free(same);
+}
+
 /* A pattern's uses: one after another with the same map (its tile kept),
  * under another map, with other patterns between (one of the same size)
  * and inside. */
@@ -179,19 +197,51 @@ SR_TEST(a_kept_pattern_tile_paints_as_a_new_one)
     sr_context *ctx = sr_test_ctx();
     /* each use its own pattern (a tile drawn for each), then all of them
      * the same one (its tile kept where the map allows) */
-    char same[sizeof pattern_uses];
-    memcpy(same, pattern_uses, sizeof same);
-    for (char *s = same; (s = strstr(s, "url(#p")) != NULL; s += 6) {
-        s[6] = '1';
-    }
-    sr_framebuffer *a = render(ctx, pattern_uses, SR_OK, NULL, 0);
-    sr_framebuffer *b = render(ctx, same, SR_OK, NULL, 0);
+    sr_framebuffer *a, *b;
+    render_uses(ctx, pattern_uses, "url(#p", &a, &b);
     REQUIRE(a && b);
     CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), 60 * 20 * 4) == 0);
     /* the scaled use has 4 px red squares: the tile drawn again at twice the size */
     CHECK(pixel(b, 21, 2)[0] == 255 && pixel(b, 24, 2)[2] == 255 && pixel(b, 21, 9)[0] == 255);
     /* a tile of the same size and map from another pattern */
     CHECK(pixel(b, 45, 10)[1] == 255 && pixel(b, 45, 10)[0] == 0);
+    sr_destroy_framebuffer(ctx, a);
+    sr_destroy_framebuffer(ctx, b);
+}
+
+/* A gradient's uses: one after another (its stops and color table kept),
+ * with another gradient between, on boxes of other sizes and places. */
+static const char gradient_uses[] =
+    "<svg xmlns='http://www.w3.org/2000/svg' width='80' height='40'>"
+    "<linearGradient id='l' x2='0.7' spreadMethod='reflect'><stop offset='0.1' stop-color='#e22'/>"
+    "<stop offset='0.5' stop-color='#2c4' stop-opacity='0.6'/><stop offset='1' stop-color='#35f'/>"
+    "</linearGradient>"
+    "<radialGradient id='r' fx='0.3'><stop stop-color='#fc0'/><stop offset='1' stop-color='#306'/>"
+    "</radialGradient>"
+    "<linearGradient id='l1' href='#l'/><linearGradient id='l2' href='#l'/>"
+    "<linearGradient id='l3' href='#l'/><linearGradient id='l4' href='#l'/>"
+    "<radialGradient id='r1' href='#r'/><radialGradient id='r2' href='#r'/>"
+    "<rect width='80' height='40' fill='url(#l1)'/>"
+    "<rect x='3.3' y='2.5' width='7' height='30' fill='url(#l2)'/>"
+    "<rect x='20.5' y='5' width='31' height='9.7' fill='url(#l3)'/>"
+    "<rect x='10' y='10' width='40' height='25' fill='url(#r1)' fill-opacity='0.7'/>"
+    "<rect x='52' y='1.2' width='6.5' height='6.5' fill='url(#r2)'/>"
+    "<rect x='60' y='20' width='19' height='19' fill='url(#l4)'/></svg>";
+
+SR_TEST(a_kept_gradient_paints_as_a_new_one)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = sr_test_ctx();
+    /* each use its own gradient element (stops read for each), then each
+     * kind the same one (its stops and table kept between uses) */
+    sr_framebuffer *a, *b;
+    render_uses(ctx, gradient_uses, "url(#", &a, &b);
+    REQUIRE(a && b);
+    CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), 80 * 40 * 4) == 0);
+    /* the gradients painted: the radial one's centre is yellow-ish */
+    CHECK(pixel(b, 55, 4)[0] > 150 && pixel(b, 55, 4)[2] < 100);
     sr_destroy_framebuffer(ctx, a);
     sr_destroy_framebuffer(ctx, b);
 }

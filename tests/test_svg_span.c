@@ -243,8 +243,9 @@ SR_TEST(an_image_drawn_texel_for_pixel_gives_its_texels)
         double inv[6] = { 1, 0, 0, 1, ox, oy };
         memcpy(im.inv, inv, sizeof inv);
         int x0 = (int)(unit() * 80) - 40, y = (int)(unit() * 80) - 40;
-        svg_image_span(&im, x0, y, 100, row);
-        for (int i = 0; i < 100; i++) {
+        int len = n % 4 < 2 ? 100 : 1 + (int)(unit() * 30); /* shorter than a tile's row too */
+        svg_image_span(&im, x0, y, len, row);
+        for (int i = 0; i < len; i++) {
             const uint8_t *t = rgba + (wrap(y + oy, 9, im.repeat) * 13 +
                                        wrap(x0 + i + ox, 13, im.repeat)) * 4;
             uint8_t want[4] = { 0, 0, 0, 0 };
@@ -304,6 +305,34 @@ SR_TEST(an_image_under_any_other_map_is_filtered_bilinearly)
 }
 
 /* ---- fills ------------------------------------------------------------------------- */
+
+/* The straight-alpha blend written out in full (the divisions by the
+ * result's alpha and all): what svg_blend gives over an empty pixel. */
+SR_TEST(svg_blend_over_an_empty_pixel_is_the_full_blend)
+{
+    long differ = 0;
+    for (int n = 0; n < 20000; n++) {
+        sr_rgba c = { (float)unit(), (float)unit(), (float)unit(), (float)unit() };
+        float cov = n % 4 == 0 ? 1.0f : (float)unit();
+        uint8_t d[4] = { (uint8_t)(unit() * 256), (uint8_t)(unit() * 256),
+                         (uint8_t)(unit() * 256), 0 };
+        uint8_t want[4], s[3] = { svg_unorm8(c.r), svg_unorm8(c.g), svg_unorm8(c.b) };
+        memcpy(want, d, 4);
+        float a = c.a * cov;
+        if (a > 0.0f) {
+            float da = 0.0f, keep = 1.0f - a, oa = a + da * keep;
+            keep = oa > 0.0f ? da * keep / oa : 0.0f;
+            float w = oa > 0.0f ? a / oa : 0.0f;
+            for (int i = 0; i < 3; i++) {
+                want[i] = svg_unorm8((s[i] * w + d[i] * keep) * (1.0f / 255.0f));
+            }
+            want[3] = svg_unorm8(oa);
+        }
+        svg_blend(d, c, cov);
+        differ += memcmp(d, want, 4) != 0;
+    }
+    CHECK_EQ(differ, 0);
+}
 
 SR_TEST(a_painted_fill_blends_each_pixel_as_svg_blend_does)
 {

@@ -2,7 +2,8 @@
  * blend of sr__paint_pixel (without linear light) on BL_LANES pixels at
  * once, in GCC/Clang vector extensions.  Included once per width with
  * BL_LANES, the types BL_F (float lanes), BL_I (their masks), BL_U
- * (packed pixels), BL_B (coverage bytes), BL_FN(name), BL_INLINE
+ * (packed pixels), BL_WIDEN(ptr) (BL_LANES coverage bytes loaded as
+ * BL_U), BL_FN(name), BL_INLINE
  * (which carries the target attribute of the width), BL_ALL(mask) and
  * BL_ANY(mask) (true when every lane, any lane, of a BL_I mask is set)
  * defined; it undefines them at its end.  The same
@@ -63,26 +64,24 @@ BL_INLINE BL_U BL_FN(blend)(const sr__paint *p, BL_U d, BL_U c)
 /* The whole blocks of dst[0..n), BL_LANES pixels each; returns how many
  * pixels were blended.  A block of one pixel and one coverage takes the
  * last result when they are the last pair (*in, *last_cov -> *out) and
- * one scalar blend otherwise; any other block takes the lanes' blend. */
-BL_INLINE int BL_FN(blend_row)(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n,
-                               uint32_t *in, unsigned *last_cov, uint32_t *out)
+ * the memo's otherwise; any other block takes the lanes' blend. */
+BL_INLINE int BL_FN(blend_row)(const sr__paint *p, sr__blend_memo *m, uint32_t *dst,
+                               const uint8_t *cov, int n, uint32_t *in, unsigned *last_cov,
+                               uint32_t *out)
 {
     int i = 0;
     for (; i + BL_LANES <= n; i += BL_LANES) {
         BL_U d, c = (BL_U){ 0 } + 255;
         memcpy(&d, dst + i, sizeof d);
         if (cov) {
-            BL_B b;
-            memcpy(&b, cov + i, sizeof b);
-            c = __builtin_convertvector(b, BL_U);
+            c = BL_WIDEN(cov + i);
         }
         BL_I same = (BL_I)(d == (BL_U){ 0 } + d[0]) & (BL_I)(c == (BL_U){ 0 } + c[0]);
         if (BL_ALL(same)) {
             if (d[0] != *in || c[0] != *last_cov) {
                 *in = d[0];
                 *last_cov = c[0];
-                *out = *in;
-                sr__paint_pixel(p, out, *last_cov);
+                *out = memo_blend(p, m, *in, *last_cov);
             }
             d = (BL_U){ 0 } + *out;
         } else {
@@ -97,7 +96,7 @@ BL_INLINE int BL_FN(blend_row)(const sr__paint *p, uint32_t *dst, const uint8_t 
 #undef BL_F
 #undef BL_I
 #undef BL_U
-#undef BL_B
+#undef BL_WIDEN
 #undef BL_FN
 #undef BL_INLINE
 #undef BL_ALL

@@ -92,6 +92,14 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
     }
     uint8_t d[4];
     memcpy(d, dst, sizeof d);
+    if (d[3] == 0 && !p->linear_light) {
+        /* Over an empty pixel the blend below has oa = a, so a / oa = 1
+         * and keep 0 exactly: the color at alpha a, undivided. */
+        memcpy(d, p->rgba, 3);
+        d[3] = sr__unorm8(a);
+        memcpy(dst, d, sizeof d);
+        return;
+    }
     /* Straight alpha: the destination's color counts by its own alpha, and
      * the sum is divided by the result's alpha.  Over an opaque pixel both
      * are 1 and the plain mix below is the same operator. */
@@ -115,6 +123,28 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov)
     memcpy(dst, d, sizeof d);
 }
 
+void sr__blend_memo_init(sr__blend_memo *m)
+{
+    for (int i = 0; i < SR__BLEND_MEMO; i++) {
+        m->cov[i] = 256;
+    }
+}
+
+/* sr__paint_pixel's result for the pixel d at coverage c, from the memo
+ * when the pair is there (its slot keeps the last pair that hashed to it). */
+static inline uint32_t memo_blend(const sr__paint *p, sr__blend_memo *m, uint32_t d, unsigned c)
+{
+    unsigned h = (d * 0x9e3779b1u ^ c * 0x85ebca6bu) >> (32 - SR__BLEND_MEMO_BITS);
+    if (m->in[h] != d || m->cov[h] != c) {
+        uint32_t v = d;
+        sr__paint_pixel(p, &v, c);
+        m->in[h] = d;
+        m->cov[h] = (uint16_t)c;
+        m->out[h] = v;
+    }
+    return m->out[h];
+}
+
 typedef uint32_t v4u __attribute__((vector_size(16)));
 typedef uint8_t v4b __attribute__((vector_size(4)));
 
@@ -132,7 +162,23 @@ static inline unsigned lane_bits4(v4i m)
 #define BL_F v4f
 #define BL_I v4i
 #define BL_U v4u
-#define BL_B v4b
+#if defined(__SSE2__)
+/* __builtin_convertvector on bytes compiles to a byte at a time here. */
+static inline v4u widen4(const uint8_t *cov)
+{
+    int32_t w;
+    memcpy(&w, cov, sizeof w);
+    __m128i z = _mm_setzero_si128();
+    return (v4u)_mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(w), z), z);
+}
+#define BL_WIDEN(ptr) widen4(ptr)
+#else
+#define BL_WIDEN(ptr) __extension__({ \
+    v4b b_; \
+    memcpy(&b_, (ptr), sizeof b_); \
+    __builtin_convertvector(b_, v4u); \
+})
+#endif
 #define BL_FN(name) name##4
 #define BL_INLINE static inline
 #define BL_ALL(m) (lane_bits4(m) == 15)
@@ -141,27 +187,28 @@ static inline unsigned lane_bits4(v4i m)
 
 #if defined(__x86_64__) && defined(__GNUC__)
 typedef uint32_t v16u __attribute__((vector_size(64)));
-typedef uint8_t v16b __attribute__((vector_size(16)));
 #define BL_LANES 16
 #define BL_F v16f
 #define BL_I v16i
 #define BL_U v16u
-#define BL_B v16b
+#define BL_WIDEN(ptr) \
+    ((v16u)_mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i *)(const void *)(ptr))))
 #define BL_FN(name) name##16
 #define BL_INLINE static inline __attribute__((always_inline)) SR_TARGET_AVX512
 #define BL_ALL(m) (_mm512_movepi32_mask((__m512i)(m)) == 0xffff)
 #define BL_ANY(m) (_mm512_movepi32_mask((__m512i)(m)) != 0)
 #include "draw2d/blend_lanes.h"
 
-SR_TARGET_AVX512 static int blend_row_avx512(const sr__paint *p, uint32_t *dst,
-                                             const uint8_t *cov, int n, uint32_t *in,
-                                             unsigned *last_cov, uint32_t *out)
+SR_TARGET_AVX512 static int blend_row_avx512(const sr__paint *p, sr__blend_memo *m,
+                                             uint32_t *dst, const uint8_t *cov, int n,
+                                             uint32_t *in, unsigned *last_cov, uint32_t *out)
 {
-    return blend_row16(p, dst, cov, n, in, last_cov, out);
+    return blend_row16(p, m, dst, cov, n, in, last_cov, out);
 }
 #endif
 
-void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
+void sr__paint_row_memo(const sr__paint *p, sr__blend_memo *m, uint32_t *dst, const uint8_t *cov,
+                        int n)
 {
     if (!cov && p->alpha >= 1.0f) {
         for (int i = 0; i < n; i++) {
@@ -171,35 +218,41 @@ void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
     }
     /* A blend is a pure function of the pixel and the coverage, and runs
      * of equal pairs are common (a shape's inside over an empty or flat
-     * background), so the last result is reused: the same bytes, one
-     * blend per run.  A translucent color without linear light takes
-     * whole blocks of 16 pixels (at the AVX-512 level), then of 4, through
-     * the lanes' blend (blend_lanes.h) first.  An opaque color blends only
-     * where the coverage is partial (an edge): there the scalar blend is
-     * as fast, and wide float lanes would slow the clock for the code
-     * around them. */
+     * background), so the last result is reused, and a new pair's result
+     * comes from the memo when the fill met it before (in an earlier row):
+     * the same bytes, one blend per pair.  A translucent color without
+     * linear light takes whole blocks of 16 pixels (at the AVX-512 level),
+     * then of 4, through the lanes' blend (blend_lanes.h) first.  An
+     * opaque color blends only where the coverage is partial (an edge):
+     * there the scalar blend is as fast, and wide float lanes would slow
+     * the clock for the code around them. */
     uint32_t in = 0, out = 0;
     unsigned last_cov = 256;
     int i = 0;
     if (!p->linear_light && p->alpha < 1.0f) {
 #if defined(__x86_64__) && defined(__GNUC__)
         if (p->wide) {
-            i = blend_row_avx512(p, dst, cov, n, &in, &last_cov, &out);
+            i = blend_row_avx512(p, m, dst, cov, n, &in, &last_cov, &out);
         }
 #endif
-        i += blend_row4(p, dst + i, cov ? cov + i : NULL, n - i, &in, &last_cov, &out);
+        i += blend_row4(p, m, dst + i, cov ? cov + i : NULL, n - i, &in, &last_cov, &out);
     }
     for (; i < n; i++) {
         unsigned c = cov ? cov[i] : 255;
         if (c != last_cov || dst[i] != in) {
             in = dst[i];
             last_cov = c;
-            sr__paint_pixel(p, &dst[i], c);
-            out = dst[i];
-        } else {
-            dst[i] = out;
+            out = memo_blend(p, m, in, c);
         }
+        dst[i] = out;
     }
+}
+
+void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n)
+{
+    sr__blend_memo m;
+    sr__blend_memo_init(&m);
+    sr__paint_row_memo(p, &m, dst, cov, n);
 }
 
 void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x1)

@@ -23,11 +23,28 @@ typedef struct sr__paint {
 /* False when a component is not finite (the caller reports which call). */
 bool sr__paint_init(sr__paint *p, sr_rgba color, bool linear_light);
 
+/* Recent blends of one paint: a blend is a pure function of the pixel
+ * and the coverage, and a fill meets the same few pairs row after row (its
+ * inside over an empty or flat background).  Direct-mapped by a hash of
+ * the pair; for one paint only. */
+#define SR__BLEND_MEMO_BITS 6
+#define SR__BLEND_MEMO (1 << SR__BLEND_MEMO_BITS)
+typedef struct sr__blend_memo {
+    uint32_t in[SR__BLEND_MEMO], out[SR__BLEND_MEMO];
+    uint16_t cov[SR__BLEND_MEMO]; /* 256: an empty slot */
+} sr__blend_memo;
+
+void sr__blend_memo_init(sr__blend_memo *m);
+
 /* Blend `p` over the pixel with coverage cov (0..255). */
 void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov);
 /* Blend `p` over dst[0..n) with coverage cov[i], or full coverage when
  * cov is NULL: the bytes of sr__paint_pixel on each, faster. */
 void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n);
+/* sr__paint_row with the results kept in m (initialized for p) from one
+ * call to the next: the same bytes. */
+void sr__paint_row_memo(const sr__paint *p, sr__blend_memo *m, uint32_t *dst, const uint8_t *cov,
+                        int n);
 /* Blend pixels x0..x1-1 of row y with full coverage (the span is
  * already clipped to the framebuffer). */
 void sr__paint_span(const sr__paint *p, sr_framebuffer *fb, int y, int x0, int x1);

@@ -912,6 +912,7 @@ sr_result sr__rasterize_polygon(sr_context *ctx, const char *fn, const sr_polygo
 
 typedef struct paint_target {
     sr__paint paint;
+    sr__blend_memo memo;
     sr_framebuffer *fb;
 } paint_target;
 
@@ -919,7 +920,7 @@ static void paint_span(void *user, const sr__span *sp)
 {
     paint_target *t = user;
     uint32_t *row = t->fb->color + (size_t)sp->y * (size_t)t->fb->width;
-    sr__paint_row(&t->paint, row + sp->x0, sp->cov, sp->x1 - sp->x0);
+    sr__paint_row_memo(&t->paint, &t->memo, row + sp->x0, sp->cov, sp->x1 - sp->x0);
 }
 
 sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
@@ -942,6 +943,7 @@ sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
         return sr__fail(ctx, SR_INVALID_ARG, "%s: color is not finite", fn);
     }
     t.paint.wide = fb->wide_stores;
+    sr__blend_memo_init(&t.memo);
     sr_result r2d = sr__fb_begin_2d(ctx, fn, fb);
     if (r2d != SR_OK) {
         return r2d;
@@ -963,9 +965,15 @@ typedef struct mask_target {
 static void mask_span(void *user, const sr__span *sp)
 {
     mask_target *m = user;
-    uint8_t *row = m->mask + (size_t)(sp->y - m->y0) * m->stride - m->x0;
-    for (int x = sp->x0; x < sp->x1; x++) {
-        row[x] = sp->cov ? sp->cov[x - sp->x0] : 255;
+    if (sp->x1 <= sp->x0) {
+        return;
+    }
+    uint8_t *row = m->mask + (size_t)(sp->y - m->y0) * m->stride + (sp->x0 - m->x0);
+    size_t n = (size_t)(sp->x1 - sp->x0);
+    if (sp->cov) {
+        memcpy(row, sp->cov, n);
+    } else {
+        memset(row, 255, n);
     }
 }
 

@@ -188,6 +188,11 @@ typedef struct svg_doc {
     const svg_node *tile_pattern;
     mat2d tile_m;
     double tile_vp[2];
+    /* The last gradient resolved for a shape (malloc'd) and its element:
+     * the next shape painted with the same element keeps its stops and
+     * the cells of its color table filled so far. */
+    svg_gradient *grad;
+    const svg_node *grad_server;
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
@@ -1554,8 +1559,16 @@ static bool bounding_box(sr_polygon2 shape, double b[4])
 static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *f,
                              sr_polygon2 shape, svg_gradient *g)
 {
-    memset(g, 0, offsetof(svg_gradient, offset));
-    gradient_stops(doc, server, g);
+    /* The stops depend on the element and its ancestors alone, and the
+     * color table on the stops: doc->grad keeps them for the next shape
+     * (style sheets count their matching work per cascade: not then). */
+    if (g == doc->grad && server == doc->grad_server && doc->sheet.n_rules == 0) {
+        memset(g, 0, offsetof(svg_gradient, n_stops));
+    } else {
+        memset(g, 0, offsetof(svg_gradient, offset));
+        gradient_stops(doc, server, g);
+        doc->grad_server = g == doc->grad && doc->status == SR_OK ? server : NULL;
+    }
     if (g->n_stops == 0) {
         return false;
     }
@@ -1648,10 +1661,13 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
             return;
         }
     } else if (p->kind == SVG_PAINT_URL) {
-        svg_gradient g;
-        if (resolve_gradient(doc, p->server, f, geometry, &g)) {
+        if (!doc->grad && !(doc->grad = malloc(sizeof *doc->grad))) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+            return;
+        }
+        if (resolve_gradient(doc, p->server, f, geometry, doc->grad)) {
             fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_span,
-                        &g, rule, f->st.crisp);
+                        doc->grad, rule, f->st.crisp);
             return;
         }
         if (!p->has_fallback || doc->status != SR_OK) {
@@ -3870,6 +3886,7 @@ static void free_document(svg_doc *doc)
     sr_destroy_path(doc->ctx, doc->spare_path);
     svg_css_free(&doc->sheet);
     sr_destroy_framebuffer(doc->ctx, doc->tile);
+    free(doc->grad);
 }
 
 /* The initial style (SVG's defaults): fill black, no stroke, width 1. */

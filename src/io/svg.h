@@ -117,7 +117,7 @@ typedef struct svg_gradient {
     double inv[6];               /* pixel -> gradient space (a b c d e f) */
     int n_stops;                 /* >= 1 */
     /* Cell k of the table: 0 until a pixel asks for it (resolve_gradient
-     * zeroes this with the fields above), then 1 when lut[k] is within
+     * zeroes this with the stops it reads), then 1 when lut[k] is within
      * half a code of every color of the cell, 2 when no one color is (a
      * stop inside, or a fast change): those pixels are evaluated alone.
      * Cell SVG_GRADIENT_LUT is t >= 1. */

@@ -11,6 +11,13 @@
 /* Source-over of the RGBA8 color s at opacity a (0 < a <= 1) onto d. */
 static void blend_rgba8(uint8_t *d, const uint8_t *s, float a)
 {
+    if (d[3] == 0) {
+        /* Over an empty pixel the blend below has oa = a, so a / oa = 1
+         * and keep 0 exactly: the source's color at alpha a, undivided. */
+        memcpy(d, s, 3);
+        d[3] = svg_unorm8(a);
+        return;
+    }
     /* Straight alpha: the destination's color counts by its alpha. */
     float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
     if (d[3] < 255) {

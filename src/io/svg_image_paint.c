@@ -33,6 +33,20 @@ static void texel(const svg_image *im, long i, long j, float out[4])
     out[3] = a;
 }
 
+/* out[0..n) = the texels t[0..n), a transparent texel as 0 (a sample
+ * with alpha 0 is 0 whatever its color). */
+static void copy_texels(uint32_t *out, const uint8_t *t, int n)
+{
+    static const uint8_t alpha_byte[4] = { 0, 0, 0, 255 };
+    uint32_t alpha;
+    memcpy(&alpha, alpha_byte, sizeof alpha);
+    for (int k = 0; k < n; k++) {
+        uint32_t v;
+        memcpy(&v, t + (size_t)k * 4, sizeof v);
+        out[k] = v & alpha ? v : 0;
+    }
+}
+
 /* The image at texel coordinates (u, v) of a texel's corner, bilinear
  * and premultiplied (a transparent texel adds no color), straight RGBA8. */
 static uint32_t sample(const svg_image *im, double u, double v)
@@ -77,16 +91,30 @@ bool svg_image_span(void *image, int x, int y, int n, uint32_t *out)
         if (im->repeat) {
             i %= w;
             i += i < 0 ? w : 0;
-        }
-        for (int k = 0; k < n; k++) {
-            long c = im->repeat ? i : i < 0 ? 0 : i >= w ? w - 1 : i;
-            const uint8_t *t = row + (size_t)c * 4;
-            if (t[3] == 0) {
-                out[k] = 0;
-            } else {
-                memcpy(&out[k], t, sizeof out[k]);
+            /* One period of the row (the tile's row from i to its end,
+             * then from its start), then the pixels already made, doubled
+             * until the span is full: the row repeats every w pixels. */
+            int have = w - i < n ? (int)(w - i) : n;
+            copy_texels(out, row + (size_t)i * 4, have);
+            int rest = (int)i < n - have ? (int)i : n - have;
+            copy_texels(out + have, row, rest);
+            for (have += rest; have < n; have *= 2) {
+                memcpy(out + have, out, (size_t)(have < n - have ? have : n - have) * 4);
             }
-            i = im->repeat && i + 1 == w ? 0 : i + 1;
+            return false;
+        }
+        /* Left of the image its first texel, right of it its last. */
+        int k = 0;
+        for (; k < n && i < 0; k++, i++) {
+            copy_texels(out + k, row, 1);
+        }
+        if (k < n && i < w) {
+            int run = w - i < n - k ? (int)(w - i) : n - k;
+            copy_texels(out + k, row + (size_t)i * 4, run);
+            k += run;
+        }
+        for (; k < n; k++) {
+            copy_texels(out + k, row + (size_t)(w - 1) * 4, 1);
         }
         return false;
     }
