@@ -4,9 +4,10 @@
 # The built softrast(1) against the tool it documents: groff (and mandoc,
 # where installed) format it without a warning; each command of
 # `TOOL --help` has a section holding its usage line and every option and
-# name its `TOOL COMMAND --help` lists; the ENVIRONMENT section names
-# every variable the library and the tool read (getenv in SRC's src/ and
-# apps/).  Exits 77 (skipped) without groff.
+# name its `TOOL COMMAND --help` lists, and the EXAMPLES use no other
+# option; the ENVIRONMENT section names every variable the library and the
+# tool read (getenv in SRC's src/ and apps/).  Exits 77 (skipped) without
+# groff.
 set -eu
 if [ $# -lt 3 ]; then
     echo "usage: tests/man_page.sh MANPAGE SRC TOOL..." >&2
@@ -86,6 +87,13 @@ for cmd in $commands; do
     usage=$(sed -n '1s/^usage: //p' "$work/help.txt" | tr -s ' ')
     tr -s ' ' <"$work/page.txt" | grep -qF -- " $usage" || fail "softrast $cmd: usage '$usage' is not in the page"
     echo "softrast $cmd: $count options and names found"
+    # The EXAMPLES use only options the command has.
+    awk '/^EXAMPLES$/ { on = 1; next } on && /^[A-Z]/ { exit } on { print }' "$work/page.txt" |
+        sed -n "s/^ *softrast $cmd //p" | tr ' ' '\n' | grep -E '^--?[A-Za-z]' >"$work/used.txt" || true
+    options <"$work/help.txt" >"$work/options.txt"
+    while read -r word; do
+        grep -qxF -- "$word" "$work/options.txt" || fail "EXAMPLES: softrast $cmd has no option $word"
+    done <"$work/used.txt"
 done
 
 # Every variable read is documented.
