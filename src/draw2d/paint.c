@@ -132,7 +132,8 @@ void sr__blend_memo_init(sr__blend_memo *m)
      * elsewhere looking three bytes up per pixel is no faster than the
      * lanes' blend. */
 #if defined(__x86_64__) && defined(__GNUC__)
-    m->table_wait = __builtin_cpu_supports("avx512vbmi") ? SR__BLEND_TABLE_AFTER : SR__BLEND_TABLE_NEVER;
+    m->table_wait = __builtin_cpu_supports("avx512vbmi") ? SR__BLEND_TABLE_AFTER
+                                                       : SR__BLEND_TABLE_NEVER;
 #else
     m->table_wait = SR__BLEND_TABLE_NEVER;
 #endif
