@@ -227,6 +227,8 @@
  *     sr_path_polygon            the flattened path as a polygon
  *     sr_path_subpath_closed     whether a subpath was closed
  *     sr_fill_path               fills it
+ *     sr_fill_path_paint         fills it with a gradient or a pattern
+ *     sr_fill_polygon_paint      a polygon so filled
  *     sr_stroke_path             strokes it
  *     sr_make_stroke_outline     the stroke's outline polygon
  *     sr_destroy_stroke_outline  frees that outline
@@ -2022,6 +2024,75 @@ SR_API sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_pa
 SR_API sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
                                         const sr_stroke_desc *desc, sr_polygon2 *out);
 SR_API void      sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline);
+
+/* ---- paint: gradients and patterns -------------------------------------- */
+/*
+ * A fill's paint other than a flat color, as cairo's and SVG's paint
+ * servers: a linear or radial gradient or a repeated image.  The geometry
+ * is in paint space, which `transform` maps to pixels (NULL: paint space
+ * is pixels).  The same code paints the SVG reader's gradients, patterns
+ * and images, so a paint gives the bytes sr_render_svg gives for the
+ * equivalent document.  Blending is source-over in straight alpha with
+ * the paint quantized to RGBA8, as the color fills blend.
+ */
+#define SR_MAX_GRADIENT_STOPS 256
+
+typedef enum sr_paint_kind {
+    SR_PAINT_COLOR = 0,         /* `color` everywhere: sr_fill_polygon's bytes */
+    SR_PAINT_LINEAR_GRADIENT,   /* t = 0 at (x1, y1), 1 at (x2, y2), constant across */
+    SR_PAINT_RADIAL_GRADIENT,   /* the cone from the focal circle to the end circle */
+    SR_PAINT_PATTERN,           /* `image` repeated; paint space is its texels */
+} sr_paint_kind;
+
+/* Where t leaves [0, 1]. */
+typedef enum sr_gradient_spread {
+    SR_SPREAD_PAD = 0,          /* the end colors continue */
+    SR_SPREAD_REFLECT,          /* back and forth */
+    SR_SPREAD_REPEAT,           /* again from 0 */
+} sr_gradient_spread;
+
+typedef struct sr_gradient_stop {
+    double offset;              /* in [0, 1], each >= the one before */
+    sr_rgba color;              /* straight alpha, components finite */
+} sr_gradient_stop;
+
+/* A 2D affine map: x' = a x + c y + e, y' = b x + d y + f (SVG's matrix()). */
+typedef struct sr_affine2 { double a, b, c, d, e, f; } sr_affine2;
+
+typedef struct sr_paint {
+    sr_paint_kind kind;
+    sr_rgba color;              /* SR_PAINT_COLOR: the color (finite) */
+    /* gradients: geometry in paint space, finite */
+    double x1, y1, x2, y2;      /* linear: the gradient vector (a point: t = 0 everywhere) */
+    double cx, cy, r;           /* radial: the end circle (t = 1), r > 0 */
+    const sr_point2 *focal;     /* radial: the focal point (t = 0); NULL -> (cx, cy);
+                                 * outside the end circle it is moved just inside */
+    double fr;                  /* radial: the focal circle's radius, >= 0 */
+    const sr_gradient_stop *stops; /* required for gradients */
+    int stop_count;             /* gradients: 1 .. SR_MAX_GRADIENT_STOPS */
+    sr_gradient_spread spread;
+    /* SR_PAINT_PATTERN: RGBA8 rows, straight alpha, sampled bilinearly at
+     * texel centres; texel (i, j) covers [i, i+1) x [j, j+1) of paint space */
+    const uint8_t *image;       /* required for patterns */
+    int image_width, image_height; /* 1 .. SR_MAX_FRAMEBUFFER_SIZE each */
+    size_t image_stride;        /* bytes from a row to the next; 0 -> 4 * image_width */
+    sr_texture_wrap image_wrap; /* SR_WRAP_REPEAT (default) or SR_WRAP_CLAMP (the
+                                 * edge texels extend); SR_WRAP_MIRROR is refused */
+    const sr_affine2 *transform;/* paint space -> pixels, invertible; NULL -> identity */
+    float opacity;              /* multiplies the paint's alpha, in [0, 1]; 0 -> 1
+                                 * (no fill at all is no call) */
+} sr_paint;
+
+/* Fill a polygon or a path with a paint (desc may be NULL: nonzero,
+ * aliased).  Every field of the paint is checked, SR_INVALID_ARG naming
+ * the first that is not valid; desc->linear_light is for SR_PAINT_COLOR
+ * only.  Named after sr_fill_polygon and sr_fill_path, whose sr_rgba the
+ * sr_paint replaces. */
+SR_API sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb,
+                                       const sr_polygon2 *poly, const sr_paint *paint,
+                                       const sr_fill_desc *desc);
+SR_API sr_result sr_fill_path_paint(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
+                                    const sr_paint *paint, const sr_fill_desc *desc);
 
 /* ---- 2D lines ----------------------------------------------------------- */
 /*

@@ -1,5 +1,5 @@
-/* test_svg_span.c - the SVG reader's paints along a row (src/io/svg.h):
- * gradients through their color table stay within one code of the
+/* test_svg_span.c - the paints along a row (src/draw2d/paint_fill.h) the
+ * SVG reader paints with: gradients through their color table stay within one code of the
  * gradient evaluated exactly at each pixel (here, from the formulas of
  * SVG) on random linear and radial gradients with every spread method,
  * close and coincident stops and transparent ones; a paint that says it
@@ -8,6 +8,7 @@
  * filter's colors within one code; a painted fill leaves each pixel as
  * svg_blend leaves it (its copies and integer blends are no shortcut, nor
  * a paint of y written straight into the result). */
+#include "draw2d/paint_fill.h"
 #include "io/svg.h"
 #include "sr_test.h"
 
@@ -35,7 +36,7 @@ static uint8_t unorm8(double v)
 /* t at pixel centre (px, py) straight from SVG's definitions; false where
  * a radial gradient does not reach.  *edge: too close to where it stops
  * reaching for a rounding difference not to matter. */
-static bool exact_t(const svg_gradient *g, double px, double py, double *t, bool *edge)
+static bool exact_t(const sr__gradient *g, double px, double py, double *t, bool *edge)
 {
     const double *m = g->inv;
     double x = m[0] * px + m[2] * py + m[4], y = m[1] * px + m[3] * py + m[5];
@@ -60,12 +61,12 @@ static bool exact_t(const svg_gradient *g, double px, double py, double *t, bool
     return g->fr + *t * dr >= 0;
 }
 
-static double spread_t(svg_spread s, double t)
+static double spread_t(sr_gradient_spread s, double t)
 {
-    if (s == SVG_SPREAD_REPEAT) {
+    if (s == SR_SPREAD_REPEAT) {
         return t - floor(t);
     }
-    if (s == SVG_SPREAD_REFLECT) {
+    if (s == SR_SPREAD_REFLECT) {
         double u = fmod(fabs(t), 2);
         return u > 1 ? 2 - u : u;
     }
@@ -73,7 +74,7 @@ static double spread_t(svg_spread s, double t)
 }
 
 /* The color of a spread t: flat outside the stops, linear between. */
-static void exact_color(const svg_gradient *g, double t, uint8_t out[4])
+static void exact_color(const sr__gradient *g, double t, uint8_t out[4])
 {
     sr_rgba c = g->color[g->n_stops - 1];
     if (t <= g->offset[0]) {
@@ -97,21 +98,21 @@ static void exact_color(const svg_gradient *g, double t, uint8_t out[4])
 
 /* Whether t is within a hair of a place where the color jumps: a stop
  * shared by two offsets, or (repeat) a whole number. */
-static bool near_jump(const svg_gradient *g, double t)
+static bool near_jump(const sr__gradient *g, double t)
 {
     for (int i = 1; i < g->n_stops; i++) {
         if (g->offset[i] == g->offset[i - 1] && fabs(t - g->offset[i]) < 1e-9) {
             return true;
         }
     }
-    return g->spread == SVG_SPREAD_REPEAT && fabs(t - floor(t + 0.5)) < 1e-9;
+    return g->spread == SR_SPREAD_REPEAT && fabs(t - floor(t + 0.5)) < 1e-9;
 }
 
-static void random_gradient(svg_gradient *g, bool close_stops)
+static void random_gradient(sr__gradient *g, bool close_stops)
 {
     memset(g, 0, sizeof *g);
     g->radial = unit() < 0.5;
-    g->spread = (svg_spread)(int)(unit() * 3);
+    g->spread = (sr_gradient_spread)(int)(unit() * 3);
     g->n_stops = 1 + (int)(unit() * 5);
     for (int i = 0; i < g->n_stops; i++) {
         g->offset[i] = unit();
@@ -153,7 +154,7 @@ static void random_gradient(svg_gradient *g, bool close_stops)
 
 SR_TEST(gradient_spans_are_within_one_code_of_the_exact_colors)
 {
-    static svg_gradient g;
+    static sr__gradient g;
     uint32_t row[300];
     long compared = 0, skipped = 0, worst = 0, tabled = 0;
     for (int n = 0; n < 600; n++) {
@@ -161,7 +162,7 @@ SR_TEST(gradient_spans_are_within_one_code_of_the_exact_colors)
         for (int k = 0; k < 8; k++) {
             int x0 = (int)(unit() * 400) - 50, y = (int)(unit() * 400) - 50;
             int len = 1 + (int)(unit() * 299);
-            svg_gradient_span(&g, x0, y, len, row);
+            sr__gradient_span(&g, x0, y, len, row);
             for (int i = 0; i < len; i++) {
                 double t;
                 bool edge, on = exact_t(&g, x0 + i + 0.5, y + 0.5, &t, &edge);
@@ -182,7 +183,7 @@ SR_TEST(gradient_spans_are_within_one_code_of_the_exact_colors)
                 compared++;
             }
         }
-        for (int c = 0; c <= SVG_GRADIENT_LUT; c++) {
+        for (int c = 0; c <= SR__GRADIENT_LUT; c++) {
             tabled += g.lut_state[c] == 1;
         }
     }
@@ -195,7 +196,7 @@ SR_TEST(gradient_spans_are_within_one_code_of_the_exact_colors)
 
 SR_TEST(a_gradient_of_x_alone_paints_every_row_alike)
 {
-    static svg_gradient g;
+    static sr__gradient g;
     uint32_t a[200], b[200];
     int of_x = 0;
     for (int n = 0; n < 300; n++) {
@@ -206,9 +207,9 @@ SR_TEST(a_gradient_of_x_alone_paints_every_row_alike)
             g.inv[1] = g.inv[2] = 0;
             g.y2 = g.y1;
         }
-        if (svg_gradient_span(&g, 3, 7, 200, a)) {
+        if (sr__gradient_span(&g, 3, 7, 200, a)) {
             of_x++;
-            svg_gradient_span(&g, 3, 7 + 1 + (int)(unit() * 500), 200, b);
+            sr__gradient_span(&g, 3, 7 + 1 + (int)(unit() * 500), 200, b);
             CHECK(memcmp(a, b, sizeof a) == 0);
         }
     }
@@ -217,7 +218,7 @@ SR_TEST(a_gradient_of_x_alone_paints_every_row_alike)
 
 /* ---- images ------------------------------------------------------------------------ */
 
-static void make_image(svg_image *im, uint8_t *rgba, int w, int h, bool repeat)
+static void make_image(sr__image *im, uint8_t *rgba, int w, int h, bool repeat)
 {
     for (int i = 0; i < w * h * 4; i++) {
         rgba[i] = (uint8_t)(unit() * 256);
@@ -225,7 +226,7 @@ static void make_image(svg_image *im, uint8_t *rgba, int w, int h, bool repeat)
     for (int i = 0; i < w * h; i += 5) {
         rgba[i * 4 + 3] = i % 2 ? 255 : 0; /* opaque and transparent texels among the rest */
     }
-    *im = (svg_image){ .rgba = rgba, .w = w, .h = h, .repeat = repeat };
+    *im = (sr__image){ .rgba = rgba, .w = w, .h = h, .stride = (size_t)w * 4, .repeat = repeat };
 }
 
 static long wrap(long i, long n, bool repeat)
@@ -238,14 +239,14 @@ SR_TEST(an_image_drawn_texel_for_pixel_gives_its_texels)
     uint8_t rgba[13 * 9 * 4];
     uint32_t row[100];
     for (int n = 0; n < 200; n++) {
-        svg_image im;
+        sr__image im;
         make_image(&im, rgba, 13, 9, n % 2 == 0);
         int ox = (int)(unit() * 60) - 30, oy = (int)(unit() * 60) - 30;
         double inv[6] = { 1, 0, 0, 1, ox, oy };
         memcpy(im.inv, inv, sizeof inv);
         int x0 = (int)(unit() * 80) - 40, y = (int)(unit() * 80) - 40;
         int len = n % 4 < 2 ? 100 : 1 + (int)(unit() * 30); /* shorter than a tile's row too */
-        svg_image_span(&im, x0, y, len, row);
+        sr__image_span(&im, x0, y, len, row);
         for (int i = 0; i < len; i++) {
             const uint8_t *t = rgba + (wrap(y + oy, 9, im.repeat) * 13 +
                                        wrap(x0 + i + ox, 13, im.repeat)) * 4;
@@ -264,13 +265,13 @@ SR_TEST(an_image_under_any_other_map_is_filtered_bilinearly)
     uint32_t row[64];
     long worst = 0;
     for (int n = 0; n < 200; n++) {
-        svg_image im;
+        sr__image im;
         make_image(&im, rgba, 7, 11, n % 2 == 1);
         double s = 0.2 + unit() * 2, r = unit() * 6.283;
         double inv[6] = { s * cos(r), s * sin(r), -s * sin(r), s * cos(r), unit() * 9, unit() * 9 };
         memcpy(im.inv, inv, sizeof inv);
         int x0 = (int)(unit() * 40) - 20, y = (int)(unit() * 40) - 20;
-        svg_image_span(&im, x0, y, 64, row);
+        sr__image_span(&im, x0, y, 64, row);
         for (int i = 0; i < 64; i++) {
             double px = x0 + i + 0.5, py = y + 0.5;
             double u = inv[0] * px + inv[2] * py + inv[4] - 0.5;
@@ -354,7 +355,7 @@ SR_TEST(a_painted_fill_blends_each_pixel_as_svg_blend_does)
             before[i * 4 + 3] = row % 4 == 0 ? 0 : row % 4 == 1 ? before[i * 4 + 3] : 255;
         }
         REQUIRE(sr_write_pixels(ctx, fb, 0, 0, W, H, before, W * 4) == SR_OK);
-        svg_image im;
+        sr__image im;
         make_image(&im, rgba, 16, 16, true);
         for (int i = 0; i < 16 * 16; i++) { /* mostly opaque, as a tile usually is */
             rgba[i * 4 + 3] = i % 7 == 0 ? rgba[i * 4 + 3] : 255;
@@ -373,7 +374,7 @@ SR_TEST(a_painted_fill_blends_each_pixel_as_svg_blend_does)
         memcpy(want, before, sizeof want);
         for (int y = 0; y < H; y++) {
             uint32_t paint[W];
-            svg_image_span(&im, 0, y, W, paint);
+            sr__image_span(&im, 0, y, W, paint);
             for (int x = 0; x < W; x++) {
                 uint8_t s[4];
                 memcpy(s, &paint[x], 4);
@@ -382,7 +383,7 @@ SR_TEST(a_painted_fill_blends_each_pixel_as_svg_blend_does)
                 svg_blend(want + (y * W + x) * 4, c, (float)mask[y * W + x] * (1.0f / 255.0f));
             }
         }
-        REQUIRE(svg_fill_paint(ctx, fb, &poly, &desc, svg_image_span, &im, opacity) == SR_OK);
+        REQUIRE(sr__fill_paint(ctx, fb, &poly, &desc, sr__image_span, &im, opacity) == SR_OK);
         CHECK(memcmp(sr_framebuffer_pixels(fb), want, sizeof want) == 0);
         sr_destroy_framebuffer(ctx, fb);
     }

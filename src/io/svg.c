@@ -12,7 +12,7 @@
  * scale), then the fill polygon or the stroke outline is mapped to pixels
  * and filled: antialiased by exact area coverage, or aliased by the
  * edge-table fill under shape-rendering="crispEdges"; a gradient paints
- * after the same coverage (svg_gradient.c).
+ * after the same coverage (sr_fill_polygon_paint).
  *
  * Supported: see the table in docs/draw2d.md.  Group opacity and clip
  * paths draw the element into a layer of its own, composited after.
@@ -189,8 +189,7 @@ typedef struct svg_doc {
     mat2d tile_m;
     double tile_vp[2];
     /* The last gradient resolved for a shape (malloc'd) and its element:
-     * the next shape painted with the same element keeps its stops and
-     * the cells of its color table filled so far. */
+     * the next shape painted with the same element keeps its stops. */
     svg_gradient *grad;
     const svg_node *grad_server;
 } svg_doc;
@@ -1347,9 +1346,14 @@ static bool clip_to_window(svg_doc *doc, sr_polygon2 *poly, sr_point2 **pts, int
     return true;
 }
 
-static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, svg_span_fn span,
-                        void *server, sr_fill_rule rule, bool crisp)
+/* Fill a user-space polygon mapped by m with a color, or with a paint
+ * server at the opacity color.a when server is not NULL. */
+static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color,
+                        const sr_paint *server, sr_fill_rule rule, bool crisp)
 {
+    if (server && !(color.a > 0)) {
+        return; /* a paint at opacity 0 leaves every pixel as it is */
+    }
     sr_point2 *pts;
     int *counts = NULL;
     if (poly.point_count == 0 || !map_polygon(doc, poly, m, &pts)) {
@@ -1363,8 +1367,14 @@ static void fill_mapped(svg_doc *doc, sr_polygon2 poly, mat2d m, sr_rgba color, 
         }
     }
     sr_fill_desc desc = { .rule = rule, .antialias = crisp ? SR_AA_NONE : SR_AA_AREA };
-    sr_result r = span ? svg_fill_paint(doc->ctx, doc->fb, &poly, &desc, span, server, color.a)
-                         : sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
+    sr_result r;
+    if (server) {
+        sr_paint p = *server;
+        p.opacity = color.a < 1 ? color.a : 1;
+        r = sr_fill_polygon_paint(doc->ctx, doc->fb, &poly, &p, &desc);
+    } else {
+        r = sr_fill_polygon(doc->ctx, doc->fb, &poly, color, &desc);
+    }
     free(pts);
     free(counts);
     if (r != SR_OK) {
@@ -1500,14 +1510,14 @@ static style ancestor_style(svg_doc *doc, const svg_node *m)
 
 static void gradient_stops(svg_doc *doc, const svg_node *g, svg_gradient *out)
 {
-    out->n_stops = 0;
-    for (int i = 0; g && i < MAX_HREF_CHAIN && out->n_stops == 0; i++) {
+    int n = 0;
+    for (int i = 0; g && i < MAX_HREF_CHAIN && n == 0; i++) {
         /* the stops inherit from the gradient and its ancestors, not from
          * the shape painted: color (for currentColor), and stop-color and
          * stop-opacity for inherit */
         style gs = ancestor_style(doc, g);
         for (const svg_node *c = g->first; c; c = c->next) {
-            if (strcmp(c->name, "stop") != 0 || out->n_stops == SVG_MAX_STOPS) {
+            if (strcmp(c->name, "stop") != 0 || n == SR_MAX_GRADIENT_STOPS) {
                 continue;
             }
             style s = gs;
@@ -1526,16 +1536,18 @@ static void gradient_stops(svg_doc *doc, const svg_node *g, svg_gradient *out)
                 off /= 100;
             }
             off = clamp01(off);
-            int k = out->n_stops++;
+            int k = n++;
+            sr_gradient_stop *st = &out->stops[k];
             /* each offset at least the one before it */
-            out->offset[k] = k > 0 && off < out->offset[k - 1] ? out->offset[k - 1] : off;
-            out->color[k] = s.stop_color;
-            out->color[k].a *= (float)s.stop_opacity;
+            st->offset = k > 0 && off < st[-1].offset ? st[-1].offset : off;
+            st->color = s.stop_color;
+            st->color.a *= (float)s.stop_opacity;
         }
         const char *h = href_of(g);
         g = h ? reference(doc, h, NULL) : NULL;
         g = is_gradient(g) ? g : NULL;
     }
+    out->paint.stop_count = n;
 }
 
 /* The bounding box x0, y0, x1, y1 of the points; false when it is empty
@@ -1559,17 +1571,15 @@ static bool bounding_box(sr_polygon2 shape, double b[4])
 static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *f,
                              sr_polygon2 shape, svg_gradient *g)
 {
-    /* The stops depend on the element and its ancestors alone, and the
-     * color table on the stops: doc->grad keeps them for the next shape
-     * (style sheets count their matching work per cascade: not then). */
-    if (g == doc->grad && server == doc->grad_server && doc->sheet.n_rules == 0) {
-        memset(g, 0, offsetof(svg_gradient, n_stops));
-    } else {
-        memset(g, 0, offsetof(svg_gradient, offset));
+    /* The stops depend on the element and its ancestors alone: doc->grad
+     * keeps them for the next shape (style sheets count their matching
+     * work per cascade: not then). */
+    if (!(g == doc->grad && server == doc->grad_server && doc->sheet.n_rules == 0)) {
         gradient_stops(doc, server, g);
         doc->grad_server = g == doc->grad && doc->status == SR_OK ? server : NULL;
     }
-    if (g->n_stops == 0) {
+    int n_stops = g->paint.stop_count;
+    if (n_stops == 0) {
         return false;
     }
     const char *units = grad_attr(doc, server, "gradientUnits");
@@ -1588,38 +1598,40 @@ static bool resolve_gradient(svg_doc *doc, const svg_node *server, const frame *
     }
     double rd = sqrt((rw * rw + rh * rh) / 2);
     mat2d gt = server_transform(doc, server, "gradientTransform", f), inv;
-    if (!mat_invert(mat_mul(f->m, mat_mul(to_user, gt)), &inv)) {
+    mat2d t = mat_mul(f->m, mat_mul(to_user, gt));
+    if (!mat_invert(t, &inv)) {
         return false;
     }
-    memcpy(g->inv, &inv, sizeof g->inv);
+    g->transform = (sr_affine2){ t.a, t.b, t.c, t.d, t.e, t.f };
     const char *sp = grad_attr(doc, server, "spreadMethod");
-    g->spread = sp && strcmp(sp, "reflect") == 0  ? SVG_SPREAD_REFLECT
-                : sp && strcmp(sp, "repeat") == 0 ? SVG_SPREAD_REPEAT
-                                                  : SVG_SPREAD_PAD;
-    g->radial = strcmp(server->name, "radialGradient") == 0;
-    if (!g->radial) {
-        g->x1 = grad_coord(doc, server, "x1", rw, 0);
-        g->y1 = grad_coord(doc, server, "y1", rh, 0);
-        g->x2 = grad_coord(doc, server, "x2", rw, rw);
-        g->y2 = grad_coord(doc, server, "y2", rh, 0);
+    bool radial = strcmp(server->name, "radialGradient") == 0;
+    g->paint = (sr_paint){
+        .kind = radial ? SR_PAINT_RADIAL_GRADIENT : SR_PAINT_LINEAR_GRADIENT,
+        .stops = g->stops,
+        .stop_count = n_stops,
+        .spread = sp && strcmp(sp, "reflect") == 0  ? SR_SPREAD_REFLECT
+                  : sp && strcmp(sp, "repeat") == 0 ? SR_SPREAD_REPEAT
+                                                    : SR_SPREAD_PAD,
+        .transform = &g->transform,
+    };
+    sr_paint *p = &g->paint;
+    if (!radial) {
+        p->x1 = grad_coord(doc, server, "x1", rw, 0);
+        p->y1 = grad_coord(doc, server, "y1", rh, 0);
+        p->x2 = grad_coord(doc, server, "x2", rw, rw);
+        p->y2 = grad_coord(doc, server, "y2", rh, 0);
         return true;
     }
-    g->cx = grad_coord(doc, server, "cx", rw, rw / 2);
-    g->cy = grad_coord(doc, server, "cy", rh, rh / 2);
-    g->r = grad_coord(doc, server, "r", rd, rd / 2);
-    g->fx = grad_coord(doc, server, "fx", rw, g->cx);
-    g->fy = grad_coord(doc, server, "fy", rh, g->cy);
-    g->fr = grad_coord(doc, server, "fr", rd, 0);
-    if (!(g->r > 0)) {
-        return false; /* r = 0: the area is painted with the last stop */
-    }
-    /* A focal point outside the end circle is moved onto it (SVG 1.1). */
-    double dx = g->fx - g->cx, dy = g->fy - g->cy, d = sqrt(dx * dx + dy * dy);
-    if (d > g->r * 0.999) {
-        g->fx = g->cx + dx * g->r * 0.999 / d;
-        g->fy = g->cy + dy * g->r * 0.999 / d;
-    }
-    return true;
+    p->cx = grad_coord(doc, server, "cx", rw, rw / 2);
+    p->cy = grad_coord(doc, server, "cy", rh, rh / 2);
+    p->r = grad_coord(doc, server, "r", rd, rd / 2);
+    g->focal.x = grad_coord(doc, server, "fx", rw, p->cx);
+    g->focal.y = grad_coord(doc, server, "fy", rh, p->cy);
+    p->focal = &g->focal;
+    p->fr = grad_coord(doc, server, "fr", rd, 0);
+    /* r = 0: the area is painted with the last stop; a negative fr is an
+     * error of the document: nothing */
+    return p->r > 0 && p->fr >= 0;
 }
 
 /* Points of a round join or cap: as add_disc in src/draw2d/path.c (the
@@ -1666,8 +1678,8 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
             return;
         }
         if (resolve_gradient(doc, p->server, f, geometry, doc->grad)) {
-            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_gradient_span,
-                        doc->grad, rule, f->st.crisp);
+            fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, &doc->grad->paint,
+                        rule, f->st.crisp);
             return;
         }
         if (!p->has_fallback || doc->status != SR_OK) {
@@ -1676,7 +1688,7 @@ static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_pol
     }
     c.a *= (float)opacity;
     if (c.a > 0) {
-        fill_mapped(doc, poly, f->m, c, NULL, NULL, rule, f->st.crisp);
+        fill_mapped(doc, poly, f->m, c, NULL, rule, f->st.crisp);
     }
 }
 
@@ -3008,13 +3020,14 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
         /* drawn where the picture and its viewport meet */
         double x0 = fmax(x, fit.e), y0 = fmax(y, fit.f);
         double x1 = fmin(x + w, fit.e + iw * fit.a), y1 = fmin(y + h, fit.f + ih * fit.d);
-        if (x1 > x0 && y1 > y0 && mat_invert(mat_mul(f->m, fit), &inv)) {
-            svg_image im = { .rgba = px, .w = iw, .h = ih };
-            memcpy(im.inv, &inv, sizeof im.inv);
+        mat2d t = mat_mul(f->m, fit);
+        if (x1 > x0 && y1 > y0 && mat_invert(t, &inv)) {
+            sr_affine2 to_px = { t.a, t.b, t.c, t.d, t.e, t.f };
+            sr_paint im = { .kind = SR_PAINT_PATTERN, .image = px, .image_width = iw,
+                            .image_height = ih, .image_wrap = SR_WRAP_CLAMP, .transform = &to_px };
             sr_point2 corners[4] = { { x0, y0 }, { x1, y0 }, { x1, y1 }, { x0, y1 } };
             fill_mapped(doc, (sr_polygon2){ corners, 4, NULL, 0 }, f->m,
-                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, svg_image_span, &im, SR_NONZERO,
-                        f->st.crisp);
+                        (sr_rgba){ 0, 0, 0, (float)f->st.opacity }, &im, SR_NONZERO, f->st.crisp);
         }
     }
     free(px);
@@ -3517,13 +3530,14 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
             return doc->status != SR_OK;
         }
     }
-    svg_image im = { .rgba = sr_framebuffer_pixels(tile), .w = (int)tw, .h = (int)th,
-                     .repeat = true };
-    mat2d px_to_tile = mat_mul(mat_mul(to_tile, (mat2d){ 1, 0, 0, 1, -x, -y }), inv);
-    memcpy(im.inv, &px_to_tile, sizeof im.inv);
-    if (doc->status == SR_OK) {
-        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, svg_image_span, &im,
-                    rule, f->st.crisp);
+    /* tile texels -> pattern space -> pixels */
+    mat2d t = mat_mul(mat_mul(pm, (mat2d){ 1, 0, 0, 1, x, y }), (mat2d){ w / tw, 0, 0, h / th, 0, 0 });
+    sr_affine2 to_px = { t.a, t.b, t.c, t.d, t.e, t.f };
+    sr_paint im = { .kind = SR_PAINT_PATTERN, .image = sr_framebuffer_pixels(tile),
+                    .image_width = (int)tw, .image_height = (int)th, .transform = &to_px };
+    if (doc->status == SR_OK && mat_invert(t, &inv)) {
+        fill_mapped(doc, poly, f->m, (sr_rgba){ 0, 0, 0, (float)opacity }, &im, rule,
+                    f->st.crisp);
     }
     return true;
 }

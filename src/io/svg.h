@@ -94,52 +94,21 @@ bool svg_css_matches(const svg_css_selector *sel, const svg_node *node, long *wo
 void svg_css_free_rule(svg_css_rule *rule);
 void svg_css_free(svg_css_sheet *sheet);
 
-/* ---- gradients (svg_gradient.c) --------------------------------------- */
+/* ---- gradients (svg.c) ------------------------------------------------ */
 
-#define SVG_MAX_STOPS 256
-/* Cells of a gradient's color table over t in [0, 1).  At 1024, a cell
- * between stops more than 0.26 apart changes a channel by less than 0.98
- * codes, so its centre's color is within half a code of each exact one
- * and the pixel within one code; the other cells (stops closer or inside
- * the cell) evaluate their pixels alone. */
-#define SVG_GRADIENT_LUT 1024
-
-typedef enum svg_spread { SVG_SPREAD_PAD, SVG_SPREAD_REFLECT, SVG_SPREAD_REPEAT } svg_spread;
-
-/* A gradient resolved for one shape: its geometry in gradient space and
- * the map from pixel coordinates into that space; the color table is
- * filled as the fill's pixels ask for it. */
+/* A gradient resolved for one shape as the library's paint
+ * (sr_fill_polygon_paint), with the stops and the map it points to. */
 typedef struct svg_gradient {
-    bool radial;
-    double x1, y1, x2, y2;       /* linear: the gradient vector */
-    double cx, cy, r, fx, fy, fr;/* radial: end circle, focal circle */
-    svg_spread spread;
-    double inv[6];               /* pixel -> gradient space (a b c d e f) */
-    int n_stops;                 /* >= 1 */
-    /* Cell k of the table: 0 until a pixel asks for it (resolve_gradient
-     * zeroes this with the stops it reads), then 1 when lut[k] is within
-     * half a code of every color of the cell, 2 when no one color is (a
-     * stop inside, or a fast change): those pixels are evaluated alone.
-     * Cell SVG_GRADIENT_LUT is t >= 1. */
-    uint8_t lut_state[SVG_GRADIENT_LUT + 1];
-    double offset[SVG_MAX_STOPS];/* non-decreasing, in [0, 1] */
-    sr_rgba color[SVG_MAX_STOPS];/* straight alpha, opacity included */
-    uint32_t lut[SVG_GRADIENT_LUT + 1]; /* RGBA8 in memory order, straight alpha */
+    sr_paint paint;
+    sr_gradient_stop stops[SR_MAX_GRADIENT_STOPS];
+    sr_point2 focal;
+    sr_affine2 transform;        /* gradient space -> pixels */
 } svg_gradient;
 
-/* A paint along a row: the straight-alpha RGBA8 colors (memory order r,
- * g, b, a) at the centres of pixels x..x+n-1 of row y.  True when they
- * depend on x alone (every row gets the same bytes at the same x).  The
- * paint is not const: it may keep tables it fills as it goes. */
-typedef bool (*svg_span_fn)(void *paint, int x, int y, int n, uint32_t *out);
-
-/* A gradient (svg_gradient) as an svg_span_fn. */
-bool svg_gradient_span(void *g, int x, int y, int n, uint32_t *out);
-
-/* ---- painted fills (svg_fill.c) ------------------------------------------ */
+/* ---- blending into layers (svg_fill.c) --------------------------------- */
 
 /* A channel in [0, 1] as an 8-bit code, rounded (NaN and below 0: 0), as
- * the 2D fills quantize: every paint of the reader packs through it. */
+ * the 2D fills quantize. */
 static inline uint8_t svg_unorm8(float v)
 {
     return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
@@ -148,27 +117,6 @@ static inline uint8_t svg_unorm8(float v)
 /* Source-over of a straight-alpha color with coverage (0..1) onto an RGBA8
  * pixel, as the 2D fills blend (the color quantized to RGBA8 first). */
 void svg_blend(uint8_t *d, sr_rgba c, float cov);
-
-/* Fill a polygon in pixel coordinates with a paint times opacity: the
- * coverage is sr_polygon_coverage's (the same pixels and weights as
- * sr_fill_polygon with that desc), the paint is evaluated over each row's
- * covered span and blended source-over as svg_blend does. */
-sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                         const sr_fill_desc *desc, svg_span_fn span, void *paint,
-                         float opacity);
-
-/* An RGBA8 image (straight alpha) as a paint: pixel coordinates map into
- * it by inv; sampled bilinearly, repeated (a pattern tile) or its edge
- * texels extended (an image: the fill stays inside it). */
-typedef struct svg_image {
-    const uint8_t *rgba;
-    int w, h;
-    double inv[6];               /* pixel -> image texels (a b c d e f) */
-    bool repeat;
-} svg_image;
-
-/* An image (svg_image) as an svg_span_fn (svg_image_paint.c). */
-bool svg_image_span(void *image, int x, int y, int n, uint32_t *out);
 
 /* ---- image sources (svg_image.c) ---------------------------------------- */
 

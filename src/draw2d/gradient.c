@@ -1,9 +1,9 @@
-/* svg_gradient.c - the SVG reader's paint servers (src/io): linear and
- * radial gradients evaluated a row at a time (spread pad, reflect,
- * repeat; a radial gradient's focal circle as the two-circle cone of SVG
- * 2), their colors from a table filled as the pixels ask for it.  Used
- * by svg_fill.c on the thread that renders the document. */
-#include "io/svg.h"
+/* gradient.c - draw2d stage: the gradient paints, linear and radial,
+ * evaluated a row at a time (spread pad, reflect, repeat; a radial
+ * gradient's focal circle as the two-circle cone of SVG 2), their colors
+ * from a table filled as the pixels ask for it.  Used by paint_fill.c on
+ * the caller's thread. */
+#include "draw2d/paint_fill.h"
 
 #include <math.h>
 #include <string.h>
@@ -17,7 +17,7 @@
  * reach (the pixel is left unpainted).  Circles (f + t (c - f),
  * fr + t (r - fr)): the largest t with a circle through the point and a
  * radius >= 0, a root of a t^2 - 2 b t + c = 0. */
-static void radial_parameters(const svg_gradient *g, double pdx, double pdy, double sx,
+static void radial_parameters(const sr__gradient *g, double pdx, double pdy, double sx,
                               double sy, int n, double *t)
 {
     double cdx = g->cx - g->fx, cdy = g->cy - g->fy, dr = g->r - g->fr;
@@ -44,12 +44,12 @@ static void radial_parameters(const svg_gradient *g, double pdx, double pdy, dou
 }
 
 /* t mapped into [0, 1] by the spread method. */
-static double spread(svg_spread s, double t)
+static double spread(sr_gradient_spread s, double t)
 {
     switch (s) {
-    case SVG_SPREAD_REPEAT:
+    case SR_SPREAD_REPEAT:
         return t - floor(t);
-    case SVG_SPREAD_REFLECT: {
+    case SR_SPREAD_REFLECT: {
         double u = fmod(fabs(t), 2);
         return u > 1 ? 2 - u : u;
     }
@@ -60,7 +60,7 @@ static double spread(svg_spread s, double t)
 
 /* The first stop with an offset above t (n_stops if none): t lies
  * between it and the one before. */
-static int stop_above(const svg_gradient *g, double t)
+static int stop_above(const sr__gradient *g, double t)
 {
     int i = 0;
     while (i < g->n_stops && !(t < g->offset[i])) {
@@ -71,7 +71,7 @@ static int stop_above(const svg_gradient *g, double t)
 
 /* The color of t on the piece that ends at stop i (stop_above): flat
  * before the first stop and after the last, else mixed linearly. */
-static sr_rgba piece_color(const svg_gradient *g, int i, double t)
+static sr_rgba piece_color(const sr__gradient *g, int i, double t)
 {
     if (i == 0 || t <= g->offset[0]) {
         return g->color[0];
@@ -88,14 +88,14 @@ static sr_rgba piece_color(const svg_gradient *g, int i, double t)
 
 static uint32_t pack(sr_rgba c)
 {
-    uint8_t b[4] = { svg_unorm8(c.r), svg_unorm8(c.g), svg_unorm8(c.b), svg_unorm8(c.a) };
+    uint8_t b[4] = { sr__paint_unorm8(c.r), sr__paint_unorm8(c.g), sr__paint_unorm8(c.b), sr__paint_unorm8(c.a) };
     uint32_t v;
     memcpy(&v, b, sizeof v);
     return v;
 }
 
 /* The exact color of a spread t, quantized. */
-static uint32_t exact_color(const svg_gradient *g, double t)
+static uint32_t exact_color(const sr__gradient *g, double t)
 {
     return pack(piece_color(g, stop_above(g, t), t));
 }
@@ -103,7 +103,7 @@ static uint32_t exact_color(const svg_gradient *g, double t)
 /* Whether the piece ending at stop i (stop_above) changes a channel by
  * less than 0.98 codes across a cell: then the color of the cell's centre
  * is within 0.49 codes of every color of the cell. */
-static bool piece_is_flat(const svg_gradient *g, int i)
+static bool piece_is_flat(const sr__gradient *g, int i)
 {
     if (i == 0 || i == g->n_stops) {
         return true;
@@ -115,37 +115,37 @@ static bool piece_is_flat(const svg_gradient *g, int i)
         m = v > m ? v : m;
     }
     double span = g->offset[i] - g->offset[i - 1];
-    return m * 255.0 < 0.98 * span * SVG_GRADIENT_LUT;
+    return m * 255.0 < 0.98 * span * SR__GRADIENT_LUT;
 }
 
 /* Fill cell k of the table: the color of its centre when every color of
  * the cell is within half a code of it, else mark it for pixels alone. */
-static void fill_cell(svg_gradient *g, int k)
+static void fill_cell(sr__gradient *g, int k)
 {
-    if (k == SVG_GRADIENT_LUT) {
+    if (k == SR__GRADIENT_LUT) {
         g->lut[k] = exact_color(g, 1.0);
         g->lut_state[k] = 1;
         return;
     }
-    double t0 = (double)k / SVG_GRADIENT_LUT, t1 = (double)(k + 1) / SVG_GRADIENT_LUT;
+    double t0 = (double)k / SR__GRADIENT_LUT, t1 = (double)(k + 1) / SR__GRADIENT_LUT;
     int i = stop_above(g, t0);
     /* A stop inside the cell bends or breaks the color there. */
     if ((i < g->n_stops && g->offset[i] < t1) || !piece_is_flat(g, i)) {
         g->lut_state[k] = 2;
         return;
     }
-    g->lut[k] = pack(piece_color(g, i, (k + 0.5) / SVG_GRADIENT_LUT));
+    g->lut[k] = pack(piece_color(g, i, (k + 0.5) / SR__GRADIENT_LUT));
     g->lut_state[k] = 1;
 }
 
 /* The color of an unspread t (transparent where it is not finite). */
-static inline uint32_t color_of(svg_gradient *g, double t)
+static inline uint32_t color_of(sr__gradient *g, double t)
 {
     if (!isfinite(t)) {
         return 0;
     }
     t = spread(g->spread, t);
-    int k = t >= 1 ? SVG_GRADIENT_LUT : (int)(t * SVG_GRADIENT_LUT);
+    int k = t >= 1 ? SR__GRADIENT_LUT : (int)(t * SR__GRADIENT_LUT);
     if (g->lut_state[k] == 1) {
         return g->lut[k];
     }
@@ -155,9 +155,9 @@ static inline uint32_t color_of(svg_gradient *g, double t)
     return g->lut_state[k] == 1 ? g->lut[k] : exact_color(g, t);
 }
 
-bool svg_gradient_span(void *paint, int x, int y, int n, uint32_t *out)
+bool sr__gradient_span(void *paint, int x, int y, int n, uint32_t *out)
 {
-    svg_gradient *g = paint;
+    sr__gradient *g = paint;
     const double *m = g->inv;
     /* Gradient space is affine in the pixel: from the first centre each
      * pixel steps by (m[0], m[1]), computed from the start, not summed. */

@@ -1,14 +1,14 @@
-/* svg_image_paint.c - an RGBA8 image as the SVG reader's paint (src/io):
- * a pattern's tile or an <image>, sampled bilinearly a row at a time,
- * repeated or its edge texels extended.  Used by svg_fill.c on the thread
- * that renders the document. */
-#include "io/svg.h"
+/* image_paint.c - draw2d stage: an RGBA8 image as a paint (a pattern's
+ * tile, the SVG reader's <image>), sampled bilinearly a row at a time,
+ * repeated or its edge texels extended.  Used by paint_fill.c on the
+ * caller's thread. */
+#include "draw2d/paint_fill.h"
 
 #include <math.h>
 #include <string.h>
 
-/* Texel (i, j)'s index: repeated, or the nearest edge texel outside. */
-static size_t texel_index(const svg_image *im, long i, long j)
+/* Texel (i, j)'s byte offset: repeated, or the nearest edge texel outside. */
+static size_t texel_offset(const sr__image *im, long i, long j)
 {
     if (im->repeat) {
         i %= im->w;
@@ -19,13 +19,13 @@ static size_t texel_index(const svg_image *im, long i, long j)
         i = i < 0 ? 0 : i >= im->w ? im->w - 1 : i;
         j = j < 0 ? 0 : j >= im->h ? im->h - 1 : j;
     }
-    return (size_t)j * (size_t)im->w + (size_t)i;
+    return (size_t)j * im->stride + (size_t)i * 4;
 }
 
 /* Texel (i, j) premultiplied, in [0, 1]. */
-static void texel(const svg_image *im, long i, long j, float out[4])
+static void texel(const sr__image *im, long i, long j, float out[4])
 {
-    const uint8_t *p = im->rgba + texel_index(im, i, j) * 4;
+    const uint8_t *p = im->rgba + texel_offset(im, i, j);
     float a = p[3] * (1.0f / 255.0f);
     for (int k = 0; k < 3; k++) {
         out[k] = p[k] * (1.0f / 255.0f) * a;
@@ -49,7 +49,7 @@ static void copy_texels(uint32_t *out, const uint8_t *t, int n)
 
 /* The image at texel coordinates (u, v) of a texel's corner, bilinear
  * and premultiplied (a transparent texel adds no color), straight RGBA8. */
-static uint32_t sample(const svg_image *im, double u, double v)
+static uint32_t sample(const sr__image *im, double u, double v)
 {
     if (!(fabs(u) < 1e15 && fabs(v) < 1e15)) {
         return 0;
@@ -68,16 +68,16 @@ static uint32_t sample(const svg_image *im, double u, double v)
     if (!(o[3] > 0)) {
         return 0;
     }
-    uint8_t b[4] = { svg_unorm8(o[0] / o[3]), svg_unorm8(o[1] / o[3]), svg_unorm8(o[2] / o[3]),
-                     svg_unorm8(o[3]) };
+    uint8_t b[4] = { sr__paint_unorm8(o[0] / o[3]), sr__paint_unorm8(o[1] / o[3]), sr__paint_unorm8(o[2] / o[3]),
+                     sr__paint_unorm8(o[3]) };
     uint32_t w;
     memcpy(&w, b, sizeof w);
     return w;
 }
 
-bool svg_image_span(void *image, int x, int y, int n, uint32_t *out)
+bool sr__image_span(void *image, int x, int y, int n, uint32_t *out)
 {
-    const svg_image *im = image;
+    const sr__image *im = image;
     const double *m = im->inv;
     double px = x + 0.5, py = y + 0.5;
     double u0 = m[0] * px + m[2] * py + m[4] - 0.5, v0 = m[1] * px + m[3] * py + m[5] - 0.5;
@@ -87,7 +87,7 @@ bool svg_image_span(void *image, int x, int y, int n, uint32_t *out)
     if (m[0] == 1 && m[1] == 0 && u0 == floor(u0) && v0 == floor(v0) && fabs(u0) < 1e15 &&
         fabs(v0) < 1e15) {
         long i = (long)u0, w = im->w;
-        const uint8_t *row = im->rgba + texel_index(im, 0, (long)v0) * 4;
+        const uint8_t *row = im->rgba + texel_offset(im, 0, (long)v0);
         if (im->repeat) {
             i %= w;
             i += i < 0 ? w : 0;
