@@ -37,9 +37,9 @@ static bool finite_rgba(sr_rgba c)
     return isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && isfinite(c.a);
 }
 
-/* Check the stops and copy them into g, their alpha times opacity. */
+/* Check the stops and copy them into g (its color table empty). */
 static sr_result gradient_stops(sr_context *ctx, const char *fn, const sr_paint *p,
-                                sr__gradient *g, float opacity)
+                                sr__gradient *g)
 {
     if (p->stop_count < 1 || p->stop_count > SR_MAX_GRADIENT_STOPS) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_paint.stop_count %d is outside 1..%d", fn,
@@ -61,7 +61,6 @@ static sr_result gradient_stops(sr_context *ctx, const char *fn, const sr_paint 
         }
         g->offset[i] = o;
         g->color[i] = p->stops[i].color;
-        g->color[i].a *= opacity;
     }
     g->n_stops = p->stop_count;
     memset(g->lut_state, 0, sizeof g->lut_state);
@@ -155,6 +154,11 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
     if (!poly) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: poly is NULL", fn);
     }
+    /* sr__fill_paint bounds the points before the coverage checks the rest */
+    if (poly->point_count < 0 || (poly->point_count > 0 && !poly->points)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: sr_polygon2.points is NULL or point_count < 0", fn);
+    }
     if (paint->kind != SR_PAINT_LINEAR_GRADIENT && paint->kind != SR_PAINT_RADIAL_GRADIENT &&
         paint->kind != SR_PAINT_PATTERN) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_paint.kind %d is not a paint kind", fn,
@@ -197,11 +201,9 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
         if (!g) {
             return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: out of memory", fn);
         }
-        /* The stops carry the opacity: the blend then takes the paint's
-         * alpha as it is (opacity 1), as the SVG reader's stops do. */
         r = gradient_geometry(ctx, fn, paint, g);
         if (r == SR_OK) {
-            r = gradient_stops(ctx, fn, paint, g, 1.0f);
+            r = gradient_stops(ctx, fn, paint, g);
         }
         if (r == SR_OK) {
             g->spread = paint->spread;
