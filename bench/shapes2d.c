@@ -4,10 +4,12 @@
  * places on a 512x600 canvas, painted solid (random colors, alpha 0.5-1),
  * with a linear or with a radial gradient over each shape's bounding box,
  * or with a pattern (a 16 px tile of three colors repeated over the
- * canvas), antialiased.  softrast renders each batch as one SVG document
- * (sr_render_svg: parsing, flattening, coverage and paint, as `softrast
- * svg` does); cairo draws the same shapes through its API, frame by frame
- * in the same run.  Main thread; each batch is made once. */
+ * canvas), antialiased.  softrast renders each batch twice: as one SVG
+ * document (sr_render_svg: parsing, flattening, coverage and paint, as
+ * `softrast svg` does), and through its API (sr_fill_path_paint, shape by
+ * shape on a canvas cleared per frame); cairo draws the same shapes
+ * through its API, frame by frame in the same run.  Main thread; each
+ * batch is made once. */
 #include "shapes2d.h"
 
 #include "softrast_io.h"
@@ -272,12 +274,110 @@ static void cairo_batch(cairo_t *cr, const shape *sh, int count, shape_kind kind
 }
 #endif
 
-/* Times one batch on both renderers, alternating; false on failure. */
+/* The shape as a path (a curve: a start point and cubic segments). */
+static sr_result api_shape(sr_path *path, const shape *s, shape_kind kind, int verts, int size)
+{
+    sr_path_clear(path);
+    sr_result r = sr_path_move_to(path, s->x[0], s->y[0]);
+    if (kind == SHAPE_RECT) {
+        double x = s->x[0], y = s->y[0];
+        r = r ? r : sr_path_line_to(path, x + size, y);
+        r = r ? r : sr_path_line_to(path, x + size, y + size);
+        r = r ? r : sr_path_line_to(path, x, y + size);
+    }
+    for (int k = 1; kind == SHAPE_POLY && k < verts; k++) {
+        r = r ? r : sr_path_line_to(path, s->x[k], s->y[k]);
+    }
+    for (int k = 1; kind == SHAPE_CURVE && k + 2 < verts; k += 3) {
+        r = r ? r : sr_path_cubic_to(path, s->x[k], s->y[k], s->x[k + 1], s->y[k + 1],
+                                     s->x[k + 2], s->y[k + 2]);
+    }
+    return r ? r : sr_path_close(path);
+}
+
+/* The batch through softrast's API on fb, cleared first: each shape's
+ * path built and filled with its paint, the gradients over the unit
+ * square mapped onto the flattened shape's box (objectBoundingBox, as the
+ * document says), the pattern's tile (made once per batch, as an
+ * application keeps its images) repeated over the canvas. */
+static sr_result api_batch(sr_context *ctx, sr_framebuffer *fb, sr_path *path, const shape *sh,
+                           int count, shape_kind kind, int verts, int size, paint_kind paint,
+                           const uint8_t *tile)
+{
+    sr_gradient_stop st[3];
+    for (int k = 0; k < 3; k++) {
+        st[k] = (sr_gradient_stop){ stops[k][0], { (float)stops[k][1], (float)stops[k][2],
+                                                   (float)stops[k][3], 1 } };
+    }
+    sr_result r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    const sr_fill_desc desc = { .antialias = SR_AA_AREA };
+    for (int i = 0; r == SR_OK && i < count; i++) {
+        const shape *s = &sh[i];
+        r = api_shape(path, s, kind, verts, size);
+        sr_affine2 box = { 1, 0, 0, 1, 0, 0 };
+        sr_paint p = { .kind = SR_PAINT_COLOR,
+                       .color = { (float)s->r, (float)s->g, (float)s->b, (float)s->a } };
+        if (paint == PAINT_LINEAR || paint == PAINT_RADIAL) {
+            sr_polygon2 poly = sr_path_polygon(path);
+            double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+            for (int k = 0; k < poly.point_count; k++) {
+                x0 = fmin(x0, poly.points[k].x);
+                x1 = fmax(x1, poly.points[k].x);
+                y0 = fmin(y0, poly.points[k].y);
+                y1 = fmax(y1, poly.points[k].y);
+            }
+            box = (sr_affine2){ x1 - x0 > 0 ? x1 - x0 : 1, 0, 0, y1 - y0 > 0 ? y1 - y0 : 1, x0, y0 };
+            p = paint == PAINT_LINEAR
+                    ? (sr_paint){ .kind = SR_PAINT_LINEAR_GRADIENT, .x2 = 1 }
+                    : (sr_paint){ .kind = SR_PAINT_RADIAL_GRADIENT, .cx = 0.5, .cy = 0.5,
+                                  .r = 0.5 };
+            p.stops = st;
+            p.stop_count = 3;
+            p.transform = &box;
+        } else if (paint == PAINT_PATTERN) {
+            p = (sr_paint){ .kind = SR_PAINT_PATTERN, .image = tile, .image_width = TILE,
+                            .image_height = TILE };
+        }
+        r = r ? r : sr_fill_path_paint(ctx, fb, path, &p, &desc);
+    }
+    return r;
+}
+
+/* The pattern's tile as RGBA8, the document's rects painted into it. */
+static void api_tile(uint8_t *px)
+{
+    for (int y = 0; y < TILE; y++) {
+        for (int x = 0; x < TILE; x++) {
+            for (int k = 2; k >= 0; k--) {
+                const int *q = tile_rects[k];
+                if (x >= q[0] && x < q[0] + q[2] && y >= q[1] && y < q[1] + q[2]) {
+                    uint8_t c[4] = { (uint8_t)q[3], (uint8_t)q[4], (uint8_t)q[5], 255 };
+                    memcpy(px + (y * TILE + x) * 4, c, 4);
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/* Times one batch on the three renderers, alternating; false on failure. */
 static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg, size_t len,
                      const shape *sh, int count, int si, int size, paint_kind paint,
-                     double *ms, double *cr_ms, double *log_ratio)
+                     double *ms, double *api_ms, double *cr_ms, double *log_ratio,
+                     double *log_api_ratio)
 {
-    (void)sh;
+    sr_framebuffer *canvas = NULL;
+    sr_path *path = NULL;
+    static uint8_t tile_px[TILE * TILE * 4];
+    api_tile(tile_px);
+    if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = CANVAS_W, .height = CANVAS_H,
+                                                         .depth_format = SR_DEPTH_NONE },
+                            &canvas) != SR_OK ||
+        sr_make_path(ctx, 0, &path) != SR_OK) {
+        fprintf(stderr, "softrast-bench: shapes2d: %s\n", sr_context_error(ctx));
+        sr_destroy_framebuffer(ctx, canvas);
+        return false;
+    }
 #ifdef SR_HAVE_CAIRO
     cairo_surface_t *surface = compare ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32,
                                                                     CANVAS_W, CANVAS_H)
@@ -288,6 +388,7 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
     (void)compare;
     (void)cr_ms;
     (void)log_ratio;
+    (void)log_api_ratio;
 #endif
     sr_svg_desc desc = { .name = "shapes2d" };
     for (int f = -1; f < frames; f++) {
@@ -302,12 +403,26 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
             cairo_destroy(cr);
             cairo_surface_destroy(surface);
 #endif
+            sr_destroy_path(ctx, path);
+            sr_destroy_framebuffer(ctx, canvas);
             return false;
         }
         sr_framebuffer_pixels(fb);
         sr_destroy_framebuffer(ctx, fb);
         if (f >= 0) {
             ms[f] = now_ms() - t0;
+        }
+        double a0 = now_ms();
+        if (api_batch(ctx, canvas, path, sh, count, shapes[si].kind, shapes[si].verts, size,
+                      paint, tile_px) != SR_OK) {
+            fprintf(stderr, "softrast-bench: shapes2d %s %d: %s\n", shapes[si].name, size,
+                    sr_context_error(ctx));
+            frames = f < 0 ? 0 : f; /* report nothing more of this case */
+            break;
+        }
+        sr_framebuffer_pixels(canvas);
+        if (f >= 0) {
+            api_ms[f] = now_ms() - a0;
         }
 #ifdef SR_HAVE_CAIRO
         if (cr) {
@@ -320,27 +435,44 @@ static bool run_case(sr_context *ctx, int frames, bool compare, const char *svg,
         }
 #endif
     }
+    sr_destroy_path(ctx, path);
+    sr_destroy_framebuffer(ctx, canvas);
+    bool ok = frames > 0;
+    if (!ok) {
+        frames = 1; /* the buffers below are released, nothing printed */
+    }
     qsort(ms, (size_t)frames, sizeof *ms, cmp_double);
-    printf("scene=shapes2d shape=%s size=%d paint=%s shapes=%d renderer=softrast frames=%d "
-           "median_ms=%.3f min_ms=%.3f\n",
-           shapes[si].name, size, paint_names[paint], count, frames, ms[frames / 2], ms[0]);
+    qsort(api_ms, (size_t)frames, sizeof *api_ms, cmp_double);
+    if (ok) {
+        printf("scene=shapes2d shape=%s size=%d paint=%s shapes=%d renderer=softrast frames=%d "
+               "median_ms=%.3f min_ms=%.3f\n"
+               "scene=shapes2d shape=%s size=%d paint=%s shapes=%d renderer=softrast-api "
+               "frames=%d median_ms=%.3f min_ms=%.3f\n",
+               shapes[si].name, size, paint_names[paint], count, frames, ms[frames / 2], ms[0],
+               shapes[si].name, size, paint_names[paint], count, frames, api_ms[frames / 2],
+               api_ms[0]);
+    }
 #ifdef SR_HAVE_CAIRO
-    if (cr) {
+    if (cr && ok) {
         qsort(cr_ms, (size_t)frames, sizeof *cr_ms, cmp_double);
         double ratio = cr_ms[frames / 2] / ms[frames / 2];
+        double api_ratio = cr_ms[frames / 2] / api_ms[frames / 2];
         printf("scene=shapes2d shape=%s size=%d paint=%s shapes=%d renderer=cairo frames=%d "
                "median_ms=%.3f min_ms=%.3f\n"
-               "scene=shapes2d shape=%s size=%d paint=%s ratio=%.3f\n",
+               "scene=shapes2d shape=%s size=%d paint=%s ratio=%.3f api_ratio=%.3f\n",
                shapes[si].name, size, paint_names[paint], count, frames, cr_ms[frames / 2],
-               cr_ms[0], shapes[si].name, size, paint_names[paint], ratio);
+               cr_ms[0], shapes[si].name, size, paint_names[paint], ratio, api_ratio);
         *log_ratio += log(ratio);
+        *log_api_ratio += log(api_ratio);
+    }
+    if (cr) {
         cairo_pattern_destroy(tile);
         cairo_destroy(cr);
         cairo_surface_destroy(surface);
     }
 #endif
     fflush(stdout);
-    return true;
+    return ok;
 }
 
 /* The items of a comma-separated list among names[0..n) as a bit set (bit
@@ -403,8 +535,9 @@ bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const shapes2d_ca
     frames = frames > MAX_FRAMES ? MAX_FRAMES : frames;
     shape *sh = malloc(sizeof *sh * MAX_SHAPES);
     double *ms = calloc((size_t)frames, sizeof *ms), *cr_ms = calloc((size_t)frames, sizeof *ms);
+    double *api_ms = calloc((size_t)frames, sizeof *ms);
     text t = { 0 };
-    bool ok = sh && ms && cr_ms;
+    bool ok = sh && ms && cr_ms && api_ms;
     if (!ok) {
         fprintf(stderr, "softrast-bench: shapes2d: out of memory\n");
     }
@@ -418,7 +551,7 @@ bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const shapes2d_ca
         fprintf(stderr, "softrast-bench: shapes2d: this build reads no SVG (install libexpat1-dev)\n");
         ok = false;
     }
-    double log_ratio = 0;
+    double log_ratio = 0, log_api_ratio = 0;
     int cases = 0;
     uint64_t rng = 0x5ba9e2d1;
     for (int si = 0; ok && si < (int)(sizeof shapes / sizeof shapes[0]); si++) {
@@ -439,19 +572,21 @@ bool bench_shapes2d(sr_context *ctx, int frames, bool compare, const shapes2d_ca
                     break;
                 }
                 ok = run_case(ctx, frames, compare, t.p, t.len, sh, count, si, size,
-                              (paint_kind)p, ms, cr_ms, &log_ratio);
+                              (paint_kind)p, ms, api_ms, cr_ms, &log_ratio, &log_api_ratio);
                 cases++;
             }
         }
     }
 #ifdef SR_HAVE_CAIRO
     if (ok && compare && cases > 0) {
-        printf("scene=shapes2d cases=%d geomean_ratio=%.3f\n", cases, exp(log_ratio / cases));
+        printf("scene=shapes2d cases=%d geomean_ratio=%.3f geomean_api_ratio=%.3f\n", cases,
+               exp(log_ratio / cases), exp(log_api_ratio / cases));
     }
 #endif
     free(sh);
     free(ms);
     free(cr_ms);
+    free(api_ms);
     free(t.p);
     return ok;
 }

@@ -1,7 +1,7 @@
 /* shapes2d.h - the 2D shape benchmark modelled on Blend2D's bl_bench
  * (rectangles, polygons of 10/20/40 vertices, curves; 8 to 256 px; solid,
- * linear and radial gradient, pattern paint), softrast's SVG renderer against cairo
- * in the same run; and the icon-directory benchmark, every SVG of an icon
+ * linear and radial gradient, pattern paint), softrast's SVG renderer and
+ * its paint API (sr_fill_path_paint) against cairo in the same run; and the icon-directory benchmark, every SVG of an icon
  * theme (a fixed subset) rendered in one process against rsvg-convert
  * started once per file. */
 #ifndef SR_BENCH_SHAPES2D_H
