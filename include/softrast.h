@@ -2038,7 +2038,7 @@ SR_API void      sr_destroy_stroke_outline(sr_context *ctx, sr_polygon2 *outline
 #define SR_MAX_GRADIENT_STOPS 256
 
 typedef enum sr_paint_kind {
-    SR_PAINT_COLOR = 0,         /* `color` everywhere: sr_fill_polygon's bytes */
+    SR_PAINT_COLOR = 0,         /* `color` (alpha times opacity): sr_fill_polygon's bytes */
     SR_PAINT_LINEAR_GRADIENT,   /* t = 0 at (x1, y1), 1 at (x2, y2), constant across */
     SR_PAINT_RADIAL_GRADIENT,   /* the cone from the focal circle to the end circle */
     SR_PAINT_PATTERN,           /* `image` repeated; paint space is its texels */

@@ -330,6 +330,7 @@ SR_TEST(every_paint_field_is_validated)
                        .stop_count = 4, .opacity = 1.5f } },
         { "opacity", { .kind = SR_PAINT_PATTERN, .image = tile, .image_width = 4,
                        .image_height = 4, .opacity = NAN } },
+        { "opacity", { .kind = SR_PAINT_COLOR, .color = { 1, 0, 0, 1 }, .opacity = -0.5f } },
         { "transform", { .kind = SR_PAINT_LINEAR_GRADIENT, .x2 = 1, .stops = stops,
                          .stop_count = 4, .transform = &singular } },
         { "transform", { .kind = SR_PAINT_PATTERN, .image = tile, .image_width = 4,
@@ -379,6 +380,25 @@ SR_TEST(every_paint_field_is_validated)
     CHECK_EQ(sr_fill_polygon_paint(ctx, fb, &poly, &pat, NULL), SR_OK);
     CHECK(px[(8 * 16 + 8) * 4 + 3] == 255);
     sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* A color paint is sr_fill_polygon's fill, its alpha times the opacity. */
+SR_TEST(a_color_paint_is_the_color_fill)
+{
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_framebuffer *a = blank(ctx, W, H), *b = blank(ctx, W, H);
+    REQUIRE(a && b);
+    sr_polygon2 poly = { shape, 5, NULL, 0 };
+    sr_fill_desc d = { .antialias = SR_AA_AREA, .linear_light = true };
+    CHECK_EQ(sr_fill_polygon(ctx, a, &poly, (sr_rgba){ 0.2f, 0.6f, 0.9f, 0.8f * 0.5f }, &d), SR_OK);
+    sr_paint p = { .kind = SR_PAINT_COLOR, .color = { 0.2f, 0.6f, 0.9f, 0.8f }, .opacity = 0.5f };
+    CHECK_EQ(sr_fill_polygon_paint(ctx, b, &poly, &p, &d), SR_OK);
+    CHECK(memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), W * H * 4) == 0);
+    CHECK(sr_framebuffer_pixels(b)[(20 * W + 30) * 4 + 3] > 0);
+    sr_destroy_framebuffer(ctx, a);
+    sr_destroy_framebuffer(ctx, b);
     sr_destroy_context(ctx);
 }
 

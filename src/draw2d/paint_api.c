@@ -145,8 +145,15 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
     if (!paint) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: paint is NULL", fn);
     }
+    float opacity = paint->opacity == 0 ? 1 : paint->opacity;
+    if (!(opacity >= 0 && opacity <= 1)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_paint.opacity %g is outside [0, 1]", fn,
+                        (double)paint->opacity);
+    }
     if (paint->kind == SR_PAINT_COLOR) {
-        return sr_fill_polygon(ctx, fb, poly, paint->color, desc);
+        sr_rgba c = paint->color;
+        c.a *= opacity;
+        return sr_fill_polygon(ctx, fb, poly, c, desc);
     }
     if (!fb) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: fb is NULL", fn);
@@ -172,11 +179,6 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
     if (d.linear_light) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "%s: desc->linear_light is for SR_PAINT_COLOR only", fn);
-    }
-    float opacity = paint->opacity == 0 ? 1 : paint->opacity;
-    if (!(opacity >= 0 && opacity <= 1)) {
-        return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_paint.opacity %g is outside [0, 1]", fn,
-                        (double)paint->opacity);
     }
     if (paint->spread != SR_SPREAD_PAD && paint->spread != SR_SPREAD_REFLECT &&
         paint->spread != SR_SPREAD_REPEAT) {
