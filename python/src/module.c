@@ -55,6 +55,13 @@ PyDoc_STRVAR(write_png_doc,
 "at the top, atomically: a temporary file renamed over `path`, so a write\n"
 "that fails or is killed leaves no partial file.");
 
+PyDoc_STRVAR(render_svg_doc,
+"render_svg(path, data, width, height, scale, background)\n--\n\n"
+"sr_render_svg_file (path) or sr_render_svg (data, bytes-like), path or\n"
+"data None: (an (H, W, 4) uint8 RGBA array, [the warnings' lines]).\n"
+"width, height 0: the drawing's size times scale (0: 1); background\n"
+"(r, g, b, a) in [0, 1].  Use softrast.render_svg.");
+
 PyDoc_STRVAR(fit_camera_doc,
 "fit_camera(sets, width, height, fov, ortho)\n--\n\n"
 "sr_fit_camera: softrast render's default camera framing the (vertices\n"
@@ -69,6 +76,7 @@ static PyMethodDef methods[] = {
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
     { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },
     { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
+    { "render_svg", sr_py_render_svg, METH_VARARGS, render_svg_doc },
     { "fit_camera", sr_py_fit_camera, METH_VARARGS, fit_camera_doc },
     { NULL, NULL, 0, NULL },
 };
@@ -120,6 +128,7 @@ PyMODINIT_FUNC PyInit__softrast(void)
     Py_INCREF(&sr_py_MeshType);
     if (PyModule_AddObject(m, "Mesh", (PyObject *)&sr_py_MeshType) < 0 ||
         PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
+        PyModule_AddObject(m, "have_svg", PyBool_FromLong(sr_io_have_svg())) < 0 ||
         add_framing_constants(m) < 0) {
         Py_DECREF(&sr_py_MeshType);
         Py_DECREF(m);
