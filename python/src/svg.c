@@ -155,21 +155,21 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
     }
     PyObject *lines = take_warnings(&warnings);
     PyObject *result = NULL;
+    if (r != SR_OK) {
+        free(px);
+    }
     if (!lines) {
-        free(px);
+        if (r == SR_OK) {
+            free(px);
+        }
     } else if (r == SR_IO_ERROR && path_obj) {
-        free(px);
         file_error(path_obj, err.message);
-    } else if (r == SR_OUT_OF_MEMORY && !err.message[0]) {
-        free(px);
-        PyErr_NoMemory();
     } else if (r != SR_OK) {
         /* A malformed document, a reference cycle, a size or budget
          * refused: "NAME:LINE: what is wrong". */
-        free(px);
         PyObject *text = message_text(err.message[0] ? err.message : sr_result_text(r));
         if (text) {
-            PyErr_SetObject(PyExc_ValueError, text);
+            PyErr_SetObject(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError, text);
             Py_DECREF(text);
         }
     } else {
