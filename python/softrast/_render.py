@@ -192,9 +192,9 @@ def _environment(environment: Optional[PathLike], intensity: float,
     return _ENVIRONMENTS[key]
 
 
-def _file_cameras(camera: Union[Camera, Sequence[Camera]], width: int, height: int
-                  ) -> Tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
-                             NDArray[np.bool_], bool]:
+def _file_cameras(camera: Union[Camera, List[Camera], Tuple[Camera, ...]], width: int,
+                  height: int) -> Tuple[NDArray[np.float64], NDArray[np.float64],
+                                        NDArray[np.float64], NDArray[np.bool_], bool]:
     """K (B, 3, 3), [R | t] (B, 3, 4), near (B,), orthographic (B,) and
     whether batched, from one Camera or a list of them."""
     batched = isinstance(camera, (list, tuple))
@@ -255,7 +255,8 @@ def _int_arg(value: int, name: str, low: int, high: int) -> int:
 def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
            R: Optional[RealArrayLike] = None, t: Optional[RealArrayLike] = None,
            extrinsics: Optional[RealArrayLike] = None,
-           camera: Union[Camera, Sequence[Camera], None] = None, width: int, height: int,
+           camera: Union[Camera, List[Camera], Tuple[Camera, ...], None] = None, width: int,
+           height: int,
            outputs: Sequence[OutputName] = ("color", "depth"), threads: int = 0,
            near: Optional[float] = None, normal_frame: NormalFrame = "camera",
            background: RealArrayLike = (0.0, 0.0, 0.0), shading: Shading = "lit",

@@ -163,7 +163,8 @@ def _read_scene_file(path: Union[str, bytes]) -> Optional[_SceneFile]:
     try:
         return _SceneFile(path, _softrast.load_scene(path)["file"])
     except (OSError, ValueError) as e:
-        warnings.warn(f"softrast: {os.fsdecode(path)}: the file's materials are not kept: {e}", stacklevel=2)
+        warnings.warn(f"softrast: {os.fsdecode(path)}: the file's materials are not kept: {e}",
+                      stacklevel=2)
         return None
 
 
