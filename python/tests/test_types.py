@@ -39,19 +39,45 @@ def mypy_config(tmp_path_factory):
     return str(path)
 
 
-def run(args, config, root=PACKAGE_ROOT, cwd=None):
-    """python3 -m <args> with mypy finding softrast in root; (exit code, output)."""
-    env = dict(os.environ, MYPYPATH=root, PYTHONPATH=root)
+def run(args, config, root=PACKAGE_ROOT, source=True, cwd=None):
+    """python3 -m <args> with softrast in root; (exit code, output).  mypy
+    finds it on sys.path as an installed package, which it reads only with
+    a py.typed marker and whose own errors it does not report, or, with
+    `source`, in MYPYPATH as code of the program's, checked too."""
+    env = dict(os.environ, PYTHONPATH=root)
+    env.pop("MYPYPATH", None)
+    if source:
+        env["MYPYPATH"] = root
     r = subprocess.run([sys.executable, "-m", *args, "--config-file" if args[0] == "mypy"
                         else "--mypy-config-file", config], env=env, cwd=cwd or root,
                        capture_output=True, text=True)
     return r.returncode, r.stdout + r.stderr
 
 
-def test_package_is_typed():
-    d = os.path.dirname(softrast.__file__)
-    assert os.path.isfile(os.path.join(d, "py.typed"))
-    assert os.path.isfile(os.path.join(d, "_softrast.pyi"))
+def package_copy(tmp_path):
+    """A copy of the imported package in tmp_path/softrast."""
+    copy = tmp_path / "softrast"
+    shutil.copytree(os.path.dirname(softrast.__file__), copy,
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    return copy
+
+
+USES = "import softrast\nsoftrast.render(softrast.load('m.obj'), width=8, height=8)\n"
+
+
+def test_installed_package_is_typed_by_its_marker(tmp_path, mypy_config):
+    # As an installed package (found on sys.path, not MYPYPATH) softrast
+    # is read for its types because of py.typed; a copy without it is not.
+    prog = tmp_path / "prog"
+    prog.mkdir()
+    (prog / "uses.py").write_text(USES.replace("8,", "'8',"))
+    code, out = run(["mypy", "--strict", "uses.py"], mypy_config, source=False, cwd=prog)
+    assert code == 1 and 'Argument "width" to "render" has incompatible type "str"' in out, out
+    (package_copy(tmp_path / "site") / "py.typed").unlink()
+    (prog / "uses.py").write_text(USES)
+    code, out = run(["mypy", "--strict", "uses.py"], mypy_config, root=str(tmp_path / "site"),
+                    source=False, cwd=prog)
+    assert code == 1 and "missing library stubs or py.typed marker" in out, out
 
 
 def test_stub_matches_the_built_extension(mypy_config):
@@ -65,10 +91,7 @@ def test_stub_matches_the_built_extension(mypy_config):
 def test_stubtest_catches_a_stub_that_drifted(tmp_path, mypy_config):
     # The check above can fail: a copy of the package whose stub names
     # write_png's image argument and Mesh's colors differently.
-    copy = tmp_path / "softrast"
-    shutil.copytree(os.path.dirname(softrast.__file__), copy,
-                    ignore=shutil.ignore_patterns("__pycache__"))
-    stub = copy / "_softrast.pyi"
+    stub = package_copy(tmp_path) / "_softrast.pyi"
     text = stub.read_text()
     drifted = text.replace("def write_png(path: PathLike, image:", "def write_png(path: PathLike, "
                            "picture:").replace("colors: Optional", "colours: Optional")
@@ -129,8 +152,20 @@ def test_package_passes_mypy_strict(mypy_config):
     assert code == 0, out
 
 
+def test_package_check_sees_the_package_errors(tmp_path, mypy_config):
+    # The check above can fail: a copy whose look_at returns the wrong type.
+    module = package_copy(tmp_path) / "_camera.py"
+    text = module.read_text()
+    wrong = text.replace("return _intrinsics(f, width, height), R, t", "return R, t")
+    assert wrong != text
+    module.write_text(wrong)
+    code, out = run(["mypy", "--strict", "-p", "softrast"], mypy_config, root=str(tmp_path))
+    assert code == 1 and "_camera.py" in out and "Incompatible return value" in out, out
+
+
 def test_typed_example_passes_mypy_strict(mypy_config):
-    code, out = run(["mypy", "--strict", os.path.join(HERE, "typed_example.py")], mypy_config)
+    code, out = run(["mypy", "--strict", os.path.join(HERE, "typed_example.py")], mypy_config,
+                    source=False)
     assert code == 0, out
 
 
@@ -179,7 +214,7 @@ softrast.write_png("out.png", v)  # wrong: a uint8 image
 def test_mypy_rejects_wrong_calls(tmp_path, mypy_config):
     src = tmp_path / "wrong_calls.py"
     src.write_text(WRONG_CALLS)
-    code, out = run(["mypy", "--strict", str(src)], mypy_config)
+    code, out = run(["mypy", "--strict", str(src)], mypy_config, source=False)
     assert code == 1, out
     flagged = {int(m) for m in re.findall(r"wrong_calls\.py:(\d+): error:", out)}
     wrong = {i + 1 for i, line in enumerate(WRONG_CALLS.splitlines()) if "# wrong" in line}
