@@ -48,9 +48,9 @@ static void render_help(void)
     printf(
         "usage: softrast render [MODEL] [options]\n"
         "\n"
-        "Render MODEL (.obj, .ply, .stl; other formats through Assimp when built\n"
-        "with it) or, without MODEL, the built-in Utah teapot scene, to a PNG or\n"
-        "a JPEG.\n"
+        "Render MODEL (.obj, .ply, .stl, .gltf, .glb; other formats through Assimp\n"
+        "when built with it) or, without MODEL, the built-in Utah teapot scene, to\n"
+        "a PNG or a JPEG.\n"
         "\n"
         "output:\n"
         "  -o, --output FILE        image to write, atomically: a JPEG when FILE ends in\n"
