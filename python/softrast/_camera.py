@@ -63,14 +63,16 @@ def _intrinsics(f: float, width: int, height: int) -> NDArray[np.float64]:
                      [0.0, 0.0, 1.0]])
 
 
+# A perspective view (fov_y) or an orthographic one (ymag), not both.
 @overload
 def look_at(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike = ..., *,
-            fov_y: Optional[float] = ..., width: int, height: int) -> CameraParameters: ...
+            fov_y: Optional[float] = ..., ymag: None = ..., width: int,
+            height: int) -> CameraParameters: ...
 
 
 @overload
-def look_at(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike = ..., *, ymag: float,
-            width: int, height: int) -> CameraParameters: ...
+def look_at(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike = ..., *,
+            fov_y: None = ..., ymag: float, width: int, height: int) -> CameraParameters: ...
 
 
 def look_at(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike = (0.0, 1.0, 0.0), *,
