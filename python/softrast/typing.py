@@ -30,7 +30,8 @@ Real = Union[np.floating[Any], np.integer[Any], np.bool_]
 RealArrayLike = Union[NDArray[Real], float, Sequence[float], Sequence[Sequence[float]],
                       Sequence[Sequence[Sequence[float]]]]
 
-#: The dtypes Mesh keeps without converting.
+#: Mesh's arrays: of these dtypes (anything else is a TypeError at run
+#: time) or nested sequences of numbers.
 Vertices = Union[NDArray[np.float32], NDArray[np.float64], Sequence[Sequence[float]]]
 Faces = Union[NDArray[np.int32], NDArray[np.int64], Sequence[Sequence[int]]]
 VertexData = Union[NDArray[np.float32], NDArray[np.float64], Sequence[Sequence[float]]]
