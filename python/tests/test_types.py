@@ -1,7 +1,9 @@
-"""The package's type information (PEP 561) against mypy: the extension's
-stub agrees with the built module (mypy's stubtest), the package passes
-`mypy --strict`, typed_example.py (the documented API, annotated) passes it
-and runs, and wrong calls are rejected.
+"""The package's type information (PEP 561) against mypy: py.typed makes
+mypy read the installed package, the extension's stub agrees with the
+built module (mypy's stubtest, and the checks it cannot make), the package
+passes `mypy --strict`, typed_example.py (the documented API, annotated)
+passes it and runs, and wrong calls are rejected.  Each check is also shown
+to fail on a copy of the package made wrong.
 
 Run by CTest as python_types (skipped there without mypy); here skipped
 when mypy cannot be imported.
