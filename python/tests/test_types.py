@@ -2,8 +2,8 @@
 mypy read the installed package, the extension's stub agrees with the
 built module (mypy's stubtest, and the checks it cannot make), the package
 passes `mypy --strict`, typed_example.py (the documented API, annotated)
-passes it and runs, and wrong calls are rejected.  Each check is also shown
-to fail on a copy of the package made wrong.
+passes it and runs, and wrong calls are rejected.  The marker, stubtest and
+--strict checks are also shown to fail on a copy of the package made wrong.
 
 Run by CTest as python_types (skipped there without mypy); here skipped
 when mypy cannot be imported.
