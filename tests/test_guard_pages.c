@@ -157,6 +157,11 @@ static sr_result fills_2d(sr_context *ctx, sr_framebuffer *fb, int w, int h)
             }
         }
     }
+    /* A translucent fill over the opaque pixels: its rows' runs of them
+     * go through the fill's table. */
+    if (r == SR_OK) {
+        r = sr_fill_polygon(ctx, fb, &all, translucent, &(sr_fill_desc){ .antialias = SR_AA_AREA });
+    }
     for (int m = SR_GOURAUD_DIRECT; m <= SR_GOURAUD_INCREMENTAL && r == SR_OK; m++) {
         r = sr_fill_gouraud(ctx, fb, &all, colors, &(sr_gouraud_desc){
                                 .method = (sr_gouraud_method)m });

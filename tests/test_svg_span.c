@@ -6,7 +6,8 @@
  * depends on x alone gives every row the same bytes; an image drawn
  * texel for pixel gives its texels, and any other map the bilinear
  * filter's colors within one code; a painted fill leaves each pixel as
- * svg_blend leaves it (its copies and integer blends are no shortcut). */
+ * svg_blend leaves it (its copies and integer blends are no shortcut, nor
+ * a paint of y written straight into the result). */
 #include "io/svg.h"
 #include "sr_test.h"
 

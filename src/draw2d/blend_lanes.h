@@ -6,7 +6,8 @@
  * BL_U), BL_FN(name), BL_INLINE
  * (which carries the target attribute of the width), BL_ALL(mask) and
  * BL_ANY(mask) (true when every lane, any lane, of a BL_I mask is set)
- * defined; it undefines them at its end.  The same
+ * defined, and BL_TABLE_ROW (the table's whole blocks at this width,
+ * where it has them); it undefines them at its end.  The same
  * float operations in the same order as the scalar blend, lane by lane:
  * the same bytes at every width. */
 
@@ -61,22 +62,66 @@ BL_INLINE BL_U BL_FN(blend)(const sr__paint *p, BL_U d, BL_U c)
     return ((BL_U)full & p->packed) | (~(BL_U)full & out);
 }
 
+#ifdef BL_TABLE_ROW
+/* Whether m's table of the blend over opaque pixels at full coverage is
+ * there, making it (from the lanes' blend of the grey pixels (v, v, v,
+ * 255)) once the fill has met SR__BLEND_TABLE_AFTER such pixels: a small
+ * fill never pays for it. */
+BL_INLINE bool BL_FN(table_ready)(const sr__paint *p, sr__blend_memo *m)
+{
+    if (m->table_wait == SR__BLEND_TABLE_NEVER) {
+        return false;
+    }
+    if (m->table_wait >= 0) {
+        m->table_wait -= BL_LANES;
+        if (m->table_wait >= 0) {
+            return false;
+        }
+        for (int v = 0; v < 256; v += BL_LANES) {
+            BL_U d;
+            for (int j = 0; j < BL_LANES; j++) {
+                uint32_t g = (uint32_t)(v + j);
+                d[j] = g << CHANNEL_SHIFT(0) | g << CHANNEL_SHIFT(1) | g << CHANNEL_SHIFT(2) |
+                       255u << CHANNEL_SHIFT(3);
+            }
+            d = BL_FN(blend)(p, d, (BL_U){ 0 } + 255);
+            for (int j = 0; j < BL_LANES; j++) {
+                for (int k = 0; k < 3; k++) {
+                    m->table[k][v + j] = (uint8_t)(d[j] >> CHANNEL_SHIFT(k));
+                }
+            }
+            m->table_alpha = (uint8_t)ALPHA_BYTE(d[0]);
+        }
+    }
+    return true;
+}
+#endif
+
 /* The whole blocks of dst[0..n), BL_LANES pixels each; returns how many
  * pixels were blended.  A block of one pixel and one coverage takes the
  * last result when they are the last pair (*in, *last_cov -> *out) and
- * the memo's otherwise; any other block takes the lanes' blend. */
+ * the memo's otherwise; a run of blocks of opaque pixels at full coverage
+ * takes the memo's table (BL_TABLE_ROW) once it is there; any other block
+ * takes the lanes' blend.  m may be NULL (no memo, no table). */
 BL_INLINE int BL_FN(blend_row)(const sr__paint *p, sr__blend_memo *m, uint32_t *dst,
                                const uint8_t *cov, int n, uint32_t *in, unsigned *last_cov,
                                uint32_t *out)
 {
     int i = 0;
-    for (; i + BL_LANES <= n; i += BL_LANES) {
+    while (i + BL_LANES <= n) {
         BL_U d, c = (BL_U){ 0 } + 255;
         memcpy(&d, dst + i, sizeof d);
         if (cov) {
             c = BL_WIDEN(cov + i);
         }
         BL_I same = (BL_I)(d == (BL_U){ 0 } + d[0]) & (BL_I)(c == (BL_U){ 0 } + c[0]);
+#ifdef BL_TABLE_ROW
+        if (!BL_ALL(same) && m && BL_ALL((BL_I)(c == 255) & (BL_I)(ALPHA_BYTE(d) == 255)) &&
+            BL_FN(table_ready)(p, m)) {
+            i += BL_TABLE_ROW(m, dst + i, cov ? cov + i : NULL, n - i);
+            continue;
+        }
+#endif
         if (BL_ALL(same)) {
             if (d[0] != *in || c[0] != *last_cov) {
                 *in = d[0];
@@ -88,6 +133,7 @@ BL_INLINE int BL_FN(blend_row)(const sr__paint *p, sr__blend_memo *m, uint32_t *
             d = BL_FN(blend)(p, d, c);
         }
         memcpy(dst + i, &d, sizeof d);
+        i += BL_LANES;
     }
     return i;
 }
@@ -101,3 +147,4 @@ BL_INLINE int BL_FN(blend_row)(const sr__paint *p, sr__blend_memo *m, uint32_t *
 #undef BL_INLINE
 #undef BL_ALL
 #undef BL_ANY
+#undef BL_TABLE_ROW

@@ -8,6 +8,7 @@
 #include "softrast.h"
 #include "target/framebuffer.h"
 
+#include <limits.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -29,9 +30,22 @@ bool sr__paint_init(sr__paint *p, sr_rgba color, bool linear_light);
  * the pair; for one paint only. */
 #define SR__BLEND_MEMO_BITS 6
 #define SR__BLEND_MEMO (1 << SR__BLEND_MEMO_BITS)
+/* Over an opaque pixel at full coverage each channel of the blend is a
+ * function of that channel's byte alone (the color, its alpha and the
+ * destination's alpha are fixed), so a fill that meets many such pixels
+ * tabulates the blend of the 256 grey opaque pixels once and looks the
+ * channels up (at the AVX-512 level, with VBMI): the same bytes, from
+ * the blend itself. */
+#ifndef SR__BLEND_TABLE_AFTER
+#define SR__BLEND_TABLE_AFTER 256 /* such pixels blended before the table is made */
+#endif
+#define SR__BLEND_TABLE_NEVER INT_MAX /* table_wait where no table is used */
 typedef struct sr__blend_memo {
     uint32_t in[SR__BLEND_MEMO], out[SR__BLEND_MEMO];
     uint16_t cov[SR__BLEND_MEMO]; /* 256: an empty slot */
+    int table_wait;               /* such pixels still to blend; < 0: table[] is made */
+    uint8_t table_alpha;          /* the result's alpha there */
+    _Alignas(64) uint8_t table[3][256]; /* channel k of the blend over (v, v, v, 255) */
 } sr__blend_memo;
 
 void sr__blend_memo_init(sr__blend_memo *m);
@@ -42,7 +56,7 @@ void sr__paint_pixel(const sr__paint *p, uint32_t *dst, unsigned cov);
  * cov is NULL: the bytes of sr__paint_pixel on each, faster. */
 void sr__paint_row(const sr__paint *p, uint32_t *dst, const uint8_t *cov, int n);
 /* sr__paint_row with the results kept in m (initialized for p) from one
- * call to the next: the same bytes. */
+ * call to the next (m NULL: none kept): the same bytes. */
 void sr__paint_row_memo(const sr__paint *p, sr__blend_memo *m, uint32_t *dst, const uint8_t *cov,
                         int n);
 /* Blend pixels x0..x1-1 of row y with full coverage (the span is

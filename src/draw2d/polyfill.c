@@ -1003,7 +1003,12 @@ sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
     if (r != SR_OK) {
         return r;
     }
-    for (int y = 0; y < h; y++) {
+    /* Rows without gaps between them are cleared in one call: a call per
+     * row of a small shape's mask costs more than its bytes. */
+    if (stride == (size_t)w) {
+        memset(mask, 0, (size_t)w * (size_t)h);
+    }
+    for (int y = 0; y < h && stride != (size_t)w; y++) {
         memset(mask + (size_t)y * stride, 0, (size_t)w);
     }
     mask_target m = { mask, stride, x0, y0 };

@@ -90,7 +90,8 @@ static int full_run(const uint8_t *cov, int i, int b)
 
 /* Row `out` = row `dst` with the paint over it.  Where the coverage is
  * full and the paint opaque the blend gives the paint's bytes: with an
- * opaque paint (`opaque`, opacity 1) such runs are copied whole. */
+ * opaque paint (`opaque`, opacity 1) such runs are copied whole.  The
+ * paint may be `out` itself (each pixel is read before it is written). */
 static void blend_row(uint32_t *out, const uint32_t *dst, const uint32_t *paint,
                       const uint8_t *cov, int a, int b, float opacity, bool opaque)
 {
@@ -98,7 +99,9 @@ static void blend_row(uint32_t *out, const uint32_t *dst, const uint32_t *paint,
         unsigned c = cov[i];
         if (opaque && c == 255) {
             int e = full_run(cov, i, b);
-            memcpy(out + i, paint + i, (size_t)(e - i) * 4);
+            if (out != paint) {
+                memcpy(out + i, paint + i, (size_t)(e - i) * 4);
+            }
             i = e - 1;
             continue;
         }
@@ -186,15 +189,24 @@ sr_result svg_fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
         if (a == b) {
             continue;
         }
+        /* A paint of x alone is evaluated once, over the whole width; one
+         * that changes from row to row goes straight into the result when
+         * that is not where the destination is read (the blend reads each
+         * pixel of the paint before it writes it there). */
+        uint32_t *paint_row = y > 0 && !painted && d != out ? out : row;
         if (!painted) {
-            /* A paint of x alone is evaluated once, over the whole width. */
-            painted = span(paint, bx0 + a, by0 + y, b - a, row + a);
+            painted = span(paint, bx0 + a, by0 + y, b - a, paint_row + a);
+            if (painted && paint_row != row) {
+                memcpy(row + a, paint_row + a, (size_t)(b - a) * 4);
+                paint_row = row;
+            }
             if (painted && (a > 0 || b < w)) {
                 span(paint, bx0, by0 + y, w, row);
             }
-            opaque = opacity >= 1.0f && opaque_paint(row, painted ? 0 : a, painted ? w : b);
+            opaque = opacity >= 1.0f &&
+                     opaque_paint(paint_row, painted ? 0 : a, painted ? w : b);
         }
-        blend_row(out, d, row, cov, a, b, opacity, opaque);
+        blend_row(out, d, paint_row, cov, a, b, opacity, opaque);
     }
     if (r == SR_OK) {
         r = sr_write_pixels(ctx, fb, bx0, by0, w, h, (const uint8_t *)px, (size_t)w * 4);
