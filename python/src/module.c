@@ -9,24 +9,25 @@
 PyDoc_STRVAR(render_doc,
 "render(instances, K, width, height, near, threads, depth, triangle_id, instance_id,\n"
 "       barycentric, normal, color, mask, background, lit, rgba=None, pbr=False,\n"
-"       general=False)\n"
+"       view=None, environment=None, shadows=False, general=False, ortho=False,\n"
+"       far=0.0, msaa=1, ssaa=1, ground=False, cull=False)\n"
 "--\n"
 "\n"
 "The C renderer behind softrast.render (use that): one camera.\n"
 "instances: a sequence of (Mesh, (3, 4) float64 object->camera matrix,\n"
-"(3, 3) float64 normal matrix, int id[, (metallic, roughness, emissive\n"
-"r, g, b)]); K: (3, 3) float64.  The outputs\n"
-"are written into the given C-contiguous arrays (None: not wanted).\n"
+"(3, 3) float64 normal matrix, int id[, the material tuple of pbr=True]);\n"
+"K: (3, 3) float64.  The outputs (depth ... mask, rgba) are written into\n"
+"the given C-contiguous arrays (None: not wanted).\n"
 "general: the geometry outputs through the library's pipeline even where\n"
 "the visibility pass could draw them (the same bytes; for the tests).");
 
 PyDoc_STRVAR(load_mesh_doc,
-"load_mesh(path)\n--\n\n"
+"load_mesh(path, /)\n--\n\n"
 "sr_load_mesh: a dict of arrays (vertices, faces, normals, colors, uvs,\n"
 "texture).  Use softrast.load_mesh.");
 
 PyDoc_STRVAR(load_scene_doc,
-"load_scene(path)\n--\n\n"
+"load_scene(path, /)\n--\n\n"
 "sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
 "(4, 4) world matrix, material index)], 'materials': [dict of factors],\n"
 "'cameras': [dict of a camera's fields], 'file': the scene kept for\n"
@@ -34,23 +35,23 @@ PyDoc_STRVAR(load_scene_doc,
 "Use softrast.load.");
 
 PyDoc_STRVAR(make_environment_doc,
-"make_environment(path, intensity, threads)\n--\n\n"
+"make_environment(path, intensity, threads, /)\n--\n\n"
 "An image-based light for render(pbr=True): the built-in studio (path '')\n"
 "or an equirectangular .hdr file, prefiltered.  Use render(environment=).");
 
 PyDoc_STRVAR(read_image_doc,
-"read_image(path)\n--\n\n"
+"read_image(path, /)\n--\n\n"
 "A PNG or JPEG file (told apart by its first bytes) as an (H, W, 4) uint8\n"
 "RGBA array, row 0 at the top: a texture for softrast.Mesh.  Raises\n"
 "OSError when the file cannot be read, ValueError when it is malformed.");
 
 PyDoc_STRVAR(decode_image_doc,
-"decode_image(data, name)\n--\n\n"
+"decode_image(data, name, /)\n--\n\n"
 "PNG or JPEG bytes as an (H, W, 4) uint8 RGBA array, row 0 at the top;\n"
 "`name` is used in the error, a ValueError when the data is malformed.");
 
 PyDoc_STRVAR(write_png_doc,
-"write_png(path, image)\n--\n\n"
+"write_png(path, image, /)\n--\n\n"
 "Write an (H, W, 3) or (H, W, 4) uint8 C-contiguous image as a PNG, row 0\n"
 "at the top, atomically: a temporary file renamed over `path`, so a write\n"
 "that fails or is killed leaves no partial file.");
@@ -63,7 +64,7 @@ PyDoc_STRVAR(render_svg_doc,
 "(r, g, b, a) in [0, 1].  Use softrast.render_svg.");
 
 PyDoc_STRVAR(fit_camera_doc,
-"fit_camera(sets, width, height, fov, ortho)\n--\n\n"
+"fit_camera(sets, width, height, fov, ortho, /)\n--\n\n"
 "sr_fit_camera: softrast render's default camera framing the (vertices\n"
 "(N, 3) float32, model (16,) float32 column-major) pairs: ((eye), (target),\n"
 "(up), fovy, half_width, half_height).  Use softrast.fit_camera.");
