@@ -9,6 +9,7 @@ from numpy.typing import NDArray
 from .typing import Faces, Image, PathLike, VertexData, Vertices
 
 library_version: str
+have_svg: bool
 framing_direction: Tuple[float, float, float]
 framing_margin: float
 framing_fov_deg: float
@@ -34,6 +35,10 @@ class Mesh:
 def read_image(path: PathLike, /) -> NDArray[np.uint8]: ...
 def decode_image(data: bytes, name: str, /) -> NDArray[np.uint8]: ...
 def write_png(path: PathLike, image: NDArray[np.uint8], /) -> None: ...
+def render_svg(path: Optional[PathLike], data: Optional[Union[bytes, bytearray, memoryview]],
+               width: int, height: int, scale: float,
+               background: Tuple[float, float, float, float], /
+               ) -> Tuple[NDArray[np.uint8], list[str]]: ...
 
 # The package's own entry points into the library (softrast.render,
 # load, load_mesh, fit_camera wrap them).

@@ -1,12 +1,21 @@
 """render_svg: SVG drawings to RGBA arrays with the library's SVG reader,
 the one behind ``softrast svg``."""
 
+from __future__ import annotations
+
 import math
 import operator
 import os
 import warnings
+from typing import TYPE_CHECKING, Optional, Sequence, SupportsFloat, Tuple, Union
+
+import numpy as np
+from numpy.typing import NDArray
 
 from . import _softrast
+
+if TYPE_CHECKING:
+    from .typing import SvgSource
 
 
 class SvgWarning(UserWarning):
@@ -15,8 +24,10 @@ class SvgWarning(UserWarning):
     ``"NAME:LINE: warning: unsupported element 'text' skipped"``."""
 
 
-def _size(value, name):
+def _size(value: int, name: str) -> int:
     try:
+        if isinstance(value, bool):
+            raise TypeError
         n = operator.index(value)
     except TypeError:
         raise TypeError(f"{name}: expected an int, got {type(value).__name__}") from None
@@ -26,7 +37,7 @@ def _size(value, name):
     return min(n, 2**31 - 1)
 
 
-def _background(value):
+def _background(value: Optional[Sequence[float]]) -> Tuple[float, float, float, float]:
     if value is None:
         return (0.0, 0.0, 0.0, 0.0)
     if isinstance(value, (str, bytes)):
@@ -42,17 +53,22 @@ def _background(value):
                          f"got {len(components)}")
     if not all(0.0 <= c <= 1.0 for c in components):
         raise ValueError(f"background: components must be in [0, 1], got {tuple(components)}")
-    return tuple(components) + ((1.0,) if len(components) == 3 else ())
+    if len(components) == 3:
+        components.append(1.0)
+    r, g, b, a = components
+    return (r, g, b, a)
 
 
-def _is_document(text):
+def _is_document(text: str) -> bool:
     # An SVG document starts with '<' (an XML declaration, a comment or
     # the svg element), possibly after a byte order mark and white space;
     # a file name does not.
     return text.lstrip("\ufeff \t\r\n").startswith("<")
 
 
-def render_svg(source, *, width=None, height=None, scale=None, background=None):
+def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Optional[int] = None,
+               scale: Optional[float] = None,
+               background: Optional[Sequence[float]] = None) -> NDArray[np.uint8]:
     """Render an SVG drawing to an ``(H, W, 4)`` uint8 RGBA array.
 
     The drawing is rendered by softrast's SVG reader, exactly as
@@ -110,7 +126,8 @@ def render_svg(source, *, width=None, height=None, scale=None, background=None):
     The render runs on the calling thread with the GIL released: Python
     threads render several drawings at once.
     """
-    path = data = None
+    path: Optional[Union[str, os.PathLike[str], os.PathLike[bytes]]] = None
+    data: Optional[Union[bytes, bytearray, memoryview]] = None
     if isinstance(source, (bytes, bytearray, memoryview)):
         data = source
     elif isinstance(source, str) and _is_document(source):
@@ -125,11 +142,11 @@ def render_svg(source, *, width=None, height=None, scale=None, background=None):
     if width is not None and scale is not None:
         raise ValueError("scale: excludes width and height")
     w = h = 0
-    if width is not None:
+    if width is not None and height is not None:
         w, h = _size(width, "width"), _size(height, "height")
     s = 0.0
     if scale is not None:
-        if isinstance(scale, (bool, str, bytes)) or not hasattr(scale, "__float__"):
+        if isinstance(scale, (bool, str, bytes)) or not isinstance(scale, SupportsFloat):
             raise TypeError(f"scale: expected a number, got {type(scale).__name__}")
         s = float(scale)
         if not (s > 0 and math.isfinite(s)):

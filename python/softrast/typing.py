@@ -22,6 +22,10 @@ from ._softrast import Mesh
 #: A path as the readers take it (os.fspath).
 PathLike = Union[str, bytes, os.PathLike[str], os.PathLike[bytes]]
 
+#: What render_svg takes: a path, or the document as bytes or as a str
+#: starting with "<".
+SvgSource = Union[str, os.PathLike[str], os.PathLike[bytes], bytes, bytearray, memoryview]
+
 #: Real numbers as numpy stores them.
 Real = Union[np.floating[Any], np.integer[Any], np.bool_]
 

@@ -57,7 +57,7 @@ PyDoc_STRVAR(write_png_doc,
 "that fails or is killed leaves no partial file.");
 
 PyDoc_STRVAR(render_svg_doc,
-"render_svg(path, data, width, height, scale, background)\n--\n\n"
+"render_svg(path, data, width, height, scale, background, /)\n--\n\n"
 "sr_render_svg_file (path) or sr_render_svg (data, bytes-like), path or\n"
 "data None: (an (H, W, 4) uint8 RGBA array, [the warnings' lines]).\n"
 "width, height 0: the drawing's size times scale (0: 1); background\n"

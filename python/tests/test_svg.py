@@ -174,6 +174,7 @@ DOC = b'<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10"/>'
     (dict(source=None), TypeError, "source"),
     (dict(width="10", height=10), TypeError, "width"),
     (dict(width=10.0, height=10), TypeError, "width"),
+    (dict(width=10, height=True), TypeError, "height"),
     (dict(width=10, height=None), ValueError, "width and height"),
     (dict(width=0, height=10), ValueError, "width"),
     (dict(width=10, height=-1), ValueError, "height"),

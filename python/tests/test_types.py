@@ -210,6 +210,10 @@ softrast.fit_camera(mesh, width=8, height=8, projection="ortho")  # wrong: a pro
 softrast.load(3)  # wrong: a path
 softrast.Material(alpha_mode="translucent")  # wrong: an alpha mode
 softrast.write_png("out.png", v)  # wrong: a uint8 image
+icon: "np.ndarray[object, np.dtype[np.uint8]]" = softrast.render_svg(b"<svg/>", scale=2)
+softrast.render_svg("icon.svg", width="8", height=8)  # wrong: width an int
+softrast.render_svg(3)  # wrong: a path or the document
+softrast.render_svg("icon.svg", 8, 8)  # wrong: the size is keyword-only
 '''
 
 
