@@ -105,6 +105,8 @@ setup(
     version=version(),
     description="Exact, deterministic CPU rendering of triangle meshes to numpy arrays",
     packages=["softrast"],
+    # PEP 561: the extension's stub and the marker that the package is typed.
+    package_data={"softrast": ["py.typed", "*.pyi"]},
     python_requires=">=3.8",
     install_requires=["numpy"],
     ext_modules=[Extension(

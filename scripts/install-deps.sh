@@ -10,8 +10,9 @@
 # and xauth (its tests run on a virtual display), and the de_DE.UTF-8 locale
 # (the readers' numbers must not depend on a host program's locale; the
 # test sets one whose decimal separator is a comma), and for the Python
-# package (python/) Python's headers, NumPy, pytest, setuptools, pip and
-# Dask's distributed (softrast.dask's tests on a local cluster), and for the
+# package (python/) Python's headers, NumPy, pytest, setuptools, pip,
+# Dask's distributed (softrast.dask's tests on a local cluster) and mypy
+# (the type checks of its annotations and stubs), and for the
 # WebAssembly build (scripts/wasm.sh) emscripten with node-acorn (it compiles
 # offline with them), chromium for the explain pages' browser test and npm
 # for its one package, playwright-core (web/package.json), and groff and
@@ -28,7 +29,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     libjansson-dev libwebp-dev \
     clang libclang-rt-14-dev \
     libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth locales \
-    python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed \
+    python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed mypy \
     emscripten node-acorn chromium \
     groff-base mandoc \
     >/dev/null

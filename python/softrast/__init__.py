@@ -1,4 +1,4 @@
-"""softrast: exact, deterministic CPU rendering of triangle meshes to numpy arrays.
+"""softrast: exact, deterministic CPU rendering of triangle meshes and SVG drawings to numpy arrays.
 
 Depth, triangle and instance IDs, barycentric coordinates, normals, a
 coverage mask and a shaded color image from one call, for OpenCV-style
@@ -13,6 +13,13 @@ OpenGL.  The same inputs give the same bytes for any number of threads.
 >>> out["depth"].shape, out["depth"].dtype
 ((480, 640), dtype('float32'))
 
+SVG drawings render to RGBA arrays with :func:`render_svg`, as ``softrast
+svg`` renders them:
+
+>>> icon = softrast.render_svg("icon.svg", width=64, height=64)
+>>> icon.shape, icon.dtype
+((64, 64, 4), dtype('uint8'))
+
 Without a camera, ``render(mesh, width=640, height=480)`` frames the mesh as
 ``softrast render`` does (:func:`fit_camera`); :func:`orbit` makes a batch
 of cameras circling a scene.
@@ -26,8 +33,9 @@ from ._material import Material
 from ._scene import Instance, Scene, load, load_mesh
 from ._framing import fit_camera, orbit
 from ._render import OUTPUTS, render
+from ._svg import SvgWarning, render_svg
 
 __version__ = library_version
 __all__ = ["Camera", "Mesh", "Instance", "Material", "Scene", "load", "load_mesh", "look_at",
            "fit_camera", "orbit",
-           "read_image", "render", "write_png", "OUTPUTS", "__version__"]
+           "read_image", "render", "render_svg", "SvgWarning", "write_png", "OUTPUTS", "__version__"]

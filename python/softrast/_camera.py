@@ -1,11 +1,18 @@
 """Cameras in OpenCV's convention: x right, y down, z forward (the optical axis)."""
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, Any, Mapping, Optional, overload
 
 import numpy as np
+from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from .typing import CameraParameters, Projection, RealArrayLike
 
 
-def _vector3(value, name):
+def _vector3(value: RealArrayLike, name: str) -> NDArray[np.float64]:
     try:
         v = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
@@ -17,7 +24,7 @@ def _vector3(value, name):
     return v
 
 
-def _image_size(width, height):
+def _image_size(width: int, height: int) -> None:
     if not (isinstance(width, (int, np.integer)) and isinstance(height, (int, np.integer))) or \
             isinstance(width, bool) or isinstance(height, bool):
         raise TypeError("width, height: must be integers")
@@ -25,7 +32,7 @@ def _image_size(width, height):
         raise ValueError(f"width, height: must be positive, got {width} x {height}")
 
 
-def _number(value, name):
+def _number(value: float, name: str) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
                                                                     np.floating)):
         raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
@@ -35,28 +42,42 @@ def _number(value, name):
     return value
 
 
-def _fov_y(fov_y, name="fov_y"):
+def _fov_y(fov_y: float, name: str = "fov_y") -> float:
     fov_y = _number(fov_y, name)
     if not (0.0 < fov_y < math.pi):
         raise ValueError(f"{name}: must be in (0, pi) radians, got {fov_y}")
     return fov_y
 
 
-def _ymag(ymag):
+def _ymag(ymag: float) -> float:
     ymag = _number(ymag, "ymag")
     if not ymag > 0.0:
         raise ValueError(f"ymag: must be positive, got {ymag}")
     return ymag
 
 
-def _intrinsics(f, width, height):
+def _intrinsics(f: float, width: int, height: int) -> NDArray[np.float64]:
     """K with square pixels of focal length f and the principal point at
     the image centre."""
     return np.array([[f, 0.0, 0.5 * (width - 1)], [0.0, f, 0.5 * (height - 1)],
                      [0.0, 0.0, 1.0]])
 
 
-def look_at(eye, target, up=(0.0, 1.0, 0.0), *, fov_y=None, ymag=None, width, height):
+# A perspective view (fov_y) or an orthographic one (ymag), not both.
+@overload
+def look_at(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike = ..., *,
+            fov_y: Optional[float] = ..., ymag: None = ..., width: int,
+            height: int) -> CameraParameters: ...
+
+
+@overload
+def look_at(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike = ..., *,
+            fov_y: None = ..., ymag: float, width: int, height: int) -> CameraParameters: ...
+
+
+def look_at(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike = (0.0, 1.0, 0.0), *,
+            fov_y: Optional[float] = None, ymag: Optional[float] = None, width: int,
+            height: int) -> CameraParameters:
     """Camera intrinsics and extrinsics looking from ``eye`` at ``target``.
 
     Returns ``(K, R, t)``: ``K`` (3, 3) with square pixels and the principal
@@ -72,9 +93,9 @@ def look_at(eye, target, up=(0.0, 1.0, 0.0), *, fov_y=None, ymag=None, width, he
     ``K`` maps camera x, y straight to pixels (focal lengths in pixels per
     unit); render it with ``render(..., projection="orthographic")``.
     """
-    eye = _vector3(eye, "eye")
-    target = _vector3(target, "target")
-    up = _vector3(up, "up")
+    eye_v = _vector3(eye, "eye")
+    target_v = _vector3(target, "target")
+    up_v = _vector3(up, "up")
     _image_size(width, height)
     if ymag is not None:
         if fov_y is not None:
@@ -83,11 +104,12 @@ def look_at(eye, target, up=(0.0, 1.0, 0.0), *, fov_y=None, ymag=None, width, he
     else:
         fov_y = math.radians(60.0) if fov_y is None else _fov_y(fov_y)
         f = 0.5 * height / math.tan(0.5 * fov_y)
-    R, t = _frame(eye, target, up)
+    R, t = _frame(eye_v, target_v, up_v)
     return _intrinsics(f, width, height), R, t
 
 
-def _frame(eye, target, up):
+def _frame(eye: NDArray[np.float64], target: NDArray[np.float64],
+           up: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """R, t of OpenCV's camera at eye looking at target, ``up`` upwards."""
     z = target - eye
     if not np.linalg.norm(z) > 0:
@@ -135,7 +157,21 @@ class Camera:
     __slots__ = ("type", "yfov", "aspect", "xmag", "ymag", "znear", "zfar", "world", "view",
                  "index", "node", "R", "t")
 
-    def __init__(self, fields):
+    type: Projection
+    yfov: float
+    aspect: float
+    xmag: float
+    ymag: float
+    znear: float
+    zfar: float
+    world: NDArray[np.float64]
+    view: Optional[NDArray[np.float64]]
+    index: Optional[int]
+    node: Optional[int]
+    R: Optional[NDArray[np.float64]]
+    t: Optional[NDArray[np.float64]]
+
+    def __init__(self, fields: Mapping[str, Any]) -> None:
         self.type = fields["type"]
         for name in ("yfov", "aspect", "xmag", "ymag", "znear", "zfar"):
             setattr(self, name, float(fields[name]))
@@ -147,25 +183,25 @@ class Camera:
         self.t = None if self.view is None else _GL_TO_CV @ self.view[:3, 3]
 
     @classmethod
-    def _looking(cls, eye, target, up, znear, **fields):
-        eye = _vector3(eye, "eye")
-        target = _vector3(target, "target")
-        up = _vector3(up, "up")
-        R, t = _frame(eye, target, up)
+    def _looking(cls, eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike, znear: float,
+                 **fields: Any) -> Camera:
+        eye_v = _vector3(eye, "eye")
+        R, t = _frame(eye_v, _vector3(target, "target"), _vector3(up, "up"))
         view = np.eye(4)
         view[:3, :3] = _GL_TO_CV @ R
         view[:3, 3] = _GL_TO_CV @ t
         world = np.eye(4)
         world[:3, :3] = view[:3, :3].T
-        world[:3, 3] = eye
-        base = dict(yfov=0.0, aspect=0.0, xmag=0.0, ymag=0.0, znear=znear, zfar=0.0,
+        world[:3, 3] = eye_v
+        base: dict[str, Any] = dict(yfov=0.0, aspect=0.0, xmag=0.0, ymag=0.0, znear=znear, zfar=0.0,
                     world=world, view=view, camera=None, node=None)
         base.update(fields)
         return cls(base)
 
     @classmethod
-    def perspective(cls, eye, target, up=(0.0, 1.0, 0.0), *, yfov=math.radians(60.0),
-                    znear=1e-3):
+    def perspective(cls, eye: RealArrayLike, target: RealArrayLike,
+                    up: RealArrayLike = (0.0, 1.0, 0.0), *, yfov: float = math.radians(60.0),
+                    znear: float = 1e-3) -> Camera:
         """A pinhole camera at ``eye`` looking at ``target`` (``up``
         upwards in the image) with the vertical field of view ``yfov``
         (radians), clipping at ``znear`` (> 0)."""
@@ -175,7 +211,9 @@ class Camera:
         return cls._looking(eye, target, up, znear, type="perspective", yfov=_fov_y(yfov))
 
     @classmethod
-    def orthographic(cls, eye, target, up=(0.0, 1.0, 0.0), *, ymag, znear=0.0):
+    def orthographic(cls, eye: RealArrayLike, target: RealArrayLike,
+                     up: RealArrayLike = (0.0, 1.0, 0.0), *, ymag: float,
+                     znear: float = 0.0) -> Camera:
         """An orthographic camera at ``eye`` looking at ``target`` (``up``
         upwards in the image): the view is ``2 * ymag`` high (in the unit
         of the vertices) and as wide as the image's aspect makes it; rays
@@ -188,7 +226,7 @@ class Camera:
         ymag = _ymag(ymag)
         return cls._looking(eye, target, up, znear, type="orthographic", ymag=ymag, xmag=ymag)
 
-    def intrinsics(self, width, height):
+    def intrinsics(self, width: int, height: int) -> NDArray[np.float64]:
         """K (3, 3) for a width x height image: square pixels, the
         principal point at the image's centre ((width - 1) / 2,
         (height - 1) / 2), the focal length from ``yfov``; for an
@@ -205,7 +243,7 @@ class Camera:
             return _intrinsics(0.5 * height / abs(self.ymag), width, height)
         return _intrinsics(0.5 * height / math.tan(0.5 * self.yfov), width, height)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         if self.index is None:
             return f"Camera(type={self.type!r})"
         return f"Camera(index={self.index}, node={self.node}, type={self.type!r})"

@@ -1,13 +1,20 @@
 """Cameras fitted to a scene: softrast render's default camera, and orbits
 of cameras around a scene for turntables and datasets."""
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, List, Optional
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import _softrast
 from ._camera import Camera, _fov_y, _frame, _image_size, _intrinsics, _number
-from ._scene import as_scene
+from ._scene import Scene, as_scene
+
+if TYPE_CHECKING:
+    from .typing import CameraParameters, Projection, SceneLike
 
 #: softrast render's default field of view across the smaller image side
 #: (SR_FRAMING_FOV_DEG), radians.
@@ -20,13 +27,13 @@ _MARGIN = _softrast.framing_margin
 _DIRECTION = np.array(_softrast.framing_direction)
 
 
-def _world_vertices(sc):
+def _world_vertices(sc: Scene) -> List[NDArray[np.float64]]:
     """Each instance's vertices placed by its pose, float64, (N, 3) each."""
     return [np.asarray(inst.mesh.vertices, np.float64) @ inst.pose[:3, :3].T + inst.pose[:3, 3]
             for inst in sc]
 
 
-def _framed(scene):
+def _framed(scene: SceneLike) -> Scene:
     """The scene as a Scene, with at least one vertex."""
     sc = as_scene(scene)
     if not any(len(inst.mesh.vertices) for inst in sc):
@@ -34,7 +41,8 @@ def _framed(scene):
     return sc
 
 
-def fit_camera(scene, *, width, height, fov=None, projection="perspective"):
+def fit_camera(scene: SceneLike, *, width: int, height: int, fov: Optional[float] = None,
+               projection: Projection = "perspective") -> Camera:
     """softrast render's default camera for ``scene`` in a width x height image.
 
     The camera ``softrast render`` places when it is given none (the
@@ -78,15 +86,16 @@ def fit_camera(scene, *, width, height, fov=None, projection="perspective"):
     return Camera.perspective(eye, target, up, yfov=fovy, znear=0.5 * z if z > 0 else 1e-3)
 
 
-def _angle(value, name, low, high):
+def _angle(value: float, name: str, low: float, high: float) -> float:
     value = _number(value, name)
     if not low < value < high:
         raise ValueError(f"{name}: must be in ({low:.6g}, {high:.6g}) radians, got {value}")
     return value
 
 
-def orbit(scene, n, *, width, height, elevation=None, azimuth=None, fov_y=None,
-          distance=None):
+def orbit(scene: SceneLike, n: int, *, width: int, height: int,
+          elevation: Optional[float] = None, azimuth: Optional[float] = None,
+          fov_y: Optional[float] = None, distance: Optional[float] = None) -> CameraParameters:
     """``n`` cameras evenly spaced on a circle around ``scene``: a turntable.
 
     The cameras look at the centre of the scene's world box (its

@@ -1,6 +1,14 @@
 """Materials of loaded scenes: glTF's metallic-roughness factors and base color texture."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+
 import numpy as np
+from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from .typing import AlphaMode, Image
 
 
 class Material:
@@ -31,10 +39,27 @@ class Material:
                  "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
                  "unlit", "normal_scale", "occlusion_strength")
 
-    def __init__(self, base_color=(1.0, 1.0, 1.0, 1.0), base_color_texture=None, *, texcoord=0,
-                 metallic=1.0, roughness=1.0, emissive=(0.0, 0.0, 0.0), emissive_strength=1.0,
-                 alpha_mode="opaque", alpha_cutoff=0.5, double_sided=False, unlit=False,
-                 normal_scale=1.0, occlusion_strength=1.0):
+    base_color: NDArray[np.float32]
+    base_color_texture: Optional[Image]
+    texcoord: int
+    metallic: float
+    roughness: float
+    emissive: NDArray[np.float32]
+    emissive_strength: float
+    alpha_mode: AlphaMode
+    alpha_cutoff: float
+    double_sided: bool
+    unlit: bool
+    normal_scale: float
+    occlusion_strength: float
+
+    def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
+                 base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
+                 metallic: float = 1.0, roughness: float = 1.0,
+                 emissive: Factors = (0.0, 0.0, 0.0), emissive_strength: float = 1.0,
+                 alpha_mode: AlphaMode = "opaque", alpha_cutoff: float = 0.5,
+                 double_sided: bool = False, unlit: bool = False, normal_scale: float = 1.0,
+                 occlusion_strength: float = 1.0) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
         if base_color_texture is not None and not (
                 isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
@@ -57,21 +82,27 @@ class Material:
         self.occlusion_strength = float(occlusion_strength)
 
     @classmethod
-    def _from_factors(cls, factors, base_color_texture):
+    def _from_factors(cls, factors: Mapping[str, Any],
+                      base_color_texture: Optional[Image]) -> Material:
         """From sr_load_scene's material dict (_softrast.load_scene)."""
         slot = factors["base_color_texture"]
         kw = {k: v for k, v in factors.items() if k != "base_color_texture"}
         return cls(base_color_texture=base_color_texture, texcoord=slot["texcoord"] if slot else 0,
                    **kw)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         tex = "none" if self.base_color_texture is None else \
             "x".join(map(str, self.base_color_texture.shape[1::-1]))
         return (f"Material(base_color={self.base_color.tolist()}, texture={tex}, "
                 f"alpha_mode={self.alpha_mode!r})")
 
 
-def _factors(value, name, count, high):
+#: Colors and factors: a sequence or array of numbers.
+Factors = Union[Sequence[float], NDArray[Any]]
+
+
+def _factors(value: Union[float, Factors], name: str, count: int,
+             high: float) -> NDArray[np.float32]:
     """`count` float32 factors in [0, high], or a ValueError naming `name`."""
     try:
         a = np.array(value, np.float32).reshape(count)
@@ -82,7 +113,7 @@ def _factors(value, name, count, high):
     return a
 
 
-def texture_transform(uvs, slot):
+def texture_transform(uvs: Any, slot: Optional[Mapping[str, Any]]) -> Any:
     """uvs (N, 2) through a slot's T(offset) R(rotation) S(scale), in the
     library's texture frame ((0, 0) the image's bottom-left)."""
     if slot is None:
@@ -93,7 +124,8 @@ def texture_transform(uvs, slot):
     return (out + slot["offset"]).astype(np.float32)
 
 
-def material_arrays(arrays, factors, texture):
+def material_arrays(arrays: Mapping[str, Any], factors: Mapping[str, Any],
+                    texture: Optional[Image]) -> dict[str, Any]:
     """A loaded primitive's Mesh arguments with its material drawn in:
     colors = vertex colors (white without) times the base color factor,
     uvs = the texture's coordinate set through its transform, texture =

@@ -1,17 +1,25 @@
 """render(): cameras and scene checked and composed here, pixels drawn in C."""
 
+from __future__ import annotations
+
 import os
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import _softrast
 from ._camera import Camera
 from ._framing import fit_camera
-from ._scene import as_scene
+from ._scene import Instance, Scene, as_scene
 from ._softrast import Mesh
 
+if TYPE_CHECKING:
+    from .typing import (Antialias, Cull, NormalFrame, OutputName, PathLike, Projection,
+                          RealArrayLike, RenderOutputs, SceneLike, Shading)
+
 #: The outputs render() can return, with their per-view shape suffix and dtype.
-OUTPUTS = {
+OUTPUTS: Dict[str, Tuple[Tuple[int, ...], type]] = {
     "color": ((3,), np.uint8),
     "rgba": ((4,), np.uint8),
     "depth": ((), np.float32),
@@ -23,7 +31,7 @@ OUTPUTS = {
 }
 
 
-def _float_array(value, name):
+def _float_array(value: object, name: str) -> NDArray[np.float64]:
     if isinstance(value, np.ndarray) and value.dtype.kind not in "biuf":
         raise TypeError(f"{name}: dtype must be numeric, got {value.dtype}")
     try:
@@ -35,7 +43,8 @@ def _float_array(value, name):
     return a
 
 
-def _batched(value, name, shape):
+def _batched(value: object, name: str,
+             shape: Tuple[int, ...]) -> Tuple[NDArray[np.float64], bool]:
     """(value as float64 with a leading batch axis, whether it had one)."""
     a = _float_array(value, name)
     if a.shape == shape:
@@ -46,7 +55,8 @@ def _batched(value, name, shape):
     raise ValueError(f"{name}: shape must be ({want}) or (B, {want}), got {a.shape}")
 
 
-def _cameras(K, R, t, extrinsics):
+def _cameras(K: object, R: object, t: object, extrinsics: object
+             ) -> Tuple[NDArray[np.float64], NDArray[np.float64], bool]:
     """K (B, 3, 3) and [R | t] (B, 3, 4), and whether the result is batched."""
     Ks, k_batched = _batched(K, "K", (3, 3))
     if not np.array_equal(Ks[:, 2], np.broadcast_to([0.0, 0.0, 1.0], Ks[:, 2].shape)):
@@ -89,7 +99,7 @@ def _cameras(K, R, t, extrinsics):
             k_batched or rt_batched)
 
 
-def _outputs(outputs):
+def _outputs(outputs: Sequence[OutputName]) -> List[OutputName]:
     if isinstance(outputs, str) or not hasattr(outputs, "__iter__"):
         raise TypeError("outputs: expected a sequence of output names, e.g. ('depth',)")
     names = list(outputs)
@@ -103,7 +113,7 @@ def _outputs(outputs):
     return names
 
 
-def _flat(mesh):
+def _flat(mesh: Mesh) -> Mesh:
     """The mesh with each face's corners its own vertices and the face's
     normal, as glTF shades a mesh without normals (the metallic-roughness
     program needs normals); faces keep their order."""
@@ -113,7 +123,7 @@ def _flat(mesh):
     length = np.linalg.norm(n, axis=1, keepdims=True)
     n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
 
-    def per_corner(a):
+    def per_corner(a: Optional[NDArray[Any]]) -> Optional[NDArray[Any]]:
         return None if a is None else np.ascontiguousarray(np.asarray(a)[corners])
 
     return Mesh(np.ascontiguousarray(np.asarray(mesh.vertices)[corners]),
@@ -125,15 +135,14 @@ def _flat(mesh):
 _ALPHA_MODES = {"opaque": 0, "mask": 1, "blend": 2}
 
 
-def _look(inst):
+def _look(inst: Instance) -> Tuple[Any, ...]:
     """What the metallic-roughness pass draws of an instance: its pose, its
     Material's factors, alpha mode and flags (a rough, double-sided
     dielectric without one), and the loaded primitive it came from."""
     m = inst.material
     pose = np.ascontiguousarray(inst.pose[:3, :])
-    source = inst._source
-    if source is not None:
-        source = None if source[0] is None else (source[0].capsule, source[1])
+    loaded = inst._source
+    source = None if loaded is None or loaded[0] is None else (loaded[0].capsule, loaded[1])
     if m is None:
         return (pose, (1.0, 1.0, 1.0, 1.0), 0.0, 0.5, (0.0, 0.0, 0.0), 1.0, 0, 0.5, True, False,
                 1.0, 1.0, source)
@@ -147,10 +156,11 @@ def _look(inst):
 
 # Prefiltered environments, by (file, its size and time, intensity): a few
 # kept, as prefiltering costs far more than a view.
-_ENVIRONMENTS = {}
+_ENVIRONMENTS: Dict[Tuple[Union[str, bytes], Optional[Tuple[int, int]], float], object] = {}
 
 
-def _environment(environment, intensity, threads):
+def _environment(environment: Optional[PathLike], intensity: float,
+                 threads: int) -> Optional[object]:
     if environment is None:
         environment = "studio"
     if isinstance(environment, str) and environment == "hemisphere":
@@ -162,6 +172,7 @@ def _environment(environment, intensity, threads):
                         f"got {type(intensity).__name__}") from None
     if not (np.isfinite(intensity) and 0.001 <= intensity <= 1000):
         raise ValueError(f"environment_intensity: must be in 0.001 .. 1000, got {intensity}")
+    key: Tuple[Union[str, bytes], Optional[Tuple[int, int]], float]
     if isinstance(environment, str) and environment == "studio":
         key = ("", None, intensity)
     elif isinstance(environment, (str, bytes, os.PathLike)):
@@ -169,7 +180,7 @@ def _environment(environment, intensity, threads):
         try:
             st = os.stat(path)
         except OSError as e:
-            raise OSError(f"environment: {path}: {e.strerror}") from None
+            raise OSError(f"environment: {os.fsdecode(path)}: {e.strerror}") from None
         key = (path, (st.st_size, st.st_mtime_ns), intensity)
     else:
         raise TypeError(f"environment: expected 'studio', 'hemisphere' or an .hdr file's path, "
@@ -181,11 +192,13 @@ def _environment(environment, intensity, threads):
     return _ENVIRONMENTS[key]
 
 
-def _file_cameras(camera, width, height):
+def _file_cameras(camera: Union[Camera, List[Camera], Tuple[Camera, ...]], width: int,
+                  height: int) -> Tuple[NDArray[np.float64], NDArray[np.float64],
+                                        NDArray[np.float64], NDArray[np.bool_], bool]:
     """K (B, 3, 3), [R | t] (B, 3, 4), near (B,), orthographic (B,) and
     whether batched, from one Camera or a list of them."""
     batched = isinstance(camera, (list, tuple))
-    cams = list(camera) if batched else [camera]
+    cams: List[Any] = list(camera) if isinstance(camera, (list, tuple)) else [camera]
     if not cams or not all(isinstance(c, Camera) for c in cams):
         raise TypeError("camera: expected a softrast.Camera (Scene.cameras) or a list of them")
     Ks = np.stack([c.intrinsics(width, height) for c in cams])
@@ -194,7 +207,8 @@ def _file_cameras(camera, width, height):
             np.array([c.type == "orthographic" for c in cams]), batched)
 
 
-def _far(instances, poses, near):
+def _far(instances: Scene, poses: Sequence[Tuple[NDArray[np.float64], NDArray[np.float64]]],
+         near: float) -> float:
     """An orthographic view's far plane (there is none to give): beyond
     every vertex's camera z, so that nothing is clipped there, and at
     least as far again from near, so that the farthest surface's window
@@ -215,7 +229,7 @@ _ANTIALIAS = {"none": (1, 1), "msaa2": (2, 1), "msaa4": (4, 1), "msaa8": (8, 1),
               "msaa16": (16, 1), "ssaa2": (1, 2), "ssaa3": (1, 3), "ssaa4": (1, 4)}
 
 
-def _antialias(antialias, width, height):
+def _antialias(antialias: Optional[Antialias], width: int, height: int) -> Tuple[int, int]:
     if antialias is None:
         antialias = "none"
     if not isinstance(antialias, str):
@@ -230,7 +244,7 @@ def _antialias(antialias, width, height):
     return msaa, ssaa
 
 
-def _int_arg(value, name, low, high):
+def _int_arg(value: int, name: str, low: int, high: int) -> int:
     if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
         raise TypeError(f"{name}: expected an int, got {type(value).__name__}")
     if not low <= value <= high:
@@ -238,11 +252,18 @@ def _int_arg(value, name, low, high):
     return int(value)
 
 
-def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width, height,
-           outputs=("color", "depth"), threads=0, near=None, normal_frame="camera",
-           background=(0.0, 0.0, 0.0), shading="lit", environment=None,
-           environment_intensity=0.6, shadows=None, ground=False, projection=None,
-           antialias=None, cull="none"):
+def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
+           R: Optional[RealArrayLike] = None, t: Optional[RealArrayLike] = None,
+           extrinsics: Optional[RealArrayLike] = None,
+           camera: Union[Camera, List[Camera], Tuple[Camera, ...], None] = None, width: int,
+           height: int,
+           outputs: Sequence[OutputName] = ("color", "depth"), threads: int = 0,
+           near: Optional[float] = None, normal_frame: NormalFrame = "camera",
+           background: RealArrayLike = (0.0, 0.0, 0.0), shading: Shading = "lit",
+           environment: Optional[PathLike] = None, environment_intensity: float = 0.6,
+           shadows: Optional[bool] = None, ground: bool = False,
+           projection: Optional[Projection] = None, antialias: Optional[Antialias] = None,
+           cull: Cull = "none") -> RenderOutputs:
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -408,7 +429,8 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     bg = _float_array(background, "background")
     if bg.shape != (3,):
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
-    bg = tuple(float(c) for c in np.clip(bg, 0.0, 1.0))
+    bg = np.clip(bg, 0.0, 1.0)
+    rgb = (float(bg[0]), float(bg[1]), float(bg[2]))
     if (environment is not None or shadows or ground) and shading != "pbr":
         raise ValueError("environment, shadows, ground: need shading='pbr'")
     if not isinstance(ground, (bool, np.bool_)):
@@ -421,14 +443,15 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
     msaa, ssaa = _antialias(antialias, width, height)
 
     n = len(Ks)
-    out = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
+    out: Dict[str, NDArray[Any]] = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
     inv_t = [np.linalg.inv(inst.pose[:3, :3]).T for inst in sc]
     ids = [i if inst.instance_id is None else inst.instance_id for i, inst in enumerate(sc)]
     images = [name for name in ("color", "rgba") if name in out]
     # The metallic-roughness look draws meshes without normals flat, from
     # copies: the geometry outputs are drawn from the meshes as given.
     pbr = shading == "pbr" and images
-    passes = [(names, [inst.mesh for inst in sc])]
+    passes: List[Tuple[Sequence[str], List[Mesh]]] = [(names, [inst.mesh for inst in sc])]
+    looks: List[Tuple[Tuple[Any, ...]]] = []
     if pbr:
         # (A loaded instance's look brings the file's arrays, flat normals made.)
         looks = [(_look(inst),) for inst in sc]
@@ -447,20 +470,21 @@ def render(scene, *, K=None, R=None, t=None, extrinsics=None, camera=None, width
             if not wanted:
                 continue
             color_pbr = pbr and wanted is images
+            looks_now: Sequence[Any] = ids
+            if color_pbr:
+                looks_now = looks
             instances = [(mesh, a, nm, iid) + (look if color_pbr else ())
-                         for mesh, (a, nm), iid, look in zip(meshes, poses, ids,
-                                                            looks if color_pbr else ids)]
-            extra = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
+                         for mesh, (a, nm), iid, look in zip(meshes, poses, ids, looks_now)]
+            extra: Dict[str, Any] = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
                          shadows=bool(shadows), ground=bool(ground)) if color_pbr else {}
+            views = {name: out[name][b] if name in wanted else None for name in OUTPUTS}
             _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height,
-                             float(nears[b]), threads,
-                             *(out[name][b] if name in wanted else None
-                               for name in ("depth", "triangle_id", "instance_id", "barycentric",
-                                            "normal", "color", "mask")),
-                             bg, shading == "lit",
-                             rgba=out["rgba"][b] if "rgba" in wanted else None,
+                             float(nears[b]), threads, views["depth"], views["triangle_id"],
+                             views["instance_id"], views["barycentric"], views["normal"],
+                             views["color"], views["mask"], rgb, shading == "lit",
+                             rgba=views["rgba"],
                              ortho=bool(orthos[b]), far=far, msaa=msaa, ssaa=ssaa,
                              cull=cull == "back", **extra)
     if not batched:
         out = {name: a[0] for name, a in out.items()}
-    return out
+    return cast("RenderOutputs", out)

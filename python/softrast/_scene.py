@@ -1,15 +1,22 @@
 """Scenes: meshes placed by poses, each with an instance ID, and the model readers."""
 
+from __future__ import annotations
+
 import os
 import warnings
+from typing import TYPE_CHECKING, Any, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import _softrast
 from ._camera import Camera
 from ._gltf import base_color_images
 from ._material import Material, material_arrays
 from ._softrast import Mesh
+
+if TYPE_CHECKING:
+    from .typing import PathLike, RealArrayLike, SceneItem
 
 
 class Instance:
@@ -26,7 +33,14 @@ class Instance:
 
     __slots__ = ("mesh", "pose", "instance_id", "material", "_source")
 
-    def __init__(self, mesh, pose=None, instance_id=None, material=None):
+    mesh: Mesh
+    pose: NDArray[np.float64]
+    instance_id: Optional[int]
+    material: Optional[Material]
+    _source: Optional[Tuple[Optional[_SceneFile], int]]
+
+    def __init__(self, mesh: Mesh, pose: Optional[RealArrayLike] = None,
+                 instance_id: Optional[int] = None, material: Optional[Material] = None) -> None:
         # (the loaded scene, primitive index) of an instance load made:
         # the file's arrays and textures for shading="pbr".
         self._source = None
@@ -46,11 +60,11 @@ class Instance:
                             f"got {type(material).__name__}")
         self.material = material
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Instance({self.mesh!r}, instance_id={self.instance_id})"
 
 
-def _pose(pose, name):
+def _pose(pose: Optional[RealArrayLike], name: str) -> NDArray[np.float64]:
     """A (4, 4) float64 affine matrix from None, (3, 4) or (4, 4)."""
     if pose is None:
         return np.eye(4)
@@ -81,13 +95,14 @@ class Scene:
     of the file :func:`load` read (empty otherwise).
     """
 
-    def __init__(self, instances=(), cameras=()):
-        self.instances = []
+    def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = ()) -> None:
+        self.instances: List[Instance] = []
         self.cameras = list(cameras)
         for item in instances:
             self.add(item)
 
-    def add(self, item, pose=None, instance_id=None):
+    def add(self, item: SceneItem, pose: Optional[RealArrayLike] = None,
+            instance_id: Optional[int] = None) -> Instance:
         """Append a Mesh (with ``pose`` and ``instance_id``), a tuple or an Instance."""
         where = f"instances[{len(self.instances)}]"
         if isinstance(item, Instance):
@@ -105,17 +120,17 @@ class Scene:
         self.instances.append(inst)
         return inst
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.instances)
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[Instance]:
         return iter(self.instances)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"Scene({len(self.instances)} instances)"
 
 
-def as_scene(scene):
+def as_scene(scene: Any) -> Scene:
     """A Scene from what render takes: a Mesh, an Instance, a Scene or a list."""
     if isinstance(scene, Scene):
         return scene
@@ -136,29 +151,30 @@ class _SceneFile:
 
     __slots__ = ("path", "capsule")
 
-    def __init__(self, path, capsule):
+    def __init__(self, path: Union[str, bytes], capsule: object) -> None:
         self.path = path
         self.capsule = capsule
 
-    def __reduce__(self):
+    def __reduce__(self) -> Tuple[Any, Tuple[Union[str, bytes]]]:
         return (_read_scene_file, (self.path,))
 
 
-def _read_scene_file(path):
+def _read_scene_file(path: Union[str, bytes]) -> Optional[_SceneFile]:
     try:
         return _SceneFile(path, _softrast.load_scene(path)["file"])
     except (OSError, ValueError) as e:
-        warnings.warn(f"softrast: {path}: the file's materials are not kept: {e}", stacklevel=2)
+        warnings.warn(f"softrast: {os.fsdecode(path)}: the file's materials are not kept: {e}",
+                      stacklevel=2)
         return None
 
 
-def _path(path):
+def _path(path: PathLike) -> Union[str, bytes]:
     if not isinstance(path, (str, bytes, os.PathLike)):
         raise TypeError(f"path: expected a str or os.PathLike, got {type(path).__name__}")
     return os.fspath(path)
 
 
-def load_mesh(path):
+def load_mesh(path: PathLike) -> Mesh:
     """Read a model file as one :class:`Mesh` (sr_load_mesh).
 
     Every format the library reads: OBJ (with its MTL's diffuse texture),
@@ -172,7 +188,7 @@ def load_mesh(path):
     return Mesh(**_softrast.load_mesh(_path(path)))
 
 
-def load(path):
+def load(path: PathLike) -> Scene:
     """Read a model file as a :class:`Scene` (sr_load_scene).
 
     glTF 2.0 (.gltf, .glb) is read with its node hierarchy: one instance per
@@ -195,7 +211,7 @@ def load(path):
         return Scene([load_mesh(path)])
     images = base_color_images(path, d["materials"])
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
-    meshes = {}
+    meshes: dict[Tuple[int, int], Mesh] = {}
     instances = []
     source = _SceneFile(path, d["file"])
     for primitive, (mesh_index, world, material) in enumerate(d["instances"]):

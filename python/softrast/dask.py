@@ -24,27 +24,40 @@ or a :class:`softrast.Mesh`, :class:`softrast.Scene` or anything
 ``R``, ``t`` or ``extrinsics``, unbatched.
 """
 
+from __future__ import annotations
+
 import functools
 import os
 import tempfile
 import zipfile
+from typing import (TYPE_CHECKING, Any, Callable, Dict, Iterable, List, Mapping, Optional,
+                    Sequence, Union)
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import _render
 from ._softrast import write_png
 
+if TYPE_CHECKING:
+    from dask.delayed import Delayed
+
+    from .typing import OutputName, SceneLike, ShardManifest
+
+#: A directory or file name.
+_Dir = Union[str, "os.PathLike[str]"]
+
 _CAMERA_KEYS = ("K", "R", "t", "extrinsics")
 
 
-def _atomic_path(path):
+def _atomic_path(path: str) -> str:
     d, base = os.path.split(path)
     fd, tmp = tempfile.mkstemp(prefix="." + base + ".", suffix=".tmp", dir=d or ".")
     os.close(fd)
     return tmp
 
 
-def _write_npz(path, arrays):
+def _write_npz(path: str, arrays: Mapping[str, NDArray[Any]]) -> None:
     """np.savez's format with fixed timestamps (the same bytes every run),
     written to a temporary file and renamed into place."""
     tmp = _atomic_path(path)
@@ -53,7 +66,7 @@ def _write_npz(path, arrays):
             for name, array in arrays.items():
                 info = zipfile.ZipInfo(name + ".npy", date_time=(1980, 1, 1, 0, 0, 0))
                 with z.open(info, "w") as f:
-                    np.lib.format.write_array(f, np.ascontiguousarray(array), allow_pickle=False)
+                    np.save(f, np.ascontiguousarray(array), allow_pickle=False)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
@@ -62,34 +75,37 @@ def _write_npz(path, arrays):
 
 
 @functools.lru_cache(maxsize=8)
-def _cached_load(loader, path):
+def _cached_load(loader: Callable[[str], SceneLike], path: str) -> SceneLike:
     return loader(path)
 
 
-def _default_loader(path):
+def _default_loader(path: str) -> SceneLike:
     from ._scene import load_mesh
     return load_mesh(path)
 
 
-def shard_name(index):
+def shard_name(index: int) -> str:
     """The npz file of shard ``index``."""
     return f"shard-{index:06d}.npz"
 
 
-def view_name(job):
+def view_name(job: int) -> str:
     """The PNG file of the view in row ``job`` of the table."""
     return f"view-{job:08d}.png"
 
 
-def render_shard(jobs, first_job, shard_index, out_dir, *, width, height,
-                 outputs=("depth", "triangle_id"), threads=0, mesh_loader=None, **render_kwargs):
+def render_shard(jobs: Sequence[Mapping[str, Any]], first_job: int, shard_index: int,
+                 out_dir: _Dir, *, width: int, height: int,
+                 outputs: Sequence[OutputName] = ("depth", "triangle_id"), threads: int = 0,
+                 mesh_loader: Optional[Callable[[str], SceneLike]] = None,
+                 **render_kwargs: Any) -> ShardManifest:
     """Render ``jobs`` (rows ``first_job`` onwards of the table) as shard
     ``shard_index`` in ``out_dir``; returns its manifest: ``{"shard": index,
     "jobs": [rows], "files": [names]}``.  What a task of :func:`shard_tasks`
     runs; call it in a loop for a run without Dask."""
     loader = mesh_loader or _default_loader
     names = _render._outputs(outputs)
-    stacked = {name: [] for name in names}
+    stacked: Dict[str, List[NDArray[Any]]] = {name: [] for name in names}
     for job in jobs:
         scene = job["mesh"]
         if isinstance(scene, (str, bytes, os.PathLike)):
@@ -112,8 +128,11 @@ def render_shard(jobs, first_job, shard_index, out_dir, *, width, height,
     return {"shard": shard_index, "jobs": rows, "files": files}
 
 
-def shard_tasks(jobs, out_dir, *, width, height, outputs=("depth", "triangle_id"),
-                views_per_shard=16, threads=0, mesh_loader=None, **render_kwargs):
+def shard_tasks(jobs: Iterable[Mapping[str, Any]], out_dir: _Dir, *, width: int, height: int,
+                outputs: Sequence[OutputName] = ("depth", "triangle_id"),
+                views_per_shard: int = 16, threads: int = 0,
+                mesh_loader: Optional[Callable[[str], SceneLike]] = None,
+                **render_kwargs: Any) -> List[Delayed]:
     """One ``dask.delayed`` task per ``views_per_shard`` consecutive jobs,
     each calling :func:`render_shard`.  Compute them (``dask.compute(*tasks)``,
     ``client.compute(tasks)``) to write the shards into ``out_dir`` (made if
@@ -123,7 +142,7 @@ def shard_tasks(jobs, out_dir, *, width, height, outputs=("depth", "triangle_id"
     here, before anything is sent to a worker), ``views_per_shard`` and
     ``mesh_loader`` (a picklable function from a path to what ``render``
     takes)."""
-    import dask
+    from dask.delayed import delayed
 
     jobs = list(jobs)
     if not isinstance(views_per_shard, int) or views_per_shard < 1:
@@ -138,7 +157,7 @@ def shard_tasks(jobs, out_dir, *, width, height, outputs=("depth", "triangle_id"
         if batched:
             raise ValueError(f"jobs[{i}]: one camera a job, not a batch")
     os.makedirs(out_dir, exist_ok=True)
-    task = dask.delayed(render_shard, pure=True)
+    task = delayed(render_shard, pure=True)
     return [task(jobs[first:first + views_per_shard], first, index, out_dir, width=width,
                  height=height, outputs=outputs, threads=threads, mesh_loader=mesh_loader,
                  **render_kwargs)

@@ -402,6 +402,7 @@ static PyGetSetDef mesh_getset[] = {
 
 PyDoc_STRVAR(mesh_doc,
 "Mesh(vertices, faces, normals=None, colors=None, uvs=None, texture=None)\n"
+"--\n"
 "\n"
 "A triangle mesh over numpy arrays.\n"
 "\n"

@@ -9,24 +9,25 @@
 PyDoc_STRVAR(render_doc,
 "render(instances, K, width, height, near, threads, depth, triangle_id, instance_id,\n"
 "       barycentric, normal, color, mask, background, lit, rgba=None, pbr=False,\n"
-"       general=False)\n"
+"       view=None, environment=None, shadows=False, general=False, ortho=False,\n"
+"       far=0.0, msaa=1, ssaa=1, ground=False, cull=False)\n"
 "--\n"
 "\n"
 "The C renderer behind softrast.render (use that): one camera.\n"
 "instances: a sequence of (Mesh, (3, 4) float64 object->camera matrix,\n"
-"(3, 3) float64 normal matrix, int id[, (metallic, roughness, emissive\n"
-"r, g, b)]); K: (3, 3) float64.  The outputs\n"
-"are written into the given C-contiguous arrays (None: not wanted).\n"
+"(3, 3) float64 normal matrix, int id[, the material tuple of pbr=True]);\n"
+"K: (3, 3) float64.  The outputs (depth ... mask, rgba) are written into\n"
+"the given C-contiguous arrays (None: not wanted).\n"
 "general: the geometry outputs through the library's pipeline even where\n"
 "the visibility pass could draw them (the same bytes; for the tests).");
 
 PyDoc_STRVAR(load_mesh_doc,
-"load_mesh(path)\n--\n\n"
+"load_mesh(path, /)\n--\n\n"
 "sr_load_mesh: a dict of arrays (vertices, faces, normals, colors, uvs,\n"
 "texture).  Use softrast.load_mesh.");
 
 PyDoc_STRVAR(load_scene_doc,
-"load_scene(path)\n--\n\n"
+"load_scene(path, /)\n--\n\n"
 "sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
 "(4, 4) world matrix, material index)], 'materials': [dict of factors],\n"
 "'cameras': [dict of a camera's fields], 'file': the scene kept for\n"
@@ -34,29 +35,36 @@ PyDoc_STRVAR(load_scene_doc,
 "Use softrast.load.");
 
 PyDoc_STRVAR(make_environment_doc,
-"make_environment(path, intensity, threads)\n--\n\n"
+"make_environment(path, intensity, threads, /)\n--\n\n"
 "An image-based light for render(pbr=True): the built-in studio (path '')\n"
 "or an equirectangular .hdr file, prefiltered.  Use render(environment=).");
 
 PyDoc_STRVAR(read_image_doc,
-"read_image(path)\n--\n\n"
+"read_image(path, /)\n--\n\n"
 "A PNG or JPEG file (told apart by its first bytes) as an (H, W, 4) uint8\n"
 "RGBA array, row 0 at the top: a texture for softrast.Mesh.  Raises\n"
 "OSError when the file cannot be read, ValueError when it is malformed.");
 
 PyDoc_STRVAR(decode_image_doc,
-"decode_image(data, name)\n--\n\n"
+"decode_image(data, name, /)\n--\n\n"
 "PNG or JPEG bytes as an (H, W, 4) uint8 RGBA array, row 0 at the top;\n"
 "`name` is used in the error, a ValueError when the data is malformed.");
 
 PyDoc_STRVAR(write_png_doc,
-"write_png(path, image)\n--\n\n"
+"write_png(path, image, /)\n--\n\n"
 "Write an (H, W, 3) or (H, W, 4) uint8 C-contiguous image as a PNG, row 0\n"
 "at the top, atomically: a temporary file renamed over `path`, so a write\n"
 "that fails or is killed leaves no partial file.");
 
+PyDoc_STRVAR(render_svg_doc,
+"render_svg(path, data, width, height, scale, background, /)\n--\n\n"
+"sr_render_svg_file (path) or sr_render_svg (data, bytes-like), path or\n"
+"data None: (an (H, W, 4) uint8 RGBA array, [the warnings' lines]).\n"
+"width, height 0: the drawing's size times scale (0: 1); background\n"
+"(r, g, b, a) in [0, 1].  Use softrast.render_svg.");
+
 PyDoc_STRVAR(fit_camera_doc,
-"fit_camera(sets, width, height, fov, ortho)\n--\n\n"
+"fit_camera(sets, width, height, fov, ortho, /)\n--\n\n"
 "sr_fit_camera: softrast render's default camera framing the (vertices\n"
 "(N, 3) float32, model (16,) float32 column-major) pairs: ((eye), (target),\n"
 "(up), fovy, half_width, half_height).  Use softrast.fit_camera.");
@@ -69,6 +77,7 @@ static PyMethodDef methods[] = {
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
     { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },
     { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
+    { "render_svg", sr_py_render_svg, METH_VARARGS, render_svg_doc },
     { "fit_camera", sr_py_fit_camera, METH_VARARGS, fit_camera_doc },
     { NULL, NULL, 0, NULL },
 };
@@ -120,6 +129,7 @@ PyMODINIT_FUNC PyInit__softrast(void)
     Py_INCREF(&sr_py_MeshType);
     if (PyModule_AddObject(m, "Mesh", (PyObject *)&sr_py_MeshType) < 0 ||
         PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
+        PyModule_AddObject(m, "have_svg", PyBool_FromLong(sr_io_have_svg())) < 0 ||
         add_framing_constants(m) < 0) {
         Py_DECREF(&sr_py_MeshType);
         Py_DECREF(m);

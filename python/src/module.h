@@ -1,7 +1,7 @@
 /*
  * module.h - what the files of softrast._softrast share: the Mesh type
- * (mesh.c), the render entry point (render.c), the model readers (load.c)
- * and the image files (image.c).
+ * (mesh.c), the render entry point (render.c), the model readers (load.c),
+ * the image files (image.c) and the SVG reader (svg.c).
  * Every function here runs with the GIL held unless it says otherwise.
  */
 #ifndef SR_PY_MODULE_H
@@ -112,6 +112,8 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
 PyObject *sr_py_read_image(PyObject *self, PyObject *args);
 PyObject *sr_py_decode_image(PyObject *self, PyObject *args);
 PyObject *sr_py_write_png(PyObject *self, PyObject *args);
+/* render_svg(path, data, width, height, scale, background): svg.c. */
+PyObject *sr_py_render_svg(PyObject *self, PyObject *args);
 
 /* sr_fit_camera of (vertices, model) pairs (framing.c). */
 PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);

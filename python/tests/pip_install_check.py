@@ -1,5 +1,6 @@
 """`pip install ./python` from a copy of this checkout, then the installed
-package against the one the CMake build made: the same bytes for a render.
+package against the one the CMake build made: the same bytes for a render,
+and its type information (py.typed, the extension's stub) installed with it.
 
 Run by CTest as python_pip_install (not collected by pytest: it builds the
 whole library once more, about half a minute of CPU).  Exit 77 (skipped)
@@ -69,6 +70,10 @@ def main():
         where, installed = probe(target, tmp)
         if not where.startswith(target):
             sys.exit(f"pip_install_check: imported {where}, not the installed package")
+        # PEP 561: the type information goes with the package.
+        for name in ("py.typed", "_softrast.pyi", "typing.py"):
+            if not os.path.isfile(os.path.join(target, "softrast", name)):
+                sys.exit(f"pip_install_check: softrast/{name} was not installed")
         _, reference = probe(built, tmp)
     if installed != reference:
         sys.exit(f"pip_install_check: the installed package renders {installed}, "

@@ -1,0 +1,157 @@
+"""render_svg: SVG drawings to RGBA arrays with the library's SVG reader,
+the one behind ``softrast svg``."""
+
+from __future__ import annotations
+
+import math
+import operator
+import os
+import warnings
+from typing import TYPE_CHECKING, Optional, Sequence, SupportsFloat, Tuple, Union
+
+import numpy as np
+from numpy.typing import NDArray
+
+from . import _softrast
+
+if TYPE_CHECKING:
+    from .typing import SvgSource
+
+
+class SvgWarning(UserWarning):
+    """What the SVG reader skipped: an unsupported element, property or
+    image source, given once per name and render as
+    ``"NAME:LINE: warning: unsupported element 'text' skipped"``."""
+
+
+def _size(value: int, name: str) -> int:
+    try:
+        if isinstance(value, bool):
+            raise TypeError
+        n = operator.index(value)
+    except TypeError:
+        raise TypeError(f"{name}: expected an int, got {type(value).__name__}") from None
+    if n < 1:
+        raise ValueError(f"{name}: must be >= 1, got {n}")
+    # Past the C int the library would refuse it anyway: say so here.
+    return min(n, 2**31 - 1)
+
+
+def _background(value: Optional[Sequence[float]]) -> Tuple[float, float, float, float]:
+    if value is None:
+        return (0.0, 0.0, 0.0, 0.0)
+    if isinstance(value, (str, bytes)):
+        raise TypeError("background: expected 3 or 4 numbers in [0, 1] (r, g, b[, a]), "
+                        f"got {type(value).__name__}")
+    try:
+        components = [float(c) for c in value]
+    except TypeError:
+        raise TypeError("background: expected 3 or 4 numbers in [0, 1] (r, g, b[, a]), "
+                        f"got {type(value).__name__}") from None
+    if len(components) not in (3, 4):
+        raise ValueError("background: expected 3 or 4 numbers (r, g, b[, a]), "
+                         f"got {len(components)}")
+    if not all(0.0 <= c <= 1.0 for c in components):
+        raise ValueError(f"background: components must be in [0, 1], got {tuple(components)}")
+    if len(components) == 3:
+        components.append(1.0)
+    r, g, b, a = components
+    return (r, g, b, a)
+
+
+def _is_document(text: str) -> bool:
+    # An SVG document starts with '<' (an XML declaration, a comment or
+    # the svg element), possibly after a byte order mark and white space;
+    # a file name does not.
+    return text.lstrip("\ufeff \t\r\n").startswith("<")
+
+
+def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Optional[int] = None,
+               scale: Optional[float] = None,
+               background: Optional[Sequence[float]] = None) -> NDArray[np.uint8]:
+    """Render an SVG drawing to an ``(H, W, 4)`` uint8 RGBA array.
+
+    The drawing is rendered by softrast's SVG reader, exactly as
+    ``softrast svg`` renders it: the same options give the same pixels as
+    the command's PNG.
+
+    Parameters
+    ----------
+    source : str, os.PathLike, bytes, bytearray or memoryview
+        The path of an SVG file, or the document itself: bytes-like
+        objects always, a ``str`` when it starts with ``<`` (after white
+        space), as every SVG document does.  ``<image>`` elements with a
+        relative path are read from the file's directory (never above it);
+        for a document given in memory, relative paths are not read (each
+        is skipped with a :class:`SvgWarning`), and ``data:`` URIs work in
+        both cases.
+    width, height : int, optional
+        The image size in pixels, given together; the drawing's viewBox is
+        fitted in, as with ``softrast svg --size WxH``.
+    scale : float, optional
+        The image is the drawing's own size times ``scale`` (default 1),
+        as with ``--scale``; excludes ``width`` and ``height``.
+    background : sequence of 3 or 4 floats in [0, 1], optional
+        The color the image is cleared to before drawing: ``(r, g, b)`` is
+        opaque, as ``--background`` is; ``(r, g, b, a)`` may be translucent.
+        Default: transparent.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(H, W, 4)`` uint8, row 0 at the top, RGBA with straight (not
+        premultiplied) alpha, as the library's framebuffer holds it and
+        as the command's PNG stores it.
+
+    Raises
+    ------
+    ValueError
+        A malformed document, a reference cycle, an image side outside
+        1..8192 (SR_MAX_FRAMEBUFFER_SIZE) or work past the reader's
+        budgets, with the library's message ``"NAME:LINE: what is wrong"``
+        (NAME is the path as given, or ``<svg>`` for a document in
+        memory); or a bad argument value.
+    TypeError
+        An argument of the wrong type, named in the message.
+    OSError
+        The file cannot be read (FileNotFoundError when it does not exist),
+        with the path as ``filename``.
+
+    Warnings
+    --------
+    What the reader skips (text, filters and other unsupported elements,
+    properties, unreadable images) is reported once per name and render
+    as a :class:`SvgWarning`, through the :mod:`warnings` module.
+
+    The render runs on the calling thread with the GIL released: Python
+    threads render several drawings at once.
+    """
+    path: Optional[Union[str, os.PathLike[str], os.PathLike[bytes]]] = None
+    data: Optional[Union[bytes, bytearray, memoryview]] = None
+    if isinstance(source, (bytes, bytearray, memoryview)):
+        data = source
+    elif isinstance(source, str) and _is_document(source):
+        data = source.encode("utf-8")
+    elif isinstance(source, (str, os.PathLike)):
+        path = source
+    else:
+        raise TypeError("source: expected a path (str or os.PathLike) or the document "
+                        f"(bytes or str), got {type(source).__name__}")
+    if (width is None) != (height is None):
+        raise ValueError("width and height: give both or neither")
+    if width is not None and scale is not None:
+        raise ValueError("scale: excludes width and height")
+    w = h = 0
+    if width is not None and height is not None:
+        w, h = _size(width, "width"), _size(height, "height")
+    s = 0.0
+    if scale is not None:
+        if isinstance(scale, (bool, str, bytes)) or not isinstance(scale, SupportsFloat):
+            raise TypeError(f"scale: expected a number, got {type(scale).__name__}")
+        s = float(scale)
+        if not (s > 0 and math.isfinite(s)):
+            raise ValueError(f"scale: must be a finite number > 0, got {scale}")
+    image, lines = _softrast.render_svg(path, data, w, h, s, _background(background))
+    for line in lines:
+        warnings.warn(line, SvgWarning, stacklevel=2)
+    return image

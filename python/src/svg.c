@@ -1,0 +1,186 @@
+/*
+ * svg.c - render_svg: an SVG document (a file, or bytes in memory) to an
+ * (H, W, 4) uint8 RGBA array with the library's SVG reader
+ * (sr_render_svg_file, sr_render_svg).  The render runs without the GIL
+ * on a context of its own with no worker threads (the reader draws on the
+ * calling thread); the warnings it gives are collected and handed back
+ * for softrast.render_svg to raise through the warnings module.
+ */
+#include "module.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* The warnings of one render, kept until the GIL is held again (the
+ * callback runs without it).  The reader gives at most 65. */
+typedef struct warning_list {
+    char *lines[72];
+    int count;
+    bool lost;          /* a line that could not be kept (no memory) */
+} warning_list;
+
+static void keep_warning(void *user, const char *message)
+{
+    warning_list *w = user;
+    char *copy = NULL;
+    if (w->count < (int)(sizeof w->lines / sizeof w->lines[0])) {
+        copy = strdup(message);
+    }
+    if (!copy) {
+        w->lost = true;
+        return;
+    }
+    w->lines[w->count++] = copy;
+}
+
+/* A message of the library as str: a name in it need not be UTF-8, and
+ * one cut from the left may start inside a character. */
+static PyObject *message_text(const char *message)
+{
+    return PyUnicode_DecodeUTF8(message, (Py_ssize_t)strlen(message), "backslashreplace");
+}
+
+/* The kept lines as a list of str, freeing them; NULL with an exception set on failure. */
+static PyObject *take_warnings(warning_list *w)
+{
+    PyObject *list = PyList_New(0);
+    for (int i = 0; i < w->count; i++) {
+        if (list) {
+            PyObject *s = message_text(w->lines[i]);
+            if (!s || PyList_Append(list, s) < 0) {
+                Py_CLEAR(list);
+            }
+            Py_XDECREF(s);
+        }
+        free(w->lines[i]);
+    }
+    w->count = 0;
+    return list;
+}
+
+/* A failed read of the file `path_obj` names: an OSError whose errno
+ * (from stat, as open saw it moments earlier) makes it FileNotFoundError,
+ * PermissionError or IsADirectoryError where one applies, with the
+ * library's message and the path as its filename. */
+static PyObject *file_error(PyObject *path_obj, const char *message)
+{
+    struct stat st;
+    int e = 0;
+    if (stat(PyBytes_AS_STRING(path_obj), &st) != 0) {
+        e = errno;
+    } else if (S_ISDIR(st.st_mode)) {
+        e = EISDIR;
+    }
+    PyObject *filename = PyUnicode_DecodeFSDefault(PyBytes_AS_STRING(path_obj));
+    PyObject *text = message_text(message);
+    PyObject *exc = NULL;
+    if (filename && text) {
+        exc = e ? PyObject_CallFunction(PyExc_OSError, "iOO", e, text, filename)
+                : PyObject_CallFunction(PyExc_OSError, "O", text);
+    }
+    Py_XDECREF(filename);
+    Py_XDECREF(text);
+    if (exc) {
+        PyErr_SetObject((PyObject *)Py_TYPE(exc), exc);
+        Py_DECREF(exc);
+    }
+    return NULL;
+}
+
+PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *path_obj = NULL;
+    Py_buffer data = { 0 };
+    int width, height;
+    double scale;
+    float bg[4];
+    /* render_svg(path, data, width, height, scale, (r, g, b, a)): exactly
+     * one of path and data is not None; softrast.render_svg has checked
+     * the values. */
+    PyObject *path_arg, *data_arg;
+    if (!PyArg_ParseTuple(args, "OOiid(ffff):render_svg", &path_arg, &data_arg, &width, &height,
+                          &scale, &bg[0], &bg[1], &bg[2], &bg[3])) {
+        return NULL;
+    }
+    if ((path_arg == Py_None) == (data_arg == Py_None)) {
+        PyErr_SetString(PyExc_TypeError, "render_svg: give a path or data, not both");
+        return NULL;
+    }
+    if (path_arg != Py_None && !PyUnicode_FSConverter(path_arg, &path_obj)) {
+        return NULL;
+    }
+    if (data_arg != Py_None && PyObject_GetBuffer(data_arg, &data, PyBUF_SIMPLE) < 0) {
+        return NULL;
+    }
+    warning_list warnings = { .count = 0 };
+    sr_svg_desc desc = {
+        .width = width,
+        .height = height,
+        .scale = scale,
+        .background = { bg[0], bg[1], bg[2], bg[3] },
+        .warn = keep_warning,
+        .warn_user = &warnings,
+    };
+    sr_framebuffer *fb = NULL;
+    sr_io_error err = { { 0 } };
+    sr_context *ctx = NULL;
+    uint8_t *px = NULL;
+    int w = 0, h = 0;
+    sr_result r;
+    Py_BEGIN_ALLOW_THREADS
+    r = sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
+    if (r == SR_OK) {
+        r = path_obj ? sr_render_svg_file(ctx, PyBytes_AS_STRING(path_obj), &desc, &fb, NULL, &err)
+                     : sr_render_svg(ctx, data.buf, (size_t)data.len, &desc, &fb, NULL, &err);
+    }
+    if (r == SR_OK) {
+        /* Copied out while the GIL is free; the array is made after. */
+        w = sr_framebuffer_width(fb);
+        h = sr_framebuffer_height(fb);
+        px = malloc((size_t)w * (size_t)h * 4);
+        if (px) {
+            memcpy(px, sr_framebuffer_pixels(fb), (size_t)w * (size_t)h * 4);
+        } else {
+            r = SR_OUT_OF_MEMORY;
+        }
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+    Py_END_ALLOW_THREADS
+    if (data.obj) {
+        PyBuffer_Release(&data);
+    }
+    PyObject *lines = take_warnings(&warnings);
+    PyObject *result = NULL;
+    if (r != SR_OK) {
+        free(px);
+    }
+    if (!lines) {
+        if (r == SR_OK) {
+            free(px);
+        }
+    } else if (r == SR_IO_ERROR && path_obj) {
+        file_error(path_obj, err.message);
+    } else if (r != SR_OK) {
+        /* A malformed document, a reference cycle, a size or budget
+         * refused: "NAME:LINE: what is wrong". */
+        PyObject *text = message_text(err.message[0] ? err.message : sr_result_text(r));
+        if (text) {
+            PyErr_SetObject(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError, text);
+            Py_DECREF(text);
+        }
+    } else {
+        PyObject *image = sr_py_image_array(px, w, h);
+        result = image ? Py_BuildValue("(NO)", image, lines) : NULL;
+    }
+    if (warnings.lost && result) {
+        Py_DECREF(result);
+        result = PyErr_NoMemory();
+    }
+    Py_XDECREF(lines);
+    Py_XDECREF(path_obj);
+    return result;
+}
