@@ -3,7 +3,8 @@
  * places) one shaded triangle; docs/shaders.md's toon teapot in a few flat
  * bands with dark ink at its rim, and the procedural checkerboard with
  * crisp squares near the camera that the quad-derivative filter fades to
- * their average far away.  Also: softrast.h's API map names every function
+ * their average far away; docs/draw2d.md's paint example its gradients
+ * and pattern.  Also: softrast.h's API map names every function
  * the header declares, and nothing else. */
 #include "sr_test.h"
 #include "softrast_io.h"
@@ -196,6 +197,20 @@ static bool run(const char *exe, const char *out)
     return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+/* Run an example writing NAME under the test output directory and read
+ * the PNG back (malloc'd RGBA8); NULL when either fails. */
+static uint8_t *run_png(const char *exe, const char *name, int *w, int *h)
+{
+    char out[512];
+    snprintf(out, sizeof out, "%s/%s", sr_test_out_dir(), name);
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (!run(exe, out) || sr_read_png(out, NULL, w, h, &px, &err) != SR_OK) {
+        return NULL;
+    }
+    return px;
+}
+
 /* A binary PPM as written by examples/hello.c: RGB, 8 bits. */
 static uint8_t *read_ppm(const char *path, int *w, int *h)
 {
@@ -239,13 +254,9 @@ SR_TEST(hello_example_draws_the_triangle)
 
 SR_TEST(toon_example_draws_bands_and_ink)
 {
-    char out[512];
-    snprintf(out, sizeof out, "%s/example-toon.png", sr_test_out_dir());
-    REQUIRE(run(SR_EXAMPLE_TOON, out));
     int w, h;
-    uint8_t *px;
-    sr_io_error err;
-    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
+    uint8_t *px = run_png(SR_EXAMPLE_TOON, "example-toon.png", &w, &h);
+    REQUIRE(px);
     /* Count the pixels of each band color (base x band), exactly. */
     static const float bands[] = { 1.0f, 0.65f, 0.35f, 0.05f };
     int count[4] = { 0, 0, 0, 0 }, background = 0, other = 0;
@@ -277,13 +288,9 @@ SR_TEST(toon_example_draws_bands_and_ink)
 
 SR_TEST(checker_example_is_crisp_near_and_filtered_far)
 {
-    char out[512];
-    snprintf(out, sizeof out, "%s/example-checker.png", sr_test_out_dir());
-    REQUIRE(run(SR_EXAMPLE_CHECKER, out));
     int w, h;
-    uint8_t *px;
-    sr_io_error err;
-    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
+    uint8_t *px = run_png(SR_EXAMPLE_CHECKER, "example-checker.png", &w, &h);
+    REQUIRE(px);
     /* The bottom rows (near): mostly the two pure colors.  Just below the
      * horizon (far): mostly in between, no pure light squares. */
     int pure_near = 0, light_far = 0, mid_far = 0, n_near = 0, n_far = 0;
@@ -313,6 +320,47 @@ SR_TEST(checker_example_is_crisp_near_and_filtered_far)
     CHECK(mid_far > n_far * 8 / 10);
     free(px);
 }
+
+
+#ifdef SR_EXAMPLE_PAINT
+/* Whether pixel p is within d codes of r, g, b on each channel. */
+static bool near_rgb(const uint8_t *p, int r, int g, int b, int d)
+{
+    return abs(p[0] - r) <= d && abs(p[1] - g) <= d && abs(p[2] - b) <= d;
+}
+
+/* examples/paint.c: the disc's reflected gradient reaches both end
+ * colors again and again, the radial gradient is its first stop's color
+ * at the focal point, the star shows both checker colors at 80% over
+ * white, and the background stays white. */
+SR_TEST(paint_example_draws_its_gradients_and_pattern)
+{
+    int w, h;
+    uint8_t *px = run_png(SR_EXAMPLE_PAINT, "example-paint.png", &w, &h);
+    REQUIRE(px);
+    REQUIRE(w == 400 && h == 140);
+    int blue = 0, red = 0, dark = 0, light = 0;
+    for (int y = 30; y < 110; y++) {
+        for (int x = 20; x < 100; x++) {
+            blue += near_rgb(px + (y * w + x) * 4, 26, 77, 204, 6);
+            red += near_rgb(px + (y * w + x) * 4, 204, 26, 51, 6);
+        }
+    }
+    for (int y = 65; y < 85; y++) {
+        for (int x = 320; x < 340; x++) {
+            /* 0.8 of the tile's colors over white */
+            dark += near_rgb(px + (y * w + x) * 4, 75, 163, 99, 3);
+            light += near_rgb(px + (y * w + x) * 4, 243, 243, 227, 3);
+        }
+    }
+    CHECK(blue >= 40 && red >= 40);
+    CHECK(near_rgb(px + (50 * w + 170) * 4, 26, 77, 204, 0));
+    CHECK(dark >= 80 && light >= 80);
+    CHECK(near_rgb(px + (5 * w + 5) * 4, 255, 255, 255, 0));
+    CHECK(near_rgb(px + (130 * w + 300) * 4, 255, 255, 255, 0));
+    free(px);
+}
+#endif
 
 #else
 
