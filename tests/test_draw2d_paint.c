@@ -368,6 +368,11 @@ SR_TEST(every_paint_field_is_validated)
     CHECK(strstr(sr_context_error(ctx), "linear_light") != NULL);
     CHECK_EQ(sr_fill_polygon_paint(ctx, fb, &(sr_polygon2){ NULL, 3, NULL, 0 }, &lin, NULL),
              SR_INVALID_ARG);
+    /* a point the coverage refuses: the message names the call made */
+    sr_point2 nan_pt[] = { { NAN, 0 }, { 9, 1 }, { 2, 9 } };
+    CHECK_EQ(sr_fill_polygon_paint(ctx, fb, &(sr_polygon2){ nan_pt, 3, NULL, 0 }, &pat, NULL),
+             SR_INVALID_ARG);
+    CHECK(strstr(sr_context_error(ctx), "sr_fill_polygon_paint") != NULL);
     /* nothing was drawn by any of them */
     const uint8_t *px = sr_framebuffer_pixels(fb);
     int touched = 0;

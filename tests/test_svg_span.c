@@ -383,7 +383,8 @@ SR_TEST(a_painted_fill_blends_each_pixel_as_svg_blend_does)
                 svg_blend(want + (y * W + x) * 4, c, (float)mask[y * W + x] * (1.0f / 255.0f));
             }
         }
-        REQUIRE(sr__fill_paint(ctx, fb, &poly, &desc, sr__image_span, &im, opacity) == SR_OK);
+        REQUIRE(sr__fill_paint(ctx, "test", fb, &poly, &desc, sr__image_span, &im, opacity) ==
+                SR_OK);
         CHECK(memcmp(sr_framebuffer_pixels(fb), want, sizeof want) == 0);
         sr_destroy_framebuffer(ctx, fb);
     }

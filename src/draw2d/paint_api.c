@@ -197,7 +197,7 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
             return r;
         }
         memcpy(im.inv, inv, sizeof im.inv);
-        r = sr__fill_paint(ctx, fb, poly, &d, sr__image_span, &im, opacity);
+        r = sr__fill_paint(ctx, fn, fb, poly, &d, sr__image_span, &im, opacity);
     } else {
         sr__gradient *g = sr__alloc(ctx, sizeof *g);
         if (!g) {
@@ -210,7 +210,7 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
         if (r == SR_OK) {
             g->spread = paint->spread;
             memcpy(g->inv, inv, sizeof g->inv);
-            r = sr__fill_paint(ctx, fb, poly, &d, sr__gradient_span, g, opacity);
+            r = sr__fill_paint(ctx, fn, fb, poly, &d, sr__gradient_span, g, opacity);
         }
         sr__free(ctx, g);
     }

@@ -5,6 +5,7 @@
 #include "draw2d/paint_fill.h"
 
 #include "context.h"
+#include "draw2d/polyfill.h"
 
 #include <math.h>
 #include <string.h>
@@ -128,9 +129,9 @@ static void blend_row(uint32_t *out, const uint32_t *dst, const uint32_t *paint,
     }
 }
 
-sr_result sr__fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                         const sr_fill_desc *desc, sr__paint_span_fn span, void *paint,
-                         float opacity)
+sr_result sr__fill_paint(sr_context *ctx, const char *fn, sr_framebuffer *fb,
+                         const sr_polygon2 *poly, const sr_fill_desc *desc,
+                         sr__paint_span_fn span, void *paint, float opacity)
 {
     int fw = sr_framebuffer_width(fb), fh = sr_framebuffer_height(fb);
     double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
@@ -153,7 +154,7 @@ sr_result sr__fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 
     uint8_t *mask = px ? (uint8_t *)(row + w) : NULL;
     sr_result r = px ? SR_OK : SR_OUT_OF_MEMORY;
     if (r == SR_OK) {
-        r = sr_polygon_coverage(ctx, poly, desc, bx0, by0, w, h, mask, (size_t)w);
+        r = sr__polygon_coverage(ctx, fn, poly, desc, bx0, by0, w, h, mask, (size_t)w);
     }
     /* The destination is read where it is, when the framebuffer lends its
      * pixels, and the result composed in px: one copy, not two. */

@@ -80,9 +80,10 @@ bool sr__image_span(void *image, int x, int y, int n, uint32_t *out);
  * coverage is sr_polygon_coverage's (the same pixels and weights as
  * sr_fill_polygon with that desc), the paint is evaluated over each row's
  * covered span and blended source-over in straight alpha, the color
- * quantized to RGBA8 first.  The arguments are valid (the caller checked). */
-sr_result sr__fill_paint(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2 *poly,
-                         const sr_fill_desc *desc, sr__paint_span_fn span, void *paint,
-                         float opacity);
+ * quantized to RGBA8 first.  The paint is valid (the caller checked); the
+ * polygon is checked here, messages naming the public call fn. */
+sr_result sr__fill_paint(sr_context *ctx, const char *fn, sr_framebuffer *fb,
+                         const sr_polygon2 *poly, const sr_fill_desc *desc,
+                         sr__paint_span_fn span, void *paint, float opacity);
 
 #endif

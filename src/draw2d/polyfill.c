@@ -981,7 +981,14 @@ sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
                               const sr_fill_desc *desc, int x0, int y0, int w, int h,
                               uint8_t *mask, size_t stride)
 {
-    static const char fn[] = "sr_polygon_coverage";
+    return sr__polygon_coverage(ctx, "sr_polygon_coverage", poly, desc, x0, y0, w, h, mask,
+                                stride);
+}
+
+sr_result sr__polygon_coverage(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
+                               const sr_fill_desc *desc, int x0, int y0, int w, int h,
+                               uint8_t *mask, size_t stride)
+{
     if (!ctx) {
         return SR_INVALID_ARG;
     }

@@ -75,6 +75,10 @@ sr_result sr__scan_supersample(sr_context *ctx, const sr__edge2 *edges, int coun
                                sr_fill_rule rule, int n, sr__window win,
                                sr__span_fn fn, void *user);
 
+/* sr_polygon_coverage, its messages naming the public call fn. */
+sr_result sr__polygon_coverage(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
+                               const sr_fill_desc *desc, int x0, int y0, int w, int h,
+                               uint8_t *mask, size_t stride);
 /* Resolve a fill desc (NULL allowed) to its defaults, validating it. */
 sr_result sr__fill_desc_defaults(sr_context *ctx, const char *fn, const sr_fill_desc *in,
                                  sr_fill_desc *out);
