@@ -401,6 +401,16 @@ SR_API sr_result sr_render_svg_file(sr_context *ctx, const char *path, const sr_
                                     sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
 /* true when this build reads SVG (it found expat). */
 SR_API bool sr_io_have_svg(void);
+/* A CSS color as SVG reads one, alpha included: a keyword (the 147 of CSS
+ * and SVG, "transparent"), #rgb, #rgba, #rrggbb, #rrggbbaa, rgb()/rgba()
+ * and hsl()/hsla() (commas or blanks, numbers or percentages, an alpha
+ * after ',' or '/'), ASCII case ignored, blanks around it allowed.  For
+ * programs that take a color from their user the way SVG does (the Python
+ * package's render_svg background).  Works in builds without expat.
+ * SR_BAD_FORMAT for anything else ("none", "currentColor" and url(...)
+ * are paints, not colors), SR_INVALID_ARG for NULL; *out is set only on
+ * SR_OK. */
+SR_API sr_result sr_io_parse_color(const char *text, sr_rgba *out);
 
 #ifdef __cplusplus
 }

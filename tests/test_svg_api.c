@@ -127,3 +127,39 @@ SR_TEST(bad_arguments_are_refused)
     CHECK(fb == NULL);
     sr_destroy_context(ctx);
 }
+
+/* sr_io_parse_color: the reader's own color syntax, alpha included. */
+SR_TEST(parse_color_reads_css_colors)
+{
+    sr_rgba c = { 0 };
+    CHECK_EQ(sr_io_parse_color("#1e90ff", &c), SR_OK);
+    CHECK(c.r == 0x1e / 255.0f && c.g == 0x90 / 255.0f && c.b == 1.0f && c.a == 1.0f);
+    sr_rgba named = { 0 };
+    CHECK_EQ(sr_io_parse_color(" DodgerBlue ", &named), SR_OK);
+    CHECK(memcmp(&named, &c, sizeof c) == 0);
+    CHECK_EQ(sr_io_parse_color("#abc8", &c), SR_OK);
+    CHECK(c.r == 0xaa / 255.0f && c.g == 0xbb / 255.0f && c.b == 0xcc / 255.0f &&
+          c.a == 0x88 / 255.0f);
+    CHECK_EQ(sr_io_parse_color("#00ff0080", &c), SR_OK);
+    CHECK(c.r == 0 && c.g == 1.0f && c.b == 0 && c.a == 0x80 / 255.0f);
+    CHECK_EQ(sr_io_parse_color("rgba(255, 0, 51, 0.25)", &c), SR_OK);
+    CHECK(c.r == 1.0f && c.g == 0 && c.b == 51 / 255.0f && c.a == 0.25f);
+    CHECK_EQ(sr_io_parse_color("rgb(100% 50% 0%)", &c), SR_OK);
+    CHECK(c.r == 1.0f && c.g == 0.5f && c.b == 0 && c.a == 1.0f);
+    CHECK_EQ(sr_io_parse_color("transparent", &c), SR_OK);
+    CHECK(c.r == 0 && c.g == 0 && c.b == 0 && c.a == 0);
+}
+
+SR_TEST(parse_color_refuses_what_is_not_a_color)
+{
+    const char *bad[] = { "", "  ", "none", "currentColor", "url(#g)", "#12", "#12345",
+                          "#ggg", "rgb(1, 2)", "rgb(1, 2, 3", "notacolor", "red blue" };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sr_rgba c = { 0.5f, 0.5f, 0.5f, 0.5f };
+        CHECK_EQ(sr_io_parse_color(bad[i], &c), SR_BAD_FORMAT);
+        CHECK(c.r == 0.5f && c.a == 0.5f);   /* untouched */
+    }
+    sr_rgba c;
+    CHECK_EQ(sr_io_parse_color(NULL, &c), SR_INVALID_ARG);
+    CHECK_EQ(sr_io_parse_color("red", NULL), SR_INVALID_ARG);
+}

@@ -3,6 +3,7 @@ the one behind ``softrast svg``."""
 
 from __future__ import annotations
 
+import errno
 import math
 import operator
 import os
@@ -37,17 +38,25 @@ def _size(value: int, name: str) -> int:
     return min(n, 2**31 - 1)
 
 
-def _background(value: Optional[Sequence[float]]) -> Tuple[float, float, float, float]:
+def _background(value: Optional[Union[str, Sequence[float]]]
+                ) -> Tuple[float, float, float, float]:
     if value is None:
         return (0.0, 0.0, 0.0, 0.0)
-    if isinstance(value, (str, bytes)):
-        raise TypeError("background: expected 3 or 4 numbers in [0, 1] (r, g, b[, a]), "
-                        f"got {type(value).__name__}")
+    if isinstance(value, str):
+        # The library's own CSS color parser, the one that reads fill and
+        # stroke, so a color means the same here as in the document.
+        try:
+            return _softrast.parse_color(value)
+        except ValueError:
+            raise ValueError(f"background: not a CSS color: {value!r}") from None
+    if isinstance(value, bytes):
+        raise TypeError("background: expected a CSS color (str) or 3 or 4 numbers in [0, 1] "
+                        f"(r, g, b[, a]), got {type(value).__name__}")
     try:
         components = [float(c) for c in value]
     except TypeError:
-        raise TypeError("background: expected 3 or 4 numbers in [0, 1] (r, g, b[, a]), "
-                        f"got {type(value).__name__}") from None
+        raise TypeError("background: expected a CSS color (str) or 3 or 4 numbers in [0, 1] "
+                        f"(r, g, b[, a]), got {type(value).__name__}") from None
     if len(components) not in (3, 4):
         raise ValueError("background: expected 3 or 4 numbers (r, g, b[, a]), "
                          f"got {len(components)}")
@@ -66,9 +75,26 @@ def _is_document(text: str) -> bool:
     return text.lstrip("\ufeff \t\r\n").startswith("<")
 
 
+def _document_name(resources_dir: Union[str, os.PathLike[str]]) -> str:
+    # The reader reads a document's images from the directory of its
+    # name, as it does for a file: a name in resources_dir does that
+    # for a document in memory, and messages name "DIR/<svg>".
+    if isinstance(resources_dir, bytes) or not isinstance(resources_dir, (str, os.PathLike)):
+        raise TypeError("resources_dir: expected a directory (str or os.PathLike), "
+                        f"got {type(resources_dir).__name__}")
+    directory = os.fspath(resources_dir)
+    if not isinstance(directory, str):
+        raise TypeError("resources_dir: expected a str path, got bytes")
+    if not os.path.isdir(directory):
+        raise NotADirectoryError(errno.ENOTDIR, "resources_dir: not a directory", directory)
+    return os.path.join(directory, "<svg>")
+
+
 def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Optional[int] = None,
                scale: Optional[float] = None,
-               background: Optional[Sequence[float]] = None) -> NDArray[np.uint8]:
+               background: Optional[Union[str, Sequence[float]]] = None,
+               resources_dir: Optional[Union[str, os.PathLike[str]]] = None
+               ) -> NDArray[np.uint8]:
     """Render an SVG drawing to an ``(H, W, 4)`` uint8 RGBA array.
 
     The drawing is rendered by softrast's SVG reader, exactly as
@@ -82,19 +108,28 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
         objects always, a ``str`` when it starts with ``<`` (after white
         space), as every SVG document does.  ``<image>`` elements with a
         relative path are read from the file's directory (never above it);
-        for a document given in memory, relative paths are not read (each
-        is skipped with a :class:`SvgWarning`), and ``data:`` URIs work in
-        both cases.
+        for a document given in memory, from ``resources_dir``, and without
+        it relative paths are not read (each is skipped with a
+        :class:`SvgWarning`); ``data:`` URIs work in all cases.
     width, height : int, optional
         The image size in pixels, given together; the drawing's viewBox is
         fitted in, as with ``softrast svg --size WxH``.
     scale : float, optional
         The image is the drawing's own size times ``scale`` (default 1),
         as with ``--scale``; excludes ``width`` and ``height``.
-    background : sequence of 3 or 4 floats in [0, 1], optional
-        The color the image is cleared to before drawing: ``(r, g, b)`` is
-        opaque, as ``--background`` is; ``(r, g, b, a)`` may be translucent.
+    background : str or sequence of 3 or 4 floats in [0, 1], optional
+        The color the image is cleared to before drawing: a CSS color as
+        SVG reads one (``"navy"``, ``"#rgb"``, ``"#rgba"``, ``"#rrggbb"``,
+        ``"#rrggbbaa"``, ``"rgb(0, 0, 128)"``, ``"rgba(0, 0, 128, 0.5)"``,
+        ``hsl()``, ``"transparent"``), or numbers: ``(r, g, b)`` is opaque,
+        as ``--background`` is; ``(r, g, b, a)`` may be translucent.
         Default: transparent.
+    resources_dir : str or os.PathLike, optional
+        For a document given in memory: the directory its ``<image>``
+        elements' relative paths are read from (never above it), as they
+        are from a file's own directory; messages then name the document
+        ``RESOURCES_DIR/<svg>``.  resvg's option of the same name.  Not
+        for a path: a file's images are read from its directory.
 
     Returns
     -------
@@ -110,18 +145,21 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
         1..8192 (SR_MAX_FRAMEBUFFER_SIZE) or work past the reader's
         budgets, with the library's message ``"NAME:LINE: what is wrong"``
         (NAME is the path as given, or ``<svg>`` for a document in
-        memory); or a bad argument value.
+        memory); or a bad argument value, such as a ``background`` that is
+        not a color.
     TypeError
         An argument of the wrong type, named in the message.
     OSError
         The file cannot be read (FileNotFoundError when it does not exist),
-        with the path as ``filename``.
+        with the path as ``filename``; NotADirectoryError when
+        ``resources_dir`` is not a directory.
 
     Warnings
     --------
     What the reader skips (text, filters and other unsupported elements,
     properties, unreadable images) is reported once per name and render
-    as a :class:`SvgWarning`, through the :mod:`warnings` module.
+    as a :class:`SvgWarning`, through the :mod:`warnings` module, also
+    when the render then fails: the warnings first, then the exception.
 
     The render runs on the calling thread with the GIL released: Python
     threads render several drawings at once.
@@ -151,7 +189,17 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
         s = float(scale)
         if not (s > 0 and math.isfinite(s)):
             raise ValueError(f"scale: must be a finite number > 0, got {scale}")
-    image, lines = _softrast.render_svg(path, data, w, h, s, _background(background))
+    name: Optional[str] = None
+    if resources_dir is not None:
+        if path is not None:
+            raise ValueError("resources_dir: only for a document in memory; a file's images "
+                             "are read from its own directory")
+        name = _document_name(resources_dir)
+    image, lines, error = _softrast.render_svg(path, data, name, w, h, s,
+                                               _background(background))
     for line in lines:
         warnings.warn(line, SvgWarning, stacklevel=2)
+    if error is not None:
+        raise error
+    assert image is not None
     return image

@@ -57,11 +57,18 @@ PyDoc_STRVAR(write_png_doc,
 "that fails or is killed leaves no partial file.");
 
 PyDoc_STRVAR(render_svg_doc,
-"render_svg(path, data, width, height, scale, background, /)\n--\n\n"
+"render_svg(path, data, name, width, height, scale, background, /)\n--\n\n"
 "sr_render_svg_file (path) or sr_render_svg (data, bytes-like), path or\n"
-"data None: (an (H, W, 4) uint8 RGBA array, [the warnings' lines]).\n"
-"width, height 0: the drawing's size times scale (0: 1); background\n"
-"(r, g, b, a) in [0, 1].  Use softrast.render_svg.");
+"data None: (an (H, W, 4) uint8 RGBA array or None, [the warnings' lines],\n"
+"None or the error to raise after them).  name: the document's name and\n"
+"directory, None for the default.  width, height 0: the drawing's size\n"
+"times scale (0: 1); background (r, g, b, a) in [0, 1].  Use\n"
+"softrast.render_svg.");
+
+PyDoc_STRVAR(parse_color_doc,
+"parse_color(text, /)\n--\n\n"
+"sr_io_parse_color: a CSS color as SVG reads it, as (r, g, b, a) in\n"
+"[0, 1]; ValueError when it is not one.");
 
 PyDoc_STRVAR(fit_camera_doc,
 "fit_camera(sets, width, height, fov, ortho, /)\n--\n\n"
@@ -78,6 +85,7 @@ static PyMethodDef methods[] = {
     { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },
     { "write_png", sr_py_write_png, METH_VARARGS, write_png_doc },
     { "render_svg", sr_py_render_svg, METH_VARARGS, render_svg_doc },
+    { "parse_color", sr_py_parse_color, METH_VARARGS, parse_color_doc },
     { "fit_camera", sr_py_fit_camera, METH_VARARGS, fit_camera_doc },
     { NULL, NULL, 0, NULL },
 };

@@ -112,8 +112,10 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
 PyObject *sr_py_read_image(PyObject *self, PyObject *args);
 PyObject *sr_py_decode_image(PyObject *self, PyObject *args);
 PyObject *sr_py_write_png(PyObject *self, PyObject *args);
-/* render_svg(path, data, width, height, scale, background): svg.c. */
+/* render_svg(path, data, name, width, height, scale, background) and
+ * parse_color(text): svg.c. */
 PyObject *sr_py_render_svg(PyObject *self, PyObject *args);
+PyObject *sr_py_parse_color(PyObject *self, PyObject *args);
 
 /* sr_fit_camera of (vertices, model) pairs (framing.c). */
 PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);

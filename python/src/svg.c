@@ -3,8 +3,10 @@
  * (H, W, 4) uint8 RGBA array with the library's SVG reader
  * (sr_render_svg_file, sr_render_svg).  The render runs without the GIL
  * on a context of its own with no worker threads (the reader draws on the
- * calling thread); the warnings it gives are collected and handed back
- * for softrast.render_svg to raise through the warnings module.
+ * calling thread); the warnings it gives are collected and handed back,
+ * with the error when it fails, for softrast.render_svg to raise through
+ * the warnings module before the error.  parse_color: sr_io_parse_color,
+ * the reader's CSS colors for the background.
  */
 #include "module.h"
 
@@ -89,20 +91,55 @@ static PyObject *file_error(PyObject *path_obj, const char *message)
     return NULL;
 }
 
+/* The exception set, taken out as an object; NULL when none could be made. */
+static PyObject *take_error(void)
+{
+#if PY_VERSION_HEX >= 0x030c0000
+    return PyErr_GetRaisedException();
+#else
+    PyObject *type, *value, *tb;
+    PyErr_Fetch(&type, &value, &tb);
+    PyErr_NormalizeException(&type, &value, &tb);
+    if (value && tb) {
+        PyException_SetTraceback(value, tb);
+    }
+    Py_XDECREF(type);
+    Py_XDECREF(tb);
+    return value;
+#endif
+}
+
+PyObject *sr_py_parse_color(PyObject *self, PyObject *args)
+{
+    (void)self;
+    const char *text;
+    Py_ssize_t len;
+    if (!PyArg_ParseTuple(args, "s#:parse_color", &text, &len)) {
+        return NULL;
+    }
+    sr_rgba c;
+    if ((size_t)len != strlen(text) || sr_io_parse_color(text, &c) != SR_OK) {
+        return PyErr_Format(PyExc_ValueError, "not a CSS color: %R", PyTuple_GET_ITEM(args, 0));
+    }
+    return Py_BuildValue("(ffff)", c.r, c.g, c.b, c.a);
+}
+
 PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *path_obj = NULL;
+    PyObject *path_obj = NULL, *name_obj = NULL;
     Py_buffer data = { 0 };
     int width, height;
     double scale;
     float bg[4];
-    /* render_svg(path, data, width, height, scale, (r, g, b, a)): exactly
-     * one of path and data is not None; softrast.render_svg has checked
-     * the values. */
-    PyObject *path_arg, *data_arg;
-    if (!PyArg_ParseTuple(args, "OOiid(ffff):render_svg", &path_arg, &data_arg, &width, &height,
-                          &scale, &bg[0], &bg[1], &bg[2], &bg[3])) {
+    /* render_svg(path, data, name, width, height, scale, (r, g, b, a)):
+     * exactly one of path and data is not None; name (None: the path, or
+     * "<svg>" with no files read) names the document and the directory
+     * its images are read from; softrast.render_svg has checked the
+     * values. */
+    PyObject *path_arg, *data_arg, *name_arg;
+    if (!PyArg_ParseTuple(args, "OOOiid(ffff):render_svg", &path_arg, &data_arg, &name_arg,
+                          &width, &height, &scale, &bg[0], &bg[1], &bg[2], &bg[3])) {
         return NULL;
     }
     if ((path_arg == Py_None) == (data_arg == Py_None)) {
@@ -112,11 +149,18 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
     if (path_arg != Py_None && !PyUnicode_FSConverter(path_arg, &path_obj)) {
         return NULL;
     }
+    if (name_arg != Py_None && !PyUnicode_FSConverter(name_arg, &name_obj)) {
+        Py_XDECREF(path_obj);
+        return NULL;
+    }
     if (data_arg != Py_None && PyObject_GetBuffer(data_arg, &data, PyBUF_SIMPLE) < 0) {
+        Py_XDECREF(path_obj);
+        Py_XDECREF(name_obj);
         return NULL;
     }
     warning_list warnings = { .count = 0 };
     sr_svg_desc desc = {
+        .name = name_obj ? PyBytes_AS_STRING(name_obj) : NULL,
         .width = width,
         .height = height,
         .scale = scale,
@@ -174,13 +218,21 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
         }
     } else {
         PyObject *image = sr_py_image_array(px, w, h);
-        result = image ? Py_BuildValue("(NO)", image, lines) : NULL;
+        result = image ? Py_BuildValue("(NOO)", image, lines, Py_None) : NULL;
     }
     if (warnings.lost && result) {
         Py_DECREF(result);
         result = PyErr_NoMemory();
     }
+    if (lines && r != SR_OK) {
+        /* The failure goes back as an object after the warnings, which
+         * came first and are raised first. */
+        PyObject *error = take_error();
+        result = error ? Py_BuildValue("(ONN)", Py_None, lines, error) : NULL;
+        lines = NULL;
+    }
     Py_XDECREF(lines);
     Py_XDECREF(path_obj);
+    Py_XDECREF(name_obj);
     return result;
 }

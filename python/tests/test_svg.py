@@ -45,6 +45,9 @@ def command_image(tmp_path, name, args):
     (["--background", "0.2,0.4,0.6"], dict(background=(0.2, 0.4, 0.6))),
     (["--size", "50x120", "--background", "white"], dict(width=50, height=120,
                                                           background=(1.0, 1.0, 1.0))),
+    (["--background", "navy"], dict(background="navy")),
+    (["--background", "#1e90ff"], dict(background="#1E90FF")),
+    (["--background", "#abc"], dict(background=" #abc ")),
 ])
 def test_same_bytes_as_the_command(tmp_path, name, args, kw):
     ours = render_quietly(str(SVG_DIR / name), **kw)
@@ -80,6 +83,57 @@ def test_images_resolve_next_to_the_file_only():
     data_uri_corner = (slice(31, 57), slice(5, 31))
     assert np.array_equal(on_disk[data_uri_corner], in_memory[data_uri_corner])
     assert in_memory[data_uri_corner][..., 3].max() > 0
+
+
+def test_images_resolve_in_resources_dir():
+    for name in ("images.svg", "svgimage.svg"):
+        path = SVG_DIR / name
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            on_disk = softrast.render_svg(path)
+            in_memory = softrast.render_svg(path.read_bytes(), resources_dir=SVG_DIR)
+            as_str = softrast.render_svg(path.read_text(), resources_dir=str(SVG_DIR))
+        assert not [w for w in record if "image source" in str(w.message)]
+        assert np.array_equal(on_disk, in_memory) and np.array_equal(on_disk, as_str)
+
+
+def test_resources_dir_is_not_left_and_names_the_document(tmp_path):
+    (tmp_path / "inner").mkdir()
+    (tmp_path / "picture.jpg").write_bytes((SVG_DIR / "picture.jpg").read_bytes())
+    doc = '<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8">' \
+          '<image href="{}" width="8" height="8" preserveAspectRatio="none"/></svg>'
+    inside = softrast.render_svg(doc.format("picture.jpg"), resources_dir=tmp_path)
+    assert inside[..., 3].all()
+    with pytest.warns(softrast.SvgWarning, match=r"/inner/<svg>:1: warning: .*image source"):
+        above = softrast.render_svg(doc.format("../picture.jpg"), resources_dir=tmp_path / "inner")
+    assert not above.any()
+    with pytest.raises(ValueError, match=r"^.*/inner/<svg>:1: "):
+        softrast.render_svg(b"<svg", resources_dir=tmp_path / "inner")
+
+
+def test_colors_as_svg_reads_them():
+    doc = b'<svg xmlns="http://www.w3.org/2000/svg" width="4" height="2"/>'
+    pairs = [("navy", (0.0, 0.0, 128 / 255)), ("#0000FF80", (0.0, 0.0, 1.0, 128 / 255)),
+             ("rgba(0, 0, 255, 0.5)", (0.0, 0.0, 1.0, 0.5)), ("#f0f8", (1.0, 0.0, 1.0, 136 / 255)),
+             ("hsl(120, 100%, 50%)", (0.0, 1.0, 0.0)), ("transparent", (0.0, 0.0, 0.0, 0.0))]
+    for text, numbers in pairs:
+        assert np.array_equal(softrast.render_svg(doc, background=text),
+                              softrast.render_svg(doc, background=numbers)), text
+    assert (softrast.render_svg(doc, background="#0000ff80") == [0, 0, 255, 128]).all()
+
+
+def test_warnings_come_before_a_failure():
+    # <text> is skipped (a warning), then the use that includes itself
+    # fails the render: the warning is not lost.
+    doc = b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8"><text>a</text>' \
+          b'<use id="u" href="#u"/></svg>'
+    with pytest.warns(softrast.SvgWarning, match="'text'"):
+        with pytest.raises(ValueError, match=r"^<svg>:1: .*reference cycle"):
+            softrast.render_svg(doc)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", softrast.SvgWarning)
+        with pytest.raises(softrast.SvgWarning, match="'text'"):
+            softrast.render_svg(doc)
 
 
 def test_straight_alpha():
@@ -185,7 +239,18 @@ DOC = b'<svg xmlns="http://www.w3.org/2000/svg" width="20" height="10"/>'
     (dict(scale=-1.0), ValueError, "scale"),
     (dict(scale=float("nan")), ValueError, "scale"),
     (dict(scale=float("inf")), ValueError, "scale"),
-    (dict(background="white"), TypeError, "background"),
+    (dict(background=b"white"), TypeError, "background"),
+    (dict(background="whit"), ValueError, "background: not a CSS color: 'whit'"),
+    (dict(background=""), ValueError, "background: not a CSS color: ''"),
+    (dict(background="none"), ValueError, "background: not a CSS color: 'none'"),
+    (dict(background="url(#g)"), ValueError, "background: not a CSS color"),
+    (dict(background="#12345"), ValueError, "background: not a CSS color: '#12345'"),
+    (dict(background="red\0blue"), ValueError, "background: not a CSS color"),
+    (dict(resources_dir=3), TypeError, "resources_dir"),
+    (dict(resources_dir=b"."), TypeError, "resources_dir"),
+    (dict(resources_dir="/nonexistent/dir"), NotADirectoryError, "resources_dir"),
+    (dict(resources_dir=__file__), NotADirectoryError, "resources_dir"),
+    (dict(source=SVG_DIR / "shapes.svg", resources_dir=SVG_DIR), ValueError, "resources_dir"),
     (dict(background=0.5), TypeError, "background"),
     (dict(background=(1, 1)), ValueError, "background"),
     (dict(background=(1, 1, 1, 1, 1)), ValueError, "background"),

@@ -184,6 +184,8 @@ def test_typed_example_runs(tmp_path):
 
 # Each line marked "# wrong" must draw a mypy error, and no other line.
 WRONG_CALLS = '''
+import pathlib
+
 import numpy as np
 import softrast
 
@@ -214,6 +216,10 @@ icon: "np.ndarray[object, np.dtype[np.uint8]]" = softrast.render_svg(b"<svg/>", 
 softrast.render_svg("icon.svg", width="8", height=8)  # wrong: width an int
 softrast.render_svg(3)  # wrong: a path or the document
 softrast.render_svg("icon.svg", 8, 8)  # wrong: the size is keyword-only
+softrast.render_svg(b"<svg/>", background="navy", resources_dir=".")
+softrast.render_svg(b"<svg/>", background=(0.0, 0.0, 0.5, 0.5), resources_dir=pathlib.Path("."))
+softrast.render_svg(b"<svg/>", background=0.5)  # wrong: a color or 3 or 4 numbers
+softrast.render_svg(b"<svg/>", resources_dir=3)  # wrong: a directory
 '''
 
 

@@ -1,6 +1,7 @@
 /* svg_color.c - the SVG reader (src/io): CSS colors (CSS Color 3 and the
  * blank-separated forms of level 4): the 147 keywords, transparent, hex with
- * or without alpha, rgb()/rgba(), hsl()/hsla().  Pure parsing; used by svg.c. */
+ * or without alpha, rgb()/rgba(), hsl()/hsla().  Pure parsing; used by svg.c
+ * and, as sr_io_parse_color, by programs that take a color as SVG does. */
 #include "io/svg.h"
 #include "io/number.h"
 
@@ -235,4 +236,17 @@ svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
     }
     *out = rgb24(nc->rgb);
     return SVG_PAINT_COLOR;
+}
+
+sr_result sr_io_parse_color(const char *text, sr_rgba *out)
+{
+    if (!text || !out) {
+        return SR_INVALID_ARG;
+    }
+    sr_rgba c;
+    if (svg_parse_color(text, &c) != SVG_PAINT_COLOR) {
+        return SR_BAD_FORMAT;
+    }
+    *out = c;
+    return SR_OK;
 }
