@@ -207,5 +207,6 @@ void sr_destroy_context(sr_context *ctx)
     }
     sr__pool_destroy(&ctx->allocator, ctx->pool);
     sr__scratch_destroy(&ctx->allocator, ctx->scratch);
+    sr__free(ctx, ctx->gradient);
     ctx->allocator.free(ctx, ctx->allocator.user);
 }

@@ -11,6 +11,7 @@
 
 struct sr_pool;
 struct sr_scratch;
+struct sr__gradient;
 
 struct sr_context {
     sr_allocator allocator;
@@ -20,6 +21,7 @@ struct sr_context {
     size_t batch_prims;        /* sr_context_desc.batch_primitives, resolved */
     struct sr_pool *pool;          /* NULL when threads == 1 */
     struct sr_scratch *scratch;    /* draw-call working memory, grown on demand */
+    struct sr__gradient *gradient; /* the last painted fill's gradient (paint_api.c) */
     sr_draw_info last_draw;
     char error[256];
 };

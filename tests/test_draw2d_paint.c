@@ -4,7 +4,8 @@
  * pattern give the bytes sr_render_svg gives for the equivalent document,
  * at every SIMD level; the gradients' colors are their stops' at their
  * ends and a moved pattern's texels are where it moved them; every field
- * of an sr_paint is validated and a refused call draws nothing; fills on
+ * of an sr_paint is validated and a refused call draws nothing; a fill
+ * with other stops than the last gets its own color table; fills on
  * framebuffers and images ending at a guard page stay inside them and
  * give every SIMD level the same bytes. */
 #define _DEFAULT_SOURCE /* MAP_ANONYMOUS, for guard_alloc.h */
@@ -494,4 +495,43 @@ SR_TEST(paints_stay_inside_buffers_at_guard_pages)
     }
     CHECK_EQ(runs, 4 * 5 * (SR_SIMD_AVX512 - SR_SIMD_OFF + 1));
 #endif
+}
+
+/* The context keeps a gradient's color table for the next fill with the
+ * same stops: fills whose stops differ in one color channel by a code, or
+ * in one offset, each get their own table.  Every fill on one context
+ * gives the bytes of the same fill on a fresh one. */
+SR_TEST(a_fill_with_other_stops_gets_its_own_color_table)
+{
+    sr_gradient_stop tinted[4], moved[4];
+    memcpy(tinted, stops, sizeof tinted);
+    memcpy(moved, stops, sizeof moved);
+    tinted[3].color.g += 1 / 255.0f;
+    moved[1].offset = moved[2].offset = 0.45;
+    const sr_gradient_stop *order[] = { stops, tinted, stops, moved, stops };
+    enum { FILLS = sizeof order / sizeof order[0] };
+    for (int kind = SR_PAINT_LINEAR_GRADIENT; kind <= SR_PAINT_RADIAL_GRADIENT; kind++) {
+        sr_context *shared = NULL;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &shared) == SR_OK);
+        for (int i = 0; i < FILLS; i++) {
+            sr_paint p = { .kind = (sr_paint_kind)kind, .x1 = 4, .y1 = 4, .x2 = 60, .y2 = 44,
+                           .cx = 32, .cy = 24, .r = 30, .stops = order[i], .stop_count = 4 };
+            sr_context *fresh = NULL;
+            REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &fresh) == SR_OK);
+            sr_framebuffer *a = blank(shared, W, H), *b = blank(fresh, W, H);
+            REQUIRE(a && b);
+            const sr_polygon2 poly = { .points = shape, .point_count = 5 };
+            CHECK_EQ(sr_fill_polygon_paint(shared, a, &poly, &p, NULL), SR_OK);
+            CHECK_EQ(sr_fill_polygon_paint(fresh, b, &poly, &p, NULL), SR_OK);
+            if (memcmp(sr_framebuffer_pixels(a), sr_framebuffer_pixels(b), W * H * 4) != 0) {
+                sr_test_fail(__FILE__, __LINE__, "%s fill %d on a used context: not a fresh "
+                             "context's bytes", kind == SR_PAINT_LINEAR_GRADIENT ? "linear"
+                             : "radial", i);
+            }
+            sr_destroy_framebuffer(shared, a);
+            sr_destroy_framebuffer(fresh, b);
+            sr_destroy_context(fresh);
+        }
+        sr_destroy_context(shared);
+    }
 }

@@ -37,10 +37,14 @@ static bool finite_rgba(sr_rgba c)
     return isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && isfinite(c.a);
 }
 
-/* Check the stops and copy them into g (its color table empty). */
+/* Check the stops and copy them into g.  Its color table depends on the
+ * stops alone, so g keeps the table when they are the ones it holds: a
+ * drawing's shapes that share a gradient fill it once, not once a shape
+ * (a radial gradient's shape asks for most of the table's cells). */
 static sr_result gradient_stops(sr_context *ctx, const char *fn, const sr_paint *p,
                                 sr__gradient *g)
 {
+    bool same = g->n_stops == p->stop_count;
     if (p->stop_count < 1 || p->stop_count > SR_MAX_GRADIENT_STOPS) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_paint.stop_count %d is outside 1..%d", fn,
                         p->stop_count, SR_MAX_GRADIENT_STOPS);
@@ -59,11 +63,18 @@ static sr_result gradient_stops(sr_context *ctx, const char *fn, const sr_paint 
             return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_paint.stops[%d].color is not finite",
                             fn, i);
         }
-        g->offset[i] = o;
-        g->color[i] = p->stops[i].color;
+        sr_rgba c = p->stops[i].color;
+        same = same && g->offset[i] == o && g->color[i].r == c.r && g->color[i].g == c.g &&
+               g->color[i].b == c.b && g->color[i].a == c.a;
     }
-    g->n_stops = p->stop_count;
-    memset(g->lut_state, 0, sizeof g->lut_state);
+    if (!same) {
+        for (int i = 0; i < p->stop_count; i++) {
+            g->offset[i] = p->stops[i].offset;
+            g->color[i] = p->stops[i].color;
+        }
+        g->n_stops = p->stop_count;
+        memset(g->lut_state, 0, sizeof g->lut_state);
+    }
     return SR_OK;
 }
 
@@ -199,7 +210,10 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
         memcpy(im.inv, inv, sizeof im.inv);
         r = sr__fill_paint(ctx, fn, fb, poly, &d, sr__image_span, &im, opacity);
     } else {
-        sr__gradient *g = sr__alloc(ctx, sizeof *g);
+        if (!ctx->gradient && (ctx->gradient = sr__alloc(ctx, sizeof *ctx->gradient))) {
+            ctx->gradient->n_stops = 0;
+        }
+        sr__gradient *g = ctx->gradient;
         if (!g) {
             return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: out of memory", fn);
         }
@@ -212,7 +226,6 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
             memcpy(g->inv, inv, sizeof g->inv);
             r = sr__fill_paint(ctx, fn, fb, poly, &d, sr__gradient_span, g, opacity);
         }
-        sr__free(ctx, g);
     }
     if (r == SR_OK) {
         sr__ok(ctx);
