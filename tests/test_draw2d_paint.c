@@ -16,6 +16,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -345,7 +346,13 @@ SR_TEST(every_paint_field_is_validated)
         { "image_stride", { .kind = SR_PAINT_PATTERN, .image = tile, .image_width = 4,
                             .image_height = 4, .image_stride = 15 } },
         { "image_stride", { .kind = SR_PAINT_PATTERN, .image = tile, .image_width = 4,
-                            .image_height = 4, .image_stride = (size_t)1 << 40 } },
+                            .image_height = 4, .image_stride = SIZE_MAX } },
+#if SIZE_MAX <= UINT32_MAX
+        /* rows a 32-bit address space cannot hold */
+        { "image_stride", { .kind = SR_PAINT_PATTERN, .image = tile, .image_width = 4,
+                            .image_height = SR_MAX_FRAMEBUFFER_SIZE,
+                            .image_stride = (size_t)SR_MAX_FRAMEBUFFER_SIZE * 64 } },
+#endif
         { "image_wrap", { .kind = SR_PAINT_PATTERN, .image = tile, .image_width = 4,
                           .image_height = 4, .image_wrap = SR_WRAP_MIRROR } },
     };

@@ -8,6 +8,8 @@
 #include "draw2d/polyfill.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <string.h>
 
 /* The inverse of m as a b c d e f, or false when it is singular or not
@@ -131,7 +133,11 @@ static sr_result image_paint(sr_context *ctx, const char *fn, const sr_paint *p,
     }
     size_t row = (size_t)p->image_width * 4;
     size_t stride = p->image_stride ? p->image_stride : row;
-    if (stride < row || stride > (size_t)SR_MAX_FRAMEBUFFER_SIZE * 64) {
+    /* The last row's end must be addressable: (h - 1) strides and a row
+     * within PTRDIFF_MAX (a 32-bit size_t meets that bound first). */
+    size_t h1 = (size_t)p->image_height - 1;
+    if (stride < row || stride > (size_t)SR_MAX_FRAMEBUFFER_SIZE * 64 ||
+        (h1 > 0 && stride > ((size_t)PTRDIFF_MAX - row) / h1)) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "%s: sr_paint.image_stride %zu is below 4 * image_width or absurd", fn,
                         p->image_stride);
