@@ -318,7 +318,7 @@ SR_TEST(svg_blend_over_an_empty_pixel_is_the_full_blend)
         float cov = n % 4 == 0 ? 1.0f : (float)unit();
         uint8_t d[4] = { (uint8_t)(unit() * 256), (uint8_t)(unit() * 256),
                          (uint8_t)(unit() * 256), 0 };
-        uint8_t want[4], s[3] = { svg_unorm8(c.r), svg_unorm8(c.g), svg_unorm8(c.b) };
+        uint8_t want[4], s[3] = { sr__paint_unorm8(c.r), sr__paint_unorm8(c.g), sr__paint_unorm8(c.b) };
         memcpy(want, d, 4);
         float a = c.a * cov;
         if (a > 0.0f) {
@@ -326,9 +326,9 @@ SR_TEST(svg_blend_over_an_empty_pixel_is_the_full_blend)
             keep = oa > 0.0f ? da * keep / oa : 0.0f;
             float w = oa > 0.0f ? a / oa : 0.0f;
             for (int i = 0; i < 3; i++) {
-                want[i] = svg_unorm8((s[i] * w + d[i] * keep) * (1.0f / 255.0f));
+                want[i] = sr__paint_unorm8((s[i] * w + d[i] * keep) * (1.0f / 255.0f));
             }
-            want[3] = svg_unorm8(oa);
+            want[3] = sr__paint_unorm8(oa);
         }
         svg_blend(d, c, cov);
         differ += memcmp(d, want, 4) != 0;

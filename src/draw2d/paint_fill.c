@@ -10,28 +10,6 @@
 #include <math.h>
 #include <string.h>
 
-/* Source-over of the RGBA8 color s at opacity a (0 < a <= 1) onto d. */
-static void blend_rgba8(uint8_t *d, const uint8_t *s, float a)
-{
-    if (d[3] == 0) {
-        /* Over an empty pixel the blend below has oa = a, so a / oa = 1
-         * and keep 0 exactly: the source's color at alpha a, undivided. */
-        memcpy(d, s, 3);
-        d[3] = sr__paint_unorm8(a);
-        return;
-    }
-    /* Straight alpha: the destination's color counts by its alpha. */
-    float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
-    if (d[3] < 255) {
-        keep = oa > 0.0f ? da * keep / oa : 0.0f;
-        a = oa > 0.0f ? a / oa : 0.0f;
-    }
-    for (int i = 0; i < 3; i++) {
-        d[i] = sr__paint_unorm8((s[i] * a + d[i] * keep) * (1.0f / 255.0f));
-    }
-    d[3] = sr__paint_unorm8(oa);
-}
-
 /* The part of a row of coverage from its first covered pixel to its last:
  * [*a, *b), empty when *a == *b.  Eight bytes at a time: a coverage row
  * is mostly zeros around the shape. */
@@ -124,7 +102,7 @@ static void blend_row(uint32_t *out, const uint32_t *dst, const uint32_t *paint,
         float alpha = s[3] * (1.0f / 255.0f) * opacity;
         alpha = (alpha > 1.0f ? 1.0f : alpha) * ((float)c * (1.0f / 255.0f));
         if (alpha > 0.0f) {
-            blend_rgba8((uint8_t *)&out[i], s, alpha);
+            sr__blend_rgba8((uint8_t *)&out[i], s, alpha);
         }
     }
 }

@@ -11,12 +11,37 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 /* A channel in [0, 1] as an 8-bit code, rounded (NaN and below 0: 0), as
  * the 2D fills quantize: every paint server packs through it. */
 static inline uint8_t sr__paint_unorm8(float v)
 {
     return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
+}
+
+/* Source-over of the RGBA8 color s at opacity a (0 < a <= 1) onto d, in
+ * straight alpha: the painted fills' blend, and the SVG reader's into its
+ * layers (inline, as softrast_io reaches no internal symbol of the core). */
+static inline void sr__blend_rgba8(uint8_t *d, const uint8_t *s, float a)
+{
+    if (d[3] == 0) {
+        /* Over an empty pixel the blend below has oa = a, so a / oa = 1
+         * and keep 0 exactly: the source's color at alpha a, undivided. */
+        memcpy(d, s, 3);
+        d[3] = sr__paint_unorm8(a);
+        return;
+    }
+    /* Straight alpha: the destination's color counts by its alpha. */
+    float da = d[3] * (1.0f / 255.0f), keep = 1.0f - a, oa = a + da * keep;
+    if (d[3] < 255) {
+        keep = oa > 0.0f ? da * keep / oa : 0.0f;
+        a = oa > 0.0f ? a / oa : 0.0f;
+    }
+    for (int i = 0; i < 3; i++) {
+        d[i] = sr__paint_unorm8((s[i] * a + d[i] * keep) * (1.0f / 255.0f));
+    }
+    d[3] = sr__paint_unorm8(oa);
 }
 
 /* ---- gradients (gradient.c) ------------------------------------------- */

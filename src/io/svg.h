@@ -107,13 +107,6 @@ typedef struct svg_gradient {
 
 /* ---- blending into layers (svg_fill.c) --------------------------------- */
 
-/* A channel in [0, 1] as an 8-bit code, rounded (NaN and below 0: 0), as
- * the 2D fills quantize. */
-static inline uint8_t svg_unorm8(float v)
-{
-    return !(v > 0.0f) ? 0 : v >= 1.0f ? 255 : (uint8_t)(v * 255.0f + 0.5f);
-}
-
 /* Source-over of a straight-alpha color with coverage (0..1) onto an RGBA8
  * pixel, as the 2D fills blend (the color quantized to RGBA8 first). */
 void svg_blend(uint8_t *d, sr_rgba c, float cov);
