@@ -4,12 +4,15 @@
  * of its pixels is the frame's fill blue: the edges, marks and labels
  * drawn over the cells are black or grey, and blended over white they stay
  * grey, so blue shows only where a cell was filled. */
+#define _XOPEN_SOURCE 700   /* nftw */
 #include "raster_util.h"
 #include "softrast_io.h"
 #include "sr_test.h"
 
+#include <ftw.h>
 #include <stdio.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define ZOOM 8
 #define MARGIN 16   /* the grid's top-left corner in a frame (docs/explain.md) */
@@ -867,6 +870,31 @@ SR_TEST(explain_refuses_bad_input)
                                                NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "a%s%d", NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
+}
+
+static int remove_entry(const char *path, const struct stat *st, int type, struct FTW *ftw)
+{
+    (void)st, (void)type, (void)ftw;
+    return remove(path);
+}
+
+/* docs/explain.md's `-o steps/line-%02d.png` in a fresh directory: a
+ * pattern's directories are made like -o DIR's, nested ones too. */
+SR_TEST(output_directories_are_made_for_a_pattern_and_a_dir)
+{
+    NEEDS_CLI();
+    char base[1024], pattern[1200], dir[1200], first[1300];
+    snprintf(base, sizeof base, "%s/explain_mkdir", sr_test_out_dir());
+    nftw(base, remove_entry, 16, FTW_DEPTH | FTW_PHYS);   /* an earlier run's */
+    snprintf(pattern, sizeof pattern, "%s/steps/line-%%02d.png", base);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "bresenham", "--line",
+                                               "1.5,2.5,13.5,7.5", "-o", pattern, NULL }), 0);
+    snprintf(first, sizeof first, "%s/steps/line-01.png", base);
+    CHECK(access(first, R_OK) == 0);
+    snprintf(dir, sizeof dir, "%s/a/b", base);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "-o", dir, NULL }), 0);
+    snprintf(first, sizeof first, "%s/a/b/frame-001.png", base);
+    CHECK(access(first, R_OK) == 0);
 }
 
 SR_TEST(webp_is_an_animation_of_every_frame)

@@ -439,7 +439,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
         free(straight);
     }
     sr_io_error err;
-    if (ok && !(batch_make_parents(it->output, &err) &&
+    if (ok && !(cli_make_parents(it->output, &err) &&
                 batch_anim_write(anim, it->output, views * frame_ms, &err))) {
         snprintf(run->message, sizeof run->message, "%s", err.message);
         ok = false;

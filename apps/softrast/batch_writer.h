@@ -40,10 +40,6 @@ typedef struct batch_writer {
     int first, count;          /* the images in hand, oldest first, in a ring */
 } batch_writer;
 
-/* Make the directories above `path` (mkdir -p of its dirname); false with
- * the reason in err. */
-bool batch_make_parents(const char *path, sr_io_error *err);
-
 /* Start the thread (without one, batch_writer_put writes at once). */
 void batch_writer_start(batch_writer *w, batch_done_fn done, void *user);
 /* Hand over an image (copied): waits while the writer holds

@@ -56,6 +56,9 @@ typedef struct cli_image_options {
 } cli_image_options;
 
 bool cli_is_jpeg_name(const char *path);
+/* Make the directories above `path` (mkdir -p of its dirname); false with
+ * the reason in err (make_parents.c). */
+bool cli_make_parents(const char *path, sr_io_error *err);
 /* PNG and WebP store straight alpha: a render over a transparent
  * background has its edges' colors multiplied by their coverage (the
  * resolve averages the model's samples with transparent black), so this

@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #define MAX_GRID 256
 #define SHEET_GAP 8
@@ -154,9 +153,9 @@ static void usage(FILE *f)
             "                             at most 1 GiB\n"
             "\n"
             "output (at least one):\n"
-            "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ... (DIR is\n"
-            "                             made if missing), or a PATTERN with one %%d,\n"
-            "                             e.g. out/step-%%02d.png\n"
+            "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ..., or a\n"
+            "                             PATTERN with one %%d, e.g. out/step-%%02d.png\n"
+            "                             (the directories are made if missing)\n"
             "  --sheet FILE.png           all the steps on one captioned contact sheet\n"
             "  --webp FILE.webp           all the steps as one animated WebP, 1.5 s each\n"
             "                             (needs a build with libwebp)\n",
@@ -295,16 +294,18 @@ static bool write_frames(const ex_canvas *c, const char *out)
 {
     bool is_dir;
     frame_pattern(out, &is_dir);
-    if (is_dir && mkdir(out, 0777) != 0 && errno != EEXIST) {
-        cli_error("explain: -o: cannot make directory '%s': %s", out, strerror(errno));
-        return false;
-    }
     for (int i = 0; i < c->frame_count; i++) {
         char path[4096];
         int n = is_dir ? snprintf(path, sizeof path, "%s/frame-%03d.png", out, i + 1)
                        : snprintf(path, sizeof path, out, i + 1);
         if (n < 0 || n >= (int)sizeof path) {
             cli_error("explain: -o: the file name is too long");
+            return false;
+        }
+        /* The directory, or a pattern's, is made if missing. */
+        sr_io_error err;
+        if (!cli_make_parents(path, &err)) {
+            cli_error("explain: -o: %s", err.message);
             return false;
         }
         if (!write_png(path, c->width, c->height, c->frames[i])) {
