@@ -2446,6 +2446,36 @@ SR_TEST(thumbnail_refuses_bad_input_in_one_line)
     free(kept);
 }
 
+/* Every option thumbnail's parser takes is in its --help: --size, the
+ * long form of -s, was taken but not shown. */
+SR_TEST(thumbnail_help_shows_every_option_it_takes)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], model[1100], out[1100];
+    REQUIRE(thumb_dir("thumb help", dir, model, out));
+    cli_run r;
+    REQUIRE(run_cli(ARGS("thumbnail", "--help"), &r));
+    CHECK_EQ(r.status, 0);
+    const char *const taken[] = { "-s", "--size", "--transparent", "-h", "--help" };
+    for (size_t i = 0; i < sizeof taken / sizeof taken[0]; i++) {
+        char word[32];
+        snprintf(word, sizeof word, " %s ", taken[i]);
+        char comma[32];
+        snprintf(comma, sizeof comma, " %s,", taken[i]);
+        if (!strstr(r.out, word) && !strstr(r.out, comma)) {
+            FAILF("thumbnail --help does not show %s:\n%s", taken[i], r.out);
+        }
+    }
+    cli_run_free(&r);
+    REQUIRE(run_cli(ARGS("thumbnail", "--size", "32", model, out), &r));
+    if (r.status != 0 || r.err_len != 0) {
+        FAILF("--size 32: status %d, stderr: %s", r.status, r.err);
+    }
+    cli_run_free(&r);
+}
+
 /* --transparent: an RGBA PNG whose corners are fully transparent, whose
  * middle is the opaque model, whose edges are partly covered, and whose
  * colors are those of the opaque thumbnail where the model covers all. */
