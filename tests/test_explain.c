@@ -897,6 +897,25 @@ SR_TEST(output_directories_are_made_for_a_pattern_and_a_dir)
     CHECK(access(first, R_OK) == 0);
 }
 
+/* A grid and zoom within their limits whose sheet is over the framebuffer's
+ * 8192 a side: refused as bad usage before anything is written, not a
+ * failed run that leaves the frames of -o behind. */
+SR_TEST(sheet_too_large_is_refused_before_any_file)
+{
+    NEEDS_CLI();
+    char dir[1024], frames[1200], sheet[1200];
+    snprintf(dir, sizeof dir, "%s/explain_big_sheet", sr_test_out_dir());
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    REQUIRE(mkdir(dir, 0777) == 0);
+    snprintf(frames, sizeof frames, "%s/frames", dir);
+    snprintf(sheet, sizeof sheet, "%s/sheet.png", dir);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--grid", "256x64",
+                                               "--zoom", "16", "-o", frames, "--sheet", sheet,
+                                               NULL }), 2);
+    CHECK(access(frames, F_OK) != 0);
+    CHECK(access(sheet, F_OK) != 0);
+}
+
 SR_TEST(webp_is_an_animation_of_every_frame)
 {
     NEEDS_CLI();

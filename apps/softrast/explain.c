@@ -156,10 +156,11 @@ static void usage(FILE *f)
             "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ..., or a\n"
             "                             PATTERN with one %%d, e.g. out/step-%%02d.png\n"
             "                             (the directories are made if missing)\n"
-            "  --sheet FILE.png           all the steps on one captioned contact sheet\n"
+            "  --sheet FILE.png           all the steps on one captioned contact sheet,\n"
+            "                             three to a row, at most %d pixels a side\n"
             "  --webp FILE.webp           all the steps as one animated WebP, 1.5 s each\n"
             "                             (needs a build with libwebp)\n",
-            EX_MAX_POINTS, MAX_GRID, MAX_GRID);
+            EX_MAX_POINTS, MAX_GRID, MAX_GRID, SR_MAX_FRAMEBUFFER_SIZE);
 }
 
 /* "x,y,x,y,..." (dims 2) or "x,y,z,..." (dims 3) into pts and z; false
@@ -315,13 +316,38 @@ static bool write_frames(const ex_canvas *c, const char *out)
     return true;
 }
 
-/* The frames side by side, at most three to a row, in step order. */
+/* The contact sheet's layout: the frames side by side, at most three to a
+ * row, in step order. */
+static void sheet_size(const ex_canvas *c, int *cols, int64_t *w, int64_t *h)
+{
+    *cols = c->frame_count < 3 ? c->frame_count : 3;
+    int rows = (c->frame_count + *cols - 1) / *cols;
+    *w = (int64_t)*cols * c->width + (*cols + 1) * SHEET_GAP;
+    *h = (int64_t)rows * c->height + (rows + 1) * SHEET_GAP;
+}
+
+/* A sheet the framebuffer cannot hold is refused before any file is
+ * written: the frames of -o would otherwise be left without their sheet. */
+static bool sheet_fits(const ex_canvas *c)
+{
+    int cols;
+    int64_t w, h;
+    sheet_size(c, &cols, &w, &h);
+    if (w > SR_MAX_FRAMEBUFFER_SIZE || h > SR_MAX_FRAMEBUFFER_SIZE) {
+        cli_error("explain: --sheet: %d frames of %dx%d make a %lldx%lld sheet, over %d a side: "
+                  "make --grid or --zoom smaller, or use -o", c->frame_count, c->width, c->height,
+                  (long long)w, (long long)h, SR_MAX_FRAMEBUFFER_SIZE);
+        return false;
+    }
+    return true;
+}
+
 static bool write_sheet(const ex_canvas *c, const char *path)
 {
-    int cols = c->frame_count < 3 ? c->frame_count : 3;
-    int rows = (c->frame_count + cols - 1) / cols;
-    int w = cols * c->width + (cols + 1) * SHEET_GAP;
-    int h = rows * c->height + (rows + 1) * SHEET_GAP;
+    int cols;
+    int64_t w64, h64;
+    sheet_size(c, &cols, &w64, &h64);
+    int w = (int)w64, h = (int)h64;
     sr_framebuffer *fb = NULL;
     if (sr_make_framebuffer(c->ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
                                                             .depth_format = SR_DEPTH_NONE },
@@ -628,6 +654,8 @@ int cmd_explain(int argc, char **argv)
                       sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
             status = EXIT_FAILURE_RUN;
         }
+    } else if (sheet && !sheet_fits(&c)) {
+        status = EXIT_USAGE;
     } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet)) ||
                (webp && !write_webp(&c, webp))) {
         status = EXIT_FAILURE_RUN;
