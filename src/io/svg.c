@@ -3853,9 +3853,16 @@ static bool read_document(svg_doc *doc, const char *data, size_t size)
     XML_SetUserData(doc->parser, doc);
     XML_SetElementHandler(doc->parser, on_start, on_end);
     XML_SetCharacterDataHandler(doc->parser, on_text);
+    const unsigned char *u = (const unsigned char *)data;
+    /* expat would say "not well-formed (invalid token)" of both. */
+    if (size == 0 || (size >= 2 && u[0] == 0x1f && u[1] == 0x8b)) {
+        doc->line = 1;
+        svg_fail(doc, SR_BAD_FORMAT, "%s", size == 0 ? "file is empty"
+                 : "gzip-compressed (an .svgz file): decompress it first (zcat)");
+        return false;
+    }
     /* In UTF-16 (a NUL among the first bytes, or its byte-order mark) a
      * line end is not one byte: expat counts the lines then. */
-    const unsigned char *u = (const unsigned char *)data;
     bool utf16 = size >= 2 && (!u[0] || !u[1] || (u[0] == 0xFE && u[1] == 0xFF) ||
                                (u[0] == 0xFF && u[1] == 0xFE));
     doc->text = data && !utf16 ? data : NULL;
