@@ -627,6 +627,32 @@ SR_TEST(list_on_stdin_and_glob_patterns)
     CHECK(file_exists(obj_out) && !file_exists(stl_out));
 }
 
+/* A failed input whose name holds a newline and an escape sequence is
+ * still one line on stderr, with those bytes as '?' (as the readers quote
+ * names), and named once. */
+SR_TEST(failed_inputs_with_control_bytes_in_their_names_are_one_line_each)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], a[1200], b[1200];
+    fresh_dir("ctrl_names", dir, sizeof dir);
+    fresh_dir("ctrl_out", out, sizeof out);
+    snprintf(a, sizeof a, "%s/no\nfaces\033[2J.obj", dir);
+    snprintf(b, sizeof b, "%s/two\nnumbers.obj", dir);
+    REQUIRE(write_text(a, "# nothing to draw\n"));
+    REQUIRE(write_text(b, "v 1 2\n"));
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--size", "16x16"), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK_EQ(count_lines(r.err), 2);
+    CHECK(strchr(r.err, '\033') == NULL);
+    CHECK_STR_CONTAINS(r.err, "softrast: ");
+    CHECK_STR_CONTAINS(r.err, "no?faces?[2J.obj: contains no faces\n");
+    CHECK_STR_CONTAINS(r.err, "two?numbers.obj:1: 'v' takes");
+    /* named once: the reader's message starts with the name already */
+    const char *first = strstr(r.err, "no?faces");
+    CHECK(first && !strstr(first + 1, "no?faces"));
+}
+
 /* Mistakes that would lose work are refused before anything is drawn. */
 SR_TEST(batch_refuses_bad_options_in_one_line)
 {

@@ -253,9 +253,14 @@ typedef struct batch_run {
 static void report(batch_progress *p, const char *input, const char *message)
 {
     batch_progress_clear(p);
-    size_t n = strlen(input);
-    bool named = strncmp(message, input, n) == 0 && message[n] == ':';
-    fprintf(stderr, "softrast: %s%s%s\n", named ? "" : input, named ? "" : ": ", message);
+    char name[4096], line[8192];
+    snprintf(name, sizeof name, "%s", input);
+    cli_one_line(name);   /* as the readers quote it in their messages */
+    size_t n = strlen(name);
+    bool named = strncmp(message, name, n) == 0 && message[n] == ':';
+    snprintf(line, sizeof line, "%s%s%s", named ? "" : name, named ? "" : ": ", message);
+    cli_one_line(line);
+    fprintf(stderr, "softrast: %s\n", line);
 }
 
 /* An input is finished (batch_done_fn): count, report, log, redraw. */
