@@ -660,6 +660,9 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
     char dir[1024], out[1024], paths[MODELS][1200], nomatch[1100], empty[1100];
     fresh_dir("refuse", dir, sizeof dir);
     fresh_dir("refuse_out", out, sizeof out);
+    char stale[1100];   /* an earlier run's, where ".." would have led */
+    fresh_dir("refuse_up", stale, sizeof stale);
+    rmdir(stale);
     REQUIRE(write_models(dir, paths) == MODELS);
     snprintf(nomatch, sizeof nomatch, "%s/*.nothing", dir);
     snprintf(empty, sizeof empty, "%s/empty", dir);
@@ -673,6 +676,9 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
         { "unknown field", ARGS("render", dir, "--output-dir", out, "--name", "{nope}.png"),
           "{nope}" },
         { "absolute name", ARGS("render", dir, "--name", "/tmp/x.png"), "--name" },
+        { "name above the directory",
+          ARGS("render", dir, "--output-dir", out, "--name", "../batch_refuse_up/{stem}.png"),
+          "below --output-dir" },
         { "one output for all", ARGS("render", dir, "--output-dir", out, "--name", "all.png"),
           "both be written" },
         { "pattern matches nothing", ARGS("render", nomatch, "--output-dir", out), "no file" },
@@ -698,6 +704,9 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
         closedir(d);
     }
     CHECK_EQ(entries, 0);
+    char up[1100];
+    snprintf(up, sizeof up, "%s/../batch_refuse_up", out);
+    CHECK(!file_exists(up));
 
     /* An output that is an input of the batch fails that input, and the
      * input keeps its bytes. */

@@ -262,7 +262,12 @@ static int field_at(const char *p, size_t *len)
 
 bool batch_check_pattern(const char *pattern)
 {
-    if (!*pattern || pattern[0] == '/') {
+    /* ".." would climb out of --output-dir as a leading '/' would. */
+    bool up = false;
+    for (const char *c = pattern; *c; c = strchr(c, '/') ? strchr(c, '/') + 1 : "") {
+        up |= strncmp(c, "..", 2) == 0 && (c[2] == '/' || c[2] == '\0');
+    }
+    if (!*pattern || pattern[0] == '/' || up) {
         cli_error("--name: '%s': expected a file name pattern below --output-dir", pattern);
         return false;
     }
