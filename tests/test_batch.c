@@ -720,6 +720,22 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
     CHECK(before && after && before_n == after_n && memcmp(before, after, before_n) == 0);
     free(before);
     free(after);
+
+    /* The same outputs named by a --batch list: the messages point to the
+     * list, not to --name and its fields. */
+    char list[8192], listp[1100];
+    snprintf(listp, sizeof listp, "%s/batch_refuse_list.txt", sr_test_out_dir());
+    snprintf(list, sizeof list, "%s\t%s\n", paths[0], paths[0]);
+    REQUIRE(write_text(listp, list));
+    REQUIRE(run(ARGS("render", "--batch", listp), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK_STR_CONTAINS(r.err, "choose another output in the --batch list");
+    snprintf(list, sizeof list, "%s\t%s/a.png\n%s\t%s/a.png\n", paths[0], out, paths[1], out);
+    REQUIRE(write_text(listp, list));
+    REQUIRE(run(ARGS("render", "--batch", listp), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_STR_CONTAINS(r.err, "--batch: ");
+    CHECK(!strstr(r.err, "--name"));
 }
 
 /* ---- shards ------------------------------------------------------------- */

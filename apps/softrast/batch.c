@@ -303,10 +303,13 @@ static bool wants_reading(void *user, const batch_item *it)
     return false;
 }
 
-/* Draw view `view` of the loaded input into run->fb, for `output` (NULL
- * on a sheet); false when it failed (why in run->message). */
-static bool draw_view(batch_run *run, const char *output, int view, batch_record *rec)
+/* Draw view `view` of the loaded input `it` into run->fb, for `output`
+ * (NULL on a sheet); false when it failed (why in run->message). */
+static bool draw_view(batch_run *run, const batch_item *it, const char *output, int view,
+                      batch_record *rec)
 {
+    /* what named the output, for the user to change */
+    const char *namer = it->named ? "--batch" : "--name";
     double t0 = now_ms();
     run->message[0] = '\0';
     cli_capture(run->message, sizeof run->message);
@@ -316,9 +319,10 @@ static bool draw_view(batch_run *run, const char *output, int view, batch_record
         cli_error("'%s' is a directory", output);
         ok = false;
     } else if (output && is_listed_input(run->ids, run->id_count, output)) {
-        cli_error("'%s' is an input of the batch; choose another --name", output);
+        cli_error("'%s' is an input of the batch; choose another %s", output,
+                  it->named ? "output in the --batch list" : "--name");
         ok = false;
-    } else if (output && !cli_check_output(render_job_inputs(run->job), "--name", output)) {
+    } else if (output && !cli_check_output(render_job_inputs(run->job), namer, output)) {
         ok = false;   /* the model's own other files (MTL, textures) */
     }
     if (ok && run->b->views > 1) {
@@ -431,7 +435,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
     double render_ms = 0.0, t0 = now_ms();
     size_t pixels = (size_t)o->width * (size_t)o->height;
     for (int v = 0; v < views && ok; v++) {
-        ok = draw_view(run, v == 0 ? it->output : NULL, v, &rec);
+        ok = draw_view(run, it, v == 0 ? it->output : NULL, v, &rec);
         render_ms += rec.render_ms;
         uint8_t *straight = ok && alpha ? cli_straight_alpha(sr_framebuffer_pixels(run->fb),
                                                              pixels) : NULL;
@@ -501,7 +505,7 @@ static void render_all(batch_run *run)
                 continue;
             }
             rec.status = "failed";
-            bool drawn = draw_view(run, b->sheet ? NULL : output, v, &rec);
+            bool drawn = draw_view(run, it, b->sheet ? NULL : output, v, &rec);
             if (drawn && b->sheet) {
                 rec.status = sheet_put(run, it, v, sr_framebuffer_pixels(run->fb)) ? "ok"
                                                                                     : "failed";

@@ -359,12 +359,18 @@ int batch_name_outputs(batch_list *l, const char *dir, const char *pattern)
     qsort(sorted, l->count, sizeof *sorted, by_output);
     int status = -1;
     for (size_t i = 1; i < l->count && status < 0; i++) {
-        if (strcmp(sorted[i - 1]->output, sorted[i]->output) == 0) {
-            cli_error("--name: '%s' and '%s' would both be written to '%s' "
-                      "(add {ext} or {index} to --name)",
-                      sorted[i - 1]->input, sorted[i]->input, sorted[i]->output);
-            status = EXIT_USAGE;
+        const batch_item *a = sorted[i - 1], *b = sorted[i];
+        if (strcmp(a->output, b->output) != 0) {
+            continue;
         }
+        if (a->named || b->named) {
+            cli_error("--batch: '%s' and '%s' would both be written to '%s' (give each its "
+                      "own output in the list)", a->input, b->input, b->output);
+        } else {
+            cli_error("--name: '%s' and '%s' would both be written to '%s' "
+                      "(add {ext} or {index} to --name)", a->input, b->input, b->output);
+        }
+        status = EXIT_USAGE;
     }
     free(sorted);
     return status;
