@@ -916,6 +916,35 @@ SR_TEST(sheet_too_large_is_refused_before_any_file)
     CHECK(access(sheet, F_OK) != 0);
 }
 
+/* clip4d's first frame divides a w <= 0 vertex without clipping, which
+ * lands below the grid: its red edges and its label stop above the
+ * caption band (16 + 12 x 16 + 16 - 8 = 216 frame pixels down) instead
+ * of crossing the words. */
+SR_TEST(clip4d_first_frame_keeps_the_caption_clear)
+{
+    NEEDS_CLI();
+    char dir[1024], first[1200];
+    out_dir("clip4d_caption", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip4d", "--grid", "16x12", "--zoom",
+                                              "16", "-o", dir, NULL }) == 0);
+    snprintf(first, sizeof first, "%s/frame-001.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(first, NULL, &w, &h, &px, NULL) == SR_OK);
+    int red_above = 0, red_in_band = 0;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p = px + ((size_t)y * w + x) * 4;
+            bool red = p[0] > 150 && p[1] < 90 && p[2] < 90;
+            red_above += red && y < 216;
+            red_in_band += red && y >= 216;
+        }
+    }
+    CHECK(red_above > 0);   /* the naive divide is drawn */
+    CHECK_EQ(red_in_band, 0);
+    free(px);
+}
+
 SR_TEST(webp_is_an_animation_of_every_frame)
 {
     NEEDS_CLI();
