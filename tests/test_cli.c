@@ -834,6 +834,11 @@ SR_TEST(output_that_is_an_input_is_refused)
         { "found texture as output", { "render", model, "-o", tex }, "is the texture being read" },
         { "named texture through another path",
           { "render", model, "--texture", tex, "-o", alias }, "is the texture being read" },
+        /* thumbnail's render names the argument given, not an -o */
+        { "found texture as thumbnail", { "thumbnail", "-s", "16", model, tex },
+          "thumbnail: OUTPUT: '" },
+        { "directory as thumbnail", { "thumbnail", "-s", "16", model, dir },
+          "thumbnail: OUTPUT: '" },
     };
     expect_refusals(cases, sizeof cases / sizeof cases[0], kept, 3);
 #endif
