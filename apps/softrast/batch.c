@@ -568,6 +568,18 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     if (status < 0) {
         status = gather(b, &list);
     }
+    file_id *ids = status < 0 ? input_ids(&list, &run.id_count) : NULL;
+    if (status < 0 && !ids) {
+        cli_error("out of memory listing the inputs");
+        status = EXIT_FAILURE_RUN;
+    }
+    run.ids = ids;
+    /* The log is appended to: one of the models (by any name) would be
+     * left with JSON at its end. */
+    if (status < 0 && b->log && is_listed_input(ids, run.id_count, b->log)) {
+        cli_error("--log: '%s' is an input of the batch; choose another log file", b->log);
+        status = EXIT_USAGE;
+    }
     if (status < 0 && b->log) {
         run.log_fd = open(b->log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
         if (run.log_fd < 0) {
@@ -575,12 +587,6 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
             status = EXIT_USAGE;
         }
     }
-    file_id *ids = status < 0 ? input_ids(&list, &run.id_count) : NULL;
-    if (status < 0 && !ids) {
-        cli_error("out of memory listing the inputs");
-        status = EXIT_FAILURE_RUN;
-    }
-    run.ids = ids;
     if (status < 0) {
         size_t mine = mine_total(&list, &shard);
         run.sheet_images = (int)(mine * (size_t)b->views);
