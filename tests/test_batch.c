@@ -722,16 +722,23 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
     free(after);
 
     /* A --log that is one of the models, which appending would end in
-     * JSON, is refused before anything is drawn. */
-    before = sr_test_read_file(paths[1], &before_n);
-    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--log", paths[1]), &r));
-    CHECK_EQ(r.status, 2);
-    CHECK_STR_CONTAINS(r.err, "--log: ");
-    CHECK_EQ(count_lines(r.err), 1);
-    after = sr_test_read_file(paths[1], &after_n);
-    CHECK(before && after && before_n == after_n && memcmp(before, after, before_n) == 0);
-    free(before);
-    free(after);
+     * JSON, and a --sheet that is one are refused before anything is
+     * drawn, as the outputs are (exit status 2). */
+    const char *const *kinds[] = {
+        ARGS("render", dir, "--output-dir", out, "--log", paths[1]),
+        ARGS("render", dir, "--sheet", paths[1]),
+    };
+    for (int k = 0; k < 2; k++) {
+        before = sr_test_read_file(paths[1], &before_n);
+        REQUIRE(run(kinds[k], &r));
+        CHECK_EQ(r.status, 2);
+        CHECK_STR_CONTAINS(r.err, "is an input of the batch");
+        CHECK_EQ(count_lines(r.err), 1);
+        after = sr_test_read_file(paths[1], &after_n);
+        CHECK(before && after && before_n == after_n && memcmp(before, after, before_n) == 0);
+        free(before);
+        free(after);
+    }
 
     /* The same outputs named by a --batch list: the messages point to the
      * list, not to --name and its fields. */

@@ -530,10 +530,6 @@ static bool write_sheet(batch_run *run)
     const render_opts *o = run->o;
     const char *path = run->b->sheet;
     sr_io_error err;
-    if (is_listed_input(run->ids, run->id_count, path)) {
-        cli_error("--sheet: '%s' is an input of the batch", path);
-        return false;
-    }
     sr_framebuffer *fb = run->sheet.fb;
     if (cli_write_image(path, sr_framebuffer_width(fb), sr_framebuffer_height(fb),
                         sr_framebuffer_pixels(fb),
@@ -575,9 +571,15 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     run.ids = ids;
     /* The log is appended to: one of the models (by any name) would be
-     * left with JSON at its end. */
+     * left with JSON at its end.  The sheet would replace it, after the
+     * whole batch was drawn. */
     if (status < 0 && b->log && is_listed_input(ids, run.id_count, b->log)) {
         cli_error("--log: '%s' is an input of the batch; choose another log file", b->log);
+        status = EXIT_USAGE;
+    }
+    if (status < 0 && b->sheet && is_listed_input(ids, run.id_count, b->sheet)) {
+        cli_error("--sheet: '%s' is an input of the batch; choose another output file",
+                  b->sheet);
         status = EXIT_USAGE;
     }
     if (status < 0 && b->log) {
