@@ -2451,29 +2451,37 @@ SR_TEST(thumbnail_refuses_bad_input_in_one_line)
     free(kept);
 }
 
-/* Every option thumbnail's parser takes is in its --help: --size, the
- * long form of -s, was taken but not shown. */
-SR_TEST(thumbnail_help_shows_every_option_it_takes)
+/* Every option thumbnail's and explain's parsers take is in their --help
+ * (and so in the manual page): --size, thumbnail's long form of -s, and
+ * --output, explain's of -o, were taken but not shown. */
+SR_TEST(thumbnail_and_explain_help_show_every_option_they_take)
 {
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #endif
     char dir[1024], model[1100], out[1100];
     REQUIRE(thumb_dir("thumb help", dir, model, out));
-    cli_run r;
-    REQUIRE(run_cli(ARGS("thumbnail", "--help"), &r));
-    CHECK_EQ(r.status, 0);
-    const char *const taken[] = { "-s", "--size", "--transparent", "-h", "--help" };
-    for (size_t i = 0; i < sizeof taken / sizeof taken[0]; i++) {
-        char word[32];
-        snprintf(word, sizeof word, " %s ", taken[i]);
-        char comma[32];
-        snprintf(comma, sizeof comma, " %s,", taken[i]);
-        if (!strstr(r.out, word) && !strstr(r.out, comma)) {
-            FAILF("thumbnail --help does not show %s:\n%s", taken[i], r.out);
+    const struct {
+        const char *command, *taken[8];
+    } commands[] = {
+        { "thumbnail", { "-s", "--size", "--transparent", "-h", "--help" } },
+        { "explain", { "-o", "--output", "--sheet", "--webp", "--grid", "--zoom" } },
+    };
+    for (size_t c = 0; c < sizeof commands / sizeof commands[0]; c++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS(commands[c].command, "--help"), &r));
+        CHECK_EQ(r.status, 0);
+        for (size_t i = 0; i < 8 && commands[c].taken[i]; i++) {
+            char word[32], comma[32];
+            snprintf(word, sizeof word, " %s ", commands[c].taken[i]);
+            snprintf(comma, sizeof comma, " %s,", commands[c].taken[i]);
+            if (!strstr(r.out, word) && !strstr(r.out, comma)) {
+                FAILF("%s --help does not show %s", commands[c].command, commands[c].taken[i]);
+            }
         }
+        cli_run_free(&r);
     }
-    cli_run_free(&r);
+    cli_run r;
     REQUIRE(run_cli(ARGS("thumbnail", "--size", "32", model, out), &r));
     if (r.status != 0 || r.err_len != 0) {
         FAILF("--size 32: status %d, stderr: %s", r.status, r.err);

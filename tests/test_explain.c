@@ -892,7 +892,7 @@ SR_TEST(output_directories_are_made_for_a_pattern_and_a_dir)
     snprintf(first, sizeof first, "%s/steps/line-01.png", base);
     CHECK(access(first, R_OK) == 0);
     snprintf(dir, sizeof dir, "%s/a/b", base);
-    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "-o", dir, NULL }), 0);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "--output", dir, NULL }), 0);
     snprintf(first, sizeof first, "%s/a/b/frame-001.png", base);
     CHECK(access(first, R_OK) == 0);
 }

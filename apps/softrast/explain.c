@@ -153,7 +153,7 @@ static void usage(FILE *f)
             "                             at most 1 GiB\n"
             "\n"
             "output (at least one):\n"
-            "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ..., or a\n"
+            "  -o, --output DIR|PATTERN   one PNG per step: DIR/frame-001.png, ..., or a\n"
             "                             PATTERN with one %%d, e.g. out/step-%%02d.png\n"
             "                             (the directories are made if missing)\n"
             "  --sheet FILE.png           all the steps on one captioned contact sheet,\n"
