@@ -957,6 +957,13 @@ SR_TEST(webp_is_an_animation_of_every_frame)
         SKIP("this build has no libwebp");
     }
     REQUIRE(rc == 0);
+    /* a WebP under another name (a viewer would take out.png for a PNG) is
+     * refused, as render --animate refuses it */
+    char png[1200];
+    snprintf(png, sizeof png, "%s/circle.png", dir);
+    remove(png);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "circle", "--webp", png, NULL }), 2);
+    CHECK(access(png, F_OK) != 0);
     FILE *f = fopen(path, "rb");
     REQUIRE(f != NULL);
     static uint8_t buf[1 << 20];

@@ -20,7 +20,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -687,8 +686,7 @@ static int check_views(batch_opts *b, const render_opts *o)
                       b->sheet ? "--sheet" : "--name");
             return EXIT_USAGE;
         }
-        const char *dot = strrchr(b->animate, '.');
-        if (!dot || strcasecmp(dot, ".webp") != 0) {
+        if (!batch_anim_is_webp_name(b->animate)) {
             cli_error("--animate: '%s': an animation is a WebP (name it .webp)", b->animate);
             return EXIT_USAGE;
         }

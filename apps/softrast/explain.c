@@ -561,6 +561,9 @@ int cmd_explain(int argc, char **argv)
             if (!batch_anim_available()) {
                 cli_error("%s: this build has no libwebp (install libwebp-dev and rebuild)", a);
                 ok = false;
+            } else if (!batch_anim_is_webp_name(v)) {
+                cli_error("%s: '%s': an animation is a WebP (name it .webp)", a, v);
+                ok = false;
             }
         } else if (strcmp(a, "--sheet") == 0) {
             sheet = v;
