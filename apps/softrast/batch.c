@@ -9,6 +9,7 @@
 #include "batch.h"
 #include "batch_anim.h"
 #include "batch_reader.h"
+#include "batch_session.h"
 #include "batch_views.h"
 #include "batch_writer.h"
 #include "cli.h"
@@ -26,17 +27,12 @@
 #include <unistd.h>
 
 typedef struct batch_opts {
-    const char *list;          /* --batch LIST */
-    const char *output_dir;    /* --output-dir DIR (default .) */
-    const char *name;          /* --name PATTERN (default {rel}.png, {rel}_{view}.png) */
-    const char *log;           /* --log FILE.jsonl */
-    const char *shard, *shard_count;
+    batch_common c;            /* --name's default: {rel}.png, {rel}_{view}.png */
     const char *views_arg, *sheet, *columns_arg;  /* --views N, --sheet FILE, --sheet-columns N */
     const char *animate;       /* --animate PATTERN: each model's views as an animated WebP */
     int views, columns;
     char **job_argv;           /* the render options, for render_job_configure */
     int job_argc;
-    bool skip_existing;
     bool any;                  /* a batch option was given */
     bool output;               /* -o was given */
     const char **models;       /* the MODEL arguments */
@@ -119,18 +115,19 @@ static bool add_model(void *user, const char *path)
  * into rest, for the render options' parser. */
 static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *rest_count)
 {
-    static const char *const valued[] = { "--batch", "--output-dir", "--name", "--log",
-                                          "--shard", "--shard-count", "--views", "--sheet",
-                                          "--sheet-columns", "--animate", NULL };
-    const char **dst[] = { &b->list, &b->output_dir, &b->name, &b->log, &b->shard,
-                           &b->shard_count, &b->views_arg, &b->sheet, &b->columns_arg,
-                           &b->animate };
+    static const char *const valued[] = { "--views", "--sheet", "--sheet-columns", "--animate",
+                                          NULL };
+    const char **dst[] = { &b->views_arg, &b->sheet, &b->columns_arg, &b->animate };
     int n = 0;
     rest[n++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        if (strcmp(a, "--skip-existing") == 0) {
-            b->skip_existing = b->any = true;
+        int taken = batch_take_option(&b->c, argc, argv, &i);
+        if (taken != 0) {
+            b->any = true;
+            if (taken != 1) {
+                return taken;
+            }
             continue;
         }
         if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
@@ -178,104 +175,20 @@ static bool is_batch(const batch_opts *b)
                  (stat(m, &st) != 0 && strpbrk(m, "*?[")));
 }
 
-/* The inputs as (device, inode), sorted, so that no output replaces any
- * input of the list (not only its own) in O(log n) a check. */
-typedef struct file_id {
-    dev_t dev;
-    ino_t ino;
-} file_id;
-
-static int by_id(const void *a, const void *b)
-{
-    const file_id *x = a, *y = b;
-    return x->dev != y->dev ? (x->dev < y->dev ? -1 : 1)
-         : x->ino != y->ino ? (x->ino < y->ino ? -1 : 1) : 0;
-}
-
-static file_id *input_ids(const batch_list *l, size_t *count)
-{
-    file_id *ids = malloc((l->count + 1) * sizeof *ids);
-    size_t n = 0;
-    for (size_t i = 0; ids && i < l->count; i++) {
-        struct stat st;
-        if (stat(l->items[i].input, &st) == 0) {
-            ids[n++] = (file_id){ st.st_dev, st.st_ino };
-        }
-    }
-    if (ids) {
-        qsort(ids, n, sizeof *ids, by_id);
-    }
-    *count = n;
-    return ids;
-}
-
-static bool is_listed_input(const file_id *ids, size_t n, const char *path)
-{
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        return false;
-    }
-    file_id key = { st.st_dev, st.st_ino };
-    return bsearch(&key, ids, n, sizeof *ids, by_id) != NULL;
-}
-
-static bool exists_whole(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
-}
-
 typedef struct batch_run {
     const batch_opts *b;
     const render_opts *o;
-    const batch_list *list;
+    batch_session s;           /* the list, the writer, the log and the progress */
+    const batch_list *list;    /* s's */
     render_job *jobs[2];       /* one reads the next input while the other draws */
     render_job *job;           /* the input's (one of jobs), and its framebuffer */
     sr_framebuffer *fb;
     batch_reader reader;
     sr_context *sheet_ctx;     /* --sheet's: the jobs' contexts are busy reading */
-    const file_id *ids;
-    size_t id_count;
-    batch_writer writer;
     batch_sheet sheet;         /* --sheet: made on the job's context at its first cell */
     int sheet_images;
-    batch_progress progress;
-    size_t ok;
-    int log_fd;
-    int log_errno;             /* why the log could not be written, or 0 */
     char message[2048];        /* the held messages of the input being drawn */
 } batch_run;
-
-/* One line on stderr for a failed input (or a warning), naming the input
- * unless the message starts with it already ("FILE:LINE: why").  Printed
- * directly: the writer's thread calls this while the batch may be
- * holding its own messages (cli_capture). */
-static void report(batch_progress *p, const char *input, const char *message)
-{
-    batch_progress_clear(p);
-    size_t n = strlen(input);
-    bool named = strncmp(message, input, n) == 0 && message[n] == ':';
-    fprintf(stderr, "softrast: %s%s%s\n", named ? "" : input, named ? "" : ": ", message);
-}
-
-/* An input is finished (batch_done_fn): count, report, log, redraw. */
-static void finish(void *user, batch_record *rec, const char *message)
-{
-    batch_run *run = user;
-    bool failed = strcmp(rec->status, "failed") == 0;
-    run->ok += !failed;
-    run->progress.failed += failed;
-    run->progress.skipped += strcmp(rec->status, "skipped") == 0;
-    run->progress.done++;
-    if (message && *message) {
-        report(&run->progress, rec->input, message);
-    }
-    rec->error = failed ? (message && *message ? message : "failed") : NULL;
-    if (run->log_fd >= 0 && run->log_errno == 0 && !batch_log_write(run->log_fd, rec)) {
-        run->log_errno = errno ? errno : EIO;
-    }
-    batch_progress_show(&run->progress, now_ms(), false);
-}
 
 /* batch_want_fn: with --skip-existing, an input whose every output
  * exists is not read. */
@@ -283,15 +196,16 @@ static bool wants_reading(void *user, const batch_item *it)
 {
     const batch_run *run = user;
     const batch_opts *b = run->b;
-    if (!b->skip_existing || b->sheet) {
+    if (!b->c.skip_existing || b->sheet) {
         return true;
     }
     if (b->animate) {
-        return !exists_whole(it->output);
+        return !batch_exists_whole(it->output);
     }
     char output[4096];
     for (int v = 0; v < b->views; v++) {
-        if (!batch_view_output(run->list, it, v, output, sizeof output) || !exists_whole(output)) {
+        if (!batch_view_output(run->list, it, v, output, sizeof output) ||
+            !batch_exists_whole(output)) {
             return true;
         }
     }
@@ -305,17 +219,9 @@ static bool draw_view(batch_run *run, const char *output, int view, batch_record
     double t0 = now_ms();
     run->message[0] = '\0';
     cli_capture(run->message, sizeof run->message);
-    struct stat st;
-    bool ok = true;
-    if (output && stat(output, &st) == 0 && S_ISDIR(st.st_mode)) {
-        cli_error("'%s' is a directory", output);
-        ok = false;
-    } else if (output && is_listed_input(run->ids, run->id_count, output)) {
-        cli_error("'%s' is an input of the batch; choose another --name", output);
-        ok = false;
-    } else if (output && !cli_check_output(render_job_inputs(run->job), "--name", output)) {
-        ok = false;   /* the model's own other files (MTL, textures) */
-    }
+    bool ok = !output || (batch_session_output_ok(&run->s, output, "--name") &&
+                          /* the model's own other files (MTL, textures) */
+                          cli_check_output(render_job_inputs(run->job), "--name", output));
     if (ok && run->b->views > 1) {
         batch_view_camera(run->job, run->o->have_eye, view, run->b->views);
     }
@@ -345,20 +251,14 @@ static void caption_of(const batch_run *run, const batch_item *it, int view, cha
     }
 }
 
-/* The inputs of the options: the MODEL arguments and the list. */
-static int gather(const batch_opts *b, batch_list *l)
+/* The inputs of the options: the MODEL arguments and the list, and
+ * their outputs' names. */
+static int gather(batch_run *run)
 {
-    int status = -1;
-    for (size_t i = 0; i < b->model_count && status < 0; i++) {
-        status = batch_add_arg(l, b->models[i]);
-    }
-    if (status < 0 && b->list) {
-        status = batch_read_list(l, b->list);
-    }
-    if (status < 0 && l->count == 0) {
-        cli_error("render: no models to render (a directory holds none, or the list is empty)");
-        status = EXIT_USAGE;
-    }
+    const batch_opts *b = run->b;
+    batch_list *l = &run->s.list;
+    int status = batch_session_gather(&run->s, &b->c, b->models, b->model_count, NULL,
+                                      "render: no models");
     for (size_t i = 0; status < 0 && i < l->count && b->views > 1 && !b->sheet && !b->animate;
          i++) {
         if (l->items[i].output) {
@@ -367,14 +267,9 @@ static int gather(const batch_opts *b, batch_list *l)
             status = EXIT_USAGE;
         }
     }
-    if (status < 0) {
-        batch_list_sort(l);
-    }
     if (status < 0 && !b->sheet) {   /* a sheet is the one output */
-        const char *dflt = b->animate ? b->animate
-                         : b->views > 1 ? "{rel}_{view}.png" : "{rel}.png";
-        status = batch_name_outputs(l, b->output_dir ? b->output_dir : ".",
-                                    b->name ? b->name : dflt);
+        status = batch_session_name(&run->s, b->animate ? b->animate
+                                             : b->views > 1 ? "{rel}_{view}.png" : "{rel}.png");
     }
     return status;
 }
@@ -412,12 +307,12 @@ static void animate_one(batch_run *run, const batch_read *rd)
                          .status = "failed", .load_ms = rd->load_ms };
     if (!rd->wanted) {
         rec.status = "skipped";
-        finish(run, &rec, NULL);
+        batch_session_done(&run->s, &rec, NULL);
         return;
     }
     bool ok = rd->loaded;
     if (ok && run->message[0]) {
-        report(&run->progress, it->input, run->message);   /* a warning */
+        batch_session_report(&run->s, it->input, run->message);   /* a warning */
     }
     bool alpha = o->background_alpha < 1.0f;
     batch_anim *anim = ok ? batch_anim_start(o->width, o->height, alpha, run->message,
@@ -448,7 +343,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
     rec.render_ms = render_ms;
     rec.encode_ms = now_ms() - t0 - render_ms;
     rec.status = ok ? "ok" : "failed";
-    finish(run, &rec, ok ? NULL : run->message);
+    batch_session_done(&run->s, &rec, ok ? NULL : run->message);
 }
 
 /* Render the shard's inputs in list order as the reader hands them
@@ -477,22 +372,22 @@ static void render_all(batch_run *run)
                              .index = it->index, .status = "failed", .load_ms = rd->load_ms };
         bool loaded = rd->loaded;
         if (loaded && run->message[0]) {
-            batch_writer_wait(&run->writer);
-            report(&run->progress, it->input, run->message);   /* a warning */
+            batch_writer_wait(&run->s.writer);
+            batch_session_report(&run->s, it->input, run->message);   /* a warning */
         }
         for (int v = 0; v < b->views; v++) {
             if (!b->sheet && !batch_view_output(list, it, v, output, sizeof output)) {
                 snprintf(output, sizeof output, "%s", it->output);   /* view 0's, checked */
             }
             rec.output = b->sheet ? b->sheet : output;
-            bool skip = !b->sheet && b->skip_existing && exists_whole(output);
+            bool skip = !b->sheet && b->c.skip_existing && batch_exists_whole(output);
             if (skip || (rd->wanted && !loaded)) {
                 rec.status = skip ? "skipped" : "failed";
-                batch_writer_wait(&run->writer);
+                batch_writer_wait(&run->s.writer);
                 if (b->sheet) {
                     sheet_put(run, it, v, NULL);
                 }
-                finish(run, &rec, skip || v > 0 ? NULL : run->message);
+                batch_session_done(&run->s, &rec, skip || v > 0 ? NULL : run->message);
                 continue;
             }
             rec.status = "failed";
@@ -500,19 +395,19 @@ static void render_all(batch_run *run)
             if (drawn && b->sheet) {
                 rec.status = sheet_put(run, it, v, sr_framebuffer_pixels(run->fb)) ? "ok"
                                                                                     : "failed";
-            } else if (drawn && batch_writer_put(&run->writer, &rec, o->width, o->height,
+            } else if (drawn && batch_writer_put(&run->s.writer, &rec, o->width, o->height,
                                                  sr_framebuffer_pixels(run->fb), &image)) {
                 rec.load_ms = 0.0;   /* a model is read once for all its views */
                 continue;
             } else if (drawn) {
                 snprintf(run->message, sizeof run->message, "out of memory");
             }
-            batch_writer_wait(&run->writer);
-            finish(run, &rec, run->message);
+            batch_writer_wait(&run->s.writer);
+            batch_session_done(&run->s, &rec, run->message);
             rec.load_ms = 0.0;
         }
     }
-    batch_writer_wait(&run->writer);
+    batch_writer_wait(&run->s.writer);
 }
 
 /* Write the sheet (after every input); false after one line. */
@@ -521,8 +416,7 @@ static bool write_sheet(batch_run *run)
     const render_opts *o = run->o;
     const char *path = run->b->sheet;
     sr_io_error err;
-    if (is_listed_input(run->ids, run->id_count, path)) {
-        cli_error("--sheet: '%s' is an input of the batch", path);
+    if (!batch_session_output_ok(&run->s, path, "--sheet")) {
         return false;
     }
     sr_framebuffer *fb = run->sheet.fb;
@@ -540,40 +434,16 @@ static bool write_sheet(batch_run *run)
     return true;
 }
 
-/* How many inputs of the list are the shard's. */
-static size_t mine_total(const batch_list *list, const batch_shard *shard)
-{
-    size_t mine = 0;
-    for (size_t i = 0; i < list->count; i++) {
-        mine += batch_in_shard(list->items[i].input, shard);
-    }
-    return mine;
-}
-
 static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
 {
-    batch_shard shard;
-    batch_list list = { 0 };
-    batch_run run = { .b = b, .o = o, .list = &list, .jobs = { job }, .log_fd = -1 };
-    int status = batch_shard_resolve(b->shard, b->shard_count, &shard);
+    batch_run run = { .b = b, .o = o, .jobs = { job } };
+    run.list = &run.s.list;
+    int status = gather(&run);
     if (status < 0) {
-        status = gather(b, &list);
+        status = batch_session_open(&run.s);
     }
-    if (status < 0 && b->log) {
-        run.log_fd = open(b->log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-        if (run.log_fd < 0) {
-            cli_error("--log: %s: %s", b->log, strerror(errno));
-            status = EXIT_USAGE;
-        }
-    }
-    file_id *ids = status < 0 ? input_ids(&list, &run.id_count) : NULL;
-    if (status < 0 && !ids) {
-        cli_error("out of memory listing the inputs");
-        status = EXIT_FAILURE_RUN;
-    }
-    run.ids = ids;
     if (status < 0) {
-        size_t mine = mine_total(&list, &shard);
+        size_t mine = batch_session_mine(&run.s);
         run.sheet_images = (int)(mine * (size_t)b->views);
         int cols, rows;
         long sw, sh;
@@ -605,17 +475,12 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     if (status < 0) {
         size_t records = b->animate ? 1 : (size_t)b->views;   /* a model's */
-        batch_progress_start(&run.progress, mine_total(&list, &shard) * records,
-                             now_ms());
-        batch_writer_start(&run.writer, finish, &run);
-        batch_reader_start(&run.reader, &list, &shard, wants_reading, &run, run.jobs,
+        batch_session_begin(&run.s, batch_session_mine(&run.s) * records);
+        batch_reader_start(&run.reader, run.list, &run.s.shard, wants_reading, &run, run.jobs,
                            b->job_argc, b->views > 1 ? b->job_argv : NULL, o->width, o->height);
         render_all(&run);
-        batch_writer_stop(&run.writer);
+        status = batch_session_end(&run.s);
         batch_reader_stop(&run.reader);
-        batch_progress_show(&run.progress, now_ms(), true);
-        status = run.progress.failed == 0 ? EXIT_OK
-               : run.ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
         if (run.sheet.fb && !write_sheet(&run)) {
             status = EXIT_FAILURE_RUN;
         }
@@ -625,16 +490,7 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     sr_destroy_context(run.sheet_ctx);
     render_job_free(run.jobs[1]);   /* before the first, whose light it shares */
-    if (run.log_fd >= 0 && close(run.log_fd) != 0 && run.log_errno == 0) {
-        run.log_errno = errno;
-    }
-    if (run.log_errno != 0) {
-        cli_error("--log: %s: %s", b->log, strerror(run.log_errno));
-        status = EXIT_FAILURE_RUN;
-    }
-    free(ids);
-    batch_list_free(&list);
-    return status;
+    return batch_session_close(&run.s, status);
 }
 
 /* --views, --sheet and --sheet-columns, and how they go with the other
@@ -655,17 +511,17 @@ static int check_views(batch_opts *b, const render_opts *o)
     if (!b->columns && b->sheet && b->views > 1) {
         b->columns = b->views;   /* a model's views a row */
     }
-    if (b->sheet && b->skip_existing) {
+    if (b->sheet && b->c.skip_existing) {
         cli_error("--skip-existing: a sheet is drawn whole each time (nothing to resume)");
         return EXIT_USAGE;
     }
-    const char *named = b->sheet ? b->sheet : b->name;
+    const char *named = b->sheet ? b->sheet : b->c.name;
     if (named && cli_is_jpeg_name(named) && o->background_alpha < 1.0f) {
         cli_error("--background transparent: '%s' names JPEGs, which have no alpha", named);
         return EXIT_USAGE;
     }
     if (b->animate) {
-        if (b->sheet || b->name) {
+        if (b->sheet || b->c.name) {
             cli_error("--animate: names the outputs itself (not with %s)",
                       b->sheet ? "--sheet" : "--name");
             return EXIT_USAGE;
@@ -689,8 +545,9 @@ static int check_views(batch_opts *b, const render_opts *o)
         }
         batch_anim_free(probe);
     }
-    if (!b->sheet && !b->animate && b->views > 1 && b->name && !strstr(b->name, "{view}")) {
-        cli_error("--name: '%s' needs {view} to name %d views apart", b->name, b->views);
+    const char *name = b->c.name;
+    if (!b->sheet && !b->animate && b->views > 1 && name && !strstr(name, "{view}")) {
+        cli_error("--name: '%s' needs {view} to name %d views apart", name, b->views);
         return EXIT_USAGE;
     }
     return -1;
@@ -724,7 +581,7 @@ int batch_render(int argc, char **argv)
         cli_error("-o: names one output; a batch names its outputs with --output-dir and --name");
         status = EXIT_USAGE;
     }
-    if (status < 0 && b.name && !batch_check_pattern(b.name)) {
+    if (status < 0 && b.c.name && !batch_check_pattern(b.c.name)) {
         status = EXIT_USAGE;
     }
     if (status < 0) {

@@ -21,15 +21,19 @@ typedef struct batch_item {
     bool named;     /* the output is the list's, not the pattern's */
 } batch_item;
 
+/* The files a command takes from a directory: a file name's test. */
+typedef bool (*batch_takes_fn)(const char *name);
+
 typedef struct batch_list {
     batch_item *items;
     size_t count, cap;
     const char *dir, *pattern;   /* what batch_name_outputs named the outputs by */
+    batch_takes_fn takes;        /* NULL: model files */
 } batch_list;
 
-/* A model path, a directory (searched for model files, hidden entries
- * skipped) or a glob pattern that names no file itself.  -1, or an exit
- * status after one line. */
+/* An input path, a directory (searched for the files l->takes, hidden
+ * entries skipped) or a glob pattern that names no file itself.  -1, or
+ * an exit status after one line. */
 int batch_add_arg(batch_list *l, const char *arg);
 /* --batch LIST: one INPUT or INPUT<TAB>OUTPUT per line, "-" for standard
  * input; blank lines and lines starting with '#' are skipped. */
