@@ -16,14 +16,10 @@
 #include "render.h"
 #include "render_options.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 typedef struct batch_opts {
@@ -39,13 +35,6 @@ typedef struct batch_opts {
     size_t model_count, model_cap;
 } batch_opts;
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
-
 static void batch_help(void)
 {
     printf(
@@ -56,27 +45,9 @@ static void batch_help(void)
         "                           above; a directory is searched (below it too) for\n"
         "                           .stl .obj .ply files (and Assimp's formats when built\n"
         "                           with it); a quoted pattern ('models/*.stl') is\n"
-        "                           expanded here\n"
-        "  --batch LIST             one INPUT or INPUT<TAB>OUTPUT per line; '-' reads\n"
-        "                           standard input; blank and '#' lines are skipped\n"
-        "  --output-dir DIR         where outputs go (default .)\n"
-        "  --name PATTERN           output name below DIR (default {rel}.png): {stem}\n"
-        "                           the input's name without extension, {ext} its\n"
-        "                           extension, {rel} its path below the directory it was\n"
-        "                           found in without extension, {index} its place in the\n"
-        "                           sorted list; .jpg or .jpeg makes JPEGs\n"
-        "  --skip-existing          leave outputs that exist alone (resumes a batch)\n"
-        "  --log FILE.jsonl         append one JSON object per input: input, output,\n"
-        "                           index, status (ok, failed, skipped), error,\n"
-        "                           triangles, load_ms, render_ms, encode_ms, ms\n"
-        "  --shard I/N              render shard I (from 0) of N: the inputs whose path\n"
-        "                           hashes to I mod N\n"
-        "  --shard-count N          the shard count for JOB_COMPLETION_INDEX\n"
-        "                           (a Kubernetes Indexed Job)\n"
-        "                           Without --shard, the shard is JOB_COMPLETION_INDEX of\n"
-        "                           --shard-count, else SLURM_ARRAY_TASK_ID (less\n"
-        "                           SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_STEP) of\n"
-        "                           SLURM_ARRAY_TASK_COUNT; --shard 0/1 renders all\n"
+        "                           expanded here\n");
+    batch_help_options(stdout);
+    printf(
         "  --views N                N views round each model, 360/N degrees apart about\n"
         "                           the vertical axis (a turntable), each its own image:\n"
         "                           {view} in --name (default {rel}_{view}.png)\n"
@@ -86,12 +57,8 @@ static void batch_help(void)
         "                           about square)\n"
         "  --animate PATTERN        each model's views as one animated WebP, a turn in\n"
         "                           3 s, named like --name (e.g. turn.webp, {rel}.webp;\n"
-        "                           --views defaults to 24)\n"
-        "\n"
-        "A batch draws a progress line on a terminal and otherwise prints only one\n"
-        "line per failed input.  Exit status: 0 when every input was rendered or\n"
-        "skipped, 3 when some failed, 4 when all failed, 2 for bad options (nothing\n"
-        "rendered), 1 when the batch could not start.\n");
+        "                           --views defaults to 24)\n");
+    batch_help_status(stdout);
 }
 
 static bool add_model(void *user, const char *path)
@@ -159,22 +126,6 @@ static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *re
     return -1;
 }
 
-/* Whether the arguments ask for a batch rather than one render. */
-static bool is_batch(const batch_opts *b)
-{
-    struct stat st;
-    if (b->any) {
-        return true;
-    }
-    if (b->output || b->model_count > 1) {
-        return !b->output;   /* -o names one image: render says what is wrong */
-    }
-    /* One argument that is a directory, or a pattern no file is named. */
-    const char *m = b->model_count ? b->models[0] : NULL;
-    return m && ((stat(m, &st) == 0 && S_ISDIR(st.st_mode)) ||
-                 (stat(m, &st) != 0 && strpbrk(m, "*?[")));
-}
-
 typedef struct batch_run {
     const batch_opts *b;
     const render_opts *o;
@@ -216,7 +167,7 @@ static bool wants_reading(void *user, const batch_item *it)
  * on a sheet); false when it failed (why in run->message). */
 static bool draw_view(batch_run *run, const char *output, int view, batch_record *rec)
 {
-    double t0 = now_ms();
+    double t0 = batch_now_ms();
     run->message[0] = '\0';
     cli_capture(run->message, sizeof run->message);
     bool ok = !output || (batch_session_output_ok(&run->s, output, "--name") &&
@@ -233,7 +184,7 @@ static bool draw_view(batch_run *run, const char *output, int view, batch_record
         ok = false;
     }
     cli_capture(NULL, 0);
-    rec->render_ms = now_ms() - t0;
+    rec->render_ms = batch_now_ms() - t0;
     return ok;
 }
 
@@ -318,7 +269,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
     batch_anim *anim = ok ? batch_anim_start(o->width, o->height, alpha, run->message,
                                              sizeof run->message) : NULL;
     ok = anim != NULL;
-    double render_ms = 0.0, t0 = now_ms();
+    double render_ms = 0.0, t0 = batch_now_ms();
     size_t pixels = (size_t)o->width * (size_t)o->height;
     for (int v = 0; v < views && ok; v++) {
         ok = draw_view(run, v == 0 ? it->output : NULL, v, &rec);
@@ -341,7 +292,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
     }
     batch_anim_free(anim);
     rec.render_ms = render_ms;
-    rec.encode_ms = now_ms() - t0 - render_ms;
+    rec.encode_ms = batch_now_ms() - t0 - render_ms;
     rec.status = ok ? "ok" : "failed";
     batch_session_done(&run->s, &rec, ok ? NULL : run->message);
 }
@@ -572,7 +523,9 @@ int batch_render(int argc, char **argv)
             batch_help();   /* after render's --help */
         }
     }
-    if (status < 0 && !is_batch(&b)) {
+    /* -o names one image: render says what is wrong with the rest. */
+    bool batch = b.any || (!b.output && batch_asked(&b.c, b.models, b.model_count));
+    if (status < 0 && !batch) {
         free(b.models);
         free(rest);
         return -1;          /* one plain render */

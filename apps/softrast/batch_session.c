@@ -16,11 +16,46 @@
 #include <time.h>
 #include <unistd.h>
 
-static double now_ms(void)
+double batch_now_ms(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+void batch_help_options(FILE *f)
+{
+    fprintf(f,
+        "  --batch LIST             one INPUT or INPUT<TAB>OUTPUT per line; '-' reads\n"
+        "                           standard input; blank and '#' lines are skipped\n"
+        "  --output-dir DIR         where outputs go (default .)\n"
+        "  --name PATTERN           output name below DIR (default {rel}.png): {stem}\n"
+        "                           the input's name without extension, {ext} its\n"
+        "                           extension, {rel} its path below the directory it was\n"
+        "                           found in without extension, {index} its place in the\n"
+        "                           sorted list; .jpg or .jpeg makes JPEGs\n"
+        "  --skip-existing          leave outputs that exist alone (resumes a batch)\n"
+        "  --log FILE.jsonl         append one JSON object per input: input, output,\n"
+        "                           index, status (ok, failed, skipped), error,\n"
+        "                           triangles, load_ms, render_ms, encode_ms, ms\n"
+        "  --shard I/N              render shard I (from 0) of N: the inputs whose path\n"
+        "                           hashes to I mod N\n"
+        "  --shard-count N          the shard count for JOB_COMPLETION_INDEX\n"
+        "                           (a Kubernetes Indexed Job)\n"
+        "                           Without --shard, the shard is JOB_COMPLETION_INDEX of\n"
+        "                           --shard-count, else SLURM_ARRAY_TASK_ID (less\n"
+        "                           SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_STEP) of\n"
+        "                           SLURM_ARRAY_TASK_COUNT; --shard 0/1 renders all\n");
+}
+
+void batch_help_status(FILE *f)
+{
+    fprintf(f,
+        "\n"
+        "A batch draws a progress line on a terminal and otherwise prints only one\n"
+        "line per failed input.  Exit status: 0 when every input was rendered or\n"
+        "skipped, 3 when some failed, 4 when all failed, 2 for bad options (nothing\n"
+        "rendered), 1 when the batch could not start.\n");
 }
 
 int batch_take_option(batch_common *c, int argc, char **argv, int *i)
@@ -49,6 +84,17 @@ int batch_take_option(batch_common *c, int argc, char **argv, int *i)
         return 1;
     }
     return 0;
+}
+
+bool batch_asked(const batch_common *c, const char *const *args, size_t count)
+{
+    struct stat st;
+    if (c->any || count > 1) {
+        return true;
+    }
+    const char *a = count ? args[0] : NULL;
+    return a && ((stat(a, &st) == 0 && S_ISDIR(st.st_mode)) ||
+                 (stat(a, &st) != 0 && strpbrk(a, "*?[")));
 }
 
 int batch_session_gather(batch_session *s, const batch_common *c, const char *const *args,
@@ -134,7 +180,7 @@ size_t batch_session_mine(const batch_session *s)
 
 void batch_session_begin(batch_session *s, size_t records)
 {
-    batch_progress_start(&s->progress, records, now_ms());
+    batch_progress_start(&s->progress, records, batch_now_ms());
     batch_writer_start(&s->writer, batch_session_done, s);
     s->running = true;
 }
@@ -143,7 +189,7 @@ int batch_session_end(batch_session *s)
 {
     batch_writer_stop(&s->writer);
     s->running = false;
-    batch_progress_show(&s->progress, now_ms(), true);
+    batch_progress_show(&s->progress, batch_now_ms(), true);
     return s->progress.failed == 0 ? EXIT_OK
          : s->ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
 }
@@ -216,7 +262,7 @@ void batch_session_done(void *user, batch_record *rec, const char *message)
     if (s->log_fd >= 0 && s->log_errno == 0 && !batch_log_write(s->log_fd, rec)) {
         s->log_errno = errno ? errno : EIO;
     }
-    batch_progress_show(&s->progress, now_ms(), false);
+    batch_progress_show(&s->progress, batch_now_ms(), false);
 }
 
 /* Report an input that is not handed to the writer, after those that

@@ -10,6 +10,7 @@
 #include "batch.h"
 #include "batch_writer.h"
 
+#include <stdio.h>
 #include <sys/types.h>
 
 /* The batch options every batch command takes. */
@@ -23,10 +24,23 @@ typedef struct batch_common {
     bool any;                  /* one of them was given */
 } batch_common;
 
+/* The help text of batch_common's options (items of the command's
+ * batch group), and the paragraph on the output and exit status that
+ * ends the group. */
+void batch_help_options(FILE *f);
+void batch_help_status(FILE *f);
+
 /* If argv[*i] is one of batch_common's options, take it and its value
  * (*i then at the value): 1; 0 when it is not one; an exit status after
  * one line for a missing or empty value. */
 int batch_take_option(batch_common *c, int argc, char **argv, int *i);
+
+/* Whether the arguments ask for a batch: a batch option, several
+ * inputs, or one that is a directory or a pattern that names no file. */
+bool batch_asked(const batch_common *c, const char *const *args, size_t count);
+
+/* The monotonic clock in milliseconds, for the log's times. */
+double batch_now_ms(void);
 
 /* An input's identity: an output is never one of them, by any name. */
 typedef struct batch_file_id {
