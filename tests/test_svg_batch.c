@@ -85,9 +85,18 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
     fresh_dir("svg_each", out, sizeof out);
     fresh_dir("svg_each_t1", out1, sizeof out1);
     fresh_dir("svg_single", single, sizeof single);
+    char log[1300];
+    snprintf(log, sizeof log, "%s/run.jsonl", out);
     run_result r;
-    REQUIRE(run(ARGS("svg", src, "--output-dir", out, "--scale", "2"), &r));
+    REQUIRE(run(ARGS("svg", src, "--output-dir", out, "--scale", "2", "--log", log), &r));
     int batch_status = r.status;
+    /* Several threads write the images; the records still come in the
+     * order of the list. */
+    record recs[64];
+    int logged = read_log(log, recs, 64);
+    for (int i = 0; i < logged && i < 64; i++) {
+        CHECK_EQ((int)recs[i].index, i);
+    }
     REQUIRE(run_env(ARGS("svg", src, "--output-dir", out1, "--scale", "2"), ENV("SR_THREADS=1"),
                     NULL, &r));
     CHECK_EQ(r.status, batch_status);
@@ -119,6 +128,7 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
     }
     closedir(d);
     CHECK(compared >= 20);
+    CHECK_EQ(logged, compared + failed);
     CHECK_EQ(batch_status, failed ? 3 : 0);
     /* And at a fixed size, by a list on standard input. */
     char list[1200], sized[1200], one_in[1200], one_out[1200], want[1300];

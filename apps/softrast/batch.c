@@ -426,7 +426,7 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     if (status < 0) {
         size_t records = b->animate ? 1 : (size_t)b->views;   /* a model's */
-        batch_session_begin(&run.s, batch_session_mine(&run.s) * records);
+        batch_session_begin(&run.s, batch_session_mine(&run.s) * records, 1);
         batch_reader_start(&run.reader, run.list, &run.s.shard, wants_reading, &run, run.jobs,
                            b->job_argc, b->views > 1 ? b->job_argv : NULL, o->width, o->height);
         render_all(&run);

@@ -178,10 +178,10 @@ size_t batch_session_mine(const batch_session *s)
     return mine;
 }
 
-void batch_session_begin(batch_session *s, size_t records)
+void batch_session_begin(batch_session *s, size_t records, int writers)
 {
     batch_progress_start(&s->progress, records, batch_now_ms());
-    batch_writer_start(&s->writer, batch_session_done, s);
+    batch_writer_start(&s->writer, writers, batch_session_done, s);
     s->running = true;
 }
 

@@ -76,8 +76,8 @@ int batch_session_name(batch_session *s, const char *default_name);
 int batch_session_open(batch_session *s);
 /* How many inputs of the list are this shard's. */
 size_t batch_session_mine(const batch_session *s);
-/* Start the progress line (records in all) and the writer. */
-void batch_session_begin(batch_session *s, size_t records);
+/* Start the progress line (records in all) and the writer's threads. */
+void batch_session_begin(batch_session *s, size_t records, int writers);
 /* Write what the writer holds, stop it, draw the last progress and give
  * the exit status: 0, or some or all failed. */
 int batch_session_end(batch_session *s);

@@ -6,8 +6,8 @@
  * "FILE:LINE: what is wrong", exit status 2 for a bad document, 1 when the
  * run itself fails, and no output file.  Several inputs, a directory or
  * --batch make a batch (batch_session.c): one context renders every
- * drawing in turn on this thread while the writer's thread writes the
- * one before. */
+ * drawing in turn on this thread while SVG_WRITERS threads write the
+ * ones before. */
 #include "batch_session.h"
 #include "cli.h"
 #include "softrast_io.h"
@@ -241,6 +241,10 @@ static int render_one(svg_args *a)
 
 /* ---- a batch ------------------------------------------------------------ */
 
+/* Writer threads: a drawing takes far less time than the fsync of its
+ * image, and a file system takes several at once. */
+#define SVG_WRITERS 4
+
 /* What every drawing of a batch is rendered with. */
 typedef struct svg_batch {
     sr_context *ctx;
@@ -339,7 +343,7 @@ static int render_batch(svg_args *a)
         status = EXIT_FAILURE_RUN;
     }
     if (status < 0) {
-        batch_session_begin(&s, batch_session_mine(&s));
+        batch_session_begin(&s, batch_session_mine(&s), SVG_WRITERS);
         batch_session_each(&s, draw_one, &sb);
         status = batch_session_end(&s);
     }
