@@ -1,7 +1,8 @@
-/* batch.h - `softrast render` over many models in one process (batch.c):
- * the input list and the output names (batch_inputs.c), the share of it
- * one shard renders (batch_shard.c), and the JSON Lines log and the
- * progress line (batch_log.c). */
+/* batch.h - many inputs in one process, for `softrast render` (batch.c)
+ * and `softrast svg` (svg_cmd.c), through batch_session.h: the input list
+ * and the output names (batch_inputs.c), the share of it one shard
+ * renders (batch_shard.c), and the JSON Lines log and the progress line
+ * (batch_log.c). */
 #ifndef SR_BATCH_H
 #define SR_BATCH_H
 
