@@ -6,7 +6,8 @@
 # share/bash-completion/completions/softrast sourced with the softrast of
 # TOOL_DIR first on PATH (COMP_WORDS, COMP_CWORD), the built zsh
 # COMPLETION (_softrast) in an interactive zsh (tests/zsh_complete.zsh),
-# the built fish COMPLETION (softrast.fish) through fish's `complete -C`.
+# the built fish COMPLETION (softrast.fish) through fish's `complete -C`,
+# each found where the shell looks for a command's completion.
 # Each answer is compared with what the tool's --help lists, read here on
 # its own: every option of every command, the choices of options, demo and
 # algorithm names, the descriptions zsh and fish show, and files by
@@ -50,7 +51,8 @@ offered() {
     zsh) printf '%s' "${zsh_answers[$1]-}" ;;
     fish)
         # shellcheck disable=SC2016 # fish expands $argv, not bash
-        fish --no-config -c 'source $argv[1]; and complete -C $argv[2]' "$completion" "$1"
+        fish --no-config -c 'set -p fish_complete_path $argv[1]; complete -C $argv[2]' \
+            "$(dirname "$completion")" "$1"
         ;;
     esac
 }
