@@ -50,6 +50,17 @@ def command_options(commands):
     return out
 
 
+def names_heading(blocks):
+    """The heading of the group of names in a help text ("demos")."""
+    heading = "names"
+    for b in blocks:
+        if b[0] == "group":
+            heading = b[1].rstrip(":")
+        elif b[0] == "item" and not b[1].startswith(("-", "softrast")):
+            return heading
+    return heading
+
+
 def sq(text):
     """TEXT in single quotes for zsh and fish."""
     return "'" + text.replace("'", "'\\''") + "'"
@@ -66,7 +77,7 @@ def zsh_files(exts):
     return "_files -g " + re.sub(r"([*.()#|])", r"\\\1", pattern) if exts else "_files"
 
 
-def zsh_action(value, models):
+def zsh_action(value):
     if value[0] == "choices":
         return "(%s)" % " ".join(value[1])
     if value[0] == "dir":
@@ -76,20 +87,20 @@ def zsh_action(value, models):
     return " "  # a value with nothing to offer: _arguments shows the message
 
 
-def zsh_option(opt, models):
+def zsh_option(opt):
     """_arguments specs for OPT: each name excludes its other names, a
     repeatable option may be given again."""
     desc = opt.description.replace("\\", "\\\\").replace("]", "\\]")
     value = opt.value()
     tail = ""
     if value:
-        tail = ":%s:%s" % (opt.arg.replace(":", "\\:"), zsh_action(value, models))
+        tail = ":%s:%s" % (opt.arg.replace(":", "\\:"), zsh_action(value))
     repeat = "*" if "repeatable" in opt.description else ""
     exclude = "(%s)" % " ".join(opt.names) if len(opt.names) > 1 and not repeat else ""
     return [exclude + repeat + name + "[" + desc + "]" + tail for name in opt.names]
 
 
-def zsh(top, commands, models):
+def zsh(commands, models):
     opts = command_options(commands)
     out = ["#compdef softrast",
            "# zsh completion for softrast(1), written by tools/completions.py from the",
@@ -117,13 +128,14 @@ def zsh(top, commands, models):
             "        case $words[1] in"]
     for name, _, _, blocks in commands:
         kind = ARGUMENTS.get(name, "files")
-        specs = [s for o in opts[name] for s in zsh_option(o, models)]
+        specs = [s for o in opts[name] for s in zsh_option(o)]
+        what = names_heading(blocks)
         if kind == "models":
             specs.append("*:model:" + zsh_files(models))
         elif kind == "svg":
             specs.append("*:drawing:" + zsh_files("svg"))
         elif kind == "names":
-            specs.append("1:%s:->name" % name)
+            specs.append("1:%s:->name" % what)
         else:
             specs.append("*:file:_files")
         out.append("        %s)" % name)
@@ -136,7 +148,7 @@ def zsh(top, commands, models):
         out.append("                %s && ret=0" % sq(specs[-1]))
         if kind == "names":
             out.append("            [[ $state == name ]] && _describe -t names %s names && ret=0"
-                       % sq(name + " " + ("demo" if name == "demo" else "algorithm")))
+                       % sq(what))
         out.append("            ;;")
     out += ["        esac",
             "        ;;",
@@ -208,7 +220,7 @@ def fish_option(cmd, opt):
     return lines
 
 
-def fish(top, commands, models):
+def fish(commands, models):
     opts = command_options(commands)
     out = [FISH_HEAD]
     for name, desc, _, _ in commands:
@@ -244,9 +256,9 @@ def main(argv):
         return 2
     bash_completion, zsh_path, fish_path, tool = argv[1], argv[2], argv[3], argv[4:]
     models = model_extensions(bash_completion)
-    top, commands = helptext.read(tool)
-    write(zsh_path, zsh(top, commands, models))
-    write(fish_path, fish(top, commands, models))
+    commands = helptext.read(tool)[1]
+    write(zsh_path, zsh(commands, models))
+    write(fish_path, fish(commands, models))
     return 0
 
 
