@@ -40,12 +40,12 @@ void batch_help_options(FILE *f)
         "                           triangles, load_ms, render_ms, encode_ms, ms\n"
         "  --shard I/N              render shard I (from 0) of N: the inputs whose path\n"
         "                           hashes to I mod N\n"
-        "  --shard-count N          the shard count for JOB_COMPLETION_INDEX\n"
-        "                           (a Kubernetes Indexed Job)\n"
-        "                           Without --shard, the shard is JOB_COMPLETION_INDEX of\n"
-        "                           --shard-count, else SLURM_ARRAY_TASK_ID (less\n"
-        "                           SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_STEP) of\n"
-        "                           SLURM_ARRAY_TASK_COUNT; --shard 0/1 renders all\n");
+        "  --shard-count N          the shard count for JOB_COMPLETION_INDEX (a\n"
+        "                           Kubernetes Indexed Job); without --shard, the shard\n"
+        "                           is JOB_COMPLETION_INDEX of --shard-count, else\n"
+        "                           SLURM_ARRAY_TASK_ID (less SLURM_ARRAY_TASK_MIN, over\n"
+        "                           SLURM_ARRAY_TASK_STEP) of SLURM_ARRAY_TASK_COUNT;\n"
+        "                           --shard 0/1 renders all\n");
 }
 
 void batch_help_status(FILE *f)
