@@ -9,45 +9,31 @@
 #include "batch.h"
 #include "batch_anim.h"
 #include "batch_reader.h"
+#include "batch_session.h"
 #include "batch_views.h"
 #include "batch_writer.h"
 #include "cli.h"
 #include "render.h"
 #include "render_options.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
+#include <strings.h>
 #include <unistd.h>
 
 typedef struct batch_opts {
-    const char *list;          /* --batch LIST */
-    const char *output_dir;    /* --output-dir DIR (default .) */
-    const char *name;          /* --name PATTERN (default {rel}.png, {rel}_{view}.png) */
-    const char *log;           /* --log FILE.jsonl */
-    const char *shard, *shard_count;
+    batch_common c;            /* --name's default: {rel}.png, {rel}_{view}.png */
     const char *views_arg, *sheet, *columns_arg;  /* --views N, --sheet FILE, --sheet-columns N */
     const char *animate;       /* --animate PATTERN: each model's views as an animated WebP */
     int views, columns;
     char **job_argv;           /* the render options, for render_job_configure */
     int job_argc;
-    bool skip_existing;
     bool any;                  /* a batch option was given */
     bool output;               /* -o was given */
     const char **models;       /* the MODEL arguments */
     size_t model_count, model_cap;
 } batch_opts;
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
-}
 
 static void batch_help(void)
 {
@@ -59,27 +45,9 @@ static void batch_help(void)
         "                           above; a directory is searched (below it too) for\n"
         "                           .stl .obj .ply files (and Assimp's formats when built\n"
         "                           with it); a quoted pattern ('models/*.stl') is\n"
-        "                           expanded here\n"
-        "  --batch LIST             one INPUT or INPUT<TAB>OUTPUT per line; '-' reads\n"
-        "                           standard input; blank and '#' lines are skipped\n"
-        "  --output-dir DIR         where outputs go (default .)\n"
-        "  --name PATTERN           output name below DIR (default {rel}.png): {stem}\n"
-        "                           the input's name without extension, {ext} its\n"
-        "                           extension, {rel} its path below the directory it was\n"
-        "                           found in without extension, {index} its place in the\n"
-        "                           sorted list; .jpg or .jpeg makes JPEGs\n"
-        "  --skip-existing          leave outputs that exist alone (resumes a batch)\n"
-        "  --log FILE.jsonl         append one JSON object per input: input, output,\n"
-        "                           index, status (ok, failed, skipped), error,\n"
-        "                           triangles, load_ms, render_ms, encode_ms, ms\n"
-        "  --shard I/N              render shard I (from 0) of N: the inputs whose path\n"
-        "                           hashes to I mod N\n"
-        "  --shard-count N          the shard count for JOB_COMPLETION_INDEX\n"
-        "                           (a Kubernetes Indexed Job)\n"
-        "                           Without --shard, the shard is JOB_COMPLETION_INDEX of\n"
-        "                           --shard-count, else SLURM_ARRAY_TASK_ID (less\n"
-        "                           SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_STEP) of\n"
-        "                           SLURM_ARRAY_TASK_COUNT; --shard 0/1 renders all\n"
+        "                           expanded here\n");
+    batch_help_options(stdout);
+    printf(
         "  --views N                N views round each model, 360/N degrees apart about\n"
         "                           the vertical axis (a turntable), each its own image:\n"
         "                           {view} in --name (default {rel}_{view}.png)\n"
@@ -89,12 +57,8 @@ static void batch_help(void)
         "                           about square)\n"
         "  --animate PATTERN        each model's views as one animated WebP, a turn in\n"
         "                           3 s, named like --name (e.g. turn.webp, {rel}.webp;\n"
-        "                           --views defaults to 24)\n"
-        "\n"
-        "A batch draws a progress line on a terminal and otherwise prints only one\n"
-        "line per failed input.  Exit status: 0 when every input was rendered or\n"
-        "skipped, 3 when some failed, 4 when all failed, 2 for bad options (nothing\n"
-        "rendered), 1 when the batch could not start.\n");
+        "                           --views defaults to 24)\n");
+    batch_help_status(stdout);
 }
 
 static bool add_model(void *user, const char *path)
@@ -118,18 +82,19 @@ static bool add_model(void *user, const char *path)
  * into rest, for the render options' parser. */
 static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *rest_count)
 {
-    static const char *const valued[] = { "--batch", "--output-dir", "--name", "--log",
-                                          "--shard", "--shard-count", "--views", "--sheet",
-                                          "--sheet-columns", "--animate", NULL };
-    const char **dst[] = { &b->list, &b->output_dir, &b->name, &b->log, &b->shard,
-                           &b->shard_count, &b->views_arg, &b->sheet, &b->columns_arg,
-                           &b->animate };
+    static const char *const valued[] = { "--views", "--sheet", "--sheet-columns", "--animate",
+                                          NULL };
+    const char **dst[] = { &b->views_arg, &b->sheet, &b->columns_arg, &b->animate };
     int n = 0;
     rest[n++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        if (strcmp(a, "--skip-existing") == 0) {
-            b->skip_existing = b->any = true;
+        int taken = batch_take_option(&b->c, argc, argv, &i);
+        if (taken != 0) {
+            b->any = true;
+            if (taken != 1) {
+                return taken;
+            }
             continue;
         }
         if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
@@ -161,125 +126,20 @@ static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *re
     return -1;
 }
 
-/* Whether the arguments ask for a batch rather than one render. */
-static bool is_batch(const batch_opts *b)
-{
-    struct stat st;
-    if (b->any) {
-        return true;
-    }
-    if (b->output || b->model_count > 1) {
-        return !b->output;   /* -o names one image: render says what is wrong */
-    }
-    /* One argument that is a directory, or a pattern no file is named. */
-    const char *m = b->model_count ? b->models[0] : NULL;
-    return m && ((stat(m, &st) == 0 && S_ISDIR(st.st_mode)) ||
-                 (stat(m, &st) != 0 && strpbrk(m, "*?[")));
-}
-
-/* The inputs as (device, inode), sorted, so that no output replaces any
- * input of the list (not only its own) in O(log n) a check. */
-typedef struct file_id {
-    dev_t dev;
-    ino_t ino;
-} file_id;
-
-static int by_id(const void *a, const void *b)
-{
-    const file_id *x = a, *y = b;
-    return x->dev != y->dev ? (x->dev < y->dev ? -1 : 1)
-         : x->ino != y->ino ? (x->ino < y->ino ? -1 : 1) : 0;
-}
-
-static file_id *input_ids(const batch_list *l, size_t *count)
-{
-    file_id *ids = malloc((l->count + 1) * sizeof *ids);
-    size_t n = 0;
-    for (size_t i = 0; ids && i < l->count; i++) {
-        struct stat st;
-        if (stat(l->items[i].input, &st) == 0) {
-            ids[n++] = (file_id){ st.st_dev, st.st_ino };
-        }
-    }
-    if (ids) {
-        qsort(ids, n, sizeof *ids, by_id);
-    }
-    *count = n;
-    return ids;
-}
-
-static bool is_listed_input(const file_id *ids, size_t n, const char *path)
-{
-    struct stat st;
-    if (stat(path, &st) != 0) {
-        return false;
-    }
-    file_id key = { st.st_dev, st.st_ino };
-    return bsearch(&key, ids, n, sizeof *ids, by_id) != NULL;
-}
-
-static bool exists_whole(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
-}
-
 typedef struct batch_run {
     const batch_opts *b;
     const render_opts *o;
-    const batch_list *list;
+    batch_session s;           /* the list, the writer, the log and the progress */
+    const batch_list *list;    /* s's */
     render_job *jobs[2];       /* one reads the next input while the other draws */
     render_job *job;           /* the input's (one of jobs), and its framebuffer */
     sr_framebuffer *fb;
     batch_reader reader;
     sr_context *sheet_ctx;     /* --sheet's: the jobs' contexts are busy reading */
-    const file_id *ids;
-    size_t id_count;
-    batch_writer writer;
     batch_sheet sheet;         /* --sheet: made on the job's context at its first cell */
     int sheet_images;
-    batch_progress progress;
-    size_t ok;
-    int log_fd;
-    int log_errno;             /* why the log could not be written, or 0 */
     char message[2048];        /* the held messages of the input being drawn */
 } batch_run;
-
-/* One line on stderr for a failed input (or a warning), naming the input
- * unless the message starts with it already ("FILE:LINE: why").  Printed
- * directly: the writer's thread calls this while the batch may be
- * holding its own messages (cli_capture). */
-static void report(batch_progress *p, const char *input, const char *message)
-{
-    batch_progress_clear(p);
-    char name[4096], line[8192];
-    snprintf(name, sizeof name, "%s", input);
-    cli_one_line(name);   /* as the readers quote it in their messages */
-    size_t n = strlen(name);
-    bool named = strncmp(message, name, n) == 0 && message[n] == ':';
-    snprintf(line, sizeof line, "%s%s%s", named ? "" : name, named ? "" : ": ", message);
-    cli_one_line(line);
-    fprintf(stderr, "softrast: %s\n", line);
-}
-
-/* An input is finished (batch_done_fn): count, report, log, redraw. */
-static void finish(void *user, batch_record *rec, const char *message)
-{
-    batch_run *run = user;
-    bool failed = strcmp(rec->status, "failed") == 0;
-    run->ok += !failed;
-    run->progress.failed += failed;
-    run->progress.skipped += strcmp(rec->status, "skipped") == 0;
-    run->progress.done++;
-    if (message && *message) {
-        report(&run->progress, rec->input, message);
-    }
-    rec->error = failed ? (message && *message ? message : "failed") : NULL;
-    if (run->log_fd >= 0 && run->log_errno == 0 && !batch_log_write(run->log_fd, rec)) {
-        run->log_errno = errno ? errno : EIO;
-    }
-    batch_progress_show(&run->progress, now_ms(), false);
-}
 
 /* batch_want_fn: with --skip-existing, an input whose every output
  * exists is not read. */
@@ -287,15 +147,16 @@ static bool wants_reading(void *user, const batch_item *it)
 {
     const batch_run *run = user;
     const batch_opts *b = run->b;
-    if (!b->skip_existing || b->sheet) {
+    if (!b->c.skip_existing || b->sheet) {
         return true;
     }
     if (b->animate) {
-        return !exists_whole(it->output);
+        return !batch_exists_whole(it->output);
     }
     char output[4096];
     for (int v = 0; v < b->views; v++) {
-        if (!batch_view_output(run->list, it, v, output, sizeof output) || !exists_whole(output)) {
+        if (!batch_view_output(run->list, it, v, output, sizeof output) ||
+            !batch_exists_whole(output)) {
             return true;
         }
     }
@@ -307,23 +168,15 @@ static bool wants_reading(void *user, const batch_item *it)
 static bool draw_view(batch_run *run, const batch_item *it, const char *output, int view,
                       batch_record *rec)
 {
-    /* what named the output, for the user to change */
-    const char *namer = it->named ? "--batch" : "--name";
-    double t0 = now_ms();
+    double t0 = batch_now_ms();
     run->message[0] = '\0';
     cli_capture(run->message, sizeof run->message);
-    struct stat st;
-    bool ok = true;
-    if (output && stat(output, &st) == 0 && S_ISDIR(st.st_mode)) {
-        cli_error("'%s' is a directory", output);
-        ok = false;
-    } else if (output && is_listed_input(run->ids, run->id_count, output)) {
-        cli_error("'%s' is an input of the batch; choose another %s", output,
-                  it->named ? "output in the --batch list" : "--name");
-        ok = false;
-    } else if (output && !cli_check_output(render_job_inputs(run->job), namer, output)) {
-        ok = false;   /* the model's own other files (MTL, textures) */
-    }
+    /* what named the output, for the user to change */
+    const char *namer = it->named ? "--batch output" : "--name";
+    bool ok = !output || (batch_session_output_ok(&run->s, output, namer) &&
+                          /* the model's own other files (MTL, textures) */
+                          cli_check_output(render_job_inputs(run->job),
+                                           it->named ? "--batch" : "--name", output));
     if (ok && run->b->views > 1) {
         batch_view_camera(run->job, run->o->have_eye, view, run->b->views);
     }
@@ -335,7 +188,7 @@ static bool draw_view(batch_run *run, const batch_item *it, const char *output, 
         ok = false;
     }
     cli_capture(NULL, 0);
-    rec->render_ms = now_ms() - t0;
+    rec->render_ms = batch_now_ms() - t0;
     return ok;
 }
 
@@ -353,20 +206,14 @@ static void caption_of(const batch_run *run, const batch_item *it, int view, cha
     }
 }
 
-/* The inputs of the options: the MODEL arguments and the list. */
-static int gather(const batch_opts *b, batch_list *l)
+/* The inputs of the options: the MODEL arguments and the list, and
+ * their outputs' names. */
+static int gather(batch_run *run)
 {
-    int status = -1;
-    for (size_t i = 0; i < b->model_count && status < 0; i++) {
-        status = batch_add_arg(l, b->models[i]);
-    }
-    if (status < 0 && b->list) {
-        status = batch_read_list(l, b->list);
-    }
-    if (status < 0 && l->count == 0) {
-        cli_error("render: no models to render (a directory holds none, or the list is empty)");
-        status = EXIT_USAGE;
-    }
+    const batch_opts *b = run->b;
+    batch_list *l = &run->s.list;
+    int status = batch_session_gather(&run->s, &b->c, b->models, b->model_count, NULL,
+                                      "render: no models");
     for (size_t i = 0; status < 0 && i < l->count && b->views > 1 && !b->sheet && !b->animate;
          i++) {
         if (l->items[i].output) {
@@ -375,14 +222,9 @@ static int gather(const batch_opts *b, batch_list *l)
             status = EXIT_USAGE;
         }
     }
-    if (status < 0) {
-        batch_list_sort(l);
-    }
     if (status < 0 && !b->sheet) {   /* a sheet is the one output */
-        const char *dflt = b->animate ? b->animate
-                         : b->views > 1 ? "{rel}_{view}.png" : "{rel}.png";
-        status = batch_name_outputs(l, b->output_dir ? b->output_dir : ".",
-                                    b->name ? b->name : dflt);
+        status = batch_session_name(&run->s, b->animate ? b->animate
+                                             : b->views > 1 ? "{rel}_{view}.png" : "{rel}.png");
     }
     return status;
 }
@@ -420,18 +262,18 @@ static void animate_one(batch_run *run, const batch_read *rd)
                          .status = "failed", .load_ms = rd->load_ms };
     if (!rd->wanted) {
         rec.status = "skipped";
-        finish(run, &rec, NULL);
+        batch_session_done(&run->s, &rec, NULL);
         return;
     }
     bool ok = rd->loaded;
     if (ok && run->message[0]) {
-        report(&run->progress, it->input, run->message);   /* a warning */
+        batch_session_report(&run->s, it->input, run->message);   /* a warning */
     }
     bool alpha = o->background_alpha < 1.0f;
     batch_anim *anim = ok ? batch_anim_start(o->width, o->height, alpha, run->message,
                                              sizeof run->message) : NULL;
     ok = anim != NULL;
-    double render_ms = 0.0, t0 = now_ms();
+    double render_ms = 0.0, t0 = batch_now_ms();
     size_t pixels = (size_t)o->width * (size_t)o->height;
     for (int v = 0; v < views && ok; v++) {
         ok = draw_view(run, it, v == 0 ? it->output : NULL, v, &rec);
@@ -454,9 +296,9 @@ static void animate_one(batch_run *run, const batch_read *rd)
     }
     batch_anim_free(anim);
     rec.render_ms = render_ms;
-    rec.encode_ms = now_ms() - t0 - render_ms;
+    rec.encode_ms = batch_now_ms() - t0 - render_ms;
     rec.status = ok ? "ok" : "failed";
-    finish(run, &rec, ok ? NULL : run->message);
+    batch_session_done(&run->s, &rec, ok ? NULL : run->message);
 }
 
 /* Render the shard's inputs in list order as the reader hands them
@@ -485,22 +327,22 @@ static void render_all(batch_run *run)
                              .index = it->index, .status = "failed", .load_ms = rd->load_ms };
         bool loaded = rd->loaded;
         if (loaded && run->message[0]) {
-            batch_writer_wait(&run->writer);
-            report(&run->progress, it->input, run->message);   /* a warning */
+            batch_writer_wait(&run->s.writer);
+            batch_session_report(&run->s, it->input, run->message);   /* a warning */
         }
         for (int v = 0; v < b->views; v++) {
             if (!b->sheet && !batch_view_output(list, it, v, output, sizeof output)) {
                 snprintf(output, sizeof output, "%s", it->output);   /* view 0's, checked */
             }
             rec.output = b->sheet ? b->sheet : output;
-            bool skip = !b->sheet && b->skip_existing && exists_whole(output);
+            bool skip = !b->sheet && b->c.skip_existing && batch_exists_whole(output);
             if (skip || (rd->wanted && !loaded)) {
                 rec.status = skip ? "skipped" : "failed";
-                batch_writer_wait(&run->writer);
+                batch_writer_wait(&run->s.writer);
                 if (b->sheet) {
                     sheet_put(run, it, v, NULL);
                 }
-                finish(run, &rec, skip || v > 0 ? NULL : run->message);
+                batch_session_done(&run->s, &rec, skip || v > 0 ? NULL : run->message);
                 continue;
             }
             rec.status = "failed";
@@ -508,19 +350,19 @@ static void render_all(batch_run *run)
             if (drawn && b->sheet) {
                 rec.status = sheet_put(run, it, v, sr_framebuffer_pixels(run->fb)) ? "ok"
                                                                                     : "failed";
-            } else if (drawn && batch_writer_put(&run->writer, &rec, o->width, o->height,
+            } else if (drawn && batch_writer_put(&run->s.writer, &rec, o->width, o->height,
                                                  sr_framebuffer_pixels(run->fb), &image)) {
                 rec.load_ms = 0.0;   /* a model is read once for all its views */
                 continue;
             } else if (drawn) {
                 snprintf(run->message, sizeof run->message, "out of memory");
             }
-            batch_writer_wait(&run->writer);
-            finish(run, &rec, run->message);
+            batch_writer_wait(&run->s.writer);
+            batch_session_done(&run->s, &rec, run->message);
             rec.load_ms = 0.0;
         }
     }
-    batch_writer_wait(&run->writer);
+    batch_writer_wait(&run->s.writer);
 }
 
 /* Write the sheet (after every input); false after one line. */
@@ -529,6 +371,9 @@ static bool write_sheet(batch_run *run)
     const render_opts *o = run->o;
     const char *path = run->b->sheet;
     sr_io_error err;
+    if (!batch_session_output_ok(&run->s, path, "--sheet")) {
+        return false;
+    }
     sr_framebuffer *fb = run->sheet.fb;
     if (cli_write_image(path, sr_framebuffer_width(fb), sr_framebuffer_height(fb),
                         sr_framebuffer_pixels(fb),
@@ -544,52 +389,20 @@ static bool write_sheet(batch_run *run)
     return true;
 }
 
-/* How many inputs of the list are the shard's. */
-static size_t mine_total(const batch_list *list, const batch_shard *shard)
-{
-    size_t mine = 0;
-    for (size_t i = 0; i < list->count; i++) {
-        mine += batch_in_shard(list->items[i].input, shard);
-    }
-    return mine;
-}
-
 static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
 {
-    batch_shard shard;
-    batch_list list = { 0 };
-    batch_run run = { .b = b, .o = o, .list = &list, .jobs = { job }, .log_fd = -1 };
-    int status = batch_shard_resolve(b->shard, b->shard_count, &shard);
+    batch_run run = { .b = b, .o = o, .jobs = { job } };
+    run.list = &run.s.list;
+    int status = gather(&run);
     if (status < 0) {
-        status = gather(b, &list);
+        status = batch_session_open(&run.s);
     }
-    file_id *ids = status < 0 ? input_ids(&list, &run.id_count) : NULL;
-    if (status < 0 && !ids) {
-        cli_error("out of memory listing the inputs");
-        status = EXIT_FAILURE_RUN;
-    }
-    run.ids = ids;
-    /* The log is appended to: one of the models (by any name) would be
-     * left with JSON at its end.  The sheet would replace it, after the
-     * whole batch was drawn. */
-    if (status < 0 && b->log && is_listed_input(ids, run.id_count, b->log)) {
-        cli_error("--log: '%s' is an input of the batch; choose another log file", b->log);
+    /* The sheet would replace an input after the whole batch was drawn. */
+    if (status < 0 && b->sheet && !batch_session_output_ok(&run.s, b->sheet, "--sheet")) {
         status = EXIT_USAGE;
     }
-    if (status < 0 && b->sheet && is_listed_input(ids, run.id_count, b->sheet)) {
-        cli_error("--sheet: '%s' is an input of the batch; choose another output file",
-                  b->sheet);
-        status = EXIT_USAGE;
-    }
-    if (status < 0 && b->log) {
-        run.log_fd = open(b->log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-        if (run.log_fd < 0) {
-            cli_error("--log: %s: %s", b->log, strerror(errno));
-            status = EXIT_USAGE;
-        }
-    }
     if (status < 0) {
-        size_t mine = mine_total(&list, &shard);
+        size_t mine = batch_session_mine(&run.s);
         run.sheet_images = (int)(mine * (size_t)b->views);
         int cols, rows;
         long sw, sh;
@@ -621,17 +434,12 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     if (status < 0) {
         size_t records = b->animate ? 1 : (size_t)b->views;   /* a model's */
-        batch_progress_start(&run.progress, mine_total(&list, &shard) * records,
-                             now_ms());
-        batch_writer_start(&run.writer, finish, &run);
-        batch_reader_start(&run.reader, &list, &shard, wants_reading, &run, run.jobs,
+        batch_session_begin(&run.s, batch_session_mine(&run.s) * records, 1);
+        batch_reader_start(&run.reader, run.list, &run.s.shard, wants_reading, &run, run.jobs,
                            b->job_argc, b->views > 1 ? b->job_argv : NULL, o->width, o->height);
         render_all(&run);
-        batch_writer_stop(&run.writer);
+        status = batch_session_end(&run.s);
         batch_reader_stop(&run.reader);
-        batch_progress_show(&run.progress, now_ms(), true);
-        status = run.progress.failed == 0 ? EXIT_OK
-               : run.ok > 0 ? EXIT_BATCH_SOME_FAILED : EXIT_BATCH_ALL_FAILED;
         if (run.sheet.fb && !write_sheet(&run)) {
             status = EXIT_FAILURE_RUN;
         }
@@ -641,16 +449,7 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     sr_destroy_context(run.sheet_ctx);
     render_job_free(run.jobs[1]);   /* before the first, whose light it shares */
-    if (run.log_fd >= 0 && close(run.log_fd) != 0 && run.log_errno == 0) {
-        run.log_errno = errno;
-    }
-    if (run.log_errno != 0) {
-        cli_error("--log: %s: %s", b->log, strerror(run.log_errno));
-        status = EXIT_FAILURE_RUN;
-    }
-    free(ids);
-    batch_list_free(&list);
-    return status;
+    return batch_session_close(&run.s, status);
 }
 
 /* --views, --sheet and --sheet-columns, and how they go with the other
@@ -671,17 +470,17 @@ static int check_views(batch_opts *b, const render_opts *o)
     if (!b->columns && b->sheet && b->views > 1) {
         b->columns = b->views;   /* a model's views a row */
     }
-    if (b->sheet && b->skip_existing) {
+    if (b->sheet && b->c.skip_existing) {
         cli_error("--skip-existing: a sheet is drawn whole each time (nothing to resume)");
         return EXIT_USAGE;
     }
-    const char *named = b->sheet ? b->sheet : b->name;
+    const char *named = b->sheet ? b->sheet : b->c.name;
     if (named && cli_is_jpeg_name(named) && o->background_alpha < 1.0f) {
         cli_error("--background transparent: '%s' names JPEGs, which have no alpha", named);
         return EXIT_USAGE;
     }
     if (b->animate) {
-        if (b->sheet || b->name) {
+        if (b->sheet || b->c.name) {
             cli_error("--animate: names the outputs itself (not with %s)",
                       b->sheet ? "--sheet" : "--name");
             return EXIT_USAGE;
@@ -704,8 +503,9 @@ static int check_views(batch_opts *b, const render_opts *o)
         }
         batch_anim_free(probe);
     }
-    if (!b->sheet && !b->animate && b->views > 1 && b->name && !strstr(b->name, "{view}")) {
-        cli_error("--name: '%s' needs {view} to name %d views apart", b->name, b->views);
+    const char *name = b->c.name;
+    if (!b->sheet && !b->animate && b->views > 1 && name && !strstr(name, "{view}")) {
+        cli_error("--name: '%s' needs {view} to name %d views apart", name, b->views);
         return EXIT_USAGE;
     }
     return -1;
@@ -730,7 +530,9 @@ int batch_render(int argc, char **argv)
             batch_help();   /* after render's --help */
         }
     }
-    if (status < 0 && !is_batch(&b)) {
+    /* -o names one image: render says what is wrong with the rest. */
+    bool batch = b.any || (!b.output && batch_asked(&b.c, b.models, b.model_count));
+    if (status < 0 && !batch) {
         free(b.models);
         free(rest);
         return -1;          /* one plain render */
@@ -739,7 +541,7 @@ int batch_render(int argc, char **argv)
         cli_error("-o: names one output; a batch names its outputs with --output-dir and --name");
         status = EXIT_USAGE;
     }
-    if (status < 0 && b.name && !batch_check_pattern(b.name)) {
+    if (status < 0 && b.c.name && !batch_check_pattern(b.c.name)) {
         status = EXIT_USAGE;
     }
     if (status < 0) {

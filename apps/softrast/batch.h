@@ -1,7 +1,8 @@
-/* batch.h - `softrast render` over many models in one process (batch.c):
- * the input list and the output names (batch_inputs.c), the share of it
- * one shard renders (batch_shard.c), and the JSON Lines log and the
- * progress line (batch_log.c). */
+/* batch.h - many inputs in one process, for `softrast render` (batch.c)
+ * and `softrast svg` (svg_cmd.c), through batch_session.h: the input list
+ * and the output names (batch_inputs.c), the share of it one shard
+ * renders (batch_shard.c), and the JSON Lines log and the progress line
+ * (batch_log.c). */
 #ifndef SR_BATCH_H
 #define SR_BATCH_H
 
@@ -21,15 +22,19 @@ typedef struct batch_item {
     bool named;     /* the output is the list's, not the pattern's */
 } batch_item;
 
+/* The files a command takes from a directory: a file name's test. */
+typedef bool (*batch_takes_fn)(const char *name);
+
 typedef struct batch_list {
     batch_item *items;
     size_t count, cap;
     const char *dir, *pattern;   /* what batch_name_outputs named the outputs by */
+    batch_takes_fn takes;        /* NULL: model files */
 } batch_list;
 
-/* A model path, a directory (searched for model files, hidden entries
- * skipped) or a glob pattern that names no file itself.  -1, or an exit
- * status after one line. */
+/* An input path, a directory (searched for the files l->takes, hidden
+ * entries skipped) or a glob pattern that names no file itself.  -1, or
+ * an exit status after one line. */
 int batch_add_arg(batch_list *l, const char *arg);
 /* --batch LIST: one INPUT or INPUT<TAB>OUTPUT per line, "-" for standard
  * input; blank lines and lines starting with '#' are skipped. */

@@ -62,11 +62,12 @@ static bool is_model_name(const char *name)
     return false;
 }
 
-/* The model files under path[0, len) (path has room for PATH_MAX bytes);
+/* The files l->takes under path[0, len) (path has room for PATH_MAX bytes);
  * rel_from is where the part below the searched directory starts.
  * Directories reached through a symbolic link are not entered. */
 static int scan_dir(batch_list *l, char *path, size_t len, size_t rel_from, int depth)
 {
+    batch_takes_fn takes = l->takes ? l->takes : is_model_name;
     DIR *d = opendir(path);
     if (!d) {
         cli_error("%s: %s", path, strerror(errno));
@@ -94,7 +95,7 @@ static int scan_dir(batch_list *l, char *path, size_t len, size_t rel_from, int 
             } else {
                 status = scan_dir(l, path, len + 1 + n, rel_from, depth + 1);
             }
-        } else if (is_model_name(e->d_name) && stat(path, &st) == 0 && S_ISREG(st.st_mode)) {
+        } else if (takes(e->d_name) && stat(path, &st) == 0 && S_ISREG(st.st_mode)) {
             if (!add_item(l, path, NULL, path + rel_from)) {
                 cli_error("out of memory listing the inputs");
                 status = EXIT_FAILURE_RUN;

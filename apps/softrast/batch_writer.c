@@ -1,11 +1,12 @@
-/* batch_writer.c - a batch's image files, written on a thread of their
- * own: while it compresses one image and waits for the disk to take it
+/* batch_writer.c - a batch's image files, written on threads of their
+ * own: while they compress images and wait for the disk to take them
  * (each output is fsync'd before it is renamed into place), the batch
- * draws the next model.  It holds up to BATCH_WRITER_DEPTH images, each
- * its own copy of the pixels, so the framebuffer can be drawn again at
- * once and one slow fsync does not stop the drawing; they are written,
- * and reported, in the order they came.  It compresses on one thread: the render job's context
- * is busy drawing. */
+ * draws the next input.  It holds up to one image a thread and one more,
+ * each its own copy of the pixels, so the framebuffer can be drawn again
+ * at once and one slow fsync does not stop the drawing; several threads
+ * write side by side, and the images are reported in the order they
+ * came.  Each compresses on its own thread: the render job's context is
+ * busy drawing. */
 #include "batch_writer.h"
 
 #include <stdio.h>
@@ -20,76 +21,113 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-/* Write an image in hand and pass its record on. */
-static void write_image(batch_writer *w, batch_image *im)
+/* Write an image in hand (its record's status and encode_ms set). */
+static void write_image(batch_image *im)
 {
-    sr_io_error err = { { 0 } };
+    im->err = (sr_io_error){ { 0 } };
     double t0 = now_ms();
-    bool ok = cli_make_parents(im->rec.output, &err) &&
+    bool ok = cli_make_parents(im->rec.output, &im->err) &&
               cli_write_image(im->rec.output, im->width, im->height, im->pixels, &im->opt,
-                              &err) == SR_OK;
+                              &im->err) == SR_OK;
     im->rec.encode_ms = now_ms() - t0;
     im->rec.status = ok ? "ok" : "failed";
-    w->done(w->user, &im->rec, ok ? NULL : err.message);
+    im->message = ok ? NULL : im->err.message;
 }
 
-/* The oldest image is written while the batch may add the next one to
- * the ring (never into the slot being written: count stays until then). */
+/* Report the written images at the front of the ring, in order, by one
+ * thread at a time; called and returns with the lock held. */
+static void report_written(batch_writer *w)
+{
+    if (w->reporting) {
+        return;   /* the thread reporting will come to them */
+    }
+    w->reporting = true;
+    while (w->count > 0 && w->images[w->first].written) {
+        batch_image *im = &w->images[w->first];
+        pthread_mutex_unlock(&w->lock);
+        w->done(w->user, &im->rec, im->message);
+        pthread_mutex_lock(&w->lock);
+        im->written = false;
+        w->held -= im->bytes;
+        w->first = (w->first + 1) % w->depth;
+        w->count--;
+        w->claimed--;
+        pthread_cond_broadcast(&w->wake);
+    }
+    w->reporting = false;
+}
+
+/* Each thread takes the oldest image no thread has taken, writes it
+ * outside the lock, and reports what is written at the front: the slot
+ * stays in hand (count) until it is reported, so the batch never fills
+ * it meanwhile. */
 static void *writer_main(void *arg)
 {
     batch_writer *w = arg;
     pthread_mutex_lock(&w->lock);
     for (;;) {
-        while (w->count == 0 && !w->stop) {
+        while (w->claimed == w->count && !w->stop) {
             pthread_cond_wait(&w->wake, &w->lock);
         }
-        if (w->count == 0) {
+        if (w->claimed == w->count) {
             break;
         }
-        batch_image *im = &w->images[w->first];
+        batch_image *im = &w->images[(w->first + w->claimed) % w->depth];
+        w->claimed++;
         pthread_mutex_unlock(&w->lock);
-        write_image(w, im);
+        write_image(im);
         pthread_mutex_lock(&w->lock);
-        w->first = (w->first + 1) % BATCH_WRITER_DEPTH;
-        w->count--;
-        pthread_cond_broadcast(&w->wake);
+        im->written = true;
+        report_written(w);
     }
     pthread_mutex_unlock(&w->lock);
     return NULL;
 }
 
-void batch_writer_start(batch_writer *w, batch_done_fn done, void *user)
+void batch_writer_start(batch_writer *w, int threads, batch_done_fn done, void *user)
 {
     *w = (batch_writer){ .done = done, .user = user };
     pthread_mutex_init(&w->lock, NULL);
     pthread_cond_init(&w->wake, NULL);
-    w->threaded = pthread_create(&w->thread, NULL, writer_main, w) == 0;
+    threads = threads < 1 ? 1 : threads > BATCH_WRITER_MAX_THREADS ? BATCH_WRITER_MAX_THREADS
+                                                                    : threads;
+    w->depth = threads + 1;
+    pthread_mutex_lock(&w->lock);   /* the threads wait for the depth and count */
+    for (int i = 0; i < threads; i++) {
+        if (pthread_create(&w->threads[w->thread_count], NULL, writer_main, w) == 0) {
+            w->thread_count++;
+        }
+    }
+    pthread_mutex_unlock(&w->lock);
 }
 
-/* Wait until the writer holds at most `most` images. */
-static void wait_for(batch_writer *w, int most)
+/* Whether the batch must wait before handing over an image of `bytes`. */
+static bool full(const batch_writer *w, size_t bytes)
+{
+    return w->count >= w->depth ||
+           (w->count > 0 && w->held + bytes > BATCH_WRITER_MAX_BYTES);
+}
+
+void batch_writer_wait(batch_writer *w)
 {
     pthread_mutex_lock(&w->lock);
-    while (w->count > most) {
+    while (w->count > 0) {
         pthread_cond_wait(&w->wake, &w->lock);
     }
     pthread_mutex_unlock(&w->lock);
 }
 
-void batch_writer_wait(batch_writer *w)
-{
-    wait_for(w, 0);
-}
-
 bool batch_writer_put(batch_writer *w, const batch_record *rec, int width, int height,
                       const uint8_t *rgba, const cli_image_options *opt)
 {
-    wait_for(w, BATCH_WRITER_DEPTH - 1);
-    /* Only this thread adds images, so the free slot stays free. */
-    pthread_mutex_lock(&w->lock);
-    batch_image *im = &w->images[(w->first + w->count) % BATCH_WRITER_DEPTH];
-    pthread_mutex_unlock(&w->lock);
     size_t bytes = 4 * (size_t)width * (size_t)height;
+    pthread_mutex_lock(&w->lock);
+    while (full(w, bytes)) {
+        pthread_cond_wait(&w->wake, &w->lock);
+    }
+    /* Only this thread adds images, so the free slot stays free. */
+    batch_image *im = &w->images[(w->first + w->count) % w->depth];
+    pthread_mutex_unlock(&w->lock);
     if (bytes > im->capacity) {
         uint8_t *grown = realloc(im->pixels, bytes);
         if (!grown) {
@@ -99,6 +137,7 @@ bool batch_writer_put(batch_writer *w, const batch_record *rec, int width, int h
         im->capacity = bytes;
     }
     memcpy(im->pixels, rgba, bytes);
+    im->bytes = bytes;
     im->rec = *rec;
     snprintf(im->output, sizeof im->output, "%s", rec->output);
     im->rec.output = im->output;
@@ -107,12 +146,14 @@ bool batch_writer_put(batch_writer *w, const batch_record *rec, int width, int h
     im->opt = *opt;
     im->opt.context = NULL;   /* the render job's context is not ours to use */
     im->opt.inputs = NULL;    /* the batch checked them; the job's change with the next model */
-    if (!w->threaded) {
-        write_image(w, im);
+    if (w->thread_count == 0) {
+        write_image(im);
+        w->done(w->user, &im->rec, im->message);
         return true;
     }
     pthread_mutex_lock(&w->lock);
     w->count++;
+    w->held += bytes;
     pthread_cond_broadcast(&w->wake);
     pthread_mutex_unlock(&w->lock);
     return true;
@@ -120,12 +161,12 @@ bool batch_writer_put(batch_writer *w, const batch_record *rec, int width, int h
 
 void batch_writer_stop(batch_writer *w)
 {
-    if (w->threaded) {
-        pthread_mutex_lock(&w->lock);
-        w->stop = true;
-        pthread_cond_broadcast(&w->wake);
-        pthread_mutex_unlock(&w->lock);
-        pthread_join(w->thread, NULL);
+    pthread_mutex_lock(&w->lock);
+    w->stop = true;
+    pthread_cond_broadcast(&w->wake);
+    pthread_mutex_unlock(&w->lock);
+    for (int i = 0; i < w->thread_count; i++) {
+        pthread_join(w->threads[i], NULL);
     }
     pthread_cond_destroy(&w->wake);
     pthread_mutex_destroy(&w->lock);

@@ -4,7 +4,11 @@
  * SR_SVG_MAX_INPUT_BYTES), renders it and writes the PNG atomically.
  * Warnings go to stderr as they arise; a failure is one line
  * "FILE:LINE: what is wrong", exit status 2 for a bad document, 1 when the
- * run itself fails, and no output file. */
+ * run itself fails, and no output file.  Several inputs, a directory or
+ * --batch make a batch (batch_session.c): one context renders every
+ * drawing in turn on this thread while SVG_WRITERS threads write the
+ * ones before. */
+#include "batch_session.h"
 #include "cli.h"
 #include "softrast_io.h"
 
@@ -12,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 static void svg_help(FILE *f)
 {
@@ -26,12 +31,21 @@ static void svg_help(FILE *f)
                "                       (needs --background) (default: INPUT with .png)\n"
                "  --size WxH           output size in pixels (the viewBox is fitted in)\n"
                "  --scale S            output size = the drawing's size times S (default 1)\n"
-               "  --background COLOR   opaque background (default transparent)\n");
+               "  --background COLOR   opaque background (default transparent)\n"
+               "\n"
+               "batch (several INPUTs, a directory, a glob pattern or --batch):\n"
+               "  softrast svg INPUT.svg|DIR|PATTERN... [--batch LIST] [options]\n"
+               "                           renders every drawing in one process with the\n"
+               "                           options above; a directory is searched (below it\n"
+               "                           too) for .svg files; a quoted pattern\n"
+               "                           ('icons/*.svg') is expanded here\n");
+    batch_help_options(f);
+    batch_help_status(f);
 }
 
-/* The whole file into a malloc'd buffer; EXIT_OK, or the status after
- * printing one line. */
-static int read_input(const char *input, char **data, size_t *size)
+/* The whole file into a malloc'd buffer; EXIT_OK, or the status with
+ * why in why[size]. */
+static int read_input(const char *input, char **data, size_t *size, char *why, size_t why_size)
 {
     /* The readers' open: a FIFO, device or directory is refused without
      * waiting for a writer. */
@@ -39,34 +53,32 @@ static int read_input(const char *input, char **data, size_t *size)
     unsigned long long file_size;
     sr_io_error err;
     if (sr_open_file(input, "an SVG file", &fp, &file_size, &err) != SR_OK) {
-        cli_error("svg: %s", err.message);
+        snprintf(why, why_size, "%s", err.message);
         return EXIT_USAGE;
     }
     size_t cap = 65536, n = 0;
     char *buf = malloc(cap);
+    int status = EXIT_OK;
     for (;;) {
         if (!buf) {
-            fclose(fp);
-            cli_error("svg: out of memory reading %s", input);
-            return EXIT_FAILURE_RUN;
+            snprintf(why, why_size, "out of memory reading %s", input);
+            status = EXIT_FAILURE_RUN;
+            break;
         }
         n += fread(buf + n, 1, cap - n, fp);
         if (ferror(fp)) {
-            int e = errno;
-            free(buf);
-            fclose(fp);
-            cli_error("svg: reading %s: %s", input, strerror(e));
-            return EXIT_USAGE;
+            snprintf(why, why_size, "reading %s: %s", input, strerror(errno));
+            status = EXIT_USAGE;
+            break;
         }
         if (n < cap) {
             break; /* end of file */
         }
         if (cap > SR_SVG_MAX_INPUT_BYTES) {
-            free(buf);
-            fclose(fp);
-            cli_error("svg: %s is larger than the %zu MiB limit", input,
-                      SR_SVG_MAX_INPUT_BYTES >> 20);
-            return EXIT_USAGE;
+            snprintf(why, why_size, "%s is larger than the %zu MiB limit", input,
+                     SR_SVG_MAX_INPUT_BYTES >> 20);
+            status = EXIT_USAGE;
+            break;
         }
         char *grown = realloc(buf, cap * 2);
         if (!grown) {
@@ -76,6 +88,10 @@ static int read_input(const char *input, char **data, size_t *size)
         cap *= 2;
     }
     fclose(fp);
+    if (status != EXIT_OK) {
+        free(buf);
+        return status;
+    }
     *data = buf;
     *size = n;
     return EXIT_OK;
@@ -88,65 +104,80 @@ static void warn_stderr(void *user, const char *message)
     fprintf(stderr, "%s\n", message);
 }
 
-int cmd_svg(int argc, char **argv)
+/* The command line: the drawing's options, the inputs, and a batch's
+ * options. */
+typedef struct svg_args {
+    sr_svg_desc desc;
+    const char *output;        /* -o */
+    const char *const *inputs; /* argv's, moved to its front */
+    size_t count;
+    batch_common batch;
+} svg_args;
+
+/* -1, or an exit status (EXIT_OK after --help) after one line.  The
+ * inputs are moved to argv[1..], over arguments already read. */
+static int parse_args(int argc, char **argv, svg_args *a)
 {
-    if (!sr_io_have_svg()) {
-        cli_error("svg: this softrast was built without expat (install libexpat1-dev and "
-                  "rebuild)");
-        return EXIT_FAILURE_RUN;
-    }
-    const char *input = NULL, *output = NULL;
-    sr_svg_desc opt = { .background = { 0, 0, 0, 0 }, .warn = warn_stderr };
+    a->inputs = (const char *const *)argv + 1;
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
+        const char *s = argv[i];
         bool has_value = i + 1 < argc;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+        int taken = batch_take_option(&a->batch, argc, argv, &i);
+        if (taken == 1) {
+            continue;
+        } else if (taken != 0) {
+            return taken;
+        } else if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
             svg_help(stdout);
             return EXIT_OK;
-        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--size") == 0 ||
-                   strcmp(a, "--scale") == 0 || strcmp(a, "--background") == 0) {
+        } else if (strcmp(s, "-o") == 0 || strcmp(s, "--output") == 0 || strcmp(s, "--size") == 0 ||
+                   strcmp(s, "--scale") == 0 || strcmp(s, "--background") == 0) {
             if (!has_value) {
-                cli_error("svg: %s: missing value", a);
+                cli_error("svg: %s: missing value", s);
                 return EXIT_USAGE;
             }
             const char *v = argv[++i];
-            if (a[1] == 'o' || a[2] == 'o') {
-                output = v;
-            } else if (strcmp(a, "--size") == 0) {
-                if (!parse_size(a, v, &opt.width, &opt.height)) {
+            if (s[1] == 'o' || s[2] == 'o') {
+                a->output = v;
+            } else if (strcmp(s, "--size") == 0) {
+                if (!parse_size(s, v, &a->desc.width, &a->desc.height)) {
                     return EXIT_USAGE;
                 }
-            } else if (strcmp(a, "--scale") == 0) {
-                float s;
-                if (!parse_float(a, v, 0.001f, 1000.0f, &s)) {
+            } else if (strcmp(s, "--scale") == 0) {
+                float f;
+                if (!parse_float(s, v, 0.001f, 1000.0f, &f)) {
                     return EXIT_USAGE;
                 }
-                opt.scale = s;
+                a->desc.scale = f;
             } else {
                 sr_vec3 c;
-                if (!parse_color(a, v, &c)) {
+                if (!parse_color(s, v, &c)) {
                     return EXIT_USAGE;
                 }
-                opt.background = (sr_rgba){ c.x, c.y, c.z, 1 };
+                a->desc.background = (sr_rgba){ c.x, c.y, c.z, 1 };
             }
-        } else if (a[0] == '-' && a[1]) {
-            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", a);
+        } else if (s[0] == '-' && s[1]) {
+            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", s);
             return EXIT_USAGE;
-        } else if (!input) {
-            input = a;
         } else {
-            cli_error("svg: more than one input ('%s' and '%s')", input, a);
-            return EXIT_USAGE;
+            argv[1 + a->count++] = argv[i];
         }
     }
-    if (!input) {
+    if (a->count == 0 && !a->batch.list) {
         svg_help(stderr);
         return EXIT_USAGE;
     }
-    if (opt.width && opt.scale > 0) {
+    if (a->desc.width && a->desc.scale > 0) {
         cli_error("svg: --size and --scale exclude each other");
         return EXIT_USAGE;
     }
+    return -1;
+}
+
+static int render_one(svg_args *a)
+{
+    const char *input = a->inputs[0], *output = a->output;
+    sr_svg_desc opt = a->desc;
     char default_out[4096];
     if (!output) {
         size_t n = strlen(input);
@@ -166,11 +197,12 @@ int cmd_svg(int argc, char **argv)
         cli_inputs_free(&inputs);
         return EXIT_USAGE;
     }
-    char *data = NULL;
+    char *data = NULL, why[1024];
     size_t size = 0;
-    int status = read_input(input, &data, &size);
+    int status = read_input(input, &data, &size, why, sizeof why);
     if (status != EXIT_OK) {
         cli_inputs_free(&inputs);
+        cli_error("svg: %s", why);
         return status;
     }
     sr_context *ctx = NULL;
@@ -181,6 +213,7 @@ int cmd_svg(int argc, char **argv)
         return EXIT_FAILURE_RUN;
     }
     opt.name = input;
+    opt.warn = warn_stderr;
     sr_framebuffer *fb = NULL;
     sr_io_error err;
     sr_result r = sr_render_svg(ctx, data, size, &opt, &fb, NULL, &err);
@@ -203,5 +236,135 @@ int cmd_svg(int argc, char **argv)
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
     cli_inputs_free(&inputs);
+    return status;
+}
+
+/* ---- a batch ------------------------------------------------------------ */
+
+/* Writer threads: a drawing takes far less time than the fsync of its
+ * image, and a file system takes several at once. */
+#define SVG_WRITERS 4
+
+/* What every drawing of a batch is rendered with. */
+typedef struct svg_batch {
+    sr_context *ctx;
+    sr_svg_desc desc;
+    sr_framebuffer *fb;        /* the last drawing, until the next */
+} svg_batch;
+
+/* The warnings of one drawing, held for one line after it. */
+typedef struct held_warnings {
+    char *buf;
+    size_t size;
+} held_warnings;
+
+static void warn_held(void *user, const char *message)
+{
+    held_warnings *h = user;
+    size_t n = strlen(h->buf);
+    if (n + 1 < h->size) {
+        snprintf(h->buf + n, h->size - n, "%s%s", n ? "; " : "", message);
+    }
+}
+
+static bool is_svg_name(const char *name)
+{
+    const char *dot = strrchr(name, '.');
+    return dot && dot != name && strcasecmp(dot, ".svg") == 0;
+}
+
+/* batch_draw_fn: read and render one drawing. */
+static bool draw_one(void *user, const batch_item *it, batch_picture *pic, batch_record *rec,
+                     char *message, size_t size)
+{
+    svg_batch *sb = user;
+    sr_destroy_framebuffer(sb->ctx, sb->fb);
+    sb->fb = NULL;
+    if (cli_is_jpeg_name(it->output) && sb->desc.background.a < 1) {
+        snprintf(message, size, "'%s': a JPEG has no transparency; give a --background",
+                 it->output);
+        return false;
+    }
+    double t0 = batch_now_ms();
+    char *data = NULL;
+    size_t bytes = 0;
+    if (read_input(it->input, &data, &bytes, message, size) != EXIT_OK) {
+        return false;
+    }
+    double t1 = batch_now_ms();
+    held_warnings held = { message, size };
+    sr_svg_desc d = sb->desc;
+    d.name = it->input;
+    d.warn = warn_held;
+    d.warn_user = &held;
+    sr_io_error err;
+    sr_result r = sr_render_svg(sb->ctx, data, bytes, &d, &sb->fb, NULL, &err);
+    free(data);
+    rec->load_ms = t1 - t0;
+    rec->render_ms = batch_now_ms() - t1;
+    if (r != SR_OK) {
+        snprintf(message, size, "%s", err.message);
+        return false;
+    }
+    *pic = (batch_picture){ .rgba = sr_framebuffer_pixels(sb->fb),
+                            .width = sr_framebuffer_width(sb->fb),
+                            .height = sr_framebuffer_height(sb->fb),
+                            .image = { .png_level = -1, .keep_alpha = d.background.a < 1 } };
+    return true;
+}
+
+static int render_batch(svg_args *a)
+{
+    const batch_common *c = &a->batch;
+    if (a->output) {
+        cli_error("-o: names one output; a batch names its outputs with --output-dir and --name");
+        return EXIT_USAGE;
+    }
+    if (c->name && !batch_check_pattern(c->name)) {
+        return EXIT_USAGE;
+    }
+    if (c->name && cli_is_jpeg_name(c->name) && a->desc.background.a < 1) {
+        cli_error("--name: '%s' names JPEGs, which have no transparency; give a --background",
+                  c->name);
+        return EXIT_USAGE;
+    }
+    batch_session s;
+    svg_batch sb = { .desc = a->desc };
+    int status = batch_session_gather(&s, c, a->inputs, a->count, is_svg_name,
+                                      "svg: no SVG files");
+    if (status < 0) {
+        status = batch_session_name(&s, "{rel}.png");
+    }
+    if (status < 0) {
+        status = batch_session_open(&s);
+    }
+    if (status < 0 && sr_make_context(&(sr_context_desc){0}, &sb.ctx) != SR_OK) {
+        cli_error("svg: cannot create a context");
+        status = EXIT_FAILURE_RUN;
+    }
+    if (status < 0) {
+        batch_session_begin(&s, batch_session_mine(&s), SVG_WRITERS);
+        batch_session_each(&s, draw_one, &sb);
+        status = batch_session_end(&s);
+    }
+    if (sb.ctx) {
+        sr_destroy_framebuffer(sb.ctx, sb.fb);
+        sr_destroy_context(sb.ctx);
+    }
+    return batch_session_close(&s, status);
+}
+
+int cmd_svg(int argc, char **argv)
+{
+    if (!sr_io_have_svg()) {
+        cli_error("svg: this softrast was built without expat (install libexpat1-dev and "
+                  "rebuild)");
+        return EXIT_FAILURE_RUN;
+    }
+    svg_args a = { .desc = { .background = { 0, 0, 0, 0 } } };
+    int status = parse_args(argc, argv, &a);
+    if (status < 0) {
+        status = batch_asked(&a.batch, a.inputs, a.count) ? render_batch(&a) : render_one(&a);
+    }
     return status;
 }

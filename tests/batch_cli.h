@@ -1,0 +1,59 @@
+/* batch_cli.h - the softrast tool run as a batch's caller runs it, and
+ * its --log read back (batch_cli.c), for the batch tests. */
+#ifndef SR_TEST_BATCH_CLI_H
+#define SR_TEST_BATCH_CLI_H
+
+#include "sr_test.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <sys/types.h>
+
+#define FAILF(...) sr_test_fail(__FILE__, __LINE__, __VA_ARGS__)
+#define ARGS(...) ((const char *const[]){ __VA_ARGS__, NULL })
+#define ENV(...) ((const char *const[]){ __VA_ARGS__, NULL })
+#define NO_ENV ((const char *const[]){ NULL })
+
+#ifdef SR_CLI_PATH
+#define NEED_CLI() ((void)0)
+#else
+#define NEED_CLI() SKIP("the softrast tool is not part of this build")
+#endif
+
+typedef struct run_result {
+    int status;         /* exit status, 128 + signal when killed, -1 when not run */
+    char err[8192];     /* stderr, NUL-terminated (cut at the buffer's size) */
+} run_result;
+
+/* One record of a --log file: the fields a pipeline reads. */
+typedef struct record {
+    char input[1200], output[1200], status[16], error[1024];
+    bool error_null;
+    double index, triangles, load_ms, render_ms, encode_ms, ms;
+    int fields;
+} record;
+
+/* Start SR_CLI_PATH with args and an environment of this process's
+ * without the schedulers' variables, plus `env` ("NAME=VALUE"); stdin
+ * from `in` (or /dev/null), stderr into `err_path`.  0 when not run. */
+pid_t start_cli(const char *const *args, const char *const *env, const char *in,
+                const char *err_path);
+/* Its exit status: 128 + signal when killed, -1 when lost. */
+int wait_status(pid_t pid);
+/* Run it to the end, stderr into r->err; false (after a failure) when
+ * it could not be started. */
+bool run_env(const char *const *args, const char *const *env, const char *in, run_result *r);
+bool run(const char *const *args, run_result *r);
+int count_lines(const char *s);
+
+/* An empty directory sr_test_out_dir()/batch_NAME, in buf. */
+const char *fresh_dir(const char *name, char *buf, size_t n);
+bool write_text(const char *path, const char *text);
+bool file_exists(const char *path);
+
+/* The records of a log file (at most max, each checked to hold the ten
+ * fields); -1 when it cannot be read or a line is not a record. */
+int read_log(const char *path, record *recs, int max);
+const record *find_record(const record *recs, int n, const char *input);
+
+#endif
