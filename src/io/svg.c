@@ -204,6 +204,18 @@ static unsigned long msg_line(const svg_doc *doc)
 static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* Control bytes in a message as '?', as the model readers write them: the
+ * file's name and the quoted text are the input's, and a newline or an
+ * escape sequence would break the one line or reach the terminal. */
+static void one_line(char *s)
+{
+    for (unsigned char *c = (unsigned char *)s; *c; c++) {
+        if (*c < 0x20 || *c == 0x7f) {
+            *c = '?';
+        }
+    }
+}
+
 /* Record the first failure as "FILE:LINE: ..." and stop the parser. */
 static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
 {
@@ -217,11 +229,8 @@ static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
         vsnprintf(doc->msg + n, doc->msg_size - (size_t)n, fmt, ap);
         va_end(ap);
     }
-    /* One line, whatever the document put into the quoted text. */
-    for (char *c = doc->msg; c && *c; c++) {
-        if (*c == '\n' || *c == '\r') {
-            *c = ' ';
-        }
+    if (doc->msg) {
+        one_line(doc->msg);
     }
     doc->status = status;
     if (doc->parser) {
@@ -281,6 +290,7 @@ static void warn_keyed(svg_doc *doc, const char *key, const char *fmt, ...)
         }
     }
     doc->warnings++;
+    one_line(line);
     if (doc->opt->warn) {
         doc->opt->warn(doc->opt->warn_user, line);
     }
