@@ -122,8 +122,9 @@ PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);
 /* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
  * ValueError) with its one-line message; returns NULL. */
 PyObject *sr_py_io_error(sr_result r, const sr_io_error *err);
-/* An (h, w, 4) uint8 array holding a copy of the RGBA pixels px, which it
- * frees (they come from the readers' malloc); NULL on failure. */
+/* An (h, w, 4) uint8 array over the RGBA pixels px, which it takes over
+ * and frees (they come from malloc: the readers', render_svg's); NULL on
+ * failure, px freed. */
 PyObject *sr_py_image_array(uint8_t *px, int w, int h);
 
 #endif
