@@ -56,6 +56,15 @@ NormalFrame = Literal["camera", "world"]
 Cull = Literal["none", "back"]
 Antialias = Literal["none", "msaa2", "msaa4", "msaa8", "msaa16", "ssaa2", "ssaa3", "ssaa4"]
 AlphaMode = Literal["opaque", "mask", "blend"]
+#: softrast.Canvas's names: fill rules, stroke joins and caps, gradient
+#: spreads, pattern wraps.
+FillRule = Literal["nonzero", "evenodd"]
+Join = Literal["miter", "round", "bevel"]
+Cap = Literal["butt", "round", "square"]
+Spread = Literal["pad", "reflect", "repeat"]
+Wrap = Literal["repeat", "clamp"]
+#: A polygon's points: an (N, 2) real array or a sequence of (x, y).
+PointsLike = Union[NDArray[Real], Sequence[Sequence[float]]]
 
 #: K, R, t: (3, 3) intrinsics, (3, 3) rotation and (3,) translation, or
 #: batches of them.
