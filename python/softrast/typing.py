@@ -16,6 +16,9 @@ from typing import Any, Literal, Optional, Sequence, Tuple, TypedDict, Union
 import numpy as np
 from numpy.typing import NDArray
 
+# A CSS color str, or (r, g, b[, a]) numbers in [0, 1] (softrast.Canvas's
+# paints, render_svg's background).
+from ._color import Color as Color
 from ._scene import Instance, Scene
 from ._softrast import Mesh
 
