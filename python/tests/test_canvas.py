@@ -4,6 +4,7 @@ SVG document (the reader paints through the same C calls), drawn in place
 into the caller's array, and every bad argument is refused with its name."""
 
 import base64
+import pathlib
 import re
 import threading
 
@@ -394,3 +395,17 @@ def test_opacity_zero_and_shapes_outside_draw_nothing():
     assert not canvas.image.any()
     canvas.fill(TRI - 5, "red", antialias=False)  # partly outside: clipped
     assert canvas.image[:, :, 0].any()
+
+
+def test_the_docs_example_draws_the_docs_image(tmp_path, monkeypatch):
+    # The example of docs/python.md, run as written, gives its picture.
+    root = pathlib.Path(__file__).resolve().parents[2]
+    text = (root / "docs" / "python.md").read_text()
+    (code,) = [b for b in re.findall(r"```python\n(.*?)```", text, re.S) if "Canvas(" in b
+               and "python-canvas.png" in b]
+    monkeypatch.chdir(tmp_path)
+    scope = {}
+    exec(code, scope)
+    drawn = scope["canvas"].image
+    assert np.array_equal(drawn, softrast.read_image(root / "docs" / "images" / "python-canvas.png"))
+    assert np.array_equal(softrast.read_image(tmp_path / "canvas.png"), drawn)
