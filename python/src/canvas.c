@@ -13,6 +13,7 @@
  */
 #include "module.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -219,9 +220,15 @@ static int paint_arg(PyObject *obj, paint_args *p)
         }
         npy_intp n = PyArray_DIM(s, 0);
         const double *v = PyArray_DATA(s);
+        bool finite = true;
+        for (npy_intp i = 0; i < 5 * n; i++) {
+            finite = finite && fabs(v[i]) <= FLT_MAX; /* a float each color component */
+        }
         if (n < 1 || n > SR_MAX_GRADIENT_STOPS) {
             PyErr_Format(PyExc_ValueError, "stops: %zd stops, the library takes 1..%d",
                          (Py_ssize_t)n, SR_MAX_GRADIENT_STOPS);
+        } else if (!finite) {
+            PyErr_SetString(PyExc_ValueError, "stops: NaN, infinity or a value past float");
         } else if (!(p->stops = malloc((size_t)n * sizeof *p->stops))) {
             PyErr_NoMemory();
         } else {
@@ -272,11 +279,15 @@ static bool touched_box(sr_polygon2 poly, int w, int h, int box[4])
         b[2] = fmax(b[2], poly.points[i].x);
         b[3] = fmax(b[3], poly.points[i].y);
     }
-    box[0] = (int)fmax(floor(b[0]) - 1, 0);
-    box[1] = (int)fmax(floor(b[1]) - 1, 0);
-    box[2] = (int)fmin(ceil(b[2]) + 1, w);
-    box[3] = (int)fmin(ceil(b[3]) + 1, h);
-    return poly.point_count > 0 && box[2] > box[0] && box[3] > box[1];
+    if (poly.point_count < 1) {
+        return false;
+    }
+    /* clamped to the image before the conversion to int */
+    box[0] = (int)fmin(fmax(floor(b[0]) - 1, 0), w);
+    box[1] = (int)fmin(fmax(floor(b[1]) - 1, 0), h);
+    box[2] = (int)fmax(fmin(ceil(b[2]) + 1, w), 0);
+    box[3] = (int)fmax(fmin(ceil(b[3]) + 1, h), 0);
+    return box[2] > box[0] && box[3] > box[1];
 }
 
 /* One draw, the canvas locked (without the GIL when `release`): the
