@@ -375,34 +375,42 @@ static int contours_arg(PyObject *list, sr_polygon2 *poly, sr_point2 **pts, int 
                      Py_TYPE(list)->tp_name);
         return -1;
     }
-    Py_ssize_t nc = PyList_GET_SIZE(list), total = 0;
-    if (nc > INT_MAX || !(*counts = malloc((size_t)(nc ? nc : 1) * sizeof **counts))) {
-        PyErr_NoMemory();
+    /* A tuple of the items: converting one may run code that changes the list. */
+    PyObject *items = PySequence_Tuple(list);
+    if (!items) {
         return -1;
     }
-    for (Py_ssize_t c = 0; c < nc; c++) {
-        char name[48];
-        snprintf(name, sizeof name, nc == 1 ? "shape" : "shape[%zd]", c);
-        PyArrayObject *a = sr_py_points_arg(PyList_GET_ITEM(list, c), name);
-        if (!a) {
-            return -1;
+    Py_ssize_t nc = PyTuple_GET_SIZE(items), total = 0;
+    int status = 0;
+    if (nc > INT_MAX || !(*counts = malloc((size_t)(nc ? nc : 1) * sizeof **counts))) {
+        PyErr_NoMemory();
+        status = -1;
+    }
+    for (Py_ssize_t c = 0; c < nc && status == 0; c++) {
+        char name[48] = "shape";
+        if (nc > 1) {
+            snprintf(name, sizeof name, "shape[%zd]", c);
         }
-        npy_intp n = PyArray_DIM(a, 0);
-        sr_point2 *grown = n <= INT_MAX - total
+        PyArrayObject *a = sr_py_points_arg(PyTuple_GET_ITEM(items, c), name);
+        npy_intp n = a ? PyArray_DIM(a, 0) : 0;
+        sr_point2 *grown = a && n <= INT_MAX - total
                                ? realloc(*pts, (size_t)(total + n + 1) * sizeof **pts) : NULL;
         if (!grown) {
-            Py_DECREF(a);
-            PyErr_NoMemory();
-            return -1;
+            if (a) {
+                PyErr_NoMemory();
+            }
+            status = -1;
+        } else {
+            *pts = grown;
+            memcpy(*pts + total, PyArray_DATA(a), (size_t)n * sizeof **pts);
+            (*counts)[c] = (int)n;
+            total += n;
         }
-        *pts = grown;
-        memcpy(*pts + total, PyArray_DATA(a), (size_t)n * sizeof **pts);
-        (*counts)[c] = (int)n;
-        total += n;
-        Py_DECREF(a);
+        Py_XDECREF(a);
     }
+    Py_DECREF(items);
     *poly = (sr_polygon2){ *pts, (int)total, *counts, (int)nc };
-    return 0;
+    return status;
 }
 
 static PyObject *canvas_fill(CanvasObject *self, PyObject *args)
