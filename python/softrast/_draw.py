@@ -109,10 +109,23 @@ def _stops(value: Sequence[Tuple[float, Color]]) -> NDArray[np.float64]:
                              f"{out[i - 1, 0]}")
         out[i, 0] = o
         out[i, 1:] = to_rgba(color, f"stops[{i}] color")
+    out.flags.writeable = False  # the gradient's, as checked
     return out
 
 
-class LinearGradient:
+class _Immutable:
+    """A paint is checked and converted once, when made: its fields are
+    read-only (a changed one would not be drawn)."""
+
+    __slots__ = ()
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if hasattr(self, "_paint"):
+            raise AttributeError(f"{type(self).__name__} is immutable: make a new one")
+        object.__setattr__(self, name, value)
+
+
+class LinearGradient(_Immutable):
     """A linear gradient from `start` (offset 0) to `end` (offset 1), constant
     across, in paint space (``transform`` maps it to pixels).
 
@@ -138,7 +151,7 @@ class LinearGradient:
             self.stops, _name(spread, "spread", "spread"), None, 0, self.transform, 1.0)
 
 
-class RadialGradient:
+class RadialGradient(_Immutable):
     """A radial gradient: offset 1 on the circle (`center`, `radius`), 0 on
     the focal circle (`focal`, default the center, `focal_radius`), the
     cone between them, as SVG's radialGradient (cx, cy, r, fx, fy, fr) in
@@ -169,7 +182,7 @@ class RadialGradient:
             _name(spread, "spread", "spread"), None, 0, self.transform, 1.0)
 
 
-class Pattern:
+class Pattern(_Immutable):
     """An RGBA image as paint: an (H, W, 4) uint8 array, straight alpha,
     texel (i, j) covering [i, i+1) x [j, j+1) of paint space, sampled
     bilinearly at texel centres and repeated (``wrap="repeat"``) or with
@@ -261,7 +274,7 @@ class Canvas:
         image = np.zeros((_size(height, "height"), _size(width, "width"), 4), np.uint8)
         self._core = _softrast.Canvas2D(image)
         if background is not None:
-            self.clear(background)
+            self._core.clear(to_rgba(background, "background"))
 
     @classmethod
     def from_array(cls, image: NDArray[np.uint8]) -> Canvas:

@@ -250,7 +250,8 @@ def test_threads_draw_the_same_bytes():
     (lambda: softrast.Canvas(0, 4), ValueError, "width: must be in 1..8192"),
     (lambda: softrast.Canvas(4, 9000), ValueError, "height: must be in 1..8192"),
     (lambda: softrast.Canvas(4.0, 4), TypeError, "width: expected an int"),
-    (lambda: softrast.Canvas(4, 4, background="nope"), ValueError, "color: not a CSS color"),
+    (lambda: softrast.Canvas(4, 4, background="nope"), ValueError, "background: not a CSS color"),
+    (lambda: softrast.Canvas(4, 4).clear((1, 1)), ValueError, "color: expected 3 or 4 numbers"),
     (lambda: softrast.Canvas.from_array(np.zeros((4, 4, 4), np.float32)), TypeError,
      "image: dtype must be uint8"),
     (lambda: softrast.Canvas.from_array(np.zeros((4, 4, 3), np.uint8)), ValueError,
@@ -384,6 +385,16 @@ def test_path_methods_chain_and_flatten():
     assert np.array_equal(poly[:2], [[0, 0], [10, 0]]) and np.array_equal(poly[-1], [0, 10])
     assert len(poly) > 5  # the curve flattened into several lines
     assert path.clear().to_polygons() == []
+
+
+def test_paints_are_immutable():
+    grad = softrast.LinearGradient((0, 0), (8, 0), [(0, "red"), (1, "blue")])
+    with pytest.raises(AttributeError, match="LinearGradient is immutable"):
+        grad.spread = "repeat"
+    assert grad.spread == "pad" and grad.start == (0.0, 0.0)
+    assert np.array_equal(grad.stops, [[0, 1, 0, 0, 1], [1, 0, 0, 1, 1]])
+    with pytest.raises(ValueError, match="read-only"):
+        grad.stops[0, 0] = 0.5
 
 
 def test_opacity_zero_and_shapes_outside_draw_nothing():
