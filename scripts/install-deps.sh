@@ -15,8 +15,9 @@
 # (the type checks of its annotations and stubs), and for the
 # WebAssembly build (scripts/wasm.sh) emscripten with node-acorn (it compiles
 # offline with them), chromium for the explain pages' browser test and npm
-# for its one package, playwright-core (web/package.json), and groff and
-# mandoc (the tests format and lint the manual page that python3 writes).
+# for its one package, playwright-core (web/package.json), groff and
+# mandoc (the tests format and lint the manual page that python3 writes),
+# and zsh and fish (the tests run their completions, which python3 writes).
 # Runs apt-get directly as root, through sudo otherwise.
 set -eu
 SUDO=""
@@ -31,7 +32,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     libsdl2-dev libfreetype-dev fonts-dejavu-core xvfb xauth locales \
     python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed mypy \
     emscripten node-acorn chromium \
-    groff-base mandoc \
+    groff-base mandoc zsh fish \
     >/dev/null
 # Node.js from elsewhere (NodeSource) brings its own npm, which Debian's
 # package would conflict with.

@@ -8,24 +8,16 @@ TOOL... (the tool, after a cross build's emulator if any) is run as
 `TOOL --help`, `TOOL --version` and `TOOL COMMAND --help` for each command
 the first one lists.  TEMPLATE (tools/softrast.1.in) holds the hand-written
 sections; its @DATE@, @VERSION@, @SYNOPSIS@ and @COMMANDS@ become the
-build's date, the version, and the commands' usage lines and help texts.
-
-A help text is read by its layout: a line at column 0 is prose (one ending
-in ':' before an indented item heads a group), a line indented two spaces
-starts an item (its term, then after two spaces or more its description),
-and a line indented deeper continues the item or prose above it."""
+build's date, the version, and the commands' usage lines and help texts
+(read by their layout: tools/helptext.py)."""
 import os
 import re
-import subprocess
 import sys
 import time
 
+from helptext import read, run
+
 OPTION = re.compile(r"(?<![\w-])(--?[A-Za-z0-9][\w-]*)")
-
-
-def run(tool, *args):
-    out = subprocess.run(tool + list(args), check=True, stdout=subprocess.PIPE, text=True)
-    return out.stdout
 
 
 def escape(text):
@@ -42,44 +34,6 @@ def line(text):
 
 def bold_options(term):
     return re.sub(r"(\\-[\w\\-]*)", r"\\fB\1\\fR", escape(term))
-
-
-def parse(text):
-    """The help text as (usage lines, blocks): each block is ('prose',
-    lines), ('group', heading) or ('item', term, description lines,
-    whether the description starts on the term's line)."""
-    lines = text.rstrip("\n").split("\n")
-    usage = []
-    while lines and lines[0].startswith("usage: "):
-        usage.append(lines.pop(0).removeprefix("usage: ").strip())
-        while lines and lines[0].startswith(" "):  # the usage goes on
-            usage[-1] += " " + lines.pop(0).strip()
-    blocks = []
-    for i, raw in enumerate(lines):
-        if not raw.strip():
-            blocks.append(("break",))
-            continue
-        indent = len(raw) - len(raw.lstrip(" "))
-        body = raw.strip()
-        if indent == 0:
-            if blocks and blocks[-1][0] == "prose":
-                blocks[-1][1].append(body)
-            else:
-                blocks.append(("prose", [body]))
-        elif indent == 2:
-            parts = re.split(r" {2,}", body, maxsplit=1)
-            blocks.append(("item", parts[0], parts[1:], len(parts) > 1))
-        elif blocks and blocks[-1][0] == "item":
-            blocks[-1][2].append(body)
-        elif blocks and blocks[-1][0] == "prose":
-            blocks[-1][1].append(body)
-        else:
-            blocks.append(("prose", [body]))
-        # Prose ending in ':' right above an item heads the items.
-        if indent == 2 and len(blocks) > 1 and blocks[-2][0] == "prose" and \
-                blocks[-2][1][-1].endswith(":"):
-            blocks[-2] = ("group", " ".join(blocks[-2][1]))
-    return usage, blocks
 
 
 def roff_blocks(blocks):
@@ -119,26 +73,14 @@ def synopsis(usage):
     return out
 
 
-def commands(top):
-    """The command names in the top-level help's "commands:" group."""
-    _, blocks = parse(top)
-    names = []
-    for b in blocks:
-        if b[0] == "item" and not b[1].startswith("softrast"):
-            names.append(b[1].split()[0])
-    return names
-
-
 def main(argv):
     if len(argv) < 4:
         sys.stderr.write(__doc__)
         return 2
     template_path, output_path, tool = argv[1], argv[2], argv[3:]
-    top = run(tool, "--help")
     version = run(tool, "--version").split()[-1]
     usage_lines, section = [], []
-    for name in commands(top):
-        usage, blocks = parse(run(tool, name, "--help"))
+    for name, _, usage, blocks in read(tool)[1]:
         usage_lines += usage
         section += ['.SS "softrast %s"' % name] + synopsis(usage) + roff_blocks(blocks)
     with open(template_path, encoding="utf-8") as f:
