@@ -20,6 +20,14 @@ svg`` renders them:
 >>> icon.shape, icon.dtype
 ((64, 64, 4), dtype('uint8'))
 
+2D drawing into RGBA arrays, paths filled and stroked with colors,
+gradients and patterns through the same code (:class:`Canvas`):
+
+>>> canvas = softrast.Canvas(64, 64, background="white")
+>>> canvas.fill(softrast.Path().move_to(8, 8).line_to(56, 8).line_to(32, 56).close(), "navy")
+>>> canvas.image.shape
+(64, 64, 4)
+
 Without a camera, ``render(mesh, width=640, height=480)`` frames the mesh as
 ``softrast render`` does (:func:`fit_camera`); :func:`orbit` makes a batch
 of cameras circling a scene.
@@ -27,15 +35,17 @@ of cameras circling a scene.
 See docs/python.md in the source tree for the conventions.
 """
 
-from ._softrast import Mesh, library_version, read_image, write_png
+from ._softrast import Mesh, Path, library_version, read_image, write_png
 from ._camera import Camera, look_at
 from ._material import Material
 from ._scene import Instance, Scene, load, load_mesh
 from ._framing import fit_camera, orbit
 from ._render import OUTPUTS, render
 from ._svg import SvgWarning, render_svg
+from ._draw import Canvas, LinearGradient, Pattern, RadialGradient
 
 __version__ = library_version
 __all__ = ["Camera", "Mesh", "Instance", "Material", "Scene", "load", "load_mesh", "look_at",
            "fit_camera", "orbit",
-           "read_image", "render", "render_svg", "SvgWarning", "write_png", "OUTPUTS", "__version__"]
+           "read_image", "render", "render_svg", "SvgWarning", "write_png", "OUTPUTS", "__version__",
+           "Canvas", "Path", "LinearGradient", "RadialGradient", "Pattern"]

@@ -8,12 +8,13 @@ import math
 import operator
 import os
 import warnings
-from typing import TYPE_CHECKING, Optional, Sequence, SupportsFloat, Tuple, Union
+from typing import TYPE_CHECKING, Optional, SupportsFloat, Tuple, Union
 
 import numpy as np
 from numpy.typing import NDArray
 
 from . import _softrast
+from ._color import Color, to_rgba
 
 if TYPE_CHECKING:
     from .typing import SvgSource
@@ -38,34 +39,8 @@ def _size(value: int, name: str) -> int:
     return min(n, 2**31 - 1)
 
 
-def _background(value: Optional[Union[str, Sequence[float]]]
-                ) -> Tuple[float, float, float, float]:
-    if value is None:
-        return (0.0, 0.0, 0.0, 0.0)
-    if isinstance(value, str):
-        # The library's own CSS color parser, the one that reads fill and
-        # stroke, so a color means the same here as in the document.
-        try:
-            return _softrast.parse_color(value)
-        except ValueError:
-            raise ValueError(f"background: not a CSS color: {value!r}") from None
-    if isinstance(value, bytes):
-        raise TypeError("background: expected a CSS color (str) or 3 or 4 numbers in [0, 1] "
-                        f"(r, g, b[, a]), got {type(value).__name__}")
-    try:
-        components = [float(c) for c in value]
-    except TypeError:
-        raise TypeError("background: expected a CSS color (str) or 3 or 4 numbers in [0, 1] "
-                        f"(r, g, b[, a]), got {type(value).__name__}") from None
-    if len(components) not in (3, 4):
-        raise ValueError("background: expected 3 or 4 numbers (r, g, b[, a]), "
-                         f"got {len(components)}")
-    if not all(0.0 <= c <= 1.0 for c in components):
-        raise ValueError(f"background: components must be in [0, 1], got {tuple(components)}")
-    if len(components) == 3:
-        components.append(1.0)
-    r, g, b, a = components
-    return (r, g, b, a)
+def _background(value: Optional[Color]) -> Tuple[float, float, float, float]:
+    return (0.0, 0.0, 0.0, 0.0) if value is None else to_rgba(value, "background")
 
 
 def _is_document(text: str) -> bool:
@@ -92,7 +67,7 @@ def _document_name(resources_dir: Union[str, os.PathLike[str]]) -> str:
 
 def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Optional[int] = None,
                scale: Optional[float] = None,
-               background: Optional[Union[str, Sequence[float]]] = None,
+               background: Optional[Color] = None,
                resources_dir: Optional[Union[str, os.PathLike[str]]] = None
                ) -> NDArray[np.uint8]:
     """Render an SVG drawing to an ``(H, W, 4)`` uint8 RGBA array.

@@ -16,6 +16,9 @@ from typing import Any, Literal, Optional, Sequence, Tuple, TypedDict, Union
 import numpy as np
 from numpy.typing import NDArray
 
+# A CSS color str, or (r, g, b[, a]) numbers in [0, 1] (softrast.Canvas's
+# paints, render_svg's background).
+from ._color import Color as Color
 from ._scene import Instance, Scene
 from ._softrast import Mesh
 
@@ -56,6 +59,15 @@ NormalFrame = Literal["camera", "world"]
 Cull = Literal["none", "back"]
 Antialias = Literal["none", "msaa2", "msaa4", "msaa8", "msaa16", "ssaa2", "ssaa3", "ssaa4"]
 AlphaMode = Literal["opaque", "mask", "blend"]
+#: softrast.Canvas's names: fill rules, stroke joins and caps, gradient
+#: spreads, pattern wraps.
+FillRule = Literal["nonzero", "evenodd"]
+Join = Literal["miter", "round", "bevel"]
+Cap = Literal["butt", "round", "square"]
+Spread = Literal["pad", "reflect", "repeat"]
+Wrap = Literal["repeat", "clamp"]
+#: A polygon's points: an (N, 2) real array or a sequence of (x, y).
+PointsLike = Union[NDArray[Real], Sequence[Sequence[float]]]
 
 #: K, R, t: (3, 3) intrinsics, (3, 3) rotation and (3,) translation, or
 #: batches of them.

@@ -9,14 +9,31 @@
 #include <stdlib.h>
 #include <string.h>
 
+static void free_pixels(PyObject *capsule)
+{
+    free(PyCapsule_GetPointer(capsule, "softrast.pixels"));
+}
+
 PyObject *sr_py_image_array(uint8_t *px, int w, int h)
 {
+    /* The array takes px over (its base, a capsule, frees it): the
+     * pixels are copied once, by whoever filled px, not again here. */
     npy_intp shape[3] = { h, w, 4 };
-    PyObject *a = PyArray_SimpleNew(3, shape, NPY_UINT8);
-    if (a) {
-        memcpy(PyArray_DATA((PyArrayObject *)a), px, (size_t)w * (size_t)h * 4);
+    PyObject *owner = PyCapsule_New(px, "softrast.pixels", free_pixels);
+    if (!owner) {
+        free(px);
+        return NULL;
     }
-    free(px);
+    PyObject *a = PyArray_SimpleNewFromData(3, shape, NPY_UINT8, px);
+    if (!a) {
+        Py_DECREF(owner);
+        return NULL;
+    }
+    /* Steals owner, also when it fails. */
+    if (PyArray_SetBaseObject((PyArrayObject *)a, owner) < 0) {
+        Py_DECREF(a);
+        return NULL;
+    }
     return a;
 }
 

@@ -124,6 +124,42 @@ static int add_framing_constants(PyObject *m)
     return 0;
 }
 
+/* The names softrast.Canvas and its paints take, with the library's enum
+ * values: {"rule": {"nonzero": SR_NONZERO, ...}, ...}; and
+ * SR_MAX_GRADIENT_STOPS. */
+static int add_draw2d_names(PyObject *m)
+{
+    PyObject *names = Py_BuildValue(
+        "{s{sisi}s{sisisi}s{sisisi}s{sisisi}s{sisi}s{sisisisi}}",
+        "rule", "nonzero", SR_NONZERO, "evenodd", SR_EVENODD,
+        "join", "miter", SR_STROKE_JOIN_MITER, "round", SR_STROKE_JOIN_ROUND, "bevel",
+        SR_STROKE_JOIN_BEVEL,
+        "cap", "butt", SR_STROKE_CAP_BUTT, "round", SR_STROKE_CAP_ROUND, "square",
+        SR_STROKE_CAP_SQUARE,
+        "spread", "pad", SR_SPREAD_PAD, "reflect", SR_SPREAD_REFLECT, "repeat", SR_SPREAD_REPEAT,
+        "wrap", "repeat", SR_WRAP_REPEAT, "clamp", SR_WRAP_CLAMP,
+        "kind", "color", SR_PAINT_COLOR, "linear", SR_PAINT_LINEAR_GRADIENT, "radial",
+        SR_PAINT_RADIAL_GRADIENT, "pattern", SR_PAINT_PATTERN);
+    if (!names || PyModule_AddObject(m, "draw2d_names", names) < 0) {
+        Py_XDECREF(names);
+        return -1;
+    }
+    return PyModule_AddIntConstant(m, "max_gradient_stops", SR_MAX_GRADIENT_STOPS);
+}
+
+static int add_type(PyObject *m, const char *name, PyTypeObject *type)
+{
+    if (PyType_Ready(type) < 0) {
+        return -1;
+    }
+    Py_INCREF(type);
+    if (PyModule_AddObject(m, name, (PyObject *)type) < 0) {
+        Py_DECREF(type);
+        return -1;
+    }
+    return 0;
+}
+
 PyMODINIT_FUNC PyInit__softrast(void)
 {
     import_array();
@@ -138,7 +174,8 @@ PyMODINIT_FUNC PyInit__softrast(void)
     if (PyModule_AddObject(m, "Mesh", (PyObject *)&sr_py_MeshType) < 0 ||
         PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
         PyModule_AddObject(m, "have_svg", PyBool_FromLong(sr_io_have_svg())) < 0 ||
-        add_framing_constants(m) < 0) {
+        add_framing_constants(m) < 0 || add_type(m, "Path", &sr_py_PathType) < 0 ||
+        add_type(m, "Canvas2D", &sr_py_Canvas2DType) < 0 || add_draw2d_names(m) < 0) {
         Py_DECREF(&sr_py_MeshType);
         Py_DECREF(m);
         return NULL;

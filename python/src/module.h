@@ -1,7 +1,8 @@
 /*
  * module.h - what the files of softrast._softrast share: the Mesh type
  * (mesh.c), the render entry point (render.c), the model readers (load.c),
- * the image files (image.c) and the SVG reader (svg.c).
+ * the image files (image.c), the SVG reader (svg.c) and the 2D canvas
+ * (path2d.c, canvas.c).
  * Every function here runs with the GIL held unless it says otherwise.
  */
 #ifndef SR_PY_MODULE_H
@@ -41,6 +42,28 @@ typedef struct MeshObject {
 } MeshObject;
 
 extern PyTypeObject sr_py_MeshType;
+
+/* softrast.Path (path2d.c): an sr_path on a context of its own. */
+typedef struct PathObject {
+    PyObject_HEAD
+    sr_context *ctx;
+    sr_path *path;              /* NULL until __init__ */
+    double tolerance;
+    Py_ssize_t drawing;         /* draws reading it without the GIL: no changes meanwhile */
+} PathObject;
+
+extern PyTypeObject sr_py_PathType;
+/* softrast._softrast.Canvas2D (canvas.c): fills and strokes into an array. */
+extern PyTypeObject sr_py_Canvas2DType;
+
+/* A ValueError with a printf message (PyErr_Format has no %g); NULL. */
+PyObject *sr_py_value_error(const char *format, ...);
+/* obj as a finite double; TypeError or ValueError naming `name`, -1. */
+int sr_py_real_arg(PyObject *obj, const char *name, double *out);
+/* obj (any array-like of real numbers) as a new (N, 2) float64
+ * C-contiguous array of finite points within SR_MAX_COORD2D; NULL with
+ * TypeError or ValueError naming `name`. */
+PyArrayObject *sr_py_points_arg(PyObject *obj, const char *name);
 
 /* Checks `obj` is an ndarray of `ndim` dimensions, C-contiguous, of one of
  * the given type numbers (terminated by -1), with shape[d] == shape_want[d]
@@ -122,8 +145,9 @@ PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);
 /* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
  * ValueError) with its one-line message; returns NULL. */
 PyObject *sr_py_io_error(sr_result r, const sr_io_error *err);
-/* An (h, w, 4) uint8 array holding a copy of the RGBA pixels px, which it
- * frees (they come from the readers' malloc); NULL on failure. */
+/* An (h, w, 4) uint8 array over the RGBA pixels px, which it takes over
+ * and frees (they come from malloc: the readers', render_svg's); NULL on
+ * failure, px freed. */
 PyObject *sr_py_image_array(uint8_t *px, int w, int h);
 
 #endif

@@ -181,7 +181,8 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
                      : sr_render_svg(ctx, data.buf, (size_t)data.len, &desc, &fb, NULL, &err);
     }
     if (r == SR_OK) {
-        /* Copied out while the GIL is free; the array is made after. */
+        /* Copied out while the GIL is free: the one copy, which the array
+         * made after takes over (sr_py_image_array). */
         w = sr_framebuffer_width(fb);
         h = sr_framebuffer_height(fb);
         px = malloc((size_t)w * (size_t)h * 4);

@@ -220,6 +220,18 @@ softrast.render_svg(b"<svg/>", background="navy", resources_dir=".")
 softrast.render_svg(b"<svg/>", background=(0.0, 0.0, 0.5, 0.5), resources_dir=pathlib.Path("."))
 softrast.render_svg(b"<svg/>", background=0.5)  # wrong: a color or 3 or 4 numbers
 softrast.render_svg(b"<svg/>", resources_dir=3)  # wrong: a directory
+canvas = softrast.Canvas(8, 8, background="white")
+canvas.fill(softrast.Path().move_to(0, 0).line_to(8, 0).line_to(0, 8).close(), (1.0, 0.0, 0.0))
+canvas.fill([[0, 0], [8, 0], [0, 8]], "red", rule="nonzero", antialias=False, opacity=0.5)
+canvas.fill([[0, 0], [8, 0], [0, 8]], "red", rule="winding")  # wrong: a fill rule
+canvas.stroke(softrast.Path(), "red", width=2, join="round", cap="square")
+canvas.stroke(softrast.Path(), "red", join="rounded")  # wrong: a join
+canvas.stroke(softrast.Path(), "red", 2.0)  # wrong: width is keyword-only
+canvas.fill(softrast.Path(), 3)  # wrong: a paint
+softrast.Path().arc_to(1, 1, 0, True, False, 2, 2).cubic_to(0, 0, 1, 1, 2, "2")  # wrong: a str
+softrast.LinearGradient((0, 0), (1, 0), [(0.0, "red")], spread="mirror")  # wrong: a spread
+softrast.Pattern(np.zeros((2, 2, 4), np.uint8), wrap="clamp")
+softrast.Canvas.from_array(v)  # wrong: a uint8 image
 '''
 
 

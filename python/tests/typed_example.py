@@ -6,7 +6,7 @@ runs it.  Not collected by pytest (not test_*.py).
 """
 
 import sys
-from typing import Dict, List
+from typing import Dict, List, Tuple
 
 from dask.base import compute
 import numpy as np
@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 
 import softrast
 import softrast.dask
-from softrast.typing import ShardManifest
+from softrast.typing import Color, ShardManifest
 
 
 def quad() -> softrast.Mesh:
@@ -62,11 +62,34 @@ def shards(model: str, out_dir: str) -> List[ShardManifest]:
     return manifests
 
 
+def badge() -> NDArray[np.uint8]:
+    """A 2D drawing: a gradient disc with an outline, a patterned square
+    drawn into the caller's array."""
+    image = np.zeros((48, 64, 4), np.uint8)
+    canvas = softrast.Canvas.from_array(image)
+    canvas.clear("white")
+    disc = softrast.Path().move_to(12, 24).arc_to(12, 12, 0, True, True, 36, 24).close()
+    disc.arc_to(12, 12, 0, True, True, 12, 24)
+    stops: List[Tuple[float, Color]] = [(0.0, "gold"), (1.0, (0.8, 0.2, 0.0))]
+    canvas.fill(disc, softrast.RadialGradient((24, 24), 12, stops, focal=(20, 20)))
+    canvas.stroke(disc, softrast.LinearGradient((12, 0), (36, 0), stops, spread="reflect"),
+                  width=2.5, join="round")
+    checker = np.zeros((2, 2, 4), np.uint8)
+    checker[0, 0] = checker[1, 1] = (0, 0, 0, 255)
+    square: List[List[float]] = [[40, 8], [60, 8], [60, 28], [40, 28]]
+    canvas.fill(square, softrast.Pattern(checker, transform=[[4, 0, 0], [0, 4, 0]]),
+                rule="evenodd", opacity=0.5)
+    assert canvas.image is image
+    return image
+
+
 def main(model: str, out_dir: str) -> Dict[str, object]:
+    drawn = badge()
     depth = depth_of_quad()
     colors = turntable(model)
     manifests = shards(model, out_dir)
     return {"depth_min": float(depth.min()), "views": len(colors),
+            "badge_pixels": int(np.count_nonzero(drawn[..., 0] != 255)),
             "files": sorted(f for m in manifests for f in m["files"])}
 
 

@@ -1,0 +1,553 @@
+/*
+ * canvas.c - softrast._softrast.Canvas2D, what softrast.Canvas draws
+ * with: fills and strokes of paths and polygons with a paint
+ * (sr_fill_polygon_paint, sr_make_stroke_outline) into a caller's
+ * (H, W, 4) uint8 RGBA array, in place.  The library draws into a
+ * framebuffer, not into caller memory, so the canvas keeps one of the
+ * image's size as scratch: a draw copies the rectangle its polygon can
+ * touch into it, fills, and copies the rectangle back (the array stays
+ * the pixels' only truth: it may be changed between draws).  softrast/
+ * _draw.py checks the arguments' values and names; this file checks
+ * everything it dereferences.  Large shapes are drawn without the GIL,
+ * under the canvas's lock (one draw at a time per canvas).
+ */
+#include "module.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct CanvasObject {
+    PyObject_HEAD
+    PyArrayObject *image;   /* (H, W, 4) uint8, C-contiguous, writeable */
+    sr_context *ctx;        /* one thread: the 2D fills run on the caller's */
+    sr_framebuffer *fb;     /* scratch, the image's size, no depth */
+    PyThread_type_lock lock;
+} CanvasObject;
+
+/* Shapes at least this large (points, or pixels of their box) are
+ * drawn with the GIL released; smaller ones cost less than the switch. */
+#define RELEASE_POINTS 256
+#define RELEASE_PIXELS 16384.0
+
+PyArrayObject *sr_py_points_arg(PyObject *obj, const char *name)
+{
+    PyArrayObject *a = (PyArrayObject *)PyArray_FromAny(obj, NULL, 0, 0, 0, NULL);
+    if (!a) {
+        bool value = PyErr_ExceptionMatches(PyExc_ValueError);
+        PyErr_Clear();
+        return (PyArrayObject *)PyErr_Format(value ? PyExc_ValueError : PyExc_TypeError,
+                                             "%s: expected an (N, 2) array of numbers, got %s",
+                                             name, Py_TYPE(obj)->tp_name);
+    }
+    if (!PyArray_ISINTEGER(a) && !PyArray_ISFLOAT(a)) {
+        PyErr_Format(PyExc_TypeError, "%s: dtype must be a real number type, got %S", name,
+                     (PyObject *)PyArray_DESCR(a));
+        Py_DECREF(a);
+        return NULL;
+    }
+    if (PyArray_NDIM(a) != 2 || PyArray_DIM(a, 1) != 2) {
+        PyObject *shape = PyObject_GetAttrString((PyObject *)a, "shape");
+        PyErr_Format(PyExc_ValueError, "%s: shape must be (N, 2), got %S", name,
+                     shape ? shape : Py_None);
+        Py_XDECREF(shape);
+        Py_DECREF(a);
+        return NULL;
+    }
+    PyArrayObject *f = (PyArrayObject *)PyArray_FROMANY(
+        (PyObject *)a, NPY_FLOAT64, 2, 2,
+        NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | NPY_ARRAY_FORCECAST);
+    Py_DECREF(a);
+    if (!f) {
+        return NULL;
+    }
+    const double *v = PyArray_DATA(f);
+    for (npy_intp i = 0; i < 2 * PyArray_DIM(f, 0); i++) {
+        if (!isfinite(v[i]) || fabs(v[i]) > SR_MAX_COORD2D) {
+            sr_py_value_error(isfinite(v[i]) ? "%s: point %zd is outside +-%g"
+                                             : "%s: point %zd is NaN or infinite",
+                              name, (Py_ssize_t)(i / 2), SR_MAX_COORD2D);
+            Py_DECREF(f);
+            return NULL;
+        }
+    }
+    return f;
+}
+
+static void canvas_dealloc(CanvasObject *self)
+{
+    sr_destroy_framebuffer(self->ctx, self->fb);
+    sr_destroy_context(self->ctx);
+    if (self->lock) {
+        PyThread_free_lock(self->lock);
+    }
+    Py_XDECREF(self->image);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+static int canvas_init(CanvasObject *self, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = { "image", NULL };
+    PyObject *obj;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O:Canvas2D", kwlist, &obj)) {
+        return -1;
+    }
+    if (self->image) {
+        PyErr_SetString(PyExc_TypeError, "Canvas2D: already initialized");
+        return -1;
+    }
+    if (!PyArray_Check(obj)) {
+        PyErr_Format(PyExc_TypeError, "image: expected a numpy array, got %s",
+                     Py_TYPE(obj)->tp_name);
+        return -1;
+    }
+    static const int u8[] = { NPY_UINT8, -1 };
+    const npy_intp shape[3] = { -1, -1, 4 };
+    PyArrayObject *a = sr_py_take_array(obj, "image", 3, shape, u8);
+    if (!a) {
+        return -1;
+    }
+    if ((PyObject *)a != obj || !PyArray_ISWRITEABLE(a)) {
+        PyErr_SetString(PyExc_ValueError, "image: array is read-only (the canvas draws into it)");
+        Py_DECREF(a);
+        return -1;
+    }
+    npy_intp h = PyArray_DIM(a, 0), w = PyArray_DIM(a, 1);
+    if (h < 1 || w < 1 || h > SR_MAX_FRAMEBUFFER_SIZE || w > SR_MAX_FRAMEBUFFER_SIZE) {
+        PyErr_Format(PyExc_ValueError, "image: height and width must be in 1..%d, got %zd x %zd",
+                     SR_MAX_FRAMEBUFFER_SIZE, (Py_ssize_t)h, (Py_ssize_t)w);
+        Py_DECREF(a);
+        return -1;
+    }
+    self->image = a;
+    self->lock = PyThread_allocate_lock();
+    sr_result r = self->lock ? sr_make_context(&(sr_context_desc){ .threads = 1 }, &self->ctx)
+                             : SR_OUT_OF_MEMORY;
+    if (r == SR_OK) {
+        sr_framebuffer_desc fd = { .width = (int)w, .height = (int)h,
+                                   .depth_format = SR_DEPTH_NONE };
+        r = sr_make_framebuffer(self->ctx, &fd, &self->fb);
+    }
+    if (r != SR_OK) {
+        PyErr_SetString(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError,
+                        self->ctx ? sr_context_error(self->ctx) : sr_result_text(r));
+        return -1;
+    }
+    return 0;
+}
+
+static int ready(CanvasObject *self)
+{
+    if (!self->fb) {
+        PyErr_SetString(PyExc_ValueError, "Canvas2D: not initialized");
+        return -1;
+    }
+    return 0;
+}
+
+/* The canvas's lock, waited for without the GIL when another thread holds it. */
+static void lock_canvas(CanvasObject *self)
+{
+    if (!PyThread_acquire_lock(self->lock, NOWAIT_LOCK)) {
+        Py_BEGIN_ALLOW_THREADS
+        PyThread_acquire_lock(self->lock, WAIT_LOCK);
+        Py_END_ALLOW_THREADS
+    }
+}
+
+/* A paint tuple of softrast/_draw.py, its arrays held until paint_release. */
+typedef struct paint_args {
+    sr_paint paint;
+    sr_point2 focal;
+    sr_affine2 transform;
+    sr_gradient_stop *stops;
+    PyArrayObject *image;
+} paint_args;
+
+static void paint_release(paint_args *p)
+{
+    free(p->stops);
+    Py_XDECREF(p->image);
+}
+
+/* (kind, (r, g, b, a), (six numbers: x1 y1 x2 y2 - -, or cx cy r fx fy fr),
+ *  (N, 5) float64 stops [offset r g b a] or None, spread, (H, W, 4) uint8
+ *  image or None, wrap, (a, b, c, d, e, f), opacity); kind, spread and
+ *  wrap are the library's enum values (draw2d_names).  The library
+ *  checks the values again. */
+static int paint_arg(PyObject *obj, paint_args *p)
+{
+    memset(p, 0, sizeof *p);
+    if (!PyTuple_Check(obj)) {
+        PyErr_Format(PyExc_TypeError, "paint: expected a paint tuple, got %s",
+                     Py_TYPE(obj)->tp_name);
+        return -1;
+    }
+    int kind, spread, wrap;
+    double g[6], opacity;
+    sr_rgba c;
+    sr_affine2 *t = &p->transform;
+    PyObject *stops, *image;
+    if (!PyArg_ParseTuple(obj, "i(ffff)(dddddd)OiOi(dddddd)d:paint", &kind, &c.r, &c.g, &c.b,
+                          &c.a, &g[0], &g[1], &g[2], &g[3], &g[4], &g[5], &stops, &spread,
+                          &image, &wrap, &t->a, &t->b, &t->c, &t->d, &t->e, &t->f, &opacity)) {
+        return -1;
+    }
+    p->paint = (sr_paint){ .kind = (sr_paint_kind)kind, .color = c,
+                           .spread = (sr_gradient_spread)spread,
+                           .image_wrap = (sr_texture_wrap)wrap, .transform = t,
+                           .opacity = (float)opacity };
+    if (kind == SR_PAINT_LINEAR_GRADIENT) {
+        p->paint.x1 = g[0];
+        p->paint.y1 = g[1];
+        p->paint.x2 = g[2];
+        p->paint.y2 = g[3];
+    } else if (kind == SR_PAINT_RADIAL_GRADIENT) {
+        p->paint.cx = g[0];
+        p->paint.cy = g[1];
+        p->paint.r = g[2];
+        p->focal = (sr_point2){ g[3], g[4] };
+        p->paint.focal = &p->focal;
+        p->paint.fr = g[5];
+    }
+    if (stops != Py_None) {
+        static const int f64[] = { NPY_FLOAT64, -1 };
+        const npy_intp shape[2] = { -1, 5 };
+        PyArrayObject *s = sr_py_take_array(stops, "stops", 2, shape, f64);
+        if (!s) {
+            return -1;
+        }
+        npy_intp n = PyArray_DIM(s, 0);
+        const double *v = PyArray_DATA(s);
+        bool finite = true;
+        for (npy_intp i = 0; i < 5 * n; i++) {
+            finite = finite && fabs(v[i]) <= FLT_MAX; /* a float each color component */
+        }
+        if (n < 1 || n > SR_MAX_GRADIENT_STOPS) {
+            PyErr_Format(PyExc_ValueError, "stops: %zd stops, the library takes 1..%d",
+                         (Py_ssize_t)n, SR_MAX_GRADIENT_STOPS);
+        } else if (!finite) {
+            PyErr_SetString(PyExc_ValueError, "stops: NaN, infinity or a value past float");
+        } else if (!(p->stops = malloc((size_t)n * sizeof *p->stops))) {
+            PyErr_NoMemory();
+        } else {
+            for (npy_intp i = 0; i < n; i++, v += 5) {
+                p->stops[i] = (sr_gradient_stop){ v[0], { (float)v[1], (float)v[2], (float)v[3],
+                                                          (float)v[4] } };
+            }
+            p->paint.stops = p->stops;
+            p->paint.stop_count = (int)n;
+        }
+        Py_DECREF(s);
+        if (!p->stops) {
+            return -1;
+        }
+    }
+    if (image != Py_None) {
+        static const int u8[] = { NPY_UINT8, -1 };
+        const npy_intp shape[3] = { -1, -1, 4 };
+        p->image = sr_py_take_array(image, "image", 3, shape, u8);
+        if (!p->image) {
+            paint_release(p);
+            return -1;
+        }
+        npy_intp h = PyArray_DIM(p->image, 0), w = PyArray_DIM(p->image, 1);
+        if (h < 1 || w < 1 || h > SR_MAX_FRAMEBUFFER_SIZE || w > SR_MAX_FRAMEBUFFER_SIZE) {
+            PyErr_Format(PyExc_ValueError, "image: height and width must be in 1..%d",
+                         SR_MAX_FRAMEBUFFER_SIZE);
+            paint_release(p);
+            return -1;
+        }
+        p->paint.image = PyArray_DATA(p->image);
+        p->paint.image_width = (int)w;
+        p->paint.image_height = (int)h;
+    }
+    return 0;
+}
+
+/* The pixels a polygon's fill can touch, [x0, x1) x [y0, y1) within the
+ * image; false when none.  A fill covers no pixel outside the box of its
+ * points (snapping to 1/256 pixel keeps a point between the same two
+ * integers); one pixel of margin all round. */
+static bool touched_box(sr_polygon2 poly, int w, int h, int box[4])
+{
+    double b[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    for (int i = 0; i < poly.point_count; i++) {
+        b[0] = fmin(b[0], poly.points[i].x);
+        b[1] = fmin(b[1], poly.points[i].y);
+        b[2] = fmax(b[2], poly.points[i].x);
+        b[3] = fmax(b[3], poly.points[i].y);
+    }
+    if (poly.point_count < 1) {
+        return false;
+    }
+    /* clamped to the image before the conversion to int */
+    box[0] = (int)fmin(fmax(floor(b[0]) - 1, 0), w);
+    box[1] = (int)fmin(fmax(floor(b[1]) - 1, 0), h);
+    box[2] = (int)fmax(fmin(ceil(b[2]) + 1, w), 0);
+    box[3] = (int)fmax(fmin(ceil(b[3]) + 1, h), 0);
+    return box[2] > box[0] && box[3] > box[1];
+}
+
+/* One draw, the canvas locked (without the GIL when `release`): the
+ * stroke outline of `stroked` when it is not NULL, else poly, filled
+ * with the paint over the image's pixels.  The library's message goes to
+ * msg on failure. */
+static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const sr_path *stroked,
+                             const sr_stroke_desc *sd, const sr_paint *paint,
+                             const sr_fill_desc *fd, char *msg, size_t msg_size)
+{
+    sr_polygon2 outline = { 0 };
+    sr_result r = SR_OK;
+    if (stroked) {
+        r = sr_make_stroke_outline(self->ctx, stroked, sd, &outline);
+        poly = outline;
+    }
+    int w = (int)PyArray_DIM(self->image, 1), h = (int)PyArray_DIM(self->image, 0), box[4];
+    if (r == SR_OK && touched_box(poly, w, h, box)) {
+        size_t stride = (size_t)w * 4;
+        uint8_t *px = (uint8_t *)PyArray_DATA(self->image) + (size_t)box[1] * stride +
+                      (size_t)box[0] * 4;
+        int bw = box[2] - box[0], bh = box[3] - box[1];
+        r = sr_write_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, px, stride);
+        if (r == SR_OK) {
+            r = sr_fill_polygon_paint(self->ctx, self->fb, &poly, paint, fd);
+        }
+        if (r == SR_OK) {
+            r = sr_read_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, px, stride);
+        }
+    }
+    if (r != SR_OK) {
+        snprintf(msg, msg_size, "%s", sr_context_error(self->ctx));
+    }
+    if (stroked) {
+        sr_destroy_stroke_outline(self->ctx, &outline);
+    }
+    return r;
+}
+
+/* Draw and raise what failed; `path` (or NULL) is marked as drawn meanwhile. */
+static PyObject *draw(CanvasObject *self, PathObject *path, sr_polygon2 poly,
+                      const sr_stroke_desc *sd, const sr_paint *paint, const sr_fill_desc *fd,
+                      double reach)
+{
+    int box[4];
+    bool release = poly.point_count >= RELEASE_POINTS;
+    if (!release && touched_box(poly, (int)PyArray_DIM(self->image, 1),
+                                (int)PyArray_DIM(self->image, 0), box)) {
+        release = (box[2] - box[0] + 2 * reach) * (box[3] - box[1] + 2 * reach) >= RELEASE_PIXELS;
+    }
+    char msg[256] = "";
+    sr_result r;
+    if (path) {
+        path->drawing++;
+    }
+    lock_canvas(self);
+    if (release) {
+        Py_BEGIN_ALLOW_THREADS
+        r = draw_locked(self, poly, sd ? path->path : NULL, sd, paint, fd, msg, sizeof msg);
+        Py_END_ALLOW_THREADS
+    } else {
+        r = draw_locked(self, poly, sd ? path->path : NULL, sd, paint, fd, msg, sizeof msg);
+    }
+    PyThread_release_lock(self->lock);
+    if (path) {
+        path->drawing--;
+    }
+    if (r == SR_OUT_OF_MEMORY) {
+        return PyErr_NoMemory();
+    }
+    if (r != SR_OK) {
+        return PyErr_Format(PyExc_ValueError, "%s", msg);
+    }
+    Py_RETURN_NONE;
+}
+
+/* The polygon of a list of (N, 2) point arrays, its points and counts
+ * malloc'd (freed by the caller, also on failure). */
+static int contours_arg(PyObject *list, sr_polygon2 *poly, sr_point2 **pts, int **counts)
+{
+    *pts = NULL;
+    *counts = NULL;
+    if (!PyList_Check(list)) {
+        PyErr_Format(PyExc_TypeError, "shape: expected a Path or a list of point arrays, got %s",
+                     Py_TYPE(list)->tp_name);
+        return -1;
+    }
+    /* A tuple of the items: converting one may run code that changes the list. */
+    PyObject *items = PySequence_Tuple(list);
+    if (!items) {
+        return -1;
+    }
+    Py_ssize_t nc = PyTuple_GET_SIZE(items), total = 0;
+    int status = 0;
+    if (nc > INT_MAX || !(*counts = malloc((size_t)(nc ? nc : 1) * sizeof **counts))) {
+        PyErr_NoMemory();
+        status = -1;
+    }
+    for (Py_ssize_t c = 0; c < nc && status == 0; c++) {
+        char name[48] = "shape";
+        if (nc > 1) {
+            snprintf(name, sizeof name, "shape[%zd]", c);
+        }
+        PyArrayObject *a = sr_py_points_arg(PyTuple_GET_ITEM(items, c), name);
+        npy_intp n = a ? PyArray_DIM(a, 0) : 0;
+        sr_point2 *grown = a && n <= INT_MAX - total
+                               ? realloc(*pts, (size_t)(total + n + 1) * sizeof **pts) : NULL;
+        if (!grown) {
+            if (a) {
+                PyErr_NoMemory();
+            }
+            status = -1;
+        } else {
+            *pts = grown;
+            memcpy(*pts + total, PyArray_DATA(a), (size_t)n * sizeof **pts);
+            (*counts)[c] = (int)n;
+            total += n;
+        }
+        Py_XDECREF(a);
+    }
+    Py_DECREF(items);
+    *poly = (sr_polygon2){ *pts, (int)total, *counts, (int)nc };
+    return status;
+}
+
+static PyObject *canvas_fill(CanvasObject *self, PyObject *args)
+{
+    PyObject *shape, *paint_obj;
+    int rule, aa;
+    if (ready(self) < 0 || !PyArg_ParseTuple(args, "OOip:fill", &shape, &paint_obj, &rule, &aa)) {
+        return NULL;
+    }
+    paint_args p;
+    if (paint_arg(paint_obj, &p) < 0) {
+        return NULL;
+    }
+    sr_polygon2 poly = { 0 };
+    sr_point2 *pts = NULL;
+    int *counts = NULL;
+    PathObject *path = NULL;
+    PyObject *result = NULL;
+    if (PyObject_TypeCheck(shape, &sr_py_PathType) && ((PathObject *)shape)->path) {
+        path = (PathObject *)shape;
+        poly = sr_path_polygon(path->path);
+    } else if (PyObject_TypeCheck(shape, &sr_py_PathType) ||
+               contours_arg(shape, &poly, &pts, &counts) < 0) {
+        if (!PyErr_Occurred()) {
+            PyErr_SetString(PyExc_ValueError, "shape: the Path is not initialized");
+        }
+        goto done;
+    }
+    sr_fill_desc fd = { .rule = (sr_fill_rule)rule, .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
+    result = draw(self, path, poly, NULL, &p.paint, &fd, 0);
+done:
+    free(pts);
+    free(counts);
+    paint_release(&p);
+    return result;
+}
+
+static PyObject *canvas_stroke(CanvasObject *self, PyObject *args)
+{
+    PyObject *paint_obj;
+    PathObject *path;
+    sr_stroke_desc sd = { 0 };
+    int join, cap, aa;
+    if (ready(self) < 0 ||
+        !PyArg_ParseTuple(args, "O!Odiidp:stroke", &sr_py_PathType, &path, &paint_obj, &sd.width,
+                          &join, &cap, &sd.miter_limit, &aa)) {
+        return NULL;
+    }
+    if (!path->path) {
+        PyErr_SetString(PyExc_ValueError, "path: the Path is not initialized");
+        return NULL;
+    }
+    if (!(sd.width > 0) || !(sd.width <= SR_MAX_COORD2D)) {
+        return sr_py_value_error("width: must be in (0, %g], got %g", SR_MAX_COORD2D, sd.width);
+    }
+    sd.join = (sr_stroke_join)join;
+    sd.cap = (sr_stroke_cap)cap;
+    paint_args p;
+    if (paint_arg(paint_obj, &p) < 0) {
+        return NULL;
+    }
+    /* The outline reaches half the width past the path, more at miters. */
+    double reach = sd.width * fmax(sd.miter_limit, 1);
+    sr_fill_desc fd = { .rule = SR_NONZERO, .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
+    PyObject *result = draw(self, path, sr_path_polygon(path->path), &sd, &p.paint, &fd, reach);
+    paint_release(&p);
+    return result;
+}
+
+static PyObject *canvas_clear(CanvasObject *self, PyObject *args)
+{
+    sr_clear_desc cd = { .color_action = SR_ACTION_CLEAR };
+    if (ready(self) < 0 || !PyArg_ParseTuple(args, "(ffff):clear", &cd.color[0], &cd.color[1],
+                                             &cd.color[2], &cd.color[3])) {
+        return NULL;
+    }
+    int w = (int)PyArray_DIM(self->image, 1), h = (int)PyArray_DIM(self->image, 0);
+    char msg[256] = "";
+    lock_canvas(self);
+    sr_result r;
+    Py_BEGIN_ALLOW_THREADS
+    r = sr_clear(self->ctx, self->fb, &cd);
+    if (r == SR_OK) {
+        r = sr_read_pixels(self->ctx, self->fb, 0, 0, w, h, PyArray_DATA(self->image),
+                           (size_t)w * 4);
+    }
+    if (r != SR_OK) {
+        snprintf(msg, sizeof msg, "%s", sr_context_error(self->ctx));
+    }
+    Py_END_ALLOW_THREADS
+    PyThread_release_lock(self->lock);
+    if (r != SR_OK) {
+        return PyErr_Format(PyExc_ValueError, "color: %s", msg);
+    }
+    Py_RETURN_NONE;
+}
+
+static PyObject *canvas_get_image(CanvasObject *self, void *closure)
+{
+    (void)closure;
+    if (ready(self) < 0) {
+        return NULL;
+    }
+    Py_INCREF(self->image);
+    return (PyObject *)self->image;
+}
+
+#define CANVAS_METHOD(name, doc) { #name, (PyCFunction)canvas_##name, METH_VARARGS, doc }
+
+static PyMethodDef canvas_methods[] = {
+    CANVAS_METHOD(fill, "fill($self, shape, paint, rule, antialias, /)\n--\n\n"
+                        "sr_fill_polygon_paint of a Path or a list of (N, 2) point arrays.\n"
+                        "Use softrast.Canvas.fill."),
+    CANVAS_METHOD(stroke, "stroke($self, path, paint, width, join, cap, miter_limit, antialias,\n"
+                          "       /)\n--\n\n"
+                          "The stroke outline of a Path (sr_make_stroke_outline) filled\n"
+                          "with the paint.  Use softrast.Canvas.stroke."),
+    CANVAS_METHOD(clear, "clear($self, color, /)\n--\n\n"
+                         "Every pixel to (r, g, b, a) in [0, 1] as sr_clear quantizes it."),
+    { NULL, NULL, 0, NULL },
+};
+
+static PyGetSetDef canvas_getset[] = {
+    { "image", (getter)canvas_get_image, NULL, "the (H, W, 4) uint8 array drawn into", NULL },
+    { NULL, NULL, NULL, NULL, NULL },
+};
+
+PyTypeObject sr_py_Canvas2DType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "softrast._softrast.Canvas2D",
+    .tp_basicsize = sizeof(CanvasObject),
+    .tp_dealloc = (destructor)canvas_dealloc,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "Canvas2D(image)\n--\n\n"
+              "The drawing state of softrast.Canvas over an (H, W, 4) uint8 array.",
+    .tp_methods = canvas_methods,
+    .tp_getset = canvas_getset,
+    .tp_init = (initproc)canvas_init,
+    .tp_new = PyType_GenericNew,
+};
