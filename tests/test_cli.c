@@ -2489,6 +2489,37 @@ SR_TEST(thumbnail_and_explain_help_show_every_option_they_take)
     cli_run_free(&r);
 }
 
+/* explain's messages give the value's form as its --help writes it and the
+ * limit it applies: --grid said "1 to 8192" (the framebuffer's) for a
+ * limit of 256, --circle "X,Y,Z" for CX,CY,R. */
+SR_TEST(explain_messages_give_the_helps_forms_and_limits)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024];
+    fresh_dir("explain msgs", dir, sizeof dir);
+    const struct {
+        const char *const *args;
+        const char *needle;
+    } cases[] = {
+        { ARGS("explain", "triangle", "--grid", "0x0", "-o", dir), "WxH with each from 1 to 256" },
+        { ARGS("explain", "triangle", "--grid", "300x4", "-o", dir), "from 1 to 256" },
+        { ARGS("explain", "circle", "--circle", "1,2", "-o", dir), "numbers CX,CY,R " },
+        { ARGS("explain", "perspective", "--w", "1,2", "-o", dir), "numbers W0,W1,W2, each in 0.015625..1024" },
+        { ARGS("explain", "fillpoly", "--intensity", "1", "-o", dir), "numbers IA,IB,IC, each in 0..1" },
+        { ARGS("explain", "clip4d", "--clip-triangle", "1,2", "-o", dir), "X,Y,Z,W,X,Y,Z,W" },
+        { ARGS("explain", "clip", "--window", "1,2", "-o", dir), "XMIN,YMIN,XMAX,YMAX" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        cli_run r;
+        REQUIRE(run_cli(cases[i].args, &r));
+        check_failure_output(cases[i].args[2], &r, 2, cases[i].needle);
+        cli_run_free(&r);
+    }
+    CHECK_EQ(count_entries(dir, NULL, 0), 0);
+}
+
 /* --transparent: an RGBA PNG whose corners are fully transparent, whose
  * middle is the opaque model, whose edges are partly covered, and whose
  * colors are those of the opaque thumbnail where the model covers all. */

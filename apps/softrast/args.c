@@ -99,10 +99,10 @@ bool parse_float(const char *opt, const char *s, float lo, float hi, float *out)
     return true;
 }
 
-/* A side of WxH: digits only (no sign or space), from 1 to the largest
- * framebuffer; *s moves past them.  strtol, unlike sscanf's %d, says when
+/* A side of WxH: digits only (no sign or space), from 1 to max; *s moves
+ * past them.  strtol, unlike sscanf's %d, says when
  * a number overflows. */
-static bool size_side(const char **s, int *out)
+static bool size_side(const char **s, int max, int *out)
 {
     if (!isdigit((unsigned char)**s)) {
         return false;
@@ -111,7 +111,7 @@ static bool size_side(const char **s, int *out)
     errno = 0;
     long v = strtol(*s, &end, 10);
     *s = end;
-    if (errno || v < 1 || v > SR_MAX_FRAMEBUFFER_SIZE) {
+    if (errno || v < 1 || v > max) {
         return false;
     }
     *out = (int)v;
@@ -120,16 +120,20 @@ static bool size_side(const char **s, int *out)
 
 bool parse_size(const char *opt, const char *s, int *w, int *h)
 {
+    return parse_size_max(opt, s, SR_MAX_FRAMEBUFFER_SIZE, w, h);
+}
+
+bool parse_size_max(const char *opt, const char *s, int max, int *w, int *h)
+{
     int a, b;
     const char *p = s;
-    bool ok = size_side(&p, &a) && (*p == 'x' || *p == 'X');
+    bool ok = size_side(&p, max, &a) && (*p == 'x' || *p == 'X');
     if (ok) {
         p++;
-        ok = size_side(&p, &b) && *p == 0;
+        ok = size_side(&p, max, &b) && *p == 0;
     }
     if (!ok) {
-        cli_error("%s: expected WxH with each from 1 to %d (got '%s')", opt,
-                  SR_MAX_FRAMEBUFFER_SIZE, s);
+        cli_error("%s: expected WxH with each from 1 to %d (got '%s')", opt, max, s);
         return false;
     }
     *w = a;

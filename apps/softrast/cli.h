@@ -84,7 +84,9 @@ void cli_capture(char *buf, size_t size);
 /* Parsers: return false after printing "softrast render: OPTION: why". */
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);
 bool parse_float(const char *opt, const char *s, float lo, float hi, float *out);
+/* WxH with each side from 1 to the framebuffer's limit, or to max. */
 bool parse_size(const char *opt, const char *s, int *w, int *h);
+bool parse_size_max(const char *opt, const char *s, int max, int *w, int *h);
 bool parse_vec3(const char *opt, const char *s, sr_vec3 *out);
 bool parse_color(const char *opt, const char *s, sr_vec3 *out);
 /* One of `names` (NULL-terminated); *out = its index. */

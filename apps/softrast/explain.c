@@ -165,8 +165,8 @@ static void usage(FILE *f)
 
 /* "x,y,x,y,..." (dims 2) or "x,y,z,..." (dims 3) into pts and z; false
  * after one line naming the option. */
-static bool parse_points(const char *opt, const char *s, int dims, int min, int max, bool exact,
-                         ex_primitive *prim)
+static bool parse_points(const char *opt, const char *s, int dims, int min, int max,
+                         const char *form, ex_primitive *prim)
 {
     double v[3 * EX_MAX_POINTS];
     int n = 0;
@@ -195,13 +195,12 @@ static bool parse_points(const char *opt, const char *s, int dims, int min, int 
         }
         p = end + 1;
     }
-    const char *names = dims == 3 ? "X,Y,Z" : "X,Y";
-    if (exact) {
-        cli_error("%s: expected %d numbers %s,... in -16384..16384 (got '%s')", opt, dims * min,
-                  names, s);
+    if (form) {
+        cli_error("%s: expected %d numbers %s in -16384..16384 (got '%s')", opt, dims * min,
+                  form, s);
     } else {
-        cli_error("%s: expected %d to %d %s groups in -16384..16384 (got '%s')", opt, min, max,
-                  names, s);
+        cli_error("%s: expected %d to %d X,Y pairs in -16384..16384 (got '%s')", opt, min, max,
+                  s);
     }
     return false;
 }
@@ -209,7 +208,7 @@ static bool parse_points(const char *opt, const char *s, int dims, int min, int 
 /* Two triangles with a window depth in [0, 1] at each vertex. */
 static bool parse_depths(const char *opt, const char *s, ex_primitive *prim)
 {
-    if (!parse_points(opt, s, 3, 6, 6, true, prim)) {
+    if (!parse_points(opt, s, 3, 6, 6, "X,Y,Z,...", prim)) {
         return false;
     }
     for (int i = 0; i < 6; i++) {
@@ -226,7 +225,7 @@ static bool parse_depths(const char *opt, const char *s, ex_primitive *prim)
 static bool parse_clip(const char *opt, const char *s, ex_primitive *prim)
 {
     ex_primitive p = { 0 };
-    if (!parse_points(opt, s, 2, 6, 6, true, &p)) {
+    if (!parse_points(opt, s, 2, 6, 6, "X,Y,Z,W,X,Y,Z,W,X,Y,Z,W", &p)) {
         return false;
     }
     for (int i = 0; i < 3; i++) {
@@ -246,20 +245,23 @@ static bool parse_radius(const char *opt, const char *s, double r)
     return true;
 }
 
-/* Three numbers in lo..hi, one per vertex, into out. */
-static bool parse_three(const char *opt, const char *s, double lo, double hi, double out[3])
+/* Three numbers in lo..hi, one per vertex, into out; a message gives the
+ * form of --help and this range. */
+static bool parse_three(const char *opt, const char *s, const char *form, double lo, double hi,
+                        double out[3])
 {
-    ex_primitive p = { 0 };
-    if (!parse_points(opt, s, 3, 1, 1, true, &p)) {
-        return false;
-    }
-    double v[3] = { p.pts[0].x, p.pts[0].y, p.z[0] };
+    const char *p = s;
     for (int k = 0; k < 3; k++) {
-        if (!(v[k] >= lo && v[k] <= hi)) {
-            cli_error("%s: each value in %g..%g (got '%s')", opt, lo, hi, s);
+        char *end;
+        errno = 0;
+        double v = strtod(p, &end);
+        if (errno || end == p || !(v >= lo && v <= hi) || *end != (k < 2 ? ',' : '\0')) {
+            cli_error("%s: expected three numbers %s, each in %g..%g (got '%s')", opt, form, lo,
+                      hi, s);
             return false;
         }
-        out[k] = v[k];
+        out[k] = v;
+        p = end + 1;
     }
     return true;
 }
@@ -463,14 +465,14 @@ int cmd_explain(int argc, char **argv)
                 cli_error("explain %s: takes %s, not %s", alg->name, kind_option(alg->kind), a);
                 return EXIT_USAGE;
             }
-            ok = p.kind == EX_TRIANGLE  ? parse_points(a, v, 2, 3, 3, true, &p)
-               : p.kind == EX_LINE      ? parse_points(a, v, 2, 2, 2, true, &p)
+            ok = p.kind == EX_TRIANGLE  ? parse_points(a, v, 2, 3, 3, "X0,Y0,X1,Y1,X2,Y2", &p)
+               : p.kind == EX_LINE      ? parse_points(a, v, 2, 2, 2, "X0,Y0,X1,Y1", &p)
                : p.kind == EX_TRIANGLES ? parse_depths(a, v, &p)
-               : p.kind == EX_CUBIC     ? parse_points(a, v, 2, 4, 4, true, &p)
+               : p.kind == EX_CUBIC     ? parse_points(a, v, 2, 4, 4, "X0,Y0,...,X3,Y3", &p)
                : p.kind == EX_CLIP_TRIANGLE ? parse_clip(a, v, &p)
-               : p.kind == EX_CIRCLE    ? parse_points(a, v, 3, 1, 1, true, &p) &&
+               : p.kind == EX_CIRCLE    ? parse_points(a, v, 3, 1, 1, "CX,CY,R", &p) &&
                                               parse_radius(a, v, p.z[0])
-                                        : parse_points(a, v, 2, 3, EX_MAX_POINTS, false, &p);
+                                        : parse_points(a, v, 2, 3, EX_MAX_POINTS, NULL, &p);
             prim = p;
             prim_given = true;
         } else if (strcmp(a, "--fill-rule") == 0) {
@@ -498,7 +500,7 @@ int cmd_explain(int argc, char **argv)
             }
         } else if (strcmp(a, "--window") == 0) {
             ex_primitive wp = { 0 };
-            ok = parse_points(a, v, 2, 2, 2, true, &wp);
+            ok = parse_points(a, v, 2, 2, 2, "XMIN,YMIN,XMAX,YMAX", &wp);
             if (ok && (wp.pts[0].x >= wp.pts[1].x || wp.pts[0].y >= wp.pts[1].y)) {
                 cli_error("%s: expected XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX "
                           "(got '%s')", a, v);
@@ -517,8 +519,8 @@ int cmd_explain(int argc, char **argv)
                 cli_error("explain %s: %s is for '%s'", alg->name, a, w ? "perspective" : "fillpoly");
                 return EXIT_USAGE;
             }
-            ok = w ? parse_three(a, v, 1.0 / 64, 1024, per_vertex)
-                   : parse_three(a, v, 0, 1, per_vertex);
+            ok = w ? parse_three(a, v, "W0,W1,W2", 1.0 / 64, 1024, per_vertex)
+                   : parse_three(a, v, "IA,IB,IC", 0, 1, per_vertex);
             per_vertex_given = true;
         } else if (strcmp(a, "--tolerance") == 0) {
             char *end;
@@ -529,7 +531,7 @@ int cmd_explain(int argc, char **argv)
             }
         } else if (strcmp(a, "--seed") == 0) {
             ex_primitive sp = { 0 };
-            ok = parse_points(a, v, 2, 1, 1, true, &sp);
+            ok = parse_points(a, v, 2, 1, 1, "X,Y", &sp);
             seed[0] = (int)floor(sp.pts[0].x);
             seed[1] = (int)floor(sp.pts[0].y);
             seed_given = true;
@@ -542,11 +544,7 @@ int cmd_explain(int argc, char **argv)
         } else if (strcmp(a, "--row") == 0) {
             ok = parse_int(a, v, 0, MAX_GRID - 1, &row);
         } else if (strcmp(a, "--grid") == 0) {
-            ok = parse_size(a, v, &grid_w, &grid_h);
-            if (ok && (grid_w > MAX_GRID || grid_h > MAX_GRID)) {
-                cli_error("%s: at most %dx%d (got '%s')", a, MAX_GRID, MAX_GRID, v);
-                ok = false;
-            }
+            ok = parse_size_max(a, v, MAX_GRID, &grid_w, &grid_h);
         } else if (strcmp(a, "--zoom") == 0) {
             ok = parse_int(a, v, 4, 64, &zoom);
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
