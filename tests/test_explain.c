@@ -916,6 +916,50 @@ SR_TEST(sheet_too_large_is_refused_before_any_file)
     CHECK(access(sheet, F_OK) != 0);
 }
 
+/* A --sheet (or --webp) that names a frame of -o, by any spelling, or
+ * names the other, is refused before anything is written: the sheet
+ * replaced frame 2 of the same run. */
+SR_TEST(sheet_over_a_frame_of_the_same_run_is_refused)
+{
+    NEEDS_CLI();
+    char dir[1024], frames[1200], first[1300], sheet[1300];
+    snprintf(dir, sizeof dir, "%s/explain_sheet_frame", sr_test_out_dir());
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    REQUIRE(mkdir(dir, 0777) == 0);
+    snprintf(frames, sizeof frames, "%s/frames", dir);
+    snprintf(first, sizeof first, "%s/frame-001.png", frames);
+    const char *sheets[] = { "%s/frames/frame-002.png", "%s//frames//frame-003.png" };
+    for (int k = 0; k < 2; k++) {
+        snprintf(sheet, sizeof sheet, sheets[k], dir);
+        CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "-o", frames, "--sheet",
+                                                   sheet, NULL }), 2);
+        CHECK(access(frames, F_OK) != 0);
+        /* the frames there already (an earlier run's) */
+        CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "-o", frames, NULL }), 0);
+        CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "-o", frames, "--sheet",
+                                                   sheet, NULL }), 2);
+        int w = 0, h = 0;
+        uint8_t *px = NULL;
+        CHECK(sr_read_png(sheet, NULL, &w, &h, &px, NULL) == SR_OK);
+        int fw = 0, fh = 0;
+        uint8_t *fpx = NULL;
+        CHECK(sr_read_png(first, NULL, &fw, &fh, &fpx, NULL) == SR_OK);
+        CHECK(w == fw && h == fh);   /* still a frame, not a sheet */
+        free(px);
+        free(fpx);
+        nftw(frames, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    }
+    snprintf(sheet, sizeof sheet, "%s/pattern-%%d.png", dir);
+    snprintf(first, sizeof first, "%s/./pattern-4.png", dir);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "-o", sheet, "--sheet", first,
+                                               NULL }), 2);
+    CHECK(access(first, F_OK) != 0);
+    snprintf(sheet, sizeof sheet, "%s/sheet.png", dir);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "-o", frames, "--sheet", sheet,
+                                               NULL }), 0);
+    CHECK(access(first, F_OK) != 0);
+}
+
 /* clip4d's first frame divides a w <= 0 vertex without clipping, which
  * lands below the grid: its red edges and its label stop above the
  * caption band (16 + 12 x 16 + 16 - 8 = 216 frame pixels down) instead

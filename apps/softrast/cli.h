@@ -42,6 +42,9 @@ bool cli_output_is_input(const cli_inputs *in, const char *output, char *why, si
 /* The same as a check: false after printing "softrast: OPT: why". */
 bool cli_check_output(const cli_inputs *in, const char *opt, const char *output);
 void cli_inputs_free(cli_inputs *in);
+/* Whether two outputs of one run are the same file, written or not yet
+ * (one would replace the other). */
+bool cli_same_output(const char *a, const char *b);
 
 /* Image files (image_out.c): a JPEG when the name ends in .jpg or .jpeg
  * (any case), else a PNG. */

@@ -293,16 +293,51 @@ static bool write_png(const char *path, int w, int h, const uint8_t *px)
     return true;
 }
 
-static bool write_frames(const ex_canvas *c, const char *out)
+/* Frame i's file (from 0) of -o `out`; false after one line. */
+static bool frame_path(const char *out, int i, char *path, size_t size)
 {
     bool is_dir;
     frame_pattern(out, &is_dir);
+    int n = is_dir ? snprintf(path, size, "%s/frame-%03d.png", out, i + 1)
+                   : snprintf(path, size, out, i + 1);
+    if (n < 0 || (size_t)n >= size) {
+        cli_error("explain: -o: the file name is too long");
+        return false;
+    }
+    return true;
+}
+
+/* No output replaces another of the same run: --sheet or --webp naming a
+ * frame of -o, or each other, would leave one of them missing.  false
+ * after one line, before anything is written. */
+static bool outputs_distinct(int frames, const char *out, const char *sheet, const char *webp)
+{
+    const char *opts[2] = { "--sheet", "--webp" }, *files[2] = { sheet, webp };
+    if (sheet && webp && cli_same_output(sheet, webp)) {
+        cli_error("explain: --webp: '%s' is also --sheet; choose another file", webp);
+        return false;
+    }
+    for (int i = 0; out && i < frames; i++) {
+        char path[4096];
+        if (!frame_path(out, i, path, sizeof path)) {
+            return false;
+        }
+        for (int k = 0; k < 2; k++) {
+            if (files[k] && cli_same_output(files[k], path)) {
+                cli_error("explain: %s: '%s' is also frame %d of -o; choose another file",
+                          opts[k], files[k], i + 1);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+static bool write_frames(const ex_canvas *c, const char *out)
+{
     for (int i = 0; i < c->frame_count; i++) {
         char path[4096];
-        int n = is_dir ? snprintf(path, sizeof path, "%s/frame-%03d.png", out, i + 1)
-                       : snprintf(path, sizeof path, out, i + 1);
-        if (n < 0 || n >= (int)sizeof path) {
-            cli_error("explain: -o: the file name is too long");
+        if (!frame_path(out, i, path, sizeof path)) {
             return false;
         }
         /* The directory, or a pattern's, is made if missing. */
@@ -655,7 +690,7 @@ int cmd_explain(int argc, char **argv)
                       sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
             status = EXIT_FAILURE_RUN;
         }
-    } else if (sheet && !sheet_fits(&c)) {
+    } else if ((sheet && !sheet_fits(&c)) || !outputs_distinct(c.frame_count, out, sheet, webp)) {
         status = EXIT_USAGE;
     } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet)) ||
                (webp && !write_webp(&c, webp))) {

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 struct cli_input {
     dev_t dev;
@@ -97,4 +98,52 @@ void cli_inputs_free(cli_inputs *in)
     }
     free(in->items);
     *in = (cli_inputs){ 0 };
+}
+
+/* A path's directory from the root, spelt plainly (no "//" or "/./"),
+ * into dir; returns its last name. */
+static const char *split_path(const char *path, char *dir, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    size_t n = 0;
+    if (path[0] != '/' && getcwd(dir, size - 1)) {
+        n = strlen(dir);
+        dir[n++] = '/';
+    }
+    for (const char *c = path; slash && c < slash && n + 1 < size; c++) {
+        bool dot = c[0] == '.' && (c == path || c[-1] == '/') && (c[1] == '/');
+        if (dot) {
+            c++;        /* past "./" */
+            continue;
+        }
+        if (*c == '/' && n > 0 && dir[n - 1] == '/') {
+            continue;   /* a second '/' */
+        }
+        dir[n++] = *c;
+    }
+    if (n > 1 && dir[n - 1] == '/') {
+        n--;
+    }
+    snprintf(dir + n, size - n, "%s", n ? "" : "/");
+    return slash ? slash + 1 : path;
+}
+
+/* Two spellings of one output that does not exist yet are the same file
+ * when their last names match and their directories are one directory
+ * ("d/f", "./d//f", a link to d), or, not made yet, are written alike. */
+bool cli_same_output(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0) {
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    }
+    char da[4096], db[4096];
+    const char *na = split_path(a, da, sizeof da), *nb = split_path(b, db, sizeof db);
+    if (strcmp(na, nb) != 0) {
+        return false;
+    }
+    if (stat(da, &sa) == 0 && stat(db, &sb) == 0) {
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    }
+    return strcmp(da, db) == 0;
 }
