@@ -2489,6 +2489,80 @@ SR_TEST(thumbnail_and_explain_help_show_every_option_they_take)
     cli_run_free(&r);
 }
 
+/* Occurrences of `needle` in `s`. */
+static int count_in(const char *s, const char *needle)
+{
+    int n = 0;
+    for (const char *p = strstr(s, needle); p; p = strstr(p + 1, needle)) {
+        n++;
+    }
+    return n;
+}
+
+/* An option the others make useless (pbr's with a classic --shading,
+ * --filter without SSAA) is drawn without, as before, but says so in one
+ * warning line, once a command (not once a batch input), status 0. */
+SR_TEST(options_without_effect_warn_once)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], a[1100], b[1100], out[1100];
+    fresh_dir("no effect", dir, sizeof dir);
+    snprintf(a, sizeof a, "%s/a.obj", dir);
+    snprintf(b, sizeof b, "%s/b.obj", dir);
+    snprintf(out, sizeof out, "%s/out.png", dir);
+    const char *tri = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+    REQUIRE(write_whole(a, tri, strlen(tri)) && write_whole(b, tri, strlen(tri)));
+    const struct {
+        const char *opt, *value, *shading;
+    } pbr_only[] = {
+        { "--ground", NULL, "flat" }, { "--tonemap", "aces", "phong" },
+        { "--exposure", "1", "gouraud" }, { "--environment", "hemisphere", "unlit" },
+        { "--environment-intensity", "2", "normals" }, { "--shadows", "on", "depth" },
+    };
+    for (size_t i = 0; i < sizeof pbr_only / sizeof pbr_only[0]; i++) {
+        const char *args[] = { "render", a, "-o", out, "--size", "32x24", "--shading",
+                               pbr_only[i].shading, pbr_only[i].opt, pbr_only[i].value, NULL };
+        char want[160];
+        snprintf(want, sizeof want, "softrast: warning: %s has no effect with --shading %s "
+                 "(it is for pbr)\n", pbr_only[i].opt, pbr_only[i].shading);
+        cli_run r;
+        REQUIRE(run_cli(args, &r));
+        CHECK_EQ(r.status, 0);
+        if (strcmp(r.err, want) != 0) {
+            FAILF("%s: stderr \"%s\", expected \"%s\"", pbr_only[i].opt, r.err, want);
+        }
+        cli_run_free(&r);
+        /* under pbr (the default) it acts: no warning */
+        const char *pbr_args[] = { "render", a, "-o", out, "--size", "32x24", pbr_only[i].opt,
+                                   pbr_only[i].value, NULL };
+        REQUIRE(run_cli(pbr_args, &r));
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.err_len, 0);
+        cli_run_free(&r);
+    }
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", a, "-o", out, "--size", "32x24", "--filter", "tent"), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK(is_one_line(r.err, r.err_len) && strstr(r.err, "warning: --filter has no effect"));
+    cli_run_free(&r);
+    REQUIRE(run_cli(ARGS("render", a, "-o", out, "--size", "32x24", "--filter", "tent", "--aa",
+                         "ssaa2"), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err_len, 0);
+    cli_run_free(&r);
+    /* a batch of two: each warning once */
+    REQUIRE(run_cli(ARGS("render", a, b, "--output-dir", dir, "--size", "32x24", "--shading",
+                         "flat", "--ground", "--filter", "mitchell"), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(count_in(r.err, "warning: --ground has no effect"), 1);
+    CHECK_EQ(count_in(r.err, "warning: --filter has no effect"), 1);
+    CHECK_EQ(count_in(r.err, "\n"), 2);
+    cli_run_free(&r);
+#endif
+}
+
 /* explain's messages give the value's form as its --help writes it and the
  * limit it applies: --grid said "1 to 8192" (the framebuffer's) for a
  * limit of 256, --circle "X,Y,Z" for CX,CY,R. */

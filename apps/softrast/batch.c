@@ -547,6 +547,9 @@ int batch_render(int argc, char **argv)
     if (status < 0) {
         status = check_views(&b, &o);
     }
+    if (status < 0) {
+        render_opts_warn(&o);   /* once, not once an input */
+    }
     /* The job's options without the models, which come in the same order. */
     int n = 0;
     for (int i = 0, j = 0; i < rest_count; i++) {

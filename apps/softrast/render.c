@@ -1130,6 +1130,7 @@ int cmd_render(int argc, char **argv)
         return status;
     }
     const render_opts *o = &job->o;
+    render_opts_warn(o);
     /* thumbnail.c runs this render as "thumbnail": its output is the
      * OUTPUT argument there, not an -o the user never gave. */
     const char *out_opt = strcmp(argv[0], "thumbnail") == 0 ? "thumbnail: OUTPUT" : "-o";

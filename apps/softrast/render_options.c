@@ -42,6 +42,10 @@ static const char *const resample_names[] = { "box", "tent", "gaussian", "mitche
 static const char *const up_names[] = { "+x", "-x", "+y", "-y", "+z", "-z", NULL };
 static const char *const switch_names[] = { "on", "off", NULL };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
+/* What only pbr's program reads: the classic models draw without them. */
+static const char *const pbr_only[] = { "--tonemap", "--exposure", "--environment",
+                                        "--environment-intensity", "--shadows", "--ground",
+                                        NULL };
 
 static void render_help(void)
 {
@@ -281,6 +285,9 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         dst = values;                                                               \
     } while (0)
 
+        for (int k = 0; pbr_only[k]; k++) {
+            o->pbr_only_given |= IS(pbr_only[k]) ? 1u << k : 0;
+        }
         if ((IS("-h") || IS("--help") || IS("-v") || IS("--verbose")) && value) {
             cli_error("%s: takes no value", arg);
             return EXIT_USAGE;
@@ -301,6 +308,7 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             CHOICE(shading_names, sh, k_);
             o->shading = shading_values[sh];
             o->pbr = sh == 0;
+            o->shading_name = shading_names[sh];
         } else if (IS("--tonemap")) {
             CHOICE(tonemap_names, o->tonemap, tonemap_values[k_]);
         } else if (IS("--camera-index")) {
@@ -383,6 +391,7 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             o->msaa = aa_msaa[aa];
         } else if (IS("--filter")) {
             CHOICE(resample_names, o->filter, (sr_resample_filter)(SR_RESAMPLE_BOX + k_));
+            o->filter_given = true;
         } else if (IS("--texture")) {
             VALUE();
             o->texture = value;
@@ -545,6 +554,20 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         return EXIT_USAGE;
     }
     return -1;
+}
+
+void render_opts_warn(const render_opts *o)
+{
+    for (int k = 0; pbr_only[k] && !o->pbr; k++) {
+        if (o->pbr_only_given & 1u << k) {
+            cli_error("warning: %s has no effect with --shading %s (it is for pbr)", pbr_only[k],
+                      o->shading_name);
+        }
+    }
+    if (o->filter_given && o->ssaa <= 1) {
+        cli_error("warning: --filter has no effect without --aa ssaa2, ssaa3 or ssaa4 "
+                  "(it filters SSAA's samples)");
+    }
 }
 
 bool render_opts_image_light(const render_opts *o)

@@ -67,6 +67,12 @@ typedef struct render_opts {
     int msaa;                      /* 1: off; n: n samples per pixel, shaded once */
     float opacity;                 /* of the model; 1: opaque */
     sr_resample_filter filter;
+    /* For render_opts_warn: the --shading named (NULL: pbr, the default),
+     * the pbr-only options given (bits in the order of render_options.c's
+     * pbr_only) and whether --filter was given. */
+    const char *shading_name;
+    unsigned pbr_only_given;
+    bool filter_given;
     /* When set, each model named is passed to model_fn (a batch's list)
      * instead of being o->model; false from it stops the parse. */
     bool (*model_fn)(void *user, const char *path);
@@ -89,6 +95,11 @@ render_opts render_opts_defaults(void);
  * the defaults.  Returns -1 to continue, else the exit status (EXIT_OK
  * after --help). */
 int render_opts_parse(int argc, char **argv, render_opts *o);
+
+/* One warning line for each option given that the others make useless
+ * (--ground without pbr, --filter without SSAA).  The caller calls it once
+ * a command, not once a batch input; the exit status is not changed. */
+void render_opts_warn(const render_opts *o);
 
 /* The options ask for an environment's image-based light (studio or an
  * .hdr file, under pbr, without --ambient) rather than the hemisphere. */
