@@ -144,6 +144,9 @@ static int count_entries(const char *dir, char *first, size_t first_n)
     return n;
 }
 
+/* A model small enough to draw in any test. */
+#define ONE_TRIANGLE_OBJ "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"
+
 typedef struct cli_run {
     int status;         /* exit status; 128 + signal when killed; -1 when not run */
     char *out, *err;    /* captured stdout and stderr, NUL-terminated */
@@ -709,7 +712,7 @@ SR_TEST(camera_looking_along_both_ups_still_frames)
     fresh_dir("camera", dir, sizeof dir);
     snprintf(model, sizeof model, "%s/tri.obj", dir);
     snprintf(out, sizeof out, "%s/tri.png", dir);
-    const char *tri = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+    const char *tri = ONE_TRIANGLE_OBJ;
     REQUIRE(write_whole(model, tri, strlen(tri)));
     const char *args[] = { "render", model, "--camera", "eye=0,0,5,target=0,0,0,up=0,0,1",
                            "--size", "64x48", "--background", "black", "--shading", "unlit",
@@ -2489,6 +2492,74 @@ SR_TEST(thumbnail_and_explain_help_show_every_option_they_take)
     cli_run_free(&r);
 }
 
+static bool file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* Run args (from a directory of the test's) and expect `status`. */
+static void expect_status(const char *const *args, int status)
+{
+    cli_run r;
+    if (!run_cli(args, &r)) {
+        return;
+    }
+    if (r.status != status) {
+        FAILF("softrast %s ... %s: status %d, expected %d (stderr: %s)", args[0], args[1],
+              r.status, status, r.err);
+    }
+    cli_run_free(&r);
+}
+
+/* "--" ends the options (POSIX, getopt): every later argument is an
+ * operand, so files whose names start with '-' can be given.  Every
+ * command took "--" for an unknown option. */
+SR_TEST(end_of_options_makes_dash_names_operands)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], svg_src[1100], cwd[4096];
+    fresh_dir("end of options", dir, sizeof dir);
+    REQUIRE(getcwd(cwd, sizeof cwd) != NULL);
+    snprintf(svg_src, sizeof svg_src, "%s/data/svg/gradients.svg", sr_test_src_dir());
+    size_t svg_len = 0;
+    char *svg = read_whole(svg_src, &svg_len);
+    REQUIRE(svg);
+    REQUIRE(chdir(dir) == 0);
+    const char *tri = ONE_TRIANGLE_OBJ;
+    bool written = write_whole("-a.obj", tri, strlen(tri)) && write_whole("-b.obj", tri,
+                                                                          strlen(tri)) &&
+                   write_whole("-d.svg", svg, svg_len);
+    free(svg);
+    if (written) {
+        expect_status(ARGS("render", "--size", "32x24", "-o", "r.png", "--", "-a.obj"), 0);
+        CHECK(file_exists("r.png"));
+        /* after "--" an option's name is an operand too: a second model */
+        expect_status(ARGS("render", "-o", "x.png", "--", "-a.obj", "--size", "8x8"), 2);
+        CHECK(!file_exists("x.png"));
+        expect_status(ARGS("render", "--size", "16x16", "--output-dir", "batch", "--", "-a.obj",
+                           "-b.obj"), 0);
+        CHECK(file_exists("batch/-a.png") && file_exists("batch/-b.png"));
+        expect_status(ARGS("svg", "-o", "s.png", "--", "-d.svg"), 0);
+        CHECK(file_exists("s.png"));
+        expect_status(ARGS("svg", "--", "-d.svg"), 0);
+        CHECK(file_exists("-d.png"));
+        expect_status(ARGS("thumbnail", "-s", "16", "--", "-a.obj", "-t.png"), 0);
+        CHECK(file_exists("-t.png"));
+        expect_status(ARGS("demo", "-o", "demo.png", "--", "lines"), 0);
+        CHECK(file_exists("demo.png"));
+        expect_status(ARGS("explain", "dda", "--sheet", "e.png", "--"), 0);
+        CHECK(file_exists("e.png"));
+        expect_status(ARGS("explain", "--", "dda", "--sheet", "f.png"), 2);
+        CHECK(!file_exists("f.png"));
+    }
+    REQUIRE(chdir(cwd) == 0);
+    CHECK(written);
+#endif
+}
+
 /* Occurrences of `needle` in `s`. */
 static int count_in(const char *s, const char *needle)
 {
@@ -2512,7 +2583,7 @@ SR_TEST(options_without_effect_warn_once)
     snprintf(a, sizeof a, "%s/a.obj", dir);
     snprintf(b, sizeof b, "%s/b.obj", dir);
     snprintf(out, sizeof out, "%s/out.png", dir);
-    const char *tri = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+    const char *tri = ONE_TRIANGLE_OBJ;
     REQUIRE(write_whole(a, tri, strlen(tri)) && write_whole(b, tri, strlen(tri)));
     const struct {
         const char *opt, *value, *shading;

@@ -656,3 +656,38 @@ SR_TEST(view_resizes_logs_frames_and_reports_the_median)
     free(a);
     free(b);
 }
+
+/* A model after "--" whose name starts with '-': the viewer adds its
+ * mode options to the render arguments before the "--", not after it
+ * (where they would be operands), and prints the render command with
+ * the model after "--" too. */
+SR_TEST(model_after_end_of_options_is_viewed)
+{
+    if (!in_path("xvfb-run")) {
+        SKIP("xvfb-run is not installed (Debian: xvfb xauth)");
+    }
+    if (viewer_built() != 1) {
+        SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
+    }
+#ifdef SR_CLI_PATH
+    char dir[1100], cwd[4096];
+    snprintf(dir, sizeof dir, "%s/view-dash", sr_test_out_dir());
+    mkdir(dir, 0777);
+    REQUIRE(getcwd(cwd, sizeof cwd) != NULL);
+    REQUIRE(chdir(dir) == 0);
+    remove("shot.png");
+    bool written = write_text("-a.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+    run_result r = { 0 };
+    bool ran = written && run_view_xvfb((const char *[]){ "--size", "96x64", "--frames", "1",
+                                                          "--screenshot", "shot.png", "--",
+                                                          "-a.obj", NULL }, &r);
+    struct stat st;
+    bool shot = stat("shot.png", &st) == 0;
+    REQUIRE(chdir(cwd) == 0);
+    REQUIRE(written && ran);
+    CHECK_EQ(r.status, 0);
+    CHECK(shot);
+    CHECK_STR_CONTAINS(r.out, " -o shot.png -- -a.obj\n");
+    result_free(&r);
+#endif
+}

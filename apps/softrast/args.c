@@ -73,6 +73,18 @@ void cli_message(const char *fmt, ...)
     va_end(ap);
 }
 
+cli_arg_kind cli_arg(const char *arg, bool *ended)
+{
+    if (*ended || arg[0] != '-' || arg[1] == '\0') {
+        return CLI_ARG_OPERAND;
+    }
+    if (strcmp(arg, "--") == 0) {
+        *ended = true;
+        return CLI_ARG_END;
+    }
+    return CLI_ARG_OPTION;
+}
+
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out)
 {
     char *end;

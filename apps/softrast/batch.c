@@ -86,9 +86,14 @@ static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *re
                                           NULL };
     const char **dst[] = { &b->views_arg, &b->sheet, &b->columns_arg, &b->animate };
     int n = 0;
+    bool ended = false;
     rest[n++] = argv[0];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
+        if (cli_arg(a, &ended) != CLI_ARG_OPTION) {
+            rest[n++] = argv[i];   /* the models and "--", for the render options */
+            continue;
+        }
         int taken = batch_take_option(&b->c, argc, argv, &i);
         if (taken != 0) {
             b->any = true;

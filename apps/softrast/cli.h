@@ -84,6 +84,14 @@ void cli_message(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
  * thread holds its own messages. */
 void cli_capture(char *buf, size_t size);
 
+/* How a command reads one argument, by POSIX's utility syntax: an
+ * operand (a file, a name) does not start with '-', or is "-" alone, or
+ * comes after "--"; the first "--" ends the options and is itself
+ * dropped; the rest are options.  *ended (false before the first
+ * argument) remembers the "--". */
+typedef enum cli_arg_kind { CLI_ARG_OPTION, CLI_ARG_OPERAND, CLI_ARG_END } cli_arg_kind;
+cli_arg_kind cli_arg(const char *arg, bool *ended);
+
 /* Parsers: return false after printing "softrast render: OPTION: why". */
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);
 bool parse_float(const char *opt, const char *s, float lo, float hi, float *out);

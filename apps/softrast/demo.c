@@ -32,9 +32,19 @@ int cmd_demo(int argc, char **argv)
     const char *name = NULL;
     char default_out[128];
     demo_args args = { NULL, 0 };
+    bool ended = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+        cli_arg_kind kind = cli_arg(a, &ended);
+        if (kind == CLI_ARG_END) {
+            continue;
+        } else if (kind == CLI_ARG_OPERAND) {
+            if (name) {
+                cli_error("demo: more than one demo named ('%s' and '%s')", name, a);
+                return EXIT_USAGE;
+            }
+            name = a;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             demo_help(stdout);
             return EXIT_OK;
         } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
@@ -51,13 +61,8 @@ int cmd_demo(int argc, char **argv)
             if (!parse_int(a, argv[++i], 1, 32, &args.scale)) {
                 return EXIT_USAGE;
             }
-        } else if (a[0] == '-') {
-            cli_error("demo: unknown option '%s' (try 'softrast demo --help')", a);
-            return EXIT_USAGE;
-        } else if (!name) {
-            name = a;
         } else {
-            cli_error("demo: more than one demo named ('%s' and '%s')", name, a);
+            cli_error("demo: unknown option '%s' (try 'softrast demo --help')", a);
             return EXIT_USAGE;
         }
     }

@@ -445,18 +445,21 @@ int cmd_explain(int argc, char **argv)
         usage(stdout);
         return EXIT_OK;
     }
-    if (argc < 2 || argv[1][0] == '-') {
+    bool ended = false;
+    int first = argc >= 2 && cli_arg(argv[1], &ended) == CLI_ARG_END ? 2 : 1;
+    if (first >= argc || cli_arg(argv[first], &ended) != CLI_ARG_OPERAND) {
         usage(stderr);
         return EXIT_USAGE;
     }
+    const char *name = argv[first];
     const algorithm *alg = NULL;
     for (size_t i = 0; i < sizeof algorithms / sizeof algorithms[0]; i++) {
-        if (strcmp(argv[1], algorithms[i].name) == 0) {
+        if (strcmp(name, algorithms[i].name) == 0) {
             alg = &algorithms[i];
         }
     }
     if (!alg) {
-        cli_error("explain: unknown algorithm '%s' (try 'softrast explain --help')", argv[1]);
+        cli_error("explain: unknown algorithm '%s' (try 'softrast explain --help')", name);
         return EXIT_USAGE;
     }
     ex_primitive prim = alg->example;
@@ -474,8 +477,15 @@ int cmd_explain(int argc, char **argv)
     ex_interp interpolation = EX_INTERP_PERSPECTIVE;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL, *webp = NULL;
-    for (int i = 2; i < argc; i++) {
+    for (int i = first + 1; i < argc; i++) {
         const char *a = argv[i];
+        cli_arg_kind kind = cli_arg(a, &ended);
+        if (kind == CLI_ARG_END) {
+            continue;
+        } else if (kind == CLI_ARG_OPERAND) {
+            cli_error("explain: takes one ALGORITHM, then options (got '%s' too)", a);
+            return EXIT_USAGE;
+        }
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return EXIT_OK;

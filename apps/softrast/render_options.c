@@ -246,10 +246,40 @@ static bool material_kv(void *user, const char *opt, const char *key, const char
     return false;
 }
 
+/* A model named on the command line; -1 to go on, else the exit status. */
+static int take_model(const char *cmd, const char *arg, render_opts *o)
+{
+    if (!*arg) {
+        cli_error("%s: the model's file name is empty", cmd);
+        return EXIT_USAGE;
+    } else if (o->model_fn) {
+        if (!o->model_fn(o->model_user, arg)) {
+            return EXIT_FAILURE_RUN;
+        }
+    } else if (!o->model) {
+        o->model = arg;
+    } else {
+        cli_error("%s: more than one model given ('%s' and '%s')", cmd, o->model, arg);
+        return EXIT_USAGE;
+    }
+    return -1;
+}
+
 int render_opts_parse(int argc, char **argv, render_opts *o)
 {
+    bool ended = false;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
+        cli_arg_kind kind = cli_arg(arg, &ended);
+        if (kind == CLI_ARG_END) {
+            continue;
+        } else if (kind == CLI_ARG_OPERAND) {
+            int status = take_model(argv[0], arg, o);
+            if (status >= 0) {
+                return status;
+            }
+            continue;
+        }
         char optbuf[64];
         const char *value = NULL;
         /* --opt=value as well as --opt value. */
@@ -518,20 +548,8 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             }
         } else if (IS("-v") || IS("--verbose")) {
             o->verbose = true;
-        } else if (arg[0] == '-' && arg[1] != 0) {
-            cli_error("%s: unknown option '%s' (try 'softrast %s --help')", argv[0], arg, argv[0]);
-            return EXIT_USAGE;
-        } else if (!*arg) {
-            cli_error("%s: the model's file name is empty", argv[0]);
-            return EXIT_USAGE;
-        } else if (o->model_fn) {
-            if (!o->model_fn(o->model_user, arg)) {
-                return EXIT_FAILURE_RUN;
-            }
-        } else if (!o->model) {
-            o->model = arg;
         } else {
-            cli_error("%s: more than one model given ('%s' and '%s')", argv[0], o->model, arg);
+            cli_error("%s: unknown option '%s' (try 'softrast %s --help')", argv[0], arg, argv[0]);
             return EXIT_USAGE;
         }
 #undef IS

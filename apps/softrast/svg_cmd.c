@@ -119,9 +119,17 @@ typedef struct svg_args {
 static int parse_args(int argc, char **argv, svg_args *a)
 {
     a->inputs = (const char *const *)argv + 1;
+    bool ended = false;
     for (int i = 1; i < argc; i++) {
         const char *s = argv[i];
         bool has_value = i + 1 < argc;
+        cli_arg_kind kind = cli_arg(s, &ended);
+        if (kind == CLI_ARG_END) {
+            continue;
+        } else if (kind == CLI_ARG_OPERAND) {
+            argv[1 + a->count++] = argv[i];
+            continue;
+        }
         int taken = batch_take_option(&a->batch, argc, argv, &i);
         if (taken == 1) {
             continue;
@@ -156,11 +164,9 @@ static int parse_args(int argc, char **argv, svg_args *a)
                 }
                 a->desc.background = (sr_rgba){ c.x, c.y, c.z, 1 };
             }
-        } else if (s[0] == '-' && s[1]) {
+        } else {
             cli_error("svg: unknown option '%s' (try 'softrast svg --help')", s);
             return EXIT_USAGE;
-        } else {
-            argv[1 + a->count++] = argv[i];
         }
     }
     if (a->count == 0 && !a->batch.list) {

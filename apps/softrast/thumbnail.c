@@ -44,12 +44,11 @@ static bool input_path(const char *input, char *path, size_t size)
 {
     const char *scheme = "file://";
     if (strncmp(input, scheme, strlen(scheme)) != 0) {
-        if (strlen(input) + 3 > size) {
+        if (strlen(input) + 1 > size) {
             cli_error("thumbnail: the input path is too long");
             return false;
         }
-        /* A name starting with '-' would read as an option of render. */
-        snprintf(path, size, "%s%s", input[0] == '-' ? "./" : "", input);
+        snprintf(path, size, "%s", input);
         return true;
     }
     const char *p = input + strlen(scheme);
@@ -88,8 +87,20 @@ int cmd_thumbnail(int argc, char **argv)
     bool transparent = false;
     const char *files[2] = { NULL, NULL };
     int nfiles = 0;
+    bool ended = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
+        cli_arg_kind kind = cli_arg(a, &ended);
+        if (kind == CLI_ARG_END) {
+            continue;
+        } else if (kind == CLI_ARG_OPERAND) {
+            if (nfiles == 2) {
+                cli_error("thumbnail: expected INPUT OUTPUT, got a third file '%s'", a);
+                return EXIT_USAGE;
+            }
+            files[nfiles++] = a;
+            continue;
+        }
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             usage(stdout);
             return EXIT_OK;
@@ -104,13 +115,8 @@ int cmd_thumbnail(int argc, char **argv)
             }
         } else if (strcmp(a, "--transparent") == 0) {
             transparent = true;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            cli_error("thumbnail: unknown option '%s' (try 'softrast thumbnail --help')", a);
-            return EXIT_USAGE;
-        } else if (nfiles < 2) {
-            files[nfiles++] = a;
         } else {
-            cli_error("thumbnail: expected INPUT OUTPUT, got a third file '%s'", a);
+            cli_error("thumbnail: unknown option '%s' (try 'softrast thumbnail --help')", a);
             return EXIT_USAGE;
         }
     }
@@ -140,7 +146,13 @@ int cmd_thumbnail(int argc, char **argv)
         return EXIT_USAGE;
     }
     snprintf(size_arg, sizeof size_arg, "%dx%d", size, size);
-    char *render_argv[] = { "thumbnail", model, "-o", output, "--size", size_arg,
-                            "--background", "transparent", NULL };
-    return cmd_render(transparent ? 8 : 6, render_argv);
+    char *render_argv[10] = { "thumbnail", "-o", output, "--size", size_arg };
+    int n = 5;
+    if (transparent) {
+        render_argv[n++] = "--background";
+        render_argv[n++] = "transparent";
+    }
+    render_argv[n++] = "--";   /* a model named "-x.stl" is not an option */
+    render_argv[n++] = model;
+    return cmd_render(n, render_argv);
 }

@@ -62,7 +62,8 @@ static void view_help(void)
  * arguments. */
 int cmd_view(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++) {
+    bool ended = false;
+    for (int i = 1; i < argc && cli_arg(argv[i], &ended) != CLI_ARG_END; i++) {
         if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
             view_help();
             return EXIT_OK;
@@ -121,6 +122,8 @@ typedef struct view_opts {
     bool log, no_overlay, no_vsync;
     int argc;                 /* the render arguments, argv[0] = "view" */
     const char *argv[MAX_ARGS];
+    int operand_count;        /* the arguments after "--", which follow the */
+    const char *operands[16]; /* mode table's options in the render arguments */
 } view_opts;
 
 typedef struct viewer {
@@ -162,8 +165,19 @@ typedef struct viewer {
 static int parse_view_args(int argc, char **argv, view_opts *o)
 {
     o->argv[o->argc++] = "view";
+    bool ended = false;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i], *value = NULL;
+        if (cli_arg(arg, &ended) == CLI_ARG_END) {
+            continue;
+        } else if (ended) {
+            if (o->operand_count == (int)(sizeof o->operands / sizeof o->operands[0])) {
+                cli_error("view: too many arguments");
+                return EXIT_USAGE;
+            }
+            o->operands[o->operand_count++] = arg;
+            continue;
+        }
         char name[64];
         const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
         if (eq && (size_t)(eq - arg) < sizeof name) {
@@ -255,14 +269,33 @@ static double median(const double *v, size_t n)
     return m;
 }
 
-/* The render arguments of the current modes: the user's, then the table's. */
-static int current_args(const viewer *v, const char **argv)
+/* The operands given after "--", after argv[0..n-1] and a "--". */
+static int operand_args(const viewer *v, const char **argv, int n)
+{
+    if (v->o.operand_count > 0) {
+        argv[n++] = "--";
+        for (int i = 0; i < v->o.operand_count; i++) {
+            argv[n++] = v->o.operands[i];
+        }
+    }
+    return n;
+}
+
+/* The render options of the current modes: the user's, then the table's. */
+static int option_args(const viewer *v, const char **argv)
 {
     int n = 0;
     for (int i = 0; i < v->base_argc; i++) {
         argv[n++] = v->base[i];
     }
     return view_modes_args(&v->modes, argv, n);
+}
+
+/* The render arguments of the current modes: the options, then the
+ * operands given after "--". */
+static int current_args(const viewer *v, const char **argv)
+{
+    return operand_args(v, argv, option_args(v, argv));
 }
 
 /* Shell quoting for the printed command: plain words stay bare. */
@@ -293,7 +326,7 @@ static void put_word(FILE *f, const char *s)
 static void print_render_command(const viewer *v, FILE *f, const char *output)
 {
     const char *argv[MAX_ARGS];
-    int n = current_args(v, argv);
+    int n = option_args(v, argv);
     fputs("softrast render", f);
     for (int i = 1; i < n; i++) {
         put_word(f, argv[i]);
@@ -312,6 +345,11 @@ static void print_render_command(const viewer *v, FILE *f, const char *output)
     put_word(f, size);
     fputs(" -o", f);
     put_word(f, output);
+    const char *operands[MAX_ARGS];
+    int m = operand_args(v, operands, 0);
+    for (int i = 0; i < m; i++) {
+        put_word(f, operands[i]);
+    }
     fputc('\n', f);
     fflush(f);
 }
