@@ -77,7 +77,8 @@ def ibl_tables():
 
 
 sources.append(ibl_tables())
-macros = [("_POSIX_C_SOURCE", "200809L")]
+# zlib is required (libpng's), so gzip-compressed SVG always reads.
+macros = [("_POSIX_C_SOURCE", "200809L"), ("SR_HAVE_ZLIB", "1")]
 include_dirs = [os.path.join(ROOT, "include"), os.path.join(ROOT, "src"), numpy.get_include()]
 libraries = ["png", "z", "m", "pthread"]
 compile_args = ["-std=c11", "-ffp-contract=off", "-fvisibility=hidden", "-Wno-psabi"]

@@ -90,6 +90,22 @@ bool run(const char *const *args, run_result *r)
     return run_env(args, NO_ENV, NULL, r);
 }
 
+bool same_file_bytes(const char *a, const char *b)
+{
+    size_t na = 0, nb = 0;
+    uint8_t *pa = sr_test_read_file(a, &na), *pb = sr_test_read_file(b, &nb);
+    bool same = pa && pb && na == nb && memcmp(pa, pb, na) == 0;
+    free(pa);
+    free(pb);
+    return same;
+}
+
+bool cli_reads_svg(void)
+{
+    run_result r;
+    return run(ARGS("svg", "--help"), &r) && r.status == 0;
+}
+
 int count_lines(const char *s)
 {
     int n = 0;

@@ -20,6 +20,16 @@
 #define NEED_CLI() SKIP("the softrast tool is not part of this build")
 #endif
 
+/* Whether the tool reads SVG (was built with expat). */
+bool cli_reads_svg(void);
+#define NEED_SVG()                                                     \
+    do {                                                               \
+        NEED_CLI();                                                    \
+        if (!cli_reads_svg()) {                                        \
+            SKIP("softrast was built without expat");                  \
+        }                                                              \
+    } while (0)
+
 typedef struct run_result {
     int status;         /* exit status, 128 + signal when killed, -1 when not run */
     char err[8192];     /* stderr, NUL-terminated (cut at the buffer's size) */
@@ -50,6 +60,8 @@ int count_lines(const char *s);
 const char *fresh_dir(const char *name, char *buf, size_t n);
 bool write_text(const char *path, const char *text);
 bool file_exists(const char *path);
+/* Whether two files hold the same bytes (false when one cannot be read). */
+bool same_file_bytes(const char *a, const char *b);
 
 /* The records of a log file (at most max, each checked to hold the ten
  * fields); -1 when it cannot be read or a line is not a record. */

@@ -135,7 +135,7 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 mkdir "$dir/sub"
 touch "$dir/a.obj" "$dir/b.STL" "$dir/c.glb" "$dir/my part.ply" "$dir/notes.txt" "$dir/logo.svg" \
-    "$dir/run.jsonl"
+    "$dir/icon.SVGZ" "$dir/run.jsonl"
 commands=$(softrast --help | items_under commands: | grep -v '^softrast')
 
 checks() {
@@ -175,7 +175,7 @@ checks() {
     expect "softrast render $dir/" "$models"
     expect "softrast thumbnail $dir/" "$models"
     expect "softrast view $dir/" "$models"
-    expect "softrast svg $dir/" "$(printf '%s\n' logo.svg sub)"
+    expect "softrast svg $dir/" "$(printf '%s\n' icon.SVGZ logo.svg sub)"
     expect "softrast render --log $dir/" "$(printf '%s\n' run.jsonl sub)"
     expect "softrast render --output-dir $dir/" "sub"
     expect "softrast svg -o $dir/" "$(cd "$dir" && ls)"

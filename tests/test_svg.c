@@ -252,7 +252,9 @@ SR_TEST(malformed_input_is_reported_with_file_and_line)
     expect_input_error("bad_size.svg", "<svg width='100000' height='10'/>", "outside 1..8192");
     /* said as such, not expat's "no element found" and "invalid token" */
     expect_input_error("empty.svg", "", "empty.svg:1: file is empty");
-    expect_input_error("gzip.svgz", "\x1f\x8b\x08\x08 gzip", "gzip.svgz:1: gzip-compressed");
+    /* gzip's first bytes: read as a .svgz (test_svgz.c), here a broken one */
+    expect_input_error("gzip.svgz", "\x1f\x8b\x08\x08 gzip",
+                       "gzip.svgz: gzip-compressed data that does not read (");
 }
 
 /* Messages count lines as XML does: CR, LF and CR LF each end one, also

@@ -13,30 +13,6 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static bool have_svg(void)
-{
-    run_result r;
-    return run(ARGS("svg", "--help"), &r) && r.status == 0;
-}
-
-#define NEED_SVG()                                                     \
-    do {                                                               \
-        NEED_CLI();                                                    \
-        if (!have_svg()) {                                             \
-            SKIP("softrast was built without expat");                  \
-        }                                                              \
-    } while (0)
-
-static bool same_bytes(const char *a, const char *b)
-{
-    size_t na = 0, nb = 0;
-    uint8_t *pa = sr_test_read_file(a, &na), *pb = sr_test_read_file(b, &nb);
-    bool same = pa && pb && na == nb && memcmp(pa, pb, na) == 0;
-    free(pa);
-    free(pb);
-    return same;
-}
-
 /* A small drawing: a square of `color` on a 16 x 16 canvas. */
 static bool write_svg(const char *path, const char *color)
 {
@@ -121,7 +97,7 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
             failed++;
             continue;
         }
-        if (!same_bytes(want, got) || !same_bytes(want, got1)) {
+        if (!same_file_bytes(want, got) || !same_file_bytes(want, got1)) {
             FAILF("%s: the batch's image is not the single run's", e->d_name);
         }
         compared++;
@@ -145,7 +121,7 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
     snprintf(want, sizeof want, "%s/gradients_single.png", single);
     REQUIRE(run(ARGS("svg", one_in, "-o", want, "--size", "40x30", "--background", "white"),
                 &r));
-    CHECK(same_bytes(want, one_out));
+    CHECK(same_file_bytes(want, one_out));
 }
 
 /* A broken drawing in the middle: one line naming it, a failed record
@@ -289,7 +265,7 @@ SR_TEST(directory_is_searched_below_it)
     char a[2048], b[2048];
     snprintf(a, sizeof a, "%s/top.png", out);
     snprintf(b, sizeof b, "%s/top.png", out2);
-    CHECK(same_bytes(a, b));
+    CHECK(same_file_bytes(a, b));
     snprintf(b, sizeof b, "%s/mid.png", out2);   /* a listed file's {rel} is its name */
     CHECK(file_exists(b));
 }

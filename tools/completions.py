@@ -133,7 +133,7 @@ def zsh(commands, models):
         if kind == "models":
             specs.append("*:model:" + zsh_files(models))
         elif kind == "svg":
-            specs.append("*:drawing:" + zsh_files("svg"))
+            specs.append("*:drawing:" + zsh_files("svg|svgz"))
         elif kind == "names":
             specs.append("1:%s:->name" % what)
         else:
@@ -234,7 +234,7 @@ def fish(commands, models):
         if kind == "models":
             out.append("complete -c softrast -n %s -a %s" % (cond, sq("(__softrast_files '%s')" % models)))
         elif kind == "svg":
-            out.append("complete -c softrast -n %s -a %s" % (cond, sq("(__softrast_files svg)")))
+            out.append("complete -c softrast -n %s -a %s" % (cond, sq("(__softrast_files 'svg|svgz')")))
         elif kind == "names":
             for n, d in helptext.names(blocks):
                 out.append("complete -c softrast -n %s -a %s -d %s"

@@ -25,7 +25,8 @@ static void svg_help(FILE *f)
                "Render an SVG 1.1 drawing (shapes, paths, transforms, fills, strokes and\n"
                "dashes, markers, style sheets, defs and use, gradients, patterns, clip paths,\n"
                "masks, group opacity, blend modes, PNG, JPEG and SVG images; no text or\n"
-               "filters) with softrast's 2D toolkit; docs/draw2d.md lists what is supported.\n\n"
+               "filters) with softrast's 2D toolkit; docs/draw2d.md lists what is supported.\n"
+               "A gzip-compressed drawing (.svgz, known by its first bytes) reads as well.\n\n"
                "options:\n"
                "  -o, --output FILE    PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
                "                       (needs --background) (default: INPUT with .png)\n"
@@ -37,7 +38,7 @@ static void svg_help(FILE *f)
                "  softrast svg INPUT.svg|DIR|PATTERN... [--batch LIST] [options]\n"
                "                           renders every drawing in one process with the\n"
                "                           options above; a directory is searched (below it\n"
-               "                           too) for .svg files; a quoted pattern\n"
+               "                           too) for .svg and .svgz files; a quoted pattern\n"
                "                           ('icons/*.svg') is expanded here\n");
     batch_help_options(f);
     batch_help_status(f);
@@ -180,16 +181,22 @@ static int parse_args(int argc, char **argv, svg_args *a)
     return -1;
 }
 
+/* The length of name's .svg or .svgz (gzip-compressed) ending, any case;
+ * 0 for another name. */
+static size_t svg_suffix(const char *name)
+{
+    const char *dot = strrchr(name, '.');
+    return dot && dot != name && (strcasecmp(dot, ".svg") == 0 || strcasecmp(dot, ".svgz") == 0)
+               ? strlen(dot) : 0;
+}
+
 static int render_one(svg_args *a)
 {
     const char *input = a->inputs[0], *output = a->output;
     sr_svg_desc opt = a->desc;
     char default_out[4096];
     if (!output) {
-        size_t n = strlen(input);
-        if (n > 4 && strcmp(input + n - 4, ".svg") == 0) {
-            n -= 4;
-        }
+        size_t n = strlen(input) - svg_suffix(input);
         snprintf(default_out, sizeof default_out, "%.*s.png", (int)n, input);
         output = default_out;
     }
@@ -275,8 +282,7 @@ static void warn_held(void *user, const char *message)
 
 static bool is_svg_name(const char *name)
 {
-    const char *dot = strrchr(name, '.');
-    return dot && dot != name && strcasecmp(dot, ".svg") == 0;
+    return svg_suffix(name) > 0;
 }
 
 /* batch_draw_fn: read and render one drawing. */

@@ -2,6 +2,7 @@
 from a path or from memory, errors naming what is wrong, and the reader's
 warnings through the warnings module."""
 
+import gzip
 import os
 import pathlib
 import subprocess
@@ -66,6 +67,17 @@ def test_bytes_str_and_path_like_render_as_the_path(name):
     assert np.array_equal(render_quietly(memoryview(document), scale=0.75), want)
     assert np.array_equal(render_quietly(document.decode("utf-8"), scale=0.75), want)
     assert np.array_equal(render_quietly(path, scale=0.75), want)
+
+
+@pytest.mark.parametrize("name", DRAWINGS)
+def test_gzip_compressed_renders_as_the_document(tmp_path, name):
+    """.svgz: known by gzip's first bytes, from memory or from a file."""
+    path = SVG_DIR / name
+    want = render_quietly(str(path))
+    packed = gzip.compress(path.read_bytes())
+    assert np.array_equal(render_quietly(packed), want)
+    (tmp_path / "drawing.svgz").write_bytes(packed)
+    assert np.array_equal(render_quietly(tmp_path / "drawing.svgz"), want)
 
 
 def test_images_resolve_next_to_the_file_only():

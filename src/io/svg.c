@@ -2910,6 +2910,23 @@ static void draw_document_image(svg_doc *doc, svg_doc *in, const svg_node *node,
     free(clip);
 }
 
+/* The document's bytes: data..size, or the bytes a gzip-compressed one
+ * (.svgz) inflates to, in *plain for the caller to free (else NULL), no
+ * more than a plain document may have.  SR_OK, else a result and why. */
+static sr_result document_bytes(const char **data, size_t *size, char **plain, char *why,
+                                size_t why_size)
+{
+    *plain = NULL;
+    if (!svg_is_gzip(*data, *size)) {
+        return SR_OK;
+    }
+    sr_result r = svg_gunzip(*data, *size, SR_SVG_MAX_INPUT_BYTES, plain, size, why, why_size);
+    if (r == SR_OK) {
+        *data = *plain;
+    }
+    return r;
+}
+
 /* An <image> of an SVG document (data..size; path: the file it came
  * from, NULL for a data: URI).  A file that is being drawn already - a
  * document including itself, directly or through others - is refused. */
@@ -2927,15 +2944,21 @@ static void draw_svg_image(svg_doc *doc, const svg_node *node, const frame *f, c
                  MAX_NESTED_IMAGES);
         return;
     }
+    char *plain, why[256];
+    sr_result r = document_bytes(&data, &size, &plain, why, sizeof why);
+    if (r != SR_OK) {
+        svg_fail(doc, r, "image \"%s\": %s", href, why);
+        return;
+    }
     /* Reading costs its bytes of the pixel work, so that an image drawn
      * again and again cannot be read without bound; its elements and
      * points have the allowance its bytes would have inline. */
-    if (!work_within_budget(doc, (double)size)) {
-        return;
-    }
-    svg_doc *in = calloc(1, sizeof *in);
+    svg_doc *in = work_within_budget(doc, (double)size) ? calloc(1, sizeof *in) : NULL;
     if (!in) {
-        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        if (doc->status == SR_OK) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        }
+        free(plain);
         return;
     }
     in->file = path ? path : doc->file;
@@ -2965,6 +2988,7 @@ static void draw_svg_image(svg_doc *doc, const svg_node *node, const frame *f, c
     }
     free_document(in);
     free(in);
+    free(plain);
 }
 
 /* Whether bytes hold XML (an SVG) rather than a PNG or a JPEG: '<'
@@ -3003,7 +3027,7 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
                sr__read_file_as(path, "an image file", &file, &n, &err) == SR_OK) {
         bytes = (uint8_t *)file;
     }
-    if (bytes && looks_like_xml(bytes, n)) {
+    if (bytes && (looks_like_xml(bytes, n) || svg_is_gzip(bytes, n))) {
         draw_svg_image(doc, node, f, (const char *)bytes, n, path, href);
         r = SR_OK;
     } else if (bytes) {
@@ -3864,11 +3888,10 @@ static bool read_document(svg_doc *doc, const char *data, size_t size)
     XML_SetElementHandler(doc->parser, on_start, on_end);
     XML_SetCharacterDataHandler(doc->parser, on_text);
     const unsigned char *u = (const unsigned char *)data;
-    /* expat would say "not well-formed (invalid token)" of both. */
-    if (size == 0 || (size >= 2 && u[0] == 0x1f && u[1] == 0x8b)) {
+    /* expat would say "not well-formed (invalid token)". */
+    if (size == 0) {
         doc->line = 1;
-        svg_fail(doc, SR_BAD_FORMAT, "%s", size == 0 ? "file is empty"
-                 : "gzip-compressed (an .svgz file): decompress it first (zcat)");
+        svg_fail(doc, SR_BAD_FORMAT, "file is empty");
         return false;
     }
     /* In UTF-16 (a NUL among the first bytes, or its byte-order mark) a
@@ -3943,8 +3966,16 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                  size, SR_SVG_MAX_INPUT_BYTES >> 20);
         return SR_TOO_LARGE;
     }
+    /* .svgz: the budgets below follow the document's own bytes. */
+    char *plain, why[256];
+    sr_result r = document_bytes(&data, &size, &plain, why, sizeof why);
+    if (r != SR_OK) {
+        snprintf(msg, msg_size, "%s: %s", name, why);
+        return r;
+    }
     svg_doc *doc = calloc(1, sizeof *doc);
     if (!doc) {
+        free(plain);
         snprintf(msg, msg_size, "%s: out of memory", name);
         return SR_OUT_OF_MEMORY;
     }
@@ -3976,6 +4007,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                            .warnings = doc->warnings };
     free_document(doc);
     free(doc);
+    free(plain);
     return status;
 }
 

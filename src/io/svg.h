@@ -125,6 +125,16 @@ bool svg_data_uri(const char *uri, uint8_t **out, size_t *size);
  * URLs, paths that climb out with "..", or out of memory. */
 char *svg_image_path(const char *document, const char *href);
 
+/* ---- gzip-compressed documents (svg_gzip.c) ----------------------------- */
+
+/* Whether bytes start as gzip's do (1f 8b), whatever the file's name. */
+bool svg_is_gzip(const void *data, size_t size);
+/* The bytes gzip-compressed data stands for, malloc'd in *out (*out_size
+ * of them), refused as SR_TOO_LARGE once they pass `limit` (a gzip bomb is
+ * not inflated to the end); else a result and one line in why. */
+sr_result svg_gunzip(const void *data, size_t size, size_t limit, char **out, size_t *out_size,
+                     char *why, size_t why_size);
+
 /* ---- blend modes (svg_blend.c) ------------------------------------------ */
 
 typedef enum svg_blend_kind {
