@@ -1707,7 +1707,7 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
     }
     double offset = st->dash_offset * (st->dash_offset_pct ? diag / 100 : 1);
     sr_polygon2 poly = sr_path_polygon(path);
-    double pieces = svg_path_length(path) / period * st->n_dash + poly.contour_count;
+    double pieces = sr_path_length(path) / period * st->n_dash + poly.contour_count;
     double est = poly.point_count + 2 * pieces;
     if (!(period > 0) || !isfinite(est) || doc->points_used + est > doc->points_budget) {
         svg_fail(doc, SR_TOO_LARGE,
@@ -1720,7 +1720,7 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
     sr_path *out = NULL;
     sr_result r = sr_make_path(doc->ctx, tol, &out);
     if (r == SR_OK) {
-        r = svg_dash_path(path, dash, st->n_dash, offset, out);
+        r = sr_path_dash(doc->ctx, path, dash, st->n_dash, offset, out);
     }
     if (r != SR_OK) {
         sr_destroy_path(doc->ctx, out);

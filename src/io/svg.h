@@ -143,19 +143,7 @@ int svg_blend_mode(const char *name);
  * opaque, src itself where it is transparent, mixed by its alpha. */
 sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba src);
 
-/* ---- dashes (svg_dash.c) ----------------------------------------------- */
-
-/* Values of a stroke-dasharray, at most. */
-#define SVG_MAX_DASHES 32
-
-/* The length of the flattened path, closing segments included. */
-double svg_path_length(const sr_path *path);
-
-/* Append to out the dashes of path `in`: dash[0..n) are the lengths of
- * dashes and gaps in turn (n even, each >= 0, their sum > 0), the pattern
- * starting `offset` into itself at every subpath.  The caller bounds the
- * work: about length / sum * n dashes. */
-sr_result svg_dash_path(const sr_path *in, const double *dash, int n, double offset,
-                        sr_path *out);
+/* Values of a stroke-dasharray, at most (an odd list doubled). */
+#define SVG_MAX_DASHES SR_MAX_DASHES
 
 #endif
