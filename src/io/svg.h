@@ -20,6 +20,15 @@ typedef enum svg_paint_kind {
  * "none".  *out is set for SVG_PAINT_COLOR, alpha included. */
 svg_paint_kind svg_parse_color(const char *s, sr_rgba *out);
 
+/* ---- numbers and separators (svg_path_data.c) ------------------------- */
+
+/* s past blanks; past blanks, one comma and blanks. */
+const char *svg_skip_ws(const char *s);
+const char *svg_skip_ws_comma(const char *s);
+/* An SVG number (sign, digits, fraction, exponent), no leading blanks:
+ * *s moved past it; false when there is none or it is beyond double. */
+bool svg_parse_number(const char **s, double *out);
+
 /* ---- the document tree (svg.c) ---------------------------------------- */
 
 typedef struct svg_node {
