@@ -20,8 +20,13 @@ static sr_path *new_path(void)
 static bool same_path(const sr_path *a, const sr_path *b)
 {
     sr_polygon2 pa = sr_path_polygon(a), pb = sr_path_polygon(b);
-    if (pa.point_count != pb.point_count || pa.contour_count != pb.contour_count ||
-        memcmp(pa.points, pb.points, (size_t)pa.point_count * sizeof *pa.points) != 0 ||
+    if (pa.point_count != pb.point_count || pa.contour_count != pb.contour_count) {
+        return false;
+    }
+    if (pa.point_count == 0) {
+        return true; /* no arrays to compare (they may be NULL) */
+    }
+    if (memcmp(pa.points, pb.points, (size_t)pa.point_count * sizeof *pa.points) != 0 ||
         memcmp(pa.contour_counts, pb.contour_counts,
                (size_t)pa.contour_count * sizeof *pa.contour_counts) != 0) {
         return false;
