@@ -339,6 +339,32 @@ SR_TEST(list_on_stdin_and_glob_patterns)
     CHECK(file_exists(obj_out) && !file_exists(stl_out));
 }
 
+/* A failed input whose name holds a newline and an escape sequence is
+ * still one line on stderr, with those bytes as '?' (as the readers quote
+ * names), and named once. */
+SR_TEST(failed_inputs_with_control_bytes_in_their_names_are_one_line_each)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], a[1200], b[1200];
+    fresh_dir("ctrl_names", dir, sizeof dir);
+    fresh_dir("ctrl_out", out, sizeof out);
+    snprintf(a, sizeof a, "%s/no\nfaces\033[2J.obj", dir);
+    snprintf(b, sizeof b, "%s/two\nnumbers.obj", dir);
+    REQUIRE(write_text(a, "# nothing to draw\n"));
+    REQUIRE(write_text(b, "v 1 2\n"));
+    run_result r;
+    REQUIRE(run(ARGS("render", dir, "--output-dir", out, "--size", "16x16"), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK_EQ(count_lines(r.err), 2);
+    CHECK(strchr(r.err, '\033') == NULL);
+    CHECK_STR_CONTAINS(r.err, "softrast: ");
+    CHECK_STR_CONTAINS(r.err, "no?faces?[2J.obj: contains no faces\n");
+    CHECK_STR_CONTAINS(r.err, "two?numbers.obj:1: 'v' takes");
+    /* named once: the reader's message starts with the name already */
+    const char *first = strstr(r.err, "no?faces");
+    CHECK(first && !strstr(first + 1, "no?faces"));
+}
+
 /* Mistakes that would lose work are refused before anything is drawn. */
 SR_TEST(batch_refuses_bad_options_in_one_line)
 {
@@ -346,6 +372,9 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
     char dir[1024], out[1024], paths[MODELS][1200], nomatch[1100], empty[1100];
     fresh_dir("refuse", dir, sizeof dir);
     fresh_dir("refuse_out", out, sizeof out);
+    char stale[1100];   /* an earlier run's, where ".." would have led */
+    fresh_dir("refuse_up", stale, sizeof stale);
+    rmdir(stale);
     REQUIRE(write_models(dir, paths) == MODELS);
     snprintf(nomatch, sizeof nomatch, "%s/*.nothing", dir);
     snprintf(empty, sizeof empty, "%s/empty", dir);
@@ -359,6 +388,9 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
         { "unknown field", ARGS("render", dir, "--output-dir", out, "--name", "{nope}.png"),
           "{nope}" },
         { "absolute name", ARGS("render", dir, "--name", "/tmp/x.png"), "--name" },
+        { "name above the directory",
+          ARGS("render", dir, "--output-dir", out, "--name", "../batch_refuse_up/{stem}.png"),
+          "below --output-dir" },
         { "one output for all", ARGS("render", dir, "--output-dir", out, "--name", "all.png"),
           "both be written" },
         { "pattern matches nothing", ARGS("render", nomatch, "--output-dir", out), "no file" },
@@ -384,6 +416,9 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
         closedir(d);
     }
     CHECK_EQ(entries, 0);
+    char up[1100];
+    snprintf(up, sizeof up, "%s/../batch_refuse_up", out);
+    CHECK(!file_exists(up));
 
     /* An output that is an input of the batch fails that input, and the
      * input keeps its bytes. */
@@ -397,6 +432,41 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
     CHECK(before && after && before_n == after_n && memcmp(before, after, before_n) == 0);
     free(before);
     free(after);
+
+    /* A --log that is one of the models, which appending would end in
+     * JSON, and a --sheet that is one are refused before anything is
+     * drawn, as the outputs are (exit status 2). */
+    const char *const *kinds[] = {
+        ARGS("render", dir, "--output-dir", out, "--log", paths[1]),
+        ARGS("render", dir, "--sheet", paths[1]),
+    };
+    for (int k = 0; k < 2; k++) {
+        before = sr_test_read_file(paths[1], &before_n);
+        REQUIRE(run(kinds[k], &r));
+        CHECK_EQ(r.status, 2);
+        CHECK_STR_CONTAINS(r.err, "is an input of the batch");
+        CHECK_EQ(count_lines(r.err), 1);
+        after = sr_test_read_file(paths[1], &after_n);
+        CHECK(before && after && before_n == after_n && memcmp(before, after, before_n) == 0);
+        free(before);
+        free(after);
+    }
+
+    /* The same outputs named by a --batch list: the messages point to the
+     * list, not to --name and its fields. */
+    char list[8192], listp[1100];
+    snprintf(listp, sizeof listp, "%s/batch_refuse_list.txt", sr_test_out_dir());
+    snprintf(list, sizeof list, "%s\t%s\n", paths[0], paths[0]);
+    REQUIRE(write_text(listp, list));
+    REQUIRE(run(ARGS("render", "--batch", listp), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK_STR_CONTAINS(r.err, "choose another --batch output");
+    snprintf(list, sizeof list, "%s\t%s/a.png\n%s\t%s/a.png\n", paths[0], out, paths[1], out);
+    REQUIRE(write_text(listp, list));
+    REQUIRE(run(ARGS("render", "--batch", listp), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_STR_CONTAINS(r.err, "--batch: ");
+    CHECK(!strstr(r.err, "--name"));
 }
 
 /* ---- shards ------------------------------------------------------------- */

@@ -834,6 +834,11 @@ SR_TEST(output_that_is_an_input_is_refused)
         { "found texture as output", { "render", model, "-o", tex }, "is the texture being read" },
         { "named texture through another path",
           { "render", model, "--texture", tex, "-o", alias }, "is the texture being read" },
+        /* thumbnail's render names the argument given, not an -o */
+        { "found texture as thumbnail", { "thumbnail", "-s", "16", model, tex },
+          "thumbnail: OUTPUT: '" },
+        { "directory as thumbnail", { "thumbnail", "-s", "16", model, dir },
+          "thumbnail: OUTPUT: '" },
     };
     expect_refusals(cases, sizeof cases / sizeof cases[0], kept, 3);
 #endif
@@ -2444,6 +2449,44 @@ SR_TEST(thumbnail_refuses_bad_input_in_one_line)
     CHECK(now && after == before && memcmp(now, kept, before) == 0);
     free(now);
     free(kept);
+}
+
+/* Every option thumbnail's and explain's parsers take is in their --help
+ * (and so in the manual page): --size, thumbnail's long form of -s, and
+ * --output, explain's of -o, were taken but not shown. */
+SR_TEST(thumbnail_and_explain_help_show_every_option_they_take)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#endif
+    char dir[1024], model[1100], out[1100];
+    REQUIRE(thumb_dir("thumb help", dir, model, out));
+    const struct {
+        const char *command, *taken[8];
+    } commands[] = {
+        { "thumbnail", { "-s", "--size", "--transparent", "-h", "--help" } },
+        { "explain", { "-o", "--output", "--sheet", "--webp", "--grid", "--zoom" } },
+    };
+    for (size_t c = 0; c < sizeof commands / sizeof commands[0]; c++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS(commands[c].command, "--help"), &r));
+        CHECK_EQ(r.status, 0);
+        for (size_t i = 0; i < 8 && commands[c].taken[i]; i++) {
+            char word[32], comma[32];
+            snprintf(word, sizeof word, " %s ", commands[c].taken[i]);
+            snprintf(comma, sizeof comma, " %s,", commands[c].taken[i]);
+            if (!strstr(r.out, word) && !strstr(r.out, comma)) {
+                FAILF("%s --help does not show %s", commands[c].command, commands[c].taken[i]);
+            }
+        }
+        cli_run_free(&r);
+    }
+    cli_run r;
+    REQUIRE(run_cli(ARGS("thumbnail", "--size", "32", model, out), &r));
+    if (r.status != 0 || r.err_len != 0) {
+        FAILF("--size 32: status %d, stderr: %s", r.status, r.err);
+    }
+    cli_run_free(&r);
 }
 
 /* --transparent: an RGBA PNG whose corners are fully transparent, whose

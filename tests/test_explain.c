@@ -4,12 +4,15 @@
  * of its pixels is the frame's fill blue: the edges, marks and labels
  * drawn over the cells are black or grey, and blended over white they stay
  * grey, so blue shows only where a cell was filled. */
+#define _XOPEN_SOURCE 700   /* nftw */
 #include "raster_util.h"
 #include "softrast_io.h"
 #include "sr_test.h"
 
+#include <ftw.h>
 #include <stdio.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #define ZOOM 8
 #define MARGIN 16   /* the grid's top-left corner in a frame (docs/explain.md) */
@@ -869,6 +872,79 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
 }
 
+static int remove_entry(const char *path, const struct stat *st, int type, struct FTW *ftw)
+{
+    (void)st, (void)type, (void)ftw;
+    return remove(path);
+}
+
+/* docs/explain.md's `-o steps/line-%02d.png` in a fresh directory: a
+ * pattern's directories are made like -o DIR's, nested ones too. */
+SR_TEST(output_directories_are_made_for_a_pattern_and_a_dir)
+{
+    NEEDS_CLI();
+    char base[1024], pattern[1200], dir[1200], first[1300];
+    snprintf(base, sizeof base, "%s/explain_mkdir", sr_test_out_dir());
+    nftw(base, remove_entry, 16, FTW_DEPTH | FTW_PHYS);   /* an earlier run's */
+    snprintf(pattern, sizeof pattern, "%s/steps/line-%%02d.png", base);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "bresenham", "--line",
+                                               "1.5,2.5,13.5,7.5", "-o", pattern, NULL }), 0);
+    snprintf(first, sizeof first, "%s/steps/line-01.png", base);
+    CHECK(access(first, R_OK) == 0);
+    snprintf(dir, sizeof dir, "%s/a/b", base);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "dda", "--output", dir, NULL }), 0);
+    snprintf(first, sizeof first, "%s/a/b/frame-001.png", base);
+    CHECK(access(first, R_OK) == 0);
+}
+
+/* A grid and zoom within their limits whose sheet is over the framebuffer's
+ * 8192 a side: refused as bad usage before anything is written, not a
+ * failed run that leaves the frames of -o behind. */
+SR_TEST(sheet_too_large_is_refused_before_any_file)
+{
+    NEEDS_CLI();
+    char dir[1024], frames[1200], sheet[1200];
+    snprintf(dir, sizeof dir, "%s/explain_big_sheet", sr_test_out_dir());
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    REQUIRE(mkdir(dir, 0777) == 0);
+    snprintf(frames, sizeof frames, "%s/frames", dir);
+    snprintf(sheet, sizeof sheet, "%s/sheet.png", dir);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--grid", "256x64",
+                                               "--zoom", "16", "-o", frames, "--sheet", sheet,
+                                               NULL }), 2);
+    CHECK(access(frames, F_OK) != 0);
+    CHECK(access(sheet, F_OK) != 0);
+}
+
+/* clip4d's first frame divides a w <= 0 vertex without clipping, which
+ * lands below the grid: its red edges and its label stop above the
+ * caption band (16 + 12 x 16 + 16 - 8 = 216 frame pixels down) instead
+ * of crossing the words. */
+SR_TEST(clip4d_first_frame_keeps_the_caption_clear)
+{
+    NEEDS_CLI();
+    char dir[1024], first[1200];
+    out_dir("clip4d_caption", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip4d", "--grid", "16x12", "--zoom",
+                                              "16", "-o", dir, NULL }) == 0);
+    snprintf(first, sizeof first, "%s/frame-001.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(first, NULL, &w, &h, &px, NULL) == SR_OK);
+    int red_above = 0, red_in_band = 0;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p = px + ((size_t)y * w + x) * 4;
+            bool red = p[0] > 150 && p[1] < 90 && p[2] < 90;
+            red_above += red && y < 216;
+            red_in_band += red && y >= 216;
+        }
+    }
+    CHECK(red_above > 0);   /* the naive divide is drawn */
+    CHECK_EQ(red_in_band, 0);
+    free(px);
+}
+
 SR_TEST(webp_is_an_animation_of_every_frame)
 {
     NEEDS_CLI();
@@ -881,6 +957,13 @@ SR_TEST(webp_is_an_animation_of_every_frame)
         SKIP("this build has no libwebp");
     }
     REQUIRE(rc == 0);
+    /* a WebP under another name (a viewer would take out.png for a PNG) is
+     * refused, as render --animate refuses it */
+    char png[1200];
+    snprintf(png, sizeof png, "%s/circle.png", dir);
+    remove(png);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "circle", "--webp", png, NULL }), 2);
+    CHECK(access(png, F_OK) != 0);
     FILE *f = fopen(path, "rb");
     REQUIRE(f != NULL);
     static uint8_t buf[1 << 20];

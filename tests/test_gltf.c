@@ -733,6 +733,20 @@ SR_TEST(missing_buffers_and_bad_documents_are_reported)
                            &e),
              SR_UNSUPPORTED);
     CHECK_STR_CONTAINS(e.message, "bad.gltf: /asset/version: \"1.0\" is not glTF 2.x");
+    /* An empty file, and a PNG named .glb: said as such, not "invalid JSON". */
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "empty.glb", (const uint8_t *)"", 0, NULL, &s, &e),
+             SR_BAD_FORMAT);
+    CHECK(strcmp(e.message, "empty.glb: file is empty") == 0);
+    const uint8_t png[] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13 };
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "image.GLB", png, sizeof png, NULL, &s, &e),
+             SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "image.GLB: byte 0: not a GLB file");
+    CHECK(s == NULL);
+    /* a JSON document named .glb still reads as one */
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "v1.glb", (const uint8_t *)v1, strlen(v1), NULL, &s,
+                           &e),
+             SR_UNSUPPORTED);
+    CHECK_STR_CONTAINS(e.message, "v1.glb: /asset/version");
     CHECK_EQ(sr_parse_gltf(NULL, "x", (const uint8_t *)v1, 3, NULL, &s, &e), SR_INVALID_ARG);
     CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "x", (const uint8_t *)v1, 3, NULL, NULL, &e),
              SR_INVALID_ARG);

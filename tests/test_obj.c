@@ -916,6 +916,9 @@ SR_TEST(obj_files_without_faces_are_refused)
     CHECK(fails_with("\n \r\n\t\n", "t.obj: ", "file is empty"));
     CHECK(fails_with("# only a comment\n", "t.obj: contains no faces", ""));
     CHECK(fails_with(TRI "l 1 2 3\n", "t.obj: contains no faces", ""));
+    /* an SVG (or any markup) named .obj: its unknown lines are all skipped */
+    CHECK(fails_with("\n <svg xmlns='http://www.w3.org/2000/svg'>\n</svg>\n",
+                     "t.obj: contains no faces: it starts with '<'", "not an OBJ file"));
     sr_io_error err;
     sr_mesh m;
     CHECK_EQ(parse_str(TRI, &m, &err), SR_BAD_FORMAT);

@@ -250,6 +250,9 @@ SR_TEST(malformed_input_is_reported_with_file_and_line)
                        "bad_tr.svg:2: transform=\"rotate(1,2)\" is malformed");
     expect_input_error("bad_root.svg", "<html/>", "bad_root.svg:1: the root element is <html>");
     expect_input_error("bad_size.svg", "<svg width='100000' height='10'/>", "outside 1..8192");
+    /* said as such, not expat's "no element found" and "invalid token" */
+    expect_input_error("empty.svg", "", "empty.svg:1: file is empty");
+    expect_input_error("gzip.svgz", "\x1f\x8b\x08\x08 gzip", "gzip.svgz:1: gzip-compressed");
 }
 
 /* Messages count lines as XML does: CR, LF and CR LF each end one, also

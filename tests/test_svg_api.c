@@ -105,6 +105,28 @@ SR_TEST(failures_are_results_with_file_and_line)
     CHECK(sr_render_svg_file(ctx, missing, NULL, &fb, NULL, &err) != SR_OK);
     CHECK_STR_CONTAINS(err.message, "no_such.svg: cannot open");
     CHECK(fb == NULL);
+    /* A name with a newline and an escape sequence, and a style sheet's
+     * tab and newline in a quoted value: control bytes come out as '?',
+     * in failures and in warnings, as the model readers write them. */
+    const char *name = "a\nb\033[2J.svg";
+    CHECK_EQ(sr_render_svg(ctx, bad, sizeof bad - 1, &(sr_svg_desc){ .name = name }, &fb, NULL,
+                           &err),
+             SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "a?b?[2J.svg:2: ");
+    static const char warned[] = "<svg width='8' height='8'><style>rect { fil\tter\n: x }"
+                                 "</style><rect width='4' height='4'/></svg>";
+    sr_test_warnings w = { 0 };
+    CHECK_EQ(sr_render_svg(ctx, warned, sizeof warned - 1,
+                           &(sr_svg_desc){ .name = name, .warn = sr_test_collect_warning,
+                                           .warn_user = &w },
+                           &fb, NULL, &err),
+             SR_OK);
+    sr_destroy_framebuffer(ctx, fb);
+    CHECK(w.count >= 1);
+    CHECK_STR_CONTAINS(w.text, "a?b?[2J.svg:");
+    for (const char *c = w.text; *c; c++) {
+        CHECK((unsigned char)*c >= 0x20 && *c != 0x7f);
+    }
     sr_destroy_context(ctx);
 }
 

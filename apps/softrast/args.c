@@ -27,12 +27,22 @@ void cli_capture(char *buf, size_t size)
     }
 }
 
+void cli_one_line(char *text)
+{
+    for (unsigned char *c = (unsigned char *)text; *c; c++) {
+        if (*c < 0x20 || *c == 0x7f) {
+            *c = '?';
+        }
+    }
+}
+
 static void report(const char *prefix, const char *fmt, va_list ap)
 {
     if (!capture_buf) {
-        fputs(prefix, stderr);
-        vfprintf(stderr, fmt, ap);
-        fputc('\n', stderr);
+        char line[8192];
+        vsnprintf(line, sizeof line, fmt, ap);
+        cli_one_line(line);
+        fprintf(stderr, "%s%s\n", prefix, line);
         return;
     }
     /* Held messages are joined with "; " into one line. */
@@ -43,6 +53,7 @@ static void report(const char *prefix, const char *fmt, va_list ap)
     }
     if (n + 1 < capture_size) {
         vsnprintf(capture_buf + n, capture_size - n, fmt, ap);
+        cli_one_line(capture_buf + n);
     }
 }
 

@@ -163,16 +163,20 @@ static bool wants_reading(void *user, const batch_item *it)
     return false;
 }
 
-/* Draw view `view` of the loaded input into run->fb, for `output` (NULL
- * on a sheet); false when it failed (why in run->message). */
-static bool draw_view(batch_run *run, const char *output, int view, batch_record *rec)
+/* Draw view `view` of the loaded input `it` into run->fb, for `output`
+ * (NULL on a sheet); false when it failed (why in run->message). */
+static bool draw_view(batch_run *run, const batch_item *it, const char *output, int view,
+                      batch_record *rec)
 {
     double t0 = batch_now_ms();
     run->message[0] = '\0';
     cli_capture(run->message, sizeof run->message);
-    bool ok = !output || (batch_session_output_ok(&run->s, output, "--name") &&
+    /* what named the output, for the user to change */
+    const char *namer = it->named ? "--batch output" : "--name";
+    bool ok = !output || (batch_session_output_ok(&run->s, output, namer) &&
                           /* the model's own other files (MTL, textures) */
-                          cli_check_output(render_job_inputs(run->job), "--name", output));
+                          cli_check_output(render_job_inputs(run->job),
+                                           it->named ? "--batch" : "--name", output));
     if (ok && run->b->views > 1) {
         batch_view_camera(run->job, run->o->have_eye, view, run->b->views);
     }
@@ -272,7 +276,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
     double render_ms = 0.0, t0 = batch_now_ms();
     size_t pixels = (size_t)o->width * (size_t)o->height;
     for (int v = 0; v < views && ok; v++) {
-        ok = draw_view(run, v == 0 ? it->output : NULL, v, &rec);
+        ok = draw_view(run, it, v == 0 ? it->output : NULL, v, &rec);
         render_ms += rec.render_ms;
         uint8_t *straight = ok && alpha ? cli_straight_alpha(sr_framebuffer_pixels(run->fb),
                                                              pixels) : NULL;
@@ -285,7 +289,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
         free(straight);
     }
     sr_io_error err;
-    if (ok && !(batch_make_parents(it->output, &err) &&
+    if (ok && !(cli_make_parents(it->output, &err) &&
                 batch_anim_write(anim, it->output, views * frame_ms, &err))) {
         snprintf(run->message, sizeof run->message, "%s", err.message);
         ok = false;
@@ -342,7 +346,7 @@ static void render_all(batch_run *run)
                 continue;
             }
             rec.status = "failed";
-            bool drawn = draw_view(run, b->sheet ? NULL : output, v, &rec);
+            bool drawn = draw_view(run, it, b->sheet ? NULL : output, v, &rec);
             if (drawn && b->sheet) {
                 rec.status = sheet_put(run, it, v, sr_framebuffer_pixels(run->fb)) ? "ok"
                                                                                     : "failed";
@@ -392,6 +396,10 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     int status = gather(&run);
     if (status < 0) {
         status = batch_session_open(&run.s);
+    }
+    /* The sheet would replace an input after the whole batch was drawn. */
+    if (status < 0 && b->sheet && !batch_session_output_ok(&run.s, b->sheet, "--sheet")) {
+        status = EXIT_USAGE;
     }
     if (status < 0) {
         size_t mine = batch_session_mine(&run.s);
@@ -477,8 +485,7 @@ static int check_views(batch_opts *b, const render_opts *o)
                       b->sheet ? "--sheet" : "--name");
             return EXIT_USAGE;
         }
-        const char *dot = strrchr(b->animate, '.');
-        if (!dot || strcasecmp(dot, ".webp") != 0) {
+        if (!batch_anim_is_webp_name(b->animate)) {
             cli_error("--animate: '%s': an animation is a WebP (name it .webp)", b->animate);
             return EXIT_USAGE;
         }

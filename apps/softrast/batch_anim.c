@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #ifdef SR_HAVE_WEBP
 #include <webp/encode.h>
@@ -134,4 +135,10 @@ bool batch_anim_available(void)
 #else
     return false;
 #endif
+}
+
+bool batch_anim_is_webp_name(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    return dot && !(slash && dot < slash) && strcasecmp(dot, ".webp") == 0;
 }

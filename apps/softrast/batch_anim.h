@@ -13,6 +13,9 @@ typedef struct batch_anim batch_anim;
 
 /* Whether this build writes animated WebP. */
 bool batch_anim_available(void);
+/* Whether path ends in .webp (any case): an animation is written by no
+ * other name, so that no viewer takes it for a PNG. */
+bool batch_anim_is_webp_name(const char *path);
 /* An animation of width x height frames (with an alpha channel when
  * `alpha`); NULL with the reason in why. */
 batch_anim *batch_anim_start(int width, int height, bool alpha, char *why, size_t size);

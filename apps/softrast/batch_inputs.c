@@ -263,7 +263,12 @@ static int field_at(const char *p, size_t *len)
 
 bool batch_check_pattern(const char *pattern)
 {
-    if (!*pattern || pattern[0] == '/') {
+    /* ".." would climb out of --output-dir as a leading '/' would. */
+    bool up = false;
+    for (const char *c = pattern; *c; c = strchr(c, '/') ? strchr(c, '/') + 1 : "") {
+        up |= strncmp(c, "..", 2) == 0 && (c[2] == '/' || c[2] == '\0');
+    }
+    if (!*pattern || pattern[0] == '/' || up) {
         cli_error("--name: '%s': expected a file name pattern below --output-dir", pattern);
         return false;
     }
@@ -355,12 +360,18 @@ int batch_name_outputs(batch_list *l, const char *dir, const char *pattern)
     qsort(sorted, l->count, sizeof *sorted, by_output);
     int status = -1;
     for (size_t i = 1; i < l->count && status < 0; i++) {
-        if (strcmp(sorted[i - 1]->output, sorted[i]->output) == 0) {
-            cli_error("--name: '%s' and '%s' would both be written to '%s' "
-                      "(add {ext} or {index} to --name)",
-                      sorted[i - 1]->input, sorted[i]->input, sorted[i]->output);
-            status = EXIT_USAGE;
+        const batch_item *a = sorted[i - 1], *b = sorted[i];
+        if (strcmp(a->output, b->output) != 0) {
+            continue;
         }
+        if (a->named || b->named) {
+            cli_error("--batch: '%s' and '%s' would both be written to '%s' (give each its "
+                      "own output in the list)", a->input, b->input, b->output);
+        } else {
+            cli_error("--name: '%s' and '%s' would both be written to '%s' "
+                      "(add {ext} or {index} to --name)", a->input, b->input, b->output);
+        }
+        status = EXIT_USAGE;
     }
     free(sorted);
     return status;

@@ -151,20 +151,33 @@ static batch_file_id *input_ids(const batch_list *l, size_t *count)
     return ids;
 }
 
+static bool is_input(const batch_session *s, const struct stat *st)
+{
+    batch_file_id key = { st->st_dev, st->st_ino };
+    return bsearch(&key, s->ids, s->id_count, sizeof *s->ids, by_id) != NULL;
+}
+
 int batch_session_open(batch_session *s)
 {
+    s->ids = input_ids(&s->list, &s->id_count);
+    if (!s->ids) {
+        cli_error("out of memory listing the inputs");
+        return EXIT_FAILURE_RUN;
+    }
     const char *log = s->opts->log;
+    struct stat st;
+    /* The log is appended to: one of the inputs (by any name) would be
+     * left with JSON at its end. */
+    if (log && stat(log, &st) == 0 && is_input(s, &st)) {
+        cli_error("--log: '%s' is an input of the batch; choose another log file", log);
+        return EXIT_USAGE;
+    }
     if (log) {
         s->log_fd = open(log, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
         if (s->log_fd < 0) {
             cli_error("--log: %s: %s", log, strerror(errno));
             return EXIT_USAGE;
         }
-    }
-    s->ids = input_ids(&s->list, &s->id_count);
-    if (!s->ids) {
-        cli_error("out of memory listing the inputs");
-        return EXIT_FAILURE_RUN;
     }
     return -1;
 }
@@ -223,8 +236,7 @@ bool batch_session_output_ok(const batch_session *s, const char *output, const c
         cli_error("'%s' is a directory", output);
         return false;
     }
-    batch_file_id key = { st.st_dev, st.st_ino };
-    if (bsearch(&key, s->ids, s->id_count, sizeof *s->ids, by_id)) {
+    if (is_input(s, &st)) {
         cli_error("'%s' is an input of the batch; choose another %s", output, opt);
         return false;
     }
@@ -242,9 +254,14 @@ bool batch_exists_whole(const char *path)
 void batch_session_report(batch_session *s, const char *input, const char *message)
 {
     batch_progress_clear(&s->progress);
-    size_t n = strlen(input);
-    bool named = strncmp(message, input, n) == 0 && message[n] == ':';
-    fprintf(stderr, "softrast: %s%s%s\n", named ? "" : input, named ? "" : ": ", message);
+    char name[4096], line[8192];
+    snprintf(name, sizeof name, "%s", input);
+    cli_one_line(name);   /* as the readers quote it in their messages */
+    size_t n = strlen(name);
+    bool named = strncmp(message, name, n) == 0 && message[n] == ':';
+    snprintf(line, sizeof line, "%s%s%s", named ? "" : name, named ? "" : ": ", message);
+    cli_one_line(line);
+    fprintf(stderr, "softrast: %s\n", line);
 }
 
 void batch_session_done(void *user, batch_record *rec, const char *message)

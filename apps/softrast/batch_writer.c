@@ -9,11 +9,9 @@
  * busy drawing. */
 #include "batch_writer.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 
 static double now_ms(void)
@@ -23,31 +21,12 @@ static double now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-bool batch_make_parents(const char *path, sr_io_error *err)
-{
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s", path);
-    for (char *p = dir + 1; *p; p++) {
-        if (*p != '/') {
-            continue;
-        }
-        *p = '\0';
-        if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-            snprintf(err->message, sizeof err->message, "cannot make the directory '%.400s': %s",
-                     dir, strerror(errno));
-            return false;
-        }
-        *p = '/';
-    }
-    return true;
-}
-
 /* Write an image in hand (its record's status and encode_ms set). */
 static void write_image(batch_image *im)
 {
     im->err = (sr_io_error){ { 0 } };
     double t0 = now_ms();
-    bool ok = batch_make_parents(im->rec.output, &im->err) &&
+    bool ok = cli_make_parents(im->rec.output, &im->err) &&
               cli_write_image(im->rec.output, im->width, im->height, im->pixels, &im->opt,
                               &im->err) == SR_OK;
     im->rec.encode_ms = now_ms() - t0;

@@ -51,10 +51,6 @@ typedef struct batch_writer {
     size_t held;               /* bytes of pixels in hand */
 } batch_writer;
 
-/* Make the directories above `path` (mkdir -p of its dirname); false with
- * the reason in err. */
-bool batch_make_parents(const char *path, sr_io_error *err);
-
 /* Start `threads` writer threads (1 to BATCH_WRITER_MAX_THREADS): several
  * write (and fsync) images side by side, for batches whose drawing is
  * quicker than the disk.  Without any, batch_writer_put writes at once. */

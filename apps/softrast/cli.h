@@ -56,6 +56,9 @@ typedef struct cli_image_options {
 } cli_image_options;
 
 bool cli_is_jpeg_name(const char *path);
+/* Make the directories above `path` (mkdir -p of its dirname); false with
+ * the reason in err (make_parents.c). */
+bool cli_make_parents(const char *path, sr_io_error *err);
 /* PNG and WebP store straight alpha: a render over a transparent
  * background has its edges' colors multiplied by their coverage (the
  * resolve averages the model's samples with transparent black), so this
@@ -64,6 +67,10 @@ uint8_t *cli_straight_alpha(const uint8_t *rgba, size_t pixels);
 sr_result cli_write_image(const char *path, int width, int height, const uint8_t *rgba,
                           const cli_image_options *opt, sr_io_error *err);
 
+/* Control bytes (a newline, an escape sequence) in text, which may quote
+ * a file name or an argument, as '?': a message stays one line and cannot
+ * drive the terminal. */
+void cli_one_line(char *text);
 /* Print "softrast: ..." to stderr (one line). */
 void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Print one line to stderr as it is (a reader's "FILE:LINE: why"). */

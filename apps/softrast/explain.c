@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #define MAX_GRID 256
 #define SHEET_GAP 8
@@ -154,13 +153,14 @@ static void usage(FILE *f)
             "                             at most 1 GiB\n"
             "\n"
             "output (at least one):\n"
-            "  -o DIR | -o PATTERN        one PNG per step: DIR/frame-001.png, ... (DIR is\n"
-            "                             made if missing), or a PATTERN with one %%d,\n"
-            "                             e.g. out/step-%%02d.png\n"
-            "  --sheet FILE.png           all the steps on one captioned contact sheet\n"
+            "  -o, --output DIR|PATTERN   one PNG per step: DIR/frame-001.png, ..., or a\n"
+            "                             PATTERN with one %%d, e.g. out/step-%%02d.png\n"
+            "                             (the directories are made if missing)\n"
+            "  --sheet FILE.png           all the steps on one captioned contact sheet,\n"
+            "                             three to a row, at most %d pixels a side\n"
             "  --webp FILE.webp           all the steps as one animated WebP, 1.5 s each\n"
             "                             (needs a build with libwebp)\n",
-            EX_MAX_POINTS, MAX_GRID, MAX_GRID);
+            EX_MAX_POINTS, MAX_GRID, MAX_GRID, SR_MAX_FRAMEBUFFER_SIZE);
 }
 
 /* "x,y,x,y,..." (dims 2) or "x,y,z,..." (dims 3) into pts and z; false
@@ -295,16 +295,18 @@ static bool write_frames(const ex_canvas *c, const char *out)
 {
     bool is_dir;
     frame_pattern(out, &is_dir);
-    if (is_dir && mkdir(out, 0777) != 0 && errno != EEXIST) {
-        cli_error("explain: -o: cannot make directory '%s': %s", out, strerror(errno));
-        return false;
-    }
     for (int i = 0; i < c->frame_count; i++) {
         char path[4096];
         int n = is_dir ? snprintf(path, sizeof path, "%s/frame-%03d.png", out, i + 1)
                        : snprintf(path, sizeof path, out, i + 1);
         if (n < 0 || n >= (int)sizeof path) {
             cli_error("explain: -o: the file name is too long");
+            return false;
+        }
+        /* The directory, or a pattern's, is made if missing. */
+        sr_io_error err;
+        if (!cli_make_parents(path, &err)) {
+            cli_error("explain: -o: %s", err.message);
             return false;
         }
         if (!write_png(path, c->width, c->height, c->frames[i])) {
@@ -314,13 +316,38 @@ static bool write_frames(const ex_canvas *c, const char *out)
     return true;
 }
 
-/* The frames side by side, at most three to a row, in step order. */
+/* The contact sheet's layout: the frames side by side, at most three to a
+ * row, in step order. */
+static void sheet_size(const ex_canvas *c, int *cols, int64_t *w, int64_t *h)
+{
+    *cols = c->frame_count < 3 ? c->frame_count : 3;
+    int rows = (c->frame_count + *cols - 1) / *cols;
+    *w = (int64_t)*cols * c->width + (*cols + 1) * SHEET_GAP;
+    *h = (int64_t)rows * c->height + (rows + 1) * SHEET_GAP;
+}
+
+/* A sheet the framebuffer cannot hold is refused before any file is
+ * written: the frames of -o would otherwise be left without their sheet. */
+static bool sheet_fits(const ex_canvas *c)
+{
+    int cols;
+    int64_t w, h;
+    sheet_size(c, &cols, &w, &h);
+    if (w > SR_MAX_FRAMEBUFFER_SIZE || h > SR_MAX_FRAMEBUFFER_SIZE) {
+        cli_error("explain: --sheet: %d frames of %dx%d make a %lldx%lld sheet, over %d a side: "
+                  "make --grid or --zoom smaller, or use -o", c->frame_count, c->width, c->height,
+                  (long long)w, (long long)h, SR_MAX_FRAMEBUFFER_SIZE);
+        return false;
+    }
+    return true;
+}
+
 static bool write_sheet(const ex_canvas *c, const char *path)
 {
-    int cols = c->frame_count < 3 ? c->frame_count : 3;
-    int rows = (c->frame_count + cols - 1) / cols;
-    int w = cols * c->width + (cols + 1) * SHEET_GAP;
-    int h = rows * c->height + (rows + 1) * SHEET_GAP;
+    int cols;
+    int64_t w64, h64;
+    sheet_size(c, &cols, &w64, &h64);
+    int w = (int)w64, h = (int)h64;
     sr_framebuffer *fb = NULL;
     if (sr_make_framebuffer(c->ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
                                                             .depth_format = SR_DEPTH_NONE },
@@ -534,6 +561,9 @@ int cmd_explain(int argc, char **argv)
             if (!batch_anim_available()) {
                 cli_error("%s: this build has no libwebp (install libwebp-dev and rebuild)", a);
                 ok = false;
+            } else if (!batch_anim_is_webp_name(v)) {
+                cli_error("%s: '%s': an animation is a WebP (name it .webp)", a, v);
+                ok = false;
             }
         } else if (strcmp(a, "--sheet") == 0) {
             sheet = v;
@@ -627,6 +657,8 @@ int cmd_explain(int argc, char **argv)
                       sr_context_error(ctx)[0] ? sr_context_error(ctx) : sr_result_text(c.error));
             status = EXIT_FAILURE_RUN;
         }
+    } else if (sheet && !sheet_fits(&c)) {
+        status = EXIT_USAGE;
     } else if ((out && !write_frames(&c, out)) || (sheet && !write_sheet(&c, sheet)) ||
                (webp && !write_webp(&c, webp))) {
         status = EXIT_FAILURE_RUN;

@@ -199,17 +199,24 @@ void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color)
     sr_point2 q = to_frame(c, p);
     int s = c->text_scale;
     int x = (int)q.x + 5, y = (int)q.y - 8 * s - 3;
-    /* kept inside the frame */
+    /* kept inside the frame, above the caption: a vertex beyond the grid's
+     * bottom (clip4d's divide of a w <= 0 vertex) would write over it */
     int w = sr_text_width(text, s);
     x = x + w > c->width - 2 ? c->width - 2 - w : x;
     x = x < 2 ? 2 : x;
+    int bottom = c->caption_y - EX_MARGIN / 2 - 8 * s;
+    y = y > bottom ? bottom : y;
     y = y < 2 ? 2 : y;
     keep(c, sr_draw_text(c->ctx, c->fb, x, y, s, text, color));
 }
 
-/* Draw `text` wrapped at spaces (and at '\n') into the caption lines. */
+/* Draw `text` wrapped at spaces (and at '\n') into the caption lines, on
+ * a band cleared first: an edge to a vertex beyond the grid's bottom
+ * (clip4d's divide of a w <= 0 vertex) would cross the words. */
 static void caption(ex_canvas *c, const char *text)
 {
+    int band = c->caption_y - EX_MARGIN / 2;
+    rect(c, 0, band, c->width, c->height - band, EX_BG);
     int s = c->text_scale;
     int max_chars = (c->width - 2 * EX_MARGIN) / (6 * s);
     int line = 0;

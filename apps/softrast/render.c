@@ -1130,15 +1130,18 @@ int cmd_render(int argc, char **argv)
         return status;
     }
     const render_opts *o = &job->o;
+    /* thumbnail.c runs this render as "thumbnail": its output is the
+     * OUTPUT argument there, not an -o the user never gave. */
+    const char *out_opt = strcmp(argv[0], "thumbnail") == 0 ? "thumbnail: OUTPUT" : "-o";
     struct stat st;
     if (stat(o->output, &st) == 0 && S_ISDIR(st.st_mode)) {
-        cli_error("-o: '%s' is a directory", o->output);
+        cli_error("%s: '%s' is a directory", out_opt, o->output);
         render_job_free(job);
         return EXIT_USAGE;
     }
     /* The model now, before the time to read it; the rest it brings once read. */
     cli_inputs_add(&job->inputs, o->model, "model");
-    if (!cli_check_output(&job->inputs, "-o", o->output)) {
+    if (!cli_check_output(&job->inputs, out_opt, o->output)) {
         render_job_free(job);
         return EXIT_USAGE;
     }
@@ -1192,7 +1195,7 @@ int cmd_render(int argc, char **argv)
     if (status < 0) {
         status = make_context(job);
     }
-    if (status < 0 && !cli_check_output(&job->inputs, "-o", o->output)) {
+    if (status < 0 && !cli_check_output(&job->inputs, out_opt, o->output)) {
         status = EXIT_USAGE;
     }
     if (status >= 0) {

@@ -23,10 +23,10 @@ static void usage(FILE *f)
             "(msaa4 antialiasing).  INPUT is a path or a file:// URI.  Installed as\n"
             "share/thumbnailers/softrast.thumbnailer for GNOME and KDE.\n"
             "\n"
-            "  -s SIZE        the image's side in pixels (1 to %d)\n"
-            "  --transparent  no background: an RGBA PNG, the model's edges blended\n"
-            "                 into nothing\n"
-            "  -h, --help     this text\n",
+            "  -s, --size SIZE  the image's side in pixels (1 to %d)\n"
+            "  --transparent    no background: an RGBA PNG, the model's edges blended\n"
+            "                   into nothing\n"
+            "  -h, --help       this text\n",
             THUMB_MAX_SIZE);
 }
 

@@ -14,6 +14,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 /* ---- messages ------------------------------------------------------------ */
 
@@ -990,14 +991,35 @@ static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const c
     return SR_OK;
 }
 
+/* A name ending in .glb promises the binary container. */
+static bool is_glb_name(const char *name)
+{
+    size_t n = name ? strlen(name) : 0;
+    return n >= 4 && strcasecmp(name + n - 4, ".glb") == 0;
+}
+
 static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
 {
     const char *json = (const char *)data;
     size_t json_size = size;
     sr_result r;
-    if (size >= 4 && memcmp(data, "glTF", 4) == 0 &&
-        (r = read_glb(d, data, size, &json, &json_size)) != SR_OK) {
+    if (size == 0) {
+        return sr__io_fail(d->err, SR_BAD_FORMAT, d->name, 0, "file is empty");
+    }
+    bool glb = size >= 4 && memcmp(data, "glTF", 4) == 0;
+    if (glb && (r = read_glb(d, data, size, &json, &json_size)) != SR_OK) {
         return r;
+    }
+    /* Content decides, so a JSON document named .glb still reads; anything
+     * else named .glb is not "invalid JSON" to the user but not a GLB. */
+    size_t first = 0;
+    while (first < size && (data[first] == ' ' || data[first] == '\t' || data[first] == '\r' ||
+                            data[first] == '\n')) {
+        first++;
+    }
+    if (!glb && is_glb_name(d->name) && (first == size || data[first] != '{')) {
+        return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, 0,
+                              "not a GLB file (it does not start with 'glTF')");
     }
     json_error_t jerr;
     d->root = json_loadb(json, json_size, JSON_REJECT_DUPLICATES, &jerr);

@@ -1631,6 +1631,17 @@ static bool is_blank(const char *s, size_t n)
     return true;
 }
 
+/* Unknown statements are skipped, so markup under an .obj name reads as a
+ * file of nothing: its first byte past blanks (and a BOM) says why. */
+static bool starts_with_markup(const char *s, size_t n)
+{
+    size_t i = n >= 3 && memcmp(s, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    while (i < n && (is_space(s[i]) || s[i] == '\n')) {
+        i++;
+    }
+    return i < n && s[i] == '<';
+}
+
 static sr_result parse(const char *name, const char *data, size_t size,
                        const char *dir, size_t dir_len, const sr_load_desc *desc,
                        sr_mesh *out, sr_io_error *err)
@@ -1688,7 +1699,11 @@ static sr_result parse(const char *name, const char *data, size_t size,
     free(r.join);
     if (res == SR_OK && P.nindices == 0) {
         res = sr__io_fail(err, SR_BAD_FORMAT, name, 0, "%s",
-                          is_blank(data, size) ? "file is empty" : "contains no faces");
+                          is_blank(data, size) ? "file is empty"
+                          : P.nv == 0 && starts_with_markup(data, size)
+                              ? "contains no faces: it starts with '<', as XML, SVG and HTML "
+                                "do; not an OBJ file"
+                              : "contains no faces");
     }
     if (res == SR_OK) {
         res = build_mesh(&P, out);

@@ -204,6 +204,18 @@ static unsigned long msg_line(const svg_doc *doc)
 static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* Control bytes in a message as '?', as the model readers write them: the
+ * file's name and the quoted text are the input's, and a newline or an
+ * escape sequence would break the one line or reach the terminal. */
+static void one_line(char *s)
+{
+    for (unsigned char *c = (unsigned char *)s; *c; c++) {
+        if (*c < 0x20 || *c == 0x7f) {
+            *c = '?';
+        }
+    }
+}
+
 /* Record the first failure as "FILE:LINE: ..." and stop the parser. */
 static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
 {
@@ -217,11 +229,8 @@ static void svg_fail(svg_doc *doc, sr_result status, const char *fmt, ...)
         vsnprintf(doc->msg + n, doc->msg_size - (size_t)n, fmt, ap);
         va_end(ap);
     }
-    /* One line, whatever the document put into the quoted text. */
-    for (char *c = doc->msg; c && *c; c++) {
-        if (*c == '\n' || *c == '\r') {
-            *c = ' ';
-        }
+    if (doc->msg) {
+        one_line(doc->msg);
     }
     doc->status = status;
     if (doc->parser) {
@@ -281,6 +290,7 @@ static void warn_keyed(svg_doc *doc, const char *key, const char *fmt, ...)
         }
     }
     doc->warnings++;
+    one_line(line);
     if (doc->opt->warn) {
         doc->opt->warn(doc->opt->warn_user, line);
     }
@@ -3685,9 +3695,16 @@ static bool read_document(svg_doc *doc, const char *data, size_t size)
     XML_SetUserData(doc->parser, doc);
     XML_SetElementHandler(doc->parser, on_start, on_end);
     XML_SetCharacterDataHandler(doc->parser, on_text);
+    const unsigned char *u = (const unsigned char *)data;
+    /* expat would say "not well-formed (invalid token)" of both. */
+    if (size == 0 || (size >= 2 && u[0] == 0x1f && u[1] == 0x8b)) {
+        doc->line = 1;
+        svg_fail(doc, SR_BAD_FORMAT, "%s", size == 0 ? "file is empty"
+                 : "gzip-compressed (an .svgz file): decompress it first (zcat)");
+        return false;
+    }
     /* In UTF-16 (a NUL among the first bytes, or its byte-order mark) a
      * line end is not one byte: expat counts the lines then. */
-    const unsigned char *u = (const unsigned char *)data;
     bool utf16 = size >= 2 && (!u[0] || !u[1] || (u[0] == 0xFE && u[1] == 0xFF) ||
                                (u[0] == 0xFF && u[1] == 0xFE));
     doc->text = data && !utf16 ? data : NULL;
