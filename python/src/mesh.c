@@ -92,9 +92,11 @@ PyArrayObject *sr_py_take_array(PyObject *obj, const char *name, int ndim, const
         Py_DECREF(a);
         return NULL;
     }
-    if (!PyArray_ISALIGNED(a)) {
-        /* Unpickled arrays may lie at any address: read a copy. */
-        PyArrayObject *copy = (PyArrayObject *)PyArray_NewCopy(a, NPY_CORDER);
+    if (!PyArray_ISALIGNED(a) || PyArray_ISBYTESWAPPED(a)) {
+        /* Unpickled arrays may lie at any address, and a '>f4' array holds
+         * its numbers in the other byte order: read a native, aligned copy. */
+        PyArrayObject *copy = (PyArrayObject *)PyArray_FROMANY(
+            (PyObject *)a, PyArray_TYPE(a), 0, 0, NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED);
         Py_DECREF(a);
         a = copy;
     }

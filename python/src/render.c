@@ -636,7 +636,7 @@ static int take_output(PyObject *obj, const char *name, int type, int height, in
         return -1;
     }
     if ((PyObject *)a != obj || !PyArray_ISWRITEABLE(a)) {
-        PyErr_Format(PyExc_ValueError, "%s: array is read-only or not aligned", name);
+        PyErr_Format(PyExc_ValueError, "%s: array is read-only, not aligned or not in native byte order", name);
         Py_DECREF(a);
         return -1;
     }
