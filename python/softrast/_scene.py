@@ -182,7 +182,8 @@ def load_mesh(path: PathLike) -> Mesh:
     FBX, Collada, 3DS, OFF and more.  Faces with more than three vertices are
     triangulated.  The mesh's one diffuse texture, if any, becomes
     ``Mesh.texture``; a mesh whose parts take different textures keeps none
-    (with a warning).  Raises OSError when the file cannot be read and
+    (with a warning).  Raises OSError when the file cannot be read
+    (FileNotFoundError when it does not exist) and
     ValueError when it is malformed.
     """
     return Mesh(**_softrast.load_mesh(_path(path)))

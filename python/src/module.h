@@ -142,9 +142,14 @@ PyObject *sr_py_parse_color(PyObject *self, PyObject *args);
 
 /* sr_fit_camera of (vertices, model) pairs (framing.c). */
 PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);
-/* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
- * ValueError) with its one-line message; returns NULL. */
-PyObject *sr_py_io_error(sr_result r, const sr_io_error *err);
+/* Raises a reader's or writer's error with its one-line message (io_error.c):
+ * for SR_IO_ERROR an OSError, of the subclass the errno of `path` (NULL:
+ * none) names, with `path` as its filename; MemoryError; else ValueError.
+ * Returns NULL. */
+PyObject *sr_py_io_error(sr_result r, const sr_io_error *err, const char *path);
+/* A message of the library as str: a name in it need not be UTF-8, and
+ * one cut from the left may start inside a character. */
+PyObject *sr_py_message_text(const char *message);
 /* An (h, w, 4) uint8 array over the RGBA pixels px, which it takes over
  * and frees (they come from malloc: the readers', render_svg's); NULL on
  * failure, px freed. */
