@@ -127,7 +127,15 @@ class Scene:
         return iter(self.instances)
 
     def __repr__(self) -> str:
-        return f"Scene({len(self.instances)} instances)"
+        meshes = {id(inst.mesh): inst.mesh for inst in self.instances}
+        faces = sum(len(inst.mesh.faces) for inst in self.instances)
+        return (f"Scene({_count(len(self.instances), 'instance')} of "
+                f"{_count(len(meshes), 'mesh', 'meshes')}, {_count(faces, 'face')} drawn, "
+                f"{_count(len(self.cameras), 'camera')})")
+
+
+def _count(n: int, one: str, many: Optional[str] = None) -> str:
+    return f"{n} {one if n == 1 else many or one + 's'}"
 
 
 def as_scene(scene: Any) -> Scene:
