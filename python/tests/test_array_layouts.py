@@ -40,3 +40,21 @@ def test_byte_order_of_normals_colors_and_uvs():
     swapped = render(softrast.Mesh(V, F, normals=normals.astype(">f4"), colors=colors.astype(">f4"),
                                    uvs=uvs.astype(">f4"), texture=texture))
     assert_same(swapped, native)
+
+
+@pytest.mark.parametrize("vdtype", [np.float32, np.float64])
+@pytest.mark.parametrize("fdtype", [np.int32, np.int64])
+@pytest.mark.parametrize("shading", ["lit", "unlit"])
+def test_arrays_changed_after_a_render_show_in_every_output(vdtype, fdtype, shading):
+    # The mesh keeps the caller's arrays: a later render draws them as they are then.
+    mesh = softrast.Mesh(V.astype(vdtype), F.astype(fdtype))
+    first = softrast.render(mesh, K=K, R=R, t=T, width=32, height=24, outputs=OUTPUTS,
+                            shading=shading, threads=1)
+    mesh.vertices[2] = [0.5, 0.8, 3.5]
+    mesh.faces[1] = [0, 3, 1]
+    later = softrast.render(mesh, K=K, R=R, t=T, width=32, height=24, outputs=OUTPUTS,
+                            shading=shading, threads=1)
+    fresh = softrast.render(softrast.Mesh(mesh.vertices.copy(), mesh.faces.copy()), K=K, R=R,
+                            t=T, width=32, height=24, outputs=OUTPUTS, shading=shading, threads=1)
+    assert not np.array_equal(first["color"], fresh["color"])
+    assert_same(later, fresh)
