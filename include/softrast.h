@@ -226,6 +226,8 @@
  *     sr_path_close              closes the subpath
  *     sr_path_polygon            the flattened path as a polygon
  *     sr_path_subpath_closed     whether a subpath was closed
+ *     sr_path_length             its flattened length
+ *     sr_path_dash               its dashes, as SVG's stroke-dasharray
  *     sr_fill_path               fills it
  *     sr_fill_path_paint         fills it with a gradient or a pattern
  *     sr_fill_polygon_paint      a polygon so filled
@@ -1988,6 +1990,31 @@ SR_API sr_polygon2 sr_path_polygon(const sr_path *path);
 /* Whether subpath i (0 .. contour_count - 1 of the polygon) was closed by
  * sr_path_close; false for a NULL path or an i out of range. */
 SR_API bool      sr_path_subpath_closed(const sr_path *path, int i);
+/* The length of the flattened path, closing segments included; 0 for NULL. */
+SR_API double    sr_path_length(const sr_path *path);
+
+/* Values in a dash list, at most. */
+#define SR_MAX_DASHES 32
+
+/*
+ * Dashes, as SVG's stroke-dasharray and stroke-dashoffset: appends to out
+ * (made by the caller, not `path` itself) the dashes of `path`, each an
+ * open subpath, for sr_stroke_path to stroke with caps at both ends.
+ * dashes[0 .. count) are the lengths of dashes and gaps in turn along the
+ * flattened path, each finite and >= 0; an odd count is repeated once
+ * (5, 3, 2 means 5, 3, 2, 5, 3, 2).  The pattern starts `offset` into
+ * itself (finite, wrapped by its period; negative: that much before it)
+ * at the start of every subpath.  A closed subpath is dashed across its
+ * closing segment, and a dash over its start point joins the first one
+ * (no caps there).  A zero-length dash is a subpath of one point (round
+ * and square caps draw it).  count 0 or a list of zeros copies the path
+ * (SVG strokes it solid).  SR_INVALID_ARG naming the argument (NULL, a
+ * count outside 0 .. SR_MAX_DASHES, a negative or non-finite value or
+ * offset), SR_TOO_LARGE when the dashes would pass a path's 2^26 points
+ * (about length / period * count of them; nothing is appended then).
+ */
+SR_API sr_result sr_path_dash(sr_context *ctx, const sr_path *path, const double *dashes,
+                              int count, double offset, sr_path *out);
 
 typedef enum sr_stroke_join {
     SR_STROKE_JOIN_DEFAULT = 0, /* -> SR_STROKE_JOIN_MITER (SVG's default) */

@@ -412,6 +412,36 @@ SR_API bool sr_io_have_svg(void);
  * SR_OK. */
 SR_API sr_result sr_io_parse_color(const char *text, sr_rgba *out);
 
+/*
+ * SVG path data, the `d` attribute of a <path>, appended to `path`: every
+ * command (M L H V C S Q T A Z), absolute (upper case) and relative (lower
+ * case), numbers repeated after a command as more of it (more pairs after
+ * M or m are L or l), S and T reflecting the previous control point, arc
+ * flags written together ("a1 1 0 01 5 5").  Numbers are read as SVG
+ * writes them whatever the C locale is; one beyond double range is an
+ * error.  As SVG's error handling says, an error in the data ends the
+ * path there: the commands before it stay in `path` and the result is
+ * SR_BAD_FORMAT, *error_offset the byte offset of the error in d and err
+ * "path data: expected a number at offset 12".  A point the path refuses
+ * (an infinite sum of relative numbers) gives that call's result (its
+ * message on the path's context); SR_INVALID_ARG for a NULL d or path.
+ * desc may be NULL; error_offset (-1 unless a call fails) and err may be
+ * NULL.  Works in builds without expat; the SVG reader builds its paths
+ * through this.
+ */
+typedef struct sr_io_path_data_desc {
+    /* Called after each command is added, with its letter (for numbers
+     * repeating a command, that command's; L or l after a moveto) and the
+     * offset where the data goes on; anything but SR_OK stops the parse
+     * and is returned (the SVG reader checks its limits here). */
+    sr_result (*command)(void *user, char letter, long offset);
+    void *user;
+} sr_io_path_data_desc;
+
+SR_API sr_result sr_io_parse_path_data(const char *d, sr_path *path,
+                                       const sr_io_path_data_desc *desc, long *error_offset,
+                                       sr_io_error *err);
+
 #ifdef __cplusplus
 }
 #endif

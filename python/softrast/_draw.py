@@ -1,5 +1,5 @@
 """Canvas: 2D drawing into an (H, W, 4) uint8 RGBA array with the library's
-paths, fills, strokes and paints (sr_path, sr_make_stroke_outline,
+paths, fills, strokes and paints (sr_path, sr_path_dash, sr_make_stroke_outline,
 sr_fill_polygon_paint), the code its SVG reader draws with.  The paints
 (colors, LinearGradient, RadialGradient, Pattern) are checked here, where
 a wrong value is named; python/src/canvas.c draws."""
@@ -230,6 +230,21 @@ def _paint(value: Paint, opacity: float) -> _PaintTuple:
     return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], opacity)
 
 
+def _dashes(value: Optional[Sequence[float]]) -> Tuple[float, ...]:
+    """A dash list as stroke takes it: None or lengths >= 0, at most 32."""
+    if value is None:
+        return ()
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+        raise TypeError(f"dashes: expected a sequence of lengths, got {type(value).__name__}")
+    if len(value) > 32:
+        raise ValueError(f"dashes: at most 32 values, got {len(value)}")
+    out = tuple(_real(v, f"dashes[{i}]") for i, v in enumerate(value))
+    for i, v in enumerate(out):
+        if v < 0:
+            raise ValueError(f"dashes[{i}]: must be >= 0, got {v}")
+    return out
+
+
 def _opacity(value: float) -> float:
     v = _real(value, "opacity")
     if not 0.0 <= v <= 1.0:
@@ -321,12 +336,17 @@ class Canvas:
 
     def stroke(self, path: Path, paint: Paint, *, width: float = 1.0, join: Join = "miter",
                cap: Cap = "butt", miter_limit: float = 4.0, antialias: bool = True,
-               opacity: float = 1.0) -> None:
+               opacity: float = 1.0, dashes: Optional[Sequence[float]] = None,
+               dash_offset: float = 0.0) -> None:
         """Stroke `path` with `paint` (as fill's): the outline of a line
         `width` pixels wide along each subpath, with joins ("miter",
         "round", "bevel"; a miter longer than miter_limit times the width
         is bevelled) and caps on open subpaths ("butt", "round",
-        "square"), filled nonzero, as SVG strokes.
+        "square"), filled nonzero, as SVG strokes.  `dashes` (lengths of
+        dashes and gaps in turn, in pixels along the path, at most 32; an
+        odd list repeats) strokes only the dashes, each with its caps,
+        the pattern starting `dash_offset` into itself at every subpath,
+        as SVG's stroke-dasharray and stroke-dashoffset.
         """
         if not isinstance(path, Path):
             raise TypeError(f"path: expected a softrast.Path, got {type(path).__name__} (a "
@@ -341,6 +361,7 @@ class Canvas:
             raise ValueError(f"miter_limit: must be >= 1, got {limit}")
         p = _paint(paint, _opacity(opacity))
         j, c = _name(join, "join", "join"), _name(cap, "cap", "cap")
+        d, offset = _dashes(dashes), _real(dash_offset, "dash_offset")
         if p[8] == 0.0:
             return
-        self._core.stroke(path, p, w, j, c, limit, antialias)
+        self._core.stroke(path, p, w, j, c, limit, antialias, d, offset)

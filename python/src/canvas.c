@@ -1,7 +1,7 @@
 /*
  * canvas.c - softrast._softrast.Canvas2D, what softrast.Canvas draws
  * with: fills and strokes of paths and polygons with a paint
- * (sr_fill_polygon_paint, sr_make_stroke_outline) into a caller's
+ * (sr_fill_polygon_paint, sr_make_stroke_outline, sr_path_dash) into a caller's
  * (H, W, 4) uint8 RGBA array, in place.  The library draws into a
  * framebuffer, not into caller memory, so the canvas keeps one of the
  * image's size as scratch: a draw copies the rectangle its polygon can
@@ -290,18 +290,33 @@ static bool touched_box(sr_polygon2 poly, int w, int h, int box[4])
     return box[2] > box[0] && box[3] > box[1];
 }
 
+/* A stroke's dashes (sr_path_dash): count 0 for none. */
+typedef struct dash_args {
+    double dashes[SR_MAX_DASHES];
+    int count;
+    double offset;
+} dash_args;
+
 /* One draw, the canvas locked (without the GIL when `release`): the
- * stroke outline of `stroked` when it is not NULL, else poly, filled
- * with the paint over the image's pixels.  The library's message goes to
- * msg on failure. */
-static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const sr_path *stroked,
-                             const sr_stroke_desc *sd, const sr_paint *paint,
-                             const sr_fill_desc *fd, char *msg, size_t msg_size)
+ * stroke outline of `stroked` (of its dashes when da has any) when it is
+ * not NULL, else poly, filled with the paint over the image's pixels.
+ * The library's message goes to msg on failure. */
+static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const PathObject *stroked,
+                             const sr_stroke_desc *sd, const dash_args *da,
+                             const sr_paint *paint, const sr_fill_desc *fd, char *msg,
+                             size_t msg_size)
 {
     sr_polygon2 outline = { 0 };
+    sr_path *dashed = NULL;
     sr_result r = SR_OK;
-    if (stroked) {
-        r = sr_make_stroke_outline(self->ctx, stroked, sd, &outline);
+    if (stroked && da->count > 0) {
+        r = sr_make_path(self->ctx, stroked->tolerance, &dashed);
+        if (r == SR_OK) {
+            r = sr_path_dash(self->ctx, stroked->path, da->dashes, da->count, da->offset, dashed);
+        }
+    }
+    if (stroked && r == SR_OK) {
+        r = sr_make_stroke_outline(self->ctx, dashed ? dashed : stroked->path, sd, &outline);
         poly = outline;
     }
     int w = (int)PyArray_DIM(self->image, 1), h = (int)PyArray_DIM(self->image, 0), box[4];
@@ -324,13 +339,15 @@ static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const sr_path
     if (stroked) {
         sr_destroy_stroke_outline(self->ctx, &outline);
     }
+    sr_destroy_path(self->ctx, dashed);
     return r;
 }
 
-/* Draw and raise what failed; `path` (or NULL) is marked as drawn meanwhile. */
+/* Draw and raise what failed; `path` (or NULL) is marked as drawn
+ * meanwhile.  sd and da (NULL for fills) are the stroke's. */
 static PyObject *draw(CanvasObject *self, PathObject *path, sr_polygon2 poly,
-                      const sr_stroke_desc *sd, const sr_paint *paint, const sr_fill_desc *fd,
-                      double reach)
+                      const sr_stroke_desc *sd, const dash_args *da, const sr_paint *paint,
+                      const sr_fill_desc *fd, double reach)
 {
     int box[4];
     bool release = poly.point_count >= RELEASE_POINTS;
@@ -346,10 +363,10 @@ static PyObject *draw(CanvasObject *self, PathObject *path, sr_polygon2 poly,
     lock_canvas(self);
     if (release) {
         Py_BEGIN_ALLOW_THREADS
-        r = draw_locked(self, poly, sd ? path->path : NULL, sd, paint, fd, msg, sizeof msg);
+        r = draw_locked(self, poly, sd ? path : NULL, sd, da, paint, fd, msg, sizeof msg);
         Py_END_ALLOW_THREADS
     } else {
-        r = draw_locked(self, poly, sd ? path->path : NULL, sd, paint, fd, msg, sizeof msg);
+        r = draw_locked(self, poly, sd ? path : NULL, sd, da, paint, fd, msg, sizeof msg);
     }
     PyThread_release_lock(self->lock);
     if (path) {
@@ -440,7 +457,7 @@ static PyObject *canvas_fill(CanvasObject *self, PyObject *args)
         goto done;
     }
     sr_fill_desc fd = { .rule = (sr_fill_rule)rule, .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
-    result = draw(self, path, poly, NULL, &p.paint, &fd, 0);
+    result = draw(self, path, poly, NULL, NULL, &p.paint, &fd, 0);
 done:
     free(pts);
     free(counts);
@@ -450,14 +467,34 @@ done:
 
 static PyObject *canvas_stroke(CanvasObject *self, PyObject *args)
 {
-    PyObject *paint_obj;
+    PyObject *paint_obj, *dash_obj;
     PathObject *path;
     sr_stroke_desc sd = { 0 };
+    dash_args da = { .count = 0 };
     int join, cap, aa;
     if (ready(self) < 0 ||
-        !PyArg_ParseTuple(args, "O!Odiidp:stroke", &sr_py_PathType, &path, &paint_obj, &sd.width,
-                          &join, &cap, &sd.miter_limit, &aa)) {
+        !PyArg_ParseTuple(args, "O!OdiidpO!d:stroke", &sr_py_PathType, &path, &paint_obj,
+                          &sd.width, &join, &cap, &sd.miter_limit, &aa, &PyTuple_Type, &dash_obj,
+                          &da.offset)) {
         return NULL;
+    }
+    Py_ssize_t n = PyTuple_GET_SIZE(dash_obj);
+    if (n > SR_MAX_DASHES) {
+        return sr_py_value_error("dashes: at most %d values, got %zd", SR_MAX_DASHES, n);
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "dashes[%zd]", i);
+        if (sr_py_real_arg(PyTuple_GET_ITEM(dash_obj, i), name, &da.dashes[i]) < 0) {
+            return NULL;
+        }
+        if (!(da.dashes[i] >= 0)) {
+            return sr_py_value_error("%s: must be >= 0, got %g", name, da.dashes[i]);
+        }
+    }
+    da.count = (int)n;
+    if (!isfinite(da.offset)) {
+        return sr_py_value_error("dash_offset: must be finite, got %g", da.offset);
     }
     if (!path->path) {
         PyErr_SetString(PyExc_ValueError, "path: the Path is not initialized");
@@ -475,7 +512,8 @@ static PyObject *canvas_stroke(CanvasObject *self, PyObject *args)
     /* The outline reaches half the width past the path, more at miters. */
     double reach = sd.width * fmax(sd.miter_limit, 1);
     sr_fill_desc fd = { .rule = SR_NONZERO, .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
-    PyObject *result = draw(self, path, sr_path_polygon(path->path), &sd, &p.paint, &fd, reach);
+    PyObject *result = draw(self, path, sr_path_polygon(path->path), &sd, &da, &p.paint, &fd,
+                            reach);
     paint_release(&p);
     return result;
 }
@@ -525,9 +563,10 @@ static PyMethodDef canvas_methods[] = {
                         "sr_fill_polygon_paint of a Path or a list of (N, 2) point arrays.\n"
                         "Use softrast.Canvas.fill."),
     CANVAS_METHOD(stroke, "stroke($self, path, paint, width, join, cap, miter_limit, antialias,\n"
-                          "       /)\n--\n\n"
-                          "The stroke outline of a Path (sr_make_stroke_outline) filled\n"
-                          "with the paint.  Use softrast.Canvas.stroke."),
+                          "       dashes, dash_offset, /)\n--\n\n"
+                          "The stroke outline of a Path (sr_make_stroke_outline), of its\n"
+                          "dashes (sr_path_dash) when the tuple `dashes` is not empty,\n"
+                          "filled with the paint.  Use softrast.Canvas.stroke."),
     CANVAS_METHOD(clear, "clear($self, color, /)\n--\n\n"
                          "Every pixel to (r, g, b, a) in [0, 1] as sr_clear quantizes it."),
     { NULL, NULL, 0, NULL },

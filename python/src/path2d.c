@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 static void path_dealloc(PathObject *self)
 {
@@ -298,6 +299,56 @@ static PyObject *path_to_polygons(PathObject *self, PyObject *unused)
     return list;
 }
 
+/* Path.from_svg(d, tolerance=0.1, strict=True): a new path of SVG path
+ * data (sr_io_parse_path_data).  An error in the data raises unless
+ * strict is false, which keeps the path up to it as SVG draws it. */
+static PyObject *path_from_svg(PyObject *cls, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = { "d", "tolerance", "strict", NULL };
+    PyObject *d_obj, *tol_obj = NULL;
+    int strict = 1;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O|O$p:from_svg", kwlist, &d_obj, &tol_obj,
+                                     &strict)) {
+        return NULL;
+    }
+    if (!PyUnicode_Check(d_obj)) {
+        return PyErr_Format(PyExc_TypeError, "d: expected a str of SVG path data, got %s",
+                            Py_TYPE(d_obj)->tp_name);
+    }
+    Py_ssize_t size;
+    const char *d = PyUnicode_AsUTF8AndSize(d_obj, &size);
+    if (!d) {
+        return NULL;
+    }
+    if ((size_t)size != strlen(d)) {
+        return sr_py_value_error("d: contains a NUL character at offset %zu", strlen(d));
+    }
+    /* no tolerance: tol_obj NULL ends the arguments at once */
+    PathObject *self = (PathObject *)PyObject_CallFunctionObjArgs(cls, tol_obj, NULL);
+    if (!self) {
+        return NULL;
+    }
+    if (!PyObject_TypeCheck(self, &sr_py_PathType) || ready(self) < 0) {
+        Py_DECREF(self);
+        return PyErr_Format(PyExc_TypeError, "from_svg: %R does not make a softrast.Path", cls);
+    }
+    long offset;
+    sr_io_error err;
+    sr_result r = sr_io_parse_path_data(d, self->path, NULL, &offset, &err);
+    if (r == SR_OK || (r == SR_BAD_FORMAT && !strict)) {
+        return (PyObject *)self;
+    }
+    if (r != SR_BAD_FORMAT) { /* a point the path refused: its message */
+        snprintf(err.message, sizeof err.message, "%s (the command at offset %ld)",
+                 sr_context_error(self->ctx), offset);
+    }
+    Py_DECREF(self);
+    if (r == SR_OUT_OF_MEMORY) {
+        return PyErr_NoMemory();
+    }
+    return sr_py_value_error("d: %s", err.message);
+}
+
 static PyObject *path_get_tolerance(PathObject *self, void *closure)
 {
     (void)closure;
@@ -336,6 +387,12 @@ static PyMethodDef path_methods[] = {
                 "add_polygon($self, points, close=True)\n--\n\n"
                 "A subpath through the rows of an (N, 2) array of x, y, closed unless\n"
                 "close=False."),
+    PATH_METHOD(from_svg, METH_VARARGS | METH_KEYWORDS | METH_CLASS,
+                "from_svg($type, d, tolerance=0.1, *, strict=True)\n--\n\n"
+                "A new path of SVG path data, the `d` attribute of a <path>: every\n"
+                "command (M L H V C S Q T A Z, absolute and relative), numbers in SVG's\n"
+                "compact forms.  An error in the data raises ValueError with its\n"
+                "offset; strict=False keeps the path up to it, as SVG draws it."),
     PATH_METHOD(to_polygons, METH_NOARGS,
                 "to_polygons($self)\n--\n\n"
                 "The flattened subpaths, each an (n, 2) float64 array of x, y."),

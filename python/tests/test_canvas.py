@@ -171,6 +171,77 @@ def test_stroke_is_the_svg_stroke(join, cap):
     assert_same_as_svg(canvas, svg(body, defs), background="white")
 
 
+# Every command of path data, relative ones, implicit repeats, S and T
+# reflecting, compact numbers and arc flags; a closed and an open subpath.
+EVERY_COMMAND = ("m10 8 20 2h30v6 c10 0 20 10 10 20 s-10 10-20 0q-10-10-20 0t-10 0 "
+                 "a8 6 20 1 0-10-12zM70 40L86 44 88 58H60a6 6 0 01-8-8")
+
+
+@needs_svg
+def test_svg_path_data_is_the_svg_path():
+    canvas = softrast.Canvas(W, H, background="white")
+    path = softrast.Path.from_svg(EVERY_COMMAND)
+    canvas.fill(path, "#1e90ff", rule="evenodd", opacity=0.7)
+    canvas.stroke(path, "navy", width=1.5, join="round")
+    assert_same_as_svg(canvas, svg(
+        f'<path d="{EVERY_COMMAND}" fill="#1e90ff" fill-rule="evenodd" fill-opacity="0.7" '
+        f'stroke="navy" stroke-width="1.5" stroke-linejoin="round"/>'), background="white")
+    # the subset path_of reads gives the same points as the calls
+    ours, theirs = softrast.Path.from_svg(CURVES).to_polygons(), path_of(CURVES).to_polygons()
+    assert len(ours) == len(theirs) == 2
+    assert all(np.array_equal(a, b) for a, b in zip(ours, theirs))
+
+
+@needs_svg
+def test_svg_path_data_in_error_draws_up_to_it_when_not_strict():
+    broken = "M10 10 L80 12 L50 50 Z M20 40 L30 x 60"
+    with pytest.raises(ValueError, match="d: path data: expected a number at offset 34"):
+        softrast.Path.from_svg(broken)
+    path = softrast.Path.from_svg(broken, strict=False)
+    assert [len(c) for c in path.to_polygons()] == [3, 1]
+    canvas = softrast.Canvas(W, H)
+    canvas.stroke(path, "black", width=2)
+    with pytest.warns(softrast.SvgWarning, match="offset 34; drawn up to there"):
+        document = svg(f'<path d="{broken}" fill="none" stroke="black" stroke-width="2"/>')
+        assert_same_as_svg(canvas, document)
+
+
+@needs_svg
+@pytest.mark.parametrize("dashes, offset, cap, join", [
+    ([6, 3], 0, "butt", "miter"),
+    ([5, 2, 1], 2.5, "round", "round"),   # odd: repeated once
+    ([8, 4], -3, "square", "bevel"),      # backward
+    ([0, 6], 40, "round", "miter"),       # dots, offset past a period
+    ([30, 0.5], 0, "butt", "miter"),      # dashes over the closed subpath's start
+])
+def test_dashed_stroke_is_the_svg_dashed_stroke(dashes, offset, cap, join):
+    canvas = softrast.Canvas(W, H, background="white")
+    canvas.stroke(path_of(CURVES), "rgba(128, 0, 64, 0.8)", width=3, cap=cap, join=join,
+                  dashes=dashes, dash_offset=offset)
+    circle = softrast.Path.from_svg("M70 32 a18 18 0 1 0 -36 0 a18 18 0 1 0 36 0 z")
+    canvas.stroke(circle, "teal", width=2, cap=cap, dashes=dashes, dash_offset=offset)
+    array = ",".join(str(d) for d in dashes)
+    attrs = (f'fill="none" stroke-dasharray="{array}" stroke-dashoffset="{offset}" '
+             f'stroke-linecap="{cap}"')
+    body = (f'<path d="{CURVES}" {attrs} stroke="rgba(128, 0, 64, 0.8)" stroke-width="3" '
+            f'stroke-linejoin="{join}"/>'
+            f'<path d="M70 32 a18 18 0 1 0 -36 0 a18 18 0 1 0 36 0 z" {attrs} stroke="teal" '
+            f'stroke-width="2"/>')
+    assert_same_as_svg(canvas, svg(body), background="white")
+
+
+def test_dashes_of_zeros_or_none_stroke_solid():
+    solid = softrast.Canvas(W, H)
+    solid.stroke(path_of(CURVES), "black", width=2)
+    for dashes in (None, [], [0, 0, 0]):
+        canvas = softrast.Canvas(W, H)
+        canvas.stroke(path_of(CURVES), "black", width=2, dashes=dashes, dash_offset=3)
+        assert np.array_equal(canvas.image, solid.image)
+    dashed = softrast.Canvas(W, H)
+    dashed.stroke(path_of(CURVES), "black", width=2, dashes=(4, 4))
+    assert 0 < dashed.image[..., 3].sum() < solid.image[..., 3].sum()
+
+
 def test_polygon_fill_is_the_path_fill():
     # Points, a list of contours (a hole, even-odd) and the same as a Path.
     outer = np.array([[5.5, 4.25], [90, 8], [70, 60], [8, 50]])
@@ -297,6 +368,26 @@ TRI = np.array([[1, 1], [9, 1], [5, 9]])
     (lambda c: c.stroke(softrast.Path(), "red", cap="flat"), ValueError, "cap: expected one"),
     (lambda c: c.stroke(softrast.Path(), "red", miter_limit=0.5), ValueError,
      "miter_limit: must be >= 1"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes="4 2"), TypeError,
+     "dashes: expected a sequence of lengths, got str"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes=4), TypeError,
+     "dashes: expected a sequence of lengths, got int"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes=[4, -1]), ValueError,
+     r"dashes\[1\]: must be >= 0"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes=[4, float("nan")]), ValueError,
+     r"dashes\[1\]: must be finite"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes=[4, None]), TypeError,
+     r"dashes\[1\]: expected a number"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes=[1] * 33), ValueError,
+     "dashes: at most 32 values, got 33"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes=[1, 1], dash_offset=float("inf")),
+     ValueError, "dash_offset: must be finite"),
+    (lambda c: c.stroke(softrast.Path(), "red", dashes=[1, 1], dash_offset="2"), TypeError,
+     "dash_offset: expected a number"),
+    (lambda c: c.stroke(P().move_to(0, 0).line_to(200000, 0), "red", dashes=[1e-3, 1e-3]),
+     ValueError, "sr_path_dash: a pattern of period 0.002"),
+    (lambda c: c._core.stroke(P(), ("red",) * 9, 1.0, 0, 0, 4.0, True, (1.0, "2"), 0.0),
+     TypeError, r"dashes\[1\]: expected a number"),
 ])
 def test_bad_draw_arguments_are_named(call, error, message):
     canvas = softrast.Canvas(10, 10)
@@ -371,6 +462,14 @@ P = softrast.Path
     (lambda: P().add_polygon(np.array([[0, 0], [np.inf, 1]])), ValueError,
      "points: point 1 is NaN or infinite"),
     (lambda: P().move_to(1), TypeError, "missing required argument 'y'"),
+    (lambda: P.from_svg(b"M0 0"), TypeError, "d: expected a str of SVG path data, got bytes"),
+    (lambda: P.from_svg("M0 0\0L1 1"), ValueError, "d: contains a NUL character at offset 4"),
+    (lambda: P.from_svg("M0 0 X"), ValueError, "d: path data: unknown command 'X' at offset 5"),
+    (lambda: P.from_svg("L0 0"), ValueError, "d: path data: no moveto first at offset 0"),
+    (lambda: P.from_svg("M0 0 L1e999 0"), ValueError, "d: path data: expected a number at "),
+    (lambda: P.from_svg("M1e308 0 l1e308 0"), ValueError, "point is not finite"),
+    (lambda: P.from_svg("M0 0", tolerance=0), ValueError, "tolerance: must be > 0"),
+    (lambda: P.from_svg("M0 0", 0.1, True), TypeError, "at most 2 positional"),
 ])
 def test_bad_path_arguments_are_named(call, error, message):
     with pytest.raises(error, match=message):

@@ -306,44 +306,14 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
 
 /* ---- numbers, lengths, lists ----------------------------------------------------- */
 
-static const char *skip_ws(const char *s)
-{
-    while (isspace((unsigned char)*s)) {
-        s++;
-    }
-    return s;
-}
-
-static const char *skip_ws_comma(const char *s)
-{
-    s = skip_ws(s);
-    if (*s == ',') {
-        s = skip_ws(s + 1);
-    }
-    return s;
-}
-
-/* An SVG number (sign, digits, fraction, exponent), no leading blanks. */
-static bool parse_number(const char **s, double *out)
-{
-    const char *e = *s + strnlen(*s, 64);
-    sr_num_status st = SR_NUM_MALFORMED;
-    size_t n = sr__parse_double_prefix(*s, e, out, &st);
-    if (n == 0 || n == 64 || st != SR_NUM_OK) {
-        return false;
-    }
-    *s += n;
-    return true;
-}
-
 /* A length: number with an optional unit, in any case as CSS reads units
  * (SVG 2 reads presentation attributes as CSS too: 20PX, 1In); 96 px per
  * inch, em and ex of the initial font (16 px; ex half of it: no font is
  * read).  *percent is set (and the number returned as is) for "%". */
 static bool parse_length(const char *s, double *out, bool *percent)
 {
-    s = skip_ws(s);
-    if (!parse_number(&s, out)) {
+    s = svg_skip_ws(s);
+    if (!svg_parse_number(&s, out)) {
         return false;
     }
     static const struct { const char *unit; double px; } units[] = {
@@ -353,17 +323,17 @@ static bool parse_length(const char *s, double *out, bool *percent)
     if (percent) {
         *percent = false;
     }
-    s = skip_ws(s);
+    s = svg_skip_ws(s);
     if (*s == 0) {
         return true;
     }
     if (*s == '%' && percent) {
         *percent = true;
-        return *skip_ws(s + 1) == 0;
+        return *svg_skip_ws(s + 1) == 0;
     }
     for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
         size_t n = strlen(units[i].unit);
-        if (strncasecmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+        if (strncasecmp(s, units[i].unit, n) == 0 && *svg_skip_ws(s + n) == 0) {
             *out *= units[i].px;
             return true;
         }
@@ -416,7 +386,7 @@ static const char *attr(const char **atts, const char *name)
 static bool parse_transform(const char *s, mat2d *out)
 {
     mat2d m = IDENTITY;
-    s = skip_ws(s);
+    s = svg_skip_ws(s);
     while (*s) {
         static const char *names[] = { "matrix", "translate", "scale", "rotate", "skewX", "skewY" };
         int which = -1;
@@ -431,19 +401,19 @@ static bool parse_transform(const char *s, mat2d *out)
         if (which < 0) {
             return false;
         }
-        s = skip_ws(s);
+        s = svg_skip_ws(s);
         if (*s++ != '(') {
             return false;
         }
         double v[6];
         int n = 0;
-        s = skip_ws(s);
+        s = svg_skip_ws(s);
         while (*s != ')') {
-            if (n == 6 || !parse_number(&s, &v[n])) {
+            if (n == 6 || !svg_parse_number(&s, &v[n])) {
                 return false;
             }
             n++;
-            s = skip_ws_comma(s);
+            s = svg_skip_ws_comma(s);
         }
         s++;
         mat2d t = IDENTITY;
@@ -494,7 +464,7 @@ static bool parse_transform(const char *s, mat2d *out)
             break;
         }
         m = mat_mul(m, t);
-        s = skip_ws_comma(s);
+        s = svg_skip_ws_comma(s);
     }
     *out = m;
     return true;
@@ -504,8 +474,8 @@ static bool parse_transform(const char *s, mat2d *out)
 
 static bool parse_unit_number(const char *v, double *out)
 {
-    v = skip_ws(v);
-    return parse_number(&v, out) && *skip_ws(v) == 0;
+    v = svg_skip_ws(v);
+    return svg_parse_number(&v, out) && *svg_skip_ws(v) == 0;
 }
 
 static double clamp01(double v)
@@ -541,10 +511,10 @@ static svg_node *find_id(const svg_doc *doc, const char *id);
  * rest of the value after it in *rest; NULL when there is none. */
 static svg_node *reference(const svg_doc *doc, const char *v, const char **rest)
 {
-    v = skip_ws(v);
+    v = svg_skip_ws(v);
     bool url = strncmp(v, "url(", 4) == 0;
     if (url) {
-        v = skip_ws(v + 4);
+        v = svg_skip_ws(v + 4);
         if (*v == '\'' || *v == '"') {
             v++;
         }
@@ -570,7 +540,7 @@ static svg_node *reference(const svg_doc *doc, const char *v, const char **rest)
         v += *v == ')';
     }
     if (rest) {
-        *rest = skip_ws(v);
+        *rest = svg_skip_ws(v);
     }
     return find_id(doc, id);
 }
@@ -634,7 +604,7 @@ static bool parse_dasharray(const char *v, style *st)
     unsigned pct_bits = 0;
     int n = 0;
     double sum = 0;
-    const char *s = skip_ws(v);
+    const char *s = svg_skip_ws(v);
     while (*s) {
         const char *e = s;
         while (*e && *e != ',' && !isspace((unsigned char)*e)) {
@@ -652,7 +622,7 @@ static bool parse_dasharray(const char *v, style *st)
         }
         pct_bits |= pct ? 1u << n : 0;
         sum += d[n++];
-        s = skip_ws_comma(e);
+        s = svg_skip_ws_comma(e);
     }
     if (n == 0) {
         return false;
@@ -677,7 +647,7 @@ static bool parse_origin(const char *v, style *st)
     double o[2] = { 0.5, 0.5 };
     unsigned pct = 3;
     int n = 0, axis_of[2] = { -1, -1 };
-    const char *s = skip_ws(v);
+    const char *s = svg_skip_ws(v);
     while (*s && n < 3) {
         size_t len = strcspn(s, " \t\r\n");
         char item[64];
@@ -686,7 +656,7 @@ static bool parse_origin(const char *v, style *st)
         }
         memcpy(item, s, len);
         item[len] = 0;
-        s = skip_ws(s + len);
+        s = svg_skip_ws(s + len);
         static const struct { const char *word; int axis; double at; } words[] = {
             { "left", 0, 0 }, { "right", 0, 1 }, { "top", 1, 0 }, { "bottom", 1, 1 },
             { "center", -1, 0.5 },
@@ -733,7 +703,7 @@ static bool parse_paint_order(const char *v, style *st)
     unsigned char order[3];
     int n = 0;
     unsigned seen = 0;
-    const char *s = skip_ws(v);
+    const char *s = svg_skip_ws(v);
     if (strcmp(s, "normal") == 0) {
         s += 6;
     }
@@ -744,7 +714,7 @@ static bool parse_paint_order(const char *v, style *st)
             if (strncmp(s, names[i], len) == 0 &&
                 (s[len] == 0 || isspace((unsigned char)s[len]))) {
                 k = i;
-                s = skip_ws(s + len);
+                s = svg_skip_ws(s + len);
                 break;
             }
         }
@@ -982,107 +952,6 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
 
 /* ---- path data ----------------------------------------------------------------- */
 
-typedef struct path_build {
-    sr_path *path;
-    double cx, cy;        /* current point */
-    double sx, sy;        /* subpath start */
-    double ctrl_x, ctrl_y;/* last control point (for S and T) */
-    char last;            /* last command, upper case */
-    bool started;
-} path_build;
-
-/* One path command with its numbers; the library's result. */
-static sr_result path_command(path_build *b, char cmd, const double *a)
-{
-    bool rel = islower((unsigned char)cmd) != 0;
-    char up = (char)toupper((unsigned char)cmd);
-    double ox = rel ? b->cx : 0, oy = rel ? b->cy : 0;
-    sr_result r = SR_OK;
-    switch (up) {
-    case 'M':
-        b->cx = b->sx = a[0] + ox;
-        b->cy = b->sy = a[1] + oy;
-        r = sr_path_move_to(b->path, b->cx, b->cy);
-        b->started = true;
-        break;
-    case 'L':
-        b->cx = a[0] + ox;
-        b->cy = a[1] + oy;
-        r = sr_path_line_to(b->path, b->cx, b->cy);
-        break;
-    case 'H':
-        b->cx = a[0] + ox;
-        r = sr_path_line_to(b->path, b->cx, b->cy);
-        break;
-    case 'V':
-        b->cy = a[0] + oy;
-        r = sr_path_line_to(b->path, b->cx, b->cy);
-        break;
-    case 'C':
-    case 'S': {
-        double x1, y1, x2, y2, x, y;
-        if (up == 'C') {
-            x1 = a[0] + ox, y1 = a[1] + oy, x2 = a[2] + ox, y2 = a[3] + oy;
-            x = a[4] + ox, y = a[5] + oy;
-        } else { /* first control point: the reflection of the previous one */
-            bool prev = b->last == 'C' || b->last == 'S';
-            x1 = prev ? 2 * b->cx - b->ctrl_x : b->cx;
-            y1 = prev ? 2 * b->cy - b->ctrl_y : b->cy;
-            x2 = a[0] + ox, y2 = a[1] + oy, x = a[2] + ox, y = a[3] + oy;
-        }
-        r = sr_path_cubic_to(b->path, x1, y1, x2, y2, x, y);
-        b->ctrl_x = x2;
-        b->ctrl_y = y2;
-        b->cx = x;
-        b->cy = y;
-        break;
-    }
-    case 'Q':
-    case 'T': {
-        double x1, y1, x, y;
-        if (up == 'Q') {
-            x1 = a[0] + ox, y1 = a[1] + oy, x = a[2] + ox, y = a[3] + oy;
-        } else {
-            bool prev = b->last == 'Q' || b->last == 'T';
-            x1 = prev ? 2 * b->cx - b->ctrl_x : b->cx;
-            y1 = prev ? 2 * b->cy - b->ctrl_y : b->cy;
-            x = a[0] + ox, y = a[1] + oy;
-        }
-        r = sr_path_quad_to(b->path, x1, y1, x, y);
-        b->ctrl_x = x1;
-        b->ctrl_y = y1;
-        b->cx = x;
-        b->cy = y;
-        break;
-    }
-    case 'A':
-        r = sr_path_arc_to(b->path, a[0], a[1], a[2], a[3] != 0, a[4] != 0, a[5] + ox,
-                           a[6] + oy);
-        b->cx = a[5] + ox;
-        b->cy = a[6] + oy;
-        break;
-    case 'Z':
-        r = sr_path_close(b->path);
-        b->cx = b->sx;
-        b->cy = b->sy;
-        break;
-    }
-    b->last = up;
-    return r;
-}
-
-static int args_for(char up)
-{
-    switch (up) {
-    case 'M': case 'L': case 'T': return 2;
-    case 'H': case 'V': return 1;
-    case 'C': return 6;
-    case 'S': case 'Q': return 4;
-    case 'A': return 7;
-    default: return 0;
-    }
-}
-
 /* The document's point budget (svg.h): false after reporting that `more`
  * points on top of those used would pass it. */
 static bool points_within_budget(svg_doc *doc, double more)
@@ -1147,20 +1016,30 @@ static bool add_vertex(svg_doc *doc, const sr_path *path, char kind)
 /* An error in path data or a points list: SVG draws the path up to the
  * last command (point) before it and drops the rest (SVG 1.1 F.2 and
  * SVG 2's path error handling), so the path built so far stands and the
- * error is a warning, once per element and place. */
-static void path_data_error(svg_doc *doc, const char *what, long offset, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-
-static void path_data_error(svg_doc *doc, const char *what, long offset, const char *fmt, ...)
+ * error is a warning ("WHAT: DETAIL at offset N"), once per element and
+ * place. */
+static void path_data_error(svg_doc *doc, const char *what, long offset, const char *message)
 {
-    char detail[256];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(detail, sizeof detail, fmt, ap);
-    va_end(ap);
     char key[128];
     snprintf(key, sizeof key, "%s error %lu:%ld %s", what, msg_line(doc), offset, doc->file);
-    warn_keyed(doc, key, "%s: %s at offset %ld; drawn up to there", what, detail, offset);
+    warn_keyed(doc, key, "%s; drawn up to there", message);
+}
+
+/* After each command of path data: its vertex for markers, the shape's
+ * limits.  A failure is reported here and stops the parse. */
+typedef struct path_data_check {
+    svg_doc *doc;
+    const sr_path *path;
+    bool failed;
+} path_data_check;
+
+static sr_result check_path_command(void *user, char letter, long offset)
+{
+    path_data_check *c = user;
+    char up = (char)toupper((unsigned char)letter);
+    c->failed = !add_vertex(c->doc, c->path, up == 'Z' || up == 'M' ? up : 'L') ||
+                (up != 'Z' && !path_within_limits(c->doc, c->path, "path data", offset));
+    return c->failed ? SR_TOO_LARGE : SR_OK;
 }
 
 /* Parse d="..." into the path: false after reporting a failure (a
@@ -1168,70 +1047,20 @@ static void path_data_error(svg_doc *doc, const char *what, long offset, const c
  * itself ends the path there with a warning. */
 static bool parse_path_data(svg_doc *doc, const char *d, sr_path *path)
 {
-    path_build b = { .path = path };
-    const char *s = skip_ws(d);
-    char cmd = 0;
-    while (*s) {
-        if (isalpha((unsigned char)*s)) {
-            cmd = *s++;
-            if (!args_for((char)toupper((unsigned char)cmd)) && toupper((unsigned char)cmd) != 'Z') {
-                path_data_error(doc, "path data", (long)(s - 1 - d), "unknown command '%c'", cmd);
-                return true;
-            }
-            if (!b.started && toupper((unsigned char)cmd) != 'M') {
-                path_data_error(doc, "path data", (long)(s - 1 - d), "no moveto first");
-                return true;
-            }
-            if (toupper((unsigned char)cmd) == 'Z') {
-                sr_result r = path_command(&b, cmd, NULL);
-                if (r != SR_OK) {
-                    lib_fail(doc, r);
-                    return false;
-                }
-                if (!add_vertex(doc, path, 'Z')) {
-                    return false;
-                }
-                s = skip_ws_comma(s);
-                continue;
-            }
-        } else if (!cmd || toupper((unsigned char)cmd) == 'Z') {
-            path_data_error(doc, "path data", (long)(s - d), "expected a command");
-            return true;
-        }
-        /* One set of arguments (commands repeat implicitly); a set cut
-         * short by an error draws nothing. */
-        char up = (char)toupper((unsigned char)cmd);
-        double a[7];
-        int n = args_for(up);
-        for (int i = 0; i < n; i++) {
-            s = skip_ws(s);
-            if (up == 'A' && (i == 3 || i == 4)) { /* flags: a single 0 or 1 */
-                if (*s != '0' && *s != '1') {
-                    path_data_error(doc, "path data", (long)(s - d), "arc flag not 0 or 1");
-                    return true;
-                }
-                a[i] = *s++ - '0';
-            } else if (!parse_number(&s, &a[i])) {
-                path_data_error(doc, "path data", (long)(s - d), "expected a number");
-                return true;
-            }
-            s = skip_ws_comma(s);
-        }
-        sr_result r = path_command(&b, cmd, a);
-        if (r != SR_OK) {
-            lib_fail(doc, r);
-            return false;
-        }
-        if (!add_vertex(doc, path, up == 'M' ? 'M' : 'L') ||
-            !path_within_limits(doc, path, "path data", (long)(s - d))) {
-            return false;
-        }
-        /* After a moveto, further pairs are linetos. */
-        if (up == 'M') {
-            cmd = cmd == 'M' ? 'L' : 'l';
-        }
+    path_data_check check = { .doc = doc, .path = path };
+    long offset;
+    sr_io_error err;
+    sr_result r = sr_io_parse_path_data(
+        d, path, &(sr_io_path_data_desc){ .command = check_path_command, .user = &check },
+        &offset, &err);
+    if (r == SR_BAD_FORMAT) {
+        path_data_error(doc, "path data", offset, err.message);
+        return true;
     }
-    return true;
+    if (r != SR_OK && !check.failed) {
+        lib_fail(doc, r);
+    }
+    return r == SR_OK;
 }
 
 /* ---- shapes ------------------------------------------------------------------- */
@@ -1717,7 +1546,7 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
     }
     double offset = st->dash_offset * (st->dash_offset_pct ? diag / 100 : 1);
     sr_polygon2 poly = sr_path_polygon(path);
-    double pieces = svg_path_length(path) / period * st->n_dash + poly.contour_count;
+    double pieces = sr_path_length(path) / period * st->n_dash + poly.contour_count;
     double est = poly.point_count + 2 * pieces;
     if (!(period > 0) || !isfinite(est) || doc->points_used + est > doc->points_budget) {
         svg_fail(doc, SR_TOO_LARGE,
@@ -1730,7 +1559,7 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
     sr_path *out = NULL;
     sr_result r = sr_make_path(doc->ctx, tol, &out);
     if (r == SR_OK) {
-        r = svg_dash_path(path, dash, st->n_dash, offset, out);
+        r = sr_path_dash(doc->ctx, path, dash, st->n_dash, offset, out);
     }
     if (r != SR_OK) {
         sr_destroy_path(doc->ctx, out);
@@ -1940,15 +1769,18 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
     if (!pts) {
         return false;
     }
-    const char *s = skip_ws(pts);
+    const char *s = svg_skip_ws(pts);
     int n = 0;
     while (*s) {
         double x, y;
-        if (!parse_number(&s, &x) || !parse_number((s = skip_ws_comma(s), &s), &y)) {
-            path_data_error(doc, name, (long)(s - pts), "points: expected a coordinate pair");
+        if (!svg_parse_number(&s, &x) || !svg_parse_number((s = svg_skip_ws_comma(s), &s), &y)) {
+            char message[160];
+            snprintf(message, sizeof message, "%s: points: expected a coordinate pair at offset %ld",
+                     name, (long)(s - pts));
+            path_data_error(doc, name, (long)(s - pts), message);
             break;
         }
-        s = skip_ws_comma(s);
+        s = svg_skip_ws_comma(s);
         bool first = n++ == 0;
         if (!path_ok(doc, first ? sr_path_move_to(p, x, y) : sr_path_line_to(p, x, y)) ||
             !add_vertex(doc, p, first ? 'M' : 'L') ||
@@ -1967,12 +1799,12 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
 
 static bool parse_viewbox(const char *s, double vb[4])
 {
-    s = skip_ws(s);
+    s = svg_skip_ws(s);
     for (int i = 0; i < 4; i++) {
-        if (!parse_number(&s, &vb[i])) {
+        if (!svg_parse_number(&s, &vb[i])) {
             return false;
         }
-        s = skip_ws_comma(s);
+        s = svg_skip_ws_comma(s);
     }
     return *s == 0 && vb[2] > 0 && vb[3] > 0;
 }
@@ -1985,9 +1817,9 @@ static bool parse_aspect(const char *s, double *ax, double *ay, bool *slice)
     if (!s) {
         return true;
     }
-    s = skip_ws(s);
+    s = svg_skip_ws(s);
     if (strncmp(s, "defer", 5) == 0) {
-        s = skip_ws(s + 5);
+        s = svg_skip_ws(s + 5);
     }
     if (strncmp(s, "none", 4) == 0) {
         *ax = *ay = -1;
@@ -2012,14 +1844,14 @@ static bool parse_aspect(const char *s, double *ax, double *ay, bool *slice)
         *ay = fy / 2.0;
         s += 8;
     }
-    s = skip_ws(s);
+    s = svg_skip_ws(s);
     if (strncmp(s, "slice", 5) == 0) {
         *slice = true;
         s += 5;
     } else if (strncmp(s, "meet", 4) == 0) {
         s += 4;
     }
-    return *skip_ws(s) == 0;
+    return *svg_skip_ws(s) == 0;
 }
 
 /* The viewBox vb onto the viewport (x, y, w, h) as preserveAspectRatio
@@ -2548,11 +2380,11 @@ static bool conditions_hold(const svg_node *node)
     }
     const char *feat = attr(node->atts, "requiredFeatures");
     if (feat) {
-        const char *s = skip_ws(feat);
+        const char *s = svg_skip_ws(feat);
         if (!*s) {
             return false;
         }
-        for (; *s; s = skip_ws(s)) {
+        for (; *s; s = svg_skip_ws(s)) {
             size_t n = strcspn(s, " \t\r\n");
             if (!feature_supported(s, n)) {
                 return false;
@@ -2564,7 +2396,7 @@ static bool conditions_hold(const svg_node *node)
     if (!lang) {
         return true;
     }
-    for (const char *s = skip_ws(lang); *s; s = skip_ws_comma(s)) {
+    for (const char *s = svg_skip_ws(lang); *s; s = svg_skip_ws_comma(s)) {
         size_t n = strcspn(s, ", \t\r\n");
         if (language_matches(s, n)) {
             return true;
@@ -2646,13 +2478,13 @@ static bool parse_angle(const char *v, double *deg)
     static const struct { const char *unit; double deg; } units[] = {
         { "deg", 1 }, { "grad", 0.9 }, { "rad", 180 / M_PI }, { "turn", 360 }, { "", 1 },
     };
-    const char *s = skip_ws(v);
-    if (!parse_number(&s, deg)) {
+    const char *s = svg_skip_ws(v);
+    if (!svg_parse_number(&s, deg)) {
         return false;
     }
     for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
         size_t n = strlen(units[i].unit);
-        if (strncasecmp(s, units[i].unit, n) == 0 && *skip_ws(s + n) == 0) {
+        if (strncasecmp(s, units[i].unit, n) == 0 && *svg_skip_ws(s + n) == 0) {
             *deg *= units[i].deg;
             return true;
         }

@@ -20,6 +20,15 @@ typedef enum svg_paint_kind {
  * "none".  *out is set for SVG_PAINT_COLOR, alpha included. */
 svg_paint_kind svg_parse_color(const char *s, sr_rgba *out);
 
+/* ---- numbers and separators (svg_path_data.c) ------------------------- */
+
+/* s past blanks; past blanks, one comma and blanks. */
+const char *svg_skip_ws(const char *s);
+const char *svg_skip_ws_comma(const char *s);
+/* An SVG number (sign, digits, fraction, exponent), no leading blanks:
+ * *s moved past it; false when there is none or it is beyond double. */
+bool svg_parse_number(const char **s, double *out);
+
 /* ---- the document tree (svg.c) ---------------------------------------- */
 
 typedef struct svg_node {
@@ -143,19 +152,7 @@ int svg_blend_mode(const char *name);
  * opaque, src itself where it is transparent, mixed by its alpha. */
 sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba src);
 
-/* ---- dashes (svg_dash.c) ----------------------------------------------- */
-
-/* Values of a stroke-dasharray, at most. */
-#define SVG_MAX_DASHES 32
-
-/* The length of the flattened path, closing segments included. */
-double svg_path_length(const sr_path *path);
-
-/* Append to out the dashes of path `in`: dash[0..n) are the lengths of
- * dashes and gaps in turn (n even, each >= 0, their sum > 0), the pattern
- * starting `offset` into itself at every subpath.  The caller bounds the
- * work: about length / sum * n dashes. */
-sr_result svg_dash_path(const sr_path *in, const double *dash, int n, double offset,
-                        sr_path *out);
+/* Values of a stroke-dasharray, at most (an odd list doubled). */
+#define SVG_MAX_DASHES SR_MAX_DASHES
 
 #endif
