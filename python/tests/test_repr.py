@@ -34,3 +34,19 @@ def test_scene_repr_counts_instances_meshes_faces_and_cameras():
     two = softrast.Scene([mesh, (mesh, np.eye(4)), softrast.Mesh(V, np.tile(F, (4, 1)))],
                          cameras=[softrast.Camera.perspective((0, 0, 3), (0, 0, 0))])
     assert repr(two) == "Scene(3 instances of 2 meshes, 6 faces drawn, 1 camera)"
+
+
+def test_paint_and_canvas_reprs_say_what_they_hold():
+    stops = [(0, "red"), (0.5, "#00ff00"), (1, "blue")]
+    assert (repr(softrast.LinearGradient((0, 0), (64, 0.5), stops, spread="reflect"))
+            == "LinearGradient(start=(0, 0), end=(64, 0.5), 3 stops, spread='reflect')")
+    assert (repr(softrast.RadialGradient((8, 8), 4, stops[:1]))
+            == "RadialGradient(center=(8, 8), radius=4, 1 stop, spread='pad')")
+    assert (repr(softrast.RadialGradient((8, 8), 4, stops, focal=(6, 7), focal_radius=1,
+                                         spread="repeat"))
+            == "RadialGradient(center=(8, 8), radius=4, focal=(6, 7), focal_radius=1, "
+               "3 stops, spread='repeat')")
+    tile = np.zeros((3, 5, 4), np.uint8)
+    assert repr(softrast.Pattern(tile, wrap="clamp")) == "Pattern(5x3 image, wrap='clamp')"
+    assert repr(softrast.Canvas(640, 480)) == "Canvas(640x480)"
+    assert softrast.Canvas.width.__doc__ and softrast.Canvas.height.__doc__
