@@ -244,6 +244,14 @@ class Camera:
         return _intrinsics(0.5 * height / math.tan(0.5 * self.yfov), width, height)
 
     def __repr__(self) -> str:
-        if self.index is None:
-            return f"Camera(type={self.type!r})"
-        return f"Camera(index={self.index}, node={self.node}, type={self.type!r})"
+        lens = f"yfov={self.yfov:.6g}" if self.type == "perspective" else f"ymag={self.ymag:.6g}"
+        where = f"eye={_short(self.world[:3, 3])}"
+        if self.R is not None:
+            where += f", forward={_short(self.R[2])}"
+        source = "" if self.index is None else f"index={self.index}, node={self.node}, "
+        return f"Camera({source}type={self.type!r}, {lens}, znear={self.znear:.6g}, {where})"
+
+
+def _short(v: NDArray[np.float64]) -> str:
+    """A vector in 6 significant digits, without numpy's array(...)."""
+    return "(" + ", ".join(f"{x:.6g}" for x in v) + ")"

@@ -113,6 +113,20 @@ def _stops(value: Sequence[Tuple[float, Color]]) -> NDArray[np.float64]:
     return out
 
 
+def _num(v: float) -> str:
+    """A coordinate as repr shows it: 2 not 2.0, 0.25 as is."""
+    return f"{v:g}"
+
+
+def _pt(p: Tuple[float, float]) -> str:
+    return f"({_num(p[0])}, {_num(p[1])})"
+
+
+def _stops_text(stops: NDArray[np.float64], spread: str) -> str:
+    n = len(stops)
+    return f"{n} stop{'s' if n != 1 else ''}, spread={spread!r}"
+
+
 class _Immutable:
     """A paint is checked and converted once, when made: its fields are
     read-only (a changed one would not be drawn)."""
@@ -150,6 +164,10 @@ class LinearGradient(_Immutable):
             _NAMES["kind"]["linear"], (0.0, 0.0, 0.0, 0.0), (*self.start, *self.end, 0.0, 0.0),
             self.stops, _name(spread, "spread", "spread"), None, 0, self.transform, 1.0)
 
+    def __repr__(self) -> str:
+        return (f"LinearGradient(start={_pt(self.start)}, end={_pt(self.end)}, "
+                f"{_stops_text(self.stops, self.spread)})")
+
 
 class RadialGradient(_Immutable):
     """A radial gradient: offset 1 on the circle (`center`, `radius`), 0 on
@@ -181,6 +199,13 @@ class RadialGradient(_Immutable):
             (*self.center, self.radius, *self.focal, self.focal_radius), self.stops,
             _name(spread, "spread", "spread"), None, 0, self.transform, 1.0)
 
+    def __repr__(self) -> str:
+        focal = "" if self.focal == self.center else f", focal={_pt(self.focal)}"
+        if self.focal_radius:
+            focal += f", focal_radius={_num(self.focal_radius)}"
+        return (f"RadialGradient(center={_pt(self.center)}, radius={_num(self.radius)}{focal}, "
+                f"{_stops_text(self.stops, self.spread)})")
+
 
 class Pattern(_Immutable):
     """An RGBA image as paint: an (H, W, 4) uint8 array, straight alpha,
@@ -210,6 +235,10 @@ class Pattern(_Immutable):
         self._paint: _PaintTuple = (
             _NAMES["kind"]["pattern"], (0.0, 0.0, 0.0, 0.0), (0.0,) * 6, None, 0, self.image,
             _name(wrap, "wrap", "wrap"), self.transform, 1.0)
+
+    def __repr__(self) -> str:
+        h, w = self.image.shape[:2]
+        return f"Pattern({w}x{h} image, wrap={self.wrap!r})"
 
 
 Paint = Union[str, Sequence[float], LinearGradient, RadialGradient, Pattern]
@@ -307,11 +336,16 @@ class Canvas:
 
     @property
     def width(self) -> int:
+        """The image's width in pixels (its shape[1])."""
         return int(self._core.image.shape[1])
 
     @property
     def height(self) -> int:
+        """The image's height in pixels (its shape[0])."""
         return int(self._core.image.shape[0])
+
+    def __repr__(self) -> str:
+        return f"Canvas({self.width}x{self.height})"
 
     def clear(self, color: Color = "transparent") -> None:
         """Set every pixel to `color` (a CSS color or (r, g, b[, a]) in [0, 1])."""

@@ -180,7 +180,8 @@ def _environment(environment: Optional[PathLike], intensity: float,
         try:
             st = os.stat(path)
         except OSError as e:
-            raise OSError(f"environment: {os.fsdecode(path)}: {e.strerror}") from None
+            raise type(e)(e.errno, f"environment: {os.fsdecode(path)}: {e.strerror}",
+                          e.filename) from None
         key = (path, (st.st_size, st.st_mtime_ns), intensity)
     else:
         raise TypeError(f"environment: expected 'studio', 'hemisphere' or an .hdr file's path, "

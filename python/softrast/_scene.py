@@ -127,7 +127,15 @@ class Scene:
         return iter(self.instances)
 
     def __repr__(self) -> str:
-        return f"Scene({len(self.instances)} instances)"
+        meshes = {id(inst.mesh): inst.mesh for inst in self.instances}
+        faces = sum(len(inst.mesh.faces) for inst in self.instances)
+        return (f"Scene({_count(len(self.instances), 'instance')} of "
+                f"{_count(len(meshes), 'mesh', 'meshes')}, {_count(faces, 'face')} drawn, "
+                f"{_count(len(self.cameras), 'camera')})")
+
+
+def _count(n: int, one: str, many: Optional[str] = None) -> str:
+    return f"{n} {one if n == 1 else many or one + 's'}"
 
 
 def as_scene(scene: Any) -> Scene:
@@ -182,7 +190,8 @@ def load_mesh(path: PathLike) -> Mesh:
     FBX, Collada, 3DS, OFF and more.  Faces with more than three vertices are
     triangulated.  The mesh's one diffuse texture, if any, becomes
     ``Mesh.texture``; a mesh whose parts take different textures keeps none
-    (with a warning).  Raises OSError when the file cannot be read and
+    (with a warning).  Raises OSError when the file cannot be read
+    (FileNotFoundError when it does not exist) and
     ValueError when it is malformed.
     """
     return Mesh(**_softrast.load_mesh(_path(path)))

@@ -78,7 +78,7 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
 
     Parameters
     ----------
-    source : str, os.PathLike, bytes, bytearray or memoryview
+    source : str, os.PathLike or a bytes-like object (bytes, memoryview, ...)
         The path of an SVG file, or the document itself: bytes-like
         objects always, a ``str`` when it starts with ``<`` (after white
         space), as every SVG document does.  ``<image>`` elements with a
@@ -141,15 +141,20 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
     """
     path: Optional[Union[str, os.PathLike[str], os.PathLike[bytes]]] = None
     data: Optional[Union[bytes, bytearray, memoryview]] = None
-    if isinstance(source, (bytes, bytearray, memoryview)):
+    if isinstance(source, (bytes, bytearray)):
         data = source
     elif isinstance(source, str) and _is_document(source):
         data = source.encode("utf-8")
     elif isinstance(source, (str, os.PathLike)):
         path = source
     else:
-        raise TypeError("source: expected a path (str or os.PathLike) or the document "
-                        f"(bytes or str), got {type(source).__name__}")
+        # Any other bytes-like object (an mmap, a uint8 array), its bytes
+        # in order whatever its layout.
+        try:
+            data = memoryview(source).tobytes()
+        except TypeError:
+            raise TypeError("source: expected a path (str or os.PathLike) or the document "
+                            f"(bytes or str), got {type(source).__name__}") from None
     if (width is None) != (height is None):
         raise ValueError("width and height: give both or neither")
     if width is not None and scale is not None:

@@ -58,10 +58,9 @@ PyObject *sr_py_make_environment(PyObject *self, PyObject *args)
     }
     free(px);
     Py_END_ALLOW_THREADS
-    Py_DECREF(path_obj);
     PyObject *out = NULL;
     if (rr != SR_OK) {
-        sr_py_io_error(rr, &err);
+        sr_py_io_error(rr, &err, PyBytes_AS_STRING(path_obj));
     } else if (r != SR_OK) {
         PyErr_Format(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError,
                      "environment: %s", e->ctx ? sr_context_error(e->ctx) : sr_result_text(r));
@@ -73,6 +72,7 @@ PyObject *sr_py_make_environment(PyObject *self, PyObject *args)
         sr_destroy_context(e->ctx);
         free(e);
     }
+    Py_DECREF(path_obj);
     return out;
 }
 

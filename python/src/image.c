@@ -52,11 +52,10 @@ PyObject *sr_py_read_image(PyObject *self, PyObject *args)
     Py_BEGIN_ALLOW_THREADS
     r = sr_read_image(path, &w, &h, &px, &err);
     Py_END_ALLOW_THREADS
+    PyObject *out = r == SR_OK ? sr_py_image_array(px, w, h)
+                               : sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
     Py_DECREF(path_obj);
-    if (r != SR_OK) {
-        return sr_py_io_error(r, &err);
-    }
-    return sr_py_image_array(px, w, h);
+    return out;
 }
 
 PyObject *sr_py_decode_image(PyObject *self, PyObject *args)
@@ -76,7 +75,7 @@ PyObject *sr_py_decode_image(PyObject *self, PyObject *args)
     Py_END_ALLOW_THREADS
     PyBuffer_Release(&data);
     if (r != SR_OK) {
-        return sr_py_io_error(r, &err);
+        return sr_py_io_error(r, &err, NULL);
     }
     return sr_py_image_array(px, w, h);
 }
@@ -128,7 +127,8 @@ PyObject *sr_py_write_png(PyObject *self, PyObject *args)
     Py_DECREF(a);
     Py_DECREF(path_obj);
     if (r != SR_OK) {
-        return sr_py_io_error(r, &err);
+        /* No errno: the path not existing says nothing of why a write failed. */
+        return sr_py_io_error(r, &err, NULL);
     }
     Py_RETURN_NONE;
 }

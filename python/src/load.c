@@ -52,13 +52,6 @@ static PyObject *arrays_dict(size_t vertices, const float *positions, const floa
     return d;
 }
 
-PyObject *sr_py_io_error(sr_result r, const sr_io_error *err)
-{
-    PyObject *type = r == SR_IO_ERROR ? PyExc_OSError : PyExc_ValueError;
-    PyErr_SetString(type, err->message[0] ? err->message : sr_result_text(r));
-    return NULL;
-}
-
 /* The mesh's one texture as an (H, W, 4) uint8 array, None when it names
  * none, or a warning and None when it cannot be read. */
 static PyObject *mesh_texture(const sr_mesh *m)
@@ -107,10 +100,9 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
     } else {
         snprintf(err.message, sizeof err.message, "cannot make a context");
     }
-    Py_DECREF(path_obj);
     PyObject *d = NULL;
     if (r != SR_OK) {
-        sr_py_io_error(r, &err);
+        sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
     } else {
         d = arrays_dict(mesh.vertex_count, mesh.positions, mesh.normals, mesh.colors, mesh.texcoords,
                         mesh.triangle_count, mesh.indices);
@@ -118,6 +110,7 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
             Py_CLEAR(d);
         }
     }
+    Py_DECREF(path_obj);
     sr_destroy_mesh(ctx, &mesh);
     sr_destroy_context(ctx);
     return d;
@@ -302,8 +295,8 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     } else {
         snprintf(err.message, sizeof err.message, "cannot make a context");
     }
+    PyObject *d = r == SR_OK ? scene_dict(scene) : sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
     Py_DECREF(path_obj);
-    PyObject *d = r == SR_OK ? scene_dict(scene) : sr_py_io_error(r, &err);
     PyObject *gltf = d ? PyDict_GetItemString(d, "gltf") : NULL;
     if (gltf == Py_True) {
         /* Kept, with its textures, for the metallic-roughness look. */

@@ -92,9 +92,11 @@ PyArrayObject *sr_py_take_array(PyObject *obj, const char *name, int ndim, const
         Py_DECREF(a);
         return NULL;
     }
-    if (!PyArray_ISALIGNED(a)) {
-        /* Unpickled arrays may lie at any address: read a copy. */
-        PyArrayObject *copy = (PyArrayObject *)PyArray_NewCopy(a, NPY_CORDER);
+    if (!PyArray_ISALIGNED(a) || PyArray_ISBYTESWAPPED(a)) {
+        /* Unpickled arrays may lie at any address, and a '>f4' array holds
+         * its numbers in the other byte order: read a native, aligned copy. */
+        PyArrayObject *copy = (PyArrayObject *)PyArray_FROMANY(
+            (PyObject *)a, PyArray_TYPE(a), 0, 0, NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED);
         Py_DECREF(a);
         a = copy;
     }
@@ -204,8 +206,6 @@ static void mesh_clear_arrays(MeshObject *m)
     Py_CLEAR(m->colors);
     Py_CLEAR(m->uvs);
     Py_CLEAR(m->texture);
-    Py_CLEAR(m->positions32);
-    Py_CLEAR(m->indices32);
     free(m->zeros);
     m->zeros = NULL;
     m->zeros_count = 0;
@@ -295,25 +295,33 @@ fail:
     return -1;
 }
 
-int sr_py_mesh_draw_arrays(MeshObject *m, const float **positions, const uint32_t **indices)
+/* `a` as an array of `type`: a new reference to a itself, or to a copy. */
+static PyArrayObject *as_type(PyArrayObject *a, int type)
 {
-    if (PyArray_TYPE(m->vertices) != NPY_FLOAT32 && !m->positions32) {
-        m->positions32 = (PyArrayObject *)PyArray_FROMANY((PyObject *)m->vertices, NPY_FLOAT32, 2, 2,
-                                                          NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_FORCECAST);
-        if (!m->positions32) {
-            return -1;
-        }
+    if (PyArray_TYPE(a) == type) {
+        Py_INCREF(a);
+        return a;
     }
-    if (PyArray_TYPE(m->faces) != NPY_INT32 && !m->indices32) {
-        m->indices32 = (PyArrayObject *)PyArray_FROMANY((PyObject *)m->faces, NPY_UINT32, 2, 2,
-                                                        NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_FORCECAST);
-        if (!m->indices32) {
-            return -1;
-        }
-    }
-    *positions = PyArray_DATA(m->positions32 ? m->positions32 : m->vertices);
+    return (PyArrayObject *)PyArray_FROMANY((PyObject *)a, type, 2, 2,
+                                            NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_FORCECAST);
+}
+
+int sr_py_mesh_draw_arrays(MeshObject *m, const float **positions, const uint32_t **indices,
+                           PyObject *held[2])
+{
     /* int32 indices checked to lie in [0, N) read the same as uint32. */
-    *indices = PyArray_DATA(m->indices32 ? m->indices32 : m->faces);
+    PyArrayObject *p = as_type(m->vertices, NPY_FLOAT32);
+    PyArrayObject *f = p ? as_type(m->faces, PyArray_TYPE(m->faces) == NPY_INT32 ? NPY_INT32
+                                                                                 : NPY_UINT32)
+                         : NULL;
+    if (!f) {
+        Py_XDECREF(p);
+        return -1;
+    }
+    *positions = PyArray_DATA(p);
+    *indices = PyArray_DATA(f);
+    held[0] = (PyObject *)p;
+    held[1] = (PyObject *)f;
     return 0;
 }
 

@@ -26,7 +26,7 @@
 /* A triangle mesh holding references to the caller's arrays (no copy
  * when they are C-contiguous float32/float64 and int32/int64).  The
  * renderer's programs read them in place; the float32 positions and
- * uint32 indices the built-in color pass needs are made on first use. */
+ * uint32 indices the built-in color pass needs are copied at each call. */
 typedef struct MeshObject {
     PyObject_HEAD
     PyArrayObject *vertices;    /* (N, 3) float32 or float64 */
@@ -35,8 +35,6 @@ typedef struct MeshObject {
     PyArrayObject *colors;      /* (N, 3|4) float32, or NULL */
     PyArrayObject *uvs;         /* (N, 2) float32, or NULL */
     PyArrayObject *texture;     /* (H, W, 3|4) uint8, or NULL */
-    PyArrayObject *positions32; /* float32 copy of vertices when they are float64 */
-    PyArrayObject *indices32;   /* uint32 copy of faces when they are int64 */
     float *zeros;               /* the draw's position array (render.c says why) */
     size_t zeros_count;
 } MeshObject;
@@ -73,9 +71,13 @@ PyArrayObject *sr_py_points_arg(PyObject *obj, const char *name);
 PyArrayObject *sr_py_take_array(PyObject *obj, const char *name, int ndim, const npy_intp *shape_want,
                                 const int *types);
 
-/* The mesh's float32 positions and uint32 indices for sr_draw (made once).
+/* The mesh's float32 positions and uint32 indices for sr_draw: its own
+ * arrays when they have those types, else copies made now, as the caller's
+ * arrays hold them at this call (they may change between calls).  held[0]
+ * and held[1] get new references (or NULL) to release after the draw.
  * -1 with an exception set on failure. */
-int sr_py_mesh_draw_arrays(MeshObject *m, const float **positions, const uint32_t **indices);
+int sr_py_mesh_draw_arrays(MeshObject *m, const float **positions, const uint32_t **indices,
+                           PyObject *held[2]);
 
 /* Scans faces for an index outside [0, N); returns the first offending
  * face or -1.  Needs no GIL. */
@@ -142,9 +144,14 @@ PyObject *sr_py_parse_color(PyObject *self, PyObject *args);
 
 /* sr_fit_camera of (vertices, model) pairs (framing.c). */
 PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);
-/* Raises a reader's or writer's error (OSError for SR_IO_ERROR, else
- * ValueError) with its one-line message; returns NULL. */
-PyObject *sr_py_io_error(sr_result r, const sr_io_error *err);
+/* Raises a reader's or writer's error with its one-line message (io_error.c):
+ * for SR_IO_ERROR an OSError, of the subclass the errno of `path` (NULL:
+ * none) names, with `path` as its filename; MemoryError; else ValueError.
+ * Returns NULL. */
+PyObject *sr_py_io_error(sr_result r, const sr_io_error *err, const char *path);
+/* A message of the library as str: a name in it need not be UTF-8, and
+ * one cut from the left may start inside a character. */
+PyObject *sr_py_message_text(const char *message);
 /* An (h, w, 4) uint8 array over the RGBA pixels px, which it takes over
  * and frees (they come from malloc: the readers', render_svg's); NULL on
  * failure, px freed. */

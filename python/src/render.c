@@ -636,7 +636,7 @@ static int take_output(PyObject *obj, const char *name, int type, int height, in
         return -1;
     }
     if ((PyObject *)a != obj || !PyArray_ISWRITEABLE(a)) {
-        PyErr_Format(PyExc_ValueError, "%s: array is read-only or not aligned", name);
+        PyErr_Format(PyExc_ValueError, "%s: array is read-only, not aligned or not in native byte order", name);
         Py_DECREF(a);
         return -1;
     }
@@ -772,7 +772,8 @@ static int take_instances(PyObject *seq, render_job *j)
                          i, bad, (Py_ssize_t)PyArray_DIM(m->vertices, 0));
             goto fail;
         }
-        if ((j->color || j->rgba) && sr_py_mesh_draw_arrays(m, &in->positions, &in->indices) < 0) {
+        if ((j->color || j->rgba) &&
+            sr_py_mesh_draw_arrays(m, &in->positions, &in->indices, in->held) < 0) {
             goto fail;
         }
     }
@@ -781,6 +782,15 @@ static int take_instances(PyObject *seq, render_job *j)
 fail:
     Py_DECREF(fast);
     return -1;
+}
+
+static void free_instances(render_job *j)
+{
+    for (size_t i = 0; j->inst && i < j->count; i++) {
+        Py_CLEAR(j->inst[i].held[0]);
+        Py_CLEAR(j->inst[i].held[1]);
+    }
+    free(j->inst);
 }
 
 PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
@@ -865,7 +875,7 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     j.barycentric = ptr[3], j.normal = ptr[4], j.color = ptr[5], j.mask = ptr[6];
     j.rgba = ptr[7];
     if (take_instances(instances, &j) < 0) {
-        free(j.inst);
+        free_instances(&j);
         return NULL;
     }
     /* The instances' meshes and the outputs stay referenced by the
@@ -876,7 +886,7 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
     run(&j, &set);
     Py_END_ALLOW_THREADS
     sr_py_give_back_render_set(&set, !j.error[0]);
-    free(j.inst);
+    free_instances(&j);
     if (j.error[0]) {
         PyErr_SetString(PyExc_RuntimeError, j.error);
         return NULL;

@@ -16,6 +16,7 @@ typedef struct instance {
     int32_t id;
     const float *positions;     /* for the color pass */
     const uint32_t *indices;
+    PyObject *held[2];          /* the arrays they point into, for the call */
     /* For the metallic-roughness look: the object -> world pose, the
      * Material's factors, alpha mode and flags (no textures), and the
      * loaded primitive it came from (its textures and arrays), or NULL. */

@@ -10,10 +10,8 @@
  */
 #include "module.h"
 
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 /* The warnings of one render, kept until the GIL is held again (the
  * callback runs without it).  The reader gives at most 65. */
@@ -37,20 +35,13 @@ static void keep_warning(void *user, const char *message)
     w->lines[w->count++] = copy;
 }
 
-/* A message of the library as str: a name in it need not be UTF-8, and
- * one cut from the left may start inside a character. */
-static PyObject *message_text(const char *message)
-{
-    return PyUnicode_DecodeUTF8(message, (Py_ssize_t)strlen(message), "backslashreplace");
-}
-
 /* The kept lines as a list of str, freeing them; NULL with an exception set on failure. */
 static PyObject *take_warnings(warning_list *w)
 {
     PyObject *list = PyList_New(0);
     for (int i = 0; i < w->count; i++) {
         if (list) {
-            PyObject *s = message_text(w->lines[i]);
+            PyObject *s = sr_py_message_text(w->lines[i]);
             if (!s || PyList_Append(list, s) < 0) {
                 Py_CLEAR(list);
             }
@@ -60,35 +51,6 @@ static PyObject *take_warnings(warning_list *w)
     }
     w->count = 0;
     return list;
-}
-
-/* A failed read of the file `path_obj` names: an OSError whose errno
- * (from stat, as open saw it moments earlier) makes it FileNotFoundError,
- * PermissionError or IsADirectoryError where one applies, with the
- * library's message and the path as its filename. */
-static PyObject *file_error(PyObject *path_obj, const char *message)
-{
-    struct stat st;
-    int e = 0;
-    if (stat(PyBytes_AS_STRING(path_obj), &st) != 0) {
-        e = errno;
-    } else if (S_ISDIR(st.st_mode)) {
-        e = EISDIR;
-    }
-    PyObject *filename = PyUnicode_DecodeFSDefault(PyBytes_AS_STRING(path_obj));
-    PyObject *text = message_text(message);
-    PyObject *exc = NULL;
-    if (filename && text) {
-        exc = e ? PyObject_CallFunction(PyExc_OSError, "iOO", e, text, filename)
-                : PyObject_CallFunction(PyExc_OSError, "O", text);
-    }
-    Py_XDECREF(filename);
-    Py_XDECREF(text);
-    if (exc) {
-        PyErr_SetObject((PyObject *)Py_TYPE(exc), exc);
-        Py_DECREF(exc);
-    }
-    return NULL;
 }
 
 /* The exception set, taken out as an object; NULL when none could be made. */
@@ -208,11 +170,11 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
             free(px);
         }
     } else if (r == SR_IO_ERROR && path_obj) {
-        file_error(path_obj, err.message);
+        sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
     } else if (r != SR_OK) {
         /* A malformed document, a reference cycle, a size or budget
          * refused: "NAME:LINE: what is wrong". */
-        PyObject *text = message_text(err.message[0] ? err.message : sr_result_text(r));
+        PyObject *text = sr_py_message_text(err.message[0] ? err.message : sr_result_text(r));
         if (text) {
             PyErr_SetObject(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError, text);
             Py_DECREF(text);

@@ -47,6 +47,22 @@ def test_load_errors(tmp_path):
         softrast.load(3)
 
 
+@pytest.mark.parametrize("read", [softrast.load, softrast.load_mesh, softrast.read_image])
+def test_file_errors_are_the_oserror_subclass_of_their_cause(tmp_path, read):
+    missing = tmp_path / "missing.obj"
+    with pytest.raises(FileNotFoundError, match="missing.obj") as e:
+        read(missing)
+    assert e.value.filename == str(missing) and "cannot open" in e.value.strerror
+    with pytest.raises(IsADirectoryError, match="directory"):
+        read(tmp_path)
+    with pytest.raises(FileNotFoundError, match=r"\\xff"):   # a name that is not UTF-8
+        read(os.fsencode(tmp_path) + b"/\xff.obj")
+    empty = tmp_path / "empty.obj"
+    empty.write_bytes(b"")
+    with pytest.raises(ValueError, match="empty.obj"):
+        read(empty)
+
+
 def write_gltf(path):
     """One triangle, drawn by two nodes: at the origin and moved by x + 2."""
     pos = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32).tobytes()

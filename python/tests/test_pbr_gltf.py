@@ -193,7 +193,7 @@ def test_environment(tmp_path):
     assert red[0] > red[2] + 30 and blue[2] > blue[0] + 30, (red, blue)
     assert np.abs(studio - hemi).max() > 3
     assert (default == studio).all(), "the default light is the studio, as softrast render's"
-    with pytest.raises(OSError, match="environment"):
+    with pytest.raises(FileNotFoundError, match="environment"):
         front(scene, environment=tmp_path / "missing.hdr")
     with pytest.raises(ValueError, match="environment_intensity"):
         front(scene, environment="studio", environment_intensity=0)

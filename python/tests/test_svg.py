@@ -2,6 +2,7 @@
 from a path or from memory, errors naming what is wrong, and the reader's
 warnings through the warnings module."""
 
+import array
 import gzip
 import os
 import pathlib
@@ -65,6 +66,11 @@ def test_bytes_str_and_path_like_render_as_the_path(name):
     assert np.array_equal(render_quietly(document, scale=0.75), want)
     assert np.array_equal(render_quietly(bytearray(document), scale=0.75), want)
     assert np.array_equal(render_quietly(memoryview(document), scale=0.75), want)
+    # Any bytes-like object: an array of the bytes, a strided view of them.
+    assert np.array_equal(render_quietly(np.frombuffer(document, np.uint8), scale=0.75), want)
+    assert np.array_equal(render_quietly(array.array("B", document), scale=0.75), want)
+    doubled = np.repeat(np.frombuffer(document, np.uint8), 2)[::2]
+    assert np.array_equal(render_quietly(memoryview(doubled), scale=0.75), want)
     assert np.array_equal(render_quietly(document.decode("utf-8"), scale=0.75), want)
     assert np.array_equal(render_quietly(path, scale=0.75), want)
 
