@@ -260,13 +260,15 @@ def _paint(value: Paint, opacity: float) -> _PaintTuple:
 
 
 def _dashes(value: Optional[Sequence[float]]) -> Tuple[float, ...]:
-    """A dash list as stroke takes it: None or lengths >= 0, at most 32."""
+    """A dash list as stroke takes it: None or lengths >= 0, at most the
+    library's SR_MAX_DASHES."""
     if value is None:
         return ()
     if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
         raise TypeError(f"dashes: expected a sequence of lengths, got {type(value).__name__}")
-    if len(value) > 32:
-        raise ValueError(f"dashes: at most 32 values, got {len(value)}")
+    limit = _softrast.max_dashes
+    if len(value) > limit:
+        raise ValueError(f"dashes: at most {limit} values, got {len(value)}")
     out = tuple(_real(v, f"dashes[{i}]") for i, v in enumerate(value))
     for i, v in enumerate(out):
         if v < 0:

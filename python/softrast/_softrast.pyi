@@ -16,6 +16,7 @@ framing_fov_deg: float
 # softrast.Canvas's names with the library's enum values, and
 # SR_MAX_GRADIENT_STOPS.
 draw2d_names: dict[str, dict[str, int]]
+max_dashes: int
 max_gradient_stops: int
 
 @final

@@ -144,6 +144,9 @@ static int add_draw2d_names(PyObject *m)
         Py_XDECREF(names);
         return -1;
     }
+    if (PyModule_AddIntConstant(m, "max_dashes", SR_MAX_DASHES) < 0) {
+        return -1;
+    }
     return PyModule_AddIntConstant(m, "max_gradient_stops", SR_MAX_GRADIENT_STOPS);
 }
 
