@@ -1051,3 +1051,37 @@ SR_TEST(sheet_holds_every_frame)
     free(f);
     free(s);
 }
+
+/* Primitives far off the grid (coordinates reach 16384 pixels, times a
+ * zoom of up to 64 in frame pixels) are drawn, cut to the frame, instead
+ * of failing in the 2D filler beyond its range. */
+SR_TEST(primitives_far_off_the_grid_are_drawn)
+{
+    NEEDS_CLI();
+    static const char *const runs[][3] = {
+        { "triangle", "--triangle", "-16000,-16000,16000,0,0,16000" },
+        { "msaa", "--triangle", "-16000,-16000,16000,0,0,16000" },
+        { "perspective", "--triangle", "-16000,-16000,16000,0,0,16000" },
+        { "fillpoly", "--triangle", "-16000,-16000,16000,0,0,16000" },
+        { "zbuffer", "--triangles",
+          "-16000,-16000,0.5,16000,0,0.5,0,16000,0.5,-16000,-16000,0.4,16000,0,0.4,0,16000,0.6" },
+        { "scanline", "--polygon", "-16000,-16000,16000,0,0,16000" },
+        { "clip", "--polygon", "-16000,-16000,16000,0,0,16000" },
+        { "floodfill", "--polygon", "-16000,-16000,16000,0,0,16000" },
+        { "circle", "--circle", "4,4,4096" },
+        { "forward-differencing", "--cubic", "-16000,0,16000,0,-16000,8,16000,8" },
+        { "bresenham", "--line", "-300.5,0.5,300.5,1.5" },
+        { "dda", "--line", "-300,0.5,300,1.5" },
+    };
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        char dir[1024];
+        out_dir("far", dir, sizeof dir);
+        bool cubic = strcmp(runs[i][0], "forward-differencing") == 0;
+        int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
+                                                   "--grid", "8x8", "--zoom", "64", "-o", dir,
+                                                   cubic ? "--tolerance" : NULL, "100", NULL });
+        if (rc != 0) {
+            FAILF("explain %s %s %s at zoom 64: exit %d", runs[i][0], runs[i][1], runs[i][2], rc);
+        }
+    }
+}
