@@ -1085,3 +1085,32 @@ SR_TEST(primitives_far_off_the_grid_are_drawn)
         }
     }
 }
+
+/* docs/explain.md's forward-differencing example: frame 1's caption
+ * (the set-up of d1, d2 and d3) takes ten lines at the default view and
+ * ends with d3's value on the tenth, which a canvas with room for nine
+ * cut off.  The grid is 12 x 32 frame pixels under a 16-pixel margin, the
+ * caption starts 16 below it, a line every 20 frame pixels (text scale 2,
+ * 7 pixels tall at 2x). */
+SR_TEST(long_captions_are_not_cut_off)
+{
+    NEEDS_CLI();
+    char dir[1024], first[1200];
+    out_dir("caption", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "forward-differencing", "-o", dir,
+                                              NULL }) == 0);
+    snprintf(first, sizeof first, "%s/frame-001.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(first, NULL, &w, &h, &px, NULL) == SR_OK);
+    int top = MARGIN + 12 * 32 + MARGIN + 9 * 20, text = 0;
+    for (int y = top; y < top + 14 && y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p = px + ((size_t)y * w + x) * 4;
+            text += p[0] < 60 && p[1] < 60 && p[2] < 60;
+        }
+    }
+    CHECK(text > 20);   /* the tenth line is drawn */
+    CHECK(h >= top + 14 + MARGIN);
+    free(px);
+}

@@ -685,8 +685,18 @@ int cmd_explain(int argc, char **argv)
                                                                      alg->run == explain_fwdiff ||
                                                                      alg->run == explain_clip4d ? 9 : 7;
     sr_result run = SR_OK;
-    if (ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) != SR_OK ||
-        (run = alg->run(&c, &prim)) != SR_OK) {
+    bool made = ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) == SR_OK &&
+                (run = alg->run(&c, &prim)) == SR_OK;
+    if (made && c.caption_needed > lines) {
+        /* A caption longer than the room kept for it (a narrow grid wraps
+         * it into more lines) would be cut off: the steps again, with room
+         * for the longest.  The frames are all one size, for the sheet. */
+        lines = c.caption_needed;
+        ex_canvas_free(&c);
+        made = ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) == SR_OK &&
+               (run = alg->run(&c, &prim)) == SR_OK;
+    }
+    if (!made) {
         if (c.too_many) {
             cli_error("explain %s: the frames would take over %zu MiB: make --grid or --zoom "
                       "smaller", alg->name, EX_MAX_FRAME_BYTES >> 20);

@@ -53,6 +53,7 @@ typedef struct ex_canvas {
     int grid_w, grid_h, zoom;
     int width, height;
     int text_scale, caption_y, caption_lines;
+    int caption_needed;       /* the most lines a caption took (drawn or not) */
     uint8_t **frames;
     int frame_count, frame_cap;
     size_t kept_bytes;        /* of all the frames, at most EX_MAX_FRAME_BYTES */

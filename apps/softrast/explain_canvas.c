@@ -291,7 +291,7 @@ static void caption(ex_canvas *c, const char *text)
     int max_chars = (c->width - 2 * EX_MARGIN) / (6 * s);
     int line = 0;
     const char *p = text;
-    while (*p && line < c->caption_lines && c->error == SR_OK) {
+    while (*p && c->error == SR_OK) {
         int n = 0, cut = -1;
         while (p[n] && p[n] != '\n' && n < max_chars) {
             if (p[n] == ' ') {
@@ -302,18 +302,23 @@ static void caption(ex_canvas *c, const char *text)
         if (p[n] && p[n] != '\n' && p[n] != ' ' && cut > 0) {
             n = cut;   /* break at the last space that fits */
         }
-        char buf[256];
-        int k = n < (int)sizeof buf - 1 ? n : (int)sizeof buf - 1;
-        memcpy(buf, p, (size_t)k);
-        buf[k] = 0;
-        keep(c, sr_draw_text(c->ctx, c->fb, EX_MARGIN, c->caption_y + line * 10 * s, s, buf,
-                             EX_TEXT));
+        if (line < c->caption_lines) {
+            char buf[256];
+            int k = n < (int)sizeof buf - 1 ? n : (int)sizeof buf - 1;
+            memcpy(buf, p, (size_t)k);
+            buf[k] = 0;
+            keep(c, sr_draw_text(c->ctx, c->fb, EX_MARGIN, c->caption_y + line * 10 * s, s, buf,
+                                 EX_TEXT));
+        }
         p += n;
         while (*p == ' ' || *p == '\n') {
             p++;
         }
         line++;
     }
+    /* the lines past the room are counted, not drawn: the caller runs the
+     * steps again on a taller canvas */
+    c->caption_needed = line > c->caption_needed ? line : c->caption_needed;
 }
 
 void ex_end(ex_canvas *c, const char *text)
