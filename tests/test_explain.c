@@ -1114,3 +1114,32 @@ SR_TEST(long_captions_are_not_cut_off)
     CHECK(h >= top + 14 + MARGIN);
     free(px);
 }
+
+/* An option the algorithm does not take is refused, not ignored: a
+ * student's `explain triangle --samples 8` drew one sample per pixel
+ * without a word. */
+SR_TEST(options_of_another_algorithm_are_refused)
+{
+    NEEDS_CLI();
+    char dir[1024];
+    out_dir("not_mine", dir, sizeof dir);
+    static const char *const runs[][3] = {
+        { "triangle", "--samples", "8" },       { "msaa", "--fill-rule", "nonzero" },
+        { "floodfill", "--fill-rule", "nonzero" }, { "scanline", "--window", "1,1,5,5" },
+        { "triangle", "--row", "3" },           { "dda", "--tolerance", "0.5" },
+        { "scanline", "--seed", "3,3" },        { "clip", "--connectivity", "8" },
+        { "msaa", "--w", "1,2,3" },             { "perspective", "--intensity", "0,1,0" },
+    };
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
+                                                   "-o", dir, NULL });
+        if (rc != 2) {
+            FAILF("explain %s %s %s: exit %d, not 2", runs[i][0], runs[i][1], runs[i][2], rc);
+        }
+    }
+    /* and the owners take them */
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "clip", "--fill-rule", "nonzero",
+                                               "--window", "2,2,12,9", "-o", dir, NULL }), 0);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "floodfill", "--seed", "3,3",
+                                               "--connectivity", "8", "-o", dir, NULL }), 0);
+}

@@ -143,8 +143,8 @@ static void usage(FILE *f)
             "                             affine (SR_INTERP_AFFINE) or by FillPoly/FillSpan's\n"
             "                             screen-space increments (fillspan)\n"
             "  --fill-rule evenodd|nonzero\n"
-            "                             polygons: inside by parity (the default) or by\n"
-            "                             winding number\n"
+            "                             scanline, clip: inside by parity (the default)\n"
+            "                             or by winding number\n"
             "\n"
             "view:\n"
             "  --grid WxH                 pixels shown (from 1x1 to %dx%d)\n"
@@ -432,6 +432,45 @@ static bool write_webp(const ex_canvas *c, const char *path)
     return ok;
 }
 
+/* The options that only some algorithms take, and which: given to
+ * another, one would be ignored without a word (`explain triangle
+ * --samples 8` drew no samples). */
+static const struct {
+    const char *option, *algorithms[3];
+} option_owners[] = {
+    { "--fill-rule", { "scanline", "clip" } },
+    { "--window", { "clip" } },
+    { "--samples", { "msaa" } },
+    { "--w", { "perspective" } },
+    { "--row", { "perspective" } },
+    { "--interpolation", { "perspective" } },
+    { "--intensity", { "fillpoly" } },
+    { "--rasterizer", { "triangle" } },
+    { "--tolerance", { "forward-differencing" } },
+    { "--seed", { "floodfill" } },
+    { "--connectivity", { "floodfill" } },
+};
+
+/* Whether algorithm `name` takes option `a`; false after one line. */
+static bool option_applies(const char *name, const char *a)
+{
+    for (size_t i = 0; i < sizeof option_owners / sizeof option_owners[0]; i++) {
+        if (strcmp(a, option_owners[i].option) != 0) {
+            continue;
+        }
+        const char *const *owners = option_owners[i].algorithms;
+        for (int k = 0; k < 3 && owners[k]; k++) {
+            if (strcmp(name, owners[k]) == 0) {
+                return true;
+            }
+        }
+        cli_error("explain %s: %s is for '%s'%s%s%s", name, a, owners[0],
+                  owners[1] ? " and '" : "", owners[1] ? owners[1] : "", owners[1] ? "'" : "");
+        return false;
+    }
+    return true;
+}
+
 static const char *kind_option(ex_kind k)
 {
     return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
@@ -494,6 +533,9 @@ int cmd_explain(int argc, char **argv)
             cli_error("explain: %s: needs a value (try 'softrast explain --help')", a);
             return EXIT_USAGE;
         }
+        if (!option_applies(alg->name, a)) {
+            return EXIT_USAGE;
+        }
         const char *v = argv[++i];
         bool ok = true;
         ex_primitive p = { 0 };
@@ -531,11 +573,6 @@ int cmd_explain(int argc, char **argv)
             static const char *const interpolations[] = { "perspective", "affine", "fillspan",
                                                           NULL };
             bool r = a[2] == 'r';
-            if (alg->run != (r ? explain_triangle : explain_perspective)) {
-                cli_error("explain %s: %s is for '%s'", alg->name, a,
-                          r ? "triangle" : "perspective");
-                return EXIT_USAGE;
-            }
             int k;
             ok = parse_choice(a, v, r ? rasterizers : interpolations, &k);
             if (r) {
@@ -560,10 +597,6 @@ int cmd_explain(int argc, char **argv)
             }
         } else if (strcmp(a, "--w") == 0 || strcmp(a, "--intensity") == 0) {
             bool w = a[2] == 'w';
-            if (alg->run != (w ? explain_perspective : explain_fillpoly)) {
-                cli_error("explain %s: %s is for '%s'", alg->name, a, w ? "perspective" : "fillpoly");
-                return EXIT_USAGE;
-            }
             ok = w ? parse_three(a, v, "W0,W1,W2", 1.0 / 64, 1024, per_vertex)
                    : parse_three(a, v, "IA,IB,IC", 0, 1, per_vertex);
             per_vertex_given = true;
