@@ -483,3 +483,30 @@ SR_TEST(demo_depth_range_maps_inverts_and_splits_depth)
     CHECK(marker > 200);
     free(im.px);
 }
+
+/* --scale takes 1..32, but most 3D demos' pages pass the framebuffer's
+ * 8192 a side well before 32: refused as bad usage (exit 2) with the
+ * largest scale that fits, before any file is written, not a failed run
+ * (exit 1) with the library's message about sr_framebuffer_desc.width. */
+SR_TEST(demo_scale_too_large_for_the_page_is_refused)
+{
+    static const char *const demos[] = { "gouraud-highlight", "perspective", "zfight", "normals",
+                                         "viewport", "aa", "painter", "orientation",
+                                         "depth-range" };
+    for (size_t i = 0; i < sizeof demos / sizeof demos[0]; i++) {
+        char out[1024];
+        snprintf(out, sizeof out, "%s/demo_too_large.png", sr_test_out_dir());
+        remove(out);
+        int status = sr_test_run_cli((const char *[]){ "demo", demos[i], "--scale", "32", "-o",
+                                                       out, NULL });
+        if (status != 2) {
+            sr_test_fail(__FILE__, __LINE__, "demo %s --scale 32: exit %d, not 2", demos[i],
+                         status);
+        }
+        FILE *f = fopen(out, "rb");
+        CHECK(f == NULL);   /* nothing written */
+        if (f) {
+            fclose(f);
+        }
+    }
+}

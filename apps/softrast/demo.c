@@ -24,7 +24,8 @@ static void demo_help(FILE *f)
     fprintf(f, "\noptions:\n"
                "  -o, --output FILE   PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
                "                      (default demo-NAME.png)\n"
-               "  --scale N           magnification of pixel-level demos, 1..32\n");
+               "  --scale N           magnification of pixel-level demos, 1..32 (less\n"
+               "                      for a demo whose image would pass 8192 a side)\n");
 }
 
 int cmd_demo(int argc, char **argv)

@@ -27,6 +27,18 @@ int demo3d_begin(demo3d *d, sr_context *ctx, const char *name, demo3d_layout lay
         }
     }
     int w = demo3d_grid_width(layout, d->scale), h = demo3d_grid_height(layout, d->scale);
+    if (w > SR_MAX_FRAMEBUFFER_SIZE || h > SR_MAX_FRAMEBUFFER_SIZE) {
+        /* --scale takes 1..32 for every demo; the 3D demos' panels are
+         * large, so name the most this one can be magnified */
+        int most = d->scale;
+        while (most > 1 && (demo3d_grid_width(layout, most) > SR_MAX_FRAMEBUFFER_SIZE ||
+                            demo3d_grid_height(layout, most) > SR_MAX_FRAMEBUFFER_SIZE)) {
+            most--;
+        }
+        cli_error("demo %s: --scale %d makes a %dx%d image, over %d a side: give --scale %d "
+                  "or less", name, d->scale, w, h, SR_MAX_FRAMEBUFFER_SIZE, most);
+        return EXIT_USAGE;
+    }
     if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
                                                          .depth_format = SR_DEPTH_NONE },
                             &d->out) != SR_OK) {
