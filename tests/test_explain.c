@@ -1143,3 +1143,37 @@ SR_TEST(options_of_another_algorithm_are_refused)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "floodfill", "--seed", "3,3",
                                                "--connectivity", "8", "-o", dir, NULL }), 0);
 }
+
+/* scanline's edge table frame names each edge in pink.  At the edge's
+ * first crossing the name sat on the name of the vertex the edge starts
+ * at (the example's e0 and e5 over V0, e1 and e2 over V2, e4 over V5);
+ * the vertex names' boxes are now free of pink.  The example's view:
+ * zoom 32, text at twice the font's size, a label 5 frame pixels right
+ * of its point and 19 above. */
+SR_TEST(scanline_edge_names_leave_the_vertex_names_readable)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("scanline_labels", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "scanline", "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-002.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    static const double vertices[][2] = { { 1.3, 1.4 }, { 13.7, 1.4 }, { 1.3, 6.5 } };
+    for (int v = 0; v < 3; v++) {
+        int x0 = (int)(MARGIN + vertices[v][0] * 32) + 5;
+        int y0 = (int)(MARGIN + vertices[v][1] * 32) - 19;
+        int pink = 0;
+        for (int y = y0; y < y0 + 14; y++) {
+            for (int x = x0; x < x0 + 24 && x < w; x++) {
+                const uint8_t *p = px + ((size_t)y * w + x) * 4;
+                pink += p[0] > 180 && p[1] < 140 && p[2] > 90 && p[2] < 200;
+            }
+        }
+        if (pink) {
+            FAILF("vertex %d's name has %d pink pixels over it", v, pink);
+        }
+    }
+    free(px);
+}

@@ -139,8 +139,9 @@ static void edge_table_frame(ex_canvas *c, const scan *s)
     char cap[4096] = "";
     add(cap, sizeof cap,
         "2. Edge table: each edge bucketed at its first scanline (active while "
-        "ymin <= y+1/2 < ymax). Dropped: %d edge%s that cross no scanline (horizontal).\n",
-        s->horizontal, s->horizontal == 1 ? "" : "s");
+        "ymin <= y+1/2 < ymax). Dropped: %d edge%s that cross%s no scanline (horizontal, or between two "
+        "scanlines' samples).\n",
+        s->horizontal, s->horizontal == 1 ? "" : "s", s->horizontal == 1 ? "es" : "");
     for (int y = s->y0; y <= s->y1; y++) {
         for (int i = 0; i < s->n; i++) {
             const edge *e = &s->e[i];
@@ -149,9 +150,12 @@ static void edge_table_frame(ex_canvas *c, const scan *s)
             }
             double x = cross_x(e, y);
             ex_dot(c, (sr_point2){ x, y + 0.5 }, 3, EX_HILITE);
+            /* the name at the edge's middle: at the first crossing it
+             * would sit on the name of the vertex the edge starts at */
             char name[8];
             snprintf(name, sizeof name, "e%d", e->id);
-            ex_label(c, (sr_point2){ x, y + 0.5 }, name, EX_HILITE);
+            ex_label(c, (sr_point2){ (e->x0 + e->x1) / 512.0, (e->y0 + e->y1) / 512.0 }, name,
+                     EX_HILITE);
             add(cap, sizeof cap, "y=%d: e%d x=%.2f 1/m=%+.3f to y=%d, %s\n", y, e->id, x,
                 (double)(e->x1 - e->x0) / (double)(e->y1 - e->y0), e->last,
                 e->dir > 0 ? "down" : "up");
@@ -220,18 +224,31 @@ static void scanline_frame(ex_canvas *c, scan *s, int y, sr_fill_rule rule, int 
         }
     }
     draw_polygon(c, s, false);
-    for (int k = 0; k < n; k++) {
-        const edge *e = &s->e[aet[k]];
-        sr_point2 p = { cross_x(e, y), y + 0.5 };
-        char label[24];
-        snprintf(label, sizeof label, "%d", k + 1);
+    for (int k = 0; k < n;) {
+        /* crossings closer than a label's width share one ("1,2"): two
+         * labels would run together into "12" */
+        sr_point2 p = { cross_x(&s->e[aet[k]], y), y + 0.5 };
+        char label[64];
+        int len = snprintf(label, sizeof label, "%d", k + 1);
         ex_dot(c, p, 3, EX_HILITE);
+        int next = k + 1;
+        while (next < n && len < (int)sizeof label - 8) {
+            double x = cross_x(&s->e[aet[next]], y);
+            if ((x - p.x) * c->zoom > sr_text_width(label, c->text_scale) + 8) {
+                break;
+            }
+            ex_dot(c, (sr_point2){ x, y + 0.5 }, 3, EX_HILITE);
+            len += snprintf(label + len, sizeof label - (size_t)len, ",%d", next + 1);
+            next++;
+        }
         ex_label(c, p, label, EX_HILITE);
+        k = next;
     }
     add(cap, sizeof cap,
-        "\n%s: inside after an %s crossing count. %d pixels whose centres lie between "
+        "\n%s: inside after an %s crossing count. %d pixel%s whose centre%s between "
         "an inside pair of crossings.",
-        rule_name(rule), rule == SR_EVENODD ? "odd" : "nonzero", span_pixels);
+        rule_name(rule), rule == SR_EVENODD ? "odd" : "nonzero", span_pixels,
+        span_pixels == 1 ? "" : "s", span_pixels == 1 ? " lies" : "s lie");
     ex_end(c, cap);
 }
 
