@@ -1177,3 +1177,29 @@ SR_TEST(scanline_edge_names_leave_the_vertex_names_readable)
     }
     free(px);
 }
+
+/* A zero-length line's ends get one name, "A=B": "A" and "B" were drawn
+ * over each other.  bresenham's view: zoom 32, text at twice the font's
+ * size (12 frame pixels a character), a label 5 right of its point and
+ * 19 above; the "B" of "A=B" is the third character. */
+SR_TEST(line_ends_on_one_point_share_a_name)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("zero_line", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "bresenham", "--line", "1.5,1.5,1.5,1.5",
+                                              "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-001.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    int x0 = MARGIN + 48 + 5 + 24, y0 = MARGIN + 48 - 19, dark = 0;
+    for (int y = y0; y < y0 + 14; y++) {
+        for (int x = x0; x < x0 + 10; x++) {
+            const uint8_t *p = px + ((size_t)y * w + x) * 4;
+            dark += p[0] < 80 && p[1] < 80 && p[2] < 80;
+        }
+    }
+    CHECK(dark > 10);
+    free(px);
+}
