@@ -1203,3 +1203,29 @@ SR_TEST(line_ends_on_one_point_share_a_name)
     CHECK(dark > 10);
     free(px);
 }
+
+/* Two labels at one point (a polygon with a repeated vertex) are drawn
+ * one under the other instead of over each other.  scanline's view at
+ * zoom 32, text at twice the font's size: V1 = V2 = (9, 1) puts V1's
+ * name at (16 + 288 + 5, 16 + 32 - 19) and V2's, 7 x 2 + 4 below it. */
+SR_TEST(labels_at_one_point_are_stacked)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("stacked_labels", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "scanline", "--polygon",
+                                              "1,1,9,1,9,1,9,9,1,9", "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-001.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    int x0 = MARGIN + 288 + 5, y0 = MARGIN + 32 - 19 + 14 + 4, dark = 0;
+    for (int y = y0; y < y0 + 14; y++) {
+        for (int x = x0; x < x0 + 24; x++) {
+            const uint8_t *p = px + ((size_t)y * w + x) * 4;
+            dark += p[0] < 80 && p[1] < 80 && p[2] < 80;
+        }
+    }
+    CHECK(dark > 10);   /* V2's name, below V1's */
+    free(px);
+}

@@ -54,6 +54,8 @@ typedef struct ex_canvas {
     int width, height;
     int text_scale, caption_y, caption_lines;
     int caption_needed;       /* the most lines a caption took (drawn or not) */
+    int labels[16][4];        /* this frame's labels so far: x, y, w, h */
+    int label_count;
     uint8_t **frames;
     int frame_count, frame_cap;
     size_t kept_bytes;        /* of all the frames, at most EX_MAX_FRAME_BYTES */

@@ -82,6 +82,7 @@ void ex_begin(ex_canvas *c)
     if (c->error != SR_OK) {
         return;
     }
+    c->label_count = 0;
     keep(c, sr_clear(c->ctx, c->fb, &(sr_clear_desc){ .color = { EX_BG.r, EX_BG.g, EX_BG.b, 1 } }));
     for (int y = 0; y < c->grid_h; y++) {
         for (int x = 0; x < c->grid_w; x++) {
@@ -277,6 +278,27 @@ void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color)
     int bottom = c->caption_y - EX_MARGIN / 2 - 8 * s;
     y = y > bottom ? bottom : y;
     y = y < 2 ? 2 : y;
+    /* a label on one drawn before in this frame (two vertices at one
+     * point, a name beside a vertex's) goes below it, so both read */
+    int h = 7 * s;
+    for (int tries = 0; tries < 16; tries++) {
+        bool moved = false;
+        for (int i = 0; i < c->label_count && !moved; i++) {
+            const int *b = c->labels[i];
+            if (x < b[0] + b[2] + s && b[0] < x + w + s && y < b[1] + b[3] + s &&
+                b[1] < y + h + s && b[1] + b[3] + 2 * s <= bottom) {
+                y = b[1] + b[3] + 2 * s;
+                moved = true;
+            }
+        }
+        if (!moved) {
+            break;
+        }
+    }
+    if (c->label_count < (int)(sizeof c->labels / sizeof c->labels[0])) {
+        int *b = c->labels[c->label_count++];
+        b[0] = x, b[1] = y, b[2] = w, b[3] = h;
+    }
     keep(c, sr_draw_text(c->ctx, c->fb, x, y, s, text, color));
 }
 
