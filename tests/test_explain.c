@@ -1229,3 +1229,73 @@ SR_TEST(labels_at_one_point_are_stacked)
     CHECK(dark > 10);   /* V2's name, below V1's */
     free(px);
 }
+
+/* Whether the caption of the frame at `path` reads `text`: the text drawn
+ * as the canvas draws it (from x = 16, at caption_y = 16 + grid_h x zoom
+ * + 16, a line every 10 x scale pixels, wrapped at the last space that
+ * fits the frame's width) and compared with the frame, dark pixel for
+ * dark pixel, over the caption band. */
+static bool caption_reads(const char *path, int grid_h, int zoom, int scale, const char *text)
+{
+    int w, h;
+    uint8_t *px = NULL;
+    if (sr_read_png(path, NULL, &w, &h, &px, NULL) != SR_OK) {
+        return false;
+    }
+    rt_target t = rt_make(w, h, 1);
+    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+    int top = MARGIN + grid_h * zoom + MARGIN, max_chars = (w - 2 * MARGIN) / (6 * scale);
+    const char *p = text;
+    for (int line = 0; *p; line++) {
+        int n = 0, cut = -1;
+        while (p[n] && n < max_chars) {
+            cut = p[n] == ' ' ? n : cut;
+            n++;
+        }
+        if (p[n] && p[n] != ' ' && cut > 0) {
+            n = cut;
+        }
+        char buf[256];
+        snprintf(buf, sizeof buf, "%.*s", n, p);
+        sr_draw_text(t.ctx, t.fb, MARGIN, top + line * 10 * scale, scale, buf,
+                     (sr_rgba){ 0, 0, 0, 1 });
+        p += n;
+        while (*p == ' ') {
+            p++;
+        }
+    }
+    const uint8_t *want = sr_framebuffer_pixels(t.fb);
+    int diff = 0;
+    for (size_t i = (size_t)(top - 4) * w; i < (size_t)w * h; i++) {
+        bool a = px[i * 4] < 80 && px[i * 4 + 1] < 80 && px[i * 4 + 2] < 80;
+        diff += a != (want[i * 4] < 80);
+    }
+    rt_free(&t);
+    free(px);
+    return diff == 0;
+}
+
+/* clip4d's last caption said "all w > 0" of a polygon whose vertices
+ * all have w = 0 (a triangle at the eye, which near and far keep), and
+ * "1 triangles". */
+SR_TEST(clip4d_last_caption_says_w_may_be_zero_at_the_eye)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("clip4d_eye", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip4d", "--clip-triangle",
+                                              "0,0,0,0,0,0,0,0,0,0,0,0", "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-008.png", dir);
+    CHECK(caption_reads(path, 12, 32, 2,
+                        "8. The clipped polygon (3 vertices, all w >= 0; w = 0 only at the eye, "
+                        "where nothing is covered) divided by w, mapped onto the grid and fanned "
+                        "into 1 triangle, each covered by its edge functions with the top-left "
+                        "rule: 0 pixels, what sr_draw draws for the triangle (which clips only "
+                        "near, far and w > 0 in clip space and trims x and y exactly to the "
+                        "viewport as it rasterizes)."));
+    /* the documented example: w > 0 everywhere after clipping */
+    out_dir("clip4d_example", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip4d", "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-008.png", dir);
+    CHECK(!caption_reads(path, 12, 32, 2, "8. Nothing with area is left after clipping"));
+}

@@ -149,7 +149,7 @@ sr_result explain_clip4d(ex_canvas *c, const ex_primitive *prim)
         poly[i] = (vec4){ { prim->clip[i][0], prim->clip[i][1], prim->clip[i][2],
                             prim->clip[i][3] } };
     }
-    char cap[900];
+    char cap[1200];
 
     ex_begin(c);
     draw_viewport(c);
@@ -249,12 +249,28 @@ sr_result explain_clip4d(ex_canvas *c, const ex_primitive *prim)
     if (n > 0) {
         outline(c, poly, n, EX_EDGE, 1);
     }
+    /* near and far leave w >= |z|: w = 0 only where x = y = z = 0 too,
+     * at the eye, and a triangle through it covers nothing */
+    bool at_eye = false;
+    for (int k = 0; k < n; k++) {
+        at_eye |= !(poly[k].v[3] > 0);
+    }
+    int fans = n > 2 ? n - 2 : 0;
+    char what[400];
+    if (n < 3) {
+        snprintf(what, sizeof what, "Nothing with area is left after clipping (%d vertices)", n);
+    } else {
+        snprintf(what, sizeof what,
+                 "The clipped polygon (%d vertices, all w %s) divided by w, mapped onto the grid "
+                 "and fanned into %d triangle%s, each covered by its edge functions with the "
+                 "top-left rule", n, at_eye ? ">= 0; w = 0 only at the eye, where nothing is "
+                 "covered" : "> 0", fans, fans == 1 ? "" : "s");
+    }
     snprintf(cap, sizeof cap,
-             "%d. The clipped polygon (%d vertices, all w > 0) divided by w, mapped onto the grid "
-             "and fanned into %d triangles, each covered by its edge functions with the top-left "
-             "rule: %d pixels, what sr_draw draws for the triangle (which clips only near, far "
-             "and w > 0 in clip space and trims x and y exactly to the viewport as it rasterizes).",
-             c->frame_count + 1, n, n > 2 ? n - 2 : 0, covered);
+             "%d. %s: %d pixel%s, what sr_draw draws for the triangle (which clips only near, "
+             "far and w > 0 in clip space and trims x and y exactly to the viewport as it "
+             "rasterizes).",
+             c->frame_count + 1, what, covered, covered == 1 ? "" : "s");
     ex_end(c, cap);
     return c->error;
 }
