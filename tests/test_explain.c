@@ -1299,3 +1299,19 @@ SR_TEST(clip4d_last_caption_says_w_may_be_zero_at_the_eye)
     snprintf(path, sizeof path, "%s/frame-008.png", dir);
     CHECK(!caption_reads(path, 12, 32, 2, "8. Nothing with area is left after clipping"));
 }
+
+/* bresenham's tie read "d = 0 = 0 (M on the line: ...)": the example's
+ * step 7 (its view: 16 x 10 at zoom 32, text at twice the font's size). */
+SR_TEST(bresenham_tie_caption_reads_once)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("bresenham_tie", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "bresenham", "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-007.png", dir);
+    CHECK(caption_reads(path, 10, 32, 2,
+                        "7. Plot (6, 4). d = 0 (M on the line: the smaller index): step E, "
+                        "d + 10 = 10."));
+    snprintf(path, sizeof path, "%s/frame-002.png", dir);
+    CHECK(caption_reads(path, 10, 32, 2, "2. Plot (1, 2). d = -2 < 0: step E, d + 10 = 8."));
+}

@@ -121,9 +121,9 @@ static bool bresenham(line_steps *ls, int64_t ax, int64_t ay, int64_t bx, int64_
                            k == end_k ? " - no: the end pixel is left out" : "");
         if (k < u1) {
             snprintf(st->caption + len, sizeof st->caption - (size_t)len,
-                     "d = %lld %s 0%s: step %s, d %s %lld = %lld.", (long long)d,
-                     d > 0 ? ">" : d < 0 ? "<" : "=",
-                     d == 0 ? " (M on the line: the smaller index)" : "", ne ? "NE" : "E",
+                     "d = %lld%s: step %s, d %s %lld = %lld.", (long long)d,
+                     d > 0 ? " > 0" : d < 0 ? " < 0" : " (M on the line: the smaller index)",
+                     ne ? "NE" : "E",
                      ne ? (dNE < 0 ? "-" : "+") : "+", (long long)llabs(ne ? dNE : dE),
                      (long long)(d + (ne ? dNE : dE)));
         }
