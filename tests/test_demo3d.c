@@ -510,3 +510,9 @@ SR_TEST(demo_scale_too_large_for_the_page_is_refused)
         }
     }
 }
+
+/* An empty -o is bad usage (exit 2), not a failed run. */
+SR_TEST(demo_empty_output_name_is_refused)
+{
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "demo", "lines", "-o", "", NULL }), 2);
+}

@@ -869,6 +869,11 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--zoom", "3", "-o", dir,
                                                NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "a%s%d", NULL }), 2);
+    /* an empty name: -o "" wrote the frames to /frame-001.png ..., and
+     * --sheet "" failed as a run (exit 1) */
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "", NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--sheet", "", NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--webp", "", NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
 }
 

@@ -54,6 +54,10 @@ int cmd_demo(int argc, char **argv)
                 return EXIT_USAGE;
             }
             args.output = argv[++i];
+            if (!args.output[0]) {
+                cli_error("%s: an empty file name", a);
+                return EXIT_USAGE;
+            }
         } else if (strcmp(a, "--scale") == 0) {
             if (i + 1 >= argc) {
                 cli_error("%s: missing value", a);

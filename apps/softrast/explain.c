@@ -538,6 +538,13 @@ int cmd_explain(int argc, char **argv)
         }
         const char *v = argv[++i];
         bool ok = true;
+        if (v[0] == '\0' && (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
+                              strcmp(a, "--sheet") == 0 || strcmp(a, "--webp") == 0)) {
+            /* an empty -o would be the directory "" + "/frame-001.png":
+             * the frames written to the root */
+            cli_error("%s: an empty file name", a);
+            return EXIT_USAGE;
+        }
         ex_primitive p = { 0 };
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
             strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0 ||
