@@ -1320,3 +1320,32 @@ SR_TEST(bresenham_tie_caption_reads_once)
     snprintf(path, sizeof path, "%s/frame-002.png", dir);
     CHECK(caption_reads(path, 10, 32, 2, "2. Plot (1, 2). d = -2 < 0: step E, d + 10 = 8."));
 }
+
+/* perspective's frame 3 compares the two interpolations along the span;
+ * it said "steps unevenly: at x = 0 it is 0.000, 0.000 affine" for a
+ * --row that misses the triangle, and "unevenly" when every w is equal
+ * (the default for a triangle given without --w). */
+SR_TEST(perspective_caption_fits_the_span)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("persp_row", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--row", "12", "-o",
+                                              dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-003.png", dir);
+    CHECK(caption_reads(path, 13, 32, 2,
+                        "3. Perspective-correct: the weights of the 3D point are li / wi, "
+                        "normalized (interpolate colour/w and 1/w on the screen, divide per "
+                        "pixel). Scanline 12 covers no pixel of the triangle: nothing to compare "
+                        "(give --row 2 to 10)."));
+    out_dir("persp_equal_w", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--triangle",
+                                              "1.5,1.5,14.5,4.5,2.5,11.5", "--row", "5", "-o",
+                                              dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-003.png", dir);
+    CHECK(caption_reads(path, 13, 32, 2,
+                        "3. Perspective-correct: the weights of the 3D point are li / wi, "
+                        "normalized (interpolate colour/w and 1/w on the screen, divide per "
+                        "pixel). With every w equal the two agree: at x = 2 both are 0.047. "
+                        "Perspective matters only when the vertices' w differ (--w)."));
+}

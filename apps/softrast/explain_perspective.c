@@ -187,11 +187,41 @@ sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim)
     for (int i = 1; i < n; i++) {
         worst = fabs(correct[i] - affine[i]) > fabs(correct[worst] - affine[worst]) ? i : worst;
     }
-    snprintf(cap, sizeof cap,
-             "3. Perspective-correct: the weights of the 3D point are li / wi, normalized "
-             "(interpolate colour/w and 1/w on the screen, divide per pixel). The green weight "
-             "now steps unevenly: at x = %d it is %.3f, %.3f affine.",
-             n ? xs[worst] : 0, n ? correct[worst] : 0.0, n ? affine[worst] : 0.0);
+    int len = snprintf(cap, sizeof cap,
+                       "3. Perspective-correct: the weights of the 3D point are li / wi, "
+                       "normalized (interpolate colour/w and 1/w on the screen, divide per "
+                       "pixel). ");
+    if (n == 0) {
+        /* the rows that have a covered centre, to name in the caption */
+        int first = -1, last = -1;
+        for (int y = 0; y < c->grid_h; y++) {
+            for (int x = 0; x < c->grid_w; x++) {
+                if (ex_tri_covers(&p.t, (int64_t)x * 256 + 128, (int64_t)y * 256 + 128)) {
+                    first = first < 0 ? y : first;
+                    last = y;
+                    break;
+                }
+            }
+        }
+        if (first < 0) {
+            snprintf(cap + len, sizeof cap - (size_t)len,
+                     "Scanline %d covers no pixel of the triangle, and no scanline of the grid "
+                     "does: nothing to compare.", row);
+        } else {
+            snprintf(cap + len, sizeof cap - (size_t)len,
+                     "Scanline %d covers no pixel of the triangle: nothing to compare (give "
+                     "--row %d to %d).", row, first, last);
+        }
+    } else if (fabs(correct[worst] - affine[worst]) < 0.0005) {
+        snprintf(cap + len, sizeof cap - (size_t)len,
+                 "With every w equal the two agree: at x = %d both are %.3f. Perspective "
+                 "matters only when the vertices' w differ (--w).",
+                 xs[worst], correct[worst]);
+    } else {
+        snprintf(cap + len, sizeof cap - (size_t)len,
+                 "The green weight now steps unevenly: at x = %d it is %.3f, %.3f affine.",
+                 xs[worst], correct[worst], affine[worst]);
+    }
     ex_end(c, cap);
 
     /* frames 4 and 5: the cells alone, nothing drawn over them; the one
