@@ -1349,3 +1349,20 @@ SR_TEST(perspective_caption_fits_the_span)
                         "pixel). With every w equal the two agree: at x = 2 both are 0.047. "
                         "Perspective matters only when the vertices' w differ (--w)."));
 }
+
+/* fillpoly on three vertices in one row: every edge is horizontal, and
+ * the first caption printed AC's increments as "inf" and "-inf". */
+SR_TEST(fillpoly_flat_triangle_has_no_increments)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("fillpoly_flat", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--triangle",
+                                              "1,5,14,5,7,5", "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-001.png", dir);
+    CHECK(caption_reads(path, 12, 32, 2,
+                        "1. FillPoly: A, B, C sorted by y, an intensity I at each. Per scanline "
+                        "along each edge: dX_AC = -, dI_AC = -; dX_AB = -, dI_AB = -; dX_BC = -, "
+                        "dI_BC = - (1/m and dI/dy; a horizontal edge crosses no scanline). Above "
+                        "B, AC runs beside AB; below B, beside BC."));
+}

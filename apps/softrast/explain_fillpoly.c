@@ -119,19 +119,21 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
     ex_begin(c);
     draw_tri(c, &t, o, in);
     double yab = ab.y1 - ab.y0, ybc = bc.y1 - bc.y0, yac = ac.y1 - ac.y0;
-    /* a horizontal AB or BC has no increments */
-    char dx[4][24];
-    snprintf(dx[0], 24, "%.3f", yab > 0 ? (ab.x1 - ab.x0) / yab : 0);
-    snprintf(dx[1], 24, "%.3f", yab > 0 ? (ab.i1 - ab.i0) / yab : 0);
-    snprintf(dx[2], 24, "%.3f", ybc > 0 ? (bc.x1 - bc.x0) / ybc : 0);
-    snprintf(dx[3], 24, "%.3f", ybc > 0 ? (bc.i1 - bc.i0) / ybc : 0);
+    /* a horizontal edge has no increments (AC too, when all three
+     * vertices lie on one row) */
+    char dx[6][24];
+    snprintf(dx[0], 24, yab > 0 ? "%.3f" : "-", yab > 0 ? (ab.x1 - ab.x0) / yab : 0);
+    snprintf(dx[1], 24, yab > 0 ? "%.3f" : "-", yab > 0 ? (ab.i1 - ab.i0) / yab : 0);
+    snprintf(dx[2], 24, ybc > 0 ? "%.3f" : "-", ybc > 0 ? (bc.x1 - bc.x0) / ybc : 0);
+    snprintf(dx[3], 24, ybc > 0 ? "%.3f" : "-", ybc > 0 ? (bc.i1 - bc.i0) / ybc : 0);
+    snprintf(dx[4], 24, yac > 0 ? "%.3f" : "-", yac > 0 ? (ac.x1 - ac.x0) / yac : 0);
+    snprintf(dx[5], 24, yac > 0 ? "%.3f" : "-", yac > 0 ? (ac.i1 - ac.i0) / yac : 0);
     snprintf(cap, sizeof cap,
              "1. FillPoly: A, B, C sorted by y, an intensity I at each. Per scanline along "
-             "each edge: dX_AC = %.3f, dI_AC = %.3f; dX_AB = %s, dI_AB = %s; dX_BC = %s, "
+             "each edge: dX_AC = %s, dI_AC = %s; dX_AB = %s, dI_AB = %s; dX_BC = %s, "
              "dI_BC = %s (1/m and dI/dy; a horizontal edge crosses no scanline). Above B, AC "
              "runs beside AB; below B, beside BC.",
-             (ac.x1 - ac.x0) / yac, (ac.i1 - ac.i0) / yac, yab > 0 ? dx[0] : "-",
-             yab > 0 ? dx[1] : "-", ybc > 0 ? dx[2] : "-", ybc > 0 ? dx[3] : "-");
+             dx[4], dx[5], dx[0], dx[1], dx[2], dx[3]);
     ex_end(c, cap);
 
     for (int y = 0; y < gh; y++) {
