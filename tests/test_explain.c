@@ -1366,3 +1366,28 @@ SR_TEST(fillpoly_flat_triangle_has_no_increments)
                         "dI_BC = - (1/m and dI/dy; a horizontal edge crosses no scanline). Above "
                         "B, AC runs beside AB; below B, beside BC."));
 }
+
+/* forward-differencing on a straight, evenly traced cubic (|B''| = 0):
+ * the caption claimed ceil(sqrt(0.00 / (8 x 0.25))) = 1 and spoke of
+ * "1 steps" and "The 1 chords". */
+SR_TEST(fwdiff_straight_cubic_takes_one_step)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("fwdiff_straight", dir, sizeof dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "forward-differencing", "--cubic",
+                                              "1,1,5,4,9,7,13,10", "-o", dir, NULL }) == 0);
+    snprintf(path, sizeof path, "%s/frame-001.png", dir);
+    CHECK(caption_reads(path, 12, 32, 2,
+                        "1. A cubic Bezier (pink; grey: its control polygon) as a polynomial "
+                        "B(t) = a t^3 + b t^2 + c t + P0: a = (0.00, 0.00), b = (0.00, 0.00), "
+                        "c = (12.00, 9.00). |B''| = 0: a straight segment, traced at an even "
+                        "pace, so one chord is exact: n = 1 step of h = 1/1. Start: d1 = a h^3 "
+                        "+ b h^2 + c h = (12.000, 9.000), d2 = 6 a h^3 + 2 b h^2 = (0.000, "
+                        "0.000), d3 = 6 a h^3 = (0.0000, 0.0000)."));
+    snprintf(path, sizeof path, "%s/frame-003.png", dir);
+    CHECK(caption_reads(path, 12, 32, 2,
+                        "3. The 1 chord drawn as lines (sr_draw_line, each leaving out its end "
+                        "pixel so they join without doubling): what sr_flatten_cubic's points "
+                        "give at 1x."));
+}

@@ -69,13 +69,23 @@ sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim)
 
     ex_begin(c);
     backdrop(c, p);
+    char steps[200];
+    if (m > 0) {
+        snprintf(steps, sizeof steps,
+                 "|B''| peaks at an end: %.2f; chords within %g px need n = ceil(sqrt(%.2f / (8 "
+                 "x %g))) = %d step%s of h = 1/%d.", m, tol, m, tol, n, n == 1 ? "" : "s", n);
+    } else {
+        /* the bound gives 0 steps; one chord is the whole (straight) curve */
+        snprintf(steps, sizeof steps,
+                 "|B''| = 0: a straight segment, traced at an even pace, so one chord is exact: "
+                 "n = 1 step of h = 1/1.");
+    }
     snprintf(cap, sizeof cap,
              "1. A cubic Bezier (pink; grey: its control polygon) as a polynomial B(t) = a t^3 + "
-             "b t^2 + c t + P0: a = (%.2f, %.2f), b = (%.2f, %.2f), c = (%.2f, %.2f). |B''| peaks "
-             "at an end: %.2f; chords within %g px need n = ceil(sqrt(%.2f / (8 x %g))) = %d "
-             "steps of h = 1/%d. Start: d1 = a h^3 + b h^2 + c h = (%.3f, %.3f), d2 = 6 a h^3 + "
-             "2 b h^2 = (%.3f, %.3f), d3 = 6 a h^3 = (%.4f, %.4f).",
-             ax, ay, bx, by, cx, cy, m, tol, m, tol, n, n, dx, dy, ddx, ddy, dddx, dddy);
+             "b t^2 + c t + P0: a = (%.2f, %.2f), b = (%.2f, %.2f), c = (%.2f, %.2f). %s Start: "
+             "d1 = a h^3 + b h^2 + c h = (%.3f, %.3f), d2 = 6 a h^3 + 2 b h^2 = (%.3f, %.3f), "
+             "d3 = 6 a h^3 = (%.4f, %.4f).",
+             ax, ay, bx, by, cx, cy, steps, dx, dy, ddx, ddy, dddx, dddy);
     ex_end(c, cap);
 
     for (int i = 1; i <= n; i++) {
@@ -126,9 +136,9 @@ sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim)
     }
     ex_outline(c, pts, n + 1, false, EX_EDGE, 1);
     snprintf(cap, sizeof cap,
-             "%d. The %d chords drawn as lines (sr_draw_line, each leaving out its end pixel so "
+             "%d. The %d chord%s drawn as lines (sr_draw_line, each leaving out its end pixel so "
              "they join without doubling): what sr_flatten_cubic's points give at 1x.",
-             c->frame_count + 1, n);
+             c->frame_count + 1, n, n == 1 ? "" : "s");
     ex_end(c, cap);
     free(mask);
     return r != SR_OK ? r : c->error;
