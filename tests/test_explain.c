@@ -1280,45 +1280,63 @@ static bool caption_reads(const char *path, int grid_h, int zoom, int scale, con
     return diff == 0;
 }
 
+/* Run `softrast explain` with args (NULL-terminated, at most 12) and
+ * -o a fresh directory named `name`, then check that the caption of
+ * frame `frame` reads `text` at the algorithm's default view (zoom 32,
+ * text at twice the font's size, `grid_h` rows). */
+static void expect_caption(const char *name, const char *const *args, int frame, int grid_h,
+                           const char *text)
+{
+    char dir[1024], path[1200];
+    out_dir(name, dir, sizeof dir);
+    const char *argv[16] = { "explain" };
+    int n = 1;
+    while (args[n - 1] && n < 13) {
+        argv[n] = args[n - 1];
+        n++;
+    }
+    argv[n++] = "-o";
+    argv[n++] = dir;
+    argv[n] = NULL;
+    if (sr_test_run_cli(argv) != 0) {
+        FAILF("%s: explain %s failed", name, args[0]);
+        return;
+    }
+    snprintf(path, sizeof path, "%s/frame-%03d.png", dir, frame);
+    if (!caption_reads(path, grid_h, 32, 2, text)) {
+        FAILF("%s: frame %d's caption does not read \"%s\"", name, frame, text);
+    }
+}
+
 /* clip4d's last caption said "all w > 0" of a polygon whose vertices
  * all have w = 0 (a triangle at the eye, which near and far keep), and
  * "1 triangles". */
 SR_TEST(clip4d_last_caption_says_w_may_be_zero_at_the_eye)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("clip4d_eye", dir, sizeof dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip4d", "--clip-triangle",
-                                              "0,0,0,0,0,0,0,0,0,0,0,0", "-o", dir, NULL }) == 0);
-    snprintf(path, sizeof path, "%s/frame-008.png", dir);
-    CHECK(caption_reads(path, 12, 32, 2,
-                        "8. The clipped polygon (3 vertices, all w >= 0; w = 0 only at the eye, "
-                        "where nothing is covered) divided by w, mapped onto the grid and fanned "
-                        "into 1 triangle, each covered by its edge functions with the top-left "
-                        "rule: 0 pixels, what sr_draw draws for the triangle (which clips only "
-                        "near, far and w > 0 in clip space and trims x and y exactly to the "
-                        "viewport as it rasterizes)."));
-    /* the documented example: w > 0 everywhere after clipping */
-    out_dir("clip4d_example", dir, sizeof dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "clip4d", "-o", dir, NULL }) == 0);
-    snprintf(path, sizeof path, "%s/frame-008.png", dir);
-    CHECK(!caption_reads(path, 12, 32, 2, "8. Nothing with area is left after clipping"));
+    expect_caption("clip4d_eye",
+                   (const char *[]){ "clip4d", "--clip-triangle", "0,0,0,0,0,0,0,0,0,0,0,0",
+                                     NULL },
+                   8, 12,
+                   "8. The clipped polygon (3 vertices, all w >= 0; w = 0 only at the eye, "
+                   "where nothing is covered) divided by w, mapped onto the grid and fanned "
+                   "into 1 triangle, each covered by its edge functions with the top-left "
+                   "rule: 0 pixels, what sr_draw draws for the triangle (which clips only "
+                   "near, far and w > 0 in clip space and trims x and y exactly to the "
+                   "viewport as it rasterizes).");
 }
 
 /* bresenham's tie read "d = 0 = 0 (M on the line: ...)": the example's
- * step 7 (its view: 16 x 10 at zoom 32, text at twice the font's size). */
+ * step 7 (its view: 16 x 10 at zoom 32); step 2 for the other form. */
 SR_TEST(bresenham_tie_caption_reads_once)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("bresenham_tie", dir, sizeof dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "bresenham", "-o", dir, NULL }) == 0);
-    snprintf(path, sizeof path, "%s/frame-007.png", dir);
-    CHECK(caption_reads(path, 10, 32, 2,
-                        "7. Plot (6, 4). d = 0 (M on the line: the smaller index): step E, "
-                        "d + 10 = 10."));
-    snprintf(path, sizeof path, "%s/frame-002.png", dir);
-    CHECK(caption_reads(path, 10, 32, 2, "2. Plot (1, 2). d = -2 < 0: step E, d + 10 = 8."));
+    const char *const args[] = { "bresenham", NULL };
+    expect_caption("bresenham_tie", args, 7, 10,
+                   "7. Plot (6, 4). d = 0 (M on the line: the smaller index): step E, "
+                   "d + 10 = 10.");
+    expect_caption("bresenham_less", args, 2, 10,
+                   "2. Plot (1, 2). d = -2 < 0: step E, d + 10 = 8.");
 }
 
 /* perspective's frame 3 compares the two interpolations along the span;
@@ -1328,26 +1346,19 @@ SR_TEST(bresenham_tie_caption_reads_once)
 SR_TEST(perspective_caption_fits_the_span)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("persp_row", dir, sizeof dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--row", "12", "-o",
-                                              dir, NULL }) == 0);
-    snprintf(path, sizeof path, "%s/frame-003.png", dir);
-    CHECK(caption_reads(path, 13, 32, 2,
-                        "3. Perspective-correct: the weights of the 3D point are li / wi, "
-                        "normalized (interpolate colour/w and 1/w on the screen, divide per "
-                        "pixel). Scanline 12 covers no pixel of the triangle: nothing to compare "
-                        "(give --row 2 to 10)."));
-    out_dir("persp_equal_w", dir, sizeof dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "perspective", "--triangle",
-                                              "1.5,1.5,14.5,4.5,2.5,11.5", "--row", "5", "-o",
-                                              dir, NULL }) == 0);
-    snprintf(path, sizeof path, "%s/frame-003.png", dir);
-    CHECK(caption_reads(path, 13, 32, 2,
-                        "3. Perspective-correct: the weights of the 3D point are li / wi, "
-                        "normalized (interpolate colour/w and 1/w on the screen, divide per "
-                        "pixel). With every w equal the two agree: at x = 2 both are 0.047. "
-                        "Perspective matters only when the vertices' w differ (--w)."));
+    expect_caption("persp_row", (const char *[]){ "perspective", "--row", "12", NULL }, 3, 13,
+                   "3. Perspective-correct: the weights of the 3D point are li / wi, "
+                   "normalized (interpolate colour/w and 1/w on the screen, divide per "
+                   "pixel). Scanline 12 covers no pixel of the triangle: nothing to compare "
+                   "(give --row 2 to 10).");
+    expect_caption("persp_equal_w",
+                   (const char *[]){ "perspective", "--triangle", "1.5,1.5,14.5,4.5,2.5,11.5",
+                                     "--row", "5", NULL },
+                   3, 13,
+                   "3. Perspective-correct: the weights of the 3D point are li / wi, "
+                   "normalized (interpolate colour/w and 1/w on the screen, divide per "
+                   "pixel). With every w equal the two agree: at x = 2 both are 0.047. "
+                   "Perspective matters only when the vertices' w differ (--w).");
 }
 
 /* fillpoly on three vertices in one row: every edge is horizontal, and
@@ -1355,16 +1366,13 @@ SR_TEST(perspective_caption_fits_the_span)
 SR_TEST(fillpoly_flat_triangle_has_no_increments)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("fillpoly_flat", dir, sizeof dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--triangle",
-                                              "1,5,14,5,7,5", "-o", dir, NULL }) == 0);
-    snprintf(path, sizeof path, "%s/frame-001.png", dir);
-    CHECK(caption_reads(path, 12, 32, 2,
-                        "1. FillPoly: A, B, C sorted by y, an intensity I at each. Per scanline "
-                        "along each edge: dX_AC = -, dI_AC = -; dX_AB = -, dI_AB = -; dX_BC = -, "
-                        "dI_BC = - (1/m and dI/dy; a horizontal edge crosses no scanline). Above "
-                        "B, AC runs beside AB; below B, beside BC."));
+    expect_caption("fillpoly_flat", (const char *[]){ "fillpoly", "--triangle", "1,5,14,5,7,5",
+                                                      NULL },
+                   1, 12,
+                   "1. FillPoly: A, B, C sorted by y, an intensity I at each. Per scanline "
+                   "along each edge: dX_AC = -, dI_AC = -; dX_AB = -, dI_AB = -; dX_BC = -, "
+                   "dI_BC = - (1/m and dI/dy; a horizontal edge crosses no scanline). Above "
+                   "B, AC runs beside AB; below B, beside BC.");
 }
 
 /* forward-differencing on a straight, evenly traced cubic (|B''| = 0):
@@ -1373,21 +1381,16 @@ SR_TEST(fillpoly_flat_triangle_has_no_increments)
 SR_TEST(fwdiff_straight_cubic_takes_one_step)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("fwdiff_straight", dir, sizeof dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "forward-differencing", "--cubic",
-                                              "1,1,5,4,9,7,13,10", "-o", dir, NULL }) == 0);
-    snprintf(path, sizeof path, "%s/frame-001.png", dir);
-    CHECK(caption_reads(path, 12, 32, 2,
-                        "1. A cubic Bezier (pink; grey: its control polygon) as a polynomial "
-                        "B(t) = a t^3 + b t^2 + c t + P0: a = (0.00, 0.00), b = (0.00, 0.00), "
-                        "c = (12.00, 9.00). |B''| = 0: a straight segment, traced at an even "
-                        "pace, so one chord is exact: n = 1 step of h = 1/1. Start: d1 = a h^3 "
-                        "+ b h^2 + c h = (12.000, 9.000), d2 = 6 a h^3 + 2 b h^2 = (0.000, "
-                        "0.000), d3 = 6 a h^3 = (0.0000, 0.0000)."));
-    snprintf(path, sizeof path, "%s/frame-003.png", dir);
-    CHECK(caption_reads(path, 12, 32, 2,
-                        "3. The 1 chord drawn as lines (sr_draw_line, each leaving out its end "
-                        "pixel so they join without doubling): what sr_flatten_cubic's points "
-                        "give at 1x."));
+    const char *const args[] = { "forward-differencing", "--cubic", "1,1,5,4,9,7,13,10", NULL };
+    expect_caption("fwdiff_straight", args, 1, 12,
+                   "1. A cubic Bezier (pink; grey: its control polygon) as a polynomial "
+                   "B(t) = a t^3 + b t^2 + c t + P0: a = (0.00, 0.00), b = (0.00, 0.00), "
+                   "c = (12.00, 9.00). |B''| = 0: a straight segment, traced at an even "
+                   "pace, so one chord is exact: n = 1 step of h = 1/1. Start: d1 = a h^3 "
+                   "+ b h^2 + c h = (12.000, 9.000), d2 = 6 a h^3 + 2 b h^2 = (0.000, "
+                   "0.000), d3 = 6 a h^3 = (0.0000, 0.0000).");
+    expect_caption("fwdiff_straight_chord", args, 3, 12,
+                   "3. The 1 chord drawn as lines (sr_draw_line, each leaving out its end "
+                   "pixel so they join without doubling): what sr_flatten_cubic's points "
+                   "give at 1x.");
 }
