@@ -48,15 +48,21 @@ static bool write_drawings(const char *dir, char paths[DRAWINGS][1200])
     return true;
 }
 
+/* The drawing thread counts the batch tests run: one, and more than one
+ * drawing at a time, also more than the slots' inputs. */
+enum { THREAD_RUNS = 3 };
+static const char *const thread_counts[THREAD_RUNS] = { "1", "2", "4" };
+
 /* Every drawing of tests/data/svg, as a directory given whole: each
  * image the batch writes is the same bytes as the one `softrast svg IN
- * -o OUT` writes, at two sizes, with one thread or several; the drawings
- * that fail alone fail in the batch too, and the exit status says some
+ * -o OUT` writes, at two sizes, with the default thread count (by
+ * SR_THREADS too) and with 1, 2 and 4 drawing threads; the drawings that
+ * fail alone fail in the batch too, and the exit status says some
  * failed. */
 SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
 {
     NEED_SVG();
-    char src[1024], out[1200], out1[1200], single[1200];
+    char src[1024], out[1200], out1[1200], single[1200], outs[THREAD_RUNS][1200];
     snprintf(src, sizeof src, "%s/data/svg", sr_test_src_dir());
     fresh_dir("svg_each", out, sizeof out);
     fresh_dir("svg_each_t1", out1, sizeof out1);
@@ -66,8 +72,8 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
     run_result r;
     REQUIRE(run(ARGS("svg", src, "--output-dir", out, "--scale", "2", "--log", log), &r));
     int batch_status = r.status;
-    /* Several threads write the images; the records still come in the
-     * order of the list. */
+    /* Several threads draw and write the images; the records still come
+     * in the order of the list. */
     record recs[64];
     int logged = read_log(log, recs, 64);
     for (int i = 0; i < logged && i < 64; i++) {
@@ -76,6 +82,14 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
     REQUIRE(run_env(ARGS("svg", src, "--output-dir", out1, "--scale", "2"), ENV("SR_THREADS=1"),
                     NULL, &r));
     CHECK_EQ(r.status, batch_status);
+    for (int t = 0; t < THREAD_RUNS; t++) {
+        char name[64];
+        snprintf(name, sizeof name, "svg_each_threads%s", thread_counts[t]);
+        fresh_dir(name, outs[t], sizeof outs[t]);
+        REQUIRE(run(ARGS("svg", src, "--output-dir", outs[t], "--scale", "2", "--threads",
+                         thread_counts[t]), &r));
+        CHECK_EQ(r.status, batch_status);
+    }
     DIR *d = opendir(src);
     REQUIRE(d);
     int compared = 0, failed = 0;
@@ -100,6 +114,14 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
         if (!same_file_bytes(want, got) || !same_file_bytes(want, got1)) {
             FAILF("%s: the batch's image is not the single run's", e->d_name);
         }
+        for (int t = 0; t < THREAD_RUNS; t++) {
+            char got_t[4096];
+            snprintf(got_t, sizeof got_t, "%s/%.*s.png", outs[t], (int)n - 4, e->d_name);
+            if (!same_file_bytes(want, got_t)) {
+                FAILF("%s: the batch's image on %s threads is not the single run's",
+                      e->d_name, thread_counts[t]);
+            }
+        }
         compared++;
     }
     closedir(d);
@@ -122,6 +144,129 @@ SR_TEST(batch_of_test_drawings_matches_one_process_per_file)
     REQUIRE(run(ARGS("svg", one_in, "-o", want, "--size", "40x30", "--background", "white"),
                 &r));
     CHECK(same_file_bytes(want, one_out));
+}
+
+/* A list with failures between its drawings, on 1, 2 and 4 drawing
+ * threads: the same lines on stderr in the order of the list (a bad
+ * drawing, a missing file, a drawing's warnings, an output that is a
+ * directory), the same log records in that order, the skipped output left
+ * alone, each image the same bytes as one `softrast svg` of it, exit
+ * status 3 on every thread count. */
+enum { MIXED = 12 };
+typedef enum mixed_kind { GOOD, BROKEN_FILE, MISSING, WARNED, OUTPUT_DIR, SKIPPED } mixed_kind;
+static const struct {
+    const char *name;
+    mixed_kind kind;
+} mixed[MIXED] = {
+    { "00_red.svg", GOOD },      { "01_broken.svg", BROKEN_FILE }, { "02_gone.svg", MISSING },
+    { "03_text.svg", WARNED },   { "04_blue.svg", OUTPUT_DIR },    { "05_green.svg", GOOD },
+    { "06_bad.svg", BROKEN_FILE }, { "07_navy.svg", GOOD },        { "08_kept.svg", SKIPPED },
+    { "09_teal.svg", GOOD },     { "10_gray.svg", GOOD },          { "11_gone.svg", MISSING },
+};
+
+static bool write_mixed(const char *dir, char *list, size_t size)
+{
+    static const char *const colors[] = { "#c03", "navy", "teal", "gray", "olive", "purple" };
+    size_t used = 0;
+    for (int i = 0; i < MIXED; i++) {
+        char path[1300];
+        snprintf(path, sizeof path, "%s/%s", dir, mixed[i].name);
+        bool ok = true;
+        if (mixed[i].kind == BROKEN_FILE) {
+            ok = write_broken_svg(path);
+        } else if (mixed[i].kind == WARNED) {
+            ok = write_text(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"16\" "
+                                  "height=\"16\">\n  <text x=\"1\" y=\"9\">no</text>\n"
+                                  "  <rect width=\"5\" height=\"5\"/>\n</svg>\n");
+        } else if (mixed[i].kind != MISSING) {
+            ok = write_svg(path, colors[i % 6]);
+        }
+        if (!ok) {
+            FAILF("cannot write %s", path);
+            return false;
+        }
+        /* The blue drawing's output is the drawings' directory. */
+        int n = mixed[i].kind == OUTPUT_DIR
+                    ? snprintf(list + used, size - used, "%s\t%s\n", path, dir)
+                    : snprintf(list + used, size - used, "%s\n", path);
+        if (n < 0 || (size_t)n >= size - used) {
+            return false;
+        }
+        used += (size_t)n;
+    }
+    return used < size;
+}
+
+SR_TEST(failures_between_drawings_report_in_list_order_on_any_thread_count)
+{
+    NEED_SVG();
+    char dir[1200], single[1200], list[1300], text[MIXED * 1400];
+    fresh_dir("svg_mixed", dir, sizeof dir);
+    fresh_dir("svg_mixed_single", single, sizeof single);
+    REQUIRE(write_mixed(dir, text, sizeof text));
+    snprintf(list, sizeof list, "%s/list.txt", single);
+    REQUIRE(write_text(list, text));
+    char first_err[8192] = "";
+    for (int t = 0; t < THREAD_RUNS; t++) {
+        char name[64], out[1200], log[1300], kept[1300];
+        snprintf(name, sizeof name, "svg_mixed_threads%s", thread_counts[t]);
+        fresh_dir(name, out, sizeof out);
+        snprintf(log, sizeof log, "%s/run.jsonl", out);
+        snprintf(kept, sizeof kept, "%s/08_kept.png", out);
+        REQUIRE(write_text(kept, "kept"));
+        run_result r;
+        REQUIRE(run(ARGS("svg", "--batch", list, "--output-dir", out, "--skip-existing",
+                         "--log", log, "--threads", thread_counts[t]), &r));
+        CHECK_EQ(r.status, 3);
+        CHECK_EQ(count_lines(r.err), 6);
+        if (t == 0) {
+            snprintf(first_err, sizeof first_err, "%s", r.err);
+        } else {
+            CHECK(strcmp(r.err, first_err) == 0);   /* the same lines, the same order */
+        }
+        /* Each failure's line after the one before it. */
+        const char *at = r.err;
+        for (int i = 0; i < MIXED; i++) {
+            if (mixed[i].kind == GOOD || mixed[i].kind == SKIPPED) {
+                continue;
+            }
+            const char *line = strstr(at, mixed[i].name);
+            CHECK(line != NULL);
+            at = line ? line : at;
+        }
+        CHECK_STR_CONTAINS(r.err, "01_broken.svg:2:");
+        CHECK_STR_CONTAINS(r.err, "03_text.svg:2: warning");
+        CHECK_STR_CONTAINS(r.err, "is a directory");
+        record recs[MIXED + 1];
+        REQUIRE(read_log(log, recs, MIXED + 1) == MIXED);
+        for (int i = 0; i < MIXED; i++) {
+            mixed_kind k = mixed[i].kind;
+            const char *want = k == GOOD || k == WARNED ? "ok"
+                             : k == SKIPPED ? "skipped" : "failed";
+            CHECK_EQ((int)recs[i].index, i);
+            CHECK_STR_CONTAINS(recs[i].input, mixed[i].name);
+            CHECK(strcmp(recs[i].status, want) == 0);
+            if (strcmp(want, "ok") != 0) {
+                continue;
+            }
+            char in[1300], one[1400];
+            snprintf(in, sizeof in, "%s/%s", dir, mixed[i].name);
+            snprintf(one, sizeof one, "%s/%.*s.png", single, (int)strlen(mixed[i].name) - 4,
+                     mixed[i].name);
+            if (t == 0) {
+                REQUIRE(run(ARGS("svg", in, "-o", one), &r));
+                CHECK_EQ(r.status, 0);
+            }
+            if (!same_file_bytes(one, recs[i].output)) {
+                FAILF("%s on %s threads: not the single run's image", mixed[i].name,
+                      thread_counts[t]);
+            }
+        }
+        size_t n = 0;
+        char *k = (char *)sr_test_read_file(kept, &n);
+        CHECK(k && n == 4);
+        free(k);
+    }
 }
 
 /* A broken drawing in the middle: one line naming it, a failed record

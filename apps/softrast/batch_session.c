@@ -3,7 +3,9 @@
  * names, the inputs' identities (no output replaces one), the writer
  * thread, the log and the progress line, and the exit status.  Called
  * from the batch's own thread; batch_session_done also from the
- * writer's, one call at a time. */
+ * writer's, one call at a time; batch_session_output_ok and
+ * batch_exists_whole also from the drawing threads (batch_draw.c), which
+ * only read the session. */
 #include "batch_session.h"
 #include "cli.h"
 
@@ -280,49 +282,4 @@ void batch_session_done(void *user, batch_record *rec, const char *message)
         s->log_errno = errno ? errno : EIO;
     }
     batch_progress_show(&s->progress, batch_now_ms(), false);
-}
-
-/* Report an input that is not handed to the writer, after those that
- * were (records come in list order). */
-static void done_here(batch_session *s, batch_record *rec, const char *message)
-{
-    batch_writer_wait(&s->writer);
-    batch_session_done(s, rec, message);
-}
-
-void batch_session_each(batch_session *s, batch_draw_fn draw, void *user)
-{
-    char message[2048];
-    for (size_t i = 0; i < s->list.count; i++) {
-        const batch_item *it = &s->list.items[i];
-        if (!batch_in_shard(it->input, &s->shard)) {
-            continue;
-        }
-        batch_record rec = { .input = it->input, .output = it->output, .index = it->index,
-                             .status = "failed" };
-        if (s->opts->skip_existing && batch_exists_whole(it->output)) {
-            rec.status = "skipped";
-            done_here(s, &rec, NULL);
-            continue;
-        }
-        message[0] = '\0';
-        cli_capture(message, sizeof message);
-        bool ok = batch_session_output_ok(s, it->output, it->named ? "--batch output" : "--name");
-        cli_capture(NULL, 0);
-        batch_picture pic = { 0 };
-        ok = ok && draw(user, it, &pic, &rec, message, sizeof message);
-        if (ok && message[0]) {
-            batch_writer_wait(&s->writer);
-            batch_session_report(s, it->input, message);   /* warnings */
-        }
-        if (ok && !batch_writer_put(&s->writer, &rec, pic.width, pic.height, pic.rgba,
-                                    &pic.image)) {
-            snprintf(message, sizeof message, "out of memory");
-            ok = false;
-        }
-        if (!ok) {
-            done_here(s, &rec, message);
-        }
-    }
-    batch_writer_wait(&s->writer);
 }

@@ -2,8 +2,8 @@
  * the batch options, the input list and its outputs' names, the check
  * that no output replaces an input, the writer, the log, the progress
  * line and the exit status.  `softrast render` drives it with its own
- * read-ahead (batch.c); `softrast svg` hands it one callback per input
- * (batch_session_each). */
+ * read-ahead (batch.c); `softrast svg` hands it one callback per input,
+ * which several threads call at once (batch_session_each). */
 #ifndef SR_BATCH_SESSION_H
 #define SR_BATCH_SESSION_H
 
@@ -104,15 +104,41 @@ typedef struct batch_picture {
     cli_image_options image;
 } batch_picture;
 
-/* Draw `it` into *pic (its pixels to stay until the next call), with
- * rec's load_ms, render_ms and counts set: true, with warnings in
- * message if any; false with why in message. */
-typedef bool (*batch_draw_fn)(void *user, const batch_item *it, batch_picture *pic,
+/* Draw `it` into *pic with slot `slot`'s own things (a context, a
+ * framebuffer), rec's load_ms, render_ms and counts set: true, with
+ * warnings in message if any; false with why in message.  Called on a
+ * drawing thread; a slot is used by one thread at a time, and its
+ * pixels stay until the batch releases it. */
+typedef bool (*batch_draw_fn)(void *user, int slot, const batch_item *it, batch_picture *pic,
                               batch_record *rec, char *message, size_t size);
+/* The slot's picture is handed to the writer (or failed): free what it
+ * holds.  Called on the batch's thread. */
+typedef void (*batch_release_fn)(void *user, int slot);
+
+/* The most drawing threads, as the library's contexts take. */
+enum { BATCH_DRAW_MAX_THREADS = 64 };
+/* Drawn pictures wait for the batch's thread (in list order) while they
+ * hold fewer bytes than this; a drawing that takes long then stops the
+ * others only once its followers fill the slots. */
+#define BATCH_DRAW_MAX_BYTES ((size_t)256 << 20)
+
+/* How batch_session_each draws. */
+typedef struct batch_drawer {
+    batch_draw_fn draw;
+    batch_release_fn release;  /* NULL: nothing to free */
+    void *user;
+    int threads;               /* drawing threads, 1 .. BATCH_DRAW_MAX_THREADS */
+} batch_drawer;
+
+/* The slots `threads` drawing threads use (0 .. slots-1): the drawings
+ * in hand at most. */
+int batch_draw_slots(int threads);
 
 /* The shard's inputs in list order, between begin and end: each skipped
- * (--skip-existing), refused (its output) or drawn by `draw` and handed
- * to the writer. */
-void batch_session_each(batch_session *s, batch_draw_fn draw, void *user);
+ * (--skip-existing), refused (its output) or drawn and handed to the
+ * writer.  d->threads threads check and draw the inputs side by side
+ * (batch_draw.c); this thread reports and hands them over in the order
+ * of the list. */
+void batch_session_each(batch_session *s, const batch_drawer *d);
 
 #endif

@@ -5,9 +5,9 @@
  * Warnings go to stderr as they arise; a failure is one line
  * "FILE:LINE: what is wrong", exit status 2 for a bad document, 1 when the
  * run itself fails, and no output file.  Several inputs, a directory or
- * --batch make a batch (batch_session.c): one context renders every
- * drawing in turn on this thread while SVG_WRITERS threads write the
- * ones before. */
+ * --batch make a batch (batch_session.c): --threads threads draw
+ * drawings side by side, each slot of the batch with a context of its
+ * own, while SVG_WRITERS threads write the ones before. */
 #include "batch_session.h"
 #include "cli.h"
 #include "softrast_io.h"
@@ -33,6 +33,8 @@ static void svg_help(FILE *f)
                "  --size WxH           output size in pixels (the viewBox is fitted in)\n"
                "  --scale S            output size = the drawing's size times S (default 1)\n"
                "  --background COLOR   opaque background (default transparent)\n"
+               "  --threads N          drawings drawn at once in a batch (default: SR_THREADS\n"
+               "                       or CPUs)\n"
                "\n"
                "batch (several INPUTs, a directory, a glob pattern or --batch):\n"
                "  softrast svg INPUT.svg|DIR|PATTERN... [--batch LIST] [options]\n"
@@ -112,6 +114,7 @@ typedef struct svg_args {
     const char *output;        /* -o */
     const char *const *inputs; /* argv's, moved to its front */
     size_t count;
+    int threads;               /* --threads, or 0 */
     batch_common batch;
 } svg_args;
 
@@ -140,7 +143,8 @@ static int parse_args(int argc, char **argv, svg_args *a)
             svg_help(stdout);
             return EXIT_OK;
         } else if (strcmp(s, "-o") == 0 || strcmp(s, "--output") == 0 || strcmp(s, "--size") == 0 ||
-                   strcmp(s, "--scale") == 0 || strcmp(s, "--background") == 0) {
+                   strcmp(s, "--scale") == 0 || strcmp(s, "--background") == 0 ||
+                   strcmp(s, "--threads") == 0) {
             if (!has_value) {
                 cli_error("svg: %s: missing value", s);
                 return EXIT_USAGE;
@@ -150,6 +154,10 @@ static int parse_args(int argc, char **argv, svg_args *a)
                 a->output = v;
             } else if (strcmp(s, "--size") == 0) {
                 if (!parse_size(s, v, &a->desc.width, &a->desc.height)) {
+                    return EXIT_USAGE;
+                }
+            } else if (strcmp(s, "--threads") == 0) {
+                if (!parse_int(s, v, 1, BATCH_DRAW_MAX_THREADS, &a->threads)) {
                     return EXIT_USAGE;
                 }
             } else if (strcmp(s, "--scale") == 0) {
@@ -219,7 +227,7 @@ static int render_one(svg_args *a)
         return status;
     }
     sr_context *ctx = NULL;
-    if (sr_make_context(&(sr_context_desc){0}, &ctx) != SR_OK) {
+    if (sr_make_context(&(sr_context_desc){ .threads = a->threads }, &ctx) != SR_OK) {
         free(data);
         cli_inputs_free(&inputs);
         cli_error("svg: cannot create a context");
@@ -258,11 +266,18 @@ static int render_one(svg_args *a)
  * image, and a file system takes several at once. */
 #define SVG_WRITERS 4
 
+/* A slot of the batch: a drawing thread draws with its context, which
+ * draws on that thread alone (the 2D toolkit fills on the caller's). */
+typedef struct svg_slot {
+    sr_context *ctx;           /* made at the slot's first drawing */
+    sr_framebuffer *fb;        /* its drawing, until released */
+} svg_slot;
+
 /* What every drawing of a batch is rendered with. */
 typedef struct svg_batch {
-    sr_context *ctx;
     sr_svg_desc desc;
-    sr_framebuffer *fb;        /* the last drawing, until the next */
+    svg_slot *slots;
+    int slot_count;
 } svg_batch;
 
 /* The warnings of one drawing, held for one line after it. */
@@ -285,13 +300,16 @@ static bool is_svg_name(const char *name)
     return svg_suffix(name) > 0;
 }
 
-/* batch_draw_fn: read and render one drawing. */
-static bool draw_one(void *user, const batch_item *it, batch_picture *pic, batch_record *rec,
-                     char *message, size_t size)
+/* batch_draw_fn: read and render one drawing, on a drawing thread. */
+static bool draw_one(void *user, int slot, const batch_item *it, batch_picture *pic,
+                     batch_record *rec, char *message, size_t size)
 {
-    svg_batch *sb = user;
-    sr_destroy_framebuffer(sb->ctx, sb->fb);
-    sb->fb = NULL;
+    const svg_batch *sb = user;
+    svg_slot *sl = &sb->slots[slot];
+    if (!sl->ctx && sr_make_context(&(sr_context_desc){ .threads = 1 }, &sl->ctx) != SR_OK) {
+        snprintf(message, size, "cannot create a context");
+        return false;
+    }
     if (cli_is_jpeg_name(it->output) && sb->desc.background.a < 1) {
         snprintf(message, size, "'%s': a JPEG has no transparency; give a --background",
                  it->output);
@@ -310,7 +328,7 @@ static bool draw_one(void *user, const batch_item *it, batch_picture *pic, batch
     d.warn = warn_held;
     d.warn_user = &held;
     sr_io_error err;
-    sr_result r = sr_render_svg(sb->ctx, data, bytes, &d, &sb->fb, NULL, &err);
+    sr_result r = sr_render_svg(sl->ctx, data, bytes, &d, &sl->fb, NULL, &err);
     free(data);
     rec->load_ms = t1 - t0;
     rec->render_ms = batch_now_ms() - t1;
@@ -318,11 +336,32 @@ static bool draw_one(void *user, const batch_item *it, batch_picture *pic, batch
         snprintf(message, size, "%s", err.message);
         return false;
     }
-    *pic = (batch_picture){ .rgba = sr_framebuffer_pixels(sb->fb),
-                            .width = sr_framebuffer_width(sb->fb),
-                            .height = sr_framebuffer_height(sb->fb),
+    *pic = (batch_picture){ .rgba = sr_framebuffer_pixels(sl->fb),
+                            .width = sr_framebuffer_width(sl->fb),
+                            .height = sr_framebuffer_height(sl->fb),
                             .image = { .png_level = -1, .keep_alpha = d.background.a < 1 } };
     return true;
+}
+
+/* batch_release_fn: the slot's drawing is in the writer's hands. */
+static void release_one(void *user, int slot)
+{
+    svg_slot *sl = &((svg_batch *)user)->slots[slot];
+    sr_destroy_framebuffer(sl->ctx, sl->fb);
+    sl->fb = NULL;
+}
+
+/* --threads, or the library's default for a context (SR_THREADS, else
+ * the CPUs), as `softrast render` takes it. */
+static int drawing_threads(int asked)
+{
+    sr_context *probe = NULL;
+    if (asked > 0 || sr_make_context(&(sr_context_desc){0}, &probe) != SR_OK) {
+        return asked > 0 ? asked : 1;
+    }
+    int n = sr_context_threads(probe);
+    sr_destroy_context(probe);
+    return n;
 }
 
 static int render_batch(svg_args *a)
@@ -341,7 +380,10 @@ static int render_batch(svg_args *a)
         return EXIT_USAGE;
     }
     batch_session s;
-    svg_batch sb = { .desc = a->desc };
+    batch_drawer drawer = { .draw = draw_one, .release = release_one,
+                            .threads = drawing_threads(a->threads) };
+    svg_batch sb = { .desc = a->desc, .slot_count = batch_draw_slots(drawer.threads) };
+    drawer.user = &sb;
     int status = batch_session_gather(&s, c, a->inputs, a->count, is_svg_name,
                                       "svg: no SVG files");
     if (status < 0) {
@@ -350,19 +392,20 @@ static int render_batch(svg_args *a)
     if (status < 0) {
         status = batch_session_open(&s);
     }
-    if (status < 0 && sr_make_context(&(sr_context_desc){0}, &sb.ctx) != SR_OK) {
-        cli_error("svg: cannot create a context");
+    if (status < 0 && !(sb.slots = calloc((size_t)sb.slot_count, sizeof *sb.slots))) {
+        cli_error("svg: out of memory");
         status = EXIT_FAILURE_RUN;
     }
     if (status < 0) {
         batch_session_begin(&s, batch_session_mine(&s), SVG_WRITERS);
-        batch_session_each(&s, draw_one, &sb);
+        batch_session_each(&s, &drawer);
         status = batch_session_end(&s);
     }
-    if (sb.ctx) {
-        sr_destroy_framebuffer(sb.ctx, sb.fb);
-        sr_destroy_context(sb.ctx);
+    for (int i = 0; sb.slots && i < sb.slot_count; i++) {
+        sr_destroy_framebuffer(sb.slots[i].ctx, sb.slots[i].fb);
+        sr_destroy_context(sb.slots[i].ctx);
     }
+    free(sb.slots);
     return batch_session_close(&s, status);
 }
 
