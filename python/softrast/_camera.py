@@ -8,15 +8,14 @@ from typing import TYPE_CHECKING, Any, Mapping, Optional, overload
 import numpy as np
 from numpy.typing import NDArray
 
+from ._arrays import real_array
+
 if TYPE_CHECKING:
     from .typing import CameraParameters, Projection, RealArrayLike
 
 
 def _vector3(value: RealArrayLike, name: str) -> NDArray[np.float64]:
-    try:
-        v = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name}: expected 3 numbers, got {type(value).__name__}") from None
+    v = real_array(value, name)
     if v.shape != (3,):
         raise ValueError(f"{name}: shape must be (3,), got {v.shape}")
     if not np.all(np.isfinite(v)):

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import operator
-from typing import TYPE_CHECKING, Any, List, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from numpy.typing import NDArray
@@ -249,12 +249,11 @@ def _paint(value: Paint, opacity: float) -> _PaintTuple:
     if isinstance(value, (LinearGradient, RadialGradient, Pattern)):
         p = value._paint
     else:
-        try:
-            rgba = to_rgba(value, "paint")
-        except TypeError:
+        if not isinstance(value, (str, Iterable)) or isinstance(value, bytes):
             raise TypeError("paint: expected a color (a CSS color str or 3 or 4 numbers), "
                             "LinearGradient, RadialGradient or Pattern, "
-                            f"got {type(value).__name__}") from None
+                            f"got {type(value).__name__}")
+        rgba = to_rgba(value, "paint")  # what is wrong with the color, named
         p = (_NAMES["kind"]["color"], rgba, (0.0,) * 6, None, 0, None, 0, _IDENTITY, 1.0)
     return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], opacity)
 
