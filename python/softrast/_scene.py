@@ -229,4 +229,4 @@ def load(path: PathLike) -> Scene:
         inst = Instance(meshes[key], world, material=materials[material])
         inst._source = (source, primitive)
         instances.append(inst)
-    return Scene(instances, [Camera(c) for c in d["cameras"]])
+    return Scene(instances, [Camera._from_fields(c) for c in d["cameras"]])
