@@ -69,8 +69,9 @@ def stub_functions():
             out[node.name] = (node.args, False)
         elif isinstance(node, ast.ClassDef):
             for item in node.body:
-                if isinstance(item, ast.FunctionDef) and not any(
-                        isinstance(d, ast.Name) and d.id == "property" for d in item.decorator_list):
+                decorators = [d.id for d in getattr(item, "decorator_list", ())
+                              if isinstance(d, ast.Name)]
+                if isinstance(item, ast.FunctionDef) and "property" not in decorators:
                     out[f"{node.name}.{item.name}"] = (item.args, True)
     return out
 
