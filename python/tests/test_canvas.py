@@ -386,7 +386,8 @@ TRI = np.array([[1, 1], [9, 1], [5, 9]])
      "dash_offset: expected a number"),
     (lambda c: c.stroke(P().move_to(0, 0).line_to(200000, 0), "red", dashes=[1e-3, 1e-3]),
      ValueError, "sr_path_dash: a pattern of period 0.002"),
-    (lambda c: c._core.stroke(P(), ("red",) * 9, 1.0, 0, 0, 4.0, True, (1.0, "2"), 0.0),
+    (lambda c: c._core.stroke(P(), ("red",) * 9, 1.0, 0, 0, 4.0, True, (1.0, "2"), 0.0,
+                              (1.0, 0.0, 0.0, 1.0, 0.0, 0.0), None),
      TypeError, r"dashes\[1\]: expected a number"),
 ])
 def test_bad_draw_arguments_are_named(call, error, message):
