@@ -40,6 +40,23 @@ SR_TEST(cached_coverage_draws_the_same_pixels_as_the_fill)
     sr_destroy_context(ctx);
 }
 
+/* A 16 x 12 image after 10 x 10 white squares drawn at (-5, -5), (11, 7)
+ * and far away: lit in its top-left and bottom-right corners only. */
+static void check_two_corners_lit(const sr_framebuffer *fb)
+{
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    int lit = 0;
+    for (int y = 0; y < 12; y++) {
+        for (int x = 0; x < 16; x++) {
+            bool want = (x < 5 && y < 5) || (x >= 11 && y >= 7);
+            bool is = px[(y * 16 + x) * 4] == 255;
+            CHECK_EQ(is, want);
+            lit += is;
+        }
+    }
+    CHECK_EQ(lit, 25 + 25);
+}
+
 SR_TEST(coverage_is_clipped_to_the_framebuffer)
 {
     sr_context *ctx;
@@ -53,17 +70,7 @@ SR_TEST(coverage_is_clipped_to_the_framebuffer)
     CHECK_EQ(sr_draw_coverage(ctx, fb, -5, -5, 10, 10, mask, 10, white), SR_OK);
     CHECK_EQ(sr_draw_coverage(ctx, fb, 11, 7, 10, 10, mask, 10, white), SR_OK);
     CHECK_EQ(sr_draw_coverage(ctx, fb, 2000000000, -2000000000, 10, 10, mask, 10, white), SR_OK);
-    const uint8_t *px = sr_framebuffer_pixels(fb);
-    int lit = 0;
-    for (int y = 0; y < 12; y++) {
-        for (int x = 0; x < 16; x++) {
-            bool want = (x < 5 && y < 5) || (x >= 11 && y >= 7);
-            bool is = px[(y * 16 + x) * 4] == 255;
-            CHECK_EQ(is, want);
-            lit += is;
-        }
-    }
-    CHECK_EQ(lit, 25 + 25);
+    check_two_corners_lit(fb);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
@@ -165,17 +172,7 @@ SR_TEST(layer_is_clipped_to_the_framebuffer)
     CHECK_EQ(sr_draw_layer(ctx, fb, -5, -5, 10, 10, layer, 40, NULL), SR_OK);
     CHECK_EQ(sr_draw_layer(ctx, fb, 11, 7, 10, 10, layer, 40, NULL), SR_OK);
     CHECK_EQ(sr_draw_layer(ctx, fb, 2000000000, -2000000000, 10, 10, layer, 40, NULL), SR_OK);
-    const uint8_t *px = sr_framebuffer_pixels(fb);
-    int lit = 0;
-    for (int y = 0; y < 12; y++) {
-        for (int x = 0; x < 16; x++) {
-            bool want = (x < 5 && y < 5) || (x >= 11 && y >= 7);
-            bool is = px[(y * 16 + x) * 4] == 255;
-            CHECK_EQ(is, want);
-            lit += is;
-        }
-    }
-    CHECK_EQ(lit, 25 + 25);
+    check_two_corners_lit(fb);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
 }
