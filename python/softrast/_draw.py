@@ -43,7 +43,7 @@ def _name(value: str, name: str, table: str) -> int:
 
 
 def _real(value: float, name: str) -> float:
-    if isinstance(value, (bool, str, bytes)):
+    if isinstance(value, (bool, np.bool_, str, bytes)):
         raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
     try:
         v = float(value)

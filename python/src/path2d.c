@@ -33,7 +33,9 @@ PyObject *sr_py_value_error(const char *format, ...)
 
 int sr_py_real_arg(PyObject *obj, const char *name, double *out)
 {
-    if (PyUnicode_Check(obj) || PyBytes_Check(obj) || PyBool_Check(obj)) {
+    /* numpy's bool too: float() reads it as 0 or 1 */
+    if (PyUnicode_Check(obj) || PyBytes_Check(obj) || PyBool_Check(obj) ||
+        PyArray_IsScalar(obj, Bool)) {
         PyErr_Format(PyExc_TypeError, "%s: expected a number, got %s", name, Py_TYPE(obj)->tp_name);
         return -1;
     }

@@ -73,6 +73,12 @@ def render(**kwargs):
      r"stops\[0\] color"),
     (lambda: softrast.write_png("never.png", np.zeros((2, 2, 4), bool)), "image"),
     (lambda: softrast.write_png("never.png", np.zeros((2, 2, 4), bool).tolist()), "image"),
+    # numpy's bool scalars, which float() reads as 0 and 1, like bool
+    (lambda: softrast.Path().move_to(np.bool_(True), 0), "x"),
+    (lambda: softrast.Path(tolerance=np.bool_(True)), "tolerance"),
+    (lambda: softrast.Canvas(8, 8).stroke(softrast.Path(), "red", width=np.bool_(True)),
+     "width"),
+    (lambda: softrast.Canvas(8, 8).translate(np.bool_(True), 0), "tx"),
 ])
 def test_bool_arrays_are_refused_by_name(call, name):
     with pytest.raises(TypeError, match=f"^{name}: .*bool"):
