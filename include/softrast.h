@@ -197,6 +197,7 @@
  *     sr_fill_polygon            a polygon, aliased or antialiased
  *     sr_polygon_coverage        its coverage as a mask
  *     sr_draw_coverage           a color blended through a mask
+ *     sr_draw_layer              an RGBA8 image blended through a mask
  *   region filling
  *     sr_flood_fill              recolor the region matching a pixel
  *     sr_boundary_fill           recolor up to a boundary color
@@ -1800,6 +1801,24 @@ SR_API sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
  * of a text overlay). */
 SR_API sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
                                   const uint8_t *mask, size_t stride, sr_rgba color);
+
+/* How sr_draw_layer blends. */
+typedef struct sr_layer_desc {
+    const uint8_t *mask;    /* 0..255 per layer pixel, w x h; NULL -> full coverage */
+    size_t mask_stride;     /* bytes from a mask row to the next; 0 -> w */
+    float opacity;          /* in [0, 1]; 0 -> 1, as sr_paint's */
+} sr_layer_desc;
+
+/* Blend a w x h RGBA8 image (straight alpha, stride bytes per row: a layer
+ * drawn apart, transparent where nothing was drawn) into fb with its
+ * top-left pixel on (x, y), clipped to the framebuffer: each pixel
+ * source-over as the fills blend, at its alpha times desc->opacity times
+ * its mask coverage / 255.  Drawing into a transparent layer and blending
+ * it through a clip's coverage (sr_polygon_coverage) is how SVG's
+ * clip-path and group opacity draw (the SVG reader's layers blend so).
+ * desc may be NULL. */
+SR_API sr_result sr_draw_layer(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
+                               const uint8_t *rgba, size_t stride, const sr_layer_desc *desc);
 
 /* ---- region filling ----------------------------------------------------- */
 /*

@@ -8,15 +8,14 @@ from typing import TYPE_CHECKING, Any, Mapping, Optional, overload
 import numpy as np
 from numpy.typing import NDArray
 
+from ._arrays import real_array
+
 if TYPE_CHECKING:
     from .typing import CameraParameters, Projection, RealArrayLike
 
 
 def _vector3(value: RealArrayLike, name: str) -> NDArray[np.float64]:
-    try:
-        v = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name}: expected 3 numbers, got {type(value).__name__}") from None
+    v = real_array(value, name)
     if v.shape != (3,):
         raise ValueError(f"{name}: shape must be (3,), got {v.shape}")
     if not np.all(np.isfinite(v)):
@@ -171,7 +170,38 @@ class Camera:
     R: Optional[NDArray[np.float64]]
     t: Optional[NDArray[np.float64]]
 
-    def __init__(self, fields: Mapping[str, Any]) -> None:
+    def __init__(self, eye: RealArrayLike, target: RealArrayLike,
+                 up: RealArrayLike = (0.0, 1.0, 0.0), *, yfov: Optional[float] = None,
+                 ymag: Optional[float] = None, znear: Optional[float] = None) -> None:
+        """A camera at ``eye`` looking at ``target`` (``up`` upwards in the
+        image): perspective with the vertical field of view ``yfov``
+        (radians, default 60 degrees) or, given ``ymag`` instead,
+        orthographic (as :func:`look_at` chooses); ``znear`` defaults to
+        1e-3 and 0.  :meth:`perspective` and :meth:`orthographic` say
+        more."""
+        if ymag is not None:
+            if yfov is not None:
+                raise TypeError("yfov, ymag: give one (perspective or orthographic), not both")
+            near = _number(0.0 if znear is None else znear, "znear")
+            if not near >= 0.0:
+                raise ValueError(f"znear: must be >= 0, got {near}")
+            ymag = _ymag(ymag)
+            self._set(_looking(eye, target, up, near, type="orthographic", ymag=ymag, xmag=ymag))
+        else:
+            near = _number(1e-3 if znear is None else znear, "znear")
+            if not near > 0.0:
+                raise ValueError(f"znear: must be positive, got {near}")
+            fov = _fov_y(math.radians(60.0) if yfov is None else yfov, "yfov")
+            self._set(_looking(eye, target, up, near, type="perspective", yfov=fov))
+
+    @classmethod
+    def _from_fields(cls, fields: Mapping[str, Any]) -> Camera:
+        """A camera of a model file's fields (python/src/scene_file.c)."""
+        camera = cls.__new__(cls)
+        camera._set(fields)
+        return camera
+
+    def _set(self, fields: Mapping[str, Any]) -> None:
         self.type = fields["type"]
         for name in ("yfov", "aspect", "xmag", "ymag", "znear", "zfar"):
             setattr(self, name, float(fields[name]))
@@ -183,32 +213,13 @@ class Camera:
         self.t = None if self.view is None else _GL_TO_CV @ self.view[:3, 3]
 
     @classmethod
-    def _looking(cls, eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike, znear: float,
-                 **fields: Any) -> Camera:
-        eye_v = _vector3(eye, "eye")
-        R, t = _frame(eye_v, _vector3(target, "target"), _vector3(up, "up"))
-        view = np.eye(4)
-        view[:3, :3] = _GL_TO_CV @ R
-        view[:3, 3] = _GL_TO_CV @ t
-        world = np.eye(4)
-        world[:3, :3] = view[:3, :3].T
-        world[:3, 3] = eye_v
-        base: dict[str, Any] = dict(yfov=0.0, aspect=0.0, xmag=0.0, ymag=0.0, znear=znear, zfar=0.0,
-                    world=world, view=view, camera=None, node=None)
-        base.update(fields)
-        return cls(base)
-
-    @classmethod
     def perspective(cls, eye: RealArrayLike, target: RealArrayLike,
                     up: RealArrayLike = (0.0, 1.0, 0.0), *, yfov: float = math.radians(60.0),
                     znear: float = 1e-3) -> Camera:
         """A pinhole camera at ``eye`` looking at ``target`` (``up``
         upwards in the image) with the vertical field of view ``yfov``
         (radians), clipping at ``znear`` (> 0)."""
-        znear = _number(znear, "znear")
-        if not znear > 0.0:
-            raise ValueError(f"znear: must be positive, got {znear}")
-        return cls._looking(eye, target, up, znear, type="perspective", yfov=_fov_y(yfov))
+        return cls(eye, target, up, yfov=_fov_y(yfov, "yfov"), znear=_number(znear, "znear"))
 
     @classmethod
     def orthographic(cls, eye: RealArrayLike, target: RealArrayLike,
@@ -220,11 +231,7 @@ class Camera:
         run parallel to the optical axis from the plane through ``eye``;
         depth is the distance along the axis from that plane, clipped at
         ``znear`` (>= 0, may be 0)."""
-        znear = _number(znear, "znear")
-        if not znear >= 0.0:
-            raise ValueError(f"znear: must be >= 0, got {znear}")
-        ymag = _ymag(ymag)
-        return cls._looking(eye, target, up, znear, type="orthographic", ymag=ymag, xmag=ymag)
+        return cls(eye, target, up, ymag=_ymag(ymag), znear=_number(znear, "znear"))
 
     def intrinsics(self, width: int, height: int) -> NDArray[np.float64]:
         """K (3, 3) for a width x height image: square pixels, the
@@ -250,6 +257,23 @@ class Camera:
             where += f", forward={_short(self.R[2])}"
         source = "" if self.index is None else f"index={self.index}, node={self.node}, "
         return f"Camera({source}type={self.type!r}, {lens}, znear={self.znear:.6g}, {where})"
+
+
+def _looking(eye: RealArrayLike, target: RealArrayLike, up: RealArrayLike, znear: float,
+             **fields: Any) -> dict[str, Any]:
+    """The fields of a camera made here, not read from a file."""
+    eye_v = _vector3(eye, "eye")
+    R, t = _frame(eye_v, _vector3(target, "target"), _vector3(up, "up"))
+    view = np.eye(4)
+    view[:3, :3] = _GL_TO_CV @ R
+    view[:3, 3] = _GL_TO_CV @ t
+    world = np.eye(4)
+    world[:3, :3] = view[:3, :3].T
+    world[:3, 3] = eye_v
+    base: dict[str, Any] = dict(yfov=0.0, aspect=0.0, xmag=0.0, ymag=0.0, znear=znear, zfar=0.0,
+                                world=world, view=view, camera=None, node=None)
+    base.update(fields)
+    return base
 
 
 def _short(v: NDArray[np.float64]) -> str:

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Sequence, Tuple, Union
 
+import numpy as np
+
 from . import _softrast
 
 Color = Union[str, Sequence[float]]
@@ -24,9 +26,12 @@ def to_rgba(value: Color, name: str) -> Tuple[float, float, float, float]:
     if isinstance(value, bytes):
         raise TypeError(expected)
     try:
-        components = [float(c) for c in value]
+        items = list(value)
+        components = [float(c) for c in items]
     except TypeError:
         raise TypeError(expected) from None
+    if any(isinstance(c, (bool, np.bool_)) for c in items):
+        raise TypeError(f"{name}: expected numbers in [0, 1], got bool")  # not 0 and 1
     if len(components) not in (3, 4):
         raise ValueError(f"{name}: expected 3 or 4 numbers (r, g, b[, a]), "
                          f"got {len(components)}")

@@ -2,13 +2,15 @@
 paths, fills, strokes and paints (sr_path, sr_path_dash, sr_make_stroke_outline,
 sr_fill_polygon_paint), the code its SVG reader draws with.  The paints
 (colors, LinearGradient, RadialGradient, Pattern) are checked here, where
-a wrong value is named; python/src/canvas.c draws."""
+a wrong value is named; the canvas's state (its transform, its clip's
+coverage and the saved states) is kept here as SVG's transform and
+clip-path would give it; python/src/canvas.c draws."""
 
 from __future__ import annotations
 
 import math
 import operator
-from typing import TYPE_CHECKING, Any, List, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,7 +43,7 @@ def _name(value: str, name: str, table: str) -> int:
 
 
 def _real(value: float, name: str) -> float:
-    if isinstance(value, (bool, str, bytes)):
+    if isinstance(value, (bool, np.bool_, str, bytes)):
         raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
     try:
         v = float(value)
@@ -249,12 +251,11 @@ def _paint(value: Paint, opacity: float) -> _PaintTuple:
     if isinstance(value, (LinearGradient, RadialGradient, Pattern)):
         p = value._paint
     else:
-        try:
-            rgba = to_rgba(value, "paint")
-        except TypeError:
+        if not isinstance(value, (str, Iterable)) or isinstance(value, bytes):
             raise TypeError("paint: expected a color (a CSS color str or 3 or 4 numbers), "
                             "LinearGradient, RadialGradient or Pattern, "
-                            f"got {type(value).__name__}") from None
+                            f"got {type(value).__name__}")
+        rgba = to_rgba(value, "paint")  # what is wrong with the color, named
         p = (_NAMES["kind"]["color"], rgba, (0.0,) * 6, None, 0, None, 0, _IDENTITY, 1.0)
     return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], opacity)
 
@@ -293,6 +294,56 @@ def _contours(shape: Any) -> List[Any]:
     return [shape]
 
 
+Matrix = Tuple[float, float, float, float, float, float]
+
+
+def _mul(m: Matrix, n: Matrix) -> Matrix:
+    """m * n (n applied first), term for term as the SVG reader composes
+    its transforms (svg.c mat_mul), so that a drawing gives its bytes."""
+    a, b, c, d, e, f = m
+    return (a * n[0] + c * n[1], b * n[0] + d * n[1], a * n[2] + c * n[3],
+            b * n[2] + d * n[3], a * n[4] + c * n[5] + e, b * n[4] + d * n[5] + f)
+
+
+def _matrix(a: float, b: float, c: float, d: float, e: float, f: float) -> Matrix:
+    """Six numbers, each checked under its name."""
+    return (_real(a, "a"), _real(b, "b"), _real(c, "c"), _real(d, "d"), _real(e, "e"),
+            _real(f, "f"))
+
+
+def _invertible(m: Matrix, what: str) -> Matrix:
+    """m, when finite with a finite inverse; a ValueError saying `what`."""
+    a, b, c, d = m[:4]
+    det = a * d - b * c
+    if not all(math.isfinite(v) for v in m):
+        raise ValueError(f"{what}: the transform would not be finite")
+    if not (abs(det) > 1e-300) or not all(math.isfinite(v / det) for v in (a, b, c, d)):
+        raise ValueError(f"{what}: the transform would be singular (determinant {det:g})")
+    return m
+
+
+class _Saved:
+    """What Canvas.save returns: used in a with statement, the state is
+    restored at its end."""
+
+    __slots__ = ("_canvas", "_depth")
+
+    def __init__(self, canvas: Canvas, depth: int) -> None:
+        self._canvas = canvas
+        self._depth = depth
+
+    def __enter__(self) -> Canvas:
+        return self._canvas
+
+    def __exit__(self, *exc: object) -> None:
+        saved = self._canvas._saved
+        if len(saved) < self._depth:
+            raise RuntimeError("restore: the state this with statement saved was restored "
+                               "already")
+        del saved[self._depth:]
+        self._canvas.restore()
+
+
 def _size(value: int, name: str) -> int:
     if isinstance(value, bool):
         raise TypeError(f"{name}: expected an int, got bool")
@@ -312,13 +363,22 @@ class Canvas:
     a new image, ``Canvas.from_array(image)`` draws into the caller's.
     Each draw blends source-over as the library's RGBA8 framebuffer does,
     so a drawing gives the bytes ``render_svg`` gives for the same SVG.
+
+    Draws are under the canvas's state, as in cairo and HTML's canvas: a
+    current transform from user space to pixels (``translate``,
+    ``scale``, ``rotate``, ``transform``, ``set_transform``; SVG's
+    ``transform`` attribute), which maps paths, strokes (their width and
+    dashes too, as SVG strokes) and paints; and a clip (``clip``: SVG's
+    ``clip-path``), which each later draw is cut by.  ``save()`` and
+    ``restore()`` keep and bring back both (``with canvas.save():``).
     """
 
-    __slots__ = ("_core",)
+    __slots__ = ("_core", "_matrix", "_clip", "_saved")
 
     def __init__(self, width: int, height: int, *, background: Optional[Color] = None) -> None:
         image = np.zeros((_size(height, "height"), _size(width, "width"), 4), np.uint8)
         self._core = _softrast.Canvas2D(image)
+        self._reset_state()
         if background is not None:
             self._core.clear(to_rgba(background, "background"))
 
@@ -328,7 +388,101 @@ class Canvas:
         C-contiguous and writeable (no copy is made)."""
         canvas = cls.__new__(cls)
         canvas._core = _softrast.Canvas2D(image)
+        canvas._reset_state()
         return canvas
+
+    def _reset_state(self) -> None:
+        self._matrix: Matrix = _IDENTITY
+        # The clip as the coverage of the image (read-only), None for none.
+        self._clip: Optional[NDArray[np.uint8]] = None
+        self._saved: List[Tuple[Matrix, Optional[NDArray[np.uint8]]]] = []
+
+    # -- the current transform ---------------------------------------------
+
+    def get_transform(self) -> Matrix:
+        """The current transform (a, b, c, d, e, f): user space to pixels,
+        x' = a x + c y + e, y' = b x + d y + f (SVG's matrix(a b c d e f),
+        cairo's Matrix(xx, yx, xy, yy, x0, y0), HTML's getTransform()).
+        ``set_transform(*canvas.get_transform())`` puts it back."""
+        return self._matrix
+
+    def set_transform(self, a: float, b: float, c: float, d: float, e: float,
+                      f: float) -> None:
+        """Make (a, b, c, d, e, f) the current transform (as get_transform
+        gives it), whatever it was; it must be finite and invertible."""
+        self._matrix = _invertible(_matrix(a, b, c, d, e, f), "set_transform")
+
+    def reset_transform(self) -> None:
+        """Make the identity the current transform: user space is pixels."""
+        self._matrix = _IDENTITY
+
+    def transform(self, a: float, b: float, c: float, d: float, e: float, f: float) -> None:
+        """Multiply the current transform by (a, b, c, d, e, f), applied
+        first to what is drawn next (SVG's transform="matrix(a b c d e f)"
+        on an inner group; HTML's transform(), cairo's transform())."""
+        m = _invertible(_matrix(a, b, c, d, e, f), "transform")
+        self._matrix = _invertible(_mul(self._matrix, m), "transform")
+
+    def translate(self, tx: float, ty: float) -> None:
+        """Move user space's origin to (tx, ty) of the current user space."""
+        m = (1.0, 0.0, 0.0, 1.0, _real(tx, "tx"), _real(ty, "ty"))
+        self._matrix = _invertible(_mul(self._matrix, m), "translate")
+
+    def scale(self, sx: float, sy: Optional[float] = None) -> None:
+        """Scale user space by sx along x and sy (default sx) along y;
+        neither may be 0.  Strokes scale too: their width is in user
+        units, as in SVG and cairo."""
+        x = _real(sx, "sx")
+        y = x if sy is None else _real(sy, "sy")
+        if x == 0 or y == 0:
+            raise ValueError(f"{'sx' if x == 0 else 'sy'}: must not be 0 (the transform would be "
+                             "singular)")
+        self._matrix = _invertible(_mul(self._matrix, (x, 0.0, 0.0, y, 0.0, 0.0)), "scale")
+
+    def rotate(self, angle: float) -> None:
+        """Rotate user space by `angle` radians, from +x towards +y (clockwise
+        on the image, whose y points down; SVG's rotate() takes degrees)."""
+        r = _real(angle, "angle")
+        c, s = math.cos(r), math.sin(r)
+        self._matrix = _invertible(_mul(self._matrix, (c, s, -s, c, 0.0, 0.0)), "rotate")
+
+    # -- the clip and the saved states -------------------------------------
+
+    def clip(self, shape: Shape, *, rule: FillRule = "nonzero", antialias: bool = True) -> None:
+        """Intersect the clip with `shape` (as fill takes it) under the
+        current transform, by `rule`: later draws show only inside both.
+        The clip is a coverage of the image's pixels (antialiased edges
+        partly in, as SVG's clip-path; antialias=False: pixel centres), so
+        it stays where it was drawn when the transform changes; coverages
+        multiply, rounded to 8 bits, as a clipPath with a clip-path of its
+        own does."""
+        if not isinstance(antialias, bool):
+            raise TypeError(f"antialias: expected a bool, got {type(antialias).__name__}")
+        r = _name(rule, "rule", "rule")
+        cov: NDArray[np.uint8] = self._core.coverage(
+            shape if isinstance(shape, Path) else _contours(shape), r, antialias, self._matrix)
+        if self._clip is not None:
+            cov = ((self._clip.astype(np.uint16) * cov + 127) // 255).astype(np.uint8)
+        cov.flags.writeable = False  # kept by saved states as it is
+        self._clip = cov
+
+    def reset_clip(self) -> None:
+        """Remove the clip: draws reach every pixel again."""
+        self._clip = None
+
+    def save(self) -> _Saved:
+        """Push the current transform and clip; restore() pops them.  The
+        result is a context manager: ``with canvas.save(): ...`` restores
+        at the end of the block."""
+        self._saved.append((self._matrix, self._clip))
+        return _Saved(self, len(self._saved))
+
+    def restore(self) -> None:
+        """Bring back the transform and clip of the last save() (a
+        RuntimeError without one)."""
+        if not self._saved:
+            raise RuntimeError("restore: no saved state (restore() without a save())")
+        self._matrix, self._clip = self._saved.pop()
 
     @property
     def image(self) -> NDArray[np.uint8]:
@@ -350,7 +504,8 @@ class Canvas:
         return f"Canvas({self.width}x{self.height})"
 
     def clear(self, color: Color = "transparent") -> None:
-        """Set every pixel to `color` (a CSS color or (r, g, b[, a]) in [0, 1])."""
+        """Set every pixel to `color` (a CSS color or (r, g, b[, a]) in [0,
+        1]), whatever the transform and the clip."""
         self._core.clear(to_rgba(color, "color"))
 
     def fill(self, shape: Shape, paint: Paint, *, rule: FillRule = "nonzero",
@@ -361,6 +516,8 @@ class Canvas:
         CSS color str, or (r, g, b[, a]) in [0, 1]), a LinearGradient, a
         RadialGradient or a Pattern, at `opacity`.  rule: "nonzero" or
         "evenodd"; antialias: exact area coverage, or (False) pixel centres.
+        The shape and the paint are in user space (the current transform
+        maps them to pixels), cut by the clip.
         """
         if not isinstance(antialias, bool):
             raise TypeError(f"antialias: expected a bool, got {type(antialias).__name__}")
@@ -368,18 +525,21 @@ class Canvas:
         r = _name(rule, "rule", "rule")
         if p[8] == 0.0:
             return  # the library reads opacity 0 as 1: nothing to draw
-        self._core.fill(shape if isinstance(shape, Path) else _contours(shape), p, r, antialias)
+        self._core.fill(shape if isinstance(shape, Path) else _contours(shape), self._mapped(p), r,
+                        antialias, self._matrix, self._clip)
 
     def stroke(self, path: Path, paint: Paint, *, width: float = 1.0, join: Join = "miter",
                cap: Cap = "butt", miter_limit: float = 4.0, antialias: bool = True,
                opacity: float = 1.0, dashes: Optional[Sequence[float]] = None,
                dash_offset: float = 0.0) -> None:
         """Stroke `path` with `paint` (as fill's): the outline of a line
-        `width` pixels wide along each subpath, with joins ("miter",
+        `width` user units wide along each subpath (pixels under the
+        identity transform; the transform maps the outline, so a scale
+        widens it, as in SVG and cairo), with joins ("miter",
         "round", "bevel"; a miter longer than miter_limit times the width
         is bevelled) and caps on open subpaths ("butt", "round",
         "square"), filled nonzero, as SVG strokes.  `dashes` (lengths of
-        dashes and gaps in turn, in pixels along the path, at most 32; an
+        dashes and gaps in turn, in user units along the path, at most 32; an
         odd list repeats) strokes only the dashes, each with its caps,
         the pattern starting `dash_offset` into itself at every subpath,
         as SVG's stroke-dasharray and stroke-dashoffset.
@@ -400,4 +560,13 @@ class Canvas:
         d, offset = _dashes(dashes), _real(dash_offset, "dash_offset")
         if p[8] == 0.0:
             return
-        self._core.stroke(path, p, w, j, c, limit, antialias, d, offset)
+        self._core.stroke(path, self._mapped(p), w, j, c, limit, antialias, d, offset,
+                          self._matrix, self._clip)
+
+    def _mapped(self, p: _PaintTuple) -> _PaintTuple:
+        """The paint with its space under the current transform, as SVG
+        maps a userSpaceOnUse gradient by the element's transform."""
+        if self._matrix == _IDENTITY:
+            return p
+        m = _invertible(_mul(self._matrix, p[7]), "paint transform")
+        return (p[0], p[1], p[2], p[3], p[4], p[5], p[6], m, p[8])

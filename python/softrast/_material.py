@@ -103,7 +103,12 @@ Factors = Union[Sequence[float], NDArray[Any]]
 
 def _factors(value: Union[float, Factors], name: str, count: int,
              high: float) -> NDArray[np.float32]:
-    """`count` float32 factors in [0, high], or a ValueError naming `name`."""
+    """`count` float32 factors in [0, high], or a ValueError naming `name`
+    (a TypeError for booleans, which numpy would read as 0 and 1)."""
+    if isinstance(value, (bool, np.bool_)) or (
+            isinstance(value, (np.ndarray, list, tuple)) and
+            any(isinstance(v, (bool, np.bool_)) for v in np.asarray(value, object).flat)):
+        raise TypeError(f"{name}: expected {count} number(s), got bool")
     try:
         a = np.array(value, np.float32).reshape(count)
     except (TypeError, ValueError):

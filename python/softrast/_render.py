@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import _softrast
+from ._arrays import real_array
 from ._camera import Camera
 from ._framing import fit_camera
 from ._scene import Instance, Scene, as_scene
@@ -32,12 +33,7 @@ OUTPUTS: Dict[str, Tuple[Tuple[int, ...], type]] = {
 
 
 def _float_array(value: object, name: str) -> NDArray[np.float64]:
-    if isinstance(value, np.ndarray) and value.dtype.kind not in "biuf":
-        raise TypeError(f"{name}: dtype must be numeric, got {value.dtype}")
-    try:
-        a = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name}: expected a numeric array, got {type(value).__name__}") from None
+    a = real_array(value, name)
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name}: contains NaN or infinity")
     return a

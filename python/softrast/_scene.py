@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import _softrast
+from ._arrays import real_array
 from ._camera import Camera
 from ._gltf import base_color_images
 from ._material import Material, material_arrays
@@ -68,10 +69,7 @@ def _pose(pose: Optional[RealArrayLike], name: str) -> NDArray[np.float64]:
     """A (4, 4) float64 affine matrix from None, (3, 4) or (4, 4)."""
     if pose is None:
         return np.eye(4)
-    try:
-        p = np.asarray(pose, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name}: expected a (4, 4) or (3, 4) array") from None
+    p = real_array(pose, name)
     if p.shape not in ((4, 4), (3, 4)):
         raise ValueError(f"{name}: shape must be (4, 4) or (3, 4), got {p.shape}")
     if not np.all(np.isfinite(p)):
@@ -231,4 +229,4 @@ def load(path: PathLike) -> Scene:
         inst = Instance(meshes[key], world, material=materials[material])
         inst._source = (source, primitive)
         instances.append(inst)
-    return Scene(instances, [Camera(c) for c in d["cameras"]])
+    return Scene(instances, [Camera._from_fields(c) for c in d["cameras"]])

@@ -25,6 +25,10 @@ class SvgWarning(UserWarning):
     image source, given once per name and render as
     ``"NAME:LINE: warning: unsupported element 'text' skipped"``."""
 
+    def __init__(self, message: str) -> None:
+        # (A signature of its own: inspect finds none on Warning's.)
+        super().__init__(message)
+
 
 def _size(value: int, name: str) -> int:
     try:

@@ -6,9 +6,14 @@
  * framebuffer, not into caller memory, so the canvas keeps one of the
  * image's size as scratch: a draw copies the rectangle its polygon can
  * touch into it, fills, and copies the rectangle back (the array stays
- * the pixels' only truth: it may be changed between draws).  softrast/
- * _draw.py checks the arguments' values and names; this file checks
- * everything it dereferences.  Large shapes are drawn without the GIL,
+ * the pixels' only truth: it may be changed between draws).  A draw
+ * under softrast.Canvas's transform has its polygon (a stroke: its
+ * outline, made in user space as SVG strokes) mapped to pixels here; a
+ * clipped draw fills a transparent layer and blends it through the
+ * clip's coverage (sr_draw_layer), as the SVG reader draws clip-path.
+ * softrast/_draw.py keeps the transform and the clip and checks the
+ * arguments' values and names; this file checks everything it
+ * dereferences.  Large shapes are drawn without the GIL,
  * under the canvas's lock (one draw at a time per canvas).
  */
 #include "module.h"
@@ -297,17 +302,73 @@ typedef struct dash_args {
     double offset;
 } dash_args;
 
+/* poly's points mapped by m (NULL: kept) into *mapped, malloc'd, which
+ * poly then points at; false when out of memory.  As the SVG reader maps
+ * a point (svg.c mat_apply), so that a drawing gives its bytes. */
+static bool map_polygon(sr_polygon2 *poly, const sr_affine2 *m, sr_point2 **mapped)
+{
+    *mapped = NULL;
+    if (!m || poly->point_count == 0) {
+        return true;
+    }
+    if (!(*mapped = malloc((size_t)poly->point_count * sizeof **mapped))) {
+        return false;
+    }
+    for (int i = 0; i < poly->point_count; i++) {
+        sr_point2 p = poly->points[i];
+        (*mapped)[i] = (sr_point2){ m->a * p.x + m->c * p.y + m->e,
+                                    m->b * p.x + m->d * p.y + m->f };
+    }
+    poly->points = *mapped;
+    return true;
+}
+
+/* A clipped draw of poly: the box's pixels made transparent, filled,
+ * read as a layer, the image's pixels put back and the layer blended
+ * over them through the clip's coverage (the mask of the whole image). */
+static sr_result fill_clipped(CanvasObject *self, sr_polygon2 poly, const sr_paint *paint,
+                              const sr_fill_desc *fd, const uint8_t *clip, const int box[4],
+                              uint8_t *px, size_t stride)
+{
+    int w = (int)PyArray_DIM(self->image, 1), bw = box[2] - box[0], bh = box[3] - box[1];
+    uint8_t *layer = calloc((size_t)bw * (size_t)bh, 4);
+    if (!layer) {
+        return SR_OUT_OF_MEMORY; /* draw() raises MemoryError */
+    }
+    size_t lstride = (size_t)bw * 4;
+    sr_result r = sr_write_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, layer, lstride);
+    if (r == SR_OK) {
+        r = sr_fill_polygon_paint(self->ctx, self->fb, &poly, paint, fd);
+    }
+    if (r == SR_OK) {
+        r = sr_read_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, layer, lstride);
+    }
+    if (r == SR_OK) {
+        r = sr_write_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, px, stride);
+    }
+    if (r == SR_OK) {
+        sr_layer_desc ld = { .mask = clip + (size_t)box[1] * (size_t)w + (size_t)box[0],
+                             .mask_stride = (size_t)w };
+        r = sr_draw_layer(self->ctx, self->fb, box[0], box[1], bw, bh, layer, lstride, &ld);
+    }
+    free(layer);
+    return r;
+}
+
 /* One draw, the canvas locked (without the GIL when `release`): the
  * stroke outline of `stroked` (of its dashes when da has any) when it is
- * not NULL, else poly, filled with the paint over the image's pixels.
+ * not NULL, else poly, mapped by m (NULL: as it is) and filled with the
+ * paint over the image's pixels, through the coverage clip (NULL: none).
  * The library's message goes to msg on failure. */
 static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const PathObject *stroked,
                              const sr_stroke_desc *sd, const dash_args *da,
-                             const sr_paint *paint, const sr_fill_desc *fd, char *msg,
+                             const sr_paint *paint, const sr_fill_desc *fd,
+                             const sr_affine2 *m, const uint8_t *clip, char *msg,
                              size_t msg_size)
 {
     sr_polygon2 outline = { 0 };
     sr_path *dashed = NULL;
+    sr_point2 *mapped = NULL;
     sr_result r = SR_OK;
     if (stroked && da->count > 0) {
         r = sr_make_path(self->ctx, stroked->tolerance, &dashed);
@@ -319,15 +380,22 @@ static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const PathObj
         r = sr_make_stroke_outline(self->ctx, dashed ? dashed : stroked->path, sd, &outline);
         poly = outline;
     }
+    if (r == SR_OK && !map_polygon(&poly, m, &mapped)) {
+        r = SR_OUT_OF_MEMORY;
+    }
     int w = (int)PyArray_DIM(self->image, 1), h = (int)PyArray_DIM(self->image, 0), box[4];
     if (r == SR_OK && touched_box(poly, w, h, box)) {
         size_t stride = (size_t)w * 4;
         uint8_t *px = (uint8_t *)PyArray_DATA(self->image) + (size_t)box[1] * stride +
                       (size_t)box[0] * 4;
         int bw = box[2] - box[0], bh = box[3] - box[1];
-        r = sr_write_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, px, stride);
-        if (r == SR_OK) {
-            r = sr_fill_polygon_paint(self->ctx, self->fb, &poly, paint, fd);
+        if (clip) {
+            r = fill_clipped(self, poly, paint, fd, clip, box, px, stride);
+        } else {
+            r = sr_write_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, px, stride);
+            if (r == SR_OK) {
+                r = sr_fill_polygon_paint(self->ctx, self->fb, &poly, paint, fd);
+            }
         }
         if (r == SR_OK) {
             r = sr_read_pixels(self->ctx, self->fb, box[0], box[1], bw, bh, px, stride);
@@ -336,6 +404,7 @@ static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const PathObj
     if (r != SR_OK) {
         snprintf(msg, msg_size, "%s", sr_context_error(self->ctx));
     }
+    free(mapped);
     if (stroked) {
         sr_destroy_stroke_outline(self->ctx, &outline);
     }
@@ -343,18 +412,69 @@ static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const PathObj
     return r;
 }
 
+/* What a draw is under: softrast.Canvas's transform, m (NULL for the
+ * identity) pointing at matrix, and its clip, an (H, W) uint8 coverage
+ * of the image (NULL: none), held until state_release. */
+typedef struct state_args {
+    sr_affine2 matrix;
+    const sr_affine2 *m;
+    PyArrayObject *clip;
+} state_args;
+
+static void state_release(state_args *st)
+{
+    Py_CLEAR(st->clip);
+}
+
+/* (a, b, c, d, e, f), finite and invertible, and None or the clip. */
+static int state_arg(CanvasObject *self, PyObject *transform, PyObject *clip, state_args *st)
+{
+    memset(st, 0, sizeof *st);
+    sr_affine2 *t = &st->matrix;
+    if (!PyTuple_Check(transform) ||
+        !PyArg_ParseTuple(transform, "dddddd:transform", &t->a, &t->b, &t->c, &t->d, &t->e,
+                          &t->f)) {
+        if (!PyErr_Occurred() || PyErr_ExceptionMatches(PyExc_TypeError)) {
+            PyErr_Clear();
+            PyErr_SetString(PyExc_TypeError, "transform: expected a tuple of 6 numbers");
+        }
+        return -1;
+    }
+    double det = t->a * t->d - t->b * t->c;
+    bool finite = isfinite(t->a) && isfinite(t->b) && isfinite(t->c) && isfinite(t->d) &&
+                  isfinite(t->e) && isfinite(t->f);
+    if (!finite || !isfinite(det) || det == 0) {
+        sr_py_value_error(finite ? "transform: the matrix is singular (determinant %g)"
+                                 : "transform: contains NaN or infinity", det);
+        return -1;
+    }
+    bool identity = t->a == 1 && t->b == 0 && t->c == 0 && t->d == 1 && t->e == 0 && t->f == 0;
+    st->m = identity ? NULL : t;
+    if (clip != Py_None) {
+        static const int u8[] = { NPY_UINT8, -1 };
+        const npy_intp shape[2] = { PyArray_DIM(self->image, 0), PyArray_DIM(self->image, 1) };
+        if (!(st->clip = sr_py_take_array(clip, "clip", 2, shape, u8))) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /* Draw and raise what failed; `path` (or NULL) is marked as drawn
  * meanwhile.  sd and da (NULL for fills) are the stroke's. */
 static PyObject *draw(CanvasObject *self, PathObject *path, sr_polygon2 poly,
                       const sr_stroke_desc *sd, const dash_args *da, const sr_paint *paint,
-                      const sr_fill_desc *fd, double reach)
+                      const sr_fill_desc *fd, double reach, const state_args *st)
 {
     int box[4];
-    bool release = poly.point_count >= RELEASE_POINTS;
-    if (!release && touched_box(poly, (int)PyArray_DIM(self->image, 1),
-                                (int)PyArray_DIM(self->image, 0), box)) {
+    bool release = poly.point_count >= RELEASE_POINTS || st->clip;
+    if (!release && st->m) {
+        release = true; /* the box in user space says little of the pixels */
+    } else if (!release && touched_box(poly, (int)PyArray_DIM(self->image, 1),
+                                       (int)PyArray_DIM(self->image, 0), box)) {
         release = (box[2] - box[0] + 2 * reach) * (box[3] - box[1] + 2 * reach) >= RELEASE_PIXELS;
     }
+    const uint8_t *clip = st->clip ? PyArray_DATA(st->clip) : NULL;
     char msg[256] = "";
     sr_result r;
     if (path) {
@@ -363,10 +483,12 @@ static PyObject *draw(CanvasObject *self, PathObject *path, sr_polygon2 poly,
     lock_canvas(self);
     if (release) {
         Py_BEGIN_ALLOW_THREADS
-        r = draw_locked(self, poly, sd ? path : NULL, sd, da, paint, fd, msg, sizeof msg);
+        r = draw_locked(self, poly, sd ? path : NULL, sd, da, paint, fd, st->m, clip, msg,
+                        sizeof msg);
         Py_END_ALLOW_THREADS
     } else {
-        r = draw_locked(self, poly, sd ? path : NULL, sd, da, paint, fd, msg, sizeof msg);
+        r = draw_locked(self, poly, sd ? path : NULL, sd, da, paint, fd, st->m, clip, msg,
+                        sizeof msg);
     }
     PyThread_release_lock(self->lock);
     if (path) {
@@ -430,52 +552,123 @@ static int contours_arg(PyObject *list, sr_polygon2 *poly, sr_point2 **pts, int 
     return status;
 }
 
+/* The polygon of a shape: a Path's (*path set; its points are the
+ * path's own) or a list of contours' (*pts and *counts malloc'd, freed
+ * by the caller, also on failure). */
+static int shape_arg(PyObject *shape, sr_polygon2 *poly, sr_point2 **pts, int **counts,
+                     PathObject **path)
+{
+    *pts = NULL;
+    *counts = NULL;
+    *path = NULL;
+    if (PyObject_TypeCheck(shape, &sr_py_PathType)) {
+        if (!((PathObject *)shape)->path) {
+            PyErr_SetString(PyExc_ValueError, "shape: the Path is not initialized");
+            return -1;
+        }
+        *path = (PathObject *)shape;
+        *poly = sr_path_polygon((*path)->path);
+        return 0;
+    }
+    return contours_arg(shape, poly, pts, counts);
+}
+
 static PyObject *canvas_fill(CanvasObject *self, PyObject *args)
 {
-    PyObject *shape, *paint_obj;
+    PyObject *shape, *paint_obj, *transform, *clip;
     int rule, aa;
-    if (ready(self) < 0 || !PyArg_ParseTuple(args, "OOip:fill", &shape, &paint_obj, &rule, &aa)) {
+    if (ready(self) < 0 || !PyArg_ParseTuple(args, "OOipOO:fill", &shape, &paint_obj, &rule,
+                                             &aa, &transform, &clip)) {
+        return NULL;
+    }
+    state_args st;
+    if (state_arg(self, transform, clip, &st) < 0) {
         return NULL;
     }
     paint_args p;
     if (paint_arg(paint_obj, &p) < 0) {
+        state_release(&st);
         return NULL;
     }
     sr_polygon2 poly = { 0 };
-    sr_point2 *pts = NULL;
-    int *counts = NULL;
-    PathObject *path = NULL;
+    sr_point2 *pts;
+    int *counts;
+    PathObject *path;
     PyObject *result = NULL;
-    if (PyObject_TypeCheck(shape, &sr_py_PathType) && ((PathObject *)shape)->path) {
-        path = (PathObject *)shape;
-        poly = sr_path_polygon(path->path);
-    } else if (PyObject_TypeCheck(shape, &sr_py_PathType) ||
-               contours_arg(shape, &poly, &pts, &counts) < 0) {
-        if (!PyErr_Occurred()) {
-            PyErr_SetString(PyExc_ValueError, "shape: the Path is not initialized");
-        }
-        goto done;
+    if (shape_arg(shape, &poly, &pts, &counts, &path) == 0) {
+        sr_fill_desc fd = { .rule = (sr_fill_rule)rule,
+                            .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
+        result = draw(self, path, poly, NULL, NULL, &p.paint, &fd, 0, &st);
     }
-    sr_fill_desc fd = { .rule = (sr_fill_rule)rule, .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
-    result = draw(self, path, poly, NULL, NULL, &p.paint, &fd, 0);
-done:
     free(pts);
     free(counts);
     paint_release(&p);
+    state_release(&st);
     return result;
+}
+
+/* The coverage of a shape mapped by the transform, as a new (H, W) uint8
+ * array: what softrast.Canvas.clip intersects its clip with. */
+static PyObject *canvas_coverage(CanvasObject *self, PyObject *args)
+{
+    PyObject *shape, *transform;
+    int rule, aa;
+    if (ready(self) < 0 || !PyArg_ParseTuple(args, "OipO:coverage", &shape, &rule, &aa,
+                                             &transform)) {
+        return NULL;
+    }
+    state_args st;
+    if (state_arg(self, transform, Py_None, &st) < 0) {
+        return NULL;
+    }
+    sr_polygon2 poly = { 0 };
+    sr_point2 *pts, *mapped = NULL;
+    int *counts;
+    PathObject *path;
+    PyObject *mask = NULL;
+    if (shape_arg(shape, &poly, &pts, &counts, &path) < 0) {
+        goto done;
+    }
+    if (!map_polygon(&poly, st.m, &mapped)) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    npy_intp shape2[2] = { PyArray_DIM(self->image, 0), PyArray_DIM(self->image, 1) };
+    if (!(mask = PyArray_SimpleNew(2, shape2, NPY_UINT8))) {
+        goto done;
+    }
+    sr_fill_desc fd = { .rule = (sr_fill_rule)rule, .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
+    lock_canvas(self); /* the canvas's context */
+    sr_result r = sr_polygon_coverage(self->ctx, &poly, &fd, 0, 0, (int)shape2[1],
+                                      (int)shape2[0], PyArray_DATA((PyArrayObject *)mask),
+                                      (size_t)shape2[1]);
+    if (r != SR_OK) {
+        if (r == SR_OUT_OF_MEMORY) {
+            PyErr_NoMemory();
+        } else {
+            PyErr_Format(PyExc_ValueError, "%s", sr_context_error(self->ctx));
+        }
+        Py_CLEAR(mask);
+    }
+    PyThread_release_lock(self->lock);
+done:
+    free(mapped);
+    free(pts);
+    free(counts);
+    return mask;
 }
 
 static PyObject *canvas_stroke(CanvasObject *self, PyObject *args)
 {
-    PyObject *paint_obj, *dash_obj;
+    PyObject *paint_obj, *dash_obj, *transform, *clip;
     PathObject *path;
     sr_stroke_desc sd = { 0 };
     dash_args da = { .count = 0 };
     int join, cap, aa;
     if (ready(self) < 0 ||
-        !PyArg_ParseTuple(args, "O!OdiidpO!d:stroke", &sr_py_PathType, &path, &paint_obj,
+        !PyArg_ParseTuple(args, "O!OdiidpO!dOO:stroke", &sr_py_PathType, &path, &paint_obj,
                           &sd.width, &join, &cap, &sd.miter_limit, &aa, &PyTuple_Type, &dash_obj,
-                          &da.offset)) {
+                          &da.offset, &transform, &clip)) {
         return NULL;
     }
     Py_ssize_t n = PyTuple_GET_SIZE(dash_obj);
@@ -505,16 +698,22 @@ static PyObject *canvas_stroke(CanvasObject *self, PyObject *args)
     }
     sd.join = (sr_stroke_join)join;
     sd.cap = (sr_stroke_cap)cap;
+    state_args st;
+    if (state_arg(self, transform, clip, &st) < 0) {
+        return NULL;
+    }
     paint_args p;
     if (paint_arg(paint_obj, &p) < 0) {
+        state_release(&st);
         return NULL;
     }
     /* The outline reaches half the width past the path, more at miters. */
     double reach = sd.width * fmax(sd.miter_limit, 1);
     sr_fill_desc fd = { .rule = SR_NONZERO, .antialias = aa ? SR_AA_AREA : SR_AA_NONE };
     PyObject *result = draw(self, path, sr_path_polygon(path->path), &sd, &da, &p.paint, &fd,
-                            reach);
+                            reach, &st);
     paint_release(&p);
+    state_release(&st);
     return result;
 }
 
@@ -559,14 +758,18 @@ static PyObject *canvas_get_image(CanvasObject *self, void *closure)
 #define CANVAS_METHOD(name, doc) { #name, (PyCFunction)canvas_##name, METH_VARARGS, doc }
 
 static PyMethodDef canvas_methods[] = {
-    CANVAS_METHOD(fill, "fill($self, shape, paint, rule, antialias, /)\n--\n\n"
-                        "sr_fill_polygon_paint of a Path or a list of (N, 2) point arrays.\n"
-                        "Use softrast.Canvas.fill."),
+    CANVAS_METHOD(fill, "fill($self, shape, paint, rule, antialias, transform, clip, /)\n--\n\n"
+                        "sr_fill_polygon_paint of a Path or a list of (N, 2) point arrays,\n"
+                        "mapped by transform (a, b, c, d, e, f), through clip (an (H, W)\n"
+                        "uint8 coverage, or None).  Use softrast.Canvas.fill."),
     CANVAS_METHOD(stroke, "stroke($self, path, paint, width, join, cap, miter_limit, antialias,\n"
-                          "       dashes, dash_offset, /)\n--\n\n"
+                          "       dashes, dash_offset, transform, clip, /)\n--\n\n"
                           "The stroke outline of a Path (sr_make_stroke_outline), of its\n"
                           "dashes (sr_path_dash) when the tuple `dashes` is not empty,\n"
-                          "filled with the paint.  Use softrast.Canvas.stroke."),
+                          "mapped and filled as fill's.  Use softrast.Canvas.stroke."),
+    CANVAS_METHOD(coverage, "coverage($self, shape, rule, antialias, transform, /)\n--\n\n"
+                            "The (H, W) uint8 coverage of a shape mapped by transform\n"
+                            "(sr_polygon_coverage).  Use softrast.Canvas.clip."),
     CANVAS_METHOD(clear, "clear($self, color, /)\n--\n\n"
                          "Every pixel to (r, g, b, a) in [0, 1] as sr_clear quantizes it."),
     { NULL, NULL, 0, NULL },

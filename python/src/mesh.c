@@ -42,8 +42,14 @@ PyArrayObject *sr_py_take_array(PyObject *obj, const char *name, int ndim, const
         a = (PyArrayObject *)obj;
     } else {
         /* A list or other array-like becomes a fresh array of the first
-         * accepted type, as numpy functions take them. */
-        a = (PyArrayObject *)PyArray_FROMANY(obj, types[0], 0, 0, NPY_ARRAY_C_CONTIGUOUS);
+         * accepted type, as numpy functions take them; but not a list of
+         * bools, which that would read as 0 and 1 (the dtype check below
+         * refuses it, as it refuses a bool array). */
+        a = (PyArrayObject *)PyArray_FromAny(obj, NULL, 0, 0, 0, NULL);
+        if (a && !PyArray_ISBOOL(a)) {
+            Py_DECREF(a);
+            a = (PyArrayObject *)PyArray_FROMANY(obj, types[0], 0, 0, NPY_ARRAY_C_CONTIGUOUS);
+        }
         if (!a) {
             PyErr_Clear();
             PyErr_Format(PyExc_TypeError, "%s: expected a numpy array, got %s", name,

@@ -33,7 +33,9 @@ PyObject *sr_py_value_error(const char *format, ...)
 
 int sr_py_real_arg(PyObject *obj, const char *name, double *out)
 {
-    if (PyUnicode_Check(obj) || PyBytes_Check(obj) || PyBool_Check(obj)) {
+    /* numpy's bool too: float() reads it as 0 or 1 */
+    if (PyUnicode_Check(obj) || PyBytes_Check(obj) || PyBool_Check(obj) ||
+        PyArray_IsScalar(obj, Bool)) {
         PyErr_Format(PyExc_TypeError, "%s: expected a number, got %s", name, Py_TYPE(obj)->tp_name);
         return -1;
     }
@@ -299,9 +301,40 @@ static PyObject *path_to_polygons(PathObject *self, PyObject *unused)
     return list;
 }
 
+/* After each command of from_svg's data: the points it added within
+ * SR_MAX_COORD2D, as the other builders check their coordinates, rather
+ * than a path that only fails when it is drawn.  The points from one
+ * before the last seen are read again: a moveto after a lone moveto
+ * replaces that point. */
+typedef struct svg_limit_check {
+    const sr_path *path;
+    int checked;
+    char message[160];
+} svg_limit_check;
+
+static sr_result check_svg_command(void *user, char letter, long offset)
+{
+    svg_limit_check *c = user;
+    (void)letter;
+    sr_polygon2 poly = sr_path_polygon(c->path);
+    int i = c->checked < poly.point_count ? c->checked : poly.point_count;
+    for (i = i > 0 ? i - 1 : 0; i < poly.point_count; i++) {
+        sr_point2 p = poly.points[i];
+        if (fabs(p.x) > SR_MAX_COORD2D || fabs(p.y) > SR_MAX_COORD2D) {
+            snprintf(c->message, sizeof c->message,
+                     "point (%g, %g) is outside +-%g (the command before offset %ld)", p.x, p.y,
+                     SR_MAX_COORD2D, offset);
+            return SR_TOO_LARGE;
+        }
+    }
+    c->checked = poly.point_count;
+    return SR_OK;
+}
+
 /* Path.from_svg(d, tolerance=0.1, strict=True): a new path of SVG path
  * data (sr_io_parse_path_data).  An error in the data raises unless
- * strict is false, which keeps the path up to it as SVG draws it. */
+ * strict is false, which keeps the path up to it as SVG draws it; a
+ * point out of range always raises. */
 static PyObject *path_from_svg(PyObject *cls, PyObject *args, PyObject *kwargs)
 {
     static char *kwlist[] = { "d", "tolerance", "strict", NULL };
@@ -334,11 +367,16 @@ static PyObject *path_from_svg(PyObject *cls, PyObject *args, PyObject *kwargs)
     }
     long offset;
     sr_io_error err;
-    sr_result r = sr_io_parse_path_data(d, self->path, NULL, &offset, &err);
+    svg_limit_check check = { .path = self->path };
+    sr_result r = sr_io_parse_path_data(
+        d, self->path, &(sr_io_path_data_desc){ .command = check_svg_command, .user = &check },
+        &offset, &err);
     if (r == SR_OK || (r == SR_BAD_FORMAT && !strict)) {
         return (PyObject *)self;
     }
-    if (r != SR_BAD_FORMAT) { /* a point the path refused: its message */
+    if (check.message[0]) {
+        snprintf(err.message, sizeof err.message, "%s", check.message);
+    } else if (r != SR_BAD_FORMAT) { /* a point the path refused: its message */
         snprintf(err.message, sizeof err.message, "%s (the command at offset %ld)",
                  sr_context_error(self->ctx), offset);
     }

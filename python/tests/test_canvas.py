@@ -386,7 +386,8 @@ TRI = np.array([[1, 1], [9, 1], [5, 9]])
      "dash_offset: expected a number"),
     (lambda c: c.stroke(P().move_to(0, 0).line_to(200000, 0), "red", dashes=[1e-3, 1e-3]),
      ValueError, "sr_path_dash: a pattern of period 0.002"),
-    (lambda c: c._core.stroke(P(), ("red",) * 9, 1.0, 0, 0, 4.0, True, (1.0, "2"), 0.0),
+    (lambda c: c._core.stroke(P(), ("red",) * 9, 1.0, 0, 0, 4.0, True, (1.0, "2"), 0.0,
+                              (1.0, 0.0, 0.0, 1.0, 0.0, 0.0), None),
      TypeError, r"dashes\[1\]: expected a number"),
 ])
 def test_bad_draw_arguments_are_named(call, error, message):
@@ -467,7 +468,15 @@ P = softrast.Path
     (lambda: P.from_svg("M0 0 X"), ValueError, "d: path data: unknown command 'X' at offset 5"),
     (lambda: P.from_svg("L0 0"), ValueError, "d: path data: no moveto first at offset 0"),
     (lambda: P.from_svg("M0 0 L1e999 0"), ValueError, "d: path data: expected a number at "),
-    (lambda: P.from_svg("M1e308 0 l1e308 0"), ValueError, "point is not finite"),
+    (lambda: P.from_svg("M1e308 0 l1e308 0"), ValueError, r"d: point \(1e\+308, 0\) is outside"),
+    (lambda: P.from_svg("M0 0 L300000 5"), ValueError,
+     r"d: point \(300000, 5\) is outside \+-262144 \(the command before offset 14\)"),
+    (lambda: P.from_svg("M0 -262145"), ValueError, r"d: point \(0, -262145\) is outside"),
+    (lambda: P.from_svg("M200000 0 h50000 v9 h50000"), ValueError,
+     r"d: point \(300000, 9\) is outside"),
+    (lambda: P.from_svg("M0 0 M5 300000 M1 1"), ValueError, r"d: point \(5, 300000\)"),
+    (lambda: P.from_svg("M0 0 Q0 0 0 0 A262144 262144 0 0 1 0 300000", strict=False),
+     ValueError, r"d: point \(.*\) is outside"),
     (lambda: P.from_svg("M0 0", tolerance=0), ValueError, "tolerance: must be > 0"),
     (lambda: P.from_svg("M0 0", 0.1, True), TypeError, "at most 2 positional"),
 ])

@@ -79,6 +79,16 @@ def badge() -> NDArray[np.uint8]:
     square: List[List[float]] = [[40, 8], [60, 8], [60, 28], [40, 28]]
     canvas.fill(square, softrast.Pattern(checker, transform=[[4, 0, 0], [0, 4, 0]]),
                 rule="evenodd", opacity=0.5)
+    with canvas.save():  # a clipped, turned and scaled bar
+        canvas.clip(square)
+        canvas.translate(50, 18)
+        canvas.rotate(0.5)
+        canvas.scale(2.0, 0.5)
+        canvas.fill([[-10, -4], [10, -4], [10, 4], [-10, 4]], "navy")
+        matrix: Tuple[float, float, float, float, float, float] = canvas.get_transform()
+    canvas.set_transform(*matrix)
+    canvas.reset_transform()
+    canvas.reset_clip()
     assert canvas.image is image
     return image
 
