@@ -2560,6 +2560,81 @@ SR_TEST(end_of_options_makes_dash_names_operands)
 #endif
 }
 
+/* An option's value is the next argument whatever it looks like (getopt):
+ * "-o --" names the output "--", so "-o -- -a.obj" is not an end of the
+ * options.  An output "--" (a mistaken end of options) or "-" (standard
+ * output, where no image goes) is refused by every command in one line;
+ * other names starting with '-' are written.  A batch and the viewer
+ * passed render options on without their values, so "--" or an option's
+ * name as a value was read differently there than by the render parser. */
+SR_TEST(option_values_that_look_like_options_are_values)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], cwd[4096];
+    fresh_dir("dash values", dir, sizeof dir);
+    REQUIRE(getcwd(cwd, sizeof cwd) != NULL);
+    REQUIRE(chdir(dir) == 0);
+    const char *tri = ONE_TRIANGLE_OBJ;
+    const char *uv = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+    static const uint8_t texel[16] = { 255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255,
+                                       255, 0, 0, 255 };
+    sr_io_error err;
+    bool written = write_whole("-a.obj", tri, strlen(tri)) && write_whole("a.obj", tri,
+                                                                          strlen(tri)) &&
+                   write_whole("uv.obj", uv, strlen(uv)) && write_whole("-uv.obj", uv, strlen(uv));
+    if (written) {
+        static const struct {
+            const char *args[12];
+            const char *needle;
+        } refused[] = {
+            { { "render", "-o", "--", "-a.obj" }, "-o: '--' names no file here" },
+            { { "render", "--size", "8x8", "-o", "--", "a.obj" }, "-o: '--' names no file" },
+            { { "render", "--output=-", "a.obj" }, "--output: '-' names no file here" },
+            { { "render", "--size", "8x8", "-o", "-", "--", "a.obj", "-a.obj" },
+              "-o: '-' names no file here" },
+            { { "render", "--output-dir", "-", "--", "a.obj", "-a.obj" },
+              "--output-dir: '-' names no file" },
+            { { "render", "--log", "--", "--", "a.obj", "-a.obj" }, "--log: '--' names no file" },
+            { { "svg", "-o", "--", "x.svg" }, "-o: '--' names no file here" },
+            { { "demo", "lines", "-o", "-" }, "-o: '-' names no file here" },
+            { { "thumbnail", "-s", "8", "--", "a.obj", "-" }, "OUTPUT: '-' names no file" },
+            { { "explain", "dda", "--sheet", "--" }, "--sheet: '--' names no file here" },
+            { { "explain", "dda", "-o", "-" }, "-o: '-' names no file here" },
+            { { "view", "--screenshot", "-", "a.obj" }, "--screenshot: '-' names no file" },
+        };
+        for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+            cli_run r;
+            if (!run_cli(refused[i].args, &r)) {
+                continue;
+            }
+            check_failure_output(refused[i].args[0], &r, 2, refused[i].needle);
+            cli_run_free(&r);
+        }
+        CHECK(!file_exists("--") && !file_exists("-") && !file_exists("softrast.png"));
+        /* other names starting with '-' are the option's value, in one
+         * render and where a batch or the viewer pass them on */
+        expect_status(ARGS("render", "--size", "8x8", "-o", "-x.png", "a.obj"), 0);
+        CHECK(file_exists("-x.png"));
+        expect_status(ARGS("render", "--size", "8x8", "-o", "--skip-existing", "a.obj"), 0);
+        CHECK(file_exists("--skip-existing"));
+        /* a texture named like batch options: one render, and a batch */
+        REQUIRE(sr_write_png("--output-dir", 2, 2, texel, 8, NULL, &err) == SR_OK);
+        REQUIRE(sr_write_png("--log", 2, 2, texel, 8, NULL, &err) == SR_OK);
+        expect_status(ARGS("render", "--size", "8x8", "--texture", "--output-dir", "-o", "t.png",
+                           "uv.obj"), 0);
+        CHECK(file_exists("t.png") && !file_exists("uv.png"));
+        clean_dir("b");
+        expect_status(ARGS("render", "--size", "8x8", "--output-dir", "b", "--texture", "--log",
+                           "--", "uv.obj", "-uv.obj"), 0);
+        CHECK(file_exists("b/uv.png") && file_exists("b/-uv.png"));
+    }
+    REQUIRE(chdir(cwd) == 0);
+    CHECK(written);
+#endif
+}
+
 /* Occurrences of `needle` in `s`. */
 static int count_in(const char *s, const char *needle)
 {

@@ -116,6 +116,11 @@ static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *re
         }
         if (!valued[k]) {
             rest[n++] = argv[i];
+            /* A render option's value goes with it, even one that looks
+             * like an option or is "--" (as the render parser takes it). */
+            if (render_opts_takes_value(a) && i + 1 < argc) {
+                rest[n++] = argv[++i];
+            }
             continue;
         }
         const char *value = a[len] == '=' ? a + len + 1 : i + 1 < argc ? argv[++i] : NULL;

@@ -46,6 +46,12 @@ void cli_inputs_free(cli_inputs *in);
  * (one would replace the other). */
 bool cli_same_output(const char *a, const char *b);
 
+/* Whether `output` may name an output file: "-" (standard output, where
+ * no image is written) and "--" (the end of the options, taken as the
+ * option's value by the getopt rule) are refused after one line naming
+ * opt; any other name, one starting with '-' too, is a file's. */
+bool cli_check_output_name(const char *opt, const char *output);
+
 /* Image files (image_out.c): a JPEG when the name ends in .jpg or .jpeg
  * (any case), else a PNG. */
 typedef struct cli_image_options {

@@ -53,6 +53,9 @@ int cmd_demo(int argc, char **argv)
                 return EXIT_USAGE;
             }
             args.output = argv[++i];
+            if (!cli_check_output_name(a, args.output)) {
+                return EXIT_USAGE;
+            }
         } else if (strcmp(a, "--scale") == 0) {
             if (i + 1 >= argc) {
                 cli_error("%s: missing value", a);

@@ -496,6 +496,10 @@ int cmd_explain(int argc, char **argv)
         }
         const char *v = argv[++i];
         bool ok = true;
+        if ((strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--sheet") == 0 ||
+             strcmp(a, "--webp") == 0) && !cli_check_output_name(a, v)) {
+            return EXIT_USAGE;
+        }
         ex_primitive p = { 0 };
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
             strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0 ||

@@ -47,6 +47,31 @@ static const char *const pbr_only[] = { "--tonemap", "--exposure", "--environmen
                                         "--environment-intensity", "--shadows", "--ground",
                                         NULL };
 
+/* The options that take a value: the parser takes the next argument as
+ * it whatever it looks like ("-o --" takes "--" as the output's name, as
+ * getopt would), and the commands that pass render options on (a batch,
+ * the viewer) step over it by this same list. */
+static const char *const valued_options[] = {
+    "-o", "--output", "--size", "--background", "--png-level", "--jpeg-quality", "--shading",
+    "--tonemap", "--exposure", "--environment", "--environment-intensity", "--shadows",
+    "--normals", "--material", "--ambient", "--opacity", "--light", "--texture",
+    "--texture-filter", "--wrap", "--camera", "--fov", "--up", "--turn", "--camera-index",
+    "--near", "--far", "--cull", "--front-face", "--depth-format", "--depth-func",
+    "--projection-interp", "--depth-range", "--clipper", "--line-width", "--point-size",
+    "--line-color", "--polygon-offset", "--aa", "--filter", "--rasterizer", "--threads",
+    "--detail", NULL
+};
+
+bool render_opts_takes_value(const char *arg)
+{
+    for (int k = 0; valued_options[k]; k++) {
+        if (strcmp(arg, valued_options[k]) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
 static void render_help(void)
 {
     printf(
@@ -290,15 +315,21 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             value = eq + 1;
             arg = optbuf;
         }
+        /* The value of "--opt value", taken here for every valued option
+         * (so that the list cannot miss one an option below reads). */
+        if (!value && render_opts_takes_value(arg)) {
+            if (i + 1 >= argc) {
+                cli_error("%s: missing value", arg);
+                return EXIT_USAGE;
+            }
+            value = argv[++i];
+        }
 #define IS(name) (strcmp(arg, name) == 0)
 #define VALUE()                                                                     \
     do {                                                                            \
         if (!value) {                                                               \
-            if (i + 1 >= argc) {                                                    \
-                cli_error("%s: missing value", arg);                                \
-                return EXIT_USAGE;                                                  \
-            }                                                                       \
-            value = argv[++i];                                                      \
+            cli_error("%s: missing value", arg);                                    \
+            return EXIT_USAGE;                                                      \
         }                                                                           \
         if (!*value) {                                                              \
             cli_error("%s: empty value", arg);                                      \
@@ -327,6 +358,9 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             return EXIT_OK;
         } else if (IS("-o") || IS("--output")) {
             VALUE();
+            if (!cli_check_output_name(arg, value)) {
+                return EXIT_USAGE;
+            }
             o->output = value;
         } else if (IS("--size")) {
             VALUE();

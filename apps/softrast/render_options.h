@@ -96,6 +96,10 @@ render_opts render_opts_defaults(void);
  * after --help). */
 int render_opts_parse(int argc, char **argv, render_opts *o);
 
+/* Whether the render option arg ("--size", not "--size=WxH") takes the
+ * next argument as its value, whatever that looks like. */
+bool render_opts_takes_value(const char *arg);
+
 /* One warning line for each option given that the others make useless
  * (--ground without pbr, --filter without SSAA).  The caller calls it once
  * a command, not once a batch input; the exit status is not changed. */

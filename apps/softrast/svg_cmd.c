@@ -148,6 +148,9 @@ static int parse_args(int argc, char **argv, svg_args *a)
             const char *v = argv[++i];
             if (s[1] == 'o' || s[2] == 'o') {
                 a->output = v;
+                if (!cli_check_output_name(s, v)) {
+                    return EXIT_USAGE;
+                }
             } else if (strcmp(s, "--size") == 0) {
                 if (!parse_size(s, v, &a->desc.width, &a->desc.height)) {
                     return EXIT_USAGE;

@@ -128,6 +128,9 @@ int cmd_thumbnail(int argc, char **argv)
     if (!input_path(files[0], model, sizeof model)) {
         return EXIT_USAGE;
     }
+    if (!cli_check_output_name("thumbnail: OUTPUT", files[1])) {
+        return EXIT_USAGE;
+    }
     if (strlen(files[1]) + 3 > sizeof output) {
         cli_error("thumbnail: the output path is too long");
         return EXIT_USAGE;

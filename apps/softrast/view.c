@@ -101,6 +101,7 @@ int cmd_view(int argc, char **argv)
 
 #else /* SR_HAVE_VIEWER */
 
+#include "render_options.h"
 #include "view_sdl.h"
 
 #include <errno.h>
@@ -209,10 +210,12 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
             if (!parse_int(name, value, 1, 10000000, &o->frames)) {
                 return EXIT_USAGE;
             }
-        } else if (strcmp(name, "--screenshot") == 0) {
-            o->screenshot = value;
-        } else if (strcmp(name, "--screenshot-overlay") == 0) {
-            o->window_shot = value;
+        } else if (strcmp(name, "--screenshot") == 0 ||
+                   strcmp(name, "--screenshot-overlay") == 0) {
+            if (!cli_check_output_name(name, value)) {
+                return EXIT_USAGE;
+            }
+            *(name[12] ? &o->window_shot : &o->screenshot) = value;
         } else if (strcmp(name, "--events") == 0) {
             o->events = value;
         } else if (strcmp(name, "--font") == 0) {
@@ -230,8 +233,12 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
             cli_error("view: %s is a 'softrast render' option (use --screenshot FILE, --log)",
                       name);
             return EXIT_USAGE;
-        } else if (o->argc < MAX_ARGS - 64) {
+        } else if (o->argc < MAX_ARGS - 65) {
             o->argv[o->argc++] = argv[i];   /* a render option: render_options.c parses it */
+            /* with its value, even one that looks like an option or is "--" */
+            if (!value && render_opts_takes_value(name) && i + 1 < argc) {
+                o->argv[o->argc++] = argv[++i];
+            }
         } else {
             cli_error("view: too many arguments");
             return EXIT_USAGE;
