@@ -708,6 +708,26 @@ static void loop(viewer *v)
     }
 }
 
+/* render's warnings of options that have no effect, said once at the
+ * start as render says them: of the user's own options, since the mode
+ * table's always name an SSAA filter (and the keys may change the
+ * shading later, when the warning no longer holds).  Those options parse,
+ * as the job's did with them. */
+static void warn_no_effect(const viewer *v)
+{
+    const char *argv[MAX_ARGS];
+    int n = operand_args(v, argv, v->o.argc);
+    memcpy(argv, v->o.argv, (size_t)v->o.argc * sizeof *argv);
+    render_opts o = render_opts_defaults();
+    char held[512];
+    cli_capture(held, sizeof held);
+    int status = render_opts_parse(n, (char **)argv, &o);
+    cli_capture(NULL, 0);
+    if (status < 0) {
+        render_opts_warn(&o);
+    }
+}
+
 int cmd_view(int argc, char **argv)
 {
     viewer *v = calloc(1, sizeof *v);
@@ -736,6 +756,7 @@ int cmd_view(int argc, char **argv)
     int n = current_args(v, args);
     status = render_job_parse(n, (char **)args, &v->job);
     if (status < 0) {
+        warn_no_effect(v);
         status = render_job_load(v->job);
     }
     if (status < 0 && v->o.events) {
