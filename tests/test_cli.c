@@ -2635,6 +2635,112 @@ SR_TEST(option_values_that_look_like_options_are_values)
 #endif
 }
 
+/* The sanitizers' shadow memory and an emulator need more address space
+ * than an address space limit leaves. */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define CLI_NO_AS_LIMIT 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || defined(SR_TEST_EMULATED)
+#define CLI_NO_AS_LIMIT 1
+#endif
+
+/* Frames larger than the memory limit are refused in one line before
+ * anything is allocated (exit status 2) by every command that takes a
+ * size; SR_MEMORY_LIMIT sets the limit, so 8.5 GiB of 8192 x 8192 x 16
+ * samples is refused here without allocating it.  Where an allocation
+ * fails all the same (under a 1.5 GiB address space limit), the command
+ * says "out of memory" in one line, exit status 1. */
+SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], a[1100], b[1100], svg[1100];
+    fresh_dir("memory limit", dir, sizeof dir);
+    snprintf(a, sizeof a, "%s/a.obj", dir);
+    snprintf(b, sizeof b, "%s/b.obj", dir);
+    snprintf(svg, sizeof svg, "%s/d.svg", dir);
+    const char *tri = ONE_TRIANGLE_OBJ, *doc = "<svg width='10' height='10'/>";
+    REQUIRE(write_whole(a, tri, strlen(tri)) && write_whole(b, tri, strlen(tri)) &&
+            write_whole(svg, doc, strlen(doc)));
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "1G", 1) == 0);
+    expect_render_failure("msaa16 at 8192", ARGS(a, "--size", "8192x8192", "--aa", "msaa16"), 2,
+                          "render: --size 8192x8192 with --aa msaa16 needs about 8.5 GiB of "
+                          "frame memory, more than SR_MEMORY_LIMIT=1G allows: give a smaller "
+                          "--size or --aa");
+    /* SSAA's samples beyond a framebuffer's side: before the model is read */
+    expect_render_failure("ssaa3 at 4096", ARGS("--size", "4096x4096", "--aa", "ssaa3"), 2,
+                          "--aa ssaa3 at --size 4096x4096 draws 12288x12288 samples, more than "
+                          "8192 a side");
+    static const struct {
+        const char *limit;
+        const char *args[12];
+        const char *needle;
+    } refused[] = {
+        { "1G", { "render", "--size", "4096x4096", "--output-dir", "OUT", "--", "A", "B" },
+          "(two frames at once) needs about 1.2 GiB" },
+        { "256M", { "render", "--size", "2048x2048", "--aa", "ssaa4", "A", "-o", "OUT/r.png" },
+          "render: --size 2048x2048 with --aa ssaa4 needs about 800 MiB" },
+        { "256M", { "thumbnail", "-s", "4096", "A", "OUT/t.png" },
+          "thumbnail: -s 4096 needs about 640 MiB of frame memory, more than SR_MEMORY_LIMIT=256M "
+          "allows: give a smaller -s" },
+        { "256M", { "svg", "--size", "8192x8192", "S", "-o", "OUT/s.png" },
+          "svg: --size 8192x8192 needs about 512 MiB" },
+        { "1G", { "view", "--size", "8192x8192", "--aa", "msaa16", "A" },
+          "view: --size 8192x8192 with --aa msaa16 (two frames at once) needs about 17 GiB" },
+    };
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+        REQUIRE(setenv("SR_MEMORY_LIMIT", refused[i].limit, 1) == 0);
+        const char *args[12] = { 0 };
+        for (int k = 0; refused[i].args[k]; k++) {
+            const char *w = refused[i].args[k];
+            args[k] = strcmp(w, "A") == 0 ? a : strcmp(w, "B") == 0 ? b : strcmp(w, "S") == 0
+                      ? svg : w;
+            if (strncmp(w, "OUT", 3) == 0) {
+                static char paths[2][1200];
+                snprintf(paths[k & 1], sizeof paths[0], "%s%s", dir, w + 3);
+                args[k] = paths[k & 1];
+            }
+        }
+        cli_run r;
+        if (!run_cli(args, &r)) {
+            continue;
+        }
+        if (strcmp(args[0], "view") != 0 || !strstr(r.err, "built without SDL2")) {
+            check_failure_output(refused[i].needle, &r, 2, refused[i].needle);
+        }
+        cli_run_free(&r);
+    }
+    CHECK_EQ(count_entries(dir, NULL, 0), 3);
+    /* within the limit: drawn */
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "64M", 1) == 0);
+    char out[1100];
+    snprintf(out, sizeof out, "%s/small.png", dir);
+    expect_status(ARGS("render", a, "--size", "64x48", "-o", out), 0);
+    CHECK(file_exists(out));
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "lots", 1) == 0);
+    expect_render_failure("bad limit", ARGS(a), 2,
+                          "SR_MEMORY_LIMIT: expected a size in bytes such as 512M or 8G (got "
+                          "'lots')");
+#if !defined(CLI_NO_AS_LIMIT)
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "1T", 1) == 0);
+    struct rlimit old;
+    REQUIRE(getrlimit(RLIMIT_AS, &old) == 0);
+    struct rlimit lim = old;
+    lim.rlim_cur = (rlim_t)3 << 29;
+    if (old.rlim_cur == RLIM_INFINITY || old.rlim_cur > lim.rlim_cur) {
+        REQUIRE(setrlimit(RLIMIT_AS, &lim) == 0);
+        expect_render_failure("out of memory", ARGS(a, "--size", "8192x8192", "--aa", "msaa16"),
+                              1, "render: sr_make_framebuffer: out of memory for 8192x8192");
+        setrlimit(RLIMIT_AS, &old);
+    }
+#endif
+    unsetenv("SR_MEMORY_LIMIT");
+#endif
+}
+
 /* Occurrences of `needle` in `s`. */
 static int count_in(const char *s, const char *needle)
 {

@@ -559,6 +559,8 @@ int batch_render(int argc, char **argv)
     }
     if (status < 0) {
         render_opts_warn(&o);   /* once, not once an input */
+        /* One input is read into a frame while the last is drawn in the other. */
+        status = render_opts_check_frames(&o, argv[0], o.width, o.height, 2);
     }
     /* The job's options without the models, which come in the same order. */
     int n = 0;

@@ -8,6 +8,7 @@
 #include "softrast_io.h"
 
 #include <stdbool.h>
+#include <stdint.h>
 
 /* Exit statuses: 2 for bad usage or bad input files, 1 when the work
  * itself fails (out of memory, the output cannot be written). */
@@ -51,6 +52,16 @@ bool cli_same_output(const char *a, const char *b);
  * option's value by the getopt rule) are refused after one line naming
  * opt; any other name, one starting with '-' too, is a file's. */
 bool cli_check_output_name(const char *opt, const char *output);
+
+/* Frame memory (memory_limit.c).  The most a command's frames may take:
+ * SR_MEMORY_LIMIT (bytes, or 512M, 8G...) when set, else the physical
+ * memory, or less under a ulimit; *what names it.  -1, or EXIT_USAGE
+ * after one line when SR_MEMORY_LIMIT is malformed. */
+int cli_memory_limit(uint64_t *bytes, const char **what);
+/* -1 when `need` bytes fit the limit; else EXIT_USAGE after one line
+ * "WHAT needs about N GiB of frame memory, more than the M GiB of
+ * LIMIT: LOWER" (lower says which options make it smaller). */
+int cli_check_memory(const char *what, uint64_t need, const char *lower);
 
 /* Image files (image_out.c): a JPEG when the name ends in .jpg or .jpeg
  * (any case), else a PNG. */

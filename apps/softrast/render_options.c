@@ -622,6 +622,47 @@ void render_opts_warn(const render_opts *o)
     }
 }
 
+uint64_t render_opts_frame_bytes(const render_opts *o, int width, int height)
+{
+    uint64_t pixels = (uint64_t)width * (uint64_t)height;
+    uint64_t samples = o->ssaa > 1 ? (uint64_t)o->ssaa * (uint64_t)o->ssaa : (uint64_t)o->msaa;
+    uint64_t depth = o->depth_format == SR_DEPTH_D16 ? 2 : 4;
+    /* Every sample's color and depth; the resolved or filtered image;
+     * the image as it is written (its straight-alpha copy, the encoder's
+     * rows); SSAA's filter keeps every sample row filtered to the
+     * output's width, in float RGBA (sr_downsample). */
+    uint64_t filter = o->ssaa > 1 ? pixels * (uint64_t)o->ssaa * 16 : 0;
+    return pixels * samples * (4 + depth) + (samples > 1 ? pixels * 4 : 0) + pixels * 4 + filter;
+}
+
+int render_opts_check_frames(const render_opts *o, const char *cmd, int width, int height,
+                             int frames)
+{
+    char aa[16] = "none";
+    if (o->ssaa > 1 || o->msaa > 1) {
+        snprintf(aa, sizeof aa, "%s%d", o->ssaa > 1 ? "ssaa" : "msaa",
+                 o->ssaa > 1 ? o->ssaa : o->msaa);
+    }
+    long sw = (long)width * o->ssaa, sh = (long)height * o->ssaa;
+    if (sw > SR_MAX_FRAMEBUFFER_SIZE || sh > SR_MAX_FRAMEBUFFER_SIZE) {
+        cli_error("%s: --aa %s at --size %dx%d draws %ldx%ld samples, more than %d a side: "
+                  "give a smaller --size or --aa", cmd, aa, width, height, sw, sh,
+                  SR_MAX_FRAMEBUFFER_SIZE);
+        return EXIT_USAGE;
+    }
+    /* thumbnail.c renders a square of its -s SIZE, with render's --aa. */
+    bool thumb = strcmp(cmd, "thumbnail") == 0;
+    char what[128];
+    if (thumb) {
+        snprintf(what, sizeof what, "thumbnail: -s %d", width);
+    } else {
+        snprintf(what, sizeof what, "%s: --size %dx%d with --aa %s%s", cmd, width, height, aa,
+                 frames > 1 ? " (two frames at once)" : "");
+    }
+    return cli_check_memory(what, render_opts_frame_bytes(o, width, height) * (uint64_t)frames,
+                            thumb ? "give a smaller -s" : "give a smaller --size or --aa");
+}
+
 bool render_opts_image_light(const render_opts *o)
 {
     return o->pbr && !o->have_ambient && strcmp(o->environment, "hemisphere") != 0 &&

@@ -181,6 +181,14 @@ static int parse_args(int argc, char **argv, svg_args *a)
         cli_error("svg: --size and --scale exclude each other");
         return EXIT_USAGE;
     }
+    if (a->desc.width) {
+        /* The drawing's RGBA and the image as it is written; a size that
+         * comes from the document is the library's to refuse (max_side). */
+        char what[64];
+        snprintf(what, sizeof what, "svg: --size %dx%d", a->desc.width, a->desc.height);
+        return cli_check_memory(what, (uint64_t)a->desc.width * (uint64_t)a->desc.height * 8,
+                                "give a smaller --size");
+    }
     return -1;
 }
 

@@ -757,6 +757,10 @@ int cmd_view(int argc, char **argv)
     status = render_job_parse(n, (char **)args, &v->job);
     if (status < 0) {
         warn_no_effect(v);
+        /* Two frames: one drawn while the other is shown. */
+        status = render_job_check_frames(v->job, "view", v->o.width, v->o.height, 2);
+    }
+    if (status < 0) {
         status = render_job_load(v->job);
     }
     if (status < 0 && v->o.events) {
