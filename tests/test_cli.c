@@ -2635,6 +2635,66 @@ SR_TEST(option_values_that_look_like_options_are_values)
 #endif
 }
 
+/* "--name=value" is "--name value" in every command, as getopt_long
+ * reads it; render, its batch options and view took it, while svg, demo,
+ * thumbnail and explain called it an unknown option (explain: "needs a
+ * value").  A flag given a value is refused by name. */
+SR_TEST(every_command_takes_long_options_with_an_equals_sign)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], cwd[4096], svg_src[1100];
+    fresh_dir("equals", dir, sizeof dir);
+    snprintf(svg_src, sizeof svg_src, "%s/data/svg/gradients.svg", sr_test_src_dir());
+    REQUIRE(getcwd(cwd, sizeof cwd) != NULL);
+    REQUIRE(chdir(dir) == 0);
+    const char *tri = ONE_TRIANGLE_OBJ;
+    bool written = write_whole("a.obj", tri, strlen(tri));
+    if (written) {
+        expect_status(ARGS("render", "a.obj", "--size=16x8", "--output=r.png"), 0);
+        CHECK(file_exists("r.png"));
+        if (svg_command_built()) {
+            expect_status(ARGS("svg", svg_src, "--size=16x16", "--output=s.png",
+                               "--background=white"), 0);
+            CHECK(file_exists("s.png"));
+        }
+        expect_status(ARGS("demo", "lines", "--output=d.png", "--scale=1"), 0);
+        CHECK(file_exists("d.png"));
+        expect_status(ARGS("thumbnail", "--size=16", "a.obj", "t.png"), 0);
+        CHECK(file_exists("t.png"));
+        expect_status(ARGS("explain", "dda", "--sheet=e.png", "--line=1.5,1.5,6.5,3.5"), 0);
+        CHECK(file_exists("e.png"));
+        static const struct {
+            const char *args[6];
+            const char *needle;
+        } refused[] = {
+            { { "thumbnail", "--transparent=yes", "a.obj", "u.png" },
+              "--transparent: takes no value" },
+            { { "demo", "lines", "--help=1" }, "--help: takes no value" },
+            { { "svg", "--help=1" }, "--help: takes no value" },
+            { { "explain", "dda", "--sheet=" }, "--sheet: the file name is empty" },
+            { { "explain", "dda", "-o", "" }, "-o: the file name is empty" },
+            { { "demo", "lines", "-o", "" }, "-o: the file name is empty" },
+            { { "svg", "x.svg", "--output=" }, "--output: the file name is empty" },
+            { { "thumbnail", "-s", "8", "a.obj", "" }, "OUTPUT: the file name is empty" },
+            { { "view", "--screenshot=", "a.obj" }, "--screenshot: the file name is empty" },
+            { { "demo", "lines", "--output=-" }, "--output: '-' names no file here" },
+        };
+        for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+            cli_run r;
+            if (run_cli(refused[i].args, &r)) {
+                check_failure_output(refused[i].args[1], &r, 2, refused[i].needle);
+                cli_run_free(&r);
+            }
+        }
+        CHECK(!file_exists("u.png"));
+    }
+    REQUIRE(chdir(cwd) == 0);
+    CHECK(written);
+#endif
+}
+
 /* The sanitizers' shadow memory and an emulator need more address space
  * than an address space limit leaves. */
 #if defined(__has_feature)

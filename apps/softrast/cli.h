@@ -47,7 +47,8 @@ void cli_inputs_free(cli_inputs *in);
  * (one would replace the other). */
 bool cli_same_output(const char *a, const char *b);
 
-/* Whether `output` may name an output file: "-" (standard output, where
+/* Whether `output` may name an output file: "" (which the library would
+ * refuse later, without the option's name), "-" (standard output, where
  * no image is written) and "--" (the end of the options, taken as the
  * option's value by the getopt rule) are refused after one line naming
  * opt; any other name, one starting with '-' too, is a file's. */
@@ -108,6 +109,22 @@ void cli_capture(char *buf, size_t size);
  * argument) remembers the "--". */
 typedef enum cli_arg_kind { CLI_ARG_OPTION, CLI_ARG_OPERAND, CLI_ARG_END } cli_arg_kind;
 cli_arg_kind cli_arg(const char *arg, bool *ended);
+
+/* An option argument split as getopt_long reads it: "--name=value" into
+ * its name and value (a long option only), else name = arg and no value,
+ * so that every command takes "--name value" and "--name=value" alike. */
+typedef struct cli_opt {
+    char name[64];
+    const char *value;     /* after '=', or NULL */
+} cli_opt;
+void cli_split_option(const char *arg, cli_opt *o);
+/* The option's value: its "=value", else the next argument (*i moves on
+ * to it), whatever it looks like; NULL after one line "NAME: missing
+ * value". */
+const char *cli_option_value(const cli_opt *o, int argc, char **argv, int *i);
+/* An option that takes no value: false after one line "NAME: takes no
+ * value" when it was given one. */
+bool cli_option_flag(const cli_opt *o);
 
 /* Parsers: return false after printing "softrast render: OPTION: why". */
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);

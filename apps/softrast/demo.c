@@ -44,24 +44,26 @@ int cmd_demo(int argc, char **argv)
                 return EXIT_USAGE;
             }
             name = a;
-        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            continue;
+        }
+        cli_opt opt;
+        cli_split_option(a, &opt);
+        const char *v;
+        if (strcmp(opt.name, "-h") == 0 || strcmp(opt.name, "--help") == 0) {
+            if (!cli_option_flag(&opt)) {
+                return EXIT_USAGE;
+            }
             demo_help(stdout);
             return EXIT_OK;
-        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-            if (i + 1 >= argc) {
-                cli_error("%s: missing value", a);
+        } else if (strcmp(opt.name, "-o") == 0 || strcmp(opt.name, "--output") == 0) {
+            if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
+                !cli_check_output_name(opt.name, v)) {
                 return EXIT_USAGE;
             }
-            args.output = argv[++i];
-            if (!cli_check_output_name(a, args.output)) {
-                return EXIT_USAGE;
-            }
-        } else if (strcmp(a, "--scale") == 0) {
-            if (i + 1 >= argc) {
-                cli_error("%s: missing value", a);
-                return EXIT_USAGE;
-            }
-            if (!parse_int(a, argv[++i], 1, 32, &args.scale)) {
+            args.output = v;
+        } else if (strcmp(opt.name, "--scale") == 0) {
+            if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
+                !parse_int(opt.name, v, 1, 32, &args.scale)) {
                 return EXIT_USAGE;
             }
         } else {

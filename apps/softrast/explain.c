@@ -486,15 +486,22 @@ int cmd_explain(int argc, char **argv)
             cli_error("explain: takes one ALGORITHM, then options (got '%s' too)", a);
             return EXIT_USAGE;
         }
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+        cli_opt opt;
+        cli_split_option(a, &opt);
+        if (strcmp(opt.name, "--help") == 0 || strcmp(opt.name, "-h") == 0) {
+            if (!cli_option_flag(&opt)) {
+                return EXIT_USAGE;
+            }
             usage(stdout);
             return EXIT_OK;
         }
-        if (i + 1 >= argc) {
+        const char *given = a;
+        a = opt.name;
+        if (!opt.value && i + 1 >= argc) {
             cli_error("explain: %s: needs a value (try 'softrast explain --help')", a);
             return EXIT_USAGE;
         }
-        const char *v = argv[++i];
+        const char *v = cli_option_value(&opt, argc, argv, &i);
         bool ok = true;
         if ((strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--sheet") == 0 ||
              strcmp(a, "--webp") == 0) && !cli_check_output_name(a, v)) {
@@ -615,7 +622,7 @@ int cmd_explain(int argc, char **argv)
         } else if (strcmp(a, "--sheet") == 0) {
             sheet = v;
         } else {
-            cli_error("explain: unknown option '%s' (try 'softrast explain --help')", a);
+            cli_error("explain: unknown option '%s' (try 'softrast explain --help')", given);
             return EXIT_USAGE;
         }
         if (!ok) {

@@ -83,6 +83,10 @@ bool cli_output_is_input(const cli_inputs *in, const char *output, char *why, si
 
 bool cli_check_output_name(const char *opt, const char *output)
 {
+    if (output && !*output) {
+        cli_error("%s: the file name is empty", opt);
+        return false;
+    }
     if (output && (strcmp(output, "-") == 0 || strcmp(output, "--") == 0)) {
         /* opt may be "svg: -o": the option is its last word. */
         const char *name = strrchr(opt, ' ') ? strrchr(opt, ' ') + 1 : opt;

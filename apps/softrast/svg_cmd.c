@@ -123,7 +123,6 @@ static int parse_args(int argc, char **argv, svg_args *a)
     bool ended = false;
     for (int i = 1; i < argc; i++) {
         const char *s = argv[i];
-        bool has_value = i + 1 < argc;
         cli_arg_kind kind = cli_arg(s, &ended);
         if (kind == CLI_ARG_END) {
             continue;
@@ -136,16 +135,22 @@ static int parse_args(int argc, char **argv, svg_args *a)
             continue;
         } else if (taken != 0) {
             return taken;
-        } else if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+        }
+        cli_opt opt;
+        cli_split_option(s, &opt);
+        s = opt.name;
+        if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+            if (!cli_option_flag(&opt)) {
+                return EXIT_USAGE;
+            }
             svg_help(stdout);
             return EXIT_OK;
         } else if (strcmp(s, "-o") == 0 || strcmp(s, "--output") == 0 || strcmp(s, "--size") == 0 ||
                    strcmp(s, "--scale") == 0 || strcmp(s, "--background") == 0) {
-            if (!has_value) {
-                cli_error("svg: %s: missing value", s);
+            const char *v = cli_option_value(&opt, argc, argv, &i);
+            if (!v) {
                 return EXIT_USAGE;
             }
-            const char *v = argv[++i];
             if (s[1] == 'o' || s[2] == 'o') {
                 a->output = v;
                 if (!cli_check_output_name(s, v)) {
@@ -169,7 +174,7 @@ static int parse_args(int argc, char **argv, svg_args *a)
                 a->desc.background = (sr_rgba){ c.x, c.y, c.z, 1 };
             }
         } else {
-            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", s);
+            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", argv[i]);
             return EXIT_USAGE;
         }
     }

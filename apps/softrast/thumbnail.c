@@ -101,19 +101,25 @@ int cmd_thumbnail(int argc, char **argv)
             files[nfiles++] = a;
             continue;
         }
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+        cli_opt opt;
+        cli_split_option(a, &opt);
+        const char *v;
+        if (strcmp(opt.name, "-h") == 0 || strcmp(opt.name, "--help") == 0) {
+            if (!cli_option_flag(&opt)) {
+                return EXIT_USAGE;
+            }
             usage(stdout);
             return EXIT_OK;
         }
-        if (strcmp(a, "-s") == 0 || strcmp(a, "--size") == 0) {
-            if (i + 1 >= argc) {
-                cli_error("thumbnail: %s needs a value", a);
+        if (strcmp(opt.name, "-s") == 0 || strcmp(opt.name, "--size") == 0) {
+            if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
+                !parse_int(opt.name, v, 1, THUMB_MAX_SIZE, &size)) {
                 return EXIT_USAGE;
             }
-            if (!parse_int(a, argv[++i], 1, THUMB_MAX_SIZE, &size)) {
+        } else if (strcmp(opt.name, "--transparent") == 0) {
+            if (!cli_option_flag(&opt)) {
                 return EXIT_USAGE;
             }
-        } else if (strcmp(a, "--transparent") == 0) {
             transparent = true;
         } else {
             cli_error("thumbnail: unknown option '%s' (try 'softrast thumbnail --help')", a);
