@@ -6,9 +6,8 @@
 # where installed) format it without a warning; its OPTIONS hold every
 # option and scene `TOOL --help` lists, and the SYNOPSIS its usage line;
 # its header names the version `TOOL --version` prints; "--" ends the
-# options; the ENVIRONMENT
-# section names every variable the bench reads (getenv in SRC's bench/).
-# Exits 77 (skipped) without groff.
+# options; the ENVIRONMENT section names every variable the bench reads
+# (getenv in SRC's bench/).  Exits 77 (skipped) without groff.
 set -eu
 if [ $# -lt 3 ]; then
     echo "usage: tests/bench_man_page.sh MANPAGE SRC TOOL..." >&2
@@ -17,34 +16,8 @@ fi
 man=$1
 src=$2
 shift 2
-if ! command -v groff >/dev/null; then
-    echo "SKIP: groff is not installed (Debian: groff-base)"
-    exit 77
-fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-    echo "FAIL: $*"
-    failures=$((failures + 1))
-}
+. "$(dirname "$0")/man_page_common.sh"
 
-groff -man -ww -z "$man" 2>"$work/groff.err" || fail "groff failed"
-if [ -s "$work/groff.err" ]; then
-    fail "groff -man -ww warns:"
-    cat "$work/groff.err"
-fi
-if command -v mandoc >/dev/null; then
-    if ! mandoc -Tlint -W warning "$man" >"$work/mandoc.err" 2>&1 || [ -s "$work/mandoc.err" ]; then
-        fail "mandoc -Tlint warns:"
-        cat "$work/mandoc.err"
-    fi
-else
-    echo "note: mandoc is not installed; its lint is left out"
-fi
-
-# The page as a reader sees it, each paragraph on one line.
-groff -man -Tascii -P-cbou -rLL=250n -rHY=0 "$man" 2>/dev/null >"$work/page.txt"
 section() {
     awk -v head="$1" '$0 == head { on = 1; next } on && /^[A-Z]/ { exit } on { print }' \
         "$work/page.txt"
@@ -52,10 +25,6 @@ section() {
 section OPTIONS >"$work/options.txt"
 section ENVIRONMENT >"$work/environment.txt"
 [ -s "$work/options.txt" ] || fail "no OPTIONS section"
-
-has_word() { # FILE WORD: WORD in FILE, not as part of a longer word
-    grep -Eq -- "(^|[^A-Za-z0-9_-])$2([^A-Za-z0-9_-]|\$)" "$1"
-}
 
 # Every option and every scene of the help: the terms of the lines
 # indented two spaces (the term ends at two spaces), split at ", ".
@@ -89,8 +58,4 @@ for v in $vars; do
     has_word "$work/environment.txt" "$v" || fail "ENVIRONMENT does not name $v"
 done
 
-if [ "$failures" -gt 0 ]; then
-    echo "$failures failures"
-    exit 1
-fi
-echo "bench man page: all checks passed"
+finish "bench man page"

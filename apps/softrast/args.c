@@ -120,6 +120,18 @@ bool cli_option_flag(const cli_opt *o)
     return true;
 }
 
+int cli_help_option(const cli_opt *o, void (*help)(FILE *))
+{
+    if (strcmp(o->name, "-h") != 0 && strcmp(o->name, "--help") != 0) {
+        return -1;
+    }
+    if (!cli_option_flag(o)) {
+        return EXIT_USAGE;
+    }
+    help(stdout);
+    return EXIT_OK;
+}
+
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out)
 {
     char *end;

@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /* Exit statuses: 2 for bad usage or bad input files, 1 when the work
  * itself fails (out of memory, the output cannot be written). */
@@ -125,6 +126,9 @@ const char *cli_option_value(const cli_opt *o, int argc, char **argv, int *i);
 /* An option that takes no value: false after one line "NAME: takes no
  * value" when it was given one. */
 bool cli_option_flag(const cli_opt *o);
+/* -h or --help: EXIT_OK after help(stdout), or EXIT_USAGE after one line
+ * for --help=VALUE; -1 for another option. */
+int cli_help_option(const cli_opt *o, void (*help)(FILE *));
 
 /* Parsers: return false after printing "softrast render: OPTION: why". */
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);

@@ -49,12 +49,9 @@ int cmd_demo(int argc, char **argv)
         cli_opt opt;
         cli_split_option(a, &opt);
         const char *v;
-        if (strcmp(opt.name, "-h") == 0 || strcmp(opt.name, "--help") == 0) {
-            if (!cli_option_flag(&opt)) {
-                return EXIT_USAGE;
-            }
-            demo_help(stdout);
-            return EXIT_OK;
+        int help = cli_help_option(&opt, demo_help);
+        if (help >= 0) {
+            return help;
         } else if (strcmp(opt.name, "-o") == 0 || strcmp(opt.name, "--output") == 0) {
             if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
                 !cli_check_output_name(opt.name, v)) {

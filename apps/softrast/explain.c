@@ -488,12 +488,9 @@ int cmd_explain(int argc, char **argv)
         }
         cli_opt opt;
         cli_split_option(a, &opt);
-        if (strcmp(opt.name, "--help") == 0 || strcmp(opt.name, "-h") == 0) {
-            if (!cli_option_flag(&opt)) {
-                return EXIT_USAGE;
-            }
-            usage(stdout);
-            return EXIT_OK;
+        int help = cli_help_option(&opt, usage);
+        if (help >= 0) {
+            return help;
         }
         const char *given = a;
         a = opt.name;

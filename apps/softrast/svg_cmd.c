@@ -139,12 +139,9 @@ static int parse_args(int argc, char **argv, svg_args *a)
         cli_opt opt;
         cli_split_option(s, &opt);
         s = opt.name;
-        if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
-            if (!cli_option_flag(&opt)) {
-                return EXIT_USAGE;
-            }
-            svg_help(stdout);
-            return EXIT_OK;
+        int help = cli_help_option(&opt, svg_help);
+        if (help >= 0) {
+            return help;
         } else if (strcmp(s, "-o") == 0 || strcmp(s, "--output") == 0 || strcmp(s, "--size") == 0 ||
                    strcmp(s, "--scale") == 0 || strcmp(s, "--background") == 0) {
             const char *v = cli_option_value(&opt, argc, argv, &i);

@@ -104,12 +104,9 @@ int cmd_thumbnail(int argc, char **argv)
         cli_opt opt;
         cli_split_option(a, &opt);
         const char *v;
-        if (strcmp(opt.name, "-h") == 0 || strcmp(opt.name, "--help") == 0) {
-            if (!cli_option_flag(&opt)) {
-                return EXIT_USAGE;
-            }
-            usage(stdout);
-            return EXIT_OK;
+        int help = cli_help_option(&opt, usage);
+        if (help >= 0) {
+            return help;
         }
         if (strcmp(opt.name, "-s") == 0 || strcmp(opt.name, "--size") == 0) {
             if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
