@@ -2686,6 +2686,27 @@ SR_TEST(every_command_takes_long_options_with_an_equals_sign)
 #endif
 }
 
+/* A --scale that makes a demo's image larger than a framebuffer is the
+ * user's to change: one line naming --scale, exit status 2 (it was the
+ * library's "sr_framebuffer_desc.width 8252 exceeds the maximum 8192",
+ * exit status 1). */
+SR_TEST(demo_scale_beyond_a_framebuffer_is_refused_by_name)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    static const refusal_case refused[] = {
+        { "demo aa --scale 32", { "demo", "aa", "--scale", "32", "-o", "never.png" },
+          "demo aa: --scale 32 makes a 8252x3588 image, more than 8192 a side: give a smaller "
+          "--scale" },
+        { "demo zfight --scale 14", { "demo", "zfight", "--scale", "14", "-o", "never.png" },
+          "demo zfight: --scale 14 makes a " },
+    };
+    expect_refusals(refused, sizeof refused / sizeof refused[0], NULL, 0);
+    CHECK(!file_exists("never.png"));
+#endif
+}
+
 /* The sanitizers' shadow memory and an emulator need more address space
  * than an address space limit leaves. */
 #if defined(__has_feature)

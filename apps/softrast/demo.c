@@ -24,7 +24,18 @@ static void demo_help(FILE *f)
     fprintf(f, "\noptions:\n"
                "  -o, --output FILE   PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
                "                      (default demo-NAME.png)\n"
-               "  --scale N           magnification of pixel-level demos, 1..32\n");
+               "  --scale N           magnification of pixel-level demos, 1..32, while the\n"
+               "                      image stays within 8192 px a side\n");
+}
+
+int demo_check_image(const char *name, int scale, int w, int h)
+{
+    if (w <= SR_MAX_FRAMEBUFFER_SIZE && h <= SR_MAX_FRAMEBUFFER_SIZE) {
+        return EXIT_OK;
+    }
+    cli_error("demo %s: --scale %d makes a %dx%d image, more than %d a side: give a smaller "
+              "--scale", name, scale, w, h, SR_MAX_FRAMEBUFFER_SIZE);
+    return EXIT_USAGE;
 }
 
 int cmd_demo(int argc, char **argv)

@@ -27,6 +27,9 @@ int demo3d_begin(demo3d *d, sr_context *ctx, const char *name, demo3d_layout lay
         }
     }
     int w = demo3d_grid_width(layout, d->scale), h = demo3d_grid_height(layout, d->scale);
+    if (demo_check_image(name, d->scale, w, h) != EXIT_OK) {
+        return EXIT_USAGE;
+    }
     if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
                                                          .depth_format = SR_DEPTH_NONE },
                             &d->out) != SR_OK) {
