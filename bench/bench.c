@@ -56,8 +56,8 @@ static void usage(FILE *f)
 {
     fprintf(f,
         "usage: softrast-bench [SCENE...] [--threads N] [--size WxH] [--frames N]\n"
-        "                      [--compare] [--save-images DIR] [--paint LIST]\n"
-        "                      [--shape LIST] [--shape-size LIST]\n"
+        "                      [--compare] [--gl-default-malloc] [--save-images DIR]\n"
+        "                      [--paint LIST] [--shape LIST] [--shape-size LIST]\n"
         "\n"
         "Times each SCENE (all of them when none is given).  The first line says\n"
         "when and where:  date=YYYY-MM-DDTHH:MM:SSZ cpu=MODEL (the rest of the line);\n"
@@ -117,7 +117,10 @@ static void usage(FILE *f)
         "                       linear, radial, pattern); the batches stay the same\n"        "  --shape LIST         shapes2d: only these shapes (rect, poly10, poly20,\n"
         "                       poly40, curves)\n"
         "  --shape-size LIST    shapes2d: only these sizes (8, 16, 32, 64, 128, 256)\n"
-        "  -h, --help           this help\n",
+        "  --version            print the version\n"
+        "  -h, --help           this help\n"
+        "\n"
+        "Exit status: 0, 1 when a scene or the run fails, 2 for bad options.\n",
         SR_BENCH_MODELS_DIR, SR_BENCH_ICONS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
 }
 
@@ -157,14 +160,44 @@ bad:
     return false;
 }
 
+/* A SCENE argument into o; false after one line. */
+static bool take_scene(bench_opts *o, const char *a)
+{
+    if (!bench_find_scene(a)) {
+        fprintf(stderr, "softrast-bench: unknown scene '%s' (expected", a);
+        for (int k = 0; k < bench_scene_count; k++) {
+            fprintf(stderr, " %s", bench_scene_list[k].name);
+        }
+        fprintf(stderr, ")\n");
+        return false;
+    }
+    if (o->scene_count == (int)(sizeof o->scenes / sizeof o->scenes[0])) {
+        fprintf(stderr, "softrast-bench: too many scenes\n");
+        return false;
+    }
+    o->scenes[o->scene_count++] = a;
+    return true;
+}
+
 /* Returns -1 to go on, else the exit status. */
 static int parse_args(int argc, char **argv, bench_opts *o)
 {
+    bool ended = false;   /* after "--", as every softrast command takes it */
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         bool has_value = i + 1 < argc;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+        if (!ended && strcmp(a, "--") == 0) {
+            ended = true;
+            continue;
+        } else if (ended) {
+            if (!take_scene(o, a)) {
+                return 2;
+            }
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            printf("softrast-bench %s\n", SR_VERSION_STRING);
             return 0;
         } else if (strcmp(a, "--compare") == 0) {
             o->compare = true;
@@ -204,18 +237,8 @@ static int parse_args(int argc, char **argv, bench_opts *o)
         } else if (a[0] == '-') {
             fprintf(stderr, "softrast-bench: unknown option '%s' (try --help)\n", a);
             return 2;
-        } else if (!bench_find_scene(a)) {
-            fprintf(stderr, "softrast-bench: unknown scene '%s' (expected", a);
-            for (int k = 0; k < bench_scene_count; k++) {
-                fprintf(stderr, " %s", bench_scene_list[k].name);
-            }
-            fprintf(stderr, ")\n");
+        } else if (!take_scene(o, a)) {
             return 2;
-        } else if (o->scene_count == (int)(sizeof o->scenes / sizeof o->scenes[0])) {
-            fprintf(stderr, "softrast-bench: too many scenes\n");
-            return 2;
-        } else {
-            o->scenes[o->scene_count++] = a;
         }
     }
     return -1;

@@ -370,7 +370,9 @@ typedef struct sr_svg_desc {
     const char *name;        /* the document's name in messages, and the directory its
                               * <image> files are read from; NULL -> "<svg>", no files */
     int width, height;       /* the image size (the viewBox is fitted in), or 0:
-                              * the drawing's own size times scale */
+                              * the drawing's own size times scale.  A root of
+                              * zero or negative size is SR_BAD_FORMAT either way:
+                              * SVG draws nothing of it */
     double scale;            /* 0 -> 1 */
     sr_rgba background;      /* the image is cleared to it first (zero: transparent) */
     int max_side;            /* largest image side; 0 -> SR_MAX_FRAMEBUFFER_SIZE */

@@ -16,36 +16,7 @@ fi
 man=$1
 src=$2
 shift 2
-if ! command -v groff >/dev/null; then
-    echo "SKIP: groff is not installed (Debian: groff-base)"
-    exit 77
-fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-    echo "FAIL: $*"
-    failures=$((failures + 1))
-}
-
-# Formatted with every warning on, nothing to say.
-groff -man -ww -z "$man" 2>"$work/groff.err" || fail "groff failed"
-if [ -s "$work/groff.err" ]; then
-    fail "groff -man -ww warns:"
-    cat "$work/groff.err"
-fi
-if command -v mandoc >/dev/null; then
-    if ! mandoc -Tlint -W warning "$man" >"$work/mandoc.err" 2>&1 || [ -s "$work/mandoc.err" ]; then
-        fail "mandoc -Tlint warns:"
-        cat "$work/mandoc.err"
-    fi
-else
-    echo "note: mandoc is not installed; its lint is left out"
-fi
-
-# The page as a reader sees it, each paragraph on one line (no
-# hyphenation, wide lines), without bold or underlining.
-groff -man -Tascii -P-cbou -rLL=250n -rHY=0 "$man" 2>/dev/null >"$work/page.txt"
+. "$(dirname "$0")/man_page_common.sh"
 
 # Lines of the rendered page from the heading "   softrast CMD" to the next
 # heading.
@@ -62,10 +33,6 @@ section() {
 terms() { sed -n 's/^  \([^ ].*\)$/\1/p' | sed 's/  .*//'; }
 options() { terms | grep '^-' | tr ' ,|' '\n' | grep -E '^--?[A-Za-z0-9]' || true; }
 names() { terms | grep -v '^-' | grep -v '^softrast' | sed 's/ .*//'; }
-
-has_word() { # FILE WORD: WORD in FILE, not as part of a longer word
-    grep -Eq -- "(^|[^A-Za-z0-9-])$2([^A-Za-z0-9-]|\$)" "$1"
-}
 
 "$@" --help >"$work/top.txt"
 commands=$(names <"$work/top.txt")
@@ -106,8 +73,4 @@ for v in $vars; do
     has_word "$work/environment.txt" "$v" || fail "ENVIRONMENT does not name $v"
 done
 
-if [ "$failures" -gt 0 ]; then
-    echo "$failures failures"
-    exit 1
-fi
-echo "man page: all checks passed"
+finish "man page"

@@ -2560,6 +2560,259 @@ SR_TEST(end_of_options_makes_dash_names_operands)
 #endif
 }
 
+/* An option's value is the next argument whatever it looks like (getopt):
+ * "-o --" names the output "--", so "-o -- -a.obj" is not an end of the
+ * options.  An output "--" (a mistaken end of options) or "-" (standard
+ * output, where no image goes) is refused by every command in one line;
+ * other names starting with '-' are written.  A batch and the viewer
+ * passed render options on without their values, so "--" or an option's
+ * name as a value was read differently there than by the render parser. */
+SR_TEST(option_values_that_look_like_options_are_values)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], cwd[4096];
+    fresh_dir("dash values", dir, sizeof dir);
+    REQUIRE(getcwd(cwd, sizeof cwd) != NULL);
+    REQUIRE(chdir(dir) == 0);
+    const char *tri = ONE_TRIANGLE_OBJ;
+    const char *uv = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+    static const uint8_t texel[16] = { 255, 0, 0, 255, 255, 0, 0, 255, 255, 0, 0, 255,
+                                       255, 0, 0, 255 };
+    sr_io_error err;
+    bool written = write_whole("-a.obj", tri, strlen(tri)) && write_whole("a.obj", tri,
+                                                                          strlen(tri)) &&
+                   write_whole("uv.obj", uv, strlen(uv)) && write_whole("-uv.obj", uv, strlen(uv));
+    if (written) {
+        static const refusal_case refused[] = {
+            { "-o --", { "render", "-o", "--", "-a.obj" }, "-o: '--' names no file here" },
+            { "-o -- model", { "render", "--size", "8x8", "-o", "--", "a.obj" },
+              "-o: '--' names no file" },
+            { "--output=-", { "render", "--output=-", "a.obj" },
+              "--output: '-' names no file here" },
+            { "batch -o -", { "render", "--size", "8x8", "-o", "-", "--", "a.obj", "-a.obj" },
+              "-o: '-' names no file here" },
+            { "--output-dir -", { "render", "--output-dir", "-", "--", "a.obj", "-a.obj" },
+              "--output-dir: '-' names no file" },
+            { "--log --", { "render", "--log", "--", "--", "a.obj", "-a.obj" },
+              "--log: '--' names no file" },
+            { "svg -o --", { "svg", "-o", "--", "x.svg" }, "-o: '--' names no file here" },
+            { "demo -o -", { "demo", "lines", "-o", "-" }, "-o: '-' names no file here" },
+            { "thumbnail -", { "thumbnail", "-s", "8", "--", "a.obj", "-" },
+              "OUTPUT: '-' names no file" },
+            { "explain --sheet --", { "explain", "dda", "--sheet", "--" },
+              "--sheet: '--' names no file here" },
+            { "explain -o -", { "explain", "dda", "-o", "-" }, "-o: '-' names no file here" },
+            { "view --screenshot -", { "view", "--screenshot", "-", "a.obj" },
+              "--screenshot: '-' names no file" },
+        };
+        expect_refusals(refused, sizeof refused / sizeof refused[0], NULL, 0);
+        CHECK(!file_exists("--") && !file_exists("-") && !file_exists("softrast.png"));
+        /* other names starting with '-' are the option's value, in one
+         * render and where a batch or the viewer pass them on */
+        expect_status(ARGS("render", "--size", "8x8", "-o", "-x.png", "a.obj"), 0);
+        CHECK(file_exists("-x.png"));
+        expect_status(ARGS("render", "--size", "8x8", "-o", "--skip-existing", "a.obj"), 0);
+        CHECK(file_exists("--skip-existing"));
+        /* a texture named like batch options: one render, and a batch */
+        REQUIRE(sr_write_png("--output-dir", 2, 2, texel, 8, NULL, &err) == SR_OK);
+        REQUIRE(sr_write_png("--log", 2, 2, texel, 8, NULL, &err) == SR_OK);
+        expect_status(ARGS("render", "--size", "8x8", "--texture", "--output-dir", "-o", "t.png",
+                           "uv.obj"), 0);
+        CHECK(file_exists("t.png") && !file_exists("uv.png"));
+        clean_dir("b");
+        expect_status(ARGS("render", "--size", "8x8", "--output-dir", "b", "--texture", "--log",
+                           "--", "uv.obj", "-uv.obj"), 0);
+        CHECK(file_exists("b/uv.png") && file_exists("b/-uv.png"));
+    }
+    REQUIRE(chdir(cwd) == 0);
+    CHECK(written);
+#endif
+}
+
+/* "--name=value" is "--name value" in every command, as getopt_long
+ * reads it; render, its batch options and view took it, while svg, demo,
+ * thumbnail and explain called it an unknown option (explain: "needs a
+ * value").  A flag given a value is refused by name. */
+SR_TEST(every_command_takes_long_options_with_an_equals_sign)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], cwd[4096], svg_src[1100];
+    fresh_dir("equals", dir, sizeof dir);
+    snprintf(svg_src, sizeof svg_src, "%s/data/svg/gradients.svg", sr_test_src_dir());
+    REQUIRE(getcwd(cwd, sizeof cwd) != NULL);
+    REQUIRE(chdir(dir) == 0);
+    const char *tri = ONE_TRIANGLE_OBJ;
+    bool written = write_whole("a.obj", tri, strlen(tri));
+    if (written) {
+        expect_status(ARGS("render", "a.obj", "--size=16x8", "--output=r.png"), 0);
+        CHECK(file_exists("r.png"));
+        if (svg_command_built()) {
+            expect_status(ARGS("svg", svg_src, "--size=16x16", "--output=s.png",
+                               "--background=white"), 0);
+            CHECK(file_exists("s.png"));
+        }
+        expect_status(ARGS("demo", "lines", "--output=d.png", "--scale=1"), 0);
+        CHECK(file_exists("d.png"));
+        expect_status(ARGS("thumbnail", "--size=16", "a.obj", "t.png"), 0);
+        CHECK(file_exists("t.png"));
+        expect_status(ARGS("explain", "dda", "--sheet=e.png", "--line=1.5,1.5,6.5,3.5"), 0);
+        CHECK(file_exists("e.png"));
+        static const refusal_case refused[] = {
+            { "--transparent=yes", { "thumbnail", "--transparent=yes", "a.obj", "u.png" },
+              "--transparent: takes no value" },
+            { "demo --help=1", { "demo", "lines", "--help=1" }, "--help: takes no value" },
+            { "svg --help=1", { "svg", "--help=1" }, "--help: takes no value" },
+            { "--sheet=", { "explain", "dda", "--sheet=" }, "--sheet: the file name is empty" },
+            { "explain -o ''", { "explain", "dda", "-o", "" }, "-o: the file name is empty" },
+            { "demo -o ''", { "demo", "lines", "-o", "" }, "-o: the file name is empty" },
+            { "svg --output=", { "svg", "x.svg", "--output=" },
+              "--output: the file name is empty" },
+            { "thumbnail ''", { "thumbnail", "-s", "8", "a.obj", "" },
+              "OUTPUT: the file name is empty" },
+            { "--screenshot=", { "view", "--screenshot=", "a.obj" },
+              "--screenshot: the file name is empty" },
+            { "demo --output=-", { "demo", "lines", "--output=-" },
+              "--output: '-' names no file here" },
+        };
+        expect_refusals(refused, sizeof refused / sizeof refused[0], NULL, 0);
+        CHECK(!file_exists("u.png"));
+    }
+    REQUIRE(chdir(cwd) == 0);
+    CHECK(written);
+#endif
+}
+
+/* A --scale that makes a demo's image larger than a framebuffer is the
+ * user's to change: one line naming --scale, exit status 2 (it was the
+ * library's "sr_framebuffer_desc.width 8252 exceeds the maximum 8192",
+ * exit status 1). */
+SR_TEST(demo_scale_beyond_a_framebuffer_is_refused_by_name)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    static const refusal_case refused[] = {
+        { "demo aa --scale 32", { "demo", "aa", "--scale", "32", "-o", "never.png" },
+          "demo aa: --scale 32 makes a 8252x3588 image, over 8192 a side: give --scale 31 or "
+          "less" },
+        { "demo zfight --scale 14", { "demo", "zfight", "--scale", "14", "-o", "never.png" },
+          "demo zfight: --scale 14 makes a " },
+    };
+    expect_refusals(refused, sizeof refused / sizeof refused[0], NULL, 0);
+    CHECK(!file_exists("never.png"));
+#endif
+}
+
+/* The sanitizers' shadow memory and an emulator need more address space
+ * than an address space limit leaves. */
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define CLI_NO_AS_LIMIT 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__) || defined(SR_TEST_EMULATED)
+#define CLI_NO_AS_LIMIT 1
+#endif
+
+/* Frames larger than the memory limit are refused in one line before
+ * anything is allocated (exit status 2) by every command that takes a
+ * size; SR_MEMORY_LIMIT sets the limit, so 8.5 GiB of 8192 x 8192 x 16
+ * samples is refused here without allocating it.  Where an allocation
+ * fails all the same (under a 1.5 GiB address space limit), the command
+ * says "out of memory" in one line, exit status 1. */
+SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], a[1100], b[1100], svg[1100];
+    fresh_dir("memory limit", dir, sizeof dir);
+    snprintf(a, sizeof a, "%s/a.obj", dir);
+    snprintf(b, sizeof b, "%s/b.obj", dir);
+    snprintf(svg, sizeof svg, "%s/d.svg", dir);
+    const char *tri = ONE_TRIANGLE_OBJ, *doc = "<svg width='10' height='10'/>";
+    REQUIRE(write_whole(a, tri, strlen(tri)) && write_whole(b, tri, strlen(tri)) &&
+            write_whole(svg, doc, strlen(doc)));
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "1G", 1) == 0);
+    expect_render_failure("msaa16 at 8192", ARGS(a, "--size", "8192x8192", "--aa", "msaa16"), 2,
+                          "render: --size 8192x8192 with --aa msaa16 needs about 8.5 GiB of "
+                          "frame memory, more than SR_MEMORY_LIMIT=1G allows: give a smaller "
+                          "--size or --aa");
+    /* SSAA's samples beyond a framebuffer's side: before the model is read */
+    expect_render_failure("ssaa3 at 4096", ARGS("--size", "4096x4096", "--aa", "ssaa3"), 2,
+                          "--aa ssaa3 at --size 4096x4096 draws 12288x12288 samples, more than "
+                          "8192 a side");
+    static const struct {
+        const char *limit;
+        const char *args[12];
+        const char *needle;
+    } refused[] = {
+        { "1G", { "render", "--size", "4096x4096", "--output-dir", "OUT", "--", "A", "B" },
+          "(two frames at once) needs about 1.2 GiB" },
+        { "256M", { "render", "--size", "2048x2048", "--aa", "ssaa4", "A", "-o", "OUT/r.png" },
+          "render: --size 2048x2048 with --aa ssaa4 needs about 800 MiB" },
+        { "256M", { "thumbnail", "-s", "4096", "A", "OUT/t.png" },
+          "thumbnail: -s 4096 needs about 640 MiB of frame memory, more than SR_MEMORY_LIMIT=256M "
+          "allows: give a smaller -s" },
+        { "256M", { "svg", "--size", "8192x8192", "S", "-o", "OUT/s.png" },
+          "svg: --size 8192x8192 needs about 512 MiB" },
+        { "1G", { "view", "--size", "8192x8192", "--aa", "msaa16", "A" },
+          "view: --size 8192x8192 with --aa msaa16 (two frames at once) needs about 17 GiB" },
+    };
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+        REQUIRE(setenv("SR_MEMORY_LIMIT", refused[i].limit, 1) == 0);
+        const char *args[12] = { 0 };
+        for (int k = 0; refused[i].args[k]; k++) {
+            const char *w = refused[i].args[k];
+            args[k] = strcmp(w, "A") == 0 ? a : strcmp(w, "B") == 0 ? b : strcmp(w, "S") == 0
+                      ? svg : w;
+            if (strncmp(w, "OUT", 3) == 0) {
+                static char paths[2][1200];
+                snprintf(paths[k & 1], sizeof paths[0], "%s%s", dir, w + 3);
+                args[k] = paths[k & 1];
+            }
+        }
+        cli_run r;
+        if (!run_cli(args, &r)) {
+            continue;
+        }
+        if (strcmp(args[0], "view") != 0 || !strstr(r.err, "built without SDL2")) {
+            check_failure_output(refused[i].needle, &r, 2, refused[i].needle);
+        }
+        cli_run_free(&r);
+    }
+    CHECK_EQ(count_entries(dir, NULL, 0), 3);
+    /* within the limit: drawn */
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "64M", 1) == 0);
+    char out[1100];
+    snprintf(out, sizeof out, "%s/small.png", dir);
+    expect_status(ARGS("render", a, "--size", "64x48", "-o", out), 0);
+    CHECK(file_exists(out));
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "lots", 1) == 0);
+    expect_render_failure("bad limit", ARGS(a), 2,
+                          "SR_MEMORY_LIMIT: expected a size in bytes such as 512M or 8G (got "
+                          "'lots')");
+#if !defined(CLI_NO_AS_LIMIT)
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "1T", 1) == 0);
+    struct rlimit old;
+    REQUIRE(getrlimit(RLIMIT_AS, &old) == 0);
+    struct rlimit lim = old;
+    lim.rlim_cur = (rlim_t)3 << 29;
+    if (old.rlim_cur == RLIM_INFINITY || old.rlim_cur > lim.rlim_cur) {
+        REQUIRE(setrlimit(RLIMIT_AS, &lim) == 0);
+        expect_render_failure("out of memory", ARGS(a, "--size", "8192x8192", "--aa", "msaa16"),
+                              1, "render: sr_make_framebuffer: out of memory for 8192x8192");
+        setrlimit(RLIMIT_AS, &old);
+    }
+#endif
+    unsetenv("SR_MEMORY_LIMIT");
+#endif
+}
+
 /* Occurrences of `needle` in `s`. */
 static int count_in(const char *s, const char *needle)
 {

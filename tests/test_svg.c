@@ -257,6 +257,32 @@ SR_TEST(malformed_input_is_reported_with_file_and_line)
                        "gzip.svgz: gzip-compressed data that does not read (");
 }
 
+/* A zero width or height disables rendering in SVG: one line naming the
+ * attribute and exit status 2, with --size too (as rsvg-convert), not a
+ * blank image. */
+SR_TEST(zero_size_is_refused_even_with_size)
+{
+    if (!have_svg()) {
+        SKIP("built without expat");
+    }
+    expect_input_error("zero_w.svg", "<svg width='0' height='10'>\n<rect width='5'/></svg>",
+                       "zero_w.svg:1: width=\"0\" disables rendering");
+    expect_input_error("neg_h.svg", "\n<svg width='10' height='-3'/>",
+                       "neg_h.svg:2: height=\"-3\" is negative");
+    char in[1024], out[1100], err[2048];
+    out_path("zero_vb.svg", in, sizeof in);
+    snprintf(out, sizeof out, "%s.png", in);
+    unlink(out);
+    REQUIRE(write_file(in, "<svg viewBox='0 0 0 10'/>"));
+    CHECK_EQ(run_cli((const char *[]){ "svg", in, "-o", out, "--size", "32x32", NULL }, err,
+                     sizeof err),
+             2);
+    CHECK_STR_CONTAINS(err, "zero_vb.svg:1: viewBox=\"0 0 0 10\" disables rendering");
+    CHECK(strchr(err, '\n') == err + strlen(err) - 1);
+    struct stat st;
+    CHECK(stat(out, &st) != 0);
+}
+
 /* Messages count lines as XML does: CR, LF and CR LF each end one, also
  * inside a tag and in UTF-16. */
 SR_TEST(message_lines_count_every_line_end)

@@ -130,6 +130,68 @@ SR_TEST(failures_are_results_with_file_and_line)
     sr_destroy_context(ctx);
 }
 
+/* SVG draws nothing of a zero width, height or viewBox size, and a
+ * negative one is an error: a failure naming the attribute, not a blank
+ * 300 x 150 image, also when the size of the image is given; an <image>
+ * of such a document draws nothing in its place. */
+SR_TEST(zero_and_negative_sizes_are_failures)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_context *ctx = make_ctx();
+    REQUIRE(ctx);
+    static const struct {
+        const char *attrs, *want;
+    } cases[] = {
+        { "width='0' height='10'", "z.svg:2: width=\"0\" disables rendering" },
+        { "width='10' height='0mm'", "z.svg:2: height=\"0mm\" disables rendering" },
+        { "viewBox='0 0 0 0'", "z.svg:2: viewBox=\"0 0 0 0\" disables rendering" },
+        { "viewBox='0 0 10 0'", "z.svg:2: viewBox=\"0 0 10 0\" disables rendering" },
+        { "width='0' height='10' viewBox='0 0 10 10'", "z.svg:2: width=\"0\" disables" },
+        { "width='-5' height='10'", "z.svg:2: width=\"-5\" is negative" },
+        { "width='10' height='-1px'", "z.svg:2: height=\"-1px\" is negative" },
+        { "viewBox='0 0 -10 10'", "z.svg:2: viewBox=\"0 0 -10 10\" needs four numbers" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char doc[256];
+        int n = snprintf(doc, sizeof doc, "<?xml version='1.0'?>\n<svg %s><rect width='5' "
+                                          "height='5'/></svg>", cases[i].attrs);
+        for (int sized = 0; sized < 2; sized++) {
+            sr_framebuffer *fb = (sr_framebuffer *)&fb;
+            sr_io_error err;
+            sr_svg_desc d = { .name = "z.svg", .width = sized ? 16 : 0, .height = sized ? 16 : 0 };
+            CHECK_EQ(sr_render_svg(ctx, doc, (size_t)n, &d, &fb, NULL, &err), SR_BAD_FORMAT);
+            CHECK(fb == NULL);
+            CHECK_STR_CONTAINS(err.message, cases[i].want);
+        }
+    }
+    /* 0% is no size of the root's own: the viewBox's stands in. */
+    static const char pct[] = "<svg width='0%' height='10' viewBox='0 0 20 10'/>";
+    sr_framebuffer *fb = NULL;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(ctx, pct, sizeof pct - 1, NULL, &fb, NULL, &err), SR_OK);
+    CHECK(fb && sr_framebuffer_width(fb) == 20 && sr_framebuffer_height(fb) == 10);
+    sr_destroy_framebuffer(ctx, fb);
+    fb = NULL;
+    /* An SVG image of zero width: nothing where it would be, red under it
+     * stays. */
+    static const char img[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'>"
+        "<rect width='4' height='4' fill='red'/><image width='4' height='4' "
+        "href='data:image/svg+xml,%3Csvg xmlns=%22http://www.w3.org/2000/svg%22 width=%220%22 "
+        "height=%224%22%3E%3Crect width=%224%22 height=%224%22 fill=%22blue%22/%3E%3C/svg%3E'/>"
+        "</svg>";
+    CHECK_EQ(sr_render_svg(ctx, img, sizeof img - 1, NULL, &fb, NULL, &err), SR_OK);
+    if (fb) {
+        const uint8_t *px = sr_framebuffer_pixels(fb);
+        CHECK_EQ(px[0], 255);
+        CHECK_EQ(px[2], 0);
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
 SR_TEST(bad_arguments_are_refused)
 {
     sr_context *ctx = make_ctx();

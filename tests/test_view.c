@@ -293,6 +293,36 @@ SR_TEST(view_help_matches_the_options)
 #endif
 }
 
+/* The options that do nothing under the shading given are said as
+ * render says them, once each, and the mode table's own --filter is not
+ * taken for the user's (told before the display is looked for). */
+SR_TEST(view_warns_of_options_without_effect_once)
+{
+    if (viewer_built() != 1) {
+        SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
+    }
+#ifdef SR_CLI_PATH
+    const char *argv[] = { SR_CLI_PATH, "view", "--shading", "flat", "--exposure", "1",
+                           "--detail", "2", NULL };
+    run_result r;
+    REQUIRE(run(argv, env_without_display(), &r));
+    CHECK_EQ(r.status, 1);
+    CHECK_STR_CONTAINS(r.err, "softrast: warning: --exposure has no effect with --shading flat "
+                              "(it is for pbr)\n");
+    const char *first = strstr(r.err, "--exposure has");
+    CHECK(first && !strstr(first + 1, "--exposure has"));
+    CHECK(!strstr(r.err, "--filter"));
+    CHECK_STR_CONTAINS(r.err, "no display");
+    CHECK_EQ(count_lines(r.err), 2);
+    result_free(&r);
+    const char *filtered[] = { SR_CLI_PATH, "view", "--filter", "tent", "--detail", "2", NULL };
+    REQUIRE(run(filtered, env_without_display(), &r));
+    CHECK_STR_CONTAINS(r.err, "softrast: warning: --filter has no effect without --aa ssaa2");
+    CHECK_EQ(count_lines(r.err), 2);
+    result_free(&r);
+#endif
+}
+
 SR_TEST(bad_event_script_names_file_and_line)
 {
     if (viewer_built() != 1) {

@@ -1,21 +1,25 @@
 #!/usr/bin/python3
-"""tools/manpage.py - the manual page softrast(1), written at build time
-from the tool's own help texts so that it cannot drift from them.
+"""tools/manpage.py - a manual page (softrast(1), softrast-bench(1)),
+written at build time from the tool's own help texts so that it cannot
+drift from them.
 
     manpage.py TEMPLATE OUTPUT TOOL...
 
 TOOL... (the tool, after a cross build's emulator if any) is run as
-`TOOL --help`, `TOOL --version` and `TOOL COMMAND --help` for each command
-the first one lists.  TEMPLATE (tools/softrast.1.in) holds the hand-written
-sections; its @DATE@, @VERSION@, @SYNOPSIS@ and @COMMANDS@ become the
-build's date, the version, and the commands' usage lines and help texts
-(read by their layout: tools/helptext.py)."""
+`TOOL --help` and `TOOL --version`.  TEMPLATE (tools/softrast.1.in,
+tools/softrast-bench.1.in) holds the hand-written sections; its @DATE@
+and @VERSION@ become the build's date and the version.  A tool of
+commands (softrast) is run as `TOOL COMMAND --help` for each command the
+first help lists, and @SYNOPSIS@ and @COMMANDS@ become the commands'
+usage lines and help texts; a tool without (softrast-bench) has its
+usage as @SYNOPSIS@ and the rest of its help as @HELP@.  The help texts
+are read by their layout (tools/helptext.py)."""
 import os
 import re
 import sys
 import time
 
-from helptext import read, run
+from helptext import parse, read, run
 
 OPTION = re.compile(r"(?<![\w-])(--?[A-Za-z0-9][\w-]*)")
 
@@ -63,13 +67,14 @@ def roff_blocks(blocks):
     return out
 
 
-def synopsis(usage):
+def synopsis(usage, name_words=2):
+    """Usage lines with their first name_words words (the command) bold."""
     out = []
     for u in usage:
-        words = u.split(" ", 2)
+        words = u.split(" ", name_words)
         out += [".br"] if out else []
-        out += [line("\\fB" + escape(" ".join(words[:2])) + "\\fR " +
-                                              escape(" ".join(words[2:])))]
+        out += [line("\\fB" + escape(" ".join(words[:name_words])) + "\\fR " +
+                                              escape(" ".join(words[name_words:])))]
     return out
 
 
@@ -79,18 +84,22 @@ def main(argv):
         return 2
     template_path, output_path, tool = argv[1], argv[2], argv[3:]
     version = run(tool, "--version").split()[-1]
-    usage_lines, section = [], []
-    for name, _, usage, blocks in read(tool)[1]:
-        usage_lines += usage
-        section += ['.SS "softrast %s"' % name] + synopsis(usage) + roff_blocks(blocks)
     with open(template_path, encoding="utf-8") as f:
         page = f.read()
+    usage_lines, section, name_words = [], [], 2
+    if "@HELP@" in page:
+        usage_lines, blocks = parse(run(tool, "--help"))
+        name_words = 1
+        page = page.replace("@HELP@\n", "\n".join(roff_blocks(blocks)) + "\n")
+    for name, _, usage, blocks in read(tool)[1] if "@COMMANDS@" in page else []:
+        usage_lines += usage
+        section += ['.SS "softrast %s"' % name] + synopsis(usage) + roff_blocks(blocks)
     page = page.replace("@VERSION@", version)
     # The build's date as help2man gives it: SOURCE_DATE_EPOCH's for a
     # reproducible build, else today's.
     stamp = int(os.environ.get("SOURCE_DATE_EPOCH", time.time()))
     page = page.replace("@DATE@", time.strftime("%Y-%m-%d", time.gmtime(stamp)))
-    page = page.replace("@SYNOPSIS@\n", "\n".join(synopsis(usage_lines)) + "\n")
+    page = page.replace("@SYNOPSIS@\n", "\n".join(synopsis(usage_lines, name_words)) + "\n")
     page = page.replace("@COMMANDS@\n", "\n".join(section) + "\n")
     with open(output_path + ".tmp", "w", encoding="utf-8") as f:
         f.write(page)

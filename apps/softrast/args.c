@@ -85,6 +85,53 @@ cli_arg_kind cli_arg(const char *arg, bool *ended)
     return CLI_ARG_OPTION;
 }
 
+void cli_split_option(const char *arg, cli_opt *o)
+{
+    const char *eq = strncmp(arg, "--", 2) == 0 ? strchr(arg, '=') : NULL;
+    size_t n = eq ? (size_t)(eq - arg) : strlen(arg);
+    /* A name too long for any option stays whole: it is unknown anyway. */
+    if (n >= sizeof o->name) {
+        n = sizeof o->name - 1;
+        eq = NULL;
+    }
+    memcpy(o->name, arg, n);
+    o->name[n] = '\0';
+    o->value = eq ? eq + 1 : NULL;
+}
+
+const char *cli_option_value(const cli_opt *o, int argc, char **argv, int *i)
+{
+    if (o->value) {
+        return o->value;
+    }
+    if (*i + 1 >= argc) {
+        cli_error("%s: missing value", o->name);
+        return NULL;
+    }
+    return argv[++*i];
+}
+
+bool cli_option_flag(const cli_opt *o)
+{
+    if (o->value) {
+        cli_error("%s: takes no value", o->name);
+        return false;
+    }
+    return true;
+}
+
+int cli_help_option(const cli_opt *o, void (*help)(FILE *))
+{
+    if (strcmp(o->name, "-h") != 0 && strcmp(o->name, "--help") != 0) {
+        return -1;
+    }
+    if (!cli_option_flag(o)) {
+        return EXIT_USAGE;
+    }
+    help(stdout);
+    return EXIT_OK;
+}
+
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out)
 {
     char *end;

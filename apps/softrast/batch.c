@@ -116,6 +116,11 @@ static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *re
         }
         if (!valued[k]) {
             rest[n++] = argv[i];
+            /* A render option's value goes with it, even one that looks
+             * like an option or is "--" (as the render parser takes it). */
+            if (render_opts_takes_value(a) && i + 1 < argc) {
+                rest[n++] = argv[++i];
+            }
             continue;
         }
         const char *value = a[len] == '=' ? a + len + 1 : i + 1 < argc ? argv[++i] : NULL;
@@ -554,6 +559,8 @@ int batch_render(int argc, char **argv)
     }
     if (status < 0) {
         render_opts_warn(&o);   /* once, not once an input */
+        /* One input is read into a frame while the last is drawn in the other. */
+        status = render_opts_check_frames(&o, argv[0], o.width, o.height, 2);
     }
     /* The job's options without the models, which come in the same order. */
     int n = 0;

@@ -167,6 +167,10 @@ int batch_session_open(batch_session *s)
         return EXIT_FAILURE_RUN;
     }
     const char *log = s->opts->log;
+    if (!cli_check_output_name("--log", log) ||
+        !cli_check_output_name("--output-dir", s->opts->output_dir)) {
+        return EXIT_USAGE;
+    }
     struct stat st;
     /* The log is appended to: one of the inputs (by any name) would be
      * left with JSON at its end. */

@@ -8,6 +8,8 @@
 #include "softrast_io.h"
 
 #include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
 
 /* Exit statuses: 2 for bad usage or bad input files, 1 when the work
  * itself fails (out of memory, the output cannot be written). */
@@ -45,6 +47,23 @@ void cli_inputs_free(cli_inputs *in);
 /* Whether two outputs of one run are the same file, written or not yet
  * (one would replace the other). */
 bool cli_same_output(const char *a, const char *b);
+
+/* Whether `output` may name an output file: "" (which the library would
+ * refuse later, without the option's name), "-" (standard output, where
+ * no image is written) and "--" (the end of the options, taken as the
+ * option's value by the getopt rule) are refused after one line naming
+ * opt; any other name, one starting with '-' too, is a file's. */
+bool cli_check_output_name(const char *opt, const char *output);
+
+/* Frame memory (memory_limit.c).  The most a command's frames may take:
+ * SR_MEMORY_LIMIT (bytes, or 512M, 8G...) when set, else the physical
+ * memory, or less under a ulimit; *what names it.  -1, or EXIT_USAGE
+ * after one line when SR_MEMORY_LIMIT is malformed. */
+int cli_memory_limit(uint64_t *bytes, const char **what);
+/* -1 when `need` bytes fit the limit; else EXIT_USAGE after one line
+ * "WHAT needs about N GiB of frame memory, more than the M GiB of
+ * LIMIT: LOWER" (lower says which options make it smaller). */
+int cli_check_memory(const char *what, uint64_t need, const char *lower);
 
 /* Image files (image_out.c): a JPEG when the name ends in .jpg or .jpeg
  * (any case), else a PNG. */
@@ -91,6 +110,25 @@ void cli_capture(char *buf, size_t size);
  * argument) remembers the "--". */
 typedef enum cli_arg_kind { CLI_ARG_OPTION, CLI_ARG_OPERAND, CLI_ARG_END } cli_arg_kind;
 cli_arg_kind cli_arg(const char *arg, bool *ended);
+
+/* An option argument split as getopt_long reads it: "--name=value" into
+ * its name and value (a long option only), else name = arg and no value,
+ * so that every command takes "--name value" and "--name=value" alike. */
+typedef struct cli_opt {
+    char name[64];
+    const char *value;     /* after '=', or NULL */
+} cli_opt;
+void cli_split_option(const char *arg, cli_opt *o);
+/* The option's value: its "=value", else the next argument (*i moves on
+ * to it), whatever it looks like; NULL after one line "NAME: missing
+ * value". */
+const char *cli_option_value(const cli_opt *o, int argc, char **argv, int *i);
+/* An option that takes no value: false after one line "NAME: takes no
+ * value" when it was given one. */
+bool cli_option_flag(const cli_opt *o);
+/* -h or --help: EXIT_OK after help(stdout), or EXIT_USAGE after one line
+ * for --help=VALUE; -1 for another option. */
+int cli_help_option(const cli_opt *o, void (*help)(FILE *));
 
 /* Parsers: return false after printing "softrast render: OPTION: why". */
 bool parse_int(const char *opt, const char *s, int lo, int hi, int *out);

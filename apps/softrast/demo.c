@@ -28,6 +28,16 @@ static void demo_help(FILE *f)
                "                      for a demo whose image would pass 8192 a side)\n");
 }
 
+int demo_check_image(const char *name, int scale, int w, int h)
+{
+    if (w <= SR_MAX_FRAMEBUFFER_SIZE && h <= SR_MAX_FRAMEBUFFER_SIZE) {
+        return EXIT_OK;
+    }
+    cli_error("demo %s: --scale %d makes a %dx%d image, over %d a side: give a smaller "
+              "--scale", name, scale, w, h, SR_MAX_FRAMEBUFFER_SIZE);
+    return EXIT_USAGE;
+}
+
 int cmd_demo(int argc, char **argv)
 {
     const char *name = NULL;
@@ -45,25 +55,23 @@ int cmd_demo(int argc, char **argv)
                 return EXIT_USAGE;
             }
             name = a;
-        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            demo_help(stdout);
-            return EXIT_OK;
-        } else if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
-            if (i + 1 >= argc) {
-                cli_error("%s: missing value", a);
+            continue;
+        }
+        cli_opt opt;
+        cli_split_option(a, &opt);
+        const char *v;
+        int help = cli_help_option(&opt, demo_help);
+        if (help >= 0) {
+            return help;
+        } else if (strcmp(opt.name, "-o") == 0 || strcmp(opt.name, "--output") == 0) {
+            if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
+                !cli_check_output_name(opt.name, v)) {
                 return EXIT_USAGE;
             }
-            args.output = argv[++i];
-            if (!args.output[0]) {
-                cli_error("%s: an empty file name", a);
-                return EXIT_USAGE;
-            }
-        } else if (strcmp(a, "--scale") == 0) {
-            if (i + 1 >= argc) {
-                cli_error("%s: missing value", a);
-                return EXIT_USAGE;
-            }
-            if (!parse_int(a, argv[++i], 1, 32, &args.scale)) {
+            args.output = v;
+        } else if (strcmp(opt.name, "--scale") == 0) {
+            if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
+                !parse_int(opt.name, v, 1, 32, &args.scale)) {
                 return EXIT_USAGE;
             }
         } else {

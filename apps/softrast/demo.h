@@ -56,6 +56,11 @@ extern const demo_entry demo_table[];
  * top-left corner at (x, y), clipped to dst. */
 sr_result demo_paste(sr_context *ctx, sr_framebuffer *dst, const sr_framebuffer *src, int x,
                      int y);
+/* A demo's image of w x h at a magnification of scale: EXIT_OK when it
+ * fits a framebuffer, else EXIT_USAGE after one line that names --scale
+ * (too large a --scale is the user's to change, not a failed run). */
+int demo_check_image(const char *name, int scale, int w, int h);
+
 /* Magnify src into dst at (x, y), each pixel a scale x scale block, with
  * a one-pixel line of the RGBA8 color `grid` on each block's top and left
  * edges when grid is not NULL and scale is at least 4.  The block image

@@ -26,6 +26,9 @@ int demo2d_begin(demo2d *d, sr_context *ctx, const char *name, int cols, int row
     *d = (demo2d){ ctx, name, NULL, NULL, panel_w, panel_h, scale, cols, rows, SR_OK };
     int w = cols * cell_w(d) + (cols + 1) * GAP;
     int h = rows * (cell_h(d) + LABEL_H) + (rows + 1) * GAP;
+    if (demo_check_image(name, scale, w, h) != EXIT_OK) {
+        return EXIT_USAGE;
+    }
     if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = w, .height = h,
                                                          .depth_format = SR_DEPTH_NONE }, &d->out) != SR_OK ||
         sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = panel_w, .height = panel_h,

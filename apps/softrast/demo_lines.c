@@ -64,6 +64,9 @@ int demo_lines(sr_context *ctx, const demo_args *args, sr_framebuffer **out)
     const int width = COLS * cell + (COLS + 1) * GAP;
     const int height = ROWS * (cell + LABEL_H) + (ROWS + 1) * GAP;
     sr_framebuffer *big = NULL, *small = NULL;
+    if (demo_check_image("lines", scale, width, height) != EXIT_OK) {
+        return EXIT_USAGE;
+    }
     if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = width, .height = height,
                                                          .depth_format = SR_DEPTH_NONE }, &big) != SR_OK ||
         sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = PANEL, .height = PANEL,

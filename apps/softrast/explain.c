@@ -525,24 +525,25 @@ int cmd_explain(int argc, char **argv)
             cli_error("explain: takes one ALGORITHM, then options (got '%s' too)", a);
             return EXIT_USAGE;
         }
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return EXIT_OK;
+        cli_opt opt;
+        cli_split_option(a, &opt);
+        int help = cli_help_option(&opt, usage);
+        if (help >= 0) {
+            return help;
         }
-        if (i + 1 >= argc) {
+        const char *given = a;
+        a = opt.name;
+        if (!opt.value && i + 1 >= argc) {
             cli_error("explain: %s: needs a value (try 'softrast explain --help')", a);
             return EXIT_USAGE;
         }
         if (!option_applies(alg->name, a)) {
             return EXIT_USAGE;
         }
-        const char *v = argv[++i];
+        const char *v = cli_option_value(&opt, argc, argv, &i);
         bool ok = true;
-        if (v[0] == '\0' && (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
-                              strcmp(a, "--sheet") == 0 || strcmp(a, "--webp") == 0)) {
-            /* an empty -o would be the directory "" + "/frame-001.png":
-             * the frames written to the root */
-            cli_error("%s: an empty file name", a);
+        if ((strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 || strcmp(a, "--sheet") == 0 ||
+             strcmp(a, "--webp") == 0) && !cli_check_output_name(a, v)) {
             return EXIT_USAGE;
         }
         ex_primitive p = { 0 };
@@ -651,7 +652,7 @@ int cmd_explain(int argc, char **argv)
         } else if (strcmp(a, "--sheet") == 0) {
             sheet = v;
         } else {
-            cli_error("explain: unknown option '%s' (try 'softrast explain --help')", a);
+            cli_error("explain: unknown option '%s' (try 'softrast explain --help')", given);
             return EXIT_USAGE;
         }
         if (!ok) {

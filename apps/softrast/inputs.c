@@ -81,8 +81,32 @@ bool cli_output_is_input(const cli_inputs *in, const char *output, char *why, si
     return hit != NULL;
 }
 
+bool cli_check_output_name(const char *opt, const char *output)
+{
+    if (output && !*output) {
+        cli_error("%s: the file name is empty", opt);
+        return false;
+    }
+    if (output && (strcmp(output, "-") == 0 || strcmp(output, "--") == 0)) {
+        /* opt may be "svg: -o": the option is its last word. */
+        const char *name = strrchr(opt, ' ') ? strrchr(opt, ' ') + 1 : opt;
+        if (output[1]) {
+            cli_error("%s: '--' names no file here (it is the value of %s, not the end of the "
+                      "options); name a file, ./-- for one called '--'", opt, name);
+        } else {
+            cli_error("%s: '-' names no file here (softrast writes nothing to standard "
+                      "output); name a file, ./- for one called '-'", opt);
+        }
+        return false;
+    }
+    return true;
+}
+
 bool cli_check_output(const cli_inputs *in, const char *opt, const char *output)
 {
+    if (!cli_check_output_name(opt, output)) {
+        return false;
+    }
     char why[8400];
     if (cli_output_is_input(in, output, why, sizeof why)) {
         cli_error("%s: %s", opt, why);

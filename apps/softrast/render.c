@@ -928,6 +928,12 @@ void render_job_set_camera(render_job *job, sr_vec3 eye, sr_vec3 target, sr_vec3
     job->o.up = up;
 }
 
+int render_job_check_frames(const render_job *job, const char *cmd, int width, int height,
+                            int frames)
+{
+    return render_opts_check_frames(&job->o, cmd, width, height, frames);
+}
+
 sr_context *render_job_context(const render_job *job)
 {
     return job->ctx;
@@ -1159,6 +1165,13 @@ int cmd_render(int argc, char **argv)
                   o->output);
         render_job_free(job);
         return EXIT_USAGE;
+    }
+
+    /* Refused before anything is allocated, rather than killed for it. */
+    status = render_opts_check_frames(o, argv[0], o->width, o->height, 1);
+    if (status >= 0) {
+        render_job_free(job);
+        return status;
     }
 
     double t0 = now_ms();

@@ -35,6 +35,11 @@ int render_job_load(render_job *job);
  * exit status. */
 int render_job_configure(render_job *job, int argc, char **argv);
 void render_job_free(render_job *job);
+/* render_opts_check_frames with the job's options: -1 when `frames`
+ * frames of width x height fit the memory limit, else the exit status
+ * after one line. */
+int render_job_check_frames(const render_job *job, const char *cmd, int width, int height,
+                            int frames);
 /* Make the contexts and the environment light (--environment) of a job
  * that has no model yet, so that another job can share the light:
  * render_job_load does this itself otherwise.  -1 or an exit status. */

@@ -47,6 +47,31 @@ static const char *const pbr_only[] = { "--tonemap", "--exposure", "--environmen
                                         "--environment-intensity", "--shadows", "--ground",
                                         NULL };
 
+/* The options that take a value: the parser takes the next argument as
+ * it whatever it looks like ("-o --" takes "--" as the output's name, as
+ * getopt would), and the commands that pass render options on (a batch,
+ * the viewer) step over it by this same list. */
+static const char *const valued_options[] = {
+    "-o", "--output", "--size", "--background", "--png-level", "--jpeg-quality", "--shading",
+    "--tonemap", "--exposure", "--environment", "--environment-intensity", "--shadows",
+    "--normals", "--material", "--ambient", "--opacity", "--light", "--texture",
+    "--texture-filter", "--wrap", "--camera", "--fov", "--up", "--turn", "--camera-index",
+    "--near", "--far", "--cull", "--front-face", "--depth-format", "--depth-func",
+    "--projection-interp", "--depth-range", "--clipper", "--line-width", "--point-size",
+    "--line-color", "--polygon-offset", "--aa", "--filter", "--rasterizer", "--threads",
+    "--detail", NULL
+};
+
+bool render_opts_takes_value(const char *arg)
+{
+    for (int k = 0; valued_options[k]; k++) {
+        if (strcmp(arg, valued_options[k]) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
 static void render_help(void)
 {
     printf(
@@ -59,7 +84,9 @@ static void render_help(void)
         "output:\n"
         "  -o, --output FILE        image to write, atomically: a JPEG when FILE ends in\n"
         "                           .jpg or .jpeg, else a PNG (default softrast.png)\n"
-        "  --size WxH               image size, 1..8192 each (default 1280x720)\n"
+        "  --size WxH               image size, 1..8192 each (default 1280x720); refused\n"
+        "                           when its frames (with --aa's samples) need more\n"
+        "                           memory than the machine has or SR_MEMORY_LIMIT allows\n"
         "  --background COLOR       name, #rgb, #rrggbb, R,G,B in 0..1, or a gray level\n"
         "                           in 0..1 (default #1d2230); transparent: a PNG with\n"
         "                           alpha, the model's edges blended into nothing;\n"
@@ -290,15 +317,21 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             value = eq + 1;
             arg = optbuf;
         }
+        /* The value of "--opt value", taken here for every valued option
+         * (so that the list cannot miss one an option below reads). */
+        if (!value && render_opts_takes_value(arg)) {
+            if (i + 1 >= argc) {
+                cli_error("%s: missing value", arg);
+                return EXIT_USAGE;
+            }
+            value = argv[++i];
+        }
 #define IS(name) (strcmp(arg, name) == 0)
 #define VALUE()                                                                     \
     do {                                                                            \
         if (!value) {                                                               \
-            if (i + 1 >= argc) {                                                    \
-                cli_error("%s: missing value", arg);                                \
-                return EXIT_USAGE;                                                  \
-            }                                                                       \
-            value = argv[++i];                                                      \
+            cli_error("%s: missing value", arg);                                    \
+            return EXIT_USAGE;                                                      \
         }                                                                           \
         if (!*value) {                                                              \
             cli_error("%s: empty value", arg);                                      \
@@ -327,6 +360,9 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             return EXIT_OK;
         } else if (IS("-o") || IS("--output")) {
             VALUE();
+            if (!cli_check_output_name(arg, value)) {
+                return EXIT_USAGE;
+            }
             o->output = value;
         } else if (IS("--size")) {
             VALUE();
@@ -586,6 +622,47 @@ void render_opts_warn(const render_opts *o)
         cli_error("warning: --filter has no effect without --aa ssaa2, ssaa3 or ssaa4 "
                   "(it filters SSAA's samples)");
     }
+}
+
+uint64_t render_opts_frame_bytes(const render_opts *o, int width, int height)
+{
+    uint64_t pixels = (uint64_t)width * (uint64_t)height;
+    uint64_t samples = o->ssaa > 1 ? (uint64_t)o->ssaa * (uint64_t)o->ssaa : (uint64_t)o->msaa;
+    uint64_t depth = o->depth_format == SR_DEPTH_D16 ? 2 : 4;
+    /* Every sample's color and depth; the resolved or filtered image;
+     * the image as it is written (its straight-alpha copy, the encoder's
+     * rows); SSAA's filter keeps every sample row filtered to the
+     * output's width, in float RGBA (sr_downsample). */
+    uint64_t filter = o->ssaa > 1 ? pixels * (uint64_t)o->ssaa * 16 : 0;
+    return pixels * samples * (4 + depth) + (samples > 1 ? pixels * 4 : 0) + pixels * 4 + filter;
+}
+
+int render_opts_check_frames(const render_opts *o, const char *cmd, int width, int height,
+                             int frames)
+{
+    char aa[16] = "none";
+    if (o->ssaa > 1 || o->msaa > 1) {
+        snprintf(aa, sizeof aa, "%s%d", o->ssaa > 1 ? "ssaa" : "msaa",
+                 o->ssaa > 1 ? o->ssaa : o->msaa);
+    }
+    long sw = (long)width * o->ssaa, sh = (long)height * o->ssaa;
+    if (sw > SR_MAX_FRAMEBUFFER_SIZE || sh > SR_MAX_FRAMEBUFFER_SIZE) {
+        cli_error("%s: --aa %s at --size %dx%d draws %ldx%ld samples, more than %d a side: "
+                  "give a smaller --size or --aa", cmd, aa, width, height, sw, sh,
+                  SR_MAX_FRAMEBUFFER_SIZE);
+        return EXIT_USAGE;
+    }
+    /* thumbnail.c renders a square of its -s SIZE, with render's --aa. */
+    bool thumb = strcmp(cmd, "thumbnail") == 0;
+    char what[128];
+    if (thumb) {
+        snprintf(what, sizeof what, "thumbnail: -s %d", width);
+    } else {
+        snprintf(what, sizeof what, "%s: --size %dx%d with --aa %s%s", cmd, width, height, aa,
+                 frames > 1 ? " (two frames at once)" : "");
+    }
+    return cli_check_memory(what, render_opts_frame_bytes(o, width, height) * (uint64_t)frames,
+                            thumb ? "give a smaller -s" : "give a smaller --size or --aa");
 }
 
 bool render_opts_image_light(const render_opts *o)

@@ -6,6 +6,7 @@
 #include "softrast.h"
 
 #include <stdbool.h>
+#include <stdint.h>
 
 typedef struct render_opts {
     const char *model;
@@ -96,10 +97,24 @@ render_opts render_opts_defaults(void);
  * after --help). */
 int render_opts_parse(int argc, char **argv, render_opts *o);
 
+/* Whether the render option arg ("--size", not "--size=WxH") takes the
+ * next argument as its value, whatever that looks like. */
+bool render_opts_takes_value(const char *arg);
+
 /* One warning line for each option given that the others make useless
  * (--ground without pbr, --filter without SSAA).  The caller calls it once
  * a command, not once a batch input; the exit status is not changed. */
 void render_opts_warn(const render_opts *o);
+
+/* The memory one frame of width x height takes with these options: its
+ * samples' color and depth, the resolved image and the image written. */
+uint64_t render_opts_frame_bytes(const render_opts *o, int width, int height);
+/* Before any frame is made: -1 when `frames` frames of width x height
+ * fit the memory limit (cli_memory_limit) and the samples fit a
+ * framebuffer, else EXIT_USAGE after one line that starts with cmd and
+ * says how to ask for less. */
+int render_opts_check_frames(const render_opts *o, const char *cmd, int width, int height,
+                             int frames);
 
 /* The options ask for an environment's image-based light (studio or an
  * .hdr file, under pbr, without --ambient) rather than the hemisphere. */

@@ -126,7 +126,6 @@ static int parse_args(int argc, char **argv, svg_args *a)
     bool ended = false;
     for (int i = 1; i < argc; i++) {
         const char *s = argv[i];
-        bool has_value = i + 1 < argc;
         cli_arg_kind kind = cli_arg(s, &ended);
         if (kind == CLI_ARG_END) {
             continue;
@@ -139,19 +138,25 @@ static int parse_args(int argc, char **argv, svg_args *a)
             continue;
         } else if (taken != 0) {
             return taken;
-        } else if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
-            svg_help(stdout);
-            return EXIT_OK;
+        }
+        cli_opt opt;
+        cli_split_option(s, &opt);
+        s = opt.name;
+        int help = cli_help_option(&opt, svg_help);
+        if (help >= 0) {
+            return help;
         } else if (strcmp(s, "-o") == 0 || strcmp(s, "--output") == 0 || strcmp(s, "--size") == 0 ||
                    strcmp(s, "--scale") == 0 || strcmp(s, "--background") == 0 ||
                    strcmp(s, "--threads") == 0) {
-            if (!has_value) {
-                cli_error("svg: %s: missing value", s);
+            const char *v = cli_option_value(&opt, argc, argv, &i);
+            if (!v) {
                 return EXIT_USAGE;
             }
-            const char *v = argv[++i];
             if (s[1] == 'o' || s[2] == 'o') {
                 a->output = v;
+                if (!cli_check_output_name(s, v)) {
+                    return EXIT_USAGE;
+                }
             } else if (strcmp(s, "--size") == 0) {
                 if (!parse_size(s, v, &a->desc.width, &a->desc.height)) {
                     return EXIT_USAGE;
@@ -174,7 +179,7 @@ static int parse_args(int argc, char **argv, svg_args *a)
                 a->desc.background = (sr_rgba){ c.x, c.y, c.z, 1 };
             }
         } else {
-            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", s);
+            cli_error("svg: unknown option '%s' (try 'softrast svg --help')", argv[i]);
             return EXIT_USAGE;
         }
     }
@@ -185,6 +190,14 @@ static int parse_args(int argc, char **argv, svg_args *a)
     if (a->desc.width && a->desc.scale > 0) {
         cli_error("svg: --size and --scale exclude each other");
         return EXIT_USAGE;
+    }
+    if (a->desc.width) {
+        /* The drawing's RGBA and the image as it is written; a size that
+         * comes from the document is the library's to refuse (max_side). */
+        char what[64];
+        snprintf(what, sizeof what, "svg: --size %dx%d", a->desc.width, a->desc.height);
+        return cli_check_memory(what, (uint64_t)a->desc.width * (uint64_t)a->desc.height * 8,
+                                "give a smaller --size");
     }
     return -1;
 }

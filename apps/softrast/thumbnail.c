@@ -101,19 +101,22 @@ int cmd_thumbnail(int argc, char **argv)
             files[nfiles++] = a;
             continue;
         }
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage(stdout);
-            return EXIT_OK;
+        cli_opt opt;
+        cli_split_option(a, &opt);
+        const char *v;
+        int help = cli_help_option(&opt, usage);
+        if (help >= 0) {
+            return help;
         }
-        if (strcmp(a, "-s") == 0 || strcmp(a, "--size") == 0) {
-            if (i + 1 >= argc) {
-                cli_error("thumbnail: %s needs a value", a);
+        if (strcmp(opt.name, "-s") == 0 || strcmp(opt.name, "--size") == 0) {
+            if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
+                !parse_int(opt.name, v, 1, THUMB_MAX_SIZE, &size)) {
                 return EXIT_USAGE;
             }
-            if (!parse_int(a, argv[++i], 1, THUMB_MAX_SIZE, &size)) {
+        } else if (strcmp(opt.name, "--transparent") == 0) {
+            if (!cli_option_flag(&opt)) {
                 return EXIT_USAGE;
             }
-        } else if (strcmp(a, "--transparent") == 0) {
             transparent = true;
         } else {
             cli_error("thumbnail: unknown option '%s' (try 'softrast thumbnail --help')", a);
@@ -126,6 +129,9 @@ int cmd_thumbnail(int argc, char **argv)
     }
     char model[4096], output[4096], size_arg[32];
     if (!input_path(files[0], model, sizeof model)) {
+        return EXIT_USAGE;
+    }
+    if (!cli_check_output_name("thumbnail: OUTPUT", files[1])) {
         return EXIT_USAGE;
     }
     if (strlen(files[1]) + 3 > sizeof output) {

@@ -101,6 +101,7 @@ int cmd_view(int argc, char **argv)
 
 #else /* SR_HAVE_VIEWER */
 
+#include "render_options.h"
 #include "view_sdl.h"
 
 #include <errno.h>
@@ -209,10 +210,12 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
             if (!parse_int(name, value, 1, 10000000, &o->frames)) {
                 return EXIT_USAGE;
             }
-        } else if (strcmp(name, "--screenshot") == 0) {
-            o->screenshot = value;
-        } else if (strcmp(name, "--screenshot-overlay") == 0) {
-            o->window_shot = value;
+        } else if (strcmp(name, "--screenshot") == 0 ||
+                   strcmp(name, "--screenshot-overlay") == 0) {
+            if (!cli_check_output_name(name, value)) {
+                return EXIT_USAGE;
+            }
+            *(name[12] ? &o->window_shot : &o->screenshot) = value;
         } else if (strcmp(name, "--events") == 0) {
             o->events = value;
         } else if (strcmp(name, "--font") == 0) {
@@ -230,8 +233,12 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
             cli_error("view: %s is a 'softrast render' option (use --screenshot FILE, --log)",
                       name);
             return EXIT_USAGE;
-        } else if (o->argc < MAX_ARGS - 64) {
+        } else if (o->argc < MAX_ARGS - 65) {
             o->argv[o->argc++] = argv[i];   /* a render option: render_options.c parses it */
+            /* with its value, even one that looks like an option or is "--" */
+            if (!value && render_opts_takes_value(name) && i + 1 < argc) {
+                o->argv[o->argc++] = argv[++i];
+            }
         } else {
             cli_error("view: too many arguments");
             return EXIT_USAGE;
@@ -701,6 +708,26 @@ static void loop(viewer *v)
     }
 }
 
+/* render's warnings of options that have no effect, said once at the
+ * start as render says them: of the user's own options, since the mode
+ * table's always name an SSAA filter (and the keys may change the
+ * shading later, when the warning no longer holds).  Those options parse,
+ * as the job's did with them. */
+static void warn_no_effect(const viewer *v)
+{
+    const char *argv[MAX_ARGS];
+    int n = operand_args(v, argv, v->o.argc);
+    memcpy(argv, v->o.argv, (size_t)v->o.argc * sizeof *argv);
+    render_opts o = render_opts_defaults();
+    char held[512];
+    cli_capture(held, sizeof held);
+    int status = render_opts_parse(n, (char **)argv, &o);
+    cli_capture(NULL, 0);
+    if (status < 0) {
+        render_opts_warn(&o);
+    }
+}
+
 int cmd_view(int argc, char **argv)
 {
     viewer *v = calloc(1, sizeof *v);
@@ -728,6 +755,11 @@ int cmd_view(int argc, char **argv)
     const char *args[MAX_ARGS];
     int n = current_args(v, args);
     status = render_job_parse(n, (char **)args, &v->job);
+    if (status < 0) {
+        warn_no_effect(v);
+        /* Two frames: one drawn while the other is shown. */
+        status = render_job_check_frames(v->job, "view", v->o.width, v->o.height, 2);
+    }
     if (status < 0) {
         status = render_job_load(v->job);
     }

@@ -120,7 +120,9 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
     Raises
     ------
     ValueError
-        A malformed document, a reference cycle, an image side outside
+        A malformed document, a reference cycle, a root with a zero or
+        negative width, height or viewBox size (SVG draws nothing of it,
+        whatever ``width`` and ``height`` ask for), an image side outside
         1..8192 (SR_MAX_FRAMEBUFFER_SIZE) or work past the reader's
         budgets, with the library's message ``"NAME:LINE: what is wrong"``
         (NAME is the path as given, or ``<svg>`` for a document in

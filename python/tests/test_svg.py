@@ -224,6 +224,21 @@ def test_absurd_sizes_are_refused(doc, kw):
         softrast.render_svg(doc, **kw)
 
 
+@pytest.mark.parametrize("attrs, want", [
+    ('width="0" height="10"', 'width="0" disables rendering'),
+    ('width="10" height="0"', 'height="0" disables rendering'),
+    ('viewBox="0 0 0 0"', 'viewBox="0 0 0 0" disables rendering'),
+    ('width="-5" height="10"', 'width="-5" is negative'),
+])
+@pytest.mark.parametrize("kw", [{}, dict(width=16, height=16)])
+def test_zero_and_negative_sizes_are_refused(attrs, want, kw):
+    # SVG draws nothing of a zero size: no blank image, even of a size asked for.
+    doc = ('<svg xmlns="http://www.w3.org/2000/svg" %s><rect width="5" height="5"/></svg>'
+           % attrs).encode()
+    with pytest.raises(ValueError, match=r"^<svg>:1: " + want):
+        softrast.render_svg(doc, **kw)
+
+
 def test_missing_and_unreadable_files(tmp_path):
     missing = tmp_path / "missing.svg"
     with pytest.raises(FileNotFoundError) as e:

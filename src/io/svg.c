@@ -1797,7 +1797,8 @@ static bool shape_path(svg_doc *doc, const frame *f, const char *name, const cha
 
 /* ---- the root element --------------------------------------------------------------- */
 
-static bool parse_viewbox(const char *s, double vb[4])
+/* viewBox's four numbers, whatever their values. */
+static bool parse_viewbox_numbers(const char *s, double vb[4])
 {
     s = svg_skip_ws(s);
     for (int i = 0; i < 4; i++) {
@@ -1806,7 +1807,12 @@ static bool parse_viewbox(const char *s, double vb[4])
         }
         s = svg_skip_ws_comma(s);
     }
-    return *s == 0 && vb[2] > 0 && vb[3] > 0;
+    return *s == 0;
+}
+
+static bool parse_viewbox(const char *s, double vb[4])
+{
+    return parse_viewbox_numbers(s, vb) && vb[2] > 0 && vb[3] > 0;
 }
 
 /* preserveAspectRatio: align x, y in {0, 0.5, 1} (-1: none), slice. */
@@ -1881,14 +1887,26 @@ static mat2d viewbox_matrix(svg_doc *doc, const char **atts, const double vb[4],
 
 /* A root svg's viewBox (its width and height when it has none) and its
  * intrinsic size: width and height, else the viewBox's, else 300 x 150.
- * False after reporting a malformed one. */
-static bool intrinsic_size(svg_doc *doc, const char **atts, double vb[4], double *pw,
-                           double *ph)
+ * False after reporting a malformed one, a negative size (an error in
+ * SVG) or a zero one: SVG draws nothing for a zero width, height or
+ * viewBox size, and an image of nothing, of any size, would hide that
+ * (rsvg-convert refuses such a document, whatever size it is asked for).
+ * The document of an <image> with a zero size is no error: false, and
+ * nothing reported, draws nothing in its place. */
+static bool intrinsic_size(svg_doc *doc, const char **atts, bool image, double vb[4],
+                           double *pw, double *ph)
 {
     const char *vbs = attr(atts, "viewBox");
     bool have_vb = vbs && parse_viewbox(vbs, vb);
     if (vbs && !have_vb) {
-        svg_fail(doc, SR_BAD_FORMAT, "viewBox=\"%s\" needs four numbers with width, height > 0", vbs);
+        bool zero = parse_viewbox_numbers(vbs, vb) && vb[2] >= 0 && vb[3] >= 0;
+        if (zero && image) {
+            return false;
+        }
+        svg_fail(doc, SR_BAD_FORMAT,
+                 zero ? "viewBox=\"%s\" disables rendering (SVG draws nothing of a zero %s)"
+                      : "viewBox=\"%s\" needs four numbers with width, height > 0",
+                 vbs, zero && vb[2] == 0 ? "width" : "height");
         return false;
     }
     double w = 0, h = 0;
@@ -1902,10 +1920,30 @@ static bool intrinsic_size(svg_doc *doc, const char **atts, double vb[4], double
         svg_fail(doc, SR_BAD_FORMAT, "height=\"%s\" is not a length", hs);
         return false;
     }
-    if (!ws || wp || w <= 0) {
+    /* A percentage of the root's viewport is no size of its own: the
+     * viewBox's stands in (0% as well, as rsvg-convert reads it). */
+    for (int k = 0; k < 2; k++) {
+        const char *s = k ? hs : ws;
+        double v = k ? h : w;
+        if (s && (v < 0 || (v == 0 && !(k ? hp : wp)))) {
+            if (v == 0 && image) {
+                return false;
+            }
+            const char *name = k ? "height" : "width";
+            if (v < 0) {
+                svg_fail(doc, SR_BAD_FORMAT, "%s=\"%s\" is negative, an error in SVG", name, s);
+            } else {
+                svg_fail(doc, SR_BAD_FORMAT,
+                         "%s=\"%s\" disables rendering (SVG draws nothing of a zero %s)", name,
+                         s, name);
+            }
+            return false;
+        }
+    }
+    if (!ws || wp) {
         w = have_vb ? vb[2] : 300;
     }
-    if (!hs || hp || h <= 0) {
+    if (!hs || hp) {
         h = have_vb ? vb[3] : 150;
     }
     if (!have_vb) {
@@ -1921,7 +1959,7 @@ static bool intrinsic_size(svg_doc *doc, const char **atts, double vb[4], double
 static bool root_element(svg_doc *doc, const char **atts, frame *f)
 {
     double vb[4], w, h;
-    if (!intrinsic_size(doc, atts, vb, &w, &h)) {
+    if (!intrinsic_size(doc, atts, false, vb, &w, &h)) {
         return false;
     }
     const sr_svg_desc *opt = doc->opt;
@@ -2704,7 +2742,7 @@ static void draw_document_image(svg_doc *doc, svg_doc *in, const svg_node *node,
 {
     double vb[4], iw, ih, vp[4];
     in->line = in->root->line;
-    if (!intrinsic_size(in, in->root->atts, vb, &iw, &ih) ||
+    if (!intrinsic_size(in, in->root->atts, true, vb, &iw, &ih) ||
         !image_viewport(doc, node, f, iw, ih, vp) || !(vp[2] > 0 && vp[3] > 0)) {
         return;
     }
