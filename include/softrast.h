@@ -258,7 +258,10 @@
  * Errors: every function that can fail returns an sr_result.  SR_OK is 0.
  * Invalid arguments give SR_INVALID_ARG and a message naming the field,
  * available from sr_context_error(ctx) until the next call on that context.
- * Nothing is drawn by a call that fails validation.
+ * Nothing is drawn by a call that fails validation.  A caller's image of
+ * rows `stride` bytes apart (pixels, depth, masks, texels) must be
+ * addressable: a stride so large that its last row would lie past the
+ * end of memory is SR_INVALID_ARG too, before any byte is touched.
  *
  * Memory: every allocation this library makes goes through
  * sr_context_desc.allocator, meshes included (softrast_io.h says which of

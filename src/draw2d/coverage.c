@@ -5,6 +5,7 @@
  * any thread that owns the framebuffer may call it. */
 #include "context.h"
 #include "draw2d/paint.h"
+#include "rows.h"
 
 sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
                            const uint8_t *mask, size_t stride, sr_rgba color)
@@ -22,6 +23,10 @@ sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, in
     }
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < width %d", fn, stride, w);
+    }
+    if (!sr__rows_fit(mask, (size_t)h, stride, (size_t)w)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %d rows of stride %zu run past the end of memory",
+                        fn, h, stride);
     }
     sr__paint paint;
     if (!sr__paint_init(&paint, color, false)) {

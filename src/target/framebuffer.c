@@ -6,6 +6,7 @@
 #include "fragment/depth.h"
 #include "raster/fixed.h"
 #include "pipeline.h"
+#include "rows.h"
 
 #include <math.h>
 #include <string.h>
@@ -729,6 +730,10 @@ static sr_result check_rgba_rect(sr_context *ctx, const char *fn, const sr_frame
     if (r == SR_OK && stride < (size_t)w * 4) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < 4 * width", fn, stride);
     }
+    if (r == SR_OK && !sr__rows_fit(pixels, (size_t)h, stride, (size_t)w * 4)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %d rows of stride %zu run past the end of memory",
+                        fn, h, stride);
+    }
     return r;
 }
 
@@ -820,6 +825,12 @@ sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_read_depth: stride %zu < width", stride);
     }
+    if (stride > SIZE_MAX / sizeof(float) ||
+        !sr__rows_fit(out, (size_t)h, stride * sizeof(float), (size_t)w * sizeof(float))) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_read_depth: %d rows of stride %zu floats run past the end of memory",
+                        h, stride);
+    }
     sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_DEPTH);
     for (int row = 0; row < h; row++) {
         for (int col = 0; col < w; col++) {
@@ -849,6 +860,11 @@ sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
     }
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_read_stencil: stride %zu < width", stride);
+    }
+    if (!sr__rows_fit(out, (size_t)h, stride, (size_t)w)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_read_stencil: %d rows of stride %zu run past the end of memory", h,
+                        stride);
     }
     sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_STENCIL);
     for (int row = 0; row < h; row++) {
