@@ -571,7 +571,9 @@ SR_API sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
  * of panels, a magnified cell).  Pending clears of the rest of the
  * framebuffer still happen; a multisampled framebuffer takes each pixel's
  * value in all its samples, so sr_read_pixels gives the same bytes back.
- * Depth and stencil are left as they are. */
+ * Depth and stencil are left as they are.  rgba may be
+ * sr_framebuffer_pixels(fb) itself (a rectangle moved within the image):
+ * the pixels are read as they were before the call. */
 SR_API sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
                                  const uint8_t *rgba, size_t stride);
 /* Copy depth values out as floats in [0, 1] (dequantized); multisampled:
@@ -1370,7 +1372,8 @@ typedef struct sr_buffer sr_buffer;
 SR_API sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
 SR_API void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as
- * glBufferSubData: the range must lie inside it. */
+ * glBufferSubData: the range must lie inside it.  data may point into
+ * the buffer itself (the bytes move as memmove moves them). */
 SR_API sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const void *data,
                                   size_t bytes);
 SR_API void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
@@ -1506,7 +1509,7 @@ SR_API sr_result sr_mesh_compute_tangents(sr_context *ctx, const sr_mesh *mesh, 
  * over what is behind it must be drawn after it, so see-through surfaces
  * go back to front.  sr_sort_back_to_front writes the triangles of
  * indices[0 .. 3 triangle_count) into out (the caller's, as many
- * indices) farthest first by the eye-space depth of their centroid
+ * indices; it may be indices itself, to sort in place) farthest first by the eye-space depth of their centroid
  * (model_view takes positions to an eye looking down -z), equal depths
  * in their first order; sr_mean_view_depth gives the mean eye-space
  * distance (-z) of the corners of those triangles, and

@@ -464,6 +464,32 @@ SR_TEST(strides_that_wrap_the_address_space_are_refused)
     fixture_free(&f);
 }
 
+SR_TEST(write_pixels_may_move_a_rectangle_within_the_framebuffer)
+{
+    fixture f = fixture_make();
+    uint8_t img[FW * FH * 4], want[FW * FH * 4];
+    for (size_t i = 0; i < sizeof img; i++) {
+        img[i] = (uint8_t)(i * 7 + i / 32);
+    }
+    REQUIRE(sr_write_pixels(f.ctx, f.fb, 0, 0, FW, FH, img, FW * 4) == SR_OK);
+    /* Down one row and right one column, from the framebuffer's own pixels:
+     * every pixel takes the value it had before the call. */
+    memcpy(want, img, sizeof want);
+    for (int y = 1; y < FH; y++) {
+        memcpy(want + (y * FW + 1) * 4, img + ((y - 1) * FW) * 4, (FW - 1) * 4);
+    }
+    const uint8_t *own = sr_framebuffer_pixels(f.fb);
+    REQUIRE(sr_write_pixels(f.ctx, f.fb, 1, 1, FW - 1, FH - 1, own, FW * 4) == SR_OK);
+    CHECK(memcmp(sr_framebuffer_pixels(f.fb), want, sizeof want) == 0);
+    /* And back up: the other direction of overlap. */
+    own = sr_framebuffer_pixels(f.fb);
+    REQUIRE(sr_write_pixels(f.ctx, f.fb, 0, 0, FW - 1, FH - 1, own + (FW + 1) * 4, FW * 4) == SR_OK);
+    for (int y = 0; y < FH - 1; y++) {
+        CHECK(memcmp(sr_framebuffer_pixels(f.fb) + y * FW * 4, img + y * FW * 4, (FW - 1) * 4) == 0);
+    }
+    fixture_free(&f);
+}
+
 static void *only_alloc(size_t n, void *user)
 {
     (void)user;

@@ -766,6 +766,27 @@ sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int
     if (r != SR_OK) {
         return r;
     }
+    /* The source may be the framebuffer's own pixels (sr_framebuffer_pixels
+     * of a single-sampled one is its color buffer): rows copied in place
+     * would then read rows already overwritten, so such a source is read
+     * from a copy. */
+    size_t row_bytes = (size_t)w * 4, span = (size_t)(h - 1) * stride + row_bytes;
+    size_t row_words = (size_t)fb->width * (size_t)fb->samples;
+    const uint8_t *image = (const uint8_t *)(fb->color + (size_t)fb->row0 * row_words);
+    size_t image_bytes = (size_t)(fb->row1 - fb->row0) * row_words * 4;
+    uint8_t *copy = NULL;
+    if ((uintptr_t)rgba < (uintptr_t)image + image_bytes &&
+        (uintptr_t)image < (uintptr_t)rgba + span) {
+        copy = sr__alloc(ctx, row_bytes * (size_t)h);
+        if (!copy) {
+            return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_write_pixels: out of memory");
+        }
+        for (int row = 0; row < h; row++) {
+            memcpy(copy + (size_t)row * row_bytes, rgba + (size_t)row * stride, row_bytes);
+        }
+        rgba = copy;
+        stride = row_bytes;
+    }
     /* The tiles under the rectangle: their pending clears are carried out
      * first (the rest of each tile still gets the cleared values), they no
      * longer hold only the clear color, and the rectangle joins what was
@@ -805,6 +826,7 @@ sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int
             }
         }
     }
+    sr__free(ctx, copy);
     sr__ok(ctx);
     return SR_OK;
 }
