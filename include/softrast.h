@@ -1480,7 +1480,11 @@ typedef struct sr_mesh {
 
 /* A mesh on ctx holding copies of src's arrays, strings and parts (src
  * stays the caller's): how a program hands its own geometry to the mesh
- * functions. */
+ * functions.  SR_INVALID_ARG (out zeroed, src untouched) for NULL, out ==
+ * src, an array missing that a count needs, an index >= vertex_count, a
+ * texture_size without texture_data, or parts that are not runs covering
+ * every triangle in order; SR_TOO_LARGE for counts whose arrays would
+ * overflow size_t (checked before any element is read). */
 SR_API sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out);
 /* Frees the mesh's arrays and zeroes *mesh (the struct itself is the
  * caller's).  Every mesh function takes the context the mesh was made on. */
