@@ -445,7 +445,8 @@ typedef struct sr_context_desc {
      * scratch) take their memory from these arena_size bytes and from
      * nowhere else, and a request the arena cannot meet fails with
      * SR_OUT_OF_MEMORY.  The memory must outlive the context; it needs no
-     * alignment.  An arena is not locked, so such a context has one
+     * alignment (an arena_size that would run past the end of memory is
+     * SR_INVALID_ARG).  An arena is not locked, so such a context has one
      * thread (threads 0 or 1) and excludes `allocator`.  Its indexed
      * draws transform their vertices into a window of 128 at a time
      * (as every context of the embedded profile does), so that the draw

@@ -514,6 +514,12 @@ SR_TEST(invalid_context_descs_are_rejected)
                  SR_INVALID_ARG);
         CHECK(ctx == NULL);
     }
+    /* An arena that would run past the end of memory describes no memory. */
+    static uint8_t arena[4096];
+    ctx = (sr_context *)&ctx;
+    CHECK_EQ(sr_make_context(&(sr_context_desc){ .arena = arena, .arena_size = SIZE_MAX }, &ctx),
+             SR_INVALID_ARG);
+    CHECK(ctx == NULL);
     CHECK_EQ(sr_make_context(&(sr_context_desc){ .batch_primitives = SR_BATCH_MIN }, &ctx), SR_OK);
     sr_destroy_context(ctx);
     /* NULL desc means all defaults. */
