@@ -1222,7 +1222,11 @@ typedef struct sr_state {
  * except flat shading and trilinear filtering, which take their face
  * normal and level of detail from the quad: within rounding).  sr_draw
  * keeps its specialized fast paths for the built-ins themselves; these
- * are the same models to start a program from (docs/shaders.md). */
+ * are the same models to start a program from (docs/shaders.md).
+ * SR_INVALID_ARG for a state sr_draw would refuse (an unknown light type,
+ * a NaN material, ...), one that already has a program or whose shading
+ * has no program form (SR_SHADING_ATTRIBUTE), and a matrix with a NaN or
+ * infinite entry (NULL ones are the identity). */
 typedef struct sr_builtin sr_builtin;
 SR_API sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state,
                                          const sr_mat4 *model, const sr_mat4 *view,
