@@ -713,7 +713,7 @@ typedef struct sr_tonemap_desc {
  * exposure, tone curve, then the exact piecewise sRGB OETF rounded to the
  * nearest code (sr_srgb_encode8).  NaN and negative values become 0, +inf
  * the brightest white; alpha is clamped to [0, 1] and scaled, not
- * encoded.  `pixels` and `out` must not overlap.  desc may be NULL (the
+ * encoded.  `pixels` and `out` must not overlap (SR_INVALID_ARG).  desc may be NULL (the
  * defaults).  Rows run on the context's threads; the bytes are the same
  * for any thread count. */
 SR_API sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height, size_t stride,
@@ -1265,7 +1265,7 @@ typedef struct sr_pbr_desc {
                                         * must outlive the program */
     const sr_mat4 *model;              /* object -> world; NULL -> identity */
     const sr_mat4 *view;               /* world -> eye;    NULL -> identity */
-    const sr_mat4 *projection;         /* NULL -> identity */
+    const sr_mat4 *projection;         /* NULL -> identity; all three finite */
     /* Punctual lights in world space (KHR_lights_punctual): radiance
      * color x intensity (sr_light's zero defaults: white, 1); point lights
      * fall off with the inverse square of the distance. */

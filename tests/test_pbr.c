@@ -600,6 +600,11 @@ SR_TEST(bad_descs_are_refused)
     CHECK(p == NULL);
     CHECK_STR_CONTAINS(sr_context_error(ctx), "exposure");
     CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .tonemap = 9 }, &p), SR_INVALID_ARG);
+    sr_mat4 inf_model = sr_mat4_identity();
+    inf_model.m[0] = INFINITY;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .model = &inf_model }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_pbr_desc.model has a NaN or infinite entry");
+    CHECK(p == NULL);
     CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .tangents = (const float *)&p }, &p),
              SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(ctx), "vertex_count");
