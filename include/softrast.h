@@ -340,6 +340,9 @@ SR_API const char *sr_result_text(sr_result r); /* "allocation failed" */
 typedef struct sr_vec3 { float x, y, z; } sr_vec3;
 typedef struct sr_vec4 { float x, y, z, w; } sr_vec4;
 typedef struct sr_mat4 { float m[16]; } sr_mat4; /* column-major */
+/* A NULL matrix (or camera basis) argument is the identity, as a NULL
+ * sr_draw_desc.model is; a NULL output makes a bool function return
+ * false. */
 
 SR_API sr_vec3 sr_vec3_make(float x, float y, float z);
 SR_API sr_vec3 sr_vec3_add(sr_vec3 a, sr_vec3 b);
