@@ -2198,7 +2198,9 @@ SR_API sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, 
 /* Clip the segment *a-*b to the closed rectangle [rmin.x, rmax.x] x
  * [rmin.y, rmax.y], moving the endpoints onto its border.  Returns false
  * (points unchanged) when no part of it is inside, or when a coordinate
- * is not finite or the rectangle is empty. */
+ * is not finite or the rectangle is empty.  The ends it moves are finite
+ * for any finite input, however far apart (to a double's precision at
+ * that scale). */
 SR_API bool sr_clip_line_cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
 SR_API bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
 
