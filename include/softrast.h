@@ -1727,7 +1727,9 @@ SR_API sr_result sr_shadow_visibility4(const sr_shadow_map *sm, const float *pos
  * light does not come from above).  `state` gives the depth test and the
  * rest; its program, cull, depth writes and blending are replaced.  Draw
  * it after the opaque objects, whose depth hides the ground behind them,
- * and before translucent ones. */
+ * and before translucent ones.  SR_INVALID_ARG, whether or not anything
+ * would be drawn, for a state sr_draw would refuse, a zero or non-finite
+ * direction, bounds with min > max, or a non-finite view or projection. */
 typedef struct sr_shadow_catcher_desc {
     const sr_mesh *ground;           /* required: a +Y-up sr_make_ground_mesh square */
     const sr_shadow_map *map;        /* required: drawn for this frame */
