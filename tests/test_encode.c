@@ -149,6 +149,8 @@ SR_TEST(encoders_check_their_arguments)
      * buffer: refused before a byte is read. */
     CHECK_EQ(sr_encode_png(sink_write, &s, 2, 2, px, SIZE_MAX, NULL, &err), SR_INVALID_ARG);
     CHECK_STR_CONTAINS(err.message, "<memory>: 2 rows of stride");
+    /* A span past PTRDIFF_MAX is no object either, wrapped or not. */
+    CHECK_EQ(sr_encode_png(sink_write, &s, 2, 2, px, SIZE_MAX / 2, NULL, &err), SR_INVALID_ARG);
     if (sr_io_have_jpeg()) {
         CHECK_EQ(sr_encode_jpeg(sink_write, &s, 2, 2, px, SIZE_MAX, NULL, &err), SR_INVALID_ARG);
         CHECK_STR_CONTAINS(err.message, "<memory>: 2 rows of stride");

@@ -424,6 +424,7 @@ SR_TEST(strides_that_wrap_the_address_space_are_refused)
     CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_read_pixels: 2 rows of stride");
     CHECK_EQ(sr_read_pixels(f.ctx, f.fb, 0, 0, 2, FH, g.buf, SIZE_MAX / 4), SR_INVALID_ARG);
     CHECK_EQ(sr_write_pixels(f.ctx, f.fb, 0, 0, 2, 2, g.buf, SIZE_MAX), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_pixels(f.ctx, f.fb, 0, 0, 2, 2, g.buf, SIZE_MAX / 2), SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_write_pixels: 2 rows of stride");
     /* SIZE_MAX / 4 floats is SIZE_MAX - 3 bytes: row 1 one float before. */
     CHECK_EQ(sr_read_depth(f.ctx, f.fb, 0, 0, 2, 2, (float *)(void *)g.buf, SIZE_MAX / 4),
