@@ -1321,8 +1321,9 @@ SR_API sr_pbr_material sr_pbr_default_material(void);
  * each intensity (zero -> 1) times SR_PBR_LIGHT_SCALE, so that a white
  * surface facing the key light looks about as bright as the Blinn-Phong
  * models show it; and its hemisphere: sky (0.16, 0.165, 0.18) over ground
- * (0.05, 0.048, 0.045).  SR_INVALID_ARG for NULL or a light with a
- * non-finite vector, color or intensity. */
+ * (0.05, 0.048, 0.045).  SR_INVALID_ARG (desc untouched) for NULL or a
+ * light whose type is not an sr_light_type or whose vector, color or
+ * intensity is not finite. */
 #define SR_DEFAULT_LIGHT_COUNT 3
 #define SR_PBR_LIGHT_SCALE 1.6f
 /* softrast render's shadow of the key light (docs/shadows.md): an
