@@ -259,7 +259,10 @@
  * Errors: every function that can fail returns an sr_result.  SR_OK is 0.
  * Invalid arguments give SR_INVALID_ARG and a message naming the field,
  * available from sr_context_error(ctx) until the next call on that context.
- * Nothing is drawn by a call that fails validation.
+ * Nothing is drawn by a call that fails validation.  A caller's image of
+ * rows `stride` bytes apart (pixels, depth, masks, texels) must be
+ * addressable: a stride so large that its last row would lie past the
+ * end of memory is SR_INVALID_ARG too, before any byte is touched.
  *
  * Memory: every allocation this library makes goes through
  * sr_context_desc.allocator, meshes included (softrast_io.h says which of
@@ -338,6 +341,9 @@ SR_API const char *sr_result_text(sr_result r); /* "allocation failed" */
 typedef struct sr_vec3 { float x, y, z; } sr_vec3;
 typedef struct sr_vec4 { float x, y, z, w; } sr_vec4;
 typedef struct sr_mat4 { float m[16]; } sr_mat4; /* column-major */
+/* A NULL matrix (or camera basis) argument is the identity, as a NULL
+ * sr_draw_desc.model is; a NULL output makes a bool function return
+ * false. */
 
 SR_API sr_vec3 sr_vec3_make(float x, float y, float z);
 SR_API sr_vec3 sr_vec3_add(sr_vec3 a, sr_vec3 b);
@@ -443,7 +449,8 @@ typedef struct sr_context_desc {
      * scratch) take their memory from these arena_size bytes and from
      * nowhere else, and a request the arena cannot meet fails with
      * SR_OUT_OF_MEMORY.  The memory must outlive the context; it needs no
-     * alignment.  An arena is not locked, so such a context has one
+     * alignment (an arena_size that would run past the end of memory is
+     * SR_INVALID_ARG).  An arena is not locked, so such a context has one
      * thread (threads 0 or 1) and excludes `allocator`.  Its indexed
      * draws transform their vertices into a window of 128 at a time
      * (as every context of the embedded profile does), so that the draw
@@ -569,7 +576,9 @@ SR_API sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
  * of panels, a magnified cell).  Pending clears of the rest of the
  * framebuffer still happen; a multisampled framebuffer takes each pixel's
  * value in all its samples, so sr_read_pixels gives the same bytes back.
- * Depth and stencil are left as they are. */
+ * Depth and stencil are left as they are.  rgba may be
+ * sr_framebuffer_pixels(fb) itself (a rectangle moved within the image):
+ * the pixels are read as they were before the call. */
 SR_API sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w, int h,
                                  const uint8_t *rgba, size_t stride);
 /* Copy depth values out as floats in [0, 1] (dequantized); multisampled:
@@ -708,7 +717,7 @@ typedef struct sr_tonemap_desc {
  * exposure, tone curve, then the exact piecewise sRGB OETF rounded to the
  * nearest code (sr_srgb_encode8).  NaN and negative values become 0, +inf
  * the brightest white; alpha is clamped to [0, 1] and scaled, not
- * encoded.  `pixels` and `out` must not overlap.  desc may be NULL (the
+ * encoded.  `pixels` and `out` must not overlap (SR_INVALID_ARG).  desc may be NULL (the
  * defaults).  Rows run on the context's threads; the bytes are the same
  * for any thread count. */
 SR_API sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height, size_t stride,
@@ -1217,7 +1226,11 @@ typedef struct sr_state {
  * except flat shading and trilinear filtering, which take their face
  * normal and level of detail from the quad: within rounding).  sr_draw
  * keeps its specialized fast paths for the built-ins themselves; these
- * are the same models to start a program from (docs/shaders.md). */
+ * are the same models to start a program from (docs/shaders.md).
+ * SR_INVALID_ARG for a state sr_draw would refuse (an unknown light type,
+ * a NaN material, ...), one that already has a program or whose shading
+ * has no program form (SR_SHADING_ATTRIBUTE), and a matrix with a NaN or
+ * infinite entry (NULL ones are the identity). */
 typedef struct sr_builtin sr_builtin;
 SR_API sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state,
                                          const sr_mat4 *model, const sr_mat4 *view,
@@ -1256,7 +1269,7 @@ typedef struct sr_pbr_desc {
                                         * must outlive the program */
     const sr_mat4 *model;              /* object -> world; NULL -> identity */
     const sr_mat4 *view;               /* world -> eye;    NULL -> identity */
-    const sr_mat4 *projection;         /* NULL -> identity */
+    const sr_mat4 *projection;         /* NULL -> identity; all three finite */
     /* Punctual lights in world space (KHR_lights_punctual): radiance
      * color x intensity (sr_light's zero defaults: white, 1); point lights
      * fall off with the inverse square of the distance. */
@@ -1309,8 +1322,9 @@ SR_API sr_pbr_material sr_pbr_default_material(void);
  * each intensity (zero -> 1) times SR_PBR_LIGHT_SCALE, so that a white
  * surface facing the key light looks about as bright as the Blinn-Phong
  * models show it; and its hemisphere: sky (0.16, 0.165, 0.18) over ground
- * (0.05, 0.048, 0.045).  SR_INVALID_ARG for NULL or a light with a
- * non-finite vector, color or intensity. */
+ * (0.05, 0.048, 0.045).  SR_INVALID_ARG (desc untouched) for NULL or a
+ * light whose type is not an sr_light_type or whose vector, color or
+ * intensity is not finite. */
 #define SR_DEFAULT_LIGHT_COUNT 3
 #define SR_PBR_LIGHT_SCALE 1.6f
 /* softrast render's shadow of the key light (docs/shadows.md): an
@@ -1368,7 +1382,8 @@ typedef struct sr_buffer sr_buffer;
 SR_API sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out);
 SR_API void sr_destroy_buffer(sr_context *ctx, sr_buffer *buf);
 /* Copies `bytes` bytes from data to offset `offset` of the buffer, as
- * glBufferSubData: the range must lie inside it. */
+ * glBufferSubData: the range must lie inside it.  data may point into
+ * the buffer itself (the bytes move as memmove moves them). */
 SR_API sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const void *data,
                                   size_t bytes);
 SR_API void *sr_buffer_data(sr_buffer *buf);       /* NULL for a NULL buffer */
@@ -1475,7 +1490,11 @@ typedef struct sr_mesh {
 
 /* A mesh on ctx holding copies of src's arrays, strings and parts (src
  * stays the caller's): how a program hands its own geometry to the mesh
- * functions. */
+ * functions.  SR_INVALID_ARG (out zeroed, src untouched) for NULL, out ==
+ * src, an array missing that a count needs, an index >= vertex_count, a
+ * texture_size without texture_data, or parts that are not runs covering
+ * every triangle in order; SR_TOO_LARGE for counts whose arrays would
+ * overflow size_t (checked before any element is read). */
 SR_API sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out);
 /* Frees the mesh's arrays and zeroes *mesh (the struct itself is the
  * caller's).  Every mesh function takes the context the mesh was made on. */
@@ -1504,7 +1523,7 @@ SR_API sr_result sr_mesh_compute_tangents(sr_context *ctx, const sr_mesh *mesh, 
  * over what is behind it must be drawn after it, so see-through surfaces
  * go back to front.  sr_sort_back_to_front writes the triangles of
  * indices[0 .. 3 triangle_count) into out (the caller's, as many
- * indices) farthest first by the eye-space depth of their centroid
+ * indices; it may be indices itself, to sort in place) farthest first by the eye-space depth of their centroid
  * (model_view takes positions to an eye looking down -z), equal depths
  * in their first order; sr_mean_view_depth gives the mean eye-space
  * distance (-z) of the corners of those triangles, and
@@ -1710,7 +1729,9 @@ SR_API sr_result sr_shadow_visibility4(const sr_shadow_map *sm, const float *pos
  * light does not come from above).  `state` gives the depth test and the
  * rest; its program, cull, depth writes and blending are replaced.  Draw
  * it after the opaque objects, whose depth hides the ground behind them,
- * and before translucent ones. */
+ * and before translucent ones.  SR_INVALID_ARG, whether or not anything
+ * would be drawn, for a state sr_draw would refuse, a zero or non-finite
+ * direction, bounds with min > max, or a non-finite view or projection. */
 typedef struct sr_shadow_catcher_desc {
     const sr_mesh *ground;           /* required: a +Y-up sr_make_ground_mesh square */
     const sr_shadow_map *map;        /* required: drawn for this frame */
@@ -2199,7 +2220,9 @@ SR_API sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, 
 /* Clip the segment *a-*b to the closed rectangle [rmin.x, rmax.x] x
  * [rmin.y, rmax.y], moving the endpoints onto its border.  Returns false
  * (points unchanged) when no part of it is inside, or when a coordinate
- * is not finite or the rectangle is empty. */
+ * is not finite or the rectangle is empty.  The ends it moves are finite
+ * for any finite input, however far apart (to a double's precision at
+ * that scale). */
 SR_API bool sr_clip_line_cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
 SR_API bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
 

@@ -179,8 +179,10 @@ SR_API sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t 
  * `aspect` = width / height: glTF's own matrices, the infinite one when
  * zfar is 0.  The vertical extent (yfov, ymag) is kept and the horizontal
  * one follows the viewport, so nothing is stretched whatever the file's
- * aspectRatio or xmag.  SR_INVALID_ARG for NULL, a non-finite or
- * non-positive aspect, or a degenerate world matrix. */
+ * aspectRatio or xmag.  SR_INVALID_ARG (view and projection untouched)
+ * for NULL, a non-finite or non-positive aspect, a type that is not an
+ * sr_scene_camera_type, a degenerate or non-finite world matrix, a yfov
+ * outside (0, pi), or clip distances glTF would refuse. */
 SR_API sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect,
                                           sr_mat4 *view, sr_mat4 *projection);
 /* Frees the scene, its arrays and its textures; NULL is ignored. */
@@ -374,7 +376,8 @@ typedef struct sr_svg_desc {
                               * zero or negative size is SR_BAD_FORMAT either way:
                               * SVG draws nothing of it */
     double scale;            /* 0 -> 1 */
-    sr_rgba background;      /* the image is cleared to it first (zero: transparent) */
+    sr_rgba background;      /* the image is cleared to it first (zero: transparent);
+                              * finite */
     int max_side;            /* largest image side; 0 -> SR_MAX_FRAMEBUFFER_SIZE */
     sr_svg_warn_fn warn;     /* NULL: warnings are only counted */
     void *warn_user;

@@ -162,6 +162,9 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
         if (d.allocator.alloc || d.threads > 1) {
             return SR_INVALID_ARG; /* an arena is the only memory, on one thread */
         }
+        if (d.arena_size > UINTPTR_MAX - (uintptr_t)d.arena) {
+            return SR_INVALID_ARG; /* it would run past the end of memory */
+        }
         arena = sr__arena_init(d.arena, d.arena_size, &d.allocator);
         if (!arena) {
             return SR_OUT_OF_MEMORY;

@@ -68,6 +68,11 @@ sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_
     if (!fb) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw: fb is NULL");
     }
+    return sr__draw_validate_state(ctx, st, d);
+}
+
+sr_result sr__draw_validate_state(sr_context *ctx, const sr_state *st, const sr_draw_desc *d)
+{
     if (!st) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw: state is NULL");
     }

@@ -50,6 +50,9 @@ typedef struct sr_vertex_post {
  * (with its message on ctx). */
 sr_result sr__draw_validate(sr_context *ctx, const sr_framebuffer *fb, const sr_state *st,
                             const sr_draw_desc *d);
+/* The same without a framebuffer: the state and the draw, for what takes
+ * a state to draw with later (sr_make_builtin_program). */
+sr_result sr__draw_validate_state(sr_context *ctx, const sr_state *st, const sr_draw_desc *d);
 
 /* draw_painter.c: a validated triangle-list draw with SR_VISIBILITY_PAINTER,
  * drawn back to front without a depth test. */

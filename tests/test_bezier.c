@@ -276,6 +276,11 @@ SR_TEST(tessellate_rejects_invalid_arguments)
     cp[5][1] = INFINITY;
     CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 4, &m), SR_INVALID_ARG);
     CHECK(m.positions == NULL);
+    /* A count past the vertex limit is refused before a control point is
+     * read: cp holds one patch. */
+    CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, SIZE_MAX / 2, 4,
+                                 &m), SR_TOO_LARGE);
+    CHECK_STR_CONTAINS(sr_context_error(sr_test_ctx()), "exceed 2^29 vertices");
     /* The largest detail is accepted. */
     cp[5][1] = 0.0f;
     CHECK_EQ(sr_make_bezier_mesh(sr_test_ctx(), (const float (*)[16][3])&cp, 1, 256, &m), SR_OK);

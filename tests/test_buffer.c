@@ -74,6 +74,15 @@ SR_TEST(an_update_writes_its_range_and_nothing_else)
     CHECK_EQ(sr_buffer_update(NULL, b, 0, patch, 4), SR_INVALID_ARG);
     CHECK_EQ(sr_buffer_update(ctx, b, 64, NULL, 0), SR_OK);   /* an empty range at the end */
     CHECK_EQ(d[0], 0);
+    /* The source may lie in the buffer: bytes move as memmove moves them. */
+    CHECK_EQ(sr_buffer_update(ctx, b, 4, d, 32), SR_OK);
+    for (int i = 0; i < 36; i++) {
+        CHECK_EQ(d[i], i < 4 ? i : i - 4);
+    }
+    CHECK_EQ(sr_buffer_update(ctx, b, 0, d + 8, 16), SR_OK);
+    for (int i = 0; i < 16; i++) {
+        CHECK_EQ(d[i], i + 4);
+    }
     sr_destroy_buffer(ctx, b);
     sr_destroy_context(ctx);
 }

@@ -145,6 +145,17 @@ SR_TEST(encoders_check_their_arguments)
         CHECK_STR_CONTAINS(err.message, "<memory>: sr_jpeg_write_desc.quality 101");
         CHECK_EQ(s.calls, 0);
     }
+    /* A stride that wraps the address space (row 1 at px - 1) describes no
+     * buffer: refused before a byte is read. */
+    CHECK_EQ(sr_encode_png(sink_write, &s, 2, 2, px, SIZE_MAX, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "<memory>: 2 rows of stride");
+    /* A span past PTRDIFF_MAX is no object either, wrapped or not. */
+    CHECK_EQ(sr_encode_png(sink_write, &s, 2, 2, px, SIZE_MAX / 2, NULL, &err), SR_INVALID_ARG);
+    if (sr_io_have_jpeg()) {
+        CHECK_EQ(sr_encode_jpeg(sink_write, &s, 2, 2, px, SIZE_MAX, NULL, &err), SR_INVALID_ARG);
+        CHECK_STR_CONTAINS(err.message, "<memory>: 2 rows of stride");
+    }
+    CHECK_EQ(s.calls, 0);
     /* err may be NULL. */
     CHECK_EQ(sr_encode_png(sink_write, &(sink){ .fail_after = 0 }, 2, 2, px, 8, NULL, NULL),
              SR_IO_ERROR);

@@ -455,6 +455,21 @@ SR_TEST(cameras_come_with_their_world_transforms_in_node_order)
     CHECK_NEAR(c.y, 1, 1e-6);
     CHECK_EQ(sr_scene_camera_matrices(o, 0.0f, &v, &pr), SR_INVALID_ARG);
     CHECK_EQ(sr_scene_camera_matrices(NULL, 1.0f, &v, &pr), SR_INVALID_ARG);
+    /* A camera no file gives is refused, and the outputs keep their bytes. */
+    sr_mat4 v0 = v, pr0 = pr;
+    sr_scene_camera bad = *p;
+    bad.type = (sr_scene_camera_type)7;
+    CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
+    bad = *p;
+    bad.world[5] = NAN;
+    CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
+    bad = *p;
+    bad.yfov = 4.0f;
+    CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
+    bad = *o;
+    bad.zfar = INFINITY;
+    CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
+    CHECK(memcmp(&v, &v0, sizeof v) == 0 && memcmp(&pr, &pr0, sizeof pr) == 0);
     sr_destroy_scene(sr_test_ctx(), s);
 }
 

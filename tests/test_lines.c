@@ -9,6 +9,7 @@
 #include "softrast.h"
 #include "draw2d/line.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -683,6 +684,29 @@ SR_TEST(clippers_agree_and_keep_points_on_the_line)
     CHECK(!sr_clip_line_cohen_sutherland(rmin, rmax, &n1, &n2));
     sr_point2 i1 = { -INFINITY, 30 }, i2 = { 50, 30 };
     CHECK(!sr_clip_line_liang_barsky(rmin, rmax, &i1, &i2));
+    /* Finite ends so far apart that b - a overflows: a visible part that
+     * is finite and inside the rectangle (at this scale a double's t
+     * resolves only to ~1e292 along the line, so no closer than that). */
+    const double big = 1e308;
+    struct { sr_point2 rmin, rmax, a, b; } far[] = {
+        { { 0, 0 }, { 3, 3 }, { -big, -big }, { big, big } },
+        { { 0, 0 }, { 3, 3 }, { -DBL_MAX, 1 }, { DBL_MAX, 1 } },
+        { { -1, -DBL_MAX }, { 1, DBL_MAX }, { -DBL_MAX, 1 }, { DBL_MAX, 1 } },
+    };
+    for (size_t i = 0; i < sizeof far / sizeof far[0]; i++) {
+        for (int c = 0; c < 2; c++) {
+            sr_point2 a = far[i].a, b = far[i].b;
+            bool v = c ? sr_clip_line_cohen_sutherland(far[i].rmin, far[i].rmax, &a, &b)
+                       : sr_clip_line_liang_barsky(far[i].rmin, far[i].rmax, &a, &b);
+            CHECK(v);
+            for (int k = 0; k < 2; k++) {
+                sr_point2 p = k ? b : a;
+                CHECK(p.x >= far[i].rmin.x && p.x <= far[i].rmax.x && p.y >= far[i].rmin.y &&
+                      p.y <= far[i].rmax.y);
+                CHECK(i == 0 || p.y == 1);
+            }
+        }
+    }
 }
 
 /* ---- Wu ------------------------------------------------------------------------------ */

@@ -557,3 +557,25 @@ SR_TEST(matrix_product_composes_right_to_left)
     sr_mat4 tt = sr_mat4_transpose(&tr);
     CHECK(at(&tt, 0, 3) == at(&tr, 3, 0) && at(&tt, 3, 0) == at(&tr, 0, 3));
 }
+
+SR_TEST(null_matrix_arguments_are_the_identity_and_null_outputs_fail)
+{
+    sr_mat4 r = sr_mat4_rotate(0.7f, (sr_vec3){ 1, 2, 3 });
+    sr_mat4 p = sr_mat4_mul(NULL, &r);
+    CHECK(memcmp(&p, &r, sizeof p) == 0);
+    p = sr_mat4_mul(&r, NULL);
+    CHECK(memcmp(&p, &r, sizeof p) == 0);
+    sr_mat4 id = sr_mat4_identity(), t = sr_mat4_transpose(NULL);
+    CHECK(memcmp(&t, &id, sizeof t) == 0);
+    sr_vec4 v = sr_mat4_mul_vec4(NULL, (sr_vec4){ 1, 2, 3, 4 });
+    CHECK(v.x == 1 && v.y == 2 && v.z == 3 && v.w == 4);
+    sr_mat4 c = sr_camera_matrix(NULL);
+    CHECK(memcmp(&c, &id, sizeof c) == 0);
+    sr_mat4 inv;
+    CHECK(sr_mat4_invert(NULL, &inv));
+    CHECK(memcmp(&inv, &id, sizeof inv) == 0);
+    CHECK(!sr_mat4_invert(&r, NULL));
+    CHECK(sr_normal_matrix(NULL, &inv));
+    CHECK(memcmp(&inv, &id, sizeof inv) == 0);
+    CHECK(!sr_normal_matrix(&r, NULL));
+}

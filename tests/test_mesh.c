@@ -602,6 +602,15 @@ SR_TEST(sort_back_to_front_and_mean_view_depth)
     sr_mat4 nan = id;
     nan.m[14] = NAN;
     CHECK_EQ(sr_mean_view_depth(pos, 9, idx, 1, &nan, &mean), SR_INVALID_ARG);
+
+    /* In place: out may be the indices themselves. */
+    uint32_t inplace[12];
+    memcpy(inplace, idx, sizeof inplace);
+    REQUIRE(sr_sort_back_to_front(sr_test_ctx(), pos, 9, inplace, 4, &id, inplace) == SR_OK);
+    CHECK(memcmp(inplace, want, sizeof want) == 0);
+    /* A count whose keys cannot be allocated is refused before any index is read. */
+    CHECK_EQ(sr_sort_back_to_front(sr_test_ctx(), pos, 9, idx, SIZE_MAX / 3, &id, out),
+             SR_TOO_LARGE);
 }
 
 SR_TEST(order_back_to_front)
@@ -614,4 +623,7 @@ SR_TEST(order_back_to_front)
     const float nan[] = { 1.0f, NAN };
     CHECK_EQ(sr_order_back_to_front(sr_test_ctx(), nan, 2, order), SR_INVALID_ARG);
     CHECK_EQ(sr_order_back_to_front(sr_test_ctx(), d, 5, NULL), SR_INVALID_ARG);
+    /* A count whose keys would overflow size_t is refused before a distance is read. */
+    CHECK_EQ(sr_order_back_to_front(sr_test_ctx(), d, SIZE_MAX / 2, order), SR_TOO_LARGE);
+    CHECK_STR_CONTAINS(sr_context_error(sr_test_ctx()), "do not fit in memory");
 }

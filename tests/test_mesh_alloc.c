@@ -161,3 +161,58 @@ SR_TEST(mesh_calls_name_what_is_wrong)
     CHECK_STR_CONTAINS(err.message, "no context");
     CHECK_EQ(sr_make_teapot(NULL, 4, &m), SR_INVALID_ARG);
 }
+
+SR_TEST(make_mesh_refuses_what_its_copy_could_not_hold)
+{
+    sr_context *ctx = sr_test_ctx();
+    float pos[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+    uint32_t idx[6] = { 0, 1, 2, 2, 1, 0 };
+    sr_mesh src = { .vertex_count = 3, .positions = pos, .triangle_count = 2, .indices = idx };
+    sr_mesh out;
+
+    /* out == src: the struct keeps the caller's arrays. */
+    sr_mesh same = src;
+    CHECK_EQ(sr_make_mesh(ctx, &same, &same), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "out is src");
+    CHECK(same.positions == pos && same.indices == idx && same.triangle_count == 2);
+
+    /* A triangle count whose indices overflow size_t is refused before
+     * any index is read (idx holds 6). */
+    sr_mesh huge = src;
+    huge.triangle_count = SIZE_MAX / 4;
+    CHECK_EQ(sr_make_mesh(ctx, &huge, &out), SR_TOO_LARGE);
+
+    /* Parts must be runs that cover every triangle in order. */
+    struct { sr_mesh_part parts[2]; size_t count; const char *needle; } bad[] = {
+        { { { .first_triangle = 0, .triangle_count = 5 } }, 1, "src->parts[0]" },
+        { { { .first_triangle = SIZE_MAX, .triangle_count = 2 } }, 1, "src->parts[0]" },
+        { { { .first_triangle = 1, .triangle_count = 1 } }, 1, "src->parts[0]" },
+        { { { .triangle_count = 1 }, { .first_triangle = 0, .triangle_count = 1 } }, 2,
+          "src->parts[1]" },
+        { { { .triangle_count = 1 } }, 1, "cover triangles 0 .. 1 of 2" },
+        { { { .triangle_count = 2, .texture_size = 5 } }, 1, "parts[0].texture_size 5" },
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sr_mesh m = src;
+        m.parts = bad[i].parts;
+        m.part_count = bad[i].count;
+        CHECK_EQ(sr_make_mesh(ctx, &m, &out), SR_INVALID_ARG);
+        CHECK_STR_CONTAINS(sr_context_error(ctx), bad[i].needle);
+        CHECK(out.positions == NULL && out.parts == NULL);
+    }
+    sr_mesh nodata = src;
+    nodata.texture_size = 5;
+    CHECK_EQ(sr_make_mesh(ctx, &nodata, &out), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "src->texture_size 5");
+
+    /* Runs that cover everything, empty ones included, are copied. */
+    sr_mesh_part good[3] = { { .triangle_count = 1 }, { .first_triangle = 1 },
+                             { .first_triangle = 1, .triangle_count = 1 } };
+    sr_mesh m = src;
+    m.parts = good;
+    m.part_count = 3;
+    REQUIRE(sr_make_mesh(ctx, &m, &out) == SR_OK);
+    CHECK_EQ(out.part_count, 3);
+    CHECK_EQ(out.parts[2].first_triangle, 1);
+    sr_destroy_mesh(ctx, &out);
+}

@@ -600,6 +600,11 @@ SR_TEST(bad_descs_are_refused)
     CHECK(p == NULL);
     CHECK_STR_CONTAINS(sr_context_error(ctx), "exposure");
     CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .tonemap = 9 }, &p), SR_INVALID_ARG);
+    sr_mat4 inf_model = sr_mat4_identity();
+    inf_model.m[0] = INFINITY;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .model = &inf_model }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_pbr_desc.model has a NaN or infinite entry");
+    CHECK(p == NULL);
     CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .tangents = (const float *)&p }, &p),
              SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(ctx), "vertex_count");
@@ -848,6 +853,14 @@ SR_TEST(default_lights_follow_the_camera)
     l[1].intensity = NAN;
     CHECK_EQ(sr_pbr_default_lighting(l, &d), SR_INVALID_ARG);
     CHECK_EQ(sr_pbr_default_lighting(NULL, &d), SR_INVALID_ARG);
+    /* A light type outside the enum is refused here, not only later by
+     * sr_make_pbr_program; desc is left as it was. */
+    l[1].intensity = 1;
+    l[2].type = (sr_light_type)7;
+    sr_pbr_desc before;
+    memcpy(&before, &d, sizeof d);
+    CHECK_EQ(sr_pbr_default_lighting(l, &d), SR_INVALID_ARG);
+    CHECK(memcmp(&before, &d, sizeof d) == 0);
 }
 
 /* Without textures every lane's color is its own (the shadow's quad

@@ -713,5 +713,26 @@ SR_TEST(builtin_models_as_programs_give_the_builtin_pixels)
     st = (sr_state){ .shading = SR_SHADING_ATTRIBUTE };
     CHECK_EQ(sr_make_builtin_program(ctx, &st, NULL, NULL, NULL, &bp), SR_INVALID_ARG);
     CHECK(bp == NULL);
+    /* The state is checked as sr_draw checks it, and the matrices too: the
+     * program bakes them in for every fragment to read. */
+    struct { sr_state st; const char *needle; } bad[] = {
+        { { .lights[0] = { .type = 9 } }, "sr_state.lights[0].type 9" },
+        { { .lights[1] = { .type = SR_LIGHT_POINT, .vector = { NAN, 0, 0 } } },
+          "sr_state.lights[1]" },
+        { { .material = { .shininess = NAN } }, "sr_state.material" },
+        { { .texture_filter = 77 }, "sr_state.texture_filter" },
+        { { .interpolation = 5 }, "sr_state.interpolation 5" },
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        bp = (sr_builtin *)1;
+        CHECK_EQ(sr_make_builtin_program(ctx, &bad[i].st, NULL, NULL, NULL, &bp), SR_INVALID_ARG);
+        CHECK_STR_CONTAINS(sr_context_error(ctx), bad[i].needle);
+        CHECK(bp == NULL);
+    }
+    sr_mat4 nan_view = sr_mat4_identity();
+    nan_view.m[13] = NAN;
+    CHECK_EQ(sr_make_builtin_program(ctx, &(sr_state){0}, NULL, &nan_view, NULL, &bp),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_make_builtin_program: view has a NaN");
     sr_destroy_context(ctx);
 }

@@ -795,6 +795,23 @@ SR_TEST(teapot_shadow_falls_on_the_ground_away_from_the_light)
     bad = d;
     bad.ground = &no_uv;
     CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &bad), SR_INVALID_ARG);
+    /* The state is checked as sr_draw checks it, drawn or not: the light
+     * from below draws nothing, and still a bad depth function is named. */
+    sr_state bad_state = state;
+    bad_state.depth_func = (sr_depth_func)99;
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &bad_state, &d), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_state.depth_func 99");
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &bad_state, &up), SR_INVALID_ARG);
+    bad = d;
+    bad.direction = (sr_vec3){ 0, 0, 0 };
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &bad), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "direction must not be zero");
+    sr_mat4 nan_view = *d.view;
+    nan_view.m[12] = NAN;
+    bad = d;
+    bad.view = &nan_view;
+    CHECK_EQ(sr_draw_shadow_catcher(ctx, fb, &state, &bad), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_shadow_catcher_desc.view has a NaN");
     sr_destroy_shadow_map(ctx, soft);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_shadow_map(ctx, sm);

@@ -6,6 +6,7 @@
 #include "softrast_io.h"
 #include "sr_test.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -207,6 +208,11 @@ SR_TEST(bad_arguments_are_refused)
     CHECK_STR_CONTAINS(err.message, "sr_svg_desc");
     CHECK_EQ(sr_render_svg(ctx, doc, 6, &(sr_svg_desc){ .scale = -1 }, &fb, NULL, &err),
              SR_INVALID_ARG);
+    /* A background that is not finite has no color to clear to. */
+    CHECK_EQ(sr_render_svg(ctx, doc, 6, &(sr_svg_desc){ .background = { 0, NAN, 0, 1 } }, &fb,
+                           NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "sr_svg_desc.background is not finite");
+    CHECK(fb == NULL);
     CHECK_EQ(sr_render_svg_file(ctx, NULL, NULL, &fb, NULL, &err), SR_INVALID_ARG);
     CHECK(fb == NULL);
     sr_destroy_context(ctx);

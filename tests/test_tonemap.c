@@ -386,6 +386,14 @@ SR_TEST(tonemap_validates_its_arguments)
     CHECK_STR_CONTAINS(sr_context_error(ctx), "out_stride 7 is less than 8 bytes");
     CHECK(sr_tonemap(ctx, px, 1, 1 << 30, SIZE_MAX / 8 * 4, out, 0, NULL) == SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(ctx), "does not fit in memory");
+    /* out must not overlap pixels (rows run on several threads): in
+     * place, or out starting inside the floats, is refused. */
+    float img[16 * 4] = { 0 };
+    CHECK(sr_tonemap(ctx, img, 4, 4, 0, (uint8_t *)img, 0, NULL) == SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_tonemap: out overlaps pixels");
+    CHECK(sr_tonemap(ctx, img, 2, 2, 0, (uint8_t *)(img + 15), 0, NULL) == SR_INVALID_ARG);
+    CHECK(sr_tonemap(ctx, img + 2, 2, 2, 0, (uint8_t *)img, 0, NULL) == SR_INVALID_ARG);
+    CHECK(sr_tonemap(ctx, img, 2, 2, 0, (uint8_t *)(img + 16), 0, NULL) == SR_OK);
     /* The bounds themselves are accepted, and a success clears the message. */
     CHECK(sr_tonemap(ctx, px, 2, 1, 32, out, 8,
                      &(sr_tonemap_desc){ .exposure = -64, .op = SR_TONEMAP_ACES }) == SR_OK);

@@ -396,6 +396,101 @@ SR_TEST(invalid_clear_and_read_arguments_are_named)
     fixture_free(&f);
 }
 
+/* A buffer with guard bytes on both sides: a stride that wraps the
+ * address space lands its second row just before the buffer. */
+typedef struct guarded {
+    uint8_t before[64];
+    uint8_t buf[256];
+    uint8_t after[64];
+} guarded;
+
+static bool guards_intact(const guarded *g)
+{
+    for (size_t i = 0; i < sizeof g->before; i++) {
+        if (g->before[i] != 0xa5 || g->after[i] != 0xa5) {
+            return false;
+        }
+    }
+    return true;
+}
+
+SR_TEST(strides_that_wrap_the_address_space_are_refused)
+{
+    fixture f = fixture_make();
+    guarded g;
+    memset(&g, 0xa5, sizeof g);
+    /* Row 1 at buf + SIZE_MAX is buf - 1: a stride no buffer can have. */
+    CHECK_EQ(sr_read_pixels(f.ctx, f.fb, 0, 0, 2, 2, g.buf, SIZE_MAX), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_read_pixels: 2 rows of stride");
+    CHECK_EQ(sr_read_pixels(f.ctx, f.fb, 0, 0, 2, FH, g.buf, SIZE_MAX / 4), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_pixels(f.ctx, f.fb, 0, 0, 2, 2, g.buf, SIZE_MAX), SR_INVALID_ARG);
+    CHECK_EQ(sr_write_pixels(f.ctx, f.fb, 0, 0, 2, 2, g.buf, SIZE_MAX / 2), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_write_pixels: 2 rows of stride");
+    /* SIZE_MAX / 4 floats is SIZE_MAX - 3 bytes: row 1 one float before. */
+    CHECK_EQ(sr_read_depth(f.ctx, f.fb, 0, 0, 2, 2, (float *)(void *)g.buf, SIZE_MAX / 4),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_read_depth: 2 rows of stride");
+    CHECK_EQ(sr_read_depth(f.ctx, f.fb, 0, 0, 2, 2, (float *)(void *)g.buf, SIZE_MAX / 2),
+             SR_INVALID_ARG);
+    CHECK(unchanged(&f));
+
+    sr_framebuffer *st;
+    REQUIRE(sr_make_framebuffer(f.ctx, &(sr_framebuffer_desc){ .width = 4, .height = 4,
+                                                              .stencil = true }, &st) == SR_OK);
+    CHECK_EQ(sr_read_stencil(f.ctx, st, 0, 0, 2, 2, g.buf, SIZE_MAX), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_read_stencil: 2 rows of stride");
+    sr_destroy_framebuffer(f.ctx, st);
+
+    sr_texture *tex = NULL;
+    CHECK_EQ(sr_make_texture(f.ctx, &(sr_texture_desc){ .width = 2, .height = 2, .pixels = g.buf,
+                                                        .stride = SIZE_MAX }, &tex),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_texture_desc: 2 rows of stride");
+    CHECK(tex == NULL);
+
+    const sr_point2 tri[3] = { { 0, 0 }, { 4, 0 }, { 0, 4 } };
+    const sr_polygon2 poly = { .points = tri, .point_count = 3 };
+    CHECK_EQ(sr_polygon_coverage(f.ctx, &poly, NULL, 0, 0, 2, 2, g.buf, SIZE_MAX),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_polygon_coverage: 2 rows of stride");
+    CHECK_EQ(sr_draw_coverage(f.ctx, f.fb, 0, 0, 2, 2, g.buf, SIZE_MAX,
+                              (sr_rgba){ 1, 1, 1, 1 }), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "sr_draw_coverage: 2 rows of stride");
+    CHECK(unchanged(&f));
+    CHECK(guards_intact(&g));
+
+    /* The largest stride that still fits is taken. */
+    CHECK_EQ(sr_read_pixels(f.ctx, f.fb, 0, 0, 2, 1, g.buf, SIZE_MAX), SR_OK);
+    CHECK(guards_intact(&g));
+    fixture_free(&f);
+}
+
+SR_TEST(write_pixels_may_move_a_rectangle_within_the_framebuffer)
+{
+    fixture f = fixture_make();
+    uint8_t img[FW * FH * 4], want[FW * FH * 4];
+    for (size_t i = 0; i < sizeof img; i++) {
+        img[i] = (uint8_t)(i * 7 + i / 32);
+    }
+    REQUIRE(sr_write_pixels(f.ctx, f.fb, 0, 0, FW, FH, img, FW * 4) == SR_OK);
+    /* Down one row and right one column, from the framebuffer's own pixels:
+     * every pixel takes the value it had before the call. */
+    memcpy(want, img, sizeof want);
+    for (int y = 1; y < FH; y++) {
+        memcpy(want + (y * FW + 1) * 4, img + ((y - 1) * FW) * 4, (FW - 1) * 4);
+    }
+    const uint8_t *own = sr_framebuffer_pixels(f.fb);
+    REQUIRE(sr_write_pixels(f.ctx, f.fb, 1, 1, FW - 1, FH - 1, own, FW * 4) == SR_OK);
+    CHECK(memcmp(sr_framebuffer_pixels(f.fb), want, sizeof want) == 0);
+    /* And back up: the other direction of overlap. */
+    own = sr_framebuffer_pixels(f.fb);
+    REQUIRE(sr_write_pixels(f.ctx, f.fb, 0, 0, FW - 1, FH - 1, own + (FW + 1) * 4, FW * 4) == SR_OK);
+    for (int y = 0; y < FH - 1; y++) {
+        CHECK(memcmp(sr_framebuffer_pixels(f.fb) + y * FW * 4, img + y * FW * 4, (FW - 1) * 4) == 0);
+    }
+    fixture_free(&f);
+}
+
 static void *only_alloc(size_t n, void *user)
 {
     (void)user;
@@ -420,6 +515,12 @@ SR_TEST(invalid_context_descs_are_rejected)
                  SR_INVALID_ARG);
         CHECK(ctx == NULL);
     }
+    /* An arena that would run past the end of memory describes no memory. */
+    static uint8_t arena[4096];
+    ctx = (sr_context *)&ctx;
+    CHECK_EQ(sr_make_context(&(sr_context_desc){ .arena = arena, .arena_size = SIZE_MAX }, &ctx),
+             SR_INVALID_ARG);
+    CHECK(ctx == NULL);
     CHECK_EQ(sr_make_context(&(sr_context_desc){ .batch_primitives = SR_BATCH_MIN }, &ctx), SR_OK);
     sr_destroy_context(ctx);
     /* NULL desc means all defaults. */

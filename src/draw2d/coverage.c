@@ -7,6 +7,7 @@
 #include "context.h"
 #include "draw2d/paint.h"
 #include "draw2d/paint_fill.h"
+#include "rows.h"
 
 #include <math.h>
 
@@ -26,6 +27,10 @@ static sr_result check_image(sr_context *ctx, const char *fn, const sr_framebuff
     if (stride < (size_t)w * bpp) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < %s width %d", fn, stride,
                         bpp == 4 ? "4 *" : "the", w);
+    }
+    if (!sr__rows_fit(pixels, (size_t)h, stride, (size_t)w * bpp)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %d rows of stride %zu run past the end of memory",
+                        fn, h, stride);
     }
     return SR_OK;
 }

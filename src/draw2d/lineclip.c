@@ -5,6 +5,7 @@
  * other callers.  Pure functions: any thread. */
 #include "draw2d/line.h"
 
+#include <float.h>
 #include <math.h>
 
 static bool finite_input(sr_point2 rmin, sr_point2 rmax, const sr_point2 *a, const sr_point2 *b)
@@ -34,11 +35,8 @@ static unsigned outcode(sr_point2 rmin, sr_point2 rmax, sr_point2 p)
     return c;
 }
 
-bool sr_clip_line_cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b)
+static bool cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b)
 {
-    if (!a || !b || !finite_input(rmin, rmax, a, b)) {
-        return false;
-    }
     sr_point2 p = *a, q = *b;
     const sr_point2 o = *a;                          /* the original line: o + t d */
     const double dx = b->x - a->x, dy = b->y - a->y;
@@ -119,11 +117,8 @@ static bool lb_edge(double p, double q, double *t0, double *t1)
     return true;
 }
 
-bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b)
+static bool liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b)
 {
-    if (!a || !b || !finite_input(rmin, rmax, a, b)) {
-        return false;
-    }
     double dx = b->x - a->x, dy = b->y - a->y;
     double t0 = 0.0, t1 = 1.0;
     if (!lb_edge(-dx, a->x - rmin.x, &t0, &t1) || !lb_edge(dx, rmax.x - a->x, &t0, &t1) ||
@@ -141,6 +136,47 @@ bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_
         a->y = p.y + t0 * dy;
     }
     return true;
+}
+
+/* ---- both, for any finite input -------------------------------------------- */
+
+typedef bool (*clip_fn)(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b);
+
+/* The clippers subtract coordinates (b - a, rmax - a), which overflows to
+ * infinity, and then NaN, once they pass DBL_MAX / 2.  Past DBL_MAX / 4
+ * everything is scaled by 1/4 (exact, a power of two) and back, and an end
+ * that still comes out non-finite fails the clip with the points left. */
+static bool clip_finite(clip_fn clip, sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b)
+{
+    if (!a || !b || !finite_input(rmin, rmax, a, b)) {
+        return false;
+    }
+    double big = fmax(fmax(fmax(fabs(rmin.x), fabs(rmin.y)), fmax(fabs(rmax.x), fabs(rmax.y))),
+                      fmax(fmax(fabs(a->x), fabs(a->y)), fmax(fabs(b->x), fabs(b->y))));
+    double k = big > DBL_MAX / 4 ? 0.25 : 1.0;
+    sr_point2 p = { a->x * k, a->y * k }, q = { b->x * k, b->y * k };
+    if (!clip((sr_point2){ rmin.x * k, rmin.y * k }, (sr_point2){ rmax.x * k, rmax.y * k }, &p,
+              &q)) {
+        return false;
+    }
+    p = (sr_point2){ p.x / k, p.y / k };
+    q = (sr_point2){ q.x / k, q.y / k };
+    if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(q.x) || !isfinite(q.y)) {
+        return false;
+    }
+    *a = p;
+    *b = q;
+    return true;
+}
+
+bool sr_clip_line_cohen_sutherland(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b)
+{
+    return clip_finite(cohen_sutherland, rmin, rmax, a, b);
+}
+
+bool sr_clip_line_liang_barsky(sr_point2 rmin, sr_point2 rmax, sr_point2 *a, sr_point2 *b)
+{
+    return clip_finite(liang_barsky, rmin, rmax, a, b);
 }
 
 bool sr__clip_line(sr_line_clipper clipper, double xmin, double ymin, double xmax, double ymax,

@@ -10,6 +10,7 @@
 
 #include "context.h"
 #include "draw2d/paint.h"
+#include "rows.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -1004,6 +1005,10 @@ sr_result sr__polygon_coverage(sr_context *ctx, const char *fn, const sr_polygon
     }
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < width %d", fn, stride, w);
+    }
+    if (!sr__rows_fit(mask, (size_t)h, stride, (size_t)w)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %d rows of stride %zu run past the end of memory",
+                        fn, h, stride);
     }
     sr_fill_desc d;
     sr_result r = sr__fill_desc_defaults(ctx, fn, desc, &d);

@@ -14,6 +14,7 @@
  * the programmable form, for users to start from and for tests. */
 #include "fragment/fragment.h"
 #include "context.h"
+#include "pipeline.h"
 
 #include <math.h>
 #include <string.h>
@@ -122,6 +123,24 @@ sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state, const 
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_make_builtin_program: shading %d has no program form",
                         (int)state->shading);
+    }
+    const sr_mat4 *mats[3] = { model, view, projection };
+    static const char *const names[3] = { "model", "view", "projection" };
+    for (int i = 0; i < 3; i++) {
+        for (int k = 0; mats[i] && k < 16; k++) {
+            if (!isfinite(mats[i]->m[k])) {
+                return sr__fail(ctx, SR_INVALID_ARG,
+                                "sr_make_builtin_program: %s has a NaN or infinite entry",
+                                names[i]);
+            }
+        }
+    }
+    /* The state is checked as sr_draw checks it: what the program bakes
+     * in (lights, material, texture modes) is read by every fragment. */
+    sr_result valid = sr__draw_validate_state(
+        ctx, state, &(sr_draw_desc){ .model = model, .view = view, .projection = projection });
+    if (valid != SR_OK) {
+        return valid;
     }
     sr_builtin *b = sr__calloc(ctx, 1, sizeof *b);
     if (!b) {

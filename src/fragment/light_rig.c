@@ -50,8 +50,8 @@ sr_result sr_pbr_default_lighting(const sr_light lights[SR_MAX_LIGHTS], sr_pbr_d
         return SR_INVALID_ARG;
     }
     for (int i = 0; i < SR_MAX_LIGHTS; i++) {
-        if (!finite3(lights[i].vector) || !finite3(lights[i].color) ||
-            !isfinite(lights[i].intensity)) {
+        if ((unsigned)lights[i].type > SR_LIGHT_POINT || !finite3(lights[i].vector) ||
+            !finite3(lights[i].color) || !isfinite(lights[i].intensity)) {
             return SR_INVALID_ARG;
         }
     }

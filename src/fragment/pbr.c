@@ -886,6 +886,16 @@ static sr_result check_desc(sr_context *ctx, const sr_pbr_desc *d)
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_pbr_desc: strides must be multiples of 4 and hold their floats");
     }
+    /* Every vertex and normal goes through them: a NaN would reach the
+     * clipper as a NaN position and the lights as NaN radiance. */
+    const sr_mat4 *mats[3] = { d->model, d->view, d->projection };
+    static const char *const names[3] = { "model", "view", "projection" };
+    for (int i = 0; i < 3; i++) {
+        if (mats[i] && !finite_n(mats[i]->m, 16)) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.%s has a NaN or infinite entry",
+                            names[i]);
+        }
+    }
     if (!finite_n(&d->sky.x, 3) || !finite_n(&d->ground.x, 3) || d->sky.x < 0 || d->sky.y < 0 ||
         d->sky.z < 0 || d->ground.x < 0 || d->ground.y < 0 || d->ground.z < 0) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc: sky and ground must be finite and >= 0");

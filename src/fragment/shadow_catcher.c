@@ -4,6 +4,7 @@
  * sr_make_ground_mesh; produces one sr_draw.  Its shaders run on the
  * context's workers and only read their uniforms and the map. */
 #include "context.h"
+#include "pipeline.h"
 
 #include <math.h>
 #include <string.h>
@@ -112,7 +113,20 @@ static sr_result validate(sr_context *ctx, const sr_framebuffer *fb, const sr_st
         return sr__fail(ctx, SR_INVALID_ARG, "sr_shadow_catcher_desc: bounds_min must not "
                         "exceed bounds_max");
     }
-    return SR_OK;
+    if (d->direction.x == 0 && d->direction.y == 0 && d->direction.z == 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_shadow_catcher_desc.direction must not be zero");
+    }
+    for (int k = 0; k < 16; k++) {
+        if (!isfinite(d->view->m[k]) || !isfinite(d->projection->m[k])) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_shadow_catcher_desc.%s has a NaN or "
+                            "infinite entry", isfinite(d->view->m[k]) ? "projection" : "view");
+        }
+    }
+    /* The caller's state is checked whether or not anything is drawn, so
+     * that a bad state does not pass while the light is low. */
+    sr_state st = *state;
+    st.program = NULL;
+    return sr__draw_validate(ctx, fb, &st, &(sr_draw_desc){ .projection = d->projection });
 }
 
 sr_result sr_draw_shadow_catcher(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,

@@ -4,6 +4,7 @@
  * concurrently. */
 #include "fragment/texture.h"
 #include "context.h"
+#include "rows.h"
 
 #include <math.h>
 #include <string.h>
@@ -77,6 +78,11 @@ sr_result sr_make_texture(sr_context *ctx, const sr_texture_desc *desc, sr_textu
     size_t stride = desc->stride ? desc->stride : (size_t)desc->width * 4;
     if (stride < (size_t)desc->width * 4) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_texture_desc.stride %zu < 4 * width", stride);
+    }
+    if (!sr__rows_fit(desc->pixels, (size_t)desc->height, stride, (size_t)desc->width * 4)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_texture_desc: %d rows of stride %zu run past the end of memory",
+                        desc->height, stride);
     }
     sr_texture *t = sr__calloc(ctx, 1, sizeof *t);
     if (!t) {

@@ -255,6 +255,14 @@ sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height
         (size_t)(height - 1) > (SIZE_MAX - 4 * (size_t)width) / out_stride) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_tonemap: the image does not fit in memory");
     }
+    /* Rows run on several threads at once: an out overlapping pixels would
+     * be written while other rows still read it. */
+    size_t in_span = (size_t)(height - 1) * stride + row_bytes;
+    size_t out_span = (size_t)(height - 1) * out_stride + 4 * (size_t)width;
+    if ((uintptr_t)out < (uintptr_t)pixels + in_span &&
+        (uintptr_t)pixels < (uintptr_t)out + out_span) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_tonemap: out overlaps pixels");
+    }
     tonemap_job *j = sr__alloc(ctx, sizeof *j);
     if (!j) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_tonemap: out of memory");

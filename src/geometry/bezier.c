@@ -316,6 +316,17 @@ sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
         return sr__fail(ctx, SR_INVALID_ARG, "%s: detail %d is not in 1..%d", fn, detail,
                         MAX_DETAIL);
     }
+    const size_t side = (size_t)detail + 1;
+    const size_t verts_per_patch = side * side;
+    const size_t tris_per_patch = 2 * (size_t)detail * (size_t)detail;
+    /* Checked before a control point is read.  Indices are uint32; the largest array is 3 uint32 per triangle and
+     * triangles < 2 * vertices, so bounding vertices by 2^32 / 8 keeps every
+     * byte count below 2^32 (safe for a 32-bit size_t too). */
+    if (patch_count > (UINT32_MAX / 8) / verts_per_patch) {
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: %zu patches at detail %d exceed 2^29 vertices",
+                        fn, patch_count, detail);
+    }
+
     for (size_t p = 0; p < patch_count; p++) {
         for (int c = 0; c < 16; c++) {
             for (int k = 0; k < 3; k++) {
@@ -328,16 +339,6 @@ sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
         }
     }
 
-    const size_t side = (size_t)detail + 1;
-    const size_t verts_per_patch = side * side;
-    const size_t tris_per_patch = 2 * (size_t)detail * (size_t)detail;
-    /* Indices are uint32; the largest array is 3 uint32 per triangle and
-     * triangles < 2 * vertices, so bounding vertices by 2^32 / 8 keeps every
-     * byte count below 2^32 (safe for a 32-bit size_t too). */
-    if (patch_count > (UINT32_MAX / 8) / verts_per_patch) {
-        return sr__fail(ctx, SR_TOO_LARGE, "%s: %zu patches at detail %d exceed 2^29 vertices",
-                        fn, patch_count, detail);
-    }
     const size_t vertex_count = patch_count * verts_per_patch;
     const size_t triangle_count = patch_count * tris_per_patch;
 

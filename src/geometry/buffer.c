@@ -64,8 +64,9 @@ sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const
                         "sr_buffer_update: bytes %zu at offset %zu run past the buffer's %zu",
                         bytes, offset, buf->size);
     }
+    /* data may lie in the buffer itself (moving a range within it). */
     if (bytes > 0) {
-        memcpy((uint8_t *)buf->data + offset, data, bytes);
+        memmove((uint8_t *)buf->data + offset, data, bytes);
     }
     sr__ok(ctx);
     return SR_OK;

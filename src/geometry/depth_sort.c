@@ -23,6 +23,18 @@ static int farther_first(const void *a, const void *b)
     return x->item < y->item ? -1 : x->item > y->item;
 }
 
+/* A triangle's key carries its corners, so that out may be indices itself
+ * (sorting in place) or overlap it: out is written from the keys alone. */
+typedef struct triangle_key {
+    depth_key key;
+    uint32_t v[3];
+} triangle_key;
+
+static int farther_triangle_first(const void *a, const void *b)
+{
+    return farther_first(&((const triangle_key *)a)->key, &((const triangle_key *)b)->key);
+}
+
 /* The eye-space z of position p (the eye looks down -z). */
 static float view_z(const sr_mat4 *mv, const float *p)
 {
@@ -55,25 +67,31 @@ sr_result sr_sort_back_to_front(sr_context *ctx, const float *positions, size_t 
     if (!ctx) {
         return SR_INVALID_ARG;
     }
+    if (triangle_count > SIZE_MAX / sizeof(triangle_key)) {
+        return sr__fail(ctx, SR_TOO_LARGE,
+                        "sr_sort_back_to_front: %zu triangles do not fit in memory",
+                        triangle_count);
+    }
     if (!out || !check(positions, vertex_count, indices, triangle_count, model_view)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_sort_back_to_front: %s",
                         !out ? "out is NULL"
                              : "NULL arrays, an index past vertex_count or a non-finite matrix");
     }
-    depth_key *keys = sr__alloc(ctx, (triangle_count ? triangle_count : 1) * sizeof *keys);
+    triangle_key *keys = sr__alloc(ctx, (triangle_count ? triangle_count : 1) * sizeof *keys);
     if (!keys) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_sort_back_to_front: out of memory");
     }
     for (size_t t = 0; t < triangle_count; t++) {
         float z = 0.0f;
         for (int k = 0; k < 3; k++) {
-            z += view_z(model_view, &positions[(size_t)indices[t * 3 + k] * 3]);
+            keys[t].v[k] = indices[t * 3 + k];
+            z += view_z(model_view, &positions[(size_t)keys[t].v[k] * 3]);
         }
-        keys[t] = (depth_key){ -z, t };   /* distance is -z */
+        keys[t].key = (depth_key){ -z, t };   /* distance is -z */
     }
-    qsort(keys, triangle_count, sizeof *keys, farther_first);
+    qsort(keys, triangle_count, sizeof *keys, farther_triangle_first);
     for (size_t t = 0; t < triangle_count; t++) {
-        memcpy(&out[t * 3], &indices[keys[t].item * 3], 3 * sizeof *out);
+        memcpy(&out[t * 3], keys[t].v, 3 * sizeof *out);
     }
     sr__free(ctx, keys);
     sr__ok(ctx);
@@ -99,6 +117,10 @@ sr_result sr_order_back_to_front(sr_context *ctx, const float *distances, size_t
 {
     if (!ctx) {
         return SR_INVALID_ARG;
+    }
+    if (count > SIZE_MAX / sizeof(depth_key)) {
+        return sr__fail(ctx, SR_TOO_LARGE,
+                        "sr_order_back_to_front: %zu distances do not fit in memory", count);
     }
     for (size_t i = 0; distances && i < count; i++) {
         if (isnan(distances[i])) {

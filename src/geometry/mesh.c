@@ -80,7 +80,19 @@ sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out)
     if (!out) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: out is NULL", fn);
     }
+    /* Zeroing out first would zero src too, and with it the caller's only
+     * pointers to its arrays. */
+    if (out == src) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: out is src (the copy needs a mesh of its own)",
+                        fn);
+    }
     memset(out, 0, sizeof *out);
+    /* Sizes first: the index check below reads 3 * triangle_count indices. */
+    if (src && (src->vertex_count > SIZE_MAX / (4 * sizeof(float)) ||
+                src->triangle_count > SIZE_MAX / 12 ||
+                src->part_count > SIZE_MAX / sizeof(sr_mesh_part))) {
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: the arrays' sizes overflow size_t", fn);
+    }
     if (validate_mesh(src) != SR_OK) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "%s: src is NULL, lacks an array it counts, or has an index >= "
@@ -90,11 +102,33 @@ sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out)
         return sr__fail(ctx, SR_INVALID_ARG, "%s: src->part_count %zu with no parts", fn,
                         src->part_count);
     }
-    size_t v = src->vertex_count;
-    if (v > SIZE_MAX / (4 * sizeof(float)) || src->triangle_count > SIZE_MAX / 12 ||
-        src->part_count > SIZE_MAX / sizeof(sr_mesh_part)) {
-        return sr__fail(ctx, SR_TOO_LARGE, "%s: the arrays' sizes overflow size_t", fn);
+    if (src->texture_size > 0 && !src->texture_data) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: src->texture_size %zu with no texture_data", fn,
+                        src->texture_size);
     }
+    /* The parts are runs in triangle order that cover every triangle
+     * (sr_mesh_part): whoever draws by parts indexes with them. */
+    size_t next = 0;
+    for (size_t i = 0; i < src->part_count; i++) {
+        const sr_mesh_part *pt = &src->parts[i];
+        if (pt->first_triangle != next || pt->triangle_count > src->triangle_count - next) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "%s: src->parts[%zu] (first_triangle %zu, triangle_count %zu) does "
+                            "not continue the runs at triangle %zu of %zu", fn, i,
+                            pt->first_triangle, pt->triangle_count, next, src->triangle_count);
+        }
+        if (pt->texture_size > 0 && !pt->texture_data) {
+            return sr__fail(ctx, SR_INVALID_ARG, "%s: src->parts[%zu].texture_size %zu with no "
+                            "texture_data", fn, i, pt->texture_size);
+        }
+        next += pt->triangle_count;
+    }
+    if (src->part_count > 0 && next != src->triangle_count) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "%s: src->parts cover triangles 0 .. %zu of %zu (they must cover all)",
+                        fn, next, src->triangle_count);
+    }
+    size_t v = src->vertex_count;
     sr_mesh m = *src;
     bool ok = copy_array(ctx, &m.positions, src->positions, v * 3 * sizeof(float));
     ok &= copy_array(ctx, &m.normals, src->normals, v * 3 * sizeof(float));

@@ -1,6 +1,7 @@
 /* io_util.c - file reading and error messages shared by the readers. */
 #define _DEFAULT_SOURCE 1           /* MAP_ANONYMOUS, MAP_POPULATE */
 #include "io/io_util.h"
+#include "rows.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -310,6 +311,10 @@ sr_result sr__check_image_write(const char *path, int width, int height, int max
         return sr__io_fail(err, SR_INVALID_ARG, path, 0,
                            "row stride %zu is less than 4 * width = %zu bytes", stride,
                            4 * (size_t)width);
+    }
+    if (!sr__rows_fit(rgba, (size_t)height, stride, 4 * (size_t)width)) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "%d rows of stride %zu run past the end of memory", height, stride);
     }
     return SR_OK;
 }

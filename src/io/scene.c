@@ -158,41 +158,53 @@ void sr_destroy_scene(sr_context *ctx, sr_scene *scene)
 sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect, sr_mat4 *view,
                                    sr_mat4 *projection)
 {
-    if (!camera || !view || !projection || !(aspect > 0) || !isfinite(aspect)) {
+    if (!camera || !view || !projection || !(aspect > 0) || !isfinite(aspect) ||
+        (unsigned)camera->type > SR_SCENE_CAMERA_ORTHOGRAPHIC) {
         return SR_INVALID_ARG;
+    }
+    const float *w = camera->world;
+    for (int i = 0; i < 16; i++) {
+        if (!isfinite(w[i])) {
+            return SR_INVALID_ARG;
+        }
     }
     /* An orthonormal frame from the world matrix: -Z (the gaze) kept,
      * X made perpendicular to it, Y completing a right-handed frame. */
-    const float *w = camera->world;
     sr_vec3 z = sr_vec3_normalize(sr_vec3_make(w[8], w[9], w[10]));
     sr_vec3 x = sr_vec3_make(w[0], w[1], w[2]);
     x = sr_vec3_normalize(sr_vec3_sub(x, sr_vec3_scale(z, sr_vec3_dot(x, z))));
     sr_vec3 y = sr_vec3_cross(z, x);
-    if (sr_vec3_length(y) < 0.5f) {
+    if (!(sr_vec3_length(y) >= 0.5f)) {
         return SR_INVALID_ARG;
     }
     sr_vec3 t = sr_vec3_make(w[12], w[13], w[14]);
     const sr_vec3 axes[3] = { x, y, z };
-    memset(view, 0, sizeof *view);
+    sr_mat4 v = { { 0 } };
     for (int r = 0; r < 3; r++) {
-        view->m[r] = axes[r].x;
-        view->m[4 + r] = axes[r].y;
-        view->m[8 + r] = axes[r].z;
-        view->m[12 + r] = -sr_vec3_dot(axes[r], t);
+        v.m[r] = axes[r].x;
+        v.m[4 + r] = axes[r].y;
+        v.m[8 + r] = axes[r].z;
+        v.m[12 + r] = -sr_vec3_dot(axes[r], t);
     }
-    view->m[15] = 1;
+    v.m[15] = 1;
+    /* Outputs are written only on success: a refused camera leaves them. */
     float n = camera->znear, f = camera->zfar;
+    if (!isfinite(n) || !isfinite(f)) {
+        return SR_INVALID_ARG;
+    }
     if (camera->type == SR_SCENE_CAMERA_ORTHOGRAPHIC) {
         float ymag = fabsf(camera->ymag), xmag = ymag * aspect;
-        if (!(ymag > 0) || !(f > n)) {
+        if (!(ymag > 0) || !isfinite(xmag) || !(f > n)) {
             return SR_INVALID_ARG;
         }
+        *view = v;
         *projection = sr_ortho(-xmag, xmag, -ymag, ymag, n, f, false);
         return SR_OK;
     }
-    if (!(camera->yfov > 0) || !(n > 0) || (f != 0 && !(f > n))) {
+    if (!(camera->yfov > 0 && camera->yfov < 3.14159265f) || !(n > 0) || (f != 0 && !(f > n))) {
         return SR_INVALID_ARG;
     }
+    *view = v;
     if (f != 0) {
         *projection = sr_perspective(camera->yfov, aspect, n, f, false);
         return SR_OK;

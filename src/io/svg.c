@@ -3935,6 +3935,10 @@ sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr
                            "sr_svg_desc: width and height are both 0 or both > 0, scale and "
                            "max_side >= 0");
     }
+    sr_rgba bg = desc->background;
+    if (!isfinite(bg.r) || !isfinite(bg.g) || !isfinite(bg.b) || !isfinite(bg.a)) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0, "sr_svg_desc.background is not finite");
+    }
     return render(ctx, data, size, desc, out, info, err->message, sizeof err->message);
 }
 

@@ -31,6 +31,9 @@ bool sr_camera_frame(sr_vec3 e, sr_vec3 g, sr_vec3 t, sr_camera_basis *out)
 sr_mat4 sr_camera_matrix(const sr_camera_basis *b)
 {
     sr_mat4 r = sr_mat4_identity();
+    if (!b) {
+        return r;   /* NULL: the identity, as for every matrix argument */
+    }
     const sr_vec3 axes[3] = { b->u, b->v, b->w };
     for (int row = 0; row < 3; row++) {
         M(r, row, 0) = axes[row].x;
@@ -125,7 +128,14 @@ sr_mat4 sr_viewport_matrix(float x0, float y0, float width, float height,
 
 bool sr_normal_matrix(const sr_mat4 *mv, sr_mat4 *out)
 {
+    if (!out) {
+        return false;
+    }
     sr_mat4 upper = sr_mat4_identity();
+    if (!mv) {
+        *out = upper;
+        return true;
+    }
     for (int c = 0; c < 3; c++) {
         for (int r = 0; r < 3; r++) {
             M(upper, r, c) = M(*mv, r, c);

@@ -14,8 +14,13 @@ sr_mat4 sr_mat4_identity(void)
     return r;
 }
 
+/* A NULL matrix argument is the identity, as a NULL sr_draw_desc.model is. */
+static const sr_mat4 identity = { { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 } };
+
 sr_mat4 sr_mat4_mul(const sr_mat4 *a, const sr_mat4 *b)
 {
+    a = a ? a : &identity;
+    b = b ? b : &identity;
     sr_mat4 r;
     for (int col = 0; col < 4; col++) {
         for (int row = 0; row < 4; row++) {
@@ -32,7 +37,7 @@ sr_mat4 sr_mat4_mul(const sr_mat4 *a, const sr_mat4 *b)
 
 sr_vec4 sr_mat4_mul_vec4(const sr_mat4 *m, sr_vec4 v)
 {
-    const float *a = m->m;
+    const float *a = m ? m->m : identity.m;
     return (sr_vec4){
         a[0] * v.x + a[4] * v.y + a[8] * v.z + a[12] * v.w,
         a[1] * v.x + a[5] * v.y + a[9] * v.z + a[13] * v.w,
@@ -43,6 +48,7 @@ sr_vec4 sr_mat4_mul_vec4(const sr_mat4 *m, sr_vec4 v)
 
 sr_mat4 sr_mat4_transpose(const sr_mat4 *m)
 {
+    m = m ? m : &identity;
     sr_mat4 r;
     for (int row = 0; row < 4; row++) {
         for (int col = 0; col < 4; col++) {
@@ -56,6 +62,10 @@ sr_mat4 sr_mat4_transpose(const sr_mat4 *m)
  * relative to the matrix's scale. */
 bool sr_mat4_invert(const sr_mat4 *src, sr_mat4 *out)
 {
+    if (!out) {
+        return false;
+    }
+    src = src ? src : &identity;
     double a[16], inv[16];
     for (int i = 0; i < 16; i++) {
         a[i] = src->m[i];

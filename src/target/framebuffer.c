@@ -6,6 +6,7 @@
 #include "fragment/depth.h"
 #include "raster/fixed.h"
 #include "pipeline.h"
+#include "rows.h"
 
 #include <math.h>
 #include <string.h>
@@ -729,6 +730,10 @@ static sr_result check_rgba_rect(sr_context *ctx, const char *fn, const sr_frame
     if (r == SR_OK && stride < (size_t)w * 4) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < 4 * width", fn, stride);
     }
+    if (r == SR_OK && !sr__rows_fit(pixels, (size_t)h, stride, (size_t)w * 4)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %d rows of stride %zu run past the end of memory",
+                        fn, h, stride);
+    }
     return r;
 }
 
@@ -760,6 +765,27 @@ sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int
     sr_result r = check_rgba_rect(ctx, "sr_write_pixels", fb, x, y, w, h, rgba, "rgba", stride);
     if (r != SR_OK) {
         return r;
+    }
+    /* The source may be the framebuffer's own pixels (sr_framebuffer_pixels
+     * of a single-sampled one is its color buffer): rows copied in place
+     * would then read rows already overwritten, so such a source is read
+     * from a copy. */
+    size_t row_bytes = (size_t)w * 4, span = (size_t)(h - 1) * stride + row_bytes;
+    size_t row_words = (size_t)fb->width * (size_t)fb->samples;
+    const uint8_t *image = (const uint8_t *)(fb->color + (size_t)fb->row0 * row_words);
+    size_t image_bytes = (size_t)(fb->row1 - fb->row0) * row_words * 4;
+    uint8_t *copy = NULL;
+    if ((uintptr_t)rgba < (uintptr_t)image + image_bytes &&
+        (uintptr_t)image < (uintptr_t)rgba + span) {
+        copy = sr__alloc(ctx, row_bytes * (size_t)h);
+        if (!copy) {
+            return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_write_pixels: out of memory");
+        }
+        for (int row = 0; row < h; row++) {
+            memcpy(copy + (size_t)row * row_bytes, rgba + (size_t)row * stride, row_bytes);
+        }
+        rgba = copy;
+        stride = row_bytes;
     }
     /* The tiles under the rectangle: their pending clears are carried out
      * first (the rest of each tile still gets the cleared values), they no
@@ -800,6 +826,7 @@ sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int
             }
         }
     }
+    sr__free(ctx, copy);
     sr__ok(ctx);
     return SR_OK;
 }
@@ -819,6 +846,12 @@ sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
     }
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_read_depth: stride %zu < width", stride);
+    }
+    if (stride > SIZE_MAX / sizeof(float) ||
+        !sr__rows_fit(out, (size_t)h, stride * sizeof(float), (size_t)w * sizeof(float))) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_read_depth: %d rows of stride %zu floats run past the end of memory",
+                        h, stride);
     }
     sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_DEPTH);
     for (int row = 0; row < h; row++) {
@@ -849,6 +882,11 @@ sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
     }
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_read_stencil: stride %zu < width", stride);
+    }
+    if (!sr__rows_fit(out, (size_t)h, stride, (size_t)w)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_read_stencil: %d rows of stride %zu run past the end of memory", h,
+                        stride);
     }
     sr__fb_resolve((sr_framebuffer *)fb, SR_TILE_PENDING_STENCIL);
     for (int row = 0; row < h; row++) {
