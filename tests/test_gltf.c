@@ -723,6 +723,31 @@ SR_TEST(missing_buffers_and_bad_documents_are_reported)
                            strlen(absolute), NULL, &s, &e),
              SR_UNSUPPORTED);
     CHECK_STR_CONTAINS(e.message, "bad.gltf: /buffers/0/uri: only relative file names");
+    /* Nor by climbing out of the model's directory, or with a "/" in
+     * percent-encoding; a ".." that stays inside is read. */
+    static const char *const outside[] = { "../no_such.bin", "a/../../no_such.bin",
+                                           "%2Fetc%2Fpasswd", "%2e%2e/no_such.bin" };
+    for (size_t i = 0; i < sizeof outside / sizeof *outside; i++) {
+        char escaping[600];
+        snprintf(escaping, sizeof escaping,
+                 "{\"asset\":{\"version\":\"2.0\"},"
+                 "\"buffers\":[{\"byteLength\":36,\"uri\":\"%s\"}]" VIEW0
+                 ACC("\"count\":3") MESH_OF("0") NODES "}",
+                 outside[i]);
+        CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)escaping,
+                               strlen(escaping), NULL, &s, &e),
+                 SR_UNSUPPORTED);
+        CHECK_STR_CONTAINS(e.message,
+                           "bad.gltf: /buffers/0/uri: only file names inside the model's "
+                           "directory are read");
+    }
+    const char *inside = "{\"asset\":{\"version\":\"2.0\"},"
+                         "\"buffers\":[{\"byteLength\":36,\"uri\":\"a/./../no_such.bin\"}]"
+                         VIEW0 ACC("\"count\":3") MESH_OF("0") NODES "}";
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)inside, strlen(inside),
+                           NULL, &s, &e),
+             SR_IO_ERROR);
+    CHECK_STR_CONTAINS(e.message, "a/./../no_such.bin: cannot open");
     const char *broken = "{\"asset\":{\"version\":\"2.0\"},\n\"nodes\":[}";
     CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)broken, strlen(broken),
                            NULL, &s, &e),

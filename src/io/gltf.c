@@ -192,6 +192,30 @@ static int hex_value(char c)
     return -1;
 }
 
+/* Whether a decoded relative path names a file under the model's
+ * directory: it must not be absolute (a percent-encoded "/" decodes to
+ * one) nor climb above its start with "..", so that a document cannot make
+ * the reader open files elsewhere. */
+static bool stays_inside(const char *rel)
+{
+    if (rel[0] == '/') {
+        return false;
+    }
+    long depth = 0;
+    for (const char *s = rel; *s;) {
+        size_t n = strcspn(s, "/");
+        if (n == 2 && s[0] == '.' && s[1] == '.') {
+            if (--depth < 0) {
+                return false;
+            }
+        } else if (n > 0 && !(n == 1 && s[0] == '.')) {
+            depth++;
+        }
+        s += n + (s[n] == '/');
+    }
+    return true;
+}
+
 sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char **owned,
                             size_t *size, bool *from_file)
 {
@@ -236,6 +260,11 @@ sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char 
         }
     }
     path[o] = 0;
+    if (!stays_inside(path + dlen)) {
+        free(path);
+        return sr__gltf_fail(d, SR_UNSUPPORTED,
+                             "%s: only file names inside the model's directory are read", ptr);
+    }
     sr_io_error inner = {{0}};
     char *data;
     sr_result r = sr__read_file(path, &data, size, &inner);
