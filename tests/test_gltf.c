@@ -659,6 +659,9 @@ static const bad_case bad_cases[] = {
     { VIEW0 ACC("\"count\":3")
       ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":3}]}]" NODES,
       SR_BAD_FORMAT, "bad.gltf: /meshes/0/primitives/0/material: 3 is not an index below 0" },
+    { VIEW0 ACC("\"count\":3") MESH_OF("0")
+      ",\"nodes\":[{\"mesh\":-1}],\"scenes\":[{\"nodes\":[0]}]", SR_BAD_FORMAT,
+      "bad.gltf: /nodes/0/mesh: -1 is negative, not an index" },
     { VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\","
       "\"count\":3},{\"bufferView\":0,\"componentType\":5121,\"normalized\":true,"
       "\"type\":\"MAT2\",\"count\":3}],\"meshes\":[{\"primitives\":[{\"attributes\":"

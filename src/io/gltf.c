@@ -78,7 +78,13 @@ sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const 
     size_t v = 0;
     json_t *m = json_object_get(obj, key);
     double value = json_number_value(m);
-    if (json_is_number(m) && value == floor(value) && (value < 0 || value >= (double)limit)) {
+    if (json_is_number(m) && value == floor(value) && value < 0) {
+        /* Not "below LIMIT": callers that resolve the index later pass a
+         * limit that means no bound yet. */
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %.0f is negative, not an index", ptr, key,
+                             value);
+    }
+    if (json_is_number(m) && value == floor(value) && value >= (double)limit) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %.0f is not an index below %zu", ptr, key,
                              value, limit);
     }
