@@ -402,6 +402,38 @@ SR_TEST(material_factors_and_extensions_are_read)
     CHECK_EQ(d->metallic, 1.0f);
     CHECK_EQ(d->roughness, 1.0f);
     CHECK_EQ(d->alpha_mode, SR_ALPHA_OPAQUE);
+    /* The extension not read is named, the one read is not. */
+    CHECK_EQ(w.count, 1);
+    CHECK(strcmp(w.last, "t.gltf: warning: not read, the scene is drawn without them: "
+                         "/extensionsUsed/1 (EXT_whatever)") == 0);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* Skins, animations and morph targets are left out of the static scene
+ * with one warning naming each, so that a model drawn in its rest pose says
+ * why; a file without them warns of nothing (node_hierarchy_... checks). */
+SR_TEST(skins_animations_and_morph_targets_give_one_warning)
+{
+    const char body[] =
+        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+        "\"type\":\"VEC3\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
+        "{\"primitives\":[{\"attributes\":{\"POSITION\":0}},{\"attributes\":{\"POSITION\":0},"
+        "\"targets\":[{\"POSITION\":0}]}],\"weights\":[1]}],"
+        "\"nodes\":[{\"mesh\":0,\"skin\":0},{\"mesh\":1},{}],\"scenes\":[{\"nodes\":[0,1,2]}],"
+        "\"skins\":[{\"joints\":[2]}],"
+        "\"animations\":[{\"channels\":[],\"samplers\":[]}],"
+        "\"extensionsUsed\":[\"KHR_lights_punctual\"]";
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    CHECK_EQ(s->primitive_count, 3);
+    CHECK_EQ(w.count, 1);
+    CHECK_EQ(s->warning_count, 1);
+    CHECK(strcmp(w.last, "t.gltf: warning: not read, the scene is drawn without them: /skins, "
+                         "/animations, /meshes/1/primitives/1/targets (morph targets), "
+                         "/extensionsUsed/0 (KHR_lights_punctual)") == 0);
     sr_destroy_scene(sr_test_ctx(), s);
 }
 

@@ -985,6 +985,67 @@ static sr_result check_asset(gltf_doc *d)
     return SR_OK;
 }
 
+/* Appends ", item" (or "item" first) to list while it fits; once one does
+ * not, ", ..." ends the list. */
+static void list_add(char *list, size_t cap, bool *full, const char *item)
+{
+    size_t at = strlen(list);
+    if (*full) {
+        return;
+    }
+    if (at + strlen(item) + 8 >= cap) {
+        snprintf(list + at, cap - at, ", ...");
+        *full = true;
+        return;
+    }
+    snprintf(list + at, cap - at, "%s%s", at ? ", " : "", item);
+}
+
+/* One warning naming what the file holds that a static scene leaves out
+ * (skins, animations, morph targets, extensions other than the supported
+ * ones), so that a model drawn in its rest pose, or without its lights,
+ * says why. */
+static void warn_unread(gltf_doc *d)
+{
+    char list[400] = "", item[GLTF_PTR + 80];
+    bool full = false;
+    static const char *const kinds[] = { "skins", "animations" };
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        if (json_array_size(json_object_get(d->root, kinds[k])) > 0) {
+            snprintf(item, sizeof item, "/%s", kinds[k]);
+            list_add(list, sizeof list, &full, item);
+        }
+    }
+    json_t *meshes = json_object_get(d->root, "meshes");
+    for (size_t m = 0, found = 0; !found && m < json_array_size(meshes); m++) {
+        json_t *prims = json_object_get(json_array_get(meshes, m), "primitives");
+        for (size_t p = 0; !found && p < json_array_size(prims); p++) {
+            if (json_array_size(json_object_get(json_array_get(prims, p), "targets")) > 0) {
+                snprintf(item, sizeof item, "/meshes/%zu/primitives/%zu/targets (morph targets)",
+                         m, p);
+                list_add(list, sizeof list, &full, item);
+                found = 1;
+            }
+        }
+    }
+    json_t *used = json_object_get(d->root, "extensionsUsed");
+    for (size_t i = 0; i < json_array_size(used); i++) {
+        const char *name = json_string_value(json_array_get(used, i));
+        bool known = false;
+        for (size_t k = 0; name && k < sizeof supported_extensions / sizeof *supported_extensions;
+             k++) {
+            known |= strcmp(name, supported_extensions[k]) == 0;
+        }
+        if (name && !known) {
+            snprintf(item, sizeof item, "/extensionsUsed/%zu (%.64s)", i, name);
+            list_add(list, sizeof list, &full, item);
+        }
+    }
+    if (list[0]) {
+        sr__gltf_warn(d, "not read, the scene is drawn without them: %s", list);
+    }
+}
+
 /* The JSON and BIN chunks of a GLB. */
 static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const char **json,
                           size_t *json_size)
@@ -1083,6 +1144,7 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
         return r;
     }
     sr__scene_bounds(d->scene);
+    warn_unread(d);
     return SR_OK;
 }
 
