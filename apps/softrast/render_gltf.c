@@ -17,10 +17,12 @@ bool render_gltf_is(const char *path)
     return dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
 }
 
+/* The reader words its warnings "FILE: warning: ...": printed as they are,
+ * like its errors. */
 static void warn_line(void *user, const char *message)
 {
     (void)user;
-    fprintf(stderr, "softrast: warning: %s\n", message);
+    fprintf(stderr, "%s\n", message);
 }
 
 static void note_file(void *inputs, const char *path)
