@@ -409,6 +409,39 @@ SR_TEST(material_factors_and_extensions_are_read)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* Factors outside the specification's ranges are clamped into them, each
+ * with a warning naming it: a metallic of 5 drew black, a negative
+ * emission took light away. */
+SR_TEST(material_factors_out_of_range_are_clamped_with_a_warning)
+{
+    const char body[] =
+        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+        "\"type\":\"VEC3\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[2,-1,0.5,1.0000000001],"
+        "\"metallicFactor\":5},\"emissiveFactor\":[1,1,1],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":-3}}}]";
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK_EQ(m->base_color[0], 1.0f);
+    CHECK_EQ(m->base_color[1], 0.0f);
+    CHECK_EQ(m->base_color[2], 0.5f);
+    CHECK_EQ(m->base_color[3], 1.0f);
+    CHECK_EQ(m->metallic, 1.0f);
+    CHECK(m->emissive_strength >= 0.0f);
+    /* Strength clamped to 0: no emission. */
+    CHECK_EQ(m->emissive[0] * m->emissive_strength, 0.0f);
+    CHECK_EQ(w.count, 4);   /* the rounding of 1.0000000001 says nothing */
+    CHECK(strcmp(w.last, "t.gltf: warning: /materials/0/extensions/"
+                         "KHR_materials_emissive_strength/emissiveStrength: -3 is negative, "
+                         "taken as 0") == 0);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
 /* Skins, animations and morph targets are left out of the static scene
  * with one warning naming each, so that a model drawn in its rest pose says
  * why; a file without them warns of nothing (node_hierarchy_... checks). */
