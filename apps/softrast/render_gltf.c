@@ -19,11 +19,11 @@ bool render_gltf_is(const char *path)
 }
 
 /* The reader words its warnings "FILE: warning: ...": printed as they are,
- * like its errors. */
+ * like its errors, or held for a batch's log line. */
 static void warn_line(void *user, const char *message)
 {
     (void)user;
-    fprintf(stderr, "%s\n", message);
+    cli_message("%s", message);
 }
 
 static void note_file(void *inputs, const char *path)
@@ -177,7 +177,7 @@ int render_gltf_load(const char *path, bool flat_normals, sr_context *ctx, cli_i
                                                  .user = inputs, .warn = warn_line },
                                 &sc, &err);
     if (r != SR_OK) {
-        fprintf(stderr, "%s\n", err.message);
+        cli_message("%s", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     s->gltf = sc;
