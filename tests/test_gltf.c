@@ -73,10 +73,13 @@ static const uint8_t *tri_le(void)
     le_copy(b, tri, 9, 4);
     return b;
 }
+/* tri's buffer view and accessor 0, for documents that write their own
+ * meshes. */
+#define TRI_ACCESSOR \
+    ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}]," \
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]"
 static const char tri_mesh[] =
-    ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
-    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}],"
-    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]";
+    TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]";
 
 SR_TEST(node_hierarchy_composes_transforms_and_flags_mirroring)
 {
@@ -415,10 +418,8 @@ SR_TEST(material_factors_and_extensions_are_read)
 SR_TEST(material_factors_out_of_range_are_clamped_with_a_warning)
 {
     const char body[] =
-        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
-        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
-        "\"type\":\"VEC3\"}],"
-        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]}],"
+        TRI_ACCESSOR
+        ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]}],"
         "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
         "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[2,-1,0.5,1.0000000001],"
         "\"metallicFactor\":5},\"emissiveFactor\":[1,1,1],"
@@ -448,10 +449,7 @@ SR_TEST(material_factors_out_of_range_are_clamped_with_a_warning)
 SR_TEST(skins_animations_and_morph_targets_give_one_warning)
 {
     const char body[] =
-        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
-        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
-        "\"type\":\"VEC3\"}],"
-        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
+        TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
         "{\"primitives\":[{\"attributes\":{\"POSITION\":0}},{\"attributes\":{\"POSITION\":0},"
         "\"targets\":[{\"POSITION\":0}]}],\"weights\":[1]}],"
         "\"nodes\":[{\"mesh\":0,\"skin\":0},{\"mesh\":1},{}],\"scenes\":[{\"nodes\":[0,1,2]}],"

@@ -120,9 +120,9 @@ static bool merge(const sr_scene *sc, bool flat, sr_mesh *m, sr_mesh_part *parts
     ob->tangents = tangents && uv0 ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
     ob->texcoords1 = uv1 ? calloc(nv ? nv : 1, 2 * sizeof(float)) : NULL;
     ob->part_material = malloc((sc->primitive_count ? sc->primitive_count : 1) * sizeof(int));
-    if (!m->positions || (normals && !m->normals) || (uv0 && !m->texcoords) || (colors && !m->colors) ||
-        !m->indices || (tangents && uv0 && !ob->tangents) || (uv1 && !ob->texcoords1) ||
-        !ob->part_material) {
+    if (!m->positions || (normals && !m->normals) || (uv0 && !m->texcoords) ||
+        (colors && !m->colors) || !m->indices || (tangents && uv0 && !ob->tangents) ||
+        (uv1 && !ob->texcoords1) || !ob->part_material) {
         return false;
     }
     size_t v0 = 0, t0 = 0;
