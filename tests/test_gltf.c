@@ -868,3 +868,32 @@ SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
     free(json);
     free(body);
 }
+
+SR_TEST(instancing_a_long_index_list_past_the_triangle_limit_is_refused)
+{
+    /* Three vertices indexed by 1 048 575 zeros (no bufferView), placed by
+     * 769 nodes: 268 784 725 triangles, past 2^28, from a few kilobytes;
+     * the vertices (2307) are far below their limit. */
+    size_t cap = 769 * 16 + 1024;
+    char *body = malloc(cap);
+    size_t at = (size_t)snprintf(body, cap,
+                                 VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,"
+                                 "\"type\":\"VEC3\",\"count\":3},{\"componentType\":5125,"
+                                 "\"type\":\"SCALAR\",\"count\":1048575}],\"meshes\":[{"
+                                 "\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+                                 "\"indices\":1}]}],\"nodes\":[");
+    for (int i = 0; i < 769; i++) {
+        at += (size_t)snprintf(body + at, cap - at, "%s{\"mesh\":0}", i ? "," : "");
+    }
+    snprintf(body + at, cap - at, "]");
+    char *json = doc(tri_le(), sizeof tri, body);
+    sr_scene *s;
+    sr_io_error e;
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "big.gltf", (const uint8_t *)json, strlen(json), NULL,
+                           &s, &e),
+             SR_TOO_LARGE);
+    CHECK_STR_CONTAINS(e.message,
+                       "big.gltf: /nodes/768: more than 268435456 triangles to draw in all");
+    free(json);
+    free(body);
+}

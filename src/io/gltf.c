@@ -779,6 +779,11 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
             return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu vertices to draw in all", ptr,
                                  SR_SCENE_MAX_DRAWN_VERTICES);
         }
+        d->drawn_triangles += g->triangle_count;
+        if (d->drawn_triangles > SR_SCENE_MAX_DRAWN_TRIANGLES) {
+            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu triangles to draw in all",
+                                 ptr, SR_SCENE_MAX_DRAWN_TRIANGLES);
+        }
         sr_scene_primitive *p = sr__scene_grow(d->scene, (void **)&d->scene->primitives,
                                                &d->scene->primitive_count, sizeof *p, 1);
         if (!p) {
