@@ -311,7 +311,8 @@ SR_TEST(texture_transform_sampler_and_uv_set_reach_the_slot)
             "\"rotation\":0.5,\"scale\":[2,3],\"texCoord\":1}}},"
             "\"metallicRoughnessTexture\":{\"index\":1}},"
             "\"emissiveTexture\":{\"index\":1}}]",
-            tri_mesh, b64);
+            TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+            "\"material\":0}]}]", b64);
     warnings w = {0};
     sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
@@ -346,6 +347,12 @@ SR_TEST(texture_transform_sampler_and_uv_set_reach_the_slot)
     CHECK_EQ(m->emissive_texture.scale[0], 1.0f);
     CHECK_EQ(m->emissive_texture.offset[1], 0.0f);   /* identity stays identity */
     CHECK_EQ(s->texture_count, 2);
+    /* The triangle has no texture coordinates: its textures cannot be
+     * mapped, which one warning says (of the first set missing). */
+    CHECK_EQ(w.count, 1);
+    CHECK(strcmp(w.last, "t.gltf: warning: /meshes/0/primitives/0/attributes: no TEXCOORD_1, "
+                         "which material 0's textures read (drawn with one color of the "
+                         "texture)") == 0);
     sr_destroy_scene(sr_test_ctx(), s);
     free(body);
     free(b64);

@@ -472,6 +472,25 @@ static void flip_v(float *uv, size_t n)
     }
 }
 
+/* A texture of the primitive's material that reads a coordinate set the
+ * primitive lacks is drawn as one texel's color: said once per primitive,
+ * since the file looks textured in other viewers' lists but not drawn so. */
+static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool has0, bool has1)
+{
+    const sr_pbr_material *m = &d->scene->materials[material];
+    const sr_texture_slot *slots[] = { &m->base_color_texture, &m->metallic_roughness_texture,
+                                       &m->normal_texture, &m->occlusion_texture,
+                                       &m->emissive_texture };
+    for (size_t i = 0; i < sizeof slots / sizeof *slots; i++) {
+        int set = slots[i]->texcoord;
+        if (slots[i]->texture && !(set == 0 ? has0 : has1)) {
+            sr__gltf_warn(d, "%s: no TEXCOORD_%d, which material %d's textures read (drawn "
+                          "with one color of the texture)", aptr, set, material);
+            return;
+        }
+    }
+}
+
 static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr,
                                 sr_scene_primitive *p)
 {
@@ -526,6 +545,7 @@ static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr
         }
         col = rgba;
     }
+    check_texcoords(d, aptr, p->material, uv0 != NULL, uv1 != NULL);
     flip_v(uv0, n);
     flip_v(uv1, n);
     uint32_t *idx = NULL;
