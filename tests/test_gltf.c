@@ -852,16 +852,14 @@ SR_TEST(missing_buffers_and_bad_documents_are_reported)
     sr_destroy_scene(sr_test_ctx(), NULL);
 }
 
-SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
+/* `head` (accessors and mesh 0) and `nodes` nodes placing mesh 0, parsed
+ * as big.gltf: it must be refused as too large with `message`. */
+static void expect_too_many_instances(const char *head, int nodes, const char *message)
 {
-    /* 131070 zero vertices (no bufferView: cheap to store), drawn by 1025
-     * nodes: 134 346 750 vertices, past 2^27. */
-    size_t cap = 1025 * 16 + 1024;
+    size_t cap = (size_t)nodes * 16 + strlen(head) + 64;
     char *body = malloc(cap);
-    size_t at = (size_t)snprintf(body, cap,
-                                 ",\"accessors\":[{\"componentType\":5126,\"type\":\"VEC3\","
-                                 "\"count\":131070}]" MESH_OF("0") ",\"nodes\":[");
-    for (int i = 0; i < 1025; i++) {
+    size_t at = (size_t)snprintf(body, cap, "%s,\"nodes\":[", head);
+    for (int i = 0; i < nodes; i++) {
         at += (size_t)snprintf(body + at, cap - at, "%s{\"mesh\":0}", i ? "," : "");
     }
     snprintf(body + at, cap - at, "]");
@@ -871,9 +869,18 @@ SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
     CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "big.gltf", (const uint8_t *)json, strlen(json), NULL,
                            &s, &e),
              SR_TOO_LARGE);
-    CHECK_STR_CONTAINS(e.message, "big.gltf: /nodes/1024: more than 134217728 vertices to draw");
+    CHECK_STR_CONTAINS(e.message, message);
     free(json);
     free(body);
+}
+
+SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
+{
+    /* 131070 zero vertices (no bufferView: cheap to store), drawn by 1025
+     * nodes: 134 346 750 vertices, past 2^27. */
+    expect_too_many_instances(",\"accessors\":[{\"componentType\":5126,\"type\":\"VEC3\","
+                              "\"count\":131070}]" MESH_OF("0"),
+                              1025, "big.gltf: /nodes/1024: more than 134217728 vertices to draw");
 }
 
 SR_TEST(instancing_a_long_index_list_past_the_triangle_limit_is_refused)
@@ -881,26 +888,9 @@ SR_TEST(instancing_a_long_index_list_past_the_triangle_limit_is_refused)
     /* Three vertices indexed by 1 048 575 zeros (no bufferView), placed by
      * 769 nodes: 268 784 725 triangles, past 2^28, from a few kilobytes;
      * the vertices (2307) are far below their limit. */
-    size_t cap = 769 * 16 + 1024;
-    char *body = malloc(cap);
-    size_t at = (size_t)snprintf(body, cap,
-                                 VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,"
-                                 "\"type\":\"VEC3\",\"count\":3},{\"componentType\":5125,"
-                                 "\"type\":\"SCALAR\",\"count\":1048575}],\"meshes\":[{"
-                                 "\"primitives\":[{\"attributes\":{\"POSITION\":0},"
-                                 "\"indices\":1}]}],\"nodes\":[");
-    for (int i = 0; i < 769; i++) {
-        at += (size_t)snprintf(body + at, cap - at, "%s{\"mesh\":0}", i ? "," : "");
-    }
-    snprintf(body + at, cap - at, "]");
-    char *json = doc(tri_le(), sizeof tri, body);
-    sr_scene *s;
-    sr_io_error e;
-    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "big.gltf", (const uint8_t *)json, strlen(json), NULL,
-                           &s, &e),
-             SR_TOO_LARGE);
-    CHECK_STR_CONTAINS(e.message,
-                       "big.gltf: /nodes/768: more than 268435456 triangles to draw in all");
-    free(json);
-    free(body);
+    expect_too_many_instances(
+        VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\","
+        "\"count\":3},{\"componentType\":5125,\"type\":\"SCALAR\",\"count\":1048575}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}]",
+        769, "big.gltf: /nodes/768: more than 268435456 triangles to draw in all");
 }
