@@ -149,12 +149,15 @@ typedef struct sr_scene {
 
 /* Limits of the glTF reader, checked before allocating: at most this many
  * draws (node instances of primitives) drawing at most this many vertices
- * in all (instances counted each time), and accessors decoded whose
+ * and triangles in all (instances counted each time: a few vertices
+ * indexed by a long accessor and placed by many nodes cost their
+ * triangles), and accessors decoded whose
  * elements sum to at most SR_SCENE_ELEMENTS_PER_BYTE per byte of input
  * (the JSON, its buffers) plus SR_SCENE_ELEMENTS_BASE, so that a small
  * file cannot ask for gigabytes with a large count and no data. */
 #define SR_SCENE_MAX_DRAWS          ((size_t)1 << 20)
 #define SR_SCENE_MAX_DRAWN_VERTICES ((size_t)1 << 27)
+#define SR_SCENE_MAX_DRAWN_TRIANGLES ((size_t)1 << 28)
 #define SR_SCENE_ELEMENTS_PER_BYTE  16
 #define SR_SCENE_ELEMENTS_BASE      ((size_t)1 << 20)
 

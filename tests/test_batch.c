@@ -305,6 +305,32 @@ SR_TEST(exit_status_says_all_or_none)
     CHECK_EQ(r.err[0], '\0');
 }
 
+/* A glTF the reader refuses is logged with the reader's message, as an
+ * OBJ's is, not a bare "failed". */
+SR_TEST(a_bad_gltf_is_logged_with_the_readers_message)
+{
+    NEED_CLI();
+    char dir[1024], out[1024], glb[1100], logp[1100];
+    fresh_dir("gltf_log", dir, sizeof dir);
+    fresh_dir("gltf_log_out", out, sizeof out);
+    snprintf(glb, sizeof glb, "%s/cut.glb", dir);
+    snprintf(logp, sizeof logp, "%s/log.jsonl", dir);
+    /* A GLB header saying 600 bytes, and no more. */
+    const uint32_t words[5] = { 0x46546C67u, 2, 600, 0, 0x4E4F534Au };
+    uint8_t bytes[20];
+    le_copy(bytes, words, 5, 4);
+    REQUIRE(sr_test_write_file(glb, bytes, sizeof bytes));
+    run_result r;
+    REQUIRE(run(ARGS("render", glb, "--output-dir", out, "--size", "16x16", "--log", logp), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK_EQ(count_lines(r.err), 1);
+    record recs[2];
+    REQUIRE(read_log(logp, recs, 2) == 1);
+    CHECK(strcmp(recs[0].status, "failed") == 0);
+    CHECK(!recs[0].error_null);
+    CHECK_STR_CONTAINS(recs[0].error, "cut.glb: byte 8: GLB length 600, but the file has 20 bytes");
+}
+
 /* --batch: a list on standard input, with an output named on one line, a
  * comment and a blank line; a quoted glob pattern expanded by the tool. */
 SR_TEST(list_on_stdin_and_glob_patterns)

@@ -586,6 +586,139 @@ SR_TEST(garbage_in_other_formats_gives_one_line)
                           "garbage.gltf:1: invalid JSON");
 }
 
+/* A glTF reader's warning reaches stderr as the reader words it, one line
+ * "FILE: warning: ...", not with a second "warning:" in front. */
+SR_TEST(a_gltf_warning_is_one_line_said_once)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], model[1100], out[1100];
+    fresh_dir("gltfwarn", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/lit.gltf", dir);
+    snprintf(out, sizeof out, "%s/out.png", dir);
+    const gltf_quad q = { -1, -1, 1, 1, 0 };
+    char *json = gltf_quads(&q, 1, ",\"materials\":[{}],"
+                                   "\"extensionsUsed\":[\"KHR_lights_punctual\"]");
+    REQUIRE(json && write_whole(model, json, strlen(json)));
+    free(json);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", model, "--size", "32x24", "-o", out), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK(is_one_line(r.err, r.err_len));
+    CHECK_STR_CONTAINS(r.err, "lit.gltf: warning: not read, the scene is drawn without them: "
+                              "/extensionsUsed/0 (KHR_lights_punctual)");
+    const char *first = strstr(r.err, "warning: ");
+    CHECK(first && !strstr(first + 1, "warning: "));
+    cli_run_free(&r);
+#endif
+}
+
+#ifdef SR_CLI_PATH
+/* A unit cube as a .gltf at path: with `normals`, 24 corners with the
+ * faces' normals; without, its 8 corners shared and no normals. Placed
+ * twice, the second time mirrored (scale -1 on x). */
+static bool write_gltf_cube(const char *path, bool normals)
+{
+    float pos[24 * 3], nrm[24 * 3];
+    uint16_t idx[36];
+    size_t nv = 0;
+    static const int axis_sign[6][2] = { { 0, 1 }, { 0, -1 }, { 1, 1 }, { 1, -1 }, { 2, 1 },
+                                         { 2, -1 } };
+    for (int f = 0; f < 6; f++) {
+        int a = axis_sign[f][0], sg = axis_sign[f][1], u = (a + 1) % 3, v = (a + 2) % 3;
+        static const float corner[4][2] = { { -1, -1 }, { 1, -1 }, { 1, 1 }, { -1, 1 } };
+        uint16_t at[4];
+        for (int c = 0; c < 4; c++) {
+            float p[3];
+            p[a] = (float)sg;
+            p[u] = corner[c][0];
+            p[v] = corner[c][1] * (float)sg;   /* counter-clockwise seen from outside */
+            size_t k = nv;
+            if (!normals) {   /* share the corner with the faces before */
+                for (k = 0; k < nv && memcmp(&pos[3 * k], p, sizeof p) != 0; k++) {
+                }
+            }
+            if (k == nv) {
+                memcpy(&pos[3 * nv], p, sizeof p);
+                float n[3] = { 0, 0, 0 };
+                n[a] = (float)sg;
+                memcpy(&nrm[3 * nv], n, sizeof n);
+                nv++;
+            }
+            at[c] = (uint16_t)k;
+        }
+        const int order[6] = { 0, 1, 2, 0, 2, 3 };
+        for (int k = 0; k < 6; k++) {
+            idx[6 * f + k] = at[order[k]];
+        }
+    }
+    size_t pos_len = 12 * nv, len = 2 * pos_len + sizeof idx;
+    uint8_t bin[24 * 3 * 4 * 2 + sizeof idx];
+    le_copy(bin, pos, 3 * nv, 4);
+    le_copy(bin + pos_len, nrm, 3 * nv, 4);
+    le_copy(bin + 2 * pos_len, idx, 36, 2);
+    char b64[4 * (sizeof bin / 3 + 1) + 1], json[8192];
+    gltf_base64(bin, len, b64);
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu,"
+             "\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%zu},"
+             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
+             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":72}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":%zu,"
+             "\"type\":\"VEC3\",\"min\":[-1,-1,-1],\"max\":[1,1,1]},"
+             "{\"bufferView\":1,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\"},"
+             "{\"bufferView\":2,\"componentType\":5123,\"count\":36,\"type\":\"SCALAR\"}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0%s},"
+             "\"indices\":2}]}],"
+             "\"nodes\":[{\"mesh\":0,\"translation\":[-1.5,0,0]},"
+             "{\"mesh\":0,\"translation\":[1.5,0,0],\"scale\":[-1,1,1]}],"
+             "\"scenes\":[{\"nodes\":[0,1]}]}",
+             len, b64, pos_len, pos_len, pos_len, 2 * pos_len, nv, nv,
+             normals ? ",\"NORMAL\":1" : "");
+    return write_whole(path, json, strlen(json));
+}
+#endif
+
+/* glTF asks for flat normals where a primitive has none: a cube of 8
+ * shared corners is drawn as the same cube with its faces' normals, not
+ * rounded by smooth normals; mirrored, its faces still face out. */
+SR_TEST(a_gltf_primitive_without_normals_is_flat_shaded)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], with[1100], without[1100];
+    fresh_dir("gltfflat", dir, sizeof dir);
+    snprintf(with, sizeof with, "%s/with.gltf", dir);
+    snprintf(without, sizeof without, "%s/without.gltf", dir);
+    REQUIRE(write_gltf_cube(with, true) && write_gltf_cube(without, false));
+    uint8_t *px[2] = { NULL, NULL };
+    int w = 0, h = 0;
+    const char *models[2] = { with, without };
+    for (int i = 0; i < 2; i++) {
+        char out[1200];
+        snprintf(out, sizeof out, "%s/%d.png", dir, i);
+        cli_run r;
+        REQUIRE(run_cli(ARGS("render", models[i], "--size", "96x64", "-o", out), &r));
+        CHECK_EQ(r.status, 0);
+        cli_run_free(&r);
+        sr_io_error err;
+        REQUIRE(sr_read_png(out, NULL, &w, &h, &px[i], &err) == SR_OK);
+    }
+    /* Flat normals from the corners' cross product against the file's:
+     * a rounding apart at most. */
+    long differ = 0;
+    for (long i = 0; i < 4L * w * h; i++) {
+        differ += abs(px[0][i] - px[1][i]) > 2;
+    }
+    CHECK_EQ(differ, 0);
+    free(px[0]);
+    free(px[1]);
+#endif
+}
+
 /* ---- option errors ------------------------------------------------------ */
 
 typedef struct option_case {

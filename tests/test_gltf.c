@@ -73,10 +73,13 @@ static const uint8_t *tri_le(void)
     le_copy(b, tri, 9, 4);
     return b;
 }
+/* tri's buffer view and accessor 0, for documents that write their own
+ * meshes. */
+#define TRI_ACCESSOR \
+    ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}]," \
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]"
 static const char tri_mesh[] =
-    ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
-    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}],"
-    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]";
+    TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]";
 
 SR_TEST(node_hierarchy_composes_transforms_and_flags_mirroring)
 {
@@ -308,7 +311,8 @@ SR_TEST(texture_transform_sampler_and_uv_set_reach_the_slot)
             "\"rotation\":0.5,\"scale\":[2,3],\"texCoord\":1}}},"
             "\"metallicRoughnessTexture\":{\"index\":1}},"
             "\"emissiveTexture\":{\"index\":1}}]",
-            tri_mesh, b64);
+            TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+            "\"material\":0}]}]", b64);
     warnings w = {0};
     sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
@@ -343,6 +347,12 @@ SR_TEST(texture_transform_sampler_and_uv_set_reach_the_slot)
     CHECK_EQ(m->emissive_texture.scale[0], 1.0f);
     CHECK_EQ(m->emissive_texture.offset[1], 0.0f);   /* identity stays identity */
     CHECK_EQ(s->texture_count, 2);
+    /* The triangle has no texture coordinates: its textures cannot be
+     * mapped, which one warning says (of the first set missing). */
+    CHECK_EQ(w.count, 1);
+    CHECK(strcmp(w.last, "t.gltf: warning: /meshes/0/primitives/0/attributes: no TEXCOORD_1, "
+                         "which material 0's textures read (drawn with one color of the "
+                         "texture)") == 0);
     sr_destroy_scene(sr_test_ctx(), s);
     free(body);
     free(b64);
@@ -402,6 +412,66 @@ SR_TEST(material_factors_and_extensions_are_read)
     CHECK_EQ(d->metallic, 1.0f);
     CHECK_EQ(d->roughness, 1.0f);
     CHECK_EQ(d->alpha_mode, SR_ALPHA_OPAQUE);
+    /* The extension not read is named, the one read is not. */
+    CHECK_EQ(w.count, 1);
+    CHECK(strcmp(w.last, "t.gltf: warning: not read, the scene is drawn without them: "
+                         "/extensionsUsed/1 (EXT_whatever)") == 0);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* Factors outside the specification's ranges are clamped into them, each
+ * with a warning naming it: a metallic of 5 drew black, a negative
+ * emission took light away. */
+SR_TEST(material_factors_out_of_range_are_clamped_with_a_warning)
+{
+    const char body[] =
+        TRI_ACCESSOR
+        ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[2,-1,0.5,1.0000000001],"
+        "\"metallicFactor\":5},\"emissiveFactor\":[1,1,1],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":-3}}}]";
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK_EQ(m->base_color[0], 1.0f);
+    CHECK_EQ(m->base_color[1], 0.0f);
+    CHECK_EQ(m->base_color[2], 0.5f);
+    CHECK_EQ(m->base_color[3], 1.0f);
+    CHECK_EQ(m->metallic, 1.0f);
+    CHECK(m->emissive_strength >= 0.0f);
+    /* Strength clamped to 0: no emission. */
+    CHECK_EQ(m->emissive[0] * m->emissive_strength, 0.0f);
+    CHECK_EQ(w.count, 4);   /* the rounding of 1.0000000001 says nothing */
+    CHECK(strcmp(w.last, "t.gltf: warning: /materials/0/extensions/"
+                         "KHR_materials_emissive_strength/emissiveStrength: -3 is negative, "
+                         "taken as 0") == 0);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* Skins, animations and morph targets are left out of the static scene
+ * with one warning naming each, so that a model drawn in its rest pose says
+ * why; a file without them warns of nothing (node_hierarchy_... checks). */
+SR_TEST(skins_animations_and_morph_targets_give_one_warning)
+{
+    const char body[] =
+        TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
+        "{\"primitives\":[{\"attributes\":{\"POSITION\":0}},{\"attributes\":{\"POSITION\":0},"
+        "\"targets\":[{\"POSITION\":0}]}],\"weights\":[1]}],"
+        "\"nodes\":[{\"mesh\":0,\"skin\":0},{\"mesh\":1},{}],\"scenes\":[{\"nodes\":[0,1,2]}],"
+        "\"skins\":[{\"joints\":[2]}],"
+        "\"animations\":[{\"channels\":[],\"samplers\":[]}],"
+        "\"extensionsUsed\":[\"KHR_lights_punctual\"]";
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    CHECK_EQ(s->primitive_count, 3);
+    CHECK_EQ(w.count, 1);
+    CHECK_EQ(s->warning_count, 1);
+    CHECK(strcmp(w.last, "t.gltf: warning: not read, the scene is drawn without them: /skins, "
+                         "/animations, /meshes/1/primitives/1/targets (morph targets), "
+                         "/extensionsUsed/0 (KHR_lights_punctual)") == 0);
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
@@ -674,6 +744,9 @@ static const bad_case bad_cases[] = {
     { VIEW0 ACC("\"count\":3")
       ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":3}]}]" NODES,
       SR_BAD_FORMAT, "bad.gltf: /meshes/0/primitives/0/material: 3 is not an index below 0" },
+    { VIEW0 ACC("\"count\":3") MESH_OF("0")
+      ",\"nodes\":[{\"mesh\":-1}],\"scenes\":[{\"nodes\":[0]}]", SR_BAD_FORMAT,
+      "bad.gltf: /nodes/0/mesh: -1 is negative, not an index" },
     { VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\","
       "\"count\":3},{\"bufferView\":0,\"componentType\":5121,\"normalized\":true,"
       "\"type\":\"MAT2\",\"count\":3}],\"meshes\":[{\"primitives\":[{\"attributes\":"
@@ -738,6 +811,31 @@ SR_TEST(missing_buffers_and_bad_documents_are_reported)
                            strlen(absolute), NULL, &s, &e),
              SR_UNSUPPORTED);
     CHECK_STR_CONTAINS(e.message, "bad.gltf: /buffers/0/uri: only relative file names");
+    /* Nor by climbing out of the model's directory, or with a "/" in
+     * percent-encoding; a ".." that stays inside is read. */
+    static const char *const outside[] = { "../no_such.bin", "a/../../no_such.bin",
+                                           "%2Fetc%2Fpasswd", "%2e%2e/no_such.bin" };
+    for (size_t i = 0; i < sizeof outside / sizeof *outside; i++) {
+        char escaping[600];
+        snprintf(escaping, sizeof escaping,
+                 "{\"asset\":{\"version\":\"2.0\"},"
+                 "\"buffers\":[{\"byteLength\":36,\"uri\":\"%s\"}]" VIEW0
+                 ACC("\"count\":3") MESH_OF("0") NODES "}",
+                 outside[i]);
+        CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)escaping,
+                               strlen(escaping), NULL, &s, &e),
+                 SR_UNSUPPORTED);
+        CHECK_STR_CONTAINS(e.message,
+                           "bad.gltf: /buffers/0/uri: only file names inside the model's "
+                           "directory are read");
+    }
+    const char *inside = "{\"asset\":{\"version\":\"2.0\"},"
+                         "\"buffers\":[{\"byteLength\":36,\"uri\":\"a/./../no_such.bin\"}]"
+                         VIEW0 ACC("\"count\":3") MESH_OF("0") NODES "}";
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)inside, strlen(inside),
+                           NULL, &s, &e),
+             SR_IO_ERROR);
+    CHECK_STR_CONTAINS(e.message, "a/./../no_such.bin: cannot open");
     const char *broken = "{\"asset\":{\"version\":\"2.0\"},\n\"nodes\":[}";
     CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "bad.gltf", (const uint8_t *)broken, strlen(broken),
                            NULL, &s, &e),
@@ -769,16 +867,14 @@ SR_TEST(missing_buffers_and_bad_documents_are_reported)
     sr_destroy_scene(sr_test_ctx(), NULL);
 }
 
-SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
+/* `head` (accessors and mesh 0) and `nodes` nodes placing mesh 0, parsed
+ * as big.gltf: it must be refused as too large with `message`. */
+static void expect_too_many_instances(const char *head, int nodes, const char *message)
 {
-    /* 131070 zero vertices (no bufferView: cheap to store), drawn by 1025
-     * nodes: 134 346 750 vertices, past 2^27. */
-    size_t cap = 1025 * 16 + 1024;
+    size_t cap = (size_t)nodes * 16 + strlen(head) + 64;
     char *body = malloc(cap);
-    size_t at = (size_t)snprintf(body, cap,
-                                 ",\"accessors\":[{\"componentType\":5126,\"type\":\"VEC3\","
-                                 "\"count\":131070}]" MESH_OF("0") ",\"nodes\":[");
-    for (int i = 0; i < 1025; i++) {
+    size_t at = (size_t)snprintf(body, cap, "%s,\"nodes\":[", head);
+    for (int i = 0; i < nodes; i++) {
         at += (size_t)snprintf(body + at, cap - at, "%s{\"mesh\":0}", i ? "," : "");
     }
     snprintf(body + at, cap - at, "]");
@@ -788,7 +884,28 @@ SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
     CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "big.gltf", (const uint8_t *)json, strlen(json), NULL,
                            &s, &e),
              SR_TOO_LARGE);
-    CHECK_STR_CONTAINS(e.message, "big.gltf: /nodes/1024: more than 134217728 vertices to draw");
+    CHECK_STR_CONTAINS(e.message, message);
     free(json);
     free(body);
+}
+
+SR_TEST(instancing_a_mesh_past_the_vertex_limit_is_refused)
+{
+    /* 131070 zero vertices (no bufferView: cheap to store), drawn by 1025
+     * nodes: 134 346 750 vertices, past 2^27. */
+    expect_too_many_instances(",\"accessors\":[{\"componentType\":5126,\"type\":\"VEC3\","
+                              "\"count\":131070}]" MESH_OF("0"),
+                              1025, "big.gltf: /nodes/1024: more than 134217728 vertices to draw");
+}
+
+SR_TEST(instancing_a_long_index_list_past_the_triangle_limit_is_refused)
+{
+    /* Three vertices indexed by 1 048 575 zeros (no bufferView), placed by
+     * 769 nodes: 268 784 725 triangles, past 2^28, from a few kilobytes;
+     * the vertices (2307) are far below their limit. */
+    expect_too_many_instances(
+        VIEW0 ",\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"type\":\"VEC3\","
+        "\"count\":3},{\"componentType\":5125,\"type\":\"SCALAR\",\"count\":1048575}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}]",
+        769, "big.gltf: /nodes/768: more than 268435456 triangles to draw in all");
 }

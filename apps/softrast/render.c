@@ -53,7 +53,7 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
          * except with one of the file's cameras, which only the glTF
          * reader gives: then they take each primitive's base color and
          * texture from it, in the same world space as the camera. */
-        return render_gltf_load(o->model, ctx, inputs, s);
+        return render_gltf_load(o->model, o->normals == -1, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },

@@ -6,6 +6,7 @@
 #include "render_gltf.h"
 #include "softrast_io.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,10 +18,12 @@ bool render_gltf_is(const char *path)
     return dot && (strcasecmp(dot, ".gltf") == 0 || strcasecmp(dot, ".glb") == 0);
 }
 
+/* The reader words its warnings "FILE: warning: ...": printed as they are,
+ * like its errors, or held for a batch's log line. */
 static void warn_line(void *user, const char *message)
 {
     (void)user;
-    fprintf(stderr, "softrast: warning: %s\n", message);
+    cli_message("%s", message);
 }
 
 static void note_file(void *inputs, const char *path)
@@ -37,21 +40,75 @@ static void transform(const float *m, const float *p, float w, float out[3])
     }
 }
 
+/* Vertex v of primitive p into vertex o of the merged arrays, moved to
+ * world space (normals by the normal matrix nm); the normal only when p
+ * has them. */
+static void copy_vertex(const sr_scene_primitive *p, size_t v, size_t o, const sr_mat4 *world,
+                        const sr_mat4 *nm, sr_mesh *m, scene_object *ob)
+{
+    transform(world->m, &p->positions[3 * v], 1.0f, &m->positions[3 * o]);
+    if (p->normals && m->normals) {
+        transform(nm->m, &p->normals[3 * v], 0.0f, &m->normals[3 * o]);
+    }
+    if (ob->tangents) {
+        transform(world->m, &p->tangents[4 * v], 0.0f, &ob->tangents[4 * o]);
+        ob->tangents[4 * o + 3] = p->tangents[4 * v + 3];
+    }
+    if (p->texcoords0) {
+        memcpy(&m->texcoords[2 * o], &p->texcoords0[2 * v], 2 * sizeof(float));
+    }
+    if (p->texcoords1) {
+        memcpy(&ob->texcoords1[2 * o], &p->texcoords1[2 * v], 2 * sizeof(float));
+    }
+    if (m->colors) {
+        static const float white[4] = { 1, 1, 1, 1 };
+        memcpy(&m->colors[4 * o], p->colors ? &p->colors[4 * v] : white, sizeof white);
+    }
+}
+
+/* The world-space normal of the triangle at o, o + 1, o + 2 (counter-
+ * clockwise), on each of its corners. */
+static void flat_normal(sr_mesh *m, size_t o)
+{
+    const float *a = &m->positions[3 * o], *b = a + 3, *c = a + 6;
+    float u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    float w[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    float n[3] = { u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
+                   u[0] * w[1] - u[1] * w[0] };
+    float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++) {
+        n[k] = len > 0 ? n[k] / len : (k == 2);   /* a degenerate triangle covers no pixel */
+    }
+    for (int corner = 0; corner < 3; corner++) {
+        memcpy(&m->normals[3 * (o + corner)], n, sizeof n);
+    }
+}
+
 /* Every primitive's arrays, moved to world space, one after the other;
- * a mirrored primitive's triangles turned back to counter-clockwise. */
-static bool merge(const sr_scene *sc, sr_mesh *m, sr_mesh_part *parts, scene_object *ob)
+ * a mirrored primitive's triangles turned back to counter-clockwise.
+ * With `flat`, a primitive without normals gets flat ones, as glTF asks:
+ * its triangles get their own corners (the renderer's smooth normals
+ * would round a cube's edges), and its tangents, which glTF says to
+ * ignore then, go. Without, the merged mesh has normals only when every
+ * primitive has them (--normals computes them). */
+static bool merge(const sr_scene *sc, bool flat, sr_mesh *m, sr_mesh_part *parts,
+                  scene_object *ob)
 {
     bool normals = true, tangents = true, uv0 = false, uv1 = false, colors = false;
     size_t nv = 0, nt = 0;
     for (size_t i = 0; i < sc->primitive_count; i++) {
         const sr_scene_primitive *p = &sc->primitives[i];
         normals &= p->normals != NULL;
-        tangents &= p->tangents != NULL;
+        tangents &= p->tangents != NULL && p->normals != NULL;
         uv0 |= p->texcoords0 != NULL;
         uv1 |= p->texcoords1 != NULL;
         colors |= p->colors != NULL;
-        nv += p->vertex_count;
+        nv += p->normals || !flat ? p->vertex_count : 3 * p->triangle_count;
         nt += p->triangle_count;
+    }
+    normals |= flat;
+    if (nv > UINT32_MAX) {
+        return false;
     }
     m->vertex_count = nv;
     m->triangle_count = nt;
@@ -76,38 +133,32 @@ static bool merge(const sr_scene *sc, sr_mesh *m, sr_mesh_part *parts, scene_obj
         if (!sr_normal_matrix(&world, &nm)) {
             nm = world;
         }
-        for (size_t v = 0; v < p->vertex_count; v++) {
-            size_t o = v0 + v;
-            transform(world.m, &p->positions[3 * v], 1.0f, &m->positions[3 * o]);
-            if (m->normals) {
-                transform(nm.m, &p->normals[3 * v], 0.0f, &m->normals[3 * o]);
-            }
-            if (ob->tangents) {
-                transform(world.m, &p->tangents[4 * v], 0.0f, &ob->tangents[4 * o]);
-                ob->tangents[4 * o + 3] = p->tangents[4 * v + 3];
-            }
-            if (p->texcoords0) {
-                memcpy(&m->texcoords[2 * o], &p->texcoords0[2 * v], 2 * sizeof(float));
-            }
-            if (p->texcoords1) {
-                memcpy(&ob->texcoords1[2 * o], &p->texcoords1[2 * v], 2 * sizeof(float));
-            }
-            if (m->colors) {
-                static const float white[4] = { 1, 1, 1, 1 };
-                memcpy(&m->colors[4 * o], p->colors ? &p->colors[4 * v] : white, sizeof white);
+        bool split = flat && !p->normals;   /* into flat triangles */
+        if (!split) {
+            for (size_t v = 0; v < p->vertex_count; v++) {
+                copy_vertex(p, v, v0 + v, &world, &nm, m, ob);
             }
         }
         for (size_t t = 0; t < p->triangle_count; t++) {
             uint32_t *dst = &m->indices[3 * (t0 + t)];
             const uint32_t *src = &p->indices[3 * t];
             /* A mirrored world matrix flips the winding: swap two corners. */
-            dst[0] = (uint32_t)v0 + src[0];
-            dst[1] = (uint32_t)v0 + src[p->mirrored ? 2 : 1];
-            dst[2] = (uint32_t)v0 + src[p->mirrored ? 1 : 2];
+            const uint32_t corner[3] = { src[0], src[p->mirrored ? 2 : 1],
+                                         src[p->mirrored ? 1 : 2] };
+            for (int k = 0; k < 3; k++) {
+                size_t o = split ? v0 + 3 * t + (size_t)k : v0 + corner[k];
+                if (split) {
+                    copy_vertex(p, corner[k], o, &world, &nm, m, ob);
+                }
+                dst[k] = (uint32_t)o;
+            }
+            if (split) {
+                flat_normal(m, v0 + 3 * t);
+            }
         }
         parts[i] = (sr_mesh_part){ .first_triangle = t0, .triangle_count = p->triangle_count };
         ob->part_material[i] = p->material;
-        v0 += p->vertex_count;
+        v0 += split ? 3 * p->triangle_count : p->vertex_count;
         t0 += p->triangle_count;
     }
     m->parts = parts;
@@ -115,7 +166,8 @@ static bool merge(const sr_scene *sc, sr_mesh *m, sr_mesh_part *parts, scene_obj
     return true;
 }
 
-int render_gltf_load(const char *path, sr_context *ctx, cli_inputs *inputs, scene *s)
+int render_gltf_load(const char *path, bool flat_normals, sr_context *ctx, cli_inputs *inputs,
+                     scene *s)
 {
     scene_object *ob = &s->objects[0];
     sr_io_error err;
@@ -125,7 +177,7 @@ int render_gltf_load(const char *path, sr_context *ctx, cli_inputs *inputs, scen
                                                  .user = inputs, .warn = warn_line },
                                 &sc, &err);
     if (r != SR_OK) {
-        fprintf(stderr, "%s\n", err.message);
+        cli_message("%s", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
     s->gltf = sc;
@@ -135,7 +187,7 @@ int render_gltf_load(const char *path, sr_context *ctx, cli_inputs *inputs, scen
     }
     sr_mesh merged = { 0 };
     sr_mesh_part *parts = calloc(sc->primitive_count, sizeof *parts);
-    bool ok = parts && merge(sc, &merged, parts, ob);
+    bool ok = parts && merge(sc, flat_normals, &merged, parts, ob);
     if (ok) {
         r = sr_make_mesh(ctx, &merged, &ob->mesh);
     }

@@ -10,9 +10,11 @@
 /* Whether path names a glTF file (.gltf or .glb), which sr_load_scene reads. */
 bool render_gltf_is(const char *path);
 /* Reads the file into s (one object, a part per primitive, s->gltf kept
- * for the materials and cameras) on ctx.  Returns an exit status after
- * one line, or -1. */
-int render_gltf_load(const char *path, sr_context *ctx, cli_inputs *inputs, scene *s);
+ * for the materials and cameras) on ctx; with flat_normals, primitives
+ * without normals get flat ones (glTF's rule, for the default --normals).
+ * Returns an exit status after one line, or -1. */
+int render_gltf_load(const char *path, bool flat_normals, sr_context *ctx, cli_inputs *inputs,
+                     scene *s);
 /* The view and projection of the file's camera `index` for `aspect`, or
  * why there is none (a message for the user). */
 const char *render_gltf_camera(const scene *s, int index, float aspect, sr_mat4 *view,

@@ -78,7 +78,13 @@ sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const 
     size_t v = 0;
     json_t *m = json_object_get(obj, key);
     double value = json_number_value(m);
-    if (json_is_number(m) && value == floor(value) && (value < 0 || value >= (double)limit)) {
+    if (json_is_number(m) && value == floor(value) && value < 0) {
+        /* Not "below LIMIT": callers that resolve the index later pass a
+         * limit that means no bound yet. */
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %.0f is negative, not an index", ptr, key,
+                             value);
+    }
+    if (json_is_number(m) && value == floor(value) && value >= (double)limit) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %.0f is not an index below %zu", ptr, key,
                              value, limit);
     }
@@ -192,6 +198,30 @@ static int hex_value(char c)
     return -1;
 }
 
+/* Whether a decoded relative path names a file under the model's
+ * directory: it must not be absolute (a percent-encoded "/" decodes to
+ * one) nor climb above its start with "..", so that a document cannot make
+ * the reader open files elsewhere. */
+static bool stays_inside(const char *rel)
+{
+    if (rel[0] == '/') {
+        return false;
+    }
+    long depth = 0;
+    for (const char *s = rel; *s;) {
+        size_t n = strcspn(s, "/");
+        if (n == 2 && s[0] == '.' && s[1] == '.') {
+            if (--depth < 0) {
+                return false;
+            }
+        } else if (n > 0 && !(n == 1 && s[0] == '.')) {
+            depth++;
+        }
+        s += n + (s[n] == '/');
+    }
+    return true;
+}
+
 sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char **owned,
                             size_t *size, bool *from_file)
 {
@@ -236,6 +266,11 @@ sr_result sr__gltf_read_uri(gltf_doc *d, const char *uri, const char *ptr, char 
         }
     }
     path[o] = 0;
+    if (!stays_inside(path + dlen)) {
+        free(path);
+        return sr__gltf_fail(d, SR_UNSUPPORTED,
+                             "%s: only file names inside the model's directory are read", ptr);
+    }
     sr_io_error inner = {{0}};
     char *data;
     sr_result r = sr__read_file(path, &data, size, &inner);
@@ -437,6 +472,25 @@ static void flip_v(float *uv, size_t n)
     }
 }
 
+/* A texture of the primitive's material that reads a coordinate set the
+ * primitive lacks is drawn as one texel's color: said once per primitive,
+ * since the file looks textured in other viewers' lists but not drawn so. */
+static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool has0, bool has1)
+{
+    const sr_pbr_material *m = &d->scene->materials[material];
+    const sr_texture_slot *slots[] = { &m->base_color_texture, &m->metallic_roughness_texture,
+                                       &m->normal_texture, &m->occlusion_texture,
+                                       &m->emissive_texture };
+    for (size_t i = 0; i < sizeof slots / sizeof *slots; i++) {
+        int set = slots[i]->texcoord;
+        if (slots[i]->texture && !(set == 0 ? has0 : has1)) {
+            sr__gltf_warn(d, "%s: no TEXCOORD_%d, which material %d's textures read (drawn "
+                          "with one color of the texture)", aptr, set, material);
+            return;
+        }
+    }
+}
+
 static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr,
                                 sr_scene_primitive *p)
 {
@@ -491,6 +545,7 @@ static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr
         }
         col = rgba;
     }
+    check_texcoords(d, aptr, p->material, uv0 != NULL, uv1 != NULL);
     flip_v(uv0, n);
     flip_v(uv1, n);
     uint32_t *idx = NULL;
@@ -744,6 +799,11 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
             return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu vertices to draw in all", ptr,
                                  SR_SCENE_MAX_DRAWN_VERTICES);
         }
+        d->drawn_triangles += g->triangle_count;
+        if (d->drawn_triangles > SR_SCENE_MAX_DRAWN_TRIANGLES) {
+            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu triangles to draw in all",
+                                 ptr, SR_SCENE_MAX_DRAWN_TRIANGLES);
+        }
         sr_scene_primitive *p = sr__scene_grow(d->scene, (void **)&d->scene->primitives,
                                                &d->scene->primitive_count, sizeof *p, 1);
         if (!p) {
@@ -950,6 +1010,67 @@ static sr_result check_asset(gltf_doc *d)
     return SR_OK;
 }
 
+/* Appends ", item" (or "item" first) to list while it fits; once one does
+ * not, ", ..." ends the list. */
+static void list_add(char *list, size_t cap, bool *full, const char *item)
+{
+    size_t at = strlen(list);
+    if (*full) {
+        return;
+    }
+    if (at + strlen(item) + 8 >= cap) {
+        snprintf(list + at, cap - at, ", ...");
+        *full = true;
+        return;
+    }
+    snprintf(list + at, cap - at, "%s%s", at ? ", " : "", item);
+}
+
+/* One warning naming what the file holds that a static scene leaves out
+ * (skins, animations, morph targets, extensions other than the supported
+ * ones), so that a model drawn in its rest pose, or without its lights,
+ * says why. */
+static void warn_unread(gltf_doc *d)
+{
+    char list[400] = "", item[GLTF_PTR + 80];
+    bool full = false;
+    static const char *const kinds[] = { "skins", "animations" };
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        if (json_array_size(json_object_get(d->root, kinds[k])) > 0) {
+            snprintf(item, sizeof item, "/%s", kinds[k]);
+            list_add(list, sizeof list, &full, item);
+        }
+    }
+    json_t *meshes = json_object_get(d->root, "meshes");
+    for (size_t m = 0, found = 0; !found && m < json_array_size(meshes); m++) {
+        json_t *prims = json_object_get(json_array_get(meshes, m), "primitives");
+        for (size_t p = 0; !found && p < json_array_size(prims); p++) {
+            if (json_array_size(json_object_get(json_array_get(prims, p), "targets")) > 0) {
+                snprintf(item, sizeof item, "/meshes/%zu/primitives/%zu/targets (morph targets)",
+                         m, p);
+                list_add(list, sizeof list, &full, item);
+                found = 1;
+            }
+        }
+    }
+    json_t *used = json_object_get(d->root, "extensionsUsed");
+    for (size_t i = 0; i < json_array_size(used); i++) {
+        const char *name = json_string_value(json_array_get(used, i));
+        bool known = false;
+        for (size_t k = 0; name && k < sizeof supported_extensions / sizeof *supported_extensions;
+             k++) {
+            known |= strcmp(name, supported_extensions[k]) == 0;
+        }
+        if (name && !known) {
+            snprintf(item, sizeof item, "/extensionsUsed/%zu (%.64s)", i, name);
+            list_add(list, sizeof list, &full, item);
+        }
+    }
+    if (list[0]) {
+        sr__gltf_warn(d, "not read, the scene is drawn without them: %s", list);
+    }
+}
+
 /* The JSON and BIN chunks of a GLB. */
 static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const char **json,
                           size_t *json_size)
@@ -1048,6 +1169,7 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
         return r;
     }
     sr__scene_bounds(d->scene);
+    warn_unread(d);
     return SR_OK;
 }
 

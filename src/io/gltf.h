@@ -46,6 +46,7 @@ typedef struct gltf_doc {
     size_t elements_left;        /* the decoding budget (SR_SCENE_ELEMENTS_*) */
     size_t input_bytes;          /* the document and the buffers read so far */
     size_t drawn_vertices;       /* over every draw, against SR_SCENE_MAX_DRAWN_VERTICES */
+    size_t drawn_triangles;      /* and SR_SCENE_MAX_DRAWN_TRIANGLES */
     sr_scene *scene;
     /* Textures made so far, two per image (linear, sRGB); NULL: not yet. */
     sr_texture **image_textures;

@@ -10,6 +10,7 @@
  */
 #include "io/gltf.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -236,6 +237,49 @@ static void default_material(sr_pbr_material *m)
     m->alpha_cutoff = 0.5f;
 }
 
+/* The specification's range of a factor: a value outside (which an
+ * exporter's rounding cannot make, read as a float) is clamped with a
+ * warning, since a metallic of 5 or a negative color draws black and a
+ * negative emission takes light away. */
+static void clamp_factor(gltf_doc *d, const char *ptr, float *v, float lo, float hi)
+{
+    if (*v >= lo && *v <= hi) {
+        return;
+    }
+    float to = *v < lo ? lo : hi;
+    if (hi == FLT_MAX) {
+        sr__gltf_warn(d, "%s: %g is negative, taken as 0", ptr, (double)*v);
+    } else {
+        sr__gltf_warn(d, "%s: %g is outside the specification's %g..%g, taken as %g", ptr,
+                      (double)*v, (double)lo, (double)hi, (double)to);
+    }
+    *v = to;
+}
+
+static void clamp_factors(gltf_doc *d, const char *ptr, sr_pbr_material *m)
+{
+    char at[GLTF_PTR + 64];
+    for (int c = 0; c < 4; c++) {
+        snprintf(at, sizeof at, "%s/pbrMetallicRoughness/baseColorFactor/%d", ptr, c);
+        clamp_factor(d, at, &m->base_color[c], 0, 1);
+    }
+    snprintf(at, sizeof at, "%s/pbrMetallicRoughness/metallicFactor", ptr);
+    clamp_factor(d, at, &m->metallic, 0, 1);
+    snprintf(at, sizeof at, "%s/pbrMetallicRoughness/roughnessFactor", ptr);
+    clamp_factor(d, at, &m->roughness, 0, 1);
+    for (int c = 0; c < 3; c++) {
+        snprintf(at, sizeof at, "%s/emissiveFactor/%d", ptr, c);
+        clamp_factor(d, at, &m->emissive[c], 0, 1);
+    }
+    snprintf(at, sizeof at, "%s/extensions/KHR_materials_emissive_strength/emissiveStrength",
+             ptr);
+    clamp_factor(d, at, &m->emissive_strength, 0, FLT_MAX);
+    snprintf(at, sizeof at, "%s/occlusionTexture/strength", ptr);
+    clamp_factor(d, at, &m->occlusion_strength, 0, 1);
+    snprintf(at, sizeof at, "%s/alphaCutoff", ptr);
+    clamp_factor(d, at, &m->alpha_cutoff, 0, FLT_MAX);
+}
+
 static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
                                sr_pbr_material *m)
 {
@@ -297,6 +341,7 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
         }
     }
     m->unlit = sr__gltf_extension(mat, "KHR_materials_unlit") != NULL;
+    clamp_factors(d, ptr, m);
     /* Zeros that sr_pbr_material reads as defaults, said another way: no
      * emission at strength 0, and a cutoff of 0 keeps every fragment. */
     if (m->emissive_strength == 0) {
