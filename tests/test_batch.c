@@ -446,12 +446,23 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
     snprintf(up, sizeof up, "%s/../batch_refuse_up", out);
     CHECK(!file_exists(up));
 
-    /* An output that is an input of the batch fails that input, and the
-     * input keeps its bytes. */
-    size_t before_n, after_n;
-    uint8_t *before = sr_test_read_file(paths[0], &before_n);
+    /* Outputs named like the inputs ({ext} is a model's) are no images:
+     * refused before anything is drawn. */
     run_result r;
     REQUIRE(run(ARGS("render", dir, "--output-dir", dir, "--name", "{stem}.{ext}"), &r));
+    CHECK_EQ(r.status, 2);
+    CHECK_STR_CONTAINS(r.err, "--name: '{stem}.{ext}': softrast writes PNG or JPEG images");
+
+    /* An output that is an input of the batch by another name (a hard
+     * link named .png) fails that input, and the input keeps its bytes. */
+    char alias[1300];
+    snprintf(alias, sizeof alias, "%.*s.png", (int)(strrchr(paths[0], '.') - paths[0]),
+             paths[0]);
+    remove(alias);
+    REQUIRE(link(paths[0], alias) == 0);
+    size_t before_n, after_n;
+    uint8_t *before = sr_test_read_file(paths[0], &before_n);
+    REQUIRE(run(ARGS("render", paths[0], "--output-dir", dir, "--name", "{stem}.png"), &r));
     CHECK_EQ(r.status, 4);
     CHECK_STR_CONTAINS(r.err, "input of the batch");
     uint8_t *after = sr_test_read_file(paths[0], &after_n);
@@ -466,11 +477,12 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
         ARGS("render", dir, "--output-dir", out, "--log", paths[1]),
         ARGS("render", dir, "--sheet", paths[1]),
     };
+    const char *why[] = { "is an input of the batch", "softrast writes PNG or JPEG images" };
     for (int k = 0; k < 2; k++) {
         before = sr_test_read_file(paths[1], &before_n);
         REQUIRE(run(kinds[k], &r));
         CHECK_EQ(r.status, 2);
-        CHECK_STR_CONTAINS(r.err, "is an input of the batch");
+        CHECK_STR_CONTAINS(r.err, why[k]);
         CHECK_EQ(count_lines(r.err), 1);
         after = sr_test_read_file(paths[1], &after_n);
         CHECK(before && after && before_n == after_n && memcmp(before, after, before_n) == 0);
@@ -482,11 +494,12 @@ SR_TEST(batch_refuses_bad_options_in_one_line)
      * list, not to --name and its fields. */
     char list[8192], listp[1100];
     snprintf(listp, sizeof listp, "%s/batch_refuse_list.txt", sr_test_out_dir());
-    snprintf(list, sizeof list, "%s\t%s\n", paths[0], paths[0]);
+    snprintf(list, sizeof list, "%s\t%s\n", paths[0], alias);
     REQUIRE(write_text(listp, list));
     REQUIRE(run(ARGS("render", "--batch", listp), &r));
     CHECK_EQ(r.status, 4);
     CHECK_STR_CONTAINS(r.err, "choose another --batch output");
+    remove(alias);
     snprintf(list, sizeof list, "%s\t%s/a.png\n%s\t%s/a.png\n", paths[0], out, paths[1], out);
     REQUIRE(write_text(listp, list));
     REQUIRE(run(ARGS("render", "--batch", listp), &r));

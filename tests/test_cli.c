@@ -961,12 +961,13 @@ SR_TEST(output_that_is_an_input_is_refused)
     keep_files(kept, 3);
 
     const refusal_case cases[] = {
-        { "model as output", { "render", model, "-o", model }, "is the model being read" },
+        /* named for what they are: refused by their extension first */
+        { "model as output", { "render", model, "-o", model }, "not .obj" },
         { "model through a symbolic link", { "render", model, "-o", sym },
           "is the model being read" },
         { "model through a hard link", { "render", model, "-o", hard },
           "is the model being read" },
-        { "MTL as output", { "render", model, "-o", mtl }, "is the MTL file being read" },
+        { "MTL as output", { "render", model, "-o", mtl }, "not .mtl" },
         { "found texture as output", { "render", model, "-o", tex }, "is the texture being read" },
         { "named texture through another path",
           { "render", model, "--texture", tex, "-o", alias }, "is the texture being read" },
@@ -991,11 +992,12 @@ SR_TEST(svg_output_that_is_its_input_is_refused)
         SKIP("this softrast was built without expat");
     }
     cli_run r;
-    char dir[1024], svg[1100], sym[1100], hard[1100], plain[1100];
+    char dir[1024], svg[1100], sym[1100], hard[1100], plain[1100], hard_png[1100];
     fresh_dir("same_svg", dir, sizeof dir);
     snprintf(svg, sizeof svg, "%s/drawing.svg", dir);
     snprintf(sym, sizeof sym, "%s/symlink.png", dir);
     snprintf(hard, sizeof hard, "%s/hardlink.svg", dir);
+    snprintf(hard_png, sizeof hard_png, "%s/hardlink.png", dir);
     /* A name with no .svg: the default output is NAME.png, not NAME. */
     snprintf(plain, sizeof plain, "%s/drawing", dir);
     const char *text = "<svg xmlns='http://www.w3.org/2000/svg' width='8' height='8'>"
@@ -1003,13 +1005,16 @@ SR_TEST(svg_output_that_is_its_input_is_refused)
     REQUIRE(write_whole(svg, text, strlen(text)));
     REQUIRE(symlink("drawing.svg", sym) == 0);
     REQUIRE(link(svg, hard) == 0);
+    REQUIRE(link(svg, hard_png) == 0);
     kept_file kept[] = { { .path = svg } };
     keep_files(kept, 1);
     const refusal_case cases[] = {
-        { "svg onto itself", { "svg", svg, "-o", svg }, "is the SVG file being read" },
+        { "svg onto itself", { "svg", svg, "-o", svg }, "not .svg" },
         { "svg through a symbolic link", { "svg", svg, "--output", sym },
           "is the SVG file being read" },
-        { "svg through a hard link", { "svg", hard, "-o", svg }, "is the SVG file being read" },
+        { "svg through a hard link", { "svg", hard, "-o", svg }, "not .svg" },
+        { "svg through a hard link named .png", { "svg", svg, "-o", hard_png },
+          "is the SVG file being read" },
     };
     expect_refusals(cases, sizeof cases / sizeof cases[0], kept, 1);
 
@@ -3655,6 +3660,84 @@ SR_TEST(depth_range_and_clipper_options_change_the_draw)
     CHECK(differ * 100 <= w * h); /* at most 1% */
     for (int k = 0; k < 3; k++) {
         free(clip[k]);
+    }
+#endif
+}
+
+/* Every command that writes an image writes the format its name says or
+ * refuses the name at once: "x.bmp" is neither given PNG bytes nor left
+ * half-made, whichever command and option named it. */
+SR_TEST(image_outputs_with_another_extension_are_refused)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], model[1100], svg[1100], list[1100], bmp[1100], pattern[1100], outdir[1100];
+    char webp[1100], jpg[1100];
+    fresh_dir("extension", dir, sizeof dir);
+    snprintf(webp, sizeof webp, "--output=%s/x.WEBP", dir);
+    char *const paths[] = { jpg, model, svg, list, bmp, pattern, outdir };
+    const char *const names[] = { "t.jpg", "tri.obj", "box.svg", "list.txt", "out.bmp",
+                                  "step-%d.gif", "out" };
+    for (size_t i = 0; i < sizeof paths / sizeof paths[0]; i++) {
+        snprintf(paths[i], 1100, "%s/%s", dir, names[i]);
+    }
+    clean_dir(outdir);   /* an earlier run's, if any: made by no refused case */
+    rmdir(outdir);
+    const char *box = "<svg xmlns='http://www.w3.org/2000/svg' width='8' height='8'>"
+                      "<rect width='4' height='4'/></svg>";
+    char line[1200];
+    snprintf(line, sizeof line, "%s\tdrawn.tiff\n", model);
+    REQUIRE(write_whole(model, ONE_TRIANGLE_OBJ, strlen(ONE_TRIANGLE_OBJ)));
+    REQUIRE(write_whole(svg, box, strlen(box)));
+    REQUIRE(write_whole(list, line, strlen(line)));
+    kept_file kept[] = { { .path = model } };
+    keep_files(kept, 1);
+    const char *png_or_jpeg = "softrast writes PNG or JPEG images, not .";
+    refusal_case cases[] = {
+        { "render", { "render", model, "-o", bmp }, "-o: '" },
+        { "demo", { "demo", "lines", "-o", bmp }, png_or_jpeg },
+        { "demo --output=", { "demo", "lines", webp }, "not .WEBP" },
+        { "thumbnail", { "thumbnail", "-s", "16", model, bmp }, "written as a PNG, not .bmp" },
+        { "thumbnail JPEG", { "thumbnail", "-s", "16", model, jpg }, "(name it .png)" },
+        { "explain --sheet", { "explain", "zbuffer", "--sheet", bmp }, "--sheet: '" },
+        { "explain -o", { "explain", "zbuffer", "-o", pattern }, "not .gif" },
+        { "view --screenshot", { "view", model, "--screenshot", bmp }, "--screenshot: '" },
+        { "render --name", { "render", model, "--output-dir", outdir, "--name", "{stem}.bmp" },
+          "--name: '{stem}.bmp'" },
+        { "render --sheet", { "render", model, "--output-dir", outdir, "--sheet", bmp },
+          "--sheet: '" },
+        { "svg -o", { "svg", svg, "-o", bmp }, png_or_jpeg },
+        { "svg --name", { "svg", svg, svg, "--output-dir", outdir, "--name", "{stem}.bmp" },
+          "--name: '" },
+    };
+    size_t n = sizeof cases / sizeof cases[0];
+    if (!svg_command_built()) {
+        n -= 2;   /* the svg cases are last */
+    }
+    expect_refusals(cases, n, kept, 1);
+    char first[256];
+    CHECK_EQ(count_entries(dir, first, sizeof first), 3);   /* the inputs only */
+    /* A list's OUTPUT is known only as its line is read: that item fails,
+     * drawing nothing, as one whose OUTPUT is an input does. */
+    cli_run r;
+    REQUIRE(run_cli(ARGS("render", "--batch", list, "--output-dir", outdir), &r));
+    CHECK_EQ(r.status, 4);
+    CHECK(r.err && strstr(r.err, "--batch output: 'drawn.tiff': softrast writes PNG or JPEG"));
+    cli_run_free(&r);
+    snprintf(line, sizeof line, "%s/drawn.tiff", outdir);
+    CHECK(access(line, F_OK) != 0);
+    /* The names it writes, in any case, and a name without extension (a PNG). */
+    char png[1100], bare[1100];
+    snprintf(png, sizeof png, "%s/upper.PNG", dir);
+    snprintf(bare, sizeof bare, "%s/bare", dir);
+    const char *written[] = { png, bare };
+    for (int i = 0; i < 2; i++) {
+        int w = 0, h = 0;
+        uint8_t *px = render_pixels(ARGS("render", model, "--size", "8x8", "-o", written[i]),
+                                    written[i], &w, &h);
+        CHECK(px && w == 8 && h == 8);
+        free(px);
     }
 #endif
 }

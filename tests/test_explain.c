@@ -11,6 +11,8 @@
 
 #include <ftw.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -1393,4 +1395,123 @@ SR_TEST(fwdiff_straight_cubic_takes_one_step)
                    "3. The 1 chord drawn as lines (sr_draw_line, each leaving out its end "
                    "pixel so they join without doubling): what sr_flatten_cubic's points "
                    "give at 1x.");
+}
+
+/* The numbers in zbuffer's cells stay whole: a failed test's cross keeps
+ * above its q, and the vertices' labels keep off the rows of numbers
+ * under them.  Every cell holds q = 32768 here (both triangles at z 0.5;
+ * A covers the grid, B ties and fails everywhere), so each cell's text
+ * band must hold exactly the pixels of "32768" in the text's colour:
+ * red in frame 3, white in frame 4.  A cross, a label or its ground over
+ * the band would add or take pixels of that colour. */
+SR_TEST(zbuffer_numbers_are_not_covered_by_crosses_or_labels)
+{
+    NEEDS_CLI();
+    enum { Z = 40, GW = 14, GH = 11, BAND = 10 };
+    char dir[1024];
+    out_dir("zbuffer_text", dir, sizeof dir);
+    const char *args[] = { "explain", "zbuffer", "--grid", "14x11", "--zoom", "40", "--triangles",
+                           "0,0,0.5,40,0,0.5,0,40,0.5,3,2,0.5,12,4.5,0.5,5,9.5,0.5", "-o", dir,
+                           NULL };
+    REQUIRE(sr_test_run_cli(args) == 0);
+
+    /* "32768" as the explain canvas writes it: the font at scale 1 */
+    const sr_rgba colours[2] = { { 0.85f, 0.15f, 0.10f, 1 }, { 1, 1, 1, 1 } };
+    rt_target t = rt_make(40, 10, 1);
+    uint8_t want[2][3];
+    int glyph = 0;
+    for (int k = 0; k < 2; k++) {
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+        REQUIRE(sr_draw_text(t.ctx, t.fb, 1, 1, 1, "32768", colours[k]) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        glyph = 0;
+        for (int i = 0; i < 40 * 10; i++) {
+            if (px[4 * i] || px[4 * i + 1] || px[4 * i + 2]) {
+                memcpy(want[k], px + 4 * i, 3);
+                glyph++;
+            }
+        }
+    }
+    rt_free(&t);
+    REQUIRE(glyph > 20);
+
+    for (int frame = 3; frame <= 4; frame++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/frame-%03d.png", dir, frame);
+        int w, h;
+        uint8_t *px = NULL;
+        REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+        const uint8_t *c = want[frame - 3];
+        int whole = 0, bad = 0;
+        for (int cy = 0; cy < GH; cy++) {
+            for (int cx = 0; cx < GW; cx++) {
+                int n = 0;
+                for (int y = Z - BAND; y < Z; y++) {
+                    for (int x = 1; x < Z; x++) {
+                        const uint8_t *p =
+                            px + ((size_t)(MARGIN + cy * Z + y) * w + MARGIN + cx * Z + x) * 4;
+                        n += memcmp(p, c, 3) == 0;
+                    }
+                }
+                /* frame 3 numbers only B's cells; frame 4 every cell */
+                if (n == glyph) {
+                    whole++;
+                } else if (n != 0 || frame == 4) {
+                    if (bad++ < 4) {
+                        FAILF("frame %d, cell (%d, %d): %d pixels of the number's colour in its "
+                              "text band, not %d", frame, cx, cy, n, glyph);
+                    }
+                }
+            }
+        }
+        printf("frame %d: %d whole numbers, %d covered\n", frame, whole, bad);
+        CHECK(whole >= (frame == 3 ? 20 : GW * GH));
+        CHECK_EQ(bad, 0);
+        free(px);
+    }
+}
+
+/* floodfill's seeds are numbered at twice the font's size, in white on a
+ * disc centred in the seed's cell: within the disc the first frame's one
+ * seed, "1", has exactly the glyph's white pixels, centred. */
+SR_TEST(floodfill_seed_numbers_are_large_and_centred)
+{
+    NEEDS_CLI();
+    enum { Z = 32, SX = 7, SY = 4 };
+    char dir[1024];
+    out_dir("floodfill_seed", dir, sizeof dir);
+    const char *args[] = { "explain", "floodfill", "--polygon", "1.5,1.5,13.5,1.5,7.5,10.5",
+                           "--seed", "7,4", "--grid", "16x12", "--zoom", "32", "-o", dir, NULL };
+    REQUIRE(sr_test_run_cli(args) == 0);
+    rt_target t = rt_make(20, 20, 1);
+    sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+    REQUIRE(sr_draw_text(t.ctx, t.fb, 1, 1, 2, "1", (sr_rgba){ 1, 1, 1, 1 }) == SR_OK);
+    int glyph = 0;
+    for (int i = 0; i < 20 * 20; i++) {
+        glyph += sr_framebuffer_pixels(t.fb)[4 * i] == 255;
+    }
+    rt_free(&t);
+
+    char path[1200];
+    snprintf(path, sizeof path, "%s/frame-001.png", dir);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    int n = 0, x0 = Z, x1 = -1, y0 = Z, y1 = -1;
+    for (int y = 1; y < Z; y++) {
+        for (int x = 1; x < Z; x++) {
+            const uint8_t *p = px + ((size_t)(MARGIN + SY * Z + y) * w + MARGIN + SX * Z + x) * 4;
+            double dx = x + 0.5 - Z / 2.0, dy = y + 0.5 - Z / 2.0;
+            /* within the disc (the cell around it is white too) */
+            if (dx * dx + dy * dy < 11 * 11 && p[0] == 255 && p[1] == 255 && p[2] == 255) {
+                n++;
+                x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1;
+                y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
+            }
+        }
+    }
+    free(px);
+    CHECK_EQ(n, glyph);
+    printf("seed 1: %d white pixels in x %d..%d, y %d..%d of the cell\n", n, x0, x1, y0, y1);
+    CHECK(abs(x0 + x1 + 1 - Z) <= 2 && abs(y0 + y1 + 1 - Z) <= 2);
 }

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* A small drawing: a square of `color` on a 16 x 16 canvas. */
 static bool write_svg(const char *path, const char *color)
@@ -345,7 +346,11 @@ SR_TEST(output_over_an_input_is_refused)
     free(sr_test_read_file(paths[2], &before));
     free(sr_test_read_file(paths[0], &before0));
     snprintf(list, sizeof list, "%s/list.txt", dir);
-    snprintf(text, sizeof text, "%s\t%s\n%s\t%s/c.png\n", paths[0], paths[2], paths[2], dir);
+    /* the third drawing by another name, one an image may have */
+    char alias[1300];
+    snprintf(alias, sizeof alias, "%s/alias.png", dir);
+    REQUIRE(link(paths[2], alias) == 0);
+    snprintf(text, sizeof text, "%s\t%s\n%s\t%s/c.png\n", paths[0], alias, paths[2], dir);
     REQUIRE(write_text(list, text));
     run_result r;
     REQUIRE(run(ARGS("svg", "--batch", list), &r));
@@ -354,10 +359,11 @@ SR_TEST(output_over_an_input_is_refused)
     size_t after = 0;
     free(sr_test_read_file(paths[2], &after));
     CHECK_EQ(after, before);
-    /* --name '{rel}.svg' in the inputs' own directory names each drawing
-     * as itself. */
+    /* --name '{rel}.svg' in the inputs' own directory would name each
+     * drawing as itself: no image's name, refused before any is drawn. */
     REQUIRE(run(ARGS("svg", paths[0], "--output-dir", dir, "--name", "{rel}.svg"), &r));
-    CHECK_EQ(r.status, 4);
+    CHECK_EQ(r.status, 2);
+    CHECK_STR_CONTAINS(r.err, "not .svg");
     free(sr_test_read_file(paths[0], &after));
     CHECK_EQ(after, before0);
 }

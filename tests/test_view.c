@@ -353,17 +353,22 @@ SR_TEST(screenshot_over_an_input_is_refused)
         SKIP("softrast view is not built (needs libsdl2-dev and libfreetype-dev)");
     }
 #ifdef SR_CLI_PATH
-    char events[1100], model[1100], link_path[1100];
+    char events[1100], model[1100], link_path[1100], events_link[1100];
     snprintf(events, sizeof events, "%s/view-own-events.txt", sr_test_out_dir());
     snprintf(model, sizeof model, "%s/view-own-model.obj", sr_test_out_dir());
     snprintf(link_path, sizeof link_path, "%s/view-own-model-link.png", sr_test_out_dir());
+    snprintf(events_link, sizeof events_link, "%s/view-own-events-link.png", sr_test_out_dir());
     const char *script = "wheel 2\nquit\n", *tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     REQUIRE(write_text(events, script));
     REQUIRE(write_text(model, tri));
     remove(link_path);
     REQUIRE(symlink(model, link_path) == 0);
+    remove(events_link);
+    REQUIRE(symlink(events, events_link) == 0);
+    /* (named as themselves, .txt and .obj, they are no images: refused
+     * for that first, test_cli.c) */
     const char *cases[][8] = {
-        { SR_CLI_PATH, "view", "--events", events, "--screenshot", events, NULL },
+        { SR_CLI_PATH, "view", "--events", events, "--screenshot", events_link, NULL },
         { SR_CLI_PATH, "view", model, "--screenshot-overlay", link_path, "--screenshot",
           "new.png" },
     };

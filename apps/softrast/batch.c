@@ -183,7 +183,9 @@ static bool draw_view(batch_run *run, const batch_item *it, const char *output, 
     cli_capture(run->message, sizeof run->message);
     /* what named the output, for the user to change */
     const char *namer = it->named ? "--batch output" : "--name";
-    bool ok = !output || (batch_session_output_ok(&run->s, output, namer) &&
+    /* A list's OUTPUT (or a name ending in {ext}) is known only now. */
+    bool ok = !output || ((run->b->animate || cli_check_image_name(namer, output, true)) &&
+                          batch_session_output_ok(&run->s, output, namer) &&
                           /* the model's own other files (MTL, textures) */
                           cli_check_output(render_job_inputs(run->job),
                                            it->named ? "--batch" : "--name", output));
@@ -485,6 +487,9 @@ static int check_views(batch_opts *b, const render_opts *o)
         return EXIT_USAGE;
     }
     const char *named = b->sheet ? b->sheet : b->c.name;
+    if (named && !cli_check_image_name(b->sheet ? "--sheet" : "--name", named, true)) {
+        return EXIT_USAGE;
+    }
     if (named && cli_is_jpeg_name(named) && o->background_alpha < 1.0f) {
         cli_error("--background transparent: '%s' names JPEGs, which have no alpha", named);
         return EXIT_USAGE;

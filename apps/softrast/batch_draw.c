@@ -94,7 +94,10 @@ static void draw_item(draw_run *r, draw_slot *sl, int slot, size_t item)
         return;
     }
     cli_capture(sl->message, sizeof sl->message);   /* this thread's messages */
-    bool ok = batch_session_output_ok(s, it->output, it->named ? "--batch output" : "--name");
+    const char *namer = it->named ? "--batch output" : "--name";
+    /* A list's OUTPUT (or a name ending in {ext}) is known only now. */
+    bool ok = cli_check_image_name(namer, it->output, true) &&
+              batch_session_output_ok(s, it->output, namer);
     cli_capture(NULL, 0);
     sl->ok = ok && r->d->draw(r->d->user, slot, it, &sl->pic, &sl->rec, sl->message,
                               sizeof sl->message);

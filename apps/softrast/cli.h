@@ -78,6 +78,12 @@ typedef struct cli_image_options {
 } cli_image_options;
 
 bool cli_is_jpeg_name(const char *path);
+/* Whether path names an image cli_write_image writes: ending in .png,
+ * .jpg or .jpeg (any case; .png only when !jpeg_ok), or with no
+ * extension (a PNG).  Another extension ("x.bmp") is refused after one
+ * line naming opt rather than given PNG bytes under a name that says
+ * otherwise. */
+bool cli_check_image_name(const char *opt, const char *path, bool jpeg_ok);
 /* Make the directories above `path` (mkdir -p of its dirname); false with
  * the reason in err (make_parents.c). */
 bool cli_make_parents(const char *path, sr_io_error *err);

@@ -23,7 +23,7 @@ static void demo_help(FILE *f)
     }
     fprintf(f, "\noptions:\n"
                "  -o, --output FILE   PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
-               "                      (default demo-NAME.png)\n"
+               "                      (another extension is refused; default demo-NAME.png)\n"
                "  --scale N           magnification of pixel-level demos, 1..32 (less\n"
                "                      for a demo whose image would pass 8192 a side)\n");
 }
@@ -65,7 +65,7 @@ int cmd_demo(int argc, char **argv)
             return help;
         } else if (strcmp(opt.name, "-o") == 0 || strcmp(opt.name, "--output") == 0) {
             if (!(v = cli_option_value(&opt, argc, argv, &i)) ||
-                !cli_check_output_name(opt.name, v)) {
+                !cli_check_output_name(opt.name, v) || !cli_check_image_name(opt.name, v, true)) {
                 return EXIT_USAGE;
             }
             args.output = v;

@@ -639,6 +639,8 @@ int cmd_explain(int argc, char **argv)
             if (!frame_pattern(v, &is_dir)) {
                 cli_error("%s: a directory, or a file name with one %%d (got '%s')", a, v);
                 ok = false;
+            } else if (!is_dir) {
+                ok = cli_check_image_name(a, v, true);
             }
         } else if (strcmp(a, "--webp") == 0) {
             webp = v;
@@ -651,6 +653,7 @@ int cmd_explain(int argc, char **argv)
             }
         } else if (strcmp(a, "--sheet") == 0) {
             sheet = v;
+            ok = cli_check_image_name(a, v, true);
         } else {
             cli_error("explain: unknown option '%s' (try 'softrast explain --help')", given);
             return EXIT_USAGE;

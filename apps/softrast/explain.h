@@ -56,6 +56,8 @@ typedef struct ex_canvas {
     int caption_needed;       /* the most lines a caption took (drawn or not) */
     int labels[16][4];        /* this frame's labels so far: x, y, w, h */
     int label_count;
+    bool cell_text;           /* this frame has text in its cells (ex_cell_text) */
+    uint8_t *text_cells;      /* which: grid_w x grid_h, 1 where a cell has text */
     uint8_t **frames;
     int frame_count, frame_cap;
     size_t kept_bytes;        /* of all the frames, at most EX_MAX_FRAME_BYTES */
@@ -82,14 +84,21 @@ void ex_sample(ex_canvas *c, int x, int y, sr_rgba color);
 void ex_ring(ex_canvas *c, int x, int y, sr_rgba color);
 /* A diagonal cross over cell (x, y). */
 void ex_cross(ex_canvas *c, int x, int y, sr_rgba color);
+/* The same cross kept above the band ex_cell_text writes in, for a cell
+ * whose value it marks (over the whole cell when no text fits). */
+void ex_cross_above_text(ex_canvas *c, int x, int y, sr_rgba color);
 /* Text centred in cell (x, y), only when it fits; whether it was drawn. */
 bool ex_cell_text(ex_canvas *c, int x, int y, const char *text, sr_rgba color);
+/* Text in white on a disc of `color` filling cell (x, y), as large as
+ * fits; false, drawing nothing, when it does not fit. */
+bool ex_cell_badge(ex_canvas *c, int x, int y, const char *text, sr_rgba color);
 /* A segment or closed outline in grid coordinates (pixels). */
 void ex_segment(ex_canvas *c, sr_point2 a, sr_point2 b, sr_rgba color, double width);
 void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba color,
                 double width);
 void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color);
-/* A label beside a point in grid coordinates. */
+/* A label beside a point in grid coordinates; in a frame with cell text,
+ * on a light box and out of the band the cells' text is written in. */
 void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color);
 /* The pixels of the grid that sr_draw_line draws for the segments
  * through pts (closed: and back to the first), 1 in mask, row by row. */

@@ -37,6 +37,10 @@ sr_result ex_canvas_init(ex_canvas *c, sr_context *ctx, int grid_w, int grid_h, 
     c->caption_y = EX_MARGIN + grid_h * zoom + EX_MARGIN;
     c->caption_lines = caption_lines;
     c->height = c->caption_y + caption_lines * 10 * c->text_scale + EX_MARGIN;
+    c->text_cells = calloc((size_t)grid_w * (size_t)grid_h, 1);
+    if (!c->text_cells) {
+        return c->error = SR_OUT_OF_MEMORY;
+    }
     c->error = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = c->width,
                                                                 .height = c->height,
                                                                 .depth_format = SR_DEPTH_NONE },
@@ -51,6 +55,7 @@ void ex_canvas_free(ex_canvas *c)
     }
     free(c->frames);
     sr_destroy_framebuffer(c->ctx, c->fb);
+    free(c->text_cells);
     *c = (ex_canvas){ 0 };
 }
 
@@ -83,6 +88,8 @@ void ex_begin(ex_canvas *c)
         return;
     }
     c->label_count = 0;
+    c->cell_text = false;
+    memset(c->text_cells, 0, (size_t)c->grid_w * (size_t)c->grid_h);
     keep(c, sr_clear(c->ctx, c->fb, &(sr_clear_desc){ .color = { EX_BG.r, EX_BG.g, EX_BG.b, 1 } }));
     for (int y = 0; y < c->grid_h; y++) {
         for (int x = 0; x < c->grid_w; x++) {
@@ -171,6 +178,23 @@ void ex_cross(ex_canvas *c, int x, int y, sr_rgba color)
     ex_segment(c, (sr_point2){ x + 1 - k, y + k }, (sr_point2){ x + k, y + 1 - k }, color, 2.5);
 }
 
+/* Cell text is written from TEXT_BAND frame pixels above a cell's bottom:
+ * one 7-pixel row of the font under the sample point, and a pixel's gap. */
+#define TEXT_BAND 10
+
+void ex_cross_above_text(ex_canvas *c, int x, int y, sr_rgba color)
+{
+    if (c->zoom < 20) {
+        ex_cross(c, x, y, color);
+        return;
+    }
+    /* a square cross between the cell's top and its text band */
+    double top = y + 0.12, bottom = y + 1 - (TEXT_BAND + 2.0) / c->zoom;
+    double half = (bottom - top) / 2, mid = x + 0.5;
+    ex_segment(c, (sr_point2){ mid - half, top }, (sr_point2){ mid + half, bottom }, color, 2.5);
+    ex_segment(c, (sr_point2){ mid + half, top }, (sr_point2){ mid - half, bottom }, color, 2.5);
+}
+
 bool ex_cell_text(ex_canvas *c, int x, int y, const char *text, sr_rgba color)
 {
     int w = sr_text_width(text, 1);
@@ -178,8 +202,29 @@ bool ex_cell_text(ex_canvas *c, int x, int y, const char *text, sr_rgba color)
         return false;
     }
     int px = EX_MARGIN + x * c->zoom + (c->zoom - w + 1) / 2;
-    int py = EX_MARGIN + y * c->zoom + c->zoom - 9;   /* under the sample point */
+    int py = EX_MARGIN + y * c->zoom + c->zoom - (TEXT_BAND - 1);   /* under the sample point */
     keep(c, sr_draw_text(c->ctx, c->fb, px, py, 1, text, color));
+    c->cell_text = true;
+    c->text_cells[y * c->grid_w + x] = 1;
+    return true;
+}
+
+bool ex_cell_badge(ex_canvas *c, int x, int y, const char *text, sr_rgba color)
+{
+    double r = c->zoom * 0.42;
+    int s = 2;
+    /* the text's box inside the disc: its half-diagonal within r - 1 */
+    while (s > 0 && hypot(sr_text_width(text, s) / 2.0, 3.5 * s) > r - 1) {
+        s--;
+    }
+    if (!on_grid(c, x, y) || s == 0 || c->zoom < 20 || c->error != SR_OK) {
+        return false;
+    }
+    sr_point2 q = cell_centre(c, x, y);
+    circle(c, q, r, color, 0);
+    int w = sr_text_width(text, s);
+    keep(c, sr_draw_text(c->ctx, c->fb, (int)floor(q.x - w / 2.0 + 0.5),
+                         (int)floor(q.y - 3.5 * s + 0.5), s, text, (sr_rgba){ 1, 1, 1, 1 }));
     return true;
 }
 
@@ -262,6 +307,43 @@ void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color)
     circle(c, to_frame(c, p), radius, color, 0);
 }
 
+/* Whether row `row` has cell text in a column under frame x .. x + w. */
+static bool row_has_text(const ex_canvas *c, int row, int x, int w)
+{
+    if (row < 0 || row >= c->grid_h) {
+        return false;
+    }
+    int first = (x - EX_MARGIN) / c->zoom, last = (x + w - 1 - EX_MARGIN) / c->zoom;
+    first = first < 0 ? 0 : first;
+    last = last >= c->grid_w ? c->grid_w - 1 : last;
+    for (int col = first; col <= last; col++) {
+        if (c->text_cells[row * c->grid_w + col]) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* y for a label at x, y of w x h frame pixels, moved (up, or down when
+ * `down`) out of the band cell text is written in where a cell under it
+ * has some, when the room between two bands holds the label. */
+static int clear_of_cell_text(const ex_canvas *c, int x, int y, int w, int h, bool down)
+{
+    if (!c->cell_text || h + 2 > c->zoom - TEXT_BAND || y + h <= EX_MARGIN) {
+        return y;
+    }
+    int row = (y + h - EX_MARGIN) / c->zoom;   /* the row of the label's bottom */
+    int top = EX_MARGIN + row * c->zoom, band = top + c->zoom - TEXT_BAND;
+    if (y + h >= band && row_has_text(c, row, x, w)) {
+        return down ? top + c->zoom + 1 : band - h - 1;
+    }
+    if (y < top && row_has_text(c, row - 1, x, w)) {
+        /* its top in the band of the row above */
+        return down ? top + 1 : top - TEXT_BAND - h - 1;
+    }
+    return y;
+}
+
 void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color)
 {
     if (c->error != SR_OK) {
@@ -278,16 +360,17 @@ void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color)
     int bottom = c->caption_y - EX_MARGIN / 2 - 8 * s;
     y = y > bottom ? bottom : y;
     y = y < 2 ? 2 : y;
+    int h = 7 * s;
+    y = clear_of_cell_text(c, x, y, w, h, false);
     /* a label on one drawn before in this frame (two vertices at one
      * point, a name beside a vertex's) goes below it, so both read */
-    int h = 7 * s;
     for (int tries = 0; tries < 16; tries++) {
         bool moved = false;
         for (int i = 0; i < c->label_count && !moved; i++) {
             const int *b = c->labels[i];
             if (x < b[0] + b[2] + s && b[0] < x + w + s && y < b[1] + b[3] + s &&
                 b[1] < y + h + s && b[1] + b[3] + 2 * s <= bottom) {
-                y = b[1] + b[3] + 2 * s;
+                y = clear_of_cell_text(c, x, b[1] + b[3] + 2 * s, w, h, true);
                 moved = true;
             }
         }
@@ -298,6 +381,10 @@ void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color)
     if (c->label_count < (int)(sizeof c->labels / sizeof c->labels[0])) {
         int *b = c->labels[c->label_count++];
         b[0] = x, b[1] = y, b[2] = w, b[3] = h;
+    }
+    if (c->cell_text) {
+        /* over coloured cells and edges the text needs a ground of its own */
+        rect(c, x - s, y - s, w + 2 * s, h + 2 * s, (sr_rgba){ EX_BG.r, EX_BG.g, EX_BG.b, 0.85f });
     }
     keep(c, sr_draw_text(c->ctx, c->fb, x, y, s, text, color));
 }

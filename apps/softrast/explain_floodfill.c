@@ -65,8 +65,10 @@ static void draw(ex_canvas *c, const fill *f, int run_y, int l, int r)
     for (int i = 0; i < f->n; i++) {
         char s[16];
         snprintf(s, sizeof s, "%d", i + 1);
-        ex_ring(c, f->stack[i][0], f->stack[i][1], SEED);
-        ex_cell_text(c, f->stack[i][0], f->stack[i][1], s, SEED);
+        /* the number large on a disc; a ring alone where it cannot fit */
+        if (!ex_cell_badge(c, f->stack[i][0], f->stack[i][1], s, SEED)) {
+            ex_ring(c, f->stack[i][0], f->stack[i][1], SEED);
+        }
     }
 }
 
@@ -93,7 +95,7 @@ sr_result explain_floodfill(ex_canvas *c, const ex_primitive *prim)
         snprintf(cap, sizeof cap,
                  "1. A polygon's outline drawn with one-pixel lines, and a seed at (%d, %d). "
                  "Flood fill recolours the %d-connected region of pixels with the seed's colour "
-                 "(%s). No recursion per pixel: a stack of seeds (numbered rings), here just the "
+                 "(%s). No recursion per pixel: a stack of seeds (numbered discs), here just the "
                  "first.",
                  sx, sy, conn8 ? 8 : 4, f.want ? "the outline's" : "the background");
         ex_end(c, cap);

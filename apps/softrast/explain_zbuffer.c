@@ -39,26 +39,38 @@ static int64_t depth_at(const depth_tri *d, int px, int py)
     return (int64_t)floor(z + 0.5);
 }
 
-static void draw_tri(ex_canvas *c, const depth_tri *d, const char *name, sr_rgba color)
+static void vertices(const depth_tri *d, sr_point2 v[3])
 {
-    sr_point2 v[3];
     for (int i = 0; i < 3; i++) {
         v[i] = (sr_point2){ d->t.x[i] / 256.0, d->t.y[i] / 256.0 };
     }
+}
+
+static void draw_edges(ex_canvas *c, const depth_tri *d, sr_rgba color)
+{
+    sr_point2 v[3];
+    vertices(d, v);
     ex_outline(c, v, 3, true, color, 2);
+}
+
+/* The vertices and their labels, drawn after the cells' numbers so the
+ * labels can keep clear of them. */
+static void draw_marks(ex_canvas *c, const depth_tri *d, const char *name, sr_rgba color)
+{
+    sr_point2 v[3];
+    vertices(d, v);
     for (int i = 0; i < 3; i++) {
         char label[32];
         snprintf(label, sizeof label, "%s z=%g", name, d->z[i]);
+        ex_label(c, v[i], label, EX_EDGE);   /* its ground under the dot */
         ex_dot(c, v[i], c->zoom >= 20 ? 4 : c->zoom * 0.2, color);
-        ex_label(c, v[i], label, EX_EDGE);
     }
 }
 
-static void draw_both(ex_canvas *c, const depth_tri *a, const depth_tri *b, sr_rgba ca,
-                      sr_rgba cb)
+static void draw_tri(ex_canvas *c, const depth_tri *d, const char *name, sr_rgba color)
 {
-    draw_tri(c, a, "A", ca);
-    draw_tri(c, b, "B", cb);
+    draw_edges(c, d, color);
+    draw_marks(c, d, name, color);
 }
 
 static void number(ex_canvas *c, int x, int y, int64_t q, sr_rgba color)
@@ -88,12 +100,15 @@ sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim)
     char cap[640];
 
     ex_begin(c);
-    draw_both(c, &a, &b, TRI_A, EX_INK);
+    draw_tri(c, &a, "A", TRI_A);
+    draw_tri(c, &b, "B", EX_INK);
     ex_end(c, "1. Two triangles, A then B, with a window depth z at each vertex (0 near, 1 far). "
               "The depth buffer (16 bits) is cleared to the far value 65535 and the test is "
               "LESS: a fragment is drawn where its depth is less than the one stored.");
 
     /* A: every covered pixel passes against the cleared buffer */
+    /* (In each frame the cells, then the edges, then the numbers over
+     * them and the labels last, each kept readable over what is under.) */
     ex_begin(c);
     int drawn_a = 0;
     for (int y = 0; y < c->grid_h; y++) {
@@ -104,12 +119,17 @@ sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim)
                 depth[i] = q;
                 owner[i] = 1;
                 ex_cell(c, x, y, TRI_A_LIGHT);
-                number(c, x, y, q, EX_TEXT);
                 drawn_a++;
             }
         }
     }
-    draw_tri(c, &a, "A", TRI_A);
+    draw_edges(c, &a, TRI_A);
+    for (int i = 0; i < n; i++) {
+        if (owner[i] == 1) {
+            number(c, i % c->grid_w, i / c->grid_w, depth[i], EX_TEXT);
+        }
+    }
+    draw_marks(c, &a, "A", TRI_A);
     snprintf(cap, sizeof cap,
              "2. A's %d pixels: z at each centre is the barycentric blend of the vertex "
              "depths (linear in screen space), quantized once, q = floor(z x 65535 + 1/2) "
@@ -123,29 +143,38 @@ sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim)
     for (int y = 0; y < c->grid_h; y++) {
         for (int x = 0; x < c->grid_w; x++) {
             int i = y * c->grid_w + x;
-            if (owner[i] == 1) {
+            int64_t q = depth_at(&b, x, y);
+            bool passes = q >= 0 && q < depth[i];
+            if (passes) {
+                ex_cell(c, x, y, TRI_B_LIGHT);
+            } else if (owner[i] == 1) {
                 ex_cell(c, x, y, TRI_A_LIGHT);
             }
+        }
+    }
+    draw_edges(c, &a, TRI_A);
+    draw_edges(c, &b, EX_INK);
+    for (int y = 0; y < c->grid_h; y++) {
+        for (int x = 0; x < c->grid_w; x++) {
+            int i = y * c->grid_w + x;
             int64_t q = depth_at(&b, x, y);
             if (q < 0) {
                 continue;
             }
             bool passes = q < depth[i];
-            if (passes) {
-                ex_cell(c, x, y, TRI_B_LIGHT);
-            }
             number(c, x, y, q, passes ? EX_TEXT : EX_BAD);
             if (passes) {
                 depth[i] = q;
                 owner[i] = 2;
                 pass++;
             } else {
-                ex_cross(c, x, y, EX_BAD);
+                ex_cross_above_text(c, x, y, EX_BAD);
                 fail++;
             }
         }
     }
-    draw_both(c, &a, &b, TRI_A, EX_INK);
+    draw_marks(c, &a, "A", TRI_A);
+    draw_marks(c, &b, "B", EX_INK);
     snprintf(cap, sizeof cap,
              "3. B's pixels with B's q, each compared with the stored one: %d pass (blue, q less: "
              "B's colour and q replace A's or the background), %d fail (crossed, q not "
@@ -156,16 +185,20 @@ sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim)
 
     /* the colour buffer, with the depth buffer's values */
     ex_begin(c);
-    for (int y = 0; y < c->grid_h; y++) {
-        for (int x = 0; x < c->grid_w; x++) {
-            int i = y * c->grid_w + x;
-            if (owner[i]) {
-                ex_cell(c, x, y, owner[i] == 1 ? TRI_A : EX_INK);
-                number(c, x, y, depth[i], (sr_rgba){ 1, 1, 1, 1 });
-            }
+    for (int i = 0; i < n; i++) {
+        if (owner[i]) {
+            ex_cell(c, i % c->grid_w, i / c->grid_w, owner[i] == 1 ? TRI_A : EX_INK);
         }
     }
-    draw_both(c, &a, &b, EX_EDGE, EX_EDGE);
+    draw_edges(c, &a, EX_EDGE);
+    draw_edges(c, &b, EX_EDGE);
+    for (int i = 0; i < n; i++) {
+        if (owner[i]) {
+            number(c, i % c->grid_w, i / c->grid_w, depth[i], (sr_rgba){ 1, 1, 1, 1 });
+        }
+    }
+    draw_marks(c, &a, "A", EX_EDGE);
+    draw_marks(c, &b, "B", EX_EDGE);
     ex_end(c, "4. The result: in each pixel the colour of the nearest fragment and its q in the "
               "depth buffer, what sr_draw leaves in a 16-bit depth buffer (LESS test) for A "
               "then B.");

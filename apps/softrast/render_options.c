@@ -83,7 +83,8 @@ static void render_help(void)
         "\n"
         "output:\n"
         "  -o, --output FILE        image to write, atomically: a JPEG when FILE ends in\n"
-        "                           .jpg or .jpeg, else a PNG (default softrast.png)\n"
+        "                           .jpg or .jpeg, a PNG when it ends in .png or has no\n"
+        "                           extension (another is refused; default softrast.png)\n"
         "  --size WxH               image size, 1..8192 each (default 1280x720); refused\n"
         "                           when its frames (with --aa's samples) need more\n"
         "                           memory than the machine has or SR_MEMORY_LIMIT allows\n"
@@ -361,7 +362,7 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             return EXIT_OK;
         } else if (IS("-o") || IS("--output")) {
             VALUE();
-            if (!cli_check_output_name(arg, value)) {
+            if (!cli_check_output_name(arg, value) || !cli_check_image_name(arg, value, true)) {
                 return EXIT_USAGE;
             }
             o->output = value;

@@ -29,7 +29,8 @@ static void svg_help(FILE *f)
                "A gzip-compressed drawing (.svgz, known by its first bytes) reads as well.\n\n"
                "options:\n"
                "  -o, --output FILE    PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
-               "                       (needs --background) (default: INPUT with .png)\n"
+               "                       (needs --background); another extension is refused\n"
+               "                       (default: INPUT with .png)\n"
                "  --size WxH           output size in pixels (the viewBox is fitted in)\n"
                "  --scale S            output size = the drawing's size times S (default 1)\n"
                "  --background COLOR   opaque background (default transparent)\n"
@@ -154,7 +155,7 @@ static int parse_args(int argc, char **argv, svg_args *a)
             }
             if (s[1] == 'o' || s[2] == 'o') {
                 a->output = v;
-                if (!cli_check_output_name(s, v)) {
+                if (!cli_check_output_name(s, v) || !cli_check_image_name(s, v, true)) {
                     return EXIT_USAGE;
                 }
             } else if (strcmp(s, "--size") == 0) {
@@ -384,7 +385,8 @@ static int render_batch(svg_args *a)
         cli_error("-o: names one output; a batch names its outputs with --output-dir and --name");
         return EXIT_USAGE;
     }
-    if (c->name && !batch_check_pattern(c->name)) {
+    if (c->name &&
+        (!batch_check_pattern(c->name) || !cli_check_image_name("--name", c->name, true))) {
         return EXIT_USAGE;
     }
     if (c->name && cli_is_jpeg_name(c->name) && a->desc.background.a < 1) {

@@ -138,8 +138,7 @@ int cmd_thumbnail(int argc, char **argv)
         cli_error("thumbnail: the output path is too long");
         return EXIT_USAGE;
     }
-    if (cli_is_jpeg_name(files[1])) {
-        cli_error("thumbnail: '%s': a thumbnail is a PNG (name it .png)", files[1]);
+    if (!cli_check_image_name("thumbnail: OUTPUT", files[1], false)) {
         return EXIT_USAGE;
     }
     snprintf(output, sizeof output, "%s%s", files[1][0] == '-' ? "./" : "", files[1]);

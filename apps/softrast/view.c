@@ -28,7 +28,8 @@ static void view_help(void)
         "options:\n"
         "  --size WxH               window size (default 1280x720)\n"
         "  --frames N               draw N frames without waiting for input, then quit\n"
-        "  --screenshot FILE        write the frame as PNG (a JPEG for FILE.jpg or .jpeg),\n"
+        "  --screenshot FILE        write the frame as PNG (a JPEG for FILE.jpg or .jpeg;\n"
+        "                           another extension is refused),\n"
         "                           atomically, then quit: after --frames N frames, else\n"
         "                           after the --events script has played, else after\n"
         "                           the first frame\n"
@@ -212,7 +213,7 @@ static int parse_view_args(int argc, char **argv, view_opts *o)
             }
         } else if (strcmp(name, "--screenshot") == 0 ||
                    strcmp(name, "--screenshot-overlay") == 0) {
-            if (!cli_check_output_name(name, value)) {
+            if (!cli_check_output_name(name, value) || !cli_check_image_name(name, value, true)) {
                 return EXIT_USAGE;
             }
             *(name[12] ? &o->window_shot : &o->screenshot) = value;

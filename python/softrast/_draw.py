@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 
 from . import _softrast
 from ._color import Color, to_rgba
+from ._memory import check_memory
 from ._softrast import Path
 
 if TYPE_CHECKING:
@@ -360,7 +361,9 @@ class Canvas:
     """A 2D canvas over an (H, W, 4) uint8 RGBA image (straight alpha, row 0
     at the top, pixel (x, y) covering [x, x+1) x [y, y+1)), drawn with the
     library's fills and strokes in place: ``Canvas(width, height)`` makes
-    a new image, ``Canvas.from_array(image)`` draws into the caller's.
+    a new image (MemoryError, before it is allocated, when it would take
+    more than the memory limit: SR_MEMORY_LIMIT, else the physical
+    memory), ``Canvas.from_array(image)`` draws into the caller's.
     Each draw blends source-over as the library's RGBA8 framebuffer does,
     so a drawing gives the bytes ``render_svg`` gives for the same SVG.
 
@@ -376,7 +379,9 @@ class Canvas:
     __slots__ = ("_core", "_matrix", "_clip", "_saved")
 
     def __init__(self, width: int, height: int, *, background: Optional[Color] = None) -> None:
-        image = np.zeros((_size(height, "height"), _size(width, "width"), 4), np.uint8)
+        w, h = _size(width, "width"), _size(height, "height")
+        check_memory(f"Canvas: {w} x {h}", w * h * 4, "give a smaller width and height")
+        image = np.zeros((h, w, 4), np.uint8)
         self._core = _softrast.Canvas2D(image)
         self._reset_state()
         if background is not None:

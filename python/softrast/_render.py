@@ -12,6 +12,7 @@ from . import _softrast
 from ._arrays import real_array
 from ._camera import Camera
 from ._framing import fit_camera
+from ._memory import check_memory
 from ._scene import Instance, Scene, as_scene
 from ._softrast import Mesh
 
@@ -241,6 +242,25 @@ def _antialias(antialias: Optional[Antialias], width: int, height: int) -> Tuple
     return msaa, ssaa
 
 
+def _check_memory(n: int, width: int, height: int, names: Sequence[str], msaa: int,
+                  ssaa: int) -> None:
+    """MemoryError before the outputs are allocated when they, with the
+    frames drawn into, would pass the memory limit (_memory.py)."""
+    pixels = width * height
+    per_view = sum(int(np.prod(OUTPUTS[name][0], dtype=np.int64)) *
+                   np.dtype(OUTPUTS[name][1]).itemsize for name in names)
+    # The frame drawn into (RGBA and a float depth); antialiased color is
+    # drawn into samples first, which SSAA also filters in float RGBA rows.
+    frames = pixels * 8
+    if (msaa > 1 or ssaa > 1) and ("color" in names or "rgba" in names):
+        frames += pixels * ssaa * ssaa * msaa * 8 + (pixels * ssaa * 16 if ssaa > 1 else 0)
+    aa = f"msaa{msaa}" if msaa > 1 else f"ssaa{ssaa}" if ssaa > 1 else "none"
+    views = f"{n} views" if n > 1 else "1 view"
+    check_memory(f"render: {views} of {width} x {height} ({', '.join(names)}; antialias {aa})",
+                 n * pixels * per_view + frames,
+                 "render fewer cameras at a time, a smaller size or fewer outputs")
+
+
 def _int_arg(value: int, name: str, low: int, high: int) -> int:
     if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
         raise TypeError(f"{name}: expected an int, got {type(value).__name__}")
@@ -369,7 +389,9 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     Returns a dict from each requested name to its array; with batched
     cameras every array has a leading dimension B.  The GIL is released
     while drawing.  Raises TypeError or ValueError naming the argument
-    that is wrong.
+    that is wrong, and MemoryError, before allocating, when the outputs
+    of every camera and the frames drawn into would take more than the
+    memory limit (SR_MEMORY_LIMIT, else the physical memory).
     """
     sc = as_scene(scene)
     width = _int_arg(width, "width", 1, 8192)
@@ -440,6 +462,7 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     msaa, ssaa = _antialias(antialias, width, height)
 
     n = len(Ks)
+    _check_memory(n, width, height, names, msaa, ssaa)
     out: Dict[str, NDArray[Any]] = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
     inv_t = [np.linalg.inv(inst.pose[:3, :3]).T for inst in sc]
     ids = [i if inst.instance_id is None else inst.instance_id for i, inst in enumerate(sc)]

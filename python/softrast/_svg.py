@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from . import _softrast
 from ._color import Color, to_rgba
+from ._memory import check_memory
 
 if TYPE_CHECKING:
     from .typing import SvgSource
@@ -130,6 +131,10 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
         not a color.
     TypeError
         An argument of the wrong type, named in the message.
+    MemoryError
+        A ``width`` and ``height`` whose image would take more than the
+        memory limit (SR_MEMORY_LIMIT, else the physical memory), before
+        it is allocated.
     OSError
         The file cannot be read (FileNotFoundError when it does not exist),
         with the path as ``filename``; NotADirectoryError when
@@ -168,6 +173,11 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
     w = h = 0
     if width is not None and height is not None:
         w, h = _size(width, "width"), _size(height, "height")
+        # The drawing's RGBA and the image returned.  A side past 8192, and
+        # a size that comes from the document (or scale), is the library's
+        # to refuse (a ValueError).
+        if max(w, h) <= 8192:
+            check_memory(f"render_svg: {w} x {h}", w * h * 8, "give a smaller width and height")
     s = 0.0
     if scale is not None:
         if isinstance(scale, (bool, str, bytes)) or not isinstance(scale, SupportsFloat):
