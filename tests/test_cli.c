@@ -2867,14 +2867,15 @@ SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #else
-    char dir[1024], a[1100], b[1100], svg[1100];
+    char dir[1024], a[1100], b[1100], svg[1100], svg2[1100];
     fresh_dir("memory limit", dir, sizeof dir);
     snprintf(a, sizeof a, "%s/a.obj", dir);
     snprintf(b, sizeof b, "%s/b.obj", dir);
     snprintf(svg, sizeof svg, "%s/d.svg", dir);
+    snprintf(svg2, sizeof svg2, "%s/e.svg", dir);
     const char *tri = ONE_TRIANGLE_OBJ, *doc = "<svg width='10' height='10'/>";
     REQUIRE(write_whole(a, tri, strlen(tri)) && write_whole(b, tri, strlen(tri)) &&
-            write_whole(svg, doc, strlen(doc)));
+            write_whole(svg, doc, strlen(doc)) && write_whole(svg2, doc, strlen(doc)));
     REQUIRE(setenv("SR_MEMORY_LIMIT", "1G", 1) == 0);
     expect_render_failure("msaa16 at 8192", ARGS(a, "--size", "8192x8192", "--aa", "msaa16"), 2,
                           "render: --size 8192x8192 with --aa msaa16 needs about 8.5 GiB of "
@@ -2890,7 +2891,19 @@ SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
         const char *needle;
     } refused[] = {
         { "1G", { "render", "--size", "4096x4096", "--output-dir", "OUT", "--", "A", "B" },
-          "(two frames at once) needs about 1.2 GiB" },
+          "(two frames at once) and the images being written needs about 1.4 GiB" },
+        /* a batch's frames fit, not with the writer's copies of its images */
+        { "128M", { "render", "--size", "2048x2048", "--aa", "none", "--output-dir", "OUT", "A",
+                    "B" },
+          "render: --size 2048x2048 with --aa none (two frames at once) and the images being "
+          "written needs about 144 MiB" },
+        /* the frames fit, not with the sheet of them all */
+        { "100M", { "render", "--size", "2048x2048", "--aa", "none", "--sheet", "OUT/sheet.png",
+                    "A", "B" },
+          "(two frames at once) and a 4096x2072 --sheet needs about 128 MiB" },
+        { "100M", { "render", "--size", "2048x2048", "--aa", "none", "--background", "transparent",
+                    "--sheet", "OUT/sheet.png", "A", "B" },
+          "and a 4096x2072 --sheet needs about 161 MiB" },
         { "256M", { "render", "--size", "2048x2048", "--aa", "ssaa4", "A", "-o", "OUT/r.png" },
           "render: --size 2048x2048 with --aa ssaa4 needs about 800 MiB" },
         { "256M", { "thumbnail", "-s", "4096", "A", "OUT/t.png" },
@@ -2898,6 +2911,12 @@ SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
           "allows: give a smaller -s" },
         { "256M", { "svg", "--size", "8192x8192", "S", "-o", "OUT/s.png" },
           "svg: --size 8192x8192 needs about 512 MiB" },
+        /* one drawing fits, not a batch's drawings and the writers' copies */
+        { "64M", { "svg", "--size", "2048x2048", "--threads", "4", "--output-dir", "OUT", "S",
+                   "T" },
+          "svg: --size 2048x2048 with --threads 4 (2 drawings at once) needs about 80 MiB of "
+          "frame memory, more than SR_MEMORY_LIMIT=64M allows: give a smaller --size or "
+          "--threads" },
         { "1G", { "view", "--size", "8192x8192", "--aa", "msaa16", "A" },
           "view: --size 8192x8192 with --aa msaa16 (two frames at once) needs about 17 GiB" },
     };
@@ -2907,7 +2926,7 @@ SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
         for (int k = 0; refused[i].args[k]; k++) {
             const char *w = refused[i].args[k];
             args[k] = strcmp(w, "A") == 0 ? a : strcmp(w, "B") == 0 ? b : strcmp(w, "S") == 0
-                      ? svg : w;
+                      ? svg : strcmp(w, "T") == 0 ? svg2 : w;
             if (strncmp(w, "OUT", 3) == 0) {
                 static char paths[2][1200];
                 snprintf(paths[k & 1], sizeof paths[0], "%s%s", dir, w + 3);
@@ -2923,7 +2942,7 @@ SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
         }
         cli_run_free(&r);
     }
-    CHECK_EQ(count_entries(dir, NULL, 0), 3);
+    CHECK_EQ(count_entries(dir, NULL, 0), 4);
     /* within the limit: drawn */
     REQUIRE(setenv("SR_MEMORY_LIMIT", "64M", 1) == 0);
     char out[1100];

@@ -54,7 +54,8 @@ static void batch_help(void)
         "  --sheet FILE             one contact sheet of every image instead, each\n"
         "                           captioned with its model's name (and view's angle)\n"
         "  --sheet-columns N        images a row (default: one model's views a row, or\n"
-        "                           about square)\n"
+        "                           about square); the sheet is held whole, so its\n"
+        "                           memory counts against --size's limit\n"
         "  --animate PATTERN        each model's views as one animated WebP, a turn in\n"
         "                           3 s, named like --name (e.g. turn.webp, {rel}.webp;\n"
         "                           --views defaults to 24)\n");
@@ -425,6 +426,14 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
                       "smaller --size, --sheet-columns or fewer models)", mine * (size_t)b->views,
                       o->width, o->height, SR_MAX_FRAMEBUFFER_SIZE);
             status = EXIT_USAGE;
+        } else if (b->sheet) {
+            /* The sheet is held whole beside the two frames, and written
+             * from a straight-alpha copy when it is transparent. */
+            char more[64];
+            snprintf(more, sizeof more, " and a %ldx%ld --sheet", sw, sh);
+            uint64_t copies = o->background_alpha < 1.0f ? 2 : 1;
+            status = render_opts_check_memory(o, "render", o->width, o->height, 2,
+                                              copies * 4 * (uint64_t)sw * (uint64_t)sh, more);
         }
     }
     /* The second job, which reads while the first draws, shares its light. */
@@ -564,8 +573,16 @@ int batch_render(int argc, char **argv)
     }
     if (status < 0) {
         render_opts_warn(&o);   /* once, not once an input */
-        /* One input is read into a frame while the last is drawn in the other. */
-        status = render_opts_check_frames(&o, argv[0], o.width, o.height, 2);
+        /* One input is read into a frame while the last is drawn in the
+         * other; the writer keeps its copies of the last two images
+         * (batch_writer.c, one thread), and one more image's worth goes
+         * to writing them (a transparent one's straight alpha, the
+         * encoder).  --threads draws one frame on more threads, not more
+         * frames.  A sheet is counted once its size is known
+         * (run_batch). */
+        uint64_t images = b.sheet ? 0 : 3 * 4 * (uint64_t)o.width * (uint64_t)o.height;
+        status = render_opts_check_memory(&o, argv[0], o.width, o.height, 2, images,
+                                          b.sheet ? "" : " and the images being written");
     }
     /* The job's options without the models, which come in the same order. */
     int n = 0;

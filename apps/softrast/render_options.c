@@ -642,6 +642,12 @@ uint64_t render_opts_frame_bytes(const render_opts *o, int width, int height)
 int render_opts_check_frames(const render_opts *o, const char *cmd, int width, int height,
                              int frames)
 {
+    return render_opts_check_memory(o, cmd, width, height, frames, 0, "");
+}
+
+int render_opts_check_memory(const render_opts *o, const char *cmd, int width, int height,
+                             int frames, uint64_t more, const char *more_what)
+{
     char aa[16] = "none";
     if (o->ssaa > 1 || o->msaa > 1) {
         snprintf(aa, sizeof aa, "%s%d", o->ssaa > 1 ? "ssaa" : "msaa",
@@ -656,14 +662,15 @@ int render_opts_check_frames(const render_opts *o, const char *cmd, int width, i
     }
     /* thumbnail.c renders a square of its -s SIZE, with render's --aa. */
     bool thumb = strcmp(cmd, "thumbnail") == 0;
-    char what[128];
+    char what[192];
     if (thumb) {
         snprintf(what, sizeof what, "thumbnail: -s %d", width);
     } else {
-        snprintf(what, sizeof what, "%s: --size %dx%d with --aa %s%s", cmd, width, height, aa,
-                 frames > 1 ? " (two frames at once)" : "");
+        snprintf(what, sizeof what, "%s: --size %dx%d with --aa %s%s%s", cmd, width, height, aa,
+                 frames > 1 ? " (two frames at once)" : "", more_what);
     }
-    return cli_check_memory(what, render_opts_frame_bytes(o, width, height) * (uint64_t)frames,
+    return cli_check_memory(what,
+                            render_opts_frame_bytes(o, width, height) * (uint64_t)frames + more,
                             thumb ? "give a smaller -s" : "give a smaller --size or --aa");
 }
 

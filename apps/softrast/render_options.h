@@ -115,6 +115,11 @@ uint64_t render_opts_frame_bytes(const render_opts *o, int width, int height);
  * says how to ask for less. */
 int render_opts_check_frames(const render_opts *o, const char *cmd, int width, int height,
                              int frames);
+/* The same with `more` bytes besides the frames (a batch's images being
+ * written, its contact sheet), which more_what ("" or " and ...") names
+ * after the frames in the line. */
+int render_opts_check_memory(const render_opts *o, const char *cmd, int width, int height,
+                             int frames, uint64_t more, const char *more_what);
 
 /* The options ask for an environment's image-based light (studio or an
  * .hdr file, under pbr, without --ambient) rather than the hemisphere. */

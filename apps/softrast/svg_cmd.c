@@ -31,7 +31,11 @@ static void svg_help(FILE *f)
                "  -o, --output FILE    PNG to write, or a JPEG for a name ending .jpg/.jpeg\n"
                "                       (needs --background); another extension is refused\n"
                "                       (default: INPUT with .png)\n"
-               "  --size WxH           output size in pixels (the viewBox is fitted in)\n"
+               "  --size WxH           output size in pixels (the viewBox is fitted in);\n"
+               "                       refused when the drawings in hand (a batch's\n"
+               "                       --threads at once, the images being written) need\n"
+               "                       more memory than the machine has or SR_MEMORY_LIMIT\n"
+               "                       allows\n"
                "  --scale S            output size = the drawing's size times S (default 1)\n"
                "  --background COLOR   opaque background (default transparent)\n"
                "  --threads N          drawings drawn at once in a batch (default: SR_THREADS\n"
@@ -192,15 +196,41 @@ static int parse_args(int argc, char **argv, svg_args *a)
         cli_error("svg: --size and --scale exclude each other");
         return EXIT_USAGE;
     }
-    if (a->desc.width) {
-        /* The drawing's RGBA and the image as it is written; a size that
-         * comes from the document is the library's to refuse (max_side). */
-        char what[64];
-        snprintf(what, sizeof what, "svg: --size %dx%d", a->desc.width, a->desc.height);
-        return cli_check_memory(what, (uint64_t)a->desc.width * (uint64_t)a->desc.height * 8,
-                                "give a smaller --size");
-    }
     return -1;
+}
+
+/* Writer threads: a drawing takes far less time than the fsync of its
+ * image, and a file system takes several at once. */
+#define SVG_WRITERS 4
+
+/* Whether --size's drawings fit the memory limit: -1, or EXIT_USAGE after
+ * one line.  One drawing takes its RGBA and the image as it is written.
+ * A batch of `inputs` drawn by `threads` threads holds the drawings in
+ * hand (batch_draw.c: two slots a thread, finished ones waiting only
+ * while below BATCH_DRAW_MAX_BYTES), the writer's copies (batch_writer.c:
+ * one a thread and one more, each kept for the next image) and one more
+ * image of working memory for the drawing and the encoders.  A size
+ * that comes from the document is the library's to refuse (max_side). */
+static int check_size(const svg_args *a, size_t inputs, int threads)
+{
+    if (!a->desc.width) {
+        return -1;
+    }
+    uint64_t image = (uint64_t)a->desc.width * (uint64_t)a->desc.height * 4;
+    char what[128];
+    int n = snprintf(what, sizeof what, "svg: --size %dx%d", a->desc.width, a->desc.height);
+    if (inputs == 0) {
+        return cli_check_memory(what, 2 * image, "give a smaller --size");
+    }
+    uint64_t t = (uint64_t)threads < inputs ? (uint64_t)threads : inputs;
+    uint64_t drawings = t + BATCH_DRAW_MAX_BYTES / image;
+    drawings = drawings < 2 * t ? drawings : 2 * t;
+    drawings = drawings < inputs ? drawings : inputs;
+    uint64_t written = inputs < SVG_WRITERS + 1 ? inputs : SVG_WRITERS + 1;
+    snprintf(what + n, sizeof what - (size_t)n, " with --threads %d (%d drawings at once)",
+             threads, (int)drawings);
+    return cli_check_memory(what, (drawings + written + 1) * image,
+                            "give a smaller --size or --threads");
 }
 
 /* The length of name's .svg or .svgz (gzip-compressed) ending, any case;
@@ -226,6 +256,10 @@ static int render_one(svg_args *a)
         cli_error("svg: -o: a JPEG has no transparency; give a --background for '%s'", output);
         return EXIT_USAGE;
     }
+    int status = check_size(a, 0, 1);
+    if (status >= 0) {
+        return status;
+    }
     cli_inputs inputs = { 0 };
     cli_inputs_add(&inputs, input, "SVG file");
     if (!cli_check_output(&inputs, "svg: -o", output)) {
@@ -234,7 +268,7 @@ static int render_one(svg_args *a)
     }
     char *data = NULL, why[1024];
     size_t size = 0;
-    int status = read_input(input, &data, &size, why, sizeof why);
+    status = read_input(input, &data, &size, why, sizeof why);
     if (status != EXIT_OK) {
         cli_inputs_free(&inputs);
         cli_error("svg: %s", why);
@@ -275,10 +309,6 @@ static int render_one(svg_args *a)
 }
 
 /* ---- a batch ------------------------------------------------------------ */
-
-/* Writer threads: a drawing takes far less time than the fsync of its
- * image, and a file system takes several at once. */
-#define SVG_WRITERS 4
 
 /* A slot of the batch: a drawing thread draws with its context, which
  * draws on that thread alone (the 2D toolkit fills on the caller's). */
@@ -401,6 +431,9 @@ static int render_batch(svg_args *a)
     drawer.user = &sb;
     int status = batch_session_gather(&s, c, a->inputs, a->count, is_svg_name,
                                       "svg: no SVG files");
+    if (status < 0) {
+        status = check_size(a, batch_session_mine(&s), drawer.threads);
+    }
     if (status < 0) {
         status = batch_session_name(&s, "{rel}.png");
     }
