@@ -1,15 +1,14 @@
 /* image_out.c - the tool's image files: a JPEG when the name ends in .jpg
  * or .jpeg (any case), else a PNG, for every command that writes one
- * (render, demo, svg, the viewer's screenshots); any other extension is
- * refused before the work (cli_check_image_name).  Both are written
- * atomically by the io library, never over one of the command's inputs. */
+ * (render, demo, svg, the viewer's screenshots; image_name.c refuses any
+ * other extension before the work).  Both are written atomically by the
+ * io library, never over one of the command's inputs. */
 #include "cli.h"
 #include "softrast_io.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 uint8_t *cli_straight_alpha(const uint8_t *rgba, size_t pixels)
 {
@@ -24,37 +23,6 @@ uint8_t *cli_straight_alpha(const uint8_t *rgba, size_t pixels)
         out[4 * i + 3] = (uint8_t)a;
     }
     return out;
-}
-
-/* The extension of path's last name, from its dot; NULL if it has none
- * (a leading dot, as in ".hidden", starts a name, not an extension). */
-static const char *extension(const char *path)
-{
-    const char *slash = strrchr(path, '/');
-    const char *name = slash ? slash + 1 : path;
-    const char *dot = strrchr(name, '.');
-    return dot && dot > name ? dot : NULL;
-}
-
-bool cli_is_jpeg_name(const char *path)
-{
-    const char *dot = extension(path);
-    return dot && (strcasecmp(dot, ".jpg") == 0 || strcasecmp(dot, ".jpeg") == 0);
-}
-
-bool cli_check_image_name(const char *opt, const char *path, bool jpeg_ok)
-{
-    const char *dot = extension(path);
-    if (!dot || strcasecmp(dot, ".png") == 0 || (jpeg_ok && cli_is_jpeg_name(path))) {
-        return true;
-    }
-    if (jpeg_ok) {
-        cli_error("%s: '%s': softrast writes PNG or JPEG images, not %s (name it .png, .jpg "
-                  "or .jpeg)", opt, path, dot);
-    } else {
-        cli_error("%s: '%s': this is written as a PNG, not %s (name it .png)", opt, path, dot);
-    }
-    return false;
 }
 
 sr_result cli_write_image(const char *path, int width, int height, const uint8_t *rgba,
