@@ -623,6 +623,61 @@ static wbuf glb(const char *json, const void *bin, size_t n)
     return b;
 }
 
+/* A GLB whose JSON chunk declares jn bytes (padded with pad spaces) before a
+ * BIN chunk of the triangle. */
+static wbuf glb_json_len(const char *json, uint32_t jn, size_t pad)
+{
+    wbuf b = {0};
+    size_t total = 12 + 8 + strlen(json) + pad + 8 + 36;
+    uint32_t head[3] = { 0x46546C67u, 2, (uint32_t)total };
+    uint32_t jc[2] = { jn, 0x4E4F534Au }, bc[2] = { 36, 0x004E4942u };
+    uint8_t le[12];
+    le_copy(le, head, 3, 4);
+    wb_put(&b, le, 12);
+    le_copy(le, jc, 2, 4);
+    wb_put(&b, le, 8);
+    wb_put(&b, json, strlen(json));
+    wb_put(&b, "   ", pad);
+    le_copy(le, bc, 2, 4);
+    wb_put(&b, le, 8);
+    wb_put(&b, tri_le(), 36);
+    return b;
+}
+
+SR_TEST(glb_json_chunk_of_unaligned_length_reads_the_next_chunk_where_it_is)
+{
+    /* 1 + 4 * 29 + 2 characters: never a multiple of 4. */
+    const char *json =
+        "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":36}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+        "\"type\":\"VEC3\"}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]}";
+    size_t n = strlen(json), pad = (4 - n % 4) % 4;
+    REQUIRE(pad != 0);
+    sr_scene *s;
+    sr_io_error e;
+    /* Not padded at all (the next chunk right after the length, as three.js
+     * and the Khronos validator read it), and padded without counting it. */
+    for (size_t p = 0; p <= pad; p += pad) {
+        wbuf g = glb_json_len(json, (uint32_t)n, p);
+        CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "odd.glb", g.p, g.n, NULL, &s, &e), SR_OK);
+        if (s) {
+            CHECK_EQ(s->primitive_count, 1);
+            CHECK_EQ(s->primitives[0].positions[7], 1.0f);
+            sr_destroy_scene(sr_test_ctx(), s);
+        }
+        free(g.p);
+    }
+    /* A JSON length that ends inside the text: the message names it, not the
+     * length read from the JSON text that follows it. */
+    wbuf g = glb_json_len(json, 3, pad);
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "short.glb", g.p, g.n, NULL, &s, &e), SR_BAD_FORMAT);
+    CHECK_EQ(s, NULL);
+    CHECK_STR_CONTAINS(e.message, "short.glb: byte 12: JSON chunk length 3 (not a multiple of 4)");
+    free(g.p);
+}
+
 SR_TEST(glb_reads_its_bin_chunk_and_images_from_buffer_views)
 {
     wbuf png = small_png();
