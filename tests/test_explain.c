@@ -1567,3 +1567,31 @@ SR_TEST(line_steps_off_the_grid_are_one_frame)
                    "2. Steps 1 to 2001: pixels (-2001, 0) to (-1, 5) off the grid, not shown "
                    "(y = 0.5000 first, y = 5.4727 last).");
 }
+
+/* The same for the circle's rows and the scan-line fill's scanlines: a
+ * row whose pixels are all off the grid joins the off-grid rows beside it
+ * in one frame (they made a frame each, empty). */
+SR_TEST(rows_off_the_grid_are_one_frame)
+{
+    NEEDS_CLI();
+    char dir[1024];
+    out_dir("circle_far", dir, sizeof dir);
+    REQUIRE(run_explain("circle", "--circle", "-300,5,250", dir) == 0);
+    CHECK_EQ(frame_files(dir), 3);   /* the circle, rows 0 to 15, the outline */
+    out_dir("scanline_far", dir, sizeof dir);
+    REQUIRE(run_explain("scanline", "--polygon", "-300,0.5,6,5.5,-300,11.5,-600,6", dir) == 0);
+    /* the polygon, the edge table, y=0..4, y=5, y=6..10, the fill */
+    CHECK_EQ(frame_files(dir), 6);
+    uint8_t cells[GRID * GRID], want[GRID * GRID] = { 0 };
+    REQUIRE(last_frame_cells(dir, cells) == 6);
+    for (int x = 0; x < 6; x++) {
+        want[5 * GRID + x] = 1;
+    }
+    compare_cells(cells, want, "scanline far");
+    expect_caption("scanline_far_caption",
+                   (const char *[]){ "scanline", "--polygon", "-300,0.5,6,5.5,-300,11.5,-600,6",
+                                     NULL },
+                   5, 12,
+                   "5. Scanlines y=6 to 10: their crossings and spans are off the grid, not "
+                   "shown. From the ET: e2. Ended: e3.");
+}
