@@ -600,20 +600,22 @@ SR_TEST(external_buffers_and_images_are_read_beside_the_file)
     free(png.p);
 }
 
-/* A GLB of json and bin, padded as the format asks. */
-static wbuf glb(const char *json, const void *bin, size_t n)
+/* A GLB of json, its chunk declaring jn bytes and padded with pad spaces,
+ * and bin (n bytes, none: no BIN chunk) padded as the format asks. */
+static wbuf glb_framed(const char *json, uint32_t jn, size_t pad, const void *bin, size_t n)
 {
     wbuf b = {0};
-    size_t jn = (strlen(json) + 3) & ~(size_t)3, bn = (n + 3) & ~(size_t)3;
-    uint32_t head[3] = { 0x46546C67u, 2, (uint32_t)(12 + 8 + jn + (n ? 8 + bn : 0)) };
-    uint32_t jc[2] = { (uint32_t)jn, 0x4E4F534Au }, bc[2] = { (uint32_t)bn, 0x004E4942u };
+    size_t bn = (n + 3) & ~(size_t)3;
+    uint32_t head[3] = { 0x46546C67u, 2,
+                         (uint32_t)(12 + 8 + strlen(json) + pad + (n ? 8 + bn : 0)) };
+    uint32_t jc[2] = { jn, 0x4E4F534Au }, bc[2] = { (uint32_t)bn, 0x004E4942u };
     uint8_t le[12];
     le_copy(le, head, 3, 4);
     wb_put(&b, le, 12);
     le_copy(le, jc, 2, 4);
     wb_put(&b, le, 8);
     wb_put(&b, json, strlen(json));
-    wb_put(&b, "   ", jn - strlen(json));
+    wb_put(&b, "   ", pad);
     if (n) {
         le_copy(le, bc, 2, 4);
         wb_put(&b, le, 8);
@@ -623,25 +625,11 @@ static wbuf glb(const char *json, const void *bin, size_t n)
     return b;
 }
 
-/* A GLB whose JSON chunk declares jn bytes (padded with pad spaces) before a
- * BIN chunk of the triangle. */
-static wbuf glb_json_len(const char *json, uint32_t jn, size_t pad)
+/* A GLB of json and bin, padded as the format asks. */
+static wbuf glb(const char *json, const void *bin, size_t n)
 {
-    wbuf b = {0};
-    size_t total = 12 + 8 + strlen(json) + pad + 8 + 36;
-    uint32_t head[3] = { 0x46546C67u, 2, (uint32_t)total };
-    uint32_t jc[2] = { jn, 0x4E4F534Au }, bc[2] = { 36, 0x004E4942u };
-    uint8_t le[12];
-    le_copy(le, head, 3, 4);
-    wb_put(&b, le, 12);
-    le_copy(le, jc, 2, 4);
-    wb_put(&b, le, 8);
-    wb_put(&b, json, strlen(json));
-    wb_put(&b, "   ", pad);
-    le_copy(le, bc, 2, 4);
-    wb_put(&b, le, 8);
-    wb_put(&b, tri_le(), 36);
-    return b;
+    size_t jn = (strlen(json) + 3) & ~(size_t)3;
+    return glb_framed(json, (uint32_t)jn, jn - strlen(json), bin, n);
 }
 
 SR_TEST(glb_json_chunk_of_unaligned_length_reads_the_next_chunk_where_it_is)
@@ -660,7 +648,7 @@ SR_TEST(glb_json_chunk_of_unaligned_length_reads_the_next_chunk_where_it_is)
     /* Not padded at all (the next chunk right after the length, as three.js
      * and the Khronos validator read it), and padded without counting it. */
     for (size_t p = 0; p <= pad; p += pad) {
-        wbuf g = glb_json_len(json, (uint32_t)n, p);
+        wbuf g = glb_framed(json, (uint32_t)n, p, tri_le(), 36);
         CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "odd.glb", g.p, g.n, NULL, &s, &e), SR_OK);
         if (s) {
             CHECK_EQ(s->primitive_count, 1);
@@ -671,7 +659,7 @@ SR_TEST(glb_json_chunk_of_unaligned_length_reads_the_next_chunk_where_it_is)
     }
     /* A JSON length that ends inside the text: the message names it, not the
      * length read from the JSON text that follows it. */
-    wbuf g = glb_json_len(json, 3, pad);
+    wbuf g = glb_framed(json, 3, pad, tri_le(), 36);
     CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "short.glb", g.p, g.n, NULL, &s, &e), SR_BAD_FORMAT);
     CHECK_EQ(s, NULL);
     CHECK_STR_CONTAINS(e.message, "short.glb: byte 12: JSON chunk length 3 (not a multiple of 4)");
