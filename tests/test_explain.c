@@ -1515,3 +1515,83 @@ SR_TEST(floodfill_seed_numbers_are_large_and_centred)
     printf("seed 1: %d white pixels in x %d..%d, y %d..%d of the cell\n", n, x0, x1, y0, y1);
     CHECK(abs(x0 + x1 + 1 - Z) <= 2 && abs(y0 + y1 + 1 - Z) <= 2);
 }
+
+/* How many frames a run wrote into dir (frame-001.png, ...). */
+static int frame_files(const char *dir)
+{
+    char path[1200];
+    int n = 0;
+    do {
+        snprintf(path, sizeof path, "%s/frame-%03d.png", dir, ++n);
+    } while (access(path, F_OK) == 0);
+    return n - 1;
+}
+
+/* A line crossing the grid from ends far off it made one frame per step
+ * (and gave up after 512 steps, so a line coming in from 2000 pixels away
+ * showed none of its pixels): the steps off the grid are now one frame on
+ * each side, and the last frame is still what sr_draw_line draws. */
+static void check_far_line(const char *algorithm, sr_line_algorithm alg, const char *prim,
+                           sr_point2 a, sr_point2 b)
+{
+    char dir[1024], name[40];
+    snprintf(name, sizeof name, "%s_far", algorithm);
+    out_dir(name, dir, sizeof dir);
+    REQUIRE(run_explain(algorithm, "--line", prim, dir) == 0);
+    /* the first frame, a run before the grid, GRID steps, a run after, the last */
+    int frames = 1 + 1 + GRID + 1 + 1;
+    CHECK_EQ(frame_files(dir), frames);
+    uint8_t cells[GRID * GRID];
+    REQUIRE(last_frame_cells(dir, cells) == frames);
+    rt_target t = rt_make(GRID, GRID, 1);
+    rt_clear(&t);
+    REQUIRE(sr_draw_line(t.ctx, t.fb, a, b, (sr_rgba){ 1, 1, 1, 1 },
+                         &(sr_line_desc){ .algorithm = alg }) == SR_OK);
+    int drawn = 0;
+    compare_with_target(&t, cells, name, &drawn);
+    CHECK_EQ(drawn, GRID);
+    rt_free(&t);
+}
+
+SR_TEST(line_steps_off_the_grid_are_one_frame)
+{
+    NEEDS_CLI();
+    check_far_line("bresenham", SR_LINE_BRESENHAM, "-2000.5,3.5,2000.5,12.5",
+                   (sr_point2){ -2000.5, 3.5 }, (sr_point2){ 2000.5, 12.5 });
+    check_far_line("dda", SR_LINE_DDA_INCREMENTAL, "-2000.25,3.7,2000.5,12.1",
+                   (sr_point2){ -2000.25, 3.7 }, (sr_point2){ 2000.5, 12.1 });
+    /* the run's caption names its steps, pixels and the values at both
+     * ends (what the frames of those steps said) */
+    expect_caption("dda_far_caption",
+                   (const char *[]){ "dda", "--line", "-2000.5,0.5,10.5,5.5", NULL }, 2, 10,
+                   "2. Steps 1 to 2001: pixels (-2001, 0) to (-1, 5) off the grid, not shown "
+                   "(y = 0.5000 first, y = 5.4727 last).");
+}
+
+/* The same for the circle's rows and the scan-line fill's scanlines: a
+ * row whose pixels are all off the grid joins the off-grid rows beside it
+ * in one frame (they made a frame each, empty). */
+SR_TEST(rows_off_the_grid_are_one_frame)
+{
+    NEEDS_CLI();
+    char dir[1024];
+    out_dir("circle_far", dir, sizeof dir);
+    REQUIRE(run_explain("circle", "--circle", "-300,5,250", dir) == 0);
+    CHECK_EQ(frame_files(dir), 3);   /* the circle, rows 0 to 15, the outline */
+    out_dir("scanline_far", dir, sizeof dir);
+    REQUIRE(run_explain("scanline", "--polygon", "-300,0.5,6,5.5,-300,11.5,-600,6", dir) == 0);
+    /* the polygon, the edge table, y=0..4, y=5, y=6..10, the fill */
+    CHECK_EQ(frame_files(dir), 6);
+    uint8_t cells[GRID * GRID], want[GRID * GRID] = { 0 };
+    REQUIRE(last_frame_cells(dir, cells) == 6);
+    for (int x = 0; x < 6; x++) {
+        want[5 * GRID + x] = 1;
+    }
+    compare_cells(cells, want, "scanline far");
+    expect_caption("scanline_far_caption",
+                   (const char *[]){ "scanline", "--polygon", "-300,0.5,6,5.5,-300,11.5,-600,6",
+                                     NULL },
+                   5, 12,
+                   "5. Scanlines y=6 to 10: their crossings and spans are off the grid, not "
+                   "shown. From the ET: e2. Ended: e3.");
+}

@@ -600,20 +600,22 @@ SR_TEST(external_buffers_and_images_are_read_beside_the_file)
     free(png.p);
 }
 
-/* A GLB of json and bin, padded as the format asks. */
-static wbuf glb(const char *json, const void *bin, size_t n)
+/* A GLB of json, its chunk declaring jn bytes and padded with pad spaces,
+ * and bin (n bytes, none: no BIN chunk) padded as the format asks. */
+static wbuf glb_framed(const char *json, uint32_t jn, size_t pad, const void *bin, size_t n)
 {
     wbuf b = {0};
-    size_t jn = (strlen(json) + 3) & ~(size_t)3, bn = (n + 3) & ~(size_t)3;
-    uint32_t head[3] = { 0x46546C67u, 2, (uint32_t)(12 + 8 + jn + (n ? 8 + bn : 0)) };
-    uint32_t jc[2] = { (uint32_t)jn, 0x4E4F534Au }, bc[2] = { (uint32_t)bn, 0x004E4942u };
+    size_t bn = (n + 3) & ~(size_t)3;
+    uint32_t head[3] = { 0x46546C67u, 2,
+                         (uint32_t)(12 + 8 + strlen(json) + pad + (n ? 8 + bn : 0)) };
+    uint32_t jc[2] = { jn, 0x4E4F534Au }, bc[2] = { (uint32_t)bn, 0x004E4942u };
     uint8_t le[12];
     le_copy(le, head, 3, 4);
     wb_put(&b, le, 12);
     le_copy(le, jc, 2, 4);
     wb_put(&b, le, 8);
     wb_put(&b, json, strlen(json));
-    wb_put(&b, "   ", jn - strlen(json));
+    wb_put(&b, "   ", pad);
     if (n) {
         le_copy(le, bc, 2, 4);
         wb_put(&b, le, 8);
@@ -621,6 +623,47 @@ static wbuf glb(const char *json, const void *bin, size_t n)
         wb_put(&b, "\0\0\0", bn - n);
     }
     return b;
+}
+
+/* A GLB of json and bin, padded as the format asks. */
+static wbuf glb(const char *json, const void *bin, size_t n)
+{
+    size_t jn = (strlen(json) + 3) & ~(size_t)3;
+    return glb_framed(json, (uint32_t)jn, jn - strlen(json), bin, n);
+}
+
+SR_TEST(glb_json_chunk_of_unaligned_length_reads_the_next_chunk_where_it_is)
+{
+    /* 1 + 4 * 29 + 2 characters: never a multiple of 4. */
+    const char *json =
+        "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":36}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+        "\"type\":\"VEC3\"}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+        "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]}";
+    size_t n = strlen(json), pad = (4 - n % 4) % 4;
+    REQUIRE(pad != 0);
+    sr_scene *s;
+    sr_io_error e;
+    /* Not padded at all (the next chunk right after the length, as three.js
+     * and the Khronos validator read it), and padded without counting it. */
+    for (size_t p = 0; p <= pad; p += pad) {
+        wbuf g = glb_framed(json, (uint32_t)n, p, tri_le(), 36);
+        CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "odd.glb", g.p, g.n, NULL, &s, &e), SR_OK);
+        if (s) {
+            CHECK_EQ(s->primitive_count, 1);
+            CHECK_EQ(s->primitives[0].positions[7], 1.0f);
+            sr_destroy_scene(sr_test_ctx(), s);
+        }
+        free(g.p);
+    }
+    /* A JSON length that ends inside the text: the message names it, not the
+     * length read from the JSON text that follows it. */
+    wbuf g = glb_framed(json, 3, pad, tri_le(), 36);
+    CHECK_EQ(sr_parse_gltf(sr_test_ctx(), "short.glb", g.p, g.n, NULL, &s, &e), SR_BAD_FORMAT);
+    CHECK_EQ(s, NULL);
+    CHECK_STR_CONTAINS(e.message, "short.glb: byte 12: JSON chunk length 3 (not a multiple of 4)");
+    free(g.p);
 }
 
 SR_TEST(glb_reads_its_bin_chunk_and_images_from_buffer_views)

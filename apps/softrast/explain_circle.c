@@ -112,6 +112,37 @@ static void draw_circle(ex_canvas *c, const circle *k)
     ex_dot(c, (sr_point2){ k->cx / 256.0, k->cy / 256.0 }, 3, EX_HILITE);
 }
 
+/* Rows whose span and tested centres are all off the grid, shown as one
+ * frame: the first and the last row and their spans. */
+typedef struct off_rows {
+    int first, last, rows;
+    int64_t first_span[2], last_span[2];
+} off_rows;
+
+static void off_rows_frame(ex_canvas *c, const circle *k, off_rows *o)
+{
+    if (o->rows == 0) {
+        return;
+    }
+    char cap[400];
+    ex_begin(c);
+    draw_circle(c, k);
+    if (o->first == o->last) {
+        snprintf(cap, sizeof cap,
+                 "%d. Row %d: inside %lld..%lld, off the grid, not shown.",
+                 c->frame_count + 1, o->first, (long long)o->first_span[0],
+                 (long long)o->first_span[1]);
+    } else {
+        snprintf(cap, sizeof cap,
+                 "%d. Rows %d to %d: inside %lld..%lld to %lld..%lld, off the grid, "
+                 "not shown.", c->frame_count + 1, o->first, o->last,
+                 (long long)o->first_span[0], (long long)o->first_span[1],
+                 (long long)o->last_span[0], (long long)o->last_span[1]);
+    }
+    ex_end(c, cap);
+    o->rows = 0;
+}
+
 sr_result explain_circle(ex_canvas *c, const ex_primitive *prim)
 {
     circle k = { ex_snap(prim->pts[0].x), ex_snap(prim->pts[0].y), ex_snap(prim->z[0]) };
@@ -143,6 +174,7 @@ sr_result explain_circle(ex_canvas *c, const ex_primitive *prim)
     int64_t ic = (int64_t)floor(k.cx / 256.0);   /* the column nearest the centre */
     int64_t hint[2] = { ic, ic };
     int max = 4 * gw + 8;
+    off_rows off = { 0 };
     for (int y = -1; y <= gh; y++) {
         int64_t *sp = span + 2 * (y + 1);
         int n = 0;
@@ -156,6 +188,23 @@ sr_result explain_circle(ex_canvas *c, const ex_primitive *prim)
         if (y < 0 || y == gh) {
             continue;
         }
+        bool shown = sp[0] < gw && sp[1] >= 0;
+        for (int s = 0; s < n; s++) {
+            shown = shown || (seen[s] >= 0 && seen[s] < gw);
+        }
+        if (!shown) {
+            if (off.rows == 0) {
+                off.first = y;
+                off.first_span[0] = sp[0];
+                off.first_span[1] = sp[1];
+            }
+            off.last = y;
+            off.last_span[0] = sp[0];
+            off.last_span[1] = sp[1];
+            off.rows++;
+            continue;
+        }
+        off_rows_frame(c, &k, &off);
         ex_begin(c);
         for (int yy = 0; yy <= y; yy++) {
             const int64_t *q = span + 2 * (yy + 1);
@@ -182,6 +231,8 @@ sr_result explain_circle(ex_canvas *c, const ex_primitive *prim)
                  (long long)sp[0], (long long)sp[1]);
         ex_end(c, cap);
     }
+
+    off_rows_frame(c, &k, &off);
 
     /* the outline: inside pixels with an outside 4-neighbour */
     ex_begin(c);

@@ -30,12 +30,18 @@ typedef struct step {
     bool drawn;             /* false: bresenham's end pixel, shown left out */
     bool has_mid;
     sr_point2 mid;          /* bresenham: the midpoint tested */
+    /* > 0: a run of this many steps whose pixels are off the grid, shown
+     * as one frame; x, y the last one's pixel */
+    int run;
+    int first, first_x, first_y;      /* the run's first step: its number, pixel */
+    char first_value[48], last_value[48];   /* the value the steps' captions give */
     char caption[320];
 } step;
 
 typedef struct line_steps {
     sr_point2 a, b;         /* snapped */
-    step s[MAX_STEPS];
+    int grid_w, grid_h;
+    step s[MAX_STEPS];      /* the on-grid steps of a line and at most two runs */
     int n;
     char intro[640], outro[320];
 } line_steps;
@@ -58,6 +64,36 @@ static i128 round_div128(i128 a, i128 b)
 static bool on_centre(int64_t q8)
 {
     return ((q8 - 128) % 256 + 256) % 256 == 0;
+}
+
+/* The entry for step `number` (from 1) at pixel (x, y), whose caption
+ * gives `value`; NULL when the pixel is off the grid: the step joins the
+ * run of such steps before it, or starts one.  A line's pixels on the grid
+ * are consecutive steps, so a line has at most a run before and one after
+ * them, and its entries stay few however far its ends are. */
+static step *add_step(line_steps *ls, int x, int y, int number, const char *value)
+{
+    bool off = x < 0 || y < 0 || x >= ls->grid_w || y >= ls->grid_h;
+    step *prev = ls->n ? &ls->s[ls->n - 1] : NULL;
+    if (off && prev && prev->run) {
+        prev->run++;
+        prev->x = x;
+        prev->y = y;
+        snprintf(prev->last_value, sizeof prev->last_value, "%s", value);
+        return NULL;
+    }
+    if (ls->n == MAX_STEPS) {
+        return NULL;
+    }
+    step *st = &ls->s[ls->n++];
+    *st = (step){ .x = x, .y = y, .drawn = true };
+    if (!off) {
+        return st;
+    }
+    *st = (step){ .x = x, .y = y, .run = 1, .first = number, .first_x = x, .first_y = y };
+    snprintf(st->first_value, sizeof st->first_value, "%s", value);
+    snprintf(st->last_value, sizeof st->last_value, "%s", value);
+    return NULL;
 }
 
 static const char *axis(bool xmaj, bool major)
@@ -108,12 +144,18 @@ static bool bresenham(line_steps *ls, int64_t ax, int64_t ay, int64_t bx, int64_
                  " Walked from the end, so %s increases.", U);
     }
     ls->n = 0;
-    for (int64_t k = u0; k <= u1 && ls->n < MAX_STEPS; k++) {
+    for (int64_t k = u0; k <= u1; k++) {
         int64_t j = v0 + s * i;
         bool ne = s > 0 ? d > 0 : d >= 0;
-        step *st = &ls->s[ls->n];
-        st->x = (int)(xmaj ? k : j);
-        st->y = (int)(xmaj ? j : k);
+        char value[48];
+        snprintf(value, sizeof value, "d = %lld", (long long)d);
+        step *st = add_step(ls, (int)(xmaj ? k : j), (int)(xmaj ? j : k), (int)(k - u0 + 1),
+                            value);
+        if (!st) {
+            d += ne ? dNE : dE;
+            i += ne ? 1 : 0;
+            continue;
+        }
         double mu = k + 1 + 0.5, mv = j + 0.5 + s * 0.5;   /* M, between the candidates */
         st->has_mid = k < u1;
         st->mid = xmaj ? (sr_point2){ mu, mv } : (sr_point2){ mv, mu };
@@ -128,7 +170,6 @@ static bool bresenham(line_steps *ls, int64_t ax, int64_t ay, int64_t bx, int64_
                      (long long)(d + (ne ? dNE : dE)));
         }
         st->drawn = k != end_k;
-        ls->n++;
         if (ne) {
             i++;
             d += dNE;
@@ -168,22 +209,23 @@ static void dda(line_steps *ls, int64_t ax, int64_t ay, int64_t bx, int64_t by)
     const double one = 4294967296.0;
     snprintf(ls->intro, sizeof ls->intro,
              "1. DDA line, %s-major, stepping %s by %s1: m = d%s/|d%s| = %.4f per step. The "
-             "line's %s at the first pixel centre %s = %lld.5 is %.4f; then %s += m each step, "
+             "line's %s at the first pixel centre %s = %.1f is %.4f; then %s += m each step, "
              "the pixel being the nearest centre: floor(%s) (centres at +1/2). Drawn: centres "
              "from the start up to, not at, the end.",
-             U, U, dir > 0 ? "+" : "-", V, U, (double)inc / one, V, U, (long long)k0,
+             U, U, dir > 0 ? "+" : "-", V, U, (double)inc / one, V, U, (double)k0 + 0.5,
              (double)v / one, V, V);
+    int number = 0;
     for (int64_t k = k0; dir > 0 ? k <= k1 : k >= k1; k += dir) {
-        if (ls->n == MAX_STEPS) {
-            break;
-        }
         int64_t j = (int64_t)floor_div128(v, (i128)1 << 32);
-        step *st = &ls->s[ls->n++];
-        st->drawn = true;
-        st->x = (int)(xmaj ? k : j);
-        st->y = (int)(xmaj ? j : k);
-        st->has_mid = true;
         double vc = (double)v / one;
+        char value[48];
+        snprintf(value, sizeof value, "%s = %.4f", V, vc);
+        step *st = add_step(ls, (int)(xmaj ? k : j), (int)(xmaj ? j : k), ++number, value);
+        if (!st) {
+            v += inc;
+            continue;
+        }
+        st->has_mid = true;
         st->mid = xmaj ? (sr_point2){ k + 0.5, vc } : (sr_point2){ vc, k + 0.5 };
         snprintf(st->caption, sizeof st->caption,
                  "%s = %lld.5: %s = %.4f, floor -> plot (%d, %d). Next %s = %.4f.", U,
@@ -230,6 +272,21 @@ static sr_result frames(ex_canvas *c, line_steps *ls)
             }
         }
         const step *st = &ls->s[i];
+        char cap[400];
+        if (st->run) {
+            draw_line(c, ls);
+            if (st->run == 1) {
+                snprintf(cap, sizeof cap, "%d. Step %d: pixel (%d, %d) off the grid, not shown "
+                         "(%s).", i + 2, st->first, st->x, st->y, st->first_value);
+            } else {
+                snprintf(cap, sizeof cap, "%d. Steps %d to %d: pixels (%d, %d) to (%d, %d) off "
+                         "the grid, not shown (%s first, %s last).", i + 2, st->first,
+                         st->first + st->run - 1, st->first_x, st->first_y, st->x, st->y,
+                         st->first_value, st->last_value);
+            }
+            ex_end(c, cap);
+            continue;
+        }
         if (st->drawn && in_grid(c, st->x, st->y)) {
             ex_cell(c, st->x, st->y, EX_CELL_IN);
         }
@@ -240,7 +297,6 @@ static sr_result frames(ex_canvas *c, line_steps *ls)
         if (st->has_mid) {
             ex_dot(c, st->mid, 3.5, EX_HILITE);
         }
-        char cap[400];
         snprintf(cap, sizeof cap, "%d. %s", i + 2, st->caption);
         ex_end(c, cap);
     }
@@ -270,6 +326,8 @@ static sr_result explain(ex_canvas *c, const ex_primitive *prim, bool midpoint)
     for (int i = 0; i < 4; i++) {
         q[i] = ex_snap(i % 2 ? prim->pts[i / 2].y : prim->pts[i / 2].x);
     }
+    ls->grid_w = c->grid_w;
+    ls->grid_h = c->grid_h;
     ls->a = (sr_point2){ q[0] / 256.0, q[1] / 256.0 };
     ls->b = (sr_point2){ q[2] / 256.0, q[3] / 256.0 };
     sr_result r = SR_INVALID_ARG;   /* bresenham: ends not on centres */

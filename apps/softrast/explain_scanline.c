@@ -252,6 +252,63 @@ static void scanline_frame(ex_canvas *c, scan *s, int y, sr_fill_rule rule, int 
     ex_end(c, cap);
 }
 
+/* Whether scanline y has something on the grid: a crossing near it (its
+ * dot and label) or the grid's row inside, which with no crossing on it is
+ * all inside or all outside, as its first pixel is. */
+static bool row_shown(const ex_canvas *c, const scan *s, int y, sr_fill_rule rule)
+{
+    int w = 0;
+    for (int i = 0; i < s->n; i++) {
+        const edge *e = &s->e[i];
+        if (e->first > y || y > e->last) {
+            continue;
+        }
+        double x = cross_x(e, y);
+        if (x >= -1 && x <= c->grid_w + 1) {
+            return true;
+        }
+        if (cross_pixel(e, y) <= 0) {
+            w += rule == SR_EVENODD ? 1 : e->dir;
+        }
+    }
+    return inside(rule, w);
+}
+
+/* Scanlines first..last, whose crossings and spans are off the grid, as
+ * one frame; the edges that join or leave the AET on them are named, so
+ * the next scanline's AET reads on from the one before. */
+static void off_rows_frame(ex_canvas *c, scan *s, int first, int last, int step)
+{
+    char cap[1024] = "";
+    if (first == last) {
+        add(cap, sizeof cap, "%d. Scanline y=%d: its crossings and spans are off the grid, not "
+            "shown.", step, first);
+    } else {
+        add(cap, sizeof cap, "%d. Scanlines y=%d to %d: their crossings and spans are off the "
+            "grid, not shown.", step, first, last);
+    }
+    bool any = false;
+    for (int i = 0; i < s->n; i++) {
+        if (s->e[i].first >= first && s->e[i].first <= last) {
+            add(cap, sizeof cap, "%s e%d", any ? "," : " From the ET:", s->e[i].id);
+            any = true;
+        }
+    }
+    add(cap, sizeof cap, "%s", any ? "." : "");
+    any = false;
+    for (int i = 0; i < s->n; i++) {
+        if (s->e[i].last >= first - 1 && s->e[i].last < last) {
+            add(cap, sizeof cap, "%s e%d", any ? "," : " Ended:", s->e[i].id);
+            any = true;
+        }
+    }
+    add(cap, sizeof cap, "%s", any ? "." : "");
+    ex_begin(c);
+    draw_filled(c, s, EX_INK);
+    draw_polygon(c, s, false);
+    ex_end(c, cap);
+}
+
 sr_result explain_scanline(ex_canvas *c, const ex_primitive *prim)
 {
     scan s;
@@ -273,8 +330,19 @@ sr_result explain_scanline(ex_canvas *c, const ex_primitive *prim)
 
     int step = 3;
     int first = s.y0 < 0 ? 0 : s.y0, last = s.y1 >= c->grid_h ? c->grid_h - 1 : s.y1;
-    for (int y = first; y <= last && c->error == SR_OK; y++) {
-        scanline_frame(c, &s, y, prim->rule, step++);
+    int off = first;   /* the first of the scanlines off the grid before y */
+    for (int y = first; y <= last + 1 && c->error == SR_OK; y++) {
+        bool shown = y > last || row_shown(c, &s, y, prim->rule);
+        if (shown && off < y) {
+            off_rows_frame(c, &s, off, y - 1, step++);
+        }
+        if (!shown) {
+            continue;
+        }
+        if (y <= last) {
+            scanline_frame(c, &s, y, prim->rule, step++);
+        }
+        off = y + 1;
     }
 
     ex_begin(c);

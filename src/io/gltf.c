@@ -1071,6 +1071,28 @@ static void warn_unread(gltf_doc *d)
     }
 }
 
+/* Whether a whole chunk (header and data) starts at byte at. */
+static bool chunk_fits(const uint8_t *data, size_t length, size_t at)
+{
+    return at + 8 <= length && sr__le32(data + at) <= length - at - 8;
+}
+
+/* Where the chunk after the one at byte at (of clen bytes) starts. The
+ * format pads chunks to 4 bytes and counts the padding in the length; some
+ * writers skip the padding, and other readers (three.js, the Khronos
+ * validator) read the next chunk right after the declared length, so that
+ * comes first. A writer that padded without counting the padding leaves the
+ * next chunk at the 4-byte boundary instead: taken when only that one fits. */
+static size_t next_chunk(const uint8_t *data, size_t length, size_t at, uint32_t clen)
+{
+    size_t next = at + 8 + (size_t)clen, padded = (next + 3) & ~(size_t)3;
+    if (padded != next && next + 8 <= length && !chunk_fits(data, length, next) &&
+        chunk_fits(data, length, padded)) {
+        return padded;
+    }
+    return next;
+}
+
 /* The JSON and BIN chunks of a GLB. */
 static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const char **json,
                           size_t *json_size)
@@ -1087,9 +1109,19 @@ static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const c
                               "GLB length %u, but the file has %zu bytes", length, size);
     }
     *json = NULL;
+    uint32_t json_len = 0;
+    size_t after_json = 0;
     for (size_t at = 12; at + 8 <= length;) {
         uint32_t clen = sr__le32(data + at), type = sr__le32(data + at + 4);
         if (clen > length - at - 8) {
+            /* After a JSON chunk of odd length the "chunk" read is most likely
+             * JSON text or padding: its length is the cause to name. */
+            if (at == after_json && json_len % 4 != 0) {
+                return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, 12,
+                                      "JSON chunk length %u (not a multiple of 4) does not end "
+                                      "where the next chunk starts",
+                                      json_len);
+            }
             return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, at,
                                   "chunk of %u bytes runs past the end", clen);
         }
@@ -1100,11 +1132,13 @@ static sr_result read_glb(gltf_doc *d, const uint8_t *data, size_t size, const c
             }
             *json = (const char *)data + at + 8;
             *json_size = clen;
+            json_len = clen;
         } else if (type == 0x004E4942u && !d->bin) {
             d->bin = data + at + 8;
             d->bin_size = clen;
         }
-        at += 8 + (size_t)clen;
+        at = next_chunk(data, length, at, clen);
+        after_json = after_json ? after_json : at;
     }
     if (!*json) {
         return sr__io_fail_at(d->err, SR_BAD_FORMAT, d->name, 12, "no JSON chunk");
