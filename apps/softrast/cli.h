@@ -65,8 +65,9 @@ int cli_memory_limit(uint64_t *bytes, const char **what);
  * LIMIT: LOWER" (lower says which options make it smaller). */
 int cli_check_memory(const char *what, uint64_t need, const char *lower);
 
-/* Image files (image_out.c): a JPEG when the name ends in .jpg or .jpeg
- * (any case), else a PNG. */
+/* Image files (image_out.c writes them, image_name.c checks their
+ * names): a JPEG when the name ends in .jpg or .jpeg (any case), else a
+ * PNG. */
 typedef struct cli_image_options {
     int png_level;         /* -1: the library's default; 0: stored; 1..9 */
     int jpeg_quality;      /* 0: the library's default; 1..100 */
