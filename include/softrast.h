@@ -918,14 +918,24 @@ typedef enum sr_light_type {
     SR_LIGHT_OFF = 0,
     SR_LIGHT_DIRECTIONAL,    /* `vector` is the direction the light travels */
     SR_LIGHT_POINT,          /* `vector` is the light's position */
+    SR_LIGHT_SPOT,           /* `vector` is the light's position, `direction` the cone's
+                              * axis; the PBR program only (sr_pbr_desc) */
 } sr_light_type;
 
-/* Lights live in world space: the view matrix is applied to them. */
+/* Lights live in world space: the view matrix is applied to them.  The
+ * fields after `intensity` came with KHR_lights_punctual (docs/pbr.md) and
+ * are the PBR program's: the classic shading refuses a spot light or a
+ * range. */
 typedef struct sr_light {
     sr_light_type type;
     sr_vec3 vector;
     sr_vec3 color;           /* zero -> white (1, 1, 1) */
     float intensity;         /* zero -> 1 */
+    sr_vec3 direction;       /* spot: the way the light points, any length > 0 */
+    float inner_cone;        /* spot: radians, full intensity inside; 0 <= inner < outer */
+    float outer_cone;        /* spot: radians, no light outside; zero -> pi/4; <= pi/2 */
+    float range;             /* point, spot: the distance where the light ends, with
+                              * glTF's smooth window; zero -> infinite */
 } sr_light;
 
 typedef struct sr_material {
@@ -1271,8 +1281,13 @@ typedef struct sr_pbr_desc {
     const sr_mat4 *view;               /* world -> eye;    NULL -> identity */
     const sr_mat4 *projection;         /* NULL -> identity; all three finite */
     /* Punctual lights in world space (KHR_lights_punctual): radiance
-     * color x intensity (sr_light's zero defaults: white, 1); point lights
-     * fall off with the inverse square of the distance. */
+     * color x intensity (sr_light's zero defaults: white, 1), so a
+     * directional light's intensity is in lux and a point or spot light's
+     * in candela, one unit of radiance being one nit before `exposure`.
+     * Point and spot lights fall off with the inverse square of the
+     * distance, times (with a range) clamp(1 - (d / range)^4, 0, 1)^2;
+     * spot lights by the cosine of the angle to their axis, t = (cos -
+     * cos outer) / (cos inner - cos outer) clamped to [0, 1], as t^2. */
     sr_light lights[SR_MAX_LIGHTS];
     /* Ambient light from a hemisphere: radiance `sky` from world +y down to
      * `ground` from -y, blended by direction, for diffuse (by the normal)

@@ -132,6 +132,20 @@ typedef struct sr_scene_camera {
     int camera, node;           /* its index in the file's cameras, and its node */
 } sr_scene_camera;
 
+/* A KHR_lights_punctual light as a node places it, in world space, ready
+ * for sr_pbr_desc.lights (docs/gltf.md): `light.vector` is the direction
+ * a directional light travels (its node's -Z) or the position of a point
+ * or spot light, `light.direction` a spot light's axis (its node's -Z);
+ * the file's color and intensity (lux for directional lights, candela
+ * for the others), range (0: infinite) and cone angles.  A light of
+ * intensity 0 or a black color is SR_LIGHT_OFF (sr_light's zero values
+ * would mean white and 1). */
+typedef struct sr_scene_light {
+    sr_light light;
+    float world[16];            /* light -> world, column-major; it shines down -Z */
+    int light_index, node;      /* its index in the extension's lights, and its node */
+} sr_scene_light;
+
 typedef struct sr_scene {
     sr_scene_primitive *primitives;
     size_t primitive_count;
@@ -145,6 +159,12 @@ typedef struct sr_scene {
     sr_vec3 bounds_min, bounds_max; /* of every primitive, world space; zero when none */
     int warning_count;            /* warnings given to sr_load_desc.warn */
     struct sr_scene_store *store; /* the arrays' memory (internal) */
+    /* Members added later come after the ones above, so that a program
+     * built against the older header reads those where they were (the
+     * library allocates the scene). */
+    sr_scene_light *lights;       /* KHR_lights_punctual, in node order as cameras; all of
+                                   * them: a program takes the first SR_MAX_LIGHTS */
+    size_t light_count;
 } sr_scene;
 
 /* Limits of the glTF reader, checked before allocating: at most this many

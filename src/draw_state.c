@@ -91,7 +91,7 @@ void sr__resolve_shading(const sr_state *st, const sr_mat4 *view, const sr_mat4 
             continue;
         }
         sr_light_eye *le = &ds->lights[ds->light_count++];
-        le->point = l->type == SR_LIGHT_POINT;
+        le->point = l->type == SR_LIGHT_POINT || l->type == SR_LIGHT_SPOT;
         sr_vec4 v;
         if (le->point) {
             v = sr_mat4_mul_vec4(&e, (sr_vec4){ l->vector.x, l->vector.y, l->vector.z, 1.0f });

@@ -321,9 +321,17 @@ sr_result sr__draw_validate_state(sr_context *ctx, const sr_state *st, const sr_
     }
     for (int i = 0; i < SR_MAX_LIGHTS; i++) {
         const sr_light *l = &st->lights[i];
-        if ((unsigned)l->type > SR_LIGHT_POINT) {
+        if ((unsigned)l->type > SR_LIGHT_SPOT) {
             return sr__fail(ctx, SR_INVALID_ARG, "sr_state.lights[%d].type %d is not a light type",
                             i, (int)l->type);
+        }
+        /* The classic models have no falloff to window nor cone to
+         * shape: drawing such a light as a plain point would mislead. */
+        if (!st->program && l->type != SR_LIGHT_OFF &&
+            (l->type == SR_LIGHT_SPOT || l->range != 0.0f)) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_state.lights[%d]: spot lights and range are the PBR program's "
+                            "(sr_pbr_desc), not the classic shading's", i);
         }
         if (l->type != SR_LIGHT_OFF && (!finite_vec3(l->vector) || !finite_vec3(l->color) ||
                                         !isfinite(l->intensity))) {

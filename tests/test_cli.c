@@ -595,19 +595,19 @@ SR_TEST(a_gltf_warning_is_one_line_said_once)
 #else
     char dir[1024], model[1100], out[1100];
     fresh_dir("gltfwarn", dir, sizeof dir);
-    snprintf(model, sizeof model, "%s/lit.gltf", dir);
+    snprintf(model, sizeof model, "%s/variants.gltf", dir);
     snprintf(out, sizeof out, "%s/out.png", dir);
     const gltf_quad q = { -1, -1, 1, 1, 0 };
     char *json = gltf_quads(&q, 1, ",\"materials\":[{}],"
-                                   "\"extensionsUsed\":[\"KHR_lights_punctual\"]");
+                                   "\"extensionsUsed\":[\"KHR_materials_variants\"]");
     REQUIRE(json && write_whole(model, json, strlen(json)));
     free(json);
     cli_run r;
     REQUIRE(run_cli(ARGS("render", model, "--size", "32x24", "-o", out), &r));
     CHECK_EQ(r.status, 0);
     CHECK(is_one_line(r.err, r.err_len));
-    CHECK_STR_CONTAINS(r.err, "lit.gltf: warning: not read, the scene is drawn without them: "
-                              "/extensionsUsed/0 (KHR_lights_punctual)");
+    CHECK_STR_CONTAINS(r.err, "variants.gltf: warning: not read, the scene is drawn without them: "
+                              "/extensionsUsed/0 (KHR_materials_variants)");
     const char *first = strstr(r.err, "warning: ");
     CHECK(first && !strstr(first + 1, "warning: "));
     cli_run_free(&r);

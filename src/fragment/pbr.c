@@ -242,9 +242,14 @@ struct sr_pbr {
     float normal_matrix[9];       /* row-major 3x3: inverse transpose of the model's */
     float eye[3];                 /* the camera's world position */
     int nlights;
-    float light_vec[SR_MAX_LIGHTS][3];  /* directional: unit vector to the light; point: position */
+    float light_vec[SR_MAX_LIGHTS][3];  /* directional: unit vector to the light; point, spot: position */
     float light_rad[SR_MAX_LIGHTS][3];
-    bool light_point[SR_MAX_LIGHTS];
+    bool light_point[SR_MAX_LIGHTS];    /* point or spot: falls off with distance */
+    bool light_spot[SR_MAX_LIGHTS];
+    float light_axis[SR_MAX_LIGHTS][3]; /* spot: unit vector the light points along */
+    /* spot: t = cos(angle to the axis) * scale + offset, clamped to [0, 1] */
+    float light_cone_scale[SR_MAX_LIGHTS], light_cone_offset[SR_MAX_LIGHTS];
+    float light_inv_range2[SR_MAX_LIGHTS];  /* point, spot: 1 / range^2; 0: no range */
     bool ambient;
     float sky[3], ground[3];
     const sr_environment *environment;  /* replaces the hemisphere when set */
@@ -510,8 +515,25 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
             v4f fall = sr__v4_sel(d2 > 0.0f, 1.0f / d2, (v4f){ 0 });
             v4f il = sr__v4_sqrt(fall);
             for (int c = 0; c < 3; c++) {
-                rad[c] *= fall;
                 ld[c] *= il;
+            }
+            if (p->light_inv_range2[l] > 0.0f) {
+                /* The extension's window, 1 at the light and 0 from the
+                 * range on: clamp(1 - (d / range)^4, 0, 1)^2. */
+                v4f q = d2 * p->light_inv_range2[l];
+                v4f w = vclamp(1.0f - q * q, 0.0f, 1.0f);
+                fall *= w * w;
+            }
+            if (p->light_spot[l]) {
+                /* The cone by the cosine of the angle between the axis
+                 * and the way from the light to the point (-L). */
+                v4f cd = -(ld[0] * p->light_axis[l][0] + ld[1] * p->light_axis[l][1] +
+                           ld[2] * p->light_axis[l][2]);
+                v4f t = vclamp(cd * p->light_cone_scale[l] + p->light_cone_offset[l], 0.0f, 1.0f);
+                fall *= t * t;
+            }
+            for (int c = 0; c < 3; c++) {
+                rad[c] *= fall;
             }
         }
         /* H = (L + V) / |L + V| without forming it: |L + V|^2 = 2 + 2 L.V,
@@ -902,14 +924,32 @@ static sr_result check_desc(sr_context *ctx, const sr_pbr_desc *d)
     }
     for (int l = 0; l < SR_MAX_LIGHTS; l++) {
         const sr_light *li = &d->lights[l];
-        if ((unsigned)li->type > SR_LIGHT_POINT) {
+        if ((unsigned)li->type > SR_LIGHT_SPOT) {
             return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d].type %d is not a type", l,
                             (int)li->type);
         }
-        if (li->type != SR_LIGHT_OFF &&
-            (!finite_n(&li->vector.x, 3) || !finite_n(&li->color.x, 3) ||
-             !isfinite(li->intensity))) {
+        if (li->type == SR_LIGHT_OFF) {
+            continue;
+        }
+        if (!finite_n(&li->vector.x, 3) || !finite_n(&li->color.x, 3) ||
+            !isfinite(li->intensity) || !finite_n(&li->direction.x, 3) ||
+            !isfinite(li->inner_cone) || !isfinite(li->outer_cone) || !isfinite(li->range)) {
             return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d] is not finite", l);
+        }
+        if (li->range < 0) {
+            return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_desc.lights[%d].range must be >= 0", l);
+        }
+        if (li->type == SR_LIGHT_SPOT) {
+            float outer = li->outer_cone != 0.0f ? li->outer_cone : PI_F / 4;
+            if (!(li->inner_cone >= 0 && li->inner_cone < outer && outer <= PI_F / 2)) {
+                return sr__fail(ctx, SR_INVALID_ARG,
+                                "sr_pbr_desc.lights[%d]: cones must be 0 <= inner_cone < "
+                                "outer_cone <= pi/2", l);
+            }
+            if (sr_vec3_length(li->direction) == 0.0f) {
+                return sr__fail(ctx, SR_INVALID_ARG,
+                                "sr_pbr_desc.lights[%d].direction must not be zero", l);
+            }
         }
     }
     return SR_OK;
@@ -931,7 +971,8 @@ static void resolve_lights(const sr_pbr_desc *d, sr_pbr *p)
         p->light_rad[k][0] = col.x * in;
         p->light_rad[k][1] = col.y * in;
         p->light_rad[k][2] = col.z * in;
-        p->light_point[k] = li->type == SR_LIGHT_POINT;
+        p->light_point[k] = li->type == SR_LIGHT_POINT || li->type == SR_LIGHT_SPOT;
+        p->light_spot[k] = li->type == SR_LIGHT_SPOT;
         /* A directional light's vector is the way it travels: shading
          * wants the way back to it. */
         sr_vec3 v = p->light_point[k] ? li->vector
@@ -939,6 +980,24 @@ static void resolve_lights(const sr_pbr_desc *d, sr_pbr *p)
         p->light_vec[k][0] = v.x;
         p->light_vec[k][1] = v.y;
         p->light_vec[k][2] = v.z;
+        if (p->light_point[k] && li->range > 0.0f) {
+            double r = li->range;
+            p->light_inv_range2[k] = (float)(1.0 / (r * r));
+        }
+        if (p->light_spot[k]) {
+            sr_vec3 a = sr_vec3_normalize(li->direction);
+            p->light_axis[k][0] = a.x;
+            p->light_axis[k][1] = a.y;
+            p->light_axis[k][2] = a.z;
+            /* The extension's recommended blend, linear in the cosine and
+             * squared by the shader; the 0.001 keeps a hard-edged cone
+             * (inner close to outer) finite. */
+            double outer = li->outer_cone != 0.0f ? li->outer_cone : PI_F / 4;
+            double co = cos(outer), ci = cos(li->inner_cone);
+            double scale = 1.0 / (ci - co > 0.001 ? ci - co : 0.001);
+            p->light_cone_scale[k] = (float)scale;
+            p->light_cone_offset[k] = (float)(-co * scale);
+        }
     }
 }
 

@@ -879,6 +879,9 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
         if (mesh >= 0 && (r = add_draws(d, meshes, it.node, ptr, mesh, world)) != SR_OK) {
             break;
         }
+        if ((r = sr__gltf_place_light(d, node, ptr, it.node, world)) != SR_OK) {
+            break;
+        }
         if (camera >= 0) {
             sr_scene_camera *c = sr__scene_grow(d->scene, (void **)&d->scene->cameras,
                                                 &d->scene->camera_count, sizeof *c, 1);
@@ -967,6 +970,7 @@ static const char *supported_extensions[] = {
     "KHR_texture_transform",
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
+    "KHR_lights_punctual",
 };
 
 static sr_result check_asset(gltf_doc *d)
@@ -1199,9 +1203,11 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
     if (!d->buffers || !d->image_textures) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/buffers: out of memory");
     }
-    if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = read_nodes(d)) != SR_OK) {
+    if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = sr__gltf_read_lights(d)) != SR_OK ||
+        (r = read_nodes(d)) != SR_OK) {
         return r;
     }
+    sr__gltf_lights_done(d);
     sr__scene_bounds(d->scene);
     warn_unread(d);
     return SR_OK;
@@ -1230,6 +1236,7 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
     }
     free(d.buffers);
     free(d.image_textures);
+    free(d.lights);
     json_decref(d.root);
     if (r != SR_OK) {
         sr_destroy_scene(ctx, d.scene);

@@ -1,7 +1,7 @@
 /* gltf.h - the glTF 2.0 reader's shared state (src/io/gltf*.c), on jansson.
  * gltf.c reads the document, buffers, meshes, nodes and cameras;
  * gltf_accessor.c decodes accessors; gltf_material.c reads materials,
- * textures and images; scene_store.c holds the scene's memory.  Every
+ * textures and images; gltf_lights.c reads KHR_lights_punctual; scene_store.c holds the scene's memory.  Every
  * error is one line "NAME: /json/pointer: what is wrong", the first one
  * only.  Internal to src/io. */
 #ifndef SR_IO_GLTF_H
@@ -51,6 +51,8 @@ typedef struct gltf_doc {
     /* Textures made so far, two per image (linear, sRGB); NULL: not yet. */
     sr_texture **image_textures;
     size_t image_count;
+    struct gltf_light *lights;   /* KHR_lights_punctual's, read (gltf_lights.c) */
+    size_t light_count;
 } gltf_doc;
 
 /* The error "NAME: POINTER: reason" (the pointer is part of fmt's
@@ -115,5 +117,14 @@ sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
  * default material (glTF's: white, metallic 1, roughness 1) at the end
  * for primitives without one. */
 sr_result sr__gltf_read_materials(gltf_doc *d);
+
+/* gltf_lights.c: KHR_lights_punctual.  The document's lights checked and
+ * read into d->lights (freed by the caller); one node's light, if it
+ * names one, placed by its world matrix into scene->lights; after the
+ * walk, the warning about lights beyond SR_MAX_LIGHTS. */
+sr_result sr__gltf_read_lights(gltf_doc *d);
+sr_result sr__gltf_place_light(gltf_doc *d, const json_t *node, const char *ptr, long node_index,
+                               const float world[16]);
+void sr__gltf_lights_done(gltf_doc *d);
 
 #endif

@@ -150,6 +150,7 @@ void sr_destroy_scene(sr_context *ctx, sr_scene *scene)
     free(scene->primitives);
     free(scene->materials);
     free(scene->cameras);
+    free(scene->lights);
     free(scene);
 }
 

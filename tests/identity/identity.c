@@ -374,6 +374,40 @@ static sr_result teapot_pbr(sr_context *ctx, sr_framebuffer **fb)
     return r;
 }
 
+/* The program's KHR_lights_punctual falloffs: a spot light's cone edge
+ * and a point light's range window cross the teapot. */
+static sr_result teapot_spot(sr_context *ctx, sr_framebuffer **fb)
+{
+    sr_result r = make_fb(ctx, 1, false, fb);
+    sr_mesh m = { 0 };
+    sr_pbr *p = NULL;
+    if (r == SR_OK) {
+        r = sr_make_teapot(ctx, 6, &m);
+    }
+    sr_mat4 view = camera(), proj = projection(), model = teapot_model();
+    if (r == SR_OK) {
+        sr_pbr_material mat = sr_pbr_default_material();
+        mat.metallic = 0.0f;
+        mat.roughness = 0.45f;
+        sr_pbr_desc d = { .material = &mat, .model = &model, .view = &view, .projection = &proj };
+        d.lights[0] = (sr_light){ .type = SR_LIGHT_SPOT, .vector = { 2, 3, 3 },
+                                  .direction = { -2, -2.4f, -3 }, .intensity = 40.0f,
+                                  .inner_cone = 0.1f, .outer_cone = 0.2f };
+        d.lights[1] = (sr_light){ .type = SR_LIGHT_POINT, .vector = { 1.5f, 0.5f, 1.0f },
+                                  .color = { 0.4f, 0.6f, 1.0f }, .intensity = 3.0f,
+                                  .range = 2.0f };
+        r = sr_make_pbr_program(ctx, &d, &p);
+    }
+    if (r == SR_OK) {
+        sr_draw_desc d = mesh_draw(&m, NULL, NULL);
+        r = sr_draw(ctx, *fb, &(sr_state){ .program = sr_pbr_program(p), .cull = SR_CULL_NONE },
+                    &d);
+    }
+    sr_destroy_pbr_program(ctx, p);
+    sr_destroy_mesh(ctx, &m);
+    return r;
+}
+
 static const struct scene {
     const char *name;
     scene_fn draw;
@@ -382,7 +416,7 @@ static const struct scene {
     { "teapot_msaa16", teapot_msaa16 }, { "lumpy_phong", lumpy_phong },
     { "lumpy_textured", lumpy_textured }, { "lines_points", lines_points },
     { "drawing_2d", drawing_2d },       { "svg_drawing", svg_drawing },
-    { "teapot_pbr", teapot_pbr },
+    { "teapot_pbr", teapot_pbr },       { "teapot_spot", teapot_spot },
 };
 #define SCENE_COUNT (sizeof scenes / sizeof scenes[0])
 
