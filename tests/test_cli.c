@@ -770,6 +770,7 @@ static const option_case option_errors[] = {
       { "--environment", "studio", "--background", "blur", "--shading", "phong" },
       "--background blur: shows the environment" },
     { "shadows maybe", { "--shadows", "maybe" }, "--shadows: expected one of on|off" },
+    { "lights sun", { "--lights", "sun" }, "--lights: expected one of file|default|both|auto" },
     { "ground with a value", { "--ground=yes" }, "--ground: takes no value" },
     { "ambient -1,0,0", { "--ambient", "-1,0,0" }, "--ambient: expected a color name" },
     { "material unknown key", { "--material", "gloss=1" }, "--material: unknown key 'gloss'" },
@@ -1199,7 +1200,7 @@ static const char *const value_options[] = {
     "--rasterizer", "--clipper", "--depth-range", "--threads", "--detail", "--line-width", "--point-size", "--line-color",
     "--texture", "--texture-filter", "--wrap", "--aa", "--filter", "--opacity",
     "--polygon-offset", "--up", "--tonemap", "--exposure", "--environment",
-    "--environment-intensity", "--camera-index", "--shadows", "--batch", "--output-dir", "--name", "--log", "--shard",
+    "--environment-intensity", "--camera-index", "--shadows", "--lights", "--batch", "--output-dir", "--name", "--log", "--shard",
     "--shard-count", "--views", "--sheet", "--sheet-columns", "--animate",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
@@ -3001,6 +3002,7 @@ SR_TEST(options_without_effect_warn_once)
         { "--ground", NULL, "flat" }, { "--tonemap", "aces", "phong" },
         { "--exposure", "1", "gouraud" }, { "--environment", "hemisphere", "unlit" },
         { "--environment-intensity", "2", "normals" }, { "--shadows", "on", "depth" },
+        { "--lights", "default", "phong" },
     };
     for (size_t i = 0; i < sizeof pbr_only / sizeof pbr_only[0]; i++) {
         const char *args[] = { "render", a, "-o", out, "--size", "32x24", "--shading",

@@ -9,6 +9,7 @@
 #include "render_background.h"
 #include "render_bump.h"
 #include "render_gltf.h"
+#include "render_lights.h"
 #include "render_options.h"
 #include "render_shadow.h"
 #include "render_textures.h"
@@ -396,9 +397,10 @@ static bool part_looks(const scene_object *ob)
  * source-over blending and no depth writes (they still test against the
  * opaque depth). */
 static sr_result draw_scene(const render_opts *o, const sr_environment *env,
-                            const render_shadow *shadow, sr_context *ctx, sr_framebuffer *fb,
-                            sr_state *state, scene *s, const camera *cam, bool keep_material,
-                            uint64_t *tris, uint64_t *frags)
+                            const sr_pbr_desc *lighting, const render_shadow *shadow,
+                            sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
+                            const camera *cam, bool keep_material, uint64_t *tris,
+                            uint64_t *frags)
 {
     bool pbr = o->pbr && !keep_material;
     sr_result r = SR_OK;
@@ -496,14 +498,9 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     if (ob->tangents || ob->texcoords1) {
                         d.vertex_count = ob->mesh.vertex_count;
                     }
-                    sr_pbr_default_lighting(state->lights, &d);
-                    if (env && o->light_count == 0) {
-                        /* The studio is the fill and the rim: of the
-                         * classic rig only the key light stays, for shape. */
-                        for (int l = 1; l < SR_MAX_LIGHTS; l++) {
-                            d.lights[l].type = SR_LIGHT_OFF;
-                        }
-                    }
+                    memcpy(d.lights, lighting->lights, sizeof d.lights);
+                    d.sky = lighting->sky;
+                    d.ground = lighting->ground;
                     if (o->have_ambient) {
                         d.sky = d.ground = o->ambient;
                     }
@@ -540,13 +537,13 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
  * units 1 unless --polygon-offset says otherwise), so lines on its surface win the LEQUAL test without stitching
  * or z-fighting; hidden-line and points fill with the background color. */
 static sr_result draw_passes(const render_opts *o, const sr_environment *env,
-                             const render_shadow *shadow, sr_context *ctx, sr_framebuffer *fb,
-                             const sr_state *base, scene *s, const camera *cam, uint64_t *tris,
-                             uint64_t *frags)
+                             const sr_pbr_desc *lighting, const render_shadow *shadow,
+                             sr_context *ctx, sr_framebuffer *fb, const sr_state *base, scene *s,
+                             const camera *cam, uint64_t *tris, uint64_t *frags)
 {
     sr_state st = *base;
     if (o->lines == LINES_NONE) {
-        return draw_scene(o, env, shadow, ctx, fb, &st, s, cam, false, tris, frags);
+        return draw_scene(o, env, lighting, shadow, ctx, fb, &st, s, cam, false, tris, frags);
     }
     bool light_bg = o->background.x + o->background.y + o->background.z > 1.5f;
     sr_vec3 ink = o->have_line_color ? o->line_color
@@ -559,11 +556,11 @@ static sr_result draw_passes(const render_opts *o, const sr_environment *env,
         fill.offset = (sr_polygon_offset){ .factor = o->offset_factor,
                                            .units = o->offset_units, .fill = true };
         if (o->lines == LINES_EDGES) {
-            r = draw_scene(o, env, shadow, ctx, fb, &fill, s, cam, false, tris, frags);
+            r = draw_scene(o, env, lighting, shadow, ctx, fb, &fill, s, cam, false, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
             fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
-            r = draw_scene(o, env, shadow, ctx, fb, &fill, s, cam, true, tris, frags);
+            r = draw_scene(o, env, lighting, shadow, ctx, fb, &fill, s, cam, true, tris, frags);
         }
     }
     if (r != SR_OK) {
@@ -585,7 +582,7 @@ static sr_result draw_passes(const render_opts *o, const sr_environment *env,
     } else {
         lines.depth_func = SR_LEQUAL;
     }
-    return draw_scene(o, env, shadow, ctx, fb, &lines, s, cam, true, tris, frags);
+    return draw_scene(o, env, lighting, shadow, ctx, fb, &lines, s, cam, true, tris, frags);
 }
 
 /* ---- render jobs: what `softrast render` and `softrast view` share ------- */
@@ -677,6 +674,11 @@ static int load_objects(render_job *job)
         int status = load_model(o, job->mesh_ctx, &job->inputs, s);
         if (status >= 0) {
             return status;
+        }
+        if (o->pbr && (o->lights_source == LIGHTS_FILE || o->lights_source == LIGHTS_BOTH) &&
+            render_lights_in_file(s) == 0) {
+            cli_error("warning: --lights %s: %s has no lights of its own (KHR_lights_punctual)",
+                      o->lights_source == LIGHTS_FILE ? "file" : "both", o->model);
         }
     } else {
         sr_result r = scene_builtin(job->mesh_ctx, s, o->detail);
@@ -1065,16 +1067,19 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
                                    &cam.view, &cam.proj, o->exposure, o->tonemap,
                                    sr_context_threads(ctx));
     }
+    /* pbr's lights: the file's, the rig or both (--lights). */
+    sr_pbr_desc lighting = { 0 };
+    render_lights_pbr(o, &job->s, state.lights, job->env != NULL, &lighting);
     /* The key light's shadow map, before the objects that receive it. */
     const render_shadow *shadow = NULL;
     if (r == SR_OK && o->pbr && wants_shadows(o, &job->s) &&
-        state.lights[0].type == SR_LIGHT_DIRECTIONAL) {
-        r = render_shadow_draw(ctx, &job->shadow, &job->s, state.lights[0].vector);
+        lighting.lights[0].type == SR_LIGHT_DIRECTIONAL) {
+        r = render_shadow_draw(ctx, &job->shadow, &job->s, lighting.lights[0].vector);
         shadow = &job->shadow;
     }
     if (r == SR_OK) {
-        r = draw_passes(o, job->env, shadow, ctx, fb, &state, &job->s, &cam, &info->triangles,
-                        &info->fragments);
+        r = draw_passes(o, job->env, &lighting, shadow, ctx, fb, &state, &job->s, &cam,
+                        &info->triangles, &info->fragments);
     }
     if (r == SR_OK && fb != out) {
         r = o->msaa > 1 ? sr_resolve(ctx, fb, out) : sr_downsample(ctx, fb, out, o->filter);

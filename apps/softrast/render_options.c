@@ -41,11 +41,13 @@ static const int aa_msaa[] = { 1, 1, 1, 1, 2, 4, 8, 16 };
 static const char *const resample_names[] = { "box", "tent", "gaussian", "mitchell", NULL };
 static const char *const up_names[] = { "+x", "-x", "+y", "-y", "+z", "-z", NULL };
 static const char *const switch_names[] = { "on", "off", NULL };
+static const char *const lights_names[] = { "file", "default", "both", "auto", NULL };
+static const int lights_values[] = { LIGHTS_FILE, LIGHTS_DEFAULT, LIGHTS_BOTH, LIGHTS_AUTO };
 static const char *const wrap_names[] = { "repeat", "clamp", "mirror", NULL };
 /* What only pbr's program reads: the classic models draw without them. */
 static const char *const pbr_only[] = { "--tonemap", "--exposure", "--environment",
                                         "--environment-intensity", "--shadows", "--ground",
-                                        NULL };
+                                        "--lights", NULL };
 
 /* The options that take a value: the parser takes the next argument as
  * it whatever it looks like ("-o --" takes "--" as the output's name, as
@@ -54,7 +56,7 @@ static const char *const pbr_only[] = { "--tonemap", "--exposure", "--environmen
 static const char *const valued_options[] = {
     "-o", "--output", "--size", "--background", "--png-level", "--jpeg-quality", "--shading",
     "--tonemap", "--exposure", "--environment", "--environment-intensity", "--shadows",
-    "--normals", "--material", "--ambient", "--opacity", "--light", "--texture",
+    "--normals", "--material", "--ambient", "--opacity", "--light", "--lights", "--texture",
     "--texture-filter", "--wrap", "--camera", "--fov", "--up", "--turn", "--camera-index",
     "--near", "--far", "--cull", "--front-face", "--depth-format", "--depth-func",
     "--projection-interp", "--depth-range", "--clipper", "--line-width", "--point-size",
@@ -137,6 +139,14 @@ static void render_help(void)
         "                           add a light in world space (repeatable, up to 8);\n"
         "                           without any, a key, fill and rim light placed\n"
         "                           relative to the camera\n"
+        "  --lights file|default|both|auto\n"
+        "                           pbr's lights: a glTF file's own (KHR_lights_punctual,\n"
+        "                           its first 8, in candela and lux: see --exposure; the\n"
+        "                           strongest directional one casts the shadow), the\n"
+        "                           default ones (the rig above, or --light's), or the\n"
+        "                           file's and then those (default auto: the file's when\n"
+        "                           it has some and no --light is given, else the\n"
+        "                           default ones)\n"
         "textures:\n"
         "  --texture FILE           PNG or JPEG that colors the model through its texture\n"
         "                           coordinates (default: the model's own - OBJ map_Kd,\n"
@@ -556,6 +566,8 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
             if (!clear && !o->background_env && !parse_color(arg, value, &o->background)) {
                 return EXIT_USAGE;
             }
+        } else if (IS("--lights")) {
+            CHOICE(lights_names, o->lights_source, lights_values[k_]);
         } else if (IS("--shadows")) {
             CHOICE(switch_names, o->shadows, k_ == 0 ? 1 : 0);
         } else if (IS("--ground")) {

@@ -34,6 +34,7 @@ typedef struct render_opts {
     float near_z, far_z;           /* 0: fitted */
     sr_light lights[SR_MAX_LIGHTS];
     int light_count;
+    int lights_source;             /* --lights: LIGHTS_AUTO, ... */
     bool have_ambient;
     sr_vec3 ambient;
     bool have_mat_color, have_specular, have_shininess;
@@ -86,6 +87,10 @@ enum { UP_AUTO = -1, UP_POS_X = 0, UP_NEG_X, UP_POS_Y, UP_NEG_Y, UP_POS_Z, UP_NE
 
 /* --background environment|blur: the environment itself, or blurred. */
 enum { BACKGROUND_COLOR = 0, BACKGROUND_SHARP, BACKGROUND_BLUR };
+
+/* The lights --lights names for pbr (LIGHTS_AUTO: the file's when it has
+ * some and no --light is given, else the default ones; render_lights.c). */
+enum { LIGHTS_AUTO = 0, LIGHTS_FILE, LIGHTS_DEFAULT, LIGHTS_BOTH };
 
 /* What the line modes draw besides (or instead of) the shaded model. */
 enum { LINES_NONE = 0, LINES_WIREFRAME, LINES_HIDDEN, LINES_EDGES, LINES_POINTS };

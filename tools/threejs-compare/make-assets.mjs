@@ -55,10 +55,38 @@ function sphere(radius, slices, stacks) {
     return { pos, nrm, idx };
 }
 
-// --- A .glb holding one mesh (one primitive) used by several nodes, each
-// node naming its material through its own mesh entry.
+// A square of side 2 * half in the plane y = 0, facing +y.
+function plane(half) {
+    const pos = [-half, 0, half, half, 0, half, half, 0, -half, -half, 0, -half];
+    return { pos, nrm: [0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0], idx: [0, 1, 2, 0, 2, 3] };
+}
 
-function glb(shape, nodes, materials, extensionsUsed = []) {
+// Shapes as one, each moved by its offset.
+function merge(...parts) {
+    const out = { pos: [], nrm: [], idx: [] };
+    for (const [shape, offset] of parts) {
+        const base = out.pos.length / 3;
+        shape.pos.forEach((c, i) => out.pos.push(c + offset[i % 3]));
+        out.nrm.push(...shape.nrm);
+        out.idx.push(...shape.idx.map((i) => i + base));
+    }
+    return out;
+}
+
+// The unit quaternion [x, y, z, w] turning a node's -Z to the direction d.
+function aimQuaternion(d) {
+    const len = Math.hypot(...d), b = d.map((c) => c / len);
+    // a = (0, 0, -1): a x b = (b.y, -b.x, 0), a . b = -b.z
+    const q = [b[1], -b[0], 0, 1 - b[2]];
+    const ql = Math.hypot(...q);
+    return q.map((c) => c / ql);
+}
+
+// --- A .glb holding one mesh (one primitive) used by several nodes, each
+// node naming its material through its own mesh entry; `lights` adds a
+// node for each KHR_lights_punctual light ({ light, translation, aim }).
+
+function glb(shape, nodes, materials, extensionsUsed = [], lights = []) {
     const posBytes = Buffer.from(new Float32Array(shape.pos).buffer);
     const nrmBytes = Buffer.from(new Float32Array(shape.nrm).buffer);
     const idxRaw = Buffer.from(new Uint16Array(shape.idx).buffer);
@@ -73,8 +101,12 @@ function glb(shape, nodes, materials, extensionsUsed = []) {
     const json = {
         asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
         scene: 0,
-        scenes: [{ nodes: nodes.map((_, i) => i) }],
-        nodes: nodes.map((n, i) => ({ mesh: i, ...(n.translation ? { translation: n.translation } : {}) })),
+        scenes: [{ nodes: [...nodes, ...lights].map((_, i) => i) }],
+        nodes: [
+            ...nodes.map((n, i) => ({ mesh: i, ...(n.translation ? { translation: n.translation } : {}) })),
+            ...lights.map((l, i) => ({ translation: l.translation, rotation: aimQuaternion(l.aim),
+                                       extensions: { KHR_lights_punctual: { light: i } } })),
+        ],
         meshes: nodes.map((n) => ({
             primitives: [{ attributes: { POSITION: 0, NORMAL: 1 }, indices: 2, material: n.material }],
         })),
@@ -92,6 +124,10 @@ function glb(shape, nodes, materials, extensionsUsed = []) {
         ],
         buffers: [{ byteLength: bin.length }],
     };
+    if (lights.length) {
+        json.extensions = { KHR_lights_punctual: { lights: lights.map((l) => l.light) } };
+        extensionsUsed = [...extensionsUsed, 'KHR_lights_punctual'];
+    }
     if (extensionsUsed.length) json.extensionsUsed = extensionsUsed;
     let text = Buffer.from(JSON.stringify(json));
     text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
@@ -183,5 +219,21 @@ for (let row = 0; row < n; row++) {
     }
 }
 writeFileSync(join(out, 'metal-rough-spheres.glb'), glb(sphere(0.5, 48, 24), nodes, materials));
+
+// A sphere on a plane under the file's own lights (KHR_lights_punctual):
+// a spot with a soft edge, a point light whose range ends on the plane
+// and a dim directional light; compare with --environment-intensity
+// 0.001 so that they alone light it.
+writeFileSync(join(out, 'punctual-lights.glb'), glb(
+    merge([plane(2), [0, 0, 0]], [sphere(0.5, 48, 24), [0, 0.5, 0]]), [{ material: 0 }],
+    [{ name: 'white dielectric', pbrMetallicRoughness: pbr([0.8, 0.8, 0.8], 0, 0.5) }], [], [
+        { light: { type: 'spot', intensity: 14, color: [1, 0.95, 0.85],
+                   spot: { innerConeAngle: 0.3, outerConeAngle: 0.55 } },
+          translation: [-0.9, 2.5, 0.9], aim: [0.5, -2.5, -0.6] },
+        { light: { type: 'point', intensity: 2.5, color: [1, 0.55, 0.25], range: 1.8 },
+          translation: [1.1, 0.6, 0.7], aim: [0, 0, -1] },
+        { light: { type: 'directional', intensity: 0.6, color: [0.7, 0.8, 1] },
+          translation: [0, 3, 0], aim: [-0.4, -1, -0.5] },
+    ]));
 
 writeFileSync(join(out, 'sky.hdr'), sky(256, 128));
