@@ -126,7 +126,11 @@ window.renderAsset = async (o) => {
     // radiance units where a white Lambertian surface reflects 1/pi, as
     // three.js's lights are.
     const rig = [[-0.55, 0.7, 0.45, 0.95], [0.8, 0.05, 0.6, 0.35], [0.1, 0.55, -0.85, 0.45]];
-    const count = { none: 0, key: 1, rig: 3 }[o.lights];
+    // A file with lights of its own (KHR_lights_punctual, which
+    // GLTFLoader adds to the scene) is lit by them alone, as softrast's
+    // `--lights auto` does.
+    const ownLights = (gltf.parser.json.extensions?.KHR_lights_punctual?.lights ?? []).length > 0;
+    const count = ownLights ? 0 : { none: 0, key: 1, rig: 3 }[o.lights];
     const { u, v, w } = basis(eye.clone().sub(target));
     for (const [a, b, c, intensity] of rig.slice(0, count)) {
         const l = new THREE.DirectionalLight(new THREE.Color().setRGB(1, 0.98, 0.95, THREE.LinearSRGBColorSpace),
