@@ -11,34 +11,47 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A quad in z = 0 facing +z; with `light`, a node 1 in front of its
- * centre carries that light. */
-static char *quad_model(const char *light)
+/* A quad in z = 0 facing +z with the extension's `lights` (the array's
+ * items) placed by `nodes` (the nodes after the quad's node 0, each a
+ * root), or no lights (NULL). */
+static char *lit_model(const char *lights, const char *nodes, int node_count)
 {
     static const gltf_quad q = { -1, -1, 1, 1, 0 };
     char tail[600] = ",\"materials\":[{\"pbrMetallicRoughness\":{\"metallicFactor\":0}}]";
-    if (light) {
+    if (lights) {
         snprintf(tail + strlen(tail), sizeof tail - strlen(tail),
                  ",\"extensionsUsed\":[\"KHR_lights_punctual\"],"
                  "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[%s]}}",
-                 light);
+                 lights);
     }
     char *json = gltf_quads(&q, 1, tail);
-    const char *nodes = "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
-    char *at = json ? strstr(json, nodes) : NULL;
-    if (!light || !at) {
+    const char *plain = "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+    char *at = json ? strstr(json, plain) : NULL;
+    if (!lights || !at) {
         return json;
     }
-    const char *lit = "\"nodes\":[{\"mesh\":0},{\"translation\":[0,0,1],"
-                      "\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}],"
-                      "\"scenes\":[{\"nodes\":[0,1]}]";
+    char lit[1200], roots[200] = "0";
+    for (int i = 1; i <= node_count; i++) {
+        snprintf(roots + strlen(roots), sizeof roots - strlen(roots), ",%d", i);
+    }
+    snprintf(lit, sizeof lit, "\"nodes\":[{\"mesh\":0},%s],\"scenes\":[{\"nodes\":[%s]}]",
+             nodes, roots);
     size_t head = (size_t)(at - json), cap = strlen(json) + strlen(lit) + 1;
     char *out = malloc(cap);
     if (out) {
-        snprintf(out, cap, "%.*s%s%s", (int)head, json, lit, at + strlen(nodes));
+        snprintf(out, cap, "%.*s%s%s", (int)head, json, lit, at + strlen(plain));
     }
     free(json);
     return out;
+}
+
+/* The quad with one light 1 in front of its centre, or none. */
+static char *quad_model(const char *light)
+{
+    return lit_model(light,
+                     "{\"translation\":[0,0,1],"
+                     "\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}",
+                     1);
 }
 
 /* Renders model with the options and reads back the image's centre
@@ -124,4 +137,50 @@ SR_TEST(lights_the_model_or_the_shading_cannot_give_are_a_warning)
     CHECK_EQ(r.status, 2);
     CHECK_EQ(count_lines(r.err), 1);
     CHECK_STR_CONTAINS(r.err, "--lights");
+}
+
+SR_TEST(the_files_strongest_directional_light_casts_the_shadow)
+{
+    /* A weak light leaning toward +z and a strong one toward -z: listed
+     * in either order, the strong one goes first and casts the shadow on
+     * the ground, so the two files give the same image; with the first
+     * one casting it, the shadow would fall on either side. */
+    NEED_CLI();
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    char dir[1024], a[1100], b[1100], pa[1200], pb[1200];
+    fresh_dir("lights_shadow", dir, sizeof dir);
+    snprintf(a, sizeof a, "%s/weak_first.gltf", dir);
+    snprintf(b, sizeof b, "%s/strong_first.gltf", dir);
+    snprintf(pa, sizeof pa, "%s/weak_first.png", dir);
+    snprintf(pb, sizeof pb, "%s/strong_first.png", dir);
+    /* -Z turned to (0, -1, +1) / sqrt 2 (-135 degrees about x) or to
+     * (0, -1, -1) / sqrt 2 (-45 degrees). */
+    const char *toward_z = "{\"rotation\":[-0.9238795,0,0,0.3826834],"
+                           "\"extensions\":{\"KHR_lights_punctual\":{\"light\":%d}}}";
+    const char *away_z = "{\"rotation\":[-0.3826834,0,0,0.9238795],"
+                         "\"extensions\":{\"KHR_lights_punctual\":{\"light\":%d}}}";
+    char nodes_a[600], nodes_b[600], fmt[600];
+    snprintf(fmt, sizeof fmt, "%s,%s", toward_z, away_z);
+    snprintf(nodes_a, sizeof nodes_a, fmt, 0, 1);
+    snprintf(fmt, sizeof fmt, "%s,%s", away_z, toward_z);
+    snprintf(nodes_b, sizeof nodes_b, fmt, 0, 1);
+    char *ja = lit_model("{\"type\":\"directional\",\"intensity\":0.3},"
+                         "{\"type\":\"directional\",\"intensity\":3}",
+                         nodes_a, 2);
+    char *jb = lit_model("{\"type\":\"directional\",\"intensity\":3},"
+                         "{\"type\":\"directional\",\"intensity\":0.3}",
+                         nodes_b, 2);
+    REQUIRE(ja && jb && write_text(a, ja) && write_text(b, jb));
+    free(ja);
+    free(jb);
+    run_result r;
+    REQUIRE(run(ARGS("render", a, "--size", "48x48", "--ground", "--cull", "none", "-o", pa),
+                &r));
+    CHECK_EQ(r.status, 0);
+    REQUIRE(run(ARGS("render", b, "--size", "48x48", "--ground", "--cull", "none", "-o", pb),
+                &r));
+    CHECK_EQ(r.status, 0);
+    CHECK(same_file_bytes(pa, pb));
 }
