@@ -2,7 +2,8 @@
  * or GLB).  A parse either fails with one line, or gives a scene whose
  * every primitive's indices are in range, whose arrays hold vertex_count
  * entries (ASan checks the reads), whose materials exist and whose
- * texture slots point to the scene's own textures.  Relative URIs name
+ * texture slots point to the scene's own textures, and whose lights the
+ * PBR program accepts.  Relative URIs name
  * files in the current directory: none by default.
  * scripts/fuzz.sh fuzz_gltf SECONDS. */
 #include "fuzz_mesh.h"
@@ -62,6 +63,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (size_t i = 0; i < s->camera_count; i++) {
         FUZZ_CHECK(s->cameras[i].type == SR_SCENE_CAMERA_PERSPECTIVE ||
                    s->cameras[i].type == SR_SCENE_CAMERA_ORTHOGRAPHIC);
+    }
+    /* Every light the reader places, the program takes as it is. */
+    for (size_t i = 0; i < s->light_count; i++) {
+        const sr_scene_light *l = &s->lights[i];
+        FUZZ_CHECK(l->node >= 0 && l->light_index >= 0);
+        sr_pbr_desc d = { 0 };
+        d.lights[0] = l->light;
+        sr_pbr *p = NULL;
+        FUZZ_CHECK(sr_make_pbr_program(fuzz_context(), &d, &p) == SR_OK);
+        sr_destroy_pbr_program(fuzz_context(), p);
     }
     sr_destroy_scene(fuzz_context(), s);
     return 0;

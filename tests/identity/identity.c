@@ -336,13 +336,27 @@ static sr_result svg_drawing(sr_context *ctx, sr_framebuffer **fb)
     return r;
 }
 
+/* The teapot m drawn into fb with the metallic-roughness program d. */
+static sr_result draw_pbr(sr_context *ctx, sr_framebuffer *fb, const sr_mesh *m,
+                          const sr_pbr_desc *d)
+{
+    sr_pbr *p = NULL;
+    sr_result r = sr_make_pbr_program(ctx, d, &p);
+    if (r == SR_OK) {
+        sr_draw_desc dd = mesh_draw(m, NULL, NULL);
+        r = sr_draw(ctx, fb, &(sr_state){ .program = sr_pbr_program(p), .cull = SR_CULL_NONE },
+                    &dd);
+    }
+    sr_destroy_pbr_program(ctx, p);
+    return r;
+}
+
 /* The metallic-roughness program lit by the built-in studio environment. */
 static sr_result teapot_pbr(sr_context *ctx, sr_framebuffer **fb)
 {
     sr_result r = make_fb(ctx, 4, false, fb);
     sr_mesh m = { 0 };
     sr_environment *env = NULL;
-    sr_pbr *p = NULL;
     if (r == SR_OK) {
         r = sr_make_teapot(ctx, 6, &m);
     }
@@ -361,14 +375,8 @@ static sr_result teapot_pbr(sr_context *ctx, sr_framebuffer **fb)
                           .environment = env };
         d.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { -1, -1, -1 },
                                   .intensity = 2.0f };
-        r = sr_make_pbr_program(ctx, &d, &p);
+        r = draw_pbr(ctx, *fb, &m, &d);
     }
-    if (r == SR_OK) {
-        sr_draw_desc d = mesh_draw(&m, NULL, NULL);
-        r = sr_draw(ctx, *fb, &(sr_state){ .program = sr_pbr_program(p), .cull = SR_CULL_NONE },
-                    &d);
-    }
-    sr_destroy_pbr_program(ctx, p);
     sr_destroy_environment(ctx, env);
     sr_destroy_mesh(ctx, &m);
     return r;
@@ -380,7 +388,6 @@ static sr_result teapot_spot(sr_context *ctx, sr_framebuffer **fb)
 {
     sr_result r = make_fb(ctx, 1, false, fb);
     sr_mesh m = { 0 };
-    sr_pbr *p = NULL;
     if (r == SR_OK) {
         r = sr_make_teapot(ctx, 6, &m);
     }
@@ -396,14 +403,8 @@ static sr_result teapot_spot(sr_context *ctx, sr_framebuffer **fb)
         d.lights[1] = (sr_light){ .type = SR_LIGHT_POINT, .vector = { 1.5f, 0.5f, 1.0f },
                                   .color = { 0.4f, 0.6f, 1.0f }, .intensity = 3.0f,
                                   .range = 2.0f };
-        r = sr_make_pbr_program(ctx, &d, &p);
+        r = draw_pbr(ctx, *fb, &m, &d);
     }
-    if (r == SR_OK) {
-        sr_draw_desc d = mesh_draw(&m, NULL, NULL);
-        r = sr_draw(ctx, *fb, &(sr_state){ .program = sr_pbr_program(p), .cull = SR_CULL_NONE },
-                    &d);
-    }
-    sr_destroy_pbr_program(ctx, p);
     sr_destroy_mesh(ctx, &m);
     return r;
 }
