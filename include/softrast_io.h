@@ -206,6 +206,45 @@ SR_API bool sr_io_have_assimp(void);
 SR_API sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
                               sr_io_error *err);
 
+/* Memory limits: how much memory a program's images may take, so that it
+ * can refuse a size in one line before allocating it.  Linux overcommits:
+ * an image larger than the machine holds is rarely refused when it is
+ * allocated, and the process is killed later, without a word, as its
+ * pages are touched.  The limit is the environment variable
+ * SR_MEMORY_LIMIT when set (bytes, or a binary multiple: 512M, 8G, 1.5T,
+ * also written 8Gi, 8GiB, 8GB), else the physical memory, or less under an
+ * address space or data size limit (ulimit -v, -d).  The softrast tool and
+ * the Python package check their frames and images here.  Any thread. */
+typedef struct sr_memory_limit_info {
+    uint64_t bytes;             /* the limit; UINT64_MAX when nothing is known */
+    bool from_environment;      /* SR_MEMORY_LIMIT set it */
+    char source[128];           /* what sets it: "SR_MEMORY_LIMIT=8G", "the physical
+                                 * memory", "the address space limit (ulimit -v)" */
+} sr_memory_limit_info;
+
+/* The limit now.  SR_INVALID_ARG for a NULL out, or when SR_MEMORY_LIMIT
+ * is malformed (also 0): err says "SR_MEMORY_LIMIT: expected a size in
+ * bytes such as 512M or 8G (got 'lots')".  err may be NULL. */
+SR_API sr_result sr_query_memory_limit(sr_memory_limit_info *out, sr_io_error *err);
+
+typedef struct sr_memory_check_desc {
+    const char *what;           /* required: what needs the memory, starting the
+                                 * message ("render: --size 8192x8192") */
+    uint64_t bytes;             /* the estimate */
+    const char *memory;         /* the kind of memory the message names
+                                 * ("frame memory"); NULL -> "memory" */
+    const char *lower;          /* required: how to need less, ending the message
+                                 * ("give a smaller --size") */
+} sr_memory_check_desc;
+
+/* SR_OK when desc->bytes fit the limit.  SR_TOO_LARGE when they do not,
+ * with err "WHAT needs about 8.5 GiB of MEMORY, more than
+ * SR_MEMORY_LIMIT=1G allows: LOWER" or, without SR_MEMORY_LIMIT, "...,
+ * more than the 7.8 GiB of the physical memory (SR_MEMORY_LIMIT sets
+ * another limit): LOWER".  SR_INVALID_ARG as sr_query_memory_limit, or for
+ * a NULL desc, what or lower.  err may be NULL. */
+SR_API sr_result sr_check_memory(const sr_memory_check_desc *desc, sr_io_error *err);
+
 /* PNG. */
 typedef enum sr_png_channels {
     SR_PNG_CHANNELS_DEFAULT = 0, /* -> SR_PNG_RGBA */
