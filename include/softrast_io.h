@@ -421,6 +421,16 @@ typedef struct sr_svg_desc {
     sr_rgba background;      /* the image is cleared to it first (zero: transparent);
                               * finite */
     int max_side;            /* largest image side; 0 -> SR_MAX_FRAMEBUFFER_SIZE */
+    uint64_t max_layer_bytes; /* the most memory the drawing's layers may hold at
+                              * once besides the image, or 0: no limit.  Group
+                              * opacity, blend modes, clip paths, masks, nested
+                              * viewports, pattern tiles and SVG images draw into
+                              * layers of their own, nested up to 8 deep, each 6
+                              * bytes a pixel while open (its RGBA, the coverages
+                              * it is composited through) and 4 more for the
+                              * composite's copy of the image; a layer that would
+                              * pass the limit fails the render with SR_TOO_LARGE.
+                              * The softrast tool gives what SR_MEMORY_LIMIT leaves */
     sr_svg_warn_fn warn;     /* NULL: warnings are only counted */
     void *warn_user;
 } sr_svg_desc;

@@ -7,6 +7,7 @@
  * any thread. */
 #include "softrast_io.h"
 
+#include "io/io_util.h"
 #include "io/number.h"
 
 #include <ctype.h>
@@ -94,8 +95,7 @@ sr_result sr_query_memory_limit(sr_memory_limit_info *out, sr_io_error *err)
     return SR_OK;
 }
 
-/* Bytes as people read them: "8.5 GiB", "640 MiB". */
-static void format_bytes(uint64_t n, char *buf, size_t size)
+void sr__format_bytes(uint64_t n, char *buf, size_t size)
 {
     double v = (double)n;
     const char *unit = "bytes";
@@ -127,8 +127,8 @@ sr_result sr_check_memory(const sr_memory_check_desc *desc, sr_io_error *err)
     if (err) {
         const char *kind = desc->memory && desc->memory[0] ? desc->memory : "memory";
         char need[32], has[32], allows[256];
-        format_bytes(desc->bytes, need, sizeof need);
-        format_bytes(limit.bytes, has, sizeof has);
+        sr__format_bytes(desc->bytes, need, sizeof need);
+        sr__format_bytes(limit.bytes, has, sizeof has);
         if (limit.from_environment) {
             snprintf(allows, sizeof allows, "more than %s allows", limit.source);
         } else {
