@@ -579,10 +579,18 @@ int batch_render(int argc, char **argv)
          * to writing them (a transparent one's straight alpha, the
          * encoder).  --threads draws one frame on more threads, not more
          * frames.  A sheet is counted once its size is known
-         * (run_batch). */
-        uint64_t images = b.sheet ? 0 : 3 * 4 * (uint64_t)o.width * (uint64_t)o.height;
+         * (run_batch).  --animate writes no images: libwebp's animation
+         * encoder holds about four of its own (its canvases and the
+         * frame it encodes, docs/batch.md), and a transparent frame's
+         * straight-alpha copy one more. */
+        uint64_t image = 4 * (uint64_t)o.width * (uint64_t)o.height;
+        uint64_t images = b.sheet     ? 0
+                          : b.animate ? (o.background_alpha < 1.0f ? 5 : 4) * image
+                                      : 3 * image;
         status = render_opts_check_memory(&o, argv[0], o.width, o.height, 2, images,
-                                          b.sheet ? "" : " and the images being written");
+                                          b.sheet     ? ""
+                                          : b.animate ? " and the animation being encoded"
+                                                      : " and the images being written");
     }
     /* The job's options without the models, which come in the same order. */
     int n = 0;
