@@ -294,6 +294,28 @@ SR_TEST(sparse_indices_that_do_not_increase_are_refused)
     }
 }
 
+/* A node with both `matrix` and translation/rotation/scale, which glTF
+ * forbids, is drawn with its matrix after one warning naming the node, as
+ * three.js and Blender draw it. */
+SR_TEST(a_node_with_matrix_and_trs_uses_the_matrix_with_a_warning)
+{
+    char body[1024];
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0,\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,2,0,1],"
+             "\"translation\":[5,0,0],\"scale\":[3,3,3]}],\"scenes\":[{\"nodes\":[0]}]",
+             tri_mesh);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    CHECK_NEAR(s->primitives[0].world[0], 1, 1e-6);
+    CHECK_NEAR(s->primitives[0].world[12], 0, 1e-6);
+    CHECK_NEAR(s->primitives[0].world[13], 2, 1e-6);
+    CHECK_EQ(w.count, 1);
+    CHECK_STR_CONTAINS(w.last, "t.gltf: warning: /nodes/0: both matrix and translation (glTF "
+                               "allows one): the matrix is used");
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
 SR_TEST(strips_and_fans_become_triangles_and_points_are_skipped)
 {
     const float quad[12] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };
