@@ -104,7 +104,8 @@ typedef struct sr_scene_primitive {
     const float *normals;       /* 3 a vertex, or NULL */
     const float *tangents;      /* 4 a vertex, or NULL; the bitangent is
                                  * cross(normal, tangent.xyz) * w, toward +v (the
-                                 * image's top, a normal map's green) */
+                                 * image's top, a normal map's green), in object
+                                 * space: where `mirrored`, w turns in world space */
     const float *texcoords0;    /* 2 a vertex, or NULL */
     const float *texcoords1;    /* 2 a vertex, or NULL */
     const float *colors;        /* 4 a vertex, or NULL */
