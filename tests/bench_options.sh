@@ -4,7 +4,8 @@
 # softrast-bench's options as every softrast command takes them: a value
 # after '=' as well as in the next word, a flag refused with one, and a
 # --size whose frames pass the memory limit (SR_MEMORY_LIMIT) refused in
-# one line, exit status 2, before any scene runs.
+# one line, exit status 2, before any scene runs; a scene whose inputs
+# are not installed (the icons' theme) is skipped, not failed.
 set -u
 if [ $# -lt 1 ]; then
     echo "usage: tests/bench_options.sh TOOL..." >&2
@@ -42,6 +43,14 @@ want="softrast-bench: --size 1920x1080 with a multisampled scene needs about 79 
 [ "$status" -eq 2 ] || fail "beyond SR_MEMORY_LIMIT: exit status $status"
 [ "$(cat "$work/err")" = "$want" ] || fail "beyond SR_MEMORY_LIMIT: '$(cat "$work/err")'"
 [ ! -s "$work/out" ] || fail "beyond SR_MEMORY_LIMIT: a scene ran: $(cat "$work/out")"
+
+# The icons scene without its icon theme is skipped, naming the package.
+SR_BENCH_ICONS="$work/no-theme" bench "$@" icons --frames 1
+[ "$status" -eq 0 ] || fail "icons without a theme: exit status $status"
+grep -qx "scene=icons skipped=missing-icons" "$work/out" ||
+    fail "icons without a theme: '$(cat "$work/out")'"
+grep -q "^softrast-bench: icons: skipped: no icon theme at $work/no-theme (install breeze-icon-theme" \
+    "$work/err" || fail "icons without a theme: '$(cat "$work/err")'"
 
 if [ "$failures" -gt 0 ]; then
     echo "$failures failures"
