@@ -11,13 +11,7 @@ if [ $# -lt 1 ]; then
     echo "usage: tests/bench_options.sh TOOL..." >&2
     exit 2
 fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-    echo "FAIL: $*"
-    failures=$((failures + 1))
-}
+. "$(dirname "$0")/check_common.sh"
 
 # ARGS...: run the bench, status in $status, output in $work/out, $work/err.
 bench() {
@@ -52,8 +46,4 @@ grep -qx "scene=icons skipped=missing-icons" "$work/out" ||
 grep -q "^softrast-bench: icons: skipped: no icon theme at $work/no-theme (install breeze-icon-theme" \
     "$work/err" || fail "icons without a theme: '$(cat "$work/err")'"
 
-if [ "$failures" -gt 0 ]; then
-    echo "$failures failures"
-    exit 1
-fi
-echo "bench options: all checks passed"
+finish "bench options"
