@@ -120,6 +120,9 @@ static void usage(FILE *f)
         "  --version            print the version\n"
         "  -h, --help           this help\n"
         "\n"
+        "Options take their value as the next word or after '=' (--size=640x480).\n"
+        "A --size whose frames (the scenes' and, with --compare, llvmpipe's) need more\n"
+        "memory than the machine has or SR_MEMORY_LIMIT allows is refused.\n"
         "Exit status: 0, 1 when a scene or the run fails, 2 for bad options.\n",
         SR_BENCH_MODELS_DIR, SR_BENCH_ICONS_DIR, WARMUP_FRAMES, DEFAULT_FRAMES);
 }
@@ -184,8 +187,30 @@ static int parse_args(int argc, char **argv, bench_opts *o)
 {
     bool ended = false;   /* after "--", as every softrast command takes it */
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        bool has_value = i + 1 < argc;
+        /* "--name=value" is "--name value", as in every softrast command. */
+        char name[32];
+        const char *a = argv[i], *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+        if (!ended && eq && (size_t)(eq - a) < sizeof name) {
+            memcpy(name, a, (size_t)(eq - a));
+            name[eq - a] = '\0';
+            a = name;
+        } else {
+            eq = NULL;
+        }
+        bool has_value = eq || i + 1 < argc;
+        bool valued = strcmp(a, "--threads") == 0 || strcmp(a, "--size") == 0 ||
+                      strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0 ||
+                      strcmp(a, "--paint") == 0 || strcmp(a, "--shape") == 0 ||
+                      strcmp(a, "--shape-size") == 0;
+        bool flag = strcmp(a, "--compare") == 0 || strcmp(a, "--gl-default-malloc") == 0 ||
+                    strcmp(a, "--help") == 0 || strcmp(a, "--version") == 0;
+        if (eq && flag) {
+            fprintf(stderr, "softrast-bench: %s: takes no value\n", a);
+            return 2;
+        }
+        if (eq && !valued) {
+            a = argv[i];   /* unknown: named whole below */
+        }
         if (!ended && strcmp(a, "--") == 0) {
             ended = true;
             continue;
@@ -203,15 +228,12 @@ static int parse_args(int argc, char **argv, bench_opts *o)
             o->compare = true;
         } else if (strcmp(a, "--gl-default-malloc") == 0) {
             o->gl_default_malloc = true;
-        } else if (strcmp(a, "--threads") == 0 || strcmp(a, "--size") == 0 ||
-                   strcmp(a, "--frames") == 0 || strcmp(a, "--save-images") == 0 ||
-                   strcmp(a, "--paint") == 0 || strcmp(a, "--shape") == 0 ||
-                   strcmp(a, "--shape-size") == 0) {
+        } else if (valued) {
             if (!has_value) {
                 fprintf(stderr, "softrast-bench: %s: missing value\n", a);
                 return 2;
             }
-            const char *v = argv[++i];
+            const char *v = eq ? eq + 1 : argv[++i];
             bool ok = true;
             if (strcmp(a, "--threads") == 0) {
                 ok = parse_int(a, v, 1, 64, &o->threads);
@@ -713,6 +735,40 @@ static void keep_gl_memory(void)
 #endif
 }
 
+/* Whether the frames of --size fit the memory limit (sr_check_memory): a
+ * frame of color and D24 depth, a multisampled scene's frame of its
+ * samples, and under --compare llvmpipe's the same and its pixels read
+ * back; 2 after one line when they do not, else -1.  The cli scene's
+ * process checks its own. */
+static int check_memory(const bench_opts *o)
+{
+    int samples = 0;
+    for (int i = 0; i < o->scene_count; i++) {
+        const bench_scene_info *info = bench_find_scene(o->scenes[i]);
+        if (info && info->samples > samples) {
+            samples = info->samples;
+        }
+    }
+    uint64_t per_pixel = 8 + (samples > 1 ? 8 * (uint64_t)samples : 0);
+    if (o->compare) {
+        per_pixel = 2 * per_pixel + 4;
+    }
+    char what[96];
+    snprintf(what, sizeof what, "softrast-bench: --size %dx%d%s%s", o->width, o->height,
+             samples > 1 ? " with a multisampled scene" : "", o->compare ? " and --compare" : "");
+    sr_io_error err;
+    sr_result r = sr_check_memory(
+        &(sr_memory_check_desc){ .what = what,
+                                 .bytes = per_pixel * (uint64_t)o->width * (uint64_t)o->height,
+                                 .memory = "frame memory", .lower = "give a smaller --size" },
+        &err);
+    if (r != SR_OK) {
+        fprintf(stderr, "%s\n", err.message);
+        return 2;
+    }
+    return -1;
+}
+
 int main(int argc, char **argv)
 {
     bench_opts o = { .width = 1920, .height = 1080, .frames = DEFAULT_FRAMES };
@@ -732,6 +788,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "softrast-bench: --compare: this build has no OSMesa (install "
                         "libosmesa6-dev and re-run cmake); comparison skipped\n");
         o.compare = false;
+    }
+    status = check_memory(&o);
+    if (status >= 0) {
+        return status;
     }
     if (o.compare && !o.gl_default_malloc) {
         keep_gl_memory();

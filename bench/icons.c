@@ -156,6 +156,17 @@ bool bench_icons(int frames)
         fprintf(stderr, "softrast-bench: icons: this build reads no SVG\n");
         return false;
     }
+    /* No theme there: skipped, as a scene without its model is (Debian's
+     * breeze-icon-theme holds the default one, scripts/install-deps.sh). */
+    struct stat st;
+    if (stat(dir, &st) != 0) {
+        fprintf(stderr, "softrast-bench: icons: skipped: no icon theme at %s (install "
+                        "breeze-icon-theme, or set SR_BENCH_ICONS to a directory of SVG files)\n",
+                dir);
+        printf("scene=icons skipped=missing-icons\n");
+        fflush(stdout);
+        return true;
+    }
     found.n = 0;
     if (nftw(dir, collect, 32, FTW_PHYS) != 0 || found.oom || found.n == 0) {
         fprintf(stderr, "softrast-bench: icons: no SVG files under %s%s\n", dir,

@@ -1309,8 +1309,10 @@ typedef struct sr_pbr_desc {
     /* Per-vertex arrays the draw does not carry, `vertex_count` entries
      * each (needed when either is given; indices past it read zero).
      * Tangents: xyz in object space, w = +1 or -1 the bitangent's sign
-     * (B = w N x T); NULL: the normal map's frame comes from the
-     * screen-space derivatives of position and texcoords. */
+     * (B = w N x T) in object space: under a model matrix that mirrors
+     * (negative determinant) the program flips it, as the mirror turns
+     * N x T; NULL: the normal map's frame comes from the screen-space
+     * derivatives of position and texcoords. */
     size_t vertex_count;
     const float *tangents;             /* 4 floats a vertex */
     size_t tangent_stride;             /* bytes; 0 -> packed */

@@ -104,7 +104,8 @@ typedef struct sr_scene_primitive {
     const float *normals;       /* 3 a vertex, or NULL */
     const float *tangents;      /* 4 a vertex, or NULL; the bitangent is
                                  * cross(normal, tangent.xyz) * w, toward +v (the
-                                 * image's top, a normal map's green) */
+                                 * image's top, a normal map's green), in object
+                                 * space: where `mirrored`, w turns in world space */
     const float *texcoords0;    /* 2 a vertex, or NULL */
     const float *texcoords1;    /* 2 a vertex, or NULL */
     const float *colors;        /* 4 a vertex, or NULL */
@@ -225,6 +226,45 @@ SR_API bool sr_io_have_assimp(void);
  * script").  *size is the file's size in bytes; close *f with fclose. */
 SR_API sr_result sr_open_file(const char *path, const char *kind, FILE **f, unsigned long long *size,
                               sr_io_error *err);
+
+/* Memory limits: how much memory a program's images may take, so that it
+ * can refuse a size in one line before allocating it.  Linux overcommits:
+ * an image larger than the machine holds is rarely refused when it is
+ * allocated, and the process is killed later, without a word, as its
+ * pages are touched.  The limit is the environment variable
+ * SR_MEMORY_LIMIT when set (bytes, or a binary multiple: 512M, 8G, 1.5T,
+ * also written 8Gi, 8GiB, 8GB), else the physical memory, or less under an
+ * address space or data size limit (ulimit -v, -d).  The softrast tool and
+ * the Python package check their frames and images here.  Any thread. */
+typedef struct sr_memory_limit_info {
+    uint64_t bytes;             /* the limit; UINT64_MAX when nothing is known */
+    bool from_environment;      /* SR_MEMORY_LIMIT set it */
+    char source[128];           /* what sets it: "SR_MEMORY_LIMIT=8G", "the physical
+                                 * memory", "the address space limit (ulimit -v)" */
+} sr_memory_limit_info;
+
+/* The limit now.  SR_INVALID_ARG for a NULL out, or when SR_MEMORY_LIMIT
+ * is malformed (also 0): err says "SR_MEMORY_LIMIT: expected a size in
+ * bytes such as 512M or 8G (got 'lots')".  err may be NULL. */
+SR_API sr_result sr_query_memory_limit(sr_memory_limit_info *out, sr_io_error *err);
+
+typedef struct sr_memory_check_desc {
+    const char *what;           /* required: what needs the memory, starting the
+                                 * message ("render: --size 8192x8192") */
+    uint64_t bytes;             /* the estimate */
+    const char *memory;         /* the kind of memory the message names
+                                 * ("frame memory"); NULL -> "memory" */
+    const char *lower;          /* required: how to need less, ending the message
+                                 * ("give a smaller --size") */
+} sr_memory_check_desc;
+
+/* SR_OK when desc->bytes fit the limit.  SR_TOO_LARGE when they do not,
+ * with err "WHAT needs about 8.5 GiB of MEMORY, more than
+ * SR_MEMORY_LIMIT=1G allows: LOWER" or, without SR_MEMORY_LIMIT, "...,
+ * more than the 7.8 GiB of the physical memory (SR_MEMORY_LIMIT sets
+ * another limit): LOWER".  SR_INVALID_ARG as sr_query_memory_limit, or for
+ * a NULL desc, what or lower.  err may be NULL. */
+SR_API sr_result sr_check_memory(const sr_memory_check_desc *desc, sr_io_error *err);
 
 /* PNG. */
 typedef enum sr_png_channels {
@@ -402,6 +442,16 @@ typedef struct sr_svg_desc {
     sr_rgba background;      /* the image is cleared to it first (zero: transparent);
                               * finite */
     int max_side;            /* largest image side; 0 -> SR_MAX_FRAMEBUFFER_SIZE */
+    uint64_t max_layer_bytes; /* the most memory the drawing's layers may hold at
+                              * once besides the image, or 0: no limit.  Group
+                              * opacity, blend modes, clip paths, masks, nested
+                              * viewports, pattern tiles and SVG images draw into
+                              * layers of their own, nested up to 8 deep, each 6
+                              * bytes a pixel while open (its RGBA, the coverages
+                              * it is composited through) and 4 more for the
+                              * composite's copy of the image; a layer that would
+                              * pass the limit fails the render with SR_TOO_LARGE.
+                              * The softrast tool gives what SR_MEMORY_LIMIT leaves */
     sr_svg_warn_fn warn;     /* NULL: warnings are only counted */
     void *warn_user;
 } sr_svg_desc;

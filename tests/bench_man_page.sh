@@ -1,5 +1,5 @@
 #!/bin/sh
-# tests/bench_man_page.sh MANPAGE SRC TOOL...
+# tests/bench_man_page.sh MANPAGE SRC MODELS TOOL...
 #
 # The built softrast-bench(1) against the bench it documents, as
 # tests/man_page.sh holds softrast(1) to the tool: groff (and mandoc,
@@ -7,15 +7,18 @@
 # option and scene `TOOL --help` lists, and the SYNOPSIS its usage line;
 # its header names the version `TOOL --version` prints; "--" ends the
 # options; the ENVIRONMENT section names every variable the bench reads
-# (getenv in SRC's bench/).  Exits 77 (skipped) without groff.
+# (getenv in SRC's bench/); the build machine's paths (SRC, and MODELS,
+# the models directory compiled in) are not in it, the help's words for a
+# reader of any machine are.  Exits 77 (skipped) without groff.
 set -eu
-if [ $# -lt 3 ]; then
-    echo "usage: tests/bench_man_page.sh MANPAGE SRC TOOL..." >&2
+if [ $# -lt 4 ]; then
+    echo "usage: tests/bench_man_page.sh MANPAGE SRC MODELS TOOL..." >&2
     exit 2
 fi
 man=$1
 src=$2
-shift 2
+models=$3
+shift 3
 . "$(dirname "$0")/man_page_common.sh"
 
 section() {
@@ -57,5 +60,11 @@ vars=$(grep -rhoE 'getenv\("[A-Za-z_0-9]+"' "$src/bench" | sed 's/.*("//; s/"$//
 for v in $vars; do
     has_word "$work/environment.txt" "$v" || fail "ENVIRONMENT does not name $v"
 done
+
+for path in "$src" "$models"; do
+    ! grep -qF -- "$path" "$man" || fail "the page holds the build's path $path"
+done
+grep -q "else the models directory it was built with" "$work/page.txt" ||
+    fail "the page does not say where the models come from"
 
 finish "bench man page"

@@ -1,33 +1,18 @@
 # tests/man_page_common.sh - sourced by man_page.sh and bench_man_page.sh
-# with $man set: exits 77 (skipped) without groff; else sets $work (a
-# directory removed at exit) and $failures, defines fail, has_word and
-# finish, checks that groff (and mandoc, where installed) format the page
-# without a warning, and writes the page as a reader sees it, each
-# paragraph on one line (no hyphenation, wide lines), without bold or
-# underlining, to $work/page.txt.
+# with $man set: exits 77 (skipped) without groff; else sources
+# check_common.sh ($work, fail, finish), defines has_word, checks that
+# groff (and mandoc, where installed) format the page without a warning,
+# and writes the page as a reader sees it, each paragraph on one line (no
+# hyphenation, wide lines), without bold or underlining, to
+# $work/page.txt.
 if ! command -v groff >/dev/null; then
     echo "SKIP: groff is not installed (Debian: groff-base)"
     exit 77
 fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-    echo "FAIL: $*"
-    failures=$((failures + 1))
-}
+. "$(dirname "$0")/check_common.sh"
 
 has_word() { # FILE WORD: WORD in FILE, not as part of a longer word
     grep -Eq -- "(^|[^A-Za-z0-9_-])$2([^A-Za-z0-9_-]|\$)" "$1"
-}
-
-# NAME: exit 1 after the failures, else say that NAME passed.
-finish() {
-    if [ "$failures" -gt 0 ]; then
-        echo "$failures failures"
-        exit 1
-    fi
-    echo "$1: all checks passed"
 }
 
 groff -man -ww -z "$man" 2>"$work/groff.err" || fail "groff failed"

@@ -930,9 +930,22 @@ SR_TEST(sheet_lays_out_models_with_captions)
     }
     free(px);
 
-    /* Sheets that cannot be made, and options that do not go with one. */
+    /* Sheets that cannot be made say what would fit: the columns that
+     * keep them within 8192 pixels a side, else a smaller size. */
     REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--size", "4000x4000"), &r));
-    CHECK(r.status == 2 && strstr(r.err, "--sheet"));
+    CHECK(r.status == 2 && count_lines(r.err) == 1 &&
+          strstr(r.err, "--sheet: 5 images of 4000x4000 need more than 8192 pixels a side: give "
+                        "a smaller --size or fewer models"));
+    REQUIRE(run(ARGS("render", paths[0], "--views", "24", "--sheet", sheet, "--size", "512x512"),
+                &r));
+    CHECK(r.status == 2 && count_lines(r.err) == 1 &&
+          strstr(r.err, "--sheet: 24 images of 512x512, 24 a row, need more than 8192 pixels a "
+                        "side: give --sheet-columns from 2 to 16"));
+    REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--size", "2000x2000", "--sheet-columns",
+                     "1"), &r));
+    CHECK(r.status == 2 && count_lines(r.err) == 1 &&
+          strstr(r.err, "1 a row, need more than 8192 pixels a side: give --sheet-columns from "
+                        "2 to 4"));
     REQUIRE(run(ARGS("render", dir, "--sheet", sheet, "--skip-existing"), &r));
     CHECK(r.status == 2 && strstr(r.err, "--skip-existing"));
     REQUIRE(run(ARGS("render", dir, "--sheet-columns", "3"), &r));

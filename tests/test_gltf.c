@@ -247,6 +247,75 @@ SR_TEST(sparse_accessors_replace_elements_with_or_without_a_buffer_view)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* glTF asks for strictly increasing sparse indices: a repeated or
+ * decreasing one is refused, naming it, rather than left to the order
+ * the substitution happens to run in. */
+SR_TEST(sparse_indices_that_do_not_increase_are_refused)
+{
+    static const uint8_t orders[][2] = { { 2, 2 }, { 2, 1 }, { 1, 2 } };
+    for (int o = 0; o < 3; o++) {
+        uint8_t bin[64] = {0};
+        memcpy(bin, tri_le(), 36);
+        bin[36] = orders[o][0];
+        bin[37] = orders[o][1];
+        const float v[6] = { 5, 6, 7, 8, 9, 10 };
+        le_copy(bin + 40, v, 6, 4);
+        const char *body =
+            ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},"
+            "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":2},"
+            "{\"buffer\":0,\"byteOffset\":40,\"byteLength\":24}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+            "\"type\":\"VEC3\",\"sparse\":{\"count\":2,\"indices\":{\"bufferView\":1,"
+            "\"componentType\":5121},\"values\":{\"bufferView\":2}}}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+            "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+        char *json = doc(bin, sizeof bin, body);
+        sr_scene *s = NULL;
+        sr_io_error e;
+        warnings w = {0};
+        sr_result r = parse(json, &w, &s, &e);
+        free(json);
+        if (orders[o][1] > orders[o][0]) {
+            CHECK_EQ(r, SR_OK);
+            if (s) {
+                CHECK_EQ(s->primitives[0].positions[3], 5);   /* vertex 1 */
+                CHECK_EQ(s->primitives[0].positions[8], 10);  /* vertex 2 */
+            }
+            sr_destroy_scene(sr_test_ctx(), s);
+            continue;
+        }
+        CHECK_EQ(r, SR_BAD_FORMAT);
+        CHECK(s == NULL);
+        char want[200];
+        snprintf(want, sizeof want,
+                 "t.gltf: /accessors/0/sparse/indices: index 1 is %d, not above index 0 (2): "
+                 "sparse indices must strictly increase", orders[o][1]);
+        CHECK_STR_CONTAINS(e.message, want);
+    }
+}
+
+/* A node with both `matrix` and translation/rotation/scale, which glTF
+ * forbids, is drawn with its matrix after one warning naming the node, as
+ * three.js and Blender draw it. */
+SR_TEST(a_node_with_matrix_and_trs_uses_the_matrix_with_a_warning)
+{
+    char body[1024];
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0,\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,2,0,1],"
+             "\"translation\":[5,0,0],\"scale\":[3,3,3]}],\"scenes\":[{\"nodes\":[0]}]",
+             tri_mesh);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    CHECK_NEAR(s->primitives[0].world[0], 1, 1e-6);
+    CHECK_NEAR(s->primitives[0].world[12], 0, 1e-6);
+    CHECK_NEAR(s->primitives[0].world[13], 2, 1e-6);
+    CHECK_EQ(w.count, 1);
+    CHECK_STR_CONTAINS(w.last, "t.gltf: warning: /nodes/0: both matrix and translation (glTF "
+                               "allows one): the matrix is used");
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
 SR_TEST(strips_and_fans_become_triangles_and_points_are_skipped)
 {
     const float quad[12] = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };

@@ -280,3 +280,69 @@ SR_TEST(svg_warnings_stop_after_64_names)
     CHECK_STR_CONTAINS(err, "many_warnings.svg:66: warning: more unsupported names; further "
                             "warnings not shown");
 }
+
+/* Group opacity, masks and clip paths draw into layers of the image's
+ * size, nested up to 8 deep: sr_svg_desc.max_layer_bytes bounds what
+ * they hold at once (6 bytes a pixel each, 4 more for a composite), and `softrast svg` gives
+ * them what SR_MEMORY_LIMIT leaves, so a deeply nested drawing is
+ * refused in one line instead of allocating past the limit. */
+SR_TEST(svg_layers_nested_past_the_memory_left_are_refused)
+{
+    if (!have_svg()) {
+        SKIP("built without expat or the softrast tool");
+    }
+    static const char head[] = "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>"
+                               "<clipPath id='c'><rect width='50' height='50'/></clipPath>";
+    static const char piece[] = "<g opacity='0.9' clip-path='url(#c)'>";
+    char tail[512] = "<rect width='40' height='40' fill='red'/>";
+    for (int i = 0; i < 8; i++) {
+        strcat(tail, "</g>");
+    }
+    strcat(tail, "</svg>");
+    size_t len;
+    char *svg = build_svg(head, piece, 8, tail, &len);
+    const uint64_t layer = 64 * 64 * 6, composite = 64 * 64 * 4;
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = NULL, *unlimited = NULL;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(ctx, svg, len, &(sr_svg_desc){ .name = "nested.svg",
+                                                          .max_layer_bytes = 3 * layer + composite },
+                           &fb, NULL, &err),
+             SR_TOO_LARGE);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(err.message, "nested.svg:1: layers nested 4 deep (group opacity, masks, "
+                                    "clip paths, patterns) need about 112 KiB besides the image, "
+                                    "more than the 88 KiB left for them");
+    /* Enough for the eight: the same pixels as without a limit. */
+    CHECK_EQ(sr_render_svg(ctx, svg, len, &(sr_svg_desc){ .max_layer_bytes = 8 * layer + composite }, &fb,
+                           NULL, &err),
+             SR_OK);
+    CHECK_EQ(sr_render_svg(ctx, svg, len, &(sr_svg_desc){ 0 }, &unlimited, NULL, &err), SR_OK);
+    if (fb && unlimited) {
+        CHECK(memcmp(sr_framebuffer_pixels(fb), sr_framebuffer_pixels(unlimited),
+                     64 * 64 * 4) == 0);
+        CHECK(sr_framebuffer_pixels(fb)[(10 * 64 + 10) * 4 + 3] > 0); /* drawn */
+    }
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_framebuffer(ctx, unlimited);
+    sr_destroy_context(ctx);
+    free(svg);
+
+    const char *in = write_svg("nested_layers.svg", head, piece, 8, tail);
+    REQUIRE(in);
+    char out[1100], msg[4096];
+    snprintf(out, sizeof out, "%s/nested_layers.png", sr_test_out_dir());
+    unlink(out);
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "100000", 1) == 0);
+    CHECK_EQ(run_svg(in, out, msg, sizeof msg), 2);
+    CHECK_STR_CONTAINS(msg, "nested_layers.svg:1: layers nested 4 deep");
+    CHECK_STR_CONTAINS(msg, "more than the 98 KiB left for them");
+    CHECK(strchr(msg, '\n') == msg + strlen(msg) - 1);
+    struct stat st;
+    CHECK(stat(out, &st) != 0);
+    REQUIRE(setenv("SR_MEMORY_LIMIT", "1M", 1) == 0);
+    CHECK_EQ(run_svg(in, out, msg, sizeof msg), 0);
+    CHECK(stat(out, &st) == 0);
+    unsetenv("SR_MEMORY_LIMIT");
+}

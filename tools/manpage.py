@@ -3,7 +3,7 @@
 written at build time from the tool's own help texts so that it cannot
 drift from them.
 
-    manpage.py TEMPLATE OUTPUT TOOL...
+    manpage.py [--hide TEXT WORDS]... TEMPLATE OUTPUT TOOL...
 
 TOOL... (the tool, after a cross build's emulator if any) is run as
 `TOOL --help` and `TOOL --version`.  TEMPLATE (tools/softrast.1.in,
@@ -13,7 +13,9 @@ commands (softrast) is run as `TOOL COMMAND --help` for each command the
 first help lists, and @SYNOPSIS@ and @COMMANDS@ become the commands'
 usage lines and help texts; a tool without (softrast-bench) has its
 usage as @SYNOPSIS@ and the rest of its help as @HELP@.  The help texts
-are read by their layout (tools/helptext.py)."""
+are read by their layout (tools/helptext.py).  --hide puts WORDS for
+TEXT in the help: a path compiled into the tool that is the build
+machine's, not the reader's."""
 import os
 import re
 import sys
@@ -82,13 +84,23 @@ def main(argv):
     if len(argv) < 4:
         sys.stderr.write(__doc__)
         return 2
+    hides = []
+    while len(argv) >= 4 and argv[1] == "--hide":
+        hides.append((argv[2], argv[3]))
+        argv = argv[:1] + argv[4:]
+    if len(argv) < 4:
+        sys.stderr.write(__doc__)
+        return 2
     template_path, output_path, tool = argv[1], argv[2], argv[3:]
     version = run(tool, "--version").split()[-1]
     with open(template_path, encoding="utf-8") as f:
         page = f.read()
     usage_lines, section, name_words = [], [], 2
     if "@HELP@" in page:
-        usage_lines, blocks = parse(run(tool, "--help"))
+        text = run(tool, "--help")
+        for hidden, words in hides:
+            text = text.replace(hidden, words)
+        usage_lines, blocks = parse(text)
         name_words = 1
         page = page.replace("@HELP@\n", "\n".join(roff_blocks(blocks)) + "\n")
     for name, _, usage, blocks in read(tool)[1] if "@COMMANDS@" in page else []:

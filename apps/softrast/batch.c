@@ -422,9 +422,22 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
         if (b->sheet && (mine > (size_t)SR_MAX_FRAMEBUFFER_SIZE ||
                          !batch_sheet_size(run.sheet_images, b->columns, o->width, o->height,
                                            &cols, &rows, &sw, &sh))) {
-            cli_error("--sheet: %zu images of %dx%d need more than %d pixels a side (use a "
-                      "smaller --size, --sheet-columns or fewer models)", mine * (size_t)b->views,
-                      o->width, o->height, SR_MAX_FRAMEBUFFER_SIZE);
+            int lo, hi;
+            char fix[96];
+            snprintf(fix, sizeof fix, "give a smaller --size or fewer models%s",
+                     b->views > 1 ? " or --views" : "");
+            if (mine <= (size_t)SR_MAX_FRAMEBUFFER_SIZE &&
+                batch_sheet_columns_that_fit(run.sheet_images, o->width, o->height, &lo, &hi)) {
+                snprintf(fix, sizeof fix, lo == hi ? "give --sheet-columns %d" :
+                         "give --sheet-columns from %d to %d", lo, hi);
+            }
+            char at[48] = "";
+            if (b->columns) {
+                snprintf(at, sizeof at, ", %d a row,", b->columns);
+            }
+            cli_error("--sheet: %zu images of %dx%d%s need more than %d pixels a side: %s",
+                      mine * (size_t)b->views, o->width, o->height, at, SR_MAX_FRAMEBUFFER_SIZE,
+                      fix);
             status = EXIT_USAGE;
         } else if (b->sheet) {
             /* The sheet is held whole beside the two frames, and written
@@ -579,10 +592,18 @@ int batch_render(int argc, char **argv)
          * to writing them (a transparent one's straight alpha, the
          * encoder).  --threads draws one frame on more threads, not more
          * frames.  A sheet is counted once its size is known
-         * (run_batch). */
-        uint64_t images = b.sheet ? 0 : 3 * 4 * (uint64_t)o.width * (uint64_t)o.height;
+         * (run_batch).  --animate writes no images: libwebp's animation
+         * encoder holds about four of its own (its canvases and the
+         * frame it encodes, docs/batch.md), and a transparent frame's
+         * straight-alpha copy one more. */
+        uint64_t image = 4 * (uint64_t)o.width * (uint64_t)o.height;
+        uint64_t images = b.sheet     ? 0
+                          : b.animate ? (o.background_alpha < 1.0f ? 5 : 4) * image
+                                      : 3 * image;
         status = render_opts_check_memory(&o, argv[0], o.width, o.height, 2, images,
-                                          b.sheet ? "" : " and the images being written");
+                                          b.sheet     ? ""
+                                          : b.animate ? " and the animation being encoded"
+                                                      : " and the images being written");
     }
     /* The job's options without the models, which come in the same order. */
     int n = 0;

@@ -59,6 +59,23 @@ bool batch_sheet_size(int images, int columns, int w, int h, int *cols, int *row
     return *sheet_w <= SR_MAX_FRAMEBUFFER_SIZE && *sheet_h <= SR_MAX_FRAMEBUFFER_SIZE;
 }
 
+bool batch_sheet_columns_that_fit(int images, int w, int h, int *lo, int *hi)
+{
+    long most_cols = SR_MAX_FRAMEBUFFER_SIZE / w;
+    long most_rows = SR_MAX_FRAMEBUFFER_SIZE / (h + caption_height(w));
+    if (images < 1 || most_cols < 1 || most_rows < 1) {
+        return false;
+    }
+    long fewest_cols = (images + most_rows - 1) / most_rows;
+    long cols_used = images < most_cols ? images : most_cols; /* more would be empty */
+    if (fewest_cols > cols_used) {
+        return false;
+    }
+    *lo = (int)fewest_cols;
+    *hi = (int)cols_used;
+    return true;
+}
+
 sr_result batch_sheet_start(batch_sheet *sh, sr_context *ctx, int images, int columns, int w,
                             int h, sr_vec3 background, float alpha)
 {

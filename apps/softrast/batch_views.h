@@ -25,6 +25,9 @@ typedef struct batch_sheet {
  * when the sheet would be wider or taller than SR_MAX_FRAMEBUFFER_SIZE. */
 bool batch_sheet_size(int images, int columns, int w, int h, int *cols, int *rows,
                       long *sheet_w, long *sheet_h);
+/* The --sheet-columns that make such a sheet fit, from *lo to *hi; false
+ * when none does (the cells are too many or too large for any grid). */
+bool batch_sheet_columns_that_fit(int images, int w, int h, int *lo, int *hi);
 sr_result batch_sheet_start(batch_sheet *sh, sr_context *ctx, int images, int columns, int w,
                             int h, sr_vec3 background, float alpha);
 /* Fill the next cell with rgba (w x h; NULL leaves the background) and

@@ -55,14 +55,12 @@ bool cli_same_output(const char *a, const char *b);
  * opt; any other name, one starting with '-' too, is a file's. */
 bool cli_check_output_name(const char *opt, const char *output);
 
-/* Frame memory (memory_limit.c).  The most a command's frames may take:
- * SR_MEMORY_LIMIT (bytes, or 512M, 8G...) when set, else the physical
- * memory, or less under a ulimit; *what names it.  -1, or EXIT_USAGE
- * after one line when SR_MEMORY_LIMIT is malformed. */
-int cli_memory_limit(uint64_t *bytes, const char **what);
-/* -1 when `need` bytes fit the limit; else EXIT_USAGE after one line
- * "WHAT needs about N GiB of frame memory, more than the M GiB of
- * LIMIT: LOWER" (lower says which options make it smaller). */
+/* Frame memory (memory_limit.c): -1 when `need` bytes fit the memory
+ * limit (sr_query_memory_limit: SR_MEMORY_LIMIT, else the physical memory
+ * or less under a ulimit); else EXIT_USAGE after one line "WHAT needs
+ * about N GiB of frame memory, more than SR_MEMORY_LIMIT=M allows: LOWER"
+ * (lower says which options make it smaller), or naming a malformed
+ * SR_MEMORY_LIMIT. */
 int cli_check_memory(const char *what, uint64_t need, const char *lower);
 
 /* Image files (image_out.c writes them, image_name.c checks their

@@ -51,8 +51,9 @@ static void copy_vertex(const sr_scene_primitive *p, size_t v, size_t o, const s
         transform(nm->m, &p->normals[3 * v], 0.0f, &m->normals[3 * o]);
     }
     if (ob->tangents) {
+        /* The bitangent is w N x T: a mirror turns N x T, so w turns too. */
         transform(world->m, &p->tangents[4 * v], 0.0f, &ob->tangents[4 * o]);
-        ob->tangents[4 * o + 3] = p->tangents[4 * v + 3];
+        ob->tangents[4 * o + 3] = p->mirrored ? -p->tangents[4 * v + 3] : p->tangents[4 * v + 3];
     }
     if (p->texcoords0) {
         memcpy(&m->texcoords[2 * o], &p->texcoords0[2 * v], 2 * sizeof(float));

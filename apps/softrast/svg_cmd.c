@@ -210,27 +210,44 @@ static int parse_args(int argc, char **argv, svg_args *a)
  * while below BATCH_DRAW_MAX_BYTES), the writer's copies (batch_writer.c:
  * one a thread and one more, each kept for the next image) and one more
  * image of working memory for the drawing and the encoders.  A size
- * that comes from the document is the library's to refuse (max_side). */
-static int check_size(const svg_args *a, size_t inputs, int threads)
+ * that comes from the document is the library's to refuse (max_side).
+ * What the limit leaves is shared by the drawings drawn at once for
+ * their layers (group opacity, masks, clip paths: desc->max_layer_bytes),
+ * which only the document says how deep they nest. */
+static int check_size(const svg_args *a, size_t inputs, int threads, sr_svg_desc *desc)
 {
-    if (!a->desc.width) {
-        return -1;
-    }
-    uint64_t image = (uint64_t)a->desc.width * (uint64_t)a->desc.height * 4;
+    uint64_t image = (uint64_t)a->desc.width * (uint64_t)a->desc.height * 4, need = 0;
+    uint64_t t = inputs == 0 ? 1 : (uint64_t)threads < inputs ? (uint64_t)threads : inputs;
     char what[128];
     int n = snprintf(what, sizeof what, "svg: --size %dx%d", a->desc.width, a->desc.height);
-    if (inputs == 0) {
-        return cli_check_memory(what, 2 * image, "give a smaller --size");
+    const char *lower = "give a smaller --size";
+    if (image && inputs == 0) {
+        need = 2 * image;
+    } else if (image) {
+        uint64_t drawings = t + BATCH_DRAW_MAX_BYTES / image;
+        drawings = drawings < 2 * t ? drawings : 2 * t;
+        drawings = drawings < inputs ? drawings : inputs;
+        uint64_t written = inputs < SVG_WRITERS + 1 ? inputs : SVG_WRITERS + 1;
+        snprintf(what + n, sizeof what - (size_t)n, " with --threads %d (%d drawings at once)",
+                 threads, (int)drawings);
+        need = (drawings + written + 1) * image;
+        lower = "give a smaller --size or --threads";
     }
-    uint64_t t = (uint64_t)threads < inputs ? (uint64_t)threads : inputs;
-    uint64_t drawings = t + BATCH_DRAW_MAX_BYTES / image;
-    drawings = drawings < 2 * t ? drawings : 2 * t;
-    drawings = drawings < inputs ? drawings : inputs;
-    uint64_t written = inputs < SVG_WRITERS + 1 ? inputs : SVG_WRITERS + 1;
-    snprintf(what + n, sizeof what - (size_t)n, " with --threads %d (%d drawings at once)",
-             threads, (int)drawings);
-    return cli_check_memory(what, (drawings + written + 1) * image,
-                            "give a smaller --size or --threads");
+    if (image) {
+        int status = cli_check_memory(what, need, lower);
+        if (status >= 0) {
+            return status;
+        }
+    }
+    sr_memory_limit_info limit;
+    sr_io_error err;
+    if (sr_query_memory_limit(&limit, &err) != SR_OK) {
+        cli_error("%s", err.message);
+        return EXIT_USAGE;
+    }
+    uint64_t left = (limit.bytes - need) / t;
+    desc->max_layer_bytes = left > 0 ? left : 1;  /* 0 would mean no limit */
+    return -1;
 }
 
 /* The length of name's .svg or .svgz (gzip-compressed) ending, any case;
@@ -256,7 +273,7 @@ static int render_one(svg_args *a)
         cli_error("svg: -o: a JPEG has no transparency; give a --background for '%s'", output);
         return EXIT_USAGE;
     }
-    int status = check_size(a, 0, 1);
+    int status = check_size(a, 0, 1, &opt);
     if (status >= 0) {
         return status;
     }
@@ -432,7 +449,7 @@ static int render_batch(svg_args *a)
     int status = batch_session_gather(&s, c, a->inputs, a->count, is_svg_name,
                                       "svg: no SVG files");
     if (status < 0) {
-        status = check_size(a, batch_session_mine(&s), drawer.threads);
+        status = check_size(a, batch_session_mine(&s), drawer.threads, &sb.desc);
     }
     if (status < 0) {
         status = batch_session_name(&s, "{rel}.png");

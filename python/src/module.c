@@ -70,6 +70,13 @@ PyDoc_STRVAR(parse_color_doc,
 "sr_io_parse_color: a CSS color as SVG reads it, as (r, g, b, a) in\n"
 "[0, 1]; ValueError when it is not one.");
 
+PyDoc_STRVAR(check_memory_doc,
+"check_memory(what, need, lower, /)\n--\n\n"
+"sr_check_memory: None when `need` bytes of images fit the memory limit\n"
+"(SR_MEMORY_LIMIT, else the physical memory or a ulimit), else MemoryError\n"
+"\"WHAT needs about N of image memory, more than ...: LOWER\"; ValueError\n"
+"for a malformed SR_MEMORY_LIMIT.");
+
 PyDoc_STRVAR(fit_camera_doc,
 "fit_camera(sets, width, height, fov, ortho, /)\n--\n\n"
 "sr_fit_camera: softrast render's default camera framing the (vertices\n"
@@ -87,6 +94,7 @@ static PyMethodDef methods[] = {
     { "render_svg", sr_py_render_svg, METH_VARARGS, render_svg_doc },
     { "parse_color", sr_py_parse_color, METH_VARARGS, parse_color_doc },
     { "fit_camera", sr_py_fit_camera, METH_VARARGS, fit_camera_doc },
+    { "check_memory", sr_py_check_memory, METH_VARARGS, check_memory_doc },
     { NULL, NULL, 0, NULL },
 };
 

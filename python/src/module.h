@@ -142,6 +142,9 @@ PyObject *sr_py_write_png(PyObject *self, PyObject *args);
 PyObject *sr_py_render_svg(PyObject *self, PyObject *args);
 PyObject *sr_py_parse_color(PyObject *self, PyObject *args);
 
+/* check_memory(what, need, lower): sr_check_memory's limit, MemoryError
+ * beyond it (memory_limit.c). */
+PyObject *sr_py_check_memory(PyObject *self, PyObject *args);
 /* sr_fit_camera of (vertices, model) pairs (framing.c). */
 PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);
 /* Raises a reader's or writer's error with its one-line message (io_error.c):

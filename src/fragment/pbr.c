@@ -240,6 +240,7 @@ struct sr_pbr {
     pbr_slot slot[SLOT_COUNT];
     sr_mat4 model, view_projection;
     float normal_matrix[9];       /* row-major 3x3: inverse transpose of the model's */
+    float handedness;             /* -1 when the model mirrors: the tangents' w turns */
     float eye[3];                 /* the camera's world position */
     int nlights;
     float light_vec[SR_MAX_LIGHTS][3];  /* directional: unit vector to the light; point, spot: position */
@@ -339,7 +340,7 @@ static void pbr_vs(const void *uniforms, const sr_vertex_input *in, float clip[4
         for (int r = 0; r < 3; r++) {
             vary[p->vary_tangent + r] = m[r] * t[0] + m[4 + r] * t[1] + m[8 + r] * t[2];
         }
-        vary[p->vary_tangent + 3] = t[3] < 0.0f ? -1.0f : 1.0f;
+        vary[p->vary_tangent + 3] = t[3] < 0.0f ? -p->handedness : p->handedness;
     }
 }
 
@@ -1087,6 +1088,14 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     if (!sr_normal_matrix(&p->model, &nm)) {
         nm = p->model;
     }
+    /* The bitangent is w N x T with N and T moved to world space; a
+     * mirror turns that cross product against the mirrored B, so w turns
+     * with it (the sign of the model's 3x3 determinant). */
+    const float *mm = p->model.m;
+    double det = (double)mm[0] * ((double)mm[5] * mm[10] - (double)mm[9] * mm[6]) -
+                 (double)mm[4] * ((double)mm[1] * mm[10] - (double)mm[9] * mm[2]) +
+                 (double)mm[8] * ((double)mm[1] * mm[6] - (double)mm[5] * mm[2]);
+    p->handedness = det < 0 ? -1.0f : 1.0f;
     for (int r3 = 0; r3 < 3; r3++) {
         for (int c = 0; c < 3; c++) {
             p->normal_matrix[3 * r3 + c] = nm.m[4 * c + r3];

@@ -614,13 +614,24 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
 
 /* ---- nodes and cameras --------------------------------------------------- */
 
-/* A node's local matrix: `matrix`, or T * R * S. */
+/* A node's local matrix: `matrix`, or T * R * S.  glTF allows one of the
+ * two (the Khronos validator's NODE_MATRIX_TRS); a node with both is drawn
+ * with its matrix, after a warning, as three.js's GLTFLoader and Blender's
+ * importer draw it, rather than refusing a file every viewer shows. */
 static sr_result local_matrix(gltf_doc *d, const json_t *node, const char *ptr, float *m)
 {
     static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
     memcpy(m, identity, sizeof identity);
     sr_result r;
     if (json_object_get(node, "matrix")) {
+        static const char *const trs[] = { "translation", "rotation", "scale" };
+        for (int i = 0; i < 3; i++) {
+            if (json_object_get(node, trs[i])) {
+                sr__gltf_warn(d, "%s: both matrix and %s (glTF allows one): the matrix is used",
+                              ptr, trs[i]);
+                break;
+            }
+        }
         return sr__gltf_numbers(d, node, ptr, "matrix", 16, m);
     }
     float t[3] = { 0, 0, 0 }, q[4] = { 0, 0, 0, 1 }, s[3] = { 1, 1, 1 };

@@ -319,7 +319,7 @@ static sr_result apply_sparse(gltf_doc *d, const json_t *sparse, const char *apt
                              "bufferView %ld", ptr, count, voff, vsize, vview);
     }
     vl.base = vdata + voff;
-    double v[16];
+    double v[16], last = -1;
     for (size_t k = 0; k < count; k++) {
         double at = read_component(idata + ioff + k * isz, itype, false);
         if (at >= (double)info->count) {
@@ -327,6 +327,14 @@ static sr_result apply_sparse(gltf_doc *d, const json_t *sparse, const char *apt
                                  "%s: index %zu is %.0f, past the accessor's %zu elements", iptr,
                                  k, at, info->count);
         }
+        /* The specification asks for strictly increasing indices: a
+         * repeated one would make the value depend on the reader. */
+        if (at <= last) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                 "%s: index %zu is %.0f, not above index %zu (%.0f): sparse "
+                                 "indices must strictly increase", iptr, k, at, k - 1, last);
+        }
+        last = at;
         read_element(&vl, info, k, v);
         store(s, (size_t)at, v, s->f ? info->components : 1);
     }

@@ -94,6 +94,9 @@ static inline bool sr__mul_ok(size_t a, size_t b, size_t *out)
     return !__builtin_mul_overflow(a, b, out);
 }
 
+/* Bytes as people read them, "8.5 GiB", "640 MiB", into buf (memory_limit.c). */
+void sr__format_bytes(uint64_t n, char *buf, size_t size);
+
 /* Standard (or URL-safe) base64, '=' padding optional, blanks skipped:
  * *out a malloc'd block of *size bytes, or NULL (true returned) when a
  * character is not base64; false only when out of memory. */

@@ -155,6 +155,7 @@ typedef struct svg_doc {
     long match_work;         /* selector matching steps so far */
     int draw_depth;          /* elements drawn inside each other, uses included */
     int layers;              /* layers open (group opacity, clip paths) */
+    uint64_t layer_bytes;    /* what they hold (layer_cost), against opt->max_layer_bytes */
     mat2d root_m;            /* the outermost viewport's user space to pixels */
     sr_point2 windows[MAX_WINDOWS][4]; /* markers' viewports in pixels: fills clip to them */
     int n_windows;
@@ -2758,6 +2759,7 @@ static void draw_document_image(svg_doc *doc, svg_doc *in, const svg_node *node,
                      .st = initial_style(), .vp_w = vb[2], .vp_h = vb[3] };
         in->fb = top;
         in->layers = doc->layers;
+        in->layer_bytes = doc->layer_bytes;
         /* inside a marker, the document is cut to its viewport too */
         in->n_windows = doc->n_windows;
         memcpy(in->windows, doc->windows, sizeof in->windows);
@@ -3273,11 +3275,32 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
     }
 }
 
+/* What a w x h layer holds while open: its RGBA and the coverages of the
+ * clip path or mask it is composited through (docs/robustness.md has the
+ * peak sizes measured). */
+static uint64_t layer_cost(int w, int h)
+{
+    return (uint64_t)w * (uint64_t)h * 6;
+}
+
 /* A new transparent layer the size of the image, drawn into from now
  * until close_layer; NULL after reporting a failure. */
 /* A transparent w x h image drawn into instead of the current one. */
 static sr_framebuffer *open_layer_sized(svg_doc *doc, int w, int h)
 {
+    /* and while the innermost closes, composite_layer's copy of the image */
+    uint64_t need = doc->layer_bytes + layer_cost(w, h), limit = doc->opt->max_layer_bytes;
+    uint64_t peak = need + (uint64_t)w * (uint64_t)h * 4;
+    if (limit && peak > limit) {
+        char a[32], b[32];
+        sr__format_bytes(peak, a, sizeof a);
+        sr__format_bytes(limit, b, sizeof b);
+        svg_fail(doc, SR_TOO_LARGE,
+                 "layers nested %d deep (group opacity, masks, clip paths, patterns) need "
+                 "about %s besides the image, more than the %s left for them: draw it smaller",
+                 doc->layers + 1, a, b);
+        return NULL;
+    }
     sr_framebuffer *top = NULL;
     sr_result r = sr_make_framebuffer(doc->ctx,
                                       &(sr_framebuffer_desc){ .width = w, .height = h,
@@ -3290,6 +3313,7 @@ static sr_framebuffer *open_layer_sized(svg_doc *doc, int w, int h)
     sr_clear(doc->ctx, top, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
     doc->fb = top;
     doc->layers++;
+    doc->layer_bytes = need;
     return top;
 }
 
@@ -3301,6 +3325,7 @@ static sr_framebuffer *open_layer(svg_doc *doc)
 static void close_layer(svg_doc *doc, sr_framebuffer *under)
 {
     doc->layers--;
+    doc->layer_bytes -= layer_cost(sr_framebuffer_width(doc->fb), sr_framebuffer_height(doc->fb));
     doc->fb = under;
 }
 
