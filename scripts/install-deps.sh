@@ -4,8 +4,8 @@
 # (model formats beyond OBJ/PLY/STL), jansson (the glTF reader's JSON), meshoptimizer
 # (glTF's EXT_meshopt_compression), expat (the SVG
 # reader), Mesa's OSMesa (llvmpipe, for the benchmark's side-by-side comparison), cairo (the
-# 2D fill benchmark's comparison), libwebp (animated WebP turntables, 'softrast render
-# --animate'), and
+# 2D fill benchmark's comparison), libwebp (WebP textures, glTF's EXT_texture_webp, and animated WebP
+# turntables, 'softrast render --animate'), and
 # clang with its sanitizer and fuzzer runtimes, and for `softrast view` SDL2
 # (the window), FreeType and DejaVu (the overlay font's outlines) with Xvfb
 # and xauth (its tests run on a virtual display), and the de_DE.UTF-8 locale

@@ -1000,6 +1000,7 @@ static const struct {
     bool (*have)(void);
 } decoded_extensions[] = {
     { "EXT_meshopt_compression", "meshoptimizer", sr__gltf_have_meshopt },
+    { "EXT_texture_webp", "libwebp", sr__io_have_webp },
 };
 
 /* Whether extension `name` is read; when it is not for want of a
