@@ -21,6 +21,9 @@
 #ifdef SR_HAVE_MESHOPT_TEST
 #include <meshoptimizer.h>
 #endif
+#ifdef SR_HAVE_WEBP_TEST
+#include <webp/encode.h>
+#endif
 
 /* ---- the sphere ------------------------------------------------------------ */
 
@@ -63,10 +66,30 @@ static void make_sphere(sphere *s)
     s->index_count = n;
 }
 
+/* The sphere's material, untextured; a textured look replaces it. */
+#define SPHERE_LOOK                                                                  \
+    "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.3,0.1,1]," \
+    "\"metallicFactor\":0,\"roughnessFactor\":0.4}}]"
+
+/* The members after the accessors: the mesh, `look` (materials and any
+ * textures and images, NULL: SPHERE_LOOK), the node and the scene. */
+static void put_tail(wbuf *json, const char *look)
+{
+    static const char mesh[] = "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,"
+                               "\"NORMAL\":1,\"TEXCOORD_0\":2},\"indices\":3,\"material\":0}]}],";
+    static const char scene[] =
+        ",\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}";
+    wb_put(json, mesh, strlen(mesh));
+    look = look ? look : SPHERE_LOOK;
+    wb_put(json, look, strlen(look));
+    wb_put(json, scene, sizeof scene);   /* with its NUL */
+}
+
 /* The plain file's JSON (NUL-terminated, without its opening brace when
  * `open` is false) and BIN: float positions, normals and coordinates,
  * short indices. */
-static void plain_parts(const sphere *s, bool open, wbuf *json_out, wbuf *bin_out)
+static void plain_parts(const sphere *s, bool open, const char *look, wbuf *json_out,
+                        wbuf *bin_out)
 {
     wbuf bin = {0}, json = {0};
     uint8_t tmp[VERTS * 12];
@@ -100,12 +123,7 @@ static void plain_parts(const sphere *s, bool open, wbuf *json_out, wbuf *bin_ou
     wb_printf(&json, "{\"bufferView\":3,\"componentType\":5123,\"count\":%zu,"
                      "\"type\":\"SCALAR\"}],",
               s->index_count);
-    wb_printf(&json, "%s", "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,"
-                           "\"NORMAL\":1,\"TEXCOORD_0\":2},\"indices\":3,\"material\":0}]}],"
-                           "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":"
-                           "[0.8,0.3,0.1,1],\"metallicFactor\":0,\"roughnessFactor\":0.4}}],"
-                           "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}");
-    wb_put(&json, "", 1);
+    put_tail(&json, look);
     *json_out = json;
     *bin_out = bin;
 }
@@ -121,10 +139,10 @@ static sr_scene *parse_glb(const wbuf *b, sr_io_error *e)
 
 #ifdef SR_HAVE_MESHOPT_TEST
 
-static wbuf plain_glb(const sphere *s)
+static wbuf plain_glb(const sphere *s, const char *look)
 {
     wbuf json, bin;
-    plain_parts(s, true, &json, &bin);
+    plain_parts(s, true, look, &json, &bin);
     wbuf out = glb((const char *)json.p, bin.p, bin.n);
     free(bin.p);
     free(json.p);
@@ -135,6 +153,8 @@ static wbuf plain_glb(const sphere *s)
 typedef struct pack_options {
     bool indices_mode;          /* INDICES of 32-bit indices, not TRIANGLES of 16-bit */
     bool used_only;             /* extensionsUsed only, a fallback of zeros with data */
+    const char *look;           /* as put_tail's */
+    bool webp;                  /* look requires EXT_texture_webp */
 } pack_options;
 
 typedef struct packed {
@@ -191,10 +211,11 @@ static packed pack(const sphere *s, pack_options o)
     size_t isize = o.indices_mode ? 4 : 2;
 
     size_t fallback = (size_t)VERTS * 20 + s->index_count * isize;
+    const char *webp = o.webp ? ",\"EXT_texture_webp\"" : "";
     wb_printf(&p.json, "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":["
-                       "\"EXT_meshopt_compression\",\"KHR_mesh_quantization\"],"
-                       "\"extensionsRequired\":[%s\"KHR_mesh_quantization\"],",
-              o.used_only ? "" : "\"EXT_meshopt_compression\",");
+                       "\"EXT_meshopt_compression\",\"KHR_mesh_quantization\"%s],"
+                       "\"extensionsRequired\":[%s\"KHR_mesh_quantization\"%s],",
+              webp, o.used_only ? "" : "\"EXT_meshopt_compression\",", webp);
     wb_printf(&p.json, "\"buffers\":[{\"byteLength\":%zu},{\"byteLength\":%zu,", p.bin.n,
               fallback);
     if (o.used_only) {
@@ -243,13 +264,7 @@ static packed pack(const sphere *s, pack_options o)
     wb_printf(&p.json, "{\"bufferView\":3,\"componentType\":%d,\"count\":%zu,"
                        "\"type\":\"SCALAR\"}],",
               o.indices_mode ? 5125 : 5123, s->index_count);
-    wb_printf(&p.json, "%s", "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,"
-                             "\"NORMAL\":1,\"TEXCOORD_0\":2},\"indices\":3,\"material\":0}]}],"
-                             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":"
-                             "[0.8,0.3,0.1,1],\"metallicFactor\":0,\"roughnessFactor\":0.4}}],"
-                             "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
-                             "\"scene\":0}");
-    wb_put(&p.json, "", 1);
+    put_tail(&p.json, o.look);
     free(enc);
     free(f4);
     free(raw);
@@ -294,7 +309,7 @@ SR_TEST(compressed_sphere_reads_as_the_plain_one)
 {
     static sphere s;
     make_sphere(&s);
-    wbuf plain = plain_glb(&s);
+    wbuf plain = plain_glb(&s, NULL);
     sr_io_error e;
     sr_scene *a = parse_glb(&plain, &e);
     REQUIRE(a);
@@ -346,7 +361,7 @@ SR_TEST(compressed_sphere_renders_as_the_plain_one)
     snprintf(b_path, sizeof b_path, "%s/packed.glb", dir);
     snprintf(a_png, sizeof a_png, "%s/plain.png", dir);
     snprintf(b_png, sizeof b_png, "%s/packed.png", dir);
-    wbuf plain = plain_glb(&s);
+    wbuf plain = plain_glb(&s, NULL);
     packed p = pack(&s, (pack_options){0});
     wbuf packed_file = packed_glb(&p);
     REQUIRE(sr_test_write_file(a_path, plain.p, plain.n));
@@ -365,6 +380,98 @@ SR_TEST(compressed_sphere_renders_as_the_plain_one)
     free(packed_file.p);
     packed_free(&p);
 }
+
+#ifdef SR_HAVE_WEBP_TEST
+
+enum { MAP_W = 256, MAP_H = 128 };
+
+/* A map for the sphere: latitude bands, a longitude checker, a ring. */
+static void make_map(uint8_t *rgba)
+{
+    for (int y = 0; y < MAP_H; y++) {
+        for (int x = 0; x < MAP_W; x++) {
+            uint8_t *p = rgba + 4 * (y * MAP_W + x);
+            double band = 0.5 + 0.5 * sin(6 * M_PI * y / MAP_H);
+            bool check = ((x / 16) + (y / 16)) % 2;
+            double dx = x - 80.0, dy = y - 60.0, ring = fabs(sqrt(dx * dx + dy * dy) - 20);
+            p[0] = (uint8_t)(ring < 3 ? 250 : 40 + 150 * band);
+            p[1] = (uint8_t)(ring < 3 ? 220 : check ? 150 : 90);
+            p[2] = (uint8_t)(ring < 3 ? 60 : 200 - 120 * band);
+            p[3] = 255;
+        }
+    }
+}
+
+static char *image_look(const char *mime, const uint8_t *bytes, size_t n, bool webp)
+{
+    char *b64 = malloc(4 * (n / 3 + 1) + 1);
+    gltf_base64(bytes, n, b64);
+    size_t cap = strlen(b64) + 600;
+    char *look = malloc(cap);
+    snprintf(look, cap,
+             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},"
+             "\"metallicFactor\":0,\"roughnessFactor\":0.5}}],\"textures\":[{%s}],"
+             "\"images\":[{\"uri\":\"data:%s;base64,%s\"}]",
+             webp ? "\"extensions\":{\"EXT_texture_webp\":{\"source\":0}}" : "\"source\":0",
+             mime, b64);
+    free(b64);
+    return look;
+}
+
+static bool collect(void *user, const void *data, size_t size)
+{
+    wb_put(user, data, size);
+    return true;
+}
+
+/* What gltfpack -cc -tw writes: compressed geometry and a WebP texture,
+ * against the plain file with the same texels in PNG. */
+SR_TEST(gltfpack_style_sphere_with_a_webp_texture_renders_as_the_plain_one)
+{
+    NEED_CLI();
+    static sphere s;
+    static uint8_t map[MAP_W * MAP_H * 4];
+    make_sphere(&s);
+    make_map(map);
+    wbuf png = {0};
+    sr_io_error e;
+    REQUIRE(sr_encode_png(collect, &png, MAP_W, MAP_H, map, MAP_W * 4, NULL, &e) == SR_OK);
+    uint8_t *webp = NULL;
+    size_t webp_n = WebPEncodeLosslessRGBA(map, MAP_W, MAP_H, MAP_W * 4, &webp);
+    REQUIRE(webp_n > 0);
+    char *plain_look = image_look("image/png", png.p, png.n, false);
+    char *packed_look = image_look("image/webp", webp, webp_n, true);
+    wbuf plain = plain_glb(&s, plain_look);
+    packed p = pack(&s, (pack_options){ .look = packed_look, .webp = true });
+    wbuf packed_file = packed_glb(&p);
+    char dir[1024], a_path[1100], b_path[1100], a_png[1100], b_png[1100];
+    fresh_dir("meshopt_webp", dir, sizeof dir);
+    snprintf(a_path, sizeof a_path, "%s/plain.glb", dir);
+    snprintf(b_path, sizeof b_path, "%s/packed.glb", dir);
+    snprintf(a_png, sizeof a_png, "%s/plain.png", dir);
+    snprintf(b_png, sizeof b_png, "%s/packed.png", dir);
+    REQUIRE(sr_test_write_file(a_path, plain.p, plain.n));
+    REQUIRE(sr_test_write_file(b_path, packed_file.p, packed_file.n));
+    int aw = 0, ah = 0, bw = 0, bh = 0;
+    uint8_t *a = render(a_path, a_png, &aw, &ah), *b = render(b_path, b_png, &bw, &bh);
+    if (a && b) {
+        REQUIRE(aw == bw && ah == bh);
+        /* 16-bit coordinates and 8-bit normals move the shading by a
+         * level or two (2 at most, here). */
+        sr_test_compare_images("meshopt_webp_sphere", b, a, aw, ah, 8, 0);
+    }
+    free(a);
+    free(b);
+    free(plain.p);
+    free(packed_file.p);
+    packed_free(&p);
+    free(plain_look);
+    free(packed_look);
+    WebPFree(webp);
+    free(png.p);
+}
+
+#endif
 
 /* Replaces the first `from` in p's JSON with `to`; false when absent. */
 static bool edit(packed *p, const char *from, const char *to)
@@ -385,6 +492,7 @@ static bool edit(packed *p, const char *from, const char *to)
 
 typedef struct bad_case {
     const char *from, *to;       /* the JSON edit, or from NULL */
+    const char *from2, *to2;     /* and a second one */
     int corrupt;                 /* >= 0: the first byte of that stream is flipped */
     const char *message;
 } bad_case;
@@ -397,46 +505,59 @@ SR_TEST(malformed_compressed_views_give_one_line_and_exit_2)
     static const bad_case cases[] = {
         /* the position stream cut short, then its header byte corrupted */
         { "{\"buffer\":0,\"byteOffset\":0,\"byteLength\":",
-          "{\"buffer\":0,\"byteOffset\":0,\"byteLength\":40,\"x\":", -1,
+          "{\"buffer\":0,\"byteOffset\":0,\"byteLength\":40,\"x\":", NULL, NULL, -1,
           "/bufferViews/0/extensions/EXT_meshopt_compression: the ATTRIBUTES stream does not "
           "decode" },
-        { NULL, NULL, 0, "/bufferViews/0/extensions/EXT_meshopt_compression: the ATTRIBUTES "
-                         "stream does not decode" },
-        { NULL, NULL, 3, "/bufferViews/3/extensions/EXT_meshopt_compression: the TRIANGLES "
-                         "stream does not decode" },
+        { NULL, NULL, NULL, NULL, 0,
+          "/bufferViews/0/extensions/EXT_meshopt_compression: the ATTRIBUTES stream does not "
+          "decode" },
+        { NULL, NULL, NULL, NULL, 3,
+          "/bufferViews/3/extensions/EXT_meshopt_compression: the TRIANGLES stream does not "
+          "decode" },
         /* elements times stride past the view, and past any size */
-        { "\"count\":1225", "\"count\":1226", -1,
+        { "\"count\":1225", "\"count\":1226", NULL, NULL, -1,
           "/bufferViews/0/extensions/EXT_meshopt_compression/count: 1226 elements of 12 "
           "bytes, but the bufferView's byteLength is 14700" },
-        { "\"count\":1225", "\"count\":2147483648", -1,
+        { "\"count\":1225", "\"count\":2147483648", NULL, NULL, -1,
           "/bufferViews/0/extensions/EXT_meshopt_compression/count: 2147483648 elements of 12 "
           "bytes" },
-        { "\"filter\":\"EXPONENTIAL\"", "\"filter\":\"OCTAHEDRAL\"", -1,
+        { "\"filter\":\"EXPONENTIAL\"", "\"filter\":\"OCTAHEDRAL\"", NULL, NULL, -1,
           "/bufferViews/0/extensions/EXT_meshopt_compression/filter: OCTAHEDRAL needs a "
           "byteStride of 4 or 8, not 12" },
-        { "\"mode\":\"TRIANGLES\"", "\"mode\":\"TRIANGLES\",\"filter\":\"OCTAHEDRAL\"", -1,
+        { "\"mode\":\"TRIANGLES\"", "\"mode\":\"TRIANGLES\",\"filter\":\"OCTAHEDRAL\"", NULL,
+          NULL, -1,
           "/bufferViews/3/extensions/EXT_meshopt_compression/filter: only ATTRIBUTES take a "
           "filter" },
-        { "\"mode\":\"TRIANGLES\"", "\"mode\":\"TRIANGLE_STRIP\"", -1,
+        { "\"mode\":\"TRIANGLES\"", "\"mode\":\"TRIANGLE_STRIP\"", NULL, NULL, -1,
           "/bufferViews/3/extensions/EXT_meshopt_compression/mode: not one of ATTRIBUTES, "
           "TRIANGLES, INDICES" },
         /* a view without the extension on the fallback buffer, which has no data */
         { ",\"extensions\":{\"EXT_meshopt_compression\":{\"buffer\":0,\"byteOffset\":0,",
-          ",\"x\":{\"y\":{\"buffer\":0,\"byteOffset\":0,", -1,
+          ",\"x\":{\"y\":{\"buffer\":0,\"byteOffset\":0,", NULL, NULL, -1,
           "/buffers/1: a fallback buffer without data, read by /bufferViews/0/buffer" },
-        { "{\"buffer\":0,\"byteOffset\":0,", "{\"buffer\":1,\"byteOffset\":0,", -1,
+        { "{\"buffer\":0,\"byteOffset\":0,", "{\"buffer\":1,\"byteOffset\":0,", NULL, NULL, -1,
           "/bufferViews/0/extensions/EXT_meshopt_compression/buffer: buffer 1 is a fallback "
           "buffer" },
         { "\"extensions\":{\"EXT_meshopt_compression\":{\"buffer\":0,",
-          "\"extensions\":{\"EXT_meshopt_compression\":{", -1,
+          "\"extensions\":{\"EXT_meshopt_compression\":{", NULL, NULL, -1,
           "/bufferViews/0/extensions/EXT_meshopt_compression/buffer: missing" },
+        /* a view past its fallback buffer; more decoding than the file may ask */
+        { "{\"buffer\":1,\"byteOffset\":0,\"byteLength\":14700,",
+          "{\"buffer\":1,\"byteOffset\":90000,\"byteLength\":14700,", NULL, NULL, -1,
+          "/bufferViews/0/byteLength: bytes 90000..104700 run past the" },
+        { "{\"buffer\":1,\"byteOffset\":0,\"byteLength\":14700,",
+          "{\"buffer\":1,\"byteOffset\":0,\"byteLength\":1200000000,",
+          "\"count\":1225", "\"count\":100000000", -1,
+          "/bufferViews/0/extensions/EXT_meshopt_compression/count: 1200000000 bytes to "
+          "decode are more than a file of this size may decode" },
     };
     char dir[1024], path[1100], out[1100];
     fresh_dir("meshopt_bad", dir, sizeof dir);
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         const bad_case *c = &cases[i];
         packed p = pack(&s, (pack_options){0});
-        if (c->from && !edit(&p, c->from, c->to)) {
+        if ((c->from && !edit(&p, c->from, c->to)) ||
+            (c->from2 && !edit(&p, c->from2, c->to2))) {
             packed_free(&p);
             continue;
         }
@@ -473,7 +594,7 @@ SR_TEST(a_required_extension_is_read_or_refused_naming_the_library)
     make_sphere(&s);
     /* The plain file claiming the extension: nothing in it is compressed. */
     wbuf json = {0}, rest, bin;
-    plain_parts(&s, false, &rest, &bin);
+    plain_parts(&s, false, NULL, &rest, &bin);
     wb_printf(&json, "%s", "{\"extensionsRequired\":[\"EXT_meshopt_compression\"],");
     wb_put(&json, rest.p, rest.n);
     wbuf file = glb((const char *)json.p, bin.p, bin.n);

@@ -229,6 +229,33 @@ sr_result sr__gltf_meshopt_view(gltf_doc *d, long view, const json_t *ext, const
                              "may decode",
                              eptr, length);
     }
+    /* The parent view lies in its (fallback) buffer, as any view must,
+     * though that buffer's bytes are never read here. */
+    json_t *parent = json_array_get(json_object_get(d->root, "bufferViews"), (size_t)view);
+    long fallback = -1;
+    size_t parent_offset = 0, fallback_length = 0;
+    char fptr[GLTF_PTR];
+    if ((r = sr__gltf_index(d, parent, ptr, "buffer", d->buffer_count ? d->buffer_count : 1,
+                            true, &fallback)) != SR_OK ||
+        (r = sr__gltf_size(d, parent, ptr, "byteOffset", 0, SR_IO_MAX_FILE_BYTES, false,
+                           &parent_offset)) != SR_OK) {
+        return r;
+    }
+    snprintf(fptr, sizeof fptr, "/buffers/%ld", fallback);
+    json_t *fb = json_array_get(json_object_get(d->root, "buffers"), (size_t)fallback);
+    if (!json_is_object(fb)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", fptr);
+    }
+    if ((r = sr__gltf_size(d, fb, fptr, "byteLength", 1, SR_IO_MAX_FILE_BYTES, true,
+                           &fallback_length)) != SR_OK) {
+        return r;
+    }
+    if (parent_offset > fallback_length || length > fallback_length - parent_offset) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s/byteLength: bytes %zu..%zu run past the %zu bytes of buffer %ld",
+                             ptr, parent_offset, parent_offset + length, fallback_length,
+                             fallback);
+    }
     char bptr[GLTF_PTR];
     snprintf(bptr, sizeof bptr, "%s/buffer", eptr);
     json_t *b = json_array_get(json_object_get(d->root, "buffers"), (size_t)buffer);
