@@ -350,32 +350,44 @@ static uint8_t *render(const char *model, const char *out, int *w, int *h)
     return px;
 }
 
+/* Writes the two files into batch_`name`, renders both with the tool and
+ * checks the packed image against the plain one: `channel_tol` at most. */
+static void check_same_render(const char *name, const wbuf *plain, const wbuf *packed_file,
+                              int channel_tol)
+{
+    char dir[1024], path[2][1100], png[2][1100];
+    const wbuf *files[2] = { plain, packed_file };
+    static const char *const stems[2] = { "plain", "packed" };
+    uint8_t *px[2] = { NULL, NULL };
+    int w[2] = { 0, 0 }, h[2] = { 0, 0 };
+    fresh_dir(name, dir, sizeof dir);
+    for (int i = 0; i < 2; i++) {
+        snprintf(path[i], sizeof path[i], "%s/%s.glb", dir, stems[i]);
+        snprintf(png[i], sizeof png[i], "%s/%s.png", dir, stems[i]);
+        if (sr_test_write_file(path[i], files[i]->p, files[i]->n)) {
+            px[i] = render(path[i], png[i], &w[i], &h[i]);
+        } else {
+            FAILF("cannot write %s", path[i]);
+        }
+    }
+    if (px[0] && px[1] && w[0] == w[1] && h[0] == h[1]) {
+        sr_test_compare_images(name, px[1], px[0], w[0], h[0], channel_tol, 0);
+    }
+    free(px[0]);
+    free(px[1]);
+}
+
 SR_TEST(compressed_sphere_renders_as_the_plain_one)
 {
     NEED_CLI();
     static sphere s;
     make_sphere(&s);
-    char dir[1024], a_path[1100], b_path[1100], a_png[1100], b_png[1100];
-    fresh_dir("meshopt_render", dir, sizeof dir);
-    snprintf(a_path, sizeof a_path, "%s/plain.glb", dir);
-    snprintf(b_path, sizeof b_path, "%s/packed.glb", dir);
-    snprintf(a_png, sizeof a_png, "%s/plain.png", dir);
-    snprintf(b_png, sizeof b_png, "%s/packed.png", dir);
     wbuf plain = plain_glb(&s, NULL);
     packed p = pack(&s, (pack_options){0});
     wbuf packed_file = packed_glb(&p);
-    REQUIRE(sr_test_write_file(a_path, plain.p, plain.n));
-    REQUIRE(sr_test_write_file(b_path, packed_file.p, packed_file.n));
-    int aw = 0, ah = 0, bw = 0, bh = 0;
-    uint8_t *a = render(a_path, a_png, &aw, &ah), *b = render(b_path, b_png, &bw, &bh);
-    if (a && b) {
-        REQUIRE(aw == bw && ah == bh);
-        /* 8-bit octahedral normals move the shading by a few levels (4 at
-         * most, on 2 pixels, here). */
-        sr_test_compare_images("meshopt_sphere", b, a, aw, ah, 8, 0);
-    }
-    free(a);
-    free(b);
+    /* 8-bit octahedral normals move the shading by a few levels (4 at
+     * most, here). */
+    check_same_render("meshopt_sphere", &plain, &packed_file, 8);
     free(plain.p);
     free(packed_file.p);
     packed_free(&p);
@@ -444,24 +456,9 @@ SR_TEST(gltfpack_style_sphere_with_a_webp_texture_renders_as_the_plain_one)
     wbuf plain = plain_glb(&s, plain_look);
     packed p = pack(&s, (pack_options){ .look = packed_look, .webp = true });
     wbuf packed_file = packed_glb(&p);
-    char dir[1024], a_path[1100], b_path[1100], a_png[1100], b_png[1100];
-    fresh_dir("meshopt_webp", dir, sizeof dir);
-    snprintf(a_path, sizeof a_path, "%s/plain.glb", dir);
-    snprintf(b_path, sizeof b_path, "%s/packed.glb", dir);
-    snprintf(a_png, sizeof a_png, "%s/plain.png", dir);
-    snprintf(b_png, sizeof b_png, "%s/packed.png", dir);
-    REQUIRE(sr_test_write_file(a_path, plain.p, plain.n));
-    REQUIRE(sr_test_write_file(b_path, packed_file.p, packed_file.n));
-    int aw = 0, ah = 0, bw = 0, bh = 0;
-    uint8_t *a = render(a_path, a_png, &aw, &ah), *b = render(b_path, b_png, &bw, &bh);
-    if (a && b) {
-        REQUIRE(aw == bw && ah == bh);
-        /* 16-bit coordinates and 8-bit normals move the shading by a
-         * level or two (2 at most, here). */
-        sr_test_compare_images("meshopt_webp_sphere", b, a, aw, ah, 8, 0);
-    }
-    free(a);
-    free(b);
+    /* 16-bit coordinates and 8-bit normals move the shading by a level
+     * or two (2 at most, here). */
+    check_same_render("meshopt_webp_sphere", &plain, &packed_file, 8);
     free(plain.p);
     free(packed_file.p);
     packed_free(&p);
