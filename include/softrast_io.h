@@ -368,8 +368,10 @@ SR_API sr_result sr_encode_jpeg(sr_write_fn write, void *user, int width, int he
                                 const uint8_t *rgba, size_t stride, const sr_jpeg_write_desc *desc,
                                 sr_io_error *err);
 
-/* A PNG or a JPEG, told apart by the file's first bytes (not its name),
- * read as RGBA8 by sr_read_png or sr_read_jpeg. */
+/* A PNG, a JPEG or a WebP (lossy or lossless, alpha kept; not animated),
+ * told apart by the file's first bytes (not its name), read as RGBA8 by
+ * sr_read_png, sr_read_jpeg or libwebp.  SR_UNSUPPORTED for a JPEG or a
+ * WebP in a build without libjpeg or libwebp. */
 SR_API sr_result sr_read_image(const char *path, int *width, int *height,
                                uint8_t **pixels, sr_io_error *err);
 /* The same on bytes in memory (sr_mesh.texture_data, say). */

@@ -17,33 +17,10 @@ static void write_or_note(const char *path, const uint8_t *px, int w, int h)
     }
 }
 
-bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
-                         int channel_tol, long max_bad_pixels)
+bool sr_test_compare_images(const char *name, const uint8_t *rgba, const uint8_t *ref, int w,
+                            int h, int channel_tol, long max_bad_pixels)
 {
-    char ref_path[1024], out_path[1024];
-    snprintf(ref_path, sizeof ref_path, "%s/ref/%s.png", sr_test_src_dir(), name);
-    const char *update = getenv("SR_UPDATE_REFS");
-    if (update && strcmp(update, "1") == 0) {
-        write_or_note(ref_path, rgba, w, h);
-        return true;
-    }
-
-    int rw = 0, rh = 0;
-    uint8_t *ref = NULL;
-    sr_io_error err;
-    if (sr_read_png(ref_path, NULL, &rw, &rh, &ref, &err) != SR_OK) {
-        sr_test_fail(__FILE__, __LINE__, "reference %s: %s", name, err.message);
-        snprintf(out_path, sizeof out_path, "%s/%s.actual.png", sr_test_out_dir(), name);
-        write_or_note(out_path, rgba, w, h);
-        return false;
-    }
-    if (rw != w || rh != h) {
-        sr_test_fail(__FILE__, __LINE__, "reference %s is %dx%d, image is %dx%d",
-                     name, rw, rh, w, h);
-        free(ref);
-        return false;
-    }
-
+    char out_path[1024];
     long bad = 0;
     int worst = 0;
     uint8_t *diff = malloc((size_t)w * h * 4);
@@ -76,6 +53,37 @@ bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
         }
     }
     free(diff);
+    return ok;
+}
+
+bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
+                         int channel_tol, long max_bad_pixels)
+{
+    char ref_path[1024], out_path[1024];
+    snprintf(ref_path, sizeof ref_path, "%s/ref/%s.png", sr_test_src_dir(), name);
+    const char *update = getenv("SR_UPDATE_REFS");
+    if (update && strcmp(update, "1") == 0) {
+        write_or_note(ref_path, rgba, w, h);
+        return true;
+    }
+
+    int rw = 0, rh = 0;
+    uint8_t *ref = NULL;
+    sr_io_error err;
+    if (sr_read_png(ref_path, NULL, &rw, &rh, &ref, &err) != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "reference %s: %s", name, err.message);
+        snprintf(out_path, sizeof out_path, "%s/%s.actual.png", sr_test_out_dir(), name);
+        write_or_note(out_path, rgba, w, h);
+        return false;
+    }
+    if (rw != w || rh != h) {
+        sr_test_fail(__FILE__, __LINE__, "reference %s is %dx%d, image is %dx%d",
+                     name, rw, rh, w, h);
+        free(ref);
+        return false;
+    }
+
+    bool ok = sr_test_compare_images(name, rgba, ref, w, h, channel_tol, max_bad_pixels);
     free(ref);
     return ok;
 }

@@ -14,4 +14,8 @@
 
 bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
                          int channel_tol, long max_bad_pixels);
+/* The same check against `ref` in memory (w x h too), for two renders
+ * that must agree: on failure <out>/<name>.actual.png and .diff.png. */
+bool sr_test_compare_images(const char *name, const uint8_t *rgba, const uint8_t *ref, int w,
+                            int h, int channel_tol, long max_bad_pixels);
 #endif

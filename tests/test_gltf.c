@@ -3,6 +3,7 @@
  * sparse), primitive modes, materials with texture transforms and
  * samplers, cameras, external files, GLB, and one message naming the JSON
  * pointer for each kind of malformed file. */
+#include "glb_write.h"
 #include "gltf_write.h"
 #include "sr_test.h"
 #include "wbuf.h"
@@ -667,38 +668,6 @@ SR_TEST(external_buffers_and_images_are_read_beside_the_file)
     CHECK_STR_CONTAINS(r.paths[1], "/gltf ext.bin");
     sr_destroy_scene(sr_test_ctx(), s);
     free(png.p);
-}
-
-/* A GLB of json, its chunk declaring jn bytes and padded with pad spaces,
- * and bin (n bytes, none: no BIN chunk) padded as the format asks. */
-static wbuf glb_framed(const char *json, uint32_t jn, size_t pad, const void *bin, size_t n)
-{
-    wbuf b = {0};
-    size_t bn = (n + 3) & ~(size_t)3;
-    uint32_t head[3] = { 0x46546C67u, 2,
-                         (uint32_t)(12 + 8 + strlen(json) + pad + (n ? 8 + bn : 0)) };
-    uint32_t jc[2] = { jn, 0x4E4F534Au }, bc[2] = { (uint32_t)bn, 0x004E4942u };
-    uint8_t le[12];
-    le_copy(le, head, 3, 4);
-    wb_put(&b, le, 12);
-    le_copy(le, jc, 2, 4);
-    wb_put(&b, le, 8);
-    wb_put(&b, json, strlen(json));
-    wb_put(&b, "   ", pad);
-    if (n) {
-        le_copy(le, bc, 2, 4);
-        wb_put(&b, le, 8);
-        wb_put(&b, bin, n);
-        wb_put(&b, "\0\0\0", bn - n);
-    }
-    return b;
-}
-
-/* A GLB of json and bin, padded as the format asks. */
-static wbuf glb(const char *json, const void *bin, size_t n)
-{
-    size_t jn = (strlen(json) + 3) & ~(size_t)3;
-    return glb_framed(json, (uint32_t)jn, jn - strlen(json), bin, n);
 }
 
 SR_TEST(glb_json_chunk_of_unaligned_length_reads_the_next_chunk_where_it_is)

@@ -339,10 +339,10 @@ SR_TEST(read_image_goes_by_content_not_name)
     CHECK_STR_CONTAINS(err.message, "none.png: empty file, not a PNG");
     CHECK_EQ(sr_decode_image("t.txt", (const uint8_t *)"hello", 5, &w, &h, &px, &err),
              SR_BAD_FORMAT);
-    CHECK_STR_CONTAINS(err.message, "t.txt: neither a PNG nor a JPEG");
+    CHECK_STR_CONTAINS(err.message, "t.txt: neither a PNG, a JPEG nor a WebP");
 
     CHECK_EQ(sr_read_image(text, &w, &h, &px, &err), SR_BAD_FORMAT);
-    CHECK_STR_CONTAINS(err.message, "neither a PNG nor a JPEG");
+    CHECK_STR_CONTAINS(err.message, "neither a PNG, a JPEG nor a WebP");
     CHECK(px == NULL);
     /* sr_read_jpeg itself checks the content too. */
     CHECK_EQ(sr_read_jpeg(as_jpg, &w, &h, &px, &err), SR_BAD_FORMAT);

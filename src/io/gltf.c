@@ -330,6 +330,11 @@ static sr_result load_buffer(gltf_doc *d, long i, const char *use, gltf_buffer *
     } else if (i == 0 && d->bin) {
         data = d->bin;
         size = d->bin_size;
+    } else if (sr__gltf_is_fallback_buffer(b)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s: a fallback buffer without data, read by %s (which has no "
+                             "EXT_meshopt_compression)",
+                             ptr, use);
     } else {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/uri: missing (and no GLB BIN chunk)", ptr);
     }
@@ -341,6 +346,16 @@ static sr_result load_buffer(gltf_doc *d, long i, const char *use, gltf_buffer *
     buf->size = length;
     buf->loaded = true;
     return SR_OK;
+}
+
+sr_result sr__gltf_buffer_bytes(gltf_doc *d, long i, const char *use, const uint8_t **data,
+                                size_t *size)
+{
+    gltf_buffer *b;
+    sr_result r = load_buffer(d, i, use, &b);
+    *data = r == SR_OK ? b->data : NULL;
+    *size = r == SR_OK ? b->size : 0;
+    return r;
 }
 
 sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *use, const uint8_t **data,
@@ -363,6 +378,16 @@ sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *use, const ui
             SR_OK ||
         (r = sr__gltf_size(d, v, ptr, "byteStride", 4, 252, false, stride)) != SR_OK) {
         return r;
+    }
+    json_t *meshopt = sr__gltf_extension(v, "EXT_meshopt_compression");
+    if (meshopt) {
+        if ((r = sr__gltf_meshopt_view(d, view, meshopt, ptr, length, *stride, data)) != SR_OK) {
+            return r;
+        }
+        if (*data) {
+            *size = length;
+            return SR_OK;
+        }
     }
     char bptr[GLTF_PTR];
     snprintf(bptr, sizeof bptr, "%s/buffer", ptr);
@@ -984,6 +1009,35 @@ static const char *supported_extensions[] = {
     "KHR_lights_punctual",
 };
 
+/* Extensions read when softrast was built with their decoder. */
+static const struct {
+    const char *name, *library;
+    bool (*have)(void);
+} decoded_extensions[] = {
+    { "EXT_meshopt_compression", "meshoptimizer", sr__gltf_have_meshopt },
+    { "EXT_texture_webp", "libwebp", sr__io_have_webp },
+};
+
+/* Whether extension `name` is read; when it is not for want of a
+ * library, *library names it (else NULL). */
+static bool extension_read(const char *name, const char **library)
+{
+    *library = NULL;
+    for (size_t k = 0; name && k < sizeof supported_extensions / sizeof *supported_extensions;
+         k++) {
+        if (strcmp(name, supported_extensions[k]) == 0) {
+            return true;
+        }
+    }
+    for (size_t k = 0; name && k < sizeof decoded_extensions / sizeof *decoded_extensions; k++) {
+        if (strcmp(name, decoded_extensions[k].name) == 0) {
+            *library = decoded_extensions[k].have() ? NULL : decoded_extensions[k].library;
+            return !*library;
+        }
+    }
+    return false;
+}
+
 static sr_result check_asset(gltf_doc *d)
 {
     json_t *asset;
@@ -1011,15 +1065,13 @@ static sr_result check_asset(gltf_doc *d)
     }
     for (size_t i = 0; i < n; i++) {
         const char *name = json_string_value(json_array_get(req, i));
-        bool known = false;
-        for (size_t k = 0; name && k < sizeof supported_extensions / sizeof *supported_extensions;
-             k++) {
-            known |= strcmp(name, supported_extensions[k]) == 0;
-        }
-        if (!known) {
+        const char *library;
+        if (!extension_read(name, &library)) {
             return sr__gltf_fail(d, SR_UNSUPPORTED,
-                                 "/extensionsRequired/%zu: extension %.64s is not supported", i,
-                                 name ? name : "(not a string)");
+                                 "/extensionsRequired/%zu: extension %.64s is not supported%s%s%s",
+                                 i, name ? name : "(not a string)",
+                                 library ? " (softrast was built without " : "",
+                                 library ? library : "", library ? ")" : "");
         }
     }
     return SR_OK;
@@ -1071,12 +1123,8 @@ static void warn_unread(gltf_doc *d)
     json_t *used = json_object_get(d->root, "extensionsUsed");
     for (size_t i = 0; i < json_array_size(used); i++) {
         const char *name = json_string_value(json_array_get(used, i));
-        bool known = false;
-        for (size_t k = 0; name && k < sizeof supported_extensions / sizeof *supported_extensions;
-             k++) {
-            known |= strcmp(name, supported_extensions[k]) == 0;
-        }
-        if (name && !known) {
+        const char *library;
+        if (name && !extension_read(name, &library)) {
             snprintf(item, sizeof item, "/extensionsUsed/%zu (%.64s)", i, name);
             list_add(list, sizeof list, &full, item);
         }
@@ -1248,6 +1296,7 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
     free(d.buffers);
     free(d.image_textures);
     free(d.lights);
+    sr__gltf_meshopt_free(&d);
     json_decref(d.root);
     if (r != SR_OK) {
         sr_destroy_scene(ctx, d.scene);

@@ -32,6 +32,8 @@ typedef struct gltf_buffer {
     bool loaded;
 } gltf_buffer;
 
+struct gltf_decoded_view;
+
 typedef struct gltf_doc {
     sr_context *ctx;
     const char *name;            /* the file, in messages */
@@ -53,6 +55,10 @@ typedef struct gltf_doc {
     size_t image_count;
     struct gltf_light *lights;   /* KHR_lights_punctual's, read (gltf_lights.c) */
     size_t light_count;
+    /* bufferViews decoded from EXT_meshopt_compression (gltf_meshopt.c),
+     * one slot per view; NULL until the first. */
+    struct gltf_decoded_view *decoded;
+    size_t decoded_count;
 } gltf_doc;
 
 /* The error "NAME: POINTER: reason" (the pointer is part of fmt's
@@ -86,6 +92,22 @@ json_t *sr__gltf_extension(const json_t *obj, const char *name);
  * view's start and length, its byteStride (0: none). */
 sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *ptr, const uint8_t **data,
                                size_t *size, size_t *stride);
+
+/* Buffer i's bytes (loaded on first use) and its byteLength. */
+sr_result sr__gltf_buffer_bytes(gltf_doc *d, long i, const char *use, const uint8_t **data,
+                                size_t *size);
+
+/* gltf_meshopt.c: EXT_meshopt_compression.  The bytes of bufferView
+ * `view` (JSON `ptr`, `length` bytes, byteStride `stride` or 0) whose
+ * extension object is ext, decoded into memory the document owns; *data
+ * NULL when the caller is to read the view's own buffer (the fallback, in
+ * a build without meshoptimizer). */
+sr_result sr__gltf_meshopt_view(gltf_doc *d, long view, const json_t *ext, const char *ptr,
+                                size_t length, size_t stride, const uint8_t **data);
+/* Whether buffer (a /buffers entry) is marked as a fallback buffer. */
+bool sr__gltf_is_fallback_buffer(const json_t *buffer);
+bool sr__gltf_have_meshopt(void);
+void sr__gltf_meshopt_free(gltf_doc *d);
 
 /* The bytes a URI (`ptr` in messages) names: a base64 data: URI decoded,
  * or a relative reference (percent-decoded) read from d->dir.  *owned is

@@ -1,9 +1,9 @@
 /*
  * gltf_material.c - io stage: glTF materials as sr_pbr_material.
- * Consumes /materials, /textures, /samplers and /images (PNG or JPEG, from
- * a bufferView, a file or a data: URI); produces the scene's materials and
- * the textures they point to, made on the context once per image and
- * color space (base color and emissive sRGB, the others linear).
+ * Consumes /materials, /textures, /samplers and /images (PNG, JPEG or
+ * WebP, from a bufferView, a file or a data: URI); produces the scene's
+ * materials and the textures they point to, made on the context once per
+ * image and color space (base color and emissive sRGB, the others linear).
  * KHR_texture_transform, KHR_materials_emissive_strength and
  * KHR_materials_unlit are applied.  Called by the thread reading the
  * document.
@@ -209,12 +209,29 @@ static sr_result read_slot(gltf_doc *d, const json_t *owner, const char *owner_p
         (r = sr__gltf_index(d, t, tptr, "sampler", (size_t)-1 / 2, false, &sampler)) != SR_OK) {
         return r;
     }
-    if (source < 0) {
-        sr__gltf_warn(d, "%s: no PNG or JPEG source, texture dropped", tptr);
-        return SR_OK;
-    }
     char use[GLTF_PTR];
     snprintf(use, sizeof use, "%s/source", tptr);
+    /* EXT_texture_webp's image is taken over `source`, which is then a
+     * fallback for readers without WebP. */
+    json_t *webp = sr__gltf_extension(t, "EXT_texture_webp");
+    if (webp && sr__io_have_webp()) {
+        char wptr[GLTF_PTR];
+        snprintf(wptr, sizeof wptr, "%s/extensions/EXT_texture_webp", tptr);
+        if ((r = sr__gltf_index(d, webp, wptr, "source", (size_t)-1 / 2, true, &source)) !=
+            SR_OK) {
+            return r;
+        }
+        snprintf(use, sizeof use, "%s/source", wptr);
+    }
+    if (source < 0) {
+        if (webp) {
+            sr__gltf_warn(d, "%s: only a WebP source (EXT_texture_webp), and softrast was built "
+                             "without libwebp: texture dropped", tptr);
+        } else {
+            sr__gltf_warn(d, "%s: no PNG or JPEG source, texture dropped", tptr);
+        }
+        return SR_OK;
+    }
     if ((r = image_texture(d, source, use, srgb, &slot->texture)) != SR_OK) {
         return r;
     }

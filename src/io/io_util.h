@@ -52,6 +52,12 @@ void sr__image_outputs_clear(int *width, int *height, uint8_t **pixels, sr_io_er
 sr_result sr__decode_args(const char **name, const uint8_t *data, size_t size, int *width,
                           int *height, uint8_t **pixels, sr_io_error *err);
 
+/* webp.c: a WebP image in memory as sr_decode_png decodes a PNG
+ * (SR_UNSUPPORTED in a build without libwebp), and whether it can. */
+sr_result sr__decode_webp(const char *name, const uint8_t *data, size_t size, int *width,
+                          int *height, uint8_t **pixels, sr_io_error *err);
+bool sr__io_have_webp(void);
+
 /* The image writers' common arguments: a path, RGBA8 pixels, a size of
  * 1..max_side a side and a stride of at least 4 width bytes.  Clears the
  * message; SR_INVALID_ARG with a message naming the path otherwise. */
