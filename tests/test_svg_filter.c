@@ -302,3 +302,26 @@ SR_TEST(huge_deviations_and_radii_end_quickly_or_are_refused)
     CHECK_STR_CONTAINS(msg, "t.svg:1:");
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
+
+SR_TEST(fe_image_draws_an_element_and_refuses_a_cycle)
+{
+    sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='20' height='10'>"
+                                "<defs><rect id='r' x='12' width='4' height='10' fill='#00f'/></defs>"
+                                "<filter id='f' filterUnits='userSpaceOnUse' x='0' y='0' width='20'"
+                                " height='10'><feImage href='#r'/></filter>"
+                                "<rect width='4' height='10' fill='#f00' filter='url(#f)'/></svg>",
+                                SR_OK, NULL, NULL, 0);
+    REQUIRE(fb);
+    CHECK_EQ(pixel(fb, 2, 5)[3], 0);   /* the element itself is replaced */
+    CHECK_EQ(pixel(fb, 14, 5)[2], 255); /* by the rect it names */
+    CHECK_EQ(pixel(fb, 14, 5)[3], 255);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    char msg[512];
+    fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='20' height='10'>\n"
+                "<filter id='f'>\n<feImage href='#g'/></filter>\n"
+                "<rect id='g' width='4' height='10' filter='url(#f)'/></svg>",
+                SR_BAD_FORMAT, NULL, msg, sizeof msg);
+    CHECK_STR_CONTAINS(msg, "t.svg:");
+    CHECK_STR_CONTAINS(msg, "reference cycle through \"#f\"");
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}

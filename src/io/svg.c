@@ -197,6 +197,7 @@ typedef struct svg_doc {
      * the next shape painted with the same element keeps its stops. */
     svg_gradient *grad;
     const svg_node *grad_server;
+    const struct frame *filter_frame; /* of the filter being run (feImage draws in it) */
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
@@ -3690,12 +3691,49 @@ static bool filter_budget(void *host, double work)
     return work_within_budget(host, work);
 }
 
+static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
+
+/* feImage href="#id": the element drawn as a use of it would be, in the
+ * filtered element's user space; a reference back into what is being
+ * drawn (the filtered element, the filter) is a cycle, refused. */
+static bool filter_draw(void *host, const svg_node *at, const char *href, uint8_t *out)
+{
+    svg_doc *doc = host;
+    svg_node *el = reference(doc, href, NULL);
+    const frame *f = doc->filter_frame;
+    if (!el || !f) {
+        filter_warn(doc, at, "feImage reference (transparent black)", href);
+        return true;
+    }
+    doc->line = at->line;
+    if (el->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "feImage: reference cycle through \"%s\"", href);
+        return false;
+    }
+    if (doc->layers == MAX_LAYERS) {
+        filter_warn(doc, at, "nesting of layers", "beyond 8 (feImage skipped)");
+        return true;
+    }
+    frame ef = { .m = f->m, .st = el->parent ? ancestor_style(doc, el->parent) : doc->initial,
+                 .vp_w = f->vp_w, .vp_h = f->vp_h };
+    sr_framebuffer *under = doc->fb, *top = open_layer(doc);
+    if (!top) {
+        return false;
+    }
+    draw_node(doc, el, &ef);
+    close_layer(doc, under);
+    int w = sr_framebuffer_width(top), h = sr_framebuffer_height(top);
+    memcpy(out, sr_framebuffer_pixels(top), (size_t)w * (size_t)h * 4);
+    sr_destroy_framebuffer(doc->ctx, top);
+    return doc->status == SR_OK;
+}
+
 /* The element's filter on its layer (f: its frame, box: its bounding
  * box in that user space). */
 static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, const double box[4])
 {
     int w = sr_framebuffer_width(layer), h = sr_framebuffer_height(layer);
-    if (!work_within_budget(doc, (double)w * h * 4)) {
+    if (!work_within_budget(doc, (double)w * h)) {
         return;
     }
     svg_node *filter = (svg_node *)f->st.filter;
@@ -3711,17 +3749,28 @@ static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, co
         return;
     }
     memcpy(px, sr_framebuffer_pixels(layer), bytes);
-    svg_filter_job job = { .filter = filter, .pixels = px,
+    sr_rgba paints[2] = { { 0, 0, 0, 0 }, { 0, 0, 0, 0 } };
+    const paint *pp[2] = { &f->st.fill, &f->st.stroke };
+    for (int i = 0; i < 2; i++) {
+        if (pp[i]->kind == SVG_PAINT_COLOR || pp[i]->kind == SVG_PAINT_CURRENT) {
+            paints[i] = pp[i]->kind == SVG_PAINT_COLOR ? pp[i]->color : f->st.color;
+            paints[i].a *= (float)(i ? f->st.stroke_opacity : f->st.fill_opacity);
+        }
+    }
+    svg_filter_job job = { .filter = filter, .pixels = px, .fill = paints[0], .stroke = paints[1],
                            .width = w, .height = h,
                            .m = { f->m.a, f->m.b, f->m.c, f->m.d, f->m.e, f->m.f },
                            .bbox = { box[0], box[1], box[2], box[3] },
                            .vp_w = f->vp_w, .vp_h = f->vp_h, .ctx = doc->ctx, .host = doc,
                            .warn = filter_warn, .fail = filter_fail, .style = filter_style,
-                           .budget = filter_budget };
+                           .budget = filter_budget, .draw = filter_draw };
     unsigned long line = doc->line;
+    const frame *outer = doc->filter_frame;
+    doc->filter_frame = f;
     filter->active = true;
     svg_apply_filter(&job);
     filter->active = false;
+    doc->filter_frame = outer;
     doc->line = line;
     if (doc->status == SR_OK) {
         sr_result r = sr_write_pixels(doc->ctx, layer, 0, 0, w, h, px, (size_t)w * 4);

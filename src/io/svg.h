@@ -178,6 +178,8 @@ typedef struct svg_filter_job {
     double m[6];                 /* user space -> pixels: a b c d e f */
     double bbox[4];              /* the element's x0 y0 x1 y1 in user space (empty: x1 <= x0) */
     double vp_w, vp_h;           /* the viewport, for percentages */
+    sr_rgba fill, stroke;        /* FillPaint, StrokePaint: a flat color (transparent: none,
+                                  * a paint server) */
     sr_context *ctx;
     void *host;                  /* the reader's document, handed to the calls below */
     /* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", at the node's line */
@@ -187,6 +189,11 @@ typedef struct svg_filter_job {
     svg_fe_style (*style)(void *host, const svg_node *fe);
     /* false after reporting that `work` more pixel operations pass the budget */
     bool (*budget)(void *host, double work);
+    /* feImage: the element `href` names ("#id") drawn in the filtered
+     * element's user space into out (RGBA8 straight, width x height,
+     * cleared; left so when it names nothing drawable, warned); false
+     * after a failure */
+    bool (*draw)(void *host, const svg_node *at, const char *href, uint8_t *out);
 } svg_filter_job;
 
 /* Run the filter's primitives on the layer (SVG 1.1 filter effects, in

@@ -38,13 +38,13 @@ typedef struct fctx {
     bool obb;                    /* primitiveUnits="objectBoundingBox" */
     double bw, bh;               /* the bounding box's size (user units) */
     double sx, sy;               /* pixels per user unit along x and y */
-    fimg source, source_alpha, empty;
+    fimg source, source_alpha, empty, fill, stroke;
     bool failed;
 } fctx;
 
 /* Input names that are not results: SourceGraphic, SourceAlpha, the
  * transparent black of the unsupported ones. */
-enum { IN_SOURCE = -1, IN_SOURCE_ALPHA = -2, IN_EMPTY = -3 };
+enum { IN_SOURCE = -1, IN_SOURCE_ALPHA = -2, IN_EMPTY = -3, IN_FILL = -5, IN_STROKE = -6 };
 
 static const char *fattr(const svg_node *n, const char *name)
 {
@@ -298,32 +298,54 @@ static float *new_pixels(fctx *fc, const svg_node *at)
     return p;
 }
 
-/* SourceGraphic and SourceAlpha: the layer's pixels in the region. */
+/* The region's part of an RGBA8 straight-alpha layer, premultiplied. */
+static void from_layer(const fctx *fc, const uint8_t *px, float *out)
+{
+    for (int y = 0; y < fc->rh; y++) {
+        const uint8_t *s = px + ((size_t)(y + fc->ry) * fc->job->width + fc->rx) * 4;
+        float *d = out + (size_t)y * fc->rw * 4;
+        for (int x = 0; x < fc->rw; x++, s += 4, d += 4) {
+            float al = s[3] / 255.0f;
+            for (int c = 0; c < 3; c++) {
+                d[c] = s[c] / 255.0f * al;
+            }
+            d[3] = al;
+        }
+    }
+}
+
+static void premultiplied(sr_rgba c, bool srgb, float out[4]);
+static void flood(fctx *fc, float *out, const float color[4]);
+
+/* SourceGraphic and SourceAlpha: the layer's pixels in the region;
+ * FillPaint and StrokePaint: the element's flat colors over it. */
 static bool make_sources(fctx *fc)
 {
     const svg_node *f = fc->job->filter;
     fc->source.p = new_pixels(fc, f);
     fc->source_alpha.p = new_pixels(fc, f);
     fc->empty.p = new_pixels(fc, f);
+    fc->fill.p = new_pixels(fc, f);
+    fc->stroke.p = new_pixels(fc, f);
     if (fc->failed) {
         return false;
     }
+    float paint[4];
+    premultiplied(fc->job->fill, true, paint);
+    flood(fc, fc->fill.p, paint);
+    premultiplied(fc->job->stroke, true, paint);
+    flood(fc, fc->stroke.p, paint);
     int whole[4] = { 0, 0, fc->rw, fc->rh };
     memcpy(fc->source.sub, whole, sizeof whole);
     memcpy(fc->source_alpha.sub, whole, sizeof whole);
     memcpy(fc->empty.sub, whole, sizeof whole);
+    memcpy(fc->fill.sub, whole, sizeof whole);
+    memcpy(fc->stroke.sub, whole, sizeof whole);
     fc->source.srgb = fc->source_alpha.srgb = fc->empty.srgb = true;
-    for (int y = 0; y < fc->rh; y++) {
-        const uint8_t *s = fc->job->pixels + ((size_t)(y + fc->ry) * fc->job->width + fc->rx) * 4;
-        float *d = fc->source.p + (size_t)y * fc->rw * 4;
-        float *a = fc->source_alpha.p + (size_t)y * fc->rw * 4;
-        for (int x = 0; x < fc->rw; x++, s += 4, d += 4, a += 4) {
-            float al = s[3] / 255.0f;
-            for (int c = 0; c < 3; c++) {
-                d[c] = s[c] / 255.0f * al;
-            }
-            d[3] = a[3] = al;
-        }
+    fc->fill.srgb = fc->stroke.srgb = true;
+    from_layer(fc, fc->job->pixels, fc->source.p);
+    for (size_t i = 0; i < fc->n; i++) {
+        fc->source_alpha.p[i * 4 + 3] = fc->source.p[i * 4 + 3];
     }
     return true;
 }
@@ -719,6 +741,34 @@ static void tile(fctx *fc, const fimg *in, float *out)
     }
 }
 
+/* feImage of an element of the document ("#id"), drawn by the reader;
+ * an image file or data: URI is not read (transparent black, warned). */
+static void image(fctx *fc, const svg_node *n, fimg *out)
+{
+    const char *href = fattr(n, "href");
+    if (!href) {
+        href = fattr(n, "xlink:href");
+    }
+    if (!href || href[0] != '#') {
+        fc->job->warn(fc->job->host, n, "feImage of a picture (transparent black)",
+                      href ? href : "");
+        return;
+    }
+    size_t bytes = (size_t)fc->job->width * (size_t)fc->job->height * 4;
+    uint8_t *px = calloc(bytes, 1);
+    if (!px) {
+        fail(fc, n, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    if (fc->job->draw(fc->job->host, n, href, px)) {
+        from_layer(fc, px, out->p);
+        out->srgb = true;
+    } else {
+        fc->failed = true;
+    }
+    free(px);
+}
+
 /* ---- the graph ------------------------------------------------------------------- */
 
 static const char *const primitives[] = {
@@ -751,8 +801,10 @@ static int resolve(fctx *fc, const prim *p, int i, const svg_node *at, const cha
         if (strcmp(name, "SourceAlpha") == 0) {
             return IN_SOURCE_ALPHA;
         }
-        if (strcmp(name, "BackgroundImage") == 0 || strcmp(name, "BackgroundAlpha") == 0 ||
-            strcmp(name, "FillPaint") == 0 || strcmp(name, "StrokePaint") == 0) {
+        if (strcmp(name, "FillPaint") == 0 || strcmp(name, "StrokePaint") == 0) {
+            return name[0] == 'F' ? IN_FILL : IN_STROKE; /* as both references: a flat color */
+        }
+        if (strcmp(name, "BackgroundImage") == 0 || strcmp(name, "BackgroundAlpha") == 0) {
             fc->job->warn(fc->job->host, at, "filter input (transparent black)", name);
             return IN_EMPTY;
         }
@@ -770,7 +822,9 @@ static fimg *image_of(fctx *fc, fimg *res, int k)
 {
     return k == IN_SOURCE ? &fc->source
          : k == IN_SOURCE_ALPHA ? &fc->source_alpha
-         : k == IN_EMPTY ? &fc->empty : &res[k];
+         : k == IN_EMPTY ? &fc->empty
+         : k == IN_FILL ? &fc->fill
+         : k == IN_STROKE ? &fc->stroke : &res[k];
 }
 
 /* The default subregion: the union of the inputs' when all are results,
@@ -824,7 +878,7 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
     default_sub(fc, res, ins, n_ins, def);
     subregion(fc, n, def, out->sub);
     out->p = new_pixels(fc, n);
-    if (!out->p || !fc->job->budget(fc->job->host, (double)fc->n * 8 * (n_ins + 1))) {
+    if (!out->p || !fc->job->budget(fc->job->host, (double)fc->n * (n_ins + 1))) {
         fc->failed = true;
         return;
     }
@@ -887,6 +941,8 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         }
         free(t);
         free(u);
+    } else if (is(n, "feImage")) {
+        image(fc, n, out);
     } else {
         fc->job->warn(fc->job->host, n, "filter primitive (transparent black)", n->name);
     }
@@ -993,6 +1049,8 @@ void svg_apply_filter(const svg_filter_job *job)
     free(fc.source.p);
     free(fc.source_alpha.p);
     free(fc.empty.p);
+    free(fc.fill.p);
+    free(fc.stroke.p);
     free(p);
     free(res);
     free(last_use);
