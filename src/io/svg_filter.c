@@ -317,37 +317,39 @@ static void from_layer(const fctx *fc, const uint8_t *px, float *out)
 static void premultiplied(sr_rgba c, bool srgb, float out[4]);
 static void flood(fctx *fc, float *out, const float color[4]);
 
-/* SourceGraphic and SourceAlpha: the layer's pixels in the region;
- * FillPaint and StrokePaint: the element's flat colors over it. */
-static bool make_sources(fctx *fc)
+/* A standard input, made when first read: SourceGraphic and SourceAlpha
+ * from the layer's pixels in the region, FillPaint and StrokePaint the
+ * element's flat colors over it, or transparent black; NULL after a
+ * failure. */
+static fimg *standard(fctx *fc, int k)
 {
-    const svg_node *f = fc->job->filter;
-    fc->source.p = new_pixels(fc, f);
-    fc->source_alpha.p = new_pixels(fc, f);
-    fc->empty.p = new_pixels(fc, f);
-    fc->fill.p = new_pixels(fc, f);
-    fc->stroke.p = new_pixels(fc, f);
-    if (fc->failed) {
-        return false;
+    fimg *im = k == IN_SOURCE ? &fc->source
+             : k == IN_SOURCE_ALPHA ? &fc->source_alpha
+             : k == IN_FILL ? &fc->fill
+             : k == IN_STROKE ? &fc->stroke : &fc->empty;
+    if (im->p) {
+        return im;
     }
-    float paint[4];
-    premultiplied(fc->job->fill, true, paint);
-    flood(fc, fc->fill.p, paint);
-    premultiplied(fc->job->stroke, true, paint);
-    flood(fc, fc->stroke.p, paint);
+    im->p = new_pixels(fc, fc->job->filter);
+    if (!im->p) {
+        return NULL;
+    }
     int whole[4] = { 0, 0, fc->rw, fc->rh };
-    memcpy(fc->source.sub, whole, sizeof whole);
-    memcpy(fc->source_alpha.sub, whole, sizeof whole);
-    memcpy(fc->empty.sub, whole, sizeof whole);
-    memcpy(fc->fill.sub, whole, sizeof whole);
-    memcpy(fc->stroke.sub, whole, sizeof whole);
-    fc->source.srgb = fc->source_alpha.srgb = fc->empty.srgb = true;
-    fc->fill.srgb = fc->stroke.srgb = true;
-    from_layer(fc, fc->job->pixels, fc->source.p);
-    for (size_t i = 0; i < fc->n; i++) {
-        fc->source_alpha.p[i * 4 + 3] = fc->source.p[i * 4 + 3];
+    memcpy(im->sub, whole, sizeof whole);
+    im->srgb = true;
+    float paint[4];
+    if (k == IN_SOURCE || k == IN_SOURCE_ALPHA) {
+        from_layer(fc, fc->job->pixels, im->p);
     }
-    return true;
+    if (k == IN_SOURCE_ALPHA) {
+        for (size_t i = 0; i < fc->n * 4; i += 4) {
+            im->p[i] = im->p[i + 1] = im->p[i + 2] = 0;
+        }
+    } else if (k == IN_FILL || k == IN_STROKE) {
+        premultiplied(k == IN_FILL ? fc->job->fill : fc->job->stroke, true, paint);
+        flood(fc, im->p, paint);
+    }
+    return im;
 }
 
 /* Zero outside the subregion. */
@@ -818,13 +820,10 @@ static int resolve(fctx *fc, const prim *p, int i, const svg_node *at, const cha
     return i > 0 ? i - 1 : IN_SOURCE;
 }
 
+/* An input's image; NULL after a failure. */
 static fimg *image_of(fctx *fc, fimg *res, int k)
 {
-    return k == IN_SOURCE ? &fc->source
-         : k == IN_SOURCE_ALPHA ? &fc->source_alpha
-         : k == IN_EMPTY ? &fc->empty
-         : k == IN_FILL ? &fc->fill
-         : k == IN_STROKE ? &fc->stroke : &res[k];
+    return k >= 0 ? &res[k] : standard(fc, k);
 }
 
 /* The default subregion: the union of the inputs' when all are results,
@@ -884,6 +883,9 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
     }
     fimg *a = n_ins > 0 ? image_of(fc, res, ins[0]) : NULL;
     fimg *b = n_ins > 1 ? image_of(fc, res, ins[1]) : NULL;
+    if (fc->failed) {
+        return;
+    }
     if (!is(n, "feMerge")) {
         if (a) {
             convert(fc, a, st.srgb);
@@ -906,6 +908,9 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         for (const svg_node *c = n->first; c; c = c->next) {
             if (is(c, "feMergeNode")) {
                 fimg *m = image_of(fc, res, resolve(fc, p, i, c, fattr(c, "in")));
+                if (!m) {
+                    return;
+                }
                 convert(fc, m, st.srgb);
                 over(fc, m->p, out->p);
             }
@@ -922,6 +927,9 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         morphology(fc, n, a->p, out->p);
     } else if (is(n, "feTile")) {
         fimg *t = image_of(fc, res, p[i].in[0]);
+        if (!t) {
+            return;
+        }
         convert(fc, t, st.srgb);
         tile(fc, t, out->p);
     } else if (is(n, "feDropShadow")) {
@@ -1027,9 +1035,6 @@ void svg_apply_filter(const svg_filter_job *job)
             }
         }
         i++;
-    }
-    if (!fc.failed) {
-        make_sources(&fc);
     }
     for (i = 0; i < count && !fc.failed; i++) {
         run(&fc, p, res, i);
