@@ -14,17 +14,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The document drawn at its own size on transparent black, its result
+ * checked; warnings collected when warn is given, the message kept. */
 static sr_framebuffer *render(const char *svg, sr_result want, sr_test_warnings *warn,
                               char *msg, size_t n)
 {
+    sr_svg_desc d = { .name = "t.svg" };
+    if (warn) {
+        d.warn = sr_test_collect_warning;
+        d.warn_user = warn;
+    }
     sr_framebuffer *fb = NULL;
     sr_io_error err;
-    sr_result r = sr_render_svg(sr_test_ctx(), svg, strlen(svg),
-                                &(sr_svg_desc){ .name = "t.svg",
-                                                .warn = warn ? sr_test_collect_warning : NULL,
-                                                .warn_user = warn },
-                                &fb, NULL, &err);
-    CHECK_EQ(r, want);
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg), &d, &fb, NULL, &err), want);
     if (msg) {
         snprintf(msg, n, "%s", err.message);
     }
@@ -237,50 +239,42 @@ SR_TEST(a_flood_takes_its_color_and_opacity_in_either_space)
     }
 }
 
+/* The drawing's alpha at (x, y) and a warning that names `warned`. */
+static void check_broken(const char *body, int x, int y, int alpha, const char *warned)
+{
+    char svg[1024];
+    snprintf(svg, sizeof svg,
+             "<svg xmlns='http://www.w3.org/2000/svg' width='20' height='10'>%s</svg>", body);
+    sr_test_warnings w = { 0 };
+    sr_framebuffer *fb = render(svg, SR_OK, &w, NULL, 0);
+    if (fb) {
+        CHECK_EQ(pixel(fb, x, y)[3], alpha);
+        CHECK_STR_CONTAINS(w.text, warned);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
 SR_TEST(broken_filters_do_what_the_docs_say)
 {
-    sr_test_warnings w = { 0 };
     /* a missing filter: the element is not drawn (SVG 1.1, resvg) */
-    sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>"
-                                "<rect width='10' height='10' filter='url(#none)'/></svg>",
-                                SR_OK, &w, NULL, 0);
-    REQUIRE(fb);
-    CHECK_EQ(pixel(fb, 5, 5)[3], 0);
-    CHECK_STR_CONTAINS(w.text, "url(#none)");
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    check_broken("<rect width='10' height='10' filter='url(#none)'/>", 5, 5, 0, "url(#none)");
     /* an empty filter: not drawn; an unknown primitive: left out */
-    memset(&w, 0, sizeof w);
-    fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='20' height='10'>"
-                "<filter id='e'/><filter id='u'><feFoo/><feOffset dx='2'/></filter>"
-                "<rect width='8' height='10' filter='url(#e)'/>"
-                "<rect x='10' width='8' height='10' filter='url(#u)'/></svg>",
-                SR_OK, &w, NULL, 0);
-    REQUIRE(fb);
-    CHECK_EQ(pixel(fb, 4, 5)[3], 0);
-    CHECK_EQ(pixel(fb, 11, 5)[3], 0);  /* moved 2 to the right */
-    CHECK_EQ(pixel(fb, 12, 5)[3], 255);
-    CHECK_STR_CONTAINS(w.text, "feFoo");
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
-    /* an input naming no result: the previous result (Filter Effects 1, resvg) */
-    memset(&w, 0, sizeof w);
-    fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='20' height='10'>"
-                "<filter id='f'><feOffset in='nothing' dx='2'/></filter>"
-                "<rect width='8' height='10' filter='url(#f)'/></svg>",
-                SR_OK, &w, NULL, 0);
-    REQUIRE(fb);
-    CHECK_EQ(pixel(fb, 8, 5)[3], 255); /* the region ends at 8.8 */
-    CHECK_STR_CONTAINS(w.text, "nothing");
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    static const char filters[] = "<filter id='e'/><filter id='u'><feFoo/><feOffset dx='2'/>"
+                                  "</filter><rect x='10' width='8' height='10' filter='url(#u)'/>";
+    char body[512];
+    snprintf(body, sizeof body, "%s<rect width='8' height='10' filter='url(#e)'/>", filters);
+    check_broken(body, 4, 5, 0, "feFoo");
+    check_broken(body, 11, 5, 0, "feFoo"); /* moved 2 to the right */
+    check_broken(body, 12, 5, 255, "feFoo");
+    /* an input naming no result: the previous result (Filter Effects 1, resvg);
+     * the region ends at 8.8 */
+    check_broken("<filter id='f'><feOffset in='nothing' dx='2'/></filter>"
+                 "<rect width='8' height='10' filter='url(#f)'/>",
+                 8, 5, 255, "nothing");
     /* BackgroundImage: transparent black, with a warning */
-    memset(&w, 0, sizeof w);
-    fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='20' height='10'>"
-                "<filter id='f'><feMerge><feMergeNode in='BackgroundImage'/></feMerge></filter>"
-                "<rect width='8' height='10' filter='url(#f)'/></svg>",
-                SR_OK, &w, NULL, 0);
-    REQUIRE(fb);
-    CHECK_EQ(pixel(fb, 4, 5)[3], 0);
-    CHECK_STR_CONTAINS(w.text, "BackgroundImage");
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    check_broken("<filter id='f'><feMerge><feMergeNode in='BackgroundImage'/></feMerge>"
+                 "</filter><rect width='8' height='10' filter='url(#f)'/>",
+                 4, 5, 0, "BackgroundImage");
 }
 
 SR_TEST(huge_deviations_and_radii_end_quickly_or_are_refused)

@@ -739,6 +739,30 @@ static bool parse_paint_order(const char *v, style *st)
     return true;
 }
 
+/* A color property (stop-color, flood-color): a color or currentColor. */
+static void color_property(svg_doc *doc, const style *st, const char *name, const char *v,
+                           sr_rgba *out)
+{
+    sr_rgba c;
+    svg_paint_kind k = svg_parse_color(v, &c);
+    if (k == SVG_PAINT_COLOR || k == SVG_PAINT_CURRENT) {
+        *out = k == SVG_PAINT_COLOR ? c : st->color;
+    } else {
+        warn_once(doc, name, v);
+    }
+}
+
+/* An opacity property (stop-opacity, flood-opacity), clamped to 0..1. */
+static void unit_property(svg_doc *doc, const char *name, const char *v, double *out)
+{
+    double num;
+    if (parse_unit_number(v, &num)) {
+        *out = clamp01(num);
+    } else {
+        warn_once(doc, name, v);
+    }
+}
+
 /* filter, flood-color, flood-opacity, color-interpolation-filters. */
 static void filter_property(svg_doc *doc, style *st, const char *name, const char *v)
 {
@@ -754,20 +778,9 @@ static void filter_property(svg_doc *doc, style *st, const char *name, const cha
             warn_once(doc, "filter", v); /* CSS filter functions: drawn unfiltered */
         }
     } else if (strcmp(name, "flood-color") == 0) {
-        sr_rgba c;
-        svg_paint_kind k = svg_parse_color(v, &c);
-        if (k == SVG_PAINT_COLOR || k == SVG_PAINT_CURRENT) {
-            st->flood_color = k == SVG_PAINT_COLOR ? c : st->color;
-        } else {
-            warn_once(doc, name, v);
-        }
+        color_property(doc, st, name, v, &st->flood_color);
     } else if (strcmp(name, "flood-opacity") == 0) {
-        double num;
-        if (parse_unit_number(v, &num)) {
-            st->flood_opacity = clamp01(num);
-        } else {
-            warn_once(doc, name, v);
-        }
+        unit_property(doc, name, v, &st->flood_opacity);
     } else if (strcmp(v, "sRGB") == 0 || strcmp(v, "linearRGB") == 0 || strcmp(v, "auto") == 0) {
         st->filters_srgb = v[0] == 's';
     } else {
@@ -825,19 +838,9 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     if (strcmp(name, "fill") == 0 || strcmp(name, "stroke") == 0) {
         parse_paint(doc, name[0] == 'f' ? &st->fill : &st->stroke, v);
     } else if (strcmp(name, "stop-color") == 0) {
-        sr_rgba c;
-        svg_paint_kind k = svg_parse_color(v, &c);
-        if (k == SVG_PAINT_COLOR || k == SVG_PAINT_CURRENT) {
-            st->stop_color = k == SVG_PAINT_COLOR ? c : st->color;
-        } else {
-            warn_once(doc, "stop-color", v);
-        }
+        color_property(doc, st, name, v, &st->stop_color);
     } else if (strcmp(name, "stop-opacity") == 0) {
-        if (parse_unit_number(v, &num)) {
-            st->stop_opacity = clamp01(num);
-        } else {
-            warn_once(doc, name, v);
-        }
+        unit_property(doc, name, v, &st->stop_opacity);
     } else if (strcmp(name, "color") == 0) {
         sr_rgba c;
         svg_paint_kind k = svg_parse_color(v, &c);
