@@ -3699,11 +3699,22 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
 /* feImage href="#id": the element drawn as a use of it would be, in the
  * filtered element's user space; a reference back into what is being
  * drawn (the filtered element, the filter) is a cycle, refused. */
-static bool filter_draw(void *host, const svg_node *at, const char *href, uint8_t *out)
+static bool filter_draw(void *host, const svg_node *at, const char *href, const double rect[4],
+                        uint8_t *out)
 {
     svg_doc *doc = host;
-    svg_node *el = reference(doc, href, NULL);
     const frame *f = doc->filter_frame;
+    /* a picture: drawn as an <image> of the same href on the rectangle */
+    char box[4][32];
+    for (int i = 0; i < 4; i++) {
+        snprintf(box[i], sizeof box[i], "%.17g", rect[i]);
+    }
+    const char *par = attr(at->atts, "preserveAspectRatio");
+    const char *atts[] = { "href", href, "x", box[0], "y", box[1], "width", box[2],
+                           "height", box[3], "preserveAspectRatio", par ? par : "xMidYMid",
+                           NULL };
+    svg_node picture = { .name = "image", .atts = atts, .line = at->line };
+    svg_node *el = href[0] == '#' ? reference(doc, href, NULL) : &picture;
     if (!el || !f) {
         filter_warn(doc, at, "feImage reference (transparent black)", href);
         return true;
@@ -3723,7 +3734,11 @@ static bool filter_draw(void *host, const svg_node *at, const char *href, uint8_
     if (!top) {
         return false;
     }
-    draw_node(doc, el, &ef);
+    if (el == &picture) {
+        draw_image(doc, el, &ef);
+    } else {
+        draw_node(doc, el, &ef);
+    }
     close_layer(doc, under);
     int w = sr_framebuffer_width(top), h = sr_framebuffer_height(top);
     memcpy(out, sr_framebuffer_pixels(top), (size_t)w * (size_t)h * 4);

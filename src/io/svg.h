@@ -189,11 +189,13 @@ typedef struct svg_filter_job {
     svg_fe_style (*style)(void *host, const svg_node *fe);
     /* false after reporting that `work` more pixel operations pass the budget */
     bool (*budget)(void *host, double work);
-    /* feImage: the element `href` names ("#id") drawn in the filtered
+    /* feImage: the element `href` names ("#id"), or the picture it names
+     * fitted into rect (x y w h, user space), drawn in the filtered
      * element's user space into out (RGBA8 straight, width x height,
-     * cleared; left so when it names nothing drawable, warned); false
-     * after a failure */
-    bool (*draw)(void *host, const svg_node *at, const char *href, uint8_t *out);
+     * cleared; left so when nothing is drawn, warned); false after a
+     * failure */
+    bool (*draw)(void *host, const svg_node *at, const char *href, const double rect[4],
+                 uint8_t *out);
 } svg_filter_job;
 
 /* Run the filter's primitives on the layer (SVG 1.1 filter effects, in

@@ -927,26 +927,29 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
     free(t);
 }
 
-/* feImage of an element of the document ("#id"), drawn by the reader;
- * an image file or data: URI is not read (transparent black, warned). */
+/* feImage: an element of the document ("#id") or a picture (a file next
+ * to the document or a data: URI) fitted into the subregion, drawn by the
+ * reader. */
 static void image(fctx *fc, const svg_node *n, fimg *out)
 {
     const char *href = fattr(n, "href");
     if (!href) {
         href = fattr(n, "xlink:href");
     }
-    if (!href || href[0] != '#') {
-        fc->job->warn(fc->job->host, n, "feImage of a picture (transparent black)",
-                      href ? href : "");
+    if (!href) {
         return;
     }
+    double r[4];
+    memcpy(r, fc->region, sizeof r);
+    bool given;
+    region_attrs(fc, n, fc->obb, r, &given);
     size_t bytes = (size_t)fc->job->width * (size_t)fc->job->height * 4;
     uint8_t *px = calloc(bytes, 1);
     if (!px) {
         fail(fc, n, SR_OUT_OF_MEMORY, "out of memory");
         return;
     }
-    if (fc->job->draw(fc->job->host, n, href, px)) {
+    if (fc->job->draw(fc->job->host, n, href, r, px)) {
         from_layer(fc, px, out->p);
         out->srgb = true;
     } else {
