@@ -185,6 +185,13 @@ SR_TEST(a_blur_of_sigma_zero_and_an_offset_of_zero_are_the_identity)
     check_same("<feOffset dx='3' dy='-2'/><feOffset dx='-3' dy='2'/>", shape);
     /* sRGB and linearRGB and back */
     check_same("<feColorMatrix type='saturate' values='1'/>", shape);
+    /* a kernel of one 1 at its target (turned half a turn), a displacement
+     * of scale 0 */
+    check_same("<feConvolveMatrix kernelMatrix='0 0 0 0 1 0 0 0 0'/>", shape);
+    check_same("<feConvolveMatrix order='2' kernelMatrix='1 0 0 0' targetX='1' targetY='1'"
+               " edgeMode='none'/>",
+               shape);
+    check_same("<feTurbulence result='t'/><feDisplacementMap in='SourceGraphic' in2='t'/>", shape);
 }
 
 SR_TEST(an_offset_by_whole_pixels_shifts_exactly)
@@ -294,6 +301,10 @@ SR_TEST(broken_filters_do_what_the_docs_say)
     check_broken("<filter id='f'><feOffset in='nothing' dx='2'/></filter>"
                  "<rect width='8' height='10' filter='url(#f)'/>",
                  8, 5, 255, "nothing");
+    /* a kernel of the wrong size: transparent black, with a warning */
+    check_broken("<filter id='f'><feConvolveMatrix kernelMatrix='1 2 3'/></filter>"
+                 "<rect width='8' height='10' filter='url(#f)'/>",
+                 4, 5, 0, "1 2 3");
     /* BackgroundImage: transparent black, with a warning */
     check_broken("<filter id='f'><feMerge><feMergeNode in='BackgroundImage'/></feMerge>"
                  "</filter><rect width='8' height='10' filter='url(#f)'/>",

@@ -743,6 +743,109 @@ static void tile(fctx *fc, const fimg *in, float *out)
     }
 }
 
+/* Kernels of feConvolveMatrix, at most this many values a side. */
+#define MAX_KERNEL_ORDER 64
+
+/* feConvolveMatrix on device pixels (the kernel turned half a turn, as
+ * SVG defines it), edges by edgeMode (duplicate by default); false when
+ * its attributes are in error (the result stays transparent black). */
+static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
+{
+    double ord[2];
+    pair_attr(fc, n, "order", 3, ord);
+    int ox = (int)ord[0], oy = (int)ord[1];
+    if (ord[0] != ox || ord[1] != oy || ox < 1 || oy < 1 || ox > MAX_KERNEL_ORDER ||
+        oy > MAX_KERNEL_ORDER) {
+        return false;
+    }
+    double *k = malloc(sizeof *k * (size_t)(ox * oy));
+    const char *kv = fattr(n, "kernelMatrix");
+    if (!k || !kv || numbers(kv, k, ox * oy) != ox * oy) {
+        free(k);
+        return false;
+    }
+    double sum = 0;
+    for (int i = 0; i < ox * oy; i++) {
+        sum += k[i];
+    }
+    double divisor = number_attr(fc, n, "divisor", sum == 0 ? 1 : sum);
+    double bias = number_attr(fc, n, "bias", 0);
+    int tx = (int)number_attr(fc, n, "targetX", ox / 2), ty = (int)number_attr(fc, n, "targetY", oy / 2);
+    const char *e = fattr(n, "edgeMode"), *pa = fattr(n, "preserveAlpha");
+    int edge = !e || strcmp(e, "duplicate") == 0 ? 1 : strcmp(e, "wrap") == 0 ? 2 : 0;
+    bool keep_alpha = pa && strcmp(pa, "true") == 0;
+    if (divisor == 0 || tx < 0 || tx >= ox || ty < 0 || ty >= oy ||
+        !fc->job->budget(fc->job->host, (double)fc->n * ox * oy)) {
+        free(k);
+        return false;
+    }
+    for (int y = 0; y < fc->rh; y++) {
+        for (int x = 0; x < fc->rw; x++) {
+            double acc[4] = { 0, 0, 0, 0 };
+            for (int i = 0; i < oy; i++) {
+                for (int j = 0; j < ox; j++) {
+                    int sx = x - tx + j, sy = y - ty + i;
+                    if (sx < 0 || sy < 0 || sx >= fc->rw || sy >= fc->rh) {
+                        if (edge == 0) {
+                            continue;
+                        }
+                        sx = edge == 1 ? (sx < 0 ? 0 : sx >= fc->rw ? fc->rw - 1 : sx)
+                                       : ((sx % fc->rw) + fc->rw) % fc->rw;
+                        sy = edge == 1 ? (sy < 0 ? 0 : sy >= fc->rh ? fc->rh - 1 : sy)
+                                       : ((sy % fc->rh) + fc->rh) % fc->rh;
+                    }
+                    const float *p = in + ((size_t)sy * fc->rw + (size_t)sx) * 4;
+                    double w = k[(oy - i - 1) * ox + (ox - j - 1)];
+                    float a = p[3];
+                    for (int c = 0; c < 4; c++) {
+                        /* preserveAlpha: the straight colour is convolved */
+                        acc[c] += w * (keep_alpha && c < 3 ? (a > 0 ? p[c] / a : 0) : p[c]);
+                    }
+                }
+            }
+            float *d = out + ((size_t)y * fc->rw + x) * 4;
+            const float *src = in + ((size_t)y * fc->rw + x) * 4;
+            float a = keep_alpha ? src[3] : (float)fmin(fmax(acc[3] / divisor + bias, 0), 1);
+            for (int c = 0; c < 3; c++) {
+                float v = (float)(acc[c] / divisor + bias * (keep_alpha ? 1 : a));
+                d[c] = keep_alpha ? fminf(fmaxf(v, 0), 1) * a : fminf(fmaxf(v, 0), a);
+            }
+            d[3] = a;
+        }
+    }
+    free(k);
+    return true;
+}
+
+/* feDisplacementMap: each pixel taken from where the map's channels
+ * (straight values) point, scale user units for a full channel. */
+static void displace(fctx *fc, const svg_node *n, const float *in, const float *map, float *out)
+{
+    double scale = number_attr(fc, n, "scale", 0);
+    static const char *const sel[2] = { "xChannelSelector", "yChannelSelector" };
+    int ch[2];
+    for (int a = 0; a < 2; a++) {
+        const char *v = fattr(n, sel[a]);
+        ch[a] = !v || strcmp(v, "A") == 0 ? 3 : strcmp(v, "R") == 0 ? 0 : strcmp(v, "G") == 0 ? 1
+              : strcmp(v, "B") == 0 ? 2 : 3;
+    }
+    double kx = scale * fc->sx * (fc->obb ? fc->bw : 1), ky = scale * fc->sy * (fc->obb ? fc->bh : 1);
+    for (int y = 0; y < fc->rh; y++) {
+        for (int x = 0; x < fc->rw; x++) {
+            const float *m = map + ((size_t)y * fc->rw + x) * 4;
+            float a = m[3];
+            double vx = ch[0] == 3 ? a : a > 0 ? m[ch[0]] / a : 0;
+            double vy = ch[1] == 3 ? a : a > 0 ? m[ch[1]] / a : 0;
+            double sx = floor(x + kx * (vx - 0.5) + 0.5), sy = floor(y + ky * (vy - 0.5) + 0.5);
+            if (sx < 0 || sy < 0 || sx >= fc->rw || sy >= fc->rh) {
+                continue;
+            }
+            memcpy(out + ((size_t)y * fc->rw + x) * 4,
+                   in + ((size_t)sy * fc->rw + (size_t)sx) * 4, 4 * sizeof *out);
+        }
+    }
+}
+
 /* ---- feTurbulence: Perlin noise as SVG 1.1 specifies it ---------------------- */
 
 #define TURB_B 0x100            /* lattice size */
@@ -963,9 +1066,9 @@ static void image(fctx *fc, const svg_node *n, fimg *out)
 static const char *const primitives[] = {
     "feGaussianBlur", "feOffset", "feFlood", "feMerge", "feComposite", "feBlend",
     "feColorMatrix", "feDropShadow", "feComponentTransfer", "feMorphology", "feTile", "feImage",
-    "feTurbulence",
+    "feTurbulence", "feConvolveMatrix", "feDisplacementMap",
     /* known, not drawn: their result is transparent black, with a warning */
-    "feConvolveMatrix", "feDisplacementMap", "feDiffuseLighting",
+    "feDiffuseLighting",
     "feSpecularLighting", NULL,
 };
 
@@ -1075,7 +1178,11 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         return;
     }
     if (!is(n, "feMerge")) {
-        if (a) {
+        /* a displacement moves its image's pixels in whatever space they
+         * are: color-interpolation-filters applies to its map alone */
+        if (a && is(n, "feDisplacementMap")) {
+            out->srgb = a->srgb;
+        } else if (a) {
             convert(fc, a, st.srgb);
         }
         if (b) {
@@ -1139,6 +1246,14 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         free(u);
     } else if (is(n, "feImage")) {
         image(fc, n, out);
+    } else if (is(n, "feConvolveMatrix")) {
+        if (!convolve(fc, n, a->p, out->p)) {
+            memset(out->p, 0, fc->n * 4 * sizeof *out->p);
+            fc->job->warn(fc->job->host, n, "feConvolveMatrix in error (transparent black)",
+                          fattr(n, "kernelMatrix") ? fattr(n, "kernelMatrix") : "");
+        }
+    } else if (is(n, "feDisplacementMap")) {
+        displace(fc, n, a->p, b->p, out->p);
     } else if (is(n, "feTurbulence")) {
         turbulence(fc, n, out->sub, out->p);
     } else {
