@@ -113,6 +113,7 @@ typedef struct style {
     const svg_node *filter;  /* filter: url(#id) (not inherited), or NULL */
     bool filter_missing;     /* filter names no <filter>: the element is not drawn */
     sr_rgba flood_color;     /* flood-color (not inherited) */
+    sr_rgba lighting_color;  /* lighting-color (not inherited) */
     double flood_opacity;    /* flood-opacity (not inherited) */
     bool filters_srgb;       /* color-interpolation-filters: sRGB (else linearRGB) */
 } style;
@@ -503,7 +504,7 @@ static const char *const no_effect_props[] = {
     "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
     "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
     "shape-padding", "shape-margin", "shape-inside", "block-progression",
-    "lighting-color", "clip", NULL,
+    "clip", NULL,
 };
 
 static const struct { const char *name, *value; } initial_values[] = {
@@ -763,7 +764,8 @@ static void unit_property(svg_doc *doc, const char *name, const char *v, double 
     }
 }
 
-/* filter, flood-color, flood-opacity, color-interpolation-filters. */
+/* filter, flood-color, flood-opacity, lighting-color,
+ * color-interpolation-filters. */
 static void filter_property(svg_doc *doc, style *st, const char *name, const char *v)
 {
     if (strcmp(name, "filter") == 0) {
@@ -779,6 +781,8 @@ static void filter_property(svg_doc *doc, style *st, const char *name, const cha
         }
     } else if (strcmp(name, "flood-color") == 0) {
         color_property(doc, st, name, v, &st->flood_color);
+    } else if (strcmp(name, "lighting-color") == 0) {
+        color_property(doc, st, name, v, &st->lighting_color);
     } else if (strcmp(name, "flood-opacity") == 0) {
         unit_property(doc, name, v, &st->flood_opacity);
     } else if (strcmp(v, "sRGB") == 0 || strcmp(v, "linearRGB") == 0 || strcmp(v, "auto") == 0) {
@@ -831,6 +835,8 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             st->flood_color = p->flood_color;
         } else if (strcmp(name, "flood-opacity") == 0) {
             st->flood_opacity = p->flood_opacity;
+        } else if (strcmp(name, "lighting-color") == 0) {
+            st->lighting_color = p->lighting_color;
         }
         return true;
     }
@@ -870,7 +876,7 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     } else if (strcmp(name, "mask-type") == 0) {
         st->mask_alpha = strcmp(v, "alpha") == 0;
     } else if (strcmp(name, "filter") == 0 || strcmp(name, "flood-color") == 0 ||
-               strcmp(name, "flood-opacity") == 0 ||
+               strcmp(name, "flood-opacity") == 0 || strcmp(name, "lighting-color") == 0 ||
                strcmp(name, "color-interpolation-filters") == 0) {
         filter_property(doc, st, name, v);
     } else if (strcmp(name, "fill-rule") == 0 || strcmp(name, "clip-rule") == 0) {
@@ -1398,6 +1404,7 @@ static style ancestor_style(svg_doc *doc, const svg_node *m)
         st.filter_missing = false;
         st.flood_color = doc->initial.flood_color;
         st.flood_opacity = doc->initial.flood_opacity;
+        st.lighting_color = doc->initial.lighting_color;
         doc->inherit_from = &parent;
         apply_cascade(doc, chain[n], &st);
     }
@@ -3686,7 +3693,7 @@ static svg_fe_style filter_style(void *host, const svg_node *fe)
     style st = ancestor_style(host, fe);
     sr_rgba c = st.flood_color;
     c.a = (float)(c.a * st.flood_opacity);
-    return (svg_fe_style){ .flood = c, .srgb = st.filters_srgb };
+    return (svg_fe_style){ .flood = c, .lighting = st.lighting_color, .srgb = st.filters_srgb };
 }
 
 static bool filter_budget(void *host, double work)
@@ -3841,6 +3848,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     f.st.filter_missing = false;
     f.st.flood_color = doc->initial.flood_color;
     f.st.flood_opacity = doc->initial.flood_opacity;
+    f.st.lighting_color = doc->initial.lighting_color;
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
@@ -4040,6 +4048,7 @@ static style initial_style(void)
                     .fill_rule = SR_NONZERO, .stroke_width = 1,
                     .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
                     .miter_limit = 4, .flood_color = { 0, 0, 0, 1 }, .flood_opacity = 1,
+                    .lighting_color = { 1, 1, 1, 1 },
                     .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } };
 }
 

@@ -167,6 +167,7 @@ sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba 
 /* The properties of a filter primitive, cascaded (svg.c). */
 typedef struct svg_fe_style {
     sr_rgba flood;               /* flood-color, flood-opacity folded into its alpha */
+    sr_rgba lighting;            /* lighting-color */
     bool srgb;                   /* color-interpolation-filters: sRGB (else linearRGB) */
 } svg_fe_style;
 

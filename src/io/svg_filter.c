@@ -846,6 +846,164 @@ static void displace(fctx *fc, const svg_node *n, const float *in, const float *
     }
 }
 
+/* ---- lighting ---------------------------------------------------------------- */
+
+typedef struct light {
+    int kind;                    /* 0 distant, 1 point, 2 spot, -1 none */
+    double dir[3];               /* distant: towards the light */
+    double pos[3], at[3];        /* point and spot, in device pixels (z scaled alike) */
+    double spot_exp, cos_cone;   /* spot: specularExponent, cos(limitingConeAngle) or -2 */
+} light;
+
+/* The light source child of a lighting primitive, in device pixels. */
+static light light_of(fctx *fc, const svg_node *n)
+{
+    light l = { .kind = -1 };
+    const double *m = fc->job->m;
+    double zk = sqrt(fc->sx * fc->sy);
+    for (const svg_node *c = n->first; c; c = c->next) {
+        if (is(c, "feDistantLight")) {
+            double az = number_attr(fc, c, "azimuth", 0) * M_PI / 180;
+            double el = number_attr(fc, c, "elevation", 0) * M_PI / 180;
+            l = (light){ .kind = 0, .dir = { cos(az) * cos(el), sin(az) * cos(el), sin(el) } };
+            /* the direction turns and mirrors with the transform */
+            double dx = m[0] * l.dir[0] + m[2] * l.dir[1], dy = m[1] * l.dir[0] + m[3] * l.dir[1];
+            double len = hypot(dx, dy), flat = hypot(l.dir[0], l.dir[1]);
+            if (len > 0) {
+                l.dir[0] = dx / len * flat;
+                l.dir[1] = dy / len * flat;
+            }
+            return l;
+        }
+        if (is(c, "fePointLight") || is(c, "feSpotLight")) {
+            bool spot = is(c, "feSpotLight");
+            double p[3] = { number_attr(fc, c, "x", 0), number_attr(fc, c, "y", 0),
+                            number_attr(fc, c, "z", 0) };
+            double q[3] = { number_attr(fc, c, "pointsAtX", 0), number_attr(fc, c, "pointsAtY", 0),
+                            number_attr(fc, c, "pointsAtZ", 0) };
+            if (fc->obb) {
+                const double *b = fc->job->bbox;
+                double diag = sqrt((fc->bw * fc->bw + fc->bh * fc->bh) / 2);
+                p[0] = b[0] + p[0] * fc->bw;
+                p[1] = b[1] + p[1] * fc->bh;
+                p[2] *= diag;
+                q[0] = b[0] + q[0] * fc->bw;
+                q[1] = b[1] + q[1] * fc->bh;
+                q[2] *= diag;
+            }
+            l.kind = spot ? 2 : 1;
+            l.pos[0] = m[0] * p[0] + m[2] * p[1] + m[4];
+            l.pos[1] = m[1] * p[0] + m[3] * p[1] + m[5];
+            l.pos[2] = p[2] * zk;
+            l.at[0] = m[0] * q[0] + m[2] * q[1] + m[4];
+            l.at[1] = m[1] * q[0] + m[3] * q[1] + m[5];
+            l.at[2] = q[2] * zk;
+            l.spot_exp = number_attr(fc, c, "specularExponent", 1);
+            const char *cone = fattr(c, "limitingConeAngle");
+            l.cos_cone = cone ? cos(fabs(number_attr(fc, c, "limitingConeAngle", 90)) * M_PI / 180)
+                              : -2;
+            return l;
+        }
+    }
+    return l;
+}
+
+/* The input's alpha at (x, y), the edges repeated. */
+static double alpha_at(const fctx *fc, const float *in, int x, int y)
+{
+    x = x < 0 ? 0 : x >= fc->rw ? fc->rw - 1 : x;
+    y = y < 0 ? 0 : y >= fc->rh ? fc->rh - 1 : y;
+    return in[((size_t)y * fc->rw + x) * 4 + 3];
+}
+
+/* The surface normal's x and y (z is 1) from the alpha by SVG's Sobel
+ * kernels, which shrink at the image's edges: 2 / (span * weights). */
+static void normal(const fctx *fc, const float *in, int x, int y, double ss, double nrm[2])
+{
+    int xl = x > 0 ? x - 1 : x, xr = x < fc->rw - 1 ? x + 1 : x;
+    int yt = y > 0 ? y - 1 : y, yb = y < fc->rh - 1 ? y + 1 : y;
+    double gx = 0, gy = 0, wx = 0, wy = 0;
+    for (int d = -1; d <= 1; d++) {
+        double w = d == 0 ? 2 : 1;
+        if (y + d >= 0 && y + d < fc->rh) {
+            gx += w * (alpha_at(fc, in, xr, y + d) - alpha_at(fc, in, xl, y + d));
+            wx += w;
+        }
+        if (x + d >= 0 && x + d < fc->rw) {
+            gy += w * (alpha_at(fc, in, x + d, yb) - alpha_at(fc, in, x + d, yt));
+            wy += w;
+        }
+    }
+    nrm[0] = xr > xl ? -ss * 2 / ((xr - xl) * wx) * gx : 0;
+    nrm[1] = yb > yt ? -ss * 2 / ((yb - yt) * wy) * gy : 0;
+}
+
+/* feDiffuseLighting and feSpecularLighting: the input's alpha as a
+ * height field lit by its light source, in lighting-color. */
+static void lighting(fctx *fc, const svg_node *n, const svg_fe_style *st, const float *in,
+                     float *out)
+{
+    bool specular = is(n, "feSpecularLighting");
+    double ss = number_attr(fc, n, "surfaceScale", 1);
+    double kd = number_attr(fc, n, specular ? "specularConstant" : "diffuseConstant", 1);
+    double se = specular ? number_attr(fc, n, "specularExponent", 1) : 1;
+    light l = light_of(fc, n);
+    if (l.kind < 0 || kd < 0 || (specular && (se < 1 || se > 128))) {
+        fc->job->warn(fc->job->host, n, "lighting in error (transparent black)", n->name);
+        return;
+    }
+    /* lighting-color is taken as it is, whatever the space: both
+     * references do (and W3C's filters-light-* with them) */
+    float lc[4];
+    premultiplied(st->lighting, true, lc);
+    double s_dir[3] = { l.at[0] - l.pos[0], l.at[1] - l.pos[1], l.at[2] - l.pos[2] };
+    double s_len = sqrt(s_dir[0] * s_dir[0] + s_dir[1] * s_dir[1] + s_dir[2] * s_dir[2]);
+    for (int y = 0; y < fc->rh; y++) {
+        for (int x = 0; x < fc->rw; x++) {
+            double nv[3], L[3];
+            normal(fc, in, x, y, ss, nv);
+            nv[2] = 1;
+            double nl = sqrt(nv[0] * nv[0] + nv[1] * nv[1] + 1);
+            /* heights are surfaceScale times alpha in pixels, unscaled, as
+             * the normals are (both references agree) */
+            double z = ss * alpha_at(fc, in, x, y), k = 1;
+            if (l.kind == 0) {
+                memcpy(L, l.dir, sizeof L);
+            } else {
+                L[0] = l.pos[0] - (x + fc->rx);
+                L[1] = l.pos[1] - (y + fc->ry);
+                L[2] = l.pos[2] - z;
+                double len = sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2]);
+                for (int i = 0; i < 3 && len > 0; i++) {
+                    L[i] /= len;
+                }
+                if (l.kind == 2) {
+                    double c = s_len > 0 ? -(L[0] * s_dir[0] + L[1] * s_dir[1] + L[2] * s_dir[2]) / s_len
+                                         : 0;
+                    k = c <= 0 || c < l.cos_cone ? 0 : pow(c, l.spot_exp);
+                }
+            }
+            double f;
+            if (specular) {
+                double h[3] = { L[0], L[1], L[2] + 1 };
+                double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+                double nh = hl > 0 ? (nv[0] * h[0] + nv[1] * h[1] + h[2]) / (nl * hl) : 0;
+                f = kd * pow(fmax(nh, 0), se);
+            } else {
+                f = kd * fmax((nv[0] * L[0] + nv[1] * L[1] + L[2]) / nl, 0);
+            }
+            float *d = out + ((size_t)y * fc->rw + x) * 4;
+            float mx = 0;
+            for (int c = 0; c < 3; c++) {
+                d[c] = (float)fmin(f * k * lc[c], 1);
+                mx = fmaxf(mx, d[c]);
+            }
+            /* diffuse light is opaque; specular light is as opaque as it is bright */
+            d[3] = specular ? mx : 1;
+        }
+    }
+}
+
 /* ---- feTurbulence: Perlin noise as SVG 1.1 specifies it ---------------------- */
 
 #define TURB_B 0x100            /* lattice size */
@@ -1066,9 +1224,7 @@ static void image(fctx *fc, const svg_node *n, fimg *out)
 static const char *const primitives[] = {
     "feGaussianBlur", "feOffset", "feFlood", "feMerge", "feComposite", "feBlend",
     "feColorMatrix", "feDropShadow", "feComponentTransfer", "feMorphology", "feTile", "feImage",
-    "feTurbulence", "feConvolveMatrix", "feDisplacementMap",
-    /* known, not drawn: their result is transparent black, with a warning */
-    "feDiffuseLighting",
+    "feTurbulence", "feConvolveMatrix", "feDisplacementMap", "feDiffuseLighting",
     "feSpecularLighting", NULL,
 };
 
@@ -1254,6 +1410,8 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         }
     } else if (is(n, "feDisplacementMap")) {
         displace(fc, n, a->p, b->p, out->p);
+    } else if (is(n, "feDiffuseLighting") || is(n, "feSpecularLighting")) {
+        lighting(fc, n, &st, a->p, out->p);
     } else if (is(n, "feTurbulence")) {
         turbulence(fc, n, out->sub, out->p);
     } else {
