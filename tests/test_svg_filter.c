@@ -361,3 +361,45 @@ SR_TEST(fe_image_draws_an_element_and_refuses_a_cycle)
     CHECK_STR_CONTAINS(msg, "reference cycle through \"#f\"");
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
+
+/* Values at the ends of double's range: drawn or refused, never undefined
+ * behaviour (the sanitizer builds run this). */
+SR_TEST(values_at_the_ends_of_the_range_draw_or_are_refused)
+{
+    static const char *const prims[] = {
+        "<feConvolveMatrix order='1e30' kernelMatrix='1'/>",
+        "<feConvolveMatrix kernelMatrix='1 1 1 1 1 1 1 1 1' targetX='1e30' divisor='1e-300'"
+        " bias='1e308'/>",
+        "<feTurbulence baseFrequency='1e300' numOctaves='1e30' seed='1e300'/>",
+        "<feTurbulence baseFrequency='1e300 -1' stitchTiles='stitch'/>",
+        "<feTurbulence baseFrequency='0.5' stitchTiles='stitch' seed='-1e300'/>",
+        "<feTurbulence result='t'/><feDisplacementMap in='SourceGraphic' in2='t' scale='1e308'/>",
+        "<feMorphology radius='1e308'/>",
+        "<feOffset dx='1e308' dy='-1e308'/>",
+        "<feGaussianBlur stdDeviation='1e308 0'/>",
+        "<feComposite operator='arithmetic' k1='1e308' k2='-1e308' k3='1e308' k4='1e308'/>",
+        "<feComponentTransfer><feFuncR type='gamma' exponent='1e308' amplitude='1e308'/>"
+        "<feFuncA type='table' tableValues='1e308 -1e308'/></feComponentTransfer>",
+        "<feColorMatrix type='hueRotate' values='1e308'/>",
+        "<feDiffuseLighting surfaceScale='1e308'><fePointLight x='1e308' z='-1e308'/>"
+        "</feDiffuseLighting>",
+        "<feSpecularLighting specularExponent='128' specularConstant='1e308'>"
+        "<feSpotLight specularExponent='1e308' limitingConeAngle='1e308'/></feSpecularLighting>",
+        "<feDropShadow dx='1e308' stdDeviation='1e308'/>",
+    };
+    for (size_t i = 0; i < sizeof prims / sizeof prims[0]; i++) {
+        char svg[1024];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='20' height='20'>"
+                 "<filter id='f' x='-1e300' y='-1' width='1e308' height='3'>%s</filter>"
+                 "<rect width='10' height='10' transform='scale(1e-300 1e300)' filter='url(#f)'/>"
+                 "<rect width='10' height='10' filter='url(#f)'/></svg>",
+                 prims[i]);
+        sr_framebuffer *fb = NULL;
+        sr_io_error err;
+        sr_result r = sr_render_svg(sr_test_ctx(), svg, strlen(svg),
+                                    &(sr_svg_desc){ .name = "t.svg" }, &fb, NULL, &err);
+        CHECK(r == SR_OK || r == SR_TOO_LARGE || r == SR_BAD_FORMAT);
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+}

@@ -753,11 +753,11 @@ static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
 {
     double ord[2];
     pair_attr(fc, n, "order", 3, ord);
-    int ox = (int)ord[0], oy = (int)ord[1];
-    if (ord[0] != ox || ord[1] != oy || ox < 1 || oy < 1 || ox > MAX_KERNEL_ORDER ||
-        oy > MAX_KERNEL_ORDER) {
+    if (!(ord[0] >= 1 && ord[0] <= MAX_KERNEL_ORDER && ord[1] >= 1 &&
+          ord[1] <= MAX_KERNEL_ORDER) || ord[0] != floor(ord[0]) || ord[1] != floor(ord[1])) {
         return false;
     }
+    int ox = (int)ord[0], oy = (int)ord[1];
     double *k = malloc(sizeof *k * (size_t)(ox * oy));
     const char *kv = fattr(n, "kernelMatrix");
     if (!k || !kv || numbers(kv, k, ox * oy) != ox * oy) {
@@ -770,7 +770,8 @@ static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
     }
     double divisor = number_attr(fc, n, "divisor", sum == 0 ? 1 : sum);
     double bias = number_attr(fc, n, "bias", 0);
-    int tx = (int)number_attr(fc, n, "targetX", ox / 2), ty = (int)number_attr(fc, n, "targetY", oy / 2);
+    double txd = number_attr(fc, n, "targetX", ox / 2), tyd = number_attr(fc, n, "targetY", oy / 2);
+    int tx = txd >= 0 && txd < ox ? (int)txd : -1, ty = tyd >= 0 && tyd < oy ? (int)tyd : -1;
     const char *e = fattr(n, "edgeMode"), *pa = fattr(n, "preserveAlpha");
     int edge = !e || strcmp(e, "duplicate") == 0 ? 1 : strcmp(e, "wrap") == 0 ? 2 : 0;
     bool keep_alpha = pa && strcmp(pa, "true") == 0;
@@ -837,7 +838,7 @@ static void displace(fctx *fc, const svg_node *n, const float *in, const float *
             double vx = ch[0] == 3 ? a : a > 0 ? m[ch[0]] / a : 0;
             double vy = ch[1] == 3 ? a : a > 0 ? m[ch[1]] / a : 0;
             double sx = floor(x + kx * (vx - 0.5) + 0.5), sy = floor(y + ky * (vy - 0.5) + 0.5);
-            if (sx < 0 || sy < 0 || sx >= fc->rw || sy >= fc->rh) {
+            if (!(sx >= 0 && sy >= 0 && sx < fc->rw && sy < fc->rh)) { /* NaN too */
                 continue;
             }
             memcpy(out + ((size_t)y * fc->rw + x) * 4,
@@ -1075,6 +1076,10 @@ static double s_curve(double t)
 static double noise2(const turbulence_state *t, int channel, double x, double y, const stitch *st)
 {
     double tx = x + TURB_N, ty = y + TURB_N;
+    /* far coordinates fold onto the lattice's period (256 cells) before
+     * they pass int's range; NaN (an infinite frequency) is 0 */
+    tx = fabs(tx) < (1 << 30) ? tx : isnan(tx) ? 0 : fmod(tx, 1 << 24);
+    ty = fabs(ty) < (1 << 30) ? ty : isnan(ty) ? 0 : fmod(ty, 1 << 24);
     int bx0 = (int)tx, by0 = (int)ty, bx1 = bx0 + 1, by1 = by0 + 1;
     double rx0 = tx - (int)tx, ry0 = ty - (int)ty, rx1 = rx0 - 1, ry1 = ry0 - 1;
     if (st) {
@@ -1144,10 +1149,12 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
                 freq[a] = stitch_frequency(freq[a], tile[2 + a]);
             }
         }
-        base.width = (int)(tile[2] * freq[0] + 0.5);
-        base.wrap_x = (int)(tile[0] * freq[0] + TURB_N + base.width);
-        base.height = (int)(tile[3] * freq[1] + 0.5);
-        base.wrap_y = (int)(tile[1] * freq[1] + TURB_N + base.height);
+        /* lattice cells stay far inside int, whatever the frequency */
+        double cw = fmin(tile[2] * freq[0] + 0.5, 1 << 20), ch = fmin(tile[3] * freq[1] + 0.5, 1 << 20);
+        base.width = (int)cw;
+        base.wrap_x = (int)fmin(tile[0] * freq[0] + TURB_N + base.width, 1 << 24);
+        base.height = (int)ch;
+        base.wrap_y = (int)fmin(tile[1] * freq[1] + TURB_N + base.height, 1 << 24);
     }
     /* pixels -> user space, noise at each pixel's corner (as resvg samples it) */
     const double *m = fc->job->m;
