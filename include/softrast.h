@@ -201,6 +201,8 @@
  *   region filling
  *     sr_flood_fill              recolor the region matching a pixel
  *     sr_boundary_fill           recolor up to a boundary color
+ *   blur
+ *     sr_blur_image              Gaussian blur of a float image, in place
  *   2D polygon clipping
  *     sr_clip_polygon_rect       Sutherland-Hodgman against a rectangle
  *     sr_clip_polygon_convex     Sutherland-Hodgman against a convex window
@@ -1887,6 +1889,34 @@ SR_API sr_result sr_flood_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y
                                const sr_region_fill_desc *desc, size_t *filled);
 SR_API sr_result sr_boundary_fill(sr_context *ctx, sr_framebuffer *fb, int x, int y, sr_rgba fill,
                                   sr_rgba boundary, const sr_region_fill_desc *desc, size_t *filled);
+
+/* ---- blur --------------------------------------------------------------- */
+/*
+ * A Gaussian blur of an image of floats (1 to 4 channels interleaved,
+ * rows of width * channels floats, premultiplied when there is alpha),
+ * in place: each row, then each column.  A deviation below 2 pixels
+ * uses the exact sampled kernel (3 deviations each side, normalized);
+ * from 2 up, SVG's three box blurs of size d = floor(sigma * 3 *
+ * sqrt(2 pi) / 4 + 0.5) (two of d shifted half a pixel each way and one
+ * of d + 1 when d is even), whose cost does not grow with the deviation.
+ * A deviation of 0 leaves that axis as it is.  What lies beyond the
+ * image is chosen by the edge mode.
+ */
+
+typedef enum sr_blur_edge {
+    SR_BLUR_EDGE_DEFAULT = 0,   /* -> SR_BLUR_EDGE_NONE */
+    SR_BLUR_EDGE_NONE,          /* zeros (transparent black) */
+    SR_BLUR_EDGE_DUPLICATE,     /* the edge pixels repeated */
+    SR_BLUR_EDGE_WRAP,          /* the opposite edge's pixels */
+} sr_blur_edge;
+
+typedef struct sr_blur_desc {
+    double sigma_x, sigma_y;    /* standard deviations in pixels, >= 0 */
+    sr_blur_edge edge;
+} sr_blur_desc;
+
+SR_API sr_result sr_blur_image(sr_context *ctx, float *pixels, int width, int height,
+                               int channels, const sr_blur_desc *desc);
 
 /* ---- 2D polygon clipping ------------------------------------------------ */
 /*

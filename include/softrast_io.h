@@ -407,10 +407,11 @@ SR_API sr_result sr_decode_hdr(const char *name, const uint8_t *data, size_t siz
  * markers, paint-order; shape-rendering; display and visibility; <style>
  * sheets and style attributes, currentColor, CSS colors; defs, use,
  * symbol, switch; linear and radial gradients, patterns; clip paths,
- * masks, group opacity and blend modes (drawn in layers); the table in
+ * masks, group opacity, blend modes and filter effects (drawn in
+ * layers); the table in
  * docs/draw2d.md says what else.  Anything else is skipped with one
  * warning per name; reference cycles (use, clip-path, mask, marker,
- * pattern, SVG images that include themselves) are refused.
+ * pattern, feImage, SVG images that include themselves) are refused.
  * The work is bounded by the size of the document and of the image (the
  * limits below, docs/robustness.md): a few hundred bytes cannot make the
  * renderer spin for seconds or allocate gigabytes. */

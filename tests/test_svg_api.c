@@ -73,7 +73,7 @@ SR_TEST(warnings_reach_the_callback_once_per_name)
     CHECK_EQ(w.count, 2);
     CHECK_EQ(info.warnings, 2);
     CHECK_STR_CONTAINS(w.text, "w.svg:2: warning: unsupported element 'text' skipped|");
-    CHECK_STR_CONTAINS(w.text, "w.svg:4: warning: unsupported property 'filter' skipped|");
+    CHECK_STR_CONTAINS(w.text, "w.svg:4: warning: unsupported filter 'x' skipped|");
     CHECK(strchr(w.text, '\n') == NULL);
     sr_destroy_framebuffer(ctx, fb);
     /* Without a callback they are only counted. */

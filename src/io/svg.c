@@ -110,6 +110,12 @@ typedef struct style {
     bool crisp;
     bool display_none;       /* display="none" here or on an ancestor */
     bool invisible;          /* visibility (inherited, children may undo it) */
+    const svg_node *filter;  /* filter: url(#id) (not inherited), or NULL */
+    bool filter_missing;     /* filter names no <filter>: the element is not drawn */
+    sr_rgba flood_color;     /* flood-color (not inherited) */
+    sr_rgba lighting_color;  /* lighting-color (not inherited) */
+    double flood_opacity;    /* flood-opacity (not inherited) */
+    bool filters_srgb;       /* color-interpolation-filters: sRGB (else linearRGB) */
 } style;
 
 enum { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS };
@@ -193,6 +199,7 @@ typedef struct svg_doc {
      * the next shape painted with the same element keeps its stops. */
     svg_gradient *grad;
     const svg_node *grad_server;
+    const struct frame *filter_frame; /* of the filter being run (feImage draws in it) */
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
@@ -486,19 +493,19 @@ static double clamp01(double v)
 
 /* Properties this reader knows it does not support. */
 static const char *const unsupported_props[] = {
-    "filter", "fill-paint", NULL,
+    "fill-paint", NULL,
 };
 
 /* Properties that change nothing this reader draws (rendering hints,
  * filter and text settings), taken silently; and properties whose value
  * here is their initial one, which the reader does already. */
 static const char *const no_effect_props[] = {
-    "image-rendering", "color-interpolation", "color-interpolation-filters", "color-rendering",
+    "image-rendering", "color-interpolation", "color-rendering",
     "text-rendering", "enable-background", "solid-color", "solid-opacity",
     "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
     "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
     "shape-padding", "shape-margin", "shape-inside", "block-progression",
-    "flood-color", "flood-opacity", "lighting-color", "clip", NULL,
+    "clip", NULL,
 };
 
 static const struct { const char *name, *value; } initial_values[] = {
@@ -734,6 +741,58 @@ static bool parse_paint_order(const char *v, style *st)
     return true;
 }
 
+/* A color property (stop-color, flood-color): a color or currentColor. */
+static void color_property(svg_doc *doc, const style *st, const char *name, const char *v,
+                           sr_rgba *out)
+{
+    sr_rgba c;
+    svg_paint_kind k = svg_parse_color(v, &c);
+    if (k == SVG_PAINT_COLOR || k == SVG_PAINT_CURRENT) {
+        *out = k == SVG_PAINT_COLOR ? c : st->color;
+    } else {
+        warn_once(doc, name, v);
+    }
+}
+
+/* An opacity property (stop-opacity, flood-opacity), clamped to 0..1. */
+static void unit_property(svg_doc *doc, const char *name, const char *v, double *out)
+{
+    double num;
+    if (parse_unit_number(v, &num)) {
+        *out = clamp01(num);
+    } else {
+        warn_once(doc, name, v);
+    }
+}
+
+/* filter, flood-color, flood-opacity, lighting-color,
+ * color-interpolation-filters. */
+static void filter_property(svg_doc *doc, style *st, const char *name, const char *v)
+{
+    if (strcmp(name, "filter") == 0) {
+        svg_node *fl = strcmp(v, "none") == 0 ? NULL : reference(doc, v, NULL);
+        st->filter = fl && strcmp(fl->name, "filter") == 0 ? fl : NULL;
+        st->filter_missing = false;
+        if (!st->filter && strncmp(svg_skip_ws(v), "url(", 4) == 0) {
+            /* SVG 1.1 and resvg: not drawn (rsvg-convert draws it unfiltered) */
+            warn_once(doc, "filter reference (element not drawn)", v);
+            st->filter_missing = true;
+        } else if (!st->filter && strcmp(v, "none") != 0) {
+            warn_once(doc, "filter", v); /* CSS filter functions: drawn unfiltered */
+        }
+    } else if (strcmp(name, "flood-color") == 0) {
+        color_property(doc, st, name, v, &st->flood_color);
+    } else if (strcmp(name, "lighting-color") == 0) {
+        color_property(doc, st, name, v, &st->lighting_color);
+    } else if (strcmp(name, "flood-opacity") == 0) {
+        unit_property(doc, name, v, &st->flood_opacity);
+    } else if (strcmp(v, "sRGB") == 0 || strcmp(v, "linearRGB") == 0 || strcmp(v, "auto") == 0) {
+        st->filters_srgb = v[0] == 's';
+    } else {
+        warn_once(doc, name, v);
+    }
+}
+
 /* Apply one property to a style.  Returns false only when the property
  * name is not a presentation property at all (so shapes may consume it). */
 static bool apply_property(svg_doc *doc, style *st, const char *name, const char *value)
@@ -770,6 +829,15 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
             st->stop_color = p->stop_color;
         } else if (strcmp(name, "stop-opacity") == 0) {
             st->stop_opacity = p->stop_opacity;
+        } else if (strcmp(name, "filter") == 0) {
+            st->filter = p->filter;
+            st->filter_missing = p->filter_missing;
+        } else if (strcmp(name, "flood-color") == 0) {
+            st->flood_color = p->flood_color;
+        } else if (strcmp(name, "flood-opacity") == 0) {
+            st->flood_opacity = p->flood_opacity;
+        } else if (strcmp(name, "lighting-color") == 0) {
+            st->lighting_color = p->lighting_color;
         }
         return true;
     }
@@ -777,19 +845,9 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     if (strcmp(name, "fill") == 0 || strcmp(name, "stroke") == 0) {
         parse_paint(doc, name[0] == 'f' ? &st->fill : &st->stroke, v);
     } else if (strcmp(name, "stop-color") == 0) {
-        sr_rgba c;
-        svg_paint_kind k = svg_parse_color(v, &c);
-        if (k == SVG_PAINT_COLOR || k == SVG_PAINT_CURRENT) {
-            st->stop_color = k == SVG_PAINT_COLOR ? c : st->color;
-        } else {
-            warn_once(doc, "stop-color", v);
-        }
+        color_property(doc, st, name, v, &st->stop_color);
     } else if (strcmp(name, "stop-opacity") == 0) {
-        if (parse_unit_number(v, &num)) {
-            st->stop_opacity = clamp01(num);
-        } else {
-            warn_once(doc, name, v);
-        }
+        unit_property(doc, name, v, &st->stop_opacity);
     } else if (strcmp(name, "color") == 0) {
         sr_rgba c;
         svg_paint_kind k = svg_parse_color(v, &c);
@@ -818,6 +876,10 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
         *(clip ? &st->clip : &st->mask) = c;
     } else if (strcmp(name, "mask-type") == 0) {
         st->mask_alpha = strcmp(v, "alpha") == 0;
+    } else if (strcmp(name, "filter") == 0 || strcmp(name, "flood-color") == 0 ||
+               strcmp(name, "flood-opacity") == 0 || strcmp(name, "lighting-color") == 0 ||
+               strcmp(name, "color-interpolation-filters") == 0) {
+        filter_property(doc, st, name, v);
     } else if (strcmp(name, "fill-rule") == 0 || strcmp(name, "clip-rule") == 0) {
         if (strcmp(v, "nonzero") == 0 || strcmp(v, "evenodd") == 0) {
             *(name[0] == 'f' ? &st->fill_rule : &st->clip_rule) =
@@ -1339,6 +1401,11 @@ static style ancestor_style(svg_doc *doc, const svg_node *m)
         st.overflow_visible = false;
         st.stop_color = doc->initial.stop_color;
         st.stop_opacity = doc->initial.stop_opacity;
+        st.filter = NULL;
+        st.filter_missing = false;
+        st.flood_color = doc->initial.flood_color;
+        st.flood_opacity = doc->initial.flood_opacity;
+        st.lighting_color = doc->initial.lighting_color;
         doc->inherit_from = &parent;
         apply_cascade(doc, chain[n], &st);
     }
@@ -2367,7 +2434,7 @@ static bool is_named(const svg_node *n, const char *const *names)
 static const char *const not_drawn[] = { "defs", "title", "desc", "metadata", "style",
                                          "linearGradient", "radialGradient", "stop", "symbol",
                                          "clipPath", "mask", "script", "marker", "pattern",
-                                         NULL };
+                                         "filter", NULL };
 
 /* The language conditional processing tests against. */
 #define SVG_LANGUAGE "en"
@@ -3623,6 +3690,147 @@ static void draw_use(svg_doc *doc, svg_node *node, frame *f)
     node->active = false;
 }
 
+/* ---- filters (svg_filter.c runs them) --------------------------------------------- */
+
+bool svg_parse_length(const char *s, double *out, bool *percent)
+{
+    return parse_length(s, out, percent);
+}
+
+static void filter_warn(void *host, const svg_node *at, const char *kind, const char *name)
+{
+    svg_doc *doc = host;
+    unsigned long line = doc->line;
+    doc->line = at->line;
+    warn_once(doc, kind, name);
+    doc->line = line;
+}
+
+static void filter_fail(void *host, const svg_node *at, sr_result r, const char *msg)
+{
+    svg_doc *doc = host;
+    doc->line = at->line;
+    svg_fail(doc, r, "%s", msg);
+}
+
+static svg_fe_style filter_style(void *host, const svg_node *fe)
+{
+    style st = ancestor_style(host, fe);
+    sr_rgba c = st.flood_color;
+    c.a = (float)(c.a * st.flood_opacity);
+    return (svg_fe_style){ .flood = c, .lighting = st.lighting_color, .srgb = st.filters_srgb };
+}
+
+static bool filter_budget(void *host, double work)
+{
+    return work_within_budget(host, work);
+}
+
+static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);
+
+/* feImage href="#id": the element drawn as a use of it would be, in the
+ * filtered element's user space; a reference back into what is being
+ * drawn (the filtered element, the filter) is a cycle, refused. */
+static bool filter_draw(void *host, const svg_node *at, const char *href, const double rect[4],
+                        uint8_t *out)
+{
+    svg_doc *doc = host;
+    const frame *f = doc->filter_frame;
+    /* a picture: drawn as an <image> of the same href on the rectangle */
+    char box[4][32];
+    for (int i = 0; i < 4; i++) {
+        snprintf(box[i], sizeof box[i], "%.17g", rect[i]);
+    }
+    const char *par = attr(at->atts, "preserveAspectRatio");
+    const char *atts[] = { "href", href, "x", box[0], "y", box[1], "width", box[2],
+                           "height", box[3], "preserveAspectRatio", par ? par : "xMidYMid",
+                           NULL };
+    svg_node picture = { .name = "image", .atts = atts, .line = at->line };
+    svg_node *el = href[0] == '#' ? reference(doc, href, NULL) : &picture;
+    if (!el || !f) {
+        filter_warn(doc, at, "feImage reference (transparent black)", href);
+        return true;
+    }
+    doc->line = at->line;
+    if (el->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "feImage: reference cycle through \"%s\"", href);
+        return false;
+    }
+    if (doc->layers == MAX_LAYERS) {
+        filter_warn(doc, at, "nesting of layers", "beyond 8 (feImage skipped)");
+        return true;
+    }
+    frame ef = { .m = f->m, .st = el->parent ? ancestor_style(doc, el->parent) : doc->initial,
+                 .vp_w = f->vp_w, .vp_h = f->vp_h };
+    sr_framebuffer *under = doc->fb, *top = open_layer(doc);
+    if (!top) {
+        return false;
+    }
+    if (el == &picture) {
+        draw_image(doc, el, &ef);
+    } else {
+        draw_node(doc, el, &ef);
+    }
+    close_layer(doc, under);
+    int w = sr_framebuffer_width(top), h = sr_framebuffer_height(top);
+    memcpy(out, sr_framebuffer_pixels(top), (size_t)w * (size_t)h * 4);
+    sr_destroy_framebuffer(doc->ctx, top);
+    return doc->status == SR_OK;
+}
+
+/* The element's filter on its layer (f: its frame, box: its bounding
+ * box in that user space). */
+static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, const double box[4])
+{
+    int w = sr_framebuffer_width(layer), h = sr_framebuffer_height(layer);
+    if (!work_within_budget(doc, (double)w * h)) {
+        return;
+    }
+    svg_node *filter = (svg_node *)f->st.filter;
+    if (filter->active) {
+        svg_fail(doc, SR_BAD_FORMAT, "filter: reference cycle through \"#%s\"",
+                 filter->id ? filter->id : "");
+        return;
+    }
+    size_t bytes = (size_t)w * (size_t)h * 4;
+    uint8_t *px = malloc(bytes);
+    if (!px) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    memcpy(px, sr_framebuffer_pixels(layer), bytes);
+    sr_rgba paints[2] = { { 0, 0, 0, 0 }, { 0, 0, 0, 0 } };
+    const paint *pp[2] = { &f->st.fill, &f->st.stroke };
+    for (int i = 0; i < 2; i++) {
+        if (pp[i]->kind == SVG_PAINT_COLOR || pp[i]->kind == SVG_PAINT_CURRENT) {
+            paints[i] = pp[i]->kind == SVG_PAINT_COLOR ? pp[i]->color : f->st.color;
+            paints[i].a *= (float)(i ? f->st.stroke_opacity : f->st.fill_opacity);
+        }
+    }
+    svg_filter_job job = { .filter = filter, .pixels = px, .fill = paints[0], .stroke = paints[1],
+                           .width = w, .height = h,
+                           .m = { f->m.a, f->m.b, f->m.c, f->m.d, f->m.e, f->m.f },
+                           .bbox = { box[0], box[1], box[2], box[3] },
+                           .vp_w = f->vp_w, .vp_h = f->vp_h, .ctx = doc->ctx, .host = doc,
+                           .warn = filter_warn, .fail = filter_fail, .style = filter_style,
+                           .budget = filter_budget, .draw = filter_draw };
+    unsigned long line = doc->line;
+    const frame *outer = doc->filter_frame;
+    doc->filter_frame = f;
+    filter->active = true;
+    svg_apply_filter(&job);
+    filter->active = false;
+    doc->filter_frame = outer;
+    doc->line = line;
+    if (doc->status == SR_OK) {
+        sr_result r = sr_write_pixels(doc->ctx, layer, 0, 0, w, h, px, (size_t)w * 4);
+        if (r != SR_OK) {
+            lib_fail(doc, r);
+        }
+    }
+    free(px);
+}
+
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
 {
     doc->line = node->line;
@@ -3661,10 +3869,15 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     f.st.blend = SVG_BLEND_NORMAL;
     f.st.isolate = false;
     f.st.overflow_visible = false;
+    f.st.filter = NULL;
+    f.st.filter_missing = false;
+    f.st.flood_color = doc->initial.flood_color;
+    f.st.flood_opacity = doc->initial.flood_opacity;
+    f.st.lighting_color = doc->initial.lighting_color;
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
-    if (doc->status != SR_OK || f.st.display_none) {
+    if (doc->status != SR_OK || f.st.display_none || f.st.filter_missing) {
         return;
     }
     const char *tr = attr(node->atts, "transform");
@@ -3697,9 +3910,10 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
      * whole in a layer of its own; a lone shape's opacity folds into its
      * fill and stroke. */
     bool layer = viewport || f.st.clip || f.st.mask || (f.st.own_opacity < 1 && !shape) ||
-                 f.st.blend != SVG_BLEND_NORMAL || f.st.isolate;
+                 f.st.blend != SVG_BLEND_NORMAL || f.st.isolate || f.st.filter;
     if (layer && doc->layers == MAX_LAYERS) {
-        warn_once(doc, "nesting of layers", "beyond 8 (opacity folded, clip and mask ignored)");
+        warn_once(doc, "nesting of layers",
+                  "beyond 8 (opacity folded, clip, mask and filter ignored)");
         layer = false;
     }
     if (!layer) {
@@ -3713,6 +3927,13 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
         }
         draw_content(doc, node, &f, shape, use);
         return;
+    }
+    /* the filter's bounding box and user space: the element's, outside a
+     * nested svg's viewport */
+    double fbox[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    frame ff = f;
+    if (f.st.filter) {
+        bbox_add(doc, node, &f, IDENTITY, fbox);
     }
     uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, node, &f) : NULL;
     if (f.st.mask && doc->status == SR_OK) {
@@ -3730,6 +3951,9 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     if (top) {
         draw_content(doc, node, &f, shape, use);
         close_layer(doc, under);
+        if (f.st.filter && doc->status == SR_OK) {
+            apply_filter(doc, top, &ff, fbox);
+        }
         if (doc->status == SR_OK) {
             composite_layer(doc, top, mask, f.st.own_opacity, f.st.blend);
         }
@@ -3848,7 +4072,8 @@ static style initial_style(void)
                     .own_opacity = 1, .clip_rule = SR_NONZERO,
                     .fill_rule = SR_NONZERO, .stroke_width = 1,
                     .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
-                    .miter_limit = 4,
+                    .miter_limit = 4, .flood_color = { 0, 0, 0, 1 }, .flood_opacity = 1,
+                    .lighting_color = { 1, 1, 1, 1 },
                     .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } };
 }
 

@@ -162,6 +162,55 @@ int svg_blend_mode(const char *name);
  * opaque, src itself where it is transparent, mixed by its alpha. */
 sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba src);
 
+/* ---- filter effects (svg_filter.c) ------------------------------------- */
+
+/* The properties of a filter primitive, cascaded (svg.c). */
+typedef struct svg_fe_style {
+    sr_rgba flood;               /* flood-color, flood-opacity folded into its alpha */
+    sr_rgba lighting;            /* lighting-color */
+    bool srgb;                   /* color-interpolation-filters: sRGB (else linearRGB) */
+} svg_fe_style;
+
+/* What a filter is applied to and the reader's services it uses. */
+typedef struct svg_filter_job {
+    const svg_node *filter;      /* the <filter> element */
+    uint8_t *pixels;             /* the element's layer, RGBA8 straight alpha: replaced */
+    int width, height;
+    double m[6];                 /* user space -> pixels: a b c d e f */
+    double bbox[4];              /* the element's x0 y0 x1 y1 in user space (empty: x1 <= x0) */
+    double vp_w, vp_h;           /* the viewport, for percentages */
+    sr_rgba fill, stroke;        /* FillPaint, StrokePaint: a flat color (transparent: none,
+                                  * a paint server) */
+    sr_context *ctx;
+    void *host;                  /* the reader's document, handed to the calls below */
+    /* "FILE:LINE: warning: unsupported KIND 'NAME' skipped", at the node's line */
+    void (*warn)(void *host, const svg_node *at, const char *kind, const char *name);
+    /* the document's failure "FILE:LINE: msg", at the node's line */
+    void (*fail)(void *host, const svg_node *at, sr_result r, const char *msg);
+    svg_fe_style (*style)(void *host, const svg_node *fe);
+    /* false after reporting that `work` more pixel operations pass the budget */
+    bool (*budget)(void *host, double work);
+    /* feImage: the element `href` names ("#id"), or the picture it names
+     * fitted into rect (x y w h, user space), drawn in the filtered
+     * element's user space into out (RGBA8 straight, width x height,
+     * cleared; left so when nothing is drawn, warned); false after a
+     * failure */
+    bool (*draw)(void *host, const svg_node *at, const char *href, const double rect[4],
+                 uint8_t *out);
+} svg_filter_job;
+
+/* Run the filter's primitives on the layer (SVG 1.1 filter effects, in
+ * premultiplied floats over the filter region at device resolution) and
+ * put the result in its place; pixels outside the region become
+ * transparent.  Failures go through job->fail. */
+void svg_apply_filter(const svg_filter_job *job);
+
+/* parse_length of svg.c: a number with a unit or '%' (*percent set). */
+bool svg_parse_length(const char *s, double *out, bool *percent);
+
+/* B(cb, cs) of a blend mode on straight colors, each channel 0..1. */
+void svg_blend_mix(svg_blend_kind mode, const float b[3], const float s[3], float out[3]);
+
 /* Values of a stroke-dasharray, at most (an odd list doubled). */
 #define SVG_MAX_DASHES SR_MAX_DASHES
 

@@ -1,7 +1,7 @@
 /* svg_blend.c - the SVG reader's blend modes (mix-blend-mode, from CSS
  * Compositing and Blending): the color a layer's pixel takes over its
  * backdrop before it is composited source-over.  Pure functions; used by
- * svg.c. */
+ * svg.c and by feBlend (svg_filter.c). */
 #include "io/svg.h"
 
 #include <math.h>
@@ -105,10 +105,8 @@ static void set_sat(float c[3], float s)
     c[mn] = 0;
 }
 
-sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba src)
+void svg_blend_mix(svg_blend_kind mode, const float b[3], const float s[3], float r[3])
 {
-    float b[3] = { backdrop[0] / 255.0f, backdrop[1] / 255.0f, backdrop[2] / 255.0f };
-    float s[3] = { src.r, src.g, src.b }, r[3];
     if (mode >= SVG_BLEND_HUE) {
         float t[3];
         memcpy(t, mode == SVG_BLEND_LUMINOSITY ? b : s, sizeof t);
@@ -117,12 +115,19 @@ sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba 
             set_sat(t, sat(mode == SVG_BLEND_HUE ? b : s));
         }
         set_lum(t, lum(mode == SVG_BLEND_LUMINOSITY ? s : b));
-        memcpy(r, t, sizeof r);
+        memcpy(r, t, sizeof t);
     } else {
         for (int i = 0; i < 3; i++) {
             r[i] = separable(mode, b[i], s[i]);
         }
     }
+}
+
+sr_rgba svg_blend_color(svg_blend_kind mode, const uint8_t backdrop[4], sr_rgba src)
+{
+    float b[3] = { backdrop[0] / 255.0f, backdrop[1] / 255.0f, backdrop[2] / 255.0f };
+    float s[3] = { src.r, src.g, src.b }, r[3];
+    svg_blend_mix(mode, b, s, r);
     /* Where the backdrop is transparent the source shows as it is. */
     float ab = backdrop[3] / 255.0f;
     return (sr_rgba){ (1 - ab) * s[0] + ab * r[0], (1 - ab) * s[1] + ab * r[1],
