@@ -416,3 +416,26 @@ SR_TEST(text_path_is_warned_and_unknown_families_fall_back)
     CHECK_EQ(count_differing(one, two, 0), 0);
     destroy(one, two);
 }
+
+SR_TEST(text_length_makes_the_chunk_that_wide)
+{
+    NEED_TEXT();
+    static const char *const adjust[] = { "spacing", "spacingAndGlyphs" };
+    for (int i = 0; i < 2; i++) {
+        for (int len = 60; len <= 180; len += 120) {
+            /* the chunk is len wide: ending it at 10 + len is starting it at 10 */
+            char a[512], b[512];
+            snprintf(a, sizeof a,
+                     "<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
+                     "textLength='%d' lengthAdjust='%s'>HIHxo</text>",
+                     len, adjust[i]);
+            snprintf(b, sizeof b,
+                     "<text x='%d' y='40' font-family='DejaVu Sans' font-size='20' "
+                     "textLength='%d' lengthAdjust='%s' text-anchor='end'>HIHxo</text>",
+                     10 + len, len, adjust[i]);
+            sr_framebuffer *one = draw(200, 60, a), *two = draw(200, 60, b);
+            CHECK_EQ(count_differing(one, two, 2), 0);
+            destroy(one, two);
+        }
+    }
+}

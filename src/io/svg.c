@@ -2762,9 +2762,10 @@ static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const
     if (space) {
         preserve = strcmp(space, "preserve") == 0;
     }
-    const char *lists[5] = { attr(node->atts, "x"), attr(node->atts, "y"),
+    const char *lists[7] = { attr(node->atts, "x"), attr(node->atts, "y"),
                              attr(node->atts, "dx"), attr(node->atts, "dy"),
-                             attr(node->atts, "rotate") };
+                             attr(node->atts, "rotate"), attr(node->atts, "textLength"),
+                             attr(node->atts, "lengthAdjust") };
     char why[160];
     doc->line = node->line;
     int i = svg_text_open(w->t, &f->st.text, lists, f->vp_w, f->vp_h, why, sizeof why);

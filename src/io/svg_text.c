@@ -368,6 +368,8 @@ typedef struct tchar {
     int elem;
     bool visible;
     double pos[N_LISTS];         /* NAN where no list gives one */
+    double advance;              /* the pen's move over its cluster (first character) */
+    double extra;                /* textLength's spacing after it */
 } tchar;
 
 typedef struct telem {
@@ -377,6 +379,9 @@ typedef struct telem {
     int first, end;              /* its characters, descendants' included */
     int parent;
     svg_face *face;
+    double text_length;          /* textLength, or 0 */
+    bool stretch;                /* lengthAdjust="spacingAndGlyphs" */
+    double sx;                   /* its glyphs' and advances' horizontal scale */
 } telem;
 
 /* Glyphs of one path at most (SR_SVG_MAX_SUBPATHS bounds a path's
@@ -494,7 +499,7 @@ static bool parse_list(const char *v, bool angles, double em, double ref, double
     return true;
 }
 
-int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists[5], double vp_w,
+int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists[7], double vp_w,
                   double vp_h, char *why, size_t why_size)
 {
     static const char *const names[N_LISTS] = { "x", "y", "dx", "dy", "rotate" };
@@ -503,7 +508,15 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
         return -1;
     }
     telem *e = &t->elems[t->n_elems];
-    *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open };
+    *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open, .sx = 1 };
+    bool pct = false;
+    if (lists[5] && (!text_length(lists[5], ts->size, &e->text_length, &pct) ||
+                     !isfinite(e->text_length) || e->text_length < 0)) {
+        snprintf(why, why_size, "textLength=\"%.60s\" is not a length", lists[5]);
+        return -1;
+    }
+    e->text_length *= pct ? vp_w / 100 : 1;
+    e->stretch = lists[6] && strcmp(lists[6], "spacingAndGlyphs") == 0;
     for (int k = 0; k < N_LISTS; k++) {
         double ref = k == LIST_X || k == LIST_DX ? vp_w : vp_h;
         if (lists[k] && !parse_list(lists[k], k == LIST_ROTATE, ts->size, ref, &e->list[k],
@@ -534,7 +547,7 @@ static bool add_char(svg_text *t, uint32_t cp, bool visible)
         return false;
     }
     t->chars[t->n_chars++] = (tchar){ cp, t->open, visible,
-                                      { NAN, NAN, NAN, NAN, NAN } };
+                                      { NAN, NAN, NAN, NAN, NAN }, 0, 0 };
     return true;
 }
 
@@ -670,7 +683,7 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
 {
     telem *el = &t->elems[t->chars[s].elem];
     const svg_face_metrics *m = svg_face_get_metrics(el->face);
-    double scale = el->ts.size / m->upem;
+    double scale = el->ts.size / m->upem, sx = el->sx;
     int n = svg_face_shape(el->face, cps, t->n_chars, s, e - s, el->ts.rtl, glyphs, cap);
     if (n < 0 || !grow((void **)&t->placed, &t->cap_placed, t->n_placed + n,
                        sizeof *t->placed)) {
@@ -679,6 +692,7 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
     trun run = { t->chars[s].elem, t->n_placed, n, pen[0], pen[0], pen[1] };
     double down = baseline_offset(el);
     const svg_glyph *g = *glyphs;
+    double cluster_x = pen[0];
     for (int i = 0; i < n; i++) {
         int c = g[i].cluster;
         bool first = i == 0 || g[i - 1].cluster != c;
@@ -712,23 +726,28 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
                 run.x0 = pen[0];
                 run.y = pen[1] + down;
             }
+            cluster_x = pen[0];
         }
         double rot = t->chars[c].pos[LIST_ROTATE];
         double a = isnan(rot) ? 0 : rot * (M_PI / 180);
         double co = cos(a), si = sin(a);
-        double ox = pen[0] + g[i].ox * scale, oy = pen[1] + down - g[i].oy * scale;
+        double ox = pen[0] + g[i].ox * scale * sx, oy = pen[1] + down - g[i].oy * scale;
         t->placed[t->n_placed++] = (tglyph){
             g[i].id, t->chars[c].visible,
-            { scale * co, scale * si, scale * si, -scale * co, ox, oy } };
-        pen[0] += g[i].ax * scale;
+            { scale * sx * co, scale * sx * si, scale * si, -scale * co, ox, oy } };
+        pen[0] += g[i].ax * scale * sx;
         pen[1] -= g[i].ay * scale;
         bool last = i + 1 == n || g[i + 1].cluster != c;
         if (last) {
             for (int k = c; k < c_end; k++) {
-                pen[0] += el->ts.letter_spacing;
+                pen[0] += el->ts.letter_spacing * sx;
                 if (t->chars[k].cp == ' ') {
-                    pen[0] += el->ts.word_spacing;
+                    pen[0] += el->ts.word_spacing * sx;
                 }
+            }
+            t->chars[c].advance = pen[0] - cluster_x;
+            for (int k = c; k < c_end; k++) {
+                pen[0] += t->chars[k].extra;
             }
         }
     }
@@ -750,33 +769,14 @@ static void shift_chunk(svg_text *t, int run0, double dx)
     }
 }
 
-sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_size)
+/* Place every character: chunks from each absolute x or y, runs of one
+ * element in them, text-anchor per chunk. */
+static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs, int *cap)
 {
-    /* the whole text's trailing blank goes (see svg_text_chars) */
-    t->space_pending = false;
-    for (int e = 0; e < t->n_elems; e++) {
-        telem *el = &t->elems[e];
-        el->face = svg_fonts_match(fonts, el->ts.family[0] ? el->ts.family : "serif",
-                                   el->ts.weight, el->ts.slant, why, why_size);
-        if (!el->face) {
-            return SR_BAD_FORMAT;
-        }
-    }
-    assign_lists(t);
-    uint32_t *cps = malloc((size_t)(t->n_chars ? t->n_chars : 1) * sizeof *cps);
-    if (!cps) {
-        snprintf(why, why_size, "out of memory");
-        return SR_OUT_OF_MEMORY;
-    }
-    for (int i = 0; i < t->n_chars; i++) {
-        cps[i] = t->chars[i].cp;
-    }
-    svg_glyph *glyphs = NULL;
-    int cap = 0;
     double pen[2] = { 0, 0 };
     sr_result r = SR_OK;
+    t->n_runs = t->n_placed = 0;
     for (int c = 0; c < t->n_chars && r == SR_OK;) {
-        /* a chunk: from an absolute x or y to the next */
         int end = c + 1;
         while (end < t->n_chars && isnan(t->chars[end].pos[LIST_X]) &&
                isnan(t->chars[end].pos[LIST_Y])) {
@@ -796,7 +796,7 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
             while (e < end && t->chars[e].elem == t->chars[s].elem) {
                 e++;
             }
-            r = place_run(t, cps, s, e, pen, &glyphs, &cap);
+            r = place_run(t, cps, s, e, pen, glyphs, cap);
             s = e;
         }
         /* text-anchor of the chunk's first character; right to left,
@@ -814,6 +814,71 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
             pen[0] += dx;
         }
         c = end;
+    }
+    return r;
+}
+
+/* textLength: spread the difference between an element's advance and
+ * its textLength over the gaps between its characters, or (lengthAdjust
+ * spacingAndGlyphs) stretch its glyphs and advances; false when no
+ * element asks for it. */
+static bool fit_lengths(svg_text *t)
+{
+    bool any = false;
+    for (int e = 0; e < t->n_elems; e++) {
+        telem *el = &t->elems[e];
+        int end = el->end < t->n_chars ? el->end : t->n_chars;
+        if (el->text_length <= 0 || end <= el->first) {
+            continue;
+        }
+        double natural = 0;
+        for (int c = el->first; c < end; c++) {
+            natural += t->chars[c].advance;
+        }
+        if (!(natural > 0)) {
+            continue;
+        }
+        any = true;
+        if (el->stretch) {
+            for (int d = 0; d < t->n_elems; d++) {
+                if (t->elems[d].first >= el->first && t->elems[d].end <= el->end) {
+                    t->elems[d].sx *= el->text_length / natural;
+                }
+            }
+        } else if (end - el->first > 1) {
+            double gap = (el->text_length - natural) / (end - el->first - 1);
+            for (int c = el->first; c + 1 < end; c++) {
+                t->chars[c].extra += gap;
+            }
+        }
+    }
+    return any;
+}
+
+sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_size)
+{
+    for (int e = 0; e < t->n_elems; e++) {
+        telem *el = &t->elems[e];
+        el->face = svg_fonts_match(fonts, el->ts.family[0] ? el->ts.family : "serif",
+                                   el->ts.weight, el->ts.slant, why, why_size);
+        if (!el->face) {
+            return SR_BAD_FORMAT;
+        }
+    }
+    assign_lists(t);
+    uint32_t *cps = malloc((size_t)(t->n_chars ? t->n_chars : 1) * sizeof *cps);
+    if (!cps) {
+        snprintf(why, why_size, "out of memory");
+        return SR_OUT_OF_MEMORY;
+    }
+    for (int i = 0; i < t->n_chars; i++) {
+        cps[i] = t->chars[i].cp;
+    }
+    svg_glyph *glyphs = NULL;
+    int cap = 0;
+    sr_result r = place_all(t, cps, &glyphs, &cap);
+    if (r == SR_OK && fit_lengths(t)) {
+        r = place_all(t, cps, &glyphs, &cap); /* again, with the lengths fitted */
     }
     free(glyphs);
     free(cps);

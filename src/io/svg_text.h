@@ -104,11 +104,12 @@ typedef struct svg_text svg_text;
 
 svg_text *svg_text_make(void);
 void svg_text_free(svg_text *t);
-/* Open an element of the text (text, tspan, a): its style and its x, y,
- * dx, dy and rotate lists (NULL when absent; lengths in user units, % of
- * the viewport vp_w x vp_h).  Its index (0, 1, ... in opening order), or
- * -1 with a line in why (out of memory, a malformed list). */
-int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists[5], double vp_w,
+/* Open an element of the text (text, tspan, a): its style and its
+ * attributes x, y, dx, dy, rotate, textLength and lengthAdjust, in that
+ * order (NULL when absent; lengths in user units, % of the viewport
+ * vp_w x vp_h).  Its index (0, 1, ... in opening order), or -1 with a
+ * line in why (out of memory, a malformed value). */
+int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists[7], double vp_w,
                   double vp_h, char *why, size_t why_size);
 void svg_text_close(svg_text *t);
 /* Character data of the open element, UTF-8; whitespace as xml:space
