@@ -287,6 +287,22 @@ SR_TEST(tspans_continue_the_pen)
                                "HI<tspan>H</tspan><tspan font-size='24px'>I</tspan></text>");
     CHECK_EQ(count_differing(one, two, 0), 0);
     destroy(one, two);
+    /* a gradient in objectBoundingBox units spans the whole text */
+    static const char grad[] = "<linearGradient id='g'><stop offset='0' stop-color='red'/>"
+                               "<stop offset='1' stop-color='blue'/></linearGradient>";
+    char a[1024], b[1024];
+    snprintf(a, sizeof a,
+             "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
+             "fill='url(#g)'>HIHI</text>",
+             grad);
+    snprintf(b, sizeof b,
+             "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
+             "fill='url(#g)'>HI<tspan>HI</tspan></text>",
+             grad);
+    one = draw(200, 60, a);
+    two = draw(200, 60, b);
+    CHECK_EQ(count_differing(one, two, 0), 0);
+    destroy(one, two);
     /* a tspan's own x starts a new chunk there; dx moves, dy lowers */
     one = draw(200, 60,
                "<text x='10' y='30' font-family='DejaVu Sans' font-size='20'>HI</text>"

@@ -195,6 +195,8 @@ typedef struct svg_doc {
     svg_gradient *grad;
     const svg_node *grad_server;
     svg_fonts *fonts;        /* the faces the text matched, made on first use */
+    const sr_polygon2 *paint_box; /* what paints measure instead of the shape (a whole
+                                   * text, drawn a run at a time), or NULL */
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
@@ -1510,8 +1512,23 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
 
 /* Fill a user-space polygon with a paint at an opacity; a gradient's
  * bounding box is the shape's geometry (the fill's path, for a stroke). */
+static void paint_polygon_as(svg_doc *doc, const frame *f, sr_polygon2 poly,
+                             sr_polygon2 geometry, const paint *p, double opacity,
+                             sr_fill_rule rule);
+
 static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_polygon2 geometry,
                           const paint *p, double opacity, sr_fill_rule rule)
+{
+    /* a pattern's content inside measures its own shapes */
+    const sr_polygon2 *box = doc->paint_box;
+    doc->paint_box = NULL;
+    paint_polygon_as(doc, f, poly, box ? *box : geometry, p, opacity, rule);
+    doc->paint_box = box;
+}
+
+static void paint_polygon_as(svg_doc *doc, const frame *f, sr_polygon2 poly,
+                             sr_polygon2 geometry, const paint *p, double opacity,
+                             sr_fill_rule rule)
 {
     sr_rgba c = p->kind == SVG_PAINT_CURRENT ? f->st.color : p->color;
     if (p->kind == SVG_PAINT_URL && !is_gradient(p->server)) {
@@ -2816,26 +2833,51 @@ static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const
  * as the path of a shape. */
 static void draw_text_runs(svg_doc *doc, text_walk *w, double tol)
 {
-    for (int r = 0; r < svg_text_runs(w->t) && doc->status == SR_OK; r++) {
-        frame rf = w->frames[svg_text_run_element(w->t, r)];
-        rf.st.fill_rule = SR_NONZERO; /* glyph outlines are made for nonzero */
-        sr_path *p = NULL;
-        sr_result res = sr_make_path(doc->ctx, tol, &p);
+    int n = svg_text_runs(w->t);
+    sr_path **paths = calloc((size_t)(n > 0 ? n : 1), sizeof *paths);
+    if (!paths) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    /* every run's outline first: objectBoundingBox paints measure the
+     * whole text, as they would a path */
+    double box[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    for (int r = 0; r < n && doc->status == SR_OK; r++) {
+        sr_result res = sr_make_path(doc->ctx, tol, &paths[r]);
         if (res == SR_OK) {
-            res = svg_text_run_path(w->t, doc->fonts, r, p);
+            res = svg_text_run_path(w->t, doc->fonts, r, paths[r]);
         }
         if (res != SR_OK) {
             lib_fail(doc, res);
-        } else if (path_within_limits(doc, p, "text", 0)) {
-            doc->points_used += sr_path_polygon(p).point_count;
-            for (int i = 0; i < 3 && doc->status == SR_OK; i++) {
-                if (rf.st.paint_order[i] != PAINT_MARKERS) {
-                    draw_path(doc, &rf, p, tol, true, rf.st.paint_order[i]);
-                }
+        } else if (path_within_limits(doc, paths[r], "text", 0)) {
+            doc->points_used += sr_path_polygon(paths[r]).point_count;
+            double b[4];
+            if (bounding_box(sr_path_polygon(paths[r]), b)) {
+                box[0] = fmin(box[0], b[0]), box[1] = fmin(box[1], b[1]);
+                box[2] = fmax(box[2], b[2]), box[3] = fmax(box[3], b[3]);
             }
         }
-        sr_destroy_path(doc->ctx, p);
     }
+    sr_point2 corners[4] = { { box[0], box[1] }, { box[2], box[1] }, { box[2], box[3] },
+                             { box[0], box[3] } };
+    int four = 4;
+    sr_polygon2 whole = { .points = corners, .point_count = 4, .contour_counts = &four,
+                          .contour_count = 1 };
+    for (int r = 0; r < n && doc->status == SR_OK; r++) {
+        frame rf = w->frames[svg_text_run_element(w->t, r)];
+        rf.st.fill_rule = SR_NONZERO; /* glyph outlines are made for nonzero */
+        doc->paint_box = box[0] <= box[2] ? &whole : NULL;
+        for (int i = 0; i < 3 && doc->status == SR_OK; i++) {
+            if (rf.st.paint_order[i] != PAINT_MARKERS) {
+                draw_path(doc, &rf, paths[r], tol, true, rf.st.paint_order[i]);
+            }
+        }
+        doc->paint_box = NULL;
+    }
+    for (int r = 0; r < n; r++) {
+        sr_destroy_path(doc->ctx, paths[r]);
+    }
+    free(paths);
 }
 
 static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
