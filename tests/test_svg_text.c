@@ -455,3 +455,56 @@ SR_TEST(text_length_makes_the_chunk_that_wide)
         }
     }
 }
+
+SR_TEST(text_path_gives_the_outlines_the_svg_text_fills)
+{
+#ifndef SR_HAVE_SVG_TEXT_TEST
+    sr_io_error e;
+    sr_path *none = NULL;
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &none) == SR_OK);
+    CHECK_EQ(sr_text_path("a", NULL, none, NULL, &e), SR_UNSUPPORTED);
+    CHECK(!sr_io_have_text());
+    sr_destroy_path(sr_test_ctx(), none);
+#endif
+    NEED_TEXT();
+    CHECK(sr_io_have_text());
+    sr_context *ctx = sr_test_ctx();
+    sr_path *path = NULL;
+    REQUIRE(sr_make_path(ctx, 0.1, &path) == SR_OK);
+    sr_io_error err;
+    double advance = 0;
+    CHECK_EQ(sr_text_path("Hx\xc3\xa9", &(sr_text_desc){ .family = "DejaVu Sans", .size = 24,
+                                                          .x = 100, .y = 40,
+                                                          .anchor = SR_TEXT_ANCHOR_MIDDLE },
+                          path, &advance, &err),
+             SR_OK);
+    CHECK(advance > 30 && advance < 60);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 200, .height = 60 }, &fb) ==
+            SR_OK);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+    CHECK_EQ(sr_fill_path(ctx, fb, path, (sr_rgba){ 0, 0, 0.5f, 1 },
+                          &(sr_fill_desc){ .antialias = SR_AA_AREA }),
+             SR_OK);
+    sr_framebuffer *svg = draw(200, 60,
+                               "<text x='100' y='40' font-family='DejaVu Sans' font-size='24' "
+                               "text-anchor='middle' fill='#000080'>Hx\xc3\xa9</text>");
+    CHECK_EQ(count_differing(fb, svg, 1), 0);
+    destroy(fb, svg);
+    /* the font by file; misuse is one line naming what is wrong */
+    sr_path_clear(path);
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .font_file = dejavu_sans(), .size = 24 }, path,
+                          NULL, &err),
+             SR_OK);
+    CHECK(sr_path_polygon(path).point_count > 4);
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .font_file = "/nonexistent.ttf" }, path, NULL,
+                          &err),
+             SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "/nonexistent.ttf");
+    CHECK_EQ(sr_text_path("\xc3(", NULL, path, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "UTF-8");
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .size = -1 }, path, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "sr_text_desc.size");
+    CHECK_EQ(sr_text_path(NULL, NULL, path, NULL, &err), SR_INVALID_ARG);
+    sr_destroy_path(ctx, path);
+}

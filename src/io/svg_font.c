@@ -272,6 +272,24 @@ svg_face *svg_fonts_match(svg_fonts *fonts, const char *family, int weight, int 
     return face;
 }
 
+svg_face *svg_fonts_open_file(svg_fonts *fonts, const char *file, char *why, size_t why_size)
+{
+    svg_face *face = calloc(1, sizeof *face);
+    if (!face || !(face->family = strdup(""))) {
+        free(face);
+        snprintf(why, why_size, "out of memory");
+        return NULL;
+    }
+    /* weight 0 matches no request: the face is found only through this */
+    if (!open_face(fonts, face, file, 0, why, why_size)) {
+        free_face(face);
+        return NULL;
+    }
+    face->next = fonts->faces;
+    fonts->faces = face;
+    return face;
+}
+
 const svg_face_metrics *svg_face_get_metrics(const svg_face *face)
 {
     return &face->metrics;

@@ -407,6 +407,7 @@ struct svg_text {
     telem *elems;
     int n_elems, cap_elems;
     int open;                    /* the element characters go to, or -1 */
+    svg_face *face;              /* every element's, when the caller chose it */
     bool space_pending;          /* a collapsed blank not yet written */
     trun *runs;
     int n_runs, cap_runs;
@@ -600,6 +601,21 @@ bool svg_text_chars(svg_text *t, const char *s, size_t len, bool preserve, bool 
         }
     }
     return true;
+}
+
+double svg_text_advance(const svg_text *t)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (int r = 0; r < t->n_runs; r++) {
+        lo = fmin(lo, fmin(t->runs[r].x0, t->runs[r].x1));
+        hi = fmax(hi, fmax(t->runs[r].x0, t->runs[r].x1));
+    }
+    return hi > lo ? hi - lo : 0;
+}
+
+void svg_text_use_face(svg_text *t, svg_face *face)
+{
+    t->face = face;
 }
 
 int svg_text_length(const svg_text *t)
@@ -859,8 +875,9 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
 {
     for (int e = 0; e < t->n_elems; e++) {
         telem *el = &t->elems[e];
-        el->face = svg_fonts_match(fonts, el->ts.family[0] ? el->ts.family : "serif",
-                                   el->ts.weight, el->ts.slant, why, why_size);
+        el->face = t->face ? t->face
+                           : svg_fonts_match(fonts, el->ts.family[0] ? el->ts.family : "serif",
+                                             el->ts.weight, el->ts.slant, why, why_size);
         if (!el->face) {
             return SR_BAD_FORMAT;
         }

@@ -87,6 +87,9 @@ void svg_fonts_free(svg_fonts *fonts);
  * in why. */
 svg_face *svg_fonts_match(svg_fonts *fonts, const char *family, int weight, int slant,
                           char *why, size_t why_size);
+/* The face of a font file (its first face), kept like a match; NULL
+ * with a line in why. */
+svg_face *svg_fonts_open_file(svg_fonts *fonts, const char *file, char *why, size_t why_size);
 const svg_face_metrics *svg_face_get_metrics(const svg_face *face);
 /* Shape cps[start .. start+len) (the rest of cps is context) left to
  * right or right to left: glyphs in visual order into *glyphs (grown as
@@ -129,6 +132,12 @@ int svg_text_runs(const svg_text *t);
 int svg_text_run_element(const svg_text *t, int run);
 /* Append a run's glyphs and decorations to path (user units). */
 sr_result svg_text_run_path(svg_text *t, svg_fonts *fonts, int run, sr_path *path);
+/* Lay the text out with this face for every element instead of matching
+ * their families (a font file the caller names). */
+void svg_text_use_face(svg_text *t, svg_face *face);
+/* The width the runs' pens cover, from the leftmost start to the
+ * rightmost end. */
+double svg_text_advance(const svg_text *t);
 /* The largest font size in the text, for the caller's limits. */
 double svg_text_max_size(const svg_text *t);
 
