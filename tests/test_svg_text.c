@@ -91,7 +91,7 @@ static sr_framebuffer *draw(int w, int h, const char *body)
     }
     char svg[8400];
     snprintf(svg, sizeof svg,
-             "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d'>%s</svg>", w, h,
+                "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d'>%s</svg>", w, h,
              body);
     return render(svg, SR_OK, NULL, 0);
 }
@@ -140,6 +140,19 @@ static void destroy(sr_framebuffer *a, sr_framebuffer *b)
     sr_destroy_framebuffer(sr_test_ctx(), a);
     sr_destroy_framebuffer(sr_test_ctx(), b);
 }
+
+/* Two bodies drawn on 200 x 60 give the same pixels (channels within
+ * tol); a failure names the caller's line. */
+static void same_pixels(int line, const char *a, const char *b, int tol)
+{
+    sr_framebuffer *one = draw(200, 60, a), *two = draw(200, 60, b);
+    long n = count_differing(one, two, tol);
+    if (n != 0) {
+        sr_test_fail(__FILE__, line, "%ld pixels differ (or a drawing failed)", n);
+    }
+    destroy(one, two);
+}
+#define SAME_PIXELS(a, b, tol) same_pixels(__LINE__, (a), (b), (tol))
 
 SR_TEST(text_drawing_matches_reference)
 {
@@ -279,74 +292,49 @@ SR_TEST(text_anchor_moves_the_chunk_by_half_and_all_of_its_advance)
 SR_TEST(tspans_continue_the_pen)
 {
     NEED_TEXT();
-    sr_framebuffer *one = draw(200, 60,
-                               "<text x='10' y='40' font-family='DejaVu Sans' "
-                               "font-size='24'>HIHI</text>");
-    sr_framebuffer *two = draw(200, 60,
-                               "<text x='10' y='40' font-family='DejaVu Sans' font-size='24'>"
-                               "HI<tspan>H</tspan><tspan font-size='24px'>I</tspan></text>");
-    CHECK_EQ(count_differing(one, two, 0), 0);
-    destroy(one, two);
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' "
+                "font-size='24'>HIHI</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='24'>"
+                "HI<tspan>H</tspan><tspan font-size='24px'>I</tspan></text>", 0);
     /* a gradient in objectBoundingBox units spans the whole text */
     static const char grad[] = "<linearGradient id='g'><stop offset='0' stop-color='red'/>"
                                "<stop offset='1' stop-color='blue'/></linearGradient>";
     char a[1024], b[1024];
     snprintf(a, sizeof a,
-             "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
-             "fill='url(#g)'>HIHI</text>",
+                "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
+                "fill='url(#g)'>HIHI</text>",
              grad);
     snprintf(b, sizeof b,
-             "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
-             "fill='url(#g)'>HI<tspan>HI</tspan></text>",
+                "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
+                "fill='url(#g)'>HI<tspan>HI</tspan></text>",
              grad);
-    one = draw(200, 60, a);
-    two = draw(200, 60, b);
-    CHECK_EQ(count_differing(one, two, 0), 0);
-    destroy(one, two);
+    SAME_PIXELS(a, b, 0);
     /* a tspan's own x starts a new chunk there; dx moves, dy lowers */
-    one = draw(200, 60,
-               "<text x='10' y='30' font-family='DejaVu Sans' font-size='20'>HI</text>"
-               "<text x='100' y='45' font-family='DejaVu Sans' font-size='20'>IH</text>");
-    two = draw(200, 60,
-               "<text x='10' y='30' font-family='DejaVu Sans' font-size='20'>HI"
-               "<tspan x='90' dx='10' dy='15'>IH</tspan></text>");
-    CHECK_EQ(count_differing(one, two, 0), 0);
-    destroy(one, two);
+    SAME_PIXELS("<text x='10' y='30' font-family='DejaVu Sans' font-size='20'>HI</text>"
+                "<text x='100' y='45' font-family='DejaVu Sans' font-size='20'>IH</text>",
+                "<text x='10' y='30' font-family='DejaVu Sans' font-size='20'>HI"
+                "<tspan x='90' dx='10' dy='15'>IH</tspan></text>", 0);
     /* x lists place characters one by one */
-    one = draw(200, 60,
-               "<text y='40' font-family='DejaVu Sans' font-size='20'>"
-               "<tspan x='10'>H</tspan><tspan x='60'>I</tspan><tspan x='130'>H</tspan></text>");
-    two = draw(200, 60,
-               "<text x='10 60 130' y='40' font-family='DejaVu Sans' font-size='20'>HIH</text>");
-    CHECK_EQ(count_differing(one, two, 0), 0);
-    destroy(one, two);
+    SAME_PIXELS("<text y='40' font-family='DejaVu Sans' font-size='20'>"
+                "<tspan x='10'>H</tspan><tspan x='60'>I</tspan><tspan x='130'>H</tspan></text>",
+                "<text x='10 60 130' y='40' font-family='DejaVu Sans' font-size='20'>HIH</text>",
+                0);
 }
 
 SR_TEST(whitespace_collapses_unless_preserved)
 {
     NEED_TEXT();
-    sr_framebuffer *one = draw(200, 60,
-                               "<text x='10' y='40' font-family='DejaVu Sans' "
-                               "font-size='20'>H I</text>");
-    sr_framebuffer *two = draw(200, 60,
-                               "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>"
-                               "\n   H \t\n  <tspan> I </tspan>  </text>");
-    CHECK_EQ(count_differing(one, two, 0), 0);
-    destroy(one, two);
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' "
+                "font-size='20'>H I</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>"
+                "\n   H \t\n  <tspan> I </tspan>  </text>", 0);
     /* preserved: each blank is a space; newlines are dropped otherwise */
-    one = draw(200, 60,
-               "<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
-               "xml:space='preserve'>H&#32;&#32;I</text>");
-    two = draw(200, 60,
-               "<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
-               "xml:space='preserve'>H \nI</text>");
-    CHECK_EQ(count_differing(one, two, 0), 0);
-    destroy(one, two);
-    one = draw(200, 60,
-               "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>HI</text>");
-    two = draw(200, 60, "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H\nI</text>");
-    CHECK_EQ(count_differing(one, two, 0), 0);
-    destroy(one, two);
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
+                "xml:space='preserve'>H&#32;&#32;I</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
+                "xml:space='preserve'>H \nI</text>", 0);
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>HI</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H\nI</text>", 0);
 }
 
 SR_TEST(font_size_units_and_css_reach_the_glyphs)
@@ -449,9 +437,7 @@ SR_TEST(text_length_makes_the_chunk_that_wide)
                      "<text x='%d' y='40' font-family='DejaVu Sans' font-size='20' "
                      "textLength='%d' lengthAdjust='%s' text-anchor='end'>HIHxo</text>",
                      10 + len, len, adjust[i]);
-            sr_framebuffer *one = draw(200, 60, a), *two = draw(200, 60, b);
-            CHECK_EQ(count_differing(one, two, 2), 0);
-            destroy(one, two);
+            SAME_PIXELS(a, b, 2);
         }
     }
 }

@@ -319,12 +319,13 @@ static PyObject *path_text(PathObject *self, PyObject *args, PyObject *kwargs)
         goto done;
     }
     sr_io_error err;
+    sr_text_anchor anchor_value = (sr_text_anchor)(SR_TEXT_ANCHOR_START + a);
     sr_result r = sr_text_path(text,
                                &(sr_text_desc){ .family = family,
                                                 .font_file = file ? PyBytes_AsString(file) : NULL,
                                                 .size = size, .weight = weight,
                                                 .italic = italic != 0, .x = x, .y = y,
-                                                .anchor = (sr_text_anchor)(SR_TEXT_ANCHOR_START + a),
+                                                .anchor = anchor_value,
                                                 .rtl = rtl != 0 },
                                self->path, NULL, &err);
     if (r == SR_OUT_OF_MEMORY) {

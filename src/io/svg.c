@@ -311,39 +311,12 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
 
 /* ---- numbers, lengths, lists ----------------------------------------------------- */
 
-/* A length: number with an optional unit, in any case as CSS reads units
- * (SVG 2 reads presentation attributes as CSS too: 20PX, 1In); 96 px per
- * inch, em and ex of the initial font (16 px; ex half of it: no font is
- * read).  *percent is set (and the number returned as is) for "%". */
+/* A length of geometry (svg_parse_length; SVG 2 reads presentation
+ * attributes as CSS too: 20PX, 1In): em and ex of a 16 px font, as
+ * before text was drawn (font-size is read for text only). */
 static bool parse_length(const char *s, double *out, bool *percent)
 {
-    s = svg_skip_ws(s);
-    if (!svg_parse_number(&s, out)) {
-        return false;
-    }
-    static const struct { const char *unit; double px; } units[] = {
-        { "px", 1 }, { "pt", 96.0 / 72 }, { "pc", 16 }, { "in", 96 }, { "cm", 96 / 2.54 },
-        { "mm", 96 / 25.4 }, { "em", 16 }, { "ex", 8 },
-    };
-    if (percent) {
-        *percent = false;
-    }
-    s = svg_skip_ws(s);
-    if (*s == 0) {
-        return true;
-    }
-    if (*s == '%' && percent) {
-        *percent = true;
-        return *svg_skip_ws(s + 1) == 0;
-    }
-    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
-        size_t n = strlen(units[i].unit);
-        if (strncasecmp(s, units[i].unit, n) == 0 && *svg_skip_ws(s + n) == 0) {
-            *out *= units[i].px;
-            return true;
-        }
-    }
-    return false;
+    return svg_parse_length(s, 16, out, percent);
 }
 
 /* A length attribute of a shape; false after reporting a malformed one.

@@ -28,6 +28,11 @@ const char *svg_skip_ws_comma(const char *s);
 /* An SVG number (sign, digits, fraction, exponent), no leading blanks:
  * *s moved past it; false when there is none or it is beyond double. */
 bool svg_parse_number(const char **s, double *out);
+/* A length: a number with an optional unit in any case, as CSS reads
+ * units: px, pt, pc, in, cm, mm (96 px per inch), em and ex (half an em)
+ * of `em`; blanks around.  With percent, "%" is allowed (*percent set,
+ * the number returned as is). */
+bool svg_parse_length(const char *s, double em, double *out, bool *percent);
 
 /* ---- the document tree (svg.c) ---------------------------------------- */
 

@@ -45,49 +45,6 @@ void svg_text_settle(svg_text_style *ts, const svg_text_style *parent)
     ts->raised = (parent ? parent->raised : 0) + own;
 }
 
-/* A length in user units: px, pt, pc, in, cm, mm, em and ex of `em`;
- * *pct set for % (the number returned as is) when pct is not NULL. */
-static bool text_length(const char *s, double em, double *out, bool *pct)
-{
-    s = svg_skip_ws(s);
-    if (!svg_parse_number(&s, out)) {
-        return false;
-    }
-    static const struct { const char *unit; double px; } units[] = {
-        { "px", 1 }, { "pt", 96.0 / 72 }, { "pc", 16 }, { "in", 96 }, { "cm", 96 / 2.54 },
-        { "mm", 96 / 25.4 },
-    };
-    if (pct) {
-        *pct = false;
-    }
-    s = svg_skip_ws(s);
-    if (*s == 0) {
-        return true;
-    }
-    if (*s == '%') {
-        if (pct) {
-            *pct = true;
-        }
-        return pct && *svg_skip_ws(s + 1) == 0;
-    }
-    if (strncasecmp(s, "em", 2) == 0 && *svg_skip_ws(s + 2) == 0) {
-        *out *= em;
-        return true;
-    }
-    if (strncasecmp(s, "ex", 2) == 0 && *svg_skip_ws(s + 2) == 0) {
-        *out *= em / 2;
-        return true;
-    }
-    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
-        size_t n = strlen(units[i].unit);
-        if (strncasecmp(s, units[i].unit, n) == 0 && *svg_skip_ws(s + n) == 0) {
-            *out *= units[i].px;
-            return true;
-        }
-    }
-    return false;
-}
-
 static int keyword(const char *v, const char *const *words)
 {
     for (int i = 0; words[i]; i++) {
@@ -113,7 +70,7 @@ static bool font_size(svg_text_style *ts, double parent, const char *v)
     }
     double d;
     bool pct;
-    if (!text_length(v, parent, &d, &pct) || d < 0 || !isfinite(d)) {
+    if (!svg_parse_length(v, parent, &d, &pct) || d < 0 || !isfinite(d)) {
         return false;
     }
     ts->size = pct ? parent * d / 100 : d;
@@ -264,7 +221,7 @@ static bool spacing(double *out, double em, const char *v)
     }
     double d;
     bool pct;
-    if (!text_length(v, em, &d, &pct) || !isfinite(d)) {
+    if (!svg_parse_length(v, em, &d, &pct) || !isfinite(d)) {
         return false;
     }
     *out = pct ? d / 100 * em : d;
@@ -339,7 +296,7 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         } else {
             double d;
             bool pct;
-            ok = text_length(v, ts->size, &d, &pct) && isfinite(d);
+            ok = svg_parse_length(v, ts->size, &d, &pct) && isfinite(d);
             if (ok) {
                 ts->shift_kind = pct ? SVG_SHIFT_PERCENT : SVG_SHIFT_LENGTH;
                 ts->shift = d;
@@ -488,7 +445,7 @@ static bool parse_list(const char *v, bool angles, double em, double ref, double
             if (!svg_parse_number(&p, &d) || *p) {
                 return false;
             }
-        } else if (!text_length(item, em, &d, &pct)) {
+        } else if (!svg_parse_length(item, em, &d, &pct)) {
             return false;
         }
         if (!isfinite(d) || !grow((void **)out, &cap, *n + 1, sizeof **out)) {
@@ -511,7 +468,7 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
     telem *e = &t->elems[t->n_elems];
     *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open, .sx = 1 };
     bool pct = false;
-    if (lists[5] && (!text_length(lists[5], ts->size, &e->text_length, &pct) ||
+    if (lists[5] && (!svg_parse_length(lists[5], ts->size, &e->text_length, &pct) ||
                      !isfinite(e->text_length) || e->text_length < 0)) {
         snprintf(why, why_size, "textLength=\"%.60s\" is not a length", lists[5]);
         return -1;
