@@ -327,6 +327,7 @@ typedef struct tchar {
     double pos[N_LISTS];         /* NAN where no list gives one */
     double advance;              /* the pen's move over its cluster (first character) */
     double extra;                /* textLength's spacing after it */
+    bool starts;                 /* a cluster starts here (while its run is placed) */
 } tchar;
 
 typedef struct telem {
@@ -505,7 +506,7 @@ static bool add_char(svg_text *t, uint32_t cp, bool visible)
         return false;
     }
     t->chars[t->n_chars++] = (tchar){ cp, t->open, visible,
-                                      { NAN, NAN, NAN, NAN, NAN }, 0, 0 };
+                                      { NAN, NAN, NAN, NAN, NAN }, 0, 0, false };
     return true;
 }
 
@@ -665,16 +666,22 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
     trun run = { t->chars[s].elem, t->n_placed, n, pen[0], pen[0], pen[1] };
     double down = baseline_offset(el);
     const svg_glyph *g = *glyphs;
+    for (int k = s; k < e; k++) {
+        t->chars[k].starts = false;
+    }
+    for (int i = 0; i < n; i++) {
+        if (g[i].cluster >= s && g[i].cluster < e) {
+            t->chars[g[i].cluster].starts = true;
+        }
+    }
     double cluster_x = pen[0];
     for (int i = 0; i < n; i++) {
         int c = g[i].cluster;
         bool first = i == 0 || g[i - 1].cluster != c;
         /* the characters of the cluster: up to the next cluster above */
-        int c_end = e;
-        for (int j = 0; j < n; j++) {
-            if (g[j].cluster > c && g[j].cluster < c_end) {
-                c_end = g[j].cluster;
-            }
+        int c_end = c + 1;
+        while (c_end < e && !t->chars[c_end].starts) {
+            c_end++;
         }
         if (first && i > 0 && t->n_placed - run.glyph0 >= MAX_RUN_GLYPHS) {
             /* a long run is drawn in pieces: a path holds so many subpaths */
