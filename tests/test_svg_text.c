@@ -335,6 +335,11 @@ SR_TEST(whitespace_collapses_unless_preserved)
                 "xml:space='preserve'>H \nI</text>", 0);
     SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>HI</text>",
                 "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H\nI</text>", 0);
+    /* a space belongs to the element it is written in, not the next */
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H"
+                "<tspan> </tspan><tspan font-size='40'>I</tspan></text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H  "
+                "<tspan font-size='40'> I</tspan></text>", 0);
 }
 
 SR_TEST(font_size_units_and_css_reach_the_glyphs)

@@ -328,6 +328,7 @@ typedef struct tchar {
     double advance;              /* the pen's move over its cluster (first character) */
     double extra;                /* textLength's spacing after it */
     bool starts;                 /* a cluster starts here (while its run is placed) */
+    bool collapsible;            /* a space xml:space does not preserve */
 } tchar;
 
 typedef struct telem {
@@ -366,7 +367,6 @@ struct svg_text {
     int n_elems, cap_elems;
     int open;                    /* the element characters go to, or -1 */
     svg_face *face;              /* every element's, when the caller chose it */
-    bool space_pending;          /* a collapsed blank not yet written */
     trun *runs;
     int n_runs, cap_runs;
     tglyph *placed;
@@ -500,13 +500,14 @@ void svg_text_close(svg_text *t)
     }
 }
 
-static bool add_char(svg_text *t, uint32_t cp, bool visible)
+static bool add_char(svg_text *t, uint32_t cp, bool visible, bool collapsible)
 {
     if (!grow((void **)&t->chars, &t->cap_chars, t->n_chars + 1, sizeof *t->chars)) {
         return false;
     }
     t->chars[t->n_chars++] = (tchar){ cp, t->open, visible,
-                                      { NAN, NAN, NAN, NAN, NAN }, 0, 0, false };
+                                      { NAN, NAN, NAN, NAN, NAN }, 0, 0, false,
+                                      collapsible };
     return true;
 }
 
@@ -529,32 +530,20 @@ bool svg_text_chars(svg_text *t, const char *s, size_t len, bool preserve, bool 
     const unsigned char *p = (const unsigned char *)s, *end = p + len;
     while (p < end) {
         uint32_t c = next_cp(&p, end);
-        if (preserve) {
-            if (c == '\n' || c == '\t' || c == '\r') {
-                c = ' ';
-            }
-        } else {
-            /* SVG 1.1's default: newlines removed, tabs made spaces,
-             * runs of spaces one, leading ones dropped (the trailing one
-             * is dropped at the end of the text). */
-            if (c == '\n' || c == '\r') {
+        if (c == '\n' || c == '\r' || c == '\t') {
+            /* SVG 1.1: newlines removed unless preserved, tabs spaces */
+            if (!preserve && c != '\t') {
                 continue;
             }
-            if (c == ' ' || c == '\t') {
-                bool after_space = t->n_chars == 0 || t->chars[t->n_chars - 1].cp == ' ';
-                if (!after_space) {
-                    t->space_pending = true;
-                }
-                continue;
-            }
+            c = ' ';
         }
-        if (t->space_pending && !preserve) {
-            if (!add_char(t, ' ', visible)) {
-                return false;
-            }
+        /* a run of spaces is one, and leading ones go (the trailing one
+         * goes at layout), unless preserved; a space belongs to the
+         * element it is written in */
+        if (c == ' ' && !preserve && (t->n_chars == 0 || t->chars[t->n_chars - 1].cp == ' ')) {
+            continue;
         }
-        t->space_pending = false;
-        if (!add_char(t, c, visible)) {
+        if (!add_char(t, c, visible, c == ' ' && !preserve)) {
             return false;
         }
     }
@@ -837,6 +826,9 @@ static bool fit_lengths(svg_text *t)
 
 sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_size)
 {
+    while (t->n_chars > 0 && t->chars[t->n_chars - 1].collapsible) {
+        t->n_chars--; /* the text's trailing space */
+    }
     for (int e = 0; e < t->n_elems; e++) {
         telem *el = &t->elems[e];
         el->face = t->face ? t->face
