@@ -62,6 +62,10 @@ static char *dejavu_sans(void)
     } while (0)
 #else
 #define NEED_TEXT() SKIP("built without fontconfig, HarfBuzz and FreeType (no SVG text)")
+static char *dejavu_sans(void)
+{
+    return NULL;
+}
 #endif
 
 static sr_framebuffer *render(const char *svg, sr_result want, char *msg, size_t n)
