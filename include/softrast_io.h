@@ -482,6 +482,43 @@ SR_API sr_result sr_render_svg_file(sr_context *ctx, const char *path, const sr_
                                     sr_framebuffer **out, sr_svg_info *info, sr_io_error *err);
 /* true when this build reads SVG (it found expat). */
 SR_API bool sr_io_have_svg(void);
+
+/* ---- text as paths ----------------------------------------------------
+ * The SVG reader's text (fontconfig, HarfBuzz, FreeType; docs/draw2d.md)
+ * for programs: a line of text becomes glyph outlines in an sr_path, to
+ * fill with sr_fill_path and friends like any path. */
+
+typedef enum sr_text_anchor {
+    SR_TEXT_ANCHOR_DEFAULT = 0,  /* resolved to SR_TEXT_ANCHOR_START */
+    SR_TEXT_ANCHOR_START,        /* x is where the text starts (its end, right to left) */
+    SR_TEXT_ANCHOR_MIDDLE,       /* x is the middle of its advance */
+    SR_TEXT_ANCHOR_END,
+} sr_text_anchor;
+
+typedef struct sr_text_desc {
+    const char *family;          /* a font-family list as CSS writes it; NULL -> "sans-serif" */
+    const char *font_file;       /* a font file to use instead; NULL: fontconfig matches family */
+    double size;                 /* the em in path units; 0 -> 16 */
+    int weight;                  /* 1..1000; 0 -> 400 (bold is 700) */
+    bool italic;
+    double x, y;                 /* the pen's start on the baseline (y down) */
+    sr_text_anchor anchor;
+    bool rtl;                    /* shape right to left, whatever the script */
+} sr_text_desc;
+
+/* Append the outlines of utf8 (NUL-terminated, at most SR_TEXT_MAX_CHARS
+ * characters, one line: newlines and tabs are spaces) shaped with the
+ * font desc names to path; *advance (may be NULL) is the pen's advance.
+ * Errors: SR_INVALID_ARG (NULL utf8 or path, bad UTF-8, a size not in
+ * (0, SR_MAX_COORD2D], a weight beyond 1000), SR_BAD_FORMAT (the font
+ * file does not read, no font is found), SR_TOO_LARGE (too many
+ * characters), SR_OUT_OF_MEMORY, SR_UNSUPPORTED (a build without the
+ * libraries: sr_io_have_text). */
+#define SR_TEXT_MAX_CHARS 65536
+SR_API sr_result sr_text_path(const char *utf8, const sr_text_desc *desc, sr_path *path,
+                              double *advance, sr_io_error *err);
+/* true when this build lays out text (fontconfig, HarfBuzz, FreeType). */
+SR_API bool sr_io_have_text(void);
 /* A CSS color as SVG reads one, alpha included: a keyword (the 147 of CSS
  * and SVG, "transparent"), #rgb, #rgba, #rrggbb, #rrggbbaa, rgb()/rgba()
  * and hsl()/hsla() (commas or blanks, numbers or percentages, an alpha

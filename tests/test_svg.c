@@ -203,15 +203,15 @@ SR_TEST(unsupported_names_warn_once_each)
     out_path("warn.svg", in, sizeof in);
     out_path("warn.png", out, sizeof out);
     REQUIRE(write_file(in, "<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>\n"
-                           "<text>a</text>\n<text>b</text>\n"
+                           "<foreignObject/>\n<foreignObject/>\n"
                            "<rect width='5' height='5' fill-paint='url(#g)'/>\n"
                            "<rect width='5' height='5' style='fill-paint: url(#g)'/>\n"
-                           "<foreignObject/>\n"
+                           "<tref/>\n"
                            "</svg>\n"));
     CHECK_EQ(run_cli((const char *[]){ "svg", in, "-o", out, NULL }, err, sizeof err), 0);
-    CHECK_STR_CONTAINS(err, "warn.svg:2: warning: unsupported element 'text' skipped");
+    CHECK_STR_CONTAINS(err, "warn.svg:2: warning: unsupported element 'foreignObject' skipped");
     CHECK_STR_CONTAINS(err, "warn.svg:4: warning: unsupported property 'fill-paint' skipped");
-    CHECK_STR_CONTAINS(err, "warn.svg:6: warning: unsupported element 'foreignObject' skipped");
+    CHECK_STR_CONTAINS(err, "warn.svg:6: warning: unsupported element 'tref' skipped");
     int lines = 0;
     for (const char *p = err; *p; p++) {
         lines += *p == '\n';

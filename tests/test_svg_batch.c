@@ -177,7 +177,7 @@ static bool write_mixed(const char *dir, char *list, size_t size)
             ok = write_broken_svg(path);
         } else if (mixed[i].kind == WARNED) {
             ok = write_text(path, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"16\" "
-                                  "height=\"16\">\n  <text x=\"1\" y=\"9\">no</text>\n"
+                                  "height=\"16\">\n  <foreignObject width=\"1\" height=\"9\"/>\n"
                                   "  <rect width=\"5\" height=\"5\"/>\n</svg>\n");
         } else if (mixed[i].kind != MISSING) {
             ok = write_svg(path, colors[i % 6]);

@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 class SvgWarning(UserWarning):
     """What the SVG reader skipped: an unsupported element, property or
     image source, given once per name and render as
-    ``"NAME:LINE: warning: unsupported element 'text' skipped"``."""
+    ``"NAME:LINE: warning: unsupported element 'foreignObject' skipped"``."""
 
     def __init__(self, message: str) -> None:
         # (A signature of its own: inspect finds none on Warning's.)

@@ -185,6 +185,7 @@ PyMODINIT_FUNC PyInit__softrast(void)
     if (PyModule_AddObject(m, "Mesh", (PyObject *)&sr_py_MeshType) < 0 ||
         PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
         PyModule_AddObject(m, "have_svg", PyBool_FromLong(sr_io_have_svg())) < 0 ||
+        PyModule_AddObject(m, "have_text", PyBool_FromLong(sr_io_have_text())) < 0 ||
         add_framing_constants(m) < 0 || add_type(m, "Path", &sr_py_PathType) < 0 ||
         add_type(m, "Canvas2D", &sr_py_Canvas2DType) < 0 || add_draw2d_names(m) < 0) {
         Py_DECREF(&sr_py_MeshType);

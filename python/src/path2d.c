@@ -279,6 +279,70 @@ static PyObject *path_add_polygon(PathObject *self, PyObject *args, PyObject *kw
     return path_result(self, r);
 }
 
+/* The outlines of a line of text (sr_text_path), appended. */
+static PyObject *path_text(PathObject *self, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = { "text", "x", "y", "size", "family", "font_file", "weight",
+                              "italic", "anchor", "rtl", NULL };
+    const char *text, *family = NULL, *anchor = "start";
+    PyObject *xo, *yo, *size_o = NULL, *file = NULL;
+    int weight = 400, italic = 0, rtl = 0;
+    if (ready(self) < 0 ||
+        !PyArg_ParseTupleAndKeywords(args, kwargs, "sOO|$OzO&ipsp:text", kwlist, &text, &xo, &yo,
+                                     &size_o, &family, PyUnicode_FSConverter, &file, &weight,
+                                     &italic, &anchor, &rtl)) {
+        return NULL;
+    }
+    double x, y, size = 16;
+    static const char *const anchors[] = { "start", "middle", "end" };
+    int a = 0;
+    while (a < 3 && strcmp(anchor, anchors[a]) != 0) {
+        a++;
+    }
+    PyObject *result = NULL;
+    if (sr_py_real_arg(xo, "x", &x) < 0 || sr_py_real_arg(yo, "y", &y) < 0 ||
+        (size_o && sr_py_real_arg(size_o, "size", &size) < 0)) {
+        goto done;
+    }
+    if (a == 3) {
+        PyErr_Format(PyExc_ValueError, "anchor: expected 'start', 'middle' or 'end', got %R",
+                     PyTuple_Size(args) > 8 ? PyTuple_GetItem(args, 8)
+                                            : PyDict_GetItemString(kwargs, "anchor"));
+        goto done;
+    }
+    if (!(size > 0) || size > SR_MAX_COORD2D) {
+        sr_py_value_error("size: must be in (0, %g], got %g", SR_MAX_COORD2D, size);
+        goto done;
+    }
+    if (weight < 1 || weight > 1000) {
+        sr_py_value_error("weight: must be 1..1000, got %d", weight);
+        goto done;
+    }
+    sr_io_error err;
+    sr_text_anchor anchor_value = (sr_text_anchor)(SR_TEXT_ANCHOR_START + a);
+    sr_result r = sr_text_path(text,
+                               &(sr_text_desc){ .family = family,
+                                                .font_file = file ? PyBytes_AsString(file) : NULL,
+                                                .size = size, .weight = weight,
+                                                .italic = italic != 0, .x = x, .y = y,
+                                                .anchor = anchor_value,
+                                                .rtl = rtl != 0 },
+                               self->path, NULL, &err);
+    if (r == SR_OUT_OF_MEMORY) {
+        PyErr_NoMemory();
+    } else if (r == SR_UNSUPPORTED) {
+        PyErr_SetString(PyExc_RuntimeError, err.message);
+    } else if (r != SR_OK) {
+        PyErr_SetString(PyExc_ValueError, err.message);
+    } else {
+        Py_INCREF(self);
+        result = (PyObject *)self;
+    }
+done:
+    Py_XDECREF(file);
+    return result;
+}
+
 static PyObject *path_to_polygons(PathObject *self, PyObject *unused)
 {
     (void)unused;
@@ -431,6 +495,16 @@ static PyMethodDef path_methods[] = {
                 "command (M L H V C S Q T A Z, absolute and relative), numbers in SVG's\n"
                 "compact forms.  An error in the data raises ValueError with its\n"
                 "offset; strict=False keeps the path up to it, as SVG draws it."),
+    PATH_METHOD(text, METH_VARARGS | METH_KEYWORDS,
+                "text($self, text, x, y, *, size=16.0, family=None, font_file=None, weight=400,\n"
+                "     italic=False, anchor='start', rtl=False)\n--\n\n"
+                "The glyph outlines of a line of text (sr_text_path), its baseline starting\n"
+                "at (x, y) (anchor 'middle' or 'end': x is its middle or end): the font\n"
+                "fontconfig matches for `family` (a CSS font-family list; None is\n"
+                "sans-serif), `weight` and `italic`, or the file `font_file`; shaped by\n"
+                "HarfBuzz (kerning, ligatures, right to left), `size` pixels to the em.\n"
+                "Fill the path with a Canvas.  RuntimeError in a build without\n"
+                "fontconfig, HarfBuzz and FreeType (softrast.have_text)."),
     PATH_METHOD(to_polygons, METH_NOARGS,
                 "to_polygons($self)\n--\n\n"
                 "The flattened subpaths, each an (n, 2) float64 array of x, y."),

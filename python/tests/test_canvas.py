@@ -528,3 +528,35 @@ def test_the_docs_example_draws_the_docs_image(tmp_path, monkeypatch):
     drawn = scope["canvas"].image
     assert np.array_equal(drawn, softrast.read_image(root / "docs" / "images" / "python-canvas.png"))
     assert np.array_equal(softrast.read_image(tmp_path / "canvas.png"), drawn)
+
+
+needs_text = pytest.mark.skipif(not (_softrast.have_svg and _softrast.have_text),
+                                reason="this build lays out no text (fontconfig, HarfBuzz, FreeType)")
+
+
+@needs_text
+@pytest.mark.parametrize("anchor", ["start", "middle", "end"])
+def test_text_is_the_svg_text(anchor):
+    canvas = softrast.Canvas(W, H, background="white")
+    path = softrast.Path().text("Ta fi", 48, 40, size=22, family="DejaVu Sans", weight=700,
+                                anchor=anchor)
+    canvas.fill(path, "teal")
+    assert_same_as_svg(canvas, svg(f'<text x="48" y="40" font-family="DejaVu Sans" '
+                                   f'font-size="22" font-weight="bold" text-anchor="{anchor}" '
+                                   f'fill="teal">Ta fi</text>'), background="white")
+
+
+@needs_text
+def test_text_refuses_bad_arguments():
+    path = softrast.Path()
+    with pytest.raises(ValueError, match="anchor"):
+        path.text("a", 0, 0, anchor="left")
+    with pytest.raises(ValueError, match="size"):
+        path.text("a", 0, 0, size=0)
+    with pytest.raises(ValueError, match="weight"):
+        path.text("a", 0, 0, weight=1001)
+    with pytest.raises(ValueError, match="nonexistent"):
+        path.text("a", 0, 0, font_file="/nonexistent/font.ttf")
+    with pytest.raises(TypeError, match="x"):
+        path.text("a", "0", 0)
+    assert path.to_polygons() == []

@@ -141,16 +141,16 @@ def test_colors_as_svg_reads_them():
 
 
 def test_warnings_come_before_a_failure():
-    # <text> is skipped (a warning), then the use that includes itself
+    # <foreignObject> is skipped (a warning), then the use that includes itself
     # fails the render: the warning is not lost.
-    doc = b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8"><text>a</text>' \
+    doc = b'<svg xmlns="http://www.w3.org/2000/svg" width="8" height="8"><foreignObject/>' \
           b'<use id="u" href="#u"/></svg>'
-    with pytest.warns(softrast.SvgWarning, match="'text'"):
+    with pytest.warns(softrast.SvgWarning, match="'foreignObject'"):
         with pytest.raises(ValueError, match=r"^<svg>:1: .*reference cycle"):
             softrast.render_svg(doc)
     with warnings.catch_warnings():
         warnings.simplefilter("error", softrast.SvgWarning)
-        with pytest.raises(softrast.SvgWarning, match="'text'"):
+        with pytest.raises(softrast.SvgWarning, match="'foreignObject'"):
             softrast.render_svg(doc)
 
 
@@ -181,13 +181,13 @@ def test_warnings_go_through_the_warnings_module(capfd):
     with pytest.warns(softrast.SvgWarning) as record:
         softrast.render_svg(path)
     messages = [str(w.message) for w in record]
-    assert f"{path}:15: warning: unsupported element 'text' skipped" in messages
+    assert f"{path}:15: warning: unsupported element 'foreignObject' skipped" in messages
     assert len(messages) == len(set(messages))
     assert capfd.readouterr().err == ""
     assert issubclass(softrast.SvgWarning, UserWarning)
     with warnings.catch_warnings():
         warnings.simplefilter("error", softrast.SvgWarning)
-        with pytest.raises(softrast.SvgWarning, match="'text'"):
+        with pytest.raises(softrast.SvgWarning, match="'foreignObject'"):
             softrast.render_svg(path)
 
 

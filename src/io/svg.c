@@ -25,6 +25,7 @@
  * different contexts. */
 #include "io/svg.h"
 #include "io/io_util.h"
+#include "io/svg_text.h"
 #include "io/number.h"
 
 #include <ctype.h>
@@ -116,6 +117,7 @@ typedef struct style {
     sr_rgba lighting_color;  /* lighting-color (not inherited) */
     double flood_opacity;    /* flood-opacity (not inherited) */
     bool filters_srgb;       /* color-interpolation-filters: sRGB (else linearRGB) */
+    svg_text_style text;     /* font and text properties (svg_text.h) */
 } style;
 
 enum { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS };
@@ -200,6 +202,9 @@ typedef struct svg_doc {
     svg_gradient *grad;
     const svg_node *grad_server;
     const struct frame *filter_frame; /* of the filter being run (feImage draws in it) */
+    svg_fonts *fonts;        /* the faces the text matched, made on first use */
+    const sr_polygon2 *paint_box; /* what paints measure instead of the shape (a whole
+                                   * text, drawn a run at a time), or NULL */
 } svg_doc;
 
 /* ---- messages -------------------------------------------------------------- */
@@ -314,39 +319,12 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
 
 /* ---- numbers, lengths, lists ----------------------------------------------------- */
 
-/* A length: number with an optional unit, in any case as CSS reads units
- * (SVG 2 reads presentation attributes as CSS too: 20PX, 1In); 96 px per
- * inch, em and ex of the initial font (16 px; ex half of it: no font is
- * read).  *percent is set (and the number returned as is) for "%". */
+/* A length of geometry (svg_parse_length; SVG 2 reads presentation
+ * attributes as CSS too: 20PX, 1In): em and ex of a 16 px font, as
+ * before text was drawn (font-size is read for text only). */
 static bool parse_length(const char *s, double *out, bool *percent)
 {
-    s = svg_skip_ws(s);
-    if (!svg_parse_number(&s, out)) {
-        return false;
-    }
-    static const struct { const char *unit; double px; } units[] = {
-        { "px", 1 }, { "pt", 96.0 / 72 }, { "pc", 16 }, { "in", 96 }, { "cm", 96 / 2.54 },
-        { "mm", 96 / 25.4 }, { "em", 16 }, { "ex", 8 },
-    };
-    if (percent) {
-        *percent = false;
-    }
-    s = svg_skip_ws(s);
-    if (*s == 0) {
-        return true;
-    }
-    if (*s == '%' && percent) {
-        *percent = true;
-        return *svg_skip_ws(s + 1) == 0;
-    }
-    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
-        size_t n = strlen(units[i].unit);
-        if (strncasecmp(s, units[i].unit, n) == 0 && *svg_skip_ws(s + n) == 0) {
-            *out *= units[i].px;
-            return true;
-        }
-    }
-    return false;
+    return svg_parse_length(s, 16, out, percent);
 }
 
 /* A length attribute of a shape; false after reporting a malformed one.
@@ -810,6 +788,11 @@ static bool apply_property(svg_doc *doc, style *st, const char *name, const char
     }
     memcpy(v, value, n);
     v[n] = 0;
+    /* a text property's malformed value is ignored, as CSS does */
+    if (svg_text_property(&st->text, doc->inherit_from ? &doc->inherit_from->text : NULL, name,
+                          v) != 0) {
+        return true;
+    }
     if (strcmp(v, "inherit") == 0) {
         /* An inherited property has the parent's value already; the others
          * take it from the parent's style, when there is a parent. */
@@ -1570,8 +1553,23 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
 
 /* Fill a user-space polygon with a paint at an opacity; a gradient's
  * bounding box is the shape's geometry (the fill's path, for a stroke). */
+static void paint_polygon_as(svg_doc *doc, const frame *f, sr_polygon2 poly,
+                             sr_polygon2 geometry, const paint *p, double opacity,
+                             sr_fill_rule rule);
+
 static void paint_polygon(svg_doc *doc, const frame *f, sr_polygon2 poly, sr_polygon2 geometry,
                           const paint *p, double opacity, sr_fill_rule rule)
+{
+    /* a pattern's content inside measures its own shapes */
+    const sr_polygon2 *box = doc->paint_box;
+    doc->paint_box = NULL;
+    paint_polygon_as(doc, f, poly, box ? *box : geometry, p, opacity, rule);
+    doc->paint_box = box;
+}
+
+static void paint_polygon_as(svg_doc *doc, const frame *f, sr_polygon2 poly,
+                             sr_polygon2 geometry, const paint *p, double opacity,
+                             sr_fill_rule rule)
 {
     sr_rgba c = p->kind == SVG_PAINT_CURRENT ? f->st.color : p->color;
     if (p->kind == SVG_PAINT_URL && !is_gradient(p->server)) {
@@ -2092,6 +2090,20 @@ static bool is_shape(const char *n)
 
 /* ---- reading the tree -------------------------------------------------------------- */
 
+/* Whether an element's character data is text to draw: that of text,
+ * tspan and textPath, and of an a inside a text. */
+static bool holds_text(const svg_node *n)
+{
+    if (!svg_text_available()) {
+        return false;
+    }
+    if (strcmp(n->name, "a") == 0) {
+        return n->parent && holds_text(n->parent);
+    }
+    return strcmp(n->name, "text") == 0 || strcmp(n->name, "tspan") == 0 ||
+           strcmp(n->name, "textPath") == 0;
+}
+
 /* One allocation per element: the node, its attribute array and strings. */
 static svg_node *make_node(const char *name, const char **atts)
 {
@@ -2214,13 +2226,38 @@ static void XMLCALL on_end(void *user, const XML_Char *name)
     }
 }
 
-/* Character data is kept for <style> only (the sheets are read after
- * the whole document). */
+/* Character data is kept for <style> (the sheets are read after the
+ * whole document) and for text, where it goes in nodes named "#text"
+ * between the elements, in order. */
 static void XMLCALL on_text(void *user, const XML_Char *s, int len)
 {
     svg_doc *doc = user;
     svg_node *n = doc->open;
-    if (doc->status != SR_OK || !n || strcmp(n->name, "style") != 0 || len <= 0) {
+    if (doc->status != SR_OK || !n || len <= 0) {
+        return;
+    }
+    if (holds_text(n)) {
+        if (!n->last || strcmp(n->last->name, "#text") != 0) {
+            svg_node *chars = make_node("#text", (const char *[]){ NULL });
+            if (!chars || !points_within_budget(doc, 1)) {
+                if (!chars) {
+                    svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+                }
+                free(chars);
+                return;
+            }
+            doc->points_used++;
+            chars->line = event_line(doc);
+            chars->parent = n;
+            if (n->last) {
+                n->last = n->last->next = chars;
+            } else {
+                n->first = n->last = chars;
+            }
+            doc->nodes++;
+        }
+        n = n->last;
+    } else if (strcmp(n->name, "style") != 0) {
         return;
     }
     char *grown = realloc(n->text, n->text_len + (size_t)len + 1);
@@ -2469,7 +2506,9 @@ static bool feature_supported(const char *f, size_t n)
             return true;
         }
     }
-    return false;
+    /* text, in a build that draws it */
+    return svg_text_available() && ((n - k == 9 && strncmp(f + k, "BasicText", 9) == 0) ||
+                                     (n - k == 4 && strncmp(f + k, "Text", 4) == 0));
 }
 
 /* The conditional processing attributes: systemLanguage (a comma list of
@@ -2756,6 +2795,177 @@ static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
     free(verts);
     release_shape_path(doc, p, tol);
 }
+
+/* ---- text ------------------------------------------------------------------------- */
+
+#ifdef SR_HAVE_SVG_TEXT
+
+/* Font sizes beyond this many pixels are refused: their glyphs would be
+ * flattened into more points than any image needs. */
+#define MAX_FONT_PIXELS 100000.0
+
+/* The frames of a text's elements, by svg_text_open's index. */
+typedef struct text_walk {
+    svg_text *t;
+    frame *frames;
+    int cap;
+} text_walk;
+
+/* Open a text element (its frame cascaded), add its characters and its
+ * tspans' in order, close it. */
+static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const frame *f,
+                         bool preserve)
+{
+    const char *space = attr(node->atts, "xml:space");
+    if (space) {
+        preserve = strcmp(space, "preserve") == 0;
+    }
+    const char *lists[7] = { attr(node->atts, "x"), attr(node->atts, "y"),
+                             attr(node->atts, "dx"), attr(node->atts, "dy"),
+                             attr(node->atts, "rotate"), attr(node->atts, "textLength"),
+                             attr(node->atts, "lengthAdjust") };
+    char why[160];
+    doc->line = node->line;
+    int i = svg_text_open(w->t, &f->st.text, lists, f->vp_w, f->vp_h, why, sizeof why);
+    if (i < 0) {
+        svg_fail(doc, strstr(why, "memory") ? SR_OUT_OF_MEMORY : SR_BAD_FORMAT, "%s", why);
+        return;
+    }
+    if (i >= w->cap) {
+        int cap = w->cap ? 2 * w->cap : 8;
+        frame *grown = realloc(w->frames, (size_t)cap * sizeof *grown);
+        if (!grown) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+            return;
+        }
+        w->frames = grown;
+        w->cap = cap;
+    }
+    w->frames[i] = *f;
+    for (const svg_node *c = node->first; c && doc->status == SR_OK; c = c->next) {
+        if (strcmp(c->name, "#text") == 0) {
+            if (!svg_text_chars(w->t, c->text ? c->text : "", c->text_len, preserve,
+                                !f->st.invisible)) {
+                svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+            }
+        } else if ((strcmp(c->name, "tspan") == 0 || strcmp(c->name, "a") == 0) &&
+                   conditions_hold(c)) {
+            frame cf = *f;
+            cf.st.own_opacity = 1;
+            svg_text_reset_uninherited(&cf.st.text);
+            doc->line = c->line;
+            doc->inherit_from = &f->st;
+            apply_cascade(doc, c, &cf.st);
+            doc->inherit_from = NULL;
+            svg_text_settle(&cf.st.text, &f->st.text);
+            cf.st.opacity *= cf.st.own_opacity;
+            if (!cf.st.display_none) {
+                text_element(doc, w, c, &cf, preserve);
+            }
+        } else if (!c->foreign && !is_named(c, not_drawn)) {
+            doc->line = c->line;
+            warn_once(doc, "element", c->name);
+        }
+    }
+    svg_text_close(w->t);
+}
+
+/* Fill and stroke each run of a laid out text with its element's paint,
+ * as the path of a shape. */
+static void draw_text_runs(svg_doc *doc, text_walk *w, double tol)
+{
+    int n = svg_text_runs(w->t);
+    sr_path **paths = calloc((size_t)(n > 0 ? n : 1), sizeof *paths);
+    if (!paths) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    /* every run's outline first: objectBoundingBox paints measure the
+     * whole text, as they would a path */
+    double box[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    for (int r = 0; r < n && doc->status == SR_OK; r++) {
+        sr_result res = sr_make_path(doc->ctx, tol, &paths[r]);
+        if (res == SR_OK) {
+            res = svg_text_run_path(w->t, doc->fonts, r, paths[r]);
+        }
+        if (res != SR_OK) {
+            lib_fail(doc, res);
+        } else if (path_within_limits(doc, paths[r], "text", 0)) {
+            doc->points_used += sr_path_polygon(paths[r]).point_count;
+            double b[4];
+            if (bounding_box(sr_path_polygon(paths[r]), b)) {
+                box[0] = fmin(box[0], b[0]), box[1] = fmin(box[1], b[1]);
+                box[2] = fmax(box[2], b[2]), box[3] = fmax(box[3], b[3]);
+            }
+        }
+    }
+    sr_point2 corners[4] = { { box[0], box[1] }, { box[2], box[1] }, { box[2], box[3] },
+                             { box[0], box[3] } };
+    int four = 4;
+    sr_polygon2 whole = { .points = corners, .point_count = 4, .contour_counts = &four,
+                          .contour_count = 1 };
+    for (int r = 0; r < n && doc->status == SR_OK; r++) {
+        frame rf = w->frames[svg_text_run_element(w->t, r)];
+        rf.st.fill_rule = SR_NONZERO; /* glyph outlines are made for nonzero */
+        doc->paint_box = box[0] <= box[2] ? &whole : NULL;
+        for (int i = 0; i < 3 && doc->status == SR_OK; i++) {
+            if (rf.st.paint_order[i] != PAINT_MARKERS) {
+                draw_path(doc, &rf, paths[r], tol, true, rf.st.paint_order[i]);
+            }
+        }
+        doc->paint_box = NULL;
+    }
+    for (int r = 0; r < n; r++) {
+        sr_destroy_path(doc->ctx, paths[r]);
+    }
+    free(paths);
+}
+
+static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    double scale = matrix_scale(f->m), tol = scale > 0 ? 0.1 / scale : 0.1;
+    if (!(tol > 0) || !isfinite(tol)) {
+        return; /* a singular transform: nothing visible */
+    }
+    if (!doc->fonts && !(doc->fonts = svg_fonts_make())) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    text_walk w = { .t = svg_text_make() };
+    if (!w.t) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    text_element(doc, &w, node, f, false);
+    doc->line = node->line;
+    /* each character is a point of the budget, drawn or not */
+    if (doc->status == SR_OK && points_within_budget(doc, svg_text_length(w.t))) {
+        doc->points_used += svg_text_length(w.t);
+        double px = svg_text_max_size(w.t) * scale;
+        char why[256];
+        sr_result r;
+        if (px > MAX_FONT_PIXELS) {
+            svg_fail(doc, SR_TOO_LARGE, "text: a font-size of %.6g pixels (beyond %.0f)", px,
+                     MAX_FONT_PIXELS);
+        } else if (svg_text_length(w.t) == 0) {
+            /* nothing to lay out */
+        } else if ((r = svg_text_layout(w.t, doc->fonts, why, sizeof why)) == SR_BAD_FORMAT) {
+            warn_keyed(doc, "text font", "text skipped: %s", why);
+        } else if (r != SR_OK) {
+            svg_fail(doc, r, "%s", why);
+        } else {
+            draw_text_runs(doc, &w, tol);
+        }
+    }
+    free(w.frames);
+    svg_text_free(w.t);
+}
+#else
+static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    (void)doc, (void)node, (void)f; /* not reached: holds_text and draw_node skip text */
+}
+#endif
 
 /* ---- images -------------------------------------------------------------------------- */
 
@@ -3692,11 +3902,6 @@ static void draw_use(svg_doc *doc, svg_node *node, frame *f)
 
 /* ---- filters (svg_filter.c runs them) --------------------------------------------- */
 
-bool svg_parse_length(const char *s, double *out, bool *percent)
-{
-    return parse_length(s, out, percent);
-}
-
 static void filter_warn(void *host, const svg_node *at, const char *kind, const char *name)
 {
     svg_doc *doc = host;
@@ -3841,11 +4046,12 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     bool group = strcmp(node->name, "g") == 0 || strcmp(node->name, "a") == 0 ||
                  strcmp(node->name, "switch") == 0;
     bool image = strcmp(node->name, "image") == 0;
+    bool text = strcmp(node->name, "text") == 0 && svg_text_available();
     bool shape = is_shape(node->name) || image, use = strcmp(node->name, "use") == 0;
     bool nested = strcmp(node->name, "svg") == 0 && node != doc->root;
     if (nested) {
         group = true;
-    } else if (!group && !shape && !use && node != doc->root) {
+    } else if (!group && !shape && !use && !text && node != doc->root) {
         if (!is_named(node, not_drawn) && !node->foreign) {
             warn_once(doc, "element", node->name);
         }
@@ -3874,9 +4080,11 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     f.st.flood_color = doc->initial.flood_color;
     f.st.flood_opacity = doc->initial.flood_opacity;
     f.st.lighting_color = doc->initial.lighting_color;
+    svg_text_reset_uninherited(&f.st.text);
     doc->inherit_from = &parent->st;
     apply_cascade(doc, node, &f.st);
     doc->inherit_from = NULL;
+    svg_text_settle(&f.st.text, &parent->st.text);
     if (doc->status != SR_OK || f.st.display_none || f.st.filter_missing) {
         return;
     }
@@ -3976,6 +4184,8 @@ static void draw_content(svg_doc *doc, svg_node *node, frame *fp, bool shape, bo
         }
     } else if (use) {
         draw_use(doc, node, &f);
+    } else if (strcmp(node->name, "text") == 0) {
+        draw_text(doc, node, &f);
     } else if (strcmp(node->name, "switch") == 0) {
         /* the first drawable child whose conditions hold */
         for (svg_node *c = node->first; c; c = c->next) {
@@ -4060,6 +4270,7 @@ static void free_document(svg_doc *doc)
     svg_css_free(&doc->sheet);
     sr_destroy_framebuffer(doc->ctx, doc->tile);
     free(doc->grad);
+    svg_fonts_free(doc->fonts);
 }
 
 /* The initial style (SVG's defaults): fill black, no stroke, width 1. */
@@ -4074,7 +4285,8 @@ static style initial_style(void)
                     .join = SR_STROKE_JOIN_MITER, .cap = SR_STROKE_CAP_BUTT,
                     .miter_limit = 4, .flood_color = { 0, 0, 0, 1 }, .flood_opacity = 1,
                     .lighting_color = { 1, 1, 1, 1 },
-                    .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS } };
+                    .paint_order = { PAINT_FILL, PAINT_STROKE, PAINT_MARKERS },
+                    .text = svg_text_initial() };
 }
 
 static sr_result render(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *opt,

@@ -28,6 +28,11 @@ const char *svg_skip_ws_comma(const char *s);
 /* An SVG number (sign, digits, fraction, exponent), no leading blanks:
  * *s moved past it; false when there is none or it is beyond double. */
 bool svg_parse_number(const char **s, double *out);
+/* A length: a number with an optional unit in any case, as CSS reads
+ * units: px, pt, pc, in, cm, mm (96 px per inch), em and ex (half an em)
+ * of `em`; blanks around.  With percent, "%" is allowed (*percent set,
+ * the number returned as is). */
+bool svg_parse_length(const char *s, double em, double *out, bool *percent);
 
 /* ---- the document tree (svg.c) ---------------------------------------- */
 
@@ -204,9 +209,6 @@ typedef struct svg_filter_job {
  * put the result in its place; pixels outside the region become
  * transparent.  Failures go through job->fail. */
 void svg_apply_filter(const svg_filter_job *job);
-
-/* parse_length of svg.c: a number with a unit or '%' (*percent set). */
-bool svg_parse_length(const char *s, double *out, bool *percent);
 
 /* B(cb, cs) of a blend mode on straight colors, each channel 0..1. */
 void svg_blend_mix(svg_blend_kind mode, const float b[3], const float s[3], float out[3]);

@@ -427,6 +427,13 @@ static const char *node_attr(const svg_node *node, const char *name)
     return NULL;
 }
 
+/* Character data of a text is kept as nodes named "#text" among the
+ * elements: selectors see elements only. */
+static bool is_element(const svg_node *n)
+{
+    return n->name[0] != '#';
+}
+
 /* The element before node among its parent's children, or NULL. */
 static const svg_node *previous_sibling(const svg_node *node, long *work)
 {
@@ -434,15 +441,24 @@ static const svg_node *previous_sibling(const svg_node *node, long *work)
     for (const svg_node *c = node->parent ? node->parent->first : NULL; c && c != node;
          c = c->next) {
         ++*work;
-        prev = c;
+        prev = is_element(c) ? c : prev;
     }
     return prev;
 }
 
 static bool compound_matches(const svg_css_compound *c, const svg_node *node)
 {
-    if (c->first_child && node->parent && node->parent->first != node) {
+    if (!is_element(node)) {
         return false;
+    }
+    if (c->first_child && node->parent) {
+        const svg_node *first = node->parent->first;
+        while (first && !is_element(first)) {
+            first = first->next;
+        }
+        if (first != node) {
+            return false;
+        }
     }
     for (int i = 0; i < c->n_attrs; i++) {
         const char *v = node_attr(node, c->attrs[i].name);

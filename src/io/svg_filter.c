@@ -160,7 +160,7 @@ static void region_attrs(fctx *fc, const svg_node *n, bool bbox_units, double r[
         if (!v) {
             continue;
         }
-        if (!svg_parse_length(v, &x, &pct)) {
+        if (!svg_parse_length(v, 16, &x, &pct)) {
             fc->job->warn(fc->job->host, n, names[i], v);
             continue;
         }

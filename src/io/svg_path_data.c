@@ -11,6 +11,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 
 /* ---- numbers and separators, shared with svg.c -------------------------- */
 
@@ -255,4 +256,35 @@ sr_result sr_io_parse_path_data(const char *d, sr_path *path, const sr_io_path_d
         fail_at(err, (long)(at - d), "%s", sr_result_text(r));
     }
     return r;
+}
+
+bool svg_parse_length(const char *s, double em, double *out, bool *percent)
+{
+    s = svg_skip_ws(s);
+    if (!svg_parse_number(&s, out)) {
+        return false;
+    }
+    const struct { const char *unit; double px; } units[] = {
+        { "px", 1 }, { "pt", 96.0 / 72 }, { "pc", 16 }, { "in", 96 }, { "cm", 96 / 2.54 },
+        { "mm", 96 / 25.4 }, { "em", em }, { "ex", em / 2 },
+    };
+    if (percent) {
+        *percent = false;
+    }
+    s = svg_skip_ws(s);
+    if (*s == 0) {
+        return true;
+    }
+    if (*s == '%' && percent) {
+        *percent = true;
+        return *svg_skip_ws(s + 1) == 0;
+    }
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
+        size_t n = strlen(units[i].unit);
+        if (strncasecmp(s, units[i].unit, n) == 0 && *svg_skip_ws(s + n) == 0) {
+            *out *= units[i].px;
+            return true;
+        }
+    }
+    return false;
 }

@@ -1,0 +1,910 @@
+/* svg_text.c - the SVG reader's text (src/io, softrast_io): the font
+ * properties of a style, and the layout of one <text>.  svg.c opens the
+ * text's elements in document order with their cascaded styles and
+ * character data; here the whitespace is collapsed, x, y, dx, dy and
+ * rotate are given to the characters, the text is cut into chunks (a new
+ * one at each absolute x or y) and runs of one element, each run shaped
+ * with its face (svg_font.c), chunks moved by text-anchor, and each run's
+ * glyphs and decorations appended to a path in user units for svg.c to
+ * fill and stroke with the run's paint.  One document's thread. */
+#include "io/svg_text.h"
+#include "io/svg.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+/* font-size: medium, as rsvg-convert and resvg take it; the keywords
+ * step by 1.2. */
+#define MEDIUM_SIZE 12.0
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+svg_text_style svg_text_initial(void)
+{
+    return (svg_text_style){ .size = MEDIUM_SIZE, .weight = 400 };
+}
+
+void svg_text_reset_uninherited(svg_text_style *ts)
+{
+    ts->align = SVG_BASE_AUTO;
+    ts->shift_kind = SVG_SHIFT_LENGTH;
+    ts->shift = 0;
+}
+
+void svg_text_settle(svg_text_style *ts, const svg_text_style *parent)
+{
+    double own = ts->shift_kind == SVG_SHIFT_SUB       ? -0.2 * ts->size
+                 : ts->shift_kind == SVG_SHIFT_SUPER   ? 0.4 * ts->size
+                 : ts->shift_kind == SVG_SHIFT_PERCENT ? ts->shift / 100 * ts->size
+                                                       : ts->shift;
+    ts->raised = (parent ? parent->raised : 0) + own;
+}
+
+static int keyword(const char *v, const char *const *words)
+{
+    for (int i = 0; words[i]; i++) {
+        if (strcmp(v, words[i]) == 0) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+static bool font_size(svg_text_style *ts, double parent, const char *v)
+{
+    static const char *const sizes[] = { "xx-small", "x-small", "small", "medium", "large",
+                                         "x-large", "xx-large", NULL };
+    int k = keyword(v, sizes);
+    if (k >= 0) {
+        ts->size = MEDIUM_SIZE * pow(1.2, k - 3);
+        return true;
+    }
+    if (strcmp(v, "larger") == 0 || strcmp(v, "smaller") == 0) {
+        ts->size = v[0] == 'l' ? parent * 1.2 : parent / 1.2;
+        return true;
+    }
+    double d;
+    bool pct;
+    if (!svg_parse_length(v, parent, &d, &pct) || d < 0 || !isfinite(d)) {
+        return false;
+    }
+    ts->size = pct ? parent * d / 100 : d;
+    return true;
+}
+
+static bool font_weight(svg_text_style *ts, int parent, const char *v)
+{
+    if (strcmp(v, "normal") == 0) {
+        ts->weight = 400;
+    } else if (strcmp(v, "bold") == 0) {
+        ts->weight = 700;
+    } else if (strcmp(v, "bolder") == 0) {
+        ts->weight = parent < 350 ? 400 : parent < 550 ? 700 : 900;
+    } else if (strcmp(v, "lighter") == 0) {
+        ts->weight = parent < 550 ? 100 : parent < 750 ? 400 : 700;
+    } else {
+        const char *s = v;
+        double d;
+        if (!svg_parse_number(&s, &d) || *svg_skip_ws(s) || d < 1 || d > 1000) {
+            return false;
+        }
+        ts->weight = (int)d;
+    }
+    return true;
+}
+
+static bool font_style(svg_text_style *ts, const char *v)
+{
+    int k = keyword(v, (const char *const[]){ "normal", "italic", "oblique", NULL });
+    if (k < 0) {
+        return false;
+    }
+    ts->slant = (unsigned char)k;
+    return true;
+}
+
+static bool set_family(svg_text_style *ts, const char *v)
+{
+    size_t n = strlen(v);
+    if (n == 0 || n >= sizeof ts->family) {
+        return false;
+    }
+    memcpy(ts->family, v, n + 1);
+    return true;
+}
+
+/* The font shorthand: [style] [weight] size[/line-height] family; the
+ * variant and stretch words are taken and ignored. */
+static bool font_shorthand(svg_text_style *ts, const svg_text_style *parent, const char *v)
+{
+    svg_text_style t = *ts;
+    t.slant = SVG_SLANT_NORMAL;
+    t.weight = 400;
+    const char *s = v;
+    for (;;) {
+        s = svg_skip_ws(s);
+        const char *e = s;
+        while (*e && *e != ' ' && *e != '\t' && *e != '\n') {
+            e++;
+        }
+        char word[64];
+        if (e == s || (size_t)(e - s) >= sizeof word) {
+            return false;
+        }
+        memcpy(word, s, (size_t)(e - s));
+        word[e - s] = 0;
+        char *slash = strchr(word, '/');
+        if (slash) {
+            *slash = 0;
+        }
+        if (font_style(&t, word) || font_weight(&t, parent ? parent->weight : 400, word) ||
+            strcmp(word, "small-caps") == 0 || strstr(word, "condensed") ||
+            strstr(word, "expanded")) {
+            s = e;
+            continue;
+        }
+        if (!font_size(&t, parent ? parent->size : MEDIUM_SIZE, word)) {
+            return false;
+        }
+        s = svg_skip_ws(e);
+        if (slash) { /* line-height: no lines here */
+            while (*s && *s != ' ') {
+                s++;
+            }
+            s = svg_skip_ws(s);
+        }
+        if (!set_family(&t, s)) {
+            return false;
+        }
+        *ts = t;
+        return true;
+    }
+}
+
+static int baseline_value(const char *v)
+{
+    static const struct { const char *name; int value; } names[] = {
+        { "auto", SVG_BASE_AUTO }, { "baseline", SVG_BASE_ALPHABETIC },
+        { "alphabetic", SVG_BASE_ALPHABETIC }, { "middle", SVG_BASE_MIDDLE },
+        { "central", SVG_BASE_CENTRAL }, { "hanging", SVG_BASE_HANGING },
+        { "mathematical", SVG_BASE_MATHEMATICAL }, { "text-top", SVG_BASE_TEXT_TOP },
+        { "text-before-edge", SVG_BASE_TEXT_TOP }, { "before-edge", SVG_BASE_TEXT_TOP },
+        { "text-bottom", SVG_BASE_TEXT_BOTTOM }, { "text-after-edge", SVG_BASE_TEXT_BOTTOM },
+        { "after-edge", SVG_BASE_TEXT_BOTTOM }, { "ideographic", SVG_BASE_IDEOGRAPHIC },
+        { "use-script", SVG_BASE_AUTO }, { "no-change", SVG_BASE_AUTO },
+        { "reset-size", SVG_BASE_AUTO },
+    };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        if (strcmp(v, names[i].name) == 0) {
+            return names[i].value;
+        }
+    }
+    return -1;
+}
+
+static bool decoration(svg_text_style *ts, const char *v)
+{
+    unsigned char bits = 0;
+    for (const char *s = svg_skip_ws(v); *s; s = svg_skip_ws(s)) {
+        const char *e = s;
+        while (*e && *e != ' ' && *e != '\t' && *e != '\n') {
+            e++;
+        }
+        size_t n = (size_t)(e - s);
+        if (n == 9 && strncmp(s, "underline", n) == 0) {
+            bits |= SVG_DECO_UNDERLINE;
+        } else if (n == 8 && strncmp(s, "overline", n) == 0) {
+            bits |= SVG_DECO_OVERLINE;
+        } else if (n == 12 && strncmp(s, "line-through", n) == 0) {
+            bits |= SVG_DECO_LINE_THROUGH;
+        } else if (!(n == 4 && (strncmp(s, "none", n) == 0 || strncmp(s, "blink", n) == 0))) {
+            return false;
+        }
+        s = e;
+    }
+    /* the decorations of the ancestors stay: they are drawn through
+     * the descendants' text as well */
+    ts->decoration |= bits;
+    return true;
+}
+
+static bool spacing(double *out, double em, const char *v)
+{
+    if (strcmp(v, "normal") == 0) {
+        *out = 0;
+        return true;
+    }
+    double d;
+    bool pct;
+    if (!svg_parse_length(v, em, &d, &pct) || !isfinite(d)) {
+        return false;
+    }
+    *out = pct ? d / 100 * em : d;
+    return true;
+}
+
+int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const char *name,
+                      const char *v)
+{
+    static const char *const names[] = {
+        "font-family", "font-size", "font-weight", "font-style", "text-anchor",
+        "dominant-baseline", "alignment-baseline", "text-decoration", "letter-spacing",
+        "word-spacing", "baseline-shift", "direction", "font", "unicode-bidi", NULL,
+    };
+    int k = keyword(name, names);
+    if (k < 0) {
+        return 0;
+    }
+    svg_text_style initial = svg_text_initial();
+    const svg_text_style *p = parent ? parent : &initial;
+    if (strcmp(v, "inherit") == 0) {
+        const svg_text_style one = *p;
+        switch (k) {
+        case 0: memcpy(ts->family, one.family, sizeof ts->family); break;
+        case 1: ts->size = one.size; break;
+        case 2: ts->weight = one.weight; break;
+        case 3: ts->slant = one.slant; break;
+        case 4: ts->anchor = one.anchor; break;
+        case 5: ts->baseline = one.baseline; break;
+        case 6: ts->align = one.align; break;
+        case 7: ts->decoration = one.decoration; break;
+        case 8: ts->letter_spacing = one.letter_spacing; break;
+        case 9: ts->word_spacing = one.word_spacing; break;
+        case 10: ts->shift_kind = one.shift_kind; ts->shift = one.shift; break;
+        case 11: ts->rtl = one.rtl; break;
+        default: break;
+        }
+        return 1;
+    }
+    bool ok = false;
+    int b;
+    switch (k) {
+    case 0: ok = set_family(ts, v); break;
+    case 1: ok = font_size(ts, p->size, v); break;
+    case 2: ok = font_weight(ts, p->weight, v); break;
+    case 3: ok = font_style(ts, v); break;
+    case 4:
+        b = keyword(v, (const char *const[]){ "start", "middle", "end", NULL });
+        ok = b >= 0;
+        ts->anchor = ok ? (unsigned char)b : ts->anchor;
+        break;
+    case 5:
+    case 6:
+        b = baseline_value(v);
+        ok = b >= 0;
+        if (ok && k == 5) {
+            ts->baseline = (unsigned char)b;
+        } else if (ok) {
+            ts->align = (unsigned char)b;
+        }
+        break;
+    case 7: ok = decoration(ts, v); break;
+    case 8: ok = spacing(&ts->letter_spacing, ts->size, v); break;
+    case 9: ok = spacing(&ts->word_spacing, ts->size, v); break;
+    case 10:
+        if (strcmp(v, "baseline") == 0 || strcmp(v, "sub") == 0 || strcmp(v, "super") == 0) {
+            ts->shift_kind = v[0] == 'b'        ? SVG_SHIFT_LENGTH
+                             : strcmp(v, "sub") == 0 ? SVG_SHIFT_SUB
+                                                     : SVG_SHIFT_SUPER;
+            ts->shift = 0;
+            ok = true;
+        } else {
+            double d;
+            bool pct;
+            ok = svg_parse_length(v, ts->size, &d, &pct) && isfinite(d);
+            if (ok) {
+                ts->shift_kind = pct ? SVG_SHIFT_PERCENT : SVG_SHIFT_LENGTH;
+                ts->shift = d;
+            }
+        }
+        break;
+    case 11:
+        b = keyword(v, (const char *const[]){ "ltr", "rtl", NULL });
+        ok = b >= 0;
+        ts->rtl = ok ? b == 1 : ts->rtl;
+        break;
+    case 12: ok = font_shorthand(ts, parent, v); break;
+    default: ok = true; break; /* unicode-bidi: the direction is HarfBuzz's */
+    }
+    return ok ? 1 : -1;
+}
+
+#ifdef SR_HAVE_SVG_TEXT
+
+/* ---- one <text> ------------------------------------------------------------ */
+
+enum { LIST_X, LIST_Y, LIST_DX, LIST_DY, LIST_ROTATE, N_LISTS };
+
+typedef struct tchar {
+    uint32_t cp;
+    int elem;
+    bool visible;
+    double pos[N_LISTS];         /* NAN where no list gives one */
+    double advance;              /* the pen's move over its cluster (first character) */
+    double extra;                /* textLength's spacing after it */
+    bool starts;                 /* a cluster starts here (while its run is placed) */
+    bool collapsible;            /* a space xml:space does not preserve */
+} tchar;
+
+typedef struct telem {
+    svg_text_style ts;
+    double *list[N_LISTS];
+    int n[N_LISTS];
+    int first, end;              /* its characters, descendants' included */
+    int parent;
+    svg_face *face;
+    double text_length;          /* textLength, or 0 */
+    bool stretch;                /* lengthAdjust="spacingAndGlyphs" */
+    double sx;                   /* its glyphs' and advances' horizontal scale */
+} telem;
+
+/* Glyphs of one path at most (SR_SVG_MAX_SUBPATHS bounds a path's
+ * contours; a glyph has a few). */
+#define MAX_RUN_GLYPHS 1024
+
+/* A run placed: the glyphs of one element's characters in one chunk. */
+typedef struct trun {
+    int elem;
+    int glyph0, n_glyphs;        /* in t->placed */
+    double x0, x1, y;            /* pen at its start and end, its baseline */
+} trun;
+
+typedef struct tglyph {
+    unsigned id;
+    bool visible;
+    double m[6];                 /* font units to user units */
+} tglyph;
+
+struct svg_text {
+    tchar *chars;
+    int n_chars, cap_chars;
+    telem *elems;
+    int n_elems, cap_elems;
+    int open;                    /* the element characters go to, or -1 */
+    svg_face *face;              /* every element's, when the caller chose it */
+    trun *runs;
+    int n_runs, cap_runs;
+    tglyph *placed;
+    int n_placed, cap_placed;
+};
+
+svg_text *svg_text_make(void)
+{
+    svg_text *t = calloc(1, sizeof *t);
+    if (t) {
+        t->open = -1;
+    }
+    return t;
+}
+
+void svg_text_free(svg_text *t)
+{
+    if (!t) {
+        return;
+    }
+    for (int e = 0; e < t->n_elems; e++) {
+        for (int k = 0; k < N_LISTS; k++) {
+            free(t->elems[e].list[k]);
+        }
+    }
+    free(t->elems);
+    free(t->chars);
+    free(t->runs);
+    free(t->placed);
+    free(t);
+}
+
+static bool grow(void **p, int *cap, int need, size_t size)
+{
+    if (need <= *cap) {
+        return true;
+    }
+    int c = *cap ? *cap : 16;
+    while (c < need) {
+        if (c > (1 << 28)) {
+            return false;
+        }
+        c *= 2;
+    }
+    void *g = realloc(*p, (size_t)c * size);
+    if (!g) {
+        return false;
+    }
+    *p = g;
+    *cap = c;
+    return true;
+}
+
+/* A list of lengths (x, y, dx, dy) or numbers (rotate), blanks or commas
+ * between. */
+static bool parse_list(const char *v, bool angles, double em, double ref, double **out, int *n)
+{
+    int cap = 0;
+    *out = NULL;
+    *n = 0;
+    const char *s = svg_skip_ws(v);
+    while (*s) {
+        const char *e = s;
+        while (*e && *e != ',' && *e != ' ' && *e != '\t' && *e != '\n' && *e != '\r') {
+            e++;
+        }
+        char item[64];
+        if ((size_t)(e - s) >= sizeof item) {
+            return false;
+        }
+        memcpy(item, s, (size_t)(e - s));
+        item[e - s] = 0;
+        double d;
+        bool pct = false;
+        if (angles) {
+            const char *p = item;
+            if (!svg_parse_number(&p, &d) || *p) {
+                return false;
+            }
+        } else if (!svg_parse_length(item, em, &d, &pct)) {
+            return false;
+        }
+        if (!isfinite(d) || !grow((void **)out, &cap, *n + 1, sizeof **out)) {
+            return false;
+        }
+        (*out)[(*n)++] = pct ? d / 100 * ref : d;
+        s = svg_skip_ws_comma(e);
+    }
+    return true;
+}
+
+int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists[7], double vp_w,
+                  double vp_h, char *why, size_t why_size)
+{
+    static const char *const names[N_LISTS] = { "x", "y", "dx", "dy", "rotate" };
+    if (!grow((void **)&t->elems, &t->cap_elems, t->n_elems + 1, sizeof *t->elems)) {
+        snprintf(why, why_size, "out of memory");
+        return -1;
+    }
+    telem *e = &t->elems[t->n_elems];
+    *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open, .sx = 1 };
+    bool pct = false;
+    if (lists[5] && (!svg_parse_length(lists[5], ts->size, &e->text_length, &pct) ||
+                     !isfinite(e->text_length) || e->text_length < 0)) {
+        snprintf(why, why_size, "textLength=\"%.60s\" is not a length", lists[5]);
+        return -1;
+    }
+    e->text_length *= pct ? vp_w / 100 : 1;
+    e->stretch = lists[6] && strcmp(lists[6], "spacingAndGlyphs") == 0;
+    for (int k = 0; k < N_LISTS; k++) {
+        double ref = k == LIST_X || k == LIST_DX ? vp_w : vp_h;
+        if (lists[k] && !parse_list(lists[k], k == LIST_ROTATE, ts->size, ref, &e->list[k],
+                                    &e->n[k])) {
+            for (int j = 0; j <= k; j++) {
+                free(e->list[j]);
+            }
+            snprintf(why, why_size, "%s=\"%.60s\" is not a list of %s", names[k], lists[k],
+                     k == LIST_ROTATE ? "numbers" : "lengths");
+            return -1;
+        }
+    }
+    t->open = t->n_elems;
+    return t->n_elems++;
+}
+
+void svg_text_close(svg_text *t)
+{
+    if (t->open >= 0) {
+        t->elems[t->open].end = t->n_chars;
+        t->open = t->elems[t->open].parent;
+    }
+}
+
+static bool add_char(svg_text *t, uint32_t cp, bool visible, bool collapsible)
+{
+    if (!grow((void **)&t->chars, &t->cap_chars, t->n_chars + 1, sizeof *t->chars)) {
+        return false;
+    }
+    t->chars[t->n_chars++] = (tchar){ cp, t->open, visible,
+                                      { NAN, NAN, NAN, NAN, NAN }, 0, 0, false,
+                                      collapsible };
+    return true;
+}
+
+/* The next code point of UTF-8 (expat gives well-formed text). */
+static uint32_t next_cp(const unsigned char **p, const unsigned char *end)
+{
+    const unsigned char *s = *p;
+    uint32_t c = *s++;
+    int more = c >= 0xF0 ? 3 : c >= 0xE0 ? 2 : c >= 0xC0 ? 1 : 0;
+    c &= more == 3 ? 0x07 : more == 2 ? 0x0F : more == 1 ? 0x1F : 0x7F;
+    for (; more > 0 && s < end; more--) {
+        c = (c << 6) | (*s++ & 0x3F);
+    }
+    *p = s;
+    return c;
+}
+
+bool svg_text_chars(svg_text *t, const char *s, size_t len, bool preserve, bool visible)
+{
+    const unsigned char *p = (const unsigned char *)s, *end = p + len;
+    while (p < end) {
+        uint32_t c = next_cp(&p, end);
+        if (c == '\n' || c == '\r' || c == '\t') {
+            /* SVG 1.1: newlines removed unless preserved, tabs spaces */
+            if (!preserve && c != '\t') {
+                continue;
+            }
+            c = ' ';
+        }
+        /* a run of spaces is one, and leading ones go (the trailing one
+         * goes at layout), unless preserved; a space belongs to the
+         * element it is written in */
+        if (c == ' ' && !preserve && (t->n_chars == 0 || t->chars[t->n_chars - 1].cp == ' ')) {
+            continue;
+        }
+        if (!add_char(t, c, visible, c == ' ' && !preserve)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+double svg_text_advance(const svg_text *t)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (int r = 0; r < t->n_runs; r++) {
+        lo = fmin(lo, fmin(t->runs[r].x0, t->runs[r].x1));
+        hi = fmax(hi, fmax(t->runs[r].x0, t->runs[r].x1));
+    }
+    return hi > lo ? hi - lo : 0;
+}
+
+void svg_text_use_face(svg_text *t, svg_face *face)
+{
+    t->face = face;
+}
+
+int svg_text_length(const svg_text *t)
+{
+    return t->n_chars;
+}
+
+double svg_text_max_size(const svg_text *t)
+{
+    double m = 0;
+    for (int e = 0; e < t->n_elems; e++) {
+        m = fmax(m, t->elems[e].ts.size);
+    }
+    return m;
+}
+
+int svg_text_runs(const svg_text *t)
+{
+    return t->n_runs;
+}
+
+int svg_text_run_element(const svg_text *t, int run)
+{
+    return t->runs[run].elem;
+}
+
+/* Give each character the x, y, dx, dy and rotate of the innermost
+ * element that has one for it (elements open outer first). */
+static void assign_lists(svg_text *t)
+{
+    for (int e = 0; e < t->n_elems; e++) {
+        const telem *el = &t->elems[e];
+        int end = el->end < t->n_chars ? el->end : t->n_chars;
+        for (int k = 0; k < N_LISTS; k++) {
+            for (int i = 0; i < el->n[k] && el->first + i < end; i++) {
+                t->chars[el->first + i].pos[k] = el->list[k][i];
+            }
+            /* rotate: the last value holds for the rest of the element */
+            if (k == LIST_ROTATE && el->n[k] > 0) {
+                for (int c = el->first + el->n[k]; c < end; c++) {
+                    t->chars[c].pos[k] = el->list[k][el->n[k] - 1];
+                }
+            }
+        }
+    }
+}
+
+/* How far the glyphs of an element sit below its baseline position. */
+static double baseline_offset(const telem *el)
+{
+    const svg_face_metrics *m = svg_face_get_metrics(el->face);
+    double s = el->ts.size / m->upem;
+    int b = el->ts.align != SVG_BASE_AUTO ? el->ts.align : el->ts.baseline;
+    double down = 0;
+    switch (b) {
+    case SVG_BASE_MIDDLE: down = m->x_height / 2 * s; break;
+    case SVG_BASE_CENTRAL: down = (m->ascender + m->descender) / 2 * s; break;
+    case SVG_BASE_HANGING: down = 0.8 * m->ascender * s; break;
+    case SVG_BASE_MATHEMATICAL: down = 0.5 * m->ascender * s; break;
+    case SVG_BASE_TEXT_TOP: down = m->ascender * s; break;
+    case SVG_BASE_TEXT_BOTTOM:
+    case SVG_BASE_IDEOGRAPHIC: down = m->descender * s; break;
+    default: break;
+    }
+    return down - el->ts.raised;
+}
+
+static bool add_run(svg_text *t, trun r)
+{
+    if (!grow((void **)&t->runs, &t->cap_runs, t->n_runs + 1, sizeof *t->runs)) {
+        return false;
+    }
+    t->runs[t->n_runs++] = r;
+    return true;
+}
+
+/* Shape characters [s, e) of one element and place their glyphs from the
+ * pen on; the pen moves on. */
+static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, double pen[2],
+                           svg_glyph **glyphs, int *cap)
+{
+    telem *el = &t->elems[t->chars[s].elem];
+    const svg_face_metrics *m = svg_face_get_metrics(el->face);
+    double scale = el->ts.size / m->upem, sx = el->sx;
+    int n = svg_face_shape(el->face, cps, t->n_chars, s, e - s, el->ts.rtl, glyphs, cap);
+    if (n < 0 || !grow((void **)&t->placed, &t->cap_placed, t->n_placed + n,
+                       sizeof *t->placed)) {
+        return SR_OUT_OF_MEMORY;
+    }
+    trun run = { t->chars[s].elem, t->n_placed, n, pen[0], pen[0], pen[1] };
+    double down = baseline_offset(el);
+    const svg_glyph *g = *glyphs;
+    for (int k = s; k < e; k++) {
+        t->chars[k].starts = false;
+    }
+    for (int i = 0; i < n; i++) {
+        if (g[i].cluster >= s && g[i].cluster < e) {
+            t->chars[g[i].cluster].starts = true;
+        }
+    }
+    double cluster_x = pen[0];
+    for (int i = 0; i < n; i++) {
+        int c = g[i].cluster;
+        bool first = i == 0 || g[i - 1].cluster != c;
+        /* the characters of the cluster: up to the next cluster above */
+        int c_end = c + 1;
+        while (c_end < e && !t->chars[c_end].starts) {
+            c_end++;
+        }
+        if (first && i > 0 && t->n_placed - run.glyph0 >= MAX_RUN_GLYPHS) {
+            /* a long run is drawn in pieces: a path holds so many subpaths */
+            run.n_glyphs = t->n_placed - run.glyph0;
+            run.x1 = pen[0];
+            if (!add_run(t, run)) {
+                return SR_OUT_OF_MEMORY;
+            }
+            run.glyph0 = t->n_placed;
+            run.x0 = pen[0];
+        }
+        if (first) {
+            for (int k = c; k < c_end; k++) {
+                if (!isnan(t->chars[k].pos[LIST_DX])) {
+                    pen[0] += t->chars[k].pos[LIST_DX];
+                }
+                if (!isnan(t->chars[k].pos[LIST_DY])) {
+                    pen[1] += t->chars[k].pos[LIST_DY];
+                }
+            }
+            if (i == 0) {
+                run.x0 = pen[0];
+                run.y = pen[1] + down;
+            }
+            cluster_x = pen[0];
+        }
+        double rot = t->chars[c].pos[LIST_ROTATE];
+        double a = isnan(rot) ? 0 : rot * (M_PI / 180);
+        double co = cos(a), si = sin(a);
+        double ox = pen[0] + g[i].ox * scale * sx, oy = pen[1] + down - g[i].oy * scale;
+        t->placed[t->n_placed++] = (tglyph){
+            g[i].id, t->chars[c].visible,
+            { scale * sx * co, scale * sx * si, scale * si, -scale * co, ox, oy } };
+        pen[0] += g[i].ax * scale * sx;
+        pen[1] -= g[i].ay * scale;
+        bool last = i + 1 == n || g[i + 1].cluster != c;
+        if (last) {
+            for (int k = c; k < c_end; k++) {
+                pen[0] += el->ts.letter_spacing * sx;
+                if (t->chars[k].cp == ' ') {
+                    pen[0] += el->ts.word_spacing * sx;
+                }
+            }
+            t->chars[c].advance = pen[0] - cluster_x;
+            for (int k = c; k < c_end; k++) {
+                pen[0] += t->chars[k].extra;
+            }
+        }
+    }
+    run.n_glyphs = t->n_placed - run.glyph0;
+    run.x1 = pen[0];
+    return add_run(t, run) ? SR_OK : SR_OUT_OF_MEMORY;
+}
+
+/* Move the glyphs and runs of a chunk by dx. */
+static void shift_chunk(svg_text *t, int run0, double dx)
+{
+    for (int r = run0; r < t->n_runs; r++) {
+        trun *run = &t->runs[r];
+        run->x0 += dx;
+        run->x1 += dx;
+        for (int i = 0; i < run->n_glyphs; i++) {
+            t->placed[run->glyph0 + i].m[4] += dx;
+        }
+    }
+}
+
+/* Place every character: chunks from each absolute x or y, runs of one
+ * element in them, text-anchor per chunk. */
+static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs, int *cap)
+{
+    double pen[2] = { 0, 0 };
+    sr_result r = SR_OK;
+    t->n_runs = t->n_placed = 0;
+    for (int c = 0; c < t->n_chars && r == SR_OK;) {
+        int end = c + 1;
+        while (end < t->n_chars && isnan(t->chars[end].pos[LIST_X]) &&
+               isnan(t->chars[end].pos[LIST_Y])) {
+            end++;
+        }
+        if (!isnan(t->chars[c].pos[LIST_X])) {
+            pen[0] = t->chars[c].pos[LIST_X];
+        }
+        if (!isnan(t->chars[c].pos[LIST_Y])) {
+            pen[1] = t->chars[c].pos[LIST_Y];
+        }
+        const telem *head = &t->elems[t->chars[c].elem];
+        double start = pen[0];
+        int run0 = t->n_runs;
+        for (int s = c; s < end && r == SR_OK;) {
+            int e = s + 1;
+            while (e < end && t->chars[e].elem == t->chars[s].elem) {
+                e++;
+            }
+            r = place_run(t, cps, s, e, pen, glyphs, cap);
+            s = e;
+        }
+        /* text-anchor of the chunk's first character; right to left,
+         * start is the right end */
+        double width = pen[0] - start;
+        int anchor = head->ts.anchor;
+        if (head->ts.rtl && anchor != SVG_ANCHOR_MIDDLE) {
+            anchor = anchor == SVG_ANCHOR_START ? SVG_ANCHOR_END : SVG_ANCHOR_START;
+        }
+        double dx = anchor == SVG_ANCHOR_MIDDLE ? -width / 2
+                    : anchor == SVG_ANCHOR_END  ? -width
+                                                : 0;
+        if (dx != 0 && r == SR_OK) {
+            shift_chunk(t, run0, dx);
+            pen[0] += dx;
+        }
+        c = end;
+    }
+    return r;
+}
+
+/* textLength: spread the difference between an element's advance and
+ * its textLength over the gaps between its characters, or (lengthAdjust
+ * spacingAndGlyphs) stretch its glyphs and advances; false when no
+ * element asks for it. */
+static bool fit_lengths(svg_text *t)
+{
+    bool any = false;
+    for (int e = 0; e < t->n_elems; e++) {
+        telem *el = &t->elems[e];
+        int end = el->end < t->n_chars ? el->end : t->n_chars;
+        if (el->text_length <= 0 || end <= el->first) {
+            continue;
+        }
+        double natural = 0;
+        for (int c = el->first; c < end; c++) {
+            natural += t->chars[c].advance;
+        }
+        if (!(natural > 0)) {
+            continue;
+        }
+        any = true;
+        if (el->stretch) {
+            for (int d = 0; d < t->n_elems; d++) {
+                if (t->elems[d].first >= el->first && t->elems[d].end <= el->end) {
+                    t->elems[d].sx *= el->text_length / natural;
+                }
+            }
+        } else if (end - el->first > 1) {
+            double gap = (el->text_length - natural) / (end - el->first - 1);
+            for (int c = el->first; c + 1 < end; c++) {
+                t->chars[c].extra += gap;
+            }
+        }
+    }
+    return any;
+}
+
+sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_size)
+{
+    while (t->n_chars > 0 && t->chars[t->n_chars - 1].collapsible) {
+        t->n_chars--; /* the text's trailing space */
+    }
+    for (int e = 0; e < t->n_elems; e++) {
+        telem *el = &t->elems[e];
+        el->face = t->face ? t->face
+                           : svg_fonts_match(fonts, el->ts.family[0] ? el->ts.family : "serif",
+                                             el->ts.weight, el->ts.slant, why, why_size);
+        if (!el->face) {
+            return SR_BAD_FORMAT;
+        }
+    }
+    assign_lists(t);
+    uint32_t *cps = malloc((size_t)(t->n_chars ? t->n_chars : 1) * sizeof *cps);
+    if (!cps) {
+        snprintf(why, why_size, "out of memory");
+        return SR_OUT_OF_MEMORY;
+    }
+    for (int i = 0; i < t->n_chars; i++) {
+        cps[i] = t->chars[i].cp;
+    }
+    svg_glyph *glyphs = NULL;
+    int cap = 0;
+    sr_result r = place_all(t, cps, &glyphs, &cap);
+    if (r == SR_OK && fit_lengths(t)) {
+        r = place_all(t, cps, &glyphs, &cap); /* again, with the lengths fitted */
+    }
+    free(glyphs);
+    free(cps);
+    if (r != SR_OK) {
+        snprintf(why, why_size, "out of memory");
+    }
+    return r;
+}
+
+/* A decoration's band, top y to bottom y (y down), from x0 to x1, wound
+ * as the face's outer contours are. */
+static sr_result add_band(sr_path *path, double x0, double x1, double top, double bottom,
+                          bool clockwise)
+{
+    double xs[4] = { x0, x1, x1, x0 }, ys[4] = { top, top, bottom, bottom };
+    sr_result r = SR_OK;
+    for (int k = 0; k < 4 && r == SR_OK; k++) {
+        int i = clockwise ? k : (4 - k) % 4;
+        r = k == 0 ? sr_path_move_to(path, xs[i], ys[i]) : sr_path_line_to(path, xs[i], ys[i]);
+    }
+    return r == SR_OK ? sr_path_close(path) : r;
+}
+
+sr_result svg_text_run_path(svg_text *t, svg_fonts *fonts, int run, sr_path *path)
+{
+    const trun *rn = &t->runs[run];
+    const telem *el = &t->elems[rn->elem];
+    sr_result r = SR_OK;
+    for (int i = 0; i < rn->n_glyphs && r == SR_OK; i++) {
+        const tglyph *g = &t->placed[rn->glyph0 + i];
+        if (g->visible) {
+            r = svg_face_outline(fonts, el->face, g->id, g->m, path);
+        }
+    }
+    unsigned deco = el->ts.decoration;
+    if (r != SR_OK || !deco || rn->x1 <= rn->x0) {
+        return r;
+    }
+    const svg_face_metrics *m = svg_face_get_metrics(el->face);
+    double s = el->ts.size / m->upem, y = rn->y;
+    if (deco & SVG_DECO_UNDERLINE) {
+        double mid = y - m->underline_pos * s, h = m->underline_thick * s / 2;
+        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise);
+    }
+    if (r == SR_OK && (deco & SVG_DECO_OVERLINE)) {
+        double mid = y - m->ascender * s, h = m->underline_thick * s / 2;
+        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise);
+    }
+    if (r == SR_OK && (deco & SVG_DECO_LINE_THROUGH)) {
+        double top = y - m->strike_pos * s;
+        r = add_band(path, rn->x0, rn->x1, top, top + m->strike_thick * s, m->clockwise);
+    }
+    return r;
+}
+
+#endif

@@ -1,0 +1,505 @@
+/* test_svg_text.c - the SVG reader's text: a drawing of text features
+ * against its reference (checked against rsvg-convert and resvg when
+ * made; channel tolerance 2, at most 0.5% of the pixels beyond it, the
+ * diff image in the test output directory), and properties that hold
+ * whatever the font: a <text> fills the same pixels as a <path> of the
+ * glyph outlines FreeType gives, text-anchor moves a chunk by half and
+ * all of its advance, tspans continue the pen, whitespace collapses as
+ * SVG 1.1 says, dx, dy and x lists move characters, and huge font sizes
+ * and texts beyond the point budget are refused with FILE:LINE.  The font
+ * is pinned: DejaVu Sans, skipped unless fontconfig resolves the family
+ * to DejaVuSans.ttf.  Skipped in builds without expat, fontconfig,
+ * HarfBuzz and FreeType. */
+#include "image_compare.h"
+#include "softrast_io.h"
+#include "sr_test.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef SR_HAVE_SVG_TEXT_TEST
+#include <fontconfig/fontconfig.h>
+#include <ft2build.h>
+#include FT_FREETYPE_H
+#include FT_OUTLINE_H
+
+/* The file fontconfig gives for "DejaVu Sans" if it is DejaVuSans.ttf
+ * (what the references were made with), else NULL. */
+static char *dejavu_sans(void)
+{
+    static char path[4096];
+    if (!FcInit()) {
+        return NULL;
+    }
+    FcPattern *pat = FcNameParse((const FcChar8 *)"DejaVu Sans");
+    FcConfigSubstitute(NULL, pat, FcMatchPattern);
+    FcDefaultSubstitute(pat);
+    FcResult res;
+    FcPattern *got = FcFontMatch(NULL, pat, &res);
+    FcPatternDestroy(pat);
+    FcChar8 *file = NULL;
+    bool ok = got && FcPatternGetString(got, FC_FILE, 0, &file) == FcResultMatch &&
+              strstr((const char *)file, "/DejaVuSans.ttf") && strlen((const char *)file) < 4096;
+    if (ok) {
+        snprintf(path, sizeof path, "%s", (const char *)file);
+    }
+    if (got) {
+        FcPatternDestroy(got);
+    }
+    return ok ? path : NULL;
+}
+
+#define NEED_TEXT()                                                                          \
+    do {                                                                                     \
+        if (!sr_io_have_svg()) {                                                             \
+            SKIP("built without expat");                                                     \
+        }                                                                                    \
+        if (!dejavu_sans()) {                                                                \
+            SKIP("fontconfig does not resolve \"DejaVu Sans\" to DejaVuSans.ttf");           \
+        }                                                                                    \
+    } while (0)
+#else
+#define NEED_TEXT() SKIP("built without fontconfig, HarfBuzz and FreeType (no SVG text)")
+static char *dejavu_sans(void)
+{
+    return NULL;
+}
+#endif
+
+static sr_framebuffer *render(const char *svg, sr_result want, char *msg, size_t n)
+{
+    sr_framebuffer *fb = NULL;
+    sr_io_error err;
+    sr_svg_info info;
+    sr_result r = sr_render_svg(sr_test_ctx(), svg, strlen(svg),
+                                &(sr_svg_desc){ .name = "t.svg", .background = { 1, 1, 1, 1 } },
+                                &fb, &info, &err);
+    CHECK_EQ(r, want);
+    if (msg) {
+        snprintf(msg, n, "%s", err.message);
+    }
+    if (r == SR_OK) {
+        CHECK_EQ(info.warnings, 0);
+    }
+    return fb;
+}
+
+/* An SVG of w x h holding body, rendered; NULL after a failed check. */
+static sr_framebuffer *draw(int w, int h, const char *body)
+{
+    if (strlen(body) >= 8192) {
+        CHECK(!"body too long");
+        return NULL;
+    }
+    char svg[8400];
+    snprintf(svg, sizeof svg,
+                "<svg xmlns='http://www.w3.org/2000/svg' width='%d' height='%d'>%s</svg>", w, h,
+             body);
+    return render(svg, SR_OK, NULL, 0);
+}
+
+/* Pixels where any channel differs by more than tol. */
+static long count_differing(const sr_framebuffer *a, const sr_framebuffer *b, int tol)
+{
+    if (!a || !b || sr_framebuffer_width(a) != sr_framebuffer_width(b) ||
+        sr_framebuffer_height(a) != sr_framebuffer_height(b)) {
+        return -1;
+    }
+    const uint8_t *p = sr_framebuffer_pixels(a), *q = sr_framebuffer_pixels(b);
+    long n = (long)sr_framebuffer_width(a) * sr_framebuffer_height(a), bad = 0;
+    for (long i = 0; i < n; i++) {
+        for (int c = 0; c < 4; c++) {
+            if (abs(p[i * 4 + c] - q[i * 4 + c]) > tol) {
+                bad++;
+                break;
+            }
+        }
+    }
+    return bad;
+}
+
+/* The ink's x centroid (darkness-weighted) and its total. */
+static double ink_centroid(const sr_framebuffer *fb, double *mass)
+{
+    const uint8_t *p = sr_framebuffer_pixels(fb);
+    int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
+    double sum = 0, m = 0;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            double ink = 255 - p[((size_t)y * w + x) * 4];
+            sum += ink * (x + 0.5);
+            m += ink;
+        }
+    }
+    if (mass) {
+        *mass = m;
+    }
+    return m > 0 ? sum / m : 0;
+}
+
+static void destroy(sr_framebuffer *a, sr_framebuffer *b)
+{
+    sr_destroy_framebuffer(sr_test_ctx(), a);
+    sr_destroy_framebuffer(sr_test_ctx(), b);
+}
+
+/* Two bodies drawn on 200 x 60 give the same pixels (channels within
+ * tol); a failure names the caller's line. */
+static void same_pixels(int line, const char *a, const char *b, int tol)
+{
+    sr_framebuffer *one = draw(200, 60, a), *two = draw(200, 60, b);
+    long n = count_differing(one, two, tol);
+    if (n != 0) {
+        sr_test_fail(__FILE__, line, "%ld pixels differ (or a drawing failed)", n);
+    }
+    destroy(one, two);
+}
+#define SAME_PIXELS(a, b, tol) same_pixels(__LINE__, (a), (b), (tol))
+
+SR_TEST(text_drawing_matches_reference)
+{
+    NEED_TEXT();
+    char in[1024];
+    snprintf(in, sizeof in, "%s/data/svg/text.svg", sr_test_src_dir());
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg_file(sr_test_ctx(), in,
+                                &(sr_svg_desc){ .scale = 2, .background = { 1, 1, 1, 1 } }, &fb,
+                                &info, &err),
+             SR_OK);
+    if (fb) {
+        CHECK_EQ(info.warnings, 0);
+        int w = sr_framebuffer_width(fb), h = sr_framebuffer_height(fb);
+        sr_test_check_image("svg_text", sr_framebuffer_pixels(fb), w, h, 2, (long)w * h / 200);
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+}
+
+#ifdef SR_HAVE_SVG_TEXT_TEST
+/* Path data of FreeType's outline of a character, its font units scaled
+ * by s (y flipped) and moved to the pen; the pen moves on by the advance. */
+typedef struct pd {
+    char *d;
+    size_t n, cap;
+    double s, x, y;
+    bool open;
+} pd;
+
+static void pd_put(pd *p, char op, int k, const FT_Vector *const *v)
+{
+    char buf[160];
+    int m = snprintf(buf, sizeof buf, "%c", op);
+    for (int i = 0; i < k; i++) {
+        m += snprintf(buf + m, sizeof buf - (size_t)m, " %.6f %.6f", p->x + v[i]->x * p->s,
+                      p->y - v[i]->y * p->s);
+    }
+    if (p->n + (size_t)m + 2 > p->cap) {
+        p->cap = (p->cap + (size_t)m + 2) * 2;
+        p->d = realloc(p->d, p->cap);
+    }
+    memcpy(p->d + p->n, buf, (size_t)m);
+    p->n += (size_t)m;
+    p->d[p->n++] = ' ';
+    p->d[p->n] = 0;
+}
+
+static int pd_move(const FT_Vector *to, void *u)
+{
+    pd *p = u;
+    if (p->open) {
+        pd_put(p, 'Z', 0, NULL);
+    }
+    p->open = true;
+    pd_put(p, 'M', 1, (const FT_Vector *[]){ to });
+    return 0;
+}
+
+static int pd_line(const FT_Vector *to, void *u)
+{
+    pd_put(u, 'L', 1, (const FT_Vector *[]){ to });
+    return 0;
+}
+
+static int pd_conic(const FT_Vector *c, const FT_Vector *to, void *u)
+{
+    pd_put(u, 'Q', 2, (const FT_Vector *[]){ c, to });
+    return 0;
+}
+
+static int pd_cubic(const FT_Vector *a, const FT_Vector *b, const FT_Vector *to, void *u)
+{
+    pd_put(u, 'C', 3, (const FT_Vector *[]){ a, b, to });
+    return 0;
+}
+
+SR_TEST(text_fills_the_pixels_of_its_glyph_outlines_as_a_path)
+{
+    NEED_TEXT();
+    FT_Library lib;
+    FT_Face face;
+    REQUIRE(FT_Init_FreeType(&lib) == 0);
+    REQUIRE(FT_New_Face(lib, dejavu_sans(), 0, &face) == 0);
+    /* no pair of these is kerned in DejaVu Sans */
+    const char *word = "Hg";
+    pd p = { .s = 40.0 / face->units_per_EM, .x = 10, .y = 50 };
+    for (const char *c = word; *c; c++) {
+        REQUIRE(FT_Load_Char(face, (FT_ULong)*c, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING) == 0);
+        FT_Outline_Funcs funcs = { pd_move, pd_line, pd_conic, pd_cubic, 0, 0 };
+        FT_Outline_Decompose(&face->glyph->outline, &funcs, &p);
+        pd_put(&p, 'Z', 0, NULL);
+        p.open = false;
+        p.x += face->glyph->advance.x * p.s;
+    }
+    char body[8192];
+    snprintf(body, sizeof body, "<path fill='#208' d='%s'/>", p.d);
+    sr_framebuffer *path = draw(120, 70, body);
+    sr_framebuffer *text = draw(120, 70,
+                                "<text x='10' y='50' font-family='DejaVu Sans' font-size='40' "
+                                "fill='#208'>Hg</text>");
+    double mass;
+    ink_centroid(text, &mass);
+    CHECK(mass > 255.0 * 200); /* something was drawn */
+    CHECK_EQ(count_differing(path, text, 2), 0);
+    destroy(path, text);
+    free(p.d);
+    FT_Done_Face(face);
+    FT_Done_FreeType(lib);
+}
+#endif
+
+SR_TEST(text_anchor_moves_the_chunk_by_half_and_all_of_its_advance)
+{
+    NEED_TEXT();
+    static const char *const anchors[] = { "start", "middle", "end" };
+    double cx[3];
+    for (int i = 0; i < 3; i++) {
+        char body[512];
+        snprintf(body, sizeof body,
+                 "<text x='150' y='40' font-family='DejaVu Sans' font-size='24' "
+                 "text-anchor='%s'>HIH</text>",
+                 anchors[i]);
+        sr_framebuffer *fb = draw(300, 60, body);
+        REQUIRE(fb);
+        cx[i] = ink_centroid(fb, NULL);
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+    /* end moves twice as far as middle */
+    CHECK_NEAR(cx[0] - cx[2], 2 * (cx[0] - cx[1]), 0.05);
+    CHECK(cx[0] - cx[1] > 10);
+    /* H and I are symmetric in their advances: the ink centres on x */
+    CHECK_NEAR(cx[1], 150, 0.3);
+}
+
+SR_TEST(tspans_continue_the_pen)
+{
+    NEED_TEXT();
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' "
+                "font-size='24'>HIHI</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='24'>"
+                "HI<tspan>H</tspan><tspan font-size='24px'>I</tspan></text>", 0);
+    /* a gradient in objectBoundingBox units spans the whole text */
+    static const char grad[] = "<linearGradient id='g'><stop offset='0' stop-color='red'/>"
+                               "<stop offset='1' stop-color='blue'/></linearGradient>";
+    char a[1024], b[1024];
+    snprintf(a, sizeof a,
+                "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
+                "fill='url(#g)'>HIHI</text>",
+             grad);
+    snprintf(b, sizeof b,
+                "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
+                "fill='url(#g)'>HI<tspan>HI</tspan></text>",
+             grad);
+    SAME_PIXELS(a, b, 0);
+    /* a tspan's own x starts a new chunk there; dx moves, dy lowers */
+    SAME_PIXELS("<text x='10' y='30' font-family='DejaVu Sans' font-size='20'>HI</text>"
+                "<text x='100' y='45' font-family='DejaVu Sans' font-size='20'>IH</text>",
+                "<text x='10' y='30' font-family='DejaVu Sans' font-size='20'>HI"
+                "<tspan x='90' dx='10' dy='15'>IH</tspan></text>", 0);
+    /* x lists place characters one by one */
+    SAME_PIXELS("<text y='40' font-family='DejaVu Sans' font-size='20'>"
+                "<tspan x='10'>H</tspan><tspan x='60'>I</tspan><tspan x='130'>H</tspan></text>",
+                "<text x='10 60 130' y='40' font-family='DejaVu Sans' font-size='20'>HIH</text>",
+                0);
+}
+
+SR_TEST(whitespace_collapses_unless_preserved)
+{
+    NEED_TEXT();
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' "
+                "font-size='20'>H I</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>"
+                "\n   H \t\n  <tspan> I </tspan>  </text>", 0);
+    /* preserved: each blank is a space; newlines are dropped otherwise */
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
+                "xml:space='preserve'>H&#32;&#32;I</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
+                "xml:space='preserve'>H \nI</text>", 0);
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>HI</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H\nI</text>", 0);
+    /* a space belongs to the element it is written in, not the next */
+    SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H"
+                "<tspan> </tspan><tspan font-size='40'>I</tspan></text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>H  "
+                "<tspan font-size='40'> I</tspan></text>", 0);
+}
+
+SR_TEST(font_size_units_and_css_reach_the_glyphs)
+{
+    NEED_TEXT();
+    sr_framebuffer *one = draw(200, 60,
+                               "<text x='10' y='40' font-family='DejaVu Sans' "
+                               "font-size='24' fill='red'>Hx</text>");
+    sr_framebuffer *two = draw(200, 60,
+                               "<style>text { font: 18pt \"DejaVu Sans\" } .r { fill: red }</style>"
+                               "<g font-size='12'><text class='r' x='10' y='40'>Hx</text></g>");
+    CHECK_EQ(count_differing(one, two, 0), 0);
+    sr_destroy_framebuffer(sr_test_ctx(), two);
+    two = draw(200, 60,
+               "<g style='font-size: 12px; font-family: DejaVu Sans'>"
+               "<text x='10' y='40' style='font-size: 200%' fill='red'>H<tspan "
+               "font-size='1em'>x</tspan></text></g>");
+    CHECK_EQ(count_differing(one, two, 0), 0);
+    /* bold is another face: other pixels */
+    sr_framebuffer *bold = draw(200, 60,
+                                "<text x='10' y='40' font-family='DejaVu Sans' font-size='24' "
+                                "font-weight='bold' fill='red'>Hx</text>");
+    CHECK(count_differing(two, bold, 2) > 20);
+    destroy(one, two);
+    sr_destroy_framebuffer(sr_test_ctx(), bold);
+}
+
+SR_TEST(huge_font_sizes_and_long_texts_are_refused_with_the_line)
+{
+    NEED_TEXT();
+    char msg[512];
+    sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>\n"
+                                "<text font-size='1e9'>H</text></svg>",
+                                SR_TOO_LARGE, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:2: text: a font-size of");
+    /* a few bytes of use that repeat a long text pass the point budget */
+    size_t n = 200000;
+    char *svg = malloc(n + 4096);
+    REQUIRE(svg);
+    int k = snprintf(svg, 4096,
+                     "<svg xmlns='http://www.w3.org/2000/svg' "
+                     "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
+                     "<defs><text id='t' font-family='DejaVu Sans'>");
+    for (size_t i = 0; i < 20000; i++) {
+        svg[k++] = 'W';
+    }
+    k += snprintf(svg + k, 4096, "</text><g id='a'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#t'/>");
+    }
+    k += snprintf(svg + k, 4096, "</g><g id='b'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
+    }
+    snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
+    fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "points in all");
+    free(svg);
+}
+
+SR_TEST(text_path_is_warned_and_unknown_families_fall_back)
+{
+    NEED_TEXT();
+    static const char doc[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' xmlns:xlink='http://www.w3.org/1999/xlink' "
+        "width='100' height='40'><path id='p' d='M0 30 L100 30'/>\n"
+        "<text font-family='DejaVu Sans'><textPath xlink:href='#p'>on path</textPath></text>"
+        "</svg>";
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
+    CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* a family fontconfig lacks gives way to the next in the list */
+    sr_framebuffer *one = draw(100, 40,
+                               "<text x='5' y='30' font-family='DejaVu Sans'>Hx</text>");
+    sr_framebuffer *two = draw(100, 40,
+                               "<text x='5' y='30' font-family='\"No Such Family 1x\", "
+                               "DejaVu Sans'>Hx</text>");
+    CHECK_EQ(count_differing(one, two, 0), 0);
+    destroy(one, two);
+}
+
+SR_TEST(text_length_makes_the_chunk_that_wide)
+{
+    NEED_TEXT();
+    static const char *const adjust[] = { "spacing", "spacingAndGlyphs" };
+    for (int i = 0; i < 2; i++) {
+        for (int len = 60; len <= 180; len += 120) {
+            /* the chunk is len wide: ending it at 10 + len is starting it at 10 */
+            char a[512], b[512];
+            snprintf(a, sizeof a,
+                     "<text x='10' y='40' font-family='DejaVu Sans' font-size='20' "
+                     "textLength='%d' lengthAdjust='%s'>HIHxo</text>",
+                     len, adjust[i]);
+            snprintf(b, sizeof b,
+                     "<text x='%d' y='40' font-family='DejaVu Sans' font-size='20' "
+                     "textLength='%d' lengthAdjust='%s' text-anchor='end'>HIHxo</text>",
+                     10 + len, len, adjust[i]);
+            SAME_PIXELS(a, b, 2);
+        }
+    }
+}
+
+SR_TEST(text_path_gives_the_outlines_the_svg_text_fills)
+{
+#ifndef SR_HAVE_SVG_TEXT_TEST
+    sr_io_error e;
+    sr_path *none = NULL;
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &none) == SR_OK);
+    CHECK_EQ(sr_text_path("a", NULL, none, NULL, &e), SR_UNSUPPORTED);
+    CHECK(!sr_io_have_text());
+    sr_destroy_path(sr_test_ctx(), none);
+#endif
+    NEED_TEXT();
+    CHECK(sr_io_have_text());
+    sr_context *ctx = sr_test_ctx();
+    sr_path *path = NULL;
+    REQUIRE(sr_make_path(ctx, 0.1, &path) == SR_OK);
+    sr_io_error err;
+    double advance = 0;
+    CHECK_EQ(sr_text_path("Hx\xc3\xa9", &(sr_text_desc){ .family = "DejaVu Sans", .size = 24,
+                                                          .x = 100, .y = 40,
+                                                          .anchor = SR_TEXT_ANCHOR_MIDDLE },
+                          path, &advance, &err),
+             SR_OK);
+    CHECK(advance > 30 && advance < 60);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = 200, .height = 60 }, &fb) ==
+            SR_OK);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+    CHECK_EQ(sr_fill_path(ctx, fb, path, (sr_rgba){ 0, 0, 0.5f, 1 },
+                          &(sr_fill_desc){ .antialias = SR_AA_AREA }),
+             SR_OK);
+    sr_framebuffer *svg = draw(200, 60,
+                               "<text x='100' y='40' font-family='DejaVu Sans' font-size='24' "
+                               "text-anchor='middle' fill='#000080'>Hx\xc3\xa9</text>");
+    CHECK_EQ(count_differing(fb, svg, 1), 0);
+    destroy(fb, svg);
+    /* the font by file; misuse is one line naming what is wrong */
+    sr_path_clear(path);
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .font_file = dejavu_sans(), .size = 24 }, path,
+                          NULL, &err),
+             SR_OK);
+    CHECK(sr_path_polygon(path).point_count > 4);
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .font_file = "/nonexistent.ttf" }, path, NULL,
+                          &err),
+             SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(err.message, "/nonexistent.ttf");
+    CHECK_EQ(sr_text_path("\xc3(", NULL, path, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "UTF-8");
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .size = -1 }, path, NULL, &err), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(err.message, "sr_text_desc.size");
+    CHECK_EQ(sr_text_path(NULL, NULL, path, NULL, &err), SR_INVALID_ARG);
+    sr_destroy_path(ctx, path);
+}
