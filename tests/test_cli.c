@@ -2948,10 +2948,13 @@ SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
         /* the frames fit, not with the sheet of them all */
         { "100M", { "render", "--size", "2048x2048", "--aa", "none", "--sheet", "OUT/sheet.png",
                     "A", "B" },
-          "(two frames at once) and a 4096x2072 --sheet needs about 128 MiB" },
+          "(two frames at once) and a 4096x2072 --sheet needs about 128 MiB of frame memory, "
+          "more than SR_MEMORY_LIMIT=100M allows: give a smaller --size or fewer models\n" },
         { "100M", { "render", "--size", "2048x2048", "--aa", "none", "--background", "transparent",
                     "--sheet", "OUT/sheet.png", "A", "B" },
-          "and a 4096x2072 --sheet needs about 161 MiB" },
+          "and a 4096x2072 --sheet needs about 161 MiB of frame memory, more than "
+          "SR_MEMORY_LIMIT=100M allows: give a smaller --size or fewer models or an opaque "
+          "--background\n" },
         { "256M", { "render", "--size", "2048x2048", "--aa", "ssaa4", "A", "-o", "OUT/r.png" },
           "render: --size 2048x2048 with --aa ssaa4 needs about 800 MiB" },
         { "256M", { "thumbnail", "-s", "4096", "A", "OUT/t.png" },
