@@ -104,3 +104,29 @@ def test_load_gltf_scene(tmp_path):
     cols = np.nonzero(ids >= 0)[1]
     assert set(np.unique(ids)) == {-1, 0, 1}
     assert cols[ids[ids >= 0] == 0].max() < cols[ids[ids >= 0] == 1].min()
+
+
+# A 2x2 lossless WebP (libwebp's WebPEncodeLosslessRGBA) of these texels:
+# red, half-transparent green / blue, quarter-opaque white.
+WEBP_2X2 = bytes.fromhex(
+    "5249464630000000574542505650384c240000002f014000101f30ff028222ff"
+    "47db7f8100218dff28c18d26424ddb062c7e938e88fec701")
+WEBP_2X2_TEXELS = [[[255, 0, 0, 255], [0, 255, 0, 128]],
+                   [[0, 0, 255, 255], [255, 255, 255, 64]]]
+
+
+def test_read_image_reads_a_webp(tmp_path):
+    path = tmp_path / "tex.webp"
+    path.write_bytes(WEBP_2X2)
+    try:
+        image = softrast.read_image(path)
+    except ValueError as e:
+        if "without libwebp" in str(e):
+            pytest.skip(str(e))
+        raise
+    assert image.dtype == np.uint8 and image.shape == (2, 2, 4)
+    assert image.tolist() == WEBP_2X2_TEXELS
+    assert softrast._softrast.decode_image(WEBP_2X2, "tex.webp").tolist() == WEBP_2X2_TEXELS
+    path.write_bytes(WEBP_2X2[:30])     # the header, then the file ends
+    with pytest.raises(ValueError, match="tex.webp"):
+        softrast.read_image(path)
