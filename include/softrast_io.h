@@ -466,6 +466,8 @@ typedef struct sr_svg_info {
     double points_used, points_budget;   /* points flattened, stroked and filled */
     double work_used, work_budget;       /* fill work, as defined above */
     int warnings;                        /* warnings given (at most 65) */
+    bool over_layer_limit;               /* SR_TOO_LARGE came from max_layer_bytes
+                                          * (memory), not from a work budget */
 } sr_svg_info;
 
 /* Render the SVG document in data[0..size) (need not be NUL-terminated)

@@ -835,6 +835,53 @@ SR_TEST(bad_options_fail_with_one_line_naming_the_option)
     }
 }
 
+/* A bound written as a float literal (0.001f) lies just off its decimal:
+ * the documented limits themselves, typed as the help gives them, are
+ * accepted, and the first value past them is not. */
+SR_TEST(bounded_number_options_accept_their_documented_limits)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], model[1100], out[1100], svg[1100];
+    fresh_dir("limits", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/tri.obj", dir);
+    snprintf(out, sizeof out, "%s/tri.png", dir);
+    const char *tri = ONE_TRIANGLE_OBJ;
+    REQUIRE(write_whole(model, tri, strlen(tri)));
+    const struct {
+        const char *opt, *value;
+        int status;
+    } cases[] = {
+        { "--environment-intensity", "0.001", 0 }, { "--environment-intensity", "1000", 0 },
+        { "--environment-intensity", "0.00099", 2 }, { "--near", "1e-6", 0 },
+        { "--fov", "170", 0 }, { "--exposure", "-20", 0 },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        cli_run r;
+        REQUIRE(run_cli(ARGS("render", model, "--size", "16x12", cases[i].opt, cases[i].value,
+                             "-o", out), &r));
+        if (r.status != cases[i].status) {
+            FAILF("%s %s: exit status %d, expected %d (stderr \"%s\")", cases[i].opt,
+                  cases[i].value, r.status, cases[i].status, r.err);
+        }
+        cli_run_free(&r);
+    }
+    if (svg_command_built()) {
+        const char *doc = "<svg xmlns='http://www.w3.org/2000/svg' width='4000' height='4000'>"
+                          "<rect width='4000' height='4000'/></svg>";
+        snprintf(svg, sizeof svg, "%s/square.svg", dir);
+        REQUIRE(write_whole(svg, doc, strlen(doc)));
+        cli_run r;
+        REQUIRE(run_cli(ARGS("svg", svg, "--scale", "0.001", "-o", out), &r));
+        if (r.status != 0) {
+            FAILF("svg --scale 0.001: exit status %d (stderr \"%s\")", r.status, r.err);
+        }
+        cli_run_free(&r);
+    }
+#endif
+}
+
 /* Up along the gaze, then the fallback (0,0,-1) along it too: a third up
  * is tried, and the triangle is drawn (the basis was uninitialised). */
 SR_TEST(camera_looking_along_both_ups_still_frames)
@@ -2901,10 +2948,13 @@ SR_TEST(frames_beyond_the_memory_limit_are_refused_before_allocating)
         /* the frames fit, not with the sheet of them all */
         { "100M", { "render", "--size", "2048x2048", "--aa", "none", "--sheet", "OUT/sheet.png",
                     "A", "B" },
-          "(two frames at once) and a 4096x2072 --sheet needs about 128 MiB" },
+          "(two frames at once) and a 4096x2072 --sheet needs about 128 MiB of frame memory, "
+          "more than SR_MEMORY_LIMIT=100M allows: give a smaller --size or fewer models\n" },
         { "100M", { "render", "--size", "2048x2048", "--aa", "none", "--background", "transparent",
                     "--sheet", "OUT/sheet.png", "A", "B" },
-          "and a 4096x2072 --sheet needs about 161 MiB" },
+          "and a 4096x2072 --sheet needs about 161 MiB of frame memory, more than "
+          "SR_MEMORY_LIMIT=100M allows: give a smaller --size or fewer models or an opaque "
+          "--background\n" },
         { "256M", { "render", "--size", "2048x2048", "--aa", "ssaa4", "A", "-o", "OUT/r.png" },
           "render: --size 2048x2048 with --aa ssaa4 needs about 800 MiB" },
         { "256M", { "thumbnail", "-s", "4096", "A", "OUT/t.png" },

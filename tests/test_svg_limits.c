@@ -128,6 +128,7 @@ static sr_svg_info expect_refused_in_library(const char *name, const char *svg, 
     CHECK_EQ(info.work_budget, (double)SR_SVG_WORK_PER_PIXEL * w * h + SR_SVG_WORK_BASE);
     CHECK(info.points_used <= info.points_budget);
     CHECK(info.work_used <= info.work_budget);
+    CHECK(!info.over_layer_limit);   /* work, not memory */
     printf("  %-20s %zu bytes: refused after %.0f of %.0f points, %.0f of %.0f fill work\n",
            name, len, info.points_used, info.points_budget, info.work_used, info.work_budget);
     sr_destroy_context(ctx);
@@ -306,18 +307,21 @@ SR_TEST(svg_layers_nested_past_the_memory_left_are_refused)
     REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
     sr_framebuffer *fb = NULL, *unlimited = NULL;
     sr_io_error err;
+    sr_svg_info info;
     CHECK_EQ(sr_render_svg(ctx, svg, len, &(sr_svg_desc){ .name = "nested.svg",
                                                           .max_layer_bytes = 3 * layer + composite },
-                           &fb, NULL, &err),
+                           &fb, &info, &err),
              SR_TOO_LARGE);
     CHECK(fb == NULL);
+    CHECK(info.over_layer_limit);   /* memory, as a caller tells it from a work budget */
     CHECK_STR_CONTAINS(err.message, "nested.svg:1: layers nested 4 deep (group opacity, masks, "
                                     "clip paths, patterns) need about 112 KiB besides the image, "
                                     "more than the 88 KiB left for them");
     /* Enough for the eight: the same pixels as without a limit. */
     CHECK_EQ(sr_render_svg(ctx, svg, len, &(sr_svg_desc){ .max_layer_bytes = 8 * layer + composite }, &fb,
-                           NULL, &err),
+                           &info, &err),
              SR_OK);
+    CHECK(!info.over_layer_limit);
     CHECK_EQ(sr_render_svg(ctx, svg, len, &(sr_svg_desc){ 0 }, &unlimited, NULL, &err), SR_OK);
     if (fb && unlimited) {
         CHECK(memcmp(sr_framebuffer_pixels(fb), sr_framebuffer_pixels(unlimited),

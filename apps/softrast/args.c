@@ -150,11 +150,16 @@ bool parse_float(const char *opt, const char *s, float lo, float hi, float *out)
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (errno || end == s || *end || !isfinite(v) || v < lo || v > hi) {
+    /* Compared as the float it is stored as: a limit written as a float
+     * literal (0.001f) rounds away from its decimal, so the double parsed
+     * from that same decimal may fall just outside it. */
+    bool ok = !errno && end != s && !*end && isfinite(v) && fabs(v) <= FLT_MAX;
+    float f = ok ? (float)v : 0.0f;
+    if (!ok || f < lo || f > hi) {
         cli_error("%s: expected a number from %g to %g (got '%s')", opt, (double)lo, (double)hi, s);
         return false;
     }
-    *out = (float)v;
+    *out = f;
     return true;
 }
 

@@ -441,12 +441,18 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
             status = EXIT_USAGE;
         } else if (b->sheet) {
             /* The sheet is held whole beside the two frames, and written
-             * from a straight-alpha copy when it is transparent. */
-            char more[64];
+             * from a straight-alpha copy when it is transparent.  Its
+             * pixels are --size times the images, whatever --aa is. */
+            char more[64], lower[96];
             snprintf(more, sizeof more, " and a %ldx%ld --sheet", sw, sh);
-            uint64_t copies = o->background_alpha < 1.0f ? 2 : 1;
+            bool transparent = o->background_alpha < 1.0f;
+            snprintf(lower, sizeof lower, "give a smaller --size or fewer models%s%s",
+                     b->views > 1 ? " or --views" : "",
+                     transparent ? " or an opaque --background" : "");
+            uint64_t copies = transparent ? 2 : 1;
             status = render_opts_check_memory(o, "render", o->width, o->height, 2,
-                                              copies * 4 * (uint64_t)sw * (uint64_t)sh, more);
+                                              copies * 4 * (uint64_t)sw * (uint64_t)sh, more,
+                                              lower);
         }
     }
     /* The second job, which reads while the first draws, shares its light. */
@@ -603,7 +609,8 @@ int batch_render(int argc, char **argv)
         status = render_opts_check_memory(&o, argv[0], o.width, o.height, 2, images,
                                           b.sheet     ? ""
                                           : b.animate ? " and the animation being encoded"
-                                                      : " and the images being written");
+                                                      : " and the images being written",
+                                          NULL);
     }
     /* The job's options without the models, which come in the same order. */
     int n = 0;

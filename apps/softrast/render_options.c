@@ -654,11 +654,11 @@ uint64_t render_opts_frame_bytes(const render_opts *o, int width, int height)
 int render_opts_check_frames(const render_opts *o, const char *cmd, int width, int height,
                              int frames)
 {
-    return render_opts_check_memory(o, cmd, width, height, frames, 0, "");
+    return render_opts_check_memory(o, cmd, width, height, frames, 0, "", NULL);
 }
 
 int render_opts_check_memory(const render_opts *o, const char *cmd, int width, int height,
-                             int frames, uint64_t more, const char *more_what)
+                             int frames, uint64_t more, const char *more_what, const char *lower)
 {
     char aa[16] = "none";
     if (o->ssaa > 1 || o->msaa > 1) {
@@ -683,7 +683,9 @@ int render_opts_check_memory(const render_opts *o, const char *cmd, int width, i
     }
     return cli_check_memory(what,
                             render_opts_frame_bytes(o, width, height) * (uint64_t)frames + more,
-                            thumb ? "give a smaller -s" : "give a smaller --size or --aa");
+                            lower  ? lower
+                            : thumb ? "give a smaller -s"
+                                    : "give a smaller --size or --aa");
 }
 
 bool render_opts_image_light(const render_opts *o)

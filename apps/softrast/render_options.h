@@ -122,9 +122,10 @@ int render_opts_check_frames(const render_opts *o, const char *cmd, int width, i
                              int frames);
 /* The same with `more` bytes besides the frames (a batch's images being
  * written, its contact sheet), which more_what ("" or " and ...") names
- * after the frames in the line. */
+ * after the frames in the line; `lower` ("give ...") says what asks for
+ * less when it is not the frames' --size or --aa (NULL: those). */
 int render_opts_check_memory(const render_opts *o, const char *cmd, int width, int height,
-                             int frames, uint64_t more, const char *more_what);
+                             int frames, uint64_t more, const char *more_what, const char *lower);
 
 /* The options ask for an environment's image-based light (studio or an
  * .hdr file, under pbr, without --ambient) rather than the hemisphere. */

@@ -13,6 +13,7 @@ from . import _softrast
 from ._arrays import real_array
 from ._camera import Camera
 from ._gltf import base_color_images
+from ._light import Light
 from ._material import Material, material_arrays
 from ._softrast import Mesh
 
@@ -90,12 +91,15 @@ class Scene:
     is a :class:`Mesh` (identity pose), a ``(mesh, pose)`` or ``(mesh, pose,
     instance_id)`` tuple, or an :class:`Instance`.  Instances without an ID
     take their index in the scene.  ``cameras``: the :class:`Camera` list
-    of the file :func:`load` read (empty otherwise).
+    of the file :func:`load` read (empty otherwise); ``lights``: its
+    :class:`Light` tuple (read-only: :func:`render` does not take them).
     """
 
-    def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = ()) -> None:
+    def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = (),
+                 lights: Iterable[Light] = ()) -> None:
         self.instances: List[Instance] = []
         self.cameras = list(cameras)
+        self._lights = tuple(lights)
         for item in instances:
             self.add(item)
 
@@ -117,6 +121,12 @@ class Scene:
                             f"got {type(item).__name__}")
         self.instances.append(inst)
         return inst
+
+    @property
+    def lights(self) -> Tuple[Light, ...]:
+        """The lights of the file :func:`load` read (glTF's
+        KHR_lights_punctual, node order), empty otherwise."""
+        return self._lights
 
     def __len__(self) -> int:
         return len(self.instances)
@@ -211,6 +221,9 @@ def load(path: PathLike) -> Scene:
     cameras are ``Scene.cameras``, :class:`Camera` objects in the order
     of softrast render's ``--camera-index`` (node order, depth first):
     ``render(scene, camera=scene.cameras[0], width=..., height=...)``.
+    Its KHR_lights_punctual lights are ``Scene.lights``, :class:`Light`
+    tuples in world space, for the caller to read: ``render`` lights with
+    its own rig (or ``environment``), not with them.
     """
     path = _path(path)
     d = _softrast.load_scene(path)
@@ -229,4 +242,5 @@ def load(path: PathLike) -> Scene:
         inst = Instance(meshes[key], world, material=materials[material])
         inst._source = (source, primitive)
         instances.append(inst)
-    return Scene(instances, [Camera._from_fields(c) for c in d["cameras"]])
+    return Scene(instances, [Camera._from_fields(c) for c in d["cameras"]],
+                 [Light._from_fields(light) for light in d["lights"]])

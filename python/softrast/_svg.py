@@ -134,7 +134,9 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
     MemoryError
         A ``width`` and ``height`` whose image would take more than the
         memory limit (SR_MEMORY_LIMIT, else the physical memory), before
-        it is allocated.
+        it is allocated; or layers (group opacity, masks, clip paths,
+        patterns) nested deeper than what the limit leaves after the
+        image holds, with the reader's ``"NAME:LINE: layers nested ..."``.
     OSError
         The file cannot be read (FileNotFoundError when it does not exist),
         with the path as ``filename``; NotADirectoryError when

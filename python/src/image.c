@@ -1,8 +1,8 @@
 /*
- * image.c - PNG and JPEG files to and from numpy arrays: read_image
- * (sr_read_image) and decode_image (sr_decode_image, for the images a
- * glTF file embeds) for textures, write_png (sr_write_png, atomic) for the
- * color images of softrast.dask's shards.
+ * image.c - image files to and from numpy arrays: read_image
+ * (sr_read_image: PNG, JPEG, WebP) and decode_image (sr_decode_image,
+ * for the images a glTF file embeds) for textures, write_png
+ * (sr_write_png, atomic) for the color images of softrast.dask's shards.
  */
 #include "module.h"
 

@@ -204,14 +204,34 @@ static PyObject *camera_dict(const sr_scene_camera *c)
                          "camera", c->camera, "node", c->node);
 }
 
+/* A KHR_lights_punctual light as the Python layer's Light takes it: the
+ * placed sr_light's fields ("vector" a directional light's direction of
+ * travel, a point or spot light's position), its node's world matrix and
+ * its indices. */
+static PyObject *light_dict(const sr_scene_light *l)
+{
+    static const char *const types[] = { "off", "directional", "point", "spot" };
+    const sr_light *s = &l->light;
+    const char *type = (unsigned)s->type < 4 ? types[s->type] : "off";
+    return Py_BuildValue("{sss(ddd)sds(ddd)s(ddd)sdsdsdsNsisi}", "type", type, "color",
+                         (double)s->color.x, (double)s->color.y, (double)s->color.z,
+                         "intensity", (double)s->intensity, "vector", (double)s->vector.x,
+                         (double)s->vector.y, (double)s->vector.z, "direction",
+                         (double)s->direction.x, (double)s->direction.y, (double)s->direction.z,
+                         "inner_cone", (double)s->inner_cone, "outer_cone",
+                         (double)s->outer_cone, "range", (double)s->range, "world",
+                         matrix_array(l->world), "light", l->light_index, "node", l->node);
+}
+
 /* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world,
  * material index)], "materials": [dict...], "cameras": [dict...],
+ * "lights": [dict...],
  * "gltf": whether the glTF reader read it}: the primitives that share arrays share one entry of
  * "meshes". */
 static PyObject *scene_dict(const sr_scene *s)
 {
     PyObject *meshes = PyList_New(0), *instances = PyList_New(0), *seen = PyDict_New();
-    PyObject *materials = NULL, *cameras = NULL, *out = NULL;
+    PyObject *materials = NULL, *cameras = NULL, *lights = NULL, *out = NULL;
     if (!meshes || !instances || !seen) {
         goto done;
     }
@@ -253,7 +273,15 @@ static PyObject *scene_dict(const sr_scene *s)
         }
         PyList_SET_ITEM(cameras, (Py_ssize_t)i, c);
     }
-    materials = cameras ? PyList_New((Py_ssize_t)s->material_count) : NULL;
+    lights = cameras ? PyList_New((Py_ssize_t)s->light_count) : NULL;
+    for (size_t i = 0; lights && i < s->light_count; i++) {
+        PyObject *l = light_dict(&s->lights[i]);
+        if (!l) {
+            goto done;
+        }
+        PyList_SET_ITEM(lights, (Py_ssize_t)i, l);
+    }
+    materials = lights ? PyList_New((Py_ssize_t)s->material_count) : NULL;
     for (size_t i = 0; materials && i < s->material_count; i++) {
         PyObject *m = material_dict(&s->materials[i]);
         if (!m) {
@@ -264,12 +292,14 @@ static PyObject *scene_dict(const sr_scene *s)
     if (materials) {
         /* sr_load_mesh's one primitive comes from no node. */
         bool gltf = s->primitive_count == 0 || s->primitives[0].node >= 0;
-        out = Py_BuildValue("{sOsOsOsOsO}", "meshes", meshes, "instances", instances, "materials",
-                            materials, "cameras", cameras, "gltf", gltf ? Py_True : Py_False);
+        out = Py_BuildValue("{sOsOsOsOsOsO}", "meshes", meshes, "instances", instances,
+                            "materials", materials, "cameras", cameras, "lights", lights, "gltf",
+                            gltf ? Py_True : Py_False);
     }
 done:
     Py_XDECREF(materials);
     Py_XDECREF(cameras);
+    Py_XDECREF(lights);
     Py_XDECREF(meshes);
     Py_XDECREF(instances);
     Py_XDECREF(seen);

@@ -41,13 +41,16 @@ PyDoc_STRVAR(make_environment_doc,
 
 PyDoc_STRVAR(read_image_doc,
 "read_image(path, /)\n--\n\n"
-"A PNG or JPEG file (told apart by its first bytes) as an (H, W, 4) uint8\n"
+"A PNG, JPEG or WebP file (told apart by its first bytes; WebP when the\n"
+"library was built with libwebp, still images only) as an (H, W, 4) uint8\n"
 "RGBA array, row 0 at the top: a texture for softrast.Mesh.  Raises\n"
-"OSError when the file cannot be read, ValueError when it is malformed.");
+"OSError when the file cannot be read, ValueError when it is malformed or\n"
+"of a format this build cannot read.");
 
 PyDoc_STRVAR(decode_image_doc,
 "decode_image(data, name, /)\n--\n\n"
-"PNG or JPEG bytes as an (H, W, 4) uint8 RGBA array, row 0 at the top;\n"
+"PNG, JPEG or WebP bytes (as read_image reads them) as an (H, W, 4) uint8\n"
+"RGBA array, row 0 at the top;\n"
 "`name` is used in the error, a ValueError when the data is malformed.");
 
 PyDoc_STRVAR(write_png_doc,

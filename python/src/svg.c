@@ -5,8 +5,11 @@
  * on a context of its own with no worker threads (the reader draws on the
  * calling thread); the warnings it gives are collected and handed back,
  * with the error when it fails, for softrast.render_svg to raise through
- * the warnings module before the error.  parse_color: sr_io_parse_color,
- * the reader's CSS colors for the background.
+ * the warnings module before the error.  The drawing's layers (group
+ * opacity, masks, clip paths) get what the memory limit leaves after the
+ * image, as in the softrast tool, and a layer past it is a MemoryError.
+ * parse_color: sr_io_parse_color, the reader's CSS colors for the
+ * background.
  */
 #include "module.h"
 
@@ -120,6 +123,20 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
         Py_XDECREF(name_obj);
         return NULL;
     }
+    /* What softrast.render_svg counted (check_memory) for the drawing and
+     * the array, when the size is given; the layers may take the rest.
+     * A size from the document is the library's to refuse. */
+    sr_memory_limit_info limit;
+    sr_io_error err = { { 0 } };
+    if (sr_query_memory_limit(&limit, &err) != SR_OK) {
+        Py_XDECREF(path_obj);
+        Py_XDECREF(name_obj);
+        if (data.obj) {
+            PyBuffer_Release(&data);
+        }
+        return sr_py_io_error(SR_INVALID_ARG, &err, NULL);
+    }
+    uint64_t counted = (uint64_t)width * (uint64_t)height * 8;
     warning_list warnings = { .count = 0 };
     sr_svg_desc desc = {
         .name = name_obj ? PyBytes_AS_STRING(name_obj) : NULL,
@@ -127,11 +144,12 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
         .height = height,
         .scale = scale,
         .background = { bg[0], bg[1], bg[2], bg[3] },
+        .max_layer_bytes = limit.bytes > counted ? limit.bytes - counted : 1, /* 0: no limit */
         .warn = keep_warning,
         .warn_user = &warnings,
     };
     sr_framebuffer *fb = NULL;
-    sr_io_error err = { { 0 } };
+    sr_svg_info info = { 0 };
     sr_context *ctx = NULL;
     uint8_t *px = NULL;
     int w = 0, h = 0;
@@ -139,8 +157,8 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
     Py_BEGIN_ALLOW_THREADS
     r = sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
     if (r == SR_OK) {
-        r = path_obj ? sr_render_svg_file(ctx, PyBytes_AS_STRING(path_obj), &desc, &fb, NULL, &err)
-                     : sr_render_svg(ctx, data.buf, (size_t)data.len, &desc, &fb, NULL, &err);
+        r = path_obj ? sr_render_svg_file(ctx, PyBytes_AS_STRING(path_obj), &desc, &fb, &info, &err)
+                     : sr_render_svg(ctx, data.buf, (size_t)data.len, &desc, &fb, &info, &err);
     }
     if (r == SR_OK) {
         /* Copied out while the GIL is free: the one copy, which the array
@@ -173,10 +191,13 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
         sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
     } else if (r != SR_OK) {
         /* A malformed document, a reference cycle, a size or budget
-         * refused: "NAME:LINE: what is wrong". */
+         * refused: "NAME:LINE: what is wrong".  Layers past the memory
+         * limit are numpy's kind of failure to allocate, as an image
+         * past it is (check_memory); a work budget is the document's. */
+        bool memory = r == SR_OUT_OF_MEMORY || (r == SR_TOO_LARGE && info.over_layer_limit);
         PyObject *text = sr_py_message_text(err.message[0] ? err.message : sr_result_text(r));
         if (text) {
-            PyErr_SetObject(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError, text);
+            PyErr_SetObject(memory ? PyExc_MemoryError : PyExc_ValueError, text);
             Py_DECREF(text);
         }
     } else {

@@ -84,15 +84,20 @@ def write_gltf(path):
     path.write_text(json.dumps(doc))
 
 
-def test_load_gltf_scene(tmp_path):
-    path = tmp_path / "two.gltf"
-    write_gltf(path)
+def load_gltf(path):
+    """softrast.load(path), the test skipped in a build that reads no glTF."""
     try:
-        scene = softrast.load(path)
+        return softrast.load(path)
     except ValueError as e:
         if "jansson" in str(e) or "not supported" in str(e):
             pytest.skip("this build reads no glTF")
         raise
+
+
+def test_load_gltf_scene(tmp_path):
+    path = tmp_path / "two.gltf"
+    write_gltf(path)
+    scene = load_gltf(path)
     assert len(scene) == 2
     a, b = scene.instances
     assert a.mesh is b.mesh, "the primitive's arrays are shared"
@@ -104,3 +109,68 @@ def test_load_gltf_scene(tmp_path):
     cols = np.nonzero(ids >= 0)[1]
     assert set(np.unique(ids)) == {-1, 0, 1}
     assert cols[ids[ids >= 0] == 0].max() < cols[ids[ids >= 0] == 1].min()
+
+
+# A 2x2 lossless WebP (libwebp's WebPEncodeLosslessRGBA) of these texels:
+# red, half-transparent green / blue, quarter-opaque white.
+WEBP_2X2 = bytes.fromhex(
+    "5249464630000000574542505650384c240000002f014000101f30ff028222ff"
+    "47db7f8100218dff28c18d26424ddb062c7e938e88fec701")
+WEBP_2X2_TEXELS = [[[255, 0, 0, 255], [0, 255, 0, 128]],
+                   [[0, 0, 255, 255], [255, 255, 255, 64]]]
+
+
+def test_read_image_reads_a_webp(tmp_path):
+    path = tmp_path / "tex.webp"
+    path.write_bytes(WEBP_2X2)
+    try:
+        image = softrast.read_image(path)
+    except ValueError as e:
+        if "without libwebp" in str(e):
+            pytest.skip(str(e))
+        raise
+    assert image.dtype == np.uint8 and image.shape == (2, 2, 4)
+    assert image.tolist() == WEBP_2X2_TEXELS
+    assert softrast._softrast.decode_image(WEBP_2X2, "tex.webp").tolist() == WEBP_2X2_TEXELS
+    path.write_bytes(WEBP_2X2[:30])     # the header, then the file ends
+    with pytest.raises(ValueError, match="tex.webp"):
+        softrast.read_image(path)
+
+
+def test_load_exposes_a_gltf_files_lights_read_only(tmp_path):
+    path = tmp_path / "lit.gltf"
+    write_gltf(path)
+    doc = json.loads(path.read_text())
+    half = np.sqrt(0.5)
+    doc["extensionsUsed"] = ["KHR_lights_punctual"]
+    doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"type": "spot", "color": [1, 0.5, 0.25], "intensity": 40, "range": 9,
+         "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
+        {"type": "directional", "intensity": 3},
+        {"type": "point", "intensity": 0}]}}
+    doc["nodes"] += [
+        {"translation": [0, 0, 2], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+        {"rotation": [-half, 0, 0, half], "extensions": {"KHR_lights_punctual": {"light": 1}}},
+        {"translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 2}}}]
+    doc["scenes"][0]["nodes"] += [2, 3, 4]
+    path.write_text(json.dumps(doc))
+    scene = load_gltf(path)
+    spot, sun, dark = scene.lights
+    assert spot.type == "spot" and spot.light_index == 0 and spot.node == 2
+    assert np.allclose(spot.color, [1, 0.5, 0.25]) and spot.intensity == 40
+    assert np.allclose(spot.position, [0, 0, 2]) and np.allclose(spot.direction, [0, 0, -1])
+    assert spot.range == 9 and np.isclose(spot.inner_cone, 0.2) and np.isclose(spot.outer_cone, 0.5)
+    assert np.allclose(spot.world[:3, 3], [0, 0, 2])
+    # rotated -90 degrees about x, its -Z points down -y: a sun from above
+    assert sun.type == "directional" and sun.position is None and sun.range is None
+    assert np.allclose(sun.direction, [0, -1, 0], atol=1e-6) and sun.inner_cone is None
+    assert np.allclose(sun.color, [1, 1, 1]) and sun.intensity == 3
+    assert dark.type == "off" and dark.node == 4
+    with pytest.raises(AttributeError):
+        scene.lights = ()
+    with pytest.raises(AttributeError):
+        spot.intensity = 1      # type: ignore[misc]
+    with pytest.raises(ValueError):
+        spot.color[0] = 0
+    assert "Light(light_index=0, node=2, type='spot'" in repr(spot)
+    assert softrast.Scene([]).lights == ()

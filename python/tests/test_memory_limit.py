@@ -87,3 +87,33 @@ def test_limit_spellings(monkeypatch, value):
     softrast.Canvas(512, 512)   # exactly 1 MiB
     with pytest.raises(MemoryError):
         softrast.Canvas(512, 513)
+
+
+def nested_layers_svg(depth, side):
+    """Groups with opacity and a clip path, `depth` deep: each opens a layer
+    of the image's size while it is drawn."""
+    head = (f"<svg xmlns='http://www.w3.org/2000/svg' width='{side}' height='{side}'>"
+            f"<clipPath id='c'><rect width='{side - 4}' height='{side - 4}'/></clipPath>")
+    return (head + "<g opacity='0.9' clip-path='url(#c)'>" * depth
+            + "<rect width='40' height='40' fill='red'/>" + "</g>" * depth + "</svg>").encode()
+
+
+def test_svg_layers_past_the_limit_raise_memory_error(monkeypatch):
+    # 512 x 512: 1 MiB of image, 1.5 MiB a layer; the drawing and its
+    # array fit 8M, eight layers (12 MiB) do not.  The size from the
+    # document, then given: the layers get what the image leaves either way.
+    doc = nested_layers_svg(8, 512)
+    monkeypatch.setenv("SR_MEMORY_LIMIT", "8M")
+    for size in ({}, {"width": 512, "height": 512}):
+        with pytest.raises(MemoryError, match=r"<svg>:1: layers nested \d deep .* left for them"):
+            softrast.render_svg(doc, **size)
+    monkeypatch.setenv("SR_MEMORY_LIMIT", "64M")
+    image = softrast.render_svg(doc)
+    assert image.shape == (512, 512, 4) and image[10, 10, 3] > 0
+    # A work budget passed is the document's to answer for, not memory's.
+    subpaths = b"<svg width='100' height='100'><path d='" + b"M0 0 1 1" * 20000 + b"'/></svg>"
+    with pytest.raises(ValueError, match="subpaths"):
+        softrast.render_svg(subpaths)
+    monkeypatch.setenv("SR_MEMORY_LIMIT", "lots")
+    with pytest.raises(ValueError, match="SR_MEMORY_LIMIT: expected a size"):
+        softrast.render_svg(doc)

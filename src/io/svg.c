@@ -164,6 +164,7 @@ typedef struct svg_doc {
     int draw_depth;          /* elements drawn inside each other, uses included */
     int layers;              /* layers open (group opacity, clip paths) */
     uint64_t layer_bytes;    /* what they hold (layer_cost), against opt->max_layer_bytes */
+    bool over_layer_limit;   /* a layer failed the render for max_layer_bytes */
     mat2d root_m;            /* the outermost viewport's user space to pixels */
     sr_point2 windows[MAX_WINDOWS][4]; /* markers' viewports in pixels: fills clip to them */
     int n_windows;
@@ -3570,6 +3571,7 @@ static sr_framebuffer *open_layer_sized(svg_doc *doc, int w, int h)
     uint64_t peak = need + (uint64_t)w * (uint64_t)h * 4;
     if (limit && peak > limit) {
         char a[32], b[32];
+        doc->over_layer_limit = true;
         sr__format_bytes(peak, a, sizeof a);
         sr__format_bytes(limit, b, sizeof b);
         svg_fail(doc, SR_TOO_LARGE,
@@ -4336,7 +4338,8 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
     }
     *info = (sr_svg_info){ .points_used = doc->points_used, .points_budget = doc->points_budget,
                            .work_used = doc->work_used, .work_budget = doc->work_budget,
-                           .warnings = doc->warnings };
+                           .warnings = doc->warnings,
+                           .over_layer_limit = doc->over_layer_limit };
     free_document(doc);
     free(doc);
     free(plain);
