@@ -325,6 +325,34 @@ SR_TEST(tspans_continue_the_pen)
                 0);
 }
 
+/* Filters, clips and masks in objectBoundingBox units measure a text by
+ * its glyphs, also a text inside the group they apply to, whose font the
+ * group gives: an identity filter and a clip wider than the box change
+ * nothing. */
+SR_TEST(bounding_box_units_measure_the_glyphs)
+{
+    NEED_TEXT();
+    static const char defs[] =
+        "<filter id='f' color-interpolation-filters='sRGB'><feOffset/></filter>"
+        "<clipPath id='c' clipPathUnits='objectBoundingBox'>"
+        "<rect x='-0.1' y='-0.1' width='1.2' height='1.2'/></clipPath>";
+    static const char *const uses[] = { "filter='url(#f)'", "clip-path='url(#c)'" };
+    for (int i = 0; i < 2; i++) {
+        char a[1024], b[1024];
+        snprintf(a, sizeof a,
+                 "%s<text x='10' y='40' font-family='DejaVu Sans' font-size='24' %s>HIH</text>",
+                 defs, uses[i]);
+        SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='24'>HIH</text>",
+                    a, 1);
+        snprintf(b, sizeof b,
+                 "%s<g font-family='DejaVu Sans' font-size='24' %s><text x='10' y='40'>HIH"
+                 "</text></g>",
+                 defs, uses[i]);
+        SAME_PIXELS("<text x='10' y='40' font-family='DejaVu Sans' font-size='24'>HIH</text>",
+                    b, 1);
+    }
+}
+
 SR_TEST(whitespace_collapses_unless_preserved)
 {
     NEED_TEXT();

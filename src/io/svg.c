@@ -2961,10 +2961,64 @@ static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
     free(w.frames);
     svg_text_free(w.t);
 }
+
+static void box_point(double b[4], sr_point2 q);
+
+/* Add the outlines of text element node, laid out as draw_text lays it
+ * out under frame f, to b[4] through m, for bbox_add: a filter, clip or
+ * mask in objectBoundingBox units measures a text by its glyphs.  Text
+ * that draw_text would refuse or skip adds nothing; drawing reports it. */
+static void text_bbox_add(svg_doc *doc, const svg_node *node, const frame *f, mat2d m,
+                          double b[4])
+{
+    double scale = matrix_scale(f->m), tol = scale > 0 ? 0.1 / scale : 0.1;
+    if (!(tol > 0) || !isfinite(tol)) {
+        return;
+    }
+    if (!doc->fonts && !(doc->fonts = svg_fonts_make())) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    text_walk w = { .t = svg_text_make() };
+    if (!w.t) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return;
+    }
+    text_element(doc, &w, node, f, false);
+    char why[256];
+    if (doc->status == SR_OK && svg_text_length(w.t) > 0 &&
+        doc->points_used + svg_text_length(w.t) <= doc->points_budget &&
+        svg_text_max_size(w.t) * scale <= MAX_FONT_PIXELS &&
+        svg_text_layout(w.t, doc->fonts, why, sizeof why) == SR_OK) {
+        int n = svg_text_runs(w.t);
+        for (int r = 0; r < n && doc->status == SR_OK; r++) {
+            sr_path *p = NULL;
+            if (sr_make_path(doc->ctx, tol, &p) != SR_OK) {
+                svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+                break;
+            }
+            if (svg_text_run_path(w.t, doc->fonts, r, p) == SR_OK) {
+                sr_polygon2 poly = sr_path_polygon(p);
+                for (int i = 0; i < poly.point_count; i++) {
+                    box_point(b, mat_apply(m, poly.points[i]));
+                }
+            }
+            sr_destroy_path(doc->ctx, p);
+        }
+    }
+    free(w.frames);
+    svg_text_free(w.t);
+}
 #else
 static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
 {
     (void)doc, (void)node, (void)f; /* not reached: holds_text and draw_node skip text */
+}
+
+static void text_bbox_add(svg_doc *doc, const svg_node *node, const frame *f, mat2d m,
+                          double b[4])
+{
+    (void)doc, (void)node, (void)f, (void)m, (void)b; /* text is not drawn */
 }
 #endif
 
@@ -3293,6 +3347,8 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
             sr_point2 q = mat_apply(m, (sr_point2){ r[0] + r[2] * (i % 2), r[1] + r[3] * (i / 2) });
             box_point(b, q);
         }
+    } else if (strcmp(n->name, "text") == 0) {
+        text_bbox_add(doc, n, &tf, m, b);
     } else if (is_shape(n->name)) {
         double tol;
         bool fillable;
@@ -3320,7 +3376,17 @@ static void bbox_add(svg_doc *doc, svg_node *n, const frame *f, mat2d m, double 
                 t = mat_mul(t, o);
             }
             if (is_shape(c->name) || !is_named(c, not_drawn)) {
-                bbox_add(doc, c, f, mat_mul(m, t), b);
+                /* the child's own style, which a text's font depends on */
+                frame cf = *f;
+                unsigned long line = doc->line;
+                svg_text_reset_uninherited(&cf.st.text);
+                doc->line = c->line;
+                doc->inherit_from = &f->st;
+                apply_cascade(doc, c, &cf.st);
+                doc->inherit_from = NULL;
+                doc->line = line;
+                svg_text_settle(&cf.st.text, &f->st.text);
+                bbox_add(doc, c, &cf, mat_mul(m, t), b);
             }
         }
     }
