@@ -292,6 +292,28 @@ static void check_broken(const char *body, int x, int y, int alpha, const char *
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
 
+/* requiredFeatures holds for the filter features, so a switch takes a
+ * filtered drawing over its fallback. */
+SR_TEST(filter_features_are_claimed_for_a_switch)
+{
+    static const char *const features[] = { "Filter", "BasicFilter" };
+    for (int i = 0; i < 2; i++) {
+        char svg[1024];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='4' height='4'><switch>"
+                 "<rect width='4' height='4' fill='#00ff00' "
+                 "requiredFeatures='http://www.w3.org/TR/SVG11/feature#%s'/>"
+                 "<rect width='4' height='4' fill='#ff0000'/></switch></svg>",
+                 features[i]);
+        sr_framebuffer *fb = render(svg, SR_OK, NULL, NULL, 0);
+        if (fb) {
+            CHECK_EQ(pixel(fb, 2, 2)[0], 0);
+            CHECK_EQ(pixel(fb, 2, 2)[1], 255);
+        }
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+}
+
 SR_TEST(broken_filters_do_what_the_docs_say)
 {
     /* a missing filter: the element is not drawn (SVG 1.1, resvg) */

@@ -2485,13 +2485,14 @@ static bool language_matches(const char *tag, size_t n)
     return n >= k && strncasecmp(tag, SVG_LANGUAGE, k) == 0 && (n == k || tag[k] == '-');
 }
 
-/* The SVG 1.1 feature strings (its appendix A) of what the reader draws:
- * not text, fonts, filters, foreignObject, colour profiles,
- * enable-background, the clip property or the dynamic features. */
+/* The SVG 1.1 feature strings (its appendix A) of what the reader draws
+ * (text in feature_supported): not SVG fonts, foreignObject, colour
+ * profiles, enable-background, the clip property or the dynamic features. */
 static const char *const features[] = {
-    "BasicClip", "BasicGraphicsAttribute", "BasicPaintAttribute", "BasicStructure", "Clip",
-    "ConditionalProcessing", "CoreAttribute", "Gradient", "Image", "Marker", "Mask",
-    "OpacityAttribute", "Pattern", "Shape", "Structure", "Style", "XlinkAttribute", NULL,
+    "BasicClip", "BasicFilter", "BasicGraphicsAttribute", "BasicPaintAttribute",
+    "BasicStructure", "Clip", "ConditionalProcessing", "CoreAttribute", "Filter", "Gradient",
+    "Image", "Marker", "Mask", "OpacityAttribute", "Pattern", "Shape", "Structure", "Style",
+    "XlinkAttribute", NULL,
 };
 
 /* Whether the feature string of n bytes is one of features[]. */
