@@ -143,6 +143,9 @@ static double total_alpha(const sr_framebuffer *fb)
 
 SR_TEST(a_blur_keeps_the_total_alpha_away_from_the_region_edge)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     static const char *const sigmas[] = { "0.7", "1.5", "2", "3.3", "5" };
     for (size_t i = 0; i < sizeof sigmas / sizeof sigmas[0]; i++) {
         char svg[512];
@@ -187,6 +190,9 @@ static const char shape[] =
 
 SR_TEST(a_blur_of_sigma_zero_and_an_offset_of_zero_are_the_identity)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     check_same("<feGaussianBlur stdDeviation='0'/>", shape);
     check_same("<feGaussianBlur stdDeviation='-3'/>", shape); /* Filter Effects 1, resvg */
     check_same("<feOffset/>", shape);
@@ -204,6 +210,9 @@ SR_TEST(a_blur_of_sigma_zero_and_an_offset_of_zero_are_the_identity)
 
 SR_TEST(an_offset_by_whole_pixels_shifts_exactly)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     const char *plain =
         "<svg xmlns='http://www.w3.org/2000/svg' width='40' height='30'>%s</svg>";
     char a[1024], b[1024], body[512];
@@ -230,6 +239,9 @@ SR_TEST(an_offset_by_whole_pixels_shifts_exactly)
  * in linearRGB 1 -> 0.25 -> 1.055 * 0.25^(1/2.4) - 0.055 = 0.5371 = 137. */
 SR_TEST(linear_rgb_and_srgb_give_the_values_worked_out_by_hand)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     static const struct { const char *space; int want; } cases[] = {
         { "sRGB", 64 }, { "linearRGB", 137 }, { NULL, 137 },
     };
@@ -259,6 +271,9 @@ SR_TEST(linear_rgb_and_srgb_give_the_values_worked_out_by_hand)
  * whichever space the flood is made in. */
 SR_TEST(a_flood_takes_its_color_and_opacity_in_either_space)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     static const char *const spaces[] = { "sRGB", "linearRGB" };
     for (int i = 0; i < 2; i++) {
         char svg[512];
@@ -296,6 +311,9 @@ static void check_broken(const char *body, int x, int y, int alpha, const char *
  * filtered drawing over its fallback. */
 SR_TEST(filter_features_are_claimed_for_a_switch)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     static const char *const features[] = { "Filter", "BasicFilter" };
     for (int i = 0; i < 2; i++) {
         char svg[1024];
@@ -316,6 +334,9 @@ SR_TEST(filter_features_are_claimed_for_a_switch)
 
 SR_TEST(broken_filters_do_what_the_docs_say)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     /* a missing filter: the element is not drawn (SVG 1.1, resvg) */
     check_broken("<rect width='10' height='10' filter='url(#none)'/>", 5, 5, 0, "url(#none)");
     /* an empty filter: not drawn; an unknown primitive: left out */
@@ -343,6 +364,9 @@ SR_TEST(broken_filters_do_what_the_docs_say)
 
 SR_TEST(huge_deviations_and_radii_end_quickly_or_are_refused)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     char msg[512];
     /* a blur's cost does not grow with sigma */
     sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='200' height='200'>"
@@ -363,6 +387,9 @@ SR_TEST(huge_deviations_and_radii_end_quickly_or_are_refused)
 
 SR_TEST(fe_image_draws_an_element_and_refuses_a_cycle)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='20' height='10'>"
                                 "<defs><rect id='r' x='12' width='4' height='10' fill='#00f'/></defs>"
                                 "<filter id='f' filterUnits='userSpaceOnUse' x='0' y='0' width='20'"
@@ -388,6 +415,9 @@ SR_TEST(fe_image_draws_an_element_and_refuses_a_cycle)
  * behaviour (the sanitizer builds run this). */
 SR_TEST(values_at_the_ends_of_the_range_draw_or_are_refused)
 {
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
     static const char *const prims[] = {
         "<feConvolveMatrix order='1e30' kernelMatrix='1'/>",
         "<feConvolveMatrix kernelMatrix='1 1 1 1 1 1 1 1 1' targetX='1e30' divisor='1e-300'"
