@@ -2923,22 +2923,37 @@ static void draw_text_runs(svg_doc *doc, text_walk *w, double tol)
     free(paths);
 }
 
-static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
+/* Read text element node's characters under frame f into a walk, with
+ * the scale of f and the flattening tolerance for it.  False when nothing
+ * is visible (a singular transform) or after reporting a failure. */
+static bool text_start(svg_doc *doc, const svg_node *node, const frame *f, double *scale,
+                       double *tol, text_walk *w)
 {
-    double scale = matrix_scale(f->m), tol = scale > 0 ? 0.1 / scale : 0.1;
-    if (!(tol > 0) || !isfinite(tol)) {
-        return; /* a singular transform: nothing visible */
+    *scale = matrix_scale(f->m);
+    *tol = *scale > 0 ? 0.1 / *scale : 0.1;
+    if (!(*tol > 0) || !isfinite(*tol)) {
+        return false;
     }
     if (!doc->fonts && !(doc->fonts = svg_fonts_make())) {
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
-        return;
+        return false;
     }
-    text_walk w = { .t = svg_text_make() };
-    if (!w.t) {
+    *w = (text_walk){ .t = svg_text_make() };
+    if (!w->t) {
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return false;
+    }
+    text_element(doc, w, node, f, false);
+    return true;
+}
+
+static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
+{
+    double scale, tol;
+    text_walk w;
+    if (!text_start(doc, node, f, &scale, &tol, &w)) {
         return;
     }
-    text_element(doc, &w, node, f, false);
     doc->line = node->line;
     /* each character is a point of the budget, drawn or not */
     if (doc->status == SR_OK && points_within_budget(doc, svg_text_length(w.t))) {
@@ -2972,20 +2987,11 @@ static void box_point(double b[4], sr_point2 q);
 static void text_bbox_add(svg_doc *doc, const svg_node *node, const frame *f, mat2d m,
                           double b[4])
 {
-    double scale = matrix_scale(f->m), tol = scale > 0 ? 0.1 / scale : 0.1;
-    if (!(tol > 0) || !isfinite(tol)) {
+    double scale, tol;
+    text_walk w;
+    if (!text_start(doc, node, f, &scale, &tol, &w)) {
         return;
     }
-    if (!doc->fonts && !(doc->fonts = svg_fonts_make())) {
-        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
-        return;
-    }
-    text_walk w = { .t = svg_text_make() };
-    if (!w.t) {
-        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
-        return;
-    }
-    text_element(doc, &w, node, f, false);
     char why[256];
     if (doc->status == SR_OK && svg_text_length(w.t) > 0 &&
         doc->points_used + svg_text_length(w.t) <= doc->points_budget &&
