@@ -34,7 +34,9 @@ if [ -f "$dict" ]; then
     set -- -dict="$dict" "$@"
 fi
 echo "== fuzz $target for ${seconds}s =="
+# tests/lsan.supp: fontconfig's own leak while it reads its configuration.
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} \
+LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/lsan.supp:print_suppressions=0} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
 "$build/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
     -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/artifacts/$target-" \
