@@ -520,6 +520,96 @@ SR_TEST(material_factors_out_of_range_are_clamped_with_a_warning)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* KHR_materials_ior, _specular, _clearcoat and _sheen reach the material
+ * with their textures (through the slots, KHR_texture_transform
+ * included) and each extension's defaults; out-of-range factors are
+ * clamped with a warning each; a material without them keeps zeros
+ * (absent); none of them is named among the extensions not read. */
+SR_TEST(physically_based_extensions_are_read)
+{
+    wbuf png = small_png();
+    REQUIRE(png.n > 0);
+    char *b64 = malloc(4 * (png.n / 3 + 1) + 1);
+    gltf_base64(png.p, png.n, b64);
+    char *body = malloc(strlen(b64) + 4096);
+    sprintf(body,
+            "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+            "\"extensionsUsed\":[\"KHR_materials_ior\",\"KHR_materials_specular\","
+            "\"KHR_materials_clearcoat\",\"KHR_materials_sheen\"],"
+            "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+            "\"textures\":[{\"source\":0}],"
+            "\"materials\":[{\"extensions\":{"
+            "\"KHR_materials_ior\":{\"ior\":1.33},"
+            "\"KHR_materials_specular\":{\"specularFactor\":0.5,"
+            "\"specularColorTexture\":{\"index\":0}},"
+            "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":0.75,"
+            "\"clearcoatRoughnessFactor\":0.25,\"clearcoatNormalTexture\":{\"index\":0,"
+            "\"scale\":0.5,\"extensions\":{\"KHR_texture_transform\":{\"scale\":[2,2]}}}},"
+            "\"KHR_materials_sheen\":{\"sheenColorFactor\":[0.5,0.25,1],"
+            "\"sheenRoughnessTexture\":{\"index\":0}}}},"
+            "{\"extensions\":{\"KHR_materials_ior\":{},\"KHR_materials_specular\":{},"
+            "\"KHR_materials_clearcoat\":{},\"KHR_materials_sheen\":{}}},"
+            "{\"extensions\":{\"KHR_materials_ior\":{\"ior\":0.5},"
+            "\"KHR_materials_specular\":{\"specularFactor\":2,\"specularColorFactor\":[-1,1,3]},"
+            "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1.5,"
+            "\"clearcoatRoughnessFactor\":-1},"
+            "\"KHR_materials_sheen\":{\"sheenColorFactor\":[2,0,0],\"sheenRoughnessFactor\":3}}},"
+            "{}]",
+            TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]",
+            b64);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->material_count == 5);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK_NEAR(m->ior, 1.33, 1e-6);
+    CHECK(m->specular_set);
+    CHECK_NEAR(m->specular, 0.5, 0);
+    CHECK_EQ(m->specular_color[2], 1.0f);
+    REQUIRE(m->specular_color_texture.texture != NULL);
+    CHECK(m->specular_texture.texture == NULL);
+    CHECK_NEAR(m->clearcoat, 0.75, 0);
+    CHECK_NEAR(m->clearcoat_roughness, 0.25, 0);
+    REQUIRE(m->clearcoat_normal_texture.texture != NULL);
+    CHECK_NEAR(m->clearcoat_normal_scale, 0.5, 0);
+    CHECK_NEAR(m->clearcoat_normal_texture.scale[0], 2, 0);
+    /* The color textures are sRGB, the others linear: two textures. */
+    CHECK(m->clearcoat_normal_texture.texture != m->specular_color_texture.texture);
+    CHECK_EQ(m->sheen_roughness_texture.texture, m->clearcoat_normal_texture.texture);
+    CHECK_NEAR(m->sheen_color[1], 0.25, 0);
+    CHECK_EQ(m->sheen_roughness, 0.0f);
+    /* Present but empty: the extensions' defaults. */
+    const sr_pbr_material *e = &s->materials[1];
+    CHECK_NEAR(e->ior, 1.5, 0);
+    CHECK(e->specular_set);
+    CHECK_EQ(e->specular, 1.0f);
+    CHECK_EQ(e->specular_color[0], 1.0f);
+    CHECK_EQ(e->clearcoat, 0.0f);
+    CHECK_EQ(e->sheen_color[0], 0.0f);
+    /* Clamped, one warning per factor. */
+    const sr_pbr_material *c = &s->materials[2];
+    CHECK_EQ(c->ior, 1.0f);
+    CHECK_EQ(c->specular, 1.0f);
+    CHECK_EQ(c->specular_color[0], 0.0f);
+    CHECK_EQ(c->specular_color[2], 3.0f);
+    CHECK_EQ(c->clearcoat, 1.0f);
+    CHECK_EQ(c->clearcoat_roughness, 0.0f);
+    CHECK_EQ(c->sheen_color[0], 1.0f);
+    CHECK_EQ(c->sheen_roughness, 1.0f);
+    /* Absent: zeros. */
+    const sr_pbr_material *a = &s->materials[3];
+    CHECK(a->ior == 0.0f && !a->specular_set && a->clearcoat == 0.0f &&
+          a->sheen_color[0] == 0.0f && a->clearcoat_normal_scale == 0.0f);
+    CHECK_EQ(w.count, 7);
+    CHECK_STR_CONTAINS(w.last, "/materials/2/extensions/KHR_materials_sheen/"
+                               "sheenRoughnessFactor: 3 is outside the specification's 0..1, "
+                               "taken as 1");
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(body);
+    free(b64);
+    free(png.p);
+}
+
 /* Skins, animations and morph targets are left out of the static scene
  * with one warning naming each, so that a model drawn in its rest pose says
  * why; a file without them warns of nothing (node_hierarchy_... checks). */

@@ -505,7 +505,11 @@ static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool ha
     const sr_pbr_material *m = &d->scene->materials[material];
     const sr_texture_slot *slots[] = { &m->base_color_texture, &m->metallic_roughness_texture,
                                        &m->normal_texture, &m->occlusion_texture,
-                                       &m->emissive_texture };
+                                       &m->emissive_texture, &m->specular_texture,
+                                       &m->specular_color_texture, &m->clearcoat_texture,
+                                       &m->clearcoat_roughness_texture,
+                                       &m->clearcoat_normal_texture, &m->sheen_color_texture,
+                                       &m->sheen_roughness_texture };
     for (size_t i = 0; i < sizeof slots / sizeof *slots; i++) {
         int set = slots[i]->texcoord;
         if (slots[i]->texture && !(set == 0 ? has0 : has1)) {
@@ -1006,6 +1010,10 @@ static const char *supported_extensions[] = {
     "KHR_texture_transform",
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
+    "KHR_materials_ior",
+    "KHR_materials_specular",
+    "KHR_materials_clearcoat",
+    "KHR_materials_sheen",
     "KHR_lights_punctual",
 };
 
