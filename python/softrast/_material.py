@@ -22,6 +22,13 @@ class Material:
     emissive: (3,) float32 linear RGB (times ``emissive_strength``).
     alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
     double_sided, unlit: the material's flags (KHR_materials_unlit).
+    ior: the index of refraction, >= 1 (KHR_materials_ior; 1.5: F0 0.04).
+    specular, specular_color: the dielectric's reflection strength in [0, 1]
+    and F0 tint (3,) >= 0 (KHR_materials_specular).
+    clearcoat, clearcoat_roughness: a clear coat's weight and roughness in
+    [0, 1] (KHR_materials_clearcoat; 0: none).
+    sheen_color, sheen_roughness: (3,) in [0, 1] and [0, 1]
+    (KHR_materials_sheen; black: none).
 
     ``render`` draws the base color of a loaded instance (factor times
     texture times vertex color, drawn into its Mesh by :func:`load`) into
@@ -37,7 +44,9 @@ class Material:
 
     __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
                  "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
-                 "unlit", "normal_scale", "occlusion_strength")
+                 "unlit", "normal_scale", "occlusion_strength", "ior", "specular",
+                 "specular_color", "clearcoat", "clearcoat_roughness", "sheen_color",
+                 "sheen_roughness")
 
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
@@ -52,6 +61,13 @@ class Material:
     unlit: bool
     normal_scale: float
     occlusion_strength: float
+    ior: float
+    specular: float
+    specular_color: NDArray[np.float32]
+    clearcoat: float
+    clearcoat_roughness: float
+    sheen_color: NDArray[np.float32]
+    sheen_roughness: float
 
     def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
                  base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
@@ -59,7 +75,10 @@ class Material:
                  emissive: Factors = (0.0, 0.0, 0.0), emissive_strength: float = 1.0,
                  alpha_mode: AlphaMode = "opaque", alpha_cutoff: float = 0.5,
                  double_sided: bool = False, unlit: bool = False, normal_scale: float = 1.0,
-                 occlusion_strength: float = 1.0) -> None:
+                 occlusion_strength: float = 1.0, ior: float = 1.5, specular: float = 1.0,
+                 specular_color: Factors = (1.0, 1.0, 1.0), clearcoat: float = 0.0,
+                 clearcoat_roughness: float = 0.0, sheen_color: Factors = (0.0, 0.0, 0.0),
+                 sheen_roughness: float = 0.0) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
         if base_color_texture is not None and not (
                 isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
@@ -80,6 +99,16 @@ class Material:
         self.unlit = bool(unlit)
         self.normal_scale = float(normal_scale)
         self.occlusion_strength = float(occlusion_strength)
+        self.ior = float(_factors(ior, "ior", 1, np.inf)[0])
+        if self.ior < 1.0:
+            raise ValueError(f"ior: must be >= 1, got {ior!r}")
+        self.specular = float(_factors(specular, "specular", 1, 1.0)[0])
+        self.specular_color = _factors(specular_color, "specular_color", 3, np.inf)
+        self.clearcoat = float(_factors(clearcoat, "clearcoat", 1, 1.0)[0])
+        self.clearcoat_roughness = float(_factors(clearcoat_roughness, "clearcoat_roughness", 1,
+                                                  1.0)[0])
+        self.sheen_color = _factors(sheen_color, "sheen_color", 3, 1.0)
+        self.sheen_roughness = float(_factors(sheen_roughness, "sheen_roughness", 1, 1.0)[0])
 
     @classmethod
     def _from_factors(cls, factors: Mapping[str, Any],

@@ -667,20 +667,23 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
 /* An instance's look for the metallic-roughness pass: (pose (3, 4),
  * base color (4), metallic, roughness, emissive (3), emissive strength,
  * alpha mode (0 opaque, 1 mask, 2 blend), alpha cutoff, double-sided,
- * unlit, normal scale, occlusion strength, source: None or (the loaded
- * scene's capsule, primitive index)). */
+ * unlit, normal scale, occlusion strength, ior, specular, specular color
+ * (3), clearcoat, clearcoat roughness, sheen color (3), sheen roughness,
+ * source: None or (the loaded scene's capsule, primitive index)). */
 static int take_look(PyObject *look, Py_ssize_t i, instance *in)
 {
     PyObject *pose, *source;
     sr_pbr_material *m = &in->factors;
     *m = sr_pbr_default_material();
     int mode, double_sided, unlit;
-    float *c = m->base_color, *e = m->emissive;
+    float *c = m->base_color, *e = m->emissive, *sc = m->specular_color, *sh = m->sheen_color;
     if (!PyTuple_Check(look) ||
-        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffO", &pose, &c[0], &c[1], &c[2], &c[3],
-                          &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
+        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffff(fff)ff(fff)fO", &pose, &c[0], &c[1],
+                          &c[2], &c[3], &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
                           &m->emissive_strength, &mode, &m->alpha_cutoff, &double_sided, &unlit,
-                          &m->normal_scale, &m->occlusion_strength, &source)) {
+                          &m->normal_scale, &m->occlusion_strength, &m->ior, &m->specular,
+                          &sc[0], &sc[1], &sc[2], &m->clearcoat, &m->clearcoat_roughness,
+                          &sh[0], &sh[1], &sh[2], &m->sheen_roughness, &source)) {
         PyErr_Clear();
         PyErr_Format(PyExc_TypeError, "instances[%zd]: the look is malformed", i);
         return -1;
@@ -692,6 +695,7 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     m->alpha_mode = mode == 1 ? SR_ALPHA_MASK : mode == 2 ? SR_ALPHA_BLEND : SR_ALPHA_OPAQUE;
     m->double_sided = double_sided;
     m->unlit = unlit;
+    m->specular_set = true;   /* white 1 draws as absent */
     if (take_matrix(pose, "pose", 3, 4, &in->pose[0][0]) < 0) {
         return -1;
     }
