@@ -645,6 +645,28 @@ static double srgb_decode(int code)
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
+/* The lowest, highest and summed radiance (exposure -1 undone) of the
+ * sphere's pixels (red not 0) in cell 0, and their count. */
+static int furnace_range(const sr_framebuffer *fb, double *lo, double *hi, double *sum)
+{
+    int n = 0;
+    *lo = 1e9, *hi = 0, *sum = 0;
+    for (int y = 0; y < CELL; y++) {
+        for (int x = 0; x < CELL; x++) {
+            const uint8_t *c = px(fb, x, y);
+            if (c[0] == 0) {
+                continue;
+            }
+            double lin = srgb_decode(c[0]) * 2.0;
+            *lo = lin < *lo ? lin : *lo;
+            *hi = lin > *hi ? lin : *hi;
+            *sum += lin;
+            n++;
+        }
+    }
+    return n;
+}
+
 /* Draws the furnace sphere for metallic 0 and 1 over roughness 0..1
  * under `env` (NULL: a white hemisphere) and bounds every pixel. */
 static void furnace(const sr_environment *env, const char *label, double hi_bound)
@@ -664,21 +686,8 @@ static void furnace(const sr_environment *env, const char *label, double hi_boun
             d.sky = d.ground = (sr_vec3){ 1, 1, 1 };
         }
         REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
-        double lo = 1e9, hi = 0, sum = 0;
-        int n = 0;
-        for (int y = 0; y < CELL; y++) {
-            for (int x = 0; x < CELL; x++) {
-                const uint8_t *c = px(fb, x, y);
-                if (c[0] == 0) {
-                    continue;
-                }
-                double lin = srgb_decode(c[0]) * 2.0;
-                lo = lin < lo ? lin : lo;
-                hi = lin > hi ? lin : hi;
-                sum += lin;
-                n++;
-            }
-        }
+        double lo, hi, sum;
+        int n = furnace_range(fb, &lo, &hi, &sum);
         REQUIRE(n > 2000);
         fprintf(stderr, "furnace (%s) metallic %.0f roughness %.2f: min %.3f mean %.3f max %.3f\n",
                 label, (double)m.metallic, (double)m.roughness, lo, sum / n, hi);
@@ -1037,13 +1046,28 @@ SR_TEST(absent_or_neutral_extensions_draw_the_base_bytes)
     free_sphere(&s);
 }
 
-/* Linear radiance of a pixel's red, green and blue (tone curve off). */
-static void linear_at(const sr_framebuffer *fb, int x, int y, double out[3])
+/* Under a uniform hemisphere of radiance L, tone curve off: the sphere's
+ * centre (N = V) in linear radiance, red, green and blue. */
+static sr_pbr_desc uniform_desc(const sr_pbr_material *m, const sr_mat4 *view,
+                                const sr_mat4 *proj, float L)
 {
-    const uint8_t *c = px(fb, x, y);
+    return (sr_pbr_desc){ .material = m, .view = view, .projection = proj,
+                          .sky = { L, L, L }, .ground = { L, L, L },
+                          .tonemap = SR_TONEMAP_NONE };
+}
+
+static bool centre_linear(const sphere *s, const sr_pbr_desc *d, double out[3])
+{
+    sr_framebuffer *fb = sphere_alone(s, d);
+    if (!fb) {
+        return false;
+    }
+    const uint8_t *c = px(fb, CELL / 2, CELL / 2);
     for (int k = 0; k < 3; k++) {
         out[k] = srgb_decode(c[k]);
     }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    return true;
 }
 
 /* A black, smooth dielectric under a uniform white hemisphere reflects F0
@@ -1060,27 +1084,20 @@ SR_TEST(ior_and_specular_set_the_dielectric_reflection)
     m.base_color[0] = m.base_color[1] = m.base_color[2] = 0.0f;
     m.metallic = 0.0f;
     m.roughness = 0.0f;
-    sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
-                      .sky = { (float)L, (float)L, (float)L },
-                      .ground = { (float)L, (float)L, (float)L },
-                      .tonemap = SR_TONEMAP_NONE };
+    sr_pbr_desc d = uniform_desc(&m, &view, &proj, (float)L);
     double ref[3], got[3];
-    sr_framebuffer *fb = sphere_alone(&s, &d);
-    REQUIRE(fb);
-    linear_at(fb, CELL / 2, CELL / 2, ref);
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    sr_framebuffer *fb;
+    REQUIRE(centre_linear(&s, &d, ref));
     const float iors[] = { 1.33f, 1.76f, 2.0f, 2.42f };
     for (int i = 0; i < 4; i++) {
         m.ior = iors[i];
-        REQUIRE((fb = sphere_alone(&s, &d)));
-        linear_at(fb, CELL / 2, CELL / 2, got);
+        REQUIRE(centre_linear(&s, &d, got));
         double f0 = ((iors[i] - 1.0) / (iors[i] + 1.0)) * ((iors[i] - 1.0) / (iors[i] + 1.0));
         double want = (f0 - 0.04) * L;
         fprintf(stderr, "ior %.2f: centre %+.4f over ior 1.5, F0 says %+.4f\n", (double)iors[i],
                 got[1] - ref[1], want);
         /* 3% of the difference, plus an sRGB code's width near 0.2 */
         CHECK_NEAR(got[1] - ref[1], want, 0.03 * fabs(want) + 0.003);
-        sr_destroy_framebuffer(sr_test_ctx(), fb);
     }
     m.ior = 0.0f;
     /* No specular: nothing to reflect, no diffuse from black: black. */
@@ -1096,11 +1113,9 @@ SR_TEST(ior_and_specular_set_the_dielectric_reflection)
     /* A red F0 tint: green and blue keep only the grazing bias. */
     m.specular = 1.0f;
     m.specular_color[1] = m.specular_color[2] = 0.0f;
-    REQUIRE((fb = sphere_alone(&s, &d)));
-    linear_at(fb, CELL / 2, CELL / 2, got);
+    REQUIRE(centre_linear(&s, &d, got));
     CHECK_NEAR(got[0], ref[0], 0.003);
     CHECK(got[1] < ref[1] / 4);
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
     /* A metal reflects its base color whatever the dielectric's terms. */
     sr_pbr_material metal = sr_pbr_default_material(), metal_spec;
     metal.base_color[1] = 0.5f;
@@ -1135,27 +1150,20 @@ SR_TEST(clearcoat_layers_over_the_base_as_the_extension_says)
     m.base_color[2] = 0.1f;
     m.metallic = 0.0f;
     m.roughness = 0.8f;
-    sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
-                      .sky = { (float)L, (float)L, (float)L },
-                      .ground = { (float)L, (float)L, (float)L },
-                      .tonemap = SR_TONEMAP_NONE };
+    sr_pbr_desc d = uniform_desc(&m, &view, &proj, (float)L);
     double base[3], coat[3];
-    sr_framebuffer *fb = sphere_alone(&s, &d);
-    REQUIRE(fb);
-    linear_at(fb, CELL / 2, CELL / 2, base);
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    sr_framebuffer *fb;
+    REQUIRE(centre_linear(&s, &d, base));
     const float weights[] = { 0.5f, 1.0f };
     for (int i = 0; i < 2; i++) {
         m.clearcoat = weights[i];
         m.clearcoat_roughness = 0.1f;
-        REQUIRE((fb = sphere_alone(&s, &d)));
-        linear_at(fb, CELL / 2, CELL / 2, coat);
+        REQUIRE(centre_linear(&s, &d, coat));
         for (int k = 0; k < 3; k++) {
             double w = weights[i] * 0.04;
             double want = base[k] * (1.0 - w) + w * L;
             CHECK_NEAR(coat[k], want, 0.02 * want + 0.002);
         }
-        sr_destroy_framebuffer(sr_test_ctx(), fb);
     }
     /* Under a key light the coat adds a sharp highlight to the rough
      * base: the peak rises, the red-over-green tint of it falls. */
@@ -1288,18 +1296,8 @@ SR_TEST(sheen_keeps_the_furnace_and_lights_the_rim)
                           .tonemap = SR_TONEMAP_NONE };
         sr_framebuffer *fb = sphere_alone(&s, &d);
         REQUIRE(fb);
-        double lo = 1e9, hi = 0;
-        for (int y = 0; y < CELL; y++) {
-            for (int x = 0; x < CELL; x++) {
-                const uint8_t *c = px(fb, x, y);
-                if (c[0] == 0) {
-                    continue;
-                }
-                double lin = srgb_decode(c[0]) * 2.0;
-                lo = lin < lo ? lin : lo;
-                hi = lin > hi ? lin : hi;
-            }
-        }
+        double lo, hi, sum;
+        REQUIRE(furnace_range(fb, &lo, &hi, &sum) > 2000);
         fprintf(stderr, "sheen furnace roughness %.1f: min %.3f max %.3f\n", (double)rough[k],
                 lo, hi);
         CHECK(lo > 0.97 && hi < 1.03);

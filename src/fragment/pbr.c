@@ -406,6 +406,28 @@ static inline __attribute__((always_inline)) void irradiance4(const sr_pbr *p, c
     }
 }
 
+/* The environment's prefiltered radiance along rr at roughness rough
+ * (0..1): from the program's octahedral table when there is one (made
+ * at that one roughness), else queried per fragment. */
+static inline __attribute__((always_inline)) void env_radiance(const sr_pbr *p,
+                                                               const float *table,
+                                                               const v4f rr[3], v4f rough,
+                                                               v4f er[3])
+{
+    if (table) {
+        oct_lookup4(table, OCT_SIZE, rr, er);
+        return;
+    }
+    sr_vec3x4 dr, e_r;
+    float rl[4];
+    store(dr.x, rr[0]);
+    store(dr.y, rr[1]);
+    store(dr.z, rr[2]);
+    store(rl, rough);
+    sr_environment_specular4(p->environment, &dr, rl, &e_r);
+    er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
+}
+
 /* The coat's image-based or hemisphere light: the prefiltered radiance
  * along the coat normal's reflection at the coat's roughness, from the
  * program's table where there is one, else queried. */
@@ -417,17 +439,8 @@ static void coat_ambient(const sr_pbr *p, sr__pbr_layers *x, const v4f v[3], v4f
     }
     if (!p->environment) {
         hemisphere(p, rr, er);
-    } else if (p->oct_coat) {
-        oct_lookup4(p->oct_coat, OCT_SIZE, rr, er);
     } else {
-        sr_vec3x4 dr, e_r;
-        float rl[4];
-        store(dr.x, rr[0]);
-        store(dr.y, rr[1]);
-        store(dr.z, rr[2]);
-        store(rl, x->cc_rc);
-        sr_environment_specular4(p->environment, &dr, rl, &e_r);
-        er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
+        env_radiance(p, p->oct_coat, rr, x->cc_rc, er);
     }
     sr__coat_ambient(x, er, ao);
 }
@@ -548,18 +561,7 @@ static inline __attribute__((always_inline)) void shade_lanes(const sr_pbr *p, c
          * prefiltered radiance along R, from tables made with the program
          * (octahedral maps) where they can be. */
         irradiance4(p, n, en);
-        if (p->oct) {
-            oct_lookup4(p->oct, OCT_SIZE, rr, er);
-        } else {
-            sr_vec3x4 dr, e_r;
-            float rl[4];
-            store(dr.x, rr[0]);
-            store(dr.y, rr[1]);
-            store(dr.z, rr[2]);
-            store(rl, rc);
-            sr_environment_specular4(p->environment, &dr, rl, &e_r);
-            er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
-        }
+        env_radiance(p, p->oct, rr, rc, er);
     } else {
         /* The hemisphere along N and along R. */
         hemisphere(p, n, en);
