@@ -1002,7 +1002,8 @@ SR_TEST(ior_gives_the_fresnel_at_normal_incidence)
 
 /* The extensions' zero values draw the base's very bytes, and so do the
  * values that mean "as without": ior 1.5, specular 1 in white, a coat
- * or a sheen of weight zero through a black texture. */
+ * or a sheen of weight zero through a black texture; and an unlit
+ * material ignores them. */
 SR_TEST(absent_or_neutral_extensions_draw_the_base_bytes)
 {
     sphere s = make_sphere(32, 16);
@@ -1040,6 +1041,14 @@ SR_TEST(absent_or_neutral_extensions_draw_the_base_bytes)
         m.sheen_roughness = 0.5f;
         m.sheen_color_texture.texture = t;   /* black sheen */
         CHECK(same_bytes(&s, d, &base, &m));
+        /* Unlit excludes the layers. */
+        sr_pbr_material flat = base;
+        flat.unlit = true;
+        m = flat;
+        m.clearcoat = 1.0f;
+        m.sheen_color[0] = 1.0f;
+        m.ior = 2.0f;
+        CHECK(same_bytes(&s, d, &flat, &m));
     }
     sr_destroy_texture(sr_test_ctx(), t);
     sr_destroy_environment(sr_test_ctx(), env);

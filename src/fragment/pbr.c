@@ -17,8 +17,8 @@
 #include "fragment/tonemap.h"
 
 #include <float.h>
-#include <stddef.h>
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #define MAX_EXPOSURE  64.0f
@@ -57,7 +57,8 @@ static inline v4f vsign(v4f x)
 /* Four directions d (any length > 0) looked up bilinearly on an n x n
  * octahedral map of RGBA texels, clamped to its edge texels: the mapping
  * and the weights in vectors, one 4-float load per texel and lane. */
-static inline __attribute__((always_inline)) void oct_lookup4(const float *map, int n, const v4f d[3], v4f out[3])
+static inline __attribute__((always_inline)) void
+oct_lookup4(const float *map, int n, const v4f d[3], v4f out[3])
 {
     v4f l1 = vabs(d[0]) + vabs(d[1]) + vabs(d[2]);
     v4f s = 1.0f / vmax(l1, 1e-30f - (v4f){ 0 });
@@ -326,8 +327,9 @@ static inline __attribute__((always_inline)) void normalize4(float a[3][4])
  * already the shading side's).  From the tangent varying when the draw
  * has tangents, else from the screen-space derivatives of position and
  * the map's coordinates (the surface gradients of u and v). */
-static inline __attribute__((always_inline)) void tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3][4],
-                          float uv[2][4], float t[3][4], float b[3][4])
+static inline __attribute__((always_inline)) void
+tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3][4], float uv[2][4],
+              float t[3][4], float b[3][4])
 {
     if (p->vary_tangent >= 0) {
         const float (*tv)[4] = &q->varyings[p->vary_tangent];
@@ -391,7 +393,8 @@ static void hemisphere(const sr_pbr *p, const v4f d[3], v4f out[3])
 /* The environment's irradiance (E / pi) along unit normals d (world):
  * its SH polynomial at d turned into the image's frame, negative values
  * (a high-contrast image's truncated series) clamped to zero. */
-static inline __attribute__((always_inline)) void irradiance4(const sr_pbr *p, const v4f d[3], v4f out[3])
+static inline __attribute__((always_inline)) void
+irradiance4(const sr_pbr *p, const v4f d[3], v4f out[3])
 {
     v4f x = d[0] * p->env_cos - d[2] * p->env_sin, y = d[1];
     v4f z = d[0] * p->env_sin + d[2] * p->env_cos;
@@ -453,10 +456,10 @@ static void coat_ambient(const sr_pbr *p, sr__pbr_layers *x, const v4f v[3], v4f
  * dielectric's F0 and F90, and the coat and sheen lobes lit by the same
  * lights and ambient.  Inlined at two calls, one with ext NULL, so that a
  * material without the extensions runs the code it ran before them. */
-static inline __attribute__((always_inline)) void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
-                        const float v_[3][4], const float base_[4][4], const float metal_[4],
-                        const float rough_[4], const float ao_[4], const float shadow_[4],
-                        sr__pbr_layers *ext, float out_[3][4])
+static inline __attribute__((always_inline)) void
+shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const float v_[3][4],
+            const float base_[4][4], const float metal_[4], const float rough_[4],
+            const float ao_[4], const float shadow_[4], sr__pbr_layers *ext, float out_[3][4])
 {
     v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3], f90 = { 1, 1, 1, 1 };
     load3(pos, pos_);
@@ -952,7 +955,8 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
         !isfinite(m->clearcoat) || !isfinite(m->clearcoat_roughness) ||
         !isfinite(m->clearcoat_normal_scale) || !finite_n(m->sheen_color, 3) ||
         !isfinite(m->sheen_roughness)) {
-        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material: an extension's factor is not finite");
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_material: an extension's factor is not finite");
     }
     if (m->ior != 0.0f && !(m->ior >= 1.0f)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.ior %g must be 0 (1.5) or >= 1",
@@ -1178,8 +1182,10 @@ static void resolve_layers(sr_pbr *p)
     if (m->clearcoat_normal_scale == 0.0f) {
         m->clearcoat_normal_scale = 1.0f;
     }
-    p->coat = m->clearcoat > 0.0f;
-    p->sheen = m->sheen_color[0] > 0.0f || m->sheen_color[1] > 0.0f || m->sheen_color[2] > 0.0f;
+    /* Unlit excludes the layers (the extensions say so). */
+    p->coat = !m->unlit && m->clearcoat > 0.0f;
+    p->sheen = !m->unlit &&
+               (m->sheen_color[0] > 0.0f || m->sheen_color[1] > 0.0f || m->sheen_color[2] > 0.0f);
     p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen);
     int off[SLOT_COUNT], count = 0;
     if (!spec) {
