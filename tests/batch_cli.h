@@ -56,6 +56,13 @@ bool run_env(const char *const *args, const char *const *env, const char *in, ru
 bool run(const char *const *args, run_result *r);
 int count_lines(const char *s);
 
+/* Writes two model files (data[0] the reference, data[1] the one under
+ * test; .glb) into batch_`name`, renders both with the tool at 320x240 and
+ * checks the second image against the first: `channel_tol` at most, but
+ * for `max_pixels` pixels. */
+void check_same_render(const char *name, const void *const data[2], const size_t size[2],
+                       int channel_tol, int max_pixels);
+
 /* An empty directory sr_test_out_dir()/batch_NAME, in buf. */
 const char *fresh_dir(const char *name, char *buf, size_t n);
 bool write_text(const char *path, const char *text);
