@@ -333,3 +333,38 @@ void check_same_render(const char *name, const void *const data[2], const size_t
     free(px[0]);
     free(px[1]);
 }
+
+bool edit_text(wbuf *text, const char *from, const char *to)
+{
+    char *at = strstr((char *)text->p, from);
+    if (!at) {
+        FAILF("'%s' is not in the document", from);
+        return false;
+    }
+    wbuf out = {0};
+    wb_put(&out, text->p, (size_t)(at - (char *)text->p));
+    wb_put(&out, to, strlen(to));
+    wb_put(&out, at + strlen(from), strlen(at + strlen(from)) + 1);
+    free(text->p);
+    *text = out;
+    return true;
+}
+
+void check_refused(const char *dir, size_t i, const void *data, size_t size,
+                   const char *message)
+{
+    char path[1100], out[1100];
+    snprintf(path, sizeof path, "%s/bad%zu.glb", dir, i);
+    snprintf(out, sizeof out, "%s/bad%zu.png", dir, i);
+    if (!sr_test_write_file(path, data, size)) {
+        FAILF("cannot write %s", path);
+        return;
+    }
+    run_result r;
+    if (run(ARGS("render", path, "-o", out, "--size", "32x24"), &r)) {
+        CHECK_EQ(r.status, 2);
+        CHECK_EQ(count_lines(r.err), 1);
+        CHECK_STR_CONTAINS(r.err, message);
+        CHECK(!file_exists(out));
+    }
+}

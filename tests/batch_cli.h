@@ -4,6 +4,7 @@
 #define SR_TEST_BATCH_CLI_H
 
 #include "sr_test.h"
+#include "wbuf.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -62,6 +63,16 @@ int count_lines(const char *s);
  * for `max_pixels` pixels. */
 void check_same_render(const char *name, const void *const data[2], const size_t size[2],
                        int channel_tol, int max_pixels);
+
+/* Replaces the first `from` in the NUL-terminated text with `to`; false
+ * (after a failure) when absent. */
+bool edit_text(wbuf *text, const char *from, const char *to);
+
+/* Writes the model file (`.glb`) into dir as badI.glb and checks that
+ * `softrast render` refuses it: exit status 2, one line on stderr that
+ * contains `message`, no image written. */
+void check_refused(const char *dir, size_t i, const void *data, size_t size,
+                   const char *message);
 
 /* An empty directory sr_test_out_dir()/batch_NAME, in buf. */
 const char *fresh_dir(const char *name, char *buf, size_t n);
