@@ -84,6 +84,8 @@ static sr_result primitive_accessor(gltf_doc *d, const json_t *prim, const char 
     return sr__gltf_index(d, prim, ptr, "indices", (size_t)-1 / 2, false, index);
 }
 
+#ifdef SR_HAVE_DRACO
+
 /* The extension's members, checked: bufferView, attributes (names of the
  * primitive's attributes, each a Draco unique id). */
 static sr_result check_extension(gltf_doc *d, const json_t *prim, const json_t *ext,
@@ -114,8 +116,6 @@ static sr_result check_extension(gltf_doc *d, const json_t *prim, const json_t *
     }
     return SR_OK;
 }
-
-#ifdef SR_HAVE_DRACO
 
 static size_t component_bytes(int type)
 {
@@ -330,23 +330,22 @@ sr_result sr__gltf_draco_begin(gltf_doc *d, const json_t *prim, const json_t *ex
 #else /* !SR_HAVE_DRACO */
 
 /* Without libdraco the primitive is read from its accessors, the
- * uncompressed copy a writer may keep: each one the stream would fill must
- * have a bufferView (an accessor without one reads as zeros). */
+ * uncompressed copy a writer may keep, and the extension is ignored, as
+ * the specification asks of a reader without it: each accessor the stream
+ * would fill (all it may fill, when the extension names none) must have
+ * a bufferView, since one without reads as zeros. */
 sr_result sr__gltf_draco_begin(gltf_doc *d, const json_t *prim, const json_t *ext,
                                const char *ptr, const uint32_t **indices, size_t *index_count)
 {
     *indices = NULL;
     *index_count = 0;
-    char eptr[GLTF_PTR];
-    snprintf(eptr, sizeof eptr, "%s/extensions/" EXT_NAME, ptr);
-    long view;
-    json_t *attrs;
-    sr_result r = check_extension(d, prim, ext, eptr, &view, &attrs);
+    json_t *attrs = json_object_get(ext, "attributes");
+    sr_result r = SR_OK;
     for (size_t i = 0; r == SR_OK && i <= READ_COUNT; i++) {
         const char *name = i < READ_COUNT ? read_attributes[i] : NULL;
         long index;
         char aptr[GLTF_PTR];
-        if (name && !json_object_get(attrs, name)) {
+        if (name && json_is_object(attrs) && !json_object_get(attrs, name)) {
             continue;
         }
         r = primitive_accessor(d, prim, ptr, name, &index, aptr, sizeof aptr);
