@@ -45,13 +45,8 @@ typedef struct file_options {
 static wbuf sphere_bytes(const sphere *s)
 {
     wbuf b = {0};
-    uint8_t tmp[VERTS * 12];
-    le_copy(tmp, s->pos, VERTS * 3, 4);
-    wb_put(&b, tmp, VERTS * 12);
-    le_copy(tmp, s->nrm, VERTS * 3, 4);
-    wb_put(&b, tmp, VERTS * 12);
-    le_copy(tmp, s->uv, VERTS * 2, 4);
-    wb_put(&b, tmp, VERTS * 8);
+    uint8_t tmp[4];
+    put_sphere_attributes(&b, s);
     for (size_t i = 0; i < s->index_count; i++) {
         le_copy(tmp, &s->idx[i], 1, 4);
         wb_put(&b, tmp, 4);

@@ -54,13 +54,8 @@ static void plain_parts(const sphere *s, bool open, const char *look, wbuf *json
                         wbuf *bin_out)
 {
     wbuf bin = {0}, json = {0};
-    uint8_t tmp[VERTS * 12];
-    le_copy(tmp, s->pos, VERTS * 3, 4);
-    wb_put(&bin, tmp, VERTS * 12);
-    le_copy(tmp, s->nrm, VERTS * 3, 4);
-    wb_put(&bin, tmp, VERTS * 12);
-    le_copy(tmp, s->uv, VERTS * 2, 4);
-    wb_put(&bin, tmp, VERTS * 8);
+    uint8_t tmp[2];
+    put_sphere_attributes(&bin, s);
     for (size_t i = 0; i < s->index_count; i++) {
         uint16_t v = (uint16_t)s->idx[i];
         le_copy(tmp, &v, 1, 2);

@@ -4,6 +4,9 @@
 #ifndef SR_TEST_UV_SPHERE_H
 #define SR_TEST_UV_SPHERE_H
 
+#include "gltf_write.h"
+#include "wbuf.h"
+
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -46,6 +49,19 @@ static inline void make_sphere(sphere *s)
         }
     }
     s->index_count = n;
+}
+
+/* The sphere's float positions, normals and coordinates appended to b,
+ * little-endian, as a glTF buffer holds them. */
+static inline void put_sphere_attributes(wbuf *b, const sphere *s)
+{
+    uint8_t tmp[VERTS * 12];
+    le_copy(tmp, s->pos, VERTS * 3, 4);
+    wb_put(b, tmp, VERTS * 12);
+    le_copy(tmp, s->nrm, VERTS * 3, 4);
+    wb_put(b, tmp, VERTS * 12);
+    le_copy(tmp, s->uv, VERTS * 2, 4);
+    wb_put(b, tmp, VERTS * 8);
 }
 
 #endif
