@@ -934,8 +934,8 @@ static const bad_case bad_cases[] = {
       "{\"POSITION\":0,\"TEXCOORD_0\":0}}]}]" NODES, SR_BAD_FORMAT,
       "bad.gltf: /meshes/0/primitives/0/attributes/TEXCOORD_0: accessor 0 has 3 components per "
       "element, not what this attribute takes" },
-    { ",\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]", SR_UNSUPPORTED,
-      "bad.gltf: /extensionsRequired/0: extension KHR_draco_mesh_compression is not "
+    { ",\"extensionsRequired\":[\"KHR_texture_basisu\"]", SR_UNSUPPORTED,
+      "bad.gltf: /extensionsRequired/0: extension KHR_texture_basisu is not "
       "supported" },
     { VIEW0 ACC("\"count\":3") MESH_OF("0") NODES
       ",\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"no_such_image.png\"}],"
