@@ -5,7 +5,8 @@
  * whatever the font: a <text> fills the same pixels as a <path> of the
  * glyph outlines FreeType gives, text-anchor moves a chunk by half and
  * all of its advance, tspans continue the pen, whitespace collapses as
- * SVG 1.1 says, dx, dy and x lists move characters, and huge font sizes
+ * SVG 1.1 says, dx, dy and x lists move characters, characters the font
+ * lacks come from a fallback font, and huge font sizes
  * and texts beyond the point budget are refused with FILE:LINE.  The font
  * is pinned: DejaVu Sans, skipped unless fontconfig resolves the family
  * to DejaVuSans.ttf.  Skipped in builds without expat, fontconfig,
@@ -51,6 +52,43 @@ static char *dejavu_sans(void)
     return ok ? path : NULL;
 }
 
+/* Whether fontconfig resolves family to a file ending in file (such as
+ * "/DejaVuSerif.ttf") and, with cp nonzero, whether the first font of its
+ * sorted fallbacks that has cp is the file ending in cover. */
+static bool resolves(const char *family, const char *file, uint32_t cp, const char *cover)
+{
+    if (!FcInit()) {
+        return false;
+    }
+    FcPattern *pat = FcNameParse((const FcChar8 *)family);
+    FcConfigSubstitute(NULL, pat, FcMatchPattern);
+    FcDefaultSubstitute(pat);
+    FcResult res;
+    FcPattern *got = FcFontMatch(NULL, pat, &res);
+    FcChar8 *name = NULL;
+    bool ok = got && FcPatternGetString(got, FC_FILE, 0, &name) == FcResultMatch &&
+              strstr((const char *)name, file);
+    if (got) {
+        FcPatternDestroy(got);
+    }
+    FcFontSet *set = ok && cp ? FcFontSort(NULL, pat, FcTrue, NULL, &res) : NULL;
+    ok = ok && (!cp || set);
+    for (int i = 0; set && i < set->nfont; i++) {
+        FcCharSet *cs;
+        if (FcPatternGetCharSet(set->fonts[i], FC_CHARSET, 0, &cs) == FcResultMatch &&
+            FcCharSetHasChar(cs, cp)) {
+            ok = FcPatternGetString(set->fonts[i], FC_FILE, 0, &name) == FcResultMatch &&
+                 strstr((const char *)name, cover);
+            break;
+        }
+    }
+    if (set) {
+        FcFontSetDestroy(set);
+    }
+    FcPatternDestroy(pat);
+    return ok;
+}
+
 #define NEED_TEXT()                                                                          \
     do {                                                                                     \
         if (!sr_io_have_svg()) {                                                             \
@@ -65,6 +103,12 @@ static char *dejavu_sans(void)
 static char *dejavu_sans(void)
 {
     return NULL;
+}
+
+static bool resolves(const char *family, const char *file, uint32_t cp, const char *cover)
+{
+    (void)family, (void)file, (void)cp, (void)cover;
+    return false;
 }
 #endif
 
@@ -530,4 +574,58 @@ SR_TEST(text_path_gives_the_outlines_the_svg_text_fills)
     CHECK_STR_CONTAINS(err.message, "sr_text_desc.size");
     CHECK_EQ(sr_text_path(NULL, NULL, path, NULL, &err), SR_INVALID_ARG);
     sr_destroy_path(ctx, path);
+}
+
+/* Characters the matched font lacks come from the first font of
+ * fontconfig's sorted fallbacks that has them, the pen going on across:
+ * DejaVu Serif has no Hebrew, which DejaVu Sans draws.  A character no
+ * font has is warned once. */
+SR_TEST(characters_the_font_lacks_come_from_a_fallback_font)
+{
+    NEED_TEXT();
+    if (!resolves("DejaVu Serif", "/DejaVuSerif.ttf", 0x5D0, "/DejaVuSans.ttf")) {
+        SKIP("fontconfig does not fall back from DejaVu Serif to DejaVu Sans for Hebrew");
+    }
+    /* shin, lamed, vav, final mem */
+    static const char shalom[] = "\xd7\xa9\xd7\x9c\xd7\x95\xd7\x9d";
+    char a[512], b[512];
+    snprintf(a, sizeof a, "<text x='10' y='40' font-family='DejaVu Serif' font-size='24'>%s</text>",
+             shalom);
+    snprintf(b, sizeof b, "<text x='10' y='40' font-family='DejaVu Sans' font-size='24'>%s</text>",
+             shalom);
+    SAME_PIXELS(a, b, 0);
+    /* mixed with the serif's own letters: runs of each font, one pen */
+    snprintf(a, sizeof a,
+             "<text x='10' y='40' font-family='DejaVu Serif' font-size='24'>Hx%sHx</text>",
+             shalom);
+    snprintf(b, sizeof b,
+             "<text x='10' y='40' font-family='DejaVu Serif' font-size='24'>Hx<tspan "
+             "font-family='DejaVu Sans'>%s</tspan>Hx</text>",
+             shalom);
+    SAME_PIXELS(a, b, 0);
+    /* the same through sr_text_path */
+    sr_path *one = NULL, *two = NULL;
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &one) == SR_OK);
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &two) == SR_OK);
+    sr_io_error err;
+    CHECK_EQ(sr_text_path(shalom, &(sr_text_desc){ .family = "DejaVu Serif" }, one, NULL, &err),
+             SR_OK);
+    CHECK_EQ(sr_text_path(shalom, &(sr_text_desc){ .family = "DejaVu Sans" }, two, NULL, &err),
+             SR_OK);
+    sr_polygon2 p = sr_path_polygon(one), q = sr_path_polygon(two);
+    CHECK_EQ(p.point_count, q.point_count);
+    CHECK(p.point_count > 0 && q.point_count == p.point_count &&
+          memcmp(p.points, q.points, (size_t)p.point_count * sizeof *p.points) == 0);
+    sr_destroy_path(sr_test_ctx(), one);
+    sr_destroy_path(sr_test_ctx(), two);
+    /* U+0378 is unassigned: no font has it */
+    static const char doc[] = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='40'>\n"
+                              "<text x='5' y='30'>H\xcd\xb8x\xcd\xb8</text></svg>";
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1,
+                           &(sr_svg_desc){ .name = "t.svg" }, &fb, &info, &err),
+             SR_OK);
+    CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
 }

@@ -2971,6 +2971,12 @@ static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
         } else if (r != SR_OK) {
             svg_fail(doc, r, "%s", why);
         } else {
+            uint32_t cp = svg_text_missing(w.t);
+            if (cp) {
+                warn_keyed(doc, "text glyph",
+                           "text: no font has U+%04X; drawn as its font's missing-glyph box",
+                           (unsigned)cp);
+            }
             draw_text_runs(doc, &w, tol);
         }
     }

@@ -323,6 +323,7 @@ enum { LIST_X, LIST_Y, LIST_DX, LIST_DY, LIST_ROTATE, N_LISTS };
 typedef struct tchar {
     uint32_t cp;
     int elem;
+    svg_face *face;              /* the element's, or a fallback that has the character */
     bool visible;
     double pos[N_LISTS];         /* NAN where no list gives one */
     double advance;              /* the pen's move over its cluster (first character) */
@@ -350,6 +351,7 @@ typedef struct telem {
 /* A run placed: the glyphs of one element's characters in one chunk. */
 typedef struct trun {
     int elem;
+    svg_face *face;
     int glyph0, n_glyphs;        /* in t->placed */
     double x0, x1, y;            /* pen at its start and end, its baseline */
 } trun;
@@ -371,6 +373,7 @@ struct svg_text {
     int n_runs, cap_runs;
     tglyph *placed;
     int n_placed, cap_placed;
+    uint32_t missing;            /* a character no font has, or 0 */
 };
 
 svg_text *svg_text_make(void)
@@ -505,7 +508,7 @@ static bool add_char(svg_text *t, uint32_t cp, bool visible, bool collapsible)
     if (!grow((void **)&t->chars, &t->cap_chars, t->n_chars + 1, sizeof *t->chars)) {
         return false;
     }
-    t->chars[t->n_chars++] = (tchar){ cp, t->open, visible,
+    t->chars[t->n_chars++] = (tchar){ cp, t->open, NULL, visible,
                                       { NAN, NAN, NAN, NAN, NAN }, 0, 0, false,
                                       collapsible };
     return true;
@@ -589,6 +592,11 @@ int svg_text_run_element(const svg_text *t, int run)
     return t->runs[run].elem;
 }
 
+uint32_t svg_text_missing(const svg_text *t)
+{
+    return t->missing;
+}
+
 /* Give each character the x, y, dx, dy and rotate of the innermost
  * element that has one for it (elements open outer first). */
 static void assign_lists(svg_text *t)
@@ -645,14 +653,15 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
                            svg_glyph **glyphs, int *cap)
 {
     telem *el = &t->elems[t->chars[s].elem];
-    const svg_face_metrics *m = svg_face_get_metrics(el->face);
+    svg_face *face = t->chars[s].face;
+    const svg_face_metrics *m = svg_face_get_metrics(face);
     double scale = el->ts.size / m->upem, sx = el->sx;
-    int n = svg_face_shape(el->face, cps, t->n_chars, s, e - s, el->ts.rtl, glyphs, cap);
+    int n = svg_face_shape(face, cps, t->n_chars, s, e - s, el->ts.rtl, glyphs, cap);
     if (n < 0 || !grow((void **)&t->placed, &t->cap_placed, t->n_placed + n,
                        sizeof *t->placed)) {
         return SR_OUT_OF_MEMORY;
     }
-    trun run = { t->chars[s].elem, t->n_placed, n, pen[0], pen[0], pen[1] };
+    trun run = { t->chars[s].elem, face, t->n_placed, n, pen[0], pen[0], pen[1] };
     double down = baseline_offset(el);
     const svg_glyph *g = *glyphs;
     for (int k = s; k < e; k++) {
@@ -762,7 +771,8 @@ static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs,
         int run0 = t->n_runs;
         for (int s = c; s < end && r == SR_OK;) {
             int e = s + 1;
-            while (e < end && t->chars[e].elem == t->chars[s].elem) {
+            while (e < end && t->chars[e].elem == t->chars[s].elem &&
+                   t->chars[e].face == t->chars[s].face) {
                 e++;
             }
             r = place_run(t, cps, s, e, pen, glyphs, cap);
@@ -838,6 +848,18 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
             return SR_BAD_FORMAT;
         }
     }
+    /* each character's face: the element's, or the first fallback that
+     * has it; a run is cut where the face changes */
+    t->missing = 0;
+    for (int i = 0; i < t->n_chars; i++) {
+        tchar *c = &t->chars[i];
+        svg_face *prev = i > 0 && t->chars[i - 1].elem == c->elem ? t->chars[i - 1].face : NULL;
+        bool missing = false;
+        c->face = svg_fonts_cover(fonts, t->elems[c->elem].face, prev, c->cp, &missing);
+        if (missing && !t->missing) {
+            t->missing = c->cp;
+        }
+    }
     assign_lists(t);
     uint32_t *cps = malloc((size_t)(t->n_chars ? t->n_chars : 1) * sizeof *cps);
     if (!cps) {
@@ -883,7 +905,7 @@ sr_result svg_text_run_path(svg_text *t, svg_fonts *fonts, int run, sr_path *pat
     for (int i = 0; i < rn->n_glyphs && r == SR_OK; i++) {
         const tglyph *g = &t->placed[rn->glyph0 + i];
         if (g->visible) {
-            r = svg_face_outline(fonts, el->face, g->id, g->m, path);
+            r = svg_face_outline(fonts, rn->face, g->id, g->m, path);
         }
     }
     unsigned deco = el->ts.decoration;

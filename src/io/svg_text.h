@@ -90,6 +90,14 @@ svg_face *svg_fonts_match(svg_fonts *fonts, const char *family, int weight, int 
 /* The face of a font file (its first face), kept like a match; NULL
  * with a line in why. */
 svg_face *svg_fonts_open_file(svg_fonts *fonts, const char *file, char *why, size_t why_size);
+/* The face that draws code point cp in a text whose element matched
+ * face: face when it has the character, else the first font of
+ * fontconfig's sorted list for face's request that has it (opened once).
+ * Marks, joiners and other format characters go with prev, the face of
+ * the character before (NULL at the start).  When no font has cp (or
+ * face is a caller's file), face with *missing set: its .notdef draws. */
+svg_face *svg_fonts_cover(svg_fonts *fonts, svg_face *face, svg_face *prev, uint32_t cp,
+                          bool *missing);
 const svg_face_metrics *svg_face_get_metrics(const svg_face *face);
 /* Shape cps[start .. start+len) (the rest of cps is context) left to
  * right or right to left: glyphs in visual order into *glyphs (grown as
@@ -126,6 +134,9 @@ int svg_text_length(const svg_text *t);
 /* Match, shape and place every character; SR_OK or a result with a line
  * in why. */
 sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_size);
+/* After layout: a character that no font has (drawn as its font's
+ * .notdef), or 0. */
+uint32_t svg_text_missing(const svg_text *t);
 /* The runs to draw, in order: consecutive characters of one element. */
 int svg_text_runs(const svg_text *t);
 /* The element (svg_text_open's index) whose paint a run takes. */
