@@ -3,7 +3,7 @@
 # CMake, libpng (PNG in and out), libjpeg-turbo (JPEG textures in), Assimp
 # (model formats beyond OBJ/PLY/STL), jansson (the glTF reader's JSON),
 # meshoptimizer (glTF's EXT_meshopt_compression), expat (the SVG reader),
-# fontconfig, HarfBuzz and FreeType (the SVG reader's text), Mesa's OSMesa
+# fontconfig, HarfBuzz, FreeType and FriBidi (the SVG reader's text), Mesa's OSMesa
 # (llvmpipe, for the benchmark's side-by-side comparison), cairo (the 2D fill
 # benchmark's comparison), libwebp (WebP textures, glTF's EXT_texture_webp,
 # and animated WebP turntables, 'softrast render --animate'), the Breeze icon
@@ -34,7 +34,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     libpng-dev zlib1g-dev libjpeg-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev \
     libjansson-dev libwebp-dev libmeshoptimizer-dev breeze-icon-theme librsvg2-bin \
     clang libclang-rt-14-dev \
-    libsdl2-dev libfreetype-dev libfontconfig-dev libharfbuzz-dev fonts-dejavu-core xvfb xauth locales \
+    libsdl2-dev libfreetype-dev libfontconfig-dev libharfbuzz-dev libfribidi-dev fonts-dejavu-core xvfb xauth locales \
     python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed mypy \
     emscripten node-acorn chromium \
     groff-base mandoc zsh fish \

@@ -629,3 +629,56 @@ SR_TEST(characters_the_font_lacks_come_from_a_fallback_font)
     CHECK_EQ(info.warnings, 1);
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
+
+/* The ink centroid's x of a body drawn on 300 x 60. */
+static double ink_x(const char *body)
+{
+    sr_framebuffer *fb = draw(300, 60, body);
+    double mass = 0, x = fb ? ink_centroid(fb, &mass) : 0;
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    CHECK(mass > 255.0 * 50);
+    return x;
+}
+
+/* Right-to-left words in a left-to-right line read from the right (the
+ * Unicode bidi algorithm), each run shaped in its own direction;
+ * direction rtl makes the line's base right to left without reversing
+ * its Latin letters, and unicode-bidi bidi-override reverses them. */
+SR_TEST(bidirectional_text_is_reordered)
+{
+    NEED_TEXT();
+    if (!resolves("DejaVu Sans", "/DejaVuSans.ttf", 0x5D0, "/DejaVuSans.ttf")) {
+        SKIP("DejaVu Sans has no Hebrew here");
+    }
+#define SHALOM "\xd7\xa9\xd7\x9c\xd7\x95\xd7\x9d"
+#define OLAM "\xd7\xa2\xd7\x95\xd7\x9c\xd7\x9d"
+#define TEXT "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>"
+    /* a Hebrew word in Latin text is drawn as it is alone, right to left */
+    SAME_PIXELS(TEXT "Hx " SHALOM " xH</text>", TEXT "Hx <tspan>" SHALOM "</tspan> xH</text>", 0);
+    /* of two Hebrew words the first is on the right */
+    double first = ink_x(TEXT "Hx " SHALOM " <tspan visibility='hidden'>" OLAM "</tspan></text>");
+    double second = ink_x(TEXT "Hx <tspan visibility='hidden'>" SHALOM "</tspan> " OLAM
+                               "</text>");
+    double hx = ink_x(TEXT "Hx <tspan visibility='hidden'>" SHALOM " " OLAM "</tspan></text>");
+    CHECK(hx < second && second + 20 < first);
+    /* the same with the words' own tspans: one paragraph across elements */
+    CHECK_NEAR(ink_x(TEXT "Hx <tspan>" SHALOM "</tspan> <tspan visibility='hidden'>" OLAM
+                          "</tspan></text>"),
+               first, 0.01);
+    /* direction rtl: Latin letters stay in order, start is the right end */
+    SAME_PIXELS("<text x='190' y='40' font-family='DejaVu Sans' font-size='20' direction='rtl'>"
+                "Hxo</text>",
+                "<text x='190' y='40' font-family='DejaVu Sans' font-size='20' "
+                "text-anchor='end'>Hxo</text>", 0);
+    /* in an rtl line a Latin word after a Hebrew one is on its left */
+    CHECK(ink_x("<text x='290' y='40' font-family='DejaVu Sans' font-size='20' direction='rtl'>"
+                "<tspan visibility='hidden'>" SHALOM "</tspan> Hxo</text>") + 20 <
+          ink_x("<text x='290' y='40' font-family='DejaVu Sans' font-size='20' direction='rtl'>"
+                SHALOM " <tspan visibility='hidden'>Hxo</tspan></text>"));
+    /* bidi-override draws the characters in the order it says */
+    SAME_PIXELS(TEXT "o<tspan direction='rtl' unicode-bidi='bidi-override'>Hxo</tspan></text>",
+                TEXT "oox<tspan>H</tspan></text>", 0);
+#undef TEXT
+#undef OLAM
+#undef SHALOM
+}

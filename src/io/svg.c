@@ -2977,6 +2977,11 @@ static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
                            "text: no font has U+%04X; drawn as its font's missing-glyph box",
                            (unsigned)cp);
             }
+            if (svg_text_unordered(w.t)) {
+                warn_keyed(doc, "text bidi",
+                           "text: right-to-left and left-to-right text left in logical order "
+                           "(built without FriBidi)");
+            }
             draw_text_runs(doc, &w, tol);
         }
     }

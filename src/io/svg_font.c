@@ -400,7 +400,7 @@ const svg_face_metrics *svg_face_get_metrics(const svg_face *face)
     return &face->metrics;
 }
 
-int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, bool rtl,
+int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, int dir,
                    svg_glyph **glyphs, int *cap)
 {
     hb_buffer_t *buf = hb_buffer_create();
@@ -409,10 +409,10 @@ int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int le
         return -1;
     }
     hb_buffer_add_codepoints(buf, cps, n, (unsigned)start, len);
-    hb_buffer_guess_segment_properties(buf);
-    if (rtl) {
-        hb_buffer_set_direction(buf, HB_DIRECTION_RTL);
+    if (dir >= 0) {
+        hb_buffer_set_direction(buf, dir ? HB_DIRECTION_RTL : HB_DIRECTION_LTR);
     }
+    hb_buffer_guess_segment_properties(buf);
     /* Vertical scripts are laid out horizontally, as SVG's initial
      * writing mode says. */
     if (HB_DIRECTION_IS_VERTICAL(hb_buffer_get_direction(buf))) {

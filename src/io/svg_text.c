@@ -10,6 +10,7 @@
 #include "io/svg_text.h"
 #include "io/svg.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,6 +33,7 @@ svg_text_style svg_text_initial(void)
 void svg_text_reset_uninherited(svg_text_style *ts)
 {
     ts->align = SVG_BASE_AUTO;
+    ts->bidi = SVG_BIDI_NORMAL;
     ts->shift_kind = SVG_SHIFT_LENGTH;
     ts->shift = 0;
 }
@@ -257,6 +259,7 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         case 9: ts->word_spacing = one.word_spacing; break;
         case 10: ts->shift_kind = one.shift_kind; ts->shift = one.shift; break;
         case 11: ts->rtl = one.rtl; break;
+        case 13: ts->bidi = one.bidi; break;
         default: break;
         }
         return 1;
@@ -309,7 +312,12 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         ts->rtl = ok ? b == 1 : ts->rtl;
         break;
     case 12: ok = font_shorthand(ts, parent, v); break;
-    default: ok = true; break; /* unicode-bidi: the direction is HarfBuzz's */
+    case 13:
+        b = keyword(v, (const char *const[]){ "normal", "embed", "bidi-override", NULL });
+        ok = b >= 0;
+        ts->bidi = ok ? (unsigned char)b : ts->bidi;
+        break;
+    default: ok = true; break;
     }
     return ok ? 1 : -1;
 }
@@ -344,6 +352,9 @@ typedef struct telem {
     double sx;                   /* its glyphs' and advances' horizontal scale */
 } telem;
 
+/* Nested unicode-bidi embeddings followed, within FriBidi's 125 levels. */
+#define MAX_EMBED 60
+
 /* Glyphs of one path at most (SR_SVG_MAX_SUBPATHS bounds a path's
  * contours; a glyph has a few). */
 #define MAX_RUN_GLYPHS 1024
@@ -374,6 +385,11 @@ struct svg_text {
     tglyph *placed;
     int n_placed, cap_placed;
     uint32_t missing;            /* a character no font has, or 0 */
+    bool unordered;              /* mixed directions left in logical order */
+    unsigned char *levels;       /* each character's bidi level, per chunk */
+    uint32_t *bidi_in;           /* a chunk's characters and bidi controls */
+    int *bidi_at;                /* where each character is among them */
+    int cap_bidi;
 };
 
 svg_text *svg_text_make(void)
@@ -399,6 +415,9 @@ void svg_text_free(svg_text *t)
     free(t->chars);
     free(t->runs);
     free(t->placed);
+    free(t->levels);
+    free(t->bidi_in);
+    free(t->bidi_at);
     free(t);
 }
 
@@ -597,6 +616,11 @@ uint32_t svg_text_missing(const svg_text *t)
     return t->missing;
 }
 
+bool svg_text_unordered(const svg_text *t)
+{
+    return t->unordered;
+}
+
 /* Give each character the x, y, dx, dy and rotate of the innermost
  * element that has one for it (elements open outer first). */
 static void assign_lists(svg_text *t)
@@ -649,14 +673,14 @@ static bool add_run(svg_text *t, trun r)
 
 /* Shape characters [s, e) of one element and place their glyphs from the
  * pen on; the pen moves on. */
-static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, double pen[2],
-                           svg_glyph **glyphs, int *cap)
+static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int dir,
+                           double pen[2], svg_glyph **glyphs, int *cap)
 {
     telem *el = &t->elems[t->chars[s].elem];
     svg_face *face = t->chars[s].face;
     const svg_face_metrics *m = svg_face_get_metrics(face);
     double scale = el->ts.size / m->upem, sx = el->sx;
-    int n = svg_face_shape(face, cps, t->n_chars, s, e - s, el->ts.rtl, glyphs, cap);
+    int n = svg_face_shape(face, cps, t->n_chars, s, e - s, dir, glyphs, cap);
     if (n < 0 || !grow((void **)&t->placed, &t->cap_placed, t->n_placed + n,
                        sizeof *t->placed)) {
         return SR_OUT_OF_MEMORY;
@@ -734,6 +758,148 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
     return add_run(t, run) ? SR_OK : SR_OUT_OF_MEMORY;
 }
 
+/* The elements with unicode-bidi embed or bidi-override that character
+ * i is in, outermost first, into chain; their count.  Past MAX_EMBED the
+ * innermost are left out, so that every character of an element sees
+ * the same outer ones. */
+static int embeddings(const svg_text *t, int i, int chain[MAX_EMBED])
+{
+    int all = 0;
+    for (int e = t->chars[i].elem; e >= 0; e = t->elems[e].parent) {
+        all += t->elems[e].ts.bidi != SVG_BIDI_NORMAL;
+    }
+    int n = all < MAX_EMBED ? all : MAX_EMBED, k = all;
+    for (int e = t->chars[i].elem; e >= 0; e = t->elems[e].parent) {
+        if (t->elems[e].ts.bidi != SVG_BIDI_NORMAL && --k < n) {
+            chain[k] = e;
+        }
+    }
+    return n;
+}
+
+/* The bidi level of each character of chunk [c, end) into t->levels, its
+ * base direction rtl: the elements' unicode-bidi become the embedding and
+ * override controls around their characters (as CSS maps them), which
+ * FriBidi reads.  False when out of memory. */
+static bool chunk_levels(svg_text *t, int c, int end, bool rtl)
+{
+    int need = (end - c) + 2 * t->n_elems;
+    if (need > t->cap_bidi) {
+        unsigned char *l = realloc(t->levels, (size_t)need);
+        t->levels = l ? l : t->levels;
+        uint32_t *in = realloc(t->bidi_in, (size_t)need * sizeof *in);
+        t->bidi_in = in ? in : t->bidi_in;
+        int *at = realloc(t->bidi_at, (size_t)need * sizeof *at);
+        t->bidi_at = at ? at : t->bidi_at;
+        if (!l || !in || !at) {
+            return false;
+        }
+        t->cap_bidi = need;
+    }
+    int open[MAX_EMBED], depth = 0, m = 0;
+    for (int i = c; i < end; i++) {
+        int chain[MAX_EMBED];
+        int n = embeddings(t, i, chain), same = 0;
+        while (same < n && same < depth && chain[same] == open[same]) {
+            same++;
+        }
+        for (; depth > same; depth--) {
+            t->bidi_in[m++] = 0x202C; /* PDF */
+        }
+        for (; depth < n; depth++) {
+            const svg_text_style *ts = &t->elems[chain[depth]].ts;
+            open[depth] = chain[depth];
+            /* LRE, RLE, LRO, RLO */
+            t->bidi_in[m++] = ts->bidi == SVG_BIDI_EMBED ? (ts->rtl ? 0x202B : 0x202A)
+                                                         : (ts->rtl ? 0x202E : 0x202D);
+        }
+        t->bidi_at[i - c] = m;
+        t->bidi_in[m++] = t->chars[i].cp;
+    }
+    assert(m <= need); /* each element opens and closes once in a chunk */
+    int got = svg_bidi_levels(t->bidi_in, m, rtl, t->levels);
+    if (got < 0) {
+        return false;
+    }
+    t->unordered = t->unordered || got == 1;
+    /* the characters' levels, in place (each at or after its own index) */
+    for (int i = 0; i < end - c; i++) {
+        t->levels[i] = t->levels[t->bidi_at[i]];
+    }
+    return true;
+}
+
+/* Place chunk [c, end) from the pen on, its base direction rtl: runs of
+ * one element, face and bidi level, each shaped in its level's direction
+ * and placed in visual order (rule L2: from the highest level down to
+ * the lowest odd one, reverse every sequence of runs at that level or
+ * above). */
+static sr_result place_chunk(svg_text *t, const uint32_t *cps, int c, int end, bool rtl,
+                             double pen[2], svg_glyph **glyphs, int *cap)
+{
+    if (!chunk_levels(t, c, end, rtl)) {
+        return SR_OUT_OF_MEMORY;
+    }
+    const unsigned char *lv = t->levels;
+    int n_segs = 0;
+    for (int s = c; s < end; n_segs++) {
+        int e = s + 1;
+        while (e < end && t->chars[e].elem == t->chars[s].elem &&
+               t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c]) {
+            e++;
+        }
+        s = e;
+    }
+    int *seg = malloc((size_t)n_segs * 2 * sizeof *seg);
+    if (!seg) {
+        return SR_OUT_OF_MEMORY;
+    }
+    int top = 0, low_odd = 255;
+    for (int s = c, k = 0; s < end; k++) {
+        int e = s + 1;
+        while (e < end && t->chars[e].elem == t->chars[s].elem &&
+               t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c]) {
+            e++;
+        }
+        seg[2 * k] = s;
+        seg[2 * k + 1] = e;
+        top = lv[s - c] > top ? lv[s - c] : top;
+        if ((lv[s - c] & 1) && lv[s - c] < low_odd) {
+            low_odd = lv[s - c];
+        }
+        s = e;
+    }
+    for (int level = top; level >= low_odd && level > 0; level--) {
+        for (int k = 0; k < n_segs;) {
+            if (lv[seg[2 * k] - c] < level) {
+                k++;
+                continue;
+            }
+            int j = k;
+            while (j < n_segs && lv[seg[2 * j] - c] >= level) {
+                j++;
+            }
+            for (int a = k, b = j - 1; a < b; a++, b--) {
+                int s0 = seg[2 * a], e0 = seg[2 * a + 1];
+                seg[2 * a] = seg[2 * b], seg[2 * a + 1] = seg[2 * b + 1];
+                seg[2 * b] = s0, seg[2 * b + 1] = e0;
+            }
+            k = j;
+        }
+    }
+    sr_result r = SR_OK;
+    bool bidi = svg_bidi_available();
+    for (int k = 0; k < n_segs && r == SR_OK; k++) {
+        int s = seg[2 * k], e = seg[2 * k + 1];
+        /* without FriBidi each run goes as its script does, or right to
+         * left where direction says so */
+        int dir = bidi ? lv[s - c] & 1 : t->elems[t->chars[s].elem].ts.rtl ? 1 : -1;
+        r = place_run(t, cps, s, e, dir, pen, glyphs, cap);
+    }
+    free(seg);
+    return r;
+}
+
 /* Move the glyphs and runs of a chunk by dx. */
 static void shift_chunk(svg_text *t, int run0, double dx)
 {
@@ -769,15 +935,7 @@ static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs,
         const telem *head = &t->elems[t->chars[c].elem];
         double start = pen[0];
         int run0 = t->n_runs;
-        for (int s = c; s < end && r == SR_OK;) {
-            int e = s + 1;
-            while (e < end && t->chars[e].elem == t->chars[s].elem &&
-                   t->chars[e].face == t->chars[s].face) {
-                e++;
-            }
-            r = place_run(t, cps, s, e, pen, glyphs, cap);
-            s = e;
-        }
+        r = place_chunk(t, cps, c, end, head->ts.rtl, pen, glyphs, cap);
         /* text-anchor of the chunk's first character; right to left,
          * start is the right end */
         double width = pen[0] - start;

@@ -26,6 +26,7 @@ enum { SVG_DECO_UNDERLINE = 1, SVG_DECO_OVERLINE = 2, SVG_DECO_LINE_THROUGH = 4 
 enum { SVG_BASE_AUTO, SVG_BASE_ALPHABETIC, SVG_BASE_MIDDLE, SVG_BASE_CENTRAL, SVG_BASE_HANGING,
        SVG_BASE_MATHEMATICAL, SVG_BASE_TEXT_TOP, SVG_BASE_TEXT_BOTTOM, SVG_BASE_IDEOGRAPHIC };
 enum { SVG_SHIFT_LENGTH, SVG_SHIFT_SUB, SVG_SHIFT_SUPER, SVG_SHIFT_PERCENT };
+enum { SVG_BIDI_NORMAL, SVG_BIDI_EMBED, SVG_BIDI_OVERRIDE };
 
 /* The text properties of a style.  All inherit except those marked. */
 typedef struct svg_text_style {
@@ -38,6 +39,7 @@ typedef struct svg_text_style {
     unsigned char align;     /* alignment-baseline (not inherited; AUTO: the dominant one) */
     unsigned char decoration;/* text-decoration bits (taken on by the descendants) */
     bool rtl;                /* direction: rtl */
+    unsigned char bidi;      /* unicode-bidi (not inherited) */
     double letter_spacing, word_spacing;
     unsigned char shift_kind;/* baseline-shift (not inherited) */
     double shift;            /* its length, or percentage of the font size */
@@ -56,6 +58,16 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
 /* After the cascade: add the element's own baseline shift to the
  * ancestors' (parent NULL: none). */
 void svg_text_settle(svg_text_style *ts, const svg_text_style *parent);
+
+/* ---- bidirectional text (svg_bidi.c) ------------------------------------ */
+
+/* Whether this build reorders bidirectional text (it found FriBidi). */
+bool svg_bidi_available(void);
+/* The resolved embedding level of each of cps[0 .. n) (bidi control
+ * characters among them) in a line of base direction rtl, into levels:
+ * 0 done, 1 done without reordering (no FriBidi: every level the base's)
+ * though the text mixes directions, -1 out of memory. */
+int svg_bidi_levels(const uint32_t *cps, int n, bool rtl, unsigned char *levels);
 
 /* ---- fonts (svg_font.c) ------------------------------------------------- */
 
@@ -100,9 +112,10 @@ svg_face *svg_fonts_cover(svg_fonts *fonts, svg_face *face, svg_face *prev, uint
                           bool *missing);
 const svg_face_metrics *svg_face_get_metrics(const svg_face *face);
 /* Shape cps[start .. start+len) (the rest of cps is context) left to
- * right or right to left: glyphs in visual order into *glyphs (grown as
- * needed, *cap its room); their count, or -1 when out of memory. */
-int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, bool rtl,
+ * right (dir 0), right to left (1) or as its script goes (-1): glyphs in
+ * visual order into *glyphs (grown as needed, *cap its room); their
+ * count, or -1 when out of memory. */
+int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, int dir,
                    svg_glyph **glyphs, int *cap);
 /* Append glyph id's outline mapped by m (a, b, c, d, e, f: font units,
  * y up, to user units) to path. */
@@ -137,6 +150,9 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
 /* After layout: a character that no font has (drawn as its font's
  * .notdef), or 0. */
 uint32_t svg_text_missing(const svg_text *t);
+/* After layout: whether a chunk mixing directions was left in logical
+ * order (a build without FriBidi). */
+bool svg_text_unordered(const svg_text *t);
 /* The runs to draw, in order: consecutive characters of one element. */
 int svg_text_runs(const svg_text *t);
 /* The element (svg_text_open's index) whose paint a run takes. */
