@@ -6,7 +6,8 @@
  * glyph outlines FreeType gives, text-anchor moves a chunk by half and
  * all of its advance, tspans continue the pen, whitespace collapses as
  * SVG 1.1 says, dx, dy and x lists move characters, characters the font
- * lacks come from a fallback font, and huge font sizes
+ * lacks come from a fallback font, mixed directions are ordered by the
+ * bidi algorithm, textPath lays glyphs along its path, and huge font sizes
  * and texts beyond the point budget are refused with FILE:LINE.  The font
  * is pinned: DejaVu Sans, skipped unless fontconfig resolves the family
  * to DejaVuSans.ttf.  Skipped in builds without expat, fontconfig,
@@ -478,19 +479,35 @@ SR_TEST(huge_font_sizes_and_long_texts_are_refused_with_the_line)
     free(svg);
 }
 
-SR_TEST(text_path_is_warned_and_unknown_families_fall_back)
+SR_TEST(a_text_path_naming_no_path_is_warned_and_unknown_families_fall_back)
 {
     NEED_TEXT();
     static const char doc[] =
         "<svg xmlns='http://www.w3.org/2000/svg' xmlns:xlink='http://www.w3.org/1999/xlink' "
-        "width='100' height='40'><path id='p' d='M0 30 L100 30'/>\n"
-        "<text font-family='DejaVu Sans'><textPath xlink:href='#p'>on path</textPath></text>"
-        "</svg>";
+        "width='100' height='40'><g id='p'/>\n"
+        "<text font-family='DejaVu Sans'><textPath xlink:href='#p'>on path</textPath>"
+        "<textPath xlink:href='#nothing'>on path</textPath></text></svg>";
     sr_framebuffer *fb = NULL;
     sr_svg_info info;
     sr_io_error err;
     CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
     CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* what is not supported of it is warned once each, and drawn */
+    static const char stretch[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='40'>"
+        "<path id='p' d='M0 30 L100 30'/><text font-family='DejaVu Sans'>"
+        "<textPath href='#p' method='stretch' side='right'>on</textPath>"
+        "<textPath href='#p' method='stretch'>on</textPath></text></svg>";
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), stretch, sizeof stretch - 1,
+                           &(sr_svg_desc){ .background = { 1, 1, 1, 1 } }, &fb, &info, &err),
+             SR_OK);
+    CHECK_EQ(info.warnings, 2);
+    double mass = 0;
+    if (fb) {
+        ink_centroid(fb, &mass);
+    }
+    CHECK(mass > 255.0 * 20);
     sr_destroy_framebuffer(sr_test_ctx(), fb);
     /* a family fontconfig lacks gives way to the next in the list */
     sr_framebuffer *one = draw(100, 40,
@@ -681,4 +698,69 @@ SR_TEST(bidirectional_text_is_reordered)
 #undef TEXT
 #undef OLAM
 #undef SHALOM
+}
+
+/* textPath (SVG 1.1 10.13): along a straight path the text is the text
+ * laid out at startOffset from the path's start, turned with the path;
+ * a glyph whose middle is beyond the path's end is not drawn;
+ * text-anchor moves the text along the path. */
+SR_TEST(text_path_lays_glyphs_along_the_path)
+{
+    NEED_TEXT();
+#define DEFS "<path id='h' d='M40 40 L300 40'/><path id='v' d='M30 10 L30 300' " \
+             "transform='translate(-10 0)'/><path id='s' d='M10 40 L58 40'/>"
+#define FONT "font-family='DejaVu Sans' font-size='20'"
+    SAME_PIXELS(DEFS "<text " FONT "><textPath href='#h' startOffset='16'>Hx on <tspan "
+                "dy='-4'>a</tspan> path</textPath></text>",
+                "<text x='56' y='40' " FONT ">Hx on <tspan dy='-4'>a</tspan> path</text>", 0);
+    /* a percentage is of the path's length (260 here) */
+    SAME_PIXELS(DEFS "<text " FONT "><textPath xlink:href='#h' startOffset='50%'>Hxo</textPath>"
+                "</text>",
+                "<text x='170' y='40' " FONT ">Hxo</text>", 0);
+    SAME_PIXELS(DEFS "<text " FONT " text-anchor='middle'><textPath xlink:href='#h' "
+                "startOffset='50%'>Hxo</textPath></text>",
+                "<text x='170' y='40' " FONT " text-anchor='middle'>Hxo</text>", 0);
+    /* down a vertical path (transformed): the line turned by 90 degrees */
+    sr_framebuffer *a = draw(200, 300, DEFS "<text " FONT "><textPath xlink:href='#v' "
+                                            "startOffset='5'>Hx on a path</textPath></text>");
+    sr_framebuffer *b = draw(200, 300, "<text " FONT " transform='translate(20 10) rotate(90)' "
+                                       "x='5'>Hx on a path</text>");
+    double mass = 0;
+    ink_centroid(a, &mass);
+    CHECK(mass > 255.0 * 100);
+    CHECK_EQ(count_differing(a, b, 8), 0);
+    destroy(a, b);
+    /* 48 units of path: the glyphs whose middle falls within it */
+    double adv = 0;
+    sr_path *one = NULL;
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &one) == SR_OK);
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .family = "DejaVu Sans", .size = 20 }, one, &adv,
+                          NULL),
+             SR_OK);
+    sr_destroy_path(sr_test_ctx(), one);
+    REQUIRE(adv > 5 && adv < 24);
+    int fit = (int)((48 - adv / 2) / adv) + 1;
+    char shown[512];
+    snprintf(shown, sizeof shown,
+             "<text x='10' y='40' " FONT ">%.*s<tspan visibility='hidden'>%s</tspan></text>", fit,
+             "HHHHHHHH", "HHHHHHHH" + fit);
+    SAME_PIXELS(DEFS "<text " FONT "><textPath xlink:href='#s'>HHHHHHHH</textPath></text>", shown,
+                0);
+    /* round a corner: each glyph turns with the segment its middle is on */
+    double corner = 10 + 2.2 * adv;
+    char bent[512], parts[512];
+    snprintf(bent, sizeof bent,
+             "<path id='l' d='M10 20 L%.9g 20 L%.9g 200' fill='none'/><text " FONT "><textPath "
+             "xlink:href='#l'>HHHH</textPath></text>",
+             corner, corner);
+    snprintf(parts, sizeof parts,
+             "<text x='10' y='20' " FONT ">HH</text><text " FONT " transform='translate(%.9g 20) "
+             "rotate(90)' x='%.9g'>HH</text>",
+             corner, -0.2 * adv);
+    a = draw(100, 120, bent);
+    b = draw(100, 120, parts);
+    CHECK_EQ(count_differing(a, b, 8), 0);
+    destroy(a, b);
+#undef FONT
+#undef DEFS
 }

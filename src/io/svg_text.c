@@ -350,7 +350,17 @@ typedef struct telem {
     double text_length;          /* textLength, or 0 */
     bool stretch;                /* lengthAdjust="spacingAndGlyphs" */
     double sx;                   /* its glyphs' and advances' horizontal scale */
+    int path;                    /* the textPath it is in (t->paths), or -1 */
 } telem;
+
+/* A textPath's path, flattened in the text's user space. */
+typedef struct tpath {
+    double *xy;                  /* its points, x and y */
+    double *at;                  /* the distance along the path to each point */
+    unsigned char *move;         /* a subpath starts at the point: no segment to it */
+    int n;
+    double start;                /* startOffset in user units */
+} tpath;
 
 /* Nested unicode-bidi embeddings followed, within FriBidi's 125 levels. */
 #define MAX_EMBED 60
@@ -363,6 +373,7 @@ typedef struct telem {
 typedef struct trun {
     int elem;
     svg_face *face;
+    int path;                    /* the textPath its glyphs are bent along, or -1 */
     int glyph0, n_glyphs;        /* in t->placed */
     double x0, x1, y;            /* pen at its start and end, its baseline */
 } trun;
@@ -370,6 +381,7 @@ typedef struct trun {
 typedef struct tglyph {
     unsigned id;
     bool visible;
+    double mid;                  /* the middle of its cluster's advance, x before bending */
     double m[6];                 /* font units to user units */
 } tglyph;
 
@@ -390,6 +402,8 @@ struct svg_text {
     uint32_t *bidi_in;           /* a chunk's characters and bidi controls */
     int *bidi_at;                /* where each character is among them */
     int cap_bidi;
+    tpath *paths;
+    int n_paths, cap_paths;
 };
 
 svg_text *svg_text_make(void)
@@ -418,6 +432,12 @@ void svg_text_free(svg_text *t)
     free(t->levels);
     free(t->bidi_in);
     free(t->bidi_at);
+    for (int i = 0; i < t->n_paths; i++) {
+        free(t->paths[i].xy);
+        free(t->paths[i].at);
+        free(t->paths[i].move);
+    }
+    free(t->paths);
     free(t);
 }
 
@@ -489,7 +509,8 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
         return -1;
     }
     telem *e = &t->elems[t->n_elems];
-    *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open, .sx = 1 };
+    *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open, .sx = 1,
+                  .path = t->open >= 0 ? t->elems[t->open].path : -1 };
     bool pct = false;
     if (lists[5] && (!svg_parse_length(lists[5], ts->size, &e->text_length, &pct) ||
                      !isfinite(e->text_length) || e->text_length < 0)) {
@@ -512,6 +533,37 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
     }
     t->open = t->n_elems;
     return t->n_elems++;
+}
+
+bool svg_text_set_path(svg_text *t, int elem, const double *xy, const unsigned char *move, int n,
+                       double start_offset, bool pct)
+{
+    if (!grow((void **)&t->paths, &t->cap_paths, t->n_paths + 1, sizeof *t->paths)) {
+        return false;
+    }
+    tpath *p = &t->paths[t->n_paths];
+    *p = (tpath){ malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *p->xy),
+                  malloc((size_t)(n > 0 ? n : 1) * sizeof *p->at),
+                  malloc((size_t)(n > 0 ? n : 1)), n, 0 };
+    if (!p->xy || !p->at || !p->move) {
+        free(p->xy);
+        free(p->at);
+        free(p->move);
+        return false;
+    }
+    double len = 0;
+    for (int i = 0; i < n; i++) {
+        p->xy[2 * i] = xy[2 * i];
+        p->xy[2 * i + 1] = xy[2 * i + 1];
+        p->move[i] = i == 0 || move[i];
+        if (!p->move[i]) {
+            len += hypot(xy[2 * i] - xy[2 * i - 2], xy[2 * i + 1] - xy[2 * i - 1]);
+        }
+        p->at[i] = len;
+    }
+    p->start = pct ? start_offset / 100 * len : start_offset;
+    t->elems[elem].path = t->n_paths++;
+    return true;
 }
 
 void svg_text_close(svg_text *t)
@@ -685,7 +737,7 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
                        sizeof *t->placed)) {
         return SR_OUT_OF_MEMORY;
     }
-    trun run = { t->chars[s].elem, face, t->n_placed, n, pen[0], pen[0], pen[1] };
+    trun run = { t->chars[s].elem, face, el->path, t->n_placed, n, pen[0], pen[0], pen[1] };
     double down = baseline_offset(el);
     const svg_glyph *g = *glyphs;
     for (int k = s; k < e; k++) {
@@ -697,6 +749,7 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
         }
     }
     double cluster_x = pen[0];
+    int cluster_glyph = t->n_placed;
     for (int i = 0; i < n; i++) {
         int c = g[i].cluster;
         bool first = i == 0 || g[i - 1].cluster != c;
@@ -729,18 +782,23 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
                 run.y = pen[1] + down;
             }
             cluster_x = pen[0];
+            cluster_glyph = t->n_placed;
         }
         double rot = t->chars[c].pos[LIST_ROTATE];
         double a = isnan(rot) ? 0 : rot * (M_PI / 180);
         double co = cos(a), si = sin(a);
         double ox = pen[0] + g[i].ox * scale * sx, oy = pen[1] + down - g[i].oy * scale;
         t->placed[t->n_placed++] = (tglyph){
-            g[i].id, t->chars[c].visible,
+            g[i].id, t->chars[c].visible, 0,
             { scale * sx * co, scale * sx * si, scale * si, -scale * co, ox, oy } };
         pen[0] += g[i].ax * scale * sx;
         pen[1] -= g[i].ay * scale;
         bool last = i + 1 == n || g[i + 1].cluster != c;
         if (last) {
+            /* on a path the cluster turns about its middle */
+            for (int j = cluster_glyph; j < t->n_placed; j++) {
+                t->placed[j].mid = (cluster_x + pen[0]) / 2;
+            }
             for (int k = c; k < c_end; k++) {
                 pen[0] += el->ts.letter_spacing * sx;
                 if (t->chars[k].cp == ' ') {
@@ -909,6 +967,73 @@ static void shift_chunk(svg_text *t, int run0, double dx)
         run->x1 += dx;
         for (int i = 0; i < run->n_glyphs; i++) {
             t->placed[run->glyph0 + i].m[4] += dx;
+            t->placed[run->glyph0 + i].mid += dx;
+        }
+    }
+}
+
+/* The point at distance s along path p and the angle of its tangent
+ * there; false when s is off the path (before it, beyond its end). */
+static bool path_at(const tpath *p, double s, double *x, double *y, double *angle)
+{
+    if (p->n < 2 || !(s >= 0 && s <= p->at[p->n - 1])) {
+        return false;
+    }
+    int lo = 1, hi = p->n - 1;
+    while (lo < hi) { /* the first point at s or beyond */
+        int mid = (lo + hi) / 2;
+        if (p->at[mid] < s) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    while (lo < p->n && p->move[lo]) {
+        lo++; /* the segment after a subpath's start */
+    }
+    if (lo == p->n) {
+        return false;
+    }
+    const double *a = &p->xy[2 * (lo - 1)], *b = &p->xy[2 * lo];
+    double len = p->at[lo] - p->at[lo - 1];
+    double u = len > 0 ? (s - p->at[lo - 1]) / len : 0;
+    *x = a[0] + (b[0] - a[0]) * u;
+    *y = a[1] + (b[1] - a[1]) * u;
+    *angle = atan2(b[1] - a[1], b[0] - a[0]);
+    return true;
+}
+
+/* The pen at the end of path p. */
+static void path_end(const tpath *p, double pen[2])
+{
+    if (p->n > 0) {
+        pen[0] = p->xy[2 * (p->n - 1)];
+        pen[1] = p->xy[2 * (p->n - 1) + 1];
+    }
+}
+
+/* Bend the glyphs of a chunk laid out along x onto path p (SVG 1.1
+ * 10.13.3): each cluster's middle goes to the point that far along the
+ * path, the glyphs turned to the tangent there, dy lifting them off it;
+ * a cluster whose middle is off the path is not drawn. */
+static void bend_chunk(svg_text *t, int run0, const tpath *p)
+{
+    for (int r = run0; r < t->n_runs; r++) {
+        for (int i = 0; i < t->runs[r].n_glyphs; i++) {
+            tglyph *g = &t->placed[t->runs[r].glyph0 + i];
+            double px, py, a;
+            if (!path_at(p, g->mid, &px, &py, &a)) {
+                g->visible = false;
+                continue;
+            }
+            double co = cos(a), si = sin(a), m[6];
+            memcpy(m, g->m, sizeof m);
+            g->m[0] = co * m[0] - si * m[1];
+            g->m[1] = si * m[0] + co * m[1];
+            g->m[2] = co * m[2] - si * m[3];
+            g->m[3] = si * m[2] + co * m[3];
+            g->m[4] = px + co * (m[4] - g->mid) - si * m[5];
+            g->m[5] = py + si * (m[4] - g->mid) + co * m[5];
         }
     }
 }
@@ -921,15 +1046,25 @@ static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs,
     sr_result r = SR_OK;
     t->n_runs = t->n_placed = 0;
     for (int c = 0; c < t->n_chars && r == SR_OK;) {
+        /* a textPath's characters are chunks of their own, laid out along
+         * x from its startOffset, then bent onto the path */
+        int path = t->elems[t->chars[c].elem].path;
         int end = c + 1;
         while (end < t->n_chars && isnan(t->chars[end].pos[LIST_X]) &&
-               isnan(t->chars[end].pos[LIST_Y])) {
+               isnan(t->chars[end].pos[LIST_Y]) && t->elems[t->chars[end].elem].path == path) {
             end++;
+        }
+        int before = c > 0 ? t->elems[t->chars[c - 1].elem].path : -1;
+        if (path >= 0 && before != path) {
+            pen[0] = t->paths[path].start;
+            pen[1] = 0;
+        } else if (path < 0 && before >= 0) {
+            path_end(&t->paths[before], pen); /* text after a textPath goes on from its end */
         }
         if (!isnan(t->chars[c].pos[LIST_X])) {
             pen[0] = t->chars[c].pos[LIST_X];
         }
-        if (!isnan(t->chars[c].pos[LIST_Y])) {
+        if (!isnan(t->chars[c].pos[LIST_Y]) && path < 0) {
             pen[1] = t->chars[c].pos[LIST_Y];
         }
         const telem *head = &t->elems[t->chars[c].elem];
@@ -949,6 +1084,9 @@ static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs,
         if (dx != 0 && r == SR_OK) {
             shift_chunk(t, run0, dx);
             pen[0] += dx;
+        }
+        if (path >= 0 && r == SR_OK) {
+            bend_chunk(t, run0, &t->paths[path]);
         }
         c = end;
     }
@@ -1067,7 +1205,8 @@ sr_result svg_text_run_path(svg_text *t, svg_fonts *fonts, int run, sr_path *pat
         }
     }
     unsigned deco = el->ts.decoration;
-    if (r != SR_OK || !deco || rn->x1 <= rn->x0) {
+    /* no decorations along a path */
+    if (r != SR_OK || !deco || rn->x1 <= rn->x0 || rn->path >= 0) {
         return r;
     }
     const svg_face_metrics *m = svg_face_get_metrics(el->face);

@@ -135,6 +135,12 @@ void svg_text_free(svg_text *t);
  * line in why (out of memory, a malformed value). */
 int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists[7], double vp_w,
                   double vp_h, char *why, size_t why_size);
+/* Lay the characters of element elem (just opened: its descendants take
+ * it on) along a path of n points xy (x, y pairs in user units; move[i]
+ * set where a subpath starts), from start_offset along it (a percentage
+ * of its length when pct).  False when out of memory. */
+bool svg_text_set_path(svg_text *t, int elem, const double *xy, const unsigned char *move, int n,
+                       double start_offset, bool pct);
 void svg_text_close(svg_text *t);
 /* Character data of the open element, UTF-8; whitespace as xml:space
  * says (preserve: each blank a space; else newlines dropped, blanks
