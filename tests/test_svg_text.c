@@ -764,3 +764,26 @@ SR_TEST(text_path_lays_glyphs_along_the_path)
 #undef FONT
 #undef DEFS
 }
+
+/* tref draws the referenced element's character data, its descendants'
+ * included, in the tref's own style and positions (SVG 1.1 10.6); one
+ * naming nothing is warned. */
+SR_TEST(tref_draws_the_referenced_text_in_its_own_style)
+{
+    NEED_TEXT();
+    SAME_PIXELS("<defs><text id='r' font-size='50' fill='red'>H<tspan font-size='90'>x</tspan>"
+                "o</text></defs><text x='10' y='40' font-family='DejaVu Sans' font-size='20'>"
+                "I <tref xlink:href='#r' fill='blue' dx='5'/> I</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>I <tspan "
+                "fill='blue' dx='5'>Hxo</tspan> I</text>",
+                0);
+    static const char doc[] = "<svg xmlns='http://www.w3.org/2000/svg' "
+                              "xmlns:xlink='http://www.w3.org/1999/xlink' width='100' height='40'>"
+                              "<text x='5' y='30'>H<tref xlink:href='#none'/></text></svg>";
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
+    CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}

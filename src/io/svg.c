@@ -2875,6 +2875,23 @@ static bool text_path_of(svg_doc *doc, text_walk *w, const svg_node *tp, const f
     return ok;
 }
 
+/* The character data of node's descendants in document order into the
+ * text: what a tref draws (SVG 1.1 10.6, the referenced element's
+ * flattened text content).  Nesting beyond depth is left out. */
+static void tref_chars(svg_doc *doc, text_walk *w, const svg_node *node, bool preserve,
+                       bool visible, int depth)
+{
+    for (const svg_node *c = node->first; c && doc->status == SR_OK; c = c->next) {
+        if (strcmp(c->name, "#text") == 0) {
+            if (!svg_text_chars(w->t, c->text ? c->text : "", c->text_len, preserve, visible)) {
+                svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+            }
+        } else if (depth > 0) {
+            tref_chars(doc, w, c, preserve, visible, depth - 1);
+        }
+    }
+}
+
 /* Open a text element (its frame cascaded), add its characters and its
  * tspans' in order, close it. */
 static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const frame *f,
@@ -2910,6 +2927,18 @@ static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const
         svg_text_close(w->t);
         return;
     }
+    if (strcmp(node->name, "tref") == 0) {
+        const char *h = href_of(node);
+        const svg_node *target = h ? reference(doc, h, NULL) : NULL;
+        if (target) {
+            tref_chars(doc, w, target, preserve, !f->st.invisible, 32);
+        } else {
+            warn_keyed(doc, "tref href", "tref: href=\"%.60s\" names no element of the document; "
+                       "skipped", h ? h : "");
+        }
+        svg_text_close(w->t);
+        return;
+    }
     for (const svg_node *c = node->first; c && doc->status == SR_OK; c = c->next) {
         if (strcmp(c->name, "#text") == 0) {
             if (!svg_text_chars(w->t, c->text ? c->text : "", c->text_len, preserve,
@@ -2917,6 +2946,7 @@ static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const
                 svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
             }
         } else if ((strcmp(c->name, "tspan") == 0 || strcmp(c->name, "a") == 0 ||
+                    strcmp(c->name, "tref") == 0 ||
                     (strcmp(c->name, "textPath") == 0 && strcmp(node->name, "text") == 0)) &&
                    conditions_hold(c)) {
             const char *method = strcmp(c->name, "textPath") == 0 ? attr(c->atts, "method") : NULL;
