@@ -476,6 +476,24 @@ SR_TEST(huge_font_sizes_and_long_texts_are_refused_with_the_line)
     fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "points in all");
+    /* and so does a textPath's path, flattened for every use */
+    k = snprintf(svg, 4096,
+                 "<svg xmlns='http://www.w3.org/2000/svg' "
+                 "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
+                 "<defs><path id='p' d='M0 0 A50000 50000 0 1 1 1 0'/><text id='t' "
+                 "font-family='DejaVu Sans'><textPath xlink:href='#p'>x</textPath></text>"
+                 "<g id='a'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#t'/>");
+    }
+    k += snprintf(svg + k, 4096, "</g><g id='b'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
+    }
+    snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
+    fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "points in all");
     free(svg);
 }
 

@@ -2836,8 +2836,11 @@ static bool text_path_of(svg_doc *doc, text_walk *w, const svg_node *tp, const f
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return false;
     }
-    if (shape_path(doc, f, target->name, target->atts, p, &fillable) && doc->status == SR_OK) {
+    /* the flattened path's points count as a shape's do */
+    if (shape_path(doc, f, target->name, target->atts, p, &fillable) && doc->status == SR_OK &&
+        points_within_budget(doc, sr_path_polygon(p).point_count)) {
         sr_polygon2 poly = sr_path_polygon(p);
+        doc->points_used += poly.point_count;
         int n = 0, cap = poly.point_count + poly.contour_count;
         double *xy = malloc((size_t)(cap > 0 ? cap : 1) * 2 * sizeof *xy);
         unsigned char *move = malloc((size_t)(cap > 0 ? cap : 1));
