@@ -7,7 +7,8 @@
  * all of its advance, tspans continue the pen, whitespace collapses as
  * SVG 1.1 says, dx, dy and x lists move characters, characters the font
  * lacks come from a fallback font, mixed directions are ordered by the
- * bidi algorithm, textPath lays glyphs along its path, and huge font sizes
+ * bidi algorithm, textPath lays glyphs along its path, tref draws the
+ * text it names, vertical text runs down turned, and huge font sizes
  * and texts beyond the point budget are refused with FILE:LINE.  The font
  * is pinned: DejaVu Sans, skipped unless fontconfig resolves the family
  * to DejaVuSans.ttf.  Skipped in builds without expat, fontconfig,
@@ -798,6 +799,52 @@ SR_TEST(tref_draws_the_referenced_text_in_its_own_style)
     static const char doc[] = "<svg xmlns='http://www.w3.org/2000/svg' "
                               "xmlns:xlink='http://www.w3.org/1999/xlink' width='100' height='40'>"
                               "<text x='5' y='30'>H<tref xlink:href='#none'/></text></svg>";
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
+    CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
+/* Two bodies drawn on w x h give the same pixels (channels within tol). */
+static void same_pixels_on(int line, int w, int h, const char *a, const char *b, int tol)
+{
+    sr_framebuffer *one = draw(w, h, a), *two = draw(w, h, b);
+    double mass = 0;
+    if (one) {
+        ink_centroid(one, &mass);
+    }
+    long n = count_differing(one, two, tol);
+    if (n != 0 || !(mass > 255.0 * 50)) {
+        sr_test_fail(__FILE__, line, "%ld pixels differ (or a drawing failed or was empty)", n);
+    }
+    destroy(one, two);
+}
+
+/* writing-mode tb (and tb-rl, vertical-rl, vertical-lr): the line runs
+ * down from x, y, its glyphs turned a quarter clockwise and centred on
+ * it (the central baseline), as rsvg-convert draws Latin text; y and dy
+ * go along it, x and dx across, text-anchor along it.  Upright glyphs
+ * (CJK, glyph-orientation-vertical 0) are drawn turned, warned once. */
+SR_TEST(vertical_text_runs_down_turned_a_quarter)
+{
+    NEED_TEXT();
+#define FONT "font-family='DejaVu Sans' font-size='20'"
+    same_pixels_on(__LINE__, 100, 200,
+                   "<text x='50' y='20' writing-mode='tb' " FONT ">Hxo 12</text>",
+                   "<text transform='translate(50 20) rotate(90)' dominant-baseline='central' "
+                   FONT ">Hxo 12</text>", 2);
+    same_pixels_on(__LINE__, 100, 200,
+                   "<text x='50' y='180' writing-mode='vertical-rl' text-anchor='end' " FONT
+                   ">H<tspan dx='5' dy='10' text-decoration='underline'>xo</tspan></text>",
+                   "<text transform='translate(50 180) rotate(90)' dominant-baseline='central' "
+                   "text-anchor='end' " FONT ">H<tspan dy='-5' dx='10' "
+                   "text-decoration='underline'>xo</tspan></text>", 2);
+#undef FONT
+    static const char doc[] = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='100'>"
+                              "<text x='50' y='10' writing-mode='tb' font-family='DejaVu Sans' "
+                              "glyph-orientation-vertical='0'>Hx</text></svg>";
     sr_framebuffer *fb = NULL;
     sr_svg_info info;
     sr_io_error err;

@@ -236,7 +236,8 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
     static const char *const names[] = {
         "font-family", "font-size", "font-weight", "font-style", "text-anchor",
         "dominant-baseline", "alignment-baseline", "text-decoration", "letter-spacing",
-        "word-spacing", "baseline-shift", "direction", "font", "unicode-bidi", NULL,
+        "word-spacing", "baseline-shift", "direction", "font", "unicode-bidi", "writing-mode",
+        "glyph-orientation-vertical", NULL,
     };
     int k = keyword(name, names);
     if (k < 0) {
@@ -260,6 +261,8 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         case 10: ts->shift_kind = one.shift_kind; ts->shift = one.shift; break;
         case 11: ts->rtl = one.rtl; break;
         case 13: ts->bidi = one.bidi; break;
+        case 14: ts->vertical = one.vertical; break;
+        case 15: ts->upright = one.upright; break;
         default: break;
         }
         return 1;
@@ -316,6 +319,18 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         b = keyword(v, (const char *const[]){ "normal", "embed", "bidi-override", NULL });
         ok = b >= 0;
         ts->bidi = ok ? (unsigned char)b : ts->bidi;
+        break;
+    case 14:
+        b = keyword(v, (const char *const[]){ "lr-tb", "lr", "rl-tb", "rl", "horizontal-tb",
+                                              "tb-rl", "tb", "vertical-rl", "vertical-lr",
+                                              NULL });
+        ok = b >= 0;
+        ts->vertical = ok ? b >= 5 : ts->vertical;
+        break;
+    case 15:
+        b = keyword(v, (const char *const[]){ "auto", "0", "0deg", "90", "90deg", NULL });
+        ok = b >= 0;
+        ts->upright = ok ? b == 1 || b == 2 : ts->upright;
         break;
     default: ok = true; break;
     }
@@ -398,6 +413,8 @@ struct svg_text {
     int n_placed, cap_placed;
     uint32_t missing;            /* a character no font has, or 0 */
     bool unordered;              /* mixed directions left in logical order */
+    bool vertical;               /* laid out top to bottom (the text element's writing-mode) */
+    bool sideways;               /* upright characters in it drawn turned */
     unsigned char *levels;       /* each character's bidi level, per chunk */
     uint32_t *bidi_in;           /* a chunk's characters and bidi controls */
     int *bidi_at;                /* where each character is among them */
@@ -673,6 +690,59 @@ bool svg_text_unordered(const svg_text *t)
     return t->unordered;
 }
 
+bool svg_text_sideways(const svg_text *t)
+{
+    return t->sideways;
+}
+
+/* Whether cp stands upright in vertical text when glyph-orientation-
+ * vertical is auto: the ideographic and fullwidth blocks (Hangul, kana,
+ * CJK ideographs and their punctuation, fullwidth forms). */
+static bool upright_char(uint32_t cp)
+{
+    return (cp >= 0x1100 && cp <= 0x11FF) || (cp >= 0x2E80 && cp <= 0x303F) ||
+           (cp >= 0x3040 && cp <= 0x9FFF) || (cp >= 0xA960 && cp <= 0xA97F) ||
+           (cp >= 0xAC00 && cp <= 0xD7FF) || (cp >= 0xF900 && cp <= 0xFAFF) ||
+           (cp >= 0xFE30 && cp <= 0xFE4F) || (cp >= 0xFF00 && cp <= 0xFF60) ||
+           (cp >= 0xFFE0 && cp <= 0xFFE6) || (cp >= 0x20000 && cp <= 0x3FFFF);
+}
+
+/* Vertical text is laid out as a horizontal line along its y, across
+ * -x, then turned a quarter clockwise: y's and dy's lists go along the
+ * line, x's and dx's across it. */
+static void turn_lists(svg_text *t)
+{
+    for (int i = 0; i < t->n_chars; i++) {
+        double *p = t->chars[i].pos;
+        double x = p[LIST_X], dx = p[LIST_DX];
+        p[LIST_X] = p[LIST_Y];
+        p[LIST_Y] = -x;
+        p[LIST_DX] = p[LIST_DY];
+        p[LIST_DY] = -dx;
+        t->sideways = t->sideways || upright_char(t->chars[i].cp) ||
+                      (t->elems[t->chars[i].elem].ts.upright && t->chars[i].cp > ' ');
+    }
+}
+
+/* Turn the glyphs laid out for a vertical text a quarter clockwise: (u,
+ * v) of the line to (-v, u); glyphs bent onto a textPath are placed
+ * already. */
+static void turn_glyphs(svg_text *t)
+{
+    for (int r = 0; r < t->n_runs; r++) {
+        if (t->runs[r].path >= 0) {
+            continue;
+        }
+        for (int i = 0; i < t->runs[r].n_glyphs; i++) {
+            double *m = t->placed[t->runs[r].glyph0 + i].m, n[6];
+            memcpy(n, m, sizeof n);
+            m[0] = -n[1], m[1] = n[0];
+            m[2] = -n[3], m[3] = n[2];
+            m[4] = -n[5], m[5] = n[4];
+        }
+    }
+}
+
 /* Give each character the x, y, dx, dy and rotate of the innermost
  * element that has one for it (elements open outer first). */
 static void assign_lists(svg_text *t)
@@ -700,6 +770,9 @@ static double baseline_offset(const telem *el)
     const svg_face_metrics *m = svg_face_get_metrics(el->face);
     double s = el->ts.size / m->upem;
     int b = el->ts.align != SVG_BASE_AUTO ? el->ts.align : el->ts.baseline;
+    if (b == SVG_BASE_AUTO && el->ts.vertical) {
+        b = SVG_BASE_CENTRAL; /* vertical text centres its glyphs on the line */
+    }
     double down = 0;
     switch (b) {
     case SVG_BASE_MIDDLE: down = m->x_height / 2 * s; break;
@@ -1157,6 +1230,15 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
         }
     }
     assign_lists(t);
+    /* SVG 1.1 takes writing-mode from the text element alone */
+    t->vertical = t->n_elems > 0 && t->elems[0].ts.vertical;
+    for (int e = 0; e < t->n_elems; e++) {
+        t->elems[e].ts.vertical = t->vertical;
+    }
+    t->sideways = false;
+    if (t->vertical) {
+        turn_lists(t);
+    }
     uint32_t *cps = malloc((size_t)(t->n_chars ? t->n_chars : 1) * sizeof *cps);
     if (!cps) {
         snprintf(why, why_size, "out of memory");
@@ -1171,6 +1253,9 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
     if (r == SR_OK && fit_lengths(t)) {
         r = place_all(t, cps, &glyphs, &cap); /* again, with the lengths fitted */
     }
+    if (r == SR_OK && t->vertical) {
+        turn_glyphs(t);
+    }
     free(glyphs);
     free(cps);
     if (r != SR_OK) {
@@ -1182,9 +1267,14 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
 /* A decoration's band, top y to bottom y (y down), from x0 to x1, wound
  * as the face's outer contours are. */
 static sr_result add_band(sr_path *path, double x0, double x1, double top, double bottom,
-                          bool clockwise)
+                          bool clockwise, bool turn)
 {
     double xs[4] = { x0, x1, x1, x0 }, ys[4] = { top, top, bottom, bottom };
+    for (int k = 0; turn && k < 4; k++) { /* vertical text's quarter turn */
+        double x = xs[k];
+        xs[k] = -ys[k];
+        ys[k] = x;
+    }
     sr_result r = SR_OK;
     for (int k = 0; k < 4 && r == SR_OK; k++) {
         int i = clockwise ? k : (4 - k) % 4;
@@ -1213,15 +1303,16 @@ sr_result svg_text_run_path(svg_text *t, svg_fonts *fonts, int run, sr_path *pat
     double s = el->ts.size / m->upem, y = rn->y;
     if (deco & SVG_DECO_UNDERLINE) {
         double mid = y - m->underline_pos * s, h = m->underline_thick * s / 2;
-        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise);
+        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise, t->vertical);
     }
     if (r == SR_OK && (deco & SVG_DECO_OVERLINE)) {
         double mid = y - m->ascender * s, h = m->underline_thick * s / 2;
-        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise);
+        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise, t->vertical);
     }
     if (r == SR_OK && (deco & SVG_DECO_LINE_THROUGH)) {
         double top = y - m->strike_pos * s;
-        r = add_band(path, rn->x0, rn->x1, top, top + m->strike_thick * s, m->clockwise);
+        r = add_band(path, rn->x0, rn->x1, top, top + m->strike_thick * s, m->clockwise,
+                     t->vertical);
     }
     return r;
 }

@@ -40,6 +40,8 @@ typedef struct svg_text_style {
     unsigned char decoration;/* text-decoration bits (taken on by the descendants) */
     bool rtl;                /* direction: rtl */
     unsigned char bidi;      /* unicode-bidi (not inherited) */
+    bool vertical;           /* writing-mode tb, tb-rl, vertical-rl, vertical-lr */
+    bool upright;            /* glyph-orientation-vertical 0 (auto: by character) */
     double letter_spacing, word_spacing;
     unsigned char shift_kind;/* baseline-shift (not inherited) */
     double shift;            /* its length, or percentage of the font size */
@@ -156,6 +158,10 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
 /* After layout: a character that no font has (drawn as its font's
  * .notdef), or 0. */
 uint32_t svg_text_missing(const svg_text *t);
+/* After layout: whether a vertical text has characters that stand
+ * upright in it (CJK, glyph-orientation-vertical 0), drawn turned as the
+ * others. */
+bool svg_text_sideways(const svg_text *t);
 /* After layout: whether a chunk mixing directions was left in logical
  * order (a build without FriBidi). */
 bool svg_text_unordered(const svg_text *t);
