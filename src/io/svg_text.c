@@ -972,28 +972,20 @@ static sr_result place_chunk(svg_text *t, const uint32_t *cps, int c, int end, b
         return SR_OUT_OF_MEMORY;
     }
     const unsigned char *lv = t->levels;
-    int n_segs = 0;
+    /* at most one run per character: [start, end) pairs */
+    int *seg = malloc((size_t)(end - c) * 2 * sizeof *seg);
+    if (!seg) {
+        return SR_OUT_OF_MEMORY;
+    }
+    int n_segs = 0, top = 0, low_odd = 255;
     for (int s = c; s < end; n_segs++) {
         int e = s + 1;
         while (e < end && t->chars[e].elem == t->chars[s].elem &&
                t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c]) {
             e++;
         }
-        s = e;
-    }
-    int *seg = malloc((size_t)n_segs * 2 * sizeof *seg);
-    if (!seg) {
-        return SR_OUT_OF_MEMORY;
-    }
-    int top = 0, low_odd = 255;
-    for (int s = c, k = 0; s < end; k++) {
-        int e = s + 1;
-        while (e < end && t->chars[e].elem == t->chars[s].elem &&
-               t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c]) {
-            e++;
-        }
-        seg[2 * k] = s;
-        seg[2 * k + 1] = e;
+        seg[2 * n_segs] = s;
+        seg[2 * n_segs + 1] = e;
         top = lv[s - c] > top ? lv[s - c] : top;
         if ((lv[s - c] & 1) && lv[s - c] < low_odd) {
             low_odd = lv[s - c];
