@@ -1212,6 +1212,7 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
     /* each character's face: the element's, or the first fallback that
      * has it; a run is cut where the face changes */
     t->missing = 0;
+    t->unordered = false;
     for (int i = 0; i < t->n_chars; i++) {
         tchar *c = &t->chars[i];
         svg_face *prev = i > 0 && t->chars[i - 1].elem == c->elem ? t->chars[i - 1].face : NULL;
