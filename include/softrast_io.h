@@ -505,7 +505,7 @@ typedef struct sr_text_desc {
     bool italic;
     double x, y;                 /* the pen's start on the baseline (y down) */
     sr_text_anchor anchor;
-    bool rtl;                    /* shape right to left, whatever the script */
+    bool rtl;                    /* the line's base direction is right to left (bidi) */
 } sr_text_desc;
 
 /* Append the outlines of utf8 (NUL-terminated, at most SR_TEXT_MAX_CHARS

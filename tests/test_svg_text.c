@@ -5,7 +5,10 @@
  * whatever the font: a <text> fills the same pixels as a <path> of the
  * glyph outlines FreeType gives, text-anchor moves a chunk by half and
  * all of its advance, tspans continue the pen, whitespace collapses as
- * SVG 1.1 says, dx, dy and x lists move characters, and huge font sizes
+ * SVG 1.1 says, dx, dy and x lists move characters, characters the font
+ * lacks come from a fallback font, mixed directions are ordered by the
+ * bidi algorithm, textPath lays glyphs along its path, tref draws the
+ * text it names, vertical text runs down turned, and huge font sizes
  * and texts beyond the point budget are refused with FILE:LINE.  The font
  * is pinned: DejaVu Sans, skipped unless fontconfig resolves the family
  * to DejaVuSans.ttf.  Skipped in builds without expat, fontconfig,
@@ -51,6 +54,43 @@ static char *dejavu_sans(void)
     return ok ? path : NULL;
 }
 
+/* Whether fontconfig resolves family to a file ending in file (such as
+ * "/DejaVuSerif.ttf") and, with cp nonzero, whether the first font of its
+ * sorted fallbacks that has cp is the file ending in cover. */
+static bool resolves(const char *family, const char *file, uint32_t cp, const char *cover)
+{
+    if (!FcInit()) {
+        return false;
+    }
+    FcPattern *pat = FcNameParse((const FcChar8 *)family);
+    FcConfigSubstitute(NULL, pat, FcMatchPattern);
+    FcDefaultSubstitute(pat);
+    FcResult res;
+    FcPattern *got = FcFontMatch(NULL, pat, &res);
+    FcChar8 *name = NULL;
+    bool ok = got && FcPatternGetString(got, FC_FILE, 0, &name) == FcResultMatch &&
+              strstr((const char *)name, file);
+    if (got) {
+        FcPatternDestroy(got);
+    }
+    FcFontSet *set = ok && cp ? FcFontSort(NULL, pat, FcTrue, NULL, &res) : NULL;
+    ok = ok && (!cp || set);
+    for (int i = 0; set && i < set->nfont; i++) {
+        FcCharSet *cs;
+        if (FcPatternGetCharSet(set->fonts[i], FC_CHARSET, 0, &cs) == FcResultMatch &&
+            FcCharSetHasChar(cs, cp)) {
+            ok = FcPatternGetString(set->fonts[i], FC_FILE, 0, &name) == FcResultMatch &&
+                 strstr((const char *)name, cover);
+            break;
+        }
+    }
+    if (set) {
+        FcFontSetDestroy(set);
+    }
+    FcPatternDestroy(pat);
+    return ok;
+}
+
 #define NEED_TEXT()                                                                          \
     do {                                                                                     \
         if (!sr_io_have_svg()) {                                                             \
@@ -65,6 +105,12 @@ static char *dejavu_sans(void)
 static char *dejavu_sans(void)
 {
     return NULL;
+}
+
+static bool resolves(const char *family, const char *file, uint32_t cp, const char *cover)
+{
+    (void)family, (void)file, (void)cp, (void)cover;
+    return false;
 }
 #endif
 
@@ -431,22 +477,56 @@ SR_TEST(huge_font_sizes_and_long_texts_are_refused_with_the_line)
     fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "points in all");
+    /* and so does a textPath's path, flattened for every use */
+    k = snprintf(svg, 4096,
+                 "<svg xmlns='http://www.w3.org/2000/svg' "
+                 "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
+                 "<defs><path id='p' d='M0 0 A50000 50000 0 1 1 1 0'/><text id='t' "
+                 "font-family='DejaVu Sans'><textPath xlink:href='#p'>x</textPath></text>"
+                 "<g id='a'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#t'/>");
+    }
+    k += snprintf(svg + k, 4096, "</g><g id='b'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
+    }
+    snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
+    fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "points in all");
     free(svg);
 }
 
-SR_TEST(text_path_is_warned_and_unknown_families_fall_back)
+SR_TEST(a_text_path_naming_no_path_is_warned_and_unknown_families_fall_back)
 {
     NEED_TEXT();
     static const char doc[] =
         "<svg xmlns='http://www.w3.org/2000/svg' xmlns:xlink='http://www.w3.org/1999/xlink' "
-        "width='100' height='40'><path id='p' d='M0 30 L100 30'/>\n"
-        "<text font-family='DejaVu Sans'><textPath xlink:href='#p'>on path</textPath></text>"
-        "</svg>";
+        "width='100' height='40'><g id='p'/>\n"
+        "<text font-family='DejaVu Sans'><textPath xlink:href='#p'>on path</textPath>"
+        "<textPath xlink:href='#nothing'>on path</textPath></text></svg>";
     sr_framebuffer *fb = NULL;
     sr_svg_info info;
     sr_io_error err;
     CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
     CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* what is not supported of it is warned once each, and drawn */
+    static const char stretch[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='40'>"
+        "<path id='p' d='M0 30 L100 30'/><text font-family='DejaVu Sans'>"
+        "<textPath href='#p' method='stretch' side='right'>on</textPath>"
+        "<textPath href='#p' method='stretch'>on</textPath></text></svg>";
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), stretch, sizeof stretch - 1,
+                           &(sr_svg_desc){ .background = { 1, 1, 1, 1 } }, &fb, &info, &err),
+             SR_OK);
+    CHECK_EQ(info.warnings, 2);
+    double mass = 0;
+    if (fb) {
+        ink_centroid(fb, &mass);
+    }
+    CHECK(mass > 255.0 * 20);
     sr_destroy_framebuffer(sr_test_ctx(), fb);
     /* a family fontconfig lacks gives way to the next in the list */
     sr_framebuffer *one = draw(100, 40,
@@ -530,4 +610,245 @@ SR_TEST(text_path_gives_the_outlines_the_svg_text_fills)
     CHECK_STR_CONTAINS(err.message, "sr_text_desc.size");
     CHECK_EQ(sr_text_path(NULL, NULL, path, NULL, &err), SR_INVALID_ARG);
     sr_destroy_path(ctx, path);
+}
+
+/* Characters the matched font lacks come from the first font of
+ * fontconfig's sorted fallbacks that has them, the pen going on across:
+ * DejaVu Serif has no Hebrew, which DejaVu Sans draws.  A character no
+ * font has is warned once. */
+SR_TEST(characters_the_font_lacks_come_from_a_fallback_font)
+{
+    NEED_TEXT();
+    if (!resolves("DejaVu Serif", "/DejaVuSerif.ttf", 0x5D0, "/DejaVuSans.ttf")) {
+        SKIP("fontconfig does not fall back from DejaVu Serif to DejaVu Sans for Hebrew");
+    }
+    /* shin, lamed, vav, final mem */
+    static const char shalom[] = "\xd7\xa9\xd7\x9c\xd7\x95\xd7\x9d";
+    char a[512], b[512];
+    snprintf(a, sizeof a, "<text x='10' y='40' font-family='DejaVu Serif' font-size='24'>%s</text>",
+             shalom);
+    snprintf(b, sizeof b, "<text x='10' y='40' font-family='DejaVu Sans' font-size='24'>%s</text>",
+             shalom);
+    SAME_PIXELS(a, b, 0);
+    /* mixed with the serif's own letters: runs of each font, one pen */
+    snprintf(a, sizeof a,
+             "<text x='10' y='40' font-family='DejaVu Serif' font-size='24'>Hx%sHx</text>",
+             shalom);
+    snprintf(b, sizeof b,
+             "<text x='10' y='40' font-family='DejaVu Serif' font-size='24'>Hx<tspan "
+             "font-family='DejaVu Sans'>%s</tspan>Hx</text>",
+             shalom);
+    SAME_PIXELS(a, b, 0);
+    /* the same through sr_text_path */
+    sr_path *one = NULL, *two = NULL;
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &one) == SR_OK);
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &two) == SR_OK);
+    sr_io_error err;
+    CHECK_EQ(sr_text_path(shalom, &(sr_text_desc){ .family = "DejaVu Serif" }, one, NULL, &err),
+             SR_OK);
+    CHECK_EQ(sr_text_path(shalom, &(sr_text_desc){ .family = "DejaVu Sans" }, two, NULL, &err),
+             SR_OK);
+    sr_polygon2 p = sr_path_polygon(one), q = sr_path_polygon(two);
+    CHECK_EQ(p.point_count, q.point_count);
+    CHECK(p.point_count > 0 && q.point_count == p.point_count &&
+          memcmp(p.points, q.points, (size_t)p.point_count * sizeof *p.points) == 0);
+    sr_destroy_path(sr_test_ctx(), one);
+    sr_destroy_path(sr_test_ctx(), two);
+    /* U+0378 is unassigned: no font has it */
+    static const char doc[] = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='40'>\n"
+                              "<text x='5' y='30'>H\xcd\xb8x\xcd\xb8</text></svg>";
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1,
+                           &(sr_svg_desc){ .name = "t.svg" }, &fb, &info, &err),
+             SR_OK);
+    CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
+/* The ink centroid's x of a body drawn on 300 x 60. */
+static double ink_x(const char *body)
+{
+    sr_framebuffer *fb = draw(300, 60, body);
+    double mass = 0, x = fb ? ink_centroid(fb, &mass) : 0;
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    CHECK(mass > 255.0 * 50);
+    return x;
+}
+
+/* Right-to-left words in a left-to-right line read from the right (the
+ * Unicode bidi algorithm), each run shaped in its own direction;
+ * direction rtl makes the line's base right to left without reversing
+ * its Latin letters, and unicode-bidi bidi-override reverses them. */
+SR_TEST(bidirectional_text_is_reordered)
+{
+    NEED_TEXT();
+    if (!resolves("DejaVu Sans", "/DejaVuSans.ttf", 0x5D0, "/DejaVuSans.ttf")) {
+        SKIP("DejaVu Sans has no Hebrew here");
+    }
+#define SHALOM "\xd7\xa9\xd7\x9c\xd7\x95\xd7\x9d"
+#define OLAM "\xd7\xa2\xd7\x95\xd7\x9c\xd7\x9d"
+#define TEXT "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>"
+    /* a Hebrew word in Latin text is drawn as it is alone, right to left */
+    SAME_PIXELS(TEXT "Hx " SHALOM " xH</text>", TEXT "Hx <tspan>" SHALOM "</tspan> xH</text>", 0);
+    /* of two Hebrew words the first is on the right */
+    double first = ink_x(TEXT "Hx " SHALOM " <tspan visibility='hidden'>" OLAM "</tspan></text>");
+    double second = ink_x(TEXT "Hx <tspan visibility='hidden'>" SHALOM "</tspan> " OLAM
+                               "</text>");
+    double hx = ink_x(TEXT "Hx <tspan visibility='hidden'>" SHALOM " " OLAM "</tspan></text>");
+    CHECK(hx < second && second + 20 < first);
+    /* the same with the words' own tspans: one paragraph across elements */
+    CHECK_NEAR(ink_x(TEXT "Hx <tspan>" SHALOM "</tspan> <tspan visibility='hidden'>" OLAM
+                          "</tspan></text>"),
+               first, 0.01);
+    /* direction rtl: Latin letters stay in order, start is the right end */
+    SAME_PIXELS("<text x='190' y='40' font-family='DejaVu Sans' font-size='20' direction='rtl'>"
+                "Hxo</text>",
+                "<text x='190' y='40' font-family='DejaVu Sans' font-size='20' "
+                "text-anchor='end'>Hxo</text>", 0);
+    /* in an rtl line a Latin word after a Hebrew one is on its left */
+    CHECK(ink_x("<text x='290' y='40' font-family='DejaVu Sans' font-size='20' direction='rtl'>"
+                "<tspan visibility='hidden'>" SHALOM "</tspan> Hxo</text>") + 20 <
+          ink_x("<text x='290' y='40' font-family='DejaVu Sans' font-size='20' direction='rtl'>"
+                SHALOM " <tspan visibility='hidden'>Hxo</tspan></text>"));
+    /* bidi-override draws the characters in the order it says */
+    SAME_PIXELS(TEXT "o<tspan direction='rtl' unicode-bidi='bidi-override'>Hxo</tspan></text>",
+                TEXT "oox<tspan>H</tspan></text>", 0);
+#undef TEXT
+#undef OLAM
+#undef SHALOM
+}
+
+/* textPath (SVG 1.1 10.13): along a straight path the text is the text
+ * laid out at startOffset from the path's start, turned with the path;
+ * a glyph whose middle is beyond the path's end is not drawn;
+ * text-anchor moves the text along the path. */
+SR_TEST(text_path_lays_glyphs_along_the_path)
+{
+    NEED_TEXT();
+#define DEFS "<path id='h' d='M40 40 L300 40'/><path id='v' d='M30 10 L30 300' " \
+             "transform='translate(-10 0)'/><path id='s' d='M10 40 L58 40'/>"
+#define FONT "font-family='DejaVu Sans' font-size='20'"
+    SAME_PIXELS(DEFS "<text " FONT "><textPath href='#h' startOffset='16'>Hx on <tspan "
+                "dy='-4'>a</tspan> path</textPath></text>",
+                "<text x='56' y='40' " FONT ">Hx on <tspan dy='-4'>a</tspan> path</text>", 0);
+    /* a percentage is of the path's length (260 here) */
+    SAME_PIXELS(DEFS "<text " FONT "><textPath xlink:href='#h' startOffset='50%'>Hxo</textPath>"
+                "</text>",
+                "<text x='170' y='40' " FONT ">Hxo</text>", 0);
+    SAME_PIXELS(DEFS "<text " FONT " text-anchor='middle'><textPath xlink:href='#h' "
+                "startOffset='50%'>Hxo</textPath></text>",
+                "<text x='170' y='40' " FONT " text-anchor='middle'>Hxo</text>", 0);
+    /* down a vertical path (transformed): the line turned by 90 degrees */
+    sr_framebuffer *a = draw(200, 300, DEFS "<text " FONT "><textPath xlink:href='#v' "
+                                            "startOffset='5'>Hx on a path</textPath></text>");
+    sr_framebuffer *b = draw(200, 300, "<text " FONT " transform='translate(20 10) rotate(90)' "
+                                       "x='5'>Hx on a path</text>");
+    double mass = 0;
+    ink_centroid(a, &mass);
+    CHECK(mass > 255.0 * 100);
+    CHECK_EQ(count_differing(a, b, 8), 0);
+    destroy(a, b);
+    /* 48 units of path: the glyphs whose middle falls within it */
+    double adv = 0;
+    sr_path *one = NULL;
+    REQUIRE(sr_make_path(sr_test_ctx(), 0.1, &one) == SR_OK);
+    CHECK_EQ(sr_text_path("H", &(sr_text_desc){ .family = "DejaVu Sans", .size = 20 }, one, &adv,
+                          NULL),
+             SR_OK);
+    sr_destroy_path(sr_test_ctx(), one);
+    REQUIRE(adv > 5 && adv < 24);
+    int fit = (int)((48 - adv / 2) / adv) + 1;
+    char shown[512];
+    snprintf(shown, sizeof shown,
+             "<text x='10' y='40' " FONT ">%.*s<tspan visibility='hidden'>%s</tspan></text>", fit,
+             "HHHHHHHH", "HHHHHHHH" + fit);
+    SAME_PIXELS(DEFS "<text " FONT "><textPath xlink:href='#s'>HHHHHHHH</textPath></text>", shown,
+                0);
+    /* round a corner: each glyph turns with the segment its middle is on */
+    double corner = 10 + 2.2 * adv;
+    char bent[512], parts[512];
+    snprintf(bent, sizeof bent,
+             "<path id='l' d='M10 20 L%.9g 20 L%.9g 200' fill='none'/><text " FONT "><textPath "
+             "xlink:href='#l'>HHHH</textPath></text>",
+             corner, corner);
+    snprintf(parts, sizeof parts,
+             "<text x='10' y='20' " FONT ">HH</text><text " FONT " transform='translate(%.9g 20) "
+             "rotate(90)' x='%.9g'>HH</text>",
+             corner, -0.2 * adv);
+    a = draw(100, 120, bent);
+    b = draw(100, 120, parts);
+    CHECK_EQ(count_differing(a, b, 8), 0);
+    destroy(a, b);
+#undef FONT
+#undef DEFS
+}
+
+/* tref draws the referenced element's character data, its descendants'
+ * included, in the tref's own style and positions (SVG 1.1 10.6); one
+ * naming nothing is warned. */
+SR_TEST(tref_draws_the_referenced_text_in_its_own_style)
+{
+    NEED_TEXT();
+    SAME_PIXELS("<defs><text id='r' font-size='50' fill='red'>H<tspan font-size='90'>x</tspan>"
+                "o</text></defs><text x='10' y='40' font-family='DejaVu Sans' font-size='20'>"
+                "I <tref xlink:href='#r' fill='blue' dx='5'/> I</text>",
+                "<text x='10' y='40' font-family='DejaVu Sans' font-size='20'>I <tspan "
+                "fill='blue' dx='5'>Hxo</tspan> I</text>",
+                0);
+    static const char doc[] = "<svg xmlns='http://www.w3.org/2000/svg' "
+                              "xmlns:xlink='http://www.w3.org/1999/xlink' width='100' height='40'>"
+                              "<text x='5' y='30'>H<tref xlink:href='#none'/></text></svg>";
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
+    CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
+/* Two bodies drawn on w x h give the same pixels (channels within tol). */
+static void same_pixels_on(int line, int w, int h, const char *a, const char *b, int tol)
+{
+    sr_framebuffer *one = draw(w, h, a), *two = draw(w, h, b);
+    double mass = 0;
+    if (one) {
+        ink_centroid(one, &mass);
+    }
+    long n = count_differing(one, two, tol);
+    if (n != 0 || !(mass > 255.0 * 50)) {
+        sr_test_fail(__FILE__, line, "%ld pixels differ (or a drawing failed or was empty)", n);
+    }
+    destroy(one, two);
+}
+
+/* writing-mode tb (and tb-rl, vertical-rl, vertical-lr): the line runs
+ * down from x, y, its glyphs turned a quarter clockwise and centred on
+ * it (the central baseline), as rsvg-convert draws Latin text; y and dy
+ * go along it, x and dx across, text-anchor along it.  Upright glyphs
+ * (CJK, glyph-orientation-vertical 0) are drawn turned, warned once. */
+SR_TEST(vertical_text_runs_down_turned_a_quarter)
+{
+    NEED_TEXT();
+#define FONT "font-family='DejaVu Sans' font-size='20'"
+    same_pixels_on(__LINE__, 100, 200,
+                   "<text x='50' y='20' writing-mode='tb' " FONT ">Hxo 12</text>",
+                   "<text transform='translate(50 20) rotate(90)' dominant-baseline='central' "
+                   FONT ">Hxo 12</text>", 2);
+    same_pixels_on(__LINE__, 100, 200,
+                   "<text x='50' y='180' writing-mode='vertical-rl' text-anchor='end' " FONT
+                   ">H<tspan dx='5' dy='10' text-decoration='underline'>xo</tspan></text>",
+                   "<text transform='translate(50 180) rotate(90)' dominant-baseline='central' "
+                   "text-anchor='end' " FONT ">H<tspan dy='-5' dx='10' "
+                   "text-decoration='underline'>xo</tspan></text>", 2);
+#undef FONT
+    static const char doc[] = "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='100'>"
+                              "<text x='50' y='10' writing-mode='tb' font-family='DejaVu Sans' "
+                              "glyph-orientation-vertical='0'>Hx</text></svg>";
+    sr_framebuffer *fb = NULL;
+    sr_svg_info info;
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), doc, sizeof doc - 1, NULL, &fb, &info, &err), SR_OK);
+    CHECK_EQ(info.warnings, 1);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
 }

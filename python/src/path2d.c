@@ -502,7 +502,9 @@ static PyMethodDef path_methods[] = {
                 "at (x, y) (anchor 'middle' or 'end': x is its middle or end): the font\n"
                 "fontconfig matches for `family` (a CSS font-family list; None is\n"
                 "sans-serif), `weight` and `italic`, or the file `font_file`; shaped by\n"
-                "HarfBuzz (kerning, ligatures, right to left), `size` pixels to the em.\n"
+                "HarfBuzz (kerning, ligatures, right to left), mixed directions ordered\n"
+                "by the bidi algorithm (rtl=True: the line's base direction is right to\n"
+                "left), `size` pixels to the em.\n"
                 "Fill the path with a Canvas.  RuntimeError in a build without\n"
                 "fontconfig, HarfBuzz and FreeType (softrast.have_text)."),
     PATH_METHOD(to_polygons, METH_NOARGS,

@@ -2811,7 +2811,89 @@ typedef struct text_walk {
     svg_text *t;
     frame *frames;
     int cap;
+    double tol;                  /* flattening tolerance in user units */
 } text_walk;
+
+/* The path a textPath names (a path or, as SVG 2 allows, a basic shape),
+ * its own transform applied, flattened for the text of element elem
+ * (svg_text_open's index).  False with a warning when it names none; a
+ * failure is reported. */
+static bool text_path_of(svg_doc *doc, text_walk *w, const svg_node *tp, const frame *f,
+                         int elem)
+{
+    const char *h = href_of(tp);
+    const svg_node *target = h ? reference(doc, h, NULL) : NULL;
+    sr_path *p = NULL;
+    bool fillable, ok = false;
+    mat2d m = IDENTITY;
+    const char *tr = target ? attr(target->atts, "transform") : NULL;
+    if (!target || !is_shape(target->name) || (tr && !parse_transform(tr, &m))) {
+        warn_keyed(doc, "textPath href", "textPath: href=\"%.60s\" names no path; its text skipped",
+                   h ? h : "");
+        return false;
+    }
+    if (sr_make_path(doc->ctx, w->tol / fmax(matrix_scale(m), 1e-9), &p) != SR_OK) {
+        svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        return false;
+    }
+    /* the flattened path's points count as a shape's do */
+    if (shape_path(doc, f, target->name, target->atts, p, &fillable) && doc->status == SR_OK &&
+        points_within_budget(doc, sr_path_polygon(p).point_count)) {
+        sr_polygon2 poly = sr_path_polygon(p);
+        doc->points_used += poly.point_count;
+        int n = 0, cap = poly.point_count + poly.contour_count;
+        double *xy = malloc((size_t)(cap > 0 ? cap : 1) * 2 * sizeof *xy);
+        unsigned char *move = malloc((size_t)(cap > 0 ? cap : 1));
+        for (int c = 0, k = 0; xy && move && c < poly.contour_count; c++) {
+            int count = poly.contour_counts ? poly.contour_counts[c] : poly.point_count;
+            /* a closed subpath goes back to its start */
+            int last = count + (sr_path_subpath_closed(p, c) && count > 1);
+            for (int i = 0; i < last; i++) {
+                sr_point2 q = mat_apply(m, poly.points[k + i % count]);
+                if (i > 0 && q.x == xy[2 * (n - 1)] && q.y == xy[2 * (n - 1) + 1]) {
+                    continue; /* no segment of no length: it has no tangent */
+                }
+                xy[2 * n] = q.x;
+                xy[2 * n + 1] = q.y;
+                move[n++] = i == 0;
+            }
+            k += count;
+        }
+        const char *so = attr(tp->atts, "startOffset");
+        double start = 0;
+        bool pct = false;
+        if (so && !svg_parse_length(so, f->st.text.size, &start, &pct)) {
+            warn_keyed(doc, "textPath startOffset", "textPath: startOffset=\"%.60s\" is not a "
+                       "length; 0 taken", so);
+            start = 0, pct = false;
+        }
+        ok = xy && move && svg_text_set_path(w->t, elem, xy, move, n, start, pct);
+        if (!ok) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        }
+        free(xy);
+        free(move);
+    }
+    sr_destroy_path(doc->ctx, p);
+    return ok;
+}
+
+/* The character data of node's descendants in document order into the
+ * text: what a tref draws (SVG 1.1 10.6, the referenced element's
+ * flattened text content).  Nesting beyond depth is left out. */
+static void tref_chars(svg_doc *doc, text_walk *w, const svg_node *node, bool preserve,
+                       bool visible, int depth)
+{
+    for (const svg_node *c = node->first; c && doc->status == SR_OK; c = c->next) {
+        if (strcmp(c->name, "#text") == 0) {
+            if (!svg_text_chars(w->t, c->text ? c->text : "", c->text_len, preserve, visible)) {
+                svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+            }
+        } else if (depth > 0) {
+            tref_chars(doc, w, c, preserve, visible, depth - 1);
+        }
+    }
+}
 
 /* Open a text element (its frame cascaded), add its characters and its
  * tspans' in order, close it. */
@@ -2844,14 +2926,41 @@ static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const
         w->cap = cap;
     }
     w->frames[i] = *f;
+    if (strcmp(node->name, "textPath") == 0 && !text_path_of(doc, w, node, f, i)) {
+        svg_text_close(w->t);
+        return;
+    }
+    if (strcmp(node->name, "tref") == 0) {
+        const char *h = href_of(node);
+        const svg_node *target = h ? reference(doc, h, NULL) : NULL;
+        if (target) {
+            tref_chars(doc, w, target, preserve, !f->st.invisible, 32);
+        } else {
+            warn_keyed(doc, "tref href", "tref: href=\"%.60s\" names no element of the document; "
+                       "skipped", h ? h : "");
+        }
+        svg_text_close(w->t);
+        return;
+    }
     for (const svg_node *c = node->first; c && doc->status == SR_OK; c = c->next) {
         if (strcmp(c->name, "#text") == 0) {
             if (!svg_text_chars(w->t, c->text ? c->text : "", c->text_len, preserve,
                                 !f->st.invisible)) {
                 svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
             }
-        } else if ((strcmp(c->name, "tspan") == 0 || strcmp(c->name, "a") == 0) &&
+        } else if ((strcmp(c->name, "tspan") == 0 || strcmp(c->name, "a") == 0 ||
+                    strcmp(c->name, "tref") == 0 ||
+                    (strcmp(c->name, "textPath") == 0 && strcmp(node->name, "text") == 0)) &&
                    conditions_hold(c)) {
+            const char *method = strcmp(c->name, "textPath") == 0 ? attr(c->atts, "method") : NULL;
+            const char *side = strcmp(c->name, "textPath") == 0 ? attr(c->atts, "side") : NULL;
+            if (method && strcmp(method, "stretch") == 0) {
+                warn_keyed(doc, "textPath method", "textPath: method=\"stretch\" drawn as "
+                           "\"align\"");
+            }
+            if (side && strcmp(side, "right") == 0) {
+                warn_keyed(doc, "textPath side", "textPath: side=\"right\" drawn as \"left\"");
+            }
             frame cf = *f;
             cf.st.own_opacity = 1;
             svg_text_reset_uninherited(&cf.st.text);
@@ -2938,7 +3047,7 @@ static bool text_start(svg_doc *doc, const svg_node *node, const frame *f, doubl
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return false;
     }
-    *w = (text_walk){ .t = svg_text_make() };
+    *w = (text_walk){ .t = svg_text_make(), .tol = *tol };
     if (!w->t) {
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return false;
@@ -2971,6 +3080,22 @@ static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
         } else if (r != SR_OK) {
             svg_fail(doc, r, "%s", why);
         } else {
+            uint32_t cp = svg_text_missing(w.t);
+            if (cp) {
+                warn_keyed(doc, "text glyph",
+                           "text: no font has U+%04X; drawn as its font's missing-glyph box",
+                           (unsigned)cp);
+            }
+            if (svg_text_sideways(w.t)) {
+                warn_keyed(doc, "text upright",
+                           "text: upright glyphs of vertical text (CJK, "
+                           "glyph-orientation-vertical 0) drawn turned like the others");
+            }
+            if (svg_text_unordered(w.t)) {
+                warn_keyed(doc, "text bidi",
+                           "text: right-to-left and left-to-right text left in logical order "
+                           "(built without FriBidi)");
+            }
             draw_text_runs(doc, &w, tol);
         }
     }

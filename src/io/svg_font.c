@@ -39,8 +39,12 @@ typedef struct outline {
 } outline;
 
 struct svg_face {
-    char *family;                /* the request: family list, weight, slant */
+    char *family;                /* the request: family list, weight, slant ("" for a file's) */
     int weight, slant;
+    char *file;                  /* the font file and its face index */
+    int index;
+    FcFontSet *sorted;           /* fontconfig's fallbacks for the request, on first miss */
+    bool sort_tried;
     FT_Face ft;
     hb_font_t *hb;
     svg_face_metrics metrics;
@@ -83,7 +87,11 @@ static void free_face(svg_face *face)
     if (face->ft) {
         FT_Done_Face(face->ft);
     }
+    if (face->sorted) {
+        FcFontSetDestroy(face->sorted);
+    }
     free(face->family);
+    free(face->file);
     free(face);
 }
 
@@ -150,14 +158,10 @@ static bool add_families(FcPattern *pat, const char *list)
     return added > 0 || FcPatternAddString(pat, FC_FAMILY, (const FcChar8 *)"serif");
 }
 
-/* The file and face index fontconfig picks; false with a line in why. */
-static bool match_file(const char *family, int weight, int slant, char *file, size_t file_size,
-                       int *index, char *why, size_t why_size)
+/* The pattern of a request, configured and defaulted for matching;
+ * NULL when out of memory. */
+static FcPattern *request_pattern(const char *family, int weight, int slant)
 {
-    if (!FcInit()) {
-        snprintf(why, why_size, "fontconfig cannot read its configuration");
-        return false;
-    }
     FcPattern *pat = FcPatternCreate();
     if (!pat || !add_families(pat, family) ||
         !FcPatternAddInteger(pat, FC_WEIGHT, FcWeightFromOpenType(weight)) ||
@@ -169,11 +173,26 @@ static bool match_file(const char *family, int weight, int slant, char *file, si
         if (pat) {
             FcPatternDestroy(pat);
         }
-        snprintf(why, why_size, "out of memory");
-        return false;
+        return NULL;
     }
     FcConfigSubstitute(NULL, pat, FcMatchPattern);
     FcDefaultSubstitute(pat);
+    return pat;
+}
+
+/* The file and face index fontconfig picks; false with a line in why. */
+static bool match_file(const char *family, int weight, int slant, char *file, size_t file_size,
+                       int *index, char *why, size_t why_size)
+{
+    if (!FcInit()) {
+        snprintf(why, why_size, "fontconfig cannot read its configuration");
+        return false;
+    }
+    FcPattern *pat = request_pattern(family, weight, slant);
+    if (!pat) {
+        snprintf(why, why_size, "out of memory");
+        return false;
+    }
     FcResult res = FcResultNoMatch;
     FcPattern *got = FcFontMatch(NULL, pat, &res);
     FcPatternDestroy(pat);
@@ -197,6 +216,11 @@ static bool match_file(const char *family, int weight, int slant, char *file, si
 static bool open_face(svg_fonts *fonts, svg_face *face, const char *file, int index, char *why,
                       size_t why_size)
 {
+    face->index = index;
+    if (!(face->file = strdup(file))) {
+        snprintf(why, why_size, "out of memory");
+        return false;
+    }
     if (FT_New_Face(fonts->lib, file, index, &face->ft) != 0 || !FT_IS_SCALABLE(face->ft)) {
         snprintf(why, why_size, "%s: FreeType cannot read it as an outline font", file);
         return false;
@@ -272,16 +296,24 @@ svg_face *svg_fonts_match(svg_fonts *fonts, const char *family, int weight, int 
     return face;
 }
 
-svg_face *svg_fonts_open_file(svg_fonts *fonts, const char *file, char *why, size_t why_size)
+/* The face of a font file, opened once: the caller's file, or a
+ * fallback fontconfig lists. */
+static svg_face *face_of_file(svg_fonts *fonts, const char *file, int index, char *why,
+                              size_t why_size)
 {
+    for (svg_face *f = fonts->faces; f; f = f->next) {
+        if (f->weight == 0 && f->index == index && strcmp(f->file, file) == 0) {
+            return f;
+        }
+    }
     svg_face *face = calloc(1, sizeof *face);
     if (!face || !(face->family = strdup(""))) {
         free(face);
         snprintf(why, why_size, "out of memory");
         return NULL;
     }
-    /* weight 0 matches no request: the face is found only through this */
-    if (!open_face(fonts, face, file, 0, why, why_size)) {
+    /* weight 0 matches no request: the face is found only by its file */
+    if (!open_face(fonts, face, file, index, why, why_size)) {
         free_face(face);
         return NULL;
     }
@@ -290,12 +322,85 @@ svg_face *svg_fonts_open_file(svg_fonts *fonts, const char *file, char *why, siz
     return face;
 }
 
+svg_face *svg_fonts_open_file(svg_fonts *fonts, const char *file, char *why, size_t why_size)
+{
+    return face_of_file(fonts, file, 0, why, why_size);
+}
+
+/* Characters that go with the one before whatever font has them: marks,
+ * joiners, variation selectors and other invisible format characters, so
+ * that a cluster is not split between fonts. */
+static bool follows_previous(uint32_t cp)
+{
+    hb_unicode_general_category_t gc =
+        hb_unicode_general_category(hb_unicode_funcs_get_default(), cp);
+    return gc == HB_UNICODE_GENERAL_CATEGORY_NON_SPACING_MARK ||
+           gc == HB_UNICODE_GENERAL_CATEGORY_ENCLOSING_MARK ||
+           gc == HB_UNICODE_GENERAL_CATEGORY_SPACING_MARK ||
+           gc == HB_UNICODE_GENERAL_CATEGORY_FORMAT || (cp >= 0xFE00 && cp <= 0xFE0F) ||
+           (cp >= 0xE0100 && cp <= 0xE01EF);
+}
+
+svg_face *svg_fonts_cover(svg_fonts *fonts, svg_face *face, svg_face *prev, uint32_t cp,
+                          bool *missing)
+{
+    *missing = false;
+    if (prev && follows_previous(cp)) {
+        return prev;
+    }
+    /* controls and the space are drawn by any font, as nothing or blank */
+    if (cp <= 0x20 || (cp >= 0x7F && cp <= 0xA0) || FT_Get_Char_Index(face->ft, cp) != 0) {
+        return face;
+    }
+    if (face->weight == 0) {
+        *missing = true; /* a file the caller chose: no other fonts */
+        return face;
+    }
+    if (!face->sort_tried) {
+        /* fontconfig's own order for the request: the families asked for,
+         * then its fallbacks for them, each adding characters (trim) */
+        face->sort_tried = true;
+        FcPattern *pat = request_pattern(face->family, face->weight, face->slant);
+        FcResult res = FcResultNoMatch;
+        if (pat) {
+            face->sorted = FcFontSort(NULL, pat, FcTrue, NULL, &res);
+            FcPatternDestroy(pat);
+        }
+    }
+    for (int i = 0; face->sorted && i < face->sorted->nfont; i++) {
+        FcPattern *p = face->sorted->fonts[i];
+        FcCharSet *cs = NULL;
+        FcChar8 *file = NULL;
+        int index = 0;
+        FcBool scalable = FcTrue;
+        if (FcPatternGetCharSet(p, FC_CHARSET, 0, &cs) != FcResultMatch ||
+            !FcCharSetHasChar(cs, cp) ||
+            FcPatternGetString(p, FC_FILE, 0, &file) != FcResultMatch ||
+            (FcPatternGetBool(p, FC_OUTLINE, 0, &scalable) == FcResultMatch && !scalable)) {
+            continue;
+        }
+        if (FcPatternGetInteger(p, FC_INDEX, 0, &index) != FcResultMatch) {
+            index = 0;
+        }
+        if (strcmp((const char *)file, face->file) == 0 && index == face->index) {
+            continue; /* fontconfig's charset and the cmap disagree */
+        }
+        char why[64];
+        svg_face *got = face_of_file(fonts, (const char *)file, index, why, sizeof why);
+        if (got && FT_Get_Char_Index(got->ft, cp) != 0) {
+            return got;
+        }
+    }
+    *missing = true;
+    return face;
+}
+
 const svg_face_metrics *svg_face_get_metrics(const svg_face *face)
 {
     return &face->metrics;
 }
 
-int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, bool rtl,
+int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, int dir,
                    svg_glyph **glyphs, int *cap)
 {
     hb_buffer_t *buf = hb_buffer_create();
@@ -304,10 +409,10 @@ int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int le
         return -1;
     }
     hb_buffer_add_codepoints(buf, cps, n, (unsigned)start, len);
-    hb_buffer_guess_segment_properties(buf);
-    if (rtl) {
-        hb_buffer_set_direction(buf, HB_DIRECTION_RTL);
+    if (dir >= 0) {
+        hb_buffer_set_direction(buf, dir ? HB_DIRECTION_RTL : HB_DIRECTION_LTR);
     }
+    hb_buffer_guess_segment_properties(buf);
     /* Vertical scripts are laid out horizontally, as SVG's initial
      * writing mode says. */
     if (HB_DIRECTION_IS_VERTICAL(hb_buffer_get_direction(buf))) {

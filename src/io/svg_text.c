@@ -10,6 +10,7 @@
 #include "io/svg_text.h"
 #include "io/svg.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,6 +33,7 @@ svg_text_style svg_text_initial(void)
 void svg_text_reset_uninherited(svg_text_style *ts)
 {
     ts->align = SVG_BASE_AUTO;
+    ts->bidi = SVG_BIDI_NORMAL;
     ts->shift_kind = SVG_SHIFT_LENGTH;
     ts->shift = 0;
 }
@@ -234,7 +236,8 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
     static const char *const names[] = {
         "font-family", "font-size", "font-weight", "font-style", "text-anchor",
         "dominant-baseline", "alignment-baseline", "text-decoration", "letter-spacing",
-        "word-spacing", "baseline-shift", "direction", "font", "unicode-bidi", NULL,
+        "word-spacing", "baseline-shift", "direction", "font", "unicode-bidi", "writing-mode",
+        "glyph-orientation-vertical", NULL,
     };
     int k = keyword(name, names);
     if (k < 0) {
@@ -257,6 +260,9 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         case 9: ts->word_spacing = one.word_spacing; break;
         case 10: ts->shift_kind = one.shift_kind; ts->shift = one.shift; break;
         case 11: ts->rtl = one.rtl; break;
+        case 13: ts->bidi = one.bidi; break;
+        case 14: ts->vertical = one.vertical; break;
+        case 15: ts->upright = one.upright; break;
         default: break;
         }
         return 1;
@@ -309,7 +315,24 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         ts->rtl = ok ? b == 1 : ts->rtl;
         break;
     case 12: ok = font_shorthand(ts, parent, v); break;
-    default: ok = true; break; /* unicode-bidi: the direction is HarfBuzz's */
+    case 13:
+        b = keyword(v, (const char *const[]){ "normal", "embed", "bidi-override", NULL });
+        ok = b >= 0;
+        ts->bidi = ok ? (unsigned char)b : ts->bidi;
+        break;
+    case 14:
+        b = keyword(v, (const char *const[]){ "lr-tb", "lr", "rl-tb", "rl", "horizontal-tb",
+                                              "tb-rl", "tb", "vertical-rl", "vertical-lr",
+                                              NULL });
+        ok = b >= 0;
+        ts->vertical = ok ? b >= 5 : ts->vertical;
+        break;
+    case 15:
+        b = keyword(v, (const char *const[]){ "auto", "0", "0deg", "90", "90deg", NULL });
+        ok = b >= 0;
+        ts->upright = ok ? b == 1 || b == 2 : ts->upright;
+        break;
+    default: ok = true; break;
     }
     return ok ? 1 : -1;
 }
@@ -323,6 +346,7 @@ enum { LIST_X, LIST_Y, LIST_DX, LIST_DY, LIST_ROTATE, N_LISTS };
 typedef struct tchar {
     uint32_t cp;
     int elem;
+    svg_face *face;              /* the element's, or a fallback that has the character */
     bool visible;
     double pos[N_LISTS];         /* NAN where no list gives one */
     double advance;              /* the pen's move over its cluster (first character) */
@@ -341,7 +365,20 @@ typedef struct telem {
     double text_length;          /* textLength, or 0 */
     bool stretch;                /* lengthAdjust="spacingAndGlyphs" */
     double sx;                   /* its glyphs' and advances' horizontal scale */
+    int path;                    /* the textPath it is in (t->paths), or -1 */
 } telem;
+
+/* A textPath's path, flattened in the text's user space. */
+typedef struct tpath {
+    double *xy;                  /* its points, x and y */
+    double *at;                  /* the distance along the path to each point */
+    unsigned char *move;         /* a subpath starts at the point: no segment to it */
+    int n;
+    double start;                /* startOffset in user units */
+} tpath;
+
+/* Nested unicode-bidi embeddings followed, within FriBidi's 125 levels. */
+#define MAX_EMBED 60
 
 /* Glyphs of one path at most (SR_SVG_MAX_SUBPATHS bounds a path's
  * contours; a glyph has a few). */
@@ -350,6 +387,8 @@ typedef struct telem {
 /* A run placed: the glyphs of one element's characters in one chunk. */
 typedef struct trun {
     int elem;
+    svg_face *face;
+    int path;                    /* the textPath its glyphs are bent along, or -1 */
     int glyph0, n_glyphs;        /* in t->placed */
     double x0, x1, y;            /* pen at its start and end, its baseline */
 } trun;
@@ -357,6 +396,7 @@ typedef struct trun {
 typedef struct tglyph {
     unsigned id;
     bool visible;
+    double mid;                  /* the middle of its cluster's advance, x before bending */
     double m[6];                 /* font units to user units */
 } tglyph;
 
@@ -371,6 +411,16 @@ struct svg_text {
     int n_runs, cap_runs;
     tglyph *placed;
     int n_placed, cap_placed;
+    uint32_t missing;            /* a character no font has, or 0 */
+    bool unordered;              /* mixed directions left in logical order */
+    bool vertical;               /* laid out top to bottom (the text element's writing-mode) */
+    bool sideways;               /* upright characters in it drawn turned */
+    unsigned char *levels;       /* each character's bidi level, per chunk */
+    uint32_t *bidi_in;           /* a chunk's characters and bidi controls */
+    int *bidi_at;                /* where each character is among them */
+    int cap_bidi;
+    tpath *paths;
+    int n_paths, cap_paths;
 };
 
 svg_text *svg_text_make(void)
@@ -396,6 +446,15 @@ void svg_text_free(svg_text *t)
     free(t->chars);
     free(t->runs);
     free(t->placed);
+    free(t->levels);
+    free(t->bidi_in);
+    free(t->bidi_at);
+    for (int i = 0; i < t->n_paths; i++) {
+        free(t->paths[i].xy);
+        free(t->paths[i].at);
+        free(t->paths[i].move);
+    }
+    free(t->paths);
     free(t);
 }
 
@@ -467,7 +526,8 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
         return -1;
     }
     telem *e = &t->elems[t->n_elems];
-    *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open, .sx = 1 };
+    *e = (telem){ .ts = *ts, .first = t->n_chars, .end = t->n_chars, .parent = t->open, .sx = 1,
+                  .path = t->open >= 0 ? t->elems[t->open].path : -1 };
     bool pct = false;
     if (lists[5] && (!svg_parse_length(lists[5], ts->size, &e->text_length, &pct) ||
                      !isfinite(e->text_length) || e->text_length < 0)) {
@@ -492,6 +552,37 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
     return t->n_elems++;
 }
 
+bool svg_text_set_path(svg_text *t, int elem, const double *xy, const unsigned char *move, int n,
+                       double start_offset, bool pct)
+{
+    if (!grow((void **)&t->paths, &t->cap_paths, t->n_paths + 1, sizeof *t->paths)) {
+        return false;
+    }
+    tpath *p = &t->paths[t->n_paths];
+    *p = (tpath){ malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *p->xy),
+                  malloc((size_t)(n > 0 ? n : 1) * sizeof *p->at),
+                  malloc((size_t)(n > 0 ? n : 1)), n, 0 };
+    if (!p->xy || !p->at || !p->move) {
+        free(p->xy);
+        free(p->at);
+        free(p->move);
+        return false;
+    }
+    double len = 0;
+    for (int i = 0; i < n; i++) {
+        p->xy[2 * i] = xy[2 * i];
+        p->xy[2 * i + 1] = xy[2 * i + 1];
+        p->move[i] = i == 0 || move[i];
+        if (!p->move[i]) {
+            len += hypot(xy[2 * i] - xy[2 * i - 2], xy[2 * i + 1] - xy[2 * i - 1]);
+        }
+        p->at[i] = len;
+    }
+    p->start = pct ? start_offset / 100 * len : start_offset;
+    t->elems[elem].path = t->n_paths++;
+    return true;
+}
+
 void svg_text_close(svg_text *t)
 {
     if (t->open >= 0) {
@@ -505,7 +596,7 @@ static bool add_char(svg_text *t, uint32_t cp, bool visible, bool collapsible)
     if (!grow((void **)&t->chars, &t->cap_chars, t->n_chars + 1, sizeof *t->chars)) {
         return false;
     }
-    t->chars[t->n_chars++] = (tchar){ cp, t->open, visible,
+    t->chars[t->n_chars++] = (tchar){ cp, t->open, NULL, visible,
                                       { NAN, NAN, NAN, NAN, NAN }, 0, 0, false,
                                       collapsible };
     return true;
@@ -589,6 +680,69 @@ int svg_text_run_element(const svg_text *t, int run)
     return t->runs[run].elem;
 }
 
+uint32_t svg_text_missing(const svg_text *t)
+{
+    return t->missing;
+}
+
+bool svg_text_unordered(const svg_text *t)
+{
+    return t->unordered;
+}
+
+bool svg_text_sideways(const svg_text *t)
+{
+    return t->sideways;
+}
+
+/* Whether cp stands upright in vertical text when glyph-orientation-
+ * vertical is auto: the ideographic and fullwidth blocks (Hangul, kana,
+ * CJK ideographs and their punctuation, fullwidth forms). */
+static bool upright_char(uint32_t cp)
+{
+    return (cp >= 0x1100 && cp <= 0x11FF) || (cp >= 0x2E80 && cp <= 0x303F) ||
+           (cp >= 0x3040 && cp <= 0x9FFF) || (cp >= 0xA960 && cp <= 0xA97F) ||
+           (cp >= 0xAC00 && cp <= 0xD7FF) || (cp >= 0xF900 && cp <= 0xFAFF) ||
+           (cp >= 0xFE30 && cp <= 0xFE4F) || (cp >= 0xFF00 && cp <= 0xFF60) ||
+           (cp >= 0xFFE0 && cp <= 0xFFE6) || (cp >= 0x20000 && cp <= 0x3FFFF);
+}
+
+/* Vertical text is laid out as a horizontal line along its y, across
+ * -x, then turned a quarter clockwise: y's and dy's lists go along the
+ * line, x's and dx's across it. */
+static void turn_lists(svg_text *t)
+{
+    for (int i = 0; i < t->n_chars; i++) {
+        double *p = t->chars[i].pos;
+        double x = p[LIST_X], dx = p[LIST_DX];
+        p[LIST_X] = p[LIST_Y];
+        p[LIST_Y] = -x;
+        p[LIST_DX] = p[LIST_DY];
+        p[LIST_DY] = -dx;
+        t->sideways = t->sideways || upright_char(t->chars[i].cp) ||
+                      (t->elems[t->chars[i].elem].ts.upright && t->chars[i].cp > ' ');
+    }
+}
+
+/* Turn the glyphs laid out for a vertical text a quarter clockwise: (u,
+ * v) of the line to (-v, u); glyphs bent onto a textPath are placed
+ * already. */
+static void turn_glyphs(svg_text *t)
+{
+    for (int r = 0; r < t->n_runs; r++) {
+        if (t->runs[r].path >= 0) {
+            continue;
+        }
+        for (int i = 0; i < t->runs[r].n_glyphs; i++) {
+            double *m = t->placed[t->runs[r].glyph0 + i].m, n[6];
+            memcpy(n, m, sizeof n);
+            m[0] = -n[1], m[1] = n[0];
+            m[2] = -n[3], m[3] = n[2];
+            m[4] = -n[5], m[5] = n[4];
+        }
+    }
+}
+
 /* Give each character the x, y, dx, dy and rotate of the innermost
  * element that has one for it (elements open outer first). */
 static void assign_lists(svg_text *t)
@@ -616,6 +770,9 @@ static double baseline_offset(const telem *el)
     const svg_face_metrics *m = svg_face_get_metrics(el->face);
     double s = el->ts.size / m->upem;
     int b = el->ts.align != SVG_BASE_AUTO ? el->ts.align : el->ts.baseline;
+    if (b == SVG_BASE_AUTO && el->ts.vertical) {
+        b = SVG_BASE_CENTRAL; /* vertical text centres its glyphs on the line */
+    }
     double down = 0;
     switch (b) {
     case SVG_BASE_MIDDLE: down = m->x_height / 2 * s; break;
@@ -641,18 +798,19 @@ static bool add_run(svg_text *t, trun r)
 
 /* Shape characters [s, e) of one element and place their glyphs from the
  * pen on; the pen moves on. */
-static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, double pen[2],
-                           svg_glyph **glyphs, int *cap)
+static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int dir,
+                           double pen[2], svg_glyph **glyphs, int *cap)
 {
     telem *el = &t->elems[t->chars[s].elem];
-    const svg_face_metrics *m = svg_face_get_metrics(el->face);
+    svg_face *face = t->chars[s].face;
+    const svg_face_metrics *m = svg_face_get_metrics(face);
     double scale = el->ts.size / m->upem, sx = el->sx;
-    int n = svg_face_shape(el->face, cps, t->n_chars, s, e - s, el->ts.rtl, glyphs, cap);
+    int n = svg_face_shape(face, cps, t->n_chars, s, e - s, dir, glyphs, cap);
     if (n < 0 || !grow((void **)&t->placed, &t->cap_placed, t->n_placed + n,
                        sizeof *t->placed)) {
         return SR_OUT_OF_MEMORY;
     }
-    trun run = { t->chars[s].elem, t->n_placed, n, pen[0], pen[0], pen[1] };
+    trun run = { t->chars[s].elem, face, el->path, t->n_placed, n, pen[0], pen[0], pen[1] };
     double down = baseline_offset(el);
     const svg_glyph *g = *glyphs;
     for (int k = s; k < e; k++) {
@@ -664,6 +822,7 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
         }
     }
     double cluster_x = pen[0];
+    int cluster_glyph = t->n_placed;
     for (int i = 0; i < n; i++) {
         int c = g[i].cluster;
         bool first = i == 0 || g[i - 1].cluster != c;
@@ -696,18 +855,23 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
                 run.y = pen[1] + down;
             }
             cluster_x = pen[0];
+            cluster_glyph = t->n_placed;
         }
         double rot = t->chars[c].pos[LIST_ROTATE];
         double a = isnan(rot) ? 0 : rot * (M_PI / 180);
         double co = cos(a), si = sin(a);
         double ox = pen[0] + g[i].ox * scale * sx, oy = pen[1] + down - g[i].oy * scale;
         t->placed[t->n_placed++] = (tglyph){
-            g[i].id, t->chars[c].visible,
+            g[i].id, t->chars[c].visible, 0,
             { scale * sx * co, scale * sx * si, scale * si, -scale * co, ox, oy } };
         pen[0] += g[i].ax * scale * sx;
         pen[1] -= g[i].ay * scale;
         bool last = i + 1 == n || g[i + 1].cluster != c;
         if (last) {
+            /* on a path the cluster turns about its middle */
+            for (int j = cluster_glyph; j < t->n_placed; j++) {
+                t->placed[j].mid = (cluster_x + pen[0]) / 2;
+            }
             for (int k = c; k < c_end; k++) {
                 pen[0] += el->ts.letter_spacing * sx;
                 if (t->chars[k].cp == ' ') {
@@ -725,6 +889,140 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, doubl
     return add_run(t, run) ? SR_OK : SR_OUT_OF_MEMORY;
 }
 
+/* The elements with unicode-bidi embed or bidi-override that character
+ * i is in, outermost first, into chain; their count.  Past MAX_EMBED the
+ * innermost are left out, so that every character of an element sees
+ * the same outer ones. */
+static int embeddings(const svg_text *t, int i, int chain[MAX_EMBED])
+{
+    int all = 0;
+    for (int e = t->chars[i].elem; e >= 0; e = t->elems[e].parent) {
+        all += t->elems[e].ts.bidi != SVG_BIDI_NORMAL;
+    }
+    int n = all < MAX_EMBED ? all : MAX_EMBED, k = all;
+    for (int e = t->chars[i].elem; e >= 0; e = t->elems[e].parent) {
+        if (t->elems[e].ts.bidi != SVG_BIDI_NORMAL && --k < n) {
+            chain[k] = e;
+        }
+    }
+    return n;
+}
+
+/* The bidi level of each character of chunk [c, end) into t->levels, its
+ * base direction rtl: the elements' unicode-bidi become the embedding and
+ * override controls around their characters (as CSS maps them), which
+ * FriBidi reads.  False when out of memory. */
+static bool chunk_levels(svg_text *t, int c, int end, bool rtl)
+{
+    int need = (end - c) + 2 * t->n_elems;
+    if (need > t->cap_bidi) {
+        unsigned char *l = realloc(t->levels, (size_t)need);
+        t->levels = l ? l : t->levels;
+        uint32_t *in = realloc(t->bidi_in, (size_t)need * sizeof *in);
+        t->bidi_in = in ? in : t->bidi_in;
+        int *at = realloc(t->bidi_at, (size_t)need * sizeof *at);
+        t->bidi_at = at ? at : t->bidi_at;
+        if (!l || !in || !at) {
+            return false;
+        }
+        t->cap_bidi = need;
+    }
+    int open[MAX_EMBED], depth = 0, m = 0;
+    for (int i = c; i < end; i++) {
+        int chain[MAX_EMBED];
+        int n = embeddings(t, i, chain), same = 0;
+        while (same < n && same < depth && chain[same] == open[same]) {
+            same++;
+        }
+        for (; depth > same; depth--) {
+            t->bidi_in[m++] = 0x202C; /* PDF */
+        }
+        for (; depth < n; depth++) {
+            const svg_text_style *ts = &t->elems[chain[depth]].ts;
+            open[depth] = chain[depth];
+            /* LRE, RLE, LRO, RLO */
+            t->bidi_in[m++] = ts->bidi == SVG_BIDI_EMBED ? (ts->rtl ? 0x202B : 0x202A)
+                                                         : (ts->rtl ? 0x202E : 0x202D);
+        }
+        t->bidi_at[i - c] = m;
+        t->bidi_in[m++] = t->chars[i].cp;
+    }
+    assert(m <= need); /* each element opens and closes once in a chunk */
+    int got = svg_bidi_levels(t->bidi_in, m, rtl, t->levels);
+    if (got < 0) {
+        return false;
+    }
+    t->unordered = t->unordered || got == 1;
+    /* the characters' levels, in place (each at or after its own index) */
+    for (int i = 0; i < end - c; i++) {
+        t->levels[i] = t->levels[t->bidi_at[i]];
+    }
+    return true;
+}
+
+/* Place chunk [c, end) from the pen on, its base direction rtl: runs of
+ * one element, face and bidi level, each shaped in its level's direction
+ * and placed in visual order (rule L2: from the highest level down to
+ * the lowest odd one, reverse every sequence of runs at that level or
+ * above). */
+static sr_result place_chunk(svg_text *t, const uint32_t *cps, int c, int end, bool rtl,
+                             double pen[2], svg_glyph **glyphs, int *cap)
+{
+    if (!chunk_levels(t, c, end, rtl)) {
+        return SR_OUT_OF_MEMORY;
+    }
+    const unsigned char *lv = t->levels;
+    /* at most one run per character: [start, end) pairs */
+    int *seg = malloc((size_t)(end - c) * 2 * sizeof *seg);
+    if (!seg) {
+        return SR_OUT_OF_MEMORY;
+    }
+    int n_segs = 0, top = 0, low_odd = 255;
+    for (int s = c; s < end; n_segs++) {
+        int e = s + 1;
+        while (e < end && t->chars[e].elem == t->chars[s].elem &&
+               t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c]) {
+            e++;
+        }
+        seg[2 * n_segs] = s;
+        seg[2 * n_segs + 1] = e;
+        top = lv[s - c] > top ? lv[s - c] : top;
+        if ((lv[s - c] & 1) && lv[s - c] < low_odd) {
+            low_odd = lv[s - c];
+        }
+        s = e;
+    }
+    for (int level = top; level >= low_odd && level > 0; level--) {
+        for (int k = 0; k < n_segs;) {
+            if (lv[seg[2 * k] - c] < level) {
+                k++;
+                continue;
+            }
+            int j = k;
+            while (j < n_segs && lv[seg[2 * j] - c] >= level) {
+                j++;
+            }
+            for (int a = k, b = j - 1; a < b; a++, b--) {
+                int s0 = seg[2 * a], e0 = seg[2 * a + 1];
+                seg[2 * a] = seg[2 * b], seg[2 * a + 1] = seg[2 * b + 1];
+                seg[2 * b] = s0, seg[2 * b + 1] = e0;
+            }
+            k = j;
+        }
+    }
+    sr_result r = SR_OK;
+    bool bidi = svg_bidi_available();
+    for (int k = 0; k < n_segs && r == SR_OK; k++) {
+        int s = seg[2 * k], e = seg[2 * k + 1];
+        /* without FriBidi each run goes as its script does, or right to
+         * left where direction says so */
+        int dir = bidi ? lv[s - c] & 1 : t->elems[t->chars[s].elem].ts.rtl ? 1 : -1;
+        r = place_run(t, cps, s, e, dir, pen, glyphs, cap);
+    }
+    free(seg);
+    return r;
+}
+
 /* Move the glyphs and runs of a chunk by dx. */
 static void shift_chunk(svg_text *t, int run0, double dx)
 {
@@ -734,6 +1032,73 @@ static void shift_chunk(svg_text *t, int run0, double dx)
         run->x1 += dx;
         for (int i = 0; i < run->n_glyphs; i++) {
             t->placed[run->glyph0 + i].m[4] += dx;
+            t->placed[run->glyph0 + i].mid += dx;
+        }
+    }
+}
+
+/* The point at distance s along path p and the angle of its tangent
+ * there; false when s is off the path (before it, beyond its end). */
+static bool path_at(const tpath *p, double s, double *x, double *y, double *angle)
+{
+    if (p->n < 2 || !(s >= 0 && s <= p->at[p->n - 1])) {
+        return false;
+    }
+    int lo = 1, hi = p->n - 1;
+    while (lo < hi) { /* the first point at s or beyond */
+        int mid = (lo + hi) / 2;
+        if (p->at[mid] < s) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    while (lo < p->n && p->move[lo]) {
+        lo++; /* the segment after a subpath's start */
+    }
+    if (lo == p->n) {
+        return false;
+    }
+    const double *a = &p->xy[2 * (lo - 1)], *b = &p->xy[2 * lo];
+    double len = p->at[lo] - p->at[lo - 1];
+    double u = len > 0 ? (s - p->at[lo - 1]) / len : 0;
+    *x = a[0] + (b[0] - a[0]) * u;
+    *y = a[1] + (b[1] - a[1]) * u;
+    *angle = atan2(b[1] - a[1], b[0] - a[0]);
+    return true;
+}
+
+/* The pen at the end of path p. */
+static void path_end(const tpath *p, double pen[2])
+{
+    if (p->n > 0) {
+        pen[0] = p->xy[2 * (p->n - 1)];
+        pen[1] = p->xy[2 * (p->n - 1) + 1];
+    }
+}
+
+/* Bend the glyphs of a chunk laid out along x onto path p (SVG 1.1
+ * 10.13.3): each cluster's middle goes to the point that far along the
+ * path, the glyphs turned to the tangent there, dy lifting them off it;
+ * a cluster whose middle is off the path is not drawn. */
+static void bend_chunk(svg_text *t, int run0, const tpath *p)
+{
+    for (int r = run0; r < t->n_runs; r++) {
+        for (int i = 0; i < t->runs[r].n_glyphs; i++) {
+            tglyph *g = &t->placed[t->runs[r].glyph0 + i];
+            double px, py, a;
+            if (!path_at(p, g->mid, &px, &py, &a)) {
+                g->visible = false;
+                continue;
+            }
+            double co = cos(a), si = sin(a), m[6];
+            memcpy(m, g->m, sizeof m);
+            g->m[0] = co * m[0] - si * m[1];
+            g->m[1] = si * m[0] + co * m[1];
+            g->m[2] = co * m[2] - si * m[3];
+            g->m[3] = si * m[2] + co * m[3];
+            g->m[4] = px + co * (m[4] - g->mid) - si * m[5];
+            g->m[5] = py + si * (m[4] - g->mid) + co * m[5];
         }
     }
 }
@@ -746,28 +1111,31 @@ static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs,
     sr_result r = SR_OK;
     t->n_runs = t->n_placed = 0;
     for (int c = 0; c < t->n_chars && r == SR_OK;) {
+        /* a textPath's characters are chunks of their own, laid out along
+         * x from its startOffset, then bent onto the path */
+        int path = t->elems[t->chars[c].elem].path;
         int end = c + 1;
         while (end < t->n_chars && isnan(t->chars[end].pos[LIST_X]) &&
-               isnan(t->chars[end].pos[LIST_Y])) {
+               isnan(t->chars[end].pos[LIST_Y]) && t->elems[t->chars[end].elem].path == path) {
             end++;
+        }
+        int before = c > 0 ? t->elems[t->chars[c - 1].elem].path : -1;
+        if (path >= 0 && before != path) {
+            pen[0] = t->paths[path].start;
+            pen[1] = 0;
+        } else if (path < 0 && before >= 0) {
+            path_end(&t->paths[before], pen); /* text after a textPath goes on from its end */
         }
         if (!isnan(t->chars[c].pos[LIST_X])) {
             pen[0] = t->chars[c].pos[LIST_X];
         }
-        if (!isnan(t->chars[c].pos[LIST_Y])) {
+        if (!isnan(t->chars[c].pos[LIST_Y]) && path < 0) {
             pen[1] = t->chars[c].pos[LIST_Y];
         }
         const telem *head = &t->elems[t->chars[c].elem];
         double start = pen[0];
         int run0 = t->n_runs;
-        for (int s = c; s < end && r == SR_OK;) {
-            int e = s + 1;
-            while (e < end && t->chars[e].elem == t->chars[s].elem) {
-                e++;
-            }
-            r = place_run(t, cps, s, e, pen, glyphs, cap);
-            s = e;
-        }
+        r = place_chunk(t, cps, c, end, head->ts.rtl, pen, glyphs, cap);
         /* text-anchor of the chunk's first character; right to left,
          * start is the right end */
         double width = pen[0] - start;
@@ -781,6 +1149,9 @@ static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs,
         if (dx != 0 && r == SR_OK) {
             shift_chunk(t, run0, dx);
             pen[0] += dx;
+        }
+        if (path >= 0 && r == SR_OK) {
+            bend_chunk(t, run0, &t->paths[path]);
         }
         c = end;
     }
@@ -838,7 +1209,29 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
             return SR_BAD_FORMAT;
         }
     }
+    /* each character's face: the element's, or the first fallback that
+     * has it; a run is cut where the face changes */
+    t->missing = 0;
+    t->unordered = false;
+    for (int i = 0; i < t->n_chars; i++) {
+        tchar *c = &t->chars[i];
+        svg_face *prev = i > 0 && t->chars[i - 1].elem == c->elem ? t->chars[i - 1].face : NULL;
+        bool missing = false;
+        c->face = svg_fonts_cover(fonts, t->elems[c->elem].face, prev, c->cp, &missing);
+        if (missing && !t->missing) {
+            t->missing = c->cp;
+        }
+    }
     assign_lists(t);
+    /* SVG 1.1 takes writing-mode from the text element alone */
+    t->vertical = t->n_elems > 0 && t->elems[0].ts.vertical;
+    for (int e = 0; e < t->n_elems; e++) {
+        t->elems[e].ts.vertical = t->vertical;
+    }
+    t->sideways = false;
+    if (t->vertical) {
+        turn_lists(t);
+    }
     uint32_t *cps = malloc((size_t)(t->n_chars ? t->n_chars : 1) * sizeof *cps);
     if (!cps) {
         snprintf(why, why_size, "out of memory");
@@ -853,6 +1246,9 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
     if (r == SR_OK && fit_lengths(t)) {
         r = place_all(t, cps, &glyphs, &cap); /* again, with the lengths fitted */
     }
+    if (r == SR_OK && t->vertical) {
+        turn_glyphs(t);
+    }
     free(glyphs);
     free(cps);
     if (r != SR_OK) {
@@ -864,9 +1260,14 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
 /* A decoration's band, top y to bottom y (y down), from x0 to x1, wound
  * as the face's outer contours are. */
 static sr_result add_band(sr_path *path, double x0, double x1, double top, double bottom,
-                          bool clockwise)
+                          bool clockwise, bool turn)
 {
     double xs[4] = { x0, x1, x1, x0 }, ys[4] = { top, top, bottom, bottom };
+    for (int k = 0; turn && k < 4; k++) { /* vertical text's quarter turn */
+        double x = xs[k];
+        xs[k] = -ys[k];
+        ys[k] = x;
+    }
     sr_result r = SR_OK;
     for (int k = 0; k < 4 && r == SR_OK; k++) {
         int i = clockwise ? k : (4 - k) % 4;
@@ -883,26 +1284,28 @@ sr_result svg_text_run_path(svg_text *t, svg_fonts *fonts, int run, sr_path *pat
     for (int i = 0; i < rn->n_glyphs && r == SR_OK; i++) {
         const tglyph *g = &t->placed[rn->glyph0 + i];
         if (g->visible) {
-            r = svg_face_outline(fonts, el->face, g->id, g->m, path);
+            r = svg_face_outline(fonts, rn->face, g->id, g->m, path);
         }
     }
     unsigned deco = el->ts.decoration;
-    if (r != SR_OK || !deco || rn->x1 <= rn->x0) {
+    /* no decorations along a path */
+    if (r != SR_OK || !deco || rn->x1 <= rn->x0 || rn->path >= 0) {
         return r;
     }
     const svg_face_metrics *m = svg_face_get_metrics(el->face);
     double s = el->ts.size / m->upem, y = rn->y;
     if (deco & SVG_DECO_UNDERLINE) {
         double mid = y - m->underline_pos * s, h = m->underline_thick * s / 2;
-        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise);
+        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise, t->vertical);
     }
     if (r == SR_OK && (deco & SVG_DECO_OVERLINE)) {
         double mid = y - m->ascender * s, h = m->underline_thick * s / 2;
-        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise);
+        r = add_band(path, rn->x0, rn->x1, mid - h, mid + h, m->clockwise, t->vertical);
     }
     if (r == SR_OK && (deco & SVG_DECO_LINE_THROUGH)) {
         double top = y - m->strike_pos * s;
-        r = add_band(path, rn->x0, rn->x1, top, top + m->strike_thick * s, m->clockwise);
+        r = add_band(path, rn->x0, rn->x1, top, top + m->strike_thick * s, m->clockwise,
+                     t->vertical);
     }
     return r;
 }

@@ -26,6 +26,7 @@ enum { SVG_DECO_UNDERLINE = 1, SVG_DECO_OVERLINE = 2, SVG_DECO_LINE_THROUGH = 4 
 enum { SVG_BASE_AUTO, SVG_BASE_ALPHABETIC, SVG_BASE_MIDDLE, SVG_BASE_CENTRAL, SVG_BASE_HANGING,
        SVG_BASE_MATHEMATICAL, SVG_BASE_TEXT_TOP, SVG_BASE_TEXT_BOTTOM, SVG_BASE_IDEOGRAPHIC };
 enum { SVG_SHIFT_LENGTH, SVG_SHIFT_SUB, SVG_SHIFT_SUPER, SVG_SHIFT_PERCENT };
+enum { SVG_BIDI_NORMAL, SVG_BIDI_EMBED, SVG_BIDI_OVERRIDE };
 
 /* The text properties of a style.  All inherit except those marked. */
 typedef struct svg_text_style {
@@ -38,6 +39,9 @@ typedef struct svg_text_style {
     unsigned char align;     /* alignment-baseline (not inherited; AUTO: the dominant one) */
     unsigned char decoration;/* text-decoration bits (taken on by the descendants) */
     bool rtl;                /* direction: rtl */
+    unsigned char bidi;      /* unicode-bidi (not inherited) */
+    bool vertical;           /* writing-mode tb, tb-rl, vertical-rl, vertical-lr */
+    bool upright;            /* glyph-orientation-vertical 0 (auto: by character) */
     double letter_spacing, word_spacing;
     unsigned char shift_kind;/* baseline-shift (not inherited) */
     double shift;            /* its length, or percentage of the font size */
@@ -56,6 +60,16 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
 /* After the cascade: add the element's own baseline shift to the
  * ancestors' (parent NULL: none). */
 void svg_text_settle(svg_text_style *ts, const svg_text_style *parent);
+
+/* ---- bidirectional text (svg_bidi.c) ------------------------------------ */
+
+/* Whether this build reorders bidirectional text (it found FriBidi). */
+bool svg_bidi_available(void);
+/* The resolved embedding level of each of cps[0 .. n) (bidi control
+ * characters among them) in a line of base direction rtl, into levels:
+ * 0 done, 1 done without reordering (no FriBidi: every level the base's)
+ * though the text mixes directions, -1 out of memory. */
+int svg_bidi_levels(const uint32_t *cps, int n, bool rtl, unsigned char *levels);
 
 /* ---- fonts (svg_font.c) ------------------------------------------------- */
 
@@ -90,11 +104,20 @@ svg_face *svg_fonts_match(svg_fonts *fonts, const char *family, int weight, int 
 /* The face of a font file (its first face), kept like a match; NULL
  * with a line in why. */
 svg_face *svg_fonts_open_file(svg_fonts *fonts, const char *file, char *why, size_t why_size);
+/* The face that draws code point cp in a text whose element matched
+ * face: face when it has the character, else the first font of
+ * fontconfig's sorted list for face's request that has it (opened once).
+ * Marks, joiners and other format characters go with prev, the face of
+ * the character before (NULL at the start).  When no font has cp (or
+ * face is a caller's file), face with *missing set: its .notdef draws. */
+svg_face *svg_fonts_cover(svg_fonts *fonts, svg_face *face, svg_face *prev, uint32_t cp,
+                          bool *missing);
 const svg_face_metrics *svg_face_get_metrics(const svg_face *face);
 /* Shape cps[start .. start+len) (the rest of cps is context) left to
- * right or right to left: glyphs in visual order into *glyphs (grown as
- * needed, *cap its room); their count, or -1 when out of memory. */
-int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, bool rtl,
+ * right (dir 0), right to left (1) or as its script goes (-1): glyphs in
+ * visual order into *glyphs (grown as needed, *cap its room); their
+ * count, or -1 when out of memory. */
+int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, int dir,
                    svg_glyph **glyphs, int *cap);
 /* Append glyph id's outline mapped by m (a, b, c, d, e, f: font units,
  * y up, to user units) to path. */
@@ -114,6 +137,12 @@ void svg_text_free(svg_text *t);
  * line in why (out of memory, a malformed value). */
 int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists[7], double vp_w,
                   double vp_h, char *why, size_t why_size);
+/* Lay the characters of element elem (just opened: its descendants take
+ * it on) along a path of n points xy (x, y pairs in user units; move[i]
+ * set where a subpath starts), from start_offset along it (a percentage
+ * of its length when pct).  False when out of memory. */
+bool svg_text_set_path(svg_text *t, int elem, const double *xy, const unsigned char *move, int n,
+                       double start_offset, bool pct);
 void svg_text_close(svg_text *t);
 /* Character data of the open element, UTF-8; whitespace as xml:space
  * says (preserve: each blank a space; else newlines dropped, blanks
@@ -126,6 +155,16 @@ int svg_text_length(const svg_text *t);
 /* Match, shape and place every character; SR_OK or a result with a line
  * in why. */
 sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_size);
+/* After layout: a character that no font has (drawn as its font's
+ * .notdef), or 0. */
+uint32_t svg_text_missing(const svg_text *t);
+/* After layout: whether a vertical text has characters that stand
+ * upright in it (CJK, glyph-orientation-vertical 0), drawn turned as the
+ * others. */
+bool svg_text_sideways(const svg_text *t);
+/* After layout: whether a chunk mixing directions was left in logical
+ * order (a build without FriBidi). */
+bool svg_text_unordered(const svg_text *t);
 /* The runs to draw, in order: consecutive characters of one element. */
 int svg_text_runs(const svg_text *t);
 /* The element (svg_text_open's index) whose paint a run takes. */
