@@ -174,9 +174,10 @@ static void region_attrs(fctx *fc, const svg_node *n, bool bbox_units, double r[
     }
 }
 
-/* The filter region from the <filter>'s attributes; false when it is
- * empty (nothing is drawn). */
-static bool filter_region(fctx *fc)
+/* The filter region from the <filter>'s attributes (fc->region) and in
+ * the layer's pixels, rounded out but not cut to the layer (px: x0 y0 x1
+ * y1); false when it is empty (nothing is drawn). */
+static bool region_px(fctx *fc, double px[4])
 {
     const svg_node *f = fc->job->filter;
     const char *units = fattr(f, "filterUnits");
@@ -205,8 +206,24 @@ static bool filter_region(fctx *fc)
         return false;
     }
     memcpy(fc->region, r, sizeof r);
-    double px[4];
     rect_to_px(fc, r, px);
+    const char *pu = fattr(f, "primitiveUnits");
+    fc->obb = pu && strcmp(pu, "objectBoundingBox") == 0;
+    fc->bw = b[2] - b[0];
+    fc->bh = b[3] - b[1];
+    const double *m = fc->job->m;
+    fc->sx = hypot(m[0], m[1]);
+    fc->sy = hypot(m[2], m[3]);
+    return true;
+}
+
+/* The filter region, cut to the layer; false when nothing of it is left. */
+static bool filter_region(fctx *fc)
+{
+    double px[4];
+    if (!region_px(fc, px)) {
+        return false;
+    }
     px[0] = fmax(px[0], 0);
     px[1] = fmax(px[1], 0);
     px[2] = fmin(px[2], fc->job->width);
@@ -219,13 +236,6 @@ static bool filter_region(fctx *fc)
     fc->rw = (int)(px[2] - px[0]);
     fc->rh = (int)(px[3] - px[1]);
     fc->n = (size_t)fc->rw * (size_t)fc->rh;
-    const char *pu = fattr(f, "primitiveUnits");
-    fc->obb = pu && strcmp(pu, "objectBoundingBox") == 0;
-    fc->bw = b[2] - b[0];
-    fc->bh = b[3] - b[1];
-    const double *m = fc->job->m;
-    fc->sx = hypot(m[0], m[1]);
-    fc->sy = hypot(m[2], m[3]);
     return true;
 }
 
@@ -1139,7 +1149,8 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
     turbulence_init(t, (long)fmax(fmin(trunc(seed), 2e9), -2e9));
     /* the tile is the primitive subregion in pixels, as both references
      * take it (mixed with a frequency in user units) */
-    double tile[4] = { fc->rx + out_sub[0], fc->ry + out_sub[1], out_sub[2] - out_sub[0],
+    double tile[4] = { fc->job->origin[0] + fc->rx + out_sub[0],
+                       fc->job->origin[1] + fc->ry + out_sub[1], out_sub[2] - out_sub[0],
                        out_sub[3] - out_sub[1] };
     stitch base = { 0 };
     bool stitching = st_attr && strcmp(st_attr, "stitch") == 0;
@@ -1314,11 +1325,13 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
     fimg *out = &res[i];
     out->srgb = st.srgb;
     int ins[64], n_ins = 0; /* a merge's first 64 make its default subregion */
+    double reads = 0;         /* a merge reads all its nodes */
     if (is(n, "feMerge")) {
-        for (const svg_node *c = n->first; c && n_ins < 64; c = c->next) {
-            if (is(c, "feMergeNode")) {
+        for (const svg_node *c = n->first; c; c = c->next) {
+            if (is(c, "feMergeNode") && n_ins < 64) {
                 ins[n_ins++] = resolve(fc, p, i, c, fattr(c, "in"));
             }
+            reads += is(c, "feMergeNode");
         }
     } else if (!is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") &&
                !is(n, "feTile")) { /* a tile fills the region, as both references draw it */
@@ -1326,13 +1339,17 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         if (p[i].in[1] != -4) {
             ins[n_ins++] = p[i].in[1];
         }
+        reads = n_ins;
     }
     int def[4];
     default_sub(fc, res, ins, n_ins, def);
     subregion(fc, n, def, out->sub);
-    out->p = new_pixels(fc, n);
-    if (!out->p || !fc->job->budget(fc->job->host, (double)fc->n * (n_ins + 1))) {
+    if (!fc->job->budget(fc->job->host, (double)fc->n * (reads + 1))) {
         fc->failed = true;
+        return;
+    }
+    out->p = new_pixels(fc, n);
+    if (!out->p) {
         return;
     }
     fimg *a = n_ins > 0 ? image_of(fc, res, ins[0]) : NULL;
@@ -1453,10 +1470,9 @@ static void write_back(fctx *fc, fimg *im)
     }
 }
 
-void svg_apply_filter(const svg_filter_job *job)
+/* The primitives of the filter, unknown ones warned. */
+static int count_primitives(const svg_filter_job *job)
 {
-    fctx fc = { .job = job };
-    size_t all = (size_t)job->width * (size_t)job->height * 4;
     int count = 0;
     for (const svg_node *c = job->filter->first; c; c = c->next) {
         if (is_primitive(c)) {
@@ -1466,6 +1482,223 @@ void svg_apply_filter(const svg_filter_job *job)
             job->warn(job->host, c, "filter primitive", c->name);
         }
     }
+    return count;
+}
+
+/* The primitives in order, their inputs resolved, and each result's last
+ * reader (0: none). */
+typedef struct graph {
+    prim *p;
+    int *last_use;
+    int count;
+} graph;
+
+static void free_graph(graph *g)
+{
+    free(g->p);
+    free(g->last_use);
+}
+
+/* Whether the primitive reads its `in` (those that fill their subregion
+ * do not; a merge reads its nodes'). */
+static bool reads_in(const svg_node *n)
+{
+    return !is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") && !is(n, "feMerge");
+}
+
+/* The graph of `count` primitives; false after a failure. */
+static bool make_graph(fctx *fc, int count, graph *g)
+{
+    *g = (graph){ .p = calloc((size_t)count, sizeof *g->p),
+                  .last_use = calloc((size_t)count, sizeof *g->last_use), .count = count };
+    if (!g->p || !g->last_use) {
+        fail(fc, fc->job->filter, SR_OUT_OF_MEMORY, "out of memory");
+        free_graph(g);
+        return false;
+    }
+    prim *p = g->p;
+    int i = 0;
+    for (const svg_node *c = fc->job->filter->first; c; c = c->next) {
+        if (!is_primitive(c)) {
+            continue;
+        }
+        p[i] = (prim){ .node = c, .in = { -4, -4 }, .result = fattr(c, "result") };
+        p[i].in[0] = resolve(fc, p, i, c, fattr(c, "in"));
+        if (is(c, "feComposite") || is(c, "feBlend") || is(c, "feDisplacementMap")) {
+            p[i].in[1] = resolve(fc, p, i, c, fattr(c, "in2"));
+        }
+        for (int k = 0; k < 2; k++) {
+            if (p[i].in[k] >= 0) {
+                g->last_use[p[i].in[k]] = i;
+            }
+        }
+        for (const svg_node *m = c->first; m && is(c, "feMerge"); m = m->next) {
+            int j = is(m, "feMergeNode") ? resolve(fc, p, i, m, fattr(m, "in")) : -1;
+            if (j >= 0) {
+                g->last_use[j] = i;
+            }
+        }
+        i++;
+    }
+    return true;
+}
+
+/* Whether result j is still held while primitive i runs: until its last
+ * reader has run; one no later primitive reads is freed at once, the
+ * last one is kept for the layer. */
+static bool held(const graph *g, int j, int i)
+{
+    return j == i || j == g->count - 1 || g->last_use[j] >= i;
+}
+
+/* Images of the region a primitive allocates besides its result. */
+static int scratch_images(const svg_node *n)
+{
+    return is(n, "feDropShadow") ? 2 : is(n, "feMorphology") ? 1 : 0;
+}
+
+uint64_t svg_filter_peak(const svg_filter_job *job, int *images)
+{
+    fctx fc = { .job = job };
+    graph g;
+    *images = 0;
+    int count = count_primitives(job);
+    if (count == 0 || count > MAX_PRIMITIVES || !filter_region(&fc) ||
+        !make_graph(&fc, count, &g)) {
+        return 0;
+    }
+    /* the standard inputs are made when first read and kept to the end */
+    bool standard_read[7] = { false };
+    int most = 0;
+    bool picture = false;
+    for (int i = 0; i < count; i++) {
+        const prim *p = &g.p[i];
+        for (int k = 0; k < 2; k++) {
+            int in = p->in[k];
+            if (in < 0 && in != -4 && (k == 1 || reads_in(p->node))) {
+                standard_read[-in] = true;
+            }
+        }
+        for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
+            int in = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : 0;
+            if (in < 0) {
+                standard_read[-in] = true;
+            }
+        }
+        picture = picture || is(p->node, "feImage");
+        int live = scratch_images(p->node);
+        for (int j = 0; j <= i; j++) {
+            live += held(&g, j, i);
+        }
+        most = live > most ? live : most;
+    }
+    for (int k = 1; k < 7; k++) {
+        most += standard_read[k];
+    }
+    free_graph(&g);
+    *images = most;
+    /* an feImage's picture comes as an RGBA8 copy of the layer */
+    return (uint64_t)most * fc.n * 4 * sizeof(float) +
+           (picture ? (uint64_t)job->width * (uint64_t)job->height * 4 : 0);
+}
+
+/* How far (pixels along x and y) primitive n can move what it reads. */
+static void own_reach(fctx *fc, const svg_node *n, double r[2])
+{
+    double kx = fc->sx * (fc->obb ? fc->bw : 1), ky = fc->sy * (fc->obb ? fc->bh : 1), v[2];
+    bool shadow = is(n, "feDropShadow");
+    const char *e = fattr(n, "edgeMode");
+    bool wrap = e && strcmp(e, "wrap") == 0;
+    r[0] = r[1] = 0;
+    if (is(n, "feGaussianBlur") || shadow) {
+        pair_attr(fc, n, "stdDeviation", shadow ? 2 : 0, v);
+        /* the sampled kernel's 3 deviations, or the three boxes' 2.9 */
+        r[0] += 3 * fabs(v[0]) * kx + 3;
+        r[1] += 3 * fabs(v[1]) * ky + 3;
+    }
+    if (is(n, "feOffset") || shadow) {
+        const double *m = fc->job->m;
+        double dx = number_attr(fc, n, "dx", shadow ? 2 : 0) * (fc->obb ? fc->bw : 1);
+        double dy = number_attr(fc, n, "dy", shadow ? 2 : 0) * (fc->obb ? fc->bh : 1);
+        r[0] += fabs(m[0] * dx + m[2] * dy) + 1;
+        r[1] += fabs(m[1] * dx + m[3] * dy) + 1;
+    } else if (is(n, "feMorphology")) {
+        pair_attr(fc, n, "radius", 0, v);
+        r[0] = fabs(v[0]) * kx + 1;
+        r[1] = fabs(v[1]) * ky + 1;
+    } else if (is(n, "feConvolveMatrix")) {
+        pair_attr(fc, n, "order", 3, v);
+        r[0] = fabs(v[0]) + 1;
+        r[1] = fabs(v[1]) + 1;
+    } else if (is(n, "feDisplacementMap")) {
+        double scale = fabs(number_attr(fc, n, "scale", 0));
+        r[0] = scale * kx / 2 + 1;
+        r[1] = scale * ky / 2 + 1;
+    } else if (is(n, "feDiffuseLighting") || is(n, "feSpecularLighting")) {
+        r[0] = r[1] = 2; /* the normals' kernels */
+    }
+    if (is(n, "feTile") || (wrap && !is(n, "feMorphology"))) {
+        r[0] = r[1] = INFINITY; /* anything in the region can come in */
+    }
+}
+
+bool svg_filter_extent(const svg_filter_job *job, int out[4])
+{
+    fctx fc = { .job = job };
+    double px[4];
+    graph g;
+    int count = count_primitives(job);
+    if (count == 0 || count > MAX_PRIMITIVES || !region_px(&fc, px) ||
+        !make_graph(&fc, count, &g)) {
+        return false;
+    }
+    double(*reach)[2] = calloc((size_t)count, sizeof *reach);
+    if (!reach) {
+        free_graph(&g);
+        return false;
+    }
+    for (int i = 0; i < count; i++) {
+        const prim *p = &g.p[i];
+        double in[2] = { 0, 0 };
+        for (int k = 0; k < 2; k++) {
+            if (p->in[k] >= 0 && (k == 1 || reads_in(p->node))) {
+                in[0] = fmax(in[0], reach[p->in[k]][0]);
+                in[1] = fmax(in[1], reach[p->in[k]][1]);
+            }
+        }
+        for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
+            int j = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : -1;
+            if (j >= 0) {
+                in[0] = fmax(in[0], reach[j][0]);
+                in[1] = fmax(in[1], reach[j][1]);
+            }
+        }
+        own_reach(&fc, p->node, reach[i]);
+        reach[i][0] += in[0];
+        reach[i][1] += in[1];
+    }
+    /* NaN and infinity alike: at most the layer's size */
+    double rx = fmin(reach[count - 1][0], job->width), ry = fmin(reach[count - 1][1], job->height);
+    free(reach);
+    free_graph(&g);
+    px[0] = fmax(px[0], -rx);
+    px[1] = fmax(px[1], -ry);
+    px[2] = fmin(px[2], job->width + rx);
+    px[3] = fmin(px[3], job->height + ry);
+    if (!(px[2] > px[0] && px[3] > px[1])) {
+        return false;
+    }
+    for (int k = 0; k < 4; k++) {
+        out[k] = (int)px[k];
+    }
+    return true;
+}
+
+void svg_apply_filter(const svg_filter_job *job)
+{
+    fctx fc = { .job = job };
+    size_t all = (size_t)job->width * (size_t)job->height * 4;
+    int count = count_primitives(job);
     if (count > MAX_PRIMITIVES) {
         char msg[96];
         snprintf(msg, sizeof msg, "filter: %d primitives, more than %d", count, MAX_PRIMITIVES);
@@ -1477,39 +1710,20 @@ void svg_apply_filter(const svg_filter_job *job)
         memset(job->pixels, 0, all);
         return;
     }
-    prim *p = calloc((size_t)count, sizeof *p);
+    graph g;
     fimg *res = calloc((size_t)count, sizeof *res);
-    int *last_use = calloc((size_t)count, sizeof *last_use);
-    if (!p || !res || !last_use) {
+    if (!res) {
         fail(&fc, job->filter, SR_OUT_OF_MEMORY, "out of memory");
+        return;
     }
-    int i = 0;
-    for (const svg_node *c = job->filter->first; c && !fc.failed; c = c->next) {
-        if (!is_primitive(c)) {
-            continue;
-        }
-        p[i] = (prim){ .node = c, .in = { -4, -4 }, .result = fattr(c, "result") };
-        p[i].in[0] = resolve(&fc, p, i, c, fattr(c, "in"));
-        if (is(c, "feComposite") || is(c, "feBlend") || is(c, "feDisplacementMap")) {
-            p[i].in[1] = resolve(&fc, p, i, c, fattr(c, "in2"));
-        }
-        for (int k = 0; k < 2; k++) {
-            if (p[i].in[k] >= 0) {
-                last_use[p[i].in[k]] = i;
-            }
-        }
-        for (const svg_node *m = c->first; m && is(c, "feMerge"); m = m->next) {
-            int j = is(m, "feMergeNode") ? resolve(&fc, p, i, m, fattr(m, "in")) : -1;
-            if (j >= 0) {
-                last_use[j] = i;
-            }
-        }
-        i++;
+    if (!make_graph(&fc, count, &g)) {
+        free(res);
+        return;
     }
-    for (i = 0; i < count && !fc.failed; i++) {
-        run(&fc, p, res, i);
-        for (int j = 0; j < i; j++) {
-            if (res[j].p && last_use[j] <= i) {
+    for (int i = 0; i < count && !fc.failed; i++) {
+        run(&fc, g.p, res, i);
+        for (int j = 0; j <= i; j++) {
+            if (res[j].p && !held(&g, j, i + 1)) {
                 free(res[j].p);
                 res[j].p = NULL;
             }
@@ -1518,7 +1732,7 @@ void svg_apply_filter(const svg_filter_job *job)
     if (!fc.failed) {
         write_back(&fc, &res[count - 1]);
     }
-    for (i = 0; res && i < count; i++) {
+    for (int i = 0; i < count; i++) {
         free(res[i].p);
     }
     free(fc.source.p);
@@ -1526,7 +1740,6 @@ void svg_apply_filter(const svg_filter_job *job)
     free(fc.empty.p);
     free(fc.fill.p);
     free(fc.stroke.p);
-    free(p);
     free(res);
-    free(last_use);
+    free_graph(&g);
 }
