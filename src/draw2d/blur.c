@@ -80,7 +80,18 @@ static void prefix_sums(line *l)
 static void box(line *l, float *out, long long d, long long lo)
 {
     prefix_sums(l);
-    for (int i = 0; i < l->n; i++) {
+    /* [a, b): both ends of the box on the line, its sums read directly;
+     * the ends past the line's ends follow the edge mode */
+    long long n = l->n, a = lo < 0 ? 0 : lo > n ? n : lo, b = n - d + lo + 1;
+    b = b < a ? a : b > n ? n : b;
+    const double *sum = l->sum;
+    for (long long i = 0; i < a; i++) {
+        out[i] = (float)((sum_below(l, i - lo + d) - sum_below(l, i - lo)) / (double)d);
+    }
+    for (long long i = a; i < b; i++) {
+        out[i] = (float)((sum[i - lo + d] - sum[i - lo]) / (double)d);
+    }
+    for (long long i = b; i < n; i++) {
         out[i] = (float)((sum_below(l, i - lo + d) - sum_below(l, i - lo)) / (double)d);
     }
 }

@@ -3609,18 +3609,22 @@ static void composite_layer_at(svg_doc *doc, sr_framebuffer *layer, const int at
     }
     sr_result r = sr_read_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
     const uint8_t *src = sr_framebuffer_pixels(layer);
-    for (size_t i = 0; r == SR_OK && i < n; i++) {
-        ptrdiff_t x = (ptrdiff_t)(i % (size_t)w) - at[0], y = (ptrdiff_t)(i / (size_t)w) - at[1];
-        const uint8_t *l = src + ((size_t)y * (size_t)lw + (size_t)x) * 4;
-        if (l[3] == 0 || (mask && mask[i] == 0)) {
-            continue;
+    for (int y = 0; r == SR_OK && y < h; y++) {
+        /* the layer covers the image: at[0] and at[1] are 0 or below */
+        const uint8_t *row = src + ((size_t)(y - at[1]) * (size_t)lw + (size_t)-at[0]) * 4;
+        for (int x = 0; x < w; x++) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            const uint8_t *l = row + (size_t)x * 4;
+            if (l[3] == 0 || (mask && mask[i] == 0)) {
+                continue;
+            }
+            sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
+                          (float)(l[3] / 255.0 * opacity) };
+            if (mode != SVG_BLEND_NORMAL) {
+                c = svg_blend_color(mode, px + i * 4, c);
+            }
+            svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
         }
-        sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
-                      (float)(l[3] / 255.0 * opacity) };
-        if (mode != SVG_BLEND_NORMAL) {
-            c = svg_blend_color(mode, px + i * 4, c);
-        }
-        svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
     }
     if (r == SR_OK) {
         r = sr_write_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
@@ -4096,7 +4100,7 @@ static svg_filter_job filter_job(svg_doc *doc, const frame *f, const double box[
 
 /* What running the filter on a w x h layer holds besides the image and
  * the layers open below it: the layer itself (closed but not yet
- * composited), the job's copy of its pixels and the filter's images. */
+ * composited), the result in RGBA8 and the filter's images. */
 static uint64_t filter_cost(const svg_filter_job *job, int *images)
 {
     uint64_t w = (uint64_t)job->width, h = (uint64_t)job->height;
@@ -4145,7 +4149,7 @@ static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, co
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return;
     }
-    memcpy(px, sr_framebuffer_pixels(layer), bytes);
+    job.source = sr_framebuffer_pixels(layer);
     job.pixels = px;
     unsigned long line = doc->line;
     const frame *outer = doc->filter_frame;

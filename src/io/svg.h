@@ -179,7 +179,8 @@ typedef struct svg_fe_style {
 /* What a filter is applied to and the reader's services it uses. */
 typedef struct svg_filter_job {
     const svg_node *filter;      /* the <filter> element */
-    uint8_t *pixels;             /* the element's layer, RGBA8 straight alpha: replaced */
+    const uint8_t *source;       /* the element's layer, RGBA8 straight alpha */
+    uint8_t *pixels;             /* width x height: the result, in the same form */
     int width, height;
     int origin[2];               /* the image pixel that is the layer's (0, 0): a
                                   * layer drawn beyond the image starts left of it

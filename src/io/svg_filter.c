@@ -39,6 +39,10 @@ typedef struct fctx {
     double bw, bh;               /* the bounding box's size (user units) */
     double sx, sy;               /* pixels per user unit along x and y */
     fimg source, source_alpha, empty, fill, stroke;
+    /* images freed and not yet made again: reused, as a new one would
+     * fault in and clear its pages (never more than the peak is held) */
+    float *spare[8];
+    int n_spare;
     bool failed;
 } fctx;
 
@@ -277,6 +281,25 @@ static float to_srgb(float c)
     return c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1 / 2.4f) - 0.055f;
 }
 
+/* fminf(fmaxf(v, 0), 1) inline (NaN gives 0 as well): the library
+ * calls are not inlined where NaN must be honoured. */
+static inline float clamp01(float v)
+{
+    return v > 0 ? (v < 1 ? v : 1) : 0;
+}
+
+/* A pixel's premultiplied colour into the other space, alpha kept. */
+static inline void convert_pixel(float *p, bool srgb)
+{
+    if (p[3] <= 0) {
+        return;
+    }
+    for (int c = 0; c < 3; c++) {
+        float v = clamp01(p[c] / p[3]);
+        p[c] = (srgb ? to_srgb(v) : to_linear(v)) * p[3];
+    }
+}
+
 /* The image's values converted to sRGB or linearRGB, alpha kept. */
 static void convert(fctx *fc, fimg *im, bool srgb)
 {
@@ -284,14 +307,11 @@ static void convert(fctx *fc, fimg *im, bool srgb)
         im->srgb = srgb;
         return;
     }
-    for (size_t i = 0; i < fc->n; i++) {
-        float *p = im->p + i * 4;
-        if (p[3] <= 0) {
-            continue;
-        }
-        for (int c = 0; c < 3; c++) {
-            float v = fminf(fmaxf(p[c] / p[3], 0), 1);
-            p[c] = (srgb ? to_srgb(v) : to_linear(v)) * p[3];
+    /* zero outside its subregion: nothing to convert there */
+    for (int y = im->sub[1]; y < im->sub[3]; y++) {
+        float *row = im->p + (size_t)y * fc->rw * 4;
+        for (int x = im->sub[0]; x < im->sub[2]; x++) {
+            convert_pixel(row + (size_t)x * 4, srgb);
         }
     }
     im->srgb = srgb;
@@ -299,8 +319,14 @@ static void convert(fctx *fc, fimg *im, bool srgb)
 
 /* ---- images ------------------------------------------------------------------ */
 
+/* A transparent image of the region. */
 static float *new_pixels(fctx *fc, const svg_node *at)
 {
+    if (fc->n_spare > 0) {
+        float *p = fc->spare[--fc->n_spare];
+        memset(p, 0, fc->n * 4 * sizeof *p);
+        return p;
+    }
     float *p = calloc(fc->n, 4 * sizeof *p);
     if (!p) {
         fail(fc, at, SR_OUT_OF_MEMORY, "out of memory");
@@ -308,15 +334,25 @@ static float *new_pixels(fctx *fc, const svg_node *at)
     return p;
 }
 
-/* The region's part of an RGBA8 straight-alpha layer, premultiplied. */
-static void from_layer(const fctx *fc, const uint8_t *px, float *out)
+static void release(fctx *fc, float *p)
+{
+    if (p && fc->n_spare < (int)(sizeof fc->spare / sizeof fc->spare[0])) {
+        fc->spare[fc->n_spare++] = p;
+    } else {
+        free(p);
+    }
+}
+
+/* The region's part of an RGBA8 straight-alpha layer, premultiplied
+ * (its alpha alone, the colour left black, when alpha_only). */
+static void from_layer(const fctx *fc, const uint8_t *px, float *out, bool alpha_only)
 {
     for (int y = 0; y < fc->rh; y++) {
         const uint8_t *s = px + ((size_t)(y + fc->ry) * fc->job->width + fc->rx) * 4;
         float *d = out + (size_t)y * fc->rw * 4;
         for (int x = 0; x < fc->rw; x++, s += 4, d += 4) {
             float al = s[3] / 255.0f;
-            for (int c = 0; c < 3; c++) {
+            for (int c = 0; c < 3 && !alpha_only; c++) {
                 d[c] = s[c] / 255.0f * al;
             }
             d[3] = al;
@@ -325,7 +361,7 @@ static void from_layer(const fctx *fc, const uint8_t *px, float *out)
 }
 
 static void premultiplied(sr_rgba c, bool srgb, float out[4]);
-static void flood(fctx *fc, float *out, const float color[4]);
+static void flood(fctx *fc, const int sub[4], float *out, const float color[4]);
 
 /* A standard input, made when first read: SourceGraphic and SourceAlpha
  * from the layer's pixels in the region, FillPaint and StrokePaint the
@@ -349,15 +385,10 @@ static fimg *standard(fctx *fc, int k)
     im->srgb = true;
     float paint[4];
     if (k == IN_SOURCE || k == IN_SOURCE_ALPHA) {
-        from_layer(fc, fc->job->pixels, im->p);
-    }
-    if (k == IN_SOURCE_ALPHA) {
-        for (size_t i = 0; i < fc->n * 4; i += 4) {
-            im->p[i] = im->p[i + 1] = im->p[i + 2] = 0;
-        }
+        from_layer(fc, fc->job->source, im->p, k == IN_SOURCE_ALPHA);
     } else if (k == IN_FILL || k == IN_STROKE) {
         premultiplied(k == IN_FILL ? fc->job->fill : fc->job->stroke, true, paint);
-        flood(fc, im->p, paint);
+        flood(fc, whole, im->p, paint);
     }
     return im;
 }
@@ -377,6 +408,16 @@ static void cut_to(fctx *fc, fimg *im)
 }
 
 /* ---- the primitives ----------------------------------------------------------- */
+
+/* Each pixel of the subregion `sub` (x0 y0 x1 y1), i the index of its
+ * first float: a primitive that works pixel by pixel leaves the rest of
+ * its result as new_pixels made it, transparent, which is what cut_to
+ * would make of it. */
+#define EACH_PIXEL(fc, sub, i)                                                               \
+    for (int y_ = (sub)[1]; y_ < (sub)[3]; y_++)                                             \
+        for (size_t i = ((size_t)y_ * (size_t)(fc)->rw + (size_t)(sub)[0]) * 4,              \
+                    end_ = ((size_t)y_ * (size_t)(fc)->rw + (size_t)(sub)[2]) * 4;           \
+             i < end_; i += 4)
 
 typedef struct prim {
     const svg_node *node;
@@ -411,7 +452,7 @@ static void blur(fctx *fc, const svg_node *n, const float *in, float *out, doubl
 
 /* The input shifted by (dx, dy) user units: through the transform, and
  * between pixels bilinearly (a whole-pixel shift copies exactly). */
-static void offset(fctx *fc, const float *in, float *out, double dx, double dy)
+static void offset(fctx *fc, const int sub[4], const float *in, float *out, double dx, double dy)
 {
     const double *m = fc->job->m;
     if (fc->obb) {
@@ -424,17 +465,20 @@ static void offset(fctx *fc, const float *in, float *out, double dx, double dy)
     long ix = (long)floor(ox), iy = (long)floor(oy);
     float fx = (float)(ox - ix), fy = (float)(oy - iy);
     float w[4] = { (1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy };
-    for (int y = 0; y < fc->rh; y++) {
-        for (int x = 0; x < fc->rw; x++) {
-            float *d = out + ((size_t)y * fc->rw + x) * 4;
-            for (int t = 0; t < 4; t++) {
-                long sx = x - ix - (t & 1), sy = y - iy - (t >> 1);
-                if (w[t] == 0 || sx < 0 || sy < 0 || sx >= fc->rw || sy >= fc->rh) {
-                    continue;
-                }
-                const float *s = in + ((size_t)sy * fc->rw + (size_t)sx) * 4;
+    for (int y = sub[1]; y < sub[3]; y++) {
+        /* taps in order, each over the columns whose source lies inside */
+        for (int t = 0; t < 4; t++) {
+            long sy = y - iy - (t >> 1), shift = ix + (t & 1);
+            if (w[t] == 0 || sy < 0 || sy >= fc->rh) {
+                continue;
+            }
+            long x0 = sub[0] > shift ? sub[0] : shift;
+            long x1 = sub[2] < fc->rw + shift ? sub[2] : fc->rw + shift;
+            float *d = out + ((size_t)y * fc->rw) * 4;
+            const float *s = in + ((size_t)sy * fc->rw) * 4;
+            for (long x = x0; x < x1; x++) {
                 for (int c = 0; c < 4; c++) {
-                    d[c] += w[t] * s[c];
+                    d[x * 4 + c] += w[t] * s[(x - shift) * 4 + c];
                 }
             }
         }
@@ -451,16 +495,16 @@ static void premultiplied(sr_rgba c, bool srgb, float out[4])
     out[3] = c.a;
 }
 
-static void flood(fctx *fc, float *out, const float color[4])
+static void flood(fctx *fc, const int sub[4], float *out, const float color[4])
 {
-    for (size_t i = 0; i < fc->n; i++) {
-        memcpy(out + i * 4, color, 4 * sizeof *color);
+    EACH_PIXEL(fc, sub, i) {
+        memcpy(out + i, color, 4 * sizeof *color);
     }
 }
 
-static void over(fctx *fc, const float *a, float *out)
+static void over(fctx *fc, const int sub[4], const float *a, float *out)
 {
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float k = 1 - a[i + 3];
         for (int c = 0; c < 4; c++) {
             out[i + c] = a[i + c] + out[i + c] * k;
@@ -470,7 +514,8 @@ static void over(fctx *fc, const float *a, float *out)
 
 typedef enum { OP_OVER, OP_IN, OP_OUT, OP_ATOP, OP_XOR, OP_ARITHMETIC, OP_LIGHTER } comp_op;
 
-static void composite(fctx *fc, const svg_node *n, const float *a, const float *b, float *out)
+static void composite(fctx *fc, const svg_node *n, const int sub[4], const float *a,
+                      const float *b, float *out)
 {
     static const char *const names[] = { "over", "in", "out", "atop", "xor", "arithmetic",
                                          "lighter" };
@@ -492,7 +537,7 @@ static void composite(fctx *fc, const svg_node *n, const float *a, const float *
         static const char *const kn[4] = { "k1", "k2", "k3", "k4" };
         k[i] = (float)number_attr(fc, n, kn[i], 0);
     }
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float aa = a[i + 3], ba = b[i + 3];
         for (int c = 0; c < 4; c++) {
             float A = a[i + c], B = b[i + c], r;
@@ -505,16 +550,17 @@ static void composite(fctx *fc, const svg_node *n, const float *a, const float *
             case OP_LIGHTER: r = A + B; break;
             default: r = A + B * (1 - aa); break;
             }
-            out[i + c] = fminf(fmaxf(r, 0), 1);
+            out[i + c] = clamp01(r);
         }
         /* premultiplied: no channel above alpha */
         for (int c = 0; c < 3; c++) {
-            out[i + c] = fminf(out[i + c], out[i + 3]);
+            out[i + c] = out[i + c] < out[i + 3] ? out[i + c] : out[i + 3];
         }
     }
 }
 
-static void blend(fctx *fc, const svg_node *n, const float *a, const float *b, float *out)
+static void blend(fctx *fc, const svg_node *n, const int sub[4], const float *a, const float *b,
+                  float *out)
 {
     const char *v = fattr(n, "mode");
     int mode = v ? svg_blend_mode(v) : SVG_BLEND_NORMAL;
@@ -522,7 +568,7 @@ static void blend(fctx *fc, const svg_node *n, const float *a, const float *b, f
         fc->job->warn(fc->job->host, n, "mode", v);
         mode = SVG_BLEND_NORMAL;
     }
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float aa = a[i + 3], ba = b[i + 3], cs[3], cb[3], mix[3];
         for (int c = 0; c < 3; c++) {
             cs[c] = aa > 0 ? a[i + c] / aa : 0;
@@ -537,19 +583,19 @@ static void blend(fctx *fc, const svg_node *n, const float *a, const float *b, f
 }
 
 /* Straight colour per pixel through f, premultiplied again after. */
-static void per_pixel(fctx *fc, const float *in, float *out,
+static void per_pixel(fctx *fc, const int sub[4], const float *in, float *out,
                       void (*f)(const void *data, float c[4]), const void *data)
 {
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float c[4], a = in[i + 3];
         for (int k = 0; k < 3; k++) {
             c[k] = a > 0 ? in[i + k] / a : 0;
         }
         c[3] = a;
         f(data, c);
-        a = fminf(fmaxf(c[3], 0), 1);
+        a = clamp01(c[3]);
         for (int k = 0; k < 3; k++) {
-            out[i + k] = fminf(fmaxf(c[k], 0), 1) * a;
+            out[i + k] = clamp01(c[k]) * a;
         }
         out[i + 3] = a;
     }
@@ -566,7 +612,8 @@ static void apply_matrix(const void *data, float c[4])
     memcpy(c, r, sizeof r);
 }
 
-static void color_matrix(fctx *fc, const svg_node *n, const float *in, float *out)
+static void color_matrix(fctx *fc, const svg_node *n, const int sub[4], const float *in,
+                         float *out)
 {
     double m[20] = { 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0 };
     const char *type = fattr(n, "type"), *values = fattr(n, "values");
@@ -610,7 +657,7 @@ static void color_matrix(fctx *fc, const svg_node *n, const float *in, float *ou
     } else {
         fc->job->warn(fc->job->host, n, "type", type);
     }
-    per_pixel(fc, in, out, apply_matrix, m);
+    per_pixel(fc, sub, in, out, apply_matrix, m);
 }
 
 /* feComponentTransfer: one transfer function per channel. */
@@ -647,11 +694,12 @@ static void apply_transfer(const void *data, float c[4])
 {
     const transfer *t = data;
     for (int i = 0; i < 4; i++) {
-        c[i] = transfer_one(&t[i], fminf(fmaxf(c[i], 0), 1));
+        c[i] = transfer_one(&t[i], clamp01(c[i]));
     }
 }
 
-static void component_transfer(fctx *fc, const svg_node *n, const float *in, float *out)
+static void component_transfer(fctx *fc, const svg_node *n, const int sub[4], const float *in,
+                               float *out)
 {
     transfer t[4] = { { 0 } };
     static const char *const funcs[4] = { "feFuncR", "feFuncG", "feFuncB", "feFuncA" };
@@ -687,7 +735,7 @@ static void component_transfer(fctx *fc, const svg_node *n, const float *in, flo
             }
         }
     }
-    per_pixel(fc, in, out, apply_transfer, t);
+    per_pixel(fc, sub, in, out, apply_transfer, t);
 }
 
 /* Erode (min) or dilate (max) each premultiplied channel over a
@@ -733,7 +781,7 @@ static void morphology(fctx *fc, const svg_node *n, const float *in, float *out)
             }
         }
     }
-    free(tmp);
+    release(fc, tmp);
 }
 
 /* The input's subregion repeated over the whole region. */
@@ -1229,7 +1277,7 @@ static void image(fctx *fc, const svg_node *n, fimg *out)
         return;
     }
     if (fc->job->draw(fc->job->host, n, href, r, px)) {
-        from_layer(fc, px, out->p);
+        from_layer(fc, px, out->p, false);
         out->srgb = true;
     } else {
         fc->failed = true;
@@ -1374,11 +1422,12 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         pair_attr(fc, n, "stdDeviation", 0, v);
         blur(fc, n, a->p, out->p, v[0], v[1]);
     } else if (is(n, "feOffset")) {
-        offset(fc, a->p, out->p, number_attr(fc, n, "dx", 0), number_attr(fc, n, "dy", 0));
+        offset(fc, out->sub, a->p, out->p, number_attr(fc, n, "dx", 0),
+               number_attr(fc, n, "dy", 0));
     } else if (is(n, "feFlood")) {
         float c[4];
         premultiplied(st.flood, st.srgb, c);
-        flood(fc, out->p, c);
+        flood(fc, out->sub, out->p, c);
     } else if (is(n, "feMerge")) {
         for (const svg_node *c = n->first; c; c = c->next) {
             if (is(c, "feMergeNode")) {
@@ -1387,17 +1436,17 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
                     return;
                 }
                 convert(fc, m, st.srgb);
-                over(fc, m->p, out->p);
+                over(fc, out->sub, m->p, out->p);
             }
         }
     } else if (is(n, "feComposite")) {
-        composite(fc, n, a->p, b->p, out->p);
+        composite(fc, n, out->sub, a->p, b->p, out->p);
     } else if (is(n, "feBlend")) {
-        blend(fc, n, a->p, b->p, out->p);
+        blend(fc, n, out->sub, a->p, b->p, out->p);
     } else if (is(n, "feColorMatrix")) {
-        color_matrix(fc, n, a->p, out->p);
+        color_matrix(fc, n, out->sub, a->p, out->p);
     } else if (is(n, "feComponentTransfer")) {
-        component_transfer(fc, n, a->p, out->p);
+        component_transfer(fc, n, out->sub, a->p, out->p);
     } else if (is(n, "feMorphology")) {
         morphology(fc, n, a->p, out->p);
     } else if (is(n, "feTile")) {
@@ -1419,11 +1468,12 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
             }
             pair_attr(fc, n, "stdDeviation", 2, v);
             blur(fc, n, t, u, v[0], v[1]);
-            offset(fc, u, out->p, number_attr(fc, n, "dx", 2), number_attr(fc, n, "dy", 2));
-            over(fc, a->p, out->p);
+            offset(fc, out->sub, u, out->p, number_attr(fc, n, "dx", 2),
+                   number_attr(fc, n, "dy", 2));
+            over(fc, out->sub, a->p, out->p);
         }
-        free(t);
-        free(u);
+        release(fc, t);
+        release(fc, u);
     } else if (is(n, "feImage")) {
         image(fc, n, out);
     } else if (is(n, "feConvolveMatrix")) {
@@ -1449,20 +1499,26 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
 static void write_back(fctx *fc, fimg *im)
 {
     const svg_filter_job *job = fc->job;
-    convert(fc, im, true);
+    size_t stride = (size_t)job->width * 4;
     for (int y = 0; y < job->height; y++) {
-        uint8_t *row = job->pixels + (size_t)y * job->width * 4;
-        for (int x = 0; x < job->width; x++) {
-            uint8_t *d = row + (size_t)x * 4;
-            int X = x - fc->rx, Y = y - fc->ry;
-            if (X < 0 || Y < 0 || X >= fc->rw || Y >= fc->rh) {
-                memset(d, 0, 4);
-                continue;
+        uint8_t *row = job->pixels + (size_t)y * stride;
+        int Y = y - fc->ry;
+        if (Y < 0 || Y >= fc->rh) {
+            memset(row, 0, stride);
+            continue;
+        }
+        memset(row, 0, (size_t)fc->rx * 4);
+        memset(row + (size_t)(fc->rx + fc->rw) * 4, 0, stride - (size_t)(fc->rx + fc->rw) * 4);
+        for (int X = 0; X < fc->rw; X++) {
+            uint8_t *d = row + (size_t)(X + fc->rx) * 4;
+            float s[4];
+            memcpy(s, im->p + ((size_t)Y * fc->rw + X) * 4, sizeof s);
+            if (!im->srgb) {
+                convert_pixel(s, true);
             }
-            const float *s = im->p + ((size_t)Y * fc->rw + X) * 4;
-            float a = fminf(fmaxf(s[3], 0), 1);
+            float a = clamp01(s[3]);
             for (int c = 0; c < 3; c++) {
-                float v = a > 0 ? fminf(fmaxf(s[c] / a, 0), 1) : 0;
+                float v = a > 0 ? clamp01(s[c] / a) : 0;
                 d[c] = (uint8_t)(v * 255 + 0.5f);
             }
             d[3] = (uint8_t)(a * 255 + 0.5f);
@@ -1724,13 +1780,15 @@ void svg_apply_filter(const svg_filter_job *job)
         run(&fc, g.p, res, i);
         for (int j = 0; j <= i; j++) {
             if (res[j].p && !held(&g, j, i + 1)) {
-                free(res[j].p);
+                release(&fc, res[j].p);
                 res[j].p = NULL;
             }
         }
     }
     if (!fc.failed) {
         write_back(&fc, &res[count - 1]);
+    } else {
+        memset(job->pixels, 0, all); /* reported: not used */
     }
     for (int i = 0; i < count; i++) {
         free(res[i].p);
@@ -1740,6 +1798,9 @@ void svg_apply_filter(const svg_filter_job *job)
     free(fc.empty.p);
     free(fc.fill.p);
     free(fc.stroke.p);
+    for (int k = 0; k < fc.n_spare; k++) {
+        free(fc.spare[k]);
+    }
     free(res);
     free_graph(&g);
 }
