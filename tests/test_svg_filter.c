@@ -571,7 +571,44 @@ SR_TEST(a_filter_brings_in_what_lies_beyond_the_image)
              SR_OK);
     REQUIRE(fb);
     CHECK_EQ(warn.count, 1);
-    CHECK_STR_CONTAINS(warn.text, "filter region beyond the image");
+    CHECK_STR_CONTAINS(warn.text, "t.svg:1: warning: filter region beyond the image: its source "
+                                  "drawn up to the image's edges, as the memory left for layers "
+                                  "holds no more");
     CHECK_EQ(pixel(fb, 20, 30)[3], 0);
     sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
+/* Nor does the larger layer make a drawing refused that drew before: where
+ * it would pass the work budget (a tile reaches the whole region, here
+ * three times the image each way) or the largest framebuffer (an offset
+ * of 7000 pixels on an image 8000 wide), the source is drawn up to the
+ * image's edges, with one warning. */
+SR_TEST(a_filter_region_beyond_the_image_stays_within_the_budgets)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const struct { const char *svg, *why; } cases[] = {
+        { "<svg xmlns='http://www.w3.org/2000/svg' width='700' height='700'>"
+          "<filter id='f' filterUnits='userSpaceOnUse' x='-2000' y='-2000' width='5000'"
+          " height='5000'><feTile/><feOffset dx='1'/><feOffset dx='1'/></filter>"
+          "<rect width='700' height='700' fill='#00f' filter='url(#f)'/></svg>",
+          "as the work budget holds no more" },
+        { "<svg xmlns='http://www.w3.org/2000/svg' width='8000' height='4'>"
+          "<filter id='f' filterUnits='userSpaceOnUse' x='-8000' y='0' width='16000'"
+          " height='4'><feOffset dx='7000'/></filter>"
+          "<rect x='-7000' width='100' height='4' fill='#00f' filter='url(#f)'/></svg>",
+          "as the largest layer holds no more" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sr_test_warnings warn = { 0 };
+        sr_framebuffer *fb = render(cases[i].svg, SR_OK, &warn, NULL, 0);
+        CHECK_EQ(warn.count, 1);
+        CHECK_STR_CONTAINS(warn.text, cases[i].why);
+        if (fb) {
+            CHECK_EQ(pixel(fb, 5, 1)[3], i == 0 ? 255 : 0); /* drawn; not moved in */
+            CHECK_EQ(pixel(fb, 5, 1)[2], i == 0 ? 255 : 0);
+        }
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
 }

@@ -4178,18 +4178,19 @@ static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, co
 /* The pixels (x0 y0 x1 y1 of the current image) the layer of an element
  * with a filter covers: the image, and beyond it what the filter can
  * move into it (an feOffset of content drawn outside), as the filter
- * region allows and the memory left for layers holds (else the image
- * alone, warned once). */
+ * region allows and the memory left for layers, the work budget and the
+ * largest framebuffer hold (else the image alone, warned once). */
 static void filter_layer_rect(svg_doc *doc, const frame *f, const double box[4], int out[4])
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     const int zero[2] = { 0, 0 };
     int ext[4];
+    double passes;
     out[0] = out[1] = 0;
     out[2] = w;
     out[3] = h;
     svg_filter_job job = filter_job(doc, f, box, w, h, zero, NULL);
-    if (!svg_filter_extent(&job, ext) || doc->status != SR_OK ||
+    if (!svg_filter_extent(&job, ext, &passes) || doc->status != SR_OK ||
         (ext[0] >= 0 && ext[1] >= 0 && ext[2] <= w && ext[3] <= h)) {
         return;
     }
@@ -4201,10 +4202,27 @@ static void filter_layer_rect(svg_doc *doc, const frame *f, const double box[4],
     int images;
     job = filter_job(doc, &moved, box, r[2] - r[0], r[3] - r[1], r, NULL);
     uint64_t cost = filter_cost(&job, &images), limit = doc->opt->max_layer_bytes;
+    /* the larger layer is filtered and composited; its region's pixels
+     * are counted for every pass */
+    double more = ((double)(r[2] - r[0]) * (r[3] - r[1]) - (double)w * h) * (1 + passes);
+    double base = doc->work_used + (double)w * h * (2 + passes);
+    const char *why = NULL;
     if (limit && doc->layer_bytes + cost > limit) {
-        warn_keyed(doc, "filter region beyond the image",
+        why = "the memory left for layers";
+    } else if (base + more > doc->work_budget) {
+        if (base > doc->work_budget) {
+            return; /* refused for its work either way */
+        }
+        why = "the work budget";
+    } else if (r[2] - r[0] > SR_MAX_FRAMEBUFFER_SIZE || r[3] - r[1] > SR_MAX_FRAMEBUFFER_SIZE) {
+        why = "the largest layer";
+    }
+    if (why) {
+        char key[96];
+        snprintf(key, sizeof key, "filter region beyond the image: %s", why);
+        warn_keyed(doc, key,
                    "filter region beyond the image: its source drawn up to the image's edges, "
-                   "as the memory left for layers holds no more");
+                   "as %s holds no more", why);
         return;
     }
     memcpy(out, r, sizeof r);

@@ -218,10 +218,12 @@ void svg_apply_filter(const svg_filter_job *job);
  * that the SourceGraphic must cover for the result inside the layer:
  * the filter region, cut to the layer widened by how far the primitives
  * can move content (offsets, blurs, radii; a tile or a wrapped edge takes
- * the whole region), at most the layer's width and height each side.
- * False when the filter draws nothing.  Reads job->filter, m, bbox, vp_w,
- * vp_h, width and height; warns as svg_apply_filter would. */
-bool svg_filter_extent(const svg_filter_job *job, int out[4]);
+ * the whole region), at most the layer's width and height each side;
+ * passes: about how many times the filter's work budget counts each
+ * pixel of its region.  False when the filter draws nothing.  Reads
+ * job->filter, m, bbox, vp_w, vp_h, width and height; warns as
+ * svg_apply_filter would. */
+bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes);
 
 /* The most memory (bytes) the filter's float images and scratch hold at
  * once while svg_apply_filter runs on the job, and (images) how many

@@ -1698,7 +1698,7 @@ static void own_reach(fctx *fc, const svg_node *n, double r[2])
     }
 }
 
-bool svg_filter_extent(const svg_filter_job *job, int out[4])
+bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
 {
     fctx fc = { .job = job };
     double px[4];
@@ -1713,9 +1713,12 @@ bool svg_filter_extent(const svg_filter_job *job, int out[4])
         free_graph(&g);
         return false;
     }
+    *passes = 0;
     for (int i = 0; i < count; i++) {
         const prim *p = &g.p[i];
         double in[2] = { 0, 0 };
+        /* what run() counts of the budget: its reads and its write */
+        *passes += 1 + (p->in[1] != -4) + (reads_in(p->node) && !is(p->node, "feTile"));
         for (int k = 0; k < 2; k++) {
             if (p->in[k] >= 0 && (k == 1 || reads_in(p->node))) {
                 in[0] = fmax(in[0], reach[p->in[k]][0]);
@@ -1724,6 +1727,7 @@ bool svg_filter_extent(const svg_filter_job *job, int out[4])
         }
         for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
             int j = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : -1;
+            *passes += is(m, "feMergeNode");
             if (j >= 0) {
                 in[0] = fmax(in[0], reach[j][0]);
                 in[1] = fmax(in[1], reach[j][1]);
