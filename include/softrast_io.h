@@ -452,8 +452,11 @@ typedef struct sr_svg_desc {
                               * layers of their own, nested up to 8 deep, each 6
                               * bytes a pixel while open (its RGBA, the coverages
                               * it is composited through) and 4 more for the
-                              * composite's copy of the image; a layer that would
-                              * pass the limit fails the render with SR_TOO_LARGE.
+                              * composite's copy of the image; a filter's float
+                              * images count too (16 bytes a pixel of its region
+                              * each, as many as it holds at once); a layer or
+                              * filter that would pass the limit fails the render
+                              * with SR_TOO_LARGE.
                               * The softrast tool gives what SR_MEMORY_LIMIT leaves */
     sr_svg_warn_fn warn;     /* NULL: warnings are only counted */
     void *warn_user;

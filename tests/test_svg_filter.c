@@ -61,14 +61,16 @@ static sr_framebuffer *render_file(const char *file, double scale, bool white)
  * a rotated blur; filtercolor: color matrices, component transfer,
  * blend modes, a blur in sRGB and in linearRGB; filtermisc: morphology,
  * tile, drop shadows (one rotated and scaled), a glow; filterimage:
- * feImage of a picture file (preserveAspectRatio) and of an element. */
+ * feImage of a picture file (preserveAspectRatio) and of an element;
+ * filteredge: offset, blur, shadow and morphology bringing in content
+ * drawn beyond the image. */
 SR_TEST(filter_drawings_match_references)
 {
     if (!sr_io_have_svg()) {
         SKIP("built without expat");
     }
     static const char *const names[] = { "filters", "filtercolor", "filtermisc",
-                                          "filterimage" };
+                                          "filterimage", "filteredge" };
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         if (strcmp(names[i], "filterimage") == 0 && !sr_io_have_jpeg()) {
             continue; /* its picture is a JPEG */
@@ -452,6 +454,161 @@ SR_TEST(values_at_the_ends_of_the_range_draw_or_are_refused)
         sr_result r = sr_render_svg(sr_test_ctx(), svg, strlen(svg),
                                     &(sr_svg_desc){ .name = "t.svg" }, &fb, NULL, &err);
         CHECK(r == SR_OK || r == SR_TOO_LARGE || r == SR_BAD_FORMAT);
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+}
+
+/* A filter's float images (16 bytes a pixel of its region each, results
+ * kept alive by later readers) count against sr_svg_desc.max_layer_bytes
+ * as layers do: eight named floods merged hold nine images at once. */
+SR_TEST(a_filter_past_the_memory_left_for_layers_is_refused)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    char svg[2048] = "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>"
+                     "<filter id='f'>";
+    for (int i = 0; i < 8; i++) {
+        snprintf(svg + strlen(svg), sizeof svg - strlen(svg),
+                 "<feFlood flood-color='#%06x' flood-opacity='0.2' result='r%d'/>", i * 0x1f1f1f,
+                 i);
+    }
+    strcat(svg, "<feMerge>");
+    for (int i = 0; i < 8; i++) {
+        snprintf(svg + strlen(svg), sizeof svg - strlen(svg), "<feMergeNode in='r%d'/>", i);
+    }
+    strcat(svg, "</feMerge></filter><rect width='64' height='64' filter='url(#f)'/></svg>");
+    sr_framebuffer *fb = NULL, *unlimited = NULL;
+    sr_io_error err;
+    sr_svg_info info;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg),
+                           &(sr_svg_desc){ .name = "t.svg", .max_layer_bytes = 256 << 10 }, &fb,
+                           &info, &err),
+             SR_TOO_LARGE);
+    CHECK(fb == NULL);
+    CHECK(info.over_layer_limit);
+    /* nine images of 64 x 64 x 16 bytes, the layer (6 a pixel) and its copy (4) */
+    CHECK_STR_CONTAINS(err.message, "t.svg:1: filter \"#f\": its results and the layers open "
+                                    "(9 float images of the filter region at once) need about "
+                                    "616 KiB besides the image, more than the 256 KiB left for "
+                                    "them: draw it smaller");
+    /* enough for them: the pixels drawn without a limit */
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg),
+                           &(sr_svg_desc){ .max_layer_bytes = 616 << 10 }, &fb, &info, &err),
+             SR_OK);
+    CHECK(!info.over_layer_limit);
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg), &(sr_svg_desc){ 0 }, &unlimited,
+                           NULL, &err),
+             SR_OK);
+    if (fb && unlimited) {
+        CHECK(memcmp(sr_framebuffer_pixels(fb), sr_framebuffer_pixels(unlimited), 64 * 64 * 4) ==
+              0);
+        CHECK(pixel(fb, 30, 30)[3] > 0);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    sr_destroy_framebuffer(sr_test_ctx(), unlimited);
+}
+
+/* A merge reads every node, each a pass over the region: thousands of
+ * nodes cost their passes of the work budget instead of 65. */
+SR_TEST(a_merge_of_many_nodes_costs_each_of_the_budget)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    size_t cap = 200000, len = 0;
+    char *svg = malloc(cap);
+    REQUIRE(svg);
+    len += (size_t)snprintf(svg, cap, "<svg xmlns='http://www.w3.org/2000/svg' width='64' "
+                                      "height='64'><filter id='f'><feMerge>");
+    for (int i = 0; i < 6000; i++) {
+        len += (size_t)snprintf(svg + len, cap - len, "<feMergeNode/>");
+    }
+    snprintf(svg + len, cap - len,
+             "</feMerge></filter><rect width='64' height='64' filter='url(#f)'/></svg>");
+    sr_framebuffer *fb = NULL;
+    sr_io_error err;
+    sr_svg_info info;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg), &(sr_svg_desc){ .name = "t.svg" },
+                           &fb, &info, &err),
+             SR_TOO_LARGE);
+    CHECK(!info.over_layer_limit); /* work, not memory */
+    CHECK_STR_CONTAINS(err.message, "pixel operations");
+    CHECK(info.work_used <= info.work_budget);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    free(svg);
+}
+
+/* The SourceGraphic is drawn over the filter region beyond the image as
+ * far as the primitives can move it in: a square drawn left of the image
+ * and offset into it shows; where the memory left for layers holds only
+ * the image, it is drawn up to the image's edges with one warning. */
+SR_TEST(a_filter_brings_in_what_lies_beyond_the_image)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const char svg[] =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>"
+        "<filter id='f' filterUnits='userSpaceOnUse' x='-64' y='0' width='192' height='64'>"
+        "<feOffset dx='50'/></filter>"
+        "<rect x='-40' y='10' width='30' height='40' fill='#00f' filter='url(#f)'/></svg>";
+    sr_framebuffer *fb = render(svg, SR_OK, NULL, NULL, 0);
+    REQUIRE(fb);
+    CHECK_EQ(pixel(fb, 20, 30)[2], 255); /* moved in from x = -30 */
+    CHECK_EQ(pixel(fb, 20, 30)[3], 255);
+    CHECK_EQ(pixel(fb, 45, 30)[3], 0);
+    CHECK_EQ(pixel(fb, 20, 5)[3], 0);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* 166 x 64 pixels would hold two images of the region, the layer and
+     * its copy (about 446 KiB); the image's 64 x 64 about 172 KiB */
+    sr_test_warnings warn = { 0 };
+    sr_io_error err;
+    CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg),
+                           &(sr_svg_desc){ .name = "t.svg", .max_layer_bytes = 300 << 10,
+                                           .warn = sr_test_collect_warning, .warn_user = &warn },
+                           &fb, NULL, &err),
+             SR_OK);
+    REQUIRE(fb);
+    CHECK_EQ(warn.count, 1);
+    CHECK_STR_CONTAINS(warn.text, "t.svg:1: warning: filter region beyond the image: its source "
+                                  "drawn up to the image's edges, as the memory left for layers "
+                                  "holds no more");
+    CHECK_EQ(pixel(fb, 20, 30)[3], 0);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
+/* Nor does the larger layer make a drawing refused that drew before: where
+ * it would pass the work budget (a tile reaches the whole region, here
+ * three times the image each way) or the largest framebuffer (an offset
+ * of 7000 pixels on an image 8000 wide), the source is drawn up to the
+ * image's edges, with one warning. */
+SR_TEST(a_filter_region_beyond_the_image_stays_within_the_budgets)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const struct { const char *svg, *why; } cases[] = {
+        { "<svg xmlns='http://www.w3.org/2000/svg' width='700' height='700'>"
+          "<filter id='f' filterUnits='userSpaceOnUse' x='-2000' y='-2000' width='5000'"
+          " height='5000'><feTile/><feOffset dx='1'/><feOffset dx='1'/></filter>"
+          "<rect width='700' height='700' fill='#00f' filter='url(#f)'/></svg>",
+          "as the work budget holds no more" },
+        { "<svg xmlns='http://www.w3.org/2000/svg' width='8000' height='4'>"
+          "<filter id='f' filterUnits='userSpaceOnUse' x='-8000' y='0' width='16000'"
+          " height='4'><feOffset dx='7000'/></filter>"
+          "<rect x='-7000' width='100' height='4' fill='#00f' filter='url(#f)'/></svg>",
+          "as the largest layer holds no more" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sr_test_warnings warn = { 0 };
+        sr_framebuffer *fb = render(cases[i].svg, SR_OK, &warn, NULL, 0);
+        CHECK_EQ(warn.count, 1);
+        CHECK_STR_CONTAINS(warn.text, cases[i].why);
+        if (fb) {
+            CHECK_EQ(pixel(fb, 5, 1)[3], i == 0 ? 255 : 0); /* drawn; not moved in */
+            CHECK_EQ(pixel(fb, 5, 1)[2], i == 0 ? 255 : 0);
+        }
         sr_destroy_framebuffer(sr_test_ctx(), fb);
     }
 }

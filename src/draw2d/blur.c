@@ -16,44 +16,47 @@
 
 /* Deviations from this up use the box blurs (SVG 1.1, feGaussianBlur). */
 #define BOX_FROM_SIGMA 2.0
-/* Columns are blurred this many at a time, gathered into contiguous
- * lines: walking a column down the image one row stride at a time
- * misses the cache on every pixel. */
+/* Columns are blurred this many at a time, side by side: each line's
+ * running sum waits on the addition before it, so lines summed together
+ * keep the adder busy, and a row's span of them is contiguous. */
 #define COLUMN_BLOCK 16
 /* Larger deviations blur no further than this: every pixel of the widest
  * image already averages the whole line; the cap keeps box sizes in int. */
 #define MAX_SIGMA 1e6
 
-typedef struct line {
-    const float *src;      /* n values, `step` floats apart */
+/* `lanes` lines side by side: value i of lane j at src[i * step + j]. */
+typedef struct lines {
+    const float *src;
     size_t step;
-    int n;
-    double *sum;           /* sum[k] = src[0] + ... + src[k - 1], n + 1 of them */
+    int n, lanes;
+    double *sum;           /* sum[k * lanes + j]: lane j's values below k, n + 1 of them */
     sr_blur_edge edge;
-} line;
+} lines;
 
-/* The sum of the extended line's values at indices below k (k may be
+/* The sum of lane j's extended values at indices below k (k may be
  * outside 0..n): what lies beyond the ends follows the edge mode. */
-static double sum_below(const line *l, long long k)
+static double sum_below(const lines *l, int j, long long k)
 {
     long long n = l->n;
+    const double *sum = l->sum + j;
+    size_t L = (size_t)l->lanes;
     if (k >= 0 && k <= n) {
-        return l->sum[k];
+        return sum[(size_t)k * L];
     }
     switch (l->edge) {
     case SR_BLUR_EDGE_DUPLICATE:
-        return k < 0 ? (double)k * l->src[0]
-                     : l->sum[n] + (double)(k - n) * l->src[(size_t)(n - 1) * l->step];
+        return k < 0 ? (double)k * l->src[j]
+                     : sum[(size_t)n * L] + (double)(k - n) * l->src[(size_t)(n - 1) * l->step + j];
     case SR_BLUR_EDGE_WRAP: {
         long long q = k >= 0 ? k / n : -((-k + n - 1) / n);
-        return (double)q * l->sum[n] + l->sum[k - q * n];
+        return (double)q * sum[(size_t)n * L] + sum[(size_t)(k - q * n) * L];
     }
     default:
-        return k < 0 ? 0 : l->sum[n];
+        return k < 0 ? 0 : sum[(size_t)n * L];
     }
 }
 
-static float value_at(const line *l, long long k)
+static float value_at(const lines *l, int j, long long k)
 {
     long long n = l->n;
     if (k < 0 || k >= n) {
@@ -63,55 +66,85 @@ static float value_at(const line *l, long long k)
         default: return 0;
         }
     }
-    return l->src[(size_t)k * l->step];
+    return l->src[(size_t)k * l->step + j];
 }
 
-static void prefix_sums(line *l)
+/* Each lane's running sum, the lanes side by side. */
+static void prefix_sums(lines *l)
 {
-    double s = 0;
-    l->sum[0] = 0;
+    size_t L = (size_t)l->lanes;
+    double *sum = l->sum;
+    for (size_t j = 0; j < L; j++) {
+        sum[j] = 0;
+    }
     for (int i = 0; i < l->n; i++) {
-        s += l->src[(size_t)i * l->step];
-        l->sum[i + 1] = s;
+        const float *v = l->src + (size_t)i * l->step;
+        double *prev = sum + (size_t)i * L, *next = prev + L;
+        for (size_t j = 0; j < L; j++) {
+            next[j] = prev[j] + v[j];
+        }
     }
 }
 
-/* One box of d values: out[i] = mean of in[i - lo .. i + d - 1 - lo]. */
-static void box(line *l, float *out, long long d, long long lo)
+/* One box of d values: out[i] = mean of in[i - lo .. i + d - 1 - lo],
+ * out laid out as the lanes (i * lanes + j). */
+static void box(lines *l, float *out, long long d, long long lo)
 {
     prefix_sums(l);
-    for (int i = 0; i < l->n; i++) {
-        out[i] = (float)((sum_below(l, i - lo + d) - sum_below(l, i - lo)) / (double)d);
+    /* [a, b): both ends of the box on the line, its sums read directly;
+     * the ends past the line's ends follow the edge mode */
+    long long n = l->n, a = lo < 0 ? 0 : lo > n ? n : lo, b = n - d + lo + 1;
+    b = b < a ? a : b > n ? n : b;
+    int L = l->lanes;
+    const double *sum = l->sum;
+    for (long long i = 0; i < n; i++) {
+        float *o = out + (size_t)i * (size_t)L;
+        if (i >= a && i < b) {
+            const double *hi = sum + (size_t)(i - lo + d) * (size_t)L;
+            const double *low = sum + (size_t)(i - lo) * (size_t)L;
+            for (int j = 0; j < L; j++) {
+                o[j] = (float)((hi[j] - low[j]) / (double)d);
+            }
+            continue;
+        }
+        for (int j = 0; j < L; j++) {
+            o[j] = (float)((sum_below(l, j, i - lo + d) - sum_below(l, j, i - lo)) / (double)d);
+        }
     }
 }
 
-/* The line blurred into tmp (n floats), then copied back over it. */
-static void blur_line(line *l, float *out, float *tmp, double sigma, const float *kernel, int radius)
+/* The lines blurred into tmp (n x lanes floats), then copied back over
+ * them; out is n x lanes floats of scratch. */
+static void blur_lines(lines *l, float *out, float *tmp, double sigma, const float *kernel,
+                       int radius)
 {
-    int n = l->n;
+    int n = l->n, L = l->lanes;
     if (sigma < BOX_FROM_SIGMA) {
         for (int i = 0; i < n; i++) {
-            double s = 0;
-            for (int k = -radius; k <= radius; k++) {
-                s += kernel[k + radius] * value_at(l, (long long)i + k);
+            for (int j = 0; j < L; j++) {
+                double s = 0;
+                for (int k = -radius; k <= radius; k++) {
+                    s += kernel[k + radius] * value_at(l, j, (long long)i + k);
+                }
+                tmp[(size_t)i * (size_t)L + (size_t)j] = (float)s;
             }
-            tmp[i] = (float)s;
         }
     } else {
         /* d from SVG 1.1: three boxes of d when d is odd; else two of d,
          * centred half a pixel left then right, and one of d + 1. */
         long long d = (long long)floor(sigma * 3 * sqrt(2 * M_PI) / 4 + 0.5);
-        line t = *l;
+        lines t = *l;
         bool odd = d % 2 == 1;
         box(l, tmp, d, d / 2);
         t.src = tmp;
-        t.step = 1;
+        t.step = (size_t)L;
         box(&t, out, d, odd ? d / 2 : d / 2 - 1);
         t.src = out;
         box(&t, tmp, odd ? d : d + 1, d / 2);
     }
     for (int i = 0; i < n; i++) {
-        ((float *)l->src)[(size_t)i * l->step] = tmp[i];
+        memcpy((float *)l->src + (size_t)i * l->step, tmp + (size_t)i * (size_t)L,
+               (size_t)L * sizeof *tmp);
     }
 }
 
@@ -145,14 +178,13 @@ sr_result sr_blur_image(sr_context *ctx, float *pixels, int width, int height, i
                         (int)desc->edge);
     }
     int longest = width > height ? width : height;
-    double *sum = sr__alloc(ctx, ((size_t)longest + 1) * sizeof *sum);
-    float *tmp = sr__alloc(ctx, (size_t)longest * 2 * sizeof *tmp);
-    float *block = sr__alloc(ctx, (size_t)COLUMN_BLOCK * (size_t)channels * (size_t)height *
-                                      sizeof *block);
-    if (!sum || !tmp || !block) {
+    /* rows: a row's channels side by side; columns: COLUMN_BLOCK columns' */
+    size_t lanes = (size_t)COLUMN_BLOCK * (size_t)channels;
+    double *sum = sr__alloc(ctx, ((size_t)longest + 1) * lanes * sizeof *sum);
+    float *tmp = sr__alloc(ctx, (size_t)longest * lanes * 2 * sizeof *tmp);
+    if (!sum || !tmp) {
         sr__free(ctx, sum);
         sr__free(ctx, tmp);
-        sr__free(ctx, block);
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: out of memory", fn);
     }
     for (int a = 0; a < 2; a++) {
@@ -174,43 +206,23 @@ sr_result sr_blur_image(sr_context *ctx, float *pixels, int width, int height, i
         }
         if (a == 0) {
             for (int y = 0; y < height; y++) {
-                for (int c = 0; c < channels; c++) {
-                    line l = { .src = pixels + (size_t)y * (size_t)width * (size_t)channels +
-                                      (size_t)c,
-                               .step = (size_t)channels, .n = width, .sum = sum,
-                               .edge = desc->edge };
-                    blur_line(&l, tmp + longest, tmp, s, kernel, radius);
-                }
+                lines l = { .src = pixels + (size_t)y * (size_t)width * (size_t)channels,
+                            .step = (size_t)channels, .n = width, .lanes = channels,
+                            .sum = sum, .edge = desc->edge };
+                blur_lines(&l, tmp + (size_t)longest * lanes, tmp, s, kernel, radius);
             }
             continue;
         }
-        size_t h = (size_t)height;
         for (int x0 = 0; x0 < width; x0 += COLUMN_BLOCK) {
-            /* values k = column * channels + channel of the block, each a line of h */
-            size_t k_n = (size_t)(width - x0 < COLUMN_BLOCK ? width - x0 : COLUMN_BLOCK) *
-                         (size_t)channels;
-            for (size_t y = 0; y < h; y++) {
-                const float *row = pixels + (y * (size_t)width + (size_t)x0) * (size_t)channels;
-                for (size_t k = 0; k < k_n; k++) {
-                    block[k * h + y] = row[k];
-                }
-            }
-            for (size_t k = 0; k < k_n; k++) {
-                line l = { .src = block + k * h, .step = 1, .n = height, .sum = sum,
-                           .edge = desc->edge };
-                blur_line(&l, tmp + longest, tmp, s, kernel, radius);
-            }
-            for (size_t y = 0; y < h; y++) {
-                float *row = pixels + (y * (size_t)width + (size_t)x0) * (size_t)channels;
-                for (size_t k = 0; k < k_n; k++) {
-                    row[k] = block[k * h + y];
-                }
-            }
+            int cols = width - x0 < COLUMN_BLOCK ? width - x0 : COLUMN_BLOCK;
+            lines l = { .src = pixels + (size_t)x0 * (size_t)channels,
+                        .step = (size_t)width * (size_t)channels, .n = height,
+                        .lanes = cols * channels, .sum = sum, .edge = desc->edge };
+            blur_lines(&l, tmp + (size_t)longest * lanes, tmp, s, kernel, radius);
         }
     }
     sr__free(ctx, sum);
     sr__free(ctx, tmp);
-    sr__free(ctx, block);
     sr__ok(ctx);
     return SR_OK;
 }

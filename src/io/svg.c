@@ -203,6 +203,7 @@ typedef struct svg_doc {
     svg_gradient *grad;
     const svg_node *grad_server;
     const struct frame *filter_frame; /* of the filter being run (feImage draws in it) */
+    int filter_size[2];      /* the size of its layer */
     svg_fonts *fonts;        /* the faces the text matched, made on first use */
     const sr_polygon2 *paint_box; /* what paints measure instead of the shape (a whole
                                    * text, drawn a run at a time), or NULL */
@@ -3715,10 +3716,13 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
 
 /* Composite a layer over the image through a mask (or none) at an
  * opacity: straight-alpha source-over, as the fills blend. */
-static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
-                            double opacity, svg_blend_kind mode)
+/* Composite a layer whose (0, 0) lies at the image's pixel at[0], at[1]
+ * (it covers the whole image). */
+static void composite_layer_at(svg_doc *doc, sr_framebuffer *layer, const int at[2],
+                               const uint8_t *mask, double opacity, svg_blend_kind mode)
 {
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    int lw = sr_framebuffer_width(layer);
     if (!work_within_budget(doc, (double)w * h)) {
         return;
     }
@@ -3730,17 +3734,22 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
     }
     sr_result r = sr_read_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
     const uint8_t *src = sr_framebuffer_pixels(layer);
-    for (size_t i = 0; r == SR_OK && i < n; i++) {
-        const uint8_t *l = src + i * 4;
-        if (l[3] == 0 || (mask && mask[i] == 0)) {
-            continue;
+    for (int y = 0; r == SR_OK && y < h; y++) {
+        /* the layer covers the image: at[0] and at[1] are 0 or below */
+        const uint8_t *row = src + ((size_t)(y - at[1]) * (size_t)lw + (size_t)-at[0]) * 4;
+        for (int x = 0; x < w; x++) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            const uint8_t *l = row + (size_t)x * 4;
+            if (l[3] == 0 || (mask && mask[i] == 0)) {
+                continue;
+            }
+            sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
+                          (float)(l[3] / 255.0 * opacity) };
+            if (mode != SVG_BLEND_NORMAL) {
+                c = svg_blend_color(mode, px + i * 4, c);
+            }
+            svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
         }
-        sr_rgba c = { l[0] / 255.0f, l[1] / 255.0f, l[2] / 255.0f,
-                      (float)(l[3] / 255.0 * opacity) };
-        if (mode != SVG_BLEND_NORMAL) {
-            c = svg_blend_color(mode, px + i * 4, c);
-        }
-        svg_blend(px + i * 4, c, mask ? mask[i] / 255.0f : 1.0f);
     }
     if (r == SR_OK) {
         r = sr_write_pixels(doc->ctx, doc->fb, 0, 0, w, h, px, (size_t)w * 4);
@@ -3749,6 +3758,12 @@ static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *
     if (r != SR_OK) {
         lib_fail(doc, r);
     }
+}
+
+static void composite_layer(svg_doc *doc, sr_framebuffer *layer, const uint8_t *mask,
+                            double opacity, svg_blend_kind mode)
+{
+    composite_layer_at(doc, layer, (const int[2]){ 0, 0 }, mask, opacity, mode);
 }
 
 /* What a w x h layer holds while open: its RGBA and the coverages of the
@@ -4167,7 +4182,8 @@ static bool filter_draw(void *host, const svg_node *at, const char *href, const 
     }
     frame ef = { .m = f->m, .st = el->parent ? ancestor_style(doc, el->parent) : doc->initial,
                  .vp_w = f->vp_w, .vp_h = f->vp_h };
-    sr_framebuffer *under = doc->fb, *top = open_layer(doc);
+    sr_framebuffer *under = doc->fb, *top = open_layer_sized(doc, doc->filter_size[0],
+                                                             doc->filter_size[1]);
     if (!top) {
         return false;
     }
@@ -4183,9 +4199,44 @@ static bool filter_draw(void *host, const svg_node *at, const char *href, const 
     return doc->status == SR_OK;
 }
 
-/* The element's filter on its layer (f: its frame, box: its bounding
- * box in that user space). */
-static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, const double box[4])
+/* The filter job of an element's filter (f: its frame, box: its bounding
+ * box in that user space) on a w x h layer whose (0, 0) is the image's
+ * pixel origin; px: the layer's pixels, or NULL to plan. */
+static svg_filter_job filter_job(svg_doc *doc, const frame *f, const double box[4], int w, int h,
+                                 const int origin[2], uint8_t *px)
+{
+    sr_rgba paints[2] = { { 0, 0, 0, 0 }, { 0, 0, 0, 0 } };
+    const paint *pp[2] = { &f->st.fill, &f->st.stroke };
+    for (int i = 0; i < 2; i++) {
+        if (pp[i]->kind == SVG_PAINT_COLOR || pp[i]->kind == SVG_PAINT_CURRENT) {
+            paints[i] = pp[i]->kind == SVG_PAINT_COLOR ? pp[i]->color : f->st.color;
+            paints[i].a *= (float)(i ? f->st.stroke_opacity : f->st.fill_opacity);
+        }
+    }
+    return (svg_filter_job){ .filter = f->st.filter, .pixels = px, .fill = paints[0],
+                             .stroke = paints[1], .width = w, .height = h,
+                             .origin = { origin[0], origin[1] },
+                             .m = { f->m.a, f->m.b, f->m.c, f->m.d, f->m.e, f->m.f },
+                             .bbox = { box[0], box[1], box[2], box[3] },
+                             .vp_w = f->vp_w, .vp_h = f->vp_h, .ctx = doc->ctx, .host = doc,
+                             .warn = filter_warn, .fail = filter_fail, .style = filter_style,
+                             .budget = filter_budget, .draw = filter_draw };
+}
+
+/* What running the filter on a w x h layer holds besides the image and
+ * the layers open below it: the layer itself (closed but not yet
+ * composited), the result in RGBA8 and the filter's images. */
+static uint64_t filter_cost(const svg_filter_job *job, int *images)
+{
+    uint64_t w = (uint64_t)job->width, h = (uint64_t)job->height;
+    return layer_cost(job->width, job->height) + w * h * 4 + svg_filter_peak(job, images);
+}
+
+/* The element's filter on its layer (f: its frame, drawn into the layer
+ * whose (0, 0) is the image's pixel origin; box: its bounding box in
+ * that user space). */
+static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, const double box[4],
+                         const int origin[2])
 {
     int w = sr_framebuffer_width(layer), h = sr_framebuffer_height(layer);
     if (!work_within_budget(doc, (double)w * h)) {
@@ -4197,35 +4248,48 @@ static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, co
                  filter->id ? filter->id : "");
         return;
     }
+    svg_filter_job job = filter_job(doc, f, box, w, h, origin, NULL);
+    /* its float images count against the layers' memory, as a layer
+     * would, and feImage's layers count them in turn */
+    int images;
+    uint64_t cost = filter_cost(&job, &images), limit = doc->opt->max_layer_bytes;
+    if (doc->status != SR_OK) {
+        return;
+    }
+    if (limit && doc->layer_bytes + cost > limit) {
+        char a[32], b[32];
+        doc->over_layer_limit = true;
+        sr__format_bytes(doc->layer_bytes + cost, a, sizeof a);
+        sr__format_bytes(limit, b, sizeof b);
+        svg_fail(doc, SR_TOO_LARGE,
+                 "filter \"#%s\": its results and the layers open (%d float images of the "
+                 "filter region at once) need about %s besides the image, more than the %s "
+                 "left for them: draw it smaller",
+                 filter->id ? filter->id : "", images, a, b);
+        return;
+    }
     size_t bytes = (size_t)w * (size_t)h * 4;
     uint8_t *px = malloc(bytes);
     if (!px) {
         svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
         return;
     }
-    memcpy(px, sr_framebuffer_pixels(layer), bytes);
-    sr_rgba paints[2] = { { 0, 0, 0, 0 }, { 0, 0, 0, 0 } };
-    const paint *pp[2] = { &f->st.fill, &f->st.stroke };
-    for (int i = 0; i < 2; i++) {
-        if (pp[i]->kind == SVG_PAINT_COLOR || pp[i]->kind == SVG_PAINT_CURRENT) {
-            paints[i] = pp[i]->kind == SVG_PAINT_COLOR ? pp[i]->color : f->st.color;
-            paints[i].a *= (float)(i ? f->st.stroke_opacity : f->st.fill_opacity);
-        }
-    }
-    svg_filter_job job = { .filter = filter, .pixels = px, .fill = paints[0], .stroke = paints[1],
-                           .width = w, .height = h,
-                           .m = { f->m.a, f->m.b, f->m.c, f->m.d, f->m.e, f->m.f },
-                           .bbox = { box[0], box[1], box[2], box[3] },
-                           .vp_w = f->vp_w, .vp_h = f->vp_h, .ctx = doc->ctx, .host = doc,
-                           .warn = filter_warn, .fail = filter_fail, .style = filter_style,
-                           .budget = filter_budget, .draw = filter_draw };
+    job.source = sr_framebuffer_pixels(layer);
+    job.pixels = px;
     unsigned long line = doc->line;
     const frame *outer = doc->filter_frame;
+    int outer_size[2] = { doc->filter_size[0], doc->filter_size[1] };
     doc->filter_frame = f;
+    doc->filter_size[0] = w;
+    doc->filter_size[1] = h;
+    doc->layer_bytes += cost;
     filter->active = true;
     svg_apply_filter(&job);
     filter->active = false;
+    doc->layer_bytes -= cost;
     doc->filter_frame = outer;
+    doc->filter_size[0] = outer_size[0];
+    doc->filter_size[1] = outer_size[1];
     doc->line = line;
     if (doc->status == SR_OK) {
         sr_result r = sr_write_pixels(doc->ctx, layer, 0, 0, w, h, px, (size_t)w * 4);
@@ -4234,6 +4298,59 @@ static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, co
         }
     }
     free(px);
+}
+
+/* The pixels (x0 y0 x1 y1 of the current image) the layer of an element
+ * with a filter covers: the image, and beyond it what the filter can
+ * move into it (an feOffset of content drawn outside), as the filter
+ * region allows and the memory left for layers, the work budget and the
+ * largest framebuffer hold (else the image alone, warned once). */
+static void filter_layer_rect(svg_doc *doc, const frame *f, const double box[4], int out[4])
+{
+    int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
+    const int zero[2] = { 0, 0 };
+    int ext[4];
+    double passes;
+    out[0] = out[1] = 0;
+    out[2] = w;
+    out[3] = h;
+    svg_filter_job job = filter_job(doc, f, box, w, h, zero, NULL);
+    if (!svg_filter_extent(&job, ext, &passes) || doc->status != SR_OK ||
+        (ext[0] >= 0 && ext[1] >= 0 && ext[2] <= w && ext[3] <= h)) {
+        return;
+    }
+    int r[4] = { ext[0] < 0 ? ext[0] : 0, ext[1] < 0 ? ext[1] : 0, ext[2] > w ? ext[2] : w,
+                 ext[3] > h ? ext[3] : h };
+    frame moved = *f;
+    moved.m.e -= r[0];
+    moved.m.f -= r[1];
+    int images;
+    job = filter_job(doc, &moved, box, r[2] - r[0], r[3] - r[1], r, NULL);
+    uint64_t cost = filter_cost(&job, &images), limit = doc->opt->max_layer_bytes;
+    /* the larger layer is filtered and composited; its region's pixels
+     * are counted for every pass */
+    double more = ((double)(r[2] - r[0]) * (r[3] - r[1]) - (double)w * h) * (1 + passes);
+    double base = doc->work_used + (double)w * h * (2 + passes);
+    const char *why = NULL;
+    if (limit && doc->layer_bytes + cost > limit) {
+        why = "the memory left for layers";
+    } else if (base + more > doc->work_budget) {
+        if (base > doc->work_budget) {
+            return; /* refused for its work either way */
+        }
+        why = "the work budget";
+    } else if (r[2] - r[0] > SR_MAX_FRAMEBUFFER_SIZE || r[3] - r[1] > SR_MAX_FRAMEBUFFER_SIZE) {
+        why = "the largest layer";
+    }
+    if (why) {
+        char key[96];
+        snprintf(key, sizeof key, "filter region beyond the image: %s", why);
+        warn_keyed(doc, key,
+                   "filter region beyond the image: its source drawn up to the image's edges, "
+                   "as %s holds no more", why);
+        return;
+    }
+    memcpy(out, r, sizeof r);
 }
 
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
@@ -4343,6 +4460,14 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     if (f.st.filter) {
         bbox_add(doc, node, &f, IDENTITY, fbox);
     }
+    /* a filter can bring in what lies beyond the image: its layer is
+     * drawn that much larger, moved by `lr`'s corner */
+    int lr[4] = { 0, 0, sr_framebuffer_width(doc->fb), sr_framebuffer_height(doc->fb) };
+    if (f.st.filter) {
+        filter_layer_rect(doc, &f, fbox, lr);
+        ff.m.e -= lr[0];
+        ff.m.f -= lr[1];
+    }
     uint8_t *mask = f.st.clip ? clip_mask(doc, (svg_node *)f.st.clip, node, &f) : NULL;
     if (f.st.mask && doc->status == SR_OK) {
         mask = mask_coverage(doc, (svg_node *)f.st.mask, node, &f, mask);
@@ -4355,15 +4480,19 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     if (nested) {
         f = viewport_frame(doc, node, &f);
     }
-    sr_framebuffer *under = doc->fb, *top = doc->status == SR_OK ? open_layer(doc) : NULL;
+    f.m.e -= lr[0];
+    f.m.f -= lr[1];
+    sr_framebuffer *under = doc->fb,
+                   *top = doc->status == SR_OK ? open_layer_sized(doc, lr[2] - lr[0], lr[3] - lr[1])
+                                               : NULL;
     if (top) {
         draw_content(doc, node, &f, shape, use);
         close_layer(doc, under);
         if (f.st.filter && doc->status == SR_OK) {
-            apply_filter(doc, top, &ff, fbox);
+            apply_filter(doc, top, &ff, fbox, lr);
         }
         if (doc->status == SR_OK) {
-            composite_layer(doc, top, mask, f.st.own_opacity, f.st.blend);
+            composite_layer_at(doc, top, lr, mask, f.st.own_opacity, f.st.blend);
         }
         sr_destroy_framebuffer(doc->ctx, top);
     }

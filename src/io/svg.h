@@ -179,9 +179,13 @@ typedef struct svg_fe_style {
 /* What a filter is applied to and the reader's services it uses. */
 typedef struct svg_filter_job {
     const svg_node *filter;      /* the <filter> element */
-    uint8_t *pixels;             /* the element's layer, RGBA8 straight alpha: replaced */
+    const uint8_t *source;       /* the element's layer, RGBA8 straight alpha */
+    uint8_t *pixels;             /* width x height: the result, in the same form */
     int width, height;
-    double m[6];                 /* user space -> pixels: a b c d e f */
+    int origin[2];               /* the image pixel that is the layer's (0, 0): a
+                                  * layer drawn beyond the image starts left of it
+                                  * or above it */
+    double m[6];                 /* user space -> the layer's pixels: a b c d e f */
     double bbox[4];              /* the element's x0 y0 x1 y1 in user space (empty: x1 <= x0) */
     double vp_w, vp_h;           /* the viewport, for percentages */
     sr_rgba fill, stroke;        /* FillPaint, StrokePaint: a flat color (transparent: none,
@@ -209,6 +213,22 @@ typedef struct svg_filter_job {
  * put the result in its place; pixels outside the region become
  * transparent.  Failures go through job->fail. */
 void svg_apply_filter(const svg_filter_job *job);
+
+/* The pixels (x0 y0 x1 y1, the layer's; beyond it where the region is)
+ * that the SourceGraphic must cover for the result inside the layer:
+ * the filter region, cut to the layer widened by how far the primitives
+ * can move content (offsets, blurs, radii; a tile or a wrapped edge takes
+ * the whole region), at most the layer's width and height each side;
+ * passes: about how many times the filter's work budget counts each
+ * pixel of its region.  False when the filter draws nothing.  Reads
+ * job->filter, m, bbox, vp_w, vp_h, width and height; warns as
+ * svg_apply_filter would. */
+bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes);
+
+/* The most memory (bytes) the filter's float images and scratch hold at
+ * once while svg_apply_filter runs on the job, and (images) how many
+ * images of the filter region that is; 0 when it draws nothing. */
+uint64_t svg_filter_peak(const svg_filter_job *job, int *images);
 
 /* B(cb, cs) of a blend mode on straight colors, each channel 0..1. */
 void svg_blend_mix(svg_blend_kind mode, const float b[3], const float s[3], float out[3]);

@@ -39,6 +39,10 @@ typedef struct fctx {
     double bw, bh;               /* the bounding box's size (user units) */
     double sx, sy;               /* pixels per user unit along x and y */
     fimg source, source_alpha, empty, fill, stroke;
+    /* images freed and not yet made again: reused, as a new one would
+     * fault in and clear its pages (never more than the peak is held) */
+    float *spare[8];
+    int n_spare;
     bool failed;
 } fctx;
 
@@ -174,9 +178,10 @@ static void region_attrs(fctx *fc, const svg_node *n, bool bbox_units, double r[
     }
 }
 
-/* The filter region from the <filter>'s attributes; false when it is
- * empty (nothing is drawn). */
-static bool filter_region(fctx *fc)
+/* The filter region from the <filter>'s attributes (fc->region) and in
+ * the layer's pixels, rounded out but not cut to the layer (px: x0 y0 x1
+ * y1); false when it is empty (nothing is drawn). */
+static bool region_px(fctx *fc, double px[4])
 {
     const svg_node *f = fc->job->filter;
     const char *units = fattr(f, "filterUnits");
@@ -205,8 +210,24 @@ static bool filter_region(fctx *fc)
         return false;
     }
     memcpy(fc->region, r, sizeof r);
-    double px[4];
     rect_to_px(fc, r, px);
+    const char *pu = fattr(f, "primitiveUnits");
+    fc->obb = pu && strcmp(pu, "objectBoundingBox") == 0;
+    fc->bw = b[2] - b[0];
+    fc->bh = b[3] - b[1];
+    const double *m = fc->job->m;
+    fc->sx = hypot(m[0], m[1]);
+    fc->sy = hypot(m[2], m[3]);
+    return true;
+}
+
+/* The filter region, cut to the layer; false when nothing of it is left. */
+static bool filter_region(fctx *fc)
+{
+    double px[4];
+    if (!region_px(fc, px)) {
+        return false;
+    }
     px[0] = fmax(px[0], 0);
     px[1] = fmax(px[1], 0);
     px[2] = fmin(px[2], fc->job->width);
@@ -219,13 +240,6 @@ static bool filter_region(fctx *fc)
     fc->rw = (int)(px[2] - px[0]);
     fc->rh = (int)(px[3] - px[1]);
     fc->n = (size_t)fc->rw * (size_t)fc->rh;
-    const char *pu = fattr(f, "primitiveUnits");
-    fc->obb = pu && strcmp(pu, "objectBoundingBox") == 0;
-    fc->bw = b[2] - b[0];
-    fc->bh = b[3] - b[1];
-    const double *m = fc->job->m;
-    fc->sx = hypot(m[0], m[1]);
-    fc->sy = hypot(m[2], m[3]);
     return true;
 }
 
@@ -267,6 +281,25 @@ static float to_srgb(float c)
     return c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1 / 2.4f) - 0.055f;
 }
 
+/* fminf(fmaxf(v, 0), 1) inline (NaN gives 0 as well): the library
+ * calls are not inlined where NaN must be honoured. */
+static inline float clamp01(float v)
+{
+    return v > 0 ? (v < 1 ? v : 1) : 0;
+}
+
+/* A pixel's premultiplied colour into the other space, alpha kept. */
+static inline void convert_pixel(float *p, bool srgb)
+{
+    if (p[3] <= 0) {
+        return;
+    }
+    for (int c = 0; c < 3; c++) {
+        float v = clamp01(p[c] / p[3]);
+        p[c] = (srgb ? to_srgb(v) : to_linear(v)) * p[3];
+    }
+}
+
 /* The image's values converted to sRGB or linearRGB, alpha kept. */
 static void convert(fctx *fc, fimg *im, bool srgb)
 {
@@ -274,14 +307,11 @@ static void convert(fctx *fc, fimg *im, bool srgb)
         im->srgb = srgb;
         return;
     }
-    for (size_t i = 0; i < fc->n; i++) {
-        float *p = im->p + i * 4;
-        if (p[3] <= 0) {
-            continue;
-        }
-        for (int c = 0; c < 3; c++) {
-            float v = fminf(fmaxf(p[c] / p[3], 0), 1);
-            p[c] = (srgb ? to_srgb(v) : to_linear(v)) * p[3];
+    /* zero outside its subregion: nothing to convert there */
+    for (int y = im->sub[1]; y < im->sub[3]; y++) {
+        float *row = im->p + (size_t)y * fc->rw * 4;
+        for (int x = im->sub[0]; x < im->sub[2]; x++) {
+            convert_pixel(row + (size_t)x * 4, srgb);
         }
     }
     im->srgb = srgb;
@@ -289,8 +319,14 @@ static void convert(fctx *fc, fimg *im, bool srgb)
 
 /* ---- images ------------------------------------------------------------------ */
 
+/* A transparent image of the region. */
 static float *new_pixels(fctx *fc, const svg_node *at)
 {
+    if (fc->n_spare > 0) {
+        float *p = fc->spare[--fc->n_spare];
+        memset(p, 0, fc->n * 4 * sizeof *p);
+        return p;
+    }
     float *p = calloc(fc->n, 4 * sizeof *p);
     if (!p) {
         fail(fc, at, SR_OUT_OF_MEMORY, "out of memory");
@@ -298,15 +334,25 @@ static float *new_pixels(fctx *fc, const svg_node *at)
     return p;
 }
 
-/* The region's part of an RGBA8 straight-alpha layer, premultiplied. */
-static void from_layer(const fctx *fc, const uint8_t *px, float *out)
+static void release(fctx *fc, float *p)
+{
+    if (p && fc->n_spare < (int)(sizeof fc->spare / sizeof fc->spare[0])) {
+        fc->spare[fc->n_spare++] = p;
+    } else {
+        free(p);
+    }
+}
+
+/* The region's part of an RGBA8 straight-alpha layer, premultiplied
+ * (its alpha alone, the colour left black, when alpha_only). */
+static void from_layer(const fctx *fc, const uint8_t *px, float *out, bool alpha_only)
 {
     for (int y = 0; y < fc->rh; y++) {
         const uint8_t *s = px + ((size_t)(y + fc->ry) * fc->job->width + fc->rx) * 4;
         float *d = out + (size_t)y * fc->rw * 4;
         for (int x = 0; x < fc->rw; x++, s += 4, d += 4) {
             float al = s[3] / 255.0f;
-            for (int c = 0; c < 3; c++) {
+            for (int c = 0; c < 3 && !alpha_only; c++) {
                 d[c] = s[c] / 255.0f * al;
             }
             d[3] = al;
@@ -315,7 +361,7 @@ static void from_layer(const fctx *fc, const uint8_t *px, float *out)
 }
 
 static void premultiplied(sr_rgba c, bool srgb, float out[4]);
-static void flood(fctx *fc, float *out, const float color[4]);
+static void flood(fctx *fc, const int sub[4], float *out, const float color[4]);
 
 /* A standard input, made when first read: SourceGraphic and SourceAlpha
  * from the layer's pixels in the region, FillPaint and StrokePaint the
@@ -339,15 +385,10 @@ static fimg *standard(fctx *fc, int k)
     im->srgb = true;
     float paint[4];
     if (k == IN_SOURCE || k == IN_SOURCE_ALPHA) {
-        from_layer(fc, fc->job->pixels, im->p);
-    }
-    if (k == IN_SOURCE_ALPHA) {
-        for (size_t i = 0; i < fc->n * 4; i += 4) {
-            im->p[i] = im->p[i + 1] = im->p[i + 2] = 0;
-        }
+        from_layer(fc, fc->job->source, im->p, k == IN_SOURCE_ALPHA);
     } else if (k == IN_FILL || k == IN_STROKE) {
         premultiplied(k == IN_FILL ? fc->job->fill : fc->job->stroke, true, paint);
-        flood(fc, im->p, paint);
+        flood(fc, whole, im->p, paint);
     }
     return im;
 }
@@ -367,6 +408,16 @@ static void cut_to(fctx *fc, fimg *im)
 }
 
 /* ---- the primitives ----------------------------------------------------------- */
+
+/* Each pixel of the subregion `sub` (x0 y0 x1 y1), i the index of its
+ * first float: a primitive that works pixel by pixel leaves the rest of
+ * its result as new_pixels made it, transparent, which is what cut_to
+ * would make of it. */
+#define EACH_PIXEL(fc, sub, i)                                                               \
+    for (int y_ = (sub)[1]; y_ < (sub)[3]; y_++)                                             \
+        for (size_t i = ((size_t)y_ * (size_t)(fc)->rw + (size_t)(sub)[0]) * 4,              \
+                    end_ = ((size_t)y_ * (size_t)(fc)->rw + (size_t)(sub)[2]) * 4;           \
+             i < end_; i += 4)
 
 typedef struct prim {
     const svg_node *node;
@@ -401,7 +452,7 @@ static void blur(fctx *fc, const svg_node *n, const float *in, float *out, doubl
 
 /* The input shifted by (dx, dy) user units: through the transform, and
  * between pixels bilinearly (a whole-pixel shift copies exactly). */
-static void offset(fctx *fc, const float *in, float *out, double dx, double dy)
+static void offset(fctx *fc, const int sub[4], const float *in, float *out, double dx, double dy)
 {
     const double *m = fc->job->m;
     if (fc->obb) {
@@ -414,17 +465,20 @@ static void offset(fctx *fc, const float *in, float *out, double dx, double dy)
     long ix = (long)floor(ox), iy = (long)floor(oy);
     float fx = (float)(ox - ix), fy = (float)(oy - iy);
     float w[4] = { (1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy };
-    for (int y = 0; y < fc->rh; y++) {
-        for (int x = 0; x < fc->rw; x++) {
-            float *d = out + ((size_t)y * fc->rw + x) * 4;
-            for (int t = 0; t < 4; t++) {
-                long sx = x - ix - (t & 1), sy = y - iy - (t >> 1);
-                if (w[t] == 0 || sx < 0 || sy < 0 || sx >= fc->rw || sy >= fc->rh) {
-                    continue;
-                }
-                const float *s = in + ((size_t)sy * fc->rw + (size_t)sx) * 4;
+    for (int y = sub[1]; y < sub[3]; y++) {
+        /* taps in order, each over the columns whose source lies inside */
+        for (int t = 0; t < 4; t++) {
+            long sy = y - iy - (t >> 1), shift = ix + (t & 1);
+            if (w[t] == 0 || sy < 0 || sy >= fc->rh) {
+                continue;
+            }
+            long x0 = sub[0] > shift ? sub[0] : shift;
+            long x1 = sub[2] < fc->rw + shift ? sub[2] : fc->rw + shift;
+            float *d = out + ((size_t)y * fc->rw) * 4;
+            const float *s = in + ((size_t)sy * fc->rw) * 4;
+            for (long x = x0; x < x1; x++) {
                 for (int c = 0; c < 4; c++) {
-                    d[c] += w[t] * s[c];
+                    d[x * 4 + c] += w[t] * s[(x - shift) * 4 + c];
                 }
             }
         }
@@ -441,16 +495,16 @@ static void premultiplied(sr_rgba c, bool srgb, float out[4])
     out[3] = c.a;
 }
 
-static void flood(fctx *fc, float *out, const float color[4])
+static void flood(fctx *fc, const int sub[4], float *out, const float color[4])
 {
-    for (size_t i = 0; i < fc->n; i++) {
-        memcpy(out + i * 4, color, 4 * sizeof *color);
+    EACH_PIXEL(fc, sub, i) {
+        memcpy(out + i, color, 4 * sizeof *color);
     }
 }
 
-static void over(fctx *fc, const float *a, float *out)
+static void over(fctx *fc, const int sub[4], const float *a, float *out)
 {
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float k = 1 - a[i + 3];
         for (int c = 0; c < 4; c++) {
             out[i + c] = a[i + c] + out[i + c] * k;
@@ -460,7 +514,8 @@ static void over(fctx *fc, const float *a, float *out)
 
 typedef enum { OP_OVER, OP_IN, OP_OUT, OP_ATOP, OP_XOR, OP_ARITHMETIC, OP_LIGHTER } comp_op;
 
-static void composite(fctx *fc, const svg_node *n, const float *a, const float *b, float *out)
+static void composite(fctx *fc, const svg_node *n, const int sub[4], const float *a,
+                      const float *b, float *out)
 {
     static const char *const names[] = { "over", "in", "out", "atop", "xor", "arithmetic",
                                          "lighter" };
@@ -482,7 +537,7 @@ static void composite(fctx *fc, const svg_node *n, const float *a, const float *
         static const char *const kn[4] = { "k1", "k2", "k3", "k4" };
         k[i] = (float)number_attr(fc, n, kn[i], 0);
     }
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float aa = a[i + 3], ba = b[i + 3];
         for (int c = 0; c < 4; c++) {
             float A = a[i + c], B = b[i + c], r;
@@ -495,16 +550,17 @@ static void composite(fctx *fc, const svg_node *n, const float *a, const float *
             case OP_LIGHTER: r = A + B; break;
             default: r = A + B * (1 - aa); break;
             }
-            out[i + c] = fminf(fmaxf(r, 0), 1);
+            out[i + c] = clamp01(r);
         }
         /* premultiplied: no channel above alpha */
         for (int c = 0; c < 3; c++) {
-            out[i + c] = fminf(out[i + c], out[i + 3]);
+            out[i + c] = out[i + c] < out[i + 3] ? out[i + c] : out[i + 3];
         }
     }
 }
 
-static void blend(fctx *fc, const svg_node *n, const float *a, const float *b, float *out)
+static void blend(fctx *fc, const svg_node *n, const int sub[4], const float *a, const float *b,
+                  float *out)
 {
     const char *v = fattr(n, "mode");
     int mode = v ? svg_blend_mode(v) : SVG_BLEND_NORMAL;
@@ -512,7 +568,7 @@ static void blend(fctx *fc, const svg_node *n, const float *a, const float *b, f
         fc->job->warn(fc->job->host, n, "mode", v);
         mode = SVG_BLEND_NORMAL;
     }
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float aa = a[i + 3], ba = b[i + 3], cs[3], cb[3], mix[3];
         for (int c = 0; c < 3; c++) {
             cs[c] = aa > 0 ? a[i + c] / aa : 0;
@@ -527,19 +583,19 @@ static void blend(fctx *fc, const svg_node *n, const float *a, const float *b, f
 }
 
 /* Straight colour per pixel through f, premultiplied again after. */
-static void per_pixel(fctx *fc, const float *in, float *out,
+static void per_pixel(fctx *fc, const int sub[4], const float *in, float *out,
                       void (*f)(const void *data, float c[4]), const void *data)
 {
-    for (size_t i = 0; i < fc->n * 4; i += 4) {
+    EACH_PIXEL(fc, sub, i) {
         float c[4], a = in[i + 3];
         for (int k = 0; k < 3; k++) {
             c[k] = a > 0 ? in[i + k] / a : 0;
         }
         c[3] = a;
         f(data, c);
-        a = fminf(fmaxf(c[3], 0), 1);
+        a = clamp01(c[3]);
         for (int k = 0; k < 3; k++) {
-            out[i + k] = fminf(fmaxf(c[k], 0), 1) * a;
+            out[i + k] = clamp01(c[k]) * a;
         }
         out[i + 3] = a;
     }
@@ -556,7 +612,8 @@ static void apply_matrix(const void *data, float c[4])
     memcpy(c, r, sizeof r);
 }
 
-static void color_matrix(fctx *fc, const svg_node *n, const float *in, float *out)
+static void color_matrix(fctx *fc, const svg_node *n, const int sub[4], const float *in,
+                         float *out)
 {
     double m[20] = { 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0 };
     const char *type = fattr(n, "type"), *values = fattr(n, "values");
@@ -600,7 +657,7 @@ static void color_matrix(fctx *fc, const svg_node *n, const float *in, float *ou
     } else {
         fc->job->warn(fc->job->host, n, "type", type);
     }
-    per_pixel(fc, in, out, apply_matrix, m);
+    per_pixel(fc, sub, in, out, apply_matrix, m);
 }
 
 /* feComponentTransfer: one transfer function per channel. */
@@ -637,11 +694,12 @@ static void apply_transfer(const void *data, float c[4])
 {
     const transfer *t = data;
     for (int i = 0; i < 4; i++) {
-        c[i] = transfer_one(&t[i], fminf(fmaxf(c[i], 0), 1));
+        c[i] = transfer_one(&t[i], clamp01(c[i]));
     }
 }
 
-static void component_transfer(fctx *fc, const svg_node *n, const float *in, float *out)
+static void component_transfer(fctx *fc, const svg_node *n, const int sub[4], const float *in,
+                               float *out)
 {
     transfer t[4] = { { 0 } };
     static const char *const funcs[4] = { "feFuncR", "feFuncG", "feFuncB", "feFuncA" };
@@ -677,7 +735,7 @@ static void component_transfer(fctx *fc, const svg_node *n, const float *in, flo
             }
         }
     }
-    per_pixel(fc, in, out, apply_transfer, t);
+    per_pixel(fc, sub, in, out, apply_transfer, t);
 }
 
 /* Erode (min) or dilate (max) each premultiplied channel over a
@@ -723,7 +781,7 @@ static void morphology(fctx *fc, const svg_node *n, const float *in, float *out)
             }
         }
     }
-    free(tmp);
+    release(fc, tmp);
 }
 
 /* The input's subregion repeated over the whole region. */
@@ -1139,7 +1197,8 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
     turbulence_init(t, (long)fmax(fmin(trunc(seed), 2e9), -2e9));
     /* the tile is the primitive subregion in pixels, as both references
      * take it (mixed with a frequency in user units) */
-    double tile[4] = { fc->rx + out_sub[0], fc->ry + out_sub[1], out_sub[2] - out_sub[0],
+    double tile[4] = { fc->job->origin[0] + fc->rx + out_sub[0],
+                       fc->job->origin[1] + fc->ry + out_sub[1], out_sub[2] - out_sub[0],
                        out_sub[3] - out_sub[1] };
     stitch base = { 0 };
     bool stitching = st_attr && strcmp(st_attr, "stitch") == 0;
@@ -1218,7 +1277,7 @@ static void image(fctx *fc, const svg_node *n, fimg *out)
         return;
     }
     if (fc->job->draw(fc->job->host, n, href, r, px)) {
-        from_layer(fc, px, out->p);
+        from_layer(fc, px, out->p, false);
         out->srgb = true;
     } else {
         fc->failed = true;
@@ -1314,11 +1373,13 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
     fimg *out = &res[i];
     out->srgb = st.srgb;
     int ins[64], n_ins = 0; /* a merge's first 64 make its default subregion */
+    double reads = 0;         /* a merge reads all its nodes */
     if (is(n, "feMerge")) {
-        for (const svg_node *c = n->first; c && n_ins < 64; c = c->next) {
-            if (is(c, "feMergeNode")) {
+        for (const svg_node *c = n->first; c; c = c->next) {
+            if (is(c, "feMergeNode") && n_ins < 64) {
                 ins[n_ins++] = resolve(fc, p, i, c, fattr(c, "in"));
             }
+            reads += is(c, "feMergeNode");
         }
     } else if (!is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") &&
                !is(n, "feTile")) { /* a tile fills the region, as both references draw it */
@@ -1326,13 +1387,17 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         if (p[i].in[1] != -4) {
             ins[n_ins++] = p[i].in[1];
         }
+        reads = n_ins;
     }
     int def[4];
     default_sub(fc, res, ins, n_ins, def);
     subregion(fc, n, def, out->sub);
-    out->p = new_pixels(fc, n);
-    if (!out->p || !fc->job->budget(fc->job->host, (double)fc->n * (n_ins + 1))) {
+    if (!fc->job->budget(fc->job->host, (double)fc->n * (reads + 1))) {
         fc->failed = true;
+        return;
+    }
+    out->p = new_pixels(fc, n);
+    if (!out->p) {
         return;
     }
     fimg *a = n_ins > 0 ? image_of(fc, res, ins[0]) : NULL;
@@ -1357,11 +1422,12 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         pair_attr(fc, n, "stdDeviation", 0, v);
         blur(fc, n, a->p, out->p, v[0], v[1]);
     } else if (is(n, "feOffset")) {
-        offset(fc, a->p, out->p, number_attr(fc, n, "dx", 0), number_attr(fc, n, "dy", 0));
+        offset(fc, out->sub, a->p, out->p, number_attr(fc, n, "dx", 0),
+               number_attr(fc, n, "dy", 0));
     } else if (is(n, "feFlood")) {
         float c[4];
         premultiplied(st.flood, st.srgb, c);
-        flood(fc, out->p, c);
+        flood(fc, out->sub, out->p, c);
     } else if (is(n, "feMerge")) {
         for (const svg_node *c = n->first; c; c = c->next) {
             if (is(c, "feMergeNode")) {
@@ -1370,17 +1436,17 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
                     return;
                 }
                 convert(fc, m, st.srgb);
-                over(fc, m->p, out->p);
+                over(fc, out->sub, m->p, out->p);
             }
         }
     } else if (is(n, "feComposite")) {
-        composite(fc, n, a->p, b->p, out->p);
+        composite(fc, n, out->sub, a->p, b->p, out->p);
     } else if (is(n, "feBlend")) {
-        blend(fc, n, a->p, b->p, out->p);
+        blend(fc, n, out->sub, a->p, b->p, out->p);
     } else if (is(n, "feColorMatrix")) {
-        color_matrix(fc, n, a->p, out->p);
+        color_matrix(fc, n, out->sub, a->p, out->p);
     } else if (is(n, "feComponentTransfer")) {
-        component_transfer(fc, n, a->p, out->p);
+        component_transfer(fc, n, out->sub, a->p, out->p);
     } else if (is(n, "feMorphology")) {
         morphology(fc, n, a->p, out->p);
     } else if (is(n, "feTile")) {
@@ -1402,11 +1468,12 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
             }
             pair_attr(fc, n, "stdDeviation", 2, v);
             blur(fc, n, t, u, v[0], v[1]);
-            offset(fc, u, out->p, number_attr(fc, n, "dx", 2), number_attr(fc, n, "dy", 2));
-            over(fc, a->p, out->p);
+            offset(fc, out->sub, u, out->p, number_attr(fc, n, "dx", 2),
+                   number_attr(fc, n, "dy", 2));
+            over(fc, out->sub, a->p, out->p);
         }
-        free(t);
-        free(u);
+        release(fc, t);
+        release(fc, u);
     } else if (is(n, "feImage")) {
         image(fc, n, out);
     } else if (is(n, "feConvolveMatrix")) {
@@ -1432,20 +1499,26 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
 static void write_back(fctx *fc, fimg *im)
 {
     const svg_filter_job *job = fc->job;
-    convert(fc, im, true);
+    size_t stride = (size_t)job->width * 4;
     for (int y = 0; y < job->height; y++) {
-        uint8_t *row = job->pixels + (size_t)y * job->width * 4;
-        for (int x = 0; x < job->width; x++) {
-            uint8_t *d = row + (size_t)x * 4;
-            int X = x - fc->rx, Y = y - fc->ry;
-            if (X < 0 || Y < 0 || X >= fc->rw || Y >= fc->rh) {
-                memset(d, 0, 4);
-                continue;
+        uint8_t *row = job->pixels + (size_t)y * stride;
+        int Y = y - fc->ry;
+        if (Y < 0 || Y >= fc->rh) {
+            memset(row, 0, stride);
+            continue;
+        }
+        memset(row, 0, (size_t)fc->rx * 4);
+        memset(row + (size_t)(fc->rx + fc->rw) * 4, 0, stride - (size_t)(fc->rx + fc->rw) * 4);
+        for (int X = 0; X < fc->rw; X++) {
+            uint8_t *d = row + (size_t)(X + fc->rx) * 4;
+            float s[4];
+            memcpy(s, im->p + ((size_t)Y * fc->rw + X) * 4, sizeof s);
+            if (!im->srgb) {
+                convert_pixel(s, true);
             }
-            const float *s = im->p + ((size_t)Y * fc->rw + X) * 4;
-            float a = fminf(fmaxf(s[3], 0), 1);
+            float a = clamp01(s[3]);
             for (int c = 0; c < 3; c++) {
-                float v = a > 0 ? fminf(fmaxf(s[c] / a, 0), 1) : 0;
+                float v = a > 0 ? clamp01(s[c] / a) : 0;
                 d[c] = (uint8_t)(v * 255 + 0.5f);
             }
             d[3] = (uint8_t)(a * 255 + 0.5f);
@@ -1453,10 +1526,9 @@ static void write_back(fctx *fc, fimg *im)
     }
 }
 
-void svg_apply_filter(const svg_filter_job *job)
+/* The primitives of the filter, unknown ones warned. */
+static int count_primitives(const svg_filter_job *job)
 {
-    fctx fc = { .job = job };
-    size_t all = (size_t)job->width * (size_t)job->height * 4;
     int count = 0;
     for (const svg_node *c = job->filter->first; c; c = c->next) {
         if (is_primitive(c)) {
@@ -1466,6 +1538,227 @@ void svg_apply_filter(const svg_filter_job *job)
             job->warn(job->host, c, "filter primitive", c->name);
         }
     }
+    return count;
+}
+
+/* The primitives in order, their inputs resolved, and each result's last
+ * reader (0: none). */
+typedef struct graph {
+    prim *p;
+    int *last_use;
+    int count;
+} graph;
+
+static void free_graph(graph *g)
+{
+    free(g->p);
+    free(g->last_use);
+}
+
+/* Whether the primitive reads its `in` (those that fill their subregion
+ * do not; a merge reads its nodes'). */
+static bool reads_in(const svg_node *n)
+{
+    return !is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") && !is(n, "feMerge");
+}
+
+/* The graph of `count` primitives; false after a failure. */
+static bool make_graph(fctx *fc, int count, graph *g)
+{
+    *g = (graph){ .p = calloc((size_t)count, sizeof *g->p),
+                  .last_use = calloc((size_t)count, sizeof *g->last_use), .count = count };
+    if (!g->p || !g->last_use) {
+        fail(fc, fc->job->filter, SR_OUT_OF_MEMORY, "out of memory");
+        free_graph(g);
+        return false;
+    }
+    prim *p = g->p;
+    int i = 0;
+    for (const svg_node *c = fc->job->filter->first; c; c = c->next) {
+        if (!is_primitive(c)) {
+            continue;
+        }
+        p[i] = (prim){ .node = c, .in = { -4, -4 }, .result = fattr(c, "result") };
+        p[i].in[0] = resolve(fc, p, i, c, fattr(c, "in"));
+        if (is(c, "feComposite") || is(c, "feBlend") || is(c, "feDisplacementMap")) {
+            p[i].in[1] = resolve(fc, p, i, c, fattr(c, "in2"));
+        }
+        for (int k = 0; k < 2; k++) {
+            if (p[i].in[k] >= 0) {
+                g->last_use[p[i].in[k]] = i;
+            }
+        }
+        for (const svg_node *m = c->first; m && is(c, "feMerge"); m = m->next) {
+            int j = is(m, "feMergeNode") ? resolve(fc, p, i, m, fattr(m, "in")) : -1;
+            if (j >= 0) {
+                g->last_use[j] = i;
+            }
+        }
+        i++;
+    }
+    return true;
+}
+
+/* Whether result j is still held while primitive i runs: until its last
+ * reader has run; one no later primitive reads is freed at once, the
+ * last one is kept for the layer. */
+static bool held(const graph *g, int j, int i)
+{
+    return j == i || j == g->count - 1 || g->last_use[j] >= i;
+}
+
+/* Images of the region a primitive allocates besides its result. */
+static int scratch_images(const svg_node *n)
+{
+    return is(n, "feDropShadow") ? 2 : is(n, "feMorphology") ? 1 : 0;
+}
+
+uint64_t svg_filter_peak(const svg_filter_job *job, int *images)
+{
+    fctx fc = { .job = job };
+    graph g;
+    *images = 0;
+    int count = count_primitives(job);
+    if (count == 0 || count > MAX_PRIMITIVES || !filter_region(&fc) ||
+        !make_graph(&fc, count, &g)) {
+        return 0;
+    }
+    /* the standard inputs are made when first read and kept to the end */
+    bool standard_read[7] = { false };
+    int most = 0;
+    bool picture = false;
+    for (int i = 0; i < count; i++) {
+        const prim *p = &g.p[i];
+        for (int k = 0; k < 2; k++) {
+            int in = p->in[k];
+            if (in < 0 && in != -4 && (k == 1 || reads_in(p->node))) {
+                standard_read[-in] = true;
+            }
+        }
+        for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
+            int in = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : 0;
+            if (in < 0) {
+                standard_read[-in] = true;
+            }
+        }
+        picture = picture || is(p->node, "feImage");
+        int live = scratch_images(p->node);
+        for (int j = 0; j <= i; j++) {
+            live += held(&g, j, i);
+        }
+        most = live > most ? live : most;
+    }
+    for (int k = 1; k < 7; k++) {
+        most += standard_read[k];
+    }
+    free_graph(&g);
+    *images = most;
+    /* an feImage's picture comes as an RGBA8 copy of the layer */
+    return (uint64_t)most * fc.n * 4 * sizeof(float) +
+           (picture ? (uint64_t)job->width * (uint64_t)job->height * 4 : 0);
+}
+
+/* How far (pixels along x and y) primitive n can move what it reads. */
+static void own_reach(fctx *fc, const svg_node *n, double r[2])
+{
+    double kx = fc->sx * (fc->obb ? fc->bw : 1), ky = fc->sy * (fc->obb ? fc->bh : 1), v[2];
+    bool shadow = is(n, "feDropShadow");
+    const char *e = fattr(n, "edgeMode");
+    bool wrap = e && strcmp(e, "wrap") == 0;
+    r[0] = r[1] = 0;
+    if (is(n, "feGaussianBlur") || shadow) {
+        pair_attr(fc, n, "stdDeviation", shadow ? 2 : 0, v);
+        /* the sampled kernel's 3 deviations, or the three boxes' 2.9 */
+        r[0] += 3 * fabs(v[0]) * kx + 3;
+        r[1] += 3 * fabs(v[1]) * ky + 3;
+    }
+    if (is(n, "feOffset") || shadow) {
+        const double *m = fc->job->m;
+        double dx = number_attr(fc, n, "dx", shadow ? 2 : 0) * (fc->obb ? fc->bw : 1);
+        double dy = number_attr(fc, n, "dy", shadow ? 2 : 0) * (fc->obb ? fc->bh : 1);
+        r[0] += fabs(m[0] * dx + m[2] * dy) + 1;
+        r[1] += fabs(m[1] * dx + m[3] * dy) + 1;
+    } else if (is(n, "feMorphology")) {
+        pair_attr(fc, n, "radius", 0, v);
+        r[0] = fabs(v[0]) * kx + 1;
+        r[1] = fabs(v[1]) * ky + 1;
+    } else if (is(n, "feConvolveMatrix")) {
+        pair_attr(fc, n, "order", 3, v);
+        r[0] = fabs(v[0]) + 1;
+        r[1] = fabs(v[1]) + 1;
+    } else if (is(n, "feDisplacementMap")) {
+        double scale = fabs(number_attr(fc, n, "scale", 0));
+        r[0] = scale * kx / 2 + 1;
+        r[1] = scale * ky / 2 + 1;
+    } else if (is(n, "feDiffuseLighting") || is(n, "feSpecularLighting")) {
+        r[0] = r[1] = 2; /* the normals' kernels */
+    }
+    if (is(n, "feTile") || (wrap && !is(n, "feMorphology"))) {
+        r[0] = r[1] = INFINITY; /* anything in the region can come in */
+    }
+}
+
+bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
+{
+    fctx fc = { .job = job };
+    double px[4];
+    graph g;
+    int count = count_primitives(job);
+    if (count == 0 || count > MAX_PRIMITIVES || !region_px(&fc, px) ||
+        !make_graph(&fc, count, &g)) {
+        return false;
+    }
+    double(*reach)[2] = calloc((size_t)count, sizeof *reach);
+    if (!reach) {
+        free_graph(&g);
+        return false;
+    }
+    *passes = 0;
+    for (int i = 0; i < count; i++) {
+        const prim *p = &g.p[i];
+        double in[2] = { 0, 0 };
+        /* what run() counts of the budget: its reads and its write */
+        *passes += 1 + (p->in[1] != -4) + (reads_in(p->node) && !is(p->node, "feTile"));
+        for (int k = 0; k < 2; k++) {
+            if (p->in[k] >= 0 && (k == 1 || reads_in(p->node))) {
+                in[0] = fmax(in[0], reach[p->in[k]][0]);
+                in[1] = fmax(in[1], reach[p->in[k]][1]);
+            }
+        }
+        for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
+            int j = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : -1;
+            *passes += is(m, "feMergeNode");
+            if (j >= 0) {
+                in[0] = fmax(in[0], reach[j][0]);
+                in[1] = fmax(in[1], reach[j][1]);
+            }
+        }
+        own_reach(&fc, p->node, reach[i]);
+        reach[i][0] += in[0];
+        reach[i][1] += in[1];
+    }
+    /* NaN and infinity alike: at most the layer's size */
+    double rx = fmin(reach[count - 1][0], job->width), ry = fmin(reach[count - 1][1], job->height);
+    free(reach);
+    free_graph(&g);
+    px[0] = fmax(px[0], -rx);
+    px[1] = fmax(px[1], -ry);
+    px[2] = fmin(px[2], job->width + rx);
+    px[3] = fmin(px[3], job->height + ry);
+    if (!(px[2] > px[0] && px[3] > px[1])) {
+        return false;
+    }
+    for (int k = 0; k < 4; k++) {
+        out[k] = (int)px[k];
+    }
+    return true;
+}
+
+void svg_apply_filter(const svg_filter_job *job)
+{
+    fctx fc = { .job = job };
+    size_t all = (size_t)job->width * (size_t)job->height * 4;
+    int count = count_primitives(job);
     if (count > MAX_PRIMITIVES) {
         char msg[96];
         snprintf(msg, sizeof msg, "filter: %d primitives, more than %d", count, MAX_PRIMITIVES);
@@ -1477,48 +1770,31 @@ void svg_apply_filter(const svg_filter_job *job)
         memset(job->pixels, 0, all);
         return;
     }
-    prim *p = calloc((size_t)count, sizeof *p);
+    graph g;
     fimg *res = calloc((size_t)count, sizeof *res);
-    int *last_use = calloc((size_t)count, sizeof *last_use);
-    if (!p || !res || !last_use) {
+    if (!res) {
         fail(&fc, job->filter, SR_OUT_OF_MEMORY, "out of memory");
+        return;
     }
-    int i = 0;
-    for (const svg_node *c = job->filter->first; c && !fc.failed; c = c->next) {
-        if (!is_primitive(c)) {
-            continue;
-        }
-        p[i] = (prim){ .node = c, .in = { -4, -4 }, .result = fattr(c, "result") };
-        p[i].in[0] = resolve(&fc, p, i, c, fattr(c, "in"));
-        if (is(c, "feComposite") || is(c, "feBlend") || is(c, "feDisplacementMap")) {
-            p[i].in[1] = resolve(&fc, p, i, c, fattr(c, "in2"));
-        }
-        for (int k = 0; k < 2; k++) {
-            if (p[i].in[k] >= 0) {
-                last_use[p[i].in[k]] = i;
-            }
-        }
-        for (const svg_node *m = c->first; m && is(c, "feMerge"); m = m->next) {
-            int j = is(m, "feMergeNode") ? resolve(&fc, p, i, m, fattr(m, "in")) : -1;
-            if (j >= 0) {
-                last_use[j] = i;
-            }
-        }
-        i++;
+    if (!make_graph(&fc, count, &g)) {
+        free(res);
+        return;
     }
-    for (i = 0; i < count && !fc.failed; i++) {
-        run(&fc, p, res, i);
-        for (int j = 0; j < i; j++) {
-            if (res[j].p && last_use[j] <= i) {
-                free(res[j].p);
+    for (int i = 0; i < count && !fc.failed; i++) {
+        run(&fc, g.p, res, i);
+        for (int j = 0; j <= i; j++) {
+            if (res[j].p && !held(&g, j, i + 1)) {
+                release(&fc, res[j].p);
                 res[j].p = NULL;
             }
         }
     }
     if (!fc.failed) {
         write_back(&fc, &res[count - 1]);
+    } else {
+        memset(job->pixels, 0, all); /* reported: not used */
     }
-    for (i = 0; res && i < count; i++) {
+    for (int i = 0; i < count; i++) {
         free(res[i].p);
     }
     free(fc.source.p);
@@ -1526,7 +1802,9 @@ void svg_apply_filter(const svg_filter_job *job)
     free(fc.empty.p);
     free(fc.fill.p);
     free(fc.stroke.p);
-    free(p);
+    for (int k = 0; k < fc.n_spare; k++) {
+        free(fc.spare[k]);
+    }
     free(res);
-    free(last_use);
+    free_graph(&g);
 }
