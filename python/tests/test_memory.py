@@ -60,9 +60,11 @@ def test_repeated_calls_keep_memory_flat(name):
     for _ in range(20):      # caches fill, warnings registries settle
         call()
     gc.collect()
-    grown = grown_over(call, 500)
+    # A leak keeps its bytes in every round; what the interpreter caches now
+    # and then while other tests' threads run shows in one round, not all.
+    grown = min(grown_over(call, 500) for _ in range(3))
     # An object kept a call is 32 bytes or more.
-    assert grown < 16 * 500, f"{name}: {grown} bytes kept after 500 calls"
+    assert grown < 16 * 500, f"{name}: {grown} bytes kept after 500 calls, in each of 3 rounds"
 
 
 def test_a_kept_object_is_seen():
