@@ -762,7 +762,7 @@ SR_TEST(text_path_lays_glyphs_along_the_path)
     char shown[512];
     snprintf(shown, sizeof shown,
              "<text x='10' y='40' " FONT ">%.*s<tspan visibility='hidden'>%s</tspan></text>", fit,
-             "HHHHHHHH", "HHHHHHHH" + fit);
+             "HHHHHHHH", &"HHHHHHHH"[fit]);
     SAME_PIXELS(DEFS "<text " FONT "><textPath xlink:href='#s'>HHHHHHHH</textPath></text>", shown,
                 0);
     /* round a corner: each glyph turns with the segment its middle is on */
