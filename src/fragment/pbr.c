@@ -11,6 +11,7 @@
 #include "context.h"
 #include "fragment/environment.h"
 #include "fragment/light_lanes.h"
+#include "fragment/pbr_transmission.h"
 #include "fragment/texture.h"
 #include "fragment/tonemap.h"
 
@@ -221,6 +222,9 @@ static void irr_poly(const float sh[9][3], float q[3][IRR_TERMS])
 
 enum { SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE, SLOT_COUNT };
 
+/* The transmission texture (R) and the volume's thickness texture (G). */
+enum { TR_SLOT_TRANSMISSION, TR_SLOT_THICKNESS, TR_SLOT_COUNT };
+
 /* Varyings 0..2 world position, 3..5 world normal; the rest as needed. */
 enum { VARY_POS = 0, VARY_NORMAL = 3, VARY_FIXED = 6 };
 
@@ -271,6 +275,10 @@ struct sr_pbr {
     size_t vertex_count;
     const uint8_t *tangents, *texcoords1;
     size_t tangent_stride, texcoord1_stride;
+    /* KHR_materials_transmission and _volume (pbr_transmission.c). */
+    bool transmits;               /* a lit material with a transmission factor */
+    pbr_slot tr_slot[TR_SLOT_COUNT];
+    sr__transmission tr;
 };
 
 sr_pbr_material sr_pbr_default_material(void)
@@ -283,12 +291,15 @@ sr_pbr_material sr_pbr_default_material(void)
         .occlusion_strength = 1.0f,
         .emissive_strength = 1.0f,
         .alpha_cutoff = 0.5f,
+        .attenuation_color = { 1, 1, 1 },
     };
     sr_texture_slot *slots[] = { &m.base_color_texture, &m.metallic_roughness_texture,
                                  &m.normal_texture, &m.occlusion_texture, &m.emissive_texture };
     for (int i = 0; i < SLOT_COUNT; i++) {
         slots[i]->scale[0] = slots[i]->scale[1] = 1.0f;
     }
+    m.transmission_texture.scale[0] = m.transmission_texture.scale[1] = 1.0f;
+    m.thickness_texture.scale[0] = m.thickness_texture.scale[1] = 1.0f;
     return m;
 }
 
@@ -472,20 +483,22 @@ static void irradiance4(const sr_pbr *p, const v4f d[3], v4f out[3])
 /* Appendix B at four lanes: the punctual lights through the
  * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
  * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
- * ambient light times the occlusion.  Radiance out, linear, unexposed. */
+ * ambient light times the occlusion.  diffuse_ scales the diffuse lobe
+ * (1 but where transmission takes its share).  Radiance out, linear,
+ * unexposed. */
 static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
                         const float v_[3][4], const float base_[4][4], const float metal_[4],
                         const float rough_[4], const float ao_[4], const float shadow_[4],
-                        float out_[3][4])
+                        const float diffuse_[4], float out_[3][4])
 {
     v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3];
     load3(pos, pos_);
     load3(n, n_);
     load3(v, v_);
     load3(base, base_);
-    v4f mt = vclamp(load(metal_), 0.0f, 1.0f);
+    v4f mt = vclamp(load(metal_), 0.0f, 1.0f), dw = load(diffuse_);
     for (int c = 0; c < 3; c++) {
-        cdiff[c] = base[c] * (1.0f - mt);
+        cdiff[c] = base[c] * (1.0f - mt) * dw;
         f0[c] = 0.04f + (base[c] - 0.04f) * mt;
         out[c] = (v4f){ 0 };
     }
@@ -672,6 +685,50 @@ static void encode_lanes(const srgb_table *t, const float a[3][4], sr_fragment_q
     }
 }
 
+/* KHR_materials_transmission at four lanes: kd becomes 1 - transmission
+ * (the diffuse lobe's share left), seen the transmitted radiance: the
+ * light behind (sr__transmission_light4) through the base color, in the
+ * dielectric's share (1 - metallic), minus what the specular lobe
+ * reflects, 1 - (F0 A + B) with the split sum's scale and bias. */
+static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
+                               const float pos[3][4], const float n[3][4], const float v[3][4],
+                               const float base[4][4], const float metal[4],
+                               const float rough[4], float kd[4], float seen[3][4])
+{
+    float tr[4], thick[4], tex[4][4], uv[2][4];
+    for (int i = 0; i < 4; i++) {
+        tr[i] = p->m.transmission;
+        thick[i] = p->m.thickness;
+    }
+    if (p->tr_slot[TR_SLOT_TRANSMISSION].tex) {
+        sample_slot(&p->tr_slot[TR_SLOT_TRANSMISSION], q, tex, uv);
+        for (int i = 0; i < 4; i++) {
+            tr[i] *= tex[0][i];
+        }
+    }
+    if (p->tr_slot[TR_SLOT_THICKNESS].tex) {
+        sample_slot(&p->tr_slot[TR_SLOT_THICKNESS], q, tex, uv);
+        for (int i = 0; i < 4; i++) {
+            thick[i] *= tex[1][i];
+        }
+    }
+    float light[3][4], nv[4], rc[4], sa[4], sb[4];
+    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light);
+    for (int i = 0; i < 4; i++) {
+        tr[i] = clamp01(tr[i]);
+        kd[i] = 1.0f - tr[i];
+        nv[i] = clamp01(n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i]);
+        rc[i] = clamp01(rough[i]);
+    }
+    sr_brdf_table4(nv, rc, sa, sb);
+    for (int i = 0; i < 4; i++) {
+        float share = tr[i] * (1.0f - clamp01(metal[i])) * (1.0f - (0.04f * sa[i] + sb[i]));
+        for (int c = 0; c < 3; c++) {
+            seen[c][i] = share * base[c][i] * light[c][i];
+        }
+    }
+}
+
 static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
 {
     const sr_pbr *p = uniforms;
@@ -773,8 +830,20 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             }
             sr_shadow_visibility4(p->shadow, &pos[0][0], &g[0][0], shadow);
         }
+        /* Transmission takes its share of the diffuse lobe (kd). */
+        float kd[4] = { 1, 1, 1, 1 }, seen[3][4];
+        if (p->transmits) {
+            transmission_lanes(p, q, pos, n, v, base, metal, rough, kd, seen);
+        }
         shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
-                    (const float(*)[4])base, metal, rough, ao, shadow, out);
+                    (const float(*)[4])base, metal, rough, ao, shadow, kd, out);
+        if (p->transmits) {
+            for (int c = 0; c < 3; c++) {
+                for (int i = 0; i < 4; i++) {
+                    out[c][i] += seen[c][i];
+                }
+            }
+        }
         /* Without emission (no texture, a zero factor) the sum would add
          * a zero, which changes at most the sign of a zero radiance: every
          * tone curve sends both zeros to black (sr__tone_curve), so the
@@ -837,6 +906,21 @@ static sr_result check_slot(sr_context *ctx, const sr_texture_slot *s, const cha
     return SR_OK;
 }
 
+/* KHR_materials_transmission and _volume: finite, a thickness and an
+ * attenuation distance that are lengths, and their slots. */
+static sr_result check_transmission(sr_context *ctx, const sr_pbr_material *m)
+{
+    if (!isfinite(m->transmission) || !finite_n(m->attenuation_color, 3) ||
+        !(m->thickness >= 0.0f && m->thickness < INFINITY) ||
+        !(m->attenuation_distance >= 0.0f && m->attenuation_distance < INFINITY)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_material: transmission, thickness or attenuation is not finite "
+                        "(thickness and attenuation_distance must be >= 0)");
+    }
+    sr_result r = check_slot(ctx, &m->transmission_texture, "transmission_texture");
+    return r == SR_OK ? check_slot(ctx, &m->thickness_texture, "thickness_texture") : r;
+}
+
 static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
 {
     if (!finite_n(m->base_color, 4) || !finite_n(m->emissive, 3) || !isfinite(m->metallic) ||
@@ -844,6 +928,10 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
         !isfinite(m->occlusion_strength) || !isfinite(m->emissive_strength) ||
         !isfinite(m->alpha_cutoff)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material: a factor is not finite");
+    }
+    sr_result tr = check_transmission(ctx, m);
+    if (tr != SR_OK) {
+        return tr;
     }
     if ((unsigned)m->alpha_mode > SR_ALPHA_BLEND) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.alpha_mode %d is not a mode",
@@ -1017,6 +1105,13 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
             uses[slots[i]->texcoord] = true;
         }
     }
+    const sr_texture_slot *tr_slots[TR_SLOT_COUNT] = { &p->m.transmission_texture,
+                                                       &p->m.thickness_texture };
+    for (int i = 0; i < TR_SLOT_COUNT; i++) {
+        if (p->tr_slot[i].tex && p->transmits) {
+            uses[tr_slots[i]->texcoord] = true;
+        }
+    }
     for (int k = 0; k < 2; k++) {
         p->vary_uv[k] = -1;
         if (uses[k] && (k == 0 || d->texcoords1)) {
@@ -1030,6 +1125,13 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
         p->slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
         if (p->slot[i].vary < 0) {
             p->slot[i].tex = NULL;
+        }
+    }
+    for (int i = 0; i < TR_SLOT_COUNT; i++) {
+        int set = tr_slots[i]->texcoord;
+        p->tr_slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
+        if (p->tr_slot[i].vary < 0 || !p->transmits) {
+            p->tr_slot[i].tex = NULL;
         }
     }
     p->vary_color = -1;
@@ -1121,6 +1223,13 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     p->tangent_stride = desc->tangent_stride ? desc->tangent_stride : 4 * sizeof(float);
     p->texcoords1 = (const uint8_t *)desc->texcoords1;
     p->texcoord1_stride = desc->texcoord1_stride ? desc->texcoord1_stride : 2 * sizeof(float);
+    resolve_slot(&mat.transmission_texture, &p->tr_slot[TR_SLOT_TRANSMISSION]);
+    resolve_slot(&mat.thickness_texture, &p->tr_slot[TR_SLOT_THICKNESS]);
+    p->transmits = !mat.unlit && mat.transmission != 0.0f;
+    if (p->transmits) {
+        sr__transmission_setup(&mat, &p->model, &p->view_projection, desc->transmission_source,
+                               p->scale, &p->tr);
+    }
     sr_program *pr = &p->program;
     pr->vertex = pbr_vs;
     pr->fragment = pbr_fs;
@@ -1133,6 +1242,9 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     pr->independent_lanes = true;
     for (int i = 0; i < SLOT_COUNT; i++) {
         pr->independent_lanes &= !p->slot[i].tex;
+    }
+    for (int i = 0; i < TR_SLOT_COUNT; i++) {
+        pr->independent_lanes &= !p->tr_slot[i].tex;
     }
     float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
     if (p->environment && !p->m.unlit) {
