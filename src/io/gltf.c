@@ -1006,6 +1006,8 @@ static const char *supported_extensions[] = {
     "KHR_texture_transform",
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
+    "KHR_materials_transmission",
+    "KHR_materials_volume",
     "KHR_lights_punctual",
 };
 
