@@ -22,6 +22,11 @@ class Material:
     emissive: (3,) float32 linear RGB (times ``emissive_strength``).
     alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
     double_sided, unlit: the material's flags (KHR_materials_unlit).
+    transmission: the share of light let through, in [0, 1]
+    (KHR_materials_transmission; 0: opaque).
+    thickness: the volume's thickness in object units (KHR_materials_volume;
+    0: thin-walled); attenuation_color: (3,) float32 linear RGB that white
+    light keeps after attenuation_distance (world units; 0: no absorption).
 
     ``render`` draws the base color of a loaded instance (factor times
     texture times vertex color, drawn into its Mesh by :func:`load`) into
@@ -32,12 +37,16 @@ class Material:
     the rest) and, for an instance :func:`load` made, every texture of the
     file (base color, metallic-roughness, normal, occlusion, emissive).
     For an instance of your own Mesh the base color is ``base_color``
-    times the Mesh's colors and texture.
+    times the Mesh's colors and texture.  A transmissive material
+    (``transmission`` > 0) shows the opaque instances behind it, refracted,
+    blurred by its roughness and tinted (docs/pbr.md); the file's
+    transmission and thickness textures are drawn for a loaded instance.
     """
 
     __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
                  "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
-                 "unlit", "normal_scale", "occlusion_strength")
+                 "unlit", "normal_scale", "occlusion_strength", "transmission", "thickness",
+                 "attenuation_color", "attenuation_distance")
 
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
@@ -52,6 +61,10 @@ class Material:
     unlit: bool
     normal_scale: float
     occlusion_strength: float
+    transmission: float
+    thickness: float
+    attenuation_color: NDArray[np.float32]
+    attenuation_distance: float
 
     def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
                  base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
@@ -59,7 +72,9 @@ class Material:
                  emissive: Factors = (0.0, 0.0, 0.0), emissive_strength: float = 1.0,
                  alpha_mode: AlphaMode = "opaque", alpha_cutoff: float = 0.5,
                  double_sided: bool = False, unlit: bool = False, normal_scale: float = 1.0,
-                 occlusion_strength: float = 1.0) -> None:
+                 occlusion_strength: float = 1.0, transmission: float = 0.0,
+                 thickness: float = 0.0, attenuation_color: Factors = (1.0, 1.0, 1.0),
+                 attenuation_distance: float = 0.0) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
         if base_color_texture is not None and not (
                 isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
@@ -80,6 +95,11 @@ class Material:
         self.unlit = bool(unlit)
         self.normal_scale = float(normal_scale)
         self.occlusion_strength = float(occlusion_strength)
+        self.transmission = float(_factors(transmission, "transmission", 1, 1.0)[0])
+        self.thickness = float(_factors(thickness, "thickness", 1, np.inf)[0])
+        self.attenuation_color = _factors(attenuation_color, "attenuation_color", 3, 1.0)
+        self.attenuation_distance = float(_factors(attenuation_distance, "attenuation_distance",
+                                                   1, np.inf)[0])
 
     @classmethod
     def _from_factors(cls, factors: Mapping[str, Any],

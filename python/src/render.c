@@ -667,20 +667,23 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
 /* An instance's look for the metallic-roughness pass: (pose (3, 4),
  * base color (4), metallic, roughness, emissive (3), emissive strength,
  * alpha mode (0 opaque, 1 mask, 2 blend), alpha cutoff, double-sided,
- * unlit, normal scale, occlusion strength, source: None or (the loaded
- * scene's capsule, primitive index)). */
+ * unlit, normal scale, occlusion strength, (transmission, thickness,
+ * attenuation color (3), attenuation distance), source: None or (the
+ * loaded scene's capsule, primitive index)). */
 static int take_look(PyObject *look, Py_ssize_t i, instance *in)
 {
     PyObject *pose, *source;
     sr_pbr_material *m = &in->factors;
     *m = sr_pbr_default_material();
     int mode, double_sided, unlit;
-    float *c = m->base_color, *e = m->emissive;
+    float *c = m->base_color, *e = m->emissive, *ac = m->attenuation_color;
     if (!PyTuple_Check(look) ||
-        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffO", &pose, &c[0], &c[1], &c[2], &c[3],
-                          &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
+        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppff(ff(fff)f)O", &pose, &c[0], &c[1], &c[2],
+                          &c[3], &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
                           &m->emissive_strength, &mode, &m->alpha_cutoff, &double_sided, &unlit,
-                          &m->normal_scale, &m->occlusion_strength, &source)) {
+                          &m->normal_scale, &m->occlusion_strength, &m->transmission,
+                          &m->thickness, &ac[0], &ac[1], &ac[2], &m->attenuation_distance,
+                          &source)) {
         PyErr_Clear();
         PyErr_Format(PyExc_TypeError, "instances[%zd]: the look is malformed", i);
         return -1;
