@@ -969,6 +969,36 @@ static sr_texture *split_texture(int w, int h, const uint8_t left[4], const uint
     return t;
 }
 
+/* Clear glass: white, smooth, a dielectric that lets everything through. */
+static sr_pbr_material glass(void)
+{
+    sr_pbr_material m = sr_pbr_default_material();
+    m.metallic = 0.0f;
+    m.roughness = 0.0f;
+    m.transmission = 1.0f;
+    return m;
+}
+
+/* What smooth glass facing the viewer reflects: F0 A + B at N.V = 1. */
+static double smooth_reflectance(void)
+{
+    float ab[2];
+    sr_brdf_table(1.0f, 0.0f, ab);
+    return 0.04 * ab[0] + ab[1];
+}
+
+/* The centre pixel of the sphere drawn with d into a fresh black cell. */
+static bool centre_of(const sphere *s, const sr_pbr_desc *d, uint8_t out[4])
+{
+    sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+    bool ok = fb && draw_sphere(fb, s, d, 0, 0, NULL) == SR_OK;
+    if (ok) {
+        memcpy(out, px(fb, CELL / 2, CELL / 2), 4);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    return ok;
+}
+
 /* Zero transmission is the extension absent: the volume's fields, a
  * transmission texture and a source change no byte of a lit sphere. */
 SR_TEST(zero_transmission_keeps_the_old_pixels)
@@ -1012,30 +1042,22 @@ SR_TEST(clear_glass_shows_the_background_less_the_fresnel)
     const uint8_t c[4] = { 200, 120, 60, 255 };
     sr_texture *src = solid_texture(c, true);
     REQUIRE(src);
-    sr_pbr_material m = sr_pbr_default_material();
-    m.metallic = 0.0f;
-    m.roughness = 0.0f;
-    m.transmission = 1.0f;
-    float ab[2];
-    sr_brdf_table(1.0f, 0.0f, ab);
-    double es = 0.04 * ab[0] + ab[1];
+    sr_pbr_material m = glass();
+    double es = smooth_reflectance();
     const double amb[2] = { 0.0, 0.1 };
     for (int k = 0; k < 2; k++) {
         sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
                           .tonemap = SR_TONEMAP_NONE, .transmission_source = src,
                           .sky = { (float)amb[k], (float)amb[k], (float)amb[k] },
                           .ground = { (float)amb[k], (float)amb[k], (float)amb[k] } };
-        sr_framebuffer *fb = make_fb(1, 1, 0.0f);
-        REQUIRE(fb);
-        REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
-        const uint8_t *p = px(fb, CELL / 2, CELL / 2);
+        uint8_t p[4];
+        REQUIRE(centre_of(&s, &d, p));
         for (int ch = 0; ch < 3; ch++) {
             double want = srgb_encode(srgb_decode(c[ch]) * (1.0 - es) + es * amb[k]);
             CHECK_NEAR(p[ch], want, 1.5);
         }
         /* Not the old opaque white. */
         CHECK(p[2] < 100);
-        sr_destroy_framebuffer(sr_test_ctx(), fb);
     }
     sr_destroy_texture(sr_test_ctx(), src);
     free_sphere(&s);
@@ -1051,17 +1073,12 @@ SR_TEST(volume_attenuates_with_thickness_and_base_color_tints)
     const uint8_t white[4] = { 255, 255, 255, 255 };
     sr_texture *src = solid_texture(white, true);
     REQUIRE(src);
-    sr_pbr_material m = sr_pbr_default_material();
-    m.metallic = 0.0f;
-    m.roughness = 0.0f;
-    m.transmission = 1.0f;
-    m.attenuation_color[0] = 0.5f;
-    m.attenuation_color[1] = 0.5f;
-    m.attenuation_color[2] = 0.5f;
+    sr_pbr_material m = glass();
+    for (int c = 0; c < 3; c++) {
+        m.attenuation_color[c] = 0.5f;
+    }
     m.attenuation_distance = 0.5f;
-    float ab[2];
-    sr_brdf_table(1.0f, 0.0f, ab);
-    double es = 0.04 * ab[0] + ab[1];
+    double es = smooth_reflectance();
     const float thick[2] = { 0.25f, 0.5f };
     sr_mat4 scale2 = sr_mat4_scale(2, 2, 2);
     for (int k = 0; k < 2; k++) {
@@ -1073,25 +1090,19 @@ SR_TEST(volume_attenuates_with_thickness_and_base_color_tints)
         sr_mat4 p2 = sr_ortho(-2.2f, 2.2f, -2.2f, 2.2f, 1.0f, 10.0f, false);
         d.model = &scale2;
         d.projection = &p2;
-        sr_framebuffer *fb = make_fb(1, 1, 0.0f);
-        REQUIRE(fb);
-        REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
-        const uint8_t *p = px(fb, CELL / 2, CELL / 2);
+        uint8_t p[4];
+        REQUIRE(centre_of(&s, &d, p));
         double keep = pow(0.5, 2.0 * thick[k] / 0.5);
         CHECK_NEAR(p[1], srgb_encode((1.0 - es) * keep), 1.5);
-        sr_destroy_framebuffer(sr_test_ctx(), fb);
     }
     m.attenuation_distance = 0.0f;
     m.base_color[0] = 0.2f;
     sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
                       .tonemap = SR_TONEMAP_NONE, .transmission_source = src };
-    sr_framebuffer *fb = make_fb(1, 1, 0.0f);
-    REQUIRE(fb);
-    REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
-    const uint8_t *p = px(fb, CELL / 2, CELL / 2);
+    uint8_t p[4];
+    REQUIRE(centre_of(&s, &d, p));
     CHECK_NEAR(p[0], srgb_encode(0.2 * (1.0 - es)), 1.5);
     CHECK_NEAR(p[1], srgb_encode(1.0 - es), 1.5);
-    sr_destroy_framebuffer(sr_test_ctx(), fb);
     sr_destroy_texture(sr_test_ctx(), src);
     free_sphere(&s);
 }
@@ -1105,9 +1116,7 @@ SR_TEST(rough_transmission_blurs_the_background)
     const uint8_t black[4] = { 0, 0, 0, 255 }, white[4] = { 255, 255, 255, 255 };
     sr_texture *src = split_texture(CELL, CELL, black, white);
     REQUIRE(src);
-    sr_pbr_material m = sr_pbr_default_material();
-    m.metallic = 0.0f;
-    m.transmission = 1.0f;
+    sr_pbr_material m = glass();
     int ramp[2];
     for (int k = 0; k < 2; k++) {
         m.roughness = k ? 0.6f : 0.0f;
