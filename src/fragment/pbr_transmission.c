@@ -33,6 +33,12 @@ void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
     }
 }
 
+/* x within [-1, 2], NaN to 0. */
+static float clamp_uv(float x)
+{
+    return x >= -1.0f ? (x <= 2.0f ? x : 2.0f) : (x < -1.0f ? -1.0f : 0.0f);
+}
+
 /* refract(-v, n, 1 / ior) of GLSL, normalized; zero past the critical
  * angle (which 1 / ior < 1 never reaches from outside). */
 static void refract_view(const float v[3], const float n[3], float out[3])
@@ -88,8 +94,11 @@ void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                 }
             }
             float iw = clip[3] != 0.0f ? 1.0f / clip[3] : 0.0f;
-            /* NDC to sr_texture's uv: both have y (v) up. */
-            float u = clip[0] * iw * 0.5f + 0.5f, tv = clip[1] * iw * 0.5f + 0.5f;
+            /* NDC to sr_texture's uv: both have y (v) up.  Clamped, as
+             * the lookup clamps to the edge anyway: a point near the eye
+             * plane would give coordinates no texel index can hold. */
+            float u = clamp_uv(clip[0] * iw * 0.5f + 0.5f);
+            float tv = clamp_uv(clip[1] * iw * 0.5f + 0.5f);
             float r = rough[i] < 0.0f ? 0.0f : rough[i] > 1.0f ? 1.0f : rough[i];
             sr__texture_sample_linear(t->source, SR_FILTER_TRILINEAR, SR_WRAP_CLAMP,
                                       SR_WRAP_CLAMP, u, tv, t->lod_scale * r, texel);
