@@ -831,12 +831,15 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             sr_shadow_visibility4(p->shadow, &pos[0][0], &g[0][0], shadow);
         }
         /* Transmission takes its share of the diffuse lobe (kd). */
-        float kd[4] = { 1, 1, 1, 1 }, seen[3][4];
+        static const float opaque[4] = { 1, 1, 1, 1 };
+        float kd[4], seen[3][4];
+        const float *diffuse = opaque;
         if (p->transmits) {
             transmission_lanes(p, q, pos, n, v, base, metal, rough, kd, seen);
+            diffuse = kd;
         }
         shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
-                    (const float(*)[4])base, metal, rough, ao, shadow, kd, out);
+                    (const float(*)[4])base, metal, rough, ao, shadow, diffuse, out);
         if (p->transmits) {
             for (int c = 0; c < 3; c++) {
                 for (int i = 0; i < 4; i++) {
