@@ -1003,6 +1003,27 @@ typedef struct sr_pbr_material {
     bool double_sided;             /* back faces drawn, lit with the flipped normal */
     bool unlit;                    /* KHR_materials_unlit: the base color, no lights
                                     * (still exposed and tone mapped) */
+    /* The physically based extensions KHR_materials_ior, _specular,
+     * _clearcoat and _sheen (docs/pbr.md).  Every field zero means the
+     * extension is absent, so a material filled before they existed draws
+     * as it did; sr_pbr_default_material() leaves them zero.  Factors must
+     * be finite and in their ranges; textures multiply their factors. */
+    float ior;                     /* > 1 (F0 ((ior - 1) / (ior + 1))^2), 1 (none); 0 -> 1.5 */
+    bool specular_set;             /* false: specular 1 and specular_color white */
+    float specular;                /* 0..1: the dielectric's F0 and F90 scale */
+    sr_texture_slot specular_texture;            /* A channel, linear */
+    float specular_color[3];       /* >= 0: tints the dielectric's F0 (clamped to 1) */
+    sr_texture_slot specular_color_texture;      /* sRGB */
+    float clearcoat;               /* 0..1: the coat's weight; 0: no coat */
+    sr_texture_slot clearcoat_texture;           /* R channel, linear */
+    float clearcoat_roughness;     /* 0..1 */
+    sr_texture_slot clearcoat_roughness_texture; /* G channel, linear */
+    sr_texture_slot clearcoat_normal_texture;    /* tangent space; empty: the geometry's normal */
+    float clearcoat_normal_scale;  /* scales the map's x and y; 0 -> 1 */
+    float sheen_color[3];          /* 0..1 linear RGB; all 0: no sheen */
+    sr_texture_slot sheen_color_texture;         /* sRGB */
+    float sheen_roughness;         /* 0..1 */
+    sr_texture_slot sheen_roughness_texture;     /* A channel, linear */
 } sr_pbr_material;
 
 typedef struct sr_polygon_offset {

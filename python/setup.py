@@ -59,16 +59,16 @@ io_sources = [s for s in io_sources if os.path.basename(s) != "png_none.c"]
 
 
 def ibl_tables():
-    """The image-based light's tables (the BRDF table, the built-in studio
-    prefiltered) as C, computed by tools/ibl_tables.c from the library's own
+    """The image-based light's tables (the BRDF table, the sheen's albedo,
+    the built-in studio prefiltered) as C, computed by tools/ibl_tables.c from the library's own
     functions, as the CMake build computes them; their path."""
     out_dir = os.path.join(HERE, "build", "generated")
     os.makedirs(out_dir, exist_ok=True)
     tool, out = os.path.join(out_dir, "sr_ibl_tables"), os.path.join(out_dir, "ibl_tables.c")
     cc = (sysconfig.get_config_var("CC") or "cc").split()
     tool_sources = [os.path.join(ROOT, *p.split("/")) for p in (
-        "tools/ibl_tables.c", "src/fragment/brdf_integrate.c", "src/fragment/environment_studio.c",
-        "src/fragment/environment_prefilter.c")]
+        "tools/ibl_tables.c", "src/fragment/brdf_integrate.c", "src/fragment/sheen_integrate.c",
+        "src/fragment/environment_studio.c", "src/fragment/environment_prefilter.c")]
     subprocess.run(cc + ["-std=c11", "-O2", "-ffp-contract=off", "-D_POSIX_C_SOURCE=200809L",
                          "-I", os.path.join(ROOT, "include"), "-I", os.path.join(ROOT, "src"),
                          *tool_sources, "-o", tool, "-lm"], check=True)

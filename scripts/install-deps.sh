@@ -2,7 +2,8 @@
 # Installs what softrast needs on a fresh Debian 12 machine: the compiler and
 # CMake, libpng (PNG in and out), libjpeg-turbo (JPEG textures in), Assimp
 # (model formats beyond OBJ/PLY/STL), jansson (the glTF reader's JSON),
-# meshoptimizer (glTF's EXT_meshopt_compression), expat (the SVG reader),
+# meshoptimizer (glTF's EXT_meshopt_compression), libdraco (glTF's
+# KHR_draco_mesh_compression), expat (the SVG reader),
 # fontconfig, HarfBuzz and FreeType (the SVG reader's text), Mesa's OSMesa
 # (llvmpipe, for the benchmark's side-by-side comparison), cairo (the 2D fill
 # benchmark's comparison), libwebp (WebP textures, glTF's EXT_texture_webp,
@@ -32,7 +33,7 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake pkg-config ca-certificates \
     libpng-dev zlib1g-dev libjpeg-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev \
-    libjansson-dev libwebp-dev libmeshoptimizer-dev breeze-icon-theme librsvg2-bin \
+    libjansson-dev libwebp-dev libmeshoptimizer-dev libdraco-dev breeze-icon-theme librsvg2-bin \
     clang libclang-rt-14-dev \
     libsdl2-dev libfreetype-dev libfontconfig-dev libharfbuzz-dev fonts-dejavu-core xvfb xauth locales \
     python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed mypy \

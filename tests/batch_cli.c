@@ -1,7 +1,11 @@
 /* batch_cli.c - running the softrast tool as a batch's caller does (its
  * environment, standard input from a file, standard error kept) and
- * reading back its --log: shared by test_batch.c and test_svg_batch.c. */
+ * reading back its --log, and two models rendered and compared: shared by
+ * the batch tests and the glTF compression tests. */
 #include "batch_cli.h"
+#include "image_compare.h"
+
+#include "softrast_io.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -288,4 +292,79 @@ const record *find_record(const record *recs, int n, const char *input)
         }
     }
     return NULL;
+}
+
+/* Renders model to out with the tool; the pixels, or NULL. */
+static uint8_t *render_png(const char *model, const char *out, int *w, int *h)
+{
+    run_result r;
+    if (!run(ARGS("render", model, "-o", out, "--size", "320x240"), &r) || r.status != 0) {
+        FAILF("softrast render %s: status %d: %s", model, r.status, r.err);
+        return NULL;
+    }
+    uint8_t *px = NULL;
+    sr_io_error e;
+    if (sr_read_png(out, NULL, w, h, &px, &e) != SR_OK) {
+        FAILF("%s", e.message);
+    }
+    return px;
+}
+
+void check_same_render(const char *name, const void *const data[2], const size_t size[2],
+                       int channel_tol, int max_pixels)
+{
+    char dir[1024], path[2][1100], png[2][1100];
+    static const char *const stems[2] = { "plain", "packed" };
+    uint8_t *px[2] = { NULL, NULL };
+    int w[2] = { 0, 0 }, h[2] = { 0, 0 };
+    fresh_dir(name, dir, sizeof dir);
+    for (int i = 0; i < 2; i++) {
+        snprintf(path[i], sizeof path[i], "%s/%s.glb", dir, stems[i]);
+        snprintf(png[i], sizeof png[i], "%s/%s.png", dir, stems[i]);
+        if (sr_test_write_file(path[i], data[i], size[i])) {
+            px[i] = render_png(path[i], png[i], &w[i], &h[i]);
+        } else {
+            FAILF("cannot write %s", path[i]);
+        }
+    }
+    if (px[0] && px[1] && w[0] == w[1] && h[0] == h[1]) {
+        sr_test_compare_images(name, px[1], px[0], w[0], h[0], channel_tol, max_pixels);
+    }
+    free(px[0]);
+    free(px[1]);
+}
+
+bool edit_text(wbuf *text, const char *from, const char *to)
+{
+    char *at = strstr((char *)text->p, from);
+    if (!at) {
+        FAILF("'%s' is not in the document", from);
+        return false;
+    }
+    wbuf out = {0};
+    wb_put(&out, text->p, (size_t)(at - (char *)text->p));
+    wb_put(&out, to, strlen(to));
+    wb_put(&out, at + strlen(from), strlen(at + strlen(from)) + 1);
+    free(text->p);
+    *text = out;
+    return true;
+}
+
+void check_refused(const char *dir, size_t i, const void *data, size_t size,
+                   const char *message)
+{
+    char path[1100], out[1100];
+    snprintf(path, sizeof path, "%s/bad%zu.glb", dir, i);
+    snprintf(out, sizeof out, "%s/bad%zu.png", dir, i);
+    if (!sr_test_write_file(path, data, size)) {
+        FAILF("cannot write %s", path);
+        return;
+    }
+    run_result r;
+    if (run(ARGS("render", path, "-o", out, "--size", "32x24"), &r)) {
+        CHECK_EQ(r.status, 2);
+        CHECK_EQ(count_lines(r.err), 1);
+        CHECK_STR_CONTAINS(r.err, message);
+        CHECK(!file_exists(out));
+    }
 }

@@ -4,6 +4,7 @@
 #define SR_TEST_BATCH_CLI_H
 
 #include "sr_test.h"
+#include "wbuf.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -55,6 +56,23 @@ int wait_status(pid_t pid);
 bool run_env(const char *const *args, const char *const *env, const char *in, run_result *r);
 bool run(const char *const *args, run_result *r);
 int count_lines(const char *s);
+
+/* Writes two model files (data[0] the reference, data[1] the one under
+ * test; .glb) into batch_`name`, renders both with the tool at 320x240 and
+ * checks the second image against the first: `channel_tol` at most, but
+ * for `max_pixels` pixels. */
+void check_same_render(const char *name, const void *const data[2], const size_t size[2],
+                       int channel_tol, int max_pixels);
+
+/* Replaces the first `from` in the NUL-terminated text with `to`; false
+ * (after a failure) when absent. */
+bool edit_text(wbuf *text, const char *from, const char *to);
+
+/* Writes the model file (`.glb`) into dir as badI.glb and checks that
+ * `softrast render` refuses it: exit status 2, one line on stderr that
+ * contains `message`, no image written. */
+void check_refused(const char *dir, size_t i, const void *data, size_t size,
+                   const char *message);
 
 /* An empty directory sr_test_out_dir()/batch_NAME, in buf. */
 const char *fresh_dir(const char *name, char *buf, size_t n);

@@ -1,7 +1,8 @@
 # Installs the build into a fresh prefix, then configures, builds and runs
-# tests/downstream against that prefix, found once with find_package and
-# once with pkg-config.  The build tree's own paths are nowhere in the
-# downstream configuration: only the prefix is.
+# tests/downstream against that prefix, found once with find_package, once
+# with pkg-config, and once with pkg-config --static linking the archives.
+# The build tree's own paths are nowhere in the downstream configuration:
+# only the prefix is.
 #   cmake -DBUILD=<softrast build dir> -DSRC=<tests/downstream> -DWORK=<scratch dir>
 #         [-DFLAGS=<compile and link flags>] -P downstream.cmake
 cmake_minimum_required(VERSION 3.20)
@@ -23,7 +24,7 @@ file(REMOVE_RECURSE ${WORK})
 set(prefix ${WORK}/prefix)
 run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${prefix})
 
-foreach(how cmake pkg-config)
+foreach(how cmake pkg-config pkg-config-static)
   set(bin ${WORK}/build-${how})
   # pkg-config searches the prefix first; CMake searches only the prefix.
   set(ENV{PKG_CONFIG_PATH} "${prefix}/lib/pkgconfig:${prefix}/lib64/pkgconfig:${prefix}/share/pkgconfig")

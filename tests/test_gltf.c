@@ -363,11 +363,11 @@ static wbuf small_png(void)
     return b;
 }
 
-/* small_png's bytes in base64 for a data: URI (malloc'd), or NULL. */
+/* small_png() as base64 for a data: URI; malloc'd, NULL if it failed. */
 static char *small_png_base64(void)
 {
     wbuf png = small_png();
-    char *b64 = png.n ? malloc(4 * (png.n / 3 + 1) + 1) : NULL;
+    char *b64 = png.n > 0 ? malloc(4 * (png.n / 3 + 1) + 1) : NULL;
     if (b64) {
         gltf_base64(png.p, png.n, b64);
     }
@@ -527,6 +527,93 @@ SR_TEST(material_factors_out_of_range_are_clamped_with_a_warning)
                          "KHR_materials_emissive_strength/emissiveStrength: -3 is negative, "
                          "taken as 0") == 0);
     sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* KHR_materials_ior, _specular, _clearcoat and _sheen reach the material
+ * with their textures (through the slots, KHR_texture_transform
+ * included) and each extension's defaults; out-of-range factors are
+ * clamped with a warning each; a material without them keeps zeros
+ * (absent); none of them is named among the extensions not read. */
+SR_TEST(physically_based_extensions_are_read)
+{
+    char *b64 = small_png_base64();
+    REQUIRE(b64);
+    char *body = malloc(strlen(b64) + 4096);
+    sprintf(body,
+            "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+            "\"extensionsUsed\":[\"KHR_materials_ior\",\"KHR_materials_specular\","
+            "\"KHR_materials_clearcoat\",\"KHR_materials_sheen\"],"
+            "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+            "\"textures\":[{\"source\":0}],"
+            "\"materials\":[{\"extensions\":{"
+            "\"KHR_materials_ior\":{\"ior\":1.33},"
+            "\"KHR_materials_specular\":{\"specularFactor\":0.5,"
+            "\"specularColorTexture\":{\"index\":0}},"
+            "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":0.75,"
+            "\"clearcoatRoughnessFactor\":0.25,\"clearcoatNormalTexture\":{\"index\":0,"
+            "\"scale\":0.5,\"extensions\":{\"KHR_texture_transform\":{\"scale\":[2,2]}}}},"
+            "\"KHR_materials_sheen\":{\"sheenColorFactor\":[0.5,0.25,1],"
+            "\"sheenRoughnessTexture\":{\"index\":0}}}},"
+            "{\"extensions\":{\"KHR_materials_ior\":{},\"KHR_materials_specular\":{},"
+            "\"KHR_materials_clearcoat\":{},\"KHR_materials_sheen\":{}}},"
+            "{\"extensions\":{\"KHR_materials_ior\":{\"ior\":0.5},"
+            "\"KHR_materials_specular\":{\"specularFactor\":2,\"specularColorFactor\":[-1,1,3]},"
+            "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1.5,"
+            "\"clearcoatRoughnessFactor\":-1},"
+            "\"KHR_materials_sheen\":{\"sheenColorFactor\":[2,0,0],\"sheenRoughnessFactor\":3}}},"
+            "{}]",
+            TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]",
+            b64);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->material_count == 5);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK_NEAR(m->ior, 1.33, 1e-6);
+    CHECK(m->specular_set);
+    CHECK_NEAR(m->specular, 0.5, 0);
+    CHECK_EQ(m->specular_color[2], 1.0f);
+    REQUIRE(m->specular_color_texture.texture != NULL);
+    CHECK(m->specular_texture.texture == NULL);
+    CHECK_NEAR(m->clearcoat, 0.75, 0);
+    CHECK_NEAR(m->clearcoat_roughness, 0.25, 0);
+    REQUIRE(m->clearcoat_normal_texture.texture != NULL);
+    CHECK_NEAR(m->clearcoat_normal_scale, 0.5, 0);
+    CHECK_NEAR(m->clearcoat_normal_texture.scale[0], 2, 0);
+    /* The color textures are sRGB, the others linear: two textures. */
+    CHECK(m->clearcoat_normal_texture.texture != m->specular_color_texture.texture);
+    CHECK_EQ(m->sheen_roughness_texture.texture, m->clearcoat_normal_texture.texture);
+    CHECK_NEAR(m->sheen_color[1], 0.25, 0);
+    CHECK_EQ(m->sheen_roughness, 0.0f);
+    /* Present but empty: the extensions' defaults. */
+    const sr_pbr_material *e = &s->materials[1];
+    CHECK_NEAR(e->ior, 1.5, 0);
+    CHECK(e->specular_set);
+    CHECK_EQ(e->specular, 1.0f);
+    CHECK_EQ(e->specular_color[0], 1.0f);
+    CHECK_EQ(e->clearcoat, 0.0f);
+    CHECK_EQ(e->sheen_color[0], 0.0f);
+    /* Clamped, one warning per factor. */
+    const sr_pbr_material *c = &s->materials[2];
+    CHECK_EQ(c->ior, 1.0f);
+    CHECK_EQ(c->specular, 1.0f);
+    CHECK_EQ(c->specular_color[0], 0.0f);
+    CHECK_EQ(c->specular_color[2], 3.0f);
+    CHECK_EQ(c->clearcoat, 1.0f);
+    CHECK_EQ(c->clearcoat_roughness, 0.0f);
+    CHECK_EQ(c->sheen_color[0], 1.0f);
+    CHECK_EQ(c->sheen_roughness, 1.0f);
+    /* Absent: zeros. */
+    const sr_pbr_material *a = &s->materials[3];
+    CHECK(a->ior == 0.0f && !a->specular_set && a->clearcoat == 0.0f &&
+          a->sheen_color[0] == 0.0f && a->clearcoat_normal_scale == 0.0f);
+    CHECK_EQ(w.count, 7);
+    CHECK_STR_CONTAINS(w.last, "/materials/2/extensions/KHR_materials_sheen/"
+                               "sheenRoughnessFactor: 3 is outside the specification's 0..1, "
+                               "taken as 1");
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(body);
+    free(b64);
 }
 
 /* KHR_materials_transmission and KHR_materials_volume: factors, the
@@ -913,8 +1000,8 @@ static const bad_case bad_cases[] = {
       "{\"POSITION\":0,\"TEXCOORD_0\":0}}]}]" NODES, SR_BAD_FORMAT,
       "bad.gltf: /meshes/0/primitives/0/attributes/TEXCOORD_0: accessor 0 has 3 components per "
       "element, not what this attribute takes" },
-    { ",\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]", SR_UNSUPPORTED,
-      "bad.gltf: /extensionsRequired/0: extension KHR_draco_mesh_compression is not "
+    { ",\"extensionsRequired\":[\"KHR_texture_basisu\"]", SR_UNSUPPORTED,
+      "bad.gltf: /extensionsRequired/0: extension KHR_texture_basisu is not "
       "supported" },
     { VIEW0 ACC("\"count\":3") MESH_OF("0") NODES
       ",\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"no_such_image.png\"}],"

@@ -1,7 +1,8 @@
 /* ibl_tables.c - the build's generator of image-based light's tables
- * (docs/ibl.md): the split-sum BRDF table and the built-in studio
- * prefiltered at intensity 1, computed with the library's own functions
- * (brdf_integrate.c, environment_studio.c, environment_prefilter.c) in the
+ * (docs/ibl.md): the split-sum BRDF table, the sheen's albedo table
+ * (docs/pbr.md) and the built-in studio prefiltered at intensity 1,
+ * computed with the library's own functions (brdf_integrate.c,
+ * sheen_integrate.c, environment_studio.c, environment_prefilter.c) in the
  * order sr_make_environment runs them for an image, and written as a C
  * source of exact hexadecimal floats that the library compiles in.  Run by
  * CMake (under the cross build's emulator, or built by the host's
@@ -10,6 +11,7 @@
  *   ibl_tables OUT.c
  */
 #include "fragment/environment.h"
+#include "fragment/sheen.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -79,7 +81,7 @@ int main(int argc, char **argv)
     }
     bool grey = true;
     fprintf(f, "/* Written by tools/ibl_tables.c at build time: do not edit. */\n"
-               "#include \"fragment/environment.h\"\n\n");
+               "#include \"fragment/environment.h\"\n#include \"fragment/sheen.h\"\n\n");
     fprintf(f, "const float sr__brdf_builtin[%d][%d][2] = {\n", SR__BRDF_TABLE_SIZE,
             SR__BRDF_TABLE_SIZE);
     for (int row = 0; row < SR__BRDF_TABLE_SIZE; row++) {
@@ -89,6 +91,18 @@ int main(int argc, char **argv)
         for (int col = 0; col < SR__BRDF_TABLE_SIZE; col++) {
             fprintf(f, "{ %a, %a },%c", (double)t[col][0], (double)t[col][1],
                     col % 3 == 2 ? '\n' : ' ');
+        }
+        fprintf(f, "},\n");
+    }
+    fprintf(f, "};\n\n");
+    fprintf(f, "const float sr__sheen_builtin[%d][%d] = {\n", SR__SHEEN_TABLE_SIZE,
+            SR__SHEEN_TABLE_SIZE);
+    for (int row = 0; row < SR__SHEEN_TABLE_SIZE; row++) {
+        float t[SR__SHEEN_TABLE_SIZE];
+        sr__sheen_table_row(row, t);
+        fprintf(f, "{\n");
+        for (int col = 0; col < SR__SHEEN_TABLE_SIZE; col++) {
+            fprintf(f, "%a,%c", (double)t[col], col % 6 == 5 ? '\n' : ' ');
         }
         fprintf(f, "},\n");
     }

@@ -741,7 +741,8 @@ static int finish_scene(render_job *job)
          * for the whole merged mesh. */
         bool mapped = false;
         for (size_t i = 0; i < s->gltf->material_count; i++) {
-            mapped |= s->gltf->materials[i].normal_texture.texture != NULL;
+            mapped |= s->gltf->materials[i].normal_texture.texture != NULL ||
+                      s->gltf->materials[i].clearcoat_normal_texture.texture != NULL;
         }
         first->tangents = mapped ? malloc(first->mesh.vertex_count * 4 * sizeof(float)) : NULL;
         if (mapped && (!first->tangents || sr_mesh_compute_tangents(job->mesh_ctx, &first->mesh,

@@ -22,6 +22,14 @@ class Material:
     emissive: (3,) float32 linear RGB (times ``emissive_strength``).
     alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
     double_sided, unlit: the material's flags (KHR_materials_unlit).
+    ior: the index of refraction, >= 1 (KHR_materials_ior; 1.5: F0 0.04),
+    which transmission also refracts by.
+    specular, specular_color: the dielectric's reflection strength in [0, 1]
+    and F0 tint (3,) >= 0 (KHR_materials_specular).
+    clearcoat, clearcoat_roughness: a clear coat's weight and roughness in
+    [0, 1] (KHR_materials_clearcoat; 0: none).
+    sheen_color, sheen_roughness: (3,) in [0, 1] and [0, 1]
+    (KHR_materials_sheen; black: none).
     transmission: the share of light let through, in [0, 1]
     (KHR_materials_transmission; 0: opaque).
     thickness: the volume's thickness in object units (KHR_materials_volume;
@@ -45,8 +53,10 @@ class Material:
 
     __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
                  "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
-                 "unlit", "normal_scale", "occlusion_strength", "transmission", "thickness",
-                 "attenuation_color", "attenuation_distance")
+                 "unlit", "normal_scale", "occlusion_strength", "ior", "specular",
+                 "specular_color", "clearcoat", "clearcoat_roughness", "sheen_color",
+                 "sheen_roughness", "transmission", "thickness", "attenuation_color",
+                 "attenuation_distance")
 
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
@@ -61,6 +71,13 @@ class Material:
     unlit: bool
     normal_scale: float
     occlusion_strength: float
+    ior: float
+    specular: float
+    specular_color: NDArray[np.float32]
+    clearcoat: float
+    clearcoat_roughness: float
+    sheen_color: NDArray[np.float32]
+    sheen_roughness: float
     transmission: float
     thickness: float
     attenuation_color: NDArray[np.float32]
@@ -72,7 +89,10 @@ class Material:
                  emissive: Factors = (0.0, 0.0, 0.0), emissive_strength: float = 1.0,
                  alpha_mode: AlphaMode = "opaque", alpha_cutoff: float = 0.5,
                  double_sided: bool = False, unlit: bool = False, normal_scale: float = 1.0,
-                 occlusion_strength: float = 1.0, transmission: float = 0.0,
+                 occlusion_strength: float = 1.0, ior: float = 1.5, specular: float = 1.0,
+                 specular_color: Factors = (1.0, 1.0, 1.0), clearcoat: float = 0.0,
+                 clearcoat_roughness: float = 0.0, sheen_color: Factors = (0.0, 0.0, 0.0),
+                 sheen_roughness: float = 0.0, transmission: float = 0.0,
                  thickness: float = 0.0, attenuation_color: Factors = (1.0, 1.0, 1.0),
                  attenuation_distance: float = 0.0) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
@@ -95,6 +115,16 @@ class Material:
         self.unlit = bool(unlit)
         self.normal_scale = float(normal_scale)
         self.occlusion_strength = float(occlusion_strength)
+        self.ior = float(_factors(ior, "ior", 1, np.inf)[0])
+        if self.ior < 1.0:
+            raise ValueError(f"ior: must be >= 1, got {ior!r}")
+        self.specular = float(_factors(specular, "specular", 1, 1.0)[0])
+        self.specular_color = _factors(specular_color, "specular_color", 3, np.inf)
+        self.clearcoat = float(_factors(clearcoat, "clearcoat", 1, 1.0)[0])
+        self.clearcoat_roughness = float(_factors(clearcoat_roughness, "clearcoat_roughness", 1,
+                                                  1.0)[0])
+        self.sheen_color = _factors(sheen_color, "sheen_color", 3, 1.0)
+        self.sheen_roughness = float(_factors(sheen_roughness, "sheen_roughness", 1, 1.0)[0])
         self.transmission = float(_factors(transmission, "transmission", 1, 1.0)[0])
         self.thickness = float(_factors(thickness, "thickness", 1, np.inf)[0])
         self.attenuation_color = _factors(attenuation_color, "attenuation_color", 3, 1.0)

@@ -142,7 +142,7 @@ static PyObject *slot_dict(const sr_texture_slot *t)
 static PyObject *material_dict(const sr_pbr_material *m)
 {
     const float *c = m->base_color, *e = m->emissive, *a = m->attenuation_color;
-    return Py_BuildValue("{sNsNsdsdsNsdsssdsOsOsdsdsdsdsNsd}", "base_color",
+    PyObject *d = Py_BuildValue("{sNsNsdsdsNsdsssdsOsOsdsdsdsdsNsd}", "base_color",
                          Py_BuildValue("(dddd)", (double)c[0], (double)c[1], (double)c[2],
                                        (double)c[3]),
                          "base_color_texture", slot_dict(&m->base_color_texture), "metallic",
@@ -159,6 +159,25 @@ static PyObject *material_dict(const sr_pbr_material *m)
                          "attenuation_color",
                          Py_BuildValue("(ddd)", (double)a[0], (double)a[1], (double)a[2]),
                          "attenuation_distance", (double)m->attenuation_distance);
+    /* The layers (KHR_materials_ior, _specular, _clearcoat, _sheen) with
+     * the extensions' defaults where the file has none. */
+    const float *sc = m->specular_color, *sh = m->sheen_color;
+    bool spec = m->specular_set;
+    PyObject *layers = d ? Py_BuildValue(
+        "{sdsdsNsdsdsNsd}", "ior", m->ior != 0.0f ? (double)m->ior : 1.5, "specular",
+        spec ? (double)m->specular : 1.0, "specular_color",
+        Py_BuildValue("(ddd)", spec ? (double)sc[0] : 1.0, spec ? (double)sc[1] : 1.0,
+                      spec ? (double)sc[2] : 1.0),
+        "clearcoat", (double)m->clearcoat, "clearcoat_roughness", (double)m->clearcoat_roughness,
+        "sheen_color", Py_BuildValue("(ddd)", (double)sh[0], (double)sh[1], (double)sh[2]),
+        "sheen_roughness", (double)m->sheen_roughness) : NULL;
+    if (!layers || PyDict_Update(d, layers) < 0) {
+        Py_XDECREF(layers);
+        Py_XDECREF(d);
+        return NULL;
+    }
+    Py_DECREF(layers);
+    return d;
 }
 
 /* A primitive's arrays, with its second texture coordinate set as "uvs1". */

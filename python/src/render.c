@@ -667,21 +667,25 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
 /* An instance's look for the metallic-roughness pass: (pose (3, 4),
  * base color (4), metallic, roughness, emissive (3), emissive strength,
  * alpha mode (0 opaque, 1 mask, 2 blend), alpha cutoff, double-sided,
- * unlit, normal scale, occlusion strength, (transmission, thickness,
- * attenuation color (3), attenuation distance), source: None or (the
- * loaded scene's capsule, primitive index)). */
+ * unlit, normal scale, occlusion strength, ior, specular, specular color
+ * (3), clearcoat, clearcoat roughness, sheen color (3), sheen roughness,
+ * (transmission, thickness, attenuation color (3), attenuation distance),
+ * source: None or (the loaded scene's capsule, primitive index)). */
 static int take_look(PyObject *look, Py_ssize_t i, instance *in)
 {
     PyObject *pose, *source;
     sr_pbr_material *m = &in->factors;
     *m = sr_pbr_default_material();
     int mode, double_sided, unlit;
-    float *c = m->base_color, *e = m->emissive, *ac = m->attenuation_color;
+    float *c = m->base_color, *e = m->emissive, *sc = m->specular_color, *sh = m->sheen_color;
+    float *ac = m->attenuation_color;
     if (!PyTuple_Check(look) ||
-        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppff(ff(fff)f)O", &pose, &c[0], &c[1], &c[2],
-                          &c[3], &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
+        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffff(fff)ff(fff)f(ff(fff)f)O", &pose, &c[0],
+                          &c[1], &c[2], &c[3], &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
                           &m->emissive_strength, &mode, &m->alpha_cutoff, &double_sided, &unlit,
-                          &m->normal_scale, &m->occlusion_strength, &m->transmission,
+                          &m->normal_scale, &m->occlusion_strength, &m->ior, &m->specular,
+                          &sc[0], &sc[1], &sc[2], &m->clearcoat, &m->clearcoat_roughness,
+                          &sh[0], &sh[1], &sh[2], &m->sheen_roughness, &m->transmission,
                           &m->thickness, &ac[0], &ac[1], &ac[2], &m->attenuation_distance,
                           &source)) {
         PyErr_Clear();
@@ -695,6 +699,7 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     m->alpha_mode = mode == 1 ? SR_ALPHA_MASK : mode == 2 ? SR_ALPHA_BLEND : SR_ALPHA_OPAQUE;
     m->double_sided = double_sided;
     m->unlit = unlit;
+    m->specular_set = true;   /* white 1 draws as absent */
     if (take_matrix(pose, "pose", 3, 4, &in->pose[0][0]) < 0) {
         return -1;
     }

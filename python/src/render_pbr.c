@@ -79,6 +79,14 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
     m.unlit = f->unlit;
     m.normal_scale = f->normal_scale;
     m.occlusion_strength = f->occlusion_strength;
+    m.ior = f->ior;
+    m.specular_set = f->specular_set;
+    m.specular = f->specular;
+    memcpy(m.specular_color, f->specular_color, sizeof m.specular_color);
+    m.clearcoat = f->clearcoat;
+    m.clearcoat_roughness = f->clearcoat_roughness;
+    memcpy(m.sheen_color, f->sheen_color, sizeof m.sheen_color);
+    m.sheen_roughness = f->sheen_roughness;
     m.transmission = f->transmission;
     m.thickness = f->thickness;
     memcpy(m.attenuation_color, f->attenuation_color, sizeof m.attenuation_color);

@@ -71,7 +71,9 @@ static sr_result prepare(sr_context *ctx, const sr_scene *s, const sr_scene_prim
             return r;
         }
     }
-    if (!d->tangents && d->material->normal_texture.texture && d->mesh.texcoords &&
+    if (!d->tangents &&
+        (d->material->normal_texture.texture || d->material->clearcoat_normal_texture.texture) &&
+        d->mesh.texcoords &&
         d->mesh.vertex_count > 0) {
         d->owned_tangents = malloc(d->mesh.vertex_count * 4 * sizeof(float));
         if (!d->owned_tangents) {

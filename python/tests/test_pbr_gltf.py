@@ -307,6 +307,37 @@ def test_pickled_scene_keeps_the_files_materials(tmp_path):
     assert softrast.render(lost, **args)["color"].shape == (48, 64, 3), "drawn from its Meshes"
 
 
+def test_layer_extensions_reach_the_material_and_the_picture(tmp_path):
+    # KHR_materials_clearcoat and _sheen (and ior, specular) come with the
+    # loaded Material's factors and draw as softrast render does; a
+    # Material made in Python carries them too, the defaults drawing as
+    # without them.
+    plain = mat((0.7, 0.1, 0.1, 1), roughness=1.0)
+    coated = mat((0.7, 0.1, 0.1, 1), roughness=1.0,
+                 extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0,
+                                                         "clearcoatRoughnessFactor": 0.05},
+                             "KHR_materials_ior": {"ior": 1.8}})
+    pictures = []
+    for i, m in enumerate((plain, coated)):
+        path = gb.write(tmp_path / f"c{i}.gltf", [(gb.quad((0, 0, 0), 2.0), 0)], [m], [])
+        scene = load(path)
+        pictures.append(front(scene)["color"].astype(int))
+        got = scene.instances[0].material
+        if i == 1:
+            assert got.clearcoat == 1.0 and abs(got.ior - 1.8) < 1e-6
+            assert abs(got.clearcoat_roughness - 0.05) < 1e-6
+            assert got.specular == 1.0 and list(got.specular_color) == [1, 1, 1]
+    assert np.abs(pictures[1] - pictures[0]).max() > 10, "the coat changes the picture"
+    m = softrast.Material((0.5, 0.5, 0.5, 1), sheen_color=(1, 1, 1), sheen_roughness=0.5)
+    assert m.ior == 1.5 and m.clearcoat == 0.0 and list(m.sheen_color) == [1, 1, 1]
+    with pytest.raises(ValueError, match="ior"):
+        softrast.Material(ior=0.5)
+    with pytest.raises(ValueError, match="clearcoat"):
+        softrast.Material(clearcoat=2.0)
+
+
+
+
 def test_transmission_shows_what_is_behind(tmp_path):
     # Clear glass (KHR_materials_transmission, white, smooth) in front of a
     # red and a blue square: it shows each, near the colour the squares

@@ -11,114 +11,18 @@
 #include "context.h"
 #include "fragment/environment.h"
 #include "fragment/light_lanes.h"
+#include "fragment/pbr_lanes.h"
+#include "fragment/pbr_layers.h"
 #include "fragment/pbr_transmission.h"
 #include "fragment/texture.h"
 #include "fragment/tonemap.h"
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
-#define PI_F          3.14159265358979f
-#define MIN_ROUGHNESS 0.05f     /* a perfect mirror has no highlight from a point light */
 #define MAX_EXPOSURE  64.0f
-
-/* min and max as comparisons: one instruction each, where fminf and
- * fmaxf are library calls that stop the lane loops from vectorizing. */
-static inline float min_f(float a, float b)
-{
-    return a < b ? a : b;
-}
-
-static inline float max_f(float a, float b)
-{
-    return a > b ? a : b;
-}
-
-static inline float clamp01(float a)
-{
-    return min_f(max_f(a, 0.0f), 1.0f);
-}
-
-static inline v4f load(const float a[4])
-{
-    v4f v;
-    memcpy(&v, a, sizeof v);
-    return v;
-}
-
-static inline void store(float a[4], v4f v)
-{
-    memcpy(a, &v, sizeof v);
-}
-
-static inline void load3(v4f v[3], const float a[][4])
-{
-    for (int k = 0; k < 3; k++) {
-        v[k] = load(a[k]);
-    }
-}
-
-static inline v4f dot3(const v4f a[3], const v4f b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* a < b ? a : b and a > b ? a : b lane by lane, NaN and zeros' signs
- * included: exactly what minps and maxps compute, one instruction where
- * the select is three. */
-static inline v4f vmin(v4f a, v4f b)
-{
-#if defined(__SSE__)
-    return (v4f)_mm_min_ps((__m128)a, (__m128)b);
-#else
-    return sr__v4_sel(a < b, a, b);
-#endif
-}
-
-static inline v4f vmax(v4f a, v4f b)
-{
-#if defined(__SSE__)
-    return (v4f)_mm_max_ps((__m128)a, (__m128)b);
-#else
-    return sr__v4_sel(a > b, a, b);
-#endif
-}
-
-/* 1 / sqrt(x) and 1 / x, correctly rounded (sqrtps, divps): the SSE
- * estimates would be quicker but differ between CPU vendors, and the same
- * scene must give the same bytes on every machine. */
-static inline v4f rsqrt_nr(v4f x)
-{
-    return 1.0f / sr__v4_sqrt(x);
-}
-
-static inline v4f rcp_nr(v4f x)
-{
-    return 1.0f / x;
-}
-
-/* NaN goes to lo. */
-static inline v4f vclamp(v4f a, float lo, float hi)
-{
-    return vmin(vmax(a, lo - (v4f){ 0 }), hi - (v4f){ 0 });
-}
-
-/* 2^x for x <= 0 within 2e-4 relative (the split-sum fit it feeds is
- * itself a fit): the integer part into the exponent bits, a cubic for
- * the fraction. */
-static inline v4f exp2_approx(v4f x)
-{
-    x = vmax(x, -126.0f - (v4f){ 0 });
-    v4i xi = __builtin_convertvector(x, v4i);     /* towards zero: x <= 0 */
-    v4f fl = __builtin_convertvector(xi, v4f);
-    v4i below = fl > x;
-    fl = sr__v4_sel(below, fl - 1.0f, fl);
-    xi += below;                                  /* true is -1 */
-    v4f f = x - fl;
-    v4f poly = 1.0f + f * (0.6951786f + f * (0.2261354f + f * 0.0786338f));
-    return poly * (v4f)((xi + 127) << 23);
-}
 
 /* An octahedral map (Engelhardt and Dachsbacher; Cigolle et al. 2014):
  * directions onto the unit square through the octahedron |x|+|y|+|z| = 1,
@@ -154,7 +58,8 @@ static inline v4f vsign(v4f x)
 /* Four directions d (any length > 0) looked up bilinearly on an n x n
  * octahedral map of RGBA texels, clamped to its edge texels: the mapping
  * and the weights in vectors, one 4-float load per texel and lane. */
-static void oct_lookup4(const float *map, int n, const v4f d[3], v4f out[3])
+static inline __attribute__((always_inline)) void
+oct_lookup4(const float *map, int n, const v4f d[3], v4f out[3])
 {
     v4f l1 = vabs(d[0]) + vabs(d[1]) + vabs(d[2]);
     v4f s = 1.0f / vmax(l1, 1e-30f - (v4f){ 0 });
@@ -220,7 +125,37 @@ static void irr_poly(const float sh[9][3], float q[3][IRR_TERMS])
     }
 }
 
-enum { SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE, SLOT_COUNT };
+enum {
+    SLOT_BASE, SLOT_MR, SLOT_NORMAL, SLOT_OCCLUSION, SLOT_EMISSIVE,
+    /* the extensions' (pbr_layers.h) */
+    SLOT_SPECULAR, SLOT_SPECULAR_COLOR, SLOT_CLEARCOAT, SLOT_CLEARCOAT_ROUGHNESS,
+    SLOT_CLEARCOAT_NORMAL, SLOT_SHEEN_COLOR, SLOT_SHEEN_ROUGHNESS,
+    SLOT_COUNT
+};
+
+/* Where each slot lives in sr_pbr_material, and its name for messages:
+ * one table for every loop over the slots. */
+static const struct {
+    size_t offset;
+    const char *name;
+} slot_fields[SLOT_COUNT] = {
+#define SLOT_FIELD(f) { offsetof(sr_pbr_material, f), #f }
+    SLOT_FIELD(base_color_texture), SLOT_FIELD(metallic_roughness_texture),
+    SLOT_FIELD(normal_texture), SLOT_FIELD(occlusion_texture), SLOT_FIELD(emissive_texture),
+    SLOT_FIELD(specular_texture), SLOT_FIELD(specular_color_texture),
+    SLOT_FIELD(clearcoat_texture), SLOT_FIELD(clearcoat_roughness_texture),
+    SLOT_FIELD(clearcoat_normal_texture), SLOT_FIELD(sheen_color_texture),
+    SLOT_FIELD(sheen_roughness_texture),
+#undef SLOT_FIELD
+};
+
+static const sr_texture_slot *material_slot(const sr_pbr_material *m, int i)
+{
+    return (const sr_texture_slot *)((const char *)m + slot_fields[i].offset);
+}
+
+/* The diffuse lobe's weight without transmission. */
+static const float opaque[4] = { 1, 1, 1, 1 };
 
 /* The transmission texture (R) and the volume's thickness texture (G). */
 enum { TR_SLOT_TRANSMISSION, TR_SLOT_THICKNESS, TR_SLOT_COUNT };
@@ -267,6 +202,13 @@ struct sr_pbr {
      * world -> image rotation about +Y. */
     float irr[3][IRR_TERMS];
     float env_cos, env_sin;
+    /* The extensions (pbr_layers.h), resolved: whether any runs, the
+     * dielectric's F0 from the ior times the specular color (unclamped)
+     * and its F90 (the specular factor), the coat and the sheen, and the
+     * coat's prefiltered radiance like `oct`, at its roughness. */
+    bool layers, coat, sheen;
+    float f0_color[3], f90;
+    float *oct_coat;
     const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
     sr_tonemap_op tonemap;
@@ -293,10 +235,9 @@ sr_pbr_material sr_pbr_default_material(void)
         .alpha_cutoff = 0.5f,
         .attenuation_color = { 1, 1, 1 },
     };
-    sr_texture_slot *slots[] = { &m.base_color_texture, &m.metallic_roughness_texture,
-                                 &m.normal_texture, &m.occlusion_texture, &m.emissive_texture };
     for (int i = 0; i < SLOT_COUNT; i++) {
-        slots[i]->scale[0] = slots[i]->scale[1] = 1.0f;
+        sr_texture_slot *s = (sr_texture_slot *)((char *)&m + slot_fields[i].offset);
+        s->scale[0] = s->scale[1] = 1.0f;
     }
     m.transmission_texture.scale[0] = m.transmission_texture.scale[1] = 1.0f;
     m.thickness_texture.scale[0] = m.thickness_texture.scale[1] = 1.0f;
@@ -400,8 +341,9 @@ static inline __attribute__((always_inline)) void normalize4(float a[3][4])
  * already the shading side's).  From the tangent varying when the draw
  * has tangents, else from the screen-space derivatives of position and
  * the map's coordinates (the surface gradients of u and v). */
-static void tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3][4],
-                          float uv[2][4], float t[3][4], float b[3][4])
+static inline __attribute__((always_inline)) void
+tangent_frame(const sr_pbr *p, const sr_fragment_quad *q, float n[3][4], float uv[2][4],
+              float t[3][4], float b[3][4])
 {
     if (p->vary_tangent >= 0) {
         const float (*tv)[4] = &q->varyings[p->vary_tangent];
@@ -465,7 +407,8 @@ static void hemisphere(const sr_pbr *p, const v4f d[3], v4f out[3])
 /* The environment's irradiance (E / pi) along unit normals d (world):
  * its SH polynomial at d turned into the image's frame, negative values
  * (a high-contrast image's truncated series) clamped to zero. */
-static void irradiance4(const sr_pbr *p, const v4f d[3], v4f out[3])
+static inline __attribute__((always_inline)) void
+irradiance4(const sr_pbr *p, const v4f d[3], v4f out[3])
 {
     v4f x = d[0] * p->env_cos - d[2] * p->env_sin, y = d[1];
     v4f z = d[0] * p->env_sin + d[2] * p->env_cos;
@@ -480,18 +423,63 @@ static void irradiance4(const sr_pbr *p, const v4f d[3], v4f out[3])
     }
 }
 
+/* The environment's prefiltered radiance along rr at roughness rough
+ * (0..1): from the program's octahedral table when there is one (made
+ * at that one roughness), else queried per fragment. */
+static inline __attribute__((always_inline)) void env_radiance(const sr_pbr *p,
+                                                               const float *table,
+                                                               const v4f rr[3], v4f rough,
+                                                               v4f er[3])
+{
+    if (table) {
+        oct_lookup4(table, OCT_SIZE, rr, er);
+        return;
+    }
+    sr_vec3x4 dr, e_r;
+    float rl[4];
+    store(dr.x, rr[0]);
+    store(dr.y, rr[1]);
+    store(dr.z, rr[2]);
+    store(rl, rough);
+    sr_environment_specular4(p->environment, &dr, rl, &e_r);
+    er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
+}
+
+/* The coat's image-based or hemisphere light: the prefiltered radiance
+ * along the coat normal's reflection at the coat's roughness, from the
+ * program's table where there is one, else queried. */
+static void coat_ambient(const sr_pbr *p, sr__pbr_layers *x, const v4f v[3], v4f ao)
+{
+    v4f rr[3], er[3];
+    for (int k = 0; k < 3; k++) {
+        rr[k] = 2.0f * x->cc_nvr * x->cc_n[k] - v[k];
+    }
+    if (!p->environment) {
+        hemisphere(p, rr, er);
+    } else {
+        env_radiance(p, p->oct_coat, rr, x->cc_rc, er);
+    }
+    sr__coat_ambient(x, er, ao);
+}
+
 /* Appendix B at four lanes: the punctual lights through the
  * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
  * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
- * ambient light times the occlusion.  diffuse_ scales the diffuse lobe
- * (1 but where transmission takes its share).  Radiance out, linear,
- * unexposed. */
-static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
-                        const float v_[3][4], const float base_[4][4], const float metal_[4],
-                        const float rough_[4], const float ao_[4], const float shadow_[4],
-                        const float diffuse_[4], float out_[3][4])
+ * ambient light times the occlusion.  Radiance out, linear, unexposed.
+ * diffuse_ scales the diffuse lobe (1 but where transmission takes its
+ * share) and seen_, when not NULL, is the transmitted light, part of the
+ * base under the layers.  x, when not NULL, carries the extensions
+ * (pbr_layers.h): the dielectric's F0 and F90, and the coat and sheen
+ * lobes lit by the same lights and ambient.  Inlined at two calls, one
+ * with ext NULL, so that a material without the extensions runs the code
+ * it ran before them. */
+static inline __attribute__((always_inline)) void
+shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const float v_[3][4],
+            const float base_[4][4], const float metal_[4], const float rough_[4],
+            const float ao_[4], const float shadow_[4], const float diffuse_[4],
+            const float (*seen_)[4], sr__pbr_layers *ext, float out_[3][4])
 {
-    v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3];
+    v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3], f90 = { 1, 1, 1, 1 };
     load3(pos, pos_);
     load3(n, n_);
     load3(v, v_);
@@ -499,8 +487,12 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
     v4f mt = vclamp(load(metal_), 0.0f, 1.0f), dw = load(diffuse_);
     for (int c = 0; c < 3; c++) {
         cdiff[c] = base[c] * (1.0f - mt) * dw;
-        f0[c] = 0.04f + (base[c] - 0.04f) * mt;
+        /* Metals reflect their base color, from F90 = 1 at grazing. */
+        f0[c] = ext ? ext->f0[c] + (base[c] - ext->f0[c]) * mt : 0.04f + (base[c] - 0.04f) * mt;
         out[c] = (v4f){ 0 };
+    }
+    if (ext) {
+        f90 = ext->f90 + (1.0f - ext->f90) * mt;
     }
     v4f r = vclamp(load(rough_), MIN_ROUGHNESS, 1.0f);
     v4f a2 = r * r * r * r, one_a2 = 1.0f - a2;
@@ -567,8 +559,14 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
          * visibility's sum), which is positive as nv > 0 and a2 > 0. */
         v4f dv = a2 * 0.5f * rcp_nr(PI_F * dd * dd * (nl * gv + nv * gl));
         for (int c = 0; c < 3; c++) {
-            v4f f = f0[c] + (1.0f - f0[c]) * fw;
+            v4f f = f0[c] + (f90 - f0[c]) * fw;
             out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
+        }
+        if (ext && ext->coat) {
+            sr__coat_light(ext, ld, hs, rad);
+        }
+        if (ext && ext->sheen) {
+            sr__sheen_light(ext, nl, nv, nh, rad);
         }
     }
     if (!p->environment && !p->ambient) {
@@ -584,34 +582,13 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
          * prefiltered radiance along R, from tables made with the program
          * (octahedral maps) where they can be. */
         irradiance4(p, n, en);
-        if (p->oct) {
-            oct_lookup4(p->oct, OCT_SIZE, rr, er);
-        } else {
-            sr_vec3x4 dr, e_r;
-            float rl[4];
-            store(dr.x, rr[0]);
-            store(dr.y, rr[1]);
-            store(dr.z, rr[2]);
-            store(rl, rc);
-            sr_environment_specular4(p->environment, &dr, rl, &e_r);
-            er[0] = load(e_r.x), er[1] = load(e_r.y), er[2] = load(e_r.z);
-        }
+        env_radiance(p, p->oct, rr, rc, er);
     } else {
         /* The hemisphere along N and along R. */
         hemisphere(p, n, en);
         hemisphere(p, rr, er);
     }
-    {
-        /* The split sum's scale and bias of f0 from Karis's analytic fit
-         * of its table (mobile UE4), within 2% of sr_brdf_table at a
-         * fraction of its cost. */
-        v4f rx = 1.0f - rc, ry = -0.0275f * rc + 0.0425f;
-        v4f rz = -0.572f * rc + 1.04f, rw = 0.022f * rc - 0.04f;
-        v4f e = exp2_approx(-9.28f * nv);
-        v4f a004 = vmin(rx * rx, e) * rx + ry;
-        sa = -1.04f * a004 + rz;
-        sb = 1.04f * a004 + rw;
-    }
+    split_sum_fit(rc, nv, &sa, &sb);
     /* Multiple scattering (Fdez-Aguera 2019, as three.js and Khronos'
      * sample viewer light with an environment): a single GGX bounce
      * reflects only Ess = A + B of the light; the rest, Ems, comes back
@@ -620,16 +597,201 @@ static void shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[
      * white for dielectrics and metals at every roughness. */
     v4f ems = 1.0f - (sa + sb);
     for (int c = 0; c < 3; c++) {
-        v4f fss_ess = f0[c] * sa + sb;
-        v4f favg = f0[c] + (1.0f - f0[c]) * (1.0f / 21.0f);
+        v4f fss_ess = f0[c] * sa + f90 * sb;
+        v4f favg = f0[c] + (f90 - f0[c]) * (1.0f / 21.0f);
         v4f fms_ems = ems * fss_ess * favg / (1.0f - ems * favg);
         v4f kd = cdiff[c] * (1.0f - (fss_ess + fms_ems));
         out[c] += (fss_ess * er[c] + (fms_ems + kd) * en[c]) * ao;
     }
+    if (ext && ext->coat) {
+        coat_ambient(p, ext, v, ao);
+    }
+    if (ext && ext->sheen) {
+        sr__sheen_ambient(ext, en, ao);
+    }
 done:
+    if (seen_) {
+        for (int c = 0; c < 3; c++) {
+            out[c] += load(seen_[c]);
+        }
+    }
+    if (ext) {
+        sr__layers_finish(ext, out);
+    }
     for (int c = 0; c < 3; c++) {
         store(out_[c], out[c]);
     }
+}
+
+/* The extensions' inputs at the quad's lanes (pbr_layers.h): factors
+ * times textures, the coat's normal (the geometry's, or its own map's in
+ * the same tangent frame as the base's), then each layer's per-fragment
+ * terms.  n is the base's shading normal, v the view direction. */
+static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
+                         const float n_[3][4], const float v_[3][4], sr__pbr_layers *x)
+{
+    const sr_pbr_material *m = &p->m;
+    float tex[4][4], uv[2][4];
+    v4f v[3], n[3];
+    load3(v, v_);
+    load3(n, n_);
+    memset(x, 0, sizeof *x);
+    /* KHR_materials_specular: F0 = min(F0(ior) color, 1) specular, F90 =
+     * specular; metals are left alone (shade_lanes mixes them in). */
+    v4f weight = (v4f){ 0 } + p->f90, col[3];
+    for (int c = 0; c < 3; c++) {
+        col[c] = (v4f){ 0 } + p->f0_color[c];
+    }
+    if (p->slot[SLOT_SPECULAR_COLOR].tex) {
+        sample_slot(&p->slot[SLOT_SPECULAR_COLOR], q, tex, uv);
+        for (int c = 0; c < 3; c++) {
+            col[c] *= load(tex[c]);
+        }
+    }
+    if (p->slot[SLOT_SPECULAR].tex) {
+        sample_slot(&p->slot[SLOT_SPECULAR], q, tex, uv);
+        weight *= load(tex[3]);
+    }
+    for (int c = 0; c < 3; c++) {
+        x->f0[c] = vmin(col[c], (v4f){ 1, 1, 1, 1 }) * weight;
+    }
+    x->f90 = weight;
+    if (p->coat) {
+        x->coat = true;
+        x->cc = (v4f){ 0 } + m->clearcoat;
+        v4f cr = (v4f){ 0 } + m->clearcoat_roughness;
+        if (p->slot[SLOT_CLEARCOAT].tex) {
+            sample_slot(&p->slot[SLOT_CLEARCOAT], q, tex, uv);
+            x->cc *= load(tex[0]);
+        }
+        if (p->slot[SLOT_CLEARCOAT_ROUGHNESS].tex) {
+            sample_slot(&p->slot[SLOT_CLEARCOAT_ROUGHNESS], q, tex, uv);
+            cr *= load(tex[1]);
+        }
+        x->cc_rc = vclamp(cr, 0.0f, 1.0f);
+        v4f r = vclamp(cr, MIN_ROUGHNESS, 1.0f);
+        x->cc_a2 = r * r * r * r;
+        float g[3][4];
+        for (int k = 0; k < 3; k++) {
+            for (int i = 0; i < 4; i++) {
+                g[k][i] = q->varyings[VARY_NORMAL + k][i] * side;
+            }
+        }
+        normalize4(g);
+        if (p->slot[SLOT_CLEARCOAT_NORMAL].tex) {
+            float t[3][4], b[3][4], s = m->clearcoat_normal_scale;
+            sample_slot(&p->slot[SLOT_CLEARCOAT_NORMAL], q, tex, uv);
+            tangent_frame(p, q, g, uv, t, b);
+            for (int i = 0; i < 4; i++) {
+                float tx = (2.0f * tex[0][i] - 1.0f) * s, ty = (2.0f * tex[1][i] - 1.0f) * s;
+                float tz = 2.0f * tex[2][i] - 1.0f;
+                for (int k = 0; k < 3; k++) {
+                    g[k][i] = t[k][i] * tx + b[k][i] * ty + g[k][i] * tz;
+                }
+            }
+            normalize4(g);
+        }
+        load3(x->cc_n, g);
+        sr__coat_begin(x, v);
+    }
+    if (p->sheen) {
+        x->sheen = true;
+        x->sheen_r = (v4f){ 0 } + m->sheen_roughness;
+        for (int c = 0; c < 3; c++) {
+            x->sheen_col[c] = (v4f){ 0 } + m->sheen_color[c];
+        }
+        if (p->slot[SLOT_SHEEN_COLOR].tex) {
+            sample_slot(&p->slot[SLOT_SHEEN_COLOR], q, tex, uv);
+            for (int c = 0; c < 3; c++) {
+                x->sheen_col[c] *= load(tex[c]);
+            }
+        }
+        if (p->slot[SLOT_SHEEN_ROUGHNESS].tex) {
+            sample_slot(&p->slot[SLOT_SHEEN_ROUGHNESS], q, tex, uv);
+            x->sheen_r *= load(tex[3]);
+        }
+        sr__sheen_begin(x, vmax(dot3(n, v), (v4f){ 1e-4f, 1e-4f, 1e-4f, 1e-4f }));
+    }
+}
+
+/* KHR_materials_transmission at four lanes: kd becomes 1 - transmission
+ * (the diffuse lobe's share left), seen the transmitted radiance: the
+ * light behind (sr__transmission_light4) through the base color, in the
+ * dielectric's share (1 - metallic), minus what the specular lobe
+ * reflects, 1 - (F0 A + F90 B) with the split sum's scale and bias: the
+ * dielectric's F0 and F90 from x (ior and specular) or 0.04 and 1. */
+static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
+                               const float pos[3][4], const float n[3][4], const float v[3][4],
+                               const float base[4][4], const float metal[4],
+                               const float rough[4], const sr__pbr_layers *x, float kd[4],
+                               float seen[3][4])
+{
+    float tr[4], thick[4], tex[4][4], uv[2][4];
+    for (int i = 0; i < 4; i++) {
+        tr[i] = p->m.transmission;
+        thick[i] = p->m.thickness;
+    }
+    if (p->tr_slot[TR_SLOT_TRANSMISSION].tex) {
+        sample_slot(&p->tr_slot[TR_SLOT_TRANSMISSION], q, tex, uv);
+        for (int i = 0; i < 4; i++) {
+            tr[i] *= tex[0][i];
+        }
+    }
+    if (p->tr_slot[TR_SLOT_THICKNESS].tex) {
+        sample_slot(&p->tr_slot[TR_SLOT_THICKNESS], q, tex, uv);
+        for (int i = 0; i < 4; i++) {
+            thick[i] *= tex[1][i];
+        }
+    }
+    float light[3][4], nv[4], rc[4], sa[4], sb[4];
+    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light);
+    for (int i = 0; i < 4; i++) {
+        tr[i] = clamp01(tr[i]);
+        kd[i] = 1.0f - tr[i];
+        nv[i] = clamp01(n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i]);
+        rc[i] = clamp01(rough[i]);
+    }
+    sr_brdf_table4(nv, rc, sa, sb);
+    float f0[3][4], f90[4];
+    for (int i = 0; i < 4; i++) {
+        for (int c = 0; c < 3; c++) {
+            f0[c][i] = x ? x->f0[c][i] : 0.04f;
+        }
+        f90[i] = x ? x->f90[i] : 1.0f;
+    }
+    for (int i = 0; i < 4; i++) {
+        float share = tr[i] * (1.0f - clamp01(metal[i]));
+        for (int c = 0; c < 3; c++) {
+            float es = f0[c][i] * sa[i] + f90[i] * sb[i];
+            seen[c][i] = share * (1.0f - es) * base[c][i] * light[c][i];
+        }
+    }
+}
+
+/* shade_lanes for a material with extensions, out of pbr_fs so that the
+ * plain materials' code stays as it was; keep gets what the coat lets
+ * through (pbr_layers.h), for the emission. */
+static __attribute__((noinline)) void shade_layered(const sr_pbr *p, const sr_fragment_quad *q,
+                                                    float side, const float n[3][4],
+                                                    const float v[3][4], const float pos[3][4],
+                                                    const float base[4][4], const float metal[4],
+                                                    const float rough[4], const float ao[4],
+                                                    const float shadow[4], float out[3][4],
+                                                    float keep[4])
+{
+    sr__pbr_layers x;
+    layer_inputs(p, q, side, n, v, &x);
+    /* The transmitted light is the base's: under the sheen and the coat. */
+    float kd[4], seen[3][4];
+    const float *diffuse = opaque;
+    const float(*through)[4] = NULL;
+    if (p->transmits) {
+        transmission_lanes(p, q, pos, n, v, base, metal, rough, &x, kd, seen);
+        diffuse = kd;
+        through = (const float(*)[4])seen;
+    }
+    shade_lanes(p, pos, n, v, base, metal, rough, ao, shadow, diffuse, through, &x, out);
+    store(keep, x.coat ? x.cc_keep : (v4f){ 1, 1, 1, 1 });
 }
 
 /* The tone curve at four lanes: Khronos PBR Neutral (the default) as
@@ -682,50 +844,6 @@ static void encode_lanes(const srgb_table *t, const float a[3][4], sr_fragment_q
             code[i] = (float)c;
         }
         store(q->color[k], code * (1.0f / 255.0f));
-    }
-}
-
-/* KHR_materials_transmission at four lanes: kd becomes 1 - transmission
- * (the diffuse lobe's share left), seen the transmitted radiance: the
- * light behind (sr__transmission_light4) through the base color, in the
- * dielectric's share (1 - metallic), minus what the specular lobe
- * reflects, 1 - (F0 A + B) with the split sum's scale and bias. */
-static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
-                               const float pos[3][4], const float n[3][4], const float v[3][4],
-                               const float base[4][4], const float metal[4],
-                               const float rough[4], float kd[4], float seen[3][4])
-{
-    float tr[4], thick[4], tex[4][4], uv[2][4];
-    for (int i = 0; i < 4; i++) {
-        tr[i] = p->m.transmission;
-        thick[i] = p->m.thickness;
-    }
-    if (p->tr_slot[TR_SLOT_TRANSMISSION].tex) {
-        sample_slot(&p->tr_slot[TR_SLOT_TRANSMISSION], q, tex, uv);
-        for (int i = 0; i < 4; i++) {
-            tr[i] *= tex[0][i];
-        }
-    }
-    if (p->tr_slot[TR_SLOT_THICKNESS].tex) {
-        sample_slot(&p->tr_slot[TR_SLOT_THICKNESS], q, tex, uv);
-        for (int i = 0; i < 4; i++) {
-            thick[i] *= tex[1][i];
-        }
-    }
-    float light[3][4], nv[4], rc[4], sa[4], sb[4];
-    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light);
-    for (int i = 0; i < 4; i++) {
-        tr[i] = clamp01(tr[i]);
-        kd[i] = 1.0f - tr[i];
-        nv[i] = clamp01(n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i]);
-        rc[i] = clamp01(rough[i]);
-    }
-    sr_brdf_table4(nv, rc, sa, sb);
-    for (int i = 0; i < 4; i++) {
-        float share = tr[i] * (1.0f - clamp01(metal[i])) * (1.0f - (0.04f * sa[i] + sb[i]));
-        for (int c = 0; c < 3; c++) {
-            seen[c][i] = share * base[c][i] * light[c][i];
-        }
     }
 }
 
@@ -830,22 +948,26 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             }
             sr_shadow_visibility4(p->shadow, &pos[0][0], &g[0][0], shadow);
         }
-        /* Transmission takes its share of the diffuse lobe (kd). */
-        static const float opaque[4] = { 1, 1, 1, 1 };
-        float kd[4], seen[3][4];
-        const float *diffuse = opaque;
-        if (p->transmits) {
-            transmission_lanes(p, q, pos, n, v, base, metal, rough, kd, seen);
-            diffuse = kd;
-        }
-        shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
-                    (const float(*)[4])base, metal, rough, ao, shadow, diffuse, out);
-        if (p->transmits) {
-            for (int c = 0; c < 3; c++) {
-                for (int i = 0; i < 4; i++) {
-                    out[c][i] += seen[c][i];
-                }
+        float coat_keep[4];
+        if (p->layers) {
+            shade_layered(p, q, side, (const float(*)[4])n, (const float(*)[4])v,
+                          (const float(*)[4])pos, (const float(*)[4])base, metal, rough, ao,
+                          shadow, out, coat_keep);
+        } else {
+            /* Transmission takes its share of the diffuse lobe (kd). */
+            float kd[4], seen[3][4];
+            const float *diffuse = opaque;
+            const float(*through)[4] = NULL;
+            if (p->transmits) {
+                transmission_lanes(p, q, (const float(*)[4])pos, (const float(*)[4])n,
+                                   (const float(*)[4])v, (const float(*)[4])base, metal, rough,
+                                   NULL, kd, seen);
+                diffuse = kd;
+                through = (const float(*)[4])seen;
             }
+            shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
+                        (const float(*)[4])base, metal, rough, ao, shadow, diffuse, through, NULL,
+                        out);
         }
         /* Without emission (no texture, a zero factor) the sum would add
          * a zero, which changes at most the sign of a zero radiance: every
@@ -863,6 +985,12 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
             }
         }
         float es = m->emissive_strength;
+        if (emits && p->coat) {
+            /* The coat lies over the emission too and reflects its share. */
+            for (int c = 0; c < 3; c++) {
+                store(tex[c], load(tex[c]) * load(coat_keep));
+            }
+        }
         for (int c = 0; c < 3; c++) {
             for (int i = 0; i < 4; i++) {
                 out[c][i] = emits ? (out[c][i] + m->emissive[c] * es * tex[c][i]) * p->scale
@@ -940,14 +1068,19 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.alpha_mode %d is not a mode",
                         (int)m->alpha_mode);
     }
-    const sr_texture_slot *slots[] = { &m->base_color_texture, &m->metallic_roughness_texture,
-                                       &m->normal_texture, &m->occlusion_texture,
-                                       &m->emissive_texture };
-    static const char *const names[] = { "base_color_texture", "metallic_roughness_texture",
-                                         "normal_texture", "occlusion_texture",
-                                         "emissive_texture" };
+    if (!isfinite(m->ior) || !finite_n(m->specular_color, 3) || !isfinite(m->specular) ||
+        !isfinite(m->clearcoat) || !isfinite(m->clearcoat_roughness) ||
+        !isfinite(m->clearcoat_normal_scale) || !finite_n(m->sheen_color, 3) ||
+        !isfinite(m->sheen_roughness)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_material: an extension's factor is not finite");
+    }
+    if (m->ior != 0.0f && !(m->ior >= 1.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.ior %g must be 0 (1.5) or >= 1",
+                        (double)m->ior);
+    }
     for (int i = 0; i < SLOT_COUNT; i++) {
-        sr_result r = check_slot(ctx, slots[i], names[i]);
+        sr_result r = check_slot(ctx, material_slot(m, i), slot_fields[i].name);
         if (r != SR_OK) {
             return r;
         }
@@ -1100,12 +1233,9 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
     int n = VARY_FIXED;
     bool uses[2] = { false, false };
     bool lit = !p->m.unlit;
-    const sr_texture_slot *slots[] = { &p->m.base_color_texture,
-                                       &p->m.metallic_roughness_texture, &p->m.normal_texture,
-                                       &p->m.occlusion_texture, &p->m.emissive_texture };
     for (int i = 0; i < SLOT_COUNT; i++) {
         if (p->slot[i].tex && (lit || i == SLOT_BASE)) {
-            uses[slots[i]->texcoord] = true;
+            uses[material_slot(&p->m, i)->texcoord] = true;
         }
     }
     const sr_texture_slot *tr_slots[TR_SLOT_COUNT] = { &p->m.transmission_texture,
@@ -1123,7 +1253,7 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
         }
     }
     for (int i = 0; i < SLOT_COUNT; i++) {
-        int set = slots[i]->texcoord;
+        int set = material_slot(&p->m, i)->texcoord;
         /* A slot on a set the draw cannot give reads set 0 (zero if absent). */
         p->slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
         if (p->slot[i].vary < 0) {
@@ -1143,11 +1273,68 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
         n += 4;
     }
     p->vary_tangent = -1;
-    if (lit && p->slot[SLOT_NORMAL].tex && d->tangents && n + 4 <= SR_SHADER_MAX_VARYINGS) {
+    bool maps = p->slot[SLOT_NORMAL].tex || p->slot[SLOT_CLEARCOAT_NORMAL].tex;
+    if (lit && maps && d->tangents && n + 4 <= SR_SHADER_MAX_VARYINGS) {
         p->vary_tangent = n;
         n += 4;
     }
     return n;
+}
+
+/* In double: ior 1.5 gives 0.04f itself, the base's constant, so the
+ * extension's default draws the very bytes of its absence. */
+float sr__ior_f0(float ior)
+{
+    if (ior == 0.0f) {
+        return 0.04f;
+    }
+    double r = ((double)ior - 1.0) / ((double)ior + 1.0);
+    return (float)(r * r);
+}
+
+/* The extensions' uniforms: which layers run, the dielectric's F0 color
+ * and F90 before textures; factors clamped to their ranges here, as the
+ * shader clamps metallic and roughness.  A layer that cannot show (a
+ * zero weight or color) is off with its textures, so such a material
+ * draws the base's very bytes. */
+static void resolve_layers(sr_pbr *p)
+{
+    sr_pbr_material *m = &p->m;
+    float f0 = sr__ior_f0(m->ior);
+    bool spec = m->specular_set;
+    for (int c = 0; c < 3; c++) {
+        p->f0_color[c] = f0 * (spec ? max_f(m->specular_color[c], 0.0f) : 1.0f);
+        m->sheen_color[c] = clamp01(m->sheen_color[c]);
+    }
+    p->f90 = spec ? clamp01(m->specular) : 1.0f;
+    m->clearcoat = clamp01(m->clearcoat);
+    m->clearcoat_roughness = clamp01(m->clearcoat_roughness);
+    m->sheen_roughness = clamp01(m->sheen_roughness);
+    if (m->clearcoat_normal_scale == 0.0f) {
+        m->clearcoat_normal_scale = 1.0f;
+    }
+    /* Unlit excludes the layers (the extensions say so). */
+    p->coat = !m->unlit && m->clearcoat > 0.0f;
+    p->sheen = !m->unlit &&
+               (m->sheen_color[0] > 0.0f || m->sheen_color[1] > 0.0f || m->sheen_color[2] > 0.0f);
+    p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen);
+    int off[SLOT_COUNT], count = 0;
+    if (!spec) {
+        off[count++] = SLOT_SPECULAR;
+        off[count++] = SLOT_SPECULAR_COLOR;
+    }
+    if (!p->coat) {
+        off[count++] = SLOT_CLEARCOAT;
+        off[count++] = SLOT_CLEARCOAT_ROUGHNESS;
+        off[count++] = SLOT_CLEARCOAT_NORMAL;
+    }
+    if (!p->sheen) {
+        off[count++] = SLOT_SHEEN_COLOR;
+        off[count++] = SLOT_SHEEN_ROUGHNESS;
+    }
+    for (int i = 0; i < count; i++) {
+        p->slot[off[i]].tex = NULL;
+    }
 }
 
 sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out)
@@ -1179,12 +1366,10 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     if (p->m.alpha_cutoff == 0.0f) {
         p->m.alpha_cutoff = 0.5f;
     }
-    const sr_texture_slot *slots[] = { &mat.base_color_texture, &mat.metallic_roughness_texture,
-                                       &mat.normal_texture, &mat.occlusion_texture,
-                                       &mat.emissive_texture };
     for (int i = 0; i < SLOT_COUNT; i++) {
-        resolve_slot(slots[i], &p->slot[i]);
+        resolve_slot(material_slot(&mat, i), &p->slot[i]);
     }
+    resolve_layers(p);
     p->model = desc->model ? *desc->model : sr_mat4_identity();
     sr_mat4 view = desc->view ? *desc->view : sr_mat4_identity();
     sr_mat4 proj = desc->projection ? *desc->projection : sr_mat4_identity();
@@ -1257,12 +1442,19 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         irr_poly(p->environment->sh, p->irr);
         p->env_cos = p->environment->cos_rot;
         p->env_sin = p->environment->sin_rot;
+        bool ok = true;
         if (!p->slot[SLOT_MR].tex && rough >= OCT_MIN_ROUGHNESS) {
-            p->oct = oct_build(ctx, p->environment, OCT_SIZE, rough);
-            if (!p->oct) {
-                sr__free(ctx, p);
-                return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
-            }
+            ok &= (p->oct = oct_build(ctx, p->environment, OCT_SIZE, rough)) != NULL;
+        }
+        /* The coat's one roughness likewise. */
+        if (p->coat && !p->slot[SLOT_CLEARCOAT_ROUGHNESS].tex &&
+            p->m.clearcoat_roughness >= OCT_MIN_ROUGHNESS) {
+            ok &= (p->oct_coat = oct_build(ctx, p->environment, OCT_SIZE,
+                                           p->m.clearcoat_roughness)) != NULL;
+        }
+        if (!ok) {
+            sr_destroy_pbr_program(ctx, p);
+            return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
         }
     }
     *out = p;
@@ -1279,6 +1471,7 @@ void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p)
 {
     if (ctx && p) {
         sr__free(ctx, p->oct);
+        sr__free(ctx, p->oct_coat);
         sr__free(ctx, p);
     }
 }

@@ -505,7 +505,11 @@ static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool ha
     const sr_pbr_material *m = &d->scene->materials[material];
     const sr_texture_slot *slots[] = { &m->base_color_texture, &m->metallic_roughness_texture,
                                        &m->normal_texture, &m->occlusion_texture,
-                                       &m->emissive_texture };
+                                       &m->emissive_texture, &m->specular_texture,
+                                       &m->specular_color_texture, &m->clearcoat_texture,
+                                       &m->clearcoat_roughness_texture,
+                                       &m->clearcoat_normal_texture, &m->sheen_color_texture,
+                                       &m->sheen_roughness_texture };
     for (size_t i = 0; i < sizeof slots / sizeof *slots; i++) {
         int set = slots[i]->texcoord;
         if (slots[i]->texture && !(set == 0 ? has0 : has1)) {
@@ -516,8 +520,11 @@ static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool ha
     }
 }
 
-static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr,
-                                sr_scene_primitive *p)
+/* `draco_corners`: the triangles' corners of a KHR_draco_mesh_compression
+ * primitive without an indices accessor, else NULL. */
+static sr_result read_arrays(gltf_doc *d, const json_t *prim, const char *ptr,
+                             const uint32_t *draco_corners, size_t draco_corner_count,
+                             sr_scene_primitive *p)
 {
     json_t *attrs;
     long mode = 4, indices = -1, material = -1;
@@ -575,7 +582,14 @@ static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr
     flip_v(uv1, n);
     uint32_t *idx = NULL;
     size_t count = n;
-    if (indices >= 0) {
+    if (draco_corners) {
+        count = draco_corner_count;
+        idx = malloc(count * sizeof *idx + 1);
+        if (!idx) {
+            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
+        memcpy(idx, draco_corners, count * sizeof *idx);
+    } else if (indices >= 0) {
         char iptr[GLTF_PTR];
         snprintf(iptr, sizeof iptr, "%s/indices", ptr);
         if ((r = sr__gltf_read_indices(d, indices, iptr, &info, &idx)) != SR_OK) {
@@ -596,6 +610,25 @@ static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr
     p->texcoords1 = uv1;
     p->colors = col;
     return SR_OK;
+}
+
+/* A primitive's arrays into p: a KHR_draco_mesh_compression one's from
+ * its decoded stream (gltf_draco.c), held while its accessors are read. */
+static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr,
+                                sr_scene_primitive *p)
+{
+    json_t *draco = sr__gltf_extension(prim, "KHR_draco_mesh_compression");
+    const uint32_t *corners = NULL;
+    size_t corner_count = 0;
+    sr_result r = SR_OK;
+    if (draco && json_is_object(prim)) {
+        r = sr__gltf_draco_begin(d, prim, draco, ptr, &corners, &corner_count);
+    }
+    if (r == SR_OK) {
+        r = read_arrays(d, prim, ptr, corners, corner_count, p);
+    }
+    sr__gltf_draco_end(d);
+    return r;
 }
 
 /* Mesh m's primitives, decoded on first use. */
@@ -1006,6 +1039,10 @@ static const char *supported_extensions[] = {
     "KHR_texture_transform",
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
+    "KHR_materials_ior",
+    "KHR_materials_specular",
+    "KHR_materials_clearcoat",
+    "KHR_materials_sheen",
     "KHR_materials_transmission",
     "KHR_materials_volume",
     "KHR_lights_punctual",
@@ -1017,6 +1054,7 @@ static const struct {
     bool (*have)(void);
 } decoded_extensions[] = {
     { "EXT_meshopt_compression", "meshoptimizer", sr__gltf_have_meshopt },
+    { "KHR_draco_mesh_compression", "libdraco", sr__gltf_have_draco },
     { "EXT_texture_webp", "libwebp", sr__io_have_webp },
 };
 
@@ -1299,6 +1337,7 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
     free(d.image_textures);
     free(d.lights);
     sr__gltf_meshopt_free(&d);
+    sr__gltf_draco_end(&d);
     json_decref(d.root);
     if (r != SR_OK) {
         sr_destroy_scene(ctx, d.scene);

@@ -1,7 +1,9 @@
 /* gltf.h - the glTF 2.0 reader's shared state (src/io/gltf*.c), on jansson.
  * gltf.c reads the document, buffers, meshes, nodes and cameras;
  * gltf_accessor.c decodes accessors; gltf_material.c reads materials,
- * textures and images; gltf_lights.c reads KHR_lights_punctual; scene_store.c holds the scene's memory.  Every
+ * textures and images; gltf_lights.c reads KHR_lights_punctual;
+ * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
+ * scene_store.c holds the scene's memory.  Every
  * error is one line "NAME: /json/pointer: what is wrong", the first one
  * only.  Internal to src/io. */
 #ifndef SR_IO_GLTF_H
@@ -59,6 +61,9 @@ typedef struct gltf_doc {
      * one slot per view; NULL until the first. */
     struct gltf_decoded_view *decoded;
     size_t decoded_count;
+    /* The KHR_draco_mesh_compression primitive being read (gltf_draco.c):
+     * its accessors' decoded bytes; NULL between primitives. */
+    struct gltf_draco_primitive *draco;
 } gltf_doc;
 
 /* The error "NAME: POINTER: reason" (the pointer is part of fmt's
@@ -109,6 +114,21 @@ bool sr__gltf_is_fallback_buffer(const json_t *buffer);
 bool sr__gltf_have_meshopt(void);
 void sr__gltf_meshopt_free(gltf_doc *d);
 
+/* gltf_draco.c: KHR_draco_mesh_compression.  Before primitive `prim`
+ * (JSON `ptr`) is read: when it has the extension (ext), its stream
+ * decoded and each accessor it fills written as the accessor stores
+ * elements, for sr__gltf_draco_accessor, until sr__gltf_draco_end; in a
+ * build without libdraco, a check that the accessors hold the fallback.
+ * *indices and *index_count: the triangles' corners when the primitive
+ * has no indices accessor (NULL otherwise; owned until _end). */
+sr_result sr__gltf_draco_begin(gltf_doc *d, const json_t *prim, const json_t *ext,
+                               const char *ptr, const uint32_t **indices, size_t *index_count);
+void sr__gltf_draco_end(gltf_doc *d);
+/* The decoded bytes of accessor `index` in the primitive being read, or
+ * NULL when it is not one of its Draco accessors. */
+const uint8_t *sr__gltf_draco_accessor(const gltf_doc *d, long index, size_t *size);
+bool sr__gltf_have_draco(void);
+
 /* The bytes a URI (`ptr` in messages) names: a base64 data: URI decoded,
  * or a relative reference (percent-decoded) read from d->dir.  *owned is
  * the block to free (*from_file: with sr__free_file). */
@@ -131,6 +151,9 @@ typedef struct gltf_accessor_info {
  * bitmask, bit n for n components). */
 sr_result sr__gltf_read_floats(gltf_doc *d, long index, const char *ptr, unsigned allowed,
                                gltf_accessor_info *info, float **out);
+/* The accessor's description alone: nothing read, no budget charged. */
+sr_result sr__gltf_accessor_info(gltf_doc *d, long index, const char *use,
+                                 gltf_accessor_info *info);
 /* The same for indices: a SCALAR of unsigned bytes, shorts or ints. */
 sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
                                 gltf_accessor_info *info, uint32_t **out);

@@ -110,10 +110,11 @@ static bool fits(size_t offset, size_t stride, size_t count, size_t esize, size_
     return span <= size;
 }
 
-/* The accessor's dense part, and its description; sparse left to the
- * caller (*sparse, or NULL). */
-static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_accessor_info *info,
-                               layout *l, json_t **sparse, char *aptr, size_t aptr_cap)
+/* The accessor's description (its JSON `a`, pointer aptr) with its
+ * bufferView, byteOffset and matrix rows, nothing read. */
+static sr_result describe(gltf_doc *d, long index, const char *use, gltf_accessor_info *info,
+                          json_t **a_out, long *view, size_t *offset, int *rows, char *aptr,
+                          size_t aptr_cap)
 {
     json_t *accessors;
     size_t n;
@@ -130,14 +131,16 @@ static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_ac
     if (!json_is_object(a)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", aptr);
     }
-    long ctype = 0, view = -1;
-    size_t offset = 0;
+    long ctype = 0;
+    *view = -1;
+    *offset = 0;
+    *a_out = a;
     memset(info, 0, sizeof *info);
     if ((r = sr__gltf_index(d, a, aptr, "componentType", 5127, true, &ctype)) != SR_OK ||
         (r = sr__gltf_size(d, a, aptr, "count", 1, SR_IO_MAX_VERTICES * 3, true, &info->count)) !=
             SR_OK ||
-        (r = sr__gltf_index(d, a, aptr, "bufferView", (size_t)-1 / 2, false, &view)) != SR_OK ||
-        (r = sr__gltf_size(d, a, aptr, "byteOffset", 0, SR_IO_MAX_FILE_BYTES, false, &offset)) !=
+        (r = sr__gltf_index(d, a, aptr, "bufferView", (size_t)-1 / 2, false, view)) != SR_OK ||
+        (r = sr__gltf_size(d, a, aptr, "byteOffset", 0, SR_IO_MAX_FILE_BYTES, false, offset)) !=
             SR_OK) {
         return r;
     }
@@ -147,15 +150,15 @@ static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_ac
                              aptr, ctype);
     }
     json_t *type = json_object_get(a, "type");
-    int rows = 0;
-    info->components = json_is_string(type) ? type_components(json_string_value(type), &rows) : 0;
+    *rows = 0;
+    info->components = json_is_string(type) ? type_components(json_string_value(type), rows) : 0;
     if (info->components == 0) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
                              "%s/type: expected SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4",
                              aptr);
     }
     info->component_type = (int)ctype;
-    info->matrix = rows != 0;
+    info->matrix = *rows != 0;
     json_t *norm = json_object_get(a, "normalized");
     if (norm && !json_is_boolean(norm)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/normalized: not true or false", aptr);
@@ -166,11 +169,42 @@ static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_ac
                              "%s/normalized: only byte and short components are normalized",
                              aptr);
     }
-    if (offset % csize != 0) {
+    if (*offset % csize != 0) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
                              "%s/byteOffset: %zu is not a multiple of the component size %zu",
-                             aptr, offset, csize);
+                             aptr, *offset, csize);
     }
+    return SR_OK;
+}
+
+sr_result sr__gltf_accessor_info(gltf_doc *d, long index, const char *use,
+                                 gltf_accessor_info *info)
+{
+    char aptr[GLTF_PTR];
+    json_t *a;
+    long view;
+    size_t offset;
+    int rows;
+    return describe(d, index, use, info, &a, &view, &offset, &rows, aptr, sizeof aptr);
+}
+
+/* The accessor's dense part, and its description; sparse left to the
+ * caller (*sparse, or NULL).  An accessor of the Draco primitive being
+ * read takes the decoded bytes, without its bufferView or sparse part, as
+ * the extension asks. */
+static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_accessor_info *info,
+                               layout *l, json_t **sparse, char *aptr, size_t aptr_cap)
+{
+    json_t *a;
+    long view;
+    size_t offset;
+    int rows;
+    *sparse = NULL;
+    sr_result r = describe(d, index, use, info, &a, &view, &offset, &rows, aptr, aptr_cap);
+    if (r != SR_OK) {
+        return r;
+    }
+    size_t csize = component_size(info->component_type);
     /* Every element decoded counts against the budget, data or not. */
     size_t elements;
     if (!sr__mul_ok(info->count, (size_t)info->components, &elements) ||
@@ -186,6 +220,17 @@ static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_ac
     l->rows = rows;
     l->base = NULL;
     l->stride = esize;
+    size_t decoded_size;
+    const uint8_t *decoded = sr__gltf_draco_accessor(d, index, &decoded_size);
+    if (decoded) {
+        /* gltf_draco.c wrote count elements of esize bytes. */
+        if (!fits(0, esize, info->count, esize, decoded_size)) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/count: %zu elements, but the Draco "
+                                 "stream decodes %zu bytes", aptr, info->count, decoded_size);
+        }
+        l->base = decoded;
+        return SR_OK;
+    }
     if (view >= 0) {
         char vptr[GLTF_PTR];
         snprintf(vptr, sizeof vptr, "%s/bufferView", aptr);

@@ -5,9 +5,9 @@
  * materials and the textures they point to, made on the context once per
  * image and color space (base color and emissive sRGB, the others linear).
  * KHR_texture_transform, KHR_materials_emissive_strength,
- * KHR_materials_unlit, KHR_materials_transmission and
- * KHR_materials_volume are applied.  Called by the thread reading the
- * document.
+ * KHR_materials_unlit, the physically based layers KHR_materials_ior,
+ * _specular, _clearcoat and _sheen, and KHR_materials_transmission and
+ * _volume are applied.  Called by the thread reading the document.
  */
 #include "io/gltf.h"
 
@@ -350,6 +350,95 @@ static sr_result read_transmission(gltf_doc *d, const json_t *mat, const char *p
     return SR_OK;
 }
 
+/* KHR_materials_ior, _specular, _clearcoat and _sheen into the
+ * material's extension fields (sr_pbr_material: zero is absent), with
+ * each extension's defaults where it is present; factors outside the
+ * specification's ranges are clamped with one warning each. */
+static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
+                             sr_pbr_material *m)
+{
+    char xptr[GLTF_PTR], at[GLTF_PTR + 64];
+    sr_result r;
+    json_t *x;
+    if ((x = sr__gltf_extension(mat, "KHR_materials_ior"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_ior", ptr);
+        m->ior = 1.5f;
+        if ((r = sr__gltf_number(d, x, xptr, "ior", &m->ior)) != SR_OK) {
+            return r;
+        }
+        if (!(m->ior >= 1.0f)) {
+            sr__gltf_warn(d, "%s/ior: %g is under the specification's minimum 1, taken as 1",
+                          xptr, (double)m->ior);
+            m->ior = 1.0f;
+        }
+    }
+    if ((x = sr__gltf_extension(mat, "KHR_materials_specular"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_specular", ptr);
+        m->specular_set = true;
+        m->specular = 1.0f;
+        m->specular_color[0] = m->specular_color[1] = m->specular_color[2] = 1.0f;
+        if ((r = sr__gltf_number(d, x, xptr, "specularFactor", &m->specular)) != SR_OK ||
+            (r = sr__gltf_numbers(d, x, xptr, "specularColorFactor", 3, m->specular_color)) !=
+                SR_OK ||
+            (r = read_slot(d, x, xptr, "specularTexture", false, &m->specular_texture, NULL,
+                           NULL)) != SR_OK ||
+            (r = read_slot(d, x, xptr, "specularColorTexture", true, &m->specular_color_texture,
+                           NULL, NULL)) != SR_OK) {
+            return r;
+        }
+        snprintf(at, sizeof at, "%s/specularFactor", xptr);
+        clamp_factor(d, at, &m->specular, 0, 1);
+        for (int c = 0; c < 3; c++) {
+            snprintf(at, sizeof at, "%s/specularColorFactor/%d", xptr, c);
+            clamp_factor(d, at, &m->specular_color[c], 0, FLT_MAX);
+        }
+    }
+    if ((x = sr__gltf_extension(mat, "KHR_materials_clearcoat"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_clearcoat", ptr);
+        m->clearcoat_normal_scale = 1.0f;
+        if ((r = sr__gltf_number(d, x, xptr, "clearcoatFactor", &m->clearcoat)) != SR_OK ||
+            (r = sr__gltf_number(d, x, xptr, "clearcoatRoughnessFactor",
+                                 &m->clearcoat_roughness)) != SR_OK ||
+            (r = read_slot(d, x, xptr, "clearcoatTexture", false, &m->clearcoat_texture, NULL,
+                           NULL)) != SR_OK ||
+            (r = read_slot(d, x, xptr, "clearcoatRoughnessTexture", false,
+                           &m->clearcoat_roughness_texture, NULL, NULL)) != SR_OK ||
+            (r = read_slot(d, x, xptr, "clearcoatNormalTexture", false,
+                           &m->clearcoat_normal_texture, "scale", &m->clearcoat_normal_scale)) !=
+                SR_OK) {
+            return r;
+        }
+        snprintf(at, sizeof at, "%s/clearcoatFactor", xptr);
+        clamp_factor(d, at, &m->clearcoat, 0, 1);
+        snprintf(at, sizeof at, "%s/clearcoatRoughnessFactor", xptr);
+        clamp_factor(d, at, &m->clearcoat_roughness, 0, 1);
+        if (m->clearcoat_normal_scale == 0.0f) {
+            /* A flat map: the geometry's normal, which sr_pbr_material
+             * says with an empty slot (its zero scale reads as 1). */
+            m->clearcoat_normal_texture.texture = NULL;
+        }
+    }
+    if ((x = sr__gltf_extension(mat, "KHR_materials_sheen"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_sheen", ptr);
+        if ((r = sr__gltf_numbers(d, x, xptr, "sheenColorFactor", 3, m->sheen_color)) != SR_OK ||
+            (r = sr__gltf_number(d, x, xptr, "sheenRoughnessFactor", &m->sheen_roughness)) !=
+                SR_OK ||
+            (r = read_slot(d, x, xptr, "sheenColorTexture", true, &m->sheen_color_texture, NULL,
+                           NULL)) != SR_OK ||
+            (r = read_slot(d, x, xptr, "sheenRoughnessTexture", false,
+                           &m->sheen_roughness_texture, NULL, NULL)) != SR_OK) {
+            return r;
+        }
+        for (int c = 0; c < 3; c++) {
+            snprintf(at, sizeof at, "%s/sheenColorFactor/%d", xptr, c);
+            clamp_factor(d, at, &m->sheen_color[c], 0, 1);
+        }
+        snprintf(at, sizeof at, "%s/sheenRoughnessFactor", xptr);
+        clamp_factor(d, at, &m->sheen_roughness, 0, 1);
+    }
+    return SR_OK;
+}
+
 static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
                                sr_pbr_material *m)
 {
@@ -411,7 +500,8 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
         }
     }
     m->unlit = sr__gltf_extension(mat, "KHR_materials_unlit") != NULL;
-    if ((r = read_transmission(d, mat, ptr, m)) != SR_OK) {
+    if ((r = read_transmission(d, mat, ptr, m)) != SR_OK ||
+        (!m->unlit && (r = read_layers(d, mat, ptr, m)) != SR_OK)) {
         return r;
     }
     clamp_factors(d, ptr, m);

@@ -2,7 +2,8 @@
  * would: only the public headers and libraries.  It draws a red triangle
  * over a black 32x32 framebuffer, writes it as a PNG with softrast_io,
  * reads the file back and checks a pixel inside the triangle and one
- * outside.  Exit status 0 when both are right. */
+ * outside, and parses an empty glTF document.  Exit status 0 when all
+ * are right. */
 #include <softrast.h>
 #include <softrast_io.h>
 
@@ -42,6 +43,17 @@ int main(int argc, char **argv)
         fprintf(stderr, "downstream: %s\n", err.message);
         return 1;
     }
+    /* The glTF reader too: linked from the static archive it brings the
+     * libraries it decodes with (libdraco's C++ among them). */
+    static const char doc[] = "{\"asset\":{\"version\":\"2.0\"}}";
+    sr_scene *scene = NULL;
+    sr_result parsed = sr_parse_gltf(ctx, "empty.gltf", (const uint8_t *)doc, sizeof doc - 1,
+                                     NULL, &scene, &err);
+    if (sr_io_have_gltf() ? parsed != SR_OK : parsed != SR_UNSUPPORTED) {
+        fprintf(stderr, "downstream: %s\n", err.message);
+        return 1;
+    }
+    sr_destroy_scene(ctx, scene);
     const uint8_t *in = px + ((size_t)(H - 4) * W + 4) * 4;  /* near the lower left corner */
     const uint8_t *out = px;                                 /* the upper left corner */
     int ok = w == W && h == H && in[0] == 255 && in[1] == 0 && in[2] == 0 &&

@@ -236,4 +236,33 @@ writeFileSync(join(out, 'punctual-lights.glb'), glb(
           translation: [0, 3, 0], aim: [-0.4, -1, -0.5] },
     ]));
 
+// The physically based layers, left to right: top row ior 1.5 and 2.4,
+// specular 0.3, a yellow specular color; bottom row a sharp and a rough
+// clear coat, blue velvet (sheen) and coated velvet.
+const red = pbr([0.8, 0.08, 0.05], 0, 0.5), velvet = pbr([0.02, 0.02, 0.15], 0, 0.9);
+const sheen = { sheenColorFactor: [0.4, 0.5, 1], sheenRoughnessFactor: 0.5 };
+const layers = [
+    { name: 'ior 1.5', pbrMetallicRoughness: red },
+    { name: 'ior 2.4', pbrMetallicRoughness: red, extensions: { KHR_materials_ior: { ior: 2.4 } } },
+    { name: 'specular 0.3', pbrMetallicRoughness: red,
+      extensions: { KHR_materials_specular: { specularFactor: 0.3 } } },
+    { name: 'yellow specular', pbrMetallicRoughness: red,
+      extensions: { KHR_materials_specular: { specularColorFactor: [2, 2, 1] } } },
+    { name: 'sharp coat', pbrMetallicRoughness: red,
+      extensions: { KHR_materials_clearcoat: { clearcoatFactor: 1,
+                                               clearcoatRoughnessFactor: 0.05 } } },
+    { name: 'rough coat', pbrMetallicRoughness: red,
+      extensions: { KHR_materials_clearcoat: { clearcoatFactor: 1,
+                                               clearcoatRoughnessFactor: 0.4 } } },
+    { name: 'velvet', pbrMetallicRoughness: velvet, extensions: { KHR_materials_sheen: sheen } },
+    { name: 'coated velvet', pbrMetallicRoughness: velvet,
+      extensions: { KHR_materials_sheen: sheen,
+                    KHR_materials_clearcoat: { clearcoatFactor: 0.8,
+                                               clearcoatRoughnessFactor: 0.1 } } },
+];
+writeFileSync(join(out, 'layer-spheres.glb'), glb(sphere(0.5, 48, 24), layers.map((m, i) => ({
+    material: i, translation: [(i % 4 - 1.5) * 1.1, i < 4 ? 0.55 : -0.55, 0] })), layers,
+    ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat',
+     'KHR_materials_sheen']));
+
 writeFileSync(join(out, 'sky.hdr'), sky(256, 128));
