@@ -1660,3 +1660,46 @@ SR_TEST(rough_transmission_blurs_the_background)
     sr_destroy_texture(sr_test_ctx(), src);
     free_sphere(&s);
 }
+
+/* KHR_materials_ior bends the refracted view ray: behind thick smooth
+ * glass a sphere left of a black | white edge, the part over the white
+ * (normals leaning right) looks back left into the black, the further the
+ * higher the ior; ior 1 does not bend it, and 1.5 is the extension
+ * absent, the same bytes as ior 0. */
+SR_TEST(ior_moves_what_is_seen_through)
+{
+    sphere s = make_sphere(48, 24);
+    sr_mat4 view = test_view(), proj = test_projection();
+    const uint8_t black[4] = { 0, 0, 0, 255 }, white[4] = { 255, 255, 255, 255 };
+    sr_texture *src = split_texture(CELL, CELL, black, white);
+    REQUIRE(src);
+    sr_pbr_material m = glass();
+    m.thickness = 0.5f;
+    sr_mat4 move = sr_mat4_translate(-0.4f, 0, 0), size = sr_mat4_scale(0.6f, 0.6f, 0.6f);
+    sr_mat4 model = sr_mat4_mul(&move, &size);
+    const float ior[4] = { 0.0f, 1.5f, 1.0f, 2.0f };
+    sr_framebuffer *fb[4];
+    int dark[4];
+    for (int k = 0; k < 4; k++) {
+        m.ior = ior[k];
+        sr_pbr_desc d = { .material = &m, .model = &model, .view = &view, .projection = &proj,
+                          .tonemap = SR_TONEMAP_NONE, .transmission_source = src };
+        fb[k] = make_fb(1, 1, 0.0f);
+        REQUIRE(fb[k]);
+        REQUIRE(draw_sphere(fb[k], &s, &d, 0, 0, NULL) == SR_OK);
+        dark[k] = 0;
+        for (int x = 0; x < CELL; x++) {
+            dark[k] += px(fb[k], x, CELL / 2)[1] < 128;
+        }
+    }
+    save(fb[3], "pbr_transmission_ior2");
+    CHECK(memcmp(sr_framebuffer_pixels(fb[0]), sr_framebuffer_pixels(fb[1]),
+                 4 * CELL * CELL) == 0);
+    CHECK(dark[2] < dark[1]);
+    CHECK(dark[1] + 1 < dark[3]);
+    for (int k = 0; k < 4; k++) {
+        sr_destroy_framebuffer(sr_test_ctx(), fb[k]);
+    }
+    sr_destroy_texture(sr_test_ctx(), src);
+    free_sphere(&s);
+}

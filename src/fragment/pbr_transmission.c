@@ -16,6 +16,7 @@ void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
 {
     memset(t, 0, sizeof *t);
     t->source = source;
+    t->eta = 1.0f / (m->ior != 0.0f ? m->ior : 1.5f);
     memcpy(t->view_projection, view_projection->m, sizeof t->view_projection);
     for (int a = 0; a < 3; a++) {
         const float *c = &model->m[4 * a];
@@ -39,11 +40,10 @@ static float clamp_uv(float x)
     return x >= -1.0f ? (x <= 2.0f ? x : 2.0f) : (x < -1.0f ? -1.0f : 0.0f);
 }
 
-/* refract(-v, n, 1 / ior) of GLSL, normalized; zero past the critical
- * angle (which 1 / ior < 1 never reaches from outside). */
-static void refract_view(const float v[3], const float n[3], float out[3])
+/* refract(-v, n, eta) of GLSL, normalized; zero past the critical angle
+ * (which eta = 1 / ior <= 1 never reaches from outside). */
+static void refract_view(const float v[3], const float n[3], float eta, float out[3])
 {
-    const float eta = 1.0f / SR_TRANSMISSION_IOR;
     float ni = -(n[0] * v[0] + n[1] * v[1] + n[2] * v[2]);
     float k = 1.0f - eta * eta * (1.0f - ni * ni);
     if (k < 0.0f) {
@@ -73,7 +73,7 @@ void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
         if ((mask >> i & 1) && t->source) {
             float vi[3] = { v[0][i], v[1][i], v[2][i] }, ni[3] = { n[0][i], n[1][i], n[2][i] };
             float dir[3], exit[3];
-            refract_view(vi, ni, dir);
+            refract_view(vi, ni, t->eta, dir);
             float th = thick[i] > 0.0f ? thick[i] : 0.0f, len2 = 0.0f;
             for (int c = 0; c < 3; c++) {
                 float step = dir[c] * th * t->model_scale[c];

@@ -9,13 +9,9 @@
 
 #include <stdbool.h>
 
-/* The index of refraction the refraction offset assumes: glTF's default
- * (KHR_materials_ior's), whose normal-incidence reflectance is the 0.04
- * the dielectric's specular lobe uses. */
-#define SR_TRANSMISSION_IOR 1.5f
-
 typedef struct sr__transmission {
     const sr_texture *source;      /* the opaque image; NULL: black */
+    float eta;                     /* 1 / the material's ior: air into the volume */
     float view_projection[16];     /* column-major, world -> clip */
     float model_scale[3];          /* the model's axis lengths: thickness to world */
     float inv_exposure;            /* 2^-exposure: the source holds exposed radiance */
@@ -24,8 +20,9 @@ typedef struct sr__transmission {
     bool attenuates;               /* attenuation_distance > 0 */
 } sr__transmission;
 
-/* Fills t from the material, the program's matrices, the source and
- * 2^exposure. */
+/* Fills t from the material (its ior: KHR_materials_ior's, 0 the
+ * default 1.5, the ior whose F0 is the base's 0.04), the program's
+ * matrices, the source and 2^exposure. */
 void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
                             const sr_mat4 *view_projection, const sr_texture *source,
                             float exposure_scale, sr__transmission *t);
