@@ -1703,3 +1703,47 @@ SR_TEST(ior_moves_what_is_seen_through)
     sr_destroy_texture(sr_test_ctx(), src);
     free_sphere(&s);
 }
+
+/* The transmitted light is the base layer's (the extensions' layering):
+ * with no light but what comes through, clear glass over C shows C (1 -
+ * Es) as before; Es is F0 A + F90 B of KHR_materials_specular's F0 and
+ * F90 (specular 0: nothing reflected, C itself); a clear coat keeps 1 -
+ * 0.04 of it facing the viewer, and a sheen its albedo scaling,
+ * 1 - E(1, roughness). */
+SR_TEST(layers_lie_over_the_transmitted_light)
+{
+    sphere s = make_sphere(32, 16);
+    sr_mat4 view = test_view(), proj = test_projection();
+    const uint8_t c[4] = { 200, 120, 60, 255 };
+    sr_texture *src = solid_texture(c, true);
+    REQUIRE(src);
+    float ab[2];
+    sr_brdf_table(1.0f, 0.0f, ab);
+    double sheen_keep = 1.0 - sr__sheen_albedo(1.0f, 0.5f);
+    /* Plain, specular 0, a coat, a sheen: what C keeps. */
+    const double keep[4] = { 1.0 - (0.04 * ab[0] + ab[1]), 1.0,
+                             (1.0 - (0.04 * ab[0] + ab[1])) * 0.96,
+                             (1.0 - (0.04 * ab[0] + ab[1])) * sheen_keep };
+    for (int k = 0; k < 4; k++) {
+        sr_pbr_material m = glass();
+        if (k == 1) {
+            m.specular_set = true;
+            m.specular = 0.0f;
+            m.specular_color[0] = m.specular_color[1] = m.specular_color[2] = 1.0f;
+        } else if (k == 2) {
+            m.clearcoat = 1.0f;
+        } else if (k == 3) {
+            m.sheen_color[0] = m.sheen_color[1] = m.sheen_color[2] = 1.0f;
+            m.sheen_roughness = 0.5f;
+        }
+        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                          .tonemap = SR_TONEMAP_NONE, .transmission_source = src };
+        uint8_t p[4];
+        REQUIRE(centre_of(&s, &d, p));
+        for (int ch = 0; ch < 3; ch++) {
+            CHECK_NEAR(p[ch], srgb_encode(srgb_decode(c[ch]) * keep[k]), 1.5);
+        }
+    }
+    sr_destroy_texture(sr_test_ctx(), src);
+    free_sphere(&s);
+}
