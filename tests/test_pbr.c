@@ -1551,6 +1551,25 @@ SR_TEST(zero_transmission_keeps_the_old_pixels)
     free_sphere(&s);
 }
 
+/* The flat background of the glass tests, and the centre pixel of the
+ * unit sphere drawn with m over it, lit by a hemisphere of gray amb. */
+static const uint8_t flat_color[4] = { 200, 120, 60, 255 };
+
+static bool glass_over_flat(const sr_pbr_material *m, double amb, uint8_t out[4])
+{
+    sphere s = make_sphere(32, 16);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_texture *src = solid_texture(flat_color, true);
+    float a = (float)amb;
+    sr_pbr_desc d = { .material = m, .view = &view, .projection = &proj,
+                      .tonemap = SR_TONEMAP_NONE, .transmission_source = src,
+                      .sky = { a, a, a }, .ground = { a, a, a } };
+    bool ok = src && centre_of(&s, &d, out);
+    sr_destroy_texture(sr_test_ctx(), src);
+    free_sphere(&s);
+    return ok;
+}
+
 /* Clear glass (white, smooth, transmission 1) over a flat background of
  * color C: where it faces the viewer it shows C times what the specular
  * lobe does not reflect, 1 - (F0 A + B), plus that lobe's reflection of
@@ -1558,30 +1577,19 @@ SR_TEST(zero_transmission_keeps_the_old_pixels)
  * program's ambient uses the split sum's fit, the formula its table). */
 SR_TEST(clear_glass_shows_the_background_less_the_fresnel)
 {
-    sphere s = make_sphere(32, 16);
-    sr_mat4 view = test_view(), proj = test_projection();
-    const uint8_t c[4] = { 200, 120, 60, 255 };
-    sr_texture *src = solid_texture(c, true);
-    REQUIRE(src);
     sr_pbr_material m = glass();
     double es = smooth_reflectance();
     const double amb[2] = { 0.0, 0.1 };
     for (int k = 0; k < 2; k++) {
-        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
-                          .tonemap = SR_TONEMAP_NONE, .transmission_source = src,
-                          .sky = { (float)amb[k], (float)amb[k], (float)amb[k] },
-                          .ground = { (float)amb[k], (float)amb[k], (float)amb[k] } };
         uint8_t p[4];
-        REQUIRE(centre_of(&s, &d, p));
+        REQUIRE(glass_over_flat(&m, amb[k], p));
         for (int ch = 0; ch < 3; ch++) {
-            double want = srgb_encode(srgb_decode(c[ch]) * (1.0 - es) + es * amb[k]);
+            double want = srgb_encode(srgb_decode(flat_color[ch]) * (1.0 - es) + es * amb[k]);
             CHECK_NEAR(p[ch], want, 1.5);
         }
         /* Not the old opaque white. */
         CHECK(p[2] < 100);
     }
-    sr_destroy_texture(sr_test_ctx(), src);
-    free_sphere(&s);
 }
 
 /* The volume: along thickness t (object units times the model's scale)
@@ -1628,24 +1636,36 @@ SR_TEST(volume_attenuates_with_thickness_and_base_color_tints)
     free_sphere(&s);
 }
 
-/* Roughness blurs what is seen through: over a black | white edge, a
- * smooth sphere shows the edge sharp, a rough one a ramp across it. */
-SR_TEST(rough_transmission_blurs_the_background)
+/* A fresh black cell with the sphere drawn with m (and model, or NULL)
+ * over a black | white edge down the middle of the screen, or NULL. */
+static sr_framebuffer *glass_over_edge(const sr_pbr_material *m, const sr_mat4 *model)
 {
     sphere s = make_sphere(48, 24);
     sr_mat4 view = test_view(), proj = test_projection();
     const uint8_t black[4] = { 0, 0, 0, 255 }, white[4] = { 255, 255, 255, 255 };
     sr_texture *src = split_texture(CELL, CELL, black, white);
-    REQUIRE(src);
+    sr_pbr_desc d = { .material = m, .model = model, .view = &view, .projection = &proj,
+                      .tonemap = SR_TONEMAP_NONE, .transmission_source = src };
+    sr_framebuffer *fb = src ? make_fb(1, 1, 0.0f) : NULL;
+    if (fb && draw_sphere(fb, &s, &d, 0, 0, NULL) != SR_OK) {
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+        fb = NULL;
+    }
+    sr_destroy_texture(sr_test_ctx(), src);
+    free_sphere(&s);
+    return fb;
+}
+
+/* Roughness blurs what is seen through: over a black | white edge, a
+ * smooth sphere shows the edge sharp, a rough one a ramp across it. */
+SR_TEST(rough_transmission_blurs_the_background)
+{
     sr_pbr_material m = glass();
     int ramp[2];
     for (int k = 0; k < 2; k++) {
         m.roughness = k ? 0.6f : 0.0f;
-        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
-                          .tonemap = SR_TONEMAP_NONE, .transmission_source = src };
-        sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+        sr_framebuffer *fb = glass_over_edge(&m, NULL);
         REQUIRE(fb);
-        REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
         save(fb, k ? "pbr_transmission_rough" : "pbr_transmission_smooth");
         /* Pixels of the middle row between dark and bright. */
         ramp[k] = 0;
@@ -1657,8 +1677,6 @@ SR_TEST(rough_transmission_blurs_the_background)
     }
     CHECK(ramp[0] <= 2);
     CHECK(ramp[1] >= 8);
-    sr_destroy_texture(sr_test_ctx(), src);
-    free_sphere(&s);
 }
 
 /* KHR_materials_ior bends the refracted view ray: behind thick smooth
@@ -1668,11 +1686,6 @@ SR_TEST(rough_transmission_blurs_the_background)
  * absent, the same bytes as ior 0. */
 SR_TEST(ior_moves_what_is_seen_through)
 {
-    sphere s = make_sphere(48, 24);
-    sr_mat4 view = test_view(), proj = test_projection();
-    const uint8_t black[4] = { 0, 0, 0, 255 }, white[4] = { 255, 255, 255, 255 };
-    sr_texture *src = split_texture(CELL, CELL, black, white);
-    REQUIRE(src);
     sr_pbr_material m = glass();
     m.thickness = 0.5f;
     sr_mat4 move = sr_mat4_translate(-0.4f, 0, 0), size = sr_mat4_scale(0.6f, 0.6f, 0.6f);
@@ -1682,11 +1695,8 @@ SR_TEST(ior_moves_what_is_seen_through)
     int dark[4];
     for (int k = 0; k < 4; k++) {
         m.ior = ior[k];
-        sr_pbr_desc d = { .material = &m, .model = &model, .view = &view, .projection = &proj,
-                          .tonemap = SR_TONEMAP_NONE, .transmission_source = src };
-        fb[k] = make_fb(1, 1, 0.0f);
+        fb[k] = glass_over_edge(&m, &model);
         REQUIRE(fb[k]);
-        REQUIRE(draw_sphere(fb[k], &s, &d, 0, 0, NULL) == SR_OK);
         dark[k] = 0;
         for (int x = 0; x < CELL; x++) {
             dark[k] += px(fb[k], x, CELL / 2)[1] < 128;
@@ -1700,8 +1710,6 @@ SR_TEST(ior_moves_what_is_seen_through)
     for (int k = 0; k < 4; k++) {
         sr_destroy_framebuffer(sr_test_ctx(), fb[k]);
     }
-    sr_destroy_texture(sr_test_ctx(), src);
-    free_sphere(&s);
 }
 
 /* The transmitted light is the base layer's (the extensions' layering):
@@ -1712,11 +1720,6 @@ SR_TEST(ior_moves_what_is_seen_through)
  * 1 - E(1, roughness). */
 SR_TEST(layers_lie_over_the_transmitted_light)
 {
-    sphere s = make_sphere(32, 16);
-    sr_mat4 view = test_view(), proj = test_projection();
-    const uint8_t c[4] = { 200, 120, 60, 255 };
-    sr_texture *src = solid_texture(c, true);
-    REQUIRE(src);
     float ab[2];
     sr_brdf_table(1.0f, 0.0f, ab);
     double sheen_keep = 1.0 - sr__sheen_albedo(1.0f, 0.5f);
@@ -1736,14 +1739,10 @@ SR_TEST(layers_lie_over_the_transmitted_light)
             m.sheen_color[0] = m.sheen_color[1] = m.sheen_color[2] = 1.0f;
             m.sheen_roughness = 0.5f;
         }
-        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
-                          .tonemap = SR_TONEMAP_NONE, .transmission_source = src };
         uint8_t p[4];
-        REQUIRE(centre_of(&s, &d, p));
+        REQUIRE(glass_over_flat(&m, 0.0, p));
         for (int ch = 0; ch < 3; ch++) {
-            CHECK_NEAR(p[ch], srgb_encode(srgb_decode(c[ch]) * keep[k]), 1.5);
+            CHECK_NEAR(p[ch], srgb_encode(srgb_decode(flat_color[ch]) * keep[k]), 1.5);
         }
     }
-    sr_destroy_texture(sr_test_ctx(), src);
-    free_sphere(&s);
 }
