@@ -986,6 +986,18 @@ typedef struct sr_pbr_material {
     float emissive[3];             /* linear RGB */
     float emissive_strength;       /* KHR_materials_emissive_strength; 0 -> 1 */
     sr_texture_slot emissive_texture;            /* sRGB */
+    /* KHR_materials_transmission and KHR_materials_volume (docs/pbr.md):
+     * the share of the dielectric's diffuse lobe that passes through,
+     * showing sr_pbr_desc.transmission_source refracted and tinted by
+     * the base color.  Zero transmission (and no texture): none. */
+    float transmission;                          /* 0..1, times the texture's R */
+    sr_texture_slot transmission_texture;        /* linear */
+    float thickness;                             /* >= 0, object space, times the
+                                                  * texture's G; 0: thin-walled */
+    sr_texture_slot thickness_texture;           /* linear */
+    float attenuation_color[3];                  /* linear, 0..1: white light's color
+                                                  * after attenuation_distance */
+    float attenuation_distance;                  /* > 0, world units; 0: no absorption */
     sr_alpha_mode alpha_mode;
     float alpha_cutoff;            /* for SR_ALPHA_MASK; 0 -> 0.5 */
     bool double_sided;             /* back faces drawn, lit with the flipped normal */
@@ -1321,6 +1333,13 @@ typedef struct sr_pbr_desc {
      * (1 - Es) c_diff E(N) + Es L(R, roughness), Es = F0 A + B from the
      * split-sum table, times the occlusion.  Must outlive the program. */
     const sr_environment *environment;
+    /* What a transmissive material (sr_pbr_material.transmission) sees
+     * through itself: the opaque scene drawn before it with the same view
+     * and projection, SR_TONEMAP_NONE and the same exposure, as an sRGB
+     * texture (rows top down as sr_framebuffer_pixels gives them; its mip
+     * levels blur it for rough materials).  NULL: black.  Must outlive
+     * the program. */
+    const sr_texture *transmission_source;
     /* The key light's shadow (docs/shadows.md): lights[0], which should
      * be the map's directional light, is scaled by the filtered visibility
      * at each fragment (looked up with the interpolated vertex normal).
@@ -1345,7 +1364,7 @@ typedef struct sr_pbr_desc {
 
 /* glTF's defaults: base color white, metallic 1, roughness 1, normal scale
  * and occlusion strength 1, no emission, opaque, cutoff 0.5, single-sided,
- * empty slots (scale 1). */
+ * empty slots (scale 1), no transmission, attenuation color white. */
 SR_API sr_pbr_material sr_pbr_default_material(void);
 
 /* softrast render's default lighting (docs/pbr.md), for programs that

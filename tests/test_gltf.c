@@ -616,6 +616,72 @@ SR_TEST(physically_based_extensions_are_read)
     free(b64);
 }
 
+/* KHR_materials_transmission and KHR_materials_volume: factors, the
+ * textures through the slots (R and G, linear), the attenuation; their
+ * factors clamped with one warning each; a material without them keeps
+ * the zeros that mean "absent". */
+SR_TEST(transmission_and_volume_are_read)
+{
+    char *b64 = small_png_base64();
+    REQUIRE(b64);
+    char *body = malloc(strlen(b64) + 4096);
+    sprintf(body,
+            "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
+            "\"extensionsUsed\":[\"KHR_materials_transmission\",\"KHR_materials_volume\"],"
+            "\"extensionsRequired\":[\"KHR_materials_transmission\"],"
+            "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+            "\"samplers\":[{\"magFilter\":9728,\"minFilter\":9728}],"
+            "\"textures\":[{\"source\":0,\"sampler\":0}],"
+            "\"materials\":[{\"extensions\":{\"KHR_materials_transmission\":"
+            "{\"transmissionFactor\":0.75,\"transmissionTexture\":{\"index\":0,\"texCoord\":1}},"
+            "\"KHR_materials_volume\":{\"thicknessFactor\":0.5,"
+            "\"thicknessTexture\":{\"index\":0},\"attenuationColor\":[0.9,0.5,0.25],"
+            "\"attenuationDistance\":2}}},"
+            "{\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1.5},"
+            "\"KHR_materials_volume\":{\"thicknessFactor\":-1,\"attenuationColor\":[2,0.5,-1],"
+            "\"attenuationDistance\":0}}},{}]",
+            TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+            "\"material\":0}]}]", b64);
+    warnings w = {0};
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->material_count == 4);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK_NEAR(m->transmission, 0.75, 0);
+    REQUIRE(m->transmission_texture.texture != NULL);
+    CHECK_EQ(m->transmission_texture.texcoord, 1);
+    CHECK_EQ(m->transmission_texture.filter, SR_FILTER_NEAREST);
+    CHECK_EQ(m->thickness_texture.texture, m->transmission_texture.texture);   /* one, linear */
+    CHECK_EQ(m->thickness_texture.texcoord, 0);
+    CHECK_NEAR(m->thickness, 0.5, 0);
+    CHECK_NEAR(m->attenuation_color[1], 0.5, 0);
+    CHECK_NEAR(m->attenuation_color[2], 0.25, 0);
+    CHECK_NEAR(m->attenuation_distance, 2, 0);
+    CHECK_EQ(s->texture_count, 1);
+    /* Out of range: clamped, one warning each (transmission, thickness,
+     * two attenuation channels, the distance). */
+    const sr_pbr_material *c = &s->materials[1];
+    CHECK_EQ(c->transmission, 1.0f);
+    CHECK_EQ(c->thickness, 0.0f);
+    CHECK_EQ(c->attenuation_color[0], 1.0f);
+    CHECK_EQ(c->attenuation_color[2], 0.0f);
+    CHECK_EQ(c->attenuation_distance, 0.0f);
+    CHECK_EQ(w.count, 5);
+    CHECK(strcmp(w.last, "t.gltf: warning: /materials/1/extensions/KHR_materials_volume/"
+                         "attenuationDistance: 0 is not positive, taken as infinite") == 0);
+    /* Neither extension: no transmission, white attenuation, as
+     * sr_pbr_default_material has it. */
+    const sr_pbr_material *n = &s->materials[2];
+    CHECK_EQ(n->transmission, 0.0f);
+    CHECK_EQ(n->thickness, 0.0f);
+    CHECK_EQ(n->attenuation_distance, 0.0f);
+    CHECK_EQ(n->attenuation_color[0], 1.0f);
+    CHECK(n->transmission_texture.texture == NULL);
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(body);
+    free(b64);
+}
+
 /* Skins, animations and morph targets are left out of the static scene
  * with one warning naming each, so that a model drawn in its rest pose says
  * why; a file without them warns of nothing (node_hierarchy_... checks). */

@@ -13,6 +13,7 @@
 #include "render_options.h"
 #include "render_shadow.h"
 #include "render_textures.h"
+#include "render_transmission.h"
 #include "scene.h"
 #include "softrast_io.h"
 
@@ -393,18 +394,23 @@ static bool part_looks(const scene_object *ob)
     return false;
 }
 
-/* Opaque objects first, then translucent ones back to front with
- * source-over blending and no depth writes (they still test against the
- * opaque depth). */
+/* What draw_scene draws: everything, or the opaque objects and the
+ * shadow catcher alone (a transmission source's image). */
+typedef enum scene_passes { PASSES_ALL, PASSES_OPAQUE } scene_passes;
+
+/* Opaque objects first; then the shadow catcher and the transmissive glTF
+ * parts (KHR_materials_transmission, seeing `see`: the opaque image);
+ * then translucent ones back to front with source-over blending and no
+ * depth writes (they still test against the opaque depth). */
 static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                             const sr_pbr_desc *lighting, const render_shadow *shadow,
                             sr_context *ctx, sr_framebuffer *fb, sr_state *state, scene *s,
-                            const camera *cam, bool keep_material, uint64_t *tris,
-                            uint64_t *frags)
+                            const camera *cam, bool keep_material, scene_passes passes,
+                            const sr_texture *see, uint64_t *tris, uint64_t *frags)
 {
     bool pbr = o->pbr && !keep_material;
     sr_result r = SR_OK;
-    for (int pass = 0; pass < 2 && r == SR_OK; pass++) {
+    for (int pass = 0; pass < (passes == PASSES_ALL ? 3 : 2) && r == SR_OK; pass++) {
         /* A shadow catcher after the opaque objects, whose depth hides the
          * ground behind them, and before the translucent ones. */
         for (int i = 0; i < s->count && r == SR_OK && pass == 1 && pbr && shadow; i++) {
@@ -422,7 +428,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
             bool looks = pbr && !gltf && part_looks(ob);
             bool per_part = gltf || looks;
             bool see_through = !keep_material && translucent(ob);
-            if (ob->catcher || (!per_part && see_through != (pass == 1))) {
+            if (ob->catcher || (!per_part && (see_through ? 2 : 0) != pass)) {
                 continue;
             }
             /* The texture colors the surface, not the line modes' plain
@@ -431,8 +437,8 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
              * sorted within each part, glTF's BLEND parts back to front). */
             bool by_part = !keep_material && (ob->part_textures || per_part);
             size_t parts = by_part ? ob->mesh.part_count : 1;
-            size_t *order = per_part && pass == 1 ? parts_back_to_front(ctx, ob, cam) : NULL;
-            if (per_part && pass == 1 && !order) {
+            size_t *order = per_part && pass == 2 ? parts_back_to_front(ctx, ob, cam) : NULL;
+            if (per_part && pass == 2 && !order) {
                 return SR_OUT_OF_MEMORY;
             }
             for (size_t k = 0; k < parts && r == SR_OK; k++) {
@@ -441,13 +447,15 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     gltf && !keep_material ? &s->gltf->materials[ob->part_material[p]] : NULL;
                 if (gltf) {
                     see_through = gm && gm->alpha_mode == SR_ALPHA_BLEND;
-                    if (see_through != (pass == 1)) {
+                    bool transmits = pbr && gm && render_transmits(gm);
+                    if ((see_through ? 2 : transmits ? 1 : 0) != pass ||
+                        (transmits && passes == PASSES_OPAQUE)) {
                         continue;
                     }
                 } else if (looks) {
                     const sr_mesh_material *l = &ob->mesh.parts[p].material;
                     see_through = translucent(ob) || (l->has_opacity && l->opacity < 1.0f);
-                    if (see_through != (pass == 1)) {
+                    if ((see_through ? 2 : 0) != pass) {
                         continue;
                     }
                 }
@@ -505,6 +513,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                         d.sky = d.ground = o->ambient;
                     }
                     d.environment = env;
+                    d.transmission_source = see;
                     d.shadow = shadow ? shadow->map : NULL;
                     r = sr_make_pbr_program(ctx, &d, &program);
                     if (r != SR_OK) {
@@ -539,11 +548,13 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
 static sr_result draw_passes(const render_opts *o, const sr_environment *env,
                              const sr_pbr_desc *lighting, const render_shadow *shadow,
                              sr_context *ctx, sr_framebuffer *fb, const sr_state *base, scene *s,
-                             const camera *cam, uint64_t *tris, uint64_t *frags)
+                             const camera *cam, const sr_texture *see, uint64_t *tris,
+                             uint64_t *frags)
 {
     sr_state st = *base;
     if (o->lines == LINES_NONE) {
-        return draw_scene(o, env, lighting, shadow, ctx, fb, &st, s, cam, false, tris, frags);
+        return draw_scene(o, env, lighting, shadow, ctx, fb, &st, s, cam, false, PASSES_ALL, see,
+                          tris, frags);
     }
     bool light_bg = o->background.x + o->background.y + o->background.z > 1.5f;
     sr_vec3 ink = o->have_line_color ? o->line_color
@@ -556,11 +567,13 @@ static sr_result draw_passes(const render_opts *o, const sr_environment *env,
         fill.offset = (sr_polygon_offset){ .factor = o->offset_factor,
                                            .units = o->offset_units, .fill = true };
         if (o->lines == LINES_EDGES) {
-            r = draw_scene(o, env, lighting, shadow, ctx, fb, &fill, s, cam, false, tris, frags);
+            r = draw_scene(o, env, lighting, shadow, ctx, fb, &fill, s, cam, false, PASSES_ALL,
+                           see, tris, frags);
         } else {
             fill.shading = SR_SHADING_UNLIT;
             fill.material = (sr_material){ .diffuse = o->background, .vertex_color = SR_OFF };
-            r = draw_scene(o, env, lighting, shadow, ctx, fb, &fill, s, cam, true, tris, frags);
+            r = draw_scene(o, env, lighting, shadow, ctx, fb, &fill, s, cam, true, PASSES_ALL,
+                           NULL, tris, frags);
         }
     }
     if (r != SR_OK) {
@@ -582,7 +595,8 @@ static sr_result draw_passes(const render_opts *o, const sr_environment *env,
     } else {
         lines.depth_func = SR_LEQUAL;
     }
-    return draw_scene(o, env, lighting, shadow, ctx, fb, &lines, s, cam, true, tris, frags);
+    return draw_scene(o, env, lighting, shadow, ctx, fb, &lines, s, cam, true, PASSES_ALL, NULL,
+                      tris, frags);
 }
 
 /* ---- render jobs: what `softrast render` and `softrast view` share ------- */
@@ -1054,19 +1068,17 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
         fb = job->work;
     }
     bool clear_to_near = o->depth_func == SR_GREATER || o->depth_func == SR_GEQUAL;
+    sr_clear_desc clear = { .color = { o->background.x, o->background.y, o->background.z,
+                                       o->background_alpha },
+                            .depth_action = SR_ACTION_CLEAR,
+                            .depth = clear_to_near ? 0.0f : 1.0f };
+    float blur = o->background_env == BACKGROUND_BLUR ? BACKGROUND_BLUR_ROUGHNESS : 0.0f;
     if (r == SR_OK) {
-        r = sr_clear(ctx, fb, &(sr_clear_desc){ .color = { o->background.x, o->background.y,
-                                                           o->background.z,
-                                                           o->background_alpha },
-                                                .depth_action = SR_ACTION_CLEAR,
-                                                .depth = clear_to_near ? 0.0f : 1.0f });
+        r = sr_clear(ctx, fb, &clear);
     }
     if (r == SR_OK && o->background_env && job->env) {
-        r = render_background_draw(ctx, fb, job->env,
-                                   o->background_env == BACKGROUND_BLUR ? BACKGROUND_BLUR_ROUGHNESS
-                                                                        : 0.0f,
-                                   &cam.view, &cam.proj, o->exposure, o->tonemap,
-                                   sr_context_threads(ctx));
+        r = render_background_draw(ctx, fb, job->env, blur, &cam.view, &cam.proj, o->exposure,
+                                   o->tonemap, sr_context_threads(ctx));
     }
     /* pbr's lights: the file's, the rig or both (--lights). */
     sr_pbr_desc lighting = { 0 };
@@ -1078,10 +1090,33 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
         r = render_shadow_draw(ctx, &job->shadow, &job->s, lighting.lights[0].vector);
         shadow = &job->shadow;
     }
+    /* What transmissive parts see: the opaque scene, drawn first into an
+     * image of the output's size with the exposure but no tone curve. */
+    sr_texture *see = NULL;
+    if (r == SR_OK && o->pbr && render_scene_transmits(&job->s)) {
+        sr_framebuffer *src = NULL;
+        uint64_t ignored = 0;
+        render_opts lin = *o;
+        lin.tonemap = SR_TONEMAP_NONE;
+        r = render_transmission_begin(ctx, o->width, o->height, &clear, &src);
+        if (r == SR_OK && o->background_env && job->env) {
+            r = render_background_draw(ctx, src, job->env, blur, &cam.view, &cam.proj,
+                                       o->exposure, SR_TONEMAP_NONE, sr_context_threads(ctx));
+        }
+        if (r == SR_OK) {
+            r = draw_scene(&lin, job->env, &lighting, shadow, ctx, src, &state, &job->s, &cam,
+                           false, PASSES_OPAQUE, NULL, &ignored, &ignored);
+        }
+        if (r == SR_OK) {
+            r = render_transmission_finish(ctx, src, &see);
+        }
+        sr_destroy_framebuffer(ctx, src);
+    }
     if (r == SR_OK) {
-        r = draw_passes(o, job->env, &lighting, shadow, ctx, fb, &state, &job->s, &cam,
+        r = draw_passes(o, job->env, &lighting, shadow, ctx, fb, &state, &job->s, &cam, see,
                         &info->triangles, &info->fragments);
     }
+    sr_destroy_texture(ctx, see);
     if (r == SR_OK && fb != out) {
         r = o->msaa > 1 ? sr_resolve(ctx, fb, out) : sr_downsample(ctx, fb, out, o->filter);
     }

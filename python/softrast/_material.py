@@ -22,13 +22,19 @@ class Material:
     emissive: (3,) float32 linear RGB (times ``emissive_strength``).
     alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
     double_sided, unlit: the material's flags (KHR_materials_unlit).
-    ior: the index of refraction, >= 1 (KHR_materials_ior; 1.5: F0 0.04).
+    ior: the index of refraction, >= 1 (KHR_materials_ior; 1.5: F0 0.04),
+    which transmission also refracts by.
     specular, specular_color: the dielectric's reflection strength in [0, 1]
     and F0 tint (3,) >= 0 (KHR_materials_specular).
     clearcoat, clearcoat_roughness: a clear coat's weight and roughness in
     [0, 1] (KHR_materials_clearcoat; 0: none).
     sheen_color, sheen_roughness: (3,) in [0, 1] and [0, 1]
     (KHR_materials_sheen; black: none).
+    transmission: the share of light let through, in [0, 1]
+    (KHR_materials_transmission; 0: opaque).
+    thickness: the volume's thickness in object units (KHR_materials_volume;
+    0: thin-walled); attenuation_color: (3,) float32 linear RGB that white
+    light keeps after attenuation_distance (world units; 0: no absorption).
 
     ``render`` draws the base color of a loaded instance (factor times
     texture times vertex color, drawn into its Mesh by :func:`load`) into
@@ -39,14 +45,18 @@ class Material:
     the rest) and, for an instance :func:`load` made, every texture of the
     file (base color, metallic-roughness, normal, occlusion, emissive).
     For an instance of your own Mesh the base color is ``base_color``
-    times the Mesh's colors and texture.
+    times the Mesh's colors and texture.  A transmissive material
+    (``transmission`` > 0) shows the opaque instances behind it, refracted,
+    blurred by its roughness and tinted (docs/pbr.md); the file's
+    transmission and thickness textures are drawn for a loaded instance.
     """
 
     __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
                  "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
                  "unlit", "normal_scale", "occlusion_strength", "ior", "specular",
                  "specular_color", "clearcoat", "clearcoat_roughness", "sheen_color",
-                 "sheen_roughness")
+                 "sheen_roughness", "transmission", "thickness", "attenuation_color",
+                 "attenuation_distance")
 
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
@@ -68,6 +78,10 @@ class Material:
     clearcoat_roughness: float
     sheen_color: NDArray[np.float32]
     sheen_roughness: float
+    transmission: float
+    thickness: float
+    attenuation_color: NDArray[np.float32]
+    attenuation_distance: float
 
     def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
                  base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
@@ -78,7 +92,9 @@ class Material:
                  occlusion_strength: float = 1.0, ior: float = 1.5, specular: float = 1.0,
                  specular_color: Factors = (1.0, 1.0, 1.0), clearcoat: float = 0.0,
                  clearcoat_roughness: float = 0.0, sheen_color: Factors = (0.0, 0.0, 0.0),
-                 sheen_roughness: float = 0.0) -> None:
+                 sheen_roughness: float = 0.0, transmission: float = 0.0,
+                 thickness: float = 0.0, attenuation_color: Factors = (1.0, 1.0, 1.0),
+                 attenuation_distance: float = 0.0) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
         if base_color_texture is not None and not (
                 isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
@@ -109,6 +125,11 @@ class Material:
                                                   1.0)[0])
         self.sheen_color = _factors(sheen_color, "sheen_color", 3, 1.0)
         self.sheen_roughness = float(_factors(sheen_roughness, "sheen_roughness", 1, 1.0)[0])
+        self.transmission = float(_factors(transmission, "transmission", 1, 1.0)[0])
+        self.thickness = float(_factors(thickness, "thickness", 1, np.inf)[0])
+        self.attenuation_color = _factors(attenuation_color, "attenuation_color", 3, 1.0)
+        self.attenuation_distance = float(_factors(attenuation_distance, "attenuation_distance",
+                                                   1, np.inf)[0])
 
     @classmethod
     def _from_factors(cls, factors: Mapping[str, Any],

@@ -142,7 +142,8 @@ def _look(inst: Instance) -> Tuple[Any, ...]:
     source = None if loaded is None or loaded[0] is None else (loaded[0].capsule, loaded[1])
     if m is None:
         return (pose, (1.0, 1.0, 1.0, 1.0), 0.0, 0.5, (0.0, 0.0, 0.0), 1.0, 0, 0.5, True, False,
-                1.0, 1.0, 1.5, 1.0, (1.0, 1.0, 1.0), 0.0, 0.0, (0.0, 0.0, 0.0), 0.0, source)
+                1.0, 1.0, 1.5, 1.0, (1.0, 1.0, 1.0), 0.0, 0.0, (0.0, 0.0, 0.0), 0.0,
+                (0.0, 0.0, (1.0, 1.0, 1.0), 0.0), source)
     # (A loaded instance is drawn from the file's own arrays, whose colors
     # do not have the factor its Mesh's have.)
     base = tuple(float(c) for c in m.base_color)
@@ -150,7 +151,9 @@ def _look(inst: Instance) -> Tuple[Any, ...]:
             m.emissive_strength, _ALPHA_MODES[m.alpha_mode], m.alpha_cutoff, m.double_sided,
             m.unlit, m.normal_scale, m.occlusion_strength, m.ior, m.specular,
             tuple(float(c) for c in m.specular_color), m.clearcoat, m.clearcoat_roughness,
-            tuple(float(c) for c in m.sheen_color), m.sheen_roughness, source)
+            tuple(float(c) for c in m.sheen_color), m.sheen_roughness,
+            (m.transmission, m.thickness, tuple(float(c) for c in m.attenuation_color),
+             m.attenuation_distance), source)
 
 
 # Prefiltered environments, by (file, its size and time, intensity): a few

@@ -141,8 +141,8 @@ static PyObject *slot_dict(const sr_texture_slot *t)
  * file's images, which the Python layer decodes itself). */
 static PyObject *material_dict(const sr_pbr_material *m)
 {
-    const float *c = m->base_color, *e = m->emissive;
-    PyObject *d = Py_BuildValue("{sNsNsdsdsNsdsssdsOsOsdsd}", "base_color",
+    const float *c = m->base_color, *e = m->emissive, *a = m->attenuation_color;
+    PyObject *d = Py_BuildValue("{sNsNsdsdsNsdsssdsOsOsdsdsdsdsNsd}", "base_color",
                          Py_BuildValue("(dddd)", (double)c[0], (double)c[1], (double)c[2],
                                        (double)c[3]),
                          "base_color_texture", slot_dict(&m->base_color_texture), "metallic",
@@ -154,7 +154,11 @@ static PyObject *material_dict(const sr_pbr_material *m)
                          m->alpha_cutoff != 0.0f ? (double)m->alpha_cutoff : 0.5, "double_sided",
                          m->double_sided ? Py_True : Py_False, "unlit",
                          m->unlit ? Py_True : Py_False, "normal_scale", (double)m->normal_scale,
-                         "occlusion_strength", (double)m->occlusion_strength);
+                         "occlusion_strength", (double)m->occlusion_strength, "transmission",
+                         (double)m->transmission, "thickness", (double)m->thickness,
+                         "attenuation_color",
+                         Py_BuildValue("(ddd)", (double)a[0], (double)a[1], (double)a[2]),
+                         "attenuation_distance", (double)m->attenuation_distance);
     /* The layers (KHR_materials_ior, _specular, _clearcoat, _sheen) with
      * the extensions' defaults where the file has none. */
     const float *sc = m->specular_color, *sh = m->sheen_color;

@@ -4,8 +4,10 @@
  * draws a glTF file (docs/pbr.md): in world space, lit by the default
  * rig relative to the camera (sr_default_lights, sr_pbr_default_lighting)
  * or by an environment and the key light alone, with the key light's
- * shadow map when asked; opaque and masked instances first, then blended
- * ones farthest first, each with its triangles back to front
+ * shadow map when asked; opaque and masked instances first, then the
+ * transmissive ones (KHR_materials_transmission, seeing an image of the
+ * others drawn first without the tone curve, as softrast render does),
+ * then blended ones farthest first, each with its triangles back to front
  * (sr_mean_view_depth, sr_sort_back_to_front) and no depth writes.  An
  * instance loaded from a glTF file draws its primitive's own arrays and
  * material, textures included; any other takes its Mesh's colors and
@@ -85,6 +87,10 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
     m.clearcoat_roughness = f->clearcoat_roughness;
     memcpy(m.sheen_color, f->sheen_color, sizeof m.sheen_color);
     m.sheen_roughness = f->sheen_roughness;
+    m.transmission = f->transmission;
+    m.thickness = f->thickness;
+    memcpy(m.attenuation_color, f->attenuation_color, sizeof m.attenuation_color);
+    m.attenuation_distance = f->attenuation_distance;
     return m;
 }
 
@@ -146,8 +152,12 @@ typedef struct pass_light {
     const sr_shadow_map *shadow;
 } pass_light;
 
+/* Draws one instance; transmissive ones see `see` (NULL: black), and
+ * `tonemap` is the program's tone curve (NONE for the transmission
+ * source). */
 static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
-                          const instance *in, const pass_light *pl, const sr_mat4 *proj)
+                          const instance *in, const pass_light *pl, const sr_mat4 *proj,
+                          const sr_texture *see, sr_tonemap_op tonemap)
 {
     pbr_draw pd;
     draw_of(in, &pd);
@@ -162,7 +172,8 @@ static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job 
     sr_pbr_material m = material_of(in, tex);
     sr_pbr_desc d = { .material = &m, .model = &pd.model, .view = &pl->view, .projection = proj,
                       .vertex_color = pd.d.colors ? SR_ON : SR_OFF, .tangents = pd.tangents,
-                      .texcoords1 = pd.texcoords1, .environment = j->env, .shadow = pl->shadow };
+                      .texcoords1 = pd.texcoords1, .environment = j->env, .shadow = pl->shadow,
+                      .transmission_source = see, .tonemap = tonemap };
     if (pd.tangents || pd.texcoords1) {
         d.vertex_count = pd.d.vertex_count;
     }
@@ -226,6 +237,56 @@ static sr_result draw_ground(sr_context *ctx, sr_framebuffer *fb, const render_j
     return r;
 }
 
+/* Which pass draws an instance: 0 opaque and masked, 1 transmissive,
+ * 2 blended. */
+static int pass_of(const instance *in)
+{
+    if (in->factors.alpha_mode == SR_ALPHA_BLEND) {
+        return 2;
+    }
+    return in->factors.transmission > 0.0f && !in->factors.unlit ? 1 : 0;
+}
+
+/* The opaque instances and the ground, drawn into a framebuffer of fb's
+ * size with the background and no tone curve, as the texture the
+ * transmissive instances see (*out stays NULL when there are none). */
+static sr_result transmission_source(sr_context *ctx, const render_job *j, const pass_light *pl,
+                                     const sr_mat4 *proj, sr_texture **out)
+{
+    *out = NULL;
+    bool any = false;
+    for (size_t i = 0; i < j->count; i++) {
+        any |= pass_of(&j->inst[i]) == 1;
+    }
+    if (!any) {
+        return SR_OK;
+    }
+    sr_framebuffer *src = NULL;
+    sr_result r = sr_make_framebuffer(ctx, &(sr_framebuffer_desc){
+        .width = j->width, .height = j->height, .depth_format = SR_DEPTH_D32F }, &src);
+    if (r == SR_OK) {
+        r = sr_clear(ctx, src, &(sr_clear_desc){
+            .color = { j->background[0], j->background[1], j->background[2], 1.0f },
+            .depth_action = SR_ACTION_CLEAR, .depth = 0 });
+    }
+    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
+        if (pass_of(&j->inst[i]) == 0) {
+            r = draw_one(ctx, src, j, &j->inst[i], pl, proj, NULL, SR_TONEMAP_NONE);
+        }
+    }
+    if (r == SR_OK && pl->shadow && j->ground) {
+        r = draw_ground(ctx, src, j, pl, proj);
+    }
+    if (r == SR_OK) {
+        r = sr_make_texture(ctx, &(sr_texture_desc){ .width = j->width, .height = j->height,
+                                                     .pixels = sr_framebuffer_pixels(src),
+                                                     .srgb = true },
+                            out);
+    }
+    sr_destroy_framebuffer(ctx, src);
+    return r;
+}
+
 sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
                          const sr_mat4 *proj)
 {
@@ -262,10 +323,16 @@ sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *
     if ((!depth || !blended) && r == SR_OK) {
         r = SR_OUT_OF_MEMORY;
     }
+    sr_texture *see = NULL;
+    if (r == SR_OK) {
+        r = transmission_source(ctx, j, &pl, proj, &see);
+    }
     for (size_t i = 0; i < j->count && r == SR_OK; i++) {
         const instance *in = &j->inst[i];
-        if (in->factors.alpha_mode != SR_ALPHA_BLEND) {
-            r = draw_one(ctx, fb, j, in, &pl, proj);
+        if (pass_of(in) == 0) {
+            r = draw_one(ctx, fb, j, in, &pl, proj, NULL, SR_TONEMAP_DEFAULT);
+        }
+        if (pass_of(in) != 2) {
             continue;
         }
         pbr_draw pd;
@@ -279,13 +346,20 @@ sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *
     if (r == SR_OK && shadow && j->ground) {
         r = draw_ground(ctx, fb, j, &pl, proj);
     }
+    for (size_t i = 0; i < j->count && r == SR_OK; i++) {
+        if (pass_of(&j->inst[i]) == 1) {
+            r = draw_one(ctx, fb, j, &j->inst[i], &pl, proj, see, SR_TONEMAP_DEFAULT);
+        }
+    }
     size_t *order = malloc((nb ? nb : 1) * sizeof *order);
     if (r == SR_OK) {
         r = order ? sr_order_back_to_front(ctx, depth, nb, order) : SR_OUT_OF_MEMORY;
     }
     for (size_t k = 0; k < nb && r == SR_OK; k++) {
-        r = draw_one(ctx, fb, j, &j->inst[blended[order[k]]], &pl, proj);
+        r = draw_one(ctx, fb, j, &j->inst[blended[order[k]]], &pl, proj, see,
+                     SR_TONEMAP_DEFAULT);
     }
+    sr_destroy_texture(ctx, see);
     free(order);
     free(depth);
     free(blended);

@@ -334,3 +334,35 @@ def test_layer_extensions_reach_the_material_and_the_picture(tmp_path):
         softrast.Material(ior=0.5)
     with pytest.raises(ValueError, match="clearcoat"):
         softrast.Material(clearcoat=2.0)
+
+
+
+
+def test_transmission_shows_what_is_behind(tmp_path):
+    # Clear glass (KHR_materials_transmission, white, smooth) in front of a
+    # red and a blue square: it shows each, near the colour the squares
+    # have without it (less what the glass reflects, plus its highlight),
+    # where an opaque white quad would hide them.
+    back = [(gb.quad((-0.5, 0, 0), 1.0), 0), (gb.quad((0.5, 0, 0), 1.0), 1)]
+    colors = [mat((1, 0, 0, 1)), mat((0, 0, 1, 1))]
+    glass = mat((1, 1, 1, 1), roughness=0.0,
+                extensions={"KHR_materials_transmission": {"transmissionFactor": 1}})
+    scene = load(gb.write(tmp_path / "glass.gltf", back + [(gb.quad((0, 0, 0.5), 1.6), 2)],
+                          colors + [glass]))
+    m = scene.instances[-1].material
+    assert m.transmission == 1.0 and m.thickness == 0.0 and m.attenuation_distance == 0.0
+    assert list(m.attenuation_color) == [1.0, 1.0, 1.0]
+    seen = front(scene)["color"].astype(int)
+    save("pbr_transmission.png", seen.astype(np.uint8))
+    bare = front(load(gb.write(tmp_path / "bare.gltf", back, colors)))["color"].astype(int)
+    for x in (14, 34):
+        c = (slice(20, 28), slice(x - 3, x + 3))
+        assert np.abs(seen[c] - bare[c]).max() <= 24
+    assert seen[24, 14, 0] > seen[24, 14, 2] + 80, "red through the glass on the left"
+    assert seen[24, 34, 2] > seen[24, 34, 0] + 80, "blue on the right"
+    # The same Material with no transmission is the old opaque white.
+    m.transmission = 0.0
+    opaque = front(scene)["color"].astype(int)
+    assert opaque[24, 14].min() > 120 and abs(opaque[24, 14, 0] - opaque[24, 14, 2]) < 20
+    with pytest.raises(ValueError, match="transmission"):
+        softrast.Material(transmission=1.5)

@@ -13,6 +13,7 @@
 #include "fragment/light_lanes.h"
 #include "fragment/pbr_lanes.h"
 #include "fragment/pbr_layers.h"
+#include "fragment/pbr_transmission.h"
 #include "fragment/texture.h"
 #include "fragment/tonemap.h"
 
@@ -153,6 +154,12 @@ static const sr_texture_slot *material_slot(const sr_pbr_material *m, int i)
     return (const sr_texture_slot *)((const char *)m + slot_fields[i].offset);
 }
 
+/* The diffuse lobe's weight without transmission. */
+static const float opaque[4] = { 1, 1, 1, 1 };
+
+/* The transmission texture (R) and the volume's thickness texture (G). */
+enum { TR_SLOT_TRANSMISSION, TR_SLOT_THICKNESS, TR_SLOT_COUNT };
+
 /* Varyings 0..2 world position, 3..5 world normal; the rest as needed. */
 enum { VARY_POS = 0, VARY_NORMAL = 3, VARY_FIXED = 6 };
 
@@ -210,6 +217,10 @@ struct sr_pbr {
     size_t vertex_count;
     const uint8_t *tangents, *texcoords1;
     size_t tangent_stride, texcoord1_stride;
+    /* KHR_materials_transmission and _volume (pbr_transmission.c). */
+    bool transmits;               /* a lit material with a transmission factor */
+    pbr_slot tr_slot[TR_SLOT_COUNT];
+    sr__transmission tr;
 };
 
 sr_pbr_material sr_pbr_default_material(void)
@@ -222,11 +233,14 @@ sr_pbr_material sr_pbr_default_material(void)
         .occlusion_strength = 1.0f,
         .emissive_strength = 1.0f,
         .alpha_cutoff = 0.5f,
+        .attenuation_color = { 1, 1, 1 },
     };
     for (int i = 0; i < SLOT_COUNT; i++) {
         sr_texture_slot *s = (sr_texture_slot *)((char *)&m + slot_fields[i].offset);
         s->scale[0] = s->scale[1] = 1.0f;
     }
+    m.transmission_texture.scale[0] = m.transmission_texture.scale[1] = 1.0f;
+    m.thickness_texture.scale[0] = m.thickness_texture.scale[1] = 1.0f;
     return m;
 }
 
@@ -452,23 +466,27 @@ static void coat_ambient(const sr_pbr *p, sr__pbr_layers *x, const v4f v[3], v4f
  * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
  * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
  * ambient light times the occlusion.  Radiance out, linear, unexposed.
- * x, when not NULL, carries the extensions (pbr_layers.h): the
- * dielectric's F0 and F90, and the coat and sheen lobes lit by the same
- * lights and ambient.  Inlined at two calls, one with ext NULL, so that a
- * material without the extensions runs the code it ran before them. */
+ * diffuse_ scales the diffuse lobe (1 but where transmission takes its
+ * share) and seen_, when not NULL, is the transmitted light, part of the
+ * base under the layers.  x, when not NULL, carries the extensions
+ * (pbr_layers.h): the dielectric's F0 and F90, and the coat and sheen
+ * lobes lit by the same lights and ambient.  Inlined at two calls, one
+ * with ext NULL, so that a material without the extensions runs the code
+ * it ran before them. */
 static inline __attribute__((always_inline)) void
 shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const float v_[3][4],
             const float base_[4][4], const float metal_[4], const float rough_[4],
-            const float ao_[4], const float shadow_[4], sr__pbr_layers *ext, float out_[3][4])
+            const float ao_[4], const float shadow_[4], const float diffuse_[4],
+            const float (*seen_)[4], sr__pbr_layers *ext, float out_[3][4])
 {
     v4f pos[3], n[3], v[3], base[3], cdiff[3], f0[3], out[3], f90 = { 1, 1, 1, 1 };
     load3(pos, pos_);
     load3(n, n_);
     load3(v, v_);
     load3(base, base_);
-    v4f mt = vclamp(load(metal_), 0.0f, 1.0f);
+    v4f mt = vclamp(load(metal_), 0.0f, 1.0f), dw = load(diffuse_);
     for (int c = 0; c < 3; c++) {
-        cdiff[c] = base[c] * (1.0f - mt);
+        cdiff[c] = base[c] * (1.0f - mt) * dw;
         /* Metals reflect their base color, from F90 = 1 at grazing. */
         f0[c] = ext ? ext->f0[c] + (base[c] - ext->f0[c]) * mt : 0.04f + (base[c] - 0.04f) * mt;
         out[c] = (v4f){ 0 };
@@ -592,6 +610,11 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         sr__sheen_ambient(ext, en, ao);
     }
 done:
+    if (seen_) {
+        for (int c = 0; c < 3; c++) {
+            out[c] += load(seen_[c]);
+        }
+    }
     if (ext) {
         sr__layers_finish(ext, out);
     }
@@ -691,6 +714,60 @@ static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
     }
 }
 
+/* KHR_materials_transmission at four lanes: kd becomes 1 - transmission
+ * (the diffuse lobe's share left), seen the transmitted radiance: the
+ * light behind (sr__transmission_light4) through the base color, in the
+ * dielectric's share (1 - metallic), minus what the specular lobe
+ * reflects, 1 - (F0 A + F90 B) with the split sum's scale and bias: the
+ * dielectric's F0 and F90 from x (ior and specular) or 0.04 and 1. */
+static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
+                               const float pos[3][4], const float n[3][4], const float v[3][4],
+                               const float base[4][4], const float metal[4],
+                               const float rough[4], const sr__pbr_layers *x, float kd[4],
+                               float seen[3][4])
+{
+    float tr[4], thick[4], tex[4][4], uv[2][4];
+    for (int i = 0; i < 4; i++) {
+        tr[i] = p->m.transmission;
+        thick[i] = p->m.thickness;
+    }
+    if (p->tr_slot[TR_SLOT_TRANSMISSION].tex) {
+        sample_slot(&p->tr_slot[TR_SLOT_TRANSMISSION], q, tex, uv);
+        for (int i = 0; i < 4; i++) {
+            tr[i] *= tex[0][i];
+        }
+    }
+    if (p->tr_slot[TR_SLOT_THICKNESS].tex) {
+        sample_slot(&p->tr_slot[TR_SLOT_THICKNESS], q, tex, uv);
+        for (int i = 0; i < 4; i++) {
+            thick[i] *= tex[1][i];
+        }
+    }
+    float light[3][4], nv[4], rc[4], sa[4], sb[4];
+    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light);
+    for (int i = 0; i < 4; i++) {
+        tr[i] = clamp01(tr[i]);
+        kd[i] = 1.0f - tr[i];
+        nv[i] = clamp01(n[0][i] * v[0][i] + n[1][i] * v[1][i] + n[2][i] * v[2][i]);
+        rc[i] = clamp01(rough[i]);
+    }
+    sr_brdf_table4(nv, rc, sa, sb);
+    float f0[3][4], f90[4];
+    for (int i = 0; i < 4; i++) {
+        for (int c = 0; c < 3; c++) {
+            f0[c][i] = x ? x->f0[c][i] : 0.04f;
+        }
+        f90[i] = x ? x->f90[i] : 1.0f;
+    }
+    for (int i = 0; i < 4; i++) {
+        float share = tr[i] * (1.0f - clamp01(metal[i]));
+        for (int c = 0; c < 3; c++) {
+            float es = f0[c][i] * sa[i] + f90[i] * sb[i];
+            seen[c][i] = share * (1.0f - es) * base[c][i] * light[c][i];
+        }
+    }
+}
+
 /* shade_lanes for a material with extensions, out of pbr_fs so that the
  * plain materials' code stays as it was; keep gets what the coat lets
  * through (pbr_layers.h), for the emission. */
@@ -704,7 +781,16 @@ static __attribute__((noinline)) void shade_layered(const sr_pbr *p, const sr_fr
 {
     sr__pbr_layers x;
     layer_inputs(p, q, side, n, v, &x);
-    shade_lanes(p, pos, n, v, base, metal, rough, ao, shadow, &x, out);
+    /* The transmitted light is the base's: under the sheen and the coat. */
+    float kd[4], seen[3][4];
+    const float *diffuse = opaque;
+    const float(*through)[4] = NULL;
+    if (p->transmits) {
+        transmission_lanes(p, q, pos, n, v, base, metal, rough, &x, kd, seen);
+        diffuse = kd;
+        through = (const float(*)[4])seen;
+    }
+    shade_lanes(p, pos, n, v, base, metal, rough, ao, shadow, diffuse, through, &x, out);
     store(keep, x.coat ? x.cc_keep : (v4f){ 1, 1, 1, 1 });
 }
 
@@ -868,8 +954,20 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
                           (const float(*)[4])pos, (const float(*)[4])base, metal, rough, ao,
                           shadow, out, coat_keep);
         } else {
+            /* Transmission takes its share of the diffuse lobe (kd). */
+            float kd[4], seen[3][4];
+            const float *diffuse = opaque;
+            const float(*through)[4] = NULL;
+            if (p->transmits) {
+                transmission_lanes(p, q, (const float(*)[4])pos, (const float(*)[4])n,
+                                   (const float(*)[4])v, (const float(*)[4])base, metal, rough,
+                                   NULL, kd, seen);
+                diffuse = kd;
+                through = (const float(*)[4])seen;
+            }
             shade_lanes(p, (const float(*)[4])pos, (const float(*)[4])n, (const float(*)[4])v,
-                        (const float(*)[4])base, metal, rough, ao, shadow, NULL, out);
+                        (const float(*)[4])base, metal, rough, ao, shadow, diffuse, through, NULL,
+                        out);
         }
         /* Without emission (no texture, a zero factor) the sum would add
          * a zero, which changes at most the sign of a zero radiance: every
@@ -939,6 +1037,21 @@ static sr_result check_slot(sr_context *ctx, const sr_texture_slot *s, const cha
     return SR_OK;
 }
 
+/* KHR_materials_transmission and _volume: finite, a thickness and an
+ * attenuation distance that are lengths, and their slots. */
+static sr_result check_transmission(sr_context *ctx, const sr_pbr_material *m)
+{
+    if (!isfinite(m->transmission) || !finite_n(m->attenuation_color, 3) ||
+        !(m->thickness >= 0.0f && m->thickness < INFINITY) ||
+        !(m->attenuation_distance >= 0.0f && m->attenuation_distance < INFINITY)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_material: transmission, thickness or attenuation is not finite "
+                        "(thickness and attenuation_distance must be >= 0)");
+    }
+    sr_result r = check_slot(ctx, &m->transmission_texture, "transmission_texture");
+    return r == SR_OK ? check_slot(ctx, &m->thickness_texture, "thickness_texture") : r;
+}
+
 static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
 {
     if (!finite_n(m->base_color, 4) || !finite_n(m->emissive, 3) || !isfinite(m->metallic) ||
@@ -946,6 +1059,10 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
         !isfinite(m->occlusion_strength) || !isfinite(m->emissive_strength) ||
         !isfinite(m->alpha_cutoff)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material: a factor is not finite");
+    }
+    sr_result tr = check_transmission(ctx, m);
+    if (tr != SR_OK) {
+        return tr;
     }
     if ((unsigned)m->alpha_mode > SR_ALPHA_BLEND) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.alpha_mode %d is not a mode",
@@ -1121,6 +1238,13 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
             uses[material_slot(&p->m, i)->texcoord] = true;
         }
     }
+    const sr_texture_slot *tr_slots[TR_SLOT_COUNT] = { &p->m.transmission_texture,
+                                                       &p->m.thickness_texture };
+    for (int i = 0; i < TR_SLOT_COUNT; i++) {
+        if (p->tr_slot[i].tex && p->transmits) {
+            uses[tr_slots[i]->texcoord] = true;
+        }
+    }
     for (int k = 0; k < 2; k++) {
         p->vary_uv[k] = -1;
         if (uses[k] && (k == 0 || d->texcoords1)) {
@@ -1134,6 +1258,13 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
         p->slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
         if (p->slot[i].vary < 0) {
             p->slot[i].tex = NULL;
+        }
+    }
+    for (int i = 0; i < TR_SLOT_COUNT; i++) {
+        int set = tr_slots[i]->texcoord;
+        p->tr_slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
+        if (p->tr_slot[i].vary < 0 || !p->transmits) {
+            p->tr_slot[i].tex = NULL;
         }
     }
     p->vary_color = -1;
@@ -1280,6 +1411,13 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     p->tangent_stride = desc->tangent_stride ? desc->tangent_stride : 4 * sizeof(float);
     p->texcoords1 = (const uint8_t *)desc->texcoords1;
     p->texcoord1_stride = desc->texcoord1_stride ? desc->texcoord1_stride : 2 * sizeof(float);
+    resolve_slot(&mat.transmission_texture, &p->tr_slot[TR_SLOT_TRANSMISSION]);
+    resolve_slot(&mat.thickness_texture, &p->tr_slot[TR_SLOT_THICKNESS]);
+    p->transmits = !mat.unlit && mat.transmission != 0.0f;
+    if (p->transmits) {
+        sr__transmission_setup(&mat, &p->model, &p->view_projection, desc->transmission_source,
+                               p->scale, &p->tr);
+    }
     sr_program *pr = &p->program;
     pr->vertex = pbr_vs;
     pr->fragment = pbr_fs;
@@ -1292,6 +1430,9 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     pr->independent_lanes = true;
     for (int i = 0; i < SLOT_COUNT; i++) {
         pr->independent_lanes &= !p->slot[i].tex;
+    }
+    for (int i = 0; i < TR_SLOT_COUNT; i++) {
+        pr->independent_lanes &= !p->tr_slot[i].tex;
     }
     float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
     if (p->environment && !p->m.unlit) {

@@ -5,9 +5,9 @@
  * materials and the textures they point to, made on the context once per
  * image and color space (base color and emissive sRGB, the others linear).
  * KHR_texture_transform, KHR_materials_emissive_strength,
- * KHR_materials_unlit, and the physically based layers
- * KHR_materials_ior, _specular, _clearcoat and _sheen are applied.
- * Called by the thread reading the document.
+ * KHR_materials_unlit, the physically based layers KHR_materials_ior,
+ * _specular, _clearcoat and _sheen, and KHR_materials_transmission and
+ * _volume are applied.  Called by the thread reading the document.
  */
 #include "io/gltf.h"
 
@@ -253,6 +253,9 @@ static void default_material(sr_pbr_material *m)
     m->metallic = m->roughness = 1;
     m->normal_scale = m->occlusion_strength = m->emissive_strength = 1;
     m->alpha_cutoff = 0.5f;
+    for (int c = 0; c < 3; c++) {
+        m->attenuation_color[c] = 1;
+    }
 }
 
 /* The specification's range of a factor: a value outside (which an
@@ -296,6 +299,55 @@ static void clamp_factors(gltf_doc *d, const char *ptr, sr_pbr_material *m)
     clamp_factor(d, at, &m->occlusion_strength, 0, 1);
     snprintf(at, sizeof at, "%s/alphaCutoff", ptr);
     clamp_factor(d, at, &m->alpha_cutoff, 0, FLT_MAX);
+}
+
+/* KHR_materials_transmission's factor and texture (R), and
+ * KHR_materials_volume's thickness factor and texture (G), attenuation
+ * color and distance, their factors clamped to the extensions' ranges
+ * with a warning each.  An absent attenuationDistance is infinite: no
+ * absorption (0 in sr_pbr_material). */
+static sr_result read_transmission(gltf_doc *d, const json_t *mat, const char *ptr,
+                                   sr_pbr_material *m)
+{
+    char eptr[GLTF_PTR], at[GLTF_PTR + 64];
+    sr_result r;
+    json_t *tr = sr__gltf_extension(mat, "KHR_materials_transmission");
+    if (tr) {
+        snprintf(eptr, sizeof eptr, "%s/extensions/KHR_materials_transmission", ptr);
+        if ((r = sr__gltf_number(d, tr, eptr, "transmissionFactor", &m->transmission)) != SR_OK ||
+            (r = read_slot(d, tr, eptr, "transmissionTexture", false, &m->transmission_texture,
+                           NULL, NULL)) != SR_OK) {
+            return r;
+        }
+        snprintf(at, sizeof at, "%s/transmissionFactor", eptr);
+        clamp_factor(d, at, &m->transmission, 0, 1);
+    }
+    json_t *vol = sr__gltf_extension(mat, "KHR_materials_volume");
+    if (vol) {
+        snprintf(eptr, sizeof eptr, "%s/extensions/KHR_materials_volume", ptr);
+        float dist = 0;
+        if ((r = sr__gltf_number(d, vol, eptr, "thicknessFactor", &m->thickness)) != SR_OK ||
+            (r = read_slot(d, vol, eptr, "thicknessTexture", false, &m->thickness_texture, NULL,
+                           NULL)) != SR_OK ||
+            (r = sr__gltf_numbers(d, vol, eptr, "attenuationColor", 3, m->attenuation_color)) !=
+                SR_OK ||
+            (r = sr__gltf_number(d, vol, eptr, "attenuationDistance", &dist)) != SR_OK) {
+            return r;
+        }
+        snprintf(at, sizeof at, "%s/thicknessFactor", eptr);
+        clamp_factor(d, at, &m->thickness, 0, FLT_MAX);
+        for (int c = 0; c < 3; c++) {
+            snprintf(at, sizeof at, "%s/attenuationColor/%d", eptr, c);
+            clamp_factor(d, at, &m->attenuation_color[c], 0, 1);
+        }
+        if (json_object_get(vol, "attenuationDistance") && !(dist > 0)) {
+            sr__gltf_warn(d, "%s/attenuationDistance: %g is not positive, taken as infinite",
+                          eptr, (double)dist);
+            dist = 0;
+        }
+        m->attenuation_distance = dist;
+    }
+    return SR_OK;
 }
 
 /* KHR_materials_ior, _specular, _clearcoat and _sheen into the
@@ -448,7 +500,8 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
         }
     }
     m->unlit = sr__gltf_extension(mat, "KHR_materials_unlit") != NULL;
-    if (!m->unlit && (r = read_layers(d, mat, ptr, m)) != SR_OK) {
+    if ((r = read_transmission(d, mat, ptr, m)) != SR_OK ||
+        (!m->unlit && (r = read_layers(d, mat, ptr, m)) != SR_OK)) {
         return r;
     }
     clamp_factors(d, ptr, m);

@@ -1,0 +1,40 @@
+/* pbr_transmission.h - KHR_materials_transmission and _volume for the PBR
+ * program (pbr.c): the light a transmissive surface lets through, read
+ * from the image of the opaque scene behind it (docs/pbr.md).  Resolved
+ * once per program, read-only after: any tile worker may call it. */
+#ifndef SR_PBR_TRANSMISSION_H
+#define SR_PBR_TRANSMISSION_H
+
+#include "softrast.h"
+
+#include <stdbool.h>
+
+typedef struct sr__transmission {
+    const sr_texture *source;      /* the opaque image; NULL: black */
+    float eta;                     /* 1 / the material's ior: air into the volume */
+    float view_projection[16];     /* column-major, world -> clip */
+    float model_scale[3];          /* the model's axis lengths: thickness to world */
+    float inv_exposure;            /* 2^-exposure: the source holds exposed radiance */
+    float lod_scale;               /* log2 of the source's width: the roughness-1 level */
+    float absorb[3];               /* -log2(attenuation color) / distance, per channel */
+    bool attenuates;               /* attenuation_distance > 0 */
+} sr__transmission;
+
+/* Fills t from the material (its ior: KHR_materials_ior's, 0 the
+ * default 1.5, the ior whose F0 is the base's 0.04), the program's
+ * matrices, the source and 2^exposure. */
+void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
+                            const sr_mat4 *view_projection, const sr_texture *source,
+                            float exposure_scale, sr__transmission *t);
+
+/* The radiance seen through the surface at four lanes (mask: the live
+ * ones): the source at the screen position of pos moved along the
+ * refracted view ray by the thickness (world units, 0: straight behind),
+ * at the mip level the roughness blurs it to, attenuated (Beer-Lambert)
+ * along that ray.  pos, n (unit, facing the viewer), v (unit, to the
+ * eye) in world space; rough is the material's perceptual roughness. */
+void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
+                             const float n[3][4], const float v[3][4], const float rough[4],
+                             const float thick[4], unsigned mask, float out[3][4]);
+
+#endif

@@ -1,0 +1,212 @@
+/* test_cli_transmission.c - `softrast render` of glass (KHR_materials_
+ * transmission and KHR_materials_volume): three spheres in front of a
+ * checker of white, red and blue squares.  The clear one shows the
+ * checker magnified by the refraction offset, the frosted one blurred
+ * and tinted blue, the absorbing one orange, its blue squares dark.
+ * Compared with tests/ref/gltf_transmission.png within 3 codes on 0.5% of
+ * the pixels (test_images.c's tolerance: libm), and the same bytes from
+ * one thread and from three. */
+#include "batch_cli.h"
+#include "gltf_write.h"
+#include "image_compare.h"
+
+#include "softrast_io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SLICES 32
+#define STACKS 16
+#define GRID_X 8
+#define GRID_Y 5
+
+typedef struct bytes {
+    uint8_t *p;
+    size_t n;
+} bytes;
+
+static void put(bytes *b, const void *src, size_t count, size_t size)
+{
+    le_copy(b->p + b->n, src, count, size);
+    b->n += count * size;
+}
+
+/* The model: a UV sphere of radius 0.8 (mesh k draws it with material
+ * 2 + k) at x = -1.9, 0, 1.9, and behind it at z = -1.5 a GRID_X x GRID_Y
+ * checker whose squares take materials 0 and 1 and 5 in turn. */
+static char *glass_model(void)
+{
+    size_t sv = (SLICES + 1) * (STACKS + 1), si = SLICES * STACKS * 6;
+    size_t cv = GRID_X * GRID_Y * 4;
+    bytes b = { malloc(sv * 24 + si * 2 + cv * 24 + GRID_X * GRID_Y * 12 + 16), 0 };
+    if (!b.p) {
+        return NULL;
+    }
+    for (int j = 0; j <= STACKS; j++) {
+        for (int i = 0; i <= SLICES; i++) {
+            float th = 3.14159265f * (float)j / STACKS, ph = 6.2831853f * (float)i / SLICES;
+            float n[3] = { sinf(th) * sinf(ph), -cosf(th), sinf(th) * cosf(ph) };
+            float p[3] = { 0.8f * n[0], 0.8f * n[1], 0.8f * n[2] };
+            put(&b, p, 3, 4);
+        }
+    }
+    for (int j = 0; j <= STACKS; j++) {
+        for (int i = 0; i <= SLICES; i++) {
+            float th = 3.14159265f * (float)j / STACKS, ph = 6.2831853f * (float)i / SLICES;
+            float n[3] = { sinf(th) * sinf(ph), -cosf(th), sinf(th) * cosf(ph) };
+            put(&b, n, 3, 4);
+        }
+    }
+    for (int j = 0; j < STACKS; j++) {
+        for (int i = 0; i < SLICES; i++) {
+            uint16_t a = (uint16_t)(j * (SLICES + 1) + i), c = (uint16_t)(a + SLICES + 1);
+            uint16_t t[6] = { a, (uint16_t)(a + 1), (uint16_t)(c + 1), a, (uint16_t)(c + 1), c };
+            put(&b, t, 6, 2);
+        }
+    }
+    size_t checker_pos = b.n;
+    const float size = 0.75f, x0 = -GRID_X * size / 2, y0 = -GRID_Y * size / 2;
+    for (int y = 0; y < GRID_Y; y++) {
+        for (int x = 0; x < GRID_X; x++) {
+            float l = x0 + (float)x * size, r = l + size, d = y0 + (float)y * size, u = d + size;
+            float q[12] = { l, d, -1.5f, r, d, -1.5f, r, u, -1.5f, l, u, -1.5f };
+            put(&b, q, 12, 4);
+        }
+    }
+    size_t checker_nrm = b.n;
+    for (size_t k = 0; k < cv; k++) {
+        const float z[3] = { 0, 0, 1 };
+        put(&b, z, 3, 4);
+    }
+    /* One index list per color, squares in turn white, red, blue. */
+    size_t lists[3], counts[3] = { 0, 0, 0 };
+    for (int c = 0; c < 3; c++) {
+        lists[c] = b.n;
+        for (int k = 0; k < GRID_X * GRID_Y; k++) {
+            if (k % 3 == c) {
+                uint16_t v = (uint16_t)(4 * k);
+                uint16_t t[6] = { v, (uint16_t)(v + 1), (uint16_t)(v + 2), v, (uint16_t)(v + 2),
+                                  (uint16_t)(v + 3) };
+                put(&b, t, 6, 2);
+                counts[c] += 6;
+            }
+        }
+    }
+    char *b64 = malloc(4 * (b.n / 3 + 1) + 1);
+    char *json = b64 ? malloc(4 * (b.n / 3 + 1) + 8192) : NULL;
+    if (!json) {
+        free(b.p);
+        free(b64);
+        return NULL;
+    }
+    gltf_base64(b.p, b.n, b64);
+    const char *glass =
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6}}},"
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.6,0.8,1,1],\"metallicFactor\":0,"
+        "\"roughnessFactor\":0.35},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1}}},"
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0.05},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6,\"attenuationColor\":[1,0.45,0.1],"
+        "\"attenuationDistance\":0.8}}}";
+    sprintf(json,
+            "{\"asset\":{\"version\":\"2.0\"},"
+            "\"extensionsUsed\":[\"KHR_materials_transmission\",\"KHR_materials_volume\"],"
+            "\"buffers\":[{\"byteLength\":%zu,"
+            "\"uri\":\"data:application/octet-stream;base64,%s\"}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":%zu},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":%zu,"
+            "\"type\":\"VEC3\","
+            "\"min\":[-0.8,-0.8,-0.8],\"max\":[0.8,0.8,0.8]},"
+            "{\"bufferView\":1,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\"},"
+            "{\"bufferView\":2,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"},"
+            "{\"bufferView\":3,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\","
+            "\"min\":[%g,%g,-1.5],\"max\":[%g,%g,-1.5]},"
+            "{\"bufferView\":4,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\"},"
+            "{\"bufferView\":5,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"},"
+            "{\"bufferView\":6,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"},"
+            "{\"bufferView\":7,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"}],"
+            "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
+            "\"metallicFactor\":0,\"roughnessFactor\":0.8}},"
+            "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.7,0.05,0.03,1],"
+            "\"metallicFactor\":0,\"roughnessFactor\":0.8}},%s,"
+            "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.03,0.1,0.6,1],"
+            "\"metallicFactor\":0,\"roughnessFactor\":0.8}}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},"
+            "\"indices\":2,\"material\":2}]},"
+            "{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},"
+            "\"indices\":2,\"material\":3}]},"
+            "{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},"
+            "\"indices\":2,\"material\":4}]},"
+            "{\"primitives\":[{\"attributes\":{\"POSITION\":3,\"NORMAL\":4},\"indices\":5,"
+            "\"material\":0},{\"attributes\":{\"POSITION\":3,\"NORMAL\":4},\"indices\":6,"
+            "\"material\":1},{\"attributes\":{\"POSITION\":3,\"NORMAL\":4},\"indices\":7,"
+            "\"material\":5}]}],"
+            "\"nodes\":[{\"mesh\":0,\"translation\":[-1.9,0,0]},{\"mesh\":1},"
+            "{\"mesh\":2,\"translation\":[1.9,0,0]},{\"mesh\":3}],"
+            "\"scenes\":[{\"nodes\":[0,1,2,3]}],\"scene\":0}",
+            b.n, b64, sv * 12, sv * 12, sv * 12, sv * 24, si * 2, checker_pos, cv * 12,
+            checker_nrm, cv * 12, lists[0], counts[0] * 2, lists[1], counts[1] * 2, lists[2],
+            counts[2] * 2, sv, sv, si, cv, (double)x0, (double)y0, (double)-x0, (double)-y0, cv,
+            counts[0], counts[1], counts[2], glass);
+    free(b64);
+    free(b.p);
+    return json;
+}
+
+static uint8_t *render_png(const char *dir, const char *model, const char *threads,
+                           const char *name, int *w, int *h)
+{
+    char out[1200];
+    snprintf(out, sizeof out, "%s/%s.png", dir, name);
+    run_result r;
+    if (!run(ARGS("render", model, "--size", "240x112", "--aa", "none", "--camera",
+                  "eye=0,1,7,target=0,0,0", "--threads", threads, "-o", out),
+             &r) ||
+        r.status != 0) {
+        FAILF("render: status %d: %s", r.status, r.err);
+        return NULL;
+    }
+    CHECK(strstr(r.err, "warning") == NULL);
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(out, NULL, w, h, &px, &err) != SR_OK) {
+        FAILF("%s", err.message);
+        return NULL;
+    }
+    return px;
+}
+
+SR_TEST(glass_spheres_show_the_checker_behind_them)
+{
+    NEED_CLI();
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    char dir[1024], model[1100];
+    fresh_dir("transmission", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/glass.gltf", dir);
+    char *json = glass_model();
+    REQUIRE(json && write_text(model, json));
+    free(json);
+    int w, h, w3, h3;
+    uint8_t *one = render_png(dir, model, "1", "glass_1", &w, &h);
+    uint8_t *three = render_png(dir, model, "3", "glass_3", &w3, &h3);
+    REQUIRE(one && three);
+    REQUIRE(w == w3 && h == h3);
+    CHECK(memcmp(one, three, 4 * (size_t)w * (size_t)h) == 0);
+    sr_test_check_image("gltf_transmission", one, w, h, 3, (long)w * h / 200);
+    free(one);
+    free(three);
+}
