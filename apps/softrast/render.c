@@ -48,12 +48,13 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    if ((o->pbr || o->camera_index >= 0) && render_gltf_is(o->model)) {
-        /* The physically based look draws glTF's own materials; the
-         * classic models keep the mesh reader's diffuse color and texture,
-         * except with one of the file's cameras, which only the glTF
-         * reader gives: then they take each primitive's base color and
-         * texture from it, in the same world space as the camera. */
+    if (render_gltf_is(o->model) && (o->pbr || o->camera_index >= 0 || sr_io_have_gltf())) {
+        /* softrast's own glTF reader for every look (docs/gltf.md says why
+         * not Assimp's, which a build may also lack): the physically
+         * based look draws glTF's materials, the classic models each
+         * primitive's Blinn-Phong translation of its material
+         * (render_gltf_classic).  Only a build without the reader (no
+         * jansson) leaves the classic models Assimp's. */
         return render_gltf_load(o->model, o->normals == -1, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
@@ -461,10 +462,8 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 st.texture = keep_material ? NULL
                            : gm ? gm->base_color_texture.texture
                            : by_part && ob->part_textures ? ob->part_textures[p] : ob->texture;
-                if (gm) {
-                    /* The classic models take the base color as it is. */
-                    st.material.diffuse = (sr_vec3){ gm->base_color[0], gm->base_color[1],
-                                                     gm->base_color[2] };
+                if (gm && !pbr) {
+                    st.material = render_gltf_classic(gm, s->gltf->primitives[p].colors != NULL);
                 }
                 if (gm && gm->double_sided) {
                     st.cull = SR_CULL_NONE;
