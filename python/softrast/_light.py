@@ -19,8 +19,9 @@ def _frozen(values: Any, shape: tuple[int, ...]) -> NDArray[np.float64]:
 class Light(NamedTuple):
     """A light of a model file, in world space (``Scene.lights``).
 
-    type: "directional", "point" or "spot"; "off" for one of intensity 0
-        or a black color (the file's kind is then not kept).
+    type: "directional", "point" or "spot", as the file gives it, also
+        for a dark light (:attr:`dark`: intensity 0 or a black color),
+        which gives no light.
     color: (3,) linear RGB; intensity: lux (directional) or candela
         (point, spot), as the file gives them.
     position: (3,) world position of a point or spot light, else None.
@@ -45,6 +46,12 @@ class Light(NamedTuple):
     world: NDArray[np.float64]
     light_index: int
     node: int
+
+    @property
+    def dark(self) -> bool:
+        """Whether it gives no light: intensity 0 or a black color
+        (softrast render draws it as off)."""
+        return self.intensity == 0 or not np.any(self.color > 0)
 
     @classmethod
     def _from_fields(cls, f: Mapping[str, Any]) -> Light:
