@@ -3,7 +3,8 @@
  * drawn by the library's metallic-roughness program as softrast render
  * draws a glTF file (docs/pbr.md): in world space, lit by the default
  * rig relative to the camera (sr_default_lights, sr_pbr_default_lighting)
- * or by an environment and the key light alone, with the key light's
+ * or by an environment and the key light alone, by the scene's own
+ * lights instead or too (--lights: choose_lights), with the key light's
  * shadow map when asked; opaque and masked instances first, then blended
  * ones farthest first, each with its triangles back to front
  * (sr_mean_view_depth, sr_sort_back_to_front) and no depth writes.  An
@@ -134,9 +135,58 @@ static sr_result draw_shadow_map(sr_context *ctx, const render_job *j, sr_vec3 d
 
 typedef struct pass_light {
     sr_mat4 view;               /* world -> OpenGL's eye space */
-    sr_light lights[SR_MAX_LIGHTS];
+    sr_light lights[SR_MAX_LIGHTS];   /* as the program takes them: the rig as radiance */
+    sr_vec3 sky, ground;
     const sr_shadow_map *shadow;
 } pass_light;
+
+/* The program's lights as softrast render's render_lights_pbr chooses
+ * them for --lights: rig (radiance already, sr_pbr_default_lighting's)
+ * alone, the job's lights alone, or the job's and then the rig's in the
+ * slots left - the rig first when none of the job's is directional, to
+ * cast the shadow.  The job's lights go as they are, the strongest
+ * directional one (by its brightest channel) first. */
+static void choose_lights(const render_job *j, pass_light *pl)
+{
+    if (j->lights_mode == 0) {
+        return;
+    }
+    sr_light mine[SR_MAX_LIGHTS] = { 0 };
+    int n = 0, key = -1;
+    float key_power = -1.0f;
+    for (int i = 0; i < j->light_count && n < SR_MAX_LIGHTS; i++) {
+        const sr_light *l = &j->lights[i];
+        if (l->type == SR_LIGHT_DIRECTIONAL) {
+            float c = fmaxf(fmaxf(l->color.x, l->color.y), l->color.z);
+            if (c * l->intensity > key_power) {
+                key_power = c * l->intensity;
+                key = n;
+            }
+        }
+        mine[n++] = *l;
+    }
+    if (key > 0) {
+        sr_light k = mine[key];
+        memmove(&mine[1], &mine[0], (size_t)key * sizeof *mine);
+        mine[0] = k;
+    }
+    if (j->lights_mode == 2) {
+        bool rig_first = n == 0 || mine[0].type != SR_LIGHT_DIRECTIONAL;
+        sr_light merged[SR_MAX_LIGHTS] = { 0 };
+        int m = 0;
+        for (int pass = 0; pass < 2; pass++) {
+            bool take_rig = (pass == 0) == rig_first;
+            for (int l = 0; l < (take_rig ? SR_MAX_LIGHTS : n) && m < SR_MAX_LIGHTS; l++) {
+                const sr_light *li = take_rig ? &pl->lights[l] : &mine[l];
+                if (li->type != SR_LIGHT_OFF) {
+                    merged[m++] = *li;
+                }
+            }
+        }
+        memcpy(mine, merged, sizeof mine);
+    }
+    memcpy(pl->lights, mine, sizeof mine);
+}
 
 static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
                           const instance *in, const pass_light *pl, const sr_mat4 *proj)
@@ -158,11 +208,11 @@ static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job 
     if (pd.tangents || pd.texcoords1) {
         d.vertex_count = pd.d.vertex_count;
     }
-    r = sr_pbr_default_lighting(pl->lights, &d);
+    memcpy(d.lights, pl->lights, sizeof d.lights);
+    d.sky = pl->sky;
+    d.ground = pl->ground;
     sr_pbr *program = NULL;
-    if (r == SR_OK) {
-        r = sr_make_pbr_program(ctx, &d, &program);
-    }
+    r = sr_make_pbr_program(ctx, &d, &program);
     sr_state st = {
         .depth_zero_to_one = true, .depth_func = SR_GREATER,
         .cull = m.double_sided && !j->cull_back ? SR_CULL_NONE : SR_CULL_BACK,
@@ -243,8 +293,17 @@ sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *
             pl.lights[l].type = SR_LIGHT_OFF;
         }
     }
+    sr_pbr_desc rig = { 0 };
+    if (r == SR_OK) {
+        r = sr_pbr_default_lighting(pl.lights, &rig);
+    }
+    memcpy(pl.lights, rig.lights, sizeof pl.lights);
+    pl.sky = rig.sky;
+    pl.ground = rig.ground;
+    choose_lights(j, &pl);
+    /* The map is directional: a key light that is not casts none. */
     sr_shadow_map *shadow = NULL;
-    if (r == SR_OK && j->shadows) {
+    if (r == SR_OK && j->shadows && pl.lights[0].type == SR_LIGHT_DIRECTIONAL) {
         r = draw_shadow_map(ctx, j, pl.lights[0].vector, &shadow);
         pl.shadow = shadow;
     }
