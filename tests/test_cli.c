@@ -2106,6 +2106,10 @@ static bool write_gltf_quad(const char *path, const uint8_t *image, size_t n, bo
 }
 #endif
 
+#ifdef SR_CLI_PATH
+static uint8_t *render_pixels(const char *const *args, const char *out, int *w, int *h);
+#endif
+
 /* An image a .gltf or .glb file embeds colors the model as the same
  * pixels given with --texture do; a damaged one is a warning, and the
  * model is drawn as it is without a texture. */
@@ -2131,6 +2135,10 @@ SR_TEST(a_gltf_files_embedded_texture_is_used)
     }
     sr_io_error err;
     REQUIRE(sr_write_png(tex, 8, 8, px, 32, NULL, &err) == SR_OK);
+    char green[1100];
+    snprintf(green, sizeof green, "%s/green.png", dir);
+    uint8_t g4[16] = { 20, 200, 40, 255, 20, 200, 40, 255, 20, 200, 40, 255, 20, 200, 40, 255 };
+    REQUIRE(sr_write_png(green, 2, 2, g4, 8, NULL, &err) == SR_OK);
     size_t n;
     char *png = read_whole(tex, &n);
     REQUIRE(png);
@@ -2168,24 +2176,43 @@ SR_TEST(a_gltf_files_embedded_texture_is_used)
             CHECK(access(out, F_OK) != 0);
             cli_run_free(&r);
         }
-        /* The classic models take the embedded image as --texture's too. */
+        /* The classic models take the embedded image as --texture's too,
+         * filtered in linear light as the reader's sRGB base color
+         * textures are. */
         a = render_bytes(model, dir, "c.png", ARGS(model, "--size", "96x64", "--shading", "phong"),
                          &la);
         b = render_bytes(model, dir, "d.png",
-                         ARGS(model, "--texture", tex, "--size", "96x64", "--shading", "phong"),
+                         ARGS(model, "--texture", tex, "--texture-srgb", "--size", "96x64",
+                              "--shading", "phong"),
                          &lc);
         REQUIRE(a && b);
         CHECK(la == lc && memcmp(a, b, la) == 0);
         free(a);
         free(b);
+        /* --texture replaces the file's image under every look: a plain
+         * green one leaves no texel of the red and white quarters. */
+        for (int classic = 0; classic < 2; classic++) {
+            int w, h;
+            uint8_t *img = render_pixels(ARGS("render", model, "--texture", green, "--size",
+                                              "96x64", "--shading", classic ? "phong" : "pbr",
+                                              "-o", out), out, &w, &h);
+            REQUIRE(img);
+            int greenish = 0, reddish = 0;
+            for (int i = 0; i < w * h; i++) {
+                const uint8_t *q = img + 4 * i;
+                greenish += q[1] > q[0] + 40 && q[1] > q[2] + 40;
+                reddish += q[0] > q[1] + 40;
+            }
+            CHECK(greenish > w * h / 8);
+            CHECK_EQ(reddish, 0);
+            free(img);
+        }
     }
     free(png);
 #endif
 }
 
 #ifdef SR_CLI_PATH
-static uint8_t *render_pixels(const char *const *args, const char *out, int *w, int *h);
-
 /* Two squares side by side in glTF (x -1..0 and 0..1, facing +z), each
  * with its own material, `materials` the JSON array, written to model. */
 static bool write_two_material_quads(const char *model, const char *materials)
@@ -2289,6 +2316,15 @@ SR_TEST(gltf_materials_translate_to_the_classic_models)
         CHECK(right[0] > 150 && right[1] > 150 && right[2] > 150);
         free(px);
     }
+    /* What --material names wins, as over any model's material. */
+    int w, h;
+    uint8_t *px = render_pixels(ARGS("render", model, "--shading", "phong", "--material",
+                                     "color=0,0,1", "--camera", "eye=0,0,4", "--size", "64x48",
+                                     "--aa", "none", "-o", out), out, &w, &h);
+    REQUIRE(px);
+    const uint8_t *left = px + 4 * ((size_t)(h / 2) * w + w / 4);
+    CHECK(left[2] > 150 && left[0] < 60 && left[1] < 60);
+    free(px);
 #endif
 }
 

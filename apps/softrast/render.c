@@ -459,11 +459,27 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 if (!keep_material) {
                     st.material = ob->material;
                 }
+                /* --texture replaces a glTF material's base color texture
+                 * too, as it replaces any model's. */
+                const sr_texture *given = o->texture ? ob->texture : NULL;
                 st.texture = keep_material ? NULL
+                           : given ? given
                            : gm ? gm->base_color_texture.texture
                            : by_part && ob->part_textures ? ob->part_textures[p] : ob->texture;
                 if (gm && !pbr) {
+                    /* The file's material, but what --material says wins,
+                     * as it does over any other model's. */
                     st.material = render_gltf_classic(gm, s->gltf->primitives[p].colors != NULL);
+                    if (o->have_mat_color) {
+                        st.material.diffuse = o->mat_color;
+                        st.material.vertex_color = SR_OFF;
+                    }
+                    if (o->have_specular) {
+                        st.material.specular = o->specular;
+                    }
+                    if (o->have_shininess) {
+                        st.material.shininess = o->shininess;
+                    }
                 }
                 if (gm && gm->double_sided) {
                     st.cull = SR_CULL_NONE;
@@ -488,6 +504,11 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 if (pbr) {
                     sr_pbr_material m = gm ? *gm
                                        : pbr_material(o, ob, st.texture, by_part ? p : SIZE_MAX);
+                    if (gm && given) {
+                        m.base_color_texture = (sr_texture_slot){
+                            .texture = given, .filter = o->texture_filter, .wrap_u = o->wrap,
+                            .wrap_v = o->wrap, .scale = { 1, 1 } };
+                    }
                     sr_pbr_desc d = { .material = &m, .model = &ob->model, .view = &cam->view,
                                       .projection = &cam->proj, .exposure = o->exposure,
                                       .tonemap = o->tonemap,
