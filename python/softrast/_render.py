@@ -20,7 +20,7 @@ from ._softrast import Mesh
 
 if TYPE_CHECKING:
     from .typing import (Antialias, Cull, LightsMode, NormalFrame, OutputName, PathLike,
-                          Projection, RealArrayLike, RenderOutputs, SceneLike, Shading)
+                          Projection, RealArrayLike, RenderOutputs, SceneLike, Shading, Tonemap)
 
 #: The outputs render() can return, with their per-view shape suffix and dtype.
 OUTPUTS: Dict[str, Tuple[Tuple[int, ...], type]] = {
@@ -162,8 +162,8 @@ def _environment(environment: Optional[PathLike], intensity: float,
                  threads: int) -> Optional[object]:
     if environment is None:
         environment = "studio"
-    if isinstance(environment, str) and environment == "hemisphere":
-        return None
+    if isinstance(environment, str) and environment in ("hemisphere", "none"):
+        return None     # softrast render's --environment hemisphere (or none)
     try:
         intensity = float(intensity)
     except (TypeError, ValueError):
@@ -263,6 +263,9 @@ def _check_memory(n: int, width: int, height: int, names: Sequence[str], msaa: i
                  "render fewer cameras at a time, a smaller size or fewer outputs")
 
 
+#: softrast render's --tonemap as the extension takes it (sr_tonemap_op).
+_TONEMAPS = {"neutral": 1, "aces": 2, "none": 3}
+
 #: softrast render's --lights as the extension takes it (python/src/render.c).
 _LIGHTS_MODES = {"default": 0, "file": 1, "both": 2}
 
@@ -318,7 +321,8 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
            shadows: Optional[bool] = None, ground: bool = False,
            projection: Optional[Projection] = None, antialias: Optional[Antialias] = None,
            cull: Cull = "none",
-           lights: Union[LightsMode, Sequence[Light], None] = None) -> RenderOutputs:
+           lights: Union[LightsMode, Sequence[Light], None] = None, exposure: float = 0.0,
+           tonemap: Tonemap = "neutral") -> RenderOutputs:
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -408,7 +412,8 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     environment: "pbr" only: "studio" (the built-in neutral studio; the
         default, None, as softrast render's) or the path of an
         equirectangular Radiance ``.hdr`` file (+y up) for image-based
-        light with the key light alone; "hemisphere" for the sky-and-ground
+        light with the key light alone; "hemisphere" (or "none", as the
+        command's) for the sky-and-ground
         ambient with the key, fill and rim lights.  Environments are at
         ``environment_intensity`` (default 0.6, as softrast render;
         0.001 .. 1000).  Prefiltered once and kept for later calls.
@@ -436,6 +441,12 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         environment or hemisphere) stays.  The shadow is cast by the
         strongest directional light of the scene's (none when it has
         only point and spot lights; the default key with "both" then).
+    exposure: "pbr" only, softrast render's ``--exposure``: radiance times
+        2^exposure before the tone curve, in stops, -20 .. 20 (default 0;
+        a file's lights in physical units may want a negative one).
+    tonemap: "pbr" only, softrast render's ``--tonemap``: "neutral"
+        (Khronos PBR Neutral, the default), "aces" (ACES filmic) or
+        "none" (a clamp).
 
     Returns a dict from each requested name to its array; with batched
     cameras every array has a leading dimension B.  The GIL is released
@@ -501,8 +512,17 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
     bg = np.clip(bg, 0.0, 1.0)
     rgb = (float(bg[0]), float(bg[1]), float(bg[2]))
-    if (environment is not None or shadows or ground or lights is not None) and shading != "pbr":
-        raise ValueError("environment, shadows, ground, lights: need shading='pbr'")
+    if ((environment is not None or shadows or ground or lights is not None or exposure != 0.0
+         or tonemap != "neutral") and shading != "pbr"):
+        raise ValueError("environment, shadows, ground, lights, exposure, tonemap: "
+                         "need shading='pbr'")
+    if isinstance(exposure, bool) or not isinstance(exposure, (int, float, np.integer,
+                                                                np.floating)):
+        raise TypeError(f"exposure: expected a number, got {type(exposure).__name__}")
+    if not -20.0 <= float(exposure) <= 20.0:
+        raise ValueError(f"exposure: must be in -20 .. 20 stops, got {exposure}")
+    if tonemap not in _TONEMAPS:
+        raise ValueError(f"tonemap: must be 'neutral', 'aces' or 'none', got {tonemap!r}")
     lights_mode, program_lights = _lights(lights, sc) if shading == "pbr" else (0, [])
     if not isinstance(ground, (bool, np.bool_)):
         raise TypeError(f"ground: expected a bool, got {type(ground).__name__}")
@@ -549,7 +569,8 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
                          for mesh, (a, nm), iid, look in zip(meshes, poses, ids, looks_now)]
             extra: Dict[str, Any] = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
                          shadows=bool(shadows), ground=bool(ground), lights=program_lights,
-                         lights_mode=lights_mode) if color_pbr else {}
+                         lights_mode=lights_mode, exposure=float(exposure),
+                         tonemap=_TONEMAPS[tonemap]) if color_pbr else {}
             views = {name: out[name][b] if name in wanted else None for name in OUTPUTS}
             _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height,
                              float(nears[b]), threads, views["depth"], views["triangle_id"],

@@ -845,20 +845,30 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
                               "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
-                              "ground", "cull", "lights", "lights_mode", NULL };
+                              "ground", "cull", "lights", "lights_mode", "exposure", "tonemap",
+                              NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None, *lights = Py_None;
     render_job j = { .msaa = 1, .ssaa = 1 };
     int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0, cull = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiippOi:render", kwlist,
+    int tonemap = SR_TONEMAP_DEFAULT;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiippOifi:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
                                      &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa,
-                                     &ground, &cull, &lights, &j.lights_mode)) {
+                                     &ground, &cull, &lights, &j.lights_mode, &j.exposure,
+                                     &tonemap)) {
         return NULL;
     }
+    if (!(j.exposure >= -64.0f && j.exposure <= 64.0f) || tonemap < SR_TONEMAP_DEFAULT ||
+        tonemap > SR_TONEMAP_NONE) {
+        PyErr_Format(PyExc_ValueError, "exposure, tonemap: %g stops (-64 .. 64), curve %d "
+                     "(0 .. 3)", (double)j.exposure, tonemap);
+        return NULL;
+    }
+    j.tonemap = (sr_tonemap_op)tonemap;
     if (take_lights(lights, &j) < 0) {
         return NULL;
     }

@@ -49,6 +49,8 @@ typedef struct render_job {
     int lights_mode;
     sr_light lights[SR_MAX_LIGHTS];
     int light_count;
+    float exposure;             /* pbr: --exposure, stops */
+    sr_tonemap_op tonemap;      /* pbr: --tonemap */
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;

@@ -208,6 +208,8 @@ static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job 
     if (pd.tangents || pd.texcoords1) {
         d.vertex_count = pd.d.vertex_count;
     }
+    d.exposure = j->exposure;
+    d.tonemap = j->tonemap;
     memcpy(d.lights, pl->lights, sizeof d.lights);
     d.sky = pl->sky;
     d.ground = pl->ground;

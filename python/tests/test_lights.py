@@ -180,3 +180,31 @@ def test_lights_are_checked(tmp_path):
         ours(dark, lights="file")
     # "auto" on a scene without lit lights is the rig, without a warning
     assert np.array_equal(ours(dark), ours(dark, lights="default"))
+
+
+@needs_cli
+@pytest.mark.parametrize("exposure, tonemap, environment",
+                         [(-1.5, "neutral", None), (1.0, "aces", None), (0.5, "none", "none")])
+def test_exposure_tonemap_and_environment_match_the_command(tmp_path, exposure, tonemap,
+                                                            environment):
+    path = lit_scene(tmp_path)
+    scene = load_gltf(path)
+    a = ours(scene, exposure=exposure, tonemap=tonemap, environment=environment)
+    args = ["--exposure", str(exposure), "--tonemap", tonemap]
+    if environment:
+        args += ["--environment", environment]
+    assert_close(f"exposure_{exposure}_{tonemap}", a, command(tmp_path, path, *args))
+    assert not np.array_equal(a, ours(scene))
+    assert np.array_equal(ours(scene, exposure=0, tonemap="neutral"), ours(scene))
+
+
+def test_exposure_and_tonemap_are_checked(tmp_path):
+    scene = load_gltf(lit_scene(tmp_path))
+    with pytest.raises(ValueError, match="exposure: must be in -20 .. 20"):
+        ours(scene, exposure=30)
+    with pytest.raises(TypeError, match="exposure: expected a number"):
+        ours(scene, exposure="bright")
+    with pytest.raises(ValueError, match="tonemap: must be"):
+        ours(scene, tonemap="filmic")
+    with pytest.raises(ValueError, match="need shading='pbr'"):
+        softrast.render(scene, camera=scene.cameras[0], width=8, height=8, exposure=-1.0)

@@ -211,6 +211,8 @@ softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, shading="pbr", lights="b
 softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, lights="sun")  # wrong: a lights mode
 softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, lights=[(0, -1, 0)])  # wrong: Lights
 softrast.Light.point((0, 1, 0), 5.0)  # wrong: intensity is keyword-only
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, shading="pbr", exposure=-1.0, tonemap="aces")
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, tonemap="filmic")  # wrong: a tone curve
 dark: bool = sun.dark
 ids: "np.ndarray[object, np.dtype[np.float32]]" = out["triangle_id"]  # wrong: int32
 out["dpeth"]  # wrong: no such output
