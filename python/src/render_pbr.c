@@ -4,7 +4,7 @@
  * draws a glTF file (docs/pbr.md): in world space, lit by the default
  * rig relative to the camera (sr_default_lights, sr_pbr_default_lighting)
  * or by an environment and the key light alone, by the scene's own
- * lights instead or too (--lights: choose_lights), with the key light's
+ * lights instead or too (--lights: sr_pbr_scene_lights), with the key light's
  * shadow map when asked; opaque and masked instances first, then blended
  * ones farthest first, each with its triangles back to front
  * (sr_mean_view_depth, sr_sort_back_to_front) and no depth writes.  An
@@ -140,54 +140,6 @@ typedef struct pass_light {
     const sr_shadow_map *shadow;
 } pass_light;
 
-/* The program's lights as softrast render's render_lights_pbr chooses
- * them for --lights: rig (radiance already, sr_pbr_default_lighting's)
- * alone, the job's lights alone, or the job's and then the rig's in the
- * slots left - the rig first when none of the job's is directional, to
- * cast the shadow.  The job's lights go as they are, the strongest
- * directional one (by its brightest channel) first. */
-static void choose_lights(const render_job *j, pass_light *pl)
-{
-    if (j->lights_mode == 0) {
-        return;
-    }
-    sr_light mine[SR_MAX_LIGHTS] = { 0 };
-    int n = 0, key = -1;
-    float key_power = -1.0f;
-    for (int i = 0; i < j->light_count && n < SR_MAX_LIGHTS; i++) {
-        const sr_light *l = &j->lights[i];
-        if (l->type == SR_LIGHT_DIRECTIONAL) {
-            float c = fmaxf(fmaxf(l->color.x, l->color.y), l->color.z);
-            if (c * l->intensity > key_power) {
-                key_power = c * l->intensity;
-                key = n;
-            }
-        }
-        mine[n++] = *l;
-    }
-    if (key > 0) {
-        sr_light k = mine[key];
-        memmove(&mine[1], &mine[0], (size_t)key * sizeof *mine);
-        mine[0] = k;
-    }
-    if (j->lights_mode == 2) {
-        bool rig_first = n == 0 || mine[0].type != SR_LIGHT_DIRECTIONAL;
-        sr_light merged[SR_MAX_LIGHTS] = { 0 };
-        int m = 0;
-        for (int pass = 0; pass < 2; pass++) {
-            bool take_rig = (pass == 0) == rig_first;
-            for (int l = 0; l < (take_rig ? SR_MAX_LIGHTS : n) && m < SR_MAX_LIGHTS; l++) {
-                const sr_light *li = take_rig ? &pl->lights[l] : &mine[l];
-                if (li->type != SR_LIGHT_OFF) {
-                    merged[m++] = *li;
-                }
-            }
-        }
-        memcpy(mine, merged, sizeof mine);
-    }
-    memcpy(pl->lights, mine, sizeof mine);
-}
-
 static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job *j,
                           const instance *in, const pass_light *pl, const sr_mat4 *proj)
 {
@@ -302,7 +254,11 @@ sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *
     memcpy(pl.lights, rig.lights, sizeof pl.lights);
     pl.sky = rig.sky;
     pl.ground = rig.ground;
-    choose_lights(j, &pl);
+    if (r == SR_OK && j->lights_mode != 0) {
+        /* softrast render's --lights file|both. */
+        r = sr_pbr_scene_lights(j->lights, (size_t)j->light_count, j->lights_mode == 2,
+                                pl.lights);
+    }
     /* The map is directional: a key light that is not casts none. */
     sr_shadow_map *shadow = NULL;
     if (r == SR_OK && j->shadows && pl.lights[0].type == SR_LIGHT_DIRECTIONAL) {
