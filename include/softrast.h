@@ -152,6 +152,7 @@
  *     sr_pbr_default_material    glTF's default material
  *     sr_default_lights          softrast render's key, fill and rim lights for a camera
  *     sr_pbr_default_lighting    those lights as radiance, and its sky and ground
+ *     sr_pbr_scene_lights        a scene's own lights in their place, or before them
  *     sr_make_pbr_program        the metallic-roughness model as a program
  *     sr_pbr_program             the sr_program to draw it with
  *     sr_destroy_pbr_program     frees it
@@ -1395,6 +1396,19 @@ SR_API sr_pbr_material sr_pbr_default_material(void);
 #define SR_DEFAULT_SHADOW_LIGHT_RADIUS 0.04f
 SR_API sr_result sr_default_lights(const sr_camera_basis *basis, sr_light lights[SR_MAX_LIGHTS]);
 SR_API sr_result sr_pbr_default_lighting(const sr_light lights[SR_MAX_LIGHTS], sr_pbr_desc *desc);
+/* softrast render's --lights file|both (docs/pbr.md, "Lights"):
+ * sr_pbr_scene_lights replaces `lights` (SR_MAX_LIGHTS, the rig as
+ * sr_pbr_default_lighting made it) by a scene's own `count` lights
+ * (KHR_lights_punctual's, in their units; SR_LIGHT_OFF ones skipped, the
+ * first SR_MAX_LIGHTS lit ones kept in their order but for the strongest
+ * directional one, by color channel times intensity, moved first so that
+ * it casts the shadow) and, with keep_rig, the rig's lit lights in the
+ * slots left - first when none of the scene's is directional, so that the
+ * key casts the shadow.  SR_INVALID_ARG (lights untouched) for NULL
+ * lights, NULL scene_lights with a count, or a type that is not an
+ * sr_light_type. */
+SR_API sr_result sr_pbr_scene_lights(const sr_light *scene_lights, size_t count, bool keep_rig,
+                                     sr_light lights[SR_MAX_LIGHTS]);
 
 typedef struct sr_pbr sr_pbr;
 SR_API sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out);

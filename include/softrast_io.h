@@ -139,10 +139,12 @@ typedef struct sr_scene_camera {
  * or spot light, `light.direction` a spot light's axis (its node's -Z);
  * the file's color and intensity (lux for directional lights, candela
  * for the others), range (0: infinite) and cone angles.  A light of
- * intensity 0 or a black color is SR_LIGHT_OFF (sr_light's zero values
- * would mean white and 1). */
+ * intensity 0 or a black color is SR_LIGHT_OFF in `light` (sr_light's
+ * zero values would mean white and 1); `type` keeps its kind, and its
+ * color and intensity stay the file's (the zero says it is dark). */
 typedef struct sr_scene_light {
     sr_light light;
+    sr_light_type type;         /* the file's: directional, point or spot, lit or dark */
     float world[16];            /* light -> world, column-major; it shines down -Z */
     int light_index, node;      /* its index in the extension's lights, and its node */
 } sr_scene_light;

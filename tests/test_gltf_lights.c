@@ -142,9 +142,20 @@ SR_TEST(lights_take_the_extensions_defaults)
     CHECK_NEAR(pt->range, 0, 0);
     CHECK_NEAR(pt->vector.x, 0, 0);
     CHECK_NEAR(s->lights[2].light.range, 0, 0);   /* a directional light has none */
-    /* Intensity 0 and black are off: sr_light's zeros would mean 1 and white. */
+    /* Intensity 0 and black are off: sr_light's zeros would mean 1 and white.
+     * The kind is kept beside it, and the zero that makes it dark. */
     CHECK_EQ(s->lights[3].light.type, SR_LIGHT_OFF);
     CHECK_EQ(s->lights[4].light.type, SR_LIGHT_OFF);
+    for (int i = 0; i < 5; i++) {
+        static const sr_light_type kind[5] = { SR_LIGHT_SPOT, SR_LIGHT_POINT,
+                                               SR_LIGHT_DIRECTIONAL, SR_LIGHT_POINT,
+                                               SR_LIGHT_POINT };
+        CHECK_EQ(s->lights[i].type, kind[i]);
+    }
+    CHECK_NEAR(s->lights[3].light.intensity, 0, 0);
+    CHECK_NEAR(s->lights[4].light.intensity, 1, 0);
+    CHECK_NEAR(s->lights[4].light.color.x + s->lights[4].light.color.y +
+               s->lights[4].light.color.z, 0, 0);
     sr_destroy_scene(sr_test_ctx(), s);
 }
 

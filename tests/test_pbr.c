@@ -875,6 +875,52 @@ SR_TEST(default_lights_follow_the_camera)
     CHECK(memcmp(&before, &d, sizeof d) == 0);
 }
 
+/* A scene's own lights in place of the rig or before it, as softrast
+ * render's --lights file|both: dark ones skipped, the strongest
+ * directional one first; with the rig, the rig first when the scene has
+ * no directional light. */
+SR_TEST(scene_lights_replace_or_precede_the_rig)
+{
+    sr_light rig[SR_MAX_LIGHTS] = { 0 };
+    for (int i = 0; i < 3; i++) {
+        rig[i] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, -1, 0 },
+                             .color = { 1, 1, 1 }, .intensity = 10.0f + (float)i };
+    }
+    const sr_light own[4] = {
+        { .type = SR_LIGHT_POINT, .vector = { 0, 2, 0 }, .color = { 1, 1, 1 }, .intensity = 5 },
+        { .type = SR_LIGHT_DIRECTIONAL, .vector = { 1, 0, 0 }, .color = { 0.5f, 0, 0 },
+          .intensity = 2 },
+        { .type = SR_LIGHT_OFF, .color = { 1, 1, 1 }, .intensity = 0 },
+        { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, -1 }, .color = { 1, 1, 1 },
+          .intensity = 3 },
+    };
+    sr_light l[SR_MAX_LIGHTS];
+    memcpy(l, rig, sizeof l);
+    REQUIRE(sr_pbr_scene_lights(own, 4, false, l) == SR_OK);
+    /* the strongest directional (3 x 1 against 2 x 0.5) first, then the
+     * file's order without the dark one */
+    CHECK(l[0].type == SR_LIGHT_DIRECTIONAL && l[0].intensity == 3);
+    CHECK(l[1].type == SR_LIGHT_POINT && l[2].intensity == 2);
+    CHECK_EQ(l[3].type, SR_LIGHT_OFF);
+    memcpy(l, rig, sizeof l);
+    REQUIRE(sr_pbr_scene_lights(own, 4, true, l) == SR_OK);
+    CHECK(l[0].intensity == 3 && l[3].intensity == 10 && l[5].intensity == 12);
+    CHECK_EQ(l[6].type, SR_LIGHT_OFF);
+    /* no directional light of its own: the rig's key goes first */
+    memcpy(l, rig, sizeof l);
+    REQUIRE(sr_pbr_scene_lights(own, 1, true, l) == SR_OK);
+    CHECK(l[0].intensity == 10 && l[3].type == SR_LIGHT_POINT);
+    memcpy(l, rig, sizeof l);
+    REQUIRE(sr_pbr_scene_lights(NULL, 0, false, l) == SR_OK);
+    CHECK_EQ(l[0].type, SR_LIGHT_OFF);
+    CHECK_EQ(sr_pbr_scene_lights(NULL, 2, false, l), SR_INVALID_ARG);
+    CHECK_EQ(sr_pbr_scene_lights(own, 4, false, NULL), SR_INVALID_ARG);
+    sr_light odd = { .type = (sr_light_type)9 };
+    memcpy(l, rig, sizeof l);
+    CHECK_EQ(sr_pbr_scene_lights(&odd, 1, false, l), SR_INVALID_ARG);
+    CHECK(memcmp(l, rig, sizeof l) == 0);
+}
+
 /* Without textures every lane's color is its own (the shadow's quad
  * verdict equals the lanes' tests), so the program lets the rasterizer
  * fill calls from several quads: the same bytes as quad by quad, for a

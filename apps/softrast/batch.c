@@ -43,9 +43,9 @@ static void batch_help(void)
         "  softrast render MODEL|DIR|PATTERN... [--batch LIST] [options]\n"
         "                           renders every model in one process with the options\n"
         "                           above; a directory is searched (below it too) for\n"
-        "                           .stl .obj .ply files (and Assimp's formats when built\n"
-        "                           with it); a quoted pattern ('models/*.stl') is\n"
-        "                           expanded here\n");
+        "                           .stl .obj .ply .gltf .glb files (and Assimp's formats\n"
+        "                           when built with it); a quoted pattern\n"
+        "                           ('models/*.stl') is expanded here\n");
     batch_help_options(stdout);
     printf(
         "  --views N                N views round each model, 360/N degrees apart about\n"

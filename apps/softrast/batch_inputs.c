@@ -40,11 +40,12 @@ static bool add_item(batch_list *l, const char *input, const char *output, const
     return true;
 }
 
-/* A name the readers take: their own formats, and Assimp's when built in. */
+/* A name the readers take: their own formats (glTF's in every build), and
+ * Assimp's when built in. */
 static bool is_model_name(const char *name)
 {
-    static const char *const own[] = { "stl", "obj", "ply", NULL };
-    static const char *const assimp[] = { "gltf", "glb", "fbx", "dae", "3ds", "off", NULL };
+    static const char *const own[] = { "stl", "obj", "ply", "gltf", "glb", NULL };
+    static const char *const assimp[] = { "fbx", "dae", "3ds", "off", NULL };
     const char *dot = strrchr(name, '.');
     if (!dot || dot == name) {
         return false;

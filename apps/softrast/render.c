@@ -49,12 +49,13 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    if ((o->pbr || o->camera_index >= 0) && render_gltf_is(o->model)) {
-        /* The physically based look draws glTF's own materials; the
-         * classic models keep the mesh reader's diffuse color and texture,
-         * except with one of the file's cameras, which only the glTF
-         * reader gives: then they take each primitive's base color and
-         * texture from it, in the same world space as the camera. */
+    if (render_gltf_is(o->model) && (o->pbr || o->camera_index >= 0 || sr_io_have_gltf())) {
+        /* softrast's own glTF reader for every look (docs/gltf.md says why
+         * not Assimp's, which a build may also lack): the physically
+         * based look draws glTF's materials, the classic models each
+         * primitive's Blinn-Phong translation of its material
+         * (render_gltf_classic).  Only a build without the reader (no
+         * jansson) leaves the classic models Assimp's. */
         return render_gltf_load(o->model, o->normals == -1, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
@@ -466,13 +467,27 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 if (!keep_material) {
                     st.material = ob->material;
                 }
+                /* --texture replaces a glTF material's base color texture
+                 * too, as it replaces any model's. */
+                const sr_texture *given = o->texture ? ob->texture : NULL;
                 st.texture = keep_material ? NULL
+                           : given ? given
                            : gm ? gm->base_color_texture.texture
                            : by_part && ob->part_textures ? ob->part_textures[p] : ob->texture;
-                if (gm) {
-                    /* The classic models take the base color as it is. */
-                    st.material.diffuse = (sr_vec3){ gm->base_color[0], gm->base_color[1],
-                                                     gm->base_color[2] };
+                if (gm && !pbr) {
+                    /* The file's material, but what --material says wins,
+                     * as it does over any other model's. */
+                    st.material = render_gltf_classic(gm, s->gltf->primitives[p].colors != NULL);
+                    if (o->have_mat_color) {
+                        st.material.diffuse = o->mat_color;
+                        st.material.vertex_color = SR_OFF;
+                    }
+                    if (o->have_specular) {
+                        st.material.specular = o->specular;
+                    }
+                    if (o->have_shininess) {
+                        st.material.shininess = o->shininess;
+                    }
                 }
                 if (gm && gm->double_sided) {
                     st.cull = SR_CULL_NONE;
@@ -497,6 +512,11 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 if (pbr) {
                     sr_pbr_material m = gm ? *gm
                                        : pbr_material(o, ob, st.texture, by_part ? p : SIZE_MAX);
+                    if (gm && given) {
+                        m.base_color_texture = (sr_texture_slot){
+                            .texture = given, .filter = o->texture_filter, .wrap_u = o->wrap,
+                            .wrap_v = o->wrap, .scale = { 1, 1 } };
+                    }
                     sr_pbr_desc d = { .material = &m, .model = &ob->model, .view = &cam->view,
                                       .projection = &cam->proj, .exposure = o->exposure,
                                       .tonemap = o->tonemap,

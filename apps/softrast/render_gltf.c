@@ -209,6 +209,42 @@ int render_gltf_load(const char *path, bool flat_normals, sr_context *ctx, cli_i
     return -1;
 }
 
+sr_material render_gltf_classic(const sr_pbr_material *m, bool vertex_colors)
+{
+    /* Diffuse: the base color as it is.  sr_material reads a zero diffuse
+     * as its default gray, so a black one (a purely emissive material)
+     * is kept black by a value no pixel can show. */
+    sr_vec3 kd = { m->base_color[0], m->base_color[1], m->base_color[2] };
+    if (kd.x == 0 && kd.y == 0 && kd.z == 0) {
+        kd = (sr_vec3){ 1e-9f, 1e-9f, 1e-9f };
+    }
+    /* The highlight: glTF's reflectance at normal incidence (4% for a
+     * dielectric, the base color for a metal), at the Blinn-Phong exponent
+     * whose lobe matches GGX's at alpha = roughness^2, 2 / alpha^2 - 2,
+     * with the lobe's normalization (n + 8) / 8 folded into the color so
+     * that a smooth surface's small highlight is as bright as glTF's.
+     * The diffuse keeps the base color (the classic lights have no
+     * environment for a metal to reflect), so the highlight fades with
+     * roughness: a rough metal's wide lobe over the diffuse would wash it
+     * out white. */
+    float rough = fminf(fmaxf(m->roughness, 0.0f), 1.0f);
+    float a2 = fmaxf(rough * rough * rough * rough, 1e-6f);
+    float n = fminf(fmaxf(2.0f / a2 - 2.0f, 1.0f), 2048.0f);
+    float metal = fminf(fmaxf(m->metallic, 0.0f), 1.0f), gain = (n + 8.0f) / 8.0f;
+    float ks[3];
+    for (int c = 0; c < 3; c++) {
+        float f0 = 0.04f + (m->base_color[c] - 0.04f) * metal;
+        ks[c] = fminf(f0 * gain * (1.0f - rough), 1.0f);
+    }
+    return (sr_material){
+        .diffuse = kd,
+        .specular = { ks[0], ks[1], ks[2] },
+        .shininess = n,
+        .opacity = m->alpha_mode == SR_ALPHA_BLEND ? fmaxf(m->base_color[3], 1e-6f) : 1.0f,
+        .vertex_color = vertex_colors ? SR_ON : SR_OFF,
+    };
+}
+
 const char *render_gltf_camera(const scene *s, int index, float aspect, sr_mat4 *view,
                                sr_mat4 *projection)
 {

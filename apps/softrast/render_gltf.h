@@ -15,6 +15,10 @@ bool render_gltf_is(const char *path);
  * Returns an exit status after one line, or -1. */
 int render_gltf_load(const char *path, bool flat_normals, sr_context *ctx, cli_inputs *inputs,
                      scene *s);
+/* The classic models' Blinn-Phong material for glTF material m
+ * (docs/pbr.md, "glTF files in softrast render"); with vertex_colors the
+ * primitive's COLOR_0 is its diffuse, as an OBJ's or a PLY's is. */
+sr_material render_gltf_classic(const sr_pbr_material *m, bool vertex_colors);
 /* The view and projection of the file's camera `index` for `aspect`, or
  * why there is none (a message for the user). */
 const char *render_gltf_camera(const scene *s, int index, float aspect, sr_mat4 *view,

@@ -41,14 +41,12 @@ static sr_vec3 move_direction(const sr_mat4 *m, sr_vec3 d)
 }
 
 /* The file's lit lights into out (room for SR_MAX_LIGHTS), moved by the
- * object's model matrix (rotations and translations: --up, --turn), the
- * strongest directional one (by its brightest channel) first, so that it
- * casts the shadow; the others keep the file's order.  Returns how many. */
+ * object's model matrix (rotations and translations: --up, --turn), in
+ * the file's order.  Returns how many. */
 static int file_lights(const scene *s, sr_light *out)
 {
     const scene_object *ob = file_object(s);
-    int n = 0, key = -1;
-    float key_power = -1.0f;
+    int n = 0;
     for (size_t i = 0; ob && i < s->gltf->light_count && n < SR_MAX_LIGHTS; i++) {
         sr_light l = s->gltf->lights[i].light;
         if (l.type == SR_LIGHT_OFF) {
@@ -56,12 +54,6 @@ static int file_lights(const scene *s, sr_light *out)
         }
         if (l.type == SR_LIGHT_DIRECTIONAL) {
             l.vector = move_direction(&ob->model, l.vector);
-            float c = l.color.x > l.color.y ? l.color.x : l.color.y;
-            c = c > l.color.z ? c : l.color.z;
-            if (c * l.intensity > key_power) {
-                key_power = c * l.intensity;
-                key = n;
-            }
         } else {
             l.vector = move_point(&ob->model, l.vector);
             if (l.type == SR_LIGHT_SPOT) {
@@ -69,11 +61,6 @@ static int file_lights(const scene *s, sr_light *out)
             }
         }
         out[n++] = l;
-    }
-    if (key > 0) {
-        sr_light k = out[key];
-        memmove(&out[1], &out[0], (size_t)key * sizeof *out);
-        out[0] = k;
     }
     return n;
 }
@@ -99,24 +86,9 @@ void render_lights_pbr(const render_opts *o, const scene *s, const sr_light rig[
     if (source == LIGHTS_DEFAULT) {
         return;
     }
+    /* The file's in place of the rig, or before it (sr_pbr_scene_lights:
+     * the strongest directional one first, to cast the shadow). */
     sr_light mine[SR_MAX_LIGHTS] = { 0 };
     int n = file_lights(s, mine);
-    if (source == LIGHTS_BOTH) {
-        /* The rig after the file's lights, in the slots they leave; first
-         * when the file has no directional light to cast the shadow. */
-        bool rig_first = n == 0 || mine[0].type != SR_LIGHT_DIRECTIONAL;
-        sr_light merged[SR_MAX_LIGHTS] = { 0 };
-        int m = 0;
-        for (int pass = 0; pass < 2; pass++) {
-            bool take_rig = (pass == 0) == rig_first;
-            for (int l = 0; l < (take_rig ? SR_MAX_LIGHTS : n) && m < SR_MAX_LIGHTS; l++) {
-                const sr_light *li = take_rig ? &lighting->lights[l] : &mine[l];
-                if (li->type != SR_LIGHT_OFF) {
-                    merged[m++] = *li;
-                }
-            }
-        }
-        memcpy(mine, merged, sizeof mine);
-    }
-    memcpy(lighting->lights, mine, sizeof mine);
+    sr_pbr_scene_lights(mine, (size_t)n, source == LIGHTS_BOTH, lighting->lights);
 }

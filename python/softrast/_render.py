@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import warnings
 from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
@@ -12,13 +13,14 @@ from . import _softrast
 from ._arrays import real_array
 from ._camera import Camera
 from ._framing import fit_camera
+from ._light import Light
 from ._memory import check_memory
 from ._scene import Instance, Scene, as_scene
 from ._softrast import Mesh
 
 if TYPE_CHECKING:
-    from .typing import (Antialias, Cull, NormalFrame, OutputName, PathLike, Projection,
-                          RealArrayLike, RenderOutputs, SceneLike, Shading)
+    from .typing import (Antialias, Cull, LightsMode, NormalFrame, OutputName, PathLike,
+                          Projection, RealArrayLike, RenderOutputs, SceneLike, Shading, Tonemap)
 
 #: The outputs render() can return, with their per-view shape suffix and dtype.
 OUTPUTS: Dict[str, Tuple[Tuple[int, ...], type]] = {
@@ -165,8 +167,8 @@ def _environment(environment: Optional[PathLike], intensity: float,
                  threads: int) -> Optional[object]:
     if environment is None:
         environment = "studio"
-    if isinstance(environment, str) and environment == "hemisphere":
-        return None
+    if isinstance(environment, str) and environment in ("hemisphere", "none"):
+        return None     # softrast render's --environment hemisphere (or none)
     try:
         intensity = float(intensity)
     except (TypeError, ValueError):
@@ -266,6 +268,44 @@ def _check_memory(n: int, width: int, height: int, names: Sequence[str], msaa: i
                  "render fewer cameras at a time, a smaller size or fewer outputs")
 
 
+#: softrast render's --tonemap as the extension takes it (sr_tonemap_op).
+_TONEMAPS = {"neutral": 1, "aces": 2, "none": 3}
+
+#: softrast render's --lights as the extension takes it (python/src/render.c).
+_LIGHTS_MODES = {"default": 0, "file": 1, "both": 2}
+
+
+def _lights(lights: Union[LightsMode, Sequence[Light], None], scene: Scene
+            ) -> Tuple[int, List[Tuple[Any, ...]]]:
+    """render's lights= as softrast render's --lights: the mode and the
+    lights the program takes, the first 8 lit ones of the scene's (or of
+    the given list, which stands for the scene's) in their order."""
+    if lights is None:
+        lights = "auto"
+    if isinstance(lights, str):
+        if lights not in ("auto", "file", "default", "both"):
+            raise ValueError(f"lights: must be 'auto', 'file', 'default', 'both' or a list of "
+                             f"softrast.Light, got {lights!r}")
+        mode: str = lights
+        given: Sequence[Light] = scene.lights
+    else:
+        if not isinstance(lights, (list, tuple)):
+            raise TypeError(f"lights: expected 'auto', 'file', 'default', 'both' or a list of "
+                            f"softrast.Light, got {type(lights).__name__}")
+        for i, light in enumerate(lights):
+            if not isinstance(light, Light):
+                raise TypeError(f"lights[{i}]: expected a softrast.Light, "
+                                f"got {type(light).__name__}")
+        mode, given = "file", lights
+    lit = [light for light in given if not light.dark][:8]
+    if mode == "auto":
+        mode = "file" if lit else "default"
+    elif mode == "file" and not lit and isinstance(lights, str):
+        warnings.warn("lights='file': the scene has no lit lights of its own: it is lit by the "
+                      "ambient light alone", stacklevel=3)
+    return _LIGHTS_MODES[mode], [light._program() for light in lit]
+
+
 def _int_arg(value: int, name: str, low: int, high: int) -> int:
     if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
         raise TypeError(f"{name}: expected an int, got {type(value).__name__}")
@@ -285,7 +325,9 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
            environment: Optional[PathLike] = None, environment_intensity: float = 0.6,
            shadows: Optional[bool] = None, ground: bool = False,
            projection: Optional[Projection] = None, antialias: Optional[Antialias] = None,
-           cull: Cull = "none") -> RenderOutputs:
+           cull: Cull = "none",
+           lights: Union[LightsMode, Sequence[Light], None] = None, exposure: float = 0.0,
+           tonemap: Tonemap = "neutral") -> RenderOutputs:
     """Render a scene from one camera or a batch of cameras.
 
     scene: a :class:`Mesh`, an :class:`Instance`, a :class:`Scene` or a list
@@ -320,8 +362,9 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
           (``shading="lit"``), as they are (``shading="unlit"``), or by
           glTF's metallic-roughness model (``shading="pbr"``: each
           instance's :class:`Material` with its alpha mode and a loaded
-          file's textures, a rough dielectric without one; softrast
-          render's default lights, sky-and-ground ambient and tone curve;
+          file's textures, a rough dielectric without one; the lights
+          ``lights`` chooses, softrast render's ambient light and tone
+          curve;
           meshes without normals shaded flat, as glTF asks), over
           ``background`` (RGB in [0, 1]).
         - ``rgba`` (H, W, 4) uint8: ``color`` with alpha, straight (not
@@ -374,7 +417,8 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     environment: "pbr" only: "studio" (the built-in neutral studio; the
         default, None, as softrast render's) or the path of an
         equirectangular Radiance ``.hdr`` file (+y up) for image-based
-        light with the key light alone; "hemisphere" for the sky-and-ground
+        light with the key light alone; "hemisphere" (or "none", as the
+        command's) for the sky-and-ground
         ambient with the key, fill and rim lights.  Environments are at
         ``environment_intensity`` (default 0.6, as softrast render;
         0.001 .. 1000).  Prefiltered once and kept for later calls.
@@ -390,6 +434,24 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         background is transparent), drawn after the opaque instances and
         before the blended ones; the rest of the ground is not drawn.  It is in ``color`` and ``rgba`` only, not in the geometry
         outputs; with ``shadows=False`` it shows nothing.
+    lights: "pbr" only, softrast render's ``--lights``: "file" (the
+        scene's own, ``Scene.lights``: a glTF file's KHR_lights_punctual,
+        the first 8 that are not dark, in lux and candela as they are),
+        "default" (the key, fill and rim lights placed relative to the
+        camera, only the key with an environment), "both" (the scene's,
+        then the default ones, 8 in all) or "auto" (the default, None:
+        the scene's when it has some, else the default ones); or a list
+        of :class:`Light` (``Light.directional``, ``point``, ``spot``),
+        in world space, used as a file's are.  The ambient light (the
+        environment or hemisphere) stays.  The shadow is cast by the
+        strongest directional light of the scene's (none when it has
+        only point and spot lights; the default key with "both" then).
+    exposure: "pbr" only, softrast render's ``--exposure``: radiance times
+        2^exposure before the tone curve, in stops, -20 .. 20 (default 0;
+        a file's lights in physical units may want a negative one).
+    tonemap: "pbr" only, softrast render's ``--tonemap``: "neutral"
+        (Khronos PBR Neutral, the default), "aces" (ACES filmic) or
+        "none" (a clamp).
 
     Returns a dict from each requested name to its array; with batched
     cameras every array has a leading dimension B.  The GIL is released
@@ -455,8 +517,18 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         raise ValueError(f"background: shape must be (3,), got {bg.shape}")
     bg = np.clip(bg, 0.0, 1.0)
     rgb = (float(bg[0]), float(bg[1]), float(bg[2]))
-    if (environment is not None or shadows or ground) and shading != "pbr":
-        raise ValueError("environment, shadows, ground: need shading='pbr'")
+    if ((environment is not None or shadows or ground or lights is not None or exposure != 0.0
+         or tonemap != "neutral") and shading != "pbr"):
+        raise ValueError("environment, shadows, ground, lights, exposure, tonemap: "
+                         "need shading='pbr'")
+    if isinstance(exposure, bool) or not isinstance(exposure, (int, float, np.integer,
+                                                                np.floating)):
+        raise TypeError(f"exposure: expected a number, got {type(exposure).__name__}")
+    if not -20.0 <= float(exposure) <= 20.0:
+        raise ValueError(f"exposure: must be in -20 .. 20 stops, got {exposure}")
+    if tonemap not in _TONEMAPS:
+        raise ValueError(f"tonemap: must be 'neutral', 'aces' or 'none', got {tonemap!r}")
+    lights_mode, program_lights = _lights(lights, sc) if shading == "pbr" else (0, [])
     if not isinstance(ground, (bool, np.bool_)):
         raise TypeError(f"ground: expected a bool, got {type(ground).__name__}")
     if shadows is None:
@@ -501,7 +573,9 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
             instances = [(mesh, a, nm, iid) + (look if color_pbr else ())
                          for mesh, (a, nm), iid, look in zip(meshes, poses, ids, looks_now)]
             extra: Dict[str, Any] = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
-                         shadows=bool(shadows), ground=bool(ground)) if color_pbr else {}
+                         shadows=bool(shadows), ground=bool(ground), lights=program_lights,
+                         lights_mode=lights_mode, exposure=float(exposure),
+                         tonemap=_TONEMAPS[tonemap]) if color_pbr else {}
             views = {name: out[name][b] if name in wanted else None for name in OUTPUTS}
             _softrast.render(instances, np.ascontiguousarray(Ks[b]), width, height,
                              float(nears[b]), threads, views["depth"], views["triangle_id"],

@@ -92,7 +92,8 @@ class Scene:
     instance_id)`` tuple, or an :class:`Instance`.  Instances without an ID
     take their index in the scene.  ``cameras``: the :class:`Camera` list
     of the file :func:`load` read (empty otherwise); ``lights``: its
-    :class:`Light` tuple (read-only: :func:`render` does not take them).
+    :class:`Light` tuple (read-only; given here, or the file's), which
+    :func:`render` lights with (its ``lights``).
     """
 
     def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = (),
@@ -222,8 +223,8 @@ def load(path: PathLike) -> Scene:
     of softrast render's ``--camera-index`` (node order, depth first):
     ``render(scene, camera=scene.cameras[0], width=..., height=...)``.
     Its KHR_lights_punctual lights are ``Scene.lights``, :class:`Light`
-    tuples in world space, for the caller to read: ``render`` lights with
-    its own rig (or ``environment``), not with them.
+    tuples in world space, which ``render(shading="pbr")`` lights with
+    (its ``lights``, as softrast render's ``--lights``).
     """
     path = _path(path)
     d = _softrast.load_scene(path)

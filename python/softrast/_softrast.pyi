@@ -106,4 +106,6 @@ def render(instances: Sequence[Tuple[Any, ...]], K: NDArray[np.float64], width: 
            rgba: Optional[NDArray[np.uint8]] = None, pbr: bool = False,
            view: Optional[NDArray[np.float64]] = None, environment: object = None,
            shadows: bool = False, general: bool = False, ortho: bool = False, far: float = 0.0,
-           msaa: int = 1, ssaa: int = 1, ground: bool = False, cull: bool = False) -> None: ...
+           msaa: int = 1, ssaa: int = 1, ground: bool = False, cull: bool = False,
+           lights: Optional[Sequence[Tuple[Any, ...]]] = None, lights_mode: int = 0,
+           exposure: float = 0.0, tonemap: int = 0) -> None: ...

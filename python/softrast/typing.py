@@ -59,6 +59,10 @@ NormalFrame = Literal["camera", "world"]
 Cull = Literal["none", "back"]
 Antialias = Literal["none", "msaa2", "msaa4", "msaa8", "msaa16", "ssaa2", "ssaa3", "ssaa4"]
 AlphaMode = Literal["opaque", "mask", "blend"]
+#: render's lights=, as softrast render's --lights (or a list of softrast.Light).
+LightsMode = Literal["auto", "file", "default", "both"]
+#: render's tonemap=, as softrast render's --tonemap.
+Tonemap = Literal["neutral", "aces", "none"]
 #: softrast.Canvas's names: fill rules, stroke joins and caps, gradient
 #: spreads, pattern wraps.
 FillRule = Literal["nonzero", "evenodd"]

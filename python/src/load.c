@@ -229,13 +229,14 @@ static PyObject *camera_dict(const sr_scene_camera *c)
 
 /* A KHR_lights_punctual light as the Python layer's Light takes it: the
  * placed sr_light's fields ("vector" a directional light's direction of
- * travel, a point or spot light's position), its node's world matrix and
- * its indices. */
+ * travel, a point or spot light's position) under the file's kind (a dark
+ * light's sr_light is SR_LIGHT_OFF, its color or intensity zero), its
+ * node's world matrix and its indices. */
 static PyObject *light_dict(const sr_scene_light *l)
 {
     static const char *const types[] = { "off", "directional", "point", "spot" };
     const sr_light *s = &l->light;
-    const char *type = (unsigned)s->type < 4 ? types[s->type] : "off";
+    const char *type = (unsigned)l->type < 4 ? types[l->type] : "off";
     return Py_BuildValue("{sss(ddd)sds(ddd)s(ddd)sdsdsdsNsisi}", "type", type, "color",
                          (double)s->color.x, (double)s->color.y, (double)s->color.z,
                          "intensity", (double)s->intensity, "vector", (double)s->vector.x,

@@ -10,7 +10,8 @@ PyDoc_STRVAR(render_doc,
 "render(instances, K, width, height, near, threads, depth, triangle_id, instance_id,\n"
 "       barycentric, normal, color, mask, background, lit, rgba=None, pbr=False,\n"
 "       view=None, environment=None, shadows=False, general=False, ortho=False,\n"
-"       far=0.0, msaa=1, ssaa=1, ground=False, cull=False)\n"
+"       far=0.0, msaa=1, ssaa=1, ground=False, cull=False, lights=None,\n"
+"       lights_mode=0, exposure=0.0, tonemap=0)\n"
 "--\n"
 "\n"
 "The C renderer behind softrast.render (use that): one camera.\n"
@@ -18,6 +19,10 @@ PyDoc_STRVAR(render_doc,
 "(3, 3) float64 normal matrix, int id[, the material tuple of pbr=True]);\n"
 "K: (3, 3) float64.  The outputs (depth ... mask, rgba) are written into\n"
 "the given C-contiguous arrays (None: not wanted).\n"
+"lights, lights_mode (pbr): up to 8 (type, (vector), (color), intensity,\n"
+"(direction), inner, outer, range) tuples of lit lights in world space,\n"
+"and softrast render's --lights: 0 the default rig, 1 these, 2 both.\n"
+"exposure, tonemap (pbr): --exposure in stops, --tonemap as sr_tonemap_op.\n"
 "general: the geometry outputs through the library's pipeline even where\n"
 "the visibility pass could draw them (the same bytes; for the tests).");
 

@@ -801,6 +801,51 @@ static void free_instances(render_job *j)
     free(j->inst);
 }
 
+/* render(lights=): None, or a sequence of at most SR_MAX_LIGHTS tuples
+ * (type, (vector), (color), intensity, (direction), inner, outer, range)
+ * of lit lights in world space, which the Python layer has checked. */
+static int take_lights(PyObject *lights, render_job *j)
+{
+    if (j->lights_mode < 0 || j->lights_mode > 2) {
+        PyErr_Format(PyExc_ValueError, "lights_mode: must be 0, 1 or 2, got %d", j->lights_mode);
+        return -1;
+    }
+    if (lights == Py_None) {
+        return 0;
+    }
+    PyObject *seq = PySequence_Fast(lights, "lights: expected a sequence of tuples");
+    if (!seq) {
+        return -1;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+    if (n > SR_MAX_LIGHTS) {
+        PyErr_Format(PyExc_ValueError, "lights: at most %d, got %zd", SR_MAX_LIGHTS, n);
+        Py_DECREF(seq);
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        sr_light *l = &j->lights[i];
+        int type;
+        if (!PyArg_ParseTuple(PySequence_Fast_GET_ITEM(seq, i), "i(fff)(fff)f(fff)fff", &type,
+                              &l->vector.x, &l->vector.y, &l->vector.z, &l->color.x,
+                              &l->color.y, &l->color.z, &l->intensity, &l->direction.x,
+                              &l->direction.y, &l->direction.z, &l->inner_cone, &l->outer_cone,
+                              &l->range)) {
+            Py_DECREF(seq);
+            return -1;
+        }
+        if (type < SR_LIGHT_DIRECTIONAL || type > SR_LIGHT_SPOT) {
+            PyErr_Format(PyExc_ValueError, "lights[%zd]: type %d is not a light", i, type);
+            Py_DECREF(seq);
+            return -1;
+        }
+        l->type = (sr_light_type)type;
+    }
+    j->light_count = (int)n;
+    Py_DECREF(seq);
+    return 0;
+}
+
 PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
@@ -808,18 +853,31 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                               "triangle_id", "instance_id", "barycentric", "normal", "color",
                               "mask", "background", "lit", "rgba", "pbr", "view",
                               "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
-                              "ground", "cull", NULL };
+                              "ground", "cull", "lights", "lights_mode", "exposure", "tonemap",
+                              NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
-    PyObject *view = Py_None, *env = Py_None;
+    PyObject *view = Py_None, *env = Py_None, *lights = Py_None;
     render_job j = { .msaa = 1, .ssaa = 1 };
     int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0, cull = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiipp:render", kwlist,
+    int tonemap = SR_TONEMAP_DEFAULT;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiippOifi:render", kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
                                      &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa,
-                                     &ground, &cull)) {
+                                     &ground, &cull, &lights, &j.lights_mode, &j.exposure,
+                                     &tonemap)) {
+        return NULL;
+    }
+    if (!(j.exposure >= -64.0f && j.exposure <= 64.0f) || tonemap < SR_TONEMAP_DEFAULT ||
+        tonemap > SR_TONEMAP_NONE) {
+        PyErr_Format(PyExc_ValueError, "exposure, tonemap: %g stops (-64 .. 64), curve %d "
+                     "(0 .. 3)", (double)j.exposure, tonemap);
+        return NULL;
+    }
+    j.tonemap = (sr_tonemap_op)tonemap;
+    if (take_lights(lights, &j) < 0) {
         return NULL;
     }
     j.ortho = ortho;

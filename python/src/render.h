@@ -43,6 +43,14 @@ typedef struct render_job {
     const sr_environment *env;  /* pbr: its image-based light, or NULL (the hemisphere) */
     bool shadows;               /* pbr: the key light's shadow map */
     bool ground;                /* pbr, with shadows: the shadow catcher under the instances */
+    /* pbr: softrast render's --lights: the default rig (0), the given
+     * lights (1: a file's, in world space and the extension's units) or
+     * both (2); `lights` holds light_count lit ones, in the file's order. */
+    int lights_mode;
+    sr_light lights[SR_MAX_LIGHTS];
+    int light_count;
+    float exposure;             /* pbr: --exposure, stops */
+    sr_tonemap_op tonemap;      /* pbr: --tonemap */
     float *depth;
     int32_t *triangle_id, *instance_id;
     float *barycentric, *normal;

@@ -3,7 +3,8 @@
  * drawn by the library's metallic-roughness program as softrast render
  * draws a glTF file (docs/pbr.md): in world space, lit by the default
  * rig relative to the camera (sr_default_lights, sr_pbr_default_lighting)
- * or by an environment and the key light alone, with the key light's
+ * or by an environment and the key light alone, by the scene's own
+ * lights instead or too (--lights: sr_pbr_scene_lights), with the key light's
  * shadow map when asked; opaque and masked instances first, then the
  * transmissive ones (KHR_materials_transmission, seeing an image of the
  * others drawn first without the tone curve, as softrast render does),
@@ -148,7 +149,8 @@ static sr_result draw_shadow_map(sr_context *ctx, const render_job *j, sr_vec3 d
 
 typedef struct pass_light {
     sr_mat4 view;               /* world -> OpenGL's eye space */
-    sr_light lights[SR_MAX_LIGHTS];
+    sr_light lights[SR_MAX_LIGHTS];   /* as the program takes them: the rig as radiance */
+    sr_vec3 sky, ground;
     const sr_shadow_map *shadow;
 } pass_light;
 
@@ -177,11 +179,13 @@ static sr_result draw_one(sr_context *ctx, sr_framebuffer *fb, const render_job 
     if (pd.tangents || pd.texcoords1) {
         d.vertex_count = pd.d.vertex_count;
     }
-    r = sr_pbr_default_lighting(pl->lights, &d);
+    d.exposure = j->exposure;
+    d.tonemap = j->tonemap;
+    memcpy(d.lights, pl->lights, sizeof d.lights);
+    d.sky = pl->sky;
+    d.ground = pl->ground;
     sr_pbr *program = NULL;
-    if (r == SR_OK) {
-        r = sr_make_pbr_program(ctx, &d, &program);
-    }
+    r = sr_make_pbr_program(ctx, &d, &program);
     sr_state st = {
         .depth_zero_to_one = true, .depth_func = SR_GREATER,
         .cull = m.double_sided && !j->cull_back ? SR_CULL_NONE : SR_CULL_BACK,
@@ -312,8 +316,21 @@ sr_result sr_py_pbr_pass(sr_context *ctx, sr_framebuffer *fb, const render_job *
             pl.lights[l].type = SR_LIGHT_OFF;
         }
     }
+    sr_pbr_desc rig = { 0 };
+    if (r == SR_OK) {
+        r = sr_pbr_default_lighting(pl.lights, &rig);
+    }
+    memcpy(pl.lights, rig.lights, sizeof pl.lights);
+    pl.sky = rig.sky;
+    pl.ground = rig.ground;
+    if (r == SR_OK && j->lights_mode != 0) {
+        /* softrast render's --lights file|both. */
+        r = sr_pbr_scene_lights(j->lights, (size_t)j->light_count, j->lights_mode == 2,
+                                pl.lights);
+    }
+    /* The map is directional: a key light that is not casts none. */
     sr_shadow_map *shadow = NULL;
-    if (r == SR_OK && j->shadows) {
+    if (r == SR_OK && j->shadows && pl.lights[0].type == SR_LIGHT_DIRECTIONAL) {
         r = draw_shadow_map(ctx, j, pl.lights[0].vector, &shadow);
         pl.shadow = shadow;
     }

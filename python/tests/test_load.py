@@ -165,7 +165,9 @@ def test_load_exposes_a_gltf_files_lights_read_only(tmp_path):
     assert sun.type == "directional" and sun.position is None and sun.range is None
     assert np.allclose(sun.direction, [0, -1, 0], atol=1e-6) and sun.inner_cone is None
     assert np.allclose(sun.color, [1, 1, 1]) and sun.intensity == 3
-    assert dark.type == "off" and dark.node == 4
+    # intensity 0: dark, but still the point light the file says it is
+    assert dark.type == "point" and dark.node == 4 and dark.intensity == 0 and dark.dark
+    assert np.allclose(dark.position, [1, 2, 3]) and not spot.dark and not sun.dark
     with pytest.raises(AttributeError):
         scene.lights = ()
     with pytest.raises(AttributeError):

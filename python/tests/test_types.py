@@ -204,6 +204,16 @@ softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, outputs="depth")  # wron
 softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, outputs=("dpeth",))  # wrong: a name
 softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, shading="phong")  # wrong: a shading
 softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, cull="front")  # wrong: a cull mode
+sun = softrast.Light.directional((0.0, -1.0, 0.0), color=(1.0, 0.9, 0.8), intensity=3.0)
+lamp = softrast.Light.spot((0, 2, 0), (0, -1, 0), intensity=5.0, range=4.0, outer_cone=0.5)
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, shading="pbr", lights=[sun, lamp])
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, shading="pbr", lights="both")
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, lights="sun")  # wrong: a lights mode
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, lights=[(0, -1, 0)])  # wrong: Lights
+softrast.Light.point((0, 1, 0), 5.0)  # wrong: intensity is keyword-only
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, shading="pbr", exposure=-1.0, tonemap="aces")
+softrast.render(mesh, K=K, R=R, t=t, width=8, height=8, tonemap="filmic")  # wrong: a tone curve
+dark: bool = sun.dark
 ids: "np.ndarray[object, np.dtype[np.float32]]" = out["triangle_id"]  # wrong: int32
 out["dpeth"]  # wrong: no such output
 softrast.look_at((0, 0, -2), (0, 0, 0), fov_y=1.0, ymag=2.0, width=8, height=8)  # wrong: both

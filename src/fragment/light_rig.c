@@ -67,3 +67,55 @@ sr_result sr_pbr_default_lighting(const sr_light lights[SR_MAX_LIGHTS], sr_pbr_d
     desc->ground = (sr_vec3){ 0.05f, 0.048f, 0.045f };
     return SR_OK;
 }
+
+sr_result sr_pbr_scene_lights(const sr_light *scene_lights, size_t count, bool keep_rig,
+                              sr_light lights[SR_MAX_LIGHTS])
+{
+    if (!lights || (count > 0 && !scene_lights)) {
+        return SR_INVALID_ARG;
+    }
+    for (size_t i = 0; i < count; i++) {
+        if ((unsigned)scene_lights[i].type > SR_LIGHT_SPOT) {
+            return SR_INVALID_ARG;
+        }
+    }
+    sr_light mine[SR_MAX_LIGHTS] = { 0 };
+    int n = 0, key = -1;
+    float key_power = -1.0f;
+    for (size_t i = 0; i < count && n < SR_MAX_LIGHTS; i++) {
+        const sr_light *l = &scene_lights[i];
+        if (l->type == SR_LIGHT_OFF) {
+            continue;
+        }
+        if (l->type == SR_LIGHT_DIRECTIONAL) {
+            float c = fmaxf(fmaxf(l->color.x, l->color.y), l->color.z);
+            if (c * l->intensity > key_power) {
+                key_power = c * l->intensity;
+                key = n;
+            }
+        }
+        mine[n++] = *l;
+    }
+    if (key > 0) {
+        sr_light k = mine[key];
+        memmove(&mine[1], &mine[0], (size_t)key * sizeof *mine);
+        mine[0] = k;
+    }
+    if (keep_rig) {
+        bool rig_first = n == 0 || mine[0].type != SR_LIGHT_DIRECTIONAL;
+        sr_light merged[SR_MAX_LIGHTS] = { 0 };
+        int m = 0;
+        for (int pass = 0; pass < 2; pass++) {
+            bool take_rig = (pass == 0) == rig_first;
+            for (int l = 0; l < (take_rig ? SR_MAX_LIGHTS : n) && m < SR_MAX_LIGHTS; l++) {
+                const sr_light *li = take_rig ? &lights[l] : &mine[l];
+                if (li->type != SR_LIGHT_OFF) {
+                    merged[m++] = *li;
+                }
+            }
+        }
+        memcpy(mine, merged, sizeof mine);
+    }
+    memcpy(lights, mine, sizeof mine);
+    return SR_OK;
+}

@@ -177,6 +177,7 @@ sr_result sr__gltf_place_light(gltf_doc *d, const json_t *node, const char *ptr,
     memcpy(l->world, world, sizeof l->world);
     l->light_index = (int)index;
     l->node = (int)node_index;
+    l->type = g->type;
     bool dark = g->intensity == 0 ||
                 (g->color[0] == 0 && g->color[1] == 0 && g->color[2] == 0);
     l->light = (sr_light){
