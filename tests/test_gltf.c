@@ -1152,3 +1152,121 @@ SR_TEST(instancing_a_long_index_list_past_the_triangle_limit_is_refused)
         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}]",
         769, "big.gltf: /nodes/768: more than 268435456 triangles to draw in all");
 }
+
+/* json written to `name` in the tests' output folder; its path. */
+static const char *write_doc(const char *name, char *json)
+{
+    static char path[600];
+    snprintf(path, sizeof path, "%s/%s", sr_test_out_dir(), name);
+    write_file(path, json, strlen(json));
+    free(json);
+    return path;
+}
+
+/* sr_load_mesh of path, its message printed when it fails. */
+static bool load_mesh(const char *path, sr_mesh *m)
+{
+    sr_io_error e;
+    sr_result r = sr_load_mesh(sr_test_ctx(), path, NULL, m, &e);
+    if (r != SR_OK) {
+        printf("  %s\n", e.message);
+    }
+    return r == SR_OK;
+}
+
+SR_TEST(load_mesh_flattens_instances_into_world_space)
+{
+    /* tri with the normal (1, 1, 0) / sqrt 2 at every corner, placed by
+     * a translated, unevenly scaled node and by a mirroring one. */
+    float nrm[9];
+    for (int i = 0; i < 3; i++) {
+        nrm[3 * i] = nrm[3 * i + 1] = 0.70710678f;
+        nrm[3 * i + 2] = 0;
+    }
+    uint8_t bin[72];
+    le_copy(bin, tri, 9, 4);
+    le_copy(bin + 36, nrm, 9, 4);
+    const char *body =
+        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":72}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+        "{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":3,"
+        "\"type\":\"VEC3\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1}}]}],"
+        "\"nodes\":[{\"translation\":[1,2,3],\"scale\":[2,3,1],\"mesh\":0},"
+        "{\"scale\":[-1,1,1],\"mesh\":0},{\"translation\":[9,9,9],\"mesh\":0}],"
+        "\"scenes\":[{\"nodes\":[0,1]},{\"nodes\":[2]}],\"scene\":0";
+    const char *path = write_doc("instances.gltf", doc(bin, sizeof bin, body));
+    sr_mesh m;
+    REQUIRE(load_mesh(path, &m));
+    REQUIRE(m.vertex_count == 6);
+    REQUIRE(m.triangle_count == 2);
+    static const float want_pos[18] = { 1, 2, 3, 3, 2, 3, 1, 5, 3,
+                                        0, 0, 0, -1, 0, 0, 0, 1, 0 };
+    for (int i = 0; i < 18; i++) {
+        CHECK_NEAR(m.positions[i], want_pos[i], 1e-6);
+    }
+    /* Normals by the inverse transpose: (1/2, 1/3, 0) normalized, and
+     * (-1, 1, 0) normalized. */
+    REQUIRE(m.normals);
+    CHECK_NEAR(m.normals[0], 0.83205029f, 1e-6);
+    CHECK_NEAR(m.normals[1], 0.5547002f, 1e-6);
+    CHECK_NEAR(m.normals[2], 0, 1e-6);
+    CHECK_NEAR(m.normals[9], -0.70710678f, 1e-6);
+    CHECK_NEAR(m.normals[10], 0.70710678f, 1e-6);
+    CHECK(m.texcoords == NULL && m.colors == NULL);
+    /* Both triangles face +z in world space: the mirrored one's corners
+     * were swapped. */
+    for (size_t t = 0; t < 2; t++) {
+        const float *a = &m.positions[3 * m.indices[3 * t]];
+        const float *b = &m.positions[3 * m.indices[3 * t + 1]];
+        const float *c = &m.positions[3 * m.indices[3 * t + 2]];
+        float z = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        CHECK(z > 0);
+    }
+    CHECK_EQ(m.indices[3], 3);
+    CHECK_EQ(m.indices[4], 5);
+    CHECK_EQ(m.indices[5], 4);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+}
+
+/* KHR_mesh_quantization's integer positions, which Assimp misreads: read
+ * by the own reader even in a build that has Assimp. */
+SR_TEST(load_mesh_reads_quantized_gltf_with_the_own_reader)
+{
+    uint16_t pos[12] = { 0, 0, 0, 0, 2, 0, 0, 0, 0, 3, 0, 0 };   /* stride 8 */
+    uint8_t bin[24];
+    le_copy(bin, pos, 12, 2);
+    const char *body =
+        ",\"extensionsUsed\":[\"KHR_mesh_quantization\"],"
+        "\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":24,\"byteStride\":8}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5123,\"count\":3,"
+        "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[2,3,0]}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+        "\"nodes\":[{\"scale\":[0.5,0.5,0.5],\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+    const char *path = write_doc("quantized.gltf", doc(bin, sizeof bin, body));
+    sr_mesh m;
+    REQUIRE(load_mesh(path, &m));
+    REQUIRE(m.vertex_count == 3 && m.triangle_count == 1);
+    static const float want[9] = { 0, 0, 0, 1, 0, 0, 0, 1.5f, 0 };
+    for (int i = 0; i < 9; i++) {
+        CHECK_NEAR(m.positions[i], want[i], 1e-6);
+    }
+    CHECK(m.normals == NULL);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+}
+
+SR_TEST(load_mesh_gltf_errors_name_the_json_pointer)
+{
+    char body[1024];
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]",
+             TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":7}}]}]");
+    const char *path = write_doc("bad_accessor.gltf", doc(tri_le(), sizeof tri, body));
+    sr_mesh m;
+    sr_io_error e;
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), path, NULL, &m, &e), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "bad_accessor.gltf: /meshes/0/primitives/0/attributes/POSITION");
+    CHECK(strchr(e.message, '\n') == NULL);
+    CHECK(m.positions == NULL && m.vertex_count == 0);
+}
