@@ -1163,9 +1163,11 @@ static const char *write_doc(const char *name, char *json)
     return path;
 }
 
-/* sr_load_mesh of path, its message printed when it fails. */
-static bool load_mesh(const char *path, sr_mesh *m)
+/* bin and body as a document written to `name`, read by sr_load_mesh;
+ * its message printed when it fails. */
+static bool load_mesh(const char *name, const void *bin, size_t n, const char *body, sr_mesh *m)
 {
+    const char *path = write_doc(name, doc(bin, n, body));
     sr_io_error e;
     sr_result r = sr_load_mesh(sr_test_ctx(), path, NULL, m, &e);
     if (r != SR_OK) {
@@ -1195,9 +1197,8 @@ SR_TEST(load_mesh_flattens_instances_into_world_space)
         "\"nodes\":[{\"translation\":[1,2,3],\"scale\":[2,3,1],\"mesh\":0},"
         "{\"scale\":[-1,1,1],\"mesh\":0},{\"translation\":[9,9,9],\"mesh\":0}],"
         "\"scenes\":[{\"nodes\":[0,1]},{\"nodes\":[2]}],\"scene\":0";
-    const char *path = write_doc("instances.gltf", doc(bin, sizeof bin, body));
     sr_mesh m;
-    REQUIRE(load_mesh(path, &m));
+    REQUIRE(load_mesh("instances.gltf", bin, sizeof bin, body, &m));
     REQUIRE(m.vertex_count == 6);
     REQUIRE(m.triangle_count == 2);
     static const float want_pos[18] = { 1, 2, 3, 3, 2, 3, 1, 5, 3,
@@ -1244,9 +1245,8 @@ SR_TEST(load_mesh_reads_quantized_gltf_with_the_own_reader)
         "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[2,3,0]}],"
         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
         "\"nodes\":[{\"scale\":[0.5,0.5,0.5],\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
-    const char *path = write_doc("quantized.gltf", doc(bin, sizeof bin, body));
     sr_mesh m;
-    REQUIRE(load_mesh(path, &m));
+    REQUIRE(load_mesh("quantized.gltf", bin, sizeof bin, body, &m));
     REQUIRE(m.vertex_count == 3 && m.triangle_count == 1);
     static const float want[9] = { 0, 0, 0, 1, 0, 0, 0, 1.5f, 0 };
     for (int i = 0; i < 9; i++) {

@@ -34,6 +34,23 @@ void sr__free_malloc_mesh(sr_mesh *mesh)
     memset(mesh, 0, sizeof *mesh);
 }
 
+bool sr__alloc_malloc_mesh(sr_mesh *m, size_t verts, size_t tris, bool normals, bool colors,
+                           bool texcoords)
+{
+    *m = (sr_mesh){ .vertex_count = verts, .triangle_count = tris };
+    m->positions = malloc(verts * 3 * sizeof(float));
+    m->normals = normals ? malloc(verts * 3 * sizeof(float)) : NULL;
+    m->colors = colors ? malloc(verts * 4 * sizeof(float)) : NULL;
+    m->texcoords = texcoords ? malloc(verts * 2 * sizeof(float)) : NULL;
+    m->indices = malloc(tris * 3 * sizeof(uint32_t));
+    if (!m->positions || (normals && !m->normals) || (colors && !m->colors) ||
+        (texcoords && !m->texcoords) || !m->indices) {
+        sr__free_malloc_mesh(m);
+        return false;
+    }
+    return true;
+}
+
 /* The reader's result `res` on a malloc'd mesh m, handed out as *out: a
  * copy on ctx, m freed. */
 static sr_result hand_out(sr_context *ctx, const char *name, sr_result res, sr_mesh *m,

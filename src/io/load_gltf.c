@@ -88,15 +88,8 @@ static sr_result flatten(const char *path, const sr_scene *s, sr_mesh *out, sr_i
                            "%zu vertices and %zu triangles exceed the limits (%zu, %zu)", verts,
                            tris, (size_t)SR_IO_MAX_VERTICES, (size_t)SR_IO_MAX_TRIANGLES);
     }
-    sr_mesh m = { .vertex_count = verts, .triangle_count = tris };
-    m.positions = malloc(verts * 3 * sizeof(float));
-    m.normals = normals ? malloc(verts * 3 * sizeof(float)) : NULL;
-    m.colors = colors ? malloc(verts * 4 * sizeof(float)) : NULL;
-    m.texcoords = texcoords ? malloc(verts * 2 * sizeof(float)) : NULL;
-    m.indices = malloc(tris * 3 * sizeof(uint32_t));
-    if (!m.positions || (normals && !m.normals) || (colors && !m.colors) ||
-        (texcoords && !m.texcoords) || !m.indices) {
-        sr__free_malloc_mesh(&m);
+    sr_mesh m;
+    if (!sr__alloc_malloc_mesh(&m, verts, tris, normals, colors, texcoords)) {
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory for %zu vertices",
                            verts);
     }

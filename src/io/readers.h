@@ -38,5 +38,9 @@ sr_result sr__parse_stl(const char *name, const uint8_t *data, size_t size, sr_m
 
 /* Frees a mesh whose arrays a reader malloc'd, and zeroes it. */
 void sr__free_malloc_mesh(sr_mesh *mesh);
+/* A malloc'd mesh of verts vertices and tris triangles with the arrays
+ * asked for (uninitialized); false, *m zeroed, when out of memory. */
+bool sr__alloc_malloc_mesh(sr_mesh *m, size_t verts, size_t tris, bool normals, bool colors,
+                           bool texcoords);
 
 #endif /* SR_IO_READERS_H */
