@@ -65,8 +65,9 @@ typedef struct sr_load_desc {
  * scene's instances flattened into one mesh in world space (normals by
  * the inverse transpose, mirrored instances' winding turned back to
  * counter-clockwise); texture coordinates 0, and colors (the vertex's
- * times the material's base color) where present; no textures (the
- * scene's materials hold them).  SR_FORMAT_ASSIMP asks for Assimp.
+ * times the material's base color) where present; the base color images'
+ * encoded bytes as texture_data and parts.  SR_FORMAT_ASSIMP asks for
+ * Assimp.
  * The mesh is allocated on ctx: release it with sr_destroy_mesh(ctx, out).
  * The readers' working memory (the file's bytes, growing arrays, Assimp's
  * own) comes from malloc and is freed before the call returns; the mesh

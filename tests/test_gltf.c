@@ -1270,3 +1270,44 @@ SR_TEST(load_mesh_gltf_errors_name_the_json_pointer)
     CHECK(strchr(e.message, '\n') == NULL);
     CHECK(m.positions == NULL && m.vertex_count == 0);
 }
+
+/* The base color images go into the mesh as the Assimp path gives them:
+ * the first for the whole mesh, and runs of primitives that take one
+ * image (or none) as parts, each with its own copy of the encoded bytes. */
+SR_TEST(load_mesh_keeps_the_base_color_images_as_parts)
+{
+    wbuf png = small_png();
+    char *b64 = small_png_base64();
+    REQUIRE(png.p && b64);
+    char tail[4096];
+    snprintf(tail, sizeof tail,
+             ",\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+             "\"textures\":[{\"source\":0}],\"materials\":["
+             "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}},{}]",
+             b64);
+    free(b64);
+    static const gltf_quad quads[3] = { { 0, 0, 1, 1, 0 }, { 1, 0, 2, 1, 1 },
+                                        { 2, 0, 3, 1, 0 } };
+    const char *path = write_doc("parts.gltf", gltf_quads(quads, 3, tail));
+    sr_mesh m;
+    sr_io_error e;
+    REQUIRE(sr_load_mesh(sr_test_ctx(), path, NULL, &m, &e) == SR_OK);
+    CHECK_EQ(m.triangle_count, 6);
+    REQUIRE(m.part_count == 3);
+    for (int p = 0; p < 3; p++) {
+        CHECK_EQ(m.parts[p].first_triangle, 2 * (size_t)p);
+        CHECK_EQ(m.parts[p].triangle_count, 2);
+        CHECK(m.parts[p].texture_path == NULL);
+    }
+    CHECK(m.parts[1].texture_data == NULL);
+    for (int p = 0; p < 3; p += 2) {
+        CHECK(m.parts[p].texture_size == png.n && m.parts[p].texture_data &&
+              memcmp(m.parts[p].texture_data, png.p, png.n) == 0);
+    }
+    CHECK(m.texture_size == png.n && m.texture_data &&
+          memcmp(m.texture_data, png.p, png.n) == 0);
+    REQUIRE(m.texcoords);
+    CHECK_NEAR(m.texcoords[1], 0, 1e-6);   /* glTF's v = 1, flipped */
+    sr_destroy_mesh(sr_test_ctx(), &m);
+    free(png.p);
+}

@@ -196,7 +196,7 @@ def load_mesh(path: PathLike) -> Mesh:
 
     Every format the library reads: OBJ (with its MTL's diffuse texture),
     PLY, STL, glTF (the instances of :func:`load`'s scene flattened into
-    world space, without textures), and through Assimp, when the library
+    world space, with the base color image), and through Assimp, when the library
     was built with it, FBX, Collada, 3DS, OFF and more.  Faces with more than three vertices are
     triangulated.  The mesh's one diffuse texture, if any, becomes
     ``Mesh.texture``; a mesh whose parts take different textures keeps none

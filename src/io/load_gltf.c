@@ -7,6 +7,7 @@
  */
 #include "io/io_util.h"
 #include "io/readers.h"
+#include "io/scene.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -133,19 +134,96 @@ static sr_result flatten(const char *path, const sr_scene *s, sr_mesh *out, sr_i
     return SR_OK;
 }
 
+/* The encoded base color image of primitive p's material, or NULL. */
+static const uint8_t *base_image(const sr_scene *s, const sr_scene_primitive *p, size_t *size)
+{
+    if (p->material < 0 || (size_t)p->material >= s->material_count) {
+        return NULL;
+    }
+    return sr__scene_source(s, s->materials[p->material].base_color_texture.texture, size);
+}
+
+static uint8_t *copy_bytes(const uint8_t *bytes, size_t size)
+{
+    uint8_t *c = malloc(size ? size : 1);
+    if (c) {
+        memcpy(c, bytes, size);
+    }
+    return c;
+}
+
+/* The base color images as the Assimp path gives textures: the first for
+ * the whole mesh, and runs of primitives that take one image (or none)
+ * as parts when there are several.  False when out of memory. */
+static bool textures(const sr_scene *s, sr_mesh *m)
+{
+    size_t runs = 0, size = 0, first_size = 0;
+    const uint8_t *prev = NULL, *first = NULL;
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        const sr_scene_primitive *p = &s->primitives[i];
+        if (p->triangle_count == 0) {
+            continue;
+        }
+        const uint8_t *img = base_image(s, p, &size);
+        runs += runs == 0 || img != prev;
+        if (img && !first) {
+            first = img;
+            first_size = size;
+        }
+        prev = img;
+    }
+    if (!first) {
+        return true;
+    }
+    if (!(m->texture_data = copy_bytes(first, first_size))) {
+        return false;
+    }
+    m->texture_size = first_size;
+    if (runs < 2) {
+        return true;
+    }
+    if (!(m->parts = calloc(runs, sizeof *m->parts))) {
+        return false;
+    }
+    size_t n = 0, t = 0;
+    prev = NULL;
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        const sr_scene_primitive *p = &s->primitives[i];
+        if (p->triangle_count == 0) {
+            continue;
+        }
+        const uint8_t *img = base_image(s, p, &size);
+        if (n == 0 || img != prev) {
+            sr_mesh_part *part = &m->parts[n++];
+            m->part_count = n;
+            part->first_triangle = t;
+            if (img) {
+                if (!(part->texture_data = copy_bytes(img, size))) {
+                    return false; /* sr__free_malloc_mesh frees what the parts hold */
+                }
+                part->texture_size = size;
+            }
+        }
+        m->parts[n - 1].triangle_count += p->triangle_count;
+        t += p->triangle_count;
+        prev = img;
+    }
+    return true;
+}
+
 sr_result sr__load_gltf_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
                              sr_mesh *out, sr_io_error *err)
 {
-    /* Forced to glTF, so that sr_load_scene never hands the file back to
-     * sr_load_mesh. */
-    sr_load_desc d = desc ? *desc : (sr_load_desc){0};
-    d.format = SR_FORMAT_GLTF;
     sr_scene *s = NULL;
-    sr_result r = sr_load_scene(ctx, path, &d, &s, err);
+    sr_result r = sr__load_gltf_scene(ctx, path, desc, true, &s, err);
     if (r != SR_OK) {
         return r;
     }
     r = flatten(path, s, out, err);
+    if (r == SR_OK && !textures(s, out)) {
+        sr__free_malloc_mesh(out);
+        r = sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory (the textures)");
+    }
     sr_destroy_scene(ctx, s);
     return r;
 }
