@@ -40,7 +40,7 @@ typedef enum sr_model_format {
     SR_FORMAT_STL,
     SR_FORMAT_ASSIMP,     /* anything else Assimp reads */
     SR_FORMAT_GLTF,       /* glTF 2.0, .gltf or .glb: sr_load_scene's own reader
-                           * (sr_load_mesh hands it to Assimp) */
+                           * (Assimp in builds without jansson) */
 } sr_model_format;
 
 typedef struct sr_load_desc {
@@ -60,6 +60,14 @@ typedef struct sr_load_desc {
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
  * three vertices are triangulated.  Normals are those of the file, or NULL.
+ * glTF (.gltf, .glb, GLB's magic) is read by sr_load_scene's own reader
+ * when the build has it (sr_io_have_gltf), else by Assimp: the default
+ * scene's instances flattened into one mesh in world space (normals by
+ * the inverse transpose, mirrored instances' winding turned back to
+ * counter-clockwise); texture coordinates 0, and colors (the vertex's
+ * times the material's base color) where present; the base color images'
+ * encoded bytes as texture_data and parts.  SR_FORMAT_ASSIMP asks for
+ * Assimp.
  * The mesh is allocated on ctx: release it with sr_destroy_mesh(ctx, out).
  * The readers' working memory (the file's bytes, growing arrays, Assimp's
  * own) comes from malloc and is freed before the call returns; the mesh

@@ -1152,3 +1152,162 @@ SR_TEST(instancing_a_long_index_list_past_the_triangle_limit_is_refused)
         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}]",
         769, "big.gltf: /nodes/768: more than 268435456 triangles to draw in all");
 }
+
+/* json written to `name` in the tests' output folder; its path. */
+static const char *write_doc(const char *name, char *json)
+{
+    static char path[600];
+    snprintf(path, sizeof path, "%s/%s", sr_test_out_dir(), name);
+    write_file(path, json, strlen(json));
+    free(json);
+    return path;
+}
+
+/* bin and body as a document written to `name`, read by sr_load_mesh;
+ * its message printed when it fails. */
+static bool load_mesh(const char *name, const void *bin, size_t n, const char *body, sr_mesh *m)
+{
+    const char *path = write_doc(name, doc(bin, n, body));
+    sr_io_error e;
+    sr_result r = sr_load_mesh(sr_test_ctx(), path, NULL, m, &e);
+    if (r != SR_OK) {
+        printf("  %s\n", e.message);
+    }
+    return r == SR_OK;
+}
+
+SR_TEST(load_mesh_flattens_instances_into_world_space)
+{
+    /* tri with the normal (1, 1, 0) / sqrt 2 at every corner, placed by
+     * a translated, unevenly scaled node and by a mirroring one. */
+    float nrm[9];
+    for (int i = 0; i < 3; i++) {
+        nrm[3 * i] = nrm[3 * i + 1] = 0.70710678f;
+        nrm[3 * i + 2] = 0;
+    }
+    uint8_t bin[72];
+    le_copy(bin, tri, 9, 4);
+    le_copy(bin + 36, nrm, 9, 4);
+    const char *body =
+        ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":72}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+        "{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":3,"
+        "\"type\":\"VEC3\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1}}]}],"
+        "\"nodes\":[{\"translation\":[1,2,3],\"scale\":[2,3,1],\"mesh\":0},"
+        "{\"scale\":[-1,1,1],\"mesh\":0},{\"translation\":[9,9,9],\"mesh\":0}],"
+        "\"scenes\":[{\"nodes\":[0,1]},{\"nodes\":[2]}],\"scene\":0";
+    sr_mesh m;
+    REQUIRE(load_mesh("instances.gltf", bin, sizeof bin, body, &m));
+    REQUIRE(m.vertex_count == 6);
+    REQUIRE(m.triangle_count == 2);
+    static const float want_pos[18] = { 1, 2, 3, 3, 2, 3, 1, 5, 3,
+                                        0, 0, 0, -1, 0, 0, 0, 1, 0 };
+    for (int i = 0; i < 18; i++) {
+        CHECK_NEAR(m.positions[i], want_pos[i], 1e-6);
+    }
+    /* Normals by the inverse transpose: (1/2, 1/3, 0) normalized, and
+     * (-1, 1, 0) normalized. */
+    REQUIRE(m.normals);
+    CHECK_NEAR(m.normals[0], 0.83205029f, 1e-6);
+    CHECK_NEAR(m.normals[1], 0.5547002f, 1e-6);
+    CHECK_NEAR(m.normals[2], 0, 1e-6);
+    CHECK_NEAR(m.normals[9], -0.70710678f, 1e-6);
+    CHECK_NEAR(m.normals[10], 0.70710678f, 1e-6);
+    CHECK(m.texcoords == NULL && m.colors == NULL);
+    /* Both triangles face +z in world space: the mirrored one's corners
+     * were swapped. */
+    for (size_t t = 0; t < 2; t++) {
+        const float *a = &m.positions[3 * m.indices[3 * t]];
+        const float *b = &m.positions[3 * m.indices[3 * t + 1]];
+        const float *c = &m.positions[3 * m.indices[3 * t + 2]];
+        float z = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        CHECK(z > 0);
+    }
+    CHECK_EQ(m.indices[3], 3);
+    CHECK_EQ(m.indices[4], 5);
+    CHECK_EQ(m.indices[5], 4);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+}
+
+/* KHR_mesh_quantization's integer positions, which Assimp misreads: read
+ * by the own reader even in a build that has Assimp. */
+SR_TEST(load_mesh_reads_quantized_gltf_with_the_own_reader)
+{
+    uint16_t pos[12] = { 0, 0, 0, 0, 2, 0, 0, 0, 0, 3, 0, 0 };   /* stride 8 */
+    uint8_t bin[24];
+    le_copy(bin, pos, 12, 2);
+    const char *body =
+        ",\"extensionsUsed\":[\"KHR_mesh_quantization\"],"
+        "\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":24,\"byteStride\":8}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5123,\"count\":3,"
+        "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[2,3,0]}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+        "\"nodes\":[{\"scale\":[0.5,0.5,0.5],\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]";
+    sr_mesh m;
+    REQUIRE(load_mesh("quantized.gltf", bin, sizeof bin, body, &m));
+    REQUIRE(m.vertex_count == 3 && m.triangle_count == 1);
+    static const float want[9] = { 0, 0, 0, 1, 0, 0, 0, 1.5f, 0 };
+    for (int i = 0; i < 9; i++) {
+        CHECK_NEAR(m.positions[i], want[i], 1e-6);
+    }
+    CHECK(m.normals == NULL);
+    sr_destroy_mesh(sr_test_ctx(), &m);
+}
+
+SR_TEST(load_mesh_gltf_errors_name_the_json_pointer)
+{
+    char body[1024];
+    snprintf(body, sizeof body,
+             "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]",
+             TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":7}}]}]");
+    const char *path = write_doc("bad_accessor.gltf", doc(tri_le(), sizeof tri, body));
+    sr_mesh m;
+    sr_io_error e;
+    CHECK_EQ(sr_load_mesh(sr_test_ctx(), path, NULL, &m, &e), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "bad_accessor.gltf: /meshes/0/primitives/0/attributes/POSITION");
+    CHECK(strchr(e.message, '\n') == NULL);
+    CHECK(m.positions == NULL && m.vertex_count == 0);
+}
+
+/* The base color images go into the mesh as the Assimp path gives them:
+ * the first for the whole mesh, and runs of primitives that take one
+ * image (or none) as parts, each with its own copy of the encoded bytes. */
+SR_TEST(load_mesh_keeps_the_base_color_images_as_parts)
+{
+    wbuf png = small_png();
+    char *b64 = small_png_base64();
+    REQUIRE(png.p && b64);
+    char tail[4096];
+    snprintf(tail, sizeof tail,
+             ",\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+             "\"textures\":[{\"source\":0}],\"materials\":["
+             "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}},{}]",
+             b64);
+    free(b64);
+    static const gltf_quad quads[3] = { { 0, 0, 1, 1, 0 }, { 1, 0, 2, 1, 1 },
+                                        { 2, 0, 3, 1, 0 } };
+    const char *path = write_doc("parts.gltf", gltf_quads(quads, 3, tail));
+    sr_mesh m;
+    sr_io_error e;
+    REQUIRE(sr_load_mesh(sr_test_ctx(), path, NULL, &m, &e) == SR_OK);
+    CHECK_EQ(m.triangle_count, 6);
+    REQUIRE(m.part_count == 3);
+    for (int p = 0; p < 3; p++) {
+        CHECK_EQ(m.parts[p].first_triangle, 2 * (size_t)p);
+        CHECK_EQ(m.parts[p].triangle_count, 2);
+        CHECK(m.parts[p].texture_path == NULL);
+    }
+    CHECK(m.parts[1].texture_data == NULL);
+    for (int p = 0; p < 3; p += 2) {
+        CHECK(m.parts[p].texture_size == png.n && m.parts[p].texture_data &&
+              memcmp(m.parts[p].texture_data, png.p, png.n) == 0);
+    }
+    CHECK(m.texture_size == png.n && m.texture_data &&
+          memcmp(m.texture_data, png.p, png.n) == 0);
+    REQUIRE(m.texcoords);
+    CHECK_NEAR(m.texcoords[1], 0, 1e-6);   /* glTF's v = 1, flipped */
+    sr_destroy_mesh(sr_test_ctx(), &m);
+    free(png.p);
+}

@@ -195,8 +195,9 @@ def load_mesh(path: PathLike) -> Mesh:
     """Read a model file as one :class:`Mesh` (sr_load_mesh).
 
     Every format the library reads: OBJ (with its MTL's diffuse texture),
-    PLY, STL, and through Assimp, when the library was built with it, glTF,
-    FBX, Collada, 3DS, OFF and more.  Faces with more than three vertices are
+    PLY, STL, glTF (the instances of :func:`load`'s scene flattened into
+    world space, with the base color image), and through Assimp, when the library
+    was built with it, FBX, Collada, 3DS, OFF and more.  Faces with more than three vertices are
     triangulated.  The mesh's one diffuse texture, if any, becomes
     ``Mesh.texture``; a mesh whose parts take different textures keeps none
     (with a warning).  Raises OSError when the file cannot be read

@@ -176,3 +176,56 @@ def test_load_exposes_a_gltf_files_lights_read_only(tmp_path):
         spot.color[0] = 0
     assert "Light(light_index=0, node=2, type='spot'" in repr(spot)
     assert softrast.Scene([]).lights == ()
+
+
+def write_glb(path):
+    """A triangle with normals and colors, drawn by a moved and scaled node
+    and by a mirroring one, as a GLB."""
+    pos = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
+    nrm = np.array([[0.6, 0, 0.8]] * 3, np.float32)
+    col = np.array([[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 0.5]], np.float32)
+    data = pos.astype("<f4").tobytes() + nrm.astype("<f4").tobytes() + col.astype("<f4").tobytes()
+    doc = {
+        "asset": {"version": "2.0"},
+        "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0, "translation": [1, 2, 3], "scale": [2, 3, 1]},
+                  {"mesh": 0, "scale": [-1, 1, 1]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "COLOR_0": 2}}]}],
+        "buffers": [{"byteLength": len(data)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
+                        {"buffer": 0, "byteOffset": 72, "byteLength": 48}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3,
+                       "type": "VEC3"},
+                      {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC4"}],
+    }
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    chunks = (len(text).to_bytes(4, "little") + b"JSON" + text +
+              len(data).to_bytes(4, "little") + b"BIN\0" + data)
+    path.write_bytes(b"glTF" + (2).to_bytes(4, "little") +
+                     (12 + len(chunks)).to_bytes(4, "little") + chunks)
+
+
+def test_load_mesh_of_a_glb_is_its_scene_flattened(tmp_path):
+    path = tmp_path / "two.glb"
+    write_glb(path)
+    scene = load_gltf(path)
+    mesh = softrast.load_mesh(path)
+    vertices, normals, faces = [], [], []
+    for inst in scene.instances:
+        m, pose = inst.mesh, inst.pose
+        linear = pose[:3, :3]
+        f = m.faces + sum(len(v) for v in vertices)
+        if np.linalg.det(linear) < 0:
+            f = f[:, [0, 2, 1]]     # mirrored: counter-clockwise again
+        vertices.append(m.vertices @ linear.T + pose[:3, 3])
+        n = m.normals @ np.linalg.inv(linear)
+        normals.append(n / np.linalg.norm(n, axis=1, keepdims=True))
+        faces.append(f)
+    assert np.allclose(mesh.vertices, np.concatenate(vertices), atol=1e-6)
+    assert np.allclose(mesh.normals, np.concatenate(normals), atol=1e-6)
+    assert np.array_equal(mesh.faces, np.concatenate(faces))
+    assert np.allclose(mesh.colors[:3, :3], scene.instances[0].mesh.colors[:, :3], atol=1e-6)
+    assert np.allclose(mesh.vertices[3:], [[0, 0, 0], [-1, 0, 0], [0, 1, 0]])

@@ -386,15 +386,8 @@ sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err)
         return res;
     }
 
-    sr_mesh m = { .vertex_count = verts, .triangle_count = tris };
-    m.positions = malloc(verts * 3 * sizeof(float));
-    m.normals = normals ? malloc(verts * 3 * sizeof(float)) : NULL;
-    m.colors = colors ? malloc(verts * 4 * sizeof(float)) : NULL;
-    m.texcoords = texcoords ? malloc(verts * 2 * sizeof(float)) : NULL;
-    m.indices = malloc(tris * 3 * sizeof(uint32_t));
-    if (!m.positions || (normals && !m.normals) || (colors && !m.colors) ||
-        (texcoords && !m.texcoords) || !m.indices) {
-        sr__free_malloc_mesh(&m);
+    sr_mesh m;
+    if (!sr__alloc_malloc_mesh(&m, verts, tris, normals, colors, texcoords)) {
         aiReleaseImport(scene);
         return sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory for %zu vertices",
                            verts);

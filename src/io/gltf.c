@@ -1313,8 +1313,8 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
 }
 
 sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, const uint8_t *data,
-                         size_t size, const sr_load_desc *desc, sr_scene **out,
-                         sr_io_error *err)
+                         size_t size, const sr_load_desc *desc, bool keep_sources,
+                         sr_scene **out, sr_io_error *err)
 {
     gltf_doc d = { .ctx = ctx, .name = name, .desc = desc, .err = err, .dir = dir };
     *out = NULL;
@@ -1324,6 +1324,9 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
         d.elements_left += size * SR_SCENE_ELEMENTS_PER_BYTE;
     }
     d.scene = sr__scene_new();
+    if (d.scene && keep_sources) {
+        sr__scene_keep_sources(d.scene);
+    }
     sr_result r = d.scene ? read_document(&d, data, size)
                           : sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0, "out of memory");
     for (size_t i = 0; d.buffers && i < d.buffer_count; i++) {

@@ -16,6 +16,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Frees an image's bytes as sr__gltf_read_uri gave them (NULL: a
+ * bufferView's, not owned). */
+static void free_image_bytes(char *owned, size_t size, bool from_file)
+{
+    if (from_file) {
+        sr__free_file(owned, size);
+    } else {
+        free(owned);
+    }
+}
+
 /* Image i as a texture in the given color space, decoded on first use. */
 static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
                                const sr_texture **out)
@@ -71,12 +82,8 @@ static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
     uint8_t *pixels;
     sr_io_error inner = {{0}};
     r = sr_decode_image(ptr, bytes, size, &w, &h, &pixels, &inner);
-    if (from_file) {
-        sr__free_file(owned, size);
-    } else {
-        free(owned);
-    }
     if (r != SR_OK) {
+        free_image_bytes(owned, size, from_file);
         /* inner reads "/images/N: what is wrong", the pointer first. */
         return sr__gltf_fail(d, r, "%s", inner.message);
     }
@@ -85,7 +92,12 @@ static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
                                                     .srgb = srgb },
                         &tex);
     free(pixels);
-    if (r != SR_OK || !sr__scene_add_texture(d->ctx, d->scene, tex)) {
+    /* The encoded image is kept too when sr_load_mesh asked for it (it
+     * hands the bytes on in sr_mesh). */
+    bool kept = r == SR_OK && sr__scene_add_texture(d->ctx, d->scene, tex) &&
+                sr__scene_add_source(d->scene, tex, bytes, size);
+    free_image_bytes(owned, size, from_file);
+    if (!kept) {
         return sr__gltf_fail(d, r != SR_OK ? r : SR_OUT_OF_MEMORY, "%s: %s", ptr,
                              r != SR_OK ? sr_context_error(d->ctx) : "out of memory");
     }

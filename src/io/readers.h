@@ -21,6 +21,10 @@ sr_result sr__load_stl(const char *path, sr_mesh *out, sr_io_error *err);
 /* assimp.c: every other format Assimp reads; SR_UNSUPPORTED with an
  * install hint when the build has no Assimp. */
 sr_result sr__load_assimp(const char *path, sr_mesh *out, sr_io_error *err);
+/* load_gltf.c: the default scene of sr_load_scene's glTF reader as one
+ * mesh in world space (needs jansson: see sr_io_have_gltf). */
+sr_result sr__load_gltf_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                             sr_mesh *out, sr_io_error *err);
 /* true when the build has Assimp's headers and the library opens. */
 bool sr__assimp_available(void);
 
@@ -34,5 +38,9 @@ sr_result sr__parse_stl(const char *name, const uint8_t *data, size_t size, sr_m
 
 /* Frees a mesh whose arrays a reader malloc'd, and zeroes it. */
 void sr__free_malloc_mesh(sr_mesh *mesh);
+/* A malloc'd mesh of verts vertices and tris triangles with the arrays
+ * asked for (uninitialized); false, *m zeroed, when out of memory. */
+bool sr__alloc_malloc_mesh(sr_mesh *m, size_t verts, size_t tris, bool normals, bool colors,
+                           bool texcoords);
 
 #endif /* SR_IO_READERS_H */
