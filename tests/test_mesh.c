@@ -439,12 +439,12 @@ SR_TEST(load_mesh_reports_missing_files_and_bad_arguments)
     CHECK_STR_CONTAINS(err.message, "is a directory");
 }
 
-/* sr_load_mesh of path through Assimp (glTF would go to the own reader
- * otherwise), the reader's message printed when it fails. */
-static bool loads(const char *path, sr_mesh *m)
+/* sr_load_mesh of path in `format` (SR_FORMAT_ASSIMP: glTF would go to
+ * the own reader otherwise), the reader's message printed when it fails. */
+static bool loads(const char *path, sr_model_format format, sr_mesh *m)
 {
     sr_io_error err;
-    sr_load_desc desc = { .format = SR_FORMAT_ASSIMP };
+    sr_load_desc desc = { .format = format };
     sr_result r = sr_load_mesh(sr_test_ctx(), path, &desc, m, &err);
     if (r != SR_OK) {
         printf("  %s\n", err.message);
@@ -469,7 +469,7 @@ SR_TEST(assimp_parts_follow_textures)
     write_file(path, json, strlen(json));
     free(json);
     sr_mesh m;
-    REQUIRE(loads(path, &m));
+    REQUIRE(loads(path, SR_FORMAT_ASSIMP, &m));
     CHECK_EQ(m.triangle_count, 10);
     REQUIRE(m.part_count == 4);
     static const size_t first[4] = { 0, 2, 4, 8 }, count[4] = { 2, 2, 4, 2 };
@@ -504,7 +504,7 @@ SR_TEST(assimp_parts_follow_textures)
     path = out_path("one_texture.gltf");
     write_file(path, json, strlen(json));
     free(json);
-    REQUIRE(loads(path, &m));
+    REQUIRE(loads(path, SR_FORMAT_ASSIMP, &m));
     CHECK_EQ(m.triangle_count, 4);
     CHECK_EQ(m.part_count, 0);
     CHECK(m.parts == NULL);
@@ -563,7 +563,7 @@ SR_TEST(load_mesh_reads_shared_models)
     char path[1024];
     snprintf(path, sizeof path, "%s/cow.obj", dir);
     sr_mesh m;
-    REQUIRE(loads(path, &m));
+    REQUIRE(loads(path, SR_FORMAT_AUTO, &m));
     CHECK(m.triangle_count > 0);
     REQUIRE(sr_mesh_compute_normals(sr_test_ctx(), &m, SR_NORMALS_SMOOTH) == SR_OK);
     for (size_t v = 0; v < m.vertex_count; v++) {
