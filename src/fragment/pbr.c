@@ -130,6 +130,8 @@ enum {
     /* the extensions' (pbr_layers.h) */
     SLOT_SPECULAR, SLOT_SPECULAR_COLOR, SLOT_CLEARCOAT, SLOT_CLEARCOAT_ROUGHNESS,
     SLOT_CLEARCOAT_NORMAL, SLOT_SHEEN_COLOR, SLOT_SHEEN_ROUGHNESS,
+    /* transmission (R) and the volume's thickness (G) (pbr_transmission.h) */
+    SLOT_TRANSMISSION, SLOT_THICKNESS,
     SLOT_COUNT
 };
 
@@ -145,7 +147,8 @@ static const struct {
     SLOT_FIELD(specular_texture), SLOT_FIELD(specular_color_texture),
     SLOT_FIELD(clearcoat_texture), SLOT_FIELD(clearcoat_roughness_texture),
     SLOT_FIELD(clearcoat_normal_texture), SLOT_FIELD(sheen_color_texture),
-    SLOT_FIELD(sheen_roughness_texture),
+    SLOT_FIELD(sheen_roughness_texture), SLOT_FIELD(transmission_texture),
+    SLOT_FIELD(thickness_texture),
 #undef SLOT_FIELD
 };
 
@@ -156,9 +159,6 @@ static const sr_texture_slot *material_slot(const sr_pbr_material *m, int i)
 
 /* The diffuse lobe's weight without transmission. */
 static const float opaque[4] = { 1, 1, 1, 1 };
-
-/* The transmission texture (R) and the volume's thickness texture (G). */
-enum { TR_SLOT_TRANSMISSION, TR_SLOT_THICKNESS, TR_SLOT_COUNT };
 
 /* Varyings 0..2 world position, 3..5 world normal; the rest as needed. */
 enum { VARY_POS = 0, VARY_NORMAL = 3, VARY_FIXED = 6 };
@@ -219,7 +219,6 @@ struct sr_pbr {
     size_t tangent_stride, texcoord1_stride;
     /* KHR_materials_transmission and _volume (pbr_transmission.c). */
     bool transmits;               /* a lit material with a transmission factor */
-    pbr_slot tr_slot[TR_SLOT_COUNT];
     sr__transmission tr;
 };
 
@@ -239,8 +238,6 @@ sr_pbr_material sr_pbr_default_material(void)
         sr_texture_slot *s = (sr_texture_slot *)((char *)&m + slot_fields[i].offset);
         s->scale[0] = s->scale[1] = 1.0f;
     }
-    m.transmission_texture.scale[0] = m.transmission_texture.scale[1] = 1.0f;
-    m.thickness_texture.scale[0] = m.thickness_texture.scale[1] = 1.0f;
     return m;
 }
 
@@ -731,14 +728,14 @@ static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
         tr[i] = p->m.transmission;
         thick[i] = p->m.thickness;
     }
-    if (p->tr_slot[TR_SLOT_TRANSMISSION].tex) {
-        sample_slot(&p->tr_slot[TR_SLOT_TRANSMISSION], q, tex, uv);
+    if (p->slot[SLOT_TRANSMISSION].tex) {
+        sample_slot(&p->slot[SLOT_TRANSMISSION], q, tex, uv);
         for (int i = 0; i < 4; i++) {
             tr[i] *= tex[0][i];
         }
     }
-    if (p->tr_slot[TR_SLOT_THICKNESS].tex) {
-        sample_slot(&p->tr_slot[TR_SLOT_THICKNESS], q, tex, uv);
+    if (p->slot[SLOT_THICKNESS].tex) {
+        sample_slot(&p->slot[SLOT_THICKNESS], q, tex, uv);
         for (int i = 0; i < 4; i++) {
             thick[i] *= tex[1][i];
         }
@@ -1038,7 +1035,8 @@ static sr_result check_slot(sr_context *ctx, const sr_texture_slot *s, const cha
 }
 
 /* KHR_materials_transmission and _volume: finite, a thickness and an
- * attenuation distance that are lengths, and their slots. */
+ * attenuation distance that are lengths (their slots are checked with
+ * the others). */
 static sr_result check_transmission(sr_context *ctx, const sr_pbr_material *m)
 {
     if (!isfinite(m->transmission) || !finite_n(m->attenuation_color, 3) ||
@@ -1048,8 +1046,7 @@ static sr_result check_transmission(sr_context *ctx, const sr_pbr_material *m)
                         "sr_pbr_material: transmission, thickness or attenuation is not finite "
                         "(thickness and attenuation_distance must be >= 0)");
     }
-    sr_result r = check_slot(ctx, &m->transmission_texture, "transmission_texture");
-    return r == SR_OK ? check_slot(ctx, &m->thickness_texture, "thickness_texture") : r;
+    return SR_OK;
 }
 
 static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
@@ -1238,13 +1235,6 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
             uses[material_slot(&p->m, i)->texcoord] = true;
         }
     }
-    const sr_texture_slot *tr_slots[TR_SLOT_COUNT] = { &p->m.transmission_texture,
-                                                       &p->m.thickness_texture };
-    for (int i = 0; i < TR_SLOT_COUNT; i++) {
-        if (p->tr_slot[i].tex && p->transmits) {
-            uses[tr_slots[i]->texcoord] = true;
-        }
-    }
     for (int k = 0; k < 2; k++) {
         p->vary_uv[k] = -1;
         if (uses[k] && (k == 0 || d->texcoords1)) {
@@ -1258,13 +1248,6 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
         p->slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
         if (p->slot[i].vary < 0) {
             p->slot[i].tex = NULL;
-        }
-    }
-    for (int i = 0; i < TR_SLOT_COUNT; i++) {
-        int set = tr_slots[i]->texcoord;
-        p->tr_slot[i].vary = p->vary_uv[set] >= 0 ? p->vary_uv[set] : p->vary_uv[0];
-        if (p->tr_slot[i].vary < 0 || !p->transmits) {
-            p->tr_slot[i].tex = NULL;
         }
     }
     p->vary_color = -1;
@@ -1411,10 +1394,10 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     p->tangent_stride = desc->tangent_stride ? desc->tangent_stride : 4 * sizeof(float);
     p->texcoords1 = (const uint8_t *)desc->texcoords1;
     p->texcoord1_stride = desc->texcoord1_stride ? desc->texcoord1_stride : 2 * sizeof(float);
-    resolve_slot(&mat.transmission_texture, &p->tr_slot[TR_SLOT_TRANSMISSION]);
-    resolve_slot(&mat.thickness_texture, &p->tr_slot[TR_SLOT_THICKNESS]);
     p->transmits = !mat.unlit && mat.transmission != 0.0f;
-    if (p->transmits) {
+    if (!p->transmits) {
+        p->slot[SLOT_TRANSMISSION].tex = p->slot[SLOT_THICKNESS].tex = NULL;
+    } else {
         sr__transmission_setup(&mat, &p->model, &p->view_projection, desc->transmission_source,
                                p->scale, &p->tr);
     }
@@ -1430,9 +1413,6 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     pr->independent_lanes = true;
     for (int i = 0; i < SLOT_COUNT; i++) {
         pr->independent_lanes &= !p->slot[i].tex;
-    }
-    for (int i = 0; i < TR_SLOT_COUNT; i++) {
-        pr->independent_lanes &= !p->tr_slot[i].tex;
     }
     float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
     if (p->environment && !p->m.unlit) {
