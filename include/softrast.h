@@ -1338,8 +1338,10 @@ typedef struct sr_pbr_desc {
      * through itself: the opaque scene drawn before it with the same view
      * and projection, SR_TONEMAP_NONE and the same exposure, as an sRGB
      * texture (rows top down as sr_framebuffer_pixels gives them; its mip
-     * levels blur it for rough materials).  NULL: black.  Must outlive
-     * the program. */
+     * levels blur it for rough materials).  NULL: `environment` in the
+     * direction the ray leaves the surface (refracted in a volume,
+     * straight on through a thin wall), prefiltered for the roughness;
+     * without either, black.  Must outlive the program. */
     const sr_texture *transmission_source;
     /* The key light's shadow (docs/shadows.md): lights[0], which should
      * be the map's directional light, is scaled by the filtered visibility

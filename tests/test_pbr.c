@@ -1685,6 +1685,53 @@ SR_TEST(volume_attenuates_with_thickness_and_base_color_tints)
     free_sphere(&s);
 }
 
+/* Without a source, glass shows the environment: in a uniform one of
+ * radiance L, clear glass passes L (1 - Es) and reflects Es L, so its
+ * centre is L, thin-walled or thick; a volume keeps attenuation_color^
+ * (t / distance) of the passing share.  Without an environment too,
+ * nothing shows through: black, as before. */
+SR_TEST(glass_without_a_source_shows_the_environment)
+{
+    const float L[3] = { 0.3f, 0.5f, 0.2f };
+    float pixels[8 * 4 * 3];
+    for (int i = 0; i < 8 * 4 * 3; i++) {
+        pixels[i] = L[i % 3];
+    }
+    sr_environment *env = NULL;
+    REQUIRE(sr_make_environment(sr_test_ctx(),
+                                &(sr_environment_desc){ .pixels = pixels, .width = 8, .height = 4 },
+                                &env) == SR_OK);
+    sphere s = make_sphere(32, 16);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m = glass();
+    double es = smooth_reflectance();
+    for (int k = 0; k < 3; k++) {
+        m.thickness = k == 0 ? 0.0f : 0.5f;
+        m.attenuation_distance = k == 2 ? 0.5f : 0.0f;
+        for (int c = 0; c < 3; c++) {
+            m.attenuation_color[c] = 0.5f;
+        }
+        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                          .tonemap = SR_TONEMAP_NONE, .environment = env };
+        uint8_t p[4];
+        REQUIRE(centre_of(&s, &d, p));
+        /* The centre's ray leaves one thickness further on. */
+        double keep = k == 2 ? pow(0.5, 0.5 / 0.5) : 1.0;
+        for (int c = 0; c < 3; c++) {
+            CHECK_NEAR(p[c], srgb_encode(L[c] * ((1.0 - es) * keep + es)), 1.5);
+        }
+    }
+    m.thickness = 0.0f;
+    m.attenuation_distance = 0.0f;
+    sr_pbr_desc dark = { .material = &m, .view = &view, .projection = &proj,
+                         .tonemap = SR_TONEMAP_NONE };
+    uint8_t p[4];
+    REQUIRE(centre_of(&s, &dark, p));
+    CHECK(p[0] <= 1 && p[1] <= 1 && p[2] <= 1);
+    free_sphere(&s);
+    sr_destroy_environment(sr_test_ctx(), env);
+}
+
 /* A fresh black cell with the sphere drawn with m (and model, or NULL)
  * over a black | white edge down the middle of the screen, or NULL. */
 static sr_framebuffer *glass_over_edge(const sr_pbr_material *m, const sr_mat4 *model)

@@ -1399,7 +1399,7 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         p->slot[SLOT_TRANSMISSION].tex = p->slot[SLOT_THICKNESS].tex = NULL;
     } else {
         sr__transmission_setup(&mat, &p->model, &p->view_projection, desc->transmission_source,
-                               p->scale, &p->tr);
+                               desc->environment, p->scale, &p->tr);
     }
     sr_program *pr = &p->program;
     pr->vertex = pbr_vs;
