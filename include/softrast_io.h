@@ -227,6 +227,15 @@ SR_API bool sr_io_have_gltf(void);
 /* true when this build can read other formats through Assimp. */
 SR_API bool sr_io_have_assimp(void);
 
+/* The optional parts this build has, each resting on a library the build
+ * found: a static string of names separated by single spaces, in this
+ * order, each present only when built in - png (PNG files), jpeg, webp
+ * (WebP images), gltf (glTF scenes), meshopt (EXT_meshopt_compression),
+ * draco (KHR_draco_mesh_compression), svg (SVG drawings), svgz (gzipped
+ * ones), text (SVG text and sr_text_path), bidi (bidirectional text),
+ * assimp (other model formats).  "" when none. */
+SR_API const char *sr_io_features(void);
+
 /* Open a file for reading as the readers here do, for a program's own
  * inputs (a script, a drawing): only a regular file.  A directory, FIFO,
  * device or socket is refused at once - opening a FIFO would otherwise

@@ -82,7 +82,7 @@ static void usage(FILE *f)
             "                             orbit, zoom, and keys for every mode\n"
             "\n"
             "  softrast COMMAND --help    options of a command\n"
-            "  softrast --version         version\n");
+            "  softrast --version         version, and the optional formats built in\n");
 }
 
 static int run(int argc, char **argv)
@@ -97,7 +97,7 @@ static int run(int argc, char **argv)
         return EXIT_OK;
     }
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
-        printf("softrast %s\n", SR_VERSION_STRING);
+        printf("softrast %s\nbuilt with: %s\n", SR_VERSION_STRING, sr_io_features());
         return EXIT_OK;
     }
     if (strcmp(cmd, "render") == 0) {

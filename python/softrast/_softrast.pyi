@@ -11,6 +11,7 @@ from .typing import Faces, Image, PathLike, PointsLike, VertexData, Vertices
 library_version: str
 have_svg: bool
 have_text: bool
+features: Tuple[str, ...]
 framing_direction: Tuple[float, float, float]
 framing_margin: float
 framing_fov_deg: float

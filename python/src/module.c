@@ -114,6 +114,21 @@ static struct PyModuleDef module = {
     .m_methods = methods,
 };
 
+/* softrast.features: sr_io_features as a tuple of names. */
+static int add_features(PyObject *m)
+{
+    PyObject *text = PyUnicode_FromString(sr_io_features());
+    PyObject *list = text ? PyUnicode_Split(text, NULL, -1) : NULL;
+    PyObject *tuple = list ? PyList_AsTuple(list) : NULL;
+    Py_XDECREF(text);
+    Py_XDECREF(list);
+    if (!tuple || PyModule_AddObject(m, "features", tuple) < 0) {
+        Py_XDECREF(tuple);
+        return -1;
+    }
+    return 0;
+}
+
 PyMODINIT_FUNC PyInit__softrast(void);
 
 /* The default camera's direction, margin and field of view
@@ -194,6 +209,7 @@ PyMODINIT_FUNC PyInit__softrast(void)
         PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
         PyModule_AddObject(m, "have_svg", PyBool_FromLong(sr_io_have_svg())) < 0 ||
         PyModule_AddObject(m, "have_text", PyBool_FromLong(sr_io_have_text())) < 0 ||
+        add_features(m) < 0 ||
         add_framing_constants(m) < 0 || add_type(m, "Path", &sr_py_PathType) < 0 ||
         add_type(m, "Canvas2D", &sr_py_Canvas2DType) < 0 || add_draw2d_names(m) < 0) {
         Py_DECREF(&sr_py_MeshType);
