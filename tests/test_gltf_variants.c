@@ -265,24 +265,13 @@ static uint8_t *render_variant(const char *dir, const char *model, const char *v
     char out[1200];
     snprintf(out, sizeof out, "%s/%s.png", dir, name);
     run_result r;
-    bool ran = variant ? run(ARGS("render", model, "--size", "64x48", "--variant", variant,
-                                  "--threads", "1", "-o", out),
-                             &r)
-                       : run(ARGS("render", model, "--size", "64x48", "--threads", "1", "-o",
-                                  out),
-                             &r);
-    if (!ran || r.status != 0) {
-        FAILF("render --variant %s: status %d: %s", variant ? variant : "(none)", r.status,
-              r.err);
-        return NULL;
-    }
-    CHECK(strstr(r.err, "warning") == NULL);
-    uint8_t *px = NULL;
-    sr_io_error err;
-    if (sr_read_png(out, NULL, w, h, &px, &err) != SR_OK) {
-        FAILF("%s", err.message);
-        return NULL;
-    }
+    uint8_t *px = variant ? render_read(ARGS("render", model, "--size", "64x48", "--variant",
+                                             variant, "--threads", "1", "-o", out),
+                                        out, w, h, &r)
+                          : render_read(ARGS("render", model, "--size", "64x48", "--threads",
+                                             "1", "-o", out),
+                                        out, w, h, &r);
+    CHECK(!px || strstr(r.err, "warning") == NULL);
     return px;
 }
 
@@ -395,16 +384,13 @@ SR_TEST(a_batch_draws_every_input_with_the_variant)
     fresh_dir("variants_batch", dir, sizeof dir);
     REQUIRE(write_model(dir, model, sizeof model));
     snprintf(outdir, sizeof outdir, "%s/out", dir);
-    run_result r;
-    REQUIRE(run(ARGS("render", dir, "--output-dir", outdir, "--size", "64x48", "--variant",
-                     "Red"),
-                &r));
-    CHECK_EQ(r.status, 0);
     snprintf(out, sizeof out, "%s/variants.png", outdir);
     int w, h;
-    uint8_t *px = NULL;
-    sr_io_error err;
-    REQUIRE(sr_read_png(out, NULL, &w, &h, &px, &err) == SR_OK);
+    run_result r;
+    uint8_t *px = render_read(ARGS("render", dir, "--output-dir", outdir, "--size", "64x48",
+                                   "--variant", "Red"),
+                              out, &w, &h, &r);
+    REQUIRE(px);
     long counts[5];
     count_colors(px, w, h, counts);
     CHECK(counts[0] > (long)w * h / 20 && counts[2] > (long)w * h / 20);
