@@ -56,6 +56,14 @@ typedef struct sr_load_desc {
      * "FILE: /json/pointer: what was skipped" (a points or lines
      * primitive, a texture without a PNG or JPEG source). */
     void (*warn)(void *user, const char *message);
+    /* glTF's KHR_materials_variants: the variant whose materials to draw,
+     * counted from 1 (sr_scene.variants[variant - 1]); 0 draws every
+     * primitive's own material, as the extension asks when no variant is
+     * active.  A primitive the variant does not map keeps its own.  A
+     * variant the file does not have is SR_INVALID_ARG ("FILE:
+     * sr_load_desc.variant: 3, but the file has 2 variants"); any other
+     * format has none. */
+    int variant;
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
@@ -120,6 +128,13 @@ typedef struct sr_scene_primitive {
     size_t triangle_count;
     const uint32_t *indices;    /* 3 a triangle, counter-clockwise front faces
                                  * (strips and fans converted) */
+    /* KHR_materials_variants: the material each variant draws on this
+     * primitive, indexed as sr_load_desc.variant (sr_scene.variant_count
+     * + 1 entries: [0] the primitive's own material, [v] variant v's, its
+     * own where v maps none), or NULL when the primitive has no mappings.
+     * `material` is already sr_load_desc.variant's; a program switching
+     * variants without reading the file again takes these. */
+    const int *variant_materials;
 } sr_scene_primitive;
 
 typedef enum sr_scene_camera_type {
@@ -176,6 +191,9 @@ typedef struct sr_scene {
     sr_scene_light *lights;       /* KHR_lights_punctual, in node order as cameras; all of
                                    * them: a program takes the first SR_MAX_LIGHTS */
     size_t light_count;
+    const char *const *variants;  /* KHR_materials_variants' names, in the file's order
+                                   * (UTF-8; not necessarily unique) */
+    size_t variant_count;
 } sr_scene;
 
 /* Limits of the glTF reader, checked before allocating: at most this many

@@ -49,14 +49,21 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
-    if (render_gltf_is(o->model) && (o->pbr || o->camera_index >= 0 || sr_io_have_gltf())) {
+    if (o->variant && !render_gltf_is(o->model)) {
+        cli_error("%s: --variant %s: not a glTF file (.gltf, .glb), the only kind with "
+                  "material variants", o->model, o->variant);
+        return EXIT_USAGE;
+    }
+    if (render_gltf_is(o->model) &&
+        (o->pbr || o->camera_index >= 0 || o->variant || sr_io_have_gltf())) {
         /* softrast's own glTF reader for every look (docs/gltf.md says why
          * not Assimp's, which a build may also lack): the physically
          * based look draws glTF's materials, the classic models each
          * primitive's Blinn-Phong translation of its material
          * (render_gltf_classic).  Only a build without the reader (no
          * jansson) leaves the classic models Assimp's. */
-        return render_gltf_load(o->model, o->normals == -1, ctx, inputs, s);
+        return render_gltf_load(o->model, o->normals == -1, o->variant, o->verbose, ctx, inputs,
+                                s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },

@@ -11,10 +11,12 @@
 bool render_gltf_is(const char *path);
 /* Reads the file into s (one object, a part per primitive, s->gltf kept
  * for the materials and cameras) on ctx; with flat_normals, primitives
- * without normals get flat ones (glTF's rule, for the default --normals).
- * Returns an exit status after one line, or -1. */
-int render_gltf_load(const char *path, bool flat_normals, sr_context *ctx, cli_inputs *inputs,
-                     scene *s);
+ * without normals get flat ones (glTF's rule, for the default --normals);
+ * `variant` (--variant, or NULL) picks the material variant; `verbose`
+ * lists the file's variants.  Returns an exit status after one line, or
+ * -1. */
+int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
+                     sr_context *ctx, cli_inputs *inputs, scene *s);
 /* The classic models' Blinn-Phong material for glTF material m
  * (docs/pbr.md, "glTF files in softrast render"); with vertex_colors the
  * primitive's COLOR_0 is its diffuse, as an OBJ's or a PLY's is. */

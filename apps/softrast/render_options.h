@@ -23,6 +23,8 @@ typedef struct render_opts {
     const char *environment;       /* "studio", "hemisphere" or an .hdr file */
     float environment_intensity;
     int camera_index;              /* --camera-index: a glTF camera, or -1 */
+    const char *variant;           /* --variant: a glTF material variant's name or
+                                    * number, or NULL */
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;

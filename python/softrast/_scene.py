@@ -93,14 +93,16 @@ class Scene:
     take their index in the scene.  ``cameras``: the :class:`Camera` list
     of the file :func:`load` read (empty otherwise); ``lights``: its
     :class:`Light` tuple (read-only; given here, or the file's), which
-    :func:`render` lights with (its ``lights``).
+    :func:`render` lights with (its ``lights``); ``variants``: the names of
+    its material variants (glTF's KHR_materials_variants), a tuple.
     """
 
     def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = (),
-                 lights: Iterable[Light] = ()) -> None:
+                 lights: Iterable[Light] = (), variants: Iterable[str] = ()) -> None:
         self.instances: List[Instance] = []
         self.cameras = list(cameras)
         self._lights = tuple(lights)
+        self.variants: Tuple[str, ...] = tuple(variants)
         for item in instances:
             self.add(item)
 
@@ -162,23 +164,26 @@ def as_scene(scene: Any) -> Scene:
 class _SceneFile:
     """The library's scene of a loaded glTF file (its materials with their
     textures, the primitives' arrays), for shading="pbr".  Pickled as its
-    path: read again where it is unpickled (a Dask worker), or, when it
-    cannot be, dropped with a warning (its instances then draw their
-    Mesh's base colors)."""
+    path and material variant: read again where it is unpickled (a Dask
+    worker), or, when it cannot be, dropped with a warning (its instances
+    then draw their Mesh's base colors)."""
 
-    __slots__ = ("path", "capsule")
+    __slots__ = ("path", "capsule", "variant")
 
-    def __init__(self, path: Union[str, bytes], capsule: object) -> None:
+    def __init__(self, path: Union[str, bytes], capsule: object,
+                 variant: Union[str, int, None] = None) -> None:
         self.path = path
         self.capsule = capsule
+        self.variant = variant
 
-    def __reduce__(self) -> Tuple[Any, Tuple[Union[str, bytes]]]:
-        return (_read_scene_file, (self.path,))
+    def __reduce__(self) -> Tuple[Any, Tuple[Union[str, bytes], Union[str, int, None]]]:
+        return (_read_scene_file, (self.path, self.variant))
 
 
-def _read_scene_file(path: Union[str, bytes]) -> Optional[_SceneFile]:
+def _read_scene_file(path: Union[str, bytes],
+                     variant: Union[str, int, None] = None) -> Optional[_SceneFile]:
     try:
-        return _SceneFile(path, _softrast.load_scene(path)["file"])
+        return _SceneFile(path, _softrast.load_scene(path, variant)["file"], variant)
     except (OSError, ValueError) as e:
         warnings.warn(f"softrast: {os.fsdecode(path)}: the file's materials are not kept: {e}",
                       stacklevel=2)
@@ -207,7 +212,7 @@ def load_mesh(path: PathLike) -> Mesh:
     return Mesh(**_softrast.load_mesh(_path(path)))
 
 
-def load(path: PathLike) -> Scene:
+def load(path: PathLike, variant: Union[str, int, None] = None) -> Scene:
     """Read a model file as a :class:`Scene` (sr_load_scene).
 
     glTF 2.0 (.gltf, .glb) is read with its node hierarchy: one instance per
@@ -226,16 +231,24 @@ def load(path: PathLike) -> Scene:
     Its KHR_lights_punctual lights are ``Scene.lights``, :class:`Light`
     tuples in world space, which ``render(shading="pbr")`` lights with
     (its ``lights``, as softrast render's ``--lights``).
+    A file's material variants (KHR_materials_variants: a product in
+    several colourways) are named in ``Scene.variants``; ``variant``, a
+    name or a number from 0, draws that one's materials (as softrast
+    render's ``--variant``), None each primitive's own.  ValueError names
+    the file's variants when it has no such one.
     """
     path = _path(path)
-    d = _softrast.load_scene(path)
+    if variant is not None and (isinstance(variant, bool)
+                                or not isinstance(variant, (str, int))):
+        raise TypeError(f"variant: expected a str, an int or None, got {type(variant).__name__}")
+    d = _softrast.load_scene(path, variant)
     if not d["gltf"]:
         return Scene([load_mesh(path)])
     images = base_color_images(path, d["materials"])
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
     meshes: dict[Tuple[int, int], Mesh] = {}
     instances = []
-    source = _SceneFile(path, d["file"])
+    source = _SceneFile(path, d["file"], variant)
     for primitive, (mesh_index, world, material) in enumerate(d["instances"]):
         key = (mesh_index, material)
         if key not in meshes:
@@ -245,4 +258,4 @@ def load(path: PathLike) -> Scene:
         inst._source = (source, primitive)
         instances.append(inst)
     return Scene(instances, [Camera._from_fields(c) for c in d["cameras"]],
-                 [Light._from_fields(light) for light in d["lights"]])
+                 [Light._from_fields(light) for light in d["lights"]], d["variants"])

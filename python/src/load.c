@@ -320,6 +320,19 @@ static PyObject *scene_dict(const sr_scene *s)
                             "materials", materials, "cameras", cameras, "lights", lights, "gltf",
                             gltf ? Py_True : Py_False);
     }
+    PyObject *variants = out ? PyList_New((Py_ssize_t)s->variant_count) : NULL;
+    for (size_t i = 0; variants && i < s->variant_count; i++) {
+        PyObject *name = PyUnicode_DecodeUTF8(s->variants[i], (Py_ssize_t)strlen(s->variants[i]),
+                                              "replace");
+        if (!name) {
+            Py_CLEAR(variants);
+            break;
+        }
+        PyList_SET_ITEM(variants, (Py_ssize_t)i, name);
+    }
+    if (out && set_item(out, "variants", variants) < 0) {
+        Py_CLEAR(out);
+    }
 done:
     Py_XDECREF(materials);
     Py_XDECREF(cameras);
@@ -330,12 +343,75 @@ done:
     return out;
 }
 
+/* KHR_materials_variants: `variant` (None, a name the file gives or a
+ * number from 0) given to the scene's primitives, as softrast render's
+ * --variant does.  -1 with ValueError when the file has no such variant. */
+static int apply_variant(sr_scene *s, PyObject *variant, const char *path)
+{
+    if (variant == Py_None) {
+        return 0;
+    }
+    size_t v = 0;
+    if (PyLong_Check(variant)) {
+        long n = PyLong_AsLong(variant);
+        if (n == -1 && PyErr_Occurred()) {
+            return -1;
+        }
+        v = n >= 0 && (size_t)n < s->variant_count ? (size_t)n + 1 : 0;
+    } else {
+        const char *want = PyUnicode_AsUTF8(variant);
+        if (!want) {
+            return -1;
+        }
+        for (size_t i = 0; i < s->variant_count && v == 0; i++) {
+            v = strcmp(s->variants[i], want) == 0 ? i + 1 : 0;
+        }
+    }
+    if (v == 0 && s->variant_count == 0) {
+        PyErr_Format(PyExc_ValueError,
+                     "%s: variant %R: the file has no material variants (KHR_materials_variants)",
+                     path, variant);
+        return -1;
+    }
+    if (v == 0) {
+        PyObject *names = PyList_New(0);
+        for (size_t i = 0; names && i < s->variant_count; i++) {
+            PyObject *name = PyUnicode_DecodeUTF8(s->variants[i],
+                                                  (Py_ssize_t)strlen(s->variants[i]), "replace");
+            if (!name || PyList_Append(names, name) < 0) {
+                Py_XDECREF(name);
+                Py_CLEAR(names);
+                break;
+            }
+            Py_DECREF(name);
+        }
+        if (names) {
+            PyErr_Format(PyExc_ValueError, "%s: variant %R: no such variant (the file has %R)",
+                         path, variant, names);
+            Py_DECREF(names);
+        }
+        return -1;
+    }
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        if (s->primitives[i].variant_materials) {
+            s->primitives[i].material = s->primitives[i].variant_materials[v];
+        }
+    }
+    return 0;
+}
+
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *path_obj;
-    if (!PyArg_ParseTuple(args, "O&:load", PyUnicode_FSConverter, &path_obj)) {
+    PyObject *path_obj, *variant = Py_None;
+    if (!PyArg_ParseTuple(args, "O&|O:load", PyUnicode_FSConverter, &path_obj, &variant)) {
         return NULL;
+    }
+    if (variant != Py_None && !PyUnicode_Check(variant) &&
+        !(PyLong_Check(variant) && !PyBool_Check(variant))) {
+        Py_DECREF(path_obj);
+        return PyErr_Format(PyExc_TypeError, "variant: expected a str, an int or None, got %s",
+                            Py_TYPE(variant)->tp_name);
     }
     sr_context *ctx = NULL;
     sr_scene *scene = NULL;
@@ -349,7 +425,12 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     } else {
         snprintf(err.message, sizeof err.message, "cannot make a context");
     }
-    PyObject *d = r == SR_OK ? scene_dict(scene) : sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
+    PyObject *d = NULL;
+    if (r != SR_OK) {
+        d = sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
+    } else if (apply_variant(scene, variant, PyBytes_AS_STRING(path_obj)) == 0) {
+        d = scene_dict(scene);
+    }
     Py_DECREF(path_obj);
     PyObject *gltf = d ? PyDict_GetItemString(d, "gltf") : NULL;
     if (gltf == Py_True) {

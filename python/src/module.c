@@ -32,11 +32,12 @@ PyDoc_STRVAR(load_mesh_doc,
 "texture).  Use softrast.load_mesh.");
 
 PyDoc_STRVAR(load_scene_doc,
-"load_scene(path, /)\n--\n\n"
+"load_scene(path, variant=None, /)\n--\n\n"
 "sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
 "(4, 4) world matrix, material index)], 'materials': [dict of factors],\n"
-"'cameras': [dict of a camera's fields], 'file': the scene kept for\n"
-"render's metallic-roughness look, or None}.\n"
+"'cameras': [dict of a camera's fields], 'variants': [names], 'file': the\n"
+"scene kept for render's metallic-roughness look, or None}; variant (a\n"
+"name or a number from 0) picks the materials of a glTF material variant.\n"
 "Use softrast.load.");
 
 PyDoc_STRVAR(make_environment_doc,
