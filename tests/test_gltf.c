@@ -616,6 +616,32 @@ SR_TEST(physically_based_extensions_are_read)
     free(b64);
 }
 
+/* A one-triangle document whose image 0 and texture 0 are a small PNG,
+ * with extensionsUsed `used` and the materials array `materials`. */
+static sr_scene *load_textured(const char *used, const char *materials, warnings *w)
+{
+    char *b64 = small_png_base64();
+    if (!b64) {
+        return NULL;
+    }
+    size_t n = strlen(b64) + strlen(used) + strlen(materials) + 1024;
+    char *body = malloc(n);
+    if (!body) {
+        free(b64);
+        return NULL;
+    }
+    snprintf(body, n,
+             "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"extensionsUsed\":%s,"
+             "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
+             "\"textures\":[{\"source\":0}],\"materials\":%s",
+             TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]",
+             used, b64, materials);
+    sr_scene *s = load_doc(tri_le(), sizeof tri, body, w);
+    free(body);
+    free(b64);
+    return s;
+}
+
 /* KHR_materials_anisotropy and _iridescence: factors, the textures
  * through the slots (KHR_texture_transform included), the defaults of a
  * present but empty extension (iridescence 0, its ior 1.3 and 100..400
@@ -624,34 +650,26 @@ SR_TEST(physically_based_extensions_are_read)
  * among the extensions not read. */
 SR_TEST(anisotropy_and_iridescence_are_read)
 {
-    char *b64 = small_png_base64();
-    REQUIRE(b64);
-    char *body = malloc(strlen(b64) + 4096);
-    sprintf(body,
-            "%s,\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],"
-            "\"extensionsUsed\":[\"KHR_materials_anisotropy\",\"KHR_materials_iridescence\"],"
-            "\"images\":[{\"uri\":\"data:image/png;base64,%s\"}],"
-            "\"textures\":[{\"source\":0}],"
-            "\"materials\":[{\"extensions\":{"
-            "\"KHR_materials_anisotropy\":{\"anisotropyStrength\":0.6,"
-            "\"anisotropyRotation\":1.25,\"anisotropyTexture\":{\"index\":0,"
-            "\"extensions\":{\"KHR_texture_transform\":{\"scale\":[3,3]}}}},"
-            "\"KHR_materials_iridescence\":{\"iridescenceFactor\":0.5,"
-            "\"iridescenceIor\":1.8,\"iridescenceThicknessMinimum\":50,"
-            "\"iridescenceThicknessMaximum\":800,\"iridescenceTexture\":{\"index\":0},"
-            "\"iridescenceThicknessTexture\":{\"index\":0}}}},"
-            "{\"extensions\":{\"KHR_materials_anisotropy\":{},"
-            "\"KHR_materials_iridescence\":{}}},"
-            "{\"extensions\":{\"KHR_materials_anisotropy\":{\"anisotropyStrength\":1.5},"
-            "\"KHR_materials_iridescence\":{\"iridescenceFactor\":-1,\"iridescenceIor\":0.5,"
-            "\"iridescenceThicknessMaximum\":-20}}},"
-            "{\"extensions\":{\"KHR_materials_iridescence\":{\"iridescenceFactor\":1,"
-            "\"iridescenceThicknessMaximum\":0}}},"
-            "{}]",
-            TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}]",
-            b64);
     warnings w = {0};
-    sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
+    sr_scene *s = load_textured(
+        "[\"KHR_materials_anisotropy\",\"KHR_materials_iridescence\"]",
+        "[{\"extensions\":{"
+        "\"KHR_materials_anisotropy\":{\"anisotropyStrength\":0.6,"
+        "\"anisotropyRotation\":1.25,\"anisotropyTexture\":{\"index\":0,"
+        "\"extensions\":{\"KHR_texture_transform\":{\"scale\":[3,3]}}}},"
+        "\"KHR_materials_iridescence\":{\"iridescenceFactor\":0.5,"
+        "\"iridescenceIor\":1.8,\"iridescenceThicknessMinimum\":50,"
+        "\"iridescenceThicknessMaximum\":800,\"iridescenceTexture\":{\"index\":0},"
+        "\"iridescenceThicknessTexture\":{\"index\":0}}}},"
+        "{\"extensions\":{\"KHR_materials_anisotropy\":{},"
+        "\"KHR_materials_iridescence\":{}}},"
+        "{\"extensions\":{\"KHR_materials_anisotropy\":{\"anisotropyStrength\":1.5},"
+        "\"KHR_materials_iridescence\":{\"iridescenceFactor\":-1,\"iridescenceIor\":0.5,"
+        "\"iridescenceThicknessMaximum\":-20}}},"
+        "{\"extensions\":{\"KHR_materials_iridescence\":{\"iridescenceFactor\":1,"
+        "\"iridescenceThicknessMaximum\":0}}},"
+        "{}]",
+        &w);
     REQUIRE(s);
     REQUIRE(s->material_count == 6);
     const sr_pbr_material *m = &s->materials[0];
@@ -685,8 +703,6 @@ SR_TEST(anisotropy_and_iridescence_are_read)
     CHECK_STR_CONTAINS(w.last, "/materials/2/extensions/KHR_materials_iridescence/"
                                "iridescenceThicknessMaximum: -20 is negative, taken as 0");
     sr_destroy_scene(sr_test_ctx(), s);
-    free(body);
-    free(b64);
 }
 
 /* KHR_materials_transmission and KHR_materials_volume: factors, the

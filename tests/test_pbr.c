@@ -1379,6 +1379,25 @@ SR_TEST(sheen_keeps_the_furnace_and_lights_the_rim)
     free_sphere(&s);
 }
 
+/* The sphere drawn with p into two fresh cells: fb[0] quad by quad,
+ * fb[1] with the lanes packed as the program allows. */
+static bool draw_both_ways(const sphere *s, const sr_pbr *p, sr_framebuffer *fb[2])
+{
+    bool ok = true;
+    for (int k = 0; k < 2; k++) {
+        sr_program prog = *sr_pbr_program(p);
+        prog.independent_lanes = k == 1;
+        fb[k] = make_fb(1, 1, 0.0f);
+        ok = ok && fb[k] &&
+             sr_draw(sr_test_ctx(), fb[k], &(sr_state){ .program = &prog, .cull = SR_CULL_BACK },
+                     &(sr_draw_desc){ .positions = s->pos, .normals = s->nrm,
+                                      .texcoords = s->uv, .vertex_count = s->nv,
+                                      .indices = s->idx, .index_type = SR_INDEX_U32,
+                                      .index_count = s->ni }) == SR_OK;
+    }
+    return ok;
+}
+
 /* The coat's prefiltered radiance from the program's table (one coat
  * roughness) and from the query (a white coat-roughness texture) agree
  * within 3 codes, as the base's do; and a material with every layer
@@ -1407,17 +1426,7 @@ SR_TEST(layers_agree_between_table_and_query_and_packed_lanes)
     REQUIRE(sr_make_pbr_program(sr_test_ctx(), &d, &p) == SR_OK);
     CHECK(sr_pbr_program(p)->independent_lanes);
     sr_framebuffer *fb[3];
-    for (int k = 0; k < 2; k++) {
-        sr_program prog = *sr_pbr_program(p);
-        prog.independent_lanes = k == 1;
-        REQUIRE((fb[k] = make_fb(1, 1, 0.0f)));
-        CHECK_EQ(sr_draw(sr_test_ctx(), fb[k], &(sr_state){ .program = &prog,
-                                                            .cull = SR_CULL_BACK },
-                         &(sr_draw_desc){ .positions = s.pos, .normals = s.nrm,
-                                          .vertex_count = s.nv, .indices = s.idx,
-                                          .index_type = SR_INDEX_U32, .index_count = s.ni }),
-                 SR_OK);
-    }
+    REQUIRE(draw_both_ways(&s, p, fb));
     sr_destroy_pbr_program(sr_test_ctx(), p);
     CHECK(sr_test_compare_images("pbr_layers_packed", sr_framebuffer_pixels(fb[1]),
                                  sr_framebuffer_pixels(fb[0]), CELL, CELL, 0, 0));
@@ -1434,7 +1443,8 @@ SR_TEST(layers_agree_between_table_and_query_and_packed_lanes)
 }
 
 /* Out-of-domain extension values are refused by the program: an ior
- * between 0 and 1, a NaN factor. */
+ * (or a film's) between 0 and 1, a NaN factor, a negative film
+ * thickness. */
 SR_TEST(bad_extension_values_are_refused)
 {
     sr_context *ctx = sr_test_ctx();
@@ -1454,6 +1464,17 @@ SR_TEST(bad_extension_values_are_refused)
     m.clearcoat_normal_texture.texcoord = 3;
     CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(ctx), "clearcoat_normal_texture.texcoord");
+    m = sr_pbr_default_material();
+    m.iridescence_ior = 0.5f;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "iridescence_ior 0.5");
+    m.iridescence_ior = 0.0f;
+    m.iridescence_thickness_min = -1.0f;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "thicknesses must be >= 0");
+    m.iridescence_thickness_min = 0.0f;
+    m.anisotropy_strength = NAN;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
     CHECK(p == NULL);
 }
 
@@ -1873,6 +1894,20 @@ SR_TEST(zero_anisotropy_and_iridescence_draw_the_base_bytes)
     free_sphere(&s);
 }
 
+/* The sphere's tangents along u, (-z, 0, x) / |(x, z)|, w 1; (1, 0, 0)
+ * at the poles.  The caller frees them. */
+static float *sphere_tangents(const sphere *s)
+{
+    float *tan = calloc(s->nv * 4, sizeof(float));
+    for (size_t v = 0; tan && v < s->nv; v++) {
+        float x = s->pos[3 * v], z = s->pos[3 * v + 2], l = sqrtf(x * x + z * z);
+        tan[4 * v] = l > 0 ? -z / l : 1.0f;
+        tan[4 * v + 2] = l > 0 ? x / l : 0.0f;
+        tan[4 * v + 3] = 1.0f;
+    }
+    return tan;
+}
+
 /* The half-width (sphere radii) of GGX's highlight on a unit sphere seen
  * and lit along the view axis, H = V = L: along the stretch's direction
  * D falls to half where (x / a)^2 + 1 - x^2 = sqrt 2, x the sine off the
@@ -1910,16 +1945,8 @@ SR_TEST(anisotropic_highlight_stretches_along_the_rotated_tangent)
 {
     enum { SIZE = 256 };
     sphere s = make_sphere(96, 48);
-    float *tan = calloc(s.nv * 4, sizeof(float));
+    float *tan = sphere_tangents(&s);
     REQUIRE(tan);
-    for (size_t v = 0; v < s.nv; v++) {
-        /* d pos / du around +y: (-cos ph, 0, sin ph) with the sphere's ph. */
-        float x = s.pos[3 * v], z = s.pos[3 * v + 2], l = sqrtf(x * x + z * z);
-        float ph = 2.0f * 3.14159265f * s.uv[2 * v];
-        tan[4 * v] = l > 0 ? -z / l : -cosf(ph);
-        tan[4 * v + 2] = l > 0 ? x / l : sinf(ph);
-        tan[4 * v + 3] = 1.0f;
-    }
     sr_mat4 view = sr_look_at((sr_vec3){ 0, 0, 100 }, (sr_vec3){ 0, 0, 0 }, (sr_vec3){ 0, 1, 0 });
     sr_mat4 proj = sr_ortho(-1.1f, 1.1f, -1.1f, 1.1f, 90.0f, 110.0f, false);
     double alpha = 0.4 * 0.4, at = alpha + (1.0 - alpha) * 0.25;
@@ -1987,14 +2014,8 @@ SR_TEST(anisotropy_and_iridescence_pack_lanes_to_the_same_bytes)
     sr_environment *env = NULL;
     REQUIRE(sr_make_environment(sr_test_ctx(), NULL, &env) == SR_OK);
     sphere s = make_sphere(48, 24);
-    float *tan = calloc(s.nv * 4, sizeof(float));
+    float *tan = sphere_tangents(&s);
     REQUIRE(tan);
-    for (size_t v = 0; v < s.nv; v++) {
-        float x = s.pos[3 * v], z = s.pos[3 * v + 2], l = sqrtf(x * x + z * z);
-        tan[4 * v] = l > 0 ? -z / l : 1.0f;
-        tan[4 * v + 2] = l > 0 ? x / l : 0.0f;
-        tan[4 * v + 3] = 1.0f;
-    }
     sr_mat4 view = test_view(), proj = test_projection();
     sr_pbr_material m = sr_pbr_default_material();
     m.base_color[2] = 0.5f;
@@ -2012,18 +2033,7 @@ SR_TEST(anisotropy_and_iridescence_pack_lanes_to_the_same_bytes)
     REQUIRE(sr_make_pbr_program(sr_test_ctx(), &d, &p) == SR_OK);
     CHECK(sr_pbr_program(p)->independent_lanes);
     sr_framebuffer *fb[2];
-    for (int k = 0; k < 2; k++) {
-        sr_program prog = *sr_pbr_program(p);
-        prog.independent_lanes = k == 1;
-        REQUIRE((fb[k] = make_fb(1, 1, 0.0f)));
-        CHECK_EQ(sr_draw(sr_test_ctx(), fb[k], &(sr_state){ .program = &prog,
-                                                            .cull = SR_CULL_BACK },
-                         &(sr_draw_desc){ .positions = s.pos, .normals = s.nrm,
-                                          .texcoords = s.uv, .vertex_count = s.nv,
-                                          .indices = s.idx, .index_type = SR_INDEX_U32,
-                                          .index_count = s.ni }),
-                 SR_OK);
-    }
+    REQUIRE(draw_both_ways(&s, p, fb));
     sr_destroy_pbr_program(sr_test_ctx(), p);
     CHECK(sr_test_compare_images("pbr_aniso_packed", sr_framebuffer_pixels(fb[1]),
                                  sr_framebuffer_pixels(fb[0]), CELL, CELL, 0, 0));
@@ -2038,26 +2048,6 @@ SR_TEST(anisotropy_and_iridescence_pack_lanes_to_the_same_bytes)
     free(tan);
     free_sphere(&s);
     sr_destroy_environment(sr_test_ctx(), env);
-}
-
-/* Out-of-domain values are refused: a film ior under 1, a negative
- * thickness, a NaN strength. */
-SR_TEST(bad_anisotropy_and_iridescence_values_are_refused)
-{
-    sr_context *ctx = sr_test_ctx();
-    sr_pbr *p = NULL;
-    sr_pbr_material m = sr_pbr_default_material();
-    m.iridescence_ior = 0.5f;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "iridescence_ior 0.5");
-    m.iridescence_ior = 0.0f;
-    m.iridescence_thickness_min = -1.0f;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "thicknesses must be >= 0");
-    m.iridescence_thickness_min = 0.0f;
-    m.anisotropy_strength = NAN;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK(p == NULL);
 }
 
 /* The row docs/pbr.md shows, under softrast render's default lights and
