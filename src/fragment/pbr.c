@@ -590,6 +590,9 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         goto done;
     }
     v4f nd = dot3(n, v), rr[3], en[3], er[3], sa, sb;
+    for (int k = 0; k < 3; k++) {
+        rr[k] = 2.0f * nd * n[k] - v[k];
+    }
     v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
     if (ext && ext->aniso) {
         /* The stretched lobe reflects about the bent normal. */
@@ -598,10 +601,6 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         v4f bd = dot3(bn, v);
         for (int k = 0; k < 3; k++) {
             rr[k] = 2.0f * bd * bn[k] - v[k];
-        }
-    } else {
-        for (int k = 0; k < 3; k++) {
-            rr[k] = 2.0f * nd * n[k] - v[k];
         }
     }
     if (p->environment) {
@@ -702,7 +701,8 @@ static void aniso_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
             float a[3] = { ax ? 1.0f : 0.0f, ax ? 0.0f : 1.0f, 0.0f };
             float c[3] = { g[1][i] * a[2] - g[2][i] * a[1], g[2][i] * a[0] - g[0][i] * a[2],
                            g[0][i] * a[1] - g[1][i] * a[0] };
-            float il = 1.0f / sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            float l2c = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+            float il = l2c > 0.0f ? 1.0f / sqrtf(l2c) : 0.0f;
             for (int k = 0; k < 3; k++) {
                 tt[k][i] = c[k] * il;
             }
