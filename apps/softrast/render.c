@@ -764,12 +764,13 @@ static int finish_scene(render_job *job)
         first->tangents = first->texcoords1 = NULL;
     }
     if (s->gltf && !first->tangents && first->mesh.texcoords && first->mesh.normals) {
-        /* Normal maps with a primitive that has no tangents: MikkTSpace's
-         * for the whole merged mesh. */
+        /* Normal maps or anisotropy with a primitive that has no
+         * tangents: MikkTSpace's for the whole merged mesh. */
         bool mapped = false;
         for (size_t i = 0; i < s->gltf->material_count; i++) {
             mapped |= s->gltf->materials[i].normal_texture.texture != NULL ||
-                      s->gltf->materials[i].clearcoat_normal_texture.texture != NULL;
+                      s->gltf->materials[i].clearcoat_normal_texture.texture != NULL ||
+                      s->gltf->materials[i].anisotropy_strength > 0.0f;
         }
         first->tangents = mapped ? malloc(first->mesh.vertex_count * 4 * sizeof(float)) : NULL;
         if (mapped && (!first->tangents || sr_mesh_compute_tangents(job->mesh_ctx, &first->mesh,

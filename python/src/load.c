@@ -171,6 +171,25 @@ static PyObject *material_dict(const sr_pbr_material *m)
         "clearcoat", (double)m->clearcoat, "clearcoat_roughness", (double)m->clearcoat_roughness,
         "sheen_color", Py_BuildValue("(ddd)", (double)sh[0], (double)sh[1], (double)sh[2]),
         "sheen_roughness", (double)m->sheen_roughness) : NULL;
+    /* The base lobe's anisotropy and film (KHR_materials_anisotropy and
+     * _iridescence), with sr_pbr_material's zeros as the defaults. */
+    bool both_zero = m->iridescence_thickness_min == 0.0f &&
+                     m->iridescence_thickness_max == 0.0f;
+    PyObject *surface = layers ? Py_BuildValue(
+        "{sdsdsdsdsdsd}", "anisotropy_strength", (double)m->anisotropy_strength,
+        "anisotropy_rotation", (double)m->anisotropy_rotation, "iridescence",
+        (double)m->iridescence, "iridescence_ior",
+        m->iridescence_ior != 0.0f ? (double)m->iridescence_ior : 1.3,
+        "iridescence_thickness_min", both_zero ? 100.0 : (double)m->iridescence_thickness_min,
+        "iridescence_thickness_max", both_zero ? 400.0 : (double)m->iridescence_thickness_max)
+                                : NULL;
+    if (!surface || PyDict_Update(layers, surface) < 0) {
+        Py_XDECREF(surface);
+        Py_XDECREF(layers);
+        Py_XDECREF(d);
+        return NULL;
+    }
+    Py_DECREF(surface);
     if (!layers || PyDict_Update(d, layers) < 0) {
         Py_XDECREF(layers);
         Py_XDECREF(d);

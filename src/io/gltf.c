@@ -1046,6 +1046,8 @@ static const char *supported_extensions[] = {
     "KHR_materials_specular",
     "KHR_materials_clearcoat",
     "KHR_materials_sheen",
+    "KHR_materials_anisotropy",
+    "KHR_materials_iridescence",
     "KHR_materials_transmission",
     "KHR_materials_volume",
     "KHR_lights_punctual",
