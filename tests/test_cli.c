@@ -3908,8 +3908,9 @@ SR_TEST(image_outputs_with_another_extension_are_refused)
 
 #ifdef SR_CLI_PATH
 /* Two quads (4 vertices, 2 triangles each): mesh 0 once, mesh 1 placed
- * twice, one of them moved up by 3; a coated, a glass material; a camera
- * and a point light. */
+ * twice, one of them moved up by 3; a coated, a glass material; two
+ * material variants, one named with an escape byte; a camera and a point
+ * light. */
 static bool write_info_model(const char *path)
 {
     return write_two_quads(path,
@@ -3919,9 +3920,11 @@ static bool write_info_model(const char *path)
         "{\"alphaMode\":\"MASK\",\"extensions\":{\"KHR_materials_transmission\":"
         "{\"transmissionFactor\":1}}}],"
         "\"extensionsUsed\":[\"KHR_materials_clearcoat\",\"KHR_materials_transmission\","
-        "\"KHR_lights_punctual\"],"
+        "\"KHR_lights_punctual\",\"KHR_materials_variants\"],"
         "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\","
-        "\"intensity\":20,\"color\":[1,0.5,0.25],\"range\":8}]}},"
+        "\"intensity\":20,\"color\":[1,0.5,0.25],\"range\":8}]},"
+        "\"KHR_materials_variants\":{\"variants\":[{\"name\":\"Red\"},"
+        "{\"name\":\"Blue \\u001b[31m\"}]}},"
         "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5,\"znear\":0.1}}],"
         "\"nodes\":[{\"mesh\":0},{\"mesh\":1},{\"mesh\":1,\"translation\":[0,3,0]},"
         "{\"camera\":0,\"translation\":[0,0,6]},"
@@ -3957,6 +3960,8 @@ SR_TEST(info_describes_a_gltf_scene)
                               "OPAQUE, double-sided; KHR_materials_clearcoat\n");
     CHECK_STR_CONTAINS(r.out, "1  base color 1 1 1 1, metallic 1, roughness 1, MASK; "
                               "KHR_materials_transmission\n");
+    /* A name's escape byte never reaches the terminal. */
+    CHECK_STR_CONTAINS(r.out, "variants    2 (--variant)\n    0  Red\n    1  Blue ?[31m\n");
     CHECK_STR_CONTAINS(r.out, "cameras     1\n    0  perspective, yfov 28.6479 degrees, aspect "
                               "the image's, znear 0.1, zfar infinite (node 3)\n");
     CHECK_STR_CONTAINS(r.out, "lights      1\n    0  point, color 1 0.5 0.25, intensity 20 "
@@ -3972,6 +3977,7 @@ SR_TEST(info_describes_a_gltf_scene)
                               "\"aspect\": 0, \"znear\": 0.1, \"zfar\": null}");
     CHECK_STR_CONTAINS(r.out, "{\"type\": \"point\", \"node\": 4, \"color\": [1, 0.5, 0.25], "
                               "\"intensity\": 20, \"range\": 8}");
+    CHECK_STR_CONTAINS(r.out, "\"variants\": [\"Red\", \"Blue \\u001b[31m\"]");
     CHECK_STR_CONTAINS(r.out, "\"warnings\": 0}\n");
     cli_run_free(&r);
 #endif

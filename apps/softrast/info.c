@@ -19,8 +19,9 @@ static void usage(FILE *f)
                "through Assimp when built with it), read as 'softrast render' reads it: the\n"
                "primitives to draw (each node instance counted), their vertices, triangles\n"
                "and attributes, the bounds in world space, each material with its textures\n"
-               "and the glTF material extensions it uses, the textures, cameras (what\n"
-               "--camera-index counts) and lights.  Warnings go to stderr, as render's do.\n"
+               "and the glTF material extensions it uses, the textures, the material variants\n"
+               "(what --variant picks), cameras (what --camera-index counts) and lights.\n"
+               "Warnings go to stderr, as render's do.\n"
                "\n"
                "  --json      one JSON object on stdout instead of text\n"
                "  -h, --help  this text\n");
@@ -76,6 +77,9 @@ static size_t material_slots(const sr_pbr_material *m, named_slot *out)
         { "clearcoatNormal", &m->clearcoat_normal_texture },
         { "sheenColor", &m->sheen_color_texture },
         { "sheenRoughness", &m->sheen_roughness_texture },
+        { "anisotropy", &m->anisotropy_texture },
+        { "iridescence", &m->iridescence_texture },
+        { "iridescenceThickness", &m->iridescence_thickness_texture },
     };
     size_t n = 0;
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
@@ -85,7 +89,7 @@ static size_t material_slots(const sr_pbr_material *m, named_slot *out)
     }
     return n;
 }
-#define MAX_SLOTS 14
+#define MAX_SLOTS 17
 
 /* The glTF material extensions whose values the material holds: zeroed
  * fields are the extension absent (sr_pbr_material's convention). */
@@ -117,9 +121,15 @@ static size_t material_extensions(const sr_pbr_material *m, const char **out)
         m->sheen_color_texture.texture) {
         out[n++] = "KHR_materials_sheen";
     }
+    if (m->anisotropy_strength != 0.0f || m->anisotropy_texture.texture) {
+        out[n++] = "KHR_materials_anisotropy";
+    }
+    if (m->iridescence != 0.0f) {
+        out[n++] = "KHR_materials_iridescence";
+    }
     return n;
 }
-#define MAX_EXTENSIONS 8
+#define MAX_EXTENSIONS 10
 
 static const char *alpha_name(sr_alpha_mode mode)
 {
@@ -215,8 +225,13 @@ static void print_json(const char *path, const sr_scene *sc)
         }
         printf("]}");
     }
-    printf("%s],\n \"textures\": %zu,\n \"cameras\": [", sc->material_count ? "\n " : "",
+    printf("%s],\n \"textures\": %zu,\n \"variants\": [", sc->material_count ? "\n " : "",
            sc->texture_count);
+    for (size_t i = 0; i < sc->variant_count; i++) {
+        printf(i ? ", " : "");
+        json_string(sc->variants[i]);
+    }
+    printf("],\n \"cameras\": [");
     for (size_t i = 0; i < sc->camera_count; i++) {
         const sr_scene_camera *c = &sc->cameras[i];
         bool persp = c->type == SR_SCENE_CAMERA_PERSPECTIVE;
@@ -288,6 +303,16 @@ static void print_text(const char *path, const sr_scene *sc)
         printf("\n");
     }
     printf("  textures    %zu\n", sc->texture_count);
+    if (sc->variant_count) {
+        printf("  variants    %zu (--variant)\n", sc->variant_count);
+        for (size_t i = 0; i < sc->variant_count; i++) {
+            /* The file's text: no control byte reaches the terminal. */
+            char name[256];
+            snprintf(name, sizeof name, "%s", sc->variants[i]);
+            cli_one_line(name);
+            printf("    %zu  %s\n", i, name);
+        }
+    }
     printf("  cameras     %zu\n", sc->camera_count);
     for (size_t i = 0; i < sc->camera_count; i++) {
         const sr_scene_camera *c = &sc->cameras[i];
