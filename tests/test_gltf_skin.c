@@ -533,3 +533,37 @@ SR_TEST(malformed_morph_targets_are_refused_with_their_pointer)
         free(json);
     }
 }
+
+/* Posed arrays count in the decoding budget: 100 000 vertices of zeros
+ * (no bufferView: a few bytes of JSON) morphed by node after node would
+ * otherwise make 1.2 MB of arrays a node for a few bytes of file.  The
+ * accessors take 600 000 of the 2^20 + 16 a byte, the first node 300 000,
+ * and the second no longer fits. */
+SR_TEST(posed_arrays_count_in_the_decoding_budget)
+{
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    const char json[] =
+        "{\"asset\":{\"version\":\"2.0\"},"
+        "\"accessors\":[{\"componentType\":5126,\"count\":99999,\"type\":\"VEC3\"},"
+        "{\"componentType\":5126,\"count\":99999,\"type\":\"VEC3\"}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+        "\"targets\":[{\"POSITION\":1}]}],\"weights\":[1]}],"
+        "\"nodes\":[{\"mesh\":0},{\"mesh\":0},{\"mesh\":0},{\"mesh\":0}],"
+        "\"scenes\":[{\"nodes\":[0,1,2,3]}]}";
+    check_refused(json,
+                  "t.gltf: /nodes/1: posing 99999 more vertices is more than a file of this size "
+                  "may decode",
+                  __LINE__);
+    /* Weights of zero pose nothing: the same file reads. */
+    char *zero = strdup(json);
+    REQUIRE(zero);
+    memcpy(strstr(zero, "[1]"), "[0]", 3);
+    warnings w = { 0 };
+    sr_scene *s = load(zero, &w);
+    REQUIRE(s);
+    CHECK_EQ(s->primitive_count, 4);
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(zero);
+}

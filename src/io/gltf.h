@@ -193,6 +193,11 @@ typedef struct gltf_pose_source {
 } gltf_pose_source;
 
 void sr__gltf_pose_free(gltf_pose_source *src);
+/* The memory of p's posed arrays (positions, and normals and tangents
+ * where it has them), counted in the decoding budget like accessors'
+ * elements: a small file drawing a mesh posed by many nodes cannot ask
+ * for gigabytes.  `ptr` names the node in messages. */
+sr_result sr__gltf_charge_posed(gltf_doc *d, const sr_scene_primitive *p, const char *ptr);
 
 /* gltf_morph.c.  Primitive `ptr`'s targets (its JSON prim), checked
  * against its vertex_count, into src. */

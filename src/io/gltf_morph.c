@@ -23,6 +23,18 @@ void sr__gltf_pose_free(gltf_pose_source *src)
     memset(src, 0, sizeof *src);
 }
 
+sr_result sr__gltf_charge_posed(gltf_doc *d, const sr_scene_primitive *p, const char *ptr)
+{
+    size_t per = 3 + (p->normals ? 3 : 0) + (p->tangents ? 4 : 0), floats;
+    if (!sr__mul_ok(p->vertex_count, per, &floats) || floats > d->elements_left) {
+        return sr__gltf_fail(d, SR_TOO_LARGE,
+                             "%s: posing %zu more vertices is more than a file of this size "
+                             "may decode", ptr, p->vertex_count);
+    }
+    d->elements_left -= floats;
+    return SR_OK;
+}
+
 sr_result sr__gltf_read_targets(gltf_doc *d, const json_t *prim, const char *ptr,
                                 size_t vertex_count, gltf_pose_source *src)
 {
@@ -162,6 +174,10 @@ sr_result sr__gltf_morph(gltf_doc *d, const gltf_pose_source *src, const float *
                              SR_SCENE_MAX_DRAWN_VERTICES);
     }
     d->drawn_vertices += work;
+    sr_result r = sr__gltf_charge_posed(d, p, ptr);
+    if (r != SR_OK) {
+        return r;
+    }
     const float *base[3] = { p->positions, p->normals, p->tangents };
     float *out[3] = { NULL, NULL, NULL };
     for (int k = 0; k < 3; k++) {

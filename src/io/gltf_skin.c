@@ -252,6 +252,9 @@ sr_result sr__gltf_skin(gltf_doc *d, long skin, const char *use, const gltf_pose
                              SR_SCENE_MAX_DRAWN_VERTICES);
     }
     d->drawn_vertices += work;
+    if ((r = sr__gltf_charge_posed(d, p, use)) != SR_OK) {
+        return r;
+    }
     float *pos = sr__scene_alloc(d->scene, n * 3 * sizeof *pos);
     float *nrm = p->normals ? sr__scene_alloc(d->scene, n * 3 * sizeof *nrm) : NULL;
     float *tan = p->tangents ? sr__scene_alloc(d->scene, n * 4 * sizeof *tan) : NULL;
