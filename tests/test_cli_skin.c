@@ -8,7 +8,6 @@
  * libm), and the same bytes from one thread and from three. */
 #include "batch_cli.h"
 #include "gltf_write.h"
-#include "image_compare.h"
 
 #include "softrast_io.h"
 
@@ -207,29 +206,6 @@ static char *figure_model(void)
     return json;
 }
 
-static uint8_t *render_png(const char *dir, const char *model, const char *threads,
-                           const char *name, int *w, int *h)
-{
-    char out[1200];
-    snprintf(out, sizeof out, "%s/%s.png", dir, name);
-    run_result r;
-    if (!run(ARGS("render", model, "--size", "160x160", "--aa", "none", "--threads", threads,
-                  "-o", out),
-             &r) ||
-        r.status != 0) {
-        FAILF("render: status %d: %s", r.status, r.err);
-        return NULL;
-    }
-    CHECK(strstr(r.err, "warning") == NULL);
-    uint8_t *px = NULL;
-    sr_io_error err;
-    if (sr_read_png(out, NULL, w, h, &px, &err) != SR_OK) {
-        FAILF("%s", err.message);
-        return NULL;
-    }
-    return px;
-}
-
 SR_TEST(skinned_and_morphed_figure_is_drawn_posed)
 {
     NEED_CLI();
@@ -242,13 +218,5 @@ SR_TEST(skinned_and_morphed_figure_is_drawn_posed)
     char *json = figure_model();
     REQUIRE(json && write_text(model, json));
     free(json);
-    int w, h, w3, h3;
-    uint8_t *one = render_png(dir, model, "1", "figure_1", &w, &h);
-    uint8_t *three = render_png(dir, model, "3", "figure_3", &w3, &h3);
-    REQUIRE(one && three);
-    REQUIRE(w == w3 && h == h3);
-    CHECK(memcmp(one, three, 4 * (size_t)w * (size_t)h) == 0);
-    sr_test_check_image("gltf_skinned_figure", one, w, h, 3, (long)w * h / 200);
-    free(one);
-    free(three);
+    check_model_render(dir, model, "160x160", NULL, "gltf_skinned_figure");
 }

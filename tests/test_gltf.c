@@ -4,6 +4,7 @@
  * samplers, cameras, external files, GLB, and one message naming the JSON
  * pointer for each kind of malformed file. */
 #include "glb_write.h"
+#include "gltf_parse.h"
 #include "gltf_write.h"
 #include "sr_test.h"
 #include "wbuf.h"
@@ -32,24 +33,6 @@ static char *doc(const void *bin, size_t n, const char *body)
     return json;
 }
 
-typedef struct warnings {
-    int count;
-    char last[600];
-} warnings;
-
-static void on_warn(void *user, const char *message)
-{
-    warnings *w = user;
-    w->count++;
-    snprintf(w->last, sizeof w->last, "%s", message);
-}
-
-static sr_result parse(const char *json, warnings *w, sr_scene **s, sr_io_error *e)
-{
-    sr_load_desc desc = { .warn = on_warn, .user = w };
-    return sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), &desc, s,
-                         e);
-}
 
 /* bin and body as a document, parsed; NULL (a failed check) when it
  * does not parse. */

@@ -5,6 +5,7 @@
  * name; posed instances get arrays of their own while plain ones share
  * them; each malformed skin or target is refused with its JSON pointer. */
 #include "gltf_write.h"
+#include "gltf_parse.h"
 #include "sr_test.h"
 
 #include "softrast.h"
@@ -63,24 +64,6 @@ static char *doc(const bytes *b, const char *body, const char *from, const char 
     return json;
 }
 
-typedef struct warnings {
-    int count;
-    char last[600];
-} warnings;
-
-static void on_warn(void *user, const char *message)
-{
-    warnings *w = user;
-    w->count++;
-    snprintf(w->last, sizeof w->last, "%s", message);
-}
-
-static sr_result parse(const char *json, warnings *w, sr_scene **s, sr_io_error *e)
-{
-    sr_load_desc desc = { .warn = on_warn, .user = w };
-    return sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), &desc, s,
-                         e);
-}
 
 static sr_scene *load(const char *json, warnings *w)
 {
