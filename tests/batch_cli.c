@@ -397,9 +397,18 @@ static uint8_t *render_model(const char *dir, const char *model, const char *siz
     return px;
 }
 
-void check_model_render(const char *dir, const char *model, const char *size,
+void check_model_render(const char *name, const char *file, char *text, const char *size,
                         const char *const *extra, const char *ref)
 {
+    char dir[1024], model[1100];
+    fresh_dir(name, dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/%s", dir, file);
+    bool written = text && write_text(model, text);
+    free(text);
+    if (!written) {
+        FAILF("%s: not written", model);
+        return;
+    }
     int w, h, w3, h3;
     uint8_t *one = render_model(dir, model, size, extra, "1", &w, &h);
     uint8_t *three = render_model(dir, model, size, extra, "3", &w3, &h3);

@@ -212,11 +212,6 @@ SR_TEST(skinned_and_morphed_figure_is_drawn_posed)
     if (!sr_io_have_gltf()) {
         SKIP("softrast was built without jansson");
     }
-    char dir[1024], model[1100];
-    fresh_dir("skinned_figure", dir, sizeof dir);
-    snprintf(model, sizeof model, "%s/figure.gltf", dir);
-    char *json = figure_model();
-    REQUIRE(json && write_text(model, json));
-    free(json);
-    check_model_render(dir, model, "160x160", NULL, "gltf_skinned_figure");
+    check_model_render("skinned_figure", "figure.gltf", figure_model(), "160x160", NULL,
+                       "gltf_skinned_figure");
 }

@@ -170,12 +170,6 @@ SR_TEST(glass_spheres_show_the_checker_behind_them)
     if (!sr_io_have_gltf()) {
         SKIP("softrast was built without jansson");
     }
-    char dir[1024], model[1100];
-    fresh_dir("transmission", dir, sizeof dir);
-    snprintf(model, sizeof model, "%s/glass.gltf", dir);
-    char *json = glass_model();
-    REQUIRE(json && write_text(model, json));
-    free(json);
-    check_model_render(dir, model, "240x112", ARGS("--camera", "eye=0,1,7,target=0,0,0"),
-                       "gltf_transmission");
+    check_model_render("transmission", "glass.gltf", glass_model(), "240x112",
+                       ARGS("--camera", "eye=0,1,7,target=0,0,0"), "gltf_transmission");
 }

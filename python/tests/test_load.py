@@ -200,6 +200,11 @@ def write_glb(path):
                        "type": "VEC3"},
                       {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC4"}],
     }
+    write_glb_file(path, doc, data)
+
+
+def write_glb_file(path, doc, data):
+    """The GLB of a document and its binary chunk's bytes."""
     text = json.dumps(doc).encode()
     text += b" " * (-len(text) % 4)
     chunks = (len(text).to_bytes(4, "little") + b"JSON" + text +
@@ -273,13 +278,7 @@ def write_skinned_glb(path):
                       {"bufferView": 4, "componentType": 5126, "count": 6, "type": "VEC3"},
                       {"bufferView": 5, "componentType": 5123, "count": 12, "type": "SCALAR"}],
     }
-    text = json.dumps(doc).encode()
-    text += b" " * (-len(text) % 4)
-    data = b"".join(parts)
-    chunks = (len(text).to_bytes(4, "little") + b"JSON" + text +
-              len(data).to_bytes(4, "little") + b"BIN\0" + data)
-    path.write_bytes(b"glTF" + (2).to_bytes(4, "little") +
-                     (12 + len(chunks)).to_bytes(4, "little") + chunks)
+    write_glb_file(path, doc, b"".join(parts))
 
 
 def test_load_and_load_mesh_pose_skins_and_morph_targets(tmp_path):
