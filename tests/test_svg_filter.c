@@ -376,14 +376,23 @@ SR_TEST(huge_deviations_and_radii_end_quickly_or_are_refused)
                                 "<rect width='100' height='100' filter='url(#f)'/></svg>",
                                 SR_OK, NULL, NULL, 0);
     sr_destroy_framebuffer(sr_test_ctx(), fb);
-    /* a morphology radius is bounded by the region, its work by the budget */
+    /* nor a morphology's with its radius (bounded by the region) */
     fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='2000' height='2000'>"
                 "<filter id='f' x='0' y='0' width='1' height='1'>"
                 "<feMorphology radius='1e9'/><feMorphology radius='1e9'/>"
                 "<feMorphology radius='1e9'/><feMorphology radius='1e9'/></filter>"
                 "<rect width='2000' height='2000' filter='url(#f)'/></svg>",
+                SR_OK, NULL, NULL, 0);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* a filter that passes the work budget is refused at its primitive */
+    fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='2000' height='2000'>"
+                "<filter id='f' x='0' y='0' width='1' height='1'>\n"
+                "<feMorphology radius='1e9'/><feMorphology radius='1e9'/>"
+                "<feMorphology radius='1e9'/><feMorphology radius='1e9'/>\n"
+                "<feMorphology radius='1e9'/></filter>"
+                "<rect width='2000' height='2000' filter='url(#f)'/></svg>",
                 SR_TOO_LARGE, NULL, msg, sizeof msg);
-    CHECK_STR_CONTAINS(msg, "t.svg:1:");
+    CHECK_STR_CONTAINS(msg, "t.svg:3: the drawing costs more than");
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
 
@@ -611,4 +620,66 @@ SR_TEST(a_filter_region_beyond_the_image_stays_within_the_budgets)
         }
         sr_destroy_framebuffer(sr_test_ctx(), fb);
     }
+}
+
+/* The document drawn at its own size, its counted work in *info. */
+static sr_result render_info(const char *svg, sr_svg_info *info, char *msg, size_t n)
+{
+    sr_framebuffer *fb = NULL;
+    sr_io_error err;
+    sr_result r = sr_render_svg(sr_test_ctx(), svg, strlen(svg), &(sr_svg_desc){ .name = "t.svg" },
+                                &fb, info, &err);
+    if (msg) {
+        snprintf(msg, n, "%s", err.message);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    return r;
+}
+
+/* A morphology's window costs the same whatever its radius (van Herk and
+ * Gil-Werman's blocks), and is what the direct min and max give: a
+ * dilated pixel becomes a (2 rx + 1) x (2 ry + 1) box, an eroded square
+ * shrinks by the radius each side. */
+SR_TEST(morphology_is_exact_and_its_cost_does_not_grow_with_the_radius)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='40' height='40'>"
+                                "<filter id='d' filterUnits='userSpaceOnUse' x='0' y='0' width='40'"
+                                " height='40'><feMorphology operator='dilate' radius='3 5'/></filter>"
+                                "<filter id='e' filterUnits='userSpaceOnUse' x='0' y='0' width='40'"
+                                " height='40'><feMorphology radius='2'/></filter>"
+                                "<rect x='20' y='20' width='1' height='1' filter='url(#d)'/>"
+                                "<rect x='2' y='2' width='10' height='12' filter='url(#e)'/></svg>",
+                                SR_OK, NULL, NULL, 0);
+    if (fb) {
+        int wrong = 0;
+        for (int y = 0; y < 40; y++) {
+            for (int x = 0; x < 40; x++) {
+                bool in = (x >= 17 && x <= 23 && y >= 15 && y <= 25) ||
+                          (x >= 4 && x < 10 && y >= 4 && y < 12);
+                wrong += pixel(fb, x, y)[3] != (in ? 255 : 0);
+            }
+        }
+        CHECK_EQ(wrong, 0);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* radius 3 and 10^9 over a 1000 x 1000 image: the same work counted,
+     * within the budget (the direct window counted 56 passes for 3) */
+    double used[2];
+    for (int i = 0; i < 2; i++) {
+        char svg[512];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='1000'>"
+                 "<filter id='f' x='0' y='0' width='1' height='1'>"
+                 "<feMorphology radius='%s'/></filter>"
+                 "<rect width='1000' height='1000' filter='url(#f)'/></svg>",
+                 i ? "1e9" : "3");
+        sr_svg_info info;
+        CHECK_EQ(render_info(svg, &info, NULL, 0), SR_OK);
+        CHECK(info.work_used <= info.work_budget);
+        used[i] = info.work_used;
+    }
+    CHECK_EQ(used[0], used[1]);
 }

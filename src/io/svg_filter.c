@@ -738,50 +738,129 @@ static void component_transfer(fctx *fc, const svg_node *n, const int sub[4], co
     per_pixel(fc, sub, in, out, apply_transfer, t);
 }
 
+/* fmaxf and fminf inline: NaN loses to a number, as in the library calls,
+ * which are not inlined where NaN must be honoured. */
+static inline float max_f(float a, float b)
+{
+    return a > b || b != b ? a : b;
+}
+
+static inline float min_f(float a, float b)
+{
+    return a < b || b != b ? a : b;
+}
+
+/* The min (or max) over windows of w = 2k + 1 elements of a line of n + 2k
+ * elements, `vec` floats each (a pixel's channels, or a strip of columns):
+ * out[j] = op(line[j .. j + 2k]), j < n, by van Herk and Gil-Werman's
+ * blocks, so that the cost does not grow with k: within each block of w
+ * elements, `pre` holds the op from the block's start and `line` (in
+ * place) to its end, and any window is one block's end joined to the
+ * next one's start. */
+static void window_op(float *line, float *pre, size_t n, size_t k, int vec, bool dilate,
+                      float *out, size_t out_step)
+{
+    size_t len = n + 2 * k, w = 2 * k + 1;
+    for (size_t i = 0, at = 0; i < len; i++, at = at + 1 == w ? 0 : at + 1) {
+        float *p = pre + i * (size_t)vec;
+        const float *s = line + i * (size_t)vec;
+        if (at == 0) { /* a block starts */
+            memcpy(p, s, (size_t)vec * sizeof *p);
+            continue;
+        }
+        for (int c = 0; c < vec; c++) {
+            p[c] = dilate ? max_f(p[c - vec], s[c]) : min_f(p[c - vec], s[c]);
+        }
+    }
+    for (size_t i = len - 1; i-- > 0;) {
+        if ((i + 1) % w == 0) {
+            continue; /* the next element starts a block */
+        }
+        float *s = line + i * (size_t)vec;
+        for (int c = 0; c < vec; c++) {
+            s[c] = dilate ? max_f(s[c], s[c + vec]) : min_f(s[c], s[c + vec]);
+        }
+    }
+    for (size_t j = 0; j < n; j++) {
+        const float *a = line + j * (size_t)vec, *b = pre + (j + 2 * k) * (size_t)vec;
+        float *d = out + j * out_step;
+        /* joined to the empty window's value (0 for max, 1 for min), as
+         * the direct loop starts from it */
+        for (int c = 0; c < vec; c++) {
+            d[c] = dilate ? max_f(max_f(a[c], b[c]), 0.0f) : min_f(min_f(a[c], b[c]), 1.0f);
+        }
+    }
+}
+
+/* Columns a strip of the column pass holds: its lines are a few cache
+ * lines wide. */
+#define MORPH_STRIP 8
+
+/* feMorphology's radius in pixels along x and y, cut to the region (a
+ * window wider than the region sees all of it); false when it is
+ * disabled. */
+static bool morph_radius(fctx *fc, const svg_node *n, size_t k[2])
+{
+    double r[2];
+    pair_attr(fc, n, "radius", 0, r);
+    if (!(r[0] > 0 && r[1] > 0)) {
+        return false;
+    }
+    k[0] = (size_t)lround(fmin(r[0] * fc->sx * (fc->obb ? fc->bw : 1), fc->rw));
+    k[1] = (size_t)lround(fmin(r[1] * fc->sy * (fc->obb ? fc->bh : 1), fc->rh));
+    return true;
+}
+
 /* Erode (min) or dilate (max) each premultiplied channel over a
- * (2 rx + 1) x (2 ry + 1) window: rows, then columns. */
+ * (2 kx + 1) x (2 ky + 1) window, beyond the region transparent black:
+ * rows, then columns in strips. */
 static void morphology(fctx *fc, const svg_node *n, const float *in, float *out)
 {
     const char *op = fattr(n, "operator");
     bool dilate = op && strcmp(op, "dilate") == 0;
-    double r[2];
-    pair_attr(fc, n, "radius", 0, r);
+    size_t k[2];
     memcpy(out, in, fc->n * 4 * sizeof *out);
-    if (!(r[0] > 0 && r[1] > 0)) {
+    if (!morph_radius(fc, n, k)) {
         return; /* Filter Effects 1: disabled, the input passes */
     }
-    long k[2] = { lround(fmin(r[0] * fc->sx * (fc->obb ? fc->bw : 1), fc->rw)),
-                  lround(fmin(r[1] * fc->sy * (fc->obb ? fc->bh : 1), fc->rh)) };
-    if (!fc->job->budget(fc->job->host, (double)fc->n * 4 * (double)(2 * k[0] + 2 * k[1] + 2))) {
+    /* the rows' pass and the columns': the window costs no more */
+    if (!fc->job->budget(fc->job->host, (double)fc->n * 2)) {
         fc->failed = true;
         return;
     }
-    float *tmp = new_pixels(fc, n);
-    if (!tmp) {
+    size_t kx = k[0], ky = k[1], rw = (size_t)fc->rw, rh = (size_t)fc->rh;
+    size_t row = (rw + 2 * kx) * 4, strip = (rh + 2 * ky) * 4 * MORPH_STRIP;
+    size_t most = row > strip ? row : strip;
+    float *tmp = new_pixels(fc, n), *line = calloc(most, sizeof *line),
+          *pre = malloc(most * sizeof *pre);
+    if (!tmp || !line || !pre) {
+        if (tmp) {
+            fail(fc, n, SR_OUT_OF_MEMORY, "out of memory");
+        }
+        release(fc, tmp);
+        free(line);
+        free(pre);
         return;
     }
-    for (int pass = 0; pass < 2; pass++) {
-        const float *src = pass == 0 ? in : tmp;
-        float *dst = pass == 0 ? tmp : out;
-        long kk = k[pass];
-        for (int y = 0; y < fc->rh; y++) {
-            for (int x = 0; x < fc->rw; x++) {
-                for (int c = 0; c < 4; c++) {
-                    float v = dilate ? 0.0f : 1.0f;
-                    for (long d = -kk; d <= kk; d++) {
-                        long sx = pass == 0 ? x + d : x, sy = pass == 0 ? y : y + d;
-                        float s = 0; /* beyond the region: transparent black */
-                        if (sx >= 0 && sy >= 0 && sx < fc->rw && sy < fc->rh) {
-                            s = src[((size_t)sy * fc->rw + (size_t)sx) * 4 + c];
-                        }
-                        v = dilate ? fmaxf(v, s) : fminf(v, s);
-                    }
-                    dst[((size_t)y * fc->rw + x) * 4 + c] = v;
-                }
-            }
+    /* the padding stays 0: transparent black beyond the region */
+    for (size_t y = 0; y < rh; y++) {
+        memcpy(line + kx * 4, in + y * rw * 4, rw * 4 * sizeof *line);
+        window_op(line, pre, rw, kx, 4, dilate, tmp + y * rw * 4, 4);
+        memset(line, 0, row * sizeof *line);
+    }
+    for (size_t x0 = 0; x0 < rw; x0 += MORPH_STRIP) {
+        size_t sw = rw - x0 < MORPH_STRIP ? rw - x0 : MORPH_STRIP;
+        int vec = (int)sw * 4;
+        memset(line, 0, (rh + 2 * ky) * (size_t)vec * sizeof *line);
+        for (size_t y = 0; y < rh; y++) {
+            memcpy(line + (ky + y) * (size_t)vec, tmp + (y * rw + x0) * 4,
+                   (size_t)vec * sizeof *line);
         }
+        window_op(line, pre, rh, ky, vec, dilate, out + x0 * 4, rw * 4);
     }
     release(fc, tmp);
+    free(line);
+    free(pre);
 }
 
 /* The input's subregion repeated over the whole region. */
