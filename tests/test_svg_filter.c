@@ -683,3 +683,74 @@ SR_TEST(morphology_is_exact_and_its_cost_does_not_grow_with_the_radius)
     }
     CHECK_EQ(used[0], used[1]);
 }
+
+/* What grows with a primitive's attributes is counted before it runs,
+ * and refused at the primitive's line: a convolution's kernel (order 64,
+ * 4096 entries a pixel), noise's octaves, a chain of many primitives. */
+SR_TEST(primitives_whose_work_grows_are_refused_at_their_line)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static char kernel[4096 * 2 + 1];
+    for (int i = 0; i < 4096; i++) {
+        memcpy(kernel + 2 * i, "1 ", 2);
+    }
+    static char chain[1024 * 40 + 1];
+    for (int i = 0; i < 1000; i++) {
+        strcat(chain, "<feColorMatrix type='saturate'/>");
+    }
+    static const char *const head =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='1000'>\n"
+        "<filter id='f' x='0' y='0' width='1' height='1'>\n";
+    const char *prims[3] = { NULL, "<feTurbulence baseFrequency='0.1' numOctaves='1000'/>", chain };
+    char conv[4096 * 2 + 128];
+    snprintf(conv, sizeof conv, "<feConvolveMatrix order='64' kernelMatrix='%s'/>", kernel);
+    prims[0] = conv;
+    for (int i = 0; i < 3; i++) {
+        size_t n = strlen(head) + strlen(prims[i]) + 256;
+        char *svg = malloc(n), msg[512];
+        snprintf(svg, n, "%s%s</filter>\n<rect width='1000' height='1000' filter='url(#f)'/></svg>",
+                 head, prims[i]);
+        sr_svg_info info;
+        sr_test_warnings warn = { 0 };
+        sr_framebuffer *fb = NULL;
+        sr_io_error err;
+        sr_svg_desc d = { .name = "t.svg", .warn = sr_test_collect_warning, .warn_user = &warn };
+        CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg), &d, &fb, &info, &err),
+                 SR_TOO_LARGE);
+        snprintf(msg, sizeof msg, "%s", err.message);
+        CHECK_STR_CONTAINS(msg, "t.svg:3: the drawing costs more than");
+        CHECK_EQ(warn.count, 0); /* refused, not drawn transparent with a warning */
+        CHECK(info.work_used <= info.work_budget);
+        CHECK(!info.over_layer_limit);
+        free(svg);
+    }
+}
+
+/* The larger layer is chosen on the work the filter will count, kernels
+ * included: a convolution of order 5 after an offset that brings content
+ * in from 300 px beyond the image fits the budget on the image's layer,
+ * not on the larger one, so the source is drawn up to the image's edges
+ * with a warning instead of the drawing being refused. */
+SR_TEST(a_larger_filter_layer_is_chosen_on_the_work_it_will_count)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_test_warnings warn = { 0 };
+    sr_framebuffer *fb = render(
+        "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='1000'>"
+        "<filter id='f' filterUnits='userSpaceOnUse' x='-400' y='0' width='1400' height='1000'>"
+        "<feOffset dx='300'/><feConvolveMatrix order='5' kernelMatrix='0 0 0 0 0 0 0 0 0 0 0 0 1"
+        " 0 0 0 0 0 0 0 0 0 0 0 0'/></filter>"
+        "<rect x='-300' width='1300' height='1000' fill='#00f' filter='url(#f)'/></svg>",
+        SR_OK, &warn, NULL, 0);
+    CHECK_EQ(warn.count, 1);
+    CHECK_STR_CONTAINS(warn.text, "as the work budget holds no more");
+    if (fb) {
+        CHECK_EQ(pixel(fb, 100, 500)[3], 0);   /* not moved in */
+        CHECK_EQ(pixel(fb, 400, 500)[3], 255); /* moved from the image */
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}

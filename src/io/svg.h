@@ -197,8 +197,9 @@ typedef struct svg_filter_job {
     /* the document's failure "FILE:LINE: msg", at the node's line */
     void (*fail)(void *host, const svg_node *at, sr_result r, const char *msg);
     svg_fe_style (*style)(void *host, const svg_node *fe);
-    /* false after reporting that `work` more pixel operations pass the budget */
-    bool (*budget)(void *host, double work);
+    /* false after reporting, at primitive `at`, that `work` more pixel
+     * operations pass the budget */
+    bool (*budget)(void *host, const svg_node *at, double work);
     /* feImage: the element `href` names ("#id"), or the picture it names
      * fitted into rect (x y w h, user space), drawn in the filtered
      * element's user space into out (RGBA8 straight, width x height,

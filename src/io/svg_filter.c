@@ -823,11 +823,6 @@ static void morphology(fctx *fc, const svg_node *n, const float *in, float *out)
     if (!morph_radius(fc, n, k)) {
         return; /* Filter Effects 1: disabled, the input passes */
     }
-    /* the rows' pass and the columns': the window costs no more */
-    if (!fc->job->budget(fc->job->host, (double)fc->n * 2)) {
-        fc->failed = true;
-        return;
-    }
     size_t kx = k[0], ky = k[1], rw = (size_t)fc->rw, rh = (size_t)fc->rh;
     size_t row = (rw + 2 * kx) * 4, strip = (rh + 2 * ky) * 4 * MORPH_STRIP;
     size_t most = row > strip ? row : strip;
@@ -883,10 +878,8 @@ static void tile(fctx *fc, const fimg *in, float *out)
 /* Kernels of feConvolveMatrix, at most this many values a side. */
 #define MAX_KERNEL_ORDER 64
 
-/* feConvolveMatrix on device pixels (the kernel turned half a turn, as
- * SVG defines it), edges by edgeMode (duplicate by default); false when
- * its attributes are in error (the result stays transparent black). */
-static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
+/* feConvolveMatrix's order (columns, rows); false when it is in error. */
+static bool kernel_order(fctx *fc, const svg_node *n, int *ox, int *oy)
 {
     double ord[2];
     pair_attr(fc, n, "order", 3, ord);
@@ -894,7 +887,20 @@ static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
           ord[1] <= MAX_KERNEL_ORDER) || ord[0] != floor(ord[0]) || ord[1] != floor(ord[1])) {
         return false;
     }
-    int ox = (int)ord[0], oy = (int)ord[1];
+    *ox = (int)ord[0];
+    *oy = (int)ord[1];
+    return true;
+}
+
+/* feConvolveMatrix on device pixels (the kernel turned half a turn, as
+ * SVG defines it), edges by edgeMode (duplicate by default); false when
+ * its attributes are in error (the result stays transparent black). */
+static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
+{
+    int ox, oy;
+    if (!kernel_order(fc, n, &ox, &oy)) {
+        return false;
+    }
     double *k = malloc(sizeof *k * (size_t)(ox * oy));
     const char *kv = fattr(n, "kernelMatrix");
     if (!k || !kv || numbers(kv, k, ox * oy) != ox * oy) {
@@ -912,8 +918,7 @@ static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
     const char *e = fattr(n, "edgeMode"), *pa = fattr(n, "preserveAlpha");
     int edge = !e || strcmp(e, "duplicate") == 0 ? 1 : strcmp(e, "wrap") == 0 ? 2 : 0;
     bool keep_alpha = pa && strcmp(pa, "true") == 0;
-    if (divisor == 0 || tx < 0 || tx >= ox || ty < 0 || ty >= oy ||
-        !fc->job->budget(fc->job->host, (double)fc->n * ox * oy)) {
+    if (divisor == 0 || tx < 0 || tx >= ox || ty < 0 || ty >= oy) {
         free(k);
         return false;
     }
@@ -1250,6 +1255,12 @@ static double stitch_frequency(double f, double len)
     return lo > 0 && f / lo < hi / f ? lo : hi;
 }
 
+/* numOctaves as computed: none below 1, at most TURB_MAX_OCTAVES. */
+static int turb_octaves(double oct)
+{
+    return oct < 0 ? 0 : oct > TURB_MAX_OCTAVES ? TURB_MAX_OCTAVES : (int)oct;
+}
+
 /* The noise is in the primitive's colour space, as its result is. */
 static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float *out)
 {
@@ -1261,11 +1272,7 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
     if (!(freq[0] >= 0 && freq[1] >= 0)) {
         return; /* a negative frequency is an error: transparent black */
     }
-    int octaves = oct < 0 ? 0 : oct > TURB_MAX_OCTAVES ? TURB_MAX_OCTAVES : (int)oct;
-    if (!fc->job->budget(fc->job->host, (double)fc->n * 4 * (octaves + 1))) {
-        fc->failed = true;
-        return;
-    }
+    int octaves = turb_octaves(oct);
     turbulence_state *t = malloc(sizeof *t);
     if (!t) {
         fail(fc, n, SR_OUT_OF_MEMORY, "out of memory");
@@ -1444,6 +1451,45 @@ static void default_sub(fctx *fc, fimg *res, const int *ins, int n_ins, int out[
     memcpy(out, u, sizeof u);
 }
 
+/* Whether the primitive reads its `in` (those that fill their subregion
+ * do not; a merge reads its nodes'). */
+static bool reads_in(const svg_node *n)
+{
+    return !is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") && !is(n, "feMerge");
+}
+
+/* The images of the region primitive p reads, as run() counts them: a
+ * merge its nodes; those that fill their subregion none of `in`. */
+static double prim_reads(const prim *p)
+{
+    double reads = (p->in[1] != -4) + (reads_in(p->node) && !is(p->node, "feTile"));
+    for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
+        reads += is(m, "feMergeNode");
+    }
+    return reads;
+}
+
+/* What primitive n counts of the work budget per pixel of the region:
+ * a pass for each image it reads (`reads`) and one for its result, and
+ * the work whose cost grows with its attributes: a convolution's kernel,
+ * the octaves of noise in each channel, a morphology's two passes (its
+ * window's cost does not grow with the radius).  run() counts it and
+ * svg_filter_extent() adds it up, so that the larger layer is chosen on
+ * what the filter will count. */
+static double prim_work(fctx *fc, const svg_node *n, double reads)
+{
+    double w = reads + 1;
+    int ox, oy;
+    if (is(n, "feConvolveMatrix") && kernel_order(fc, n, &ox, &oy)) {
+        w += (double)ox * oy;
+    } else if (is(n, "feTurbulence")) {
+        w += 4.0 * (turb_octaves(number_attr(fc, n, "numOctaves", 1)) + 1);
+    } else if (is(n, "feMorphology")) {
+        w += 2;
+    }
+    return w;
+}
+
 /* Run primitive i into res[i]. */
 static void run(fctx *fc, prim *p, fimg *res, int i)
 {
@@ -1452,13 +1498,11 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
     fimg *out = &res[i];
     out->srgb = st.srgb;
     int ins[64], n_ins = 0; /* a merge's first 64 make its default subregion */
-    double reads = 0;         /* a merge reads all its nodes */
     if (is(n, "feMerge")) {
         for (const svg_node *c = n->first; c; c = c->next) {
             if (is(c, "feMergeNode") && n_ins < 64) {
                 ins[n_ins++] = resolve(fc, p, i, c, fattr(c, "in"));
             }
-            reads += is(c, "feMergeNode");
         }
     } else if (!is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") &&
                !is(n, "feTile")) { /* a tile fills the region, as both references draw it */
@@ -1466,12 +1510,12 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         if (p[i].in[1] != -4) {
             ins[n_ins++] = p[i].in[1];
         }
-        reads = n_ins;
     }
     int def[4];
     default_sub(fc, res, ins, n_ins, def);
     subregion(fc, n, def, out->sub);
-    if (!fc->job->budget(fc->job->host, (double)fc->n * (reads + 1))) {
+    double work = (double)fc->n * prim_work(fc, n, prim_reads(&p[i]));
+    if (!fc->job->budget(fc->job->host, n, work)) {
         fc->failed = true;
         return;
     }
@@ -1634,13 +1678,6 @@ static void free_graph(graph *g)
     free(g->last_use);
 }
 
-/* Whether the primitive reads its `in` (those that fill their subregion
- * do not; a merge reads its nodes'). */
-static bool reads_in(const svg_node *n)
-{
-    return !is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") && !is(n, "feMerge");
-}
-
 /* The graph of `count` primitives; false after a failure. */
 static bool make_graph(fctx *fc, int count, graph *g)
 {
@@ -1796,8 +1833,7 @@ bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
     for (int i = 0; i < count; i++) {
         const prim *p = &g.p[i];
         double in[2] = { 0, 0 };
-        /* what run() counts of the budget: its reads and its write */
-        *passes += 1 + (p->in[1] != -4) + (reads_in(p->node) && !is(p->node, "feTile"));
+        *passes += prim_work(&fc, p->node, prim_reads(p));
         for (int k = 0; k < 2; k++) {
             if (p->in[k] >= 0 && (k == 1 || reads_in(p->node))) {
                 in[0] = fmax(in[0], reach[p->in[k]][0]);
@@ -1806,7 +1842,6 @@ bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
         }
         for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
             int j = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : -1;
-            *passes += is(m, "feMergeNode");
             if (j >= 0) {
                 in[0] = fmax(in[0], reach[j][0]);
                 in[1] = fmax(in[1], reach[j][1]);
