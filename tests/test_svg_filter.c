@@ -754,3 +754,45 @@ SR_TEST(a_larger_filter_layer_is_chosen_on_the_work_it_will_count)
     }
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
+
+/* The layer grows beyond the image only by what can reach it: not at all
+ * for a filter that reads no source (a flood tiled over a region three
+ * times the image's size), and for an offset only on the side it pulls
+ * content from.  The layer's pixels are counted for each pass, so the
+ * work counted shows its size: the same as with the region cut to the
+ * image. */
+SR_TEST(a_filter_layer_grows_only_by_what_can_reach_the_image)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const struct { const char *prims, *wide, *left; } cases[] = {
+        { "<feFlood flood-color='#f00' x='10' y='10' width='5' height='5'/><feTile/>",
+          "x='-400' y='-400' width='1200' height='1200'", NULL },
+        { "<feOffset dx='20'/>", "x='0' y='0' width='900' height='400'",
+          "x='-500' y='0' width='900' height='400'" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        double used[3] = { 0, 0, 0 };
+        const char *regions[3] = { "x='0' y='0' width='400' height='400'", cases[i].wide,
+                                   cases[i].left };
+        for (int k = 0; k < 3 && regions[k]; k++) {
+            char svg[1024];
+            snprintf(svg, sizeof svg,
+                     "<svg xmlns='http://www.w3.org/2000/svg' width='400' height='400'>"
+                     "<filter id='f' filterUnits='userSpaceOnUse' %s>%s</filter>"
+                     "<rect x='-100' width='600' height='400' fill='#00f' filter='url(#f)'/></svg>",
+                     regions[k], cases[i].prims);
+            sr_svg_info info;
+            CHECK_EQ(render_info(svg, &info, NULL, 0), SR_OK);
+            used[k] = info.work_used;
+        }
+        /* an offset's extra pixel either side, for a shift between pixels */
+        CHECK(used[1] >= used[0] && used[1] <= used[0] + (cases[i].left ? 400.0 * 8 : 0));
+        if (cases[i].left) {
+            /* 21 columns more (the shift and a pixel), counted per pass */
+            CHECK(used[2] > used[0]);
+            CHECK(used[2] < used[0] + 400.0 * 22 * 8);
+        }
+    }
+}

@@ -1774,44 +1774,68 @@ uint64_t svg_filter_peak(const svg_filter_job *job, int *images)
            (picture ? (uint64_t)job->width * (uint64_t)job->height * 4 : 0);
 }
 
-/* How far (pixels along x and y) primitive n can move what it reads. */
-static void own_reach(fctx *fc, const svg_node *n, double r[2])
+/* How far (pixels) from each of its pixels primitive n reads: r[0] and
+ * r[1] towards -x and -y, r[2] and r[3] towards +x and +y (an offset
+ * reads on one side only). */
+static void own_reach(fctx *fc, const svg_node *n, double r[4])
 {
     double kx = fc->sx * (fc->obb ? fc->bw : 1), ky = fc->sy * (fc->obb ? fc->bh : 1), v[2];
     bool shadow = is(n, "feDropShadow");
     const char *e = fattr(n, "edgeMode");
     bool wrap = e && strcmp(e, "wrap") == 0;
-    r[0] = r[1] = 0;
+    double both[2] = { 0, 0 };
+    r[0] = r[1] = r[2] = r[3] = 0;
     if (is(n, "feGaussianBlur") || shadow) {
         pair_attr(fc, n, "stdDeviation", shadow ? 2 : 0, v);
         /* the sampled kernel's 3 deviations, or the three boxes' 2.9 */
-        r[0] += 3 * fabs(v[0]) * kx + 3;
-        r[1] += 3 * fabs(v[1]) * ky + 3;
+        both[0] += 3 * fabs(v[0]) * kx + 3;
+        both[1] += 3 * fabs(v[1]) * ky + 3;
     }
     if (is(n, "feOffset") || shadow) {
+        /* a shift by d reads d behind, and a pixel either side between pixels */
         const double *m = fc->job->m;
         double dx = number_attr(fc, n, "dx", shadow ? 2 : 0) * (fc->obb ? fc->bw : 1);
         double dy = number_attr(fc, n, "dy", shadow ? 2 : 0) * (fc->obb ? fc->bh : 1);
-        r[0] += fabs(m[0] * dx + m[2] * dy) + 1;
-        r[1] += fabs(m[1] * dx + m[3] * dy) + 1;
+        double d[2] = { m[0] * dx + m[2] * dy, m[1] * dx + m[3] * dy };
+        for (int a = 0; a < 2; a++) {
+            r[a] = fmax(d[a], 0) + 1;
+            r[a + 2] = fmax(-d[a], 0) + 1;
+        }
     } else if (is(n, "feMorphology")) {
         pair_attr(fc, n, "radius", 0, v);
-        r[0] = fabs(v[0]) * kx + 1;
-        r[1] = fabs(v[1]) * ky + 1;
+        both[0] = fabs(v[0]) * kx + 1;
+        both[1] = fabs(v[1]) * ky + 1;
     } else if (is(n, "feConvolveMatrix")) {
         pair_attr(fc, n, "order", 3, v);
-        r[0] = fabs(v[0]) + 1;
-        r[1] = fabs(v[1]) + 1;
+        both[0] = fabs(v[0]) + 1;
+        both[1] = fabs(v[1]) + 1;
     } else if (is(n, "feDisplacementMap")) {
         double scale = fabs(number_attr(fc, n, "scale", 0));
-        r[0] = scale * kx / 2 + 1;
-        r[1] = scale * ky / 2 + 1;
+        both[0] = scale * kx / 2 + 1;
+        both[1] = scale * ky / 2 + 1;
     } else if (is(n, "feDiffuseLighting") || is(n, "feSpecularLighting")) {
-        r[0] = r[1] = 2; /* the normals' kernels */
+        both[0] = both[1] = 2; /* the normals' kernels */
+    }
+    for (int a = 0; a < 4; a++) {
+        r[a] += both[a % 2];
     }
     if (is(n, "feTile") || (wrap && !is(n, "feMorphology"))) {
-        r[0] = r[1] = INFINITY; /* anything in the region can come in */
+        r[0] = r[1] = r[2] = r[3] = INFINITY; /* anything in the region can come in */
     }
+}
+
+/* Primitive i's input k (a merge's nodes after `in` and `in2`) into
+ * reach[i] when it holds the source: the farthest reach on each side. */
+static void take_reach(double (*reach)[4], bool *from_source, int i, int in)
+{
+    bool source = in == IN_SOURCE || in == IN_SOURCE_ALPHA;
+    if (in >= 0 && from_source[in]) {
+        for (int a = 0; a < 4; a++) {
+            reach[i][a] = fmax(reach[i][a], reach[in][a]);
+        }
+        source = true;
+    }
+    from_source[i] = from_source[i] || source;
 }
 
 bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
@@ -1824,41 +1848,48 @@ bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
         !make_graph(&fc, count, &g)) {
         return false;
     }
-    double(*reach)[2] = calloc((size_t)count, sizeof *reach);
-    if (!reach) {
+    /* how far each result reads the source, and whether it reads it at
+     * all: a flood, noise or picture brings in nothing from beyond */
+    double(*reach)[4] = calloc((size_t)count, sizeof *reach);
+    bool *from_source = calloc((size_t)count, sizeof *from_source);
+    if (!reach || !from_source) {
+        free(reach);
+        free(from_source);
         free_graph(&g);
         return false;
     }
     *passes = 0;
     for (int i = 0; i < count; i++) {
         const prim *p = &g.p[i];
-        double in[2] = { 0, 0 };
         *passes += prim_work(&fc, p->node, prim_reads(p));
         for (int k = 0; k < 2; k++) {
-            if (p->in[k] >= 0 && (k == 1 || reads_in(p->node))) {
-                in[0] = fmax(in[0], reach[p->in[k]][0]);
-                in[1] = fmax(in[1], reach[p->in[k]][1]);
+            if (p->in[k] != -4 && (k == 1 || reads_in(p->node))) {
+                take_reach(reach, from_source, i, p->in[k]);
             }
         }
         for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
-            int j = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : -1;
-            if (j >= 0) {
-                in[0] = fmax(in[0], reach[j][0]);
-                in[1] = fmax(in[1], reach[j][1]);
+            if (is(m, "feMergeNode")) {
+                take_reach(reach, from_source, i, resolve(&fc, g.p, i, m, fattr(m, "in")));
             }
         }
-        own_reach(&fc, p->node, reach[i]);
-        reach[i][0] += in[0];
-        reach[i][1] += in[1];
+        double own[4];
+        own_reach(&fc, p->node, own);
+        for (int a = 0; a < 4; a++) {
+            reach[i][a] += own[a];
+        }
     }
     /* NaN and infinity alike: at most the layer's size */
-    double rx = fmin(reach[count - 1][0], job->width), ry = fmin(reach[count - 1][1], job->height);
+    double r[4] = { 0, 0, 0, 0 };
+    for (int a = 0; a < 4 && from_source[count - 1]; a++) {
+        r[a] = fmin(reach[count - 1][a], a % 2 ? job->height : job->width);
+    }
     free(reach);
+    free(from_source);
     free_graph(&g);
-    px[0] = fmax(px[0], -rx);
-    px[1] = fmax(px[1], -ry);
-    px[2] = fmin(px[2], job->width + rx);
-    px[3] = fmin(px[3], job->height + ry);
+    px[0] = fmax(px[0], -r[0]);
+    px[1] = fmax(px[1], -r[1]);
+    px[2] = fmin(px[2], job->width + r[2]);
+    px[3] = fmin(px[3], job->height + r[3]);
     if (!(px[2] > px[0] && px[3] > px[1])) {
         return false;
     }
