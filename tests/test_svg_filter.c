@@ -796,3 +796,28 @@ SR_TEST(a_filter_layer_grows_only_by_what_can_reach_the_image)
         }
     }
 }
+
+/* A primitive subregion far beyond the region is empty: its pixel
+ * coordinates are cut to the region before they become ints (an x of
+ * 10^30 made the cut-off write far outside the image). */
+SR_TEST(a_subregion_beyond_int_range_is_empty)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const char *const subs[] = { "x='1e30' width='-5'", "x='1e30'", "y='-1e30' height='1'",
+                                        "x='-1e300' width='1e-300'" };
+    for (size_t i = 0; i < sizeof subs / sizeof subs[0]; i++) {
+        char svg[512];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>"
+                 "<filter id='i'><feOffset %s/></filter>"
+                 "<rect width='30' height='20' fill='#c36' filter='url(#i)'/></svg>",
+                 subs[i]);
+        sr_framebuffer *fb = render(svg, SR_OK, NULL, NULL, 0);
+        if (fb) {
+            CHECK_EQ(pixel(fb, 10, 10)[3], 0);
+        }
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+}

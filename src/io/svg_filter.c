@@ -257,8 +257,10 @@ static void subregion(fctx *fc, const svg_node *n, const int def[4], int out[4])
     }
     double px[4];
     rect_to_px(fc, r, px);
-    out[0] = (int)fmax(px[0] - fc->rx, 0);
-    out[1] = (int)fmax(px[1] - fc->ry, 0);
+    /* cut to the region before the cast: a subregion far beyond it is
+     * empty, not a value outside int */
+    out[0] = (int)fmin(fmax(px[0] - fc->rx, 0), fc->rw);
+    out[1] = (int)fmin(fmax(px[1] - fc->ry, 0), fc->rh);
     out[2] = (int)fmin(fmax(px[2] - fc->rx, 0), fc->rw);
     out[3] = (int)fmin(fmax(px[3] - fc->ry, 0), fc->rh);
     if (out[2] < out[0]) {
@@ -1297,9 +1299,9 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
         /* lattice cells stay far inside int, whatever the frequency */
         double cw = fmin(tile[2] * freq[0] + 0.5, 1 << 20), ch = fmin(tile[3] * freq[1] + 0.5, 1 << 20);
         base.width = (int)cw;
-        base.wrap_x = (int)fmin(tile[0] * freq[0] + TURB_N + base.width, 1 << 24);
+        base.wrap_x = (int)fmax(fmin(tile[0] * freq[0] + TURB_N + base.width, 1 << 24), -(1 << 24));
         base.height = (int)ch;
-        base.wrap_y = (int)fmin(tile[1] * freq[1] + TURB_N + base.height, 1 << 24);
+        base.wrap_y = (int)fmax(fmin(tile[1] * freq[1] + TURB_N + base.height, 1 << 24), -(1 << 24));
     }
     /* pixels -> user space, noise at each pixel's corner (as resvg samples it) */
     const double *m = fc->job->m;
