@@ -1162,8 +1162,9 @@ typedef struct turbulence_state {
     double gradient[4][TURB_B + TURB_B + 2][2];
 } turbulence_state;
 
+/* 64 bits: each octave doubles them, from up to 2^24, for 24 octaves */
 typedef struct stitch {
-    int width, height, wrap_x, wrap_y;
+    int64_t width, height, wrap_x, wrap_y;
 } stitch;
 
 /* The specification's Park-Miller generator (a = 16807, m = 2^31 - 1). */
@@ -1221,10 +1222,11 @@ static double noise2(const turbulence_state *t, int channel, double x, double y,
 {
     double tx = x + TURB_N, ty = y + TURB_N;
     /* far coordinates fold onto the lattice's period (256 cells) before
-     * they pass int's range; NaN (an infinite frequency) is 0 */
-    tx = fabs(tx) < (1 << 30) ? tx : isnan(tx) ? 0 : fmod(tx, 1 << 24);
-    ty = fabs(ty) < (1 << 30) ? ty : isnan(ty) ? 0 : fmod(ty, 1 << 24);
-    int bx0 = (int)tx, by0 = (int)ty, bx1 = bx0 + 1, by1 = by0 + 1;
+     * they pass int's range; NaN and infinity (a frequency at double's
+     * end) are 0 */
+    tx = fabs(tx) < (1 << 30) ? tx : !isfinite(tx) ? 0 : fmod(tx, 1 << 24);
+    ty = fabs(ty) < (1 << 30) ? ty : !isfinite(ty) ? 0 : fmod(ty, 1 << 24);
+    int64_t bx0 = (int)tx, by0 = (int)ty, bx1 = bx0 + 1, by1 = by0 + 1;
     double rx0 = tx - (int)tx, ry0 = ty - (int)ty, rx1 = rx0 - 1, ry1 = ry0 - 1;
     if (st) {
         bx0 -= bx0 >= st->wrap_x ? st->width : 0;
@@ -1232,15 +1234,13 @@ static double noise2(const turbulence_state *t, int channel, double x, double y,
         by0 -= by0 >= st->wrap_y ? st->height : 0;
         by1 -= by1 >= st->wrap_y ? st->height : 0;
     }
-    bx0 &= TURB_BM;
-    bx1 &= TURB_BM;
-    by0 &= TURB_BM;
-    by1 &= TURB_BM;
-    int i = t->lattice[bx0], j = t->lattice[bx1];
-    const double *q00 = t->gradient[channel][t->lattice[i + by0]];
-    const double *q10 = t->gradient[channel][t->lattice[j + by0]];
-    const double *q01 = t->gradient[channel][t->lattice[i + by1]];
-    const double *q11 = t->gradient[channel][t->lattice[j + by1]];
+    int x0 = (int)(bx0 & TURB_BM), x1 = (int)(bx1 & TURB_BM);
+    int y0 = (int)(by0 & TURB_BM), y1 = (int)(by1 & TURB_BM);
+    int i = t->lattice[x0], j = t->lattice[x1];
+    const double *q00 = t->gradient[channel][t->lattice[i + y0]];
+    const double *q10 = t->gradient[channel][t->lattice[j + y0]];
+    const double *q01 = t->gradient[channel][t->lattice[i + y1]];
+    const double *q11 = t->gradient[channel][t->lattice[j + y1]];
     double sx = s_curve(rx0), sy = s_curve(ry0);
     double u = rx0 * q00[0] + ry0 * q00[1], v = rx1 * q10[0] + ry0 * q10[1];
     double a = u + sx * (v - u);
@@ -1298,10 +1298,12 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
         }
         /* lattice cells stay far inside int, whatever the frequency */
         double cw = fmin(tile[2] * freq[0] + 0.5, 1 << 20), ch = fmin(tile[3] * freq[1] + 0.5, 1 << 20);
-        base.width = (int)cw;
-        base.wrap_x = (int)fmax(fmin(tile[0] * freq[0] + TURB_N + base.width, 1 << 24), -(1 << 24));
-        base.height = (int)ch;
-        base.wrap_y = (int)fmax(fmin(tile[1] * freq[1] + TURB_N + base.height, 1 << 24), -(1 << 24));
+        base.width = (int64_t)cw;
+        base.wrap_x = (int64_t)fmax(fmin(tile[0] * freq[0] + TURB_N + (double)base.width,
+                                         1 << 24), -(1 << 24));
+        base.height = (int64_t)ch;
+        base.wrap_y = (int64_t)fmax(fmin(tile[1] * freq[1] + TURB_N + (double)base.height,
+                                         1 << 24), -(1 << 24));
     }
     /* pixels -> user space, noise at each pixel's corner (as resvg samples it) */
     const double *m = fc->job->m;
