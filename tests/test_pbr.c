@@ -521,6 +521,39 @@ SR_TEST(texture_transform_follows_the_extension)
     sr_destroy_texture(sr_test_ctx(), t);
 }
 
+/* sr_texture_slot_uv gives the coordinates the program samples: the
+ * extension's example (as the test above stores it) takes the corners of
+ * the unit square, in sr_texture's frame, to the spec's quadrant turned
+ * clockwise; the identity slot leaves them as they are, bit for bit;
+ * and it refuses what it cannot transform. */
+SR_TEST(texture_slot_uv_applies_the_transform)
+{
+    sr_context *ctx = sr_test_ctx();
+    const float r = 1.57079632679f, sc = 0.5f;
+    sr_texture_slot s = { .rotation = r, .scale = { sc, sc } };
+    s.offset[0] = sc * sinf(r);
+    s.offset[1] = 1.0f - 1.0f - sc * cosf(r);
+    /* sr_texture's (0, 1), (1, 1), (0, 0): glTF's (0, 0), (1, 0), (0, 1). */
+    float uv[6] = { 0, 1, 1, 1, 0, 0 }, out[6];
+    REQUIRE(sr_texture_slot_uv(ctx, &s, uv, 3, out) == SR_OK);
+    /* glTF's (0, 1), (0, 0.5), (0.5, 1) are sr_texture's (0, 0), (0, 0.5), (0.5, 0). */
+    const float want[6] = { 0, 0, 0, 0.5f, 0.5f, 0 };
+    for (int i = 0; i < 6; i++) {
+        CHECK_NEAR(out[i], want[i], 1e-6);
+    }
+    sr_texture_slot id = { 0 };   /* a zero scale reads as 1 */
+    const float odd[4] = { -0.3f, 1.7f, 1e-8f, 123.456f };
+    float same[4];
+    REQUIRE(sr_texture_slot_uv(ctx, &id, odd, 2, same) == SR_OK);
+    CHECK(memcmp(odd, same, sizeof odd) == 0);
+    CHECK_EQ(sr_texture_slot_uv(ctx, NULL, uv, 3, out), SR_INVALID_ARG);
+    CHECK_EQ(sr_texture_slot_uv(ctx, &s, NULL, 3, out), SR_INVALID_ARG);
+    CHECK_EQ(sr_texture_slot_uv(ctx, &s, NULL, 0, NULL), SR_OK);
+    s.rotation = NAN;
+    CHECK_EQ(sr_texture_slot_uv(ctx, &s, uv, 3, out), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "not finite");
+}
+
 /* A quad whose u runs along +x has tangent (1, 0, 0, +1); with u along -x
  * it has (-1, 0, 0) and w = -1 (N x T = -y against B = +y). */
 SR_TEST(tangents_of_a_quad)
