@@ -521,6 +521,38 @@ SR_TEST(texture_transform_follows_the_extension)
     sr_destroy_texture(sr_test_ctx(), t);
 }
 
+/* A slot on coordinate set 1 drawn without texcoords1 reads set 0, as
+ * sr_pbr_desc promises, also when no other slot reads set 0 (the
+ * program used to lay out no coordinates then and drop the texture:
+ * softrast render's --normals flat drops set 1). */
+SR_TEST(a_slot_on_set_1_without_its_array_reads_set_0)
+{
+    uint8_t img[2 * 2 * 4] = { 200, 0, 0, 255, 0, 200, 0, 255, 0, 0, 200, 255, 200, 200, 0, 255 };
+    sr_texture *t = NULL;
+    REQUIRE(sr_make_texture(sr_test_ctx(), &(sr_texture_desc){ .width = 2, .height = 2,
+                                                               .pixels = img }, &t) == SR_OK);
+    sr_framebuffer *fb[2] = { make_fb(1, 1, 0.0f), make_fb(1, 1, 0.0f) };
+    REQUIRE(fb[0] && fb[1]);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m = sr_pbr_default_material();
+    m.unlit = true;
+    m.base_color_texture = (sr_texture_slot){ .texture = t, .filter = SR_FILTER_NEAREST };
+    sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj };
+    for (int set = 0; set < 2; set++) {
+        m.base_color_texture.texcoord = set;
+        draw_quad(fb[set], &d, false);
+    }
+    size_t n = 4 * (size_t)sr_framebuffer_width(fb[0]) * (size_t)sr_framebuffer_height(fb[0]);
+    CHECK(memcmp(sr_framebuffer_pixels(fb[0]), sr_framebuffer_pixels(fb[1]), n) == 0);
+    const uint8_t *c = px(fb[1], 7, 7);
+    CHECK(c[0] > 100 || c[1] > 100 || c[2] > 100);   /* a texel, not black */
+    CHECK(!(c[0] > 250 && c[1] > 250 && c[2] > 250));  /* nor the untextured white */
+    for (int k = 0; k < 2; k++) {
+        sr_destroy_framebuffer(sr_test_ctx(), fb[k]);
+    }
+    sr_destroy_texture(sr_test_ctx(), t);
+}
+
 /* sr_texture_slot_uv gives the coordinates the program samples: the
  * extension's example (as the test above stores it) takes the corners of
  * the unit square, in sr_texture's frame, to the spec's quadrant turned

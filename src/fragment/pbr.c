@@ -1222,7 +1222,10 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
     bool lit = !p->m.unlit;
     for (int i = 0; i < SLOT_COUNT; i++) {
         if (p->slot[i].tex && (lit || i == SLOT_BASE)) {
-            uses[material_slot(&p->m, i)->texcoord] = true;
+            /* A slot on set 1 without texcoords1 reads set 0 (below), which
+             * must then be laid out even when no slot names it. */
+            int set = material_slot(&p->m, i)->texcoord;
+            uses[set == 1 && !d->texcoords1 ? 0 : set] = true;
         }
     }
     for (int k = 0; k < 2; k++) {
