@@ -72,12 +72,15 @@ static bool write_quad(const char *path, const char *material, const char *sampl
     return write_text(path, json);
 }
 
-static uint8_t *render_png(const char *model, const char *shading, const char *out, int *w,
-                           int *h)
+static uint8_t *render_png(const char *model, const char *shading, const char *normals,
+                           const char *out, int *w, int *h)
 {
     run_result r;
-    if (!run(ARGS("render", model, "--shading", shading, "--tonemap", "none", "--size",
-                  "96x96", "--aa", "none", "--camera", "eye=0,0,2.6,target=0,0,0", "-o", out),
+    /* normals NULL: the default (flat normals split in the glTF merge) */
+    if (!run(ARGS("render", model, "--shading", shading, normals ? "--normals" : "--aa",
+                  normals ? normals : "none", "--tonemap", "none", "--size", "96x96", "--aa",
+                  "none", "--camera",
+                  "eye=0,0,2.6,target=0,0,0", "-o", out),
              &r)) {
         return NULL;
     }
@@ -100,19 +103,25 @@ SR_TEST(classic_shading_samples_the_base_texture_where_pbr_does)
         SKIP("this build reads no glTF (jansson was not found)");
     }
     static const struct {
-        const char *name, *sampler, *texture_info;
+        const char *name, *sampler, *texture_info, *normals;
     } cases[] = {
-        { "mirror", "{" NEAREST ",\"wrapS\":33648,\"wrapT\":33648}", "{\"index\":0}" },
-        { "clamp", "{" NEAREST ",\"wrapS\":33071,\"wrapT\":33071}", "{\"index\":0}" },
-        { "mirror_clamp", "{" NEAREST ",\"wrapS\":33648,\"wrapT\":33071}", "{\"index\":0}" },
+        { "mirror", "{" NEAREST ",\"wrapS\":33648,\"wrapT\":33648}", "{\"index\":0}", NULL },
+        { "clamp", "{" NEAREST ",\"wrapS\":33071,\"wrapT\":33071}", "{\"index\":0}", NULL },
+        { "mirror_clamp", "{" NEAREST ",\"wrapS\":33648,\"wrapT\":33071}", "{\"index\":0}", NULL },
         { "transform", "{" NEAREST "}",
           "{\"index\":0,\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.3,-0.2],"
-          "\"rotation\":0.7,\"scale\":[1.5,0.8]}}}" },
-        { "texcoord1", "{" NEAREST ",\"wrapS\":33648}", "{\"index\":0,\"texCoord\":1}" },
+          "\"rotation\":0.7,\"scale\":[1.5,0.8]}}}", NULL },
+        { "texcoord1", "{" NEAREST ",\"wrapS\":33648}", "{\"index\":0,\"texCoord\":1}",
+          NULL },
         /* The extension's texCoord overrides the textureInfo's. */
         { "transform_texcoord1", "{" NEAREST ",\"wrapT\":33648}",
           "{\"index\":0,\"extensions\":{\"KHR_texture_transform\":{\"rotation\":-0.4,"
-          "\"scale\":[3,2],\"texCoord\":1}}}" },
+          "\"scale\":[3,2],\"texCoord\":1}}}", NULL },
+        /* Split vertices drop set 1: both looks read the slot from set 0,
+         * the transform still applied. */
+        { "transform_texcoord1_flat", "{" NEAREST ",\"wrapT\":33648}",
+          "{\"index\":0,\"extensions\":{\"KHR_texture_transform\":{\"rotation\":-0.4,"
+          "\"scale\":[3,2],\"texCoord\":1}}}", "flat" },
     };
     char dir[1024], tex[1100], model[1100], out[1100];
     fresh_dir("gltf_texture", dir, sizeof dir);
@@ -126,9 +135,9 @@ SR_TEST(classic_shading_samples_the_base_texture_where_pbr_does)
         REQUIRE(write_quad(model, material, cases[k].sampler));
         int w, h, w2, h2;
         snprintf(out, sizeof out, "%s/%s_pbr.png", dir, cases[k].name);
-        uint8_t *pbr = render_png(model, "pbr", out, &w, &h);
+        uint8_t *pbr = render_png(model, "pbr", cases[k].normals, out, &w, &h);
         snprintf(out, sizeof out, "%s/%s_unlit.png", dir, cases[k].name);
-        uint8_t *unlit = render_png(model, "unlit", out, &w2, &h2);
+        uint8_t *unlit = render_png(model, "unlit", cases[k].normals, out, &w2, &h2);
         REQUIRE(pbr && unlit && w == w2 && h == h2);
         /* The quad covers most of the image in many texels, so that a
          * texel misplaced anywhere shows. */

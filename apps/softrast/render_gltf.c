@@ -240,10 +240,12 @@ sr_result render_gltf_base_uv(sr_context *ctx, const scene *s, scene_object *ob)
      * flat), transformed in one call. */
     for (size_t p = 0; p < m->part_count; p++) {
         const sr_texture_slot *t = &s->gltf->materials[ob->part_material[p]].base_color_texture;
-        const float *src = t->texcoord == 1 ? ob->texcoords1 : m->texcoords;
+        /* Without set 1 (none in the file, or dropped by --normals flat)
+         * pbr reads set 1's slots from set 0. */
+        const float *src = t->texcoord == 1 && ob->texcoords1 ? ob->texcoords1 : m->texcoords;
         const sr_mesh_part *part = &m->parts[p];
         if (!t->texture || !src || part->triangle_count == 0) {
-            continue;   /* nothing sampled (set 1 dropped by a split reads as 0, as pbr's) */
+            continue;   /* nothing sampled */
         }
         const uint32_t *idx = &m->indices[3 * part->first_triangle];
         uint32_t lo = idx[0], hi = idx[0];

@@ -76,11 +76,12 @@ static const sr_texture_slot *base_slot(const sr_scene *s, const sr_scene_primit
 }
 
 /* The texture coordinates a primitive's mesh vertices take: the set its
- * base color texture reads (TEXCOORD_0 without one). */
+ * base color texture reads (TEXCOORD_0 without one, or when the primitive
+ * lacks TEXCOORD_1, which the reader warns about, as pbr falls back). */
 static const float *mesh_uv(const sr_scene *s, const sr_scene_primitive *p)
 {
     const sr_texture_slot *t = base_slot(s, p);
-    return t && t->texcoord == 1 ? p->texcoords1 : p->texcoords0;
+    return t && t->texcoord == 1 && p->texcoords1 ? p->texcoords1 : p->texcoords0;
 }
 
 /* The scene's instances as one mesh: an attribute some primitives lack is
