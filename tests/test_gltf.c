@@ -1383,3 +1383,62 @@ SR_TEST(load_mesh_keeps_the_base_color_images_as_parts)
     sr_destroy_mesh(sr_test_ctx(), &m);
     free(png.p);
 }
+
+/* sr_load_mesh reads the images its mesh shows, the base color ones, and
+ * no other: a material whose normal map is damaged and whose occlusion
+ * image is missing loads, silently, where sr_load_scene (which draws
+ * them) refuses the file; a damaged base color image stays an error.
+ * The texcoords are where the base color texture is sampled: glTF's
+ * KHR_texture_transform applied, then v flipped. */
+SR_TEST(load_mesh_reads_only_the_base_color_images)
+{
+    wbuf png = small_png();
+    char *b64 = small_png_base64();
+    REQUIRE(png.p && b64);
+    static const gltf_quad quad = { 0, 0, 1, 1, 0 };
+    const char *material =
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":%d,"
+        "\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.5,0.25],\"rotation\":0.5,"
+        "\"scale\":[2,3]}}}},\"normalTexture\":{\"index\":%d},"
+        "\"occlusionTexture\":{\"index\":2}}]";
+    for (int broken_base = 0; broken_base < 2; broken_base++) {
+        char tail[4096];
+        int at = snprintf(tail, sizeof tail,
+                          ",\"images\":[{\"uri\":\"data:image/png;base64,%s\"},"
+                          "{\"uri\":\"data:image/png;base64,iVBORw0KGgoAAAANSUhEUg==\"},"
+                          "{\"uri\":\"no_such_occlusion.png\"}],"
+                          "\"textures\":[{\"source\":0},{\"source\":1},{\"source\":2}],",
+                          b64);
+        snprintf(tail + at, sizeof tail - (size_t)at, material, broken_base ? 1 : 0,
+                 broken_base ? 0 : 1);
+        const char *path = write_doc("damaged_normal_map.gltf", gltf_quads(&quad, 1, tail));
+        warnings w = {0};
+        sr_load_desc desc = { .warn = on_warn, .user = &w };
+        sr_mesh m;
+        sr_io_error e;
+        sr_result r = sr_load_mesh(sr_test_ctx(), path, &desc, &m, &e);
+        if (broken_base) {
+            CHECK_EQ(r, SR_BAD_FORMAT);
+            CHECK_STR_CONTAINS(e.message, "damaged_normal_map.gltf: /images/1: ");
+            continue;
+        }
+        REQUIRE(r == SR_OK);
+        CHECK_EQ(w.count, 0);
+        CHECK(m.texture_size == png.n && memcmp(m.texture_data, png.p, png.n) == 0);
+        REQUIRE(m.texcoords && m.vertex_count == 4);
+        /* gltf_quads' corners take glTF uv (0, 1), (1, 1), (1, 0), (0, 0). */
+        static const float gl[4][2] = { { 0, 1 }, { 1, 1 }, { 1, 0 }, { 0, 0 } };
+        for (int i = 0; i < 4; i++) {
+            float su = 2 * gl[i][0], sv = 3 * gl[i][1], c = cosf(0.5f), sn = sinf(0.5f);
+            float gu = c * su + sn * sv + 0.5f, gv = -sn * su + c * sv + 0.25f;
+            CHECK_NEAR(m.texcoords[2 * i], gu, 1e-5);
+            CHECK_NEAR(m.texcoords[2 * i + 1], 1 - gv, 1e-5);
+        }
+        sr_destroy_mesh(sr_test_ctx(), &m);
+        sr_scene *s = NULL;
+        CHECK_EQ(sr_load_scene(sr_test_ctx(), path, NULL, &s, &e), SR_BAD_FORMAT);
+        CHECK_STR_CONTAINS(e.message, "/images/1: ");
+    }
+    free(b64);
+    free(png.p);
+}

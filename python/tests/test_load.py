@@ -297,3 +297,34 @@ def test_load_and_load_mesh_pose_skins_and_morph_targets(tmp_path):
     mesh = softrast.load_mesh(path)
     assert np.allclose(mesh.vertices[:6], posed, atol=1e-6)
     assert np.allclose(mesh.vertices[6:, 2], 1)
+
+
+def test_load_mesh_reads_only_the_base_color_image(tmp_path):
+    """load_mesh's uvs are where the base color texture is sampled (its
+    KHR_texture_transform applied, as load's), and a damaged normal map,
+    which load_mesh does not read, does not stop it; load refuses it."""
+    from gltf_build import quad, write
+    image = np.zeros((2, 2, 4), np.uint8)
+    image[..., 0] = [[200, 20], [20, 200]]
+    image[..., 3] = 255
+    path = tmp_path / "quad.gltf"
+    transform = {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 0.5,
+                                           "scale": [2, 3]}}
+    material = {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+                                                              "extensions": transform}}}
+    write(path, [(quad((0, 0, 0), 2), 0)], [material], images=[image])
+    scene = softrast.load(path)
+    mesh = softrast.load_mesh(path)
+    assert scene.instances[0].mesh.uvs is not None
+    assert np.allclose(mesh.uvs, scene.instances[0].mesh.uvs, atol=1e-6)
+    assert not np.allclose(mesh.uvs, [[0, 0], [1, 0], [1, 1], [0, 1]], atol=0.1)
+    assert np.array_equal(mesh.texture, image)
+
+    doc = json.loads(path.read_text())
+    doc["images"].append({"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUg=="})
+    doc["textures"].append({"source": 1})
+    doc["materials"][0]["normalTexture"] = {"index": 1}
+    path.write_text(json.dumps(doc))
+    assert np.allclose(softrast.load_mesh(path).uvs, mesh.uvs)
+    with pytest.raises(ValueError, match="/images/1"):
+        softrast.load(path)

@@ -512,9 +512,13 @@ static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool ha
                                        &m->clearcoat_roughness_texture,
                                        &m->clearcoat_normal_texture, &m->sheen_color_texture,
                                        &m->sheen_roughness_texture };
+    size_t n;
     for (size_t i = 0; i < sizeof slots / sizeof *slots; i++) {
         int set = slots[i]->texcoord;
-        if (slots[i]->texture && !(set == 0 ? has0 : has1)) {
+        /* for_mesh makes no textures: its base color image is a source. */
+        bool textured = slots[i]->texture ||
+                        (i == 0 && sr__scene_source(d->scene, (size_t)material, &n));
+        if (textured && !(set == 0 ? has0 : has1)) {
             sr__gltf_warn(d, "%s: no TEXCOORD_%d, which material %d's textures read (drawn "
                           "with one color of the texture)", aptr, set, material);
             return;
@@ -1395,7 +1399,10 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
     }
     d->buffers = calloc(d->buffer_count ? d->buffer_count : 1, sizeof *d->buffers);
     d->image_textures = calloc(d->image_count ? 2 * d->image_count : 1, sizeof(sr_texture *));
-    if (!d->buffers || !d->image_textures) {
+    d->image_sources = d->for_mesh ? calloc(d->image_count ? d->image_count : 1,
+                                            sizeof *d->image_sources)
+                                   : NULL;
+    if (!d->buffers || !d->image_textures || (d->for_mesh && !d->image_sources)) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/buffers: out of memory");
     }
     if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = sr__gltf_read_variants(d)) != SR_OK ||
@@ -1409,10 +1416,11 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
 }
 
 sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, const uint8_t *data,
-                         size_t size, const sr_load_desc *desc, bool keep_sources,
-                         sr_scene **out, sr_io_error *err)
+                         size_t size, const sr_load_desc *desc, bool for_mesh, sr_scene **out,
+                         sr_io_error *err)
 {
-    gltf_doc d = { .ctx = ctx, .name = name, .desc = desc, .err = err, .dir = dir };
+    gltf_doc d = { .ctx = ctx, .name = name, .desc = desc, .err = err, .dir = dir,
+                   .for_mesh = for_mesh };
     *out = NULL;
     d.input_bytes = size;
     d.elements_left = SR_SCENE_ELEMENTS_BASE;
@@ -1420,9 +1428,6 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
         d.elements_left += size * SR_SCENE_ELEMENTS_PER_BYTE;
     }
     d.scene = sr__scene_new();
-    if (d.scene && keep_sources) {
-        sr__scene_keep_sources(d.scene);
-    }
     sr_result r = d.scene ? read_document(&d, data, size)
                           : sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0, "out of memory");
     for (size_t i = 0; d.buffers && i < d.buffer_count; i++) {
@@ -1434,6 +1439,7 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
     }
     free(d.buffers);
     free(d.image_textures);
+    free(d.image_sources);
     free(d.lights);
     sr__gltf_meshopt_free(&d);
     sr__gltf_draco_end(&d);

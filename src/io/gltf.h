@@ -38,6 +38,13 @@ typedef struct gltf_buffer {
 
 struct gltf_decoded_view;
 
+/* An image's encoded bytes as sr_load_mesh hands them on (a block of the
+ * scene's), or NULL when not read yet. */
+typedef struct gltf_image_source {
+    const uint8_t *bytes;
+    size_t size;
+} gltf_image_source;
+
 typedef struct gltf_doc {
     sr_context *ctx;
     const char *name;            /* the file, in messages */
@@ -57,6 +64,11 @@ typedef struct gltf_doc {
     /* Textures made so far, two per image (linear, sRGB); NULL: not yet. */
     sr_texture **image_textures;
     size_t image_count;
+    /* for_mesh (sr__parse_gltf): the scene sr_load_mesh flattens, and
+     * each image's encoded bytes once read and checked (NULL: not yet). */
+    bool for_mesh;
+    gltf_image_source *image_sources;
+    long slot_image;             /* the image the last slot read names, or -1 */
     struct gltf_light *lights;   /* KHR_lights_punctual's, read (gltf_lights.c) */
     size_t light_count;
     /* bufferViews decoded from EXT_meshopt_compression (gltf_meshopt.c),
