@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 if TYPE_CHECKING:
-    from .typing import AlphaMode, Image
+    from .typing import AlphaMode, Image, TextureFilter, TextureWrap
 
 
 class Material:
@@ -18,6 +18,10 @@ class Material:
     base_color: (4,) float32 linear RGBA factor.
     base_color_texture: (H, W, 4) uint8 sRGB image, row 0 at the top, or None.
     texcoord: the texture coordinate set the texture reads (0 or 1).
+    texture_filter: how the texture is sampled, "nearest", "bilinear" or
+    "trilinear" (a glTF sampler's minFilter, as softrast render reads it).
+    wrap_u, wrap_v: outside [0, 1], "repeat", "clamp" (to the edge texels)
+    or "mirror" (mirrored repeat): a glTF sampler's wrapS and wrapT.
     metallic, roughness: factors in [0, 1].
     emissive: (3,) float32 linear RGB (times ``emissive_strength``).
     alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
@@ -58,7 +62,8 @@ class Material:
     transmission and thickness textures are drawn for a loaded instance.
     """
 
-    __slots__ = ("base_color", "base_color_texture", "texcoord", "metallic", "roughness",
+    __slots__ = ("base_color", "base_color_texture", "texcoord", "texture_filter", "wrap_u",
+                 "wrap_v", "metallic", "roughness",
                  "emissive", "emissive_strength", "alpha_mode", "alpha_cutoff", "double_sided",
                  "unlit", "normal_scale", "occlusion_strength", "ior", "specular",
                  "specular_color", "clearcoat", "clearcoat_roughness", "sheen_color",
@@ -70,6 +75,9 @@ class Material:
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
     texcoord: int
+    texture_filter: TextureFilter
+    wrap_u: TextureWrap
+    wrap_v: TextureWrap
     metallic: float
     roughness: float
     emissive: NDArray[np.float32]
@@ -100,6 +108,8 @@ class Material:
 
     def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
                  base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
+                 texture_filter: TextureFilter = "trilinear", wrap_u: TextureWrap = "repeat",
+                 wrap_v: TextureWrap = "repeat",
                  metallic: float = 1.0, roughness: float = 1.0,
                  emissive: Factors = (0.0, 0.0, 0.0), emissive_strength: float = 1.0,
                  alpha_mode: AlphaMode = "opaque", alpha_cutoff: float = 0.5,
@@ -120,6 +130,15 @@ class Material:
             raise TypeError("base_color_texture: expected an (H, W, 3|4) uint8 array or None")
         self.base_color_texture = base_color_texture
         self.texcoord = int(texcoord)
+        if texture_filter not in TEXTURE_FILTERS:
+            raise ValueError(f"texture_filter: must be one of {', '.join(TEXTURE_FILTERS)}, "
+                             f"got {texture_filter!r}")
+        for name, wrap in (("wrap_u", wrap_u), ("wrap_v", wrap_v)):
+            if wrap not in TEXTURE_WRAPS:
+                raise ValueError(f"{name}: must be one of {', '.join(TEXTURE_WRAPS)}, "
+                                 f"got {wrap!r}")
+        self.texture_filter = texture_filter
+        self.wrap_u, self.wrap_v = wrap_u, wrap_v
         self.metallic = float(_factors(metallic, "metallic", 1, 1.0)[0])
         self.roughness = float(_factors(roughness, "roughness", 1, 1.0)[0])
         self.emissive = _factors(emissive, "emissive", 3, np.inf)
@@ -168,8 +187,15 @@ class Material:
         """From sr_load_scene's material dict (_softrast.load_scene)."""
         slot = factors["base_color_texture"]
         kw = {k: v for k, v in factors.items() if k != "base_color_texture"}
-        return cls(base_color_texture=base_color_texture, texcoord=slot["texcoord"] if slot else 0,
-                   **kw)
+        if slot:
+            kw.update(texcoord=slot["texcoord"], texture_filter=slot["filter"],
+                      wrap_u=slot["wrap_u"], wrap_v=slot["wrap_v"])
+        return cls(base_color_texture=base_color_texture, **kw)
+
+    def _sampler(self) -> tuple[int, int, int]:
+        """(filter, wrap_u, wrap_v) as sr_texture_filter and sr_texture_wrap."""
+        return (TEXTURE_FILTERS.index(self.texture_filter) + 1,
+                TEXTURE_WRAPS.index(self.wrap_u) + 1, TEXTURE_WRAPS.index(self.wrap_v) + 1)
 
     def __repr__(self) -> str:
         tex = "none" if self.base_color_texture is None else \
@@ -177,6 +203,10 @@ class Material:
         return (f"Material(base_color={self.base_color.tolist()}, texture={tex}, "
                 f"alpha_mode={self.alpha_mode!r})")
 
+
+#: Texture filters and wraps, in sr_texture_filter's and sr_texture_wrap's order.
+TEXTURE_FILTERS = ("nearest", "bilinear", "trilinear")
+TEXTURE_WRAPS = ("repeat", "clamp", "mirror")
 
 #: Colors and factors: a sequence or array of numbers.
 Factors = Union[Sequence[float], NDArray[Any]]

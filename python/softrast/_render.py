@@ -546,6 +546,9 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     inv_t = [np.linalg.inv(inst.pose[:3, :3]).T for inst in sc]
     ids = [i if inst.instance_id is None else inst.instance_id for i, inst in enumerate(sc)]
     images = [name for name in ("color", "rgba") if name in out]
+    # How each Mesh's texture is sampled: its Material's sampler (a loaded
+    # file's), else the library's defaults.
+    samplers = [(0, 0, 0) if inst.material is None else inst.material._sampler() for inst in sc]
     # The metallic-roughness look draws meshes without normals flat, from
     # copies: the geometry outputs are drawn from the meshes as given.
     pbr = shading == "pbr" and images
@@ -572,8 +575,9 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
             looks_now: Sequence[Any] = ids
             if color_pbr:
                 looks_now = looks
-            instances = [(mesh, a, nm, iid) + (look if color_pbr else ())
-                         for mesh, (a, nm), iid, look in zip(meshes, poses, ids, looks_now)]
+            instances = [(mesh, a, nm, iid, look[0] if color_pbr else None, sampler)
+                         for mesh, (a, nm), iid, look, sampler
+                         in zip(meshes, poses, ids, looks_now, samplers)]
             extra: Dict[str, Any] = dict(pbr=True, view=np.ascontiguousarray(Rt), environment=env,
                          shadows=bool(shadows), ground=bool(ground), lights=program_lights,
                          lights_mode=lights_mode, exposure=float(exposure),

@@ -59,6 +59,10 @@ NormalFrame = Literal["camera", "world"]
 Cull = Literal["none", "back"]
 Antialias = Literal["none", "msaa2", "msaa4", "msaa8", "msaa16", "ssaa2", "ssaa3", "ssaa4"]
 AlphaMode = Literal["opaque", "mask", "blend"]
+#: Material's texture_filter and wrap_u, wrap_v, as softrast render's
+#: --texture-filter and --wrap.
+TextureFilter = Literal["nearest", "bilinear", "trilinear"]
+TextureWrap = Literal["repeat", "clamp", "mirror"]
 #: render's lights=, as softrast render's --lights (or a list of softrast.Light).
 LightsMode = Literal["auto", "file", "default", "both"]
 #: render's tonemap=, as softrast render's --tonemap.

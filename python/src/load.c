@@ -122,19 +122,24 @@ static const char *alpha_mode_name(sr_alpha_mode mode)
 }
 
 /* A texture slot's use as the Python layer needs it: None when empty,
- * else its coordinate set and its transform (sr_texture_slot's uv' =
- * T(offset) R(rotation) S(scale) uv, in sr_make_texture's frame). */
+ * else its coordinate set, its transform (sr_texture_slot's uv' =
+ * T(offset) R(rotation) S(scale) uv, in sr_make_texture's frame) and its
+ * sampler (filter, wrap_u, wrap_v by softrast render's names). */
 static PyObject *slot_dict(const sr_texture_slot *t)
 {
+    static const char *const filters[] = { "trilinear", "nearest", "bilinear", "trilinear" };
+    static const char *const wraps[] = { "repeat", "repeat", "clamp", "mirror" };
     if (!t->texture) {
         Py_RETURN_NONE;
     }
     bool unit = t->scale[0] == 0.0f && t->scale[1] == 0.0f;
-    return Py_BuildValue("{sisNsdsN}", "texcoord", t->texcoord, "offset",
+    return Py_BuildValue("{sisNsdsNssssss}", "texcoord", t->texcoord, "offset",
                          Py_BuildValue("(dd)", (double)t->offset[0], (double)t->offset[1]),
                          "rotation", (double)t->rotation, "scale",
                          Py_BuildValue("(dd)", unit ? 1.0 : (double)t->scale[0],
-                                       unit ? 1.0 : (double)t->scale[1]));
+                                       unit ? 1.0 : (double)t->scale[1]),
+                         "filter", filters[t->filter], "wrap_u", wraps[t->wrap_u], "wrap_v",
+                         wraps[t->wrap_v]);
 }
 
 /* sr_pbr_material's factors as a dict (the textures' pixels are the

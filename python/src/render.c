@@ -476,7 +476,8 @@ static sr_result color_draw(sr_context *ctx, sr_framebuffer *fb, const render_jo
         .front_face = sr_py_mirrors(in->a) ? SR_FRONT_CW : SR_FRONT_CCW,
         .shading = !j->lit ? SR_SHADING_UNLIT : m->normals ? SR_SHADING_PHONG : SR_SHADING_FLAT,
         .two_sided = true,
-        .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex,
+        .ambient = { 0.25f, 0.25f, 0.25f }, .texture = tex, .texture_filter = in->filter,
+        .wrap_u = in->wrap_u, .wrap_v = in->wrap_v,
         /* A headlight: the view is the identity, so "world" is camera space. */
         .lights = { { .type = SR_LIGHT_DIRECTIONAL, .vector = { 0, 0, 1 }, .intensity = 0.75f } },
     };
@@ -738,19 +739,30 @@ static int take_instances(PyObject *seq, render_job *j)
     j->count = (size_t)n;
     for (Py_ssize_t i = 0; i < n; i++) {
         PyObject *item = PySequence_Fast_GET_ITEM(fast, i);
-        PyObject *mesh, *a, *nm, *look = NULL;
-        int id;
+        PyObject *mesh, *a, *nm, *look = Py_None;
+        int id, filter = 0, wrap_u = 0, wrap_v = 0;
         instance *in = &j->inst[i];
         if (!PyTuple_Check(item) ||
-            !PyArg_ParseTuple(item, "O!OOi|O", &sr_py_MeshType, &mesh, &a, &nm, &id, &look)) {
+            !PyArg_ParseTuple(item, "O!OOi|O(iii)", &sr_py_MeshType, &mesh, &a, &nm, &id, &look,
+                              &filter, &wrap_u, &wrap_v)) {
             PyErr_Clear();
             PyErr_Format(PyExc_TypeError,
                          "instances[%zd]: expected (Mesh, (3, 4) matrix, (3, 3) matrix, int"
-                         "[, look])", i);
+                         "[, look or None[, (filter, wrap_u, wrap_v)]])", i);
             goto fail;
         }
-        if (j->pbr && (!look || take_look(look, i, in) < 0)) {
-            if (!look) {
+        if (filter < SR_FILTER_DEFAULT || filter > SR_FILTER_TRILINEAR ||
+            wrap_u < SR_WRAP_DEFAULT || wrap_u > SR_WRAP_MIRROR ||
+            wrap_v < SR_WRAP_DEFAULT || wrap_v > SR_WRAP_MIRROR) {
+            PyErr_Format(PyExc_ValueError, "instances[%zd]: sampler (%d, %d, %d)", i, filter,
+                         wrap_u, wrap_v);
+            goto fail;
+        }
+        in->filter = (sr_texture_filter)filter;
+        in->wrap_u = (sr_texture_wrap)wrap_u;
+        in->wrap_v = (sr_texture_wrap)wrap_v;
+        if (j->pbr && (look == Py_None || take_look(look, i, in) < 0)) {
+            if (look == Py_None) {
                 PyErr_Format(PyExc_TypeError, "instances[%zd]: pbr needs the look", i);
             }
             goto fail;

@@ -17,6 +17,10 @@ typedef struct instance {
     const float *positions;     /* for the color pass */
     const uint32_t *indices;
     PyObject *held[2];          /* the arrays they point into, for the call */
+    /* How the Mesh's texture is sampled: its Material's sampler (a loaded
+     * file's), else the library's defaults. */
+    sr_texture_filter filter;
+    sr_texture_wrap wrap_u, wrap_v;
     /* For the metallic-roughness look: the object -> world pose, the
      * Material's factors, alpha mode and flags (no textures), and the
      * loaded primitive it came from (its textures and arrays), or NULL. */

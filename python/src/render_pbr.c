@@ -58,8 +58,8 @@ static void draw_of(const instance *in, pbr_draw *out)
 }
 
 /* The instance's material: a loaded primitive's (every texture) or one
- * whose base color texture is the Mesh's `tex`, with the factors, alpha
- * mode and flags of its Material. */
+ * whose base color texture is the Mesh's `tex` (with the instance's
+ * sampler), with the factors, alpha mode and flags of its Material. */
 static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
 {
     const sr_pbr_material *f = &in->factors;
@@ -68,6 +68,9 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
         m = *in->src->material;
     } else {
         m.base_color_texture.texture = tex;
+        m.base_color_texture.filter = in->filter;
+        m.base_color_texture.wrap_u = in->wrap_u;
+        m.base_color_texture.wrap_v = in->wrap_v;
     }
     memcpy(m.base_color, f->base_color, sizeof m.base_color);
     memcpy(m.emissive, f->emissive, sizeof m.emissive);

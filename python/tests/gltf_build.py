@@ -63,10 +63,12 @@ def box(centre, size):
             "indices": np.asarray(idx, np.uint16)}
 
 
-def write(path, prims, materials, images=(), camera=None, orthographic=False):
+def write(path, prims, materials, images=(), camera=None, orthographic=False, textures=None,
+          samplers=()):
     """prims: list of (primitive dict, material index); camera: (eye,
     target, yfov) or None, (eye, target, ymag) when orthographic.  Each
-    primitive is a node of its own."""
+    primitive is a node of its own.  textures: the file's texture list
+    (default: one an image, without a sampler); samplers: its samplers."""
     data = b""
     views, accessors, meshes, nodes = [], [], [], []
 
@@ -88,6 +90,8 @@ def write(path, prims, materials, images=(), camera=None, orthographic=False):
                  "NORMAL": add(prim["normals"], "VEC3")}
         if "uvs" in prim:
             attrs["TEXCOORD_0"] = add(prim["uvs"], "VEC2")
+        if "uvs1" in prim:
+            attrs["TEXCOORD_1"] = add(prim["uvs1"], "VEC2")
         p = {"attributes": attrs, "indices": add(prim["indices"], "SCALAR"), "material": material}
         meshes.append({"primitives": [p]})
         nodes.append({"mesh": len(meshes) - 1})
@@ -97,7 +101,10 @@ def write(path, prims, materials, images=(), camera=None, orthographic=False):
                         base64.b64encode(data).decode()}]}
     if images:
         doc["images"] = [{"uri": png_uri(im)} for im in images]
-        doc["textures"] = [{"source": i} for i in range(len(images))]
+        doc["textures"] = textures if textures is not None else \
+            [{"source": i} for i in range(len(images))]
+    if samplers:
+        doc["samplers"] = list(samplers)
     if camera is not None:
         eye, target, size = camera
         K, R, t = softrast.look_at(eye, target, width=2, height=2)
