@@ -7,6 +7,8 @@ from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
 import numpy as np
 from numpy.typing import NDArray
 
+from . import _softrast
+
 if TYPE_CHECKING:
     from .typing import AlphaMode, Image, TextureFilter, TextureWrap
 
@@ -231,13 +233,13 @@ def _factors(value: Union[float, Factors], name: str, count: int,
 
 def texture_transform(uvs: Any, slot: Optional[Mapping[str, Any]]) -> Any:
     """uvs (N, 2) through a slot's T(offset) R(rotation) S(scale), in the
-    library's texture frame ((0, 0) the image's bottom-left)."""
+    library's texture frame ((0, 0) the image's bottom-left), by the
+    library (sr_texture_slot_uv: the coordinates softrast render and the
+    physically based program sample)."""
     if slot is None:
         return uvs
-    c, s = np.cos(slot["rotation"]), np.sin(slot["rotation"])
-    scaled = uvs.astype(np.float64) * slot["scale"]
-    out = np.stack([c * scaled[:, 0] - s * scaled[:, 1], s * scaled[:, 0] + c * scaled[:, 1]], -1)
-    return (out + slot["offset"]).astype(np.float32)
+    return _softrast.texture_slot_uv(np.ascontiguousarray(uvs, np.float32), slot["offset"],
+                                     slot["rotation"], slot["scale"])
 
 
 def material_arrays(arrays: Mapping[str, Any], factors: Mapping[str, Any],
@@ -254,7 +256,9 @@ def material_arrays(arrays: Mapping[str, Any], factors: Mapping[str, Any],
     if factors["alpha_mode"] == "opaque":
         colors[:, 3] = 1.0
     out["colors"] = colors.astype(np.float32)
-    uvs = arrays["uvs1"] if slot and slot["texcoord"] == 1 else arrays["uvs"]
+    # Without set 1 the slot reads set 0, as the library's programs do.
+    uvs = arrays["uvs1"] if slot and slot["texcoord"] == 1 and arrays["uvs1"] is not None \
+        else arrays["uvs"]
     if texture is not None and uvs is not None:
         out["uvs"] = texture_transform(uvs, slot)
         out["texture"] = np.ascontiguousarray(texture[..., :3]) \

@@ -41,6 +41,11 @@ PyDoc_STRVAR(load_scene_doc,
 "name or a number from 0) picks the materials of a glTF material variant.\n"
 "Use softrast.load.");
 
+PyDoc_STRVAR(texture_slot_uv_doc,
+"texture_slot_uv(uvs, offset, rotation, scale, /)\n--\n\n"
+"sr_texture_slot_uv: (N, 2) float32 uvs through a texture slot's\n"
+"KHR_texture_transform, as the library applies it (a new array).");
+
 PyDoc_STRVAR(make_environment_doc,
 "make_environment(path, intensity, threads, /)\n--\n\n"
 "An image-based light for render(pbr=True): the built-in studio (path '')\n"
@@ -97,6 +102,7 @@ static PyMethodDef methods[] = {
     { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
     { "load_scene", sr_py_load_scene, METH_VARARGS, load_scene_doc },
+    { "texture_slot_uv", sr_py_texture_slot_uv, METH_VARARGS, texture_slot_uv_doc },
     { "make_environment", sr_py_make_environment, METH_VARARGS, make_environment_doc },
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },
     { "decode_image", sr_py_decode_image, METH_VARARGS, decode_image_doc },

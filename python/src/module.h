@@ -133,6 +133,8 @@ const sr_environment *sr_py_environment_of(PyObject *capsule);
 
 PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
+/* texture_slot_uv(uvs, offset, rotation, scale): sr_texture_slot_uv. */
+PyObject *sr_py_texture_slot_uv(PyObject *self, PyObject *args);
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);
 PyObject *sr_py_read_image(PyObject *self, PyObject *args);
 PyObject *sr_py_decode_image(PyObject *self, PyObject *args);

@@ -42,6 +42,8 @@ CASES = {
     "texcoord1": ({"index": 0, "texCoord": 1, "extensions": {"KHR_texture_transform": {
         "offset": [0.1, 0.25], "scale": [2.0, 2.0], "texCoord": 1}}},
         {"wrapS": CLAMP_TO_EDGE, "wrapT": MIRRORED_REPEAT, "magFilter": NEAREST}, UNIT, WIDE),
+    # Set 1 named but absent: set 0 is read, as the library's programs do.
+    "texcoord1_absent": ({"index": 0, "texCoord": 1}, {"magFilter": NEAREST}, WIDE, None),
 }
 
 
