@@ -676,7 +676,8 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
  * two (the Khronos validator's NODE_MATRIX_TRS); a node with both is drawn
  * with its matrix, after a warning, as three.js's GLTFLoader and Blender's
  * importer draw it, rather than refusing a file every viewer shows. */
-static sr_result local_matrix(gltf_doc *d, const json_t *node, const char *ptr, float *m)
+static sr_result local_matrix(gltf_doc *d, const json_t *node, long index, const char *ptr,
+                              float *m)
 {
     static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
     memcpy(m, identity, sizeof identity);
@@ -697,6 +698,18 @@ static sr_result local_matrix(gltf_doc *d, const json_t *node, const char *ptr, 
         (r = sr__gltf_numbers(d, node, ptr, "rotation", 4, q)) != SR_OK ||
         (r = sr__gltf_numbers(d, node, ptr, "scale", 3, s)) != SR_OK) {
         return r;
+    }
+    /* The animation's values replace the node's own (gltf_animation.c
+     * refused it for a node with a matrix). */
+    const gltf_node_pose *pose = d->pose ? &d->pose[index] : NULL;
+    if (pose && (pose->animated & GLTF_POSE_TRANSLATION)) {
+        memcpy(t, pose->translation, sizeof t);
+    }
+    if (pose && (pose->animated & GLTF_POSE_ROTATION)) {
+        memcpy(q, pose->rotation, sizeof q);
+    }
+    if (pose && (pose->animated & GLTF_POSE_SCALE)) {
+        memcpy(s, pose->scale, sizeof s);
     }
     /* The unit quaternion (x, y, z, w) as a rotation matrix, columns
      * scaled by s; normalized first, as viewers do with rounded files. */
@@ -938,7 +951,7 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
         float local[16], world[16];
         long mesh = -1, camera = -1;
         size_t k;
-        if ((r = local_matrix(d, node, ptr, local)) != SR_OK ||
+        if ((r = local_matrix(d, node, it.node, ptr, local)) != SR_OK ||
             (r = sr__gltf_index(d, node, ptr, "mesh", (size_t)-1 / 2, false, &mesh)) != SR_OK ||
             (r = sr__gltf_index(d, node, ptr, "camera", (size_t)-1 / 2, false, &camera)) !=
                 SR_OK) {
@@ -1133,15 +1146,14 @@ static void list_add(char *list, size_t cap, bool *full, const char *item)
     snprintf(list + at, cap - at, "%s%s", at ? ", " : "", item);
 }
 
-/* One warning naming what the file holds that a static scene leaves out
- * (skins, animations, morph targets, extensions other than the supported
- * ones), so that a model drawn in its rest pose, or without its lights,
- * says why. */
+/* One warning naming what the file holds that the scene leaves out
+ * (skins, morph targets, extensions other than the supported ones), so
+ * that a model drawn in its rest pose, or without its lights, says why. */
 static void warn_unread(gltf_doc *d)
 {
     char list[400] = "", item[GLTF_PTR + 80];
     bool full = false;
-    static const char *const kinds[] = { "skins", "animations" };
+    static const char *const kinds[] = { "skins" };
     for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
         if (json_array_size(json_object_get(d->root, kinds[k])) > 0) {
             snprintf(item, sizeof item, "/%s", kinds[k]);
@@ -1303,7 +1315,7 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/buffers: out of memory");
     }
     if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = sr__gltf_read_lights(d)) != SR_OK ||
-        (r = read_nodes(d)) != SR_OK) {
+        (r = sr__gltf_read_animations(d)) != SR_OK || (r = read_nodes(d)) != SR_OK) {
         return r;
     }
     sr__gltf_lights_done(d);

@@ -2,6 +2,7 @@
  * gltf.c reads the document, buffers, meshes, nodes and cameras;
  * gltf_accessor.c decodes accessors; gltf_material.c reads materials,
  * textures and images; gltf_lights.c reads KHR_lights_punctual;
+ * gltf_animation.c reads animations and poses the nodes;
  * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
  * scene_store.c holds the scene's memory.  Every
  * error is one line "NAME: /json/pointer: what is wrong", the first one
@@ -36,6 +37,20 @@ typedef struct gltf_buffer {
 
 struct gltf_decoded_view;
 
+/* A node's pose at the animation sr_load_desc asks for (gltf_animation.c):
+ * which of its translation, rotation, scale and weights are animated
+ * (bits 1 << 0 .. 1 << 3) and their sampled values. */
+typedef struct gltf_node_pose {
+    unsigned animated;
+    float translation[3];
+    float rotation[4];           /* x, y, z, w, normalized */
+    float scale[3];
+    float *weights;              /* one per morph target (scene memory), or NULL */
+    size_t weight_count;
+} gltf_node_pose;
+enum { GLTF_POSE_TRANSLATION = 1, GLTF_POSE_ROTATION = 2, GLTF_POSE_SCALE = 4,
+       GLTF_POSE_WEIGHTS = 8 };
+
 typedef struct gltf_doc {
     sr_context *ctx;
     const char *name;            /* the file, in messages */
@@ -64,6 +79,8 @@ typedef struct gltf_doc {
     /* The KHR_draco_mesh_compression primitive being read (gltf_draco.c):
      * its accessors' decoded bytes; NULL between primitives. */
     struct gltf_draco_primitive *draco;
+    /* One entry per node when an animation poses the scene, else NULL. */
+    gltf_node_pose *pose;
 } gltf_doc;
 
 /* The error "NAME: POINTER: reason" (the pointer is part of fmt's
@@ -171,5 +188,13 @@ sr_result sr__gltf_read_lights(gltf_doc *d);
 sr_result sr__gltf_place_light(gltf_doc *d, const json_t *node, const char *ptr, long node_index,
                                const float world[16]);
 void sr__gltf_lights_done(gltf_doc *d);
+
+/* gltf_animation.c: /animations checked and listed in scene->animations;
+ * with sr_load_desc's SR_POSE_ANIMATION, the one it names sampled at its
+ * time into d->pose, for the node walk. */
+sr_result sr__gltf_read_animations(gltf_doc *d);
+/* Node `node`'s morph weights as the animation sets them (*count of
+ * them), or NULL when it does not set them (the mesh's own apply). */
+const float *sr__gltf_node_pose_weights(const gltf_doc *d, long node, size_t *count);
 
 #endif
