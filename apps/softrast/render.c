@@ -49,6 +49,13 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
+    if (o->animation && !(render_gltf_is(o->model) && sr_io_have_gltf())) {
+        cli_error("--animation: %s", render_gltf_is(o->model)
+                                         ? "this softrast was built without its glTF reader "
+                                           "(install libjansson-dev and rebuild)"
+                                         : "only glTF files (.gltf, .glb) have animations");
+        return EXIT_USAGE;
+    }
     if (render_gltf_is(o->model) && (o->pbr || o->camera_index >= 0 || sr_io_have_gltf())) {
         /* softrast's own glTF reader for every look (docs/gltf.md says why
          * not Assimp's, which a build may also lack): the physically
@@ -56,7 +63,8 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
          * primitive's Blinn-Phong translation of its material
          * (render_gltf_classic).  Only a build without the reader (no
          * jansson) leaves the classic models Assimp's. */
-        return render_gltf_load(o->model, o->normals == -1, ctx, inputs, s);
+        return render_gltf_load(o->model, o->normals == -1, o->animation, o->animation_time,
+                                ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
@@ -965,6 +973,21 @@ void render_job_set_camera(render_job *job, sr_vec3 eye, sr_vec3 target, sr_vec3
     job->o.up = up;
 }
 
+bool render_job_animation(const render_job *job, float *duration)
+{
+    const sr_scene *g = job->have_scene ? job->s.gltf : NULL;
+    if (!g || g->animation < 0) {
+        return false;
+    }
+    *duration = g->animations[g->animation].duration;
+    return true;
+}
+
+void render_job_set_time(render_job *job, float seconds)
+{
+    job->o.animation_time = seconds;
+}
+
 int render_job_check_frames(const render_job *job, const char *cmd, int width, int height,
                             int frames)
 {
@@ -1197,6 +1220,18 @@ int cmd_render(int argc, char **argv)
         return status;
     }
     const render_opts *o = &job->o;
+    if (o->list_animations) {
+        if (!o->model || !render_gltf_is(o->model)) {
+            cli_error("--list-animations: give a glTF MODEL (.gltf, .glb): only glTF files have "
+                      "animations");
+            status = EXIT_USAGE;
+        } else {
+            status = start_context(job);
+        }
+        status = status >= 0 ? status : render_gltf_list_animations(o->model, job->mesh_ctx);
+        render_job_free(job);
+        return status;
+    }
     render_opts_warn(o);
     /* thumbnail.c runs this render as "thumbnail": its output is the
      * OUTPUT argument there, not an -o the user never gave. */

@@ -23,6 +23,10 @@ typedef struct render_opts {
     const char *environment;       /* "studio", "hemisphere" or an .hdr file */
     float environment_intensity;
     int camera_index;              /* --camera-index: a glTF camera, or -1 */
+    const char *animation;         /* --animation N|NAME: a glTF animation, or NULL */
+    float animation_time;          /* --time SECONDS into it */
+    bool have_time;
+    bool list_animations;          /* --list-animations: print them, draw nothing */
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;

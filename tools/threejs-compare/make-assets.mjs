@@ -265,4 +265,77 @@ writeFileSync(join(out, 'layer-spheres.glb'), glb(sphere(0.5, 48, 24), layers.ma
     ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat',
      'KHR_materials_sheen']));
 
+// An animated asset (glTF animations): a hub turning about +y (LINEAR
+// rotations, slerped) carries a cube squashed and stretched by STEP
+// scales and a sphere lifted along a CUBICSPLINE path.  ASSET.pose
+// beside it says which animation and time run.sh poses it at.
+function animatedGlb() {
+    const shapes = [cube(0.4), sphere(0.3, 32, 16)];
+    const chunks = [], views = [], accessors = [];
+    const add = (array, type, count, extra = {}) => {
+        let bytes = Buffer.from(array.buffer);
+        const offset = chunks.reduce((n, c) => n + c.length, 0);
+        views.push({ buffer: 0, byteOffset: offset, byteLength: bytes.length });
+        chunks.push(Buffer.concat([bytes, Buffer.alloc((4 - (bytes.length % 4)) % 4)]));
+        accessors.push({ bufferView: views.length - 1, componentType: array instanceof Uint16Array
+            ? 5123 : 5126, count, type, ...extra });
+        return accessors.length - 1;
+    };
+    const meshes = shapes.map((sh, i) => {
+        const lo = [0, 1, 2].map((k) => Math.min(...sh.pos.filter((_, j) => j % 3 === k)));
+        const hi = [0, 1, 2].map((k) => Math.max(...sh.pos.filter((_, j) => j % 3 === k)));
+        const pos = add(new Float32Array(sh.pos), 'VEC3', sh.pos.length / 3, { min: lo, max: hi });
+        const nrm = add(new Float32Array(sh.nrm), 'VEC3', sh.nrm.length / 3);
+        const idx = add(new Uint16Array(sh.idx), 'SCALAR', sh.idx.length);
+        return { primitives: [{ attributes: { POSITION: pos, NORMAL: nrm }, indices: idx, material: i }] };
+    });
+    const key = (times) => add(new Float32Array(times), 'SCALAR', times.length,
+                               { min: [times[0]], max: [times[times.length - 1]] });
+    const turn = (deg) => [0, Math.sin((deg * Math.PI) / 360), 0, Math.cos((deg * Math.PI) / 360)];
+    const spinIn = key([0, 1, 2]);
+    const spinOut = add(new Float32Array([...turn(0), ...turn(90), ...turn(200)]), 'VEC4', 3);
+    const squashIn = key([0, 0.5, 1.5]);
+    const squashOut = add(new Float32Array([1, 1, 1, 0.7, 1.5, 0.7, 1.3, 0.6, 1.3]), 'VEC3', 3);
+    const liftIn = key([0, 2]);
+    // in-tangent, value, out-tangent a key (units a second)
+    const liftOut = add(new Float32Array([0, 0, 0, 1.1, 0, 0, 0, 1.5, 0,
+                                          0, -1, 0, 1.1, 0.9, 0, 0, 0, 0]), 'VEC3', 6);
+    const bin = Buffer.concat(chunks);
+    const json = {
+        asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
+        scene: 0,
+        scenes: [{ nodes: [0] }],
+        nodes: [{ name: 'hub', children: [1, 2] }, { name: 'block', mesh: 0 },
+                { name: 'ball', mesh: 1, translation: [1.1, 0, 0] }],
+        meshes,
+        materials: [{ name: 'blue', pbrMetallicRoughness: pbr([0.1, 0.3, 0.9], 0, 0.4) },
+                    { name: 'gold', pbrMetallicRoughness: pbr([1, 0.75, 0.3], 1, 0.3) }],
+        animations: [{
+            name: 'spin',
+            samplers: [{ input: spinIn, output: spinOut },
+                       { input: squashIn, output: squashOut, interpolation: 'STEP' },
+                       { input: liftIn, output: liftOut, interpolation: 'CUBICSPLINE' }],
+            channels: [{ sampler: 0, target: { node: 0, path: 'rotation' } },
+                       { sampler: 1, target: { node: 1, path: 'scale' } },
+                       { sampler: 2, target: { node: 2, path: 'translation' } }],
+        }],
+        accessors,
+        bufferViews: views,
+        buffers: [{ byteLength: bin.length }],
+    };
+    let text = Buffer.from(JSON.stringify(json));
+    text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
+    const header = Buffer.alloc(12), jsonHead = Buffer.alloc(8), binHead = Buffer.alloc(8);
+    header.write('glTF', 0);
+    header.writeUInt32LE(2, 4);
+    header.writeUInt32LE(12 + 8 + text.length + 8 + bin.length, 8);
+    jsonHead.writeUInt32LE(text.length, 0);
+    jsonHead.write('JSON', 4);
+    binHead.writeUInt32LE(bin.length, 0);
+    binHead.write('BIN\0', 4);
+    return Buffer.concat([header, jsonHead, text, binHead, bin]);
+}
+writeFileSync(join(out, 'animated-hub.glb'), animatedGlb());
+writeFileSync(join(out, 'animated-hub.glb.pose'), '0 1.25\n');
+
 writeFileSync(join(out, 'sky.hdr'), sky(256, 128));
