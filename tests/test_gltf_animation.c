@@ -6,7 +6,9 @@
  * pointer of the member at fault. */
 #include "sr_test.h"
 
+#include "batch_cli.h"
 #include "gltf_write.h"
+#include "image_compare.h"
 #include "softrast.h"
 #include "softrast_io.h"
 
@@ -18,10 +20,12 @@
 /* A document under construction: one buffer of every accessor's bytes,
  * a bufferView and an accessor each. */
 typedef struct doc {
-    uint8_t bin[4096];
+    uint8_t bin[8192];
     size_t size;
     char views[4096], accessors[4096];
     int count;
+    char more_meshes[256];     /* ",{...}": meshes 2 and on */
+    bool morph;                /* mesh 1 has two morph targets */
 } doc;
 
 static int add_accessor(doc *d, const void *bytes, size_t n, size_t esize, const char *type,
@@ -46,8 +50,8 @@ static int add_floats(doc *d, const float *v, size_t n, const char *type)
     return add_accessor(d, v, n, 4, type, n / per, 5126, false);
 }
 
-/* A document with a triangle (accessor 0) as mesh 0, and a mesh 1 of two
- * morph targets; then the caller's accessors. */
+/* A document with a triangle (accessor 0) as mesh 0 and mesh 1 (with two
+ * morph targets when d->morph is set); then the caller's accessors. */
 static void doc_start(doc *d)
 {
     memset(d, 0, sizeof *d);
@@ -74,10 +78,12 @@ static char *doc_json(const doc *d, const char *nodes, const char *roots, const 
              "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,"
              "%s\"}],\"bufferViews\":[%s],\"accessors\":[%s],"
              "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
-             "{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
-             "\"targets\":[{\"POSITION\":0},{\"POSITION\":0}]}],\"weights\":[0,0]}],"
+             "{\"primitives\":[{\"attributes\":{\"POSITION\":0}%s}]}%s],"
              "\"nodes\":%s,\"scenes\":[{\"nodes\":%s}]%s%s}",
-             d->size, b64, d->views, d->accessors, nodes, roots, anims[0] ? "," : "", anims);
+             d->size, b64, d->views, d->accessors,
+             d->morph ? ",\"targets\":[{\"POSITION\":0},{\"POSITION\":0}]" : "",
+             d->more_meshes, nodes, roots,
+             anims[0] ? "," : "", anims);
     free(b64);
     return json;
 }
@@ -165,6 +171,7 @@ SR_TEST(the_rest_pose_is_the_default_and_the_animations_are_listed)
 {
     doc d;
     doc_start(&d);
+    d.morph = true;
     const char *anim = linear_translation(&d);
     static const float times[3] = { 0.5f, 1, 3.25f }, scales[9] = { 1, 1, 1, 2, 2, 2, 3, 3, 3 };
     int in = add_floats(&d, times, 3, "SCALAR"), out = add_floats(&d, scales, 9, "VEC3");
@@ -335,7 +342,7 @@ SR_TEST(an_animated_parent_carries_its_children)
 }
 
 /* The message of a refused document, whose result must be `want`. */
-static void check_refused(const doc *d, const char *nodes, const char *anims,
+static void check_refusal(const doc *d, const char *nodes, const char *anims,
                           const sr_load_desc *desc, sr_result want, const char *message)
 {
     sr_scene *s = (sr_scene *)1;
@@ -352,6 +359,7 @@ SR_TEST(malformed_animations_are_refused_with_their_json_pointer)
 {
     doc d;
     doc_start(&d);
+    d.morph = true;
     static const float times[2] = { 0, 1 }, back[2] = { 1, 0.5f }, v3[6] = { 0 };
     static const float q[8] = { 0, 0, 0, 1, 0, 0, 0, 1 };
     static const int16_t raw[6] = { 0 };
@@ -369,96 +377,96 @@ SR_TEST(malformed_animations_are_refused_with_their_json_pointer)
 
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", in, out);
     ANIM(smp, "{\"node\":0,\"path\":\"translation\"}");
-    check_refused(&d, "[{\"mesh\":0,\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}]", a, NULL,
+    check_refusal(&d, "[{\"mesh\":0,\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}]", a, NULL,
                   SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/target/node: node 0 has a matrix, which "
                   "glTF does not animate (its animated nodes have translation, rotation and "
                   "scale)");
     ANIM(smp, "{\"node\":0,\"path\":\"rotation\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/sampler: its output has 3 components an "
                   "element; rotation takes VEC4");
     ANIM(smp, "{\"node\":0,\"path\":\"weights\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/sampler: its output has 3 components an "
                   "element; weights takes SCALAR");
     ANIM(smp, "{\"node\":3,\"path\":\"scale\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/target/node: 3 is not an index below 1");
     ANIM(smp, "{\"node\":0,\"path\":17}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/target/path: expected translation, "
                   "rotation, scale or weights");
     snprintf(a, sizeof a, "\"animations\":[{\"samplers\":[%s],\"channels\":["
              "{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"scale\"}},"
              "{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"scale\"}}]}]", smp);
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/1/target: node 0's scale is animated by "
                   "another channel of this animation");
 
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", bad_in, out);
     ANIM(smp, "{\"node\":0,\"path\":\"scale\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/samplers/0/input: key 1 is 0.5 s, not after the key "
                   "before: key times must be at least 0 and strictly increase");
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", out, out);
     ANIM(smp, "{\"node\":0,\"path\":\"scale\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/samplers/0/input: accessor 2 has 3 components per "
                   "element, not what this attribute takes");
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d,\"interpolation\":\"SMOOTH\"}", in,
              out);
     ANIM(smp, "{\"node\":0,\"path\":\"scale\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/samplers/0/interpolation: expected LINEAR, STEP or "
                   "CUBICSPLINE");
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d,\"interpolation\":\"CUBICSPLINE\"}",
              in, out);
     ANIM(smp, "{\"node\":0,\"path\":\"scale\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/sampler: its output has 2 elements; 2 keys "
                   "of scale (CUBICSPLINE: with tangents) need 6");
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", in, quat);
     ANIM(smp, "{\"node\":0,\"path\":\"translation\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/sampler: its output has 4 components an "
                   "element; translation takes VEC3");
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", in, shorts);
     ANIM(smp, "{\"node\":0,\"path\":\"translation\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/sampler: its output is not of floats, which "
                   "translation takes");
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", in, v3x3);
     ANIM(smp, "{\"node\":0,\"path\":\"weights\"}");
-    check_refused(&d, node, a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, node, a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/target/node: node 0 has no mesh with morph "
                   "targets to weigh");
-    check_refused(&d, "[{\"mesh\":1}]", a, NULL, SR_BAD_FORMAT,
+    check_refusal(&d, "[{\"mesh\":1}]", a, NULL, SR_BAD_FORMAT,
                   "t.gltf: /animations/0/channels/0/sampler: its output has 6 elements; 2 keys "
                   "of weights need 4");
-    check_refused(&d, node, "\"animations\":[{\"samplers\":[],\"channels\":[]}]", NULL,
+    check_refusal(&d, node, "\"animations\":[{\"samplers\":[],\"channels\":[]}]", NULL,
                   SR_BAD_FORMAT, "t.gltf: /animations/0/channels: missing or empty");
 
     /* The caller's pose: an animation the file has, at a finite time. */
     snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", in, out);
     ANIM(smp, "{\"node\":0,\"path\":\"scale\"}");
     posed.animation = 1;
-    check_refused(&d, node, a, &posed, SR_INVALID_ARG,
+    check_refusal(&d, node, a, &posed, SR_INVALID_ARG,
                   "t.gltf: sr_load_desc.animation 1 is not an animation of the file (it has 1)");
     posed.animation = -1;
-    check_refused(&d, node, a, &posed, SR_INVALID_ARG,
+    check_refusal(&d, node, a, &posed, SR_INVALID_ARG,
                   "t.gltf: sr_load_desc.animation -1 is not an animation of the file (it has 1)");
     posed.animation = 0;
     posed.animation_time = NAN;
-    check_refused(&d, node, a, &posed, SR_INVALID_ARG,
+    check_refusal(&d, node, a, &posed, SR_INVALID_ARG,
                   "t.gltf: sr_load_desc.animation_time is not finite");
     posed.animation_time = INFINITY;
-    check_refused(&d, node, a, &posed, SR_INVALID_ARG,
+    check_refusal(&d, node, a, &posed, SR_INVALID_ARG,
                   "t.gltf: sr_load_desc.animation_time is not finite");
     sr_load_desc bad_pose = { .pose = (sr_load_pose)7 };
-    check_refused(&d, node, a, &bad_pose, SR_INVALID_ARG,
+    check_refusal(&d, node, a, &bad_pose, SR_INVALID_ARG,
                   "t.gltf: sr_load_desc.pose 7 is not an sr_load_pose");
-    check_refused(&d, node, "", &(sr_load_desc){ .pose = SR_POSE_ANIMATION }, SR_INVALID_ARG,
+    check_refusal(&d, node, "", &(sr_load_desc){ .pose = SR_POSE_ANIMATION }, SR_INVALID_ARG,
                   "t.gltf: sr_load_desc.animation 0 is not an animation of the file (it has 0)");
 #undef ANIM
 }
@@ -508,4 +516,234 @@ SR_TEST(a_model_without_animations_cannot_be_posed_by_one)
     CHECK_EQ(s->animation, -1);
     CHECK_EQ(s->animation_count, 0);
     sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* ---- softrast render --animation ---------------------------------------- */
+
+/* A unit cube's 36 corners, counter-clockwise seen from outside. */
+static void cube_corners(float *out)
+{
+    static const int quads[6][4][3] = {
+        { { 1, 0, 0 }, { 1, 1, 0 }, { 1, 1, 1 }, { 1, 0, 1 } },
+        { { 0, 0, 0 }, { 0, 0, 1 }, { 0, 1, 1 }, { 0, 1, 0 } },
+        { { 0, 1, 0 }, { 0, 1, 1 }, { 1, 1, 1 }, { 1, 1, 0 } },
+        { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 0, 1 }, { 0, 0, 1 } },
+        { { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } },
+        { { 0, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 }, { 1, 0, 0 } },
+    };
+    static const int corner[6] = { 0, 1, 2, 0, 2, 3 };
+    for (int f = 0; f < 6; f++) {
+        for (int k = 0; k < 6; k++) {
+            for (int c = 0; c < 3; c++) {
+                *out++ = (float)quads[f][corner[k]][c] - 0.5f;
+            }
+        }
+    }
+}
+
+/* The hub model: node 0 turns about +y (LINEAR, 0 to 90 degrees over 2 s)
+ * and carries node 1, a cube stretched by STEP scales (y 1, then 2 from
+ * 1 s), and node 2, a half-size cube lifted along a CUBICSPLINE path from
+ * (1.5, 0, 0) (out-tangent (0, 2, 0)) to (1.5, 1, 0) (in-tangent
+ * (0, -2, 0)) over 2 s.  With `posed_at_1_5`, no animation but the
+ * nodes' own transforms set to the values hand-computed at 1.5 s:
+ * 67.5 degrees; scale (1, 2, 1); u = 0.75 on the spline, h00 = 0.15625,
+ * h10 = 0.046875, h01 = 0.84375, h11 = -0.140625, y = 2 (0.046875) 2 +
+ * 0.84375 + 2 (-0.140625) (-2) = 1.59375.  Malloc'd JSON. */
+static char *hub_json(bool posed_at_1_5)
+{
+    doc d;
+    doc_start(&d);
+    float cube[108];
+    cube_corners(cube);
+    int pos = add_floats(&d, cube, 108, "VEC3");
+    snprintf(d.more_meshes, sizeof d.more_meshes,
+             ",{\"primitives\":[{\"attributes\":{\"POSITION\":%d},\"material\":0}]},"
+             "{\"primitives\":[{\"attributes\":{\"POSITION\":%d},\"material\":1}]}", pos, pos);
+    const double h = sqrt(0.5), a = 67.5 * M_PI / 360;
+    static const float t01[2] = { 0, 1 }, t02[2] = { 0, 2 };
+    static const float scales[6] = { 1, 1, 1, 1, 2, 1 };
+    static const float lift[18] = { 0, 0, 0, 1.5f, 0, 0, 0, 2, 0,
+                                    0, -2, 0, 1.5f, 1, 0, 0, 0, 0 };
+    float turn[8] = { 0, 0, 0, 1, 0, (float)h, 0, (float)h };
+    int in1 = add_floats(&d, t01, 2, "SCALAR"), in2 = add_floats(&d, t02, 2, "SCALAR");
+    int turn_out = add_floats(&d, turn, 8, "VEC4"), scale_out = add_floats(&d, scales, 6, "VEC3");
+    int lift_out = add_floats(&d, lift, 18, "VEC3");
+    char nodes[512], anims[1024];
+    if (posed_at_1_5) {
+        snprintf(nodes, sizeof nodes,
+                 "[{\"rotation\":[0,%.17g,0,%.17g],\"children\":[1,2]},"
+                 "{\"mesh\":2,\"scale\":[1,2,1]},"
+                 "{\"mesh\":3,\"translation\":[1.5,1.59375,0],\"scale\":[0.5,0.5,0.5]}]",
+                 sin(a), cos(a));
+        anims[0] = 0;
+    } else {
+        snprintf(nodes, sizeof nodes,
+                 "[{\"children\":[1,2]},{\"mesh\":2},"
+                 "{\"mesh\":3,\"translation\":[1.5,0,0],\"scale\":[0.5,0.5,0.5]}]");
+        snprintf(anims, sizeof anims,
+                 "\"animations\":[{\"name\":\"hub\",\"samplers\":["
+                 "{\"input\":%d,\"output\":%d},"
+                 "{\"input\":%d,\"output\":%d,\"interpolation\":\"STEP\"},"
+                 "{\"input\":%d,\"output\":%d,\"interpolation\":\"CUBICSPLINE\"}],"
+                 "\"channels\":[{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"rotation\"}},"
+                 "{\"sampler\":1,\"target\":{\"node\":1,\"path\":\"scale\"}},"
+                 "{\"sampler\":2,\"target\":{\"node\":2,\"path\":\"translation\"}}]}]",
+                 in2, turn_out, in1, scale_out, in2, lift_out);
+    }
+    char *json = doc_json(&d, nodes, "[0]", anims);
+    if (!json) {
+        return NULL;
+    }
+    /* Two materials, spliced in before the last brace. */
+    size_t n = strlen(json);
+    char *with = malloc(n + 300);
+    if (with) {
+        snprintf(with, n + 300, "%.*s,\"materials\":[{\"pbrMetallicRoughness\":"
+                 "{\"baseColorFactor\":[0.2,0.4,0.9,1]}},{\"pbrMetallicRoughness\":"
+                 "{\"baseColorFactor\":[0.9,0.7,0.2,1]}}]}", (int)n - 1, json);
+    }
+    free(json);
+    return with;
+}
+
+static bool write_hub(const char *path, bool posed)
+{
+    char *json = hub_json(posed);
+    bool ok = json && sr_test_write_file(path, json, strlen(json));
+    free(json);
+    return ok;
+}
+
+/* An RGBA8 PNG the tool wrote, or NULL after a failure. */
+static uint8_t *read_png_file(const char *path, int *w, int *h)
+{
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(path, NULL, w, h, &px, &err) != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "%s", err.message);
+        return NULL;
+    }
+    return px;
+}
+
+/* The animation sampled at 1.5 s draws what the same nodes placed by
+ * hand at 1.5 s draw (the same reader, the same pixels), which
+ * tests/ref/gltf_animation.png keeps (2 codes, 0.5% of the pixels: other
+ * CPUs' float rounding); the rest pose draws something else. */
+SR_TEST(render_animation_at_a_time_draws_the_hand_posed_scene)
+{
+    NEED_CLI();
+    char dir[1024], anim[1100], posed[1100], a_png[1100], p_png[1100], rest_png[1100];
+    fresh_dir("gltf_anim", dir, sizeof dir);
+    snprintf(anim, sizeof anim, "%s/hub.gltf", dir);
+    snprintf(posed, sizeof posed, "%s/posed.gltf", dir);
+    snprintf(a_png, sizeof a_png, "%s/anim.png", dir);
+    snprintf(p_png, sizeof p_png, "%s/posed.png", dir);
+    snprintf(rest_png, sizeof rest_png, "%s/rest.png", dir);
+    REQUIRE(write_hub(anim, false) && write_hub(posed, true));
+    run_result r;
+    REQUIRE(run(ARGS("render", anim, "--animation", "hub", "--time", "1.5", "--size", "128x96",
+                     "--shading", "flat", "--camera", "eye=3,4,6,target=0.4,0.6,0", "-o", a_png),
+                &r));
+    REQUIRE(r.status == 0);
+    REQUIRE(run(ARGS("render", posed, "--size", "128x96", "--shading", "flat", "--camera",
+                     "eye=3,4,6,target=0.4,0.6,0", "-o", p_png), &r));
+    REQUIRE(r.status == 0);
+    REQUIRE(run(ARGS("render", anim, "--size", "128x96", "--shading", "flat", "--camera",
+                     "eye=3,4,6,target=0.4,0.6,0", "-o", rest_png), &r));
+    REQUIRE(r.status == 0);
+    int w, h, w2, h2, w3, h3;
+    uint8_t *a = read_png_file(a_png, &w, &h), *p = read_png_file(p_png, &w2, &h2);
+    uint8_t *rest = read_png_file(rest_png, &w3, &h3);
+    REQUIRE(a && p && rest && w == w2 && h == h2 && w == w3 && h == h3);
+    sr_test_compare_images("gltf_animation_hand_posed", a, p, w, h, 1, 0);
+    sr_test_check_image("gltf_animation", a, w, h, 2, (long)w * h / 200);
+    long differ = 0;
+    for (long i = 0; i < (long)w * h * 4; i++) {
+        differ += a[i] != rest[i];
+    }
+    CHECK(differ > (long)w * h / 20);
+    free(a);
+    free(p);
+    free(rest);
+}
+
+SR_TEST(render_animation_options_are_checked_in_one_line)
+{
+    NEED_CLI();
+    char dir[1024], anim[1100], obj[1100], png[1100];
+    fresh_dir("gltf_anim_opts", dir, sizeof dir);
+    snprintf(anim, sizeof anim, "%s/hub.gltf", dir);
+    snprintf(obj, sizeof obj, "%s/tri.obj", dir);
+    snprintf(png, sizeof png, "%s/out.png", dir);
+    REQUIRE(write_hub(anim, false) && write_text(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    const struct {
+        const char *const *args;
+        const char *needle;
+    } bad[] = {
+        { ARGS("render", anim, "--time", "1", "-o", png),
+          "--time: gives a time into an animation: give --animation N|NAME too" },
+        { ARGS("render", anim, "--animation", "0", "--time", "soon", "-o", png),
+          "--time: expected a number from -1e+06 to 1e+06 (got 'soon')" },
+        { ARGS("render", anim, "--animation", "0", "--time", "inf", "-o", png),
+          "--time: expected a number" },
+        { ARGS("render", anim, "--animation", "1", "-o", png),
+          "--animation 1: " },
+        { ARGS("render", anim, "--animation", "walk", "-o", png),
+          "has no animation named walk (it has 0 (hub))" },
+        { ARGS("render", anim, "--animation", "-1", "-o", png), "has no animation named -1" },
+        { ARGS("render", anim, "--animation", "", "-o", png), "--animation: empty value" },
+        { ARGS("render", obj, "--animation", "0", "-o", png),
+          "--animation: only glTF files (.gltf, .glb) have animations" },
+        { ARGS("render", obj, "--list-animations"), "--list-animations: give a glTF MODEL" },
+        { ARGS("render", anim, "--fps", "10", "--output-dir", dir),
+          "--fps: the frame rate of --animate with --animation: give both" },
+        { ARGS("render", anim, "--animate", "a.webp", "--animation", "0", "--views", "4",
+               "--output-dir", dir),
+          "--views: not with --animation" },
+        { ARGS("render", anim, "--animate", "a.webp", "--animation", "0", "--fps", "0",
+               "--output-dir", dir),
+          "--fps: expected" },
+    };
+    run_result r;
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        REQUIRE(run(bad[i].args, &r));
+        if (!(r.status == 2 && count_lines(r.err) == 1 && strstr(r.err, bad[i].needle))) {
+            FAILF("case %zu: status %d, stderr \"%s\", want one line with \"%s\"", i, r.status,
+                  r.err, bad[i].needle);
+        }
+    }
+    CHECK(!file_exists(png));
+}
+
+/* --animate with --animation: the animation's frames, 1/fps s apart from
+ * 0 to its end (2 s at 5 fps: 11), as one animated WebP. */
+SR_TEST(animate_plays_the_animation_at_fps)
+{
+    NEED_CLI();
+    char dir[1024], anim[1100], webp[1100];
+    fresh_dir("gltf_anim_play", dir, sizeof dir);
+    snprintf(anim, sizeof anim, "%s/hub.gltf", dir);
+    snprintf(webp, sizeof webp, "%s/hub.webp", dir);
+    REQUIRE(write_hub(anim, false));
+    run_result r;
+    REQUIRE(run(ARGS("render", anim, "--animate", "{stem}.webp", "--animation", "0", "--fps",
+                     "5", "--output-dir", dir, "--size", "40x30", "--shading", "flat"), &r));
+    if (r.status == 2 && strstr(r.err, "without libwebp")) {
+        SKIP("softrast was built without libwebp");
+    }
+    REQUIRE(r.status == 0);
+    size_t n = 0;
+    uint8_t *p = sr_test_read_file(webp, &n);
+    REQUIRE(p);
+    int frames = 0;
+    for (size_t at = 12; at + 8 <= n;) {
+        uint32_t size = (uint32_t)p[at + 4] | (uint32_t)p[at + 5] << 8 |
+                        (uint32_t)p[at + 6] << 16 | (uint32_t)p[at + 7] << 24;
+        frames += memcmp(p + at, "ANMF", 4) == 0;
+        at += 8 + size + (size & 1);
+    }
+    free(p);
+    CHECK_EQ(frames, 11);
 }
