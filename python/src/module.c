@@ -32,11 +32,13 @@ PyDoc_STRVAR(load_mesh_doc,
 "texture).  Use softrast.load_mesh.");
 
 PyDoc_STRVAR(load_scene_doc,
-"load_scene(path, /)\n--\n\n"
-"sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
-"(4, 4) world matrix, material index)], 'materials': [dict of factors],\n"
-"'cameras': [dict of a camera's fields], 'file': the scene kept for\n"
-"render's metallic-roughness look, or None}.\n"
+"load_scene(path, animation=-1, time=0.0, /)\n--\n\n"
+"sr_load_scene, posed by the file's animation `animation` at `time`\n"
+"seconds (-1: the rest pose): {'meshes': [dict of arrays], 'instances':\n"
+"[(mesh index, (4, 4) world matrix, material index)], 'materials': [dict\n"
+"of factors], 'cameras': [dict of a camera's fields], 'animations':\n"
+"[(name, channels, duration)], 'file': the scene kept for render's\n"
+"metallic-roughness look, or None}.\n"
 "Use softrast.load.");
 
 PyDoc_STRVAR(make_environment_doc,
