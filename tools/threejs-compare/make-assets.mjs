@@ -129,6 +129,11 @@ function glb(shape, nodes, materials, extensionsUsed = [], lights = []) {
         extensionsUsed = [...extensionsUsed, 'KHR_lights_punctual'];
     }
     if (extensionsUsed.length) json.extensionsUsed = extensionsUsed;
+    return glbBytes(json, bin);
+}
+
+// The GLB container of a document and its one buffer.
+function glbBytes(json, bin) {
     let text = Buffer.from(JSON.stringify(json));
     text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
     const header = Buffer.alloc(12), jsonHead = Buffer.alloc(8), binHead = Buffer.alloc(8);
@@ -323,17 +328,7 @@ function animatedGlb() {
         bufferViews: views,
         buffers: [{ byteLength: bin.length }],
     };
-    let text = Buffer.from(JSON.stringify(json));
-    text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
-    const header = Buffer.alloc(12), jsonHead = Buffer.alloc(8), binHead = Buffer.alloc(8);
-    header.write('glTF', 0);
-    header.writeUInt32LE(2, 4);
-    header.writeUInt32LE(12 + 8 + text.length + 8 + bin.length, 8);
-    jsonHead.writeUInt32LE(text.length, 0);
-    jsonHead.write('JSON', 4);
-    binHead.writeUInt32LE(bin.length, 0);
-    binHead.write('BIN\0', 4);
-    return Buffer.concat([header, jsonHead, text, binHead, bin]);
+    return glbBytes(json, bin);
 }
 writeFileSync(join(out, 'animated-hub.glb'), animatedGlb());
 writeFileSync(join(out, 'animated-hub.glb.pose'), '0 1.25\n');
