@@ -645,6 +645,7 @@ struct render_job {
     bool env_shared;        /* env is another job's (render_job_share_light) */
     render_shadow shadow;   /* the key light's map, on ctx */
     char error[512];
+    char animation_index[16];   /* --animation as a number (render_job_set_time) */
 };
 
 int render_job_parse(int argc, char **argv, render_job **out)
@@ -986,6 +987,13 @@ bool render_job_animation(const render_job *job, float *duration)
 void render_job_set_time(render_job *job, float seconds)
 {
     job->o.animation_time = seconds;
+    /* The animation the model is posed by, by its number from now on: a
+     * name would be looked up in a reading of its own each time. */
+    const sr_scene *g = job->have_scene ? job->s.gltf : NULL;
+    if (g && g->animation >= 0) {
+        snprintf(job->animation_index, sizeof job->animation_index, "%d", g->animation);
+        job->o.animation = job->animation_index;
+    }
 }
 
 int render_job_check_frames(const render_job *job, const char *cmd, int width, int height,

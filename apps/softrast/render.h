@@ -57,7 +57,8 @@ int render_job_reload(render_job *job, const char *model);
  * and that animation's duration in seconds. */
 bool render_job_animation(const render_job *job, float *duration);
 /* The time into --animation that the next render_job_reload poses the
- * model at (what --time would set). */
+ * model at (what --time would set); the animation stays the one the
+ * loaded model is posed by. */
 void render_job_set_time(render_job *job, float seconds);
 
 /* The camera the options give: --camera, else the default framing. */

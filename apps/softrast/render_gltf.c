@@ -6,6 +6,7 @@
 #include "render_gltf.h"
 #include "softrast_io.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -203,15 +204,28 @@ static int find_animation(const sr_scene *sc, const char *path, const char *whic
     return -1;
 }
 
-/* Reads path in the pose asked for: --animation's, found among the
- * file's by a first reading in the rest pose.  An exit status after one
- * line, or -1. */
+/* Reads path in the pose asked for: --animation's, read at once when it
+ * is a number the file has, else found among the file's by a first
+ * reading in the rest pose (a name, or a number to report).  An exit
+ * status after one line, or -1. */
 static int load_posed(const char *path, const char *animation, float time, sr_context *ctx,
                       cli_inputs *inputs, sr_scene **out)
 {
     sr_io_error err;
     sr_load_desc desc = { .format = SR_FORMAT_GLTF, .file_read = note_file, .user = inputs,
                           .warn = warn_line };
+    char *end = NULL;
+    long n = animation ? strtol(animation, &end, 10) : -1;
+    if (animation && end != animation && *end == 0 && n >= 0 && n <= INT_MAX) {
+        desc.pose = SR_POSE_ANIMATION;
+        desc.animation = (int)n;
+        desc.animation_time = time;
+        if (sr_load_scene(ctx, path, &desc, out, &err) == SR_OK) {
+            return -1;
+        }
+        desc.pose = SR_POSE_REST;   /* why, with the file's list, below */
+        desc.warn = NULL;           /* given by the first reading */
+    }
     sr_result r = sr_load_scene(ctx, path, &desc, out, &err);
     if (r == SR_OK && animation) {
         int index = find_animation(*out, path, animation);
