@@ -1249,11 +1249,12 @@ static const char *const value_options[] = {
     "--polygon-offset", "--up", "--tonemap", "--exposure", "--environment",
     "--environment-intensity", "--camera-index", "--shadows", "--lights", "--batch", "--output-dir", "--name", "--log", "--shard",
     "--shard-count", "--views", "--sheet", "--sheet-columns", "--animate",
+    "--animation", "--time", "--fps",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",
                                              "--smooth", "--texture-srgb", "--skip-existing",
-                                             "--ground" };
+                                             "--ground", "--list-animations" };
 
 SR_TEST(render_help_lists_every_option)
 {
