@@ -616,9 +616,10 @@ static uint8_t *read_png_file(const char *path, int *w, int *h)
 }
 
 /* The animation sampled at 1.5 s draws what the same nodes placed by
- * hand at 1.5 s draw (the same reader, the same pixels), which
- * tests/ref/gltf_animation.png keeps (2 codes, 0.5% of the pixels: other
- * CPUs' float rounding); the rest pose draws something else. */
+ * hand at 1.5 s draw, and what tests/ref/gltf_animation.png keeps (2
+ * codes, 0.5% of the pixels: a last bit of the sampled rotation, or
+ * another CPU's libm, can move an edge pixel); the rest pose draws
+ * something else. */
 SR_TEST(render_animation_at_a_time_draws_the_hand_posed_scene)
 {
     NEED_CLI();
@@ -645,7 +646,7 @@ SR_TEST(render_animation_at_a_time_draws_the_hand_posed_scene)
     uint8_t *a = read_png_file(a_png, &w, &h), *p = read_png_file(p_png, &w2, &h2);
     uint8_t *rest = read_png_file(rest_png, &w3, &h3);
     REQUIRE(a && p && rest && w == w2 && h == h2 && w == w3 && h == h3);
-    sr_test_compare_images("gltf_animation_hand_posed", a, p, w, h, 1, 0);
+    sr_test_compare_images("gltf_animation_hand_posed", a, p, w, h, 2, (long)w * h / 200);
     sr_test_check_image("gltf_animation", a, w, h, 2, (long)w * h / 200);
     long differ = 0;
     for (long i = 0; i < (long)w * h * 4; i++) {
