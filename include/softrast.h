@@ -1025,6 +1025,21 @@ typedef struct sr_pbr_material {
     sr_texture_slot sheen_color_texture;         /* sRGB */
     float sheen_roughness;         /* 0..1 */
     sr_texture_slot sheen_roughness_texture;     /* A channel, linear */
+    /* KHR_materials_anisotropy and _iridescence (docs/pbr.md), zero as
+     * absent like the block above.  Anisotropy stretches the base's
+     * highlight along a direction in the tangent frame (the draw's
+     * tangents, else the texture coordinates' derivatives); iridescence
+     * is a thin film whose interference tints the base's Fresnel. */
+    float anisotropy_strength;     /* 0..1; 0: isotropic */
+    float anisotropy_rotation;     /* radians, counter-clockwise from the tangent */
+    sr_texture_slot anisotropy_texture;          /* RG direction, B strength, linear */
+    float iridescence;             /* 0..1: the film's weight; 0: no film */
+    sr_texture_slot iridescence_texture;         /* R channel, linear */
+    float iridescence_ior;         /* >= 1, the film's index; 0 -> 1.3 */
+    float iridescence_thickness_min;             /* nm, >= 0, at the texture's G = 0 */
+    float iridescence_thickness_max;             /* nm, >= 0, at G = 1 and without a
+                                                  * texture; 0 -> 400 */
+    sr_texture_slot iridescence_thickness_texture; /* G channel, linear */
 } sr_pbr_material;
 
 typedef struct sr_polygon_offset {
@@ -1338,8 +1353,10 @@ typedef struct sr_pbr_desc {
      * through itself: the opaque scene drawn before it with the same view
      * and projection, SR_TONEMAP_NONE and the same exposure, as an sRGB
      * texture (rows top down as sr_framebuffer_pixels gives them; its mip
-     * levels blur it for rough materials).  NULL: black.  Must outlive
-     * the program. */
+     * levels blur it for rough materials).  NULL: `environment` in the
+     * direction the ray leaves the surface (refracted in a volume,
+     * straight on through a thin wall), prefiltered for the roughness;
+     * without either, black.  Must outlive the program. */
     const sr_texture *transmission_source;
     /* The key light's shadow (docs/shadows.md): lights[0], which should
      * be the map's directional light, is scaled by the filtered visibility

@@ -63,6 +63,14 @@ typedef struct sr_load_desc {
      * "FILE: /json/pointer: what was skipped" (a points or lines
      * primitive, a texture without a PNG or JPEG source). */
     void (*warn)(void *user, const char *message);
+    /* glTF's KHR_materials_variants: the variant whose materials to draw,
+     * counted from 1 (sr_scene.variants[variant - 1]); 0 draws every
+     * primitive's own material, as the extension asks when no variant is
+     * active.  A primitive the variant does not map keeps its own.  A
+     * variant the file does not have is SR_INVALID_ARG ("FILE:
+     * sr_load_desc.variant: 3, but the file has 2 variants"); any other
+     * format has none. */
+    int variant;
     /* glTF: the pose the nodes are placed in (docs/gltf.md).  Zero: the
      * rest pose, each node's own transform; SR_POSE_ANIMATION: animation
      * number `animation` (0 first, as sr_scene.animations lists them)
@@ -136,6 +144,13 @@ typedef struct sr_scene_primitive {
     size_t triangle_count;
     const uint32_t *indices;    /* 3 a triangle, counter-clockwise front faces
                                  * (strips and fans converted) */
+    /* KHR_materials_variants: the material each variant draws on this
+     * primitive, indexed as sr_load_desc.variant (sr_scene.variant_count
+     * + 1 entries: [0] the primitive's own material, [v] variant v's, its
+     * own where v maps none), or NULL when the primitive has no mappings.
+     * `material` is already sr_load_desc.variant's; a program switching
+     * variants without reading the file again takes these. */
+    const int *variant_materials;
 } sr_scene_primitive;
 
 typedef enum sr_scene_camera_type {
@@ -199,6 +214,9 @@ typedef struct sr_scene {
     sr_scene_light *lights;       /* KHR_lights_punctual, in node order as cameras; all of
                                    * them: a program takes the first SR_MAX_LIGHTS */
     size_t light_count;
+    const char *const *variants;  /* KHR_materials_variants' names, in the file's order
+                                   * (UTF-8; not necessarily unique) */
+    size_t variant_count;
     sr_scene_animation *animations; /* the file's, in its order, whichever pose was asked */
     size_t animation_count;
     int animation;                /* the one the scene is posed by, or -1: the rest pose */
@@ -253,6 +271,15 @@ SR_API bool sr_io_have_gltf(void);
 
 /* true when this build can read other formats through Assimp. */
 SR_API bool sr_io_have_assimp(void);
+
+/* The optional parts this build has, each resting on a library the build
+ * found: a static string of names separated by single spaces, in this
+ * order, each present only when built in - png (PNG files), jpeg, webp
+ * (WebP images), gltf (glTF scenes), meshopt (EXT_meshopt_compression),
+ * draco (KHR_draco_mesh_compression), svg (SVG drawings), svgz (gzipped
+ * ones), text (SVG text and sr_text_path), bidi (bidirectional text),
+ * assimp (other model formats).  "" when none. */
+SR_API const char *sr_io_features(void);
 
 /* Open a file for reading as the readers here do, for a program's own
  * inputs (a script, a drawing): only a regular file.  A directory, FIFO,

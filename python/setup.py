@@ -5,9 +5,11 @@ pip install --no-build-isolation ./python   # without one (Debian: python3-setup
                                             # python3-numpy, python3-dev installed)
 
 The extension compiles the library's own sources (../src) into itself, with
-the optional readers whose libraries pkg-config finds (jansson: glTF,
-libjpeg: JPEG, expat: SVG, Assimp: other model formats), as the CMake build
-does.  libpng and zlib are required.
+the optional parts whose libraries it finds, as the CMake build does: jansson
+(glTF), libjpeg (JPEG), libwebp (WebP), meshoptimizer and libdraco (glTF's
+compressed meshes), expat (SVG), fontconfig + HarfBuzz + FreeType (SVG text)
+and FriBidi (bidirectional text), Assimp (other model formats).  libpng and
+zlib are required.  softrast.features names what a build has.
 """
 
 import glob
@@ -16,6 +18,7 @@ import shutil
 import subprocess
 import sys
 import sysconfig
+import tempfile
 
 import numpy
 from setuptools import Extension, setup
@@ -78,22 +81,71 @@ def ibl_tables():
 
 sources.append(ibl_tables())
 # zlib is required (libpng's), so gzip-compressed SVG always reads.
-macros = [("_POSIX_C_SOURCE", "200809L"), ("SR_HAVE_ZLIB", "1")]
+macros = [("_POSIX_C_SOURCE", "200809L"), ("SR_HAVE_ZLIB", "1"), ("SR_HAVE_PNG", "1")]
 include_dirs = [os.path.join(ROOT, "include"), os.path.join(ROOT, "src"), numpy.get_include()]
 libraries = ["png", "z", "m", "pthread"]
 compile_args = ["-std=c11", "-ffp-contract=off", "-fvisibility=hidden", "-Wno-psabi"]
 link_args = []
 
-optional = [("jansson", "SR_HAVE_JANSSON"), ("libjpeg", "SR_HAVE_JPEG"), ("expat", "SR_HAVE_EXPAT")]
-for module, macro in optional:
-    libs = pkg_config("--libs", module)
+extra_objects = []
+
+
+def use(modules, macro):
+    """Builds with the pkg-config modules when all are found; whether."""
+    libs = pkg_config("--libs", *modules)
     if libs is None:
-        if module == "jansson":
-            io_sources = [s for s in io_sources if not os.path.basename(s).startswith("gltf")]
-        continue
+        return False
     macros.append((macro, "1"))
-    compile_args += pkg_config("--cflags", module) or []
-    link_args += libs
+    compile_args.extend(pkg_config("--cflags", *modules) or [])
+    link_args.extend(libs)
+    return True
+
+
+def links(code, flags):
+    """Whether the C compiler builds and links code with flags."""
+    cc = (sysconfig.get_config_var("CC") or "cc").split()
+    with tempfile.TemporaryDirectory() as tmp:
+        src = os.path.join(tmp, "probe.c")
+        with open(src, "w") as f:
+            f.write(code)
+        r = subprocess.run(cc + [src, "-o", os.path.join(tmp, "probe"), *flags],
+                           capture_output=True)
+        return r.returncode == 0
+
+
+def draco_object():
+    """src/io/draco_decode.cc, libdraco's C++ API behind a C header, compiled
+    as C++17 (setuptools compiles one language per extension); its path."""
+    out_dir = os.path.join(HERE, "build", "generated")
+    os.makedirs(out_dir, exist_ok=True)
+    out = os.path.join(out_dir, "draco_decode.o")
+    cxx = (sysconfig.get_config_var("CXX") or "c++").split()
+    subprocess.run(cxx + ["-std=c++17", "-O2", "-fPIC", "-fvisibility=hidden",
+                          "-DSR_HAVE_DRACO=1", "-I", os.path.join(ROOT, "include"),
+                          "-I", os.path.join(ROOT, "src"), *(pkg_config("--cflags", "draco") or []),
+                          "-c", os.path.join(ROOT, "src", "io", "draco_decode.cc"), "-o", out],
+                   check=True)
+    return out
+
+
+if use(["jansson"], "SR_HAVE_JANSSON"):
+    # Debian ships meshoptimizer without a .pc file: its header and library.
+    if links("#include <meshoptimizer.h>\n"
+             "int main(void) { meshopt_decodeFilterOct(0, 0, 4); return 0; }\n",
+             ["-lmeshoptimizer"]):
+        macros.append(("SR_HAVE_MESHOPT", "1"))
+        link_args.append("-lmeshoptimizer")
+    if pkg_config("--exists", "draco") is not None:
+        macros.append(("SR_HAVE_DRACO", "1"))
+        extra_objects.append(draco_object())
+        link_args.extend((pkg_config("--libs", "draco") or []) + ["-lstdc++"])
+else:
+    io_sources = [s for s in io_sources if not os.path.basename(s).startswith("gltf")]
+use(["libjpeg"], "SR_HAVE_JPEG")
+use(["libwebp"], "SR_HAVE_WEBP_DECODE")
+if use(["expat"], "SR_HAVE_EXPAT") and use(["fontconfig", "harfbuzz", "freetype2"],
+                                           "SR_HAVE_SVG_TEXT"):
+    use(["fribidi"], "SR_HAVE_FRIBIDI")
 assimp = pkg_config("--cflags", "assimp")
 if assimp is not None:
     # Headers only: the library is opened with dlopen when a file needs it.
@@ -113,5 +165,5 @@ setup(
     ext_modules=[Extension(
         "softrast._softrast", [rel(s) for s in sources + io_sources], define_macros=macros,
         include_dirs=include_dirs, libraries=libraries, extra_compile_args=compile_args,
-        extra_link_args=link_args)],
+        extra_link_args=link_args, extra_objects=extra_objects)],
 )

@@ -94,6 +94,21 @@ bool run(const char *const *args, run_result *r)
     return run_env(args, NO_ENV, NULL, r);
 }
 
+uint8_t *render_read(const char *const *args, const char *out, int *w, int *h, run_result *r)
+{
+    if (!run(args, r) || r->status != 0) {
+        FAILF("softrast %s %s: status %d: %s", args[0], args[1] ? args[1] : "", r->status,
+              r->err);
+        return NULL;
+    }
+    uint8_t *px = NULL;
+    sr_io_error e;
+    if (sr_read_png(out, NULL, w, h, &px, &e) != SR_OK) {
+        FAILF("%s", e.message);
+    }
+    return px;
+}
+
 bool same_file_bytes(const char *a, const char *b)
 {
     size_t na = 0, nb = 0;
@@ -298,16 +313,7 @@ const record *find_record(const record *recs, int n, const char *input)
 static uint8_t *render_png(const char *model, const char *out, int *w, int *h)
 {
     run_result r;
-    if (!run(ARGS("render", model, "-o", out, "--size", "320x240"), &r) || r.status != 0) {
-        FAILF("softrast render %s: status %d: %s", model, r.status, r.err);
-        return NULL;
-    }
-    uint8_t *px = NULL;
-    sr_io_error e;
-    if (sr_read_png(out, NULL, w, h, &px, &e) != SR_OK) {
-        FAILF("%s", e.message);
-    }
-    return px;
+    return render_read(ARGS("render", model, "-o", out, "--size", "320x240"), out, w, h, &r);
 }
 
 void check_same_render(const char *name, const void *const data[2], const size_t size[2],

@@ -56,6 +56,10 @@ int wait_status(pid_t pid);
 bool run_env(const char *const *args, const char *const *env, const char *in, run_result *r);
 bool run(const char *const *args, run_result *r);
 int count_lines(const char *s);
+/* Runs the tool with args, which write the PNG `out`, and reads that back
+ * (malloc'd RGBA8, *w by *h; r the run); NULL after a failed check when
+ * the run fails or the image does not read. */
+uint8_t *render_read(const char *const *args, const char *out, int *w, int *h, run_result *r);
 
 /* Writes two model files (data[0] the reference, data[1] the one under
  * test; .glb) into batch_`name`, renders both with the tool at 320x240 and

@@ -1,6 +1,7 @@
 /* draco_encode.cc - test_gltf_draco's Draco writer (draco_encode.h): the
  * mesh built as libdraco's draco::Mesh, encoded with draco::Encoder at the
- * default speed (edgebreaker, which reorders the points), then decoded
+ * default speed (edgebreaker, which reorders the points and the faces) or
+ * with sequential connectivity (faces kept in order), then decoded
  * once to tell the writer the counts its accessors must state, as the
  * extension asks of exporters.  Internal to tests. */
 #include "draco_encode.h"
@@ -32,7 +33,7 @@ int add(draco::PointCloud &pc, draco::GeometryAttribute::Type type, const float 
 
 extern "C" draco_encoded draco_encode(const float *pos, const float *nrm, const float *uv,
                                       size_t n, const uint32_t *idx, size_t faces, int bits,
-                                      int point_cloud)
+                                      int point_cloud, int sequential)
 {
     draco_encoded out = {};
     try {
@@ -62,6 +63,9 @@ extern "C" draco_encoded draco_encode(const float *pos, const float *nrm, const 
         enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
         enc.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 10);
         enc.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
+        if (sequential) {
+            enc.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
+        }
         draco::EncoderBuffer buf;
         draco::Status s = point_cloud
                               ? enc.EncodePointCloudToBuffer(*pc, &buf)

@@ -21,9 +21,12 @@ typedef struct draco_encoded {
 
 /* n points of positions, normals and coordinates (NULL: none), `faces`
  * triangles of idx; `bits` quantize positions (normals 10 bits,
- * coordinates 12).  point_cloud: the points alone, without triangles. */
+ * coordinates 12).  point_cloud: the points alone, without triangles;
+ * sequential: sequential connectivity, which keeps the faces and their
+ * corners in order (a strip's), instead of edgebreaker. */
 draco_encoded draco_encode(const float *pos, const float *nrm, const float *uv, size_t n,
-                           const uint32_t *idx, size_t faces, int bits, int point_cloud);
+                           const uint32_t *idx, size_t faces, int bits, int point_cloud,
+                           int sequential);
 
 #ifdef __cplusplus
 }

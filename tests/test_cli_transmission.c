@@ -165,26 +165,17 @@ static char *glass_model(void)
     return json;
 }
 
-static uint8_t *render_png(const char *dir, const char *model, const char *threads,
-                           const char *name, int *w, int *h)
+static uint8_t *render_glass(const char *dir, const char *model, const char *threads,
+                             const char *name, int *w, int *h)
 {
     char out[1200];
     snprintf(out, sizeof out, "%s/%s.png", dir, name);
     run_result r;
-    if (!run(ARGS("render", model, "--size", "240x112", "--aa", "none", "--camera",
-                  "eye=0,1,7,target=0,0,0", "--threads", threads, "-o", out),
-             &r) ||
-        r.status != 0) {
-        FAILF("render: status %d: %s", r.status, r.err);
-        return NULL;
-    }
-    CHECK(strstr(r.err, "warning") == NULL);
-    uint8_t *px = NULL;
-    sr_io_error err;
-    if (sr_read_png(out, NULL, w, h, &px, &err) != SR_OK) {
-        FAILF("%s", err.message);
-        return NULL;
-    }
+    uint8_t *px = render_read(ARGS("render", model, "--size", "240x112", "--aa", "none",
+                                   "--camera", "eye=0,1,7,target=0,0,0", "--threads", threads,
+                                   "-o", out),
+                              out, w, h, &r);
+    CHECK(!px || strstr(r.err, "warning") == NULL);
     return px;
 }
 
@@ -201,8 +192,8 @@ SR_TEST(glass_spheres_show_the_checker_behind_them)
     REQUIRE(json && write_text(model, json));
     free(json);
     int w, h, w3, h3;
-    uint8_t *one = render_png(dir, model, "1", "glass_1", &w, &h);
-    uint8_t *three = render_png(dir, model, "3", "glass_3", &w3, &h3);
+    uint8_t *one = render_glass(dir, model, "1", "glass_1", &w, &h);
+    uint8_t *three = render_glass(dir, model, "3", "glass_3", &w3, &h3);
     REQUIRE(one && three);
     REQUIRE(w == w3 && h == h3);
     CHECK(memcmp(one, three, 4 * (size_t)w * (size_t)h) == 0);

@@ -38,6 +38,7 @@ typedef struct file_options {
     bool used_only;             /* listed in extensionsUsed only */
     const wbuf *fallback;       /* the accessors' uncompressed data, or NULL: none */
     bool no_indices;            /* the primitive has no indices accessor */
+    bool strip;                 /* mode 5: the indices are a triangle strip */
 } file_options;
 
 /* The sphere's arrays as a fallback: positions, normals, coordinates,
@@ -102,8 +103,8 @@ static void write_file(const draco_encoded *e, file_options o, wbuf *json, wbuf 
     wb_printf(json, "{%s\"componentType\":5125,\"count\":%zu,\"type\":\"SCALAR\"}],", v[3],
               corners);
     wb_printf(json, "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,"
-                    "\"TEXCOORD_0\":2},%s\"material\":0",
-              o.no_indices ? "" : "\"indices\":3,");
+                    "\"TEXCOORD_0\":2},%s%s\"material\":0",
+              o.no_indices ? "" : "\"indices\":3,", o.strip ? "\"mode\":5," : "");
     if (o.draco) {
         wb_printf(json, ",\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":0,"
                         "\"attributes\":{\"POSITION\":%u,\"NORMAL\":%u,\"TEXCOORD_0\":%u}}}",
@@ -125,14 +126,48 @@ static wbuf file_glb(const draco_encoded *e, file_options o)
     return out;
 }
 
-/* The plain sphere: its own counts, no extension. */
-static wbuf plain_glb(const sphere *s)
+/* The plain sphere: its own counts, no extension; its indices a strip
+ * (mode 5) with `strip`. */
+static wbuf plain_glb_mode(const sphere *s, bool strip)
 {
     draco_encoded counts = { .points = VERTS, .faces = s->index_count / 3 };
     wbuf data = sphere_bytes(s);
-    wbuf out = file_glb(&counts, (file_options){ .fallback = &data });
+    wbuf out = file_glb(&counts, (file_options){ .fallback = &data, .strip = strip });
     free(data.p);
     return out;
+}
+
+static wbuf plain_glb(const sphere *s)
+{
+    return plain_glb_mode(s, false);
+}
+
+/* The sphere's indices rewritten as one triangle strip: each band between
+ * two rings (upper a, lower b) as a0 b0 a1 b1 ..., which gives the band's
+ * triangles with their winding, the bands joined by two repeated indices
+ * (degenerate triangles, an even number so that every band starts on an
+ * even triangle), the end padded by its last index to a multiple of 3 (a
+ * Draco stream holds whole faces). */
+static void make_strip(sphere *s)
+{
+    size_t n = 0;
+    for (uint32_t i = 0; i < STACKS; i++) {
+        uint32_t a = i * (SLICES + 1), b = a + SLICES + 1;
+        if (i > 0) {
+            s->idx[n] = s->idx[n - 1];
+            n++;
+            s->idx[n++] = a;
+        }
+        for (uint32_t j = 0; j <= SLICES; j++) {
+            s->idx[n++] = a + j;
+            s->idx[n++] = b + j;
+        }
+    }
+    while (n % 3 != 0) {
+        s->idx[n] = s->idx[n - 1];
+        n++;
+    }
+    s->index_count = n;
 }
 
 static sr_scene *parse_glb(const wbuf *b, sr_io_error *e)
@@ -210,10 +245,10 @@ static void check_same_triangles(const sr_scene *a, const sr_scene *b, double to
 enum { POS_BITS = 14 };
 #define POS_STEP (2.0 / ((1 << POS_BITS) - 1))
 
-static draco_encoded encode_sphere(const sphere *s, bool point_cloud)
+static draco_encoded encode_sphere(const sphere *s, bool point_cloud, bool sequential)
 {
     draco_encoded e = draco_encode(&s->pos[0][0], &s->nrm[0][0], &s->uv[0][0], VERTS, s->idx,
-                                   s->index_count / 3, POS_BITS, point_cloud);
+                                   s->index_count / 3, POS_BITS, point_cloud, sequential);
     if (!e.data) {
         FAILF("libdraco did not encode the sphere");
     }
@@ -228,7 +263,7 @@ SR_TEST(draco_sphere_reads_as_the_plain_one)
     sr_io_error err;
     sr_scene *a = parse_glb(&plain, &err);
     REQUIRE(a);
-    draco_encoded e = encode_sphere(&s, false);
+    draco_encoded e = encode_sphere(&s, false, false);
     REQUIRE(e.data);
     CHECK_EQ(e.faces * 3, s.index_count);
     /* Zeros for a fallback: a reader that took them would draw nothing. */
@@ -271,7 +306,7 @@ SR_TEST(draco_sphere_renders_as_the_plain_one)
     static sphere s;
     make_sphere(&s);
     wbuf plain = plain_glb(&s);
-    draco_encoded e = encode_sphere(&s, false);
+    draco_encoded e = encode_sphere(&s, false, false);
     REQUIRE(e.data);
     wbuf file = file_glb(&e, (file_options){ .draco = true });
     /* Quantized normals move the shading by a level or two; positions
@@ -282,6 +317,48 @@ SR_TEST(draco_sphere_renders_as_the_plain_one)
     free(plain.p);
     free(file.p);
     free(e.data);
+}
+
+SR_TEST(draco_strip_reads_and_renders_as_the_plain_one)
+{
+    /* The extension allows TRIANGLE_STRIP: the stream's corners, face
+     * after face, are the strip's indices.  Encoded with sequential
+     * connectivity, which keeps them in order, as a writer of strips
+     * must. */
+    static sphere s;
+    make_sphere(&s);
+    make_strip(&s);
+    wbuf plain = plain_glb_mode(&s, true);
+    sr_io_error err;
+    sr_scene *a = parse_glb(&plain, &err);
+    REQUIRE(a);
+    CHECK_EQ(a->primitives[0].triangle_count, s.index_count - 2);
+    draco_encoded e = encode_sphere(&s, false, true);
+    REQUIRE(e.data);
+    CHECK_EQ(e.faces * 3, s.index_count);
+    for (int no_indices = 0; no_indices < 2; no_indices++) {
+        wbuf file = file_glb(&e, (file_options){ .draco = true, .strip = true,
+                                                 .no_indices = no_indices });
+        sr_scene *b = parse_glb(&file, &err);
+        if (!b) {
+            FAILF("no_indices %d: %s", no_indices, err.message);
+        } else {
+            check_same_triangles(a, b, POS_STEP, 0.01, 1.0 / 4095);
+            sr_destroy_scene(sr_test_ctx(), b);
+        }
+        if (no_indices) {
+            free(file.p);
+            continue;
+        }
+#ifdef SR_CLI_PATH
+        check_same_render("draco_strip", (const void *[]){ plain.p, file.p },
+                          (size_t[]){ plain.n, file.n }, 8, 32);
+#endif
+        free(file.p);
+    }
+    sr_destroy_scene(sr_test_ctx(), a);
+    free(e.data);
+    free(plain.p);
 }
 
 typedef struct bad_case {
@@ -295,8 +372,8 @@ SR_TEST(malformed_draco_primitives_give_one_line_and_exit_2)
     NEED_CLI();
     static sphere s;
     make_sphere(&s);
-    draco_encoded e = encode_sphere(&s, false);
-    draco_encoded cloud = encode_sphere(&s, true);
+    draco_encoded e = encode_sphere(&s, false, false);
+    draco_encoded cloud = encode_sphere(&s, true, false);
     REQUIRE(e.data && cloud.data);
     char count[64], count1[64], big[64], ext_ids[4][128], msg_budget[200];
     char corners[64], corners3[64], msg_count[200], msg_corners[200];
@@ -347,9 +424,17 @@ SR_TEST(malformed_draco_primitives_give_one_line_and_exit_2)
         { corners, corners3, 0, msg_corners },
         { count, big, 0,
           msg_budget },
+        { "\"TEXCOORD_0\":2},", "\"TEXCOORD_0\":2},\"mode\":6,", 0,
+          PRIM "/mode: 6, but KHR_draco_mesh_compression allows triangles (4) and triangle "
+               "strips (5) only" },
+        { "\"TEXCOORD_0\":2},", "\"TEXCOORD_0\":2},\"mode\":1,", 0,
+          PRIM "/mode: 1, but KHR_draco_mesh_compression allows triangles (4) and triangle "
+               "strips (5) only" },
+        /* libdraco's default encoding reorders the faces: no strip */
         { "\"TEXCOORD_0\":2},", "\"TEXCOORD_0\":2},\"mode\":5,", 0,
-          PRIM "/mode: 5, but softrast reads Draco primitives as triangle lists (mode 4) "
-               "only" },
+          PRIM "/mode: 5 (a triangle strip), but the Draco stream (" EXT "/bufferView) is "
+               "edgebreaker-encoded, which reorders the triangles: a strip needs sequential "
+               "connectivity" },
         { ext_ids[0], ext_ids[3], 0,
           EXT "/attributes/COLOR_0: not one of the primitive's attributes" },
         { "{\"bufferView\":0,\"attributes\"", "{\"attributes\"", 0, EXT "/bufferView: missing" },

@@ -18,6 +18,7 @@ enum { EXIT_OK = 0, EXIT_FAILURE_RUN = 1, EXIT_USAGE = 2 };
 int cmd_render(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_thumbnail(int argc, char **argv); /* thumbnail.c: a render for file managers */
+int cmd_info(int argc, char **argv);      /* info.c: what a model file holds */
 /* batch.c: `softrast render` with several models, a directory, a list or
  * the batch options; -1 when the arguments ask for one plain render. */
 int batch_render(int argc, char **argv);

@@ -70,6 +70,8 @@ static void usage(FILE *f)
             "  thumbnail -s SIZE INPUT OUTPUT\n"
             "                             a SIZE x SIZE PNG preview of a model for file\n"
             "                             managers (the freedesktop thumbnailer convention)\n"
+            "  info MODEL [--json]        what softrast reads in a model: draws, bounds,\n"
+            "                             materials, textures, cameras, lights\n"
             "  svg INPUT.svg [options]    render an SVG drawing to a PNG with the 2D toolkit;\n"
             "                             several, a directory or --batch LIST render as\n"
             "                             a batch\n"
@@ -82,7 +84,7 @@ static void usage(FILE *f)
             "                             orbit, zoom, and keys for every mode\n"
             "\n"
             "  softrast COMMAND --help    options of a command\n"
-            "  softrast --version         version\n");
+            "  softrast --version         version, and the optional formats built in\n");
 }
 
 static int run(int argc, char **argv)
@@ -97,7 +99,7 @@ static int run(int argc, char **argv)
         return EXIT_OK;
     }
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
-        printf("softrast %s\n", SR_VERSION_STRING);
+        printf("softrast %s\nbuilt with: %s\n", SR_VERSION_STRING, sr_io_features());
         return EXIT_OK;
     }
     if (strcmp(cmd, "render") == 0) {
@@ -105,6 +107,9 @@ static int run(int argc, char **argv)
     }
     if (strcmp(cmd, "thumbnail") == 0) {
         return cmd_thumbnail(argc - 1, argv + 1);
+    }
+    if (strcmp(cmd, "info") == 0) {
+        return cmd_info(argc - 1, argv + 1);
     }
     if (strcmp(cmd, "demo") == 0) {
         return cmd_demo(argc - 1, argv + 1);

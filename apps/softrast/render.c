@@ -49,6 +49,11 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
     scene_object *ob = &s->objects[0];
     sr_io_error err;
     cli_inputs_add(inputs, o->model, "model");
+    if (o->variant && !render_gltf_is(o->model)) {
+        cli_error("%s: --variant %s: not a glTF file (.gltf, .glb), the only kind with "
+                  "material variants", o->model, o->variant);
+        return EXIT_USAGE;
+    }
     if (o->animation && !(render_gltf_is(o->model) && sr_io_have_gltf())) {
         cli_error("--animation: %s", render_gltf_is(o->model)
                                          ? "this softrast was built without its glTF reader "
@@ -56,15 +61,16 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
                                          : "only glTF files (.gltf, .glb) have animations");
         return EXIT_USAGE;
     }
-    if (render_gltf_is(o->model) && (o->pbr || o->camera_index >= 0 || sr_io_have_gltf())) {
+    if (render_gltf_is(o->model) &&
+        (o->pbr || o->camera_index >= 0 || o->variant || sr_io_have_gltf())) {
         /* softrast's own glTF reader for every look (docs/gltf.md says why
          * not Assimp's, which a build may also lack): the physically
          * based look draws glTF's materials, the classic models each
          * primitive's Blinn-Phong translation of its material
          * (render_gltf_classic).  Only a build without the reader (no
          * jansson) leaves the classic models Assimp's. */
-        return render_gltf_load(o->model, o->normals == -1, o->animation, o->animation_time,
-                                ctx, inputs, s);
+        return render_gltf_load(o->model, o->normals == -1, o->variant, o->verbose,
+                                o->animation, o->animation_time, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
@@ -766,12 +772,13 @@ static int finish_scene(render_job *job)
         first->tangents = first->texcoords1 = NULL;
     }
     if (s->gltf && !first->tangents && first->mesh.texcoords && first->mesh.normals) {
-        /* Normal maps with a primitive that has no tangents: MikkTSpace's
-         * for the whole merged mesh. */
+        /* Normal maps or anisotropy with a primitive that has no
+         * tangents: MikkTSpace's for the whole merged mesh. */
         bool mapped = false;
         for (size_t i = 0; i < s->gltf->material_count; i++) {
             mapped |= s->gltf->materials[i].normal_texture.texture != NULL ||
-                      s->gltf->materials[i].clearcoat_normal_texture.texture != NULL;
+                      s->gltf->materials[i].clearcoat_normal_texture.texture != NULL ||
+                      s->gltf->materials[i].anisotropy_strength > 0.0f;
         }
         first->tangents = mapped ? malloc(first->mesh.vertex_count * 4 * sizeof(float)) : NULL;
         if (mapped && (!first->tangents || sr_mesh_compute_tangents(job->mesh_ctx, &first->mesh,

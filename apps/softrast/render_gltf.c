@@ -168,6 +168,47 @@ static bool merge(const sr_scene *sc, bool flat, sr_mesh *m, sr_mesh_part *parts
     return true;
 }
 
+/* The file's variants as "0 Red, 1 Blue", cut with ", ..." where they
+ * would not fit a line. */
+static void variant_list(const sr_scene *sc, char *list, size_t cap)
+{
+    size_t at = 0;
+    list[0] = 0;
+    for (size_t v = 0; v < sc->variant_count && at < cap; v++) {
+        int n = snprintf(list + at, cap - at, "%s%zu %s", v ? ", " : "", v, sc->variants[v]);
+        if (n < 0 || (size_t)n >= cap - at || at + (size_t)n > cap - 8) {
+            snprintf(list + at, cap - at, ", ...");
+            break;
+        }
+        at += (size_t)n;
+    }
+}
+
+/* --variant's variant, counted as sr_load_desc.variant (from 1): a name
+ * the file gives, else a number; 0 after one line when it has none such. */
+static size_t find_variant(const char *path, const sr_scene *sc, const char *want)
+{
+    for (size_t v = 0; v < sc->variant_count; v++) {
+        if (strcmp(sc->variants[v], want) == 0) {
+            return v + 1;
+        }
+    }
+    char *end = NULL;
+    unsigned long n = strtoul(want, &end, 10);
+    if (want[0] >= '0' && want[0] <= '9' && *end == 0 && n < sc->variant_count) {
+        return (size_t)n + 1;
+    }
+    char list[400];
+    variant_list(sc, list, sizeof list);
+    if (sc->variant_count == 0) {
+        cli_error("%s: --variant %s: the file has no material variants "
+                  "(KHR_materials_variants)", path, want);
+    } else {
+        cli_error("%s: --variant %s: no such variant (the file has %s)", path, want, list);
+    }
+    return 0;
+}
+
 /* The animations of sc as "0 (walk), 1 (run)" into out. */
 static void animation_names(const sr_scene *sc, char *out, size_t size)
 {
@@ -265,8 +306,9 @@ int render_gltf_list_animations(const char *path, sr_context *ctx)
     return EXIT_OK;
 }
 
-int render_gltf_load(const char *path, bool flat_normals, const char *animation, float time,
-                     sr_context *ctx, cli_inputs *inputs, scene *s)
+int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
+                     const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
+                     scene *s)
 {
     scene_object *ob = &s->objects[0];
     sr_scene *sc = NULL;
@@ -276,6 +318,23 @@ int render_gltf_load(const char *path, bool flat_normals, const char *animation,
     }
     sr_result r = SR_OK;
     s->gltf = sc;
+    /* Read with no variant, so that a name can be looked up, then each
+     * primitive given the variant's material. */
+    size_t v = variant ? find_variant(path, sc, variant) : 0;
+    if (variant && v == 0) {
+        return EXIT_USAGE;
+    }
+    for (size_t i = 0; i < sc->primitive_count; i++) {
+        if (sc->primitives[i].variant_materials) {
+            sc->primitives[i].material = sc->primitives[i].variant_materials[v];
+        }
+    }
+    if (verbose && sc->variant_count > 0) {
+        char list[400];
+        variant_list(sc, list, sizeof list);
+        fprintf(stderr, "softrast: %s: material variants %s; drawn: %s\n", path, list,
+                v ? sc->variants[v - 1] : "none (the primitives' own materials)");
+    }
     if (sc->primitive_count == 0 || sc->primitive_count > UINT32_MAX) {
         cli_error("%s: the scene has no triangles to draw", path);
         return EXIT_USAGE;

@@ -11,12 +11,14 @@
 bool render_gltf_is(const char *path);
 /* Reads the file into s (one object, a part per primitive, s->gltf kept
  * for the materials and cameras) on ctx; with flat_normals, primitives
- * without normals get flat ones (glTF's rule, for the default --normals).
- * animation (NULL: the rest pose) names the file's animation to pose it
- * by, a number or a name (--animation), at `time` seconds.  Returns an
- * exit status after one line, or -1. */
-int render_gltf_load(const char *path, bool flat_normals, const char *animation, float time,
-                     sr_context *ctx, cli_inputs *inputs, scene *s);
+ * without normals get flat ones (glTF's rule, for the default --normals);
+ * `variant` (--variant, or NULL) picks the material variant; `verbose`
+ * lists the file's variants; animation (--animation, NULL: the rest pose)
+ * names the file's animation to pose it by, a number or a name, at `time`
+ * seconds.  Returns an exit status after one line, or -1. */
+int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
+                     const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
+                     scene *s);
 /* --list-animations: the file's animations on stdout, one a line
  * (number, duration, channels, name, tab-separated).  An exit status. */
 int render_gltf_list_animations(const char *path, sr_context *ctx);

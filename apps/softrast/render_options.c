@@ -58,6 +58,7 @@ static const char *const valued_options[] = {
     "--tonemap", "--exposure", "--environment", "--environment-intensity", "--shadows",
     "--normals", "--material", "--ambient", "--opacity", "--light", "--lights", "--texture",
     "--texture-filter", "--wrap", "--camera", "--fov", "--up", "--turn", "--camera-index",
+    "--variant",
     "--animation", "--time",
     "--near", "--far", "--cull", "--front-face", "--depth-format", "--depth-func",
     "--projection-interp", "--depth-range", "--clipper", "--line-width", "--point-size",
@@ -177,6 +178,10 @@ static void render_help(void)
         "  --turn DEG               rotate the model about the vertical axis (default 0)\n"
         "  --camera-index N         a glTF file's camera N (0 first, in node order) in\n"
         "                           place of the default camera (any --shading)\n"
+        "  --variant NAME|N         a glTF file's material variant (KHR_materials_variants)\n"
+        "                           by name, or by number (0 first, in the file's order);\n"
+        "                           default: none, each primitive's own material; -v\n"
+        "                           lists the file's variants\n"
         "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
         "animation (glTF):\n"
         "  --animation N|NAME       pose the model by the file's animation N (0 first)\n"
@@ -410,6 +415,9 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
                 return EXIT_USAGE;
             }
             o->camera_index = (int)n;
+        } else if (IS("--variant")) {
+            VALUE();
+            o->variant = value;
         } else if (IS("--animation")) {
             VALUE();
             o->animation = value;

@@ -23,6 +23,8 @@ typedef struct render_opts {
     const char *environment;       /* "studio", "hemisphere" or an .hdr file */
     float environment_intensity;
     int camera_index;              /* --camera-index: a glTF camera, or -1 */
+    const char *variant;           /* --variant: a glTF material variant's name or
+                                    * number, or NULL */
     const char *animation;         /* --animation N|NAME: a glTF animation, or NULL */
     float animation_time;          /* --time SECONDS into it */
     bool have_time;

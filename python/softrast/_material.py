@@ -35,6 +35,13 @@ class Material:
     thickness: the volume's thickness in object units (KHR_materials_volume;
     0: thin-walled); attenuation_color: (3,) float32 linear RGB that white
     light keeps after attenuation_distance (world units; 0: no absorption).
+    anisotropy_strength, anisotropy_rotation: how far the highlight stretches,
+    in [0, 1], along the tangent turned by the rotation (radians,
+    counter-clockwise) (KHR_materials_anisotropy; 0: isotropic).
+    iridescence: a thin film's weight in [0, 1] (KHR_materials_iridescence;
+    0: none), its iridescence_ior >= 1 and its thickness in nm,
+    iridescence_thickness_max, or from iridescence_thickness_min to it
+    across a loaded file's thickness texture.
 
     ``render`` draws the base color of a loaded instance (factor times
     texture times vertex color, drawn into its Mesh by :func:`load`) into
@@ -56,7 +63,9 @@ class Material:
                  "unlit", "normal_scale", "occlusion_strength", "ior", "specular",
                  "specular_color", "clearcoat", "clearcoat_roughness", "sheen_color",
                  "sheen_roughness", "transmission", "thickness", "attenuation_color",
-                 "attenuation_distance")
+                 "attenuation_distance", "anisotropy_strength", "anisotropy_rotation",
+                 "iridescence", "iridescence_ior", "iridescence_thickness_min",
+                 "iridescence_thickness_max")
 
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
@@ -82,6 +91,12 @@ class Material:
     thickness: float
     attenuation_color: NDArray[np.float32]
     attenuation_distance: float
+    anisotropy_strength: float
+    anisotropy_rotation: float
+    iridescence: float
+    iridescence_ior: float
+    iridescence_thickness_min: float
+    iridescence_thickness_max: float
 
     def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
                  base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
@@ -94,7 +109,10 @@ class Material:
                  clearcoat_roughness: float = 0.0, sheen_color: Factors = (0.0, 0.0, 0.0),
                  sheen_roughness: float = 0.0, transmission: float = 0.0,
                  thickness: float = 0.0, attenuation_color: Factors = (1.0, 1.0, 1.0),
-                 attenuation_distance: float = 0.0) -> None:
+                 attenuation_distance: float = 0.0, anisotropy_strength: float = 0.0,
+                 anisotropy_rotation: float = 0.0, iridescence: float = 0.0,
+                 iridescence_ior: float = 1.3, iridescence_thickness_min: float = 100.0,
+                 iridescence_thickness_max: float = 400.0) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
         if base_color_texture is not None and not (
                 isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
@@ -130,6 +148,19 @@ class Material:
         self.attenuation_color = _factors(attenuation_color, "attenuation_color", 3, 1.0)
         self.attenuation_distance = float(_factors(attenuation_distance, "attenuation_distance",
                                                    1, np.inf)[0])
+        self.anisotropy_strength = float(_factors(anisotropy_strength, "anisotropy_strength", 1,
+                                                  1.0)[0])
+        self.anisotropy_rotation = float(anisotropy_rotation)
+        if not np.isfinite(self.anisotropy_rotation):
+            raise ValueError(f"anisotropy_rotation: must be finite, got {anisotropy_rotation!r}")
+        self.iridescence = float(_factors(iridescence, "iridescence", 1, 1.0)[0])
+        self.iridescence_ior = float(_factors(iridescence_ior, "iridescence_ior", 1, np.inf)[0])
+        if self.iridescence_ior < 1.0:
+            raise ValueError(f"iridescence_ior: must be >= 1, got {iridescence_ior!r}")
+        self.iridescence_thickness_min = float(_factors(
+            iridescence_thickness_min, "iridescence_thickness_min", 1, np.inf)[0])
+        self.iridescence_thickness_max = float(_factors(
+            iridescence_thickness_max, "iridescence_thickness_max", 1, np.inf)[0])
 
     @classmethod
     def _from_factors(cls, factors: Mapping[str, Any],

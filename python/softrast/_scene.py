@@ -107,9 +107,11 @@ class Scene:
     take their index in the scene.  ``cameras``: the :class:`Camera` list
     of the file :func:`load` read (empty otherwise); ``lights``: its
     :class:`Light` tuple (read-only; given here, or the file's), which
-    :func:`render` lights with (its ``lights``).  ``animations``: the
-    file's :class:`Animation` list; ``animation`` and ``time``: the one
-    :func:`load` posed it by (its index) and when, or None and 0.0.
+    :func:`render` lights with (its ``lights``); ``variants``: the names of
+    its material variants (glTF's KHR_materials_variants), a tuple.
+    ``animations``: the file's :class:`Animation` list; ``animation`` and
+    ``time``: the one :func:`load` posed it by (its index) and when, or
+    None and 0.0.
     """
 
     animations: List[Animation]
@@ -117,10 +119,11 @@ class Scene:
     time: float
 
     def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = (),
-                 lights: Iterable[Light] = ()) -> None:
+                 lights: Iterable[Light] = (), variants: Iterable[str] = ()) -> None:
         self.instances: List[Instance] = []
         self.cameras = list(cameras)
         self._lights = tuple(lights)
+        self.variants: Tuple[str, ...] = tuple(variants)
         self.animations = []
         self.animation = None
         self.time = 0.0
@@ -185,26 +188,29 @@ def as_scene(scene: Any) -> Scene:
 class _SceneFile:
     """The library's scene of a loaded glTF file (its materials with their
     textures, the primitives' arrays), for shading="pbr".  Pickled as its
-    path: read again where it is unpickled (a Dask worker), or, when it
-    cannot be, dropped with a warning (its instances then draw their
-    Mesh's base colors)."""
+    path and material variant: read again where it is unpickled (a Dask
+    worker), or, when it cannot be, dropped with a warning (its instances
+    then draw their Mesh's base colors)."""
 
-    __slots__ = ("path", "capsule", "pose")
+    __slots__ = ("path", "capsule", "variant", "pose")
 
     def __init__(self, path: Union[str, bytes], capsule: object,
+                 variant: Union[str, int, None] = None,
                  pose: Tuple[int, float] = (-1, 0.0)) -> None:
         self.path = path
         self.capsule = capsule
+        self.variant = variant
         self.pose = pose   # (animation index or -1, time), as it was read
 
-    def __reduce__(self) -> Tuple[Any, Tuple[Union[str, bytes], Tuple[int, float]]]:
-        return (_read_scene_file, (self.path, self.pose))
+    def __reduce__(self) -> Tuple[Any, Tuple[Union[str, bytes], Union[str, int, None],
+                                             Tuple[int, float]]]:
+        return (_read_scene_file, (self.path, self.variant, self.pose))
 
 
-def _read_scene_file(path: Union[str, bytes],
+def _read_scene_file(path: Union[str, bytes], variant: Union[str, int, None] = None,
                      pose: Tuple[int, float] = (-1, 0.0)) -> Optional[_SceneFile]:
     try:
-        return _SceneFile(path, _softrast.load_scene(path, *pose)["file"], pose)
+        return _SceneFile(path, _softrast.load_scene(path, variant, *pose)["file"], variant, pose)
     except (OSError, ValueError) as e:
         warnings.warn(f"softrast: {os.fsdecode(path)}: the file's materials are not kept: {e}",
                       stacklevel=2)
@@ -250,8 +256,8 @@ def _animation_index(path: Union[str, bytes], animation: Union[int, str]) -> int
     return names.index(animation)
 
 
-def load(path: PathLike, animation: Union[int, str, None] = None,
-         time: float = 0.0) -> Scene:
+def load(path: PathLike, variant: Union[str, int, None] = None,
+         animation: Union[int, str, None] = None, time: float = 0.0) -> Scene:
     """Read a model file as a :class:`Scene` (sr_load_scene).
 
     glTF 2.0 (.gltf, .glb) is read with its node hierarchy: one instance per
@@ -270,6 +276,11 @@ def load(path: PathLike, animation: Union[int, str, None] = None,
     Its KHR_lights_punctual lights are ``Scene.lights``, :class:`Light`
     tuples in world space, which ``render(shading="pbr")`` lights with
     (its ``lights``, as softrast render's ``--lights``).
+    A file's material variants (KHR_materials_variants: a product in
+    several colourways) are named in ``Scene.variants``; ``variant``, a
+    name or a number from 0, draws that one's materials (as softrast
+    render's ``--variant``), None each primitive's own.  ValueError names
+    the file's variants when it has no such one.
 
     ``animation`` (an index into the file's animations, or a name) poses
     a glTF file's nodes by that animation at ``time`` seconds, clamped to
@@ -280,20 +291,23 @@ def load(path: PathLike, animation: Union[int, str, None] = None,
     animation asked of a format that has none.
     """
     path = _path(path)
+    if variant is not None and (isinstance(variant, bool)
+                                or not isinstance(variant, (str, int))):
+        raise TypeError(f"variant: expected a str, an int or None, got {type(variant).__name__}")
     time = float(time)
     if not math.isfinite(time):
         raise ValueError(f"time: {time} is not finite")
     if animation is None and time != 0.0:
         raise ValueError("time: a time into an animation: give animation too")
     index = -1 if animation is None else _animation_index(path, animation)
-    d = _softrast.load_scene(path, index, time)
+    d = _softrast.load_scene(path, variant, index, time)
     if not d["gltf"]:
         return Scene([load_mesh(path)])
     images = base_color_images(path, d["materials"])
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
     meshes: dict[Tuple[int, int], Mesh] = {}
     instances = []
-    source = _SceneFile(path, d["file"], (index, time))
+    source = _SceneFile(path, d["file"], variant, (index, time))
     for primitive, (mesh_index, world, material) in enumerate(d["instances"]):
         key = (mesh_index, material)
         if key not in meshes:
@@ -303,7 +317,7 @@ def load(path: PathLike, animation: Union[int, str, None] = None,
         inst._source = (source, primitive)
         instances.append(inst)
     scene = Scene(instances, [Camera._from_fields(c) for c in d["cameras"]],
-                  [Light._from_fields(light) for light in d["lights"]])
+                  [Light._from_fields(light) for light in d["lights"]], d["variants"])
     scene.animations = [Animation(*a) for a in d["animations"]]
     scene.animation = None if index < 0 else index
     scene.time = time if index >= 0 else 0.0

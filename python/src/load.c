@@ -171,6 +171,25 @@ static PyObject *material_dict(const sr_pbr_material *m)
         "clearcoat", (double)m->clearcoat, "clearcoat_roughness", (double)m->clearcoat_roughness,
         "sheen_color", Py_BuildValue("(ddd)", (double)sh[0], (double)sh[1], (double)sh[2]),
         "sheen_roughness", (double)m->sheen_roughness) : NULL;
+    /* The base lobe's anisotropy and film (KHR_materials_anisotropy and
+     * _iridescence), with sr_pbr_material's zeros as the defaults. */
+    bool both_zero = m->iridescence_thickness_min == 0.0f &&
+                     m->iridescence_thickness_max == 0.0f;
+    PyObject *surface = layers ? Py_BuildValue(
+        "{sdsdsdsdsdsd}", "anisotropy_strength", (double)m->anisotropy_strength,
+        "anisotropy_rotation", (double)m->anisotropy_rotation, "iridescence",
+        (double)m->iridescence, "iridescence_ior",
+        m->iridescence_ior != 0.0f ? (double)m->iridescence_ior : 1.3,
+        "iridescence_thickness_min", both_zero ? 100.0 : (double)m->iridescence_thickness_min,
+        "iridescence_thickness_max", both_zero ? 400.0 : (double)m->iridescence_thickness_max)
+                                : NULL;
+    if (!surface || PyDict_Update(layers, surface) < 0) {
+        Py_XDECREF(surface);
+        Py_XDECREF(layers);
+        Py_XDECREF(d);
+        return NULL;
+    }
+    Py_DECREF(surface);
     if (!layers || PyDict_Update(d, layers) < 0) {
         Py_XDECREF(layers);
         Py_XDECREF(d);
@@ -320,6 +339,19 @@ static PyObject *scene_dict(const sr_scene *s)
                             "materials", materials, "cameras", cameras, "lights", lights, "gltf",
                             gltf ? Py_True : Py_False);
     }
+    PyObject *variants = out ? PyList_New((Py_ssize_t)s->variant_count) : NULL;
+    for (size_t i = 0; variants && i < s->variant_count; i++) {
+        PyObject *name = PyUnicode_DecodeUTF8(s->variants[i], (Py_ssize_t)strlen(s->variants[i]),
+                                              "replace");
+        if (!name) {
+            Py_CLEAR(variants);
+            break;
+        }
+        PyList_SET_ITEM(variants, (Py_ssize_t)i, name);
+    }
+    if (out && set_item(out, "variants", variants) < 0) {
+        Py_CLEAR(out);
+    }
     /* The file's animations as (name, channels, duration) tuples. */
     PyObject *anims = out ? PyList_New((Py_ssize_t)s->animation_count) : NULL;
     for (size_t i = 0; anims && i < s->animation_count; i++) {
@@ -332,7 +364,7 @@ static PyObject *scene_dict(const sr_scene *s)
         }
         PyList_SET_ITEM(anims, (Py_ssize_t)i, t);
     }
-    if (out && (!anims || set_item(out, "animations", anims) < 0)) {
+    if (out && set_item(out, "animations", anims) < 0) {
         Py_CLEAR(out);
     }
 done:
@@ -345,15 +377,78 @@ done:
     return out;
 }
 
+/* KHR_materials_variants: `variant` (None, a name the file gives or a
+ * number from 0) given to the scene's primitives, as softrast render's
+ * --variant does.  -1 with ValueError when the file has no such variant. */
+static int apply_variant(sr_scene *s, PyObject *variant, const char *path)
+{
+    if (variant == Py_None) {
+        return 0;
+    }
+    size_t v = 0;
+    if (PyLong_Check(variant)) {
+        long n = PyLong_AsLong(variant);
+        if (n == -1 && PyErr_Occurred()) {
+            return -1;
+        }
+        v = n >= 0 && (size_t)n < s->variant_count ? (size_t)n + 1 : 0;
+    } else {
+        const char *want = PyUnicode_AsUTF8(variant);
+        if (!want) {
+            return -1;
+        }
+        for (size_t i = 0; i < s->variant_count && v == 0; i++) {
+            v = strcmp(s->variants[i], want) == 0 ? i + 1 : 0;
+        }
+    }
+    if (v == 0 && s->variant_count == 0) {
+        PyErr_Format(PyExc_ValueError,
+                     "%s: variant %R: the file has no material variants (KHR_materials_variants)",
+                     path, variant);
+        return -1;
+    }
+    if (v == 0) {
+        PyObject *names = PyList_New(0);
+        for (size_t i = 0; names && i < s->variant_count; i++) {
+            PyObject *name = PyUnicode_DecodeUTF8(s->variants[i],
+                                                  (Py_ssize_t)strlen(s->variants[i]), "replace");
+            if (!name || PyList_Append(names, name) < 0) {
+                Py_XDECREF(name);
+                Py_CLEAR(names);
+                break;
+            }
+            Py_DECREF(name);
+        }
+        if (names) {
+            PyErr_Format(PyExc_ValueError, "%s: variant %R: no such variant (the file has %R)",
+                         path, variant, names);
+            Py_DECREF(names);
+        }
+        return -1;
+    }
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        if (s->primitives[i].variant_materials) {
+            s->primitives[i].material = s->primitives[i].variant_materials[v];
+        }
+    }
+    return 0;
+}
+
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *path_obj;
+    PyObject *path_obj, *variant = Py_None;
     int animation = -1;
     float time = 0.0f;
-    if (!PyArg_ParseTuple(args, "O&|if:load", PyUnicode_FSConverter, &path_obj, &animation,
-                          &time)) {
+    if (!PyArg_ParseTuple(args, "O&|Oif:load", PyUnicode_FSConverter, &path_obj, &variant,
+                          &animation, &time)) {
         return NULL;
+    }
+    if (variant != Py_None && !PyUnicode_Check(variant) &&
+        !(PyLong_Check(variant) && !PyBool_Check(variant))) {
+        Py_DECREF(path_obj);
+        return PyErr_Format(PyExc_TypeError, "variant: expected a str, an int or None, got %s",
+                            Py_TYPE(variant)->tp_name);
     }
     /* animation -1: the rest pose; the library checks the index and the
      * time (ValueError). */
@@ -371,7 +466,12 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     } else {
         snprintf(err.message, sizeof err.message, "cannot make a context");
     }
-    PyObject *d = r == SR_OK ? scene_dict(scene) : sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
+    PyObject *d = NULL;
+    if (r != SR_OK) {
+        d = sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
+    } else if (apply_variant(scene, variant, PyBytes_AS_STRING(path_obj)) == 0) {
+        d = scene_dict(scene);
+    }
     Py_DECREF(path_obj);
     PyObject *gltf = d ? PyDict_GetItemString(d, "gltf") : NULL;
     if (gltf == Py_True) {

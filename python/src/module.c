@@ -32,13 +32,14 @@ PyDoc_STRVAR(load_mesh_doc,
 "texture).  Use softrast.load_mesh.");
 
 PyDoc_STRVAR(load_scene_doc,
-"load_scene(path, animation=-1, time=0.0, /)\n--\n\n"
+"load_scene(path, variant=None, animation=-1, time=0.0, /)\n--\n\n"
 "sr_load_scene, posed by the file's animation `animation` at `time`\n"
 "seconds (-1: the rest pose): {'meshes': [dict of arrays], 'instances':\n"
 "[(mesh index, (4, 4) world matrix, material index)], 'materials': [dict\n"
-"of factors], 'cameras': [dict of a camera's fields], 'animations':\n"
-"[(name, channels, duration)], 'file': the scene kept for render's\n"
-"metallic-roughness look, or None}.\n"
+"of factors], 'cameras': [dict of a camera's fields], 'variants': [names],\n"
+"'animations': [(name, channels, duration)], 'file': the scene kept for\n"
+"render's metallic-roughness look, or None}; variant (a name or a number\n"
+"from 0) picks the materials of a glTF material variant.\n"
 "Use softrast.load.");
 
 PyDoc_STRVAR(make_environment_doc,
@@ -115,6 +116,21 @@ static struct PyModuleDef module = {
     .m_size = -1,
     .m_methods = methods,
 };
+
+/* softrast.features: sr_io_features as a tuple of names. */
+static int add_features(PyObject *m)
+{
+    PyObject *text = PyUnicode_FromString(sr_io_features());
+    PyObject *list = text ? PyUnicode_Split(text, NULL, -1) : NULL;
+    PyObject *tuple = list ? PyList_AsTuple(list) : NULL;
+    Py_XDECREF(text);
+    Py_XDECREF(list);
+    if (!tuple || PyModule_AddObject(m, "features", tuple) < 0) {
+        Py_XDECREF(tuple);
+        return -1;
+    }
+    return 0;
+}
 
 PyMODINIT_FUNC PyInit__softrast(void);
 
@@ -196,6 +212,7 @@ PyMODINIT_FUNC PyInit__softrast(void)
         PyModule_AddStringConstant(m, "library_version", SR_VERSION_STRING) < 0 ||
         PyModule_AddObject(m, "have_svg", PyBool_FromLong(sr_io_have_svg())) < 0 ||
         PyModule_AddObject(m, "have_text", PyBool_FromLong(sr_io_have_text())) < 0 ||
+        add_features(m) < 0 ||
         add_framing_constants(m) < 0 || add_type(m, "Path", &sr_py_PathType) < 0 ||
         add_type(m, "Canvas2D", &sr_py_Canvas2DType) < 0 || add_draw2d_names(m) < 0) {
         Py_DECREF(&sr_py_MeshType);

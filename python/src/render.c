@@ -670,7 +670,8 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
  * unlit, normal scale, occlusion strength, ior, specular, specular color
  * (3), clearcoat, clearcoat roughness, sheen color (3), sheen roughness,
  * (transmission, thickness, attenuation color (3), attenuation distance),
- * source: None or (the loaded scene's capsule, primitive index)). */
+ * (anisotropy strength, rotation, iridescence, its ior, thickness min and
+ * max), source: None or (the loaded scene's capsule, primitive index)). */
 static int take_look(PyObject *look, Py_ssize_t i, instance *in)
 {
     PyObject *pose, *source;
@@ -680,14 +681,17 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     float *c = m->base_color, *e = m->emissive, *sc = m->specular_color, *sh = m->sheen_color;
     float *ac = m->attenuation_color;
     if (!PyTuple_Check(look) ||
-        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffff(fff)ff(fff)f(ff(fff)f)O", &pose, &c[0],
+        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffff(fff)ff(fff)f(ff(fff)f)(ffffff)O", &pose,
+                          &c[0],
                           &c[1], &c[2], &c[3], &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
                           &m->emissive_strength, &mode, &m->alpha_cutoff, &double_sided, &unlit,
                           &m->normal_scale, &m->occlusion_strength, &m->ior, &m->specular,
                           &sc[0], &sc[1], &sc[2], &m->clearcoat, &m->clearcoat_roughness,
                           &sh[0], &sh[1], &sh[2], &m->sheen_roughness, &m->transmission,
                           &m->thickness, &ac[0], &ac[1], &ac[2], &m->attenuation_distance,
-                          &source)) {
+                          &m->anisotropy_strength, &m->anisotropy_rotation, &m->iridescence,
+                          &m->iridescence_ior, &m->iridescence_thickness_min,
+                          &m->iridescence_thickness_max, &source)) {
         PyErr_Clear();
         PyErr_Format(PyExc_TypeError, "instances[%zd]: the look is malformed", i);
         return -1;

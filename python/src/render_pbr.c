@@ -92,6 +92,12 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
     m.thickness = f->thickness;
     memcpy(m.attenuation_color, f->attenuation_color, sizeof m.attenuation_color);
     m.attenuation_distance = f->attenuation_distance;
+    m.anisotropy_strength = f->anisotropy_strength;
+    m.anisotropy_rotation = f->anisotropy_rotation;
+    m.iridescence = f->iridescence;
+    m.iridescence_ior = f->iridescence_ior;
+    m.iridescence_thickness_min = f->iridescence_thickness_min;
+    m.iridescence_thickness_max = f->iridescence_thickness_max;
     return m;
 }
 

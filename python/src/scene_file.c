@@ -72,7 +72,8 @@ static sr_result prepare(sr_context *ctx, const sr_scene *s, const sr_scene_prim
         }
     }
     if (!d->tangents &&
-        (d->material->normal_texture.texture || d->material->clearcoat_normal_texture.texture) &&
+        (d->material->normal_texture.texture || d->material->clearcoat_normal_texture.texture ||
+         d->material->anisotropy_strength > 0.0f) &&
         d->mesh.texcoords &&
         d->mesh.vertex_count > 0) {
         d->owned_tangents = malloc(d->mesh.vertex_count * 4 * sizeof(float));

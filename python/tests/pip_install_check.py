@@ -1,6 +1,7 @@
 """`pip install ./python` from a copy of this checkout, then the installed
-package against the one the CMake build made: the same bytes for a render,
-and its type information (py.typed, the extension's stub) installed with it.
+package against the one the CMake build made: the same optional features
+(softrast.features), the same bytes for a render, and its type information
+(py.typed, the extension's stub) installed with it.
 
 Run by CTest as python_pip_install (not collected by pytest: it builds the
 whole library once more, about half a minute of CPU).  Exit 77 (skipped)
@@ -29,6 +30,7 @@ h = hashlib.sha256()
 for name in sorted(out):
     h.update(name.encode()); h.update(np.ascontiguousarray(out[name]).tobytes())
 print(softrast.__file__)
+print(" ".join(softrast.features))
 print(softrast.__version__, h.hexdigest())
 """
 
@@ -41,8 +43,8 @@ def probe(pythonpath, cwd):
                        text=True)
     if r.returncode != 0:
         sys.exit(f"pip_install_check: the render failed under PYTHONPATH={pythonpath}:\n{r.stderr}")
-    where, digest = r.stdout.splitlines()[-2:]
-    return where, digest
+    where, features, digest = r.stdout.splitlines()[-3:]
+    return where, features, digest
 
 
 def main():
@@ -67,18 +69,24 @@ def main():
         if r.returncode != 0:
             sys.exit("pip_install_check: " + " ".join(cmd) + " failed:\n" + r.stdout[-4000:]
                      + r.stderr[-4000:])
-        where, installed = probe(target, tmp)
+        where, installed_features, installed = probe(target, tmp)
         if not where.startswith(target):
             sys.exit(f"pip_install_check: imported {where}, not the installed package")
         # PEP 561: the type information goes with the package.
         for name in ("py.typed", "_softrast.pyi", "typing.py"):
             if not os.path.isfile(os.path.join(target, "softrast", name)):
                 sys.exit(f"pip_install_check: softrast/{name} was not installed")
-        _, reference = probe(built, tmp)
+        _, built_features, reference = probe(built, tmp)
+    # setup.py finds the optional libraries CMake found: the installed
+    # package reads what the build tree's does (Draco, WebP, text...).
+    if installed_features != built_features:
+        sys.exit(f"pip_install_check: the installed package has features '{installed_features}', "
+                 f"the CMake build's '{built_features}'")
     if installed != reference:
         sys.exit(f"pip_install_check: the installed package renders {installed}, "
                  f"the CMake build's {reference}")
     print("pip install ./python: imports and renders the same bytes as the build tree:", installed)
+    print("pip install ./python: built with", installed_features)
     return 0
 
 

@@ -338,6 +338,38 @@ def test_layer_extensions_reach_the_material_and_the_picture(tmp_path):
 
 
 
+def test_anisotropy_and_iridescence_reach_the_material_and_the_picture(tmp_path):
+    # KHR_materials_anisotropy and _iridescence come with the loaded
+    # Material (the extensions' defaults where the file gives none) and
+    # change the picture; set to zero on the Material they draw the plain
+    # material's bytes; a Material made in Python carries them too.
+    plain = mat((0.8, 0.8, 0.8, 1), metallic=1.0, roughness=0.3)
+    film = mat((0.8, 0.8, 0.8, 1), metallic=1.0, roughness=0.3,
+               extensions={"KHR_materials_anisotropy": {"anisotropyStrength": 0.7,
+                                                        "anisotropyRotation": 0.5},
+                           "KHR_materials_iridescence": {"iridescenceFactor": 1.0,
+                                                         "iridescenceThicknessMaximum": 500}})
+    pictures, scenes = [], []
+    for i, m in enumerate((plain, film)):
+        path = gb.write(tmp_path / f"f{i}.gltf", [(gb.quad((0, 0, 0), 2.0), 0)], [m], [])
+        scenes.append(load(path))
+        pictures.append(front(scenes[-1])["color"].astype(int))
+    got = scenes[1].instances[0].material
+    assert abs(got.anisotropy_strength - 0.7) < 1e-6 and abs(got.anisotropy_rotation - 0.5) < 1e-6
+    assert got.iridescence == 1.0 and abs(got.iridescence_ior - 1.3) < 1e-6
+    assert got.iridescence_thickness_min == 100.0 and got.iridescence_thickness_max == 500.0
+    assert np.abs(pictures[1] - pictures[0]).max() > 10, "the film changes the picture"
+    got.anisotropy_strength = 0.0
+    got.iridescence = 0.0
+    assert np.array_equal(front(scenes[1])["color"].astype(int), pictures[0])
+    m = softrast.Material(anisotropy_strength=0.5, iridescence=1.0)
+    assert abs(m.iridescence_ior - 1.3) < 1e-6 and m.iridescence_thickness_max == 400.0
+    with pytest.raises(ValueError, match="iridescence_ior"):
+        softrast.Material(iridescence_ior=0.5)
+    with pytest.raises(ValueError, match="anisotropy_strength"):
+        softrast.Material(anisotropy_strength=2.0)
+
+
 def test_transmission_shows_what_is_behind(tmp_path):
     # Clear glass (KHR_materials_transmission, white, smooth) in front of a
     # red and a blue square: it shows each, near the colour the squares

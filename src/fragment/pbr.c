@@ -132,6 +132,8 @@ enum {
     SLOT_CLEARCOAT_NORMAL, SLOT_SHEEN_COLOR, SLOT_SHEEN_ROUGHNESS,
     /* transmission (R) and the volume's thickness (G) (pbr_transmission.h) */
     SLOT_TRANSMISSION, SLOT_THICKNESS,
+    /* the base lobe's anisotropy and thin film (pbr_layers.h) */
+    SLOT_ANISOTROPY, SLOT_IRIDESCENCE, SLOT_IRIDESCENCE_THICKNESS,
     SLOT_COUNT
 };
 
@@ -148,7 +150,8 @@ static const struct {
     SLOT_FIELD(clearcoat_texture), SLOT_FIELD(clearcoat_roughness_texture),
     SLOT_FIELD(clearcoat_normal_texture), SLOT_FIELD(sheen_color_texture),
     SLOT_FIELD(sheen_roughness_texture), SLOT_FIELD(transmission_texture),
-    SLOT_FIELD(thickness_texture),
+    SLOT_FIELD(thickness_texture), SLOT_FIELD(anisotropy_texture),
+    SLOT_FIELD(iridescence_texture), SLOT_FIELD(iridescence_thickness_texture),
 #undef SLOT_FIELD
 };
 
@@ -208,6 +211,10 @@ struct sr_pbr {
      * coat's prefiltered radiance like `oct`, at its roughness. */
     bool layers, coat, sheen;
     float f0_color[3], f90;
+    /* The base lobe's anisotropy (its direction as cos and sin of the
+     * rotation) and thin film (its index), when on. */
+    bool aniso, irid;
+    float an_cos, an_sin;
     float *oct_coat;
     const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
@@ -497,6 +504,12 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
     /* The visibility term's view half is the same for every light. */
     v4f gv2 = nv * nv * one_a2 + a2;    /* >= a2 > 0 */
     v4f gv = gv2 * rsqrt_nr(gv2);
+    if (ext && ext->aniso) {
+        sr__aniso_begin(ext, r * r, v, nv);
+    }
+    if (ext && ext->irid) {
+        sr__iridescence_begin(ext, vclamp(dot3(n, v), 0.0f, 1.0f), f0);
+    }
     for (int l = 0; l < p->nlights; l++) {
         v4f ld[3], rad[3];
         for (int c = 0; c < 3; c++) {
@@ -555,8 +568,15 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         /* D times V in one division: a2 / (pi dd^2) times 0.5 / (the
          * visibility's sum), which is positive as nv > 0 and a2 > 0. */
         v4f dv = a2 * 0.5f * rcp_nr(PI_F * dd * dd * (nl * gv + nv * gl));
+        if (ext && ext->aniso) {
+            dv = sr__aniso_dv(ext, ld, hs, nl, nv, nh);
+        }
         for (int c = 0; c < 3; c++) {
             v4f f = f0[c] + (f90 - f0[c]) * fw;
+            if (ext && ext->irid) {
+                /* The film's Fresnel, at N.V, mixed in by its weight. */
+                f += ext->ir_w * (ext->ir_f[c] - f);
+            }
             out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
         }
         if (ext && ext->coat) {
@@ -574,6 +594,15 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         rr[k] = 2.0f * nd * n[k] - v[k];
     }
     v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
+    if (ext && ext->aniso) {
+        /* The stretched lobe reflects about the bent normal. */
+        v4f bn[3];
+        sr__aniso_bent(ext, n, v, rc, bn);
+        v4f bd = dot3(bn, v);
+        for (int k = 0; k < 3; k++) {
+            rr[k] = 2.0f * bd * bn[k] - v[k];
+        }
+    }
     if (p->environment) {
         /* Image-based light: irradiance (E / pi) along N and the
          * prefiltered radiance along R, from tables made with the program
@@ -594,8 +623,12 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
      * white for dielectrics and metals at every roughness. */
     v4f ems = 1.0f - (sa + sb);
     for (int c = 0; c < 3; c++) {
-        v4f fss_ess = f0[c] * sa + f90 * sb;
-        v4f favg = f0[c] + (f90 - f0[c]) * (1.0f / 21.0f);
+        v4f f0c = f0[c];
+        if (ext && ext->irid) {
+            f0c += ext->ir_w * (ext->ir_f0[c] - f0c);
+        }
+        v4f fss_ess = f0c * sa + f90 * sb;
+        v4f favg = f0c + (f90 - f0c) * (1.0f / 21.0f);
         v4f fms_ems = ems * fss_ess * favg / (1.0f - ems * favg);
         v4f kd = cdiff[c] * (1.0f - (fss_ess + fms_ems));
         out[c] += (fss_ess * er[c] + (fms_ems + kd) * en[c]) * ao;
@@ -618,6 +651,75 @@ done:
     for (int c = 0; c < 3; c++) {
         store(out_[c], out[c]);
     }
+}
+
+/* KHR_materials_anisotropy's inputs: the strength (factor times the
+ * texture's B) and the direction, (cos, sin) of the rotation turning the
+ * texture's RG (in -1..1; (1, 0) without one), in the tangent frame of
+ * the geometric normal; B = N x T.  A lane without a direction (no
+ * texture coordinates to derive a frame from) is isotropic. */
+static void aniso_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
+                         sr__pbr_layers *x)
+{
+    float tex[4][4], uv[2][4] = { { 0 } }, g[3][4], t[3][4], b[3][4];
+    float dx[4], dy[4], s[4];
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i < 4; i++) {
+            g[k][i] = q->varyings[VARY_NORMAL + k][i] * side;
+        }
+    }
+    normalize4(g);
+    for (int i = 0; i < 4; i++) {
+        dx[i] = p->an_cos;
+        dy[i] = p->an_sin;
+        s[i] = p->m.anisotropy_strength;
+    }
+    if (p->slot[SLOT_ANISOTROPY].tex) {
+        sample_slot(&p->slot[SLOT_ANISOTROPY], q, tex, uv);
+        for (int i = 0; i < 4; i++) {
+            float u = 2.0f * tex[0][i] - 1.0f, w = 2.0f * tex[1][i] - 1.0f;
+            dx[i] = p->an_cos * u - p->an_sin * w;
+            dy[i] = p->an_sin * u + p->an_cos * w;
+            s[i] *= tex[2][i];
+        }
+    } else if (p->vary_tangent < 0) {
+        memcpy(uv, &q->varyings[p->vary_uv[0]], sizeof uv);
+    }
+    tangent_frame(p, q, g, uv, t, b);
+    float tt[3][4];
+    for (int k = 0; k < 3; k++) {
+        for (int i = 0; i < 4; i++) {
+            tt[k][i] = t[k][i] * dx[i] + b[k][i] * dy[i];
+        }
+    }
+    normalize4(tt);
+    for (int i = 0; i < 4; i++) {
+        float l2t = tt[0][i] * tt[0][i] + tt[1][i] * tt[1][i] + tt[2][i] * tt[2][i];
+        if (!(l2t > 0.0f)) {
+            /* Isotropic here: any T across the normal does. */
+            bool ax = fabsf(g[0][i]) < 0.9f;
+            float a[3] = { ax ? 1.0f : 0.0f, ax ? 0.0f : 1.0f, 0.0f };
+            float c[3] = { g[1][i] * a[2] - g[2][i] * a[1], g[2][i] * a[0] - g[0][i] * a[2],
+                           g[0][i] * a[1] - g[1][i] * a[0] };
+            float l2c = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+            float il = l2c > 0.0f ? 1.0f / sqrtf(l2c) : 0.0f;
+            for (int k = 0; k < 3; k++) {
+                tt[k][i] = c[k] * il;
+            }
+            s[i] = 0.0f;
+        }
+        float bb[3] = { g[1][i] * tt[2][i] - g[2][i] * tt[1][i],
+                        g[2][i] * tt[0][i] - g[0][i] * tt[2][i],
+                        g[0][i] * tt[1][i] - g[1][i] * tt[0][i] };
+        float l2 = bb[0] * bb[0] + bb[1] * bb[1] + bb[2] * bb[2];
+        float il = l2 > 0.0f ? 1.0f / sqrtf(l2) : 0.0f;
+        for (int k = 0; k < 3; k++) {
+            x->an_t[k][i] = tt[k][i];
+            x->an_b[k][i] = bb[k] * il;
+        }
+        x->an_s[i] = clamp01(s[i]);
+    }
+    x->aniso = true;
 }
 
 /* The extensions' inputs at the quad's lanes (pbr_layers.h): factors
@@ -708,6 +810,24 @@ static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
             x->sheen_r *= load(tex[3]);
         }
         sr__sheen_begin(x, vmax(dot3(n, v), (v4f){ 1e-4f, 1e-4f, 1e-4f, 1e-4f }));
+    }
+    if (p->aniso) {
+        aniso_inputs(p, q, side, x);
+    }
+    if (p->irid) {
+        x->irid = true;
+        x->ir_ior = m->iridescence_ior;
+        x->ir_w = (v4f){ 0 } + m->iridescence;
+        x->ir_thick = (v4f){ 0 } + m->iridescence_thickness_max;
+        if (p->slot[SLOT_IRIDESCENCE].tex) {
+            sample_slot(&p->slot[SLOT_IRIDESCENCE], q, tex, uv);
+            x->ir_w *= load(tex[0]);
+        }
+        if (p->slot[SLOT_IRIDESCENCE_THICKNESS].tex) {
+            float lo = m->iridescence_thickness_min, hi = m->iridescence_thickness_max;
+            sample_slot(&p->slot[SLOT_IRIDESCENCE_THICKNESS], q, tex, uv);
+            x->ir_thick = lo + (hi - lo) * load(tex[1]);
+        }
     }
 }
 
@@ -1068,13 +1188,25 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
     if (!isfinite(m->ior) || !finite_n(m->specular_color, 3) || !isfinite(m->specular) ||
         !isfinite(m->clearcoat) || !isfinite(m->clearcoat_roughness) ||
         !isfinite(m->clearcoat_normal_scale) || !finite_n(m->sheen_color, 3) ||
-        !isfinite(m->sheen_roughness)) {
+        !isfinite(m->sheen_roughness) || !isfinite(m->anisotropy_strength) ||
+        !isfinite(m->anisotropy_rotation) || !isfinite(m->iridescence) ||
+        !isfinite(m->iridescence_ior) || !isfinite(m->iridescence_thickness_min) ||
+        !isfinite(m->iridescence_thickness_max)) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_pbr_material: an extension's factor is not finite");
     }
     if (m->ior != 0.0f && !(m->ior >= 1.0f)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.ior %g must be 0 (1.5) or >= 1",
                         (double)m->ior);
+    }
+    if (m->iridescence_ior != 0.0f && !(m->iridescence_ior >= 1.0f)) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_material.iridescence_ior %g must be 0 (1.3) or >= 1",
+                        (double)m->iridescence_ior);
+    }
+    if (m->iridescence_thickness_min < 0.0f || m->iridescence_thickness_max < 0.0f) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_material: iridescence thicknesses must be >= 0 nm");
     }
     for (int i = 0; i < SLOT_COUNT; i++) {
         sr_result r = check_slot(ctx, material_slot(m, i), slot_fields[i].name);
@@ -1235,6 +1367,9 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
             uses[material_slot(&p->m, i)->texcoord] = true;
         }
     }
+    /* Anisotropy's derivative frame reads set 0 when the draw has no
+     * tangents. */
+    uses[0] |= p->aniso;
     for (int k = 0; k < 2; k++) {
         p->vary_uv[k] = -1;
         if (uses[k] && (k == 0 || d->texcoords1)) {
@@ -1256,7 +1391,7 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
         n += 4;
     }
     p->vary_tangent = -1;
-    bool maps = p->slot[SLOT_NORMAL].tex || p->slot[SLOT_CLEARCOAT_NORMAL].tex;
+    bool maps = p->slot[SLOT_NORMAL].tex || p->slot[SLOT_CLEARCOAT_NORMAL].tex || p->aniso;
     if (lit && maps && d->tangents && n + 4 <= SR_SHADER_MAX_VARYINGS) {
         p->vary_tangent = n;
         n += 4;
@@ -1293,6 +1428,17 @@ static void resolve_layers(sr_pbr *p)
     m->clearcoat = clamp01(m->clearcoat);
     m->clearcoat_roughness = clamp01(m->clearcoat_roughness);
     m->sheen_roughness = clamp01(m->sheen_roughness);
+    m->anisotropy_strength = clamp01(m->anisotropy_strength);
+    p->an_cos = cosf(m->anisotropy_rotation);
+    p->an_sin = sinf(m->anisotropy_rotation);
+    m->iridescence = clamp01(m->iridescence);
+    if (m->iridescence_ior == 0.0f) {
+        m->iridescence_ior = 1.3f;
+    }
+    if (m->iridescence_thickness_min == 0.0f && m->iridescence_thickness_max == 0.0f) {
+        m->iridescence_thickness_min = 100.0f;
+        m->iridescence_thickness_max = 400.0f;
+    }
     if (m->clearcoat_normal_scale == 0.0f) {
         m->clearcoat_normal_scale = 1.0f;
     }
@@ -1300,7 +1446,10 @@ static void resolve_layers(sr_pbr *p)
     p->coat = !m->unlit && m->clearcoat > 0.0f;
     p->sheen = !m->unlit &&
                (m->sheen_color[0] > 0.0f || m->sheen_color[1] > 0.0f || m->sheen_color[2] > 0.0f);
-    p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen);
+    p->aniso = !m->unlit && m->anisotropy_strength > 0.0f;
+    p->irid = !m->unlit && m->iridescence > 0.0f;
+    p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen || p->aniso ||
+                              p->irid);
     int off[SLOT_COUNT], count = 0;
     if (!spec) {
         off[count++] = SLOT_SPECULAR;
@@ -1314,6 +1463,13 @@ static void resolve_layers(sr_pbr *p)
     if (!p->sheen) {
         off[count++] = SLOT_SHEEN_COLOR;
         off[count++] = SLOT_SHEEN_ROUGHNESS;
+    }
+    if (!p->aniso) {
+        off[count++] = SLOT_ANISOTROPY;
+    }
+    if (!p->irid) {
+        off[count++] = SLOT_IRIDESCENCE;
+        off[count++] = SLOT_IRIDESCENCE_THICKNESS;
     }
     for (int i = 0; i < count; i++) {
         p->slot[off[i]].tex = NULL;
@@ -1399,7 +1555,7 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         p->slot[SLOT_TRANSMISSION].tex = p->slot[SLOT_THICKNESS].tex = NULL;
     } else {
         sr__transmission_setup(&mat, &p->model, &p->view_projection, desc->transmission_source,
-                               p->scale, &p->tr);
+                               desc->environment, p->scale, &p->tr);
     }
     sr_program *pr = &p->program;
     pr->vertex = pbr_vs;
@@ -1414,6 +1570,7 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     for (int i = 0; i < SLOT_COUNT; i++) {
         pr->independent_lanes &= !p->slot[i].tex;
     }
+    pr->independent_lanes &= !(p->aniso && p->vary_tangent < 0);
     float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
     if (p->environment && !p->m.unlit) {
         /* Irradiance from the SH, and with one roughness for every

@@ -1,7 +1,9 @@
 /* pbr_layers.h - the lobes glTF's material extensions add to the PBR
  * program (fragment stage, docs/pbr.md): KHR_materials_clearcoat's coat
- * (pbr_clearcoat.c) and KHR_materials_sheen's sheen (pbr_sheen.c), on the
- * four lanes of a quad.  pbr.c fills the inputs per quad, calls the
+ * (pbr_clearcoat.c), KHR_materials_sheen's sheen (pbr_sheen.c), and the
+ * base lobe's changes, KHR_materials_anisotropy's stretched highlight
+ * (pbr_anisotropy.c) and KHR_materials_iridescence's thin-film Fresnel
+ * (pbr_iridescence.c), on the four lanes of a quad.  pbr.c fills the inputs per quad, calls the
  * per-light and ambient parts from its own loops and the finish last;
  * KHR_materials_ior and _specular only change the base's F0 and F90 and
  * live in pbr.c.  Any thread: the state is the caller's, on its stack. */
@@ -27,6 +29,17 @@ typedef struct sr__pbr_layers {
      * and 1 - max(color) E, what the base keeps under it. */
     v4f sheen_col[3], sheen_r, sheen_e, sheen_keep;
     v4f sheen_sum[3];
+    bool aniso, irid;
+    /* Anisotropy: strength (0..1), the stretch's direction T and B = N x T
+     * (unit, world), the GGX alphas along them, T.V, B.V and the
+     * visibility's view half (without N.L). */
+    v4f an_s, an_t[3], an_b[3], an_at, an_ab, an_tv, an_bv, an_gv;
+    /* Iridescence: weight, film thickness (nm), the film's index, and
+     * from begin the film's Fresnel at N.V and the F0 that gives it in
+     * Schlick's form (for the split sum). */
+    v4f ir_w, ir_thick;
+    float ir_ior;
+    v4f ir_f[3], ir_f0[3];
 } sr__pbr_layers;
 
 /* Clearcoat.  begin: from cc, cc_a2 (set) and cc_n (set) the rest; v is
@@ -43,6 +56,26 @@ void sr__coat_ambient(sr__pbr_layers *x, const v4f er[3], v4f ao);
 void sr__sheen_begin(sr__pbr_layers *x, v4f nv);
 void sr__sheen_light(sr__pbr_layers *x, v4f nl, v4f nv, v4f nh, const v4f rad[3]);
 void sr__sheen_ambient(sr__pbr_layers *x, const v4f en[3], v4f ao);
+
+/* Anisotropy.  begin: from an_s, an_t and an_b (set) and the base's
+ * alpha (roughness squared) the rest.  dv: D times V of the anisotropic
+ * GGX lobe for one light along ld (hs = 1 / |L + V|, nl, nv, nh of the
+ * base normal).  bent: the normal whose reflection the image-based light
+ * reads, bent towards B by the stretch (rc the roughness in 0..1). */
+void sr__aniso_begin(sr__pbr_layers *x, v4f alpha, const v4f v[3], v4f nv);
+v4f sr__aniso_dv(const sr__pbr_layers *x, const v4f ld[3], v4f hs, v4f nl, v4f nv, v4f nh);
+void sr__aniso_bent(const sr__pbr_layers *x, const v4f n[3], const v4f v[3], v4f rc,
+                    v4f out[3]);
+
+/* Iridescence.  begin: from ir_thick and ir_ior (set), N.V in 0..1 and
+ * the base's F0 (metals' included) the film's ir_f and ir_f0. */
+void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0[3]);
+
+/* The thin film's reflectance (Belcour and Barla 2017) at the cosine
+ * cos1 of the view to the normal, over a base of Fresnel f0 (RGB), for a
+ * film thickness_nm thick of index film_ior between air and the base. */
+void sr__thin_film(float cos1, float thickness_nm, float film_ior, const float f0[3],
+                   float out[3]);
 
 /* The layers over the base's radiance `out`: the sheen's albedo scaling
  * and lobe, then the coat's. */

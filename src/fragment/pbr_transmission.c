@@ -12,10 +12,12 @@
 
 void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
                             const sr_mat4 *view_projection, const sr_texture *source,
-                            float exposure_scale, sr__transmission *t)
+                            const sr_environment *environment, float exposure_scale,
+                            sr__transmission *t)
 {
     memset(t, 0, sizeof *t);
     t->source = source;
+    t->environment = source ? NULL : environment;
     t->eta = 1.0f / (m->ior != 0.0f ? m->ior : 1.5f);
     memcpy(t->view_projection, view_projection->m, sizeof t->view_projection);
     for (int a = 0; a < 3; a++) {
@@ -62,54 +64,72 @@ static void refract_view(const float v[3], const float n[3], float eta, float ou
     }
 }
 
+/* Where the view ray leaves: the source's uv at the exit point (pos
+ * moved by step) through the view-projection. */
+static void exit_uv(const sr__transmission *t, const float pos[3], const float step[3],
+                    float *u, float *v)
+{
+    const float *vp = t->view_projection;
+    float clip[4];
+    for (int r = 0; r < 4; r++) {
+        clip[r] = vp[r] * (pos[0] + step[0]) + vp[4 + r] * (pos[1] + step[1]) +
+                  vp[8 + r] * (pos[2] + step[2]) + vp[12 + r];
+    }
+    /* Behind the eye the exit point has no screen position: the
+     * surface's own pixel instead. */
+    if (!(clip[3] > 0.0f)) {
+        for (int r = 0; r < 4; r++) {
+            clip[r] = vp[r] * pos[0] + vp[4 + r] * pos[1] + vp[8 + r] * pos[2] + vp[12 + r];
+        }
+    }
+    float iw = clip[3] != 0.0f ? 1.0f / clip[3] : 0.0f;
+    /* NDC to sr_texture's uv: both have y (v) up.  Clamped, as the
+     * lookup clamps to the edge anyway: a point near the eye plane would
+     * give coordinates no texel index can hold. */
+    *u = clamp_uv(clip[0] * iw * 0.5f + 0.5f);
+    *v = clamp_uv(clip[1] * iw * 0.5f + 0.5f);
+}
+
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                              const float n[3][4], const float v[3][4], const float rough[4],
                              const float thick[4], unsigned mask, float out[3][4])
 {
-    const float *vp = t->view_projection;
     for (int i = 0; i < 4; i++) {
-        float texel[4] = { 0, 0, 0, 0 };
+        float light[3] = { 0, 0, 0 };
         float length = 0.0f;
-        if ((mask >> i & 1) && t->source) {
+        if ((mask >> i & 1) && (t->source || t->environment)) {
             float vi[3] = { v[0][i], v[1][i], v[2][i] }, ni[3] = { n[0][i], n[1][i], n[2][i] };
-            float dir[3], exit[3];
+            float pi[3] = { pos[0][i], pos[1][i], pos[2][i] };
+            float dir[3], step[3];
             refract_view(vi, ni, t->eta, dir);
             float th = thick[i] > 0.0f ? thick[i] : 0.0f, len2 = 0.0f;
             for (int c = 0; c < 3; c++) {
-                float step = dir[c] * th * t->model_scale[c];
-                exit[c] = pos[c][i] + step;
-                len2 += step * step;
+                step[c] = dir[c] * th * t->model_scale[c];
+                len2 += step[c] * step[c];
             }
             length = sqrtf(len2);
-            float clip[4];
-            for (int r = 0; r < 4; r++) {
-                clip[r] = vp[r] * exit[0] + vp[4 + r] * exit[1] + vp[8 + r] * exit[2] + vp[12 + r];
-            }
-            /* Behind the eye the exit point has no screen position: the
-             * surface's own pixel instead. */
-            if (!(clip[3] > 0.0f)) {
-                for (int r = 0; r < 4; r++) {
-                    clip[r] = vp[r] * pos[0][i] + vp[4 + r] * pos[1][i] + vp[8 + r] * pos[2][i] +
-                              vp[12 + r];
-                }
-            }
-            float iw = clip[3] != 0.0f ? 1.0f / clip[3] : 0.0f;
-            /* NDC to sr_texture's uv: both have y (v) up.  Clamped, as
-             * the lookup clamps to the edge anyway: a point near the eye
-             * plane would give coordinates no texel index can hold. */
-            float u = clamp_uv(clip[0] * iw * 0.5f + 0.5f);
-            float tv = clamp_uv(clip[1] * iw * 0.5f + 0.5f);
             float r = rough[i] < 0.0f ? 0.0f : rough[i] > 1.0f ? 1.0f : rough[i];
-            sr__texture_sample_linear(t->source, SR_FILTER_TRILINEAR, SR_WRAP_CLAMP,
-                                      SR_WRAP_CLAMP, u, tv, t->lod_scale * r, texel);
+            if (t->source) {
+                float u, tv, texel[4];
+                exit_uv(t, pi, step, &u, &tv);
+                sr__texture_sample_linear(t->source, SR_FILTER_TRILINEAR, SR_WRAP_CLAMP,
+                                          SR_WRAP_CLAMP, u, tv, t->lod_scale * r, texel);
+                for (int c = 0; c < 3; c++) {
+                    light[c] = texel[c] * t->inv_exposure;
+                }
+            } else {
+                /* A thin wall bends the ray in and back out: it leaves
+                 * parallel to the view ray. */
+                const float straight[3] = { -vi[0], -vi[1], -vi[2] };
+                sr_environment_specular(t->environment, th > 0.0f ? dir : straight, r, light);
+            }
         }
         for (int c = 0; c < 3; c++) {
-            float light = texel[c] * t->inv_exposure;
             if (t->attenuates && length > 0.0f) {
                 /* Beer-Lambert: attenuation_color^(length / distance). */
-                light *= exp2f(-t->absorb[c] * length);
+                light[c] *= exp2f(-t->absorb[c] * length);
             }
-            out[c][i] = light;
+            out[c][i] = light[c];
         }
     }
 }

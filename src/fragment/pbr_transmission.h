@@ -10,7 +10,8 @@
 #include <stdbool.h>
 
 typedef struct sr__transmission {
-    const sr_texture *source;      /* the opaque image; NULL: black */
+    const sr_texture *source;      /* the opaque image; NULL: the environment */
+    const sr_environment *environment; /* without a source; NULL too: black */
     float eta;                     /* 1 / the material's ior: air into the volume */
     float view_projection[16];     /* column-major, world -> clip */
     float model_scale[3];          /* the model's axis lengths: thickness to world */
@@ -22,16 +23,20 @@ typedef struct sr__transmission {
 
 /* Fills t from the material (its ior: KHR_materials_ior's, 0 the
  * default 1.5, the ior whose F0 is the base's 0.04), the program's
- * matrices, the source and 2^exposure. */
+ * matrices, the source, the environment seen instead where there is no
+ * source, and 2^exposure. */
 void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
                             const sr_mat4 *view_projection, const sr_texture *source,
-                            float exposure_scale, sr__transmission *t);
+                            const sr_environment *environment, float exposure_scale,
+                            sr__transmission *t);
 
 /* The radiance seen through the surface at four lanes (mask: the live
  * ones): the source at the screen position of pos moved along the
  * refracted view ray by the thickness (world units, 0: straight behind),
  * at the mip level the roughness blurs it to, attenuated (Beer-Lambert)
- * along that ray.  pos, n (unit, facing the viewer), v (unit, to the
+ * along that ray.  Without a source, the environment's radiance in the
+ * direction the ray leaves (refracted in a volume, straight on through
+ * a thin wall), prefiltered for the roughness.  pos, n (unit, facing the viewer), v (unit, to the
  * eye) in world space; rough is the material's perceptual roughness. */
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                              const float n[3][4], const float v[3][4], const float rough[4],

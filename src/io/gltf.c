@@ -543,6 +543,9 @@ static sr_result read_arrays(gltf_doc *d, const json_t *prim, const char *ptr,
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/attributes: missing", ptr);
     }
     p->material = material >= 0 ? (int)material : (int)d->scene->material_count - 1;
+    if ((r = sr__gltf_primitive_variants(d, prim, ptr, p)) != SR_OK) {
+        return r;
+    }
     if (mode < 4) {
         sr__gltf_warn(d, "%s/mode: points and lines (mode %ld) are not drawn", ptr, mode);
         return SR_OK;
@@ -1056,9 +1059,12 @@ static const char *supported_extensions[] = {
     "KHR_materials_specular",
     "KHR_materials_clearcoat",
     "KHR_materials_sheen",
+    "KHR_materials_anisotropy",
+    "KHR_materials_iridescence",
     "KHR_materials_transmission",
     "KHR_materials_volume",
     "KHR_lights_punctual",
+    "KHR_materials_variants",
 };
 
 /* Extensions read when softrast was built with their decoder. */
@@ -1314,8 +1320,9 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
     if (!d->buffers || !d->image_textures) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/buffers: out of memory");
     }
-    if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = sr__gltf_read_lights(d)) != SR_OK ||
-        (r = sr__gltf_read_animations(d)) != SR_OK || (r = read_nodes(d)) != SR_OK) {
+    if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = sr__gltf_read_variants(d)) != SR_OK ||
+        (r = sr__gltf_read_lights(d)) != SR_OK || (r = sr__gltf_read_animations(d)) != SR_OK ||
+        (r = read_nodes(d)) != SR_OK) {
         return r;
     }
     sr__gltf_lights_done(d);

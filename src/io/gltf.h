@@ -2,6 +2,7 @@
  * gltf.c reads the document, buffers, meshes, nodes and cameras;
  * gltf_accessor.c decodes accessors; gltf_material.c reads materials,
  * textures and images; gltf_lights.c reads KHR_lights_punctual;
+ * gltf_variants.c reads KHR_materials_variants;
  * gltf_animation.c reads animations and poses the nodes;
  * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
  * scene_store.c holds the scene's memory.  Every
@@ -179,6 +180,14 @@ sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
  * default material (glTF's: white, metallic 1, roughness 1) at the end
  * for primitives without one. */
 sr_result sr__gltf_read_materials(gltf_doc *d);
+
+/* gltf_variants.c: KHR_materials_variants.  The document's variant names
+ * into scene->variants (checking desc->variant against them); one
+ * primitive's mappings (JSON `ptr`) checked into p->variant_materials,
+ * p->material (its own, already set) replaced by desc->variant's. */
+sr_result sr__gltf_read_variants(gltf_doc *d);
+sr_result sr__gltf_primitive_variants(gltf_doc *d, const json_t *prim, const char *ptr,
+                                      sr_scene_primitive *p);
 
 /* gltf_lights.c: KHR_lights_punctual.  The document's lights checked and
  * read into d->lights (freed by the caller); one node's light, if it

@@ -269,10 +269,14 @@ sr_result sr__gltf_draco_begin(gltf_doc *d, const json_t *prim, const json_t *ex
         (r = check_extension(d, prim, ext, eptr, &view, &attrs)) != SR_OK) {
         return r;
     }
-    if (mode != 4) {
-        return sr__gltf_fail(d, SR_UNSUPPORTED,
-                             "%s/mode: %ld, but softrast reads Draco primitives as triangle "
-                             "lists (mode 4) only", ptr, mode);
+    /* "The mode of primitive must be either TRIANGLES or TRIANGLE_STRIP
+     * and the mesh data will be decoded accordingly": the stream's
+     * corners, face after face, are then the primitive's indices, laid out
+     * as its mode says (gltf.c's triangles_of). */
+    if (mode != 4 && mode != 5) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s/mode: %ld, but KHR_draco_mesh_compression allows triangles "
+                             "(4) and triangle strips (5) only", ptr, mode);
     }
     if ((r = charge(d, prim, ptr, eptr)) != SR_OK) {
         return r;
@@ -298,6 +302,20 @@ sr_result sr__gltf_draco_begin(gltf_doc *d, const json_t *prim, const json_t *ex
         return sr__gltf_fail(d, SR_BAD_FORMAT,
                              "%s: the Draco stream does not decode (corrupt or truncated; "
                              "libdraco: %s)", vptr, why[0] ? why : "no reason given");
+    }
+    /* A strip survives only a stream that keeps the faces and their
+     * corners in order: sequential connectivity.  Edgebreaker, libdraco's
+     * default, reorders both, so its corners are no strip.  The header
+     * (DracoBitstream.md): "DRACO", major and minor version, encoder
+     * type, encoder method (0 sequential, 1 edgebreaker); the stream
+     * decoded, so its nine bytes are there. */
+    if (mode == 5 && data[8] != 0) {
+        sr__draco_free(m);
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s/mode: 5 (a triangle strip), but the Draco stream (%s) is "
+                             "edgebreaker-encoded, which reorders the triangles: a strip needs "
+                             "sequential connectivity",
+                             ptr, vptr);
     }
     d->draco = calloc(1, sizeof *d->draco);
     if (!d->draco) {

@@ -6,8 +6,8 @@
  * image and color space (base color and emissive sRGB, the others linear).
  * KHR_texture_transform, KHR_materials_emissive_strength,
  * KHR_materials_unlit, the physically based layers KHR_materials_ior,
- * _specular, _clearcoat and _sheen, and KHR_materials_transmission and
- * _volume are applied.  Called by the thread reading the document.
+ * _specular, _clearcoat and _sheen, the base lobe's _anisotropy and
+ * _iridescence, and KHR_materials_transmission and _volume are applied.  Called by the thread reading the document.
  */
 #include "io/gltf.h"
 
@@ -362,8 +362,71 @@ static sr_result read_transmission(gltf_doc *d, const json_t *mat, const char *p
     return SR_OK;
 }
 
-/* KHR_materials_ior, _specular, _clearcoat and _sheen into the
- * material's extension fields (sr_pbr_material: zero is absent), with
+/* KHR_materials_anisotropy (object x at xptr): strength, rotation and
+ * texture, the strength clamped to 0..1 with a warning. */
+static sr_result read_anisotropy(gltf_doc *d, const json_t *x, const char *xptr,
+                                 sr_pbr_material *m)
+{
+    char at[GLTF_PTR + 64];
+    sr_result r;
+    if ((r = sr__gltf_number(d, x, xptr, "anisotropyStrength", &m->anisotropy_strength)) !=
+            SR_OK ||
+        (r = sr__gltf_number(d, x, xptr, "anisotropyRotation", &m->anisotropy_rotation)) !=
+            SR_OK ||
+        (r = read_slot(d, x, xptr, "anisotropyTexture", false, &m->anisotropy_texture, NULL,
+                       NULL)) != SR_OK) {
+        return r;
+    }
+    snprintf(at, sizeof at, "%s/anisotropyStrength", xptr);
+    clamp_factor(d, at, &m->anisotropy_strength, 0, 1);
+    return SR_OK;
+}
+
+/* KHR_materials_iridescence (object x at xptr) with the extension's
+ * defaults (ior 1.3, thickness 100..400 nm), factors clamped with a
+ * warning each.  A film whose thickness is 0 everywhere shows nothing:
+ * iridescence 0 (sr_pbr_material reads both zero thicknesses as the
+ * defaults). */
+static sr_result read_iridescence(gltf_doc *d, const json_t *x, const char *xptr,
+                                  sr_pbr_material *m)
+{
+    char at[GLTF_PTR + 64];
+    sr_result r;
+    float ior = 1.3f, lo = 100.0f, hi = 400.0f;
+    if ((r = sr__gltf_number(d, x, xptr, "iridescenceFactor", &m->iridescence)) != SR_OK ||
+        (r = sr__gltf_number(d, x, xptr, "iridescenceIor", &ior)) != SR_OK ||
+        (r = sr__gltf_number(d, x, xptr, "iridescenceThicknessMinimum", &lo)) != SR_OK ||
+        (r = sr__gltf_number(d, x, xptr, "iridescenceThicknessMaximum", &hi)) != SR_OK ||
+        (r = read_slot(d, x, xptr, "iridescenceTexture", false, &m->iridescence_texture, NULL,
+                       NULL)) != SR_OK ||
+        (r = read_slot(d, x, xptr, "iridescenceThicknessTexture", false,
+                       &m->iridescence_thickness_texture, NULL, NULL)) != SR_OK) {
+        return r;
+    }
+    snprintf(at, sizeof at, "%s/iridescenceFactor", xptr);
+    clamp_factor(d, at, &m->iridescence, 0, 1);
+    if (!(ior >= 1.0f)) {
+        sr__gltf_warn(d, "%s/iridescenceIor: %g is under the specification's minimum 1, "
+                         "taken as 1", xptr, (double)ior);
+        ior = 1.0f;
+    }
+    snprintf(at, sizeof at, "%s/iridescenceThicknessMinimum", xptr);
+    clamp_factor(d, at, &lo, 0, FLT_MAX);
+    snprintf(at, sizeof at, "%s/iridescenceThicknessMaximum", xptr);
+    clamp_factor(d, at, &hi, 0, FLT_MAX);
+    bool textured = m->iridescence_thickness_texture.texture != NULL;
+    if (hi == 0.0f && (!textured || lo == 0.0f)) {
+        m->iridescence = 0.0f;
+    }
+    m->iridescence_ior = ior;
+    m->iridescence_thickness_min = lo;
+    m->iridescence_thickness_max = hi;
+    return SR_OK;
+}
+
+/* KHR_materials_ior, _specular, _clearcoat, _sheen, _anisotropy and
+ * _iridescence into the material's extension fields (sr_pbr_material:
+ * zero is absent), with
  * each extension's defaults where it is present; factors outside the
  * specification's ranges are clamped with one warning each. */
 static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
@@ -447,6 +510,18 @@ static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
         }
         snprintf(at, sizeof at, "%s/sheenRoughnessFactor", xptr);
         clamp_factor(d, at, &m->sheen_roughness, 0, 1);
+    }
+    if ((x = sr__gltf_extension(mat, "KHR_materials_anisotropy"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_anisotropy", ptr);
+        if ((r = read_anisotropy(d, x, xptr, m)) != SR_OK) {
+            return r;
+        }
+    }
+    if ((x = sr__gltf_extension(mat, "KHR_materials_iridescence"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_iridescence", ptr);
+        if ((r = read_iridescence(d, x, xptr, m)) != SR_OK) {
+            return r;
+        }
     }
     return SR_OK;
 }

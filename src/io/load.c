@@ -205,6 +205,12 @@ static sr_result load_malloc_mesh(sr_context *ctx, const char *path, const sr_lo
     if (format == SR_FORMAT_AUTO) {
         format = format_from_content(path);
     }
+    if (desc && desc->variant != 0 && !(format == SR_FORMAT_GLTF && sr_io_have_gltf())) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "sr_load_desc.variant: %d, but the file has 0 variants (only glTF "
+                           "files read by softrast's own reader have them)",
+                           desc->variant);
+    }
     /* Only the glTF reader poses a model; another format has no
      * animation to sample, which the caller asked for. */
     if (desc && desc->pose == SR_POSE_ANIMATION &&

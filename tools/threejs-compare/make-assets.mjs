@@ -33,8 +33,11 @@ function cube(half) {
     return { pos, nrm, idx };
 }
 
-function sphere(radius, slices, stacks) {
-    const pos = [], nrm = [], idx = [];
+// With `uv`: texture coordinates (u around +Y, v from the north pole down,
+// as glTF's v runs down the image) and tangents along u, (cos phi, 0,
+// -sin phi), handedness 1.
+function sphere(radius, slices, stacks, uv = false) {
+    const pos = [], nrm = [], idx = [], uvs = [], tan = [];
     for (let i = 0; i <= stacks; i++) {
         const theta = (Math.PI * i) / stacks;   // from the north pole
         for (let j = 0; j <= slices; j++) {
@@ -42,6 +45,8 @@ function sphere(radius, slices, stacks) {
             const n = [Math.sin(theta) * Math.sin(phi), Math.cos(theta), Math.sin(theta) * Math.cos(phi)];
             nrm.push(...n);
             pos.push(...n.map((c) => c * radius));
+            uvs.push(j / slices, i / stacks);
+            tan.push(Math.cos(phi), 0, -Math.sin(phi), 1);
         }
     }
     const row = slices + 1;
@@ -52,7 +57,7 @@ function sphere(radius, slices, stacks) {
             if (i < stacks - 1) idx.push(a + 1, b, b + 1);
         }
     }
-    return { pos, nrm, idx };
+    return uv ? { pos, nrm, idx, uvs, tan } : { pos, nrm, idx };
 }
 
 // A square of side 2 * half in the plane y = 0, facing +y.
@@ -91,7 +96,10 @@ function glb(shape, nodes, materials, extensionsUsed = [], lights = []) {
     const nrmBytes = Buffer.from(new Float32Array(shape.nrm).buffer);
     const idxRaw = Buffer.from(new Uint16Array(shape.idx).buffer);
     const idxBytes = Buffer.concat([idxRaw, Buffer.alloc((4 - (idxRaw.length % 4)) % 4)]);
-    const bin = Buffer.concat([posBytes, nrmBytes, idxBytes]);
+    // Optional TEXCOORD_0 and TANGENT after the indices (accessors 3, 4).
+    const uvBytes = Buffer.from(new Float32Array(shape.uvs || []).buffer);
+    const tanBytes = Buffer.from(new Float32Array(shape.tan || []).buffer);
+    const bin = Buffer.concat([posBytes, nrmBytes, idxBytes, uvBytes, tanBytes]);
     const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < shape.pos.length; i++) {
         lo[i % 3] = Math.min(lo[i % 3], Math.fround(shape.pos[i]));
@@ -108,7 +116,9 @@ function glb(shape, nodes, materials, extensionsUsed = [], lights = []) {
                                        extensions: { KHR_lights_punctual: { light: i } } })),
         ],
         meshes: nodes.map((n) => ({
-            primitives: [{ attributes: { POSITION: 0, NORMAL: 1 }, indices: 2, material: n.material }],
+            primitives: [{ attributes: { POSITION: 0, NORMAL: 1,
+                                         ...(shape.uvs ? { TEXCOORD_0: 3, TANGENT: 4 } : {}) },
+                           indices: 2, material: n.material }],
         })),
         materials,
         accessors: [
@@ -124,6 +134,14 @@ function glb(shape, nodes, materials, extensionsUsed = [], lights = []) {
         ],
         buffers: [{ byteLength: bin.length }],
     };
+    if (shape.uvs) {
+        const at = posBytes.length + nrmBytes.length + idxBytes.length;
+        json.accessors.push({ bufferView: 3, componentType: 5126, count, type: 'VEC2' },
+                            { bufferView: 4, componentType: 5126, count, type: 'VEC4' });
+        json.bufferViews.push({ buffer: 0, byteOffset: at, byteLength: uvBytes.length, target: 34962 },
+                              { buffer: 0, byteOffset: at + uvBytes.length, byteLength: tanBytes.length,
+                                target: 34962 });
+    }
     if (lights.length) {
         json.extensions = { KHR_lights_punctual: { lights: lights.map((l) => l.light) } };
         extensionsUsed = [...extensionsUsed, 'KHR_lights_punctual'];
@@ -270,6 +288,34 @@ writeFileSync(join(out, 'layer-spheres.glb'), glb(sphere(0.5, 48, 24), layers.ma
     ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat',
      'KHR_materials_sheen']));
 
+// The base lobe's extensions, left to right: top row brushed steel along
+// the tangent (around the sphere), turned a quarter (along the meridians),
+// and red plastic stretched at 0.8 rad; bottom row a soap film on a dark
+// dielectric, an oil film on grey metal, and a film on brushed steel.
+const steel = pbr([0.9, 0.9, 0.92], 1, 0.35);
+const surface = [
+    { name: 'brushed along u', pbrMetallicRoughness: steel,
+      extensions: { KHR_materials_anisotropy: { anisotropyStrength: 0.8 } } },
+    { name: 'brushed along v', pbrMetallicRoughness: steel,
+      extensions: { KHR_materials_anisotropy: { anisotropyStrength: 0.8,
+                                                anisotropyRotation: Math.PI / 2 } } },
+    { name: 'stretched plastic', pbrMetallicRoughness: pbr([0.7, 0.1, 0.08], 0, 0.3),
+      extensions: { KHR_materials_anisotropy: { anisotropyStrength: 0.6,
+                                                anisotropyRotation: 0.8 } } },
+    { name: 'soap film', pbrMetallicRoughness: pbr([0.05, 0.05, 0.08], 0, 0.15),
+      extensions: { KHR_materials_iridescence: { iridescenceFactor: 1, iridescenceIor: 1.33,
+                                                 iridescenceThicknessMaximum: 380 } } },
+    { name: 'oil on metal', pbrMetallicRoughness: pbr([0.6, 0.6, 0.6], 1, 0.25),
+      extensions: { KHR_materials_iridescence: { iridescenceFactor: 1, iridescenceIor: 1.5,
+                                                 iridescenceThicknessMaximum: 520 } } },
+    { name: 'film on brushed steel', pbrMetallicRoughness: steel,
+      extensions: { KHR_materials_anisotropy: { anisotropyStrength: 0.6, anisotropyRotation: 0.5 },
+                    KHR_materials_iridescence: { iridescenceFactor: 0.8,
+                                                 iridescenceThicknessMaximum: 450 } } },
+];
+writeFileSync(join(out, 'surface-spheres.glb'), glb(sphere(0.5, 64, 32, true),
+    surface.map((m, i) => ({ material: i, translation: [(i % 3 - 1) * 1.1, i < 3 ? 0.55 : -0.55, 0] })),
+    surface, ['KHR_materials_anisotropy', 'KHR_materials_iridescence']));
 // An animated asset (glTF animations): a hub turning about +y (LINEAR
 // rotations, slerped) carries a cube squashed and stretched by STEP
 // scales and a sphere lifted along a CUBICSPLINE path.  ASSET.pose
