@@ -732,3 +732,44 @@ SR_TEST(animate_plays_the_animation_at_fps)
     CHECK_EQ(frames, 11);
     CHECK(animated);
 }
+
+#ifdef SR_CLI_PATH
+/* The standard output of the tool run with args (a shell line, each
+ * argument quoted), into out; its exit status. */
+static int cli_stdout(const char *const *args, char *out, size_t size)
+{
+    char line[4096] = "'" SR_CLI_PATH "'";
+    for (size_t i = 0; args[i]; i++) {
+        size_t at = strlen(line);
+        snprintf(line + at, sizeof line - at, " '%s'", args[i]);
+    }
+    FILE *p = popen(line, "r");
+    if (!p) {
+        return -1;
+    }
+    size_t n = fread(out, 1, size - 1, p);
+    out[n] = 0;
+    return pclose(p);
+}
+#endif
+
+/* softrast info and render --list-animations name the animations with
+ * their durations and channels, as text and as JSON. */
+SR_TEST(info_lists_the_animations_with_their_durations)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    char dir[1024], anim[1100], out[8192];
+    fresh_dir("gltf_anim_info", dir, sizeof dir);
+    snprintf(anim, sizeof anim, "%s/hub.gltf", dir);
+    REQUIRE(write_hub(anim, false));
+    CHECK_EQ(cli_stdout(ARGS("info", anim), out, sizeof out), 0);
+    CHECK_STR_CONTAINS(out, "  animations  1 (--animation)\n    0  2 s, 3 channels, hub\n");
+    CHECK_EQ(cli_stdout(ARGS("info", "--json", anim), out, sizeof out), 0);
+    CHECK_STR_CONTAINS(out, "\"animations\": [\n  {\"name\": \"hub\", \"channels\": 3, "
+                            "\"duration\": 2}\n ]");
+    CHECK_EQ(cli_stdout(ARGS("render", anim, "--list-animations"), out, sizeof out), 0);
+    CHECK(strcmp(out, "0\t2.000 s\t3 channels\thub\n") == 0);
+#endif
+}
