@@ -1263,7 +1263,7 @@ static const char *const value_options[] = {
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",
                                              "--smooth", "--texture-srgb", "--skip-existing",
-                                             "--ground", "--list-animations" };
+                                             "--ground" };
 
 SR_TEST(render_help_lists_every_option)
 {

@@ -685,7 +685,6 @@ SR_TEST(render_animation_options_are_checked_in_one_line)
         { ARGS("render", anim, "--animation", "", "-o", png), "--animation: empty value" },
         { ARGS("render", obj, "--animation", "0", "-o", png),
           "--animation: only glTF files (.gltf, .glb) have animations" },
-        { ARGS("render", obj, "--list-animations"), "--list-animations: give a glTF MODEL" },
         { ARGS("render", anim, "--fps", "10", "--output-dir", dir),
           "--fps: the frame rate of --animate with --animation: give both" },
         { ARGS("render", anim, "--animate", "a.webp", "--animation", "0", "--views", "4",
@@ -753,8 +752,8 @@ static int cli_stdout(const char *const *args, char *out, size_t size)
 }
 #endif
 
-/* softrast info and render --list-animations name the animations with
- * their durations and channels, as text and as JSON. */
+/* softrast info names the animations with their durations and channels,
+ * as text and as JSON. */
 SR_TEST(info_lists_the_animations_with_their_durations)
 {
 #ifndef SR_CLI_PATH
@@ -769,7 +768,5 @@ SR_TEST(info_lists_the_animations_with_their_durations)
     CHECK_EQ(cli_stdout(ARGS("info", "--json", anim), out, sizeof out), 0);
     CHECK_STR_CONTAINS(out, "\"animations\": [\n  {\"name\": \"hub\", \"channels\": 3, "
                             "\"duration\": 2}\n ]");
-    CHECK_EQ(cli_stdout(ARGS("render", anim, "--list-animations"), out, sizeof out), 0);
-    CHECK(strcmp(out, "0\t2.000 s\t3 channels\thub\n") == 0);
 #endif
 }

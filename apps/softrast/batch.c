@@ -564,10 +564,6 @@ static int check_views(batch_opts *b, const render_opts *o)
     if (b->fps_arg && !parse_int("--fps", b->fps_arg, 1, 120, &b->fps)) {
         return EXIT_USAGE;
     }
-    if (o->list_animations) {
-        cli_error("--list-animations: one model at a time, not a batch");
-        return EXIT_USAGE;
-    }
     if (b->columns_arg && !b->sheet) {
         cli_error("--sheet-columns: needs --sheet FILE");
         return EXIT_USAGE;

@@ -1235,18 +1235,6 @@ int cmd_render(int argc, char **argv)
         return status;
     }
     const render_opts *o = &job->o;
-    if (o->list_animations) {
-        if (!o->model || !render_gltf_is(o->model)) {
-            cli_error("--list-animations: give a glTF MODEL (.gltf, .glb): only glTF files have "
-                      "animations");
-            status = EXIT_USAGE;
-        } else {
-            status = start_context(job);
-        }
-        status = status >= 0 ? status : render_gltf_list_animations(o->model, job->mesh_ctx);
-        render_job_free(job);
-        return status;
-    }
     render_opts_warn(o);
     /* thumbnail.c runs this render as "thumbnail": its output is the
      * OUTPUT argument there, not an -o the user never gave. */

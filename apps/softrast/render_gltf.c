@@ -288,24 +288,6 @@ static int load_posed(const char *path, const char *animation, float time, sr_co
     return -1;
 }
 
-int render_gltf_list_animations(const char *path, sr_context *ctx)
-{
-    cli_inputs inputs = { 0 };
-    sr_scene *sc = NULL;
-    int status = load_posed(path, NULL, 0, ctx, &inputs, &sc);
-    cli_inputs_free(&inputs);
-    if (status >= 0) {
-        return status;
-    }
-    for (size_t i = 0; i < sc->animation_count; i++) {
-        const sr_scene_animation *a = &sc->animations[i];
-        printf("%zu\t%.3f s\t%zu channel%s\t%s\n", i, (double)a->duration, a->channel_count,
-               a->channel_count == 1 ? "" : "s", a->name);
-    }
-    sr_destroy_scene(ctx, sc);
-    return EXIT_OK;
-}
-
 int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
                      const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
                      scene *s)

@@ -19,9 +19,6 @@ bool render_gltf_is(const char *path);
 int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
                      const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
                      scene *s);
-/* --list-animations: the file's animations on stdout, one a line
- * (number, duration, channels, name, tab-separated).  An exit status. */
-int render_gltf_list_animations(const char *path, sr_context *ctx);
 /* The classic models' Blinn-Phong material for glTF material m
  * (docs/pbr.md, "glTF files in softrast render"); with vertex_colors the
  * primitive's COLOR_0 is its diffuse, as an OBJ's or a PLY's is. */

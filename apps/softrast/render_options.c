@@ -189,8 +189,6 @@ static void render_help(void)
         "  --time SECONDS           the time into it, -1e6..1e6 (default 0); before the\n"
         "                           first key the pose is the first key's, after the\n"
         "                           last the last's\n"
-        "  --list-animations        print the model's animations (number, duration,\n"
-        "                           channels, name), one a line, and draw nothing\n"
         "pipeline:\n"
         "  --cull MODE              back|front|none (default back)\n"
         "  --front-face ORDER       ccw|cw (default ccw)\n"
@@ -427,12 +425,6 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
                 return EXIT_USAGE;
             }
             o->have_time = true;
-        } else if (IS("--list-animations")) {
-            if (value) {
-                cli_error("%s: takes no value", arg);
-                return EXIT_USAGE;
-            }
-            o->list_animations = true;
         } else if (IS("--environment")) {
             VALUE();
             o->environment = value;

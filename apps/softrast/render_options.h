@@ -28,7 +28,6 @@ typedef struct render_opts {
     const char *animation;         /* --animation N|NAME: a glTF animation, or NULL */
     float animation_time;          /* --time SECONDS into it */
     bool have_time;
-    bool list_animations;          /* --list-animations: print them, draw nothing */
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;
