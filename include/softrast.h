@@ -150,6 +150,7 @@
  *     sr_destroy_builtin_program frees it
  *   physically based shading
  *     sr_pbr_default_material    glTF's default material
+ *     sr_texture_slot_uv         texture coordinates through a slot's KHR_texture_transform
  *     sr_default_lights          softrast render's key, fill and rim lights for a camera
  *     sr_pbr_default_lighting    those lights as radiance, and its sky and ground
  *     sr_pbr_scene_lights        a scene's own lights in their place, or before them
@@ -974,6 +975,18 @@ typedef struct sr_texture_slot {
     float rotation;                /* radians, counter-clockwise in uv */
     float scale[2];                /* {0, 0} -> {1, 1} */
 } sr_texture_slot;
+
+/* The slot's KHR_texture_transform applied to `count` (u, v) pairs of
+ * `uv` into `out` (which may be uv): the coordinates the physically based
+ * program samples the slot at, with the same arithmetic, for a pipeline
+ * without per-fragment transforms (the classic shading models, a mesh's
+ * texcoords).  Exact where the coordinates are interpolated linearly
+ * after it, since the transform is affine.  The texture, the coordinate
+ * set and the sampler are the caller's to honour.  SR_INVALID_ARG for a
+ * NULL slot or array (with count > 0) or a transform that is not
+ * finite. */
+SR_API sr_result sr_texture_slot_uv(sr_context *ctx, const sr_texture_slot *slot,
+                                    const float *uv, size_t count, float *out);
 
 typedef struct sr_pbr_material {
     float base_color[4];           /* linear RGBA, times the texture and vertex color */

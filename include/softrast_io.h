@@ -118,7 +118,10 @@ SR_API sr_result sr_parse_stl(sr_context *ctx, const char *name, const uint8_t *
  * and material. */
 
 /* One draw: a glTF mesh primitive as one node instances it.  Instances of
- * the same primitive share their arrays.  Arrays hold vertex_count
+ * the same primitive share their arrays, except posed ones: a skinned
+ * instance's positions, normals and tangents are its own, posed in world
+ * space (its world is the identity), and so are a morphed one's when a
+ * weight is not zero (docs/gltf.md).  Arrays hold vertex_count
  * entries of floats, or are NULL when the file has none (normals: compute
  * flat ones, as glTF asks; tangents: generate them).  Texture coordinates
  * follow sr_make_texture's convention ((0, 0) bottom-left): glTF's are

@@ -375,6 +375,59 @@ void check_refused(const char *dir, size_t i, const void *data, size_t size,
     }
 }
 
+/* One render of check_model_render's, its pixels or NULL after a failure. */
+static uint8_t *render_model(const char *dir, const char *model, const char *size,
+                             const char *const *extra, const char *threads, int *w, int *h)
+{
+    char out[1200];
+    snprintf(out, sizeof out, "%s/threads_%s.png", dir, threads);
+    const char *args[16] = { "render", model, "--size", size, "--aa", "none", "--threads",
+                             threads, "-o", out };
+    size_t n = 10;
+    for (size_t i = 0; extra && extra[i] && n < 15; i++) {
+        args[n++] = extra[i];
+    }
+    args[n] = NULL;
+    run_result r;
+    if (!run(args, &r) || r.status != 0) {
+        FAILF("render: status %d: %s", r.status, r.err);
+        return NULL;
+    }
+    CHECK(strstr(r.err, "warning") == NULL);
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(out, NULL, w, h, &px, &err) != SR_OK) {
+        FAILF("%s", err.message);
+        return NULL;
+    }
+    return px;
+}
+
+void check_model_render(const char *name, const char *file, char *text, const char *size,
+                        const char *const *extra, const char *ref)
+{
+    char dir[1024], model[1100];
+    fresh_dir(name, dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/%s", dir, file);
+    bool written = text && write_text(model, text);
+    free(text);
+    if (!written) {
+        FAILF("%s: not written", model);
+        return;
+    }
+    int w, h, w3, h3;
+    uint8_t *one = render_model(dir, model, size, extra, "1", &w, &h);
+    uint8_t *three = render_model(dir, model, size, extra, "3", &w3, &h3);
+    if (one && three && w == w3 && h == h3) {
+        CHECK(memcmp(one, three, 4 * (size_t)w * (size_t)h) == 0);
+        sr_test_check_image(ref, one, w, h, 3, (long)w * h / 200);
+    } else if (one && three) {
+        FAILF("%dx%d on one thread, %dx%d on three", w, h, w3, h3);
+    }
+    free(one);
+    free(three);
+}
+
 /* How many animation frames (ANMF chunks) an extended WebP file has at
  * its top level, and whether its VP8X header flags an animation; -1 when
  * the file is not an extended WebP. */

@@ -68,6 +68,15 @@ uint8_t *render_read(const char *const *args, const char *out, int *w, int *h, r
 void check_same_render(const char *name, const void *const data[2], const size_t size[2],
                        int channel_tol, int max_pixels);
 
+/* Writes `text` (a malloc'd model file, freed here; NULL: out of
+ * memory) as `file` into batch_`name`, renders it with `softrast render
+ * MODEL --size SIZE --aa none` and the options `extra` (up to five;
+ * NULL-terminated), on 1 and on 3 threads, and checks: no warning, the
+ * same bytes, and within 3 codes of tests/ref/REF.png on all but 0.5% of
+ * the pixels (test_images.c's tolerance: libm). */
+void check_model_render(const char *name, const char *file, char *text, const char *size,
+                        const char *const *extra, const char *ref);
+
 /* Replaces the first `from` in the NUL-terminated text with `to`; false
  * (after a failure) when absent. */
 bool edit_text(wbuf *text, const char *from, const char *to);

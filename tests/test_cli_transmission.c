@@ -8,7 +8,6 @@
  * one thread and from three. */
 #include "batch_cli.h"
 #include "gltf_write.h"
-#include "image_compare.h"
 
 #include "softrast_io.h"
 
@@ -165,39 +164,12 @@ static char *glass_model(void)
     return json;
 }
 
-static uint8_t *render_glass(const char *dir, const char *model, const char *threads,
-                             const char *name, int *w, int *h)
-{
-    char out[1200];
-    snprintf(out, sizeof out, "%s/%s.png", dir, name);
-    run_result r;
-    uint8_t *px = render_read(ARGS("render", model, "--size", "240x112", "--aa", "none",
-                                   "--camera", "eye=0,1,7,target=0,0,0", "--threads", threads,
-                                   "-o", out),
-                              out, w, h, &r);
-    CHECK(!px || strstr(r.err, "warning") == NULL);
-    return px;
-}
-
 SR_TEST(glass_spheres_show_the_checker_behind_them)
 {
     NEED_CLI();
     if (!sr_io_have_gltf()) {
         SKIP("softrast was built without jansson");
     }
-    char dir[1024], model[1100];
-    fresh_dir("transmission", dir, sizeof dir);
-    snprintf(model, sizeof model, "%s/glass.gltf", dir);
-    char *json = glass_model();
-    REQUIRE(json && write_text(model, json));
-    free(json);
-    int w, h, w3, h3;
-    uint8_t *one = render_glass(dir, model, "1", "glass_1", &w, &h);
-    uint8_t *three = render_glass(dir, model, "3", "glass_3", &w3, &h3);
-    REQUIRE(one && three);
-    REQUIRE(w == w3 && h == h3);
-    CHECK(memcmp(one, three, 4 * (size_t)w * (size_t)h) == 0);
-    sr_test_check_image("gltf_transmission", one, w, h, 3, (long)w * h / 200);
-    free(one);
-    free(three);
+    check_model_render("transmission", "glass.gltf", glass_model(), "240x112",
+                       ARGS("--camera", "eye=0,1,7,target=0,0,0"), "gltf_transmission");
 }

@@ -4,6 +4,7 @@
  * samplers, cameras, external files, GLB, and one message naming the JSON
  * pointer for each kind of malformed file. */
 #include "glb_write.h"
+#include "gltf_parse.h"
 #include "gltf_write.h"
 #include "sr_test.h"
 #include "wbuf.h"
@@ -32,24 +33,6 @@ static char *doc(const void *bin, size_t n, const char *body)
     return json;
 }
 
-typedef struct warnings {
-    int count;
-    char last[600];
-} warnings;
-
-static void on_warn(void *user, const char *message)
-{
-    warnings *w = user;
-    w->count++;
-    snprintf(w->last, sizeof w->last, "%s", message);
-}
-
-static sr_result parse(const char *json, warnings *w, sr_scene **s, sr_io_error *e)
-{
-    sr_load_desc desc = { .warn = on_warn, .user = w };
-    return sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), &desc, s,
-                         e);
-}
 
 /* bin and body as a document, parsed; NULL (a failed check) when it
  * does not parse. */
@@ -771,27 +754,26 @@ SR_TEST(transmission_and_volume_are_read)
     free(b64);
 }
 
-/* Skins and morph targets are left out of the scene with one warning
- * naming each, so that a model drawn in its rest pose says why; a file
- * without them warns of nothing (node_hierarchy_... checks).  Animations
- * are read (test_gltf_animation.c). */
-SR_TEST(skins_and_morph_targets_give_one_warning)
+/* The extensions not read are named in one warning; skins and morph
+ * targets are read (test_gltf_skin.c), animations too
+ * (test_gltf_animation.c), and not named.  A file without them warns of
+ * nothing (node_hierarchy_... checks). */
+SR_TEST(unread_extensions_give_one_warning)
 {
     const char body[] =
         TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
-        "{\"primitives\":[{\"attributes\":{\"POSITION\":0}},{\"attributes\":{\"POSITION\":0},"
+        "{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
         "\"targets\":[{\"POSITION\":0}]}],\"weights\":[1]}],"
-        "\"nodes\":[{\"mesh\":0,\"skin\":0},{\"mesh\":1},{}],\"scenes\":[{\"nodes\":[0,1,2]}],"
+        "\"nodes\":[{\"mesh\":0},{\"mesh\":1},{}],\"scenes\":[{\"nodes\":[0,1,2]}],"
         "\"skins\":[{\"joints\":[2]}],"
         "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]";
     warnings w = {0};
     sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
     REQUIRE(s);
-    CHECK_EQ(s->primitive_count, 3);
+    CHECK_EQ(s->primitive_count, 2);
     CHECK_EQ(w.count, 1);
     CHECK_EQ(s->warning_count, 1);
-    CHECK(strcmp(w.last, "t.gltf: warning: not read, the scene is drawn without them: /skins, "
-                         "/meshes/1/primitives/1/targets (morph targets), "
+    CHECK(strcmp(w.last, "t.gltf: warning: not read, the scene is drawn without them: "
                          "/extensionsUsed/0 (EXT_mesh_gpu_instancing)") == 0);
     sr_destroy_scene(sr_test_ctx(), s);
 }
@@ -1398,5 +1380,64 @@ SR_TEST(load_mesh_keeps_the_base_color_images_as_parts)
     REQUIRE(m.texcoords);
     CHECK_NEAR(m.texcoords[1], 0, 1e-6);   /* glTF's v = 1, flipped */
     sr_destroy_mesh(sr_test_ctx(), &m);
+    free(png.p);
+}
+
+/* sr_load_mesh reads the images its mesh shows, the base color ones, and
+ * no other: a material whose normal map is damaged and whose occlusion
+ * image is missing loads, silently, where sr_load_scene (which draws
+ * them) refuses the file; a damaged base color image stays an error.
+ * The texcoords are where the base color texture is sampled: glTF's
+ * KHR_texture_transform applied, then v flipped. */
+SR_TEST(load_mesh_reads_only_the_base_color_images)
+{
+    wbuf png = small_png();
+    char *b64 = small_png_base64();
+    REQUIRE(png.p && b64);
+    static const gltf_quad quad = { 0, 0, 1, 1, 0 };
+    const char *material =
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":%d,"
+        "\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.5,0.25],\"rotation\":0.5,"
+        "\"scale\":[2,3]}}}},\"normalTexture\":{\"index\":%d},"
+        "\"occlusionTexture\":{\"index\":2}}]";
+    for (int broken_base = 0; broken_base < 2; broken_base++) {
+        char tail[4096];
+        int at = snprintf(tail, sizeof tail,
+                          ",\"images\":[{\"uri\":\"data:image/png;base64,%s\"},"
+                          "{\"uri\":\"data:image/png;base64,iVBORw0KGgoAAAANSUhEUg==\"},"
+                          "{\"uri\":\"no_such_occlusion.png\"}],"
+                          "\"textures\":[{\"source\":0},{\"source\":1},{\"source\":2}],",
+                          b64);
+        snprintf(tail + at, sizeof tail - (size_t)at, material, broken_base ? 1 : 0,
+                 broken_base ? 0 : 1);
+        const char *path = write_doc("damaged_normal_map.gltf", gltf_quads(&quad, 1, tail));
+        warnings w = {0};
+        sr_load_desc desc = { .warn = on_warn, .user = &w };
+        sr_mesh m;
+        sr_io_error e;
+        sr_result r = sr_load_mesh(sr_test_ctx(), path, &desc, &m, &e);
+        if (broken_base) {
+            CHECK_EQ(r, SR_BAD_FORMAT);
+            CHECK_STR_CONTAINS(e.message, "damaged_normal_map.gltf: /images/1: ");
+            continue;
+        }
+        REQUIRE(r == SR_OK);
+        CHECK_EQ(w.count, 0);
+        CHECK(m.texture_size == png.n && memcmp(m.texture_data, png.p, png.n) == 0);
+        REQUIRE(m.texcoords && m.vertex_count == 4);
+        /* gltf_quads' corners take glTF uv (0, 1), (1, 1), (1, 0), (0, 0). */
+        static const float gl[4][2] = { { 0, 1 }, { 1, 1 }, { 1, 0 }, { 0, 0 } };
+        for (int i = 0; i < 4; i++) {
+            float su = 2 * gl[i][0], sv = 3 * gl[i][1], c = cosf(0.5f), sn = sinf(0.5f);
+            float gu = c * su + sn * sv + 0.5f, gv = -sn * su + c * sv + 0.25f;
+            CHECK_NEAR(m.texcoords[2 * i], gu, 1e-5);
+            CHECK_NEAR(m.texcoords[2 * i + 1], 1 - gv, 1e-5);
+        }
+        sr_destroy_mesh(sr_test_ctx(), &m);
+        sr_scene *s = NULL;
+        CHECK_EQ(sr_load_scene(sr_test_ctx(), path, NULL, &s, &e), SR_BAD_FORMAT);
+        CHECK_STR_CONTAINS(e.message, "/images/1: ");
+    }
+    free(b64);
     free(png.p);
 }

@@ -4,6 +4,7 @@
  * range window follow the extension's formulas, with the same bytes at
  * every SIMD level and thread count. */
 #include "sr_test.h"
+#include "gltf_parse.h"
 
 #include "softrast.h"
 #include "softrast_io.h"
@@ -15,17 +16,6 @@
 
 #define PI 3.14159265358979
 
-typedef struct warnings {
-    int count;
-    char last[600];
-} warnings;
-
-static void on_warn(void *user, const char *message)
-{
-    warnings *w = user;
-    w->count++;
-    snprintf(w->last, sizeof w->last, "%s", message);
-}
 
 /* A document of `lights` (the extension's array) and `nodes`, every node
  * a root of scene 0 unless a node lists it as a child. */

@@ -521,6 +521,71 @@ SR_TEST(texture_transform_follows_the_extension)
     sr_destroy_texture(sr_test_ctx(), t);
 }
 
+/* A slot on coordinate set 1 drawn without texcoords1 reads set 0, as
+ * sr_pbr_desc promises, also when no other slot reads set 0 (the
+ * program used to lay out no coordinates then and drop the texture:
+ * softrast render's --normals flat drops set 1). */
+SR_TEST(a_slot_on_set_1_without_its_array_reads_set_0)
+{
+    uint8_t img[2 * 2 * 4] = { 200, 0, 0, 255, 0, 200, 0, 255, 0, 0, 200, 255, 200, 200, 0, 255 };
+    sr_texture *t = NULL;
+    REQUIRE(sr_make_texture(sr_test_ctx(), &(sr_texture_desc){ .width = 2, .height = 2,
+                                                               .pixels = img }, &t) == SR_OK);
+    sr_framebuffer *fb[2] = { make_fb(1, 1, 0.0f), make_fb(1, 1, 0.0f) };
+    REQUIRE(fb[0] && fb[1]);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m = sr_pbr_default_material();
+    m.unlit = true;
+    m.base_color_texture = (sr_texture_slot){ .texture = t, .filter = SR_FILTER_NEAREST };
+    sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj };
+    for (int set = 0; set < 2; set++) {
+        m.base_color_texture.texcoord = set;
+        draw_quad(fb[set], &d, false);
+    }
+    size_t n = 4 * (size_t)sr_framebuffer_width(fb[0]) * (size_t)sr_framebuffer_height(fb[0]);
+    CHECK(memcmp(sr_framebuffer_pixels(fb[0]), sr_framebuffer_pixels(fb[1]), n) == 0);
+    const uint8_t *c = px(fb[1], 7, 7);
+    CHECK(c[0] > 100 || c[1] > 100 || c[2] > 100);   /* a texel, not black */
+    CHECK(!(c[0] > 250 && c[1] > 250 && c[2] > 250));  /* nor the untextured white */
+    for (int k = 0; k < 2; k++) {
+        sr_destroy_framebuffer(sr_test_ctx(), fb[k]);
+    }
+    sr_destroy_texture(sr_test_ctx(), t);
+}
+
+/* sr_texture_slot_uv gives the coordinates the program samples: the
+ * extension's example (as the test above stores it) takes the corners of
+ * the unit square, in sr_texture's frame, to the spec's quadrant turned
+ * clockwise; the identity slot leaves them as they are, bit for bit;
+ * and it refuses what it cannot transform. */
+SR_TEST(texture_slot_uv_applies_the_transform)
+{
+    sr_context *ctx = sr_test_ctx();
+    const float r = 1.57079632679f, sc = 0.5f;
+    sr_texture_slot s = { .rotation = r, .scale = { sc, sc } };
+    s.offset[0] = sc * sinf(r);
+    s.offset[1] = 1.0f - 1.0f - sc * cosf(r);
+    /* sr_texture's (0, 1), (1, 1), (0, 0): glTF's (0, 0), (1, 0), (0, 1). */
+    float uv[6] = { 0, 1, 1, 1, 0, 0 }, out[6];
+    REQUIRE(sr_texture_slot_uv(ctx, &s, uv, 3, out) == SR_OK);
+    /* glTF's (0, 1), (0, 0.5), (0.5, 1) are sr_texture's (0, 0), (0, 0.5), (0.5, 0). */
+    const float want[6] = { 0, 0, 0, 0.5f, 0.5f, 0 };
+    for (int i = 0; i < 6; i++) {
+        CHECK_NEAR(out[i], want[i], 1e-6);
+    }
+    sr_texture_slot id = { 0 };   /* a zero scale reads as 1 */
+    const float odd[4] = { -0.3f, 1.7f, 1e-8f, 123.456f };
+    float same[4];
+    REQUIRE(sr_texture_slot_uv(ctx, &id, odd, 2, same) == SR_OK);
+    CHECK(memcmp(odd, same, sizeof odd) == 0);
+    CHECK_EQ(sr_texture_slot_uv(ctx, NULL, uv, 3, out), SR_INVALID_ARG);
+    CHECK_EQ(sr_texture_slot_uv(ctx, &s, NULL, 3, out), SR_INVALID_ARG);
+    CHECK_EQ(sr_texture_slot_uv(ctx, &s, NULL, 0, NULL), SR_OK);
+    s.rotation = NAN;
+    CHECK_EQ(sr_texture_slot_uv(ctx, &s, uv, 3, out), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "not finite");
+}
+
 /* A quad whose u runs along +x has tangent (1, 0, 0, +1); with u along -x
  * it has (-1, 0, 0) and w = -1 (N x T = -y against B = +y). */
 SR_TEST(tangents_of_a_quad)

@@ -376,14 +376,23 @@ SR_TEST(huge_deviations_and_radii_end_quickly_or_are_refused)
                                 "<rect width='100' height='100' filter='url(#f)'/></svg>",
                                 SR_OK, NULL, NULL, 0);
     sr_destroy_framebuffer(sr_test_ctx(), fb);
-    /* a morphology radius is bounded by the region, its work by the budget */
+    /* nor a morphology's with its radius (bounded by the region) */
     fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='2000' height='2000'>"
                 "<filter id='f' x='0' y='0' width='1' height='1'>"
                 "<feMorphology radius='1e9'/><feMorphology radius='1e9'/>"
                 "<feMorphology radius='1e9'/><feMorphology radius='1e9'/></filter>"
                 "<rect width='2000' height='2000' filter='url(#f)'/></svg>",
+                SR_OK, NULL, NULL, 0);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* a filter that passes the work budget is refused at its primitive */
+    fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='2000' height='2000'>"
+                "<filter id='f' x='0' y='0' width='1' height='1'>\n"
+                "<feMorphology radius='1e9'/><feMorphology radius='1e9'/>"
+                "<feMorphology radius='1e9'/><feMorphology radius='1e9'/>\n"
+                "<feMorphology radius='1e9'/></filter>"
+                "<rect width='2000' height='2000' filter='url(#f)'/></svg>",
                 SR_TOO_LARGE, NULL, msg, sizeof msg);
-    CHECK_STR_CONTAINS(msg, "t.svg:1:");
+    CHECK_STR_CONTAINS(msg, "t.svg:3: the drawing costs more than");
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
 
@@ -608,6 +617,206 @@ SR_TEST(a_filter_region_beyond_the_image_stays_within_the_budgets)
         if (fb) {
             CHECK_EQ(pixel(fb, 5, 1)[3], i == 0 ? 255 : 0); /* drawn; not moved in */
             CHECK_EQ(pixel(fb, 5, 1)[2], i == 0 ? 255 : 0);
+        }
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+}
+
+/* The document drawn at its own size, its counted work in *info. */
+static sr_result render_info(const char *svg, sr_svg_info *info, char *msg, size_t n)
+{
+    sr_framebuffer *fb = NULL;
+    sr_io_error err;
+    sr_result r = sr_render_svg(sr_test_ctx(), svg, strlen(svg), &(sr_svg_desc){ .name = "t.svg" },
+                                &fb, info, &err);
+    if (msg) {
+        snprintf(msg, n, "%s", err.message);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    return r;
+}
+
+/* A morphology's window costs the same whatever its radius (van Herk and
+ * Gil-Werman's blocks), and is what the direct min and max give: a
+ * dilated pixel becomes a (2 rx + 1) x (2 ry + 1) box, an eroded square
+ * shrinks by the radius each side. */
+SR_TEST(morphology_is_exact_and_its_cost_does_not_grow_with_the_radius)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='40' height='40'>"
+                                "<filter id='d' filterUnits='userSpaceOnUse' x='0' y='0' width='40'"
+                                " height='40'><feMorphology operator='dilate' radius='3 5'/></filter>"
+                                "<filter id='e' filterUnits='userSpaceOnUse' x='0' y='0' width='40'"
+                                " height='40'><feMorphology radius='2'/></filter>"
+                                "<rect x='20' y='20' width='1' height='1' filter='url(#d)'/>"
+                                "<rect x='2' y='2' width='10' height='12' filter='url(#e)'/></svg>",
+                                SR_OK, NULL, NULL, 0);
+    if (fb) {
+        int wrong = 0;
+        for (int y = 0; y < 40; y++) {
+            for (int x = 0; x < 40; x++) {
+                bool in = (x >= 17 && x <= 23 && y >= 15 && y <= 25) ||
+                          (x >= 4 && x < 10 && y >= 4 && y < 12);
+                wrong += pixel(fb, x, y)[3] != (in ? 255 : 0);
+            }
+        }
+        CHECK_EQ(wrong, 0);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+    /* radius 3 and 10^9 over a 1000 x 1000 image: the same work counted,
+     * within the budget (the direct window counted 56 passes for 3) */
+    double used[2];
+    for (int i = 0; i < 2; i++) {
+        char svg[512];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='1000'>"
+                 "<filter id='f' x='0' y='0' width='1' height='1'>"
+                 "<feMorphology radius='%s'/></filter>"
+                 "<rect width='1000' height='1000' filter='url(#f)'/></svg>",
+                 i ? "1e9" : "3");
+        sr_svg_info info;
+        CHECK_EQ(render_info(svg, &info, NULL, 0), SR_OK);
+        CHECK(info.work_used <= info.work_budget);
+        used[i] = info.work_used;
+    }
+    CHECK_EQ(used[0], used[1]);
+}
+
+/* What grows with a primitive's attributes is counted before it runs,
+ * and refused at the primitive's line: a convolution's kernel (order 64,
+ * 4096 entries a pixel), noise's octaves, a chain of many primitives. */
+SR_TEST(primitives_whose_work_grows_are_refused_at_their_line)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static char kernel[4096 * 2 + 1];
+    for (int i = 0; i < 4096; i++) {
+        memcpy(kernel + 2 * i, "1 ", 2);
+    }
+    static char chain[1024 * 40 + 1];
+    for (int i = 0; i < 1000; i++) {
+        strcat(chain, "<feColorMatrix type='saturate'/>");
+    }
+    static const char *const head =
+        "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='1000'>\n"
+        "<filter id='f' x='0' y='0' width='1' height='1'>\n";
+    const char *prims[3] = { NULL, "<feTurbulence baseFrequency='0.1' numOctaves='1000'/>", chain };
+    char conv[4096 * 2 + 128];
+    snprintf(conv, sizeof conv, "<feConvolveMatrix order='64' kernelMatrix='%s'/>", kernel);
+    prims[0] = conv;
+    for (int i = 0; i < 3; i++) {
+        size_t n = strlen(head) + strlen(prims[i]) + 256;
+        char *svg = malloc(n), msg[512];
+        snprintf(svg, n, "%s%s</filter>\n<rect width='1000' height='1000' filter='url(#f)'/></svg>",
+                 head, prims[i]);
+        sr_svg_info info;
+        sr_test_warnings warn = { 0 };
+        sr_framebuffer *fb = NULL;
+        sr_io_error err;
+        sr_svg_desc d = { .name = "t.svg", .warn = sr_test_collect_warning, .warn_user = &warn };
+        CHECK_EQ(sr_render_svg(sr_test_ctx(), svg, strlen(svg), &d, &fb, &info, &err),
+                 SR_TOO_LARGE);
+        snprintf(msg, sizeof msg, "%s", err.message);
+        CHECK_STR_CONTAINS(msg, "t.svg:3: the drawing costs more than");
+        CHECK_EQ(warn.count, 0); /* refused, not drawn transparent with a warning */
+        CHECK(info.work_used <= info.work_budget);
+        CHECK(!info.over_layer_limit);
+        free(svg);
+    }
+}
+
+/* The larger layer is chosen on the work the filter will count, kernels
+ * included: a convolution of order 5 after an offset that brings content
+ * in from 300 px beyond the image fits the budget on the image's layer,
+ * not on the larger one, so the source is drawn up to the image's edges
+ * with a warning instead of the drawing being refused. */
+SR_TEST(a_larger_filter_layer_is_chosen_on_the_work_it_will_count)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    sr_test_warnings warn = { 0 };
+    sr_framebuffer *fb = render(
+        "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='1000'>"
+        "<filter id='f' filterUnits='userSpaceOnUse' x='-400' y='0' width='1400' height='1000'>"
+        "<feOffset dx='300'/><feConvolveMatrix order='5' kernelMatrix='0 0 0 0 0 0 0 0 0 0 0 0 1"
+        " 0 0 0 0 0 0 0 0 0 0 0 0'/></filter>"
+        "<rect x='-300' width='1300' height='1000' fill='#00f' filter='url(#f)'/></svg>",
+        SR_OK, &warn, NULL, 0);
+    CHECK_EQ(warn.count, 1);
+    CHECK_STR_CONTAINS(warn.text, "as the work budget holds no more");
+    if (fb) {
+        CHECK_EQ(pixel(fb, 100, 500)[3], 0);   /* not moved in */
+        CHECK_EQ(pixel(fb, 400, 500)[3], 255); /* moved from the image */
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
+/* The layer grows beyond the image only by what can reach it: not at all
+ * for a filter that reads no source (a flood tiled over a region three
+ * times the image's size), and for an offset only on the side it pulls
+ * content from.  The layer's pixels are counted for each pass, so the
+ * work counted shows its size: the same as with the region cut to the
+ * image. */
+SR_TEST(a_filter_layer_grows_only_by_what_can_reach_the_image)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const struct { const char *prims, *wide, *left; } cases[] = {
+        { "<feFlood flood-color='#f00' x='10' y='10' width='5' height='5'/><feTile/>",
+          "x='-400' y='-400' width='1200' height='1200'", NULL },
+        { "<feOffset dx='20'/>", "x='0' y='0' width='900' height='400'",
+          "x='-500' y='0' width='900' height='400'" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        double used[3] = { 0, 0, 0 };
+        const char *regions[3] = { "x='0' y='0' width='400' height='400'", cases[i].wide,
+                                   cases[i].left };
+        for (int k = 0; k < 3 && regions[k]; k++) {
+            char svg[1024];
+            snprintf(svg, sizeof svg,
+                     "<svg xmlns='http://www.w3.org/2000/svg' width='400' height='400'>"
+                     "<filter id='f' filterUnits='userSpaceOnUse' %s>%s</filter>"
+                     "<rect x='-100' width='600' height='400' fill='#00f' filter='url(#f)'/></svg>",
+                     regions[k], cases[i].prims);
+            sr_svg_info info;
+            CHECK_EQ(render_info(svg, &info, NULL, 0), SR_OK);
+            used[k] = info.work_used;
+        }
+        /* an offset's extra pixel either side, for a shift between pixels */
+        CHECK(used[1] >= used[0] && used[1] <= used[0] + (cases[i].left ? 400.0 * 8 : 0));
+        if (cases[i].left) {
+            /* 21 columns more (the shift and a pixel), counted per pass */
+            CHECK(used[2] > used[0]);
+            CHECK(used[2] < used[0] + 400.0 * 22 * 8);
+        }
+    }
+}
+
+/* A primitive subregion far beyond the region is empty: its pixel
+ * coordinates are cut to the region before they become ints (an x of
+ * 10^30 made the cut-off write far outside the image). */
+SR_TEST(a_subregion_beyond_int_range_is_empty)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const char *const subs[] = { "x='1e30' width='-5'", "x='1e30'", "y='-1e30' height='1'",
+                                        "x='-1e300' width='1e-300'" };
+    for (size_t i = 0; i < sizeof subs / sizeof subs[0]; i++) {
+        char svg[512];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='64' height='64'>"
+                 "<filter id='i'><feOffset %s/></filter>"
+                 "<rect width='30' height='20' fill='#c36' filter='url(#i)'/></svg>",
+                 subs[i]);
+        sr_framebuffer *fb = render(svg, SR_OK, NULL, NULL, 0);
+        if (fb) {
+            CHECK_EQ(pixel(fb, 10, 10)[3], 0);
         }
         sr_destroy_framebuffer(sr_test_ctx(), fb);
     }

@@ -488,6 +488,17 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                            : given ? given
                            : gm ? gm->base_color_texture.texture
                            : by_part && ob->part_textures ? ob->part_textures[p] : ob->texture;
+                const float *texcoords = ob->mesh.texcoords;
+                if (gm && !pbr && !given) {
+                    /* The base color texture where, and as, the physically
+                     * based look samples it: its sampler, its coordinate
+                     * set and transform (base_uv). */
+                    const sr_texture_slot *bt = &gm->base_color_texture;
+                    st.texture_filter = bt->filter;
+                    st.wrap_u = bt->wrap_u;
+                    st.wrap_v = bt->wrap_v;
+                    texcoords = ob->base_uv ? ob->base_uv : texcoords;
+                }
                 if (gm && !pbr) {
                     /* The file's material, but what --material says wins,
                      * as it does over any other model's. */
@@ -560,7 +571,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 r = sr_draw(ctx, fb, &st, &(sr_draw_desc){
                     .positions = ob->mesh.positions, .normals = ob->mesh.normals,
                     .colors = ob->mesh.colors, .color_size = 4,
-                    .texcoords = ob->mesh.texcoords, .vertex_count = ob->mesh.vertex_count,
+                    .texcoords = texcoords, .vertex_count = ob->mesh.vertex_count,
                     .indices = indices, .index_type = SR_INDEX_U32, .index_count = count * 3,
                     .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
                 free(sorted);
@@ -770,6 +781,12 @@ static int finish_scene(render_job *job)
         free(first->tangents);
         free(first->texcoords1);
         first->tangents = first->texcoords1 = NULL;
+    }
+    sr_result uv = render_gltf_base_uv(job->mesh_ctx, s, first);
+    if (uv != SR_OK) {
+        cli_error("%s: %s", o->model,
+                  uv == SR_OUT_OF_MEMORY ? "out of memory" : sr_context_error(job->mesh_ctx));
+        return EXIT_FAILURE_RUN;
     }
     if (s->gltf && !first->tangents && first->mesh.texcoords && first->mesh.normals) {
         /* Normal maps or anisotropy with a primitive that has no

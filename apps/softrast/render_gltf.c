@@ -344,6 +344,59 @@ int render_gltf_load(const char *path, bool flat_normals, const char *variant, b
     return -1;
 }
 
+/* Whether the slot samples other coordinates than texcoords: set 1, or
+ * a transform other than the identity. */
+static bool moves_uv(const sr_texture_slot *t)
+{
+    bool unit = (t->scale[0] == 1 && t->scale[1] == 1) || (t->scale[0] == 0 && t->scale[1] == 0);
+    return t->texture && (t->texcoord != 0 || t->offset[0] != 0 || t->offset[1] != 0 ||
+                          t->rotation != 0 || !unit);
+}
+
+sr_result render_gltf_base_uv(sr_context *ctx, const scene *s, scene_object *ob)
+{
+    free(ob->base_uv);
+    ob->base_uv = NULL;
+    const sr_mesh *m = &ob->mesh;
+    bool moved = false;
+    for (size_t p = 0; s->gltf && ob->part_material && p < m->part_count; p++) {
+        moved |= moves_uv(&s->gltf->materials[ob->part_material[p]].base_color_texture);
+    }
+    if (!moved) {
+        return SR_OK;
+    }
+    ob->base_uv = calloc(m->vertex_count ? m->vertex_count : 1, 2 * sizeof(float));
+    if (!ob->base_uv) {
+        return SR_OUT_OF_MEMORY;
+    }
+    /* A transform is affine: transformed at the corners and interpolated
+     * is the fragment's coordinates transformed.  Each part owns a run of
+     * vertices (a primitive's, or its split corners after --normals
+     * flat), transformed in one call. */
+    for (size_t p = 0; p < m->part_count; p++) {
+        const sr_texture_slot *t = &s->gltf->materials[ob->part_material[p]].base_color_texture;
+        /* Without set 1 (none in the file, or dropped by --normals flat)
+         * pbr reads set 1's slots from set 0. */
+        const float *src = t->texcoord == 1 && ob->texcoords1 ? ob->texcoords1 : m->texcoords;
+        const sr_mesh_part *part = &m->parts[p];
+        if (!t->texture || !src || part->triangle_count == 0) {
+            continue;   /* nothing sampled */
+        }
+        const uint32_t *idx = &m->indices[3 * part->first_triangle];
+        uint32_t lo = idx[0], hi = idx[0];
+        for (size_t k = 1; k < 3 * part->triangle_count; k++) {
+            lo = idx[k] < lo ? idx[k] : lo;
+            hi = idx[k] > hi ? idx[k] : hi;
+        }
+        sr_result r = sr_texture_slot_uv(ctx, t, &src[2 * (size_t)lo], (size_t)(hi - lo) + 1,
+                                         &ob->base_uv[2 * (size_t)lo]);
+        if (r != SR_OK) {
+            return r;
+        }
+    }
+    return SR_OK;
+}
+
 sr_material render_gltf_classic(const sr_pbr_material *m, bool vertex_colors)
 {
     /* Diffuse: the base color as it is.  sr_material reads a zero diffuse

@@ -19,6 +19,13 @@ bool render_gltf_is(const char *path);
 int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
                      const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
                      scene *s);
+/* ob's base_uv for the classic models, which have one set of texture
+ * coordinates and no per-slot transform: each part's coordinates as the
+ * physically based program samples its base color texture (its set, 0 or
+ * 1, through its KHR_texture_transform), when some part's differ from
+ * the texcoords; else NULL.  SR_OUT_OF_MEMORY, or the slot's
+ * error (the context's message). */
+sr_result render_gltf_base_uv(sr_context *ctx, const scene *s, scene_object *ob);
 /* The classic models' Blinn-Phong material for glTF material m
  * (docs/pbr.md, "glTF files in softrast render"); with vertex_colors the
  * primitive's COLOR_0 is its diffuse, as an OBJ's or a PLY's is. */

@@ -115,7 +115,9 @@ void scene_free(sr_context *ctx, scene *s)
         free(s->objects[i].part_material);
         free(s->objects[i].tangents);
         free(s->objects[i].texcoords1);
+        free(s->objects[i].base_uv);
         s->objects[i].part_material = NULL;
+        s->objects[i].base_uv = NULL;
         s->objects[i].tangents = s->objects[i].texcoords1 = NULL;
     }
     sr_destroy_scene(ctx, s->gltf);

@@ -32,6 +32,10 @@ typedef struct scene_object {
      * a primitive, in world space, with its material in scene.gltf. */
     int *part_material;            /* mesh.part_count entries (malloc'd), or NULL */
     float *tangents, *texcoords1;  /* 4 and 2 a vertex (malloc'd), or NULL */
+    /* Where the classic models sample each part's base color texture
+     * (render_gltf_base_uv), 2 a vertex (malloc'd), or NULL: the
+     * texcoords as they are. */
+    float *base_uv;
 } scene_object;
 
 typedef struct scene {

@@ -200,6 +200,11 @@ def write_glb(path):
                        "type": "VEC3"},
                       {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC4"}],
     }
+    write_glb_file(path, doc, data)
+
+
+def write_glb_file(path, doc, data):
+    """The GLB of a document and its binary chunk's bytes."""
     text = json.dumps(doc).encode()
     text += b" " * (-len(text) % 4)
     chunks = (len(text).to_bytes(4, "little") + b"JSON" + text +
@@ -229,3 +234,97 @@ def test_load_mesh_of_a_glb_is_its_scene_flattened(tmp_path):
     assert np.array_equal(mesh.faces, np.concatenate(faces))
     assert np.allclose(mesh.colors[:3, :3], scene.instances[0].mesh.colors[:, :3], atol=1e-6)
     assert np.allclose(mesh.vertices[3:], [[0, 0, 0], [-1, 0, 0], [0, 1, 0]])
+
+
+def write_skinned_glb(path):
+    """A strip of six vertices (rows y = 0, 1, 2) skinned to two joints:
+    joint 1 sits at (0, 1, 0) turned 90 degrees about +z, row 2 follows it,
+    row 1 both by half.  The skinned node's own transform (moved by 100,
+    scaled by 5) is ignored; a second node draws the mesh unskinned with
+    morph weight 1, its target lifting every vertex by 1 in z."""
+    pos = np.array([[-0.5, 0, 0], [0.5, 0, 0], [-0.5, 1, 0], [0.5, 1, 0], [-0.5, 2, 0],
+                    [0.5, 2, 0]], "<f4")
+    joints = np.array([[0, 1, 0, 0]] * 4 + [[1, 0, 0, 0]] * 2, "<u2")
+    weights = np.array([[1, 0, 0, 0]] * 2 + [[0.5, 0.5, 0, 0]] * 2 + [[1, 0, 0, 0]] * 2, "<f4")
+    ibm = np.array([np.eye(4), np.eye(4)], "<f4")
+    ibm[1, 3, 1] = -1          # column-major: the translation is the last row here
+    up = np.array([[0, 0, 1]] * 6, "<f4")
+    idx = np.array([0, 1, 3, 0, 3, 2, 2, 3, 5, 2, 5, 4], "<u2")
+    parts = [pos.tobytes(), joints.tobytes(), weights.tobytes(), ibm.tobytes(), up.tobytes(),
+             idx.tobytes()]
+    views, at = [], 0
+    for p in parts:
+        views.append({"buffer": 0, "byteOffset": at, "byteLength": len(p)})
+        at += len(p)
+    h = 0.5 ** 0.5
+    doc = {
+        "asset": {"version": "2.0"},
+        "scene": 0, "scenes": [{"nodes": [0, 1, 3]}],
+        "nodes": [{"mesh": 0, "skin": 0, "translation": [100, 0, 0], "scale": [5, 5, 5]},
+                  {"children": [2]},
+                  {"translation": [0, 1, 0], "rotation": [0, 0, h, h]},
+                  {"mesh": 0, "weights": [1]}],
+        "skins": [{"joints": [1, 2], "inverseBindMatrices": 3}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2},
+                                    "indices": 5, "targets": [{"POSITION": 4}]}],
+                    "weights": [0]}],
+        "buffers": [{"byteLength": at}],
+        "bufferViews": views,
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 6, "type": "VEC3",
+                       "min": [-0.5, 0, 0], "max": [0.5, 2, 0]},
+                      {"bufferView": 1, "componentType": 5123, "count": 6, "type": "VEC4"},
+                      {"bufferView": 2, "componentType": 5126, "count": 6, "type": "VEC4"},
+                      {"bufferView": 3, "componentType": 5126, "count": 2, "type": "MAT4"},
+                      {"bufferView": 4, "componentType": 5126, "count": 6, "type": "VEC3"},
+                      {"bufferView": 5, "componentType": 5123, "count": 12, "type": "SCALAR"}],
+    }
+    write_glb_file(path, doc, b"".join(parts))
+
+
+def test_load_and_load_mesh_pose_skins_and_morph_targets(tmp_path):
+    path = tmp_path / "skinned.glb"
+    write_skinned_glb(path)
+    scene = load_gltf(path)
+    skinned, morphed = scene.instances
+    posed = [[-0.5, 0, 0], [0.5, 0, 0], [-0.25, 0.75, 0], [0.25, 1.25, 0], [-1, 0.5, 0],
+             [-1, 1.5, 0]]
+    # Skinned: world-space vertices under an identity pose.
+    assert np.allclose(skinned.pose, np.eye(4))
+    assert np.allclose(skinned.mesh.vertices, posed, atol=1e-6)
+    # Morphed by the node's weight 1 (the mesh says 0), under its node's pose.
+    assert skinned.mesh is not morphed.mesh
+    assert np.allclose(morphed.mesh.vertices[:, 2], 1)
+    mesh = softrast.load_mesh(path)
+    assert np.allclose(mesh.vertices[:6], posed, atol=1e-6)
+    assert np.allclose(mesh.vertices[6:, 2], 1)
+
+
+def test_load_mesh_reads_only_the_base_color_image(tmp_path):
+    """load_mesh's uvs are where the base color texture is sampled (its
+    KHR_texture_transform applied, as load's), and a damaged normal map,
+    which load_mesh does not read, does not stop it; load refuses it."""
+    from gltf_build import quad, write
+    image = np.zeros((2, 2, 4), np.uint8)
+    image[..., 0] = [[200, 20], [20, 200]]
+    image[..., 3] = 255
+    path = tmp_path / "quad.gltf"
+    transform = {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 0.5,
+                                           "scale": [2, 3]}}
+    material = {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+                                                              "extensions": transform}}}
+    write(path, [(quad((0, 0, 0), 2), 0)], [material], images=[image])
+    scene = softrast.load(path)
+    mesh = softrast.load_mesh(path)
+    assert scene.instances[0].mesh.uvs is not None
+    assert np.allclose(mesh.uvs, scene.instances[0].mesh.uvs, atol=1e-6)
+    assert not np.allclose(mesh.uvs, [[0, 0], [1, 0], [1, 1], [0, 1]], atol=0.1)
+    assert np.array_equal(mesh.texture, image)
+
+    doc = json.loads(path.read_text())
+    doc["images"].append({"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUg=="})
+    doc["textures"].append({"source": 1})
+    doc["materials"][0]["normalTexture"] = {"index": 1}
+    path.write_text(json.dumps(doc))
+    assert np.allclose(softrast.load_mesh(path).uvs, mesh.uvs)
+    with pytest.raises(ValueError, match="/images/1"):
+        softrast.load(path)

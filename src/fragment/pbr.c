@@ -1226,17 +1226,7 @@ static void resolve_slot(const sr_texture_slot *in, pbr_slot *out)
     out->filter = in->filter ? in->filter : SR_FILTER_TRILINEAR;
     out->wu = in->wrap_u ? in->wrap_u : SR_WRAP_REPEAT;
     out->wv = in->wrap_v ? in->wrap_v : SR_WRAP_REPEAT;
-    float sx = in->scale[0], sy = in->scale[1];
-    if (sx == 0.0f && sy == 0.0f) {
-        sx = sy = 1.0f;
-    }
-    float c = cosf(in->rotation), s = sinf(in->rotation);
-    out->xf[0] = c * sx;
-    out->xf[1] = -s * sy;
-    out->xf[2] = in->offset[0];
-    out->xf[3] = s * sx;
-    out->xf[4] = c * sy;
-    out->xf[5] = in->offset[1];
+    sr__texture_slot_matrix(in, out->xf);
 }
 
 static sr_result check_desc(sr_context *ctx, const sr_pbr_desc *d)
@@ -1364,7 +1354,10 @@ static int layout_varyings(const sr_pbr_desc *d, sr_pbr *p)
     bool lit = !p->m.unlit;
     for (int i = 0; i < SLOT_COUNT; i++) {
         if (p->slot[i].tex && (lit || i == SLOT_BASE)) {
-            uses[material_slot(&p->m, i)->texcoord] = true;
+            /* A slot on set 1 without texcoords1 reads set 0 (below), which
+             * must then be laid out even when no slot names it. */
+            int set = material_slot(&p->m, i)->texcoord;
+            uses[set == 1 && !d->texcoords1 ? 0 : set] = true;
         }
     }
     /* Anisotropy's derivative frame reads set 0 when the draw has no

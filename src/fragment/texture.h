@@ -61,4 +61,10 @@ float sr__texture_lod(const sr_texture *t, float dudx, float dvdx, float dudy, f
  * (the vector kernel computes rho^2 in lanes, then calls this). */
 float sr__texture_lod_rho2(float rho2);
 
+/* A slot's KHR_texture_transform (already in sr_texture's frame, v up) as
+ * u' = xf[0] u + xf[1] v + xf[2], v' = xf[3] u + xf[4] v + xf[5]:
+ * uv' = T(offset) R(rotation) S(scale) uv, R counter-clockwise
+ * (texture_slot.c; the PBR program and sr_texture_slot_uv share it). */
+void sr__texture_slot_matrix(const sr_texture_slot *slot, float xf[6]);
+
 #endif

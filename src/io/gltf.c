@@ -409,10 +409,12 @@ sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *use, const ui
 
 /* A mesh's primitives decoded once, drawn by every node that uses the
  * mesh: arrays, counts and material set, world not (NULL positions:
- * skipped). */
+ * skipped); beside each, what posing it per node takes. */
 typedef struct gltf_mesh {
     sr_scene_primitive *prims;
+    gltf_pose_source *pose;     /* count of them, malloc'd */
     size_t count;
+    size_t target_count;        /* every primitive's, checked equal */
     bool decoded;
 } gltf_mesh;
 
@@ -510,9 +512,13 @@ static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool ha
                                        &m->clearcoat_roughness_texture,
                                        &m->clearcoat_normal_texture, &m->sheen_color_texture,
                                        &m->sheen_roughness_texture };
+    size_t n;
     for (size_t i = 0; i < sizeof slots / sizeof *slots; i++) {
         int set = slots[i]->texcoord;
-        if (slots[i]->texture && !(set == 0 ? has0 : has1)) {
+        /* for_mesh makes no textures: its base color image is a source. */
+        bool textured = slots[i]->texture ||
+                        (i == 0 && sr__scene_source(d->scene, (size_t)material, &n));
+        if (textured && !(set == 0 ? has0 : has1)) {
             sr__gltf_warn(d, "%s: no TEXCOORD_%d, which material %d's textures read (drawn "
                           "with one color of the texture)", aptr, set, material);
             return;
@@ -524,7 +530,7 @@ static void check_texcoords(gltf_doc *d, const char *aptr, int material, bool ha
  * primitive without an indices accessor, else NULL. */
 static sr_result read_arrays(gltf_doc *d, const json_t *prim, const char *ptr,
                              const uint32_t *draco_corners, size_t draco_corner_count,
-                             sr_scene_primitive *p)
+                             sr_scene_primitive *p, gltf_pose_source *pose)
 {
     json_t *attrs;
     long mode = 4, indices = -1, material = -1;
@@ -580,6 +586,13 @@ static sr_result read_arrays(gltf_doc *d, const json_t *prim, const char *ptr,
         }
         col = rgba;
     }
+    /* Skinning attributes are read only where a skin may use them, so
+     * that a file without skins costs nothing more. */
+    if ((r = sr__gltf_read_targets(d, prim, ptr, n, pose)) != SR_OK ||
+        (json_array_size(json_object_get(d->root, "skins")) > 0 &&
+         (r = sr__gltf_read_influences(d, attrs, aptr, n, pose)) != SR_OK)) {
+        return r;
+    }
     check_texcoords(d, aptr, p->material, uv0 != NULL, uv1 != NULL);
     flip_v(uv0, n);
     flip_v(uv1, n);
@@ -618,7 +631,7 @@ static sr_result read_arrays(gltf_doc *d, const json_t *prim, const char *ptr,
 /* A primitive's arrays into p: a KHR_draco_mesh_compression one's from
  * its decoded stream (gltf_draco.c), held while its accessors are read. */
 static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr,
-                                sr_scene_primitive *p)
+                                sr_scene_primitive *p, gltf_pose_source *pose)
 {
     json_t *draco = sr__gltf_extension(prim, "KHR_draco_mesh_compression");
     const uint32_t *corners = NULL;
@@ -628,7 +641,7 @@ static sr_result read_primitive(gltf_doc *d, const json_t *prim, const char *ptr
         r = sr__gltf_draco_begin(d, prim, draco, ptr, &corners, &corner_count);
     }
     if (r == SR_OK) {
-        r = read_arrays(d, prim, ptr, corners, corner_count, p);
+        r = read_arrays(d, prim, ptr, corners, corner_count, p, pose);
     }
     sr__gltf_draco_end(d);
     return r;
@@ -656,8 +669,13 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
     if (n == 0) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/primitives: missing or empty", ptr);
     }
+    if ((r = sr__gltf_check_targets(d, mesh, ptr)) != SR_OK) {
+        return r;
+    }
+    meshes[m].target_count = json_array_size(json_object_get(json_array_get(prims, 0), "targets"));
     meshes[m].prims = sr__scene_alloc(d->scene, n * sizeof *meshes[m].prims);
-    if (!meshes[m].prims) {
+    meshes[m].pose = calloc(n, sizeof *meshes[m].pose);
+    if (!meshes[m].prims || !meshes[m].pose) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
     }
     meshes[m].count = n;
@@ -666,7 +684,8 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
         snprintf(pptr, sizeof pptr, "%s/primitives/%zu", ptr, i);
         sr_scene_primitive *p = &meshes[m].prims[i];
         p->mesh = (int)m;
-        if ((r = read_primitive(d, json_array_get(prims, i), pptr, p)) != SR_OK) {
+        if ((r = read_primitive(d, json_array_get(prims, i), pptr, p, &meshes[m].pose[i])) !=
+            SR_OK) {
             return r;
         }
     }
@@ -680,14 +699,14 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
  * with its matrix, after a warning, as three.js's GLTFLoader and Blender's
  * importer draw it, rather than refusing a file every viewer shows. */
 static sr_result local_matrix(gltf_doc *d, const json_t *node, long index, const char *ptr,
-                              float *m)
+                              bool warn, float *m)
 {
     static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
     memcpy(m, identity, sizeof identity);
     sr_result r;
     if (json_object_get(node, "matrix")) {
         static const char *const trs[] = { "translation", "rotation", "scale" };
-        for (int i = 0; i < 3; i++) {
+        for (int i = 0; warn && i < 3; i++) {
             if (json_object_get(node, trs[i])) {
                 sr__gltf_warn(d, "%s: both matrix and %s (glTF allows one): the matrix is used",
                               ptr, trs[i]);
@@ -734,6 +753,45 @@ static sr_result local_matrix(gltf_doc *d, const json_t *node, long index, const
         }
         m[12 + c] = t[c];
     }
+    return SR_OK;
+}
+
+sr_result sr__gltf_node_world(gltf_doc *d, long node, float world[16])
+{
+    static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    size_t n = d->node_count;
+    if (!d->node_parent || node < 0 || (size_t)node >= n) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "/nodes: node %ld does not exist", node);
+    }
+    if (!d->node_worlds) {
+        d->node_worlds = malloc(n * 16 * sizeof *d->node_worlds);
+        d->node_world_known = calloc(n, 1);
+        d->node_chain = malloc(n * sizeof *d->node_chain);
+        if (!d->node_worlds || !d->node_world_known || !d->node_chain) {
+            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/nodes: out of memory");
+        }
+    }
+    /* The path up to a known world or a root (node_parents ruled out
+     * cycles), then down it, each world made once. */
+    size_t depth = 0;
+    for (long v = node; v >= 0 && !d->node_world_known[v]; v = d->node_parent[v]) {
+        d->node_chain[depth++] = v;
+    }
+    json_t *nodes = json_object_get(d->root, "nodes");
+    while (depth > 0) {
+        long v = d->node_chain[--depth], up = d->node_parent[v];
+        char ptr[GLTF_PTR];
+        float local[16];
+        snprintf(ptr, sizeof ptr, "/nodes/%ld", v);
+        sr_result r = local_matrix(d, json_array_get(nodes, (size_t)v), v, ptr, false, local);
+        if (r != SR_OK) {
+            return r;
+        }
+        sr__mat4_mul(up >= 0 ? d->node_worlds + 16 * up : identity, local,
+                     d->node_worlds + 16 * v);
+        d->node_world_known[v] = 1;
+    }
+    memcpy(world, d->node_worlds + 16 * node, 16 * sizeof *world);
     return SR_OK;
 }
 
@@ -858,8 +916,27 @@ typedef struct walk_item {
     float parent[16];
 } walk_item;
 
+/* Primitive i of mesh m as node `node_index` poses it: moved by the
+ * node's morph weights (n of them), then skinned by its skin (-1: none). */
+static sr_result pose_primitive(gltf_doc *d, const gltf_mesh *m, size_t i, long node_index,
+                                const char *ptr, long mesh, long skin, const float *weights,
+                                sr_scene_primitive *p)
+{
+    char pptr[GLTF_PTR], use[GLTF_PTR];
+    snprintf(pptr, sizeof pptr, "/meshes/%ld/primitives/%zu", mesh, i);
+    sr_result r = SR_OK;
+    if (m->pose[i].target_count > 0) {
+        r = sr__gltf_morph(d, &m->pose[i], weights, ptr, p);
+    }
+    if (r == SR_OK && skin >= 0) {
+        snprintf(use, sizeof use, "/nodes/%ld/skin", node_index);
+        r = sr__gltf_skin(d, skin, use, &m->pose[i], pptr, p);
+    }
+    return r;
+}
+
 static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, const char *ptr,
-                           long mesh, const float *world)
+                           long mesh, long skin, const float *world)
 {
     char use[GLTF_PTR];
     snprintf(use, sizeof use, "%s/mesh", ptr);
@@ -868,31 +945,42 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
     if (r != SR_OK) {
         return r;
     }
-    for (size_t i = 0; i < m->count; i++) {
+    /* Plain instances share the mesh's arrays; posed ones get their own. */
+    float *weights = NULL;
+    if (m->target_count > 0) {
+        weights = malloc(m->target_count * sizeof *weights);
+        r = weights ? sr__gltf_node_weights(d, node_index, mesh, weights, m->target_count)
+                    : sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    for (size_t i = 0; i < m->count && r == SR_OK; i++) {
         const sr_scene_primitive *g = &m->prims[i];
         if (!g->positions || g->triangle_count == 0) {
             continue;
         }
         if (d->scene->primitive_count >= SR_SCENE_MAX_DRAWS) {
-            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu primitives to draw", ptr,
-                                 SR_SCENE_MAX_DRAWS);
+            r = sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu primitives to draw", ptr,
+                              SR_SCENE_MAX_DRAWS);
+            break;
         }
         /* Instances are cheap to list but each costs its vertices to
          * bound and to draw. */
         d->drawn_vertices += g->vertex_count;
         if (d->drawn_vertices > SR_SCENE_MAX_DRAWN_VERTICES) {
-            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu vertices to draw in all", ptr,
-                                 SR_SCENE_MAX_DRAWN_VERTICES);
+            r = sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu vertices to draw in all", ptr,
+                              SR_SCENE_MAX_DRAWN_VERTICES);
+            break;
         }
         d->drawn_triangles += g->triangle_count;
         if (d->drawn_triangles > SR_SCENE_MAX_DRAWN_TRIANGLES) {
-            return sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu triangles to draw in all",
-                                 ptr, SR_SCENE_MAX_DRAWN_TRIANGLES);
+            r = sr__gltf_fail(d, SR_TOO_LARGE, "%s: more than %zu triangles to draw in all", ptr,
+                              SR_SCENE_MAX_DRAWN_TRIANGLES);
+            break;
         }
         sr_scene_primitive *p = sr__scene_grow(d->scene, (void **)&d->scene->primitives,
                                                &d->scene->primitive_count, sizeof *p, 1);
         if (!p) {
-            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+            r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+            break;
         }
         *p = *g;
         memcpy(p->world, world, sizeof p->world);
@@ -902,8 +990,10 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
                      (double)w[4] * ((double)w[1] * w[10] - (double)w[9] * w[2]) +
                      (double)w[8] * ((double)w[1] * w[6] - (double)w[5] * w[2]);
         p->mirrored = det < 0;
+        r = pose_primitive(d, m, i, node_index, ptr, mesh, skin, weights, p);
     }
-    return SR_OK;
+    free(weights);
+    return r;
 }
 
 /* The scene's node trees, depth first in the order the file lists them. */
@@ -952,16 +1042,19 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
         snprintf(ptr, sizeof ptr, "/nodes/%ld", it.node);
         json_t *node = json_array_get(nodes, (size_t)it.node), *children;
         float local[16], world[16];
-        long mesh = -1, camera = -1;
+        long mesh = -1, camera = -1, skin = -1;
         size_t k;
-        if ((r = local_matrix(d, node, it.node, ptr, local)) != SR_OK ||
+        if ((r = local_matrix(d, node, it.node, ptr, true, local)) != SR_OK ||
             (r = sr__gltf_index(d, node, ptr, "mesh", (size_t)-1 / 2, false, &mesh)) != SR_OK ||
+            (r = sr__gltf_index(d, node, ptr, "skin", (size_t)-1 / 2, false, &skin)) != SR_OK ||
             (r = sr__gltf_index(d, node, ptr, "camera", (size_t)-1 / 2, false, &camera)) !=
                 SR_OK) {
             break;
         }
         sr__mat4_mul(it.parent, local, world);
-        if (mesh >= 0 && (r = add_draws(d, meshes, it.node, ptr, mesh, world)) != SR_OK) {
+        /* A skin without a mesh poses nothing. */
+        if (mesh >= 0 &&
+            (r = add_draws(d, meshes, it.node, ptr, mesh, skin, world)) != SR_OK) {
             break;
         }
         if ((r = sr__gltf_place_light(d, node, ptr, it.node, world)) != SR_OK) {
@@ -989,6 +1082,12 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
             memcpy(stack[top].parent, world, sizeof world);
             top++;
         }
+    }
+    for (size_t m = 0; m < mesh_count; m++) {
+        for (size_t i = 0; meshes[m].pose && i < meshes[m].count; i++) {
+            sr__gltf_pose_free(&meshes[m].pose[i]);
+        }
+        free(meshes[m].pose);
     }
     free(meshes);
     free(stack);
@@ -1041,9 +1140,19 @@ static sr_result read_nodes(gltf_doc *d)
         }
     }
     if (r == SR_OK) {
+        d->node_count = node_count;
+        d->node_parent = parent;
         r = walk_nodes(d, roots, rptr, parent, node_count);   /* NULL: no roots */
     }
     json_decref(all);
+    sr__gltf_skins_free(d);
+    free(d->node_worlds);
+    free(d->node_world_known);
+    free(d->node_chain);
+    d->node_worlds = NULL;
+    d->node_world_known = NULL;
+    d->node_chain = NULL;
+    d->node_parent = NULL;
     free(parent);
     return r;
 }
@@ -1153,31 +1262,12 @@ static void list_add(char *list, size_t cap, bool *full, const char *item)
 }
 
 /* One warning naming what the file holds that the scene leaves out
- * (skins, morph targets, extensions other than the supported ones), so
- * that a model drawn in its rest pose, or without its lights, says why. */
+ * (extensions other than the supported ones), so that a model drawn
+ * without its lights, say, says why. */
 static void warn_unread(gltf_doc *d)
 {
     char list[400] = "", item[GLTF_PTR + 80];
     bool full = false;
-    static const char *const kinds[] = { "skins" };
-    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
-        if (json_array_size(json_object_get(d->root, kinds[k])) > 0) {
-            snprintf(item, sizeof item, "/%s", kinds[k]);
-            list_add(list, sizeof list, &full, item);
-        }
-    }
-    json_t *meshes = json_object_get(d->root, "meshes");
-    for (size_t m = 0, found = 0; !found && m < json_array_size(meshes); m++) {
-        json_t *prims = json_object_get(json_array_get(meshes, m), "primitives");
-        for (size_t p = 0; !found && p < json_array_size(prims); p++) {
-            if (json_array_size(json_object_get(json_array_get(prims, p), "targets")) > 0) {
-                snprintf(item, sizeof item, "/meshes/%zu/primitives/%zu/targets (morph targets)",
-                         m, p);
-                list_add(list, sizeof list, &full, item);
-                found = 1;
-            }
-        }
-    }
     json_t *used = json_object_get(d->root, "extensionsUsed");
     for (size_t i = 0; i < json_array_size(used); i++) {
         const char *name = json_string_value(json_array_get(used, i));
@@ -1317,7 +1407,10 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
     }
     d->buffers = calloc(d->buffer_count ? d->buffer_count : 1, sizeof *d->buffers);
     d->image_textures = calloc(d->image_count ? 2 * d->image_count : 1, sizeof(sr_texture *));
-    if (!d->buffers || !d->image_textures) {
+    d->image_sources = d->for_mesh ? calloc(d->image_count ? d->image_count : 1,
+                                            sizeof *d->image_sources)
+                                   : NULL;
+    if (!d->buffers || !d->image_textures || (d->for_mesh && !d->image_sources)) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/buffers: out of memory");
     }
     if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = sr__gltf_read_variants(d)) != SR_OK ||
@@ -1332,10 +1425,11 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
 }
 
 sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, const uint8_t *data,
-                         size_t size, const sr_load_desc *desc, bool keep_sources,
-                         sr_scene **out, sr_io_error *err)
+                         size_t size, const sr_load_desc *desc, bool for_mesh, sr_scene **out,
+                         sr_io_error *err)
 {
-    gltf_doc d = { .ctx = ctx, .name = name, .desc = desc, .err = err, .dir = dir };
+    gltf_doc d = { .ctx = ctx, .name = name, .desc = desc, .err = err, .dir = dir,
+                   .for_mesh = for_mesh };
     *out = NULL;
     d.input_bytes = size;
     d.elements_left = SR_SCENE_ELEMENTS_BASE;
@@ -1343,9 +1437,6 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
         d.elements_left += size * SR_SCENE_ELEMENTS_PER_BYTE;
     }
     d.scene = sr__scene_new();
-    if (d.scene && keep_sources) {
-        sr__scene_keep_sources(d.scene);
-    }
     sr_result r = d.scene ? read_document(&d, data, size)
                           : sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0, "out of memory");
     for (size_t i = 0; d.buffers && i < d.buffer_count; i++) {
@@ -1357,6 +1448,7 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
     }
     free(d.buffers);
     free(d.image_textures);
+    free(d.image_sources);
     free(d.lights);
     sr__gltf_meshopt_free(&d);
     sr__gltf_draco_end(&d);

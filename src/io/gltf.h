@@ -5,6 +5,7 @@
  * gltf_variants.c reads KHR_materials_variants;
  * gltf_animation.c reads animations and poses the nodes;
  * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
+ * gltf_morph.c and gltf_skin.c pose morphed and skinned primitives;
  * scene_store.c holds the scene's memory.  Every
  * error is one line "NAME: /json/pointer: what is wrong", the first one
  * only.  Internal to src/io. */
@@ -38,6 +39,12 @@ typedef struct gltf_buffer {
 
 struct gltf_decoded_view;
 
+/* An image's encoded bytes as sr_load_mesh hands them on (a block of the
+ * scene's), or NULL when not read yet. */
+typedef struct gltf_image_source {
+    const uint8_t *bytes;
+    size_t size;
+} gltf_image_source;
 /* A node's pose at the animation sr_load_desc asks for (gltf_animation.c):
  * which of its translation, rotation, scale and weights are animated
  * (bits 1 << 0 .. 1 << 3) and their sampled values. */
@@ -71,6 +78,11 @@ typedef struct gltf_doc {
     /* Textures made so far, two per image (linear, sRGB); NULL: not yet. */
     sr_texture **image_textures;
     size_t image_count;
+    /* for_mesh (sr__parse_gltf): the scene sr_load_mesh flattens, and
+     * each image's encoded bytes once read and checked (NULL: not yet). */
+    bool for_mesh;
+    gltf_image_source *image_sources;
+    long slot_image;             /* the image the last slot read names, or -1 */
     struct gltf_light *lights;   /* KHR_lights_punctual's, read (gltf_lights.c) */
     size_t light_count;
     /* bufferViews decoded from EXT_meshopt_compression (gltf_meshopt.c),
@@ -80,6 +92,16 @@ typedef struct gltf_doc {
     /* The KHR_draco_mesh_compression primitive being read (gltf_draco.c):
      * its accessors' decoded bytes; NULL between primitives. */
     struct gltf_draco_primitive *draco;
+    /* Every node's world matrix, found on first use (sr__gltf_node_world):
+     * the nodes' parents (-1: a root), NULL until the walk starts. */
+    size_t node_count;
+    const long *node_parent;
+    float *node_worlds;          /* 16 a node */
+    unsigned char *node_world_known;
+    long *node_chain;            /* room for a path to the root */
+    /* The joint matrices of each skin, made on first use (gltf_skin.c). */
+    struct gltf_skin_cache *skins;
+    size_t skin_count;
     /* One entry per node when an animation poses the scene, else NULL. */
     gltf_node_pose *pose;
 } gltf_doc;
@@ -176,6 +198,65 @@ sr_result sr__gltf_accessor_info(gltf_doc *d, long index, const char *use,
 sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
                                 gltf_accessor_info *info, uint32_t **out);
 
+/* An accessor of MAT4 floats (inverse bind matrices) into a malloc'd
+ * array of 16 floats a matrix, column-major. */
+sr_result sr__gltf_read_mat4(gltf_doc *d, long index, const char *ptr, gltf_accessor_info *info,
+                             float **out);
+
+/* gltf.c: node `node`'s world matrix (the product of its ancestors' local
+ * matrices and its own), for nodes the walk does not reach too. */
+sr_result sr__gltf_node_world(gltf_doc *d, long node, float world[16]);
+
+/* What posing a primitive per node takes, read with its arrays (all
+ * malloc'd, freed by sr__gltf_pose_free): its morph targets' deltas and
+ * its skinning influences. */
+typedef struct gltf_pose_source {
+    size_t target_count;
+    float **deltas;          /* 3 a target: POSITION, NORMAL, TANGENT deltas (3 floats a
+                              * vertex each), NULL where the target lacks one */
+    size_t influence_sets;   /* JOINTS_n / WEIGHTS_n pairs, 0: not skinnable */
+    float *joints;           /* 4 * influence_sets a vertex, whole numbers */
+    float *weights;          /* the same layout */
+    size_t joint_max;        /* the largest joint index, found in */
+    size_t joint_max_set, joint_max_vertex;   /* JOINTS_<set>, element <vertex> */
+} gltf_pose_source;
+
+void sr__gltf_pose_free(gltf_pose_source *src);
+/* The memory of p's posed arrays (positions, and normals and tangents
+ * where it has them), counted in the decoding budget like accessors'
+ * elements: a small file drawing a mesh posed by many nodes cannot ask
+ * for gigabytes.  `ptr` names the node in messages. */
+sr_result sr__gltf_charge_posed(gltf_doc *d, const sr_scene_primitive *p, const char *ptr);
+
+/* gltf_morph.c.  Primitive `ptr`'s targets (its JSON prim), checked
+ * against its vertex_count, into src. */
+sr_result sr__gltf_read_targets(gltf_doc *d, const json_t *prim, const char *ptr,
+                                size_t vertex_count, gltf_pose_source *src);
+/* Mesh `mesh` (JSON `ptr`): each primitive has as many targets as the
+ * first, and the mesh's weights, if any, count them. */
+sr_result sr__gltf_check_targets(gltf_doc *d, const json_t *mesh, const char *ptr);
+/* The n morph weights node `node_index` draws mesh `mesh` with: the
+ * animation's (sr_load_desc's pose), else the node's weights, else the
+ * mesh's, else zeros. */
+sr_result sr__gltf_node_weights(gltf_doc *d, long node_index, long mesh, float *out, size_t n);
+/* p's positions, normals and tangents moved by src's targets at the
+ * given weights, into new arrays the scene owns (p's are left when every
+ * weight is zero).  `ptr` names the node instance in messages. */
+sr_result sr__gltf_morph(gltf_doc *d, const gltf_pose_source *src, const float *weights,
+                         const char *ptr, sr_scene_primitive *p);
+
+/* gltf_skin.c.  Primitive attributes JOINTS_n / WEIGHTS_n (`aptr`: its
+ * attributes' pointer) into src, checked against vertex_count. */
+sr_result sr__gltf_read_influences(gltf_doc *d, const json_t *attrs, const char *aptr,
+                                   size_t vertex_count, gltf_pose_source *src);
+/* p skinned by skin `skin` (named by `use`, the node's /skin): its
+ * positions, normals and tangents posed in world space into new arrays
+ * the scene owns, its world the identity.  `pptr` is the primitive's
+ * pointer. */
+sr_result sr__gltf_skin(gltf_doc *d, long skin, const char *use, const gltf_pose_source *src,
+                        const char *pptr, sr_scene_primitive *p);
+void sr__gltf_skins_free(gltf_doc *d);
+
 /* gltf_material.c: every /materials entry into scene->materials, plus the
  * default material (glTF's: white, metallic 1, roughness 1) at the end
  * for primitives without one. */
@@ -203,7 +284,8 @@ void sr__gltf_lights_done(gltf_doc *d);
  * time into d->pose, for the node walk. */
 sr_result sr__gltf_read_animations(gltf_doc *d);
 /* Node `node`'s morph weights as the animation sets them (*count of
- * them), or NULL when it does not set them (the mesh's own apply). */
+ * them), or NULL when it does not set them (sr__gltf_node_weights then
+ * takes the node's or the mesh's). */
 const float *sr__gltf_node_pose_weights(const gltf_doc *d, long node, size_t *count);
 
 #endif

@@ -495,3 +495,21 @@ sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
     *out = s.u;
     return r;
 }
+
+sr_result sr__gltf_read_mat4(gltf_doc *d, long index, const char *ptr, gltf_accessor_info *info,
+                             float **out)
+{
+    sink s = {0};
+    *out = NULL;
+    sr_result r = peek(d, index, ptr, info);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (!info->matrix || info->components != 16 || info->component_type != 5126) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld is not a MAT4 of floats", ptr,
+                             index);
+    }
+    r = decode(d, index, ptr, info, &s, true);
+    *out = s.f;
+    return r;
+}

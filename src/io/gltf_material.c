@@ -27,11 +27,10 @@ static void free_image_bytes(char *owned, size_t size, bool from_file)
     }
 }
 
-/* Image i as a texture in the given color space, decoded on first use. */
-static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
-                               const sr_texture **out)
+/* Image i's object (named by `use` in messages), checked. */
+static sr_result image_object(gltf_doc *d, long i, const char *use, json_t **out)
 {
-    json_t *images, *img;
+    json_t *images;
     size_t n;
     sr_result r = sr__gltf_array(d, d->root, "", "images", &images, &n);
     if (r != SR_OK) {
@@ -41,23 +40,27 @@ static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: image %ld does not exist (%zu images)", use,
                              i, n);
     }
-    sr_texture **cached = &d->image_textures[2 * i + (srgb ? 1 : 0)];
-    if (*cached) {
-        *out = *cached;
-        return SR_OK;
+    if (!json_is_object(*out = json_array_get(images, (size_t)i))) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "/images/%ld: not an object", i);
     }
+    return SR_OK;
+}
+
+/* Image i (object img) decoded into *pixels (w x h RGBA8, malloc'd):
+ * its bytes from its URI or its bufferView.  With `keep`, also a copy of
+ * the encoded bytes the scene owns, in *keep and *keep_size. */
+static sr_result image_decode(gltf_doc *d, const json_t *img, long i, int *w, int *h,
+                              uint8_t **pixels, const uint8_t **keep, size_t *keep_size)
+{
     char ptr[GLTF_PTR];
     snprintf(ptr, sizeof ptr, "/images/%ld", i);
-    img = json_array_get(images, (size_t)i);
-    if (!json_is_object(img)) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
-    }
     json_t *uri = json_object_get(img, "uri");
     long view = -1;
     const uint8_t *bytes = NULL;
     size_t size = 0, stride;
     char *owned = NULL;
     bool from_file = false;
+    sr_result r;
     if (uri) {
         char uptr[GLTF_PTR];
         snprintf(uptr, sizeof uptr, "%s/uri", ptr);
@@ -78,32 +81,84 @@ static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
             return r;
         }
     }
-    int w, h;
-    uint8_t *pixels;
     sr_io_error inner = {{0}};
-    r = sr_decode_image(ptr, bytes, size, &w, &h, &pixels, &inner);
+    r = sr_decode_image(ptr, bytes, size, w, h, pixels, &inner);
+    uint8_t *copy = r == SR_OK && keep ? malloc(size ? size : 1) : NULL;
+    if (copy) {
+        memcpy(copy, bytes, size);
+    }
+    free_image_bytes(owned, size, from_file);
     if (r != SR_OK) {
-        free_image_bytes(owned, size, from_file);
         /* inner reads "/images/N: what is wrong", the pointer first. */
         return sr__gltf_fail(d, r, "%s", inner.message);
+    }
+    if (keep && (!copy || !sr__scene_keep(d->scene, copy))) {
+        free(*pixels);
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    if (keep) {
+        *keep = copy;
+        *keep_size = size;
+    }
+    return SR_OK;
+}
+
+/* Image i as a texture in the given color space, decoded on first use. */
+static sr_result image_texture(gltf_doc *d, long i, const char *use, bool srgb,
+                               const sr_texture **out)
+{
+    json_t *img;
+    sr_result r = image_object(d, i, use, &img);
+    if (r != SR_OK) {
+        return r;
+    }
+    sr_texture **cached = &d->image_textures[2 * i + (srgb ? 1 : 0)];
+    if (*cached) {
+        *out = *cached;
+        return SR_OK;
+    }
+    int w, h;
+    uint8_t *pixels;
+    if ((r = image_decode(d, img, i, &w, &h, &pixels, NULL, NULL)) != SR_OK) {
+        return r;
     }
     sr_texture *tex = NULL;
     r = sr_make_texture(d->ctx, &(sr_texture_desc){ .width = w, .height = h, .pixels = pixels,
                                                     .srgb = srgb },
                         &tex);
     free(pixels);
-    /* The encoded image is kept too when sr_load_mesh asked for it (it
-     * hands the bytes on in sr_mesh). */
-    bool kept = r == SR_OK && sr__scene_add_texture(d->ctx, d->scene, tex) &&
-                sr__scene_add_source(d->scene, tex, bytes, size);
-    free_image_bytes(owned, size, from_file);
-    if (!kept) {
-        return sr__gltf_fail(d, r != SR_OK ? r : SR_OUT_OF_MEMORY, "%s: %s", ptr,
+    if (r != SR_OK || !sr__scene_add_texture(d->ctx, d->scene, tex)) {
+        return sr__gltf_fail(d, r != SR_OK ? r : SR_OUT_OF_MEMORY, "/images/%ld: %s", i,
                              r != SR_OK ? sr_context_error(d->ctx) : "out of memory");
     }
     *cached = tex;
     *out = tex;
     return SR_OK;
+}
+
+/* for_mesh: image i's encoded bytes, kept by the scene, once checked by
+ * decoding them (sr_load_mesh hands on only images that decode, with the
+ * reader's error for one that does not); read on first use. */
+static sr_result image_source(gltf_doc *d, long i, const char *use,
+                              const gltf_image_source **out)
+{
+    json_t *img;
+    sr_result r = image_object(d, i, use, &img);
+    if (r != SR_OK) {
+        return r;
+    }
+    gltf_image_source *cached = &d->image_sources[i];
+    *out = cached;
+    if (cached->bytes) {
+        return SR_OK;
+    }
+    int w, h;
+    uint8_t *pixels;
+    if ((r = image_decode(d, img, i, &w, &h, &pixels, &cached->bytes, &cached->size)) ==
+        SR_OK) {
+        free(pixels);
+    }
+    return r;
 }
 
 /* A glTF sampler's filters and wraps on the slot. */
@@ -183,12 +238,15 @@ static sr_result read_transform(gltf_doc *d, const json_t *info, const char *ptr
 }
 
 /* A textureInfo (material member `key`) into a slot; an absent one leaves
- * the slot empty.  `extra` ("scale", "strength") goes to *extra_value. */
+ * the slot empty.  `extra` ("scale", "strength") goes to *extra_value.
+ * d->slot_image: the image it shows, or -1.  for_mesh reads no image
+ * (read_material reads the base color's) and leaves the slot empty. */
 static sr_result read_slot(gltf_doc *d, const json_t *owner, const char *owner_ptr,
                            const char *key, bool srgb, sr_texture_slot *slot, const char *extra,
                            float *extra_value)
 {
     json_t *info;
+    d->slot_image = -1;
     sr_result r = sr__gltf_object(d, owner, owner_ptr, key, &info);
     if (r != SR_OK || !info) {
         return r;
@@ -245,9 +303,12 @@ static sr_result read_slot(gltf_doc *d, const json_t *owner, const char *owner_p
         }
         return SR_OK;
     }
-    if ((r = image_texture(d, source, use, srgb, &slot->texture)) != SR_OK) {
+    json_t *img;
+    if ((r = d->for_mesh ? image_object(d, source, use, &img)
+                         : image_texture(d, source, use, srgb, &slot->texture)) != SR_OK) {
         return r;
     }
+    d->slot_image = source;
     snprintf(use, sizeof use, "%s/sampler", tptr);
     if (sampler >= 0 && (r = read_sampler(d, sampler, use, slot)) != SR_OK) {
         return r;
@@ -526,9 +587,12 @@ static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
     return SR_OK;
 }
 
+/* Material `mat` into m; *base_image: the image its base color texture
+ * shows, or -1. */
 static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
-                               sr_pbr_material *m)
+                               sr_pbr_material *m, long *base_image)
 {
+    *base_image = -1;
     default_material(m);
     if (!json_is_object(mat)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
@@ -545,9 +609,12 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
                 (r = sr__gltf_number(d, pbr, pptr, "metallicFactor", &m->metallic)) != SR_OK ||
                 (r = sr__gltf_number(d, pbr, pptr, "roughnessFactor", &m->roughness)) != SR_OK ||
                 (r = read_slot(d, pbr, pptr, "baseColorTexture", true, &m->base_color_texture,
-                               NULL, NULL)) != SR_OK ||
-                (r = read_slot(d, pbr, pptr, "metallicRoughnessTexture", false,
-                               &m->metallic_roughness_texture, NULL, NULL)) != SR_OK)) {
+                               NULL, NULL)) != SR_OK)) {
+        return r;
+    }
+    *base_image = pbr ? d->slot_image : -1;
+    if (pbr && (r = read_slot(d, pbr, pptr, "metallicRoughnessTexture", false,
+                              &m->metallic_roughness_texture, NULL, NULL)) != SR_OK) {
         return r;
     }
     if ((r = read_slot(d, mat, ptr, "normalTexture", false, &m->normal_texture, "scale",
@@ -620,8 +687,21 @@ sr_result sr__gltf_read_materials(gltf_doc *d)
     for (size_t i = 0; i < n; i++) {
         char ptr[GLTF_PTR];
         snprintf(ptr, sizeof ptr, "/materials/%zu", i);
-        if ((r = read_material(d, json_array_get(mats, i), ptr, &m[i])) != SR_OK) {
+        long base = -1;
+        if ((r = read_material(d, json_array_get(mats, i), ptr, &m[i], &base)) != SR_OK) {
             return r;
+        }
+        if (d->for_mesh && base >= 0) {
+            /* sr_load_mesh hands on the base color images, encoded. */
+            char use[GLTF_PTR];
+            snprintf(use, sizeof use, "%s/pbrMetallicRoughness/baseColorTexture", ptr);
+            const gltf_image_source *src;
+            if ((r = image_source(d, base, use, &src)) != SR_OK) {
+                return r;
+            }
+            if (!sr__scene_add_source(d->scene, i, src->bytes, src->size)) {
+                return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+            }
         }
     }
     default_material(&m[n]);

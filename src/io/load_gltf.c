@@ -63,10 +63,35 @@ static bool tints(const sr_scene *s, const sr_scene_primitive *p)
     return c[0] != 1.0f || c[1] != 1.0f || c[2] != 1.0f || c[3] != 1.0f;
 }
 
+/* The base color slot of primitive p's material when it shows an image
+ * (the for_mesh scene keeps its source), else NULL. */
+static const sr_texture_slot *base_slot(const sr_scene *s, const sr_scene_primitive *p)
+{
+    size_t size;
+    if (p->material < 0 || (size_t)p->material >= s->material_count ||
+        !sr__scene_source(s, (size_t)p->material, &size)) {
+        return NULL;
+    }
+    return &s->materials[p->material].base_color_texture;
+}
+
+/* The texture coordinates a primitive's mesh vertices take: the set its
+ * base color texture reads (TEXCOORD_0 without one, or when the primitive
+ * lacks TEXCOORD_1, which the reader warns about, as pbr falls back). */
+static const float *mesh_uv(const sr_scene *s, const sr_scene_primitive *p)
+{
+    const sr_texture_slot *t = base_slot(s, p);
+    return t && t->texcoord == 1 && p->texcoords1 ? p->texcoords1 : p->texcoords0;
+}
+
 /* The scene's instances as one mesh: an attribute some primitives lack is
  * dropped for all (as the Assimp reader does), but for color, which is the
- * vertex's own times the material's base color wherever any has either. */
-static sr_result flatten(const char *path, const sr_scene *s, sr_mesh *out, sr_io_error *err)
+ * vertex's own times the material's base color wherever any has either.
+ * The texcoords are where the base color texture is sampled: its set and
+ * KHR_texture_transform applied (exact: an affine map commutes with the
+ * interpolation; its sampler a mesh cannot carry). */
+static sr_result flatten(sr_context *ctx, const char *path, const sr_scene *s, sr_mesh *out,
+                         sr_io_error *err)
 {
     size_t verts = 0, tris = 0;
     bool normals = true, texcoords = true, colors = false;
@@ -78,7 +103,7 @@ static sr_result flatten(const char *path, const sr_scene *s, sr_mesh *out, sr_i
         verts += p->vertex_count;
         tris += p->triangle_count;
         normals &= p->normals != NULL;
-        texcoords &= p->texcoords0 != NULL;
+        texcoords &= mesh_uv(s, p) != NULL;
         colors |= p->colors != NULL || tints(s, p);
     }
     if (tris == 0) {
@@ -106,6 +131,7 @@ static sr_result flatten(const char *path, const sr_scene *s, sr_mesh *out, sr_i
         const float *tint = p->material >= 0 && (size_t)p->material < s->material_count
                                 ? s->materials[p->material].base_color
                                 : white;
+        const float *uv = mesh_uv(s, p);
         for (size_t v = 0; v < p->vertex_count; v++) {
             size_t o = base + v;
             put_point(p->world, &p->positions[3 * v], &m.positions[3 * o]);
@@ -113,7 +139,7 @@ static sr_result flatten(const char *path, const sr_scene *s, sr_mesh *out, sr_i
                 put_normal(nm, &p->normals[3 * v], &m.normals[3 * o]);
             }
             if (texcoords) {
-                memcpy(&m.texcoords[2 * o], &p->texcoords0[2 * v], 2 * sizeof(float));
+                memcpy(&m.texcoords[2 * o], &uv[2 * v], 2 * sizeof(float));
             }
             for (int k = 0; colors && k < 4; k++) {
                 m.colors[4 * o + k] = (p->colors ? p->colors[4 * v + k] : 1.0f) * tint[k];
@@ -128,6 +154,13 @@ static sr_result flatten(const char *path, const sr_scene *s, sr_mesh *out, sr_i
             dst[1] = (uint32_t)base + src[p->mirrored ? 2 : 1];
             dst[2] = (uint32_t)base + src[p->mirrored ? 1 : 2];
         }
+        const sr_texture_slot *slot = base_slot(s, p);
+        if (texcoords && slot &&
+            sr_texture_slot_uv(ctx, slot, &m.texcoords[2 * base], p->vertex_count,
+                               &m.texcoords[2 * base]) != SR_OK) {
+            sr__free_malloc_mesh(&m);
+            return sr__io_fail(err, SR_BAD_FORMAT, path, 0, "%s", sr_context_error(ctx));
+        }
         base += p->vertex_count;
     }
     *out = m;
@@ -140,7 +173,7 @@ static const uint8_t *base_image(const sr_scene *s, const sr_scene_primitive *p,
     if (p->material < 0 || (size_t)p->material >= s->material_count) {
         return NULL;
     }
-    return sr__scene_source(s, s->materials[p->material].base_color_texture.texture, size);
+    return sr__scene_source(s, (size_t)p->material, size);
 }
 
 static uint8_t *copy_bytes(const uint8_t *bytes, size_t size)
@@ -219,7 +252,7 @@ sr_result sr__load_gltf_mesh(sr_context *ctx, const char *path, const sr_load_de
     if (r != SR_OK) {
         return r;
     }
-    r = flatten(path, s, out, err);
+    r = flatten(ctx, path, s, out, err);
     if (r == SR_OK && !textures(s, out)) {
         sr__free_malloc_mesh(out);
         r = sr__io_fail(err, SR_OUT_OF_MEMORY, path, 0, "out of memory (the textures)");

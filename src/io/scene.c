@@ -15,16 +15,16 @@
 #include <strings.h>
 
 typedef struct texture_source {
-    const sr_texture *tex;
+    size_t material;
     const uint8_t *bytes;       /* one of the blocks */
     size_t size;
 } texture_source;
 
-/* The blocks a scene owns, and the textures' sources when kept. */
+/* The blocks a scene owns, and the base color images sr_load_mesh
+ * hands on. */
 typedef struct sr_scene_store {
     void **blocks;
     size_t count, cap;
-    bool keep_sources;
     texture_source *sources;
     size_t source_count;
 } sr_scene_store;
@@ -106,37 +106,23 @@ bool sr__scene_add_texture(sr_context *ctx, sr_scene *scene, sr_texture *tex)
     return true;
 }
 
-void sr__scene_keep_sources(sr_scene *scene)
-{
-    scene->store->keep_sources = true;
-}
-
-bool sr__scene_add_source(sr_scene *scene, const sr_texture *tex, const uint8_t *bytes,
-                          size_t size)
+bool sr__scene_add_source(sr_scene *scene, size_t material, const uint8_t *bytes, size_t size)
 {
     sr_scene_store *st = scene->store;
-    if (!st->keep_sources) {
-        return true;
-    }
-    uint8_t *copy = malloc(size ? size : 1);
-    if (!copy || !sr__scene_keep(scene, copy)) {
-        return false;
-    }
-    memcpy(copy, bytes, size);
     texture_source *src = sr__scene_grow(scene, (void **)&st->sources, &st->source_count,
                                          sizeof *src, 1);
     if (!src) {
         return false;
     }
-    *src = (texture_source){ .tex = tex, .bytes = copy, .size = size };
+    *src = (texture_source){ .material = material, .bytes = bytes, .size = size };
     return true;
 }
 
-const uint8_t *sr__scene_source(const sr_scene *scene, const sr_texture *tex, size_t *size)
+const uint8_t *sr__scene_source(const sr_scene *scene, size_t material, size_t *size)
 {
     const sr_scene_store *st = scene->store;
-    for (size_t i = 0; tex && i < st->source_count; i++) {
-        if (st->sources[i].tex == tex) {
+    for (size_t i = 0; i < st->source_count; i++) {
+        if (st->sources[i].material == material) {
             *size = st->sources[i].size;
             return st->sources[i].bytes;
         }
@@ -440,12 +426,12 @@ static bool is_gltf_content(const char *path)
 
 static sr_result parse_gltf(sr_context *ctx, const char *name, const char *dir,
                             const uint8_t *data, size_t size, const sr_load_desc *desc,
-                            bool keep_sources, sr_scene **out, sr_io_error *err)
+                            bool for_mesh, sr_scene **out, sr_io_error *err)
 {
 #ifdef SR_HAVE_JANSSON
-    return sr__parse_gltf(ctx, name, dir, data, size, desc, keep_sources, out, err);
+    return sr__parse_gltf(ctx, name, dir, data, size, desc, for_mesh, out, err);
 #else
-    (void)ctx, (void)dir, (void)data, (void)size, (void)desc, (void)keep_sources, (void)out;
+    (void)ctx, (void)dir, (void)data, (void)size, (void)desc, (void)for_mesh, (void)out;
     return sr__io_fail(err, SR_UNSUPPORTED, name, 0,
                        "glTF not supported (install libjansson-dev and rebuild)");
 #endif
@@ -465,14 +451,14 @@ static char *dir_of(const char *path)
 }
 
 static sr_result parse_gltf_at(sr_context *ctx, const char *name, const uint8_t *data,
-                               size_t size, const sr_load_desc *desc, bool keep_sources,
+                               size_t size, const sr_load_desc *desc, bool for_mesh,
                                sr_scene **out, sr_io_error *err)
 {
     char *dir = dir_of(name);
     if (!dir) {
         return sr__io_fail(err, SR_OUT_OF_MEMORY, name, 0, "out of memory");
     }
-    sr_result r = parse_gltf(ctx, name, dir, data, size, desc, keep_sources, out, err);
+    sr_result r = parse_gltf(ctx, name, dir, data, size, desc, for_mesh, out, err);
     free(dir);
     return r;
 }
@@ -502,7 +488,7 @@ sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t *data, 
 }
 
 sr_result sr__load_gltf_scene(sr_context *ctx, const char *path, const sr_load_desc *desc,
-                              bool keep_sources, sr_scene **out, sr_io_error *err)
+                              bool for_mesh, sr_scene **out, sr_io_error *err)
 {
     if (err) {
         err->message[0] = 0;   /* the glTF reader keeps the first message */
@@ -513,7 +499,7 @@ sr_result sr__load_gltf_scene(sr_context *ctx, const char *path, const sr_load_d
     if (r != SR_OK) {
         return r;
     }
-    r = parse_gltf_at(ctx, path, (const uint8_t *)data, size, desc, keep_sources, out, err);
+    r = parse_gltf_at(ctx, path, (const uint8_t *)data, size, desc, for_mesh, out, err);
     sr__free_file(data, size);
     return r;
 }

@@ -4141,9 +4141,11 @@ static svg_fe_style filter_style(void *host, const svg_node *fe)
     return (svg_fe_style){ .flood = c, .lighting = st.lighting_color, .srgb = st.filters_srgb };
 }
 
-static bool filter_budget(void *host, double work)
+static bool filter_budget(void *host, const svg_node *at, double work)
 {
-    return work_within_budget(host, work);
+    svg_doc *doc = host;
+    doc->line = at->line;
+    return work_within_budget(doc, work);
 }
 
 static void draw_node(svg_doc *doc, svg_node *node, const frame *parent);

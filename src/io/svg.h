@@ -197,8 +197,9 @@ typedef struct svg_filter_job {
     /* the document's failure "FILE:LINE: msg", at the node's line */
     void (*fail)(void *host, const svg_node *at, sr_result r, const char *msg);
     svg_fe_style (*style)(void *host, const svg_node *fe);
-    /* false after reporting that `work` more pixel operations pass the budget */
-    bool (*budget)(void *host, double work);
+    /* false after reporting, at primitive `at`, that `work` more pixel
+     * operations pass the budget */
+    bool (*budget)(void *host, const svg_node *at, double work);
     /* feImage: the element `href` names ("#id"), or the picture it names
      * fitted into rect (x y w h, user space), drawn in the filtered
      * element's user space into out (RGBA8 straight, width x height,
@@ -217,8 +218,10 @@ void svg_apply_filter(const svg_filter_job *job);
 /* The pixels (x0 y0 x1 y1, the layer's; beyond it where the region is)
  * that the SourceGraphic must cover for the result inside the layer:
  * the filter region, cut to the layer widened by how far the primitives
- * can move content (offsets, blurs, radii; a tile or a wrapped edge takes
- * the whole region), at most the layer's width and height each side;
+ * can move content (offsets on the side they pull from, blurs, radii; a
+ * tile or a wrapped edge takes the whole region; nothing when the result
+ * does not read the source), at most the layer's width and height each
+ * side;
  * passes: about how many times the filter's work budget counts each
  * pixel of its region.  False when the filter draws nothing.  Reads
  * job->filter, m, bbox, vp_w, vp_h, width and height; warns as

@@ -257,8 +257,10 @@ static void subregion(fctx *fc, const svg_node *n, const int def[4], int out[4])
     }
     double px[4];
     rect_to_px(fc, r, px);
-    out[0] = (int)fmax(px[0] - fc->rx, 0);
-    out[1] = (int)fmax(px[1] - fc->ry, 0);
+    /* cut to the region before the cast: a subregion far beyond it is
+     * empty, not a value outside int */
+    out[0] = (int)fmin(fmax(px[0] - fc->rx, 0), fc->rw);
+    out[1] = (int)fmin(fmax(px[1] - fc->ry, 0), fc->rh);
     out[2] = (int)fmin(fmax(px[2] - fc->rx, 0), fc->rw);
     out[3] = (int)fmin(fmax(px[3] - fc->ry, 0), fc->rh);
     if (out[2] < out[0]) {
@@ -738,50 +740,124 @@ static void component_transfer(fctx *fc, const svg_node *n, const int sub[4], co
     per_pixel(fc, sub, in, out, apply_transfer, t);
 }
 
+/* fmaxf and fminf inline: NaN loses to a number, as in the library calls,
+ * which are not inlined where NaN must be honoured. */
+static inline float max_f(float a, float b)
+{
+    return a > b || b != b ? a : b;
+}
+
+static inline float min_f(float a, float b)
+{
+    return a < b || b != b ? a : b;
+}
+
+/* The min (or max) over windows of w = 2k + 1 elements of a line of n + 2k
+ * elements, `vec` floats each (a pixel's channels, or a strip of columns):
+ * out[j] = op(line[j .. j + 2k]), j < n, by van Herk and Gil-Werman's
+ * blocks, so that the cost does not grow with k: within each block of w
+ * elements, `pre` holds the op from the block's start and `line` (in
+ * place) to its end, and any window is one block's end joined to the
+ * next one's start. */
+static void window_op(float *line, float *pre, size_t n, size_t k, int vec, bool dilate,
+                      float *out, size_t out_step)
+{
+    size_t len = n + 2 * k, w = 2 * k + 1;
+    for (size_t i = 0, at = 0; i < len; i++, at = at + 1 == w ? 0 : at + 1) {
+        float *p = pre + i * (size_t)vec;
+        const float *s = line + i * (size_t)vec;
+        if (at == 0) { /* a block starts */
+            memcpy(p, s, (size_t)vec * sizeof *p);
+            continue;
+        }
+        for (int c = 0; c < vec; c++) {
+            p[c] = dilate ? max_f(p[c - vec], s[c]) : min_f(p[c - vec], s[c]);
+        }
+    }
+    for (size_t i = len - 1; i-- > 0;) {
+        if ((i + 1) % w == 0) {
+            continue; /* the next element starts a block */
+        }
+        float *s = line + i * (size_t)vec;
+        for (int c = 0; c < vec; c++) {
+            s[c] = dilate ? max_f(s[c], s[c + vec]) : min_f(s[c], s[c + vec]);
+        }
+    }
+    for (size_t j = 0; j < n; j++) {
+        const float *a = line + j * (size_t)vec, *b = pre + (j + 2 * k) * (size_t)vec;
+        float *d = out + j * out_step;
+        /* joined to the empty window's value (0 for max, 1 for min), as
+         * the direct loop starts from it */
+        for (int c = 0; c < vec; c++) {
+            d[c] = dilate ? max_f(max_f(a[c], b[c]), 0.0f) : min_f(min_f(a[c], b[c]), 1.0f);
+        }
+    }
+}
+
+/* Columns a strip of the column pass holds: its lines are a few cache
+ * lines wide. */
+#define MORPH_STRIP 8
+
+/* feMorphology's radius in pixels along x and y, cut to the region (a
+ * window wider than the region sees all of it); false when it is
+ * disabled. */
+static bool morph_radius(fctx *fc, const svg_node *n, size_t k[2])
+{
+    double r[2];
+    pair_attr(fc, n, "radius", 0, r);
+    if (!(r[0] > 0 && r[1] > 0)) {
+        return false;
+    }
+    k[0] = (size_t)lround(fmin(r[0] * fc->sx * (fc->obb ? fc->bw : 1), fc->rw));
+    k[1] = (size_t)lround(fmin(r[1] * fc->sy * (fc->obb ? fc->bh : 1), fc->rh));
+    return true;
+}
+
 /* Erode (min) or dilate (max) each premultiplied channel over a
- * (2 rx + 1) x (2 ry + 1) window: rows, then columns. */
+ * (2 kx + 1) x (2 ky + 1) window, beyond the region transparent black:
+ * rows, then columns in strips. */
 static void morphology(fctx *fc, const svg_node *n, const float *in, float *out)
 {
     const char *op = fattr(n, "operator");
     bool dilate = op && strcmp(op, "dilate") == 0;
-    double r[2];
-    pair_attr(fc, n, "radius", 0, r);
+    size_t k[2];
     memcpy(out, in, fc->n * 4 * sizeof *out);
-    if (!(r[0] > 0 && r[1] > 0)) {
+    if (!morph_radius(fc, n, k)) {
         return; /* Filter Effects 1: disabled, the input passes */
     }
-    long k[2] = { lround(fmin(r[0] * fc->sx * (fc->obb ? fc->bw : 1), fc->rw)),
-                  lround(fmin(r[1] * fc->sy * (fc->obb ? fc->bh : 1), fc->rh)) };
-    if (!fc->job->budget(fc->job->host, (double)fc->n * 4 * (double)(2 * k[0] + 2 * k[1] + 2))) {
-        fc->failed = true;
-        return;
-    }
-    float *tmp = new_pixels(fc, n);
-    if (!tmp) {
-        return;
-    }
-    for (int pass = 0; pass < 2; pass++) {
-        const float *src = pass == 0 ? in : tmp;
-        float *dst = pass == 0 ? tmp : out;
-        long kk = k[pass];
-        for (int y = 0; y < fc->rh; y++) {
-            for (int x = 0; x < fc->rw; x++) {
-                for (int c = 0; c < 4; c++) {
-                    float v = dilate ? 0.0f : 1.0f;
-                    for (long d = -kk; d <= kk; d++) {
-                        long sx = pass == 0 ? x + d : x, sy = pass == 0 ? y : y + d;
-                        float s = 0; /* beyond the region: transparent black */
-                        if (sx >= 0 && sy >= 0 && sx < fc->rw && sy < fc->rh) {
-                            s = src[((size_t)sy * fc->rw + (size_t)sx) * 4 + c];
-                        }
-                        v = dilate ? fmaxf(v, s) : fminf(v, s);
-                    }
-                    dst[((size_t)y * fc->rw + x) * 4 + c] = v;
-                }
-            }
+    size_t kx = k[0], ky = k[1], rw = (size_t)fc->rw, rh = (size_t)fc->rh;
+    size_t row = (rw + 2 * kx) * 4, strip = (rh + 2 * ky) * 4 * MORPH_STRIP;
+    size_t most = row > strip ? row : strip;
+    float *tmp = new_pixels(fc, n), *line = calloc(most, sizeof *line),
+          *pre = malloc(most * sizeof *pre);
+    if (!tmp || !line || !pre) {
+        if (tmp) {
+            fail(fc, n, SR_OUT_OF_MEMORY, "out of memory");
         }
+        release(fc, tmp);
+        free(line);
+        free(pre);
+        return;
+    }
+    /* the padding stays 0: transparent black beyond the region */
+    for (size_t y = 0; y < rh; y++) {
+        memcpy(line + kx * 4, in + y * rw * 4, rw * 4 * sizeof *line);
+        window_op(line, pre, rw, kx, 4, dilate, tmp + y * rw * 4, 4);
+        memset(line, 0, row * sizeof *line);
+    }
+    for (size_t x0 = 0; x0 < rw; x0 += MORPH_STRIP) {
+        size_t sw = rw - x0 < MORPH_STRIP ? rw - x0 : MORPH_STRIP;
+        int vec = (int)sw * 4;
+        memset(line, 0, (rh + 2 * ky) * (size_t)vec * sizeof *line);
+        for (size_t y = 0; y < rh; y++) {
+            memcpy(line + (ky + y) * (size_t)vec, tmp + (y * rw + x0) * 4,
+                   (size_t)vec * sizeof *line);
+        }
+        window_op(line, pre, rh, ky, vec, dilate, out + x0 * 4, rw * 4);
     }
     release(fc, tmp);
+    free(line);
+    free(pre);
 }
 
 /* The input's subregion repeated over the whole region. */
@@ -804,10 +880,8 @@ static void tile(fctx *fc, const fimg *in, float *out)
 /* Kernels of feConvolveMatrix, at most this many values a side. */
 #define MAX_KERNEL_ORDER 64
 
-/* feConvolveMatrix on device pixels (the kernel turned half a turn, as
- * SVG defines it), edges by edgeMode (duplicate by default); false when
- * its attributes are in error (the result stays transparent black). */
-static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
+/* feConvolveMatrix's order (columns, rows); false when it is in error. */
+static bool kernel_order(fctx *fc, const svg_node *n, int *ox, int *oy)
 {
     double ord[2];
     pair_attr(fc, n, "order", 3, ord);
@@ -815,7 +889,20 @@ static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
           ord[1] <= MAX_KERNEL_ORDER) || ord[0] != floor(ord[0]) || ord[1] != floor(ord[1])) {
         return false;
     }
-    int ox = (int)ord[0], oy = (int)ord[1];
+    *ox = (int)ord[0];
+    *oy = (int)ord[1];
+    return true;
+}
+
+/* feConvolveMatrix on device pixels (the kernel turned half a turn, as
+ * SVG defines it), edges by edgeMode (duplicate by default); false when
+ * its attributes are in error (the result stays transparent black). */
+static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
+{
+    int ox, oy;
+    if (!kernel_order(fc, n, &ox, &oy)) {
+        return false;
+    }
     double *k = malloc(sizeof *k * (size_t)(ox * oy));
     const char *kv = fattr(n, "kernelMatrix");
     if (!k || !kv || numbers(kv, k, ox * oy) != ox * oy) {
@@ -833,8 +920,7 @@ static bool convolve(fctx *fc, const svg_node *n, const float *in, float *out)
     const char *e = fattr(n, "edgeMode"), *pa = fattr(n, "preserveAlpha");
     int edge = !e || strcmp(e, "duplicate") == 0 ? 1 : strcmp(e, "wrap") == 0 ? 2 : 0;
     bool keep_alpha = pa && strcmp(pa, "true") == 0;
-    if (divisor == 0 || tx < 0 || tx >= ox || ty < 0 || ty >= oy ||
-        !fc->job->budget(fc->job->host, (double)fc->n * ox * oy)) {
+    if (divisor == 0 || tx < 0 || tx >= ox || ty < 0 || ty >= oy) {
         free(k);
         return false;
     }
@@ -1076,8 +1162,9 @@ typedef struct turbulence_state {
     double gradient[4][TURB_B + TURB_B + 2][2];
 } turbulence_state;
 
+/* 64 bits: each octave doubles them, from up to 2^24, for 24 octaves */
 typedef struct stitch {
-    int width, height, wrap_x, wrap_y;
+    int64_t width, height, wrap_x, wrap_y;
 } stitch;
 
 /* The specification's Park-Miller generator (a = 16807, m = 2^31 - 1). */
@@ -1135,10 +1222,11 @@ static double noise2(const turbulence_state *t, int channel, double x, double y,
 {
     double tx = x + TURB_N, ty = y + TURB_N;
     /* far coordinates fold onto the lattice's period (256 cells) before
-     * they pass int's range; NaN (an infinite frequency) is 0 */
-    tx = fabs(tx) < (1 << 30) ? tx : isnan(tx) ? 0 : fmod(tx, 1 << 24);
-    ty = fabs(ty) < (1 << 30) ? ty : isnan(ty) ? 0 : fmod(ty, 1 << 24);
-    int bx0 = (int)tx, by0 = (int)ty, bx1 = bx0 + 1, by1 = by0 + 1;
+     * they pass int's range; NaN and infinity (a frequency at double's
+     * end) are 0 */
+    tx = fabs(tx) < (1 << 30) ? tx : !isfinite(tx) ? 0 : fmod(tx, 1 << 24);
+    ty = fabs(ty) < (1 << 30) ? ty : !isfinite(ty) ? 0 : fmod(ty, 1 << 24);
+    int64_t bx0 = (int)tx, by0 = (int)ty, bx1 = bx0 + 1, by1 = by0 + 1;
     double rx0 = tx - (int)tx, ry0 = ty - (int)ty, rx1 = rx0 - 1, ry1 = ry0 - 1;
     if (st) {
         bx0 -= bx0 >= st->wrap_x ? st->width : 0;
@@ -1146,15 +1234,13 @@ static double noise2(const turbulence_state *t, int channel, double x, double y,
         by0 -= by0 >= st->wrap_y ? st->height : 0;
         by1 -= by1 >= st->wrap_y ? st->height : 0;
     }
-    bx0 &= TURB_BM;
-    bx1 &= TURB_BM;
-    by0 &= TURB_BM;
-    by1 &= TURB_BM;
-    int i = t->lattice[bx0], j = t->lattice[bx1];
-    const double *q00 = t->gradient[channel][t->lattice[i + by0]];
-    const double *q10 = t->gradient[channel][t->lattice[j + by0]];
-    const double *q01 = t->gradient[channel][t->lattice[i + by1]];
-    const double *q11 = t->gradient[channel][t->lattice[j + by1]];
+    int x0 = (int)(bx0 & TURB_BM), x1 = (int)(bx1 & TURB_BM);
+    int y0 = (int)(by0 & TURB_BM), y1 = (int)(by1 & TURB_BM);
+    int i = t->lattice[x0], j = t->lattice[x1];
+    const double *q00 = t->gradient[channel][t->lattice[i + y0]];
+    const double *q10 = t->gradient[channel][t->lattice[j + y0]];
+    const double *q01 = t->gradient[channel][t->lattice[i + y1]];
+    const double *q11 = t->gradient[channel][t->lattice[j + y1]];
     double sx = s_curve(rx0), sy = s_curve(ry0);
     double u = rx0 * q00[0] + ry0 * q00[1], v = rx1 * q10[0] + ry0 * q10[1];
     double a = u + sx * (v - u);
@@ -1171,6 +1257,12 @@ static double stitch_frequency(double f, double len)
     return lo > 0 && f / lo < hi / f ? lo : hi;
 }
 
+/* numOctaves as computed: none below 1, at most TURB_MAX_OCTAVES. */
+static int turb_octaves(double oct)
+{
+    return oct < 0 ? 0 : oct > TURB_MAX_OCTAVES ? TURB_MAX_OCTAVES : (int)oct;
+}
+
 /* The noise is in the primitive's colour space, as its result is. */
 static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float *out)
 {
@@ -1182,11 +1274,7 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
     if (!(freq[0] >= 0 && freq[1] >= 0)) {
         return; /* a negative frequency is an error: transparent black */
     }
-    int octaves = oct < 0 ? 0 : oct > TURB_MAX_OCTAVES ? TURB_MAX_OCTAVES : (int)oct;
-    if (!fc->job->budget(fc->job->host, (double)fc->n * 4 * (octaves + 1))) {
-        fc->failed = true;
-        return;
-    }
+    int octaves = turb_octaves(oct);
     turbulence_state *t = malloc(sizeof *t);
     if (!t) {
         fail(fc, n, SR_OUT_OF_MEMORY, "out of memory");
@@ -1210,10 +1298,12 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
         }
         /* lattice cells stay far inside int, whatever the frequency */
         double cw = fmin(tile[2] * freq[0] + 0.5, 1 << 20), ch = fmin(tile[3] * freq[1] + 0.5, 1 << 20);
-        base.width = (int)cw;
-        base.wrap_x = (int)fmin(tile[0] * freq[0] + TURB_N + base.width, 1 << 24);
-        base.height = (int)ch;
-        base.wrap_y = (int)fmin(tile[1] * freq[1] + TURB_N + base.height, 1 << 24);
+        base.width = (int64_t)cw;
+        base.wrap_x = (int64_t)fmax(fmin(tile[0] * freq[0] + TURB_N + (double)base.width,
+                                         1 << 24), -(1 << 24));
+        base.height = (int64_t)ch;
+        base.wrap_y = (int64_t)fmax(fmin(tile[1] * freq[1] + TURB_N + (double)base.height,
+                                         1 << 24), -(1 << 24));
     }
     /* pixels -> user space, noise at each pixel's corner (as resvg samples it) */
     const double *m = fc->job->m;
@@ -1365,6 +1455,45 @@ static void default_sub(fctx *fc, fimg *res, const int *ins, int n_ins, int out[
     memcpy(out, u, sizeof u);
 }
 
+/* Whether the primitive reads its `in` (those that fill their subregion
+ * do not; a merge reads its nodes'). */
+static bool reads_in(const svg_node *n)
+{
+    return !is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") && !is(n, "feMerge");
+}
+
+/* The images of the region primitive p reads, as run() counts them: a
+ * merge its nodes; those that fill their subregion none of `in`. */
+static double prim_reads(const prim *p)
+{
+    double reads = (p->in[1] != -4) + (reads_in(p->node) && !is(p->node, "feTile"));
+    for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
+        reads += is(m, "feMergeNode");
+    }
+    return reads;
+}
+
+/* What primitive n counts of the work budget per pixel of the region:
+ * a pass for each image it reads (`reads`) and one for its result, and
+ * the work whose cost grows with its attributes: a convolution's kernel,
+ * the octaves of noise in each channel, a morphology's two passes (its
+ * window's cost does not grow with the radius).  run() counts it and
+ * svg_filter_extent() adds it up, so that the larger layer is chosen on
+ * what the filter will count. */
+static double prim_work(fctx *fc, const svg_node *n, double reads)
+{
+    double w = reads + 1;
+    int ox, oy;
+    if (is(n, "feConvolveMatrix") && kernel_order(fc, n, &ox, &oy)) {
+        w += (double)ox * oy;
+    } else if (is(n, "feTurbulence")) {
+        w += 4.0 * (turb_octaves(number_attr(fc, n, "numOctaves", 1)) + 1);
+    } else if (is(n, "feMorphology")) {
+        w += 2;
+    }
+    return w;
+}
+
 /* Run primitive i into res[i]. */
 static void run(fctx *fc, prim *p, fimg *res, int i)
 {
@@ -1373,13 +1502,11 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
     fimg *out = &res[i];
     out->srgb = st.srgb;
     int ins[64], n_ins = 0; /* a merge's first 64 make its default subregion */
-    double reads = 0;         /* a merge reads all its nodes */
     if (is(n, "feMerge")) {
         for (const svg_node *c = n->first; c; c = c->next) {
             if (is(c, "feMergeNode") && n_ins < 64) {
                 ins[n_ins++] = resolve(fc, p, i, c, fattr(c, "in"));
             }
-            reads += is(c, "feMergeNode");
         }
     } else if (!is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") &&
                !is(n, "feTile")) { /* a tile fills the region, as both references draw it */
@@ -1387,12 +1514,12 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
         if (p[i].in[1] != -4) {
             ins[n_ins++] = p[i].in[1];
         }
-        reads = n_ins;
     }
     int def[4];
     default_sub(fc, res, ins, n_ins, def);
     subregion(fc, n, def, out->sub);
-    if (!fc->job->budget(fc->job->host, (double)fc->n * (reads + 1))) {
+    double work = (double)fc->n * prim_work(fc, n, prim_reads(&p[i]));
+    if (!fc->job->budget(fc->job->host, n, work)) {
         fc->failed = true;
         return;
     }
@@ -1555,13 +1682,6 @@ static void free_graph(graph *g)
     free(g->last_use);
 }
 
-/* Whether the primitive reads its `in` (those that fill their subregion
- * do not; a merge reads its nodes'). */
-static bool reads_in(const svg_node *n)
-{
-    return !is(n, "feFlood") && !is(n, "feImage") && !is(n, "feTurbulence") && !is(n, "feMerge");
-}
-
 /* The graph of `count` primitives; false after a failure. */
 static bool make_graph(fctx *fc, int count, graph *g)
 {
@@ -1658,44 +1778,68 @@ uint64_t svg_filter_peak(const svg_filter_job *job, int *images)
            (picture ? (uint64_t)job->width * (uint64_t)job->height * 4 : 0);
 }
 
-/* How far (pixels along x and y) primitive n can move what it reads. */
-static void own_reach(fctx *fc, const svg_node *n, double r[2])
+/* How far (pixels) from each of its pixels primitive n reads: r[0] and
+ * r[1] towards -x and -y, r[2] and r[3] towards +x and +y (an offset
+ * reads on one side only). */
+static void own_reach(fctx *fc, const svg_node *n, double r[4])
 {
     double kx = fc->sx * (fc->obb ? fc->bw : 1), ky = fc->sy * (fc->obb ? fc->bh : 1), v[2];
     bool shadow = is(n, "feDropShadow");
     const char *e = fattr(n, "edgeMode");
     bool wrap = e && strcmp(e, "wrap") == 0;
-    r[0] = r[1] = 0;
+    double both[2] = { 0, 0 };
+    r[0] = r[1] = r[2] = r[3] = 0;
     if (is(n, "feGaussianBlur") || shadow) {
         pair_attr(fc, n, "stdDeviation", shadow ? 2 : 0, v);
         /* the sampled kernel's 3 deviations, or the three boxes' 2.9 */
-        r[0] += 3 * fabs(v[0]) * kx + 3;
-        r[1] += 3 * fabs(v[1]) * ky + 3;
+        both[0] += 3 * fabs(v[0]) * kx + 3;
+        both[1] += 3 * fabs(v[1]) * ky + 3;
     }
     if (is(n, "feOffset") || shadow) {
+        /* a shift by d reads d behind, and a pixel either side between pixels */
         const double *m = fc->job->m;
         double dx = number_attr(fc, n, "dx", shadow ? 2 : 0) * (fc->obb ? fc->bw : 1);
         double dy = number_attr(fc, n, "dy", shadow ? 2 : 0) * (fc->obb ? fc->bh : 1);
-        r[0] += fabs(m[0] * dx + m[2] * dy) + 1;
-        r[1] += fabs(m[1] * dx + m[3] * dy) + 1;
+        double d[2] = { m[0] * dx + m[2] * dy, m[1] * dx + m[3] * dy };
+        for (int a = 0; a < 2; a++) {
+            r[a] = fmax(d[a], 0) + 1;
+            r[a + 2] = fmax(-d[a], 0) + 1;
+        }
     } else if (is(n, "feMorphology")) {
         pair_attr(fc, n, "radius", 0, v);
-        r[0] = fabs(v[0]) * kx + 1;
-        r[1] = fabs(v[1]) * ky + 1;
+        both[0] = fabs(v[0]) * kx + 1;
+        both[1] = fabs(v[1]) * ky + 1;
     } else if (is(n, "feConvolveMatrix")) {
         pair_attr(fc, n, "order", 3, v);
-        r[0] = fabs(v[0]) + 1;
-        r[1] = fabs(v[1]) + 1;
+        both[0] = fabs(v[0]) + 1;
+        both[1] = fabs(v[1]) + 1;
     } else if (is(n, "feDisplacementMap")) {
         double scale = fabs(number_attr(fc, n, "scale", 0));
-        r[0] = scale * kx / 2 + 1;
-        r[1] = scale * ky / 2 + 1;
+        both[0] = scale * kx / 2 + 1;
+        both[1] = scale * ky / 2 + 1;
     } else if (is(n, "feDiffuseLighting") || is(n, "feSpecularLighting")) {
-        r[0] = r[1] = 2; /* the normals' kernels */
+        both[0] = both[1] = 2; /* the normals' kernels */
+    }
+    for (int a = 0; a < 4; a++) {
+        r[a] += both[a % 2];
     }
     if (is(n, "feTile") || (wrap && !is(n, "feMorphology"))) {
-        r[0] = r[1] = INFINITY; /* anything in the region can come in */
+        r[0] = r[1] = r[2] = r[3] = INFINITY; /* anything in the region can come in */
     }
+}
+
+/* Primitive i's input k (a merge's nodes after `in` and `in2`) into
+ * reach[i] when it holds the source: the farthest reach on each side. */
+static void take_reach(double (*reach)[4], bool *from_source, int i, int in)
+{
+    bool source = in == IN_SOURCE || in == IN_SOURCE_ALPHA;
+    if (in >= 0 && from_source[in]) {
+        for (int a = 0; a < 4; a++) {
+            reach[i][a] = fmax(reach[i][a], reach[in][a]);
+        }
+        source = true;
+    }
+    from_source[i] = from_source[i] || source;
 }
 
 bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
@@ -1708,43 +1852,48 @@ bool svg_filter_extent(const svg_filter_job *job, int out[4], double *passes)
         !make_graph(&fc, count, &g)) {
         return false;
     }
-    double(*reach)[2] = calloc((size_t)count, sizeof *reach);
-    if (!reach) {
+    /* how far each result reads the source, and whether it reads it at
+     * all: a flood, noise or picture brings in nothing from beyond */
+    double(*reach)[4] = calloc((size_t)count, sizeof *reach);
+    bool *from_source = calloc((size_t)count, sizeof *from_source);
+    if (!reach || !from_source) {
+        free(reach);
+        free(from_source);
         free_graph(&g);
         return false;
     }
     *passes = 0;
     for (int i = 0; i < count; i++) {
         const prim *p = &g.p[i];
-        double in[2] = { 0, 0 };
-        /* what run() counts of the budget: its reads and its write */
-        *passes += 1 + (p->in[1] != -4) + (reads_in(p->node) && !is(p->node, "feTile"));
+        *passes += prim_work(&fc, p->node, prim_reads(p));
         for (int k = 0; k < 2; k++) {
-            if (p->in[k] >= 0 && (k == 1 || reads_in(p->node))) {
-                in[0] = fmax(in[0], reach[p->in[k]][0]);
-                in[1] = fmax(in[1], reach[p->in[k]][1]);
+            if (p->in[k] != -4 && (k == 1 || reads_in(p->node))) {
+                take_reach(reach, from_source, i, p->in[k]);
             }
         }
         for (const svg_node *m = p->node->first; m && is(p->node, "feMerge"); m = m->next) {
-            int j = is(m, "feMergeNode") ? resolve(&fc, g.p, i, m, fattr(m, "in")) : -1;
-            *passes += is(m, "feMergeNode");
-            if (j >= 0) {
-                in[0] = fmax(in[0], reach[j][0]);
-                in[1] = fmax(in[1], reach[j][1]);
+            if (is(m, "feMergeNode")) {
+                take_reach(reach, from_source, i, resolve(&fc, g.p, i, m, fattr(m, "in")));
             }
         }
-        own_reach(&fc, p->node, reach[i]);
-        reach[i][0] += in[0];
-        reach[i][1] += in[1];
+        double own[4];
+        own_reach(&fc, p->node, own);
+        for (int a = 0; a < 4; a++) {
+            reach[i][a] += own[a];
+        }
     }
     /* NaN and infinity alike: at most the layer's size */
-    double rx = fmin(reach[count - 1][0], job->width), ry = fmin(reach[count - 1][1], job->height);
+    double r[4] = { 0, 0, 0, 0 };
+    for (int a = 0; a < 4 && from_source[count - 1]; a++) {
+        r[a] = fmin(reach[count - 1][a], a % 2 ? job->height : job->width);
+    }
     free(reach);
+    free(from_source);
     free_graph(&g);
-    px[0] = fmax(px[0], -rx);
-    px[1] = fmax(px[1], -ry);
-    px[2] = fmin(px[2], job->width + rx);
-    px[3] = fmin(px[3], job->height + ry);
+    px[0] = fmax(px[0], -r[0]);
+    px[1] = fmax(px[1], -r[1]);
+    px[2] = fmin(px[2], job->width + r[2]);
+    px[3] = fmin(px[3], job->height + r[3]);
     if (!(px[2] > px[0] && px[3] > px[1])) {
         return false;
     }

@@ -150,7 +150,7 @@ function glb(shape, nodes, materials, extensionsUsed = [], lights = []) {
     return glbBytes(json, bin);
 }
 
-// The GLB container of a document and its one buffer.
+// The GLB container of a document and its BIN chunk.
 function glbBytes(json, bin) {
     let text = Buffer.from(JSON.stringify(json));
     text = Buffer.concat([text, Buffer.alloc((4 - (text.length % 4)) % 4, 0x20)]);
@@ -163,6 +163,114 @@ function glbBytes(json, bin) {
     binHead.writeUInt32LE(bin.length, 0);
     binHead.write('BIN\0', 4);
     return Buffer.concat([header, jsonHead, text, binHead, bin]);
+}
+
+// --- A .glb of any accessors: `arrays` are [typed array, accessor fields]
+// pairs, each becoming bufferView and accessor i; json is the rest.
+
+function glbOf(json, arrays) {
+    const chunks = [];
+    let at = 0;
+    json.bufferViews = [];
+    json.accessors = [];
+    arrays.forEach(([data, fields], i) => {
+        const raw = Buffer.from(data.buffer, data.byteOffset, data.byteLength);
+        const padded = Buffer.concat([raw, Buffer.alloc((4 - (raw.length % 4)) % 4)]);
+        json.bufferViews.push({ buffer: 0, byteOffset: at, byteLength: raw.length });
+        json.accessors.push({ bufferView: i, ...fields });
+        chunks.push(padded);
+        at += padded.length;
+    });
+    const bin = Buffer.concat(chunks);
+    json.buffers = [{ byteLength: bin.length }];
+    return glbBytes(json, bin);
+}
+
+const smoothstep = (a, b, x) => { const t = Math.min(1, Math.max(0, (x - a) / (b - a))); return t * t * (3 - 2 * t); };
+const rotZ = (deg) => [0, 0, Math.sin((deg * Math.PI) / 360), Math.cos((deg * Math.PI) / 360)];
+
+// A figure posed by a skin and morph targets: a body and an arm,
+// ellipsoids standing along +Y in their bind pose, skinned to four joints
+// (hips, chest bent 15 degrees, shoulder swung out, elbow bent up); a head
+// under the chest joint whose two morph targets (taller, a nose) its node
+// weighs 0.5 and 1 (the mesh's weights say 0.3 and 0).  The skinned nodes
+// are moved, turned and scaled, which skinning ignores: drawn unskinned,
+// the body lies on its back and the arm floats twice its size.
+function figure() {
+    const arrays = [];
+    const add = (data, fields) => { arrays.push([data, fields]); return arrays.length - 1; };
+    const ellipsoid = (cy, rx, ry, jointOf) => {
+        const s = sphere(1, 24, 16), n = s.pos.length / 3;
+        const pos = new Float32Array(3 * n), nrm = new Float32Array(3 * n);
+        const joints = new Uint8Array(4 * n), weights = new Float32Array(4 * n);
+        for (let i = 0; i < n; i++) {
+            const [x, y, z] = s.pos.slice(3 * i, 3 * i + 3);
+            pos.set([x * rx, cy + y * ry, z * rx], 3 * i);
+            const m = [x / rx, y / ry, z / rx], l = Math.hypot(...m);
+            nrm.set(m.map((c) => c / l), 3 * i);
+            const [j0, j1, w1] = jointOf(cy + y * ry);
+            joints.set([j0, j1, 0, 0], 4 * i);
+            weights.set([1 - w1, w1, 0, 0], 4 * i);
+        }
+        const lo = [-rx, cy - ry, -rx].map(Math.fround), hi = [rx, cy + ry, rx].map(Math.fround);
+        return {
+            POSITION: add(pos, { componentType: 5126, count: n, type: 'VEC3', min: lo, max: hi }),
+            NORMAL: add(nrm, { componentType: 5126, count: n, type: 'VEC3' }),
+            JOINTS_0: add(joints, { componentType: 5121, count: n, type: 'VEC4' }),
+            WEIGHTS_0: add(weights, { componentType: 5126, count: n, type: 'VEC4' }),
+            indices: add(new Uint16Array(s.idx), { componentType: 5123, count: s.idx.length, type: 'SCALAR' }),
+        };
+    };
+    const body = ellipsoid(1, 0.35, 1, (y) => [0, 1, smoothstep(0.8, 1.3, y)]);
+    const arm = ellipsoid(2.4, 0.12, 0.65, (y) => [2, 3, smoothstep(2.25, 2.55, y)]);
+    const head = sphere(0.32, 24, 16), hn = head.pos.length / 3;
+    const tall = new Float32Array(3 * hn), nose = new Float32Array(3 * hn);
+    for (let i = 0; i < hn; i++) {
+        const ny = head.nrm[3 * i + 1], nz = head.nrm[3 * i + 2];
+        tall[3 * i + 1] = 0.5 * 0.32 * ny;
+        nose[3 * i + 2] = nz > 0.85 ? (0.25 * (nz - 0.85)) / 0.15 : 0;
+    }
+    const h = {
+        POSITION: add(new Float32Array(head.pos), { componentType: 5126, count: hn, type: 'VEC3',
+                                                    min: [-0.32, -0.32, -0.32], max: [0.32, 0.32, 0.32] }),
+        NORMAL: add(new Float32Array(head.nrm), { componentType: 5126, count: hn, type: 'VEC3' }),
+        indices: add(new Uint16Array(head.idx), { componentType: 5123, count: head.idx.length, type: 'SCALAR' }),
+        tall: add(tall, { componentType: 5126, count: hn, type: 'VEC3', min: [0, -0.16, 0], max: [0, 0.16, 0] }),
+        nose: add(nose, { componentType: 5126, count: hn, type: 'VEC3', min: [0, 0, 0], max: [0, 0, 0.25] }),
+    };
+    const ibm = new Float32Array(64);
+    [0, -1, -1.75, -2.4].forEach((y, j) => ibm.set([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, y, 0, 1], 16 * j));
+    const ibmAccessor = add(ibm, { componentType: 5126, count: 4, type: 'MAT4' });
+    const prim = (a, material) => ({ attributes: { POSITION: a.POSITION, NORMAL: a.NORMAL, JOINTS_0: a.JOINTS_0,
+                                                    WEIGHTS_0: a.WEIGHTS_0 }, indices: a.indices, material });
+    const json = {
+        asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
+        scene: 0,
+        scenes: [{ nodes: [0, 4, 5] }],
+        nodes: [
+            { name: 'hips', children: [1] },
+            { name: 'chest', translation: [0, 1, 0], rotation: rotZ(15), children: [2, 6] },
+            { name: 'shoulder', translation: [0, 0.75, 0], rotation: rotZ(-110), children: [3] },
+            { name: 'elbow', translation: [0, 0.65, 0], rotation: rotZ(60) },
+            { name: 'body', mesh: 0, skin: 0, translation: [3, 0, 0], rotation: [Math.SQRT1_2, 0, 0, Math.SQRT1_2] },
+            { name: 'arm', mesh: 1, skin: 0, scale: [2, 2, 2] },
+            { name: 'head', mesh: 2, translation: [0, 1.3, 0], weights: [0.5, 1] },
+        ],
+        skins: [{ joints: [0, 1, 2, 3], inverseBindMatrices: ibmAccessor, skeleton: 0 }],
+        meshes: [
+            { primitives: [prim(body, 0)] },
+            { primitives: [prim(arm, 1)] },
+            { primitives: [{ attributes: { POSITION: h.POSITION, NORMAL: h.NORMAL }, indices: h.indices,
+                             material: 2, targets: [{ POSITION: h.tall }, { POSITION: h.nose }] }],
+              weights: [0.3, 0] },
+        ],
+        materials: [
+            { name: 'blue', pbrMetallicRoughness: pbr([0.15, 0.3, 0.8], 0, 0.6) },
+            { name: 'orange', pbrMetallicRoughness: pbr([0.9, 0.45, 0.15], 0, 0.5) },
+            { name: 'skin', pbrMetallicRoughness: pbr([0.95, 0.72, 0.58], 0, 0.7) },
+        ],
+    };
+    return glbOf(json, arrays);
 }
 
 // --- A Radiance RGBE picture, flat scanlines (every reader takes them).
@@ -316,43 +424,38 @@ const surface = [
 writeFileSync(join(out, 'surface-spheres.glb'), glb(sphere(0.5, 64, 32, true),
     surface.map((m, i) => ({ material: i, translation: [(i % 3 - 1) * 1.1, i < 3 ? 0.55 : -0.55, 0] })),
     surface, ['KHR_materials_anisotropy', 'KHR_materials_iridescence']));
+writeFileSync(join(out, 'skinned-figure.glb'), figure());
+
 // An animated asset (glTF animations): a hub turning about +y (LINEAR
 // rotations, slerped) carries a cube squashed and stretched by STEP
 // scales and a sphere lifted along a CUBICSPLINE path.  ASSET.pose
 // beside it says which animation and time run.sh poses it at.
 function animatedGlb() {
-    const shapes = [cube(0.4), sphere(0.3, 32, 16)];
-    const chunks = [], views = [], accessors = [];
-    const add = (array, type, count, extra = {}) => {
-        let bytes = Buffer.from(array.buffer);
-        const offset = chunks.reduce((n, c) => n + c.length, 0);
-        views.push({ buffer: 0, byteOffset: offset, byteLength: bytes.length });
-        chunks.push(Buffer.concat([bytes, Buffer.alloc((4 - (bytes.length % 4)) % 4)]));
-        accessors.push({ bufferView: views.length - 1, componentType: array instanceof Uint16Array
-            ? 5123 : 5126, count, type, ...extra });
-        return accessors.length - 1;
-    };
-    const meshes = shapes.map((sh, i) => {
+    const arrays = [];
+    const add = (data, fields) => { arrays.push([data, fields]); return arrays.length - 1; };
+    const f32 = (values, type, count, extra = {}) =>
+        add(new Float32Array(values), { componentType: 5126, count, type, ...extra });
+    const meshes = [cube(0.4), sphere(0.3, 32, 16)].map((sh, i) => {
         const lo = [0, 1, 2].map((k) => Math.min(...sh.pos.filter((_, j) => j % 3 === k)));
         const hi = [0, 1, 2].map((k) => Math.max(...sh.pos.filter((_, j) => j % 3 === k)));
-        const pos = add(new Float32Array(sh.pos), 'VEC3', sh.pos.length / 3, { min: lo, max: hi });
-        const nrm = add(new Float32Array(sh.nrm), 'VEC3', sh.nrm.length / 3);
-        const idx = add(new Uint16Array(sh.idx), 'SCALAR', sh.idx.length);
-        return { primitives: [{ attributes: { POSITION: pos, NORMAL: nrm }, indices: idx, material: i }] };
+        const n = sh.pos.length / 3;
+        const attributes = { POSITION: f32(sh.pos, 'VEC3', n, { min: lo, max: hi }),
+                             NORMAL: f32(sh.nrm, 'VEC3', n) };
+        const indices = add(new Uint16Array(sh.idx),
+                            { componentType: 5123, count: sh.idx.length, type: 'SCALAR' });
+        return { primitives: [{ attributes, indices, material: i }] };
     });
-    const key = (times) => add(new Float32Array(times), 'SCALAR', times.length,
+    const key = (times) => f32(times, 'SCALAR', times.length,
                                { min: [times[0]], max: [times[times.length - 1]] });
     const turn = (deg) => [0, Math.sin((deg * Math.PI) / 360), 0, Math.cos((deg * Math.PI) / 360)];
     const spinIn = key([0, 1, 2]);
-    const spinOut = add(new Float32Array([...turn(0), ...turn(90), ...turn(200)]), 'VEC4', 3);
+    const spinOut = f32([...turn(0), ...turn(90), ...turn(200)], 'VEC4', 3);
     const squashIn = key([0, 0.5, 1.5]);
-    const squashOut = add(new Float32Array([1, 1, 1, 0.7, 1.5, 0.7, 1.3, 0.6, 1.3]), 'VEC3', 3);
+    const squashOut = f32([1, 1, 1, 0.7, 1.5, 0.7, 1.3, 0.6, 1.3], 'VEC3', 3);
     const liftIn = key([0, 2]);
     // in-tangent, value, out-tangent a key (units a second)
-    const liftOut = add(new Float32Array([0, 0, 0, 1.1, 0, 0, 0, 1.5, 0,
-                                          0, -1, 0, 1.1, 0.9, 0, 0, 0, 0]), 'VEC3', 6);
-    const bin = Buffer.concat(chunks);
-    const json = {
+    const liftOut = f32([0, 0, 0, 1.1, 0, 0, 0, 1.5, 0, 0, -1, 0, 1.1, 0.9, 0, 0, 0, 0], 'VEC3', 6);
+    return glbOf({
         asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
         scene: 0,
         scenes: [{ nodes: [0] }],
@@ -370,11 +473,7 @@ function animatedGlb() {
                        { sampler: 1, target: { node: 1, path: 'scale' } },
                        { sampler: 2, target: { node: 2, path: 'translation' } }],
         }],
-        accessors,
-        bufferViews: views,
-        buffers: [{ byteLength: bin.length }],
-    };
-    return glbBytes(json, bin);
+    }, arrays);
 }
 writeFileSync(join(out, 'animated-hub.glb'), animatedGlb());
 writeFileSync(join(out, 'animated-hub.glb.pose'), '0 1.25\n');

@@ -68,9 +68,10 @@ function worldPoints(root) {
     root.updateMatrixWorld(true);
     root.traverse((o) => {
         if (!o.isMesh) return;
+        // getVertexPosition applies morph targets and skinning, as drawn.
         const a = o.geometry.attributes.position;
         for (let i = 0; i < a.count; i++) {
-            pts.push(new THREE.Vector3().fromBufferAttribute(a, i).applyMatrix4(o.matrixWorld));
+            pts.push(o.getVertexPosition(i, new THREE.Vector3()).applyMatrix4(o.matrixWorld));
         }
     });
     return pts;
