@@ -43,6 +43,13 @@ typedef enum sr_model_format {
                            * (Assimp in builds without jansson) */
 } sr_model_format;
 
+/* Which pose sr_load_scene places a glTF file's nodes in. */
+typedef enum sr_load_pose {
+    SR_POSE_DEFAULT = 0,  /* resolved to SR_POSE_REST */
+    SR_POSE_REST,         /* the nodes' own translation, rotation, scale, matrix */
+    SR_POSE_ANIMATION,    /* sr_load_desc.animation at sr_load_desc.animation_time */
+} sr_load_pose;
+
 typedef struct sr_load_desc {
     sr_model_format format;
     /* Optional: called with the path of every other file the reader opens
@@ -64,6 +71,15 @@ typedef struct sr_load_desc {
      * sr_load_desc.variant: 3, but the file has 2 variants"); any other
      * format has none. */
     int variant;
+    /* glTF: the pose the nodes are placed in (docs/gltf.md).  Zero: the
+     * rest pose, each node's own transform; SR_POSE_ANIMATION: animation
+     * number `animation` (0 first, as sr_scene.animations lists them)
+     * sampled at `animation_time` seconds, its keys clamped at both ends.
+     * A file without that animation, or a time that is not finite, is
+     * refused (SR_INVALID_ARG). */
+    sr_load_pose pose;
+    int animation;
+    float animation_time;
 } sr_load_desc;
 
 /* Load a model file into *out (which is zeroed first).  Faces with more than
@@ -175,6 +191,13 @@ typedef struct sr_scene_light {
     int light_index, node;      /* its index in the extension's lights, and its node */
 } sr_scene_light;
 
+/* A glTF animation, as sr_load_desc.animation chooses it. */
+typedef struct sr_scene_animation {
+    const char *name;             /* the file's name for it, or "" */
+    size_t channel_count;
+    float duration;               /* seconds: the last key time of its samplers */
+} sr_scene_animation;
+
 typedef struct sr_scene {
     sr_scene_primitive *primitives;
     size_t primitive_count;
@@ -197,6 +220,10 @@ typedef struct sr_scene {
     const char *const *variants;  /* KHR_materials_variants' names, in the file's order
                                    * (UTF-8; not necessarily unique) */
     size_t variant_count;
+    sr_scene_animation *animations; /* the file's, in its order, whichever pose was asked */
+    size_t animation_count;
+    int animation;                /* the one the scene is posed by, or -1: the rest pose */
+    float animation_time;         /* and the time it was sampled at, seconds */
 } sr_scene;
 
 /* Limits of the glTF reader, checked before allocating: at most this many

@@ -99,4 +99,9 @@ bool same_file_bytes(const char *a, const char *b);
 int read_log(const char *path, record *recs, int max);
 const record *find_record(const record *recs, int n, const char *input);
 
+/* How many animation frames (ANMF chunks) an extended WebP file has at
+ * its top level, and whether its VP8X header flags an animation; -1 when
+ * the file is not an extended WebP. */
+int count_anmf(const uint8_t *p, size_t n, bool *animated);
+
 #endif

@@ -952,25 +952,6 @@ SR_TEST(sheet_lays_out_models_with_captions)
     CHECK(r.status == 2 && strstr(r.err, "--sheet"));
 }
 
-/* How many animation frames (ANMF chunks) an extended WebP file has at
- * its top level, and whether its VP8X header flags an animation; -1 when
- * the file is not an extended WebP. */
-static int count_anmf(const uint8_t *p, size_t n, bool *animated)
-{
-    if (n < 30 || memcmp(p, "RIFF", 4) != 0 || memcmp(p + 8, "WEBPVP8X", 8) != 0) {
-        return -1;
-    }
-    *animated = (p[20] & 0x02) != 0;   /* VP8X flags: the animation bit */
-    int frames = 0;
-    for (size_t at = 12; at + 8 <= n;) {
-        uint32_t size = (uint32_t)p[at + 4] | (uint32_t)p[at + 5] << 8 |
-                        (uint32_t)p[at + 6] << 16 | (uint32_t)p[at + 7] << 24;
-        frames += memcmp(p + at, "ANMF", 4) == 0;
-        at += 8 + size + (size & 1);
-    }
-    return frames;
-}
-
 /* --animate: each model's views as the frames of one animated WebP. */
 SR_TEST(animate_writes_a_turntable_webp)
 {

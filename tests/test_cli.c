@@ -1258,6 +1258,7 @@ static const char *const value_options[] = {
     "--polygon-offset", "--up", "--tonemap", "--exposure", "--environment",
     "--environment-intensity", "--camera-index", "--variant", "--shadows", "--lights", "--batch", "--output-dir", "--name", "--log", "--shard",
     "--shard-count", "--views", "--sheet", "--sheet-columns", "--animate",
+    "--animation", "--time", "--fps",
 };
 static const char *const flag_options[] = { "--ortho", "-v", "--verbose", "-h", "--help",
                                              "--wireframe", "--hidden-line", "--edges", "--points",

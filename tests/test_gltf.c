@@ -754,11 +754,11 @@ SR_TEST(transmission_and_volume_are_read)
     free(b64);
 }
 
-/* Animations are left out of the scene drawn in the pose its nodes give,
- * with one warning naming them and the extensions not read; skins and
- * morph targets are read (test_gltf_skin.c) and not named.  A file
- * without them warns of nothing (node_hierarchy_... checks). */
-SR_TEST(animations_and_unread_extensions_give_one_warning)
+/* The extensions not read are named in one warning; skins and morph
+ * targets are read (test_gltf_skin.c), animations too
+ * (test_gltf_animation.c), and not named.  A file without them warns of
+ * nothing (node_hierarchy_... checks). */
+SR_TEST(unread_extensions_give_one_warning)
 {
     const char body[] =
         TRI_ACCESSOR ",\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
@@ -766,7 +766,6 @@ SR_TEST(animations_and_unread_extensions_give_one_warning)
         "\"targets\":[{\"POSITION\":0}]}],\"weights\":[1]}],"
         "\"nodes\":[{\"mesh\":0},{\"mesh\":1},{}],\"scenes\":[{\"nodes\":[0,1,2]}],"
         "\"skins\":[{\"joints\":[2]}],"
-        "\"animations\":[{\"channels\":[],\"samplers\":[]}],"
         "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]";
     warnings w = {0};
     sr_scene *s = load_doc(tri_le(), sizeof tri, body, &w);
@@ -775,7 +774,7 @@ SR_TEST(animations_and_unread_extensions_give_one_warning)
     CHECK_EQ(w.count, 1);
     CHECK_EQ(s->warning_count, 1);
     CHECK(strcmp(w.last, "t.gltf: warning: not read, the scene is drawn without them: "
-                         "/animations, /extensionsUsed/0 (EXT_mesh_gpu_instancing)") == 0);
+                         "/extensionsUsed/0 (EXT_mesh_gpu_instancing)") == 0);
     sr_destroy_scene(sr_test_ctx(), s);
 }
 

@@ -16,6 +16,7 @@
 #include "render.h"
 #include "render_options.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +27,8 @@ typedef struct batch_opts {
     batch_common c;            /* --name's default: {rel}.png, {rel}_{view}.png */
     const char *views_arg, *sheet, *columns_arg;  /* --views N, --sheet FILE, --sheet-columns N */
     const char *animate;       /* --animate PATTERN: each model's views as an animated WebP */
-    int views, columns;
+    const char *fps_arg;       /* --fps N: --animate's frames a second with --animation */
+    int views, columns, fps;
     char **job_argv;           /* the render options, for render_job_configure */
     int job_argc;
     bool any;                  /* a batch option was given */
@@ -58,7 +60,11 @@ static void batch_help(void)
         "                           memory counts against --size's limit\n"
         "  --animate PATTERN        each model's views as one animated WebP, a turn in\n"
         "                           3 s, named like --name (e.g. turn.webp, {rel}.webp;\n"
-        "                           --views defaults to 24)\n");
+        "                           --views defaults to 24); with --animation, the glTF\n"
+        "                           animation played instead, from --time (default 0)\n"
+        "                           to its end, in the first frame's camera\n"
+        "  --fps N                  --animate --animation's frames a second, 1..120\n"
+        "                           (default 24)\n");
     batch_help_status(stdout);
 }
 
@@ -84,8 +90,8 @@ static bool add_model(void *user, const char *path)
 static int split_args(int argc, char **argv, batch_opts *b, char **rest, int *rest_count)
 {
     static const char *const valued[] = { "--views", "--sheet", "--sheet-columns", "--animate",
-                                          NULL };
-    const char **dst[] = { &b->views_arg, &b->sheet, &b->columns_arg, &b->animate };
+                                          "--fps", NULL };
+    const char **dst[] = { &b->views_arg, &b->sheet, &b->columns_arg, &b->animate, &b->fps_arg };
     int n = 0;
     bool ended = false;
     rest[n++] = argv[0];
@@ -265,12 +271,35 @@ static bool sheet_put(batch_run *run, const batch_item *it, int view, const uint
     return r == SR_OK;
 }
 
-/* --animate: one model's views as the frames of one WebP. */
+/* --animate --animation: the loaded model posed again at time t, in the
+ * camera its first pose framed; false with why in run->message. */
+static bool pose_at(batch_run *run, const batch_item *it, float t)
+{
+    sr_vec3 eye, target, up;
+    render_job_camera(run->job, &eye, &target, &up);
+    render_job_set_time(run->job, t);
+    run->message[0] = '\0';
+    cli_capture(run->message, sizeof run->message);
+    int status = render_job_reload(run->job, it->input);
+    cli_capture(NULL, 0);
+    if (status >= 0) {
+        return false;
+    }
+    run->message[0] = '\0';   /* its warnings were the first pose's */
+    render_job_set_camera(run->job, eye, target, up);
+    return true;
+}
+
+/* --animate: one model's views as the frames of one WebP, or with
+ * --animation the frames of its animation, 1/fps s apart from --time to
+ * its end. */
 static void animate_one(batch_run *run, const batch_read *rd)
 {
     const batch_item *it = rd->item;
     const render_opts *o = run->o;
     int views = run->b->views, frame_ms = 3000 / views > 20 ? 3000 / views : 20;
+    int fps = run->b->fps;
+    float start = o->animation_time, duration = 0.0f;
     batch_record rec = { .input = it->input, .output = it->output, .index = it->index,
                          .status = "failed", .load_ms = rd->load_ms };
     if (!rd->wanted) {
@@ -282,6 +311,19 @@ static void animate_one(batch_run *run, const batch_read *rd)
     if (ok && run->message[0]) {
         batch_session_report(&run->s, it->input, run->message);   /* a warning */
     }
+    bool playing = ok && o->animation && render_job_animation(run->job, &duration);
+    if (playing) {
+        /* Frames at start + k / fps up to the end, the end itself when it
+         * falls on one (a thousandth of a frame's rounding allowed). */
+        double span = duration > start ? ((double)duration - start) * fps : 0.0;
+        views = span < 100000.0 ? (int)floor(span + 1e-3) + 1 : 100001;
+        if (views > 100000) {
+            snprintf(run->message, sizeof run->message,
+                     "--animate: %.6g s at --fps %d is more than 100000 frames",
+                     (double)duration - start, fps);
+            ok = playing = false;
+        }
+    }
     bool alpha = o->background_alpha < 1.0f;
     batch_anim *anim = ok ? batch_anim_start(o->width, o->height, alpha, run->message,
                                              sizeof run->message) : NULL;
@@ -289,6 +331,11 @@ static void animate_one(batch_run *run, const batch_read *rd)
     double render_ms = 0.0, t0 = batch_now_ms();
     size_t pixels = (size_t)o->width * (size_t)o->height;
     for (int v = 0; v < views && ok; v++) {
+        int stamp = playing ? (int)lround(v * 1000.0 / fps) : v * frame_ms;
+        if (playing && v > 0 && !pose_at(run, it, start + (float)v / (float)fps)) {
+            ok = false;
+            break;
+        }
         ok = draw_view(run, it, v == 0 ? it->output : NULL, v, &rec);
         render_ms += rec.render_ms;
         uint8_t *straight = ok && alpha ? cli_straight_alpha(sr_framebuffer_pixels(run->fb),
@@ -298,12 +345,14 @@ static void animate_one(batch_run *run, const batch_read *rd)
             ok = false;
         }
         ok = ok && batch_anim_add(anim, straight ? straight : sr_framebuffer_pixels(run->fb),
-                                  v * frame_ms, run->message, sizeof run->message);
+                                  stamp, run->message, sizeof run->message);
         free(straight);
     }
     sr_io_error err;
     if (ok && !(cli_make_parents(it->output, &err) &&
-                batch_anim_write(anim, it->output, views * frame_ms, &err))) {
+                batch_anim_write(anim, it->output,
+                                 playing ? (int)lround(views * 1000.0 / fps) : views * frame_ms,
+                                 &err))) {
         snprintf(run->message, sizeof run->message, "%s", err.message);
         ok = false;
     }
@@ -474,9 +523,13 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
     }
     if (status < 0) {
         size_t records = b->animate ? 1 : (size_t)b->views;   /* a model's */
+        /* A played animation moves the first frame's camera into the
+         * options (pose_at): the next model starts from the options again. */
+        bool playing = b->animate && o->animation;
         batch_session_begin(&run.s, batch_session_mine(&run.s) * records, 1);
         batch_reader_start(&run.reader, run.list, &run.s.shard, wants_reading, &run, run.jobs,
-                           b->job_argc, b->views > 1 ? b->job_argv : NULL, o->width, o->height);
+                           b->job_argc, b->views > 1 || playing ? b->job_argv : NULL, o->width,
+                           o->height);
         render_all(&run);
         status = batch_session_end(&run.s);
         batch_reader_stop(&run.reader);
@@ -501,6 +554,14 @@ static int check_views(batch_opts *b, const render_opts *o)
         return EXIT_USAGE;
     }
     if (b->columns_arg && !parse_int("--sheet-columns", b->columns_arg, 1, 1000, &b->columns)) {
+        return EXIT_USAGE;
+    }
+    b->fps = 24;
+    if (b->fps_arg && !(b->animate && o->animation)) {
+        cli_error("--fps: the frame rate of --animate with --animation: give both");
+        return EXIT_USAGE;
+    }
+    if (b->fps_arg && !parse_int("--fps", b->fps_arg, 1, 120, &b->fps)) {
         return EXIT_USAGE;
     }
     if (b->columns_arg && !b->sheet) {
@@ -535,7 +596,12 @@ static int check_views(batch_opts *b, const render_opts *o)
         if (!batch_check_pattern(b->animate)) {
             return EXIT_USAGE;
         }
-        if (!b->views_arg) {
+        if (o->animation && b->views_arg) {
+            cli_error("--views: not with --animation (--animate plays the animation, in one "
+                      "view)");
+            return EXIT_USAGE;
+        }
+        if (!b->views_arg && !o->animation) {
             b->views = 24;
         }
         char why[256];

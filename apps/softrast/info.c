@@ -1,7 +1,8 @@
 /* info.c - `softrast info MODEL [--json]`: what softrast reads in a model
  * file, before rendering it: its draws, vertex attributes, bounds,
- * materials and the glTF extensions they use, textures, cameras and
- * lights, as text or as one JSON object for scripts.  The model is read
+ * materials and the glTF extensions they use, textures, variants,
+ * animations, cameras and lights, as text or as one JSON object for
+ * scripts.  The model is read
  * by the library's sr_load_scene, as `softrast render` reads it, so its
  * warnings and errors are the same lines. */
 #include "cli.h"
@@ -20,7 +21,8 @@ static void usage(FILE *f)
                "primitives to draw (each node instance counted), their vertices, triangles\n"
                "and attributes, the bounds in world space, each material with its textures\n"
                "and the glTF material extensions it uses, the textures, the material variants\n"
-               "(what --variant picks), cameras (what --camera-index counts) and lights.\n"
+               "(what --variant picks), the animations with their durations (what\n"
+               "--animation picks), cameras (what --camera-index counts) and lights.\n"
                "Warnings go to stderr, as render's do.\n"
                "\n"
                "  --json      one JSON object on stdout instead of text\n"
@@ -231,7 +233,16 @@ static void print_json(const char *path, const sr_scene *sc)
         printf(i ? ", " : "");
         json_string(sc->variants[i]);
     }
-    printf("],\n \"cameras\": [");
+    printf("],\n \"animations\": [");
+    for (size_t i = 0; i < sc->animation_count; i++) {
+        const sr_scene_animation *an = &sc->animations[i];
+        printf("%s\n  {\"name\": ", i ? "," : "");
+        json_string(an->name);
+        printf(", \"channels\": %zu, \"duration\": ", an->channel_count);
+        json_number(an->duration);
+        printf("}");
+    }
+    printf("%s],\n \"cameras\": [", sc->animation_count ? "\n " : "");
     for (size_t i = 0; i < sc->camera_count; i++) {
         const sr_scene_camera *c = &sc->cameras[i];
         bool persp = c->type == SR_SCENE_CAMERA_PERSPECTIVE;
@@ -311,6 +322,18 @@ static void print_text(const char *path, const sr_scene *sc)
             snprintf(name, sizeof name, "%s", sc->variants[i]);
             cli_one_line(name);
             printf("    %zu  %s\n", i, name);
+        }
+    }
+    if (sc->animation_count) {
+        printf("  animations  %zu (--animation)\n", sc->animation_count);
+        for (size_t i = 0; i < sc->animation_count; i++) {
+            const sr_scene_animation *an = &sc->animations[i];
+            char name[256];
+            snprintf(name, sizeof name, "%s", an->name);
+            cli_one_line(name);
+            printf("    %zu  %g s, %zu channel%s%s%s\n", i, (double)an->duration,
+                   an->channel_count, an->channel_count == 1 ? "" : "s", name[0] ? ", " : "",
+                   name);
         }
     }
     printf("  cameras     %zu\n", sc->camera_count);

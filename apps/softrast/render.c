@@ -54,6 +54,13 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
                   "material variants", o->model, o->variant);
         return EXIT_USAGE;
     }
+    if (o->animation && !(render_gltf_is(o->model) && sr_io_have_gltf())) {
+        cli_error("--animation: %s", render_gltf_is(o->model)
+                                         ? "this softrast was built without its glTF reader "
+                                           "(install libjansson-dev and rebuild)"
+                                         : "only glTF files (.gltf, .glb) have animations");
+        return EXIT_USAGE;
+    }
     if (render_gltf_is(o->model) &&
         (o->pbr || o->camera_index >= 0 || o->variant || sr_io_have_gltf())) {
         /* softrast's own glTF reader for every look (docs/gltf.md says why
@@ -62,8 +69,8 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
          * primitive's Blinn-Phong translation of its material
          * (render_gltf_classic).  Only a build without the reader (no
          * jansson) leaves the classic models Assimp's. */
-        return render_gltf_load(o->model, o->normals == -1, o->variant, o->verbose, ctx, inputs,
-                                s);
+        return render_gltf_load(o->model, o->normals == -1, o->variant, o->verbose,
+                                o->animation, o->animation_time, ctx, inputs, s);
     }
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
@@ -655,6 +662,7 @@ struct render_job {
     bool env_shared;        /* env is another job's (render_job_share_light) */
     render_shadow shadow;   /* the key light's map, on ctx */
     char error[512];
+    char animation_index[16];   /* --animation as a number (render_job_set_time) */
 };
 
 int render_job_parse(int argc, char **argv, render_job **out)
@@ -988,6 +996,28 @@ void render_job_set_camera(render_job *job, sr_vec3 eye, sr_vec3 target, sr_vec3
     job->o.eye = eye;
     job->o.target = target;
     job->o.up = up;
+}
+
+bool render_job_animation(const render_job *job, float *duration)
+{
+    const sr_scene *g = job->have_scene ? job->s.gltf : NULL;
+    if (!g || g->animation < 0) {
+        return false;
+    }
+    *duration = g->animations[g->animation].duration;
+    return true;
+}
+
+void render_job_set_time(render_job *job, float seconds)
+{
+    job->o.animation_time = seconds;
+    /* The animation the model is posed by, by its number from now on: a
+     * name would be looked up in a reading of its own each time. */
+    const sr_scene *g = job->have_scene ? job->s.gltf : NULL;
+    if (g && g->animation >= 0) {
+        snprintf(job->animation_index, sizeof job->animation_index, "%d", g->animation);
+        job->o.animation = job->animation_index;
+    }
 }
 
 int render_job_check_frames(const render_job *job, const char *cmd, int width, int height,

@@ -6,6 +6,7 @@
 #include "render_gltf.h"
 #include "softrast_io.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -208,20 +209,96 @@ static size_t find_variant(const char *path, const sr_scene *sc, const char *wan
     return 0;
 }
 
-int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
-                     sr_context *ctx, cli_inputs *inputs, scene *s)
+/* The animations of sc as "0 (walk), 1 (run)" into out. */
+static void animation_names(const sr_scene *sc, char *out, size_t size)
 {
-    scene_object *ob = &s->objects[0];
+    size_t at = 0;
+    out[0] = 0;
+    for (size_t i = 0; i < sc->animation_count && at < size; i++) {
+        int n = snprintf(out + at, size - at, "%s%zu%s%.40s%s", i ? ", " : "", i,
+                         sc->animations[i].name[0] ? " (" : "", sc->animations[i].name,
+                         sc->animations[i].name[0] ? ")" : "");
+        at += n > 0 ? (size_t)n : 0;
+    }
+}
+
+/* --animation's index among sc's animations: a number, else a name;
+ * -1 after one line. */
+static int find_animation(const sr_scene *sc, const char *path, const char *which)
+{
+    char *end = NULL;
+    long n = strtol(which, &end, 10);
+    bool number = end != which && *end == 0 && n >= 0;
+    for (size_t i = 0; i < sc->animation_count; i++) {
+        if (number ? (size_t)n == i : strcmp(sc->animations[i].name, which) == 0) {
+            return (int)i;
+        }
+    }
+    char names[400];
+    animation_names(sc, names, sizeof names);
+    if (sc->animation_count == 0) {
+        cli_error("--animation %s: %s has no animations", which, path);
+    } else {
+        cli_error("--animation %s: %s has no animation %s %s (it has %s)", which, path,
+                  number ? "number" : "named", which, names);
+    }
+    return -1;
+}
+
+/* Reads path in the pose asked for: --animation's, read at once when it
+ * is a number the file has, else found among the file's by a first
+ * reading in the rest pose (a name, or a number to report).  An exit
+ * status after one line, or -1. */
+static int load_posed(const char *path, const char *animation, float time, sr_context *ctx,
+                      cli_inputs *inputs, sr_scene **out)
+{
     sr_io_error err;
-    sr_scene *sc = NULL;
-    sr_result r = sr_load_scene(ctx, path,
-                                &(sr_load_desc){ .format = SR_FORMAT_GLTF, .file_read = note_file,
-                                                 .user = inputs, .warn = warn_line },
-                                &sc, &err);
+    sr_load_desc desc = { .format = SR_FORMAT_GLTF, .file_read = note_file, .user = inputs,
+                          .warn = warn_line };
+    char *end = NULL;
+    long n = animation ? strtol(animation, &end, 10) : -1;
+    if (animation && end != animation && *end == 0 && n >= 0 && n <= INT_MAX) {
+        desc.pose = SR_POSE_ANIMATION;
+        desc.animation = (int)n;
+        desc.animation_time = time;
+        if (sr_load_scene(ctx, path, &desc, out, &err) == SR_OK) {
+            return -1;
+        }
+        desc.pose = SR_POSE_REST;   /* why, with the file's list, below */
+        desc.warn = NULL;           /* given by the first reading */
+    }
+    sr_result r = sr_load_scene(ctx, path, &desc, out, &err);
+    if (r == SR_OK && animation) {
+        int index = find_animation(*out, path, animation);
+        sr_destroy_scene(ctx, *out);
+        *out = NULL;
+        if (index < 0) {
+            return EXIT_USAGE;
+        }
+        desc.pose = SR_POSE_ANIMATION;
+        desc.animation = index;
+        desc.animation_time = time;
+        desc.warn = NULL;   /* said the first time */
+        r = sr_load_scene(ctx, path, &desc, out, &err);
+    }
     if (r != SR_OK) {
         cli_message("%s", err.message);
         return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
     }
+    return -1;
+}
+
+int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
+                     const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
+                     scene *s)
+{
+    scene_object *ob = &s->objects[0];
+    sr_scene *sc = NULL;
+    int status = load_posed(path, animation, time, ctx, inputs, &sc);
+    if (status >= 0) {
+        return status;
+    }
+    sr_result r = SR_OK;
     s->gltf = sc;
     /* Read with no variant, so that a name can be looked up, then each
      * primitive given the variant's material. */

@@ -13,10 +13,12 @@ bool render_gltf_is(const char *path);
  * for the materials and cameras) on ctx; with flat_normals, primitives
  * without normals get flat ones (glTF's rule, for the default --normals);
  * `variant` (--variant, or NULL) picks the material variant; `verbose`
- * lists the file's variants.  Returns an exit status after one line, or
- * -1. */
+ * lists the file's variants; animation (--animation, NULL: the rest pose)
+ * names the file's animation to pose it by, a number or a name, at `time`
+ * seconds.  Returns an exit status after one line, or -1. */
 int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
-                     sr_context *ctx, cli_inputs *inputs, scene *s);
+                     const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
+                     scene *s);
 /* ob's base_uv for the classic models, which have one set of texture
  * coordinates and no per-slot transform: each part's coordinates as the
  * physically based program samples its base color texture (its set, 0 or

@@ -59,6 +59,7 @@ static const char *const valued_options[] = {
     "--normals", "--material", "--ambient", "--opacity", "--light", "--lights", "--texture",
     "--texture-filter", "--wrap", "--camera", "--fov", "--up", "--turn", "--camera-index",
     "--variant",
+    "--animation", "--time",
     "--near", "--far", "--cull", "--front-face", "--depth-format", "--depth-func",
     "--projection-interp", "--depth-range", "--clipper", "--line-width", "--point-size",
     "--line-color", "--polygon-offset", "--aa", "--filter", "--rasterizer", "--threads",
@@ -183,6 +184,12 @@ static void render_help(void)
         "                           default: none, each primitive's own material; -v\n"
         "                           lists the file's variants\n"
         "  --near Z, --far Z        clip distances (default: fitted to the scene)\n"
+        "animation (glTF):\n"
+        "  --animation N|NAME       pose the model by the file's animation N (0 first)\n"
+        "                           or the one named NAME (default: the rest pose)\n"
+        "  --time SECONDS           the time into it, -1e6..1e6 (default 0); before the\n"
+        "                           first key the pose is the first key's, after the\n"
+        "                           last the last's\n"
         "pipeline:\n"
         "  --cull MODE              back|front|none (default back)\n"
         "  --front-face ORDER       ccw|cw (default ccw)\n"
@@ -410,6 +417,15 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         } else if (IS("--variant")) {
             VALUE();
             o->variant = value;
+        } else if (IS("--animation")) {
+            VALUE();
+            o->animation = value;
+        } else if (IS("--time")) {
+            VALUE();
+            if (!parse_float(arg, value, -1e6f, 1e6f, &o->animation_time)) {
+                return EXIT_USAGE;
+            }
+            o->have_time = true;
         } else if (IS("--environment")) {
             VALUE();
             o->environment = value;
@@ -627,6 +643,10 @@ int render_opts_parse(int argc, char **argv, render_opts *o)
         cli_error("--background %s: shows the environment of --environment studio or FILE.hdr "
                   "under --shading pbr, without --ambient",
                   o->background_env == BACKGROUND_BLUR ? "blur" : "environment");
+        return EXIT_USAGE;
+    }
+    if (o->have_time && !o->animation) {
+        cli_error("--time: gives a time into an animation: give --animation N|NAME too");
         return EXIT_USAGE;
     }
     if (o->near_z > 0 && o->far_z > 0 && o->near_z >= o->far_z) {

@@ -25,6 +25,9 @@ typedef struct render_opts {
     int camera_index;              /* --camera-index: a glTF camera, or -1 */
     const char *variant;           /* --variant: a glTF material variant's name or
                                     * number, or NULL */
+    const char *animation;         /* --animation N|NAME: a glTF animation, or NULL */
+    float animation_time;          /* --time SECONDS into it */
+    bool have_time;
     sr_cull_mode cull;
     sr_front_face front;
     bool have_eye, have_target, have_up;

@@ -39,7 +39,7 @@ from ._softrast import Mesh, Path, features, library_version, read_image, write_
 from ._camera import Camera, look_at
 from ._light import Light
 from ._material import Material
-from ._scene import Instance, Scene, load, load_mesh
+from ._scene import Animation, Instance, Scene, load, load_mesh
 from ._framing import fit_camera, orbit
 from ._render import OUTPUTS, render
 from ._svg import SvgWarning, render_svg
@@ -47,7 +47,7 @@ from ._draw import Canvas, LinearGradient, Pattern, RadialGradient
 
 __version__ = library_version
 __all__ = ["Camera", "Light", "Mesh", "Instance", "Material", "Scene", "load", "load_mesh",
-           "look_at",
+           "Animation", "look_at",
            "fit_camera", "orbit",
            "features", "read_image", "render", "render_svg", "SvgWarning", "write_png", "OUTPUTS",
            "__version__",

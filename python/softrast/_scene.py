@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import os
 import warnings
-from typing import TYPE_CHECKING, Any, Iterable, Iterator, List, Optional, Tuple, Union
+import math
+from typing import TYPE_CHECKING, Any, Iterable, Iterator, List, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
 from numpy.typing import NDArray
@@ -84,6 +85,19 @@ def _pose(pose: Optional[RealArrayLike], name: str) -> NDArray[np.float64]:
     return p
 
 
+class Animation(NamedTuple):
+    """A glTF animation of the file :func:`load` read (``Scene.animations``).
+
+    name: the file's name for it, or "".
+    channels: how many node properties it moves.
+    duration: seconds, the last key time of its samplers.
+    """
+
+    name: str
+    channels: int
+    duration: float
+
+
 class Scene:
     """Mesh instances rendered together.
 
@@ -95,7 +109,14 @@ class Scene:
     :class:`Light` tuple (read-only; given here, or the file's), which
     :func:`render` lights with (its ``lights``); ``variants``: the names of
     its material variants (glTF's KHR_materials_variants), a tuple.
+    ``animations``: the file's :class:`Animation` list; ``animation`` and
+    ``time``: the one :func:`load` posed it by (its index) and when, or
+    None and 0.0.
     """
+
+    animations: List[Animation]
+    animation: Optional[int]
+    time: float
 
     def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = (),
                  lights: Iterable[Light] = (), variants: Iterable[str] = ()) -> None:
@@ -103,6 +124,9 @@ class Scene:
         self.cameras = list(cameras)
         self._lights = tuple(lights)
         self.variants: Tuple[str, ...] = tuple(variants)
+        self.animations = []
+        self.animation = None
+        self.time = 0.0
         for item in instances:
             self.add(item)
 
@@ -168,22 +192,25 @@ class _SceneFile:
     worker), or, when it cannot be, dropped with a warning (its instances
     then draw their Mesh's base colors)."""
 
-    __slots__ = ("path", "capsule", "variant")
+    __slots__ = ("path", "capsule", "variant", "pose")
 
     def __init__(self, path: Union[str, bytes], capsule: object,
-                 variant: Union[str, int, None] = None) -> None:
+                 variant: Union[str, int, None] = None,
+                 pose: Tuple[int, float] = (-1, 0.0)) -> None:
         self.path = path
         self.capsule = capsule
         self.variant = variant
+        self.pose = pose   # (animation index or -1, time), as it was read
 
-    def __reduce__(self) -> Tuple[Any, Tuple[Union[str, bytes], Union[str, int, None]]]:
-        return (_read_scene_file, (self.path, self.variant))
+    def __reduce__(self) -> Tuple[Any, Tuple[Union[str, bytes], Union[str, int, None],
+                                             Tuple[int, float]]]:
+        return (_read_scene_file, (self.path, self.variant, self.pose))
 
 
-def _read_scene_file(path: Union[str, bytes],
-                     variant: Union[str, int, None] = None) -> Optional[_SceneFile]:
+def _read_scene_file(path: Union[str, bytes], variant: Union[str, int, None] = None,
+                     pose: Tuple[int, float] = (-1, 0.0)) -> Optional[_SceneFile]:
     try:
-        return _SceneFile(path, _softrast.load_scene(path, variant)["file"], variant)
+        return _SceneFile(path, _softrast.load_scene(path, variant, *pose)["file"], variant, pose)
     except (OSError, ValueError) as e:
         warnings.warn(f"softrast: {os.fsdecode(path)}: the file's materials are not kept: {e}",
                       stacklevel=2)
@@ -212,7 +239,25 @@ def load_mesh(path: PathLike) -> Mesh:
     return Mesh(**_softrast.load_mesh(_path(path)))
 
 
-def load(path: PathLike, variant: Union[str, int, None] = None) -> Scene:
+def _animation_index(path: Union[str, bytes], animation: Union[int, str]) -> int:
+    """load's ``animation``: an index as it is, a name looked up among the
+    file's animations (read once more, in the rest pose)."""
+    if isinstance(animation, bool) or not isinstance(animation, (int, str)):
+        raise TypeError(f"animation: expected an index or a name, got {type(animation).__name__}")
+    if isinstance(animation, int):
+        if animation < 0:
+            raise ValueError(f"animation: {animation} is not an index (0 is the first)")
+        return animation
+    names = [a[0] for a in _softrast.load_scene(path).get("animations", [])]
+    if animation not in names:
+        listed = ", ".join(repr(n) for n in names) or "none"
+        raise ValueError(f"animation: {os.fsdecode(path)} has no animation named "
+                         f"{animation!r} (its animations: {listed})")
+    return names.index(animation)
+
+
+def load(path: PathLike, variant: Union[str, int, None] = None,
+         animation: Union[int, str, None] = None, time: float = 0.0) -> Scene:
     """Read a model file as a :class:`Scene` (sr_load_scene).
 
     glTF 2.0 (.gltf, .glb) is read with its node hierarchy: one instance per
@@ -236,19 +281,33 @@ def load(path: PathLike, variant: Union[str, int, None] = None) -> Scene:
     name or a number from 0, draws that one's materials (as softrast
     render's ``--variant``), None each primitive's own.  ValueError names
     the file's variants when it has no such one.
+
+    ``animation`` (an index into the file's animations, or a name) poses
+    a glTF file's nodes by that animation at ``time`` seconds, clamped to
+    its first and last keys (``softrast render --animation N|NAME --time
+    SECONDS``); None draws the rest pose.  ``Scene.animations`` lists the
+    file's :class:`Animation` tuples either way.  ValueError for an
+    animation the file does not have, a time that is not finite, or an
+    animation asked of a format that has none.
     """
     path = _path(path)
     if variant is not None and (isinstance(variant, bool)
                                 or not isinstance(variant, (str, int))):
         raise TypeError(f"variant: expected a str, an int or None, got {type(variant).__name__}")
-    d = _softrast.load_scene(path, variant)
+    time = float(time)
+    if not math.isfinite(time):
+        raise ValueError(f"time: {time} is not finite")
+    if animation is None and time != 0.0:
+        raise ValueError("time: a time into an animation: give animation too")
+    index = -1 if animation is None else _animation_index(path, animation)
+    d = _softrast.load_scene(path, variant, index, time)
     if not d["gltf"]:
         return Scene([load_mesh(path)])
     images = base_color_images(path, d["materials"])
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
     meshes: dict[Tuple[int, int], Mesh] = {}
     instances = []
-    source = _SceneFile(path, d["file"], variant)
+    source = _SceneFile(path, d["file"], variant, (index, time))
     for primitive, (mesh_index, world, material) in enumerate(d["instances"]):
         key = (mesh_index, material)
         if key not in meshes:
@@ -257,5 +316,9 @@ def load(path: PathLike, variant: Union[str, int, None] = None) -> Scene:
         inst = Instance(meshes[key], world, material=materials[material])
         inst._source = (source, primitive)
         instances.append(inst)
-    return Scene(instances, [Camera._from_fields(c) for c in d["cameras"]],
-                 [Light._from_fields(light) for light in d["lights"]], d["variants"])
+    scene = Scene(instances, [Camera._from_fields(c) for c in d["cameras"]],
+                  [Light._from_fields(light) for light in d["lights"]], d["variants"])
+    scene.animations = [Animation(*a) for a in d["animations"]]
+    scene.animation = None if index < 0 else index
+    scene.time = time if index >= 0 else 0.0
+    return scene

@@ -357,6 +357,21 @@ static PyObject *scene_dict(const sr_scene *s)
     if (out && set_item(out, "variants", variants) < 0) {
         Py_CLEAR(out);
     }
+    /* The file's animations as (name, channels, duration) tuples. */
+    PyObject *anims = out ? PyList_New((Py_ssize_t)s->animation_count) : NULL;
+    for (size_t i = 0; anims && i < s->animation_count; i++) {
+        const sr_scene_animation *a = &s->animations[i];
+        PyObject *t = Py_BuildValue("(Nnd)", sr_py_message_text(a->name),
+                                    (Py_ssize_t)a->channel_count, (double)a->duration);
+        if (!t) {
+            Py_CLEAR(anims);
+            break;
+        }
+        PyList_SET_ITEM(anims, (Py_ssize_t)i, t);
+    }
+    if (out && set_item(out, "animations", anims) < 0) {
+        Py_CLEAR(out);
+    }
 done:
     Py_XDECREF(materials);
     Py_XDECREF(cameras);
@@ -428,7 +443,10 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *path_obj, *variant = Py_None;
-    if (!PyArg_ParseTuple(args, "O&|O:load", PyUnicode_FSConverter, &path_obj, &variant)) {
+    int animation = -1;
+    float time = 0.0f;
+    if (!PyArg_ParseTuple(args, "O&|Oif:load", PyUnicode_FSConverter, &path_obj, &variant,
+                          &animation, &time)) {
         return NULL;
     }
     if (variant != Py_None && !PyUnicode_Check(variant) &&
@@ -437,6 +455,10 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
         return PyErr_Format(PyExc_TypeError, "variant: expected a str, an int or None, got %s",
                             Py_TYPE(variant)->tp_name);
     }
+    /* animation -1: the rest pose; the library checks the index and the
+     * time (ValueError). */
+    sr_load_desc desc = { .pose = animation >= 0 ? SR_POSE_ANIMATION : SR_POSE_REST,
+                          .animation = animation, .animation_time = time };
     sr_context *ctx = NULL;
     sr_scene *scene = NULL;
     sr_io_error err = { { 0 } };
@@ -444,7 +466,7 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     if (r == SR_OK) {
         const char *path = PyBytes_AS_STRING(path_obj);
         Py_BEGIN_ALLOW_THREADS
-        r = sr_load_scene(ctx, path, NULL, &scene, &err);
+        r = sr_load_scene(ctx, path, &desc, &scene, &err);
         Py_END_ALLOW_THREADS
     } else {
         snprintf(err.message, sizeof err.message, "cannot make a context");

@@ -33,12 +33,14 @@ PyDoc_STRVAR(load_mesh_doc,
 "texture).  Use softrast.load_mesh.");
 
 PyDoc_STRVAR(load_scene_doc,
-"load_scene(path, variant=None, /)\n--\n\n"
-"sr_load_scene: {'meshes': [dict of arrays], 'instances': [(mesh index,\n"
-"(4, 4) world matrix, material index)], 'materials': [dict of factors],\n"
-"'cameras': [dict of a camera's fields], 'variants': [names], 'file': the\n"
-"scene kept for render's metallic-roughness look, or None}; variant (a\n"
-"name or a number from 0) picks the materials of a glTF material variant.\n"
+"load_scene(path, variant=None, animation=-1, time=0.0, /)\n--\n\n"
+"sr_load_scene, posed by the file's animation `animation` at `time`\n"
+"seconds (-1: the rest pose): {'meshes': [dict of arrays], 'instances':\n"
+"[(mesh index, (4, 4) world matrix, material index)], 'materials': [dict\n"
+"of factors], 'cameras': [dict of a camera's fields], 'variants': [names],\n"
+"'animations': [(name, channels, duration)], 'file': the scene kept for\n"
+"render's metallic-roughness look, or None}; variant (a name or a number\n"
+"from 0) picks the materials of a glTF material variant.\n"
 "Use softrast.load.");
 
 PyDoc_STRVAR(texture_slot_uv_doc,

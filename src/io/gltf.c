@@ -698,8 +698,8 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
  * two (the Khronos validator's NODE_MATRIX_TRS); a node with both is drawn
  * with its matrix, after a warning, as three.js's GLTFLoader and Blender's
  * importer draw it, rather than refusing a file every viewer shows. */
-static sr_result local_matrix(gltf_doc *d, const json_t *node, const char *ptr, bool warn,
-                              float *m)
+static sr_result local_matrix(gltf_doc *d, const json_t *node, long index, const char *ptr,
+                              bool warn, float *m)
 {
     static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
     memcpy(m, identity, sizeof identity);
@@ -720,6 +720,18 @@ static sr_result local_matrix(gltf_doc *d, const json_t *node, const char *ptr, 
         (r = sr__gltf_numbers(d, node, ptr, "rotation", 4, q)) != SR_OK ||
         (r = sr__gltf_numbers(d, node, ptr, "scale", 3, s)) != SR_OK) {
         return r;
+    }
+    /* The animation's values replace the node's own (gltf_animation.c
+     * refused it for a node with a matrix). */
+    const gltf_node_pose *pose = d->pose ? &d->pose[index] : NULL;
+    if (pose && (pose->animated & GLTF_POSE_TRANSLATION)) {
+        memcpy(t, pose->translation, sizeof t);
+    }
+    if (pose && (pose->animated & GLTF_POSE_ROTATION)) {
+        memcpy(q, pose->rotation, sizeof q);
+    }
+    if (pose && (pose->animated & GLTF_POSE_SCALE)) {
+        memcpy(s, pose->scale, sizeof s);
     }
     /* The unit quaternion (x, y, z, w) as a rotation matrix, columns
      * scaled by s; normalized first, as viewers do with rounded files. */
@@ -771,7 +783,7 @@ sr_result sr__gltf_node_world(gltf_doc *d, long node, float world[16])
         char ptr[GLTF_PTR];
         float local[16];
         snprintf(ptr, sizeof ptr, "/nodes/%ld", v);
-        sr_result r = local_matrix(d, json_array_get(nodes, (size_t)v), ptr, false, local);
+        sr_result r = local_matrix(d, json_array_get(nodes, (size_t)v), v, ptr, false, local);
         if (r != SR_OK) {
             return r;
         }
@@ -1032,7 +1044,7 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
         float local[16], world[16];
         long mesh = -1, camera = -1, skin = -1;
         size_t k;
-        if ((r = local_matrix(d, node, ptr, true, local)) != SR_OK ||
+        if ((r = local_matrix(d, node, it.node, ptr, true, local)) != SR_OK ||
             (r = sr__gltf_index(d, node, ptr, "mesh", (size_t)-1 / 2, false, &mesh)) != SR_OK ||
             (r = sr__gltf_index(d, node, ptr, "skin", (size_t)-1 / 2, false, &skin)) != SR_OK ||
             (r = sr__gltf_index(d, node, ptr, "camera", (size_t)-1 / 2, false, &camera)) !=
@@ -1249,17 +1261,13 @@ static void list_add(char *list, size_t cap, bool *full, const char *item)
     snprintf(list + at, cap - at, "%s%s", at ? ", " : "", item);
 }
 
-/* One warning naming what the file holds that a static scene leaves out
- * (animations, extensions other than the supported ones), so that a model
- * drawn in the pose its nodes give rather than moving, or without its
- * lights, says why. */
+/* One warning naming what the file holds that the scene leaves out
+ * (extensions other than the supported ones), so that a model drawn
+ * without its lights, say, says why. */
 static void warn_unread(gltf_doc *d)
 {
     char list[400] = "", item[GLTF_PTR + 80];
     bool full = false;
-    if (json_array_size(json_object_get(d->root, "animations")) > 0) {
-        list_add(list, sizeof list, &full, "/animations");
-    }
     json_t *used = json_object_get(d->root, "extensionsUsed");
     for (size_t i = 0; i < json_array_size(used); i++) {
         const char *name = json_string_value(json_array_get(used, i));
@@ -1406,7 +1414,8 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/buffers: out of memory");
     }
     if ((r = sr__gltf_read_materials(d)) != SR_OK || (r = sr__gltf_read_variants(d)) != SR_OK ||
-        (r = sr__gltf_read_lights(d)) != SR_OK || (r = read_nodes(d)) != SR_OK) {
+        (r = sr__gltf_read_lights(d)) != SR_OK || (r = sr__gltf_read_animations(d)) != SR_OK ||
+        (r = read_nodes(d)) != SR_OK) {
         return r;
     }
     sr__gltf_lights_done(d);

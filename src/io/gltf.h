@@ -3,6 +3,7 @@
  * gltf_accessor.c decodes accessors; gltf_material.c reads materials,
  * textures and images; gltf_lights.c reads KHR_lights_punctual;
  * gltf_variants.c reads KHR_materials_variants;
+ * gltf_animation.c reads animations and poses the nodes;
  * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
  * gltf_morph.c and gltf_skin.c pose morphed and skinned primitives;
  * scene_store.c holds the scene's memory.  Every
@@ -44,6 +45,19 @@ typedef struct gltf_image_source {
     const uint8_t *bytes;
     size_t size;
 } gltf_image_source;
+/* A node's pose at the animation sr_load_desc asks for (gltf_animation.c):
+ * which of its translation, rotation, scale and weights are animated
+ * (bits 1 << 0 .. 1 << 3) and their sampled values. */
+typedef struct gltf_node_pose {
+    unsigned animated;
+    float translation[3];
+    float rotation[4];           /* x, y, z, w, normalized */
+    float scale[3];
+    float *weights;              /* one per morph target (scene memory), or NULL */
+    size_t weight_count;
+} gltf_node_pose;
+enum { GLTF_POSE_TRANSLATION = 1, GLTF_POSE_ROTATION = 2, GLTF_POSE_SCALE = 4,
+       GLTF_POSE_WEIGHTS = 8 };
 
 typedef struct gltf_doc {
     sr_context *ctx;
@@ -88,6 +102,8 @@ typedef struct gltf_doc {
     /* The joint matrices of each skin, made on first use (gltf_skin.c). */
     struct gltf_skin_cache *skins;
     size_t skin_count;
+    /* One entry per node when an animation poses the scene, else NULL. */
+    gltf_node_pose *pose;
 } gltf_doc;
 
 /* The error "NAME: POINTER: reason" (the pointer is part of fmt's
@@ -220,7 +236,8 @@ sr_result sr__gltf_read_targets(gltf_doc *d, const json_t *prim, const char *ptr
  * first, and the mesh's weights, if any, count them. */
 sr_result sr__gltf_check_targets(gltf_doc *d, const json_t *mesh, const char *ptr);
 /* The n morph weights node `node_index` draws mesh `mesh` with: the
- * node's weights, else the mesh's, else zeros. */
+ * animation's (sr_load_desc's pose), else the node's weights, else the
+ * mesh's, else zeros. */
 sr_result sr__gltf_node_weights(gltf_doc *d, long node_index, long mesh, float *out, size_t n);
 /* p's positions, normals and tangents moved by src's targets at the
  * given weights, into new arrays the scene owns (p's are left when every
@@ -261,5 +278,14 @@ sr_result sr__gltf_read_lights(gltf_doc *d);
 sr_result sr__gltf_place_light(gltf_doc *d, const json_t *node, const char *ptr, long node_index,
                                const float world[16]);
 void sr__gltf_lights_done(gltf_doc *d);
+
+/* gltf_animation.c: /animations checked and listed in scene->animations;
+ * with sr_load_desc's SR_POSE_ANIMATION, the one it names sampled at its
+ * time into d->pose, for the node walk. */
+sr_result sr__gltf_read_animations(gltf_doc *d);
+/* Node `node`'s morph weights as the animation sets them (*count of
+ * them), or NULL when it does not set them (sr__gltf_node_weights then
+ * takes the node's or the mesh's). */
+const float *sr__gltf_node_pose_weights(const gltf_doc *d, long node, size_t *count);
 
 #endif

@@ -137,6 +137,14 @@ sr_result sr__gltf_node_weights(gltf_doc *d, long node_index, long mesh, float *
     for (size_t i = 0; i < n; i++) {
         out[i] = 0;
     }
+    /* An animation's weights channel, sampled for this node, comes first
+     * (gltf_animation.c checked it holds one weight per target). */
+    size_t animated;
+    const float *sampled = sr__gltf_node_pose_weights(d, node_index, &animated);
+    if (sampled && animated == n) {
+        memcpy(out, sampled, n * sizeof *out);
+        return SR_OK;
+    }
     json_t *node = json_array_get(json_object_get(d->root, "nodes"), (size_t)node_index);
     snprintf(ptr, sizeof ptr, "/nodes/%ld", node_index);
     sr_result r = weights_of(d, node, ptr, n, out, &found);

@@ -6,6 +6,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -377,4 +378,21 @@ bool sr__base64_decode(const char *s, size_t n, uint8_t **out, size_t *size)
     *out = b;
     *size = o;
     return true;
+}
+
+sr_result sr__check_load_pose(const sr_load_desc *desc, const char *name, sr_io_error *err)
+{
+    if (!desc) {
+        return SR_OK;
+    }
+    if (desc->pose != SR_POSE_DEFAULT && desc->pose != SR_POSE_REST &&
+        desc->pose != SR_POSE_ANIMATION) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "sr_load_desc.pose %d is not an sr_load_pose", (int)desc->pose);
+    }
+    if (desc->pose == SR_POSE_ANIMATION && !isfinite(desc->animation_time)) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "sr_load_desc.animation_time is not finite");
+    }
+    return SR_OK;
 }

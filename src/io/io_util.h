@@ -108,4 +108,9 @@ void sr__format_bytes(uint64_t n, char *buf, size_t size);
  * character is not base64; false only when out of memory. */
 bool sr__base64_decode(const char *s, size_t n, uint8_t **out, size_t *size);
 
+/* sr_load_desc's pose fields checked (desc may be NULL): the pose one of
+ * sr_load_pose's, a finite time.  The animation's index is the glTF
+ * reader's to check, against the file's animations. */
+sr_result sr__check_load_pose(const sr_load_desc *desc, const char *name, sr_io_error *err);
+
 #endif

@@ -195,6 +195,10 @@ static sr_result load_malloc_mesh(sr_context *ctx, const char *path, const sr_lo
                                   sr_mesh *out, sr_io_error *err)
 {
     sr_model_format format = desc ? desc->format : SR_FORMAT_AUTO;
+    sr_result res = sr__check_load_pose(desc, path, err);
+    if (res != SR_OK) {
+        return res;
+    }
     if (format == SR_FORMAT_AUTO) {
         format = format_from_extension(path);
     }
@@ -206,6 +210,14 @@ static sr_result load_malloc_mesh(sr_context *ctx, const char *path, const sr_lo
                            "sr_load_desc.variant: %d, but the file has 0 variants (only glTF "
                            "files read by softrast's own reader have them)",
                            desc->variant);
+    }
+    /* Only the glTF reader poses a model; another format has no
+     * animation to sample, which the caller asked for. */
+    if (desc && desc->pose == SR_POSE_ANIMATION &&
+        (format != SR_FORMAT_GLTF || !sr_io_have_gltf())) {
+        return sr__io_fail(err, SR_INVALID_ARG, path, 0,
+                           "sr_load_desc.pose asks for an animation, which only glTF files "
+                           "have");
     }
     switch (format) {
     case SR_FORMAT_OBJ:
@@ -233,7 +245,7 @@ static sr_result load_malloc_mesh(sr_context *ctx, const char *path, const sr_lo
      * here, before Assimp could wait on it for a writer. */
     FILE *f;
     unsigned long long size;
-    sr_result res = sr__open_regular(path, "a model file", &f, &size, err);
+    res = sr__open_regular(path, "a model file", &f, &size, err);
     if (res != SR_OK) {
         return res;
     }

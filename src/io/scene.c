@@ -36,6 +36,9 @@ sr_scene *sr__scene_new(void)
         free(s);
         s = NULL;
     }
+    if (s) {
+        s->animation = -1;   /* the rest pose */
+    }
     return s;
 }
 
@@ -477,6 +480,10 @@ sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t *data, 
                            !ctx ? "no context given" : !out ? "no output scene given"
                                                             : "data must not be NULL");
     }
+    sr_result r = sr__check_load_pose(desc, name, err);
+    if (r != SR_OK) {
+        return r;
+    }
     return parse_gltf_at(ctx, name, data, size, desc, false, out, err);
 }
 
@@ -511,13 +518,17 @@ sr_result sr_load_scene(sr_context *ctx, const char *path, const sr_load_desc *d
                            !path ? "no file name given" : !ctx ? "no context given"
                                                                : "no output scene given");
     }
+    sr_result r = sr__check_load_pose(desc, path, err);
+    if (r != SR_OK) {
+        return r;
+    }
     sr_model_format format = desc ? desc->format : SR_FORMAT_AUTO;
     if (format == SR_FORMAT_GLTF ||
         (format == SR_FORMAT_AUTO && (is_gltf_name(path) || is_gltf_content(path)))) {
         return sr__load_gltf_scene(ctx, path, desc, false, out, err);
     }
     sr_mesh mesh;
-    sr_result r = sr_load_mesh(ctx, path, desc, &mesh, err);
+    r = sr_load_mesh(ctx, path, desc, &mesh, err);
     if (r != SR_OK) {
         return r;
     }

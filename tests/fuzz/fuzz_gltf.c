@@ -3,7 +3,8 @@
  * every primitive's indices are in range, whose arrays hold vertex_count
  * entries (ASan checks the reads), whose materials exist and whose
  * texture slots point to the scene's own textures, and whose lights the
- * PBR program accepts.  Relative URIs name
+ * PBR program accepts; a file with animations parses again posed by
+ * them, to the same draws.  Relative URIs name
  * files in the current directory: none by default.
  * scripts/fuzz.sh fuzz_gltf SECONDS. */
 #include "fuzz_mesh.h"
@@ -73,6 +74,29 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         sr_pbr *p = NULL;
         FUZZ_CHECK(sr_make_pbr_program(fuzz_context(), &d, &p) == SR_OK);
         sr_destroy_pbr_program(fuzz_context(), p);
+    }
+    /* A file with animations, read again posed by its first two at
+     * times before, inside and after their keys: the same draws, from
+     * the same nodes, with finite sampled values where the keys are. */
+    for (size_t a = 0; a < s->animation_count && a < 2; a++) {
+        const sr_scene_animation *anim = &s->animations[a];
+        FUZZ_CHECK(anim->name != NULL && anim->channel_count > 0);
+        FUZZ_CHECK(anim->duration >= 0.0f);
+        const float times[3] = { -1.0f, anim->duration * 0.37f, anim->duration + 1.0f };
+        for (int k = 0; k < 3; k++) {
+            sr_load_desc desc = { .pose = SR_POSE_ANIMATION, .animation = (int)a,
+                                  .animation_time = times[k] };
+            sr_scene *posed = NULL;
+            memset(&err, 0, sizeof err);
+            r = sr_parse_gltf(fuzz_context(), "fuzz.gltf", data, size, &desc, &posed, &err);
+            FUZZ_CHECK(r == SR_OK && posed != NULL);
+            FUZZ_CHECK(posed->animation == (int)a);
+            FUZZ_CHECK(posed->primitive_count == s->primitive_count);
+            for (size_t i = 0; i < s->primitive_count; i++) {
+                FUZZ_CHECK(posed->primitives[i].node == s->primitives[i].node);
+            }
+            sr_destroy_scene(fuzz_context(), posed);
+        }
     }
     sr_destroy_scene(fuzz_context(), s);
     return 0;

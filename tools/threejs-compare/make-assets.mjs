@@ -426,4 +426,56 @@ writeFileSync(join(out, 'surface-spheres.glb'), glb(sphere(0.5, 64, 32, true),
     surface, ['KHR_materials_anisotropy', 'KHR_materials_iridescence']));
 writeFileSync(join(out, 'skinned-figure.glb'), figure());
 
+// An animated asset (glTF animations): a hub turning about +y (LINEAR
+// rotations, slerped) carries a cube squashed and stretched by STEP
+// scales and a sphere lifted along a CUBICSPLINE path.  ASSET.pose
+// beside it says which animation and time run.sh poses it at.
+function animatedGlb() {
+    const arrays = [];
+    const add = (data, fields) => { arrays.push([data, fields]); return arrays.length - 1; };
+    const f32 = (values, type, count, extra = {}) =>
+        add(new Float32Array(values), { componentType: 5126, count, type, ...extra });
+    const meshes = [cube(0.4), sphere(0.3, 32, 16)].map((sh, i) => {
+        const lo = [0, 1, 2].map((k) => Math.min(...sh.pos.filter((_, j) => j % 3 === k)));
+        const hi = [0, 1, 2].map((k) => Math.max(...sh.pos.filter((_, j) => j % 3 === k)));
+        const n = sh.pos.length / 3;
+        const attributes = { POSITION: f32(sh.pos, 'VEC3', n, { min: lo, max: hi }),
+                             NORMAL: f32(sh.nrm, 'VEC3', n) };
+        const indices = add(new Uint16Array(sh.idx),
+                            { componentType: 5123, count: sh.idx.length, type: 'SCALAR' });
+        return { primitives: [{ attributes, indices, material: i }] };
+    });
+    const key = (times) => f32(times, 'SCALAR', times.length,
+                               { min: [times[0]], max: [times[times.length - 1]] });
+    const turn = (deg) => [0, Math.sin((deg * Math.PI) / 360), 0, Math.cos((deg * Math.PI) / 360)];
+    const spinIn = key([0, 1, 2]);
+    const spinOut = f32([...turn(0), ...turn(90), ...turn(200)], 'VEC4', 3);
+    const squashIn = key([0, 0.5, 1.5]);
+    const squashOut = f32([1, 1, 1, 0.7, 1.5, 0.7, 1.3, 0.6, 1.3], 'VEC3', 3);
+    const liftIn = key([0, 2]);
+    // in-tangent, value, out-tangent a key (units a second)
+    const liftOut = f32([0, 0, 0, 1.1, 0, 0, 0, 1.5, 0, 0, -1, 0, 1.1, 0.9, 0, 0, 0, 0], 'VEC3', 6);
+    return glbOf({
+        asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
+        scene: 0,
+        scenes: [{ nodes: [0] }],
+        nodes: [{ name: 'hub', children: [1, 2] }, { name: 'block', mesh: 0 },
+                { name: 'ball', mesh: 1, translation: [1.1, 0, 0] }],
+        meshes,
+        materials: [{ name: 'blue', pbrMetallicRoughness: pbr([0.1, 0.3, 0.9], 0, 0.4) },
+                    { name: 'gold', pbrMetallicRoughness: pbr([1, 0.75, 0.3], 1, 0.3) }],
+        animations: [{
+            name: 'spin',
+            samplers: [{ input: spinIn, output: spinOut },
+                       { input: squashIn, output: squashOut, interpolation: 'STEP' },
+                       { input: liftIn, output: liftOut, interpolation: 'CUBICSPLINE' }],
+            channels: [{ sampler: 0, target: { node: 0, path: 'rotation' } },
+                       { sampler: 1, target: { node: 1, path: 'scale' } },
+                       { sampler: 2, target: { node: 2, path: 'translation' } }],
+        }],
+    }, arrays);
+}
+writeFileSync(join(out, 'animated-hub.glb'), animatedGlb());
+writeFileSync(join(out, 'animated-hub.glb.pose'), '0 1.25\n');
+
 writeFileSync(join(out, 'sky.hdr'), sky(256, 128));

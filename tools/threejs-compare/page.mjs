@@ -104,6 +104,19 @@ window.renderAsset = async (o) => {
 
     const gltf = await new GLTFLoader().loadAsync(o.model);
     scene.add(gltf.scene);
+    if (o.animation !== null) {
+        // The pose at o.time: played once and held at the end, as
+        // softrast clamps; before the first key three.js's interpolants
+        // hold the first.
+        const clip = gltf.animations[o.animation];
+        if (!clip) throw new Error(`no animation ${o.animation}`);
+        const mixer = new THREE.AnimationMixer(gltf.scene);
+        const action = mixer.clipAction(clip);
+        action.setLoop(THREE.LoopOnce, 1);
+        action.clampWhenFinished = true;
+        action.play();
+        mixer.setTime(o.time);
+    }
     const pts = worldPoints(gltf.scene);
     const box = new THREE.Box3().setFromPoints(pts);
     const sphere = box.getBoundingSphere(new THREE.Sphere());

@@ -7,6 +7,8 @@
 //        [--background #rrggbb] [--env-intensity K] [--lights none|key|rig]
 //        [--light-scale S]
 //        [--camera eye=X,Y,Z[,target=X,Y,Z]] [--aa on|off] [--chromium PATH]
+//        [--animation N --time SECONDS]   (the file's animation N at that time,
+//                                          AnimationMixer, clamped at its ends)
 import { readFileSync, writeFileSync, existsSync } from 'node:fs';
 import { dirname, extname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -23,7 +25,8 @@ function usage(msg) {
 function parseArgs(argv) {
     const o = { width: 256, height: 256, fov: 35, tonemap: 'neutral', exposure: 0, environment: null,
                 background: '#1d2230', envIntensity: 1, lights: 'none', lightScale: 1.6, antialias: true, eye: null, target: null,
-                chromium: process.env.CHROMIUM || '/usr/bin/chromium', model: null, output: null };
+                chromium: process.env.CHROMIUM || '/usr/bin/chromium', model: null, output: null,
+                animation: null, time: 0 };
     const num = (name, v) => {
         const x = Number(v);
         if (v === undefined || !Number.isFinite(x)) usage(`${name}: expected a number, got '${v}'`);
@@ -59,6 +62,8 @@ function parseArgs(argv) {
         } else if (a === '--light-scale') o.lightScale = num(a, take());
         else if (a === '--aa') o.antialias = take() !== 'off';
         else if (a === '--chromium') o.chromium = take();
+        else if (a === '--animation') o.animation = num(a, take());
+        else if (a === '--time') o.time = num(a, take());
         else if (a === '--camera') {
             for (const kv of take().split(/,(?=[a-z]+=)/)) {
                 const [k, val] = kv.split('=');

@@ -5,7 +5,9 @@
 #
 #   tools/threejs-compare/run.sh [options] [ASSET.glb|.gltf ...] [-- SOFTRAST-OPTIONS]
 #
-# Without assets, the test assets of make-assets.mjs.  Options (given to
+# Without assets, the test assets of make-assets.mjs; an animated one is
+# posed by the "N SECONDS" of ASSET.pose beside it (--animation N --time
+# SECONDS to both renderers).  Options (given to
 # both renderers; each is left out of softrast's command when its `render
 # --help` does not list it, and the table says so):
 #   --size WxH          image size (default 256x256)
@@ -93,9 +95,17 @@ rows=
 webgl=
 for asset in $assets; do
     name=$(basename "$asset"); name=${name%.*}
+    # ASSET.pose beside an animated asset: "N SECONDS", its animation N at
+    # that time for both renderers.
+    pose=
+    if [ -f "$asset.pose" ]; then
+        read -r anim_n anim_t < "$asset.pose"
+        pose="--animation $anim_n --time $anim_t"
+    fi
     # shellcheck disable=SC2086 # word splitting of the option lists is meant
-    "$softrast" render "$asset" $sr_opts "$@" -o "$out/$name-softrast.png" >&2
-    info=$(node "$here/render-three.mjs" "$asset" -o "$out/$name-three.png" --size "$size" \
+    "$softrast" render "$asset" $sr_opts $pose "$@" -o "$out/$name-softrast.png" >&2
+    # shellcheck disable=SC2086
+    info=$(node "$here/render-three.mjs" "$asset" $pose -o "$out/$name-three.png" --size "$size" \
         --tonemap "$tonemap" --exposure "$exposure" --environment "$environment" \
         --background "$background" --env-intensity "$env_intensity" --lights "$lights" \
         --light-scale "$light_scale")

@@ -1,0 +1,118 @@
+"""softrast.load(path, animation=..., time=...): a glTF file posed by one
+of its animations at a time, the file's animations listed on the Scene,
+and the arguments checked."""
+
+import base64
+import json
+import math
+import pickle
+
+import numpy as np
+import pytest
+import softrast
+
+from conftest import load_gltf
+
+
+def write_animated(path):
+    """A triangle on node 0, moved by "slide" (LINEAR translation,
+    (0, 0, 0) at 0 s to (4, 2, 0) at 2 s) and turned by "turn" (LINEAR
+    rotation, identity at 0 s to 90 degrees about +z at 1 s)."""
+    h = math.sqrt(0.5)
+    arrays = [np.array([0, 0, 0, 1, 0, 0, 0, 1, 0], np.float32),
+              np.array([0, 2], np.float32),
+              np.array([0, 0, 0, 4, 2, 0], np.float32),
+              np.array([0, 1], np.float32),
+              np.array([0, 0, 0, 1, 0, 0, h, h], np.float32)]
+    kinds = [("VEC3", 3), ("SCALAR", 2), ("VEC3", 2), ("SCALAR", 2), ("VEC4", 2)]
+    data, views, accessors = b"", [], []
+    for a, (kind, count) in zip(arrays, kinds):
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": a.nbytes})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5126,
+                          "count": count, "type": kind})
+        data += a.astype("<f4").tobytes()
+    doc = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
+                     + base64.b64encode(data).decode()}],
+        "bufferViews": views, "accessors": accessors,
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": [{"mesh": 0, "translation": [9, 9, 9]}],
+        "scenes": [{"nodes": [0]}],
+        "animations": [
+            {"name": "slide", "samplers": [{"input": 1, "output": 2}],
+             "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]},
+            {"name": "turn", "samplers": [{"input": 3, "output": 4}],
+             "channels": [{"sampler": 0, "target": {"node": 0, "path": "rotation"}}]},
+        ],
+    }
+    path.write_text(json.dumps(doc))
+    return path
+
+
+def world(scene):
+    return np.asarray(scene.instances[0].pose, np.float64)
+
+
+def test_the_animations_are_listed_and_the_rest_pose_is_the_default(tmp_path):
+    path = write_animated(tmp_path / "a.gltf")
+    scene = load_gltf(path)
+    assert scene.animations == [softrast.Animation("slide", 1, 2.0),
+                                softrast.Animation("turn", 1, 1.0)]
+    assert scene.animation is None and scene.time == 0.0
+    assert world(scene)[:3, 3] == pytest.approx([9, 9, 9])
+
+
+@pytest.mark.parametrize("time, where", [(0.5, (1, 0.5, 0)), (1.0, (2, 1, 0)),
+                                         (-1.0, (0, 0, 0)), (5.0, (4, 2, 0))])
+def test_a_translation_is_sampled_and_clamped(tmp_path, time, where):
+    path = write_animated(tmp_path / "a.gltf")
+    scene = load_gltf(path) and softrast.load(path, animation="slide", time=time)
+    assert scene.animation == 0 and scene.time == time
+    assert world(scene)[:3, 3] == pytest.approx(where, abs=1e-6)
+    # The same pose by index.
+    assert world(softrast.load(path, animation=0, time=time)) == pytest.approx(world(scene))
+
+
+def test_a_rotation_is_slerped(tmp_path):
+    path = write_animated(tmp_path / "a.gltf")
+    load_gltf(path)
+    scene = softrast.load(path, animation=1, time=0.5)
+    m = world(scene)
+    h = math.sqrt(0.5)
+    assert m[:3, 0] == pytest.approx([h, h, 0], abs=1e-6)   # x turned 45 degrees
+    assert m[:3, 3] == pytest.approx([9, 9, 9])             # translation its own
+
+
+def test_a_posed_scene_pickles_in_its_pose(tmp_path):
+    path = write_animated(tmp_path / "a.gltf")
+    load_gltf(path)
+    scene = softrast.load(path, animation="slide", time=1.0)
+    source = scene.instances[0]._source[0]
+    again = pickle.loads(pickle.dumps(source))
+    assert again.pose == (0, 1.0)
+
+
+def test_bad_arguments_are_refused(tmp_path):
+    path = write_animated(tmp_path / "a.gltf")
+    load_gltf(path)
+    with pytest.raises(ValueError, match="has no animation named 'walk'.*'slide', 'turn'"):
+        softrast.load(path, animation="walk")
+    with pytest.raises(ValueError, match="sr_load_desc.animation 2 is not an animation of the "
+                                         "file \\(it has 2\\)"):
+        softrast.load(path, animation=2)
+    with pytest.raises(ValueError, match="animation: -1 is not an index"):
+        softrast.load(path, animation=-1)
+    with pytest.raises(TypeError, match="animation: expected an index or a name"):
+        softrast.load(path, animation=1.5)
+    with pytest.raises(TypeError, match="animation: expected an index or a name"):
+        softrast.load(path, animation=True)
+    with pytest.raises(ValueError, match="time: nan is not finite"):
+        softrast.load(path, animation=0, time=float("nan"))
+    with pytest.raises(ValueError, match="time: a time into an animation: give animation too"):
+        softrast.load(path, time=1.0)
+    obj = tmp_path / "t.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    with pytest.raises(ValueError, match="only glTF files have"):
+        softrast.load(obj, animation=0)
+    assert softrast.load(obj).animations == []

@@ -1,0 +1,425 @@
+/*
+ * gltf_animation.c - io stage: glTF animations for the glTF reader.
+ * Consumes /animations (channels, samplers and their accessors), checked
+ * whole; produces the list on sr_scene.animations and, when sr_load_desc
+ * asks for one at a time, each targeted node's sampled translation,
+ * rotation, scale or morph weights (d->pose), which gltf.c puts in place
+ * of the node's own before its world matrix is made.  Called by gltf.c on
+ * the reading thread; internal to src/io.
+ */
+#include "io/gltf.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { INTERP_LINEAR, INTERP_STEP, INTERP_CUBIC };
+
+/* A sampler's keys decoded: count times, and per key `width` floats (3
+ * for a VEC3, 4 for a VEC4, the morph target count for weights; times 3
+ * for CUBICSPLINE: in-tangent, value, out-tangent). */
+typedef struct gltf_sampler {
+    float *times;
+    size_t count;
+    float *values;
+    size_t value_count;        /* elements of the output accessor */
+    gltf_accessor_info out;    /* the output accessor's type */
+    int interp;
+} gltf_sampler;
+
+static const char *const path_names[] = { "translation", "rotation", "scale", "weights" };
+enum { PATH_TRANSLATION, PATH_ROTATION, PATH_SCALE, PATH_WEIGHTS, PATH_COUNT };
+
+static sr_result read_sampler(gltf_doc *d, const json_t *obj, const char *ptr, gltf_sampler *s)
+{
+    sr_result r;
+    if (!json_is_object(obj)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+    }
+    long input = -1, output = -1;
+    if ((r = sr__gltf_index(d, obj, ptr, "input", (size_t)-1 / 2, true, &input)) != SR_OK ||
+        (r = sr__gltf_index(d, obj, ptr, "output", (size_t)-1 / 2, true, &output)) != SR_OK) {
+        return r;
+    }
+    json_t *interp = json_object_get(obj, "interpolation");
+    const char *name = json_is_string(interp) ? json_string_value(interp) : NULL;
+    s->interp = !interp                            ? INTERP_LINEAR
+              : !name                              ? -1
+              : strcmp(name, "LINEAR") == 0        ? INTERP_LINEAR
+              : strcmp(name, "STEP") == 0          ? INTERP_STEP
+              : strcmp(name, "CUBICSPLINE") == 0   ? INTERP_CUBIC : -1;
+    if (s->interp < 0) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s/interpolation: expected LINEAR, STEP or CUBICSPLINE", ptr);
+    }
+    char iptr[GLTF_PTR], optr[GLTF_PTR];
+    snprintf(iptr, sizeof iptr, "%s/input", ptr);
+    snprintf(optr, sizeof optr, "%s/output", ptr);
+    gltf_accessor_info in;
+    if ((r = sr__gltf_read_floats(d, input, iptr, 1u << 1, &in, &s->times)) != SR_OK) {
+        return r;
+    }
+    if (in.component_type != 5126 || in.normalized) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld is not a SCALAR of floats (key "
+                             "times in seconds)", iptr, input);
+    }
+    s->count = in.count;
+    for (size_t k = 0; k < s->count; k++) {
+        if (s->times[k] < 0 || (k > 0 && !(s->times[k] > s->times[k - 1]))) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                 "%s: key %zu is %g s, %s: key times must be at least 0 and "
+                                 "strictly increase", iptr, k, s->times[k],
+                                 s->times[k] < 0 ? "negative" : "not after the key before");
+        }
+    }
+    if (s->interp == INTERP_CUBIC && s->count < 2) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: CUBICSPLINE needs at least two keys", iptr);
+    }
+    if ((r = sr__gltf_read_floats(d, output, optr, 1u << 1 | 1u << 3 | 1u << 4, &s->out,
+                                  &s->values)) != SR_OK) {
+        return r;
+    }
+    s->value_count = s->out.count;
+    return SR_OK;
+}
+
+/* The morph targets of node's mesh (its first primitive's, which every
+ * primitive must match), 0 when it has none. */
+static size_t morph_target_count(const gltf_doc *d, const json_t *node)
+{
+    json_t *mesh = json_array_get(json_object_get(d->root, "meshes"),
+                                  (size_t)json_integer_value(json_object_get(node, "mesh")));
+    json_t *prim = json_array_get(json_object_get(mesh, "primitives"), 0);
+    return json_is_integer(json_object_get(node, "mesh"))
+               ? json_array_size(json_object_get(prim, "targets")) : 0;
+}
+
+/* Checks channel c's target and its sampler's output against each other;
+ * *node, *path and *width (floats a key) for sampling. */
+static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
+                               const gltf_sampler *samplers, size_t sampler_count,
+                               unsigned char *targeted, long *sampler, long *node, int *path,
+                               size_t *width)
+{
+    sr_result r;
+    json_t *target, *nodes = json_object_get(d->root, "nodes");
+    size_t node_count = json_array_size(nodes);
+    *node = -1;
+    if (!json_is_object(ch)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+    }
+    if ((r = sr__gltf_index(d, ch, ptr, "sampler", sampler_count, true, sampler)) != SR_OK ||
+        (r = sr__gltf_object(d, ch, ptr, "target", &target)) != SR_OK) {
+        return r;
+    }
+    char tptr[GLTF_PTR];
+    snprintf(tptr, sizeof tptr, "%s/target", ptr);
+    if (!target) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: missing", tptr);
+    }
+    json_t *p = json_object_get(target, "path");
+    const char *name = json_is_string(p) ? json_string_value(p) : "";
+    for (*path = 0; *path < PATH_COUNT && strcmp(name, path_names[*path]) != 0; ++*path) {
+    }
+    /* Another path (KHR_animation_pointer's "pointer") is an extension's
+     * to read: left alone, as a node without `node` is. */
+    if (*path == PATH_COUNT && !json_is_string(p)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s/path: expected translation, rotation, scale or weights", tptr);
+    }
+    if ((r = sr__gltf_index(d, target, tptr, "node", node_count ? node_count : 1, false,
+                            node)) != SR_OK) {
+        return r;
+    }
+    if (json_object_get(target, "node") && node_count == 0) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/node: there are no nodes", tptr);
+    }
+    if (*path == PATH_COUNT || *node < 0) {
+        sr__gltf_warn(d, "%s: %s, not animated", tptr,
+                      *path == PATH_COUNT ? "a path an extension defines" : "no node");
+        *node = -1;
+        return SR_OK;
+    }
+    json_t *n = json_array_get(nodes, (size_t)*node);
+    if (json_object_get(n, "matrix")) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s/node: node %ld has a matrix, which glTF does not animate (its "
+                             "animated nodes have translation, rotation and scale)", tptr, *node);
+    }
+    if (targeted[*node] & (1u << *path)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s: node %ld's %s is animated by another channel of this "
+                             "animation", tptr, *node, path_names[*path]);
+    }
+    targeted[*node] |= (unsigned char)(1u << *path);
+    const gltf_sampler *s = &samplers[*sampler];
+    char sptr[GLTF_PTR];
+    snprintf(sptr, sizeof sptr, "%s/sampler", ptr);
+    static const int components[] = { 3, 4, 3, 1 };
+    if (s->out.components != components[*path]) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: its output has %d components an element; "
+                             "%s takes %s", sptr, s->out.components, path_names[*path],
+                             *path == PATH_ROTATION ? "VEC4" : *path == PATH_WEIGHTS ? "SCALAR"
+                                                                                     : "VEC3");
+    }
+    bool is_float = s->out.component_type == 5126;
+    if ((*path == PATH_TRANSLATION || *path == PATH_SCALE) && !is_float) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: its output is not of floats, which %s takes",
+                             sptr, path_names[*path]);
+    }
+    if (!is_float && !s->out.normalized) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s: its output is of integers not normalized; %s takes floats or "
+                             "normalized integers", sptr, path_names[*path]);
+    }
+    *width = (size_t)components[*path];
+    if (*path == PATH_WEIGHTS) {
+        *width = morph_target_count(d, n);
+        if (*width == 0) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                 "%s/node: node %ld has no mesh with morph targets to weigh",
+                                 tptr, *node);
+        }
+    }
+    /* Elements a key: one vector, or a weight per target; three of them
+     * with CUBICSPLINE's tangents. */
+    size_t per_key = (*path == PATH_WEIGHTS ? *width : 1) * (s->interp == INTERP_CUBIC ? 3 : 1);
+    if (s->value_count / per_key != s->count || s->value_count % per_key != 0) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s: its output has %zu elements; %zu keys of %s%s need %zu", sptr,
+                             s->value_count, s->count, path_names[*path],
+                             s->interp == INTERP_CUBIC ? " (CUBICSPLINE: with tangents)" : "",
+                             s->count * per_key);
+    }
+    return SR_OK;
+}
+
+/* The shorter way between unit quaternions a and b at s in [0, 1],
+ * normalized (spec's appendix: slerp). */
+static void slerp(const float *a, const float *b, double s, float *out)
+{
+    double dot = 0, sign = 1;
+    for (int c = 0; c < 4; c++) {
+        dot += (double)a[c] * b[c];
+    }
+    if (dot < 0) {
+        dot = -dot;
+        sign = -1;
+    }
+    double wa = 1 - s, wb = s;
+    /* Nearly the same rotation: sin(theta) would divide by almost 0, and
+     * the chord is the arc to float's precision. */
+    if (dot < 0.9995) {
+        double theta = acos(dot), st = sin(theta);
+        wa = sin((1 - s) * theta) / st;
+        wb = sin(s * theta) / st;
+    }
+    double q[4], len = 0;
+    for (int c = 0; c < 4; c++) {
+        q[c] = wa * a[c] + wb * sign * b[c];
+        len += q[c] * q[c];
+    }
+    len = sqrt(len);
+    for (int c = 0; c < 4; c++) {
+        out[c] = len > 0 ? (float)(q[c] / len) : (c == 3);
+    }
+}
+
+static void normalize4(float *q)
+{
+    double len = sqrt((double)q[0] * q[0] + (double)q[1] * q[1] + (double)q[2] * q[2] +
+                      (double)q[3] * q[3]);
+    for (int c = 0; c < 4; c++) {
+        q[c] = len > 0 ? (float)(q[c] / len) : (float)(c == 3);
+    }
+}
+
+/* Key k's value (width floats) of s. */
+static const float *key_value(const gltf_sampler *s, size_t k, size_t width)
+{
+    return s->interp == INTERP_CUBIC ? s->values + (3 * k + 1) * width : s->values + k * width;
+}
+
+/* Sampler s at time t into out (width floats): clamped to the first and
+ * the last key, else STEP, LINEAR (slerp for rotations) or the cubic
+ * Hermite spline of the spec's appendix; rotations normalized. */
+static void sample(const gltf_sampler *s, bool rotation, size_t width, float t, float *out)
+{
+    size_t k = 0;
+    if (!(t > s->times[0])) {
+        memcpy(out, key_value(s, 0, width), width * sizeof *out);
+    } else if (t >= s->times[s->count - 1]) {
+        memcpy(out, key_value(s, s->count - 1, width), width * sizeof *out);
+    } else {
+        /* The last key at or before t: binary search, keys strictly increase. */
+        size_t lo = 0, hi = s->count - 1;
+        while (hi - lo > 1) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (s->times[mid] <= t) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        k = lo;
+        double t0 = s->times[k], t1 = s->times[k + 1], td = t1 - t0, u = (t - t0) / td;
+        const float *v0 = key_value(s, k, width), *v1 = key_value(s, k + 1, width);
+        if (s->interp == INTERP_STEP) {
+            memcpy(out, v0, width * sizeof *out);
+        } else if (s->interp == INTERP_LINEAR && rotation) {
+            slerp(v0, v1, u, out);
+        } else if (s->interp == INTERP_LINEAR) {
+            for (size_t c = 0; c < width; c++) {
+                out[c] = (float)((1 - u) * v0[c] + u * v1[c]);
+            }
+        } else {
+            /* p(u) = (2u^3 - 3u^2 + 1) v_k + td (u^3 - 2u^2 + u) b_k
+             *      + (-2u^3 + 3u^2) v_k+1 + td (u^3 - u^2) a_k+1,
+             * b the out-tangents, a the in-tangents, in units per second. */
+            const float *b0 = v0 + width, *a1 = v1 - width;
+            double u2 = u * u, u3 = u2 * u;
+            double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u;
+            double h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+            for (size_t c = 0; c < width; c++) {
+                out[c] = (float)(h00 * v0[c] + td * h10 * b0[c] + h01 * v1[c] +
+                                 td * h11 * a1[c]);
+            }
+        }
+    }
+    if (rotation) {
+        normalize4(out);
+    }
+}
+
+/* A channel's sampler s at time t into node's pose: its path animated. */
+static sr_result apply_channel(gltf_doc *d, const gltf_sampler *s, long node, int path,
+                               size_t width, float t, const char *ptr)
+{
+    gltf_node_pose *p = &d->pose[node];
+    float *dst = path == PATH_TRANSLATION ? p->translation
+               : path == PATH_ROTATION    ? p->rotation
+               : path == PATH_SCALE       ? p->scale : NULL;
+    if (!dst) {
+        dst = sr__scene_alloc(d->scene, width * sizeof *dst);
+        if (!dst) {
+            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
+        p->weights = dst;
+        p->weight_count = width;
+    }
+    sample(s, path == PATH_ROTATION, width, t, dst);
+    p->animated |= 1u << path;
+    return SR_OK;
+}
+
+/* Animation `index` (its JSON obj at ptr): checked, listed in *out, and
+ * applied at d->desc's time when `apply`. */
+static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr, bool apply,
+                                unsigned char *targeted, sr_scene_animation *out)
+{
+    sr_result r;
+    if (!json_is_object(obj)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
+    }
+    json_t *channels, *samplers, *name = json_object_get(obj, "name");
+    size_t nc, ns;
+    if ((r = sr__gltf_array(d, obj, ptr, "channels", &channels, &nc)) != SR_OK ||
+        (r = sr__gltf_array(d, obj, ptr, "samplers", &samplers, &ns)) != SR_OK) {
+        return r;
+    }
+    if (nc == 0 || ns == 0) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: missing or empty", ptr,
+                             nc == 0 ? "channels" : "samplers");
+    }
+    if (name && !json_is_string(name)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/name: not a string", ptr);
+    }
+    const char *text = name ? json_string_value(name) : "";
+    char *copy = sr__scene_alloc(d->scene, strlen(text) + 1);
+    gltf_sampler *s = calloc(ns, sizeof *s);
+    if (!copy || !s) {
+        free(s);
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    memcpy(copy, text, strlen(text) + 1);
+    out->name = copy;
+    out->channel_count = nc;
+    out->duration = 0;
+    for (size_t i = 0; i < ns && r == SR_OK; i++) {
+        char sptr[GLTF_PTR];
+        snprintf(sptr, sizeof sptr, "%s/samplers/%zu", ptr, i);
+        r = read_sampler(d, json_array_get(samplers, i), sptr, &s[i]);
+        if (r == SR_OK && s[i].times[s[i].count - 1] > out->duration) {
+            out->duration = s[i].times[s[i].count - 1];
+        }
+    }
+    for (size_t i = 0; i < nc && r == SR_OK; i++) {
+        char cptr[GLTF_PTR];
+        snprintf(cptr, sizeof cptr, "%s/channels/%zu", ptr, i);
+        long sampler = -1, node = -1;
+        int path = 0;
+        size_t width = 0;
+        r = check_channel(d, json_array_get(channels, i), cptr, s, ns, targeted, &sampler, &node,
+                          &path, &width);
+        if (r == SR_OK && apply && node >= 0) {
+            r = apply_channel(d, &s[sampler], node, path, width, d->desc->animation_time, cptr);
+        }
+    }
+    for (size_t i = 0; i < ns; i++) {
+        free(s[i].times);
+        free(s[i].values);
+    }
+    free(s);
+    return r;
+}
+
+sr_result sr__gltf_read_animations(gltf_doc *d)
+{
+    json_t *anims;
+    size_t n, node_count = json_array_size(json_object_get(d->root, "nodes"));
+    sr_result r = sr__gltf_array(d, d->root, "", "animations", &anims, &n);
+    if (r != SR_OK) {
+        return r;
+    }
+    d->scene->animation = -1;
+    bool posed = d->desc && d->desc->pose == SR_POSE_ANIMATION;
+    if (posed && (d->desc->animation < 0 || (size_t)d->desc->animation >= n)) {
+        return sr__gltf_fail(d, SR_INVALID_ARG,
+                             "sr_load_desc.animation %d is not an animation of the file (it has "
+                             "%zu)", d->desc->animation, n);
+    }
+    if (n == 0) {
+        return SR_OK;
+    }
+    d->scene->animations = sr__scene_alloc(d->scene, n * sizeof *d->scene->animations);
+    unsigned char *targeted = malloc(node_count ? node_count : 1);
+    d->pose = posed ? sr__scene_alloc(d->scene, (node_count ? node_count : 1) * sizeof *d->pose)
+                    : NULL;
+    if (!d->scene->animations || !targeted || (posed && !d->pose)) {
+        free(targeted);
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/animations: out of memory");
+    }
+    d->scene->animation_count = n;
+    for (size_t i = 0; i < n && r == SR_OK; i++) {
+        char ptr[GLTF_PTR];
+        snprintf(ptr, sizeof ptr, "/animations/%zu", i);
+        memset(targeted, 0, node_count ? node_count : 1);
+        r = read_animation(d, json_array_get(anims, i), ptr,
+                           posed && (size_t)d->desc->animation == i, targeted,
+                           &d->scene->animations[i]);
+    }
+    free(targeted);
+    if (r == SR_OK && posed) {
+        d->scene->animation = d->desc->animation;
+        d->scene->animation_time = d->desc->animation_time;
+    }
+    return r;
+}
+
+const float *sr__gltf_node_pose_weights(const gltf_doc *d, long node, size_t *count)
+{
+    const gltf_node_pose *p = d->pose ? &d->pose[node] : NULL;
+    *count = p && p->weights ? p->weight_count : 0;
+    return *count ? p->weights : NULL;
+}
