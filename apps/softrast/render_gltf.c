@@ -288,6 +288,15 @@ static int load_posed(const char *path, const char *animation, float time, sr_co
     return -1;
 }
 
+/* A load that fails leaves no scene behind: the caller frees only the
+ * ones that loaded. */
+static int drop_scene(sr_context *ctx, scene *s, int status)
+{
+    sr_destroy_scene(ctx, s->gltf);
+    s->gltf = NULL;
+    return status;
+}
+
 int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
                      const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
                      scene *s)
@@ -304,7 +313,7 @@ int render_gltf_load(const char *path, bool flat_normals, const char *variant, b
      * primitive given the variant's material. */
     size_t v = variant ? find_variant(path, sc, variant) : 0;
     if (variant && v == 0) {
-        return EXIT_USAGE;
+        return drop_scene(ctx, s, EXIT_USAGE);
     }
     for (size_t i = 0; i < sc->primitive_count; i++) {
         if (sc->primitives[i].variant_materials) {
@@ -319,7 +328,7 @@ int render_gltf_load(const char *path, bool flat_normals, const char *variant, b
     }
     if (sc->primitive_count == 0 || sc->primitive_count > UINT32_MAX) {
         cli_error("%s: the scene has no triangles to draw", path);
-        return EXIT_USAGE;
+        return drop_scene(ctx, s, EXIT_USAGE);
     }
     sr_mesh merged = { 0 };
     sr_mesh_part *parts = calloc(sc->primitive_count, sizeof *parts);
@@ -335,7 +344,7 @@ int render_gltf_load(const char *path, bool flat_normals, const char *variant, b
     free(parts);
     if (!ok || r != SR_OK) {
         cli_error("%s: %s", path, ok ? sr_context_error(ctx) : "out of memory");
-        return EXIT_FAILURE_RUN;
+        return drop_scene(ctx, s, EXIT_FAILURE_RUN);
     }
     s->count = 1;
     ob->model = sr_mat4_identity();
