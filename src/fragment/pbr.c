@@ -466,6 +466,40 @@ static void coat_ambient(const sr_pbr *p, sr__pbr_layers *x, const v4f v[3], v4f
     sr__coat_ambient(x, er, ao);
 }
 
+/* Point or spot light l seen from pos: ld, its position on entry, becomes
+ * the unit vector to it; returns what reaches pos of its intensity
+ * (KHR_lights_punctual: over the squared distance, the range's window and
+ * the spot's cone). */
+static inline __attribute__((always_inline)) v4f point_falloff(const sr_pbr *p, int l,
+                                                               const v4f pos[3], v4f ld[3])
+{
+    for (int c = 0; c < 3; c++) {
+        ld[c] -= pos[c];
+    }
+    v4f d2 = dot3(ld, ld);
+    v4f fall = sr__v4_sel(d2 > 0.0f, 1.0f / d2, (v4f){ 0 });
+    v4f il = sr__v4_sqrt(fall);
+    for (int c = 0; c < 3; c++) {
+        ld[c] *= il;
+    }
+    if (p->light_inv_range2[l] > 0.0f) {
+        /* The extension's window, 1 at the light and 0 from the
+         * range on: clamp(1 - (d / range)^4, 0, 1)^2. */
+        v4f q = d2 * p->light_inv_range2[l];
+        v4f w = vclamp(1.0f - q * q, 0.0f, 1.0f);
+        fall *= w * w;
+    }
+    if (p->light_spot[l]) {
+        /* The cone by the cosine of the angle between the axis
+         * and the way from the light to the point (-L). */
+        v4f cd = -(ld[0] * p->light_axis[l][0] + ld[1] * p->light_axis[l][1] +
+                   ld[2] * p->light_axis[l][2]);
+        v4f t = vclamp(cd * p->light_cone_scale[l] + p->light_cone_offset[l], 0.0f, 1.0f);
+        fall *= t * t;
+    }
+    return fall;
+}
+
 /* Appendix B at four lanes: the punctual lights through the
  * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
  * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
@@ -523,31 +557,7 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
             }
         }
         if (p->light_point[l]) {
-            /* KHR_lights_punctual: intensity over the squared distance. */
-            for (int c = 0; c < 3; c++) {
-                ld[c] -= pos[c];
-            }
-            v4f d2 = dot3(ld, ld);
-            v4f fall = sr__v4_sel(d2 > 0.0f, 1.0f / d2, (v4f){ 0 });
-            v4f il = sr__v4_sqrt(fall);
-            for (int c = 0; c < 3; c++) {
-                ld[c] *= il;
-            }
-            if (p->light_inv_range2[l] > 0.0f) {
-                /* The extension's window, 1 at the light and 0 from the
-                 * range on: clamp(1 - (d / range)^4, 0, 1)^2. */
-                v4f q = d2 * p->light_inv_range2[l];
-                v4f w = vclamp(1.0f - q * q, 0.0f, 1.0f);
-                fall *= w * w;
-            }
-            if (p->light_spot[l]) {
-                /* The cone by the cosine of the angle between the axis
-                 * and the way from the light to the point (-L). */
-                v4f cd = -(ld[0] * p->light_axis[l][0] + ld[1] * p->light_axis[l][1] +
-                           ld[2] * p->light_axis[l][2]);
-                v4f t = vclamp(cd * p->light_cone_scale[l] + p->light_cone_offset[l], 0.0f, 1.0f);
-                fall *= t * t;
-            }
+            v4f fall = point_falloff(p, l, pos, ld);
             for (int c = 0; c < 3; c++) {
                 rad[c] *= fall;
             }
