@@ -466,6 +466,40 @@ static void coat_ambient(const sr_pbr *p, sr__pbr_layers *x, const v4f v[3], v4f
     sr__coat_ambient(x, er, ao);
 }
 
+/* Point or spot light l seen from pos: ld, its position on entry, becomes
+ * the unit vector to it; returns what reaches pos of its intensity
+ * (KHR_lights_punctual: over the squared distance, the range's window and
+ * the spot's cone). */
+static inline __attribute__((always_inline)) v4f point_falloff(const sr_pbr *p, int l,
+                                                               const v4f pos[3], v4f ld[3])
+{
+    for (int c = 0; c < 3; c++) {
+        ld[c] -= pos[c];
+    }
+    v4f d2 = dot3(ld, ld);
+    v4f fall = sr__v4_sel(d2 > 0.0f, 1.0f / d2, (v4f){ 0 });
+    v4f il = sr__v4_sqrt(fall);
+    for (int c = 0; c < 3; c++) {
+        ld[c] *= il;
+    }
+    if (p->light_inv_range2[l] > 0.0f) {
+        /* The extension's window, 1 at the light and 0 from the
+         * range on: clamp(1 - (d / range)^4, 0, 1)^2. */
+        v4f q = d2 * p->light_inv_range2[l];
+        v4f w = vclamp(1.0f - q * q, 0.0f, 1.0f);
+        fall *= w * w;
+    }
+    if (p->light_spot[l]) {
+        /* The cone by the cosine of the angle between the axis
+         * and the way from the light to the point (-L). */
+        v4f cd = -(ld[0] * p->light_axis[l][0] + ld[1] * p->light_axis[l][1] +
+                   ld[2] * p->light_axis[l][2]);
+        v4f t = vclamp(cd * p->light_cone_scale[l] + p->light_cone_offset[l], 0.0f, 1.0f);
+        fall *= t * t;
+    }
+    return fall;
+}
+
 /* Appendix B at four lanes: the punctual lights through the
  * Cook-Torrance specular (GGX D, height-correlated Smith visibility,
  * Schlick F) and Lambert diffuse weighted by 1 - F, plus the hemisphere's
@@ -523,31 +557,7 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
             }
         }
         if (p->light_point[l]) {
-            /* KHR_lights_punctual: intensity over the squared distance. */
-            for (int c = 0; c < 3; c++) {
-                ld[c] -= pos[c];
-            }
-            v4f d2 = dot3(ld, ld);
-            v4f fall = sr__v4_sel(d2 > 0.0f, 1.0f / d2, (v4f){ 0 });
-            v4f il = sr__v4_sqrt(fall);
-            for (int c = 0; c < 3; c++) {
-                ld[c] *= il;
-            }
-            if (p->light_inv_range2[l] > 0.0f) {
-                /* The extension's window, 1 at the light and 0 from the
-                 * range on: clamp(1 - (d / range)^4, 0, 1)^2. */
-                v4f q = d2 * p->light_inv_range2[l];
-                v4f w = vclamp(1.0f - q * q, 0.0f, 1.0f);
-                fall *= w * w;
-            }
-            if (p->light_spot[l]) {
-                /* The cone by the cosine of the angle between the axis
-                 * and the way from the light to the point (-L). */
-                v4f cd = -(ld[0] * p->light_axis[l][0] + ld[1] * p->light_axis[l][1] +
-                           ld[2] * p->light_axis[l][2]);
-                v4f t = vclamp(cd * p->light_cone_scale[l] + p->light_cone_offset[l], 0.0f, 1.0f);
-                fall *= t * t;
-            }
+            v4f fall = point_falloff(p, l, pos, ld);
             for (int c = 0; c < 3; c++) {
                 rad[c] *= fall;
             }
@@ -831,12 +841,55 @@ static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
     }
 }
 
+/* The punctual lights' radiance through a transmissive surface at four
+ * lanes (sr__transmission_btdf4), attenuated by the volume as the light
+ * behind is (keep): a point or spot light is seen from where the view ray
+ * leaves the volume (pos + ray), a directional one from everywhere the
+ * same way.  The shadow map is not applied: the glass itself stands
+ * between it and the key light shining through. */
+static void transmitted_lights(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
+                               const float v_[3][4], const float rough[4],
+                               const float ray_[3][4], const float keep_[3][4],
+                               const float f0_[3][4], const float f90_[4], float out_[3][4])
+{
+    v4f exit[3], ray[3], n[3], v[3], f0[3], sum[3] = { { 0 } };
+    load3(exit, pos_);
+    load3(ray, ray_);
+    load3(n, n_);
+    load3(v, v_);
+    load3(f0, f0_);
+    for (int c = 0; c < 3; c++) {
+        exit[c] += ray[c];
+    }
+    for (int l = 0; l < p->nlights; l++) {
+        v4f ld[3], rad[3], bt[3];
+        for (int c = 0; c < 3; c++) {
+            ld[c] = p->light_vec[l][c] - (v4f){ 0 };
+            rad[c] = p->light_rad[l][c] - (v4f){ 0 };
+        }
+        if (p->light_point[l]) {
+            v4f fall = point_falloff(p, l, exit, ld);
+            for (int c = 0; c < 3; c++) {
+                rad[c] *= fall;
+            }
+        }
+        sr__transmission_btdf4(&p->tr, n, v, ld, load(rough), f0, load(f90_), bt);
+        for (int c = 0; c < 3; c++) {
+            sum[c] += bt[c] * rad[c];
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        store(out_[c], sum[c] * load(keep_[c]));
+    }
+}
+
 /* KHR_materials_transmission at four lanes: kd becomes 1 - transmission
- * (the diffuse lobe's share left), seen the transmitted radiance: the
- * light behind (sr__transmission_light4) through the base color, in the
- * dielectric's share (1 - metallic), minus what the specular lobe
- * reflects, 1 - (F0 A + F90 B) with the split sum's scale and bias: the
- * dielectric's F0 and F90 from x (ior and specular) or 0.04 and 1. */
+ * (the diffuse lobe's share left), seen the transmitted radiance, in the
+ * dielectric's share (1 - metallic) through the base color: the light
+ * behind (sr__transmission_light4) minus what the specular lobe reflects,
+ * 1 - (F0 A + F90 B) with the split sum's scale and bias, plus the
+ * punctual lights shining through (transmitted_lights); the dielectric's
+ * F0 and F90 from x (ior and specular) or 0.04 and 1. */
 static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
                                const float pos[3][4], const float n[3][4], const float v[3][4],
                                const float base[4][4], const float metal[4],
@@ -860,8 +913,8 @@ static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
             thick[i] *= tex[1][i];
         }
     }
-    float light[3][4], nv[4], rc[4], sa[4], sb[4];
-    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light);
+    float light[3][4], ray[3][4], keep[3][4], nv[4], rc[4], sa[4], sb[4];
+    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light, ray, keep);
     for (int i = 0; i < 4; i++) {
         tr[i] = clamp01(tr[i]);
         kd[i] = 1.0f - tr[i];
@@ -876,11 +929,17 @@ static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
         }
         f90[i] = x ? x->f90[i] : 1.0f;
     }
+    float direct[3][4] = { { 0 } };
+    if (p->nlights > 0) {
+        transmitted_lights(p, pos, n, v, rough, (const float(*)[4])ray,
+                           (const float(*)[4])keep, (const float(*)[4])f0, f90, direct);
+    }
     for (int i = 0; i < 4; i++) {
         float share = tr[i] * (1.0f - clamp01(metal[i]));
         for (int c = 0; c < 3; c++) {
             float es = f0[c][i] * sa[i] + f90[i] * sb[i];
-            seen[c][i] = share * (1.0f - es) * base[c][i] * light[c][i];
+            seen[c][i] = share * (1.0f - es) * base[c][i] * light[c][i] +
+                         share * base[c][i] * direct[c][i];
         }
     }
 }

@@ -5,6 +5,7 @@
  * the refracted view ray leaves the volume, blurred by a mip level that
  * grows with the roughness.  Read-only state; called by tile workers. */
 #include "fragment/pbr_transmission.h"
+#include "fragment/pbr_lanes.h"
 #include "fragment/texture.h"
 
 #include <math.h>
@@ -18,7 +19,12 @@ void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
     memset(t, 0, sizeof *t);
     t->source = source;
     t->environment = source ? NULL : environment;
-    t->eta = 1.0f / (m->ior != 0.0f ? m->ior : 1.5f);
+    float ior = m->ior != 0.0f ? m->ior : 1.5f;
+    t->eta = 1.0f / ior;
+    /* The sample viewer's applyIorToRoughness: an ior of 1 bends no
+     * light, so its microfacets spread none; 1.5 and above the full
+     * roughness. */
+    t->rough_scale = clamp01(2.0f * ior - 2.0f);
     memcpy(t->view_projection, view_projection->m, sizeof t->view_projection);
     for (int a = 0; a < 3; a++) {
         const float *c = &model->m[4 * a];
@@ -92,15 +98,18 @@ static void exit_uv(const sr__transmission *t, const float pos[3], const float s
 
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                              const float n[3][4], const float v[3][4], const float rough[4],
-                             const float thick[4], unsigned mask, float out[3][4])
+                             const float thick[4], unsigned mask, float out[3][4],
+                             float ray[3][4], float keep[3][4])
 {
     for (int i = 0; i < 4; i++) {
-        float light[3] = { 0, 0, 0 };
+        float light[3] = { 0, 0, 0 }, step[3] = { 0, 0, 0 };
         float length = 0.0f;
-        if ((mask >> i & 1) && (t->source || t->environment)) {
+        /* The ray is needed without anything to see along it too: the
+         * punctual lights shine through the same volume. */
+        if (mask >> i & 1) {
             float vi[3] = { v[0][i], v[1][i], v[2][i] }, ni[3] = { n[0][i], n[1][i], n[2][i] };
             float pi[3] = { pos[0][i], pos[1][i], pos[2][i] };
-            float dir[3], step[3];
+            float dir[3];
             refract_view(vi, ni, t->eta, dir);
             float th = thick[i] > 0.0f ? thick[i] : 0.0f, len2 = 0.0f;
             for (int c = 0; c < 3; c++) {
@@ -117,7 +126,7 @@ void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                 for (int c = 0; c < 3; c++) {
                     light[c] = texel[c] * t->inv_exposure;
                 }
-            } else {
+            } else if (t->environment) {
                 /* A thin wall bends the ray in and back out: it leaves
                  * parallel to the view ray. */
                 const float straight[3] = { -vi[0], -vi[1], -vi[2] };
@@ -125,11 +134,48 @@ void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
             }
         }
         for (int c = 0; c < 3; c++) {
+            float k = 1.0f;
             if (t->attenuates && length > 0.0f) {
                 /* Beer-Lambert: attenuation_color^(length / distance). */
-                light[c] *= exp2f(-t->absorb[c] * length);
+                k = exp2f(-t->absorb[c] * length);
+                light[c] *= k;
             }
             out[c][i] = light[c];
+            ray[c][i] = step[c];
+            keep[c][i] = k;
         }
+    }
+}
+
+void sr__transmission_btdf4(const sr__transmission *t, const v4f n[3], const v4f v[3],
+                            const v4f l[3], v4f rough, const v4f f0[3], v4f f90, v4f out[3])
+{
+    v4f zero = { 0 };
+    v4f r = vclamp(rough, 0.0f, 1.0f);
+    /* GGX's alpha (the perceptual roughness squared) scaled by the ior,
+     * kept off zero, where D would be a spike of 0 / 0. */
+    v4f a = vmax(r * r * t->rough_scale, MIN_ROUGHNESS * MIN_ROUGHNESS - zero);
+    v4f a2 = a * a;
+    v4f nl = dot3(n, l), lm[3], h[3];
+    for (int k = 0; k < 3; k++) {
+        /* The light mirrored to the viewer's side: l - 2 (N.L) N. */
+        lm[k] = l[k] - 2.0f * nl * n[k];
+        h[k] = lm[k] + v[k];
+    }
+    v4f hl2 = dot3(h, h);
+    v4f hs = sr__v4_sel(hl2 > 1e-12f, rsqrt_nr(vmax(hl2, 1e-12f - zero)), zero);
+    v4f nh = vclamp(dot3(n, h) * hs, 0.0f, 1.0f), vh = vclamp(dot3(v, h) * hs, 0.0f, 1.0f);
+    v4f nlm = vclamp(-nl, 0.0f, 1.0f), nv = vclamp(dot3(n, v), 0.0f, 1.0f);
+    v4f dd = nh * nh * (a2 - 1.0f) + 1.0f;
+    v4f gv = nlm * sr__v4_sqrt(nv * nv * (1.0f - a2) + a2);
+    v4f gl = nv * sr__v4_sqrt(nlm * nlm * (1.0f - a2) + a2);
+    v4f g = gv + gl;
+    v4f dvis = a2 * 0.5f * rcp_nr(sr__v4_sel(g > 0.0f, PI_F * dd * dd * g, (v4f){ 1, 1, 1, 1 }));
+    /* The viewer's BTDF has no cosine: without this a light grazing the
+     * front of the surface would shine through it. */
+    dvis = sr__v4_sel((g > 0.0f) & (nl < 0.0f), dvis, zero);
+    v4f x = 1.0f - vh, x2 = x * x, fw = x2 * x2 * x;
+    for (int c = 0; c < 3; c++) {
+        out[c] = (1.0f - (f0[c] + (f90 - f0[c]) * fw)) * dvis;
     }
 }

@@ -5,6 +5,7 @@
 #ifndef SR_PBR_TRANSMISSION_H
 #define SR_PBR_TRANSMISSION_H
 
+#include "fragment/light_lanes.h"
 #include "softrast.h"
 
 #include <stdbool.h>
@@ -19,6 +20,7 @@ typedef struct sr__transmission {
     float lod_scale;               /* log2 of the source's width: the roughness-1 level */
     float absorb[3];               /* -log2(attenuation color) / distance, per channel */
     bool attenuates;               /* attenuation_distance > 0 */
+    float rough_scale;             /* clamp(2 ior - 2, 0, 1): the ior's share of the roughness */
 } sr__transmission;
 
 /* Fills t from the material (its ior: KHR_materials_ior's, 0 the
@@ -37,9 +39,24 @@ void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
  * along that ray.  Without a source, the environment's radiance in the
  * direction the ray leaves (refracted in a volume, straight on through
  * a thin wall), prefiltered for the roughness.  pos, n (unit, facing the viewer), v (unit, to the
- * eye) in world space; rough is the material's perceptual roughness. */
+ * eye) in world space; rough is the material's perceptual roughness.
+ * ray gets the way from pos to the exit point (zero for a thin wall) and
+ * keep the volume's transmittance along it, per channel (1 without
+ * attenuation); out is already multiplied by keep. */
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                              const float n[3][4], const float v[3][4], const float rough[4],
-                             const float thick[4], unsigned mask, float out[3][4]);
+                             const float thick[4], unsigned mask, float out[3][4],
+                             float ray[3][4], float keep[3][4]);
+
+/* The share of a punctual light's radiance that a transmissive surface
+ * sends towards the eye at four lanes, the sample viewer's BTDF
+ * (getPunctualRadianceTransmission): the light mirrored through the
+ * surface, a GGX lobe (D times the height-correlated visibility) about
+ * the mirrored light and the view at the roughness the ior scales, times
+ * 1 - F at V.H with the dielectric's f0 and f90.  l (unit, to the light),
+ * n and v as for sr__transmission_light4; a light on the viewer's side
+ * of the surface sends nothing through. */
+void sr__transmission_btdf4(const sr__transmission *t, const v4f n[3], const v4f v[3],
+                            const v4f l[3], v4f rough, const v4f f0[3], v4f f90, v4f out[3]);
 
 #endif
