@@ -361,6 +361,41 @@ SR_TEST(draco_strip_reads_and_renders_as_the_plain_one)
     free(plain.p);
 }
 
+/* A strip's indices that are not the stream's corners are refused with
+ * the stream's faces named as such: a strip of N indices draws N - 2
+ * triangles, not N / 3. */
+SR_TEST(draco_strip_with_too_many_indices_names_faces_not_triangles)
+{
+    static sphere s;
+    make_sphere(&s);
+    make_strip(&s);
+    draco_encoded e = encode_sphere(&s, false, true);
+    REQUIRE(e.data);
+    char corners[64], corners3[64], want[300];
+    snprintf(corners, sizeof corners, "\"count\":%zu,\"type\":\"SCALAR\"", e.faces * 3);
+    snprintf(corners3, sizeof corners3, "\"count\":%zu,\"type\":\"SCALAR\"", e.faces * 3 + 3);
+    snprintf(want, sizeof want,
+             PRIM "/indices: accessor 3 has %zu elements, but the Draco stream (" EXT
+                  ") has %zu faces (%zu corners, the strip's indices)",
+             e.faces * 3 + 3, e.faces, e.faces * 3);
+    wbuf json, bin;
+    write_file(&e, (file_options){ .draco = true, .strip = true }, &json, &bin);
+    CHECK(edit_text(&json, corners, corners3));
+    wbuf file = glb((const char *)json.p, bin.p, bin.n);
+    sr_io_error err;
+    sr_scene *b = parse_glb(&file, &err);
+    CHECK(!b);
+    if (b) {
+        sr_destroy_scene(sr_test_ctx(), b);
+    } else {
+        CHECK_STR_CONTAINS(err.message, want);
+    }
+    free(file.p);
+    free(json.p);
+    free(bin.p);
+    free(e.data);
+}
+
 typedef struct bad_case {
     const char *from, *to;       /* the JSON edit ("%zu": the points, "%u": an id) */
     int corrupt;                 /* 1: the stream's magic broken, 2: a point cloud */

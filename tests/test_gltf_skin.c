@@ -351,6 +351,8 @@ SR_TEST(malformed_skins_are_refused_with_their_pointer)
           "t.gltf: /skins/0/inverseBindMatrices: accessor 6 has 1 matrices, fewer than the 2 "
           "joints" },
         { "\"skin\":0", "\"skin\":1", "t.gltf: /nodes/0/skin: skin 1 does not exist (1 of them)" },
+        { "\"mesh\":0,\"skin\":0", "\"skin\":0",
+          "t.gltf: /nodes/0/skin: skin 0 on a node without a mesh" },
         { "\"JOINTS_0\":4", "\"JOINTS_0\":5",
           "t.gltf: /meshes/0/primitives/0/attributes/JOINTS_0: accessor 5 is not of unsigned "
           "bytes or shorts (not normalized)" },

@@ -282,6 +282,74 @@ SR_TEST(svg_warnings_stop_after_64_names)
                             "warnings not shown");
 }
 
+/* The longest line in `s`, in bytes. */
+static size_t longest_line(const char *s)
+{
+    size_t best = 0;
+    while (*s) {
+        size_t n = strcspn(s, "\n");
+        best = n > best ? n : best;
+        s += n + (s[n] != 0);
+    }
+    return best;
+}
+
+/* A warning or an error quotes an attribute value cut short: a
+ * 100000-number tableValues or a 4097-number kernelMatrix gives one short
+ * line that still names FILE:LINE and the attribute. */
+SR_TEST(svg_messages_quote_huge_values_cut_short)
+{
+    if (!have_svg()) {
+        SKIP("SVG is not available (built without expat)");
+    }
+    char *table = NULL, *kernel = NULL;
+    size_t tlen = 0, klen = 0;
+    table = grow_cat(table, &tlen, "<filter id='f'>\n<feComponentTransfer><feFuncR type='table' "
+                                   "tableValues='");
+    for (int i = 0; i < 100000; i++) {
+        table = grow_cat(table, &tlen, i ? " 0.5" : "0.5");
+    }
+    table = grow_cat(table, &tlen, "'/></feComponentTransfer>\n");
+    kernel = grow_cat(kernel, &klen, "<feConvolveMatrix order='64' kernelMatrix='");
+    for (int i = 0; i < 4097; i++) {
+        kernel = grow_cat(kernel, &klen, " 1");
+    }
+    kernel = grow_cat(kernel, &klen, "'/>\n</filter>\n");
+    table = grow_cat(table, &tlen, kernel);
+    free(kernel);
+    const char *in = write_svg("huge_values.svg", "<svg width='4' height='4'>\n", table, 1,
+                               "<rect width='4' height='4' filter='url(#f)'/></svg>\n");
+    free(table);
+    REQUIRE(in);
+    static char err[65536];
+    char out[1100];
+    snprintf(out, sizeof out, "%s/huge_values.png", sr_test_out_dir());
+    CHECK_EQ(run_svg(in, out, err, sizeof err), 0);
+    CHECK(longest_line(err) < 1200); /* the path of the output dir and a short message */
+    CHECK_STR_CONTAINS(err, "huge_values.svg:3: warning: unsupported tableValues '0.5 0.5 ");
+    CHECK_STR_CONTAINS(err, "huge_values.svg:4: warning: unsupported feConvolveMatrix");
+    CHECK_STR_CONTAINS(err, " 1 1...' skipped");
+
+    /* An error, cut before a two-byte character it would split: "x" and
+     * 29 of them fill 59 bytes, and the 30th does not fit in 60. */
+    char tr[512] = "<g transform='x";
+    for (int i = 0; i < 100; i++) {
+        strcat(tr, "\xc3\xa9");
+    }
+    strcat(tr, "'/>\n");
+    in = write_svg("huge_transform.svg", "<svg width='4' height='4'>\n", tr, 1, "</svg>\n");
+    REQUIRE(in);
+    snprintf(out, sizeof out, "%s/huge_transform.png", sr_test_out_dir());
+    CHECK_EQ(run_svg(in, out, err, sizeof err), 2);
+    char want[256] = "huge_transform.svg:2: transform=\"x";
+    for (int i = 0; i < 29; i++) {
+        strcat(want, "\xc3\xa9");
+    }
+    strcat(want, "...\" is malformed");
+    CHECK_STR_CONTAINS(err, want);
+    CHECK(longest_line(err) < 1200);
+}
+
 /* Group opacity, masks and clip paths draw into layers of the image's
  * size, nested up to 8 deep: sr_svg_desc.max_layer_bytes bounds what
  * they hold at once (6 bytes a pixel each, 4 more for a composite), and `softrast svg` gives

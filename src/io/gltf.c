@@ -1052,7 +1052,13 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
             break;
         }
         sr__mat4_mul(it.parent, local, world);
-        /* A skin without a mesh poses nothing. */
+        /* The specification's node.skin: "When defined, mesh MUST also be
+         * defined"; silence would hide a file that lost its mesh. */
+        if (skin >= 0 && mesh < 0) {
+            r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s/skin: skin %ld on a node without a mesh", ptr,
+                              skin);
+            break;
+        }
         if (mesh >= 0 &&
             (r = add_draws(d, meshes, it.node, ptr, mesh, skin, world)) != SR_OK) {
             break;

@@ -123,9 +123,9 @@ static size_t component_bytes(int type)
 }
 
 /* Attribute `name` (NULL: the indices) of the decoded mesh into slot k,
- * as its accessor stores it. */
+ * as its accessor stores it; `strip`: the primitive is a triangle strip. */
 static sr_result fill(gltf_doc *d, const json_t *prim, const char *ptr, const json_t *attrs,
-                      const char *eptr, const char *name, const sr_draco_mesh *m,
+                      const char *eptr, const char *name, const sr_draco_mesh *m, bool strip,
                       struct gltf_draco_primitive *p)
 {
     long index;
@@ -149,11 +149,15 @@ static sr_result fill(gltf_doc *d, const json_t *prim, const char *ptr, const js
             info.component_type == 5122) {
             return SR_OK;   /* refused by sr__gltf_read_indices */
         }
+        /* A strip's indices are the corners too, but its triangles are
+         * not the stream's faces: it draws corners - 2 of them. */
         if (info.count != faces * 3) {
             return sr__gltf_fail(d, SR_BAD_FORMAT,
                                  "%s: accessor %ld has %zu elements, but the Draco stream (%s) "
-                                 "has %zu triangles (%zu corners)",
-                                 aptr, index, info.count, eptr, faces, faces * 3);
+                                 "has %zu %s (%zu corners%s)",
+                                 aptr, index, info.count, eptr, faces,
+                                 strip ? "faces" : "triangles", faces * 3,
+                                 strip ? ", the strip's indices" : "");
         }
         if (csize < 4 && points > ((size_t)1 << (8 * csize))) {
             return sr__gltf_fail(d, SR_BAD_FORMAT,
@@ -324,11 +328,11 @@ sr_result sr__gltf_draco_begin(gltf_doc *d, const json_t *prim, const json_t *ex
     }
     for (size_t i = 0; r == SR_OK && i < READ_COUNT; i++) {
         if (json_object_get(attrs, read_attributes[i])) {
-            r = fill(d, prim, ptr, attrs, eptr, read_attributes[i], m, d->draco);
+            r = fill(d, prim, ptr, attrs, eptr, read_attributes[i], m, mode == 5, d->draco);
         }
     }
     if (r == SR_OK && json_object_get(prim, "indices")) {
-        r = fill(d, prim, ptr, attrs, eptr, NULL, m, d->draco);
+        r = fill(d, prim, ptr, attrs, eptr, NULL, m, mode == 5, d->draco);
     } else if (r == SR_OK) {
         /* No indices accessor: the stream's triangles, as they are. */
         size_t faces = sr__draco_faces(m);

@@ -285,7 +285,7 @@ static void warn_keyed(svg_doc *doc, const char *key, const char *fmt, ...)
             return;
         }
     }
-    char line[8192]; /* a file name of PATH_MAX and a quoted value whole */
+    char line[8192]; /* a file name of PATH_MAX and the message */
     if (doc->n_warned == MAX_WARNED) {
         snprintf(line, sizeof line,
                  "%s:%lu: warning: more unsupported names; further warnings not shown",
@@ -316,7 +316,7 @@ static void warn_once(svg_doc *doc, const char *kind, const char *name)
 {
     char key[128];
     snprintf(key, sizeof key, "%.60s %.60s", kind, name);
-    warn_keyed(doc, key, "unsupported %s '%s' skipped", kind, name);
+    warn_keyed(doc, key, "unsupported %s '%s' skipped", kind, SVG_QUOTED(name));
 }
 
 /* ---- numbers, lengths, lists ----------------------------------------------------- */
@@ -341,7 +341,7 @@ static bool length_attr(svg_doc *doc, const frame *f, const char *name, const ch
     }
     bool pct = false;
     if (!parse_length(value, out, &pct)) {
-        svg_fail(doc, SR_BAD_FORMAT, "%s=\"%s\" is not a length", name, value);
+        svg_fail(doc, SR_BAD_FORMAT, "%s=\"%s\" is not a length", name, SVG_QUOTED(value));
         return false;
     }
     if (pct) {
@@ -1974,18 +1974,18 @@ static bool intrinsic_size(svg_doc *doc, const char **atts, bool image, double v
         svg_fail(doc, SR_BAD_FORMAT,
                  zero ? "viewBox=\"%s\" disables rendering (SVG draws nothing of a zero %s)"
                       : "viewBox=\"%s\" needs four numbers with width, height > 0",
-                 vbs, zero && vb[2] == 0 ? "width" : "height");
+                 SVG_QUOTED(vbs), zero && vb[2] == 0 ? "width" : "height");
         return false;
     }
     double w = 0, h = 0;
     bool wp = false, hp = false;
     const char *ws = attr(atts, "width"), *hs = attr(atts, "height");
     if (ws && !parse_length(ws, &w, &wp)) {
-        svg_fail(doc, SR_BAD_FORMAT, "width=\"%s\" is not a length", ws);
+        svg_fail(doc, SR_BAD_FORMAT, "width=\"%s\" is not a length", SVG_QUOTED(ws));
         return false;
     }
     if (hs && !parse_length(hs, &h, &hp)) {
-        svg_fail(doc, SR_BAD_FORMAT, "height=\"%s\" is not a length", hs);
+        svg_fail(doc, SR_BAD_FORMAT, "height=\"%s\" is not a length", SVG_QUOTED(hs));
         return false;
     }
     /* A percentage of the root's viewport is no size of its own: the
@@ -1999,11 +1999,12 @@ static bool intrinsic_size(svg_doc *doc, const char **atts, bool image, double v
             }
             const char *name = k ? "height" : "width";
             if (v < 0) {
-                svg_fail(doc, SR_BAD_FORMAT, "%s=\"%s\" is negative, an error in SVG", name, s);
+                svg_fail(doc, SR_BAD_FORMAT, "%s=\"%s\" is negative, an error in SVG", name,
+                         SVG_QUOTED(s));
             } else {
                 svg_fail(doc, SR_BAD_FORMAT,
                          "%s=\"%s\" disables rendering (SVG draws nothing of a zero %s)", name,
-                         s, name);
+                         SVG_QUOTED(s), name);
             }
             return false;
         }
@@ -2189,7 +2190,8 @@ static void XMLCALL on_start(void *user, const XML_Char *qname, const XML_Char *
         return;
     }
     if (!doc->root && strcmp(name, "svg") != 0) {
-        svg_fail(doc, SR_BAD_FORMAT, "the root element is <%s>, not <svg>", name);
+        svg_fail(doc, SR_BAD_FORMAT, "the root element is <%s>, not <svg>",
+                 SVG_QUOTED(name));
         return;
     }
     /* Each element is a point of the budget: a document of empty
@@ -2648,7 +2650,7 @@ static void draw_marker(svg_doc *doc, const frame *f, svg_node *m, sr_point2 p, 
     doc->line = m->line;
     if (m->active) {
         svg_fail(doc, SR_BAD_FORMAT, "marker: reference cycle through \"#%s\"",
-                 m->id ? m->id : "");
+                 SVG_QUOTED(m->id));
         return;
     }
     if (!points_within_budget(doc, 1)) {
@@ -2829,8 +2831,8 @@ static bool text_path_of(svg_doc *doc, text_walk *w, const svg_node *tp, const f
     mat2d m = IDENTITY;
     const char *tr = target ? attr(target->atts, "transform") : NULL;
     if (!target || !is_shape(target->name) || (tr && !parse_transform(tr, &m))) {
-        warn_keyed(doc, "textPath href", "textPath: href=\"%.60s\" names no path; its text skipped",
-                   h ? h : "");
+        warn_keyed(doc, "textPath href", "textPath: href=\"%s\" names no path; its text skipped",
+                   SVG_QUOTED(h));
         return false;
     }
     if (sr_make_path(doc->ctx, w->tol / fmax(matrix_scale(m), 1e-9), &p) != SR_OK) {
@@ -2864,8 +2866,8 @@ static bool text_path_of(svg_doc *doc, text_walk *w, const svg_node *tp, const f
         double start = 0;
         bool pct = false;
         if (so && !svg_parse_length(so, f->st.text.size, &start, &pct)) {
-            warn_keyed(doc, "textPath startOffset", "textPath: startOffset=\"%.60s\" is not a "
-                       "length; 0 taken", so);
+            warn_keyed(doc, "textPath startOffset", "textPath: startOffset=\"%s\" is not a "
+                       "length; 0 taken", SVG_QUOTED(so));
             start = 0, pct = false;
         }
         ok = xy && move && svg_text_set_path(w->t, elem, xy, move, n, start, pct);
@@ -2937,8 +2939,8 @@ static void text_element(svg_doc *doc, text_walk *w, const svg_node *node, const
         if (target) {
             tref_chars(doc, w, target, preserve, !f->st.invisible, 32);
         } else {
-            warn_keyed(doc, "tref href", "tref: href=\"%.60s\" names no element of the document; "
-                       "skipped", h ? h : "");
+            warn_keyed(doc, "tref href", "tref: href=\"%s\" names no element of the document; "
+                       "skipped", SVG_QUOTED(h));
         }
         svg_text_close(w->t);
         return;
@@ -3272,7 +3274,7 @@ static void draw_svg_image(svg_doc *doc, const svg_node *node, const frame *f, c
 {
     for (const svg_doc *d = doc; d && path; d = d->outer) {
         if (d->base && strcmp(d->base, path) == 0) {
-            svg_fail(doc, SR_BAD_FORMAT, "image: reference cycle through \"%s\"", href);
+            svg_fail(doc, SR_BAD_FORMAT, "image: reference cycle through \"%s\"", SVG_QUOTED(href));
             return;
         }
     }
@@ -3284,7 +3286,7 @@ static void draw_svg_image(svg_doc *doc, const svg_node *node, const frame *f, c
     char *plain, why[256];
     sr_result r = document_bytes(&data, &size, &plain, why, sizeof why);
     if (r != SR_OK) {
-        svg_fail(doc, r, "image \"%s\": %s", href, why);
+        svg_fail(doc, r, "image \"%s\": %s", SVG_QUOTED(href), why);
         return;
     }
     /* Reading costs its bytes of the pixel work, so that an image drawn
@@ -3377,10 +3379,8 @@ static void draw_image(svg_doc *doc, const svg_node *node, const frame *f)
     }
     free(path);
     if (r != SR_OK) {
-        char what[64];
-        snprintf(what, sizeof what, "%.60s", href);
         warn_once(doc, "image source (not a readable PNG, JPEG or SVG next to the document)",
-                  what);
+                  href);
     }
     double vp[4];
     if (px && image_viewport(doc, node, f, iw, ih, vp) &&
@@ -3611,7 +3611,7 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
 {
     if (clip->active) {
         svg_fail(doc, SR_BAD_FORMAT, "clip-path: reference cycle through \"#%s\"",
-                 clip->id ? clip->id : "");
+                 SVG_QUOTED(clip->id));
         return NULL;
     }
     if (doc->draw_depth + 1 >= MAX_DEPTH) {
@@ -3881,7 +3881,7 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
     for (int i = 0; g; i++) {
         if (i == MAX_HREF_CHAIN) {
             svg_fail(doc, SR_BAD_FORMAT, "pattern: href chain through \"#%s\" is a cycle or "
-                     "longer than %d", pat->id ? pat->id : "", MAX_HREF_CHAIN);
+                     "longer than %d", SVG_QUOTED(pat->id), MAX_HREF_CHAIN);
             return true;
         }
         content = !content && g->first ? g : content;
@@ -3891,7 +3891,7 @@ static bool paint_pattern(svg_doc *doc, svg_node *pat, const frame *f, sr_polygo
     }
     if (pat->active || (content && content->active)) {
         svg_fail(doc, SR_BAD_FORMAT, "pattern: reference cycle through \"#%s\"",
-                 pat->id ? pat->id : "");
+                 SVG_QUOTED(pat->id));
         return true;
     }
     double b[4];
@@ -3977,7 +3977,8 @@ static uint8_t *mask_coverage(svg_doc *doc, svg_node *m, svg_node *node, const f
     int w = sr_framebuffer_width(doc->fb), h = sr_framebuffer_height(doc->fb);
     size_t n = (size_t)w * (size_t)h;
     if (m->active) {
-        svg_fail(doc, SR_BAD_FORMAT, "mask: reference cycle through \"#%s\"", m->id ? m->id : "");
+        svg_fail(doc, SR_BAD_FORMAT, "mask: reference cycle through \"#%s\"",
+                 SVG_QUOTED(m->id));
     }
     /* The element's bounding box, for the units that need it. */
     const char *units = attr(m->atts, "maskUnits"), *cunits = attr(m->atts, "maskContentUnits");
@@ -4103,7 +4104,7 @@ static void draw_use(svg_doc *doc, svg_node *node, frame *f)
         return;
     }
     if (target->active || target == node) {
-        svg_fail(doc, SR_BAD_FORMAT, "use: reference cycle through \"%s\"", href);
+        svg_fail(doc, SR_BAD_FORMAT, "use: reference cycle through \"%s\"", SVG_QUOTED(href));
         return;
     }
     node->active = true;
@@ -4175,7 +4176,8 @@ static bool filter_draw(void *host, const svg_node *at, const char *href, const 
     }
     doc->line = at->line;
     if (el->active) {
-        svg_fail(doc, SR_BAD_FORMAT, "feImage: reference cycle through \"%s\"", href);
+        svg_fail(doc, SR_BAD_FORMAT, "feImage: reference cycle through \"%s\"",
+                 SVG_QUOTED(href));
         return false;
     }
     if (doc->layers == MAX_LAYERS) {
@@ -4247,7 +4249,7 @@ static void apply_filter(svg_doc *doc, sr_framebuffer *layer, const frame *f, co
     svg_node *filter = (svg_node *)f->st.filter;
     if (filter->active) {
         svg_fail(doc, SR_BAD_FORMAT, "filter: reference cycle through \"#%s\"",
-                 filter->id ? filter->id : "");
+                 SVG_QUOTED(filter->id));
         return;
     }
     svg_filter_job job = filter_job(doc, f, box, w, h, origin, NULL);
@@ -4411,7 +4413,7 @@ static void draw_node(svg_doc *doc, svg_node *node, const frame *parent)
     if (tr) {
         mat2d t;
         if (!parse_transform(tr, &t)) {
-            svg_fail(doc, SR_BAD_FORMAT, "transform=\"%s\" is malformed", tr);
+            svg_fail(doc, SR_BAD_FORMAT, "transform=\"%s\" is malformed", SVG_QUOTED(tr));
             return;
         }
         f.m = mat_mul(f.m, about_origin(t, &f.st, &f));

@@ -139,6 +139,18 @@ bool svg_data_uri(const char *uri, uint8_t **out, size_t *size);
  * URLs, paths that climb out with "..", or out of memory. */
 char *svg_image_path(const char *document, const char *href);
 
+/* ---- values quoted in messages (svg_quote.c) ----------------------------- */
+
+/* A warning or error is one line: an attribute value it quotes is cut to
+ * its first SVG_QUOTE_CHARS bytes, whole UTF-8 sequences, then "...". */
+#define SVG_QUOTE_CHARS 60
+#define SVG_QUOTE_SIZE (SVG_QUOTE_CHARS + sizeof "...")
+/* s (NULL reads as "") as it is quoted, in out (SVG_QUOTE_SIZE bytes); returns out. */
+const char *svg_quote(const char *s, char out[SVG_QUOTE_SIZE]);
+/* svg_quote into a buffer that lives until the end of the enclosing block:
+ * printf("%s", SVG_QUOTED(value)). */
+#define SVG_QUOTED(s) svg_quote((s), (char[SVG_QUOTE_SIZE]){ 0 })
+
 /* ---- gzip-compressed documents (svg_gzip.c) ----------------------------- */
 
 /* Whether bytes start as gzip's do (1f 8b), whatever the file's name. */

@@ -8,6 +8,7 @@
  * (svg_fonts), so a drawing of many labels matches and reads each once.
  * One document per svg_fonts; documents in other threads have their own
  * FreeType library (fontconfig's matching is thread-safe). */
+#include "io/svg.h"
 #include "io/svg_text.h"
 
 #ifdef SR_HAVE_SVG_TEXT
@@ -205,7 +206,8 @@ static bool match_file(const char *family, int weight, int slant, char *file, si
             *index = 0;
         }
     } else {
-        snprintf(why, why_size, "fontconfig finds no font for font-family \"%.80s\"", family);
+        snprintf(why, why_size, "fontconfig finds no font for font-family \"%s\"",
+                 SVG_QUOTED(family));
     }
     if (got) {
         FcPatternDestroy(got);

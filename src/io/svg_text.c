@@ -531,7 +531,8 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
     bool pct = false;
     if (lists[5] && (!svg_parse_length(lists[5], ts->size, &e->text_length, &pct) ||
                      !isfinite(e->text_length) || e->text_length < 0)) {
-        snprintf(why, why_size, "textLength=\"%.60s\" is not a length", lists[5]);
+        snprintf(why, why_size, "textLength=\"%s\" is not a length",
+                 SVG_QUOTED(lists[5]));
         return -1;
     }
     e->text_length *= pct ? vp_w / 100 : 1;
@@ -543,7 +544,8 @@ int svg_text_open(svg_text *t, const svg_text_style *ts, const char *const lists
             for (int j = 0; j <= k; j++) {
                 free(e->list[j]);
             }
-            snprintf(why, why_size, "%s=\"%.60s\" is not a list of %s", names[k], lists[k],
+            snprintf(why, why_size, "%s=\"%s\" is not a list of %s", names[k],
+                     SVG_QUOTED(lists[k]),
                      k == LIST_ROTATE ? "numbers" : "lengths");
             return -1;
         }
