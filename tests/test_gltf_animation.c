@@ -771,10 +771,16 @@ SR_TEST(animate_plays_the_animation_at_fps)
  * argument quoted), into out; its exit status. */
 static int cli_stdout(const char *const *args, char *out, size_t size)
 {
-    char line[4096] = "'" SR_CLI_PATH "'";
-    for (size_t i = 0; args[i]; i++) {
+    /* The tool as the tests start it: through the emulator in a cross
+     * build. */
+    const char *argv[80];
+    if (!sr_test_program_argv(SR_CLI_PATH, args, argv, sizeof argv / sizeof argv[0])) {
+        return -1;
+    }
+    char line[4096] = "";
+    for (size_t i = 0; argv[i]; i++) {
         size_t at = strlen(line);
-        snprintf(line + at, sizeof line - at, " '%s'", args[i]);
+        snprintf(line + at, sizeof line - at, "%s'%s'", i ? " " : "", argv[i]);
     }
     FILE *p = popen(line, "r");
     if (!p) {
