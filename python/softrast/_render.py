@@ -19,8 +19,8 @@ from ._scene import Instance, Scene, as_scene
 from ._softrast import Mesh
 
 if TYPE_CHECKING:
-    from .typing import (Antialias, Cull, LightsMode, NormalFrame, OutputName, PathLike,
-                          Projection, RealArrayLike, RenderOutputs, SceneLike, Shading, Tonemap)
+    from .typing import (Antialias, Cull, Frame, LightsMode, OutputName, PathLike, Projection,
+                          RealArrayLike, RenderOutputs, SceneLike, Shading, Tonemap)
 
 #: The outputs render() can return, with their per-view shape suffix and dtype.
 OUTPUTS: Dict[str, Tuple[Tuple[int, ...], type]] = {
@@ -32,6 +32,10 @@ OUTPUTS: Dict[str, Tuple[Tuple[int, ...], type]] = {
     "instance_id": ((), np.int32),
     "barycentric": ((3,), np.float32),
     "mask": ((), np.bool_),
+    "position": ((3,), np.float32),
+    "uv": ((2,), np.float32),
+    "material_id": ((), np.int32),
+    "flow": ((2,), np.float32),
 }
 
 
@@ -308,6 +312,36 @@ def _lights(lights: Union[LightsMode, Sequence[Light], None], scene: Scene
     return _LIGHTS_MODES[mode], [light._program() for light in lit]
 
 
+def _frames(frame: Optional[Frame], normal_frame: Optional[Frame]) -> Tuple[str, str]:
+    """The frames of the normal and position outputs: each its own
+    default (camera, world) unless frame (or its alias normal_frame)
+    names one for both."""
+    for value, name in ((frame, "frame"), (normal_frame, "normal_frame")):
+        if value is not None and not isinstance(value, str):
+            raise TypeError(f"{name}: expected 'camera', 'world' or None, "
+                            f"got {type(value).__name__}")
+        if value is not None and value not in ("camera", "world"):
+            raise ValueError(f"{name}: must be 'camera' or 'world', got {value!r}")
+    if frame is not None and normal_frame is not None and frame != normal_frame:
+        raise TypeError(f"frame, normal_frame: normal_frame is another name for frame; "
+                        f"give one (got {frame!r} and {normal_frame!r})")
+    chosen = frame if frame is not None else normal_frame
+    return (chosen or "camera", chosen or "world")
+
+
+def _material_ids(sc: Scene) -> List[int]:
+    """Each instance's material_id: its Material's index in
+    Scene.materials (the same object), else -1."""
+    index = {id(m): i for i, m in enumerate(sc.materials)}
+    return [-1 if inst.material is None else index.get(id(inst.material), -1) for inst in sc]
+
+
+def _inverse(Rt: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The (3, 4) rows of [R | t]'s inverse (the rotation as given, not
+    its transpose: R is checked orthonormal only to 1e-5)."""
+    return np.linalg.inv(np.vstack([Rt, [0.0, 0.0, 0.0, 1.0]]))[:3]
+
+
 def _int_arg(value: int, name: str, low: int, high: int) -> int:
     if not isinstance(value, (int, np.integer)) or isinstance(value, bool):
         raise TypeError(f"{name}: expected an int, got {type(value).__name__}")
@@ -322,7 +356,8 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
            camera: Union[Camera, List[Camera], Tuple[Camera, ...], None] = None, width: int,
            height: int,
            outputs: Sequence[OutputName] = ("color", "depth"), threads: int = 0,
-           near: Optional[float] = None, normal_frame: NormalFrame = "camera",
+           near: Optional[float] = None, frame: Optional[Frame] = None,
+           normal_frame: Optional[Frame] = None,
            background: RealArrayLike = (0.0, 0.0, 0.0), shading: Shading = "lit",
            environment: Optional[PathLike] = None, environment_intensity: float = 0.6,
            shadows: Optional[bool] = None, ground: bool = False,
@@ -376,7 +411,7 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         - ``depth`` (H, W) float32: camera-space z (distance along the
           optical axis, the unit of the vertices), ``inf`` where nothing is.
         - ``normal`` (H, W, 3) float32: unit normal in the camera frame, or
-          the world frame with ``normal_frame="world"``; interpolated vertex
+          the world frame with ``frame="world"``; interpolated vertex
           normals, else the face normal (counter-clockwise faces' front);
           zero where nothing is.
         - ``triangle_id`` (H, W) int32: the index of the visible face in its
@@ -386,8 +421,29 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         - ``barycentric`` (H, W, 3) float32: the perspective-correct weights
           of the visible face's three vertices (in ``faces`` order).
         - ``mask`` (H, W) bool: where a surface is.
+        - ``position`` (H, W, 3) float32: the visible point, where the
+          pixel centre's ray meets the visible face (computed as depth
+          is), in the world frame (``frame="camera"``: the camera frame,
+          whose z is ``depth``); NaN where nothing is.
+        - ``uv`` (H, W, 2) float32: the visible mesh's ``uvs`` at the
+          barycentrics, as the library stores them: v runs up, (0, 0) the
+          texture image's bottom-left corner (a glTF file's TEXCOORD v is
+          ``1 - v`` here; a loaded file's are its base color texture's
+          set through its KHR_texture_transform); NaN where nothing is
+          and on meshes without ``uvs``.
+        - ``material_id`` (H, W) int32: the index in ``Scene.materials``
+          (a loaded file's materials) of the visible instance's
+          ``Instance.material``; -1 where nothing is and for instances
+          whose material is not listed there (or who have none).
+        - ``flow`` (H, W, 2) float32 (batches of cameras): where the next
+          camera of the batch sees the visible point, less the pixel
+          (optical flow of a static scene, occlusion not considered):
+          (du, dv) in pixels; NaN where nothing is, where the point is
+          not in front of the next camera, and in the last view (a single
+          camera's too).
 
-        IDs, depth, barycentrics and mask are never blended or antialiased:
+        IDs, depth, barycentrics, positions, uvs, flow and mask are never
+        blended or antialiased:
         each pixel shows the surface nearest along its centre's ray (the
         first drawn of equals), sampled at the pixel centre, whatever
         ``antialias`` says.
@@ -409,6 +465,10 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         closed one.
     threads: rendering threads, 0 for every CPU; the result does not depend
         on it.
+    frame: the frame of ``normal`` and ``position``: None (the default)
+        for each its own (``normal`` the camera's, ``position`` the
+        world's), or "camera" or "world" for both.  ``normal_frame`` is
+        another name for it (given both, they must agree).
     near: surfaces closer than this (camera z) are clipped (default 1e-3,
         0 for an orthographic view, or the camera's znear; > 0 for a
         perspective view, >= 0 for an orthographic one); there is no far
@@ -508,8 +568,7 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     elif not np.all(np.isfinite(nears) & np.where(orthos, nears >= 0, nears > 0)):
         raise ValueError("camera: its znear must be a finite number, positive for a "
                          "perspective camera, >= 0 for an orthographic one")
-    if normal_frame not in ("camera", "world"):
-        raise ValueError(f"normal_frame: must be 'camera' or 'world', got {normal_frame!r}")
+    normal_in, position_in = _frames(frame, normal_frame)
     if cull not in ("none", "back"):
         raise ValueError(f"cull: must be 'none' or 'back', got {cull!r}")
     if shading not in ("lit", "unlit", "pbr"):
@@ -544,6 +603,7 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     _check_memory(n, width, height, names, msaa, ssaa)
     out: Dict[str, NDArray[Any]] = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
     inv_t = [np.linalg.inv(inst.pose[:3, :3]).T for inst in sc]
+    materials = _material_ids(sc) if "material_id" in out else None
     ids = [i if inst.instance_id is None else inst.instance_id for i, inst in enumerate(sc)]
     images = [name for name in ("color", "rgba") if name in out]
     # How each Mesh's texture is sampled: its Material's sampler (a loaded
@@ -565,9 +625,18 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
         Rt = Rts[b]
         poses = [(np.ascontiguousarray(Rt[:, :3] @ inst.pose[:3, :] +
                                        np.hstack([np.zeros((3, 3)), Rt[:, 3:]])),
-                  np.ascontiguousarray(Rt[:, :3] @ nt if normal_frame == "camera" else nt))
+                  np.ascontiguousarray(Rt[:, :3] @ nt if normal_in == "camera" else nt))
                  for inst, nt in zip(sc, inv_t)]
         far = _far(sc, poses, float(nears[b])) if orthos[b] else 1.0
+        geometry: Dict[str, Any] = dict(materials=materials)
+        if position_in == "world":
+            geometry["to_frame"] = _inverse(Rt)
+        if "flow" in out and b + 1 < n:
+            # From this camera to the next one's: [R' | t'] [R | t]^-1.
+            to_next = Rts[b + 1][:, :3] @ _inverse(Rt)
+            to_next[:, 3] += Rts[b + 1][:, 3]
+            geometry.update(flow_K=np.ascontiguousarray(Ks[b + 1]),
+                            flow_Rt=np.ascontiguousarray(to_next), flow_ortho=bool(orthos[b + 1]))
         for wanted, meshes in passes:
             if not wanted:
                 continue
@@ -587,9 +656,10 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
                              float(nears[b]), threads, views["depth"], views["triangle_id"],
                              views["instance_id"], views["barycentric"], views["normal"],
                              views["color"], views["mask"], rgb, shading == "lit",
-                             rgba=views["rgba"],
+                             rgba=views["rgba"], material_id=views["material_id"],
+                             position=views["position"], uv=views["uv"], flow=views["flow"],
                              ortho=bool(orthos[b]), far=far, msaa=msaa, ssaa=ssaa,
-                             cull=cull == "back", **extra)
+                             cull=cull == "back", **extra, **(geometry if not color_pbr else {}))
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return cast("RenderOutputs", out)

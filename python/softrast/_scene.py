@@ -109,6 +109,11 @@ class Scene:
     :class:`Light` tuple (read-only; given here, or the file's), which
     :func:`render` lights with (its ``lights``); ``variants``: the names of
     its material variants (glTF's KHR_materials_variants), a tuple.
+    ``materials``: a file's :class:`Material` list, in the file's order
+    (glTF's ``/materials``, without the default material of primitives
+    that name none; empty otherwise): :func:`render`'s ``material_id``
+    output is the index here of the visible instance's
+    ``Instance.material`` (the same object), -1 for one not listed.
     ``animations``: the file's :class:`Animation` list; ``animation`` and
     ``time``: the one :func:`load` posed it by (its index) and when, or
     None and 0.0.
@@ -119,8 +124,14 @@ class Scene:
     time: float
 
     def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = (),
-                 lights: Iterable[Light] = (), variants: Iterable[str] = ()) -> None:
+                 lights: Iterable[Light] = (), variants: Iterable[str] = (),
+                 materials: Iterable[Material] = ()) -> None:
         self.instances: List[Instance] = []
+        self.materials: List[Material] = list(materials)
+        for i, m in enumerate(self.materials):
+            if not isinstance(m, Material):
+                raise TypeError(f"materials[{i}]: expected a softrast.Material, "
+                                f"got {type(m).__name__}")
         self.cameras = list(cameras)
         self._lights = tuple(lights)
         self.variants: Tuple[str, ...] = tuple(variants)
@@ -304,6 +315,9 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
     if not d["gltf"]:
         return Scene([load_mesh(path)])
     images = base_color_images(path, d["materials"])
+    # The file's /materials, then glTF's default material, which primitives
+    # without one draw with (not listed in Scene.materials: no index of
+    # the file's).
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
     meshes: dict[Tuple[int, int], Mesh] = {}
     instances = []
@@ -317,7 +331,8 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
         inst._source = (source, primitive)
         instances.append(inst)
     scene = Scene(instances, [Camera._from_fields(c) for c in d["cameras"]],
-                  [Light._from_fields(light) for light in d["lights"]], d["variants"])
+                  [Light._from_fields(light) for light in d["lights"]], d["variants"],
+                  materials[:-1])
     scene.animations = [Animation(*a) for a in d["animations"]]
     scene.animation = None if index < 0 else index
     scene.time = time if index >= 0 else 0.0

@@ -112,4 +112,10 @@ def render(instances: Sequence[Tuple[Any, ...]], K: NDArray[np.float64], width: 
            shadows: bool = False, general: bool = False, ortho: bool = False, far: float = 0.0,
            msaa: int = 1, ssaa: int = 1, ground: bool = False, cull: bool = False,
            lights: Optional[Sequence[Tuple[Any, ...]]] = None, lights_mode: int = 0,
-           exposure: float = 0.0, tonemap: int = 0) -> None: ...
+           exposure: float = 0.0, tonemap: int = 0,
+           material_id: Optional[NDArray[np.int32]] = None,
+           position: Optional[NDArray[np.float32]] = None,
+           uv: Optional[NDArray[np.float32]] = None, flow: Optional[NDArray[np.float32]] = None,
+           to_frame: Optional[NDArray[np.float64]] = None,
+           materials: Optional[Sequence[int]] = None, flow_K: Optional[NDArray[np.float64]] = None,
+           flow_Rt: Optional[NDArray[np.float64]] = None, flow_ortho: bool = False) -> None: ...

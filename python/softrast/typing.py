@@ -52,10 +52,12 @@ SceneItem = Union[Mesh, Instance, Tuple[Mesh, Optional[RealArrayLike]],
 SceneLike = Union[Mesh, Instance, Scene, Sequence[SceneItem]]
 
 OutputName = Literal["color", "rgba", "depth", "normal", "triangle_id", "instance_id",
-                     "barycentric", "mask"]
+                     "barycentric", "mask", "position", "uv", "material_id", "flow"]
 Shading = Literal["lit", "unlit", "pbr"]
 Projection = Literal["perspective", "orthographic"]
-NormalFrame = Literal["camera", "world"]
+#: render's frame= (and its alias normal_frame=): the normal and position outputs' frame.
+Frame = Literal["camera", "world"]
+NormalFrame = Frame
 Cull = Literal["none", "back"]
 Antialias = Literal["none", "msaa2", "msaa4", "msaa8", "msaa16", "ssaa2", "ssaa3", "ssaa4"]
 AlphaMode = Literal["opaque", "mask", "blend"]
@@ -103,3 +105,7 @@ class RenderOutputs(TypedDict, total=False):
     instance_id: NDArray[np.int32]
     barycentric: NDArray[np.float32]
     mask: NDArray[np.bool_]
+    position: NDArray[np.float32]
+    uv: NDArray[np.float32]
+    material_id: NDArray[np.int32]
+    flow: NDArray[np.float32]

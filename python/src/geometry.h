@@ -2,8 +2,8 @@
  * geometry.h - what render.c's geometry outputs share with visibility.c:
  * one instance's uniforms (its vertices seen from the camera, the output
  * arrays) and the per-pixel resolve from a face index to depth,
- * barycentrics, normal, IDs and mask.  No Python objects: every function
- * here runs without the GIL.
+ * barycentrics, normal, position, uv, flow, IDs and mask.  No Python
+ * objects: every function here runs without the GIL.
  */
 #ifndef SR_PY_GEOMETRY_H
 #define SR_PY_GEOMETRY_H
@@ -41,9 +41,18 @@ typedef struct geometry_uniforms {
     float far;
     int width;
     int32_t instance_id;
+    int32_t material_id;        /* the material_id output's value for this instance */
+    const float *uvs;           /* (N, 2), or NULL: the uv output is NaN */
+    /* position: the camera-space point taken to the output's frame */
+    double to_frame[3][4];
+    /* flow: camera -> the next view's camera, and that view's K and
+     * projection; flow_next false (the last view) writes NaN */
+    bool flow_next, flow_ortho;
+    double flow_a[3][4];
+    double flow_fx, flow_s, flow_cx, flow_fy, flow_cy;
     float *depth;
-    int32_t *triangle_id, *instance_out;
-    float *barycentric, *normal;
+    int32_t *triangle_id, *instance_out, *material_out;
+    float *barycentric, *normal, *position, *uv, *flow;
     npy_bool *mask;
 } geometry_uniforms;
 
@@ -99,6 +108,26 @@ static inline void sr_py_background_run(const geometry_uniforms *u, size_t p, si
     }
     if (u->mask) {
         memset(&u->mask[p], 0, n * sizeof(npy_bool));
+    }
+    if (u->material_out) {
+        memset(&u->material_out[p], 0xff, n * sizeof(int32_t));
+    }
+    /* The points, coordinates and displacements of nothing: NaN, as 0
+     * is a real value of each. */
+    if (u->position) {
+        for (size_t i = 0; i < 3 * n; i++) {
+            u->position[3 * p + i] = NAN;
+        }
+    }
+    if (u->uv) {
+        for (size_t i = 0; i < 2 * n; i++) {
+            u->uv[2 * p + i] = NAN;
+        }
+    }
+    if (u->flow) {
+        for (size_t i = 0; i < 2 * n; i++) {
+            u->flow[2 * p + i] = NAN;
+        }
     }
 }
 

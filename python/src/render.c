@@ -1,6 +1,7 @@
 /*
  * render.c - softrast._softrast.render: one camera's geometry buffers
- * (depth, triangle and instance IDs, barycentrics, normals, mask) and
+ * (depth, triangle, instance and material IDs, barycentrics, normals,
+ * positions, texture coordinates, flow to the next view, mask) and
  * color (RGB, or RGBA with a transparent background) from a list of mesh
  * instances.  The Python layer (softrast/_render.py) validates cameras and
  * poses and loops over batches; this file checks what it is handed again
@@ -168,6 +169,25 @@ static void geometry_vertex(const void *uniforms, const sr_vertex_input *in, flo
     }
 }
 
+/* The flow output at pixel (x, y) of camera-space point cp: where the
+ * next view sees it, less the pixel; NaN for the last view and for a
+ * point that is not in front of the next pinhole. */
+static void flow_of(const geometry_uniforms *u, const double cp[3], int x, int y, float out[2])
+{
+    double q[3];
+    for (int r = 0; r < 3; r++) {
+        q[r] = u->flow_a[r][0] * cp[0] + u->flow_a[r][1] * cp[1] + u->flow_a[r][2] * cp[2] +
+               u->flow_a[r][3];
+    }
+    if (!u->flow_next || (!u->flow_ortho && !(q[2] > 0.0))) {
+        out[0] = out[1] = NAN;
+        return;
+    }
+    double w = u->flow_ortho ? 1.0 : q[2];
+    out[0] = (float)((u->flow_fx * q[0] + u->flow_s * q[1]) / w + u->flow_cx - x);
+    out[1] = (float)(u->flow_fy * q[1] / w + u->flow_cy - y);
+}
+
 /* The visible face's outputs at pixel (x, y), from the ray through the
  * pixel's centre and the face's camera-space plane, in double: depth and
  * barycentrics are the exact intersection rounded once to float, not
@@ -260,6 +280,32 @@ void sr_py_shade_pixel(const geometry_uniforms *u, size_t face, int x, int y, fl
     if (u->mask) {
         u->mask[p] = 1;
     }
+    if (u->material_out) {
+        u->material_out[p] = u->material_id;
+    }
+    if (u->uv) {
+        for (int i = 0; i < 2; i++) {
+            double t = u->uvs ? 0.0 : NAN;
+            for (int k = 0; k < 3 && u->uvs; k++) {
+                t += lambda[k] * u->uvs[2 * vi[k] + i];
+            }
+            u->uv[2 * p + i] = (float)t;
+        }
+    }
+    if (u->position || u->flow) {
+        /* The ray's point at depth z, in the camera frame. */
+        double cp[3] = { u->ortho ? d[0] : z * d[0], u->ortho ? d[1] : z * d[1], z };
+        if (u->position) {
+            for (int r = 0; r < 3; r++) {
+                u->position[3 * p + r] = (float)(u->to_frame[r][0] * cp[0] +
+                                                 u->to_frame[r][1] * cp[1] +
+                                                 u->to_frame[r][2] * cp[2] + u->to_frame[r][3]);
+            }
+        }
+        if (u->flow) {
+            flow_of(u, cp, x, y, &u->flow[2 * p]);
+        }
+    }
 }
 
 static void geometry_fragment(const void *uniforms, sr_fragment_quad *q)
@@ -281,7 +327,9 @@ static void fill_outputs(const render_job *j)
 {
     geometry_uniforms u = { .depth = j->depth, .triangle_id = j->triangle_id,
                             .instance_out = j->instance_id, .barycentric = j->barycentric,
-                            .normal = j->normal, .mask = j->mask };
+                            .normal = j->normal, .mask = j->mask,
+                            .material_out = j->material_id, .position = j->position,
+                            .uv = j->uv, .flow = j->flow };
     sr_py_background_run(&u, 0, (size_t)j->width * (size_t)j->height);
 }
 
@@ -351,7 +399,15 @@ static sr_result geometry_uniforms_of(const render_job *j, bool view, geometry_u
             .width = j->width, .instance_id = in->id,
             .depth = j->depth, .triangle_id = j->triangle_id, .instance_out = j->instance_id,
             .barycentric = j->barycentric, .normal = j->normal, .mask = j->mask,
+            .material_id = in->material_id, .uvs = m->uvs ? PyArray_DATA(m->uvs) : NULL,
+            .flow_next = j->flow_next, .flow_ortho = j->flow_ortho,
+            .flow_fx = j->flow_k[0][0], .flow_s = j->flow_k[0][1], .flow_cx = j->flow_k[0][2],
+            .flow_fy = j->flow_k[1][1], .flow_cy = j->flow_k[1][2],
+            .material_out = j->material_id, .position = j->position, .uv = j->uv,
+            .flow = j->flow,
         };
+        memcpy(u[i].to_frame, j->to_frame, sizeof u[i].to_frame);
+        memcpy(u[i].flow_a, j->flow_a, sizeof u[i].flow_a);
         memcpy(u[i].a, in->a, sizeof u[i].a);
         memcpy(u[i].nm, in->nm, sizeof u[i].nm);
         clip_rows(j, u[i].kx, u[i].ky);
@@ -606,7 +662,7 @@ static void run(render_job *j, sr_py_render_set *s)
     sr_context *ctx = s->ctx;
     sr_framebuffer *fb = s->fb;
     bool geometry = j->depth || j->triangle_id || j->instance_id || j->barycentric || j->normal ||
-                    j->mask;
+                    j->mask || j->material_id || j->position || j->uv || j->flow;
     if (r == SR_OK && geometry) {
         r = geometry_pass(ctx, fb, j);
     }
@@ -817,6 +873,44 @@ static void free_instances(render_job *j)
     free(j->inst);
 }
 
+/* render(materials=): None (every instance's material_id -1), or one
+ * int32 a instance. */
+static int take_material_ids(PyObject *materials, render_job *j)
+{
+    for (size_t i = 0; i < j->count; i++) {
+        j->inst[i].material_id = -1;
+    }
+    if (materials == Py_None) {
+        return 0;
+    }
+    PyObject *seq = PySequence_Fast(materials, "materials: expected a sequence of ints");
+    if (!seq) {
+        return -1;
+    }
+    if ((size_t)PySequence_Fast_GET_SIZE(seq) != j->count) {
+        PyErr_Format(PyExc_ValueError, "materials: %zd ids for %zu instances",
+                     PySequence_Fast_GET_SIZE(seq), j->count);
+        Py_DECREF(seq);
+        return -1;
+    }
+    for (size_t i = 0; i < j->count; i++) {
+        long v = PyLong_AsLong(PySequence_Fast_GET_ITEM(seq, (Py_ssize_t)i));
+        if (v == -1 && PyErr_Occurred()) {
+            Py_DECREF(seq);
+            return -1;
+        }
+        if (v < -1 || v > INT32_MAX) {
+            PyErr_Format(PyExc_ValueError, "materials[%zu]: %ld is not an id (-1 .. 2^31 - 1)", i,
+                         v);
+            Py_DECREF(seq);
+            return -1;
+        }
+        j->inst[i].material_id = (int32_t)v;
+    }
+    Py_DECREF(seq);
+    return 0;
+}
+
 /* render(lights=): None, or a sequence of at most SR_MAX_LIGHTS tuples
  * (type, (vector), (color), intensity, (direction), inner, outer, range)
  * of lit lights in world space, which the Python layer has checked. */
@@ -870,20 +964,26 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
                               "mask", "background", "lit", "rgba", "pbr", "view",
                               "environment", "shadows", "general", "ortho", "far", "msaa", "ssaa",
                               "ground", "cull", "lights", "lights_mode", "exposure", "tonemap",
-                              NULL };
+                              "material_id", "position", "uv", "flow", "to_frame", "materials",
+                              "flow_K", "flow_Rt", "flow_ortho", NULL };
     PyObject *instances, *K, *outs[8] = { NULL, NULL, NULL, NULL, NULL, NULL, NULL, Py_None };
     PyObject *view = Py_None, *env = Py_None, *lights = Py_None;
+    PyObject *more[4] = { Py_None, Py_None, Py_None, Py_None };
+    PyObject *to_frame = Py_None, *materials = Py_None, *flow_k = Py_None, *flow_rt = Py_None;
+    int flow_ortho = 0;
     render_job j = { .msaa = 1, .ssaa = 1 };
     int lit = 1, pbr = 0, shadows = 0, general = 0, ortho = 0, ground = 0, cull = 0;
     int tonemap = SR_TONEMAP_DEFAULT;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiippOifi:render", kwlist,
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOiifiOOOOOOO(fff)p|OpOOpppfiippOifiOOOOOOOOp:render",
+                                     kwlist,
                                      &instances, &K, &j.width, &j.height, &j.near, &j.threads,
                                      &outs[0], &outs[1], &outs[2], &outs[3], &outs[4], &outs[5],
                                      &outs[6], &j.background[0], &j.background[1],
                                      &j.background[2], &lit, &outs[7], &pbr, &view, &env,
                                      &shadows, &general, &ortho, &j.far, &j.msaa, &j.ssaa,
                                      &ground, &cull, &lights, &j.lights_mode, &j.exposure,
-                                     &tonemap)) {
+                                     &tonemap, &more[0], &more[1], &more[2], &more[3],
+                                     &to_frame, &materials, &flow_k, &flow_rt, &flow_ortho)) {
         return NULL;
     }
     if (!(j.exposure >= -64.0f && j.exposure <= 64.0f) || tonemap < SR_TONEMAP_DEFAULT ||
@@ -942,7 +1042,7 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
         return NULL;
     }
     int H = j.height, W = j.width;
-    void *ptr[8];
+    void *ptr[12];
     if (take_output(outs[0], "depth", NPY_FLOAT32, H, W, 0, &ptr[0]) < 0 ||
         take_output(outs[1], "triangle_id", NPY_INT32, H, W, 0, &ptr[1]) < 0 ||
         take_output(outs[2], "instance_id", NPY_INT32, H, W, 0, &ptr[2]) < 0 ||
@@ -950,13 +1050,30 @@ PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs)
         take_output(outs[4], "normal", NPY_FLOAT32, H, W, 3, &ptr[4]) < 0 ||
         take_output(outs[5], "color", NPY_UINT8, H, W, 3, &ptr[5]) < 0 ||
         take_output(outs[6], "mask", NPY_BOOL, H, W, 0, &ptr[6]) < 0 ||
-        take_output(outs[7], "rgba", NPY_UINT8, H, W, 4, &ptr[7]) < 0) {
+        take_output(outs[7], "rgba", NPY_UINT8, H, W, 4, &ptr[7]) < 0 ||
+        take_output(more[0], "material_id", NPY_INT32, H, W, 0, &ptr[8]) < 0 ||
+        take_output(more[1], "position", NPY_FLOAT32, H, W, 3, &ptr[9]) < 0 ||
+        take_output(more[2], "uv", NPY_FLOAT32, H, W, 2, &ptr[10]) < 0 ||
+        take_output(more[3], "flow", NPY_FLOAT32, H, W, 2, &ptr[11]) < 0) {
         return NULL;
     }
+    for (int r = 0; r < 3; r++) {
+        j.to_frame[r][r] = 1.0;     /* the camera frame unless given */
+    }
+    if ((to_frame != Py_None && take_matrix(to_frame, "to_frame", 3, 4, &j.to_frame[0][0]) < 0) ||
+        ((flow_k == Py_None) != (flow_rt == Py_None) &&
+         (PyErr_SetString(PyExc_TypeError, "flow_K, flow_Rt: give both or neither"), 1)) ||
+        (flow_k != Py_None && (take_matrix(flow_k, "flow_K", 3, 3, &j.flow_k[0][0]) < 0 ||
+                               take_matrix(flow_rt, "flow_Rt", 3, 4, &j.flow_a[0][0]) < 0))) {
+        return NULL;
+    }
+    j.flow_next = flow_k != Py_None;
+    j.flow_ortho = flow_ortho;
     j.depth = ptr[0], j.triangle_id = ptr[1], j.instance_id = ptr[2];
     j.barycentric = ptr[3], j.normal = ptr[4], j.color = ptr[5], j.mask = ptr[6];
     j.rgba = ptr[7];
-    if (take_instances(instances, &j) < 0) {
+    j.material_id = ptr[8], j.position = ptr[9], j.uv = ptr[10], j.flow = ptr[11];
+    if (take_instances(instances, &j) < 0 || take_material_ids(materials, &j) < 0) {
         free_instances(&j);
         return NULL;
     }

@@ -14,6 +14,7 @@ typedef struct instance {
     MeshObject *mesh;
     double a[3][4], nm[3][3];
     int32_t id;
+    int32_t material_id;        /* the material_id output's value */
     const float *positions;     /* for the color pass */
     const uint32_t *indices;
     PyObject *held[2];          /* the arrays they point into, for the call */
@@ -56,8 +57,13 @@ typedef struct render_job {
     float exposure;             /* pbr: --exposure, stops */
     sr_tonemap_op tonemap;      /* pbr: --tonemap */
     float *depth;
-    int32_t *triangle_id, *instance_id;
-    float *barycentric, *normal;
+    int32_t *triangle_id, *instance_id, *material_id;
+    float *barycentric, *normal, *position, *uv, *flow;
+    double to_frame[3][4];      /* position: camera -> the output's frame */
+    /* flow: camera -> the next view's camera, its K and projection;
+     * without a next view (flow_next false) the flow is NaN */
+    bool flow_next, flow_ortho;
+    double flow_a[3][4], flow_k[3][3];
     uint8_t *color, *rgba;
     npy_bool *mask;
     bool cull_back;             /* faces seen from behind are not drawn */

@@ -115,7 +115,8 @@ def test_same_bytes_for_any_thread_count():
     rng = np.random.default_rng(5)
     verts, faces = random_triangles(rng, 3000, size=0.5)
     normals = rng.normal(size=verts.shape)
-    mesh = softrast.Mesh(verts, faces, normals=normals / np.linalg.norm(normals, axis=1)[:, None])
+    mesh = softrast.Mesh(verts, faces, normals=normals / np.linalg.norm(normals, axis=1)[:, None],
+                         uvs=rng.uniform(0, 1, (len(verts), 2)))
     K, R, t = default_camera(400, 300)
     names = tuple(softrast.OUTPUTS)
     runs = [softrast.render(mesh, K=K, R=R, t=t, width=400, height=300, outputs=names, threads=n)

@@ -12,7 +12,8 @@ from softrast import _softrast
 from conftest import default_camera, random_triangles
 
 W, H = 160, 120
-GEOMETRY = ("depth", "triangle_id", "instance_id", "barycentric", "normal", "mask")
+GEOMETRY = ("depth", "triangle_id", "instance_id", "barycentric", "normal", "mask", "position",
+            "material_id")
 
 
 def render_both(scene, threads=(1, 2, 3, 0), **kw):
