@@ -5,6 +5,8 @@ in Scene.materials) and flow (the visible point's displacement into the
 next camera of a batch), against analytic values and numpy projections."""
 
 import functools
+import json
+import pickle
 
 import numpy as np
 import pytest
@@ -176,10 +178,31 @@ def test_material_id_of_a_two_material_gltf(tmp_path):
     # Never blended: the same bytes without antialiasing, nor color.
     plain = softrast.render(scene, camera=cam, width=W, height=H, outputs=("material_id",))
     assert plain["material_id"].tobytes() == mid.tobytes()
+    # A pickled scene (a Dask task's) keeps which material is which.
+    thawed = pickle.loads(pickle.dumps(scene))
+    same = softrast.render(thawed, camera=thawed.cameras[0], width=W, height=H,
+                           outputs=("material_id",))
+    assert same["material_id"].tobytes() == mid.tobytes()
     # An instance whose Material is not in Scene.materials is -1.
     scene.instances[1].material = softrast.Material()
     again = softrast.render(scene, camera=cam, width=W, height=H, outputs=("material_id",))
     assert (again["material_id"][iid == 1] == -1).all()
+
+
+def test_a_primitive_without_a_material_is_minus_one(tmp_path):
+    """glTF's default material (of a primitive that names none) is no
+    index of the file's /materials."""
+    path = write_two_materials(tmp_path / "two.gltf")
+    doc = json.loads(path.read_text())
+    del doc["meshes"][0]["primitives"][0]["material"]
+    path.write_text(json.dumps(doc))
+    scene = load_gltf(path)
+    assert len(scene.materials) == 2 and scene.instances[0].material not in scene.materials
+    out = softrast.render(scene, camera=scene.cameras[0], width=W, height=H,
+                          outputs=("material_id", "instance_id"))
+    iid = out["instance_id"]
+    assert (iid == 0).any() and (out["material_id"][iid == 0] == -1).all()
+    assert (out["material_id"][iid == 1] == 0).all()
 
 
 def test_uv_of_a_gltf_quad_runs_v_up(tmp_path):
