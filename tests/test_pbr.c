@@ -1509,7 +1509,8 @@ SR_TEST(layers_agree_between_table_and_query_and_packed_lanes)
 
 /* Out-of-domain extension values are refused by the program: an ior
  * (or a film's) between 0 and 1, a NaN factor, a negative film
- * thickness. */
+ * thickness, a negative dispersion, a diffuse transmission or its color
+ * outside 0..1. */
 SR_TEST(bad_extension_values_are_refused)
 {
     sr_context *ctx = sr_test_ctx();
@@ -1540,6 +1541,29 @@ SR_TEST(bad_extension_values_are_refused)
     m.iridescence_thickness_min = 0.0f;
     m.anisotropy_strength = NAN;
     CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    /* Dispersion and diffuse transmission, naming the field. */
+    m = sr_pbr_default_material();
+    m.dispersion = -0.1f;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_pbr_material.dispersion -0.1");
+    m.dispersion = INFINITY;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "not finite");
+    m.dispersion = 0.0f;
+    m.diffuse_transmission = 1.5f;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_pbr_material.diffuse_transmission 1.5");
+    m.diffuse_transmission = NAN;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    m.diffuse_transmission = 0.5f;
+    m.diffuse_transmission_color[2] = -1.0f;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "diffuse_transmission_color[2]");
+    m.diffuse_transmission_color[2] = 1.0f;
+    m.diffuse_transmission_color_texture.texture = (const sr_texture *)&m;
+    m.diffuse_transmission_color_texture.texcoord = 2;
+    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "diffuse_transmission_color_texture.texcoord");
     CHECK(p == NULL);
 }
 
@@ -2589,35 +2613,4 @@ SR_TEST(diffuse_transmission_sees_the_irradiance_from_behind)
     }
     sr_destroy_framebuffer(sr_test_ctx(), a);
     sr_destroy_framebuffer(sr_test_ctx(), b);
-}
-
-/* Bad dispersion and diffuse transmission values are refused, naming
- * the field. */
-SR_TEST(bad_translucency_values_are_refused)
-{
-    sr_context *ctx = sr_test_ctx();
-    sr_pbr *p = NULL;
-    sr_pbr_material m = sr_pbr_default_material();
-    m.dispersion = -0.1f;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_pbr_material.dispersion -0.1");
-    m.dispersion = INFINITY;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "not finite");
-    m.dispersion = 0.0f;
-    m.diffuse_transmission = 1.5f;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "sr_pbr_material.diffuse_transmission 1.5");
-    m.diffuse_transmission = NAN;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    m.diffuse_transmission = 0.5f;
-    m.diffuse_transmission_color[2] = -1.0f;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "diffuse_transmission_color[2]");
-    m.diffuse_transmission_color[2] = 1.0f;
-    m.diffuse_transmission_color_texture.texture = (const sr_texture *)&m;
-    m.diffuse_transmission_color_texture.texcoord = 2;
-    CHECK_EQ(sr_make_pbr_program(ctx, &(sr_pbr_desc){ .material = &m }, &p), SR_INVALID_ARG);
-    CHECK_STR_CONTAINS(sr_context_error(ctx), "diffuse_transmission_color_texture.texcoord");
-    CHECK(p == NULL);
 }
