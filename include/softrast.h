@@ -1053,6 +1053,18 @@ typedef struct sr_pbr_material {
     float iridescence_thickness_max;             /* nm, >= 0, at G = 1 and without a
                                                   * texture; 0 -> 400 */
     sr_texture_slot iridescence_thickness_texture; /* G channel, linear */
+    /* KHR_materials_dispersion and _diffuse_transmission (docs/pbr.md),
+     * zero as absent like the blocks above.  Dispersion spreads a
+     * transmissive volume's ior over the color channels, so that each
+     * refracts on its own; diffuse transmission turns that share of the
+     * diffuse lobe into a Lambert lobe lit from behind the surface (-N),
+     * for leaves, paper, lamp shades and wax. */
+    float dispersion;              /* >= 0, 20 / the Abbe number; needs a thickness */
+    float diffuse_transmission;    /* 0..1, times the texture's A */
+    sr_texture_slot diffuse_transmission_texture;       /* A channel, linear */
+    float diffuse_transmission_color[3];                /* 0..1 linear RGB: the light let
+                                                         * through (not tinted by the base) */
+    sr_texture_slot diffuse_transmission_color_texture; /* sRGB */
 } sr_pbr_material;
 
 typedef struct sr_polygon_offset {
@@ -1395,7 +1407,8 @@ typedef struct sr_pbr_desc {
 
 /* glTF's defaults: base color white, metallic 1, roughness 1, normal scale
  * and occlusion strength 1, no emission, opaque, cutoff 0.5, single-sided,
- * empty slots (scale 1), no transmission, attenuation color white. */
+ * empty slots (scale 1), no transmission, attenuation color white,
+ * diffuse transmission color white. */
 SR_API sr_pbr_material sr_pbr_default_material(void);
 
 /* softrast render's default lighting (docs/pbr.md), for programs that

@@ -3909,7 +3909,8 @@ SR_TEST(image_outputs_with_another_extension_are_refused)
 
 #ifdef SR_CLI_PATH
 /* Two quads (4 vertices, 2 triangles each): mesh 0 once, mesh 1 placed
- * twice, one of them moved up by 3; a coated, a glass material; two
+ * twice, one of them moved up by 3; a coated, a glass material (with
+ * dispersion and diffuse transmission); two
  * material variants, one named with an escape byte; a camera and a point
  * light. */
 static bool write_info_model(const char *path)
@@ -3919,8 +3920,10 @@ static bool write_info_model(const char *path)
         "\"metallicFactor\":0.25,\"roughnessFactor\":0.75},\"doubleSided\":true,"
         "\"extensions\":{\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1}}},"
         "{\"alphaMode\":\"MASK\",\"extensions\":{\"KHR_materials_transmission\":"
-        "{\"transmissionFactor\":1}}}],"
+        "{\"transmissionFactor\":1},\"KHR_materials_dispersion\":{\"dispersion\":0.5},"
+        "\"KHR_materials_diffuse_transmission\":{\"diffuseTransmissionFactor\":0.5}}}],"
         "\"extensionsUsed\":[\"KHR_materials_clearcoat\",\"KHR_materials_transmission\","
+        "\"KHR_materials_dispersion\",\"KHR_materials_diffuse_transmission\","
         "\"KHR_lights_punctual\",\"KHR_materials_variants\"],"
         "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\","
         "\"intensity\":20,\"color\":[1,0.5,0.25],\"range\":8}]},"
@@ -3960,7 +3963,8 @@ SR_TEST(info_describes_a_gltf_scene)
     CHECK_STR_CONTAINS(r.out, "0  base color 0.5 0.25 1 1, metallic 0.25, roughness 0.75, "
                               "OPAQUE, double-sided; KHR_materials_clearcoat\n");
     CHECK_STR_CONTAINS(r.out, "1  base color 1 1 1 1, metallic 1, roughness 1, MASK; "
-                              "KHR_materials_transmission\n");
+                              "KHR_materials_transmission, KHR_materials_dispersion, "
+                              "KHR_materials_diffuse_transmission\n");
     /* A name's escape byte never reaches the terminal. */
     CHECK_STR_CONTAINS(r.out, "variants    2 (--variant)\n    0  Red\n    1  Blue ?[31m\n");
     CHECK_STR_CONTAINS(r.out, "cameras     1\n    0  perspective, yfov 28.6479 degrees, aspect "

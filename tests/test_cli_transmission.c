@@ -32,14 +32,19 @@ static void put(bytes *b, const void *src, size_t count, size_t size)
     b->n += count * size;
 }
 
+/* The leaf: a diamond 1.2 wide and 1.8 tall in z = 0.3, facing +z. */
+static const float leaf_pos[12] = { 0, -0.9f, 0.3f, 0.6f, 0, 0.3f, 0, 0.9f, 0.3f, -0.6f, 0, 0.3f };
+
 /* The model: a UV sphere of radius 0.8 (mesh k draws it with material
- * 2 + k) at x = -1.9, 0, 1.9, and behind it at z = -1.5 a GRID_X x GRID_Y
- * checker whose squares take materials 0 and 1 and 5 in turn. */
-static char *glass_model(void)
+ * 2 + k, `glass` holding the three) at x = -1.9, 0, 1.9, and behind it at
+ * z = -1.5 a GRID_X x GRID_Y checker whose squares take materials 0 and 1
+ * and 5 in turn.  With `leaf`, mesh 2 is a leaf (leaf_pos) in place of the
+ * third sphere. */
+static char *glass_model(const char *glass, bool leaf)
 {
     size_t sv = (SLICES + 1) * (STACKS + 1), si = SLICES * STACKS * 6;
     size_t cv = GRID_X * GRID_Y * 4;
-    bytes b = { malloc(sv * 24 + si * 2 + cv * 24 + GRID_X * GRID_Y * 12 + 16), 0 };
+    bytes b = { malloc(sv * 24 + si * 2 + cv * 24 + GRID_X * GRID_Y * 12 + 128), 0 };
     if (!b.p) {
         return NULL;
     }
@@ -93,6 +98,34 @@ static char *glass_model(void)
             }
         }
     }
+    /* The leaf's positions, normals and indices, 4-aligned after the
+     * 2-byte indices: bufferViews 8..10 and accessors 8..10. */
+    char views[256] = "", accessors[256] = "", mesh2[128];
+    snprintf(mesh2, sizeof mesh2, "\"POSITION\":0,\"NORMAL\":1},\"indices\":2");
+    if (leaf) {
+        while (b.n % 4) {
+            b.p[b.n++] = 0;
+        }
+        size_t at = b.n;
+        put(&b, leaf_pos, 12, 4);
+        for (int k = 0; k < 4; k++) {
+            const float z[3] = { 0, 0, 1 };
+            put(&b, z, 3, 4);
+        }
+        const uint16_t t[6] = { 0, 1, 2, 0, 2, 3 };
+        put(&b, t, 6, 2);
+        snprintf(views, sizeof views,
+                 ",{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":48},"
+                 "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":48},"
+                 "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":12}",
+                 at, at + 48, at + 96);
+        snprintf(accessors, sizeof accessors,
+                 ",{\"bufferView\":8,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+                 "\"min\":[-0.6,-0.9,0.3],\"max\":[0.6,0.9,0.3]},"
+                 "{\"bufferView\":9,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},"
+                 "{\"bufferView\":10,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}");
+        snprintf(mesh2, sizeof mesh2, "\"POSITION\":8,\"NORMAL\":9},\"indices\":10");
+    }
     char *b64 = malloc(4 * (b.n / 3 + 1) + 1);
     char *json = b64 ? malloc(4 * (b.n / 3 + 1) + 8192) : NULL;
     if (!json) {
@@ -101,20 +134,9 @@ static char *glass_model(void)
         return NULL;
     }
     gltf_base64(b.p, b.n, b64);
-    const char *glass =
-        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0},"
-        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
-        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6}}},"
-        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.6,0.8,1,1],\"metallicFactor\":0,"
-        "\"roughnessFactor\":0.35},"
-        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1}}},"
-        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0.05},"
-        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
-        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6,\"attenuationColor\":[1,0.45,0.1],"
-        "\"attenuationDistance\":0.8}}}";
     sprintf(json,
             "{\"asset\":{\"version\":\"2.0\"},"
-            "\"extensionsUsed\":[\"KHR_materials_transmission\",\"KHR_materials_volume\"],"
+            "\"extensionsUsed\":[\"KHR_materials_transmission\",\"KHR_materials_volume\"%s],"
             "\"buffers\":[{\"byteLength\":%zu,"
             "\"uri\":\"data:application/octet-stream;base64,%s\"}],"
             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":%zu},"
@@ -124,7 +146,7 @@ static char *glass_model(void)
             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu},"
-            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}],"
+            "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}%s],"
             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":%zu,"
             "\"type\":\"VEC3\","
             "\"min\":[-0.8,-0.8,-0.8],\"max\":[0.8,0.8,0.8]},"
@@ -135,7 +157,7 @@ static char *glass_model(void)
             "{\"bufferView\":4,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\"},"
             "{\"bufferView\":5,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"},"
             "{\"bufferView\":6,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"},"
-            "{\"bufferView\":7,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"}],"
+            "{\"bufferView\":7,\"componentType\":5123,\"count\":%zu,\"type\":\"SCALAR\"}%s],"
             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],"
             "\"metallicFactor\":0,\"roughnessFactor\":0.8}},"
             "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.7,0.05,0.03,1],"
@@ -146,8 +168,7 @@ static char *glass_model(void)
             "\"indices\":2,\"material\":2}]},"
             "{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},"
             "\"indices\":2,\"material\":3}]},"
-            "{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},"
-            "\"indices\":2,\"material\":4}]},"
+            "{\"primitives\":[{\"attributes\":{%s,\"material\":4}]},"
             "{\"primitives\":[{\"attributes\":{\"POSITION\":3,\"NORMAL\":4},\"indices\":5,"
             "\"material\":0},{\"attributes\":{\"POSITION\":3,\"NORMAL\":4},\"indices\":6,"
             "\"material\":1},{\"attributes\":{\"POSITION\":3,\"NORMAL\":4},\"indices\":7,"
@@ -155,10 +176,11 @@ static char *glass_model(void)
             "\"nodes\":[{\"mesh\":0,\"translation\":[-1.9,0,0]},{\"mesh\":1},"
             "{\"mesh\":2,\"translation\":[1.9,0,0]},{\"mesh\":3}],"
             "\"scenes\":[{\"nodes\":[0,1,2,3]}],\"scene\":0}",
+            leaf ? ",\"KHR_materials_dispersion\",\"KHR_materials_diffuse_transmission\"" : "",
             b.n, b64, sv * 12, sv * 12, sv * 12, sv * 24, si * 2, checker_pos, cv * 12,
             checker_nrm, cv * 12, lists[0], counts[0] * 2, lists[1], counts[1] * 2, lists[2],
-            counts[2] * 2, sv, sv, si, cv, (double)x0, (double)y0, (double)-x0, (double)-y0, cv,
-            counts[0], counts[1], counts[2], glass);
+            counts[2] * 2, views, sv, sv, si, cv, (double)x0, (double)y0, (double)-x0,
+            (double)-y0, cv, counts[0], counts[1], counts[2], accessors, glass, mesh2);
     free(b64);
     free(b.p);
     return json;
@@ -170,6 +192,47 @@ SR_TEST(glass_spheres_show_the_checker_behind_them)
     if (!sr_io_have_gltf()) {
         SKIP("softrast was built without jansson");
     }
-    check_model_render("transmission", "glass.gltf", glass_model(), "240x112",
+    const char *glass =
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6}}},"
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.6,0.8,1,1],\"metallicFactor\":0,"
+        "\"roughnessFactor\":0.35},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1}}},"
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0.05},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6,\"attenuationColor\":[1,0.45,0.1],"
+        "\"attenuationDistance\":0.8}}}";
+    check_model_render("transmission", "glass.gltf", glass_model(glass, false), "240x112",
                        ARGS("--camera", "eye=0,1,7,target=0,0,0"), "gltf_transmission");
+}
+
+/* KHR_materials_dispersion and KHR_materials_diffuse_transmission: the
+ * same checker behind a clear sphere (left), one of the same glass with
+ * dispersion 4 at ior 1.7 (its checker edges split into red, green and
+ * blue fringes), and a leaf letting a light from behind through,
+ * yellow-green, against the studio environment.  Compared with
+ * tests/ref/gltf_dispersion_leaf.png as the glass scene is. */
+SR_TEST(dispersive_sphere_and_backlit_leaf)
+{
+    NEED_CLI();
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    const char *materials =
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6}}},"
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0,\"roughnessFactor\":0},"
+        "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+        "\"KHR_materials_volume\":{\"thicknessFactor\":1.6},"
+        "\"KHR_materials_ior\":{\"ior\":1.7},\"KHR_materials_dispersion\":{\"dispersion\":4}}},"
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.12,0.4,0.06,1],\"metallicFactor\":0,"
+        "\"roughnessFactor\":0.6},\"doubleSided\":true,"
+        "\"extensions\":{\"KHR_materials_diffuse_transmission\":{"
+        "\"diffuseTransmissionFactor\":0.8,\"diffuseTransmissionColorFactor\":[0.6,0.9,0.2]}}}";
+    check_model_render("dispersion", "prism.gltf", glass_model(materials, true), "240x112",
+                       ARGS("--camera", "eye=0,1,7,target=0,0,0", "--light",
+                            "dir=-0.2,-0.3,1,intensity=3"),
+                       "gltf_dispersion_leaf");
 }

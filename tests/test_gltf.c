@@ -688,6 +688,64 @@ SR_TEST(anisotropy_and_iridescence_are_read)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* KHR_materials_dispersion and KHR_materials_diffuse_transmission: the
+ * factors, the textures through the slots (A linear, RGB sRGB: two
+ * textures of one image; KHR_texture_transform and texCoord honoured),
+ * the defaults of present but empty extensions (0, color white);
+ * out-of-range factors clamped with one warning each naming the JSON
+ * pointer; unlit materials read neither (the extensions exclude it). */
+SR_TEST(dispersion_and_diffuse_transmission_are_read)
+{
+    warnings w = {0};
+    sr_scene *s = load_textured(
+        "[\"KHR_materials_dispersion\",\"KHR_materials_diffuse_transmission\"]",
+        "[{\"extensions\":{\"KHR_materials_dispersion\":{\"dispersion\":0.36},"
+        "\"KHR_materials_diffuse_transmission\":{\"diffuseTransmissionFactor\":0.25,"
+        "\"diffuseTransmissionTexture\":{\"index\":0,\"texCoord\":1},"
+        "\"diffuseTransmissionColorFactor\":[1,0.9,0.85],"
+        "\"diffuseTransmissionColorTexture\":{\"index\":0,"
+        "\"extensions\":{\"KHR_texture_transform\":{\"scale\":[2,4]}}}}}},"
+        "{\"extensions\":{\"KHR_materials_dispersion\":{},"
+        "\"KHR_materials_diffuse_transmission\":{}}},"
+        "{\"extensions\":{\"KHR_materials_dispersion\":{\"dispersion\":-2},"
+        "\"KHR_materials_diffuse_transmission\":{\"diffuseTransmissionFactor\":3,"
+        "\"diffuseTransmissionColorFactor\":[1.5,0.5,-1]}}},"
+        "{\"extensions\":{\"KHR_materials_unlit\":{},"
+        "\"KHR_materials_diffuse_transmission\":{\"diffuseTransmissionFactor\":1}}},"
+        "{}]",
+        &w);
+    REQUIRE(s);
+    REQUIRE(s->material_count == 6);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK_NEAR(m->dispersion, 0.36, 1e-7);
+    CHECK_NEAR(m->diffuse_transmission, 0.25, 0);
+    CHECK_NEAR(m->diffuse_transmission_color[1], 0.9, 1e-7);
+    CHECK_NEAR(m->diffuse_transmission_color[2], 0.85, 1e-7);
+    REQUIRE(m->diffuse_transmission_texture.texture != NULL);
+    REQUIRE(m->diffuse_transmission_color_texture.texture != NULL);
+    CHECK_EQ(m->diffuse_transmission_texture.texcoord, 1);
+    CHECK_NEAR(m->diffuse_transmission_color_texture.scale[0], 2, 0);
+    CHECK_NEAR(m->diffuse_transmission_color_texture.scale[1], 4, 0);
+    /* The factor's texture is linear, the color's sRGB: two textures. */
+    CHECK(m->diffuse_transmission_texture.texture != m->diffuse_transmission_color_texture.texture);
+    const sr_pbr_material *e = &s->materials[1];
+    CHECK_EQ(e->dispersion, 0.0f);
+    CHECK_EQ(e->diffuse_transmission, 0.0f);
+    CHECK(e->diffuse_transmission_color[0] == 1.0f && e->diffuse_transmission_color[1] == 1.0f &&
+          e->diffuse_transmission_color[2] == 1.0f);
+    const sr_pbr_material *c = &s->materials[2];
+    CHECK_EQ(c->dispersion, 0.0f);
+    CHECK_EQ(c->diffuse_transmission, 1.0f);
+    CHECK(c->diffuse_transmission_color[0] == 1.0f && c->diffuse_transmission_color[2] == 0.0f);
+    CHECK_EQ(s->materials[3].diffuse_transmission, 0.0f);
+    CHECK_EQ(s->materials[4].diffuse_transmission, 0.0f);
+    CHECK_EQ(w.count, 4);
+    CHECK_STR_CONTAINS(w.last, "/materials/2/extensions/KHR_materials_diffuse_transmission/"
+                               "diffuseTransmissionColorFactor/2: -1 is outside the "
+                               "specification's 0..1, taken as 0");
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
 /* KHR_materials_transmission and KHR_materials_volume: factors, the
  * textures through the slots (R and G, linear), the attenuation; their
  * factors clamped with one warning each; a material without them keeps
@@ -1086,6 +1144,14 @@ static const bad_case bad_cases[] = {
     { ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5}}],"
       "\"nodes\":[{\"camera\":0}]", SR_BAD_FORMAT,
       "bad.gltf: /cameras/0/perspective/znear: missing or out of range" },
+    { ",\"materials\":[{},{\"extensions\":{\"KHR_materials_dispersion\":"
+      "{\"dispersion\":\"high\"}}}]", SR_BAD_FORMAT,
+      "bad.gltf: /materials/1/extensions/KHR_materials_dispersion/dispersion: not a finite "
+      "number" },
+    { ",\"materials\":[{\"extensions\":{\"KHR_materials_diffuse_transmission\":"
+      "{\"diffuseTransmissionColorFactor\":[1,true,1]}}}]", SR_BAD_FORMAT,
+      "bad.gltf: /materials/0/extensions/KHR_materials_diffuse_transmission/"
+      "diffuseTransmissionColorFactor/1: not a finite number" },
 };
 
 SR_TEST(malformed_files_give_one_message_with_the_json_pointer)

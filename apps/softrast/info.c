@@ -82,6 +82,8 @@ static size_t material_slots(const sr_pbr_material *m, named_slot *out)
         { "anisotropy", &m->anisotropy_texture },
         { "iridescence", &m->iridescence_texture },
         { "iridescenceThickness", &m->iridescence_thickness_texture },
+        { "diffuseTransmission", &m->diffuse_transmission_texture },
+        { "diffuseTransmissionColor", &m->diffuse_transmission_color_texture },
     };
     size_t n = 0;
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
@@ -91,7 +93,7 @@ static size_t material_slots(const sr_pbr_material *m, named_slot *out)
     }
     return n;
 }
-#define MAX_SLOTS 17
+#define MAX_SLOTS 19
 
 /* The glTF material extensions whose values the material holds: zeroed
  * fields are the extension absent (sr_pbr_material's convention). */
@@ -129,9 +131,15 @@ static size_t material_extensions(const sr_pbr_material *m, const char **out)
     if (m->iridescence != 0.0f) {
         out[n++] = "KHR_materials_iridescence";
     }
+    if (m->dispersion != 0.0f) {
+        out[n++] = "KHR_materials_dispersion";
+    }
+    if (m->diffuse_transmission != 0.0f || m->diffuse_transmission_texture.texture) {
+        out[n++] = "KHR_materials_diffuse_transmission";
+    }
     return n;
 }
-#define MAX_EXTENSIONS 10
+#define MAX_EXTENSIONS 12
 
 static const char *alpha_name(sr_alpha_mode mode)
 {

@@ -48,6 +48,13 @@ class Material:
     0: none), its iridescence_ior >= 1 and its thickness in nm,
     iridescence_thickness_max, or from iridescence_thickness_min to it
     across a loaded file's thickness texture.
+    dispersion: 20 / the Abbe number, >= 0 (KHR_materials_dispersion; 0:
+    none): a transmissive volume refracts red, green and blue each at its
+    own ior.
+    diffuse_transmission: the share of the diffuse light let through to the
+    other side, in [0, 1] (KHR_materials_diffuse_transmission; 0: none), in
+    diffuse_transmission_color, (3,) float32 linear RGB in [0, 1]: leaves,
+    paper, lamp shades lit from behind.
 
     ``render`` draws the base color of a loaded instance (factor times
     texture times vertex color, drawn into its Mesh by :func:`load`) into
@@ -72,7 +79,8 @@ class Material:
                  "sheen_roughness", "transmission", "thickness", "attenuation_color",
                  "attenuation_distance", "anisotropy_strength", "anisotropy_rotation",
                  "iridescence", "iridescence_ior", "iridescence_thickness_min",
-                 "iridescence_thickness_max")
+                 "iridescence_thickness_max", "dispersion", "diffuse_transmission",
+                 "diffuse_transmission_color")
 
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
@@ -107,6 +115,9 @@ class Material:
     iridescence_ior: float
     iridescence_thickness_min: float
     iridescence_thickness_max: float
+    dispersion: float
+    diffuse_transmission: float
+    diffuse_transmission_color: NDArray[np.float32]
 
     def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
                  base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
@@ -124,7 +135,9 @@ class Material:
                  attenuation_distance: float = 0.0, anisotropy_strength: float = 0.0,
                  anisotropy_rotation: float = 0.0, iridescence: float = 0.0,
                  iridescence_ior: float = 1.3, iridescence_thickness_min: float = 100.0,
-                 iridescence_thickness_max: float = 400.0) -> None:
+                 iridescence_thickness_max: float = 400.0, dispersion: float = 0.0,
+                 diffuse_transmission: float = 0.0,
+                 diffuse_transmission_color: Factors = (1.0, 1.0, 1.0)) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
         if base_color_texture is not None and not (
                 isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
@@ -182,6 +195,11 @@ class Material:
             iridescence_thickness_min, "iridescence_thickness_min", 1, np.inf)[0])
         self.iridescence_thickness_max = float(_factors(
             iridescence_thickness_max, "iridescence_thickness_max", 1, np.inf)[0])
+        self.dispersion = float(_factors(dispersion, "dispersion", 1, np.inf)[0])
+        self.diffuse_transmission = float(_factors(diffuse_transmission, "diffuse_transmission",
+                                                   1, 1.0)[0])
+        self.diffuse_transmission_color = _factors(diffuse_transmission_color,
+                                                   "diffuse_transmission_color", 3, 1.0)
 
     @classmethod
     def _from_factors(cls, factors: Mapping[str, Any],

@@ -149,7 +149,8 @@ def _look(inst: Instance) -> Tuple[Any, ...]:
     if m is None:
         return (pose, (1.0, 1.0, 1.0, 1.0), 0.0, 0.5, (0.0, 0.0, 0.0), 1.0, 0, 0.5, True, False,
                 1.0, 1.0, 1.5, 1.0, (1.0, 1.0, 1.0), 0.0, 0.0, (0.0, 0.0, 0.0), 0.0,
-                (0.0, 0.0, (1.0, 1.0, 1.0), 0.0), (0.0, 0.0, 0.0, 1.3, 100.0, 400.0), source)
+                (0.0, 0.0, (1.0, 1.0, 1.0), 0.0), (0.0, 0.0, 0.0, 1.3, 100.0, 400.0),
+                (0.0, 0.0, (1.0, 1.0, 1.0)), source)
     # (A loaded instance is drawn from the file's own arrays, whose colors
     # do not have the factor its Mesh's have.)
     base = tuple(float(c) for c in m.base_color)
@@ -161,7 +162,9 @@ def _look(inst: Instance) -> Tuple[Any, ...]:
             (m.transmission, m.thickness, tuple(float(c) for c in m.attenuation_color),
              m.attenuation_distance),
             (m.anisotropy_strength, m.anisotropy_rotation, m.iridescence, m.iridescence_ior,
-             m.iridescence_thickness_min, m.iridescence_thickness_max), source)
+             m.iridescence_thickness_min, m.iridescence_thickness_max),
+            (m.dispersion, m.diffuse_transmission,
+             tuple(float(c) for c in m.diffuse_transmission_color)), source)
 
 
 # Prefiltered environments, by (file, its size and time, intensity): a few

@@ -188,12 +188,22 @@ static PyObject *material_dict(const sr_pbr_material *m)
         "iridescence_thickness_min", both_zero ? 100.0 : (double)m->iridescence_thickness_min,
         "iridescence_thickness_max", both_zero ? 400.0 : (double)m->iridescence_thickness_max)
                                 : NULL;
-    if (!surface || PyDict_Update(layers, surface) < 0) {
+    /* KHR_materials_dispersion and _diffuse_transmission, zeros as absent
+     * and the color's default white. */
+    const float *dc = m->diffuse_transmission_color;
+    PyObject *translucency = surface ? Py_BuildValue(
+        "{sdsdsN}", "dispersion", (double)m->dispersion, "diffuse_transmission",
+        (double)m->diffuse_transmission, "diffuse_transmission_color",
+        Py_BuildValue("(ddd)", (double)dc[0], (double)dc[1], (double)dc[2])) : NULL;
+    if (!translucency || PyDict_Update(surface, translucency) < 0 ||
+        PyDict_Update(layers, surface) < 0) {
+        Py_XDECREF(translucency);
         Py_XDECREF(surface);
         Py_XDECREF(layers);
         Py_XDECREF(d);
         return NULL;
     }
+    Py_DECREF(translucency);
     Py_DECREF(surface);
     if (!layers || PyDict_Update(d, layers) < 0) {
         Py_XDECREF(layers);

@@ -728,7 +728,8 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
  * (3), clearcoat, clearcoat roughness, sheen color (3), sheen roughness,
  * (transmission, thickness, attenuation color (3), attenuation distance),
  * (anisotropy strength, rotation, iridescence, its ior, thickness min and
- * max), source: None or (the loaded scene's capsule, primitive index)). */
+ * max), (dispersion, diffuse transmission, its color (3)), source: None
+ * or (the loaded scene's capsule, primitive index)). */
 static int take_look(PyObject *look, Py_ssize_t i, instance *in)
 {
     PyObject *pose, *source;
@@ -736,9 +737,10 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     *m = sr_pbr_default_material();
     int mode, double_sided, unlit;
     float *c = m->base_color, *e = m->emissive, *sc = m->specular_color, *sh = m->sheen_color;
-    float *ac = m->attenuation_color;
+    float *ac = m->attenuation_color, *dc = m->diffuse_transmission_color;
     if (!PyTuple_Check(look) ||
-        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffff(fff)ff(fff)f(ff(fff)f)(ffffff)O", &pose,
+        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffff(fff)ff(fff)f(ff(fff)f)(ffffff)(ff(fff))O",
+                          &pose,
                           &c[0],
                           &c[1], &c[2], &c[3], &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
                           &m->emissive_strength, &mode, &m->alpha_cutoff, &double_sided, &unlit,
@@ -748,7 +750,8 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
                           &m->thickness, &ac[0], &ac[1], &ac[2], &m->attenuation_distance,
                           &m->anisotropy_strength, &m->anisotropy_rotation, &m->iridescence,
                           &m->iridescence_ior, &m->iridescence_thickness_min,
-                          &m->iridescence_thickness_max, &source)) {
+                          &m->iridescence_thickness_max, &m->dispersion,
+                          &m->diffuse_transmission, &dc[0], &dc[1], &dc[2], &source)) {
         PyErr_Clear();
         PyErr_Format(PyExc_TypeError, "instances[%zd]: the look is malformed", i);
         return -1;

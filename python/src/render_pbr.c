@@ -101,6 +101,10 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
     m.iridescence_ior = f->iridescence_ior;
     m.iridescence_thickness_min = f->iridescence_thickness_min;
     m.iridescence_thickness_max = f->iridescence_thickness_max;
+    m.dispersion = f->dispersion;
+    m.diffuse_transmission = f->diffuse_transmission;
+    memcpy(m.diffuse_transmission_color, f->diffuse_transmission_color,
+           sizeof m.diffuse_transmission_color);
     return m;
 }
 

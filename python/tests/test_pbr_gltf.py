@@ -398,3 +398,42 @@ def test_transmission_shows_what_is_behind(tmp_path):
     assert opaque[24, 14].min() > 120 and abs(opaque[24, 14, 0] - opaque[24, 14, 2]) < 20
     with pytest.raises(ValueError, match="transmission"):
         softrast.Material(transmission=1.5)
+
+
+def test_dispersion_and_diffuse_transmission_reach_the_material_and_the_picture(tmp_path):
+    # KHR_materials_dispersion and _diffuse_transmission come with the
+    # loaded Material (the color's default white where the file gives
+    # none); diffuse transmission changes the picture of a quad the
+    # default lights reach from behind too (their rim light), and set to
+    # zero on the Material draws the plain material's bytes; a Material
+    # made in Python carries them and refuses values out of range.
+    plain = mat((0.2, 0.6, 0.1, 1), roughness=0.6)
+    leaf = mat((0.2, 0.6, 0.1, 1), roughness=0.6,
+               extensions={"KHR_materials_diffuse_transmission": {
+                   "diffuseTransmissionFactor": 1.0,
+                   "diffuseTransmissionColorFactor": [1.0, 0.2, 0.2]},
+                   "KHR_materials_dispersion": {"dispersion": 0.5}})
+    pictures, scenes = [], []
+    for i, m in enumerate((plain, leaf)):
+        path = gb.write(tmp_path / f"l{i}.gltf", [(gb.quad((0, 0, 0), 2.0), 0)], [m], [])
+        scenes.append(load(path))
+        pictures.append(front(scenes[-1])["color"].astype(int))
+    got = scenes[1].instances[0].material
+    assert got.diffuse_transmission == 1.0 and abs(got.dispersion - 0.5) < 1e-6
+    assert np.allclose(got.diffuse_transmission_color, [1.0, 0.2, 0.2])
+    assert scenes[0].instances[0].material.diffuse_transmission == 0.0
+    assert list(scenes[0].instances[0].material.diffuse_transmission_color) == [1, 1, 1]
+    assert np.abs(pictures[1] - pictures[0]).max() > 10, "diffuse transmission changes it"
+    got.diffuse_transmission = 0.0
+    got.dispersion = 0.0
+    assert np.array_equal(front(scenes[1])["color"].astype(int), pictures[0])
+    m = softrast.Material(diffuse_transmission=0.5, diffuse_transmission_color=(1, 0.5, 0),
+                          dispersion=2.0)
+    assert m.dispersion == 2.0 and list(m.diffuse_transmission_color) == [1.0, 0.5, 0.0]
+    assert list(softrast.Material().diffuse_transmission_color) == [1.0, 1.0, 1.0]
+    with pytest.raises(ValueError, match="diffuse_transmission"):
+        softrast.Material(diffuse_transmission=1.5)
+    with pytest.raises(ValueError, match="diffuse_transmission_color"):
+        softrast.Material(diffuse_transmission_color=(1, 2, 0))
+    with pytest.raises(ValueError, match="dispersion"):
+        softrast.Material(dispersion=-1.0)

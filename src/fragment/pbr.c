@@ -134,6 +134,8 @@ enum {
     SLOT_TRANSMISSION, SLOT_THICKNESS,
     /* the base lobe's anisotropy and thin film (pbr_layers.h) */
     SLOT_ANISOTROPY, SLOT_IRIDESCENCE, SLOT_IRIDESCENCE_THICKNESS,
+    /* diffuse transmission's share (A) and color (pbr_layers.h) */
+    SLOT_DIFFUSE_TRANSMISSION, SLOT_DIFFUSE_TRANSMISSION_COLOR,
     SLOT_COUNT
 };
 
@@ -152,6 +154,7 @@ static const struct {
     SLOT_FIELD(sheen_roughness_texture), SLOT_FIELD(transmission_texture),
     SLOT_FIELD(thickness_texture), SLOT_FIELD(anisotropy_texture),
     SLOT_FIELD(iridescence_texture), SLOT_FIELD(iridescence_thickness_texture),
+    SLOT_FIELD(diffuse_transmission_texture), SLOT_FIELD(diffuse_transmission_color_texture),
 #undef SLOT_FIELD
 };
 
@@ -215,6 +218,11 @@ struct sr_pbr {
      * rotation) and thin film (its index), when on. */
     bool aniso, irid;
     float an_cos, an_sin;
+    /* Diffuse transmission, when on, and the volume's absorption of the
+     * light it lets through: -log2(attenuation color) / distance times
+     * the model's mean axis length (thickness to world), 0 without. */
+    bool dtrans;
+    float dt_absorb[3];
     float *oct_coat;
     const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
@@ -240,6 +248,7 @@ sr_pbr_material sr_pbr_default_material(void)
         .emissive_strength = 1.0f,
         .alpha_cutoff = 0.5f,
         .attenuation_color = { 1, 1, 1 },
+        .diffuse_transmission_color = { 1, 1, 1 },
     };
     for (int i = 0; i < SLOT_COUNT; i++) {
         sr_texture_slot *s = (sr_texture_slot *)((char *)&m + slot_fields[i].offset);
@@ -522,9 +531,16 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
     load3(n, n_);
     load3(v, v_);
     load3(base, base_);
-    v4f mt = vclamp(load(metal_), 0.0f, 1.0f), dw = load(diffuse_);
+    v4f mt = vclamp(load(metal_), 0.0f, 1.0f), dw = load(diffuse_), cback[3];
     for (int c = 0; c < 3; c++) {
         cdiff[c] = base[c] * (1.0f - mt) * dw;
+        if (ext && ext->dtrans) {
+            /* Diffuse transmission takes its share of the dielectric's
+             * diffuse lobe for a Lambert lobe lit from behind, in its own
+             * color (the extension's mix of diffuse BRDF and BTDF). */
+            cback[c] = ext->dt_col[c] * ext->dt * (1.0f - mt) * dw;
+            cdiff[c] *= 1.0f - ext->dt;
+        }
         /* Metals reflect their base color, from F90 = 1 at grazing. */
         f0[c] = ext ? ext->f0[c] + (base[c] - ext->f0[c]) * mt : 0.04f + (base[c] - 0.04f) * mt;
         out[c] = (v4f){ 0 };
@@ -589,6 +605,9 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
             }
             out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
         }
+        if (ext && ext->dtrans) {
+            sr__diffuse_btdf_light(n, v, nlr, lv, f0, f90, cback, rad, out);
+        }
         if (ext && ext->coat) {
             sr__coat_light(ext, ld, hs, rad);
         }
@@ -613,6 +632,7 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
             rr[k] = 2.0f * bd * bn[k] - v[k];
         }
     }
+    v4f eb[3];
     if (p->environment) {
         /* Image-based light: irradiance (E / pi) along N and the
          * prefiltered radiance along R, from tables made with the program
@@ -623,6 +643,15 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         /* The hemisphere along N and along R. */
         hemisphere(p, n, en);
         hemisphere(p, rr, er);
+    }
+    if (ext && ext->dtrans) {
+        /* Diffuse transmission's lobe sees the irradiance from behind. */
+        v4f nb[3] = { -n[0], -n[1], -n[2] };
+        if (p->environment) {
+            irradiance4(p, nb, eb);
+        } else {
+            hemisphere(p, nb, eb);
+        }
     }
     split_sum_fit(rc, nv, &sa, &sb);
     /* Multiple scattering (Fdez-Aguera 2019, as three.js and Khronos'
@@ -642,6 +671,9 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         v4f fms_ems = ems * fss_ess * favg / (1.0f - ems * favg);
         v4f kd = cdiff[c] * (1.0f - (fss_ess + fms_ems));
         out[c] += (fss_ess * er[c] + (fms_ems + kd) * en[c]) * ao;
+        if (ext && ext->dtrans) {
+            out[c] += cback[c] * (1.0f - (fss_ess + fms_ems)) * eb[c] * ao;
+        }
     }
     if (ext && ext->coat) {
         coat_ambient(p, ext, v, ao);
@@ -730,6 +762,45 @@ static void aniso_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
         x->an_s[i] = clamp01(s[i]);
     }
     x->aniso = true;
+}
+
+/* KHR_materials_diffuse_transmission's inputs: the share (factor times
+ * the texture's A) and the color (factor times the texture's RGB), the
+ * color dimmed by the volume it crosses (KHR_materials_volume's
+ * Beer-Lambert over the thickness, as the sample viewer does; a thin
+ * wall, thickness 0, absorbs nothing). */
+static void dtrans_inputs(const sr_pbr *p, const sr_fragment_quad *q, sr__pbr_layers *x)
+{
+    const sr_pbr_material *m = &p->m;
+    float tex[4][4], uv[2][4];
+    x->dtrans = true;
+    x->dt = (v4f){ 0 } + m->diffuse_transmission;
+    for (int c = 0; c < 3; c++) {
+        x->dt_col[c] = (v4f){ 0 } + m->diffuse_transmission_color[c];
+    }
+    if (p->slot[SLOT_DIFFUSE_TRANSMISSION].tex) {
+        sample_slot(&p->slot[SLOT_DIFFUSE_TRANSMISSION], q, tex, uv);
+        x->dt *= load(tex[3]);
+    }
+    if (p->slot[SLOT_DIFFUSE_TRANSMISSION_COLOR].tex) {
+        sample_slot(&p->slot[SLOT_DIFFUSE_TRANSMISSION_COLOR], q, tex, uv);
+        for (int c = 0; c < 3; c++) {
+            x->dt_col[c] *= load(tex[c]);
+        }
+    }
+    x->dt = vclamp(x->dt, 0.0f, 1.0f);
+    if (m->thickness > 0.0f && m->attenuation_distance > 0.0f) {
+        v4f th = (v4f){ 0 } + m->thickness;
+        if (p->slot[SLOT_THICKNESS].tex) {
+            sample_slot(&p->slot[SLOT_THICKNESS], q, tex, uv);
+            th *= load(tex[1]);
+        }
+        for (int c = 0; c < 3; c++) {
+            for (int i = 0; i < 4; i++) {
+                x->dt_col[c][i] *= exp2f(-p->dt_absorb[c] * th[i]);
+            }
+        }
+    }
 }
 
 /* The extensions' inputs at the quad's lanes (pbr_layers.h): factors
@@ -823,6 +894,9 @@ static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
     }
     if (p->aniso) {
         aniso_inputs(p, q, side, x);
+    }
+    if (p->dtrans) {
+        dtrans_inputs(p, q, x);
     }
     if (p->irid) {
         x->irid = true;
@@ -1250,7 +1324,8 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
         !isfinite(m->sheen_roughness) || !isfinite(m->anisotropy_strength) ||
         !isfinite(m->anisotropy_rotation) || !isfinite(m->iridescence) ||
         !isfinite(m->iridescence_ior) || !isfinite(m->iridescence_thickness_min) ||
-        !isfinite(m->iridescence_thickness_max)) {
+        !isfinite(m->iridescence_thickness_max) || !isfinite(m->dispersion) ||
+        !isfinite(m->diffuse_transmission) || !finite_n(m->diffuse_transmission_color, 3)) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_pbr_material: an extension's factor is not finite");
     }
@@ -1262,6 +1337,22 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_pbr_material.iridescence_ior %g must be 0 (1.3) or >= 1",
                         (double)m->iridescence_ior);
+    }
+    if (m->dispersion < 0.0f) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_pbr_material.dispersion %g must be >= 0",
+                        (double)m->dispersion);
+    }
+    if (m->diffuse_transmission < 0.0f || m->diffuse_transmission > 1.0f) {
+        return sr__fail(ctx, SR_INVALID_ARG,
+                        "sr_pbr_material.diffuse_transmission %g must be in 0..1",
+                        (double)m->diffuse_transmission);
+    }
+    for (int c = 0; c < 3; c++) {
+        if (m->diffuse_transmission_color[c] < 0.0f || m->diffuse_transmission_color[c] > 1.0f) {
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "sr_pbr_material.diffuse_transmission_color[%d] %g must be in 0..1",
+                            c, (double)m->diffuse_transmission_color[c]);
+        }
     }
     if (m->iridescence_thickness_min < 0.0f || m->iridescence_thickness_max < 0.0f) {
         return sr__fail(ctx, SR_INVALID_ARG,
@@ -1500,8 +1591,9 @@ static void resolve_layers(sr_pbr *p)
                (m->sheen_color[0] > 0.0f || m->sheen_color[1] > 0.0f || m->sheen_color[2] > 0.0f);
     p->aniso = !m->unlit && m->anisotropy_strength > 0.0f;
     p->irid = !m->unlit && m->iridescence > 0.0f;
+    p->dtrans = !m->unlit && m->diffuse_transmission > 0.0f;
     p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen || p->aniso ||
-                              p->irid);
+                              p->irid || p->dtrans);
     int off[SLOT_COUNT], count = 0;
     if (!spec) {
         off[count++] = SLOT_SPECULAR;
@@ -1523,8 +1615,31 @@ static void resolve_layers(sr_pbr *p)
         off[count++] = SLOT_IRIDESCENCE;
         off[count++] = SLOT_IRIDESCENCE_THICKNESS;
     }
+    if (!p->dtrans) {
+        off[count++] = SLOT_DIFFUSE_TRANSMISSION;
+        off[count++] = SLOT_DIFFUSE_TRANSMISSION_COLOR;
+    }
     for (int i = 0; i < count; i++) {
         p->slot[off[i]].tex = NULL;
+    }
+}
+
+/* The volume's absorption of diffusely transmitted light per unit of
+ * the material's thickness: its rate per world unit (as
+ * sr__transmission_setup's) times the model's mean axis length, the
+ * thickness being in object space. */
+static void dtrans_absorption(sr_pbr *p)
+{
+    const sr_pbr_material *m = &p->m;
+    float scale = 0.0f;
+    for (int a = 0; a < 3; a++) {
+        const float *c = &p->model.m[4 * a];
+        scale += sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) * (1.0f / 3.0f);
+    }
+    for (int c = 0; c < 3; c++) {
+        float col = m->attenuation_color[c] > 1e-30f ? m->attenuation_color[c] : 1e-30f;
+        float rate = -log2f(col > 1.0f ? 1.0f : col) / m->attenuation_distance * scale;
+        p->dt_absorb[c] = rate < 1e30f ? rate : 1e30f;
     }
 }
 
@@ -1603,8 +1718,14 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     p->texcoords1 = (const uint8_t *)desc->texcoords1;
     p->texcoord1_stride = desc->texcoord1_stride ? desc->texcoord1_stride : 2 * sizeof(float);
     p->transmits = !mat.unlit && mat.transmission != 0.0f;
+    if (p->dtrans && mat.thickness > 0.0f && mat.attenuation_distance > 0.0f) {
+        dtrans_absorption(p);
+    }
     if (!p->transmits) {
-        p->slot[SLOT_TRANSMISSION].tex = p->slot[SLOT_THICKNESS].tex = NULL;
+        p->slot[SLOT_TRANSMISSION].tex = NULL;
+        if (!p->dtrans) {
+            p->slot[SLOT_THICKNESS].tex = NULL;
+        }
     } else {
         sr__transmission_setup(&mat, &p->model, &p->view_projection, desc->transmission_source,
                                desc->environment, p->scale, &p->tr);

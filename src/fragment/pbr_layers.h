@@ -40,6 +40,10 @@ typedef struct sr__pbr_layers {
     v4f ir_w, ir_thick;
     float ir_ior;
     v4f ir_f[3], ir_f0[3];
+    /* Diffuse transmission: its share of the diffuse lobe (0..1) and the
+     * color of the light it lets through (after the volume's absorption). */
+    bool dtrans;
+    v4f dt, dt_col[3];
 } sr__pbr_layers;
 
 /* Clearcoat.  begin: from cc, cc_a2 (set) and cc_n (set) the rest; v is
@@ -70,6 +74,14 @@ void sr__aniso_bent(const sr__pbr_layers *x, const v4f n[3], const v4f v[3], v4f
 /* Iridescence.  begin: from ir_thick and ir_ior (set), N.V in 0..1 and
  * the base's F0 (metals' included) the film's ir_f and ir_f0. */
 void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0[3]);
+
+/* Diffuse transmission: one light's radiance rad arriving from behind
+ * the surface (nlr = N.L < 0 and lv = L.V of its unit vector L) through the Lambert BTDF
+ * of color cback (the lobe's color, share and dielectric weight), times
+ * 1 - F where the light leaves towards the viewer: Schlick's F (f0, f90)
+ * at V.H of the light mirrored through the surface.  Added to out. */
+void sr__diffuse_btdf_light(const v4f n[3], const v4f v[3], v4f nlr, v4f lv, const v4f f0[3],
+                            v4f f90, const v4f cback[3], const v4f rad[3], v4f out[3]);
 
 /* The thin film's reflectance (Belcour and Barla 2017) at the cosine
  * cos1 of the view to the normal, over a base of Fresnel f0 (RGB), for a

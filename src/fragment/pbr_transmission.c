@@ -25,6 +25,19 @@ void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
      * light, so its microfacets spread none; 1.5 and above the full
      * roughness. */
     t->rough_scale = clamp01(2.0f * ior - 2.0f);
+    /* KHR_materials_dispersion's per-channel iors: its dispersion is
+     * 20 / the Abbe number V = (n_d - 1) / (n_F - n_C), and red and blue
+     * lie half the spread n_F - n_C below and above green's n_d (the
+     * extension's implementation notes; three.js and the sample viewer
+     * alike), red clamped to 1 where the spread would take it below. */
+    t->disperses = m->dispersion > 0.0f && m->thickness > 0.0f;
+    if (t->disperses) {
+        float half = (ior - 1.0f) * 0.025f * m->dispersion;
+        float lo = ior - half, hi = ior + half;
+        t->eta_rgb[0] = 1.0f / (lo > 1.0f ? lo : 1.0f);
+        t->eta_rgb[1] = t->eta;
+        t->eta_rgb[2] = 1.0f / hi;
+    }
     memcpy(t->view_projection, view_projection->m, sizeof t->view_projection);
     for (int a = 0; a < 3; a++) {
         const float *c = &model->m[4 * a];
@@ -96,6 +109,37 @@ static void exit_uv(const sr__transmission *t, const float pos[3], const float s
     *v = clamp_uv(clip[1] * iw * 0.5f + 0.5f);
 }
 
+/* One channel's (or, without dispersion, every channel's) ray through
+ * the volume at eta: the way to its exit point, its length and the light
+ * seen there. */
+static void trace_ray(const sr__transmission *t, const float pi[3], const float vi[3],
+                      const float ni[3], float eta, float th, float r, float step[3],
+                      float *length, float light[3])
+{
+    float dir[3];
+    refract_view(vi, ni, eta, dir);
+    float len2 = 0.0f;
+    for (int c = 0; c < 3; c++) {
+        step[c] = dir[c] * th * t->model_scale[c];
+        len2 += step[c] * step[c];
+    }
+    *length = sqrtf(len2);
+    if (t->source) {
+        float u, tv, texel[4];
+        exit_uv(t, pi, step, &u, &tv);
+        sr__texture_sample_linear(t->source, SR_FILTER_TRILINEAR, SR_WRAP_CLAMP, SR_WRAP_CLAMP,
+                                  u, tv, t->lod_scale * r, texel);
+        for (int c = 0; c < 3; c++) {
+            light[c] = texel[c] * t->inv_exposure;
+        }
+    } else if (t->environment) {
+        /* A thin wall bends the ray in and back out: it leaves
+         * parallel to the view ray. */
+        const float straight[3] = { -vi[0], -vi[1], -vi[2] };
+        sr_environment_specular(t->environment, th > 0.0f ? dir : straight, r, light);
+    }
+}
+
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                              const float n[3][4], const float v[3][4], const float rough[4],
                              const float thick[4], unsigned mask, float out[3][4],
@@ -103,41 +147,31 @@ void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
 {
     for (int i = 0; i < 4; i++) {
         float light[3] = { 0, 0, 0 }, step[3] = { 0, 0, 0 };
-        float length = 0.0f;
+        float length[3] = { 0, 0, 0 };
         /* The ray is needed without anything to see along it too: the
          * punctual lights shine through the same volume. */
         if (mask >> i & 1) {
             float vi[3] = { v[0][i], v[1][i], v[2][i] }, ni[3] = { n[0][i], n[1][i], n[2][i] };
             float pi[3] = { pos[0][i], pos[1][i], pos[2][i] };
-            float dir[3];
-            refract_view(vi, ni, t->eta, dir);
-            float th = thick[i] > 0.0f ? thick[i] : 0.0f, len2 = 0.0f;
-            for (int c = 0; c < 3; c++) {
-                step[c] = dir[c] * th * t->model_scale[c];
-                len2 += step[c] * step[c];
-            }
-            length = sqrtf(len2);
+            float th = thick[i] > 0.0f ? thick[i] : 0.0f;
             float r = rough[i] < 0.0f ? 0.0f : rough[i] > 1.0f ? 1.0f : rough[i];
-            if (t->source) {
-                float u, tv, texel[4];
-                exit_uv(t, pi, step, &u, &tv);
-                sr__texture_sample_linear(t->source, SR_FILTER_TRILINEAR, SR_WRAP_CLAMP,
-                                          SR_WRAP_CLAMP, u, tv, t->lod_scale * r, texel);
-                for (int c = 0; c < 3; c++) {
-                    light[c] = texel[c] * t->inv_exposure;
+            trace_ray(t, pi, vi, ni, t->eta, th, r, step, &length[1], light);
+            length[0] = length[2] = length[1];
+            if (t->disperses) {
+                /* Red and blue along their own rays; green's is the one
+                 * traced above. */
+                for (int c = 0; c < 3; c += 2) {
+                    float s[3], l[3] = { 0, 0, 0 };
+                    trace_ray(t, pi, vi, ni, t->eta_rgb[c], th, r, s, &length[c], l);
+                    light[c] = l[c];
                 }
-            } else if (t->environment) {
-                /* A thin wall bends the ray in and back out: it leaves
-                 * parallel to the view ray. */
-                const float straight[3] = { -vi[0], -vi[1], -vi[2] };
-                sr_environment_specular(t->environment, th > 0.0f ? dir : straight, r, light);
             }
         }
         for (int c = 0; c < 3; c++) {
             float k = 1.0f;
-            if (t->attenuates && length > 0.0f) {
+            if (t->attenuates && length[c] > 0.0f) {
                 /* Beer-Lambert: attenuation_color^(length / distance). */
-                k = exp2f(-t->absorb[c] * length);
+                k = exp2f(-t->absorb[c] * length[c]);
                 light[c] *= k;
             }
             out[c][i] = light[c];

@@ -21,6 +21,10 @@ typedef struct sr__transmission {
     float absorb[3];               /* -log2(attenuation color) / distance, per channel */
     bool attenuates;               /* attenuation_distance > 0 */
     float rough_scale;             /* clamp(2 ior - 2, 0, 1): the ior's share of the roughness */
+    /* KHR_materials_dispersion: 1 / the ior of each of red, green and
+     * blue, when the material spreads them (green's is eta). */
+    bool disperses;
+    float eta_rgb[3];
 } sr__transmission;
 
 /* Fills t from the material (its ior: KHR_materials_ior's, 0 the
@@ -38,9 +42,12 @@ void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
  * at the mip level the roughness blurs it to, attenuated (Beer-Lambert)
  * along that ray.  Without a source, the environment's radiance in the
  * direction the ray leaves (refracted in a volume, straight on through
- * a thin wall), prefiltered for the roughness.  pos, n (unit, facing the viewer), v (unit, to the
+ * a thin wall), prefiltered for the roughness.  A dispersive volume
+ * refracts one ray per channel, each at its own ior, and reads each
+ * channel where its own ray leaves.  pos, n (unit, facing the viewer), v (unit, to the
  * eye) in world space; rough is the material's perceptual roughness.
- * ray gets the way from pos to the exit point (zero for a thin wall) and
+ * ray gets the way from pos to the exit point (zero for a thin wall;
+ * green's in a dispersive volume) and
  * keep the volume's transmittance along it, per channel (1 without
  * attenuation); out is already multiplied by keep. */
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],

@@ -1178,6 +1178,8 @@ static const char *supported_extensions[] = {
     "KHR_materials_iridescence",
     "KHR_materials_transmission",
     "KHR_materials_volume",
+    "KHR_materials_dispersion",
+    "KHR_materials_diffuse_transmission",
     "KHR_lights_punctual",
     "KHR_materials_variants",
 };

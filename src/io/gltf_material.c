@@ -7,7 +7,9 @@
  * KHR_texture_transform, KHR_materials_emissive_strength,
  * KHR_materials_unlit, the physically based layers KHR_materials_ior,
  * _specular, _clearcoat and _sheen, the base lobe's _anisotropy and
- * _iridescence, and KHR_materials_transmission and _volume are applied.  Called by the thread reading the document.
+ * _iridescence, KHR_materials_transmission, _volume and _dispersion, and
+ * KHR_materials_diffuse_transmission are applied.  Called by the thread
+ * reading the document.
  */
 #include "io/gltf.h"
 
@@ -328,6 +330,7 @@ static void default_material(sr_pbr_material *m)
     m->alpha_cutoff = 0.5f;
     for (int c = 0; c < 3; c++) {
         m->attenuation_color[c] = 1;
+        m->diffuse_transmission_color[c] = 1;
     }
 }
 
@@ -485,6 +488,45 @@ static sr_result read_iridescence(gltf_doc *d, const json_t *x, const char *xptr
     return SR_OK;
 }
 
+/* KHR_materials_dispersion's factor and KHR_materials_diffuse_transmission
+ * (its factor and texture (A), color and texture (sRGB RGB)), their
+ * factors clamped to the extensions' ranges with a warning each. */
+static sr_result read_translucency(gltf_doc *d, const json_t *mat, const char *ptr,
+                                   sr_pbr_material *m)
+{
+    char xptr[GLTF_PTR], at[GLTF_PTR + 64];
+    sr_result r;
+    json_t *x;
+    if ((x = sr__gltf_extension(mat, "KHR_materials_dispersion"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_dispersion", ptr);
+        if ((r = sr__gltf_number(d, x, xptr, "dispersion", &m->dispersion)) != SR_OK) {
+            return r;
+        }
+        snprintf(at, sizeof at, "%s/dispersion", xptr);
+        clamp_factor(d, at, &m->dispersion, 0, FLT_MAX);
+    }
+    if ((x = sr__gltf_extension(mat, "KHR_materials_diffuse_transmission"))) {
+        snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_diffuse_transmission", ptr);
+        if ((r = sr__gltf_number(d, x, xptr, "diffuseTransmissionFactor",
+                                 &m->diffuse_transmission)) != SR_OK ||
+            (r = read_slot(d, x, xptr, "diffuseTransmissionTexture", false,
+                           &m->diffuse_transmission_texture, NULL, NULL)) != SR_OK ||
+            (r = sr__gltf_numbers(d, x, xptr, "diffuseTransmissionColorFactor", 3,
+                                  m->diffuse_transmission_color)) != SR_OK ||
+            (r = read_slot(d, x, xptr, "diffuseTransmissionColorTexture", true,
+                           &m->diffuse_transmission_color_texture, NULL, NULL)) != SR_OK) {
+            return r;
+        }
+        snprintf(at, sizeof at, "%s/diffuseTransmissionFactor", xptr);
+        clamp_factor(d, at, &m->diffuse_transmission, 0, 1);
+        for (int c = 0; c < 3; c++) {
+            snprintf(at, sizeof at, "%s/diffuseTransmissionColorFactor/%d", xptr, c);
+            clamp_factor(d, at, &m->diffuse_transmission_color[c], 0, 1);
+        }
+    }
+    return SR_OK;
+}
+
 /* KHR_materials_ior, _specular, _clearcoat, _sheen, _anisotropy and
  * _iridescence into the material's extension fields (sr_pbr_material:
  * zero is absent), with
@@ -584,7 +626,7 @@ static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
             return r;
         }
     }
-    return SR_OK;
+    return read_translucency(d, mat, ptr, m);
 }
 
 /* Material `mat` into m; *base_image: the image its base color texture

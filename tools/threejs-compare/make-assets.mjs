@@ -478,4 +478,65 @@ function animatedGlb() {
 writeFileSync(join(out, 'animated-hub.glb'), animatedGlb());
 writeFileSync(join(out, 'animated-hub.glb.pose'), '0 1.25\n');
 
+// KHR_materials_dispersion: a clear glass sphere (left) and one of the
+// same glass with dispersion 3 (right), 1 thick (their diameter), in front
+// of a checker of white and blue squares facing +Z, whose edges the right
+// one splits into red, green and blue fringes.
+function dispersionGlb() {
+    const arrays = [];
+    const add = (data, fields) => { arrays.push([data, fields]); return arrays.length - 1; };
+    const shapeOf = (sh) => {
+        const n = sh.pos.length / 3;
+        const lo = [0, 1, 2].map((k) => Math.min(...sh.pos.filter((_, j) => j % 3 === k)));
+        const hi = [0, 1, 2].map((k) => Math.max(...sh.pos.filter((_, j) => j % 3 === k)));
+        return { POSITION: add(new Float32Array(sh.pos), { componentType: 5126, count: n,
+                                                           type: 'VEC3', min: lo, max: hi }),
+                 NORMAL: add(new Float32Array(sh.nrm), { componentType: 5126, count: n, type: 'VEC3' }) };
+    };
+    const indices = (idx) => add(new Uint16Array(idx),
+                                 { componentType: 5123, count: idx.length, type: 'SCALAR' });
+    const squares = [[], []];
+    const side = 0.5, cols = 7, rows = 4;
+    for (let y = 0; y < rows; y++) {
+        for (let x = 0; x < cols; x++) {
+            const l = (x - cols / 2) * side, d = (y - rows / 2) * side;
+            squares[(x + y) % 2].push([l, d]);
+        }
+    }
+    const checker = squares.map((list) => ({
+        pos: list.flatMap(([l, d]) => [l, d, -1, l + side, d, -1, l + side, d + side, -1, l, d + side, -1]),
+        nrm: list.flatMap(() => [0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1]),
+        idx: list.flatMap((_, i) => [0, 1, 2, 0, 2, 3].map((k) => 4 * i + k)),
+    }));
+    const ball = sphere(0.5, 64, 32);
+    const ballAttr = shapeOf(ball), ballIdx = indices(ball.idx);
+    const glass = (extra) => ({
+        pbrMetallicRoughness: pbr([1, 1, 1], 0, 0),
+        extensions: { KHR_materials_transmission: { transmissionFactor: 1 },
+                      KHR_materials_volume: { thicknessFactor: 1 }, ...extra },
+    });
+    return glbOf({
+        asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
+        extensionsUsed: ['KHR_materials_transmission', 'KHR_materials_volume',
+                         'KHR_materials_dispersion'],
+        scene: 0,
+        scenes: [{ nodes: [0, 1, 2] }],
+        nodes: [{ mesh: 0 }, { mesh: 1, translation: [-0.6, 0, 0] },
+                { mesh: 2, translation: [0.6, 0, 0] }],
+        meshes: [
+            { primitives: checker.map((sh, i) => ({ attributes: shapeOf(sh), indices: indices(sh.idx),
+                                                   material: i })) },
+            { primitives: [{ attributes: ballAttr, indices: ballIdx, material: 2 }] },
+            { primitives: [{ attributes: ballAttr, indices: ballIdx, material: 3 }] },
+        ],
+        materials: [
+            { name: 'white', pbrMetallicRoughness: pbr([0.8, 0.8, 0.8], 0, 0.8) },
+            { name: 'blue', pbrMetallicRoughness: pbr([0.03, 0.1, 0.6], 0, 0.8) },
+            { name: 'clear glass', ...glass({}) },
+            { name: 'dispersive glass', ...glass({ KHR_materials_dispersion: { dispersion: 3 } }) },
+        ],
+    }, arrays);
+}
+writeFileSync(join(out, 'dispersion-spheres.glb'), dispersionGlb());
+
 writeFileSync(join(out, 'sky.hdr'), sky(256, 128));
