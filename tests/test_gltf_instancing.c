@@ -54,7 +54,8 @@ static const uint16_t cube_idx[36] = { 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1,
 /* The buffer's accessors, in order. */
 enum {
     A_POS, A_IDX, A_T, A_R, A_R_SHORT, A_S, A_S_BYTE, A_T_SHORT, A_ID, A_SHORT_COUNT, A_ZERO_R,
-    A_NAN_T, A_COUNT0, A_TIME, A_ANIM_T, A_DELTA, A_BIG_ID, A_HUGE_ID, A_COUNT
+    A_NAN_T, A_COUNT0, A_TIME, A_ANIM_T, A_DELTA, A_BIG_ID, A_HUGE_ID, A_JOINTS, A_WEIGHTS,
+    A_COUNT
 };
 
 typedef struct bin {
@@ -99,6 +100,11 @@ static char *instanced_model(const char *attrs, const char *node, const char *us
         delta[v][0] = 0, delta[v][1] = cube_pos[v][1] > 0 ? 0.5f : 0, delta[v][2] = 0;
     }
     float time0 = 0;
+    uint8_t joints[8][4] = { { 0 } };
+    float weights[8][4];
+    for (int v = 0; v < 8; v++) {
+        weights[v][0] = 1, weights[v][1] = weights[v][2] = weights[v][3] = 0;
+    }
     off[A_POS] = put(&b, cube_pos, 24, 4), len[A_POS] = 96;
     off[A_IDX] = put(&b, cube_idx, 36, 2), len[A_IDX] = 72;
     off[A_T] = put(&b, t, 3 * N, 4), len[A_T] = sizeof t;
@@ -112,6 +118,8 @@ static char *instanced_model(const char *attrs, const char *node, const char *us
     off[A_TIME] = put(&b, &time0, 1, 4), len[A_TIME] = 4;
     off[A_ANIM_T] = put(&b, anim_t, 3, 4), len[A_ANIM_T] = 12;
     off[A_DELTA] = put(&b, delta, 24, 4), len[A_DELTA] = sizeof delta;
+    off[A_JOINTS] = put(&b, joints, 32, 1), len[A_JOINTS] = sizeof joints;
+    off[A_WEIGHTS] = put(&b, weights, 32, 4), len[A_WEIGHTS] = sizeof weights;
     off[A_SHORT_COUNT] = off[A_T], len[A_SHORT_COUNT] = 12 * (N - 1);
     char b64[6000];
     gltf_base64(b.p, b.n, b64);
@@ -137,6 +145,8 @@ static char *instanced_model(const char *attrs, const char *node, const char *us
         [A_DELTA] = "\"componentType\":5126,\"count\":8,\"type\":\"VEC3\"",
         [A_BIG_ID] = "\"componentType\":5126,\"count\":600000,\"type\":\"SCALAR\"",
         [A_HUGE_ID] = "\"componentType\":5126,\"count\":2000000,\"type\":\"SCALAR\"",
+        [A_JOINTS] = "\"componentType\":5121,\"count\":8,\"type\":\"VEC4\"",
+        [A_WEIGHTS] = "\"componentType\":5126,\"count\":8,\"type\":\"VEC4\"",
     };
     static const int stride[A_COUNT] = { [A_S_BYTE] = 4, [A_T_SHORT] = 8 };
     size_t cap = 40000;
@@ -223,8 +233,10 @@ static sr_result parse(const char *json, const sr_load_desc *desc, sr_scene **s,
 
 /* Where vertex v of instance i lands: scaled, turned by q v q* (q the
  * file's, decoded, normalized), moved, then the node's scale and
- * translation (`node`), plus `lift` in y for vertices of y > 0. */
-static void expected(int i, int v, bool quantized, const float node[3], float lift, double out[3])
+ * translation (`node_scale`, `node`); first raised by `raise` in y, and
+ * by `lift` more for vertices of y > 0. */
+static void expected(int i, int v, bool quantized, float node_scale, const float node[3],
+                     float lift, float raise, double out[3])
 {
     float t[3], q[4], s[3];
     instance_trs(i, t, q, s);
@@ -239,7 +251,7 @@ static void expected(int i, int v, bool quantized, const float node[3], float li
     double qn = sqrt((double)q[0] * q[0] + (double)q[1] * q[1] + (double)q[2] * q[2] +
                      (double)q[3] * q[3]);
     double x = q[0] / qn, y = q[1] / qn, z = q[2] / qn, w = q[3] / qn;
-    double p[3] = { cube_pos[v][0], cube_pos[v][1] + (cube_pos[v][1] > 0 ? lift : 0),
+    double p[3] = { cube_pos[v][0], cube_pos[v][1] + raise + (cube_pos[v][1] > 0 ? lift : 0),
                     cube_pos[v][2] };
     for (int k = 0; k < 3; k++) {
         p[k] *= s[k];
@@ -248,7 +260,7 @@ static void expected(int i, int v, bool quantized, const float node[3], float li
     double c1[3] = { y * p[2] - z * p[1], z * p[0] - x * p[2], x * p[1] - y * p[0] };
     double c2[3] = { y * c1[2] - z * c1[1], z * c1[0] - x * c1[2], x * c1[1] - y * c1[0] };
     for (int k = 0; k < 3; k++) {
-        out[k] = (p[k] + 2 * w * c1[k] + 2 * c2[k] + t[k]) * NODE_SCALE + node[k];
+        out[k] = (p[k] + 2 * w * c1[k] + 2 * c2[k] + t[k]) * node_scale + node[k];
     }
 }
 
@@ -271,7 +283,7 @@ static void check_instances(const sr_scene *s, bool quantized, const float node[
         for (int v = 0; v < 8; v++) {
             const float *x = p->positions + 3 * v;
             double want[3];
-            expected(i, v, quantized, node, lift, want);
+            expected(i, v, quantized, NODE_SCALE, node, lift, 0, want);
             for (int k = 0; k < 3; k++) {
                 double got = (double)p->world[k] * x[0] + (double)p->world[4 + k] * x[1] +
                              (double)p->world[8 + k] * x[2] + p->world[12 + k];
@@ -307,7 +319,7 @@ SR_TEST(each_instance_is_a_draw_at_node_world_times_its_trs)
     for (int i = 0; i < N; i++) {
         for (int v = 0; v < 8; v++) {
             double want[3];
-            expected(i, v, false, node_t, 0, want);
+            expected(i, v, false, NODE_SCALE, node_t, 0, 0, want);
             CHECK(want[0] >= s->bounds_min.x - 1e-4 && want[0] <= s->bounds_max.x + 1e-4);
             CHECK(want[1] >= s->bounds_min.y - 1e-4 && want[1] <= s->bounds_max.y + 1e-4);
             CHECK(want[2] >= s->bounds_min.z - 1e-4 && want[2] <= s->bounds_max.z + 1e-4);
@@ -423,6 +435,56 @@ SR_TEST(instances_follow_the_nodes_animation_morph_weights_variant_and_mirror)
     free(json);
 }
 
+/* The extension says nothing of skins.  A skinned primitive is in world
+ * space already (its node's matrix not applied, as glTF says); each
+ * instance's transform is applied to the skinned pose.  One joint (node
+ * 1, at y = 5, inverse bind the identity) lifts the cube by 5. */
+SR_TEST(a_skinned_instanced_node_places_its_skinned_pose_per_instance)
+{
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    char prim[120];
+    snprintf(prim, sizeof prim, "\"attributes\":{\"POSITION\":%d,\"JOINTS_0\":%d,\"WEIGHTS_0\":%d}",
+             A_POS, A_JOINTS, A_WEIGHTS);
+    char from[60];
+    snprintf(from, sizeof from, "\"attributes\":{\"POSITION\":%d}", A_POS);
+    char *json = replaced(instanced_model(FLOAT_ATTRS, MESH ",\"skin\":0", "", "",
+                                          ",\"skins\":[{\"joints\":[1]}]"),
+                          from, prim);
+    json = replaced(json, "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[0,1]}]");
+    json = replaced(json, "}],\"scenes\"", "},{\"translation\":[0,5,0]}],\"scenes\"");
+    REQUIRE(json);
+    sr_scene *s = NULL;
+    sr_io_error e;
+    if (parse(json, NULL, &s, &e) != SR_OK) {
+        FAILF("%s", e.message);
+        free(json);
+        return;
+    }
+    REQUIRE(s->primitive_count == N);
+    double worst = 0;
+    for (int i = 0; i < N; i++) {
+        const sr_scene_primitive *p = &s->primitives[i];
+        CHECK(p->positions == s->primitives[0].positions);   /* skinned once */
+        for (int v = 0; v < 8; v++) {
+            /* the instance alone on the lifted cube: no node matrix */
+            static const float zero[3] = { 0, 0, 0 };
+            double want[3];
+            expected(i, v, false, 1, zero, 0, 5, want);
+            const float *x = p->positions + 3 * v;
+            for (int k = 0; k < 3; k++) {
+                double got = (double)p->world[k] * x[0] + (double)p->world[4 + k] * x[1] +
+                             (double)p->world[8 + k] * x[2] + p->world[12 + k];
+                worst = fmax(worst, fabs(got - want[k]));
+            }
+        }
+    }
+    CHECK(worst < 2e-5);
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(json);
+}
+
 typedef struct bad_instancing {
     const char *attrs, *node, *used, *root;
     sr_result result;
@@ -454,7 +516,7 @@ static const bad_instancing bad_cases[] = {
     { "{\"ROTATION\":10}", MESH, "", "", SR_BAD_FORMAT,
       EXT "/attributes/ROTATION: element 0 is (0, 0, 0, 0), not a rotation" },
     { "{\"TRANSLATION\":99}", MESH, "", "", SR_BAD_FORMAT,
-      EXT "/attributes/TRANSLATION: accessor 99 does not exist (18 accessors)" },
+      EXT "/attributes/TRANSLATION: accessor 99 does not exist (20 accessors)" },
     { "{\"TRANSLATION\":-1}", MESH, "", "", SR_BAD_FORMAT,
       EXT "/attributes/TRANSLATION: -1 is negative, not an index" },
     { "{\"TRANSLATION\":\"2\"}", MESH, "", "", SR_BAD_FORMAT,
