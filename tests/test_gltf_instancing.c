@@ -65,10 +65,7 @@ typedef struct bin {
 
 static size_t put(bin *b, const void *src, size_t count, size_t size)
 {
-    size_t at = b->n;
-    le_copy(b->p + b->n, src, count, size);
-    b->n += (count * size + 3) & ~(size_t)3;
-    return at;
+    return gltf_put(b->p, &b->n, src, count, size);
 }
 
 /* The model: `attrs` the extension's attributes object (NULL: no
@@ -201,25 +198,6 @@ static char *instanced_model(const char *attrs, const char *node, const char *us
     return json;
 }
 
-/* text with the first `from` replaced by `to`, malloc'd; text is freed.
- * NULL (after a failure) when from is absent. */
-static char *replaced(char *text, const char *from, const char *to)
-{
-    char *at = text ? strstr(text, from) : NULL;
-    if (!at) {
-        FAILF("'%s' not found", from);
-        free(text);
-        return NULL;
-    }
-    size_t cap = strlen(text) + strlen(to) + 1;
-    char *out = malloc(cap);
-    if (out) {
-        snprintf(out, cap, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
-    }
-    free(text);
-    return out;
-}
-
 #define FLOAT_ATTRS "{\"TRANSLATION\":2,\"ROTATION\":3,\"SCALE\":5,\"_ID\":8}"
 #define QUANT_ATTRS "{\"TRANSLATION\":7,\"ROTATION\":4,\"SCALE\":6}"
 #define QUANT_USED ",\"KHR_mesh_quantization\""
@@ -264,6 +242,16 @@ static void expected(int i, int v, bool quantized, float node_scale, const float
     }
 }
 
+/* Vertex v of draw p in world space. */
+static void world_point(const sr_scene_primitive *p, int v, double out[3])
+{
+    const float *x = p->positions + 3 * v;
+    for (int k = 0; k < 3; k++) {
+        out[k] = (double)p->world[k] * x[0] + (double)p->world[4 + k] * x[1] +
+                 (double)p->world[8 + k] * x[2] + p->world[12 + k];
+    }
+}
+
 /* Every draw of s is instance i of the cube, at the hand computation. */
 static void check_instances(const sr_scene *s, bool quantized, const float node[3], float lift)
 {
@@ -281,13 +269,11 @@ static void check_instances(const sr_scene *s, bool quantized, const float node[
         CHECK(p->indices == s->primitives[0].indices);
         CHECK(!p->mirrored);
         for (int v = 0; v < 8; v++) {
-            const float *x = p->positions + 3 * v;
-            double want[3];
+            double want[3], got[3];
             expected(i, v, quantized, NODE_SCALE, node, lift, 0, want);
+            world_point(p, v, got);
             for (int k = 0; k < 3; k++) {
-                double got = (double)p->world[k] * x[0] + (double)p->world[4 + k] * x[1] +
-                             (double)p->world[8 + k] * x[2] + p->world[12 + k];
-                worst = fmax(worst, fabs(got - want[k]));
+                worst = fmax(worst, fabs(got[k] - want[k]));
             }
         }
     }
@@ -423,7 +409,7 @@ SR_TEST(instances_follow_the_nodes_animation_morph_weights_variant_and_mirror)
     }
     free(json);
     /* A node that mirrors mirrors every instance. */
-    json = replaced(instanced_model("{\"SCALE\":5}", MESH, "", "", ""), "\"scale\":[1.25,",
+    json = text_replaced(instanced_model("{\"SCALE\":5}", MESH, "", "", ""), "\"scale\":[1.25,",
                     "\"scale\":[-1.25,");
     REQUIRE(json);
     REQUIRE(parse(json, NULL, &s, &e) == SR_OK);
@@ -449,11 +435,11 @@ SR_TEST(a_skinned_instanced_node_places_its_skinned_pose_per_instance)
              A_POS, A_JOINTS, A_WEIGHTS);
     char from[60];
     snprintf(from, sizeof from, "\"attributes\":{\"POSITION\":%d}", A_POS);
-    char *json = replaced(instanced_model(FLOAT_ATTRS, MESH ",\"skin\":0", "", "",
+    char *json = text_replaced(instanced_model(FLOAT_ATTRS, MESH ",\"skin\":0", "", "",
                                           ",\"skins\":[{\"joints\":[1]}]"),
                           from, prim);
-    json = replaced(json, "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[0,1]}]");
-    json = replaced(json, "}],\"scenes\"", "},{\"translation\":[0,5,0]}],\"scenes\"");
+    json = text_replaced(json, "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[0,1]}]");
+    json = text_replaced(json, "}],\"scenes\"", "},{\"translation\":[0,5,0]}],\"scenes\"");
     REQUIRE(json);
     sr_scene *s = NULL;
     sr_io_error e;
@@ -470,13 +456,11 @@ SR_TEST(a_skinned_instanced_node_places_its_skinned_pose_per_instance)
         for (int v = 0; v < 8; v++) {
             /* the instance alone on the lifted cube: no node matrix */
             static const float zero[3] = { 0, 0, 0 };
-            double want[3];
+            double want[3], got[3];
             expected(i, v, false, 1, zero, 0, 5, want);
-            const float *x = p->positions + 3 * v;
+            world_point(p, v, got);
             for (int k = 0; k < 3; k++) {
-                double got = (double)p->world[k] * x[0] + (double)p->world[4 + k] * x[1] +
-                             (double)p->world[8 + k] * x[2] + p->world[12 + k];
-                worst = fmax(worst, fabs(got - want[k]));
+                worst = fmax(worst, fabs(got[k] - want[k]));
             }
         }
     }
@@ -551,7 +535,7 @@ SR_TEST(malformed_instancing_gives_one_message_with_the_json_pointer)
         free(json);
     }
     /* Not an object at all. */
-    char *json = replaced(instanced_model(FLOAT_ATTRS, MESH, "", "", ""),
+    char *json = text_replaced(instanced_model(FLOAT_ATTRS, MESH, "", "", ""),
                           "{\"attributes\":" FLOAT_ATTRS "}", "7");
     REQUIRE(json);
     sr_scene *s = NULL;
