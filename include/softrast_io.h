@@ -224,6 +224,11 @@ typedef struct sr_scene {
     size_t animation_count;
     int animation;                /* the one the scene is posed by, or -1: the rest pose */
     float animation_time;         /* and the time it was sampled at, seconds */
+    /* EXT_mesh_gpu_instancing: the draws its instances make (in
+     * `primitives`, each instance one draw a primitive, sharing the
+     * primitive's arrays) and the nodes that make them. */
+    size_t instanced_draws;
+    size_t instanced_nodes;
 } sr_scene;
 
 /* Limits of the glTF reader, checked before allocating: at most this many

@@ -340,6 +340,23 @@ void check_same_render(const char *name, const void *const data[2], const size_t
     free(px[1]);
 }
 
+char *text_replaced(char *text, const char *from, const char *to)
+{
+    char *at = text ? strstr(text, from) : NULL;
+    if (!at) {
+        FAILF("'%s' not found", from);
+        free(text);
+        return NULL;
+    }
+    size_t cap = strlen(text) + strlen(to) + 1;
+    char *out = malloc(cap);
+    if (out) {
+        snprintf(out, cap, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    }
+    free(text);
+    return out;
+}
+
 bool edit_text(wbuf *text, const char *from, const char *to)
 {
     char *at = strstr((char *)text->p, from);

@@ -77,6 +77,10 @@ void check_same_render(const char *name, const void *const data[2], const size_t
 void check_model_render(const char *name, const char *file, char *text, const char *size,
                         const char *const *extra, const char *ref);
 
+/* text (malloc'd, freed here) with its first `from` replaced by `to`,
+ * malloc'd; NULL (after a failure) when text is NULL or lacks from. */
+char *text_replaced(char *text, const char *from, const char *to);
+
 /* Replaces the first `from` in the NUL-terminated text with `to`; false
  * (after a failure) when absent. */
 bool edit_text(wbuf *text, const char *from, const char *to);

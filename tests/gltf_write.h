@@ -44,6 +44,17 @@ static inline void le_copy(void *dst, const void *src, size_t count, size_t size
     }
 }
 
+/* Appends count little-endian items of `size` bytes at buf + *n, padded
+ * to 4 bytes (glTF aligns accessors so); returns their offset. */
+static inline size_t gltf_put(uint8_t *buf, size_t *n, const void *src, size_t count,
+                              size_t size)
+{
+    size_t at = *n;
+    le_copy(buf + at, src, count, size);
+    *n = (at + count * size + 3) & ~(size_t)3;
+    return at;
+}
+
 typedef struct gltf_quad {
     float x0, y0, x1, y1;
     int material;

@@ -603,7 +603,7 @@ SR_TEST(a_gltf_warning_is_one_line_said_once)
     snprintf(out, sizeof out, "%s/out.png", dir);
     const gltf_quad q = { -1, -1, 1, 1, 0 };
     char *json = gltf_quads(&q, 1, ",\"materials\":[{}],"
-                                   "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]");
+                                   "\"extensionsUsed\":[\"KHR_animation_pointer\"]");
     REQUIRE(json && write_whole(model, json, strlen(json)));
     free(json);
     cli_run r;
@@ -611,7 +611,7 @@ SR_TEST(a_gltf_warning_is_one_line_said_once)
     CHECK_EQ(r.status, 0);
     CHECK(is_one_line(r.err, r.err_len));
     CHECK_STR_CONTAINS(r.err, "variants.gltf: warning: not read, the scene is drawn without them: "
-                              "/extensionsUsed/0 (EXT_mesh_gpu_instancing)");
+                              "/extensionsUsed/0 (KHR_animation_pointer)");
     const char *first = strstr(r.err, "warning: ");
     CHECK(first && !strstr(first + 1, "warning: "));
     cli_run_free(&r);
@@ -4014,6 +4014,55 @@ SR_TEST(info_json_escapes_the_file_name)
         json_decref(root);
     }
 #endif
+    cli_run_free(&r);
+#endif
+}
+
+/* A quad placed five times by EXT_mesh_gpu_instancing (an _ID alone:
+ * five identity transforms): five draws, said to be instances. */
+SR_TEST(info_counts_gpu_instances)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_gltf()) {
+        SKIP("this build reads no glTF");
+    }
+    char dir[1024], model[1100];
+    fresh_dir("info_instances", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/instances.gltf", dir);
+    const gltf_quad q = { -1, -1, 1, 1, 0 };
+    /* The quad's node instanced five times by a new accessor 3 (an _ID
+     * without a bufferView: zeros). */
+    char *json = gltf_quads(&q, 1, ",\"materials\":[{}],"
+                                   "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]");
+    REQUIRE(json);
+    const char *acc = "\"type\":\"SCALAR\"}]", *node = "{\"mesh\":0}";
+    char *a = strstr(json, acc), *n = strstr(json, node);
+    REQUIRE(a && n && a < n);
+    size_t cap = strlen(json) + 400;
+    char *text = malloc(cap);
+    REQUIRE(text);
+    snprintf(text, cap,
+             "%.*s\"type\":\"SCALAR\"},{\"componentType\":5126,\"count\":5,\"type\":\"SCALAR\"}]"
+             "%.*s{\"mesh\":0,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
+             "{\"_ID\":3}}}}%s",
+             (int)(a - json), json, (int)(n - a - strlen(acc)), a + strlen(acc),
+             n + strlen(node));
+    free(json);
+    REQUIRE(write_whole(model, text, strlen(text)));
+    free(text);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("info", model), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err_len, 0);
+    CHECK_STR_CONTAINS(r.out, "draws       5 primitives: 20 vertices, 10 triangles");
+    CHECK_STR_CONTAINS(r.out, "  instances   5 of the draws, from EXT_mesh_gpu_instancing on "
+                              "1 node\n");
+    cli_run_free(&r);
+    REQUIRE(run_cli(ARGS("info", "--json", model), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_STR_CONTAINS(r.out, "\"instanced_draws\": 5, \"instanced_nodes\": 1,");
     cli_run_free(&r);
 #endif
 }

@@ -28,10 +28,7 @@ typedef struct bytes {
 
 static size_t put(bytes *b, const void *src, size_t count, size_t size)
 {
-    size_t at = b->n;
-    le_copy(b->p + b->n, src, count, size);
-    b->n += (count * size + 3) & ~(size_t)3;
-    return at;
+    return gltf_put(b->p, &b->n, src, count, size);
 }
 
 /* make-assets.mjs's sphere: unit normals from the north pole down. */

@@ -24,11 +24,7 @@ typedef struct bytes {
 /* Appends count little-endian items of `size` bytes; returns their offset. */
 static size_t put(bytes *b, const void *src, size_t count, size_t size)
 {
-    size_t at = b->n;
-    le_copy(b->p + b->n, src, count, size);
-    b->n += count * size;
-    b->n = (b->n + 3) & ~(size_t)3;
-    return at;
+    return gltf_put(b->p, &b->n, src, count, size);
 }
 
 /* A document of buffer b (a data URI, bufferView 0 the whole of it) and

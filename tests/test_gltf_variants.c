@@ -32,25 +32,6 @@
 #define MAP0 "[{\"material\":2,\"variants\":[0]},{\"material\":3,\"variants\":[1],\"name\":\"g\"}]"
 #define MAP1 "[{\"material\":4,\"variants\":[0]}]"
 
-/* The text with the first `from` replaced by `to`: malloc'd, or NULL
- * (after a failure) when from is absent.  text is freed. */
-static char *splice(char *text, const char *from, const char *to)
-{
-    char *at = text ? strstr(text, from) : NULL;
-    if (!at) {
-        FAILF("'%s' not found", from);
-        free(text);
-        return NULL;
-    }
-    size_t cap = strlen(text) + strlen(to) + 1;
-    char *out = malloc(cap);
-    if (out) {
-        snprintf(out, cap, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
-    }
-    free(text);
-    return out;
-}
-
 /* Two quads side by side in z = 0, facing +z, with `root` (the top
  * level's extensions) and each primitive's mappings (NULL: none). */
 static char *variants_model(const char *root, const char *map0, const char *map1)
@@ -70,7 +51,7 @@ static char *variants_model(const char *root, const char *map0, const char *map1
         snprintf(to, sizeof to,
                  "\"material\":%d,\"extensions\":{\"KHR_materials_variants\":{\"mappings\":%s}}}",
                  q, maps[q]);
-        json = splice(json, from, to);
+        json = text_replaced(json, from, to);
     }
     return json;
 }
@@ -217,7 +198,7 @@ SR_TEST(malformed_variants_give_one_message_with_the_json_pointer)
     }
     /* The mappings' own "mappings" member is required. */
     char *json = variants_model(TWO_VARIANTS, "[]", NULL);
-    json = splice(json, "{\"mappings\":[]}", "{}");
+    json = text_replaced(json, "{\"mappings\":[]}", "{}");
     REQUIRE(json);
     sr_scene *s = NULL;
     sr_io_error e;

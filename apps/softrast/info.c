@@ -18,7 +18,8 @@ static void usage(FILE *f)
                "\n"
                "What softrast reads in MODEL (.obj, .ply, .stl, .gltf, .glb; other formats\n"
                "through Assimp when built with it), read as 'softrast render' reads it: the\n"
-               "primitives to draw (each node instance counted), their vertices, triangles\n"
+               "primitives to draw (each node instance and each EXT_mesh_gpu_instancing\n"
+               "instance counted; how many are the latter), their vertices, triangles\n"
                "and attributes, the bounds in world space, each material with its textures\n"
                "and the glTF material extensions it uses, the textures, the material variants\n"
                "(what --variant picks), the animations with their durations (what\n"
@@ -203,6 +204,8 @@ static void print_json(const char *path, const sr_scene *sc)
     json_string(path);
     printf(", \"primitives\": %zu, \"vertices\": %zu, \"triangles\": %zu,\n", sc->primitive_count,
            a.vertices, a.triangles);
+    printf(" \"instanced_draws\": %zu, \"instanced_nodes\": %zu,\n", sc->instanced_draws,
+           sc->instanced_nodes);
     printf(" \"attributes\": {\"normals\": %zu, \"tangents\": %zu, \"texcoords0\": %zu, "
            "\"texcoords1\": %zu, \"colors\": %zu},\n",
            a.normals, a.tangents, a.texcoords0, a.texcoords1, a.colors);
@@ -296,6 +299,10 @@ static void print_text(const char *path, const sr_scene *sc)
     printf("%s\n", path);
     printf("  draws       %zu primitive%s: %zu vertices, %zu triangles (each instance counted)\n",
            n, n == 1 ? "" : "s", a.vertices, a.triangles);
+    if (sc->instanced_draws) {
+        printf("  instances   %zu of the draws, from EXT_mesh_gpu_instancing on %zu node%s\n",
+               sc->instanced_draws, sc->instanced_nodes, sc->instanced_nodes == 1 ? "" : "s");
+    }
     printf("  attributes  normals %zu/%zu, tangents %zu/%zu, texcoords %zu/%zu, second texcoords "
            "%zu/%zu, colors %zu/%zu\n",
            a.normals, n, a.tangents, n, a.texcoords0, n, a.texcoords1, n, a.colors, n);

@@ -477,6 +477,19 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 size_t first = by_part ? ob->mesh.parts[p].first_triangle : 0;
                 size_t count = by_part ? ob->mesh.parts[p].triangle_count
                                        : ob->mesh.triangle_count;
+                /* The glTF parts that follow with the same material and
+                 * the next triangles (a primitive's EXT_mesh_gpu_instancing
+                 * instances, or nodes repeating one mesh) are one draw:
+                 * each draw shades the whole vertex array, so thousands of
+                 * them would cost thousands of passes over it.  Not where
+                 * the parts are sorted back to front. */
+                while (gltf && !order && !see_through && k + 1 < parts &&
+                       ob->part_material[k + 1] == ob->part_material[p] &&
+                       ob->mesh.parts[k + 1].first_triangle == first + count &&
+                       (s->gltf->primitives[k + 1].colors != NULL) ==
+                           (s->gltf->primitives[p].colors != NULL)) {
+                    count += ob->mesh.parts[++k].triangle_count;
+                }
                 sr_state st = *state;
                 if (!keep_material) {
                     st.material = ob->material;

@@ -694,6 +694,32 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
 
 /* ---- nodes and cameras --------------------------------------------------- */
 
+void sr__gltf_trs(const float t[3], const float q[4], const float s[3], float m[16])
+{
+    /* The unit quaternion (x, y, z, w) as a rotation matrix, columns
+     * scaled by s; normalized first, as viewers do with rounded files. */
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double len = sqrt(x * x + y * y + z * z + w * w);
+    if (len > 0) {
+        x /= len, y /= len, z /= len, w /= len;
+    } else {
+        w = 1;
+    }
+    double rot[9] = {
+        1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+        2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+        2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y),
+    };
+    for (int c = 0; c < 3; c++) {
+        for (int row = 0; row < 3; row++) {
+            m[c * 4 + row] = (float)(rot[c * 3 + row] * s[c]);
+        }
+        m[c * 4 + 3] = 0;
+        m[12 + c] = t[c];
+    }
+    m[15] = 1;
+}
+
 /* A node's local matrix: `matrix`, or T * R * S.  glTF allows one of the
  * two (the Khronos validator's NODE_MATRIX_TRS); a node with both is drawn
  * with its matrix, after a warning, as three.js's GLTFLoader and Blender's
@@ -733,26 +759,7 @@ static sr_result local_matrix(gltf_doc *d, const json_t *node, long index, const
     if (pose && (pose->animated & GLTF_POSE_SCALE)) {
         memcpy(s, pose->scale, sizeof s);
     }
-    /* The unit quaternion (x, y, z, w) as a rotation matrix, columns
-     * scaled by s; normalized first, as viewers do with rounded files. */
-    double x = q[0], y = q[1], z = q[2], w = q[3];
-    double len = sqrt(x * x + y * y + z * z + w * w);
-    if (len > 0) {
-        x /= len, y /= len, z /= len, w /= len;
-    } else {
-        w = 1;
-    }
-    double rot[9] = {
-        1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
-        2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
-        2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y),
-    };
-    for (int c = 0; c < 3; c++) {
-        for (int row = 0; row < 3; row++) {
-            m[c * 4 + row] = (float)(rot[c * 3 + row] * s[c]);
-        }
-        m[12 + c] = t[c];
-    }
+    sr__gltf_trs(t, q, s, m);
     return SR_OK;
 }
 
@@ -935,8 +942,53 @@ static sr_result pose_primitive(gltf_doc *d, const gltf_mesh *m, size_t i, long 
     return r;
 }
 
+/* Whether the 3x3 part of column-major w has a negative determinant: it
+ * mirrors, turning front faces clockwise. */
+static bool turns_winding(const float *w)
+{
+    double det = (double)w[0] * ((double)w[5] * w[10] - (double)w[9] * w[6]) -
+                 (double)w[4] * ((double)w[1] * w[10] - (double)w[9] * w[2]) +
+                 (double)w[8] * ((double)w[1] * w[6] - (double)w[5] * w[2]);
+    return det < 0;
+}
+
+/* Whether `copies` more instances of draws, vertices and triangles fit the
+ * scene's limits (SR_SCENE_MAX_*), checked before any is made. */
+static sr_result check_copies(gltf_doc *d, const char *eptr, size_t copies, size_t draws,
+                              size_t vertices, size_t triangles)
+{
+    size_t all_draws = 0, all_vertices = 0, all_triangles = 0;
+    const char *what = NULL;
+    size_t limit = 0;
+    if (!sr__mul_ok(copies, draws, &all_draws) ||
+        all_draws > SR_SCENE_MAX_DRAWS - d->scene->primitive_count) {
+        what = "primitives to draw", limit = SR_SCENE_MAX_DRAWS;
+    } else if (!sr__mul_ok(copies, vertices, &all_vertices) ||
+               all_vertices > SR_SCENE_MAX_DRAWN_VERTICES - d->drawn_vertices) {
+        what = "vertices to draw in all", limit = SR_SCENE_MAX_DRAWN_VERTICES;
+    } else if (!sr__mul_ok(copies, triangles, &all_triangles) ||
+               all_triangles > SR_SCENE_MAX_DRAWN_TRIANGLES - d->drawn_triangles) {
+        what = "triangles to draw in all", limit = SR_SCENE_MAX_DRAWN_TRIANGLES;
+    }
+    if (what) {
+        return sr__gltf_fail(d, SR_TOO_LARGE,
+                             "%s: %zu more instances of %zu primitives (%zu vertices, %zu "
+                             "triangles): more than %zu %s",
+                             eptr, copies, draws, vertices, triangles, limit, what);
+    }
+    d->drawn_vertices += all_vertices;
+    d->drawn_triangles += all_triangles;
+    return SR_OK;
+}
+
+/* Mesh `mesh` drawn by node `node_index` at `world`: one draw per
+ * primitive, or with EXT_mesh_gpu_instancing (instances: instance_count
+ * matrices) one per primitive and instance, primitive-major.  Each
+ * primitive is posed once per node (morph weights and skins are the
+ * node's); its instances share the posed arrays. */
 static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, const char *ptr,
-                           long mesh, long skin, const float *world)
+                           long mesh, long skin, const float *world, const float *instances,
+                           size_t instance_count)
 {
     char use[GLTF_PTR];
     snprintf(use, sizeof use, "%s/mesh", ptr);
@@ -952,6 +1004,7 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
         r = weights ? sr__gltf_node_weights(d, node_index, mesh, weights, m->target_count)
                     : sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
     }
+    size_t first = d->scene->primitive_count;
     for (size_t i = 0; i < m->count && r == SR_OK; i++) {
         const sr_scene_primitive *g = &m->prims[i];
         if (!g->positions || g->triangle_count == 0) {
@@ -985,15 +1038,51 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
         *p = *g;
         memcpy(p->world, world, sizeof p->world);
         p->node = (int)node_index;
-        const float *w = world;
-        double det = (double)w[0] * ((double)w[5] * w[10] - (double)w[9] * w[6]) -
-                     (double)w[4] * ((double)w[1] * w[10] - (double)w[9] * w[2]) +
-                     (double)w[8] * ((double)w[1] * w[6] - (double)w[5] * w[2]);
-        p->mirrored = det < 0;
+        p->mirrored = turns_winding(world);
         r = pose_primitive(d, m, i, node_index, ptr, mesh, skin, weights, p);
     }
     free(weights);
-    return r;
+    size_t made = d->scene->primitive_count - first;
+    if (r != SR_OK || !instances || made == 0) {
+        return r;
+    }
+    /* The draws just made are the pattern, posed once.  Each primitive's
+     * instances follow one another (primitive-major, as one instanced
+     * draw call would list them), so that a renderer finds them as one
+     * run of one material.  Made from the last slot back: a pattern draw
+     * is read before its slot is taken, and its world (the node's, or
+     * the identity of a skinned draw) stays the base until then. */
+    char eptr[GLTF_PTR];
+    snprintf(eptr, sizeof eptr, "%s/extensions/EXT_mesh_gpu_instancing", ptr);
+    size_t vertices = 0, triangles = 0;
+    for (size_t j = 0; j < made; j++) {
+        vertices += d->scene->primitives[first + j].vertex_count;
+        triangles += d->scene->primitives[first + j].triangle_count;
+    }
+    if ((r = check_copies(d, eptr, instance_count - 1, made, vertices, triangles)) != SR_OK) {
+        return r;
+    }
+    if (instance_count > 1 &&
+        !sr__scene_grow(d->scene, (void **)&d->scene->primitives, &d->scene->primitive_count,
+                        sizeof *d->scene->primitives, made * (instance_count - 1))) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", eptr);
+    }
+    sr_scene_primitive *pattern = d->scene->primitives + first;
+    for (size_t j = made; j-- > 0;) {
+        const sr_scene_primitive g = pattern[j];
+        for (size_t k = instance_count; k-- > 0;) {
+            sr_scene_primitive *p = pattern + j * instance_count + k;
+            const float *inst = instances + 16 * k;
+            *p = g;
+            /* A skinned pattern's mirror comes from its joints, not its
+             * (identity) world: the instance's own mirror turns it. */
+            p->mirrored = g.mirrored != turns_winding(inst);
+            sr__mat4_mul(g.world, inst, p->world);
+        }
+    }
+    d->scene->instanced_draws += made * instance_count;
+    d->scene->instanced_nodes++;
+    return SR_OK;
 }
 
 /* The scene's node trees, depth first in the order the file lists them. */
@@ -1059,8 +1148,18 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
                               skin);
             break;
         }
-        if (mesh >= 0 &&
-            (r = add_draws(d, meshes, it.node, ptr, mesh, skin, world)) != SR_OK) {
+        float *instances = NULL;
+        size_t instance_count = 0;
+        if ((r = sr__gltf_read_instances(d, node, ptr, mesh,
+                                         SR_SCENE_MAX_DRAWS - d->scene->primitive_count,
+                                         &instances, &instance_count)) != SR_OK) {
+            break;
+        }
+        if (mesh >= 0) {
+            r = add_draws(d, meshes, it.node, ptr, mesh, skin, world, instances, instance_count);
+        }
+        free(instances);
+        if (r != SR_OK) {
             break;
         }
         if ((r = sr__gltf_place_light(d, node, ptr, it.node, world)) != SR_OK) {
@@ -1182,6 +1281,7 @@ static const char *supported_extensions[] = {
     "KHR_materials_diffuse_transmission",
     "KHR_lights_punctual",
     "KHR_materials_variants",
+    "EXT_mesh_gpu_instancing",
 };
 
 /* Extensions read when softrast was built with their decoder. */

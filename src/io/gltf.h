@@ -6,6 +6,7 @@
  * gltf_animation.c reads animations and poses the nodes;
  * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
  * gltf_morph.c and gltf_skin.c pose morphed and skinned primitives;
+ * gltf_instancing.c reads EXT_mesh_gpu_instancing's instance transforms;
  * scene_store.c holds the scene's memory.  Every
  * error is one line "NAME: /json/pointer: what is wrong", the first one
  * only.  Internal to src/io. */
@@ -202,6 +203,19 @@ sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
  * array of 16 floats a matrix, column-major. */
 sr_result sr__gltf_read_mat4(gltf_doc *d, long index, const char *ptr, gltf_accessor_info *info,
                              float **out);
+
+/* gltf.c: the matrix translation t * rotation q (x, y, z, w; normalized
+ * here, a zero one the identity) * scale s, column-major, as glTF
+ * composes a node's (and an instance's) transform. */
+void sr__gltf_trs(const float t[3], const float q[4], const float s[3], float m[16]);
+
+/* gltf_instancing.c: EXT_mesh_gpu_instancing.  Node `node` (JSON `ptr`,
+ * mesh `mesh` or -1)'s instance transforms, T * R * S of each instance:
+ * *count matrices of 16 floats into a malloc'd *out; NULL and 0 when the
+ * node has no such extension.  At most `room` instances (the draws the
+ * scene has left) are read; more is refused before any is decoded. */
+sr_result sr__gltf_read_instances(gltf_doc *d, const json_t *node, const char *ptr, long mesh,
+                                  size_t room, float **out, size_t *count);
 
 /* gltf.c: node `node`'s world matrix (the product of its ancestors' local
  * matrices and its own), for nodes the walk does not reach too. */

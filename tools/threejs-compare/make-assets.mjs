@@ -539,4 +539,48 @@ function dispersionGlb() {
 }
 writeFileSync(join(out, 'dispersion-spheres.glb'), dispersionGlb());
 
+// A grid of cubes one node places by EXT_mesh_gpu_instancing (three.js
+// reads it into an InstancedMesh): twelve instances, each moved, turned
+// (rotations as normalized shorts) and scaled, under a node that is
+// moved and turned itself.
+function instancedGlb() {
+    const arrays = [];
+    const add = (data, fields) => { arrays.push([data, fields]); return arrays.length - 1; };
+    const shape = cube(0.5);
+    const lo = [0, 1, 2].map((k) => Math.min(...shape.pos.filter((_, j) => j % 3 === k)));
+    const hi = [0, 1, 2].map((k) => Math.max(...shape.pos.filter((_, j) => j % 3 === k)));
+    const n = shape.pos.length / 3;
+    const POSITION = add(new Float32Array(shape.pos), { componentType: 5126, count: n, type: 'VEC3',
+                                                        min: lo, max: hi });
+    const NORMAL = add(new Float32Array(shape.nrm), { componentType: 5126, count: n, type: 'VEC3' });
+    const indices = add(new Uint16Array(shape.idx),
+                        { componentType: 5123, count: shape.idx.length, type: 'SCALAR' });
+    const t = [], q = [], s = [];
+    for (let i = 0; i < 12; i++) {
+        const col = i % 4, row = Math.floor(i / 4);
+        t.push(1.1 * col - 1.65, 1.1 * row - 1.1, 0.3 * (col - row));
+        const axis = [1 + col, 2 - row, 0.5 * i], len = Math.hypot(...axis), a = 0.5 + 0.4 * i;
+        q.push(...axis.map((c) => Math.round((c / len) * Math.sin(a / 2) * 32767)),
+               Math.round(Math.cos(a / 2) * 32767));
+        s.push(0.25 + 0.08 * col, 0.5 - 0.1 * row, 0.4);
+    }
+    const TRANSLATION = add(new Float32Array(t), { componentType: 5126, count: 12, type: 'VEC3' });
+    const ROTATION = add(new Int16Array(q), { componentType: 5122, normalized: true, count: 12,
+                                              type: 'VEC4' });
+    const SCALE = add(new Float32Array(s), { componentType: 5126, count: 12, type: 'VEC3' });
+    return glbOf({
+        asset: { version: '2.0', generator: 'softrast tools/threejs-compare/make-assets.mjs' },
+        extensionsUsed: ['EXT_mesh_gpu_instancing'],
+        extensionsRequired: ['EXT_mesh_gpu_instancing'],
+        scene: 0,
+        scenes: [{ nodes: [0] }],
+        nodes: [{ mesh: 0, translation: [0.1, 0.2, 0], rotation: rotZ(10),
+                  extensions: { EXT_mesh_gpu_instancing: { attributes: { TRANSLATION, ROTATION,
+                                                                         SCALE } } } }],
+        meshes: [{ primitives: [{ attributes: { POSITION, NORMAL }, indices, material: 0 }] }],
+        materials: [{ name: 'clay', pbrMetallicRoughness: pbr([0.9, 0.5, 0.2], 0, 0.6) }],
+    }, arrays);
+}
+writeFileSync(join(out, 'instanced-cubes.glb'), instancedGlb());
+
 writeFileSync(join(out, 'sky.hdr'), sky(256, 128));

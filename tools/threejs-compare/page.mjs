@@ -68,10 +68,19 @@ function worldPoints(root) {
     root.updateMatrixWorld(true);
     root.traverse((o) => {
         if (!o.isMesh) return;
-        // getVertexPosition applies morph targets and skinning, as drawn.
+        // getVertexPosition applies morph targets and skinning, as drawn;
+        // an InstancedMesh (EXT_mesh_gpu_instancing) is drawn once per
+        // instance matrix, each after the node's.
         const a = o.geometry.attributes.position;
-        for (let i = 0; i < a.count; i++) {
-            pts.push(o.getVertexPosition(i, new THREE.Vector3()).applyMatrix4(o.matrixWorld));
+        const instances = o.isInstancedMesh ? o.count : 1;
+        const m = new THREE.Matrix4();
+        for (let k = 0; k < instances; k++) {
+            if (o.isInstancedMesh) o.getMatrixAt(k, m);
+            for (let i = 0; i < a.count; i++) {
+                const p = o.getVertexPosition(i, new THREE.Vector3());
+                if (o.isInstancedMesh) p.applyMatrix4(m);
+                pts.push(p.applyMatrix4(o.matrixWorld));
+            }
         }
     });
     return pts;
