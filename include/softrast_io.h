@@ -201,7 +201,8 @@ typedef struct sr_scene_animation {
 typedef struct sr_scene {
     sr_scene_primitive *primitives;
     size_t primitive_count;
-    sr_pbr_material *materials;   /* every primitive's material is one of these */
+    sr_pbr_material *materials;   /* every primitive's material is one of these: the
+                                   * file's, then default_material's */
     size_t material_count;
     sr_texture **textures;        /* made on the context; the materials point here */
     size_t texture_count;
@@ -224,6 +225,11 @@ typedef struct sr_scene {
     size_t animation_count;
     int animation;                /* the one the scene is posed by, or -1: the rest pose */
     float animation_time;         /* and the time it was sampled at, seconds */
+    /* The material the glTF reader adds after the file's for primitives
+     * that name none (glTF's default: white, metallic 1, roughness 1), its
+     * index (the last), whether any primitive draws with it or not; -1
+     * when the scene has none (other formats). */
+    int default_material;
 } sr_scene;
 
 /* Limits of the glTF reader, checked before allocating: at most this many
