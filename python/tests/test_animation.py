@@ -14,6 +14,21 @@ import softrast
 from conftest import load_gltf
 
 
+def float_accessors(arrays, kinds):
+    """The asset, buffer, views and accessors of a document whose
+    accessor i holds arrays[i] (float32) as kinds[i] (type, count)."""
+    data, views, accessors = b"", [], []
+    for a, (kind, count) in zip(arrays, kinds):
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": a.nbytes})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5126,
+                          "count": count, "type": kind})
+        data += a.astype("<f4").tobytes()
+    return {"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
+                         + base64.b64encode(data).decode()}],
+            "bufferViews": views, "accessors": accessors}
+
+
 def write_animated(path):
     """A triangle on node 0, moved by "slide" (LINEAR translation,
     (0, 0, 0) at 0 s to (4, 2, 0) at 2 s) and turned by "turn" (LINEAR
@@ -25,17 +40,8 @@ def write_animated(path):
               np.array([0, 1], np.float32),
               np.array([0, 0, 0, 1, 0, 0, h, h], np.float32)]
     kinds = [("VEC3", 3), ("SCALAR", 2), ("VEC3", 2), ("SCALAR", 2), ("VEC4", 2)]
-    data, views, accessors = b"", [], []
-    for a, (kind, count) in zip(arrays, kinds):
-        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": a.nbytes})
-        accessors.append({"bufferView": len(views) - 1, "componentType": 5126,
-                          "count": count, "type": kind})
-        data += a.astype("<f4").tobytes()
     doc = {
-        "asset": {"version": "2.0"},
-        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
-                     + base64.b64encode(data).decode()}],
-        "bufferViews": views, "accessors": accessors,
+        **float_accessors(arrays, kinds),
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
         "nodes": [{"mesh": 0, "translation": [9, 9, 9]}],
         "scenes": [{"nodes": [0]}],
@@ -133,17 +139,8 @@ def write_morphed(path):
               np.array([0, 0, 1, 0, 0, 1, 0, 0, 1], np.float32)]
     kinds = [("VEC3", 3), ("VEC3", 3), ("SCALAR", 2), ("SCALAR", 2), ("SCALAR", 2), ("VEC4", 2),
              ("VEC3", 3)]
-    data, views, accessors = b"", [], []
-    for a, (kind, count) in zip(arrays, kinds):
-        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": a.nbytes})
-        accessors.append({"bufferView": len(views) - 1, "componentType": 5126,
-                          "count": count, "type": kind})
-        data += a.astype("<f4").tobytes()
     doc = {
-        "asset": {"version": "2.0"},
-        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
-                     + base64.b64encode(data).decode()}],
-        "bufferViews": views, "accessors": accessors,
+        **float_accessors(arrays, kinds),
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 6},
                                     "targets": [{"POSITION": 1}]}],
                     "weights": [0]}],
