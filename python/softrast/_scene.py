@@ -129,7 +129,8 @@ class Scene:
         self.time = 0.0
         # load's reading of a glTF file, for pose: (_SceneFile, material
         # dicts, Materials, base color images); None otherwise.
-        self._reading: Optional[Tuple[_SceneFile, list, List[Material], dict]] = None
+        self._reading: Optional[Tuple[_SceneFile, List[dict[str, Any]], List[Material],
+                                      dict[int, Optional[NDArray[np.uint8]]]]] = None
         for item in instances:
             self.add(item)
 

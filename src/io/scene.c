@@ -423,9 +423,11 @@ sr_result sr_scene_pose(sr_scene *scene, sr_load_pose pose, int animation, float
     /* Messages name the file the scene was read from, when known. */
     void *posing = sr__scene_posing(scene);
     char name[400] = "sr_scene_pose";
+#ifdef SR_HAVE_JANSSON
     if (posing) {
         snprintf(name, sizeof name, "%.360s: sr_scene_pose", sr__gltf_posing_name(posing));
     }
+#endif
     bool animated = pose == SR_POSE_ANIMATION;
     if (animated && (animation < 0 || (size_t)animation >= scene->animation_count)) {
         return sr__io_fail(err, SR_INVALID_ARG, name, 0,
