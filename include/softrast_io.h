@@ -201,7 +201,8 @@ typedef struct sr_scene_animation {
 typedef struct sr_scene {
     sr_scene_primitive *primitives;
     size_t primitive_count;
-    sr_pbr_material *materials;   /* every primitive's material is one of these */
+    sr_pbr_material *materials;   /* every primitive's material is one of these: the
+                                   * file's, then default_material's */
     size_t material_count;
     sr_texture **textures;        /* made on the context; the materials point here */
     size_t texture_count;
@@ -229,6 +230,11 @@ typedef struct sr_scene {
      * primitive's arrays) and the nodes that make them. */
     size_t instanced_draws;
     size_t instanced_nodes;
+    /* The material the glTF reader adds after the file's for primitives
+     * that name none (glTF's default: white, metallic 1, roughness 1), its
+     * index (the last), whether any primitive draws with it or not; -1
+     * when the scene has none (other formats). */
+    int default_material;
 } sr_scene;
 
 /* Limits of the glTF reader, checked before allocating: at most this many
@@ -272,6 +278,30 @@ SR_API sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t 
  * outside (0, pi), or clip distances glTF would refuse. */
 SR_API sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect,
                                           sr_mat4 *view, sr_mat4 *projection);
+/* Poses a scene read from a glTF file again, without reading the file:
+ * SR_POSE_ANIMATION places its nodes by animation number `animation` (0
+ * first, as sr_scene.animations lists them) at `time` seconds, keys
+ * clamped at both ends; SR_POSE_REST (or zero) puts them back in their
+ * own transforms.  The draws, cameras, lights, bounds and
+ * sr_scene.animation / animation_time come out with the very bytes
+ * sr_load_scene gives with that sr_load_desc pose (docs/gltf.md).  A
+ * scene read from a file with animations keeps what this takes: the
+ * decoded key times and values, the nodes' rest transforms, the skins'
+ * joints and inverse bind matrices, the morph targets and the skinning
+ * weights.  Posed draws' positions, normals and tangents point to arrays
+ * the scene makes on first need and reuses after (a draw whose morph
+ * weights all become zero points to its mesh's arrays again), so posing
+ * again and again does not grow its memory; the primitive, camera and
+ * light arrays stay where they are.  Errors leave the scene as it was:
+ * SR_INVALID_ARG for a NULL scene, a pose that is not an sr_load_pose,
+ * an animation the scene does not have, a time that is not finite;
+ * SR_BAD_FORMAT when the pose collapses a light's direction, as reading
+ * in that pose would; SR_TOO_LARGE past the reader's limits for the
+ * arrays posing makes; SR_OUT_OF_MEMORY.  A scene without animations (or
+ * from another format) has only the rest pose: SR_OK, nothing changes.
+ * err may be NULL.  Not while another thread draws from the scene. */
+SR_API sr_result sr_scene_pose(sr_scene *scene, sr_load_pose pose, int animation, float time,
+                               sr_io_error *err);
 /* Frees the scene, its arrays and its textures; NULL is ignored. */
 SR_API void sr_destroy_scene(sr_context *ctx, sr_scene *scene);
 /* true when this build reads glTF (it found jansson). */

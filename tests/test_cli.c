@@ -3957,9 +3957,10 @@ SR_TEST(info_describes_a_gltf_scene)
     CHECK_EQ(r.err_len, 0);
     CHECK_STR_CONTAINS(r.out, "draws       3 primitives: 12 vertices, 6 triangles");
     CHECK_STR_CONTAINS(r.out, "bounds      min -1 -1 0, max 0.5 4 0.5 (size 1.5 x 5 x 0.5)");
-    /* The file's two, and the default one the reader adds for
-     * primitives without a material. */
-    CHECK_STR_CONTAINS(r.out, "materials   3\n");
+    /* The file's two; not the default one the reader adds for
+     * primitives without a material, which none is. */
+    CHECK_STR_CONTAINS(r.out, "materials   2\n");
+    CHECK(!strstr(r.out, "    2  "));
     CHECK_STR_CONTAINS(r.out, "0  base color 0.5 0.25 1 1, metallic 0.25, roughness 0.75, "
                               "OPAQUE, double-sided; KHR_materials_clearcoat\n");
     CHECK_STR_CONTAINS(r.out, "1  base color 1 1 1 1, metallic 1, roughness 1, MASK; "
@@ -3984,6 +3985,26 @@ SR_TEST(info_describes_a_gltf_scene)
                               "\"intensity\": 20, \"range\": 8}");
     CHECK_STR_CONTAINS(r.out, "\"variants\": [\"Red\", \"Blue \\u001b[31m\"]");
     CHECK_STR_CONTAINS(r.out, "\"warnings\": 0}\n");
+    CHECK(!strstr(r.out, "\"default\""));
+    cli_run_free(&r);
+
+    /* With mesh 1 naming no material, the default is shown, after the
+     * file's, as what it is. */
+    size_t len = 0;
+    char *json = read_whole(model, &len);
+    char *cut = json ? strstr(json, ",\"material\":1") : NULL;
+    REQUIRE(cut);
+    memmove(cut, cut + strlen(",\"material\":1"), strlen(cut + strlen(",\"material\":1")) + 1);
+    REQUIRE(write_whole(model, json, strlen(json)));
+    free(json);
+    REQUIRE(run_cli(ARGS("info", model), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_STR_CONTAINS(r.out, "materials   2, and the default for primitives without one\n");
+    CHECK_STR_CONTAINS(r.out, "    2  (default) base color 1 1 1 1, metallic 1, roughness 1, "
+                              "OPAQUE\n");
+    cli_run_free(&r);
+    REQUIRE(run_cli(ARGS("info", "--json", model), &r));
+    CHECK_STR_CONTAINS(r.out, "{\"default\": true, \"base_color\": [1, 1, 1, 1], ");
     cli_run_free(&r);
 #endif
 }

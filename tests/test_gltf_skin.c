@@ -3,7 +3,10 @@
  * hand below), whatever its own node's transform; morph weights come from
  * the node, else the mesh, and sparse targets move the vertices they
  * name; posed instances get arrays of their own while plain ones share
- * them; each malformed skin or target is refused with its JSON pointer. */
+ * them; each malformed skin or target is refused with its JSON pointer.
+ * Animations: a joint turned by one moves the strip to hand-worked
+ * places, and sr_scene_pose on one scene gives, pose after pose, the
+ * bytes of a reading in each pose. */
 #include "gltf_write.h"
 #include "gltf_parse.h"
 #include "sr_test.h"
@@ -17,7 +20,7 @@
 #include <string.h>
 
 typedef struct bytes {
-    uint8_t p[1024];
+    uint8_t p[2048];
     size_t n;
 } bytes;
 
@@ -106,6 +109,11 @@ static void check_refused(const char *json, const char *message, int line)
 
 enum {
     A_POS, A_NRM, A_TAN, A_IDX, A_J16, A_WF, A_IBM, A_J8, A_W8, A_W16, A_IBM_VEC4,
+    /* For the animations (unused otherwise): key times 0 and 2, two
+     * rotations about +z (none, half a turn); key times 0, 1, 2, three
+     * translations, two morph weights a key; a CUBICSPLINE scale of two
+     * keys (in-tangent, value, out-tangent each). */
+    A_T2, A_ROT, A_T3, A_TRANS, A_MW, A_CUBIC,
     A_COUNT,
     SPARSE_INDEX = A_COUNT, SPARSE_JOINTS, OFFSETS
 };
@@ -130,7 +138,13 @@ static const char strip_body[] =
     "\"count\":6,\"type\":\"VEC4\"},"
     "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5123,\"normalized\":true,"
     "\"count\":6,\"type\":\"VEC4\"},"
-    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":8,\"type\":\"VEC4\"}],"
+    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":8,\"type\":\"VEC4\"},"
+    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":2,\"type\":\"SCALAR\"},"
+    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":2,\"type\":\"VEC4\"},"
+    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":3,\"type\":\"SCALAR\"},"
+    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":6,\"type\":\"SCALAR\"},"
+    "{\"bufferView\":0,\"byteOffset\":%zu,\"componentType\":5126,\"count\":6,\"type\":\"VEC3\"}],"
     "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TANGENT\":2,"
     "\"JOINTS_0\":4,\"WEIGHTS_0\":5},\"indices\":3}]}],"
     "\"skins\":[{\"joints\":[2,3],\"inverseBindMatrices\":6}],"
@@ -175,13 +189,24 @@ static char *strip_doc(const char *from, const char *to)
     at[A_W8] = put(&b, w8, 24, 1);
     at[A_W16] = put(&b, w16, 24, 2);
     at[A_IBM_VEC4] = at[A_IBM];
+    static const float t2[2] = { 0, 2 }, rot[8] = { 0, 0, 0, 1, 0, 0, 1, 0 }, t3[3] = { 0, 1, 2 };
+    static const float trans[9] = { 0, 0, 0, 1, 2, 3, -2, 0.5f, 1 };
+    static const float mw[6] = { 0, 0, 0.75f, -0.5f, 0.25f, 1 };
+    static const float cubic[18] = { 0, 0, 0, 1, 1, 1, 0.5f, -1, 2,
+                                     1, 0, -1, 2, 0.5f, 1.5f, 0, 0, 0 };
+    at[A_T2] = put(&b, t2, 2, 4);
+    at[A_ROT] = put(&b, rot, 8, 4);
+    at[A_T3] = put(&b, t3, 3, 4);
+    at[A_TRANS] = put(&b, trans, 9, 4);
+    at[A_MW] = put(&b, mw, 6, 4);
+    at[A_CUBIC] = put(&b, cubic, 18, 4);
     static const uint16_t sparse_index[1] = { 3 }, sparse_joints[4] = { 0, 5, 0, 0 };
     strip_at[SPARSE_INDEX] = put(&b, sparse_index, 1, 2);
     strip_at[SPARSE_JOINTS] = put(&b, sparse_joints, 4, 2);
     memcpy(strip_at, at, sizeof at);
-    char body[sizeof strip_body + 200];
+    char body[sizeof strip_body + 300];
     snprintf(body, sizeof body, strip_body, at[0], at[1], at[2], at[3], at[4], at[5], at[6],
-             at[7], at[8], at[9], at[10]);
+             at[7], at[8], at[9], at[10], at[11], at[12], at[13], at[14], at[15], at[16]);
     return doc(&b, body, from, to);
 }
 
@@ -547,4 +572,265 @@ SR_TEST(posed_arrays_count_in_the_decoding_budget)
     CHECK_EQ(s->primitive_count, 4);
     sr_destroy_scene(sr_test_ctx(), s);
     free(zero);
+}
+
+/* ---- joints and the whole scene posed by animations -----------------------
+ *
+ * The strip's joint 1 (node 3) turned by an animation instead of its own
+ * rotation: LINEAR from none at 0 s to half a turn about +z at 2 s.  Its
+ * matrix J1 = T(0, 1, -3) Rz(a) T(0, -1, 3) turns the strip about (0, 1):
+ *   at 0 s the identity: the strip as the file has it;
+ *   at 1 s a quarter turn: strip_posed above;
+ *   at 2 s half a turn, (x, y) -> (-x, 2 - y): row 2 lands on (0.5, 0)
+ *          and (-0.5, 0), row 1 on half of (x, 1) and (-x, 1), (0, 1)
+ *          for both; row 0 follows joint 0 and stays. */
+static const char joint_still[] =
+    "{\"translation\":[0,1,0],\"rotation\":[0,0,0.70710678118654752,0.70710678118654752]}],"
+    "\"scenes\":[{\"nodes\":[0,1]}]";
+static const char joint_turned[] =
+    "{\"translation\":[0,1,0]}],\"scenes\":[{\"nodes\":[0,1]}],"
+    "\"animations\":[{\"channels\":[{\"sampler\":0,\"target\":{\"node\":3,\"path\":\"rotation\"}}],"
+    "\"samplers\":[{\"input\":11,\"output\":12}]}]";
+
+static void check_turned_strip(const sr_scene *s, int seconds, int line)
+{
+    static const double half[6][3] = { { -0.5, 0, 0 }, { 0.5, 0, 0 }, { 0, 1, 0 },
+                                       { 0, 1, 0 },    { 0.5, 0, 0 }, { -0.5, 0, 0 } };
+    if (seconds == 1) {
+        check_strip(s, 1e-6);
+        return;
+    }
+    REQUIRE(s->primitive_count == 1);
+    for (int i = 0; i < 6; i++) {
+        const float *v = s->primitives[0].positions + 3 * i;
+        if (seconds == 0) {
+            check_vec(v, i % 2 ? 0.5 : -0.5, i / 2, 0, 1e-6, line);
+        } else {
+            check_vec(v, half[i][0], half[i][1], half[i][2], 1e-6, line);
+        }
+    }
+}
+
+SR_TEST(an_animated_joint_moves_the_skinned_vertices)
+{
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    char *json = strip_doc(joint_still, joint_turned);
+    REQUIRE(json);
+    /* Read in each pose, and posed again on one scene read at rest. */
+    sr_scene *again = NULL;
+    sr_io_error e;
+    sr_result r = sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json),
+                                NULL, &again, &e);
+    REQUIRE(r == SR_OK);
+    check_turned_strip(again, 0, __LINE__);
+    static const int times[] = { 2, 0, 1, 2 };
+    for (size_t k = 0; k < sizeof times / sizeof *times; k++) {
+        sr_load_desc desc = { .pose = SR_POSE_ANIMATION, .animation_time = (float)times[k] };
+        sr_scene *s = NULL;
+        r = sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), &desc,
+                          &s, &e);
+        REQUIRE(r == SR_OK);
+        check_turned_strip(s, times[k], __LINE__);
+        sr_destroy_scene(sr_test_ctx(), s);
+        REQUIRE(sr_scene_pose(again, SR_POSE_ANIMATION, 0, (float)times[k], &e) == SR_OK);
+        check_turned_strip(again, times[k], __LINE__);
+    }
+    sr_destroy_scene(sr_test_ctx(), again);
+    free(json);
+}
+
+/* Everything posing touches: the skinned strip, also morphed (node 0);
+ * mesh 0 drawn morphed without its skin (node 4, rest weights zero, so
+ * its mesh's arrays until an animation weighs it); node 7 never posed;
+ * a camera and a spot light on node 5, scaled by a CUBICSPLINE under the
+ * STEP-translated node 4; a point light on a mirroring matrix (node 6).
+ * Animation 0 turns joint 1 (LINEAR) and the joints' parent (STEP),
+ * weighs nodes 0 and 4; animation 1 turns joint 0 and moves node 5. */
+static const char posed_scene[] =
+    "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"TANGENT\":2,"
+    "\"JOINTS_0\":4,\"WEIGHTS_0\":5},\"indices\":3,\"targets\":[{\"POSITION\":1},"
+    "{\"POSITION\":0,\"NORMAL\":0,\"TANGENT\":1}]}],\"weights\":[0.5,0]},"
+    "{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},\"indices\":3}]}],"
+    "\"skins\":[{\"joints\":[2,3],\"inverseBindMatrices\":6}],"
+    "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":0.1}}],"
+    "\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+    "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"spot\",\"spot\":{}},"
+    "{\"type\":\"point\"}]}},"
+    "\"nodes\":[{\"mesh\":0,\"skin\":0},{\"translation\":[0,0,-3],\"children\":[2]},"
+    "{\"children\":[3]},{\"translation\":[0,1,0]},"
+    "{\"mesh\":0,\"translation\":[3,0,0],\"children\":[5],\"weights\":[0,0]},"
+    "{\"mesh\":1,\"camera\":0,\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+    "{\"mesh\":1,\"matrix\":[-1,0,0,0,0,1,0,0,0,0,1,0,0,0,5,1],"
+    "\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+    "{\"mesh\":0,\"weights\":[0,0]}],"
+    "\"scenes\":[{\"nodes\":[0,1,4,6,7]}],"
+    "\"animations\":[{\"channels\":["
+    "{\"sampler\":0,\"target\":{\"node\":3,\"path\":\"rotation\"}},"
+    "{\"sampler\":1,\"target\":{\"node\":4,\"path\":\"translation\"}},"
+    "{\"sampler\":2,\"target\":{\"node\":0,\"path\":\"weights\"}},"
+    "{\"sampler\":3,\"target\":{\"node\":4,\"path\":\"weights\"}},"
+    "{\"sampler\":4,\"target\":{\"node\":5,\"path\":\"scale\"}},"
+    "{\"sampler\":5,\"target\":{\"node\":1,\"path\":\"rotation\"}}],"
+    "\"samplers\":[{\"input\":11,\"output\":12},"
+    "{\"input\":13,\"output\":14,\"interpolation\":\"STEP\"},{\"input\":13,\"output\":15},"
+    "{\"input\":13,\"output\":15,\"interpolation\":\"STEP\"},"
+    "{\"input\":11,\"output\":16,\"interpolation\":\"CUBICSPLINE\"},"
+    "{\"input\":11,\"output\":12,\"interpolation\":\"STEP\"}]},"
+    "{\"name\":\"second\",\"channels\":["
+    "{\"sampler\":0,\"target\":{\"node\":2,\"path\":\"rotation\"}},"
+    "{\"sampler\":1,\"target\":{\"node\":5,\"path\":\"translation\"}}],"
+    "\"samplers\":[{\"input\":11,\"output\":12},{\"input\":13,\"output\":14}]}]";
+
+#define CHECK_STR_EQ(a, b)                                                             \
+    do {                                                                                 \
+        if (strcmp(a, b) != 0) {                                                         \
+            sr_test_fail(__FILE__, __LINE__, "'%s', expected '%s'", a, b);               \
+        }                                                                                \
+    } while (0)
+
+static bool same_array(const float *a, const float *b, size_t n)
+{
+    return (a == NULL) == (b == NULL) && (!a || memcmp(a, b, n * sizeof *a) == 0);
+}
+
+/* b, posed again, has every byte a holds, read in that pose. */
+static void check_same_pose(const sr_scene *a, const sr_scene *b, const char *what)
+{
+    bool same = a->primitive_count == b->primitive_count &&
+                a->camera_count == b->camera_count && a->light_count == b->light_count &&
+                a->animation == b->animation &&
+                memcmp(&a->animation_time, &b->animation_time, sizeof(float)) == 0 &&
+                memcmp(&a->bounds_min, &b->bounds_min, sizeof a->bounds_min) == 0 &&
+                memcmp(&a->bounds_max, &b->bounds_max, sizeof a->bounds_max) == 0;
+    for (size_t i = 0; same && i < a->primitive_count; i++) {
+        const sr_scene_primitive *p = &a->primitives[i], *q = &b->primitives[i];
+        size_t n = p->vertex_count;
+        same = memcmp(p->world, q->world, sizeof p->world) == 0 && p->mirrored == q->mirrored &&
+               p->material == q->material && p->node == q->node && p->mesh == q->mesh &&
+               n == q->vertex_count && p->triangle_count == q->triangle_count &&
+               same_array(p->positions, q->positions, 3 * n) &&
+               same_array(p->normals, q->normals, 3 * n) &&
+               same_array(p->tangents, q->tangents, 4 * n) &&
+               same_array(p->texcoords0, q->texcoords0, 2 * n) &&
+               same_array(p->colors, q->colors, 4 * n) &&
+               memcmp(p->indices, q->indices, 3 * p->triangle_count * sizeof *p->indices) == 0;
+    }
+    for (size_t i = 0; same && i < a->camera_count; i++) {
+        same = memcmp(a->cameras[i].world, b->cameras[i].world, sizeof a->cameras[i].world) == 0;
+    }
+    for (size_t i = 0; same && i < a->light_count; i++) {
+        const sr_scene_light *l = &a->lights[i], *m = &b->lights[i];
+        same = memcmp(l->world, m->world, sizeof l->world) == 0 &&
+               memcmp(&l->light.vector, &m->light.vector, sizeof l->light.vector) == 0 &&
+               memcmp(&l->light.direction, &m->light.direction, sizeof l->light.direction) == 0 &&
+               l->light.type == m->light.type && l->node == m->node;
+    }
+    if (!same) {
+        sr_test_fail(__FILE__, __LINE__, "%s: posed again, the scene differs from a reading",
+                     what);
+    }
+}
+
+SR_TEST(posing_again_gives_the_bytes_of_a_reading_in_that_pose)
+{
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    char *json = strip_doc(strstr(strip_body, "\"meshes\":"), posed_scene);
+    REQUIRE(json);
+    sr_io_error e;
+    sr_scene *again = NULL;
+    sr_result r = sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json),
+                                NULL, &again, &e);
+    if (r != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "%s", e.message);
+    }
+    REQUIRE(again);
+    REQUIRE(again->primitive_count == 5 && again->light_count == 2 && again->camera_count == 1);
+    /* Node 4 and node 7 share mesh 0's arrays at rest. */
+    CHECK(again->primitives[1].positions == again->primitives[4].positions);
+    static const struct {
+        sr_load_pose pose;
+        int animation;
+        float time;
+    } poses[] = {
+        { SR_POSE_ANIMATION, 0, 0.25f }, { SR_POSE_ANIMATION, 0, 1.0f },
+        { SR_POSE_ANIMATION, 1, 0.7f },  { SR_POSE_ANIMATION, 0, 1.5f },
+        { SR_POSE_REST, 0, 0 },          { SR_POSE_ANIMATION, 0, 2.0f },
+        { SR_POSE_ANIMATION, 0, 0.0f },  { SR_POSE_ANIMATION, 1, 2.5f },
+        { SR_POSE_ANIMATION, 0, 3.0f },  { SR_POSE_DEFAULT, 0, 0 },
+        { SR_POSE_ANIMATION, 0, 1.25f },
+    };
+    const float *morphed = NULL;
+    for (size_t k = 0; k < sizeof poses / sizeof *poses; k++) {
+        char what[64];
+        snprintf(what, sizeof what, "pose %zu (animation %d at %g s)", k, poses[k].animation,
+                 (double)poses[k].time);
+        sr_load_desc desc = { .pose = poses[k].pose, .animation = poses[k].animation,
+                              .animation_time = poses[k].time };
+        sr_scene *read = NULL;
+        r = sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), &desc,
+                          &read, &e);
+        REQUIRE(r == SR_OK);
+        r = sr_scene_pose(again, poses[k].pose, poses[k].animation, poses[k].time, &e);
+        if (r != SR_OK) {
+            sr_test_fail(__FILE__, __LINE__, "%s: %s", what, e.message);
+        }
+        check_same_pose(read, again, what);
+        sr_destroy_scene(sr_test_ctx(), read);
+        /* Node 4's morphed arrays, once made, are reused: posing again
+         * and again does not grow the scene. */
+        const float *p4 = again->primitives[1].positions;
+        if (p4 != again->primitives[4].positions) {
+            CHECK(!morphed || p4 == morphed);
+            morphed = p4;
+        }
+    }
+    CHECK(morphed != NULL);
+    sr_destroy_scene(sr_test_ctx(), again);
+    free(json);
+}
+
+SR_TEST(posing_again_checks_its_arguments_and_keeps_the_scene_on_error)
+{
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    char *json = strip_doc(joint_still, joint_turned);
+    REQUIRE(json);
+    sr_io_error e;
+    sr_scene *s = NULL;
+    REQUIRE(sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), NULL, &s,
+                          &e) == SR_OK);
+    REQUIRE(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 1.0f, &e) == SR_OK);
+    float before[18];
+    memcpy(before, s->primitives[0].positions, sizeof before);
+    CHECK_EQ(sr_scene_pose(NULL, SR_POSE_REST, 0, 0, &e), SR_INVALID_ARG);
+    CHECK_STR_EQ(e.message, "sr_scene_pose: scene is NULL");
+    CHECK_EQ(sr_scene_pose(s, (sr_load_pose)7, 0, 0, &e), SR_INVALID_ARG);
+    CHECK_STR_EQ(e.message, "sr_scene_pose: pose 7 is not an sr_load_pose");
+    CHECK_EQ(sr_scene_pose(s, SR_POSE_ANIMATION, 1, 0, &e), SR_INVALID_ARG);
+    CHECK_STR_EQ(e.message,
+                 "t.gltf: sr_scene_pose: animation 1 is not an animation of the scene (it has 1)");
+    CHECK_EQ(sr_scene_pose(s, SR_POSE_ANIMATION, -1, 0, NULL), SR_INVALID_ARG);
+    CHECK_EQ(sr_scene_pose(s, SR_POSE_ANIMATION, 0, NAN, &e), SR_INVALID_ARG);
+    CHECK_STR_EQ(e.message, "t.gltf: sr_scene_pose: time nan is not finite");
+    CHECK_EQ(sr_scene_pose(s, SR_POSE_ANIMATION, 0, INFINITY, &e), SR_INVALID_ARG);
+    CHECK(memcmp(before, s->primitives[0].positions, sizeof before) == 0);
+    CHECK_EQ(s->animation, 0);
+    CHECK_EQ(s->animation_time, 1.0f);
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(json);
+    /* A scene without animations has its rest pose alone. */
+    json = strip_doc(NULL, NULL);
+    REQUIRE(sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), NULL, &s,
+                          &e) == SR_OK);
+    CHECK_EQ(sr_scene_pose(s, SR_POSE_REST, 0, 0, &e), SR_OK);
+    CHECK_EQ(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 0, &e), SR_INVALID_ARG);
+    CHECK_STR_EQ(e.message,
+                 "sr_scene_pose: animation 0 is not an animation of the scene (it has 0)");
+    sr_destroy_scene(sr_test_ctx(), s);
+    free(json);
 }

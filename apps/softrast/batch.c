@@ -271,16 +271,16 @@ static bool sheet_put(batch_run *run, const batch_item *it, int view, const uint
     return r == SR_OK;
 }
 
-/* --animate --animation: the loaded model posed again at time t, in the
- * camera its first pose framed; false with why in run->message. */
-static bool pose_at(batch_run *run, const batch_item *it, float t)
+/* --animate --animation: the loaded model posed again at time t, without
+ * reading it again, in the camera its first pose framed; false with why
+ * in run->message. */
+static bool pose_at(batch_run *run, float t)
 {
     sr_vec3 eye, target, up;
     render_job_camera(run->job, &eye, &target, &up);
-    render_job_set_time(run->job, t);
     run->message[0] = '\0';
     cli_capture(run->message, sizeof run->message);
-    int status = render_job_reload(run->job, it->input);
+    int status = render_job_pose(run->job, t);
     cli_capture(NULL, 0);
     if (status >= 0) {
         return false;
@@ -332,7 +332,7 @@ static void animate_one(batch_run *run, const batch_read *rd)
     size_t pixels = (size_t)o->width * (size_t)o->height;
     for (int v = 0; v < views && ok; v++) {
         int stamp = playing ? (int)lround(v * 1000.0 / fps) : v * frame_ms;
-        if (playing && v > 0 && !pose_at(run, it, start + (float)v / (float)fps)) {
+        if (playing && v > 0 && !pose_at(run, start + (float)v / (float)fps)) {
             ok = false;
             break;
         }

@@ -197,6 +197,20 @@ static void json_floats(const float *v, int n)
     putchar(']');
 }
 
+/* The materials to show: the file's, and the one the reader adds for
+ * primitives without one only when a primitive draws with it. */
+static size_t shown_materials(const sr_scene *sc, bool *with_default)
+{
+    *with_default = false;
+    if (sc->default_material < 0) {
+        return sc->material_count;
+    }
+    for (size_t i = 0; i < sc->primitive_count; i++) {
+        *with_default |= sc->primitives[i].material == sc->default_material;
+    }
+    return (size_t)sc->default_material + (*with_default ? 1 : 0);
+}
+
 static void print_json(const char *path, const sr_scene *sc)
 {
     attribute_counts a = count_attributes(sc);
@@ -216,12 +230,15 @@ static void print_json(const char *path, const sr_scene *sc)
     printf(", \"max\": ");
     json_floats(hi, 3);
     printf("},\n \"materials\": [");
-    for (size_t i = 0; i < sc->material_count; i++) {
+    bool with_default;
+    size_t shown = shown_materials(sc, &with_default);
+    for (size_t i = 0; i < shown; i++) {
         const sr_pbr_material *m = &sc->materials[i];
         named_slot slots[MAX_SLOTS];
         const char *ext[MAX_EXTENSIONS];
         size_t ns = material_slots(m, slots), ne = material_extensions(m, ext);
-        printf("%s\n  {\"base_color\": ", i ? "," : "");
+        printf("%s\n  {%s\"base_color\": ", i ? "," : "",
+               (int)i == sc->default_material ? "\"default\": true, " : "");
         json_floats(m->base_color, 4);
         printf(", \"metallic\": ");
         json_number(m->metallic);
@@ -238,7 +255,7 @@ static void print_json(const char *path, const sr_scene *sc)
         }
         printf("]}");
     }
-    printf("%s],\n \"textures\": %zu,\n \"variants\": [", sc->material_count ? "\n " : "",
+    printf("%s],\n \"textures\": %zu,\n \"variants\": [", shown ? "\n " : "",
            sc->texture_count);
     for (size_t i = 0; i < sc->variant_count; i++) {
         printf(i ? ", " : "");
@@ -310,13 +327,17 @@ static void print_text(const char *path, const sr_scene *sc)
     printf("  bounds      min %g %g %g, max %g %g %g (size %g x %g x %g)\n", (double)lo.x,
            (double)lo.y, (double)lo.z, (double)hi.x, (double)hi.y, (double)hi.z,
            (double)(hi.x - lo.x), (double)(hi.y - lo.y), (double)(hi.z - lo.z));
-    printf("  materials   %zu\n", sc->material_count);
-    for (size_t i = 0; i < sc->material_count; i++) {
+    bool with_default;
+    size_t shown = shown_materials(sc, &with_default);
+    printf("  materials   %zu%s\n", shown - (with_default ? 1u : 0u),
+           with_default ? ", and the default for primitives without one" : "");
+    for (size_t i = 0; i < shown; i++) {
         const sr_pbr_material *m = &sc->materials[i];
         named_slot slots[MAX_SLOTS];
         const char *ext[MAX_EXTENSIONS];
         size_t ns = material_slots(m, slots), ne = material_extensions(m, ext);
-        printf("    %zu  base color %g %g %g %g, metallic %g, roughness %g, %s%s", i,
+        printf("    %zu  %sbase color %g %g %g %g, metallic %g, roughness %g, %s%s", i,
+               (int)i == sc->default_material ? "(default) " : "",
                (double)m->base_color[0], (double)m->base_color[1], (double)m->base_color[2],
                (double)m->base_color[3], (double)m->metallic, (double)m->roughness,
                alpha_name(m->alpha_mode), m->double_sided ? ", double-sided" : "");

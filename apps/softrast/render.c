@@ -675,7 +675,6 @@ struct render_job {
     bool env_shared;        /* env is another job's (render_job_share_light) */
     render_shadow shadow;   /* the key light's map, on ctx */
     char error[512];
-    char animation_index[16];   /* --animation as a number (render_job_set_time) */
 };
 
 int render_job_parse(int argc, char **argv, render_job **out)
@@ -1021,16 +1020,39 @@ bool render_job_animation(const render_job *job, float *duration)
     return true;
 }
 
-void render_job_set_time(render_job *job, float seconds)
+int render_job_pose(render_job *job, float seconds)
 {
-    job->o.animation_time = seconds;
-    /* The animation the model is posed by, by its number from now on: a
-     * name would be looked up in a reading of its own each time. */
-    const sr_scene *g = job->have_scene ? job->s.gltf : NULL;
-    if (g && g->animation >= 0) {
-        snprintf(job->animation_index, sizeof job->animation_index, "%d", g->animation);
-        job->o.animation = job->animation_index;
+    sr_scene *g = job->have_scene ? job->s.gltf : NULL;
+    if (!g || g->animation < 0) {
+        cli_error("%s: not posed by an animation", job->o.model ? job->o.model : "the scene");
+        return EXIT_USAGE;
     }
+    sr_io_error err;
+    sr_result r = sr_scene_pose(g, SR_POSE_ANIMATION, g->animation, seconds, &err);
+    if (r != SR_OK) {
+        cli_message("%s", err.message);
+        return r == SR_OUT_OF_MEMORY ? EXIT_FAILURE_RUN : EXIT_USAGE;
+    }
+    job->o.animation_time = seconds;
+    /* The job's objects made again from the posed scene, as
+     * render_job_reload makes them from a reading, but the scene kept:
+     * its file is not read again, nor are its inputs listed again. */
+    if (job->ctx) {
+        render_textures_free(job->ctx, &job->s);
+        render_bump_free(job->ctx, &job->s);
+    }
+    job->s.gltf = NULL;
+    scene_free(job->mesh_ctx, &job->s);
+    job->have_scene = false;
+    memset(&job->s, 0, sizeof job->s);
+    const render_opts *o = &job->o;
+    int status = render_gltf_build(o->model, o->normals == -1, o->variant, false, g,
+                                   job->mesh_ctx, &job->s);
+    if (status < 0) {
+        job->have_scene = true;
+        status = finish_scene(job);
+    }
+    return status >= 0 ? status : make_context(job);
 }
 
 int render_job_check_frames(const render_job *job, const char *cmd, int width, int height,

@@ -56,10 +56,11 @@ int render_job_reload(render_job *job, const char *model);
 /* Whether the loaded model is posed by a glTF animation (--animation),
  * and that animation's duration in seconds. */
 bool render_job_animation(const render_job *job, float *duration);
-/* The time into --animation that the next render_job_reload poses the
- * model at (what --time would set); the animation stays the one the
- * loaded model is posed by. */
-void render_job_set_time(render_job *job, float seconds);
+/* Pose the loaded model at `seconds` into the animation it is posed by
+ * (what --time would set), without reading its file again
+ * (sr_scene_pose): its objects are made again from the posed scene.
+ * -1, or an exit status after the reason was reported (cli_error). */
+int render_job_pose(render_job *job, float seconds);
 
 /* The camera the options give: --camera, else the default framing. */
 void render_job_camera(const render_job *job, sr_vec3 *eye, sr_vec3 *target, sr_vec3 *up);

@@ -245,41 +245,28 @@ static int find_animation(const sr_scene *sc, const char *path, const char *whic
     return -1;
 }
 
-/* Reads path in the pose asked for: --animation's, read at once when it
- * is a number the file has, else found among the file's by a first
- * reading in the rest pose (a name, or a number to report).  An exit
- * status after one line, or -1. */
+/* Reads path once, in its rest pose, then poses it by --animation (a
+ * number or a name the file has) at `time` without reading it again.
+ * An exit status after one line, or -1. */
 static int load_posed(const char *path, const char *animation, float time, sr_context *ctx,
                       cli_inputs *inputs, sr_scene **out)
 {
     sr_io_error err;
     sr_load_desc desc = { .format = SR_FORMAT_GLTF, .file_read = note_file, .user = inputs,
                           .warn = warn_line };
-    char *end = NULL;
-    long n = animation ? strtol(animation, &end, 10) : -1;
-    if (animation && end != animation && *end == 0 && n >= 0 && n <= INT_MAX) {
-        desc.pose = SR_POSE_ANIMATION;
-        desc.animation = (int)n;
-        desc.animation_time = time;
-        if (sr_load_scene(ctx, path, &desc, out, &err) == SR_OK) {
-            return -1;
-        }
-        desc.pose = SR_POSE_REST;   /* why, with the file's list, below */
-        desc.warn = NULL;           /* given by the first reading */
-    }
     sr_result r = sr_load_scene(ctx, path, &desc, out, &err);
     if (r == SR_OK && animation) {
         int index = find_animation(*out, path, animation);
-        sr_destroy_scene(ctx, *out);
-        *out = NULL;
         if (index < 0) {
+            sr_destroy_scene(ctx, *out);
+            *out = NULL;
             return EXIT_USAGE;
         }
-        desc.pose = SR_POSE_ANIMATION;
-        desc.animation = index;
-        desc.animation_time = time;
-        desc.warn = NULL;   /* said the first time */
-        r = sr_load_scene(ctx, path, &desc, out, &err);
+        r = sr_scene_pose(*out, SR_POSE_ANIMATION, index, time, &err);
+        if (r != SR_OK) {
+            sr_destroy_scene(ctx, *out);
+            *out = NULL;
+        }
     }
     if (r != SR_OK) {
         cli_message("%s", err.message);
@@ -301,12 +288,16 @@ int render_gltf_load(const char *path, bool flat_normals, const char *variant, b
                      const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
                      scene *s)
 {
-    scene_object *ob = &s->objects[0];
     sr_scene *sc = NULL;
     int status = load_posed(path, animation, time, ctx, inputs, &sc);
-    if (status >= 0) {
-        return status;
-    }
+    return status >= 0 ? status
+                       : render_gltf_build(path, flat_normals, variant, verbose, sc, ctx, s);
+}
+
+int render_gltf_build(const char *path, bool flat_normals, const char *variant, bool verbose,
+                      sr_scene *sc, sr_context *ctx, scene *s)
+{
+    scene_object *ob = &s->objects[0];
     sr_result r = SR_OK;
     s->gltf = sc;
     /* Read with no variant, so that a name can be looked up, then each

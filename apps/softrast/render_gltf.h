@@ -19,6 +19,11 @@ bool render_gltf_is(const char *path);
 int render_gltf_load(const char *path, bool flat_normals, const char *variant, bool verbose,
                      const char *animation, float time, sr_context *ctx, cli_inputs *inputs,
                      scene *s);
+/* The second half of render_gltf_load: s made from sc, a scene of path
+ * read (and posed) already, which s takes (destroyed on failure).  For
+ * a model posed again (sr_scene_pose) without reading it again. */
+int render_gltf_build(const char *path, bool flat_normals, const char *variant, bool verbose,
+                      sr_scene *sc, sr_context *ctx, scene *s);
 /* ob's base_uv for the classic models, which have one set of texture
  * coordinates and no per-slot transform: each part's coordinates as the
  * physically based program samples its base color texture (its set, 0 or

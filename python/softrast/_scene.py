@@ -138,6 +138,10 @@ class Scene:
         self.animations = []
         self.animation = None
         self.time = 0.0
+        # load's reading of a glTF file, for pose: (_SceneFile, material
+        # dicts, Materials, base color images); None otherwise.
+        self._reading: Optional[Tuple[_SceneFile, List[dict[str, Any]], List[Material],
+                                      dict[int, Optional[NDArray[np.uint8]]]]] = None
         for item in instances:
             self.add(item)
 
@@ -159,6 +163,33 @@ class Scene:
                             f"got {type(item).__name__}")
         self.instances.append(inst)
         return inst
+
+    def pose(self, animation: Union[int, str, None] = None, time: float = 0.0) -> Scene:
+        """This scene posed again, as a new Scene, without reading its file.
+
+        For a Scene :func:`load` made of a glTF file (or one this made):
+        ``animation`` (an index into ``animations``, or a name) at ``time``
+        seconds, as ``load(path, animation=..., time=...)`` poses it, with
+        the very same arrays and matrices (sr_scene_pose); None, the rest
+        pose.  The materials, textures and cameras' lenses are the ones
+        read; this scene is left as it is.  ValueError as load's (an
+        animation the file does not have, a time that is not finite, a
+        time without an animation), and for a scene not read from a glTF
+        file.
+        """
+        time = float(time)
+        if not math.isfinite(time):
+            raise ValueError(f"time: {time} is not finite")
+        if animation is None and time != 0.0:
+            raise ValueError("time: a time into an animation: give animation too")
+        if self._reading is None:
+            raise ValueError("pose: the scene was not read from a glTF file by softrast.load")
+        source, factors, materials, images = self._reading
+        index = -1 if animation is None else _animation_in([a.name for a in self.animations],
+                                                           animation, source.path)
+        d = _softrast.pose_scene(source.capsule, source.path, index, time)
+        d["materials"] = factors
+        return _gltf_scene(source.path, source.variant, index, time, d, materials, images)
 
     @property
     def lights(self) -> Tuple[Light, ...]:
@@ -250,21 +281,28 @@ def load_mesh(path: PathLike) -> Mesh:
     return Mesh(**_softrast.load_mesh(_path(path)))
 
 
-def _animation_index(path: Union[str, bytes], animation: Union[int, str]) -> int:
-    """load's ``animation``: an index as it is, a name looked up among the
-    file's animations (read once more, in the rest pose)."""
+def _animation_in(names: List[str], animation: Union[int, str], path: Union[str, bytes]) -> int:
+    """load's and Scene.pose's ``animation``: an index as it is (the
+    library checks it), a name looked up among the file's ``names``."""
     if isinstance(animation, bool) or not isinstance(animation, (int, str)):
         raise TypeError(f"animation: expected an index or a name, got {type(animation).__name__}")
     if isinstance(animation, int):
         if animation < 0:
             raise ValueError(f"animation: {animation} is not an index (0 is the first)")
         return animation
-    names = [a[0] for a in _softrast.load_scene(path).get("animations", [])]
     if animation not in names:
         listed = ", ".join(repr(n) for n in names) or "none"
         raise ValueError(f"animation: {os.fsdecode(path)} has no animation named "
                          f"{animation!r} (its animations: {listed})")
     return names.index(animation)
+
+
+def _animation_index(path: Union[str, bytes], animation: Union[int, str]) -> int:
+    """load's ``animation``: a name looked up among the file's animations
+    (read once more, in the rest pose)."""
+    names = ([a[0] for a in _softrast.load_scene(path).get("animations", [])]
+             if isinstance(animation, str) else [])
+    return _animation_in(names, animation, path)
 
 
 def load(path: PathLike, variant: Union[str, int, None] = None,
@@ -319,6 +357,14 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
     # without one draw with (not listed in Scene.materials: no index of
     # the file's).
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
+    return _gltf_scene(path, variant, index, time, d, materials, images)
+
+
+def _gltf_scene(path: Union[str, bytes], variant: Union[str, int, None], index: int, time: float,
+                d: dict[str, Any], materials: List[Material],
+                images: dict[int, Optional[NDArray[np.uint8]]]) -> Scene:
+    """The Scene of load_scene's (or pose_scene's) dict: the reading's
+    materials and base color images given, as Scene.pose keeps them."""
     meshes: dict[Tuple[int, int], Mesh] = {}
     instances = []
     source = _SceneFile(path, d["file"], variant, (index, time))
@@ -336,4 +382,5 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
     scene.animations = [Animation(*a) for a in d["animations"]]
     scene.animation = None if index < 0 else index
     scene.time = time if index >= 0 else 0.0
+    scene._reading = (source, d["materials"], materials, images)
     return scene

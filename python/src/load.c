@@ -503,3 +503,32 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     sr_destroy_context(ctx);
     return d;
 }
+
+PyObject *sr_py_pose_scene(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *capsule, *path_obj;
+    int animation = -1;
+    float time = 0.0f;
+    if (!PyArg_ParseTuple(args, "OO&|if:pose_scene", &capsule, PyUnicode_FSConverter, &path_obj,
+                          &animation, &time)) {
+        return NULL;
+    }
+    sr_scene *scene = sr_py_scene_of(capsule);
+    if (!scene) {
+        Py_DECREF(path_obj);
+        return NULL;
+    }
+    /* Under the GIL: every pose of one reading shares its scene, and the
+     * capsules already made keep their own copies of what this writes. */
+    sr_io_error err = { { 0 } };
+    sr_result r = sr_scene_pose(scene, animation >= 0 ? SR_POSE_ANIMATION : SR_POSE_REST,
+                                animation, time, &err);
+    PyObject *d = r == SR_OK ? scene_dict(scene)
+                             : sr_py_io_error(r, &err, PyBytes_AS_STRING(path_obj));
+    Py_DECREF(path_obj);
+    if (d && set_item(d, "file", sr_py_scene_file_again(capsule)) < 0) {
+        Py_CLEAR(d);
+    }
+    return d;
+}

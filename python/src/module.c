@@ -38,6 +38,12 @@ PyDoc_STRVAR(load_mesh_doc,
 "sr_load_mesh: a dict of arrays (vertices, faces, normals, colors, uvs,\n"
 "texture).  Use softrast.load_mesh.");
 
+PyDoc_STRVAR(pose_scene_doc,
+"pose_scene(file, path, animation=-1, time=0.0, /)\n--\n\n"
+"The scene a load_scene `file` capsule draws posed again by sr_scene_pose\n"
+"(animation -1: the rest pose), without reading `path` (named in errors):\n"
+"load_scene's dict, its \"file\" a new capsule sharing the reading.");
+
 PyDoc_STRVAR(load_scene_doc,
 "load_scene(path, variant=None, animation=-1, time=0.0, /)\n--\n\n"
 "sr_load_scene, posed by the file's animation `animation` at `time`\n"
@@ -110,6 +116,7 @@ static PyMethodDef methods[] = {
     { "render", (PyCFunction)(void (*)(void))sr_py_render, METH_VARARGS | METH_KEYWORDS, render_doc },
     { "load_mesh", sr_py_load_mesh, METH_VARARGS, load_mesh_doc },
     { "load_scene", sr_py_load_scene, METH_VARARGS, load_scene_doc },
+    { "pose_scene", sr_py_pose_scene, METH_VARARGS, pose_scene_doc },
     { "texture_slot_uv", sr_py_texture_slot_uv, METH_VARARGS, texture_slot_uv_doc },
     { "make_environment", sr_py_make_environment, METH_VARARGS, make_environment_doc },
     { "read_image", sr_py_read_image, METH_VARARGS, read_image_doc },

@@ -123,6 +123,11 @@ typedef struct sr_py_file_draw {
  * also on failure) with each primitive prepared to draw; NULL with an
  * exception set on failure. */
 PyObject *sr_py_scene_file(sr_context *ctx, sr_scene *scene);
+/* The library's scene such a capsule draws, shared by every pose of one
+ * reading (posed only under the GIL); NULL with TypeError. */
+sr_scene *sr_py_scene_of(PyObject *capsule);
+/* A new capsule of that scene as it is posed now, sharing the reading. */
+PyObject *sr_py_scene_file_again(PyObject *capsule);
 /* Primitive `index` of such a capsule, or NULL with TypeError. */
 const sr_py_file_draw *sr_py_file_draw_of(PyObject *capsule, Py_ssize_t index);
 /* make_environment(path, intensity, threads): a capsule holding an
@@ -133,6 +138,7 @@ const sr_environment *sr_py_environment_of(PyObject *capsule);
 
 PyObject *sr_py_render(PyObject *self, PyObject *args, PyObject *kwargs);
 PyObject *sr_py_load_scene(PyObject *self, PyObject *args);
+PyObject *sr_py_pose_scene(PyObject *self, PyObject *args);
 /* texture_slot_uv(uvs, offset, rotation, scale): sr_texture_slot_uv. */
 PyObject *sr_py_texture_slot_uv(PyObject *self, PyObject *args);
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args);

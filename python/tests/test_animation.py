@@ -14,6 +14,21 @@ import softrast
 from conftest import load_gltf
 
 
+def float_accessors(arrays, kinds):
+    """The asset, buffer, views and accessors of a document whose
+    accessor i holds arrays[i] (float32) as kinds[i] (type, count)."""
+    data, views, accessors = b"", [], []
+    for a, (kind, count) in zip(arrays, kinds):
+        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": a.nbytes})
+        accessors.append({"bufferView": len(views) - 1, "componentType": 5126,
+                          "count": count, "type": kind})
+        data += a.astype("<f4").tobytes()
+    return {"asset": {"version": "2.0"},
+            "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
+                         + base64.b64encode(data).decode()}],
+            "bufferViews": views, "accessors": accessors}
+
+
 def write_animated(path):
     """A triangle on node 0, moved by "slide" (LINEAR translation,
     (0, 0, 0) at 0 s to (4, 2, 0) at 2 s) and turned by "turn" (LINEAR
@@ -25,17 +40,8 @@ def write_animated(path):
               np.array([0, 1], np.float32),
               np.array([0, 0, 0, 1, 0, 0, h, h], np.float32)]
     kinds = [("VEC3", 3), ("SCALAR", 2), ("VEC3", 2), ("SCALAR", 2), ("VEC4", 2)]
-    data, views, accessors = b"", [], []
-    for a, (kind, count) in zip(arrays, kinds):
-        views.append({"buffer": 0, "byteOffset": len(data), "byteLength": a.nbytes})
-        accessors.append({"bufferView": len(views) - 1, "componentType": 5126,
-                          "count": count, "type": kind})
-        data += a.astype("<f4").tobytes()
     doc = {
-        "asset": {"version": "2.0"},
-        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
-                     + base64.b64encode(data).decode()}],
-        "bufferViews": views, "accessors": accessors,
+        **float_accessors(arrays, kinds),
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
         "nodes": [{"mesh": 0, "translation": [9, 9, 9]}],
         "scenes": [{"nodes": [0]}],
@@ -116,3 +122,103 @@ def test_bad_arguments_are_refused(tmp_path):
     with pytest.raises(ValueError, match="only glTF files have"):
         softrast.load(obj, animation=0)
     assert softrast.load(obj).animations == []
+
+
+# ---- Scene.pose: posed again without reading the file ---------------------
+
+def write_morphed(path):
+    """A triangle (with normals: the physically based look draws the
+    library's arrays) whose morph target lifts vertex 2 by (0, 1, 0), weighed
+    0 at 0 s and 1 at 2 s ("lift", LINEAR), its node turned by "turn" as
+    write_animated's; a camera looking at it down -z."""
+    arrays = [np.array([0, 0, 0, 1, 0, 0, 0, 1, 0], np.float32),
+              np.array([0, 0, 0, 0, 0, 0, 0, 1, 0], np.float32),
+              np.array([0, 2], np.float32), np.array([0, 1], np.float32),
+              np.array([0, 1], np.float32),
+              np.array([0, 0, 0, 1, 0, 0, math.sqrt(0.5), math.sqrt(0.5)], np.float32),
+              np.array([0, 0, 1, 0, 0, 1, 0, 0, 1], np.float32)]
+    kinds = [("VEC3", 3), ("VEC3", 3), ("SCALAR", 2), ("SCALAR", 2), ("SCALAR", 2), ("VEC4", 2),
+             ("VEC3", 3)]
+    doc = {
+        **float_accessors(arrays, kinds),
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 6},
+                                    "targets": [{"POSITION": 1}]}],
+                    "weights": [0]}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.1}}],
+        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0.5, 0.75, 3]}],
+        "scenes": [{"nodes": [0, 1]}],
+        "animations": [
+            {"name": "lift", "samplers": [{"input": 2, "output": 3}],
+             "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}]},
+            {"name": "turn", "samplers": [{"input": 4, "output": 5}],
+             "channels": [{"sampler": 0, "target": {"node": 0, "path": "rotation"}}]},
+        ],
+    }
+    path.write_text(json.dumps(doc))
+    return path
+
+
+def same_scene(a, b):
+    """The instances' matrices and arrays, bit for bit."""
+    assert len(a.instances) == len(b.instances)
+    for x, y in zip(a.instances, b.instances):
+        assert np.array_equal(np.asarray(x.pose), np.asarray(y.pose))
+        assert np.array_equal(x.mesh.vertices, y.mesh.vertices)
+        assert np.array_equal(x.mesh.faces, y.mesh.faces)
+    assert [c.world.tolist() for c in a.cameras] == [c.world.tolist() for c in b.cameras]
+    assert (a.animation, a.time, a.animations) == (b.animation, b.time, b.animations)
+
+
+@pytest.mark.parametrize("animation, time", [(0, 0.5), ("lift", 2.0), (1, 0.25),
+                                             ("turn", 3.0), (None, 0.0)])
+def test_pose_is_load_in_that_pose_without_the_file(tmp_path, animation, time):
+    path = write_morphed(tmp_path / "m.gltf")
+    rest = load_gltf(path)
+    read = softrast.load(path, animation=animation, time=time)
+    path.unlink()   # posing again reads nothing
+    posed = rest.pose(animation=animation, time=time)
+    same_scene(posed, read)
+    # The scene posed from is left as it was, and poses again.
+    assert rest.animation is None
+    assert rest.instances[0].mesh.vertices[2].tolist() == [0, 1, 0]
+    same_scene(posed.pose(animation=animation, time=time), read)
+
+
+def test_a_scene_keeps_its_pose_when_another_is_made(tmp_path):
+    """The physically based look draws the library's arrays: an earlier
+    pose draws the same after later ones."""
+    path = write_morphed(tmp_path / "m.gltf")
+    rest = load_gltf(path)
+
+    def image(scene):
+        return softrast.render(scene, camera=scene.cameras[0], width=32, height=32,
+                               shading="pbr", outputs=("color",))["color"]
+
+    half = rest.pose(animation="lift", time=1.0)
+    drawn = image(half)
+    assert drawn.any()
+    full = rest.pose(animation="lift", time=2.0)
+    rest.pose(animation="turn", time=1.0)
+    assert np.array_equal(image(half), drawn)
+    assert np.array_equal(image(full), image(softrast.load(path, animation="lift", time=2.0)))
+    assert not np.array_equal(image(full), drawn)
+
+
+def test_pose_refuses_bad_arguments(tmp_path):
+    path = write_morphed(tmp_path / "m.gltf")
+    rest = load_gltf(path)
+    with pytest.raises(ValueError, match="has no animation named 'walk'.*'lift', 'turn'"):
+        rest.pose(animation="walk")
+    with pytest.raises(ValueError, match="animation 2 is not an animation of the scene "
+                                         "\\(it has 2\\)"):
+        rest.pose(animation=2)
+    with pytest.raises(ValueError, match="animation: -1 is not an index"):
+        rest.pose(animation=-1)
+    with pytest.raises(TypeError, match="animation: expected an index or a name"):
+        rest.pose(animation=True)
+    with pytest.raises(ValueError, match="time: inf is not finite"):
+        rest.pose(animation=0, time=float("inf"))
+    with pytest.raises(ValueError, match="time: a time into an animation: give animation too"):
+        rest.pose(time=1.0)
+    with pytest.raises(ValueError, match="not read from a glTF file"):
+        softrast.Scene().pose()

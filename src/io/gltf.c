@@ -739,13 +739,20 @@ static sr_result local_matrix(gltf_doc *d, const json_t *node, long index, const
                 break;
             }
         }
-        return sr__gltf_numbers(d, node, ptr, "matrix", 16, m);
+        r = sr__gltf_numbers(d, node, ptr, "matrix", 16, m);
+        if (r == SR_OK && !sr__gltf_posing_node(d, index, m, NULL, NULL, NULL)) {
+            r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
+        return r;
     }
     float t[3] = { 0, 0, 0 }, q[4] = { 0, 0, 0, 1 }, s[3] = { 1, 1, 1 };
     if ((r = sr__gltf_numbers(d, node, ptr, "translation", 3, t)) != SR_OK ||
         (r = sr__gltf_numbers(d, node, ptr, "rotation", 4, q)) != SR_OK ||
         (r = sr__gltf_numbers(d, node, ptr, "scale", 3, s)) != SR_OK) {
         return r;
+    }
+    if (!sr__gltf_posing_node(d, index, NULL, t, q, s)) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
     }
     /* The animation's values replace the node's own (gltf_animation.c
      * refused it for a node with a matrix). */
@@ -761,6 +768,15 @@ static sr_result local_matrix(gltf_doc *d, const json_t *node, long index, const
     }
     sr__gltf_trs(t, q, s, m);
     return SR_OK;
+}
+
+bool sr__gltf_mirrors(const float world[16])
+{
+    const float *w = world;
+    double det = (double)w[0] * ((double)w[5] * w[10] - (double)w[9] * w[6]) -
+                 (double)w[4] * ((double)w[1] * w[10] - (double)w[9] * w[2]) +
+                 (double)w[8] * ((double)w[1] * w[6] - (double)w[5] * w[2]);
+    return det < 0;
 }
 
 sr_result sr__gltf_node_world(gltf_doc *d, long node, float world[16])
@@ -942,16 +958,6 @@ static sr_result pose_primitive(gltf_doc *d, const gltf_mesh *m, size_t i, long 
     return r;
 }
 
-/* Whether the 3x3 part of column-major w has a negative determinant: it
- * mirrors, turning front faces clockwise. */
-static bool turns_winding(const float *w)
-{
-    double det = (double)w[0] * ((double)w[5] * w[10] - (double)w[9] * w[6]) -
-                 (double)w[4] * ((double)w[1] * w[10] - (double)w[9] * w[2]) +
-                 (double)w[8] * ((double)w[1] * w[6] - (double)w[5] * w[2]);
-    return det < 0;
-}
-
 /* Whether `copies` more instances of draws, vertices and triangles fit the
  * scene's limits (SR_SCENE_MAX_*), checked before any is made. */
 static sr_result check_copies(gltf_doc *d, const char *eptr, size_t copies, size_t draws,
@@ -998,11 +1004,16 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
         return r;
     }
     /* Plain instances share the mesh's arrays; posed ones get their own. */
-    float *weights = NULL;
+    float *weights = NULL, *rest = NULL;
     if (m->target_count > 0) {
         weights = malloc(m->target_count * sizeof *weights);
-        r = weights ? sr__gltf_node_weights(d, node_index, mesh, weights, m->target_count)
-                    : sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        rest = d->posing ? malloc(m->target_count * sizeof *rest) : NULL;
+        r = weights && (rest || !d->posing)
+                ? sr__gltf_node_weights(d, node_index, mesh, weights, m->target_count)
+                : sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        if (r == SR_OK && rest) {
+            r = sr__gltf_node_rest_weights(d, node_index, mesh, rest, m->target_count);
+        }
     }
     size_t first = d->scene->primitive_count;
     for (size_t i = 0; i < m->count && r == SR_OK; i++) {
@@ -1038,10 +1049,16 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
         *p = *g;
         memcpy(p->world, world, sizeof p->world);
         p->node = (int)node_index;
-        p->mirrored = turns_winding(world);
+        p->mirrored = sr__gltf_mirrors(world);
         r = pose_primitive(d, m, i, node_index, ptr, mesh, skin, weights, p);
+        if (r == SR_OK && d->posing && (skin >= 0 || m->target_count > 0) &&
+            !sr__gltf_posing_draw(d, d->scene->primitive_count - 1, skin, g, &m->pose[i],
+                                  rest)) {
+            r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
     }
     free(weights);
+    free(rest);
     size_t made = d->scene->primitive_count - first;
     if (r != SR_OK || !instances || made == 0) {
         return r;
@@ -1076,12 +1093,15 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
             *p = g;
             /* A skinned pattern's mirror comes from its joints, not its
              * (identity) world: the instance's own mirror turns it. */
-            p->mirrored = g.mirrored != turns_winding(inst);
+            p->mirrored = g.mirrored != sr__gltf_mirrors(inst);
             sr__mat4_mul(g.world, inst, p->world);
         }
     }
     d->scene->instanced_draws += made * instance_count;
     d->scene->instanced_nodes++;
+    if (!sr__gltf_posing_instances(d, first, made, instance_count, instances)) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", eptr);
+    }
     return SR_OK;
 }
 
@@ -1189,6 +1209,13 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
         }
     }
     for (size_t m = 0; m < mesh_count; m++) {
+        /* sr_scene_pose poses the draws again from the sources. */
+        if (d->posing && meshes[m].pose) {
+            if (!sr__gltf_posing_sources(d, meshes[m].pose, meshes[m].count) && r == SR_OK) {
+                r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/meshes/%zu: out of memory", m);
+            }
+            continue;
+        }
         for (size_t i = 0; meshes[m].pose && i < meshes[m].count; i++) {
             sr__gltf_pose_free(&meshes[m].pose[i]);
         }
@@ -1529,7 +1556,8 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
     sr__gltf_lights_done(d);
     sr__scene_bounds(d->scene);
     warn_unread(d);
-    return SR_OK;
+    return sr__gltf_posing_finish(d) ? SR_OK
+                                     : sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/animations: out of memory");
 }
 
 sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, const uint8_t *data,
@@ -1561,6 +1589,7 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
     sr__gltf_meshopt_free(&d);
     sr__gltf_draco_end(&d);
     json_decref(d.root);
+    sr__gltf_posing_abandon(&d);
     if (r != SR_OK) {
         sr_destroy_scene(ctx, d.scene);
         return r;

@@ -7,6 +7,7 @@
  * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
  * gltf_morph.c and gltf_skin.c pose morphed and skinned primitives;
  * gltf_instancing.c reads EXT_mesh_gpu_instancing's instance transforms;
+ * gltf_pose.c keeps what sr_scene_pose poses a scene again from;
  * scene_store.c holds the scene's memory.  Every
  * error is one line "NAME: /json/pointer: what is wrong", the first one
  * only.  Internal to src/io. */
@@ -105,6 +106,9 @@ typedef struct gltf_doc {
     size_t skin_count;
     /* One entry per node when an animation poses the scene, else NULL. */
     gltf_node_pose *pose;
+    /* What sr_scene_pose needs to pose the scene again (gltf_pose.c),
+     * gathered while reading a file with animations; NULL otherwise. */
+    struct gltf_posing *posing;
 } gltf_doc;
 
 /* The error "NAME: POINTER: reason" (the pointer is part of fmt's
@@ -253,6 +257,9 @@ sr_result sr__gltf_check_targets(gltf_doc *d, const json_t *mesh, const char *pt
  * animation's (sr_load_desc's pose), else the node's weights, else the
  * mesh's, else zeros. */
 sr_result sr__gltf_node_weights(gltf_doc *d, long node_index, long mesh, float *out, size_t n);
+/* The same without the animation's: the rest pose's weights. */
+sr_result sr__gltf_node_rest_weights(gltf_doc *d, long node_index, long mesh, float *out,
+                                     size_t n);
 /* p's positions, normals and tangents moved by src's targets at the
  * given weights, into new arrays the scene owns (p's are left when every
  * weight is zero).  `ptr` names the node instance in messages. */
@@ -301,5 +308,85 @@ sr_result sr__gltf_read_animations(gltf_doc *d);
  * them), or NULL when it does not set them (sr__gltf_node_weights then
  * takes the node's or the mesh's). */
 const float *sr__gltf_node_pose_weights(const gltf_doc *d, long node, size_t *count);
+
+/* ---- posing again (gltf_pose.c) -------------------------------------------
+ * A scene read from a file with animations keeps what posing it takes
+ * (sr_scene_pose): the nodes' rest transforms as the reader met them,
+ * the animations' decoded samplers, the skins' joints and inverse bind
+ * matrices, and for each morphed or skinned draw its mesh's arrays and
+ * pose source.  The reader and sr_scene_pose share the arithmetic below,
+ * so that a pose made again has the bytes a reading in that pose has. */
+
+/* A sampler's keys decoded (gltf_animation.c): count times, and per key
+ * `width` floats (times 3 for CUBICSPLINE: in-tangent, value,
+ * out-tangent). */
+typedef struct gltf_sampler {
+    float *times;
+    size_t count;
+    float *values;
+    size_t value_count;        /* elements of the output accessor */
+    gltf_accessor_info out;    /* the output accessor's type */
+    int interp;
+} gltf_sampler;
+
+/* A channel that animates a node: its sampler, the node's property
+ * (GLTF_POSE_* bit index) and the floats a key. */
+typedef struct gltf_channel {
+    long sampler, node;
+    int path;
+    size_t width;
+    float *weights;            /* a weights channel's sampled values (width of them,
+                                * scene memory); NULL for the others */
+} gltf_channel;
+
+typedef struct gltf_anim {
+    gltf_sampler *samplers;
+    size_t sampler_count;
+    gltf_channel *channels;    /* only those that animate a node */
+    size_t channel_count;
+} gltf_anim;
+
+void sr__gltf_anim_free(gltf_anim *a);
+/* Animation a sampled at time t into pose (one entry per node, its
+ * `animated` bits cleared by the caller). */
+void sr__gltf_anim_apply(const gltf_anim *a, float t, gltf_node_pose *pose);
+
+/* Whether a world matrix mirrors (its upper 3x3's determinant < 0). */
+bool sr__gltf_mirrors(const float world[16]);
+/* src's targets at `weights` on n vertices: base[k] (positions, normals,
+ * tangents; NULL where absent) into out[k]. */
+void sr__gltf_morph_vertices(const gltf_pose_source *src, const float *weights, size_t n,
+                             const float *const base[3], float *const out[3]);
+/* Linear blend skinning of n vertices by the joint matrices: in[k] into
+ * out[k]; returns how many vertices' blended matrices mirror. */
+size_t sr__gltf_skin_vertices(const float *matrices, const gltf_pose_source *src, size_t n,
+                              const float *const in[3], float *const out[3]);
+/* A light placed by world (pos and direction from its -Z); false when a
+ * directional or spot light's direction collapses. */
+bool sr__gltf_aim_light(sr_scene_light *l, const float world[16]);
+
+/* The reader's hooks, each a no-op when d->posing is NULL: the record
+ * starts (a file with animations read for sr_load_scene), takes an
+ * animation, a node's rest transform as local_matrix reads it, a skin's
+ * joints and inverse bind matrices (NULL: identities), a posed draw
+ * (scene primitive `primitive` of mesh primitive g, its node's rest morph
+ * weights), and the meshes' pose sources when the walk ends.  false: out
+ * of memory (the hooks free what they were handed). */
+bool sr__gltf_posing_start(gltf_doc *d, size_t animation_count);
+bool sr__gltf_posing_anim(gltf_doc *d, size_t index, gltf_anim *a);
+bool sr__gltf_posing_node(gltf_doc *d, long node, const float *matrix, const float t[3],
+                          const float q[4], const float s[3]);
+bool sr__gltf_posing_skin(gltf_doc *d, long skin, const long *joints, size_t count,
+                          const float *inverse_bind);
+bool sr__gltf_posing_draw(gltf_doc *d, size_t primitive, long skin, const sr_scene_primitive *g,
+                          const gltf_pose_source *src, const float *rest_weights);
+bool sr__gltf_posing_sources(gltf_doc *d, gltf_pose_source *sources, size_t count);
+/* EXT_mesh_gpu_instancing made per draws of each of the node's `made`
+ * draws from `first` on, the k-th of each placed by matrices[16 k]. */
+bool sr__gltf_posing_instances(gltf_doc *d, size_t first, size_t made, size_t per,
+                               const float *matrices);
+/* At the end of a reading that succeeded: the record handed to the scene. */
+bool sr__gltf_posing_finish(gltf_doc *d);
+void sr__gltf_posing_abandon(gltf_doc *d);
 
 #endif

@@ -16,18 +16,6 @@
 
 enum { INTERP_LINEAR, INTERP_STEP, INTERP_CUBIC };
 
-/* A sampler's keys decoded: count times, and per key `width` floats (3
- * for a VEC3, 4 for a VEC4, the morph target count for weights; times 3
- * for CUBICSPLINE: in-tangent, value, out-tangent). */
-typedef struct gltf_sampler {
-    float *times;
-    size_t count;
-    float *values;
-    size_t value_count;        /* elements of the output accessor */
-    gltf_accessor_info out;    /* the output accessor's type */
-    int interp;
-} gltf_sampler;
-
 static const char *const path_names[] = { "translation", "rotation", "scale", "weights" };
 enum { PATH_TRANSLATION, PATH_ROTATION, PATH_SCALE, PATH_WEIGHTS, PATH_COUNT };
 
@@ -292,31 +280,39 @@ static void sample(const gltf_sampler *s, bool rotation, size_t width, float t, 
     }
 }
 
-/* A channel's sampler s at time t into node's pose: its path animated. */
-static sr_result apply_channel(gltf_doc *d, const gltf_sampler *s, long node, int path,
-                               size_t width, float t, const char *ptr)
+void sr__gltf_anim_apply(const gltf_anim *a, float t, gltf_node_pose *pose)
 {
-    gltf_node_pose *p = &d->pose[node];
-    float *dst = path == PATH_TRANSLATION ? p->translation
-               : path == PATH_ROTATION    ? p->rotation
-               : path == PATH_SCALE       ? p->scale : NULL;
-    if (!dst) {
-        dst = sr__scene_alloc(d->scene, width * sizeof *dst);
-        if (!dst) {
-            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    for (size_t i = 0; i < a->channel_count; i++) {
+        const gltf_channel *c = &a->channels[i];
+        gltf_node_pose *p = &pose[c->node];
+        float *dst = c->path == PATH_TRANSLATION ? p->translation
+                   : c->path == PATH_ROTATION    ? p->rotation
+                   : c->path == PATH_SCALE       ? p->scale : c->weights;
+        if (c->path == PATH_WEIGHTS) {
+            p->weights = c->weights;
+            p->weight_count = c->width;
         }
-        p->weights = dst;
-        p->weight_count = width;
+        sample(&a->samplers[c->sampler], c->path == PATH_ROTATION, c->width, t, dst);
+        p->animated |= 1u << c->path;
     }
-    sample(s, path == PATH_ROTATION, width, t, dst);
-    p->animated |= 1u << path;
-    return SR_OK;
 }
 
-/* Animation `index` (its JSON obj at ptr): checked, listed in *out, and
- * applied at d->desc's time when `apply`. */
-static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr, bool apply,
-                                unsigned char *targeted, sr_scene_animation *out)
+void sr__gltf_anim_free(gltf_anim *a)
+{
+    for (size_t i = 0; a->samplers && i < a->sampler_count; i++) {
+        free(a->samplers[i].times);
+        free(a->samplers[i].values);
+    }
+    free(a->samplers);
+    free(a->channels);
+    memset(a, 0, sizeof *a);
+}
+
+/* Animation `index` (its JSON obj at ptr): checked, listed in *out,
+ * applied at d->desc's time when `apply`, and its decoded samplers handed
+ * to d->posing for sr_scene_pose when the scene keeps them. */
+static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr, size_t index,
+                                bool apply, unsigned char *targeted, sr_scene_animation *out)
 {
     sr_result r;
     if (!json_is_object(obj)) {
@@ -337,11 +333,13 @@ static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr,
     }
     const char *text = name ? json_string_value(name) : "";
     char *copy = sr__scene_alloc(d->scene, strlen(text) + 1);
-    gltf_sampler *s = calloc(ns, sizeof *s);
-    if (!copy || !s) {
-        free(s);
+    gltf_anim a = { .samplers = calloc(ns, sizeof *a.samplers), .sampler_count = ns,
+                    .channels = calloc(nc, sizeof *a.channels) };
+    if (!copy || !a.samplers || !a.channels) {
+        sr__gltf_anim_free(&a);
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
     }
+    gltf_sampler *s = a.samplers;
     memcpy(copy, text, strlen(text) + 1);
     out->name = copy;
     out->channel_count = nc;
@@ -354,23 +352,34 @@ static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr,
             out->duration = s[i].times[s[i].count - 1];
         }
     }
+    /* The channels that animate a node, kept when they are sampled now
+     * or may be later (sr_scene_pose). */
+    bool keep = apply || d->posing;
     for (size_t i = 0; i < nc && r == SR_OK; i++) {
         char cptr[GLTF_PTR];
         snprintf(cptr, sizeof cptr, "%s/channels/%zu", ptr, i);
-        long sampler = -1, node = -1;
-        int path = 0;
-        size_t width = 0;
-        r = check_channel(d, json_array_get(channels, i), cptr, s, ns, targeted, &sampler, &node,
-                          &path, &width);
-        if (r == SR_OK && apply && node >= 0) {
-            r = apply_channel(d, &s[sampler], node, path, width, d->desc->animation_time, cptr);
+        gltf_channel c = { .sampler = -1, .node = -1 };
+        r = check_channel(d, json_array_get(channels, i), cptr, s, ns, targeted, &c.sampler,
+                          &c.node, &c.path, &c.width);
+        if (r != SR_OK || !keep || c.node < 0) {
+            continue;
         }
+        if (c.path == PATH_WEIGHTS &&
+            !(c.weights = sr__scene_alloc(d->scene, c.width * sizeof *c.weights))) {
+            r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", cptr);
+        }
+        a.channels[a.channel_count++] = c;
     }
-    for (size_t i = 0; i < ns; i++) {
-        free(s[i].times);
-        free(s[i].values);
+    if (r == SR_OK && apply) {
+        sr__gltf_anim_apply(&a, d->desc->animation_time, d->pose);
     }
-    free(s);
+    if (r == SR_OK && d->posing) {
+        if (!sr__gltf_posing_anim(d, index, &a)) {   /* takes a */
+            r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
+    } else {
+        sr__gltf_anim_free(&a);
+    }
     return r;
 }
 
@@ -393,6 +402,9 @@ sr_result sr__gltf_read_animations(gltf_doc *d)
         return SR_OK;
     }
     d->scene->animations = sr__scene_alloc(d->scene, n * sizeof *d->scene->animations);
+    if (!d->for_mesh && !sr__gltf_posing_start(d, n)) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/animations: out of memory");
+    }
     unsigned char *targeted = malloc(node_count ? node_count : 1);
     d->pose = posed ? sr__scene_alloc(d->scene, (node_count ? node_count : 1) * sizeof *d->pose)
                     : NULL;
@@ -405,7 +417,7 @@ sr_result sr__gltf_read_animations(gltf_doc *d)
         char ptr[GLTF_PTR];
         snprintf(ptr, sizeof ptr, "/animations/%zu", i);
         memset(targeted, 0, node_count ? node_count : 1);
-        r = read_animation(d, json_array_get(anims, i), ptr,
+        r = read_animation(d, json_array_get(anims, i), ptr, i,
                            posed && (size_t)d->desc->animation == i, targeted,
                            &d->scene->animations[i]);
     }

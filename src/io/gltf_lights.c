@@ -151,6 +151,36 @@ sr_result sr__gltf_place_light(gltf_doc *d, const json_t *node, const char *ptr,
         return r;
     }
     const gltf_light *g = &d->lights[index];
+    sr_scene_light placed = { .light_index = (int)index, .node = (int)node_index,
+                              .type = g->type };
+    bool dark = g->intensity == 0 ||
+                (g->color[0] == 0 && g->color[1] == 0 && g->color[2] == 0);
+    placed.light = (sr_light){
+        .type = dark ? SR_LIGHT_OFF : g->type,
+        .color = { g->color[0], g->color[1], g->color[2] },
+        .intensity = g->intensity,
+        .range = g->range,
+    };
+    if (g->type == SR_LIGHT_SPOT) {
+        placed.light.inner_cone = g->inner;
+        placed.light.outer_cone = g->outer;
+    }
+    if (!sr__gltf_aim_light(&placed, world)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT,
+                             "%s: the node's matrix collapses the light's direction (its -Z)",
+                             eptr);
+    }
+    sr_scene_light *l = sr__scene_grow(d->scene, (void **)&d->scene->lights,
+                                       &d->scene->light_count, sizeof *l, 1);
+    if (!l) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", eptr);
+    }
+    *l = placed;
+    return SR_OK;
+}
+
+bool sr__gltf_aim_light(sr_scene_light *l, const float world[16])
+{
     /* The light sits at the node's origin and shines down its -Z, both
      * through the whole world matrix (a scaled node moves its light but
      * the direction is normalized). */
@@ -161,39 +191,19 @@ sr_result sr__gltf_place_light(gltf_doc *d, const json_t *node, const char *ptr,
     }
     double len = sqrt((double)dir[0] * dir[0] + (double)dir[1] * dir[1] +
                       (double)dir[2] * dir[2]);
-    if (g->type != SR_LIGHT_POINT && !(len > 0 && isfinite(len))) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT,
-                             "%s: the node's matrix collapses the light's direction (its -Z)",
-                             eptr);
+    if (l->type != SR_LIGHT_POINT && !(len > 0 && isfinite(len))) {
+        return false;
     }
     for (int k = 0; k < 3 && len > 0; k++) {
         dir[k] = (float)(dir[k] / len);
     }
-    sr_scene_light *l = sr__scene_grow(d->scene, (void **)&d->scene->lights,
-                                       &d->scene->light_count, sizeof *l, 1);
-    if (!l) {
-        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", eptr);
-    }
     memcpy(l->world, world, sizeof l->world);
-    l->light_index = (int)index;
-    l->node = (int)node_index;
-    l->type = g->type;
-    bool dark = g->intensity == 0 ||
-                (g->color[0] == 0 && g->color[1] == 0 && g->color[2] == 0);
-    l->light = (sr_light){
-        .type = dark ? SR_LIGHT_OFF : g->type,
-        .vector = g->type == SR_LIGHT_DIRECTIONAL ? (sr_vec3){ dir[0], dir[1], dir[2] }
-                                                  : (sr_vec3){ pos[0], pos[1], pos[2] },
-        .color = { g->color[0], g->color[1], g->color[2] },
-        .intensity = g->intensity,
-        .range = g->range,
-    };
-    if (g->type == SR_LIGHT_SPOT) {
+    l->light.vector = l->type == SR_LIGHT_DIRECTIONAL ? (sr_vec3){ dir[0], dir[1], dir[2] }
+                                                      : (sr_vec3){ pos[0], pos[1], pos[2] };
+    if (l->type == SR_LIGHT_SPOT) {
         l->light.direction = (sr_vec3){ dir[0], dir[1], dir[2] };
-        l->light.inner_cone = g->inner;
-        l->light.outer_cone = g->outer;
     }
-    return SR_OK;
+    return true;
 }
 
 void sr__gltf_lights_done(gltf_doc *d)

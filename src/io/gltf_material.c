@@ -747,5 +747,6 @@ sr_result sr__gltf_read_materials(gltf_doc *d)
         }
     }
     default_material(&m[n]);
+    d->scene->default_material = (int)n;
     return SR_OK;
 }

@@ -132,11 +132,6 @@ sr_result sr__gltf_check_targets(gltf_doc *d, const json_t *mesh, const char *pt
 
 sr_result sr__gltf_node_weights(gltf_doc *d, long node_index, long mesh, float *out, size_t n)
 {
-    char ptr[GLTF_PTR];
-    bool found;
-    for (size_t i = 0; i < n; i++) {
-        out[i] = 0;
-    }
     /* An animation's weights channel, sampled for this node, comes first
      * (gltf_animation.c checked it holds one weight per target). */
     size_t animated;
@@ -144,6 +139,17 @@ sr_result sr__gltf_node_weights(gltf_doc *d, long node_index, long mesh, float *
     if (sampled && animated == n) {
         memcpy(out, sampled, n * sizeof *out);
         return SR_OK;
+    }
+    return sr__gltf_node_rest_weights(d, node_index, mesh, out, n);
+}
+
+sr_result sr__gltf_node_rest_weights(gltf_doc *d, long node_index, long mesh, float *out,
+                                     size_t n)
+{
+    char ptr[GLTF_PTR];
+    bool found;
+    for (size_t i = 0; i < n; i++) {
+        out[i] = 0;
     }
     json_t *node = json_array_get(json_object_get(d->root, "nodes"), (size_t)node_index);
     snprintf(ptr, sizeof ptr, "/nodes/%ld", node_index);
@@ -190,12 +196,24 @@ sr_result sr__gltf_morph(gltf_doc *d, const gltf_pose_source *src, const float *
     float *out[3] = { NULL, NULL, NULL };
     for (int k = 0; k < 3; k++) {
         size_t stride = k == 2 ? 4 : 3;
+        if (base[k] && !(out[k] = sr__scene_alloc(d->scene, n * stride * sizeof(float)))) {
+            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        }
+    }
+    sr__gltf_morph_vertices(src, weights, n, base, out);
+    p->positions = out[0];
+    p->normals = out[1];
+    p->tangents = out[2];
+    return SR_OK;
+}
+
+void sr__gltf_morph_vertices(const gltf_pose_source *src, const float *weights, size_t n,
+                             const float *const base[3], float *const out[3])
+{
+    for (int k = 0; k < 3; k++) {
+        size_t stride = k == 2 ? 4 : 3;
         if (!base[k]) {
             continue;
-        }
-        out[k] = sr__scene_alloc(d->scene, n * stride * sizeof(float));
-        if (!out[k]) {
-            return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
         }
         memcpy(out[k], base[k], n * stride * sizeof(float));
         for (size_t t = 0; t < src->target_count; t++) {
@@ -215,8 +233,4 @@ sr_result sr__gltf_morph(gltf_doc *d, const gltf_pose_source *src, const float *
             normalize3(out[k] + i * stride);
         }
     }
-    p->positions = out[0];
-    p->normals = out[1];
-    p->tangents = out[2];
-    return SR_OK;
 }

@@ -169,7 +169,9 @@ static sr_result joint_matrices(gltf_doc *d, long skin, const char *use, gltf_sk
     }
     float *m = malloc(n * 16 * sizeof *m);
     unsigned char *used = calloc(d->node_count ? d->node_count : 1, 1);
-    r = m && used ? SR_OK : sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    long *nodes = malloc(n * sizeof *nodes);
+    r = m && used && nodes ? SR_OK
+                           : sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
     for (size_t j = 0; j < n && r == SR_OK; j++) {
         json_t *v = json_array_get(joints, j);
         json_int_t node = json_is_integer(v) ? json_integer_value(v) : -1;
@@ -183,6 +185,7 @@ static sr_result joint_matrices(gltf_doc *d, long skin, const char *use, gltf_sk
             static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
             float world[16];
             used[node] = 1;
+            nodes[j] = (long)node;
             r = sr__gltf_node_world(d, (long)node, world);
             if (r == SR_OK) {
                 sr__mat4_mul(world, inverse_bind ? inverse_bind + 16 * j : identity, m + 16 * j);
@@ -190,6 +193,10 @@ static sr_result joint_matrices(gltf_doc *d, long skin, const char *use, gltf_sk
         }
     }
     free(used);
+    if (r == SR_OK && !sr__gltf_posing_skin(d, skin, nodes, n, inverse_bind)) {
+        r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    free(nodes);
     free(inverse_bind);
     if (r != SR_OK) {
         free(m);
@@ -261,6 +268,24 @@ sr_result sr__gltf_skin(gltf_doc *d, long skin, const char *use, const gltf_pose
     if (!pos || (p->normals && !nrm) || (p->tangents && !tan)) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", use);
     }
+    const float *in[3] = { p->positions, p->normals, p->tangents };
+    float *out[3] = { pos, nrm, tan };
+    size_t mirrored = sr__gltf_skin_vertices(c->matrices, src, n, in, out);
+    static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    memcpy(p->world, identity, sizeof identity);
+    /* The vertices are in world space now; a mirroring pose turns the
+     * winding, decided by most of the vertices' blended matrices. */
+    p->mirrored = 2 * mirrored > n;
+    p->positions = pos;
+    p->normals = nrm;
+    p->tangents = tan;
+    return SR_OK;
+}
+
+size_t sr__gltf_skin_vertices(const float *matrices, const gltf_pose_source *src, size_t n,
+                              const float *const in[3], float *const out[3])
+{
+    float *pos = out[0], *nrm = out[1], *tan = out[2];
     size_t per = 4 * src->influence_sets, mirrored = 0;
     for (size_t i = 0; i < n; i++) {
         /* The blended matrix's upper three rows, column-major. */
@@ -268,10 +293,10 @@ sr_result sr__gltf_skin(gltf_doc *d, long skin, const char *use, const gltf_pose
         for (size_t k = 0; k < per; k++) {
             double w = src->weights[i * per + k];
             if (w != 0) {
-                add_weighted(b, c->matrices + 16 * (size_t)src->joints[i * per + k], w);
+                add_weighted(b, matrices + 16 * (size_t)src->joints[i * per + k], w);
             }
         }
-        const float *v = p->positions + 3 * i;
+        const float *v = in[0] + 3 * i;
         for (int row = 0; row < 3; row++) {
             pos[3 * i + (size_t)row] =
                 (float)(b[row] * v[0] + b[3 + row] * v[1] + b[6 + row] * v[2] + b[9 + row]);
@@ -286,7 +311,7 @@ sr_result sr__gltf_skin(gltf_doc *d, long skin, const char *use, const gltf_pose
         mirrored += det < 0;
         double sign = det < 0 ? -1 : 1;
         if (nrm) {
-            const float *nv = p->normals + 3 * i;
+            const float *nv = in[1] + 3 * i;
             double o[3];
             for (int row = 0; row < 3; row++) {
                 o[row] = sign * (c0[row] * nv[0] + c1[row] * nv[1] + c2[row] * nv[2]);
@@ -294,7 +319,7 @@ sr_result sr__gltf_skin(gltf_doc *d, long skin, const char *use, const gltf_pose
             store_unit(o, nrm + 3 * i);
         }
         if (tan) {
-            const float *tv = p->tangents + 4 * i;
+            const float *tv = in[2] + 4 * i;
             double o[3];
             for (int row = 0; row < 3; row++) {
                 o[row] = b[row] * tv[0] + b[3 + row] * tv[1] + b[6 + row] * tv[2];
@@ -303,13 +328,5 @@ sr_result sr__gltf_skin(gltf_doc *d, long skin, const char *use, const gltf_pose
             tan[4 * i + 3] = tv[3];
         }
     }
-    static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-    memcpy(p->world, identity, sizeof identity);
-    /* The vertices are in world space now; a mirroring pose turns the
-     * winding, decided by most of the vertices' blended matrices. */
-    p->mirrored = 2 * mirrored > n;
-    p->positions = pos;
-    p->normals = nrm;
-    p->tangents = tan;
-    return SR_OK;
+    return mirrored;
 }

@@ -27,6 +27,8 @@ typedef struct sr_scene_store {
     size_t count, cap;
     texture_source *sources;
     size_t source_count;
+    void *posing;                 /* what sr_scene_pose needs (gltf_pose.c), or NULL */
+    void (*posing_free)(void *);
 } sr_scene_store;
 
 sr_scene *sr__scene_new(void)
@@ -38,6 +40,7 @@ sr_scene *sr__scene_new(void)
     }
     if (s) {
         s->animation = -1;   /* the rest pose */
+        s->default_material = -1;
     }
     return s;
 }
@@ -57,6 +60,18 @@ bool sr__scene_keep(sr_scene *scene, void *block)
     }
     st->blocks[st->count++] = block;
     return true;
+}
+
+bool sr__scene_set_posing(sr_scene *scene, void *posing, void (*release)(void *))
+{
+    scene->store->posing = posing;
+    scene->store->posing_free = release;
+    return true;
+}
+
+void *sr__scene_posing(const sr_scene *scene)
+{
+    return scene->store ? scene->store->posing : NULL;
 }
 
 void *sr__scene_alloc(sr_scene *scene, size_t size)
@@ -176,6 +191,9 @@ void sr_destroy_scene(sr_context *ctx, sr_scene *scene)
         sr_destroy_texture(ctx, scene->textures[i]);
     }
     if (scene->store) {
+        if (scene->store->posing) {
+            scene->store->posing_free(scene->store->posing);
+        }
         for (size_t i = 0; i < scene->store->count; i++) {
             free(scene->store->blocks[i]);
         }
@@ -388,6 +406,51 @@ static sr_result scene_from_mesh(sr_context *ctx, const char *path, const sr_loa
 }
 
 /* ---- entry points --------------------------------------------------------- */
+
+sr_result sr_scene_pose(sr_scene *scene, sr_load_pose pose, int animation, float time,
+                        sr_io_error *err)
+{
+    sr_io_error spare;
+    err = err ? err : &spare;
+    err->message[0] = '\0';
+    if (!scene) {
+        return sr__io_fail(err, SR_INVALID_ARG, "sr_scene_pose", 0, "scene is NULL");
+    }
+    if ((unsigned)pose > SR_POSE_ANIMATION) {
+        return sr__io_fail(err, SR_INVALID_ARG, "sr_scene_pose", 0,
+                           "pose %d is not an sr_load_pose", (int)pose);
+    }
+    /* Messages name the file the scene was read from, when known. */
+    void *posing = sr__scene_posing(scene);
+    char name[400] = "sr_scene_pose";
+#ifdef SR_HAVE_JANSSON
+    if (posing) {
+        snprintf(name, sizeof name, "%.360s: sr_scene_pose", sr__gltf_posing_name(posing));
+    }
+#endif
+    bool animated = pose == SR_POSE_ANIMATION;
+    if (animated && (animation < 0 || (size_t)animation >= scene->animation_count)) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0,
+                           "animation %d is not an animation of the scene (it has %zu)",
+                           animation, scene->animation_count);
+    }
+    if (animated && !isfinite(time)) {
+        return sr__io_fail(err, SR_INVALID_ARG, name, 0, "time %g is not finite", (double)time);
+    }
+    if (!posing) {
+        return SR_OK;   /* no animations: the rest pose is the only one */
+    }
+#ifdef SR_HAVE_JANSSON
+    sr_result r = sr__gltf_pose(posing, scene, animated, animation, time, err);
+    if (r != SR_OK) {
+        return r;
+    }
+#endif
+    sr__scene_bounds(scene);
+    scene->animation = animated ? animation : -1;
+    scene->animation_time = animated ? time : 0.0f;
+    return SR_OK;
+}
 
 bool sr_io_have_gltf(void)
 {

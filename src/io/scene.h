@@ -11,6 +11,15 @@ sr_scene *sr__scene_new(void);
 void *sr__scene_alloc(sr_scene *scene, size_t size);
 /* Hands a malloc'd block to the scene (freed with it; on failure, now). */
 bool sr__scene_keep(sr_scene *scene, void *block);
+/* The record sr_scene_pose poses the scene from (gltf_pose.c), freed
+ * with the scene by `release`; NULL when the scene has none. */
+bool sr__scene_set_posing(sr_scene *scene, void *posing, void (*release)(void *));
+void *sr__scene_posing(const sr_scene *scene);
+/* gltf_pose.c: the scene posed again from its record (sr_scene_pose
+ * checked the arguments); the file's name, for messages. */
+sr_result sr__gltf_pose(void *posing, sr_scene *scene, bool animated, int animation, float time,
+                        sr_io_error *err);
+const char *sr__gltf_posing_name(const void *posing);
 /* Adds a texture to scene->textures, destroyed with the scene (on
  * failure, now). */
 bool sr__scene_add_texture(sr_context *ctx, sr_scene *scene, sr_texture *tex);
