@@ -3089,11 +3089,6 @@ static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
                            "text: no font has U+%04X; drawn as its font's missing-glyph box",
                            (unsigned)cp);
             }
-            if (svg_text_sideways(w.t)) {
-                warn_keyed(doc, "text upright",
-                           "text: upright glyphs of vertical text (CJK, "
-                           "glyph-orientation-vertical 0) drawn turned like the others");
-            }
             if (svg_text_unordered(w.t)) {
                 warn_keyed(doc, "text bidi",
                            "text: right-to-left and left-to-right text left in logical order "
