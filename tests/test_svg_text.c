@@ -9,8 +9,9 @@
  * lacks come from a fallback font, mixed directions are ordered by the
  * bidi algorithm, textPath lays glyphs along its path, tref draws the
  * text it names, vertical text runs down turned, its ideographs and kana
- * upright with vertical metrics (a second reference), and huge font sizes
- * and texts beyond the point budget are refused with FILE:LINE.  The font is pinned: DejaVu
+ * upright with vertical metrics (a second reference), text in a clipPath
+ * clips by its glyphs (a third), and huge font sizes and texts beyond the
+ * point budget are refused with FILE:LINE.  The font is pinned: DejaVu
  * Sans, skipped unless fontconfig resolves the family to DejaVuSans.ttf;
  * the vertical Japanese needs IPAGothic (fonts-ipafont-gothic, which
  * scripts/install-deps.sh installs): skipped, saying so, where it is
@@ -1014,4 +1015,82 @@ SR_TEST(upright_glyphs_stand_with_vertical_metrics)
                 "<text transform='translate(100 5) rotate(90)' dominant-baseline='central' "
                 "font-family='IPAGothic'>\xE4\xB8\x80\xE6\x9C\xAC</text>",
                 2);
+}
+
+/* Text in a clipPath, with paint, clip-rule and a use of a text in it
+ * (DejaVu): a gradient and a picture through letters.  The reference
+ * matches resvg-js 2.6.2 to 0.02% of its pixels and rsvg-convert 2.54
+ * but for the hidden tspan it draws. */
+SR_TEST(text_in_a_clip_path_matches_reference)
+{
+    NEED_TEXT();
+    if (!sr_io_have_jpeg()) {
+        SKIP("built without JPEG (the drawing's picture)");
+    }
+    check_drawing("clip-text.svg", "svg_clip_text");
+}
+
+/* A text in a clipPath lets through exactly the pixels its fill covers:
+ * the union of its glyphs whatever clip-rule says (overlapping letters
+ * stay whole), through a use as well; hidden characters, display none
+ * and a text of nothing let nothing through. */
+SR_TEST(text_in_a_clip_path_clips_by_its_glyphs)
+{
+    NEED_TEXT();
+#define T "x='10' y='45' font-family='DejaVu Sans' font-size='40' letter-spacing='-12'"
+#define CLIPPED(clip) "<clipPath id='c'>" clip "</clipPath><rect width='200' height='60' " \
+                      "clip-path='url(#c)'/>"
+    SAME_PIXELS(CLIPPED("<text " T ">Wow oh</text>"), "<text " T ">Wow oh</text>", 1);
+    SAME_PIXELS(CLIPPED("<text " T " clip-rule='evenodd'>Wow oh</text>"),
+                "<text " T ">Wow oh</text>", 1);
+    SAME_PIXELS("<defs><text id='t' " T ">Wow</text></defs>" CLIPPED("<use href='#t'/>"),
+                "<text " T ">Wow</text>", 1);
+    SAME_PIXELS(CLIPPED("<text " T ">Wo<tspan visibility='hidden'>w</tspan></text>"),
+                "<text " T ">Wo</text>", 1);
+    SAME_PIXELS(CLIPPED("<text " T " display='none'>Wow</text>"), "", 0);
+    SAME_PIXELS(CLIPPED("<text " T " visibility='hidden'>Wow</text>"), "", 0);
+    SAME_PIXELS(CLIPPED("<text " T "> </text>"), "", 0);
+#undef CLIPPED
+#undef T
+}
+
+/* The budgets hold for text in a clip path: a huge font size is refused
+ * with the text's line, and so is a long text clipping many uses. */
+SR_TEST(text_in_a_clip_path_is_refused_beyond_the_budgets)
+{
+    NEED_TEXT();
+    char msg[512];
+    sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>"
+                                "<clipPath id='c'>\n"
+                                "<text font-size='1e9'>H</text></clipPath>"
+                                "<rect width='9' height='9' clip-path='url(#c)'/></svg>",
+                                SR_TOO_LARGE, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:2: text: a font-size of");
+    size_t n = 200000;
+    char *svg = malloc(n + 4096);
+    REQUIRE(svg);
+    int k = snprintf(svg, 4096,
+                     "<svg xmlns='http://www.w3.org/2000/svg' "
+                     "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
+                     "<clipPath id='c'><text font-family='DejaVu Sans'>");
+    for (size_t i = 0; i < 20000; i++) {
+        svg[k++] = 'W';
+    }
+    k += snprintf(svg + k, 4096,
+                  "</text></clipPath><defs><rect id='r' width='9' height='9' "
+                  "clip-path='url(#c)'/><g id='a'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#r'/>");
+    }
+    k += snprintf(svg + k, 4096, "</g><g id='b'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
+    }
+    snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
+    fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:2: the drawing needs more than");
+    CHECK_STR_CONTAINS(msg, "points in all");
+    free(svg);
 }
