@@ -706,6 +706,23 @@ bool svg_text_unordered(const svg_text *t)
     return t->unordered;
 }
 
+/* The Vertical_Orientation of cp: a binary search of the ranges. */
+static int vertical_orientation(uint32_t cp)
+{
+    int lo = 0, hi = svg_vo_range_count - 1;
+    while (lo <= hi) {
+        int mid = (lo + hi) / 2;
+        if (cp < svg_vo_ranges[mid].first) {
+            hi = mid - 1;
+        } else if (cp > svg_vo_ranges[mid].last) {
+            lo = mid + 1;
+        } else {
+            return svg_vo_ranges[mid].vo;
+        }
+    }
+    return SVG_VO_R;
+}
+
 /* Whether character c of a vertical text stands upright: as its
  * element's text-orientation (or glyph-orientation-vertical) says, and
  * with mixed (auto) by its Vertical_Orientation, a Tr character only
@@ -720,7 +737,7 @@ static bool stands_upright(const svg_text *t, const tchar *c)
     if (el->ts.orient == SVG_ORIENT_UPRIGHT) {
         return true;
     }
-    switch (svg_vertical_orientation(c->cp)) {
+    switch (vertical_orientation(c->cp)) {
     case SVG_VO_U:
     case SVG_VO_TU: return true;
     case SVG_VO_TR: return svg_face_turns_vertical(c->face, c->cp);

@@ -71,7 +71,13 @@ void svg_text_settle(svg_text_style *ts, const svg_text_style *parent);
  * upright, Tu upright with a vertical alternate glyph, Tr upright when
  * the font has a vertical alternate for it, else turned. */
 enum { SVG_VO_R, SVG_VO_U, SVG_VO_TU, SVG_VO_TR };
-int svg_vertical_orientation(uint32_t cp);
+/* The code points that are not R, in ascending ranges. */
+typedef struct svg_vo_range {
+    uint32_t first, last;
+    unsigned char vo;
+} svg_vo_range;
+extern const svg_vo_range svg_vo_ranges[];
+extern const int svg_vo_range_count;
 
 /* ---- bidirectional text (svg_bidi.c) ------------------------------------ */
 

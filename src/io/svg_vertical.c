@@ -1,14 +1,11 @@
-/* svg_vertical.c - the Unicode Vertical_Orientation of a code point
- * (UAX #50, Unicode 14.0.0), which decides whether a character stands
- * upright in vertical SVG text.  Written by
- * scripts/gen-vertical-orientation.pl from Perl's Unicode database: do
- * not edit. */
+/* svg_vertical.c - the Unicode Vertical_Orientation of the code points
+ * that are not R (UAX #50, Unicode 14.0.0), which decides whether a
+ * character stands upright in vertical SVG text (svg_text.c looks them
+ * up).  Written by scripts/gen-vertical-orientation.pl from Perl's
+ * Unicode database: do not edit. */
 #include "svg_text.h"
 
-static const struct {
-    uint32_t first, last;
-    unsigned char vo;
-} ranges[] = {
+const svg_vo_range svg_vo_ranges[] = {
     { 0x00A7, 0x00A7, SVG_VO_U },
     { 0x00A9, 0x00A9, SVG_VO_U },
     { 0x00AE, 0x00AE, SVG_VO_U },
@@ -187,18 +184,4 @@ static const struct {
     { 0x100000, 0x10FFFD, SVG_VO_U },
 };
 
-int svg_vertical_orientation(uint32_t cp)
-{
-    int lo = 0, hi = (int)(sizeof ranges / sizeof ranges[0]) - 1;
-    while (lo <= hi) {
-        int mid = (lo + hi) / 2;
-        if (cp < ranges[mid].first) {
-            hi = mid - 1;
-        } else if (cp > ranges[mid].last) {
-            lo = mid + 1;
-        } else {
-            return ranges[mid].vo;
-        }
-    }
-    return SVG_VO_R;
-}
+const int svg_vo_range_count = (int)(sizeof svg_vo_ranges / sizeof svg_vo_ranges[0]);
