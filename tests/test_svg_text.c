@@ -482,6 +482,44 @@ SR_TEST(font_size_units_and_css_reach_the_glyphs)
     sr_destroy_framebuffer(sr_test_ctx(), bold);
 }
 
+/* The start of a 10 x 10 drawing whose line 2 holds what follows. */
+#define XLINK_SVG                                                                            \
+    "<svg xmlns='http://www.w3.org/2000/svg' "                                               \
+    "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
+
+/* Append 20000 W to svg at k; the new length. */
+static int long_word(char *svg, int k)
+{
+    memset(svg + k, 'W', 20000);
+    return k + 20000;
+}
+
+/* Append to svg at k a group of 40 uses of href, a group of 40 uses of
+ * that, the end of the defs and a use of the second group (the drawing's
+ * line 2): 1600 uses in a few bytes; the new length. */
+static int use_tree(char *svg, int k, const char *href)
+{
+    k += snprintf(svg + k, 4096, "<g id='a'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='%s'/>", href);
+    }
+    k += snprintf(svg + k, 4096, "</g><g id='b'>");
+    for (int i = 0; i < 40; i++) {
+        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
+    }
+    return k + snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
+}
+
+/* svg is refused as too large with a message that holds want. */
+static void check_too_large(const char *svg, const char *want)
+{
+    char msg[512];
+    sr_framebuffer *fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, want);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
 SR_TEST(huge_font_sizes_and_long_texts_are_refused_with_the_line)
 {
     NEED_TEXT();
@@ -492,43 +530,20 @@ SR_TEST(huge_font_sizes_and_long_texts_are_refused_with_the_line)
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "t.svg:2: text: a font-size of");
     /* a few bytes of use that repeat a long text pass the point budget */
-    size_t n = 200000;
-    char *svg = malloc(n + 4096);
+    char *svg = malloc(20000 + 8192);
     REQUIRE(svg);
-    int k = snprintf(svg, 4096,
-                     "<svg xmlns='http://www.w3.org/2000/svg' "
-                     "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
-                     "<defs><text id='t' font-family='DejaVu Sans'>");
-    for (size_t i = 0; i < 20000; i++) {
-        svg[k++] = 'W';
-    }
-    k += snprintf(svg + k, 4096, "</text><g id='a'>");
-    for (int i = 0; i < 40; i++) {
-        k += snprintf(svg + k, 4096, "<use xlink:href='#t'/>");
-    }
-    k += snprintf(svg + k, 4096, "</g><g id='b'>");
-    for (int i = 0; i < 40; i++) {
-        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
-    }
-    snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
+    int k = snprintf(svg, 4096, XLINK_SVG "<defs><text id='t' font-family='DejaVu Sans'>");
+    k = long_word(svg, k);
+    k += snprintf(svg + k, 4096, "</text>");
+    use_tree(svg, k, "#t");
     fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "points in all");
     /* and so does a textPath's path, flattened for every use */
     k = snprintf(svg, 4096,
-                 "<svg xmlns='http://www.w3.org/2000/svg' "
-                 "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
-                 "<defs><path id='p' d='M0 0 A50000 50000 0 1 1 1 0'/><text id='t' "
-                 "font-family='DejaVu Sans'><textPath xlink:href='#p'>x</textPath></text>"
-                 "<g id='a'>");
-    for (int i = 0; i < 40; i++) {
-        k += snprintf(svg + k, 4096, "<use xlink:href='#t'/>");
-    }
-    k += snprintf(svg + k, 4096, "</g><g id='b'>");
-    for (int i = 0; i < 40; i++) {
-        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
-    }
-    snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
+                 XLINK_SVG "<defs><path id='p' d='M0 0 A50000 50000 0 1 1 1 0'/><text id='t' "
+                 "font-family='DejaVu Sans'><textPath xlink:href='#p'>x</textPath></text>");
+    use_tree(svg, k, "#t");
     fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "points in all");
@@ -1059,38 +1074,18 @@ SR_TEST(text_in_a_clip_path_clips_by_its_glyphs)
 SR_TEST(text_in_a_clip_path_is_refused_beyond_the_budgets)
 {
     NEED_TEXT();
-    char msg[512];
-    sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>"
-                                "<clipPath id='c'>\n"
-                                "<text font-size='1e9'>H</text></clipPath>"
-                                "<rect width='9' height='9' clip-path='url(#c)'/></svg>",
-                                SR_TOO_LARGE, msg, sizeof msg);
-    CHECK(fb == NULL);
-    CHECK_STR_CONTAINS(msg, "t.svg:2: text: a font-size of");
-    size_t n = 200000;
-    char *svg = malloc(n + 4096);
+    check_too_large("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>"
+                    "<clipPath id='c'>\n<text font-size='1e9'>H</text></clipPath>"
+                    "<rect width='9' height='9' clip-path='url(#c)'/></svg>",
+                    "t.svg:2: text: a font-size of");
+    char *svg = malloc(20000 + 8192);
     REQUIRE(svg);
-    int k = snprintf(svg, 4096,
-                     "<svg xmlns='http://www.w3.org/2000/svg' "
-                     "xmlns:xlink='http://www.w3.org/1999/xlink' width='10' height='10'>\n"
-                     "<clipPath id='c'><text font-family='DejaVu Sans'>");
-    for (size_t i = 0; i < 20000; i++) {
-        svg[k++] = 'W';
-    }
+    int k = snprintf(svg, 4096, XLINK_SVG "<clipPath id='c'><text font-family='DejaVu Sans'>");
+    k = long_word(svg, k);
     k += snprintf(svg + k, 4096,
                   "</text></clipPath><defs><rect id='r' width='9' height='9' "
-                  "clip-path='url(#c)'/><g id='a'>");
-    for (int i = 0; i < 40; i++) {
-        k += snprintf(svg + k, 4096, "<use xlink:href='#r'/>");
-    }
-    k += snprintf(svg + k, 4096, "</g><g id='b'>");
-    for (int i = 0; i < 40; i++) {
-        k += snprintf(svg + k, 4096, "<use xlink:href='#a'/>");
-    }
-    snprintf(svg + k, 4096, "</g></defs>\n<use xlink:href='#b'/></svg>");
-    fb = render(svg, SR_TOO_LARGE, msg, sizeof msg);
-    CHECK(fb == NULL);
-    CHECK_STR_CONTAINS(msg, "t.svg:2: the drawing needs more than");
-    CHECK_STR_CONTAINS(msg, "points in all");
+                  "clip-path='url(#c)'/>");
+    use_tree(svg, k, "#r");
+    check_too_large(svg, "t.svg:2: the drawing needs more than");
     free(svg);
 }
