@@ -4,7 +4,9 @@
 # (model formats beyond OBJ/PLY/STL), jansson (the glTF reader's JSON),
 # meshoptimizer (glTF's EXT_meshopt_compression), libdraco (glTF's
 # KHR_draco_mesh_compression), expat (the SVG reader),
-# fontconfig, HarfBuzz, FreeType and FriBidi (the SVG reader's text), Mesa's OSMesa
+# fontconfig, HarfBuzz, FreeType and FriBidi (the SVG reader's text) with
+# IPAGothic (a Japanese font with vertical metrics and vertical alternates:
+# the tests of upright glyphs in vertical text), Mesa's OSMesa
 # (llvmpipe, for the benchmark's side-by-side comparison), cairo (the 2D fill
 # benchmark's comparison), libwebp (WebP textures, glTF's EXT_texture_webp,
 # and animated WebP turntables, 'softrast render --animate'), the Breeze icon
@@ -35,7 +37,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     libpng-dev zlib1g-dev libjpeg-dev libassimp-dev libosmesa6-dev libexpat1-dev libcairo2-dev \
     libjansson-dev libwebp-dev libmeshoptimizer-dev libdraco-dev breeze-icon-theme librsvg2-bin \
     clang libclang-rt-14-dev \
-    libsdl2-dev libfreetype-dev libfontconfig-dev libharfbuzz-dev libfribidi-dev fonts-dejavu-core xvfb xauth locales \
+    libsdl2-dev libfreetype-dev libfontconfig-dev libharfbuzz-dev libfribidi-dev fonts-dejavu-core fonts-ipafont-gothic xvfb xauth locales \
     python3-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-distributed mypy \
     emscripten node-acorn chromium \
     groff-base mandoc zsh fish \

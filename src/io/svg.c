@@ -3059,6 +3059,50 @@ static bool text_start(svg_doc *doc, const svg_node *node, const frame *f, doubl
     return true;
 }
 
+/* Lay out the text a walk read at the drawing's scale, within the
+ * budgets (each character a point of it, drawn or not), warning what it
+ * draws differently; false when there is nothing to draw or after
+ * reporting a failure. */
+static bool text_laid_out(svg_doc *doc, const svg_node *node, text_walk *w, double scale)
+{
+    doc->line = node->line;
+    if (doc->status != SR_OK || !points_within_budget(doc, svg_text_length(w->t))) {
+        return false;
+    }
+    doc->points_used += svg_text_length(w->t);
+    double px = svg_text_max_size(w->t) * scale;
+    char why[256];
+    sr_result r;
+    if (px > MAX_FONT_PIXELS) {
+        svg_fail(doc, SR_TOO_LARGE, "text: a font-size of %.6g pixels (beyond %.0f)", px,
+                 MAX_FONT_PIXELS);
+        return false;
+    }
+    if (svg_text_length(w->t) == 0) {
+        return false; /* nothing to lay out */
+    }
+    if ((r = svg_text_layout(w->t, doc->fonts, why, sizeof why)) == SR_BAD_FORMAT) {
+        warn_keyed(doc, "text font", "text skipped: %s", why);
+        return false;
+    }
+    if (r != SR_OK) {
+        svg_fail(doc, r, "%s", why);
+        return false;
+    }
+    uint32_t cp = svg_text_missing(w->t);
+    if (cp) {
+        warn_keyed(doc, "text glyph",
+                   "text: no font has U+%04X; drawn as its font's missing-glyph box",
+                   (unsigned)cp);
+    }
+    if (svg_text_unordered(w->t)) {
+        warn_keyed(doc, "text bidi",
+                   "text: right-to-left and left-to-right text left in logical order "
+                   "(built without FriBidi)");
+    }
+    return true;
+}
+
 static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
 {
     double scale, tol;
@@ -3066,44 +3110,75 @@ static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
     if (!text_start(doc, node, f, &scale, &tol, &w)) {
         return;
     }
-    doc->line = node->line;
-    /* each character is a point of the budget, drawn or not */
-    if (doc->status == SR_OK && points_within_budget(doc, svg_text_length(w.t))) {
-        doc->points_used += svg_text_length(w.t);
-        double px = svg_text_max_size(w.t) * scale;
-        char why[256];
-        sr_result r;
-        if (px > MAX_FONT_PIXELS) {
-            svg_fail(doc, SR_TOO_LARGE, "text: a font-size of %.6g pixels (beyond %.0f)", px,
-                     MAX_FONT_PIXELS);
-        } else if (svg_text_length(w.t) == 0) {
-            /* nothing to lay out */
-        } else if ((r = svg_text_layout(w.t, doc->fonts, why, sizeof why)) == SR_BAD_FORMAT) {
-            warn_keyed(doc, "text font", "text skipped: %s", why);
-        } else if (r != SR_OK) {
-            svg_fail(doc, r, "%s", why);
-        } else {
-            uint32_t cp = svg_text_missing(w.t);
-            if (cp) {
-                warn_keyed(doc, "text glyph",
-                           "text: no font has U+%04X; drawn as its font's missing-glyph box",
-                           (unsigned)cp);
-            }
-            if (svg_text_sideways(w.t)) {
-                warn_keyed(doc, "text upright",
-                           "text: upright glyphs of vertical text (CJK, "
-                           "glyph-orientation-vertical 0) drawn turned like the others");
-            }
-            if (svg_text_unordered(w.t)) {
-                warn_keyed(doc, "text bidi",
-                           "text: right-to-left and left-to-right text left in logical order "
-                           "(built without FriBidi)");
-            }
-            draw_text_runs(doc, &w, tol);
-        }
+    if (text_laid_out(doc, node, &w, scale)) {
+        draw_text_runs(doc, &w, tol);
     }
     free(w.frames);
     svg_text_free(w.t);
+}
+
+/* The coverage of a text that is a child of a clipPath (or a shape a use
+ * in one names) under frame f into cov: the union of its glyph areas,
+ * each glyph filled by the nonzero rule its outline is drawn for, as
+ * when the text is filled; characters made hidden add nothing.  False
+ * when it covers nothing or after reporting a failure. */
+static bool clip_text(svg_doc *doc, const svg_node *node, const frame *f, uint8_t *cov)
+{
+    double scale, tol;
+    text_walk w;
+    if (f->st.display_none || f->st.invisible || !text_start(doc, node, f, &scale, &tol, &w)) {
+        return false;
+    }
+    int width = sr_framebuffer_width(doc->fb), height = sr_framebuffer_height(doc->fb);
+    size_t n_px = (size_t)width * (size_t)height;
+    bool drawn = false;
+    uint8_t *run_cov = NULL;
+    if (text_laid_out(doc, node, &w, scale) &&
+        work_within_budget(doc, (double)n_px * svg_text_runs(w.t))) {
+        run_cov = malloc(n_px);
+        if (!run_cov) {
+            svg_fail(doc, SR_OUT_OF_MEMORY, "out of memory");
+        } else {
+            memset(cov, 0, n_px);
+            drawn = true;
+        }
+    }
+    int runs = drawn ? svg_text_runs(w.t) : 0;
+    for (int r = 0; r < runs && doc->status == SR_OK; r++) {
+        sr_path *p = NULL;
+        sr_result res = sr_make_path(doc->ctx, tol, &p);
+        if (res == SR_OK) {
+            res = svg_text_run_path(w.t, doc->fonts, r, p);
+        }
+        sr_point2 *pts;
+        sr_polygon2 poly;
+        if (res != SR_OK) {
+            lib_fail(doc, res);
+        } else if (path_within_limits(doc, p, "text", 0) &&
+                   (poly = sr_path_polygon(p)).point_count > 0 &&
+                   map_polygon(doc, poly, f->m, &pts)) {
+            doc->points_used += poly.point_count;
+            poly.points = pts;
+            sr_fill_desc desc = { .rule = SR_NONZERO,
+                                  .antialias = f->st.crisp ? SR_AA_NONE : SR_AA_AREA };
+            res = sr_polygon_coverage(doc->ctx, &poly, &desc, 0, 0, width, height, run_cov,
+                                      (size_t)width);
+            free(pts);
+            if (res != SR_OK) {
+                lib_fail(doc, res);
+            }
+            /* runs are separate paths: their union, a + b - ab */
+            for (size_t i = 0; res == SR_OK && i < n_px; i++) {
+                unsigned a = cov[i], b = run_cov[i];
+                cov[i] = (uint8_t)(a + b - (a * b + 127) / 255);
+            }
+        }
+        sr_destroy_path(doc->ctx, p);
+    }
+    free(run_cov);
+    free(w.frames);
+    svg_text_free(w.t);
+    return drawn && doc->status == SR_OK;
 }
 
 static void box_point(double b[4], sr_point2 q);
@@ -3148,6 +3223,12 @@ static void text_bbox_add(svg_doc *doc, const svg_node *node, const frame *f, ma
 static void draw_text(svg_doc *doc, const svg_node *node, const frame *f)
 {
     (void)doc, (void)node, (void)f; /* not reached: holds_text and draw_node skip text */
+}
+
+static bool clip_text(svg_doc *doc, const svg_node *node, const frame *f, uint8_t *cov)
+{
+    (void)doc, (void)node, (void)f, (void)cov; /* not reached: clip_mask skips text */
+    return false;
 }
 
 static void text_bbox_add(svg_doc *doc, const svg_node *node, const frame *f, mat2d m,
@@ -3683,7 +3764,9 @@ static uint8_t *clip_mask(svg_doc *doc, svg_node *clip, svg_node *node, const fr
             cut_node[1] = shape;
             cut_frame[1] = sf;
         }
-        if (!is_shape(shape->name) || !clip_shape(doc, shape, &sf, cov)) {
+        bool text = strcmp(shape->name, "text") == 0 && svg_text_available();
+        if (text ? !clip_text(doc, shape, &sf, cov)
+                 : !is_shape(shape->name) || !clip_shape(doc, shape, &sf, cov)) {
             continue;
         }
         for (int k = 0; k < 2 && doc->status == SR_OK; k++) {

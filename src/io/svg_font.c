@@ -412,12 +412,14 @@ int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int le
     }
     hb_buffer_add_codepoints(buf, cps, n, (unsigned)start, len);
     if (dir >= 0) {
-        hb_buffer_set_direction(buf, dir ? HB_DIRECTION_RTL : HB_DIRECTION_LTR);
+        hb_buffer_set_direction(buf, dir == 2   ? HB_DIRECTION_TTB
+                                     : dir == 1 ? HB_DIRECTION_RTL
+                                                : HB_DIRECTION_LTR);
     }
     hb_buffer_guess_segment_properties(buf);
     /* Vertical scripts are laid out horizontally, as SVG's initial
-     * writing mode says. */
-    if (HB_DIRECTION_IS_VERTICAL(hb_buffer_get_direction(buf))) {
+     * writing mode says, unless asked to stand upright. */
+    if (dir != 2 && HB_DIRECTION_IS_VERTICAL(hb_buffer_get_direction(buf))) {
         hb_buffer_set_direction(buf, HB_DIRECTION_LTR);
     }
     hb_shape(face->hb, buf, NULL, 0);
@@ -439,6 +441,29 @@ int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int le
     }
     hb_buffer_destroy(buf);
     return (int)count;
+}
+
+bool svg_face_turns_vertical(svg_face *face, uint32_t cp)
+{
+    hb_codepoint_t nominal;
+    if (!hb_font_get_nominal_glyph(face->hb, cp, &nominal)) {
+        return false;
+    }
+    hb_buffer_t *buf = hb_buffer_create();
+    if (!hb_buffer_allocation_successful(buf)) {
+        hb_buffer_destroy(buf);
+        return false;
+    }
+    hb_buffer_add_codepoints(buf, &cp, 1, 0, 1);
+    hb_buffer_set_direction(buf, HB_DIRECTION_TTB);
+    hb_buffer_guess_segment_properties(buf);
+    /* top to bottom HarfBuzz applies vert and vrt2 */
+    hb_shape(face->hb, buf, NULL, 0);
+    unsigned count = 0;
+    const hb_glyph_info_t *info = hb_buffer_get_glyph_infos(buf, &count);
+    bool turned = count == 1 && info[0].codepoint != nominal;
+    hb_buffer_destroy(buf);
+    return turned;
 }
 
 /* ---- outlines ---------------------------------------------------------------- */

@@ -237,7 +237,7 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         "font-family", "font-size", "font-weight", "font-style", "text-anchor",
         "dominant-baseline", "alignment-baseline", "text-decoration", "letter-spacing",
         "word-spacing", "baseline-shift", "direction", "font", "unicode-bidi", "writing-mode",
-        "glyph-orientation-vertical", NULL,
+        "glyph-orientation-vertical", "text-orientation", NULL,
     };
     int k = keyword(name, names);
     if (k < 0) {
@@ -262,7 +262,8 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         case 11: ts->rtl = one.rtl; break;
         case 13: ts->bidi = one.bidi; break;
         case 14: ts->vertical = one.vertical; break;
-        case 15: ts->upright = one.upright; break;
+        case 15:
+        case 16: ts->orient = one.orient; break;
         default: break;
         }
         return 1;
@@ -330,7 +331,20 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
     case 15:
         b = keyword(v, (const char *const[]){ "auto", "0", "0deg", "90", "90deg", NULL });
         ok = b >= 0;
-        ts->upright = ok ? b == 1 || b == 2 : ts->upright;
+        if (ok) {
+            ts->orient = b == 0 ? SVG_ORIENT_MIXED : b <= 2 ? SVG_ORIENT_UPRIGHT
+                                                            : SVG_ORIENT_SIDEWAYS;
+        }
+        break;
+    case 16:
+        /* sideways-right is CSS Writing Modes 3's old name for sideways */
+        b = keyword(v, (const char *const[]){ "mixed", "upright", "sideways", "sideways-right",
+                                              NULL });
+        ok = b >= 0;
+        if (ok) {
+            ts->orient = b == 0 ? SVG_ORIENT_MIXED : b == 1 ? SVG_ORIENT_UPRIGHT
+                                                            : SVG_ORIENT_SIDEWAYS;
+        }
         break;
     default: ok = true; break;
     }
@@ -353,6 +367,7 @@ typedef struct tchar {
     double extra;                /* textLength's spacing after it */
     bool starts;                 /* a cluster starts here (while its run is placed) */
     bool collapsible;            /* a space xml:space does not preserve */
+    bool upright;                /* stands upright in vertical text, with vertical metrics */
 } tchar;
 
 typedef struct telem {
@@ -414,7 +429,6 @@ struct svg_text {
     uint32_t missing;            /* a character no font has, or 0 */
     bool unordered;              /* mixed directions left in logical order */
     bool vertical;               /* laid out top to bottom (the text element's writing-mode) */
-    bool sideways;               /* upright characters in it drawn turned */
     unsigned char *levels;       /* each character's bidi level, per chunk */
     uint32_t *bidi_in;           /* a chunk's characters and bidi controls */
     int *bidi_at;                /* where each character is among them */
@@ -600,7 +614,7 @@ static bool add_char(svg_text *t, uint32_t cp, bool visible, bool collapsible)
     }
     t->chars[t->n_chars++] = (tchar){ cp, t->open, NULL, visible,
                                       { NAN, NAN, NAN, NAN, NAN }, 0, 0, false,
-                                      collapsible };
+                                      collapsible, false };
     return true;
 }
 
@@ -692,21 +706,43 @@ bool svg_text_unordered(const svg_text *t)
     return t->unordered;
 }
 
-bool svg_text_sideways(const svg_text *t)
+/* The Vertical_Orientation of cp: a binary search of the ranges. */
+static int vertical_orientation(uint32_t cp)
 {
-    return t->sideways;
+    int lo = 0, hi = svg_vo_range_count - 1;
+    while (lo <= hi) {
+        int mid = (lo + hi) / 2;
+        if (cp < svg_vo_ranges[mid].first) {
+            hi = mid - 1;
+        } else if (cp > svg_vo_ranges[mid].last) {
+            lo = mid + 1;
+        } else {
+            return svg_vo_ranges[mid].vo;
+        }
+    }
+    return SVG_VO_R;
 }
 
-/* Whether cp stands upright in vertical text when glyph-orientation-
- * vertical is auto: the ideographic and fullwidth blocks (Hangul, kana,
- * CJK ideographs and their punctuation, fullwidth forms). */
-static bool upright_char(uint32_t cp)
+/* Whether character c of a vertical text stands upright: as its
+ * element's text-orientation (or glyph-orientation-vertical) says, and
+ * with mixed (auto) by its Vertical_Orientation, a Tr character only
+ * where its face has a vertical alternate for it (CSS Writing Modes 3,
+ * 5.1).  Glyphs bent onto a textPath stay turned. */
+static bool stands_upright(const svg_text *t, const tchar *c)
 {
-    return (cp >= 0x1100 && cp <= 0x11FF) || (cp >= 0x2E80 && cp <= 0x303F) ||
-           (cp >= 0x3040 && cp <= 0x9FFF) || (cp >= 0xA960 && cp <= 0xA97F) ||
-           (cp >= 0xAC00 && cp <= 0xD7FF) || (cp >= 0xF900 && cp <= 0xFAFF) ||
-           (cp >= 0xFE30 && cp <= 0xFE4F) || (cp >= 0xFF00 && cp <= 0xFF60) ||
-           (cp >= 0xFFE0 && cp <= 0xFFE6) || (cp >= 0x20000 && cp <= 0x3FFFF);
+    const telem *el = &t->elems[c->elem];
+    if (el->path >= 0 || el->ts.orient == SVG_ORIENT_SIDEWAYS) {
+        return false;
+    }
+    if (el->ts.orient == SVG_ORIENT_UPRIGHT) {
+        return true;
+    }
+    switch (vertical_orientation(c->cp)) {
+    case SVG_VO_U:
+    case SVG_VO_TU: return true;
+    case SVG_VO_TR: return svg_face_turns_vertical(c->face, c->cp);
+    default: return false;
+    }
 }
 
 /* Vertical text is laid out as a horizontal line along its y, across
@@ -721,8 +757,7 @@ static void turn_lists(svg_text *t)
         p[LIST_Y] = -x;
         p[LIST_DX] = p[LIST_DY];
         p[LIST_DY] = -dx;
-        t->sideways = t->sideways || upright_char(t->chars[i].cp) ||
-                      (t->elems[t->chars[i].elem].ts.upright && t->chars[i].cp > ' ');
+        t->chars[i].upright = stands_upright(t, &t->chars[i]);
     }
 }
 
@@ -814,6 +849,10 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
     }
     trun run = { t->chars[s].elem, face, el->path, t->n_placed, n, pen[0], pen[0], pen[1] };
     double down = baseline_offset(el);
+    bool up = t->chars[s].upright;
+    /* upright glyphs are centred on the line by their vertical origin:
+     * they move off it only as far as the baseline does from central */
+    double up_down = down - (m->ascender + m->descender) / 2 * scale;
     const svg_glyph *g = *glyphs;
     for (int k = s; k < e; k++) {
         t->chars[k].starts = false;
@@ -862,12 +901,27 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
         double rot = t->chars[c].pos[LIST_ROTATE];
         double a = isnan(rot) ? 0 : rot * (M_PI / 180);
         double co = cos(a), si = sin(a);
-        double ox = pen[0] + g[i].ox * scale * sx, oy = pen[1] + down - g[i].oy * scale;
-        t->placed[t->n_placed++] = (tglyph){
-            g[i].id, t->chars[c].visible, 0,
-            { scale * sx * co, scale * sx * si, scale * si, -scale * co, ox, oy } };
-        pen[0] += g[i].ax * scale * sx;
-        pen[1] -= g[i].ay * scale;
+        if (up) {
+            /* upright: the glyph as it stands after the quarter turn
+             * (textLength stretching it down the line), its offset from
+             * the pen (the vertical origin) turned by rotate, all turned
+             * back a quarter here; the pen goes down by the vertical
+             * advance */
+            double f[4] = { scale * co, scale * si * sx, scale * si, -scale * co * sx };
+            double dx = g[i].ox * scale, dy = -g[i].oy * scale * sx;
+            double u = pen[0] + si * dx + co * dy, v = pen[1] + up_down - (co * dx - si * dy);
+            t->placed[t->n_placed++] = (tglyph){ g[i].id, t->chars[c].visible, 0,
+                                                 { f[1], -f[0], f[3], -f[2], u, v } };
+            pen[0] -= g[i].ay * scale * sx;
+            pen[1] -= g[i].ax * scale;
+        } else {
+            double ox = pen[0] + g[i].ox * scale * sx, oy = pen[1] + down - g[i].oy * scale;
+            t->placed[t->n_placed++] = (tglyph){
+                g[i].id, t->chars[c].visible, 0,
+                { scale * sx * co, scale * sx * si, scale * si, -scale * co, ox, oy } };
+            pen[0] += g[i].ax * scale * sx;
+            pen[1] -= g[i].ay * scale;
+        }
         bool last = i + 1 == n || g[i + 1].cluster != c;
         if (last) {
             /* on a path the cluster turns about its middle */
@@ -983,7 +1037,8 @@ static sr_result place_chunk(svg_text *t, const uint32_t *cps, int c, int end, b
     for (int s = c; s < end; n_segs++) {
         int e = s + 1;
         while (e < end && t->chars[e].elem == t->chars[s].elem &&
-               t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c]) {
+               t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c] &&
+               t->chars[e].upright == t->chars[s].upright) {
             e++;
         }
         seg[2 * n_segs] = s;
@@ -1019,6 +1074,9 @@ static sr_result place_chunk(svg_text *t, const uint32_t *cps, int c, int end, b
         /* without FriBidi each run goes as its script does, or right to
          * left where direction says so */
         int dir = bidi ? lv[s - c] & 1 : t->elems[t->chars[s].elem].ts.rtl ? 1 : -1;
+        if (t->chars[s].upright) {
+            dir = 2; /* top to bottom */
+        }
         r = place_run(t, cps, s, e, dir, pen, glyphs, cap);
     }
     free(seg);
@@ -1230,7 +1288,9 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
     for (int e = 0; e < t->n_elems; e++) {
         t->elems[e].ts.vertical = t->vertical;
     }
-    t->sideways = false;
+    for (int i = 0; i < t->n_chars; i++) {
+        t->chars[i].upright = false;
+    }
     if (t->vertical) {
         turn_lists(t);
     }

@@ -27,6 +27,10 @@ enum { SVG_BASE_AUTO, SVG_BASE_ALPHABETIC, SVG_BASE_MIDDLE, SVG_BASE_CENTRAL, SV
        SVG_BASE_MATHEMATICAL, SVG_BASE_TEXT_TOP, SVG_BASE_TEXT_BOTTOM, SVG_BASE_IDEOGRAPHIC };
 enum { SVG_SHIFT_LENGTH, SVG_SHIFT_SUB, SVG_SHIFT_SUPER, SVG_SHIFT_PERCENT };
 enum { SVG_BIDI_NORMAL, SVG_BIDI_EMBED, SVG_BIDI_OVERRIDE };
+/* How glyphs stand in vertical text: by character (text-orientation
+ * mixed, glyph-orientation-vertical auto), all upright (upright, 0), all
+ * turned (sideways, 90). */
+enum { SVG_ORIENT_MIXED, SVG_ORIENT_UPRIGHT, SVG_ORIENT_SIDEWAYS };
 
 /* The text properties of a style.  All inherit except those marked. */
 typedef struct svg_text_style {
@@ -41,7 +45,7 @@ typedef struct svg_text_style {
     bool rtl;                /* direction: rtl */
     unsigned char bidi;      /* unicode-bidi (not inherited) */
     bool vertical;           /* writing-mode tb, tb-rl, vertical-rl, vertical-lr */
-    bool upright;            /* glyph-orientation-vertical 0 (auto: by character) */
+    unsigned char orient;    /* text-orientation, glyph-orientation-vertical */
     double letter_spacing, word_spacing;
     unsigned char shift_kind;/* baseline-shift (not inherited) */
     double shift;            /* its length, or percentage of the font size */
@@ -60,6 +64,20 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
 /* After the cascade: add the element's own baseline shift to the
  * ancestors' (parent NULL: none). */
 void svg_text_settle(svg_text_style *ts, const svg_text_style *parent);
+
+/* ---- vertical orientation (svg_vertical.c) ------------------------------ */
+
+/* Unicode's Vertical_Orientation (UAX #50): R turned sideways, U
+ * upright, Tu upright with a vertical alternate glyph, Tr upright when
+ * the font has a vertical alternate for it, else turned. */
+enum { SVG_VO_R, SVG_VO_U, SVG_VO_TU, SVG_VO_TR };
+/* The code points that are not R, in ascending ranges. */
+typedef struct svg_vo_range {
+    uint32_t first, last;
+    unsigned char vo;
+} svg_vo_range;
+extern const svg_vo_range svg_vo_ranges[];
+extern const int svg_vo_range_count;
 
 /* ---- bidirectional text (svg_bidi.c) ------------------------------------ */
 
@@ -114,11 +132,16 @@ svg_face *svg_fonts_cover(svg_fonts *fonts, svg_face *face, svg_face *prev, uint
                           bool *missing);
 const svg_face_metrics *svg_face_get_metrics(const svg_face *face);
 /* Shape cps[start .. start+len) (the rest of cps is context) left to
- * right (dir 0), right to left (1) or as its script goes (-1): glyphs in
- * visual order into *glyphs (grown as needed, *cap its room); their
- * count, or -1 when out of memory. */
+ * right (dir 0), right to left (1), top to bottom (2: upright glyphs of
+ * vertical text, with vertical metrics and alternates; advances and
+ * offsets from the vertical origin, y_advance negative) or as its script
+ * goes (-1): glyphs in visual order into *glyphs (grown as needed, *cap
+ * its room); their count, or -1 when out of memory. */
 int svg_face_shape(svg_face *face, const uint32_t *cps, int n, int start, int len, int dir,
                    svg_glyph **glyphs, int *cap);
+/* Whether the face has a vertical alternate (OpenType vert or vrt2)
+ * for code point cp: a Tr character then stands upright. */
+bool svg_face_turns_vertical(svg_face *face, uint32_t cp);
 /* Append glyph id's outline mapped by m (a, b, c, d, e, f: font units,
  * y up, to user units) to path. */
 sr_result svg_face_outline(svg_fonts *fonts, svg_face *face, unsigned id, const double m[6],
@@ -158,10 +181,6 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
 /* After layout: a character that no font has (drawn as its font's
  * .notdef), or 0. */
 uint32_t svg_text_missing(const svg_text *t);
-/* After layout: whether a vertical text has characters that stand
- * upright in it (CJK, glyph-orientation-vertical 0), drawn turned as the
- * others. */
-bool svg_text_sideways(const svg_text *t);
 /* After layout: whether a chunk mixing directions was left in logical
  * order (a build without FriBidi). */
 bool svg_text_unordered(const svg_text *t);
