@@ -5,6 +5,7 @@
  * drawn over the cells are black or grey, and blended over white they stay
  * grey, so blue shows only where a cell was filled. */
 #define _XOPEN_SOURCE 700   /* nftw */
+#include "image_compare.h"
 #include "raster_util.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -876,6 +877,24 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "", NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--sheet", "", NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--webp", "", NULL }), 2);
+    /* transform: no camera frame, a vertex before the near plane, values
+     * out of range */
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--eye", "0.5,0,0",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--up", "0,0,1", "--eye",
+                                               "0.5,0,3", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--near-far", "3,10",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--near-far", "2,1",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--fov", "0", "-o", dir,
+                                               NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--aspect", "wide", "-o",
+                                               dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--object",
+                                               "1,2,3,4,5,6,7,8", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--triangle",
+                                               "1,1,9,1,1,9", "-o", dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
 }
 
@@ -1136,6 +1155,7 @@ SR_TEST(options_of_another_algorithm_are_refused)
         { "triangle", "--row", "3" },           { "dda", "--tolerance", "0.5" },
         { "scanline", "--seed", "3,3" },        { "clip", "--connectivity", "8" },
         { "msaa", "--w", "1,2,3" },             { "perspective", "--intensity", "0,1,0" },
+        { "triangle", "--eye", "1,2,3" },       { "clip4d", "--projection", "orthographic" },
     };
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
@@ -1594,4 +1614,215 @@ SR_TEST(rows_off_the_grid_are_one_frame)
                    5, 12,
                    "5. Scanlines y=6 to 10: their crossings and spans are off the grid, not "
                    "shown. From the ET: e2. Ended: e3.");
+}
+
+/* ---- transform: the viewing pipeline S P E M_O ---- */
+
+typedef struct tr_case {
+    double obj[9], rotate, translate[3], eye[3], target[3], fov;
+    bool ortho, stretch;
+} tr_case;
+
+static sr_vec3 tr_vec(const double v[3])
+{
+    return sr_vec3_make((float)v[0], (float)v[1], (float)v[2]);
+}
+
+/* The case's M_O, E and P from the library's functions, for a gw x gh
+ * viewport (near 1, far 10, explain's defaults). */
+static void tr_matrices(const tr_case *k, int gw, int gh, sr_mat4 *model, sr_mat4 *view,
+                        sr_mat4 *proj)
+{
+    const double pi = 3.14159265358979323846;
+    sr_mat4 r = sr_mat4_rotate((float)(k->rotate * pi / 180), sr_vec3_make(0, 1, 0));
+    sr_mat4 t = sr_mat4_translate((float)k->translate[0], (float)k->translate[1],
+                                  (float)k->translate[2]);
+    *model = sr_mat4_mul(&t, &r);
+    sr_vec3 eye = tr_vec(k->eye), target = tr_vec(k->target);
+    *view = sr_look_at(eye, target, sr_vec3_make(0, 1, 0));
+    double fov = k->fov * pi / 180, aspect = (double)gw / gh;
+    if (k->ortho) {
+        double base = sr_vec3_length(sr_vec3_sub(target, eye)) * tan(fov / 2);
+        double hw = k->stretch || gw < gh ? base : base * aspect;
+        double hh = k->stretch || gw >= gh ? base : base / aspect;
+        *proj = sr_ortho((float)-hw, (float)hw, (float)-hh, (float)hh, 1, 10, false);
+    } else {
+        *proj = sr_perspective(k->stretch ? (float)fov : sr_fit_fovy((float)fov, gw, gh),
+                               k->stretch ? 1.0f : (float)aspect, 1, 10, false);
+    }
+}
+
+/* Run explain transform on the case into dir; the exit status. */
+static int tr_run(const tr_case *k, const char *grid, const char *zoom, const char *dir)
+{
+    char obj[300] = "", rot[32], tr[96], eye[96], target[96], fov[32];
+    for (int i = 0; i < 9; i++) {
+        size_t len = strlen(obj);
+        snprintf(obj + len, sizeof obj - len, "%s%.17g", i ? "," : "", k->obj[i]);
+    }
+    snprintf(rot, sizeof rot, "%.17g", k->rotate);
+    snprintf(tr, sizeof tr, "%.17g,%.17g,%.17g", k->translate[0], k->translate[1],
+             k->translate[2]);
+    snprintf(eye, sizeof eye, "%.17g,%.17g,%.17g", k->eye[0], k->eye[1], k->eye[2]);
+    snprintf(target, sizeof target, "%.17g,%.17g,%.17g", k->target[0], k->target[1],
+             k->target[2]);
+    snprintf(fov, sizeof fov, "%.17g", k->fov);
+    const char *args[] = { "explain", "transform", "--object", obj, "--rotate", rot,
+                           "--translate", tr, "--eye", eye, "--target", target, "--fov", fov,
+                           "--projection", k->ortho ? "orthographic" : "perspective",
+                           "--aspect", k->stretch ? "stretch" : "fit", "--grid", grid,
+                           "--zoom", zoom, "-o", dir, NULL };
+    return sr_test_run_cli(args);
+}
+
+/* The window-stage caption with the test's own numbers. */
+static void tr_window_caption(char *buf, size_t size, int gw, int gh, const int64_t x_q8[3],
+                              const int64_t y_q8[3])
+{
+    int len = snprintf(buf, size,
+                       "6. The viewport matrix S maps NDC -1..1 onto the pixel extents of the "
+                       "%dx%d viewport, x_S = %d/2 (x + 1), y_S = %d/2 (1 - y) (y down), z_S = "
+                       "(z + 1)/2: S = [%d 0 0 %d; 0 -%d 0 %d; 0 0 0.5 0.5; 0 0 0 1]. Window "
+                       "coordinates, snapped to 1/256 pixel: ",
+                       gw, gh, gw, gh, gw / 2, gw / 2, gh / 2, gh / 2);
+    for (int i = 0; i < 3; i++) {
+        len += snprintf(buf + len, size - (size_t)len, "%sV%d = (%.4f, %.4f)", i ? ", " : "", i,
+                        x_q8[i] / 256.0, y_q8[i] / 256.0);
+    }
+    snprintf(buf + len, size - (size_t)len, ".");
+}
+
+SR_TEST(transform_last_frame_is_what_sr_draw_draws_with_the_matrices)
+{
+    NEEDS_CLI();
+    /* random triangles, rotations, translations and cameras, both
+     * projections and both aspect strategies: the last frame is, cell for
+     * cell, what sr_draw draws for the object-space triangle with M_O, E
+     * and P; the window positions the test computes as the vertex stage
+     * does (P (E M_O) v in float, the divide and S in double, snapped)
+     * give the same pixels drawn directly, and frame 6 shows them */
+    sr_rng rng = { 9301 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0, shown = 0, refused = 0;
+    for (int k = 0; k < 24; k++) {
+        tr_case c = { .rotate = sr_rng_int(&rng, -12, 12) * 15, .fov = sr_rng_int(&rng, 30, 80),
+                      .ortho = k % 2 == 1, .stretch = k % 4 >= 2 };
+        for (int i = 0; i < 9; i++) {
+            c.obj[i] = sr_rng_int(&rng, -12, 12) / 8.0;
+        }
+        for (int i = 0; i < 3; i++) {
+            c.translate[i] = sr_rng_int(&rng, -4, 4) / 8.0;
+            c.target[i] = sr_rng_int(&rng, -4, 4) / 8.0;
+            c.eye[i] = sr_rng_int(&rng, -16, 16) / 8.0;
+        }
+        c.eye[2] = sr_rng_int(&rng, 24, 40) / 8.0;
+        char dir[1024], name[32], grid[16], path[1200];
+        snprintf(name, sizeof name, "transform_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        out_dir(name, dir, sizeof dir);
+        int rc = tr_run(&c, grid, "8", dir);
+        if (rc == 2) {
+            refused++;   /* a vertex before the near plane */
+            continue;
+        }
+        REQUIRE(rc == 0);
+        uint8_t cells[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) == 7);
+
+        sr_mat4 model, view, proj;
+        tr_matrices(&c, GRID, GRID, &model, &view, &proj);
+        float pos[9];
+        for (int i = 0; i < 9; i++) {
+            pos[i] = (float)c.obj[i];
+        }
+        rt_clear(&t);
+        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } } };
+        REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3,
+                                                           .model = &model, .view = &view,
+                                                           .projection = &proj }) == SR_OK);
+        char what[64];
+        snprintf(what, sizeof what, "transform case %d", k);
+        compare_with_target(&t, cells, what, &drawn_total);
+
+        sr_mat4 mv = sr_mat4_mul(&view, &model), mvp = sr_mat4_mul(&proj, &mv);
+        int64_t x_q8[3], y_q8[3];
+        double xy[6];
+        for (int i = 0; i < 3; i++) {
+            sr_vec4 cl = sr_mat4_mul_vec4(&mvp, (sr_vec4){ pos[3 * i], pos[3 * i + 1],
+                                                           pos[3 * i + 2], 1 });
+            double iw = 1.0 / cl.w;
+            x_q8[i] = ref_snap(GRID * 0.5 + GRID * 0.5 * (cl.x * iw));
+            y_q8[i] = ref_snap(GRID * 0.5 - GRID * 0.5 * (cl.y * iw));
+            xy[2 * i] = x_q8[i] / 256.0;
+            xy[2 * i + 1] = y_q8[i] / 256.0;
+        }
+        rt_clear(&t);
+        REQUIRE(rt_draw_tris(&t, xy, 1, NULL, SR_RASTER_HALFSPACE) == SR_OK);
+        snprintf(what, sizeof what, "transform case %d, window positions", k);
+        compare_with_target(&t, cells, what, &drawn_total);
+
+        char text[600];
+        tr_window_caption(text, sizeof text, GRID, GRID, x_q8, y_q8);
+        snprintf(path, sizeof path, "%s/frame-006.png", dir);
+        if (!caption_reads(path, GRID, 8, 1, text)) {
+            FAILF("transform case %d: frame 6 does not read \"%s\"", k, text);
+        }
+        shown++;
+    }
+    CHECK(shown >= 16);
+    CHECK(drawn_total > 2 * 16 * 20);
+    rt_free(&t);
+    (void)refused;
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_transform.png
+ * (text and antialiased marks: 2 levels a channel, 1 pixel in 200). */
+SR_TEST(transform_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("transform_sheet", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/sheet.png", dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "transform", "--zoom", "12", "--sheet",
+                                              path, NULL }) == 0);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    sr_test_check_image("explain_transform", px, w, h, 2, (long)w * h / 200);
+    free(px);
+}
+
+/* A wide viewport: with --aspect fit the projection's aspect is the
+ * viewport's, so a square in front of the camera covers a square of
+ * pixels; with stretch, NDC's square is stretched over the viewport. */
+SR_TEST(transform_aspect_fit_keeps_a_square_square)
+{
+    NEEDS_CLI();
+    for (int stretch = 0; stretch < 2; stretch++) {
+        char dir[1024];
+        out_dir(stretch ? "transform_stretch" : "transform_fit", dir, sizeof dir);
+        /* a right triangle, half of a 1 x 1 square, face on */
+        tr_case c = { .obj = { -0.5, -0.5, 0, 0.5, -0.5, 0, -0.5, 0.5, 0 },
+                      .eye = { 0, 0, 2 }, .fov = 40, .stretch = stretch == 1 };
+        REQUIRE(tr_run(&c, "16x8", "8", dir) == 0);
+        uint8_t cells[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) == 7);
+        int x0 = GRID, x1 = -1, y0 = GRID, y1 = -1;
+        for (int y = 0; y < 8; y++) {
+            for (int x = 0; x < 16; x++) {
+                if (cells[y * GRID + x]) {
+                    x0 = x < x0 ? x : x0;
+                    x1 = x > x1 ? x : x1;
+                    y0 = y < y0 ? y : y0;
+                    y1 = y > y1 ? y : y1;
+                }
+            }
+        }
+        int w = x1 - x0 + 1, h = y1 - y0 + 1;
+        if (stretch) {
+            CHECK(w >= 2 * h - 1);   /* stretched by 16/8 */
+        } else {
+            CHECK(abs(w - h) <= 1);
+        }
+    }
 }

@@ -20,6 +20,10 @@ const OPTIONS = [
       applies: (a) => a.name === 'msaa' },
     { option: '--connectivity', label: 'connectivity', values: ['4', '8'],
       applies: (a) => a.name === 'floodfill' },
+    { option: '--projection', label: 'projection', values: ['perspective', 'orthographic'],
+      applies: (a) => a.name === 'transform' },
+    { option: '--aspect', label: 'aspect ratio', values: ['fit', 'stretch'],
+      applies: (a) => a.name === 'transform' },
 ];
 // Options that give a value at each vertex: the page keeps the example's.
 const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };
@@ -85,7 +89,8 @@ async function main() {
         case 'circle':   // centre and radius
             return ['--circle', list([...state.points[0], state.values[0]])];
         case 'triangles':   // x, y and the depth of each vertex
-            return ['--triangles',
+        case 'object':      // x, y and z of each vertex in object coordinates
+            return [`--${alg.kind}`,
                     state.points.map((p, k) => list([...p, state.values[k]])).join(',')];
         case 'clip-triangle':
             return ['--clip-triangle', list(state.clip)];
@@ -166,6 +171,12 @@ async function main() {
         return [x, y, alg.grid[0] - 2 * x, alg.grid[1] - 2 * y];
     }
 
+    // transform's object coordinates on the grid of its first step: a unit
+    // is min(grid)/4 cells from the grid's centre, y up.
+    function objectPlot() {
+        return [alg.grid[0] / 2, alg.grid[1] / 2, Math.min(alg.grid[0], alg.grid[1]) / 4];
+    }
+
     // The pixel under a point, kept on the grid.
     const pixel = (v, size) => Math.max(0, Math.min(size - 1, Math.floor(v)));
 
@@ -197,6 +208,15 @@ async function main() {
                              } });
                 }
             }
+        } else if (alg.kind === 'object') {
+            const [ox, oy, s] = objectPlot();
+            state.points.forEach((p, k) => {
+                h.push({ at: [ox + s * p[0], oy - s * p[1]],
+                         move: (x, y) => {
+                             state.points[k] = [Math.round((x - ox) / s * 100) / 100,
+                                                Math.round((oy - y) / s * 100) / 100];
+                         } });
+            });
         } else if (alg.kind !== 'none') {
             state.points.forEach((p, k) => {
                 h.push({ at: p, move: (x, y) => { state.points[k] = [x, y]; } });

@@ -129,7 +129,8 @@ EMSCRIPTEN_KEEPALIVE const char *web_algorithm(int i)
      * handles of its points, and of the seed, the row and the clip
      * window where the example has them. */
     static const char *const kinds[] = { "none",     "triangle", "polygon", "line",
-                                         "triangles", "circle",  "cubic",   "clip-triangle" };
+                                         "triangles", "circle",  "cubic",   "clip-triangle",
+                                         "object" };
     const char *kind = (size_t)ex.kind < sizeof kinds / sizeof kinds[0] ? kinds[ex.kind] : "none";
     int n = snprintf(json, sizeof json, "{\"name\":\"%s\",\"kind\":\"%s\",\"summary\":\"", name,
                      kind);
