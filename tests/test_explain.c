@@ -895,6 +895,10 @@ SR_TEST(explain_refuses_bad_input)
                                                "1,2,3,4,5,6,7,8", "-o", dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--triangle",
                                                "1,1,9,1,1,9", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--shininess", "0", "-o",
+                                               dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--highlight", "1", "-o",
+                                               dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
 }
 
@@ -1156,6 +1160,7 @@ SR_TEST(options_of_another_algorithm_are_refused)
         { "scanline", "--seed", "3,3" },        { "clip", "--connectivity", "8" },
         { "msaa", "--w", "1,2,3" },             { "perspective", "--intensity", "0,1,0" },
         { "triangle", "--eye", "1,2,3" },       { "clip4d", "--projection", "orthographic" },
+        { "perspective", "--highlight", "3,3" }, { "transform", "--shininess", "8" },
     };
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
@@ -1825,4 +1830,175 @@ SR_TEST(transform_aspect_fit_keeps_a_square_square)
             CHECK(abs(w - h) <= 1);
         }
     }
+}
+
+/* ---- gouraud: Gouraud versus Phong, the highlight inside ---- */
+
+/* explain gouraud's scene (docs/explain.md): the triangle at z = 0 in
+ * window coordinates under an orthographic P, N = +z, a grey material,
+ * a point light 8 pixels above the highlight. */
+static sr_result gouraud_draw(rt_target *t, const double *xy, const double hl[2],
+                              double shininess, sr_shading shading, bool points, int vertex)
+{
+    sr_mat4 proj = sr_ortho(0, (float)t->w, (float)t->h, 0, -64, 64, false);
+    sr_state st = { .shading = shading, .ambient = { 0.2f, 0.2f, 0.2f }, .point_size = 2,
+                    .material = { .diffuse = { 0.35f, 0.35f, 0.35f },
+                                  .specular = { 0.55f, 0.55f, 0.55f },
+                                  .shininess = (float)shininess },
+                    .lights[0] = { .type = SR_LIGHT_POINT,
+                                   .vector = { (float)hl[0], (float)hl[1], 8 } } };
+    float pos[9], nrm[9] = { 0, 0, 1, 0, 0, 1, 0, 0, 1 };
+    for (int i = 0; i < 3; i++) {
+        int k = points ? vertex : i;
+        pos[3 * i] = (float)xy[2 * k];
+        pos[3 * i + 1] = (float)xy[2 * k + 1];
+        pos[3 * i + 2] = 0;
+    }
+    sr_clear(t->ctx, t->fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    return sr_draw(t->ctx, t->fb, &st,
+                   &(sr_draw_desc){ .positions = pos, .normals = nrm,
+                                    .vertex_count = points ? 1 : 3,
+                                    .primitive = points ? SR_PRIM_POINTS : SR_PRIM_TRIANGLES,
+                                    .projection = &proj });
+}
+
+/* Blinn-Phong by hand, in double: the intensity at (x, y), 0..1. */
+static double gouraud_model(double x, double y, const double hl[2], double n)
+{
+    double l[3] = { hl[0] - x, hl[1] - y, 8 }, len = sqrt(l[0] * l[0] + l[1] * l[1] + 64);
+    double ndotl = 8 / len, h[3] = { l[0] / len, l[1] / len, ndotl + 1 };
+    double ndoth = h[2] / sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    return 0.2 * 0.35 + 0.35 * ndotl + 0.55 * pow(ndoth, n);
+}
+
+/* Frame `frame`'s cells against the pixels in t: white where nothing was
+ * drawn, the pixel's grey where it was; cells within a cell of a vertex
+ * or the highlight (their dots cover them) are not judged.  The cells
+ * that differ by more than one level. */
+static int gouraud_compare(const char *dir, int frame, const rt_target *t, const double *xy,
+                           const double hl[2], int *drawn)
+{
+    uint8_t rgb[GRID * GRID * 3];
+    if (!frame_cell_colours(dir, frame, rgb)) {
+        return GRID * GRID;
+    }
+    const uint8_t *px = sr_framebuffer_pixels(t->fb);
+    int bad = 0;
+    for (int y = 0; y < GRID; y++) {
+        for (int x = 0; x < GRID; x++) {
+            bool marked = fabs(x + 0.5 - hl[0]) < 1.5 && fabs(y + 0.5 - hl[1]) < 1.5;
+            for (int i = 0; i < 3; i++) {
+                marked |= fabs(x + 0.5 - xy[2 * i]) < 1.5 && fabs(y + 0.5 - xy[2 * i + 1]) < 1.5;
+            }
+            const uint8_t *p = px + 4 * (y * GRID + x), *c = rgb + 3 * (y * GRID + x);
+            int want = p[3] ? p[0] : 255;
+            *drawn += p[3] != 0;
+            if (!marked && (abs(c[0] - want) > 1 || abs(c[1] - want) > 1 || abs(c[2] - want) > 1)) {
+                bad++;
+            }
+        }
+    }
+    return bad;
+}
+
+SR_TEST(gouraud_frames_are_what_sr_draw_shades)
+{
+    NEEDS_CLI();
+    /* the example, then random triangles with the highlight at their
+     * centroid: frame 4 is sr_draw's Gouraud pixels, the last frame its
+     * Phong pixels; frame 2 reads the vertex intensities, which are the
+     * vertices drawn as points and Blinn-Phong's value there; Gouraud
+     * never exceeds them and Phong finds the highlight they miss */
+    sr_rng rng = { 5417 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn = 0, missed = 0;
+    for (int k = 0; k < 12; k++) {
+        double xy[6] = { 1.5, 1.5, 14.5, 3.5, 4.5, 11.5 }, hl[2] = { 7.2, 5.6 };
+        double n = k == 0 ? 40 : sr_rng_int(&rng, 10, 120);
+        if (k > 0) {
+            for (int i = 0; i < 6; i++) {
+                xy[i] = sr_rng_int(&rng, 0, 4 * GRID) * 0.25;
+            }
+            hl[0] = (xy[0] + xy[2] + xy[4]) / 3;
+            hl[1] = (xy[1] + xy[3] + xy[5]) / 3;
+        }
+        char prim[200], shin[16], dir[1024], name[32], path[1200];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", xy[0], xy[1], xy[2], xy[3], xy[4], xy[5]);
+        snprintf(shin, sizeof shin, "%g", n);
+        snprintf(name, sizeof name, "gouraud_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        if (k == 0) {
+            REQUIRE(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--grid", "16x16",
+                                                      "--zoom", "8", "-o", dir, NULL }) == 0);
+        } else {
+            REQUIRE(run_explain_with("gouraud", "--triangle", prim, "--shininess", shin, dir) == 0);
+        }
+        int vi[3], vmax = 0;
+        for (int i = 0; i < 3; i++) {
+            REQUIRE(gouraud_draw(&t, xy, hl, n, SR_SHADING_GOURAUD, true, i) == SR_OK);
+            const uint8_t *px = sr_framebuffer_pixels(t.fb);
+            vi[i] = -1;
+            for (int p = 0; p < GRID * GRID && vi[i] < 0; p++) {
+                vi[i] = px[4 * p + 3] ? px[4 * p] : -1;
+            }
+            double want = gouraud_model(xy[2 * i], xy[2 * i + 1], hl, n) * 255;
+            if (fabs(vi[i] - want) > 1) {
+                FAILF("case %d: V%d's intensity %d, Blinn-Phong gives %.2f", k, i, vi[i], want);
+            }
+            vmax = vi[i] > vmax ? vi[i] : vmax;
+        }
+        char text[200];
+        snprintf(text, sizeof text,
+                 "2. Gouraud lights the vertices only: I = %d at V0, %d at V1, %d at V2 (of 255).",
+                 vi[0], vi[1], vi[2]);
+        snprintf(path, sizeof path, "%s/frame-002.png", dir);
+        if (!caption_reads(path, GRID, ZOOM, 1, text)) {
+            FAILF("case %d: frame 2 does not read \"%s\"", k, text);
+        }
+        REQUIRE(gouraud_draw(&t, xy, hl, n, SR_SHADING_GOURAUD, false, 0) == SR_OK);
+        int gmax = 0;
+        for (int p = 0; p < GRID * GRID; p++) {
+            const uint8_t *px = sr_framebuffer_pixels(t.fb) + 4 * p;
+            gmax = px[3] && px[0] > gmax ? px[0] : gmax;
+        }
+        CHECK(gmax <= vmax + 1);   /* a convex combination of the vertices */
+        int bad = gouraud_compare(dir, 4, &t, xy, hl, &drawn);
+        if (bad) {
+            FAILF("case %d: %d cells of frame 4 are not sr_draw's Gouraud pixels", k, bad);
+        }
+        REQUIRE(gouraud_draw(&t, xy, hl, n, SR_SHADING_PHONG, false, 0) == SR_OK);
+        int pmax = 0;
+        for (int p = 0; p < GRID * GRID; p++) {
+            const uint8_t *px = sr_framebuffer_pixels(t.fb) + 4 * p;
+            pmax = px[3] && px[0] > pmax ? px[0] : pmax;
+        }
+        missed += pmax > gmax + 40;
+        bad = gouraud_compare(dir, 6, &t, xy, hl, &drawn);
+        if (bad) {
+            FAILF("case %d: %d cells of the last frame are not sr_draw's Phong pixels", k, bad);
+        }
+        struct stat st;
+        snprintf(path, sizeof path, "%s/frame-007.png", dir);
+        CHECK(stat(path, &st) != 0);   /* frame 6 is the last */
+    }
+    CHECK(drawn > 12 * 2 * 20);
+    CHECK(missed >= 6);   /* the highlight is inside the triangle, far from its vertices */
+    rt_free(&t);
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_gouraud.png
+ * (2 levels a channel, 1 pixel in 200). */
+SR_TEST(gouraud_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("gouraud_sheet", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/sheet.png", dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--zoom", "16", "--sheet",
+                                              path, NULL }) == 0);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    sr_test_check_image("explain_gouraud", px, w, h, 2, (long)w * h / 200);
+    free(px);
 }

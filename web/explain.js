@@ -24,6 +24,8 @@ const OPTIONS = [
       applies: (a) => a.name === 'transform' },
     { option: '--aspect', label: 'aspect ratio', values: ['fit', 'stretch'],
       applies: (a) => a.name === 'transform' },
+    { option: '--shininess', label: 'shininess n', values: ['40', '10', '120'],
+      applies: (a) => a.name === 'gouraud' },
 ];
 // Options that give a value at each vertex: the page keeps the example's.
 const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };
@@ -54,23 +56,26 @@ async function main() {
     const hasWindow = alg.window.some((v) => v !== 0);
     const hasSeed = alg.seed.some((v) => v !== 0);
     const hasRow = alg.row > 0;
+    const hasHighlight = alg.highlight.some((v) => v !== 0);
 
     const canvas = document.getElementById('frame');
     const ctx2d = canvas.getContext('2d');
     const stepInput = document.getElementById('step');
     const message = document.getElementById('message');
     const choices = {};
-    const state = { points: [], values: [], window: [], seed: [], row: 0, clip: [], step: 0,
-                    frames: [], width: 0, height: 0 };
+    const state = { points: [], values: [], window: [], seed: [], row: 0, clip: [],
+                    highlight: [], step: 0, frames: [], width: 0, height: 0 };
     // What the handles move, to put back when the tool refuses a position.
     const snapshot = () => JSON.stringify({ points: state.points, values: state.values,
                                             window: state.window, seed: state.seed,
-                                            row: state.row, clip: state.clip });
+                                            row: state.row, clip: state.clip,
+                                            highlight: state.highlight });
     const restore = (s) => Object.assign(state, JSON.parse(s));
 
     function reset() {
         restore(JSON.stringify({ points: alg.points, values: alg.values, window: alg.window,
-                                 seed: alg.seed, row: alg.row, clip: alg.clip }));
+                                 seed: alg.seed, row: alg.row, clip: alg.clip,
+                                 highlight: alg.highlight }));
         for (const o of OPTIONS.filter((o) => o.applies(alg))) {
             choices[o.option] = o.values[0];
         }
@@ -113,6 +118,9 @@ async function main() {
         }
         if (hasWindow) {
             a.push('--window', list(state.window));
+        }
+        if (hasHighlight) {
+            a.push('--highlight', list(state.highlight));
         }
         for (const [option, value] of Object.entries(choices)) {
             a.push(option, value);
@@ -232,6 +240,9 @@ async function main() {
             h.push({ at: [0.5, state.row + 0.5],
                      dist: (g) => Math.abs(g[1] - state.row - 0.5),
                      move: (x, y) => { state.row = pixel(y, alg.grid[1]); } });
+        }
+        if (hasHighlight) {
+            h.push({ at: state.highlight, move: (x, y) => { state.highlight = [x, y]; } });
         }
         if (hasWindow) {
             for (const k of [0, 2]) {

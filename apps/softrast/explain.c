@@ -94,6 +94,11 @@ static const algorithm algorithms[] = {
                   .near_far = { 1, 10 } } }, 20, 12, 28,
       "the viewing pipeline S P E M_O: a triangle's vertices in\n"
       "             object, world, eye, clip, NDC and window coordinates" },
+    { "gouraud", EX_TRIANGLE, explain_gouraud,
+      { .kind = EX_TRIANGLE, .pts = { { 1.5, 1.5 }, { 14.5, 3.5 }, { 4.5, 11.5 } }, .count = 3,
+        .highlight = { 7.2, 5.6 }, .shininess = 40 }, 16, 13, 32,
+      "Gouraud versus Phong shading of a triangle whose specular\n"
+      "             highlight falls inside it (--highlight, --shininess)" },
 };
 
 static void usage(FILE *f)
@@ -148,6 +153,11 @@ static void usage(FILE *f)
             "                             default: the other field of view derived from the\n"
             "                             viewport's width/height) or stretch NDC's square\n"
             "                             over the viewport\n"
+            "  --highlight X,Y            gouraud: where the point light's highlight peaks\n"
+            "                             (default: the example's, or the triangle's\n"
+            "                             centroid)\n"
+            "  --shininess N              gouraud: the Blinn-Phong exponent, 1 to 1000\n"
+            "                             (default 40)\n"
             "  --tolerance T              forward-differencing: how far the chords may stray\n"
             "                             from the curve, pixels (default 0.25; at most 64\n"
             "                             steps)\n"
@@ -485,6 +495,8 @@ static const struct {
     { "--fov", { "transform" } },
     { "--near-far", { "transform" } },
     { "--aspect", { "transform" } },
+    { "--highlight", { "gouraud" } },
+    { "--shininess", { "gouraud" } },
 };
 
 /* Whether algorithm `name` takes option `a`; false after one line. */
@@ -548,6 +560,8 @@ int cmd_explain(int argc, char **argv)
     int row = -1;
     double tolerance = 0;
     int seed[2] = { 0, 0 }, connectivity = 4;
+    double highlight[2] = { 0, 0 }, shininess = 0;
+    bool highlight_given = false;
     bool seed_given = false;
     int samples = 4;
     sr_rasterizer rasterizer = SR_RASTER_HALFSPACE;
@@ -638,6 +652,19 @@ int cmd_explain(int argc, char **argv)
             to[0] = vp.pts[0].x;
             to[1] = vp.pts[0].y;
             to[2] = vp.z[0];
+        } else if (strcmp(a, "--highlight") == 0) {
+            ex_primitive hp = { 0 };
+            ok = parse_points(a, v, 2, 1, 1, "X,Y", &hp);
+            highlight[0] = hp.pts[0].x;
+            highlight[1] = hp.pts[0].y;
+            highlight_given = true;
+        } else if (strcmp(a, "--shininess") == 0) {
+            char *end;
+            shininess = strtod(v, &end);
+            if (*end || end == v || !(shininess >= 1 && shininess <= 1000)) {
+                cli_error("%s: expected an exponent in 1..1000 (got '%s')", a, v);
+                ok = false;
+            }
         } else if (strcmp(a, "--rotate") == 0 || strcmp(a, "--fov") == 0) {
             bool fov = a[2] == 'f';
             char *end;
@@ -754,6 +781,15 @@ int cmd_explain(int argc, char **argv)
     }
     prim.connectivity = connectivity;
     prim.view = view;
+    if (alg->run == explain_gouraud) {
+        prim.shininess = shininess > 0 ? shininess : alg->example.shininess;
+        if (highlight_given) {
+            memcpy(prim.highlight, highlight, sizeof highlight);
+        } else if (prim_given) {   /* the centroid */
+            prim.highlight[0] = (prim.pts[0].x + prim.pts[1].x + prim.pts[2].x) / 3;
+            prim.highlight[1] = (prim.pts[0].y + prim.pts[1].y + prim.pts[2].y) / 3;
+        }
+    }
     if (seed_given) {
         prim.seed[0] = seed[0];
         prim.seed[1] = seed[1];
