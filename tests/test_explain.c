@@ -895,6 +895,8 @@ SR_TEST(explain_refuses_bad_input)
                                                "1,2,3,4,5,6,7,8", "-o", dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--triangle",
                                                "1,1,9,1,1,9", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "zfight", "--offset", "-1,-100", "-o",
+                                               dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--shininess", "0", "-o",
                                                dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--highlight", "1", "-o",
@@ -1161,6 +1163,7 @@ SR_TEST(options_of_another_algorithm_are_refused)
         { "msaa", "--w", "1,2,3" },             { "perspective", "--intensity", "0,1,0" },
         { "triangle", "--eye", "1,2,3" },       { "clip4d", "--projection", "orthographic" },
         { "perspective", "--highlight", "3,3" }, { "transform", "--shininess", "8" },
+        { "zbuffer", "--offset", "-1,-1" },
     };
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
@@ -2000,5 +2003,208 @@ SR_TEST(gouraud_example_sheet_matches_reference)
     uint8_t *px = NULL;
     REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
     sr_test_check_image("explain_gouraud", px, w, h, 2, (long)w * h / 200);
+    free(px);
+}
+
+/* ---- zfight: near-coplanar triangles and polygon offset ---- */
+
+/* Triangle t (0: A, 1: B) of xyz (x, y, z a vertex) drawn alone or, both,
+ * A then B, as explain zfight draws them: D16 buffer cleared to 1, LESS,
+ * B offset by (factor, units) when `offset`; A red, B blue. */
+static sr_result zfight_draw(sr_context *ctx, sr_framebuffer *fb, const double *xyz, int t,
+                             bool both, bool offset, const double off[2])
+{
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 }, .depth = 1 });
+    sr_result r = SR_OK;
+    for (int k = both ? 0 : t; k <= (both ? 1 : t) && r == SR_OK; k++) {
+        float pos[9];
+        for (int i = 0; i < 3; i++) {
+            const double *v = xyz + 9 * k + 3 * i;
+            pos[3 * i] = (float)(2 * v[0] / GRID - 1);
+            pos[3 * i + 1] = (float)(1 - 2 * v[1] / GRID);
+            pos[3 * i + 2] = (float)(2 * v[2] - 1);
+        }
+        sr_state st = { .shading = SR_SHADING_UNLIT,
+                        .material = { .diffuse = { k == 0 ? 1.0f : 0.0f, 0, k == 1 ? 1.0f : 0 } } };
+        if (k == 1 && offset) {
+            st.offset = (sr_polygon_offset){ .factor = (float)off[0], .units = (float)off[1],
+                                             .fill = true };
+        }
+        r = sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3 });
+    }
+    return r;
+}
+
+/* The q of each pixel drawn in fb, else -1. */
+static void zfight_q(sr_context *ctx, sr_framebuffer *fb, int64_t *q)
+{
+    float d[GRID * GRID];
+    sr_read_depth(ctx, fb, 0, 0, GRID, GRID, d, GRID);
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    for (int i = 0; i < GRID * GRID; i++) {
+        q[i] = px[4 * i + 3] ? (int64_t)llround(d[i] * 65535.0) : -1;
+    }
+}
+
+/* Frame `frame`'s cells against fb's pixels: orange where A shows, blue
+ * where B does, white where nothing; the cells that differ.  A cell
+ * whose commonest colour is none of these is under a label (its light
+ * ground) and not judged; at most 16 such. */
+static int zfight_compare(const char *dir, int frame, sr_framebuffer *fb, int *b_cells)
+{
+    uint8_t rgb[GRID * GRID * 3];
+    if (!frame_cell_colours(dir, frame, rgb)) {
+        return GRID * GRID;
+    }
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    int bad = 0, unjudged = 0;
+    for (int i = 0; i < GRID * GRID; i++) {
+        const uint8_t *p = px + 4 * i, *c = rgb + 3 * i;
+        int want = !p[3] ? 0 : p[2] ? 2 : 1;
+        int got = is_fill_orange(c) ? 1 : is_fill_blue(c) ? 2
+                : c[0] == 255 && c[1] == 255 && c[2] == 255 ? 0 : -1;
+        unjudged += got < 0;
+        bad += got >= 0 && want != got;
+        *b_cells += want == 2;
+    }
+    return unjudged > 16 ? GRID * GRID : bad;
+}
+
+SR_TEST(zfight_frames_are_what_sr_draw_leaves_with_and_without_offset)
+{
+    NEEDS_CLI();
+    /* the example, then random triangles B whose depths are A's plane
+     * there plus less than a D16 step: frames 4 and 6 are, cell for cell,
+     * what sr_draw leaves for A then B without and with the offset; frame
+     * 5 reads B's slope m and the offset o (the library's formula) and
+     * the passes and fails of B's offset q against A's, read back */
+    sr_rng rng = { 7907 };
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = GRID, .height = GRID,
+                                                             .depth_format = SR_DEPTH_D16 },
+                                &fb) == SR_OK);
+    int fights = 0, b_total = 0, cases = 0;
+    for (int k = 0; k < 24; k++) {
+        double xyz[18] = { 0.5, 0.5, 0.4, 13.5, 1.5, 0.4, 2.5, 10.5, 0.41,
+                           3.2, 2.3, 0.401623187, 12.6, 3.4, 0.401993, 4.3, 9.6, 0.408948312 };
+        double off[2] = { -1, -1 };
+        if (k > 0) {
+            for (int i = 0; i < 18; i++) {
+                xyz[i] = i % 3 == 2 ? sr_rng_int(&rng, 20, 80) / 100.0
+                                    : sr_rng_int(&rng, 0, 4 * GRID) * 0.25;
+            }
+            /* B on A's plane z = a x + b y + c, give or take a step */
+            double x1 = xyz[3] - xyz[0], y1 = xyz[4] - xyz[1], z1 = xyz[5] - xyz[2];
+            double x2 = xyz[6] - xyz[0], y2 = xyz[7] - xyz[1], z2 = xyz[8] - xyz[2];
+            double det = x1 * y2 - x2 * y1;
+            if (fabs(det) < 4) {
+                continue;
+            }
+            double a = (z1 * y2 - z2 * y1) / det, b = (x1 * z2 - x2 * z1) / det;
+            for (int i = 3; i < 6; i++) {
+                double *v = xyz + 3 * i;
+                v[2] = xyz[2] + a * (v[0] - xyz[0]) + b * (v[1] - xyz[1]) +
+                       sr_rng_int(&rng, -10, 10) / 1e6;
+                if (!(v[2] >= 0 && v[2] <= 1)) {
+                    det = 0;   /* the plane leaves the depth range there */
+                }
+            }
+            if (det == 0) {
+                continue;
+            }
+            off[0] = sr_rng_int(&rng, -2, 0);
+            off[1] = sr_rng_int(&rng, -4, -1);
+        }
+        char tris[600] = "", offs[32], dir[1024], name[32], path[1200];
+        for (int i = 0; i < 18; i++) {
+            size_t len = strlen(tris);
+            snprintf(tris + len, sizeof tris - len, "%s%.17g", i ? "," : "", xyz[i]);
+        }
+        snprintf(offs, sizeof offs, "%g,%g", off[0], off[1]);
+        snprintf(name, sizeof name, "zfight_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_with("zfight", "--triangles", tris, "--offset", offs, dir) == 0);
+
+        int64_t qa[GRID * GRID], qb[GRID * GRID];
+        REQUIRE(zfight_draw(ctx, fb, xyz, 0, false, false, off) == SR_OK);
+        zfight_q(ctx, fb, qa);
+        REQUIRE(zfight_draw(ctx, fb, xyz, 1, false, false, off) == SR_OK);
+        zfight_q(ctx, fb, qb);
+        int fails = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            fails += qb[i] >= 0 && qa[i] >= 0 && qb[i] >= qa[i];
+        }
+        fights += fails > 0;
+        cases++;
+        REQUIRE(zfight_draw(ctx, fb, xyz, 1, false, true, off) == SR_OK);
+        zfight_q(ctx, fb, qb);
+        int pass = 0, fail = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            if (qb[i] >= 0) {
+                bool p = qa[i] < 0 || qb[i] < qa[i];
+                pass += p;
+                fail += !p;
+            }
+        }
+        REQUIRE(zfight_draw(ctx, fb, xyz, 0, true, false, off) == SR_OK);
+        int bad = zfight_compare(dir, 4, fb, &b_total);
+        if (bad) {
+            FAILF("zfight case %d: %d cells of frame 4 are not sr_draw's", k, bad);
+        }
+        REQUIRE(zfight_draw(ctx, fb, xyz, 0, true, true, off) == SR_OK);
+        bad = zfight_compare(dir, 6, fb, &b_total);
+        if (bad) {
+            FAILF("zfight case %d: %d cells of the last frame are not sr_draw's", k, bad);
+        }
+        snprintf(path, sizeof path, "%s/frame-007.png", dir);
+        struct stat st;
+        CHECK(stat(path, &st) != 0);
+
+        /* m from B's snapped vertices (docs/raster-rules.md 6.4) */
+        double x[3], y[3], z[3];
+        for (int i = 0; i < 3; i++) {
+            x[i] = (double)ref_snap(xyz[9 + 3 * i]);
+            y[i] = (double)ref_snap(xyz[10 + 3 * i]);
+            z[i] = xyz[11 + 3 * i];
+        }
+        double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+        double dzdx = ((z[1] - z[0]) * (y[2] - y[0]) - (z[2] - z[0]) * (y[1] - y[0])) * 256 / area2;
+        double dzdy = ((x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0])) * 256 / area2;
+        double m = area2 ? fmax(fabs(dzdx), fabs(dzdy)) : 0, o = off[0] * m + off[1] / 65535.0;
+        char text[600];
+        snprintf(text, sizeof text,
+                 "5. Polygon offset on B: o = factor m + units r with m = max(|dz/dx|, |dz/dy|) = "
+                 "%.3g, B's depth slope per pixel, and r = 1/65535, the buffer's step: o = %g x "
+                 "%.3g + %g x 1/65535 = %.3g (%.3g steps), added to B's depth before the test. "
+                 "%d pass, %d fail.",
+                 m, off[0], m, off[1], o, o * 65535, pass, fail);
+        snprintf(path, sizeof path, "%s/frame-005.png", dir);
+        if (!caption_reads(path, GRID, ZOOM, 1, text)) {
+            FAILF("zfight case %d: frame 5 does not read \"%s\"", k, text);
+        }
+    }
+    CHECK(cases >= 8);
+    CHECK(fights >= cases / 2);   /* B loses pixels to A without the offset */
+    CHECK(b_total > 100);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_zfight.png
+ * (2 levels a channel, 1 pixel in 200). */
+SR_TEST(zfight_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    char dir[1024], path[1200];
+    out_dir("zfight_sheet", dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/sheet.png", dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "zfight", "--zoom", "20", "--sheet",
+                                              path, NULL }) == 0);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    sr_test_check_image("explain_zfight", px, w, h, 2, (long)w * h / 200);
     free(px);
 }

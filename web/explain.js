@@ -26,6 +26,8 @@ const OPTIONS = [
       applies: (a) => a.name === 'transform' },
     { option: '--shininess', label: 'shininess n', values: ['40', '10', '120'],
       applies: (a) => a.name === 'gouraud' },
+    { option: '--offset', label: 'polygon offset (factor, units)',
+      values: ['-1,-1', '-1,0', '0,-1', '0,0'], applies: (a) => a.name === 'zfight' },
 ];
 // Options that give a value at each vertex: the page keeps the example's.
 const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };

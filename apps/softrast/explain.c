@@ -99,6 +99,13 @@ static const algorithm algorithms[] = {
         .highlight = { 7.2, 5.6 }, .shininess = 40 }, 16, 13, 32,
       "Gouraud versus Phong shading of a triangle whose specular\n"
       "             highlight falls inside it (--highlight, --shininess)" },
+    { "zfight", EX_TRIANGLES, explain_zfight,
+      { .kind = EX_TRIANGLES, .pts = { { 0.5, 0.5 }, { 13.5, 1.5 }, { 2.5, 10.5 },
+                                       { 3.2, 2.3 }, { 12.6, 3.4 }, { 4.3, 9.6 } },
+        .z = { 0.4, 0.4, 0.41, 0.401623187, 0.401993, 0.408948312 }, .count = 6,
+        .offset = { -1, -1 } }, 14, 11, 40,
+      "two nearly coplanar triangles fighting in a 16-bit z-buffer,\n"
+      "             then the fix by polygon offset (--offset)" },
 };
 
 static void usage(FILE *f)
@@ -153,6 +160,8 @@ static void usage(FILE *f)
             "                             default: the other field of view derived from the\n"
             "                             viewport's width/height) or stretch NDC's square\n"
             "                             over the viewport\n"
+            "  --offset FACTOR,UNITS      zfight: the second triangle's polygon offset,\n"
+            "                             each in -64..64 (default -1,-1: pulled forward)\n"
             "  --highlight X,Y            gouraud: where the point light's highlight peaks\n"
             "                             (default: the example's, or the triangle's\n"
             "                             centroid)\n"
@@ -161,8 +170,8 @@ static void usage(FILE *f)
             "  --tolerance T              forward-differencing: how far the chords may stray\n"
             "                             from the curve, pixels (default 0.25; at most 64\n"
             "                             steps)\n"
-            "  --triangles X,Y,Z,...      zbuffer: two triangles, 18 numbers, Z the window\n"
-            "                             depth of each vertex in 0..1 (0 near)\n"
+            "  --triangles X,Y,Z,...      zbuffer, zfight: two triangles, 18 numbers, Z the\n"
+            "                             window depth of each vertex in 0..1 (0 near)\n"
             "  --window XMIN,YMIN,XMAX,YMAX\n"
             "                             clip: the clip window\n"
             "  --samples N                msaa: 2, 4 (the default), 8 or 16 per pixel\n"
@@ -496,6 +505,7 @@ static const struct {
     { "--near-far", { "transform" } },
     { "--aspect", { "transform" } },
     { "--highlight", { "gouraud" } },
+    { "--offset", { "zfight" } },
     { "--shininess", { "gouraud" } },
 };
 
@@ -560,7 +570,8 @@ int cmd_explain(int argc, char **argv)
     int row = -1;
     double tolerance = 0;
     int seed[2] = { 0, 0 }, connectivity = 4;
-    double highlight[2] = { 0, 0 }, shininess = 0;
+    double highlight[2] = { 0, 0 }, shininess = 0, offset[2] = { 0, 0 };
+    bool offset_given = false;
     bool highlight_given = false;
     bool seed_given = false;
     int samples = 4;
@@ -658,6 +669,16 @@ int cmd_explain(int argc, char **argv)
             highlight[0] = hp.pts[0].x;
             highlight[1] = hp.pts[0].y;
             highlight_given = true;
+        } else if (strcmp(a, "--offset") == 0) {
+            ex_primitive op = { 0 };
+            ok = parse_points(a, v, 2, 1, 1, "FACTOR,UNITS", &op);
+            offset[0] = op.pts[0].x;
+            offset[1] = op.pts[0].y;
+            if (ok && !(fabs(offset[0]) <= 64 && fabs(offset[1]) <= 64)) {
+                cli_error("%s: expected FACTOR,UNITS, each in -64..64 (got '%s')", a, v);
+                ok = false;
+            }
+            offset_given = true;
         } else if (strcmp(a, "--shininess") == 0) {
             char *end;
             shininess = strtod(v, &end);
@@ -781,6 +802,9 @@ int cmd_explain(int argc, char **argv)
     }
     prim.connectivity = connectivity;
     prim.view = view;
+    if (alg->run == explain_zfight) {
+        memcpy(prim.offset, offset_given ? offset : alg->example.offset, sizeof offset);
+    }
     if (alg->run == explain_gouraud) {
         prim.shininess = shininess > 0 ? shininess : alg->example.shininess;
         if (highlight_given) {

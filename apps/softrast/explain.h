@@ -57,6 +57,7 @@ typedef struct ex_primitive {
     ex_view view;                    /* transform: object coordinates in pts (x, y) and z */
     double highlight[2];             /* gouraud: where the light's highlight peaks */
     double shininess;                /* gouraud: the Blinn-Phong exponent n */
+    double offset[2];                /* zfight: B's polygon offset, factor and units */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -138,6 +139,7 @@ sr_result explain_floodfill(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_clip4d(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_transform(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_zfight(ex_canvas *c, const ex_primitive *prim);
 /* Whether transform can show prim on a grid_w x grid_h viewport: a camera
  * frame, every vertex inside near and far; else false with why. */
 bool ex_transform_check(const ex_primitive *prim, int grid_w, int grid_h, char *why,
