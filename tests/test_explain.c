@@ -1624,6 +1624,26 @@ SR_TEST(rows_off_the_grid_are_one_frame)
                    "shown. From the ET: e2. Ended: e3.");
 }
 
+/* The example of `algorithm` on one sheet at `zoom`, against
+ * tests/ref/explain_ALGORITHM.png: text and antialiased marks, so 2
+ * levels a channel and 1 pixel in 200 may differ (a diff image is
+ * written when more do). */
+static void check_example_sheet(const char *algorithm, const char *zoom)
+{
+    char dir[1024], path[1200], name[64];
+    snprintf(name, sizeof name, "%s_sheet", algorithm);
+    out_dir(name, dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/sheet.png", dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", algorithm, "--zoom", zoom, "--sheet",
+                                              path, NULL }) == 0);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    snprintf(name, sizeof name, "explain_%s", algorithm);
+    sr_test_check_image(name, px, w, h, 2, (long)w * h / 200);
+    free(px);
+}
+
 /* ---- transform: the viewing pipeline S P E M_O ---- */
 
 typedef struct tr_case {
@@ -1788,16 +1808,7 @@ SR_TEST(transform_last_frame_is_what_sr_draw_draws_with_the_matrices)
 SR_TEST(transform_example_sheet_matches_reference)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("transform_sheet", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/sheet.png", dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "transform", "--zoom", "12", "--sheet",
-                                              path, NULL }) == 0);
-    int w, h;
-    uint8_t *px = NULL;
-    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
-    sr_test_check_image("explain_transform", px, w, h, 2, (long)w * h / 200);
-    free(px);
+    check_example_sheet("transform", "12");
 }
 
 /* A wide viewport: with --aspect fit the projection's aspect is the
@@ -1994,16 +2005,7 @@ SR_TEST(gouraud_frames_are_what_sr_draw_shades)
 SR_TEST(gouraud_example_sheet_matches_reference)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("gouraud_sheet", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/sheet.png", dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--zoom", "16", "--sheet",
-                                              path, NULL }) == 0);
-    int w, h;
-    uint8_t *px = NULL;
-    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
-    sr_test_check_image("explain_gouraud", px, w, h, 2, (long)w * h / 200);
-    free(px);
+    check_example_sheet("gouraud", "16");
 }
 
 /* ---- zfight: near-coplanar triangles and polygon offset ---- */
@@ -2197,14 +2199,5 @@ SR_TEST(zfight_frames_are_what_sr_draw_leaves_with_and_without_offset)
 SR_TEST(zfight_example_sheet_matches_reference)
 {
     NEEDS_CLI();
-    char dir[1024], path[1200];
-    out_dir("zfight_sheet", dir, sizeof dir);
-    snprintf(path, sizeof path, "%s/sheet.png", dir);
-    REQUIRE(sr_test_run_cli((const char *[]){ "explain", "zfight", "--zoom", "20", "--sheet",
-                                              path, NULL }) == 0);
-    int w, h;
-    uint8_t *px = NULL;
-    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
-    sr_test_check_image("explain_zfight", px, w, h, 2, (long)w * h / 200);
-    free(px);
+    check_example_sheet("zfight", "20");
 }

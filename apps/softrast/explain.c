@@ -679,23 +679,12 @@ int cmd_explain(int argc, char **argv)
                 ok = false;
             }
             offset_given = true;
-        } else if (strcmp(a, "--shininess") == 0) {
-            char *end;
-            shininess = strtod(v, &end);
-            if (*end || end == v || !(shininess >= 1 && shininess <= 1000)) {
-                cli_error("%s: expected an exponent in 1..1000 (got '%s')", a, v);
-                ok = false;
-            }
-        } else if (strcmp(a, "--rotate") == 0 || strcmp(a, "--fov") == 0) {
-            bool fov = a[2] == 'f';
-            char *end;
-            double d = strtod(v, &end);
-            if (*end || end == v || !(fov ? d >= 1 && d <= 170 : d >= -360 && d <= 360)) {
-                cli_error("%s: expected degrees in %s (got '%s')", a,
-                          fov ? "1..170" : "-360..360", v);
-                ok = false;
-            }
-            *(fov ? &view.fov : &view.rotate) = d;
+        } else if (strcmp(a, "--shininess") == 0 || strcmp(a, "--rotate") == 0 ||
+                   strcmp(a, "--fov") == 0) {
+            float f = 0;
+            ok = a[2] == 's'   ? parse_float(a, v, 1, 1000, &f)
+               : a[2] == 'r' ? parse_float(a, v, -360, 360, &f) : parse_float(a, v, 1, 170, &f);
+            *(a[2] == 's' ? &shininess : a[2] == 'r' ? &view.rotate : &view.fov) = f;
         } else if (strcmp(a, "--near-far") == 0) {
             ex_primitive np = { 0 };
             ok = parse_points(a, v, 2, 1, 1, "N,F", &np);

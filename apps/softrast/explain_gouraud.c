@@ -150,8 +150,19 @@ static void outline(ex_canvas *c, const ex_primitive *prim, const int *values)
     }
 }
 
-static void light_mark(ex_canvas *c, const ex_primitive *prim)
+/* A frame: the sample points (px NULL) or the pixels of px (row `row`
+ * with their values, or all of them, -1), the triangle (its vertices'
+ * intensities when vi is given) and the light. */
+static void begin_frame(ex_canvas *c, const ex_primitive *prim, const uint8_t *px, int row,
+                        const int *vi)
 {
+    ex_begin(c);
+    if (px) {
+        cells(c, px, row, row >= 0);
+    } else {
+        ex_tri_samples(c);
+    }
+    outline(c, prim, vi);
     sr_point2 h = { prim->highlight[0], prim->highlight[1] };
     ex_dot(c, h, 6, LIGHT);
     ex_label(c, h, "light", EX_TEXT);
@@ -188,10 +199,7 @@ sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim)
     char cap[1200];
 
     /* 1. the setup and the lighting model */
-    ex_begin(c);
-    ex_tri_samples(c);
-    outline(c, prim, NULL);
-    light_mark(c, prim);
+    begin_frame(c, prim, NULL, -1, NULL);
     snprintf(cap, sizeof cap,
              "1. A flat triangle, the normal N = (0, 0, 1) at every vertex, lit by Blinn-Phong: "
              "I = k_a I_a + k_d max(N.L, 0) + k_s max(N.H, 0)^n with k_a I_a = %.2f x %.2f, k_d = "
@@ -203,20 +211,14 @@ sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim)
     ex_end(c, cap);
 
     /* 2. Gouraud: the vertex intensities */
-    ex_begin(c);
-    ex_tri_samples(c);
-    outline(c, prim, vi);
-    light_mark(c, prim);
+    begin_frame(c, prim, NULL, -1, vi);
     snprintf(cap, sizeof cap,
              "2. Gouraud lights the vertices only: I = %d at V0, %d at V1, %d at V2 (of 255).",
              vi[0], vi[1], vi[2]);
     ex_end(c, cap);
 
     /* 3. Gouraud: the span through the highlight */
-    ex_begin(c);
-    cells(c, g, row, true);
-    outline(c, prim, vi);
-    light_mark(c, prim);
+    begin_frame(c, prim, g, row, vi);
     if (g_row >= 0) {
         snprintf(cap, sizeof cap,
                  "3. Gouraud interpolates the intensities along the edges and then along each "
@@ -231,10 +233,7 @@ sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim)
     ex_end(c, cap);
 
     /* 4. Gouraud: the whole triangle */
-    ex_begin(c);
-    cells(c, g, -1, false);
-    outline(c, prim, NULL);
-    light_mark(c, prim);
+    begin_frame(c, prim, g, -1, NULL);
     snprintf(cap, sizeof cap,
              "4. Gouraud shading, the whole triangle: what sr_draw draws with "
              "SR_SHADING_GOURAUD. Brightest %d: the highlight is %s.",
@@ -242,10 +241,7 @@ sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim)
     ex_end(c, cap);
 
     /* 5. Phong: the same span, lit per pixel */
-    ex_begin(c);
-    cells(c, p, row, true);
-    outline(c, prim, NULL);
-    light_mark(c, prim);
+    begin_frame(c, prim, p, row, NULL);
     if (p_row >= 0) {
         snprintf(cap, sizeof cap,
                  "5. Phong interpolates the normal instead (renormalized) and lights every pixel: "
@@ -259,10 +255,7 @@ sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim)
     ex_end(c, cap);
 
     /* 6. Phong: the whole triangle, the library's pixels */
-    ex_begin(c);
-    cells(c, p, -1, false);
-    outline(c, prim, NULL);
-    light_mark(c, prim);
+    begin_frame(c, prim, p, -1, NULL);
     snprintf(cap, sizeof cap,
              "6. Phong shading, the whole triangle: what sr_draw draws with SR_SHADING_PHONG. "
              "Brightest %d, Gouraud's %d: %s",

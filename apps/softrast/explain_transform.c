@@ -200,20 +200,27 @@ static void axes(ex_canvas *c, const plot *p, const char *xname, const char *yna
     ex_label(c, (sr_point2){ p->ox, 0.9 }, yname, AXIS);
 }
 
-/* The triangle of x, y (in p) on the plot, its vertices named. */
+/* A triangle in grid coordinates, its vertices dotted and named V0..V2:
+ * a stage's (blue, pink dots) or over the pixels (dark). */
+static void named_triangle(ex_canvas *c, const sr_point2 q[3], bool dark)
+{
+    ex_outline(c, q, 3, true, dark ? EX_EDGE : EX_INK, dark ? 1 : 2.5);
+    for (int i = 0; i < 3; i++) {
+        char name[8];
+        snprintf(name, sizeof name, "V%d", i);
+        ex_dot(c, q[i], dark ? 3 : 4, dark ? EX_EDGE : EX_HILITE);
+        ex_label(c, q[i], name, EX_TEXT);
+    }
+}
+
+/* The triangle of x, y (in p) on the plot. */
 static void triangle(ex_canvas *c, const plot *pl, const double p[3][4])
 {
     sr_point2 q[3];
     for (int i = 0; i < 3; i++) {
         q[i] = at(pl, p[i][0], p[i][1]);
     }
-    ex_outline(c, q, 3, true, EX_INK, 2.5);
-    for (int i = 0; i < 3; i++) {
-        char name[8];
-        snprintf(name, sizeof name, "V%d", i);
-        ex_dot(c, q[i], 4, EX_HILITE);
-        ex_label(c, q[i], name, EX_TEXT);
-    }
+    named_triangle(c, q, false);
 }
 
 /* One frame plotting x, y of p (and of the extra points), uniform. */
@@ -402,13 +409,7 @@ sr_result explain_transform(ex_canvas *c, const ex_primitive *prim)
     for (int i = 0; i < 3; i++) {
         win.pts[i] = (sr_point2){ s.x_q8[i] / 256.0, s.y_q8[i] / 256.0 };
     }
-    ex_outline(c, win.pts, 3, true, EX_INK, 2.5);
-    for (int i = 0; i < 3; i++) {
-        char name[8];
-        snprintf(name, sizeof name, "V%d", i);
-        ex_dot(c, win.pts[i], 4, EX_HILITE);
-        ex_label(c, win.pts[i], name, EX_TEXT);
-    }
+    named_triangle(c, win.pts, false);
     window_caption(cap, sizeof cap, c->frame_count + 1, c->grid_w, c->grid_h,
                    &s.viewport, s.x_q8, s.y_q8);
     ex_end(c, cap);
@@ -427,13 +428,7 @@ sr_result explain_transform(ex_canvas *c, const ex_primitive *prim)
             }
         }
     }
-    ex_outline(c, win.pts, 3, true, EX_EDGE, 1);
-    for (int i = 0; i < 3; i++) {
-        char name[8];
-        snprintf(name, sizeof name, "V%d", i);
-        ex_dot(c, win.pts[i], 3, EX_EDGE);
-        ex_label(c, win.pts[i], name, EX_TEXT);
-    }
+    named_triangle(c, win.pts, true);
     snprintf(cap, sizeof cap,
              "%d. The window-space triangle the rasterizer gets, covered by its edge functions "
              "with the top-left rule: %d pixel%s, exactly those sr_draw fills for this triangle "
