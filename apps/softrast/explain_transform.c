@@ -137,7 +137,8 @@ static void fmt_matrix(char *buf, size_t size, const sr_mat4 *m)
     for (int r = 0; r < 4; r++) {
         for (int col = 0; col < 4; col++) {
             char n[32];
-            len += snprintf(buf + len, size - (size_t)len, "%s%s", num(n, sizeof n, m->m[col * 4 + r]),
+            len += snprintf(buf + len, size - (size_t)len, "%s%s",
+                            num(n, sizeof n, m->m[col * 4 + r]),
                             col < 3 ? " " : r < 3 ? "; " : "]");
         }
     }
@@ -397,8 +398,10 @@ sr_result explain_transform(ex_canvas *c, const ex_primitive *prim)
              "5. The perspective divide, from 4- to 3-vectors: NDC = (x/w, y/w, z/w): %s. The "
              "canonical view volume is -1..1 in each (the square).%s The vertices run %s in NDC "
              "(y up): the triangle is %s.",
-             pts, v->orthographic ? " (An orthographic P leaves w = 1: the divide changes "
-                                    "nothing.)" : "", area > 0 ? "counter-clockwise" : area < 0 ? "clockwise" : "in a line",
+             pts,
+             v->orthographic ? " (An orthographic P leaves w = 1: the divide changes nothing.)"
+                             : "",
+             area > 0 ? "counter-clockwise" : area < 0 ? "clockwise" : "in a line",
              area > 0 ? "front-facing" : area < 0 ? "back-facing (SR_CULL_BACK would drop it)"
                       : "seen edge-on");
     ex_end(c, cap);
