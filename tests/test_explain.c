@@ -5,6 +5,7 @@
  * drawn over the cells are black or grey, and blended over white they stay
  * grey, so blue shows only where a cell was filled. */
 #define _XOPEN_SOURCE 700   /* nftw */
+#include "image_compare.h"
 #include "raster_util.h"
 #include "softrast_io.h"
 #include "sr_test.h"
@@ -876,6 +877,30 @@ SR_TEST(explain_refuses_bad_input)
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "-o", "", NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--sheet", "", NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "triangle", "--webp", "", NULL }), 2);
+    /* transform: no camera frame, a vertex before the near plane, values
+     * out of range */
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--eye", "0.5,0,0",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--up", "0,0,1", "--eye",
+                                               "0.5,0,3", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--near-far", "3,10",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--near-far", "2,1",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--fov", "0", "-o", dir,
+                                               NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--aspect", "wide", "-o",
+                                               dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--object",
+                                               "1,2,3,4,5,6,7,8", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "transform", "--triangle",
+                                               "1,1,9,1,1,9", "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "zfight", "--offset", "-1,-100", "-o",
+                                               dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--shininess", "0", "-o",
+                                               dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--highlight", "1", "-o",
+                                               dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
 }
 
@@ -1136,6 +1161,9 @@ SR_TEST(options_of_another_algorithm_are_refused)
         { "triangle", "--row", "3" },           { "dda", "--tolerance", "0.5" },
         { "scanline", "--seed", "3,3" },        { "clip", "--connectivity", "8" },
         { "msaa", "--w", "1,2,3" },             { "perspective", "--intensity", "0,1,0" },
+        { "triangle", "--eye", "1,2,3" },       { "clip4d", "--projection", "orthographic" },
+        { "perspective", "--highlight", "3,3" }, { "transform", "--shininess", "8" },
+        { "zbuffer", "--offset", "-1,-1" },
     };
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
@@ -1594,4 +1622,582 @@ SR_TEST(rows_off_the_grid_are_one_frame)
                    5, 12,
                    "5. Scanlines y=6 to 10: their crossings and spans are off the grid, not "
                    "shown. From the ET: e2. Ended: e3.");
+}
+
+/* The example of `algorithm` on one sheet at `zoom`, against
+ * tests/ref/explain_ALGORITHM.png: text and antialiased marks, so 2
+ * levels a channel and 1 pixel in 200 may differ (a diff image is
+ * written when more do). */
+static void check_example_sheet(const char *algorithm, const char *zoom)
+{
+    char dir[1024], path[1200], name[64];
+    snprintf(name, sizeof name, "%s_sheet", algorithm);
+    out_dir(name, dir, sizeof dir);
+    snprintf(path, sizeof path, "%s/sheet.png", dir);
+    REQUIRE(sr_test_run_cli((const char *[]){ "explain", algorithm, "--zoom", zoom, "--sheet",
+                                              path, NULL }) == 0);
+    int w, h;
+    uint8_t *px = NULL;
+    REQUIRE(sr_read_png(path, NULL, &w, &h, &px, NULL) == SR_OK);
+    snprintf(name, sizeof name, "explain_%s", algorithm);
+    sr_test_check_image(name, px, w, h, 2, (long)w * h / 200);
+    free(px);
+}
+
+/* ---- transform: the viewing pipeline S P E M_O ---- */
+
+typedef struct tr_case {
+    double obj[9], rotate, translate[3], eye[3], target[3], fov;
+    bool ortho, stretch;
+} tr_case;
+
+static sr_vec3 tr_vec(const double v[3])
+{
+    return sr_vec3_make((float)v[0], (float)v[1], (float)v[2]);
+}
+
+/* The case's M_O, E and P from the library's functions, for a gw x gh
+ * viewport (near 1, far 10, explain's defaults). */
+static void tr_matrices(const tr_case *k, int gw, int gh, sr_mat4 *model, sr_mat4 *view,
+                        sr_mat4 *proj)
+{
+    const double pi = 3.14159265358979323846;
+    sr_mat4 r = sr_mat4_rotate((float)(k->rotate * pi / 180), sr_vec3_make(0, 1, 0));
+    sr_mat4 t = sr_mat4_translate((float)k->translate[0], (float)k->translate[1],
+                                  (float)k->translate[2]);
+    *model = sr_mat4_mul(&t, &r);
+    sr_vec3 eye = tr_vec(k->eye), target = tr_vec(k->target);
+    *view = sr_look_at(eye, target, sr_vec3_make(0, 1, 0));
+    double fov = k->fov * pi / 180, aspect = (double)gw / gh;
+    if (k->ortho) {
+        double base = sr_vec3_length(sr_vec3_sub(target, eye)) * tan(fov / 2);
+        double hw = k->stretch || gw < gh ? base : base * aspect;
+        double hh = k->stretch || gw >= gh ? base : base / aspect;
+        *proj = sr_ortho((float)-hw, (float)hw, (float)-hh, (float)hh, 1, 10, false);
+    } else {
+        *proj = sr_perspective(k->stretch ? (float)fov : sr_fit_fovy((float)fov, gw, gh),
+                               k->stretch ? 1.0f : (float)aspect, 1, 10, false);
+    }
+}
+
+/* Run explain transform on the case into dir; the exit status. */
+static int tr_run(const tr_case *k, const char *grid, const char *zoom, const char *dir)
+{
+    char obj[300] = "", rot[32], tr[96], eye[96], target[96], fov[32];
+    for (int i = 0; i < 9; i++) {
+        size_t len = strlen(obj);
+        snprintf(obj + len, sizeof obj - len, "%s%.17g", i ? "," : "", k->obj[i]);
+    }
+    snprintf(rot, sizeof rot, "%.17g", k->rotate);
+    snprintf(tr, sizeof tr, "%.17g,%.17g,%.17g", k->translate[0], k->translate[1],
+             k->translate[2]);
+    snprintf(eye, sizeof eye, "%.17g,%.17g,%.17g", k->eye[0], k->eye[1], k->eye[2]);
+    snprintf(target, sizeof target, "%.17g,%.17g,%.17g", k->target[0], k->target[1],
+             k->target[2]);
+    snprintf(fov, sizeof fov, "%.17g", k->fov);
+    const char *args[] = { "explain", "transform", "--object", obj, "--rotate", rot,
+                           "--translate", tr, "--eye", eye, "--target", target, "--fov", fov,
+                           "--projection", k->ortho ? "orthographic" : "perspective",
+                           "--aspect", k->stretch ? "stretch" : "fit", "--grid", grid,
+                           "--zoom", zoom, "-o", dir, NULL };
+    return sr_test_run_cli(args);
+}
+
+/* The window-stage caption with the test's own numbers. */
+static void tr_window_caption(char *buf, size_t size, int gw, int gh, const int64_t x_q8[3],
+                              const int64_t y_q8[3])
+{
+    int len = snprintf(buf, size,
+                       "6. The viewport matrix S maps NDC -1..1 onto the pixel extents of the "
+                       "%dx%d viewport, x_S = %d/2 (x + 1), y_S = %d/2 (1 - y) (y down), z_S = "
+                       "(z + 1)/2: S = [%d 0 0 %d; 0 -%d 0 %d; 0 0 0.5 0.5; 0 0 0 1]. Window "
+                       "coordinates, snapped to 1/256 pixel: ",
+                       gw, gh, gw, gh, gw / 2, gw / 2, gh / 2, gh / 2);
+    for (int i = 0; i < 3; i++) {
+        len += snprintf(buf + len, size - (size_t)len, "%sV%d = (%.4f, %.4f)", i ? ", " : "", i,
+                        x_q8[i] / 256.0, y_q8[i] / 256.0);
+    }
+    snprintf(buf + len, size - (size_t)len, ".");
+}
+
+SR_TEST(transform_last_frame_is_what_sr_draw_draws_with_the_matrices)
+{
+    NEEDS_CLI();
+    /* random triangles, rotations, translations and cameras, both
+     * projections and both aspect strategies: the last frame is, cell for
+     * cell, what sr_draw draws for the object-space triangle with M_O, E
+     * and P; the window positions the test computes as the vertex stage
+     * does (P (E M_O) v in float, the divide and S in double, snapped)
+     * give the same pixels drawn directly, and frame 6 shows them */
+    sr_rng rng = { 9301 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn_total = 0, shown = 0, refused = 0;
+    for (int k = 0; k < 24; k++) {
+        tr_case c = { .rotate = sr_rng_int(&rng, -12, 12) * 15, .fov = sr_rng_int(&rng, 30, 80),
+                      .ortho = k % 2 == 1, .stretch = k % 4 >= 2 };
+        for (int i = 0; i < 9; i++) {
+            c.obj[i] = sr_rng_int(&rng, -12, 12) / 8.0;
+        }
+        for (int i = 0; i < 3; i++) {
+            c.translate[i] = sr_rng_int(&rng, -4, 4) / 8.0;
+            c.target[i] = sr_rng_int(&rng, -4, 4) / 8.0;
+            c.eye[i] = sr_rng_int(&rng, -16, 16) / 8.0;
+        }
+        c.eye[2] = sr_rng_int(&rng, 24, 40) / 8.0;
+        char dir[1024], name[32], grid[16], path[1200];
+        snprintf(name, sizeof name, "transform_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        out_dir(name, dir, sizeof dir);
+        int rc = tr_run(&c, grid, "8", dir);
+        if (rc == 2) {
+            refused++;   /* a vertex before the near plane */
+            continue;
+        }
+        REQUIRE(rc == 0);
+        uint8_t cells[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) == 7);
+
+        sr_mat4 model, view, proj;
+        tr_matrices(&c, GRID, GRID, &model, &view, &proj);
+        float pos[9];
+        for (int i = 0; i < 9; i++) {
+            pos[i] = (float)c.obj[i];
+        }
+        rt_clear(&t);
+        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } } };
+        REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3,
+                                                           .model = &model, .view = &view,
+                                                           .projection = &proj }) == SR_OK);
+        char what[64];
+        snprintf(what, sizeof what, "transform case %d", k);
+        compare_with_target(&t, cells, what, &drawn_total);
+
+        sr_mat4 mv = sr_mat4_mul(&view, &model), mvp = sr_mat4_mul(&proj, &mv);
+        int64_t x_q8[3], y_q8[3];
+        double xy[6];
+        for (int i = 0; i < 3; i++) {
+            sr_vec4 cl = sr_mat4_mul_vec4(&mvp, (sr_vec4){ pos[3 * i], pos[3 * i + 1],
+                                                           pos[3 * i + 2], 1 });
+            double iw = 1.0 / cl.w;
+            x_q8[i] = ref_snap(GRID * 0.5 + GRID * 0.5 * (cl.x * iw));
+            y_q8[i] = ref_snap(GRID * 0.5 - GRID * 0.5 * (cl.y * iw));
+            xy[2 * i] = x_q8[i] / 256.0;
+            xy[2 * i + 1] = y_q8[i] / 256.0;
+        }
+        rt_clear(&t);
+        REQUIRE(rt_draw_tris(&t, xy, 1, NULL, SR_RASTER_HALFSPACE) == SR_OK);
+        snprintf(what, sizeof what, "transform case %d, window positions", k);
+        compare_with_target(&t, cells, what, &drawn_total);
+
+        char text[600];
+        tr_window_caption(text, sizeof text, GRID, GRID, x_q8, y_q8);
+        snprintf(path, sizeof path, "%s/frame-006.png", dir);
+        if (!caption_reads(path, GRID, 8, 1, text)) {
+            FAILF("transform case %d: frame 6 does not read \"%s\"", k, text);
+        }
+        shown++;
+    }
+    CHECK(shown >= 16);
+    CHECK(drawn_total > 2 * 16 * 20);
+    rt_free(&t);
+    (void)refused;
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_transform.png
+ * (text and antialiased marks: 2 levels a channel, 1 pixel in 200). */
+SR_TEST(transform_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    check_example_sheet("transform", "12");
+}
+
+/* A wide viewport: with --aspect fit the projection's aspect is the
+ * viewport's, so a square in front of the camera covers a square of
+ * pixels; with stretch, NDC's square is stretched over the viewport. */
+SR_TEST(transform_aspect_fit_keeps_a_square_square)
+{
+    NEEDS_CLI();
+    for (int stretch = 0; stretch < 2; stretch++) {
+        char dir[1024];
+        out_dir(stretch ? "transform_stretch" : "transform_fit", dir, sizeof dir);
+        /* a right triangle, half of a 1 x 1 square, face on */
+        tr_case c = { .obj = { -0.5, -0.5, 0, 0.5, -0.5, 0, -0.5, 0.5, 0 },
+                      .eye = { 0, 0, 2 }, .fov = 40, .stretch = stretch == 1 };
+        REQUIRE(tr_run(&c, "16x8", "8", dir) == 0);
+        uint8_t cells[GRID * GRID];
+        REQUIRE(last_frame_cells(dir, cells) == 7);
+        int x0 = GRID, x1 = -1, y0 = GRID, y1 = -1;
+        for (int y = 0; y < 8; y++) {
+            for (int x = 0; x < 16; x++) {
+                if (cells[y * GRID + x]) {
+                    x0 = x < x0 ? x : x0;
+                    x1 = x > x1 ? x : x1;
+                    y0 = y < y0 ? y : y0;
+                    y1 = y > y1 ? y : y1;
+                }
+            }
+        }
+        int w = x1 - x0 + 1, h = y1 - y0 + 1;
+        if (stretch) {
+            CHECK(w >= 2 * h - 1);   /* stretched by 16/8 */
+        } else {
+            CHECK(abs(w - h) <= 1);
+        }
+    }
+}
+
+/* ---- gouraud: Gouraud versus Phong, the highlight inside ---- */
+
+/* explain gouraud's scene (docs/explain.md): the triangle at z = 0 in
+ * window coordinates under an orthographic P, N = +z, a grey material,
+ * a point light 8 pixels above the highlight. */
+static sr_result gouraud_draw(rt_target *t, const double *xy, const double hl[2],
+                              double shininess, sr_shading shading, bool points, int vertex)
+{
+    sr_mat4 proj = sr_ortho(0, (float)t->w, (float)t->h, 0, -64, 64, false);
+    sr_state st = { .shading = shading, .ambient = { 0.2f, 0.2f, 0.2f }, .point_size = 2,
+                    .material = { .diffuse = { 0.35f, 0.35f, 0.35f },
+                                  .specular = { 0.55f, 0.55f, 0.55f },
+                                  .shininess = (float)shininess },
+                    .lights[0] = { .type = SR_LIGHT_POINT,
+                                   .vector = { (float)hl[0], (float)hl[1], 8 } } };
+    float pos[9], nrm[9] = { 0, 0, 1, 0, 0, 1, 0, 0, 1 };
+    for (int i = 0; i < 3; i++) {
+        int k = points ? vertex : i;
+        pos[3 * i] = (float)xy[2 * k];
+        pos[3 * i + 1] = (float)xy[2 * k + 1];
+        pos[3 * i + 2] = 0;
+    }
+    sr_clear(t->ctx, t->fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 } });
+    return sr_draw(t->ctx, t->fb, &st,
+                   &(sr_draw_desc){ .positions = pos, .normals = nrm,
+                                    .vertex_count = points ? 1 : 3,
+                                    .primitive = points ? SR_PRIM_POINTS : SR_PRIM_TRIANGLES,
+                                    .projection = &proj });
+}
+
+/* Blinn-Phong by hand, in double: the intensity at (x, y), 0..1. */
+static double gouraud_model(double x, double y, const double hl[2], double n)
+{
+    double l[3] = { hl[0] - x, hl[1] - y, 8 }, len = sqrt(l[0] * l[0] + l[1] * l[1] + 64);
+    double ndotl = 8 / len, h[3] = { l[0] / len, l[1] / len, ndotl + 1 };
+    double ndoth = h[2] / sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    return 0.2 * 0.35 + 0.35 * ndotl + 0.55 * pow(ndoth, n);
+}
+
+/* Frame `frame`'s cells against the pixels in t: white where nothing was
+ * drawn, the pixel's grey where it was; cells within a cell of a vertex
+ * or the highlight (their dots cover them) are not judged.  The cells
+ * that differ by more than one level. */
+static int gouraud_compare(const char *dir, int frame, const rt_target *t, const double *xy,
+                           const double hl[2], int *drawn)
+{
+    uint8_t rgb[GRID * GRID * 3];
+    if (!frame_cell_colours(dir, frame, rgb)) {
+        return GRID * GRID;
+    }
+    const uint8_t *px = sr_framebuffer_pixels(t->fb);
+    int bad = 0;
+    for (int y = 0; y < GRID; y++) {
+        for (int x = 0; x < GRID; x++) {
+            bool marked = fabs(x + 0.5 - hl[0]) < 1.5 && fabs(y + 0.5 - hl[1]) < 1.5;
+            for (int i = 0; i < 3; i++) {
+                marked |= fabs(x + 0.5 - xy[2 * i]) < 1.5 && fabs(y + 0.5 - xy[2 * i + 1]) < 1.5;
+            }
+            const uint8_t *p = px + 4 * (y * GRID + x), *c = rgb + 3 * (y * GRID + x);
+            int want = p[3] ? p[0] : 255;
+            *drawn += p[3] != 0;
+            if (!marked && (abs(c[0] - want) > 1 || abs(c[1] - want) > 1 || abs(c[2] - want) > 1)) {
+                bad++;
+            }
+        }
+    }
+    return bad;
+}
+
+SR_TEST(gouraud_frames_are_what_sr_draw_shades)
+{
+    NEEDS_CLI();
+    /* the example, then random triangles with the highlight at their
+     * centroid: frame 4 is sr_draw's Gouraud pixels, the last frame its
+     * Phong pixels; frame 2 reads the vertex intensities, which are the
+     * vertices drawn as points and Blinn-Phong's value there; Gouraud
+     * never exceeds them and Phong finds the highlight they miss */
+    sr_rng rng = { 5417 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn = 0, missed = 0;
+    for (int k = 0; k < 12; k++) {
+        double xy[6] = { 1.5, 1.5, 14.5, 3.5, 4.5, 11.5 }, hl[2] = { 7.2, 5.6 };
+        double n = k == 0 ? 40 : sr_rng_int(&rng, 10, 120);
+        if (k > 0) {
+            for (int i = 0; i < 6; i++) {
+                xy[i] = sr_rng_int(&rng, 0, 4 * GRID) * 0.25;
+            }
+            hl[0] = (xy[0] + xy[2] + xy[4]) / 3;
+            hl[1] = (xy[1] + xy[3] + xy[5]) / 3;
+        }
+        char prim[200], shin[16], dir[1024], name[32], path[1200];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", xy[0], xy[1], xy[2], xy[3], xy[4], xy[5]);
+        snprintf(shin, sizeof shin, "%g", n);
+        snprintf(name, sizeof name, "gouraud_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        if (k == 0) {
+            REQUIRE(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--grid", "16x16",
+                                                      "--zoom", "8", "-o", dir, NULL }) == 0);
+        } else {
+            REQUIRE(run_explain_with("gouraud", "--triangle", prim, "--shininess", shin, dir) == 0);
+        }
+        int vi[3], vmax = 0;
+        for (int i = 0; i < 3; i++) {
+            REQUIRE(gouraud_draw(&t, xy, hl, n, SR_SHADING_GOURAUD, true, i) == SR_OK);
+            const uint8_t *px = sr_framebuffer_pixels(t.fb);
+            vi[i] = -1;
+            for (int p = 0; p < GRID * GRID && vi[i] < 0; p++) {
+                vi[i] = px[4 * p + 3] ? px[4 * p] : -1;
+            }
+            double want = gouraud_model(xy[2 * i], xy[2 * i + 1], hl, n) * 255;
+            if (fabs(vi[i] - want) > 1) {
+                FAILF("case %d: V%d's intensity %d, Blinn-Phong gives %.2f", k, i, vi[i], want);
+            }
+            vmax = vi[i] > vmax ? vi[i] : vmax;
+        }
+        char text[200];
+        snprintf(text, sizeof text,
+                 "2. Gouraud lights the vertices only: I = %d at V0, %d at V1, %d at V2 (of 255).",
+                 vi[0], vi[1], vi[2]);
+        snprintf(path, sizeof path, "%s/frame-002.png", dir);
+        if (!caption_reads(path, GRID, ZOOM, 1, text)) {
+            FAILF("case %d: frame 2 does not read \"%s\"", k, text);
+        }
+        REQUIRE(gouraud_draw(&t, xy, hl, n, SR_SHADING_GOURAUD, false, 0) == SR_OK);
+        int gmax = 0;
+        for (int p = 0; p < GRID * GRID; p++) {
+            const uint8_t *px = sr_framebuffer_pixels(t.fb) + 4 * p;
+            gmax = px[3] && px[0] > gmax ? px[0] : gmax;
+        }
+        CHECK(gmax <= vmax + 1);   /* a convex combination of the vertices */
+        int bad = gouraud_compare(dir, 4, &t, xy, hl, &drawn);
+        if (bad) {
+            FAILF("case %d: %d cells of frame 4 are not sr_draw's Gouraud pixels", k, bad);
+        }
+        REQUIRE(gouraud_draw(&t, xy, hl, n, SR_SHADING_PHONG, false, 0) == SR_OK);
+        int pmax = 0;
+        for (int p = 0; p < GRID * GRID; p++) {
+            const uint8_t *px = sr_framebuffer_pixels(t.fb) + 4 * p;
+            pmax = px[3] && px[0] > pmax ? px[0] : pmax;
+        }
+        missed += pmax > gmax + 40;
+        bad = gouraud_compare(dir, 6, &t, xy, hl, &drawn);
+        if (bad) {
+            FAILF("case %d: %d cells of the last frame are not sr_draw's Phong pixels", k, bad);
+        }
+        struct stat st;
+        snprintf(path, sizeof path, "%s/frame-007.png", dir);
+        CHECK(stat(path, &st) != 0);   /* frame 6 is the last */
+    }
+    CHECK(drawn > 12 * 2 * 20);
+    CHECK(missed >= 6);   /* the highlight is inside the triangle, far from its vertices */
+    rt_free(&t);
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_gouraud.png
+ * (2 levels a channel, 1 pixel in 200). */
+SR_TEST(gouraud_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    check_example_sheet("gouraud", "16");
+}
+
+/* ---- zfight: near-coplanar triangles and polygon offset ---- */
+
+/* Triangle t (0: A, 1: B) of xyz (x, y, z a vertex) drawn alone or, both,
+ * A then B, as explain zfight draws them: D16 buffer cleared to 1, LESS,
+ * B offset by (factor, units) when `offset`; A red, B blue. */
+static sr_result zfight_draw(sr_context *ctx, sr_framebuffer *fb, const double *xyz, int t,
+                             bool both, bool offset, const double off[2])
+{
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 0 }, .depth = 1 });
+    sr_result r = SR_OK;
+    for (int k = both ? 0 : t; k <= (both ? 1 : t) && r == SR_OK; k++) {
+        float pos[9];
+        for (int i = 0; i < 3; i++) {
+            const double *v = xyz + 9 * k + 3 * i;
+            pos[3 * i] = (float)(2 * v[0] / GRID - 1);
+            pos[3 * i + 1] = (float)(1 - 2 * v[1] / GRID);
+            pos[3 * i + 2] = (float)(2 * v[2] - 1);
+        }
+        sr_state st = { .shading = SR_SHADING_UNLIT,
+                        .material = { .diffuse = { k == 0 ? 1.0f : 0.0f, 0, k == 1 ? 1.0f : 0 } } };
+        if (k == 1 && offset) {
+            st.offset = (sr_polygon_offset){ .factor = (float)off[0], .units = (float)off[1],
+                                             .fill = true };
+        }
+        r = sr_draw(ctx, fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3 });
+    }
+    return r;
+}
+
+/* The q of each pixel drawn in fb, else -1. */
+static void zfight_q(sr_context *ctx, sr_framebuffer *fb, int64_t *q)
+{
+    float d[GRID * GRID];
+    sr_read_depth(ctx, fb, 0, 0, GRID, GRID, d, GRID);
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    for (int i = 0; i < GRID * GRID; i++) {
+        q[i] = px[4 * i + 3] ? (int64_t)llround(d[i] * 65535.0) : -1;
+    }
+}
+
+/* Frame `frame`'s cells against fb's pixels: orange where A shows, blue
+ * where B does, white where nothing; the cells that differ.  A cell
+ * whose commonest colour is none of these is under a label (its light
+ * ground) and not judged; at most 16 such. */
+static int zfight_compare(const char *dir, int frame, sr_framebuffer *fb, int *b_cells)
+{
+    uint8_t rgb[GRID * GRID * 3];
+    if (!frame_cell_colours(dir, frame, rgb)) {
+        return GRID * GRID;
+    }
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    int bad = 0, unjudged = 0;
+    for (int i = 0; i < GRID * GRID; i++) {
+        const uint8_t *p = px + 4 * i, *c = rgb + 3 * i;
+        int want = !p[3] ? 0 : p[2] ? 2 : 1;
+        int got = is_fill_orange(c) ? 1 : is_fill_blue(c) ? 2
+                : c[0] == 255 && c[1] == 255 && c[2] == 255 ? 0 : -1;
+        unjudged += got < 0;
+        bad += got >= 0 && want != got;
+        *b_cells += want == 2;
+    }
+    return unjudged > 16 ? GRID * GRID : bad;
+}
+
+SR_TEST(zfight_frames_are_what_sr_draw_leaves_with_and_without_offset)
+{
+    NEEDS_CLI();
+    /* the example, then random triangles B whose depths are A's plane
+     * there plus less than a D16 step: frames 4 and 6 are, cell for cell,
+     * what sr_draw leaves for A then B without and with the offset; frame
+     * 5 reads B's slope m and the offset o (the library's formula) and
+     * the passes and fails of B's offset q against A's, read back */
+    sr_rng rng = { 7907 };
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_framebuffer *fb = NULL;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = GRID, .height = GRID,
+                                                             .depth_format = SR_DEPTH_D16 },
+                                &fb) == SR_OK);
+    int fights = 0, b_total = 0, cases = 0;
+    for (int k = 0; k < 24; k++) {
+        double xyz[18] = { 0.5, 0.5, 0.4, 13.5, 1.5, 0.4, 2.5, 10.5, 0.41,
+                           3.2, 2.3, 0.401623187, 12.6, 3.4, 0.401993, 4.3, 9.6, 0.408948312 };
+        double off[2] = { -1, -1 };
+        if (k > 0) {
+            for (int i = 0; i < 18; i++) {
+                xyz[i] = i % 3 == 2 ? sr_rng_int(&rng, 20, 80) / 100.0
+                                    : sr_rng_int(&rng, 0, 4 * GRID) * 0.25;
+            }
+            /* B on A's plane z = a x + b y + c, give or take a step */
+            double x1 = xyz[3] - xyz[0], y1 = xyz[4] - xyz[1], z1 = xyz[5] - xyz[2];
+            double x2 = xyz[6] - xyz[0], y2 = xyz[7] - xyz[1], z2 = xyz[8] - xyz[2];
+            double det = x1 * y2 - x2 * y1;
+            if (fabs(det) < 4) {
+                continue;
+            }
+            double a = (z1 * y2 - z2 * y1) / det, b = (x1 * z2 - x2 * z1) / det;
+            for (int i = 3; i < 6; i++) {
+                double *v = xyz + 3 * i;
+                v[2] = xyz[2] + a * (v[0] - xyz[0]) + b * (v[1] - xyz[1]) +
+                       sr_rng_int(&rng, -10, 10) / 1e6;
+                if (!(v[2] >= 0 && v[2] <= 1)) {
+                    det = 0;   /* the plane leaves the depth range there */
+                }
+            }
+            if (det == 0) {
+                continue;
+            }
+            off[0] = sr_rng_int(&rng, -2, 0);
+            off[1] = sr_rng_int(&rng, -4, -1);
+        }
+        char tris[600] = "", offs[32], dir[1024], name[32], path[1200];
+        for (int i = 0; i < 18; i++) {
+            size_t len = strlen(tris);
+            snprintf(tris + len, sizeof tris - len, "%s%.17g", i ? "," : "", xyz[i]);
+        }
+        snprintf(offs, sizeof offs, "%g,%g", off[0], off[1]);
+        snprintf(name, sizeof name, "zfight_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_with("zfight", "--triangles", tris, "--offset", offs, dir) == 0);
+
+        int64_t qa[GRID * GRID], qb[GRID * GRID];
+        REQUIRE(zfight_draw(ctx, fb, xyz, 0, false, false, off) == SR_OK);
+        zfight_q(ctx, fb, qa);
+        REQUIRE(zfight_draw(ctx, fb, xyz, 1, false, false, off) == SR_OK);
+        zfight_q(ctx, fb, qb);
+        int fails = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            fails += qb[i] >= 0 && qa[i] >= 0 && qb[i] >= qa[i];
+        }
+        fights += fails > 0;
+        cases++;
+        REQUIRE(zfight_draw(ctx, fb, xyz, 1, false, true, off) == SR_OK);
+        zfight_q(ctx, fb, qb);
+        int pass = 0, fail = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            if (qb[i] >= 0) {
+                bool p = qa[i] < 0 || qb[i] < qa[i];
+                pass += p;
+                fail += !p;
+            }
+        }
+        REQUIRE(zfight_draw(ctx, fb, xyz, 0, true, false, off) == SR_OK);
+        int bad = zfight_compare(dir, 4, fb, &b_total);
+        if (bad) {
+            FAILF("zfight case %d: %d cells of frame 4 are not sr_draw's", k, bad);
+        }
+        REQUIRE(zfight_draw(ctx, fb, xyz, 0, true, true, off) == SR_OK);
+        bad = zfight_compare(dir, 6, fb, &b_total);
+        if (bad) {
+            FAILF("zfight case %d: %d cells of the last frame are not sr_draw's", k, bad);
+        }
+        snprintf(path, sizeof path, "%s/frame-007.png", dir);
+        struct stat st;
+        CHECK(stat(path, &st) != 0);
+
+        /* m from B's snapped vertices (docs/raster-rules.md 6.4) */
+        double x[3], y[3], z[3];
+        for (int i = 0; i < 3; i++) {
+            x[i] = (double)ref_snap(xyz[9 + 3 * i]);
+            y[i] = (double)ref_snap(xyz[10 + 3 * i]);
+            z[i] = xyz[11 + 3 * i];
+        }
+        double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+        double dzdx = ((z[1] - z[0]) * (y[2] - y[0]) - (z[2] - z[0]) * (y[1] - y[0])) * 256 / area2;
+        double dzdy = ((x[1] - x[0]) * (z[2] - z[0]) - (x[2] - x[0]) * (z[1] - z[0])) * 256 / area2;
+        double m = area2 ? fmax(fabs(dzdx), fabs(dzdy)) : 0, o = off[0] * m + off[1] / 65535.0;
+        char text[600];
+        snprintf(text, sizeof text,
+                 "5. Polygon offset on B: o = factor m + units r with m = max(|dz/dx|, |dz/dy|) = "
+                 "%.3g, B's depth slope per pixel, and r = 1/65535, the buffer's step: o = %g x "
+                 "%.3g + %g x 1/65535 = %.3g (%.3g steps), added to B's depth before the test. "
+                 "%d pass, %d fail.",
+                 m, off[0], m, off[1], o, o * 65535, pass, fail);
+        snprintf(path, sizeof path, "%s/frame-005.png", dir);
+        if (!caption_reads(path, GRID, ZOOM, 1, text)) {
+            FAILF("zfight case %d: frame 5 does not read \"%s\"", k, text);
+        }
+    }
+    CHECK(cases >= 8);
+    CHECK(fights >= cases / 2);   /* B loses pixels to A without the offset */
+    CHECK(b_total > 100);
+    sr_destroy_framebuffer(ctx, fb);
+    sr_destroy_context(ctx);
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_zfight.png
+ * (2 levels a channel, 1 pixel in 200). */
+SR_TEST(zfight_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    check_example_sheet("zfight", "20");
 }

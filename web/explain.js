@@ -20,6 +20,14 @@ const OPTIONS = [
       applies: (a) => a.name === 'msaa' },
     { option: '--connectivity', label: 'connectivity', values: ['4', '8'],
       applies: (a) => a.name === 'floodfill' },
+    { option: '--projection', label: 'projection', values: ['perspective', 'orthographic'],
+      applies: (a) => a.name === 'transform' },
+    { option: '--aspect', label: 'aspect ratio', values: ['fit', 'stretch'],
+      applies: (a) => a.name === 'transform' },
+    { option: '--shininess', label: 'shininess n', values: ['40', '10', '120'],
+      applies: (a) => a.name === 'gouraud' },
+    { option: '--offset', label: 'polygon offset (factor, units)',
+      values: ['-1,-1', '-1,0', '0,-1', '0,0'], applies: (a) => a.name === 'zfight' },
 ];
 // Options that give a value at each vertex: the page keeps the example's.
 const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };
@@ -50,23 +58,26 @@ async function main() {
     const hasWindow = alg.window.some((v) => v !== 0);
     const hasSeed = alg.seed.some((v) => v !== 0);
     const hasRow = alg.row > 0;
+    const hasHighlight = alg.highlight.some((v) => v !== 0);
 
     const canvas = document.getElementById('frame');
     const ctx2d = canvas.getContext('2d');
     const stepInput = document.getElementById('step');
     const message = document.getElementById('message');
     const choices = {};
-    const state = { points: [], values: [], window: [], seed: [], row: 0, clip: [], step: 0,
-                    frames: [], width: 0, height: 0 };
+    const state = { points: [], values: [], window: [], seed: [], row: 0, clip: [],
+                    highlight: [], step: 0, frames: [], width: 0, height: 0 };
     // What the handles move, to put back when the tool refuses a position.
     const snapshot = () => JSON.stringify({ points: state.points, values: state.values,
                                             window: state.window, seed: state.seed,
-                                            row: state.row, clip: state.clip });
+                                            row: state.row, clip: state.clip,
+                                            highlight: state.highlight });
     const restore = (s) => Object.assign(state, JSON.parse(s));
 
     function reset() {
         restore(JSON.stringify({ points: alg.points, values: alg.values, window: alg.window,
-                                 seed: alg.seed, row: alg.row, clip: alg.clip }));
+                                 seed: alg.seed, row: alg.row, clip: alg.clip,
+                                 highlight: alg.highlight }));
         for (const o of OPTIONS.filter((o) => o.applies(alg))) {
             choices[o.option] = o.values[0];
         }
@@ -85,7 +96,8 @@ async function main() {
         case 'circle':   // centre and radius
             return ['--circle', list([...state.points[0], state.values[0]])];
         case 'triangles':   // x, y and the depth of each vertex
-            return ['--triangles',
+        case 'object':      // x, y and z of each vertex in object coordinates
+            return [`--${alg.kind}`,
                     state.points.map((p, k) => list([...p, state.values[k]])).join(',')];
         case 'clip-triangle':
             return ['--clip-triangle', list(state.clip)];
@@ -108,6 +120,9 @@ async function main() {
         }
         if (hasWindow) {
             a.push('--window', list(state.window));
+        }
+        if (hasHighlight) {
+            a.push('--highlight', list(state.highlight));
         }
         for (const [option, value] of Object.entries(choices)) {
             a.push(option, value);
@@ -166,6 +181,12 @@ async function main() {
         return [x, y, alg.grid[0] - 2 * x, alg.grid[1] - 2 * y];
     }
 
+    // transform's object coordinates on the grid of its first step: a unit
+    // is min(grid)/4 cells from the grid's centre, y up.
+    function objectPlot() {
+        return [alg.grid[0] / 2, alg.grid[1] / 2, Math.min(alg.grid[0], alg.grid[1]) / 4];
+    }
+
     // The pixel under a point, kept on the grid.
     const pixel = (v, size) => Math.max(0, Math.min(size - 1, Math.floor(v)));
 
@@ -197,6 +218,15 @@ async function main() {
                              } });
                 }
             }
+        } else if (alg.kind === 'object') {
+            const [ox, oy, s] = objectPlot();
+            state.points.forEach((p, k) => {
+                h.push({ at: [ox + s * p[0], oy - s * p[1]],
+                         move: (x, y) => {
+                             state.points[k] = [Math.round((x - ox) / s * 100) / 100,
+                                                Math.round((oy - y) / s * 100) / 100];
+                         } });
+            });
         } else if (alg.kind !== 'none') {
             state.points.forEach((p, k) => {
                 h.push({ at: p, move: (x, y) => { state.points[k] = [x, y]; } });
@@ -212,6 +242,9 @@ async function main() {
             h.push({ at: [0.5, state.row + 0.5],
                      dist: (g) => Math.abs(g[1] - state.row - 0.5),
                      move: (x, y) => { state.row = pixel(y, alg.grid[1]); } });
+        }
+        if (hasHighlight) {
+            h.push({ at: state.highlight, move: (x, y) => { state.highlight = [x, y]; } });
         }
         if (hasWindow) {
             for (const k of [0, 2]) {

@@ -86,6 +86,26 @@ static const algorithm algorithms[] = {
       16, 12, 32,
       "a triangle clipped in 4D against the six planes of the\n"
       "             view volume, before the divide (--clip-triangle)" },
+    { "transform", EX_OBJECT_TRIANGLE, explain_transform,
+      { .kind = EX_OBJECT_TRIANGLE, .count = 3,
+        .pts = { { -1, -0.8 }, { 1.2, -0.5 }, { 0.1, 1 } }, .z = { 0, 0.3, -0.2 },
+        .view = { .rotate = 30, .translate = { 0.5, 0, 0 }, .eye = { 0.8, 0.9, 2.7 },
+                  .target = { 0.5, 0, 0 }, .up = { 0, 1, 0 }, .fov = 45,
+                  .near_far = { 1, 10 } } }, 20, 12, 28,
+      "the viewing pipeline S P E M_O: a triangle's vertices in\n"
+      "             object, world, eye, clip, NDC and window coordinates" },
+    { "gouraud", EX_TRIANGLE, explain_gouraud,
+      { .kind = EX_TRIANGLE, .pts = { { 1.5, 1.5 }, { 14.5, 3.5 }, { 4.5, 11.5 } }, .count = 3,
+        .highlight = { 7.2, 5.6 }, .shininess = 40 }, 16, 13, 32,
+      "Gouraud versus Phong shading of a triangle whose specular\n"
+      "             highlight falls inside it (--highlight, --shininess)" },
+    { "zfight", EX_TRIANGLES, explain_zfight,
+      { .kind = EX_TRIANGLES, .pts = { { 0.5, 0.5 }, { 13.5, 1.5 }, { 2.5, 10.5 },
+                                       { 3.2, 2.3 }, { 12.6, 3.4 }, { 4.3, 9.6 } },
+        .z = { 0.4, 0.4, 0.41, 0.401623187, 0.401993, 0.408948312 }, .count = 6,
+        .offset = { -1, -1 } }, 14, 11, 40,
+      "two nearly coplanar triangles fighting in a 16-bit z-buffer,\n"
+      "             then the fix by polygon offset (--offset)" },
 };
 
 static void usage(FILE *f)
@@ -121,11 +141,37 @@ static void usage(FILE *f)
             "                             clip4d: a triangle in clip space (before the\n"
             "                             divide; the viewport is the grid less a fifth on\n"
             "                             each side)\n"
+            "  --object X0,Y0,Z0,X1,Y1,Z1,X2,Y2,Z2\n"
+            "                             transform: the triangle in object coordinates\n"
+            "  --rotate DEG               transform: M_O's rotation about y, degrees\n"
+            "                             (default 30), before\n"
+            "  --translate X,Y,Z          transform: M_O's translation (default 0.5,0,0)\n"
+            "  --eye X,Y,Z                transform: the camera's eye (default 0.8,0.9,2.7)\n"
+            "  --target X,Y,Z             transform: the point it looks at (default 0.5,0,0)\n"
+            "  --up X,Y,Z                 transform: the view-up vector (default 0,1,0)\n"
+            "  --projection perspective|orthographic\n"
+            "                             transform: P (default perspective)\n"
+            "  --fov DEG                  transform: the field of view across the viewport's\n"
+            "                             smaller side, 1 to 170 (default 45); orthographic:\n"
+            "                             the box as tall at the target\n"
+            "  --near-far N,F             transform: the near and far planes' distances,\n"
+            "                             0 < N < F (default 1,10)\n"
+            "  --aspect fit|stretch       transform: keep the aspect ratio (fit, the\n"
+            "                             default: the other field of view derived from the\n"
+            "                             viewport's width/height) or stretch NDC's square\n"
+            "                             over the viewport\n"
+            "  --offset FACTOR,UNITS      zfight: the second triangle's polygon offset,\n"
+            "                             each in -64..64 (default -1,-1: pulled forward)\n"
+            "  --highlight X,Y            gouraud: where the point light's highlight peaks\n"
+            "                             (default: the example's, or the triangle's\n"
+            "                             centroid)\n"
+            "  --shininess N              gouraud: the Blinn-Phong exponent, 1 to 1000\n"
+            "                             (default 40)\n"
             "  --tolerance T              forward-differencing: how far the chords may stray\n"
             "                             from the curve, pixels (default 0.25; at most 64\n"
             "                             steps)\n"
-            "  --triangles X,Y,Z,...      zbuffer: two triangles, 18 numbers, Z the window\n"
-            "                             depth of each vertex in 0..1 (0 near)\n"
+            "  --triangles X,Y,Z,...      zbuffer, zfight: two triangles, 18 numbers, Z the\n"
+            "                             window depth of each vertex in 0..1 (0 near)\n"
             "  --window XMIN,YMIN,XMAX,YMAX\n"
             "                             clip: the clip window\n"
             "  --samples N                msaa: 2, 4 (the default), 8 or 16 per pixel\n"
@@ -449,6 +495,18 @@ static const struct {
     { "--tolerance", { "forward-differencing" } },
     { "--seed", { "floodfill" } },
     { "--connectivity", { "floodfill" } },
+    { "--rotate", { "transform" } },
+    { "--translate", { "transform" } },
+    { "--eye", { "transform" } },
+    { "--target", { "transform" } },
+    { "--up", { "transform" } },
+    { "--projection", { "transform" } },
+    { "--fov", { "transform" } },
+    { "--near-far", { "transform" } },
+    { "--aspect", { "transform" } },
+    { "--highlight", { "gouraud" } },
+    { "--offset", { "zfight" } },
+    { "--shininess", { "gouraud" } },
 };
 
 /* Whether algorithm `name` takes option `a`; false after one line. */
@@ -475,7 +533,8 @@ static const char *kind_option(ex_kind k)
 {
     return k == EX_TRIANGLE ? "--triangle" : k == EX_POLYGON ? "--polygon"
          : k == EX_TRIANGLES ? "--triangles" : k == EX_CIRCLE ? "--circle"
-         : k == EX_CUBIC ? "--cubic" : k == EX_CLIP_TRIANGLE ? "--clip-triangle" : "--line";
+         : k == EX_CUBIC ? "--cubic" : k == EX_CLIP_TRIANGLE ? "--clip-triangle"
+         : k == EX_OBJECT_TRIANGLE ? "--object" : "--line";
 }
 
 int cmd_explain(int argc, char **argv)
@@ -502,6 +561,7 @@ int cmd_explain(int argc, char **argv)
         return EXIT_USAGE;
     }
     ex_primitive prim = alg->example;
+    ex_view view = alg->example.view;
     sr_fill_rule rule = SR_EVENODD;
     ex_primitive window = { .count = 0 };
     bool prim_given = false;
@@ -510,6 +570,9 @@ int cmd_explain(int argc, char **argv)
     int row = -1;
     double tolerance = 0;
     int seed[2] = { 0, 0 }, connectivity = 4;
+    double highlight[2] = { 0, 0 }, shininess = 0, offset[2] = { 0, 0 };
+    bool offset_given = false;
+    bool highlight_given = false;
     bool seed_given = false;
     int samples = 4;
     sr_rasterizer rasterizer = SR_RASTER_HALFSPACE;
@@ -550,8 +613,9 @@ int cmd_explain(int argc, char **argv)
         if (strcmp(a, "--triangle") == 0 || strcmp(a, "--polygon") == 0 ||
             strcmp(a, "--line") == 0 || strcmp(a, "--triangles") == 0 ||
             strcmp(a, "--circle") == 0 || strcmp(a, "--cubic") == 0 ||
-            strcmp(a, "--clip-triangle") == 0) {
+            strcmp(a, "--clip-triangle") == 0 || strcmp(a, "--object") == 0) {
             p.kind = strcmp(a, "--triangles") == 0 ? EX_TRIANGLES
+                   : strcmp(a, "--object") == 0    ? EX_OBJECT_TRIANGLE
                    : strcmp(a, "--circle") == 0    ? EX_CIRCLE
                    : strcmp(a, "--cubic") == 0     ? EX_CUBIC
                    : strcmp(a, "--clip-triangle") == 0 ? EX_CLIP_TRIANGLE
@@ -565,6 +629,8 @@ int cmd_explain(int argc, char **argv)
                : p.kind == EX_TRIANGLES ? parse_depths(a, v, &p)
                : p.kind == EX_CUBIC     ? parse_points(a, v, 2, 4, 4, "X0,Y0,...,X3,Y3", &p)
                : p.kind == EX_CLIP_TRIANGLE ? parse_clip(a, v, &p)
+               : p.kind == EX_OBJECT_TRIANGLE
+                   ? parse_points(a, v, 3, 3, 3, "X0,Y0,Z0,X1,Y1,Z1,X2,Y2,Z2", &p)
                : p.kind == EX_CIRCLE    ? parse_points(a, v, 3, 1, 1, "CX,CY,R", &p) &&
                                               parse_radius(a, v, p.z[0])
                                         : parse_points(a, v, 2, 3, EX_MAX_POINTS, NULL, &p);
@@ -588,6 +654,53 @@ int cmd_explain(int argc, char **argv)
             } else {
                 interpolation = (ex_interp)k;
             }
+        } else if (strcmp(a, "--eye") == 0 || strcmp(a, "--target") == 0 ||
+                   strcmp(a, "--up") == 0 || strcmp(a, "--translate") == 0) {
+            ex_primitive vp = { 0 };
+            ok = parse_points(a, v, 3, 1, 1, "X,Y,Z", &vp);
+            double *to = a[2] == 'e' ? view.eye : a[2] == 'u' ? view.up
+                       : a[3] == 'a' ? view.target : view.translate;
+            to[0] = vp.pts[0].x;
+            to[1] = vp.pts[0].y;
+            to[2] = vp.z[0];
+        } else if (strcmp(a, "--highlight") == 0) {
+            ex_primitive hp = { 0 };
+            ok = parse_points(a, v, 2, 1, 1, "X,Y", &hp);
+            highlight[0] = hp.pts[0].x;
+            highlight[1] = hp.pts[0].y;
+            highlight_given = true;
+        } else if (strcmp(a, "--offset") == 0) {
+            ex_primitive op = { 0 };
+            ok = parse_points(a, v, 2, 1, 1, "FACTOR,UNITS", &op);
+            offset[0] = op.pts[0].x;
+            offset[1] = op.pts[0].y;
+            if (ok && !(fabs(offset[0]) <= 64 && fabs(offset[1]) <= 64)) {
+                cli_error("%s: expected FACTOR,UNITS, each in -64..64 (got '%s')", a, v);
+                ok = false;
+            }
+            offset_given = true;
+        } else if (strcmp(a, "--shininess") == 0 || strcmp(a, "--rotate") == 0 ||
+                   strcmp(a, "--fov") == 0) {
+            float f = 0;
+            ok = a[2] == 's'   ? parse_float(a, v, 1, 1000, &f)
+               : a[2] == 'r' ? parse_float(a, v, -360, 360, &f) : parse_float(a, v, 1, 170, &f);
+            *(a[2] == 's' ? &shininess : a[2] == 'r' ? &view.rotate : &view.fov) = f;
+        } else if (strcmp(a, "--near-far") == 0) {
+            ex_primitive np = { 0 };
+            ok = parse_points(a, v, 2, 1, 1, "N,F", &np);
+            if (ok && !(np.pts[0].x > 0 && np.pts[0].y > np.pts[0].x)) {
+                cli_error("%s: expected N,F with 0 < N < F (got '%s')", a, v);
+                ok = false;
+            }
+            view.near_far[0] = np.pts[0].x;
+            view.near_far[1] = np.pts[0].y;
+        } else if (strcmp(a, "--projection") == 0 || strcmp(a, "--aspect") == 0) {
+            static const char *const projections[] = { "perspective", "orthographic", NULL };
+            static const char *const aspects[] = { "fit", "stretch", NULL };
+            bool proj = a[2] == 'p';
+            int k = 0;
+            ok = parse_choice(a, v, proj ? projections : aspects, &k);
+            *(proj ? &view.orthographic : &view.stretch) = k == 1;
         } else if (strcmp(a, "--window") == 0) {
             ex_primitive wp = { 0 };
             ok = parse_points(a, v, 2, 2, 2, "XMIN,YMIN,XMAX,YMAX", &wp);
@@ -677,6 +790,19 @@ int cmd_explain(int argc, char **argv)
                sizeof per_vertex);
     }
     prim.connectivity = connectivity;
+    prim.view = view;
+    if (alg->run == explain_zfight) {
+        memcpy(prim.offset, offset_given ? offset : alg->example.offset, sizeof offset);
+    }
+    if (alg->run == explain_gouraud) {
+        prim.shininess = shininess > 0 ? shininess : alg->example.shininess;
+        if (highlight_given) {
+            memcpy(prim.highlight, highlight, sizeof highlight);
+        } else if (prim_given) {   /* the centroid */
+            prim.highlight[0] = (prim.pts[0].x + prim.pts[1].x + prim.pts[2].x) / 3;
+            prim.highlight[1] = (prim.pts[0].y + prim.pts[1].y + prim.pts[2].y) / 3;
+        }
+    }
     if (seed_given) {
         prim.seed[0] = seed[0];
         prim.seed[1] = seed[1];
@@ -711,6 +837,12 @@ int cmd_explain(int argc, char **argv)
                   prim.seed[1], grid_w, grid_h);
         return EXIT_USAGE;
     }
+    char why[300];
+    if (alg->run == explain_transform && !ex_transform_check(&prim, grid_w, grid_h, why,
+                                                             sizeof why)) {
+        cli_error("explain transform: %s", why);
+        return EXIT_USAGE;
+    }
     if ((int64_t)grid_w * zoom > 4096 || (int64_t)grid_h * zoom > 4096) {
         cli_error("explain: the grid times the zoom is over 4096 frame pixels: "
                   "make --grid or --zoom smaller");
@@ -727,7 +859,8 @@ int cmd_explain(int argc, char **argv)
     /* the scan-line fill lists its edge table in a caption */
     int lines = alg->run == explain_scanline ? 8 + prim.count : alg->run == explain_fillpoly ||
                                                                      alg->run == explain_fwdiff ||
-                                                                     alg->run == explain_clip4d ? 9 : 7;
+                                                                     alg->run == explain_clip4d ? 9
+              : alg->run == explain_transform ? 10 : 7;
     sr_result run = SR_OK;
     bool made = ex_canvas_init(&c, ctx, grid_w, grid_h, zoom, lines) == SR_OK &&
                 (run = alg->run(&c, &prim)) == SR_OK;

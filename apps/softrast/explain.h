@@ -22,9 +22,20 @@
  * FillPoly/FillSpan (SR_GOURAUD_INCREMENTAL) does in screen space. */
 typedef enum ex_interp { EX_INTERP_PERSPECTIVE, EX_INTERP_AFFINE, EX_INTERP_FILLSPAN } ex_interp;
 
+/* transform's viewing pipeline: M_O, the camera and the projection. */
+typedef struct ex_view {
+    double rotate;          /* M_O: degrees about y, then */
+    double translate[3];    /* a translation */
+    double eye[3], target[3], up[3];
+    double fov;             /* degrees: perspective's field of view, across the smaller side */
+    double near_far[2];     /* distances in front of the eye */
+    bool orthographic;      /* sr_ortho instead of sr_perspective */
+    bool stretch;           /* aspect 1: NDC's square stretched over the viewport */
+} ex_view;
+
 /* The primitive the user gave (window coordinates, pixels, y down). */
 typedef enum ex_kind { EX_NONE, EX_TRIANGLE, EX_POLYGON, EX_LINE, EX_TRIANGLES, EX_CIRCLE,
-               EX_CUBIC, EX_CLIP_TRIANGLE } ex_kind;
+               EX_CUBIC, EX_CLIP_TRIANGLE, EX_OBJECT_TRIANGLE } ex_kind;
 
 typedef struct ex_primitive {
     ex_kind kind;
@@ -43,6 +54,10 @@ typedef struct ex_primitive {
     int connectivity;       /* floodfill: 4 or 8 */
     sr_rasterizer rasterizer;        /* triangle: the rasterizer whose steps are shown */
     ex_interp interpolation;         /* perspective: what the last frame draws */
+    ex_view view;                    /* transform: object coordinates in pts (x, y) and z */
+    double highlight[2];             /* gouraud: where the light's highlight peaks */
+    double shininess;                /* gouraud: the Blinn-Phong exponent n */
+    double offset[2];                /* zfight: B's polygon offset, factor and units */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -122,6 +137,14 @@ sr_result explain_circle(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fwdiff(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_floodfill(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_clip4d(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_transform(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_zfight(ex_canvas *c, const ex_primitive *prim);
+/* Whether transform can show prim on a grid_w x grid_h viewport: a camera
+ * frame, every vertex inside near and far; else false with why. */
+bool ex_transform_check(const ex_primitive *prim, int grid_w, int grid_h, char *why,
+                        size_t size);
+
 /* Whether both ends of a line are on pixel centres (x + 1/2, y + 1/2),
  * which the midpoint algorithm's integer decision variable needs. */
 bool ex_line_on_centres(const ex_primitive *prim);

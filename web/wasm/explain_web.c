@@ -126,10 +126,11 @@ EMSCRIPTEN_KEEPALIVE const char *web_algorithm(int i)
         return NULL;
     }
     /* The primitive's option is --KIND (ex_kind's order); the page makes
-     * handles of its points, and of the seed, the row and the clip
-     * window where the example has them. */
+     * handles of its points, and of the seed, the row, the clip window
+     * and the highlight where the example has them. */
     static const char *const kinds[] = { "none",     "triangle", "polygon", "line",
-                                         "triangles", "circle",  "cubic",   "clip-triangle" };
+                                         "triangles", "circle",  "cubic",   "clip-triangle",
+                                         "object" };
     const char *kind = (size_t)ex.kind < sizeof kinds / sizeof kinds[0] ? kinds[ex.kind] : "none";
     int n = snprintf(json, sizeof json, "{\"name\":\"%s\",\"kind\":\"%s\",\"summary\":\"", name,
                      kind);
@@ -160,8 +161,8 @@ EMSCRIPTEN_KEEPALIVE const char *web_algorithm(int i)
     }
     snprintf(json + n, sizeof json - (size_t)n,
              "],\"window\":[%.17g,%.17g,%.17g,%.17g],\"seed\":[%d,%d],\"row\":%d,"
-             "\"grid\":[%d,%d],\"zoom\":%d}",
+             "\"highlight\":[%.17g,%.17g],\"grid\":[%d,%d],\"zoom\":%d}",
              ex.window[0], ex.window[1], ex.window[2], ex.window[3], ex.seed[0], ex.seed[1], ex.row,
-             gw, gh, zoom);
+             ex.highlight[0], ex.highlight[1], gw, gh, zoom);
     return json;
 }
