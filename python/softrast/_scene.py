@@ -297,14 +297,6 @@ def _animation_in(names: List[str], animation: Union[int, str], path: Union[str,
     return names.index(animation)
 
 
-def _animation_index(path: Union[str, bytes], animation: Union[int, str]) -> int:
-    """load's ``animation``: a name looked up among the file's animations
-    (read once more, in the rest pose)."""
-    names = ([a[0] for a in _softrast.load_scene(path).get("animations", [])]
-             if isinstance(animation, str) else [])
-    return _animation_in(names, animation, path)
-
-
 def load(path: PathLike, variant: Union[str, int, None] = None,
          animation: Union[int, str, None] = None, time: float = 0.0) -> Scene:
     """Read a model file as a :class:`Scene` (sr_load_scene).
@@ -348,7 +340,14 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
         raise ValueError(f"time: {time} is not finite")
     if animation is None and time != 0.0:
         raise ValueError("time: a time into an animation: give animation too")
-    index = -1 if animation is None else _animation_index(path, animation)
+    if isinstance(animation, str):
+        # A name is found among the file's animations: the file is read
+        # once, at rest, and posed by it (sr_scene_pose), not read twice.
+        rest = load(path, variant)
+        if rest._reading is None:
+            _animation_in([], animation, path)
+        return rest.pose(animation, time)
+    index = -1 if animation is None else _animation_in([], animation, path)
     d = _softrast.load_scene(path, variant, index, time)
     if not d["gltf"]:
         return Scene([load_mesh(path)])

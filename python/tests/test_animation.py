@@ -80,6 +80,24 @@ def test_a_translation_is_sampled_and_clamped(tmp_path, time, where):
     assert world(softrast.load(path, animation=0, time=time)) == pytest.approx(world(scene))
 
 
+def test_a_name_reads_the_file_once(tmp_path, monkeypatch):
+    path = write_animated(tmp_path / "a.gltf")
+    load_gltf(path)
+    import softrast._scene as scene_module
+    reads = []
+    real = scene_module._softrast.load_scene
+
+    def counting(*args):
+        reads.append(args)
+        return real(*args)
+
+    monkeypatch.setattr(scene_module._softrast, "load_scene", counting)
+    scene = softrast.load(path, animation="slide", time=1.0)
+    assert len(reads) == 1
+    assert scene.animation == 0 and scene.time == 1.0
+    assert world(scene) == pytest.approx(world(softrast.load(path, animation=0, time=1.0)))
+
+
 def test_a_rotation_is_slerped(tmp_path):
     path = write_animated(tmp_path / "a.gltf")
     load_gltf(path)
