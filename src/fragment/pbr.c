@@ -915,41 +915,121 @@ static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
     }
 }
 
+/* The unit direction from the eye to pos + ray, for the lanes. */
+static void eye_to(const sr_pbr *p, const v4f pos[3], const v4f ray[3], v4f d[3])
+{
+    for (int c = 0; c < 3; c++) {
+        d[c] = pos[c] + ray[c] - p->eye[c];
+    }
+    v4f l2 = dot3(d, d);
+    v4f il = sr__v4_sel(l2 > 0.0f, rsqrt_nr(vmax(l2, (v4f){ 1e-30f, 1e-30f, 1e-30f, 1e-30f })),
+                        (v4f){ 0 });
+    for (int c = 0; c < 3; c++) {
+        d[c] *= il;
+    }
+}
+
+/* x turned by the rotation that takes the unit direction a onto b
+ * (Rodrigues: with k = a x b and cos = a.b, x cos + k x x + k (k.x) /
+ * (1 + cos)); a and b lie a dispersion's few degrees apart, never
+ * opposite. */
+static void turn_onto(const v4f a[3], const v4f b[3], v4f x[3])
+{
+    v4f k[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                 a[0] * b[1] - a[1] * b[0] };
+    v4f cs = dot3(a, b), kx = dot3(k, x);
+    v4f w = sr__v4_sel(cs > -0.5f, kx * rcp_nr(vmax(1.0f + cs, (v4f){ 0.5f, 0.5f, 0.5f, 0.5f })),
+                       (v4f){ 0 });
+    v4f t[3] = { k[1] * x[2] - k[2] * x[1], k[2] * x[0] - k[0] * x[2],
+                 k[0] * x[1] - k[1] * x[0] };
+    for (int c = 0; c < 3; c++) {
+        x[c] = x[c] * cs + t[c] + k[c] * w;
+    }
+}
+
+/* One light's radiance towards the eye through the surface, seen from
+ * exit (the ray's way out of the volume), for all three channels; turn,
+ * when not NULL, is a pair of directions (from, onto) the light's
+ * direction is turned by first. */
+static void light_through(const sr_pbr *p, int l, const v4f exit[3], const v4f n[3],
+                          const v4f v[3], v4f rough, const v4f f0[3], v4f f90,
+                          const v4f (*turn)[3], v4f out[3])
+{
+    v4f ld[3], bt[3];
+    for (int c = 0; c < 3; c++) {
+        ld[c] = p->light_vec[l][c] - (v4f){ 0 };
+        out[c] = p->light_rad[l][c] - (v4f){ 0 };
+    }
+    if (p->light_point[l]) {
+        v4f fall = point_falloff(p, l, exit, ld);
+        for (int c = 0; c < 3; c++) {
+            out[c] *= fall;
+        }
+    }
+    if (turn) {
+        turn_onto(turn[0], turn[1], ld);
+    }
+    sr__transmission_btdf4(&p->tr, n, v, ld, rough, f0, f90, bt);
+    for (int c = 0; c < 3; c++) {
+        out[c] *= bt[c];
+    }
+}
+
 /* The punctual lights' radiance through a transmissive surface at four
  * lanes (sr__transmission_btdf4), attenuated by the volume as the light
  * behind is (keep): a point or spot light is seen from where the view ray
  * leaves the volume (pos + ray), a directional one from everywhere the
- * same way.  The shadow map is not applied: the glass itself stands
- * between it and the key light shining through. */
+ * same way.  In a dispersive volume (ray_rb: red's and blue's own ways)
+ * red and blue see a point light from their own exit points, and every
+ * light turned by the angle between their way from the eye and green's:
+ * the angle by which they see the background beside green's, so that a
+ * lamp splits into colours as the scene behind does.  The shadow map is
+ * not applied: the glass itself stands between it and the key light
+ * shining through. */
 static void transmitted_lights(const sr_pbr *p, const float pos_[3][4], const float n_[3][4],
-                               const float v_[3][4], const float rough[4],
-                               const float ray_[3][4], const float keep_[3][4],
-                               const float f0_[3][4], const float f90_[4], float out_[3][4])
+                               const float v_[3][4], const float rough_[4],
+                               const float ray_[3][4], const float (*ray_rb)[3][4],
+                               const float keep_[3][4], const float f0_[3][4], const float f90_[4],
+                               float out_[3][4])
 {
-    v4f exit[3], ray[3], n[3], v[3], f0[3], sum[3] = { { 0 } };
-    load3(exit, pos_);
+    v4f pos[3], exit[3], ray[3], n[3], v[3], f0[3], sum[3] = { { 0 } };
+    load3(pos, pos_);
     load3(ray, ray_);
     load3(n, n_);
     load3(v, v_);
     load3(f0, f0_);
+    v4f rough = load(rough_), f90 = load(f90_);
     for (int c = 0; c < 3; c++) {
-        exit[c] += ray[c];
+        exit[c] = pos[c] + ray[c];
+    }
+    /* Red's and blue's exit points, and their ways from the eye turned
+     * onto green's. */
+    v4f side_exit[2][3], turn[2][2][3];
+    if (ray_rb) {
+        for (int s = 0; s < 2; s++) {
+            v4f r[3];
+            load3(r, ray_rb[s]);
+            for (int c = 0; c < 3; c++) {
+                side_exit[s][c] = pos[c] + r[c];
+            }
+            eye_to(p, pos, r, turn[s][0]);
+            eye_to(p, pos, ray, turn[s][1]);
+        }
     }
     for (int l = 0; l < p->nlights; l++) {
-        v4f ld[3], rad[3], bt[3];
-        for (int c = 0; c < 3; c++) {
-            ld[c] = p->light_vec[l][c] - (v4f){ 0 };
-            rad[c] = p->light_rad[l][c] - (v4f){ 0 };
-        }
-        if (p->light_point[l]) {
-            v4f fall = point_falloff(p, l, exit, ld);
+        v4f rad[3];
+        light_through(p, l, exit, n, v, rough, f0, f90, NULL, rad);
+        if (!ray_rb) {
             for (int c = 0; c < 3; c++) {
-                rad[c] *= fall;
+                sum[c] += rad[c];
             }
+            continue;
         }
-        sr__transmission_btdf4(&p->tr, n, v, ld, load(rough), f0, load(f90_), bt);
-        for (int c = 0; c < 3; c++) {
-            sum[c] += bt[c] * rad[c];
+        sum[1] += rad[1];
+        for (int s = 0; s < 2; s++) {
+            light_through(p, l, side_exit[s], n, v, rough, f0, f90,
+                          (const v4f(*)[3])turn[s], rad);
+            sum[2 * s] += rad[2 * s];
         }
     }
     for (int c = 0; c < 3; c++) {
@@ -987,8 +1067,9 @@ static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
             thick[i] *= tex[1][i];
         }
     }
-    float light[3][4], ray[3][4], keep[3][4], nv[4], rc[4], sa[4], sb[4];
-    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light, ray, keep);
+    float light[3][4], ray[3][4], keep[3][4], ray_rb[2][3][4], nv[4], rc[4], sa[4], sb[4];
+    sr__transmission_light4(&p->tr, pos, n, v, rough, thick, q->mask, light, ray, keep,
+                            p->tr.disperses ? ray_rb : NULL);
     for (int i = 0; i < 4; i++) {
         tr[i] = clamp01(tr[i]);
         kd[i] = 1.0f - tr[i];
@@ -1006,6 +1087,7 @@ static void transmission_lanes(const sr_pbr *p, const sr_fragment_quad *q,
     float direct[3][4] = { { 0 } };
     if (p->nlights > 0) {
         transmitted_lights(p, pos, n, v, rough, (const float(*)[4])ray,
+                           p->tr.disperses ? (const float(*)[3][4])ray_rb : NULL,
                            (const float(*)[4])keep, (const float(*)[4])f0, f90, direct);
     }
     for (int i = 0; i < 4; i++) {

@@ -143,11 +143,11 @@ static void trace_ray(const sr__transmission *t, const float pi[3], const float 
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                              const float n[3][4], const float v[3][4], const float rough[4],
                              const float thick[4], unsigned mask, float out[3][4],
-                             float ray[3][4], float keep[3][4])
+                             float ray[3][4], float keep[3][4], float ray_rb[2][3][4])
 {
     for (int i = 0; i < 4; i++) {
         float light[3] = { 0, 0, 0 }, step[3] = { 0, 0, 0 };
-        float length[3] = { 0, 0, 0 };
+        float length[3] = { 0, 0, 0 }, side[2][3] = { { 0, 0, 0 }, { 0, 0, 0 } };
         /* The ray is needed without anything to see along it too: the
          * punctual lights shine through the same volume. */
         if (mask >> i & 1) {
@@ -164,6 +164,7 @@ void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                     float s[3], l[3] = { 0, 0, 0 };
                     trace_ray(t, pi, vi, ni, t->eta_rgb[c], th, r, s, &length[c], l);
                     light[c] = l[c];
+                    memcpy(side[c / 2], s, sizeof s);
                 }
             }
         }
@@ -177,6 +178,10 @@ void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
             out[c][i] = light[c];
             ray[c][i] = step[c];
             keep[c][i] = k;
+            if (ray_rb) {
+                ray_rb[0][c][i] = side[0][c];
+                ray_rb[1][c][i] = side[1][c];
+            }
         }
     }
 }

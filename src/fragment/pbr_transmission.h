@@ -49,11 +49,13 @@ void sr__transmission_setup(const sr_pbr_material *m, const sr_mat4 *model,
  * ray gets the way from pos to the exit point (zero for a thin wall;
  * green's in a dispersive volume) and
  * keep the volume's transmittance along it, per channel (1 without
- * attenuation); out is already multiplied by keep. */
+ * attenuation); out is already multiplied by keep.  ray_rb, when not
+ * NULL, gets red's and blue's own ways in a dispersive volume (zero
+ * otherwise). */
 void sr__transmission_light4(const sr__transmission *t, const float pos[3][4],
                              const float n[3][4], const float v[3][4], const float rough[4],
                              const float thick[4], unsigned mask, float out[3][4],
-                             float ray[3][4], float keep[3][4]);
+                             float ray[3][4], float keep[3][4], float ray_rb[2][3][4]);
 
 /* The share of a punctual light's radiance that a transmissive surface
  * sends towards the eye at four lanes, the sample viewer's BTDF
