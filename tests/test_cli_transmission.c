@@ -236,3 +236,52 @@ SR_TEST(dispersive_sphere_and_backlit_leaf)
                             "dir=-0.2,-0.3,1,intensity=3"),
                        "gltf_dispersion_leaf");
 }
+
+/* The leaf alone (the scene's third node), lit from behind with the key
+ * light's shadow map on: the leaf is in the map, but it does not shadow
+ * the light it lets through itself (pbr.c looks that light's shadow up
+ * from the far side), so `--shadows on` draws the bytes of `--shadows
+ * off` within a code.  Before, the leaf's green fell from 245 to 129. */
+SR_TEST(backlit_leaf_is_not_its_own_shadow)
+{
+    NEED_CLI();
+    if (!sr_io_have_gltf()) {
+        SKIP("softrast was built without jansson");
+    }
+    const char *materials =
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0}},"
+        "{\"pbrMetallicRoughness\":{\"metallicFactor\":0}},"
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.12,0.4,0.06,1],\"metallicFactor\":0,"
+        "\"roughnessFactor\":0.6},\"doubleSided\":true,"
+        "\"extensions\":{\"KHR_materials_diffuse_transmission\":{"
+        "\"diffuseTransmissionFactor\":0.8,\"diffuseTransmissionColorFactor\":[0.6,0.9,0.2]}}}";
+    char dir[1024], model[1100], out[2][1200];
+    fresh_dir("leaf_shadow", dir, sizeof dir);
+    snprintf(model, sizeof model, "%s/leaf.gltf", dir);
+    char *text = text_replaced(glass_model(materials, true), "\"nodes\":[0,1,2,3]",
+                               "\"nodes\":[2]");
+    REQUIRE(text && write_text(model, text));
+    free(text);
+    uint8_t *px[2];
+    int w[2], h[2];
+    for (int k = 0; k < 2; k++) {
+        snprintf(out[k], sizeof out[k], "%s/shadows_%s.png", dir, k ? "on" : "off");
+        run_result r;
+        px[k] = render_read(ARGS("render", model, "--size", "96x96", "--camera",
+                                 "eye=0,1,7,target=1.9,0,0", "--light",
+                                 "dir=-0.2,-0.3,1,intensity=3", "--shadows", k ? "on" : "off",
+                                 "-o", out[k]),
+                            out[k], &w[k], &h[k], &r);
+        REQUIRE(px[k]);
+    }
+    REQUIRE(w[0] == w[1] && h[0] == h[1]);
+    int off = 0;
+    for (size_t i = 0; i < 4 * (size_t)w[0] * (size_t)h[0]; i++) {
+        off += abs(px[0][i] - px[1][i]) > 1;
+    }
+    const uint8_t *centre = px[0] + 4 * ((size_t)h[0] / 2 * (size_t)w[0] + (size_t)w[0] / 2);
+    CHECK(centre[1] > 200);          /* the leaf, lit through */
+    CHECK_EQ(off, 0);
+    free(px[0]);
+    free(px[1]);
+}

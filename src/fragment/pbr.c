@@ -223,6 +223,7 @@ struct sr_pbr {
      * the model's mean axis length (thickness to world), 0 without. */
     bool dtrans;
     float dt_absorb[3];
+    float dt_depth;               /* the thickness in world units (mean axis length) */
     float *oct_coat;
     const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
@@ -561,21 +562,26 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         sr__iridescence_begin(ext, vclamp(dot3(n, v), 0.0f, 1.0f), f0);
     }
     for (int l = 0; l < p->nlights; l++) {
-        v4f ld[3], rad[3];
+        v4f ld[3], rad[3], back[3];
         for (int c = 0; c < 3; c++) {
             ld[c] = p->light_vec[l][c] - (v4f){ 0 };
             rad[c] = p->light_rad[l][c] - (v4f){ 0 };
+            back[c] = rad[c];
         }
         if (l == 0) {
-            /* The shadow map belongs to the key light. */
+            /* The shadow map belongs to the key light; the light let
+             * through from behind has its own lookup, from the far side
+             * (ext->dt_shadow). */
             for (int c = 0; c < 3; c++) {
                 rad[c] *= load(shadow_);
+                back[c] *= ext && ext->dtrans ? ext->dt_shadow : (v4f){ 1, 1, 1, 1 };
             }
         }
         if (p->light_point[l]) {
             v4f fall = point_falloff(p, l, pos, ld);
             for (int c = 0; c < 3; c++) {
                 rad[c] *= fall;
+                back[c] *= fall;
             }
         }
         /* H = (L + V) / |L + V| without forming it: |L + V|^2 = 2 + 2 L.V,
@@ -606,7 +612,7 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
             out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
         }
         if (ext && ext->dtrans) {
-            sr__diffuse_btdf_light(n, v, nlr, lv, f0, f90, cback, rad, out);
+            sr__diffuse_btdf_light(n, v, nlr, lv, f0, f90, cback, back, out);
         }
         if (ext && ext->coat) {
             sr__coat_light(ext, ld, hs, rad);
@@ -774,6 +780,7 @@ static void dtrans_inputs(const sr_pbr *p, const sr_fragment_quad *q, sr__pbr_la
     const sr_pbr_material *m = &p->m;
     float tex[4][4], uv[2][4];
     x->dtrans = true;
+    x->dt_shadow = (v4f){ 1, 1, 1, 1 };
     x->dt = (v4f){ 0 } + m->diffuse_transmission;
     for (int c = 0; c < 3; c++) {
         x->dt_col[c] = (v4f){ 0 } + m->diffuse_transmission_color[c];
@@ -1113,6 +1120,27 @@ static __attribute__((noinline)) void shade_layered(const sr_pbr *p, const sr_fr
 {
     sr__pbr_layers x;
     layer_inputs(p, q, side, n, v, &x);
+    if (p->dtrans && p->shadow) {
+        /* The light let through from behind reaches the far side of the
+         * surface first: looked up there, the thickness deep and moved
+         * along the far side's normal (towards a light behind), so that
+         * the surface itself, which the map holds, does not shadow it,
+         * while anything between it and the light still does. */
+        float g[3][4], far[3][4], vis[4];
+        for (int i = 0; i < 4; i++) {
+            float len2 = 0.0f;
+            for (int k = 0; k < 3; k++) {
+                g[k][i] = -q->varyings[VARY_NORMAL + k][i] * side;
+                len2 += g[k][i] * g[k][i];
+            }
+            float il = len2 > 0.0f ? p->dt_depth / sqrtf(len2) : 0.0f;
+            for (int k = 0; k < 3; k++) {
+                far[k][i] = pos[k][i] + g[k][i] * il;
+            }
+        }
+        sr_shadow_visibility4(p->shadow, &far[0][0], &g[0][0], vis);
+        x.dt_shadow = load(vis);
+    }
     /* The transmitted light is the base's: under the sheen and the coat. */
     float kd[4], seen[3][4];
     const float *diffuse = opaque;
@@ -1710,14 +1738,20 @@ static void resolve_layers(sr_pbr *p)
  * the material's thickness: its rate per world unit (as
  * sr__transmission_setup's) times the model's mean axis length, the
  * thickness being in object space. */
+static float mean_axis(const sr_mat4 *model)
+{
+    float scale = 0.0f;
+    for (int a = 0; a < 3; a++) {
+        const float *c = &model->m[4 * a];
+        scale += sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) * (1.0f / 3.0f);
+    }
+    return scale;
+}
+
 static void dtrans_absorption(sr_pbr *p)
 {
     const sr_pbr_material *m = &p->m;
-    float scale = 0.0f;
-    for (int a = 0; a < 3; a++) {
-        const float *c = &p->model.m[4 * a];
-        scale += sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) * (1.0f / 3.0f);
-    }
+    float scale = mean_axis(&p->model);
     for (int c = 0; c < 3; c++) {
         float col = m->attenuation_color[c] > 1e-30f ? m->attenuation_color[c] : 1e-30f;
         float rate = -log2f(col > 1.0f ? 1.0f : col) / m->attenuation_distance * scale;
@@ -1802,6 +1836,9 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
     p->transmits = !mat.unlit && mat.transmission != 0.0f;
     if (p->dtrans && mat.thickness > 0.0f && mat.attenuation_distance > 0.0f) {
         dtrans_absorption(p);
+    }
+    if (p->dtrans) {
+        p->dt_depth = mat.thickness * mean_axis(&p->model);
     }
     if (!p->transmits) {
         p->slot[SLOT_TRANSMISSION].tex = NULL;
