@@ -344,7 +344,9 @@ static double centroid(const sr_framebuffer *fb, int y, int c)
  * shows red's and blue's highlights where green's is, moved by the
  * angle between their exit points and green's seen from the eye (Snell's
  * law here), within 0.5 pixel, on either side of green and more than 2
- * pixels from it; dispersion 0 keeps the channels together. */
+ * pixels from it; dispersion 0 keeps the channels together.  The image
+ * is held to tests/ref/pbr_dispersion_lamp.png (3 codes, 0.5% of the
+ * pixels). */
 SR_TEST(dispersion_splits_a_lamp_behind_glass)
 {
     slab s = make_slab(50.0 * PI_D / 180.0);
@@ -360,6 +362,7 @@ SR_TEST(dispersion_splits_a_lamp_behind_glass)
     sr_framebuffer *fb = draw_slab(&s, d);
     REQUIRE(plain && fb);
     save(fb, "pbr_dispersion_lamp");
+    sr_test_check_image("pbr_dispersion_lamp", sr_framebuffer_pixels(fb), W, H, 3, W * H / 200);
     int y = H / 2;
     double half = (ior - 1.0) / (20.0 / disp) / 2.0;
     const double iors[3] = { ior - half, ior, ior + half };
