@@ -2125,6 +2125,47 @@ SR_TEST(thin_film_matches_the_airy_spectrum)
     }
 }
 
+/* KHR_materials_iridescence replaces the Fresnel term of each of glTF's
+ * two BRDFs (Appendix B mixes the dielectric's and the metal's by
+ * metallic): a half-metal's film is the mean of the film over the
+ * dielectric's F0 and the film over the base color, within 1e-6, not the
+ * film over the mixed F0 (0.05 and more apart in a channel here); lanes
+ * of metallic 0 and 1 are those films themselves. */
+SR_TEST(iridescence_mixes_the_dielectric_and_metal_films)
+{
+    sr__pbr_layers x;
+    memset(&x, 0, sizeof x);
+    x.ir_ior = 1.8f;
+    x.ir_thick = (v4f){ 450, 450, 450, 450 };
+    const float base[3] = { 0.9f, 0.6f, 0.3f }, cos_v = 0.8f;
+    v4f f0d[3], col[3], metal = { 0.0f, 1.0f, 0.5f, 0.25f }, nv = { cos_v, cos_v, cos_v, cos_v };
+    for (int c = 0; c < 3; c++) {
+        f0d[c] = (v4f){ 0.04f, 0.04f, 0.04f, 0.04f };
+        col[c] = (v4f){ base[c], base[c], base[c], base[c] };
+    }
+    sr__iridescence_begin(&x, nv, f0d, col, metal);
+    const float d[3] = { 0.04f, 0.04f, 0.04f };
+    float fd[3], fm[3], mixed[3], half[3];
+    sr__thin_film(cos_v, 450.0f, 1.8f, d, fd);
+    sr__thin_film(cos_v, 450.0f, 1.8f, base, fm);
+    for (int c = 0; c < 3; c++) {
+        half[c] = 0.5f * (0.04f + base[c]);
+    }
+    sr__thin_film(cos_v, 450.0f, 1.8f, half, mixed);
+    double apart = 0.0;
+    for (int c = 0; c < 3; c++) {
+        CHECK_NEAR(x.ir_f[c][0], fd[c], 1e-6);
+        CHECK_NEAR(x.ir_f[c][1], fm[c], 1e-6);
+        CHECK_NEAR(x.ir_f[c][2], 0.5 * (fd[c] + fm[c]), 1e-6);
+        CHECK_NEAR(x.ir_f[c][3], 0.75 * fd[c] + 0.25 * fm[c], 1e-6);
+        double gap = fabs(x.ir_f[c][2] - mixed[c]);
+        apart = gap > apart ? gap : apart;
+    }
+    fprintf(stderr, "half-metal film: mean of the two films vs film over the mixed F0: %.3f apart\n",
+            apart);
+    CHECK(apart > 0.05);
+}
+
 /* Strength 0 and film weight 0 are the extensions absent: a rotation, a
  * texture, a film's ior and thicknesses change no byte, under the
  * hemisphere and the environment, on a plain and on a coated base. */

@@ -559,7 +559,7 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         sr__aniso_begin(ext, r * r, v, nv);
     }
     if (ext && ext->irid) {
-        sr__iridescence_begin(ext, vclamp(dot3(n, v), 0.0f, 1.0f), f0);
+        sr__iridescence_begin(ext, vclamp(dot3(n, v), 0.0f, 1.0f), ext->f0, base, mt);
     }
     for (int l = 0; l < p->nlights; l++) {
         v4f ld[3], rad[3], back[3];

@@ -94,13 +94,36 @@ void sr__thin_film(float cos1, float thickness_nm, float film_ior, const float f
     }
 }
 
+/* The film's Fresnel at N.V over the dielectric's F0 and over the
+ * metal's (its base color), mixed by metallic: the extension replaces
+ * the Fresnel term of each of glTF's two BRDFs, which Appendix B mixes
+ * by metallic, and the film is not linear in the F0 beneath it (three.js
+ * does the same; a single film over the mixed F0 colours a half-metal
+ * differently).  A lane that is all one or the other computes one film. */
+static void film_mix(float nv, float thick, float ior, const float f0d[3], const float base[3],
+                     float metal, float out[3])
+{
+    float m = clamp01(metal), d[3] = { 0, 0, 0 }, k[3] = { 0, 0, 0 };
+    if (m < 1.0f) {
+        sr__thin_film(nv, thick, ior, f0d, d);
+    }
+    if (m > 0.0f) {
+        sr__thin_film(nv, thick, ior, base, k);
+    }
+    for (int c = 0; c < 3; c++) {
+        out[c] = m <= 0.0f ? d[c] : m >= 1.0f ? k[c] : d[c] + (k[c] - d[c]) * m;
+    }
+}
+
 /* ir_f0 inverts Schlick's form at N.V, F = F0 + (1 - F0) (1 - N.V)^5, as
  * three.js does, so that the split sum's albedo scales the film's color. */
-void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0[3])
+void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0d[3], const v4f base[3],
+                           v4f metal)
 {
     for (int i = 0; i < 4; i++) {
-        float base[3] = { f0[0][i], f0[1][i], f0[2][i] }, f[3];
-        sr__thin_film(nv[i], x->ir_thick[i], x->ir_ior, base, f);
+        float fd[3] = { f0d[0][i], f0d[1][i], f0d[2][i] };
+        float b[3] = { base[0][i], base[1][i], base[2][i] }, f[3];
+        film_mix(nv[i], x->ir_thick[i], x->ir_ior, fd, b, metal[i], f);
         float m = 1.0f - nv[i], m2 = m * m, m5 = m2 * m2 * m;
         for (int c = 0; c < 3; c++) {
             x->ir_f[c][i] = f[c];

@@ -72,9 +72,11 @@ v4f sr__aniso_dv(const sr__pbr_layers *x, const v4f ld[3], v4f hs, v4f nl, v4f n
 void sr__aniso_bent(const sr__pbr_layers *x, const v4f n[3], const v4f v[3], v4f rc,
                     v4f out[3]);
 
-/* Iridescence.  begin: from ir_thick and ir_ior (set), N.V in 0..1 and
- * the base's F0 (metals' included) the film's ir_f and ir_f0. */
-void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0[3]);
+/* Iridescence.  begin: from ir_thick and ir_ior (set), N.V in 0..1, the
+ * dielectric's F0, the base color (the metal's F0) and metallic the
+ * film's ir_f and ir_f0: one film over each F0, mixed by metallic. */
+void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0d[3], const v4f base[3],
+                           v4f metal);
 
 /* Diffuse transmission: one light's radiance rad arriving from behind
  * the surface (nlr = N.L < 0 and lv = L.V of its unit vector L) through the Lambert BTDF

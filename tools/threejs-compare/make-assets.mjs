@@ -424,6 +424,21 @@ const surface = [
 writeFileSync(join(out, 'surface-spheres.glb'), glb(sphere(0.5, 64, 32, true),
     surface.map((m, i) => ({ material: i, translation: [(i % 3 - 1) * 1.1, i < 3 ? 0.55 : -0.55, 0] })),
     surface, ['KHR_materials_anisotropy', 'KHR_materials_iridescence']));
+
+// KHR_materials_iridescence over a half-metal: the same film (ior 1.8,
+// 450 nm) on a copper-coloured base at metallic 0, 0.5 and 1, left to
+// right.  The extension replaces the Fresnel term of the dielectric's
+// and of the metal's BRDF, which glTF mixes by metallic, so the middle
+// sphere's film is the mean of its neighbours', not a film over the mean
+// F0.
+const filmed = (metallic) => ({
+    name: `film at metallic ${metallic}`, pbrMetallicRoughness: pbr([0.9, 0.6, 0.3], metallic, 0.3),
+    extensions: { KHR_materials_iridescence: { iridescenceFactor: 1, iridescenceIor: 1.8,
+                                               iridescenceThicknessMaximum: 450 } } });
+const halfMetal = [filmed(0), filmed(0.5), filmed(1)];
+writeFileSync(join(out, 'iridescence-metallic.glb'), glb(sphere(0.5, 64, 32, true),
+    halfMetal.map((m, i) => ({ material: i, translation: [(i - 1) * 1.1, 0, 0] })),
+    halfMetal, ['KHR_materials_iridescence']));
 writeFileSync(join(out, 'skinned-figure.glb'), figure());
 
 // An animated asset (glTF animations): a hub turning about +y (LINEAR
