@@ -2166,6 +2166,38 @@ SR_TEST(iridescence_mixes_the_dielectric_and_metal_films)
     CHECK(apart > 0.05);
 }
 
+/* Under a clear coat the film's upper medium is the coat, ior 1.5
+ * (KHR_materials_iridescence's "Clearcoat"): a film of ior 1.5 on a
+ * dielectric of ior 1.5 (F0 0.04) under a full coat is one index-matched
+ * stack with nothing to reflect below the coat, within 0.005 of black,
+ * while the same film under air reflects 0.02 and more; a half coat is
+ * the mean of the two within 1e-6, and no coat the air's film exactly. */
+SR_TEST(iridescence_under_a_coat_sees_the_coat_above)
+{
+    sr__pbr_layers x;
+    memset(&x, 0, sizeof x);
+    x.coat = true;
+    x.cc = (v4f){ 0.0f, 1.0f, 0.5f, 0.0f };
+    x.ir_ior = 1.5f;
+    x.ir_thick = (v4f){ 350, 350, 350, 350 };
+    const float cos_v = 0.9f;
+    v4f f0d[3], col[3], metal = { 0 }, nv = { cos_v, cos_v, cos_v, cos_v };
+    for (int c = 0; c < 3; c++) {
+        f0d[c] = (v4f){ 0.04f, 0.04f, 0.04f, 0.04f };
+        col[c] = (v4f){ 0.5f, 0.5f, 0.5f, 0.5f };
+    }
+    sr__iridescence_begin(&x, nv, f0d, col, metal);
+    const float d[3] = { 0.04f, 0.04f, 0.04f };
+    float air[3];
+    sr__thin_film(cos_v, 350.0f, 1.5f, d, air);
+    for (int c = 0; c < 3; c++) {
+        CHECK(air[c] > 0.02f);
+        CHECK_EQ(x.ir_f[c][0], air[c]);
+        CHECK_NEAR(x.ir_f[c][1], 0.0, 0.005);
+        CHECK_NEAR(x.ir_f[c][2], 0.5 * (x.ir_f[c][0] + x.ir_f[c][1]), 1e-6);
+    }
+}
+
 /* Strength 0 and film weight 0 are the extensions absent: a rotation, a
  * texture, a film's ior and thicknesses change no byte, under the
  * hemisphere and the environment, on a plain and on a coated base. */

@@ -1,6 +1,6 @@
 /* pbr_iridescence.c - KHR_materials_iridescence on the PBR program's four
- * lanes (fragment stage, pbr_layers.h): a dielectric film between air
- * and the base whose two reflections interfere, Belcour and Barla's
+ * lanes (fragment stage, pbr_layers.h): a dielectric film between air (or
+ * a clear coat) and the base whose two reflections interfere, Belcour and Barla's
  * "A Practical Extension to Microfacet Theory for the Modeling of Varying
  * Iridescence" (2017) as the extension's appendix and the glTF Sample
  * Viewer write it: the Airy series to its second order, each order's
@@ -47,23 +47,25 @@ static void sensitivity(float opd, const float shift[3], float rgb[3])
     rgb[2] = 0.0556434f * xyz[0] - 0.2040259f * xyz[1] + 1.0572252f * xyz[2];
 }
 
-void sr__thin_film(float cos1, float thickness_nm, float film_ior, const float f0[3],
-                   float out[3])
+/* The film under a medium of index n1 above it: air (1), or a clear
+ * coat (1.5). */
+static void film_under(float n1, float cos1, float thickness_nm, float film_ior, const float f0[3],
+                       float out[3])
 {
-    /* The film's index goes to the air's as the film vanishes, so a film
-     * of no thickness is the base alone. */
+    /* The film's index goes to the medium's above as the film vanishes,
+     * so a film of no thickness is the base alone. */
     float t = clamp01(thickness_nm / 0.03f), step = t * t * (3.0f - 2.0f * t);
-    float eta = 1.0f + (film_ior - 1.0f) * step;
-    float cos2sq = 1.0f - sq(1.0f / eta) * (1.0f - sq(cos1));
+    float eta = n1 + (film_ior - n1) * step;
+    float cos2sq = 1.0f - sq(n1 / eta) * (1.0f - sq(cos1));
     if (cos2sq < 0.0f) {
         out[0] = out[1] = out[2] = 1.0f;    /* total internal reflection */
         return;
     }
     float cos2 = sqrtf(cos2sq);
-    /* Air to film: reflected R12, through both ways T121; a phase of pi
-     * on reflection off the denser side. */
-    float r12 = schlick(sq((eta - 1.0f) / (eta + 1.0f)), cos1), t121 = 1.0f - r12;
-    float phi21 = eta < 1.0f ? 0.0f : PI_F;
+    /* Above to film: reflected R12, through both ways T121; a phase of
+     * pi on reflection off the denser side. */
+    float r12 = schlick(sq((eta - n1) / (eta + n1)), cos1), t121 = 1.0f - r12;
+    float phi21 = eta < n1 ? 0.0f : PI_F;
     float opd = 2.0f * eta * thickness_nm * cos2;
     float r23[3], phi[3];
     for (int c = 0; c < 3; c++) {
@@ -94,6 +96,30 @@ void sr__thin_film(float cos1, float thickness_nm, float film_ior, const float f
     }
 }
 
+void sr__thin_film(float cos1, float thickness_nm, float film_ior, const float f0[3],
+                   float out[3])
+{
+    film_under(1.0f, cos1, thickness_nm, film_ior, f0, out);
+}
+
+/* Under a clear coat the film's upper medium is the coat (ior 1.5, its
+ * F0 of 0.04), not air: the extension says so.  A partial coat mixes
+ * the film under it and the film under air by the coat's factor. */
+static void film_coated(float coat, float cos1, float thickness_nm, float film_ior,
+                        const float f0[3], float out[3])
+{
+    float a[3] = { 0, 0, 0 }, b[3] = { 0, 0, 0 };
+    if (coat < 1.0f) {
+        film_under(1.0f, cos1, thickness_nm, film_ior, f0, a);
+    }
+    if (coat > 0.0f) {
+        film_under(1.5f, cos1, thickness_nm, film_ior, f0, b);
+    }
+    for (int c = 0; c < 3; c++) {
+        out[c] = coat <= 0.0f ? a[c] : coat >= 1.0f ? b[c] : a[c] + (b[c] - a[c]) * coat;
+    }
+}
+
 /* The film's Fresnel at N.V over the dielectric's F0 and over the
  * metal's (its base color), mixed by metallic: the extension replaces
  * the Fresnel term of each of glTF's two BRDFs, which Appendix B mixes
@@ -101,14 +127,14 @@ void sr__thin_film(float cos1, float thickness_nm, float film_ior, const float f
  * does the same; a single film over the mixed F0 colours a half-metal
  * differently).  A lane that is all one or the other computes one film. */
 static void film_mix(float nv, float thick, float ior, const float f0d[3], const float base[3],
-                     float metal, float out[3])
+                     float metal, float coat, float out[3])
 {
     float m = clamp01(metal), d[3] = { 0, 0, 0 }, k[3] = { 0, 0, 0 };
     if (m < 1.0f) {
-        sr__thin_film(nv, thick, ior, f0d, d);
+        film_coated(coat, nv, thick, ior, f0d, d);
     }
     if (m > 0.0f) {
-        sr__thin_film(nv, thick, ior, base, k);
+        film_coated(coat, nv, thick, ior, base, k);
     }
     for (int c = 0; c < 3; c++) {
         out[c] = m <= 0.0f ? d[c] : m >= 1.0f ? k[c] : d[c] + (k[c] - d[c]) * m;
@@ -123,7 +149,8 @@ void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0d[3], const v4
     for (int i = 0; i < 4; i++) {
         float fd[3] = { f0d[0][i], f0d[1][i], f0d[2][i] };
         float b[3] = { base[0][i], base[1][i], base[2][i] }, f[3];
-        film_mix(nv[i], x->ir_thick[i], x->ir_ior, fd, b, metal[i], f);
+        film_mix(nv[i], x->ir_thick[i], x->ir_ior, fd, b, metal[i],
+                 x->coat ? clamp01(x->cc[i]) : 0.0f, f);
         float m = 1.0f - nv[i], m2 = m * m, m5 = m2 * m2 * m;
         for (int c = 0; c < 3; c++) {
             x->ir_f[c][i] = f[c];

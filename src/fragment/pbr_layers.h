@@ -74,7 +74,8 @@ void sr__aniso_bent(const sr__pbr_layers *x, const v4f n[3], const v4f v[3], v4f
 
 /* Iridescence.  begin: from ir_thick and ir_ior (set), N.V in 0..1, the
  * dielectric's F0, the base color (the metal's F0) and metallic the
- * film's ir_f and ir_f0: one film over each F0, mixed by metallic. */
+ * film's ir_f and ir_f0: one film over each F0, mixed by metallic, the
+ * film under the coat (its ior 1.5 above it, not air's) by the coat's factor. */
 void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0d[3], const v4f base[3],
                            v4f metal);
 
