@@ -1032,6 +1032,29 @@ SR_TEST(upright_glyphs_stand_with_vertical_metrics)
                 2);
 }
 
+#define JA "writing-mode='tb-rl' font-family='IPAGothic' font-size='40'"
+/* Upright glyphs on a textPath in vertical text follow the path: the
+ * vertical line is bent onto it, their tops towards its start (as
+ * Chromium draws; SVG 1.1 10.13.3 turns each glyph to the tangent),
+ * Latin turned along it.  Down a straight path the text is the vertical
+ * line; along a level one, that line turned a quarter back. */
+SR_TEST(upright_glyphs_follow_a_vertical_text_path)
+{
+    NEED_CJK();
+#define TEXT "\xE4\xB8\x80\xE6\x9C\xAC" "AB\xE3\x81\xAB"
+    same_pixels_on(__LINE__, 200, 300,
+                   "<path id='v' d='M100 20 L100 300'/><text " JA "><textPath href='#v'>" TEXT
+                   "</textPath></text>",
+                   "<text x='100' y='20' " JA ">" TEXT "</text>", 2);
+    same_pixels_on(__LINE__, 300, 200,
+                   "<path id='h' d='M20 100 L300 100'/><text " JA "><textPath href='#h'>" TEXT
+                   "</textPath></text>",
+                   "<text x='20' y='100' " JA " transform='rotate(-90 20 100)'>" TEXT "</text>",
+                   2);
+#undef TEXT
+}
+#undef JA
+
 /* Text in a clipPath, with paint, clip-rule and a use of a text in it
  * (DejaVu): a gradient and a picture through letters.  The reference
  * matches resvg-js 2.6.2 to 0.02% of its pixels and rsvg-convert 2.54

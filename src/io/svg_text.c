@@ -727,11 +727,12 @@ static int vertical_orientation(uint32_t cp)
  * element's text-orientation (or glyph-orientation-vertical) says, and
  * with mixed (auto) by its Vertical_Orientation, a Tr character only
  * where its face has a vertical alternate for it (CSS Writing Modes 3,
- * 5.1).  Glyphs bent onto a textPath stay turned. */
+ * 5.1).  On a textPath too: the line is bent onto the path with its
+ * glyphs, upright ones included. */
 static bool stands_upright(const svg_text *t, const tchar *c)
 {
     const telem *el = &t->elems[c->elem];
-    if (el->path >= 0 || el->ts.orient == SVG_ORIENT_SIDEWAYS) {
+    if (el->ts.orient == SVG_ORIENT_SIDEWAYS) {
         return false;
     }
     if (el->ts.orient == SVG_ORIENT_UPRIGHT) {
