@@ -1033,6 +1033,36 @@ SR_TEST(upright_glyphs_stand_with_vertical_metrics)
 }
 
 #define JA "writing-mode='tb-rl' font-family='IPAGothic' font-size='40'"
+/* glyph-orientation-vertical 180 and 270 (SVG 1.1 10.7.3): the glyph
+ * as 0 or 90 sets it, turned half round in its advance, about the middle
+ * of the advance on the line (an em square of IPAGothic's vmtx for an
+ * upright one, half an em for its monospaced Latin turned). */
+SR_TEST(glyph_orientation_180_and_270_turn_half_round)
+{
+    NEED_CJK();
+    /* に (U+306B) down from (100, 20): its square's middle is (100, 40) */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='180'>"
+                   "\xE3\x81\xAB</text>",
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='0' "
+                   "transform='rotate(180 100 40)'>\xE3\x81\xAB</text>", 2);
+    /* L turned: its 20 px advance from y 20, the middle at (100, 30) */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='270deg'>L</text>",
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='90' "
+                   "transform='rotate(180 100 30)'>L</text>", 2);
+    /* each glyph turns in its own place: the pen goes on as with 0 and 90 */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA ">\xE3\x81\xAB<tspan "
+                   "glyph-orientation-vertical='180'>\xE3\x81\xAB</tspan>L<tspan "
+                   "glyph-orientation-vertical='270'>L</tspan>\xE3\x81\xAB</text>",
+                   "<text x='100' y='20' " JA ">\xE3\x81\xAB</text><text x='100' y='60' " JA
+                   " transform='rotate(180 100 80)'>\xE3\x81\xAB</text><text x='100' y='100' " JA
+                   ">L</text><text x='100' y='120' " JA " glyph-orientation-vertical='90' "
+                   "transform='rotate(180 100 130)'>L</text><text x='100' y='140' " JA
+                   ">\xE3\x81\xAB</text>", 2);
+}
+
 /* Upright glyphs on a textPath in vertical text follow the path: the
  * vertical line is bent onto it, their tops towards its start (as
  * Chromium draws; SVG 1.1 10.13.3 turns each glyph to the tangent),

@@ -329,11 +329,16 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         ts->vertical = ok ? b >= 5 : ts->vertical;
         break;
     case 15:
-        b = keyword(v, (const char *const[]){ "auto", "0", "0deg", "90", "90deg", NULL });
+        b = keyword(v, (const char *const[]){ "auto", "0", "0deg", "90", "90deg", "180",
+                                              "180deg", "270", "270deg", NULL });
         ok = b >= 0;
         if (ok) {
-            ts->orient = b == 0 ? SVG_ORIENT_MIXED : b <= 2 ? SVG_ORIENT_UPRIGHT
-                                                            : SVG_ORIENT_SIDEWAYS;
+            static const unsigned char orients[] = {
+                SVG_ORIENT_MIXED,       SVG_ORIENT_UPRIGHT,      SVG_ORIENT_UPRIGHT,
+                SVG_ORIENT_SIDEWAYS,    SVG_ORIENT_SIDEWAYS,     SVG_ORIENT_UPSIDE_DOWN,
+                SVG_ORIENT_UPSIDE_DOWN, SVG_ORIENT_SIDEWAYS_LEFT, SVG_ORIENT_SIDEWAYS_LEFT,
+            };
+            ts->orient = orients[b];
         }
         break;
     case 16:
@@ -732,10 +737,10 @@ static int vertical_orientation(uint32_t cp)
 static bool stands_upright(const svg_text *t, const tchar *c)
 {
     const telem *el = &t->elems[c->elem];
-    if (el->ts.orient == SVG_ORIENT_SIDEWAYS) {
+    if (el->ts.orient == SVG_ORIENT_SIDEWAYS || el->ts.orient == SVG_ORIENT_SIDEWAYS_LEFT) {
         return false;
     }
-    if (el->ts.orient == SVG_ORIENT_UPRIGHT) {
+    if (el->ts.orient == SVG_ORIENT_UPRIGHT || el->ts.orient == SVG_ORIENT_UPSIDE_DOWN) {
         return true;
     }
     switch (vertical_orientation(c->cp)) {
@@ -854,6 +859,12 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
     /* upright glyphs are centred on the line by their vertical origin:
      * they move off it only as far as the baseline does from central */
     double up_down = down - (m->ascender + m->descender) / 2 * scale;
+    /* glyph-orientation-vertical 180 and 270: each cluster turned half
+     * round about the middle of its advance on the central baseline, as
+     * it stands before rotate turns it about the pen */
+    bool flip = el->ts.vertical && (el->ts.orient == SVG_ORIENT_UPSIDE_DOWN ||
+                                    el->ts.orient == SVG_ORIENT_SIDEWAYS_LEFT);
+    double flip_at[2] = { 0, 0 };
     const svg_glyph *g = *glyphs;
     for (int k = s; k < e; k++) {
         t->chars[k].starts = false;
@@ -902,6 +913,15 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
         double rot = t->chars[c].pos[LIST_ROTATE];
         double a = isnan(rot) ? 0 : rot * (M_PI / 180);
         double co = cos(a), si = sin(a);
+        if (first && flip) {
+            double adv = 0;
+            for (int q = i; q < n && g[q].cluster == c; q++) {
+                adv += up ? -g[q].ay * scale * sx : g[q].ax * scale * sx;
+            }
+            double du = adv / 2, dv = up ? 0 : up_down - down;
+            flip_at[0] = pen[0] + co * du - si * dv;
+            flip_at[1] = pen[1] + (up ? up_down : down) + si * du + co * dv;
+        }
         if (up) {
             /* upright: the glyph as it stands after the quarter turn
              * (textLength stretching it down the line), its offset from
@@ -927,7 +947,15 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
         if (last) {
             /* on a path the cluster turns about its middle */
             for (int j = cluster_glyph; j < t->n_placed; j++) {
+                double *gm = t->placed[j].m;
                 t->placed[j].mid = (cluster_x + pen[0]) / 2;
+                for (int q = 0; flip && q < 4; q++) {
+                    gm[q] = -gm[q];
+                }
+                if (flip) {
+                    gm[4] = 2 * flip_at[0] - gm[4];
+                    gm[5] = 2 * flip_at[1] - gm[5];
+                }
             }
             for (int k = c; k < c_end; k++) {
                 pen[0] += el->ts.letter_spacing * sx;
