@@ -1063,6 +1063,47 @@ SR_TEST(glyph_orientation_180_and_270_turn_half_round)
                    ">\xE3\x81\xAB</text>", 2);
 }
 
+/* text-combine-upright (CSS Writing Modes 3 9.1, 4 for digits): the
+ * element's text set across the line as horizontal text centred on its
+ * central baseline in an em square, squeezed to one em where wider, the
+ * pen going down one em; digits N combines runs of at most N digits;
+ * horizontal text ignores it. */
+SR_TEST(text_combine_upright_sets_one_em_across)
+{
+    NEED_CJK();
+#define H "font-family='IPAGothic' font-size='40' dominant-baseline='central'"
+#define ALL(s) "<tspan style='text-combine-upright: all'>" s "</tspan>"
+    /* 12 (two half-width digits: one em) in the square from y 20 to 60,
+     * then 一 in the next */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA ">" ALL("12") "\xE4\xB8\x80</text>",
+                   "<text x='80' y='40' " H ">12</text><text x='100' y='60' " JA
+                   ">\xE4\xB8\x80</text>", 2);
+    /* 2026 (two em) squeezed to half its width (its curves flattened
+     * under another transform: edge pixels up to 17 apart) */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA ">" ALL("2026") "</text>",
+                   "<text transform='translate(100 40) scale(0.5 1)' x='-40' " H ">2026</text>",
+                   24);
+    /* digits 2 (digits alone): 10 combined, 2026 and its neighbours not */
+    same_pixels_on(__LINE__, 200, 320,
+                   "<text x='100' y='0' " JA " style='text-combine-upright: digits'>"
+                   "\xE5\xB9\xB4" "10\xE5\xB9\xB4" "2026</text>",
+                   "<text x='100' y='0' " JA ">\xE5\xB9\xB4" ALL("10") "\xE5\xB9\xB4" "2026</text>",
+                   0);
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " style='text-combine-upright: digits 4'>2026</text>",
+                   "<text x='100' y='20' " JA ">" ALL("2026") "</text>", 0);
+    /* none, and every value in horizontal text, leave the text as it is */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " style='text-combine-upright: none'>12</text>",
+                   "<text x='100' y='20' " JA ">12</text>", 0);
+    same_pixels_on(__LINE__, 200, 200, "<text x='20' y='100' " H ">" ALL("12") "</text>",
+                   "<text x='20' y='100' " H ">12</text>", 0);
+#undef ALL
+#undef H
+}
+
 /* Upright glyphs on a textPath in vertical text follow the path: the
  * vertical line is bent onto it, their tops towards its start (as
  * Chromium draws; SVG 1.1 10.13.3 turns each glyph to the tangent),
