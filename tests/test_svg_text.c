@@ -9,8 +9,10 @@
  * lacks come from a fallback font, mixed directions are ordered by the
  * bidi algorithm, textPath lays glyphs along its path, tref draws the
  * text it names, vertical text runs down turned, its ideographs and kana
- * upright with vertical metrics (a second reference), text in a clipPath
- * clips by its glyphs (a third), and huge font sizes and texts beyond the
+ * upright with vertical metrics (a second reference), turned by
+ * glyph-orientation-vertical 180 and 270, combined by text-combine-upright
+ * and bent along a textPath (a third), text in a clipPath clips by its
+ * glyphs (a fourth), and huge font sizes and texts beyond the
  * point budget are refused with FILE:LINE.  The font is pinned: DejaVu
  * Sans, skipped unless fontconfig resolves the family to DejaVuSans.ttf;
  * the vertical Japanese needs IPAGothic (fonts-ipafont-gothic, which
@@ -1125,6 +1127,17 @@ SR_TEST(upright_glyphs_follow_a_vertical_text_path)
 #undef TEXT
 }
 #undef JA
+
+/* glyph-orientation-vertical 180 and 270, text-combine-upright (all and
+ * digits N) and upright glyphs along a textPath, in IPAGothic.  Chromium
+ * 156 draws the textPath as the reference does (but for the offset of
+ * under a pixel its upright glyphs have in straight vertical text too);
+ * it, rsvg-convert 2.54 and resvg-js 2.6.2 ignore the other two. */
+SR_TEST(vertical_turns_and_combinations_match_reference)
+{
+    NEED_CJK();
+    check_drawing("text-vertical-turns.svg", "svg_text_vertical_turns");
+}
 
 /* Text in a clipPath, with paint, clip-rule and a use of a text in it
  * (DejaVu): a gradient and a picture through letters.  The reference
