@@ -9,8 +9,10 @@
  * lacks come from a fallback font, mixed directions are ordered by the
  * bidi algorithm, textPath lays glyphs along its path, tref draws the
  * text it names, vertical text runs down turned, its ideographs and kana
- * upright with vertical metrics (a second reference), text in a clipPath
- * clips by its glyphs (a third), and huge font sizes and texts beyond the
+ * upright with vertical metrics (a second reference), turned by
+ * glyph-orientation-vertical 180 and 270, combined by text-combine-upright
+ * and bent along a textPath (a third), text in a clipPath clips by its
+ * glyphs (a fourth), and huge font sizes and texts beyond the
  * point budget are refused with FILE:LINE.  The font is pinned: DejaVu
  * Sans, skipped unless fontconfig resolves the family to DejaVuSans.ttf;
  * the vertical Japanese needs IPAGothic (fonts-ipafont-gothic, which
@@ -1030,6 +1032,111 @@ SR_TEST(upright_glyphs_stand_with_vertical_metrics)
                 "<text transform='translate(100 5) rotate(90)' dominant-baseline='central' "
                 "font-family='IPAGothic'>\xE4\xB8\x80\xE6\x9C\xAC</text>",
                 2);
+}
+
+#define JA "writing-mode='tb-rl' font-family='IPAGothic' font-size='40'"
+/* glyph-orientation-vertical 180 and 270 (SVG 1.1 10.7.3): the glyph
+ * as 0 or 90 sets it, turned half round in its advance, about the middle
+ * of the advance on the line (an em square of IPAGothic's vmtx for an
+ * upright one, half an em for its monospaced Latin turned). */
+SR_TEST(glyph_orientation_180_and_270_turn_half_round)
+{
+    NEED_CJK();
+    /* に (U+306B) down from (100, 20): its square's middle is (100, 40) */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='180'>"
+                   "\xE3\x81\xAB</text>",
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='0' "
+                   "transform='rotate(180 100 40)'>\xE3\x81\xAB</text>", 2);
+    /* L turned: its 20 px advance from y 20, the middle at (100, 30) */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='270deg'>L</text>",
+                   "<text x='100' y='20' " JA " glyph-orientation-vertical='90' "
+                   "transform='rotate(180 100 30)'>L</text>", 2);
+    /* each glyph turns in its own place: the pen goes on as with 0 and 90 */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA ">\xE3\x81\xAB<tspan "
+                   "glyph-orientation-vertical='180'>\xE3\x81\xAB</tspan>L<tspan "
+                   "glyph-orientation-vertical='270'>L</tspan>\xE3\x81\xAB</text>",
+                   "<text x='100' y='20' " JA ">\xE3\x81\xAB</text><text x='100' y='60' " JA
+                   " transform='rotate(180 100 80)'>\xE3\x81\xAB</text><text x='100' y='100' " JA
+                   ">L</text><text x='100' y='120' " JA " glyph-orientation-vertical='90' "
+                   "transform='rotate(180 100 130)'>L</text><text x='100' y='140' " JA
+                   ">\xE3\x81\xAB</text>", 2);
+}
+
+/* text-combine-upright (CSS Writing Modes 3 9.1, 4 for digits): the
+ * element's text set across the line as horizontal text centred on its
+ * central baseline in an em square, squeezed to one em where wider, the
+ * pen going down one em; digits N combines runs of at most N digits;
+ * horizontal text ignores it. */
+SR_TEST(text_combine_upright_sets_one_em_across)
+{
+    NEED_CJK();
+#define H "font-family='IPAGothic' font-size='40' dominant-baseline='central'"
+#define ALL(s) "<tspan style='text-combine-upright: all'>" s "</tspan>"
+    /* 12 (two half-width digits: one em) in the square from y 20 to 60,
+     * then 一 in the next */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA ">" ALL("12") "\xE4\xB8\x80</text>",
+                   "<text x='80' y='40' " H ">12</text><text x='100' y='60' " JA
+                   ">\xE4\xB8\x80</text>", 2);
+    /* 2026 (two em) squeezed to half its width (its curves flattened
+     * under another transform: edge pixels up to 17 apart) */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA ">" ALL("2026") "</text>",
+                   "<text transform='translate(100 40) scale(0.5 1)' x='-40' " H ">2026</text>",
+                   24);
+    /* digits 2 (digits alone): 10 combined, 2026 and its neighbours not */
+    same_pixels_on(__LINE__, 200, 320,
+                   "<text x='100' y='0' " JA " style='text-combine-upright: digits'>"
+                   "\xE5\xB9\xB4" "10\xE5\xB9\xB4" "2026</text>",
+                   "<text x='100' y='0' " JA ">\xE5\xB9\xB4" ALL("10") "\xE5\xB9\xB4" "2026</text>",
+                   0);
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " style='text-combine-upright: digits 4'>2026</text>",
+                   "<text x='100' y='20' " JA ">" ALL("2026") "</text>", 0);
+    /* none, and every value in horizontal text, leave the text as it is */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " style='text-combine-upright: none'>12</text>",
+                   "<text x='100' y='20' " JA ">12</text>", 0);
+    same_pixels_on(__LINE__, 200, 200, "<text x='20' y='100' " H ">" ALL("12") "</text>",
+                   "<text x='20' y='100' " H ">12</text>", 0);
+#undef ALL
+#undef H
+}
+
+/* Upright glyphs on a textPath in vertical text follow the path: the
+ * vertical line is bent onto it, their tops towards its start (as
+ * Chromium draws; SVG 1.1 10.13.3 turns each glyph to the tangent),
+ * Latin turned along it.  Down a straight path the text is the vertical
+ * line; along a level one, that line turned a quarter back. */
+SR_TEST(upright_glyphs_follow_a_vertical_text_path)
+{
+    NEED_CJK();
+#define TEXT "\xE4\xB8\x80\xE6\x9C\xAC" "AB\xE3\x81\xAB"
+    same_pixels_on(__LINE__, 200, 300,
+                   "<path id='v' d='M100 20 L100 300'/><text " JA "><textPath href='#v'>" TEXT
+                   "</textPath></text>",
+                   "<text x='100' y='20' " JA ">" TEXT "</text>", 2);
+    same_pixels_on(__LINE__, 300, 200,
+                   "<path id='h' d='M20 100 L300 100'/><text " JA "><textPath href='#h'>" TEXT
+                   "</textPath></text>",
+                   "<text x='20' y='100' " JA " transform='rotate(-90 20 100)'>" TEXT "</text>",
+                   2);
+#undef TEXT
+}
+#undef JA
+
+/* glyph-orientation-vertical 180 and 270, text-combine-upright (all and
+ * digits N) and upright glyphs along a textPath, in IPAGothic.  Chromium
+ * 156 draws the textPath as the reference does (but for the offset of
+ * under a pixel its upright glyphs have in straight vertical text too);
+ * it, rsvg-convert 2.54 and resvg-js 2.6.2 ignore the other two. */
+SR_TEST(vertical_turns_and_combinations_match_reference)
+{
+    NEED_CJK();
+    check_drawing("text-vertical-turns.svg", "svg_text_vertical_turns");
 }
 
 /* Text in a clipPath, with paint, clip-rule and a use of a text in it

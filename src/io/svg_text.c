@@ -230,6 +230,29 @@ static bool spacing(double *out, double em, const char *v)
     return true;
 }
 
+/* text-combine-upright: none | all | digits [2-4] (CSS Writing Modes 3
+ * and 4; digits alone is digits 2). */
+static bool combine_upright(svg_text_style *ts, const char *v)
+{
+    if (strcmp(v, "none") == 0 || strcmp(v, "all") == 0) {
+        ts->combine = v[0] == 'a' ? SVG_COMBINE_ALL : SVG_COMBINE_NONE;
+        return true;
+    }
+    if (strncmp(v, "digits", 6) != 0) {
+        return false;
+    }
+    const char *s = svg_skip_ws(v + 6);
+    double d = 2;
+    if (*s && (s == v + 6 || !svg_parse_number(&s, &d) || *svg_skip_ws(s))) {
+        return false;
+    }
+    if (!(d == 2 || d == 3 || d == 4)) {
+        return false;
+    }
+    ts->combine = (unsigned char)d;
+    return true;
+}
+
 int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const char *name,
                       const char *v)
 {
@@ -237,7 +260,7 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         "font-family", "font-size", "font-weight", "font-style", "text-anchor",
         "dominant-baseline", "alignment-baseline", "text-decoration", "letter-spacing",
         "word-spacing", "baseline-shift", "direction", "font", "unicode-bidi", "writing-mode",
-        "glyph-orientation-vertical", "text-orientation", NULL,
+        "glyph-orientation-vertical", "text-orientation", "text-combine-upright", NULL,
     };
     int k = keyword(name, names);
     if (k < 0) {
@@ -264,6 +287,7 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         case 14: ts->vertical = one.vertical; break;
         case 15:
         case 16: ts->orient = one.orient; break;
+        case 17: ts->combine = one.combine; break;
         default: break;
         }
         return 1;
@@ -329,11 +353,16 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
         ts->vertical = ok ? b >= 5 : ts->vertical;
         break;
     case 15:
-        b = keyword(v, (const char *const[]){ "auto", "0", "0deg", "90", "90deg", NULL });
+        b = keyword(v, (const char *const[]){ "auto", "0", "0deg", "90", "90deg", "180",
+                                              "180deg", "270", "270deg", NULL });
         ok = b >= 0;
         if (ok) {
-            ts->orient = b == 0 ? SVG_ORIENT_MIXED : b <= 2 ? SVG_ORIENT_UPRIGHT
-                                                            : SVG_ORIENT_SIDEWAYS;
+            static const unsigned char orients[] = {
+                SVG_ORIENT_MIXED,       SVG_ORIENT_UPRIGHT,      SVG_ORIENT_UPRIGHT,
+                SVG_ORIENT_SIDEWAYS,    SVG_ORIENT_SIDEWAYS,     SVG_ORIENT_UPSIDE_DOWN,
+                SVG_ORIENT_UPSIDE_DOWN, SVG_ORIENT_SIDEWAYS_LEFT, SVG_ORIENT_SIDEWAYS_LEFT,
+            };
+            ts->orient = orients[b];
         }
         break;
     case 16:
@@ -346,6 +375,7 @@ int svg_text_property(svg_text_style *ts, const svg_text_style *parent, const ch
                                                             : SVG_ORIENT_SIDEWAYS;
         }
         break;
+    case 17: ok = combine_upright(ts, v); break;
     default: ok = true; break;
     }
     return ok ? 1 : -1;
@@ -368,6 +398,7 @@ typedef struct tchar {
     bool starts;                 /* a cluster starts here (while its run is placed) */
     bool collapsible;            /* a space xml:space does not preserve */
     bool upright;                /* stands upright in vertical text, with vertical metrics */
+    int combine;                 /* its text-combine-upright unit: its first character + 1, or 0 */
 } tchar;
 
 typedef struct telem {
@@ -614,7 +645,7 @@ static bool add_char(svg_text *t, uint32_t cp, bool visible, bool collapsible)
     }
     t->chars[t->n_chars++] = (tchar){ cp, t->open, NULL, visible,
                                       { NAN, NAN, NAN, NAN, NAN }, 0, 0, false,
-                                      collapsible, false };
+                                      collapsible, false, 0 };
     return true;
 }
 
@@ -727,14 +758,15 @@ static int vertical_orientation(uint32_t cp)
  * element's text-orientation (or glyph-orientation-vertical) says, and
  * with mixed (auto) by its Vertical_Orientation, a Tr character only
  * where its face has a vertical alternate for it (CSS Writing Modes 3,
- * 5.1).  Glyphs bent onto a textPath stay turned. */
+ * 5.1).  On a textPath too: the line is bent onto the path with its
+ * glyphs, upright ones included. */
 static bool stands_upright(const svg_text *t, const tchar *c)
 {
     const telem *el = &t->elems[c->elem];
-    if (el->path >= 0 || el->ts.orient == SVG_ORIENT_SIDEWAYS) {
+    if (el->ts.orient == SVG_ORIENT_SIDEWAYS || el->ts.orient == SVG_ORIENT_SIDEWAYS_LEFT) {
         return false;
     }
-    if (el->ts.orient == SVG_ORIENT_UPRIGHT) {
+    if (el->ts.orient == SVG_ORIENT_UPRIGHT || el->ts.orient == SVG_ORIENT_UPSIDE_DOWN) {
         return true;
     }
     switch (vertical_orientation(c->cp)) {
@@ -777,6 +809,49 @@ static void turn_glyphs(svg_text *t)
             m[2] = -n[3], m[3] = n[2];
             m[4] = -n[5], m[5] = n[4];
         }
+    }
+}
+
+/* Characters in one text-combine-upright unit at most; a longer run is
+ * laid out as it would be without the property (squeezed into one em it
+ * would be a smudge). */
+#define MAX_COMBINED 32
+
+/* Whether characters a and b (a before b) are in one chunk: no absolute
+ * position at b, one textPath. */
+static bool same_chunk(const svg_text *t, int a, int b)
+{
+    return isnan(t->chars[b].pos[LIST_X]) && isnan(t->chars[b].pos[LIST_Y]) &&
+           t->elems[t->chars[a].elem].path == t->elems[t->chars[b].elem].path;
+}
+
+/* The text-combine-upright units of a vertical text (CSS Writing Modes 3
+ * 9.1, 4 for digits): a run of characters of elements with all, or a
+ * run of ASCII digits of elements with digits N that is at most N long,
+ * within a chunk. */
+static void mark_combined(svg_text *t)
+{
+    for (int i = 0; i < t->n_chars;) {
+        int mode = t->elems[t->chars[i].elem].ts.combine;
+        bool digit = t->chars[i].cp >= '0' && t->chars[i].cp <= '9';
+        if (mode == SVG_COMBINE_NONE || (mode != SVG_COMBINE_ALL && !digit)) {
+            i++;
+            continue;
+        }
+        int e = i + 1;
+        for (; e < t->n_chars && same_chunk(t, i, e); e++) {
+            int m = t->elems[t->chars[e].elem].ts.combine;
+            uint32_t cp = t->chars[e].cp;
+            if (mode == SVG_COMBINE_ALL ? m != SVG_COMBINE_ALL
+                                        : m < 2 || cp < '0' || cp > '9') {
+                break;
+            }
+        }
+        int limit = mode == SVG_COMBINE_ALL ? MAX_COMBINED : mode;
+        for (int k = i; k < e && e - i <= limit; k++) {
+            t->chars[k].combine = i + 1;
+        }
+        i = e;
     }
 }
 
@@ -853,6 +928,12 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
     /* upright glyphs are centred on the line by their vertical origin:
      * they move off it only as far as the baseline does from central */
     double up_down = down - (m->ascender + m->descender) / 2 * scale;
+    /* glyph-orientation-vertical 180 and 270: each cluster turned half
+     * round about the middle of its advance on the central baseline, as
+     * it stands before rotate turns it about the pen */
+    bool flip = el->ts.vertical && (el->ts.orient == SVG_ORIENT_UPSIDE_DOWN ||
+                                    el->ts.orient == SVG_ORIENT_SIDEWAYS_LEFT);
+    double flip_at[2] = { 0, 0 };
     const svg_glyph *g = *glyphs;
     for (int k = s; k < e; k++) {
         t->chars[k].starts = false;
@@ -901,6 +982,15 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
         double rot = t->chars[c].pos[LIST_ROTATE];
         double a = isnan(rot) ? 0 : rot * (M_PI / 180);
         double co = cos(a), si = sin(a);
+        if (first && flip) {
+            double adv = 0;
+            for (int q = i; q < n && g[q].cluster == c; q++) {
+                adv += up ? -g[q].ay * scale * sx : g[q].ax * scale * sx;
+            }
+            double du = adv / 2, dv = up ? 0 : up_down - down;
+            flip_at[0] = pen[0] + co * du - si * dv;
+            flip_at[1] = pen[1] + (up ? up_down : down) + si * du + co * dv;
+        }
         if (up) {
             /* upright: the glyph as it stands after the quarter turn
              * (textLength stretching it down the line), its offset from
@@ -926,7 +1016,15 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
         if (last) {
             /* on a path the cluster turns about its middle */
             for (int j = cluster_glyph; j < t->n_placed; j++) {
+                double *gm = t->placed[j].m;
                 t->placed[j].mid = (cluster_x + pen[0]) / 2;
+                for (int q = 0; flip && q < 4; q++) {
+                    gm[q] = -gm[q];
+                }
+                if (flip) {
+                    gm[4] = 2 * flip_at[0] - gm[4];
+                    gm[5] = 2 * flip_at[1] - gm[5];
+                }
             }
             for (int k = c; k < c_end; k++) {
                 pen[0] += el->ts.letter_spacing * sx;
@@ -943,6 +1041,84 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
     run.n_glyphs = t->n_placed - run.glyph0;
     run.x1 = pen[0];
     return add_run(t, run) ? SR_OK : SR_OUT_OF_MEMORY;
+}
+
+/* Place runs seg[k .. j) (start, end pairs) of one text-combine-upright
+ * unit as one upright glyph (CSS Writing Modes 3, 9.1.1): shaped left to
+ * right, squeezed across the line to one em where wider, centred on the
+ * line and in an em square down it (its baseline as far below the
+ * square's middle as the central baseline is below the alphabetic), the
+ * pen going down one em.  The em, its place and its spacing are the
+ * first character's element's; the dx and dy of all its characters move
+ * it, rotate does not turn it. */
+static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg, int k, int j,
+                                double pen[2], svg_glyph **glyphs, int *cap)
+{
+    int first = seg[2 * k];
+    const telem *head = &t->elems[t->chars[first].elem];
+    const svg_face_metrics *hm = svg_face_get_metrics(t->chars[first].face);
+    double em = head->ts.size, sx = head->sx, hs = em / hm->upem;
+    double width = 0;
+    for (int q = k; q < j; q++) {
+        int s = seg[2 * q], e = seg[2 * q + 1];
+        svg_face *face = t->chars[s].face;
+        double scale = t->elems[t->chars[s].elem].ts.size / svg_face_get_metrics(face)->upem;
+        int n = svg_face_shape(face, cps, t->n_chars, s, e - s, 0, glyphs, cap);
+        if (n < 0) {
+            return SR_OUT_OF_MEMORY;
+        }
+        for (int i = 0; i < n; i++) {
+            width += (*glyphs)[i].ax * scale;
+        }
+    }
+    double squeeze = width > em ? em / width : 1;
+    for (int q = k; q < j; q++) {
+        for (int c = seg[2 * q]; c < seg[2 * q + 1]; c++) {
+            pen[0] += isnan(t->chars[c].pos[LIST_DX]) ? 0 : t->chars[c].pos[LIST_DX];
+            pen[1] += isnan(t->chars[c].pos[LIST_DY]) ? 0 : t->chars[c].pos[LIST_DY];
+        }
+    }
+    double start = pen[0];
+    /* the square's middle: along the line, and across it where upright
+     * glyphs' vertical origins go */
+    double mu = start + em * sx / 2;
+    double mv = pen[1] + baseline_offset(head) - (hm->ascender + hm->descender) / 2 * hs;
+    double base = (hm->ascender + hm->descender) / 2 * hs, x = -width * squeeze / 2;
+    for (int q = k; q < j; q++) {
+        int s = seg[2 * q], e = seg[2 * q + 1];
+        svg_face *face = t->chars[s].face;
+        const telem *el = &t->elems[t->chars[s].elem];
+        double scale = el->ts.size / svg_face_get_metrics(face)->upem;
+        int n = svg_face_shape(face, cps, t->n_chars, s, e - s, 0, glyphs, cap);
+        if (n < 0 || !grow((void **)&t->placed, &t->cap_placed, t->n_placed + n,
+                           sizeof *t->placed)) {
+            return SR_OUT_OF_MEMORY;
+        }
+        /* the decorations go along the whole square, with the first run */
+        trun run = { t->chars[s].elem, face, el->path, t->n_placed, n, start,
+                     q == k ? start + em * sx : start, pen[1] + baseline_offset(el) };
+        const svg_glyph *g = *glyphs;
+        for (int i = 0; i < n; i++) {
+            /* (across, down) in the upright square from its middle, to
+             * the line's (along, across) */
+            double across = x + g[i].ox * scale * squeeze, down = base - g[i].oy * scale;
+            t->placed[t->n_placed++] = (tglyph){
+                g[i].id, t->chars[g[i].cluster].visible, mu,
+                { 0, -scale * squeeze, -scale * sx, 0, mu + down * sx, mv - across } };
+            x += g[i].ax * scale * squeeze;
+        }
+        if (!add_run(t, run)) {
+            return SR_OUT_OF_MEMORY;
+        }
+    }
+    pen[0] = start + em * sx + head->ts.letter_spacing * sx;
+    t->chars[first].advance = pen[0] - start;
+    for (int q = k; q < j; q++) {
+        for (int c = seg[2 * q]; c < seg[2 * q + 1]; c++) {
+            pen[0] += t->chars[c].extra;
+        }
+    }
+    return SR_OK;
 }
 
 /* The elements with unicode-bidi embed or bidi-override that character
@@ -1038,7 +1214,8 @@ static sr_result place_chunk(svg_text *t, const uint32_t *cps, int c, int end, b
         int e = s + 1;
         while (e < end && t->chars[e].elem == t->chars[s].elem &&
                t->chars[e].face == t->chars[s].face && lv[e - c] == lv[s - c] &&
-               t->chars[e].upright == t->chars[s].upright) {
+               t->chars[e].upright == t->chars[s].upright &&
+               t->chars[e].combine == t->chars[s].combine) {
             e++;
         }
         seg[2 * n_segs] = s;
@@ -1071,6 +1248,15 @@ static sr_result place_chunk(svg_text *t, const uint32_t *cps, int c, int end, b
     bool bidi = svg_bidi_available();
     for (int k = 0; k < n_segs && r == SR_OK; k++) {
         int s = seg[2 * k], e = seg[2 * k + 1];
+        if (t->chars[s].combine) {
+            int j = k + 1;
+            while (j < n_segs && t->chars[seg[2 * j]].combine == t->chars[s].combine) {
+                j++;
+            }
+            r = place_combined(t, cps, seg, k, j, pen, glyphs, cap);
+            k = j - 1;
+            continue;
+        }
         /* without FriBidi each run goes as its script does, or right to
          * left where direction says so */
         int dir = bidi ? lv[s - c] & 1 : t->elems[t->chars[s].elem].ts.rtl ? 1 : -1;
@@ -1175,8 +1361,7 @@ static sr_result place_all(svg_text *t, const uint32_t *cps, svg_glyph **glyphs,
          * x from its startOffset, then bent onto the path */
         int path = t->elems[t->chars[c].elem].path;
         int end = c + 1;
-        while (end < t->n_chars && isnan(t->chars[end].pos[LIST_X]) &&
-               isnan(t->chars[end].pos[LIST_Y]) && t->elems[t->chars[end].elem].path == path) {
+        while (end < t->n_chars && same_chunk(t, c, end)) {
             end++;
         }
         int before = c > 0 ? t->elems[t->chars[c - 1].elem].path : -1;
@@ -1290,9 +1475,11 @@ sr_result svg_text_layout(svg_text *t, svg_fonts *fonts, char *why, size_t why_s
     }
     for (int i = 0; i < t->n_chars; i++) {
         t->chars[i].upright = false;
+        t->chars[i].combine = 0;
     }
     if (t->vertical) {
         turn_lists(t);
+        mark_combined(t);
     }
     uint32_t *cps = malloc((size_t)(t->n_chars ? t->n_chars : 1) * sizeof *cps);
     if (!cps) {

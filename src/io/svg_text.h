@@ -29,8 +29,12 @@ enum { SVG_SHIFT_LENGTH, SVG_SHIFT_SUB, SVG_SHIFT_SUPER, SVG_SHIFT_PERCENT };
 enum { SVG_BIDI_NORMAL, SVG_BIDI_EMBED, SVG_BIDI_OVERRIDE };
 /* How glyphs stand in vertical text: by character (text-orientation
  * mixed, glyph-orientation-vertical auto), all upright (upright, 0), all
- * turned (sideways, 90). */
-enum { SVG_ORIENT_MIXED, SVG_ORIENT_UPRIGHT, SVG_ORIENT_SIDEWAYS };
+ * turned (sideways, 90), all upright upside down (180), all turned the
+ * other way (270). */
+enum { SVG_ORIENT_MIXED, SVG_ORIENT_UPRIGHT, SVG_ORIENT_SIDEWAYS, SVG_ORIENT_UPSIDE_DOWN,
+       SVG_ORIENT_SIDEWAYS_LEFT };
+/* text-combine-upright: none, all, or digits N (the value N, 2 to 4). */
+enum { SVG_COMBINE_NONE, SVG_COMBINE_ALL };
 
 /* The text properties of a style.  All inherit except those marked. */
 typedef struct svg_text_style {
@@ -46,6 +50,7 @@ typedef struct svg_text_style {
     unsigned char bidi;      /* unicode-bidi (not inherited) */
     bool vertical;           /* writing-mode tb, tb-rl, vertical-rl, vertical-lr */
     unsigned char orient;    /* text-orientation, glyph-orientation-vertical */
+    unsigned char combine;   /* text-combine-upright */
     double letter_spacing, word_spacing;
     unsigned char shift_kind;/* baseline-shift (not inherited) */
     double shift;            /* its length, or percentage of the font size */
