@@ -1541,6 +1541,8 @@ typedef struct sr_draw_info {
     uint64_t triangles_culled;  /* culled or zero area */
     uint64_t triangles_drawn;   /* set up and binned */
     uint64_t fragments;         /* samples that passed the depth test and were written */
+    uint64_t vertices_shaded;   /* vertices the vertex stage ran for: an indexed draw's
+                                   range of indices, not its whole array */
 } sr_draw_info;
 
 SR_API sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,

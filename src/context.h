@@ -13,6 +13,15 @@ struct sr_pool;
 struct sr_scratch;
 struct sr__gradient;
 
+/* A prefiltered-radiance map of the pbr programs (fragment/pbr.c): of the
+ * environment with this serial at this roughness (its float's bits). */
+typedef struct sr__oct_entry {
+    uint64_t env;
+    uint32_t roughness;
+    float *map;
+} sr__oct_entry;
+#define SR_OCT_CACHE 8
+
 struct sr_context {
     sr_allocator allocator;
     struct sr_arena *arena;        /* sr_context_desc.arena's, or NULL */
@@ -22,6 +31,10 @@ struct sr_context {
     struct sr_pool *pool;          /* NULL when threads == 1 */
     struct sr_scratch *scratch;    /* draw-call working memory, grown on demand */
     struct sr__gradient *gradient; /* the last painted fill's gradient (paint_api.c) */
+    /* Maps the pbr programs made with this context share, kept until it is
+     * destroyed: a scene's draws make a program each, mostly of a few
+     * materials, and building a map is 4096 queries of the environment. */
+    sr__oct_entry oct_cache[SR_OCT_CACHE];
     sr_draw_info last_draw;
     char error[256];
 };

@@ -43,7 +43,9 @@ typedef struct vertex_job {
     const sr_draw_desc *d;
     const sr_mat4 *mvp, *mv, *nm;
     sr_scratch *s;
+    size_t base, span;  /* vertices [base, base + span), at post[0 ..] */
     size_t per_job, jobs;
+    bool find_max;      /* the indices' maximum is not known yet */
     uint32_t max_index[SR_MAX_THREADS]; /* per thread, over its jobs' shares of the indices */
 } vertex_job;
 
@@ -51,10 +53,13 @@ static void run_vertex_stage(void *arg, int job, int thread)
 {
     vertex_job *vj = arg;
     const sr_draw_desc *d = vj->d;
-    size_t first = (size_t)job * vj->per_job;
-    size_t count = d->vertex_count - first < vj->per_job ? d->vertex_count - first : vj->per_job;
-    sr__vertex_stage(vj->ds, d, vj->mvp, vj->mv, vj->nm, first, count, vj->s->post + first,
-                     vj->s->vary + first * (size_t)vj->ds->nvary);
+    size_t at = (size_t)job * vj->per_job;
+    size_t count = vj->span - at < vj->per_job ? vj->span - at : vj->per_job;
+    sr__vertex_stage(vj->ds, d, vj->mvp, vj->mv, vj->nm, vj->base + at, count, vj->s->post + at,
+                     vj->s->vary + at * (size_t)vj->ds->nvary);
+    if (!vj->find_max) {
+        return;
+    }
     /* The vertex stage reads no index, so the check can wait for it. */
     uint32_t m = max_index(vj->ds, d, d->index_count * (size_t)job / vj->jobs,
                            d->index_count * ((size_t)job + 1) / vj->jobs);
@@ -138,13 +143,33 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     if (!fused && bounded) {
         window = d->vertex_count < SR_VERTEX_WINDOW ? d->vertex_count : SR_VERTEX_WINDOW;
     }
+    /* A draw with fewer indices than vertices uses part of its array at
+     * most - a glTF part, one node's mesh of a scene's: the vertex stage
+     * shades only the range its indices span, found first on this thread.
+     * That pass costs less than the vertices it could spare (an index is
+     * a load and two compares, a vertex a transform and often lighting);
+     * a draw with more indices than vertices (a whole mesh, which names
+     * each vertex about six times) keeps the pass fused with the vertex
+     * stage, so its cost stays within a few times its indices either way. */
+    size_t base = 0, span = d->vertex_count;
+    bool ranged = !fused && !window && d->index_type != SR_INDEX_NONE &&
+                  d->index_count < d->vertex_count;
+    uint32_t range_max = 0;
+    if (ranged) {
+        uint32_t lo;
+        sr__index_range(d->index_type, d->indices, d->index_count, &lo, &range_max);
+        if (d->index_count > 0 && range_max < d->vertex_count) {
+            base = lo;
+            span = (size_t)range_max - lo + 1;
+        }
+    }
     /* More chunks than threads evens out uneven clipping and culling: the
      * bunny's first quarter of triangles takes four times as long to set up
      * as its last (culled backs), and with two chunks a thread the pool's
      * stealing could not even that out. */
     int chunks = ctx->threads == 1 ? 1 : ctx->threads * SR_CHUNKS_PER_THREAD;
     sr_scratch *s = ctx->scratch;
-    size_t post_count = fused ? 0 : (window ? window : d->vertex_count);
+    size_t post_count = fused ? 0 : (window ? window : span);
     if (!sr__scratch_reserve(&ctx->allocator, s, post_count, ds.nvary,
                              (size_t)ds.tiles_x * ds.tiles_y, chunks)) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_draw: out of memory for %zu vertices",
@@ -154,7 +179,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     if (prims == 0 || ds.rect_x0 >= ds.rect_x1 || ds.rect_y0 >= ds.rect_y1 ||
         d->vertex_count == 0) {
         /* Nothing to draw, but the indices are still checked. */
-        return check_indices(ctx, d, max_index(&ds, d, 0, d->index_count));
+        return check_indices(ctx, d, ranged ? range_max : max_index(&ds, d, 0, d->index_count));
     }
 
     /* M = P E M_O, and the normal matrix from E M_O. */
@@ -173,6 +198,8 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
             return ri;
         }
         s->window_lo = s->window_hi = 0;
+    } else if (ranged && range_max >= d->vertex_count) {
+        return check_indices(ctx, d, range_max);
     } else if (!fused) {
         /* Blocks of at most 4096 vertices, a multiple of the thread count
          * of them: the pool gives each thread a contiguous share of the
@@ -183,21 +210,23 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
          * that a caller whose workers are still waking takes over the
          * blocks of theirs they have not started. */
         size_t threads = (size_t)ctx->threads;
-        size_t jobs = (d->vertex_count + 4095) / 4096;
-        size_t fine = d->vertex_count / 256 < threads * 8 ? d->vertex_count / 256 : threads * 8;
+        size_t jobs = (span + 4095) / 4096;
+        size_t fine = span / 256 < threads * 8 ? span / 256 : threads * 8;
         jobs = jobs > fine ? jobs : fine;
         jobs = (jobs + threads - 1) / threads * threads;
-        vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, (d->vertex_count + jobs - 1) / jobs, 0, { 0 } };
-        vj.jobs = (d->vertex_count + vj.per_job - 1) / vj.per_job;
+        vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, base, span, (span + jobs - 1) / jobs, 0,
+                          !ranged, { 0 } };
+        vj.jobs = (span + vj.per_job - 1) / vj.per_job;
         sr__pool_run(ctx->pool, run_vertex_stage, &vj, (int)vj.jobs);
-        uint32_t m = 0;
-        for (int t = 0; t < ctx->threads; t++) {
+        uint32_t m = range_max;
+        for (int t = 0; t < ctx->threads && !ranged; t++) {
             m = vj.max_index[t] > m ? vj.max_index[t] : m;
         }
         sr_result ri = check_indices(ctx, d, m);
         if (ri != SR_OK) {
             return ri;
         }
+        ctx->last_draw.vertices_shaded = span;
     }
 
     memset(s->stats, 0, sizeof s->stats);
@@ -210,7 +239,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     size_t record_size =
         sr__record_size(ds.ninterp, ds.shading == SR_SHADING_FLAT, triangles_only);
     sr_front_end fe = { ctx, &ds, d, record_size, chunks, fused, ctx->threads > 1,
-                     verts_per_prim, window, &mvp, &mv, &nm };
+                     verts_per_prim, window, base, &mvp, &mv, &nm };
     bool oom = false;
     /* Equal batches of at most the context's batch size, so no batch is a
      * sliver. */
@@ -228,6 +257,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
             ctx->last_draw.triangles_clipped += in->triangles_clipped;
             ctx->last_draw.triangles_culled += in->triangles_culled;
             ctx->last_draw.triangles_drawn += in->triangles_drawn;
+            ctx->last_draw.vertices_shaded += in->vertices_shaded;
             memset(in, 0, sizeof *in);
             oom |= c->out_of_memory;
             c->out_of_memory = false;

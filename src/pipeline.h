@@ -86,6 +86,9 @@ void sr__vertex_stage(const sr_draw_state *ds, const sr_draw_desc *d,
  * ds->index_avx2 says the CPU has it. */
 uint32_t sr__index_max(sr_index_type type, const void *indices, size_t begin, size_t end,
                        bool avx2);
+/* The smallest and largest of indices [0, count) (both 0 for none). */
+void sr__index_range(sr_index_type type, const void *indices, size_t count, uint32_t *min,
+                     uint32_t *max);
 
 /* geometry/vertex_wide.c: sr__vertex_stage for GOURAUD with whole-number
  * shininess, sixteen vertices at a time; the same bytes.

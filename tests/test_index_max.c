@@ -4,7 +4,8 @@
  * has it), ranges of every length up to past a few vector steps with
  * every start, the largest value at every place, the type's own maximum
  * (an unsigned compare, not a signed one), and, through sr_draw, an index
- * out of range deep inside a long list. */
+ * out of range deep inside a long list; sr__index_range, the smallest
+ * and largest together, against plain loops. */
 #include "sr_test.h"
 #include "pipeline.h"
 #include "softrast.h"
@@ -146,4 +147,42 @@ SR_TEST(an_index_out_of_range_deep_in_a_long_list_is_named)
     free(ix16);
     sr_destroy_framebuffer(ctx, fb);
     sr_destroy_context(ctx);
+}
+
+/* sr__index_range, the smallest and largest together, against plain
+ * loops: each type, every length up to N, the extremes at every place. */
+SR_TEST(index_range_equals_plain_minimum_and_maximum)
+{
+    static const sr_index_type types[] = { SR_INDEX_U8, SR_INDEX_U16, SR_INDEX_U32 };
+    static const uint32_t top[] = { 0xffu, 0xffffu, 0xffffffffu };
+    uint64_t seed = 20261128;
+    uint32_t buf[N];
+    for (int k = 0; k < 3; k++) {
+        for (size_t i = 0; i < N; i++) {
+            put(types[k], buf, i, 1 + (uint32_t)(next(&seed) % (top[k] - 1)));
+        }
+        for (size_t count = 0; count <= N; count++) {
+            uint32_t lo, hi, want_lo = count ? top[k] : 0;
+            for (size_t i = 0; i < count; i++) {
+                uint32_t v = types[k] == SR_INDEX_U8    ? ((const uint8_t *)buf)[i]
+                             : types[k] == SR_INDEX_U16 ? ((const uint16_t *)buf)[i]
+                                                        : buf[i];
+                want_lo = v < want_lo ? v : want_lo;
+            }
+            sr__index_range(types[k], buf, count, &lo, &hi);
+            CHECK_EQ(lo, want_lo);
+            CHECK_EQ(hi, plain_max(types[k], buf, 0, count));
+        }
+        for (size_t at = 0; at < N; at += 13) {
+            uint32_t saved = types[k] == SR_INDEX_U32 ? buf[at] : 0;
+            uint32_t lo, hi;
+            put(types[k], buf, at, 0);
+            sr__index_range(types[k], buf, N, &lo, &hi);
+            CHECK_EQ(lo, 0);
+            put(types[k], buf, at, top[k]);
+            sr__index_range(types[k], buf, N, &lo, &hi);
+            CHECK_EQ(hi, top[k]);
+            put(types[k], buf, at, saved ? saved : 1);
+        }
+    }
 }

@@ -2687,3 +2687,94 @@ SR_TEST(diffuse_transmission_sees_the_irradiance_from_behind)
     sr_destroy_framebuffer(sr_test_ctx(), a);
     sr_destroy_framebuffer(sr_test_ctx(), b);
 }
+
+/* An allocator that counts the bytes asked of it. */
+static void *counted_alloc(size_t size, void *user)
+{
+    *(size_t *)user += size;
+    return malloc(size);
+}
+static void counted_free(void *ptr, void *user)
+{
+    (void)user;
+    free(ptr);
+}
+
+/* The sphere drawn on a fresh framebuffer of ctx with a program made from
+ * d, its bytes copied to out; *made the bytes making the program took. */
+static void sphere_in(sr_context *ctx, const size_t *counter, const sphere *s,
+                      const sr_pbr_desc *d, uint8_t *out, size_t *made)
+{
+    sr_framebuffer *fb;
+    REQUIRE(sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = CELL, .height = CELL },
+                                &fb) == SR_OK);
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+    size_t before = counter ? *counter : 0;
+    sr_pbr *p;
+    REQUIRE(sr_make_pbr_program(ctx, d, &p) == SR_OK);
+    if (made) {
+        *made = *counter - before;
+    }
+    sr_state st = { .program = sr_pbr_program(p), .cull = SR_CULL_BACK };
+    CHECK_EQ(sr_draw(ctx, fb, &st,
+                     &(sr_draw_desc){ .positions = s->pos, .normals = s->nrm, .texcoords = s->uv,
+                                      .vertex_count = s->nv, .indices = s->idx,
+                                      .index_type = SR_INDEX_U32, .index_count = s->ni }),
+             SR_OK);
+    memcpy(out, sr_framebuffer_pixels(fb), 4 * CELL * CELL);
+    sr_destroy_pbr_program(ctx, p);
+    sr_destroy_framebuffer(ctx, fb);
+}
+
+/* Programs made with one context from one environment at one roughness
+ * share the prefiltered radiance map (the second program allocates less
+ * than a map) and draw the same bytes as the first; a new environment,
+ * even where a destroyed one lay, gets its own map: the same bytes as in
+ * a fresh context. */
+SR_TEST(programs_of_one_environment_and_roughness_share_their_radiance_map)
+{
+    size_t counter = 0;
+    sr_context *ctx, *fresh;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1,
+                                                .allocator = { counted_alloc, counted_free,
+                                                               &counter } },
+                            &ctx) == SR_OK);
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &fresh) == SR_OK);
+    sphere s = make_sphere(32, 16);
+    REQUIRE(s.pos);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .metallic = 0.3f,
+                          .roughness = 0.6f };
+    sr_pbr_desc d = lit_desc(&m, &view, &proj);
+    sr_environment *env;
+    REQUIRE(sr_make_environment(ctx, NULL, &env) == SR_OK);
+    d.environment = env;
+    static uint8_t first[4 * CELL * CELL], again[4 * CELL * CELL], other[4 * CELL * CELL];
+    size_t made[3];
+    const size_t map_bytes = 64 * 64 * 4 * sizeof(float);
+    sphere_in(ctx, &counter, &s, &d, first, &made[0]);
+    for (int k = 1; k < 3; k++) {
+        sphere_in(ctx, &counter, &s, &d, again, &made[k]);
+        CHECK(memcmp(first, again, sizeof first) == 0);
+    }
+    CHECK(made[0] >= map_bytes);
+    CHECK(made[1] < map_bytes);
+    CHECK(made[2] < map_bytes);
+    sr_destroy_environment(ctx, env);
+    REQUIRE(sr_make_environment(ctx, &(sr_environment_desc){ .intensity = 2.0f }, &env) ==
+            SR_OK);
+    d.environment = env;
+    sphere_in(ctx, &counter, &s, &d, again, NULL);
+    CHECK(memcmp(first, again, sizeof first) != 0);
+    sr_environment *env2;
+    REQUIRE(sr_make_environment(fresh, &(sr_environment_desc){ .intensity = 2.0f }, &env2) ==
+            SR_OK);
+    d.environment = env2;
+    sphere_in(fresh, NULL, &s, &d, other, NULL);
+    CHECK(memcmp(other, again, sizeof other) == 0);
+    sr_destroy_environment(fresh, env2);
+    sr_destroy_environment(ctx, env);
+    free_sphere(&s);
+    sr_destroy_context(fresh);
+    sr_destroy_context(ctx);
+}

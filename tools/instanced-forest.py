@@ -8,11 +8,11 @@ trees as N plain nodes of the mesh instead (core glTF), to compare.
 
     tools/instanced-forest.py [--nodes] N OUT.glb
 """
-import json
 import math
 import random
-import struct
 import sys
+
+import glb
 
 
 def cone(segments, radius, y0, y1):
@@ -48,15 +48,8 @@ def main():
     n, out = int(args[0]), args[1]
     rng = random.Random(7)
     side = max(1, math.ceil(math.sqrt(n)))
-    chunks, views, accessors = [], [], []
-
-    def add(fmt, values, fields):
-        raw = struct.pack("<%d%s" % (len(values), fmt), *values)
-        at = sum(len(c) for c in chunks)
-        chunks.append(raw + b"\0" * (-len(raw) % 4))
-        views.append({"buffer": 0, "byteOffset": at, "byteLength": len(raw)})
-        accessors.append(dict(bufferView=len(views) - 1, **fields))
-        return len(accessors) - 1
+    buf = glb.Buffer()
+    add = buf.add
 
     prims = []
     for (pos, idx), material in ((cone(12, 0.6, 0.4, 2.0), 0), (box(0.12, 0.0, 0.4), 1)):
@@ -85,7 +78,6 @@ def main():
     }
     if not plain:
         nodes = [{"mesh": 0, "extensions": {"EXT_mesh_gpu_instancing": {"attributes": attrs}}}]
-    bin_ = b"".join(chunks)
     doc = {
         "asset": {"version": "2.0", "generator": "softrast tools/instanced-forest.py"},
         "scene": 0, "scenes": [{"nodes": list(range(len(nodes)))}],
@@ -96,18 +88,10 @@ def main():
                                       "metallicFactor": 0, "roughnessFactor": 0.8}},
             {"pbrMetallicRoughness": {"baseColorFactor": [0.4, 0.25, 0.1, 1],
                                       "metallicFactor": 0, "roughnessFactor": 0.9}}],
-        "accessors": accessors, "bufferViews": views,
-        "buffers": [{"byteLength": len(bin_)}],
     }
     if not plain:
         doc["extensionsUsed"] = doc["extensionsRequired"] = ["EXT_mesh_gpu_instancing"]
-    text = json.dumps(doc, separators=(",", ":")).encode()
-    text += b" " * (-len(text) % 4)
-    total = 12 + 8 + len(text) + 8 + len(bin_)
-    with open(out, "wb") as f:
-        f.write(struct.pack("<4sII", b"glTF", 2, total))
-        f.write(struct.pack("<I4s", len(text), b"JSON") + text)
-        f.write(struct.pack("<I4s", len(bin_), b"BIN\0") + bin_)
+    glb.write(out, doc, buf)
 
 
 if __name__ == "__main__":

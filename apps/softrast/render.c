@@ -479,10 +479,11 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                                        : ob->mesh.triangle_count;
                 /* The glTF parts that follow with the same material and
                  * the next triangles (a primitive's EXT_mesh_gpu_instancing
-                 * instances, or nodes repeating one mesh) are one draw:
-                 * each draw shades the whole vertex array, so thousands of
-                 * them would cost thousands of passes over it.  Not where
-                 * the parts are sorted back to front. */
+                 * instances, or nodes repeating one mesh) are one draw: a
+                 * draw shades only its own vertices, but each still makes
+                 * a program and runs the thread pool's stages, which adds
+                 * up over tens of thousands of small instances.
+                 * Not where the parts are sorted back to front. */
                 while (gltf && !order && !see_through && k + 1 < parts &&
                        ob->part_material[k + 1] == ob->part_material[p] &&
                        ob->mesh.parts[k + 1].first_triangle == first + count &&

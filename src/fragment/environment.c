@@ -262,6 +262,8 @@ sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
     if (!env) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_environment: out of memory");
     }
+    static atomic_uint_fast64_t serials = 1;
+    env->serial = (uint64_t)atomic_fetch_add(&serials, 1);
     float intensity = d.intensity == 0.0f ? 1.0f : d.intensity;
     env->cos_rot = cosf(d.rotation);
     env->sin_rot = sinf(d.rotation);

@@ -77,6 +77,9 @@ struct sr_environment {
     /* The built-in studio's level 0 is its function, sharp at any size,
      * times this intensity; 0 for an image. */
     float studio_intensity;
+    /* Different for every environment the process makes (from 1): what
+     * caches of maps made from it key on, where an address may be reused. */
+    uint64_t serial;
 };
 
 /* atan(x) for |x| <= 1: Abramowitz and Stegun 4.4.49-style odd

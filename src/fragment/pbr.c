@@ -104,6 +104,32 @@ static float *oct_build(sr_context *ctx, const sr_environment *env, int n, float
     return map;
 }
 
+/* oct_build's map of env at `roughness`, shared through the context's
+ * cache while it has room (owned false: the context frees it), else the
+ * program's own.  Not on a fixed budget (an arena), which a cache that
+ * keeps maps after their programs would wear down. */
+static float *oct_shared(sr_context *ctx, const sr_environment *env, float roughness,
+                         bool *owned)
+{
+    uint32_t bits;
+    memcpy(&bits, &roughness, sizeof bits);
+    sr__oct_entry *slot = NULL;
+    for (int i = 0; i < SR_OCT_CACHE && !ctx->arena; i++) {
+        sr__oct_entry *e = &ctx->oct_cache[i];
+        if (e->map && e->env == env->serial && e->roughness == bits) {
+            *owned = false;
+            return e->map;
+        }
+        slot = !e->map && !slot ? e : slot;
+    }
+    float *map = oct_build(ctx, env, OCT_SIZE, roughness);
+    *owned = !slot || !map;
+    if (slot && map) {
+        *slot = (sr__oct_entry){ env->serial, bits, map };
+    }
+    return map;
+}
+
 /* The irradiance polynomial's terms: 1, y, z, x, xy, yz, z^2, xz, x^2 - y^2. */
 #define IRR_TERMS 9
 
@@ -203,6 +229,7 @@ struct sr_pbr {
      * roughness on an octahedral map (OCT_SIZE^2 RGB), or NULL: queried
      * per fragment instead. */
     float *oct;
+    bool oct_owned, oct_coat_owned;   /* else the context's cache holds them */
     /* Its irradiance (E / pi) as the quadratic polynomial in the image
      * frame's (x, y, z) that its 9 SH coefficients are (irr_poly), and the
      * world -> image rotation about +Y. */
@@ -1873,13 +1900,13 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         p->env_sin = p->environment->sin_rot;
         bool ok = true;
         if (!p->slot[SLOT_MR].tex && rough >= OCT_MIN_ROUGHNESS) {
-            ok &= (p->oct = oct_build(ctx, p->environment, OCT_SIZE, rough)) != NULL;
+            ok &= (p->oct = oct_shared(ctx, p->environment, rough, &p->oct_owned)) != NULL;
         }
         /* The coat's one roughness likewise. */
         if (p->coat && !p->slot[SLOT_CLEARCOAT_ROUGHNESS].tex &&
             p->m.clearcoat_roughness >= OCT_MIN_ROUGHNESS) {
-            ok &= (p->oct_coat = oct_build(ctx, p->environment, OCT_SIZE,
-                                           p->m.clearcoat_roughness)) != NULL;
+            ok &= (p->oct_coat = oct_shared(ctx, p->environment, p->m.clearcoat_roughness,
+                                            &p->oct_coat_owned)) != NULL;
         }
         if (!ok) {
             sr_destroy_pbr_program(ctx, p);
@@ -1899,8 +1926,12 @@ const sr_program *sr_pbr_program(const sr_pbr *p)
 void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p)
 {
     if (ctx && p) {
-        sr__free(ctx, p->oct);
-        sr__free(ctx, p->oct_coat);
+        if (p->oct_owned) {
+            sr__free(ctx, p->oct);
+        }
+        if (p->oct_coat_owned) {
+            sr__free(ctx, p->oct_coat);
+        }
         sr__free(ctx, p);
     }
 }

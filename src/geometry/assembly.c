@@ -447,7 +447,8 @@ static void window_fill(const sr_front_end *fe, sr_scratch *s, size_t first, siz
  * vertex near the end), keeps what it held there and runs the vertex
  * stage for the rest, so that a mesh whose primitives use vertices near
  * their own place in the order transforms each about once. */
-static void window_cover(const sr_front_end *fe, sr_scratch *s, size_t lo, size_t hi)
+static void window_cover(const sr_front_end *fe, sr_chunk *c, sr_scratch *s, size_t lo,
+                         size_t hi)
 {
     size_t n = fe->window, count = fe->d->vertex_count, nv = (size_t)fe->ds->nvary;
     size_t wlo = count - lo < n ? count - n : lo, whi = wlo + n;
@@ -465,6 +466,7 @@ static void window_cover(const sr_front_end *fe, sr_scratch *s, size_t lo, size_
     }
     window_fill(fe, s, wlo, keep_lo - wlo, 0);
     window_fill(fe, s, keep_hi, whi - keep_hi, keep_hi - wlo);
+    c->info.vertices_shaded += (keep_lo - wlo) + (whi - keep_hi);
     s->window_lo = wlo;
     s->window_hi = whi;
 }
@@ -483,6 +485,7 @@ static void gathered_primitive(const sr_front_end *fe, sr_chunk *c, int n, const
                          vary + (size_t)k * nv);
         pslot = v[k] == pv ? slot[k] : pslot;
     }
+    c->info.vertices_shaded += (uint64_t)n;
     sr_vertex_src vs = { post, vary, 0 };
     assemble(fe, c, &vs, n, slot, pslot);
 }
@@ -507,7 +510,7 @@ static void windowed_primitives(const sr_front_end *fe, sr_chunk *c)
             continue;
         }
         if (lo < s->window_lo || hi >= s->window_hi) {
-            window_cover(fe, s, lo, hi);
+            window_cover(fe, c, s, lo, hi);
         }
         sr_vertex_src vs = { s->post, s->vary, s->window_lo };
         assemble(fe, c, &vs, n, v, pv);
@@ -527,6 +530,34 @@ static void windowed_primitives(const sr_front_end *fe, sr_chunk *c)
 
 /* How many triangles ahead an indexed list's vertices are prefetched. */
 #define SR_PREFETCH_TRIS 8
+
+/* The chunk's primitives from the whole-draw arrays, which hold the
+ * vertices from `base` on. */
+static inline __attribute__((always_inline)) void
+indexed_primitives(const sr_front_end *fe, sr_chunk *c, size_t base)
+{
+    const sr_scratch *s = fe->ctx->scratch;
+    sr_vertex_src vs = { s->post, s->vary, base };
+    const sr_draw_desc *d = fe->d;
+    bool list = d->primitive == SR_PRIM_DEFAULT || d->primitive == SR_PRIM_TRIANGLES;
+    size_t nv = (size_t)fe->ds->nvary;
+    for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
+        if (list && p + SR_PREFETCH_TRIS < c->prim_end) {
+            /* An indexed mesh's vertices are gathered: ask for those
+             * of a triangle a few ahead, so its post-transform
+             * vertices (48 bytes, often across two lines) and
+             * varyings arrive while this one is set up. */
+            for (size_t k = 0; k < 3; k++) {
+                size_t i = sr__index_at(d, 3 * (p + SR_PREFETCH_TRIS) + k) - base;
+                const char *v = (const char *)&s->post[i];
+                __builtin_prefetch(v);
+                __builtin_prefetch(v + sizeof(sr_vertex_post) - 1);
+                __builtin_prefetch(&s->vary[i * nv]);
+            }
+        }
+        primitive(fe, c, &vs, p);
+    }
+}
 
 void sr__run_front_end(void *arg, int job, int thread)
 {
@@ -566,6 +597,7 @@ void sr__run_front_end(void *arg, int job, int thread)
             size_t end = c->prim_end - p < per_block ? c->prim_end : p + per_block;
             sr__vertex_stage(fe->ds, fe->d, fe->mvp, fe->mv, fe->nm, k * p, k * (end - p), post,
                              vary);
+            c->info.vertices_shaded += k * (end - p);
             sr_vertex_src vs = { post, vary, k * p };
             if (k == 3) {
                 /* primitive()'s triangle list without indices. */
@@ -588,28 +620,11 @@ void sr__run_front_end(void *arg, int job, int thread)
         }
     } else if (fe->window) {
         windowed_primitives(fe, c);
+    } else if (fe->vertex_base == 0) {
+        /* The whole array, the common case: base 0 folded in. */
+        indexed_primitives(fe, c, 0);
     } else {
-        const sr_scratch *s = fe->ctx->scratch;
-        sr_vertex_src vs = { s->post, s->vary, 0 };
-        const sr_draw_desc *d = fe->d;
-        bool list = d->primitive == SR_PRIM_DEFAULT || d->primitive == SR_PRIM_TRIANGLES;
-        size_t nv = (size_t)fe->ds->nvary;
-        for (size_t p = c->prim_begin; p < c->prim_end && !c->out_of_memory; p++) {
-            if (list && p + SR_PREFETCH_TRIS < c->prim_end) {
-                /* An indexed mesh's vertices are gathered: ask for those
-                 * of a triangle a few ahead, so its post-transform
-                 * vertices (48 bytes, often across two lines) and
-                 * varyings arrive while this one is set up. */
-                for (size_t k = 0; k < 3; k++) {
-                    uint32_t i = sr__index_at(d, 3 * (p + SR_PREFETCH_TRIS) + k);
-                    const char *v = (const char *)&s->post[i];
-                    __builtin_prefetch(v);
-                    __builtin_prefetch(v + sizeof(sr_vertex_post) - 1);
-                    __builtin_prefetch(&s->vary[i * nv]);
-                }
-            }
-            primitive(fe, c, &vs, p);
-        }
+        indexed_primitives(fe, c, fe->vertex_base);
     }
     if (c->stream) {
         sr__stream_fence();

@@ -36,6 +36,8 @@ typedef struct sr_front_end {
     /* Not fused, and not 0: the vertices a primitive uses are transformed
      * into a window of this many (scratch.h), one thread. */
     size_t window;
+    /* Neither: the whole-draw arrays hold vertices from this one on. */
+    size_t vertex_base;
     const sr_mat4 *mvp, *mv, *nm;
 } sr_front_end;
 

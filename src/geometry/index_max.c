@@ -1,6 +1,8 @@
 /* index_max.c - the largest index of an indexed draw's range, for the
  * check that every index names a vertex (vertex stage jobs, each over its
- * share of the indices).
+ * share of the indices); and the smallest with it, for a draw whose
+ * indices are fewer than its vertices (draw.c: the vertex stage then
+ * shades only the range between them; application thread).
  *
  * A single running maximum is a chain of dependent compares: GCC makes it
  * one SSE2 vector whose unsigned max is three instructions, and the
@@ -103,5 +105,64 @@ uint32_t sr__index_max(sr_index_type type, const void *indices, size_t begin, si
     case SR_INDEX_U16: return max_u16(indices, begin, end);
     case SR_INDEX_U32: return max_u32(indices, begin, end);
     default:           return 0;
+    }
+}
+
+/* The smallest and largest together, SR_INDEX_ACCUMULATORS of each (the
+ * compiler's vectors, as above); only for draws with fewer indices than
+ * vertices, so the portable loop is enough. */
+#define PORTABLE_RANGE(type)                                                    \
+    do {                                                                        \
+        const type *ix = indices;                                               \
+        type lo[SR_INDEX_ACCUMULATORS], hi[SR_INDEX_ACCUMULATORS];              \
+        for (int k = 0; k < SR_INDEX_ACCUMULATORS; k++) {                       \
+            lo[k] = (type)-1;                                                   \
+            hi[k] = 0;                                                          \
+        }                                                                       \
+        size_t i = 0;                                                           \
+        for (; i + SR_INDEX_ACCUMULATORS <= count; i += SR_INDEX_ACCUMULATORS) { \
+            for (int k = 0; k < SR_INDEX_ACCUMULATORS; k++) {                   \
+                lo[k] = ix[i + k] < lo[k] ? ix[i + k] : lo[k];                  \
+                hi[k] = ix[i + k] > hi[k] ? ix[i + k] : hi[k];                  \
+            }                                                                   \
+        }                                                                       \
+        type l = (type)-1, h = 0;                                               \
+        for (int k = 0; k < SR_INDEX_ACCUMULATORS; k++) {                       \
+            l = lo[k] < l ? lo[k] : l;                                          \
+            h = hi[k] > h ? hi[k] : h;                                          \
+        }                                                                       \
+        for (; i < count; i++) {                                                \
+            l = ix[i] < l ? ix[i] : l;                                          \
+            h = ix[i] > h ? ix[i] : h;                                          \
+        }                                                                       \
+        *min = l;                                                               \
+        *max = h;                                                               \
+    } while (0)
+
+static void range_u8(const void *indices, size_t count, uint32_t *min, uint32_t *max)
+{
+    PORTABLE_RANGE(uint8_t);
+}
+static void range_u16(const void *indices, size_t count, uint32_t *min, uint32_t *max)
+{
+    PORTABLE_RANGE(uint16_t);
+}
+static void range_u32(const void *indices, size_t count, uint32_t *min, uint32_t *max)
+{
+    PORTABLE_RANGE(uint32_t);
+}
+
+void sr__index_range(sr_index_type type, const void *indices, size_t count, uint32_t *min,
+                     uint32_t *max)
+{
+    *min = *max = 0;
+    if (count == 0) {
+        return;
+    }
+    switch (type) {
+    case SR_INDEX_U8:  range_u8(indices, count, min, max); break;
+    case SR_INDEX_U16: range_u16(indices, count, min, max); break;
+    case SR_INDEX_U32: range_u32(indices, count, min, max); break;
+    default:           break;
     }
 }
