@@ -241,6 +241,7 @@
  *     sr_destroy_stroke_outline  frees that outline
  *   2D lines
  *     sr_draw_line               a segment by one of the line algorithms
+ *     sr_line_steps              a Wu line's steps: the two pixels and weights of each
  *     sr_clip_line_cohen_sutherland  Cohen-Sutherland clipping to a rectangle
  *     sr_clip_line_liang_barsky  Liang-Barsky clipping to a rectangle
  *
