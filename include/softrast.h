@@ -242,6 +242,7 @@
  *   2D lines
  *     sr_draw_line               a segment by one of the line algorithms
  *     sr_line_steps              a Wu line's steps: the two pixels and weights of each
+ *     sr_smooth_line_pixels      a smooth 3D line's pixels and their coverage
  *     sr_clip_line_cohen_sutherland  Cohen-Sutherland clipping to a rectangle
  *     sr_clip_line_liang_barsky  Liang-Barsky clipping to a rectangle
  *
@@ -2393,6 +2394,34 @@ typedef void (*sr_line_step_fn)(void *user, const sr_line_step_info *step);
  * see docs/lines.md) and the pixels it blends.  Errors as sr_draw_line. */
 SR_API sr_result sr_line_steps(sr_context *ctx, int width, int height, sr_point2 a, sr_point2 b,
                                const sr_line_desc *desc, sr_line_step_fn fn, void *user);
+
+/* One pixel of an antialiased line of the 3D pipeline (sr_state's
+ * smooth_lines), as sr_draw rasterizes it: the line's ends snapped to
+ * 1/256 px, the pixel's centre projected onto the segment (t, clamped to
+ * the ends, which makes them round), and its coverage the distance from
+ * that point subtracted from the reach, half the width plus half a pixel
+ * (a one-pixel ramp across the edge), clamped to 1.  The pipeline
+ * blends the fragment with the coverage as alpha. */
+typedef struct sr_line_pixel_info {
+    bool y_major;             /* |dy| > |dx|: the pixels are walked row by row */
+    int x, y;
+    int major;                /* the column (x-major) or row it was walked in */
+    double t;                 /* the projection on a->b, in [0, 1] */
+    double distance;          /* from the pixel's centre to that point, pixels */
+    double reach;             /* half the width plus half a pixel */
+    float coverage;           /* reach - distance, in (0, 1] */
+} sr_line_pixel_info;
+
+typedef void (*sr_line_pixel_fn)(void *user, const sr_line_pixel_info *pixel);
+
+/* The pixels sr_draw covers for a smooth line a->b of `line_width` (as
+ * sr_state.line_width: (0, 64], 0 -> 1) in a width x height framebuffer
+ * whose viewport maps window coordinates 1:1, column by column, through
+ * the rasterizer's own walk.  a and b are window coordinates (pixels, y
+ * down), finite and within +-2^20 px. */
+SR_API sr_result sr_smooth_line_pixels(sr_context *ctx, int width, int height, sr_point2 a,
+                                       sr_point2 b, double line_width, sr_line_pixel_fn fn,
+                                       void *user);
 
 /* Clip the segment *a-*b to the closed rectangle [rmin.x, rmax.x] x
  * [rmin.y, rmax.y], moving the endpoints onto its border.  Returns false
