@@ -131,6 +131,7 @@ sr_result explain_clip(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_wu(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_aaline(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);
