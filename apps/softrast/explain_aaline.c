@@ -52,17 +52,6 @@ static sr_rgba coverage_colour(double c)
     return (sr_rgba){ out[0], out[1], out[2], 1 };
 }
 
-static void coverage_text(char *buf, size_t size, double c)
-{
-    if (c >= 0.995) {
-        snprintf(buf, size, "1");
-        return;
-    }
-    char t[16];
-    snprintf(t, sizeof t, "%.2f", c);
-    snprintf(buf, size, "%s", t[0] == '0' ? t + 1 : t);
-}
-
 /* The outline of the points within `reach` of the segment: two sides and
  * two half circles. */
 static void draw_reach(ex_canvas *c, const aa_line *l, double reach)
@@ -91,12 +80,7 @@ static void draw_reach(ex_canvas *c, const aa_line *l, double reach)
 static void draw_line(ex_canvas *c, const aa_line *l, double reach)
 {
     draw_reach(c, l, reach);
-    ex_segment(c, l->a, l->b, EX_EDGE, 1.5);
-    double r = c->zoom >= 20 ? 3.5 : c->zoom * 0.18;
-    ex_dot(c, l->a, r, EX_EDGE);
-    ex_dot(c, l->b, r, EX_EDGE);
-    ex_label(c, l->a, "A", EX_EDGE);
-    ex_label(c, l->b, "B", EX_EDGE);
+    ex_line_ab(c, l->a, l->b);
 }
 
 static sr_point2 nearest(const aa_line *l, double t)
@@ -121,7 +105,7 @@ static void column_frame(ex_canvas *c, const aa_line *l, int first, int end, int
     }
     for (int i = first; i < end; i++) {
         char t[16];
-        coverage_text(t, sizeof t, l->px[i].coverage);
+        ex_weight_text(t, sizeof t, l->px[i].coverage);
         ex_cell_text(c, l->px[i].x, l->px[i].y, t,
                      l->px[i].coverage > 0.8 ? (sr_rgba){ 1, 1, 1, 1 } : EX_TEXT);
     }

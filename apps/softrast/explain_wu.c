@@ -74,18 +74,6 @@ static sr_rgba weight_colour(double c)
     return (sr_rgba){ out[0], out[1], out[2], 1 };
 }
 
-/* "0.74" without its 0 (".74"), so it fits a cell; "1" for 1. */
-static void weight_text(char *buf, size_t size, double c)
-{
-    if (c >= 0.995) {
-        snprintf(buf, size, "1");
-        return;
-    }
-    char t[16];
-    snprintf(t, sizeof t, "%.2f", c);
-    snprintf(buf, size, "%s", t[0] == '0' ? t + 1 : t);
-}
-
 static sr_rgba text_on(double c)
 {
     return c > 0.8 ? (sr_rgba){ 1, 1, 1, 1 } : EX_TEXT;
@@ -106,12 +94,7 @@ static void draw_pixels(ex_canvas *c, const wu_line *w, int upto)
 
 static void draw_line(ex_canvas *c, const wu_line *w)
 {
-    ex_segment(c, w->a, w->b, EX_EDGE, 1.5);
-    double r = c->zoom >= 20 ? 3.5 : c->zoom * 0.18;
-    ex_dot(c, w->a, r, EX_EDGE);
-    ex_dot(c, w->b, r, EX_EDGE);
-    ex_label(c, w->a, "A", EX_EDGE);
-    ex_label(c, w->b, "B", EX_EDGE);
+    ex_line_ab(c, w->a, w->b);
 }
 
 static const char *axis(bool y_major, bool major)
@@ -153,7 +136,7 @@ static void step_frame(ex_canvas *c, const wu_line *w, int i, int number)
     }
     char wt[2][16];
     for (int k = 0; k < 2; k++) {
-        weight_text(wt[k], sizeof wt[k], s->coverage[k]);
+        ex_weight_text(wt[k], sizeof wt[k], s->coverage[k]);
         if (!on_grid(w, s->x[k], s->y[k])) {
             continue;
         }
