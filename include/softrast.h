@@ -241,6 +241,8 @@
  *     sr_destroy_stroke_outline  frees that outline
  *   2D lines
  *     sr_draw_line               a segment by one of the line algorithms
+ *     sr_line_steps              a Wu line's steps: the two pixels and weights of each
+ *     sr_smooth_line_pixels      a smooth 3D line's pixels and their coverage
  *     sr_clip_line_cohen_sutherland  Cohen-Sutherland clipping to a rectangle
  *     sr_clip_line_liang_barsky  Liang-Barsky clipping to a rectangle
  *
@@ -2362,6 +2364,66 @@ typedef struct sr_line_desc {
 /* Draw a->b into fb's color.  desc may be NULL (Bresenham, width 1). */
 SR_API sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_point2 b,
                               sr_rgba color, const sr_line_desc *desc);
+
+/* One major step of an SR_LINE_WU line, as sr_draw_line takes it: the
+ * column (a row when the line is y-major) whose centre the line crosses
+ * at `intersection` on the minor axis, and the two pixels straddling that
+ * point, each weighted by its closeness to it (1 - f and f, f the
+ * intersection's distance past the first pixel's centre), times the
+ * column's weight: 1, or at an end the part of the column the segment
+ * covers.  A pixel is drawn, with exactly `coverage` as its opacity, when
+ * `drawn` says so (its weight is above 0 and it lies in the rectangle). */
+typedef struct sr_line_step_info {
+    bool y_major;             /* |dy| > |dx|: major axis y, minor x */
+    bool first_end, last_end; /* the end column with the smaller, larger major index */
+    int major;                /* the column's index on the major axis */
+    double gradient;          /* d minor / d major, |gradient| <= 1 */
+    double intersection;      /* the minor coordinate at the column's centre
+                                 (pixel coordinates: centres at + 1/2); a
+                                 line within one column: at its midpoint */
+    double weight;            /* the column's weight, in [0, 1] */
+    int x[2], y[2];           /* the two pixels, the smaller minor index first */
+    float coverage[2];        /* their weights, clamped to [0, 1] */
+    bool drawn[2];
+} sr_line_step_info;
+
+typedef void (*sr_line_step_fn)(void *user, const sr_line_step_info *step);
+
+/* The steps sr_draw_line takes for a->b (desc->algorithm SR_LINE_WU; the
+ * other algorithms have none: SR_INVALID_ARG) in a width x height
+ * framebuffer, in order of the major index, through the same code that
+ * draws the line: the steps it visits (the visible ones and a few beyond,
+ * see docs/lines.md) and the pixels it blends.  Errors as sr_draw_line. */
+SR_API sr_result sr_line_steps(sr_context *ctx, int width, int height, sr_point2 a, sr_point2 b,
+                               const sr_line_desc *desc, sr_line_step_fn fn, void *user);
+
+/* One pixel of an antialiased line of the 3D pipeline (sr_state's
+ * smooth_lines), as sr_draw rasterizes it: the line's ends snapped to
+ * 1/256 px, the pixel's centre projected onto the segment (t, clamped to
+ * the ends, which makes them round), and its coverage the distance from
+ * that point subtracted from the reach, half the width plus half a pixel
+ * (a one-pixel ramp across the edge), clamped to 1.  The pipeline
+ * blends the fragment with the coverage as alpha. */
+typedef struct sr_line_pixel_info {
+    bool y_major;             /* |dy| > |dx|: the pixels are walked row by row */
+    int x, y;
+    int major;                /* the column (x-major) or row it was walked in */
+    double t;                 /* the projection on a->b, in [0, 1] */
+    double distance;          /* from the pixel's centre to that point, pixels */
+    double reach;             /* half the width plus half a pixel */
+    float coverage;           /* reach - distance, in (0, 1] */
+} sr_line_pixel_info;
+
+typedef void (*sr_line_pixel_fn)(void *user, const sr_line_pixel_info *pixel);
+
+/* The pixels sr_draw covers for a smooth line a->b of `line_width` (as
+ * sr_state.line_width: (0, 64], 0 -> 1) in a width x height framebuffer
+ * whose viewport maps window coordinates 1:1, column by column, through
+ * the rasterizer's own walk.  a and b are window coordinates (pixels, y
+ * down), finite and within +-2^20 px. */
+SR_API sr_result sr_smooth_line_pixels(sr_context *ctx, int width, int height, sr_point2 a,
+                                       sr_point2 b, double line_width, sr_line_pixel_fn fn,
+                                       void *user);
 
 /* Clip the segment *a-*b to the closed rectangle [rmin.x, rmax.x] x
  * [rmin.y, rmax.y], moving the endpoints onto its border.  Returns false

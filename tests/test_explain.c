@@ -834,6 +834,47 @@ SR_TEST(dda_last_frame_is_what_sr_draw_line_draws)
     check_lines("dda", SR_LINE_DDA_INCREMENTAL, false);
 }
 
+/* wu's last frame, cell for cell, is sr_draw_line's SR_LINE_WU line: the
+ * fill blue over white, each cell exactly its pixel's colour.  Random
+ * lines in every direction, ends at 1/8 px, some off the grid. */
+SR_TEST(wu_last_frame_is_what_sr_draw_line_draws)
+{
+    NEEDS_CLI();
+    sr_rng rng = { 0x3au };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn = 0;
+    for (int k = 0; k < 16; k++) {
+        double v[4];
+        for (int i = 0; i < 4; i++) {
+            v[i] = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0;
+        }
+        char prim[128], dir[1024], name[40];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g", v[0], v[1], v[2], v[3]);
+        snprintf(name, sizeof name, "wu_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("wu", "--line", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], rgb[GRID * GRID * 3];
+        int last = last_frame_cells(dir, cells);
+        REQUIRE(last >= 2);
+        REQUIRE(frame_cell_colours(dir, last, rgb));
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        REQUIRE(sr_draw_line(t.ctx, t.fb, (sr_point2){ v[0], v[1] }, (sr_point2){ v[2], v[3] },
+                             (sr_rgba){ 0.20f, 0.45f, 0.85f, 1 },
+                             &(sr_line_desc){ .algorithm = SR_LINE_WU }) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int diff = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            diff += memcmp(px + 4 * i, rgb + 3 * i, 3) != 0;
+            drawn += px[4 * i] != 255;
+        }
+        if (diff) {
+            FAILF("wu line %s: %d cells differ", prim, diff);
+        }
+    }
+    CHECK(drawn > 100);
+    rt_free(&t);
+}
+
 SR_TEST(explain_refuses_bad_input)
 {
     NEEDS_CLI();
@@ -1367,6 +1408,81 @@ SR_TEST(bresenham_tie_caption_reads_once)
                    "d + 10 = 10.");
     expect_caption("bresenham_less", args, 2, 10,
                    "2. Plot (1, 2). d = -2 < 0: step E, d + 10 = 8.");
+}
+
+/* aaline's last frame against sr_draw's smooth line (width 1), the fill
+ * blue over white: each cell within one 8-bit step of its pixel, every
+ * pixel sr_draw leaves white an empty cell.  Random lines with ends at
+ * 1/8 px inside the grid (sr_draw clips a line that leaves the
+ * framebuffer, which moves its snapped end). */
+SR_TEST(aaline_last_frame_is_what_sr_draw_draws)
+{
+    NEEDS_CLI();
+    sr_rng rng = { 0xaa11u };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn = 0;
+    for (int k = 0; k < 16; k++) {
+        double v[4];
+        for (int i = 0; i < 4; i++) {
+            v[i] = sr_rng_int(&rng, 4, (GRID - 1) * 8 + 4) / 8.0;
+        }
+        char prim[128], dir[1024], name[40];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g", v[0], v[1], v[2], v[3]);
+        snprintf(name, sizeof name, "aaline_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain("aaline", "--line", prim, dir) == 0);
+        uint8_t cells[GRID * GRID], rgb[GRID * GRID * 3];
+        int last = last_frame_cells(dir, cells);
+        REQUIRE(last >= 2);
+        REQUIRE(frame_cell_colours(dir, last, rgb));
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        float pos[6] = { rt_ndc_x(&t, v[0]), rt_ndc_y(&t, v[1]), 0,
+                         rt_ndc_x(&t, v[2]), rt_ndc_y(&t, v[3]), 0 };
+        sr_state st = { .shading = SR_SHADING_UNLIT, .smooth_lines = true, .line_width = 1,
+                        .material = { .diffuse = { 0.20f, 0.45f, 0.85f } } };
+        REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .primitive = SR_PRIM_LINES,
+                                                           .positions = pos,
+                                                           .vertex_count = 2 }) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int diff = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            for (int ch = 0; ch < 3; ch++) {
+                diff += abs(px[4 * i + ch] - rgb[3 * i + ch]) > 1;
+            }
+            drawn += px[4 * i] != 255;
+        }
+        if (diff) {
+            FAILF("aaline %s: %d channels differ", prim, diff);
+        }
+    }
+    CHECK(drawn > 200);
+    rt_free(&t);
+}
+
+/* The example's first end: the gap and the two weights it scales. */
+SR_TEST(wu_first_end_caption_gives_the_gap_and_weights)
+{
+    NEEDS_CLI();
+    expect_caption("wu_first_end", (const char *[]){ "wu", NULL }, 2, 10,
+                   "2. First end, column x = 1: the line covers 0.7000 of the column (the "
+                   "gap), so both weights are scaled by it. At the centre x = 1.5 the line is "
+                   "at y = 2.4822. It lies between the centres y = 1.5 and 2.5, f = 0.9822 "
+                   "past the first: (1, 1) gets gap x (1 - f) = 0.0125, (1, 2) gets gap x f "
+                   "= 0.6875.");
+    expect_caption("wu_row", (const char *[]){ "wu", "--line", "3.7,0.2,8.1,9.6", NULL }, 5, 10,
+                   "5. Row y = 3: intersection x = 5.2447 at the centre y = 3.5 (the previous "
+                   "one + gradient 0.4681). It lies between the centres x = 4.5 and 5.5, f = "
+                   "0.7447 past the first: (4, 3) gets (1 - f) = 0.2553, (5, 3) gets f = "
+                   "0.7447.");
+}
+
+/* aaline's distances and coverages, in the example's column x = 5. */
+SR_TEST(aaline_caption_gives_distances_and_coverage)
+{
+    NEEDS_CLI();
+    expect_caption("aaline_column", (const char *[]){ "aaline", NULL }, 7, 10,
+                   "7. Column x = 5: 2 pixels within the reach 1, coverage = reach - d. y = 3: "
+                   "d = 0.577, coverage 0.423; y = 4: d = 0.348, coverage 0.652.");
 }
 
 /* perspective's frame 3 compares the two interpolations along the span;
@@ -2200,4 +2316,20 @@ SR_TEST(zfight_example_sheet_matches_reference)
 {
     NEEDS_CLI();
     check_example_sheet("zfight", "20");
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_wu.png
+ * (2 levels a channel, 1 pixel in 200). */
+SR_TEST(wu_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    check_example_sheet("wu", "16");
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_aaline.png
+ * (2 levels a channel, 1 pixel in 200). */
+SR_TEST(aaline_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    check_example_sheet("aaline", "16");
 }

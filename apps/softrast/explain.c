@@ -49,6 +49,14 @@ static const algorithm algorithms[] = {
     { "dda", EX_LINE, explain_dda,
       { .kind = EX_LINE, .pts = { { 1.2, 2.7 }, { 14.6, 8.1 } }, .count = 2 }, 16, 10, 32,
       "the incremental DDA: the minor coordinate stepped by the slope" },
+    { "wu", EX_LINE, explain_wu,
+      { .kind = EX_LINE, .pts = { { 1.3, 2.4 }, { 14.2, 7.7 } }, .count = 2 }, 16, 10, 32,
+      "Xiaolin Wu's antialiased line: per column the intersection,\n"
+      "             the two pixels straddling it and their weights" },
+    { "aaline", EX_LINE, explain_aaline,
+      { .kind = EX_LINE, .pts = { { 1.3, 2.4 }, { 14.2, 7.7 } }, .count = 2 }, 16, 10, 32,
+      "softrast's antialiased line (sr_draw's smooth lines): each\n"
+      "             pixel's distance to the segment and its coverage" },
     { "zbuffer", EX_TRIANGLES, explain_zbuffer,
       { .kind = EX_TRIANGLES, .pts = { { 1.5, 1.5 }, { 12.5, 3.5 }, { 3.5, 10.5 },
                                        { 11.5, 0.5 }, { 12.5, 10.5 }, { 2.5, 6.5 } },

@@ -115,6 +115,11 @@ void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color);
 /* A label beside a point in grid coordinates; in a frame with cell text,
  * on a light box and out of the band the cells' text is written in. */
 void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color);
+/* The segment a-b with its ends marked and named A and B ("A=B" when they
+ * are too close for two names). */
+void ex_line_ab(ex_canvas *c, sr_point2 a, sr_point2 b);
+/* A weight in [0, 1] short enough for a cell: ".74" (no leading 0), "1". */
+void ex_weight_text(char *buf, size_t size, double w);
 /* The pixels of the grid that sr_draw_line draws for the segments
  * through pts (closed: and back to the first), 1 in mask, row by row. */
 sr_result ex_polyline_pixels(ex_canvas *c, const sr_point2 *pts, int n, bool closed,
@@ -130,6 +135,8 @@ sr_result explain_msaa(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_clip(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_wu(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_aaline(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);

@@ -5,6 +5,7 @@
 #include "outline.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -484,4 +485,32 @@ sr_result ex_polyline_pixels(ex_canvas *c, const sr_point2 *pts, int n, bool clo
     }
     sr_destroy_framebuffer(c->ctx, fb);
     return r;
+}
+
+void ex_line_ab(ex_canvas *c, sr_point2 a, sr_point2 b)
+{
+    ex_segment(c, a, b, EX_EDGE, 1.5);
+    double r = c->zoom >= 20 ? 3.5 : c->zoom * 0.18;
+    ex_dot(c, a, r, EX_EDGE);
+    ex_dot(c, b, r, EX_EDGE);
+    /* ends closer than a label's width (a zero-length line) share one
+     * name: two would be drawn over each other */
+    double gap = fmax(fabs(b.x - a.x), fabs(b.y - a.y)) * c->zoom;
+    if (gap < sr_text_width("A", c->text_scale) + 6) {
+        ex_label(c, a, "A=B", EX_EDGE);
+    } else {
+        ex_label(c, a, "A", EX_EDGE);
+        ex_label(c, b, "B", EX_EDGE);
+    }
+}
+
+void ex_weight_text(char *buf, size_t size, double w)
+{
+    if (w >= 0.995) {
+        snprintf(buf, size, "1");
+        return;
+    }
+    char t[16];
+    snprintf(t, sizeof t, "%.2f", w);
+    snprintf(buf, size, "%s", t[0] == '0' ? t + 1 : t);
 }

@@ -239,19 +239,7 @@ static void dda(line_steps *ls, int64_t ax, int64_t ay, int64_t bx, int64_t by)
 
 static void draw_line(ex_canvas *c, const line_steps *ls)
 {
-    ex_segment(c, ls->a, ls->b, EX_EDGE, 1.5);
-    double r = c->zoom >= 20 ? 3.5 : c->zoom * 0.18;
-    ex_dot(c, ls->a, r, EX_EDGE);
-    ex_dot(c, ls->b, r, EX_EDGE);
-    /* ends closer than a label's width (a zero-length line) share one
-     * name: two would be drawn over each other */
-    double gap = fmax(fabs(ls->b.x - ls->a.x), fabs(ls->b.y - ls->a.y)) * c->zoom;
-    if (gap < sr_text_width("A", c->text_scale) + 6) {
-        ex_label(c, ls->a, "A=B", EX_EDGE);
-    } else {
-        ex_label(c, ls->a, "A", EX_EDGE);
-        ex_label(c, ls->b, "B", EX_EDGE);
-    }
+    ex_line_ab(c, ls->a, ls->b);
 }
 
 static bool in_grid(const ex_canvas *c, int x, int y)

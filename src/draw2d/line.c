@@ -522,23 +522,20 @@ static const char *point_name(int i)
     return names[i];
 }
 
-sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_point2 b,
-                       sr_rgba color, const sr_line_desc *desc)
+/* The checks and defaults sr_draw_line and sr_line_steps share: the
+ * points and *d (desc with its defaults resolved), errors reported as
+ * `fname`'s. */
+static sr_result check_line(sr_context *ctx, const char *fname, sr_point2 a, sr_point2 b,
+                            const sr_line_desc *desc, sr_line_desc *out)
 {
-    if (!ctx) {
-        return SR_INVALID_ARG;
-    }
-    if (!fb) {
-        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_line: fb is NULL");
-    }
     sr_line_desc d = desc ? *desc : (sr_line_desc){ 0 };
     const double coords[4] = { a.x, a.y, b.x, b.y };
     for (int i = 0; i < 4; i++) {
         if (!isfinite(coords[i])) {
-            return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_line: %s is not finite", point_name(i));
+            return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is not finite", fname, point_name(i));
         }
         if (fabs(coords[i]) > SR__LINE_MAX_COORD) {
-            return sr__fail(ctx, SR_TOO_LARGE, "sr_draw_line: |%s| = %g exceeds %g px",
+            return sr__fail(ctx, SR_TOO_LARGE, "%s: |%s| = %g exceeds %g px", fname,
                             point_name(i), fabs(coords[i]), SR__LINE_MAX_COORD);
         }
     }
@@ -569,6 +566,24 @@ sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_poin
     if (!(d.width > 0.0 && d.width <= max_width)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_line_desc.width must be in (0, %g] (got %g)",
                         d.algorithm == SR_LINE_WIDE ? (double)WIDE_MAX : 4096.0, d.width);
+    }
+    *out = d;
+    return SR_OK;
+}
+
+sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_point2 b,
+                       sr_rgba color, const sr_line_desc *desc)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!fb) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_line: fb is NULL");
+    }
+    sr_line_desc d = { 0 };
+    sr_result r = check_line(ctx, "sr_draw_line", a, b, desc, &d);
+    if (r != SR_OK) {
+        return r;
     }
     fb_plot p = { .fb = fb };
     if (!sr__paint_init(&p.paint, color, true)) {
@@ -603,6 +618,33 @@ sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_poin
         sr__line_bresenham(&q, clip, d.clipper, false, plot_fb, &p);
         break;
     }
+    sr__ok(ctx);
+    return SR_OK;
+}
+
+sr_result sr_line_steps(sr_context *ctx, int width, int height, sr_point2 a, sr_point2 b,
+                        const sr_line_desc *desc, sr_line_step_fn fn, void *user)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!fn) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_line_steps: fn is NULL");
+    }
+    if (width <= 0 || height <= 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_line_steps: width and height must be > 0 "
+                        "(got %d x %d)", width, height);
+    }
+    sr_line_desc d = { 0 };
+    sr_result r = check_line(ctx, "sr_line_steps", a, b, desc, &d);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (d.algorithm != SR_LINE_WU) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_line_steps: sr_line_desc.algorithm %d has no "
+                        "steps (only SR_LINE_WU)", (int)d.algorithm);
+    }
+    sr__line_wu_steps(a, b, (sr__irect){ 0, 0, width, height }, d.clipper, fn, user);
     sr__ok(ctx);
     return SR_OK;
 }

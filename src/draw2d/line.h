@@ -71,6 +71,10 @@ void sr__line_wide(const sr__line_q8 *l, int w, sr_line_cap cap, sr__irect clip,
 /* Xiaolin Wu: two pixels per major step, weighted by distance. */
 void sr__line_wu(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipper,
                  sr__plot_fn plot, void *user);
+/* The same line as its major steps (sr_line_steps): sr__line_wu draws
+ * the pixels these steps mark drawn, with their coverage. */
+void sr__line_wu_steps(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipper,
+                       sr_line_step_fn step, void *user);
 /* Exact area coverage of the width-w rectangle around a->b (with its
  * caps) inside each pixel square. */
 void sr__line_area(sr_point2 a, sr_point2 b, double width, sr_line_cap cap, sr__irect clip,

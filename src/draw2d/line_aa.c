@@ -15,32 +15,36 @@
 
 typedef struct wu_ctx {
     bool steep;
+    double gradient;
     sr__irect clip;
-    sr__plot_fn plot;
+    sr_line_step_fn step;
     void *user;
 } wu_ctx;
 
-/* Plot (major k, minor j) with weight c, if inside the clip rectangle. */
-static void wu_plot(const wu_ctx *w, double k, double j, double c)
-{
-    double x = w->steep ? j : k, y = w->steep ? k : j;
-    if (c <= 0.0 || !(x >= w->clip.x0 && x < w->clip.x1 && y >= w->clip.y0 && y < w->clip.y1)) {
-        return;
-    }
-    w->plot(w->user, (int)x, (int)y, (float)(c > 1.0 ? 1.0 : c));
-}
-
-/* The two pixels straddling v in column k, weighted by their distance:
- * the nearer one gets more.  v has pixel centres at integers here. */
-static void wu_pair(const wu_ctx *w, double k, double v, double weight)
+/* Column k's step: the two pixels straddling v, weighted by their
+ * distance (the nearer one gets more) times the column's weight.  v has
+ * pixel centres at integers here.  A pixel is drawn when its weight is
+ * above 0 and it lies inside the clip rectangle. */
+static void wu_pair(const wu_ctx *w, double k, double v, double weight, bool first, bool last)
 {
     double j = floor(v), f = v - j;
-    wu_plot(w, k, j, (1.0 - f) * weight);
-    wu_plot(w, k, j + 1.0, f * weight);
+    sr_line_step_info s = { .y_major = w->steep, .first_end = first, .last_end = last,
+                            .major = (int)k, .gradient = w->gradient, .intersection = v + 0.5,
+                            .weight = weight };
+    const double c[2] = { (1.0 - f) * weight, f * weight };
+    for (int i = 0; i < 2; i++) {
+        double x = w->steep ? j + i : k, y = w->steep ? k : j + i;
+        s.x[i] = (int)x;
+        s.y[i] = (int)y;
+        s.coverage[i] = (float)(c[i] > 1.0 ? 1.0 : c[i] < 0.0 ? 0.0 : c[i]);
+        s.drawn[i] = c[i] > 0.0 && x >= w->clip.x0 && x < w->clip.x1 && y >= w->clip.y0 &&
+                     y < w->clip.y1;
+    }
+    w->step(w->user, &s);
 }
 
-void sr__line_wu(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipper,
-                 sr__plot_fn plot, void *user)
+void sr__line_wu_steps(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipper,
+                       sr_line_step_fn step, void *user)
 {
     if ((a.x == b.x && a.y == b.y) || clip.x1 <= clip.x0 || clip.y1 <= clip.y0) {
         return;
@@ -52,7 +56,7 @@ void sr__line_wu(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipp
     }
     /* Wu's formulation puts pixel centres at integers: shift by -1/2. */
     double x0 = a.x - 0.5, y0 = a.y - 0.5, x1 = b.x - 0.5, y1 = b.y - 0.5;
-    wu_ctx w = { fabs(y1 - y0) > fabs(x1 - x0), clip, plot, user };
+    wu_ctx w = { fabs(y1 - y0) > fabs(x1 - x0), 0.0, clip, step, user };
     double lo = w.steep ? fmin(ca.y, cb.y) : fmin(ca.x, cb.x);
     double hi = w.steep ? fmax(ca.y, cb.y) : fmax(ca.x, cb.x);
     if (w.steep) {
@@ -64,24 +68,49 @@ void sr__line_wu(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipp
         t = y0; y0 = y1; y1 = t;
     }
     const double g = (y1 - y0) / (x1 - x0);      /* gradient, |g| <= 1 */
+    w.gradient = g;
     /* First end: its column gets the weight of the part of the column
      * the line covers (gap); the second end likewise. */
     const double xa = floor(x0 + 0.5), ya = y0 + g * (xa - x0);
     const double xb = floor(x1 + 0.5), yb = y1 + g * (xb - x1);
     const double gap_a = 1.0 - (x0 + 0.5 - xa), gap_b = x1 + 0.5 - xb;
     if (xa == xb) {
-        wu_pair(&w, xa, ya + g * (0.5 * (x0 + x1) - xa), x1 - x0);
+        wu_pair(&w, xa, ya + g * (0.5 * (x0 + x1) - xa), x1 - x0, true, true);
         return;
     }
-    wu_pair(&w, xa, ya, gap_a);
-    wu_pair(&w, xb, yb, gap_b);
+    /* The steps in order of the major index; each column has its own
+     * pixels, so the order does not change what is drawn. */
+    wu_pair(&w, xa, ya, gap_a, true, false);
     /* Interior columns, only the visible ones.  v is computed from the
      * first end at each column (not accumulated), so the pixels do not
      * depend on where the visible part starts. */
     double k0 = fmax(xa + 1.0, floor(lo) - 3.0), k1 = fmin(xb - 1.0, floor(hi) + 3.0);
     for (double k = k0; k <= k1; k += 1.0) {
-        wu_pair(&w, k, ya + g * (k - xa), 1.0);
+        wu_pair(&w, k, ya + g * (k - xa), 1.0, false, false);
     }
+    wu_pair(&w, xb, yb, gap_b, false, true);
+}
+
+typedef struct wu_plot_ctx {
+    sr__plot_fn plot;
+    void *user;
+} wu_plot_ctx;
+
+static void wu_plot_step(void *user, const sr_line_step_info *s)
+{
+    const wu_plot_ctx *p = user;
+    for (int i = 0; i < 2; i++) {
+        if (s->drawn[i]) {
+            p->plot(p->user, s->x[i], s->y[i], s->coverage[i]);
+        }
+    }
+}
+
+void sr__line_wu(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipper,
+                 sr__plot_fn plot, void *user)
+{
+    wu_plot_ctx p = { plot, user };
+    sr__line_wu_steps(a, b, clip, clipper, wu_plot_step, &p);
 }
 
 /* ---- exact area coverage ------------------------------------------------------- */

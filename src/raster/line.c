@@ -24,6 +24,7 @@
  * the same operations, four columns at a time with AVX2 for the
  * commonest, and test_lines_fast.c holds both to the reference. */
 #include "fragment/msaa_ops.h"
+#include "raster/smooth_line.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -104,54 +105,36 @@ static void line_fragment(const line_ctx *lc, int px, int py)
     }
 }
 
-/* Antialiased line: every pixel whose centre lies within half the width
- * plus half a pixel of the segment, with coverage falling linearly over the
- * last pixel (a box filter across the edge); round ends come from clamping
- * the projection to the segment.  Walks, per major-axis column, only the
- * rows the line can reach. */
+/* Antialiased line: sr__smooth_line_walk's pixels (smooth_line.h), each
+ * shaded with its coverage as alpha. */
+typedef struct smooth_ctx {
+    const sr_draw_state *ds;
+    const sr_line *l;
+    sr_frag_stats *st;
+} smooth_ctx;
+
+static inline void smooth_fragment(void *user, const sr_line_pixel_info *p)
+{
+    const smooth_ctx *sc = user;
+    const sr_line *l = sc->l;
+    int n = l->ninterp;
+    double t = p->t;
+    double z = l->za + t * (l->zb - l->za);
+    float v[SR_MAX_VARYINGS];
+    float qa = (float)(1.0 - t) * l->wa, qb = (float)t * l->wb;
+    float inv = qa + qb != 0.0f ? 1.0f / (qa + qb) : 0.0f;
+    for (int i = 0; i < n; i++) {
+        v[i] = (qa * l->vary[i] + qb * l->vary[n + i]) * inv;
+    }
+    sr__fragment_vary(sc->ds, p->x, p->y, z, v, l->flat, l->front, p->coverage, sc->st);
+}
+
 static void raster_smooth_line(const sr_draw_state *ds, const sr_line *l, int rx0, int ry0,
                                int rx1, int ry1, sr_frag_stats *st)
 {
-    double ax = l->xa / (double)S, ay = l->ya / (double)S;
-    double dx = (l->xb - l->xa) / (double)S, dy = (l->yb - l->ya) / (double)S;
-    double len2 = dx * dx + dy * dy;
-    bool xmajor = fabs(dx) >= fabs(dy);
-    double reach = l->half_width + 0.5;
-    int n = l->ninterp;
-    int k0 = xmajor ? rx0 : ry0, k1 = xmajor ? rx1 : ry1;
-    for (int k = k0; k < k1; k++) {
-        /* The band of minor rows within reach at this column's centre. */
-        double c = k + 0.5;
-        double t_c = xmajor ? (dx != 0.0 ? (c - ax) / dx : 0.0) : (dy != 0.0 ? (c - ay) / dy : 0.0);
-        t_c = t_c < 0.0 ? 0.0 : t_c > 1.0 ? 1.0 : t_c;
-        double minor = xmajor ? ay + t_c * dy : ax + t_c * dx;
-        double slope = xmajor ? (dx != 0.0 ? fabs(dy / dx) : 0.0) : (dy != 0.0 ? fabs(dx / dy) : 0.0);
-        double span = reach * sqrt(1.0 + slope * slope) + 1.0;
-        int j0 = (int)floor(minor - span), j1 = (int)ceil(minor + span);
-        int lo = xmajor ? ry0 : rx0, hi = xmajor ? ry1 : rx1;
-        j0 = j0 > lo ? j0 : lo;
-        j1 = j1 < hi ? j1 : hi;
-        for (int j = j0; j < j1; j++) {
-            int px = xmajor ? k : j, py = xmajor ? j : k;
-            double cx = px + 0.5 - ax, cy = py + 0.5 - ay;
-            double t = len2 > 0.0 ? (cx * dx + cy * dy) / len2 : 0.0;
-            t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-            double ex = cx - t * dx, ey = cy - t * dy;
-            double cov = reach - sqrt(ex * ex + ey * ey);
-            if (cov <= 0.0) {
-                continue;
-            }
-            double z = l->za + t * (l->zb - l->za);
-            float v[SR_MAX_VARYINGS];
-            float qa = (float)(1.0 - t) * l->wa, qb = (float)t * l->wb;
-            float inv = qa + qb != 0.0f ? 1.0f / (qa + qb) : 0.0f;
-            for (int i = 0; i < n; i++) {
-                v[i] = (qa * l->vary[i] + qb * l->vary[n + i]) * inv;
-            }
-            sr__fragment_vary(ds, px, py, z, v, l->flat, l->front, cov < 1.0 ? (float)cov : 1.0f,
-                              st);
-        }
-    }
+    smooth_ctx sc = { ds, l, st };
+    sr__smooth_line_walk(l->xa, l->ya, l->xb, l->yb, l->half_width, rx0, ry0, rx1, ry1,
+                         smooth_fragment, &sc);
 }
 
 /* The columns of [klo, khi] whose path pixel lies in [vlo, vhi] on the
