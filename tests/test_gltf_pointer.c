@@ -36,11 +36,13 @@ static int put(blob *b, const void *v, size_t n, size_t esize, const char *type,
     return b->count++;
 }
 
-/* The document: a triangle drawn by nodes 0, 3, 4 and 5 with material 0,
+/* The document: a triangle drawn by nodes 0, 3, 4 and 5 with material 0
+ * (`material`, a texture without a source for it to name),
  * point light 0 on node 1, perspective camera 0 on node 2; node 3 hidden
  * (KHR_node_visibility) with node 4 its child, node 5 shown; `channels`
  * and `samplers` the one animation's.  Malloc'd. */
-static char *scene_json(const blob *b, const char *samplers, const char *channels)
+static char *scene_json_with(const blob *b, const char *material, const char *samplers,
+                             const char *channels)
 {
     char views[2048] = "", acc[2048], *o = acc;
     const char *p = b->accessors;
@@ -61,7 +63,7 @@ static char *scene_json(const blob *b, const char *samplers, const char *channel
     *o = 0;
     char b64[4 * sizeof b->bin / 3 + 8];
     gltf_base64(b->bin, b->size, b64);
-    size_t cap = strlen(b64) + strlen(views) + strlen(acc) + strlen(samplers) +
+    size_t cap = strlen(b64) + strlen(views) + strlen(acc) + strlen(material) + strlen(samplers) +
                  strlen(channels) + 2048;
     char *json = malloc(cap);
     if (json) {
@@ -73,7 +75,7 @@ static char *scene_json(const blob *b, const char *samplers, const char *channel
                  "\"intensity\":10}]}},"
                  "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;"
                  "base64,%s\"}],\"bufferViews\":[%s],\"accessors\":[%s],"
-                 "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}}],"
+                 "\"materials\":[%s],\"textures\":[{}],"
                  "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
                  "\"material\":0}]}],"
                  "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,"
@@ -86,9 +88,16 @@ static char *scene_json(const blob *b, const char *samplers, const char *channel
                  "{\"mesh\":0,\"extensions\":{\"KHR_node_visibility\":{}}}],"
                  "\"scenes\":[{\"nodes\":[0,1,2,3,5]}],"
                  "\"animations\":[{\"samplers\":[%s],\"channels\":[%s]}]}",
-                 b->size, b64, views, acc, samplers, channels);
+                 b->size, b64, views, acc, material, samplers, channels);
     }
     return json;
+}
+
+static const char *const red = "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}}";
+
+static char *scene_json(const blob *b, const char *samplers, const char *channels)
+{
+    return scene_json_with(b, red, samplers, channels);
 }
 
 static sr_result parse(const char *json, const sr_load_desc *desc, sr_scene **s, sr_io_error *e)
@@ -336,8 +345,7 @@ SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
 {
     static const char *const skipped[] = {
         "/meshes/0/weights",
-        "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/"
-        "offset",
+        "/materials/0/extensions/KHR_materials_volume/attenuationDistance",
         "/cameras/0/type",
     };
     for (size_t i = 0; i < sizeof skipped / sizeof *skipped; i++) {
@@ -434,5 +442,58 @@ SR_TEST(quantized_rotation_outputs_decode_by_the_specification)
         CHECK_NEAR(w[0], cos(M_PI / 4), kinds[k].tol);
         CHECK_NEAR(w[1], sin(M_PI / 4), kinds[k].tol);
         sr_destroy_scene(sr_test_ctx(), s);
+    }
+}
+
+/* KHR_texture_transform's members animated by pointer: the slot a
+ * reading of the file with those values gives (its offset converted to
+ * sr_texture_slot's v up with the rotation and the scale). */
+SR_TEST(texture_transforms_animate_as_the_file_would_write_them)
+{
+    static const char *const member[3] = { "rotation", "offset", "scale" };
+    static const float keys[3][2] = { { 0.5f, 0 }, { 0.3f, 0.4f }, { 1.5f, 0.5f } };
+    static const char *const target[3] = {
+        "\"offset\":[0.1,0.2],\"rotation\":0.5,\"scale\":[2,3]",
+        "\"offset\":[0.3,0.4],\"rotation\":0.25,\"scale\":[2,3]",
+        "\"offset\":[0.1,0.2],\"rotation\":0.25,\"scale\":[1.5,0.5]",
+    };
+    for (int k = 0; k < 3; k++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+        int out = put(&b, keys[k], k == 0 ? 1 : 2, 4, k == 0 ? "SCALAR" : "VEC2", 1, 5126,
+                      false);
+        char samplers[128], channels[512] = "", pointer[256], mat[2][256];
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        snprintf(pointer, sizeof pointer, "/materials/0/emissiveTexture/extensions/"
+                 "KHR_texture_transform/%s", member[k]);
+        add_channel(channels, sizeof channels, 0, pointer);
+        snprintf(mat[0], sizeof mat[0], "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                 "{\"KHR_texture_transform\":{\"offset\":[0.1,0.2],\"rotation\":0.25,"
+                 "\"scale\":[2,3]}}}}");
+        snprintf(mat[1], sizeof mat[1], "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                 "{\"KHR_texture_transform\":{%s}}}}", target[k]);
+        char *animated = scene_json_with(&b, mat[0], samplers, channels);
+        char *written = scene_json_with(&b, mat[1], samplers, "");
+        REQUIRE(animated && written);
+        /* The one without a channel has no animation to carry. */
+        strcpy(strstr(written, ",\"animations\""), "}");
+        sr_scene *s = NULL, *want = NULL;
+        sr_io_error e;
+        sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 0 };
+        REQUIRE(parse(animated, &at, &s, &e) == SR_OK);
+        REQUIRE(parse(written, NULL, &want, &e) == SR_OK);
+        const sr_texture_slot *got = &s->materials[0].emissive_texture;
+        const sr_texture_slot *ref = &want->materials[0].emissive_texture;
+        CHECK_NEAR(got->rotation, ref->rotation, 1e-6);
+        for (int c = 0; c < 2; c++) {
+            CHECK_NEAR(got->offset[c], ref->offset[c], 1e-6);
+            CHECK_NEAR(got->scale[c], ref->scale[c], 1e-6);
+        }
+        free(animated);
+        free(written);
+        sr_destroy_scene(sr_test_ctx(), s);
+        sr_destroy_scene(sr_test_ctx(), want);
     }
 }

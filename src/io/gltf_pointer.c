@@ -11,6 +11,7 @@
 #include "io/gltf.h"
 
 #include <float.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,8 +62,42 @@ static const prop_row material_rows[] = {
     { MX("diffuse_transmission", "diffuseTransmissionColorFactor"), 3,
       M(diffuse_transmission_color), 0, 1, false },
 };
-#undef M
 #undef MX
+
+/* The textureInfos whose KHR_texture_transform softrast reads. */
+#define MT(ext, name) "extensions/KHR_materials_" ext "/" name
+static const struct {
+    const char *path;
+    size_t offset;
+} slot_rows[] = {
+    { "pbrMetallicRoughness/baseColorTexture", M(base_color_texture) },
+    { "pbrMetallicRoughness/metallicRoughnessTexture", M(metallic_roughness_texture) },
+    { "normalTexture", M(normal_texture) },
+    { "occlusionTexture", M(occlusion_texture) },
+    { "emissiveTexture", M(emissive_texture) },
+    { MT("transmission", "transmissionTexture"), M(transmission_texture) },
+    { MT("volume", "thicknessTexture"), M(thickness_texture) },
+    { MT("specular", "specularTexture"), M(specular_texture) },
+    { MT("specular", "specularColorTexture"), M(specular_color_texture) },
+    { MT("clearcoat", "clearcoatTexture"), M(clearcoat_texture) },
+    { MT("clearcoat", "clearcoatRoughnessTexture"), M(clearcoat_roughness_texture) },
+    { MT("clearcoat", "clearcoatNormalTexture"), M(clearcoat_normal_texture) },
+    { MT("sheen", "sheenColorTexture"), M(sheen_color_texture) },
+    { MT("sheen", "sheenRoughnessTexture"), M(sheen_roughness_texture) },
+    { MT("anisotropy", "anisotropyTexture"), M(anisotropy_texture) },
+    { MT("iridescence", "iridescenceTexture"), M(iridescence_texture) },
+    { MT("iridescence", "iridescenceThicknessTexture"), M(iridescence_thickness_texture) },
+    { MT("diffuse_transmission", "diffuseTransmissionTexture"),
+      M(diffuse_transmission_texture) },
+    { MT("diffuse_transmission", "diffuseTransmissionColorTexture"),
+      M(diffuse_transmission_color_texture) },
+};
+#undef MT
+#undef M
+/* A transform's members, and the prop numbers they take after the rows:
+ * TRANSFORM_PROP + 3 * slot row + member. */
+static const char *const transform_members[] = { "offset", "rotation", "scale" };
+enum { TRANSFORM_PROP = 1000 };
 
 #define C(field) offsetof(sr_scene_camera, field)
 static const prop_row camera_rows[] = {
@@ -151,13 +186,40 @@ static bool defined(const json_t *obj, const char *const *tok, int count, bool e
     return !explicit || json_object_get(obj, tok[count - 1]) != NULL;
 }
 
-static int find_row(const prop_row *rows, size_t n, const char *const *tok, int count)
+/* The tokens joined by '/'. */
+static void join(const char *const *tok, int count, char *path, size_t cap)
 {
-    char path[GLTF_PTR] = "";
+    path[0] = '\0';
     for (int k = 0; k < count; k++) {
         size_t at = strlen(path);
-        snprintf(path + at, sizeof path - at, "%s%s", k ? "/" : "", tok[k]);
+        snprintf(path + at, cap - at, "%s%s", k ? "/" : "", tok[k]);
     }
+}
+
+/* A material's ".../extensions/KHR_texture_transform/<member>" on a slot
+ * softrast reads: its prop number, else -1. */
+static int find_transform(const char *const *tok, int count)
+{
+    if (count < 4 || strcmp(tok[count - 3], "extensions") != 0 ||
+        strcmp(tok[count - 2], "KHR_texture_transform") != 0) {
+        return -1;
+    }
+    char path[GLTF_PTR];
+    join(tok, count - 3, path, sizeof path);
+    for (size_t i = 0; i < sizeof slot_rows / sizeof *slot_rows; i++) {
+        for (int k = 0; k < 3 && strcmp(slot_rows[i].path, path) == 0; k++) {
+            if (strcmp(tok[count - 1], transform_members[k]) == 0) {
+                return TRANSFORM_PROP + 3 * (int)i + k;
+            }
+        }
+    }
+    return -1;
+}
+
+static int find_row(const prop_row *rows, size_t n, const char *const *tok, int count)
+{
+    char path[GLTF_PTR];
+    join(tok, count, path, sizeof path);
     for (size_t i = 0; i < n; i++) {
         if (strcmp(rows[i].path, path) == 0) {
             return (int)i;
@@ -249,6 +311,17 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
         row_count = sizeof light_rows / sizeof *light_rows;
     }
     int row = obj && rn > 0 ? find_row(rows, row_count, rest, rn) : -1;
+    int transform = obj && out->kind == GLTF_TARGET_MATERIAL ? find_transform(rest, rn) : -1;
+    if (transform >= 0) {
+        if (!defined(obj, rest, rn, false)) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: \"%.120s\" names a property the file "
+                                 "does not define", pptr, text);
+        }
+        out->index = index;
+        out->prop = transform;
+        out->width = (transform - TRANSFORM_PROP) % 3 == 1 ? 1 : 2;
+        return SR_OK;
+    }
     if (row < 0) {
         sr__gltf_warn(d, "%s: \"%.120s\" is not a property softrast animates, not animated",
                       pptr, text);
@@ -290,6 +363,30 @@ sr_result sr__gltf_pointer_check(gltf_doc *d, const gltf_pointer *p, const gltf_
     return SR_OK;
 }
 
+/* KHR_texture_transform's member k (offset, rotation, scale) of slot
+ * set to v: the file's values found back from the slot's, which keeps
+ * them as sr_texture_slot's convention (v up) has them (gltf_material.c's
+ * read_transform), changed and converted again. */
+static void write_transform(sr_texture_slot *slot, int k, const float *v)
+{
+    float rot = slot->rotation, s[2] = { slot->scale[0], slot->scale[1] };
+    float o[2] = { slot->offset[0] - s[1] * sinf(rot), 1.0f - slot->offset[1] - s[1] * cosf(rot) };
+    if (k == 0) {
+        o[0] = v[0];
+        o[1] = v[1];
+    } else if (k == 1) {
+        rot = v[0];
+    } else {
+        s[0] = v[0];
+        s[1] = v[1];
+    }
+    slot->offset[0] = o[0] + s[1] * sinf(rot);
+    slot->offset[1] = 1.0f - o[1] - s[1] * cosf(rot);
+    slot->rotation = rot;
+    slot->scale[0] = s[0];
+    slot->scale[1] = s[1];
+}
+
 static void write_row(const prop_row *row, void *base, const float *v)
 {
     float *dst = (float *)((char *)base + row->offset);
@@ -312,6 +409,12 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
             visible[c->index] = v[0] != 0;
         } else if (c->kind == GLTF_TARGET_MATERIAL) {
             sr_pbr_material *m = &scene->materials[c->index];
+            if (c->prop >= TRANSFORM_PROP) {
+                int slot = (c->prop - TRANSFORM_PROP) / 3;
+                write_transform((sr_texture_slot *)((char *)m + slot_rows[slot].offset),
+                                (c->prop - TRANSFORM_PROP) % 3, v);
+                continue;
+            }
             write_row(&material_rows[c->prop], m, v);
             /* The reader's readings of zeros (gltf_material.c): no
              * emission at strength 0. */
