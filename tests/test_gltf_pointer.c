@@ -7,7 +7,9 @@
  * specification's formulas. */
 #include "sr_test.h"
 
+#include "batch_cli.h"
 #include "gltf_write.h"
+#include "image_compare.h"
 #include "softrast.h"
 #include "softrast_io.h"
 
@@ -496,4 +498,116 @@ SR_TEST(texture_transforms_animate_as_the_file_would_write_them)
         sr_destroy_scene(sr_test_ctx(), s);
         sr_destroy_scene(sr_test_ctx(), want);
     }
+}
+
+/* ---- softrast render --animation ---------------------------------------- */
+
+/* Three quads in a row: material 0 (red, to blue over 2 s), node 1's
+ * green one (visible, STEP hidden from 1 s) and an emissive one (its
+ * KHR_materials_emissive_strength 0.5 to 4 over 2 s), and a fourth
+ * hidden above.  `posed_at_1_5`: no animation, the values of 1.5 s
+ * written in the file instead: color (0.25, 0, 0.75), green hidden,
+ * strength 3.125.  Malloc'd. */
+static char *row_json(bool posed_at_1_5)
+{
+    blob b = { .size = 0 };
+    static const float quad[12] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 };
+    static const uint16_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    static const float t02[2] = { 0, 2 }, t01[2] = { 0, 1 }, color[8] = { 1, 0, 0, 1, 0, 0, 1, 1 };
+    static const float power[2] = { 0.5f, 4 };
+    static const uint8_t shown[2] = { 1, 0 };
+    put(&b, quad, 12, 4, "VEC3", 4, 5126, false);
+    put(&b, idx, 6, 2, "SCALAR", 6, 5123, false);
+    int in2 = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+    int in1 = put(&b, t01, 2, 4, "SCALAR", 2, 5126, false);
+    int c = put(&b, color, 8, 4, "VEC4", 2, 5126, false);
+    int p = put(&b, power, 2, 4, "SCALAR", 2, 5126, false);
+    int v = put(&b, shown, 2, 1, "SCALAR", 2, 5121, false);
+    char samplers[512], channels[1024] = "";
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d},{\"input\":%d,"
+             "\"output\":%d,\"interpolation\":\"STEP\"},{\"input\":%d,\"output\":%d}",
+             in2, c, in1, v, in2, p);
+    add_channel(channels, sizeof channels, 0, "/materials/0/pbrMetallicRoughness/baseColorFactor");
+    add_channel(channels, sizeof channels, 1, "/nodes/1/extensions/KHR_node_visibility/visible");
+    add_channel(channels, sizeof channels, 2,
+                "/materials/2/extensions/KHR_materials_emissive_strength/emissiveStrength");
+    /* The document scene_json makes, its materials, meshes and nodes
+     * replaced by the row's. */
+    char *json = scene_json(&b, samplers, channels), *out = json ? malloc(strlen(json) + 2048)
+                                                               : NULL;
+    if (!out) {
+        free(json);
+        return NULL;
+    }
+    char *mats = strstr(json, "\"materials\""), *anims = strstr(json, ",\"animations\"");
+    snprintf(out, strlen(json) + 2048,
+             "%.*s\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":%s,"
+             "\"metallicFactor\":0}},{\"pbrMetallicRoughness\":{\"baseColorFactor\":"
+             "[0.2,0.9,0.2,1],\"metallicFactor\":0}},{\"pbrMetallicRoughness\":"
+             "{\"baseColorFactor\":[0.9,0.9,0.9,1],\"metallicFactor\":0},\"emissiveFactor\":"
+             "[1,0.5,0],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":"
+             "%s}}}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+             "\"material\":0}]},{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+             "\"material\":1}]},{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+             "\"material\":2}]}],\"nodes\":[{\"mesh\":0,\"translation\":[-2.2,0,0]},"
+             "{\"mesh\":1,\"extensions\":{\"KHR_node_visibility\":{\"visible\":%s}}},"
+             "{\"mesh\":2,\"translation\":[2.2,0,0]},{\"mesh\":1,\"translation\":[0,2.2,0],"
+             "\"extensions\":{\"KHR_node_visibility\":{\"visible\":false}}}],"
+             "\"scenes\":[{\"nodes\":[0,1,2,3]}]%s",
+             (int)(mats - json), json, posed_at_1_5 ? "[0.25,0,0.75,1]" : "[1,0,0,1]",
+             posed_at_1_5 ? "3.125" : "0.5", posed_at_1_5 ? "false" : "true",
+             posed_at_1_5 ? "}" : anims);
+    free(json);
+    return out;
+}
+
+static uint8_t *render_row(const char *dir, bool posed, const char *time, int *w, int *h)
+{
+    char gltf[1100], png[1200];
+    snprintf(gltf, sizeof gltf, "%s/row%s.gltf", dir, posed ? "_posed" : time ? "" : "_rest");
+    snprintf(png, sizeof png, "%s.png", gltf);
+    char *json = row_json(posed);
+    bool ok = json && sr_test_write_file(gltf, json, strlen(json));
+    free(json);
+    run_result r;
+    if (!ok || !run(time ? ARGS("render", gltf, "--animation", "0", "--time", time, "--size",
+                                "160x64", "--camera", "eye=0,0,6,target=0,0,0", "-o", png)
+                         : ARGS("render", gltf, "--size", "160x64", "--camera",
+                                "eye=0,0,6,target=0,0,0", "-o", png), &r) ||
+        r.status != 0) {
+        sr_test_fail(__FILE__, __LINE__, "softrast render %s failed", gltf);
+        return NULL;
+    }
+    uint8_t *px = NULL;
+    sr_io_error err;
+    if (sr_read_png(png, NULL, w, h, &px, &err) != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "%s", err.message);
+        return NULL;
+    }
+    return px;
+}
+
+/* The animation at 1.5 s draws what the file with 1.5 s's values written
+ * in draws, and what tests/ref/gltf_pointer.png keeps (2 codes, 0.5% of
+ * the pixels); the rest pose draws something else. */
+SR_TEST(render_animation_draws_the_pointer_values_at_the_time)
+{
+    NEED_CLI();
+    char dir[1024];
+    fresh_dir("gltf_pointer", dir, sizeof dir);
+    int w, h, w2, h2, w3, h3;
+    uint8_t *a = render_row(dir, false, "1.5", &w, &h);
+    uint8_t *p = render_row(dir, true, NULL, &w2, &h2);
+    uint8_t *rest = render_row(dir, false, NULL, &w3, &h3);
+    REQUIRE(a && p && rest && w == w2 && h == h2 && w == w3 && h == h3);
+    sr_test_compare_images("gltf_pointer_hand_posed", a, p, w, h, 2, (long)w * h / 200);
+    sr_test_check_image("gltf_pointer", a, w, h, 2, (long)w * h / 200);
+    long differ = 0;
+    for (long i = 0; i < (long)w * h * 4; i++) {
+        differ += a[i] != rest[i];
+    }
+    CHECK(differ > (long)w * h / 10);
+    free(a);
+    free(p);
+    free(rest);
 }
