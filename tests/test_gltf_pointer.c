@@ -611,3 +611,32 @@ SR_TEST(render_animation_draws_the_pointer_values_at_the_time)
     free(p);
     free(rest);
 }
+
+/* A hidden node's light is off (its kind and values kept); cameras are
+ * not affected by visibility. */
+SR_TEST(a_hidden_node_turns_its_light_off)
+{
+    char *json = animated_json();
+    REQUIRE(json);
+    const char *lit = "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}";
+    const char *dark = "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0},"
+                       "\"KHR_node_visibility\":{\"visible\":false}}}";
+    char *at = strstr(json, lit);
+    REQUIRE(at);
+    size_t n = strlen(json) + strlen(dark);
+    char *hidden = malloc(n);
+    REQUIRE(hidden);
+    snprintf(hidden, n, "%.*s%s%s", (int)(at - json), json, dark, at + strlen(lit));
+    free(json);
+    sr_scene *s = NULL;
+    sr_io_error e;
+    sr_load_desc at_1 = { .pose = SR_POSE_ANIMATION, .animation_time = 1 };
+    REQUIRE(parse(hidden, &at_1, &s, &e) == SR_OK);
+    free(hidden);
+    REQUIRE(s->light_count == 1);
+    CHECK_EQ(s->lights[0].light.type, SR_LIGHT_OFF);
+    CHECK_EQ(s->lights[0].type, SR_LIGHT_POINT);
+    CHECK_NEAR(s->lights[0].light.intensity, 20, 1e-5);
+    CHECK_EQ(s->camera_count, 1);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
