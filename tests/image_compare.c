@@ -87,3 +87,12 @@ bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
     free(ref);
     return ok;
 }
+
+long sr_test_bytes_differ(const uint8_t *a, const uint8_t *b, long n)
+{
+    long differ = 0;
+    for (long i = 0; i < n; i++) {
+        differ += a[i] != b[i];
+    }
+    return differ;
+}

@@ -18,4 +18,7 @@ bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
  * that must agree: on failure <out>/<name>.actual.png and .diff.png. */
 bool sr_test_compare_images(const char *name, const uint8_t *rgba, const uint8_t *ref, int w,
                             int h, int channel_tol, long max_bad_pixels);
+/* How many of n bytes differ between a and b: for two renders that must
+ * not agree (a pose and the rest pose). */
+long sr_test_bytes_differ(const uint8_t *a, const uint8_t *b, long n);
 #endif
