@@ -108,7 +108,7 @@ static const prop_row camera_rows[] = {
     { "orthographic/xmag", 1, C(xmag), -FLT_MAX, FLT_MAX, false },
     { "orthographic/ymag", 1, C(ymag), -FLT_MAX, FLT_MAX, false },
     { "orthographic/znear", 1, C(znear), 0, FLT_MAX, false },
-    { "orthographic/zfar", 1, C(zfar), 0, FLT_MAX, false },
+    { "orthographic/zfar", 1, C(zfar), 1e-6f, FLT_MAX, false },
 };
 #undef C
 
@@ -369,6 +369,9 @@ sr_result sr__gltf_pointer_check(gltf_doc *d, const gltf_pointer *p, const gltf_
  * read_transform), changed and converted again. */
 static void write_transform(sr_texture_slot *slot, int k, const float *v)
 {
+    if (!isfinite(v[0]) || (k != 1 && !isfinite(v[1]))) {
+        return;   /* a spline's overflow: the transform stays finite */
+    }
     float rot = slot->rotation, s[2] = { slot->scale[0], slot->scale[1] };
     float o[2] = { slot->offset[0] - s[1] * sinf(rot), 1.0f - slot->offset[1] - s[1] * cosf(rot) };
     if (k == 0) {
@@ -391,7 +394,8 @@ static void write_row(const prop_row *row, void *base, const float *v)
 {
     float *dst = (float *)((char *)base + row->offset);
     for (int c = 0; c < row->width; c++) {
-        dst[c] = v[c] < row->lo ? row->lo : v[c] > row->hi ? row->hi : v[c];
+        /* A spline's overshoot may overflow: NaN goes to the low end. */
+        dst[c] = !(v[c] >= row->lo) ? row->lo : v[c] > row->hi ? row->hi : v[c];
     }
 }
 
@@ -446,6 +450,10 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
         sr_scene_camera *cam = &scene->cameras[k];
         if (cam->zfar != 0 && cam->zfar <= cam->znear) {
             cam->zfar = cam->znear * (1 + FLT_EPSILON) + FLT_MIN;
+        }
+        if (cam->type == SR_SCENE_CAMERA_ORTHOGRAPHIC) {
+            cam->xmag = cam->xmag == 0 ? FLT_MIN : cam->xmag;
+            cam->ymag = cam->ymag == 0 ? FLT_MIN : cam->ymag;
         }
     }
     for (size_t k = 0; k < scene->light_count; k++) {
