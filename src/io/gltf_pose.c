@@ -535,6 +535,13 @@ static void pose_draws(gltf_posing *pl, sr_scene *scene)
     }
 }
 
+static void copy_back(void *dst, const void *src, size_t bytes)
+{
+    if (bytes > 0) {
+        memcpy(dst, src, bytes);
+    }
+}
+
 sr_result sr__gltf_pose(void *posing, sr_scene *scene, bool animated, int animation, float time,
                         sr_io_error *err)
 {
@@ -554,15 +561,16 @@ sr_result sr__gltf_pose(void *posing, sr_scene *scene, bool animated, int animat
     }
     pose_draws(pl, scene);
     if (pl->rest_known) {
-        /* The rest pose's values, then the animation's over them. */
-        memcpy(scene->materials, pl->rest_materials,
-               scene->material_count * sizeof *scene->materials);
-        memcpy(scene->cameras, pl->rest_cameras, scene->camera_count * sizeof *scene->cameras);
-        memcpy(scene->lights, pl->rest_lights, scene->light_count * sizeof *scene->lights);
+        /* The rest pose's values, then the animation's over them (a
+         * scene without cameras or lights has NULL arrays). */
+        copy_back(scene->materials, pl->rest_materials,
+                  scene->material_count * sizeof *scene->materials);
+        copy_back(scene->cameras, pl->rest_cameras, scene->camera_count * sizeof *scene->cameras);
+        copy_back(scene->lights, pl->rest_lights, scene->light_count * sizeof *scene->lights);
         for (size_t i = 0; i < scene->primitive_count; i++) {
             scene->primitives[i].triangle_count = pl->rest_triangles[i];
         }
-        memcpy(pl->visible, pl->rest_visible, pl->node_count);
+        copy_back(pl->visible, pl->rest_visible, pl->node_count);
         if (animated) {
             sr__gltf_anim_apply_pointers(&pl->anims[animation], time, scene, pl->visible);
         }
