@@ -144,7 +144,8 @@ typedef struct sr_scene_primitive {
     const float *texcoords0;    /* 2 a vertex, or NULL */
     const float *texcoords1;    /* 2 a vertex, or NULL */
     const float *colors;        /* 4 a vertex, or NULL */
-    size_t triangle_count;
+    size_t triangle_count;      /* 0 for a node KHR_node_visibility hides (the
+                                 * arrays stay, for a pose that shows it) */
     const uint32_t *indices;    /* 3 a triangle, counter-clockwise front faces
                                  * (strips and fans converted) */
     /* KHR_materials_variants: the material each variant draws on this
@@ -282,17 +283,21 @@ SR_API sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float a
  * SR_POSE_ANIMATION places its nodes by animation number `animation` (0
  * first, as sr_scene.animations lists them) at `time` seconds, keys
  * clamped at both ends; SR_POSE_REST (or zero) puts them back in their
- * own transforms.  The draws, cameras, lights, bounds and
+ * own transforms.  The draws, materials, cameras, lights, bounds and
  * sr_scene.animation / animation_time come out with the very bytes
- * sr_load_scene gives with that sr_load_desc pose (docs/gltf.md).  A
+ * sr_load_scene gives with that sr_load_desc pose (docs/gltf.md): an
+ * animation's KHR_animation_pointer channels write material, camera and
+ * light values over the rest pose's, which the scene keeps, and
+ * KHR_node_visibility empties the hidden nodes' draws.  A
  * scene read from a file with animations keeps what this takes: the
  * decoded key times and values, the nodes' rest transforms, the skins'
  * joints and inverse bind matrices, the morph targets and the skinning
  * weights.  Posed draws' positions, normals and tangents point to arrays
  * the scene makes on first need and reuses after (a draw whose morph
  * weights all become zero points to its mesh's arrays again), so posing
- * again and again does not grow its memory; the primitive, camera and
- * light arrays stay where they are.  Errors leave the scene as it was:
+ * again and again does not grow its memory; the primitive, material,
+ * camera and light arrays stay where they are (copy what is to outlive
+ * the next pose).  Errors leave the scene as it was:
  * SR_INVALID_ARG for a NULL scene, a pose that is not an sr_load_pose,
  * an animation the scene does not have, a time that is not finite;
  * SR_BAD_FORMAT when the pose collapses a light's direction, as reading

@@ -87,3 +87,20 @@ bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
     free(ref);
     return ok;
 }
+
+void sr_test_check_posed(const char *name, const uint8_t *posed, const uint8_t *hand,
+                         const uint8_t *rest, int w, int h, long rest_share)
+{
+    char hand_name[256];
+    snprintf(hand_name, sizeof hand_name, "%s_hand_posed", name);
+    sr_test_compare_images(hand_name, posed, hand, w, h, 2, (long)w * h / 200);
+    sr_test_check_image(name, posed, w, h, 2, (long)w * h / 200);
+    long differ = 0;
+    for (long i = 0; i < (long)w * h * 4; i++) {
+        differ += posed[i] != rest[i];
+    }
+    if (differ <= (long)w * h / rest_share) {
+        sr_test_fail(__FILE__, __LINE__, "%s: only %ld bytes differ from the rest pose", name,
+                     differ);
+    }
+}

@@ -18,4 +18,11 @@ bool sr_test_check_image(const char *name, const uint8_t *rgba, int w, int h,
  * that must agree: on failure <out>/<name>.actual.png and .diff.png. */
 bool sr_test_compare_images(const char *name, const uint8_t *rgba, const uint8_t *ref, int w,
                             int h, int channel_tol, long max_bad_pixels);
+/* An animation's render checked (w x h each): `posed` within 2 codes of
+ * `hand` (the file with the pose's values written in) and of
+ * tests/ref/<name>.png on all but 0.5% of the pixels (a last bit of a
+ * sampled value, or another CPU's libm, can move an edge pixel), and
+ * unlike `rest` (the rest pose) in more bytes than w h / rest_share. */
+void sr_test_check_posed(const char *name, const uint8_t *posed, const uint8_t *hand,
+                         const uint8_t *rest, int w, int h, long rest_share);
 #endif

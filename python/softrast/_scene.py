@@ -171,8 +171,9 @@ class Scene:
         ``animation`` (an index into ``animations``, or a name) at ``time``
         seconds, as ``load(path, animation=..., time=...)`` poses it, with
         the very same arrays and matrices (sr_scene_pose); None, the rest
-        pose.  The materials, textures and cameras' lenses are the ones
-        read; this scene is left as it is.  ValueError as load's (an
+        pose.  The textures are the ones read; the materials' factors,
+        the cameras' lenses and the lights are the pose's (glTF's
+        KHR_animation_pointer animates them); this scene is left as it is.  ValueError as load's (an
         animation the file does not have, a time that is not finite, a
         time without an animation), and for a scene not read from a glTF
         file.
@@ -184,11 +185,12 @@ class Scene:
             raise ValueError("time: a time into an animation: give animation too")
         if self._reading is None:
             raise ValueError("pose: the scene was not read from a glTF file by softrast.load")
-        source, factors, materials, images = self._reading
+        source, _, _, images = self._reading
         index = -1 if animation is None else _animation_in([a.name for a in self.animations],
                                                            animation, source.path)
         d = _softrast.pose_scene(source.capsule, source.path, index, time)
-        d["materials"] = factors
+        materials = [Material._from_factors(m, images.get(i))
+                     for i, m in enumerate(d["materials"])]
         return _gltf_scene(source.path, source.variant, index, time, d, materials, images)
 
     @property
@@ -362,8 +364,8 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
 def _gltf_scene(path: Union[str, bytes], variant: Union[str, int, None], index: int, time: float,
                 d: dict[str, Any], materials: List[Material],
                 images: dict[int, Optional[NDArray[np.uint8]]]) -> Scene:
-    """The Scene of load_scene's (or pose_scene's) dict: the reading's
-    materials and base color images given, as Scene.pose keeps them."""
+    """The Scene of load_scene's (or pose_scene's) dict: its materials
+    and the reading's base color images given, as Scene.pose keeps them."""
     meshes: dict[Tuple[int, int], Mesh] = {}
     instances = []
     source = _SceneFile(path, d["file"], variant, (index, time))

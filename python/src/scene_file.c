@@ -12,7 +12,9 @@
  * again in place under the GIL by sr_py_pose_scene): a capsule's draws
  * point to its arrays only where posing never writes them (the arrays
  * of the reading, those of no draw posed since), else to copies of
- * their own.
+ * their own; the materials, which a pose may animate
+ * (KHR_animation_pointer), are the capsule's own copy (their textures
+ * the reading's).
  */
 #include "module.h"
 
@@ -34,6 +36,7 @@ typedef struct scene_file {
     scene_master *m;
     sr_py_file_draw *draws;     /* one a primitive */
     float **copies;             /* 3 a primitive: posed arrays copied, or NULL */
+    sr_pbr_material *materials; /* the scene's as this pose has them */
 } scene_file;
 
 static void release_master(scene_master *m)
@@ -61,6 +64,7 @@ static void free_file(scene_file *f)
     }
     free(f->copies);
     free(f->draws);
+    free(f->materials);
     release_master(f->m);
     free(f);
 }
@@ -74,8 +78,8 @@ static void capsule_free(PyObject *capsule)
 }
 
 /* Primitive p's arrays for the program, into d.  Needs no GIL. */
-static sr_result prepare(sr_context *ctx, const sr_scene *s, const sr_scene_primitive *p,
-                         float *const own[3], sr_py_file_draw *d)
+static sr_result prepare(sr_context *ctx, const sr_pbr_material *materials,
+                         const sr_scene_primitive *p, float *const own[3], sr_py_file_draw *d)
 {
     const float *arrays[3] = { own[0] ? own[0] : p->positions, own[1] ? own[1] : p->normals,
                                own[2] ? own[2] : p->tangents };
@@ -83,7 +87,7 @@ static sr_result prepare(sr_context *ctx, const sr_scene *s, const sr_scene_prim
                     .normals = (float *)arrays[1], .texcoords = (float *)p->texcoords0,
                     .colors = (float *)p->colors, .triangle_count = p->triangle_count,
                     .indices = (uint32_t *)p->indices };
-    d->material = &s->materials[p->material];
+    d->material = &materials[p->material];
     d->mirrored = p->mirrored;
     if (p->normals) {
         d->mesh = src;
@@ -148,23 +152,30 @@ static PyObject *make_file(scene_master *m, bool posed)
     size_t n = m->scene->primitive_count;
     sr_py_file_draw *draws = calloc(n ? n : 1, sizeof *draws);
     float **copies = calloc(n ? 3 * n : 1, sizeof *copies);
-    if (!f || !draws || !copies) {
+    size_t mn = m->scene->material_count;
+    sr_pbr_material *materials = malloc((mn ? mn : 1) * sizeof *materials);
+    if (!f || !draws || !copies || !materials) {
         free(f);
         free(draws);
         free(copies);
+        free(materials);
         release_master(m);
         return PyErr_NoMemory();
     }
     f->m = m;
     f->draws = draws;
     f->copies = copies;
+    f->materials = materials;
+    if (mn) {
+        memcpy(materials, m->scene->materials, mn * sizeof *materials);
+    }
     sr_result r = SR_OK;
     Py_BEGIN_ALLOW_THREADS
     if (posed && !copy_posed(m, f)) {
         r = SR_OUT_OF_MEMORY;
     }
     for (size_t i = 0; i < n && r == SR_OK; i++) {
-        r = prepare(m->ctx, m->scene, &m->scene->primitives[i], &copies[3 * i], &draws[i]);
+        r = prepare(m->ctx, materials, &m->scene->primitives[i], &copies[3 * i], &draws[i]);
     }
     Py_END_ALLOW_THREADS
     if (r != SR_OK) {

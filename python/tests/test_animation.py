@@ -240,3 +240,73 @@ def test_pose_refuses_bad_arguments(tmp_path):
         rest.pose(time=1.0)
     with pytest.raises(ValueError, match="not read from a glTF file"):
         softrast.Scene().pose()
+
+
+def write_pointer(path):
+    """Two quads facing +z under a camera: material 0's base color red at
+    0 s to blue at 2 s (KHR_animation_pointer), and node 1's quad (green)
+    hidden from 1 s (KHR_node_visibility, STEP)."""
+    quad = np.array([-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, -1, 0, 1, 1, 0, -1, 1, 0], np.float32)
+    arrays = [quad, np.array([0, 2], np.float32), np.array([1, 0, 0, 1, 0, 0, 1, 1], np.float32),
+              np.array([0, 1], np.float32)]
+    doc = float_accessors(arrays, [("VEC3", 6), ("SCALAR", 2), ("VEC4", 2), ("SCALAR", 2)])
+    shown = bytes([1, 0, 0, 0])
+    data = base64.b64decode(doc["buffers"][0]["uri"].split(",")[1]) + shown
+    doc["buffers"][0] = {"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
+                         + base64.b64encode(data).decode()}
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(data) - 4, "byteLength": 2})
+    doc["accessors"].append({"bufferView": 4, "componentType": 5121, "count": 2,
+                             "type": "SCALAR"})
+
+    def pointer(sampler, target):
+        return {"sampler": sampler, "target": {"path": "pointer", "extensions": {
+            "KHR_animation_pointer": {"pointer": target}}}}
+    doc.update({
+        "extensionsUsed": ["KHR_animation_pointer", "KHR_node_visibility"],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]}},
+                      {"pbrMetallicRoughness": {"baseColorFactor": [0, 1, 0, 1]}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]},
+                   {"primitives": [{"attributes": {"POSITION": 0}, "material": 1}]}],
+        "cameras": [{"type": "orthographic", "orthographic": {"xmag": 3, "ymag": 3,
+                                                                "znear": 0.1, "zfar": 10}}],
+        "nodes": [{"mesh": 0, "translation": [-1.5, 0, 0]},
+                  {"mesh": 1, "translation": [1.5, 0, 0],
+                   "extensions": {"KHR_node_visibility": {"visible": True}}},
+                  {"camera": 0, "translation": [0, 0, 5]}],
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "animations": [{"name": "fade", "samplers": [
+            {"input": 1, "output": 2},
+            {"input": 3, "output": 4, "interpolation": "STEP"}],
+            "channels": [pointer(0, "/materials/0/pbrMetallicRoughness/baseColorFactor"),
+                         pointer(1, "/nodes/1/extensions/KHR_node_visibility/visible")]}],
+    })
+    path.write_text(json.dumps(doc))
+    return path
+
+
+def test_pointer_animated_materials_and_visibility_pose_each_scene(tmp_path):
+    """A pose's materials and hidden nodes are its own: an earlier pose
+    (and the rest) draws the same after later ones, and pose() gives what
+    load() in that pose gives."""
+    path = write_pointer(tmp_path / "p.gltf")
+    rest = load_gltf(path)
+
+    def image(scene):
+        return softrast.render(scene, camera=scene.cameras[0], width=48, height=24,
+                               shading="pbr", outputs=("color",))["color"]
+
+    before = image(rest)
+    late = rest.pose(animation="fade", time=1.5)
+    read = softrast.load(path, animation="fade", time=1.5)
+    assert late.materials[0].base_color == pytest.approx([0.25, 0, 0.75, 1])
+    assert read.materials[0].base_color == pytest.approx([0.25, 0, 0.75, 1])
+    assert rest.materials[0].base_color == pytest.approx([1, 0, 0, 1])
+    assert len(late.instances[1].mesh.faces) == 0 and len(rest.instances[1].mesh.faces) == 2
+    drawn = image(late)
+    assert np.array_equal(drawn, image(read))
+    assert np.array_equal(image(rest), before)
+    # The left quad turned blue, the right one is gone.
+    assert drawn[12, 18, 2] > drawn[12, 18, 0] and before[12, 18, 0] > before[12, 18, 2]
+    assert before[12, 30].any() and not drawn[12, 30].any()
+    rest.pose(animation="fade", time=0.0)
+    assert np.array_equal(image(late), drawn)

@@ -1276,6 +1276,9 @@ static sr_result read_nodes(gltf_doc *d)
         d->node_parent = parent;
         r = walk_nodes(d, roots, rptr, parent, node_count);   /* NULL: no roots */
     }
+    if (r == SR_OK) {
+        r = sr__gltf_pointers_finish(d, parent, node_count);
+    }
     json_decref(all);
     sr__gltf_skins_free(d);
     free(d->node_worlds);
@@ -1309,6 +1312,8 @@ static const char *supported_extensions[] = {
     "KHR_lights_punctual",
     "KHR_materials_variants",
     "EXT_mesh_gpu_instancing",
+    "KHR_animation_pointer",
+    "KHR_node_visibility",
 };
 
 /* Extensions read when softrast was built with their decoder. */
@@ -1590,6 +1595,10 @@ sr_result sr__parse_gltf(sr_context *ctx, const char *name, const char *dir, con
     sr__gltf_draco_end(&d);
     json_decref(d.root);
     sr__gltf_posing_abandon(&d);
+    if (d.applied_own) {
+        sr__gltf_anim_free(d.applied_own);
+        free(d.applied_own);
+    }
     if (r != SR_OK) {
         sr_destroy_scene(ctx, d.scene);
         return r;

@@ -4,6 +4,8 @@
  * textures and images; gltf_lights.c reads KHR_lights_punctual;
  * gltf_variants.c reads KHR_materials_variants;
  * gltf_animation.c reads animations and poses the nodes;
+ * gltf_pointer.c reads KHR_animation_pointer targets and
+ * KHR_node_visibility;
  * gltf_meshopt.c and gltf_draco.c decode the compressed geometry;
  * gltf_morph.c and gltf_skin.c pose morphed and skinned primitives;
  * gltf_instancing.c reads EXT_mesh_gpu_instancing's instance transforms;
@@ -109,6 +111,10 @@ typedef struct gltf_doc {
     /* What sr_scene_pose needs to pose the scene again (gltf_pose.c),
      * gathered while reading a file with animations; NULL otherwise. */
     struct gltf_posing *posing;
+    /* The animation sr_load_desc poses by, for its pointer channels: the
+     * posing record's, else held here (own). */
+    const struct gltf_anim *applied;
+    struct gltf_anim *applied_own;
 } gltf_doc;
 
 /* The error "NAME: POINTER: reason" (the pointer is part of fmt's
@@ -329,11 +335,22 @@ typedef struct gltf_sampler {
     int interp;
 } gltf_sampler;
 
-/* A channel that animates a node: its sampler, the node's property
- * (GLTF_POSE_* bit index) and the floats a key. */
+/* What a channel animates: a node's transform or weights (`node`,
+ * `path`), else through KHR_animation_pointer a node's visibility, or a
+ * material's, camera's or light's property (`index` in its collection,
+ * `prop` a row of gltf_pointer.c's tables). */
+enum { GLTF_TARGET_NONE = -1, GLTF_TARGET_NODE, GLTF_TARGET_VISIBLE, GLTF_TARGET_MATERIAL,
+       GLTF_TARGET_CAMERA, GLTF_TARGET_LIGHT };
+enum { GLTF_INTERP_LINEAR, GLTF_INTERP_STEP, GLTF_INTERP_CUBIC };
+
+/* A channel that animates: its sampler, its target and the floats a
+ * key.  Node channels: the node's property (GLTF_POSE_* bit index). */
 typedef struct gltf_channel {
     long sampler, node;
     int path;
+    int kind;                  /* GLTF_TARGET_* */
+    long index;
+    int prop;
     size_t width;
     float *weights;            /* a weights channel's sampled values (width of them,
                                 * scene memory); NULL for the others */
@@ -350,6 +367,42 @@ void sr__gltf_anim_free(gltf_anim *a);
 /* Animation a sampled at time t into pose (one entry per node, its
  * `animated` bits cleared by the caller). */
 void sr__gltf_anim_apply(const gltf_anim *a, float t, gltf_node_pose *pose);
+/* Sampler s at time t into out (width floats), rotations normalized. */
+void sr__gltf_sample(const gltf_sampler *s, bool rotation, size_t width, float t, float *out);
+
+/* gltf_pointer.c: KHR_animation_pointer.  A "pointer" channel target
+ * (JSON `tptr`) resolved: kind GLTF_TARGET_NONE (warned) for a pointer
+ * softrast does not animate; a node's transform or weights (node_path:
+ * their GLTF_POSE_* bit index) for the node checks; else the property,
+ * its floats and whether it is a boolean.  Refused: a bad pointer, an
+ * index out of range, a property the file does not define. */
+typedef struct gltf_pointer {
+    int kind;
+    long index;
+    int node_path, prop, width;
+    bool boolean;
+} gltf_pointer;
+sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char *tptr,
+                                  gltf_pointer *out);
+/* Sampler s (JSON `sptr`) against the property p resolves to. */
+sr_result sr__gltf_pointer_check(gltf_doc *d, const gltf_pointer *p, const gltf_sampler *s,
+                                 const char *sptr);
+/* a's pointer channels at time t written into the scene's materials,
+ * cameras and lights (clamped to the properties' ranges) and into
+ * visible (one a node). */
+void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
+                                  unsigned char *visible);
+/* After the walk (the nodes' parents known): the rest pose recorded for
+ * sr_scene_pose, then the pointer channels of the animation sr_load_desc
+ * poses by and the nodes' visibility applied to the scene. */
+sr_result sr__gltf_pointers_finish(gltf_doc *d, const long *parent, size_t n);
+/* KHR_node_visibility: the n nodes' own `visible` (1 when absent). */
+sr_result sr__gltf_read_visibility(gltf_doc *d, unsigned char *visible, size_t n);
+/* The draws of the hidden nodes (a node not visible or under one) made
+ * empty (triangle_count 0) and their lights SR_LIGHT_OFF; state and chain
+ * are room for n entries. */
+void sr__gltf_hide(sr_scene *scene, const long *parent, size_t n, const unsigned char *visible,
+                   unsigned char *state, long *chain);
 
 /* Whether a world matrix mirrors (its upper 3x3's determinant < 0). */
 bool sr__gltf_mirrors(const float world[16]);
@@ -374,6 +427,11 @@ bool sr__gltf_aim_light(sr_scene_light *l, const float world[16]);
  * of memory (the hooks free what they were handed). */
 bool sr__gltf_posing_start(gltf_doc *d, size_t animation_count);
 bool sr__gltf_posing_anim(gltf_doc *d, size_t index, gltf_anim *a);
+/* After the walk: the scene's materials, cameras, lights, draws' triangle
+ * counts and the nodes' visibility as the rest pose has them. */
+bool sr__gltf_posing_rest(gltf_doc *d, const unsigned char *visible);
+/* The animation taken at index (for the reader's own pose). */
+const gltf_anim *sr__gltf_posing_anim_at(const gltf_doc *d, size_t index);
 bool sr__gltf_posing_node(gltf_doc *d, long node, const float *matrix, const float t[3],
                           const float q[4], const float s[3]);
 bool sr__gltf_posing_skin(gltf_doc *d, long skin, const long *joints, size_t count,

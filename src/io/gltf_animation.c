@@ -14,8 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { INTERP_LINEAR, INTERP_STEP, INTERP_CUBIC };
-
 static const char *const path_names[] = { "translation", "rotation", "scale", "weights" };
 enum { PATH_TRANSLATION, PATH_ROTATION, PATH_SCALE, PATH_WEIGHTS, PATH_COUNT };
 
@@ -32,11 +30,11 @@ static sr_result read_sampler(gltf_doc *d, const json_t *obj, const char *ptr, g
     }
     json_t *interp = json_object_get(obj, "interpolation");
     const char *name = json_is_string(interp) ? json_string_value(interp) : NULL;
-    s->interp = !interp                            ? INTERP_LINEAR
+    s->interp = !interp                            ? GLTF_INTERP_LINEAR
               : !name                              ? -1
-              : strcmp(name, "LINEAR") == 0        ? INTERP_LINEAR
-              : strcmp(name, "STEP") == 0          ? INTERP_STEP
-              : strcmp(name, "CUBICSPLINE") == 0   ? INTERP_CUBIC : -1;
+              : strcmp(name, "LINEAR") == 0        ? GLTF_INTERP_LINEAR
+              : strcmp(name, "STEP") == 0          ? GLTF_INTERP_STEP
+              : strcmp(name, "CUBICSPLINE") == 0   ? GLTF_INTERP_CUBIC : -1;
     if (s->interp < 0) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
                              "%s/interpolation: expected LINEAR, STEP or CUBICSPLINE", ptr);
@@ -61,10 +59,11 @@ static sr_result read_sampler(gltf_doc *d, const json_t *obj, const char *ptr, g
                                  s->times[k] < 0 ? "negative" : "not after the key before");
         }
     }
-    if (s->interp == INTERP_CUBIC && s->count < 2) {
+    if (s->interp == GLTF_INTERP_CUBIC && s->count < 2) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: CUBICSPLINE needs at least two keys", iptr);
     }
-    if ((r = sr__gltf_read_floats(d, output, optr, 1u << 1 | 1u << 3 | 1u << 4, &s->out,
+    if ((r = sr__gltf_read_floats(d, output, optr, 1u << 1 | 1u << 2 | 1u << 3 | 1u << 4,
+                                  &s->out,
                                   &s->values)) != SR_OK) {
         return r;
     }
@@ -83,16 +82,18 @@ static size_t morph_target_count(const gltf_doc *d, const json_t *node)
                ? json_array_size(json_object_get(prim, "targets")) : 0;
 }
 
-/* Checks channel c's target and its sampler's output against each other;
- * *node, *path and *width (floats a key) for sampling. */
+/* Checks channel ch's target and its sampler's output against each
+ * other into c: its target, and the floats a key for sampling. */
 static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
                                const gltf_sampler *samplers, size_t sampler_count,
-                               unsigned char *targeted, long *sampler, long *node, int *path,
-                               size_t *width)
+                               unsigned char *targeted, gltf_channel *c)
 {
     sr_result r;
     json_t *target, *nodes = json_object_get(d->root, "nodes");
     size_t node_count = json_array_size(nodes);
+    long *node = &c->node, *sampler = &c->sampler;
+    int *path = &c->path;
+    size_t *width = &c->width;
     *node = -1;
     if (!json_is_object(ch)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
@@ -101,8 +102,10 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
         (r = sr__gltf_object(d, ch, ptr, "target", &target)) != SR_OK) {
         return r;
     }
-    char tptr[GLTF_PTR];
+    char tptr[GLTF_PTR], nptr[GLTF_PTR], sptr[GLTF_PTR];
     snprintf(tptr, sizeof tptr, "%s/target", ptr);
+    snprintf(sptr, sizeof sptr, "%s/sampler", ptr);
+    snprintf(nptr, sizeof nptr, "%s/node", tptr);
     if (!target) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: missing", tptr);
     }
@@ -110,30 +113,53 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
     const char *name = json_is_string(p) ? json_string_value(p) : "";
     for (*path = 0; *path < PATH_COUNT && strcmp(name, path_names[*path]) != 0; ++*path) {
     }
-    /* Another path (KHR_animation_pointer's "pointer") is an extension's
-     * to read: left alone, as a node without `node` is. */
-    if (*path == PATH_COUNT && !json_is_string(p)) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT,
-                             "%s/path: expected translation, rotation, scale or weights", tptr);
-    }
-    if ((r = sr__gltf_index(d, target, tptr, "node", node_count ? node_count : 1, false,
-                            node)) != SR_OK) {
-        return r;
-    }
-    if (json_object_get(target, "node") && node_count == 0) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/node: there are no nodes", tptr);
-    }
-    if (*path == PATH_COUNT || *node < 0) {
-        sr__gltf_warn(d, "%s: %s, not animated", tptr,
-                      *path == PATH_COUNT ? "a path an extension defines" : "no node");
-        *node = -1;
-        return SR_OK;
+    if (strcmp(name, "pointer") == 0) {
+        gltf_pointer to;
+        if ((r = sr__gltf_pointer_target(d, target, tptr, &to)) != SR_OK) {
+            return r;
+        }
+        c->kind = to.kind;
+        c->index = to.index;
+        if (to.kind == GLTF_TARGET_NONE) {
+            return SR_OK;
+        }
+        if (to.kind != GLTF_TARGET_NODE) {
+            c->prop = to.prop;
+            c->width = (size_t)to.width;
+            return sr__gltf_pointer_check(d, &to, &samplers[*sampler], sptr);
+        }
+        /* A node's transform or weights: the checks of the node paths. */
+        *node = to.index;
+        *path = to.node_path;
+        snprintf(nptr, sizeof nptr, "%s/extensions/KHR_animation_pointer/pointer", tptr);
+    } else {
+        /* Another path is an extension's to read: left alone, as a
+         * channel without `node` is. */
+        if (*path == PATH_COUNT && !json_is_string(p)) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT,
+                                 "%s/path: expected translation, rotation, scale, weights or "
+                                 "pointer", tptr);
+        }
+        if ((r = sr__gltf_index(d, target, tptr, "node", node_count ? node_count : 1, false,
+                                node)) != SR_OK) {
+            return r;
+        }
+        if (json_object_get(target, "node") && node_count == 0) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/node: there are no nodes", tptr);
+        }
+        if (*path == PATH_COUNT || *node < 0) {
+            sr__gltf_warn(d, "%s: %s, not animated", tptr,
+                          *path == PATH_COUNT ? "a path an extension defines" : "no node");
+            *node = -1;
+            c->kind = GLTF_TARGET_NONE;
+            return SR_OK;
+        }
     }
     json_t *n = json_array_get(nodes, (size_t)*node);
     if (json_object_get(n, "matrix")) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
-                             "%s/node: node %ld has a matrix, which glTF does not animate (its "
-                             "animated nodes have translation, rotation and scale)", tptr, *node);
+                             "%s: node %ld has a matrix, which glTF does not animate (its "
+                             "animated nodes have translation, rotation and scale)", nptr, *node);
     }
     if (targeted[*node] & (1u << *path)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
@@ -142,8 +168,6 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
     }
     targeted[*node] |= (unsigned char)(1u << *path);
     const gltf_sampler *s = &samplers[*sampler];
-    char sptr[GLTF_PTR];
-    snprintf(sptr, sizeof sptr, "%s/sampler", ptr);
     static const int components[] = { 3, 4, 3, 1 };
     if (s->out.components != components[*path]) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: its output has %d components an element; "
@@ -166,18 +190,18 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
         *width = morph_target_count(d, n);
         if (*width == 0) {
             return sr__gltf_fail(d, SR_BAD_FORMAT,
-                                 "%s/node: node %ld has no mesh with morph targets to weigh",
-                                 tptr, *node);
+                                 "%s: node %ld has no mesh with morph targets to weigh",
+                                 nptr, *node);
         }
     }
     /* Elements a key: one vector, or a weight per target; three of them
      * with CUBICSPLINE's tangents. */
-    size_t per_key = (*path == PATH_WEIGHTS ? *width : 1) * (s->interp == INTERP_CUBIC ? 3 : 1);
+    size_t per_key = (*path == PATH_WEIGHTS ? *width : 1) * (s->interp == GLTF_INTERP_CUBIC ? 3 : 1);
     if (s->value_count / per_key != s->count || s->value_count % per_key != 0) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
                              "%s: its output has %zu elements; %zu keys of %s%s need %zu", sptr,
                              s->value_count, s->count, path_names[*path],
-                             s->interp == INTERP_CUBIC ? " (CUBICSPLINE: with tangents)" : "",
+                             s->interp == GLTF_INTERP_CUBIC ? " (CUBICSPLINE: with tangents)" : "",
                              s->count * per_key);
     }
     return SR_OK;
@@ -226,13 +250,13 @@ static void normalize4(float *q)
 /* Key k's value (width floats) of s. */
 static const float *key_value(const gltf_sampler *s, size_t k, size_t width)
 {
-    return s->interp == INTERP_CUBIC ? s->values + (3 * k + 1) * width : s->values + k * width;
+    return s->interp == GLTF_INTERP_CUBIC ? s->values + (3 * k + 1) * width : s->values + k * width;
 }
 
-/* Sampler s at time t into out (width floats): clamped to the first and
+/* Sampler s at time t: clamped to the first and
  * the last key, else STEP, LINEAR (slerp for rotations) or the cubic
  * Hermite spline of the spec's appendix; rotations normalized. */
-static void sample(const gltf_sampler *s, bool rotation, size_t width, float t, float *out)
+void sr__gltf_sample(const gltf_sampler *s, bool rotation, size_t width, float t, float *out)
 {
     size_t k = 0;
     if (!(t > s->times[0])) {
@@ -253,11 +277,11 @@ static void sample(const gltf_sampler *s, bool rotation, size_t width, float t, 
         k = lo;
         double t0 = s->times[k], t1 = s->times[k + 1], td = t1 - t0, u = (t - t0) / td;
         const float *v0 = key_value(s, k, width), *v1 = key_value(s, k + 1, width);
-        if (s->interp == INTERP_STEP) {
+        if (s->interp == GLTF_INTERP_STEP) {
             memcpy(out, v0, width * sizeof *out);
-        } else if (s->interp == INTERP_LINEAR && rotation) {
+        } else if (s->interp == GLTF_INTERP_LINEAR && rotation) {
             slerp(v0, v1, u, out);
-        } else if (s->interp == INTERP_LINEAR) {
+        } else if (s->interp == GLTF_INTERP_LINEAR) {
             for (size_t c = 0; c < width; c++) {
                 out[c] = (float)((1 - u) * v0[c] + u * v1[c]);
             }
@@ -284,6 +308,9 @@ void sr__gltf_anim_apply(const gltf_anim *a, float t, gltf_node_pose *pose)
 {
     for (size_t i = 0; i < a->channel_count; i++) {
         const gltf_channel *c = &a->channels[i];
+        if (c->kind != GLTF_TARGET_NODE) {
+            continue;
+        }
         gltf_node_pose *p = &pose[c->node];
         float *dst = c->path == PATH_TRANSLATION ? p->translation
                    : c->path == PATH_ROTATION    ? p->rotation
@@ -292,7 +319,7 @@ void sr__gltf_anim_apply(const gltf_anim *a, float t, gltf_node_pose *pose)
             p->weights = c->weights;
             p->weight_count = c->width;
         }
-        sample(&a->samplers[c->sampler], c->path == PATH_ROTATION, c->width, t, dst);
+        sr__gltf_sample(&a->samplers[c->sampler], c->path == PATH_ROTATION, c->width, t, dst);
         p->animated |= 1u << c->path;
     }
 }
@@ -358,10 +385,9 @@ static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr,
     for (size_t i = 0; i < nc && r == SR_OK; i++) {
         char cptr[GLTF_PTR];
         snprintf(cptr, sizeof cptr, "%s/channels/%zu", ptr, i);
-        gltf_channel c = { .sampler = -1, .node = -1 };
-        r = check_channel(d, json_array_get(channels, i), cptr, s, ns, targeted, &c.sampler,
-                          &c.node, &c.path, &c.width);
-        if (r != SR_OK || !keep || c.node < 0) {
+        gltf_channel c = { .sampler = -1, .node = -1, .index = -1 };
+        r = check_channel(d, json_array_get(channels, i), cptr, s, ns, targeted, &c);
+        if (r != SR_OK || !keep || c.kind == GLTF_TARGET_NONE) {
             continue;
         }
         if (c.path == PATH_WEIGHTS &&
@@ -376,7 +402,16 @@ static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr,
     if (r == SR_OK && d->posing) {
         if (!sr__gltf_posing_anim(d, index, &a)) {   /* takes a */
             r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+        } else if (apply) {
+            d->applied = sr__gltf_posing_anim_at(d, index);
         }
+    } else if (r == SR_OK && apply && (d->applied_own = malloc(sizeof a)) != NULL) {
+        /* Its pointer channels are applied once the scene is whole. */
+        *d->applied_own = a;
+        d->applied = d->applied_own;
+    } else if (r == SR_OK && apply) {
+        sr__gltf_anim_free(&a);
+        r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
     } else {
         sr__gltf_anim_free(&a);
     }

@@ -73,6 +73,15 @@ typedef struct gltf_posing {
     pose_instances *instanced;
     size_t instanced_count, instanced_cap;
     size_t elements_left;         /* the reader's budget, for arrays made later */
+    /* What KHR_animation_pointer and KHR_node_visibility change, as the
+     * rest pose has it (NULL: not recorded, the reading failed). */
+    sr_pbr_material *rest_materials;
+    sr_scene_camera *rest_cameras;
+    sr_scene_light *rest_lights;
+    size_t *rest_triangles;       /* each draw's triangle_count */
+    unsigned char *rest_visible, *visible, *state;   /* a node each */
+    long *chain;
+    bool rest_known;
 } gltf_posing;
 
 static void posing_free(void *p)
@@ -106,6 +115,14 @@ static void posing_free(void *p)
         free(pl->instanced[i].matrices);
     }
     free(pl->instanced);
+    free(pl->rest_materials);
+    free(pl->rest_cameras);
+    free(pl->rest_lights);
+    free(pl->rest_triangles);
+    free(pl->rest_visible);
+    free(pl->visible);
+    free(pl->state);
+    free(pl->chain);
     free(pl->blocks);
     free(pl->draws);
     free(pl->skins);
@@ -160,6 +177,48 @@ bool sr__gltf_posing_anim(gltf_doc *d, size_t index, gltf_anim *a)
     gltf_posing *pl = d->posing;
     pl->anims[index] = *a;
     memset(a, 0, sizeof *a);
+    return true;
+}
+
+const gltf_anim *sr__gltf_posing_anim_at(const gltf_doc *d, size_t index)
+{
+    return &d->posing->anims[index];
+}
+
+/* A malloc'd copy of n elements of size bytes (at least one byte). */
+static void *copy_of(const void *src, size_t n, size_t size)
+{
+    void *p = malloc(n ? n * size : 1);
+    if (p && n) {
+        memcpy(p, src, n * size);
+    }
+    return p;
+}
+
+bool sr__gltf_posing_rest(gltf_doc *d, const unsigned char *visible)
+{
+    gltf_posing *pl = d->posing;
+    if (!pl) {
+        return true;
+    }
+    const sr_scene *s = d->scene;
+    size_t n = pl->node_count ? pl->node_count : 1;
+    pl->rest_materials = copy_of(s->materials, s->material_count, sizeof *s->materials);
+    pl->rest_cameras = copy_of(s->cameras, s->camera_count, sizeof *s->cameras);
+    pl->rest_lights = copy_of(s->lights, s->light_count, sizeof *s->lights);
+    pl->rest_triangles = malloc((s->primitive_count ? s->primitive_count : 1) * sizeof(size_t));
+    pl->rest_visible = copy_of(visible, pl->node_count, 1);
+    pl->visible = malloc(n);
+    pl->state = malloc(n);
+    pl->chain = malloc(n * sizeof *pl->chain);
+    if (!pl->rest_materials || !pl->rest_cameras || !pl->rest_lights || !pl->rest_triangles ||
+        !pl->rest_visible || !pl->visible || !pl->state || !pl->chain) {
+        return false;
+    }
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        pl->rest_triangles[i] = s->primitives[i].triangle_count;
+    }
+    pl->rest_known = true;
     return true;
 }
 
@@ -476,6 +535,13 @@ static void pose_draws(gltf_posing *pl, sr_scene *scene)
     }
 }
 
+static void copy_back(void *dst, const void *src, size_t bytes)
+{
+    if (bytes > 0) {
+        memcpy(dst, src, bytes);
+    }
+}
+
 sr_result sr__gltf_pose(void *posing, sr_scene *scene, bool animated, int animation, float time,
                         sr_io_error *err)
 {
@@ -494,6 +560,24 @@ sr_result sr__gltf_pose(void *posing, sr_scene *scene, bool animated, int animat
         return r;
     }
     pose_draws(pl, scene);
+    if (pl->rest_known) {
+        /* The rest pose's values, then the animation's over them (a
+         * scene without cameras or lights has NULL arrays). */
+        copy_back(scene->materials, pl->rest_materials,
+                  scene->material_count * sizeof *scene->materials);
+        copy_back(scene->cameras, pl->rest_cameras, scene->camera_count * sizeof *scene->cameras);
+        copy_back(scene->lights, pl->rest_lights, scene->light_count * sizeof *scene->lights);
+        for (size_t i = 0; i < scene->primitive_count; i++) {
+            scene->primitives[i].triangle_count = pl->rest_triangles[i];
+        }
+        copy_back(pl->visible, pl->rest_visible, pl->node_count);
+        if (animated) {
+            sr__gltf_anim_apply_pointers(&pl->anims[animation], time, scene, pl->visible);
+        }
+        if (pl->parent) {
+            sr__gltf_hide(scene, pl->parent, pl->node_count, pl->visible, pl->state, pl->chain);
+        }
+    }
     for (size_t i = 0; i < scene->camera_count; i++) {
         memcpy(scene->cameras[i].world, pl->worlds + 16 * scene->cameras[i].node,
                sizeof scene->cameras[i].world);

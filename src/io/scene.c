@@ -166,7 +166,8 @@ void sr__scene_bounds(sr_scene *scene)
     for (size_t i = 0; i < scene->primitive_count; i++) {
         const sr_scene_primitive *p = &scene->primitives[i];
         const float *m = p->world;
-        for (size_t v = 0; v < p->vertex_count; v++) {
+        /* A draw without triangles (a hidden node's) shows nothing. */
+        for (size_t v = 0; p->triangle_count > 0 && v < p->vertex_count; v++) {
             const float *x = p->positions + 3 * v;
             for (int c = 0; c < 3; c++) {
                 float w = m[c] * x[0] + m[4 + c] * x[1] + m[8 + c] * x[2] + m[12 + c];

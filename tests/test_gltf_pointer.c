@@ -1,0 +1,630 @@
+/* test_gltf_pointer.c - glTF animations beyond node transforms:
+ * KHR_animation_pointer channels animate materials, cameras, lights,
+ * node transforms and KHR_node_visibility's `visible`, the same through
+ * sr_load_desc's pose and sr_scene_pose, the rest pose kept; malformed
+ * pointers are refused with the channel's JSON pointer, pointers softrast
+ * does not animate warned about; quantized rotation outputs decode by the
+ * specification's formulas. */
+#include "sr_test.h"
+
+#include "batch_cli.h"
+#include "gltf_write.h"
+#include "image_compare.h"
+#include "softrast.h"
+#include "softrast_io.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The bytes of every accessor, one bufferView each. */
+typedef struct blob {
+    uint8_t bin[2048];
+    size_t size;
+    char accessors[2048];
+    int count;
+} blob;
+
+static int put(blob *b, const void *v, size_t n, size_t esize, const char *type, size_t count,
+               int ctype, bool normalized)
+{
+    size_t at = gltf_put(b->bin, &b->size, v, n, esize);
+    size_t len = strlen(b->accessors);
+    snprintf(b->accessors + len, sizeof b->accessors - len,
+             "%s{\"bufferView\":%d,\"byteOffset\":0,\"componentType\":%d,\"count\":%zu,"
+             "\"type\":\"%s\"%s,\"_at\":%zu,\"_len\":%zu}", b->count ? "," : "", b->count, ctype,
+             count, type, normalized ? ",\"normalized\":true" : "", at, n * esize);
+    return b->count++;
+}
+
+/* The document: a triangle drawn by nodes 0, 3, 4 and 5 with material 0
+ * (`material`, a texture without a source for it to name),
+ * point light 0 on node 1, perspective camera 0 on node 2; node 3 hidden
+ * (KHR_node_visibility) with node 4 its child, node 5 shown; `channels`
+ * and `samplers` the one animation's.  Malloc'd. */
+static char *scene_json_with(const blob *b, const char *material, const char *samplers,
+                             const char *channels)
+{
+    char views[2048] = "", acc[2048], *o = acc;
+    const char *p = b->accessors;
+    /* Each accessor's "_at"/"_len" become its bufferView. */
+    for (int i = 0; i < b->count; i++) {
+        size_t at, len;
+        const char *m = strstr(p, ",\"_at\":");
+        sscanf(m, ",\"_at\":%zu,\"_len\":%zu", &at, &len);
+        o += sprintf(o, "%.*s}", (int)(m - p), p);
+        p = strchr(m, '}') + 1;
+        if (*p == ',') {
+            *o++ = *p++;
+        }
+        size_t vl = strlen(views);
+        snprintf(views + vl, sizeof views - vl, "%s{\"buffer\":0,\"byteOffset\":%zu,"
+                 "\"byteLength\":%zu}", i ? "," : "", at, len);
+    }
+    *o = 0;
+    char b64[4 * sizeof b->bin / 3 + 8];
+    gltf_base64(b->bin, b->size, b64);
+    size_t cap = strlen(b64) + strlen(views) + strlen(acc) + strlen(material) + strlen(samplers) +
+                 strlen(channels) + 2048;
+    char *json = malloc(cap);
+    if (json) {
+        snprintf(json, cap,
+                 "{\"asset\":{\"version\":\"2.0\"},"
+                 "\"extensionsUsed\":[\"KHR_animation_pointer\",\"KHR_node_visibility\","
+                 "\"KHR_lights_punctual\"],"
+                 "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\","
+                 "\"intensity\":10}]}},"
+                 "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;"
+                 "base64,%s\"}],\"bufferViews\":[%s],\"accessors\":[%s],"
+                 "\"materials\":[%s],\"textures\":[{}],"
+                 "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+                 "\"material\":0}]}],"
+                 "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,"
+                 "\"znear\":0.1}}],"
+                 "\"nodes\":[{\"mesh\":0},"
+                 "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},{\"camera\":0},"
+                 "{\"mesh\":0,\"children\":[4],\"translation\":[5,0,0],"
+                 "\"extensions\":{\"KHR_node_visibility\":{\"visible\":false}}},"
+                 "{\"mesh\":0,\"extensions\":{\"KHR_node_visibility\":{\"visible\":true}}},"
+                 "{\"mesh\":0,\"extensions\":{\"KHR_node_visibility\":{}}}],"
+                 "\"scenes\":[{\"nodes\":[0,1,2,3,5]}],"
+                 "\"animations\":[{\"samplers\":[%s],\"channels\":[%s]}]}",
+                 b->size, b64, views, acc, material, samplers, channels);
+    }
+    return json;
+}
+
+static const char *const red = "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}}";
+
+static char *scene_json(const blob *b, const char *samplers, const char *channels)
+{
+    return scene_json_with(b, red, samplers, channels);
+}
+
+static sr_result parse(const char *json, const sr_load_desc *desc, sr_scene **s, sr_io_error *e)
+{
+    return sr_parse_gltf(sr_test_ctx(), "t.gltf", (const uint8_t *)json, strlen(json), desc, s,
+                         e);
+}
+
+/* A channel of sampler `sampler` to `pointer`. */
+static void add_channel(char *list, size_t cap, int sampler, const char *pointer)
+{
+    size_t n = strlen(list);
+    snprintf(list + n, cap - n, "%s{\"sampler\":%d,\"target\":{\"path\":\"pointer\","
+             "\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"%s\"}}}}",
+             n ? "," : "", sampler, pointer);
+}
+
+/* The document of the main test: keys at 0 and 2 s (LINEAR) for the base
+ * color (red to blue), the roughness (normalized unsigned bytes 0 to
+ * 255), the light's intensity (10 to 30), the camera's yfov (0.8 to 1.2)
+ * and node 0's translation (x 0 to 2); node 5's `visible` STEP from
+ * true to false at 1 s. */
+static char *animated_json(void)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+    static const float t02[2] = { 0, 2 }, t01[2] = { 0, 1 };
+    static const float color[8] = { 1, 0, 0, 1, 0, 0, 1, 1 };
+    static const uint8_t rough[2] = { 0, 255 }, shown[2] = { 1, 0 };
+    static const float power[2] = { 10, 30 }, fov[2] = { 0.8f, 1.2f };
+    static const float move[6] = { 0, 0, 0, 2, 0, 0 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in2 = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+    int in1 = put(&b, t01, 2, 4, "SCALAR", 2, 5126, false);
+    int c = put(&b, color, 8, 4, "VEC4", 2, 5126, false);
+    int r = put(&b, rough, 2, 1, "SCALAR", 2, 5121, true);
+    int p = put(&b, power, 2, 4, "SCALAR", 2, 5126, false);
+    int f = put(&b, fov, 2, 4, "SCALAR", 2, 5126, false);
+    int m = put(&b, move, 6, 4, "VEC3", 2, 5126, false);
+    int v = put(&b, shown, 2, 1, "SCALAR", 2, 5121, false);
+    char samplers[1024], channels[2048] = "";
+    snprintf(samplers, sizeof samplers,
+             "{\"input\":%d,\"output\":%d},{\"input\":%d,\"output\":%d},"
+             "{\"input\":%d,\"output\":%d},{\"input\":%d,\"output\":%d},"
+             "{\"input\":%d,\"output\":%d},"
+             "{\"input\":%d,\"output\":%d,\"interpolation\":\"STEP\"}",
+             in2, c, in2, r, in2, p, in2, f, in2, m, in1, v);
+    add_channel(channels, sizeof channels, 0, "/materials/0/pbrMetallicRoughness/baseColorFactor");
+    add_channel(channels, sizeof channels, 1, "/materials/0/pbrMetallicRoughness/roughnessFactor");
+    add_channel(channels, sizeof channels, 2, "/extensions/KHR_lights_punctual/lights/0/intensity");
+    add_channel(channels, sizeof channels, 3, "/cameras/0/perspective/yfov");
+    add_channel(channels, sizeof channels, 4, "/nodes/0/translation");
+    add_channel(channels, sizeof channels, 5, "/nodes/5/extensions/KHR_node_visibility/visible");
+    return scene_json(&b, samplers, channels);
+}
+
+static size_t triangles_of(const sr_scene *s, int node)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        n += s->primitives[i].node == node ? s->primitives[i].triangle_count : 0;
+    }
+    return n;
+}
+
+static const float *world_of(const sr_scene *s, int node)
+{
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        if (s->primitives[i].node == node) {
+            return s->primitives[i].world;
+        }
+    }
+    return NULL;
+}
+
+/* What a pose changes, the same in two scenes. */
+static void check_same(const sr_scene *a, const sr_scene *b)
+{
+    REQUIRE(a->material_count == b->material_count && a->light_count == b->light_count &&
+            a->camera_count == b->camera_count && a->primitive_count == b->primitive_count);
+    CHECK(memcmp(a->materials, b->materials, a->material_count * sizeof *a->materials) == 0);
+    CHECK(memcmp(a->lights, b->lights, a->light_count * sizeof *a->lights) == 0);
+    CHECK(memcmp(a->cameras, b->cameras, a->camera_count * sizeof *a->cameras) == 0);
+    for (size_t i = 0; i < a->primitive_count; i++) {
+        CHECK_EQ(a->primitives[i].triangle_count, b->primitives[i].triangle_count);
+        CHECK(memcmp(a->primitives[i].world, b->primitives[i].world, sizeof a->primitives[i].world)
+              == 0);
+    }
+    CHECK(memcmp(&a->bounds_min, &b->bounds_min, sizeof a->bounds_min) == 0);
+    CHECK(memcmp(&a->bounds_max, &b->bounds_max, sizeof a->bounds_max) == 0);
+}
+
+SR_TEST(the_rest_pose_hides_the_invisible_subtree_and_keeps_the_file_values)
+{
+    char *json = animated_json();
+    REQUIRE(json);
+    sr_scene *s = NULL;
+    sr_io_error e;
+    sr_test_warnings w = { 0 };
+    sr_load_desc desc = { .warn = sr_test_collect_warning, .user = &w };
+    REQUIRE(parse(json, &desc, &s, &e) == SR_OK);
+    free(json);
+    CHECK_EQ(w.count, 0);   /* both extensions are read: no "not read" warning */
+    CHECK_EQ(triangles_of(s, 0), 1);
+    CHECK_EQ(triangles_of(s, 3), 0);   /* visible: false */
+    CHECK_EQ(triangles_of(s, 4), 0);   /* true, but under node 3 */
+    CHECK_EQ(triangles_of(s, 5), 1);   /* the extension without `visible`: shown */
+    /* The hidden draws leave the bounds (node 3 stands at x = 5). */
+    CHECK_NEAR(s->bounds_max.x, 1, 0);
+    CHECK_NEAR(s->materials[0].base_color[0], 1, 0);
+    CHECK_NEAR(s->materials[0].roughness, 1, 0);
+    CHECK_NEAR(s->lights[0].light.intensity, 10, 0);
+    CHECK_NEAR(s->cameras[0].yfov, 0.8f, 0);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+SR_TEST(pointer_channels_animate_materials_lights_cameras_nodes_and_visibility)
+{
+    char *json = animated_json();
+    REQUIRE(json);
+    sr_scene *s = NULL, *rest = NULL, *posed = NULL;
+    sr_io_error e;
+    sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 1.5f };
+    REQUIRE(parse(json, &at, &s, &e) == SR_OK);
+    /* 0.75 of the way from the first keys to the second. */
+    CHECK_NEAR(s->materials[0].base_color[0], 0.25f, 1e-6);
+    CHECK_NEAR(s->materials[0].base_color[2], 0.75f, 1e-6);
+    CHECK_NEAR(s->materials[0].roughness, 0.75f, 1e-6);
+    CHECK_NEAR(s->lights[0].light.intensity, 25, 1e-5);
+    CHECK_EQ(s->lights[0].light.type, SR_LIGHT_POINT);
+    CHECK_NEAR(s->cameras[0].yfov, 1.1f, 1e-6);
+    const float *w0 = world_of(s, 0);
+    REQUIRE(w0);
+    CHECK_NEAR(w0[12], 1.5f, 1e-6);
+    CHECK_EQ(triangles_of(s, 5), 0);   /* STEP to false at 1 s */
+    CHECK_EQ(triangles_of(s, 3), 0);
+    /* sr_scene_pose makes the same bytes from a rest reading, and goes
+     * back to the rest pose's. */
+    REQUIRE(parse(json, NULL, &rest, &e) == SR_OK);
+    REQUIRE(parse(json, NULL, &posed, &e) == SR_OK);
+    const sr_pbr_material *materials = posed->materials;
+    REQUIRE(sr_scene_pose(posed, SR_POSE_ANIMATION, 0, 1.5f, &e) == SR_OK);
+    CHECK(posed->materials == materials);
+    check_same(s, posed);
+    REQUIRE(sr_scene_pose(posed, SR_POSE_ANIMATION, 0, 0.5f, &e) == SR_OK);
+    CHECK_EQ(triangles_of(posed, 5), 1);
+    CHECK_NEAR(posed->materials[0].base_color[0], 0.75f, 1e-6);
+    REQUIRE(sr_scene_pose(posed, SR_POSE_REST, 0, 0, &e) == SR_OK);
+    check_same(rest, posed);
+    free(json);
+    sr_destroy_scene(sr_test_ctx(), s);
+    sr_destroy_scene(sr_test_ctx(), rest);
+    sr_destroy_scene(sr_test_ctx(), posed);
+}
+
+/* One channel of a one-key sampler (output accessor of `type` floats, or
+ * of unsigned bytes when `bytes`) to `pointer`, with `interp`; parsed in
+ * the rest pose. */
+static sr_result one_channel(const char *pointer, const char *type, bool bytes,
+                             const char *interp, const char *target_extra, sr_test_warnings *w,
+                             sr_io_error *e)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+    static const float v[4] = { 0.5f, 0.5f, 0.5f, 1 };
+    static const uint8_t one[1] = { 1 };
+    int n = strcmp(type, "SCALAR") == 0 ? 1 : type[3] - '0';
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+    int out = bytes ? put(&b, one, 1, 1, "SCALAR", 1, 5121, false)
+                    : put(&b, v, (size_t)n, 4, type, 1, 5126, false);
+    char samplers[256], channels[512];
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d,\"interpolation\":\"%s\"}",
+             in, out, interp);
+    snprintf(channels, sizeof channels, "{\"sampler\":0,\"target\":{%s\"path\":\"pointer\","
+             "\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"%s\"}}}}", target_extra,
+             pointer);
+    char *json = scene_json(&b, samplers, channels);
+    if (!json) {
+        return SR_OUT_OF_MEMORY;
+    }
+    sr_scene *s = NULL;
+    sr_load_desc desc = { .warn = sr_test_collect_warning, .user = w };
+    sr_result r = parse(json, &desc, &s, e);
+    free(json);
+    sr_destroy_scene(sr_test_ctx(), s);
+    return r;
+}
+
+SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
+{
+    static const struct {
+        const char *pointer, *type;
+        bool bytes;
+        const char *interp, *extra, *message;
+    } cases[] = {
+        { "materials/0/emissiveFactor", "VEC3", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"materials/0/emissiveFactor\" is "
+          "not a JSON pointer" },
+        { "/materials/0~2/x", "SCALAR", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/materials/0~2/x\" is not a "
+          "JSON pointer" },
+        { "/materials/3/emissiveFactor", "VEC3", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/materials/3/emissiveFactor\": "
+          "materials 3 is not in the file (it has 1)" },
+        { "/extensions/KHR_lights_punctual/lights/1/color", "VEC3", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/extensions/KHR_lights_punctual"
+          "/lights/1/color\": lights 1 is not in the file (it has 1)" },
+        { "/materials/0/emissiveFactor", "VEC4", false, "LINEAR", "",
+          "/sampler: its output has 4 components an element; the property takes 3" },
+        { "/cameras/0/perspective/aspectRatio", "SCALAR", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/cameras/0/perspective/"
+          "aspectRatio\" names a property the file does not define (it has no default)" },
+        { "/materials/0/extensions/KHR_materials_ior/ior", "SCALAR", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/materials/0/extensions/"
+          "KHR_materials_ior/ior\" names a property the file does not define" },
+        { "/nodes/5/extensions/KHR_node_visibility/visible", "SCALAR", false, "STEP", "",
+          "/sampler: its output is not of unsigned bytes, which a boolean takes" },
+        { "/nodes/5/extensions/KHR_node_visibility/visible", "SCALAR", true, "LINEAR", "",
+          "/sampler: a boolean is animated by STEP" },
+        { "/nodes/0/extensions/KHR_node_visibility/visible", "SCALAR", true, "STEP", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/nodes/0/extensions/"
+          "KHR_node_visibility/visible\": node 0 has no KHR_node_visibility object" },
+        { "/nodes/0/rotation", "VEC3", false, "LINEAR", "",
+          "/sampler: its output has 3 components an element; rotation takes VEC4" },
+        { "/nodes/0/translation", "VEC3", false, "LINEAR", "\"node\":0,",
+          "/target/node: given with path \"pointer\", which KHR_animation_pointer forbids" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        sr_test_warnings w = { 0 };
+        sr_io_error e = { { 0 } };
+        sr_result r = one_channel(cases[i].pointer, cases[i].type, cases[i].bytes,
+                                  cases[i].interp, cases[i].extra, &w, &e);
+        char want[512];
+        snprintf(want, sizeof want, "t.gltf: /animations/0/channels/0%s", cases[i].message);
+        CHECK_EQ(r, SR_BAD_FORMAT);
+        if (strcmp(e.message, want) != 0) {
+            sr_test_fail(__FILE__, __LINE__, "case %zu: got \"%s\", want \"%s\"", i, e.message,
+                         want);
+        }
+    }
+}
+
+SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
+{
+    static const char *const skipped[] = {
+        "/meshes/0/weights",
+        "/materials/0/extensions/KHR_materials_volume/attenuationDistance",
+        "/cameras/0/type",
+    };
+    for (size_t i = 0; i < sizeof skipped / sizeof *skipped; i++) {
+        sr_test_warnings w = { 0 };
+        sr_io_error e;
+        sr_result r = one_channel(skipped[i], "VEC2", false, "LINEAR", "", &w, &e);
+        if (r != SR_OK) {
+            sr_test_fail(__FILE__, __LINE__, "%s", e.message);
+        }
+        CHECK_EQ(w.count, 1);
+        char want[512];
+        snprintf(want, sizeof want, "/animations/0/channels/0/target/extensions/"
+                 "KHR_animation_pointer/pointer: \"%s\" is not a property softrast animates, "
+                 "not animated", skipped[i]);
+        CHECK_STR_CONTAINS(w.text, want);
+    }
+}
+
+SR_TEST(a_bad_visible_is_refused)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    char *json = scene_json(&b, "", "");
+    REQUIRE(json);
+    char *at = strstr(json, "\"visible\":false");
+    REQUIRE(at);
+    memcpy(at, "\"visible\":0    ", 15);
+    /* An animation without channels is refused first: drop it. */
+    char *anim = strstr(json, ",\"animations\"");
+    REQUIRE(anim);
+    strcpy(anim, "}");
+    sr_scene *s = NULL;
+    sr_io_error e;
+    CHECK_EQ(parse(json, NULL, &s, &e), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "t.gltf: /nodes/3/extensions/KHR_node_visibility/visible: "
+                                  "not true or false");
+    free(json);
+}
+
+/* glTF 2.0's animation output table: rotations of normalized unsigned
+ * shorts and bytes (c / 65535, c / 255) and signed bytes (max(c / 127,
+ * -1)), decoded before the slerp; integers not normalized are refused. */
+SR_TEST(quantized_rotation_outputs_decode_by_the_specification)
+{
+    static const struct {
+        int ctype;
+        size_t esize;
+        bool normalized;
+        double tol;
+    } kinds[] = { { 5123, 2, true, 1e-4 }, { 5121, 1, true, 1e-2 }, { 5120, 1, true, 1e-2 },
+                  { 5123, 2, false, 0 } };
+    const double h = sqrt(0.5);
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+        double full = kinds[k].ctype == 5123 ? 65535 : kinds[k].ctype == 5121 ? 255 : 127;
+        /* The identity, then 90 degrees about +z. */
+        double q[8] = { 0, 0, 0, 1, 0, 0, h, h };
+        uint8_t raw[16];
+        for (int c = 0; c < 8; c++) {
+            long v = lrint(q[c] * full);
+            if (kinds[k].esize == 2) {
+                uint16_t u = (uint16_t)v;
+                memcpy(raw + 2 * c, &u, 2);
+            } else {
+                raw[c] = (uint8_t)v;
+            }
+        }
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+        int out = put(&b, raw, 8, kinds[k].esize, "VEC4", 2, kinds[k].ctype,
+                      kinds[k].normalized);
+        char samplers[128];
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        char *json = scene_json(&b, samplers, "{\"sampler\":0,\"target\":{\"node\":0,"
+                                              "\"path\":\"rotation\"}}");
+        REQUIRE(json);
+        sr_scene *s = NULL;
+        sr_io_error e;
+        sr_load_desc desc = { .pose = SR_POSE_ANIMATION, .animation_time = 1 };
+        sr_result r = parse(json, &desc, &s, &e);
+        free(json);
+        if (!kinds[k].normalized) {
+            CHECK_EQ(r, SR_BAD_FORMAT);
+            CHECK_STR_CONTAINS(e.message, "/animations/0/channels/0/sampler: its output is of "
+                                          "integers not normalized");
+            continue;
+        }
+        REQUIRE(r == SR_OK);
+        const float *w = world_of(s, 0);
+        REQUIRE(w);
+        /* Halfway: 45 degrees, x to (cos 45, sin 45). */
+        CHECK_NEAR(w[0], cos(M_PI / 4), kinds[k].tol);
+        CHECK_NEAR(w[1], sin(M_PI / 4), kinds[k].tol);
+        sr_destroy_scene(sr_test_ctx(), s);
+    }
+}
+
+/* KHR_texture_transform's members animated by pointer: the slot a
+ * reading of the file with those values gives (its offset converted to
+ * sr_texture_slot's v up with the rotation and the scale). */
+SR_TEST(texture_transforms_animate_as_the_file_would_write_them)
+{
+    static const char *const member[3] = { "rotation", "offset", "scale" };
+    static const float keys[3][2] = { { 0.5f, 0 }, { 0.3f, 0.4f }, { 1.5f, 0.5f } };
+    static const char *const target[3] = {
+        "\"offset\":[0.1,0.2],\"rotation\":0.5,\"scale\":[2,3]",
+        "\"offset\":[0.3,0.4],\"rotation\":0.25,\"scale\":[2,3]",
+        "\"offset\":[0.1,0.2],\"rotation\":0.25,\"scale\":[1.5,0.5]",
+    };
+    for (int k = 0; k < 3; k++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+        int out = put(&b, keys[k], k == 0 ? 1 : 2, 4, k == 0 ? "SCALAR" : "VEC2", 1, 5126,
+                      false);
+        char samplers[128], channels[512] = "", pointer[256], mat[2][256];
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        snprintf(pointer, sizeof pointer, "/materials/0/emissiveTexture/extensions/"
+                 "KHR_texture_transform/%s", member[k]);
+        add_channel(channels, sizeof channels, 0, pointer);
+        snprintf(mat[0], sizeof mat[0], "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                 "{\"KHR_texture_transform\":{\"offset\":[0.1,0.2],\"rotation\":0.25,"
+                 "\"scale\":[2,3]}}}}");
+        snprintf(mat[1], sizeof mat[1], "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                 "{\"KHR_texture_transform\":{%s}}}}", target[k]);
+        char *animated = scene_json_with(&b, mat[0], samplers, channels);
+        char *written = scene_json_with(&b, mat[1], samplers, "");
+        REQUIRE(animated && written);
+        /* The one without a channel has no animation to carry. */
+        strcpy(strstr(written, ",\"animations\""), "}");
+        sr_scene *s = NULL, *want = NULL;
+        sr_io_error e;
+        sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 0 };
+        REQUIRE(parse(animated, &at, &s, &e) == SR_OK);
+        REQUIRE(parse(written, NULL, &want, &e) == SR_OK);
+        const sr_texture_slot *got = &s->materials[0].emissive_texture;
+        const sr_texture_slot *ref = &want->materials[0].emissive_texture;
+        CHECK_NEAR(got->rotation, ref->rotation, 1e-6);
+        for (int c = 0; c < 2; c++) {
+            CHECK_NEAR(got->offset[c], ref->offset[c], 1e-6);
+            CHECK_NEAR(got->scale[c], ref->scale[c], 1e-6);
+        }
+        free(animated);
+        free(written);
+        sr_destroy_scene(sr_test_ctx(), s);
+        sr_destroy_scene(sr_test_ctx(), want);
+    }
+}
+
+/* ---- softrast render --animation ---------------------------------------- */
+
+/* Three quads in a row: material 0 (red, to blue over 2 s), node 1's
+ * green one (visible, STEP hidden from 1 s) and an emissive one (its
+ * KHR_materials_emissive_strength 0.5 to 4 over 2 s), and a fourth
+ * hidden above.  `posed_at_1_5`: no animation, the values of 1.5 s
+ * written in the file instead: color (0.25, 0, 0.75), green hidden,
+ * strength 3.125.  Malloc'd. */
+static char *row_json(bool posed_at_1_5)
+{
+    blob b = { .size = 0 };
+    static const float quad[12] = { -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0 };
+    static const uint16_t idx[6] = { 0, 1, 2, 0, 2, 3 };
+    static const float t02[2] = { 0, 2 }, t01[2] = { 0, 1 }, color[8] = { 1, 0, 0, 1, 0, 0, 1, 1 };
+    static const float power[2] = { 0.5f, 4 };
+    static const uint8_t shown[2] = { 1, 0 };
+    put(&b, quad, 12, 4, "VEC3", 4, 5126, false);
+    put(&b, idx, 6, 2, "SCALAR", 6, 5123, false);
+    int in2 = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+    int in1 = put(&b, t01, 2, 4, "SCALAR", 2, 5126, false);
+    int c = put(&b, color, 8, 4, "VEC4", 2, 5126, false);
+    int p = put(&b, power, 2, 4, "SCALAR", 2, 5126, false);
+    int v = put(&b, shown, 2, 1, "SCALAR", 2, 5121, false);
+    char samplers[512], channels[1024] = "";
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d},{\"input\":%d,"
+             "\"output\":%d,\"interpolation\":\"STEP\"},{\"input\":%d,\"output\":%d}",
+             in2, c, in1, v, in2, p);
+    add_channel(channels, sizeof channels, 0, "/materials/0/pbrMetallicRoughness/baseColorFactor");
+    add_channel(channels, sizeof channels, 1, "/nodes/1/extensions/KHR_node_visibility/visible");
+    add_channel(channels, sizeof channels, 2,
+                "/materials/2/extensions/KHR_materials_emissive_strength/emissiveStrength");
+    /* The document scene_json makes, its materials, meshes and nodes
+     * replaced by the row's. */
+    char *json = scene_json(&b, samplers, channels), *out = json ? malloc(strlen(json) + 2048)
+                                                               : NULL;
+    if (!out) {
+        free(json);
+        return NULL;
+    }
+    char *mats = strstr(json, "\"materials\""), *anims = strstr(json, ",\"animations\"");
+    snprintf(out, strlen(json) + 2048,
+             "%.*s\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":%s,"
+             "\"metallicFactor\":0}},{\"pbrMetallicRoughness\":{\"baseColorFactor\":"
+             "[0.2,0.9,0.2,1],\"metallicFactor\":0}},{\"pbrMetallicRoughness\":"
+             "{\"baseColorFactor\":[0.9,0.9,0.9,1],\"metallicFactor\":0},\"emissiveFactor\":"
+             "[1,0.5,0],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":"
+             "%s}}}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+             "\"material\":0}]},{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+             "\"material\":1}]},{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+             "\"material\":2}]}],\"nodes\":[{\"mesh\":0,\"translation\":[-2.2,0,0]},"
+             "{\"mesh\":1,\"extensions\":{\"KHR_node_visibility\":{\"visible\":%s}}},"
+             "{\"mesh\":2,\"translation\":[2.2,0,0]},{\"mesh\":1,\"translation\":[0,2.2,0],"
+             "\"extensions\":{\"KHR_node_visibility\":{\"visible\":false}}}],"
+             "\"scenes\":[{\"nodes\":[0,1,2,3]}]%s",
+             (int)(mats - json), json, posed_at_1_5 ? "[0.25,0,0.75,1]" : "[1,0,0,1]",
+             posed_at_1_5 ? "3.125" : "0.5", posed_at_1_5 ? "false" : "true",
+             posed_at_1_5 ? "}" : anims);
+    free(json);
+    return out;
+}
+
+static uint8_t *render_row(const char *dir, bool posed, const char *time, int *w, int *h)
+{
+    char gltf[1100], png[1200];
+    snprintf(gltf, sizeof gltf, "%s/row%s.gltf", dir, posed ? "_posed" : time ? "" : "_rest");
+    snprintf(png, sizeof png, "%s.png", gltf);
+    char *json = row_json(posed);
+    bool ok = json && sr_test_write_file(gltf, json, strlen(json));
+    free(json);
+    run_result r;
+    if (!ok) {
+        sr_test_fail(__FILE__, __LINE__, "cannot write %s", gltf);
+        return NULL;
+    }
+    return render_read(time ? ARGS("render", gltf, "--animation", "0", "--time", time, "--size",
+                                   "160x64", "--camera", "eye=0,0,6,target=0,0,0", "-o", png)
+                            : ARGS("render", gltf, "--size", "160x64", "--camera",
+                                   "eye=0,0,6,target=0,0,0", "-o", png),
+                       png, w, h, &r);
+}
+
+/* The animation at 1.5 s draws what the file with 1.5 s's values written
+ * in draws, and what tests/ref/gltf_pointer.png keeps (2 codes, 0.5% of
+ * the pixels); the rest pose draws something else. */
+SR_TEST(render_animation_draws_the_pointer_values_at_the_time)
+{
+    NEED_CLI();
+    char dir[1024];
+    fresh_dir("gltf_pointer", dir, sizeof dir);
+    int w, h, w2, h2, w3, h3;
+    uint8_t *a = render_row(dir, false, "1.5", &w, &h);
+    uint8_t *p = render_row(dir, true, NULL, &w2, &h2);
+    uint8_t *rest = render_row(dir, false, NULL, &w3, &h3);
+    REQUIRE(a && p && rest && w == w2 && h == h2 && w == w3 && h == h3);
+    sr_test_check_posed("gltf_pointer", a, p, rest, w, h, 10);
+    free(a);
+    free(p);
+    free(rest);
+}
+
+/* A hidden node's light is off (its kind and values kept); cameras are
+ * not affected by visibility. */
+SR_TEST(a_hidden_node_turns_its_light_off)
+{
+    char *json = animated_json();
+    REQUIRE(json);
+    const char *lit = "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}";
+    const char *dark = "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0},"
+                       "\"KHR_node_visibility\":{\"visible\":false}}}";
+    char *at = strstr(json, lit);
+    REQUIRE(at);
+    size_t n = strlen(json) + strlen(dark);
+    char *hidden = malloc(n);
+    REQUIRE(hidden);
+    snprintf(hidden, n, "%.*s%s%s", (int)(at - json), json, dark, at + strlen(lit));
+    free(json);
+    sr_scene *s = NULL;
+    sr_io_error e;
+    sr_load_desc at_1 = { .pose = SR_POSE_ANIMATION, .animation_time = 1 };
+    REQUIRE(parse(hidden, &at_1, &s, &e) == SR_OK);
+    free(hidden);
+    REQUIRE(s->light_count == 1);
+    CHECK_EQ(s->lights[0].light.type, SR_LIGHT_OFF);
+    CHECK_EQ(s->lights[0].type, SR_LIGHT_POINT);
+    CHECK_NEAR(s->lights[0].light.intensity, 20, 1e-5);
+    CHECK_EQ(s->camera_count, 1);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
