@@ -17,6 +17,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Every test here reads glTF. */
+SR_TEST_NEEDS(sr_io_have_gltf, "softrast was built without jansson (glTF)")
+
 /* A document under construction: one buffer of every accessor's bytes,
  * a bufferView and an accessor each. */
 typedef struct doc {

@@ -54,11 +54,13 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
                   "material variants", o->model, o->variant);
         return EXIT_USAGE;
     }
-    if (o->animation && !(render_gltf_is(o->model) && sr_io_have_gltf())) {
-        cli_error("--animation: %s", render_gltf_is(o->model)
-                                         ? "this softrast was built without its glTF reader "
-                                           "(install libjansson-dev and rebuild)"
-                                         : "only glTF files (.gltf, .glb) have animations");
+    if (o->animation && render_gltf_is(o->model) && !sr_io_have_gltf()) {
+        cli_message("%s: --animation: cannot read glTF (softrast was built without jansson; "
+                    "install libjansson-dev and rebuild)", o->model);
+        return EXIT_USAGE;
+    }
+    if (o->animation && !render_gltf_is(o->model)) {
+        cli_error("--animation: only glTF files (.gltf, .glb) have animations");
         return EXIT_USAGE;
     }
     if (render_gltf_is(o->model) &&
