@@ -40,7 +40,7 @@ static double now_ms(void)
 /* sr_load_desc.file_read: the model's other files (an OBJ's MTL) are inputs. */
 static void note_mtl(void *inputs, const char *path)
 {
-    cli_inputs_add(inputs, path, "MTL file");
+    cli_inputs_read(inputs, path, "MTL file");
 }
 
 static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs, scene *s)
@@ -74,6 +74,7 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
         return render_gltf_load(o->model, o->normals == -1, o->variant, o->verbose,
                                 o->animation, o->animation_time, ctx, inputs, s);
     }
+    cli_inputs_read(inputs, o->model, "model");
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
                                &ob->mesh, &err);
@@ -1405,6 +1406,7 @@ int cmd_render(int argc, char **argv)
                 (unsigned long long)info.fragments, (double)info.near_z, (double)info.far_z,
                 sr_context_threads(job->ctx), t_setup - t0 - setup_ms, setup_ms, t_render - t_setup,
                 jpeg ? "jpeg" : "png", t_write - t_render);
+        cli_inputs_report(&job->inputs);
     }
     sr_destroy_framebuffer(job->ctx, fb);
     render_job_free(job);
