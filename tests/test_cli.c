@@ -2871,6 +2871,10 @@ SR_TEST(a_missing_library_is_refused_in_one_line)
           "/a.gltf: cannot read glTF (softrast was built without jansson" },
         { sr_io_have_gltf(), ARGS("render", gltf, "--animation", "0", "-o", png),
           "/a.gltf: --animation: cannot read glTF (softrast was built without jansson" },
+        /* The classic look reads glTF with Assimp when the build has it. */
+        { sr_io_have_gltf() || sr_io_have_assimp(),
+          ARGS("render", gltf, "--shading", "unlit", "-o", png),
+          "/a.gltf: cannot read glTF (softrast was built without jansson" },
         { sr_io_have_gltf(), ARGS("info", gltf),
           "/a.gltf: cannot read glTF (softrast was built without jansson" },
         { sr_io_have_svg(), ARGS("svg", svg, "-o", png),

@@ -63,14 +63,15 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
         cli_error("--animation: only glTF files (.gltf, .glb) have animations");
         return EXIT_USAGE;
     }
-    if (render_gltf_is(o->model) &&
-        (o->pbr || o->camera_index >= 0 || o->variant || sr_io_have_gltf())) {
+    if (render_gltf_is(o->model) && (o->pbr || o->camera_index >= 0 || o->variant ||
+                                     sr_io_have_gltf() || !sr_io_have_assimp())) {
         /* softrast's own glTF reader for every look (docs/gltf.md says why
          * not Assimp's, which a build may also lack): the physically
          * based look draws glTF's materials, the classic models each
          * primitive's Blinn-Phong translation of its material
          * (render_gltf_classic).  Only a build without the reader (no
-         * jansson) leaves the classic models Assimp's. */
+         * jansson) leaves the classic models Assimp's, if it has Assimp:
+         * without either, the reader's refusal names jansson. */
         return render_gltf_load(o->model, o->normals == -1, o->variant, o->verbose,
                                 o->animation, o->animation_time, ctx, inputs, s);
     }
