@@ -21,6 +21,8 @@ static struct { const char *name; sr_test_fn fn; } tests[MAX_TESTS];
 static int test_count;
 static int current_failures;
 static const char *current_skip;
+static bool (*file_has)(void);      /* SR_TEST_NEEDS */
+static const char *file_lacks;
 
 void sr_test_register(const char *name, sr_test_fn fn)
 {
@@ -47,6 +49,12 @@ void sr_test_fail(const char *file, int line, const char *fmt, ...)
 }
 
 void sr_test_skip(const char *why) { current_skip = why; }
+
+void sr_test_needs(bool (*have)(void), const char *why)
+{
+    file_has = have;
+    file_lacks = why;
+}
 bool sr_test_failed_now(void) { return current_failures > 0; }
 
 static bool is_dir(const char *path)
@@ -188,7 +196,11 @@ int main(int argc, char **argv)
         }
         current_failures = 0;
         current_skip = NULL;
-        tests[i].fn();
+        if (file_has && !file_has()) {
+            current_skip = file_lacks;
+        } else {
+            tests[i].fn();
+        }
         if (current_failures) {
             printf("FAIL %s (%d failed checks)\n", tests[i].name, current_failures);
             failed++;

@@ -114,6 +114,17 @@ bool sr_test_program_argv(const char *path, const char *const *args, const char 
         }                                                                    \
     } while (0)
 
+/* Every test of a file needs what `have` says the build has (a library
+ * it may be built without): SR_TEST_NEEDS(sr_io_have_gltf, "softrast was
+ * built without jansson") at file scope skips each with `why` when it
+ * returns false, so that the file needs no SKIP in each test. */
+void sr_test_needs(bool (*have)(void), const char *why);
+#define SR_TEST_NEEDS(have, why)                                             \
+    __attribute__((constructor)) static void sr_test_needs__register(void)   \
+    {                                                                        \
+        sr_test_needs(have, why);                                            \
+    }
+
 #define SKIP(why)                                                            \
     do {                                                                     \
         sr_test_skip(why);                                                   \

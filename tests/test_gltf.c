@@ -17,6 +17,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Every test here reads glTF. */
+SR_TEST_NEEDS(sr_io_have_gltf, "softrast was built without jansson (glTF)")
+
 /* A document whose buffer 0 holds bin (a data URI); `body` is the rest of
  * the top-level object, starting with a comma.  malloc'd. */
 static char *doc(const void *bin, size_t n, const char *body)

@@ -17,6 +17,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Every test here reads glTF. */
+SR_TEST_NEEDS(sr_io_have_gltf, "softrast was built without jansson (glTF)")
+
 /* A document under construction: one buffer of every accessor's bytes,
  * a bufferView and an accessor each. */
 typedef struct doc {
@@ -26,6 +29,7 @@ typedef struct doc {
     int count;
     char more_meshes[256];     /* ",{...}": meshes 2 and on */
     bool morph;                /* mesh 1 has two morph targets */
+    const char *bin_uri;       /* the buffer in this file beside the JSON, or NULL: inline */
 } doc;
 
 static int add_accessor(doc *d, const void *bytes, size_t n, size_t esize, const char *type,
@@ -63,8 +67,10 @@ static void doc_start(doc *d)
  * in `roots` a root of scene 0.  Malloc'd. */
 static char *doc_json(const doc *d, const char *nodes, const char *roots, const char *anims)
 {
-    char *b64 = malloc(4 * (d->size / 3 + 1) + 1);
-    size_t cap = 4 * (d->size / 3 + 1) + strlen(d->views) + strlen(d->accessors) +
+    /* The buffer's URI: its file's name, or its bytes in base64. */
+    size_t uri_cap = 4 * (d->size / 3 + 1) + 64 + (d->bin_uri ? strlen(d->bin_uri) : 0);
+    char *b64 = malloc(uri_cap);
+    size_t cap = uri_cap + strlen(d->views) + strlen(d->accessors) +
                  strlen(nodes) + strlen(anims) + 2000;
     char *json = malloc(cap);
     if (!b64 || !json) {
@@ -72,11 +78,16 @@ static char *doc_json(const doc *d, const char *nodes, const char *roots, const 
         free(json);
         return NULL;
     }
-    gltf_base64(d->bin, d->size, b64);
+    if (d->bin_uri) {
+        snprintf(b64, uri_cap, "%s", d->bin_uri);
+    } else {
+        memcpy(b64, "data:application/octet-stream;base64,", 37);
+        gltf_base64(d->bin, d->size, b64 + 37);
+    }
     snprintf(json, cap,
              "{\"asset\":{\"version\":\"2.0\"},"
-             "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,"
-             "%s\"}],\"bufferViews\":[%s],\"accessors\":[%s],"
+             "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"%s\"}],"
+             "\"bufferViews\":[%s],\"accessors\":[%s],"
              "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
              "{\"primitives\":[{\"attributes\":{\"POSITION\":0}%s}]}%s],"
              "\"nodes\":%s,\"scenes\":[{\"nodes\":%s}]%s%s}",
@@ -571,8 +582,10 @@ static void cube_corners(float *out)
  * nodes' own transforms set to the values hand-computed at 1.5 s:
  * 67.5 degrees; scale (1, 2, 1); u = 0.75 on the spline, h00 = 0.15625,
  * h10 = 0.046875, h01 = 0.84375, h11 = -0.140625, y = 2 (0.046875) 2 +
- * 0.84375 + 2 (-0.140625) (-2) = 1.59375.  Malloc'd JSON. */
-static char *hub_json(bool posed_at_1_5)
+ * 0.84375 + 2 (-0.140625) (-2) = 1.59375.  With `bin_path`, the buffer
+ * is written there and named by its file name (it must be beside the
+ * JSON).  Malloc'd JSON. */
+static char *hub_json(bool posed_at_1_5, const char *bin_path)
 {
     doc d;
     doc_start(&d);
@@ -613,6 +626,12 @@ static char *hub_json(bool posed_at_1_5)
                  "{\"sampler\":2,\"target\":{\"node\":2,\"path\":\"translation\"}}]}]",
                  in2, turn_out, in1, scale_out, in2, lift_out);
     }
+    if (bin_path) {
+        d.bin_uri = strrchr(bin_path, '/') ? strrchr(bin_path, '/') + 1 : bin_path;
+        if (!sr_test_write_file(bin_path, d.bin, d.size)) {
+            return NULL;
+        }
+    }
     char *json = doc_json(&d, nodes, "[0]", anims);
     if (!json) {
         return NULL;
@@ -631,7 +650,7 @@ static char *hub_json(bool posed_at_1_5)
 
 static bool write_hub(const char *path, bool posed)
 {
-    char *json = hub_json(posed);
+    char *json = hub_json(posed, NULL);
     bool ok = json && sr_test_write_file(path, json, strlen(json));
     free(json);
     return ok;
@@ -731,6 +750,39 @@ SR_TEST(render_animation_options_are_checked_in_one_line)
         }
     }
     CHECK(!file_exists(png));
+}
+
+/* --animation with --time reads the file once, whether the animation is
+ * named or numbered: posed from its one reading (sr_scene_pose), not read
+ * again in the pose.  The tool's --verbose counts its reads; the buffer
+ * in a file of its own counts the reader's reads of the document, as the
+ * library reads it once a reading of the document. */
+SR_TEST(render_animation_at_a_time_reads_the_file_once)
+{
+    NEED_CLI();
+    char dir[1024], anim[1100], bin[1100], png[1100], want[1200];
+    fresh_dir("gltf_anim_once", dir, sizeof dir);
+    snprintf(anim, sizeof anim, "%s/hub.gltf", dir);
+    snprintf(bin, sizeof bin, "%s/hub.bin", dir);
+    snprintf(png, sizeof png, "%s/out.png", dir);
+    char *json = hub_json(false, bin);
+    REQUIRE(json && sr_test_write_file(anim, json, strlen(json)));
+    free(json);
+    static const char *const animations[] = { "hub", "0" };
+    for (int i = 0; i < 2; i++) {
+        run_result r;
+        REQUIRE(run(ARGS("render", anim, "--animation", animations[i], "--time", "1.5",
+                         "--size", "32x24", "--verbose", "-o", png), &r));
+        CHECK_EQ(r.status, 0);
+        snprintf(want, sizeof want, "softrast: read %s (model) 1 time\n", anim);
+        if (!strstr(r.err, want)) {
+            FAILF("--animation %s: stderr \"%s\" lacks \"%s\"", animations[i], r.err, want);
+        }
+        snprintf(want, sizeof want, "softrast: read %s (glTF resource) 1 time\n", bin);
+        if (!strstr(r.err, want)) {
+            FAILF("--animation %s: stderr \"%s\" lacks \"%s\"", animations[i], r.err, want);
+        }
+    }
 }
 
 /* --animate with --animation: the animation's frames, 1/fps s apart from

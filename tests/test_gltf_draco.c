@@ -142,34 +142,6 @@ static wbuf plain_glb(const sphere *s)
     return plain_glb_mode(s, false);
 }
 
-/* The sphere's indices rewritten as one triangle strip: each band between
- * two rings (upper a, lower b) as a0 b0 a1 b1 ..., which gives the band's
- * triangles with their winding, the bands joined by two repeated indices
- * (degenerate triangles, an even number so that every band starts on an
- * even triangle), the end padded by its last index to a multiple of 3 (a
- * Draco stream holds whole faces). */
-static void make_strip(sphere *s)
-{
-    size_t n = 0;
-    for (uint32_t i = 0; i < STACKS; i++) {
-        uint32_t a = i * (SLICES + 1), b = a + SLICES + 1;
-        if (i > 0) {
-            s->idx[n] = s->idx[n - 1];
-            n++;
-            s->idx[n++] = a;
-        }
-        for (uint32_t j = 0; j <= SLICES; j++) {
-            s->idx[n++] = a + j;
-            s->idx[n++] = b + j;
-        }
-    }
-    while (n % 3 != 0) {
-        s->idx[n] = s->idx[n - 1];
-        n++;
-    }
-    s->index_count = n;
-}
-
 static sr_scene *parse_glb(const wbuf *b, sr_io_error *e)
 {
     sr_scene *s = NULL;
@@ -239,6 +211,34 @@ static void check_same_triangles(const sr_scene *a, const sr_scene *b, double to
 }
 
 #ifdef SR_HAVE_DRACO_TEST
+
+/* The sphere's indices rewritten as one triangle strip: each band between
+ * two rings (upper a, lower b) as a0 b0 a1 b1 ..., which gives the band's
+ * triangles with their winding, the bands joined by two repeated indices
+ * (degenerate triangles, an even number so that every band starts on an
+ * even triangle), the end padded by its last index to a multiple of 3 (a
+ * Draco stream holds whole faces). */
+static void make_strip(sphere *s)
+{
+    size_t n = 0;
+    for (uint32_t i = 0; i < STACKS; i++) {
+        uint32_t a = i * (SLICES + 1), b = a + SLICES + 1;
+        if (i > 0) {
+            s->idx[n] = s->idx[n - 1];
+            n++;
+            s->idx[n++] = a;
+        }
+        for (uint32_t j = 0; j <= SLICES; j++) {
+            s->idx[n++] = a + j;
+            s->idx[n++] = b + j;
+        }
+    }
+    while (n % 3 != 0) {
+        s->idx[n] = s->idx[n - 1];
+        n++;
+    }
+    s->index_count = n;
+}
 
 /* Position bits: 14 over the sphere's extent of 2 is a step of
  * 2 / (2^14 - 1); draco rounds to the nearest. */

@@ -14,6 +14,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Every test here reads glTF. */
+SR_TEST_NEEDS(sr_io_have_gltf, "softrast was built without jansson (glTF)")
+
 #define PI 3.14159265358979
 
 

@@ -56,7 +56,7 @@ static int run_cli(const char *const *args, char *err, size_t n)
 
 static bool have_svg(void)
 {
-    return run_cli((const char *[]){ "svg", "--help", NULL }, NULL, 0) == 0;
+    return sr_io_have_svg();
 }
 
 static const char *out_path(const char *name, char *buf, size_t n)

@@ -607,7 +607,7 @@ static int check_views(batch_opts *b, const render_opts *o)
         char why[256];
         batch_anim *probe = batch_anim_start(1, 1, false, why, sizeof why);
         if (!probe) {
-            cli_error("%s", why);
+            cli_message("%s: %s", b->animate, why);
             return EXIT_USAGE;
         }
         batch_anim_free(probe);

@@ -103,8 +103,8 @@ struct batch_anim {
 batch_anim *batch_anim_start(int width, int height, bool alpha, char *why, size_t size)
 {
     (void)width, (void)height, (void)alpha;
-    snprintf(why, size, "--animate: this softrast was built without libwebp (install "
-                        "libwebp-dev and rebuild)");
+    snprintf(why, size, "cannot write animated WebP (softrast was built without libwebp; "
+                        "install libwebp-dev and rebuild)");
     return NULL;
 }
 

@@ -39,6 +39,12 @@ typedef struct cli_inputs {
  * that outlives `in`); a path that does not exist is skipped.  false (and
  * in->incomplete) when out of memory. */
 bool cli_inputs_add(cli_inputs *in, const char *path, const char *kind);
+/* cli_inputs_add where the file is read, counting the reads: --verbose
+ * reports them (cli_inputs_report), so that a tool test can see a file
+ * read once. */
+bool cli_inputs_read(cli_inputs *in, const char *path, const char *kind);
+/* "softrast: read PATH (KIND) N times" to stderr for each file read. */
+void cli_inputs_report(const cli_inputs *in);
 /* Whether `output` is one of the inputs (in may be NULL); if so `why`
  * says "'OUT' is the KIND being read (PATH); choose another output file". */
 bool cli_output_is_input(const cli_inputs *in, const char *output, char *why, size_t why_size);

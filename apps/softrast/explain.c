@@ -766,7 +766,8 @@ int cmd_explain(int argc, char **argv)
         } else if (strcmp(a, "--webp") == 0) {
             webp = v;
             if (!batch_anim_available()) {
-                cli_error("%s: this build has no libwebp (install libwebp-dev and rebuild)", a);
+                cli_message("%s: cannot write animated WebP (softrast was built without libwebp; "
+                            "install libwebp-dev and rebuild)", v);
                 ok = false;
             } else if (!batch_anim_is_webp_name(v)) {
                 cli_error("%s: '%s': an animation is a WebP (name it .webp)", a, v);

@@ -27,6 +27,11 @@ bool cli_is_jpeg_name(const char *path)
 bool cli_check_image_name(const char *opt, const char *path, bool jpeg_ok)
 {
     const char *dot = extension(path);
+    if (jpeg_ok && cli_is_jpeg_name(path) && !sr_io_have_jpeg()) {
+        cli_message("%s: cannot write JPEG (softrast was built without libjpeg; install "
+                    "libjpeg-dev and rebuild)", path);
+        return false;
+    }
     if (!dot || strcasecmp(dot, ".png") == 0 || (jpeg_ok && cli_is_jpeg_name(path))) {
         return true;
     }

@@ -17,7 +17,19 @@ struct cli_input {
     ino_t ino;
     const char *kind;   /* "model", "texture", ... (a string literal) */
     char *path;
+    unsigned reads;     /* times read (cli_inputs_read) */
 };
+
+/* The entry of the file `st` describes, or NULL. */
+static cli_input *find_file(const cli_inputs *in, const struct stat *st)
+{
+    for (size_t i = 0; i < in->count; i++) {
+        if (in->items[i].dev == st->st_dev && in->items[i].ino == st->st_ino) {
+            return &in->items[i];
+        }
+    }
+    return NULL;
+}
 
 bool cli_inputs_add(cli_inputs *in, const char *path, const char *kind)
 {
@@ -25,10 +37,8 @@ bool cli_inputs_add(cli_inputs *in, const char *path, const char *kind)
     if (!path || stat(path, &st) != 0) {
         return true;    /* nothing there to overwrite; reading it reports why */
     }
-    for (size_t i = 0; i < in->count; i++) {
-        if (in->items[i].dev == st.st_dev && in->items[i].ino == st.st_ino) {
-            return true;
-        }
+    if (find_file(in, &st)) {
+        return true;
     }
     if (in->count == in->cap) {
         size_t cap = in->cap ? 2 * in->cap : 8;
@@ -45,8 +55,32 @@ bool cli_inputs_add(cli_inputs *in, const char *path, const char *kind)
         in->incomplete = true;
         return false;
     }
-    in->items[in->count++] = (cli_input){ st.st_dev, st.st_ino, kind, copy };
+    in->items[in->count++] = (cli_input){ st.st_dev, st.st_ino, kind, copy, 0 };
     return true;
+}
+
+bool cli_inputs_read(cli_inputs *in, const char *path, const char *kind)
+{
+    if (!cli_inputs_add(in, path, kind)) {
+        return false;
+    }
+    struct stat st;
+    cli_input *hit = path && stat(path, &st) == 0 ? find_file(in, &st) : NULL;
+    if (hit) {
+        hit->reads++;
+    }
+    return true;
+}
+
+void cli_inputs_report(const cli_inputs *in)
+{
+    for (size_t i = 0; i < in->count; i++) {
+        const cli_input *it = &in->items[i];
+        if (it->reads > 0) {
+            fprintf(stderr, "softrast: read %s (%s) %u time%s\n", it->path, it->kind, it->reads,
+                    it->reads == 1 ? "" : "s");
+        }
+    }
 }
 
 /* The input that `output` names, or NULL. */

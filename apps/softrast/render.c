@@ -40,7 +40,7 @@ static double now_ms(void)
 /* sr_load_desc.file_read: the model's other files (an OBJ's MTL) are inputs. */
 static void note_mtl(void *inputs, const char *path)
 {
-    cli_inputs_add(inputs, path, "MTL file");
+    cli_inputs_read(inputs, path, "MTL file");
 }
 
 static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs, scene *s)
@@ -54,24 +54,28 @@ static int load_model(const render_opts *o, sr_context *ctx, cli_inputs *inputs,
                   "material variants", o->model, o->variant);
         return EXIT_USAGE;
     }
-    if (o->animation && !(render_gltf_is(o->model) && sr_io_have_gltf())) {
-        cli_error("--animation: %s", render_gltf_is(o->model)
-                                         ? "this softrast was built without its glTF reader "
-                                           "(install libjansson-dev and rebuild)"
-                                         : "only glTF files (.gltf, .glb) have animations");
+    if (o->animation && render_gltf_is(o->model) && !sr_io_have_gltf()) {
+        cli_message("%s: --animation: cannot read glTF (softrast was built without jansson; "
+                    "install libjansson-dev and rebuild)", o->model);
         return EXIT_USAGE;
     }
-    if (render_gltf_is(o->model) &&
-        (o->pbr || o->camera_index >= 0 || o->variant || sr_io_have_gltf())) {
+    if (o->animation && !render_gltf_is(o->model)) {
+        cli_error("--animation: only glTF files (.gltf, .glb) have animations");
+        return EXIT_USAGE;
+    }
+    if (render_gltf_is(o->model) && (o->pbr || o->camera_index >= 0 || o->variant ||
+                                     sr_io_have_gltf() || !sr_io_have_assimp())) {
         /* softrast's own glTF reader for every look (docs/gltf.md says why
          * not Assimp's, which a build may also lack): the physically
          * based look draws glTF's materials, the classic models each
          * primitive's Blinn-Phong translation of its material
          * (render_gltf_classic).  Only a build without the reader (no
-         * jansson) leaves the classic models Assimp's. */
+         * jansson) leaves the classic models Assimp's, if it has Assimp:
+         * without either, the reader's refusal names jansson. */
         return render_gltf_load(o->model, o->normals == -1, o->variant, o->verbose,
                                 o->animation, o->animation_time, ctx, inputs, s);
     }
+    cli_inputs_read(inputs, o->model, "model");
     sr_result r = sr_load_mesh(ctx, o->model,
                                &(sr_load_desc){ .file_read = note_mtl, .user = inputs },
                                &ob->mesh, &err);
@@ -1404,6 +1408,7 @@ int cmd_render(int argc, char **argv)
                 (unsigned long long)info.fragments, (double)info.near_z, (double)info.far_z,
                 sr_context_threads(job->ctx), t_setup - t0 - setup_ms, setup_ms, t_render - t_setup,
                 jpeg ? "jpeg" : "png", t_write - t_render);
+        cli_inputs_report(&job->inputs);
     }
     sr_destroy_framebuffer(job->ctx, fb);
     render_job_free(job);

@@ -29,7 +29,7 @@ static void warn_line(void *user, const char *message)
 
 static void note_file(void *inputs, const char *path)
 {
-    cli_inputs_add(inputs, path, "glTF resource");
+    cli_inputs_read(inputs, path, "glTF resource");
 }
 
 /* p's world matrix applied to a point (w = 1) or, with the normal matrix,
@@ -254,6 +254,7 @@ static int load_posed(const char *path, const char *animation, float time, sr_co
     sr_io_error err;
     sr_load_desc desc = { .format = SR_FORMAT_GLTF, .file_read = note_file, .user = inputs,
                           .warn = warn_line };
+    cli_inputs_read(inputs, path, "model");
     sr_result r = sr_load_scene(ctx, path, &desc, out, &err);
     if (r == SR_OK && animation) {
         int index = find_animation(*out, path, animation);

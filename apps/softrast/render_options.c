@@ -228,7 +228,7 @@ static void render_help(void)
         "                           all three give the same pixels)\n"
         "  --threads N              rasterizer threads (default: SR_THREADS or CPUs)\n"
         "  --detail N               teapot tessellation per patch, 1..64 (default 12)\n"
-        "  -v, --verbose            print timings and counts to stderr\n"
+        "  -v, --verbose            print timings, counts and the files read to stderr\n"
         "  -h, --help               this help\n"
         "\n"
         "Exit status: 0 on success, 2 for bad options or a bad model file (one line\n"

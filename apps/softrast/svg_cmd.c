@@ -477,13 +477,15 @@ static int render_batch(svg_args *a)
 
 int cmd_svg(int argc, char **argv)
 {
-    if (!sr_io_have_svg()) {
-        cli_error("svg: this softrast was built without expat (install libexpat1-dev and "
-                  "rebuild)");
-        return EXIT_FAILURE_RUN;
-    }
     svg_args a = { .desc = { .background = { 0, 0, 0, 0 } } };
     int status = parse_args(argc, argv, &a);
+    /* After the arguments, so that --help still answers (the manual page
+     * and the completions are made from it) and the line names a file. */
+    if (status < 0 && !sr_io_have_svg()) {
+        cli_message("%s: cannot read SVG drawings (softrast was built without expat; install "
+                    "libexpat1-dev and rebuild)", a.count > 0 ? a.inputs[0] : "softrast svg");
+        return EXIT_USAGE;
+    }
     if (status < 0) {
         status = batch_asked(&a.batch, a.inputs, a.count) ? render_batch(&a) : render_one(&a);
     }

@@ -95,9 +95,9 @@ int cmd_view(int argc, char **argv)
             }
         }
     }
-    cli_error("view: this softrast was built without SDL2 and FreeType (install libsdl2-dev "
-              "and libfreetype-dev, then run cmake again)");
-    return EXIT_FAILURE_RUN;
+    cli_error("view: cannot open a window (softrast was built without SDL2 and FreeType; "
+              "install libsdl2-dev and libfreetype-dev, then run cmake again)");
+    return EXIT_USAGE;
 }
 
 #else /* SR_HAVE_VIEWER */

@@ -36,7 +36,79 @@ OUTPUTS: Dict[str, Tuple[Tuple[int, ...], type]] = {
     "uv": ((2,), np.float32),
     "material_id": ((), np.int32),
     "flow": ((2,), np.float32),
+    "occlusion": ((), np.bool_),
 }
+
+#: What the occlusion output is computed from (_occlusion): drawn for it
+#: when not asked for, then dropped.
+_OCCLUSION_FROM: Tuple[OutputName, ...] = ("mask", "depth", "position", "flow")
+
+
+def _step_towards(depth: NDArray[np.float64], iv: NDArray[np.intp], iu: NDArray[np.intp],
+                  offset: NDArray[np.float64], axis: int) -> NDArray[np.float64]:
+    """|depth change| from pixel (iv, iu) to its neighbour along `axis` on
+    the side of `offset` (the projected point's, from the pixel centre);
+    where that neighbour has no depth (the surface's outline, the image's
+    edge), the change to the other neighbour, as the surface goes on; 0
+    where neither has."""
+    height, width = depth.shape
+    size = width if axis == 1 else height
+    at = iu if axis == 1 else iv
+    change = []
+    for side in (np.where(offset < 0, -1, 1), np.where(offset < 0, 1, -1)):
+        n = at + side
+        ok = (n >= 0) & (n < size)
+        n = np.clip(n, 0, size - 1)
+        there = depth[iv, n] if axis == 1 else depth[n, iu]
+        with np.errstate(invalid="ignore"):
+            d = np.abs(there - depth[iv, iu])
+        change.append(np.where(ok & np.isfinite(d), d, np.nan))
+    step = np.where(np.isnan(change[0]), change[1], change[0])
+    return np.where(np.isnan(step), 0.0, step)
+
+
+def _occlusion(out: Dict[str, NDArray[Any]], Rts: NDArray[np.float64], world: bool) -> NDArray[np.bool_]:
+    """The occlusion output (render's docstring): True where a pixel's
+    visible point has no flow target the next view sees.  From the
+    renderer's buffers: the point (position, float32, in the world frame
+    when `world`), where the next camera projects it (flow), the next
+    view's depth at the pixel centre nearest that (depth)."""
+    mask, depth, position, flow = (out[name] for name in _OCCLUSION_FROM)
+    n, height, width = mask.shape
+    occluded = mask.copy()      # the last view: no next view to see a point
+    ys, xs = np.mgrid[0:height, 0:width].astype(np.float64)
+    for b in range(n - 1):
+        # The point in the next camera's frame, in double: its depth there.
+        to_next = Rts[b + 1].copy()
+        if not world:
+            to_next = Rts[b + 1][:, :3] @ _inverse(Rts[b])
+            to_next[:, 3] += Rts[b + 1][:, 3]
+        p = position[b].astype(np.float64)
+        z = p @ to_next[2, :3] + to_next[2, 3]
+        with np.errstate(invalid="ignore"):
+            u = np.rint(xs + flow[b, ..., 0])
+            v = np.rint(ys + flow[b, ..., 1])
+            # NaN flow: nothing there, or the point is behind the next camera.
+            inside = mask[b] & (u >= 0) & (u < width) & (v >= 0) & (v < height)
+        iu = np.where(inside, u, 0).astype(np.intp)
+        iv = np.where(inside, v, 0).astype(np.intp)
+        seen = depth[b + 1].astype(np.float64)
+        # The nearest pixel centre is up to half a pixel from the projected
+        # point along each axis: on the point's own surface the depth there
+        # differs from the point's by the depth's step towards the point,
+        # to the next pixel, times that fraction of a pixel, along each
+        # axis.  2^-20 of the coordinates covers the float32 rounding of
+        # position and depth (each within a few units in the last place,
+        # 2^-24 of the value).
+        du = xs + flow[b, ..., 0] - u
+        dv = ys + flow[b, ..., 1] - v
+        tolerance = (np.abs(du) * _step_towards(seen, iv, iu, du, 1) +
+                     np.abs(dv) * _step_towards(seen, iv, iu, dv, 0) +
+                     2.0 ** -20 * (np.abs(z) + np.abs(p).max(axis=-1)))
+        with np.errstate(invalid="ignore"):
+            hidden = seen[iv, iu] < z - tolerance
+        occluded[b] = mask[b] & ~(inside & ~hidden)
+    return occluded
 
 
 def _float_array(value: object, name: str) -> NDArray[np.float64]:
@@ -440,13 +512,24 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
           whose material is not listed there (or who have none).
         - ``flow`` (H, W, 2) float32 (batches of cameras): where the next
           camera of the batch sees the visible point, less the pixel
-          (optical flow of a static scene, occlusion not considered):
-          (du, dv) in pixels; NaN where nothing is, where the point is
-          not in front of the next camera, and in the last view (a single
-          camera's too).
+          (optical flow of a static scene, whatever hides the point there:
+          see ``occlusion``): (du, dv) in pixels; NaN where nothing is,
+          where the point is not in front of the next camera, and in the
+          last view (a single camera's too).
+        - ``occlusion`` (H, W) bool (batches of cameras): where the
+          visible point has no ``flow`` target the next camera sees (the
+          occlusion mask of optical-flow datasets; ``mask & ~occlusion``
+          is where flow is valid): the point is behind the next camera,
+          projects outside its image (the nearest pixel centre is off
+          it), or lies behind the next view's depth at that pixel centre
+          by more than the depth's step to the next pixel towards the
+          point times the point's offset from the centre, along each
+          axis (how far apart they are on the same surface), plus 2^-20
+          of the coordinates (float32 rounding).  Every point of the last
+          view is occluded; False where nothing is.
 
-        IDs, depth, barycentrics, positions, uvs, flow and mask are never
-        blended or antialiased:
+        IDs, depth, barycentrics, positions, uvs, flow, occlusion and mask
+        are never blended or antialiased:
         each pixel shows the surface nearest along its centre's ray (the
         first drawn of equals), sampled at the pixel centre, whatever
         ``antialias`` says.
@@ -603,7 +686,12 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
     msaa, ssaa = _antialias(antialias, width, height)
 
     n = len(Ks)
-    _check_memory(n, width, height, names, msaa, ssaa)
+    asked = names
+    if "occlusion" in names:
+        names = [name for name in names if name != "occlusion"]
+        names += [name for name in _OCCLUSION_FROM if name not in names]
+    _check_memory(n, width, height, names + [name for name in asked if name not in names],
+                  msaa, ssaa)
     out: Dict[str, NDArray[Any]] = {name: np.empty((n, height, width) + OUTPUTS[name][0], OUTPUTS[name][1]) for name in names}
     inv_t = [np.linalg.inv(inst.pose[:3, :3]).T for inst in sc]
     materials = _material_ids(sc) if "material_id" in out else None
@@ -663,6 +751,9 @@ def render(scene: SceneLike, *, K: Optional[RealArrayLike] = None,
                              position=views["position"], uv=views["uv"], flow=views["flow"],
                              ortho=bool(orthos[b]), far=far, msaa=msaa, ssaa=ssaa,
                              cull=cull == "back", **extra, **(geometry if not color_pbr else {}))
+    if "occlusion" in asked:
+        out["occlusion"] = _occlusion(out, Rts, position_in == "world")
+        out = {name: out[name] for name in asked}
     if not batched:
         out = {name: a[0] for name, a in out.items()}
     return cast("RenderOutputs", out)

@@ -52,7 +52,8 @@ SceneItem = Union[Mesh, Instance, Tuple[Mesh, Optional[RealArrayLike]],
 SceneLike = Union[Mesh, Instance, Scene, Sequence[SceneItem]]
 
 OutputName = Literal["color", "rgba", "depth", "normal", "triangle_id", "instance_id",
-                     "barycentric", "mask", "position", "uv", "material_id", "flow"]
+                     "barycentric", "mask", "position", "uv", "material_id", "flow",
+                     "occlusion"]
 Shading = Literal["lit", "unlit", "pbr"]
 Projection = Literal["perspective", "orthographic"]
 #: render's frame= (and its alias normal_frame=): the normal and position outputs' frame.
@@ -109,3 +110,4 @@ class RenderOutputs(TypedDict, total=False):
     uv: NDArray[np.float32]
     material_id: NDArray[np.int32]
     flow: NDArray[np.float32]
+    occlusion: NDArray[np.bool_]

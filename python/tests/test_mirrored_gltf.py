@@ -92,6 +92,7 @@ def test_mirrored_node_draws_the_unmirrored_surface_in_the_command(tmp_path, tan
         path = write(tmp_path / f"{name}.gltf", mirrored, tangents)
         out = tmp_path / f"{name}.png"
         subprocess.run([CLI, "render", str(path), "--size", "64x64", "--aa", "none",
-                        "--camera", "eye=0.6,0.8,3", "-o", str(out)], check=True)
+                        "--camera", "eye=0.6,0.8,3", "-o", str(out)], check=True,
+                       capture_output=True)
         images.append(softrast.read_image(str(out)))
     assert differ(*images) <= 1

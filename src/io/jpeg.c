@@ -264,7 +264,8 @@ sr_result sr_decode_jpeg(const char *name, const uint8_t *data, size_t size, int
     (void)size;
     sr__image_outputs_clear(width, height, pixels, err);
     return sr__io_fail(err, SR_UNSUPPORTED, name ? name : "<memory>", 0,
-                       "this build reads no JPEG (install libjpeg-dev and rebuild)");
+                       "cannot read JPEG (softrast was built without libjpeg; install "
+                       "libjpeg-dev and rebuild)");
 }
 
 static sr_result jpeg_run(const char *name, int w, int h, const uint8_t *rgba, size_t stride,
@@ -280,7 +281,8 @@ static sr_result jpeg_run(const char *name, int w, int h, const uint8_t *rgba, s
     (void)user;
     *write_failed = false;
     return sr__io_fail(err, SR_UNSUPPORTED, name, 0,
-                       "this build writes no JPEG (install libjpeg-dev and rebuild)");
+                       "cannot write JPEG (softrast was built without libjpeg; install "
+                       "libjpeg-dev and rebuild)");
 }
 
 #endif

@@ -497,7 +497,8 @@ static sr_result parse_gltf(sr_context *ctx, const char *name, const char *dir,
 #else
     (void)ctx, (void)dir, (void)data, (void)size, (void)desc, (void)for_mesh, (void)out;
     return sr__io_fail(err, SR_UNSUPPORTED, name, 0,
-                       "glTF not supported (install libjansson-dev and rebuild)");
+                       "cannot read glTF (softrast was built without jansson; install "
+                       "libjansson-dev and rebuild)");
 #endif
 }
 

@@ -4771,7 +4771,8 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
                         sr_framebuffer **out, sr_svg_info *info, char *msg, size_t msg_size)
 {
     (void)ctx, (void)data, (void)size, (void)out, (void)info;
-    snprintf(msg, msg_size, "%s: this build reads no SVG (install libexpat1-dev and rebuild)",
+    snprintf(msg, msg_size, "%s: cannot read SVG (softrast was built without expat; install "
+             "libexpat1-dev and rebuild)",
              opt->name ? opt->name : "<svg>");
     return SR_UNSUPPORTED;
 }

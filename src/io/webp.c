@@ -79,7 +79,8 @@ sr_result sr__decode_webp(const char *name, const uint8_t *data, size_t size, in
         return args;
     }
     return sr__io_fail(err, SR_UNSUPPORTED, name, 0,
-                       "a WebP image, but softrast was built without libwebp");
+                       "a WebP image, which cannot be read (softrast was built without "
+                       "libwebp; install libwebp-dev and rebuild)");
 }
 
 #endif
