@@ -18,6 +18,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Every test here reads glTF. */
+SR_TEST_NEEDS(sr_io_have_gltf, "softrast was built without jansson (glTF)")
+
 /* The bytes of every accessor, one bufferView each. */
 typedef struct blob {
     uint8_t bin[2048];
