@@ -450,6 +450,82 @@ SR_TEST(quantized_rotation_outputs_decode_by_the_specification)
     }
 }
 
+/* Two channels of one animation on one target are refused by the rule
+ * node paths follow, naming the second channel's pointer. */
+SR_TEST(two_channels_on_one_pointer_target_are_refused)
+{
+    static const struct {
+        const char *first, *second, *message;
+    } cases[] = {
+        { "/materials/0/alphaCutoff", "/materials/0/alphaCutoff",
+          "/extensions/KHR_animation_pointer/pointer: \"/materials/0/alphaCutoff\" is "
+          "animated by another channel of this animation" },
+        { "/cameras/0/perspective/yfov", "/cameras/0/perspective/yfov",
+          "/extensions/KHR_animation_pointer/pointer: \"/cameras/0/perspective/yfov\" is "
+          "animated by another channel of this animation" },
+        { "/extensions/KHR_lights_punctual/lights/0/intensity",
+          "/extensions/KHR_lights_punctual/lights/0/intensity",
+          "/extensions/KHR_animation_pointer/pointer: \"/extensions/KHR_lights_punctual/"
+          "lights/0/intensity\" is animated by another channel of this animation" },
+        { "/materials/0/emissiveTexture/extensions/KHR_texture_transform/rotation",
+          "/materials/0/emissiveTexture/extensions/KHR_texture_transform/rotation",
+          "/extensions/KHR_animation_pointer/pointer: \"/materials/0/emissiveTexture/"
+          "extensions/KHR_texture_transform/rotation\" is animated by another channel of this "
+          "animation" },
+        { "/nodes/0/scale", "/nodes/0/scale",
+          "/extensions/KHR_animation_pointer/pointer: node 0's scale is animated by another "
+          "channel of this animation" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+        static const float v3[3] = { 0.5f, 0.5f, 0.5f };
+        bool vec = strstr(cases[i].first, "scale") != NULL;
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+        int out = put(&b, v3, vec ? 3 : 1, 4, vec ? "VEC3" : "SCALAR", 1, 5126, false);
+        char samplers[128], channels[1024] = "";
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        add_channel(channels, sizeof channels, 0, cases[i].first);
+        add_channel(channels, sizeof channels, 0, cases[i].second);
+        const char *mat = "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                          "{\"KHR_texture_transform\":{}}}}";
+        char *json = scene_json_with(&b, mat, samplers, channels);
+        REQUIRE(json);
+        sr_scene *s = NULL;
+        sr_io_error e = { { 0 } };
+        CHECK_EQ(parse(json, NULL, &s, &e), SR_BAD_FORMAT);
+        char want[512];
+        snprintf(want, sizeof want, "t.gltf: /animations/0/channels/1/target%s",
+                 cases[i].message);
+        CHECK_STR_CONTAINS(e.message, want);
+        free(json);
+        sr_destroy_scene(sr_test_ctx(), s);
+    }
+    /* A node path and a pointer to it: one target. */
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+    static const float v3[3] = { 1, 2, 3 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+    int out = put(&b, v3, 3, 4, "VEC3", 1, 5126, false);
+    char samplers[128], channels[1024];
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+    snprintf(channels, sizeof channels, "{\"sampler\":0,\"target\":{\"node\":0,"
+             "\"path\":\"translation\"}}");
+    add_channel(channels, sizeof channels, 0, "/nodes/0/translation");
+    char *json = scene_json(&b, samplers, channels);
+    REQUIRE(json);
+    sr_scene *s = NULL;
+    sr_io_error e = { { 0 } };
+    CHECK_EQ(parse(json, NULL, &s, &e), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "t.gltf: /animations/0/channels/1/target/extensions/"
+                            "KHR_animation_pointer/pointer: node 0's translation is animated by "
+                            "another channel of this animation");
+    free(json);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
 /* KHR_texture_transform's members animated by pointer: the slot a
  * reading of the file with those values gives (its offset converted to
  * sr_texture_slot's v up with the rotation and the scale). */
