@@ -526,6 +526,51 @@ SR_TEST(two_channels_on_one_pointer_target_are_refused)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* A MASK material whose file cutoff is 0 reads OPAQUE (a cutoff of 0
+ * keeps every fragment); posed with an animated cutoff above 0 it is the
+ * file's MASK with that cutoff, and OPAQUE again at the rest pose and
+ * where the cutoff is 0.  An OPAQUE material's cutoff changes no mode. */
+SR_TEST(an_animated_cutoff_masks_a_mask_material_read_opaque)
+{
+    static const char *const modes[2] = { "MASK", "OPAQUE" };
+    for (int k = 0; k < 2; k++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+        static const float cut[2] = { 0, 0.4f };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+        int out = put(&b, cut, 2, 4, "SCALAR", 2, 5126, false);
+        char samplers[128], channels[512] = "", mat[128];
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        add_channel(channels, sizeof channels, 0, "/materials/0/alphaCutoff");
+        snprintf(mat, sizeof mat, "{\"alphaMode\":\"%s\",\"alphaCutoff\":0}", modes[k]);
+        char *json = scene_json_with(&b, mat, samplers, channels);
+        REQUIRE(json);
+        sr_scene *s = NULL, *posed = NULL;
+        sr_io_error e;
+        sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 1 };
+        REQUIRE(parse(json, NULL, &s, &e) == SR_OK);
+        REQUIRE(parse(json, &at, &posed, &e) == SR_OK);
+        free(json);
+        sr_alpha_mode want = k == 0 ? SR_ALPHA_MASK : SR_ALPHA_OPAQUE;
+        CHECK_EQ(s->materials[0].alpha_mode, SR_ALPHA_OPAQUE);
+        CHECK_EQ(posed->materials[0].alpha_mode, want);
+        CHECK_NEAR(posed->materials[0].alpha_cutoff, 0.2f, 1e-6);
+        REQUIRE(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 1, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, want);
+        CHECK_NEAR(s->materials[0].alpha_cutoff, 0.2f, 1e-6);
+        REQUIRE(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 0, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, SR_ALPHA_OPAQUE);
+        REQUIRE(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 2, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, want);
+        REQUIRE(sr_scene_pose(s, SR_POSE_REST, 0, 0, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, SR_ALPHA_OPAQUE);
+        CHECK_NEAR(s->materials[0].alpha_cutoff, 0, 0);
+        sr_destroy_scene(sr_test_ctx(), s);
+        sr_destroy_scene(sr_test_ctx(), posed);
+    }
+}
+
 /* KHR_texture_transform's members animated by pointer: the slot a
  * reading of the file with those values gives (its offset converted to
  * sr_texture_slot's v up with the rotation and the scale). */

@@ -354,6 +354,7 @@ typedef struct gltf_channel {
     size_t width;
     float *weights;            /* a weights channel's sampled values (width of them,
                                 * scene memory); NULL for the others */
+    bool mask;                 /* an alphaCutoff of a material the file makes MASK */
 } gltf_channel;
 
 typedef struct gltf_anim {
@@ -381,6 +382,7 @@ typedef struct gltf_pointer {
     long index;
     int node_path, prop, width;
     bool boolean;
+    bool mask;   /* the alphaCutoff of a material whose alphaMode is MASK */
 } gltf_pointer;
 sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char *tptr,
                                   gltf_pointer *out);

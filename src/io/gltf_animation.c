@@ -159,6 +159,7 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
                          sr__gltf_extension(target, "KHR_animation_pointer"), "pointer")));
             c->prop = to.prop;
             c->width = (size_t)to.width;
+            c->mask = to.mask;
             if ((r = claim(d, targeted, to.kind, to.index, to.prop, pptr, what)) != SR_OK) {
                 return r;
             }

@@ -336,6 +336,12 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
     out->index = index;
     out->prop = row;
     out->width = rows[row].width;
+    /* The reader makes a MASK material with a cutoff of 0 OPAQUE: the
+     * mode is the file's again once the cutoff is animated. */
+    const json_t *mode = json_object_get(obj, "alphaMode");
+    out->mask = rows == material_rows && rows[row].offset == offsetof(sr_pbr_material,
+                                                                      alpha_cutoff) &&
+                json_is_string(mode) && strcmp(json_string_value(mode), "MASK") == 0;
     return SR_OK;
 }
 
@@ -420,6 +426,10 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
                 continue;
             }
             write_row(&material_rows[c->prop], m, v);
+            if (c->mask) {
+                /* As the reader: a cutoff of 0 keeps every fragment. */
+                m->alpha_mode = m->alpha_cutoff > 0 ? SR_ALPHA_MASK : SR_ALPHA_OPAQUE;
+            }
             /* The reader's readings of zeros (gltf_material.c): no
              * emission at strength 0. */
             if (m->emissive_strength == 0) {
