@@ -350,7 +350,7 @@ SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
 {
     static const char *const skipped[] = {
         "/meshes/0/weights",
-        "/materials/0/extensions/KHR_materials_volume/attenuationDistance",
+        "/materials/0/doubleSided",
         "/cameras/0/type",
     };
     for (size_t i = 0; i < sizeof skipped / sizeof *skipped; i++) {
@@ -568,6 +568,67 @@ SR_TEST(an_animated_cutoff_masks_a_mask_material_read_opaque)
         CHECK_NEAR(s->materials[0].alpha_cutoff, 0, 0);
         sr_destroy_scene(sr_test_ctx(), s);
         sr_destroy_scene(sr_test_ctx(), posed);
+    }
+}
+
+/* The iridescence film's ior and thickness range and the volume's
+ * attenuation distance, interpolated and clamped to the reader's ranges
+ * (keys at 0 and 2 s, read at 1 s): an ior under 1 is 1, a negative
+ * thickness 0, a distance not positive 0 (no absorption); a film whose
+ * thickness reaches 0 shows nothing, as the reader makes it. */
+SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
+{
+    static const struct {
+        const char *ext, *name;
+        float k0, k1;
+        size_t offset;
+        float want, factor;
+    } cases[] = {
+        { "iridescence", "iridescenceIor", 1.2f, 1.8f, offsetof(sr_pbr_material, iridescence_ior),
+          1.5f, 1 },
+        { "iridescence", "iridescenceIor", 0, 0.5f, offsetof(sr_pbr_material, iridescence_ior), 1,
+          1 },
+        { "iridescence", "iridescenceThicknessMinimum", 100, 300,
+          offsetof(sr_pbr_material, iridescence_thickness_min), 200, 1 },
+        { "iridescence", "iridescenceThicknessMaximum", 400, -200,
+          offsetof(sr_pbr_material, iridescence_thickness_max), 100, 1 },
+        { "iridescence", "iridescenceThicknessMaximum", 0, -200,
+          offsetof(sr_pbr_material, iridescence_thickness_max), 0, 0 },
+        { "volume", "attenuationDistance", 2, 4,
+          offsetof(sr_pbr_material, attenuation_distance), 3, 1 },
+        { "volume", "attenuationDistance", 2, -4,
+          offsetof(sr_pbr_material, attenuation_distance), 0, 1 },
+    };
+    const char *mat = "{\"extensions\":{\"KHR_materials_iridescence\":{\"iridescenceFactor\":1},"
+                      "\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+                      "\"KHR_materials_volume\":{\"attenuationDistance\":2}}}";
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+        const float keys[2] = { cases[i].k0, cases[i].k1 };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+        int out = put(&b, keys, 2, 4, "SCALAR", 2, 5126, false);
+        char samplers[128], channels[512] = "", pointer[256];
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        snprintf(pointer, sizeof pointer, "/materials/0/extensions/KHR_materials_%s/%s",
+                 cases[i].ext, cases[i].name);
+        add_channel(channels, sizeof channels, 0, pointer);
+        char *json = scene_json_with(&b, mat, samplers, channels);
+        REQUIRE(json);
+        sr_scene *s = NULL;
+        sr_io_error e;
+        sr_test_warnings w = { 0 };
+        sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 1, .warn =
+                            sr_test_collect_warning, .user = &w };
+        REQUIRE(parse(json, &at, &s, &e) == SR_OK);
+        free(json);
+        CHECK(strstr(w.text, "not animated") == NULL);
+        float got;
+        memcpy(&got, (const char *)&s->materials[0] + cases[i].offset, sizeof got);
+        CHECK_NEAR(got, cases[i].want, 1e-5);
+        CHECK_NEAR(s->materials[0].iridescence, cases[i].factor, 0);
+        sr_destroy_scene(sr_test_ctx(), s);
     }
 }
 

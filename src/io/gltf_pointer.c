@@ -52,7 +52,14 @@ static const prop_row material_rows[] = {
     { MX("transmission", "transmissionFactor"), 1, M(transmission), 0, 1, false },
     { MX("volume", "thicknessFactor"), 1, M(thickness), 0, FLT_MAX, false },
     { MX("volume", "attenuationColor"), 3, M(attenuation_color), 0, 1, false },
+    /* Not positive: no absorption, the reader's 0. */
+    { MX("volume", "attenuationDistance"), 1, M(attenuation_distance), 0, FLT_MAX, false },
     { MX("iridescence", "iridescenceFactor"), 1, M(iridescence), 0, 1, false },
+    { MX("iridescence", "iridescenceIor"), 1, M(iridescence_ior), 1, FLT_MAX, false },
+    { MX("iridescence", "iridescenceThicknessMinimum"), 1, M(iridescence_thickness_min), 0,
+      FLT_MAX, false },
+    { MX("iridescence", "iridescenceThicknessMaximum"), 1, M(iridescence_thickness_max), 0,
+      FLT_MAX, false },
     { MX("anisotropy", "anisotropyStrength"), 1, M(anisotropy_strength), 0, 1, false },
     { MX("anisotropy", "anisotropyRotation"), 1, M(anisotropy_rotation), -FLT_MAX, FLT_MAX,
       false },
@@ -431,10 +438,15 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
                 m->alpha_mode = m->alpha_cutoff > 0 ? SR_ALPHA_MASK : SR_ALPHA_OPAQUE;
             }
             /* The reader's readings of zeros (gltf_material.c): no
-             * emission at strength 0. */
+             * emission at strength 0, no film of no thickness (which
+             * sr_pbr_material would read as the default 400 nm). */
             if (m->emissive_strength == 0) {
                 memset(m->emissive, 0, sizeof m->emissive);
                 m->emissive_strength = 1;
+            }
+            if (m->iridescence_thickness_max == 0 &&
+                (!m->iridescence_thickness_texture.texture || m->iridescence_thickness_min == 0)) {
+                m->iridescence = 0;
             }
         } else if (c->kind == GLTF_TARGET_CAMERA) {
             for (size_t k = 0; k < scene->camera_count; k++) {
