@@ -326,6 +326,9 @@ SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
         { "/nodes/0/extensions/KHR_node_visibility/visible", "SCALAR", true, "STEP", "",
           "/target/extensions/KHR_animation_pointer/pointer: \"/nodes/0/extensions/"
           "KHR_node_visibility/visible\": node 0 has no KHR_node_visibility object" },
+        { "/meshes/0/weights", "SCALAR", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: mesh 0 has no morph targets to "
+          "weigh" },
         { "/nodes/0/rotation", "VEC3", false, "LINEAR", "",
           "/sampler: its output has 3 components an element; rotation takes VEC4" },
         { "/nodes/0/translation", "VEC3", false, "LINEAR", "\"node\":0,",
@@ -349,7 +352,7 @@ SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
 SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
 {
     static const char *const skipped[] = {
-        "/meshes/0/weights",
+        "/meshes/0/primitives/0/material",
         "/materials/0/doubleSided",
         "/cameras/0/type",
     };
@@ -629,6 +632,81 @@ SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
         CHECK_NEAR(got, cases[i].want, 1e-5);
         CHECK_NEAR(s->materials[0].iridescence, cases[i].factor, 0);
         sr_destroy_scene(sr_test_ctx(), s);
+    }
+}
+
+static const float *positions_of(const sr_scene *s, int node)
+{
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        if (s->primitives[i].node == node) {
+            return s->primitives[i].positions;
+        }
+    }
+    return NULL;
+}
+
+/* /meshes/0/weights (one target moving every vertex +1 in x, 0 to 1 over
+ * 2 s) weighs the nodes drawing the mesh without weights of their own
+ * (node 0), not node 5 with its own; a node's weights channel comes
+ * first (`node_too`: node 0's weights held at 0). */
+SR_TEST(mesh_weights_animate_the_nodes_without_their_own)
+{
+    for (int node_too = 0; node_too < 2; node_too++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+        static const float dx[9] = { 1, 0, 0, 1, 0, 0, 1, 0, 0 }, up[2] = { 0, 1 };
+        static const float zero[2] = { 0, 0 };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+        int out = put(&b, up, 2, 4, "SCALAR", 2, 5126, false);
+        int held = put(&b, zero, 2, 4, "SCALAR", 2, 5126, false);
+        int target = put(&b, dx, 9, 4, "VEC3", 3, 5126, false);
+        char samplers[256], channels[1024] = "", prim[128];
+        snprintf(samplers, sizeof samplers,
+                 "{\"input\":%d,\"output\":%d},{\"input\":%d,\"output\":%d}", in, out, in,
+                 held);
+        add_channel(channels, sizeof channels, 0, "/meshes/0/weights");
+        if (node_too) {
+            add_channel(channels, sizeof channels, 1, "/nodes/0/weights");
+        }
+        char *json = scene_json(&b, samplers, channels);
+        REQUIRE(json);
+        /* The mesh gets the target, node 5 weights of its own. */
+        const char *p0 = "\"attributes\":{\"POSITION\":0},";
+        const char *n5 = "{\"mesh\":0,\"extensions\":{\"KHR_node_visibility\":{}}}";
+        snprintf(prim, sizeof prim, "%s\"targets\":[{\"POSITION\":%d}],", p0, target);
+        size_t cap = strlen(json) + 256;
+        char *full = malloc(cap), *at = strstr(json, p0), *at5 = strstr(json, n5);
+        REQUIRE(full && at && at5 && at < at5);
+        snprintf(full, cap, "%.*s%s%.*s{\"mesh\":0,\"weights\":[0]}%s", (int)(at - json), json,
+                 prim, (int)(at5 - at - strlen(p0)), at + strlen(p0), at5 + strlen(n5));
+        free(json);
+        sr_scene *s = NULL, *posed = NULL;
+        sr_io_error e;
+        sr_load_desc at1 = { .pose = SR_POSE_ANIMATION, .animation_time = 1 };
+        sr_result r = parse(full, &at1, &s, &e);
+        if (r != SR_OK) {
+            sr_test_fail(__FILE__, __LINE__, "%s", e.message);
+        }
+        REQUIRE(r == SR_OK);
+        REQUIRE(parse(full, NULL, &posed, &e) == SR_OK);
+        free(full);
+        const float *v0 = positions_of(s, 0), *v5 = positions_of(s, 5);
+        REQUIRE(v0 && v5);
+        CHECK_NEAR(v0[0], node_too ? 0 : 0.5f, 1e-6);
+        CHECK_NEAR(v0[3], node_too ? 1 : 1.5f, 1e-6);
+        CHECK_NEAR(v5[0], 0, 0);
+        /* sr_scene_pose: the same, and the rest pose's back. */
+        REQUIRE(sr_scene_pose(posed, SR_POSE_ANIMATION, 0, 1, &e) == SR_OK);
+        const float *p0v = positions_of(posed, 0);
+        REQUIRE(p0v);
+        CHECK_NEAR(p0v[0], node_too ? 0 : 0.5f, 1e-6);
+        REQUIRE(sr_scene_pose(posed, SR_POSE_REST, 0, 0, &e) == SR_OK);
+        p0v = positions_of(posed, 0);
+        REQUIRE(p0v);
+        CHECK_NEAR(p0v[0], 0, 0);
+        sr_destroy_scene(sr_test_ctx(), s);
+        sr_destroy_scene(sr_test_ctx(), posed);
     }
 }
 

@@ -340,7 +340,7 @@ typedef struct gltf_sampler {
  * material's, camera's or light's property (`index` in its collection,
  * `prop` a row of gltf_pointer.c's tables). */
 enum { GLTF_TARGET_NONE = -1, GLTF_TARGET_NODE, GLTF_TARGET_VISIBLE, GLTF_TARGET_MATERIAL,
-       GLTF_TARGET_CAMERA, GLTF_TARGET_LIGHT };
+       GLTF_TARGET_CAMERA, GLTF_TARGET_LIGHT, GLTF_TARGET_MESH_WEIGHTS };
 enum { GLTF_INTERP_LINEAR, GLTF_INTERP_STEP, GLTF_INTERP_CUBIC };
 
 /* A channel that animates: its sampler, its target and the floats a
@@ -355,6 +355,9 @@ typedef struct gltf_channel {
     float *weights;            /* a weights channel's sampled values (width of them,
                                 * scene memory); NULL for the others */
     bool mask;                 /* an alphaCutoff of a material the file makes MASK */
+    long *users;               /* a mesh's weights: the nodes drawing it without their
+                                * own weights (scene memory), user_count of them */
+    size_t user_count;
 } gltf_channel;
 
 typedef struct gltf_anim {

@@ -72,15 +72,33 @@ static sr_result read_sampler(gltf_doc *d, const json_t *obj, const char *ptr, g
     return SR_OK;
 }
 
-/* The morph targets of node's mesh (its first primitive's, which every
- * primitive must match), 0 when it has none. */
-static size_t morph_target_count(const gltf_doc *d, const json_t *node)
+/* The morph targets of mesh `index` (its first primitive's, which every
+ * primitive must match), 0 when it has none or there is no such mesh. */
+static size_t morph_target_count(const gltf_doc *d, json_int_t index)
 {
-    json_t *mesh = json_array_get(json_object_get(d->root, "meshes"),
-                                  (size_t)json_integer_value(json_object_get(node, "mesh")));
+    json_t *mesh = json_array_get(json_object_get(d->root, "meshes"), (size_t)index);
     json_t *prim = json_array_get(json_object_get(mesh, "primitives"), 0);
-    return json_is_integer(json_object_get(node, "mesh"))
-               ? json_array_size(json_object_get(prim, "targets")) : 0;
+    return index >= 0 ? json_array_size(json_object_get(prim, "targets")) : 0;
+}
+
+/* The nodes that draw mesh c->index without weights of their own, whose
+ * morph weights are the mesh's: into c (scene memory). */
+static sr_result find_users(gltf_doc *d, const char *ptr, gltf_channel *c)
+{
+    json_t *nodes = json_object_get(d->root, "nodes");
+    size_t n = json_array_size(nodes);
+    c->users = sr__scene_alloc(d->scene, (n ? n : 1) * sizeof *c->users);
+    if (!c->users) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    for (size_t i = 0; i < n; i++) {
+        json_t *node = json_array_get(nodes, i), *mesh = json_object_get(node, "mesh");
+        if (json_is_integer(mesh) && json_integer_value(mesh) == c->index &&
+            !json_object_get(node, "weights")) {
+            c->users[c->user_count++] = (long)i;
+        }
+    }
+    return SR_OK;
 }
 
 /* The targets an animation's channels have claimed so far: an open
@@ -152,7 +170,7 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
         if (to.kind == GLTF_TARGET_NONE) {
             return SR_OK;
         }
-        if (to.kind != GLTF_TARGET_NODE) {
+        if (to.kind != GLTF_TARGET_NODE && to.kind != GLTF_TARGET_MESH_WEIGHTS) {
             char pptr[GLTF_PTR], what[GLTF_PTR];
             snprintf(pptr, sizeof pptr, "%s/extensions/KHR_animation_pointer/pointer", tptr);
             snprintf(what, sizeof what, "\"%.120s\"", json_string_value(json_object_get(
@@ -165,9 +183,10 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
             }
             return sr__gltf_pointer_check(d, &to, &samplers[*sampler], sptr);
         }
-        /* A node's transform or weights: the checks of the node paths. */
-        *node = to.index;
-        *path = to.node_path;
+        /* A node's transform or weights, or a mesh's weights: the checks
+         * of the node paths. */
+        *node = to.kind == GLTF_TARGET_NODE ? to.index : -1;
+        *path = to.kind == GLTF_TARGET_NODE ? to.node_path : PATH_WEIGHTS;
         snprintf(nptr, sizeof nptr, "%s/extensions/KHR_animation_pointer/pointer", tptr);
     } else {
         /* Another path is an extension's to read: left alone, as a
@@ -192,16 +211,18 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
             return SR_OK;
         }
     }
-    json_t *n = json_array_get(nodes, (size_t)*node);
+    bool mesh = c->kind == GLTF_TARGET_MESH_WEIGHTS;
+    json_t *n = mesh ? NULL : json_array_get(nodes, (size_t)*node);
     if (json_object_get(n, "matrix")) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
                              "%s: node %ld has a matrix, which glTF does not animate (its "
                              "animated nodes have translation, rotation and scale)", nptr, *node);
     }
     char what[64];
-    snprintf(what, sizeof what, "node %ld's %s", *node, path_names[*path]);
-    if ((r = claim(d, targeted, GLTF_TARGET_NODE, *node, *path,
-                   strcmp(name, "pointer") == 0 ? nptr : tptr, what)) != SR_OK) {
+    snprintf(what, sizeof what, "%s %ld's %s", mesh ? "mesh" : "node", mesh ? c->index : *node,
+             path_names[*path]);
+    if ((r = claim(d, targeted, mesh ? c->kind : GLTF_TARGET_NODE, mesh ? c->index : *node,
+                   *path, strcmp(name, "pointer") == 0 ? nptr : tptr, what)) != SR_OK) {
         return r;
     }
     const gltf_sampler *s = &samplers[*sampler];
@@ -224,7 +245,13 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
     }
     *width = (size_t)components[*path];
     if (*path == PATH_WEIGHTS) {
-        *width = morph_target_count(d, n);
+        json_t *m = json_object_get(n, "mesh");
+        *width = morph_target_count(d, mesh ? c->index : json_is_integer(m)
+                                                           ? json_integer_value(m) : -1);
+        if (*width == 0 && mesh) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: mesh %ld has no morph targets to weigh",
+                                 nptr, c->index);
+        }
         if (*width == 0) {
             return sr__gltf_fail(d, SR_BAD_FORMAT,
                                  "%s: node %ld has no mesh with morph targets to weigh",
@@ -241,7 +268,7 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
                              s->interp == GLTF_INTERP_CUBIC ? " (CUBICSPLINE: with tangents)" : "",
                              s->count * per_key);
     }
-    return SR_OK;
+    return mesh ? find_users(d, nptr, c) : SR_OK;
 }
 
 /* The shorter way between unit quaternions a and b at s in [0, 1],
@@ -345,6 +372,19 @@ void sr__gltf_anim_apply(const gltf_anim *a, float t, gltf_node_pose *pose)
 {
     for (size_t i = 0; i < a->channel_count; i++) {
         const gltf_channel *c = &a->channels[i];
+        if (c->kind == GLTF_TARGET_MESH_WEIGHTS) {
+            /* The mesh's weights, for its nodes whose own weights no
+             * channel animates (they come first whichever the order). */
+            sr__gltf_sample(&a->samplers[c->sampler], false, c->width, t, c->weights);
+            for (size_t k = 0; k < c->user_count; k++) {
+                gltf_node_pose *p = &pose[c->users[k]];
+                if (!(p->animated & GLTF_POSE_WEIGHTS)) {
+                    p->weights = c->weights;
+                    p->weight_count = c->width;
+                }
+            }
+            continue;
+        }
         if (c->kind != GLTF_TARGET_NODE) {
             continue;
         }

@@ -265,7 +265,8 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
     out->kind = n == 0                           ? GLTF_TARGET_NONE
               : strcmp(tok[0], "nodes") == 0     ? GLTF_TARGET_NODE
               : strcmp(tok[0], "materials") == 0 ? GLTF_TARGET_MATERIAL
-              : strcmp(tok[0], "cameras") == 0   ? GLTF_TARGET_CAMERA : GLTF_TARGET_NONE;
+              : strcmp(tok[0], "cameras") == 0   ? GLTF_TARGET_CAMERA
+              : strcmp(tok[0], "meshes") == 0    ? GLTF_TARGET_MESH_WEIGHTS : GLTF_TARGET_NONE;
     if (out->kind != GLTF_TARGET_NONE) {
         arr = json_object_get(root, tok[0]);
     } else if (n >= 4 && strcmp(tok[0], "extensions") == 0 &&
@@ -297,6 +298,12 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
                 return SR_OK;
             }
         }
+    } else if (out->kind == GLTF_TARGET_MESH_WEIGHTS && obj && rn == 1 &&
+               strcmp(rest[0], "weights") == 0) {
+        /* The default weights of the nodes without their own: checked
+         * with the node paths' weights (gltf_animation.c). */
+        out->index = index;
+        return SR_OK;
     } else if (out->kind == GLTF_TARGET_NODE && obj && rn == 3 &&
                strcmp(rest[0], "extensions") == 0 && strcmp(rest[1], VIS) == 0 &&
                strcmp(rest[2], "visible") == 0) {
@@ -418,8 +425,8 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
     for (size_t i = 0; i < a->channel_count; i++) {
         const gltf_channel *c = &a->channels[i];
         float v[4];
-        if (c->kind == GLTF_TARGET_NODE) {
-            continue;
+        if (c->kind == GLTF_TARGET_NODE || c->kind == GLTF_TARGET_MESH_WEIGHTS) {
+            continue;   /* the node pose's (sr__gltf_anim_apply) */
         }
         sr__gltf_sample(&a->samplers[c->sampler], false, c->width, t, v);
         if (c->kind == GLTF_TARGET_VISIBLE) {
