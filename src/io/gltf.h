@@ -336,9 +336,10 @@ typedef struct gltf_sampler {
 } gltf_sampler;
 
 /* What a channel animates: a node's transform or weights (`node`,
- * `path`), else through KHR_animation_pointer a node's visibility, or a
- * material's, camera's or light's property (`index` in its collection,
- * `prop` a row of gltf_pointer.c's tables). */
+ * `path`), else through KHR_animation_pointer a node's visibility, a
+ * mesh's default weights (`index` the mesh), or a material's, camera's or
+ * light's property (`index` in its collection, `prop` a row of
+ * gltf_pointer.c's tables). */
 enum { GLTF_TARGET_NONE = -1, GLTF_TARGET_NODE, GLTF_TARGET_VISIBLE, GLTF_TARGET_MATERIAL,
        GLTF_TARGET_CAMERA, GLTF_TARGET_LIGHT, GLTF_TARGET_MESH_WEIGHTS };
 enum { GLTF_INTERP_LINEAR, GLTF_INTERP_STEP, GLTF_INTERP_CUBIC };
