@@ -326,6 +326,9 @@ SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
         { "/nodes/0/extensions/KHR_node_visibility/visible", "SCALAR", true, "STEP", "",
           "/target/extensions/KHR_animation_pointer/pointer: \"/nodes/0/extensions/"
           "KHR_node_visibility/visible\": node 0 has no KHR_node_visibility object" },
+        { "/meshes/0/weights", "SCALAR", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: mesh 0 has no morph targets to "
+          "weigh" },
         { "/nodes/0/rotation", "VEC3", false, "LINEAR", "",
           "/sampler: its output has 3 components an element; rotation takes VEC4" },
         { "/nodes/0/translation", "VEC3", false, "LINEAR", "\"node\":0,",
@@ -349,8 +352,8 @@ SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
 SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
 {
     static const char *const skipped[] = {
-        "/meshes/0/weights",
-        "/materials/0/extensions/KHR_materials_volume/attenuationDistance",
+        "/meshes/0/primitives/0/material",
+        "/materials/0/doubleSided",
         "/cameras/0/type",
     };
     for (size_t i = 0; i < sizeof skipped / sizeof *skipped; i++) {
@@ -447,6 +450,263 @@ SR_TEST(quantized_rotation_outputs_decode_by_the_specification)
         CHECK_NEAR(w[0], cos(M_PI / 4), kinds[k].tol);
         CHECK_NEAR(w[1], sin(M_PI / 4), kinds[k].tol);
         sr_destroy_scene(sr_test_ctx(), s);
+    }
+}
+
+/* Two channels of one animation on one target are refused by the rule
+ * node paths follow, naming the second channel's pointer. */
+SR_TEST(two_channels_on_one_pointer_target_are_refused)
+{
+    static const struct {
+        const char *first, *second, *message;
+    } cases[] = {
+        { "/materials/0/alphaCutoff", "/materials/0/alphaCutoff",
+          "/extensions/KHR_animation_pointer/pointer: \"/materials/0/alphaCutoff\" is "
+          "animated by another channel of this animation" },
+        { "/cameras/0/perspective/yfov", "/cameras/0/perspective/yfov",
+          "/extensions/KHR_animation_pointer/pointer: \"/cameras/0/perspective/yfov\" is "
+          "animated by another channel of this animation" },
+        { "/extensions/KHR_lights_punctual/lights/0/intensity",
+          "/extensions/KHR_lights_punctual/lights/0/intensity",
+          "/extensions/KHR_animation_pointer/pointer: \"/extensions/KHR_lights_punctual/"
+          "lights/0/intensity\" is animated by another channel of this animation" },
+        { "/materials/0/emissiveTexture/extensions/KHR_texture_transform/rotation",
+          "/materials/0/emissiveTexture/extensions/KHR_texture_transform/rotation",
+          "/extensions/KHR_animation_pointer/pointer: \"/materials/0/emissiveTexture/"
+          "extensions/KHR_texture_transform/rotation\" is animated by another channel of this "
+          "animation" },
+        { "/nodes/0/scale", "/nodes/0/scale",
+          "/extensions/KHR_animation_pointer/pointer: node 0's scale is animated by another "
+          "channel of this animation" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+        static const float v3[3] = { 0.5f, 0.5f, 0.5f };
+        bool vec = strstr(cases[i].first, "scale") != NULL;
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+        int out = put(&b, v3, vec ? 3 : 1, 4, vec ? "VEC3" : "SCALAR", 1, 5126, false);
+        char samplers[128], channels[1024] = "";
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        add_channel(channels, sizeof channels, 0, cases[i].first);
+        add_channel(channels, sizeof channels, 0, cases[i].second);
+        const char *mat = "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                          "{\"KHR_texture_transform\":{}}}}";
+        char *json = scene_json_with(&b, mat, samplers, channels);
+        REQUIRE(json);
+        sr_scene *s = NULL;
+        sr_io_error e = { { 0 } };
+        CHECK_EQ(parse(json, NULL, &s, &e), SR_BAD_FORMAT);
+        char want[512];
+        snprintf(want, sizeof want, "t.gltf: /animations/0/channels/1/target%s",
+                 cases[i].message);
+        CHECK_STR_CONTAINS(e.message, want);
+        free(json);
+        sr_destroy_scene(sr_test_ctx(), s);
+    }
+    /* A node path and a pointer to it: one target. */
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+    static const float v3[3] = { 1, 2, 3 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+    int out = put(&b, v3, 3, 4, "VEC3", 1, 5126, false);
+    char samplers[128], channels[1024];
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+    snprintf(channels, sizeof channels, "{\"sampler\":0,\"target\":{\"node\":0,"
+             "\"path\":\"translation\"}}");
+    add_channel(channels, sizeof channels, 0, "/nodes/0/translation");
+    char *json = scene_json(&b, samplers, channels);
+    REQUIRE(json);
+    sr_scene *s = NULL;
+    sr_io_error e = { { 0 } };
+    CHECK_EQ(parse(json, NULL, &s, &e), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "t.gltf: /animations/0/channels/1/target/extensions/"
+                            "KHR_animation_pointer/pointer: node 0's translation is animated by "
+                            "another channel of this animation");
+    free(json);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
+/* A MASK material whose file cutoff is 0 reads OPAQUE (a cutoff of 0
+ * keeps every fragment); posed with an animated cutoff above 0 it is the
+ * file's MASK with that cutoff, and OPAQUE again at the rest pose and
+ * where the cutoff is 0.  An OPAQUE material's cutoff changes no mode. */
+SR_TEST(an_animated_cutoff_masks_a_mask_material_read_opaque)
+{
+    static const char *const modes[2] = { "MASK", "OPAQUE" };
+    for (int k = 0; k < 2; k++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+        static const float cut[2] = { 0, 0.4f };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+        int out = put(&b, cut, 2, 4, "SCALAR", 2, 5126, false);
+        char samplers[128], channels[512] = "", mat[128];
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        add_channel(channels, sizeof channels, 0, "/materials/0/alphaCutoff");
+        snprintf(mat, sizeof mat, "{\"alphaMode\":\"%s\",\"alphaCutoff\":0}", modes[k]);
+        char *json = scene_json_with(&b, mat, samplers, channels);
+        REQUIRE(json);
+        sr_scene *s = NULL, *posed = NULL;
+        sr_io_error e;
+        sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 1 };
+        REQUIRE(parse(json, NULL, &s, &e) == SR_OK);
+        REQUIRE(parse(json, &at, &posed, &e) == SR_OK);
+        free(json);
+        sr_alpha_mode want = k == 0 ? SR_ALPHA_MASK : SR_ALPHA_OPAQUE;
+        CHECK_EQ(s->materials[0].alpha_mode, SR_ALPHA_OPAQUE);
+        CHECK_EQ(posed->materials[0].alpha_mode, want);
+        CHECK_NEAR(posed->materials[0].alpha_cutoff, 0.2f, 1e-6);
+        REQUIRE(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 1, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, want);
+        CHECK_NEAR(s->materials[0].alpha_cutoff, 0.2f, 1e-6);
+        REQUIRE(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 0, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, SR_ALPHA_OPAQUE);
+        REQUIRE(sr_scene_pose(s, SR_POSE_ANIMATION, 0, 2, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, want);
+        REQUIRE(sr_scene_pose(s, SR_POSE_REST, 0, 0, &e) == SR_OK);
+        CHECK_EQ(s->materials[0].alpha_mode, SR_ALPHA_OPAQUE);
+        CHECK_NEAR(s->materials[0].alpha_cutoff, 0, 0);
+        sr_destroy_scene(sr_test_ctx(), s);
+        sr_destroy_scene(sr_test_ctx(), posed);
+    }
+}
+
+/* The iridescence film's ior and thickness range and the volume's
+ * attenuation distance, interpolated and clamped to the reader's ranges
+ * (keys at 0 and 2 s, read at 1 s): an ior under 1 is 1, a negative
+ * thickness 0, a distance not positive 0 (no absorption); a film whose
+ * thickness reaches 0 shows nothing, as the reader makes it. */
+SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
+{
+    static const struct {
+        const char *ext, *name;
+        float k0, k1;
+        size_t offset;
+        float want, factor;
+    } cases[] = {
+        { "iridescence", "iridescenceIor", 1.2f, 1.8f, offsetof(sr_pbr_material, iridescence_ior),
+          1.5f, 1 },
+        { "iridescence", "iridescenceIor", 0, 0.5f, offsetof(sr_pbr_material, iridescence_ior), 1,
+          1 },
+        { "iridescence", "iridescenceThicknessMinimum", 100, 300,
+          offsetof(sr_pbr_material, iridescence_thickness_min), 200, 1 },
+        { "iridescence", "iridescenceThicknessMaximum", 400, -200,
+          offsetof(sr_pbr_material, iridescence_thickness_max), 100, 1 },
+        { "iridescence", "iridescenceThicknessMaximum", 0, -200,
+          offsetof(sr_pbr_material, iridescence_thickness_max), 0, 0 },
+        { "volume", "attenuationDistance", 2, 4,
+          offsetof(sr_pbr_material, attenuation_distance), 3, 1 },
+        { "volume", "attenuationDistance", 2, -4,
+          offsetof(sr_pbr_material, attenuation_distance), 0, 1 },
+    };
+    const char *mat = "{\"extensions\":{\"KHR_materials_iridescence\":{\"iridescenceFactor\":1},"
+                      "\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+                      "\"KHR_materials_volume\":{\"attenuationDistance\":2}}}";
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+        const float keys[2] = { cases[i].k0, cases[i].k1 };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+        int out = put(&b, keys, 2, 4, "SCALAR", 2, 5126, false);
+        char samplers[128], channels[512] = "", pointer[256];
+        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        snprintf(pointer, sizeof pointer, "/materials/0/extensions/KHR_materials_%s/%s",
+                 cases[i].ext, cases[i].name);
+        add_channel(channels, sizeof channels, 0, pointer);
+        char *json = scene_json_with(&b, mat, samplers, channels);
+        REQUIRE(json);
+        sr_scene *s = NULL;
+        sr_io_error e;
+        sr_test_warnings w = { 0 };
+        sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 1, .warn =
+                            sr_test_collect_warning, .user = &w };
+        REQUIRE(parse(json, &at, &s, &e) == SR_OK);
+        free(json);
+        CHECK(strstr(w.text, "not animated") == NULL);
+        float got;
+        memcpy(&got, (const char *)&s->materials[0] + cases[i].offset, sizeof got);
+        CHECK_NEAR(got, cases[i].want, 1e-5);
+        CHECK_NEAR(s->materials[0].iridescence, cases[i].factor, 0);
+        sr_destroy_scene(sr_test_ctx(), s);
+    }
+}
+
+static const float *positions_of(const sr_scene *s, int node)
+{
+    for (size_t i = 0; i < s->primitive_count; i++) {
+        if (s->primitives[i].node == node) {
+            return s->primitives[i].positions;
+        }
+    }
+    return NULL;
+}
+
+/* /meshes/0/weights (one target moving every vertex +1 in x, 0 to 1 over
+ * 2 s) weighs the nodes drawing the mesh without weights of their own
+ * (node 0), not node 5 with its own; a node's weights channel comes
+ * first (`node_too`: node 0's weights held at 0). */
+SR_TEST(mesh_weights_animate_the_nodes_without_their_own)
+{
+    for (int node_too = 0; node_too < 2; node_too++) {
+        blob b = { .size = 0 };
+        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+        static const float dx[9] = { 1, 0, 0, 1, 0, 0, 1, 0, 0 }, up[2] = { 0, 1 };
+        static const float zero[2] = { 0, 0 };
+        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+        int out = put(&b, up, 2, 4, "SCALAR", 2, 5126, false);
+        int held = put(&b, zero, 2, 4, "SCALAR", 2, 5126, false);
+        int target = put(&b, dx, 9, 4, "VEC3", 3, 5126, false);
+        char samplers[256], channels[1024] = "", prim[128];
+        snprintf(samplers, sizeof samplers,
+                 "{\"input\":%d,\"output\":%d},{\"input\":%d,\"output\":%d}", in, out, in,
+                 held);
+        add_channel(channels, sizeof channels, 0, "/meshes/0/weights");
+        if (node_too) {
+            add_channel(channels, sizeof channels, 1, "/nodes/0/weights");
+        }
+        char *json = scene_json(&b, samplers, channels);
+        REQUIRE(json);
+        /* The mesh gets the target, node 5 weights of its own. */
+        const char *p0 = "\"attributes\":{\"POSITION\":0},";
+        const char *n5 = "{\"mesh\":0,\"extensions\":{\"KHR_node_visibility\":{}}}";
+        snprintf(prim, sizeof prim, "%s\"targets\":[{\"POSITION\":%d}],", p0, target);
+        size_t cap = strlen(json) + 256;
+        char *full = malloc(cap), *at = strstr(json, p0), *at5 = strstr(json, n5);
+        REQUIRE(full && at && at5 && at < at5);
+        snprintf(full, cap, "%.*s%s%.*s{\"mesh\":0,\"weights\":[0]}%s", (int)(at - json), json,
+                 prim, (int)(at5 - at - strlen(p0)), at + strlen(p0), at5 + strlen(n5));
+        free(json);
+        sr_scene *s = NULL, *posed = NULL;
+        sr_io_error e;
+        sr_load_desc at1 = { .pose = SR_POSE_ANIMATION, .animation_time = 1 };
+        sr_result r = parse(full, &at1, &s, &e);
+        if (r != SR_OK) {
+            sr_test_fail(__FILE__, __LINE__, "%s", e.message);
+        }
+        REQUIRE(r == SR_OK);
+        REQUIRE(parse(full, NULL, &posed, &e) == SR_OK);
+        free(full);
+        const float *v0 = positions_of(s, 0), *v5 = positions_of(s, 5);
+        REQUIRE(v0 && v5);
+        CHECK_NEAR(v0[0], node_too ? 0 : 0.5f, 1e-6);
+        CHECK_NEAR(v0[3], node_too ? 1 : 1.5f, 1e-6);
+        CHECK_NEAR(v5[0], 0, 0);
+        /* sr_scene_pose: the same, and the rest pose's back. */
+        REQUIRE(sr_scene_pose(posed, SR_POSE_ANIMATION, 0, 1, &e) == SR_OK);
+        const float *p0v = positions_of(posed, 0);
+        REQUIRE(p0v);
+        CHECK_NEAR(p0v[0], node_too ? 0 : 0.5f, 1e-6);
+        REQUIRE(sr_scene_pose(posed, SR_POSE_REST, 0, 0, &e) == SR_OK);
+        p0v = positions_of(posed, 0);
+        REQUIRE(p0v);
+        CHECK_NEAR(p0v[0], 0, 0);
+        sr_destroy_scene(sr_test_ctx(), s);
+        sr_destroy_scene(sr_test_ctx(), posed);
     }
 }
 

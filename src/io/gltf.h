@@ -336,11 +336,12 @@ typedef struct gltf_sampler {
 } gltf_sampler;
 
 /* What a channel animates: a node's transform or weights (`node`,
- * `path`), else through KHR_animation_pointer a node's visibility, or a
- * material's, camera's or light's property (`index` in its collection,
- * `prop` a row of gltf_pointer.c's tables). */
+ * `path`), else through KHR_animation_pointer a node's visibility, a
+ * mesh's default weights (`index` the mesh), or a material's, camera's or
+ * light's property (`index` in its collection, `prop` a row of
+ * gltf_pointer.c's tables). */
 enum { GLTF_TARGET_NONE = -1, GLTF_TARGET_NODE, GLTF_TARGET_VISIBLE, GLTF_TARGET_MATERIAL,
-       GLTF_TARGET_CAMERA, GLTF_TARGET_LIGHT };
+       GLTF_TARGET_CAMERA, GLTF_TARGET_LIGHT, GLTF_TARGET_MESH_WEIGHTS };
 enum { GLTF_INTERP_LINEAR, GLTF_INTERP_STEP, GLTF_INTERP_CUBIC };
 
 /* A channel that animates: its sampler, its target and the floats a
@@ -354,6 +355,10 @@ typedef struct gltf_channel {
     size_t width;
     float *weights;            /* a weights channel's sampled values (width of them,
                                 * scene memory); NULL for the others */
+    bool mask;                 /* an alphaCutoff of a material the file makes MASK */
+    long *users;               /* a mesh's weights: the nodes drawing it without their
+                                * own weights (scene memory), user_count of them */
+    size_t user_count;
 } gltf_channel;
 
 typedef struct gltf_anim {
@@ -381,6 +386,7 @@ typedef struct gltf_pointer {
     long index;
     int node_path, prop, width;
     bool boolean;
+    bool mask;   /* the alphaCutoff of a material whose alphaMode is MASK */
 } gltf_pointer;
 sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char *tptr,
                                   gltf_pointer *out);

@@ -10,6 +10,7 @@
 #include "io/gltf.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,22 +72,68 @@ static sr_result read_sampler(gltf_doc *d, const json_t *obj, const char *ptr, g
     return SR_OK;
 }
 
-/* The morph targets of node's mesh (its first primitive's, which every
- * primitive must match), 0 when it has none. */
-static size_t morph_target_count(const gltf_doc *d, const json_t *node)
+/* The morph targets of mesh `index` (its first primitive's, which every
+ * primitive must match), 0 when it has none or there is no such mesh. */
+static size_t morph_target_count(const gltf_doc *d, json_int_t index)
 {
-    json_t *mesh = json_array_get(json_object_get(d->root, "meshes"),
-                                  (size_t)json_integer_value(json_object_get(node, "mesh")));
+    json_t *mesh = json_array_get(json_object_get(d->root, "meshes"), (size_t)index);
     json_t *prim = json_array_get(json_object_get(mesh, "primitives"), 0);
-    return json_is_integer(json_object_get(node, "mesh"))
-               ? json_array_size(json_object_get(prim, "targets")) : 0;
+    return index >= 0 ? json_array_size(json_object_get(prim, "targets")) : 0;
+}
+
+/* The nodes that draw mesh c->index without weights of their own, whose
+ * morph weights are the mesh's: into c (scene memory). */
+static sr_result find_users(gltf_doc *d, const char *ptr, gltf_channel *c)
+{
+    json_t *nodes = json_object_get(d->root, "nodes");
+    size_t n = json_array_size(nodes);
+    c->users = sr__scene_alloc(d->scene, (n ? n : 1) * sizeof *c->users);
+    if (!c->users) {
+        return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
+    }
+    for (size_t i = 0; i < n; i++) {
+        json_t *node = json_array_get(nodes, i), *mesh = json_object_get(node, "mesh");
+        if (json_is_integer(mesh) && json_integer_value(mesh) == c->index &&
+            !json_object_get(node, "weights")) {
+            c->users[c->user_count++] = (long)i;
+        }
+    }
+    return SR_OK;
+}
+
+/* The targets an animation's channels have claimed so far: an open
+ * addressing set of (kind, index, property) keys, 0 an empty slot; cap a
+ * power of two above twice the channels so it never fills. */
+typedef struct claims {
+    uint64_t *keys;
+    size_t cap;
+} claims;
+
+/* One rule for every target (a node's transform, weights or visibility, a
+ * material's, camera's or light's property): glTF lets one channel of an
+ * animation animate it.  `ptr` and `what` name the channel and its target
+ * in the message. */
+static sr_result claim(gltf_doc *d, claims *set, int kind, long index, int prop,
+                       const char *ptr, const char *what)
+{
+    uint64_t key = ((uint64_t)index << 16 | (uint64_t)(kind + 1) << 12 | (uint64_t)prop) + 1;
+    size_t at = (size_t)(key * 0x9E3779B97F4A7C15u >> 32) & (set->cap - 1);
+    while (set->keys[at] && set->keys[at] != key) {
+        at = (at + 1) & (set->cap - 1);
+    }
+    if (set->keys[at]) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: %s is animated by another channel of this "
+                             "animation", ptr, what);
+    }
+    set->keys[at] = key;
+    return SR_OK;
 }
 
 /* Checks channel ch's target and its sampler's output against each
  * other into c: its target, and the floats a key for sampling. */
 static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
                                const gltf_sampler *samplers, size_t sampler_count,
-                               unsigned char *targeted, gltf_channel *c)
+                               claims *targeted, gltf_channel *c)
 {
     sr_result r;
     json_t *target, *nodes = json_object_get(d->root, "nodes");
@@ -123,14 +170,23 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
         if (to.kind == GLTF_TARGET_NONE) {
             return SR_OK;
         }
-        if (to.kind != GLTF_TARGET_NODE) {
+        if (to.kind != GLTF_TARGET_NODE && to.kind != GLTF_TARGET_MESH_WEIGHTS) {
+            char pptr[GLTF_PTR], what[GLTF_PTR];
+            snprintf(pptr, sizeof pptr, "%s/extensions/KHR_animation_pointer/pointer", tptr);
+            snprintf(what, sizeof what, "\"%.120s\"", json_string_value(json_object_get(
+                         sr__gltf_extension(target, "KHR_animation_pointer"), "pointer")));
             c->prop = to.prop;
             c->width = (size_t)to.width;
+            c->mask = to.mask;
+            if ((r = claim(d, targeted, to.kind, to.index, to.prop, pptr, what)) != SR_OK) {
+                return r;
+            }
             return sr__gltf_pointer_check(d, &to, &samplers[*sampler], sptr);
         }
-        /* A node's transform or weights: the checks of the node paths. */
-        *node = to.index;
-        *path = to.node_path;
+        /* A node's transform or weights, or a mesh's weights: the checks
+         * of the node paths. */
+        *node = to.kind == GLTF_TARGET_NODE ? to.index : -1;
+        *path = to.kind == GLTF_TARGET_NODE ? to.node_path : PATH_WEIGHTS;
         snprintf(nptr, sizeof nptr, "%s/extensions/KHR_animation_pointer/pointer", tptr);
     } else {
         /* Another path is an extension's to read: left alone, as a
@@ -155,18 +211,20 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
             return SR_OK;
         }
     }
-    json_t *n = json_array_get(nodes, (size_t)*node);
+    bool mesh = c->kind == GLTF_TARGET_MESH_WEIGHTS;
+    json_t *n = mesh ? NULL : json_array_get(nodes, (size_t)*node);
     if (json_object_get(n, "matrix")) {
         return sr__gltf_fail(d, SR_BAD_FORMAT,
                              "%s: node %ld has a matrix, which glTF does not animate (its "
                              "animated nodes have translation, rotation and scale)", nptr, *node);
     }
-    if (targeted[*node] & (1u << *path)) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT,
-                             "%s: node %ld's %s is animated by another channel of this "
-                             "animation", tptr, *node, path_names[*path]);
+    char what[64];
+    snprintf(what, sizeof what, "%s %ld's %s", mesh ? "mesh" : "node", mesh ? c->index : *node,
+             path_names[*path]);
+    if ((r = claim(d, targeted, mesh ? c->kind : GLTF_TARGET_NODE, mesh ? c->index : *node,
+                   *path, strcmp(name, "pointer") == 0 ? nptr : tptr, what)) != SR_OK) {
+        return r;
     }
-    targeted[*node] |= (unsigned char)(1u << *path);
     const gltf_sampler *s = &samplers[*sampler];
     static const int components[] = { 3, 4, 3, 1 };
     if (s->out.components != components[*path]) {
@@ -187,7 +245,13 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
     }
     *width = (size_t)components[*path];
     if (*path == PATH_WEIGHTS) {
-        *width = morph_target_count(d, n);
+        json_t *m = json_object_get(n, "mesh");
+        *width = morph_target_count(d, mesh ? c->index : json_is_integer(m)
+                                                           ? json_integer_value(m) : -1);
+        if (*width == 0 && mesh) {
+            return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: mesh %ld has no morph targets to weigh",
+                                 nptr, c->index);
+        }
         if (*width == 0) {
             return sr__gltf_fail(d, SR_BAD_FORMAT,
                                  "%s: node %ld has no mesh with morph targets to weigh",
@@ -204,7 +268,7 @@ static sr_result check_channel(gltf_doc *d, const json_t *ch, const char *ptr,
                              s->interp == GLTF_INTERP_CUBIC ? " (CUBICSPLINE: with tangents)" : "",
                              s->count * per_key);
     }
-    return SR_OK;
+    return mesh ? find_users(d, nptr, c) : SR_OK;
 }
 
 /* The shorter way between unit quaternions a and b at s in [0, 1],
@@ -308,6 +372,19 @@ void sr__gltf_anim_apply(const gltf_anim *a, float t, gltf_node_pose *pose)
 {
     for (size_t i = 0; i < a->channel_count; i++) {
         const gltf_channel *c = &a->channels[i];
+        if (c->kind == GLTF_TARGET_MESH_WEIGHTS) {
+            /* The mesh's weights, for its nodes whose own weights no
+             * channel animates (they come first whichever the order). */
+            sr__gltf_sample(&a->samplers[c->sampler], false, c->width, t, c->weights);
+            for (size_t k = 0; k < c->user_count; k++) {
+                gltf_node_pose *p = &pose[c->users[k]];
+                if (!(p->animated & GLTF_POSE_WEIGHTS)) {
+                    p->weights = c->weights;
+                    p->weight_count = c->width;
+                }
+            }
+            continue;
+        }
         if (c->kind != GLTF_TARGET_NODE) {
             continue;
         }
@@ -339,7 +416,7 @@ void sr__gltf_anim_free(gltf_anim *a)
  * applied at d->desc's time when `apply`, and its decoded samplers handed
  * to d->posing for sr_scene_pose when the scene keeps them. */
 static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr, size_t index,
-                                bool apply, unsigned char *targeted, sr_scene_animation *out)
+                                bool apply, sr_scene_animation *out)
 {
     sr_result r;
     if (!json_is_object(obj)) {
@@ -362,7 +439,13 @@ static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr,
     char *copy = sr__scene_alloc(d->scene, strlen(text) + 1);
     gltf_anim a = { .samplers = calloc(ns, sizeof *a.samplers), .sampler_count = ns,
                     .channels = calloc(nc, sizeof *a.channels) };
-    if (!copy || !a.samplers || !a.channels) {
+    claims targeted = { .cap = 16 };
+    while (targeted.cap <= 2 * nc) {
+        targeted.cap *= 2;
+    }
+    targeted.keys = calloc(targeted.cap, sizeof *targeted.keys);
+    if (!copy || !a.samplers || !a.channels || !targeted.keys) {
+        free(targeted.keys);
         sr__gltf_anim_free(&a);
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
     }
@@ -386,7 +469,7 @@ static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr,
         char cptr[GLTF_PTR];
         snprintf(cptr, sizeof cptr, "%s/channels/%zu", ptr, i);
         gltf_channel c = { .sampler = -1, .node = -1, .index = -1 };
-        r = check_channel(d, json_array_get(channels, i), cptr, s, ns, targeted, &c);
+        r = check_channel(d, json_array_get(channels, i), cptr, s, ns, &targeted, &c);
         if (r != SR_OK || !keep || c.kind == GLTF_TARGET_NONE) {
             continue;
         }
@@ -396,6 +479,7 @@ static sr_result read_animation(gltf_doc *d, const json_t *obj, const char *ptr,
         }
         a.channels[a.channel_count++] = c;
     }
+    free(targeted.keys);
     if (r == SR_OK && apply) {
         sr__gltf_anim_apply(&a, d->desc->animation_time, d->pose);
     }
@@ -440,23 +524,18 @@ sr_result sr__gltf_read_animations(gltf_doc *d)
     if (!d->for_mesh && !sr__gltf_posing_start(d, n)) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/animations: out of memory");
     }
-    unsigned char *targeted = malloc(node_count ? node_count : 1);
     d->pose = posed ? sr__scene_alloc(d->scene, (node_count ? node_count : 1) * sizeof *d->pose)
                     : NULL;
-    if (!d->scene->animations || !targeted || (posed && !d->pose)) {
-        free(targeted);
+    if (!d->scene->animations || (posed && !d->pose)) {
         return sr__gltf_fail(d, SR_OUT_OF_MEMORY, "/animations: out of memory");
     }
     d->scene->animation_count = n;
     for (size_t i = 0; i < n && r == SR_OK; i++) {
         char ptr[GLTF_PTR];
         snprintf(ptr, sizeof ptr, "/animations/%zu", i);
-        memset(targeted, 0, node_count ? node_count : 1);
         r = read_animation(d, json_array_get(anims, i), ptr, i,
-                           posed && (size_t)d->desc->animation == i, targeted,
-                           &d->scene->animations[i]);
+                           posed && (size_t)d->desc->animation == i, &d->scene->animations[i]);
     }
-    free(targeted);
     if (r == SR_OK && posed) {
         d->scene->animation = d->desc->animation;
         d->scene->animation_time = d->desc->animation_time;

@@ -52,7 +52,14 @@ static const prop_row material_rows[] = {
     { MX("transmission", "transmissionFactor"), 1, M(transmission), 0, 1, false },
     { MX("volume", "thicknessFactor"), 1, M(thickness), 0, FLT_MAX, false },
     { MX("volume", "attenuationColor"), 3, M(attenuation_color), 0, 1, false },
+    /* Not positive: no absorption, the reader's 0. */
+    { MX("volume", "attenuationDistance"), 1, M(attenuation_distance), 0, FLT_MAX, false },
     { MX("iridescence", "iridescenceFactor"), 1, M(iridescence), 0, 1, false },
+    { MX("iridescence", "iridescenceIor"), 1, M(iridescence_ior), 1, FLT_MAX, false },
+    { MX("iridescence", "iridescenceThicknessMinimum"), 1, M(iridescence_thickness_min), 0,
+      FLT_MAX, false },
+    { MX("iridescence", "iridescenceThicknessMaximum"), 1, M(iridescence_thickness_max), 0,
+      FLT_MAX, false },
     { MX("anisotropy", "anisotropyStrength"), 1, M(anisotropy_strength), 0, 1, false },
     { MX("anisotropy", "anisotropyRotation"), 1, M(anisotropy_rotation), -FLT_MAX, FLT_MAX,
       false },
@@ -258,7 +265,8 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
     out->kind = n == 0                           ? GLTF_TARGET_NONE
               : strcmp(tok[0], "nodes") == 0     ? GLTF_TARGET_NODE
               : strcmp(tok[0], "materials") == 0 ? GLTF_TARGET_MATERIAL
-              : strcmp(tok[0], "cameras") == 0   ? GLTF_TARGET_CAMERA : GLTF_TARGET_NONE;
+              : strcmp(tok[0], "cameras") == 0   ? GLTF_TARGET_CAMERA
+              : strcmp(tok[0], "meshes") == 0    ? GLTF_TARGET_MESH_WEIGHTS : GLTF_TARGET_NONE;
     if (out->kind != GLTF_TARGET_NONE) {
         arr = json_object_get(root, tok[0]);
     } else if (n >= 4 && strcmp(tok[0], "extensions") == 0 &&
@@ -290,6 +298,12 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
                 return SR_OK;
             }
         }
+    } else if (out->kind == GLTF_TARGET_MESH_WEIGHTS && obj && rn == 1 &&
+               strcmp(rest[0], "weights") == 0) {
+        /* The default weights of the nodes without their own: checked
+         * with the node paths' weights (gltf_animation.c). */
+        out->index = index;
+        return SR_OK;
     } else if (out->kind == GLTF_TARGET_NODE && obj && rn == 3 &&
                strcmp(rest[0], "extensions") == 0 && strcmp(rest[1], VIS) == 0 &&
                strcmp(rest[2], "visible") == 0) {
@@ -336,6 +350,12 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
     out->index = index;
     out->prop = row;
     out->width = rows[row].width;
+    /* The reader makes a MASK material with a cutoff of 0 OPAQUE: the
+     * mode is the file's again once the cutoff is animated. */
+    const json_t *mode = json_object_get(obj, "alphaMode");
+    out->mask = rows == material_rows && rows[row].offset == offsetof(sr_pbr_material,
+                                                                      alpha_cutoff) &&
+                json_is_string(mode) && strcmp(json_string_value(mode), "MASK") == 0;
     return SR_OK;
 }
 
@@ -405,8 +425,8 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
     for (size_t i = 0; i < a->channel_count; i++) {
         const gltf_channel *c = &a->channels[i];
         float v[4];
-        if (c->kind == GLTF_TARGET_NODE) {
-            continue;
+        if (c->kind == GLTF_TARGET_NODE || c->kind == GLTF_TARGET_MESH_WEIGHTS) {
+            continue;   /* the node pose's (sr__gltf_anim_apply) */
         }
         sr__gltf_sample(&a->samplers[c->sampler], false, c->width, t, v);
         if (c->kind == GLTF_TARGET_VISIBLE) {
@@ -420,11 +440,20 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
                 continue;
             }
             write_row(&material_rows[c->prop], m, v);
+            if (c->mask) {
+                /* As the reader: a cutoff of 0 keeps every fragment. */
+                m->alpha_mode = m->alpha_cutoff > 0 ? SR_ALPHA_MASK : SR_ALPHA_OPAQUE;
+            }
             /* The reader's readings of zeros (gltf_material.c): no
-             * emission at strength 0. */
+             * emission at strength 0, no film of no thickness (which
+             * sr_pbr_material would read as the default 400 nm). */
             if (m->emissive_strength == 0) {
                 memset(m->emissive, 0, sizeof m->emissive);
                 m->emissive_strength = 1;
+            }
+            if (m->iridescence_thickness_max == 0 &&
+                (!m->iridescence_thickness_texture.texture || m->iridescence_thickness_min == 0)) {
+                m->iridescence = 0;
             }
         } else if (c->kind == GLTF_TARGET_CAMERA) {
             for (size_t k = 0; k < scene->camera_count; k++) {
