@@ -11,10 +11,12 @@ channel.  Standard library only.
 The default, 500 x 1000 vertices, writes a file of about 40 MB.
 """
 import array
-import json
 import math
-import struct
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tools"))
+import glb  # noqa: E402  (tools/glb.py: the GLB container)
 
 
 def main():
@@ -120,14 +122,7 @@ def main():
             {"input": a_t, "output": a_w},
             {"input": a_t, "output": a_lift}]}],
     }
-    text = json.dumps(doc, separators=(",", ":")).encode()
-    text += b" " * (-len(text) % 4)
-    total = 12 + 8 + len(text) + 8 + len(blob)
-    with open(out, "wb") as f:
-        f.write(struct.pack("<4sII", b"glTF", 2, total))
-        f.write(struct.pack("<I4s", len(text), b"JSON") + text)
-        f.write(struct.pack("<I4s", len(blob), b"BIN\0") + bytes(blob))
-
+    glb.write_chunks(out, doc, blob)
 
 if __name__ == "__main__":
     main()

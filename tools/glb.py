@@ -27,12 +27,17 @@ class Buffer:
 def write(path, doc, buf):
     """doc (without accessors, bufferViews, buffers) and buf as a .glb."""
     blob = buf.bytes()
-    doc = dict(doc, accessors=buf.accessors, bufferViews=buf.views,
-               buffers=[{"byteLength": len(blob)}])
+    write_chunks(path, dict(doc, accessors=buf.accessors, bufferViews=buf.views,
+                            buffers=[{"byteLength": len(blob)}]), blob)
+
+
+def write_chunks(path, doc, blob):
+    """A complete doc and its buffer's bytes as a .glb: the JSON chunk
+    padded with spaces, the BIN chunk already 4-byte aligned."""
     text = json.dumps(doc, separators=(",", ":")).encode()
     text += b" " * (-len(text) % 4)
     total = 12 + 8 + len(text) + 8 + len(blob)
     with open(path, "wb") as f:
         f.write(struct.pack("<4sII", b"glTF", 2, total))
         f.write(struct.pack("<I4s", len(text), b"JSON") + text)
-        f.write(struct.pack("<I4s", len(blob), b"BIN\0") + blob)
+        f.write(struct.pack("<I4s", len(blob), b"BIN\0") + bytes(blob))
