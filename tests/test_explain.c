@@ -1515,6 +1515,30 @@ SR_TEST(aaline_caption_gives_distances_and_coverage)
                    "d = 0.577, coverage 0.423; y = 4: d = 0.348, coverage 0.652.");
 }
 
+/* A column of a line wider than its caption can list: the caption ended
+ * mid-list without a word; it now says how many pixels it leaves out.  A
+ * horizontal line 30 wide through row 12, column x = 5: rows 0 to 24 at
+ * d = |y - 12|, each listed while the caption has room. */
+SR_TEST(aaline_wide_column_caption_counts_what_it_leaves_out)
+{
+    NEEDS_CLI();
+    char text[1000];
+    int len = snprintf(text, sizeof text, "7. Column x = 5: 25 pixels within the reach 15.5, "
+                       "coverage = reach - d. ");
+    int y = 0;
+    for (; y < 25 && len < 900 - 80; y++) {
+        double d = abs(y - 12);
+        len += snprintf(text + len, sizeof text - (size_t)len,
+                        "y = %d: d = %.3f, coverage %.3f -> 1%s", y, d, 15.5 - d,
+                        y < 24 ? "; " : ".");
+    }
+    REQUIRE(y < 25);
+    snprintf(text + len, sizeof text - (size_t)len, "and %d more.", 25 - y);
+    expect_caption("aaline_wide", (const char *[]){ "aaline", "--line", "0.5,12.5,10.5,12.5",
+                                                    "--width", "30", "--grid", "16x25", NULL },
+                   7, 25, text);
+}
+
 /* perspective's frame 3 compares the two interpolations along the span;
  * it said "steps unevenly: at x = 0 it is 0.000, 0.000 affine" for a
  * --row that misses the triangle, and "unevenly" when every w is equal
