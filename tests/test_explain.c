@@ -942,6 +942,11 @@ SR_TEST(explain_refuses_bad_input)
                                                dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--highlight", "1", "-o",
                                                dir, NULL }), 2);
+    static const char *const bad_widths[] = { "0", "-1", "64.5", "1px", "nan", "" };
+    for (size_t i = 0; i < sizeof bad_widths / sizeof bad_widths[0]; i++) {
+        CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "aaline", "--width", bad_widths[i],
+                                                   "-o", dir, NULL }), 2);
+    }
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "--help", NULL }), 0);
 }
 
@@ -1204,7 +1209,7 @@ SR_TEST(options_of_another_algorithm_are_refused)
         { "msaa", "--w", "1,2,3" },             { "perspective", "--intensity", "0,1,0" },
         { "triangle", "--eye", "1,2,3" },       { "clip4d", "--projection", "orthographic" },
         { "perspective", "--highlight", "3,3" }, { "transform", "--shininess", "8" },
-        { "zbuffer", "--offset", "-1,-1" },
+        { "zbuffer", "--offset", "-1,-1" },     { "wu", "--width", "2" },
     };
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
@@ -1410,17 +1415,16 @@ SR_TEST(bresenham_tie_caption_reads_once)
                    "2. Plot (1, 2). d = -2 < 0: step E, d + 10 = 8.");
 }
 
-/* aaline's last frame against sr_draw's smooth line (width 1), the fill
- * blue over white: each cell within one 8-bit step of its pixel, every
- * pixel sr_draw leaves white an empty cell.  Random lines with ends at
- * 1/8 px inside the grid (sr_draw clips a line that leaves the
- * framebuffer, which moves its snapped end). */
-SR_TEST(aaline_last_frame_is_what_sr_draw_draws)
+/* aaline's last frame against sr_draw's smooth line of line_width (as
+ * --width gives it), the fill blue over white: each cell within one 8-bit
+ * step of its pixel, every pixel sr_draw leaves white an empty cell.
+ * Random lines with ends at 1/8 px inside the grid (sr_draw clips a line
+ * that leaves the framebuffer, which moves its snapped end).  The pixels
+ * drawn are added to *drawn. */
+static void check_aaline_last_frames(uint32_t seed, const char *width, int *drawn)
 {
-    NEEDS_CLI();
-    sr_rng rng = { 0xaa11u };
+    sr_rng rng = { seed };
     rt_target t = rt_make(GRID, GRID, 1);
-    int drawn = 0;
     for (int k = 0; k < 16; k++) {
         double v[4];
         for (int i = 0; i < 4; i++) {
@@ -1428,9 +1432,9 @@ SR_TEST(aaline_last_frame_is_what_sr_draw_draws)
         }
         char prim[128], dir[1024], name[40];
         snprintf(prim, sizeof prim, "%g,%g,%g,%g", v[0], v[1], v[2], v[3]);
-        snprintf(name, sizeof name, "aaline_%02d", k);
+        snprintf(name, sizeof name, "aaline_w%s_%02d", width, k);
         out_dir(name, dir, sizeof dir);
-        REQUIRE(run_explain("aaline", "--line", prim, dir) == 0);
+        REQUIRE(run_explain_with("aaline", "--line", prim, "--width", width, dir) == 0);
         uint8_t cells[GRID * GRID], rgb[GRID * GRID * 3];
         int last = last_frame_cells(dir, cells);
         REQUIRE(last >= 2);
@@ -1438,7 +1442,8 @@ SR_TEST(aaline_last_frame_is_what_sr_draw_draws)
         sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
         float pos[6] = { rt_ndc_x(&t, v[0]), rt_ndc_y(&t, v[1]), 0,
                          rt_ndc_x(&t, v[2]), rt_ndc_y(&t, v[3]), 0 };
-        sr_state st = { .shading = SR_SHADING_UNLIT, .smooth_lines = true, .line_width = 1,
+        sr_state st = { .shading = SR_SHADING_UNLIT, .smooth_lines = true,
+                        .line_width = strtof(width, NULL),
                         .material = { .diffuse = { 0.20f, 0.45f, 0.85f } } };
         REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .primitive = SR_PRIM_LINES,
                                                            .positions = pos,
@@ -1449,14 +1454,39 @@ SR_TEST(aaline_last_frame_is_what_sr_draw_draws)
             for (int ch = 0; ch < 3; ch++) {
                 diff += abs(px[4 * i + ch] - rgb[3 * i + ch]) > 1;
             }
-            drawn += px[4 * i] != 255;
+            *drawn += px[4 * i] != 255;
         }
         if (diff) {
-            FAILF("aaline %s: %d channels differ", prim, diff);
+            FAILF("aaline --line %s --width %s: %d channels differ", prim, width, diff);
         }
     }
-    CHECK(drawn > 200);
     rt_free(&t);
+}
+
+SR_TEST(aaline_last_frame_is_what_sr_draw_draws)
+{
+    NEEDS_CLI();
+    int drawn = 0;
+    check_aaline_last_frames(0xaa11u, "1", &drawn);
+    CHECK(drawn > 200);
+}
+
+/* --width: the explained line is sr_draw's of that width, thinner than a
+ * pixel, wider, and of a width whose edges fall between pixel centres;
+ * the same lines at each width. */
+SR_TEST(aaline_width_is_sr_draws_line_width)
+{
+    NEEDS_CLI();
+    static const char *const widths[] = { "0.5", "2.5", "3.3", "6" };
+    int drawn[4] = { 0 };
+    for (int i = 0; i < 4; i++) {
+        check_aaline_last_frames(0xaa12u, widths[i], &drawn[i]);
+    }
+    /* a wider line covers more: the width reached the walk */
+    CHECK(drawn[0] > 100);
+    for (int i = 1; i < 4; i++) {
+        CHECK(drawn[i] > drawn[i - 1]);
+    }
 }
 
 /* The example's first end: the gap and the two weights it scales. */
@@ -1483,6 +1513,30 @@ SR_TEST(aaline_caption_gives_distances_and_coverage)
     expect_caption("aaline_column", (const char *[]){ "aaline", NULL }, 7, 10,
                    "7. Column x = 5: 2 pixels within the reach 1, coverage = reach - d. y = 3: "
                    "d = 0.577, coverage 0.423; y = 4: d = 0.348, coverage 0.652.");
+}
+
+/* A column of a line wider than its caption can list: the caption ended
+ * mid-list without a word; it now says how many pixels it leaves out.  A
+ * horizontal line 30 wide through row 12, column x = 5: rows 0 to 24 at
+ * d = |y - 12|, each listed while the caption has room. */
+SR_TEST(aaline_wide_column_caption_counts_what_it_leaves_out)
+{
+    NEEDS_CLI();
+    char text[1000];
+    int len = snprintf(text, sizeof text, "7. Column x = 5: 25 pixels within the reach 15.5, "
+                       "coverage = reach - d. ");
+    int y = 0;
+    for (; y < 25 && len < 900 - 80; y++) {
+        double d = abs(y - 12);
+        len += snprintf(text + len, sizeof text - (size_t)len,
+                        "y = %d: d = %.3f, coverage %.3f -> 1%s", y, d, 15.5 - d,
+                        y < 24 ? "; " : ".");
+    }
+    REQUIRE(y < 25);
+    snprintf(text + len, sizeof text - (size_t)len, "and %d more.", 25 - y);
+    expect_caption("aaline_wide", (const char *[]){ "aaline", "--line", "0.5,12.5,10.5,12.5",
+                                                    "--width", "30", "--grid", "16x25", NULL },
+                   7, 25, text);
 }
 
 /* perspective's frame 3 compares the two interpolations along the span;

@@ -28,6 +28,8 @@ const OPTIONS = [
       applies: (a) => a.name === 'gouraud' },
     { option: '--offset', label: 'polygon offset (factor, units)',
       values: ['-1,-1', '-1,0', '0,-1', '0,0'], applies: (a) => a.name === 'zfight' },
+    { option: '--width', label: 'line width', values: ['1', '0.5', '2.5', '4'],
+      applies: (a) => a.name === 'aaline' },
 ];
 // Options that give a value at each vertex: the page keeps the example's.
 const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };

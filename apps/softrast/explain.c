@@ -54,9 +54,11 @@ static const algorithm algorithms[] = {
       "Xiaolin Wu's antialiased line: per column the intersection,\n"
       "             the two pixels straddling it and their weights" },
     { "aaline", EX_LINE, explain_aaline,
-      { .kind = EX_LINE, .pts = { { 1.3, 2.4 }, { 14.2, 7.7 } }, .count = 2 }, 16, 10, 32,
+      { .kind = EX_LINE, .pts = { { 1.3, 2.4 }, { 14.2, 7.7 } }, .count = 2, .line_width = 1 },
+      16, 10, 32,
       "softrast's antialiased line (sr_draw's smooth lines): each\n"
-      "             pixel's distance to the segment and its coverage" },
+      "             pixel's distance to the segment and its coverage\n"
+      "             (--width)" },
     { "zbuffer", EX_TRIANGLES, explain_zbuffer,
       { .kind = EX_TRIANGLES, .pts = { { 1.5, 1.5 }, { 12.5, 3.5 }, { 3.5, 10.5 },
                                        { 11.5, 0.5 }, { 12.5, 10.5 }, { 2.5, 6.5 } },
@@ -138,6 +140,8 @@ static void usage(FILE *f)
             "  --triangle X0,Y0,X1,Y1,X2,Y2\n"
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
+            "  --width W                  aaline: the line's width in pixels, 0.0625 to 64\n"
+            "                             (default 1)\n"
             "  --circle CX,CY,R           circle: centre and radius (R at most 4096)\n"
             "  --cubic X0,Y0,...,X3,Y3    forward-differencing: a cubic Bezier's four\n"
             "                             control points\n"
@@ -515,6 +519,7 @@ static const struct {
     { "--highlight", { "gouraud" } },
     { "--offset", { "zfight" } },
     { "--shininess", { "gouraud" } },
+    { "--width", { "aaline" } },
 };
 
 /* Whether algorithm `name` takes option `a`; false after one line. */
@@ -578,7 +583,7 @@ int cmd_explain(int argc, char **argv)
     int row = -1;
     double tolerance = 0;
     int seed[2] = { 0, 0 }, connectivity = 4;
-    double highlight[2] = { 0, 0 }, shininess = 0, offset[2] = { 0, 0 };
+    double highlight[2] = { 0, 0 }, shininess = 0, offset[2] = { 0, 0 }, line_width = 0;
     bool offset_given = false;
     bool highlight_given = false;
     bool seed_given = false;
@@ -693,6 +698,10 @@ int cmd_explain(int argc, char **argv)
             ok = a[2] == 's'   ? parse_float(a, v, 1, 1000, &f)
                : a[2] == 'r' ? parse_float(a, v, -360, 360, &f) : parse_float(a, v, 1, 170, &f);
             *(a[2] == 's' ? &shininess : a[2] == 'r' ? &view.rotate : &view.fov) = f;
+        } else if (strcmp(a, "--width") == 0) {
+            float f = 0;
+            ok = parse_float(a, v, 0.0625f, 64, &f);
+            line_width = f;
         } else if (strcmp(a, "--near-far") == 0) {
             ex_primitive np = { 0 };
             ok = parse_points(a, v, 2, 1, 1, "N,F", &np);
@@ -811,6 +820,9 @@ int cmd_explain(int argc, char **argv)
             prim.highlight[0] = (prim.pts[0].x + prim.pts[1].x + prim.pts[2].x) / 3;
             prim.highlight[1] = (prim.pts[0].y + prim.pts[1].y + prim.pts[2].y) / 3;
         }
+    }
+    if (alg->run == explain_aaline) {
+        prim.line_width = line_width > 0 ? line_width : alg->example.line_width;
     }
     if (seed_given) {
         prim.seed[0] = seed[0];

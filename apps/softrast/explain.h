@@ -58,6 +58,7 @@ typedef struct ex_primitive {
     double highlight[2];             /* gouraud: where the light's highlight peaks */
     double shininess;                /* gouraud: the Blinn-Phong exponent n */
     double offset[2];                /* zfight: B's polygon offset, factor and units */
+    double line_width;               /* aaline: the smooth line's width, pixels */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the

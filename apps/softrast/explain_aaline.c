@@ -5,7 +5,7 @@
  * whose centre lies within the reach (half the width plus half a pixel)
  * of the segment, its coverage the reach less that distance, at most 1 -
  * a one-pixel ramp across the edge, round ends where the nearest point is
- * an end.  The line is width 1.  The last frame is every pixel with its
+ * an end.  The width is --width's.  The last frame is every pixel with its
  * coverage as the ink's alpha over white, as sr_draw blends it. */
 #include "explain.h"
 
@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define LINE_WIDTH 1.0
 #define CAPSULE_ARC 12   /* chords per round end of the reach's outline */
 
 typedef struct aa_line {
@@ -114,12 +113,16 @@ static void column_frame(ex_canvas *c, const aa_line *l, int first, int end, int
     int len = snprintf(cap, sizeof cap, "%d. %s %s = %d: %d pixel%s within the reach %g, coverage = reach - d. ", number,
                        p0->y_major ? "Row" : "Column", U, p0->major, end - first,
                        end - first == 1 ? "" : "s", p0->reach);
-    for (int i = first; i < end && len < (int)sizeof cap - 80; i++) {
+    int i = first;
+    for (; i < end && len < (int)sizeof cap - 80; i++) {
         const sr_line_pixel_info *p = &l->px[i];
         const char *where = p->t <= 0 ? " (end A)" : p->t >= 1 ? " (end B)" : "";
         len += snprintf(cap + len, sizeof cap - (size_t)len, "%s = %d: d = %.3f%s, coverage %.3f%s%s",
                         V, p0->y_major ? p->x : p->y, p->distance, where, p->reach - p->distance,
                         p->reach - p->distance > 1 ? " -> 1" : "", i + 1 < end ? "; " : ".");
+    }
+    if (i < end) {   /* a wide line's column outgrows the caption */
+        snprintf(cap + len, sizeof cap - (size_t)len, "and %d more.", end - i);
     }
     ex_end(c, cap);
 }
@@ -133,7 +136,7 @@ sr_result explain_aaline(ex_canvas *c, const ex_primitive *prim)
         *(i ? &l.b : &l.a) = q;
     }
     sr_result r = sr_smooth_line_pixels(c->ctx, c->grid_w, c->grid_h, prim->pts[0],
-                                        prim->pts[1], LINE_WIDTH, add_pixel, &l);
+                                        prim->pts[1], prim->line_width, add_pixel, &l);
     if (r == SR_OK && l.error != SR_OK) {
         r = l.error;
     }
@@ -141,7 +144,8 @@ sr_result explain_aaline(ex_canvas *c, const ex_primitive *prim)
         free(l.px);
         return c->error = r;
     }
-    double reach = LINE_WIDTH / 2 + 0.5;
+    /* half the width as sr_draw takes it: sr_state.line_width is a float */
+    double reach = (double)(float)((double)(float)prim->line_width * 0.5) + 0.5;
     double dx = l.b.x - l.a.x, dy = l.b.y - l.a.y;
     bool y_major = fabs(dy) > fabs(dx);
     char cap[600];
@@ -156,7 +160,7 @@ sr_result explain_aaline(ex_canvas *c, const ex_primitive *prim)
                  "whose centre lies within the reach w/2 + 1/2 = %g of the segment (yellow) "
                  "gets the coverage reach - d, d the distance from its centre to the nearest "
                  "point of the segment, at most 1: a one-pixel ramp across each edge, round "
-                 "past the ends. %s-major: walked %s by %s.", LINE_WIDTH, reach,
+                 "past the ends. %s-major: walked %s by %s.", prim->line_width, reach,
                  y_major ? "y" : "x", y_major ? "row" : "column", y_major ? "row" : "column");
     }
     ex_end(c, cap);
