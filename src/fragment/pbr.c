@@ -589,26 +589,21 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
         sr__iridescence_begin(ext, vclamp(dot3(n, v), 0.0f, 1.0f), ext->f0, base, mt);
     }
     for (int l = 0; l < p->nlights; l++) {
-        v4f ld[3], rad[3], back[3];
+        v4f ld[3], rad[3], fall = { 1, 1, 1, 1 };
         for (int c = 0; c < 3; c++) {
             ld[c] = p->light_vec[l][c] - (v4f){ 0 };
             rad[c] = p->light_rad[l][c] - (v4f){ 0 };
-            back[c] = rad[c];
         }
         if (l == 0) {
-            /* The shadow map belongs to the key light; the light let
-             * through from behind has its own lookup, from the far side
-             * (ext->dt_shadow). */
+            /* The shadow map belongs to the key light. */
             for (int c = 0; c < 3; c++) {
                 rad[c] *= load(shadow_);
-                back[c] *= ext && ext->dtrans ? ext->dt_shadow : (v4f){ 1, 1, 1, 1 };
             }
         }
         if (p->light_point[l]) {
-            v4f fall = point_falloff(p, l, pos, ld);
+            fall = point_falloff(p, l, pos, ld);
             for (int c = 0; c < 3; c++) {
                 rad[c] *= fall;
-                back[c] *= fall;
             }
         }
         /* H = (L + V) / |L + V| without forming it: |L + V|^2 = 2 + 2 L.V,
@@ -639,6 +634,18 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
             out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
         }
         if (ext && ext->dtrans) {
+            /* The light let through from behind: the key light's has its
+             * own shadow lookup, from the far side (ext->dt_shadow). */
+            v4f back[3];
+            for (int c = 0; c < 3; c++) {
+                back[c] = p->light_rad[l][c] - (v4f){ 0 };
+                if (l == 0) {
+                    back[c] *= ext->dt_shadow;
+                }
+                if (p->light_point[l]) {
+                    back[c] *= fall;
+                }
+            }
             sr__diffuse_btdf_light(n, v, nlr, lv, f0, f90, cback, back, out);
         }
         if (ext && ext->coat) {
