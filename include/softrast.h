@@ -1067,6 +1067,16 @@ typedef struct sr_pbr_material {
     float diffuse_transmission_color[3];                /* 0..1 linear RGB: the light let
                                                          * through (not tinted by the base) */
     sr_texture_slot diffuse_transmission_color_texture; /* sRGB */
+    /* KHR_materials_pbrSpecularGlossiness (docs/pbr.md), false as absent.
+     * When set, the surface is a dielectric whose base_color (and its
+     * texture) is the diffuse color, whose F0 is the specular color below
+     * (F90 1) and whose roughness is 1 - glossiness, its diffuse lobe
+     * weighted by 1 - max(F0) as the extension asks; metallic, roughness,
+     * their texture, ior and the specular fields are not read. */
+    bool specular_glossiness;
+    float sg_specular[3];          /* 0..1 linear: F0, times the texture's RGB */
+    float glossiness;              /* 0..1, times the texture's A */
+    sr_texture_slot specular_glossiness_texture; /* sRGB RGB, linear A */
 } sr_pbr_material;
 
 typedef struct sr_polygon_offset {

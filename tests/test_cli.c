@@ -4121,6 +4121,17 @@ SR_TEST(info_json_escapes_the_file_name)
 #endif
 }
 
+/* gltf_quads' document of one quad of material 0, with `tail`, for an
+ * info test: its path under the fresh directory `name` in model. */
+static char *info_quad(const char *name, const char *tail, char *model, size_t n)
+{
+    char dir[1024];
+    fresh_dir(name, dir, sizeof dir);
+    snprintf(model, n, "%s/%s.gltf", dir, name);
+    const gltf_quad q = { -1, -1, 1, 1, 0 };
+    return gltf_quads(&q, 1, tail);
+}
+
 /* A quad placed five times by EXT_mesh_gpu_instancing (an _ID alone:
  * five identity transforms): five draws, said to be instances. */
 SR_TEST(info_counts_gpu_instances)
@@ -4131,14 +4142,12 @@ SR_TEST(info_counts_gpu_instances)
     if (!sr_io_have_gltf()) {
         SKIP("this build reads no glTF");
     }
-    char dir[1024], model[1100];
-    fresh_dir("info_instances", dir, sizeof dir);
-    snprintf(model, sizeof model, "%s/instances.gltf", dir);
-    const gltf_quad q = { -1, -1, 1, 1, 0 };
+    char model[1100];
     /* The quad's node instanced five times by a new accessor 3 (an _ID
      * without a bufferView: zeros). */
-    char *json = gltf_quads(&q, 1, ",\"materials\":[{}],"
-                                   "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]");
+    char *json = info_quad("info_instances", ",\"materials\":[{}],"
+                           "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]",
+                           model, sizeof model);
     REQUIRE(json);
     const char *acc = "\"type\":\"SCALAR\"}]", *node = "{\"mesh\":0}";
     char *a = strstr(json, acc), *n = strstr(json, node);
@@ -4166,6 +4175,43 @@ SR_TEST(info_counts_gpu_instances)
     REQUIRE(run_cli(ARGS("info", "--json", model), &r));
     CHECK_EQ(r.status, 0);
     CHECK_STR_CONTAINS(r.out, "\"instanced_draws\": 5, \"instanced_nodes\": 1,");
+    cli_run_free(&r);
+#endif
+}
+
+/* A KHR_materials_pbrSpecularGlossiness material: info names the
+ * extension and shows the diffuse, specular and glossiness it draws. */
+SR_TEST(info_shows_specular_glossiness)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_gltf()) {
+        SKIP("this build reads no glTF");
+    }
+    char model[1100];
+    char *json = info_quad("info_spec_gloss",
+                           ",\"materials\":[{\"extensions\":{"
+                           "\"KHR_materials_pbrSpecularGlossiness\":{"
+                           "\"diffuseFactor\":[0.5,0.25,1,1],"
+                           "\"specularFactor\":[0.25,0.5,0.125],\"glossinessFactor\":0.375}}}],"
+                           "\"extensionsRequired\":[\"KHR_materials_pbrSpecularGlossiness\"],"
+                           "\"extensionsUsed\":[\"KHR_materials_pbrSpecularGlossiness\"]",
+                           model, sizeof model);
+    REQUIRE(json);
+    REQUIRE(write_whole(model, json, strlen(json)));
+    free(json);
+    cli_run r;
+    REQUIRE(run_cli(ARGS("info", model), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err_len, 0);
+    CHECK_STR_CONTAINS(r.out, "    0  diffuse 0.5 0.25 1 1, specular 0.25 0.5 0.125, glossiness "
+                              "0.375, OPAQUE; KHR_materials_pbrSpecularGlossiness\n");
+    cli_run_free(&r);
+    REQUIRE(run_cli(ARGS("info", "--json", model), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_STR_CONTAINS(r.out, "\"specular\": [0.25, 0.5, 0.125], \"glossiness\": 0.375,");
+    CHECK_STR_CONTAINS(r.out, "\"extensions\": [\"KHR_materials_pbrSpecularGlossiness\"]");
     cli_run_free(&r);
 #endif
 }

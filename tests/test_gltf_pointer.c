@@ -261,9 +261,11 @@ SR_TEST(pointer_channels_animate_materials_lights_cameras_nodes_and_visibility)
 /* One channel of a one-key sampler (output accessor of `type` floats, or
  * of unsigned bytes when `bytes`) to `pointer`, with `interp`; parsed in
  * the rest pose. */
-static sr_result one_channel(const char *pointer, const char *type, bool bytes,
-                             const char *interp, const char *target_extra, sr_test_warnings *w,
-                             sr_io_error *e)
+/* One channel to `pointer` on the document whose material 0 is
+ * `material`. */
+static sr_result one_channel_on(const char *material, const char *pointer, const char *type,
+                                bool bytes, const char *interp, const char *target_extra,
+                                sr_test_warnings *w, sr_io_error *e)
 {
     blob b = { .size = 0 };
     static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
@@ -280,7 +282,7 @@ static sr_result one_channel(const char *pointer, const char *type, bool bytes,
     snprintf(channels, sizeof channels, "{\"sampler\":0,\"target\":{%s\"path\":\"pointer\","
              "\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"%s\"}}}}", target_extra,
              pointer);
-    char *json = scene_json(&b, samplers, channels);
+    char *json = scene_json_with(&b, material, samplers, channels);
     if (!json) {
         return SR_OUT_OF_MEMORY;
     }
@@ -290,6 +292,13 @@ static sr_result one_channel(const char *pointer, const char *type, bool bytes,
     free(json);
     sr_destroy_scene(sr_test_ctx(), s);
     return r;
+}
+
+static sr_result one_channel(const char *pointer, const char *type, bool bytes,
+                             const char *interp, const char *target_extra, sr_test_warnings *w,
+                             sr_io_error *e)
+{
+    return one_channel_on(red, pointer, type, bytes, interp, target_extra, w, e);
 }
 
 SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
@@ -368,6 +377,36 @@ SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
         snprintf(want, sizeof want, "/animations/0/channels/0/target/extensions/"
                  "KHR_animation_pointer/pointer: \"%s\" is not a property softrast animates, "
                  "not animated", skipped[i]);
+        CHECK_STR_CONTAINS(w.text, want);
+    }
+}
+
+/* A specular-glossiness material: its factors are not animated (the
+ * generic warning), nor the metallic-roughness fallback beside them,
+ * whose fields hold the diffuse color it draws. */
+SR_TEST(specular_glossiness_materials_are_not_animated)
+{
+    static const char *const sg =
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]},\"extensions\":"
+        "{\"KHR_materials_pbrSpecularGlossiness\":{\"diffuseFactor\":[0,1,0,1]}}}";
+    static const char *const pointers[2] = {
+        "/materials/0/extensions/KHR_materials_pbrSpecularGlossiness/diffuseFactor",
+        "/materials/0/pbrMetallicRoughness/baseColorFactor",
+    };
+    static const char *const why[2] = {
+        " is not a property softrast animates, not animated",
+        ": material 0 is drawn with KHR_materials_pbrSpecularGlossiness, not animated",
+    };
+    for (int i = 0; i < 2; i++) {
+        sr_test_warnings w = { 0 };
+        sr_io_error e;
+        if (one_channel_on(sg, pointers[i], "VEC4", false, "LINEAR", "", &w, &e) != SR_OK) {
+            sr_test_fail(__FILE__, __LINE__, "%s", e.message);
+        }
+        CHECK_EQ(w.count, 1);
+        char want[512];
+        snprintf(want, sizeof want, "KHR_animation_pointer/pointer: \"%s\"%s", pointers[i],
+                 why[i]);
         CHECK_STR_CONTAINS(w.text, want);
     }
 }

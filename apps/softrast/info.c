@@ -66,7 +66,8 @@ typedef struct named_slot {
 static size_t material_slots(const sr_pbr_material *m, named_slot *out)
 {
     const named_slot all[] = {
-        { "baseColor", &m->base_color_texture },
+        /* Specular-glossiness's diffuse texture fills the base color's. */
+        { m->specular_glossiness ? "diffuse" : "baseColor", &m->base_color_texture },
         { "metallicRoughness", &m->metallic_roughness_texture },
         { "normal", &m->normal_texture },
         { "occlusion", &m->occlusion_texture },
@@ -85,6 +86,7 @@ static size_t material_slots(const sr_pbr_material *m, named_slot *out)
         { "iridescenceThickness", &m->iridescence_thickness_texture },
         { "diffuseTransmission", &m->diffuse_transmission_texture },
         { "diffuseTransmissionColor", &m->diffuse_transmission_color_texture },
+        { "specularGlossiness", &m->specular_glossiness_texture },
     };
     size_t n = 0;
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
@@ -94,13 +96,16 @@ static size_t material_slots(const sr_pbr_material *m, named_slot *out)
     }
     return n;
 }
-#define MAX_SLOTS 19
+#define MAX_SLOTS 20
 
 /* The glTF material extensions whose values the material holds: zeroed
  * fields are the extension absent (sr_pbr_material's convention). */
 static size_t material_extensions(const sr_pbr_material *m, const char **out)
 {
     size_t n = 0;
+    if (m->specular_glossiness) {
+        out[n++] = "KHR_materials_pbrSpecularGlossiness";
+    }
     if (m->unlit) {
         out[n++] = "KHR_materials_unlit";
     }
@@ -140,7 +145,7 @@ static size_t material_extensions(const sr_pbr_material *m, const char **out)
     }
     return n;
 }
-#define MAX_EXTENSIONS 12
+#define MAX_EXTENSIONS 13
 
 static const char *alpha_name(sr_alpha_mode mode)
 {
@@ -244,6 +249,12 @@ static void print_json(const char *path, const sr_scene *sc)
         json_number(m->metallic);
         printf(", \"roughness\": ");
         json_number(m->roughness);
+        if (m->specular_glossiness) {
+            printf(", \"specular\": ");
+            json_floats(m->sg_specular, 3);
+            printf(", \"glossiness\": ");
+            json_number(m->glossiness);
+        }
         printf(", \"alpha_mode\": \"%s\", \"double_sided\": %s,\n   \"textures\": [",
                alpha_name(m->alpha_mode), m->double_sided ? "true" : "false");
         for (size_t k = 0; k < ns; k++) {
@@ -336,11 +347,19 @@ static void print_text(const char *path, const sr_scene *sc)
         named_slot slots[MAX_SLOTS];
         const char *ext[MAX_EXTENSIONS];
         size_t ns = material_slots(m, slots), ne = material_extensions(m, ext);
-        printf("    %zu  %sbase color %g %g %g %g, metallic %g, roughness %g, %s%s", i,
-               (int)i == sc->default_material ? "(default) " : "",
-               (double)m->base_color[0], (double)m->base_color[1], (double)m->base_color[2],
-               (double)m->base_color[3], (double)m->metallic, (double)m->roughness,
-               alpha_name(m->alpha_mode), m->double_sided ? ", double-sided" : "");
+        const float *c = m->base_color, *sp = m->sg_specular;
+        if (m->specular_glossiness) {
+            printf("    %zu  diffuse %g %g %g %g, specular %g %g %g, glossiness %g, %s%s", i,
+                   (double)c[0], (double)c[1], (double)c[2], (double)c[3], (double)sp[0],
+                   (double)sp[1], (double)sp[2], (double)m->glossiness,
+                   alpha_name(m->alpha_mode), m->double_sided ? ", double-sided" : "");
+        } else {
+            printf("    %zu  %sbase color %g %g %g %g, metallic %g, roughness %g, %s%s", i,
+                   (int)i == sc->default_material ? "(default) " : "", (double)c[0],
+                   (double)c[1], (double)c[2], (double)c[3], (double)m->metallic,
+                   (double)m->roughness, alpha_name(m->alpha_mode),
+                   m->double_sided ? ", double-sided" : "");
+        }
         for (size_t k = 0; k < ns; k++) {
             printf("%s%s", k ? ", " : "; textures ", slots[k].name);
         }

@@ -404,6 +404,12 @@ sr_material render_gltf_classic(const sr_pbr_material *m, bool vertex_colors)
      * as its default gray, so a black one (a purely emissive material)
      * is kept black by a value no pixel can show. */
     sr_vec3 kd = { m->base_color[0], m->base_color[1], m->base_color[2] };
+    if (m->specular_glossiness) {
+        /* The extension's diffuse weight, 1 - max(F0). */
+        float top = fmaxf(fmaxf(m->sg_specular[0], m->sg_specular[1]), m->sg_specular[2]);
+        float w = 1.0f - fminf(fmaxf(top, 0.0f), 1.0f);
+        kd = (sr_vec3){ kd.x * w, kd.y * w, kd.z * w };
+    }
     if (kd.x == 0 && kd.y == 0 && kd.z == 0) {
         kd = (sr_vec3){ 1e-9f, 1e-9f, 1e-9f };
     }
@@ -416,13 +422,16 @@ sr_material render_gltf_classic(const sr_pbr_material *m, bool vertex_colors)
      * environment for a metal to reflect), so the highlight fades with
      * roughness: a rough metal's wide lobe over the diffuse would wash it
      * out white. */
-    float rough = fminf(fmaxf(m->roughness, 0.0f), 1.0f);
+    bool sg = m->specular_glossiness;
+    float rough = fminf(fmaxf(sg ? 1.0f - m->glossiness : m->roughness, 0.0f), 1.0f);
     float a2 = fmaxf(rough * rough * rough * rough, 1e-6f);
     float n = fminf(fmaxf(2.0f / a2 - 2.0f, 1.0f), 2048.0f);
     float metal = fminf(fmaxf(m->metallic, 0.0f), 1.0f), gain = (n + 8.0f) / 8.0f;
     float ks[3];
     for (int c = 0; c < 3; c++) {
-        float f0 = 0.04f + (m->base_color[c] - 0.04f) * metal;
+        /* Specular-glossiness gives F0 itself. */
+        float f0 = sg ? fminf(fmaxf(m->sg_specular[c], 0.0f), 1.0f)
+                      : 0.04f + (m->base_color[c] - 0.04f) * metal;
         ks[c] = fminf(f0 * gain * (1.0f - rough), 1.0f);
     }
     return (sr_material){

@@ -162,6 +162,8 @@ enum {
     SLOT_ANISOTROPY, SLOT_IRIDESCENCE, SLOT_IRIDESCENCE_THICKNESS,
     /* diffuse transmission's share (A) and color (pbr_layers.h) */
     SLOT_DIFFUSE_TRANSMISSION, SLOT_DIFFUSE_TRANSMISSION_COLOR,
+    /* KHR_materials_pbrSpecularGlossiness: RGB F0, A glossiness */
+    SLOT_SPEC_GLOSS,
     SLOT_COUNT
 };
 
@@ -181,6 +183,7 @@ static const struct {
     SLOT_FIELD(thickness_texture), SLOT_FIELD(anisotropy_texture),
     SLOT_FIELD(iridescence_texture), SLOT_FIELD(iridescence_thickness_texture),
     SLOT_FIELD(diffuse_transmission_texture), SLOT_FIELD(diffuse_transmission_color_texture),
+    SLOT_FIELD(specular_glossiness_texture),
 #undef SLOT_FIELD
 };
 
@@ -241,6 +244,9 @@ struct sr_pbr {
      * coat's prefiltered radiance like `oct`, at its roughness. */
     bool layers, coat, sheen;
     float f0_color[3], f90;
+    /* KHR_materials_pbrSpecularGlossiness: f0_color is its specular
+     * color, metallic 0, roughness 1 - glossiness (pbr_fs). */
+    bool sg;
     /* The base lobe's anisotropy (its direction as cos and sin of the
      * rotation) and thin film (its index), when on. */
     bool aniso, irid;
@@ -849,7 +855,8 @@ static void dtrans_inputs(const sr_pbr *p, const sr_fragment_quad *q, sr__pbr_la
  * the same tangent frame as the base's), then each layer's per-fragment
  * terms.  n is the base's shading normal, v the view direction. */
 static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
-                         const float n_[3][4], const float v_[3][4], sr__pbr_layers *x)
+                         const float n_[3][4], const float v_[3][4], const float (*sg_f0)[4],
+                         sr__pbr_layers *x)
 {
     const sr_pbr_material *m = &p->m;
     float tex[4][4], uv[2][4];
@@ -874,7 +881,7 @@ static void layer_inputs(const sr_pbr *p, const sr_fragment_quad *q, float side,
         weight *= load(tex[3]);
     }
     for (int c = 0; c < 3; c++) {
-        x->f0[c] = vmin(col[c], (v4f){ 1, 1, 1, 1 }) * weight;
+        x->f0[c] = sg_f0 ? load(sg_f0[c]) : vmin(col[c], (v4f){ 1, 1, 1, 1 }) * weight;
     }
     x->f90 = weight;
     if (p->coat) {
@@ -1149,11 +1156,12 @@ static __attribute__((noinline)) void shade_layered(const sr_pbr *p, const sr_fr
                                                     const float v[3][4], const float pos[3][4],
                                                     const float base[4][4], const float metal[4],
                                                     const float rough[4], const float ao[4],
-                                                    const float shadow[4], float out[3][4],
+                                                    const float shadow[4],
+                                                    const float (*sg_f0)[4], float out[3][4],
                                                     float keep[4])
 {
     sr__pbr_layers x;
-    layer_inputs(p, q, side, n, v, &x);
+    layer_inputs(p, q, side, n, v, sg_f0, &x);
     if (p->dtrans && p->shadow) {
         /* The light let through from behind reaches the far side of the
          * surface first: looked up there, the thickness deep and moved
@@ -1241,6 +1249,37 @@ static void encode_lanes(const srgb_table *t, const float a[3][4], sr_fragment_q
     }
 }
 
+/* KHR_materials_pbrSpecularGlossiness's BRDF inputs, as the extension
+ * writes them: F0 = specular (factor times the texture's RGB), alpha =
+ * (1 - glossiness)^2, that is roughness 1 - glossiness (factor times the
+ * texture's A), a dielectric (metallic 0) whose diffuse color (base) is
+ * weighted by 1 - max(F0). */
+static void sg_inputs(const sr_pbr *p, const sr_fragment_quad *q, float base[4][4],
+                      float metal[4], float rough[4], float f0[3][4])
+{
+    float tex[4][4], uv[2][4];
+    for (int c = 0; c < 4; c++) {
+        for (int i = 0; i < 4; i++) {
+            tex[c][i] = 1.0f;
+        }
+    }
+    if (p->slot[SLOT_SPEC_GLOSS].tex) {
+        sample_slot(&p->slot[SLOT_SPEC_GLOSS], q, tex, uv);
+    }
+    for (int i = 0; i < 4; i++) {
+        float top = 0.0f;
+        for (int c = 0; c < 3; c++) {
+            f0[c][i] = clamp01(p->f0_color[c] * tex[c][i]);
+            top = max_f(top, f0[c][i]);
+        }
+        for (int c = 0; c < 3; c++) {
+            base[c][i] *= 1.0f - top;
+        }
+        metal[i] = 0.0f;
+        rough[i] = 1.0f - clamp01(p->m.glossiness * tex[3][i]);
+    }
+}
+
 static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
 {
     const sr_pbr *p = uniforms;
@@ -1299,6 +1338,10 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
                 metal[i] *= tex[2][i];
             }
         }
+        float sg_f0[3][4];
+        if (p->sg) {
+            sg_inputs(p, q, base, metal, rough, sg_f0);
+        }
         if (p->slot[SLOT_OCCLUSION].tex) {
             sample_slot(&p->slot[SLOT_OCCLUSION], q, tex, uv);
             for (int i = 0; i < 4; i++) {
@@ -1346,7 +1389,7 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
         if (p->layers) {
             shade_layered(p, q, side, (const float(*)[4])n, (const float(*)[4])v,
                           (const float(*)[4])pos, (const float(*)[4])base, metal, rough, ao,
-                          shadow, out, coat_keep);
+                          shadow, p->sg ? (const float(*)[4])sg_f0 : NULL, out, coat_keep);
         } else {
             /* Transmission takes its share of the diffuse lobe (kd). */
             float kd[4], seen[3][4];
@@ -1469,7 +1512,8 @@ static sr_result check_material(sr_context *ctx, const sr_pbr_material *m)
         !isfinite(m->anisotropy_rotation) || !isfinite(m->iridescence) ||
         !isfinite(m->iridescence_ior) || !isfinite(m->iridescence_thickness_min) ||
         !isfinite(m->iridescence_thickness_max) || !isfinite(m->dispersion) ||
-        !isfinite(m->diffuse_transmission) || !finite_n(m->diffuse_transmission_color, 3)) {
+        !isfinite(m->diffuse_transmission) || !finite_n(m->diffuse_transmission_color, 3) ||
+        !finite_n(m->sg_specular, 3) || !isfinite(m->glossiness)) {
         return sr__fail(ctx, SR_INVALID_ARG,
                         "sr_pbr_material: an extension's factor is not finite");
     }
@@ -1706,12 +1750,21 @@ static void resolve_layers(sr_pbr *p)
 {
     sr_pbr_material *m = &p->m;
     float f0 = sr__ior_f0(m->ior);
-    bool spec = m->specular_set;
+    bool spec = m->specular_set && !m->specular_glossiness;
     for (int c = 0; c < 3; c++) {
         p->f0_color[c] = f0 * (spec ? max_f(m->specular_color[c], 0.0f) : 1.0f);
         m->sheen_color[c] = clamp01(m->sheen_color[c]);
     }
     p->f90 = spec ? clamp01(m->specular) : 1.0f;
+    /* Specular-glossiness: F0 is the specular color itself (the shader
+     * multiplies in the texture's RGB), F90 1. */
+    p->sg = !m->unlit && m->specular_glossiness;
+    if (p->sg) {
+        for (int c = 0; c < 3; c++) {
+            p->f0_color[c] = clamp01(m->sg_specular[c]);
+        }
+        m->glossiness = clamp01(m->glossiness);
+    }
     m->clearcoat = clamp01(m->clearcoat);
     m->clearcoat_roughness = clamp01(m->clearcoat_roughness);
     m->sheen_roughness = clamp01(m->sheen_roughness);
@@ -1737,11 +1790,16 @@ static void resolve_layers(sr_pbr *p)
     p->irid = !m->unlit && m->iridescence > 0.0f;
     p->dtrans = !m->unlit && m->diffuse_transmission > 0.0f;
     p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen || p->aniso ||
-                              p->irid || p->dtrans);
+                              p->irid || p->dtrans || p->sg);
     int off[SLOT_COUNT], count = 0;
     if (!spec) {
         off[count++] = SLOT_SPECULAR;
         off[count++] = SLOT_SPECULAR_COLOR;
+    }
+    if (p->sg) {
+        off[count++] = SLOT_MR;
+    } else {
+        off[count++] = SLOT_SPEC_GLOSS;
     }
     if (!p->coat) {
         off[count++] = SLOT_CLEARCOAT;
@@ -1897,7 +1955,8 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         pr->independent_lanes &= !p->slot[i].tex;
     }
     pr->independent_lanes &= !(p->aniso && p->vary_tangent < 0);
-    float rough = min_f(max_f(mat.roughness, 0.0f), 1.0f);
+    float rough = p->sg ? 1.0f - p->m.glossiness : min_f(max_f(mat.roughness, 0.0f), 1.0f);
+    int rough_slot = p->sg ? SLOT_SPEC_GLOSS : SLOT_MR;
     if (p->environment && !p->m.unlit) {
         /* Irradiance from the SH, and with one roughness for every
          * fragment the prefiltered radiance tabulated once (4096 queries)
@@ -1906,7 +1965,7 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         p->env_cos = p->environment->cos_rot;
         p->env_sin = p->environment->sin_rot;
         bool ok = true;
-        if (!p->slot[SLOT_MR].tex && rough >= OCT_MIN_ROUGHNESS) {
+        if (!p->slot[rough_slot].tex && rough >= OCT_MIN_ROUGHNESS) {
             ok &= (p->oct = oct_shared(ctx, p->environment, rough, &p->oct_owned)) != NULL;
         }
         /* The coat's one roughness likewise. */

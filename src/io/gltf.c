@@ -1309,6 +1309,7 @@ static const char *supported_extensions[] = {
     "KHR_materials_volume",
     "KHR_materials_dispersion",
     "KHR_materials_diffuse_transmission",
+    "KHR_materials_pbrSpecularGlossiness",
     "KHR_lights_punctual",
     "KHR_materials_variants",
     "EXT_mesh_gpu_instancing",

@@ -8,8 +8,9 @@
  * KHR_materials_unlit, the physically based layers KHR_materials_ior,
  * _specular, _clearcoat and _sheen, the base lobe's _anisotropy and
  * _iridescence, KHR_materials_transmission, _volume and _dispersion, and
- * KHR_materials_diffuse_transmission are applied.  Called by the thread
- * reading the document.
+ * KHR_materials_diffuse_transmission are applied, and the archived
+ * KHR_materials_pbrSpecularGlossiness is read over the metallic-roughness
+ * values.  Called by the thread reading the document.
  */
 #include "io/gltf.h"
 
@@ -353,6 +354,18 @@ static void clamp_factor(gltf_doc *d, const char *ptr, float *v, float lo, float
     *v = to;
 }
 
+/* clamp_factor on each of the n numbers of the array member `key` of
+ * the object at ptr. */
+static void clamp_each(gltf_doc *d, const char *ptr, const char *key, float *v, int n, float lo,
+                       float hi)
+{
+    char at[GLTF_PTR + 64];
+    for (int c = 0; c < n; c++) {
+        snprintf(at, sizeof at, "%s/%s/%d", ptr, key, c);
+        clamp_factor(d, at, &v[c], lo, hi);
+    }
+}
+
 static void clamp_factors(gltf_doc *d, const char *ptr, sr_pbr_material *m)
 {
     char at[GLTF_PTR + 64];
@@ -412,10 +425,7 @@ static sr_result read_transmission(gltf_doc *d, const json_t *mat, const char *p
         }
         snprintf(at, sizeof at, "%s/thicknessFactor", eptr);
         clamp_factor(d, at, &m->thickness, 0, FLT_MAX);
-        for (int c = 0; c < 3; c++) {
-            snprintf(at, sizeof at, "%s/attenuationColor/%d", eptr, c);
-            clamp_factor(d, at, &m->attenuation_color[c], 0, 1);
-        }
+        clamp_each(d, eptr, "attenuationColor", m->attenuation_color, 3, 0, 1);
         if (json_object_get(vol, "attenuationDistance") && !(dist > 0)) {
             sr__gltf_warn(d, "%s/attenuationDistance: %g is not positive, taken as infinite",
                           eptr, (double)dist);
@@ -519,10 +529,8 @@ static sr_result read_translucency(gltf_doc *d, const json_t *mat, const char *p
         }
         snprintf(at, sizeof at, "%s/diffuseTransmissionFactor", xptr);
         clamp_factor(d, at, &m->diffuse_transmission, 0, 1);
-        for (int c = 0; c < 3; c++) {
-            snprintf(at, sizeof at, "%s/diffuseTransmissionColorFactor/%d", xptr, c);
-            clamp_factor(d, at, &m->diffuse_transmission_color[c], 0, 1);
-        }
+        clamp_each(d, xptr, "diffuseTransmissionColorFactor", m->diffuse_transmission_color, 3,
+                   0, 1);
     }
     return SR_OK;
 }
@@ -566,10 +574,7 @@ static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
         }
         snprintf(at, sizeof at, "%s/specularFactor", xptr);
         clamp_factor(d, at, &m->specular, 0, 1);
-        for (int c = 0; c < 3; c++) {
-            snprintf(at, sizeof at, "%s/specularColorFactor/%d", xptr, c);
-            clamp_factor(d, at, &m->specular_color[c], 0, FLT_MAX);
-        }
+        clamp_each(d, xptr, "specularColorFactor", m->specular_color, 3, 0, FLT_MAX);
     }
     if ((x = sr__gltf_extension(mat, "KHR_materials_clearcoat"))) {
         snprintf(xptr, sizeof xptr, "%s/extensions/KHR_materials_clearcoat", ptr);
@@ -607,10 +612,7 @@ static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
                            &m->sheen_roughness_texture, NULL, NULL)) != SR_OK) {
             return r;
         }
-        for (int c = 0; c < 3; c++) {
-            snprintf(at, sizeof at, "%s/sheenColorFactor/%d", xptr, c);
-            clamp_factor(d, at, &m->sheen_color[c], 0, 1);
-        }
+        clamp_each(d, xptr, "sheenColorFactor", m->sheen_color, 3, 0, 1);
         snprintf(at, sizeof at, "%s/sheenRoughnessFactor", xptr);
         clamp_factor(d, at, &m->sheen_roughness, 0, 1);
     }
@@ -627,6 +629,47 @@ static sr_result read_layers(gltf_doc *d, const json_t *mat, const char *ptr,
         }
     }
     return read_translucency(d, mat, ptr, m);
+}
+
+/* KHR_materials_pbrSpecularGlossiness (object x at xptr) over the
+ * metallic-roughness values, which the extension says a reader of it
+ * draws instead: the diffuse factor and texture (sRGB, alpha) are the
+ * base color, the specular color, glossiness and their texture (sRGB RGB,
+ * linear A) sr_pbr_material's, with the extension's defaults (white,
+ * glossiness 1); factors outside 0..1 clamped with a warning each.
+ * *base_image: the diffuse texture's image, or -1. */
+static sr_result read_spec_gloss(gltf_doc *d, const json_t *x, const char *xptr,
+                                 sr_pbr_material *m, long *base_image)
+{
+    char at[GLTF_PTR + 64];
+    sr_result r;
+    m->specular_glossiness = true;
+    for (int c = 0; c < 4; c++) {
+        m->base_color[c] = 1.0f;
+    }
+    for (int c = 0; c < 3; c++) {
+        m->sg_specular[c] = 1.0f;
+    }
+    m->glossiness = 1.0f;
+    m->base_color_texture = (sr_texture_slot){ 0 };
+    m->metallic_roughness_texture = (sr_texture_slot){ 0 };
+    if ((r = sr__gltf_numbers(d, x, xptr, "diffuseFactor", 4, m->base_color)) != SR_OK ||
+        (r = read_slot(d, x, xptr, "diffuseTexture", true, &m->base_color_texture, NULL,
+                       NULL)) != SR_OK) {
+        return r;
+    }
+    *base_image = d->slot_image;
+    if ((r = sr__gltf_numbers(d, x, xptr, "specularFactor", 3, m->sg_specular)) != SR_OK ||
+        (r = sr__gltf_number(d, x, xptr, "glossinessFactor", &m->glossiness)) != SR_OK ||
+        (r = read_slot(d, x, xptr, "specularGlossinessTexture", true,
+                       &m->specular_glossiness_texture, NULL, NULL)) != SR_OK) {
+        return r;
+    }
+    clamp_each(d, xptr, "diffuseFactor", m->base_color, 4, 0, 1);
+    clamp_each(d, xptr, "specularFactor", m->sg_specular, 3, 0, 1);
+    snprintf(at, sizeof at, "%s/glossinessFactor", xptr);
+    clamp_factor(d, at, &m->glossiness, 0, 1);
+    return SR_OK;
 }
 
 /* Material `mat` into m; *base_image: the image its base color texture
@@ -696,9 +739,25 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
         }
     }
     m->unlit = sr__gltf_extension(mat, "KHR_materials_unlit") != NULL;
+    json_t *sg = sr__gltf_extension(mat, "KHR_materials_pbrSpecularGlossiness");
+    if (sg) {
+        char sptr[GLTF_PTR];
+        snprintf(sptr, sizeof sptr, "%s/extensions/KHR_materials_pbrSpecularGlossiness", ptr);
+        if ((r = read_spec_gloss(d, sg, sptr, m, base_image)) != SR_OK) {
+            return r;
+        }
+    }
     if ((r = read_transmission(d, mat, ptr, m)) != SR_OK ||
         (!m->unlit && (r = read_layers(d, mat, ptr, m)) != SR_OK)) {
         return r;
+    }
+    if (sg && m->specular_set) {
+        /* Both set F0; the extensions exclude each other. */
+        sr__gltf_warn(d, "%s/extensions/KHR_materials_specular: not read on a material with "
+                         "KHR_materials_pbrSpecularGlossiness (the extensions exclude each "
+                         "other)", ptr);
+        m->specular_set = false;
+        m->specular_texture = m->specular_color_texture = (sr_texture_slot){ 0 };
     }
     clamp_factors(d, ptr, m);
     /* Zeros that sr_pbr_material reads as defaults, said another way: no
@@ -736,7 +795,10 @@ sr_result sr__gltf_read_materials(gltf_doc *d)
         if (d->for_mesh && base >= 0) {
             /* sr_load_mesh hands on the base color images, encoded. */
             char use[GLTF_PTR];
-            snprintf(use, sizeof use, "%s/pbrMetallicRoughness/baseColorTexture", ptr);
+            snprintf(use, sizeof use, "%s/%s", ptr,
+                     m[i].specular_glossiness
+                         ? "extensions/KHR_materials_pbrSpecularGlossiness/diffuseTexture"
+                         : "pbrMetallicRoughness/baseColorTexture");
             const gltf_image_source *src;
             if ((r = image_source(d, base, use, &src)) != SR_OK) {
                 return r;

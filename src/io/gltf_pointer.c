@@ -326,6 +326,16 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
     }
     int row = obj && rn > 0 ? find_row(rows, row_count, rest, rn) : -1;
     int transform = obj && out->kind == GLTF_TARGET_MATERIAL ? find_transform(rest, rn) : -1;
+    if (obj && out->kind == GLTF_TARGET_MATERIAL && rn > 0 &&
+        strcmp(rest[0], "pbrMetallicRoughness") == 0 &&
+        sr__gltf_extension(obj, "KHR_materials_pbrSpecularGlossiness")) {
+        /* The material is drawn with its specular-glossiness values, whose
+         * diffuse color fills the fields the metallic-roughness ones name. */
+        sr__gltf_warn(d, "%s: \"%.120s\": material %ld is drawn with "
+                         "KHR_materials_pbrSpecularGlossiness, not animated", pptr, text, index);
+        *out = (gltf_pointer){ .kind = GLTF_TARGET_NONE, .index = -1 };
+        return SR_OK;
+    }
     if (transform >= 0) {
         if (!defined(obj, rest, rn, false)) {
             return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: \"%.120s\" names a property the file "
