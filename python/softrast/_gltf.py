@@ -76,7 +76,11 @@ class _Document:
         materials = self.json.get("materials", [])
         if material >= len(materials):
             return None
-        info = materials[material].get("pbrMetallicRoughness", {}).get("baseColorTexture")
+        # KHR_materials_pbrSpecularGlossiness's diffuse texture is drawn
+        # in place of the base color's, as sr_load_scene reads it.
+        sg = materials[material].get("extensions", {}).get("KHR_materials_pbrSpecularGlossiness")
+        info = sg.get("diffuseTexture") if isinstance(sg, dict) else \
+            materials[material].get("pbrMetallicRoughness", {}).get("baseColorTexture")
         if info is None:
             return None
         source = self.json["textures"][info["index"]].get("source")

@@ -55,6 +55,11 @@ class Material:
     other side, in [0, 1] (KHR_materials_diffuse_transmission; 0: none), in
     diffuse_transmission_color, (3,) float32 linear RGB in [0, 1]: leaves,
     paper, lamp shades lit from behind.
+    specular_glossiness: the archived KHR_materials_pbrSpecularGlossiness
+    model in place of metallic and roughness (and ior's F0 and specular):
+    base_color is the diffuse color, sg_specular ((3,) in [0, 1]) the F0
+    and glossiness (in [0, 1]) 1 - roughness; the diffuse is weighted by
+    1 - max(sg_specular) (docs/pbr.md).
 
     ``render`` draws the base color of a loaded instance (factor times
     texture times vertex color, drawn into its Mesh by :func:`load`) into
@@ -80,7 +85,8 @@ class Material:
                  "attenuation_distance", "anisotropy_strength", "anisotropy_rotation",
                  "iridescence", "iridescence_ior", "iridescence_thickness_min",
                  "iridescence_thickness_max", "dispersion", "diffuse_transmission",
-                 "diffuse_transmission_color")
+                 "diffuse_transmission_color", "specular_glossiness", "sg_specular",
+                 "glossiness")
 
     base_color: NDArray[np.float32]
     base_color_texture: Optional[Image]
@@ -118,6 +124,9 @@ class Material:
     dispersion: float
     diffuse_transmission: float
     diffuse_transmission_color: NDArray[np.float32]
+    specular_glossiness: bool
+    sg_specular: NDArray[np.float32]
+    glossiness: float
 
     def __init__(self, base_color: Factors = (1.0, 1.0, 1.0, 1.0),
                  base_color_texture: Optional[Image] = None, *, texcoord: int = 0,
@@ -137,7 +146,9 @@ class Material:
                  iridescence_ior: float = 1.3, iridescence_thickness_min: float = 100.0,
                  iridescence_thickness_max: float = 400.0, dispersion: float = 0.0,
                  diffuse_transmission: float = 0.0,
-                 diffuse_transmission_color: Factors = (1.0, 1.0, 1.0)) -> None:
+                 diffuse_transmission_color: Factors = (1.0, 1.0, 1.0),
+                 specular_glossiness: bool = False, sg_specular: Factors = (1.0, 1.0, 1.0),
+                 glossiness: float = 1.0) -> None:
         self.base_color = _factors(base_color, "base_color", 4, 1.0)
         if base_color_texture is not None and not (
                 isinstance(base_color_texture, np.ndarray) and base_color_texture.dtype == np.uint8
@@ -200,6 +211,9 @@ class Material:
                                                    1, 1.0)[0])
         self.diffuse_transmission_color = _factors(diffuse_transmission_color,
                                                    "diffuse_transmission_color", 3, 1.0)
+        self.specular_glossiness = bool(specular_glossiness)
+        self.sg_specular = _factors(sg_specular, "sg_specular", 3, 1.0)
+        self.glossiness = float(_factors(glossiness, "glossiness", 1, 1.0)[0])
 
     @classmethod
     def _from_factors(cls, factors: Mapping[str, Any],

@@ -222,7 +222,7 @@ def _look(inst: Instance) -> Tuple[Any, ...]:
         return (pose, (1.0, 1.0, 1.0, 1.0), 0.0, 0.5, (0.0, 0.0, 0.0), 1.0, 0, 0.5, True, False,
                 1.0, 1.0, 1.5, 1.0, (1.0, 1.0, 1.0), 0.0, 0.0, (0.0, 0.0, 0.0), 0.0,
                 (0.0, 0.0, (1.0, 1.0, 1.0), 0.0), (0.0, 0.0, 0.0, 1.3, 100.0, 400.0),
-                (0.0, 0.0, (1.0, 1.0, 1.0)), source)
+                (0.0, 0.0, (1.0, 1.0, 1.0)), (False, (1.0, 1.0, 1.0), 1.0), source)
     # (A loaded instance is drawn from the file's own arrays, whose colors
     # do not have the factor its Mesh's have.)
     base = tuple(float(c) for c in m.base_color)
@@ -236,7 +236,9 @@ def _look(inst: Instance) -> Tuple[Any, ...]:
             (m.anisotropy_strength, m.anisotropy_rotation, m.iridescence, m.iridescence_ior,
              m.iridescence_thickness_min, m.iridescence_thickness_max),
             (m.dispersion, m.diffuse_transmission,
-             tuple(float(c) for c in m.diffuse_transmission_color)), source)
+             tuple(float(c) for c in m.diffuse_transmission_color)),
+            (m.specular_glossiness, tuple(float(c) for c in m.sg_specular), m.glossiness),
+            source)
 
 
 # Prefiltered environments, by (file, its size and time, intensity): a few

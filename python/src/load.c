@@ -191,10 +191,18 @@ static PyObject *material_dict(const sr_pbr_material *m)
     /* KHR_materials_dispersion and _diffuse_transmission, zeros as absent
      * and the color's default white. */
     const float *dc = m->diffuse_transmission_color;
+    /* KHR_materials_pbrSpecularGlossiness (its diffuse is base_color),
+     * white and glossiness 1 where absent. */
+    bool sg = m->specular_glossiness;
+    const float *sp = m->sg_specular;
     PyObject *translucency = surface ? Py_BuildValue(
-        "{sdsdsN}", "dispersion", (double)m->dispersion, "diffuse_transmission",
+        "{sdsdsNsOsNsd}", "dispersion", (double)m->dispersion, "diffuse_transmission",
         (double)m->diffuse_transmission, "diffuse_transmission_color",
-        Py_BuildValue("(ddd)", (double)dc[0], (double)dc[1], (double)dc[2])) : NULL;
+        Py_BuildValue("(ddd)", (double)dc[0], (double)dc[1], (double)dc[2]),
+        "specular_glossiness", sg ? Py_True : Py_False, "sg_specular",
+        Py_BuildValue("(ddd)", sg ? (double)sp[0] : 1.0, sg ? (double)sp[1] : 1.0,
+                      sg ? (double)sp[2] : 1.0),
+        "glossiness", sg ? (double)m->glossiness : 1.0) : NULL;
     if (!translucency || PyDict_Update(surface, translucency) < 0 ||
         PyDict_Update(layers, surface) < 0) {
         Py_XDECREF(translucency);

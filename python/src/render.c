@@ -728,8 +728,9 @@ static int take_matrix(PyObject *obj, const char *name, int rows, int cols, doub
  * (3), clearcoat, clearcoat roughness, sheen color (3), sheen roughness,
  * (transmission, thickness, attenuation color (3), attenuation distance),
  * (anisotropy strength, rotation, iridescence, its ior, thickness min and
- * max), (dispersion, diffuse transmission, its color (3)), source: None
- * or (the loaded scene's capsule, primitive index)). */
+ * max), (dispersion, diffuse transmission, its color (3)), (specular-
+ * glossiness, its specular (3), glossiness), source: None or (the loaded
+ * scene's capsule, primitive index)). */
 static int take_look(PyObject *look, Py_ssize_t i, instance *in)
 {
     PyObject *pose, *source;
@@ -737,9 +738,12 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     *m = sr_pbr_default_material();
     int mode, double_sided, unlit;
     float *c = m->base_color, *e = m->emissive, *sc = m->specular_color, *sh = m->sheen_color;
-    float *ac = m->attenuation_color, *dc = m->diffuse_transmission_color;
+    float *ac = m->attenuation_color, *dc = m->diffuse_transmission_color, *sp = m->sg_specular;
+    int sg;
     if (!PyTuple_Check(look) ||
-        !PyArg_ParseTuple(look, "O(ffff)ff(fff)fifppffff(fff)ff(fff)f(ff(fff)f)(ffffff)(ff(fff))O",
+        !PyArg_ParseTuple(look,
+                          "O(ffff)ff(fff)fifppffff(fff)ff(fff)f(ff(fff)f)(ffffff)(ff(fff))"
+                          "(p(fff)f)O",
                           &pose,
                           &c[0],
                           &c[1], &c[2], &c[3], &m->metallic, &m->roughness, &e[0], &e[1], &e[2],
@@ -751,7 +755,8 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
                           &m->anisotropy_strength, &m->anisotropy_rotation, &m->iridescence,
                           &m->iridescence_ior, &m->iridescence_thickness_min,
                           &m->iridescence_thickness_max, &m->dispersion,
-                          &m->diffuse_transmission, &dc[0], &dc[1], &dc[2], &source)) {
+                          &m->diffuse_transmission, &dc[0], &dc[1], &dc[2], &sg, &sp[0],
+                          &sp[1], &sp[2], &m->glossiness, &source)) {
         PyErr_Clear();
         PyErr_Format(PyExc_TypeError, "instances[%zd]: the look is malformed", i);
         return -1;
@@ -763,6 +768,7 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     m->alpha_mode = mode == 1 ? SR_ALPHA_MASK : mode == 2 ? SR_ALPHA_BLEND : SR_ALPHA_OPAQUE;
     m->double_sided = double_sided;
     m->unlit = unlit;
+    m->specular_glossiness = sg;
     m->specular_set = true;   /* white 1 draws as absent */
     if (take_matrix(pose, "pose", 3, 4, &in->pose[0][0]) < 0) {
         return -1;

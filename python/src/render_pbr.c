@@ -105,6 +105,9 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
     m.diffuse_transmission = f->diffuse_transmission;
     memcpy(m.diffuse_transmission_color, f->diffuse_transmission_color,
            sizeof m.diffuse_transmission_color);
+    m.specular_glossiness = f->specular_glossiness;
+    memcpy(m.sg_specular, f->sg_specular, sizeof m.sg_specular);
+    m.glossiness = f->glossiness;
     return m;
 }
 

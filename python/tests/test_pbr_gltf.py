@@ -437,3 +437,50 @@ def test_dispersion_and_diffuse_transmission_reach_the_material_and_the_picture(
         softrast.Material(diffuse_transmission_color=(1, 2, 0))
     with pytest.raises(ValueError, match="dispersion"):
         softrast.Material(dispersion=-1.0)
+
+
+def test_specular_glossiness_reaches_the_material_and_the_picture(tmp_path):
+    # KHR_materials_pbrSpecularGlossiness comes with the loaded Material:
+    # its diffuse as base_color (and the diffuse texture as the base color
+    # image, not the metallic-roughness fallback's), its specular and
+    # glossiness; the picture is the metallic-roughness twin's (metallic
+    # 0, roughness 1 - glossiness, base color diffuse (1 - max(specular)),
+    # KHR_materials_specular's F0 0.04 color = specular); turning the flag
+    # off on the Material draws the fallback; a Material made in Python
+    # carries the fields and refuses values out of range.
+    diffuse, spec, gloss = (0.2, 0.5, 0.8), (0.3, 0.1, 0.05), 0.7
+    sg = mat((1, 0, 0, 1), metallic=1.0, roughness=0.2,
+             extensions={"KHR_materials_pbrSpecularGlossiness": {
+                 "diffuseFactor": list(diffuse) + [1.0], "specularFactor": list(spec),
+                 "glossinessFactor": gloss, "diffuseTexture": {"index": 0}}})
+    sg["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 1}
+    keep = 1.0 - max(spec)
+    twin = mat(tuple(float(np.float32(c) * np.float32(keep)) for c in diffuse) + (1.0,),
+               metallic=0.0,
+               roughness=float(np.float32(1.0) - np.float32(gloss)),
+               extensions={"KHR_materials_specular": {
+                   "specularColorFactor": [float(np.float32(c) / np.float32(0.04))
+                                           for c in spec]}})
+    twin["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    white, red = solid((255, 255, 255, 255)), solid((255, 0, 0, 255))
+    scenes = [load(gb.write(tmp_path / f"s{i}.gltf", [(gb.quad((0, 0, 0), 2.0), 0)], [m],
+                            [white, red]))
+              for i, m in enumerate((sg, twin))]
+    got = scenes[0].instances[0].material
+    assert got.specular_glossiness and abs(got.glossiness - gloss) < 1e-6
+    assert np.allclose(got.base_color, list(diffuse) + [1.0])
+    assert np.allclose(got.sg_specular, spec)
+    assert got.base_color_texture is not None and got.base_color_texture[0, 0, 1] == 255
+    pictures = [front(s)["color"].astype(int) for s in scenes]
+    assert np.abs(pictures[0] - pictures[1]).max() <= 1
+    got.specular_glossiness = False
+    got.base_color = np.array([1, 0, 0, 1], np.float32)
+    assert np.abs(front(scenes[0])["color"].astype(int) - pictures[0]).max() > 10
+    assert not scenes[1].instances[0].material.specular_glossiness
+    m = softrast.Material(specular_glossiness=True, sg_specular=(1, 0.5, 0), glossiness=0.25)
+    assert m.specular_glossiness and list(m.sg_specular) == [1.0, 0.5, 0.0]
+    assert m.glossiness == 0.25
+    with pytest.raises(ValueError, match="sg_specular"):
+        softrast.Material(sg_specular=(1, 2, 0))
+    with pytest.raises(ValueError, match="glossiness"):
+        softrast.Material(glossiness=-0.5)
