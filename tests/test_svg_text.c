@@ -1106,6 +1106,44 @@ SR_TEST(text_combine_upright_sets_one_em_across)
 #undef H
 }
 
+/* A combined run of any length is one unit squeezed into one em (CSS
+ * Writing Modes 3 9.1.1 sets no limit): 40 digits of IPAGothic (800 px
+ * at 40 px) to a twentieth of their width, the pen going down one em; a
+ * unit of more contours than a path may hold is drawn in pieces. */
+SR_TEST(text_combine_upright_squeezes_a_run_of_any_length)
+{
+    NEED_CJK();
+#define H "font-family='IPAGothic' font-size='40' dominant-baseline='central'"
+#define FORTY "0123456789012345678901234567890123456789"
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA "><tspan style='text-combine-upright: all'>" FORTY
+                   "</tspan>\xE4\xB8\x80</text>",
+                   "<text transform='translate(100 40) scale(0.05 1)' x='-400' " H ">" FORTY
+                   "</text><text x='100' y='60' " JA ">\xE4\xB8\x80</text>", 24);
+#undef FORTY
+#undef H
+    /* 8400 equals signs: 16800 contours, more than SR_SVG_MAX_SUBPATHS */
+    enum { N = 8400 };
+    static const char head[] = "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='200'>"
+                               "<text x='100' y='20' " JA "><tspan "
+                               "style='text-combine-upright: all'>";
+    static const char one[] = "</tspan>\xE4\xB8\x80</text></svg>";
+    static const char two[] = "</tspan></text><text x='100' y='60' " JA
+                              ">\xE4\xB8\x80</text></svg>";
+    char *a = malloc(sizeof head + N + sizeof one), *b = malloc(sizeof head + N + sizeof two);
+    REQUIRE(a && b);
+    memcpy(a, head, sizeof head - 1);
+    memset(a + sizeof head - 1, '=', N);
+    memcpy(b, a, sizeof head - 1 + N);
+    memcpy(a + sizeof head - 1 + N, one, sizeof one);
+    memcpy(b + sizeof head - 1 + N, two, sizeof two);
+    sr_framebuffer *fa = render(a, SR_OK, NULL, 0), *fb = render(b, SR_OK, NULL, 0);
+    CHECK_EQ(count_differing(fa, fb, 0), 0);
+    destroy(fa, fb);
+    free(a);
+    free(b);
+}
+
 /* Upright glyphs on a textPath in vertical text follow the path: the
  * vertical line is bent onto it, their tops towards its start (as
  * Chromium draws; SVG 1.1 10.13.3 turns each glyph to the tangent),

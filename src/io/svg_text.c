@@ -812,11 +812,6 @@ static void turn_glyphs(svg_text *t)
     }
 }
 
-/* Characters in one text-combine-upright unit at most; a longer run is
- * laid out as it would be without the property (squeezed into one em it
- * would be a smudge). */
-#define MAX_COMBINED 32
-
 /* Whether characters a and b (a before b) are in one chunk: no absolute
  * position at b, one textPath. */
 static bool same_chunk(const svg_text *t, int a, int b)
@@ -826,9 +821,9 @@ static bool same_chunk(const svg_text *t, int a, int b)
 }
 
 /* The text-combine-upright units of a vertical text (CSS Writing Modes 3
- * 9.1, 4 for digits): a run of characters of elements with all, or a
- * run of ASCII digits of elements with digits N that is at most N long,
- * within a chunk. */
+ * 9.1, 4 for digits): a run of characters of elements with all, however
+ * long (it is squeezed into one em), or a run of ASCII digits of elements
+ * with digits N that is at most N long, within a chunk. */
 static void mark_combined(svg_text *t)
 {
     for (int i = 0; i < t->n_chars;) {
@@ -847,8 +842,7 @@ static void mark_combined(svg_text *t)
                 break;
             }
         }
-        int limit = mode == SVG_COMBINE_ALL ? MAX_COMBINED : mode;
-        for (int k = i; k < e && e - i <= limit; k++) {
+        for (int k = i; k < e && (mode == SVG_COMBINE_ALL || e - i <= mode); k++) {
             t->chars[k].combine = i + 1;
         }
         i = e;
@@ -1099,6 +1093,15 @@ static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg
                      q == k ? start + em * sx : start, pen[1] + baseline_offset(el) };
         const svg_glyph *g = *glyphs;
         for (int i = 0; i < n; i++) {
+            if (t->n_placed - run.glyph0 >= MAX_RUN_GLYPHS) {
+                /* a long unit is drawn in pieces, as a long run is */
+                run.n_glyphs = t->n_placed - run.glyph0;
+                if (!add_run(t, run)) {
+                    return SR_OUT_OF_MEMORY;
+                }
+                run.glyph0 = t->n_placed;
+                run.x1 = start;
+            }
             /* (across, down) in the upright square from its middle, to
              * the line's (along, across) */
             double across = x + g[i].ox * scale * squeeze, down = base - g[i].oy * scale;
@@ -1107,6 +1110,7 @@ static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg
                 { 0, -scale * squeeze, -scale * sx, 0, mu + down * sx, mv - across } };
             x += g[i].ax * scale * squeeze;
         }
+        run.n_glyphs = t->n_placed - run.glyph0;
         if (!add_run(t, run)) {
             return SR_OUT_OF_MEMORY;
         }
