@@ -1144,6 +1144,30 @@ SR_TEST(text_combine_upright_squeezes_a_run_of_any_length)
     free(b);
 }
 
+/* A combined unit is one typographic character for rotate (SVG 1.1
+ * 10.5): the rotate of its first character turns the whole unit about
+ * its vertical origin, the top of its em square on the line, as an
+ * upright glyph turns; the values of its other characters are unused. */
+SR_TEST(text_combine_upright_takes_its_first_characters_rotate)
+{
+    NEED_CJK();
+#define ALL(s) "<tspan style='text-combine-upright: all'>" s "</tspan>"
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " rotate='30 0 0'>" ALL("12") "\xE4\xB8\x80</text>",
+                   "<text x='100' y='20' " JA " transform='rotate(30 100 20)'>" ALL("12")
+                   "</text><text x='100' y='60' " JA ">\xE4\xB8\x80</text>", 2);
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " rotate='0 30 30'>" ALL("12") "\xE4\xB8\x80</text>",
+                   "<text x='100' y='20' " JA ">" ALL("12") "</text><text x='100' y='60' " JA
+                   " rotate='30'>\xE4\xB8\x80</text>", 0);
+    /* an upright glyph turns about the same point */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " rotate='30'>\xE4\xB8\x80</text>",
+                   "<text x='100' y='20' " JA " transform='rotate(30 100 20)'>\xE4\xB8\x80</text>",
+                   2);
+#undef ALL
+}
+
 /* Upright glyphs on a textPath in vertical text follow the path: the
  * vertical line is bent onto it, their tops towards its start (as
  * Chromium draws; SVG 1.1 10.13.3 turns each glyph to the tangent),

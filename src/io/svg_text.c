@@ -1044,7 +1044,9 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
  * square's middle as the central baseline is below the alphabetic), the
  * pen going down one em.  The em, its place and its spacing are the
  * first character's element's; the dx and dy of all its characters move
- * it, rotate does not turn it. */
+ * it.  It is one typographic character: the rotate of its first
+ * character turns it about its vertical origin (the top of the square,
+ * on the line), as an upright glyph turns. */
 static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg, int k, int j,
                                 double pen[2], svg_glyph **glyphs, int *cap)
 {
@@ -1078,6 +1080,8 @@ static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg
     double mu = start + em * sx / 2;
     double mv = pen[1] + baseline_offset(head) - (hm->ascender + hm->descender) / 2 * hs;
     double base = (hm->ascender + hm->descender) / 2 * hs, x = -width * squeeze / 2;
+    double rot = t->chars[first].pos[LIST_ROTATE];
+    double a = isnan(rot) ? 0 : rot * (M_PI / 180), co = cos(a), si = sin(a);
     for (int q = k; q < j; q++) {
         int s = seg[2 * q], e = seg[2 * q + 1];
         svg_face *face = t->chars[s].face;
@@ -1103,11 +1107,13 @@ static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg
                 run.x1 = start;
             }
             /* (across, down) in the upright square from its middle, to
-             * the line's (along, across) */
+             * the line's (along, across), turned about (start, mv) */
             double across = x + g[i].ox * scale * squeeze, down = base - g[i].oy * scale;
+            double u = mu + down * sx - start, v = -across;
             t->placed[t->n_placed++] = (tglyph){
                 g[i].id, t->chars[g[i].cluster].visible, mu,
-                { 0, -scale * squeeze, -scale * sx, 0, mu + down * sx, mv - across } };
+                { scale * squeeze * si, -scale * squeeze * co, -scale * sx * co,
+                  -scale * sx * si, start + co * u - si * v, mv + si * u + co * v } };
             x += g[i].ax * scale * squeeze;
         }
         run.n_glyphs = t->n_placed - run.glyph0;
