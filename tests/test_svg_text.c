@@ -907,6 +907,19 @@ SR_TEST(vertical_text_runs_down_turned_a_quarter)
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
 
+/* glyph-orientation-horizontal (SVG 1.1 10.7.3) is removed by SVG 2 and
+ * ignored by Chromium 156, rsvg-convert 2.54 and resvg: as an attribute
+ * or a style property it leaves horizontal text as it is, without a
+ * warning. */
+SR_TEST(glyph_orientation_horizontal_is_ignored)
+{
+    NEED_TEXT();
+#define T "<text x='10' y='40' font-family='DejaVu Sans' font-size='30' "
+    SAME_PIXELS(T "glyph-orientation-horizontal='90'>Hxo</text>", T ">Hxo</text>", 0);
+    SAME_PIXELS(T "style='glyph-orientation-horizontal: 180deg'>Hxo</text>", T ">Hxo</text>", 0);
+#undef T
+}
+
 /* A drawing of tests/data/svg against its reference tests/ref/<ref>.png
  * (channel tolerance 2, at most 0.5% of the pixels beyond it), drawn
  * without a warning. */
