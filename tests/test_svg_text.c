@@ -1047,6 +1047,26 @@ SR_TEST(upright_glyphs_stand_with_vertical_metrics)
                 2);
 }
 
+/* Upright glyphs of a font without vertical metrics (DejaVu Sans: no
+ * vhea, vmtx or VORG) stand on one baseline, an ascender (1901 of 2048
+ * units) below the top of their advance, centred across the line, the
+ * pen going down by ascender minus descender (2384 units): as horizontal
+ * text at those baselines, anchored at its middle; Chromium places them
+ * so.  HarfBuzz's own fallback centred each glyph's ink in its advance,
+ * the x higher than the H. */
+SR_TEST(upright_glyphs_without_vertical_metrics_share_a_baseline)
+{
+    NEED_TEXT();
+#define T "font-family='DejaVu Sans' font-size='40'"
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' writing-mode='tb' " T
+                   " style='text-orientation: upright'>Hxg</text>",
+                   "<text text-anchor='middle' " T "><tspan x='100' y='57.12890625'>H</tspan>"
+                   "<tspan x='100' y='103.69140625'>x</tspan>"
+                   "<tspan x='100' y='150.25390625'>g</tspan></text>", 2);
+#undef T
+}
+
 #define JA "writing-mode='tb-rl' font-family='IPAGothic' font-size='40'"
 /* glyph-orientation-vertical 180 and 270 (SVG 1.1 10.7.3): the glyph
  * as 0 or 90 sets it, turned half round in its advance, about the middle
