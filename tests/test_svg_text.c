@@ -1234,6 +1234,18 @@ SR_TEST(vertical_turns_and_combinations_match_reference)
     check_drawing("text-vertical-turns.svg", "svg_text_vertical_turns");
 }
 
+/* Upright Latin of fonts without vertical metrics (DejaVu), a combined
+ * run of 40 digits and combined units turned by rotate, in vertical
+ * text.  Chromium 156 draws the upright columns as the reference does
+ * (the differences are its hinting and device-pixel rounding); it,
+ * rsvg-convert 2.54 and resvg-js 2.6.2 set no text-combine-upright in
+ * SVG, and rsvg-convert no upright Latin. */
+SR_TEST(vertical_units_match_reference)
+{
+    NEED_CJK();
+    check_drawing("text-vertical-units.svg", "svg_text_vertical_units");
+}
+
 /* Text in a clipPath, with paint, clip-rule and a use of a text in it
  * (DejaVu): a gradient and a picture through letters.  The reference
  * matches resvg-js 2.6.2 to 0.02% of its pixels and rsvg-convert 2.54
