@@ -907,6 +907,19 @@ SR_TEST(vertical_text_runs_down_turned_a_quarter)
     sr_destroy_framebuffer(sr_test_ctx(), fb);
 }
 
+/* glyph-orientation-horizontal (SVG 1.1 10.7.3) is removed by SVG 2 and
+ * ignored by Chromium 156, rsvg-convert 2.54 and resvg: as an attribute
+ * or a style property it leaves horizontal text as it is, without a
+ * warning. */
+SR_TEST(glyph_orientation_horizontal_is_ignored)
+{
+    NEED_TEXT();
+#define T "<text x='10' y='40' font-family='DejaVu Sans' font-size='30' "
+    SAME_PIXELS(T "glyph-orientation-horizontal='90'>Hxo</text>", T ">Hxo</text>", 0);
+    SAME_PIXELS(T "style='glyph-orientation-horizontal: 180deg'>Hxo</text>", T ">Hxo</text>", 0);
+#undef T
+}
+
 /* A drawing of tests/data/svg against its reference tests/ref/<ref>.png
  * (channel tolerance 2, at most 0.5% of the pixels beyond it), drawn
  * without a warning. */
@@ -1034,6 +1047,26 @@ SR_TEST(upright_glyphs_stand_with_vertical_metrics)
                 2);
 }
 
+/* Upright glyphs of a font without vertical metrics (DejaVu Sans: no
+ * vhea, vmtx or VORG) stand on one baseline, an ascender (1901 of 2048
+ * units) below the top of their advance, centred across the line, the
+ * pen going down by ascender minus descender (2384 units): as horizontal
+ * text at those baselines, anchored at its middle; Chromium places them
+ * so.  HarfBuzz's own fallback centred each glyph's ink in its advance,
+ * the x higher than the H. */
+SR_TEST(upright_glyphs_without_vertical_metrics_share_a_baseline)
+{
+    NEED_TEXT();
+#define T "font-family='DejaVu Sans' font-size='40'"
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' writing-mode='tb' " T
+                   " style='text-orientation: upright'>Hxg</text>",
+                   "<text text-anchor='middle' " T "><tspan x='100' y='57.12890625'>H</tspan>"
+                   "<tspan x='100' y='103.69140625'>x</tspan>"
+                   "<tspan x='100' y='150.25390625'>g</tspan></text>", 2);
+#undef T
+}
+
 #define JA "writing-mode='tb-rl' font-family='IPAGothic' font-size='40'"
 /* glyph-orientation-vertical 180 and 270 (SVG 1.1 10.7.3): the glyph
  * as 0 or 90 sets it, turned half round in its advance, about the middle
@@ -1106,6 +1139,68 @@ SR_TEST(text_combine_upright_sets_one_em_across)
 #undef H
 }
 
+/* A combined run of any length is one unit squeezed into one em (CSS
+ * Writing Modes 3 9.1.1 sets no limit): 40 digits of IPAGothic (800 px
+ * at 40 px) to a twentieth of their width, the pen going down one em; a
+ * unit of more contours than a path may hold is drawn in pieces. */
+SR_TEST(text_combine_upright_squeezes_a_run_of_any_length)
+{
+    NEED_CJK();
+#define H "font-family='IPAGothic' font-size='40' dominant-baseline='central'"
+#define FORTY "0123456789012345678901234567890123456789"
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA "><tspan style='text-combine-upright: all'>" FORTY
+                   "</tspan>\xE4\xB8\x80</text>",
+                   "<text transform='translate(100 40) scale(0.05 1)' x='-400' " H ">" FORTY
+                   "</text><text x='100' y='60' " JA ">\xE4\xB8\x80</text>", 24);
+#undef FORTY
+#undef H
+    /* 8400 equals signs: 16800 contours, more than SR_SVG_MAX_SUBPATHS */
+    enum { N = 8400 };
+    static const char head[] = "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='200'>"
+                               "<text x='100' y='20' " JA "><tspan "
+                               "style='text-combine-upright: all'>";
+    static const char one[] = "</tspan>\xE4\xB8\x80</text></svg>";
+    static const char two[] = "</tspan></text><text x='100' y='60' " JA
+                              ">\xE4\xB8\x80</text></svg>";
+    char *a = malloc(sizeof head + N + sizeof one), *b = malloc(sizeof head + N + sizeof two);
+    REQUIRE(a && b);
+    memcpy(a, head, sizeof head - 1);
+    memset(a + sizeof head - 1, '=', N);
+    memcpy(b, a, sizeof head - 1 + N);
+    memcpy(a + sizeof head - 1 + N, one, sizeof one);
+    memcpy(b + sizeof head - 1 + N, two, sizeof two);
+    sr_framebuffer *fa = render(a, SR_OK, NULL, 0), *fb = render(b, SR_OK, NULL, 0);
+    CHECK_EQ(count_differing(fa, fb, 0), 0);
+    destroy(fa, fb);
+    free(a);
+    free(b);
+}
+
+/* A combined unit is one typographic character for rotate (SVG 1.1
+ * 10.5): the rotate of its first character turns the whole unit about
+ * its vertical origin, the top of its em square on the line, as an
+ * upright glyph turns; the values of its other characters are unused. */
+SR_TEST(text_combine_upright_takes_its_first_characters_rotate)
+{
+    NEED_CJK();
+#define ALL(s) "<tspan style='text-combine-upright: all'>" s "</tspan>"
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " rotate='30 0 0'>" ALL("12") "\xE4\xB8\x80</text>",
+                   "<text x='100' y='20' " JA " transform='rotate(30 100 20)'>" ALL("12")
+                   "</text><text x='100' y='60' " JA ">\xE4\xB8\x80</text>", 2);
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " rotate='0 30 30'>" ALL("12") "\xE4\xB8\x80</text>",
+                   "<text x='100' y='20' " JA ">" ALL("12") "</text><text x='100' y='60' " JA
+                   " rotate='30'>\xE4\xB8\x80</text>", 0);
+    /* an upright glyph turns about the same point */
+    same_pixels_on(__LINE__, 200, 200,
+                   "<text x='100' y='20' " JA " rotate='30'>\xE4\xB8\x80</text>",
+                   "<text x='100' y='20' " JA " transform='rotate(30 100 20)'>\xE4\xB8\x80</text>",
+                   2);
+#undef ALL
+}
+
 /* Upright glyphs on a textPath in vertical text follow the path: the
  * vertical line is bent onto it, their tops towards its start (as
  * Chromium draws; SVG 1.1 10.13.3 turns each glyph to the tangent),
@@ -1137,6 +1232,18 @@ SR_TEST(vertical_turns_and_combinations_match_reference)
 {
     NEED_CJK();
     check_drawing("text-vertical-turns.svg", "svg_text_vertical_turns");
+}
+
+/* Upright Latin of fonts without vertical metrics (DejaVu), a combined
+ * run of 40 digits and combined units turned by rotate, in vertical
+ * text.  Chromium 156 draws the upright columns as the reference does
+ * (the differences are its hinting and device-pixel rounding); it,
+ * rsvg-convert 2.54 and resvg-js 2.6.2 set no text-combine-upright in
+ * SVG, and rsvg-convert no upright Latin. */
+SR_TEST(vertical_units_match_reference)
+{
+    NEED_CJK();
+    check_drawing("text-vertical-units.svg", "svg_text_vertical_units");
 }
 
 /* Text in a clipPath, with paint, clip-rule and a use of a text in it

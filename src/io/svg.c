@@ -485,7 +485,10 @@ static const char *const no_effect_props[] = {
     "font", "letter-spacing", "word-spacing", "line-height", "writing-mode", "direction",
     "baseline-shift", "dominant-baseline", "alignment-baseline", "white-space", "inline-size",
     "shape-padding", "shape-margin", "shape-inside", "block-progression",
-    "clip", NULL,
+    "clip",
+    /* removed by SVG 2, and ignored by Chromium, rsvg-convert and resvg:
+     * drawn as they draw it (docs/draw2d.md) */
+    "glyph-orientation-horizontal", NULL,
 };
 
 static const struct { const char *name, *value; } initial_values[] = {

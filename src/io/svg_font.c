@@ -215,6 +215,50 @@ static bool match_file(const char *family, int weight, int slant, char *file, si
     return ok;
 }
 
+/* The vertical origin of a glyph of a font without vertical metrics:
+ * the middle of its advance across, the ascender above its baseline, so
+ * that upright glyphs share a baseline one ascender below the top of
+ * their advance, as Chromium places them (HarfBuzz's own fallback
+ * centres each glyph's ink in its advance, so that the baseline jumps
+ * from glyph to glyph). */
+static hb_bool_t em_box_v_origin(hb_font_t *font, void *font_data, hb_codepoint_t glyph,
+                                 hb_position_t *x, hb_position_t *y, void *user_data)
+{
+    (void)font_data;
+    (void)user_data;
+    hb_font_extents_t e;
+    hb_font_get_h_extents(font, &e);
+    *x = hb_font_get_glyph_h_advance(font, glyph) / 2;
+    *y = e.ascender;
+    return true;
+}
+
+static bool has_table(hb_face_t *face, hb_tag_t tag)
+{
+    hb_blob_t *b = hb_face_reference_table(face, tag);
+    bool has = hb_blob_get_length(b) > 0;
+    hb_blob_destroy(b);
+    return has;
+}
+
+/* HarfBuzz's font for face hf: its own functions throughout, but for
+ * the vertical origin where the face has neither VORG nor vmtx. */
+static hb_font_t *make_hb_font(hb_face_t *hf)
+{
+    hb_font_t *font = hb_font_create(hf);
+    if (has_table(hf, HB_TAG('V', 'O', 'R', 'G')) || has_table(hf, HB_TAG('v', 'm', 't', 'x'))) {
+        return font;
+    }
+    hb_font_t *sub = hb_font_create_sub_font(font); /* forwards what it does not set */
+    hb_font_destroy(font);
+    hb_font_funcs_t *funcs = hb_font_funcs_create();
+    hb_font_funcs_set_glyph_v_origin_func(funcs, em_box_v_origin, NULL, NULL);
+    hb_font_funcs_make_immutable(funcs);
+    hb_font_set_funcs(sub, funcs, NULL, NULL);
+    hb_font_funcs_destroy(funcs);
+    return sub;
+}
+
 static bool open_face(svg_fonts *fonts, svg_face *face, const char *file, int index, char *why,
                       size_t why_size)
 {
@@ -230,7 +274,7 @@ static bool open_face(svg_fonts *fonts, svg_face *face, const char *file, int in
     hb_blob_t *blob = hb_blob_create_from_file(file);
     hb_face_t *hf = hb_face_create(blob, (unsigned)index);
     hb_blob_destroy(blob);
-    face->hb = hb_font_create(hf);
+    face->hb = make_hb_font(hf);
     hb_face_destroy(hf);
     if (!face->hb || hb_face_get_glyph_count(hb_font_get_face(face->hb)) == 0) {
         snprintf(why, why_size, "%s: HarfBuzz cannot read it as a font", file);

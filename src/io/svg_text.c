@@ -812,11 +812,6 @@ static void turn_glyphs(svg_text *t)
     }
 }
 
-/* Characters in one text-combine-upright unit at most; a longer run is
- * laid out as it would be without the property (squeezed into one em it
- * would be a smudge). */
-#define MAX_COMBINED 32
-
 /* Whether characters a and b (a before b) are in one chunk: no absolute
  * position at b, one textPath. */
 static bool same_chunk(const svg_text *t, int a, int b)
@@ -826,9 +821,9 @@ static bool same_chunk(const svg_text *t, int a, int b)
 }
 
 /* The text-combine-upright units of a vertical text (CSS Writing Modes 3
- * 9.1, 4 for digits): a run of characters of elements with all, or a
- * run of ASCII digits of elements with digits N that is at most N long,
- * within a chunk. */
+ * 9.1, 4 for digits): a run of characters of elements with all, however
+ * long (it is squeezed into one em), or a run of ASCII digits of elements
+ * with digits N that is at most N long, within a chunk. */
 static void mark_combined(svg_text *t)
 {
     for (int i = 0; i < t->n_chars;) {
@@ -847,8 +842,7 @@ static void mark_combined(svg_text *t)
                 break;
             }
         }
-        int limit = mode == SVG_COMBINE_ALL ? MAX_COMBINED : mode;
-        for (int k = i; k < e && e - i <= limit; k++) {
+        for (int k = i; k < e && (mode == SVG_COMBINE_ALL || e - i <= mode); k++) {
             t->chars[k].combine = i + 1;
         }
         i = e;
@@ -1050,7 +1044,9 @@ static sr_result place_run(svg_text *t, const uint32_t *cps, int s, int e, int d
  * square's middle as the central baseline is below the alphabetic), the
  * pen going down one em.  The em, its place and its spacing are the
  * first character's element's; the dx and dy of all its characters move
- * it, rotate does not turn it. */
+ * it.  It is one typographic character: the rotate of its first
+ * character turns it about its vertical origin (the top of the square,
+ * on the line), as an upright glyph turns. */
 static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg, int k, int j,
                                 double pen[2], svg_glyph **glyphs, int *cap)
 {
@@ -1084,6 +1080,8 @@ static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg
     double mu = start + em * sx / 2;
     double mv = pen[1] + baseline_offset(head) - (hm->ascender + hm->descender) / 2 * hs;
     double base = (hm->ascender + hm->descender) / 2 * hs, x = -width * squeeze / 2;
+    double rot = t->chars[first].pos[LIST_ROTATE];
+    double a = isnan(rot) ? 0 : rot * (M_PI / 180), co = cos(a), si = sin(a);
     for (int q = k; q < j; q++) {
         int s = seg[2 * q], e = seg[2 * q + 1];
         svg_face *face = t->chars[s].face;
@@ -1099,14 +1097,26 @@ static sr_result place_combined(svg_text *t, const uint32_t *cps, const int *seg
                      q == k ? start + em * sx : start, pen[1] + baseline_offset(el) };
         const svg_glyph *g = *glyphs;
         for (int i = 0; i < n; i++) {
+            if (t->n_placed - run.glyph0 >= MAX_RUN_GLYPHS) {
+                /* a long unit is drawn in pieces, as a long run is */
+                run.n_glyphs = t->n_placed - run.glyph0;
+                if (!add_run(t, run)) {
+                    return SR_OUT_OF_MEMORY;
+                }
+                run.glyph0 = t->n_placed;
+                run.x1 = start;
+            }
             /* (across, down) in the upright square from its middle, to
-             * the line's (along, across) */
+             * the line's (along, across), turned about (start, mv) */
             double across = x + g[i].ox * scale * squeeze, down = base - g[i].oy * scale;
+            double u = mu + down * sx - start, v = -across;
             t->placed[t->n_placed++] = (tglyph){
                 g[i].id, t->chars[g[i].cluster].visible, mu,
-                { 0, -scale * squeeze, -scale * sx, 0, mu + down * sx, mv - across } };
+                { scale * squeeze * si, -scale * squeeze * co, -scale * sx * co,
+                  -scale * sx * si, start + co * u - si * v, mv + si * u + co * v } };
             x += g[i].ax * scale * squeeze;
         }
+        run.n_glyphs = t->n_placed - run.glyph0;
         if (!add_run(t, run)) {
             return SR_OUT_OF_MEMORY;
         }
