@@ -1722,10 +1722,15 @@ static void resolve_layers(sr_pbr *p)
     if (m->iridescence_ior == 0.0f) {
         m->iridescence_ior = 1.3f;
     }
-    if (m->iridescence_thickness_min == 0.0f && m->iridescence_thickness_max == 0.0f) {
+    if (!m->iridescence_thickness_set && m->iridescence_thickness_min == 0.0f &&
+        m->iridescence_thickness_max == 0.0f) {
         m->iridescence_thickness_min = 100.0f;
         m->iridescence_thickness_max = 400.0f;
     }
+    /* A film 0 nm thick everywhere is no film (KHR_materials_iridescence):
+     * off, rather than the formula's near miss of the base. */
+    bool film = m->iridescence_thickness_max > 0.0f ||
+                (p->slot[SLOT_IRIDESCENCE_THICKNESS].tex && m->iridescence_thickness_min > 0.0f);
     if (m->clearcoat_normal_scale == 0.0f) {
         m->clearcoat_normal_scale = 1.0f;
     }
@@ -1734,7 +1739,7 @@ static void resolve_layers(sr_pbr *p)
     p->sheen = !m->unlit &&
                (m->sheen_color[0] > 0.0f || m->sheen_color[1] > 0.0f || m->sheen_color[2] > 0.0f);
     p->aniso = !m->unlit && m->anisotropy_strength > 0.0f;
-    p->irid = !m->unlit && m->iridescence > 0.0f;
+    p->irid = !m->unlit && m->iridescence > 0.0f && film;
     p->dtrans = !m->unlit && m->diffuse_transmission > 0.0f;
     p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen || p->aniso ||
                               p->irid || p->dtrans);
