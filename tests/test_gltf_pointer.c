@@ -530,6 +530,21 @@ SR_TEST(two_channels_on_one_pointer_target_are_refused)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* The document of one LINEAR scalar channel to `pointer`, keys k[0] at
+ * 0 s and k[1] at 2 s, with material 0 `material`.  Malloc'd. */
+static char *scalar_channel_json(const char *material, const float k[2], const char *pointer)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+    int out = put(&b, k, 2, 4, "SCALAR", 2, 5126, false);
+    char samplers[128], channels[512] = "";
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+    add_channel(channels, sizeof channels, 0, pointer);
+    return scene_json_with(&b, material, samplers, channels);
+}
+
 /* A MASK material whose file cutoff is 0 reads OPAQUE (a cutoff of 0
  * keeps every fragment); posed with an animated cutoff above 0 it is the
  * file's MASK with that cutoff, and OPAQUE again at the rest pose and
@@ -538,17 +553,10 @@ SR_TEST(an_animated_cutoff_masks_a_mask_material_read_opaque)
 {
     static const char *const modes[2] = { "MASK", "OPAQUE" };
     for (int k = 0; k < 2; k++) {
-        blob b = { .size = 0 };
-        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
         static const float cut[2] = { 0, 0.4f };
-        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
-        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
-        int out = put(&b, cut, 2, 4, "SCALAR", 2, 5126, false);
-        char samplers[128], channels[512] = "", mat[128];
-        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
-        add_channel(channels, sizeof channels, 0, "/materials/0/alphaCutoff");
+        char mat[128];
         snprintf(mat, sizeof mat, "{\"alphaMode\":\"%s\",\"alphaCutoff\":0}", modes[k]);
-        char *json = scene_json_with(&b, mat, samplers, channels);
+        char *json = scalar_channel_json(mat, cut, "/materials/0/alphaCutoff");
         REQUIRE(json);
         sr_scene *s = NULL, *posed = NULL;
         sr_io_error e;
@@ -608,18 +616,11 @@ SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
                       "\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
                       "\"KHR_materials_volume\":{\"attenuationDistance\":2}}}";
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        blob b = { .size = 0 };
-        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
         const float keys[2] = { cases[i].k0, cases[i].k1 };
-        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
-        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
-        int out = put(&b, keys, 2, 4, "SCALAR", 2, 5126, false);
-        char samplers[128], channels[512] = "", pointer[256];
-        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        char pointer[256];
         snprintf(pointer, sizeof pointer, "/materials/0/extensions/KHR_materials_%s/%s",
                  cases[i].ext, cases[i].name);
-        add_channel(channels, sizeof channels, 0, pointer);
-        char *json = scene_json_with(&b, mat, samplers, channels);
+        char *json = scalar_channel_json(mat, keys, pointer);
         REQUIRE(json);
         sr_scene *s = NULL;
         sr_io_error e;
@@ -680,28 +681,23 @@ static uint8_t *draw_film(const sr_pbr_material *m, const char *name)
 }
 
 /* A film's material from the document whose iridescence extension is
- * `film` (max 0..400 nm keyed at 0 and 2 s when `animated`), posed at
- * `time` through sr_load_desc (by_scene_pose false) or sr_scene_pose
- * from the rest pose; false on failure. */
+ * `film`: `animated`, its maximum keyed 0 and 400 nm at 0 and 2 s and
+ * posed at `time` through sr_load_desc (by_scene_pose false) or
+ * sr_scene_pose from the rest pose; else read at rest (the document's
+ * one channel, to the roughness, left unplayed).  false on failure. */
 static bool film_material(const char *film, bool animated, bool by_scene_pose, float time,
                           sr_pbr_material *out)
 {
-    blob b = { .size = 0 };
-    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
     static const float nm[2] = { 0, 400 };
-    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
-    int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
-    int o = put(&b, nm, 2, 4, "SCALAR", 2, 5126, false);
-    char samplers[128], channels[512] = "", mat[512];
-    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, o);
-    add_channel(channels, sizeof channels, 0,
-                animated ? "/materials/0/extensions/KHR_materials_iridescence/"
-                           "iridescenceThicknessMaximum"
-                         : "/materials/0/pbrMetallicRoughness/roughnessFactor");
+    char mat[512];
     snprintf(mat, sizeof mat, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.1,0.12,1],"
              "\"metallicFactor\":0,\"roughnessFactor\":0.3},"
              "\"extensions\":{\"KHR_materials_iridescence\":%s}}", film);
-    char *json = scene_json_with(&b, mat, samplers, channels);
+    char *json = scalar_channel_json(mat, nm, animated ? "/materials/0/extensions/"
+                                                         "KHR_materials_iridescence/"
+                                                         "iridescenceThicknessMaximum"
+                                                       : "/materials/0/pbrMetallicRoughness/"
+                                                         "roughnessFactor");
     sr_scene *s = NULL;
     sr_io_error e;
     sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = time };
