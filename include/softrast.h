@@ -1051,9 +1051,12 @@ typedef struct sr_pbr_material {
     float iridescence;             /* 0..1: the film's weight; 0: no film */
     sr_texture_slot iridescence_texture;         /* R channel, linear */
     float iridescence_ior;         /* >= 1, the film's index; 0 -> 1.3 */
+    bool iridescence_thickness_set;              /* false: both thicknesses 0 -> 100 and
+                                                  * 400 nm; true: as given, 0 nm being
+                                                  * no film (as the extension has it) */
     float iridescence_thickness_min;             /* nm, >= 0, at the texture's G = 0 */
     float iridescence_thickness_max;             /* nm, >= 0, at G = 1 and without a
-                                                  * texture; 0 -> 400 */
+                                                  * texture */
     sr_texture_slot iridescence_thickness_texture; /* G channel, linear */
     /* KHR_materials_dispersion and _diffuse_transmission (docs/pbr.md),
      * zero as absent like the blocks above.  Dispersion spreads a

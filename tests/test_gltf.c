@@ -632,7 +632,8 @@ static sr_scene *load_textured(const char *used, const char *materials, warnings
  * through the slots (KHR_texture_transform included), the defaults of a
  * present but empty extension (iridescence 0, its ior 1.3 and 100..400
  * nm); out-of-range factors clamped with one warning each; a film of no
- * thickness anywhere is no film; absent, the zeros; neither is named
+ * thickness keeps its factor and its 0 nm (iridescence_thickness_set);
+ * absent, the zeros; neither is named
  * among the extensions not read. */
 SR_TEST(anisotropy_and_iridescence_are_read)
 {
@@ -681,10 +682,16 @@ SR_TEST(anisotropy_and_iridescence_are_read)
     CHECK_EQ(c->iridescence_ior, 1.0f);
     CHECK_EQ(c->iridescence_thickness_max, 0.0f);
     CHECK_EQ(c->iridescence, 0.0f);
-    CHECK_EQ(s->materials[3].iridescence, 0.0f);    /* no thickness: no film */
+    /* No thickness: the factor stays the file's, 0 nm drawing no film
+     * (sr_pbr_material's thicknesses are as given, not the defaults). */
+    CHECK_EQ(s->materials[3].iridescence, 1.0f);
+    CHECK(s->materials[3].iridescence_thickness_set);
+    CHECK_EQ(s->materials[3].iridescence_thickness_max, 0.0f);
+    CHECK(e->iridescence_thickness_set);
     const sr_pbr_material *a = &s->materials[4];
     CHECK(a->anisotropy_strength == 0.0f && a->iridescence == 0.0f &&
-          a->iridescence_ior == 0.0f && a->iridescence_thickness_max == 0.0f);
+          a->iridescence_ior == 0.0f && a->iridescence_thickness_max == 0.0f &&
+          !a->iridescence_thickness_set);
     CHECK_EQ(w.count, 4);
     CHECK_STR_CONTAINS(w.last, "/materials/2/extensions/KHR_materials_iridescence/"
                                "iridescenceThicknessMaximum: -20 is negative, taken as 0");

@@ -11,6 +11,7 @@
 #include "gltf_write.h"
 #include "image_compare.h"
 #include "softrast.h"
+#include "uv_sphere.h"
 #include "softrast_io.h"
 
 #include <math.h>
@@ -568,6 +569,21 @@ SR_TEST(two_channels_on_one_pointer_target_are_refused)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* The document of one LINEAR scalar channel to `pointer`, keys k[0] at
+ * 0 s and k[1] at 2 s, with material 0 `material`.  Malloc'd. */
+static char *scalar_channel_json(const char *material, const float k[2], const char *pointer)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
+    int out = put(&b, k, 2, 4, "SCALAR", 2, 5126, false);
+    char samplers[128], channels[512] = "";
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+    add_channel(channels, sizeof channels, 0, pointer);
+    return scene_json_with(&b, material, samplers, channels);
+}
+
 /* A MASK material whose file cutoff is 0 reads OPAQUE (a cutoff of 0
  * keeps every fragment); posed with an animated cutoff above 0 it is the
  * file's MASK with that cutoff, and OPAQUE again at the rest pose and
@@ -576,17 +592,10 @@ SR_TEST(an_animated_cutoff_masks_a_mask_material_read_opaque)
 {
     static const char *const modes[2] = { "MASK", "OPAQUE" };
     for (int k = 0; k < 2; k++) {
-        blob b = { .size = 0 };
-        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
         static const float cut[2] = { 0, 0.4f };
-        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
-        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
-        int out = put(&b, cut, 2, 4, "SCALAR", 2, 5126, false);
-        char samplers[128], channels[512] = "", mat[128];
-        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
-        add_channel(channels, sizeof channels, 0, "/materials/0/alphaCutoff");
+        char mat[128];
         snprintf(mat, sizeof mat, "{\"alphaMode\":\"%s\",\"alphaCutoff\":0}", modes[k]);
-        char *json = scene_json_with(&b, mat, samplers, channels);
+        char *json = scalar_channel_json(mat, cut, "/materials/0/alphaCutoff");
         REQUIRE(json);
         sr_scene *s = NULL, *posed = NULL;
         sr_io_error e;
@@ -617,7 +626,8 @@ SR_TEST(an_animated_cutoff_masks_a_mask_material_read_opaque)
  * attenuation distance, interpolated and clamped to the reader's ranges
  * (keys at 0 and 2 s, read at 1 s): an ior under 1 is 1, a negative
  * thickness 0, a distance not positive 0 (no absorption); a film whose
- * thickness reaches 0 shows nothing, as the reader makes it. */
+ * thickness reaches 0 keeps its factor (0 nm draws no film by itself,
+ * iridescence_thickness_set), for the thickness to grow back. */
 SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
 {
     static const struct {
@@ -635,7 +645,7 @@ SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
         { "iridescence", "iridescenceThicknessMaximum", 400, -200,
           offsetof(sr_pbr_material, iridescence_thickness_max), 100, 1 },
         { "iridescence", "iridescenceThicknessMaximum", 0, -200,
-          offsetof(sr_pbr_material, iridescence_thickness_max), 0, 0 },
+          offsetof(sr_pbr_material, iridescence_thickness_max), 0, 1 },
         { "volume", "attenuationDistance", 2, 4,
           offsetof(sr_pbr_material, attenuation_distance), 3, 1 },
         { "volume", "attenuationDistance", 2, -4,
@@ -645,18 +655,11 @@ SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
                       "\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
                       "\"KHR_materials_volume\":{\"attenuationDistance\":2}}}";
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        blob b = { .size = 0 };
-        static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
         const float keys[2] = { cases[i].k0, cases[i].k1 };
-        put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
-        int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
-        int out = put(&b, keys, 2, 4, "SCALAR", 2, 5126, false);
-        char samplers[128], channels[512] = "", pointer[256];
-        snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+        char pointer[256];
         snprintf(pointer, sizeof pointer, "/materials/0/extensions/KHR_materials_%s/%s",
                  cases[i].ext, cases[i].name);
-        add_channel(channels, sizeof channels, 0, pointer);
-        char *json = scene_json_with(&b, mat, samplers, channels);
+        char *json = scalar_channel_json(mat, keys, pointer);
         REQUIRE(json);
         sr_scene *s = NULL;
         sr_io_error e;
@@ -670,7 +673,122 @@ SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
         memcpy(&got, (const char *)&s->materials[0] + cases[i].offset, sizeof got);
         CHECK_NEAR(got, cases[i].want, 1e-5);
         CHECK_NEAR(s->materials[0].iridescence, cases[i].factor, 0);
+        CHECK(s->materials[0].iridescence_thickness_set);
         sr_destroy_scene(sr_test_ctx(), s);
+    }
+}
+
+enum { FILM_SIZE = 96 };
+
+/* The unit sphere drawn with material m (its factors; the scene's
+ * triangle has no normals) under a white key light, into a malloc'd
+ * RGBA8 image of FILM_SIZE squared, saved as out/NAME.png. */
+static uint8_t *draw_film(const sr_pbr_material *m, const char *name)
+{
+    static sphere s;
+    make_sphere(&s);
+    sr_context *ctx = sr_test_ctx();
+    sr_mat4 view = sr_look_at((sr_vec3){ 0, 0, 3 }, (sr_vec3){ 0, 0, 0 }, (sr_vec3){ 0, 1, 0 });
+    sr_mat4 proj = sr_perspective(0.8f, 1.0f, 0.5f, 10.0f, false);
+    sr_pbr_desc d = { .material = m, .view = &view, .projection = &proj,
+                      .sky = { 0.3f, 0.3f, 0.3f }, .ground = { 0.1f, 0.1f, 0.1f } };
+    d.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL, .vector = { -0.4f, -0.5f, -1 },
+                              .color = { 1, 1, 1 }, .intensity = 3 };
+    sr_framebuffer *fb = NULL;
+    sr_pbr *p = NULL;
+    uint8_t *px = NULL;
+    if (sr_make_framebuffer(ctx, &(sr_framebuffer_desc){ .width = FILM_SIZE,
+                                                         .height = FILM_SIZE }, &fb) != SR_OK) {
+        return NULL;
+    }
+    sr_clear(ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+    if (sr_make_pbr_program(ctx, &d, &p) == SR_OK &&
+        sr_draw(ctx, fb, &(sr_state){ .program = sr_pbr_program(p) },
+                &(sr_draw_desc){ .positions = &s.pos[0][0], .normals = &s.nrm[0][0],
+                                 .texcoords = &s.uv[0][0], .vertex_count = VERTS,
+                                 .indices = s.idx, .index_type = SR_INDEX_U32,
+                                 .index_count = s.index_count }) == SR_OK &&
+        (px = malloc(4 * FILM_SIZE * FILM_SIZE)) != NULL) {
+        memcpy(px, sr_framebuffer_pixels(fb), 4 * FILM_SIZE * FILM_SIZE);
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s.png", sr_test_out_dir(), name);
+        sr_write_png(path, FILM_SIZE, FILM_SIZE, px, 4 * FILM_SIZE, NULL, NULL);
+    }
+    sr_destroy_pbr_program(ctx, p);
+    sr_destroy_framebuffer(ctx, fb);
+    return px;
+}
+
+/* A film's material from the document whose iridescence extension is
+ * `film`: `animated`, its maximum keyed 0 and 400 nm at 0 and 2 s and
+ * posed at `time` through sr_load_desc (by_scene_pose false) or
+ * sr_scene_pose from the rest pose; else read at rest (the document's
+ * one channel, to the roughness, left unplayed).  false on failure. */
+static bool film_material(const char *film, bool animated, bool by_scene_pose, float time,
+                          sr_pbr_material *out)
+{
+    static const float nm[2] = { 0, 400 };
+    char mat[512];
+    snprintf(mat, sizeof mat, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.1,0.12,1],"
+             "\"metallicFactor\":0,\"roughnessFactor\":0.3},"
+             "\"extensions\":{\"KHR_materials_iridescence\":%s}}", film);
+    char *json = scalar_channel_json(mat, nm, animated ? "/materials/0/extensions/"
+                                                         "KHR_materials_iridescence/"
+                                                         "iridescenceThicknessMaximum"
+                                                       : "/materials/0/pbrMetallicRoughness/"
+                                                         "roughnessFactor");
+    sr_scene *s = NULL;
+    sr_io_error e;
+    sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = time };
+    bool ok = json && parse(json, by_scene_pose || !animated ? NULL : &at, &s, &e) == SR_OK &&
+              (!by_scene_pose || sr_scene_pose(s, SR_POSE_ANIMATION, 0, time, &e) == SR_OK);
+    if (ok) {
+        *out = s->materials[0];   /* factors only: no texture to outlive the scene */
+    }
+    free(json);
+    sr_destroy_scene(sr_test_ctx(), s);
+    return ok;
+}
+
+/* An untextured film 0 nm thick in the file is no film at rest; posed
+ * where its animated iridescenceThicknessMaximum reaches 400 nm (at 2
+ * s, through sr_load_desc's pose and through sr_scene_pose from the
+ * rest pose) it draws the bytes of the file whose maximum is 400 at
+ * rest, and at rest those of the same sphere without the extension.
+ * Before, the reader set the factor to 0 for the 0 nm, and the pose
+ * never brought the film back. */
+SR_TEST(an_animated_film_thickness_grows_a_film_from_0_nm)
+{
+    const char *thin = "{\"iridescenceFactor\":1,\"iridescenceThicknessMaximum\":0}";
+    const char *thick = "{\"iridescenceFactor\":1,\"iridescenceThicknessMaximum\":400}";
+    sr_pbr_material posed, reposed, want, rest, none;
+    REQUIRE(film_material(thin, true, false, 2, &posed));
+    REQUIRE(film_material(thin, true, true, 2, &reposed));
+    REQUIRE(film_material(thick, false, false, 0, &want));
+    REQUIRE(film_material(thin, false, false, 0, &rest));
+    none = want;
+    none.iridescence = 0;
+    CHECK_EQ(posed.iridescence, 1.0f);
+    CHECK_EQ(posed.iridescence_thickness_max, 400.0f);
+    uint8_t *px[5] = { draw_film(&posed, "gltf_film_posed"),
+                       draw_film(&reposed, "gltf_film_reposed"),
+                       draw_film(&want, "gltf_film_400nm"), draw_film(&rest, "gltf_film_0nm"),
+                       draw_film(&none, "gltf_film_none") };
+    for (int k = 0; k < 5; k++) {
+        REQUIRE(px[k]);
+    }
+    size_t n = 4 * FILM_SIZE * FILM_SIZE;
+    int tinted = 0;
+    for (size_t i = 0; i < n; i++) {
+        tinted += abs(px[2][i] - px[4][i]) > 8;
+    }
+    fprintf(stderr, "%d channels tinted by the 400 nm film\n", tinted);
+    CHECK(tinted > 600);                        /* the film shows */
+    CHECK(memcmp(px[0], px[2], n) == 0);
+    CHECK(memcmp(px[1], px[2], n) == 0);
+    CHECK(memcmp(px[3], px[4], n) == 0);        /* 0 nm: no film */
+    for (int k = 0; k < 5; k++) {
+        free(px[k]);
     }
 }
 

@@ -2240,6 +2240,48 @@ SR_TEST(zero_anisotropy_and_iridescence_draw_the_base_bytes)
     free_sphere(&s);
 }
 
+/* KHR_materials_iridescence: a film 0 nm thick is no film.  With
+ * iridescence_thickness_set, thicknesses of 0 everywhere (untextured:
+ * the maximum; textured: both) draw the base's very bytes, textured or
+ * not, plain or coated; unset, both zeros stay the extension's defaults
+ * (100 to 400 nm), which do tint.  Before, sr_pbr_material could not
+ * say 0 nm: both zeros always drew the default film. */
+SR_TEST(a_film_0_nm_thick_draws_no_film)
+{
+    sphere s = make_sphere(32, 16);
+    sr_mat4 view = test_view(), proj = test_projection();
+    const uint8_t texel[4] = { 90, 200, 30, 255 };
+    sr_texture *t = solid_texture(texel, false);
+    REQUIRE(t);
+    for (int coat = 0; coat < 2; coat++) {
+        sr_pbr_material base = sr_pbr_default_material();
+        base.base_color[0] = 0.3f;
+        base.base_color[1] = 0.3f;
+        base.roughness = 0.3f;
+        base.clearcoat = coat ? 0.7f : 0.0f;
+        sr_pbr_desc d = lit_desc(&base, &view, &proj);
+        sr_pbr_material m = base;
+        m.iridescence = 1.0f;
+        m.iridescence_thickness_set = true;
+        m.iridescence_thickness_texture.texture = t;
+        CHECK(same_bytes(&s, d, &base, &m));          /* textured, 0 to 0 nm */
+        m.iridescence_thickness_texture.texture = NULL;
+        m.iridescence_thickness_min = 100.0f;
+        CHECK(same_bytes(&s, d, &base, &m));          /* untextured, the maximum 0 */
+        m.iridescence_thickness_texture.texture = t;
+        CHECK(!same_bytes(&s, d, &base, &m));         /* textured, 100 to 0 nm: a film */
+        sr_pbr_material unset = m, defaults = m;
+        unset.iridescence_thickness_set = false;
+        unset.iridescence_thickness_min = unset.iridescence_thickness_max = 0.0f;
+        defaults.iridescence_thickness_min = 100.0f;
+        defaults.iridescence_thickness_max = 400.0f;
+        CHECK(same_bytes(&s, d, &unset, &defaults));
+        CHECK(!same_bytes(&s, d, &base, &unset));
+    }
+    sr_destroy_texture(sr_test_ctx(), t);
+    free_sphere(&s);
+}
+
 /* The sphere's tangents along u, (-z, 0, x) / |(x, z)|, w 1; (1, 0, 0)
  * at the poles.  The caller frees them. */
 static float *sphere_tangents(const sphere *s)

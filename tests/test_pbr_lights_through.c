@@ -503,3 +503,63 @@ SR_TEST(leaf_does_not_shadow_its_own_backlight)
         sr_destroy_shadow_map(sr_test_ctx(), both);
     }
 }
+
+/* The far side's lookup goes as deep as the thickness the shading uses:
+ * KHR_materials_volume's factor times its texture's G.  A leaf of
+ * thickness factor 1 whose texture's G is 51 (0.2), lit from behind
+ * with a square 0.5 behind it, looks the backlight's shadow up 0.2
+ * behind itself, where the square is between it and the light: it draws
+ * the bytes (within 1 code, a few edge pixels aside) of the untextured
+ * leaf 0.2 thick, black under the square's shadow, where the leaf 1
+ * thick (whose lookup lies beyond the square) stays lit.  Before, the
+ * textured leaf looked up 1 deep, as the factor alone says. */
+SR_TEST(a_textured_thickness_sets_the_far_side_lookup_depth)
+{
+    slab s = make_slab(0.0);
+    float travel[3] = { 0.3f, 0.0f, 1.0f };
+    sr_shadow_map *sm = leaf_shadow(&s, travel, true, -0.5f);
+    REQUIRE(sm);
+    const uint8_t texel[16] = { 0, 51, 0, 255, 0, 51, 0, 255, 0, 51, 0, 255, 0, 51, 0, 255 };
+    sr_texture *t = NULL;
+    REQUIRE(sr_make_texture(sr_test_ctx(), &(sr_texture_desc){ .width = 2, .height = 2,
+                                                               .pixels = texel }, &t) == SR_OK);
+    sr_pbr_material m[3] = { leaf(), leaf(), leaf() };
+    m[0].thickness = 1.0f;
+    m[0].thickness_texture.texture = t;
+    m[1].thickness = 0.2f;
+    m[2].thickness = 1.0f;
+    sr_framebuffer *fb[3];
+    for (int k = 0; k < 3; k++) {
+        sr_pbr_desc d = { .material = &m[k], .shadow = sm };
+        d.lights[0] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
+                                  .vector = { travel[0], travel[1], travel[2] },
+                                  .intensity = 1.5f };
+        fb[k] = draw_slab(&s, d);
+        REQUIRE(fb[k]);
+    }
+    save(fb[0], "pbr_leaf_shadow_thickness_texture");
+    save(fb[2], "pbr_leaf_shadow_thickness_1");
+    /* The square's shadow on the far side 0.2 behind the leaf: 0.3 along
+     * the light's way moves it by 0.3 * 0.3. */
+    double p[3] = { -0.6 + 0.3 * 0.3, 0.0, 0.0 };
+    int sx = (int)lround(screen_x(p)), sy = H / 2;
+    int off = 0;
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            for (int c = 0; c < 3; c++) {
+                off += abs(px(fb[0], x, y)[c] - px(fb[1], x, y)[c]) > 1;
+            }
+        }
+    }
+    fprintf(stderr, "textured vs 0.2 thick: %d channels off; under the square %d, %d, 1 thick %d\n",
+            off, px(fb[0], sx, sy)[1], px(fb[1], sx, sy)[1], px(fb[2], sx, sy)[1]);
+    CHECK(off <= 12);
+    CHECK(px(fb[1], sx, sy)[1] < 3);
+    CHECK(px(fb[0], sx, sy)[1] < 3);
+    CHECK(px(fb[2], sx, sy)[1] > 20);
+    for (int k = 0; k < 3; k++) {
+        sr_destroy_framebuffer(sr_test_ctx(), fb[k]);
+    }
+    sr_destroy_texture(sr_test_ctx(), t);
+    sr_destroy_shadow_map(sr_test_ctx(), sm);
+}

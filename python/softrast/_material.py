@@ -47,7 +47,7 @@ class Material:
     iridescence: a thin film's weight in [0, 1] (KHR_materials_iridescence;
     0: none), its iridescence_ior >= 1 and its thickness in nm,
     iridescence_thickness_max, or from iridescence_thickness_min to it
-    across a loaded file's thickness texture.
+    across a loaded file's thickness texture (0 nm: no film).
     dispersion: 20 / the Abbe number, >= 0 (KHR_materials_dispersion; 0:
     none): a transmissive volume refracts red, green and blue each at its
     own ior.

@@ -178,7 +178,7 @@ static PyObject *material_dict(const sr_pbr_material *m)
         "sheen_roughness", (double)m->sheen_roughness) : NULL;
     /* The base lobe's anisotropy and film (KHR_materials_anisotropy and
      * _iridescence), with sr_pbr_material's zeros as the defaults. */
-    bool both_zero = m->iridescence_thickness_min == 0.0f &&
+    bool both_zero = !m->iridescence_thickness_set && m->iridescence_thickness_min == 0.0f &&
                      m->iridescence_thickness_max == 0.0f;
     PyObject *surface = layers ? Py_BuildValue(
         "{sdsdsdsdsdsd}", "anisotropy_strength", (double)m->anisotropy_strength,

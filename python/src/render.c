@@ -770,6 +770,7 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     m->unlit = unlit;
     m->specular_glossiness = sg;
     m->specular_set = true;   /* white 1 draws as absent */
+    m->iridescence_thickness_set = true;   /* 0 nm is no film, not the default */
     if (take_matrix(pose, "pose", 3, 4, &in->pose[0][0]) < 0) {
         return -1;
     }

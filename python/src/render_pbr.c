@@ -99,6 +99,7 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
     m.anisotropy_rotation = f->anisotropy_rotation;
     m.iridescence = f->iridescence;
     m.iridescence_ior = f->iridescence_ior;
+    m.iridescence_thickness_set = f->iridescence_thickness_set;
     m.iridescence_thickness_min = f->iridescence_thickness_min;
     m.iridescence_thickness_max = f->iridescence_thickness_max;
     m.dispersion = f->dispersion;

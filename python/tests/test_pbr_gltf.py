@@ -362,6 +362,10 @@ def test_anisotropy_and_iridescence_reach_the_material_and_the_picture(tmp_path)
     got.anisotropy_strength = 0.0
     got.iridescence = 0.0
     assert np.array_equal(front(scenes[1])["color"].astype(int), pictures[0])
+    # A film 0 nm thick is no film, not the extension's default 100 to 400 nm.
+    got.iridescence = 1.0
+    got.iridescence_thickness_min = got.iridescence_thickness_max = 0.0
+    assert np.array_equal(front(scenes[1])["color"].astype(int), pictures[0])
     m = softrast.Material(anisotropy_strength=0.5, iridescence=1.0)
     assert abs(m.iridescence_ior - 1.3) < 1e-6 and m.iridescence_thickness_max == 400.0
     with pytest.raises(ValueError, match="iridescence_ior"):

@@ -256,7 +256,7 @@ struct sr_pbr {
      * the model's mean axis length (thickness to world), 0 without. */
     bool dtrans;
     float dt_absorb[3];
-    float dt_depth;               /* the thickness in world units (mean axis length) */
+    float dt_axis;                /* the model's mean axis length: thickness to world */
     float *oct_coat;
     const sr_shadow_map *shadow;        /* darkens lights[0] when set */
     float scale;                  /* 2^exposure */
@@ -836,15 +836,18 @@ static void dtrans_inputs(const sr_pbr *p, const sr_fragment_quad *q, sr__pbr_la
         }
     }
     x->dt = vclamp(x->dt, 0.0f, 1.0f);
+    /* The thickness both the absorption and the far side's shadow
+     * lookup (shade_layered) cross. */
+    x->dt_thick = (v4f){ 0 } + m->thickness;
+    if (m->thickness > 0.0f && p->slot[SLOT_THICKNESS].tex &&
+        (m->attenuation_distance > 0.0f || p->shadow)) {
+        sample_slot(&p->slot[SLOT_THICKNESS], q, tex, uv);
+        x->dt_thick *= load(tex[1]);
+    }
     if (m->thickness > 0.0f && m->attenuation_distance > 0.0f) {
-        v4f th = (v4f){ 0 } + m->thickness;
-        if (p->slot[SLOT_THICKNESS].tex) {
-            sample_slot(&p->slot[SLOT_THICKNESS], q, tex, uv);
-            th *= load(tex[1]);
-        }
         for (int c = 0; c < 3; c++) {
             for (int i = 0; i < 4; i++) {
-                x->dt_col[c][i] *= exp2f(-p->dt_absorb[c] * th[i]);
+                x->dt_col[c][i] *= exp2f(-p->dt_absorb[c] * x->dt_thick[i]);
             }
         }
     }
@@ -1164,10 +1167,11 @@ static __attribute__((noinline)) void shade_layered(const sr_pbr *p, const sr_fr
     layer_inputs(p, q, side, n, v, sg_f0, &x);
     if (p->dtrans && p->shadow) {
         /* The light let through from behind reaches the far side of the
-         * surface first: looked up there, the thickness deep and moved
-         * along the far side's normal (towards a light behind), so that
-         * the surface itself, which the map holds, does not shadow it,
-         * while anything between it and the light still does. */
+         * surface first: looked up there, the thickness deep (the one the
+         * absorption crosses, textured or not) and moved along the far
+         * side's normal (towards a light behind), so that the surface
+         * itself, which the map holds, does not shadow it, while anything
+         * between it and the light still does. */
         float g[3][4], far[3][4], vis[4];
         for (int i = 0; i < 4; i++) {
             float len2 = 0.0f;
@@ -1175,7 +1179,7 @@ static __attribute__((noinline)) void shade_layered(const sr_pbr *p, const sr_fr
                 g[k][i] = -q->varyings[VARY_NORMAL + k][i] * side;
                 len2 += g[k][i] * g[k][i];
             }
-            float il = len2 > 0.0f ? p->dt_depth / sqrtf(len2) : 0.0f;
+            float il = len2 > 0.0f ? x.dt_thick[i] * p->dt_axis / sqrtf(len2) : 0.0f;
             for (int k = 0; k < 3; k++) {
                 far[k][i] = pos[k][i] + g[k][i] * il;
             }
@@ -1775,10 +1779,15 @@ static void resolve_layers(sr_pbr *p)
     if (m->iridescence_ior == 0.0f) {
         m->iridescence_ior = 1.3f;
     }
-    if (m->iridescence_thickness_min == 0.0f && m->iridescence_thickness_max == 0.0f) {
+    if (!m->iridescence_thickness_set && m->iridescence_thickness_min == 0.0f &&
+        m->iridescence_thickness_max == 0.0f) {
         m->iridescence_thickness_min = 100.0f;
         m->iridescence_thickness_max = 400.0f;
     }
+    /* A film 0 nm thick everywhere is no film (KHR_materials_iridescence):
+     * off, rather than the formula's near miss of the base. */
+    bool film = m->iridescence_thickness_max > 0.0f ||
+                (p->slot[SLOT_IRIDESCENCE_THICKNESS].tex && m->iridescence_thickness_min > 0.0f);
     if (m->clearcoat_normal_scale == 0.0f) {
         m->clearcoat_normal_scale = 1.0f;
     }
@@ -1787,7 +1796,7 @@ static void resolve_layers(sr_pbr *p)
     p->sheen = !m->unlit &&
                (m->sheen_color[0] > 0.0f || m->sheen_color[1] > 0.0f || m->sheen_color[2] > 0.0f);
     p->aniso = !m->unlit && m->anisotropy_strength > 0.0f;
-    p->irid = !m->unlit && m->iridescence > 0.0f;
+    p->irid = !m->unlit && m->iridescence > 0.0f && film;
     p->dtrans = !m->unlit && m->diffuse_transmission > 0.0f;
     p->layers = !m->unlit && (m->ior != 0.0f || spec || p->coat || p->sheen || p->aniso ||
                               p->irid || p->dtrans || p->sg);
@@ -1930,7 +1939,7 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         dtrans_absorption(p);
     }
     if (p->dtrans) {
-        p->dt_depth = mat.thickness * mean_axis(&p->model);
+        p->dt_axis = mean_axis(&p->model);
     }
     if (!p->transmits) {
         p->slot[SLOT_TRANSMISSION].tex = NULL;

@@ -41,10 +41,12 @@ typedef struct sr__pbr_layers {
     float ir_ior;
     v4f ir_f[3], ir_f0[3];
     /* Diffuse transmission: its share of the diffuse lobe (0..1), the
-     * color of the light it lets through (after the volume's absorption)
-     * and the key light's visibility from the surface's far side. */
+     * color of the light it lets through (after the volume's absorption),
+     * the volume's thickness (object space: the factor times the
+     * texture's G) and the key light's visibility from the surface's far
+     * side. */
     bool dtrans;
-    v4f dt, dt_col[3], dt_shadow;
+    v4f dt, dt_col[3], dt_thick, dt_shadow;
 } sr__pbr_layers;
 
 /* Clearcoat.  begin: from cc, cc_a2 (set) and cc_n (set) the rest; v is

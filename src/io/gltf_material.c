@@ -458,9 +458,9 @@ static sr_result read_anisotropy(gltf_doc *d, const json_t *x, const char *xptr,
 
 /* KHR_materials_iridescence (object x at xptr) with the extension's
  * defaults (ior 1.3, thickness 100..400 nm), factors clamped with a
- * warning each.  A film whose thickness is 0 everywhere shows nothing:
- * iridescence 0 (sr_pbr_material reads both zero thicknesses as the
- * defaults). */
+ * warning each.  The thicknesses are the file's (iridescence_thickness_set),
+ * so a film 0 nm thick is no film while its factor stays the file's, for
+ * an animation that thickens it. */
 static sr_result read_iridescence(gltf_doc *d, const json_t *x, const char *xptr,
                                   sr_pbr_material *m)
 {
@@ -488,11 +488,8 @@ static sr_result read_iridescence(gltf_doc *d, const json_t *x, const char *xptr
     clamp_factor(d, at, &lo, 0, FLT_MAX);
     snprintf(at, sizeof at, "%s/iridescenceThicknessMaximum", xptr);
     clamp_factor(d, at, &hi, 0, FLT_MAX);
-    bool textured = m->iridescence_thickness_texture.texture != NULL;
-    if (hi == 0.0f && (!textured || lo == 0.0f)) {
-        m->iridescence = 0.0f;
-    }
     m->iridescence_ior = ior;
+    m->iridescence_thickness_set = true;
     m->iridescence_thickness_min = lo;
     m->iridescence_thickness_max = hi;
     return SR_OK;

@@ -439,6 +439,17 @@ const halfMetal = [filmed(0), filmed(0.5), filmed(1)];
 writeFileSync(join(out, 'iridescence-metallic.glb'), glb(sphere(0.5, 64, 32, true),
     halfMetal.map((m, i) => ({ material: i, translation: [(i - 1) * 1.1, 0, 0] })),
     halfMetal, ['KHR_materials_iridescence']));
+
+// KHR_materials_iridescence's thickness: no film, a film 0 nm thick
+// (factor 1: the extension says 0 nm is no film) and one 400 nm thick,
+// on a dark dielectric, left to right.
+const thickness = [null, 0, 400].map((nm) => ({
+    name: nm === null ? 'no film' : `film ${nm} nm`, pbrMetallicRoughness: pbr([0.1, 0.1, 0.12], 0, 0.3),
+    ...(nm === null ? {} : { extensions: { KHR_materials_iridescence: {
+        iridescenceFactor: 1, iridescenceThicknessMaximum: nm } } }) }));
+writeFileSync(join(out, 'iridescence-thickness.glb'), glb(sphere(0.5, 64, 32, true),
+    thickness.map((m, i) => ({ material: i, translation: [(i - 1) * 1.1, 0, 0] })),
+    thickness, ['KHR_materials_iridescence']));
 writeFileSync(join(out, 'skinned-figure.glb'), figure());
 
 // An animated asset (glTF animations): a hub turning about +y (LINEAR
