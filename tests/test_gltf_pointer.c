@@ -355,6 +355,11 @@ SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
         "/meshes/0/primitives/0/material",
         "/materials/0/doubleSided",
         "/cameras/0/type",
+        /* "~1" escapes a '/' inside one member's name: the material has
+         * no member "pbrMetallicRoughness/baseColorFactor". */
+        "/materials/0/pbrMetallicRoughness~1baseColorFactor",
+        "/materials/0/pbrMetallicRoughness~1baseColorTexture/extensions/KHR_texture_transform/"
+        "offset",
     };
     for (size_t i = 0; i < sizeof skipped / sizeof *skipped; i++) {
         sr_test_warnings w = { 0 };

@@ -193,14 +193,20 @@ static bool defined(const json_t *obj, const char *const *tok, int count, bool e
     return !explicit || json_object_get(obj, tok[count - 1]) != NULL;
 }
 
-/* The tokens joined by '/'. */
-static void join(const char *const *tok, int count, char *path, size_t cap)
+/* Whether the tokens are path's '/'-separated names, one for one: a
+ * token holding an escaped '/' ("~1") names one member, which no path of
+ * the tables is. */
+static bool path_is(const char *path, const char *const *tok, int count)
 {
-    path[0] = '\0';
     for (int k = 0; k < count; k++) {
-        size_t at = strlen(path);
-        snprintf(path + at, cap - at, "%s%s", k ? "/" : "", tok[k]);
+        size_t len = strlen(tok[k]);
+        if (strchr(tok[k], '/') || strncmp(path, tok[k], len) != 0 ||
+            path[len] != (k + 1 < count ? '/' : '\0')) {
+            return false;
+        }
+        path += len + 1;
     }
+    return count > 0;
 }
 
 /* A material's ".../extensions/KHR_texture_transform/<member>" on a slot
@@ -211,10 +217,8 @@ static int find_transform(const char *const *tok, int count)
         strcmp(tok[count - 2], "KHR_texture_transform") != 0) {
         return -1;
     }
-    char path[GLTF_PTR];
-    join(tok, count - 3, path, sizeof path);
     for (size_t i = 0; i < sizeof slot_rows / sizeof *slot_rows; i++) {
-        for (int k = 0; k < 3 && strcmp(slot_rows[i].path, path) == 0; k++) {
+        for (int k = 0; k < 3 && path_is(slot_rows[i].path, tok, count - 3); k++) {
             if (strcmp(tok[count - 1], transform_members[k]) == 0) {
                 return TRANSFORM_PROP + 3 * (int)i + k;
             }
@@ -225,10 +229,8 @@ static int find_transform(const char *const *tok, int count)
 
 static int find_row(const prop_row *rows, size_t n, const char *const *tok, int count)
 {
-    char path[GLTF_PTR];
-    join(tok, count, path, sizeof path);
     for (size_t i = 0; i < n; i++) {
-        if (strcmp(rows[i].path, path) == 0) {
+        if (path_is(rows[i].path, tok, count)) {
             return (int)i;
         }
     }
