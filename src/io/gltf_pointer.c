@@ -405,11 +405,8 @@ static void write_transform(sr_texture_slot *slot, int k, const float *v)
         s[0] = v[0];
         s[1] = v[1];
     }
-    slot->offset[0] = o[0] + s[1] * sinf(rot);
-    slot->offset[1] = 1.0f - o[1] - s[1] * cosf(rot);
-    slot->rotation = rot;
-    slot->scale[0] = s[0];
-    slot->scale[1] = s[1];
+    /* Values that overflow together leave the transform as it was. */
+    (void)sr__gltf_slot_transform(slot, o, rot, s);
 }
 
 static void write_row(const prop_row *row, void *base, const float *v)
