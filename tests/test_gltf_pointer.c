@@ -308,6 +308,13 @@ SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
         { "/materials/3/emissiveFactor", "VEC3", false, "LINEAR", "",
           "/target/extensions/KHR_animation_pointer/pointer: \"/materials/3/emissiveFactor\": "
           "materials 3 is not in the file (it has 1)" },
+        /* Digits that name no element: as out of range, not as a name. */
+        { "/materials/99999999999999999999/emissiveFactor", "VEC3", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/materials/99999999999999999999/"
+          "emissiveFactor\": materials 99999999999999999999 is not in the file (it has 1)" },
+        { "/materials/00/emissiveFactor", "VEC3", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/materials/00/emissiveFactor\": "
+          "materials 00 is not in the file (it has 1)" },
         { "/extensions/KHR_lights_punctual/lights/1/color", "VEC3", false, "LINEAR", "",
           "/target/extensions/KHR_animation_pointer/pointer: \"/extensions/KHR_lights_punctual"
           "/lights/1/color\": lights 1 is not in the file (it has 1)" },

@@ -169,12 +169,16 @@ static int split_pointer(const char *s, char *buf, size_t cap, const char **tok,
 }
 
 /* A token that is an array index (digits, no leading zero) below n;
- * -2 when it is not an index, -1 when out of range. */
+ * -2 when it is not a number, -1 when its digits name no element: out
+ * of range, too long for any array, or with the leading zero RFC 6901
+ * leaves no element. */
 static long token_index(const char *t, size_t n)
 {
-    if (!t[0] || (t[0] == '0' && t[1]) || strspn(t, "0123456789") != strlen(t) ||
-        strlen(t) > 12) {
+    if (!t[0] || strspn(t, "0123456789") != strlen(t)) {
         return -2;
+    }
+    if ((t[0] == '0' && t[1]) || strlen(t) > 12) {
+        return -1;
     }
     long v = strtol(t, NULL, 10);
     return (size_t)v < n ? v : -1;
