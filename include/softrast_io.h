@@ -276,7 +276,8 @@ SR_API sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t 
  * aspectRatio or xmag.  SR_INVALID_ARG (view and projection untouched)
  * for NULL, a non-finite or non-positive aspect, a type that is not an
  * sr_scene_camera_type, a degenerate or non-finite world matrix, a yfov
- * outside (0, pi), or clip distances glTF would refuse. */
+ * outside (0, pi), clip distances glTF would refuse, or values so large
+ * (near FLT_MAX) that a matrix would not be finite. */
 SR_API sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect,
                                           sr_mat4 *view, sr_mat4 *projection);
 /* Poses a scene read from a glTF file again, without reading the file:

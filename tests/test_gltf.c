@@ -910,6 +910,18 @@ SR_TEST(cameras_come_with_their_world_transforms_in_node_order)
     bad = *o;
     bad.zfar = INFINITY;
     CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
+    /* Finite clip distances whose matrices overflow floats (a file's, or
+     * a KHR_animation_pointer pose's): (f + n) and 2 f n go to infinity. */
+    bad = *p;
+    bad.znear = 3e38f;
+    bad.zfar = 3.4e38f;
+    CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
+    bad.zfar = 0;                                   /* infinite: -2 znear */
+    CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
+    bad = *o;
+    bad.znear = 3e38f;
+    bad.zfar = 3.4e38f;
+    CHECK_EQ(sr_scene_camera_matrices(&bad, 1.0f, &v, &pr), SR_INVALID_ARG);
     CHECK(memcmp(&v, &v0, sizeof v) == 0 && memcmp(&pr, &pr0, sizeof pr) == 0);
     sr_destroy_scene(sr_test_ctx(), s);
 }

@@ -318,6 +318,13 @@ SR_TEST(malformed_pointers_are_refused_with_the_channel_pointer)
         { "/materials/3/emissiveFactor", "VEC3", false, "LINEAR", "",
           "/target/extensions/KHR_animation_pointer/pointer: \"/materials/3/emissiveFactor\": "
           "materials 3 is not in the file (it has 1)" },
+        /* Digits that name no element: as out of range, not as a name. */
+        { "/materials/99999999999999999999/emissiveFactor", "VEC3", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/materials/99999999999999999999/"
+          "emissiveFactor\": materials 99999999999999999999 is not in the file (it has 1)" },
+        { "/materials/00/emissiveFactor", "VEC3", false, "LINEAR", "",
+          "/target/extensions/KHR_animation_pointer/pointer: \"/materials/00/emissiveFactor\": "
+          "materials 00 is not in the file (it has 1)" },
         { "/extensions/KHR_lights_punctual/lights/1/color", "VEC3", false, "LINEAR", "",
           "/target/extensions/KHR_animation_pointer/pointer: \"/extensions/KHR_lights_punctual"
           "/lights/1/color\": lights 1 is not in the file (it has 1)" },
@@ -365,6 +372,11 @@ SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
         "/meshes/0/primitives/0/material",
         "/materials/0/doubleSided",
         "/cameras/0/type",
+        /* "~1" escapes a '/' inside one member's name: the material has
+         * no member "pbrMetallicRoughness/baseColorFactor". */
+        "/materials/0/pbrMetallicRoughness~1baseColorFactor",
+        "/materials/0/pbrMetallicRoughness~1baseColorTexture/extensions/KHR_texture_transform/"
+        "offset",
     };
     for (size_t i = 0; i < sizeof skipped / sizeof *skipped; i++) {
         sr_test_warnings w = { 0 };
@@ -918,6 +930,47 @@ SR_TEST(texture_transforms_animate_as_the_file_would_write_them)
         sr_destroy_scene(sr_test_ctx(), s);
         sr_destroy_scene(sr_test_ctx(), want);
     }
+}
+
+/* An offset and a scale each finite whose sum in the slot's convention
+ * (offset' = 1 - o.y - s.y cos r) is not: the file's refused with its
+ * pointer; an animation's leaves the slot as it was, finite, which the
+ * PBR program takes. */
+SR_TEST(texture_transforms_that_overflow_a_float_are_refused_or_held)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+    static const float huge[2] = { 1, 3e38f };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+    int out = put(&b, huge, 2, 4, "VEC2", 1, 5126, false);
+    char samplers[128], channels[512] = "";
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+    add_channel(channels, sizeof channels, 0,
+                "/materials/0/emissiveTexture/extensions/KHR_texture_transform/scale");
+    const char *both = "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                       "{\"KHR_texture_transform\":{\"offset\":[0,3e38],\"scale\":[1,3e38]}}}}";
+    const char *offset = "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                         "{\"KHR_texture_transform\":{\"offset\":[0,3e38]}}}}";
+    char *file = scene_json_with(&b, both, samplers, "");
+    char *animated = scene_json_with(&b, offset, samplers, channels);
+    REQUIRE(file && animated);
+    strcpy(strstr(file, ",\"animations\""), "}");
+    sr_scene *s = NULL;
+    sr_io_error e;
+    CHECK_EQ(parse(file, NULL, &s, &e), SR_BAD_FORMAT);
+    CHECK_STR_CONTAINS(e.message, "t.gltf: /materials/0/emissiveTexture/extensions/"
+                                  "KHR_texture_transform: offset (0, 3e+38) and scale (1, 3e+38) "
+                                  "overflow a float together");
+    sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 0 };
+    REQUIRE(parse(animated, &at, &s, &e) == SR_OK);
+    const sr_texture_slot *got = &s->materials[0].emissive_texture;
+    CHECK(isfinite(got->offset[0]) && isfinite(got->offset[1]));
+    CHECK_NEAR(got->scale[1], 1, 0);
+    CHECK_NEAR(got->offset[1], 1 - 3e38f - 1, 0);
+    free(file);
+    free(animated);
+    sr_destroy_scene(sr_test_ctx(), s);
 }
 
 /* ---- softrast render --animation ---------------------------------------- */

@@ -288,6 +288,11 @@ void sr__gltf_skins_free(gltf_doc *d);
  * default material (glTF's: white, metallic 1, roughness 1) at the end
  * for primitives without one. */
 sr_result sr__gltf_read_materials(gltf_doc *d);
+/* KHR_texture_transform's offset o, rotation rot and scale s (the
+ * file's, v down) into slot in sr_texture_slot's convention (v up);
+ * false, slot untouched, where the conversion overflows a float. */
+bool sr__gltf_slot_transform(sr_texture_slot *slot, const float o[2], float rot,
+                             const float s[2]);
 
 /* gltf_variants.c: KHR_materials_variants.  The document's variant names
  * into scene->variants (checking desc->variant against them); one

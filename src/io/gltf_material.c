@@ -216,14 +216,29 @@ static sr_result read_sampler(gltf_doc *d, long s, const char *use, sr_texture_s
  * glTF's uv' = T(o) R(r) S(s) uv, with v flipped on both sides, is
  * T(o') R(r) S(s) with o' = (o.x + s.y sin r, 1 - o.y - s.y cos r), R
  * counter-clockwise in the flipped space (docs/gltf.md derives it). */
+bool sr__gltf_slot_transform(sr_texture_slot *slot, const float o[2], float rot,
+                             const float s[2])
+{
+    float offset[2] = { o[0] + s[1] * sinf(rot), 1.0f - o[1] - s[1] * cosf(rot) };
+    if (!isfinite(offset[0]) || !isfinite(offset[1])) {
+        return false;
+    }
+    slot->offset[0] = offset[0];
+    slot->offset[1] = offset[1];
+    slot->rotation = rot;
+    slot->scale[0] = s[0];
+    slot->scale[1] = s[1];
+    return true;
+}
+
 static sr_result read_transform(gltf_doc *d, const json_t *info, const char *ptr,
                                 sr_texture_slot *slot, long *texcoord)
 {
     json_t *t = sr__gltf_extension(info, "KHR_texture_transform");
     float o[2] = { 0, 0 }, s[2] = { 1, 1 }, rot = 0;
+    char tptr[GLTF_PTR];
+    snprintf(tptr, sizeof tptr, "%s/extensions/KHR_texture_transform", ptr);
     if (t) {
-        char tptr[GLTF_PTR];
-        snprintf(tptr, sizeof tptr, "%s/extensions/KHR_texture_transform", ptr);
         sr_result r;
         if ((r = sr__gltf_numbers(d, t, tptr, "offset", 2, o)) != SR_OK ||
             (r = sr__gltf_numbers(d, t, tptr, "scale", 2, s)) != SR_OK ||
@@ -232,11 +247,12 @@ static sr_result read_transform(gltf_doc *d, const json_t *info, const char *ptr
             return r;
         }
     }
-    slot->offset[0] = o[0] + s[1] * sinf(rot);
-    slot->offset[1] = 1.0f - o[1] - s[1] * cosf(rot);
-    slot->rotation = rot;
-    slot->scale[0] = s[0];
-    slot->scale[1] = s[1];
+    /* Each value finite, their sum (offset plus scale) need not be. */
+    if (!sr__gltf_slot_transform(slot, o, rot, s)) {
+        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: offset (%g, %g) and scale (%g, %g) "
+                             "overflow a float together", tptr, (double)o[0], (double)o[1],
+                             (double)s[0], (double)s[1]);
+    }
     return SR_OK;
 }
 

@@ -169,12 +169,16 @@ static int split_pointer(const char *s, char *buf, size_t cap, const char **tok,
 }
 
 /* A token that is an array index (digits, no leading zero) below n;
- * -2 when it is not an index, -1 when out of range. */
+ * -2 when it is not a number, -1 when its digits name no element: out
+ * of range, too long for any array, or with the leading zero RFC 6901
+ * leaves no element. */
 static long token_index(const char *t, size_t n)
 {
-    if (!t[0] || (t[0] == '0' && t[1]) || strspn(t, "0123456789") != strlen(t) ||
-        strlen(t) > 12) {
+    if (!t[0] || strspn(t, "0123456789") != strlen(t)) {
         return -2;
+    }
+    if ((t[0] == '0' && t[1]) || strlen(t) > 12) {
+        return -1;
     }
     long v = strtol(t, NULL, 10);
     return (size_t)v < n ? v : -1;
@@ -193,14 +197,20 @@ static bool defined(const json_t *obj, const char *const *tok, int count, bool e
     return !explicit || json_object_get(obj, tok[count - 1]) != NULL;
 }
 
-/* The tokens joined by '/'. */
-static void join(const char *const *tok, int count, char *path, size_t cap)
+/* Whether the tokens are path's '/'-separated names, one for one: a
+ * token holding an escaped '/' ("~1") names one member, which no path of
+ * the tables is. */
+static bool path_is(const char *path, const char *const *tok, int count)
 {
-    path[0] = '\0';
     for (int k = 0; k < count; k++) {
-        size_t at = strlen(path);
-        snprintf(path + at, cap - at, "%s%s", k ? "/" : "", tok[k]);
+        size_t len = strlen(tok[k]);
+        if (strchr(tok[k], '/') || strncmp(path, tok[k], len) != 0 ||
+            path[len] != (k + 1 < count ? '/' : '\0')) {
+            return false;
+        }
+        path += len + 1;
     }
+    return count > 0;
 }
 
 /* A material's ".../extensions/KHR_texture_transform/<member>" on a slot
@@ -211,10 +221,8 @@ static int find_transform(const char *const *tok, int count)
         strcmp(tok[count - 2], "KHR_texture_transform") != 0) {
         return -1;
     }
-    char path[GLTF_PTR];
-    join(tok, count - 3, path, sizeof path);
     for (size_t i = 0; i < sizeof slot_rows / sizeof *slot_rows; i++) {
-        for (int k = 0; k < 3 && strcmp(slot_rows[i].path, path) == 0; k++) {
+        for (int k = 0; k < 3 && path_is(slot_rows[i].path, tok, count - 3); k++) {
             if (strcmp(tok[count - 1], transform_members[k]) == 0) {
                 return TRANSFORM_PROP + 3 * (int)i + k;
             }
@@ -225,10 +233,8 @@ static int find_transform(const char *const *tok, int count)
 
 static int find_row(const prop_row *rows, size_t n, const char *const *tok, int count)
 {
-    char path[GLTF_PTR];
-    join(tok, count, path, sizeof path);
     for (size_t i = 0; i < n; i++) {
-        if (strcmp(rows[i].path, path) == 0) {
+        if (path_is(rows[i].path, tok, count)) {
             return (int)i;
         }
     }
@@ -413,11 +419,8 @@ static void write_transform(sr_texture_slot *slot, int k, const float *v)
         s[0] = v[0];
         s[1] = v[1];
     }
-    slot->offset[0] = o[0] + s[1] * sinf(rot);
-    slot->offset[1] = 1.0f - o[1] - s[1] * cosf(rot);
-    slot->rotation = rot;
-    slot->scale[0] = s[0];
-    slot->scale[1] = s[1];
+    /* Values that overflow together leave the transform as it was. */
+    (void)sr__gltf_slot_transform(slot, o, rot, s);
 }
 
 static void write_row(const prop_row *row, void *base, const float *v)

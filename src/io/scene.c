@@ -249,31 +249,37 @@ sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect, 
     if (!isfinite(n) || !isfinite(f)) {
         return SR_INVALID_ARG;
     }
+    sr_mat4 p;
     if (camera->type == SR_SCENE_CAMERA_ORTHOGRAPHIC) {
         float ymag = fabsf(camera->ymag), xmag = ymag * aspect;
         if (!(ymag > 0) || !isfinite(xmag) || !(f > n)) {
             return SR_INVALID_ARG;
         }
-        *view = v;
-        *projection = sr_ortho(-xmag, xmag, -ymag, ymag, n, f, false);
-        return SR_OK;
-    }
-    if (!(camera->yfov > 0 && camera->yfov < 3.14159265f) || !(n > 0) || (f != 0 && !(f > n))) {
+        p = sr_ortho(-xmag, xmag, -ymag, ymag, n, f, false);
+    } else if (!(camera->yfov > 0 && camera->yfov < 3.14159265f) || !(n > 0) ||
+               (f != 0 && !(f > n))) {
         return SR_INVALID_ARG;
+    } else if (f != 0) {
+        p = sr_perspective(camera->yfov, aspect, n, f, false);
+    } else {
+        /* glTF's infinite projection: the far row's limit as zfar grows. */
+        float c = 1.0f / tanf(0.5f * camera->yfov);
+        memset(&p, 0, sizeof p);
+        p.m[0] = c / aspect;
+        p.m[5] = c;
+        p.m[10] = -1;
+        p.m[11] = -1;
+        p.m[14] = -2 * n;
+    }
+    /* Clip distances near FLT_MAX (or a position there) overflow the
+     * matrices' products: no camera a draw could use. */
+    for (int i = 0; i < 16; i++) {
+        if (!isfinite(v.m[i]) || !isfinite(p.m[i])) {
+            return SR_INVALID_ARG;
+        }
     }
     *view = v;
-    if (f != 0) {
-        *projection = sr_perspective(camera->yfov, aspect, n, f, false);
-        return SR_OK;
-    }
-    /* glTF's infinite projection: the far row's limit as zfar grows. */
-    float c = 1.0f / tanf(0.5f * camera->yfov);
-    memset(projection, 0, sizeof *projection);
-    projection->m[0] = c / aspect;
-    projection->m[5] = c;
-    projection->m[10] = -1;
-    projection->m[11] = -1;
-    projection->m[14] = -2 * n;
+    *projection = p;
     return SR_OK;
 }
 
