@@ -242,6 +242,7 @@
  *   2D lines
  *     sr_draw_line               a segment by one of the line algorithms
  *     sr_line_steps              a Wu line's steps: the two pixels and weights of each
+ *     sr_line_area_pixels        an area-sampled line's pixels and their covered areas
  *     sr_smooth_line_pixels      a smooth 3D line's pixels and their coverage
  *     sr_clip_line_cohen_sutherland  Cohen-Sutherland clipping to a rectangle
  *     sr_clip_line_liang_barsky  Liang-Barsky clipping to a rectangle
@@ -2409,6 +2410,40 @@ typedef void (*sr_line_step_fn)(void *user, const sr_line_step_info *step);
  * see docs/lines.md) and the pixels it blends.  Errors as sr_draw_line. */
 SR_API sr_result sr_line_steps(sr_context *ctx, int width, int height, sr_point2 a, sr_point2 b,
                                const sr_line_desc *desc, sr_line_step_fn fn, void *user);
+
+/* One pixel of an SR_LINE_AREA line, as sr_draw_line computes it
+ * (unweighted area sampling: a pixel's intensity is the area of its
+ * square the thickened line covers).  The line's polygon - the width-w
+ * rectangle around a->b with its caps, round caps as chords within
+ * 1/1024 px of the circle - is cut to the pixel row [y, y + 1], the
+ * row's `strip`; the area of the strip left of x is A(x), and the pixel's
+ * area is A(x + 1) - A(x).  Each row's pixels come in order of x, every
+ * pixel of the strip's bounding box inside the framebuffer; sr_draw_line
+ * blends those `drawn` with `coverage` as the opacity (8 bits:
+ * round(coverage * 255)). */
+typedef struct sr_line_area_info {
+    int x, y;
+    double left;              /* A(x), px^2 */
+    double right;             /* A(x + 1) */
+    double area;              /* right - left: of the pixel square, covered */
+    float coverage;           /* area clamped to [0, 1]; 0 when not drawn */
+    bool drawn;               /* area above 1e-9 px^2: below is the rounding
+                                 of the subtraction */
+    const sr_point2 *strip;   /* the row's strip, a convex polygon (pixels,
+                                 y down), valid during the call only */
+    int strip_count;
+} sr_line_area_info;
+
+typedef void (*sr_line_area_fn)(void *user, const sr_line_area_info *pixel);
+
+/* The pixels sr_draw_line visits for a->b (desc->algorithm SR_LINE_AREA;
+ * any other: SR_INVALID_ARG) in a width x height framebuffer, row by row
+ * from the top, through the same code that draws the line: each with its
+ * covered area.  desc's width, cap and clipper are sr_draw_line's.
+ * Errors as sr_draw_line. */
+SR_API sr_result sr_line_area_pixels(sr_context *ctx, int width, int height, sr_point2 a,
+                                     sr_point2 b, const sr_line_desc *desc, sr_line_area_fn fn,
+                                     void *user);
 
 /* One pixel of an antialiased line of the 3D pipeline (sr_state's
  * smooth_lines), as sr_draw rasterizes it: the line's ends snapped to

@@ -3285,6 +3285,7 @@ SR_TEST(explain_messages_give_the_helps_forms_and_limits)
         { ARGS("explain", "clip4d", "--clip-triangle", "1,2", "-o", dir), "X,Y,Z,W,X,Y,Z,W" },
         { ARGS("explain", "clip", "--window", "1,2", "-o", dir), "XMIN,YMIN,XMAX,YMAX" },
         { ARGS("explain", "aaline", "--width", "0", "-o", dir), "--width: expected a number from 0.0625 to 64 (got '0')" },
+        { ARGS("explain", "area", "--cap", "flat", "-o", dir), "--cap: expected one of butt|square|round (got 'flat')" },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         cli_run r;

@@ -85,8 +85,9 @@ static int last_frame_cells(const char *dir, uint8_t *cells)
     return last_frame_colour(dir, is_fill_blue, cells);
 }
 
-/* The commonest colour inside each cell of frame `frame` of dir, RGB. */
-static bool frame_cell_colours(const char *dir, int frame, uint8_t *rgb)
+/* The commonest colour inside each cell of frame `frame` of dir, RGB,
+ * for a frame drawn at `zoom`. */
+static bool frame_cell_colours_at(const char *dir, int frame, int zoom, uint8_t *rgb)
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/frame-%03d.png", dir, frame);
@@ -96,14 +97,22 @@ static bool frame_cell_colours(const char *dir, int frame, uint8_t *rgb)
         FAILF("cannot read %s", path);
         return false;
     }
+    uint32_t *seen = malloc((size_t)(zoom - 1) * (zoom - 1) * sizeof *seen);
+    int *count = malloc((size_t)(zoom - 1) * (zoom - 1) * sizeof *count);
+    if (!seen || !count) {
+        FAILF("out of memory");
+        free(seen);
+        free(count);
+        free(px);
+        return false;
+    }
     for (int cy = 0; cy < GRID; cy++) {
         for (int cx = 0; cx < GRID; cx++) {
-            uint32_t seen[(ZOOM - 1) * (ZOOM - 1)];
-            int count[(ZOOM - 1) * (ZOOM - 1)], n = 0, best = 0;
-            for (int y = 1; y < ZOOM; y++) {   /* inside the grid lines */
-                for (int x = 1; x < ZOOM; x++) {
-                    const uint8_t *p = px + ((size_t)(MARGIN + cy * ZOOM + y) * w + MARGIN +
-                                             cx * ZOOM + x) * 4;
+            int n = 0, best = 0;
+            for (int y = 1; y < zoom; y++) {   /* inside the grid lines */
+                for (int x = 1; x < zoom; x++) {
+                    const uint8_t *p = px + ((size_t)(MARGIN + cy * zoom + y) * w + MARGIN +
+                                             cx * zoom + x) * 4;
                     uint32_t c = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
                     int i = 0;
                     while (i < n && seen[i] != c) {
@@ -123,8 +132,15 @@ static bool frame_cell_colours(const char *dir, int frame, uint8_t *rgb)
             o[2] = (uint8_t)seen[best];
         }
     }
+    free(seen);
+    free(count);
     free(px);
     return true;
+}
+
+static bool frame_cell_colours(const char *dir, int frame, uint8_t *rgb)
+{
+    return frame_cell_colours_at(dir, frame, ZOOM, rgb);
 }
 
 /* The covered samples of each cell of the last frame of `dir` (an
@@ -875,6 +891,64 @@ SR_TEST(wu_last_frame_is_what_sr_draw_line_draws)
     rt_free(&t);
 }
 
+/* area's frames against sr_draw_line's SR_LINE_AREA line, the fill blue
+ * over white: the last frame cell for cell exactly its pixels, and the
+ * frame before it, whose cells are the areas sr_line_area_pixels handed
+ * out, within one 8-bit step of them.  Random lines in every direction,
+ * ends at 1/8 px, some off the grid, of widths from half a pixel to 4.5
+ * and each cap; at zoom 24, where the rectangle's outline, the segment
+ * and its labels leave each cell's fill its commonest colour. */
+SR_TEST(area_frames_are_what_sr_draw_line_draws)
+{
+    NEEDS_CLI();
+    static const char *const widths[] = { "0.5", "1", "1.7", "3", "4.5" };
+    static const char *const caps[] = { "butt", "square", "round" };
+    sr_rng rng = { 0xa4eau };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int drawn = 0;
+    for (int k = 0; k < 24; k++) {
+        double v[4];
+        for (int i = 0; i < 4; i++) {
+            v[i] = sr_rng_int(&rng, -16, (GRID + 2) * 8) / 8.0;
+        }
+        const char *width = widths[k % 5], *cap = caps[k % 3];
+        char prim[128], dir[1024], name[40], grid[16];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g", v[0], v[1], v[2], v[3]);
+        snprintf(name, sizeof name, "area_%02d", k);
+        snprintf(grid, sizeof grid, "%dx%d", GRID, GRID);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "area", "--line", prim, "--width",
+                                                  width, "--cap", cap, "--grid", grid, "--zoom",
+                                                  "24", "-o", dir, NULL }) == 0);
+        uint8_t cells[GRID * GRID], last_rgb[GRID * GRID * 3], areas_rgb[GRID * GRID * 3];
+        int last = last_frame_cells(dir, cells);   /* its number; the cells are zoom 8's */
+        REQUIRE(last >= 2);
+        REQUIRE(frame_cell_colours_at(dir, last, 24, last_rgb));
+        REQUIRE(frame_cell_colours_at(dir, last - 1, 24, areas_rgb));
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        sr_line_cap c = (sr_line_cap)(SR_LINE_CAP_BUTT + k % 3);
+        REQUIRE(sr_draw_line(t.ctx, t.fb, (sr_point2){ v[0], v[1] }, (sr_point2){ v[2], v[3] },
+                             (sr_rgba){ 0.20f, 0.45f, 0.85f, 1 },
+                             &(sr_line_desc){ .algorithm = SR_LINE_AREA,
+                                              .width = strtod(width, NULL), .cap = c }) == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int diff = 0, areas_diff = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            diff += memcmp(px + 4 * i, last_rgb + 3 * i, 3) != 0;
+            for (int ch = 0; ch < 3; ch++) {
+                areas_diff += abs(px[4 * i + ch] - areas_rgb[3 * i + ch]) > 1;
+            }
+            drawn += px[4 * i] != 255;
+        }
+        if (diff || areas_diff) {
+            FAILF("area --line %s --width %s --cap %s: %d cells of the last frame, %d channels "
+                  "of the areas differ", prim, width, cap, diff, areas_diff);
+        }
+    }
+    CHECK(drawn > 500);
+    rt_free(&t);
+}
+
 SR_TEST(explain_refuses_bad_input)
 {
     NEEDS_CLI();
@@ -942,6 +1016,10 @@ SR_TEST(explain_refuses_bad_input)
                                                dir, NULL }), 2);
     CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "gouraud", "--highlight", "1", "-o",
                                                dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "area", "--cap", "flat", "-o", dir,
+                                               NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "area", "--width", "0", "-o", dir,
+                                               NULL }), 2);
     static const char *const bad_widths[] = { "0", "-1", "64.5", "1px", "nan", "" };
     for (size_t i = 0; i < sizeof bad_widths / sizeof bad_widths[0]; i++) {
         CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "aaline", "--width", bad_widths[i],
@@ -1210,6 +1288,7 @@ SR_TEST(options_of_another_algorithm_are_refused)
         { "triangle", "--eye", "1,2,3" },       { "clip4d", "--projection", "orthographic" },
         { "perspective", "--highlight", "3,3" }, { "transform", "--shininess", "8" },
         { "zbuffer", "--offset", "-1,-1" },     { "wu", "--width", "2" },
+        { "aaline", "--cap", "round" },
     };
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         int rc = sr_test_run_cli((const char *[]){ "explain", runs[i][0], runs[i][1], runs[i][2],
@@ -1487,6 +1566,26 @@ SR_TEST(aaline_width_is_sr_draws_line_width)
     for (int i = 1; i < 4; i++) {
         CHECK(drawn[i] > drawn[i - 1]);
     }
+}
+
+/* area's row frames give each pixel's area as A(x + 1) - A(x): the
+ * example's row y = 3. */
+SR_TEST(area_caption_gives_each_pixels_area)
+{
+    NEEDS_CLI();
+    expect_caption("area_row", (const char *[]){ "area", NULL }, 4, 10,
+                   "4. Row y = 3: the rectangle cut to the strip 3 <= y <= 4 (pink), A(x) its "
+                   "area left of x; 6 pixels, each covering A(x + 1) - A(x) of its square. "
+                   "x = 1: 0.063 - 0.000 = 0.063; x = 2: 0.497 - 0.063 = 0.434; x = 3: 1.338 - "
+                   "0.497 = 0.841; x = 4: 2.163 - 1.338 = 0.825; x = 5: 2.578 - 2.163 = 0.415; "
+                   "x = 6: 2.631 - 2.578 = 0.053.");
+    /* the areas sum to the rectangle's: none of it is off the grid */
+    expect_caption("area_sum", (const char *[]){ "area", NULL }, 10, 10,
+                   "10. The areas: the fraction of each pixel's square the rectangle covers, 35 "
+                   "pixels, exactly (the notes' count of a finer grid's subpixels inside only "
+                   "approximates them). Unweighted: equal areas give equal intensities wherever "
+                   "they lie in the pixel. They sum to 13.946 px^2, the rectangle's area w |AB| "
+                   "= 13.946.");
 }
 
 /* The example's first end: the gap and the two weights it scales. */
@@ -2386,4 +2485,12 @@ SR_TEST(aaline_example_sheet_matches_reference)
 {
     NEEDS_CLI();
     check_example_sheet("aaline", "16");
+}
+
+/* The example's frames on one sheet, against tests/ref/explain_area.png
+ * (2 levels a channel, 1 pixel in 200). */
+SR_TEST(area_example_sheet_matches_reference)
+{
+    NEEDS_CLI();
+    check_example_sheet("area", "16");
 }

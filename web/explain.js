@@ -29,7 +29,9 @@ const OPTIONS = [
     { option: '--offset', label: 'polygon offset (factor, units)',
       values: ['-1,-1', '-1,0', '0,-1', '0,0'], applies: (a) => a.name === 'zfight' },
     { option: '--width', label: 'line width', values: ['1', '0.5', '2.5', '4'],
-      applies: (a) => a.name === 'aaline' },
+      applies: (a) => ['aaline', 'area'].includes(a.name) },
+    { option: '--cap', label: 'line ends', values: ['butt', 'square', 'round'],
+      applies: (a) => a.name === 'area' },
 ];
 // Options that give a value at each vertex: the page keeps the example's.
 const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };

@@ -59,6 +59,12 @@ static const algorithm algorithms[] = {
       "softrast's antialiased line (sr_draw's smooth lines): each\n"
       "             pixel's distance to the segment and its coverage\n"
       "             (--width)" },
+    { "area", EX_LINE, explain_area,
+      { .kind = EX_LINE, .pts = { { 1.3, 2.4 }, { 14.2, 7.7 } }, .count = 2, .line_width = 1,
+        .line_cap = SR_LINE_CAP_BUTT }, 16, 10, 32,
+      "unweighted area sampling (SR_LINE_AREA): each pixel's\n"
+      "             area covered by the line's rectangle, row by row\n"
+      "             (--width, --cap)" },
     { "zbuffer", EX_TRIANGLES, explain_zbuffer,
       { .kind = EX_TRIANGLES, .pts = { { 1.5, 1.5 }, { 12.5, 3.5 }, { 3.5, 10.5 },
                                        { 11.5, 0.5 }, { 12.5, 10.5 }, { 2.5, 6.5 } },
@@ -140,8 +146,10 @@ static void usage(FILE *f)
             "  --triangle X0,Y0,X1,Y1,X2,Y2\n"
             "  --polygon X,Y,X,Y,...      3 to %d vertices\n"
             "  --line X0,Y0,X1,Y1\n"
-            "  --width W                  aaline: the line's width in pixels, 0.0625 to 64\n"
-            "                             (default 1)\n"
+            "  --width W                  aaline, area: the line's width in pixels, 0.0625\n"
+            "                             to 64 (default 1)\n"
+            "  --cap butt|square|round    area: the line's ends, at A and B (butt, the\n"
+            "                             default), w/2 past them or half disks\n"
             "  --circle CX,CY,R           circle: centre and radius (R at most 4096)\n"
             "  --cubic X0,Y0,...,X3,Y3    forward-differencing: a cubic Bezier's four\n"
             "                             control points\n"
@@ -519,7 +527,8 @@ static const struct {
     { "--highlight", { "gouraud" } },
     { "--offset", { "zfight" } },
     { "--shininess", { "gouraud" } },
-    { "--width", { "aaline" } },
+    { "--width", { "aaline", "area" } },
+    { "--cap", { "area" } },
 };
 
 /* Whether algorithm `name` takes option `a`; false after one line. */
@@ -584,6 +593,7 @@ int cmd_explain(int argc, char **argv)
     double tolerance = 0;
     int seed[2] = { 0, 0 }, connectivity = 4;
     double highlight[2] = { 0, 0 }, shininess = 0, offset[2] = { 0, 0 }, line_width = 0;
+    sr_line_cap line_cap = SR_LINE_CAP_BUTT;
     bool offset_given = false;
     bool highlight_given = false;
     bool seed_given = false;
@@ -702,6 +712,11 @@ int cmd_explain(int argc, char **argv)
             float f = 0;
             ok = parse_float(a, v, 0.0625f, 64, &f);
             line_width = f;
+        } else if (strcmp(a, "--cap") == 0) {
+            static const char *const caps[] = { "butt", "square", "round", NULL };
+            int k = 0;
+            ok = parse_choice(a, v, caps, &k);
+            line_cap = (sr_line_cap)(SR_LINE_CAP_BUTT + k);
         } else if (strcmp(a, "--near-far") == 0) {
             ex_primitive np = { 0 };
             ok = parse_points(a, v, 2, 1, 1, "N,F", &np);
@@ -821,8 +836,9 @@ int cmd_explain(int argc, char **argv)
             prim.highlight[1] = (prim.pts[0].y + prim.pts[1].y + prim.pts[2].y) / 3;
         }
     }
-    if (alg->run == explain_aaline) {
+    if (alg->run == explain_aaline || alg->run == explain_area) {
         prim.line_width = line_width > 0 ? line_width : alg->example.line_width;
+        prim.line_cap = line_cap;
     }
     if (seed_given) {
         prim.seed[0] = seed[0];

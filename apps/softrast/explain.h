@@ -58,7 +58,8 @@ typedef struct ex_primitive {
     double highlight[2];             /* gouraud: where the light's highlight peaks */
     double shininess;                /* gouraud: the Blinn-Phong exponent n */
     double offset[2];                /* zfight: B's polygon offset, factor and units */
-    double line_width;               /* aaline: the smooth line's width, pixels */
+    double line_width;               /* aaline, area: the line's width, pixels */
+    sr_line_cap line_cap;            /* area: SR_LINE_AREA's ends */
 } ex_primitive;
 
 /* The frames drawn so far (RGBA8, all the same size) and the canvas the
@@ -112,6 +113,9 @@ bool ex_cell_badge(ex_canvas *c, int x, int y, const char *text, sr_rgba color);
 void ex_segment(ex_canvas *c, sr_point2 a, sr_point2 b, sr_rgba color, double width);
 void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba color,
                 double width);
+/* A polygon in grid coordinates (near the grid) filled with color, its
+ * alpha blended over the frame, antialiased. */
+void ex_fill(ex_canvas *c, const sr_point2 *pts, int n, sr_rgba color);
 void ex_dot(ex_canvas *c, sr_point2 p, double radius, sr_rgba color);
 /* A label beside a point in grid coordinates; in a frame with cell text,
  * on a light box and out of the band the cells' text is written in. */
@@ -121,10 +125,18 @@ void ex_label(ex_canvas *c, sr_point2 p, const char *text, sr_rgba color);
 void ex_line_ab(ex_canvas *c, sr_point2 a, sr_point2 b);
 /* A weight in [0, 1] short enough for a cell: ".74" (no leading 0), "1". */
 void ex_weight_text(char *buf, size_t size, double w);
+/* A cell's colour for weight c: the ink over the empty cell's white with
+ * opacity c, mixed in linear light as sr_draw_line mixes its antialiased
+ * lines. */
+sr_rgba ex_ink_over_white(double c);
 /* The pixels of the grid that sr_draw_line draws for the segments
  * through pts (closed: and back to the first), 1 in mask, row by row. */
 sr_result ex_polyline_pixels(ex_canvas *c, const sr_point2 *pts, int n, bool closed,
                              uint8_t *mask);
+/* Start a frame with the line a-b as sr_draw_line draws it (desc) in
+ * the ink over white, each cell its pixel's colour; the cells drawn
+ * (not left white). */
+int ex_line_frame(ex_canvas *c, sr_point2 a, sr_point2 b, const sr_line_desc *desc);
 /* The caption under the grid, word-wrapped; then the frame is kept. */
 void ex_end(ex_canvas *c, const char *caption);
 
@@ -138,6 +150,7 @@ sr_result explain_bresenham(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_dda(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_wu(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_aaline(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_area(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_zbuffer(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_perspective(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim);

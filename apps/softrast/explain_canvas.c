@@ -298,6 +298,24 @@ void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba 
     }
 }
 
+void ex_fill(ex_canvas *c, const sr_point2 *pts, int n, sr_rgba color)
+{
+    if (c->error != SR_OK || n < 3) {
+        return;
+    }
+    sr_point2 *q = malloc((size_t)n * sizeof *q);
+    if (!q) {
+        keep(c, SR_OUT_OF_MEMORY);
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        q[i] = to_frame(c, pts[i]);
+    }
+    keep(c, sr_fill_polygon(c->ctx, c->fb, &(sr_polygon2){ q, n, NULL, 0 }, color,
+                            &(sr_fill_desc){ .antialias = SR_AA_AREA }));
+    free(q);
+}
+
 void ex_segment(ex_canvas *c, sr_point2 a, sr_point2 b, sr_rgba color, double width)
 {
     ex_outline(c, (sr_point2[2]){ a, b }, 2, false, color, width);
@@ -513,4 +531,48 @@ void ex_weight_text(char *buf, size_t size, double w)
     char t[16];
     snprintf(t, sizeof t, "%.2f", w);
     snprintf(buf, size, "%s", t[0] == '0' ? t + 1 : t);
+}
+
+static double srgb_to_linear(double c)
+{
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+sr_rgba ex_ink_over_white(double c)
+{
+    const float ink[3] = { EX_INK.r, EX_INK.g, EX_INK.b };
+    float out[3];
+    for (int i = 0; i < 3; i++) {
+        out[i] = sr_srgb_encode8((float)(c * srgb_to_linear(ink[i]) + (1.0 - c))) / 255.0f;
+    }
+    return (sr_rgba){ out[0], out[1], out[2], 1 };
+}
+
+int ex_line_frame(ex_canvas *c, sr_point2 a, sr_point2 b, const sr_line_desc *desc)
+{
+    sr_framebuffer *fb = NULL;
+    keep(c, sr_make_framebuffer(c->ctx, &(sr_framebuffer_desc){ .width = c->grid_w,
+                                                                 .height = c->grid_h,
+                                                                 .depth_format = SR_DEPTH_NONE },
+                                &fb));
+    if (c->error != SR_OK) {
+        return 0;
+    }
+    sr_clear(c->ctx, fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });   /* EX_CELL_OUT */
+    keep(c, sr_draw_line(c->ctx, fb, a, b, EX_INK, desc));
+    ex_begin(c);
+    const uint8_t *px = sr_framebuffer_pixels(fb);
+    int drawn = 0;
+    for (int y = 0; y < c->grid_h; y++) {
+        for (int x = 0; x < c->grid_w; x++) {
+            const uint8_t *p = px + 4 * ((size_t)y * c->grid_w + x);
+            if (p[0] == 255 && p[1] == 255 && p[2] == 255) {
+                continue;
+            }
+            ex_cell(c, x, y, (sr_rgba){ p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, 1 });
+            drawn++;
+        }
+    }
+    sr_destroy_framebuffer(c->ctx, fb);
+    return drawn;
 }

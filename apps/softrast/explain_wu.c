@@ -57,23 +57,6 @@ static void add_step(void *user, const sr_line_step_info *s)
     w->st[w->n++] = (wu_step){ .s = *s, .run = off, .first_major = s->major };
 }
 
-static double srgb_to_linear(double c)
-{
-    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
-}
-
-/* A cell's colour for weight c: the ink over the empty cell's white with
- * opacity c, mixed in linear light as sr_draw_line mixes it. */
-static sr_rgba weight_colour(double c)
-{
-    const float ink[3] = { EX_INK.r, EX_INK.g, EX_INK.b };
-    float out[3];
-    for (int i = 0; i < 3; i++) {
-        out[i] = sr_srgb_encode8((float)(c * srgb_to_linear(ink[i]) + (1.0 - c))) / 255.0f;
-    }
-    return (sr_rgba){ out[0], out[1], out[2], 1 };
-}
-
 static sr_rgba text_on(double c)
 {
     return c > 0.8 ? (sr_rgba){ 1, 1, 1, 1 } : EX_TEXT;
@@ -86,7 +69,7 @@ static void draw_pixels(ex_canvas *c, const wu_line *w, int upto)
         const sr_line_step_info *s = &w->st[i].s;
         for (int k = 0; k < 2 && !w->st[i].run; k++) {
             if (s->drawn[k] && on_grid(w, s->x[k], s->y[k])) {
-                ex_cell(c, s->x[k], s->y[k], weight_colour(s->coverage[k]));
+                ex_cell(c, s->x[k], s->y[k], ex_ink_over_white(s->coverage[k]));
             }
         }
     }
@@ -141,7 +124,7 @@ static void step_frame(ex_canvas *c, const wu_line *w, int i, int number)
             continue;
         }
         if (s->drawn[k]) {
-            ex_cell(c, s->x[k], s->y[k], weight_colour(s->coverage[k]));
+            ex_cell(c, s->x[k], s->y[k], ex_ink_over_white(s->coverage[k]));
         } else {
             ex_cross(c, s->x[k], s->y[k], EX_BAD);
         }
@@ -197,32 +180,7 @@ static void step_frame(ex_canvas *c, const wu_line *w, int i, int number)
  * cell the colour of its pixel. */
 static void final_frame(ex_canvas *c, const wu_line *w, int number)
 {
-    sr_framebuffer *fb = NULL;
-    c->error = sr_make_framebuffer(c->ctx, &(sr_framebuffer_desc){ .width = w->grid_w,
-                                                                   .height = w->grid_h,
-                                                                   .depth_format =
-                                                                       SR_DEPTH_NONE },
-                                   &fb);
-    if (c->error != SR_OK) {
-        return;
-    }
-    sr_clear(c->ctx, fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });   /* EX_CELL_OUT */
-    c->error = sr_draw_line(c->ctx, fb, w->a, w->b, EX_INK,
-                            &(sr_line_desc){ .algorithm = SR_LINE_WU });
-    ex_begin(c);
-    const uint8_t *px = sr_framebuffer_pixels(fb);
-    int drawn = 0;
-    for (int y = 0; y < w->grid_h; y++) {
-        for (int x = 0; x < w->grid_w; x++) {
-            const uint8_t *p = px + 4 * ((size_t)y * w->grid_w + x);
-            if (p[0] == 255 && p[1] == 255 && p[2] == 255) {
-                continue;
-            }
-            ex_cell(c, x, y, (sr_rgba){ p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f, 1 });
-            drawn++;
-        }
-    }
-    sr_destroy_framebuffer(c->ctx, fb);
+    int drawn = ex_line_frame(c, w->a, w->b, &(sr_line_desc){ .algorithm = SR_LINE_WU });
     draw_line(c, w);
     char cap[400];
     snprintf(cap, sizeof cap,

@@ -648,3 +648,36 @@ sr_result sr_line_steps(sr_context *ctx, int width, int height, sr_point2 a, sr_
     sr__ok(ctx);
     return SR_OK;
 }
+
+sr_result sr_line_area_pixels(sr_context *ctx, int width, int height, sr_point2 a, sr_point2 b,
+                              const sr_line_desc *desc, sr_line_area_fn fn, void *user)
+{
+    if (!ctx) {
+        return SR_INVALID_ARG;
+    }
+    if (!fn) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_line_area_pixels: fn is NULL");
+    }
+    if (width <= 0 || height <= 0) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_line_area_pixels: width and height must be "
+                        "> 0 (got %d x %d)", width, height);
+    }
+    sr_line_desc d = { 0 };
+    sr_result r = check_line(ctx, "sr_line_area_pixels", a, b, desc, &d);
+    if (r != SR_OK) {
+        return r;
+    }
+    if (d.algorithm != SR_LINE_AREA) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_line_area_pixels: sr_line_desc.algorithm %d "
+                        "is not SR_LINE_AREA", (int)d.algorithm);
+    }
+    sr_point2 *strip = sr__alloc(ctx, SR__LINE_AREA_STRIP_MAX * sizeof *strip);
+    if (!strip) {
+        return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_line_area_pixels: out of memory");
+    }
+    sr__line_area_cells(a, b, d.width, d.cap, (sr__irect){ 0, 0, width, height }, d.clipper, fn,
+                        user, strip);
+    sr__free(ctx, strip);
+    sr__ok(ctx);
+    return SR_OK;
+}

@@ -76,7 +76,14 @@ void sr__line_wu(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipp
 void sr__line_wu_steps(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipper,
                        sr_line_step_fn step, void *user);
 /* Exact area coverage of the width-w rectangle around a->b (with its
- * caps) inside each pixel square. */
+ * caps) inside each pixel square: sr__line_area plots the pixels that
+ * sr__line_area_cells hands out as drawn (sr_line_area_pixels), from the
+ * same walk.  `strip` (SR__LINE_AREA_STRIP_MAX points) receives each
+ * row's strip, which the cells name. */
+#define SR__LINE_AREA_STRIP_MAX 1040
+void sr__line_area_cells(sr_point2 a, sr_point2 b, double width, sr_line_cap cap,
+                         sr__irect clip, sr_line_clipper clipper, sr_line_area_fn cell,
+                         void *user, sr_point2 *strip);
 void sr__line_area(sr_point2 a, sr_point2 b, double width, sr_line_cap cap, sr__irect clip,
                    sr_line_clipper clipper, sr__plot_fn plot, void *user);
 

@@ -119,6 +119,7 @@ void sr__line_wu(sr_point2 a, sr_point2 b, sr__irect clip, sr_line_clipper clipp
  * circle (at most ARC_MAX segments per half circle). */
 #define ARC_MAX 512
 #define POLY_MAX (2 * (ARC_MAX + 1) + 8)
+_Static_assert(POLY_MAX <= SR__LINE_AREA_STRIP_MAX, "a strip fits the cells' buffer");
 
 typedef struct poly { int n; double x[POLY_MAX], y[POLY_MAX]; } poly;
 _Static_assert(sizeof(poly) < 20000, "polygons live on the stack");
@@ -178,11 +179,22 @@ static double area_left_of(const poly *strip, double bound, double oy, poly *tmp
     return tmp->n < 3 ? 0.0 : poly_area(tmp, bound, oy);
 }
 
-/* Every pixel of the clip rectangle the convex polygon touches, with the
- * exact area of polygon ∩ pixel square: cut the polygon into the row's
- * strip; a pixel's area is then A(x + 1) - A(x), where A(x) is the area
- * of the strip left of x (one cut per pixel instead of two). */
-static void fill_convex_area(const poly *p, sr__irect clip, sr__plot_fn plot, void *user)
+/* How fill_convex_area hands out its pixels: each with its areas and its
+ * row's strip (cell, strip: SR__LINE_AREA_STRIP_MAX points), or only the
+ * drawn ones' coverage (plot, when cell is NULL): sr_draw_line's. */
+typedef struct area_out {
+    sr_line_area_fn cell;
+    sr__plot_fn plot;
+    void *user;
+    sr_point2 *strip;
+} area_out;
+
+/* Every pixel of the clip rectangle the convex polygon's bounding box
+ * touches, row by row, with the exact area of polygon ∩ pixel square:
+ * cut the polygon into the row's strip; a pixel's area is then
+ * A(x + 1) - A(x), where A(x) is the area of the strip left of x (one cut
+ * per pixel instead of two). */
+static void fill_convex_area(const poly *p, sr__irect clip, const area_out *out)
 {
     if (p->n < 3) {
         return;
@@ -205,16 +217,29 @@ static void fill_convex_area(const poly *p, sr__irect clip, sr__plot_fn plot, vo
             xmin = fmin(xmin, strip.x[i]);
             xmax = fmax(xmax, strip.x[i]);
         }
+        if (out->cell) {
+            for (int i = 0; i < strip.n; i++) {
+                out->strip[i] = (sr_point2){ strip.x[i], strip.y[i] };
+            }
+        }
         double c0 = fmax(floor(xmin), clip.x0), c1 = fmin(ceil(xmax) - 1.0, clip.x1 - 1.0);
         double left = c0 > xmin ? area_left_of(&strip, c0, y, &tmp) : 0.0;
         for (double x = c0; x <= c1; x += 1.0) {
             double next = area_left_of(&strip, x + 1.0, y, &tmp);
             double area = next - left;
-            left = next;
             /* Below 1e-9 px^2 is rounding noise of the subtraction. */
-            if (area > 1e-9) {
-                plot(user, (int)x, (int)y, (float)(area > 1.0 ? 1.0 : area));
+            bool drawn = area > 1e-9;
+            float coverage = drawn ? (float)(area > 1.0 ? 1.0 : area) : 0.0f;
+            if (out->cell) {
+                out->cell(out->user, &(sr_line_area_info){ .x = (int)x, .y = (int)y,
+                                                           .left = left, .right = next,
+                                                           .area = area, .coverage = coverage,
+                                                           .drawn = drawn, .strip = out->strip,
+                                                           .strip_count = strip.n });
+            } else if (drawn) {
+                out->plot(out->user, (int)x, (int)y, coverage);
             }
+            left = next;
         }
     }
 }
@@ -241,8 +266,8 @@ static void add_arc(poly *p, double cx, double cy, double r, double nx, double n
     }
 }
 
-void sr__line_area(sr_point2 a, sr_point2 b, double width, sr_line_cap cap, sr__irect clip,
-                   sr_line_clipper clipper, sr__plot_fn plot, void *user)
+static void line_area(sr_point2 a, sr_point2 b, double width, sr_line_cap cap, sr__irect clip,
+                      sr_line_clipper clipper, const area_out *out)
 {
     if (clip.x1 <= clip.x0 || clip.y1 <= clip.y0 || !(width > 0.0)) {
         return;
@@ -262,7 +287,7 @@ void sr__line_area(sr_point2 a, sr_point2 b, double width, sr_line_cap cap, sr__
             poly_add(&p, a.x - h, a.y);
             add_arc(&p, a.x, a.y, h, -1.0, 0.0, 0.0, -1.0);
         }
-        fill_convex_area(&p, clip, plot, user);
+        fill_convex_area(&p, clip, out);
         return;
     }
     dx /= len;
@@ -297,5 +322,19 @@ void sr__line_area(sr_point2 a, sr_point2 b, double width, sr_line_cap cap, sr__
     if (cap_a == SR_LINE_CAP_ROUND) {
         add_arc(&p, ca.x, ca.y, h, -nx, -ny, -dx, -dy);
     }
-    fill_convex_area(&p, clip, plot, user);
+    fill_convex_area(&p, clip, out);
+}
+
+void sr__line_area_cells(sr_point2 a, sr_point2 b, double width, sr_line_cap cap,
+                         sr__irect clip, sr_line_clipper clipper, sr_line_area_fn cell,
+                         void *user, sr_point2 *strip)
+{
+    line_area(a, b, width, cap, clip, clipper,
+              &(area_out){ .cell = cell, .user = user, .strip = strip });
+}
+
+void sr__line_area(sr_point2 a, sr_point2 b, double width, sr_line_cap cap, sr__irect clip,
+                   sr_line_clipper clipper, sr__plot_fn plot, void *user)
+{
+    line_area(a, b, width, cap, clip, clipper, &(area_out){ .plot = plot, .user = user });
 }
