@@ -5,6 +5,7 @@
 #include "image_compare.h"
 #include "sr_test.h"
 
+#include "context.h"
 #include "fragment/pbr_layers.h"
 #include "fragment/sheen.h"
 #include "softrast.h"
@@ -2819,4 +2820,165 @@ SR_TEST(programs_of_one_environment_and_roughness_share_their_radiance_map)
     free_sphere(&s);
     sr_destroy_context(fresh);
     sr_destroy_context(ctx);
+}
+
+/* An allocator that counts the prefiltered radiance maps built (the
+ * allocations of one 64 x 64 RGBA float map). */
+#define MAP_BYTES ((size_t)64 * 64 * 4 * sizeof(float))
+static void *map_counted_alloc(size_t size, void *user)
+{
+    *(size_t *)user += size == MAP_BYTES;
+    return malloc(size);
+}
+
+static sr_result map_counting_context(size_t *builds, sr_context **ctx)
+{
+    return sr_make_context(&(sr_context_desc){ .threads = 2,
+                                               .allocator = { map_counted_alloc, counted_free,
+                                                              builds } },
+                           ctx);
+}
+
+/* A counting context on two threads, the default environment made with
+ * it, a sphere and the test camera. */
+typedef struct map_scene {
+    size_t builds;
+    sr_context *ctx;
+    sr_environment *env;
+    sphere s;
+    sr_mat4 view, proj;
+} map_scene;
+
+static bool map_scene_open(map_scene *f)
+{
+    *f = (map_scene){ .view = test_view(), .proj = test_projection() };
+    if (map_counting_context(&f->builds, &f->ctx) != SR_OK) {
+        return false;
+    }
+    f->s = make_sphere(16, 8);
+    return f->s.pos && sr_make_environment(f->ctx, NULL, &f->env) == SR_OK;
+}
+
+static void map_scene_close(map_scene *f)
+{
+    sr_destroy_environment(f->ctx, f->env);
+    free_sphere(&f->s);
+    sr_destroy_context(f->ctx);
+}
+
+/* A scene of 12 materials of distinct roughness drawn frame after frame
+ * (a program per draw, as `softrast render` makes them) builds each map
+ * once: the second frame finds all 12 (a cache of 8 maps without eviction
+ * built the last 4 again every frame), and draws the same bytes. */
+SR_TEST(a_scene_of_twelve_roughnesses_builds_each_radiance_map_once)
+{
+    map_scene f;
+    REQUIRE(map_scene_open(&f));
+    enum { N = 12 };
+    static uint8_t first[N][4 * CELL * CELL], again[4 * CELL * CELL];
+    for (int frame = 0; frame < 2; frame++) {
+        for (int k = 0; k < N; k++) {
+            sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .metallic = 0.5f,
+                                  .roughness = 0.4f + 0.05f * (float)k };
+            sr_pbr_desc d = lit_desc(&m, &f.view, &f.proj);
+            d.environment = f.env;
+            sphere_in(f.ctx, NULL, &f.s, &d, frame ? again : first[k], NULL);
+            if (frame) {
+                CHECK(memcmp(first[k], again, sizeof again) == 0);
+            }
+        }
+        CHECK_EQ(f.builds, (size_t)N);
+    }
+    map_scene_close(&f);
+}
+
+/* An environment made anew every frame (animated) leaves its maps behind
+ * when it is destroyed: those make way, and the programs of the newest
+ * environment share its map again however many came before (they used to
+ * fill the cache for good, and every later program built its own). */
+SR_TEST(the_radiance_maps_of_destroyed_environments_make_way)
+{
+    size_t builds = 0;
+    sr_context *ctx;
+    REQUIRE(map_counting_context(&builds, &ctx) == SR_OK);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .roughness = 0.6f };
+    sr_pbr_desc d = lit_desc(&m, &view, &proj);
+    for (int frame = 0; frame < SR_OCT_CACHE + 4; frame++) {
+        sr_environment *env;
+        REQUIRE(sr_make_environment(
+                    ctx, &(sr_environment_desc){ .intensity = 1.0f + 0.01f * (float)frame },
+                    &env) == SR_OK);
+        d.environment = env;
+        size_t before = builds;
+        for (int draw = 0; draw < 3; draw++) {
+            sr_pbr *p;
+            REQUIRE(sr_make_pbr_program(ctx, &d, &p) == SR_OK);
+            sr_destroy_pbr_program(ctx, p);
+        }
+        CHECK_EQ(builds - before, (size_t)1);
+        sr_destroy_environment(ctx, env);
+    }
+    sr_destroy_context(ctx);
+}
+
+/* A map a live program reads is never evicted: with SR_OCT_CACHE programs
+ * of distinct roughness alive, one more builds a map of its own, and each
+ * of the first still draws what it drew when it was made (AddressSanitizer
+ * sees a freed map read). */
+SR_TEST(a_radiance_map_a_live_program_reads_is_not_evicted)
+{
+    map_scene f;
+    REQUIRE(map_scene_open(&f));
+    enum { N = SR_OCT_CACHE + 1 };
+    sr_pbr *live[N];
+    sr_pbr_material m[N];
+    static uint8_t drawn[4 * CELL * CELL], alone[4 * CELL * CELL];
+    for (int k = 0; k < N; k++) {
+        m[k] = (sr_pbr_material){ .base_color = { 0.3f, 0.5f, 0.8f, 1 }, .metallic = 0.7f,
+                                  .roughness = 0.36f + 0.6f * (float)k / (float)N };
+        sr_pbr_desc d = lit_desc(&m[k], &f.view, &f.proj);
+        d.environment = f.env;
+        REQUIRE(sr_make_pbr_program(f.ctx, &d, &live[k]) == SR_OK);
+    }
+    CHECK_EQ(f.builds, (size_t)N);
+    sr_framebuffer *fb;
+    REQUIRE(sr_make_framebuffer(f.ctx, &(sr_framebuffer_desc){ .width = CELL, .height = CELL },
+                                &fb) == SR_OK);
+    for (int k = 0; k < N; k += 8) {
+        sr_clear(f.ctx, fb, &(sr_clear_desc){ .color = { 0, 0, 0, 1 } });
+        sr_state st = { .program = sr_pbr_program(live[k]), .cull = SR_CULL_BACK };
+        CHECK_EQ(sr_draw(f.ctx, fb, &st,
+                         &(sr_draw_desc){ .positions = f.s.pos, .normals = f.s.nrm,
+                                          .texcoords = f.s.uv, .vertex_count = f.s.nv,
+                                          .indices = f.s.idx, .index_type = SR_INDEX_U32,
+                                          .index_count = f.s.ni }),
+                 SR_OK);
+        memcpy(drawn, sr_framebuffer_pixels(fb), sizeof drawn);
+        /* The same material alone in a fresh context. */
+        sr_context *fresh;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &fresh) == SR_OK);
+        sr_environment *fenv;
+        REQUIRE(sr_make_environment(fresh, NULL, &fenv) == SR_OK);
+        sr_pbr_desc d = lit_desc(&m[k], &f.view, &f.proj);
+        d.environment = fenv;
+        sphere_in(fresh, NULL, &f.s, &d, alone, NULL);
+        CHECK(memcmp(drawn, alone, sizeof drawn) == 0);
+        sr_destroy_environment(fresh, fenv);
+        sr_destroy_context(fresh);
+    }
+    sr_destroy_framebuffer(f.ctx, fb);
+    /* Once they are destroyed, their maps serve the next programs. */
+    for (int k = 0; k < N; k++) {
+        sr_destroy_pbr_program(f.ctx, live[k]);
+    }
+    size_t before = f.builds;
+    for (int k = 0; k < N - 1; k++) {
+        sr_pbr_desc d = lit_desc(&m[k], &f.view, &f.proj);
+        d.environment = f.env;
+        REQUIRE(sr_make_pbr_program(f.ctx, &d, &live[k]) == SR_OK);
+        sr_destroy_pbr_program(f.ctx, live[k]);
+    }
+    CHECK_EQ(f.builds, before);
+    map_scene_close(&f);
 }

@@ -4,9 +4,11 @@ mesh (a box of 24 vertices and 12 triangles, one primitive), on a square
 grid, the materials alternating A, B, A, ...: no two consecutive parts
 share a material, so nothing merges them into one draw, and each of the N
 draws names 24 vertices of a loaded mesh of 24 N.  The scene of the
-per-draw cost measurements in docs/performance.md.
+per-draw cost measurements in docs/performance.md.  With M materials
+(--materials M, at least 2) they cycle through M roughnesses from 0.4 to
+0.95 (more distinct prefiltered radiance maps than a context used to keep).
 
-    tools/many-nodes.py N OUT.glb
+    tools/many-nodes.py N OUT.glb [--materials M]
 """
 import math
 import sys
@@ -35,8 +37,13 @@ def box(h):
 
 def main():
     args = sys.argv[1:]
-    if len(args) != 2:
-        sys.exit("usage: " + __doc__.strip().splitlines()[-1].strip())
+    usage = "usage: " + __doc__.strip().splitlines()[-1].strip()
+    materials = 2
+    if len(args) == 4 and args[2] == "--materials":
+        materials = int(args[3])
+        args = args[:2]
+    if len(args) != 2 or materials < 2:
+        sys.exit(usage)
     n, out = int(args[0]), args[1]
     side = max(1, math.ceil(math.sqrt(n)))
     buf = glb.Buffer()
@@ -51,7 +58,7 @@ def main():
         q = add("f", nrm, {"componentType": 5126, "count": len(nrm) // 3, "type": "VEC3"})
         i = add("H", idx, {"componentType": 5123, "count": len(idx), "type": "SCALAR"})
         meshes.append({"primitives": [{"attributes": {"POSITION": p, "NORMAL": q},
-                                       "indices": i, "material": k % 2}]})
+                                       "indices": i, "material": k % materials}]})
         x, z = k % side, k // side
         nodes.append({"mesh": k, "translation": [(x - side / 2) * 1.2, 0.0,
                                                  (z - side / 2) * 1.2]})
@@ -65,6 +72,13 @@ def main():
             {"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.8, 1],
                                       "metallicFactor": 0.5, "roughnessFactor": 0.3}}],
     }
+    if materials > 2:
+        doc["materials"] = [
+            {"pbrMetallicRoughness": {
+                "baseColorFactor": [0.2 + 0.6 * j / (materials - 1), 0.4, 0.8 - 0.6 * j / (materials - 1), 1],
+                "metallicFactor": 0.5,
+                "roughnessFactor": round(0.4 + 0.55 * j / (materials - 1), 4)}}
+            for j in range(materials)]
     glb.write(out, doc, buf)
 
 

@@ -244,8 +244,13 @@ static void decode(reader *r, decoded *o)
             uint8_t b = u8(r);
             uint32_t v = b < 240 || nv == 0 ? (uint32_t)(b % (nv ? nv : 1)) : u32(r);
             o->idx32[i] = v;
-            o->idx16[i] = (uint16_t)v;
-            o->idx8[i] = (uint8_t)v;
+        }
+        /* The narrow copies over the whole arrays (zero past ni): a loop of
+         * ni iterations storing bytes vectorizes with an epilogue that
+         * GCC's s390x cross compiler takes for a write past idx8's end. */
+        for (int i = 0; i < MAX_INDICES; i++) {
+            o->idx16[i] = (uint16_t)o->idx32[i];
+            o->idx8[i] = (uint8_t)o->idx32[i];
         }
         d->index_count = (size_t)ni;
         d->indices = d->index_type == SR_INDEX_U8 ? (const void *)o->idx8
