@@ -719,24 +719,17 @@ static uint8_t *draw_film(const sr_pbr_material *m, const char *name)
     return px;
 }
 
-/* A film's material from the document whose iridescence extension is
- * `film`: `animated`, its maximum keyed 0 and 400 nm at 0 and 2 s and
- * posed at `time` through sr_load_desc (by_scene_pose false) or
- * sr_scene_pose from the rest pose; else read at rest (the document's
- * one channel, to the roughness, left unplayed).  false on failure. */
-static bool film_material(const char *film, bool animated, bool by_scene_pose, float time,
-                          sr_pbr_material *out)
+/* Material 0 of the document whose material is `mat`: `animated`, its
+ * `pointer` keyed k[0] and k[1] at 0 and 2 s and posed at `time` through
+ * sr_load_desc (by_scene_pose false) or sr_scene_pose from the rest pose;
+ * else read at rest (the document's one channel, to the roughness, left
+ * unplayed).  false on failure. */
+static bool keyed_material(const char *mat, const char *pointer, const float k[2], bool animated,
+                           bool by_scene_pose, float time, sr_pbr_material *out)
 {
-    static const float nm[2] = { 0, 400 };
-    char mat[512];
-    snprintf(mat, sizeof mat, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.1,0.12,1],"
-             "\"metallicFactor\":0,\"roughnessFactor\":0.3},"
-             "\"extensions\":{\"KHR_materials_iridescence\":%s}}", film);
-    char *json = scalar_channel_json(mat, nm, animated ? "/materials/0/extensions/"
-                                                         "KHR_materials_iridescence/"
-                                                         "iridescenceThicknessMaximum"
-                                                       : "/materials/0/pbrMetallicRoughness/"
-                                                         "roughnessFactor");
+    char *json = scalar_channel_json(mat, k, animated ? pointer
+                                                      : "/materials/0/pbrMetallicRoughness/"
+                                                        "roughnessFactor");
     sr_scene *s = NULL;
     sr_io_error e;
     sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = time };
@@ -750,13 +743,21 @@ static bool film_material(const char *film, bool animated, bool by_scene_pose, f
     return ok;
 }
 
-/* An untextured film 0 nm thick in the file is no film at rest; posed
- * where its animated iridescenceThicknessMaximum reaches 400 nm (at 2
- * s, through sr_load_desc's pose and through sr_scene_pose from the
- * rest pose) it draws the bytes of the file whose maximum is 400 at
- * rest, and at rest those of the same sphere without the extension.
- * Before, the reader set the factor to 0 for the 0 nm, and the pose
- * never brought the film back. */
+/* A film's material from the document whose iridescence extension is
+ * `film`, its maximum keyed 0 and 400 nm when `animated` (keyed_material). */
+static bool film_material(const char *film, bool animated, bool by_scene_pose, float time,
+                          sr_pbr_material *out)
+{
+    static const float nm[2] = { 0, 400 };
+    char mat[512];
+    snprintf(mat, sizeof mat, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.1,0.12,1],"
+             "\"metallicFactor\":0,\"roughnessFactor\":0.3},"
+             "\"extensions\":{\"KHR_materials_iridescence\":%s}}", film);
+    return keyed_material(mat, "/materials/0/extensions/KHR_materials_iridescence/"
+                               "iridescenceThicknessMaximum", nm, animated, by_scene_pose, time,
+                          out);
+}
+
 SR_TEST(an_animated_film_thickness_grows_a_film_from_0_nm)
 {
     const char *thin = "{\"iridescenceFactor\":1,\"iridescenceThicknessMaximum\":0}";
@@ -787,6 +788,56 @@ SR_TEST(an_animated_film_thickness_grows_a_film_from_0_nm)
     CHECK(memcmp(px[0], px[2], n) == 0);
     CHECK(memcmp(px[1], px[2], n) == 0);
     CHECK(memcmp(px[3], px[4], n) == 0);        /* 0 nm: no film */
+    for (int k = 0; k < 5; k++) {
+        free(px[k]);
+    }
+}
+
+/* An emissive material whose KHR_materials_emissive_strength is 0 in the
+ * file draws no emission at rest; animated up to 2 (posed by sr_load_desc
+ * and by sr_scene_pose) it draws the bytes of the file at strength 2 at
+ * rest: the reader keeps the file's emissiveFactor (emissive_strength_set)
+ * where it zeroed it, and the posed sphere stayed dark. */
+SR_TEST(an_animated_emissive_strength_lights_a_material_from_0)
+{
+    static const float strength[2] = { 0, 2 };
+    static const char *const pointer =
+        "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength";
+    char off[512], on[512];
+    static const char *const fmt =
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.2,0.2,0.2,1],"
+        "\"metallicFactor\":0,\"roughnessFactor\":0.5},\"emissiveFactor\":[0.4,0.2,0.05],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%d}}}";
+    snprintf(off, sizeof off, fmt, 0);
+    snprintf(on, sizeof on, fmt, 2);
+    sr_pbr_material posed, reposed, want, rest, none;
+    REQUIRE(keyed_material(off, pointer, strength, true, false, 2, &posed));
+    REQUIRE(keyed_material(off, pointer, strength, true, true, 2, &reposed));
+    REQUIRE(keyed_material(on, pointer, strength, false, false, 0, &want));
+    REQUIRE(keyed_material(off, pointer, strength, false, false, 0, &rest));
+    none = want;
+    memset(none.emissive, 0, sizeof none.emissive);
+    CHECK_EQ(posed.emissive_strength, 2.0f);
+    CHECK_EQ(posed.emissive[0], 0.4f);
+    CHECK(rest.emissive_strength_set);
+    CHECK_EQ(rest.emissive_strength, 0.0f);
+    uint8_t *px[5] = { draw_film(&posed, "gltf_emissive_posed"),
+                       draw_film(&reposed, "gltf_emissive_reposed"),
+                       draw_film(&want, "gltf_emissive_2"), draw_film(&rest, "gltf_emissive_0"),
+                       draw_film(&none, "gltf_emissive_none") };
+    for (int k = 0; k < 5; k++) {
+        REQUIRE(px[k]);
+    }
+    size_t n = 4 * FILM_SIZE * FILM_SIZE;
+    int lit = 0;
+    for (size_t i = 0; i < n; i++) {
+        lit += abs(px[2][i] - px[4][i]) > 8;
+    }
+    fprintf(stderr, "%d channels lit by the emission\n", lit);
+    CHECK(lit > 600);                           /* the emission shows */
+    CHECK(memcmp(px[0], px[2], n) == 0);
+    CHECK(memcmp(px[1], px[2], n) == 0);
+    CHECK(memcmp(px[3], px[4], n) == 0);        /* strength 0: no emission */
     for (int k = 0; k < 5; k++) {
         free(px[k]);
     }
