@@ -733,6 +733,38 @@ static uint8_t *draw_film(const sr_pbr_material *m, const char *name)
     return px;
 }
 
+/* Five materials of one property drawn on the sphere as out/names[k].png:
+ * posed from 0 through sr_load_desc and through sr_scene_pose, the file
+ * at the posed value, the file at 0 and the value's material without the
+ * property.  The property shows (over 600 channels of the third apart
+ * from the fifth by more than 8, `what` printed with their count), both
+ * posed draw the file's bytes at the value and the file at 0 draws the
+ * bytes of no property. */
+static void check_posed_spheres(const sr_pbr_material m[5], const char *const names[5],
+                                const char *what)
+{
+    uint8_t *px[5];
+    for (int k = 0; k < 5; k++) {
+        px[k] = draw_film(&m[k], names[k]);
+    }
+    for (int k = 0; k < 5; k++) {
+        REQUIRE(px[k]);
+    }
+    size_t n = 4 * FILM_SIZE * FILM_SIZE;
+    int shown = 0;
+    for (size_t i = 0; i < n; i++) {
+        shown += abs(px[2][i] - px[4][i]) > 8;
+    }
+    fprintf(stderr, "%d channels %s\n", shown, what);
+    CHECK(shown > 600);                         /* the property shows */
+    CHECK(memcmp(px[0], px[2], n) == 0);
+    CHECK(memcmp(px[1], px[2], n) == 0);
+    CHECK(memcmp(px[3], px[4], n) == 0);        /* at 0: none */
+    for (int k = 0; k < 5; k++) {
+        free(px[k]);
+    }
+}
+
 /* Material 0 of the document whose material is `mat`: `animated`, its
  * `pointer` keyed k as channel_json's (`width` floats a key) and posed at `time` through
  * sr_load_desc (by_scene_pose false) or sr_scene_pose from the rest pose;
@@ -785,26 +817,10 @@ SR_TEST(an_animated_film_thickness_grows_a_film_from_0_nm)
     none.iridescence = 0;
     CHECK_EQ(posed.iridescence, 1.0f);
     CHECK_EQ(posed.iridescence_thickness_max, 400.0f);
-    uint8_t *px[5] = { draw_film(&posed, "gltf_film_posed"),
-                       draw_film(&reposed, "gltf_film_reposed"),
-                       draw_film(&want, "gltf_film_400nm"), draw_film(&rest, "gltf_film_0nm"),
-                       draw_film(&none, "gltf_film_none") };
-    for (int k = 0; k < 5; k++) {
-        REQUIRE(px[k]);
-    }
-    size_t n = 4 * FILM_SIZE * FILM_SIZE;
-    int tinted = 0;
-    for (size_t i = 0; i < n; i++) {
-        tinted += abs(px[2][i] - px[4][i]) > 8;
-    }
-    fprintf(stderr, "%d channels tinted by the 400 nm film\n", tinted);
-    CHECK(tinted > 600);                        /* the film shows */
-    CHECK(memcmp(px[0], px[2], n) == 0);
-    CHECK(memcmp(px[1], px[2], n) == 0);
-    CHECK(memcmp(px[3], px[4], n) == 0);        /* 0 nm: no film */
-    for (int k = 0; k < 5; k++) {
-        free(px[k]);
-    }
+    static const char *const names[5] = { "gltf_film_posed", "gltf_film_reposed",
+                                          "gltf_film_400nm", "gltf_film_0nm", "gltf_film_none" };
+    check_posed_spheres((const sr_pbr_material[5]){ posed, reposed, want, rest, none }, names,
+                        "tinted by the 400 nm film");
 }
 
 /* An emissive material whose KHR_materials_emissive_strength is 0 in the
@@ -835,26 +851,11 @@ SR_TEST(an_animated_emissive_strength_lights_a_material_from_0)
     CHECK_EQ(posed.emissive[0], 0.4f);
     CHECK(rest.emissive_strength_set);
     CHECK_EQ(rest.emissive_strength, 0.0f);
-    uint8_t *px[5] = { draw_film(&posed, "gltf_emissive_posed"),
-                       draw_film(&reposed, "gltf_emissive_reposed"),
-                       draw_film(&want, "gltf_emissive_2"), draw_film(&rest, "gltf_emissive_0"),
-                       draw_film(&none, "gltf_emissive_none") };
-    for (int k = 0; k < 5; k++) {
-        REQUIRE(px[k]);
-    }
-    size_t n = 4 * FILM_SIZE * FILM_SIZE;
-    int lit = 0;
-    for (size_t i = 0; i < n; i++) {
-        lit += abs(px[2][i] - px[4][i]) > 8;
-    }
-    fprintf(stderr, "%d channels lit by the emission\n", lit);
-    CHECK(lit > 600);                           /* the emission shows */
-    CHECK(memcmp(px[0], px[2], n) == 0);
-    CHECK(memcmp(px[1], px[2], n) == 0);
-    CHECK(memcmp(px[3], px[4], n) == 0);        /* strength 0: no emission */
-    for (int k = 0; k < 5; k++) {
-        free(px[k]);
-    }
+    static const char *const names[5] = { "gltf_emissive_posed", "gltf_emissive_reposed",
+                                          "gltf_emissive_2", "gltf_emissive_0",
+                                          "gltf_emissive_none" };
+    check_posed_spheres((const sr_pbr_material[5]){ posed, reposed, want, rest, none }, names,
+                        "lit by the emission");
 }
 
 #define BASE "\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.4,0.3,1]," \
