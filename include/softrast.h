@@ -1001,7 +1001,10 @@ typedef struct sr_pbr_material {
     sr_texture_slot occlusion_texture;           /* R channel, linear */
     float occlusion_strength;      /* 0: none, 1: the full map */
     float emissive[3];             /* linear RGB */
-    float emissive_strength;       /* KHR_materials_emissive_strength; 0 -> 1 */
+    float emissive_strength;       /* KHR_materials_emissive_strength; 0 -> 1
+                                    * unless emissive_strength_set */
+    bool emissive_strength_set;    /* true: the strength as given, 0 being
+                                    * no emission (the extension's) */
     sr_texture_slot emissive_texture;            /* sRGB */
     /* KHR_materials_transmission and KHR_materials_volume (docs/pbr.md):
      * the share of the dielectric's diffuse lobe that passes through,

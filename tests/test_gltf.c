@@ -466,10 +466,12 @@ SR_TEST(material_factors_and_extensions_are_read)
     CHECK(m->unlit);
     CHECK_EQ(s->materials[1].alpha_mode, SR_ALPHA_BLEND);
     CHECK(!s->materials[1].unlit);
-    /* sr_pbr_material's zeros are defaults: a cutoff of 0 keeps every
-     * fragment (opaque), a strength of 0 is no emission. */
+    /* A cutoff of 0 keeps every fragment (opaque); a strength of 0 is
+     * kept as set (no emission), with the file's factor. */
     CHECK_EQ(s->materials[2].alpha_mode, SR_ALPHA_OPAQUE);
-    CHECK_EQ(s->materials[2].emissive[0], 0.0f);
+    CHECK_EQ(s->materials[2].emissive[0], 1.0f);
+    CHECK_EQ(s->materials[2].emissive_strength, 0.0f);
+    CHECK(s->materials[2].emissive_strength_set);
     /* No material: glTF's default, white, metallic and rough. */
     CHECK_EQ(s->primitives[1].material, 3);
     const sr_pbr_material *d = &s->materials[3];

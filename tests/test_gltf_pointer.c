@@ -581,19 +581,25 @@ SR_TEST(two_channels_on_one_pointer_target_are_refused)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
-/* The document of one LINEAR scalar channel to `pointer`, keys k[0] at
- * 0 s and k[1] at 2 s, with material 0 `material`.  Malloc'd. */
-static char *scalar_channel_json(const char *material, const float k[2], const char *pointer)
+/* The document of one LINEAR channel of `width` floats (1 or 3) to
+ * `pointer`, keys k[0 .. width) at 0 s and k[width .. 2 width) at 2 s,
+ * with material 0 `material`.  Malloc'd. */
+static char *channel_json(const char *material, const float *k, int width, const char *pointer)
 {
     blob b = { .size = 0 };
     static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
     put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
     int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
-    int out = put(&b, k, 2, 4, "SCALAR", 2, 5126, false);
+    int out = put(&b, k, 2 * (size_t)width, 4, width == 3 ? "VEC3" : "SCALAR", 2, 5126, false);
     char samplers[128], channels[512] = "";
     snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
     add_channel(channels, sizeof channels, 0, pointer);
     return scene_json_with(&b, material, samplers, channels);
+}
+
+static char *scalar_channel_json(const char *material, const float k[2], const char *pointer)
+{
+    return channel_json(material, k, 1, pointer);
 }
 
 /* A MASK material whose file cutoff is 0 reads OPAQUE (a cutoff of 0
@@ -692,9 +698,19 @@ SR_TEST(film_and_volume_properties_animate_within_the_reader_ranges)
 
 enum { FILM_SIZE = 96 };
 
+/* RGBA8 pixels of FILM_SIZE squared as out/NAME.png; NULL name: none. */
+static void save_film(const uint8_t *px, const char *name)
+{
+    if (name) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s.png", sr_test_out_dir(), name);
+        sr_write_png(path, FILM_SIZE, FILM_SIZE, px, 4 * FILM_SIZE, NULL, NULL);
+    }
+}
+
 /* The unit sphere drawn with material m (its factors; the scene's
  * triangle has no normals) under a white key light, into a malloc'd
- * RGBA8 image of FILM_SIZE squared, saved as out/NAME.png. */
+ * RGBA8 image of FILM_SIZE squared, saved as out/NAME.png (save_film). */
 static uint8_t *draw_film(const sr_pbr_material *m, const char *name)
 {
     static sphere s;
@@ -722,33 +738,56 @@ static uint8_t *draw_film(const sr_pbr_material *m, const char *name)
                                  .index_count = s.index_count }) == SR_OK &&
         (px = malloc(4 * FILM_SIZE * FILM_SIZE)) != NULL) {
         memcpy(px, sr_framebuffer_pixels(fb), 4 * FILM_SIZE * FILM_SIZE);
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s.png", sr_test_out_dir(), name);
-        sr_write_png(path, FILM_SIZE, FILM_SIZE, px, 4 * FILM_SIZE, NULL, NULL);
+        save_film(px, name);
     }
     sr_destroy_pbr_program(ctx, p);
     sr_destroy_framebuffer(ctx, fb);
     return px;
 }
 
-/* A film's material from the document whose iridescence extension is
- * `film`: `animated`, its maximum keyed 0 and 400 nm at 0 and 2 s and
- * posed at `time` through sr_load_desc (by_scene_pose false) or
- * sr_scene_pose from the rest pose; else read at rest (the document's
- * one channel, to the roughness, left unplayed).  false on failure. */
-static bool film_material(const char *film, bool animated, bool by_scene_pose, float time,
-                          sr_pbr_material *out)
+/* Five materials of one property drawn on the sphere as out/names[k].png:
+ * posed from 0 through sr_load_desc and through sr_scene_pose, the file
+ * at the posed value, the file at 0 and the value's material without the
+ * property.  The property shows (over 600 channels of the third apart
+ * from the fifth by more than 8, `what` printed with their count), both
+ * posed draw the file's bytes at the value and the file at 0 draws the
+ * bytes of no property. */
+static void check_posed_spheres(const sr_pbr_material m[5], const char *const names[5],
+                                const char *what)
 {
-    static const float nm[2] = { 0, 400 };
-    char mat[512];
-    snprintf(mat, sizeof mat, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.1,0.12,1],"
-             "\"metallicFactor\":0,\"roughnessFactor\":0.3},"
-             "\"extensions\":{\"KHR_materials_iridescence\":%s}}", film);
-    char *json = scalar_channel_json(mat, nm, animated ? "/materials/0/extensions/"
-                                                         "KHR_materials_iridescence/"
-                                                         "iridescenceThicknessMaximum"
-                                                       : "/materials/0/pbrMetallicRoughness/"
-                                                         "roughnessFactor");
+    uint8_t *px[5];
+    for (int k = 0; k < 5; k++) {
+        px[k] = draw_film(&m[k], names[k]);
+    }
+    for (int k = 0; k < 5; k++) {
+        REQUIRE(px[k]);
+    }
+    size_t n = 4 * FILM_SIZE * FILM_SIZE;
+    int shown = 0;
+    for (size_t i = 0; i < n; i++) {
+        shown += abs(px[2][i] - px[4][i]) > 8;
+    }
+    fprintf(stderr, "%d channels %s\n", shown, what);
+    CHECK(shown > 600);                         /* the property shows */
+    CHECK(memcmp(px[0], px[2], n) == 0);
+    CHECK(memcmp(px[1], px[2], n) == 0);
+    CHECK(memcmp(px[3], px[4], n) == 0);        /* at 0: none */
+    for (int k = 0; k < 5; k++) {
+        free(px[k]);
+    }
+}
+
+/* Material 0 of the document whose material is `mat`: `animated`, its
+ * `pointer` keyed k as channel_json's (`width` floats a key) and posed at `time` through
+ * sr_load_desc (by_scene_pose false) or sr_scene_pose from the rest pose;
+ * else read at rest (the document's one channel, to the roughness, left
+ * unplayed).  false on failure. */
+static bool keyed_material(const char *mat, const char *pointer, const float *k, int width,
+                           bool animated, bool by_scene_pose, float time, sr_pbr_material *out)
+{
+    char *json = animated ? channel_json(mat, k, width, pointer)
+                          : scalar_channel_json(mat, k, "/materials/0/pbrMetallicRoughness/"
+                                                        "roughnessFactor");
     sr_scene *s = NULL;
     sr_io_error e;
     sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = time };
@@ -762,13 +801,21 @@ static bool film_material(const char *film, bool animated, bool by_scene_pose, f
     return ok;
 }
 
-/* An untextured film 0 nm thick in the file is no film at rest; posed
- * where its animated iridescenceThicknessMaximum reaches 400 nm (at 2
- * s, through sr_load_desc's pose and through sr_scene_pose from the
- * rest pose) it draws the bytes of the file whose maximum is 400 at
- * rest, and at rest those of the same sphere without the extension.
- * Before, the reader set the factor to 0 for the 0 nm, and the pose
- * never brought the film back. */
+/* A film's material from the document whose iridescence extension is
+ * `film`, its maximum keyed 0 and 400 nm when `animated` (keyed_material). */
+static bool film_material(const char *film, bool animated, bool by_scene_pose, float time,
+                          sr_pbr_material *out)
+{
+    static const float nm[2] = { 0, 400 };
+    char mat[512];
+    snprintf(mat, sizeof mat, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.1,0.1,0.12,1],"
+             "\"metallicFactor\":0,\"roughnessFactor\":0.3},"
+             "\"extensions\":{\"KHR_materials_iridescence\":%s}}", film);
+    return keyed_material(mat, "/materials/0/extensions/KHR_materials_iridescence/"
+                               "iridescenceThicknessMaximum", nm, 1, animated, by_scene_pose, time,
+                          out);
+}
+
 SR_TEST(an_animated_film_thickness_grows_a_film_from_0_nm)
 {
     const char *thin = "{\"iridescenceFactor\":1,\"iridescenceThicknessMaximum\":0}";
@@ -782,27 +829,173 @@ SR_TEST(an_animated_film_thickness_grows_a_film_from_0_nm)
     none.iridescence = 0;
     CHECK_EQ(posed.iridescence, 1.0f);
     CHECK_EQ(posed.iridescence_thickness_max, 400.0f);
-    uint8_t *px[5] = { draw_film(&posed, "gltf_film_posed"),
-                       draw_film(&reposed, "gltf_film_reposed"),
-                       draw_film(&want, "gltf_film_400nm"), draw_film(&rest, "gltf_film_0nm"),
-                       draw_film(&none, "gltf_film_none") };
-    for (int k = 0; k < 5; k++) {
-        REQUIRE(px[k]);
-    }
-    size_t n = 4 * FILM_SIZE * FILM_SIZE;
-    int tinted = 0;
-    for (size_t i = 0; i < n; i++) {
-        tinted += abs(px[2][i] - px[4][i]) > 8;
-    }
-    fprintf(stderr, "%d channels tinted by the 400 nm film\n", tinted);
-    CHECK(tinted > 600);                        /* the film shows */
-    CHECK(memcmp(px[0], px[2], n) == 0);
-    CHECK(memcmp(px[1], px[2], n) == 0);
-    CHECK(memcmp(px[3], px[4], n) == 0);        /* 0 nm: no film */
-    for (int k = 0; k < 5; k++) {
-        free(px[k]);
+    static const char *const names[5] = { "gltf_film_posed", "gltf_film_reposed",
+                                          "gltf_film_400nm", "gltf_film_0nm", "gltf_film_none" };
+    check_posed_spheres((const sr_pbr_material[5]){ posed, reposed, want, rest, none }, names,
+                        "tinted by the 400 nm film");
+}
+
+/* An emissive material whose KHR_materials_emissive_strength is 0 in the
+ * file draws no emission at rest; animated up to 2 (posed by sr_load_desc
+ * and by sr_scene_pose) it draws the bytes of the file at strength 2 at
+ * rest: the reader keeps the file's emissiveFactor (emissive_strength_set)
+ * where it zeroed it, and the posed sphere stayed dark. */
+SR_TEST(an_animated_emissive_strength_lights_a_material_from_0)
+{
+    static const float strength[2] = { 0, 2 };
+    static const char *const pointer =
+        "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength";
+    char off[512], on[512];
+    static const char *const fmt =
+        "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.2,0.2,0.2,1],"
+        "\"metallicFactor\":0,\"roughnessFactor\":0.5},\"emissiveFactor\":[0.4,0.2,0.05],"
+        "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%d}}}";
+    snprintf(off, sizeof off, fmt, 0);
+    snprintf(on, sizeof on, fmt, 2);
+    sr_pbr_material posed, reposed, want, rest, none;
+    REQUIRE(keyed_material(off, pointer, strength, 1, true, false, 2, &posed));
+    REQUIRE(keyed_material(off, pointer, strength, 1, true, true, 2, &reposed));
+    REQUIRE(keyed_material(on, pointer, strength, 1, false, false, 0, &want));
+    REQUIRE(keyed_material(off, pointer, strength, 1, false, false, 0, &rest));
+    none = want;
+    memset(none.emissive, 0, sizeof none.emissive);
+    CHECK_EQ(posed.emissive_strength, 2.0f);
+    CHECK_EQ(posed.emissive[0], 0.4f);
+    CHECK(rest.emissive_strength_set);
+    CHECK_EQ(rest.emissive_strength, 0.0f);
+    static const char *const names[5] = { "gltf_emissive_posed", "gltf_emissive_reposed",
+                                          "gltf_emissive_2", "gltf_emissive_0",
+                                          "gltf_emissive_none" };
+    check_posed_spheres((const sr_pbr_material[5]){ posed, reposed, want, rest, none }, names,
+                        "lit by the emission");
+}
+
+#define BASE "\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.4,0.3,1]," \
+             "\"metallicFactor\":0,\"roughnessFactor\":0.4}"
+#define X(ext) "/materials/0/extensions/KHR_materials_" ext "/"
+#define VOL "\"KHR_materials_volume\":{\"thicknessFactor\":1,\"attenuationDistance\":1," \
+            "\"attenuationColor\":[0.9,0.5,0.2]}"
+
+/* Every animatable material factor softrast draws without a texture,
+ * keyed between 0 (a zero color) and a value v: posed at v (from a file
+ * at 0) and at 0 (from a file at v), through sr_load_desc, it draws the
+ * very bytes of the file at that value at rest.  A reader that folds a
+ * zero into another field (as emissive strength 0 once zeroed the
+ * emissive factor) loses the value the animation brings back. */
+SR_TEST(every_material_factor_posed_draws_the_file_read_with_it)
+{
+    static const struct {
+        const char *mat;   /* one %s for the value */
+        const char *pointer;
+        int width;
+        float v[3];
+    } cases[] = {
+        { "{" BASE ",\"emissiveFactor\":[0.3,0.2,0.1],\"extensions\":{"
+          "\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%s}}}",
+          X("emissive_strength") "emissiveStrength", 1, { 2 } },
+        { "{" BASE ",\"emissiveFactor\":%s,\"extensions\":{"
+          "\"KHR_materials_emissive_strength\":{\"emissiveStrength\":2}}}",
+          "/materials/0/emissiveFactor", 3, { 0.3f, 0.2f, 0.1f } },
+        { "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.4,0.3,1],\"metallicFactor\":%s,"
+          "\"roughnessFactor\":0.4}}", "/materials/0/pbrMetallicRoughness/metallicFactor", 1,
+          { 1 } },
+        { "{\"alphaMode\":\"MASK\",\"alphaCutoff\":%s,\"pbrMetallicRoughness\":{"
+          "\"baseColorFactor\":[0.5,0.4,0.3,0.5]}}", "/materials/0/alphaCutoff", 1, { 0.6f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":%s},"
+          VOL "}}", X("transmission") "transmissionFactor", 1, { 1 } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+          "\"KHR_materials_volume\":{\"thicknessFactor\":%s,\"attenuationDistance\":1,"
+          "\"attenuationColor\":[0.9,0.5,0.2]}}}", X("volume") "thicknessFactor", 1, { 1 } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+          "\"KHR_materials_volume\":{\"thicknessFactor\":1,\"attenuationDistance\":%s,"
+          "\"attenuationColor\":[0.9,0.5,0.2]}}}", X("volume") "attenuationDistance", 1, { 1 } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
+          "\"KHR_materials_volume\":{\"thicknessFactor\":1,\"attenuationDistance\":1,"
+          "\"attenuationColor\":%s}}}", X("volume") "attenuationColor", 3, { 0.9f, 0.5f, 0.2f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_dispersion\":{\"dispersion\":%s},"
+          "\"KHR_materials_transmission\":{\"transmissionFactor\":1}," VOL "}}",
+          X("dispersion") "dispersion", 1, { 1 } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_clearcoat\":{\"clearcoatFactor\":%s,"
+          "\"clearcoatRoughnessFactor\":0.2}}}", X("clearcoat") "clearcoatFactor", 1, { 1 } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1,"
+          "\"clearcoatRoughnessFactor\":%s}}}", X("clearcoat") "clearcoatRoughnessFactor", 1,
+          { 0.6f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_sheen\":{\"sheenColorFactor\":%s,"
+          "\"sheenRoughnessFactor\":0.5}}}", X("sheen") "sheenColorFactor", 3,
+          { 0.8f, 0.5f, 0.2f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_sheen\":{\"sheenColorFactor\":[0.8,0.5,0.2],"
+          "\"sheenRoughnessFactor\":%s}}}", X("sheen") "sheenRoughnessFactor", 1, { 0.7f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_anisotropy\":{\"anisotropyStrength\":%s,"
+          "\"anisotropyRotation\":0.5}}}", X("anisotropy") "anisotropyStrength", 1, { 0.8f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":%s}}}",
+          X("specular") "specularFactor", 1, { 0.5f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_specular\":{\"specularColorFactor\":%s}}}",
+          X("specular") "specularColorFactor", 3, { 1, 0.5f, 0.2f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_ior\":{\"ior\":%s}}}", X("ior") "ior", 1,
+          { 1.8f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_iridescence\":{\"iridescenceFactor\":%s}}}",
+          X("iridescence") "iridescenceFactor", 1, { 1 } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_iridescence\":{\"iridescenceFactor\":1,"
+          "\"iridescenceIor\":%s}}}", X("iridescence") "iridescenceIor", 1, { 1.8f } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_diffuse_transmission\":{"
+          "\"diffuseTransmissionFactor\":%s}}}",
+          X("diffuse_transmission") "diffuseTransmissionFactor", 1, { 1 } },
+        { "{" BASE ",\"extensions\":{\"KHR_materials_diffuse_transmission\":{"
+          "\"diffuseTransmissionFactor\":1,\"diffuseTransmissionColorFactor\":%s}}}",
+          X("diffuse_transmission") "diffuseTransmissionColorFactor", 3, { 0.9f, 0.4f, 0.1f } },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        int w = cases[i].width;
+        float keys[2][6] = { { 0 } };   /* [0]: 0 to v; [1]: v to 0 */
+        char val[2][64], mat[2][1024];
+        for (int c = 0; c < w; c++) {
+            keys[0][w + c] = keys[1][c] = cases[i].v[c];
+        }
+        for (int k = 0; k < 2; k++) {
+            const float *f = k ? cases[i].v : (const float[3]){ 0, 0, 0 };
+            if (w == 1) {
+                snprintf(val[k], sizeof val[k], "%.9g", (double)f[0]);
+            } else {
+                snprintf(val[k], sizeof val[k], "[%.9g,%.9g,%.9g]", (double)f[0], (double)f[1],
+                         (double)f[2]);
+            }
+            snprintf(mat[k], sizeof mat[k], cases[i].mat, val[k]);
+        }
+        uint8_t *read[2] = { NULL, NULL };   /* the files at v and at 0 */
+        for (int k = 0; k < 2; k++) {
+            /* k 0: posed at v from the file at 0; k 1: at 0 from v. */
+            sr_pbr_material posed, want;
+            REQUIRE(keyed_material(mat[k], cases[i].pointer, keys[k], w, true, false, 2, &posed));
+            REQUIRE(keyed_material(mat[!k], cases[i].pointer, keys[k], w, false, false, 0, &want));
+            uint8_t *a = draw_film(&posed, NULL), *b = draw_film(&want, NULL);
+            REQUIRE(a && b);
+            bool same = memcmp(a, b, 4 * FILM_SIZE * FILM_SIZE) == 0;
+            if (!same) {
+                char name[64];
+                snprintf(name, sizeof name, "gltf_posed_factor_%zu_%s", i, k ? "to_0" : "from_0");
+                save_film(a, name);
+                snprintf(name, sizeof name, "gltf_read_factor_%zu_%s", i, k ? "to_0" : "from_0");
+                save_film(b, name);
+                fprintf(stderr, "%s posed at %s draws other bytes than the file at %s\n",
+                        cases[i].pointer, val[!k], val[!k]);
+            }
+            CHECK(same);
+            free(a);
+            read[k] = b;
+        }
+        /* The value shows: else the bytes above would prove nothing. */
+        if (memcmp(read[0], read[1], 4 * FILM_SIZE * FILM_SIZE) == 0) {
+            fprintf(stderr, "%s: %s and %s draw the same bytes\n", cases[i].pointer, val[0],
+                    val[1]);
+            CHECK(false);
+        }
+        free(read[0]);
+        free(read[1]);
     }
 }
+#undef VOL
+#undef X
+#undef BASE
 
 static const float *positions_of(const sr_scene *s, int node)
 {

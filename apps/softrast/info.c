@@ -109,7 +109,8 @@ static size_t material_extensions(const sr_pbr_material *m, const char **out)
     if (m->unlit) {
         out[n++] = "KHR_materials_unlit";
     }
-    if (m->emissive_strength != 0.0f && m->emissive_strength != 1.0f) {
+    if ((m->emissive_strength_set || m->emissive_strength != 0.0f) &&
+        m->emissive_strength != 1.0f) {
         out[n++] = "KHR_materials_emissive_strength";
     }
     if (m->ior != 0.0f && m->ior != 1.5f) {

@@ -25,7 +25,7 @@ class Material:
     wrap_u, wrap_v: outside [0, 1], "repeat", "clamp" (to the edge texels)
     or "mirror" (mirrored repeat): a glTF sampler's wrapS and wrapT.
     metallic, roughness: factors in [0, 1].
-    emissive: (3,) float32 linear RGB (times ``emissive_strength``).
+    emissive: (3,) float32 linear RGB (times ``emissive_strength``; 0: none).
     alpha_mode: "opaque", "mask" or "blend"; alpha_cutoff for "mask".
     double_sided, unlit: the material's flags (KHR_materials_unlit).
     ior: the index of refraction, >= 1 (KHR_materials_ior; 1.5: F0 0.04),

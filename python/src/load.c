@@ -154,7 +154,9 @@ static PyObject *material_dict(const sr_pbr_material *m)
                          (double)m->metallic, "roughness", (double)m->roughness, "emissive",
                          Py_BuildValue("(ddd)", (double)e[0], (double)e[1], (double)e[2]),
                          "emissive_strength",
-                         m->emissive_strength != 0.0f ? (double)m->emissive_strength : 1.0,
+                         m->emissive_strength_set || m->emissive_strength != 0.0f
+                             ? (double)m->emissive_strength
+                             : 1.0,
                          "alpha_mode", alpha_mode_name(m->alpha_mode), "alpha_cutoff",
                          m->alpha_cutoff != 0.0f ? (double)m->alpha_cutoff : 0.5, "double_sided",
                          m->double_sided ? Py_True : Py_False, "unlit",

@@ -771,6 +771,7 @@ static int take_look(PyObject *look, Py_ssize_t i, instance *in)
     m->specular_glossiness = sg;
     m->specular_set = true;   /* white 1 draws as absent */
     m->iridescence_thickness_set = true;   /* 0 nm is no film, not the default */
+    m->emissive_strength_set = true;       /* 0 is no emission, not the default 1 */
     if (take_matrix(pose, "pose", 3, 4, &in->pose[0][0]) < 0) {
         return -1;
     }

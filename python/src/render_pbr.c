@@ -77,6 +77,7 @@ static sr_pbr_material material_of(const instance *in, const sr_texture *tex)
     m.metallic = f->metallic;
     m.roughness = f->roughness;
     m.emissive_strength = f->emissive_strength;
+    m.emissive_strength_set = f->emissive_strength_set;
     m.alpha_mode = f->alpha_mode;
     m.alpha_cutoff = f->alpha_cutoff;
     m.double_sided = f->double_sided;

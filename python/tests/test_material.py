@@ -215,6 +215,9 @@ def test_pbr_shading_draws_the_geometry_pass_faces_and_the_factors(tmp_path):
     black = softrast.render(dark, outputs=("color",), shading="pbr", **args)["color"]
     m = out["mask"]
     assert bright[m].min() > 200 and black[m].max() < 60, "emissive is drawn"
+    glowing.instances[0].material.emissive_strength = 0.0
+    off = softrast.render(glowing, outputs=("color",), shading="pbr", **args)["color"]
+    assert np.array_equal(off, black), "a strength of 0 is no emission, not the default 1"
     metal = softrast.render(one_material(tmp_path, baseColorFactor=[0.8, 0.05, 0.05, 1],
                                          metallicFactor=1, roughnessFactor=0.6),
                             outputs=("color",), shading="pbr", **args)["color"]

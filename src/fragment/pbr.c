@@ -1437,12 +1437,13 @@ static void pbr_fs(const void *uniforms, sr_fragment_quad *q)
                         (const float(*)[4])base, metal, rough, ao, shadow, diffuse, through, NULL,
                         out);
         }
-        /* Without emission (no texture, a zero factor) the sum would add
-         * a zero, which changes at most the sign of a zero radiance: every
-         * tone curve sends both zeros to black (sr__tone_curve), so the
-         * bytes are the same without the sum. */
-        bool emits = p->slot[SLOT_EMISSIVE].tex || m->emissive[0] != 0.0f ||
-                     m->emissive[1] != 0.0f || m->emissive[2] != 0.0f;
+        /* Without emission (no texture, a zero factor, a strength of 0)
+         * the sum would add a zero, which changes at most the sign of a
+         * zero radiance: every tone curve sends both zeros to black
+         * (sr__tone_curve), so the bytes are the same without the sum. */
+        bool emits = m->emissive_strength != 0.0f &&
+                     (p->slot[SLOT_EMISSIVE].tex || m->emissive[0] != 0.0f ||
+                      m->emissive[1] != 0.0f || m->emissive[2] != 0.0f);
         if (p->slot[SLOT_EMISSIVE].tex) {
             sample_slot(&p->slot[SLOT_EMISSIVE], q, tex, uv);
         } else {
@@ -1910,7 +1911,7 @@ sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr *
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "sr_make_pbr_program: out of memory");
     }
     p->m = mat;
-    if (p->m.emissive_strength == 0.0f) {
+    if (!p->m.emissive_strength_set && p->m.emissive_strength == 0.0f) {
         p->m.emissive_strength = 1.0f;
     }
     if (p->m.alpha_cutoff == 0.0f) {

@@ -773,12 +773,11 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
         m->specular_texture = m->specular_color_texture = (sr_texture_slot){ 0 };
     }
     clamp_factors(d, ptr, m);
-    /* Zeros that sr_pbr_material reads as defaults, said another way: no
-     * emission at strength 0, and a cutoff of 0 keeps every fragment. */
-    if (m->emissive_strength == 0) {
-        memset(m->emissive, 0, sizeof m->emissive);
-        m->emissive_strength = 1;
-    }
+    /* The strength is the file's (emissive_strength_set): 0 is no
+     * emission while the factor stays the file's, for an animation that
+     * raises the strength.  A cutoff of 0, which sr_pbr_material reads as
+     * its default, keeps every fragment: opaque. */
+    m->emissive_strength_set = true;
     if (m->alpha_mode == SR_ALPHA_MASK && m->alpha_cutoff <= 0) {
         m->alpha_mode = SR_ALPHA_OPAQUE;
     }

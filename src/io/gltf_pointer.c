@@ -457,13 +457,9 @@ void sr__gltf_anim_apply_pointers(const gltf_anim *a, float t, sr_scene *scene,
                 /* As the reader: a cutoff of 0 keeps every fragment. */
                 m->alpha_mode = m->alpha_cutoff > 0 ? SR_ALPHA_MASK : SR_ALPHA_OPAQUE;
             }
-            /* The reader's reading of a zero (gltf_material.c): no
-             * emission at strength 0.  (A film of no thickness needs
-             * nothing: the reader keeps its thicknesses as given.) */
-            if (m->emissive_strength == 0) {
-                memset(m->emissive, 0, sizeof m->emissive);
-                m->emissive_strength = 1;
-            }
+            /* A strength of 0 or a film of no thickness needs nothing:
+             * the reader keeps them as given (emissive_strength_set,
+             * iridescence_thickness_set), with the file's factors. */
         } else if (c->kind == GLTF_TARGET_CAMERA) {
             for (size_t k = 0; k < scene->camera_count; k++) {
                 sr_scene_camera *cam = &scene->cameras[k];
