@@ -684,6 +684,40 @@ SR_TEST(morphology_is_exact_and_its_cost_does_not_grow_with_the_radius)
     CHECK_EQ(used[0], used[1]);
 }
 
+/* A blur counts its taps along each axis: the exact kernel's 2 ceil(3 s)
+ * + 1 below a deviation of 2 pixels, three running sums from 2 up, none
+ * for 0; and so does a drop shadow's.  Otherwise a chain of small blurs
+ * costs many times the work it was counted for. */
+SR_TEST(a_blur_counts_its_taps_in_the_work)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    static const char *const prims[] = {
+        "<feGaussianBlur stdDeviation='0'/>", "<feGaussianBlur stdDeviation='1'/>",
+        "<feGaussianBlur stdDeviation='1.9 0'/>", "<feGaussianBlur stdDeviation='5'/>",
+        "<feDropShadow stdDeviation='0' dx='0' dy='0'/>",
+        "<feDropShadow stdDeviation='1' dx='0' dy='0'/>",
+    };
+    double used[6];
+    for (int i = 0; i < 6; i++) {
+        char svg[512];
+        snprintf(svg, sizeof svg,
+                 "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='100'>"
+                 "<filter id='f' x='0' y='0' width='1' height='1'>%s</filter>"
+                 "<rect width='100' height='100' filter='url(#f)'/></svg>",
+                 prims[i]);
+        sr_svg_info info;
+        CHECK_EQ(render_info(svg, &info, NULL, 0), SR_OK);
+        CHECK(info.work_used <= info.work_budget);
+        used[i] = info.work_used;
+    }
+    CHECK_EQ(used[1] - used[0], (7 + 7) * 100.0 * 100);
+    CHECK_EQ(used[2] - used[0], 13 * 100.0 * 100);
+    CHECK_EQ(used[3] - used[0], (3 + 3) * 100.0 * 100);
+    CHECK_EQ(used[5] - used[4], (7 + 7) * 100.0 * 100);
+}
+
 /* What grows with a primitive's attributes is counted before it runs,
  * and refused at the primitive's line: a convolution's kernel (order 64,
  * 4096 entries a pixel), noise's octaves, a chain of many primitives. */

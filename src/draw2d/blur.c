@@ -121,12 +121,33 @@ static void blur_lines(lines *l, float *out, float *tmp, double sigma, const flo
     int n = l->n, L = l->lanes;
     if (sigma < BOX_FROM_SIGMA) {
         for (int i = 0; i < n; i++) {
+            float *o = tmp + (size_t)i * (size_t)L;
+            if (i >= radius && i + radius < n) {
+                /* the whole kernel on the line: the taps read directly,
+                 * all lanes at once, each lane summed in the same order
+                 * as at the ends */
+                double acc[4 * COLUMN_BLOCK];
+                for (int j = 0; j < L; j++) {
+                    acc[j] = 0;
+                }
+                const float *v = l->src + (size_t)(i - radius) * l->step;
+                for (int k = 0; k <= 2 * radius; k++, v += l->step) {
+                    float w = kernel[k];
+                    for (int j = 0; j < L; j++) {
+                        acc[j] += w * v[j];
+                    }
+                }
+                for (int j = 0; j < L; j++) {
+                    o[j] = (float)acc[j];
+                }
+                continue;
+            }
             for (int j = 0; j < L; j++) {
                 double s = 0;
                 for (int k = -radius; k <= radius; k++) {
                     s += kernel[k + radius] * value_at(l, j, (long long)i + k);
                 }
-                tmp[(size_t)i * (size_t)L + (size_t)j] = (float)s;
+                o[j] = (float)s;
             }
         }
     } else {

@@ -427,6 +427,20 @@ typedef struct prim {
     const char *result;
 } prim;
 
+/* A deviation of the primitive's units in the region's pixels. */
+static double blur_sigma_px(const fctx *fc, double sd, bool y)
+{
+    return fmax(sd, 0) * (y ? fc->sy : fc->sx) * (fc->obb ? (y ? fc->bh : fc->bw) : 1);
+}
+
+/* The pixel operations a blur of deviation s pixels costs each pixel along
+ * one axis, as sr_blur_image documents it: the exact kernel's taps, 3
+ * deviations each side, below 2 pixels; from 2 up, three running sums. */
+static double blur_axis_work(double s)
+{
+    return !(s > 0) ? 0 : s < 2 ? 2 * ceil(3 * s) + 1 : 3;
+}
+
 static void blur(fctx *fc, const svg_node *n, const float *in, float *out, double sd_x,
                  double sd_y)
 {
@@ -443,9 +457,8 @@ static void blur(fctx *fc, const svg_node *n, const float *in, float *out, doubl
     } else if (e && strcmp(e, "none") != 0) {
         fc->job->warn(fc->job->host, n, "edgeMode", e);
     }
-    sr_blur_desc d = { .sigma_x = fmax(sd_x, 0) * fc->sx * (fc->obb ? fc->bw : 1),
-                       .sigma_y = fmax(sd_y, 0) * fc->sy * (fc->obb ? fc->bh : 1),
-                       .edge = edge };
+    sr_blur_desc d = { .sigma_x = blur_sigma_px(fc, sd_x, false),
+                       .sigma_y = blur_sigma_px(fc, sd_y, true), .edge = edge };
     sr_result r = sr_blur_image(fc->job->ctx, out, fc->rw, fc->rh, 4, &d);
     if (r != SR_OK) {
         fail(fc, n, r, sr_context_error(fc->job->ctx));
@@ -1476,8 +1489,9 @@ static double prim_reads(const prim *p)
 /* What primitive n counts of the work budget per pixel of the region:
  * a pass for each image it reads (`reads`) and one for its result, and
  * the work whose cost grows with its attributes: a convolution's kernel,
- * the octaves of noise in each channel, a morphology's two passes (its
- * window's cost does not grow with the radius).  run() counts it and
+ * a blur's taps along each axis, the octaves of noise in each channel, a
+ * morphology's two passes (its window's cost does not grow with the
+ * radius).  run() counts it and
  * svg_filter_extent() adds it up, so that the larger layer is chosen on
  * what the filter will count. */
 static double prim_work(fctx *fc, const svg_node *n, double reads)
@@ -1486,6 +1500,11 @@ static double prim_work(fctx *fc, const svg_node *n, double reads)
     int ox, oy;
     if (is(n, "feConvolveMatrix") && kernel_order(fc, n, &ox, &oy)) {
         w += (double)ox * oy;
+    } else if (is(n, "feGaussianBlur") || is(n, "feDropShadow")) {
+        double v[2];
+        pair_attr(fc, n, "stdDeviation", is(n, "feDropShadow") ? 2 : 0, v);
+        w += blur_axis_work(blur_sigma_px(fc, v[0], false)) +
+             blur_axis_work(blur_sigma_px(fc, v[1], true));
     } else if (is(n, "feTurbulence")) {
         w += 4.0 * (turb_octaves(number_attr(fc, n, "numOctaves", 1)) + 1);
     } else if (is(n, "feMorphology")) {
