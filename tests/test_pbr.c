@@ -2831,9 +2831,16 @@ static void *map_counted_alloc(size_t size, void *user)
     return malloc(size);
 }
 
+/* The embedded profile (SR_EMBEDDED) and WebAssembly have one thread. */
+#if defined(SR_EMBEDDED) || defined(__EMSCRIPTEN__)
+#define MAP_THREADS 1
+#else
+#define MAP_THREADS 2
+#endif
+
 static sr_result map_counting_context(size_t *builds, sr_context **ctx)
 {
-    return sr_make_context(&(sr_context_desc){ .threads = 2,
+    return sr_make_context(&(sr_context_desc){ .threads = MAP_THREADS,
                                                .allocator = { map_counted_alloc, counted_free,
                                                               builds } },
                            ctx);
