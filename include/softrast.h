@@ -976,7 +976,10 @@ typedef struct sr_texture_slot {
     sr_texture_wrap wrap_u, wrap_v;
     float offset[2];
     float rotation;                /* radians, counter-clockwise in uv */
-    float scale[2];                /* {0, 0} -> {1, 1} */
+    float scale[2];                /* {0, 0} -> {1, 1} unless scale_set */
+    bool scale_set;                /* true: the scale as given, {0, 0} collapsing
+                                    * the texture to the texel at the offset
+                                    * (as KHR_texture_transform has it) */
 } sr_texture_slot;
 
 /* The slot's KHR_texture_transform applied to `count` (u, v) pairs of

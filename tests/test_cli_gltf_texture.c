@@ -166,3 +166,45 @@ SR_TEST(classic_shading_samples_the_base_texture_where_pbr_does)
         free(unlit);
     }
 }
+
+/* KHR_texture_transform's scale of 0 is the extension's (every coordinate
+ * on the texel at the offset), not the zeroed slot's identity: the quad
+ * drawn in one texel's color, with the physically based look and the
+ * classic one.  glTF's (0.375, 0.625) from the top left is texel 9 of
+ * write_texture's (column 1, row 2). */
+SR_TEST(a_zero_texture_scale_draws_the_texel_at_the_offset)
+{
+    NEED_CLI();
+    if (!sr_io_have_gltf()) {
+        SKIP("this build reads no glTF (jansson was not found)");
+    }
+    char dir[1024], tex[1100], model[1100], out[1100];
+    fresh_dir("gltf_texture_zero_scale", dir, sizeof dir);
+    snprintf(tex, sizeof tex, "%s/tex.png", dir);
+    REQUIRE(write_texture(tex));
+    snprintf(model, sizeof model, "%s/zero.gltf", dir);
+    REQUIRE(write_quad(model, "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0,"
+                              "\"extensions\":{\"KHR_texture_transform\":{\"offset\":[0.375,"
+                              "0.625],\"scale\":[0,0]}}}}," UNLIT "}",
+                       "{" NEAREST "}"));
+    static const char *const shading[2] = { "pbr", "unlit" };
+    const uint8_t want[3] = { 90, 160, 230 };
+    for (int k = 0; k < 2; k++) {
+        int w, h;
+        snprintf(out, sizeof out, "%s/zero_%s.png", dir, shading[k]);
+        uint8_t *px = render_png(model, shading[k], NULL, out, &w, &h);
+        REQUIRE(px);
+        /* The middle half of the image is well inside the quad. */
+        int off = 0;
+        for (int y = h / 4; y < 3 * h / 4; y++) {
+            for (int x = w / 4; x < 3 * w / 4; x++) {
+                const uint8_t *p = px + 4 * ((size_t)y * (size_t)w + (size_t)x);
+                for (int c = 0; c < 3; c++) {
+                    off += abs(p[c] - want[c]) > 1;
+                }
+            }
+        }
+        CHECK_EQ(off, 0);
+        free(px);
+    }
+}

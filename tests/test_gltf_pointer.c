@@ -1125,6 +1125,40 @@ SR_TEST(texture_transforms_animate_as_the_file_would_write_them)
     }
 }
 
+/* A texture scaled up from 0 by pointer: at 0 every coordinate lands on
+ * the offset's texel (the extension's 0, not sr_texture_slot's zeroed
+ * identity). */
+SR_TEST(a_texture_scale_animated_to_zero_collapses_onto_the_offset)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 }, zero[2] = { 0 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+    int out = put(&b, zero, 2, 4, "VEC2", 1, 5126, false);
+    char samplers[128], channels[512] = "";
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+    add_channel(channels, sizeof channels, 0,
+                "/materials/0/emissiveTexture/extensions/KHR_texture_transform/scale");
+    char *json = scene_json_with(&b, "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                                 "{\"KHR_texture_transform\":{\"offset\":[0.25,0.5],"
+                                 "\"scale\":[2,3]}}}}", samplers, channels);
+    REQUIRE(json);
+    sr_scene *s = NULL;
+    sr_io_error e;
+    sr_load_desc at = { .pose = SR_POSE_ANIMATION, .animation_time = 0 };
+    REQUIRE(parse(json, &at, &s, &e) == SR_OK);
+    const float uv[4] = { 0, 0, 0.9f, 0.3f };
+    float got[4];
+    REQUIRE(sr_texture_slot_uv(sr_test_ctx(), &s->materials[0].emissive_texture, uv, 2, got) ==
+            SR_OK);
+    /* glTF's (0.25, 0.5) from the top left is sr_texture's (0.25, 0.5). */
+    for (int i = 0; i < 4; i++) {
+        CHECK_NEAR(got[i], i & 1 ? 0.5f : 0.25f, 1e-6);
+    }
+    free(json);
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
 /* An offset and a scale each finite whose sum in the slot's convention
  * (offset' = 1 - o.y - s.y cos r) is not: the file's refused with its
  * pointer; an animation's leaves the slot as it was, finite, which the

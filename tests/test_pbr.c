@@ -574,11 +574,22 @@ SR_TEST(texture_slot_uv_applies_the_transform)
     for (int i = 0; i < 6; i++) {
         CHECK_NEAR(out[i], want[i], 1e-6);
     }
-    sr_texture_slot id = { 0 };   /* a zero scale reads as 1 */
+    sr_texture_slot id = { 0 };   /* a zeroed scale (not set) reads as 1 */
     const float odd[4] = { -0.3f, 1.7f, 1e-8f, 123.456f };
     float same[4];
     REQUIRE(sr_texture_slot_uv(ctx, &id, odd, 2, same) == SR_OK);
     CHECK(memcmp(odd, same, sizeof odd) == 0);
+    /* A scale of 0 that is set (KHR_texture_transform's) collapses every
+     * coordinate onto the offset, on one axis or both. */
+    sr_texture_slot zero = { .offset = { 0.375f, 0.625f }, .scale_set = true };
+    REQUIRE(sr_texture_slot_uv(ctx, &zero, odd, 2, same) == SR_OK);
+    for (int i = 0; i < 4; i++) {
+        CHECK_NEAR(same[i], zero.offset[i & 1], 0);
+    }
+    zero.scale[1] = 2.0f;
+    REQUIRE(sr_texture_slot_uv(ctx, &zero, odd, 2, same) == SR_OK);
+    CHECK_NEAR(same[0], 0.375f, 0);
+    CHECK_NEAR(same[1], 0.625f + 2.0f * 1.7f, 1e-6);
     CHECK_EQ(sr_texture_slot_uv(ctx, NULL, uv, 3, out), SR_INVALID_ARG);
     CHECK_EQ(sr_texture_slot_uv(ctx, &s, NULL, 3, out), SR_INVALID_ARG);
     CHECK_EQ(sr_texture_slot_uv(ctx, &s, NULL, 0, NULL), SR_OK);

@@ -349,7 +349,8 @@ int render_gltf_build(const char *path, bool flat_normals, const char *variant, 
  * a transform other than the identity. */
 static bool moves_uv(const sr_texture_slot *t)
 {
-    bool unit = (t->scale[0] == 1 && t->scale[1] == 1) || (t->scale[0] == 0 && t->scale[1] == 0);
+    bool unit = (t->scale[0] == 1 && t->scale[1] == 1) ||
+                (!t->scale_set && t->scale[0] == 0 && t->scale[1] == 0);
     return t->texture && (t->texcoord != 0 || t->offset[0] != 0 || t->offset[1] != 0 ||
                           t->rotation != 0 || !unit);
 }

@@ -132,7 +132,7 @@ static PyObject *slot_dict(const sr_texture_slot *t)
     if (!t->texture) {
         Py_RETURN_NONE;
     }
-    bool unit = t->scale[0] == 0.0f && t->scale[1] == 0.0f;
+    bool unit = !t->scale_set && t->scale[0] == 0.0f && t->scale[1] == 0.0f;
     return Py_BuildValue("{sisNsdsNssssss}", "texcoord", t->texcoord, "offset",
                          Py_BuildValue("(dd)", (double)t->offset[0], (double)t->offset[1]),
                          "rotation", (double)t->rotation, "scale",

@@ -10,7 +10,7 @@ PyObject *sr_py_texture_slot_uv(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *uv_obj;
-    sr_texture_slot slot = { 0 };
+    sr_texture_slot slot = { .scale_set = true };   /* the dict's scale is as drawn */
     if (!PyArg_ParseTuple(args, "O(ff)f(ff):texture_slot_uv", &uv_obj, &slot.offset[0],
                           &slot.offset[1], &slot.rotation, &slot.scale[0], &slot.scale[1])) {
         return NULL;

@@ -328,3 +328,20 @@ def test_load_mesh_reads_only_the_base_color_image(tmp_path):
     assert np.allclose(softrast.load_mesh(path).uvs, mesh.uvs)
     with pytest.raises(ValueError, match="/images/1"):
         softrast.load(path)
+
+
+def test_a_zero_texture_scale_samples_the_offset(tmp_path):
+    """KHR_texture_transform's scale [0, 0] collapses the coordinates onto
+    the offset (the extension's), not the identity a zeroed C slot means:
+    every uv load_mesh gives is glTF's (0.5, 0.25), (0.5, 0.75) in the
+    library's frame (v up)."""
+    from gltf_build import quad, write
+    image = np.zeros((2, 2, 4), np.uint8)
+    image[..., 3] = 255
+    path = tmp_path / "quad.gltf"
+    transform = {"KHR_texture_transform": {"offset": [0.5, 0.25], "scale": [0, 0]}}
+    material = {"pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
+                                                              "extensions": transform}}}
+    write(path, [(quad((0, 0, 0), 2), 0)], [material], images=[image])
+    mesh = softrast.load_mesh(path)
+    assert np.allclose(mesh.uvs, [[0.5, 0.75]] * 4, atol=1e-6)

@@ -11,7 +11,9 @@
 void sr__texture_slot_matrix(const sr_texture_slot *slot, float xf[6])
 {
     float sx = slot->scale[0], sy = slot->scale[1];
-    if (sx == 0.0f && sy == 0.0f) {
+    /* A zeroed slot (a C user's) is the identity; a set scale of 0 is
+     * the extension's, every coordinate on the offset's texel. */
+    if (!slot->scale_set && sx == 0.0f && sy == 0.0f) {
         sx = sy = 1.0f;
     }
     float c = cosf(slot->rotation), s = sinf(slot->rotation);

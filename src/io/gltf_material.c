@@ -228,6 +228,7 @@ bool sr__gltf_slot_transform(sr_texture_slot *slot, const float o[2], float rot,
     slot->rotation = rot;
     slot->scale[0] = s[0];
     slot->scale[1] = s[1];
+    slot->scale_set = true;
     return true;
 }
 

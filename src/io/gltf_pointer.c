@@ -409,6 +409,9 @@ static void write_transform(sr_texture_slot *slot, int k, const float *v)
         return;   /* a spline's overflow: the transform stays finite */
     }
     float rot = slot->rotation, s[2] = { slot->scale[0], slot->scale[1] };
+    if (!slot->scale_set && s[0] == 0.0f && s[1] == 0.0f) {
+        s[0] = s[1] = 1.0f;   /* a zeroed slot's identity (sr_texture_slot) */
+    }
     float o[2] = { slot->offset[0] - s[1] * sinf(rot), 1.0f - slot->offset[1] - s[1] * cosf(rot) };
     if (k == 0) {
         o[0] = v[0];
