@@ -2720,6 +2720,37 @@ SR_TEST(backlit_sheet_shows_the_diffuse_btdf)
     sr_destroy_texture(sr_test_ctx(), tex);
 }
 
+/* KHR_materials_iridescence over diffuse transmission: the film's Fresnel
+ * replaces the one that weighs the specular layer against the base, and
+ * the BTDF is part of that base (the extensions' fresnel_mix; Khronos'
+ * sample viewer mixes the BTDF into the diffuse before its Fresnel).  The
+ * backlit sheet under a full film 300 nm thick of index 1.8, seen nearly
+ * straight on, keeps 1 - F of the film at normal incidence
+ * (tests/thin_film_reference.py's exact Airy figure, F (0.0967, 0.0430,
+ * 0.1222), which the shader's series meets within 0.01), within 1.5
+ * codes: 3 to 5 codes darker in red and blue than 1 - 0.04 draws. */
+SR_TEST(a_thin_film_weighs_the_diffuse_btdf)
+{
+    const float travel[3] = { 0.6f, 0.0f, 0.8f };
+    const double t[3] = { 0.6, 0.0, 0.8 }, intensity = 2.0;
+    const double film[3] = { 0.0967, 0.0430, 0.1222 };
+    sr_pbr_material m = leaf();
+    m.iridescence = 1.0f;
+    m.iridescence_ior = 1.8f;
+    m.iridescence_thickness_set = true;
+    m.iridescence_thickness_min = m.iridescence_thickness_max = 300.0f;
+    sr_framebuffer *fb = sheet(&m, NULL, travel, (float)intensity, 0.0f);
+    REQUIRE(fb);
+    save(fb, "pbr_diffuse_transmission_film");
+    for (int c = 0; c < 3; c++) {
+        /* sheet_btdf's 1 - F is 0.96 here: the mirrored light's V.H is 0.95. */
+        double plain = sheet_btdf(m.diffuse_transmission_color[c], t, intensity);
+        double want = plain / 0.96 * (1.0 - film[c]);
+        CHECK_NEAR(px(fb, CELL / 2, CELL / 2)[c], srgb_encode(want), 1.5);
+    }
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
 /* Under light that is the same from every side (a uniform hemisphere),
  * a sheet that lets all of its diffuse light through in color C looks
  * like an opaque one of base color C: the BTDF sees from behind the

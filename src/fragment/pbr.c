@@ -679,7 +679,7 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
                     back[c] *= fall;
                 }
             }
-            sr__diffuse_btdf_light(n, v, nlr, lv, f0, f90, cback, back, out);
+            sr__diffuse_btdf_light(ext, n, v, nlr, lv, f0, f90, cback, back, out);
         }
         if (ext && ext->coat) {
             sr__coat_light(ext, ld, hs, rad);

@@ -5,8 +5,9 @@
  * part (the irradiance along -N) itself.  Any thread. */
 #include "fragment/pbr_layers.h"
 
-void sr__diffuse_btdf_light(const v4f n[3], const v4f v[3], v4f nlr, v4f lv, const v4f f0[3],
-                            v4f f90, const v4f cback[3], const v4f rad[3], v4f out[3])
+void sr__diffuse_btdf_light(const sr__pbr_layers *x, const v4f n[3], const v4f v[3], v4f nlr,
+                            v4f lv, const v4f f0[3], v4f f90, const v4f cback[3],
+                            const v4f rad[3], v4f out[3])
 {
     v4f zero = { 0 };
     /* Lambert about -N: only a light behind the surface shines through. */
@@ -20,9 +21,15 @@ void sr__diffuse_btdf_light(const v4f n[3], const v4f v[3], v4f nlr, v4f lv, con
     v4f hl = 2.0f + 2.0f * lmv;
     v4f hs = sr__v4_sel(hl > 1e-12f, rsqrt_nr(vmax(hl, 1e-12f - zero)), zero);
     v4f vh = vclamp((1.0f + lmv) * hs, 0.0f, 1.0f);
-    v4f x = 1.0f - vh, x2 = x * x, fw = x2 * x2 * x;
+    v4f w = 1.0f - vh, w2 = w * w, fw = w2 * w2 * w;
     for (int c = 0; c < 3; c++) {
         v4f f = f0[c] + (f90 - f0[c]) * fw;
+        if (x->irid) {
+            /* KHR_materials_iridescence replaces the Fresnel of the
+             * dielectric's fresnel_mix, whose base the extension's BTDF
+             * is part of (KHR_materials_diffuse_transmission). */
+            f += x->ir_w * (x->ir_f[c] - f);
+        }
         out[c] += (1.0f - f) * cback[c] * (1.0f / PI_F) * rad[c] * nb;
     }
 }

@@ -85,9 +85,13 @@ void sr__iridescence_begin(sr__pbr_layers *x, v4f nv, const v4f f0d[3], const v4
  * the surface (nlr = N.L < 0 and lv = L.V of its unit vector L) through the Lambert BTDF
  * of color cback (the lobe's color, share and dielectric weight), times
  * 1 - F where the light leaves towards the viewer: Schlick's F (f0, f90)
- * at V.H of the light mirrored through the surface.  Added to out. */
-void sr__diffuse_btdf_light(const v4f n[3], const v4f v[3], v4f nlr, v4f lv, const v4f f0[3],
-                            v4f f90, const v4f cback[3], const v4f rad[3], v4f out[3]);
+ * at V.H of the light mirrored through the surface, with the thin film's
+ * Fresnel at N.V mixed in by its weight where x has a film (the
+ * reflected diffuse's F, so that the film weighs the specular layer
+ * against both of the base's lobes).  Added to out. */
+void sr__diffuse_btdf_light(const sr__pbr_layers *x, const v4f n[3], const v4f v[3], v4f nlr,
+                            v4f lv, const v4f f0[3], v4f f90, const v4f cback[3],
+                            const v4f rad[3], v4f out[3]);
 
 /* The thin film's reflectance (Belcour and Barla 2017) at the cosine
  * cos1 of the view to the normal, over a base of Fresnel f0 (RGB), for a
