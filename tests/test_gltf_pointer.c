@@ -422,6 +422,24 @@ SR_TEST(specular_glossiness_materials_are_not_animated)
                  why[i]);
         CHECK_STR_CONTAINS(w.text, want);
     }
+    /* Nor an extension the specular-glossiness one excludes, which the
+     * reader dropped (its own warning, then the pointer's). */
+    static const char *const coated =
+        "{\"extensions\":{\"KHR_materials_pbrSpecularGlossiness\":{},"
+        "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":0.25}}}";
+    sr_test_warnings w = { 0 };
+    sr_io_error e;
+    if (one_channel_on(coated, "/materials/0/extensions/KHR_materials_clearcoat/clearcoatFactor",
+                       "SCALAR", false, "LINEAR", "", &w, &e) != SR_OK) {
+        sr_test_fail(__FILE__, __LINE__, "%s", e.message);
+    }
+    CHECK_EQ(w.count, 2);
+    CHECK_STR_CONTAINS(w.text, "/materials/0/extensions/KHR_materials_clearcoat: not read on a "
+                               "material with KHR_materials_pbrSpecularGlossiness");
+    CHECK_STR_CONTAINS(w.text, "KHR_animation_pointer/pointer: \"/materials/0/extensions/"
+                               "KHR_materials_clearcoat/clearcoatFactor\": material 0 is drawn "
+                               "with KHR_materials_pbrSpecularGlossiness, which excludes "
+                               "KHR_materials_clearcoat, not animated");
 }
 
 SR_TEST(a_bad_visible_is_refused)

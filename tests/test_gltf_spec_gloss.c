@@ -247,6 +247,87 @@ SR_TEST(factors_and_textures_are_read)
     free(req);
 }
 
+/* The material extensions whose specifications say they must not be used
+ * with KHR_materials_pbrSpecularGlossiness (their "Exclusions") are not
+ * read on such a material, one warning each, while
+ * KHR_materials_emissive_strength, which does not exclude it, is; and a
+ * sphere of specular-glossiness with a clear coat, a sheen and a film
+ * draws the bytes of the one without them. */
+#define EXCLUDED                                                                     \
+    "\"KHR_materials_ior\":{\"ior\":2},"                                              \
+    "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1},"                            \
+    "\"KHR_materials_sheen\":{\"sheenColorFactor\":[1,0,1]},"                         \
+    "\"KHR_materials_transmission\":{\"transmissionFactor\":1},"                      \
+    "\"KHR_materials_volume\":{\"thicknessFactor\":1,\"attenuationDistance\":1},"     \
+    "\"KHR_materials_dispersion\":{\"dispersion\":1},"                                \
+    "\"KHR_materials_anisotropy\":{\"anisotropyStrength\":1},"                        \
+    "\"KHR_materials_iridescence\":{\"iridescenceFactor\":1},"                        \
+    "\"KHR_materials_diffuse_transmission\":{\"diffuseTransmissionFactor\":1}"
+
+SR_TEST(extensions_that_exclude_it_are_not_drawn_over_it)
+{
+    char *doc = spheres(1, SG_USED,
+                        "{\"emissiveFactor\":[0.1,0.1,0.1],\"extensions\":{"
+                        "\"KHR_materials_pbrSpecularGlossiness\":{},"
+                        "\"KHR_materials_emissive_strength\":{\"emissiveStrength\":3}," EXCLUDED
+                        "}}",
+                        NULL);
+    REQUIRE(doc);
+    warnings w = {0};
+    sr_scene *s = NULL;
+    sr_io_error e;
+    REQUIRE(parse(doc, &w, &s, &e) == SR_OK);
+    free(doc);
+    const sr_pbr_material *m = &s->materials[0];
+    CHECK(m->specular_glossiness);
+    CHECK_EQ(m->emissive_strength, 3.0f);
+    CHECK_EQ(m->ior, 0.0f);
+    CHECK_EQ(m->clearcoat, 0.0f);
+    CHECK_EQ(m->sheen_color[0], 0.0f);
+    CHECK_EQ(m->transmission, 0.0f);
+    CHECK_EQ(m->thickness, 0.0f);
+    CHECK_EQ(m->attenuation_distance, 0.0f);
+    CHECK_EQ(m->dispersion, 0.0f);
+    CHECK_EQ(m->anisotropy_strength, 0.0f);
+    CHECK_EQ(m->iridescence, 0.0f);
+    CHECK_EQ(m->diffuse_transmission, 0.0f);
+    CHECK_EQ(w.count, 9);
+    CHECK_STR_CONTAINS(w.last, "t.gltf: warning: /materials/0/extensions/"
+                               "KHR_materials_diffuse_transmission: not read on a material "
+                               "with KHR_materials_pbrSpecularGlossiness (the extensions "
+                               "exclude each other)");
+    sr_destroy_scene(sr_test_ctx(), s);
+    NEED_CLI();
+    char dir[1024], model[1200], out[1200];
+    fresh_dir("spec_gloss_excluded", dir, sizeof dir);
+    static const char *const mats[2] = {
+        SG("\"diffuseFactor\":[0.6,0.3,0.1,1],\"specularFactor\":[0.1,0.1,0.1],"
+           "\"glossinessFactor\":0.7"),
+        "{\"extensions\":{\"KHR_materials_pbrSpecularGlossiness\":{\"diffuseFactor\":"
+        "[0.6,0.3,0.1,1],\"specularFactor\":[0.1,0.1,0.1],\"glossinessFactor\":0.7},"
+        "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1},"
+        "\"KHR_materials_sheen\":{\"sheenColorFactor\":[0,1,1]},"
+        "\"KHR_materials_iridescence\":{\"iridescenceFactor\":1}}}",
+    };
+    uint8_t *px[2] = { NULL, NULL };
+    int w2[2], h2[2];
+    for (int k = 0; k < 2; k++) {
+        snprintf(model, sizeof model, "%s/excluded%d.gltf", dir, k);
+        snprintf(out, sizeof out, "%s/excluded%d.png", dir, k);
+        doc = spheres(1, SG_USED, mats[k], NULL);
+        REQUIRE(doc && write_text(model, doc));
+        free(doc);
+        run_result r;
+        px[k] = render_read(ARGS("render", model, "-o", out, "--size", "96x96"), out, &w2[k],
+                            &h2[k], &r);
+        REQUIRE(px[k]);
+    }
+    REQUIRE(w2[0] == w2[1] && h2[0] == h2[1]);
+    CHECK(sr_test_compare_images("spec_gloss_excluded", px[0], px[1], w2[0], h2[0], 0, 0));
+    free(px[0]);
+    free(px[1]);
+}
+
 /* Renders the .gltf text `doc` (freed here) as dir/stem.gltf with the
  * tool; the pixels (malloc'd) or NULL after a failure. */
 static uint8_t *render_doc(const char *dir, const char *stem, char *doc, int *w, int *h)

@@ -293,6 +293,10 @@ sr_result sr__gltf_read_materials(gltf_doc *d);
  * false, slot untouched, where the conversion overflows a float. */
 bool sr__gltf_slot_transform(sr_texture_slot *slot, const float o[2], float rot,
                              const float s[2]);
+/* Whether the material extension `name` is one that must not be used on
+ * a material with KHR_materials_pbrSpecularGlossiness (its README's
+ * "Exclusions"): such a material draws none of it, nor animates it. */
+bool sr__gltf_spec_gloss_excludes(const char *name);
 
 /* gltf_variants.c: KHR_materials_variants.  The document's variant names
  * into scene->variants (checking desc->variant against them); one

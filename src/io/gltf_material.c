@@ -686,6 +686,27 @@ static sr_result read_spec_gloss(gltf_doc *d, const json_t *x, const char *xptr,
     return SR_OK;
 }
 
+/* The material extensions whose specifications exclude
+ * KHR_materials_pbrSpecularGlossiness: each extends the metallic-roughness
+ * model's BRDF, which the archived extension replaces with its own
+ * inputs.  KHR_materials_emissive_strength and _unlit do not exclude it. */
+static const char *const spec_gloss_excluded[] = {
+    "KHR_materials_ior",          "KHR_materials_specular",     "KHR_materials_clearcoat",
+    "KHR_materials_sheen",        "KHR_materials_transmission", "KHR_materials_volume",
+    "KHR_materials_dispersion",   "KHR_materials_anisotropy",   "KHR_materials_iridescence",
+    "KHR_materials_diffuse_transmission",
+};
+
+bool sr__gltf_spec_gloss_excludes(const char *name)
+{
+    for (size_t i = 0; i < sizeof spec_gloss_excluded / sizeof *spec_gloss_excluded; i++) {
+        if (strcmp(name, spec_gloss_excluded[i]) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
 /* Material `mat` into m; *base_image: the image its base color texture
  * shows, or -1. */
 static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
@@ -761,17 +782,21 @@ static sr_result read_material(gltf_doc *d, const json_t *mat, const char *ptr,
             return r;
         }
     }
-    if ((r = read_transmission(d, mat, ptr, m)) != SR_OK ||
-        (!m->unlit && (r = read_layers(d, mat, ptr, m)) != SR_OK)) {
+    if (sg) {
+        /* Each of these says it must not be used with the archived
+         * extension, whose BRDF inputs it would change: not read, as a
+         * reader of the specification draws such a (non-conforming)
+         * material, one warning each. */
+        for (size_t i = 0; i < sizeof spec_gloss_excluded / sizeof *spec_gloss_excluded; i++) {
+            if (sr__gltf_extension(mat, spec_gloss_excluded[i])) {
+                sr__gltf_warn(d, "%s/extensions/%s: not read on a material with "
+                                 "KHR_materials_pbrSpecularGlossiness (the extensions exclude "
+                                 "each other)", ptr, spec_gloss_excluded[i]);
+            }
+        }
+    } else if ((r = read_transmission(d, mat, ptr, m)) != SR_OK ||
+               (!m->unlit && (r = read_layers(d, mat, ptr, m)) != SR_OK)) {
         return r;
-    }
-    if (sg && m->specular_set) {
-        /* Both set F0; the extensions exclude each other. */
-        sr__gltf_warn(d, "%s/extensions/KHR_materials_specular: not read on a material with "
-                         "KHR_materials_pbrSpecularGlossiness (the extensions exclude each "
-                         "other)", ptr);
-        m->specular_set = false;
-        m->specular_texture = m->specular_color_texture = (sr_texture_slot){ 0 };
     }
     clamp_factors(d, ptr, m);
     /* The strength is the file's (emissive_strength_set): 0 is no

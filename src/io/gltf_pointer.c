@@ -342,6 +342,16 @@ sr_result sr__gltf_pointer_target(gltf_doc *d, const json_t *target, const char 
         *out = (gltf_pointer){ .kind = GLTF_TARGET_NONE, .index = -1 };
         return SR_OK;
     }
+    if (obj && out->kind == GLTF_TARGET_MATERIAL && rn > 1 &&
+        strcmp(rest[0], "extensions") == 0 && sr__gltf_spec_gloss_excludes(rest[1]) &&
+        sr__gltf_extension(obj, "KHR_materials_pbrSpecularGlossiness")) {
+        /* The reader drew none of the excluded extension (gltf_material.c). */
+        sr__gltf_warn(d, "%s: \"%.120s\": material %ld is drawn with "
+                         "KHR_materials_pbrSpecularGlossiness, which excludes %s, not animated",
+                      pptr, text, index, rest[1]);
+        *out = (gltf_pointer){ .kind = GLTF_TARGET_NONE, .index = -1 };
+        return SR_OK;
+    }
     if (transform >= 0) {
         if (!defined(obj, rest, rn, false)) {
             return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: \"%.120s\" names a property the file "
