@@ -16,6 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+SR_TEST_NEEDS(sr_io_have_gltf, "this build reads no glTF (jansson was not found)")
+
 /* A 4 x 4 texture of 16 colors far apart (one texel from its neighbours
  * by at least 60 codes in some channel), nearest-filtered below. */
 static bool write_texture(const char *path)
@@ -99,9 +101,6 @@ static uint8_t *render_png(const char *model, const char *shading, const char *n
 SR_TEST(classic_shading_samples_the_base_texture_where_pbr_does)
 {
     NEED_CLI();
-    if (!sr_io_have_gltf()) {
-        SKIP("this build reads no glTF (jansson was not found)");
-    }
     static const struct {
         const char *name, *sampler, *texture_info, *normals;
     } cases[] = {
@@ -175,9 +174,6 @@ SR_TEST(classic_shading_samples_the_base_texture_where_pbr_does)
 SR_TEST(a_zero_texture_scale_draws_the_texel_at_the_offset)
 {
     NEED_CLI();
-    if (!sr_io_have_gltf()) {
-        SKIP("this build reads no glTF (jansson was not found)");
-    }
     char dir[1024], tex[1100], model[1100], out[1100];
     fresh_dir("gltf_texture_zero_scale", dir, sizeof dir);
     snprintf(tex, sizeof tex, "%s/tex.png", dir);

@@ -1143,23 +1143,37 @@ SR_TEST(texture_transforms_animate_as_the_file_would_write_them)
     }
 }
 
+/* A document of one triangle whose material is `material` (JSON), with
+ * one sampler keying its emissive texture's KHR_texture_transform scale
+ * to `key` at 0 s; `animated`: the channel to it, else none (the
+ * document's animations dropped).  Malloc'd. */
+static char *scale_keyed_json(const char *material, const float key[2], bool animated)
+{
+    blob b = { .size = 0 };
+    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
+    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
+    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
+    int out = put(&b, key, 2, 4, "VEC2", 1, 5126, false);
+    char samplers[128], channels[512] = "";
+    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
+    add_channel(channels, sizeof channels, 0,
+                "/materials/0/emissiveTexture/extensions/KHR_texture_transform/scale");
+    char *json = scene_json_with(&b, material, samplers, animated ? channels : "");
+    if (json && !animated) {
+        strcpy(strstr(json, ",\"animations\""), "}");
+    }
+    return json;
+}
+
 /* A texture scaled up from 0 by pointer: at 0 every coordinate lands on
  * the offset's texel (the extension's 0, not sr_texture_slot's zeroed
  * identity). */
 SR_TEST(a_texture_scale_animated_to_zero_collapses_onto_the_offset)
 {
-    blob b = { .size = 0 };
-    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 }, zero[2] = { 0 };
-    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
-    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
-    int out = put(&b, zero, 2, 4, "VEC2", 1, 5126, false);
-    char samplers[128], channels[512] = "";
-    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
-    add_channel(channels, sizeof channels, 0,
-                "/materials/0/emissiveTexture/extensions/KHR_texture_transform/scale");
-    char *json = scene_json_with(&b, "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
-                                 "{\"KHR_texture_transform\":{\"offset\":[0.25,0.5],"
-                                 "\"scale\":[2,3]}}}}", samplers, channels);
+    static const float zero[2] = { 0, 0 };
+    char *json = scale_keyed_json("{\"emissiveTexture\":{\"index\":0,\"extensions\":"
+                                  "{\"KHR_texture_transform\":{\"offset\":[0.25,0.5],"
+                                  "\"scale\":[2,3]}}}}", zero, true);
     REQUIRE(json);
     sr_scene *s = NULL;
     sr_io_error e;
@@ -1183,24 +1197,14 @@ SR_TEST(a_texture_scale_animated_to_zero_collapses_onto_the_offset)
  * PBR program takes. */
 SR_TEST(texture_transforms_that_overflow_a_float_are_refused_or_held)
 {
-    blob b = { .size = 0 };
-    static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t0[1] = { 0 };
     static const float huge[2] = { 1, 3e38f };
-    put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
-    int in = put(&b, t0, 1, 4, "SCALAR", 1, 5126, false);
-    int out = put(&b, huge, 2, 4, "VEC2", 1, 5126, false);
-    char samplers[128], channels[512] = "";
-    snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
-    add_channel(channels, sizeof channels, 0,
-                "/materials/0/emissiveTexture/extensions/KHR_texture_transform/scale");
     const char *both = "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
                        "{\"KHR_texture_transform\":{\"offset\":[0,3e38],\"scale\":[1,3e38]}}}}";
     const char *offset = "{\"emissiveTexture\":{\"index\":0,\"extensions\":"
                          "{\"KHR_texture_transform\":{\"offset\":[0,3e38]}}}}";
-    char *file = scene_json_with(&b, both, samplers, "");
-    char *animated = scene_json_with(&b, offset, samplers, channels);
+    char *file = scale_keyed_json(both, huge, false);
+    char *animated = scale_keyed_json(offset, huge, true);
     REQUIRE(file && animated);
-    strcpy(strstr(file, ",\"animations\""), "}");
     sr_scene *s = NULL;
     sr_io_error e;
     CHECK_EQ(parse(file, NULL, &s, &e), SR_BAD_FORMAT);
