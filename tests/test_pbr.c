@@ -769,19 +769,29 @@ SR_TEST(white_furnace_hemisphere)
     furnace(NULL, "hemisphere", 1.03);
 }
 
-/* The same furnace through image-based light: a uniform white
- * environment (an equirectangular image of ones) in place of the
- * hemisphere; its prefiltered levels allow 1% more at the rim. */
-SR_TEST(white_furnace_environment)
+/* A uniform white environment: an equirectangular image of ones. */
+static sr_environment *white_environment(void)
 {
     float white[8 * 4 * 3];
     for (int i = 0; i < 8 * 4 * 3; i++) {
         white[i] = 1.0f;
     }
     sr_environment *env = NULL;
-    REQUIRE(sr_make_environment(sr_test_ctx(),
-                                &(sr_environment_desc){ .pixels = white, .width = 8, .height = 4 },
-                                &env) == SR_OK);
+    if (sr_make_environment(sr_test_ctx(),
+                            &(sr_environment_desc){ .pixels = white, .width = 8, .height = 4 },
+                            &env) != SR_OK) {
+        return NULL;
+    }
+    return env;
+}
+
+/* The same furnace through image-based light: a uniform white
+ * environment (an equirectangular image of ones) in place of the
+ * hemisphere; its prefiltered levels allow 1% more at the rim. */
+SR_TEST(white_furnace_environment)
+{
+    sr_environment *env = white_environment();
+    REQUIRE(env);
     furnace(env, "environment", 1.04);
     sr_destroy_environment(sr_test_ctx(), env);
 }
@@ -818,14 +828,8 @@ static void dfg_head_on(double roughness, double *a, double *b)
  * (8-bit encoding is 0.5% here) at every roughness. */
 SR_TEST(grey_metal_reflects_the_split_sum_integral)
 {
-    float white[8 * 4 * 3];
-    for (int i = 0; i < 8 * 4 * 3; i++) {
-        white[i] = 1.0f;
-    }
-    sr_environment *env = NULL;
-    REQUIRE(sr_make_environment(sr_test_ctx(),
-                                &(sr_environment_desc){ .pixels = white, .width = 8, .height = 4 },
-                                &env) == SR_OK);
+    sr_environment *env = white_environment();
+    REQUIRE(env);
     sphere s = make_sphere(96, 48);
     sr_mat4 view = test_view(), proj = test_projection();
     for (int k = 1; k <= 4; k++) {
