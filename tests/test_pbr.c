@@ -780,21 +780,137 @@ SR_TEST(white_furnace_hemisphere)
     furnace(NULL, "hemisphere", 1.03);
 }
 
-/* The same furnace through image-based light: a uniform white
- * environment (an equirectangular image of ones) in place of the
- * hemisphere; its prefiltered levels allow 1% more at the rim. */
-SR_TEST(white_furnace_environment)
+/* A uniform white environment: an equirectangular image of ones. */
+static sr_environment *white_environment(void)
 {
     float white[8 * 4 * 3];
     for (int i = 0; i < 8 * 4 * 3; i++) {
         white[i] = 1.0f;
     }
     sr_environment *env = NULL;
-    REQUIRE(sr_make_environment(sr_test_ctx(),
-                                &(sr_environment_desc){ .pixels = white, .width = 8, .height = 4 },
-                                &env) == SR_OK);
+    if (sr_make_environment(sr_test_ctx(),
+                            &(sr_environment_desc){ .pixels = white, .width = 8, .height = 4 },
+                            &env) != SR_OK) {
+        return NULL;
+    }
+    return env;
+}
+
+/* The same furnace through image-based light: a uniform white
+ * environment (an equirectangular image of ones) in place of the
+ * hemisphere; its prefiltered levels allow 1% more at the rim. */
+SR_TEST(white_furnace_environment)
+{
+    sr_environment *env = white_environment();
+    REQUIRE(env);
     furnace(env, "environment", 1.04);
     sr_destroy_environment(sr_test_ctx(), env);
+}
+
+#define PI_D 3.14159265358979323846
+/* The split sum's scale A and bias B at N.V = 1 by quadrature over the
+ * light's polar angle (V = N makes the integral symmetric about N): the
+ * GGX D with alpha = roughness^2 and the height-correlated Smith
+ * visibility times N.L, split by Schlick's Fresnel into F0 (1 - Fc) + Fc.
+ * Independent of the build's table, which samples half vectors. */
+static void dfg_head_on(double roughness, double *a, double *b)
+{
+    const int steps = 20000;
+    double a2 = roughness * roughness * roughness * roughness;
+    *a = *b = 0;
+    for (int i = 0; i < steps; i++) {
+        double tl = (i + 0.5) * (PI_D / 2) / steps, nl = cos(tl);
+        double nh = cos(tl / 2), vh = nh;   /* H halves L and V = N */
+        double dd = nh * nh * (a2 - 1) + 1;
+        double d = a2 / (PI_D * dd * dd);
+        double vis = 0.5 / (nl + sqrt(nl * nl * (1 - a2) + a2));   /* N.V = 1 */
+        double fc = pow(1 - vh, 5);
+        double w = d * vis * nl * sin(tl) * 2 * PI_D * (PI_D / 2) / steps;
+        *a += (1 - fc) * w;
+        *b += fc * w;
+    }
+}
+
+/* A grey metal (F0 = 0.5) under the uniform white environment: seen head
+ * on, it reflects FssEss = F0 A + B and FmsEms (Fdez-Aguera) of the
+ * radiance, with A and B the BRDF's own integral.  A white metal (the
+ * furnace above) cannot tell a wrong A + B, as multiple scattering then
+ * returns whatever single scattering misses; a grey one can.  Within 2%
+ * (8-bit encoding is 0.5% here) at every roughness. */
+SR_TEST(grey_metal_reflects_the_split_sum_integral)
+{
+    sr_environment *env = white_environment();
+    REQUIRE(env);
+    sphere s = make_sphere(96, 48);
+    sr_mat4 view = test_view(), proj = test_projection();
+    for (int k = 1; k <= 4; k++) {
+        sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+        REQUIRE(fb);
+        sr_pbr_material m = sr_pbr_default_material();
+        m.base_color[0] = m.base_color[1] = m.base_color[2] = 0.5f;
+        m.roughness = (float)k / 4.0f;
+        sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                          .environment = env, .exposure = -1.0f,
+                          .tonemap = SR_TONEMAP_NONE };
+        REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
+        double a, b;
+        dfg_head_on(m.roughness, &a, &b);
+        double f0 = 0.5, fss = f0 * a + b, ems = 1 - (a + b), favg = f0 + (1 - f0) / 21;
+        double want = fss + ems * fss * favg / (1 - ems * favg);
+        double got = 0;
+        for (int y = CELL / 2 - 1; y <= CELL / 2; y++) {
+            for (int x = CELL / 2 - 1; x <= CELL / 2; x++) {
+                got += srgb_decode(px(fb, x, y)[1]) * 2.0 / 4;
+            }
+        }
+        fprintf(stderr, "grey metal roughness %.2f: A %.3f B %.3f, want %.3f got %.3f\n",
+                (double)m.roughness, a, b, want, got);
+        CHECK_NEAR(got, want, 0.02 * want);
+        sr_destroy_framebuffer(sr_test_ctx(), fb);
+    }
+    free_sphere(&s);
+    sr_destroy_environment(sr_test_ctx(), env);
+}
+
+/* A white furnace of lights: a white metal seen head on, lit by
+ * directional lights at every polar angle (64 of them, 8 a draw, each of
+ * radiance 2 pi sin(theta) dtheta, so that they sum to a uniform white
+ * sky), reflects all of it once the lights' multiple-scattering
+ * compensation is in; single scattering alone gives Ess, 0.31 at
+ * roughness 1.  Within 3% (the quadrature and 8 encodings of 8 bits). */
+SR_TEST(white_metal_under_a_furnace_of_lights)
+{
+    sphere s = make_sphere(96, 48);
+    sr_mat4 view = test_view(), proj = test_projection();
+    const int draws = 8, steps = draws * SR_MAX_LIGHTS;
+    const double dt = PI_D / 2 / steps;
+    for (int k = 2; k <= 4; k += 2) {
+        sr_pbr_material m = sr_pbr_default_material();   /* white metal */
+        m.roughness = (float)k / 4.0f;
+        double got = 0;
+        for (int dr = 0; dr < draws; dr++) {
+            sr_framebuffer *fb = make_fb(1, 1, 0.0f);
+            REQUIRE(fb);
+            sr_pbr_desc d = { .material = &m, .view = &view, .projection = &proj,
+                              .exposure = 1.0f, .tonemap = SR_TONEMAP_NONE };
+            for (int l = 0; l < SR_MAX_LIGHTS; l++) {
+                double t = (dr * SR_MAX_LIGHTS + l + 0.5) * dt;
+                d.lights[l] = (sr_light){ .type = SR_LIGHT_DIRECTIONAL,
+                                          .vector = { (float)-sin(t), 0, (float)-cos(t) },
+                                          .intensity = (float)(2 * PI_D * sin(t) * dt) };
+            }
+            REQUIRE(draw_sphere(fb, &s, &d, 0, 0, NULL) == SR_OK);
+            for (int y = CELL / 2 - 1; y <= CELL / 2; y++) {
+                for (int x = CELL / 2 - 1; x <= CELL / 2; x++) {
+                    got += srgb_decode(px(fb, x, y)[1]) / 2.0 / 4;
+                }
+            }
+            sr_destroy_framebuffer(sr_test_ctx(), fb);
+        }
+        fprintf(stderr, "furnace of lights roughness %.2f: %.3f\n", (double)m.roughness, got);
+        CHECK_NEAR(got, 1.0, 0.03);
+    }
+    free_sphere(&s);
 }
 
 /* A ground square under a smaller square, the key light straight down,
@@ -2338,7 +2454,7 @@ static int extent(const sr_framebuffer *fb, int x0, int y0, int dx, int dy, doub
  * 0.4 stretches the highlight along T, alpha_t = mix(alpha, 1, 0.25)
  * against alpha across it, and the measured widths at half the peak
  * match the half-widths worked from D alone within 10% and 2 pixels
- * (the visibility and N.L change them by 2%).  Rotation 0 runs along u
+ * (the visibility, N.L and the compensation change them by 4%).  Rotation 0 runs along u
  * (around the sphere: across the image), from the coordinates'
  * derivatives; pi/2 along v (up the image), from the draw's tangents. */
 SR_TEST(anisotropic_highlight_stretches_along_the_rotated_tangent)
@@ -2390,7 +2506,10 @@ SR_TEST(anisotropic_highlight_stretches_along_the_rotated_tangent)
                 }
             }
         }
-        CHECK(abs(bx - SIZE / 2) <= 2 && abs(by - SIZE / 2) <= 2);
+        /* The lights' multiple-scattering compensation grows as N.V falls,
+         * which flattens the stretched highlight's top: its first
+         * brightest pixel is up to 3 from the centre. */
+        CHECK(abs(bx - SIZE / 2) <= 3 && abs(by - SIZE / 2) <= 3);
         CHECK(best < 255);       /* not clipped: the half level is the peak's */
         double half = 0.5 * srgb_decode((uint8_t)best);
         double wx = extent(fb, bx, by, 1, 0, half), wy = extent(fb, bx, by, 0, 1, half);

@@ -45,6 +45,12 @@ void sr_brdf_table4(const float n_dot_v[4], const float roughness[4], float scal
     if (!n_dot_v || !roughness || !scale || !bias) {
         return;
     }
+    sr__brdf_lookup4(n_dot_v, roughness, scale, bias);
+}
+
+void sr__brdf_lookup4(const float n_dot_v[4], const float roughness[4], float scale[4],
+                      float bias[4])
+{
     for (int i = 0; i < 4; i++) {
         lookup(n_dot_v[i], roughness[i], &scale[i], &bias[i]);
     }

@@ -213,6 +213,10 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_sample *s, int c
  * roughness) computed by GGX importance sampling (brdf_integrate.c). */
 #define SR__BRDF_TABLE_SIZE 32
 void sr__brdf_table_row(int row, float out[SR__BRDF_TABLE_SIZE][2]);
+/* The table read bilinearly on four lanes, inputs clamped to 0..1 (NaN
+ * to 0), unchecked: the PBR program's split sum (brdf_table.c). */
+void sr__brdf_lookup4(const float n_dot_v[4], const float roughness[4], float scale[4],
+                      float bias[4]);
 
 /* Computed at build time (ibl_tables.c, written by tools/ibl_tables.c
  * with the functions above): the BRDF table, [roughness][n_dot_v]; the

@@ -621,6 +621,19 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
     if (ext && ext->irid) {
         sr__iridescence_begin(ext, vclamp(dot3(n, v), 0.0f, 1.0f), ext->f0, base, mt);
     }
+    /* The split sum at N.V: the specular lobe's single-scattering albedo
+     * Ess = A + B, for the lights' energy compensation and the ambient. */
+    v4f rc = vclamp(load(rough_), 0.0f, 1.0f), sa, sb;
+    split_sum(rc, nv, &sa, &sb);
+    /* Multiple scattering under the lights (Turquin 2019, as three.js
+     * does): one GGX bounce reflects Ess of what comes in, so the lobe is
+     * scaled by 1 + F0 (1 / Ess - 1), which gives a white metal back all
+     * the light at every roughness, as the ambient's Fdez-Aguera term
+     * does for the environment. */
+    v4f ms[3], inv_ess = 1.0f / vmax(sa + sb, (v4f){ 1e-3f, 1e-3f, 1e-3f, 1e-3f }) - 1.0f;
+    for (int c = 0; c < 3; c++) {
+        ms[c] = 1.0f + f0[c] * inv_ess;
+    }
     for (int l = 0; l < p->nlights; l++) {
         v4f ld[3], rad[3], fall = { 1, 1, 1, 1 };
         for (int c = 0; c < 3; c++) {
@@ -664,7 +677,7 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
                 /* The film's Fresnel, at N.V, mixed in by its weight. */
                 f += ext->ir_w * (ext->ir_f[c] - f);
             }
-            out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv) * rad[c] * nl;
+            out[c] += ((1.0f - f) * cdiff[c] * (1.0f / PI_F) + f * dv * ms[c]) * rad[c] * nl;
         }
         if (ext && ext->dtrans) {
             /* The light let through from behind: the key light's has its
@@ -691,11 +704,11 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
     if (!p->environment && !p->ambient) {
         goto done;
     }
-    v4f nd = dot3(n, v), rr[3], en[3], er[3], sa, sb;
+    v4f nd = dot3(n, v), rr[3], en[3], er[3];
     for (int k = 0; k < 3; k++) {
         rr[k] = 2.0f * nd * n[k] - v[k];
     }
-    v4f rc = vclamp(load(rough_), 0.0f, 1.0f), ao = load(ao_);
+    v4f ao = load(ao_);
     if (ext && ext->aniso) {
         /* The stretched lobe reflects about the bent normal. */
         v4f bn[3];
@@ -726,7 +739,6 @@ shade_lanes(const sr_pbr *p, const float pos_[3][4], const float n_[3][4], const
             hemisphere(p, nb, eb);
         }
     }
-    split_sum_fit(rc, nv, &sa, &sb);
     /* Multiple scattering (Fdez-Aguera 2019, as three.js and Khronos'
      * sample viewer light with an environment): a single GGX bounce
      * reflects only Ess = A + B of the light; the rest, Ems, comes back

@@ -42,7 +42,7 @@ void sr__coat_light(sr__pbr_layers *x, const v4f ld[3], v4f hs, const v4f rad[3]
 void sr__coat_ambient(sr__pbr_layers *x, const v4f er[3], v4f ao)
 {
     v4f sa, sb;
-    split_sum_fit(x->cc_rc, x->cc_nv, &sa, &sb);
+    split_sum(x->cc_rc, x->cc_nv, &sa, &sb);
     v4f albedo = (sa + sb) * ao;
     for (int c = 0; c < 3; c++) {
         x->coat_sum[c] += er[c] * albedo;

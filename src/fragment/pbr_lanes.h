@@ -6,6 +6,7 @@
 #ifndef SR_PBR_LANES_H
 #define SR_PBR_LANES_H
 
+#include "fragment/environment.h"
 #include "fragment/light_lanes.h"
 
 #include <string.h>
@@ -94,33 +95,20 @@ static inline v4f vclamp(v4f a, float lo, float hi)
     return vmin(vmax(a, lo - (v4f){ 0 }), hi - (v4f){ 0 });
 }
 
-/* 2^x for x <= 0 within 2e-4 relative (the split-sum fit it feeds is
- * itself a fit): the integer part into the exponent bits, a cubic for
- * the fraction. */
-static inline v4f exp2_approx(v4f x)
+/* The split sum's scale and bias of F0 (Es = F0 A + F90 B), read
+ * bilinearly from the table the build integrated for this very BRDF
+ * (brdf_integrate.c) rather than from an analytic fit of another
+ * renderer's: the multiple-scattering terms take 1 - (A + B) as what
+ * single scattering loses, so A + B must be this lobe's own albedo.  rc
+ * is the roughness clamped to 0..1. */
+static inline void split_sum(v4f rc, v4f nv, v4f *sa, v4f *sb)
 {
-    x = vmax(x, -126.0f - (v4f){ 0 });
-    v4i xi = __builtin_convertvector(x, v4i);     /* towards zero: x <= 0 */
-    v4f fl = __builtin_convertvector(xi, v4f);
-    v4i below = fl > x;
-    fl = sr__v4_sel(below, fl - 1.0f, fl);
-    xi += below;                                  /* true is -1 */
-    v4f f = x - fl;
-    v4f poly = 1.0f + f * (0.6951786f + f * (0.2261354f + f * 0.0786338f));
-    return poly * (v4f)((xi + 127) << 23);
-}
-
-/* The split sum's scale and bias of F0 (Es = F0 A + F90 B) from Karis's
- * analytic fit of its table (mobile UE4), within 2% of sr_brdf_table at
- * a fraction of its cost; rc is the roughness clamped to 0..1. */
-static inline void split_sum_fit(v4f rc, v4f nv, v4f *sa, v4f *sb)
-{
-    v4f rx = 1.0f - rc, ry = -0.0275f * rc + 0.0425f;
-    v4f rz = -0.572f * rc + 1.04f, rw = 0.022f * rc - 0.04f;
-    v4f e = exp2_approx(-9.28f * nv);
-    v4f a004 = vmin(rx * rx, e) * rx + ry;
-    *sa = -1.04f * a004 + rz;
-    *sb = 1.04f * a004 + rw;
+    float r[4], n[4], a[4], b[4];
+    store(r, rc);
+    store(n, nv);
+    sr__brdf_lookup4(n, r, a, b);
+    *sa = load(a);
+    *sb = load(b);
 }
 
 #endif
