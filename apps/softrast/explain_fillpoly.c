@@ -15,24 +15,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct walk {
-    double y0, y1, x0, x1;   /* top and bottom vertex, pixels */
-    float i0, i1;
-    int row;                 /* the scanline x and I are at; -1: not started */
-    double x, dxdy;
-    float I, dI;
-    const char *name;
-} walk;
-
-static walk edge(const ex_tri *t, const double *in, int a, int b, const char *name)
+ex_walk ex_walk_edge(const ex_tri *t, const double *in, int a, int b, const char *name)
 {
-    return (walk){ .y0 = t->y[a] / 256.0, .y1 = t->y[b] / 256.0, .x0 = t->x[a] / 256.0,
-                   .x1 = t->x[b] / 256.0, .i0 = (float)in[a], .i1 = (float)in[b], .row = -1,
-                   .name = name };
+    return (ex_walk){ .y0 = t->y[a] / 256.0, .y1 = t->y[b] / 256.0, .x0 = t->x[a] / 256.0,
+                      .x1 = t->x[b] / 256.0, .i0 = (float)in[a], .i1 = (float)in[b], .row = -1,
+                      .name = name };
 }
 
-/* FillPoly's step: the walk brought to scanline y. */
-static void walk_to(walk *w, int y)
+void ex_walk_to(ex_walk *w, int y)
 {
     if (w->row < 0) {
         double dy = w->y1 - w->y0, pre = y + 0.5 - w->y0;
@@ -49,12 +39,34 @@ static void walk_to(walk *w, int y)
     }
 }
 
+void ex_tri_order_by_y(const ex_tri *t, int o[3])
+{
+    o[0] = 0;
+    o[1] = 1;
+    o[2] = 2;
+    for (int i = 0; i < 3; i++) {
+        for (int j = i + 1; j < 3; j++) {
+            if (t->y[o[j]] < t->y[o[i]] || (t->y[o[j]] == t->y[o[i]] && t->x[o[j]] < t->x[o[i]])) {
+                int k = o[i];
+                o[i] = o[j];
+                o[j] = k;
+            }
+        }
+    }
+}
+
+bool ex_tri_long_edge_left(const ex_tri *t, const int o[3])
+{
+    return (t->x[o[1]] - t->x[o[0]]) * (t->y[o[2]] - t->y[o[0]]) -
+           (t->y[o[1]] - t->y[o[0]]) * (t->x[o[2]] - t->x[o[0]]) > 0;
+}
+
 static sr_rgba grey(float v)
 {
     return (sr_rgba){ v, v, v, 1 };
 }
 
-static void cell_value(ex_canvas *c, int x, int y, float v)
+void ex_cell_value(ex_canvas *c, int x, int y, float v)
 {
     char s[16];
     snprintf(s, sizeof s, "%.2f", v);
@@ -81,19 +93,11 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
     ex_tri t;
     double in[3];
     ex_tri_setup_at(&t, in, prim, 0);
-    /* A, B, C: the vertices by y (then x) */
-    int o[3] = { 0, 1, 2 };
-    for (int i = 0; i < 3; i++) {
-        for (int j = i + 1; j < 3; j++) {
-            if (t.y[o[j]] < t.y[o[i]] || (t.y[o[j]] == t.y[o[i]] && t.x[o[j]] < t.x[o[i]])) {
-                int k = o[i];
-                o[i] = o[j];
-                o[j] = k;
-            }
-        }
-    }
-    walk ac = edge(&t, in, o[0], o[2], "AC"), ab = edge(&t, in, o[0], o[1], "AB"),
-         bc = edge(&t, in, o[1], o[2], "BC");
+    int o[3];   /* A, B, C: the vertices by y (then x) */
+    ex_tri_order_by_y(&t, o);
+    ex_walk ac = ex_walk_edge(&t, in, o[0], o[2], "AC"),
+            ab = ex_walk_edge(&t, in, o[0], o[1], "AB"),
+            bc = ex_walk_edge(&t, in, o[1], o[2], "BC");
     int gw = c->grid_w, gh = c->grid_h;
     uint8_t *mask = calloc((size_t)gw * (size_t)gh, 1);
     float *shade = calloc((size_t)gw * (size_t)gh, sizeof *shade);
@@ -112,8 +116,7 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
         return r;
     }
     /* B right of AC: AC is the left edge */
-    bool ac_left = (t.x[o[1]] - t.x[o[0]]) * (t.y[o[2]] - t.y[o[0]]) -
-                   (t.y[o[1]] - t.y[o[0]]) * (t.x[o[2]] - t.x[o[0]]) > 0;
+    bool ac_left = ex_tri_long_edge_left(&t, o);
     char cap[900];
 
     ex_begin(c);
@@ -147,11 +150,11 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
         if (x0 < 0) {
             continue;
         }
-        walk *other = y + 0.5 < ab.y1 ? &ab : &bc;
-        walk *l = ac_left ? &ac : other, *rt = ac_left ? other : &ac;
+        ex_walk *other = y + 0.5 < ab.y1 ? &ab : &bc;
+        ex_walk *l = ac_left ? &ac : other, *rt = ac_left ? other : &ac;
         bool fresh_l = l->row < 0, fresh_r = rt->row < 0;
-        walk_to(l, y);
-        walk_to(rt, y);
+        ex_walk_to(l, y);
+        ex_walk_to(rt, y);
         double width = rt->x - l->x;
         float dI = width > 0 ? (float)((rt->I - l->I) / width) : 0.0f;
         float I = (float)(l->I + (x0 + 0.5 - l->x) * dI), first = I;
@@ -166,7 +169,7 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
         for (int x = x0; x < x1; x++) {
             shade[y * gw + x] = I;
             ex_cell(c, x, y, grey(I));
-            cell_value(c, x, y, I);
+            ex_cell_value(c, x, y, I);
             I += dI;
         }
         draw_tri(c, &t, o, in);
