@@ -62,8 +62,9 @@ static void values(ex_canvas *c, const float *I)
     }
 }
 
-/* Each covered scanline's walk: the span between its edges, its ends. */
-static void spans(ex_canvas *c, const interp *p)
+/* Each covered scanline's walk: where it crosses the edges and, with
+ * `line`, the span between them (left out over the cells' values). */
+static void spans(ex_canvas *c, const interp *p, bool line)
 {
     for (int y = 0; y < c->grid_h; y++) {
         const ex_interp_row *r = &p->rows[y];
@@ -71,7 +72,9 @@ static void spans(ex_canvas *c, const interp *p)
             continue;
         }
         sr_point2 l = { r->xl, y + 0.5 }, rt = { r->xr, y + 0.5 };
-        ex_segment(c, l, rt, EX_HILITE, 1.5);
+        if (line) {
+            ex_segment(c, l, rt, EX_HILITE, 1.5);
+        }
         ex_dot(c, l, 3, EX_INK);
         ex_dot(c, rt, 3, EX_INK);
     }
@@ -108,7 +111,7 @@ static void bilinear_frames(ex_canvas *c, const interp *p, const char *lead)
     }
 
     ex_begin(c);
-    spans(c, p);
+    spans(c, p, true);
     draw_tri(c, p);
     int n = snprintf(cap, sizeof cap,
                      "%d. %s, along the edges (FillPoly, as in explain fillpoly): A, B, "
@@ -126,7 +129,7 @@ static void bilinear_frames(ex_canvas *c, const interp *p, const char *lead)
 
     ex_begin(c);
     values(c, p->bil);
-    spans(c, p);
+    spans(c, p, false);
     draw_tri(c, p);
     if (first < 0) {
         snprintf(cap, sizeof cap, "%d. Bilinear, along each span (FillSpan): no scanline "
@@ -137,12 +140,19 @@ static void bilinear_frames(ex_canvas *c, const interp *p, const char *lead)
                  "I_L + (x + 1/2 - x_L) dI with dI = (I_R - I_L) / (x_R - x_L); every span here "
                  "is one pixel, so nothing is stepped along it.", c->frame_count + 1);
     } else {
+        char range[64];
+        int k = snprintf(range, sizeof range, "%.5f", lo);
+        char hi_text[32];
+        snprintf(hi_text, sizeof hi_text, "%.5f", hi);
+        if (strcmp(range, hi_text) != 0) {
+            snprintf(range + k, sizeof range - (size_t)k, " to %s", hi_text);
+        }
         snprintf(cap, sizeof cap,
                  "%d. Bilinear, along each span (FillSpan): I at the first covered centre is "
                  "I_L + (x + 1/2 - x_L) dI, then +dI per pixel, dI = (I_R - I_L) / (x_R - x_L) "
-                 "= %.5f to %.5f on the spans here: the same slope on every span (I over a "
-                 "triangle is a plane), apart from float rounding.",
-                 c->frame_count + 1, lo, hi);
+                 "= %s on the spans here: the same slope on every span (I over a triangle is "
+                 "a plane), apart from float rounding.",
+                 c->frame_count + 1, range);
     }
     ex_end(c, cap);
 }
