@@ -206,25 +206,8 @@ void ex_tri_coverage(ex_canvas *c, const ex_tri *t, const char *lead);
 void ex_tri_scanline_steps(ex_canvas *c, const ex_tri *t);
 void ex_tri_barycentric_steps(ex_canvas *c, const ex_tri *t);
 
-/* explain_fillpoly.c: FillPoly's walk down one edge, x by 1/m and the
- * intensity by dI per scanline, from the first scanline centre (y + 1/2)
- * below the top vertex, summed in float as sr_fill_gouraud does. */
-typedef struct ex_walk {
-    double y0, y1, x0, x1;   /* top and bottom vertex, pixels */
-    float i0, i1;
-    int row;                 /* the scanline x and I are at; -1: not started */
-    double x, dxdy;
-    float I, dI;
-    const char *name;
-} ex_walk;
-/* The walk down edge a -> b of t (a above b), in[] the vertices' values. */
-ex_walk ex_walk_edge(const ex_tri *t, const double *in, int a, int b, const char *name);
-/* The walk brought down to scanline y (it starts there if not started). */
-void ex_walk_to(ex_walk *w, int y);
 /* t's vertices by y, then x: A (top), B (middle), C (bottom) in o. */
 void ex_tri_order_by_y(const ex_tri *t, int o[3]);
-/* Whether the long edge AC is the left one (B lies right of it). */
-bool ex_tri_long_edge_left(const ex_tri *t, const int o[3]);
 /* An intensity 0..1 in cell (x, y): "1", ".55", in white on dark cells. */
 void ex_cell_value(ex_canvas *c, int x, int y, float v);
 
@@ -238,7 +221,12 @@ typedef struct ex_interp_row {   /* bilinear: one scanline */
     double xl, xr;               /* their x at the scanline centre */
     float il, ir, dI;            /* their I there, and FillSpan's step per pixel */
 } ex_interp_row;
-/* FillPoly along the edges, FillSpan along each span; rows[gh]. */
+/* explain_fillpoly.c: FillPoly along the edges, FillSpan along each
+ * span, at the pixels of mask (gw x gh, nonzero: covered; NULL: those t
+ * covers) into I, each scanline's walk in rows[gh]. */
+void ex_fillpoly_spans(const ex_tri *t, const double in[3], const uint8_t *mask, int gw, int gh,
+                       float *I, ex_interp_row *rows);
+/* ex_fillpoly_spans at t's pixels. */
 void ex_interp_bilinear(const ex_tri *t, const double in[3], int gw, int gh, float *I,
                         ex_interp_row *rows);
 /* I = a x + b y + c through the vertices (x, y in pixels) into abc;

@@ -25,51 +25,7 @@ static bool covers(const ex_tri *t, int x, int y)
 void ex_interp_bilinear(const ex_tri *t, const double in[3], int gw, int gh, float *I,
                         ex_interp_row *rows)
 {
-    uncovered(I, gw * gh);
-    int o[3];
-    ex_tri_order_by_y(t, o);
-    ex_walk ac = ex_walk_edge(t, in, o[0], o[2], "AC"), ab = ex_walk_edge(t, in, o[0], o[1], "AB"),
-            bc = ex_walk_edge(t, in, o[1], o[2], "BC");
-    bool ac_left = ex_tri_long_edge_left(t, o);
-    for (int y = 0; y < gh; y++) {
-        ex_interp_row *r = &rows[y];
-        *r = (ex_interp_row){ 0 };
-        int x0 = -1, x1 = -1;
-        for (int x = 0; x < gw; x++) {
-            if (covers(t, x, y)) {
-                x0 = x0 < 0 ? x : x0;
-                x1 = x + 1;
-            }
-        }
-        if (x0 < 0) {
-            continue;
-        }
-        /* a covered centre lies below A and above C, so AC crosses it; the
-         * other edge is AB above B, BC from B down (a horizontal AB is
-         * never taken: no covered centre is above B then) */
-        ex_walk *other = y + 0.5 < ab.y1 ? &ab : &bc;
-        ex_walk *l = ac_left ? &ac : other, *rt = ac_left ? other : &ac;
-        r->left = l->name;
-        r->right = rt->name;
-        r->fresh = (l->row < 0) | (rt->row < 0) << 1;
-        ex_walk_to(l, y);
-        ex_walk_to(rt, y);
-        double width = rt->x - l->x;
-        float dI = width > 0 ? (float)((rt->I - l->I) / width) : 0.0f;
-        /* FillSpan: the first centre's value, then dI per pixel */
-        float v = (float)(l->I + (x0 + 0.5 - l->x) * dI);
-        for (int x = x0; x < x1; x++) {
-            I[y * gw + x] = v;
-            v += dI;
-        }
-        r->x0 = x0;
-        r->x1 = x1;
-        r->xl = l->x;
-        r->xr = rt->x;
-        r->il = l->I;
-        r->ir = rt->I;
-        r->dI = dI;
-    }
+    ex_fillpoly_spans(t, in, NULL, gw, gh, I, rows);   /* explain fillpoly's walk */
 }
 
 bool ex_interp_plane_coefficients(const ex_tri *t, const double in[3], double abc[3])
