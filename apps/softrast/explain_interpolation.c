@@ -309,7 +309,8 @@ static void library_frame(ex_canvas *c, const interp *p, const uint8_t *px)
     }
     char cap[900], cover[160];
     if (cover_diff) {
-        snprintf(cover, sizeof cover, "%d pixels differ from those the methods covered", cover_diff);
+        snprintf(cover, sizeof cover, "%d pixels differ from those the methods covered",
+                 cover_diff);
     } else {
         snprintf(cover, sizeof cover, "exactly those the three methods covered");
     }
