@@ -2494,3 +2494,132 @@ SR_TEST(area_example_sheet_matches_reference)
     NEEDS_CLI();
     check_example_sheet("area", "16");
 }
+
+/* How many frame-NNN.png files dir holds. */
+static int frame_count(const char *dir)
+{
+    int n = 0;
+    for (int i = 1; i < 100; i++) {
+        char path[1200];
+        struct stat st;
+        snprintf(path, sizeof path, "%s/frame-%03d.png", dir, i);
+        if (stat(path, &st) != 0) {
+            break;
+        }
+        n = i;
+    }
+    return n;
+}
+
+/* interpolation: the triangle, each method's frames (bilinear's edges
+ * and spans, the plane, barycentric's weights and values), the library's
+ * pixels; the first caption names what --method chose. */
+SR_TEST(interpolation_frames_follow_the_method)
+{
+    NEEDS_CLI();
+    static const struct { const char *method; int frames; const char *shown; } runs[] = {
+        { "all", 7, "all three" },
+        { "bilinear", 4, "bilinear (--method bilinear)" },
+        { "plane", 3, "the plane equation (--method plane)" },
+        { "barycentric", 4, "barycentric coordinates (--method barycentric)" },
+    };
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        char dir[1024], name[64], path[1200], text[600];
+        snprintf(name, sizeof name, "interp_%s", runs[i].method);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(sr_test_run_cli((const char *[]){ "explain", "interpolation", "--method",
+                                                  runs[i].method, "-o", dir, NULL }) == 0);
+        CHECK_EQ(frame_count(dir), runs[i].frames);
+        snprintf(path, sizeof path, "%s/frame-001.png", dir);
+        snprintf(text, sizeof text,
+                 "1. A triangle with a value at each vertex, here an intensity I (a colour "
+                 "channel; depth and texture coordinates are interpolated alike), snapped to "
+                 "1/256 pixel. Three methods give I at each covered pixel centre, one linear "
+                 "function of x and y on a triangle: bilinear (scan-line), the plane equation "
+                 "and barycentric coordinates. Shown: %s.",
+                 runs[i].shown);
+        if (!caption_reads(path, 12, 32, 2, text)) {
+            FAILF("interpolation --method %s: frame 1's caption does not read \"%s\"",
+                  runs[i].method, text);
+        }
+    }
+    char dir[1024];
+    out_dir("interp_bad", dir, sizeof dir);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "interpolation", "--method", "gouraud",
+                                               "-o", dir, NULL }), 2);
+    CHECK_EQ(sr_test_run_cli((const char *[]){ "explain", "fillpoly", "--method", "plane",
+                                               "-o", dir, NULL }), 2);
+}
+
+/* The example's plane frame states the coefficients solved from the
+ * vertices (6.5,0.7) I=1, (14.3,6.6) I=0.2, (1.4,10.6) I=0.55. */
+SR_TEST(interpolation_plane_caption_gives_the_coefficients)
+{
+    NEEDS_CLI();
+    expect_caption("interp_plane", (const char *[]){ "interpolation", "--method", "plane", NULL },
+                   2, 12,
+                   "2. The plane equation I(x, y) = a x + b y + c, solved from the three "
+                   "vertices (Cramer's rule, twice the area 107.357 as the determinant): "
+                   "a = -0.04905, b = -0.07071, c = 1.3683. At the centre (1.5, 1.5) I = "
+                   "1.1886; then +a per pixel along a row and +b from one row's start (pink) "
+                   "to the next: two additions, no division, per pixel.");
+}
+
+/* interpolation's last frame holds sr_draw's pixels for the triangle with
+ * the vertex values as a colour attribute (screen space): random
+ * triangles on the half-pixel grid, cell for cell, within one step. */
+SR_TEST(interpolation_last_frame_is_what_sr_draw_draws)
+{
+    NEEDS_CLI();
+    sr_rng rng = { 4417 };
+    rt_target t = rt_make(GRID, GRID, 1);
+    int covered = 0;
+    for (int k = 0; k < 8; k++) {
+        double v[6], in[3];
+        for (int i = 0; i < 6; i++) {
+            v[i] = sr_rng_int(&rng, -4, 2 * GRID + 4) * 0.5;
+        }
+        for (int i = 0; i < 3; i++) {
+            in[i] = sr_rng_int(&rng, 0, 100) / 100.0;
+        }
+        char prim[256], is[64], dir[1024], name[32];
+        snprintf(prim, sizeof prim, "%g,%g,%g,%g,%g,%g", v[0], v[1], v[2], v[3], v[4], v[5]);
+        snprintf(is, sizeof is, "%g,%g,%g", in[0], in[1], in[2]);
+        snprintf(name, sizeof name, "interp_%02d", k);
+        out_dir(name, dir, sizeof dir);
+        REQUIRE(run_explain_with("interpolation", "--triangle", prim, "--intensity", is, dir)
+                == 0);
+        int last = frame_count(dir);
+        REQUIRE(last == 7);
+        uint8_t got[GRID * GRID * 3];
+        REQUIRE(frame_cell_colours(dir, last, got));
+        float pos[9], col[12];
+        for (int i = 0; i < 3; i++) {
+            pos[3 * i] = rt_ndc_x(&t, v[2 * i]);
+            pos[3 * i + 1] = rt_ndc_y(&t, v[2 * i + 1]);
+            pos[3 * i + 2] = 0;
+            col[4 * i] = col[4 * i + 1] = col[4 * i + 2] = (float)in[i];
+            col[4 * i + 3] = 1;
+        }
+        /* the frame's empty cells are white: so is the target */
+        sr_clear(t.ctx, t.fb, &(sr_clear_desc){ .color = { 1, 1, 1, 1 } });
+        sr_state st = { .shading = SR_SHADING_UNLIT, .material = { .diffuse = { 1, 1, 1 } },
+                        .interpolation = SR_INTERP_AFFINE };
+        REQUIRE(sr_draw(t.ctx, t.fb, &st, &(sr_draw_desc){ .positions = pos, .vertex_count = 3,
+                                                           .colors = col, .color_size = 4 })
+                == SR_OK);
+        const uint8_t *px = sr_framebuffer_pixels(t.fb);
+        int bad = 0;
+        for (int i = 0; i < GRID * GRID; i++) {
+            covered += memcmp(px + 4 * i, "\xff\xff\xff", 3) != 0;
+            for (int ch = 0; ch < 3; ch++) {
+                bad += abs(got[i * 3 + ch] - px[i * 4 + ch]) > 1;
+            }
+        }
+        if (bad) {
+            FAILF("interpolation %s, I %s: %d channels differ", prim, is, bad);
+        }
+    }
+    CHECK(covered > 100);   /* the triangles do cover pixels */
+    rt_free(&t);
+}

@@ -16,6 +16,8 @@ const OPTIONS = [
     { option: '--interpolation', label: 'interpolation',
       values: ['perspective', 'affine', 'fillspan'],
       applies: (a) => a.name === 'perspective' },
+    { option: '--method', label: 'method', values: ['all', 'bilinear', 'plane', 'barycentric'],
+      applies: (a) => a.name === 'interpolation' },
     { option: '--samples', label: 'samples per pixel', values: ['4', '2', '8', '16'],
       applies: (a) => a.name === 'msaa' },
     { option: '--connectivity', label: 'connectivity', values: ['4', '8'],
@@ -34,7 +36,8 @@ const OPTIONS = [
       applies: (a) => a.name === 'area' },
 ];
 // Options that give a value at each vertex: the page keeps the example's.
-const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity' };
+const VALUES_OPTION = { perspective: '--w', fillpoly: '--intensity',
+                        interpolation: '--intensity' };
 // Lines whose ends the algorithm takes on pixel centres only.
 const ENDS_ON_CENTRES = ['bresenham'];
 const HANDLE_RADIUS = 12;   // frame pixels within which a handle is caught

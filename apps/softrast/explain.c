@@ -81,6 +81,11 @@ static const algorithm algorithms[] = {
         .z = { 1, 0.2, 0.55 }, .count = 3 }, 16, 12, 32,
       "FillPoly/FillSpan: x by 1/m and the intensity by dI along\n"
       "             the edges and each span, split at the middle vertex" },
+    { "interpolation", EX_TRIANGLE, explain_interpolation,
+      { .kind = EX_TRIANGLE, .pts = { { 6.5, 0.7 }, { 14.3, 6.6 }, { 1.4, 10.6 } },
+        .z = { 1, 0.2, 0.55 }, .count = 3 }, 16, 12, 32,
+      "a vertex value over a triangle three ways: bilinear,\n"
+      "             the plane equation, barycentric coordinates (--method)" },
     { "circle", EX_CIRCLE, explain_circle,
       { .kind = EX_CIRCLE, .pts = { { 7.3, 6.6 } }, .z = { 5.4 }, .count = 1 }, 15, 14, 36,
       "the midpoint circle: its decision variable at the pixel\n"
@@ -199,8 +204,13 @@ static void usage(FILE *f)
             "                             clip-space w), 1/64 to 1024 (default 1,1,1)\n"
             "  --row Y                    perspective: the span's scanline (default: the\n"
             "                             triangle's middle)\n"
-            "  --intensity IA,IB,IC       fillpoly: the intensity at each vertex, 0..1\n"
-            "                             (default 1,0.2,0.55)\n"
+            "  --intensity IA,IB,IC       fillpoly, interpolation: the intensity at each\n"
+            "                             vertex, 0..1 (default 1,0.2,0.55)\n"
+            "  --method M                 interpolation: the method whose steps to show,\n"
+            "                             all (the default), bilinear (along the edges,\n"
+            "                             then the spans), plane (I = a x + b y + c,\n"
+            "                             stepped) or barycentric (the edge functions'\n"
+            "                             weights)\n"
             "  --rasterizer R             triangle: whose steps to show, halfspace (edge\n"
             "                             functions, the default), scanline (edge walking)\n"
             "                             or barycentric (the bounding box's weights)\n"
@@ -510,7 +520,8 @@ static const struct {
     { "--w", { "perspective" } },
     { "--row", { "perspective" } },
     { "--interpolation", { "perspective" } },
-    { "--intensity", { "fillpoly" } },
+    { "--intensity", { "fillpoly", "interpolation" } },
+    { "--method", { "interpolation" } },
     { "--rasterizer", { "triangle" } },
     { "--tolerance", { "forward-differencing" } },
     { "--seed", { "floodfill" } },
@@ -600,6 +611,7 @@ int cmd_explain(int argc, char **argv)
     int samples = 4;
     sr_rasterizer rasterizer = SR_RASTER_HALFSPACE;
     ex_interp interpolation = EX_INTERP_PERSPECTIVE;
+    ex_method method = EX_METHOD_ALL;
     int grid_w = 0, grid_h = 0, zoom = 0;
     const char *out = NULL, *sheet = NULL, *webp = NULL;
     for (int i = first + 1; i < argc; i++) {
@@ -677,6 +689,12 @@ int cmd_explain(int argc, char **argv)
             } else {
                 interpolation = (ex_interp)k;
             }
+        } else if (strcmp(a, "--method") == 0) {
+            static const char *const methods[] = { "all", "bilinear", "plane", "barycentric",
+                                                   NULL };
+            int k = 0;
+            ok = parse_choice(a, v, methods, &k);
+            method = (ex_method)k;
         } else if (strcmp(a, "--eye") == 0 || strcmp(a, "--target") == 0 ||
                    strcmp(a, "--up") == 0 || strcmp(a, "--translate") == 0) {
             ex_primitive vp = { 0 };
@@ -816,6 +834,7 @@ int cmd_explain(int argc, char **argv)
     prim.samples = samples;
     prim.rasterizer = rasterizer;
     prim.interpolation = interpolation;
+    prim.method = method;
     if (per_vertex_given) {
         memcpy(prim.z, per_vertex, sizeof per_vertex);
     } else if (prim_given && alg->kind == EX_TRIANGLE) {   /* the example's values */

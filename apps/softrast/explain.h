@@ -22,6 +22,10 @@
  * FillPoly/FillSpan (SR_GOURAUD_INCREMENTAL) does in screen space. */
 typedef enum ex_interp { EX_INTERP_PERSPECTIVE, EX_INTERP_AFFINE, EX_INTERP_FILLSPAN } ex_interp;
 
+/* interpolation: which of the three ways to interpolate it shows. */
+typedef enum ex_method { EX_METHOD_ALL, EX_METHOD_BILINEAR, EX_METHOD_PLANE,
+                         EX_METHOD_BARYCENTRIC } ex_method;
+
 /* transform's viewing pipeline: M_O, the camera and the projection. */
 typedef struct ex_view {
     double rotate;          /* M_O: degrees about y, then */
@@ -54,6 +58,7 @@ typedef struct ex_primitive {
     int connectivity;       /* floodfill: 4 or 8 */
     sr_rasterizer rasterizer;        /* triangle: the rasterizer whose steps are shown */
     ex_interp interpolation;         /* perspective: what the last frame draws */
+    ex_method method;                /* interpolation: the method(s) shown */
     ex_view view;                    /* transform: object coordinates in pts (x, y) and z */
     double highlight[2];             /* gouraud: where the light's highlight peaks */
     double shininess;                /* gouraud: the Blinn-Phong exponent n */
@@ -161,6 +166,7 @@ sr_result explain_clip4d(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_transform(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_gouraud(ex_canvas *c, const ex_primitive *prim);
 sr_result explain_zfight(ex_canvas *c, const ex_primitive *prim);
+sr_result explain_interpolation(ex_canvas *c, const ex_primitive *prim);
 /* Whether transform can show prim on a grid_w x grid_h viewport: a camera
  * frame, every vertex inside near and far; else false with why. */
 bool ex_transform_check(const ex_primitive *prim, int grid_w, int grid_h, char *why,
@@ -199,6 +205,42 @@ void ex_tri_coverage(ex_canvas *c, const ex_tri *t, const char *lead);
  * barycentric rasterizers (explain_triangle draws the half-space one). */
 void ex_tri_scanline_steps(ex_canvas *c, const ex_tri *t);
 void ex_tri_barycentric_steps(ex_canvas *c, const ex_tri *t);
+
+/* t's vertices by y, then x: A (top), B (middle), C (bottom) in o. */
+void ex_tri_order_by_y(const ex_tri *t, int o[3]);
+/* An intensity 0..1 in cell (x, y): "1", ".55", in white on dark cells. */
+void ex_cell_value(ex_canvas *c, int x, int y, float v);
+
+/* explain_interp_methods.c: a vertex value in[i] at each vertex of t
+ * interpolated three ways, each into I (gw x gh floats) at the pixel
+ * centres t covers (ex_tri_covers), NAN at the others. */
+typedef struct ex_interp_row {   /* bilinear: one scanline */
+    int x0, x1;                  /* its covered pixels x0..x1-1; none when x0 = x1 */
+    const char *left, *right;    /* the edges walked ("AC", "AB", "BC") */
+    int fresh;                   /* bit 0: the left walk starts here, bit 1: the right */
+    double xl, xr;               /* their x at the scanline centre */
+    float il, ir, dI;            /* their I there, and FillSpan's step per pixel */
+} ex_interp_row;
+/* explain_fillpoly.c: FillPoly along the edges, FillSpan along each
+ * span, at the pixels of mask (gw x gh, nonzero: covered; NULL: those t
+ * covers) into I, each scanline's walk in rows[gh]. */
+void ex_fillpoly_spans(const ex_tri *t, const double in[3], const uint8_t *mask, int gw, int gh,
+                       float *I, ex_interp_row *rows);
+/* ex_fillpoly_spans at t's pixels. */
+void ex_interp_bilinear(const ex_tri *t, const double in[3], int gw, int gh, float *I,
+                        ex_interp_row *rows);
+/* I = a x + b y + c through the vertices (x, y in pixels) into abc;
+ * false, a = b = 0, when t has no area. */
+bool ex_interp_plane_coefficients(const ex_tri *t, const double in[3], double abc[3]);
+/* The plane at the first centre of the covered pixels' bounding box
+ * (origin: its pixel, -1 when none), stepped in float by a per pixel
+ * and b per row. */
+void ex_interp_plane(const ex_tri *t, const double in[3], int gw, int gh, float *I,
+                     double abc[3], int origin[2]);
+/* I = l0 I0 + l1 I1 + l2 I2, li the barycentric weights of each centre
+ * (ex_tri_weights), kept in lambda (3 per pixel) unless it is NULL. */
+void ex_interp_barycentric(const ex_tri *t, const double in[3], int gw, int gh, float *I,
+                           float *lambda);
 
 /* Snap to the 1/256-pixel grid the rasterizers use. */
 int64_t ex_snap(double v);

@@ -15,24 +15,26 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct walk {
+/* FillPoly's walk down one edge, x by 1/m and the intensity by dI per
+ * scanline, from the first scanline centre (y + 1/2) below the top
+ * vertex, summed in float as sr_fill_gouraud does. */
+typedef struct ex_walk {
     double y0, y1, x0, x1;   /* top and bottom vertex, pixels */
     float i0, i1;
     int row;                 /* the scanline x and I are at; -1: not started */
     double x, dxdy;
     float I, dI;
     const char *name;
-} walk;
+} ex_walk;
 
-static walk edge(const ex_tri *t, const double *in, int a, int b, const char *name)
+static ex_walk ex_walk_edge(const ex_tri *t, const double *in, int a, int b, const char *name)
 {
-    return (walk){ .y0 = t->y[a] / 256.0, .y1 = t->y[b] / 256.0, .x0 = t->x[a] / 256.0,
-                   .x1 = t->x[b] / 256.0, .i0 = (float)in[a], .i1 = (float)in[b], .row = -1,
-                   .name = name };
+    return (ex_walk){ .y0 = t->y[a] / 256.0, .y1 = t->y[b] / 256.0, .x0 = t->x[a] / 256.0,
+                      .x1 = t->x[b] / 256.0, .i0 = (float)in[a], .i1 = (float)in[b], .row = -1,
+                      .name = name };
 }
 
-/* FillPoly's step: the walk brought to scanline y. */
-static void walk_to(walk *w, int y)
+static void ex_walk_to(ex_walk *w, int y)
 {
     if (w->row < 0) {
         double dy = w->y1 - w->y0, pre = y + 0.5 - w->y0;
@@ -49,12 +51,74 @@ static void walk_to(walk *w, int y)
     }
 }
 
+/* B right of AC: AC is the left edge */
+static bool ex_tri_long_edge_left(const ex_tri *t, const int o[3])
+{
+    return (t->x[o[1]] - t->x[o[0]]) * (t->y[o[2]] - t->y[o[0]]) -
+           (t->y[o[1]] - t->y[o[0]]) * (t->x[o[2]] - t->x[o[0]]) > 0;
+}
+
 static sr_rgba grey(float v)
 {
     return (sr_rgba){ v, v, v, 1 };
 }
 
-static void cell_value(ex_canvas *c, int x, int y, float v)
+void ex_fillpoly_spans(const ex_tri *t, const double in[3], const uint8_t *mask, int gw, int gh,
+                       float *I, ex_interp_row *rows)
+{
+    for (int i = 0; i < gw * gh; i++) {
+        I[i] = NAN;
+    }
+    int o[3];   /* A, B, C: the vertices by y (then x) */
+    ex_tri_order_by_y(t, o);
+    ex_walk ac = ex_walk_edge(t, in, o[0], o[2], "AC"), ab = ex_walk_edge(t, in, o[0], o[1], "AB"),
+            bc = ex_walk_edge(t, in, o[1], o[2], "BC");
+    bool ac_left = ex_tri_long_edge_left(t, o);
+    for (int y = 0; y < gh; y++) {
+        ex_interp_row *r = &rows[y];
+        *r = (ex_interp_row){ 0 };
+        int x0 = -1, x1 = -1;
+        for (int x = 0; x < gw; x++) {
+            bool in_mask = mask ? mask[y * gw + x] != 0
+                                : t->area2 != 0 && ex_tri_covers(t, (int64_t)x * 256 + 128,
+                                                                  (int64_t)y * 256 + 128);
+            if (in_mask) {
+                x0 = x0 < 0 ? x : x0;
+                x1 = x + 1;
+            }
+        }
+        if (x0 < 0) {
+            continue;
+        }
+        /* a covered centre lies below A and above C, so AC crosses it; the
+         * other edge is AB above B, BC from B down (a horizontal AB is
+         * never taken: no covered centre is above B then) */
+        ex_walk *other = y + 0.5 < ab.y1 ? &ab : &bc;
+        ex_walk *l = ac_left ? &ac : other, *rt = ac_left ? other : &ac;
+        r->left = l->name;
+        r->right = rt->name;
+        r->fresh = (l->row < 0) | (rt->row < 0) << 1;
+        ex_walk_to(l, y);
+        ex_walk_to(rt, y);
+        double width = rt->x - l->x;
+        float dI = width > 0 ? (float)((rt->I - l->I) / width) : 0.0f;
+        /* FillSpan: the first centre's value, then dI per pixel */
+        float v = (float)(l->I + (x0 + 0.5 - l->x) * dI);
+        for (int x = x0; x < x1; x++) {
+            I[y * gw + x] = v;
+            v += dI;
+        }
+        r->x0 = x0;
+        r->x1 = x1;
+        r->xl = l->x;
+        r->xr = rt->x;
+        r->il = l->I;
+        r->ir = rt->I;
+        r->dI = dI;
+    }
+}
+
+void ex_cell_value(ex_canvas *c, int x, int y, float v)
 {
     char s[16];
     snprintf(s, sizeof s, "%.2f", v);
@@ -81,25 +145,20 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
     ex_tri t;
     double in[3];
     ex_tri_setup_at(&t, in, prim, 0);
-    /* A, B, C: the vertices by y (then x) */
-    int o[3] = { 0, 1, 2 };
-    for (int i = 0; i < 3; i++) {
-        for (int j = i + 1; j < 3; j++) {
-            if (t.y[o[j]] < t.y[o[i]] || (t.y[o[j]] == t.y[o[i]] && t.x[o[j]] < t.x[o[i]])) {
-                int k = o[i];
-                o[i] = o[j];
-                o[j] = k;
-            }
-        }
-    }
-    walk ac = edge(&t, in, o[0], o[2], "AC"), ab = edge(&t, in, o[0], o[1], "AB"),
-         bc = edge(&t, in, o[1], o[2], "BC");
+    int o[3];   /* A, B, C: the vertices by y (then x) */
+    ex_tri_order_by_y(&t, o);
+    /* the edges' walks, for their increments */
+    ex_walk ac = ex_walk_edge(&t, in, o[0], o[2], "AC"),
+            ab = ex_walk_edge(&t, in, o[0], o[1], "AB"),
+            bc = ex_walk_edge(&t, in, o[1], o[2], "BC");
     int gw = c->grid_w, gh = c->grid_h;
     uint8_t *mask = calloc((size_t)gw * (size_t)gh, 1);
     float *shade = calloc((size_t)gw * (size_t)gh, sizeof *shade);
-    if (!mask || !shade) {
+    ex_interp_row *rows = calloc((size_t)gh, sizeof *rows);
+    if (!mask || !shade || !rows) {
         free(mask);
         free(shade);
+        free(rows);
         return SR_OUT_OF_MEMORY;
     }
     sr_point2 pts[3] = { prim->pts[0], prim->pts[1], prim->pts[2] };
@@ -109,11 +168,10 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
     if (r != SR_OK) {
         free(mask);
         free(shade);
+        free(rows);
         return r;
     }
-    /* B right of AC: AC is the left edge */
-    bool ac_left = (t.x[o[1]] - t.x[o[0]]) * (t.y[o[2]] - t.y[o[0]]) -
-                   (t.y[o[1]] - t.y[o[0]]) * (t.x[o[2]] - t.x[o[0]]) > 0;
+    ex_fillpoly_spans(&t, in, mask, gw, gh, shade, rows);
     char cap[900];
 
     ex_begin(c);
@@ -137,24 +195,10 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
     ex_end(c, cap);
 
     for (int y = 0; y < gh; y++) {
-        int x0 = -1, x1 = -1;
-        for (int x = 0; x < gw; x++) {
-            if (mask[y * gw + x]) {
-                x0 = x0 < 0 ? x : x0;
-                x1 = x + 1;
-            }
-        }
-        if (x0 < 0) {
+        const ex_interp_row *row = &rows[y];
+        if (row->x0 == row->x1) {
             continue;
         }
-        walk *other = y + 0.5 < ab.y1 ? &ab : &bc;
-        walk *l = ac_left ? &ac : other, *rt = ac_left ? other : &ac;
-        bool fresh_l = l->row < 0, fresh_r = rt->row < 0;
-        walk_to(l, y);
-        walk_to(rt, y);
-        double width = rt->x - l->x;
-        float dI = width > 0 ? (float)((rt->I - l->I) / width) : 0.0f;
-        float I = (float)(l->I + (x0 + 0.5 - l->x) * dI), first = I;
         ex_begin(c);
         for (int yy = 0; yy < y; yy++) {
             for (int x = 0; x < gw; x++) {
@@ -163,24 +207,22 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
                 }
             }
         }
-        for (int x = x0; x < x1; x++) {
-            shade[y * gw + x] = I;
-            ex_cell(c, x, y, grey(I));
-            cell_value(c, x, y, I);
-            I += dI;
+        for (int x = row->x0; x < row->x1; x++) {
+            ex_cell(c, x, y, grey(shade[y * gw + x]));
+            ex_cell_value(c, x, y, shade[y * gw + x]);
         }
         draw_tri(c, &t, o, in);
         ex_segment(c, (sr_point2){ 0, y + 0.5 }, (sr_point2){ gw, y + 0.5 }, EX_HILITE, 1);
-        ex_dot(c, (sr_point2){ l->x, y + 0.5 }, 4, EX_INK);
-        ex_dot(c, (sr_point2){ rt->x, y + 0.5 }, 4, EX_INK);
+        ex_dot(c, (sr_point2){ row->xl, y + 0.5 }, 4, EX_INK);
+        ex_dot(c, (sr_point2){ row->xr, y + 0.5 }, 4, EX_INK);
         snprintf(cap, sizeof cap,
                  "%d. Scanline %d (centre y = %d.5). Left %s: x = %.3f, I = %.3f (%s). Right "
                  "%s: x = %.3f, I = %.3f (%s). FillSpan: dI = (I_R - I_L) / (x_R - x_L) = "
                  "%.4f per pixel, I = %.3f at the first centre x = %d.5, pixels %d..%d.",
-                 c->frame_count + 1, y, y, l->name, l->x, l->I,
-                 fresh_l ? "starts: first sample" : "stepped by dX, dI", rt->name, rt->x, rt->I,
-                 fresh_r ? "starts: first sample" : "stepped by dX, dI", dI, first, x0, x0,
-                 x1 - 1);
+                 c->frame_count + 1, y, y, row->left, row->xl, row->il,
+                 row->fresh & 1 ? "starts: first sample" : "stepped by dX, dI", row->right,
+                 row->xr, row->ir, row->fresh & 2 ? "starts: first sample" : "stepped by dX, dI",
+                 row->dI, shade[y * gw + row->x0], row->x0, row->x0, row->x1 - 1);
         ex_end(c, cap);
     }
 
@@ -202,5 +244,6 @@ sr_result explain_fillpoly(ex_canvas *c, const ex_primitive *prim)
     ex_end(c, cap);
     free(mask);
     free(shade);
+    free(rows);
     return c->error;
 }

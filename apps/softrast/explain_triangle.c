@@ -84,6 +84,22 @@ void ex_tri_weights(const ex_tri *t, int64_t sx, int64_t sy, double l[3])
     }
 }
 
+void ex_tri_order_by_y(const ex_tri *t, int o[3])
+{
+    o[0] = 0;
+    o[1] = 1;
+    o[2] = 2;
+    for (int i = 0; i < 3; i++) {
+        for (int j = i + 1; j < 3; j++) {
+            if (t->y[o[j]] < t->y[o[i]] || (t->y[o[j]] == t->y[o[i]] && t->x[o[j]] < t->x[o[i]])) {
+                int k = o[i];
+                o[i] = o[j];
+                o[j] = k;
+            }
+        }
+    }
+}
+
 /* Whether no edge function is negative at the centre of (px, py);
  * *strict: whether all are positive. */
 static bool on_or_inside(const tri *t, int px, int py, bool *strict)

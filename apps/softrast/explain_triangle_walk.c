@@ -70,16 +70,8 @@ static void mark(ex_canvas *c, const ex_tri *t, int x, int y, sr_rgba fill)
 
 void ex_tri_scanline_steps(ex_canvas *c, const ex_tri *t)
 {
-    int o[3] = { 0, 1, 2 };   /* by y, then x */
-    for (int i = 0; i < 3; i++) {
-        for (int j = i + 1; j < 3; j++) {
-            if (t->y[o[j]] < t->y[o[i]] || (t->y[o[j]] == t->y[o[i]] && t->x[o[j]] < t->x[o[i]])) {
-                int k = o[i];
-                o[i] = o[j];
-                o[j] = k;
-            }
-        }
-    }
+    int o[3];   /* by y, then x */
+    ex_tri_order_by_y(t, o);
     int top = o[0], mid = o[1], bot = o[2];
     double y_top = px(t->y[top]), y_mid = px(t->y[mid]), y_bot = px(t->y[bot]);
     bool long_left = cross_x(t, top, bot, y_mid) < px(t->x[mid]);
