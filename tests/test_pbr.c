@@ -2989,3 +2989,71 @@ SR_TEST(a_radiance_map_a_live_program_reads_is_not_evicted)
     CHECK_EQ(f.builds, before);
     map_scene_close(&f);
 }
+
+/* Programs of n roughnesses made and destroyed in turn, frame after frame
+ * (a program per draw, as `softrast render` makes them), from f's
+ * environment; the maps each frame built in builds[frame]. */
+static void roughness_frames(map_scene *f, int n, int frames, size_t *builds)
+{
+    for (int frame = 0; frame < frames; frame++) {
+        size_t before = f->builds;
+        for (int k = 0; k < n; k++) {
+            sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 },
+                                  .roughness = 0.4f + 0.55f * (float)k / (float)n };
+            sr_pbr_desc d = lit_desc(&m, &f->view, &f->proj);
+            d.environment = f->env;
+            sr_pbr *p;
+            REQUIRE(sr_make_pbr_program(f->ctx, &d, &p) == SR_OK);
+            sr_destroy_pbr_program(f->ctx, p);
+        }
+        builds[frame] = f->builds - before;
+    }
+}
+
+/* A scene of more roughnesses than SR_OCT_CACHE drawn in turn: the second
+ * frame builds again the maps the first evicted, and the cache, seeing
+ * them asked for again, grows to hold them all; the third frame builds
+ * none (least-recently-used order alone evicted each map just before it
+ * was asked for, and every draw built one). */
+SR_TEST(a_scene_of_more_roughnesses_than_the_cache_holds_stops_building_maps)
+{
+    static const int counts[] = { 40, 100 };
+    for (int i = 0; i < 2; i++) {
+        map_scene f;
+        REQUIRE(map_scene_open(&f));
+        int n = counts[i];
+        size_t builds[3];
+        roughness_frames(&f, n, 3, builds);
+        CHECK_EQ(builds[0], (size_t)n);
+        CHECK_EQ(builds[1], (size_t)(n - SR_OCT_CACHE));
+        CHECK_EQ(builds[2], (size_t)0);
+        CHECK_EQ(f.ctx->oct.count, n);
+        map_scene_close(&f);
+    }
+}
+
+/* Maps asked for once each (a new environment per program, all kept
+ * alive) never grow the cache: it stays at SR_OCT_CACHE maps, the least
+ * recently asked-for making way. */
+SR_TEST(radiance_maps_asked_for_once_do_not_grow_the_cache)
+{
+    map_scene f;
+    REQUIRE(map_scene_open(&f));
+    enum { N = 2 * SR_OCT_CACHE };
+    sr_environment *envs[N];
+    sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .roughness = 0.6f };
+    sr_pbr_desc d = lit_desc(&m, &f.view, &f.proj);
+    for (int k = 0; k < N; k++) {
+        REQUIRE(sr_make_environment(f.ctx, NULL, &envs[k]) == SR_OK);
+        d.environment = envs[k];
+        sr_pbr *p;
+        REQUIRE(sr_make_pbr_program(f.ctx, &d, &p) == SR_OK);
+        sr_destroy_pbr_program(f.ctx, p);
+    }
+    CHECK_EQ(f.builds, (size_t)N);
+    CHECK_EQ(f.ctx->oct.count, SR_OCT_CACHE);
+    for (int k = 0; k < N; k++) {
+        sr_destroy_environment(f.ctx, envs[k]);
+    }
+    map_scene_close(&f);
+}
