@@ -2899,8 +2899,8 @@ SR_TEST(a_scene_of_twelve_roughnesses_builds_each_radiance_map_once)
     map_scene_close(&f);
 }
 
-/* An environment made anew every frame (animated) leaves its maps behind
- * when it is destroyed: those make way, and the programs of the newest
+/* An environment made anew every frame (animated): its maps go when it is
+ * destroyed (they used to stay and make way), and the programs of the newest
  * environment share its map again however many came before (they used to
  * fill the cache for good, and every later program built its own). */
 SR_TEST(the_radiance_maps_of_destroyed_environments_make_way)
@@ -3056,4 +3056,71 @@ SR_TEST(radiance_maps_asked_for_once_do_not_grow_the_cache)
         sr_destroy_environment(f.ctx, envs[k]);
     }
     map_scene_close(&f);
+}
+
+/* An allocator that keeps the radiance maps alive (allocated, not yet
+ * freed). */
+typedef struct live_maps {
+    void *map[64];
+    int count;
+} live_maps;
+static void *live_map_alloc(size_t size, void *user)
+{
+    live_maps *l = user;
+    void *p = malloc(size);
+    if (p && size == MAP_BYTES && l->count < 64) {
+        l->map[l->count++] = p;
+    }
+    return p;
+}
+static void live_map_free(void *ptr, void *user)
+{
+    live_maps *l = user;
+    for (int i = 0; i < l->count; i++) {
+        if (l->map[i] == ptr) {
+            l->map[i] = l->map[--l->count];
+            break;
+        }
+    }
+    free(ptr);
+}
+
+/* Destroying an environment frees its maps in the context's cache at once
+ * (they used to stay until evicted), and a map a live program still reads
+ * when the program is destroyed; the other environment's stay. */
+SR_TEST(destroying_an_environment_frees_its_radiance_maps)
+{
+    live_maps live = { .count = 0 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = MAP_THREADS,
+                                                .allocator = { live_map_alloc, live_map_free,
+                                                               &live } },
+                            &ctx) == SR_OK);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_environment *a, *b;
+    REQUIRE(sr_make_environment(ctx, NULL, &a) == SR_OK);
+    REQUIRE(sr_make_environment(ctx, &(sr_environment_desc){ .intensity = 2.0f }, &b) == SR_OK);
+    enum { N = 5 };
+    sr_pbr *kept = NULL;
+    for (int k = 0; k < 2 * N; k++) {
+        sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 },
+                              .roughness = 0.4f + 0.1f * (float)(k % N) };
+        sr_pbr_desc d = lit_desc(&m, &view, &proj);
+        d.environment = k < N ? a : b;
+        sr_pbr *p;
+        REQUIRE(sr_make_pbr_program(ctx, &d, &p) == SR_OK);
+        if (k == 2 * N - 1) {
+            kept = p;
+        } else {
+            sr_destroy_pbr_program(ctx, p);
+        }
+    }
+    CHECK_EQ(live.count, 2 * N);
+    sr_destroy_environment(ctx, a);
+    CHECK_EQ(live.count, N);
+    sr_destroy_environment(ctx, b);
+    CHECK_EQ(live.count, 1);
+    sr_destroy_pbr_program(ctx, kept);
+    CHECK_EQ(live.count, 0);
+    sr_destroy_context(ctx);
 }

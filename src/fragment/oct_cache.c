@@ -1,6 +1,7 @@
 /* oct_cache.c - the context's cache of prefiltered radiance maps
  * (oct_cache.h): least recently asked-for maps out, where no live program
- * reads them, and growth where evicted maps are asked for again.  Called
+ * reads them, growth where evicted maps are asked for again, and a
+ * destroyed environment's maps out at once.  Called
  * by whoever makes and destroys the context's programs, one thread at a
  * time; the maps are the same built or shared, so the order of the calls
  * never changes a pixel. */
@@ -95,14 +96,44 @@ bool sr__oct_cache_put(sr_context *ctx, uint64_t env, uint32_t roughness, float 
     return true;
 }
 
+/* Free entry i's map and move the last entry into its place. */
+static void drop(sr_context *ctx, sr__oct_cache *c, int i)
+{
+    sr__free(ctx, c->entries[i].map);
+    c->entries[i] = c->entries[--c->count];
+}
+
 void sr__oct_cache_release(sr_context *ctx, const float *map)
 {
     sr__oct_cache *c = &ctx->oct;
     for (int i = 0; i < c->count; i++) {
         sr__oct_entry *e = &c->entries[i];
         if (e->map == map && e->users > 0) {
-            e->users--;
+            if (--e->users == 0 && e->env == 0) {
+                drop(ctx, c, i);
+            }
             return;
+        }
+    }
+}
+
+void sr__oct_cache_forget(sr_context *ctx, uint64_t env)
+{
+    sr__oct_cache *c = &ctx->oct;
+    for (int i = 0; i < c->count;) {
+        sr__oct_entry *e = &c->entries[i];
+        if (e->env != env) {
+            i++;
+        } else if (e->users > 0) {
+            e->env = 0;
+            i++;
+        } else {
+            drop(ctx, c, i);
+        }
+    }
+    for (int i = 0; i < SR_OCT_CACHE_MAX; i++) {
+        if (c->ghosts[i].env == env) {
+            c->ghosts[i] = (sr__oct_ghost){ 0, 0 };
         }
     }
 }

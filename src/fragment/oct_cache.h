@@ -11,9 +11,11 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-/* A map of the environment with this serial at this roughness (its
- * float's bits), the live programs reading it (it is not evicted while
- * they do), and when it was last asked for (the cache's clock then). */
+/* A map of the environment with this serial (0: destroyed while a program
+ * read the map, which goes when the last such program does) at this
+ * roughness (its float's bits), the live programs reading it (it is not
+ * evicted while they do), and when it was last asked for (the cache's
+ * clock then). */
 typedef struct sr__oct_entry {
     uint64_t env;
     uint32_t roughness;
@@ -54,6 +56,9 @@ float *sr__oct_cache_get(sr_context *ctx, uint64_t env, uint32_t roughness);
 bool sr__oct_cache_put(sr_context *ctx, uint64_t env, uint32_t roughness, float *map);
 /* A program no longer reads the cached map `map`. */
 void sr__oct_cache_release(sr_context *ctx, const float *map);
+/* The environment with this serial is destroyed: its maps go now, or
+ * where live programs read one, when the last of them is destroyed. */
+void sr__oct_cache_forget(sr_context *ctx, uint64_t env);
 /* Free every map and the cache's memory (sr_destroy_context). */
 void sr__oct_cache_free(sr_context *ctx);
 
