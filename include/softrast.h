@@ -782,7 +782,11 @@ typedef struct sr_environment_desc {
  * threads; the result is the same for any thread count.  desc may be NULL
  * (the built-in studio, whose levels and SH were computed when the library
  * was built: making it only copies them).  Release it with
- * sr_destroy_environment. */
+ * sr_destroy_environment and the same ctx, which also frees the
+ * prefiltered radiance maps ctx's pbr programs made of it (a map a live
+ * program reads, when that program is destroyed).  Programs made with
+ * another context leave theirs in that context's cache until they make
+ * way for new maps: at most what the cache holds (docs/performance.md). */
 SR_API sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
                                      sr_environment **out);
 SR_API void      sr_destroy_environment(sr_context *ctx, sr_environment *env);

@@ -29,7 +29,7 @@ if [ ! -e "$cross/toolchain.cmake" ]; then
 fi
 cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$cross/toolchain.cmake" \
     -DCMAKE_BUILD_TYPE=Release -DSR_BUILD_BENCH=ON -DSR_WITH_ASSIMP=OFF \
-    -DSR_BUILD_PYTHON=OFF -DSR_BUILD_EXAMPLES=OFF -DSR_WERROR=OFF >/dev/null
+    -DSR_BUILD_PYTHON=OFF -DSR_BUILD_EXAMPLES=OFF -DSR_WERROR="${SR_WERROR:-ON}" >/dev/null
 cmake --build "$build" -j2 --target softrast-bench >/dev/null
 [ $# -gt 0 ] || set -- teapot bunny phong msaa4 lines
 size=${SR_NEON_SIZE:-480x270}

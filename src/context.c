@@ -211,8 +211,6 @@ void sr_destroy_context(sr_context *ctx)
     sr__pool_destroy(&ctx->allocator, ctx->pool);
     sr__scratch_destroy(&ctx->allocator, ctx->scratch);
     sr__free(ctx, ctx->gradient);
-    for (int i = 0; i < SR_OCT_CACHE; i++) {
-        sr__free(ctx, ctx->oct_cache[i].map);
-    }
+    sr__oct_cache_free(ctx);
     ctx->allocator.free(ctx, ctx->allocator.user);
 }

@@ -6,27 +6,13 @@
 
 #include "softrast.h"
 #include "alloc.h"
+#include "fragment/oct_cache.h"
 
 #include <stdarg.h>
 
 struct sr_pool;
 struct sr_scratch;
 struct sr__gradient;
-
-/* A prefiltered-radiance map of the pbr programs (fragment/pbr.c): of the
- * environment with this serial at this roughness (its float's bits), the
- * live programs reading it (it is not evicted while they do), and when it
- * was last asked for (the context's oct_clock then). */
-typedef struct sr__oct_entry {
-    uint64_t env;
-    uint32_t roughness;
-    int users;
-    uint64_t used;
-    float *map;
-} sr__oct_entry;
-/* 64 KiB each, allocated as they are first needed: room for the distinct
- * roughnesses of a scene's materials, drawn again every frame. */
-#define SR_OCT_CACHE 32
 
 struct sr_context {
     sr_allocator allocator;
@@ -37,11 +23,11 @@ struct sr_context {
     struct sr_pool *pool;          /* NULL when threads == 1 */
     struct sr_scratch *scratch;    /* draw-call working memory, grown on demand */
     struct sr__gradient *gradient; /* the last painted fill's gradient (paint_api.c) */
-    /* Maps the pbr programs made with this context share, kept until it is
-     * destroyed: a scene's draws make a program each, mostly of a few
-     * materials, and building a map is 4096 queries of the environment. */
-    sr__oct_entry oct_cache[SR_OCT_CACHE];
-    uint64_t oct_clock;            /* counts the cache's look-ups: its LRU order */
+    /* Maps the pbr programs made with this context share, kept after their
+     * programs (fragment/oct_cache.h): a scene's draws make a program
+     * each, mostly of a few materials, and building a map is 4096 queries
+     * of the environment. */
+    sr__oct_cache oct;
     sr_draw_info last_draw;
     char error[256];
 };

@@ -3060,8 +3060,8 @@ SR_TEST(a_scene_of_twelve_roughnesses_builds_each_radiance_map_once)
     map_scene_close(&f);
 }
 
-/* An environment made anew every frame (animated) leaves its maps behind
- * when it is destroyed: those make way, and the programs of the newest
+/* An environment made anew every frame (animated): its maps go when it is
+ * destroyed (they used to stay and make way), and the programs of the newest
  * environment share its map again however many came before (they used to
  * fill the cache for good, and every later program built its own). */
 SR_TEST(the_radiance_maps_of_destroyed_environments_make_way)
@@ -3149,4 +3149,139 @@ SR_TEST(a_radiance_map_a_live_program_reads_is_not_evicted)
     }
     CHECK_EQ(f.builds, before);
     map_scene_close(&f);
+}
+
+/* Programs of n roughnesses made and destroyed in turn, frame after frame
+ * (a program per draw, as `softrast render` makes them), from f's
+ * environment; the maps each frame built in builds[frame]. */
+static void roughness_frames(map_scene *f, int n, int frames, size_t *builds)
+{
+    for (int frame = 0; frame < frames; frame++) {
+        size_t before = f->builds;
+        for (int k = 0; k < n; k++) {
+            sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 },
+                                  .roughness = 0.4f + 0.55f * (float)k / (float)n };
+            sr_pbr_desc d = lit_desc(&m, &f->view, &f->proj);
+            d.environment = f->env;
+            sr_pbr *p;
+            REQUIRE(sr_make_pbr_program(f->ctx, &d, &p) == SR_OK);
+            sr_destroy_pbr_program(f->ctx, p);
+        }
+        builds[frame] = f->builds - before;
+    }
+}
+
+/* A scene of more roughnesses than SR_OCT_CACHE drawn in turn: the second
+ * frame builds again the maps the first evicted, and the cache, seeing
+ * them asked for again, grows to hold them all; the third frame builds
+ * none (least-recently-used order alone evicted each map just before it
+ * was asked for, and every draw built one). */
+SR_TEST(a_scene_of_more_roughnesses_than_the_cache_holds_stops_building_maps)
+{
+    static const int counts[] = { 40, 100 };
+    for (int i = 0; i < 2; i++) {
+        map_scene f;
+        REQUIRE(map_scene_open(&f));
+        int n = counts[i];
+        size_t builds[3];
+        roughness_frames(&f, n, 3, builds);
+        CHECK_EQ(builds[0], (size_t)n);
+        CHECK_EQ(builds[1], (size_t)(n - SR_OCT_CACHE));
+        CHECK_EQ(builds[2], (size_t)0);
+        CHECK_EQ(f.ctx->oct.count, n);
+        map_scene_close(&f);
+    }
+}
+
+/* Maps asked for once each (a new environment per program, all kept
+ * alive) never grow the cache: it stays at SR_OCT_CACHE maps, the least
+ * recently asked-for making way. */
+SR_TEST(radiance_maps_asked_for_once_do_not_grow_the_cache)
+{
+    map_scene f;
+    REQUIRE(map_scene_open(&f));
+    enum { N = 2 * SR_OCT_CACHE };
+    sr_environment *envs[N];
+    sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .roughness = 0.6f };
+    sr_pbr_desc d = lit_desc(&m, &f.view, &f.proj);
+    for (int k = 0; k < N; k++) {
+        REQUIRE(sr_make_environment(f.ctx, NULL, &envs[k]) == SR_OK);
+        d.environment = envs[k];
+        sr_pbr *p;
+        REQUIRE(sr_make_pbr_program(f.ctx, &d, &p) == SR_OK);
+        sr_destroy_pbr_program(f.ctx, p);
+    }
+    CHECK_EQ(f.builds, (size_t)N);
+    CHECK_EQ(f.ctx->oct.count, SR_OCT_CACHE);
+    for (int k = 0; k < N; k++) {
+        sr_destroy_environment(f.ctx, envs[k]);
+    }
+    map_scene_close(&f);
+}
+
+/* An allocator that keeps the radiance maps alive (allocated, not yet
+ * freed). */
+typedef struct live_maps {
+    void *map[64];
+    int count;
+} live_maps;
+static void *live_map_alloc(size_t size, void *user)
+{
+    live_maps *l = user;
+    void *p = malloc(size);
+    if (p && size == MAP_BYTES && l->count < 64) {
+        l->map[l->count++] = p;
+    }
+    return p;
+}
+static void live_map_free(void *ptr, void *user)
+{
+    live_maps *l = user;
+    for (int i = 0; i < l->count; i++) {
+        if (l->map[i] == ptr) {
+            l->map[i] = l->map[--l->count];
+            break;
+        }
+    }
+    free(ptr);
+}
+
+/* Destroying an environment frees its maps in the context's cache at once
+ * (they used to stay until evicted), and a map a live program still reads
+ * when the program is destroyed; the other environment's stay. */
+SR_TEST(destroying_an_environment_frees_its_radiance_maps)
+{
+    live_maps live = { .count = 0 };
+    sr_context *ctx;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = MAP_THREADS,
+                                                .allocator = { live_map_alloc, live_map_free,
+                                                               &live } },
+                            &ctx) == SR_OK);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_environment *a, *b;
+    REQUIRE(sr_make_environment(ctx, NULL, &a) == SR_OK);
+    REQUIRE(sr_make_environment(ctx, &(sr_environment_desc){ .intensity = 2.0f }, &b) == SR_OK);
+    enum { N = 5 };
+    sr_pbr *kept = NULL;
+    for (int k = 0; k < 2 * N; k++) {
+        sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 },
+                              .roughness = 0.4f + 0.1f * (float)(k % N) };
+        sr_pbr_desc d = lit_desc(&m, &view, &proj);
+        d.environment = k < N ? a : b;
+        sr_pbr *p;
+        REQUIRE(sr_make_pbr_program(ctx, &d, &p) == SR_OK);
+        if (k == 2 * N - 1) {
+            kept = p;
+        } else {
+            sr_destroy_pbr_program(ctx, p);
+        }
+    }
+    CHECK_EQ(live.count, 2 * N);
+    sr_destroy_environment(ctx, a);
+    CHECK_EQ(live.count, N);
+    sr_destroy_environment(ctx, b);
+    CHECK_EQ(live.count, 1);
+    sr_destroy_pbr_program(ctx, kept);
+    CHECK_EQ(live.count, 0);
+    sr_destroy_context(ctx);
 }

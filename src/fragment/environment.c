@@ -282,6 +282,8 @@ void sr_destroy_environment(sr_context *ctx, sr_environment *env)
     if (!ctx || !env) {
         return;
     }
+    /* Its maps in this context's cache are never asked for again. */
+    sr__oct_cache_forget(ctx, env->serial);
     for (int k = 0; k < SR_ENVIRONMENT_LEVELS; k++) {
         sr__free(ctx, env->level[k].rgb);
     }

@@ -105,56 +105,19 @@ static float *oct_build(sr_context *ctx, const sr_environment *env, int n, float
 }
 
 /* oct_build's map of env at `roughness`, shared through the context's
- * cache (owned false: the context frees it), else the program's own.  A
- * miss with the cache full takes the slot of the least recently asked-for
- * map that no live program reads: the maps of destroyed or animated
- * environments and of materials no longer drawn make way, where they
- * used to hold their slots for the context's life and every later map
- * was built by each program again.  The order is the calls' order on the
- * context (one thread at a time), so the bytes drawn never depend on it:
- * a map is the same built or shared.  Not on a fixed budget (an arena),
- * which a cache that keeps maps after their programs would wear down. */
+ * cache (owned false: the context frees it), else the program's own. */
 static float *oct_shared(sr_context *ctx, const sr_environment *env, float roughness,
                          bool *owned)
 {
     uint32_t bits;
     memcpy(&bits, &roughness, sizeof bits);
-    sr__oct_entry *slot = NULL;
-    uint64_t now = ++ctx->oct_clock;
-    for (int i = 0; i < SR_OCT_CACHE && !ctx->arena; i++) {
-        sr__oct_entry *e = &ctx->oct_cache[i];
-        if (e->map && e->env == env->serial && e->roughness == bits) {
-            e->users++;
-            e->used = now;
-            *owned = false;
-            return e->map;
-        }
-        /* An empty slot first, else the oldest unread one. */
-        if (!e->map) {
-            slot = !slot || slot->map ? e : slot;
-        } else if (e->users == 0 && (!slot || (slot->map && e->used < slot->used))) {
-            slot = e;
-        }
-    }
-    float *map = oct_build(ctx, env, OCT_SIZE, roughness);
-    *owned = !slot || !map;
-    if (slot && map) {
-        sr__free(ctx, slot->map);
-        *slot = (sr__oct_entry){ env->serial, bits, 1, now, map };
+    float *map = sr__oct_cache_get(ctx, env->serial, bits);
+    *owned = false;
+    if (!map) {
+        map = oct_build(ctx, env, OCT_SIZE, roughness);
+        *owned = !map || !sr__oct_cache_put(ctx, env->serial, bits, map);
     }
     return map;
-}
-
-/* A program made with ctx no longer reads the cached map `map`. */
-static void oct_release(sr_context *ctx, const float *map)
-{
-    for (int i = 0; i < SR_OCT_CACHE; i++) {
-        sr__oct_entry *e = &ctx->oct_cache[i];
-        if (e->map == map && e->users > 0) {
-            e->users--;
-            return;
-        }
-    }
 }
 
 /* The irradiance polynomial's terms: 1, y, z, x, xy, yz, z^2, xz, x^2 - y^2. */
@@ -2044,12 +2007,12 @@ void sr_destroy_pbr_program(sr_context *ctx, sr_pbr *p)
         if (p->oct_owned) {
             sr__free(ctx, p->oct);
         } else if (p->oct) {
-            oct_release(ctx, p->oct);
+            sr__oct_cache_release(ctx, p->oct);
         }
         if (p->oct_coat_owned) {
             sr__free(ctx, p->oct_coat);
         } else if (p->oct_coat) {
-            oct_release(ctx, p->oct_coat);
+            sr__oct_cache_release(ctx, p->oct_coat);
         }
         sr__free(ctx, p);
     }
