@@ -4,6 +4,7 @@
  * clip edge.  Pure computation on the caller's thread; the framebuffer is
  * not involved. */
 #include "context.h"
+#include "draw2d/polyfill.h"
 
 #include <math.h>
 #include <string.h>
@@ -66,6 +67,13 @@ static int clip_stage(const half_plane *h, const sr_point2 *in, int n, sr_point2
         ds = dp;
     }
     return m;
+}
+
+int sr__clip_axis_stage(int axis, double bound, double sign, const sr_point2 *in, int n,
+                        sr_point2 *out)
+{
+    half_plane h = { .axis = axis, .bound = bound, .sign = sign };
+    return clip_stage(&h, in, n, out);
 }
 
 #define MAX_CLIP_POINTS (1 << 26)

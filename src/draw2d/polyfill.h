@@ -59,6 +59,17 @@ sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count
  * use it; sr__scan_edge_table is the reference it is tested against. */
 sr_result sr__scan_winding_cells(sr_context *ctx, const sr__edge2 *edges, int count,
                                  sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user);
+/* One Sutherland-Hodgman stage against the half-plane sign * (x or y,
+ * by axis 0 or 1, - bound) >= 0; returns the points written to out
+ * (room for 3/2 n + 1 needed) (polyclip.c). */
+int sr__clip_axis_stage(int axis, double bound, double sign, const sr_point2 *in, int n,
+                        sr_point2 *out);
+/* A validated polygon of finite points cut, contour by contour, to the
+ * window grown by a guard margin and kept within SR_MAX_COORD2D: inside
+ * that rectangle every point keeps its winding number.  out->points and
+ * out->contour_counts are allocated on ctx (guardclip.c). */
+sr_result sr__guard_clip(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
+                         sr__window win, sr_polygon2 *out);
 /* Exact area coverage by signed-area accumulation (docs/raster-rules.md §10.3).
  * It works only on the columns the edges reach and computes a row with
  * only vertical edges once for the rows below it that have the same ones
