@@ -15,29 +15,17 @@
 #include "context.h"
 #include "draw2d/polyfill.h"
 
-#include <math.h>
-
-/* Far enough outside every window that a clipped edge keeps its direction
- * through the window to well below 1/256 px (its end moves by a rounding
- * of the guard line's distance), near enough that a window at the far end
- * of the budget still has room around it. */
+/* A cut edge ends on a guard line at a point rounded to 1/256 px, which
+ * turns it by about (distance / GUARD_MARGIN) / 512 px in the window: far
+ * out, that is a hair no aliased sample has been seen to cross
+ * (tests/test_draw2d_guard.c).  The guard stays within the budget, so a
+ * window that itself reaches past it (sr_polygon_coverage's origin may
+ * lie at SR_MAX_COORD2D) has its guard line at the budget's edge. */
 #define GUARD_MARGIN 131072.0
 
 static double clamp_budget(double v)
 {
     return v < -SR_MAX_COORD2D ? -SR_MAX_COORD2D : v > SR_MAX_COORD2D ? SR_MAX_COORD2D : v;
-}
-
-/* Make *buf hold at least `need` points (its contents need not survive). */
-static bool reserve(sr_context *ctx, sr_point2 **buf, long long *cap, long long need)
-{
-    if (need <= *cap) {
-        return true;
-    }
-    sr__free(ctx, *buf);
-    *buf = sr__alloc(ctx, (size_t)need * sizeof **buf);
-    *cap = *buf ? need : 0;
-    return *buf != NULL;
 }
 
 sr_result sr__guard_clip(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
@@ -51,46 +39,31 @@ sr_result sr__guard_clip(sr_context *ctx, const char *fn, const sr_polygon2 *pol
     static const double sign[4] = { +1, -1, -1, +1 };
     int contours = poly->contour_counts ? poly->contour_count : 1;
     *out = (sr_polygon2){0};
-    long long cap_out = 0, cap_a = 0, cap_b = 0, total = 0;
-    sr_point2 *res = NULL, *a = NULL, *b = NULL;
+    sr__clip_scratch sc = { 0 };
+    long long cap_out = 0, total = 0;
+    sr_point2 *res = NULL;
     int *counts = sr__alloc(ctx, (size_t)(contours > 0 ? contours : 1) * sizeof *counts);
     sr_result r = counts ? SR_OK : SR_OUT_OF_MEMORY;
     for (int c = 0, at = 0; r == SR_OK && c < contours; c++) {
-        int n = poly->contour_counts ? poly->contour_counts[c] : poly->point_count;
-        if (!reserve(ctx, &a, &cap_a, n + 1LL)) {
+        int n = poly->contour_counts ? poly->contour_counts[c] : poly->point_count, m = n;
+        if (!sr__clip_reserve(ctx, &sc.a, &sc.cap_a, n + 1LL)) {
             r = SR_OUT_OF_MEMORY;
             break;
         }
         for (int i = 0; i < n; i++) {
-            a[i] = poly->points[at + i];
+            sc.a[i] = poly->points[at + i];
         }
         at += n;
-        int m = n;
         for (int k = 0; k < 4 && r == SR_OK; k++) {
-            /* A stage emits one point per edge kept or leaving and two per
-             * edge entering; entries pair with exits, so at most 3/2 m. */
-            if (!reserve(ctx, &b, &cap_b, 3LL * m / 2 + 2)) {
-                r = SR_OUT_OF_MEMORY;
-                break;
-            }
-            m = sr__clip_axis_stage(axis[k], bound[k], sign[k], a, m, b);
-            sr_point2 *t = a;
-            a = b;
-            b = t;
-            long long tc = cap_a;
-            cap_a = cap_b;
-            cap_b = tc;
+            r = sr__clip_axis_stage(ctx, &sc, axis[k], bound[k], sign[k], &m) ? SR_OK
+                                                                               : SR_OUT_OF_MEMORY;
         }
         if (r != SR_OK) {
             break;
         }
         if (total + m > INT32_MAX) {
-            sr__free(ctx, counts);
-            sr__free(ctx, res);
-            sr__free(ctx, a);
-            sr__free(ctx, b);
-            return sr__fail(ctx, SR_TOO_LARGE, "%s: the polygon cut to the guard band has more "
-                            "than 2^31 points", fn);
+            r = SR_TOO_LARGE;
+            break;
         }
         if (total + m > cap_out) {
             long long cap = (total + m) * 2;
@@ -107,17 +80,19 @@ sr_result sr__guard_clip(sr_context *ctx, const char *fn, const sr_polygon2 *pol
             cap_out = cap;
         }
         for (int i = 0; i < m; i++) {
-            res[total + i] = a[i];
+            res[total + i] = sc.a[i];
         }
         total += m;
         counts[c] = m;
     }
-    sr__free(ctx, a);
-    sr__free(ctx, b);
+    sr__free(ctx, sc.a);
+    sr__free(ctx, sc.b);
     if (r != SR_OK) {
         sr__free(ctx, counts);
         sr__free(ctx, res);
-        return sr__fail(ctx, r, "%s: no memory to cut the polygon to the guard band", fn);
+        return sr__fail(ctx, r, r == SR_TOO_LARGE
+                                    ? "%s: the polygon cut to the guard band passes 2^31 points"
+                                    : "%s: no memory to cut the polygon to the guard band", fn);
     }
     *out = (sr_polygon2){ res, (int)total, counts, contours };
     return SR_OK;
