@@ -1916,10 +1916,14 @@ SR_API int sr_text_width(const char *text, int scale);
  * are half-open in y and spans [x_l, x_r) left-inclusive, so polygons
  * sharing an edge fill each pixel exactly once.  Antialiased fills take
  * the exact area of polygon and pixel (signed-area accumulation), or count
- * n x n samples.
+ * n x n samples.  Vertices beyond SR_MAX_COORD2D (finite: NaN and
+ * infinities are SR_INVALID_ARG) are drawn, clipped: each contour is cut
+ * to the target grown by a guard band first (docs/raster-rules.md §2.2);
+ * the Gouraud fills refuse them (SR_TOO_LARGE).
  */
 
-#define SR_MAX_COORD2D 262144.0 /* |x|, |y| of any 2D vertex, in pixels */
+/* |x|, |y| of a 2D vertex the converters take as it is, in pixels */
+#define SR_MAX_COORD2D 262144.0
 
 typedef enum sr_fill_rule {
     SR_FILL_RULE_DEFAULT = 0, /* -> SR_NONZERO (SVG's default) */

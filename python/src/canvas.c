@@ -69,10 +69,8 @@ PyArrayObject *sr_py_points_arg(PyObject *obj, const char *name)
     }
     const double *v = PyArray_DATA(f);
     for (npy_intp i = 0; i < 2 * PyArray_DIM(f, 0); i++) {
-        if (!isfinite(v[i]) || fabs(v[i]) > SR_MAX_COORD2D) {
-            sr_py_value_error(isfinite(v[i]) ? "%s: point %zd is outside +-%g"
-                                             : "%s: point %zd is NaN or infinite",
-                              name, (Py_ssize_t)(i / 2), SR_MAX_COORD2D);
+        if (!isfinite(v[i])) {
+            sr_py_value_error("%s: point %zd is NaN or infinite", name, (Py_ssize_t)(i / 2));
             Py_DECREF(f);
             return NULL;
         }

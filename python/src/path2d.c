@@ -54,7 +54,8 @@ int sr_py_real_arg(PyObject *obj, const char *name, double *out)
 }
 
 /* The n numbers named by kwlist (all required) as finite coordinates
- * within SR_MAX_COORD2D. */
+ * (any size: the fills cut what lies beyond SR_MAX_COORD2D to a guard band
+ * around the image). */
 static int coords_arg(PyObject *args, PyObject *kwargs, const char *format, char **kwlist,
                       int n, double *out)
 {
@@ -65,11 +66,6 @@ static int coords_arg(PyObject *args, PyObject *kwargs, const char *format, char
     }
     for (int i = 0; i < n; i++) {
         if (sr_py_real_arg(obj[i], kwlist[i], &out[i]) < 0) {
-            return -1;
-        }
-        if (fabs(out[i]) > SR_MAX_COORD2D) {
-            sr_py_value_error("%s: must be within +-%g, got %g", kwlist[i], SR_MAX_COORD2D,
-                              out[i]);
             return -1;
         }
     }
@@ -221,12 +217,14 @@ static PyObject *path_arc_to(PathObject *self, PyObject *args, PyObject *kwargs)
         sr_py_real_arg(o[6], "y", &y) < 0) {
         return NULL;
     }
-    const char *names[4] = { "rx", "ry", "x", "y" };
-    double v[4] = { rx, ry, x, y };
-    for (int i = 0; i < 4; i++) {
-        if (fabs(v[i]) > SR_MAX_COORD2D || (i < 2 && v[i] < 0)) {
-            return sr_py_value_error("%s: must be within %s%g, got %g", names[i],
-                                     i < 2 ? "0.." : "+-", SR_MAX_COORD2D, v[i]);
+    /* The end point may lie anywhere; the flattener takes radii within
+     * the budget (sr_flatten_arc). */
+    const char *names[2] = { "rx", "ry" };
+    double v[2] = { rx, ry };
+    for (int i = 0; i < 2; i++) {
+        if (v[i] > SR_MAX_COORD2D || v[i] < 0) {
+            return sr_py_value_error("%s: must be within 0..%g, got %g", names[i],
+                                     SR_MAX_COORD2D, v[i]);
         }
     }
     return path_result(self, sr_path_arc_to(self->path, rx, ry, rot, large, sweep, x, y));
@@ -365,40 +363,10 @@ static PyObject *path_to_polygons(PathObject *self, PyObject *unused)
     return list;
 }
 
-/* After each command of from_svg's data: the points it added within
- * SR_MAX_COORD2D, as the other builders check their coordinates, rather
- * than a path that only fails when it is drawn.  The points from one
- * before the last seen are read again: a moveto after a lone moveto
- * replaces that point. */
-typedef struct svg_limit_check {
-    const sr_path *path;
-    int checked;
-    char message[160];
-} svg_limit_check;
-
-static sr_result check_svg_command(void *user, char letter, long offset)
-{
-    svg_limit_check *c = user;
-    (void)letter;
-    sr_polygon2 poly = sr_path_polygon(c->path);
-    int i = c->checked < poly.point_count ? c->checked : poly.point_count;
-    for (i = i > 0 ? i - 1 : 0; i < poly.point_count; i++) {
-        sr_point2 p = poly.points[i];
-        if (fabs(p.x) > SR_MAX_COORD2D || fabs(p.y) > SR_MAX_COORD2D) {
-            snprintf(c->message, sizeof c->message,
-                     "point (%g, %g) is outside +-%g (the command before offset %ld)", p.x, p.y,
-                     SR_MAX_COORD2D, offset);
-            return SR_TOO_LARGE;
-        }
-    }
-    c->checked = poly.point_count;
-    return SR_OK;
-}
-
 /* Path.from_svg(d, tolerance=0.1, strict=True): a new path of SVG path
  * data (sr_io_parse_path_data).  An error in the data raises unless
  * strict is false, which keeps the path up to it as SVG draws it; a
- * point out of range always raises. */
+ * point that is not finite always raises. */
 static PyObject *path_from_svg(PyObject *cls, PyObject *args, PyObject *kwargs)
 {
     static char *kwlist[] = { "d", "tolerance", "strict", NULL };
@@ -431,16 +399,12 @@ static PyObject *path_from_svg(PyObject *cls, PyObject *args, PyObject *kwargs)
     }
     long offset;
     sr_io_error err;
-    svg_limit_check check = { .path = self->path };
-    sr_result r = sr_io_parse_path_data(
-        d, self->path, &(sr_io_path_data_desc){ .command = check_svg_command, .user = &check },
-        &offset, &err);
+    sr_result r = sr_io_parse_path_data(d, self->path, &(sr_io_path_data_desc){ 0 }, &offset,
+                                        &err);
     if (r == SR_OK || (r == SR_BAD_FORMAT && !strict)) {
         return (PyObject *)self;
     }
-    if (check.message[0]) {
-        snprintf(err.message, sizeof err.message, "%s", check.message);
-    } else if (r != SR_BAD_FORMAT) { /* a point the path refused: its message */
+    if (r != SR_BAD_FORMAT) { /* a point the path refused: its message */
         snprintf(err.message, sizeof err.message, "%s (the command at offset %ld)",
                  sr_context_error(self->ctx), offset);
     }

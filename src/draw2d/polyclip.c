@@ -4,6 +4,7 @@
  * clip edge.  Pure computation on the caller's thread; the framebuffer is
  * not involved. */
 #include "context.h"
+#include "draw2d/polyfill.h"
 
 #include <math.h>
 #include <string.h>
@@ -70,8 +71,7 @@ static int clip_stage(const half_plane *h, const sr_point2 *in, int n, sr_point2
 
 #define MAX_CLIP_POINTS (1 << 26)
 
-/* Make *buf hold at least `need` points (its contents need not survive). */
-static bool reserve(sr_context *ctx, sr_point2 **buf, long long *cap, long long need)
+bool sr__clip_reserve(sr_context *ctx, sr_point2 **buf, long long *cap, long long need)
 {
     if (need <= *cap) {
         return true;
@@ -82,19 +82,41 @@ static bool reserve(sr_context *ctx, sr_point2 **buf, long long *cap, long long 
     return *buf != NULL;
 }
 
+/* One stage from s->a (n points) through s->b, which has room for need
+ * points made first; the result is s->a again.  False when out of memory. */
+static bool stage_swap(sr_context *ctx, const half_plane *h, sr__clip_scratch *s, int *n,
+                       long long need)
+{
+    if (!sr__clip_reserve(ctx, &s->b, &s->cap_b, need)) {
+        return false;
+    }
+    *n = clip_stage(h, s->a, *n, s->b);
+    sr__clip_scratch t = *s;
+    *s = (sr__clip_scratch){ t.b, t.a, t.cap_b, t.cap_a };
+    return true;
+}
+
+bool sr__clip_axis_stage(sr_context *ctx, sr__clip_scratch *s, int axis, double bound,
+                         double sign, int *n)
+{
+    half_plane h = { .axis = axis, .bound = bound, .sign = sign };
+    /* One point per edge kept or leaving, two per edge entering; entries
+     * pair with exits, so at most 3/2 n. */
+    return stage_swap(ctx, &h, s, n, 3LL * *n / 2 + 2);
+}
+
 static sr_result clip_run(sr_context *ctx, const char *fn, const sr_point2 *in, int count,
                           const half_plane *planes, int n_planes,
                           const sr_polygon_clip_desc *desc, sr_point2 *out, int capacity,
                           int *out_count)
 {
-    sr_point2 *a = NULL, *b = NULL;
-    long long cap_a = 0, cap_b = 0;
+    sr__clip_scratch s = { 0 };
     sr_result r = SR_OK;
-    if (!reserve(ctx, &a, &cap_a, count + 1LL)) {
+    if (!sr__clip_reserve(ctx, &s.a, &s.cap_a, count + 1LL)) {
         return sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: no memory for %d points", fn, count);
     }
     if (count) {
-        memcpy(a, in, (size_t)count * sizeof *a);
+        memcpy(s.a, in, (size_t)count * sizeof *s.a);
     }
     int n = count;
     for (int k = 0; k < n_planes && r == SR_OK; k++) {
@@ -105,19 +127,12 @@ static sr_result clip_run(sr_context *ctx, const char *fn, const sr_point2 *in, 
                          MAX_CLIP_POINTS);
             break;
         }
-        if (!reserve(ctx, &b, &cap_b, need)) {
+        if (!stage_swap(ctx, &planes[k], &s, &n, need)) {
             r = sr__fail(ctx, SR_OUT_OF_MEMORY, "%s: no memory for %lld points", fn, need);
             break;
         }
-        n = clip_stage(&planes[k], a, n, b);
-        sr_point2 *t = a;
-        a = b;
-        b = t;
-        long long tc = cap_a;
-        cap_a = cap_b;
-        cap_b = tc;
         if (desc && desc->on_stage) {
-            desc->on_stage(desc->user, k, a, n);
+            desc->on_stage(desc->user, k, s.a, n);
         }
     }
     if (r == SR_OK) {
@@ -127,13 +142,13 @@ static sr_result clip_run(sr_context *ctx, const char *fn, const sr_point2 *in, 
                          "%s: the clipped polygon has %d points, capacity is %d", fn, n, capacity);
         } else {
             if (n) {
-                memcpy(out, a, (size_t)n * sizeof *out);
+                memcpy(out, s.a, (size_t)n * sizeof *out);
             }
             sr__ok(ctx);
         }
     }
-    sr__free(ctx, a);
-    sr__free(ctx, b);
+    sr__free(ctx, s.a);
+    sr__free(ctx, s.b);
     return r;
 }
 

@@ -38,7 +38,8 @@ static int64_t floor_div(int64_t a, int64_t b)
 /* sr__edges_from_polygon into `local` (room for local_cap edges) when the
  * polygon fits there, else into memory from ctx; *edges is one or the other. */
 static sr_result edges_into(sr_context *ctx, const char *fn, const sr_polygon2 *poly, int scale,
-                            sr__edge2 *local, int local_cap, sr__edge2 **edges, int *count)
+                            const sr__window *win, sr__edge2 *local, int local_cap,
+                            sr__edge2 **edges, int *count)
 {
     *edges = NULL;
     *count = 0;
@@ -66,15 +67,31 @@ static sr_result edges_into(sr_context *ctx, const char *fn, const sr_polygon2 *
                         "%s: sr_polygon2.contour_counts sum to %lld, point_count is %d", fn,
                         total, poly->point_count);
     }
+    bool huge = false;
     for (int i = 0; i < poly->point_count; i++) {
         double x = poly->points[i].x, y = poly->points[i].y;
         if (!isfinite(x) || !isfinite(y)) {
             return sr__fail(ctx, SR_INVALID_ARG, "%s: sr_polygon2.points[%d] is not finite", fn, i);
         }
         if (fabs(x) > SR_MAX_COORD2D || fabs(y) > SR_MAX_COORD2D) {
-            return sr__fail(ctx, SR_TOO_LARGE, "%s: sr_polygon2.points[%d] (%g, %g) is beyond "
-                            "+-%g pixels", fn, i, x, y, SR_MAX_COORD2D);
+            if (!win) {
+                return sr__fail(ctx, SR_TOO_LARGE, "%s: sr_polygon2.points[%d] (%g, %g) is "
+                                "beyond +-%g pixels", fn, i, x, y, SR_MAX_COORD2D);
+            }
+            huge = true;
         }
+    }
+    if (huge) {
+        /* Beyond the fixed-point budget: drawn as the part of it that can
+         * reach the window (guardclip.c), which fits the budget. */
+        sr_polygon2 cut;
+        sr_result r = sr__guard_clip(ctx, fn, poly, *win, &cut);
+        if (r == SR_OK) {
+            r = edges_into(ctx, fn, &cut, scale, NULL, local, local_cap, edges, count);
+        }
+        sr__free(ctx, (void *)cut.points);
+        sr__free(ctx, (void *)cut.contour_counts);
+        return r;
     }
     if (poly->point_count == 0) {
         return SR_OK;
@@ -115,7 +132,7 @@ static sr_result edges_into(sr_context *ctx, const char *fn, const sr_polygon2 *
 sr_result sr__edges_from_polygon(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
                                  int scale, sr__edge2 **edges, int *count)
 {
-    return edges_into(ctx, fn, poly, scale, NULL, 0, edges, count);
+    return edges_into(ctx, fn, poly, scale, NULL, NULL, 0, edges, count);
 }
 
 /* Shrink the window's rows to those the edges can touch (pixel rows
@@ -890,7 +907,7 @@ sr_result sr__rasterize_polygon(sr_context *ctx, const char *fn, const sr_polygo
     int scale = desc->antialias == SR_AA_SUPERSAMPLE ? desc->samples : 1;
     sr__edge2 local[LOCAL_EDGES], *edges;
     int count;
-    sr_result r = edges_into(ctx, fn, poly, scale, local, LOCAL_EDGES, &edges, &count);
+    sr_result r = edges_into(ctx, fn, poly, scale, &win, local, LOCAL_EDGES, &edges, &count);
     if (r != SR_OK) {
         return r;
     }

@@ -59,6 +59,25 @@ sr_result sr__scan_edge_table(sr_context *ctx, const sr__edge2 *edges, int count
  * use it; sr__scan_edge_table is the reference it is tested against. */
 sr_result sr__scan_winding_cells(sr_context *ctx, const sr__edge2 *edges, int count,
                                  sr_fill_rule rule, sr__window win, sr__span_fn fn, void *user);
+/* Clipping scratch (polyclip.c): the points in a, b the room a stage
+ * writes into; capacities in points. */
+typedef struct sr__clip_scratch {
+    sr_point2 *a, *b;
+    long long cap_a, cap_b;
+} sr__clip_scratch;
+/* Make *buf hold at least `need` points (its contents need not survive). */
+bool sr__clip_reserve(sr_context *ctx, sr_point2 **buf, long long *cap, long long need);
+/* One Sutherland-Hodgman stage on s->a (*n points, replaced) against the
+ * half-plane sign * (x or y, by axis 0 or 1, - bound) >= 0; false when
+ * out of memory. */
+bool sr__clip_axis_stage(sr_context *ctx, sr__clip_scratch *s, int axis, double bound,
+                         double sign, int *n);
+/* A validated polygon of finite points cut, contour by contour, to the
+ * window grown by a guard margin and kept within SR_MAX_COORD2D: inside
+ * that rectangle every point keeps its winding number.  out->points and
+ * out->contour_counts are allocated on ctx (guardclip.c). */
+sr_result sr__guard_clip(sr_context *ctx, const char *fn, const sr_polygon2 *poly,
+                         sr__window win, sr_polygon2 *out);
 /* Exact area coverage by signed-area accumulation (docs/raster-rules.md §10.3).
  * It works only on the columns the edges reach and computes a row with
  * only vertical edges once for the rows below it that have the same ones

@@ -427,10 +427,14 @@ typedef struct prim {
     const char *result;
 } prim;
 
-/* A deviation of the primitive's units in the region's pixels. */
+/* A deviation of the primitive's units in the region's pixels.  Huge
+ * geometry (drawn since fills cut it to a guard band) can scale it past
+ * double's range: any deviation far beyond the largest region spreads it
+ * to nothing alike, so it is held at 1e15 px (and 0 x inf counts as 0). */
 static double blur_sigma_px(const fctx *fc, double sd, bool y)
 {
-    return fmax(sd, 0) * (y ? fc->sy : fc->sx) * (fc->obb ? (y ? fc->bh : fc->bw) : 1);
+    double s = fmax(sd, 0) * (y ? fc->sy : fc->sx) * (fc->obb ? (y ? fc->bh : fc->bw) : 1);
+    return s < 1e15 ? s : s >= 1e15 ? 1e15 : 0;
 }
 
 /* The pixel operations a blur of deviation s pixels costs each pixel along
