@@ -762,6 +762,31 @@ SR_TEST(primitives_whose_work_grows_are_refused_at_their_line)
     }
 }
 
+/* A chain past the work budget is refused before any of it runs, not
+ * after doing the work of the primitives before the one that passes it
+ * (a chain of 500 blurs spent seconds so under the fuzz build): the
+ * first blur's edgeMode, warned when it runs, is never warned. */
+SR_TEST(a_filter_past_the_budget_is_refused_before_it_runs)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    char svg[2048] = "<svg xmlns='http://www.w3.org/2000/svg' width='1000' height='1000'>\n"
+                     "<filter id='f' x='0' y='0' width='1' height='1'>\n"
+                     "<feGaussianBlur stdDeviation='1' edgeMode='sideways'/>\n";
+    for (int i = 0; i < 20; i++) {
+        strcat(svg, "<feColorMatrix type='saturate'/>");
+    }
+    strcat(svg, "</filter>\n<rect width='1000' height='1000' filter='url(#f)'/></svg>");
+    sr_test_warnings warn = { 0 };
+    char msg[512];
+    sr_framebuffer *fb = render(svg, SR_TOO_LARGE, &warn, msg, sizeof msg);
+    CHECK(fb == NULL);
+    CHECK_STR_CONTAINS(msg, "t.svg:4: the drawing costs more than");
+    CHECK_EQ(warn.count, 0);
+    sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
 /* The larger layer is chosen on the work the filter will count, kernels
  * included: a convolution of order 5 after an offset that brings content
  * in from 300 px beyond the image fits the budget on the image's layer,

@@ -1495,9 +1495,9 @@ static double prim_reads(const prim *p)
  * the work whose cost grows with its attributes: a convolution's kernel,
  * a blur's taps along each axis, the octaves of noise in each channel, a
  * morphology's two passes (its window's cost does not grow with the
- * radius).  run() counts it and
- * svg_filter_extent() adds it up, so that the larger layer is chosen on
- * what the filter will count. */
+ * radius).  svg_apply_filter() counts it for every primitive before
+ * any runs, and svg_filter_extent() adds it up, so that the larger layer
+ * is chosen on what the filter will count. */
 static double prim_work(fctx *fc, const svg_node *n, double reads)
 {
     double w = reads + 1;
@@ -1541,11 +1541,6 @@ static void run(fctx *fc, prim *p, fimg *res, int i)
     int def[4];
     default_sub(fc, res, ins, n_ins, def);
     subregion(fc, n, def, out->sub);
-    double work = (double)fc->n * prim_work(fc, n, prim_reads(&p[i]));
-    if (!fc->job->budget(fc->job->host, n, work)) {
-        fc->failed = true;
-        return;
-    }
     out->p = new_pixels(fc, n);
     if (!out->p) {
         return;
@@ -1951,6 +1946,13 @@ void svg_apply_filter(const svg_filter_job *job)
     if (!make_graph(&fc, count, &g)) {
         free(res);
         return;
+    }
+    /* The whole chain's work is counted before any of it runs: a chain
+     * past the budget is refused at the primitive that passes it, without
+     * first doing the work of all those before it. */
+    for (int i = 0; i < count && !fc.failed; i++) {
+        double work = (double)fc.n * prim_work(&fc, g.p[i].node, prim_reads(&g.p[i]));
+        fc.failed = !job->budget(job->host, g.p[i].node, work);
     }
     for (int i = 0; i < count && !fc.failed; i++) {
         run(&fc, g.p, res, i);

@@ -107,6 +107,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FUZZ_CHECK(owned_texture(s, m->normal_texture.texture));
         FUZZ_CHECK(owned_texture(s, m->occlusion_texture.texture));
         FUZZ_CHECK(owned_texture(s, m->emissive_texture.texture));
+        FUZZ_CHECK(owned_texture(s, m->specular_glossiness_texture.texture));
     }
     check_renderable(s);
     /* A file with animations, read again posed by its first two at

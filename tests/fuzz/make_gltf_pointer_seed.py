@@ -5,7 +5,9 @@ and a spot light; one animation whose channels point at a base color
 (LINEAR), a roughness (normalized unsigned bytes), an emissive strength
 (CUBICSPLINE), a texture transform's rotation and offset, the camera's
 yfov, the light's intensity and outer cone, a node's translation, and a
-hidden node's `visible` (STEP, unsigned bytes)."""
+hidden node's `visible` (STEP, unsigned bytes).  Then
+corpus/fuzz_gltf/seed_spec_gloss.gltf: the same with a material of
+KHR_materials_pbrSpecularGlossiness (below)."""
 import base64, json, os, struct
 
 def pad(b):
@@ -93,4 +95,39 @@ doc = {
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'corpus', 'fuzz_gltf',
                    'seed_pointer.gltf')
 with open(out, 'w') as f:
+    json.dump(doc, f, separators=(',', ':'))
+
+# seed_spec_gloss.gltf: the same with a third material of
+# KHR_materials_pbrSpecularGlossiness (factors, a diffuse texture with a
+# transform, a specular-glossiness texture, a metallic-roughness fallback
+# the reader drops, MASK) on mesh 0, and the pointers of its base color
+# (skipped with a warning) and of its diffuse texture's rotation.
+def png_2x2():
+    """A 2 x 2 RGBA PNG, for the textures to be read rather than dropped."""
+    import zlib
+    def chunk(kind, body):
+        return (struct.pack('>I', len(body)) + kind + body
+                + struct.pack('>I', zlib.crc32(kind + body) & 0xffffffff))
+    rows = b''.join(b'\0' + b''.join(bytes([255, 120 * y, 200 * x, 180 + 70 * x])
+                                      for x in range(2)) for y in range(2))
+    return (b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 2, 2, 8, 6, 0, 0, 0))
+            + chunk(b'IDAT', zlib.compress(rows)) + chunk(b'IEND', b''))
+
+doc['images'] = [{'uri': 'data:image/png;base64,' + base64.b64encode(png_2x2()).decode()}]
+doc['textures'] = [{'source': 0}]
+doc['extensionsUsed'].append('KHR_materials_pbrSpecularGlossiness')
+doc['materials'].append({
+    'extensions': {'KHR_materials_pbrSpecularGlossiness': {
+        'diffuseFactor': [0.5, 1, 0.2, 1], 'specularFactor': [1, 0.8, 0.2],
+        'glossinessFactor': 0.7,
+        'diffuseTexture': {'index': 0, 'extensions': {'KHR_texture_transform': {
+            'offset': [0.5, 0], 'scale': [2, 2], 'rotation': 0.3}}},
+        'specularGlossinessTexture': {'index': 0, 'texCoord': 0}}},
+    'pbrMetallicRoughness': {'baseColorFactor': [0, 0, 1, 1]},
+    'alphaMode': 'MASK', 'alphaCutoff': 0.4})
+doc['meshes'][0]['primitives'][0]['material'] = 2
+channels[0] = pointer(0, '/materials/2/pbrMetallicRoughness/baseColorFactor')
+channels[3] = pointer(3, '/materials/2/extensions/KHR_materials_pbrSpecularGlossiness/'
+                         'diffuseTexture/extensions/KHR_texture_transform/rotation')
+with open(os.path.join(os.path.dirname(out), 'seed_spec_gloss.gltf'), 'w') as f:
     json.dump(doc, f, separators=(',', ':'))
