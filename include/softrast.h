@@ -233,6 +233,9 @@
  *     sr_path_subpath_closed     whether a subpath was closed
  *     sr_path_length             its flattened length
  *     sr_path_dash               its dashes, as SVG's stroke-dasharray
+ *     sr_path_cull_curves        curves far outside a view taken as lines
+ *     sr_path_length_in_view     its length within a view
+ *     sr_path_dash_in_view       its dashes within a view
  *     sr_fill_path               fills it
  *     sr_fill_path_paint         fills it with a gradient or a pattern
  *     sr_fill_polygon_paint      a polygon so filled
@@ -2231,6 +2234,44 @@ SR_API double    sr_path_length(const sr_path *path);
  */
 SR_API sr_result sr_path_dash(sr_context *ctx, const sr_path *path, const double *dashes,
                               int count, double offset, sr_path *out);
+
+/*
+ * Where a path far larger than its target is seen: m (a, b, c, d, e, f:
+ * x' = a x + c y + e, y' = b x + d y + f) maps path coordinates to device
+ * pixels, where [x0, x1] x [y0, y1] holds every pixel drawn, grown by how
+ * far a stroke reaches from the path (half its width times the miter
+ * limit or sqrt 2 for square caps, whichever is larger).
+ */
+typedef struct sr_path_view {
+    double m[6];
+    double x0, y0, x1, y1;
+} sr_path_view;
+
+/*
+ * From now on (until sr_path_clear, or view NULL), a quadratic or cubic
+ * segment whose control polygon, mapped, lies wholly beyond one side of
+ * the view's rectangle is appended as a line to its end point; one that
+ * crosses the rectangle's edge is halved until each half is outside,
+ * inside or under 4096 px, and only those are flattened.  A segment
+ * inside is flattened as without a view.  Fills and strokes within the
+ * rectangle do not change; the path's length and bounds do.
+ * SR_INVALID_ARG for a NULL path, a non-finite m or an empty rectangle.
+ */
+SR_API sr_result sr_path_cull_curves(sr_path *path, const sr_path_view *view);
+/* sr_path_length of the parts of the segments within the view's
+ * rectangle (NULL: all of it); 0 for a NULL path. */
+SR_API double    sr_path_length_in_view(const sr_path *path, const sr_path_view *view);
+/*
+ * sr_path_dash making only the dashes within the view's rectangle (view
+ * NULL: all of them): over the rest the pattern moves on without dashes,
+ * its phase kept, and a dash the rectangle's edge cuts ends there and
+ * starts again where the path comes back; the limit counts the length
+ * within.  SR_INVALID_ARG as sr_path_dash, and for a view with a
+ * non-finite m or an empty rectangle.
+ */
+SR_API sr_result sr_path_dash_in_view(sr_context *ctx, const sr_path *path, const double *dashes,
+                                      int count, double offset, const sr_path_view *view,
+                                      sr_path *out);
 
 typedef enum sr_stroke_join {
     SR_STROKE_JOIN_DEFAULT = 0, /* -> SR_STROKE_JOIN_MITER (SVG's default) */

@@ -1,7 +1,8 @@
 /* test_draw2d_dash.c - sr_path_dash against dash endpoints worked out by
  * hand on lines and squares (odd lists, offsets forward, backward and
  * wrapped, closed subpaths dashed over their start), a circle's dashes
- * against its flattened length, and every argument it refuses. */
+ * against its flattened length, and every argument it refuses; dashes
+ * and curves within a view (sr_path_dash_in_view, sr_path_cull_curves). */
 #include "softrast.h"
 #include "sr_test.h"
 
@@ -251,5 +252,68 @@ SR_TEST(dash_too_fine_for_the_path_is_refused_before_cutting)
     check_dashes(f.out, (sr_point2[]){ { 0, 0 }, { 0.25, 0 }, { 0.5, 0 }, { 0.75, 0 }, { 1, 0 } },
                  (sr_point2[]){ { 0.125, 0 }, { 0.375, 0 }, { 0.625, 0 }, { 0.875, 0 }, { 1, 0 } },
                  5);
+    close_fixture(&f);
+}
+
+SR_TEST(dash_in_view_skips_the_pattern_outside_with_its_phase)
+{
+    fixture f = open_fixture();
+    REQUIRE(f.in && f.out);
+    /* -1e4 .. 1e4 at y = 0, seen through x' = 2 x + 10 in [0, 100]: the
+     * path's x in [-5, 45].  Period 15 from -1e4: at -5 the pattern is
+     * (1e4 - 5) mod 15 = 5 into a 10-long dash; dashes at 5, 20, 35. */
+    sr_path_move_to(f.in, -1e4, 0);
+    sr_path_line_to(f.in, 1e4, 0);
+    const sr_path_view view = { { 2, 0, 0, 2, 10, 0 }, 0, -1, 100, 1 };
+    CHECK(fabs(sr_path_length_in_view(f.in, &view) - 50) < 1e-6);
+    CHECK_EQ(sr_path_dash_in_view(f.ctx, f.in, (double[]){ 10, 5 }, 2, 0, &view, f.out), SR_OK);
+    check_dashes(f.out, (sr_point2[]){ { -5, 0 }, { 5, 0 }, { 20, 0 }, { 35, 0 } },
+                 (sr_point2[]){ { 0, 0 }, { 15, 0 }, { 30, 0 }, { 45, 0 } }, 4);
+    /* without a view: the same as sr_path_dash */
+    sr_path_clear(f.in);
+    square(f.in);
+    sr_path_clear(f.out);
+    CHECK_EQ(sr_path_dash_in_view(f.ctx, f.in, (double[]){ 6, 4 }, 2, 3, NULL, f.out), SR_OK);
+    sr_path *plain = NULL;
+    REQUIRE(sr_make_path(f.ctx, 0, &plain) == SR_OK);
+    CHECK_EQ(sr_path_dash(f.ctx, f.in, (double[]){ 6, 4 }, 2, 3, plain), SR_OK);
+    sr_polygon2 a = sr_path_polygon(f.out), b = sr_path_polygon(plain);
+    CHECK_EQ(a.point_count, b.point_count);
+    for (int i = 0; i < a.point_count && i < b.point_count; i++) {
+        CHECK(a.points[i].x == b.points[i].x && a.points[i].y == b.points[i].y);
+    }
+    sr_destroy_path(f.ctx, plain);
+    /* a view with a NaN map or an empty rectangle is refused */
+    const sr_path_view bad = { { NAN, 0, 0, 1, 0, 0 }, 0, 0, 1, 1 };
+    const sr_path_view empty = { { 1, 0, 0, 1, 0, 0 }, 1, 0, 0, 1 };
+    CHECK_EQ(sr_path_dash_in_view(f.ctx, f.in, (double[]){ 1, 1 }, 2, 0, &bad, f.out),
+             SR_INVALID_ARG);
+    CHECK_STR_CONTAINS(sr_context_error(f.ctx), "view");
+    CHECK_EQ(sr_path_cull_curves(f.in, &empty), SR_INVALID_ARG);
+    CHECK_EQ(sr_path_cull_curves(NULL, &view), SR_INVALID_ARG);
+    close_fixture(&f);
+}
+
+SR_TEST(curves_wholly_outside_the_view_are_lines)
+{
+    fixture f = open_fixture();
+    REQUIRE(f.in);
+    const sr_path_view view = { { 1, 0, 0, 1, 0, 0 }, 0, 0, 100, 100 };
+    REQUIRE(sr_path_cull_curves(f.in, &view) == SR_OK);
+    /* below the view: one point; inside it: flattened as without a view */
+    sr_path_move_to(f.in, 0, 200);
+    sr_path_cubic_to(f.in, 30, 300, 60, 300, 90, 200);
+    CHECK_EQ(sr_path_polygon(f.in).point_count, 2);
+    sr_path_move_to(f.in, 10, 10);
+    sr_path_cubic_to(f.in, 30, 90, 60, 90, 90, 10);
+    int with = sr_path_polygon(f.in).point_count - 2;
+    sr_path_clear(f.in); /* which turns it off */
+    sr_path_move_to(f.in, 0, 200);
+    sr_path_cubic_to(f.in, 30, 300, 60, 300, 90, 200);
+    CHECK(sr_path_polygon(f.in).point_count > 2);
+    sr_path_clear(f.in);
+    sr_path_move_to(f.in, 10, 10);
+    sr_path_cubic_to(f.in, 30, 90, 60, 90, 90, 10);
+    CHECK_EQ(sr_path_polygon(f.in).point_count, with);
     close_fixture(&f);
 }

@@ -1,14 +1,17 @@
 /* test_svg_huge.c - SVG geometry far beyond the 2D fixed-point budget
  * (SR_MAX_COORD2D): a point a million pixels off the page, a viewBox
  * zoomed a million times, a stroke and an even-odd hole around such
- * shapes, a blur reading past the image, a circle of radius 1e7.  Each is
+ * shapes, a blur reading past the image, a circle of radius 1e7, a
+ * stroked curve zoomed 2e6 times, dashes along 1e9-px lines.  Each is
  * drawn where it is seen: as the same drawing with the geometry cut by
- * hand at 2e5 px (within the budget, written with 17 digits), within 2
- * codes a channel.  Needs expat. */
+ * hand at 2e5 px (within the budget, written with 17 digits; dashed
+ * lines just past the image), within 2 codes a channel (4 for a curve,
+ * flattened in other pieces).  Needs expat. */
 #include "softrast_io.h"
 #include "image_compare.h"
 #include "sr_test.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -25,16 +28,22 @@ static sr_framebuffer *render(const char *svg)
     return fb;
 }
 
-/* The far drawing and the near one (cut by hand) give the same pixels. */
-static void check_same(const char *name, const char *far, const char *near)
+/* The far drawing and the near one (cut by hand) give the same pixels,
+ * within tol codes a channel. */
+static void check_within(const char *name, const char *far, const char *near, int tol)
 {
     sr_framebuffer *a = render(far), *b = render(near);
     if (a && b) {
         CHECK(sr_test_compare_images(name, sr_framebuffer_pixels(a), sr_framebuffer_pixels(b),
-                                     sr_framebuffer_width(a), sr_framebuffer_height(a), 2, 0));
+                                     sr_framebuffer_width(a), sr_framebuffer_height(a), tol, 0));
     }
     sr_destroy_framebuffer(sr_test_ctx(), a);
     sr_destroy_framebuffer(sr_test_ctx(), b);
+}
+
+static void check_same(const char *name, const char *far, const char *near)
+{
+    check_within(name, far, near, 2);
 }
 
 #define HEAD "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='200'>" \
@@ -129,4 +138,64 @@ SR_TEST(a_circle_of_radius_1e7_is_drawn_where_it_is_seen)
         }
     }
     sr_destroy_framebuffer(sr_test_ctx(), fb);
+}
+
+/* The parabola y = 100 + k (x - 100)^2 (device pixels) from x0 to x1 as
+ * a cubic path's data, mapped back to user units by dividing by s. */
+static void parabola(char *out, size_t size, double k, double x0, double x1, double s)
+{
+    double y0 = 100 + k * (x0 - 100) * (x0 - 100), y1 = 100 + k * (x1 - 100) * (x1 - 100);
+    /* the quadratic's control point: the tangents' meeting point */
+    double xm = (x0 + x1) / 2, ym = y0 + 2 * k * (x0 - 100) * (xm - x0);
+    double c1x = x0 + 2 * (xm - x0) / 3, c1y = y0 + 2 * (ym - y0) / 3;
+    double c2x = x1 + 2 * (xm - x1) / 3, c2y = y1 + 2 * (ym - y1) / 3;
+    snprintf(out, size, "M%.17g %.17g C%.17g %.17g %.17g %.17g %.17g %.17g", x0 / s, y0 / s,
+             c1x / s, c1y / s, c2x / s, c2y / s, x1 / s, y1 / s);
+}
+
+SR_TEST(a_stroked_curve_zoomed_two_million_times_is_drawn)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    /* 2e6 px a user unit: the curve's ends lie 2e6 px to the sides and
+     * 2e10 px down; by hand it is cut where it leaves y = 2e5. */
+    const double k = 0.005, s = 2e6, cut = sqrt((2e5 - 100) / k);
+    char d[256], far[640], near[640];
+    parabola(d, sizeof d, k, 100 - s, 100 + s, s);
+    snprintf(far, sizeof far,
+             "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='200' "
+             "viewBox='0 0 0.0001 0.0001'><rect width='1' height='1' fill='white'/>"
+             "<path d='%s' fill='none' stroke='purple' stroke-width='0.000003'/></svg>", d);
+    parabola(d, sizeof d, k, 100 - cut, 100 + cut, 1);
+    snprintf(near, sizeof near,
+             HEAD "<path d='%s' fill='none' stroke='purple' stroke-width='6'/></svg>", d);
+    /* The far curve is cut in halves before it is flattened, the near one
+     * is not: their chords differ by hundredths of a pixel. */
+    check_within("huge_curve", far, near, 4);
+}
+
+SR_TEST(a_dashed_line_a_billion_pixels_long_draws_its_visible_dashes)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    /* By hand the lines end just past the image, within the dashes'
+     * reach of it (nothing is skipped): the second starts 1e9 - 16 px
+     * later, a whole number of 12 px periods. */
+    const char *dash = "stroke='black' stroke-width='4' stroke-linecap='square' "
+                       "stroke-dasharray='7 5'";
+    /* The diagonal's pattern stands (1e9 - 12) sqrt 2 px on at (-12, -12). */
+    const char *diag = "stroke='red' stroke-width='3' stroke-linecap='round' "
+                       "stroke-dasharray='20 6 2 6'";
+    char far[800], near[800];
+    snprintf(far, sizeof far,
+             HEAD "<path d='M10 50 H 1e9 M -1e9 150 H 1e9' %s stroke-dashoffset='3'/>"
+                  "<path d='M-1e9 -1e9 L 1e9 1e9' %s/></svg>",
+             dash, diag);
+    snprintf(near, sizeof near,
+             HEAD "<path d='M10 50 H 216 M -16 150 H 216' %s stroke-dashoffset='3'/>"
+                  "<path d='M-12 -12 L 212 212' %s stroke-dashoffset='%.17g'/></svg>",
+             dash, diag, fmod((1e9 - 12) * sqrt(2), 34));
+    check_same("huge_dash", far, near);
 }

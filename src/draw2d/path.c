@@ -8,6 +8,7 @@
 
 #include "context.h"
 #include "draw2d/paint.h"
+#include "draw2d/pathcull.h"
 
 #include <math.h>
 #include <string.h>
@@ -30,6 +31,8 @@ struct sr_path {
     bool in_subpath;      /* the last subpath takes further points */
     bool has_current;
     sr_point2 current, start;
+    sr_path_view view;    /* sr_path_cull_curves */
+    bool cull;
 };
 
 /* ---- building ------------------------------------------------------------- */
@@ -77,6 +80,7 @@ void sr_path_clear(sr_path *path)
     if (path) {
         path->n = path->nc = 0;
         path->in_subpath = path->has_current = false;
+        path->cull = false;
     }
 }
 
@@ -245,13 +249,99 @@ static sr_result arc_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int
                           (sr_point2){ a[0], a[1] }, p->tolerance, out, cap, n);
 }
 
+/* ---- culling curves far outside ------------------------------------------- */
+
+sr_result sr_path_cull_curves(sr_path *path, const sr_path_view *view)
+{
+    if (!path) {
+        return SR_INVALID_ARG;
+    }
+    if (view && !sr__path_view_valid(view)) {
+        return sr__fail(path->ctx, SR_INVALID_ARG, "sr_path_cull_curves: the view needs a finite "
+                        "m and a rectangle x0 <= x1, y0 <= y1");
+    }
+    path->cull = view != NULL;
+    if (view) {
+        path->view = *view;
+    }
+    sr__ok(path->ctx);
+    return SR_OK;
+}
+
+/* A piece this small in device pixels is flattened even when it crosses
+ * the rectangle's edge: cutting it further saves no points. */
+#define CULL_SMALL 4096.0
+#define CULL_DEPTH 64
+
+/* Where the control points c[0..n) lie, mapped: bit k set when every one
+ * is beyond side k of the view's rectangle; *inside when all are within it; *extent
+ * the larger side of their box. */
+static int cull_sides(const sr_path *p, const sr_point2 *c, int n, bool *inside, double *extent)
+{
+    const double *m = p->view.m;
+    int all = 15, any = 0;
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (int i = 0; i < n; i++) {
+        double x = m[0] * c[i].x + m[2] * c[i].y + m[4], y = m[1] * c[i].x + m[3] * c[i].y + m[5];
+        int out = (x < p->view.x0) | (x > p->view.x1) << 1 | (y < p->view.y0) << 2 |
+                  (y > p->view.y1) << 3;
+        all &= out;
+        any |= out;
+        x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+    }
+    *inside = any == 0;
+    *extent = fmax(x1 - x0, y1 - y0);
+    return all;
+}
+
+/* The curve with control points c[0..n) (n = 3 or 4, c[0] the current
+ * point): pieces wholly outside as lines, the rest flattened.  A curve
+ * outside may be drawn as any path outside with the same ends: the fill's
+ * winding and the stroke's pixels within the rectangle do not change. */
+static sr_result cull_curve(sr_path *p, const sr_point2 *c, int n, int depth)
+{
+    bool inside;
+    double extent;
+    if (cull_sides(p, c, n, &inside, &extent) != 0) {
+        return append(p, &c[n - 1], 1);
+    }
+    if (inside || extent <= CULL_SMALL || depth == 0) {
+        double a[6] = { c[1].x, c[1].y, c[2].x, c[2].y, c[n - 1].x, c[n - 1].y };
+        return flatten_append(p, n == 3 ? quad_fn : cubic_fn, a);
+    }
+    /* de Casteljau at t = 1/2: left[] and right[] share the middle point */
+    sr_point2 w[4], left[4], right[4];
+    memcpy(w, c, (size_t)n * sizeof *w);
+    for (int k = 0; k < n; k++) {
+        left[k] = w[0];
+        right[n - 1 - k] = w[n - 1 - k];
+        for (int i = 0; i + 1 < n - k; i++) {
+            w[i] = (sr_point2){ (w[i].x + w[i + 1].x) / 2, (w[i].y + w[i + 1].y) / 2 };
+        }
+    }
+    sr_result r = cull_curve(p, left, n, depth - 1);
+    return r == SR_OK ? cull_curve(p, right, n, depth - 1) : r;
+}
+
+/* A Bezier segment from the current point through c[0..n-1), culled when
+ * the path asks for it and has a current point. */
+static sr_result curve_to(sr_path *p, const sr_point2 *c, int n, flatten_fn fn, const double *a)
+{
+    if (!p->cull || !p->has_current) {
+        return flatten_append(p, fn, a);
+    }
+    sr_point2 all[4] = { p->current };
+    memcpy(all + 1, c, (size_t)(n - 1) * sizeof *c);
+    return cull_curve(p, all, n, CULL_DEPTH);
+}
+
 sr_result sr_path_quad_to(sr_path *path, double x1, double y1, double x, double y)
 {
     if (!path) {
         return SR_INVALID_ARG;
     }
     double a[4] = { x1, y1, x, y };
-    return flatten_append(path, quad_fn, a);
+    return curve_to(path, (const sr_point2[]){ { x1, y1 }, { x, y } }, 3, quad_fn, a);
 }
 
 sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, double y2,
@@ -261,7 +351,8 @@ sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, doubl
         return SR_INVALID_ARG;
     }
     double a[6] = { x1, y1, x2, y2, x, y };
-    return flatten_append(path, cubic_fn, a);
+    return curve_to(path, (const sr_point2[]){ { x1, y1 }, { x2, y2 }, { x, y } }, 4, cubic_fn,
+                    a);
 }
 
 sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_deg,

@@ -186,6 +186,7 @@ typedef struct svg_doc {
     unsigned long lines_before;
     sr_path *spare_path;     /* a cleared shape path kept for the next shape, or NULL */
     double spare_tol;        /* the flattening tolerance it was made with */
+    double cull_reach;       /* sr_path_cull_curves for the shape drawn; < 0: off */
     svg_vertex *verts;       /* of the path being read, when want_verts */
     int n_verts, cap_verts;
     bool want_verts;
@@ -1602,11 +1603,22 @@ static void paint_polygon_as(svg_doc *doc, const frame *f, sr_polygon2 poly,
     }
 }
 
+/* How far a stroke drawn through m reaches from its path, in device
+ * pixels, and a pixel more: the half width times the most a miter or a
+ * square cap reaches past it. */
+static double stroke_reach(const style *st, mat2d m)
+{
+    /* the largest stretch of m, bounded above */
+    double stretch = fabs(m.a) + fabs(m.b) + fabs(m.c) + fabs(m.d);
+    return st->stroke_width / 2 * stretch * fmax(st->miter_limit, 1.4142135623730951) + 1;
+}
+
 /* The dashes of the path as a new path (stroke-dasharray, its lengths
  * in user units, percentages of the viewport's normalized diagonal);
  * NULL after reporting a failure.  A pattern so fine that its dashes
  * would pass the drawing's point budget is refused before it is cut. */
-static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, double tol)
+static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, mat2d m,
+                          double tol)
 {
     const style *st = &f->st;
     double diag = sqrt((f->vp_w * f->vp_w + f->vp_h * f->vp_h) / 2), dash[SVG_MAX_DASHES];
@@ -1616,8 +1628,15 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
         period += dash[i];
     }
     double offset = st->dash_offset * (st->dash_offset_pct ? diag / 100 : 1);
+    /* only the dashes that can reach the target's pixels (m maps path to
+     * it): a dash outside them draws none, one cut there the same ones */
+    double reach = stroke_reach(st, m);
+    const sr_path_view view = { { m.a, m.b, m.c, m.d, m.e, m.f }, -reach, -reach,
+                                sr_framebuffer_width(doc->fb) + reach,
+                                sr_framebuffer_height(doc->fb) + reach };
+    const sr_path_view *within = isfinite(reach) ? &view : NULL;
     sr_polygon2 poly = sr_path_polygon(path);
-    double pieces = sr_path_length(path) / period * st->n_dash + poly.contour_count;
+    double pieces = sr_path_length_in_view(path, within) / period * st->n_dash + poly.contour_count;
     double est = poly.point_count + 2 * pieces;
     if (!(period > 0) || !isfinite(est) || doc->points_used + est > doc->points_budget) {
         svg_fail(doc, SR_TOO_LARGE,
@@ -1630,7 +1649,7 @@ static sr_path *dash_path(svg_doc *doc, const frame *f, const sr_path *path, dou
     sr_path *out = NULL;
     sr_result r = sr_make_path(doc->ctx, tol, &out);
     if (r == SR_OK) {
-        r = sr_path_dash(doc->ctx, path, dash, st->n_dash, offset, out);
+        r = sr_path_dash_in_view(doc->ctx, path, dash, st->n_dash, offset, within, out);
     }
     if (r != SR_OK) {
         sr_destroy_path(doc->ctx, out);
@@ -1682,7 +1701,8 @@ static void draw_stroke(svg_doc *doc, const frame *f, const sr_path *path, doubl
         tol = 0.1 / matrix_scale(doc->root_m);
     }
     const sr_path *source = host ? host : path;
-    sr_path *dashed = st->n_dash > 0 ? dash_path(doc, f, source, tol) : NULL;
+    sr_path *dashed =
+        st->n_dash > 0 ? dash_path(doc, f, source, host ? doc->root_m : f->m, tol) : NULL;
     const sr_path *stroked = dashed ? dashed : source;
     sr_polygon2 poly = sr_path_polygon(stroked);
     double est = stroke_points(&poly, st, tol);
@@ -2612,6 +2632,11 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
             return NULL;
         }
     }
+    /* the budget's square holds every guard band (sr_fill_polygon) */
+    const mat2d m = f->m;
+    const double b = SR_MAX_COORD2D + doc->cull_reach;
+    const sr_path_view view = { { m.a, m.b, m.c, m.d, m.e, m.f }, -b, -b, b, b };
+    sr_path_cull_curves(p, doc->cull_reach >= 0 && isfinite(b) ? &view : NULL);
     if (shape_path(doc, f, node->name, node->atts, p, fillable) && doc->status == SR_OK &&
         points_within_budget(doc, sr_path_polygon(p).point_count)) {
         doc->points_used += sr_path_polygon(p).point_count;
@@ -2778,6 +2803,24 @@ static void draw_markers(svg_doc *doc, const frame *f, const sr_path *path, cons
     }
 }
 
+/* How far past the fixed-point budget, in device pixels, a curve of the
+ * shape drawn under f must lie to be drawn as a line (sr_path_cull_curves): its
+ * stroke's half width times the most a miter or square cap reaches, and
+ * a pixel.  -1 (never) when the flattened points are measured as well as
+ * drawn: markers, dashes and paints laid out on the bounding box. */
+static double cull_reach(const svg_doc *doc, const frame *f)
+{
+    const style *st = &f->st;
+    if (doc->want_verts || st->n_dash > 0 || st->fill.kind == SVG_PAINT_URL ||
+        st->stroke.kind == SVG_PAINT_URL) {
+        return -1;
+    }
+    if (st->stroke.kind == SVG_PAINT_NONE || !(st->stroke_width > 0)) {
+        return 1;
+    }
+    return stroke_reach(st, st->non_scaling ? doc->root_m : f->m);
+}
+
 static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
 {
     double tol;
@@ -2786,7 +2829,9 @@ static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
     doc->want_verts = (f->st.marker[0] || f->st.marker[1] || f->st.marker[2]) &&
                       is_named(node, markable);
     doc->n_verts = 0;
+    doc->cull_reach = cull_reach(doc, f);
     sr_path *p = shape_at_scale(doc, node, f, &tol, &fillable);
+    doc->cull_reach = -1;
     /* the vertices are this shape's: markers draw paths of their own */
     svg_vertex *verts = doc->verts;
     int n_verts = doc->n_verts;
@@ -3384,6 +3429,7 @@ static void draw_svg_image(svg_doc *doc, const svg_node *node, const frame *f, c
         free(plain);
         return;
     }
+    in->cull_reach = -1;
     in->file = path ? path : doc->file;
     in->pinned_line = path ? 0 : msg_line(doc);
     in->base = path ? path : doc->base;
@@ -4738,6 +4784,7 @@ static sr_result render(sr_context *ctx, const char *data, size_t size, const sr
     doc->msg = msg;
     doc->msg_size = msg_size;
     doc->points_budget = SR_SVG_POINTS_BASE + (double)SR_SVG_POINTS_PER_BYTE * (double)size;
+    doc->cull_reach = -1;
     if (read_document(doc, data, size)) {
         frame f = { .m = IDENTITY, .st = initial_style() };
         doc->line = doc->root->line;
