@@ -287,7 +287,11 @@ static int cull_sides(const sr_path *p, const sr_point2 *c, int n, bool *inside,
                   (y > p->view.y1) << 3;
         all &= out;
         any |= out;
-        x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+        /* Comparisons, not fmin/fmax: GCC 12's aarch64 vectorizer fails
+         * (an internal compiler error) on this loop's fmin/fmax reduction.
+         * A NaN is passed over either way. */
+        x0 = x < x0 ? x : x0, x1 = x > x1 ? x : x1;
+        y0 = y < y0 ? y : y0, y1 = y > y1 ? y : y1;
     }
     *inside = any == 0;
     *extent = fmax(x1 - x0, y1 - y0);
