@@ -2252,7 +2252,9 @@ typedef struct sr_path_view {
  * segment whose control polygon, mapped, lies wholly beyond one side of
  * the view's rectangle is appended as a line to its end point; one that
  * crosses the rectangle's edge is halved until each half is outside,
- * inside or under 4096 px, and only those are flattened.  A segment
+ * inside or under 4096 px, and only those are flattened.  An elliptical
+ * arc is culled so by quarter turns, each held by the triangle of its
+ * ends and their tangents' meeting point, halved by angle.  A segment
  * inside is flattened as without a view.  Fills and strokes within the
  * rectangle do not change; the path's length and bounds do.
  * SR_INVALID_ARG for a NULL path, a non-finite m or an empty rectangle.

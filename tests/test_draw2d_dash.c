@@ -317,3 +317,58 @@ SR_TEST(curves_wholly_outside_the_view_are_lines)
     CHECK_EQ(sr_path_polygon(f.in).point_count, with);
     close_fixture(&f);
 }
+
+SR_TEST(arcs_far_outside_the_view_are_lines)
+{
+    fixture f = open_fixture();
+    REQUIRE(f.in);
+    const sr_path_view view = { { 1, 0, 0, 1, 0, 0 }, 0, 0, 100, 100 };
+    REQUIRE(sr_path_cull_curves(f.in, &view) == SR_OK);
+    /* a half circle below the view: one point; inside it: flattened as
+     * without a view */
+    sr_path_move_to(f.in, 0, 200);
+    sr_path_arc_to(f.in, 50, 50, 0, false, true, 100, 200);
+    CHECK_EQ(sr_path_polygon(f.in).point_count, 2);
+    sr_path_move_to(f.in, 10, 50);
+    sr_path_arc_to(f.in, 40, 30, 20, true, false, 90, 50);
+    sr_polygon2 culled = sr_path_polygon(f.in);
+    int with = culled.point_count - 2;
+    sr_path *plain = NULL;
+    REQUIRE(sr_make_path(f.ctx, 0, &plain) == SR_OK);
+    sr_path_move_to(plain, 10, 50);
+    sr_path_arc_to(plain, 40, 30, 20, true, false, 90, 50);
+    sr_polygon2 all = sr_path_polygon(plain);
+    CHECK(with > 8);
+    CHECK_EQ(all.point_count, with);
+    for (int i = 0; i < with && i < all.point_count; i++) {
+        sr_point2 a = culled.points[i + 2], b = all.points[i];
+        CHECK(a.x == b.x && a.y == b.y);
+    }
+    sr_destroy_path(f.ctx, plain);
+    /* A circle of radius 1e9 through (50, 50), its centre to the right:
+     * flattened in full its 2 x 65536 chords (the flattening's cap) would
+     * stray 0.29 px from it.  Culled, the chords that reach the view stray
+     * at most the tolerance and the rest are few. */
+    const double r = 1e9;
+    sr_path_clear(f.in);
+    REQUIRE(sr_path_cull_curves(f.in, &view) == SR_OK);
+    sr_path_move_to(f.in, 50, 50);
+    sr_path_arc_to(f.in, r, r, 0, false, true, 2 * r + 50, 50);
+    sr_path_arc_to(f.in, r, r, 0, false, true, 50, 50);
+    sr_polygon2 poly = sr_path_polygon(f.in);
+    CHECK(poly.point_count < 2000);
+    int near = 0;
+    for (int i = 0; i + 1 < poly.point_count; i++) {
+        sr_point2 a = poly.points[i], b = poly.points[i + 1];
+        bool beyond = (a.x < 0 && b.x < 0) || (a.x > 100 && b.x > 100) ||
+                      (a.y < 0 && b.y < 0) || (a.y > 100 && b.y > 100);
+        if (!beyond) { /* it may draw in the view */
+            near++;
+            double d = hypot(b.x - a.x, b.y - a.y);
+            CHECK(d * d / (8 * r) <= 0.1);
+            CHECK(fabs(hypot(a.x - (r + 50), a.y - 50) - r) < 1e-3);
+        }
+    }
+    CHECK(near > 0);
+    close_fixture(&f);
+}

@@ -5,6 +5,7 @@
  * elliptical arcs.  Consumes curve parameters, produces pixels or point
  * lists.  Caller's thread only. */
 #include "context.h"
+#include "draw2d/arc.h"
 #include "draw2d/paint.h"
 #include "math/wide.h"
 
@@ -467,25 +468,43 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
         !isfinite(rotation_deg)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: an argument is not finite", fn);
     }
-    rx = fabs(rx);
-    ry = fabs(ry);
-    if ((from.x == to.x && from.y == to.y)) {
-        return flatten_done(ctx, fn, 0, capacity); /* SVG: the arc is omitted */
-    }
-    if (rx == 0 || ry == 0) {
+    sr__arc arc;
+    switch (sr__arc_centre(from, rx, ry, rotation_deg, large_arc, sweep, to, &arc)) {
+    case SR__ARC_OMITTED:
+        return flatten_done(ctx, fn, 0, capacity);
+    case SR__ARC_LINE:
         *out_count = 1;
         if (capacity >= 1) {
             out[0] = to;
         }
         return flatten_done(ctx, fn, 1, capacity);
+    case SR__ARC_FAR_ENDS:
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: end points too far apart", fn);
+    case SR__ARC_FAR_CENTRE:
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: radii (%g, %g) put the centre beyond range", fn,
+                        fabs(rx), fabs(ry));
+    case SR__ARC_CURVED:
+        break;
     }
-    /* SVG 1.1 F.6.5: endpoint to centre parameterization.  The equations
-     * are scale-invariant, so they run on the half chord and radii divided
-     * by k, the power of two nearest above the half chord's length: radii
-     * of 1e300 or 1e-300 would otherwise square to infinity or zero and
-     * make the centre NaN.  A power of two scales exactly, so ordinary
-     * arcs give the same bits as without it. */
-    double rx_px = rx, ry_px = ry;
+    int n = sr__arc_steps(&arc, arc.dtheta, tolerance);
+    *out_count = n;
+    if (n <= capacity) {
+        sr__arc_points(&arc, arc.theta1, arc.dtheta, n, to, out);
+    }
+    return flatten_done(ctx, fn, n, capacity);
+}
+
+sr__arc_kind sr__arc_centre(sr_point2 from, double rx, double ry, double rotation_deg,
+                            bool large_arc, bool sweep, sr_point2 to, sr__arc *arc)
+{
+    rx = fabs(rx);
+    ry = fabs(ry);
+    if ((from.x == to.x && from.y == to.y)) {
+        return SR__ARC_OMITTED;
+    }
+    if (rx == 0 || ry == 0) {
+        return SR__ARC_LINE;
+    }
     double phi = rotation_deg * M_PI / 180.0, cphi = cos(phi), sphi = sin(phi);
     double mx = from.x / 2 - to.x / 2, my = from.y / 2 - to.y / 2;
     double half_chord = hypot(mx, my);
@@ -493,7 +512,7 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
     (void)frexp(half_chord, &k_exp);
     double k = ldexp(1, k_exp);
     if (!(half_chord > 0) || !isfinite(half_chord) || !isfinite(k)) {
-        return sr__fail(ctx, SR_TOO_LARGE, "%s: end points too far apart", fn);
+        return SR__ARC_FAR_ENDS;
     }
     mx /= k;
     my /= k;
@@ -527,8 +546,7 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
     double ccx = cphi * cxp - sphi * cyp + (from.x / 2 + to.x / 2);
     double ccy = sphi * cxp + cphi * cyp + (from.y / 2 + to.y / 2);
     if (!isfinite(ccx) || !isfinite(ccy) || !isfinite(rx) || !isfinite(ry)) {
-        return sr__fail(ctx, SR_TOO_LARGE, "%s: radii (%g, %g) put the centre beyond range", fn,
-                        rx_px, ry_px);
+        return SR__ARC_FAR_CENTRE;
     }
     double theta1 = vec_angle(1, 0, ux, uy);
     double dtheta = vec_angle(ux, uy, vx, vy);
@@ -537,8 +555,14 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
     } else if (sweep && dtheta < 0) {
         dtheta += 2 * M_PI;
     }
+    *arc = (sr__arc){ ccx, ccy, rx, ry, cphi, sphi, theta1, dtheta };
+    return SR__ARC_CURVED;
+}
+
+int sr__arc_steps(const sr__arc *arc, double dtheta, double tolerance)
+{
     /* Segments: a chord of angle a on radius R strays R (1 - cos(a/2)). */
-    double rmax = rx > ry ? rx : ry;
+    double rmax = arc->rx > arc->ry ? arc->rx : arc->ry;
     double a = tolerance >= rmax ? M_PI / 2 : 2 * acos(1 - tolerance / rmax);
     if (!(a > 0)) {
         /* R above 1e16 tolerances: 1 - x rounds to 1 and acos gives 0
@@ -553,16 +577,21 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
     if (steps > MAX_FLATTEN_STEPS) {
         steps = MAX_FLATTEN_STEPS;
     }
-    int n = (int)steps;
-    *out_count = n;
-    if (n > capacity) {
-        return flatten_done(ctx, fn, n, capacity);
-    }
+    return (int)steps;
+}
+
+sr_point2 sr__arc_point(const sr__arc *arc, double t)
+{
+    double ex = arc->rx * cos(t), ey = arc->ry * sin(t);
+    return (sr_point2){ arc->cphi * ex - arc->sphi * ey + arc->cx,
+                        arc->sphi * ex + arc->cphi * ey + arc->cy };
+}
+
+void sr__arc_points(const sr__arc *arc, double t0, double dtheta, int n, sr_point2 to,
+                    sr_point2 *out)
+{
     for (int i = 1; i < n; i++) {
-        double t = theta1 + dtheta * i / n;
-        double ex = rx * cos(t), ey = ry * sin(t);
-        out[i - 1] = (sr_point2){ cphi * ex - sphi * ey + ccx, sphi * ex + cphi * ey + ccy };
+        out[i - 1] = sr__arc_point(arc, t0 + dtheta * i / n);
     }
     out[n - 1] = to;
-    return flatten_done(ctx, fn, n, capacity);
 }

@@ -7,6 +7,7 @@
 #include "draw2d/polyfill.h"
 
 #include "context.h"
+#include "draw2d/arc.h"
 #include "draw2d/paint.h"
 #include "draw2d/pathcull.h"
 
@@ -202,11 +203,13 @@ sr_result sr_path_line_to(sr_path *path, double x, double y)
 
 /* Flatten into a temporary buffer sized by a first call, then append. */
 typedef sr_result (*flatten_fn)(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
-                                const double *args);
+                                const void *args);
 
-static sr_result flatten_append(sr_path *p, flatten_fn fn, const double *args)
+/* args[0..1] is also the start point when the path has no current one. */
+static sr_result flatten_append(sr_path *p, flatten_fn fn, const void *args)
 {
-    sr_point2 from = p->has_current ? p->current : (sr_point2){ args[0], args[1] };
+    const double *a = args;
+    sr_point2 from = p->has_current ? p->current : (sr_point2){ a[0], a[1] };
     sr_point2 small[64];
     int n = 0;
     sr_result r = fn(p, from, small, 64, &n, args);
@@ -229,22 +232,25 @@ static sr_result flatten_append(sr_path *p, flatten_fn fn, const double *args)
 }
 
 static sr_result quad_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
-                         const double *a)
+                         const void *args)
 {
+    const double *a = args;
     return sr_flatten_quadratic(p->ctx, from, (sr_point2){ a[0], a[1] }, (sr_point2){ a[2], a[3] },
                                 p->tolerance, out, cap, n);
 }
 
 static sr_result cubic_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
-                          const double *a)
+                          const void *args)
 {
+    const double *a = args;
     return sr_flatten_cubic(p->ctx, from, (sr_point2){ a[0], a[1] }, (sr_point2){ a[2], a[3] },
                             (sr_point2){ a[4], a[5] }, p->tolerance, out, cap, n);
 }
 
 static sr_result arc_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
-                        const double *a)
+                        const void *args)
 {
+    const double *a = args;
     return sr_flatten_arc(p->ctx, from, a[2], a[3], a[4], a[5] != 0, a[6] != 0,
                           (sr_point2){ a[0], a[1] }, p->tolerance, out, cap, n);
 }
@@ -359,6 +365,60 @@ sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, doubl
                     a);
 }
 
+/* A piece of an arc: from angle t0 over dt to the point `to`. */
+typedef struct arc_piece {
+    const sr__arc *arc;
+    double t0, dt;
+    sr_point2 to;
+} arc_piece;
+
+static sr_result arc_piece_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int *n,
+                              const void *args)
+{
+    const arc_piece *a = args;
+    (void)from;
+    *n = sr__arc_steps(a->arc, a->dt, p->tolerance);
+    if (*n > cap) {
+        return SR_TOO_LARGE;
+    }
+    sr__arc_points(a->arc, a->t0, a->dt, *n, a->to, out);
+    return SR_OK;
+}
+
+/* The triangle holding an arc piece of at most a quarter turn: its ends
+ * and where their tangents meet (on the circle's image at the middle
+ * angle, 1 / cos(dt / 2) times as far out). */
+static void arc_hull(const sr__arc *arc, double t0, double dt, sr_point2 *c)
+{
+    sr__arc out = *arc;
+    out.rx /= cos(dt / 2);
+    out.ry /= cos(dt / 2);
+    c[0] = sr__arc_point(arc, t0);
+    c[1] = sr__arc_point(&out, t0 + dt / 2);
+    c[2] = sr__arc_point(arc, t0 + dt);
+}
+
+/* An arc piece as cull_curve does a Bezier: outside as a line, halved
+ * (by angle) while it crosses the rectangle's edge and is large. */
+static sr_result cull_arc(sr_path *p, const arc_piece *a, int depth)
+{
+    sr_point2 c[3];
+    arc_hull(a->arc, a->t0, a->dt, c);
+    bool inside;
+    double extent;
+    if (cull_sides(p, c, 3, &inside, &extent) != 0) {
+        return append(p, &a->to, 1);
+    }
+    if (inside || extent <= CULL_SMALL || depth == 0) {
+        return flatten_append(p, arc_piece_fn, a);
+    }
+    double half = a->dt / 2;
+    arc_piece first = { a->arc, a->t0, half, sr__arc_point(a->arc, a->t0 + half) };
+    arc_piece second = { a->arc, a->t0 + half, half, a->to };
+    sr_result r = cull_arc(p, &first, depth - 1);
+    return r == SR_OK ? cull_arc(p, &second, depth - 1) : r;
+}
+
 sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_deg,
                          bool large_arc, bool sweep, double x, double y)
 {
@@ -368,7 +428,35 @@ sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_de
     /* args[0..1] is the end point (also the start when there is no
      * current point, which makes the arc empty). */
     double a[7] = { x, y, rx, ry, rotation_deg, large_arc, sweep };
-    return flatten_append(path, arc_fn, a);
+    sr__arc arc;
+    if (!path->cull || !path->has_current || !finite2(x, y) || !finite2(rx, ry) ||
+        !isfinite(rotation_deg) ||
+        sr__arc_centre(path->current, rx, ry, rotation_deg, large_arc, sweep,
+                       (sr_point2){ x, y }, &arc) != SR__ARC_CURVED) {
+        return flatten_append(path, arc_fn, a);
+    }
+    /* Quarter turns at most, each in its triangle.  An arc wholly inside,
+     * or small, is flattened in one run: the points drawn without a view. */
+    int quarters = (int)fmin(fmax(ceil(fabs(arc.dtheta) / (M_PI / 2)), 1), 4);
+    sr_point2 hull[12], to = { x, y };
+    for (int i = 0; i < quarters; i++) {
+        arc_hull(&arc, arc.theta1 + arc.dtheta * i / quarters, arc.dtheta / quarters, hull + 3 * i);
+    }
+    bool inside;
+    double extent;
+    if (cull_sides(path, hull, 3 * quarters, &inside, &extent) != 0) {
+        return append(path, &to, 1);
+    }
+    if (inside || extent <= CULL_SMALL) {
+        return flatten_append(path, arc_fn, a);
+    }
+    sr_result r = SR_OK;
+    for (int i = 0; r == SR_OK && i < quarters; i++) {
+        double t0 = arc.theta1 + arc.dtheta * i / quarters, dt = arc.dtheta / quarters;
+        arc_piece q = { &arc, t0, dt, i + 1 < quarters ? sr__arc_point(&arc, t0 + dt) : to };
+        r = cull_arc(path, &q, CULL_DEPTH);
+    }
+    return r;
 }
 
 sr_result sr_path_close(sr_path *path)
