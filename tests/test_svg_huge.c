@@ -1,8 +1,8 @@
 /* test_svg_huge.c - SVG geometry far beyond the 2D fixed-point budget
  * (SR_MAX_COORD2D): a point a million pixels off the page, a viewBox
  * zoomed a million times, a stroke and an even-odd hole around such
- * shapes, a blur reading past the image, a circle of radius 1e7, a
- * stroked curve zoomed 2e6 times, dashes along 1e9-px lines.  Each is
+ * shapes, a blur reading past the image, circles of radius 1e7 and
+ * 1e10 px, a stroked curve zoomed 2e6 times, dashes along 1e9-px lines.  Each is
  * drawn where it is seen: as the same drawing with the geometry cut by
  * hand at 2e5 px (within the budget, written with 17 digits; dashed
  * lines just past the image), within 2 codes a channel (4 for a curve,
@@ -198,4 +198,58 @@ SR_TEST(a_dashed_line_a_billion_pixels_long_draws_its_visible_dashes)
                   "<path d='M-12 -12 L 212 212' %s stroke-dashoffset='%.17g'/></svg>",
              dash, diag, fmod((1e9 - 12) * sqrt(2), 34));
     check_same("huge_dash", far, near);
+}
+
+/* A circle of radius 1e10 px under a zoom of 1e5 px a user unit; its
+ * edge passes (100, 100) at s = pi / 131072 from its leftmost point: the
+ * middle of a chord when the circle is flattened in full into 2 x 65536
+ * (the flattening's cap), which strays 2.9 px.  By hand the edge is cut
+ * into lines where it leaves the image (bowing 2e-5 px).  The fill's
+ * paint server is far_paint in the zoomed drawing, near_paint in the
+ * other (defs, and the fill attribute's value). */
+static void huge_circle(const char *name, const char *far_defs, const char *near_defs,
+                        const char *fill)
+{
+    const double z = 1e5, r = 1e10, s = 3.14159265358979323846 / 131072;
+    const double cx = 100 + r * cos(s), cy = 100 - r * sin(s);
+    char far[1024], near[1024], d[256] = "M";
+    snprintf(far, sizeof far,
+             "<svg xmlns='http://www.w3.org/2000/svg' width='200' height='200' "
+             "viewBox='0 0 0.002 0.002'>%s<rect width='1' height='1' fill='white'/>"
+             "<circle cx='%.17g' cy='%.17g' r='%.17g' fill='%s'/></svg>",
+             far_defs, cx / z, cy / z, r / z, fill);
+    const double ys[3] = { -1000, 100, 1200 };
+    for (int i = 0; i < 3; i++) {
+        /* x(y) = cx - sqrt(r^2 - (y - cy)^2) without cancelling */
+        double u = ys[i] - cy, y = ys[i] - 100;
+        double x = 100 + y * (y + 2 * r * sin(s)) / (r * cos(s) + sqrt(r * r - u * u));
+        snprintf(d + strlen(d), sizeof d - strlen(d), "%.17g %.17g L", x, ys[i]);
+    }
+    snprintf(near, sizeof near,
+             HEAD "%s<path d='%s 2000 1200 L 2000 -1000 z' fill='%s'/></svg>", near_defs, d,
+             fill);
+    check_same(name, far, near);
+}
+
+SR_TEST(a_circle_of_radius_1e10_px_under_a_zoom_is_drawn_where_it_is_seen)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    huge_circle("huge_arc", "", "", "blue");
+}
+
+SR_TEST(a_huge_circle_painted_in_user_space_is_drawn_where_it_is_seen)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    /* the same gradient across the image in both drawings' user units */
+    const char *grad = "<defs><linearGradient id='g' gradientUnits='userSpaceOnUse' x1='0' "
+                       "y1='0' x2='%s' y2='%s'><stop offset='0' stop-color='#0a0'/>"
+                       "<stop offset='1' stop-color='#a0f'/></linearGradient></defs>";
+    char far[400], near[400];
+    snprintf(far, sizeof far, grad, "0.002", "0.001");
+    snprintf(near, sizeof near, grad, "200", "100");
+    huge_circle("huge_arc_gradient", far, near, "url(#g)");
 }

@@ -275,10 +275,10 @@ typedef struct pd {
 
 static void pd_put(pd *p, char op, int k, const FT_Vector *const *v)
 {
-    char buf[160];
+    char buf[256];
     int m = snprintf(buf, sizeof buf, "%c", op);
     for (int i = 0; i < k; i++) {
-        m += snprintf(buf + m, sizeof buf - (size_t)m, " %.6f %.6f", p->x + v[i]->x * p->s,
+        m += snprintf(buf + m, sizeof buf - (size_t)m, " %.17g %.17g", p->x + v[i]->x * p->s,
                       p->y - v[i]->y * p->s);
     }
     if (p->n + (size_t)m + 2 > p->cap) {
@@ -347,6 +347,45 @@ SR_TEST(text_fills_the_pixels_of_its_glyph_outlines_as_a_path)
     double mass;
     ink_centroid(text, &mass);
     CHECK(mass > 255.0 * 200); /* something was drawn */
+    CHECK_EQ(count_differing(path, text, 2), 0);
+    destroy(path, text);
+    free(p.d);
+    FT_Done_Face(face);
+    FT_Done_FreeType(lib);
+}
+
+/* "O" at 40 user units under a zoom of 1e5 (4e6 px), seen about the
+ * left side of its outer contour: its curves beyond the budget are drawn
+ * as lines, as they are in the path of the same outline. */
+SR_TEST(huge_glyphs_fill_the_pixels_of_their_outlines_as_a_path)
+{
+    NEED_TEXT();
+    FT_Library lib;
+    FT_Face face;
+    REQUIRE(FT_Init_FreeType(&lib) == 0);
+    REQUIRE(FT_New_Face(lib, dejavu_sans(), 0, &face) == 0);
+    pd p = { .s = 40.0 / face->units_per_EM, .x = 10, .y = 50 };
+    REQUIRE(FT_Load_Char(face, 'O', FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING) == 0);
+    FT_Outline_Funcs funcs = { pd_move, pd_line, pd_conic, pd_cubic, 0, 0 };
+    FT_Outline_Decompose(&face->glyph->outline, &funcs, &p);
+    pd_put(&p, 'Z', 0, NULL);
+    const FT_Glyph_Metrics *gm = &face->glyph->metrics;
+    double left = 10 + gm->horiBearingX * p.s;
+    double mid = 50 - (gm->horiBearingY - gm->height / 2.0) * p.s;
+    char head[256], svg[8400];
+    snprintf(head, sizeof head,
+             "<svg xmlns='http://www.w3.org/2000/svg' width='100' height='100' "
+             "viewBox='%.17g %.17g 0.001 0.001'>", left - 0.0005, mid - 0.0005);
+    snprintf(svg, sizeof svg, "%s<path fill='#208' d='%s'/></svg>", head, p.d);
+    sr_framebuffer *path = render(svg, SR_OK, NULL, 0);
+    snprintf(svg, sizeof svg,
+             "%s<text x='10' y='50' font-family='DejaVu Sans' font-size='40' fill='#208'>O</text>"
+             "</svg>", head);
+    sr_framebuffer *text = render(svg, SR_OK, NULL, 0);
+    double mass;
+    ink_centroid(text, &mass);
+    CHECK(mass > 255.0 * 1000); /* the edge crosses the image */
+    CHECK(mass < 255.0 * 9000);
     CHECK_EQ(count_differing(path, text, 2), 0);
     destroy(path, text);
     free(p.d);
@@ -527,7 +566,7 @@ SR_TEST(huge_font_sizes_and_long_texts_are_refused_with_the_line)
     NEED_TEXT();
     char msg[512];
     sr_framebuffer *fb = render("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>\n"
-                                "<text font-size='1e9'>H</text></svg>",
+                                "<text font-size='1e10'>H</text></svg>",
                                 SR_TOO_LARGE, msg, sizeof msg);
     CHECK(fb == NULL);
     CHECK_STR_CONTAINS(msg, "t.svg:2: text: a font-size of");
@@ -1289,7 +1328,7 @@ SR_TEST(text_in_a_clip_path_is_refused_beyond_the_budgets)
 {
     NEED_TEXT();
     check_too_large("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>"
-                    "<clipPath id='c'>\n<text font-size='1e9'>H</text></clipPath>"
+                    "<clipPath id='c'>\n<text font-size='1e10'>H</text></clipPath>"
                     "<rect width='9' height='9' clip-path='url(#c)'/></svg>",
                     "t.svg:2: text: a font-size of");
     char *svg = malloc(20000 + 8192);

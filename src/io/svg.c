@@ -2610,6 +2610,16 @@ static void release_shape_path(svg_doc *doc, sr_path *p, double tol)
     doc->spare_tol = tol;
 }
 
+/* Curves of path p (through m to device pixels) that lie beyond the
+ * budget's square grown by reach (cull_reach; < 0: none) drawn as lines:
+ * the square holds every guard band (sr_fill_polygon). */
+static void cull_beyond_budget(sr_path *p, mat2d m, double reach)
+{
+    const double b = SR_MAX_COORD2D + reach;
+    const sr_path_view view = { { m.a, m.b, m.c, m.d, m.e, m.f }, -b, -b, b, b };
+    sr_path_cull_curves(p, reach >= 0 && isfinite(b) ? &view : NULL);
+}
+
 /* The shape's path in user units, flattened finely enough for the
  * frame's scale (*tol); NULL when there is nothing to draw or after a
  * failure.  Flattening is work too, drawn or not (fill="none"). */
@@ -2632,11 +2642,7 @@ static sr_path *shape_at_scale(svg_doc *doc, const svg_node *node, const frame *
             return NULL;
         }
     }
-    /* the budget's square holds every guard band (sr_fill_polygon) */
-    const mat2d m = f->m;
-    const double b = SR_MAX_COORD2D + doc->cull_reach;
-    const sr_path_view view = { { m.a, m.b, m.c, m.d, m.e, m.f }, -b, -b, b, b };
-    sr_path_cull_curves(p, doc->cull_reach >= 0 && isfinite(b) ? &view : NULL);
+    cull_beyond_budget(p, f->m, doc->cull_reach);
     if (shape_path(doc, f, node->name, node->atts, p, fillable) && doc->status == SR_OK &&
         points_within_budget(doc, sr_path_polygon(p).point_count)) {
         doc->points_used += sr_path_polygon(p).point_count;
@@ -2803,16 +2809,35 @@ static void draw_markers(svg_doc *doc, const frame *f, const sr_path *path, cons
     }
 }
 
+/* Whether paint p is laid out on the bounding box of what it paints
+ * (objectBoundingBox units), which moves when curves far off are drawn
+ * as lines.  Gradients and patterns in user space do not move. */
+static bool paint_on_box(const svg_doc *doc, const paint *p)
+{
+    if (p->kind != SVG_PAINT_URL) {
+        return false;
+    }
+    if (is_gradient(p->server)) {
+        const char *units = grad_attr(doc, p->server, "gradientUnits");
+        return !units || strcmp(units, "userSpaceOnUse") != 0;
+    }
+    const char *units = grad_attr(doc, p->server, "patternUnits");
+    const char *content = grad_attr(doc, p->server, "patternContentUnits");
+    return !units || strcmp(units, "userSpaceOnUse") != 0 ||
+           (content && strcmp(content, "objectBoundingBox") == 0);
+}
+
 /* How far past the fixed-point budget, in device pixels, a curve of the
  * shape drawn under f must lie to be drawn as a line (sr_path_cull_curves): its
  * stroke's half width times the most a miter or square cap reaches, and
  * a pixel.  -1 (never) when the flattened points are measured as well as
- * drawn: markers, dashes and paints laid out on the bounding box. */
+ * drawn: markers (their angles), dashes (the length along the path) and
+ * paints laid out on the bounding box. */
 static double cull_reach(const svg_doc *doc, const frame *f)
 {
     const style *st = &f->st;
-    if (doc->want_verts || st->n_dash > 0 || st->fill.kind == SVG_PAINT_URL ||
-        st->stroke.kind == SVG_PAINT_URL) {
+    if (doc->want_verts || st->n_dash > 0 || paint_on_box(doc, &st->fill) ||
+        paint_on_box(doc, &st->stroke)) {
         return -1;
     }
     if (st->stroke.kind == SVG_PAINT_NONE || !(st->stroke_width > 0)) {
@@ -2853,9 +2878,10 @@ static void draw_shape(svg_doc *doc, const svg_node *node, const frame *f)
 
 #ifdef SR_HAVE_SVG_TEXT
 
-/* Font sizes beyond this many pixels are refused: their glyphs would be
- * flattened into more points than any image needs. */
-#define MAX_FONT_PIXELS 100000.0
+/* Font sizes beyond this many pixels are refused: a glyph's curves would
+ * pass the flattening's 2^16 steps before its tolerance.  Below it, the
+ * curves far off the image are drawn as lines (cull_beyond_budget). */
+#define MAX_FONT_PIXELS 1e8
 
 /* The frames of a text's elements, by svg_text_open's index. */
 typedef struct text_walk {
@@ -3045,9 +3071,16 @@ static void draw_text_runs(svg_doc *doc, text_walk *w, double tol)
     /* every run's outline first: objectBoundingBox paints measure the
      * whole text, as they would a path */
     double box[4] = { INFINITY, INFINITY, -INFINITY, -INFINITY };
+    bool cull = true; /* unless a run's paint measures that box */
+    for (int r = 0; r < n; r++) {
+        const frame *rf = &w->frames[svg_text_run_element(w->t, r)];
+        cull = cull && cull_reach(doc, rf) >= 0;
+    }
     for (int r = 0; r < n && doc->status == SR_OK; r++) {
         sr_result res = sr_make_path(doc->ctx, tol, &paths[r]);
         if (res == SR_OK) {
+            const frame *rf = &w->frames[svg_text_run_element(w->t, r)];
+            cull_beyond_budget(paths[r], rf->m, cull ? cull_reach(doc, rf) : -1);
             res = svg_text_run_path(w->t, doc->fonts, r, paths[r]);
         }
         if (res != SR_OK) {
@@ -3196,6 +3229,7 @@ static bool clip_text(svg_doc *doc, const svg_node *node, const frame *f, uint8_
         sr_path *p = NULL;
         sr_result res = sr_make_path(doc->ctx, tol, &p);
         if (res == SR_OK) {
+            cull_beyond_budget(p, f->m, 1);
             res = svg_text_run_path(w.t, doc->fonts, r, p);
         }
         sr_point2 *pts;
