@@ -1962,7 +1962,8 @@ SR_API sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_p
                                  sr_rgba color, const sr_fill_desc *desc);
 /* Coverage only: 0..255 per pixel of the w x h window whose top-left pixel
  * is (x0, y0), written to mask (stride bytes per row; the window is
- * zeroed first).  Aliased coverage is 0 or 255. */
+ * zeroed first).  Aliased coverage is 0 or 255.  SR_TOO_LARGE for a window
+ * reaching beyond +-SR_MAX_COORD2D, where no edge can be snapped. */
 SR_API sr_result sr_polygon_coverage(sr_context *ctx, const sr_polygon2 *poly,
                                      const sr_fill_desc *desc, int x0, int y0, int w, int h,
                                      uint8_t *mask, size_t stride);

@@ -4,7 +4,8 @@
  * but reaching past the guard band, the cut polygon must give the pixels
  * of the uncut one, byte for byte, with both fill rules, aliased, area
  * and supersampled; polygons beyond the budget are drawn, NaN and
- * infinities still refused.  Fixed seeds. */
+ * infinities still refused, and so are windows reaching past the budget.
+ * Fixed seeds. */
 #include "context.h"
 #include "draw2d/polyfill.h"
 #include "softrast.h"
@@ -138,6 +139,27 @@ SR_TEST(polygons_beyond_the_budget_are_drawn_where_they_are_seen)
         }
         CHECK_EQ(full, W * H);
     }
+    /* A window on the budget's edge: the guard line held there lies on
+     * the window's edge, and its chord covers no pixel of it.  One
+     * reaching past the budget, where no edge can be snapped, is refused
+     * (its pixels there would stay empty). */
+    const int edge = (int)SR_MAX_COORD2D;
+    for (int a = 0; a < 3; a++) {
+        sr_fill_desc d = { .antialias = a == 0 ? SR_AA_NONE : a == 1 ? SR_AA_AREA
+                                                                     : SR_AA_SUPERSAMPLE };
+        REQUIRE(sr_polygon_coverage(ctx, &(sr_polygon2){ vast, 4, NULL, 0 }, &d, edge - W,
+                                    -edge, W, H, mask, W) == SR_OK);
+        int full = 0;
+        for (int i = 0; i < W * H; i++) {
+            full += mask[i] == 255;
+        }
+        CHECK_EQ(full, W * H);
+    }
+    CHECK_EQ(sr_polygon_coverage(ctx, &(sr_polygon2){ vast, 4, NULL, 0 }, NULL, edge - W / 2, 0,
+                                 W, H, mask, W), SR_TOO_LARGE);
+    CHECK_STR_CONTAINS(sr_context_error(ctx), "reaches beyond");
+    CHECK_EQ(sr_polygon_coverage(ctx, &(sr_polygon2){ vast, 4, NULL, 0 }, NULL, 0, -edge - 1, W,
+                                 H, mask, W), SR_TOO_LARGE);
     /* Wholly beyond the budget and away from the window: nothing. */
     sr_point2 away[3] = { { 1e7, 0 }, { 2e7, 0 }, { 1e7, 40 } };
     REQUIRE(sr_polygon_coverage(ctx, &(sr_polygon2){ away, 3, NULL, 0 }, NULL, 0, 0, W, H, mask,

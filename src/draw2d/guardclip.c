@@ -18,9 +18,9 @@
 /* A cut edge ends on a guard line at a point rounded to 1/256 px, which
  * turns it by about (distance / GUARD_MARGIN) / 512 px in the window: far
  * out, that is a hair no aliased sample has been seen to cross
- * (tests/test_draw2d_guard.c).  The guard stays within the budget, so a
- * window that itself reaches past it (sr_polygon_coverage's origin may
- * lie at SR_MAX_COORD2D) has its guard line at the budget's edge. */
+ * (tests/test_draw2d_guard.c).  The guard stays within the budget, and so
+ * does every window (sr_polygon_coverage refuses one reaching past it):
+ * a guard line held at the budget's edge lies on or beyond the window's. */
 #define GUARD_MARGIN 131072.0
 
 static double clamp_budget(double v)

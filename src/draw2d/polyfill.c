@@ -1017,8 +1017,12 @@ sr_result sr__polygon_coverage(sr_context *ctx, const char *fn, const sr_polygon
         return sr__fail(ctx, SR_INVALID_ARG, "%s: window %d x %d must be 1..%d on each side", fn,
                         w, h, SR_MAX_FRAMEBUFFER_SIZE);
     }
-    if (fabs((double)x0) > SR_MAX_COORD2D || fabs((double)y0) > SR_MAX_COORD2D) {
-        return sr__fail(ctx, SR_TOO_LARGE, "%s: window origin beyond +-%g", fn, SR_MAX_COORD2D);
+    /* No snapped edge reaches a pixel beyond the budget: a window there
+     * would come back empty where the polygon covers it. */
+    if (x0 < -SR_MAX_COORD2D || y0 < -SR_MAX_COORD2D || (double)x0 + w > SR_MAX_COORD2D ||
+        (double)y0 + h > SR_MAX_COORD2D) {
+        return sr__fail(ctx, SR_TOO_LARGE, "%s: window (%d, %d) + %d x %d reaches beyond +-%g",
+                        fn, x0, y0, w, h, SR_MAX_COORD2D);
     }
     if (stride < (size_t)w) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: stride %zu < width %d", fn, stride, w);
