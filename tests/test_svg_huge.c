@@ -253,3 +253,32 @@ SR_TEST(a_huge_circle_painted_in_user_space_is_drawn_where_it_is_seen)
     snprintf(near, sizeof near, grad, "200", "100");
     huge_circle("huge_arc_gradient", far, near, "url(#g)");
 }
+
+SR_TEST(an_image_zoomed_1e300_times_is_drawn_where_it_is_seen)
+{
+    if (!sr_io_have_svg()) {
+        SKIP("built without expat");
+    }
+    /* A 4 x 4 picture, texel (i, j) = (60 i, 60 j, 128).  Zoomed 1e300
+     * times, the image sees its first texel (clamped past its centre);
+     * sliced into 1e300 x 100, its first column's middle, halfway between
+     * rows 1 and 2.  Their maps' determinants overflow a double. */
+    const char *png = "href='data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAQAAAAECAYAAACp8Z5+"
+                      "AAAAK0lEQVR42hXIMQEAMAzDsAArMJ8FFX6be+hRkn0jVCVjCHUuMITKRQ2h6gM5yCMxCQMMBw"
+                      "AAAABJRU5ErkJggg=='";
+    char far[640];
+    snprintf(far, sizeof far,
+             HEAD "<image width='1' height='1' transform='scale(1e300)' %s/></svg>", png);
+    check_same("huge_image_zoom", far,
+               HEAD "<rect width='200' height='200' fill='#000080'/></svg>");
+    snprintf(far, sizeof far,
+             HEAD "<image width='1e300' height='200' preserveAspectRatio='xMidYMid slice' %s/>"
+                  "</svg>", png);
+    check_same("huge_image_slice", far,
+               HEAD "<rect width='200' height='200' fill='#005a80'/></svg>");
+    /* beyond doubles, or off the image: nothing, and no failure */
+    snprintf(far, sizeof far,
+             HEAD "<image x='1e308' y='-1e308' width='1e308' height='1e308' %s/>"
+                  "<image x='-1e308' width='1e308' height='1e308' %s/></svg>", png, png);
+    check_same("huge_image_away", far, HEAD "</svg>");
+}

@@ -6,6 +6,7 @@
 
 #include "context.h"
 #include "draw2d/polyfill.h"
+#include "math/affine2.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -16,22 +17,13 @@
  * finite. */
 static bool invert_affine(const sr_affine2 *m, double inv[6])
 {
-    double det = m->a * m->d - m->b * m->c;
-    if (!(fabs(det) > 1e-300) || !isfinite(det)) {
-        return false;
-    }
-    inv[0] = m->d / det;
-    inv[1] = -m->b / det;
-    inv[2] = -m->c / det;
-    inv[3] = m->a / det;
-    inv[4] = (m->c * m->f - m->d * m->e) / det;
-    inv[5] = (m->b * m->e - m->a * m->f) / det;
+    const double f[6] = { m->a, m->b, m->c, m->d, m->e, m->f };
     for (int i = 0; i < 6; i++) {
-        if (!isfinite(inv[i])) {
+        if (!isfinite(f[i])) {
             return false;
         }
     }
-    return true;
+    return sr__affine2_invert(f, 1e-300, inv);
 }
 
 static bool finite_rgba(sr_rgba c)

@@ -27,6 +27,7 @@
 #include "io/io_util.h"
 #include "io/svg_text.h"
 #include "io/number.h"
+#include "math/affine2.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -1360,12 +1361,17 @@ static double grad_coord(svg_doc *doc, const svg_node *g, const char *name, doub
 
 static bool mat_invert(mat2d m, mat2d *out)
 {
-    double det = m.a * m.d - m.b * m.c;
-    if (!(fabs(det) > 1e-12) || !isfinite(det)) {
+    const double f[6] = { m.a, m.b, m.c, m.d, m.e, m.f };
+    double inv[6];
+    for (int i = 0; i < 6; i++) {
+        if (!isfinite(f[i])) {
+            return false;
+        }
+    }
+    if (!sr__affine2_invert(f, 1e-12, inv)) {
         return false;
     }
-    *out = (mat2d){ m.d / det, -m.b / det, -m.c / det, m.a / det, (m.c * m.f - m.d * m.e) / det,
-                    (m.b * m.e - m.a * m.f) / det };
+    *out = (mat2d){ inv[0], inv[1], inv[2], inv[3], inv[4], inv[5] };
     return true;
 }
 
