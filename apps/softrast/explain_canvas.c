@@ -234,36 +234,6 @@ static sr_point2 frame_map(const void *c, sr_point2 p)
     return to_frame(c, p);
 }
 
-/* Clip segment a-b to the box (Liang-Barsky); false when none of it is
- * inside. */
-static bool clip_segment(sr_point2 *a, sr_point2 *b, const double box[4])
-{
-    double t0 = 0, t1 = 1, d[2] = { b->x - a->x, b->y - a->y }, p0[2] = { a->x, a->y };
-    for (int k = 0; k < 4; k++) {
-        int axis = k & 1;
-        double dir = k < 2 ? -d[axis] : d[axis];
-        double dist = k < 2 ? p0[axis] - box[k] : box[k] - p0[axis];   /* >= 0 inside */
-        if (dir == 0) {
-            if (dist < 0) {
-                return false;
-            }
-            continue;
-        }
-        double t = dist / dir;
-        if (dir < 0) {
-            t0 = t > t0 ? t : t0;
-        } else {
-            t1 = t < t1 ? t : t1;
-        }
-    }
-    if (t0 > t1) {
-        return false;
-    }
-    *b = (sr_point2){ p0[0] + t1 * d[0], p0[1] + t1 * d[1] };
-    *a = (sr_point2){ p0[0] + t0 * d[0], p0[1] + t0 * d[1] };
-    return true;
-}
-
 void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba color,
                 double width)
 {
@@ -271,31 +241,10 @@ void ex_outline(ex_canvas *c, const sr_point2 *pts, int n, bool closed, sr_rgba 
         return;
     }
     /* A vertex far off the grid (coordinates reach 16384 pixels, times the
-     * zoom) would put the path beyond the 2D filler's range
-     * (SR_MAX_COORD2D): such an outline is drawn segment by segment, each
-     * cut to the frame and a little more (box, in grid coordinates), which
-     * leaves what the frame shows the same.  Any other is drawn whole, its
-     * joins as they were. */
-    double pad = width + 4, near = SR_MAX_COORD2D / 2;
-    double box[4] = { (-EX_MARGIN - pad) / c->zoom, (-EX_MARGIN - pad) / c->zoom,
-                      (c->width - EX_MARGIN + pad) / c->zoom,
-                      (c->height - EX_MARGIN + pad) / c->zoom };
-    bool inside = true;
-    for (int i = 0; i < n; i++) {
-        sr_point2 q = to_frame(c, pts[i]);
-        inside = inside && fabs(q.x) <= near && fabs(q.y) <= near;
-    }
-    if (inside) {
-        keep(c, outline_stroke(c->ctx, c->fb, pts, n, closed, frame_map, c, color, width));
-        return;
-    }
-    int segments = n < 2 ? 0 : closed ? n : n - 1;
-    for (int i = 0; i < segments && c->error == SR_OK; i++) {
-        sr_point2 s[2] = { pts[i], pts[(i + 1) % n] };
-        if (clip_segment(&s[0], &s[1], box)) {
-            keep(c, outline_stroke(c->ctx, c->fb, s, 2, false, frame_map, c, color, width));
-        }
-    }
+     * zoom) lies beyond the 2D filler's fixed-point range: the fill cuts
+     * the outline to a guard band around the frame (docs/raster-rules.md
+     * §2.2), so it is drawn whole like any other. */
+    keep(c, outline_stroke(c->ctx, c->fb, pts, n, closed, frame_map, c, color, width));
 }
 
 void ex_fill(ex_canvas *c, const sr_point2 *pts, int n, sr_rgba color)
