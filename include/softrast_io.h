@@ -192,6 +192,38 @@ typedef struct sr_scene_light {
     int light_index, node;      /* its index in the extension's lights, and its node */
 } sr_scene_light;
 
+/* One property of an XMP packet, as text: its name ("dc:creator") and
+ * its value (a list or set its items joined by ", ", a language
+ * alternative its texts, each but a lone one followed by its language in
+ * brackets, a number or a boolean its JSON). */
+typedef struct sr_scene_property {
+    const char *name;
+    const char *value;
+} sr_scene_property;
+
+/* What a glTF file says about itself (docs/gltf.md): its `asset`'s
+ * version, minVersion, generator and copyright (UTF-8; NULL when the file
+ * gives none, all NULL for other formats), and the KHR_xmp_json_ld
+ * packet the asset references, as given (compact JSON text; NULL when
+ * none, or when the reference is bad: a warning says so).  `properties`
+ * are the packet's licence and authorship properties present, in this
+ * order: dc:title, dc:creator, dc:contributor, dc:publisher, dc:date,
+ * dc:description, dc:source, dc:rights, xmpRights:Owner,
+ * xmpRights:UsageTerms, xmpRights:WebStatement, xmpRights:Marked,
+ * cc:license, cc:attributionName, cc:attributionURL.  XMP is metadata
+ * (no part of the drawing): nodes', meshes' and materials' packets are
+ * not read. */
+typedef struct sr_scene_metadata {
+    const char *version;
+    const char *min_version;
+    const char *generator;
+    const char *copyright;
+    const char *xmp_packet;
+    int xmp_packet_index;          /* in the file's packets; -1: none */
+    const sr_scene_property *properties;
+    size_t property_count;
+} sr_scene_metadata;
+
 /* A glTF animation, as sr_load_desc.animation chooses it. */
 typedef struct sr_scene_animation {
     const char *name;             /* the file's name for it, or "" */
@@ -236,6 +268,7 @@ typedef struct sr_scene {
      * index (the last), whether any primitive draws with it or not; -1
      * when the scene has none (other formats). */
     int default_material;
+    sr_scene_metadata metadata;   /* glTF's asset and its XMP packet */
 } sr_scene;
 
 /* Limits of the glTF reader, checked before allocating: at most this many

@@ -4217,6 +4217,94 @@ SR_TEST(info_shows_specular_glossiness)
 #endif
 }
 
+/* What a glTF file says about itself (tests/data/gltf): the asset's
+ * generator and copyright and its KHR_xmp_json_ld packet, in text its
+ * licence and authorship properties, in JSON the packet as given; a
+ * reference to no packet is one warning line with its JSON pointer, and
+ * the rest is shown. */
+SR_TEST(info_shows_the_assets_copyright_and_xmp_metadata)
+{
+#ifndef SR_CLI_PATH
+    SKIP("the softrast tool is not part of this build");
+#else
+    if (!sr_io_have_gltf()) {
+        SKIP("this build reads no glTF");
+    }
+    char model[1100], bad[1100];
+    snprintf(model, sizeof model, "%s/data/gltf/xmp_metadata.gltf", sr_test_src_dir());
+    snprintf(bad, sizeof bad, "%s/data/gltf/xmp_bad_packet.gltf", sr_test_src_dir());
+    cli_run r;
+    REQUIRE(run_cli(ARGS("info", model), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err_len, 0); /* the extension is read: no "not read" warning */
+    CHECK_STR_CONTAINS(r.out, "  asset       glTF 2.0\n"
+                              "    generator  tests/data/gltf (written by hand)\n"
+                              "    copyright  2026 Ada Example, CC BY 4.0\n"
+                              "  metadata    KHR_xmp_json_ld packet 0, 5 properties shown "
+                              "(--json: all)\n");
+    CHECK_STR_CONTAINS(r.out, "    dc:title              Corner triangle [en-us], Triangolo "
+                              "d'angolo [it-it]\n"
+                              "    dc:creator            Ada Example, Bo Sample <bo@example.org>\n"
+                              "    dc:rights             CC BY 4.0\n"
+                              "    xmpRights:UsageTerms  Attribution required: \"Corner "
+                              "triangle\" by Ada Example\n"
+                              "    xmpRights:Marked      true\n");
+    CHECK(!strstr(r.out, "the mesh alone")); /* packet 1, the mesh's */
+    cli_run_free(&r);
+
+    REQUIRE(run_cli(ARGS("info", "--json", model), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_STR_CONTAINS(r.out, "\"metadata\": {\"version\": \"2.0\", \"min_version\": null, "
+                              "\"generator\": \"tests/data/gltf (written by hand)\", "
+                              "\"copyright\": \"2026 Ada Example, CC BY 4.0\", "
+                              "\"xmp_packet\": 0,");
+#ifdef SR_HAVE_JANSSON_TEST
+    json_error_t je;
+    json_t *root = json_loads(r.out, 0, &je);
+    CHECK(root != NULL);
+    if (root) {
+        json_t *xmp = json_object_get(json_object_get(root, "metadata"), "xmp");
+        json_t *creators = json_object_get(json_object_get(xmp, "dc:creator"), "@list");
+        CHECK_EQ(json_array_size(creators), 2);
+        CHECK(strcmp(json_string_value(json_array_get(creators, 1)),
+                     "Bo Sample <bo@example.org>") == 0);
+        CHECK(json_is_true(json_object_get(xmp, "xmpRights:Marked")));
+        CHECK(json_object_get(json_object_get(xmp, "@context"), "xmpRights") != NULL);
+        json_decref(root);
+    }
+#endif
+    cli_run_free(&r);
+
+    REQUIRE(run_cli(ARGS("info", bad), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK(is_one_line(r.err, r.err_len));
+    CHECK_STR_CONTAINS(r.err, "xmp_bad_packet.gltf: warning: /asset/extensions/KHR_xmp_json_ld/"
+                              "packet: 2 is not an index below 2");
+    CHECK_STR_CONTAINS(r.out, "    copyright  2026 Ada Example, CC BY 4.0\n");
+    CHECK(!strstr(r.out, "  metadata "));
+    CHECK_STR_CONTAINS(r.out, "  warnings    1 (on stderr)\n");
+    cli_run_free(&r);
+    REQUIRE(run_cli(ARGS("info", "--json", bad), &r));
+    CHECK_EQ(r.status, 0);
+    CHECK_STR_CONTAINS(r.out, "\"xmp_packet\": null, \"xmp\": null},\n \"warnings\": 1}\n");
+    cli_run_free(&r);
+
+    /* Other formats have none. */
+    char dir[1024], obj[1100];
+    fresh_dir("info_metadata", dir, sizeof dir);
+    snprintf(obj, sizeof obj, "%s/t.obj", dir);
+    REQUIRE(write_whole(obj, ONE_TRIANGLE_OBJ, strlen(ONE_TRIANGLE_OBJ)));
+    REQUIRE(run_cli(ARGS("info", obj), &r));
+    CHECK(!strstr(r.out, "  asset "));
+    cli_run_free(&r);
+    REQUIRE(run_cli(ARGS("info", "--json", obj), &r));
+    CHECK_STR_CONTAINS(r.out, "\"metadata\": {\"version\": null, \"min_version\": null, "
+                              "\"generator\": null, \"copyright\": null, \"xmp_packet\": null, "
+                              "\"xmp\": null},");
+    cli_run_free(&r);
+#endif
+}
+
 /* Bad uses are one line and status 2; a model the reader refuses is its
  * reader's line. */
 SR_TEST(info_refuses_bad_uses_in_one_line)

@@ -1,11 +1,12 @@
 /* info.c - `softrast info MODEL [--json]`: what softrast reads in a model
  * file, before rendering it: its draws, vertex attributes, bounds,
  * materials and the glTF extensions they use, textures, variants,
- * animations, cameras and lights, as text or as one JSON object for
- * scripts.  The model is read
- * by the library's sr_load_scene, as `softrast render` reads it, so its
- * warnings and errors are the same lines. */
+ * animations, cameras, lights and metadata (info_metadata.c), as text or
+ * as one JSON object for scripts.  The model is read by the library's
+ * sr_load_scene, as `softrast render` reads it, so its warnings and
+ * errors are the same lines. */
 #include "cli.h"
+#include "info.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,7 +24,11 @@ static void usage(FILE *f)
                "and attributes, the bounds in world space, each material with its textures\n"
                "and the glTF material extensions it uses, the textures, the material variants\n"
                "(what --variant picks), the animations with their durations (what\n"
-               "--animation picks), cameras (what --camera-index counts) and lights.\n"
+               "--animation picks), cameras (what --camera-index counts) and lights; for\n"
+               "glTF, what the file says about itself: its asset's version, generator and\n"
+               "copyright, and the KHR_xmp_json_ld metadata packet the asset references\n"
+               "(its title, creator, rights, usage terms and other licence and authorship\n"
+               "properties; the whole packet, as JSON, in --json).\n"
                "Warnings go to stderr, as render's do.\n"
                "\n"
                "  --json      one JSON object on stdout instead of text\n"
@@ -160,7 +165,7 @@ static const char *light_name(sr_light_type type)
 
 /* A JSON string: quotes, backslashes and control bytes escaped; bytes
  * from 0x80 up are passed on (a file name's UTF-8). */
-static void json_string(const char *s)
+void info_json_string(const char *s)
 {
     putchar('"');
     for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
@@ -221,7 +226,7 @@ static void print_json(const char *path, const sr_scene *sc)
 {
     attribute_counts a = count_attributes(sc);
     printf("{\"file\": ");
-    json_string(path);
+    info_json_string(path);
     printf(", \"primitives\": %zu, \"vertices\": %zu, \"triangles\": %zu,\n", sc->primitive_count,
            a.vertices, a.triangles);
     printf(" \"instanced_draws\": %zu, \"instanced_nodes\": %zu,\n", sc->instanced_draws,
@@ -271,13 +276,13 @@ static void print_json(const char *path, const sr_scene *sc)
            sc->texture_count);
     for (size_t i = 0; i < sc->variant_count; i++) {
         printf(i ? ", " : "");
-        json_string(sc->variants[i]);
+        info_json_string(sc->variants[i]);
     }
     printf("],\n \"animations\": [");
     for (size_t i = 0; i < sc->animation_count; i++) {
         const sr_scene_animation *an = &sc->animations[i];
         printf("%s\n  {\"name\": ", i ? "," : "");
-        json_string(an->name);
+        info_json_string(an->name);
         printf(", \"channels\": %zu, \"duration\": ", an->channel_count);
         json_number(an->duration);
         printf("}");
@@ -318,7 +323,9 @@ static void print_json(const char *path, const sr_scene *sc)
         json_number(l->light.range);
         printf("}");
     }
-    printf("%s],\n \"warnings\": %d}\n", sc->light_count ? "\n " : "", sc->warning_count);
+    printf("%s],\n", sc->light_count ? "\n " : "");
+    info_print_metadata_json(sc);
+    printf(" \"warnings\": %d}\n", sc->warning_count);
 }
 
 static void print_text(const char *path, const sr_scene *sc)
@@ -326,6 +333,7 @@ static void print_text(const char *path, const sr_scene *sc)
     attribute_counts a = count_attributes(sc);
     size_t n = sc->primitive_count;
     printf("%s\n", path);
+    info_print_metadata_text(sc);
     printf("  draws       %zu primitive%s: %zu vertices, %zu triangles (each instance counted)\n",
            n, n == 1 ? "" : "s", a.vertices, a.triangles);
     if (sc->instanced_draws) {

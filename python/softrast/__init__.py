@@ -35,7 +35,7 @@ of cameras circling a scene.
 See docs/python.md in the source tree for the conventions.
 """
 
-from ._softrast import Mesh, Path, features, library_version, read_image, write_png
+from ._softrast import Mesh, Path, PathView, features, library_version, read_image, write_png
 from ._camera import Camera, look_at
 from ._light import Light
 from ._material import Material
@@ -51,4 +51,4 @@ __all__ = ["Camera", "Light", "Mesh", "Instance", "Material", "Scene", "load", "
            "fit_camera", "orbit",
            "features", "read_image", "render", "render_svg", "SvgWarning", "write_png", "OUTPUTS",
            "__version__",
-           "Canvas", "Path", "LinearGradient", "RadialGradient", "Pattern"]
+           "Canvas", "Path", "PathView", "LinearGradient", "RadialGradient", "Pattern"]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import warnings
 import math
@@ -116,12 +117,17 @@ class Scene:
     ``Instance.material`` (the same object), -1 for one not listed.
     ``animations``: the file's :class:`Animation` list; ``animation`` and
     ``time``: the one :func:`load` posed it by (its index) and when, or
-    None and 0.0.
+    None and 0.0.  ``metadata``: what a glTF file says about itself (its
+    asset's ``version``, ``min_version``, ``generator``, ``copyright``;
+    ``xmp``, the KHR_xmp_json_ld packet its asset references as a dict,
+    ``xmp_packet`` its index, ``xmp_properties`` its licence and
+    authorship properties as text), an empty dict otherwise.
     """
 
     animations: List[Animation]
     animation: Optional[int]
     time: float
+    metadata: dict[str, Any]
 
     def __init__(self, instances: Iterable[SceneItem] = (), cameras: Iterable[Camera] = (),
                  lights: Iterable[Light] = (), variants: Iterable[str] = (),
@@ -138,6 +144,7 @@ class Scene:
         self.animations = []
         self.animation = None
         self.time = 0.0
+        self.metadata = {}
         # load's reading of a glTF file, for pose: (_SceneFile, material
         # dicts, Materials, base color images); None otherwise.
         self._reading: Optional[Tuple[_SceneFile, List[dict[str, Any]], List[Material],
@@ -332,6 +339,14 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
     file's :class:`Animation` tuples either way.  ValueError for an
     animation the file does not have, a time that is not finite, or an
     animation asked of a format that has none.
+
+    ``Scene.metadata`` is what a glTF file says about itself, for a dataset
+    that must keep the licence and authors of its models: the asset's
+    ``copyright`` and ``generator`` (None when absent), and ``xmp``, the
+    KHR_xmp_json_ld packet the asset references (its ``dc:creator``,
+    ``dc:rights``, ``xmpRights:UsageTerms``...) as the file gives it, with
+    ``xmp_properties`` those as text; a reference to no packet leaves
+    ``xmp`` None (``softrast info`` prints the reader's warning).
     """
     path = _path(path)
     if variant is not None and (isinstance(variant, bool)
@@ -361,6 +376,11 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
     return _gltf_scene(path, variant, index, time, d, materials, images)
 
 
+def _metadata(m: dict[str, Any]) -> dict[str, Any]:
+    """load_scene's metadata, the XMP packet (JSON text) read as a dict."""
+    return {**m, "xmp": None if m["xmp"] is None else json.loads(m["xmp"])}
+
+
 def _gltf_scene(path: Union[str, bytes], variant: Union[str, int, None], index: int, time: float,
                 d: dict[str, Any], materials: List[Material],
                 images: dict[int, Optional[NDArray[np.uint8]]]) -> Scene:
@@ -380,6 +400,7 @@ def _gltf_scene(path: Union[str, bytes], variant: Union[str, int, None], index: 
     scene = Scene(instances, [Camera._from_fields(c) for c in d["cameras"]],
                   [Light._from_fields(light) for light in d["lights"]], d["variants"],
                   materials[:-1])
+    scene.metadata = _metadata(d["metadata"])
     scene.animations = [Animation(*a) for a in d["animations"]]
     scene.animation = None if index < 0 else index
     scene.time = time if index >= 0 else 0.0

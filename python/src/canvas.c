@@ -1,8 +1,8 @@
 /*
  * canvas.c - softrast._softrast.Canvas2D, what softrast.Canvas draws
  * with: fills and strokes of paths and polygons with a paint
- * (sr_fill_polygon_paint, sr_make_stroke_outline, sr_path_dash) into a caller's
- * (H, W, 4) uint8 RGBA array, in place.  The library draws into a
+ * (sr_fill_polygon_paint, sr_make_stroke_outline, sr_path_dash_in_view)
+ * into a caller's (H, W, 4) uint8 RGBA array, in place.  The library draws into a
  * framebuffer, not into caller memory, so the canvas keeps one of the
  * image's size as scratch: a draw copies the rectangle its polygon can
  * touch into it, fills, and copies the rectangle back (the array stays
@@ -293,7 +293,7 @@ static bool touched_box(sr_polygon2 poly, int w, int h, int box[4])
     return box[2] > box[0] && box[3] > box[1];
 }
 
-/* A stroke's dashes (sr_path_dash): count 0 for none. */
+/* A stroke's dashes (sr_path_dash_in_view): count 0 for none. */
 typedef struct dash_args {
     double dashes[SR_MAX_DASHES];
     int count;
@@ -319,6 +319,23 @@ static bool map_polygon(sr_polygon2 *poly, const sr_affine2 *m, sr_point2 **mapp
     }
     poly->points = *mapped;
     return true;
+}
+
+/* Where a stroke's dashes can reach the w x h image (sr_path_view): the
+ * image grown by how far the stroke reaches from its path under m (NULL:
+ * the identity), as the SVG reader dashes, so that a pattern along a path
+ * far larger than the image cuts the dashes seen only; NULL (every dash)
+ * when the reach overflows. */
+static const sr_path_view *stroke_view(const sr_stroke_desc *sd, const sr_affine2 *m, int w,
+                                       int h, sr_path_view *view)
+{
+    const sr_affine2 id = { 1, 0, 0, 1, 0, 0 }, *t = m ? m : &id;
+    double stretch = fabs(t->a) + fabs(t->b) + fabs(t->c) + fabs(t->d); /* bounds the largest */
+    double miter = sd->miter_limit > 0 ? sd->miter_limit : 4;
+    double reach = sd->width / 2 * stretch * fmax(miter, 1.4142135623730951) + 1;
+    *view = (sr_path_view){ { t->a, t->b, t->c, t->d, t->e, t->f }, -reach, -reach, w + reach,
+                            h + reach };
+    return isfinite(reach) ? view : NULL;
 }
 
 /* A clipped draw of poly: the box's pixels made transparent, filled,
@@ -368,10 +385,13 @@ static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const PathObj
     sr_path *dashed = NULL;
     sr_point2 *mapped = NULL;
     sr_result r = SR_OK;
+    int w = (int)PyArray_DIM(self->image, 1), h = (int)PyArray_DIM(self->image, 0), box[4];
     if (stroked && da->count > 0) {
+        sr_path_view view;
         r = sr_make_path(self->ctx, stroked->tolerance, &dashed);
         if (r == SR_OK) {
-            r = sr_path_dash(self->ctx, stroked->path, da->dashes, da->count, da->offset, dashed);
+            r = sr_path_dash_in_view(self->ctx, stroked->path, da->dashes, da->count, da->offset,
+                                     stroke_view(sd, m, w, h, &view), dashed);
         }
     }
     if (stroked && r == SR_OK) {
@@ -381,7 +401,6 @@ static sr_result draw_locked(CanvasObject *self, sr_polygon2 poly, const PathObj
     if (r == SR_OK && !map_polygon(&poly, m, &mapped)) {
         r = SR_OUT_OF_MEMORY;
     }
-    int w = (int)PyArray_DIM(self->image, 1), h = (int)PyArray_DIM(self->image, 0), box[4];
     if (r == SR_OK && touched_box(poly, w, h, box)) {
         size_t stride = (size_t)w * 4;
         uint8_t *px = (uint8_t *)PyArray_DATA(self->image) + (size_t)box[1] * stride +
@@ -669,21 +688,9 @@ static PyObject *canvas_stroke(CanvasObject *self, PyObject *args)
                           &da.offset, &transform, &clip)) {
         return NULL;
     }
-    Py_ssize_t n = PyTuple_GET_SIZE(dash_obj);
-    if (n > SR_MAX_DASHES) {
-        return sr_py_value_error("dashes: at most %d values, got %zd", SR_MAX_DASHES, n);
+    if (sr_py_dashes_arg(dash_obj, da.dashes, &da.count) < 0) {
+        return NULL;
     }
-    for (Py_ssize_t i = 0; i < n; i++) {
-        char name[32];
-        snprintf(name, sizeof name, "dashes[%zd]", i);
-        if (sr_py_real_arg(PyTuple_GET_ITEM(dash_obj, i), name, &da.dashes[i]) < 0) {
-            return NULL;
-        }
-        if (!(da.dashes[i] >= 0)) {
-            return sr_py_value_error("%s: must be >= 0, got %g", name, da.dashes[i]);
-        }
-    }
-    da.count = (int)n;
     if (!isfinite(da.offset)) {
         return sr_py_value_error("dash_offset: must be finite, got %g", da.offset);
     }

@@ -291,9 +291,43 @@ static PyObject *light_dict(const sr_scene_light *l)
                          matrix_array(l->world), "light", l->light_index, "node", l->node);
 }
 
+/* A string of the file's (UTF-8, checked by jansson), or None. */
+static PyObject *optional_text(const char *text)
+{
+    if (!text) {
+        Py_RETURN_NONE;
+    }
+    return PyUnicode_DecodeUTF8(text, (Py_ssize_t)strlen(text), "replace");
+}
+
+/* sr_scene.metadata: {"version", "min_version", "generator", "copyright":
+ * str or None, "xmp_packet": the asset's packet index or None, "xmp": the
+ * packet's JSON text or None, "xmp_properties": {name: text}}. */
+static PyObject *metadata_dict(const sr_scene_metadata *m)
+{
+    PyObject *props = PyDict_New();
+    for (size_t i = 0; props && i < m->property_count; i++) {
+        if (set_item(props, m->properties[i].name, optional_text(m->properties[i].value)) < 0) {
+            Py_CLEAR(props);
+        }
+    }
+    PyObject *index = m->xmp_packet_index >= 0 ? PyLong_FromLong(m->xmp_packet_index)
+                                               : optional_text(NULL);
+    if (!props || !index) {
+        Py_XDECREF(props);
+        Py_XDECREF(index);
+        return NULL;
+    }
+    return Py_BuildValue("{sNsNsNsNsNsNsN}", "version", optional_text(m->version), "min_version",
+                         optional_text(m->min_version), "generator",
+                         optional_text(m->generator), "copyright", optional_text(m->copyright),
+                         "xmp_packet", index, "xmp", optional_text(m->xmp_packet),
+                         "xmp_properties", props);
+}
+
 /* {"meshes": [arrays...], "instances": [(mesh index, (4, 4) world,
  * material index)], "materials": [dict...], "cameras": [dict...],
- * "lights": [dict...],
+ * "lights": [dict...], "metadata": metadata_dict's,
  * "gltf": whether the glTF reader read it}: the primitives that share arrays share one entry of
  * "meshes". */
 static PyObject *scene_dict(const sr_scene *s)
@@ -390,6 +424,9 @@ static PyObject *scene_dict(const sr_scene *s)
         PyList_SET_ITEM(anims, (Py_ssize_t)i, t);
     }
     if (out && set_item(out, "animations", anims) < 0) {
+        Py_CLEAR(out);
+    }
+    if (out && set_item(out, "metadata", metadata_dict(&s->metadata)) < 0) {
         Py_CLEAR(out);
     }
 done:

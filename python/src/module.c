@@ -234,6 +234,7 @@ PyMODINIT_FUNC PyInit__softrast(void)
         PyModule_AddObject(m, "have_text", PyBool_FromLong(sr_io_have_text())) < 0 ||
         add_features(m) < 0 ||
         add_framing_constants(m) < 0 || add_type(m, "Path", &sr_py_PathType) < 0 ||
+        add_type(m, "PathView", &sr_py_PathViewType) < 0 ||
         add_type(m, "Canvas2D", &sr_py_Canvas2DType) < 0 || add_draw2d_names(m) < 0) {
         Py_DECREF(&sr_py_MeshType);
         Py_DECREF(m);

@@ -51,6 +51,15 @@ typedef struct PathObject {
 } PathObject;
 
 extern PyTypeObject sr_py_PathType;
+/* softrast.PathView (path_view.c): an sr_path_view. */
+extern PyTypeObject sr_py_PathViewType;
+/* obj (None or NULL: no view) as a view into *storage, *out pointing at
+ * it or NULL; TypeError naming `name`, -1. */
+int sr_py_path_view_arg(PyObject *obj, const char *name, const sr_path_view **out,
+                        sr_path_view *storage);
+/* A dash list (a sequence of at most SR_MAX_DASHES finite lengths >= 0)
+ * into out[0 .. *count); TypeError or ValueError naming dashes[i], -1. */
+int sr_py_dashes_arg(PyObject *obj, double *out, int *count);
 /* softrast._softrast.Canvas2D (canvas.c): fills and strokes into an array. */
 extern PyTypeObject sr_py_Canvas2DType;
 

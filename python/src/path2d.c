@@ -363,6 +363,78 @@ static PyObject *path_to_polygons(PathObject *self, PyObject *unused)
     return list;
 }
 
+/* Path.cull_curves(view): later curves far outside `view` flattened as
+ * lines (sr_path_cull_curves); None turns it off. */
+static PyObject *path_cull_curves(PathObject *self, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = { "view", NULL };
+    PyObject *view_obj;
+    sr_path_view storage;
+    const sr_path_view *view;
+    if (ready(self) < 0 ||
+        !PyArg_ParseTupleAndKeywords(args, kwargs, "O:cull_curves", kwlist, &view_obj) ||
+        sr_py_path_view_arg(view_obj, "view", &view, &storage) < 0) {
+        return NULL;
+    }
+    /* view NULL (None) turns culling off */
+    return path_result(self, sr_path_cull_curves(self->path, view));
+}
+
+/* Path.length(view=None): sr_path_length, or sr_path_length_in_view. */
+static PyObject *path_length(PathObject *self, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = { "view", NULL };
+    PyObject *view_obj = NULL;
+    sr_path_view storage;
+    const sr_path_view *view;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "|O:length", kwlist, &view_obj) ||
+        sr_py_path_view_arg(view_obj, "view", &view, &storage) < 0) {
+        return NULL;
+    }
+    return PyFloat_FromDouble(self->path ? sr_path_length_in_view(self->path, view) : 0.0);
+}
+
+/* Path.dash(dashes, offset=0.0, *, view=None): a new path of the dashes
+ * (sr_path_dash_in_view), the path's tolerance. */
+static PyObject *path_dash(PathObject *self, PyObject *args, PyObject *kwargs)
+{
+    static char *kwlist[] = { "dashes", "offset", "view", NULL };
+    PyObject *dash_obj, *offset_obj = NULL, *view_obj = NULL;
+    double dashes[SR_MAX_DASHES], offset = 0;
+    int count;
+    sr_path_view storage;
+    const sr_path_view *view;
+    if (ready(self) < 0 ||
+        !PyArg_ParseTupleAndKeywords(args, kwargs, "O|O$O:dash", kwlist, &dash_obj, &offset_obj,
+                                     &view_obj) ||
+        sr_py_dashes_arg(dash_obj, dashes, &count) < 0 ||
+        (offset_obj && sr_py_real_arg(offset_obj, "offset", &offset) < 0) ||
+        sr_py_path_view_arg(view_obj, "view", &view, &storage) < 0) {
+        return NULL;
+    }
+    PyObject *tol = PyFloat_FromDouble(self->tolerance);
+    PathObject *out = tol ? (PathObject *)PyObject_CallFunctionObjArgs(
+                                (PyObject *)&sr_py_PathType, tol, NULL)
+                          : NULL;
+    Py_XDECREF(tol);
+    if (!out) {
+        return NULL;
+    }
+    sr_result r = sr_path_dash_in_view(out->ctx, self->path, dashes, count, offset, view,
+                                       out->path);
+    if (r != SR_OK) {
+        /* the message lives on out's context: raised before out goes */
+        if (r == SR_OUT_OF_MEMORY) {
+            PyErr_NoMemory();
+        } else {
+            sr_py_value_error("dashes: %s", sr_context_error(out->ctx));
+        }
+        Py_DECREF(out);
+        return NULL;
+    }
+    return (PyObject *)out;
+}
+
 /* Path.from_svg(d, tolerance=0.1, strict=True): a new path of SVG path
  * data (sr_io_parse_path_data).  An error in the data raises unless
  * strict is false, which keeps the path up to it as SVG draws it; a
@@ -471,6 +543,28 @@ static PyMethodDef path_methods[] = {
                 "left), `size` pixels to the em.\n"
                 "Fill the path with a Canvas.  RuntimeError in a build without\n"
                 "fontconfig, HarfBuzz and FreeType (softrast.have_text)."),
+    PATH_METHOD(cull_curves, METH_VARARGS | METH_KEYWORDS,
+                "cull_curves($self, view)\n--\n\n"
+                "From now on (until clear() or cull_curves(None)), a quadratic or cubic\n"
+                "added whose control polygon, mapped by the PathView `view`, lies wholly\n"
+                "beyond one side of its rectangle is a line to its end point; one that\n"
+                "crosses the edge is halved until each half is outside, inside or under\n"
+                "4096 px, and only those are flattened (sr_path_cull_curves).  Fills and\n"
+                "strokes within the rectangle do not change; the length and bounds do."),
+    PATH_METHOD(length, METH_VARARGS | METH_KEYWORDS,
+                "length($self, view=None)\n--\n\n"
+                "The length of the flattened path, closing segments included\n"
+                "(sr_path_length); with a PathView, of the parts within its rectangle\n"
+                "(sr_path_length_in_view)."),
+    PATH_METHOD(dash, METH_VARARGS | METH_KEYWORDS,
+                "dash($self, dashes, offset=0.0, *, view=None)\n--\n\n"
+                "A new path (this one's tolerance) of the dashes of this one, each an open\n"
+                "subpath, as SVG's stroke-dasharray and stroke-dashoffset (sr_path_dash):\n"
+                "`dashes` at most 32 lengths >= 0, dashes and gaps in turn (an odd count\n"
+                "repeats once; empty or all zeros: a copy), the pattern starting `offset`\n"
+                "into itself at every subpath.  With a PathView, only the dashes within\n"
+                "its rectangle, at the phase a full walk reaches (sr_path_dash_in_view).\n"
+                "ValueError when the dashes would pass 2^26 points."),
     PATH_METHOD(to_polygons, METH_NOARGS,
                 "to_polygons($self)\n--\n\n"
                 "The flattened subpaths, each an (n, 2) float64 array of x, y."),

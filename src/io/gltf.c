@@ -1315,6 +1315,7 @@ static const char *supported_extensions[] = {
     "EXT_mesh_gpu_instancing",
     "KHR_animation_pointer",
     "KHR_node_visibility",
+    "KHR_xmp_json_ld",
 };
 
 /* Extensions read when softrast was built with their decoder. */
@@ -1538,7 +1539,7 @@ static sr_result read_document(gltf_doc *d, const uint8_t *data, size_t size)
         return sr__io_fail(d->err, SR_BAD_FORMAT, d->name, 0,
                            "the document is not a JSON object");
     }
-    if ((r = check_asset(d)) != SR_OK) {
+    if ((r = check_asset(d)) != SR_OK || (r = sr__gltf_read_metadata(d)) != SR_OK) {
         return r;
     }
     json_t *buffers, *images;

@@ -2,7 +2,8 @@
  * gltf.c reads the document, buffers, meshes, nodes and cameras;
  * gltf_accessor.c decodes accessors; gltf_material.c reads materials,
  * textures and images; gltf_lights.c reads KHR_lights_punctual;
- * gltf_variants.c reads KHR_materials_variants;
+ * gltf_variants.c reads KHR_materials_variants; gltf_metadata.c the
+ * asset's metadata and its KHR_xmp_json_ld packet;
  * gltf_animation.c reads animations and poses the nodes;
  * gltf_pointer.c reads KHR_animation_pointer targets and
  * KHR_node_visibility;
@@ -297,6 +298,10 @@ bool sr__gltf_slot_transform(sr_texture_slot *slot, const float o[2], float rot,
  * a material with KHR_materials_pbrSpecularGlossiness (its README's
  * "Exclusions"): such a material draws none of it, nor animates it. */
 bool sr__gltf_spec_gloss_excludes(const char *name);
+
+/* gltf_metadata.c: the asset's version, generator and copyright and its
+ * KHR_xmp_json_ld packet into sr_scene.metadata (a bad reference warns). */
+sr_result sr__gltf_read_metadata(gltf_doc *d);
 
 /* gltf_variants.c: KHR_materials_variants.  The document's variant names
  * into scene->variants (checking desc->variant against them); one

@@ -41,6 +41,7 @@ sr_scene *sr__scene_new(void)
     if (s) {
         s->animation = -1;   /* the rest pose */
         s->default_material = -1;
+        s->metadata.xmp_packet_index = -1;
     }
     return s;
 }
