@@ -467,6 +467,15 @@ typedef struct sr_context_desc {
      * scratch does not grow with the mesh. */
     void *arena;
     size_t arena_size;
+    /* The memory the context may keep in the prefiltered radiance maps its
+     * pbr programs share (64 KiB each, one per environment and roughness;
+     * docs/performance.md): past it the least recently asked-for map no
+     * live program reads is freed, or, where the scene asks for more maps
+     * in turn than fit, the new one is not kept.  0:
+     * SR_RADIANCE_CACHE_DEFAULT; below one map's size, none kept (each
+     * program builds its own), as in a context with an arena.  Shared or
+     * built, the maps are the same: it changes the time, never a pixel. */
+    size_t radiance_cache_bytes;
 } sr_context_desc;
 
 /* The embedded profile (SR_EMBEDDED, docs/portability.md) sets up few
@@ -479,6 +488,13 @@ typedef struct sr_context_desc {
 #define SR_BATCH_MIN     1024
 #endif
 #define SR_BATCH_MAX     (1 << 22)
+/* 256 radiance maps (32 in the embedded profile): a scene of as many
+ * roughnesses drawn in turn reuses them all. */
+#ifdef SR_EMBEDDED
+#define SR_RADIANCE_CACHE_DEFAULT ((size_t)2 << 20)
+#else
+#define SR_RADIANCE_CACHE_DEFAULT ((size_t)16 << 20)
+#endif
 
 SR_API sr_result   sr_make_context(const sr_context_desc *desc, sr_context **out);
 SR_API void        sr_destroy_context(sr_context *ctx);

@@ -186,6 +186,7 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
     ctx->threads = resolve_threads(d.threads);
     ctx->simd = resolve_simd(d.simd);
     ctx->batch_prims = d.batch_primitives ? (size_t)d.batch_primitives : SR_BATCH_DEFAULT;
+    ctx->oct.budget = d.radiance_cache_bytes ? d.radiance_cache_bytes : SR_RADIANCE_CACHE_DEFAULT;
 
     ctx->scratch = sr__scratch_create(&ctx->allocator);
     if (!ctx->scratch) {

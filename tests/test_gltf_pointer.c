@@ -394,32 +394,25 @@ SR_TEST(pointers_softrast_does_not_animate_are_warned_about_once)
     }
 }
 
-/* A specular-glossiness material: its factors are not animated (the
- * generic warning), nor the metallic-roughness fallback beside them,
- * whose fields hold the diffuse color it draws. */
-SR_TEST(specular_glossiness_materials_are_not_animated)
+/* A specular-glossiness material: the metallic-roughness fallback beside
+ * its factors is not animated, whose fields hold the diffuse color it
+ * draws (its own factors are: every_material_factor_posed_...). */
+SR_TEST(specular_glossiness_fallbacks_are_not_animated)
 {
     static const char *const sg =
         "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]},\"extensions\":"
         "{\"KHR_materials_pbrSpecularGlossiness\":{\"diffuseFactor\":[0,1,0,1]}}}";
-    static const char *const pointers[2] = {
-        "/materials/0/extensions/KHR_materials_pbrSpecularGlossiness/diffuseFactor",
-        "/materials/0/pbrMetallicRoughness/baseColorFactor",
-    };
-    static const char *const why[2] = {
-        " is not a property softrast animates, not animated",
-        ": material 0 is drawn with KHR_materials_pbrSpecularGlossiness, not animated",
-    };
-    for (int i = 0; i < 2; i++) {
+    static const char *const pointer = "/materials/0/pbrMetallicRoughness/baseColorFactor";
+    {
         sr_test_warnings w = { 0 };
         sr_io_error e;
-        if (one_channel_on(sg, pointers[i], "VEC4", false, "LINEAR", "", &w, &e) != SR_OK) {
+        if (one_channel_on(sg, pointer, "VEC4", false, "LINEAR", "", &w, &e) != SR_OK) {
             sr_test_fail(__FILE__, __LINE__, "%s", e.message);
         }
         CHECK_EQ(w.count, 1);
         char want[512];
-        snprintf(want, sizeof want, "KHR_animation_pointer/pointer: \"%s\"%s", pointers[i],
-                 why[i]);
+        snprintf(want, sizeof want, "KHR_animation_pointer/pointer: \"%s\": material 0 is "
+                 "drawn with KHR_materials_pbrSpecularGlossiness, not animated", pointer);
         CHECK_STR_CONTAINS(w.text, want);
     }
     /* Nor an extension the specular-glossiness one excludes, which the
@@ -608,7 +601,8 @@ static char *channel_json(const char *material, const float *k, int width, const
     static const float tri[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 }, t02[2] = { 0, 2 };
     put(&b, tri, 9, 4, "VEC3", 3, 5126, false);
     int in = put(&b, t02, 2, 4, "SCALAR", 2, 5126, false);
-    int out = put(&b, k, 2 * (size_t)width, 4, width == 3 ? "VEC3" : "SCALAR", 2, 5126, false);
+    static const char *const type[5] = { "", "SCALAR", "VEC2", "VEC3", "VEC4" };
+    int out = put(&b, k, 2 * (size_t)width, 4, type[width], 2, 5126, false);
     char samplers[128], channels[512] = "";
     snprintf(samplers, sizeof samplers, "{\"input\":%d,\"output\":%d}", in, out);
     add_channel(channels, sizeof channels, 0, pointer);
@@ -906,7 +900,7 @@ SR_TEST(every_material_factor_posed_draws_the_file_read_with_it)
         const char *mat;   /* one %s for the value */
         const char *pointer;
         int width;
-        float v[3];
+        float v[4];
     } cases[] = {
         { "{" BASE ",\"emissiveFactor\":[0.3,0.2,0.1],\"extensions\":{"
           "\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%s}}}",
@@ -961,21 +955,31 @@ SR_TEST(every_material_factor_posed_draws_the_file_read_with_it)
         { "{" BASE ",\"extensions\":{\"KHR_materials_diffuse_transmission\":{"
           "\"diffuseTransmissionFactor\":1,\"diffuseTransmissionColorFactor\":%s}}}",
           X("diffuse_transmission") "diffuseTransmissionColorFactor", 3, { 0.9f, 0.4f, 0.1f } },
+        { "{\"extensions\":{\"KHR_materials_pbrSpecularGlossiness\":{\"diffuseFactor\":%s,"
+          "\"specularFactor\":[0.2,0.2,0.2],\"glossinessFactor\":0.6}}}",
+          X("pbrSpecularGlossiness") "diffuseFactor", 4, { 0.8f, 0.5f, 0.2f, 1 } },
+        { "{\"extensions\":{\"KHR_materials_pbrSpecularGlossiness\":{\"diffuseFactor\":"
+          "[0.5,0.4,0.3,1],\"specularFactor\":%s,\"glossinessFactor\":0.6}}}",
+          X("pbrSpecularGlossiness") "specularFactor", 3, { 0.9f, 0.6f, 0.3f } },
+        { "{\"extensions\":{\"KHR_materials_pbrSpecularGlossiness\":{\"diffuseFactor\":"
+          "[0.5,0.4,0.3,1],\"specularFactor\":[0.2,0.2,0.2],\"glossinessFactor\":%s}}}",
+          X("pbrSpecularGlossiness") "glossinessFactor", 1, { 0.9f } },
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         int w = cases[i].width;
-        float keys[2][6] = { { 0 } };   /* [0]: 0 to v; [1]: v to 0 */
+        float keys[2][8] = { { 0 } };   /* [0]: 0 to v; [1]: v to 0 */
         char val[2][64], mat[2][1024];
         for (int c = 0; c < w; c++) {
             keys[0][w + c] = keys[1][c] = cases[i].v[c];
         }
         for (int k = 0; k < 2; k++) {
-            const float *f = k ? cases[i].v : (const float[3]){ 0, 0, 0 };
-            if (w == 1) {
-                snprintf(val[k], sizeof val[k], "%.9g", (double)f[0]);
-            } else {
-                snprintf(val[k], sizeof val[k], "[%.9g,%.9g,%.9g]", (double)f[0], (double)f[1],
-                         (double)f[2]);
+            const float *f = k ? cases[i].v : (const float[4]){ 0, 0, 0, 0 };
+            int at = snprintf(val[k], sizeof val[k], w == 1 ? "%.9g" : "[%.9g", (double)f[0]);
+            for (int c = 1; c < w; c++) {
+                at += snprintf(val[k] + at, sizeof val[k] - (size_t)at, ",%.9g", (double)f[c]);
+            }
+            if (w > 1) {
+                snprintf(val[k] + at, sizeof val[k] - (size_t)at, "]");
             }
             snprintf(mat[k], sizeof mat[k], cases[i].mat, val[k]);
         }

@@ -528,3 +528,172 @@ SR_TEST(program_refuses_a_glossiness_that_is_not_finite)
     CHECK_EQ(sr_make_pbr_program(sr_test_ctx(), &d, &p), SR_INVALID_ARG);
     CHECK_STR_CONTAINS(sr_context_error(sr_test_ctx()), "not finite");
 }
+
+/* `doc` (spheres', freed here) with one animation: the floats of
+ * `keys` (2 keys a channel, at 0 and 2 s, widths[k] floats each) in a
+ * second buffer, channel k on pointers[k].  Malloc'd, NULL on failure. */
+static char *with_animation(char *doc, const float *keys, const int *widths,
+                            const char *const *pointers, int n)
+{
+    static const char *const type[5] = { "", "SCALAR", "VEC2", "VEC3", "VEC4" };
+    static const float times[2] = { 0, 2 };
+    wbuf bin = {0}, views = {0}, acc = {0}, anim = {0};
+    uint8_t le[64];
+    le_copy(le, times, 2, 4);
+    wb_put(&bin, le, 8);
+    wb_printf(&views, ",{\"buffer\":1,\"byteLength\":8}");
+    wb_printf(&acc, ",{\"bufferView\":4,\"componentType\":5126,\"count\":2,\"type\":\"SCALAR\","
+                    "\"min\":[0],\"max\":[2]}");
+    wb_printf(&anim, ",\"animations\":[{\"samplers\":[");
+    for (int k = 0, at = 0; k < n; at += 2 * widths[k], k++) {
+        le_copy(le, keys + at, 2 * (size_t)widths[k], 4);
+        wb_printf(&views, ",{\"buffer\":1,\"byteOffset\":%zu,\"byteLength\":%d}", bin.n,
+                  8 * widths[k]);
+        wb_put(&bin, le, 8 * (size_t)widths[k]);
+        wb_printf(&acc, ",{\"bufferView\":%d,\"componentType\":5126,\"count\":2,\"type\":\"%s\"}",
+                  5 + k, type[widths[k]]);
+        wb_printf(&anim, "%s{\"input\":4,\"output\":%d}", k ? "," : "", 5 + k);
+    }
+    wb_printf(&anim, "],\"channels\":[");
+    for (int k = 0; k < n; k++) {
+        wb_printf(&anim, "%s{\"sampler\":%d,\"target\":{\"path\":\"pointer\",\"extensions\":"
+                         "{\"KHR_animation_pointer\":{\"pointer\":\"%s\"}}}}", k ? "," : "", k,
+                  pointers[k]);
+    }
+    wb_printf(&anim, "]}]");
+    char b64[256];
+    gltf_base64(bin.p, bin.n, b64);
+    wbuf out = {0};
+    /* Spliced in before the ends of spheres' arrays of buffers, views and
+     * accessors, and before the document's closing brace. */
+    const char *cuts[3] = { "],\"bufferViews\"", "],\"accessors\"", "],\"meshes\"" };
+    const char *from = doc;
+    for (int c = 0; doc && c < 3; c++) {
+        const char *at = strstr(from, cuts[c]);
+        if (!at) {
+            free(doc);
+            doc = NULL;
+            break;
+        }
+        wb_put(&out, from, (size_t)(at - from));
+        if (c == 0) {
+            wb_printf(&out, ",{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;"
+                            "base64,%s\"}", bin.n, b64);
+        } else {
+            const wbuf *w = c == 1 ? &views : &acc;
+            wb_put(&out, w->p, w->n);
+        }
+        from = at;
+    }
+    if (doc) {
+        size_t len = strlen(from);
+        wb_put(&out, from, len - 1);   /* without the closing brace */
+        wb_put(&out, anim.p, anim.n);
+        wb_put(&out, "}", 2);
+    }
+    free(doc);
+    free(bin.p);
+    free(views.p);
+    free(acc.p);
+    free(anim.p);
+    return doc ? (char *)out.p : (free(out.p), NULL);
+}
+
+/* dir/stem.gltf, written from `doc` (freed here), rendered by the tool at
+ * `time` of animation 0 (NULL: at rest) into dir/stem_<time>.png; the
+ * pixels (malloc'd) or NULL after a failure. */
+static uint8_t *render_at(const char *dir, const char *stem, char *doc, const char *time,
+                          int *w, int *h)
+{
+    char model[1200], out[1200];
+    snprintf(model, sizeof model, "%s/%s.gltf", dir, stem);
+    snprintf(out, sizeof out, "%s/%s_%s.png", dir, stem, time ? time : "rest");
+    if (doc && !write_text(model, doc)) {
+        FAILF("%s: not written", model);
+    }
+    free(doc);
+    run_result r;
+    uint8_t *px = time ? render_read(ARGS("render", model, "-o", out, "--size", "160x160",
+                                          "--animation", "0", "--time", time), out, w, h, &r)
+                       : render_read(ARGS("render", model, "-o", out, "--size", "160x160"), out,
+                                     w, h, &r);
+    CHECK(px == NULL || strstr(r.err, "warning") == NULL);
+    return px;
+}
+
+#define TT "/extensions/KHR_texture_transform/"
+#define SG_USED_ANIMATED "[\"KHR_materials_pbrSpecularGlossiness\",\"KHR_texture_transform\"," \
+                         "\"KHR_animation_pointer\"]"
+#define SGP "/materials/0/extensions/KHR_materials_pbrSpecularGlossiness/"
+
+/* The KHR_texture_transform of both textures and the three factors,
+ * animated through KHR_animation_pointer from 0 to 2 s: `softrast render`
+ * at 1 s draws the document with the values of 1 s written in (within a
+ * code), and at rest something else.  They used to be skipped as
+ * properties softrast does not animate. */
+SR_TEST(texture_transforms_and_factors_animate_through_pointers)
+{
+    NEED_CLI();
+    char dir[1024];
+    fresh_dir("spec_gloss_pointer", dir, sizeof dir);
+    static const float keys[] = {
+        0, 1,                 /* diffuse rotation: 0.5 at 1 s */
+        1, 1, 3, 2,           /* diffuse scale: (2, 1.5) */
+        0, 0, 0.5f, 0.25f,    /* diffuse offset: (0.25, 0.125) */
+        1, 1, 2, 3,           /* specular-glossiness scale: (1.5, 2) */
+        0, 0, 0.5f, 0.5f,     /* specular-glossiness offset: (0.25, 0.25) */
+        0.2f, 0.6f,           /* glossiness: 0.4 */
+        1, 1, 1, 0.5f, 0.5f, 0.5f,     /* specular: (0.75, 0.75, 0.75) */
+        1, 1, 1, 1, 0.5f, 1, 0, 1,     /* diffuse: (0.75, 1, 0.5, 1) */
+    };
+    static const int widths[] = { 1, 2, 2, 2, 2, 1, 3, 4 };
+    static const char *const pointers[] = {
+        SGP "diffuseTexture" TT "rotation",
+        SGP "diffuseTexture" TT "scale",
+        SGP "diffuseTexture" TT "offset",
+        SGP "specularGlossinessTexture" TT "scale",
+        SGP "specularGlossinessTexture" TT "offset",
+        SGP "glossinessFactor",
+        SGP "specularFactor",
+        SGP "diffuseFactor",
+    };
+    static const char *const fmt = SG(
+        "\"diffuseFactor\":%s,\"specularFactor\":%s,\"glossinessFactor\":%s,"
+        "\"diffuseTexture\":{\"index\":0,\"extensions\":{\"KHR_texture_transform\":{%s}}},"
+        "\"specularGlossinessTexture\":{\"index\":1,\"extensions\":{\"KHR_texture_transform\":"
+        "{%s}}}");
+    char rest[1024], posed[1024];
+    snprintf(rest, sizeof rest, fmt, "[1,1,1,1]", "[1,1,1]", "0.2",
+             "\"offset\":[0,0],\"rotation\":0,\"scale\":[1,1]", "\"offset\":[0,0],\"scale\":[1,1]");
+    snprintf(posed, sizeof posed, fmt, "[0.75,1,0.5,1]", "[0.75,0.75,0.75]", "0.4",
+             "\"offset\":[0.25,0.125],\"rotation\":0.5,\"scale\":[2,1.5]",
+             "\"offset\":[0.25,0.25],\"scale\":[1.5,2]");
+    char *images = two_images();
+    REQUIRE(images);
+    int n = (int)(sizeof widths / sizeof *widths);
+    char *animated = with_animation(spheres(1, SG_USED_ANIMATED, rest, images), keys, widths, pointers,
+                                    n);
+    REQUIRE(animated);
+    char *written = spheres(1, SG_USED, posed, images);
+    free(images);
+    int w[3], h[3];
+    uint8_t *px[3];
+    px[0] = render_at(dir, "animated", animated, "1", &w[0], &h[0]);
+    px[1] = render_at(dir, "written", written, NULL, &w[1], &h[1]);
+    px[2] = render_at(dir, "animated", NULL, NULL, &w[2], &h[2]);   /* its rest pose */
+    REQUIRE(px[0] && px[1] && px[2] && w[0] == w[1] && h[0] == h[1] && w[0] == w[2] &&
+            h[0] == h[2]);
+    CHECK(sr_test_compare_images("spec_gloss_pointer", px[0], px[1], w[0], h[0], 1, 0));
+    long differ = 0;
+    for (long i = 0; i < 4L * w[0] * h[0]; i++) {
+        differ += abs(px[0][i] - px[2][i]) > 8;
+    }
+    fprintf(stderr, "%ld channels apart from the rest pose\n", differ);
+    CHECK(differ > (long)w[0] * h[0] / 10);
+    for (int k = 0; k < 3; k++) {
+        free(px[k]);
+    }
+}
+#undef SG_USED_ANIMATED
+#undef SGP
+#undef TT

@@ -2999,11 +2999,13 @@ static void *map_counted_alloc(size_t size, void *user)
 #define MAP_THREADS 2
 #endif
 
-static sr_result map_counting_context(size_t *builds, sr_context **ctx)
+/* budget: sr_context_desc.radiance_cache_bytes. */
+static sr_result map_counting_context(size_t budget, size_t *builds, sr_context **ctx)
 {
     return sr_make_context(&(sr_context_desc){ .threads = MAP_THREADS,
                                                .allocator = { map_counted_alloc, counted_free,
-                                                              builds } },
+                                                              builds },
+                                               .radiance_cache_bytes = budget },
                            ctx);
 }
 
@@ -3017,14 +3019,19 @@ typedef struct map_scene {
     sr_mat4 view, proj;
 } map_scene;
 
-static bool map_scene_open(map_scene *f)
+static bool map_scene_open_within(map_scene *f, size_t budget)
 {
     *f = (map_scene){ .view = test_view(), .proj = test_projection() };
-    if (map_counting_context(&f->builds, &f->ctx) != SR_OK) {
+    if (map_counting_context(budget, &f->builds, &f->ctx) != SR_OK) {
         return false;
     }
     f->s = make_sphere(16, 8);
     return f->s.pos && sr_make_environment(f->ctx, NULL, &f->env) == SR_OK;
+}
+
+static bool map_scene_open(map_scene *f)
+{
+    return map_scene_open_within(f, 0);
 }
 
 static void map_scene_close(map_scene *f)
@@ -3068,11 +3075,12 @@ SR_TEST(the_radiance_maps_of_destroyed_environments_make_way)
 {
     size_t builds = 0;
     sr_context *ctx;
-    REQUIRE(map_counting_context(&builds, &ctx) == SR_OK);
+    /* Room for 4 maps: the frames outnumber them. */
+    REQUIRE(map_counting_context(4 * MAP_BYTES, &builds, &ctx) == SR_OK);
     sr_mat4 view = test_view(), proj = test_projection();
     sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .roughness = 0.6f };
     sr_pbr_desc d = lit_desc(&m, &view, &proj);
-    for (int frame = 0; frame < SR_OCT_CACHE + 4; frame++) {
+    for (int frame = 0; frame < 8; frame++) {
         sr_environment *env;
         REQUIRE(sr_make_environment(
                     ctx, &(sr_environment_desc){ .intensity = 1.0f + 0.01f * (float)frame },
@@ -3090,15 +3098,15 @@ SR_TEST(the_radiance_maps_of_destroyed_environments_make_way)
     sr_destroy_context(ctx);
 }
 
-/* A map a live program reads is never evicted: with SR_OCT_CACHE programs
- * of distinct roughness alive, one more builds a map of its own, and each
- * of the first still draws what it drew when it was made (AddressSanitizer
- * sees a freed map read). */
+/* A map a live program reads is never evicted: with as many programs of
+ * distinct roughness alive as the budget holds maps (4), one more builds a
+ * map of its own, and each of the first still draws what it drew when it
+ * was made (AddressSanitizer sees a freed map read). */
 SR_TEST(a_radiance_map_a_live_program_reads_is_not_evicted)
 {
     map_scene f;
-    REQUIRE(map_scene_open(&f));
-    enum { N = SR_OCT_CACHE + 1 };
+    REQUIRE(map_scene_open_within(&f, 4 * MAP_BYTES));
+    enum { N = 5 };
     sr_pbr *live[N];
     sr_pbr_material m[N];
     static uint8_t drawn[4 * CELL * CELL], alone[4 * CELL * CELL];
@@ -3171,52 +3179,89 @@ static void roughness_frames(map_scene *f, int n, int frames, size_t *builds)
     }
 }
 
-/* A scene of more roughnesses than SR_OCT_CACHE drawn in turn: the second
- * frame builds again the maps the first evicted, and the cache, seeing
- * them asked for again, grows to hold them all; the third frame builds
- * none (least-recently-used order alone evicted each map just before it
- * was asked for, and every draw built one). */
-SR_TEST(a_scene_of_more_roughnesses_than_the_cache_holds_stops_building_maps)
+/* Scenes of n roughnesses drawn in turn, frame after frame, against a
+ * budget of `fit` maps (0: the default's 256): within it, the second frame
+ * builds none; past it, least-recently-used order alone would evict each
+ * map just before it is asked for again and build all n every frame (as
+ * it did past 256), where the cache keeps the maps it holds and builds
+ * only the n - fit others from the third frame on, whose maps their
+ * programs free.  The hit rate is printed. */
+SR_TEST(a_scene_of_more_roughnesses_than_the_budget_holds_reuses_what_fits)
 {
-    static const int counts[] = { 40, 100 };
-    for (int i = 0; i < 2; i++) {
+    static const struct {
+        int n, fit;
+    } cases[] = { { 100, 0 }, { 40, 16 }, { 300, 0 } };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        int n = cases[i].n, fit = cases[i].fit;
+        size_t budget = fit ? (size_t)fit * MAP_BYTES : 0;
+        if (!fit) {
+            fit = (int)(SR_RADIANCE_CACHE_DEFAULT / MAP_BYTES);
+        }
         map_scene f;
-        REQUIRE(map_scene_open(&f));
-        int n = counts[i];
+        REQUIRE(map_scene_open_within(&f, budget));
         size_t builds[3];
         roughness_frames(&f, n, 3, builds);
+        fprintf(stderr, "%d roughnesses, room for %d maps: %zu, %zu, %zu built; hits %llu of "
+                "%llu look-ups\n", n, fit, builds[0], builds[1], builds[2],
+                (unsigned long long)f.ctx->oct.hits,
+                (unsigned long long)(f.ctx->oct.hits + f.ctx->oct.misses));
+        int kept = n < fit ? n : fit;
         CHECK_EQ(builds[0], (size_t)n);
-        CHECK_EQ(builds[1], (size_t)(n - SR_OCT_CACHE));
-        CHECK_EQ(builds[2], (size_t)0);
-        CHECK_EQ(f.ctx->oct.count, n);
+        CHECK_EQ(builds[2], (size_t)(n - kept));
+        CHECK_EQ(f.ctx->oct.count, kept);
+        CHECK_EQ(f.ctx->oct.bytes, (size_t)kept * MAP_BYTES);
         map_scene_close(&f);
     }
 }
 
-/* Maps asked for once each (a new environment per program, all kept
- * alive) never grow the cache: it stays at SR_OCT_CACHE maps, the least
- * recently asked-for making way. */
-SR_TEST(radiance_maps_asked_for_once_do_not_grow_the_cache)
+/* The same scene of 24 roughnesses in a context whose budget holds 8 maps
+ * (hits, maps turned away, maps evicted) draws, frame after frame and on
+ * 1 or 2 threads, the bytes of each material drawn alone in a fresh
+ * context: the cache's state changes the time, never a pixel. */
+SR_TEST(a_warm_cache_draws_the_bytes_of_a_cold_one)
 {
-    map_scene f;
-    REQUIRE(map_scene_open(&f));
-    enum { N = 2 * SR_OCT_CACHE };
-    sr_environment *envs[N];
-    sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .roughness = 0.6f };
-    sr_pbr_desc d = lit_desc(&m, &f.view, &f.proj);
+    enum { N = 24 };
+    static uint8_t cold[N][4 * CELL * CELL], warm[4 * CELL * CELL];
+    sphere s = make_sphere(16, 8);
+    REQUIRE(s.pos);
+    sr_mat4 view = test_view(), proj = test_projection();
+    sr_pbr_material m[N];
     for (int k = 0; k < N; k++) {
-        REQUIRE(sr_make_environment(f.ctx, NULL, &envs[k]) == SR_OK);
-        d.environment = envs[k];
-        sr_pbr *p;
-        REQUIRE(sr_make_pbr_program(f.ctx, &d, &p) == SR_OK);
-        sr_destroy_pbr_program(f.ctx, p);
+        m[k] = (sr_pbr_material){ .base_color = { 0.8f, 0.5f, 0.3f, 1 }, .metallic = 0.6f,
+                                  .roughness = 0.36f + 0.6f * (float)k / (float)N };
+        sr_context *fresh;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &fresh) == SR_OK);
+        sr_environment *env;
+        REQUIRE(sr_make_environment(fresh, NULL, &env) == SR_OK);
+        sr_pbr_desc d = lit_desc(&m[k], &view, &proj);
+        d.environment = env;
+        sphere_in(fresh, NULL, &s, &d, cold[k], NULL);
+        sr_destroy_environment(fresh, env);
+        sr_destroy_context(fresh);
     }
-    CHECK_EQ(f.builds, (size_t)N);
-    CHECK_EQ(f.ctx->oct.count, SR_OCT_CACHE);
-    for (int k = 0; k < N; k++) {
-        sr_destroy_environment(f.ctx, envs[k]);
+    for (int threads = 1; threads <= MAP_THREADS; threads++) {
+        sr_context *ctx;
+        REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads,
+                                                    .radiance_cache_bytes = 8 * MAP_BYTES },
+                                &ctx) == SR_OK);
+        sr_environment *env;
+        REQUIRE(sr_make_environment(ctx, NULL, &env) == SR_OK);
+        int same = 0;
+        for (int frame = 0; frame < 3; frame++) {
+            for (int k = 0; k < N; k++) {
+                sr_pbr_desc d = lit_desc(&m[k], &view, &proj);
+                d.environment = env;
+                sphere_in(ctx, NULL, &s, &d, warm, NULL);
+                same += memcmp(warm, cold[k], sizeof warm) == 0;
+            }
+        }
+        CHECK_EQ(same, 3 * N);
+        CHECK(ctx->oct.hits > 0);
+        CHECK_EQ(ctx->oct.count, 8);
+        sr_destroy_environment(ctx, env);
+        sr_destroy_context(ctx);
     }
-    map_scene_close(&f);
+    free_sphere(&s);
 }
 
 /* An allocator that keeps the radiance maps alive (allocated, not yet
@@ -3284,4 +3329,67 @@ SR_TEST(destroying_an_environment_frees_its_radiance_maps)
     sr_destroy_pbr_program(ctx, kept);
     CHECK_EQ(live.count, 0);
     sr_destroy_context(ctx);
+}
+
+/* Programs of n roughnesses (from 0.4 in steps of 0.01) from env, each
+ * made and destroyed. */
+static void make_programs(sr_context *ctx, sr_environment *env, int n)
+{
+    sr_mat4 view = test_view(), proj = test_projection();
+    for (int k = 0; k < n; k++) {
+        sr_pbr_material m = { .base_color = { 0.8f, 0.5f, 0.3f, 1 },
+                              .roughness = 0.4f + 0.01f * (float)k };
+        sr_pbr_desc d = lit_desc(&m, &view, &proj);
+        d.environment = env;
+        sr_pbr *p;
+        REQUIRE(sr_make_pbr_program(ctx, &d, &p) == SR_OK);
+        sr_destroy_pbr_program(ctx, p);
+    }
+}
+
+/* Past its budget the cache frees the maps it evicts (the allocator sees
+ * no more than the budget's 4 alive), and its room for entries shrinks as
+ * maps go: to none once the last goes, to its least once 40 of 43 do. */
+SR_TEST(evicted_radiance_maps_are_freed_and_the_cache_shrinks)
+{
+    for (int part = 0; part < 2; part++) {
+        live_maps live = { .count = 0 };
+        sr_context *ctx;
+        REQUIRE(sr_make_context(&(sr_context_desc){
+                                    .threads = MAP_THREADS,
+                                    .allocator = { live_map_alloc, live_map_free, &live },
+                                    .radiance_cache_bytes = part ? 0 : 4 * MAP_BYTES },
+                                &ctx) == SR_OK);
+        sr_environment *a, *b;
+        REQUIRE(sr_make_environment(ctx, NULL, &a) == SR_OK);
+        REQUIRE(sr_make_environment(ctx, &(sr_environment_desc){ .intensity = 2.0f }, &b) ==
+                SR_OK);
+        if (part == 0) {
+            make_programs(ctx, a, 10);
+            CHECK_EQ(live.count, 4);
+            CHECK_EQ(ctx->oct.count, 4);
+            CHECK_EQ(ctx->oct.bytes, 4 * MAP_BYTES);
+        } else {
+            make_programs(ctx, a, 40);
+            CHECK_EQ(ctx->oct.count, 40);
+            CHECK(ctx->oct.capacity >= 40);
+            sr_destroy_environment(ctx, a);
+            CHECK_EQ(live.count, 0);
+            CHECK_EQ(ctx->oct.capacity, 0);
+            CHECK_EQ(ctx->oct.bytes, (size_t)0);
+            REQUIRE(sr_make_environment(ctx, NULL, &a) == SR_OK);
+            make_programs(ctx, a, 40);
+            make_programs(ctx, b, 3);
+            CHECK_EQ(live.count, 43);
+            sr_destroy_environment(ctx, a);
+            a = NULL;
+            CHECK_EQ(live.count, 3);
+            CHECK_EQ(ctx->oct.capacity, SR_OCT_ROOM_MIN);
+            CHECK_EQ(ctx->oct.bytes, 3 * MAP_BYTES);
+        }
+        sr_destroy_environment(ctx, a);
+        sr_destroy_environment(ctx, b);
+        sr_destroy_context(ctx);
+        CHECK_EQ(live.count, 0);
+    }
 }

@@ -28,6 +28,7 @@
  * directions onto the unit square through the octahedron |x|+|y|+|z| = 1,
  * the lower half folded over the upper; no trigonometry either way. */
 #define OCT_SIZE 64
+#define OCT_BYTES ((size_t)OCT_SIZE * OCT_SIZE * 4 * sizeof(float))   /* RGBA floats */
 #define OCT_MIN_ROUGHNESS 0.35f   /* below it the map's texels blur the lobe */
 
 static void oct_decode(float u, float v, float d[3])
@@ -115,7 +116,7 @@ static float *oct_shared(sr_context *ctx, const sr_environment *env, float rough
     *owned = false;
     if (!map) {
         map = oct_build(ctx, env, OCT_SIZE, roughness);
-        *owned = !map || !sr__oct_cache_put(ctx, env->serial, bits, map);
+        *owned = !map || !sr__oct_cache_put(ctx, env->serial, bits, map, OCT_BYTES);
     }
     return map;
 }

@@ -68,6 +68,13 @@ static const prop_row material_rows[] = {
       false },
     { MX("diffuse_transmission", "diffuseTransmissionColorFactor"), 3,
       M(diffuse_transmission_color), 0, 1, false },
+    /* Specular-glossiness keeps its own factors (the diffuse one in the
+     * base color's field), which the pbr program turns into F0 and
+     * roughness when it is made: animated, they take that road per frame
+     * as the file's do. */
+    { MX("pbrSpecularGlossiness", "diffuseFactor"), 4, M(base_color), 0, 1, false },
+    { MX("pbrSpecularGlossiness", "specularFactor"), 3, M(sg_specular), 0, 1, false },
+    { MX("pbrSpecularGlossiness", "glossinessFactor"), 1, M(glossiness), 0, 1, false },
 };
 #undef MX
 
@@ -98,6 +105,9 @@ static const struct {
       M(diffuse_transmission_texture) },
     { MT("diffuse_transmission", "diffuseTransmissionColorTexture"),
       M(diffuse_transmission_color_texture) },
+    { MT("pbrSpecularGlossiness", "diffuseTexture"), M(base_color_texture) },
+    { MT("pbrSpecularGlossiness", "specularGlossinessTexture"),
+      M(specular_glossiness_texture) },
 };
 #undef MT
 #undef M

@@ -101,7 +101,7 @@ with open(out, 'w') as f:
 # KHR_materials_pbrSpecularGlossiness (factors, a diffuse texture with a
 # transform, a specular-glossiness texture, a metallic-roughness fallback
 # the reader drops, MASK) on mesh 0, and the pointers of its base color
-# (skipped with a warning) and of its diffuse texture's rotation.
+# (skipped with a warning) and of its diffuse texture's rotation (animated).
 def png_2x2():
     """A 2 x 2 RGBA PNG, for the textures to be read rather than dropped."""
     import zlib
