@@ -5,6 +5,7 @@
  * success leaves the message as it was (errno-like); and each thread has
  * its own (except in the embedded profile, which has one thread). */
 #define _POSIX_C_SOURCE 200809L
+#include "last_error.h"
 #include "sr_test.h"
 #include "softrast.h"
 
@@ -15,15 +16,6 @@
 #include <pthread.h>
 #define HAVE_THREADS 1
 #endif
-
-/* `call` fails with `code`, and this thread's message then holds `needle`
- * (the message cleared first, so that an old one cannot pass). */
-#define CHECK_FAILS(call, code, needle)                                      \
-    do {                                                                     \
-        sr_set_last_error(NULL);                                             \
-        CHECK_EQ((call), (code));                                            \
-        CHECK_STR_CONTAINS(sr_last_error(), (needle));                       \
-    } while (0)
 
 SR_TEST(contextless_calls_name_the_argument)
 {

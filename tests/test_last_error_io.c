@@ -3,19 +3,13 @@
  * message there, those given a NULL err too, a failure's message is err's
  * own, and a call that succeeds after meeting a failure inside (SVG path
  * data that ends early, an image it skips) leaves the message as it was. */
+#include "last_error.h"
 #include "sr_test.h"
 #include "softrast_io.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#define CHECK_FAILS(call, code, needle)                                      \
-    do {                                                                     \
-        sr_set_last_error(NULL);                                             \
-        CHECK_EQ((call), (code));                                            \
-        CHECK_STR_CONTAINS(sr_last_error(), (needle));                       \
-    } while (0)
 
 SR_TEST(calls_without_err_name_the_argument)
 {
