@@ -97,6 +97,9 @@ SR_TEST(contextless_calls_name_the_argument)
     CHECK_FAILS(sr_newell_normal(NULL, 3, &n), SR_INVALID_ARG,
                 "sr_newell_normal: points is NULL");
     CHECK_FAILS(sr_newell_normal(pts, 3, NULL), SR_INVALID_ARG, "sr_newell_normal: out is NULL");
+    const sr_vec3 huge[3] = { { 0, 0, 0 }, { 3e30f, 0, 0 }, { 0, 3e30f, 0 } };
+    CHECK_FAILS(sr_newell_normal(huge, 3, &n), SR_TOO_LARGE,
+                "sr_newell_normal: the points are so far apart that the normal overflows");
 
     sr_shadow_info info;
     float vis[4];

@@ -47,7 +47,9 @@ sr_result sr_newell_normal(const sr_vec3 *points, int count, sr_vec3 *out)
     }
     sr_vec3 r = { (float)n[0], (float)n[1], (float)n[2] };
     if (!isfinite(r.x) || !isfinite(r.y) || !isfinite(r.z)) {
-        return SR_TOO_LARGE;
+        return sr__fail(NULL, SR_TOO_LARGE,
+                        "sr_newell_normal: the points are so far apart that the normal "
+                        "overflows float");
     }
     *out = r;
     return SR_OK;
