@@ -73,6 +73,8 @@
  *   results
  *     sr_result_name             the enum name of a result ("SR_OUT_OF_MEMORY")
  *     sr_result_text             what a result means ("allocation failed")
+ *     sr_last_error              the message of this thread's last failed call
+ *     sr_set_last_error          sets or clears that message
  *   math
  *     sr_vec3_make               a vector from x, y, z
  *     sr_vec3_add                a + b
@@ -267,9 +269,22 @@
  *    default (sr_state.front_face).
  *
  * Errors: every function that can fail returns an sr_result.  SR_OK is 0.
- * Invalid arguments give SR_INVALID_ARG and a message naming the field,
- * available from sr_context_error(ctx) until the next call on that context.
- * Nothing is drawn by a call that fails validation.  A caller's image of
+ * A failure comes with one line naming the function and the argument or
+ * field that is wrong ("sr_sample_position: samples 3 must be 1, 2, 4, 8
+ * or 16", "sr_framebuffer_desc.width must be > 0"), in two places:
+ *  - sr_context_error(ctx), for a call given a context: until the next
+ *    call on that context ("" after a success);
+ *  - sr_last_error(), for any call, with or without a context (the calls
+ *    that take none, sr_tonemap_rgb, sr_path_line_to on a NULL path, a
+ *    failed sr_make_context, have only this one): the message of the
+ *    calling thread's last failed call, softrast_io's included.  As with
+ *    errno, only failures set it and a success leaves it as it was: read
+ *    it when a call returns something other than SR_OK.  Each thread has
+ *    its own (one for the whole program in the embedded profile, which
+ *    has one thread).
+ * Functions returning bool (sr_mat4_invert, sr_camera_frame...) answer a
+ * question and set no message.  Nothing is drawn by a call that fails
+ * validation.  A caller's image of
  * rows `stride` bytes apart (pixels, depth, masks, texels) must be
  * addressable: a stride so large that its last row would lie past the
  * end of memory is SR_INVALID_ARG too, before any byte is touched.
@@ -345,6 +360,14 @@ typedef enum sr_result {
 
 SR_API const char *sr_result_name(sr_result r); /* "SR_OUT_OF_MEMORY" */
 SR_API const char *sr_result_text(sr_result r); /* "allocation failed" */
+/* The message of the last call on this thread that failed, "" when none
+ * has (see Errors above).  The string belongs to the thread: valid until
+ * its next failure, sr_set_last_error, or the thread's end. */
+SR_API const char *sr_last_error(void);
+/* Sets this thread's message (cut to 511 bytes); NULL or "" clears it.
+ * For libraries layered on softrast (softrast_io reports through it) and
+ * for programs that clear it before a call, as with errno = 0. */
+SR_API void sr_set_last_error(const char *message);
 
 /* ---- math --------------------------------------------------------------- */
 

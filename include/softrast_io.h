@@ -10,7 +10,13 @@
  * files, "FILE: byte N: what is wrong" for binary ones, or "FILE: what is
  * wrong" when no position applies.  A FILE too long for the message is cut
  * from the left ("...tail/name.obj:4: ..."); the position and the reason are
- * always whole.  Nothing here prints or exits.
+ * always whole.  The same line is the calling thread's sr_last_error()
+ * (softrast.h), err given or NULL; the calls that take no sr_io_error
+ * (sr_scene_camera_matrices, sr_io_parse_color) leave theirs there alone,
+ * naming the argument ("sr_scene_camera_matrices: camera->yfov 4 is not in
+ * (0, pi)").  A call that succeeds leaves sr_last_error as it was, also
+ * when its reader met a failure inside and carried on (a texture skipped
+ * with a warning).  Nothing here prints or exits.
  */
 #ifndef SOFTRAST_IO_H
 #define SOFTRAST_IO_H

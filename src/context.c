@@ -36,26 +36,6 @@ const char *sr_result_text(sr_result r)
     return (unsigned)r < SR_RESULT_COUNT ? result_texts[r] : "unknown result";
 }
 
-sr_result sr__fail(sr_context *ctx, sr_result code, const char *fmt, ...)
-{
-    if (ctx) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(ctx->error, sizeof ctx->error, fmt, ap);
-        va_end(ap);
-    }
-    return code;
-}
-
-void sr__ok(sr_context *ctx)
-{
-    ctx->error[0] = 0;
-}
-
-const char *sr_context_error(const sr_context *ctx)
-{
-    return ctx ? ctx->error : "sr_context is NULL";
-}
 
 size_t sr_context_arena_peak(const sr_context *ctx)
 {
@@ -140,45 +120,58 @@ static int resolve_threads(int requested)
 sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
 {
     if (!out) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_context: out is NULL");
     }
     *out = NULL;
     sr_context_desc d = desc ? *desc : (sr_context_desc){0};
+    /* No context yet to hold a message: they go to sr_last_error alone. */
     if ((d.allocator.alloc == NULL) != (d.allocator.free == NULL)) {
-        return SR_INVALID_ARG; /* half an allocator: no context to hold a message */
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_context_desc.allocator has %s but no %s",
+                        d.allocator.alloc ? "alloc" : "free", d.allocator.alloc ? "free" : "alloc");
     }
     if (d.threads < 0 || d.threads > SR_MAX_THREADS) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_context_desc.threads must be in 0..%d (got %d)",
+                        SR_MAX_THREADS, d.threads);
     }
     if (d.simd < SR_SIMD_DEFAULT || d.simd > SR_SIMD_AVX512) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_context_desc.simd %d is not an sr_simd_level",
+                        (int)d.simd);
     }
     if (d.batch_primitives != 0 &&
         (d.batch_primitives < SR_BATCH_MIN || d.batch_primitives > SR_BATCH_MAX)) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG,
+                        "sr_context_desc.batch_primitives must be 0 or in %d..%d (got %d)",
+                        SR_BATCH_MIN, SR_BATCH_MAX, d.batch_primitives);
     }
     sr_arena *arena = NULL;
     if (d.arena) {
         if (d.allocator.alloc || d.threads > 1) {
-            return SR_INVALID_ARG; /* an arena is the only memory, on one thread */
+            /* An arena is the only memory, on one thread. */
+            return sr__fail(NULL, SR_INVALID_ARG, "sr_context_desc.arena excludes %s",
+                            d.allocator.alloc ? "an allocator" : "threads > 1");
         }
         if (d.arena_size > UINTPTR_MAX - (uintptr_t)d.arena) {
-            return SR_INVALID_ARG; /* it would run past the end of memory */
+            return sr__fail(NULL, SR_INVALID_ARG,
+                            "sr_context_desc.arena_size %zu runs past the end of memory",
+                            d.arena_size);
         }
         arena = sr__arena_init(d.arena, d.arena_size, &d.allocator);
         if (!arena) {
-            return SR_OUT_OF_MEMORY;
+            return sr__fail(NULL, SR_OUT_OF_MEMORY,
+                            "sr_context_desc.arena_size %zu is too small for a context",
+                            d.arena_size);
         }
         d.threads = 1;
     } else if (d.arena_size) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_context_desc.arena_size %zu without an arena",
+                        d.arena_size);
     }
     if (!d.allocator.alloc) {
         d.allocator = sr__default_allocator();
     }
     sr_context *ctx = d.allocator.alloc(sizeof *ctx, d.allocator.user);
     if (!ctx) {
-        return SR_OUT_OF_MEMORY;
+        return sr__fail(NULL, SR_OUT_OF_MEMORY, "sr_make_context: out of memory");
     }
     memset(ctx, 0, sizeof *ctx);
     ctx->allocator = d.allocator;
@@ -191,13 +184,15 @@ sr_result sr_make_context(const sr_context_desc *desc, sr_context **out)
     ctx->scratch = sr__scratch_create(&ctx->allocator);
     if (!ctx->scratch) {
         sr_destroy_context(ctx);
-        return SR_OUT_OF_MEMORY;
+        return sr__fail(NULL, SR_OUT_OF_MEMORY, "sr_make_context: out of memory");
     }
     if (ctx->threads > 1) {
-        sr_result r = sr__pool_create(&ctx->allocator, ctx->threads, &ctx->pool);
+        int threads = ctx->threads;
+        sr_result r = sr__pool_create(&ctx->allocator, threads, &ctx->pool);
         if (r != SR_OK) {
             sr_destroy_context(ctx);
-            return r;
+            return sr__fail(NULL, r, "sr_make_context: cannot start %d threads: %s", threads,
+                            sr_result_text(r));
         }
     }
     *out = ctx;

@@ -6,6 +6,7 @@
 
 #include "softrast.h"
 #include "alloc.h"
+#include "error.h"
 #include "fragment/oct_cache.h"
 
 #include <stdarg.h>
@@ -50,9 +51,7 @@ static inline void *sr__alloc_large(sr_context *ctx, size_t size)
     return sr__mem_alloc_large(&ctx->allocator, size);
 }
 
-/* Record a message on ctx and return `code` (for `return sr__fail(...)`). */
-sr_result sr__fail(sr_context *ctx, sr_result code, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
+/* A success clears ctx's message (sr__fail, error.h, sets it). */
 void sr__ok(sr_context *ctx);
 
 #endif

@@ -91,7 +91,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
                   const sr_draw_desc *d)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_draw: ctx is NULL");
     }
     memset(&ctx->last_draw, 0, sizeof ctx->last_draw);
     sr_result r = sr__draw_validate(ctx, fb, state, d);

@@ -3534,6 +3534,18 @@ SR_TEST(gltf_scene_draws_each_primitive_with_its_material)
     CHECK_EQ(r.status, 2);
     CHECK_STR_CONTAINS(r.err, "--camera-index 1: the model has 1 camera");
     cli_run_free(&r);
+    /* A camera its node scales to nothing has no frame: the message says
+     * which of the camera's values (sr_scene_camera_matrices'). */
+    REQUIRE(write_two_quads(model,
+        ",\"materials\":[{},{}],\"nodes\":[{\"mesh\":0},{\"camera\":0,\"scale\":[0,0,0]}],"
+        "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.6,\"znear\":0.1}}],"
+        "\"scenes\":[{\"nodes\":[0,1]}],\"scene\":0"));
+    REQUIRE(run_cli(ARGS("render", model, "--camera-index", "0", "--size", "32x16", "-o", out),
+                    &r));
+    CHECK(r.status != 0);
+    CHECK_STR_CONTAINS(r.err, "--camera-index 0: sr_scene_camera_matrices: camera->world is "
+                              "degenerate");
+    cli_run_free(&r);
 #endif
 }
 

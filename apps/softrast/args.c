@@ -57,6 +57,11 @@ static void report(const char *prefix, const char *fmt, va_list ap)
     }
 }
 
+const char *cli_why(sr_result r)
+{
+    return sr_last_error()[0] ? sr_last_error() : sr_result_text(r);
+}
+
 void cli_error(const char *fmt, ...)
 {
     va_list ap;

@@ -515,9 +515,10 @@ static int run_batch(const batch_opts *b, const render_opts *o, render_job *job)
         render_job_share_light(run.jobs[1], job);
     }
     if (status < 0 && b->sheet) {
+        sr_set_last_error(NULL);
         sr_result r = sr_make_context(&(sr_context_desc){ .threads = o->threads }, &run.sheet_ctx);
         if (r != SR_OK) {
-            cli_error("--sheet: %s", sr_result_text(r));
+            cli_error("--sheet: %s", cli_why(r));
             status = EXIT_FAILURE_RUN;
         }
     }

@@ -105,6 +105,11 @@ sr_result cli_write_image(const char *path, int width, int height, const uint8_t
  * a file name or an argument, as '?': a message stays one line and cannot
  * drive the terminal. */
 void cli_one_line(char *text);
+/* Why a library call just failed with r: the thread's sr_last_error,
+ * which names the argument, or r's text when it left none (clear it with
+ * sr_set_last_error(NULL) before the call, so that an older one cannot
+ * answer). */
+const char *cli_why(sr_result r);
 /* Print "softrast: ..." to stderr (one line). */
 void cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Print one line to stderr as it is (a reader's "FILE:LINE: why"). */

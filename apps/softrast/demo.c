@@ -97,8 +97,10 @@ int cmd_demo(int argc, char **argv)
     }
 
     sr_context *ctx = NULL;
-    if (sr_make_context(&(sr_context_desc){0}, &ctx) != SR_OK) {
-        cli_error("demo: cannot create a context");
+    sr_set_last_error(NULL);
+    sr_result made = sr_make_context(&(sr_context_desc){0}, &ctx);
+    if (made != SR_OK) {
+        cli_error("demo: cannot create a context: %s", cli_why(made));
         return EXIT_FAILURE_RUN;
     }
     sr_framebuffer *fb = NULL;

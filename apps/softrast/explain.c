@@ -906,8 +906,10 @@ int cmd_explain(int argc, char **argv)
     }
 
     sr_context *ctx = NULL;
-    if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) != SR_OK) {
-        cli_error("explain: cannot make a context");
+    sr_set_last_error(NULL);
+    sr_result r = sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
+    if (r != SR_OK) {
+        cli_error("explain: cannot make a context: %s", cli_why(r));
         return EXIT_FAILURE_RUN;
     }
     ex_canvas c;

@@ -462,8 +462,10 @@ int cmd_info(int argc, char **argv)
         return EXIT_USAGE;
     }
     sr_context *ctx = NULL;
-    if (sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) != SR_OK) {
-        cli_error("info: out of memory");
+    sr_set_last_error(NULL);
+    sr_result made = sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
+    if (made != SR_OK) {
+        cli_error("info: %s", cli_why(made));
         return EXIT_FAILURE_RUN;
     }
     sr_scene *sc = NULL;

@@ -107,10 +107,11 @@ static int prepare_normals(const render_opts *o, sr_context *ctx, scene *s)
         if (mode == 0) {
             continue;
         }
+        sr_set_last_error(NULL);
         sr_result r = sr_mesh_compute_normals(ctx, m,
                                               mode == 2 ? SR_NORMALS_FLAT : SR_NORMALS_SMOOTH);
         if (r != SR_OK) {
-            cli_error("computing normals: %s", sr_result_text(r));
+            cli_error("computing normals: %s", cli_why(r));
             return EXIT_FAILURE_RUN;
         }
     }
@@ -706,12 +707,13 @@ static int start_context(render_job *job)
     if (job->ctx) {
         return -1;
     }
+    sr_set_last_error(NULL);
     sr_result r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->ctx);
     if (r == SR_OK && !job->mesh_ctx) {
         r = sr_make_context(&(sr_context_desc){ .threads = job->o.threads }, &job->mesh_ctx);
     }
     if (r != SR_OK) {
-        cli_error("render: %s", sr_result_text(r));
+        cli_error("render: %s", cli_why(r));
         return EXIT_FAILURE_RUN;
     }
     return -1;
@@ -758,9 +760,10 @@ static int load_objects(render_job *job)
                       o->lights_source == LIGHTS_FILE ? "file" : "both", o->model);
         }
     } else {
+        sr_set_last_error(NULL);
         sr_result r = scene_builtin(job->mesh_ctx, s, o->detail);
         if (r != SR_OK) {
-            cli_error("building the teapot scene: %s", sr_result_text(r));
+            cli_error("building the teapot scene: %s", cli_why(r));
             return EXIT_FAILURE_RUN;
         }
     }
@@ -865,9 +868,10 @@ static int finish_scene(render_job *job)
     /* The objects and their matrices are final: frame from cached bounds. */
     scene_cache_bounds(s);
     if (o->ground && o->pbr && o->shadows != 0) {
+        sr_set_last_error(NULL);
         sr_result r = render_ground_add(job->mesh_ctx, s);
         if (r != SR_OK) {
-            cli_error("making the ground: %s", sr_result_text(r));
+            cli_error("making the ground: %s", cli_why(r));
             return EXIT_FAILURE_RUN;
         }
     }
@@ -1123,6 +1127,7 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
     render_opts *o = &job->o;
     sr_context *ctx = job->ctx;
     job->error[0] = 0;
+    sr_set_last_error(NULL);    /* for cli_why: a frame's failure, not an older one */
     *info = (render_frame_info){ 0 };
     o->width = sr_framebuffer_width(out);
     o->height = sr_framebuffer_height(out);
@@ -1236,9 +1241,9 @@ sr_result render_job_draw(render_job *job, sr_framebuffer *out, render_frame_inf
         r = o->msaa > 1 ? sr_resolve(ctx, fb, out) : sr_downsample(ctx, fb, out, o->filter);
     }
     if (r != SR_OK) {
-        snprintf(job->error, sizeof job->error, "%s", sr_context_error(ctx)[0]
-                                                          ? sr_context_error(ctx)
-                                                          : sr_result_text(r));
+        /* The thread's message covers the calls without a context too (the
+         * lights' set-up). */
+        snprintf(job->error, sizeof job->error, "%s", cli_why(r));
     }
     return r;
 }

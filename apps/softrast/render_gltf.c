@@ -447,16 +447,17 @@ sr_material render_gltf_classic(const sr_pbr_material *m, bool vertex_colors)
 const char *render_gltf_camera(const scene *s, int index, float aspect, sr_mat4 *view,
                                sr_mat4 *projection)
 {
-    static char why[160];
+    static char why[320];
     size_t n = s->gltf ? s->gltf->camera_count : 0;
     if ((size_t)index >= n) {
         snprintf(why, sizeof why, "--camera-index %d: the model has %zu camera%s", index, n,
                  n == 1 ? "" : "s");
         return why;
     }
-    if (sr_scene_camera_matrices(&s->gltf->cameras[index], aspect, view, projection) != SR_OK) {
-        snprintf(why, sizeof why, "--camera-index %d: the camera's matrices are degenerate",
-                 index);
+    sr_result r = sr_scene_camera_matrices(&s->gltf->cameras[index], aspect, view, projection);
+    if (r != SR_OK) {
+        /* Which value of the camera (sr_last_error names it). */
+        snprintf(why, sizeof why, "--camera-index %d: %s", index, sr_last_error());
         return why;
     }
     return NULL;

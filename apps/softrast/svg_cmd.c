@@ -293,10 +293,12 @@ static int render_one(svg_args *a)
         return status;
     }
     sr_context *ctx = NULL;
-    if (sr_make_context(&(sr_context_desc){ .threads = a->threads }, &ctx) != SR_OK) {
+    sr_set_last_error(NULL);
+    sr_result made = sr_make_context(&(sr_context_desc){ .threads = a->threads }, &ctx);
+    if (made != SR_OK) {
         free(data);
         cli_inputs_free(&inputs);
-        cli_error("svg: cannot create a context");
+        cli_error("svg: cannot create a context: %s", cli_why(made));
         return EXIT_FAILURE_RUN;
     }
     opt.name = input;
@@ -368,9 +370,13 @@ static bool draw_one(void *user, int slot, const batch_item *it, batch_picture *
 {
     const svg_batch *sb = user;
     svg_slot *sl = &sb->slots[slot];
-    if (!sl->ctx && sr_make_context(&(sr_context_desc){ .threads = 1 }, &sl->ctx) != SR_OK) {
-        snprintf(message, size, "cannot create a context");
-        return false;
+    if (!sl->ctx) {
+        sr_set_last_error(NULL);
+        sr_result made = sr_make_context(&(sr_context_desc){ .threads = 1 }, &sl->ctx);
+        if (made != SR_OK) {
+            snprintf(message, size, "cannot create a context: %s", cli_why(made));
+            return false;
+        }
     }
     if (cli_is_jpeg_name(it->output) && sb->desc.background.a < 1) {
         snprintf(message, size, "'%s': a JPEG has no transparency; give a --background",

@@ -125,6 +125,7 @@ static int canvas_init(CanvasObject *self, PyObject *args, PyObject *kwargs)
     }
     self->image = a;
     self->lock = PyThread_allocate_lock();
+    sr_set_last_error(NULL);
     sr_result r = self->lock ? sr_make_context(&(sr_context_desc){ .threads = 1 }, &self->ctx)
                              : SR_OUT_OF_MEMORY;
     if (r == SR_OK) {
@@ -134,7 +135,7 @@ static int canvas_init(CanvasObject *self, PyObject *args, PyObject *kwargs)
     }
     if (r != SR_OK) {
         PyErr_SetString(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError,
-                        self->ctx ? sr_context_error(self->ctx) : sr_result_text(r));
+                        self->ctx ? sr_context_error(self->ctx) : sr_py_why(r));
         return -1;
     }
     return 0;

@@ -48,6 +48,7 @@ PyObject *sr_py_make_environment(PyObject *self, PyObject *args)
     float *px = NULL;
     sr_environment_desc d = { .intensity = intensity };
     Py_BEGIN_ALLOW_THREADS
+    sr_set_last_error(NULL);
     r = sr_make_context(&(sr_context_desc){ .threads = threads }, &e->ctx);
     if (r == SR_OK && !studio) {
         rr = sr_read_hdr(path, &d.width, &d.height, &px, &err);
@@ -63,7 +64,7 @@ PyObject *sr_py_make_environment(PyObject *self, PyObject *args)
         sr_py_io_error(rr, &err, PyBytes_AS_STRING(path_obj));
     } else if (r != SR_OK) {
         PyErr_Format(r == SR_OUT_OF_MEMORY ? PyExc_MemoryError : PyExc_ValueError,
-                     "environment: %s", e->ctx ? sr_context_error(e->ctx) : sr_result_text(r));
+                     "environment: %s", e->ctx ? sr_context_error(e->ctx) : sr_py_why(r));
     } else {
         out = PyCapsule_New(e, CAPSULE_NAME, capsule_free);
     }

@@ -27,6 +27,11 @@ static int path_errno(const char *path)
     return S_ISDIR(st.st_mode) ? EISDIR : 0;
 }
 
+const char *sr_py_why(sr_result r)
+{
+    return sr_last_error()[0] ? sr_last_error() : sr_result_text(r);
+}
+
 PyObject *sr_py_io_error(sr_result r, const sr_io_error *err, const char *path)
 {
     PyObject *text = sr_py_message_text(err->message[0] ? err->message : sr_result_text(r));

@@ -169,6 +169,11 @@ PyObject *sr_py_fit_camera(PyObject *self, PyObject *args);
  * none) names, with `path` as its filename; MemoryError; else ValueError.
  * Returns NULL. */
 PyObject *sr_py_io_error(sr_result r, const sr_io_error *err, const char *path);
+/* Why a library call just failed with r: the thread's sr_last_error, which
+ * names the argument, or r's text when it left none (clear it with
+ * sr_set_last_error(NULL) before the calls, so that an older one cannot
+ * answer).  Any thread, the GIL held or not. */
+const char *sr_py_why(sr_result r);
 /* A message of the library as str: a name in it need not be UTF-8, and
  * one cut from the left may start inside a character. */
 PyObject *sr_py_message_text(const char *message);

@@ -654,9 +654,10 @@ static sr_result prepare_set(sr_py_render_set *s, const render_job *j)
 static void run(render_job *j, sr_py_render_set *s)
 {
     j->set = s;
+    sr_set_last_error(NULL);    /* a failure below names itself, not an older one */
     sr_result r = prepare_set(s, j);
     if (r != SR_OK && !s->ctx) {
-        snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_result_text(r));
+        snprintf(j->error, sizeof j->error, "cannot make a context: %s", sr_py_why(r));
         return;
     }
     sr_context *ctx = s->ctx;
@@ -670,10 +671,9 @@ static void run(render_job *j, sr_py_render_set *s)
         r = color_pass(ctx, fb, j);
     }
     if (r != SR_OK) {
-        snprintf(j->error, sizeof j->error, "%s", sr_context_error(ctx));
-        if (!j->error[0]) {
-            snprintf(j->error, sizeof j->error, "%s", sr_result_text(r));
-        }
+        /* The thread's message: the context's calls and those without one
+         * (the lights' set-up) alike. */
+        snprintf(j->error, sizeof j->error, "%s", sr_py_why(r));
     }
 }
 

@@ -22,6 +22,7 @@ PyObject *sr_py_texture_slot_uv(PyObject *self, PyObject *args)
     }
     PyArrayObject *out = (PyArrayObject *)PyArray_SimpleNew(2, PyArray_DIMS(uv), NPY_FLOAT32);
     sr_context *ctx = NULL;
+    sr_set_last_error(NULL);
     sr_result r = out ? sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) : SR_OK;
     if (out && r == SR_OK) {
         r = sr_texture_slot_uv(ctx, &slot, PyArray_DATA(uv), (size_t)PyArray_DIM(uv, 0),
@@ -29,7 +30,7 @@ PyObject *sr_py_texture_slot_uv(PyObject *self, PyObject *args)
     }
     if (r != SR_OK) {
         /* A transform that is not finite, or no memory for the context. */
-        sr_py_value_error("texture_slot_uv: %s", ctx ? sr_context_error(ctx) : sr_result_text(r));
+        sr_py_value_error("texture_slot_uv: %s", ctx ? sr_context_error(ctx) : sr_py_why(r));
         Py_CLEAR(out);
     }
     if (ctx) {

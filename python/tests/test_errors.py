@@ -171,3 +171,13 @@ def test_version_and_docstrings():
             assert (getattr(softrast, name).__doc__ or "").strip(), f"{name} has no docstring"
     with pytest.raises(ValueError, match="alpha_mode"):
         softrast.Material(alpha_mode="glass")
+
+
+def test_library_message_for_a_call_without_a_context():
+    # The extension raises the library's message (sr_last_error) for a call
+    # that had no context to hold one: here sr_make_context refusing a
+    # thread count, which the public functions refuse before it.
+    from softrast import _softrast
+    with pytest.raises(ValueError, match=r"^environment: sr_context_desc\.threads must be in "
+                                         r"0\.\.64 \(got -1\)$"):
+        _softrast.make_environment("", 1.0, -1)

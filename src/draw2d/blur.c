@@ -174,7 +174,7 @@ sr_result sr_blur_image(sr_context *ctx, float *pixels, int width, int height, i
 {
     static const char fn[] = "sr_blur_image";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_blur_image: ctx is NULL");
     }
     if (!pixels || !desc) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn, pixels ? "desc" : "pixels");

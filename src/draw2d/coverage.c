@@ -50,7 +50,7 @@ sr_result sr_draw_coverage(sr_context *ctx, sr_framebuffer *fb, int x, int y, in
 {
     static const char fn[] = "sr_draw_coverage";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_draw_coverage: ctx is NULL");
     }
     sr_result r = check_image(ctx, fn, fb, mask, "mask", w, h, stride, 1);
     if (r != SR_OK) {
@@ -83,7 +83,7 @@ sr_result sr_draw_layer(sr_context *ctx, sr_framebuffer *fb, int x, int y, int w
 {
     static const char fn[] = "sr_draw_layer";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_draw_layer: ctx is NULL");
     }
     sr_result r = check_image(ctx, fn, fb, rgba, "rgba", w, h, stride, 4);
     if (r != SR_OK) {

@@ -177,7 +177,7 @@ sr_result sr_draw_ellipse(sr_context *ctx, sr_framebuffer *fb, double cx, double
 {
     static const char fn[] = "sr_draw_ellipse";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_draw_ellipse: ctx is NULL");
     }
     if (!fb) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: fb is NULL", fn);
@@ -256,7 +256,7 @@ sr_result sr_fill_implicit(sr_context *ctx, sr_framebuffer *fb, const sr_implici
 {
     static const char fn[] = "sr_fill_implicit";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_implicit: ctx is NULL");
     }
     if (!fb || !desc || !desc->f) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn,
@@ -368,7 +368,7 @@ sr_result sr_flatten_quadratic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_p
 {
     static const char fn[] = "sr_flatten_quadratic";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_flatten_quadratic: ctx is NULL");
     }
     sr_result r = check_flatten(ctx, fn, tolerance, out, capacity, out_count);
     if (r != SR_OK) {
@@ -408,7 +408,7 @@ sr_result sr_flatten_cubic(sr_context *ctx, sr_point2 p0, sr_point2 p1, sr_point
 {
     static const char fn[] = "sr_flatten_cubic";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_flatten_cubic: ctx is NULL");
     }
     sr_result r = check_flatten(ctx, fn, tolerance, out, capacity, out_count);
     if (r != SR_OK) {
@@ -458,7 +458,7 @@ sr_result sr_flatten_arc(sr_context *ctx, sr_point2 from, double rx, double ry,
 {
     static const char fn[] = "sr_flatten_arc";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_flatten_arc: ctx is NULL");
     }
     sr_result r = check_flatten(ctx, fn, tolerance, out, capacity, out_count);
     if (r != SR_OK) {

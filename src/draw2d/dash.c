@@ -288,7 +288,7 @@ sr_result sr_path_dash_in_view(sr_context *ctx, const sr_path *path, const doubl
 {
     static const char fn[] = "sr_path_dash";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_dash_in_view: ctx is NULL");
     }
     if (!path || !out || (!dashes && count != 0)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn,

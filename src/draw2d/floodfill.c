@@ -125,7 +125,7 @@ static sr_result region_fill(sr_context *ctx, const char *fn, sr_framebuffer *fb
         *filled = 0;
     }
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "%s: ctx is NULL", fn);
     }
     if (!fb) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: fb is NULL", fn);

@@ -59,7 +59,7 @@ sr_result sr_fill_triangle_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr
 {
     static const char fn[] = "sr_fill_triangle_gouraud";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_triangle_gouraud: ctx is NULL");
     }
     if (!fb || !v || !colors) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn,
@@ -142,7 +142,7 @@ sr_result sr_fill_polygon_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_
 {
     static const char fn[] = "sr_fill_polygon_gouraud";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_polygon_gouraud: ctx is NULL");
     }
     if (!fb || !poly || (!colors && poly->point_count > 0)) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn,

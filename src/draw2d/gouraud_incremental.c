@@ -131,7 +131,7 @@ sr_result sr_fill_gouraud(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
 {
     static const char fn[] = "sr_fill_gouraud";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_gouraud: ctx is NULL");
     }
     sr_gouraud_desc d = desc ? *desc : (sr_gouraud_desc){ 0 };
     if (d.method < SR_GOURAUD_DEFAULT || d.method > SR_GOURAUD_INCREMENTAL) {

@@ -575,7 +575,7 @@ sr_result sr_draw_line(sr_context *ctx, sr_framebuffer *fb, sr_point2 a, sr_poin
                        sr_rgba color, const sr_line_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_draw_line: ctx is NULL");
     }
     if (!fb) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_line: fb is NULL");
@@ -626,7 +626,7 @@ sr_result sr_line_steps(sr_context *ctx, int width, int height, sr_point2 a, sr_
                         const sr_line_desc *desc, sr_line_step_fn fn, void *user)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_line_steps: ctx is NULL");
     }
     if (!fn) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_line_steps: fn is NULL");
@@ -653,7 +653,7 @@ sr_result sr_line_area_pixels(sr_context *ctx, int width, int height, sr_point2 
                               const sr_line_desc *desc, sr_line_area_fn fn, void *user)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_line_area_pixels: ctx is NULL");
     }
     if (!fn) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_line_area_pixels: fn is NULL");

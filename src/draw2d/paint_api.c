@@ -149,7 +149,7 @@ sr_result sr_fill_polygon_paint(sr_context *ctx, sr_framebuffer *fb, const sr_po
 {
     static const char fn[] = "sr_fill_polygon_paint";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_polygon_paint: ctx is NULL");
     }
     if (!paint) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: paint is NULL", fn);
@@ -235,7 +235,7 @@ sr_result sr_fill_path_paint(sr_context *ctx, sr_framebuffer *fb, const sr_path 
                              const sr_paint *paint, const sr_fill_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_path_paint: ctx is NULL");
     }
     if (!path) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_fill_path_paint: path is NULL");

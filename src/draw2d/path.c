@@ -41,7 +41,7 @@ struct sr_path {
 sr_result sr_make_path(sr_context *ctx, double tolerance, sr_path **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_path: ctx is NULL");
     }
     if (!out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_path: out is NULL");
@@ -177,7 +177,7 @@ static bool finite2(double a, double b)
 sr_result sr_path_move_to(sr_path *path, double x, double y)
 {
     if (!path) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_move_to: path is NULL");
     }
     if (!finite2(x, y)) {
         return sr__fail(path->ctx, SR_INVALID_ARG, "sr_path_move_to: point is not finite");
@@ -192,7 +192,7 @@ sr_result sr_path_move_to(sr_path *path, double x, double y)
 sr_result sr_path_line_to(sr_path *path, double x, double y)
 {
     if (!path) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_line_to: path is NULL");
     }
     if (!finite2(x, y)) {
         return sr__fail(path->ctx, SR_INVALID_ARG, "sr_path_line_to: point is not finite");
@@ -260,7 +260,7 @@ static sr_result arc_fn(sr_path *p, sr_point2 from, sr_point2 *out, int cap, int
 sr_result sr_path_cull_curves(sr_path *path, const sr_path_view *view)
 {
     if (!path) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_cull_curves: path is NULL");
     }
     if (view && !sr__path_view_valid(view)) {
         return sr__fail(path->ctx, SR_INVALID_ARG, "sr_path_cull_curves: the view needs a finite "
@@ -348,7 +348,7 @@ static sr_result curve_to(sr_path *p, const sr_point2 *c, int n, flatten_fn fn, 
 sr_result sr_path_quad_to(sr_path *path, double x1, double y1, double x, double y)
 {
     if (!path) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_quad_to: path is NULL");
     }
     double a[4] = { x1, y1, x, y };
     return curve_to(path, (const sr_point2[]){ { x1, y1 }, { x, y } }, 3, quad_fn, a);
@@ -358,7 +358,7 @@ sr_result sr_path_cubic_to(sr_path *path, double x1, double y1, double x2, doubl
                            double x, double y)
 {
     if (!path) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_cubic_to: path is NULL");
     }
     double a[6] = { x1, y1, x2, y2, x, y };
     return curve_to(path, (const sr_point2[]){ { x1, y1 }, { x2, y2 }, { x, y } }, 4, cubic_fn,
@@ -423,7 +423,7 @@ sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_de
                          bool large_arc, bool sweep, double x, double y)
 {
     if (!path) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_arc_to: path is NULL");
     }
     /* args[0..1] is the end point (also the start when there is no
      * current point, which makes the arc empty). */
@@ -462,7 +462,7 @@ sr_result sr_path_arc_to(sr_path *path, double rx, double ry, double rotation_de
 sr_result sr_path_close(sr_path *path)
 {
     if (!path) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_path_close: path is NULL");
     }
     if (path->in_subpath) {
         path->closed[path->nc - 1] = 1;
@@ -490,7 +490,7 @@ sr_result sr_fill_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *path,
                        const sr_fill_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_path: ctx is NULL");
     }
     if (!path) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_fill_path: path is NULL");
@@ -730,7 +730,7 @@ sr_result sr_make_stroke_outline(sr_context *ctx, const sr_path *path,
 {
     static const char fn[] = "sr_make_stroke_outline";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_stroke_outline: ctx is NULL");
     }
     if (!path || !out) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn, path ? "out" : "path");
@@ -772,7 +772,7 @@ sr_result sr_stroke_path(sr_context *ctx, sr_framebuffer *fb, const sr_path *pat
                          sr_rgba color, const sr_stroke_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_stroke_path: ctx is NULL");
     }
     if (!fb) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_stroke_path: fb is NULL");

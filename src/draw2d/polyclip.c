@@ -189,7 +189,7 @@ sr_result sr_clip_polygon_rect(sr_context *ctx, const sr_point2 *in, int count, 
 {
     static const char fn[] = "sr_clip_polygon_rect";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_clip_polygon_rect: ctx is NULL");
     }
     sr_result r = check_out(ctx, fn, out, capacity, out_count);
     if (r == SR_OK) {
@@ -220,7 +220,7 @@ sr_result sr_clip_polygon_convex(sr_context *ctx, const sr_point2 *in, int count
 {
     static const char fn[] = "sr_clip_polygon_convex";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_clip_polygon_convex: ctx is NULL");
     }
     sr_result r = check_out(ctx, fn, out, capacity, out_count);
     if (r == SR_OK) {

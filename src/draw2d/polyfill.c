@@ -946,7 +946,7 @@ sr_result sr_fill_polygon(sr_context *ctx, sr_framebuffer *fb, const sr_polygon2
 {
     static const char fn[] = "sr_fill_polygon";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_fill_polygon: ctx is NULL");
     }
     if (!fb) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: fb is NULL", fn);
@@ -1008,7 +1008,7 @@ sr_result sr__polygon_coverage(sr_context *ctx, const char *fn, const sr_polygon
                                uint8_t *mask, size_t stride)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "%s: ctx is NULL", fn);
     }
     if (!mask) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: mask is NULL", fn);

@@ -179,7 +179,7 @@ sr_result sr_draw_text(sr_context *ctx, sr_framebuffer *fb, int x, int y, int sc
                        const char *text, sr_rgba color)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_draw_text: ctx is NULL");
     }
     if (!fb || !text) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_draw_text: %s is NULL", fb ? "text" : "fb");

@@ -108,7 +108,7 @@ sr_result sr_make_builtin_program(sr_context *ctx, const sr_state *state, const 
                                   sr_builtin **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_builtin_program: ctx is NULL");
     }
     if (!state || !out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_builtin_program: %s is NULL",

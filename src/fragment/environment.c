@@ -247,7 +247,7 @@ sr_result sr_make_environment(sr_context *ctx, const sr_environment_desc *desc,
                               sr_environment **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_environment: ctx is NULL");
     }
     if (!out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_environment: out is NULL");

@@ -5,6 +5,7 @@
  * The command, the benchmark and the Python package all light with these,
  * so that their pictures of one model agree. */
 #include "softrast.h"
+#include "error.h"
 
 #include <math.h>
 #include <string.h>
@@ -21,8 +22,13 @@ static bool unit(sr_vec3 a)
 
 sr_result sr_default_lights(const sr_camera_basis *basis, sr_light lights[SR_MAX_LIGHTS])
 {
-    if (!basis || !lights || !unit(basis->u) || !unit(basis->v) || !unit(basis->w)) {
-        return SR_INVALID_ARG;
+    if (!basis || !lights) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_default_lights: %s is NULL",
+                        basis ? "lights" : "basis");
+    }
+    if (!unit(basis->u) || !unit(basis->v) || !unit(basis->w)) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_default_lights: basis->%s is not a unit vector",
+                        !unit(basis->u) ? "u" : !unit(basis->v) ? "v" : "w");
     }
     /* Towards each light in the basis (u across, v up, w towards the
      * viewer), and its intensity. */
@@ -47,12 +53,22 @@ sr_result sr_default_lights(const sr_camera_basis *basis, sr_light lights[SR_MAX
 sr_result sr_pbr_default_lighting(const sr_light lights[SR_MAX_LIGHTS], sr_pbr_desc *desc)
 {
     if (!lights || !desc) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_pbr_default_lighting: %s is NULL",
+                        lights ? "desc" : "lights");
     }
     for (int i = 0; i < SR_MAX_LIGHTS; i++) {
-        if ((unsigned)lights[i].type > SR_LIGHT_POINT || !finite3(lights[i].vector) ||
-            !finite3(lights[i].color) || !isfinite(lights[i].intensity)) {
-            return SR_INVALID_ARG;
+        if ((unsigned)lights[i].type > SR_LIGHT_POINT) {
+            return sr__fail(NULL, SR_INVALID_ARG,
+                            "sr_pbr_default_lighting: lights[%d].type %d is not off, "
+                            "directional or point", i, (int)lights[i].type);
+        }
+        if (!finite3(lights[i].vector) || !finite3(lights[i].color) ||
+            !isfinite(lights[i].intensity)) {
+            return sr__fail(NULL, SR_INVALID_ARG,
+                            "sr_pbr_default_lighting: lights[%d].%s is not finite", i,
+                            !finite3(lights[i].vector)  ? "vector"
+                            : !finite3(lights[i].color) ? "color"
+                                                        : "intensity");
         }
     }
     for (int i = 0; i < SR_MAX_LIGHTS; i++) {
@@ -72,11 +88,14 @@ sr_result sr_pbr_scene_lights(const sr_light *scene_lights, size_t count, bool k
                               sr_light lights[SR_MAX_LIGHTS])
 {
     if (!lights || (count > 0 && !scene_lights)) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_pbr_scene_lights: %s is NULL",
+                        lights ? "scene_lights" : "lights");
     }
     for (size_t i = 0; i < count; i++) {
         if ((unsigned)scene_lights[i].type > SR_LIGHT_SPOT) {
-            return SR_INVALID_ARG;
+            return sr__fail(NULL, SR_INVALID_ARG,
+                            "sr_pbr_scene_lights: scene_lights[%zu].type %d is not a light type",
+                            i, (int)scene_lights[i].type);
         }
     }
     sr_light mine[SR_MAX_LIGHTS] = { 0 };

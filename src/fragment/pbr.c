@@ -1867,7 +1867,7 @@ static void dtrans_absorption(sr_pbr *p)
 sr_result sr_make_pbr_program(sr_context *ctx, const sr_pbr_desc *desc, sr_pbr **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_pbr_program: ctx is NULL");
     }
     if (!desc || !out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_pbr_program: %s is NULL",

@@ -133,7 +133,7 @@ sr_result sr_draw_shadow_catcher(sr_context *ctx, sr_framebuffer *fb, const sr_s
                                  const sr_shadow_catcher_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_draw_shadow_catcher: ctx is NULL");
     }
     sr_result r = validate(ctx, fb, state, desc);
     if (r != SR_OK) {

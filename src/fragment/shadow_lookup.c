@@ -5,6 +5,7 @@
  * Every lane is the same arithmetic in the same order, so a point's
  * visibility does not depend on the call, the lane or the thread. */
 #include "fragment/shadow.h"
+#include "error.h"
 #include "fragment/light_lanes.h"   /* sr__v4_sel, sr__v4_sqrt */
 
 #include <math.h>
@@ -261,11 +262,18 @@ static float quad_verdict(const sr_shadow_map *sm, const float *pos, const v4f m
     return block_verdict(sm, zlo, i0, j0, i1, j1) == 0 ? 0.0f : -1.0f;
 }
 
+/* The message for a lookup given a NULL sm, pos or out. */
+static sr_result lookup_null(const sr_shadow_map *sm, const float *pos, const char *fn)
+{
+    return sr__fail(NULL, SR_INVALID_ARG, "%s: %s is NULL", fn,
+                    !sm ? "sm" : !pos ? "pos" : "out");
+}
+
 sr_result sr_shadow_visibility(const sr_shadow_map *sm, const float pos[3], const float normal[3],
                                float *out)
 {
     if (!sm || !pos || !out) {
-        return SR_INVALID_ARG;
+        return lookup_null(sm, pos, "sr_shadow_visibility");
     }
     /* Lane 0 of the four-lane path, the others copies of it. */
     float p[12], n[12];
@@ -286,7 +294,7 @@ sr_result sr_shadow_visibility4(const sr_shadow_map *sm, const float *pos, const
                                 float out[4])
 {
     if (!sm || !pos || !out) {
-        return SR_INVALID_ARG;
+        return lookup_null(sm, pos, "sr_shadow_visibility4");
     }
     v4f m[6];
     to_map(sm, pos, normal, m);

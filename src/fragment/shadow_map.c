@@ -202,7 +202,7 @@ static void draw_block_rect(const sr_shadow_map *sm, const sr_draw_desc *d, int 
 sr_result sr_make_shadow_map(sr_context *ctx, const sr_shadow_desc *desc, sr_shadow_map **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_shadow_map: ctx is NULL");
     }
     if (!desc || !out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_shadow_map: desc and out must not be NULL");
@@ -260,7 +260,7 @@ void sr_destroy_shadow_map(sr_context *ctx, sr_shadow_map *sm)
 sr_result sr_shadow_map_clear(sr_context *ctx, sr_shadow_map *sm)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_shadow_map_clear: ctx is NULL");
     }
     if (!sm) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_shadow_map_clear: sm must not be NULL");
@@ -284,7 +284,7 @@ sr_result sr_shadow_map_clear(sr_context *ctx, sr_shadow_map *sm)
 sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr_draw_desc *draw)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_shadow_map_draw: ctx is NULL");
     }
     if (!sm || !draw) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_shadow_map_draw: sm and draw must not be NULL");
@@ -322,7 +322,7 @@ sr_result sr_shadow_map_draw(sr_context *ctx, sr_shadow_map *sm, const sr_draw_d
 sr_result sr_query_shadow_map(const sr_shadow_map *sm, sr_shadow_info *out)
 {
     if (!sm || !out) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_query_shadow_map: %s is NULL", sm ? "out" : "sm");
     }
     *out = (sr_shadow_info){
         .view = sm->view, .projection = sm->projection, .size = sm->size,

@@ -58,7 +58,7 @@ static void downsample(const sr_texture *t, int k, uint8_t *dst)
 sr_result sr_make_texture(sr_context *ctx, const sr_texture_desc *desc, sr_texture **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_texture: ctx is NULL");
     }
     if (!out || !desc) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_texture: %s is NULL", out ? "desc" : "out");

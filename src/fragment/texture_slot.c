@@ -29,7 +29,7 @@ sr_result sr_texture_slot_uv(sr_context *ctx, const sr_texture_slot *slot, const
                              size_t count, float *out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_texture_slot_uv: ctx is NULL");
     }
     if (!slot || (count > 0 && (!uv || !out))) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_texture_slot_uv: %s is NULL",

@@ -105,8 +105,11 @@ void sr__tone_curve(sr_tonemap_op op, const float in[3], float out[3])
 
 sr_result sr_tonemap_rgb(sr_tonemap_op op, const float in[3], float out[3])
 {
-    if (!in || !out || (unsigned)op > SR_TONEMAP_NONE) {
-        return SR_INVALID_ARG;
+    if (!in || !out) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_tonemap_rgb: %s is NULL", in ? "out" : "in");
+    }
+    if ((unsigned)op > SR_TONEMAP_NONE) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_tonemap_rgb: op %d is not an operator", (int)op);
     }
     sr__tone_curve(op, in, out);
     return SR_OK;
@@ -212,7 +215,7 @@ sr_result sr_tonemap(sr_context *ctx, const float *pixels, int width, int height
                      uint8_t *out, size_t out_stride, const sr_tonemap_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_tonemap: ctx is NULL");
     }
     sr_tonemap_desc d = desc ? *desc : (sr_tonemap_desc){ 0 };
     if (!pixels || !out) {

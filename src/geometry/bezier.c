@@ -303,7 +303,7 @@ sr_result sr_make_bezier_mesh(sr_context *ctx, const float (*patches)[16][3],
 {
     static const char fn[] = "sr_make_bezier_mesh";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_bezier_mesh: ctx is NULL");
     }
     if (!out) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: out is NULL", fn);

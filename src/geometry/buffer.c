@@ -18,7 +18,7 @@ struct sr_buffer {
 sr_result sr_make_buffer(sr_context *ctx, const void *data, size_t bytes, sr_buffer **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_buffer: ctx is NULL");
     }
     if (!out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_buffer: out is NULL");
@@ -54,7 +54,7 @@ sr_result sr_buffer_update(sr_context *ctx, sr_buffer *buf, size_t offset, const
                            size_t bytes)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_buffer_update: ctx is NULL");
     }
     if (!buf || (!data && bytes > 0)) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_buffer_update: %s is NULL", buf ? "data" : "buf");

@@ -41,23 +41,33 @@ static float view_z(const sr_mat4 *mv, const float *p)
     return mv->m[2] * p[0] + mv->m[6] * p[1] + mv->m[10] * p[2] + mv->m[14];
 }
 
-static bool check(const float *positions, size_t vertex_count, const uint32_t *indices,
-                  size_t triangle_count, const sr_mat4 *mv)
+/* The arguments both take, the wrong one named in the message (ctx NULL
+ * for sr_mean_view_depth, which has none). */
+static sr_result check(sr_context *ctx, const char *fn, const float *positions,
+                       size_t vertex_count, const uint32_t *indices, size_t triangle_count,
+                       const sr_mat4 *mv)
 {
-    if (!positions || !indices || !mv || triangle_count > SIZE_MAX / 3) {
-        return false;
+    if (!positions || !indices || !mv) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn,
+                        !positions ? "positions" : !indices ? "indices" : "model_view");
+    }
+    if (triangle_count > SIZE_MAX / 3) {
+        return sr__fail(ctx, SR_INVALID_ARG, "%s: triangle_count %zu is too large", fn,
+                        triangle_count);
     }
     for (int k = 0; k < 16; k++) {
         if (!isfinite(mv->m[k])) {
-            return false;
+            return sr__fail(ctx, SR_INVALID_ARG, "%s: model_view->m[%d] is not finite", fn, k);
         }
     }
     for (size_t i = 0; i < 3 * triangle_count; i++) {
         if (indices[i] >= vertex_count) {
-            return false;
+            return sr__fail(ctx, SR_INVALID_ARG,
+                            "%s: indices[%zu] = %u is not below vertex_count %zu", fn, i,
+                            (unsigned)indices[i], vertex_count);
         }
     }
-    return true;
+    return SR_OK;
 }
 
 sr_result sr_sort_back_to_front(sr_context *ctx, const float *positions, size_t vertex_count,
@@ -65,17 +75,20 @@ sr_result sr_sort_back_to_front(sr_context *ctx, const float *positions, size_t 
                                 const sr_mat4 *model_view, uint32_t *out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_sort_back_to_front: ctx is NULL");
     }
     if (triangle_count > SIZE_MAX / sizeof(triangle_key)) {
         return sr__fail(ctx, SR_TOO_LARGE,
                         "sr_sort_back_to_front: %zu triangles do not fit in memory",
                         triangle_count);
     }
-    if (!out || !check(positions, vertex_count, indices, triangle_count, model_view)) {
-        return sr__fail(ctx, SR_INVALID_ARG, "sr_sort_back_to_front: %s",
-                        !out ? "out is NULL"
-                             : "NULL arrays, an index past vertex_count or a non-finite matrix");
+    if (!out) {
+        return sr__fail(ctx, SR_INVALID_ARG, "sr_sort_back_to_front: out is NULL");
+    }
+    sr_result r = check(ctx, "sr_sort_back_to_front", positions, vertex_count, indices,
+                        triangle_count, model_view);
+    if (r != SR_OK) {
+        return r;
     }
     triangle_key *keys = sr__alloc(ctx, (triangle_count ? triangle_count : 1) * sizeof *keys);
     if (!keys) {
@@ -101,8 +114,13 @@ sr_result sr_sort_back_to_front(sr_context *ctx, const float *positions, size_t 
 sr_result sr_mean_view_depth(const float *positions, size_t vertex_count, const uint32_t *indices,
                              size_t triangle_count, const sr_mat4 *model_view, float *out)
 {
-    if (!out || !check(positions, vertex_count, indices, triangle_count, model_view)) {
-        return SR_INVALID_ARG;
+    if (!out) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_mean_view_depth: out is NULL");
+    }
+    sr_result r = check(NULL, "sr_mean_view_depth", positions, vertex_count, indices,
+                        triangle_count, model_view);
+    if (r != SR_OK) {
+        return r;
     }
     double z = 0.0;
     for (size_t i = 0; i < 3 * triangle_count; i++) {
@@ -116,7 +134,7 @@ sr_result sr_order_back_to_front(sr_context *ctx, const float *distances, size_t
                                  size_t *order)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_order_back_to_front: ctx is NULL");
     }
     if (count > SIZE_MAX / sizeof(depth_key)) {
         return sr__fail(ctx, SR_TOO_LARGE,

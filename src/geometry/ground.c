@@ -41,7 +41,7 @@ static sr_result validate(sr_context *ctx, const sr_ground_desc *d)
 sr_result sr_make_ground_mesh(sr_context *ctx, const sr_ground_desc *desc, sr_mesh *out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_ground_mesh: ctx is NULL");
     }
     if (!desc || !out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_ground_mesh: desc and out must not be NULL");

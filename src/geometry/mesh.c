@@ -75,7 +75,7 @@ sr_result sr_make_mesh(sr_context *ctx, const sr_mesh *src, sr_mesh *out)
 {
     static const char fn[] = "sr_make_mesh";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_mesh: ctx is NULL");
     }
     if (!out) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: out is NULL", fn);
@@ -440,7 +440,7 @@ sr_result sr_mesh_compute_normals(sr_context *ctx, sr_mesh *mesh, sr_normal_mode
 {
     static const char fn[] = "sr_mesh_compute_normals";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_mesh_compute_normals: ctx is NULL");
     }
     if (validate_mesh(mesh) != SR_OK) {
         return sr__fail(ctx, SR_INVALID_ARG,

@@ -11,21 +11,25 @@
  * no single cross product of two edges gives.
  */
 #include "softrast.h"
+#include "error.h"
 #include "geometry/newell.h"
 
 #include <math.h>
 sr_result sr_newell_normal(const sr_vec3 *points, int count, sr_vec3 *out)
 {
     if (!out) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_newell_normal: out is NULL");
     }
     *out = (sr_vec3){ 0, 0, 0 };
-    if (!points || count < 3) {
-        return SR_INVALID_ARG;
+    if (!points) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_newell_normal: points is NULL");
+    }
+    if (count < 3) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_newell_normal: count %d is less than 3", count);
     }
     for (int i = 0; i < count; i++) {
         if (!isfinite(points[i].x) || !isfinite(points[i].y) || !isfinite(points[i].z)) {
-            return SR_INVALID_ARG;
+            return sr__fail(NULL, SR_INVALID_ARG, "sr_newell_normal: points[%d] is not finite", i);
         }
     }
     /* Relative to the first corner, in doubles: a small polygon far from the
@@ -43,7 +47,9 @@ sr_result sr_newell_normal(const sr_vec3 *points, int count, sr_vec3 *out)
     }
     sr_vec3 r = { (float)n[0], (float)n[1], (float)n[2] };
     if (!isfinite(r.x) || !isfinite(r.y) || !isfinite(r.z)) {
-        return SR_TOO_LARGE;
+        return sr__fail(NULL, SR_TOO_LARGE,
+                        "sr_newell_normal: the points are so far apart that the normal "
+                        "overflows float");
     }
     *out = r;
     return SR_OK;

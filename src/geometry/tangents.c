@@ -66,7 +66,7 @@ sr_result sr_mesh_compute_tangents(sr_context *ctx, const sr_mesh *mesh, float *
 {
     static const char fn[] = "sr_mesh_compute_tangents";
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_mesh_compute_tangents: ctx is NULL");
     }
     if (!mesh || !tangents) {
         return sr__fail(ctx, SR_INVALID_ARG, "%s: %s is NULL", fn, mesh ? "tangents" : "mesh");

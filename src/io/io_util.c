@@ -33,12 +33,18 @@ static size_t append(char *dst, size_t at, size_t cap, const char *s)
 /* The message "NAME" + `where` (":LINE: ", ": byte N: " or ": ") + the
  * reason.  The position and the reason are what the reader needs, so when
  * the whole does not fit, the name gives way from the left: "..." and its
- * tail, cut at a UTF-8 character boundary. */
-static void format_message(sr_io_error *err, const char *name, const char *where,
-                           const char *fmt, va_list ap)
+ * tail, cut at a UTF-8 character boundary.  A failure's message is also
+ * the thread's sr_last_error, err or not; a warning's (code SR_OK) is
+ * err's alone. */
+static void format_message(sr_io_error *err, sr_result code, const char *name,
+                           const char *where, const char *fmt, va_list ap)
 {
+    sr_io_error own;
     if (!err) {
-        return;
+        if (code == SR_OK) {
+            return;
+        }
+        err = &own;
     }
     char reason[sizeof err->message];
     vsnprintf(reason, sizeof reason, fmt, ap);
@@ -71,6 +77,9 @@ static void format_message(sr_io_error *err, const char *name, const char *where
             err->message[i] = '?';
         }
     }
+    if (code != SR_OK) {
+        sr_set_last_error(err->message);
+    }
 }
 
 sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
@@ -84,9 +93,31 @@ sr_result sr__io_fail(sr_io_error *err, sr_result code, const char *name,
     }
     va_list ap;
     va_start(ap, fmt);
-    format_message(err, name ? name : "<input>", where, fmt, ap);
+    format_message(err, code, name ? name : "<input>", where, fmt, ap);
     va_end(ap);
     return code;
+}
+
+sr_result sr__io_message(sr_io_error *err, sr_result code, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    format_message(err, code, "", "", fmt, ap);
+    va_end(ap);
+    return code;
+}
+
+void sr__last_error_save(sr_io_error *saved)
+{
+    snprintf(saved->message, sizeof saved->message, "%s", sr_last_error());
+}
+
+sr_result sr__last_error_keep(sr_result r, const sr_io_error *saved)
+{
+    if (r == SR_OK) {
+        sr_set_last_error(saved->message);
+    }
+    return r;
 }
 
 sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
@@ -96,7 +127,7 @@ sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
     snprintf(where, sizeof where, ": byte %llu: ", byte_offset);
     va_list ap;
     va_start(ap, fmt);
-    format_message(err, name ? name : "<input>", where, fmt, ap);
+    format_message(err, code, name ? name : "<input>", where, fmt, ap);
     va_end(ap);
     return code;
 }

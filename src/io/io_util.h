@@ -20,6 +20,19 @@ sr_result sr__io_fail_at(sr_io_error *err, sr_result code, const char *name,
                          unsigned long long byte_offset, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 
+/* A message without a file name ("sr_check_memory: desc is NULL") in err
+ * (may be NULL) and, for a failure (code other than SR_OK), in the
+ * thread's sr_last_error; returns code. */
+sr_result sr__io_message(sr_io_error *err, sr_result code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* For the calls whose readers may meet a failure and carry on (a texture
+ * skipped with a warning, SVG path data that ends early): the thread's
+ * sr_last_error before the call, and `r` after putting it back when the
+ * call succeeded, so that a success leaves it as it was. */
+void sr__last_error_save(sr_io_error *saved);
+sr_result sr__last_error_keep(sr_result r, const sr_io_error *saved);
+
 /* Open a regular file for reading: *f and its size, or a message naming
  * the file ("cannot open: ...", "is a directory, not KIND", with KIND
  * such as "a PNG file", or "not a regular file").  Never waits for

@@ -253,8 +253,8 @@ static sr_result load_malloc_mesh(sr_context *ctx, const char *path, const sr_lo
     return sr__load_assimp(path, out, err);
 }
 
-sr_result sr_load_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
-                       sr_mesh *out, sr_io_error *err)
+static sr_result load_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                           sr_mesh *out, sr_io_error *err)
 {
     if (out) {
         memset(out, 0, sizeof *out);
@@ -272,4 +272,12 @@ sr_result sr_load_mesh(sr_context *ctx, const char *path, const sr_load_desc *de
     sr_mesh m = {0};
     res = load_malloc_mesh(ctx, path, desc, &m, err);
     return hand_out(ctx, path, res, &m, out, err);
+}
+
+sr_result sr_load_mesh(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                       sr_mesh *out, sr_io_error *err)
+{
+    sr_io_error saved;
+    sr__last_error_save(&saved);
+    return sr__last_error_keep(load_mesh(ctx, path, desc, out, err), &saved);
 }

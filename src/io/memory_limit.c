@@ -52,21 +52,15 @@ static bool parse_bytes(const char *s, uint64_t *out)
 sr_result sr_query_memory_limit(sr_memory_limit_info *out, sr_io_error *err)
 {
     if (!out) {
-        if (err) {
-            snprintf(err->message, sizeof err->message, "sr_query_memory_limit: out is NULL");
-        }
-        return SR_INVALID_ARG;
+        return sr__io_message(err, SR_INVALID_ARG, "sr_query_memory_limit: out is NULL");
     }
     const char *env = getenv("SR_MEMORY_LIMIT");
     if (env) {
         uint64_t bytes;
         if (!parse_bytes(env, &bytes)) {
-            if (err) {
-                snprintf(err->message, sizeof err->message,
-                         "SR_MEMORY_LIMIT: expected a size in bytes such as 512M or 8G (got '%.200s')",
-                         env);
-            }
-            return SR_INVALID_ARG;
+            return sr__io_message(err, SR_INVALID_ARG,
+                                  "SR_MEMORY_LIMIT: expected a size in bytes such as 512M or 8G "
+                                  "(got '%.200s')", env);
         }
         *out = (sr_memory_limit_info){ .bytes = bytes, .from_environment = true };
         snprintf(out->source, sizeof out->source, "SR_MEMORY_LIMIT=%.100s", env);
@@ -114,30 +108,24 @@ sr_result sr_check_memory(const sr_memory_check_desc *desc, sr_io_error *err)
                       : !desc->lower || !desc->lower[0] ? "sr_memory_check_desc.lower must be set"
                                                         : NULL;
     if (bad) {
-        if (err) {
-            snprintf(err->message, sizeof err->message, "sr_check_memory: %s", bad);
-        }
-        return SR_INVALID_ARG;
+        return sr__io_message(err, SR_INVALID_ARG, "sr_check_memory: %s", bad);
     }
     sr_memory_limit_info limit;
     sr_result r = sr_query_memory_limit(&limit, err);
     if (r != SR_OK || desc->bytes <= limit.bytes) {
         return r;
     }
-    if (err) {
-        const char *kind = desc->memory && desc->memory[0] ? desc->memory : "memory";
-        char need[32], has[32], allows[256];
-        sr__format_bytes(desc->bytes, need, sizeof need);
-        sr__format_bytes(limit.bytes, has, sizeof has);
-        if (limit.from_environment) {
-            snprintf(allows, sizeof allows, "more than %s allows", limit.source);
-        } else {
-            snprintf(allows, sizeof allows,
-                     "more than the %s of %s (SR_MEMORY_LIMIT sets another limit)", has,
-                     limit.source);
-        }
-        snprintf(err->message, sizeof err->message, "%s needs about %s of %s, %s: %s",
-                 desc->what, need, kind, allows, desc->lower);
+    const char *kind = desc->memory && desc->memory[0] ? desc->memory : "memory";
+    char need[32], has[32], allows[256];
+    sr__format_bytes(desc->bytes, need, sizeof need);
+    sr__format_bytes(limit.bytes, has, sizeof has);
+    if (limit.from_environment) {
+        snprintf(allows, sizeof allows, "more than %s allows", limit.source);
+    } else {
+        snprintf(allows, sizeof allows,
+                 "more than the %s of %s (SR_MEMORY_LIMIT sets another limit)", has,
+                 limit.source);
     }
-    return SR_TOO_LARGE;
+    return sr__io_message(err, SR_TOO_LARGE, "%s needs about %s of %s, %s: %s", desc->what, need,
+                          kind, allows, desc->lower);
 }

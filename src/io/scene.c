@@ -10,6 +10,8 @@
 #include "io/scene.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -213,17 +215,35 @@ void sr_destroy_scene(sr_context *ctx, sr_scene *scene)
 
 /* ---- cameras -------------------------------------------------------------- */
 
+/* sr_scene_camera_matrices' refusal, with what is wrong. */
+static sr_result camera_fail(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+static sr_result camera_fail(const char *fmt, ...)
+{
+    char reason[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    va_end(ap);
+    return sr__io_message(NULL, SR_INVALID_ARG, "sr_scene_camera_matrices: %s", reason);
+}
+
 sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect, sr_mat4 *view,
                                    sr_mat4 *projection)
 {
-    if (!camera || !view || !projection || !(aspect > 0) || !isfinite(aspect) ||
-        (unsigned)camera->type > SR_SCENE_CAMERA_ORTHOGRAPHIC) {
-        return SR_INVALID_ARG;
+    if (!camera || !view || !projection) {
+        return camera_fail("%s is NULL", !camera ? "camera" : !view ? "view" : "projection");
+    }
+    if (!(aspect > 0) || !isfinite(aspect)) {
+        return camera_fail("aspect %g is not a finite number > 0", aspect);
+    }
+    if ((unsigned)camera->type > SR_SCENE_CAMERA_ORTHOGRAPHIC) {
+        return camera_fail("camera->type %d is not an sr_scene_camera_type", (int)camera->type);
     }
     const float *w = camera->world;
     for (int i = 0; i < 16; i++) {
         if (!isfinite(w[i])) {
-            return SR_INVALID_ARG;
+            return camera_fail("camera->world[%d] is not finite", i);
         }
     }
     /* An orthonormal frame from the world matrix: -Z (the gaze) kept,
@@ -233,7 +253,7 @@ sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect, 
     x = sr_vec3_normalize(sr_vec3_sub(x, sr_vec3_scale(z, sr_vec3_dot(x, z))));
     sr_vec3 y = sr_vec3_cross(z, x);
     if (!(sr_vec3_length(y) >= 0.5f)) {
-        return SR_INVALID_ARG;
+        return camera_fail("camera->world is degenerate (its X and Z axes are parallel or zero)");
     }
     sr_vec3 t = sr_vec3_make(w[12], w[13], w[14]);
     const sr_vec3 axes[3] = { x, y, z };
@@ -248,18 +268,25 @@ sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect, 
     /* Outputs are written only on success: a refused camera leaves them. */
     float n = camera->znear, f = camera->zfar;
     if (!isfinite(n) || !isfinite(f)) {
-        return SR_INVALID_ARG;
+        return camera_fail("camera->%s is not finite", isfinite(n) ? "zfar" : "znear");
     }
     sr_mat4 p;
     if (camera->type == SR_SCENE_CAMERA_ORTHOGRAPHIC) {
         float ymag = fabsf(camera->ymag), xmag = ymag * aspect;
-        if (!(ymag > 0) || !isfinite(xmag) || !(f > n)) {
-            return SR_INVALID_ARG;
+        if (!(ymag > 0) || !isfinite(xmag)) {
+            return camera_fail("camera->ymag %g gives no finite, non-empty view",
+                               camera->ymag);
+        }
+        if (!(f > n)) {
+            return camera_fail("camera->zfar %g is not beyond znear %g", f, n);
         }
         p = sr_ortho(-xmag, xmag, -ymag, ymag, n, f, false);
-    } else if (!(camera->yfov > 0 && camera->yfov < 3.14159265f) || !(n > 0) ||
-               (f != 0 && !(f > n))) {
-        return SR_INVALID_ARG;
+    } else if (!(camera->yfov > 0 && camera->yfov < 3.14159265f)) {
+        return camera_fail("camera->yfov %g is not in (0, pi)", camera->yfov);
+    } else if (!(n > 0)) {
+        return camera_fail("camera->znear %g is not > 0", n);
+    } else if (f != 0 && !(f > n)) {
+        return camera_fail("camera->zfar %g is not 0 or beyond znear %g", f, n);
     } else if (f != 0) {
         p = sr_perspective(camera->yfov, aspect, n, f, false);
     } else {
@@ -276,7 +303,8 @@ sr_result sr_scene_camera_matrices(const sr_scene_camera *camera, float aspect, 
      * matrices' products: no camera a draw could use. */
     for (int i = 0; i < 16; i++) {
         if (!isfinite(v.m[i]) || !isfinite(p.m[i])) {
-            return SR_INVALID_ARG;
+            return camera_fail("the %s matrix is not finite (values near FLT_MAX)",
+                               isfinite(v.m[i]) ? "projection" : "view");
         }
     }
     *view = v;
@@ -535,8 +563,8 @@ static sr_result parse_gltf_at(sr_context *ctx, const char *name, const uint8_t 
     return r;
 }
 
-sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
-                        const sr_load_desc *desc, sr_scene **out, sr_io_error *err)
+static sr_result parse_gltf_doc(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
+                                const sr_load_desc *desc, sr_scene **out, sr_io_error *err)
 {
     if (err) {
         err->message[0] = 0;
@@ -559,6 +587,14 @@ sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t *data, 
     return parse_gltf_at(ctx, name, data, size, desc, false, out, err);
 }
 
+sr_result sr_parse_gltf(sr_context *ctx, const char *name, const uint8_t *data, size_t size,
+                        const sr_load_desc *desc, sr_scene **out, sr_io_error *err)
+{
+    sr_io_error saved;
+    sr__last_error_save(&saved);
+    return sr__last_error_keep(parse_gltf_doc(ctx, name, data, size, desc, out, err), &saved);
+}
+
 sr_result sr__load_gltf_scene(sr_context *ctx, const char *path, const sr_load_desc *desc,
                               bool for_mesh, sr_scene **out, sr_io_error *err)
 {
@@ -576,8 +612,8 @@ sr_result sr__load_gltf_scene(sr_context *ctx, const char *path, const sr_load_d
     return r;
 }
 
-sr_result sr_load_scene(sr_context *ctx, const char *path, const sr_load_desc *desc,
-                        sr_scene **out, sr_io_error *err)
+static sr_result load_scene(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                            sr_scene **out, sr_io_error *err)
 {
     if (err) {
         err->message[0] = 0;
@@ -614,4 +650,12 @@ sr_result sr_load_scene(sr_context *ctx, const char *path, const sr_load_desc *d
     }
     *out = s;
     return SR_OK;
+}
+
+sr_result sr_load_scene(sr_context *ctx, const char *path, const sr_load_desc *desc,
+                        sr_scene **out, sr_io_error *err)
+{
+    sr_io_error saved;
+    sr__last_error_save(&saved);
+    return sr__last_error_keep(load_scene(ctx, path, desc, out, err), &saved);
 }

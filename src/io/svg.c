@@ -4874,8 +4874,9 @@ bool sr_io_have_svg(void)
 
 #endif /* SR_HAVE_EXPAT */
 
-sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *desc,
-                        sr_framebuffer **out, sr_svg_info *info, sr_io_error *err)
+static sr_result render_svg(sr_context *ctx, const char *data, size_t size,
+                            const sr_svg_desc *desc, sr_framebuffer **out, sr_svg_info *info,
+                            sr_io_error *err)
 {
     sr_io_error scratch;
     if (!err) {
@@ -4909,7 +4910,19 @@ sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr
     if (!isfinite(bg.r) || !isfinite(bg.g) || !isfinite(bg.b) || !isfinite(bg.a)) {
         return sr__io_fail(err, SR_INVALID_ARG, name, 0, "sr_svg_desc.background is not finite");
     }
-    return render(ctx, data, size, desc, out, info, err->message, sizeof err->message);
+    sr_result r = render(ctx, data, size, desc, out, info, err->message, sizeof err->message);
+    if (r != SR_OK && err->message[0]) {
+        sr_set_last_error(err->message);
+    }
+    return r;
+}
+
+sr_result sr_render_svg(sr_context *ctx, const char *data, size_t size, const sr_svg_desc *desc,
+                        sr_framebuffer **out, sr_svg_info *info, sr_io_error *err)
+{
+    sr_io_error saved;
+    sr__last_error_save(&saved);
+    return sr__last_error_keep(render_svg(ctx, data, size, desc, out, info, err), &saved);
 }
 
 sr_result sr_render_svg_file(sr_context *ctx, const char *path, const sr_svg_desc *desc,

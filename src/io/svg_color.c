@@ -3,6 +3,7 @@
  * or without alpha, rgb()/rgba(), hsl()/hsla().  Pure parsing; used by svg.c
  * and, as sr_io_parse_color, by programs that take a color as SVG does. */
 #include "io/svg.h"
+#include "io/io_util.h"
 #include "io/number.h"
 
 #include <ctype.h>
@@ -241,11 +242,13 @@ svg_paint_kind svg_parse_color(const char *s, sr_rgba *out)
 sr_result sr_io_parse_color(const char *text, sr_rgba *out)
 {
     if (!text || !out) {
-        return SR_INVALID_ARG;
+        return sr__io_message(NULL, SR_INVALID_ARG, "sr_io_parse_color: %s is NULL",
+                              text ? "out" : "text");
     }
     sr_rgba c;
     if (svg_parse_color(text, &c) != SVG_PAINT_COLOR) {
-        return SR_BAD_FORMAT;
+        return sr__io_message(NULL, SR_BAD_FORMAT, "sr_io_parse_color: '%.100s' is not a color",
+                              text);
     }
     *out = c;
     return SR_OK;

@@ -5,6 +5,7 @@
  * sr_io_parse_path_data, and so do programs (the Python package's
  * Path.from_svg).  Works without expat; any thread, one path per call. */
 #include "io/svg.h"
+#include "io/io_util.h"
 #include "io/number.h"
 
 #include <ctype.h>
@@ -148,21 +149,18 @@ static int args_for(char up)
     }
 }
 
-/* err (when given) gets "path data: DETAIL at offset N". */
+/* err (when given) and sr_last_error get "path data: DETAIL at offset N". */
 static void fail_at(sr_io_error *err, long offset, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
 static void fail_at(sr_io_error *err, long offset, const char *fmt, ...)
 {
-    if (!err) {
-        return;
-    }
     char detail[128];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(detail, sizeof detail, fmt, ap);
     va_end(ap);
-    snprintf(err->message, sizeof err->message, "path data: %s at offset %ld", detail, offset);
+    sr__io_message(err, SR_BAD_FORMAT, "path data: %s at offset %ld", detail, offset);
 }
 
 sr_result sr_io_parse_path_data(const char *d, sr_path *path, const sr_io_path_data_desc *desc,
@@ -175,11 +173,8 @@ sr_result sr_io_parse_path_data(const char *d, sr_path *path, const sr_io_path_d
         err->message[0] = 0;
     }
     if (!d || !path) {
-        if (err) {
-            snprintf(err->message, sizeof err->message, "sr_io_parse_path_data: %s is NULL",
-                     d ? "path" : "d");
-        }
-        return SR_INVALID_ARG;
+        return sr__io_message(err, SR_INVALID_ARG, "sr_io_parse_path_data: %s is NULL",
+                              d ? "path" : "d");
     }
     sr_io_path_data_desc none = { 0 };
     desc = desc ? desc : &none;
@@ -253,7 +248,9 @@ sr_result sr_io_parse_path_data(const char *d, sr_path *path, const sr_io_path_d
         *error_offset = (long)(at - d);
     }
     if (r != SR_OK && r != SR_BAD_FORMAT && err && !err->message[0]) {
-        fail_at(err, (long)(at - d), "%s", sr_result_text(r));
+        /* The path's refusal is already sr_last_error, with its reason. */
+        snprintf(err->message, sizeof err->message, "path data: %s at offset %ld",
+                 sr_result_text(r), (long)(at - d));
     }
     return r;
 }

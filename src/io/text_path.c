@@ -3,6 +3,7 @@
  * layout (svg_text.c) and fonts (svg_font.c): fontconfig matches the
  * family, HarfBuzz shapes, FreeType reads the outlines.  Each call makes
  * and frees its own fonts, so calls may run in parallel. */
+#include "io/io_util.h"
 #include "io/svg_text.h"
 #include "softrast_io.h"
 
@@ -41,10 +42,7 @@ static bool valid_utf8(const unsigned char *s, size_t *chars)
 
 static sr_result fail(sr_io_error *err, sr_result r, const char *msg)
 {
-    if (err) {
-        snprintf(err->message, sizeof err->message, "sr_text_path: %.480s", msg);
-    }
-    return r;
+    return sr__io_message(err, r, "sr_text_path: %.480s", msg);
 }
 
 bool sr_io_have_text(void)

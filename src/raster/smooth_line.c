@@ -11,7 +11,7 @@ sr_result sr_smooth_line_pixels(sr_context *ctx, int width, int height, sr_point
                                 sr_point2 b, double line_width, sr_line_pixel_fn fn, void *user)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_smooth_line_pixels: ctx is NULL");
     }
     if (!fn) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_smooth_line_pixels: fn is NULL");

@@ -104,7 +104,7 @@ static sr_result check_desc(sr_context *ctx, const sr_bands_desc *d)
 sr_result sr_render_bands(sr_context *ctx, const sr_bands_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_render_bands: ctx is NULL");
     }
     sr_result r = check_desc(ctx, desc);
     sr_framebuffer *fb = NULL;

@@ -21,7 +21,7 @@ sr_result sr_make_framebuffer(sr_context *ctx, const sr_framebuffer_desc *desc,
                               sr_framebuffer **out)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_make_framebuffer: ctx is NULL");
     }
     if (!out) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_make_framebuffer: out is NULL");
@@ -388,8 +388,16 @@ const int8_t (*sr__sample_offsets(int samples))[2]
 sr_result sr_sample_position(int samples, int index, float *x, float *y)
 {
     const int8_t (*off)[2] = sr__sample_offsets(samples);
-    if (!off || index < 0 || index >= samples || !x || !y) {
-        return SR_INVALID_ARG;
+    if (!x || !y) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_sample_position: %s is NULL", x ? "y" : "x");
+    }
+    if (!off) {
+        return sr__fail(NULL, SR_INVALID_ARG,
+                        "sr_sample_position: samples %d must be 1, 2, 4, 8 or 16", samples);
+    }
+    if (index < 0 || index >= samples) {
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_sample_position: index %d is not in 0..%d",
+                        index, samples - 1);
     }
     *x = (float)(128 + off[index][0]) / 256.0f;
     *y = (float)(128 + off[index][1]) / 256.0f;
@@ -582,7 +590,7 @@ const uint8_t *sr_framebuffer_pixels(const sr_framebuffer *fb)
 sr_result sr_resolve(sr_context *ctx, const sr_framebuffer *src, sr_framebuffer *dst)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_resolve: ctx is NULL");
     }
     if (!src || !dst) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_resolve: %s is NULL", src ? "dst" : "src");
@@ -629,7 +637,7 @@ static uint8_t unorm8(float v)
 sr_result sr_clear(sr_context *ctx, sr_framebuffer *fb, const sr_clear_desc *desc)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_clear: ctx is NULL");
     }
     if (!fb || !desc) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_clear: %s is NULL", fb ? "desc" : "fb");
@@ -741,7 +749,7 @@ sr_result sr_read_pixels(sr_context *ctx, const sr_framebuffer *fb,
                          int x, int y, int w, int h, uint8_t *out, size_t stride)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_read_pixels: ctx is NULL");
     }
     sr_result r = check_rgba_rect(ctx, "sr_read_pixels", fb, x, y, w, h, out, "out", stride);
     if (r != SR_OK) {
@@ -760,7 +768,7 @@ sr_result sr_write_pixels(sr_context *ctx, sr_framebuffer *fb, int x, int y, int
                           const uint8_t *rgba, size_t stride)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_write_pixels: ctx is NULL");
     }
     sr_result r = check_rgba_rect(ctx, "sr_write_pixels", fb, x, y, w, h, rgba, "rgba", stride);
     if (r != SR_OK) {
@@ -835,7 +843,7 @@ sr_result sr_read_depth(sr_context *ctx, const sr_framebuffer *fb,
                         int x, int y, int w, int h, float *out, size_t stride)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_read_depth: ctx is NULL");
     }
     sr_result r = check_rect(ctx, "sr_read_depth", fb, x, y, w, h, out, "out");
     if (r != SR_OK) {
@@ -870,7 +878,7 @@ sr_result sr_read_stencil(sr_context *ctx, const sr_framebuffer *fb,
                           int x, int y, int w, int h, uint8_t *out, size_t stride)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_read_stencil: ctx is NULL");
     }
     sr_result r = check_rect(ctx, "sr_read_stencil", fb, x, y, w, h, out, "out");
     if (r != SR_OK) {

@@ -89,7 +89,7 @@ sr_result sr_downsample(sr_context *ctx, const sr_framebuffer *src, sr_framebuff
                         sr_resample_filter filter)
 {
     if (!ctx) {
-        return SR_INVALID_ARG;
+        return sr__fail(NULL, SR_INVALID_ARG, "sr_downsample: ctx is NULL");
     }
     if (!src || !dst) {
         return sr__fail(ctx, SR_INVALID_ARG, "sr_downsample: %s is NULL", src ? "dst" : "src");
